@@ -1,0 +1,61 @@
+//! Reading and writing mesh files for the subcommands, with the file name in errors.
+
+use std::path::{Path, PathBuf};
+
+use clap::{Args, ValueEnum};
+use smoothlab::io::{self, MshVersion, WriteOptions};
+use smoothlab::Mesh;
+
+/// Reads a mesh, naming the file in any error, and warns (stderr) about elements
+/// of zero area, which load but count as inverted until smoothed.
+pub fn read_mesh(path: &Path) -> Result<Mesh, String> {
+    let mesh = io::read_path(path).map_err(|e| format!("{}: {e}", path.display()))?;
+    let flat: Vec<usize> = (0..mesh.element_count()).filter(|&e| mesh.corner_area(e) == 0.0).collect();
+    if !flat.is_empty() {
+        let shown: Vec<String> = flat.iter().take(5).map(|e| e.to_string()).collect();
+        eprintln!(
+            "smoothlab: warning: {}: {} element(s) of zero area (element {}{}); they count as inverted",
+            path.display(),
+            flat.len(),
+            shown.join(", "),
+            if flat.len() > 5 { ", …" } else { "" }
+        );
+    }
+    Ok(mesh)
+}
+
+/// `.msh` version to write.
+#[derive(Clone, Copy, Debug, ValueEnum)]
+pub enum MshVersionArg {
+    #[value(name = "2.2")]
+    V22,
+    #[value(name = "4.1")]
+    V41,
+}
+
+/// Writes a mesh in the format of the file's extension.
+pub fn write_mesh(mesh: &Mesh, path: &Path, msh: MshVersionArg) -> Result<(), String> {
+    let opts = WriteOptions {
+        msh_version: match msh {
+            MshVersionArg::V22 => MshVersion::V22,
+            MshVersionArg::V41 => MshVersion::V41,
+        },
+    };
+    io::write_path(mesh, path, &opts).map_err(|e| format!("{}: {e}", path.display()))
+}
+
+#[derive(Args)]
+pub struct ConvertArgs {
+    /// Input mesh (.msh, .vtk, .node/.ele, .obj, .off)
+    pub input: PathBuf,
+    /// Output mesh; the format follows the extension
+    pub output: PathBuf,
+    /// Version of .msh files written
+    #[arg(long, value_enum, default_value = "2.2")]
+    pub msh_version: MshVersionArg,
+}
+
+pub fn convert(a: ConvertArgs) -> Result<(), String> {
+    let mesh = read_mesh(&a.input)?;
+    write_mesh(&mesh, &a.output, a.msh_version)
+}

@@ -1,0 +1,35 @@
+//! `smoothlab`: the command-line face of the core — generate, stats, convert, smooth,
+//! render. Each subcommand lives in its own file and only parses arguments, calls the
+//! core and prints; errors go to stderr with a non-zero exit code.
+
+use clap::{Parser, Subcommand};
+
+mod files;
+mod stats;
+
+#[derive(Parser)]
+#[command(name = "smoothlab", version, about = "A mesh-smoothing laboratory: metrics, smoothers and pictures")]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    /// Print the quality statistics of a mesh.
+    Stats(stats::StatsArgs),
+    /// Convert a mesh between formats (by the file extensions).
+    Convert(files::ConvertArgs),
+}
+
+fn main() {
+    let cli = Cli::parse();
+    let result = match cli.command {
+        Command::Stats(a) => stats::run(a),
+        Command::Convert(a) => files::convert(a),
+    };
+    if let Err(e) = result {
+        eprintln!("smoothlab: {e}");
+        std::process::exit(1);
+    }
+}

@@ -1,0 +1,52 @@
+//! `smoothlab stats MESH [--json]`.
+
+use std::path::PathBuf;
+
+use clap::Args;
+use smoothlab::quality::{mesh_stats, MeshStats};
+
+#[derive(Args)]
+pub struct StatsArgs {
+    /// The mesh file
+    pub mesh: PathBuf,
+    /// Print one JSON object instead of a table
+    #[arg(long)]
+    pub json: bool,
+}
+
+pub fn run(a: StatsArgs) -> Result<(), String> {
+    let mesh = crate::files::read_mesh(&a.mesh)?;
+    let s = mesh_stats(&mesh);
+    if a.json {
+        println!("{}", serde_json::to_string(&s).map_err(|e| e.to_string())?);
+    } else {
+        print!("{}", table(&s));
+    }
+    Ok(())
+}
+
+/// The human-readable table.
+pub fn table(s: &MeshStats) -> String {
+    let mut t = String::new();
+    let mut row = |k: &str, v: String| t.push_str(&format!("{k:<16} {v}\n"));
+    row("nodes", format!("{} ({} free, {} fixed)", s.nodes, s.free_nodes, s.fixed_nodes));
+    row("elements", format!("{} ({} triangles, {} quads, {} quadratic)", s.elements, s.triangles, s.quads, s.quadratic));
+    row("inverted", s.inverted.to_string());
+    row("angles", format!("min {:.2}°  max {:.2}°", s.min_angle_deg, s.max_angle_deg));
+    row("quality α/β", format!("min {:.4}  mean {:.4}", s.min_quality, s.mean_quality));
+    row(
+        "condition κ",
+        if s.max_condition.is_finite() { format!("max {:.4}", s.max_condition) } else { "max ∞ (inverted elements)".into() },
+    );
+    let total: u64 = s.angle_histogram_6deg.iter().sum();
+    t.push_str("angle histogram (6° bins, % of corner angles):\n");
+    for (i, &c) in s.angle_histogram_6deg.iter().enumerate() {
+        if c == 0 {
+            continue;
+        }
+        let pct = 100.0 * c as f64 / total.max(1) as f64;
+        let bar = "#".repeat((pct / 2.0).ceil() as usize);
+        t.push_str(&format!("  {:>3}–{:<3}° {:>6.2}% {bar}\n", i * 6, i * 6 + 6, pct));
+    }
+    t
+}

@@ -1,0 +1,99 @@
+//! The one error type of the core. Every variant names where the problem is
+//! (a line of the file, an element or a node) and what was expected, so the CLI
+//! and the page can show it as it is.
+
+use std::fmt;
+
+/// Where in the input a problem was found.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Error {
+    /// The text of a file is malformed at `line` (1-based).
+    Parse { line: usize, message: String },
+    /// An element is invalid (0-based element index as read, with its file line when known).
+    Element { element: usize, line: Option<usize>, message: String },
+    /// A node is invalid (0-based node index as read, with its file line when known).
+    Node { node: usize, line: Option<usize>, message: String },
+    /// Points are given in 3D and do not lie on one plane.
+    NotPlanar { max_distance: f64, relative: f64, tolerance: f64 },
+    /// The input is well-formed but asks for something smoothlab does not do
+    /// (polygons, volume cells, binary files, …).
+    Unsupported { line: Option<usize>, message: String },
+    /// The mesh has no elements (or no nodes).
+    Empty(String),
+    /// The input is larger than a stated limit.
+    TooLarge(String),
+    /// A request (options, arguments) that cannot be carried out.
+    Invalid(String),
+    /// Reading or writing a file failed.
+    Io(String),
+}
+
+impl Error {
+    pub fn parse(line: usize, message: impl Into<String>) -> Self {
+        Error::Parse { line, message: message.into() }
+    }
+    pub fn element(element: usize, line: Option<usize>, message: impl Into<String>) -> Self {
+        Error::Element { element, line, message: message.into() }
+    }
+    pub fn node(node: usize, line: Option<usize>, message: impl Into<String>) -> Self {
+        Error::Node { node, line, message: message.into() }
+    }
+    pub fn unsupported(line: Option<usize>, message: impl Into<String>) -> Self {
+        Error::Unsupported { line, message: message.into() }
+    }
+    pub fn invalid(message: impl Into<String>) -> Self {
+        Error::Invalid(message.into())
+    }
+}
+
+fn at_line(f: &mut fmt::Formatter<'_>, line: Option<usize>) -> fmt::Result {
+    match line {
+        Some(l) => write!(f, " (line {l})"),
+        None => Ok(()),
+    }
+}
+
+impl fmt::Display for Error {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Error::Parse { line, message } => write!(f, "line {line}: {message}"),
+            Error::Element { element, line, message } => {
+                write!(f, "element {element}")?;
+                at_line(f, *line)?;
+                write!(f, ": {message}")
+            }
+            Error::Node { node, line, message } => {
+                write!(f, "node {node}")?;
+                at_line(f, *line)?;
+                write!(f, ": {message}")
+            }
+            Error::NotPlanar { max_distance, relative, tolerance } => write!(
+                f,
+                "the mesh is not planar: points lie up to {max_distance:.4} off their best-fit plane \
+                 ({:.3}% of the mesh size; the tolerance is {:.1e}); smoothlab smooths planar 2D meshes only",
+                relative * 100.0,
+                tolerance
+            ),
+            Error::Unsupported { line, message } => {
+                if let Some(l) = line {
+                    write!(f, "line {l}: ")?;
+                }
+                write!(f, "{message}")
+            }
+            Error::Empty(m) => write!(f, "empty mesh: {m}"),
+            Error::TooLarge(m) => write!(f, "too large: {m}"),
+            Error::Invalid(m) => write!(f, "{m}"),
+            Error::Io(m) => write!(f, "{m}"),
+        }
+    }
+}
+
+impl std::error::Error for Error {}
+
+impl From<std::io::Error> for Error {
+    fn from(e: std::io::Error) -> Self {
+        Error::Io(e.to_string())
+    }
+}
+
+pub type Result<T, E = Error> = std::result::Result<T, E>;

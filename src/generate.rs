@@ -1,0 +1,1 @@
+//! Sample meshes: rand2d, grid, plate with a hole, star configurations, perturbation.

@@ -1,0 +1,842 @@
+//! The mesh model: node positions (`glam::DVec2`), elements of five kinds, a per-node
+//! `fixed` flag, and the topology built once into flat (CSR-style) arrays.
+//!
+//! Element node order follows Gmsh and VTK: the corners counter-clockwise, then the
+//! mid-side nodes of the edges (corner 0→1, 1→2, …), then (9-node quad) the centre.
+//!
+//! Orientation is a property of the whole mesh: [`MeshBuilder::build`] makes the total
+//! signed area positive by reversing *every* element when it is negative, never one
+//! element alone, so a tangled mesh stays tangled until it is smoothed.
+
+use glam::DVec2;
+use serde::Serialize;
+
+use crate::error::{Error, Result};
+
+/// Marker for "no such index" in the flat arrays.
+pub const NONE: u32 = u32::MAX;
+
+/// The element kinds smoothlab reads, smooths and draws.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize)]
+pub enum ElementKind {
+    /// 3-node triangle.
+    Tri3,
+    /// 4-node quadrilateral.
+    Quad4,
+    /// 6-node (quadratic) triangle: corners, then mid-sides of 0-1, 1-2, 2-0.
+    Tri6,
+    /// 8-node (serendipity) quadrilateral: corners, then mid-sides of 0-1, 1-2, 2-3, 3-0.
+    Quad8,
+    /// 9-node (biquadratic) quadrilateral: as `Quad8` plus the centre node.
+    Quad9,
+}
+
+impl ElementKind {
+    /// Number of corner nodes (3 or 4).
+    pub fn corners(self) -> usize {
+        match self {
+            ElementKind::Tri3 | ElementKind::Tri6 => 3,
+            _ => 4,
+        }
+    }
+    /// Number of nodes of the element.
+    pub fn node_count(self) -> usize {
+        match self {
+            ElementKind::Tri3 => 3,
+            ElementKind::Quad4 => 4,
+            ElementKind::Tri6 => 6,
+            ElementKind::Quad8 => 8,
+            ElementKind::Quad9 => 9,
+        }
+    }
+    pub fn is_triangle(self) -> bool {
+        self.corners() == 3
+    }
+    pub fn is_quad(self) -> bool {
+        self.corners() == 4
+    }
+    /// True for the elements with mid-side nodes.
+    pub fn is_quadratic(self) -> bool {
+        matches!(self, ElementKind::Tri6 | ElementKind::Quad8 | ElementKind::Quad9)
+    }
+    /// Local index of the mid-side node of edge `i` (corner `i` → corner `i+1`), if any.
+    pub fn mid(self, i: usize) -> Option<usize> {
+        if self.is_quadratic() {
+            Some(self.corners() + i)
+        } else {
+            None
+        }
+    }
+    /// The element of the same family with mid-side nodes, or without.
+    pub fn from_parts(corners: usize, quadratic: bool, centre: bool) -> Option<ElementKind> {
+        match (corners, quadratic, centre) {
+            (3, false, false) => Some(ElementKind::Tri3),
+            (4, false, false) => Some(ElementKind::Quad4),
+            (3, true, false) => Some(ElementKind::Tri6),
+            (4, true, false) => Some(ElementKind::Quad8),
+            (4, true, true) => Some(ElementKind::Quad9),
+            _ => None,
+        }
+    }
+    /// A short lowercase name, as used in messages.
+    pub fn name(self) -> &'static str {
+        match self {
+            ElementKind::Tri3 => "3-node triangle",
+            ElementKind::Quad4 => "4-node quad",
+            ElementKind::Tri6 => "6-node triangle",
+            ElementKind::Quad8 => "8-node quad",
+            ElementKind::Quad9 => "9-node quad",
+        }
+    }
+    /// Local node order of the same element with its orientation reversed:
+    /// corners `0, n-1, …, 1`, mid-sides re-attached to the reversed edges.
+    fn reversed_order(self) -> &'static [usize] {
+        match self {
+            ElementKind::Tri3 => &[0, 2, 1],
+            ElementKind::Quad4 => &[0, 3, 2, 1],
+            ElementKind::Tri6 => &[0, 2, 1, 5, 4, 3],
+            ElementKind::Quad8 => &[0, 3, 2, 1, 7, 6, 5, 4],
+            ElementKind::Quad9 => &[0, 3, 2, 1, 7, 6, 5, 4, 8],
+        }
+    }
+}
+
+/// What part a node plays in the elements that use it.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+pub enum NodeRole {
+    /// A corner of at least one element: the nodes the smoothers move.
+    Corner,
+    /// A mid-side node of quadratic elements: follows its edge.
+    Mid,
+    /// The centre node of a 9-node quad: follows its element.
+    Centre,
+    /// Not used by any element (kept so node numbers stay as in the file).
+    Unused,
+}
+
+/// An edge between two corner nodes, with its mid-side node when quadratic.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct Edge {
+    /// Corner nodes, `a < b`.
+    pub a: u32,
+    pub b: u32,
+    /// Mid-side node, or [`NONE`].
+    pub mid: u32,
+    /// The one or two elements using the edge; `elems[1] == NONE` on the boundary.
+    pub elems: [u32; 2],
+    /// A boundary edge whose mid-side node is off the chord (curved boundary).
+    pub curved: bool,
+}
+
+impl Edge {
+    pub fn is_boundary(&self) -> bool {
+        self.elems[1] == NONE
+    }
+}
+
+/// Connectivity, built once from the elements: node → elements, node → neighbour
+/// corner nodes, the unique edges, and boundary flags. Flat arrays with offsets.
+#[derive(Clone, Debug, Default)]
+pub struct Topology {
+    node_elem_start: Vec<u32>,
+    node_elems: Vec<u32>,
+    node_nbr_start: Vec<u32>,
+    node_nbrs: Vec<u32>,
+    edges: Vec<Edge>,
+    role: Vec<NodeRole>,
+    boundary: Vec<bool>,
+    on_curved: Vec<bool>,
+}
+
+/// A planar 2D mesh of triangles and quads, linear or quadratic, possibly mixed.
+#[derive(Clone, Debug)]
+pub struct Mesh {
+    /// Node positions. The smoothers move corner nodes here; mid-side nodes follow.
+    pub nodes: Vec<DVec2>,
+    /// Nodes that never move.
+    pub fixed: Vec<bool>,
+    kinds: Vec<ElementKind>,
+    elem_start: Vec<u32>,
+    elem_nodes: Vec<u32>,
+    topo: Topology,
+}
+
+impl Mesh {
+    pub fn node_count(&self) -> usize {
+        self.nodes.len()
+    }
+    pub fn element_count(&self) -> usize {
+        self.kinds.len()
+    }
+    pub fn kind(&self, e: usize) -> ElementKind {
+        self.kinds[e]
+    }
+    pub fn kinds(&self) -> &[ElementKind] {
+        &self.kinds
+    }
+    /// The node indices of element `e`, in the order documented at the top of this module.
+    pub fn element(&self, e: usize) -> &[u32] {
+        &self.elem_nodes[self.elem_start[e] as usize..self.elem_start[e + 1] as usize]
+    }
+    /// Positions of the nodes of element `e`, copied into `out` (cleared first).
+    pub fn element_points(&self, e: usize, out: &mut Vec<DVec2>) {
+        out.clear();
+        out.extend(self.element(e).iter().map(|&n| self.nodes[n as usize]));
+    }
+    /// Positions of the nodes of element `e` in a fixed-size array (unused slots are zero).
+    pub fn element_points_array(&self, e: usize) -> [DVec2; 9] {
+        let mut p = [DVec2::ZERO; 9];
+        for (i, &n) in self.element(e).iter().enumerate() {
+            p[i] = self.nodes[n as usize];
+        }
+        p
+    }
+    pub fn topology(&self) -> &Topology {
+        &self.topo
+    }
+    /// Elements that use node `n` (its star).
+    pub fn node_elements(&self, n: usize) -> &[u32] {
+        self.topo.node_elements(n)
+    }
+    /// Corner nodes joined to corner node `n` by an element edge.
+    pub fn neighbours(&self, n: usize) -> &[u32] {
+        self.topo.neighbours(n)
+    }
+    pub fn edges(&self) -> &[Edge] {
+        &self.topo.edges
+    }
+    pub fn is_boundary(&self, n: usize) -> bool {
+        self.topo.boundary[n]
+    }
+    pub fn role(&self, n: usize) -> NodeRole {
+        self.topo.role[n]
+    }
+    /// Whether node `n` is an end or mid node of a curved boundary edge.
+    pub fn is_on_curved_boundary(&self, n: usize) -> bool {
+        self.topo.on_curved[n]
+    }
+    /// A node the smoothers may move: a corner that is not fixed.
+    pub fn is_free(&self, n: usize) -> bool {
+        !self.fixed[n] && self.topo.role[n] == NodeRole::Corner
+    }
+    pub fn free_count(&self) -> usize {
+        (0..self.node_count()).filter(|&n| self.is_free(n)).count()
+    }
+    pub fn has_quadratic(&self) -> bool {
+        self.kinds.iter().any(|k| k.is_quadratic())
+    }
+    pub fn has_triangles(&self) -> bool {
+        self.kinds.iter().any(|k| k.is_triangle())
+    }
+    pub fn has_quads(&self) -> bool {
+        self.kinds.iter().any(|k| k.is_quad())
+    }
+    /// Signed area of the corner polygon of element `e` (positive when counter-clockwise).
+    pub fn corner_area(&self, e: usize) -> f64 {
+        let k = self.kinds[e].corners();
+        let ids = self.element(e);
+        polygon_area((0..k).map(|i| self.nodes[ids[i] as usize]))
+    }
+    /// Mean length of the element edges (corner to corner); 0 for an empty mesh.
+    pub fn mean_edge_length(&self) -> f64 {
+        let edges = &self.topo.edges;
+        if edges.is_empty() {
+            return 0.0;
+        }
+        let s: f64 = edges
+            .iter()
+            .map(|e| self.nodes[e.a as usize].distance(self.nodes[e.b as usize]))
+            .sum();
+        s / edges.len() as f64
+    }
+    /// Axis-aligned bounds (min, max) of the nodes used by elements.
+    pub fn bounds(&self) -> (DVec2, DVec2) {
+        let mut lo = DVec2::splat(f64::INFINITY);
+        let mut hi = DVec2::splat(f64::NEG_INFINITY);
+        for (n, p) in self.nodes.iter().enumerate() {
+            if self.topo.role[n] != NodeRole::Unused {
+                lo = lo.min(*p);
+                hi = hi.max(*p);
+            }
+        }
+        (lo, hi)
+    }
+    /// Place every mid-side node of an interior (not curved-boundary) edge at the midpoint
+    /// of its corners, and every 9-node centre at the mean of its eight edge nodes.
+    /// This is the rule by which mid-side nodes follow the corners the smoothers move;
+    /// curved boundary edges keep their mid node. Call after moving corner nodes.
+    pub fn update_mid_nodes(&mut self) {
+        for e in &self.topo.edges {
+            if e.mid != NONE && !e.curved && !self.fixed[e.mid as usize] {
+                self.nodes[e.mid as usize] = 0.5 * (self.nodes[e.a as usize] + self.nodes[e.b as usize]);
+            }
+        }
+        for el in 0..self.kinds.len() {
+            if self.kinds[el] == ElementKind::Quad9 {
+                let ids = self.element(el);
+                let c = ids[8] as usize;
+                if !self.fixed[c] {
+                    let s: DVec2 = ids[..8].iter().map(|&n| self.nodes[n as usize]).sum();
+                    self.nodes[c] = s / 8.0;
+                }
+            }
+        }
+    }
+    /// Mid-side nodes that follow corner node `n` (on its non-curved edges), so a
+    /// driver can move them right after moving `n`.
+    pub fn follow_mid_nodes(&mut self, n: usize) {
+        if !self.has_quadratic() {
+            return;
+        }
+        for &el in self.topo.node_elements(n) {
+            let el = el as usize;
+            let kind = self.kinds[el];
+            if !kind.is_quadratic() {
+                continue;
+            }
+            let start = self.elem_start[el] as usize;
+            let k = kind.corners();
+            for i in 0..k {
+                let a = self.elem_nodes[start + i] as usize;
+                let b = self.elem_nodes[start + (i + 1) % k] as usize;
+                if a != n && b != n {
+                    continue;
+                }
+                let m = self.elem_nodes[start + k + i] as usize;
+                if self.fixed[m] || self.topo.on_curved[m] {
+                    continue;
+                }
+                self.nodes[m] = 0.5 * (self.nodes[a] + self.nodes[b]);
+            }
+            if kind == ElementKind::Quad9 {
+                let c = self.elem_nodes[start + 8] as usize;
+                if !self.fixed[c] {
+                    let s: DVec2 = (0..8).map(|i| self.nodes[self.elem_nodes[start + i] as usize]).sum();
+                    self.nodes[c] = s / 8.0;
+                }
+            }
+        }
+    }
+    /// Checks the invariants of the model; used by the tests (as spade's `sanity_check`).
+    pub fn sanity_check(&self) -> std::result::Result<(), String> {
+        let n = self.nodes.len();
+        if self.fixed.len() != n || self.topo.role.len() != n || self.topo.boundary.len() != n {
+            return Err("per-node arrays differ in length".into());
+        }
+        if self.elem_start.len() != self.kinds.len() + 1 {
+            return Err("element offsets".into());
+        }
+        for e in 0..self.kinds.len() {
+            let ids = self.element(e);
+            if ids.len() != self.kinds[e].node_count() {
+                return Err(format!("element {e} has {} nodes", ids.len()));
+            }
+            for &i in ids {
+                if i as usize >= n {
+                    return Err(format!("element {e} refers to node {i}"));
+                }
+                if !self.node_elements(i as usize).contains(&(e as u32)) {
+                    return Err(format!("node {i} does not list element {e}"));
+                }
+            }
+        }
+        for p in &self.nodes {
+            if !p.is_finite() {
+                return Err("non-finite coordinate".into());
+            }
+        }
+        for (i, e) in self.topo.edges.iter().enumerate() {
+            if e.a >= e.b {
+                return Err(format!("edge {i} not ordered"));
+            }
+            if !self.neighbours(e.a as usize).contains(&e.b) || !self.neighbours(e.b as usize).contains(&e.a) {
+                return Err(format!("edge {i} missing from neighbour lists"));
+            }
+            if e.is_boundary() && !(self.topo.boundary[e.a as usize] && self.topo.boundary[e.b as usize]) {
+                return Err(format!("boundary edge {i} has an interior end"));
+            }
+        }
+        Ok(())
+    }
+}
+
+impl Topology {
+    pub fn node_elements(&self, n: usize) -> &[u32] {
+        &self.node_elems[self.node_elem_start[n] as usize..self.node_elem_start[n + 1] as usize]
+    }
+    pub fn neighbours(&self, n: usize) -> &[u32] {
+        &self.node_nbrs[self.node_nbr_start[n] as usize..self.node_nbr_start[n + 1] as usize]
+    }
+    pub fn edges(&self) -> &[Edge] {
+        &self.edges
+    }
+    pub fn boundary_edges(&self) -> impl Iterator<Item = &Edge> {
+        self.edges.iter().filter(|e| e.is_boundary())
+    }
+}
+
+/// Signed area of a polygon given by its vertices in order (shoelace formula).
+pub fn polygon_area(pts: impl Iterator<Item = DVec2> + Clone) -> f64 {
+    let first = pts.clone().next();
+    let Some(first) = first else { return 0.0 };
+    let mut s = 0.0;
+    let mut prev = first;
+    for p in pts.skip(1) {
+        s += prev.perp_dot(p);
+        prev = p;
+    }
+    s += prev.perp_dot(first);
+    0.5 * s
+}
+
+/// How the fixed flags of a mesh are decided.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub enum FixedSpec {
+    /// Boundary nodes (of corner-to-corner edges used by one element, with their mid nodes).
+    #[default]
+    Boundary,
+    /// Exactly as the file says (VTK `POINT_DATA` scalar `fixed`).
+    Exact(Vec<bool>),
+    /// Boundary nodes plus the nodes the file marks (Gmsh line/point elements,
+    /// Triangle boundary markers).
+    BoundaryAnd(Vec<bool>),
+}
+
+/// Relative tolerance (of the bounding-box diagonal) within which 3D points count as planar.
+pub const PLANAR_TOLERANCE: f64 = 1e-5;
+
+/// Collects what a reader found in a file, then validates it and builds a [`Mesh`].
+/// Readers record the file line of every node and element so that errors found here
+/// can still name the line.
+#[derive(Clone, Debug, Default)]
+pub struct MeshBuilder {
+    points: Vec<[f64; 3]>,
+    point_lines: Vec<u32>,
+    kinds: Vec<ElementKind>,
+    elem_start: Vec<u32>,
+    elem_nodes: Vec<u32>,
+    elem_lines: Vec<u32>,
+    /// How fixed flags are decided.
+    pub fixed: FixedSpec,
+}
+
+impl MeshBuilder {
+    pub fn new() -> Self {
+        MeshBuilder { elem_start: vec![0], ..Default::default() }
+    }
+    /// A builder with room reserved for the given counts, capped so a header that
+    /// claims absurd counts cannot make us allocate before the data is seen.
+    pub fn with_capacity(nodes: usize, elements: usize) -> Self {
+        const CAP: usize = 1 << 20;
+        let mut b = Self::new();
+        b.points.reserve(nodes.min(CAP));
+        b.point_lines.reserve(nodes.min(CAP));
+        b.kinds.reserve(elements.min(CAP));
+        b.elem_lines.reserve(elements.min(CAP));
+        b
+    }
+    /// Adds a node given in 3D (`z = 0` for 2D formats); `line` is its file line (0 if none).
+    pub fn add_node(&mut self, p: [f64; 3], line: usize) -> usize {
+        self.points.push(p);
+        self.point_lines.push(line as u32);
+        self.points.len() - 1
+    }
+    pub fn node_count(&self) -> usize {
+        self.points.len()
+    }
+    pub fn element_count(&self) -> usize {
+        self.kinds.len()
+    }
+    /// Adds an element with 0-based node indices (checked in [`build`](Self::build)).
+    pub fn add_element(&mut self, kind: ElementKind, nodes: &[u32], line: usize) {
+        debug_assert_eq!(nodes.len(), kind.node_count());
+        self.kinds.push(kind);
+        self.elem_nodes.extend_from_slice(nodes);
+        self.elem_start.push(self.elem_nodes.len() as u32);
+        self.elem_lines.push(line as u32);
+    }
+    fn line_of_elem(&self, e: usize) -> Option<usize> {
+        self.elem_lines.get(e).copied().filter(|&l| l > 0).map(|l| l as usize)
+    }
+    fn line_of_node(&self, n: usize) -> Option<usize> {
+        self.point_lines.get(n).copied().filter(|&l| l > 0).map(|l| l as usize)
+    }
+
+    /// Validates (finite coordinates, indices in range, no repeated node in an element,
+    /// at least one element, planarity), maps 3D points to the mesh's plane, orients
+    /// the mesh counter-clockwise as a whole, builds the topology and the fixed flags.
+    pub fn build(self) -> Result<Mesh> {
+        if self.kinds.is_empty() {
+            return Err(Error::Empty(if self.points.is_empty() {
+                "no nodes and no elements".into()
+            } else {
+                format!("{} nodes but no triangle or quad elements", self.points.len())
+            }));
+        }
+        for (i, p) in self.points.iter().enumerate() {
+            if !p.iter().all(|c| c.is_finite()) {
+                return Err(Error::node(i, self.line_of_node(i), format!("coordinate is not a finite number: {p:?}")));
+            }
+        }
+        let n = self.points.len();
+        for e in 0..self.kinds.len() {
+            let ids = &self.elem_nodes[self.elem_start[e] as usize..self.elem_start[e + 1] as usize];
+            for &i in ids {
+                if i as usize >= n {
+                    return Err(Error::element(
+                        e,
+                        self.line_of_elem(e),
+                        format!("refers to node {} but the mesh has {} nodes", i as u64 + 1, n),
+                    ));
+                }
+            }
+            for a in 0..ids.len() {
+                if ids[a + 1..].contains(&ids[a]) {
+                    return Err(Error::element(
+                        e,
+                        self.line_of_elem(e),
+                        format!("{} uses node {} twice", self.kinds[e].name(), ids[a] as u64 + 1),
+                    ));
+                }
+            }
+        }
+        let nodes = self.to_plane()?;
+        let mut mesh = Mesh {
+            nodes,
+            fixed: vec![false; n],
+            kinds: self.kinds,
+            elem_start: self.elem_start,
+            elem_nodes: self.elem_nodes,
+            topo: Topology::default(),
+        };
+        // Orientation of the whole mesh by its total signed area.
+        let total: f64 = (0..mesh.kinds.len()).map(|e| mesh.corner_area(e)).sum();
+        if total < 0.0 {
+            for e in 0..mesh.kinds.len() {
+                let s = mesh.elem_start[e] as usize;
+                let k = mesh.kinds[e];
+                let old: Vec<u32> = mesh.elem_nodes[s..s + k.node_count()].to_vec();
+                for (i, &j) in k.reversed_order().iter().enumerate() {
+                    mesh.elem_nodes[s + i] = old[j];
+                }
+            }
+        }
+        mesh.topo = build_topology(&mesh, &self.elem_lines)?;
+        let boundary = mesh.topo.boundary.clone();
+        mesh.fixed = match self.fixed {
+            FixedSpec::Boundary => boundary,
+            FixedSpec::Exact(f) => {
+                if f.len() != n {
+                    return Err(Error::invalid(format!("{} fixed flags for {} nodes", f.len(), n)));
+                }
+                f
+            }
+            FixedSpec::BoundaryAnd(f) => boundary.iter().zip(f.iter().chain(std::iter::repeat(&false))).map(|(a, b)| *a || *b).collect(),
+        };
+        // Nodes no element uses never move.
+        for i in 0..n {
+            if mesh.topo.role[i] == NodeRole::Unused {
+                mesh.fixed[i] = true;
+            }
+        }
+        Ok(mesh)
+    }
+
+    /// 2D coordinates of the points: as given when every z is equal, else in the
+    /// best-fit plane of the elements (normal by Newell's method, so elements come out
+    /// counter-clockwise); refuses non-planar input saying by how much.
+    fn to_plane(&self) -> Result<Vec<DVec2>> {
+        let z0 = self.points.first().map(|p| p[2]).unwrap_or(0.0);
+        if self.points.iter().all(|p| p[2] == z0) {
+            return Ok(self.points.iter().map(|p| DVec2::new(p[0], p[1])).collect());
+        }
+        let v = |p: &[f64; 3]| glam::DVec3::new(p[0], p[1], p[2]);
+        // Newell normal over the corner polygons of all elements.
+        let mut normal = glam::DVec3::ZERO;
+        for e in 0..self.kinds.len() {
+            let ids = &self.elem_nodes[self.elem_start[e] as usize..];
+            let k = self.kinds[e].corners();
+            for i in 0..k {
+                let a = v(&self.points[ids[i] as usize]);
+                let b = v(&self.points[ids[(i + 1) % k] as usize]);
+                normal += a.cross(b);
+            }
+        }
+        let (mut lo, mut hi) = (glam::DVec3::splat(f64::INFINITY), glam::DVec3::splat(f64::NEG_INFINITY));
+        for p in &self.points {
+            lo = lo.min(v(p));
+            hi = hi.max(v(p));
+        }
+        let size = (hi - lo).length().max(f64::MIN_POSITIVE);
+        if normal.length() <= 1e-300 {
+            return Err(Error::invalid("cannot find the plane of the mesh: its elements have no area"));
+        }
+        let normal = normal.normalize();
+        let centre = self.points.iter().map(v).sum::<glam::DVec3>() / self.points.len() as f64;
+        let max_distance = self.points.iter().map(|p| (v(p) - centre).dot(normal).abs()).fold(0.0, f64::max);
+        let relative = max_distance / size;
+        if relative > PLANAR_TOLERANCE {
+            return Err(Error::NotPlanar { max_distance, relative, tolerance: PLANAR_TOLERANCE });
+        }
+        // In-plane basis (u, w) with u × w = normal.
+        let helper = if normal.x.abs() < 0.9 { glam::DVec3::X } else { glam::DVec3::Y };
+        let u = (helper - normal * helper.dot(normal)).normalize();
+        let w = normal.cross(u);
+        Ok(self.points.iter().map(|p| {
+            let d = v(p) - centre;
+            DVec2::new(d.dot(u), d.dot(w))
+        }).collect())
+    }
+}
+
+fn build_topology(mesh: &Mesh, elem_lines: &[u32]) -> Result<Topology> {
+    let n = mesh.nodes.len();
+    let ne = mesh.kinds.len();
+    // node -> elements (counting sort)
+    let mut count = vec![0u32; n + 1];
+    for e in 0..ne {
+        for &i in mesh.element(e) {
+            count[i as usize + 1] += 1;
+        }
+    }
+    for i in 0..n {
+        count[i + 1] += count[i];
+    }
+    let node_elem_start = count.clone();
+    let mut node_elems = vec![0u32; *count.last().unwrap() as usize];
+    let mut fill = count;
+    for e in 0..ne {
+        for &i in mesh.element(e) {
+            node_elems[fill[i as usize] as usize] = e as u32;
+            fill[i as usize] += 1;
+        }
+    }
+    // roles
+    let mut role = vec![NodeRole::Unused; n];
+    for e in 0..ne {
+        let k = mesh.kinds[e];
+        for (j, &i) in mesh.element(e).iter().enumerate() {
+            let r = if j < k.corners() {
+                NodeRole::Corner
+            } else if j < 2 * k.corners() {
+                NodeRole::Mid
+            } else {
+                NodeRole::Centre
+            };
+            let slot = &mut role[i as usize];
+            *slot = match (*slot, r) {
+                (NodeRole::Unused, r) => r,
+                (NodeRole::Corner, _) | (_, NodeRole::Corner) => NodeRole::Corner,
+                (s, _) => s,
+            };
+        }
+    }
+    // edges: sort (min, max, elem, local) records
+    let mut recs: Vec<(u32, u32, u32, u32)> = Vec::with_capacity(ne * 4);
+    for e in 0..ne {
+        let k = mesh.kinds[e];
+        let ids = mesh.element(e);
+        let c = k.corners();
+        for i in 0..c {
+            let (a, b) = (ids[i], ids[(i + 1) % c]);
+            let mid = k.mid(i).map(|m| ids[m]).unwrap_or(NONE);
+            recs.push((a.min(b), a.max(b), e as u32, mid));
+        }
+    }
+    recs.sort_unstable();
+    let line = |e: u32| elem_lines.get(e as usize).copied().filter(|&l| l > 0).map(|l| l as usize);
+    let mut edges = Vec::with_capacity(recs.len() / 2 + 1);
+    let mut i = 0;
+    while i < recs.len() {
+        let mut j = i + 1;
+        while j < recs.len() && recs[j].0 == recs[i].0 && recs[j].1 == recs[i].1 {
+            j += 1;
+        }
+        let (a, b, e0, m0) = recs[i];
+        if j - i > 2 {
+            let es: Vec<String> = recs[i..j].iter().map(|r| r.2.to_string()).collect();
+            return Err(Error::element(
+                recs[i + 2].2 as usize,
+                line(recs[i + 2].2),
+                format!(
+                    "edge between nodes {} and {} is shared by {} elements ({}); a 2D mesh edge belongs to one or two",
+                    a + 1,
+                    b + 1,
+                    j - i,
+                    es.join(", ")
+                ),
+            ));
+        }
+        let e1 = if j - i == 2 { recs[i + 1].2 } else { NONE };
+        if j - i == 2 && recs[i + 1].3 != m0 {
+            let (m1, other) = (recs[i + 1].3, recs[i + 1].2);
+            let desc = |m: u32| if m == NONE { "none".to_string() } else { (m + 1).to_string() };
+            return Err(Error::element(
+                other as usize,
+                line(other),
+                format!(
+                    "shares the edge between nodes {} and {} with element {} but they disagree on its mid-side node ({} vs {})",
+                    a + 1,
+                    b + 1,
+                    e0,
+                    desc(m1),
+                    desc(m0)
+                ),
+            ));
+        }
+        edges.push(Edge { a, b, mid: m0, elems: [e0, e1], curved: false });
+        i = j;
+    }
+    // boundary flags and curved boundary edges
+    let mut boundary = vec![false; n];
+    let mut on_curved = vec![false; n];
+    for e in edges.iter_mut() {
+        if e.is_boundary() {
+            boundary[e.a as usize] = true;
+            boundary[e.b as usize] = true;
+            if e.mid != NONE {
+                boundary[e.mid as usize] = true;
+                let (pa, pb, pm) = (mesh.nodes[e.a as usize], mesh.nodes[e.b as usize], mesh.nodes[e.mid as usize]);
+                let chord = pb - pa;
+                let off = (pm - pa).perp_dot(chord).abs() / chord.length().max(f64::MIN_POSITIVE);
+                if off > 1e-6 * chord.length() {
+                    e.curved = true;
+                    on_curved[e.a as usize] = true;
+                    on_curved[e.b as usize] = true;
+                    on_curved[e.mid as usize] = true;
+                }
+            }
+        }
+    }
+    // node -> neighbour corners via edges (CSR)
+    let mut deg = vec![0u32; n + 1];
+    for e in &edges {
+        deg[e.a as usize + 1] += 1;
+        deg[e.b as usize + 1] += 1;
+    }
+    for i in 0..n {
+        deg[i + 1] += deg[i];
+    }
+    let node_nbr_start = deg.clone();
+    let mut node_nbrs = vec![0u32; *deg.last().unwrap() as usize];
+    let mut fill = deg;
+    for e in &edges {
+        node_nbrs[fill[e.a as usize] as usize] = e.b;
+        fill[e.a as usize] += 1;
+        node_nbrs[fill[e.b as usize] as usize] = e.a;
+        fill[e.b as usize] += 1;
+    }
+    Ok(Topology { node_elem_start, node_elems, node_nbr_start, node_nbrs, edges, role, boundary, on_curved })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn square_two_tris() -> MeshBuilder {
+        let mut b = MeshBuilder::new();
+        for p in [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [1.0, 1.0, 0.0], [0.0, 1.0, 0.0]] {
+            b.add_node(p, 0);
+        }
+        b.add_element(ElementKind::Tri3, &[0, 1, 2], 0);
+        b.add_element(ElementKind::Tri3, &[0, 2, 3], 0);
+        b
+    }
+
+    #[test]
+    fn topology_of_two_triangles() {
+        let m = square_two_tris().build().unwrap();
+        m.sanity_check().unwrap();
+        assert_eq!(m.edges().len(), 5);
+        assert_eq!(m.topology().boundary_edges().count(), 4);
+        assert_eq!(m.neighbours(0).len(), 3);
+        assert_eq!(m.neighbours(1).len(), 2);
+        assert_eq!(m.node_elements(0), &[0, 1]);
+        assert!(m.fixed.iter().all(|&f| f));
+        assert_eq!(m.free_count(), 0);
+    }
+
+    #[test]
+    fn clockwise_mesh_is_reversed_as_a_whole() {
+        let mut b = MeshBuilder::new();
+        for p in [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [1.0, 1.0, 0.0], [0.0, 1.0, 0.0]] {
+            b.add_node(p, 0);
+        }
+        b.add_element(ElementKind::Tri3, &[0, 2, 1], 0);
+        b.add_element(ElementKind::Tri3, &[0, 3, 2], 0);
+        let m = b.build().unwrap();
+        assert!(m.corner_area(0) > 0.0 && m.corner_area(1) > 0.0);
+    }
+
+    #[test]
+    fn one_inverted_element_stays_inverted() {
+        // three CCW triangles around node 4, one folded over: total area stays positive
+        let mut b = MeshBuilder::new();
+        for p in [[0.0, 0.0, 0.0], [2.0, 0.0, 0.0], [2.0, 2.0, 0.0], [0.0, 2.0, 0.0], [2.5, 1.0, 0.0]] {
+            b.add_node(p, 0);
+        }
+        b.add_element(ElementKind::Tri3, &[0, 1, 4], 0);
+        b.add_element(ElementKind::Tri3, &[1, 2, 4], 0);
+        b.add_element(ElementKind::Tri3, &[2, 3, 4], 0);
+        b.add_element(ElementKind::Tri3, &[3, 0, 4], 0);
+        let m = b.build().unwrap();
+        assert!(m.corner_area(1) < 0.0, "the folded element must stay folded");
+        assert!(m.corner_area(0) > 0.0);
+    }
+
+    #[test]
+    fn errors_name_the_element_and_line() {
+        let mut b = square_two_tris();
+        b.add_element(ElementKind::Tri3, &[0, 1, 9], 17);
+        let e = b.build().unwrap_err().to_string();
+        assert!(e.contains("element 2") && e.contains("line 17") && e.contains("node 10"), "{e}");
+        let mut b = square_two_tris();
+        b.add_element(ElementKind::Tri3, &[0, 1, 1], 5);
+        let e = b.build().unwrap_err().to_string();
+        assert!(e.contains("twice") && e.contains("line 5"), "{e}");
+        assert!(matches!(MeshBuilder::new().build(), Err(Error::Empty(_))));
+        let mut b = square_two_tris();
+        b.add_node([f64::NAN, 0.0, 0.0], 9);
+        let e = b.build().unwrap_err().to_string();
+        assert!(e.contains("node 4") && e.contains("line 9"), "{e}");
+    }
+
+    #[test]
+    fn planar_3d_is_mapped_and_non_planar_refused() {
+        // a unit square tilted about the x axis by 30 degrees, facing down
+        let (s, c) = (30f64.to_radians().sin(), 30f64.to_radians().cos());
+        let mut b = MeshBuilder::new();
+        for (x, y) in [(0.0, 0.0), (1.0, 0.0), (1.0, 1.0), (0.0, 1.0)] {
+            b.add_node([x, y * c, -y * s + 3.0], 0);
+        }
+        b.add_element(ElementKind::Quad4, &[0, 3, 2, 1], 0);
+        let m = b.build().unwrap();
+        assert!((m.corner_area(0) - 1.0).abs() < 1e-12);
+        let mut b = MeshBuilder::new();
+        for p in [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [1.0, 1.0, 0.3], [0.0, 1.0, 0.0]] {
+            b.add_node(p, 0);
+        }
+        b.add_element(ElementKind::Quad4, &[0, 1, 2, 3], 0);
+        let e = b.build().unwrap_err();
+        assert!(matches!(e, Error::NotPlanar { .. }));
+        assert!(e.to_string().contains("not planar"), "{e}");
+    }
+
+    #[test]
+    fn quadratic_edges_know_mid_nodes_and_curvature() {
+        // one 6-node triangle with its 0-1 edge bowed out
+        let mut b = MeshBuilder::new();
+        for p in [[0.0, 0.0, 0.0], [2.0, 0.0, 0.0], [0.0, 2.0, 0.0], [1.0, -0.3, 0.0], [1.0, 1.0, 0.0], [0.0, 1.0, 0.0]] {
+            b.add_node(p, 0);
+        }
+        b.add_element(ElementKind::Tri6, &[0, 1, 2, 3, 4, 5], 0);
+        let m = b.build().unwrap();
+        m.sanity_check().unwrap();
+        let curved: Vec<_> = m.edges().iter().filter(|e| e.curved).collect();
+        assert_eq!(curved.len(), 1);
+        assert_eq!(curved[0].mid, 3);
+        assert!(m.is_on_curved_boundary(0) && !m.is_on_curved_boundary(2));
+        assert_eq!(m.role(3), NodeRole::Mid);
+        assert_eq!(m.neighbours(0).len(), 2, "mid nodes are not neighbours");
+    }
+}

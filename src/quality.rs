@@ -1,0 +1,402 @@
+//! Element shape metrics: pure functions of an element's corner (and mid-side)
+//! coordinates, and the mesh statistics built from them.
+//!
+//! Conventions (see the papers restated in FORMULAS.md §1):
+//! - elements are counter-clockwise when valid; every metric is signed so an inverted
+//!   element scores below a valid one;
+//! - at corner `i` the two edge vectors are `e1` (towards the next corner) and `e2`
+//!   (towards the previous corner); the corner's Jacobian is `[e1 e2]`, `det = cross(e1, e2)`;
+//! - for quadratic elements `e1`, `e2` are the edges' end tangents scaled to chord length,
+//!   `(4M − 3P0 − P2)/2` (Chen et al. 2003, §2.3: "interior angles and vectors at nodes are
+//!   computed using the tangent vector of the quadratic edge at the given node"); for a
+//!   straight edge this is exactly `P2 − P0`, so linear and quadratic agree.
+
+use glam::DVec2;
+use serde::Serialize;
+
+use crate::mesh::{ElementKind, Mesh};
+
+/// `2√3`, Lo's normalisation so an equilateral triangle has α = 1.
+const TWO_SQRT3: f64 = 3.464_101_615_137_754_6;
+/// α of the right isosceles triangle, `√3/2`: Canann's normalisation so a square has β = 1.
+pub const ALPHA_90: f64 = 0.866_025_403_784_438_6;
+
+/// Lo's α of triangle ABC — Chen, Tristano & Kwok (2003), eq. (1):
+/// `α = 2√3 · cross(B−A, C−A) / (|AB|² + |BC|² + |CA|²)`. In [−1, 1]; 1 for the
+/// equilateral triangle, 0 when degenerate, negative when clockwise (inverted).
+pub fn lo_alpha(a: DVec2, b: DVec2, c: DVec2) -> f64 {
+    lo_alpha_corner(b - a, c - a)
+}
+
+/// Lo's α of the triangle spanned at a corner by edge vectors `e1`, `e2`:
+/// `2√3·cross(e1,e2) / (|e1|² + |e2|² + |e2−e1|²)`. Used for quadratic elements with
+/// the edge tangents as `e1`, `e2` (FORMULAS.md §1). A zero-size corner gives 0.
+pub fn lo_alpha_corner(e1: DVec2, e2: DVec2) -> f64 {
+    let den = e1.length_squared() + e2.length_squared() + (e2 - e1).length_squared();
+    if den <= 0.0 {
+        return 0.0;
+    }
+    TWO_SQRT3 * e1.perp_dot(e2) / den
+}
+
+/// Canann's β of quad abcd — Chen et al. (2003), eq. (2): the α of the four triangles
+/// of both diagonals, `β = min(α1..α4)/α90 − n_neg`. 1 for the square.
+pub fn canann_beta(a: DVec2, b: DVec2, c: DVec2, d: DVec2) -> f64 {
+    canann_beta_from_corners(&[(b - a, d - a), (c - b, a - b), (d - c, b - c), (a - d, c - d)])
+}
+
+/// β from the four corners' edge vectors. The triangle (a,b,c) of eq. (2) is the corner
+/// triangle at b, (c,d,a) the one at d, (a,b,d) at a and (b,c,d) at c; so β is the
+/// minimum corner α over α90, less the number of negative corner αs.
+pub fn canann_beta_from_corners(corners: &[(DVec2, DVec2); 4]) -> f64 {
+    let mut min = f64::INFINITY;
+    let mut neg = 0;
+    for &(e1, e2) in corners {
+        let a = lo_alpha_corner(e1, e2);
+        min = min.min(a);
+        if a < 0.0 {
+            neg += 1;
+        }
+    }
+    min / ALPHA_90 - neg as f64
+}
+
+/// Signed angle at a corner from `e1` to `e2`: `atan2(cross, dot)`, in (−π, π].
+/// Negative means the corner is inverted.
+pub fn signed_angle(e1: DVec2, e2: DVec2) -> f64 {
+    e1.perp_dot(e2).atan2(e1.dot(e2))
+}
+
+/// Which ideal element the condition number is measured against.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Ideal {
+    /// The equilateral triangle: `W = [[1, 1/2], [0, √3/2]]`.
+    Triangle,
+    /// The square: `W = I`.
+    Square,
+}
+
+/// Knupp's condition number of the corner Jacobian `A = [e1 e2]` weighted by the ideal
+/// element, `T = A·W⁻¹`: `κ(T) = ‖T‖²_F / det T` (Knupp 1999, §§3–4, 2D). 2 for the
+/// ideal corner; `+∞` when `det T ≤ 0` (the barrier).
+pub fn condition_number(e1: DVec2, e2: DVec2, ideal: Ideal) -> f64 {
+    let (t1, t2) = weighted_columns(e1, e2, ideal);
+    let det = t1.perp_dot(t2);
+    if det <= 0.0 {
+        return f64::INFINITY;
+    }
+    (t1.length_squared() + t2.length_squared()) / det
+}
+
+/// Columns of `T = [e1 e2]·W⁻¹`. For the triangle `W⁻¹ = [[1, −1/√3], [0, 2/√3]]`.
+pub fn weighted_columns(e1: DVec2, e2: DVec2, ideal: Ideal) -> (DVec2, DVec2) {
+    match ideal {
+        Ideal::Square => (e1, e2),
+        Ideal::Triangle => {
+            const INV_SQRT3: f64 = 0.577_350_269_189_625_8;
+            (e1, (2.0 * e2 - e1) * INV_SQRT3)
+        }
+    }
+}
+
+/// Scaled Jacobian of a corner: `cross(e1,e2) / (|e1||e2|)`, the sine of the signed
+/// corner angle. 0 for a zero-length edge.
+pub fn scaled_jacobian(e1: DVec2, e2: DVec2) -> f64 {
+    let l = e1.length() * e2.length();
+    if l <= 0.0 {
+        return 0.0;
+    }
+    e1.perp_dot(e2) / l
+}
+
+/// Edge vectors `(e1, e2)` at each corner of an element, from its node coordinates in
+/// the element's node order (tangents for quadratic elements). Only the first
+/// `kind.corners()` entries are meaningful.
+pub fn corner_edges(kind: ElementKind, p: &[DVec2]) -> [(DVec2, DVec2); 4] {
+    let k = kind.corners();
+    let mut out = [(DVec2::ZERO, DVec2::ZERO); 4];
+    for i in 0..k {
+        let next = (i + 1) % k;
+        let prev = (i + k - 1) % k;
+        out[i] = match (kind.mid(i), kind.mid(prev)) {
+            (Some(m_next), Some(m_prev)) => (
+                0.5 * (4.0 * p[m_next] - 3.0 * p[i] - p[next]),
+                0.5 * (4.0 * p[m_prev] - 3.0 * p[i] - p[prev]),
+            ),
+            _ => (p[next] - p[i], p[prev] - p[i]),
+        };
+    }
+    out
+}
+
+/// Every metric of one element, computed at once from its corner edge vectors.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct ElementQuality {
+    /// α for triangles (minimum corner α; equal at all corners when straight-sided),
+    /// β for quads.
+    pub shape: f64,
+    /// Smallest and largest signed corner angle, radians.
+    pub min_angle: f64,
+    pub max_angle: f64,
+    /// Smallest sine of the corner angles (Freitag's measure).
+    pub min_sine: f64,
+    /// Largest corner condition number κ (∞ when any corner is inverted).
+    pub condition: f64,
+    /// Smallest corner scaled Jacobian; for triangles scaled by 2/√3 so the equilateral
+    /// triangle has 1.
+    pub scaled_jacobian: f64,
+    /// Any corner with `det ≤ 0`.
+    pub inverted: bool,
+}
+
+impl ElementQuality {
+    /// `2/κ`, a shape quality in [0, 1] (0 when inverted).
+    pub fn inverse_condition(&self) -> f64 {
+        if self.condition.is_finite() {
+            2.0 / self.condition
+        } else {
+            0.0
+        }
+    }
+}
+
+/// All metrics of an element of `kind` with node coordinates `p` (element node order).
+pub fn element_quality(kind: ElementKind, p: &[DVec2]) -> ElementQuality {
+    let k = kind.corners();
+    let ce = corner_edges(kind, p);
+    let ideal = if k == 3 { Ideal::Triangle } else { Ideal::Square };
+    let mut q = ElementQuality {
+        shape: 0.0,
+        min_angle: f64::INFINITY,
+        max_angle: f64::NEG_INFINITY,
+        min_sine: f64::INFINITY,
+        condition: 0.0,
+        scaled_jacobian: f64::INFINITY,
+        inverted: false,
+    };
+    let mut min_alpha = f64::INFINITY;
+    for &(e1, e2) in &ce[..k] {
+        let ang = signed_angle(e1, e2);
+        q.min_angle = q.min_angle.min(ang);
+        q.max_angle = q.max_angle.max(ang);
+        let s = scaled_jacobian(e1, e2);
+        q.min_sine = q.min_sine.min(s);
+        q.scaled_jacobian = q.scaled_jacobian.min(s);
+        q.condition = q.condition.max(condition_number(e1, e2, ideal));
+        if e1.perp_dot(e2) <= 0.0 {
+            q.inverted = true;
+        }
+        min_alpha = min_alpha.min(lo_alpha_corner(e1, e2));
+    }
+    if k == 3 {
+        q.shape = min_alpha;
+        q.scaled_jacobian *= 2.0 / 3f64.sqrt();
+    } else {
+        q.shape = canann_beta_from_corners(&ce);
+    }
+    q
+}
+
+/// Shape quality used throughout (α for triangles, β for quads) of element `e` of `mesh`.
+pub fn element_shape(mesh: &Mesh, e: usize) -> f64 {
+    let p = mesh.element_points_array(e);
+    element_quality(mesh.kind(e), &p[..mesh.kind(e).node_count()]).shape
+}
+
+/// The statistics `smoothlab stats` prints (and `--json` writes, field for field).
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct MeshStats {
+    pub nodes: usize,
+    pub elements: usize,
+    pub triangles: usize,
+    pub quads: usize,
+    /// Elements with mid-side nodes.
+    pub quadratic: usize,
+    pub free_nodes: usize,
+    pub fixed_nodes: usize,
+    /// Elements with a corner of `det ≤ 0` (zero-area ones included).
+    pub inverted: usize,
+    /// Smallest and largest signed corner angle over all elements, degrees.
+    pub min_angle_deg: f64,
+    pub max_angle_deg: f64,
+    /// Smallest and mean α (triangles) / β (quads).
+    pub min_quality: f64,
+    pub mean_quality: f64,
+    /// Largest κ over all elements; `null` in JSON (∞) when any element is inverted.
+    pub max_condition: f64,
+    /// Counts (not percentages) of corner angles in 30 bins of 6° over [0°, 180°];
+    /// negative angles count in the first bin (Freitag 1997, Figure 3).
+    pub angle_histogram_6deg: Vec<u64>,
+}
+
+/// Bin of a signed corner angle (radians) in the 6° histogram: bin i holds
+/// [6i°, 6i+6°); 180° goes in the last bin, zero and negative angles in the first.
+pub fn angle_bin(angle: f64) -> usize {
+    let deg = angle.to_degrees();
+    if !(deg > 0.0) {
+        return 0;
+    }
+    // an angle on a bin edge (60° of an equilateral triangle, computed as 59.99999…)
+    // goes to the bin above, whatever the last bit of atan2
+    ((deg / 6.0 + 1e-9) as usize).min(29)
+}
+
+/// Computes [`MeshStats`] for a mesh.
+pub fn mesh_stats(mesh: &Mesh) -> MeshStats {
+    let mut s = MeshStats {
+        nodes: mesh.node_count(),
+        elements: mesh.element_count(),
+        triangles: 0,
+        quads: 0,
+        quadratic: 0,
+        free_nodes: mesh.free_count(),
+        fixed_nodes: 0,
+        inverted: 0,
+        min_angle_deg: f64::INFINITY,
+        max_angle_deg: f64::NEG_INFINITY,
+        min_quality: f64::INFINITY,
+        mean_quality: 0.0,
+        max_condition: 0.0,
+        angle_histogram_6deg: vec![0; 30],
+    };
+    s.fixed_nodes = s.nodes - s.free_nodes;
+    let mut sum = 0.0;
+    for e in 0..mesh.element_count() {
+        let kind = mesh.kind(e);
+        let p = mesh.element_points_array(e);
+        let p = &p[..kind.node_count()];
+        if kind.is_triangle() {
+            s.triangles += 1;
+        } else {
+            s.quads += 1;
+        }
+        if kind.is_quadratic() {
+            s.quadratic += 1;
+        }
+        let q = element_quality(kind, p);
+        if q.inverted {
+            s.inverted += 1;
+        }
+        s.min_angle_deg = s.min_angle_deg.min(q.min_angle.to_degrees());
+        s.max_angle_deg = s.max_angle_deg.max(q.max_angle.to_degrees());
+        s.min_quality = s.min_quality.min(q.shape);
+        sum += q.shape;
+        s.max_condition = s.max_condition.max(q.condition);
+        for (e1, e2) in &corner_edges(kind, p)[..kind.corners()] {
+            s.angle_histogram_6deg[angle_bin(signed_angle(*e1, *e2))] += 1;
+        }
+    }
+    if s.elements > 0 {
+        s.mean_quality = sum / s.elements as f64;
+    }
+    s
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::f64::consts::PI;
+
+    fn d(x: f64, y: f64) -> DVec2 {
+        DVec2::new(x, y)
+    }
+    const EPS: f64 = 1e-12;
+
+    fn equilateral() -> [DVec2; 3] {
+        [d(0.0, 0.0), d(1.0, 0.0), d(0.5, 3f64.sqrt() / 2.0)]
+    }
+
+    #[test]
+    fn hand_derived_values() {
+        let [a, b, c] = equilateral();
+        assert!((lo_alpha(a, b, c) - 1.0).abs() < EPS);
+        // right isosceles: 2√3·1 / (1 + 1 + 2) = √3/2
+        assert!((lo_alpha(d(0.0, 0.0), d(1.0, 0.0), d(0.0, 1.0)) - 3f64.sqrt() / 2.0).abs() < EPS);
+        // reflected: negative
+        assert!((lo_alpha(a, c, b) + 1.0).abs() < EPS);
+        // square
+        assert!((canann_beta(d(0.0, 0.0), d(1.0, 0.0), d(1.0, 1.0), d(0.0, 1.0)) - 1.0).abs() < EPS);
+        // ideal triangle κ = 2, square κ = 2
+        let q = element_quality(ElementKind::Tri3, &equilateral());
+        assert!((q.condition - 2.0).abs() < 1e-12, "{}", q.condition);
+        assert!((q.inverse_condition() - 1.0).abs() < 1e-12);
+        assert!((q.scaled_jacobian - 1.0).abs() < 1e-12);
+        assert!((q.min_angle - PI / 3.0).abs() < 1e-12 && (q.max_angle - PI / 3.0).abs() < 1e-12);
+        let sq = [d(0.0, 0.0), d(1.0, 0.0), d(1.0, 1.0), d(0.0, 1.0)];
+        let q = element_quality(ElementKind::Quad4, &sq);
+        assert!((q.condition - 2.0).abs() < EPS && (q.shape - 1.0).abs() < EPS && !q.inverted);
+        // right isosceles triangle: κ at the right-angle corner of T = A W^-1 with
+        // A = I: T = [[1, -1/√3], [0, 2/√3]], |T|² = 1 + 1/3 + 4/3 = 8/3, det = 2/√3 → κ = 4/√3
+        let ri = [d(0.0, 0.0), d(1.0, 0.0), d(0.0, 1.0)];
+        assert!((condition_number(ri[1] - ri[0], ri[2] - ri[0], Ideal::Triangle) - 4.0 / 3f64.sqrt()).abs() < EPS);
+    }
+
+    #[test]
+    fn inverted_elements_are_flagged() {
+        let [a, b, c] = equilateral();
+        let q = element_quality(ElementKind::Tri3, &[a, c, b]);
+        assert!(q.inverted && q.shape < 0.0 && q.condition.is_infinite() && q.min_angle < 0.0);
+        // a bow-tie quad: two negative corner triangles
+        let bow = [d(0.0, 0.0), d(1.0, 0.0), d(0.0, 1.0), d(1.0, 1.0)];
+        let q = element_quality(ElementKind::Quad4, &bow);
+        assert!(q.inverted && q.shape < -1.0, "{}", q.shape);
+        // zero-area triangle counts as inverted (det = 0), α = 0
+        let q = element_quality(ElementKind::Tri3, &[d(0.0, 0.0), d(1.0, 0.0), d(2.0, 0.0)]);
+        assert!(q.inverted && q.shape == 0.0);
+        // coincident nodes: no NaN
+        let q = element_quality(ElementKind::Tri3, &[d(1.0, 1.0), d(1.0, 1.0), d(1.0, 1.0)]);
+        assert!(q.inverted && q.shape == 0.0 && !q.min_sine.is_nan());
+    }
+
+    #[test]
+    fn invariant_under_translation_rotation_and_scale() {
+        let tri = [d(0.1, 0.2), d(1.3, -0.1), d(0.4, 0.9)];
+        let quad = [d(0.0, 0.0), d(1.2, 0.1), d(1.0, 0.8), d(-0.1, 1.1)];
+        let q0t = element_quality(ElementKind::Tri3, &tri);
+        let q0q = element_quality(ElementKind::Quad4, &quad);
+        for (ang, s, t) in [(0.3, 2.5, d(4.0, -7.0)), (2.0, 1e-3, d(-1e3, 5.0)), (-1.1, 1e4, d(0.0, 0.0))] {
+            let r = DVec2::from_angle(ang);
+            let map = |p: &DVec2| r.rotate(*p) * s + t;
+            let tq = element_quality(ElementKind::Tri3, &tri.iter().map(map).collect::<Vec<_>>());
+            let qq = element_quality(ElementKind::Quad4, &quad.iter().map(map).collect::<Vec<_>>());
+            for (a, b) in [(q0t, tq), (q0q, qq)] {
+                assert!((a.shape - b.shape).abs() < 1e-9);
+                assert!((a.min_angle - b.min_angle).abs() < 1e-9);
+                assert!((a.condition - b.condition).abs() < 1e-9 * a.condition);
+                assert!((a.scaled_jacobian - b.scaled_jacobian).abs() < 1e-9);
+            }
+        }
+    }
+
+    #[test]
+    fn quadratic_straight_edges_match_linear() {
+        let [a, b, c] = equilateral();
+        let p6 = [a, b, c, (a + b) / 2.0, (b + c) / 2.0, (c + a) / 2.0];
+        let q6 = element_quality(ElementKind::Tri6, &p6);
+        assert!((q6.shape - 1.0).abs() < EPS);
+        // bowing one edge outward lowers the corner angles' quality
+        let mut bent = p6;
+        bent[3] += d(0.0, -0.2);
+        let qb = element_quality(ElementKind::Tri6, &bent);
+        assert!(qb.shape < 0.95 && qb.max_angle > q6.max_angle);
+        let sq = [d(0.0, 0.0), d(1.0, 0.0), d(1.0, 1.0), d(0.0, 1.0)];
+        let mut p8 = [DVec2::ZERO; 9];
+        p8[..4].copy_from_slice(&sq);
+        for i in 0..4 {
+            p8[4 + i] = (sq[i] + sq[(i + 1) % 4]) / 2.0;
+        }
+        p8[8] = d(0.5, 0.5);
+        assert!((element_quality(ElementKind::Quad8, &p8[..8]).shape - 1.0).abs() < EPS);
+        assert!((element_quality(ElementKind::Quad9, &p8).shape - 1.0).abs() < EPS);
+    }
+
+    #[test]
+    fn histogram_bins() {
+        assert_eq!(angle_bin(-0.1), 0);
+        assert_eq!(angle_bin(0.0), 0);
+        assert_eq!(angle_bin(PI / 3.0), 10);
+        assert_eq!(angle_bin(PI), 29);
+        assert_eq!(angle_bin(5.99f64.to_radians()), 0);
+        assert_eq!(angle_bin(6.01f64.to_radians()), 1);
+    }
+}

@@ -1,0 +1,1 @@
+//! Smoothing drivers over any objective and solver.
