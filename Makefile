@@ -1,0 +1,36 @@
+# smoothlab — the two commands of the quick start are `make serve` and `make test`.
+#   make serve   build the page (wasm + www/) and serve it on http://127.0.0.1:8000
+#   make test    every test: clippy, native unit/integration tests, wasm build, browser tests
+#   make site    build the complete static site into www/ (www/pkg is generated)
+
+WASM := target/wasm32-unknown-unknown/release/smoothlab.wasm
+PORT ?= 8000
+CARGO ?= cargo
+
+.PHONY: serve test site lint unit wasm browser tools browser-tools
+
+serve: site
+	@echo "smoothlab playground: http://127.0.0.1:$(PORT)/"
+	python3 -m http.server $(PORT) --bind 127.0.0.1 --directory www
+
+test: lint unit site browser
+
+lint:
+	$(CARGO) clippy --all-targets -- -D warnings
+
+unit:
+	$(CARGO) test
+
+tools:
+	@scripts/ensure-tools.sh
+
+browser-tools:
+	@scripts/ensure-tools.sh --browser
+
+site: tools
+	$(CARGO) build --lib --release --target wasm32-unknown-unknown
+	wasm-bindgen --target web --no-typescript --out-dir www/pkg $(WASM)
+	@ls -l www/pkg/smoothlab_bg.wasm | awk '{print "wasm size: " $$5 " bytes"}'
+
+browser: site browser-tools
+	node tests/browser/run.mjs

@@ -1,0 +1,34 @@
+#!/usr/bin/env bash
+# Installs what the wasm build and the browser tests need, when it is missing:
+# the wasm32 target, the wasm-bindgen CLI at the exact version of the crate,
+# Debian's Chromium, and playwright-core (no browser download). Fast when all is there.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+want=$(sed -n 's/^wasm-bindgen = "=\([0-9.]*\)".*/\1/p' Cargo.toml)
+[ -n "$want" ] || { echo "ensure-tools: cannot read the wasm-bindgen version pin from Cargo.toml" >&2; exit 1; }
+
+if ! rustup target list --installed 2>/dev/null | grep -qx wasm32-unknown-unknown; then
+  echo "ensure-tools: adding the wasm32-unknown-unknown target"
+  rustup target add wasm32-unknown-unknown
+fi
+
+have=$(wasm-bindgen --version 2>/dev/null | awk '{print $2}' || true)
+if [ "$have" != "$want" ]; then
+  echo "ensure-tools: installing wasm-bindgen-cli $want (found '${have:-none}'; takes a few minutes once)"
+  # no --locked: one of its pinned dependencies is not in the registry mirror
+  cargo install wasm-bindgen-cli --version "$want"
+fi
+
+if [ "${1:-}" = "--browser" ]; then
+  if [ ! -x /usr/bin/chromium ]; then
+    echo "ensure-tools: installing Debian's chromium"
+    if [ "$(id -u)" = 0 ]; then SUDO=""; else SUDO="sudo"; fi
+    $SUDO apt-get update -qq
+    DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq chromium >/dev/null
+  fi
+  if [ ! -d tests/browser/node_modules/playwright-core ]; then
+    echo "ensure-tools: installing playwright-core (no browser download)"
+    (cd tests/browser && npm ci --no-audit --no-fund --silent 2>/dev/null || npm install --no-audit --no-fund --silent)
+  fi
+fi
