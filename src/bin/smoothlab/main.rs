@@ -5,6 +5,7 @@
 use clap::{Parser, Subcommand};
 
 mod files;
+mod generate;
 mod stats;
 
 #[derive(Parser)]
@@ -16,6 +17,8 @@ struct Cli {
 
 #[derive(Subcommand)]
 enum Command {
+    /// Write a sample mesh (rand2d, grid, plate, star) or perturb one.
+    Generate(generate::GenerateArgs),
     /// Print the quality statistics of a mesh.
     Stats(stats::StatsArgs),
     /// Convert a mesh between formats (by the file extensions).
@@ -25,6 +28,7 @@ enum Command {
 fn main() {
     let cli = Cli::parse();
     let result = match cli.command {
+        Command::Generate(a) => generate::run(a),
         Command::Stats(a) => stats::run(a),
         Command::Convert(a) => files::convert(a),
     };

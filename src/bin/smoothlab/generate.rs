@@ -1,0 +1,150 @@
+//! `smoothlab generate KIND … -o OUT`: write a sample mesh.
+
+use std::path::PathBuf;
+
+use clap::{Args, Subcommand, ValueEnum};
+use smoothlab::generate::{self, GridKind, PlateKind, StarKind};
+use smoothlab::Mesh;
+
+use crate::files::{read_mesh, write_mesh, MshVersionArg};
+
+#[derive(Args)]
+pub struct GenerateArgs {
+    #[command(subcommand)]
+    pub kind: Kind,
+}
+
+/// Where to write, shared by every kind.
+#[derive(Args)]
+pub struct Output {
+    /// Output mesh; the format follows the extension (.msh, .vtk, .node, .obj, .off)
+    #[arg(short, long)]
+    pub output: PathBuf,
+    /// Version of .msh files written
+    #[arg(long, value_enum, default_value = "2.2")]
+    pub msh_version: MshVersionArg,
+}
+
+#[derive(Subcommand)]
+pub enum Kind {
+    /// Freitag's rand2d: Delaunay triangulation of random points in the unit square
+    Rand2d {
+        /// Random interior points
+        #[arg(long, default_value_t = 500)]
+        points: usize,
+        /// Equally spaced points on each side of the square (corners counted once)
+        #[arg(long, default_value_t = 20)]
+        per_side: usize,
+        /// Seed of the random points
+        #[arg(long, default_value_t = 1)]
+        seed: u64,
+        #[command(flatten)]
+        out: Output,
+    },
+    /// A structured grid on the unit square
+    Grid {
+        /// Cells along x
+        #[arg(long, default_value_t = 10)]
+        nx: usize,
+        /// Cells along y
+        #[arg(long, default_value_t = 10)]
+        ny: usize,
+        /// Triangles (each square split lower-left to upper-right) or quads
+        #[arg(long, value_enum, default_value = "tri")]
+        kind: GridKindArg,
+        #[command(flatten)]
+        out: Output,
+    },
+    /// A square plate [-1,1]² with a hole of radius 0.4 (O-grid)
+    Plate {
+        /// Triangles, quads, or quads round the hole and triangles outside
+        #[arg(long, value_enum, default_value = "tri")]
+        kind: PlateKindArg,
+        /// 1 for linear elements, 2 for quadratic ones with a curved hole
+        #[arg(long, default_value_t = 1)]
+        order: u8,
+        /// 8·N nodes round the hole and the square, 2·N rings between them
+        #[arg(long, default_value_t = 4)]
+        resolution: usize,
+        #[command(flatten)]
+        out: Output,
+    },
+    /// One free node with a ring of fixed neighbours
+    Star {
+        /// Regular (Mesquite's equil_tri), Chen's non-convex star, or quads
+        #[arg(long, value_enum, default_value = "regular")]
+        kind: StarKindArg,
+        /// Elements round the free node [default: 6 regular, 8 chen, 4 quad]
+        #[arg(long)]
+        k: Option<usize>,
+        #[command(flatten)]
+        out: Output,
+    },
+    /// Move every free node of a mesh at random (to tangle it)
+    Perturb {
+        /// The mesh to perturb
+        input: PathBuf,
+        /// Largest move, as a multiple of the mean edge length
+        #[arg(long, default_value_t = 0.5, allow_hyphen_values = true)]
+        amount: f64,
+        /// Seed of the random moves
+        #[arg(long, default_value_t = 1)]
+        seed: u64,
+        #[command(flatten)]
+        out: Output,
+    },
+}
+
+#[derive(Clone, Copy, Debug, ValueEnum)]
+pub enum GridKindArg {
+    Tri,
+    Quad,
+}
+
+#[derive(Clone, Copy, Debug, ValueEnum)]
+pub enum PlateKindArg {
+    Tri,
+    Quad,
+    Mixed,
+}
+
+#[derive(Clone, Copy, Debug, ValueEnum)]
+pub enum StarKindArg {
+    Regular,
+    Chen,
+    Quad,
+}
+
+pub fn run(a: GenerateArgs) -> Result<(), String> {
+    let (mesh, out): (Mesh, Output) = match a.kind {
+        Kind::Rand2d { points, per_side, seed, out } => (generate::rand2d(points, per_side, seed).map_err(|e| e.to_string())?, out),
+        Kind::Grid { nx, ny, kind, out } => {
+            let kind = match kind {
+                GridKindArg::Tri => GridKind::Tri,
+                GridKindArg::Quad => GridKind::Quad,
+            };
+            (generate::grid(nx, ny, kind).map_err(|e| e.to_string())?, out)
+        }
+        Kind::Plate { kind, order, resolution, out } => {
+            let kind = match kind {
+                PlateKindArg::Tri => PlateKind::Tri,
+                PlateKindArg::Quad => PlateKind::Quad,
+                PlateKindArg::Mixed => PlateKind::Mixed,
+            };
+            (generate::plate(kind, order, resolution).map_err(|e| e.to_string())?, out)
+        }
+        Kind::Star { kind, k, out } => {
+            let kind = match kind {
+                StarKindArg::Regular => StarKind::Regular,
+                StarKindArg::Chen => StarKind::Chen,
+                StarKindArg::Quad => StarKind::Quad,
+            };
+            (generate::star(kind, k.unwrap_or(kind.default_k())).map_err(|e| e.to_string())?, out)
+        }
+        Kind::Perturb { input, amount, seed, out } => {
+            let mesh = read_mesh(&input)?;
+            (generate::perturb(&mesh, amount, seed).map_err(|e| format!("{}: {e}", input.display()))?, out)
+        }
+    };
+    write_mesh(&mesh, &out.output, out.msh_version)
+}

@@ -1,1 +1,0 @@
-//! Sample meshes: rand2d, grid, plate with a hole, star configurations, perturbation.

@@ -1,0 +1,80 @@
+//! Sample meshes: Freitag's `rand2d`, structured grids, Chen's plate with a hole (linear
+//! or quadratic with a curved hole), single-node star configurations, and the random
+//! perturbation that tangles a mesh.
+//!
+//! Everything here is deterministic: the seeded generators draw from [`SplitMix64`],
+//! whose stream is fixed by this crate, so a seed names the same mesh on every platform.
+//! Every generated mesh is counter-clockwise with no inverted element, and its boundary
+//! nodes are fixed (the stars: every node but the centre).
+
+mod grid;
+mod perturb;
+mod plate;
+mod prng;
+mod rand2d;
+mod star;
+
+pub use grid::{grid, GridKind};
+pub use perturb::perturb;
+pub use plate::{plate, PlateKind, PLATE_HALF_WIDTH, PLATE_HOLE_RADIUS};
+pub use prng::SplitMix64;
+pub use rand2d::rand2d;
+pub use star::{star, StarKind};
+
+use glam::DVec2;
+
+use crate::error::{Error, Result};
+use crate::mesh::{ElementKind, Mesh, MeshBuilder};
+
+/// The largest number of nodes a generator makes; larger requests are refused with
+/// [`Error::TooLarge`] before anything is allocated (the page runs in wasm's 4 GiB).
+pub const MAX_GENERATED_NODES: usize = 4_000_000;
+
+fn check_size(what: &str, nodes: Option<usize>) -> Result<()> {
+    match nodes {
+        Some(n) if n <= MAX_GENERATED_NODES => Ok(()),
+        Some(n) => Err(Error::TooLarge(format!("{what} would have {n} nodes; the limit is {MAX_GENERATED_NODES}"))),
+        None => Err(Error::TooLarge(format!("{what}: the node count overflows"))),
+    }
+}
+
+/// Collects planar nodes and elements, then builds the mesh (boundary nodes fixed).
+struct Assembly {
+    b: MeshBuilder,
+}
+
+impl Assembly {
+    fn with_capacity(nodes: usize, elements: usize) -> Self {
+        Assembly { b: MeshBuilder::with_capacity(nodes, elements) }
+    }
+    fn node(&mut self, p: DVec2) -> u32 {
+        self.b.add_node([p.x, p.y, 0.0], 0) as u32
+    }
+    fn element(&mut self, kind: ElementKind, ids: &[u32]) {
+        self.b.add_element(kind, ids, 0);
+    }
+    fn build(self) -> Result<Mesh> {
+        self.b.build()
+    }
+}
+
+#[cfg(test)]
+pub(crate) mod test_util {
+    use crate::mesh::Mesh;
+    use crate::quality::mesh_stats;
+
+    /// The invariants every generated mesh keeps: the model's own checks, no inverted
+    /// element, every element counter-clockwise, and boundary nodes fixed.
+    pub fn assert_valid(m: &Mesh) {
+        m.sanity_check().unwrap();
+        assert_eq!(mesh_stats(m).inverted, 0, "inverted elements");
+        for e in 0..m.element_count() {
+            assert!(m.corner_area(e) > 0.0, "element {e} is not counter-clockwise");
+        }
+        for n in 0..m.node_count() {
+            if m.is_boundary(n) {
+                assert!(m.fixed[n], "boundary node {n} is free");
+            }
+        }
+    }
+}

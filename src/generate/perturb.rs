@@ -1,0 +1,128 @@
+//! Random perturbation of the free nodes: how the tangled test meshes are made.
+
+use super::SplitMix64;
+use crate::error::{Error, Result};
+use crate::mesh::Mesh;
+
+/// A copy of `mesh` with every free node (a corner that is not fixed) moved by a seeded
+/// random offset uniformly distributed in the disk of radius
+/// `amount × mesh.mean_edge_length()`; fixed nodes never move and mid-side nodes then
+/// follow their corners ([`Mesh::update_mid_nodes`]; curved boundary edges keep theirs).
+/// This is how Chen, Tristano & Kwok (2003, §5.2, Figure 13) tangle the plate with a
+/// hole: "perturbing the nodal locations of each interior node randomly". Amounts of
+/// 0.5–1.0 tangle a mesh; 0 returns it unchanged.
+///
+/// The free nodes draw their offsets in node order from [`SplitMix64`] seeded with
+/// `seed`, so the result is the same on every platform. `amount` must be finite and ≥ 0.
+pub fn perturb(mesh: &Mesh, amount: f64, seed: u64) -> Result<Mesh> {
+    if !(amount.is_finite() && amount >= 0.0) {
+        return Err(Error::invalid(format!("the perturbation amount must be a finite number ≥ 0, not {amount}")));
+    }
+    let radius = amount * mesh.mean_edge_length();
+    let mut out = mesh.clone();
+    let mut rng = SplitMix64::new(seed);
+    for n in 0..out.node_count() {
+        if out.is_free(n) {
+            out.nodes[n] += radius * rng.in_unit_disk();
+        }
+    }
+    out.update_mid_nodes();
+    Ok(out)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::generate::{grid, plate, rand2d, GridKind, PlateKind};
+    use crate::mesh::{NodeRole, NONE};
+    use crate::quality::mesh_stats;
+    use proptest::prelude::*;
+
+    /// Fixed nodes stay bit for bit, free ones move at most `amount × mean edge`.
+    fn check_moves(before: &Mesh, after: &Mesh, amount: f64) {
+        let r = amount * before.mean_edge_length();
+        for n in 0..before.node_count() {
+            let d = before.nodes[n].distance(after.nodes[n]);
+            if before.fixed[n] {
+                assert_eq!(before.nodes[n], after.nodes[n], "fixed node {n} moved");
+            } else if before.role(n) == NodeRole::Corner {
+                assert!(d <= r * (1.0 + 1e-12), "node {n} moved {d} > {r}");
+            }
+        }
+    }
+
+    #[test]
+    fn fixed_stay_free_move_within_the_amount() {
+        let m = rand2d(500, 20, 1).unwrap();
+        let p = perturb(&m, 0.7, 3).unwrap();
+        p.sanity_check().unwrap();
+        check_moves(&m, &p, 0.7);
+        let moved = (0..m.node_count()).filter(|&n| m.nodes[n] != p.nodes[n]).count();
+        assert_eq!(moved, m.free_count());
+        // uniform in the disk: E|offset|² = r²/2
+        let r = 0.7 * m.mean_edge_length();
+        let mean_sq = (0..m.node_count())
+            .filter(|&n| m.is_free(n))
+            .map(|n| m.nodes[n].distance_squared(p.nodes[n]))
+            .sum::<f64>()
+            / m.free_count() as f64;
+        assert!((mean_sq / (r * r) - 0.5).abs() < 0.05, "{}", mean_sq / (r * r));
+    }
+
+    #[test]
+    fn seeded_and_deterministic() {
+        let m = grid(8, 8, GridKind::Quad).unwrap();
+        let a = perturb(&m, 0.3, 11).unwrap();
+        assert_eq!(a.nodes, perturb(&m, 0.3, 11).unwrap().nodes);
+        let b = perturb(&m, 0.3, 12).unwrap();
+        let differ = (0..m.node_count()).filter(|&n| a.nodes[n] != b.nodes[n]).count();
+        assert_eq!(differ, m.free_count());
+        assert_eq!(perturb(&m, 0.0, 5).unwrap().nodes, m.nodes);
+    }
+
+    #[test]
+    fn large_amounts_tangle_the_plate() {
+        let m = plate(PlateKind::Tri, 1, 4).unwrap();
+        assert_eq!(mesh_stats(&m).inverted, 0);
+        let t = perturb(&m, 1.0, 1).unwrap();
+        assert!(mesh_stats(&t).inverted > 10, "{}", mesh_stats(&t).inverted);
+        let small = perturb(&m, 0.05, 1).unwrap();
+        assert_eq!(mesh_stats(&small).inverted, 0, "a small amount keeps the mesh valid");
+    }
+
+    #[test]
+    fn mid_nodes_follow_and_the_curved_hole_stays() {
+        let m = plate(PlateKind::Mixed, 2, 2).unwrap();
+        let p = perturb(&m, 0.8, 2).unwrap();
+        p.sanity_check().unwrap();
+        check_moves(&m, &p, 0.8);
+        for e in p.edges() {
+            assert_ne!(e.mid, NONE);
+            let (a, b, c) = (p.nodes[e.a as usize], p.nodes[e.b as usize], p.nodes[e.mid as usize]);
+            if e.curved {
+                assert_eq!(c, m.nodes[e.mid as usize], "curved boundary mid nodes stay");
+            } else {
+                assert!(c.distance(0.5 * (a + b)) < 1e-12, "mid node follows its corners");
+            }
+        }
+    }
+
+    #[test]
+    fn bad_amounts_are_errors() {
+        let m = grid(2, 2, GridKind::Tri).unwrap();
+        for a in [-0.1, f64::NAN, f64::INFINITY] {
+            assert!(matches!(perturb(&m, a, 1), Err(Error::Invalid(_))), "{a}");
+        }
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(48))]
+        #[test]
+        fn any_seed_any_amount(seed in any::<u64>(), amount in 0.0f64..3.0, n in 2usize..6) {
+            let m = grid(n, n + 1, GridKind::Tri).unwrap();
+            let p = perturb(&m, amount, seed).unwrap();
+            check_moves(&m, &p, amount);
+            prop_assert!(p.sanity_check().is_ok());
+        }
+    }
+}
