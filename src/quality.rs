@@ -233,7 +233,7 @@ pub struct MeshStats {
 /// [6i°, 6i+6°); 180° goes in the last bin, zero and negative angles in the first.
 pub fn angle_bin(angle: f64) -> usize {
     let deg = angle.to_degrees();
-    if !(deg > 0.0) {
+    if deg.is_nan() || deg <= 0.0 {
         return 0;
     }
     // an angle on a bin edge (60° of an equilateral triangle, computed as 59.99999…)
