@@ -3,7 +3,9 @@
 
 use glam::DVec2;
 
-use super::{evaluate, line_search, merit_of, star_scale, DirectionKind, Iterate, SolveOptions, SolveState, Solver, StopReason};
+use super::{
+    evaluate, line_search, merit_of, star_scale, DirectionKind, Iterate, SolveOptions, SolveState, Solver, StopReason,
+};
 use crate::objective::{Goal, Objective, Star, Term};
 
 /// Powell's restart test: restart when consecutive gradients are far from orthogonal,

@@ -224,7 +224,12 @@ impl Solver for NonSmoothAscent {
         st.iterations += 1;
         st.last_move = alpha * sl;
         if o.record_history {
-            st.history.push(Iterate { x: x_new, value: st.value, direction: DirectionKind::ActiveSet, step: alpha * sl });
+            st.history.push(Iterate {
+                x: x_new,
+                value: st.value,
+                direction: DirectionKind::ActiveSet,
+                step: alpha * sl,
+            });
         }
         if phi_new - phi <= o.min_improvement * phi_new.abs().max(q_scale).max(f64::MIN_POSITIVE) {
             st.stop = Some(StopReason::SmallImprovement);

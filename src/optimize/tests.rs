@@ -229,7 +229,9 @@ proptest! {
 #[test]
 fn ascent_reaches_the_peak_of_three_planes() {
     let star = unit_star();
-    for (scale, x0) in [([1.0, 1.0, 1.0], d(0.9, -0.7)), ([1.0, 3.0, 0.5], d(-0.4, 0.6)), ([0.2, 1.0, 5.0], d(0.1, 0.9))] {
+    for (scale, x0) in
+        [([1.0, 1.0, 1.0], d(0.9, -0.7)), ([1.0, 3.0, 0.5], d(-0.4, 0.6)), ([0.2, 1.0, 5.0], d(0.1, 0.9))]
+    {
         let f = ThreePlanes { peak: d(0.25, -0.1), scale };
         let r = NonSmoothAscent::new(recording(20)).solve(&f, &star, x0);
         assert!(r.x.distance(f.peak) < 1e-9, "{scale:?}: {r:?}");
@@ -305,4 +307,3 @@ proptest! {
         prop_assert!(g.value >= g.value0);
     }
 }
-
