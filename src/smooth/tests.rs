@@ -334,7 +334,8 @@ fn rules_untangle_a_folded_star_by_optimization() {
 
 #[test]
 fn rules_optimize_next_to_a_curved_boundary() {
-    let mut mesh = grid(3, 3, ElementKind::Tri6, &[], &[]);
+    // interior nodes 5, 6, 9 in place, node 10 = grid (2, 2) pushed off its centroid
+    let mut mesh = grid(3, 3, ElementKind::Tri6, &[(0.0, 0.0), (0.0, 0.0), (0.0, 0.0), (0.2, 0.15)], &[]);
     // bow out the mid node of the bottom edge 0–1
     let e = *mesh.edges().iter().find(|e| e.a == 0 && e.b == 1).unwrap();
     let mut b = MeshBuilder::new();
@@ -345,17 +346,20 @@ fn rules_optimize_next_to_a_curved_boundary() {
     for el in 0..mesh.element_count() {
         b.add_element(mesh.kind(el), mesh.element(el), 0);
     }
-    mesh = b.build().unwrap();
-    assert!(mesh.edges().iter().any(|e| e.curved));
+    let mut flat = std::mem::replace(&mut mesh, b.build().unwrap());
+    assert!(mesh.edges().iter().any(|e| e.curved) && !flat.edges().iter().any(|e| e.curved));
     let opts = SmoothOptions::default().with_strategy(Strategy::Rules).with_order(Order::Input);
     let mut s = Smoother::new(opts).unwrap();
     let near = 5; // grid node (1, 1): corner of the element with the curved edge
     assert!(mesh.is_free(near));
     let o = s.smooth_node(&mut mesh, near, &ShapeSum);
-    assert!(o.optimized, "rule 1: {o:?}");
-    let far = 10; // grid node (2, 2): no curved boundary in reach
+    assert!(o.optimized && !o.laplacian, "rule 1: {o:?}");
+    // the same node with the edge straight: the smart Laplacian does it
+    let o = s.smooth_node(&mut flat, near, &ShapeSum);
+    assert!(o.laplacian && !o.optimized, "{o:?}");
+    let far = 10; // grid node (2, 2): no curved boundary in reach, the smart Laplacian helps
     let o = s.smooth_node(&mut mesh, far, &ShapeSum);
-    assert!(!o.optimized || o.laplacian, "{o:?}");
+    assert!(o.laplacian && o.moved && !o.optimized, "{o:?}");
     let mid_before = mesh.nodes[e.mid as usize];
     s.pass(&mut mesh, &ShapeSum, NO_CLOCK);
     assert_eq!(mesh.nodes[e.mid as usize], mid_before, "the curved edge keeps its mid node");
