@@ -13,6 +13,7 @@
 //! |---|---|---|---|
 //! | `old` | [`MaxMinShape`] | max-min | α (triangles) / β (quads) per element — Chen et al.'s previous method |
 //! | `sine` | [`MaxMinSine`] | max-min | sine of every corner angle of the star — Freitag 1997 |
+//! | `new` | [`ChenTristanoKwok`] | sum | `(1 − α)²` + angle penalty per element — Chen et al. 2003, eqs. (3)–(9) |
 //! | `condition` | [`ConditionNumber`] (2-norm) | sum | κ² per moving corner — Knupp 1999 |
 //! | `condition-max` | [`ConditionNumber`] (∞-norm) | max-min | −κ per moving corner |
 //! | `untangle` | [`Untangle`] | sum | `|det| − det` per moving corner — Knupp 1999, §2.7 |
@@ -34,6 +35,7 @@ use crate::mesh::{ElementKind, Mesh, NodeRole};
 
 mod condition;
 mod corners;
+mod new;
 mod old;
 mod sine;
 #[cfg(test)]
@@ -41,6 +43,7 @@ pub(crate) mod testing;
 mod untangle;
 
 pub use condition::{ConditionNumber, Norm, CONDITION_BARRIER};
+pub use new::{adjusted_angle, ChenTristanoKwok, PenaltyLength, EQUILATERAL_PENALTY};
 pub use old::MaxMinShape;
 pub use sine::MaxMinSine;
 pub use untangle::{MaxMinDet, Untangle};
@@ -52,6 +55,8 @@ pub enum ObjectiveKind {
     Old,
     /// `sine`: maximise the minimum sine of the star's angles (Freitag 1997).
     Sine,
+    /// `new`: Chen, Tristano & Kwok's smooth objective (α plus an angle penalty).
+    New,
     /// `condition`: Knupp's condition number, 2-norm (sum of κ² — the average element).
     Condition,
     /// `condition-max`: Knupp's condition number, ∞-norm (the worst corner).
@@ -64,9 +69,10 @@ pub enum ObjectiveKind {
 
 impl ObjectiveKind {
     /// Every kind, in the order of the command-line help.
-    pub const ALL: [ObjectiveKind; 6] = [
+    pub const ALL: [ObjectiveKind; 7] = [
         ObjectiveKind::Old,
         ObjectiveKind::Sine,
+        ObjectiveKind::New,
         ObjectiveKind::Condition,
         ObjectiveKind::ConditionMax,
         ObjectiveKind::Untangle,
@@ -78,6 +84,7 @@ impl ObjectiveKind {
         match self {
             ObjectiveKind::Old => "old",
             ObjectiveKind::Sine => "sine",
+            ObjectiveKind::New => "new",
             ObjectiveKind::Condition => "condition",
             ObjectiveKind::ConditionMax => "condition-max",
             ObjectiveKind::Untangle => "untangle",
@@ -93,7 +100,7 @@ impl ObjectiveKind {
     /// How this kind's terms combine (which solver fits it).
     pub fn goal(self) -> Goal {
         match self {
-            ObjectiveKind::Condition | ObjectiveKind::Untangle => Goal::MinimizeSum,
+            ObjectiveKind::New | ObjectiveKind::Condition | ObjectiveKind::Untangle => Goal::MinimizeSum,
             ObjectiveKind::Old | ObjectiveKind::Sine | ObjectiveKind::ConditionMax | ObjectiveKind::UntangleMinDet => {
                 Goal::MaximizeMin
             }
@@ -113,6 +120,7 @@ pub fn objective(kind: ObjectiveKind) -> Box<dyn Objective> {
     match kind {
         ObjectiveKind::Old => Box::new(MaxMinShape),
         ObjectiveKind::Sine => Box::new(MaxMinSine),
+        ObjectiveKind::New => Box::new(ChenTristanoKwok::default()),
         ObjectiveKind::Condition => Box::new(ConditionNumber { norm: Norm::Two }),
         ObjectiveKind::ConditionMax => Box::new(ConditionNumber { norm: Norm::Infinity }),
         ObjectiveKind::Untangle => Box::new(Untangle),
@@ -449,6 +457,15 @@ mod tests {
                 assert!((ga - gb).length() <= 1e-10 * (1.0 + ga.length()), "{k}");
             }
         }
+        // and moving the node in the mesh (mid nodes following) gives the same objective
+        // values as evaluating the gathered star at the new position
+        let mut moved = mesh.clone();
+        moved.nodes[0] = d(0.2, -0.1);
+        moved.follow_mid_nodes(0);
+        let mut again = Star::new();
+        again.gather(&moved, 0);
+        let obj = ChenTristanoKwok::default();
+        assert!((obj.value(&again, again.x0) - obj.value(&gathered, d(0.2, -0.1))).abs() < 1e-12);
     }
 
     #[test]
