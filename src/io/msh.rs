@@ -71,6 +71,7 @@ fn unsupported_type(t: u64, line: usize) -> Error {
 
 /// Node tags → 0-based node indices, without an array sized by the largest tag unless
 /// the tags are dense enough for that to be small.
+#[derive(Debug)]
 enum TagMap {
     Dense { min: u64, index: Vec<u32> },
     Sorted(Vec<(u64, u32)>),
