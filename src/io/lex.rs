@@ -225,6 +225,12 @@ pub(crate) fn parse_f64(text: &str, line: usize, what: impl Fn() -> String) -> R
     }
 }
 
+/// The first value that appears twice in an element's node list (in the file's own
+/// numbering, so the message can use it).
+pub(crate) fn repeated<T: PartialEq + Copy>(ids: &[T]) -> Option<T> {
+    (0..ids.len()).find(|&a| ids[a + 1..].contains(&ids[a])).map(|a| ids[a])
+}
+
 /// The lines of a text with their 1-based numbers, each cut at `comment` (if any) and
 /// trimmed; blank lines are left out. For the line-oriented formats (OBJ, OFF, Triangle).
 pub(crate) fn content_lines(text: &str, comment: Option<char>) -> impl Iterator<Item = (usize, &str)> {

@@ -16,7 +16,7 @@
 use std::fmt::Write as _;
 
 use crate::error::{Error, Result};
-use crate::io::lex::{shown, Lexer};
+use crate::io::lex::{repeated, shown, Lexer};
 use crate::io::MshVersion;
 use crate::mesh::{ElementKind, FixedSpec, Mesh, MeshBuilder, NONE};
 
@@ -490,7 +490,11 @@ impl Reader {
         let mut ids = [0u32; 9];
         for (e, raw) in elements.iter().enumerate() {
             let k = raw.kind.node_count();
-            for (j, &tag) in elem_tags[raw.start as usize..raw.start as usize + k].iter().enumerate() {
+            let tags = &elem_tags[raw.start as usize..raw.start as usize + k];
+            if let Some(t) = repeated(tags) {
+                return Err(Error::element(e, Some(raw.line as usize), format!("node tag {t} appears twice in the element")));
+            }
+            for (j, &tag) in tags.iter().enumerate() {
                 ids[j] = map.get(tag).ok_or_else(|| {
                     Error::element(e, Some(raw.line as usize), format!("node tag {tag} is not defined ({})", range()))
                 })?;

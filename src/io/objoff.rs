@@ -13,7 +13,7 @@
 use std::fmt::Write as _;
 
 use crate::error::{Error, Result};
-use crate::io::lex::{check_count, content_lines, parse_f64, shown};
+use crate::io::lex::{check_count, content_lines, parse_f64, repeated, shown};
 use crate::mesh::{ElementKind, Mesh, MeshBuilder};
 
 fn face_kind(k: usize, line: usize, what: &str) -> Result<ElementKind> {
@@ -87,6 +87,9 @@ pub(crate) fn read_obj(text: &str) -> Result<Mesh> {
                 ));
             }
             ids[j] = f[j] as u32;
+        }
+        if let Some(v) = repeated(&ids[..kind.node_count()]) {
+            return Err(Error::element(e, Some(*line), format!("vertex {} appears twice in the face", v + 1)));
         }
         b.add_element(*kind, &ids[..kind.node_count()], *line);
     }
@@ -162,6 +165,9 @@ pub(crate) fn read_off(text: &str) -> Result<Mesh> {
                 ));
             }
             *id = v as u32;
+        }
+        if let Some(v) = repeated(&ids[..k]) {
+            return Err(Error::element(e, Some(line), format!("vertex {v} appears twice in the face")));
         }
         b.add_element(kind, &ids[..k], line);
     }

@@ -15,7 +15,7 @@
 use std::fmt::Write as _;
 
 use crate::error::{Error, Result};
-use crate::io::lex::{check_count, content_lines, parse_f64, shown};
+use crate::io::lex::{check_count, content_lines, parse_f64, repeated, shown};
 use crate::mesh::{ElementKind, FixedSpec, Mesh, MeshBuilder};
 
 /// Our local index `i` takes Triangle's local index `TRIANGLE_ORDER[i]`.
@@ -171,6 +171,9 @@ fn read_elements(text: &str, base: i64, b: &mut MeshBuilder) -> Result<()> {
                 ));
             }
             ids[ours] = (v - base) as u32;
+        }
+        if let Some(v) = repeated(&ids[..per as usize]) {
+            return Err(Error::element(i, Some(line), format!("node {} appears twice in the triangle", v as i64 + base)));
         }
         b.add_element(kind, &ids[..per as usize], line);
     }

@@ -21,7 +21,7 @@
 use std::fmt::Write as _;
 
 use crate::error::{Error, Result};
-use crate::io::lex::{shown, Lexer};
+use crate::io::lex::{repeated, shown, Lexer};
 use crate::mesh::{ElementKind, FixedSpec, Mesh, MeshBuilder};
 
 #[derive(Clone, Copy, PartialEq)]
@@ -458,6 +458,9 @@ impl Reader<'_> {
                 None => (7, line), // POLYDATA polygons
             };
             let check = |nodes: &[u64], ids: &mut [u32]| -> Result<()> {
+                if let Some(v) = repeated(nodes) {
+                    return Err(Error::element(i, Some(line), format!("point {v} appears twice in the cell")));
+                }
                 for (j, &v) in nodes.iter().enumerate() {
                     if v >= np as u64 {
                         return Err(Error::element(
