@@ -162,6 +162,12 @@ fn files_round_trip_through_the_file_system() {
     same_geometry(&m, &back, "m.ele");
     let e = io::read_path(&dir.join("absent.vtk")).unwrap_err().to_string();
     assert!(e.contains("absent.vtk"), "{e}");
+    // over the size limit: refused from its length, before reading (a sparse file)
+    let big = dir.join("big.msh");
+    std::fs::File::create(&big).unwrap().set_len(io::MAX_FILE_BYTES + 1).unwrap();
+    let e = io::read_path(&big).unwrap_err();
+    assert!(matches!(e, smoothlab::Error::TooLarge(_)), "{e:?}");
+    assert!(e.to_string().contains(&io::MAX_FILE_BYTES.to_string()), "{e}");
     std::fs::remove_dir_all(&dir).unwrap();
 }
 

@@ -80,7 +80,7 @@ impl<'a> Lexer<'a> {
     }
 
     /// Line of the last token read: where "the file ends here" errors point.
-    pub fn line(&self) -> usize {
+    pub fn last_line(&self) -> usize {
         self.last_line
     }
 

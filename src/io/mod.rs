@@ -3,7 +3,22 @@
 //!
 //! Readers parse text into a [`MeshBuilder`](crate::mesh::MeshBuilder), recording the
 //! file line of every node and element, so every error names a line or an element.
-//! Nothing here panics on any input.
+//! Nothing here panics on any input, and no header count is trusted for an allocation
+//! before it is checked against the bytes left to read.
+//!
+//! What a written file gives back when read (nodes always bit for bit, printed in the
+//! shortest form that round-trips; elements, their order and kinds always):
+//!
+//! | format | element kinds | fixed flags |
+//! |---|---|---|
+//! | `.msh` 2.2 / 4.1 | all five | exactly (a `$NodeData` view named `fixed`) |
+//! | `.vtk` | all five | exactly (`POINT_DATA` `SCALARS fixed`) |
+//! | `.node`/`.ele` | all `Tri3` or all `Tri6` | boundary ∪ fixed (markers) |
+//! | `.obj`, `.off` | `Tri3`, `Quad4` | none: the boundary |
+//!
+//! Files from elsewhere: `.msh` without that view gets the boundary plus the nodes of line
+//! and point elements; VTK without `fixed` the boundary plus the points of vertex and line
+//! cells; Triangle the boundary plus nonzero-marker nodes; OBJ and OFF the boundary.
 
 use crate::error::{Error, Result};
 use crate::mesh::Mesh;

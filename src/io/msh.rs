@@ -241,10 +241,10 @@ pub(crate) fn read(text: &str) -> Result<Mesh> {
         }
     }
     if r.nodes_line.is_none() {
-        return Err(Error::parse(lex.line(), "the file ends without a $Nodes section"));
+        return Err(Error::parse(lex.last_line(), "the file ends without a $Nodes section"));
     }
     if r.elements_line.is_none() {
-        return Err(Error::parse(lex.line(), "the file ends without an $Elements section"));
+        return Err(Error::parse(lex.last_line(), "the file ends without an $Elements section"));
     }
     r.finish()
 }

@@ -221,7 +221,7 @@ impl Reader<'_> {
         let (b, _) = self.lex.u64(|| format!("the size of the {name} list"))?;
         let mut c = Cells { header: line, ..Default::default() };
         if self.lex.peek().is_some_and(|t| is(t.text, "OFFSETS")) {
-            // VTK 5.1: a+1 offsets... here `a` is the number of offsets, `b` of connectivity entries.
+            // VTK 5.1: `a` offsets (one more than the cells), `b` connectivity entries.
             self.lex.next();
             self.lex.expect(|| "the data type of OFFSETS".into())?;
             let n_off = self.lex.check_count(a, 2, "offsets", al)?;
@@ -431,7 +431,7 @@ impl Reader<'_> {
     fn finish(self) -> Result<Mesh> {
         let Reader { lex, dataset, mut builder, points_line, cells, types, mut marked, fixed } = self;
         if points_line.is_none() {
-            return Err(Error::parse(lex.line(), "the file ends without a POINTS section"));
+            return Err(Error::parse(lex.last_line(), "the file ends without a POINTS section"));
         }
         let np = builder.node_count();
         let Some(cells) = cells else {
@@ -443,7 +443,7 @@ impl Reader<'_> {
         let types = match (dataset, types) {
             (Dataset::UnstructuredGrid, None) => {
                 return Err(Error::parse(
-                    lex.line(),
+                    lex.last_line(),
                     format!("the file ends without the CELL_TYPES section for the {} cells of line {}", cells.len(), cells.header),
                 ))
             }
@@ -553,7 +553,7 @@ impl Reader<'_> {
                     Some(s) => *s = true,
                     None => {
                         return Err(Error::parse(
-                            lex.line(),
+                            lex.last_line(),
                             format!("a vertex or line cell refers to point {v}, but the file has {np} points"),
                         ))
                     }
