@@ -35,7 +35,6 @@ fn walk(dir: &Path, out: &mut Vec<PathBuf>) {
 struct Header {
     points: usize,
     cells: usize,
-    cells_line: usize,
     cell_types: usize,
     /// `SCALARS fixed` values, when present.
     fixed: Option<Vec<bool>>,
@@ -71,7 +70,7 @@ fn header(text: &str) -> Header {
         assert_eq!(values.len(), points);
         values
     });
-    Header { points: field(p, 1), cells, cells_line: c + 1, cell_types: field(t, 1), fixed, first_polygon }
+    Header { points: field(p, 1), cells, cell_types: field(t, 1), fixed, first_polygon }
 }
 
 const NOT_PLANAR: [&str; 4] = [
