@@ -13,6 +13,7 @@ pub mod io;
 pub mod mesh;
 pub mod objective;
 pub mod optimize;
+pub mod permalink;
 pub mod quality;
 pub mod render;
 pub mod smooth;
