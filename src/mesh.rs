@@ -435,10 +435,11 @@ impl MeshBuilder {
     pub fn new() -> Self {
         MeshBuilder { elem_start: vec![0], ..Default::default() }
     }
-    /// A builder with room reserved for the given counts, capped so a header that
-    /// claims absurd counts cannot make us allocate before the data is seen.
+    /// A builder with room reserved for the given counts, capped (at 2¹⁶ of each) so a
+    /// header that claims large counts costs a fixed amount until the data is seen;
+    /// beyond that the arrays grow as nodes and elements are added.
     pub fn with_capacity(nodes: usize, elements: usize) -> Self {
-        const CAP: usize = 1 << 20;
+        const CAP: usize = 1 << 16;
         let mut b = Self::new();
         b.points.reserve(nodes.min(CAP));
         b.point_lines.reserve(nodes.min(CAP));

@@ -15,7 +15,7 @@
 use std::fmt::Write as _;
 
 use crate::error::{Error, Result};
-use crate::io::lex::{check_count, content_lines, parse_f64, repeated, shown};
+use crate::io::lex::{check_count, content_lines, parse_f64, prealloc, repeated, shown};
 use crate::mesh::{ElementKind, FixedSpec, Mesh, MeshBuilder};
 
 /// Our local index `i` takes Triangle's local index `TRIANGLE_ORDER[i]`.
@@ -84,7 +84,7 @@ fn read_nodes(text: &str, b: &mut MeshBuilder) -> Result<(i64, Option<Vec<bool>>
     let n = check_count(count as u64, text.len() as u64, 6, "nodes", hl)?;
     let per = 3 + attrs as usize + nmark as usize;
     *b = MeshBuilder::with_capacity(n, 0);
-    let mut marks = (nmark == 1).then(|| Vec::with_capacity(n));
+    let mut marks = (nmark == 1).then(|| Vec::with_capacity(prealloc(n)));
     let mut base = 0;
     for i in 0..n {
         let Some((line, text)) = lines.next() else {
