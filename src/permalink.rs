@@ -562,8 +562,9 @@ mod tests {
         assert_eq!((s.sample.as_deref(), s.seed, s.objective), (Some("plate-tri"), 12, ObjectiveKind::ConditionMax));
         // '+' is a space, so it is no sign and no digit
         assert!(decode("seed=1+2").is_err());
-        assert_eq!(decode("embed=true&node=0").unwrap().embed, true);
-        assert_eq!(decode("embed=true&node=0").unwrap().node, Some(0));
+        let s = decode("embed=true&node=0").unwrap();
+        assert!(s.embed);
+        assert_eq!(s.node, Some(0));
     }
 
     #[test]

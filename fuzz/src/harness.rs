@@ -72,7 +72,7 @@ const MSH41_HEADER: &str = "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n";
 /// What a run gave: a mesh (already checked), a refusal, or (for `permalink`) a decoded state.
 #[derive(Debug)]
 pub enum Outcome {
-    Mesh(Mesh),
+    Mesh(Box<Mesh>),
     Refused(smoothlab::Error),
     /// Not UTF-8 text, for the targets that take text.
     NotText,
@@ -131,7 +131,7 @@ pub fn run(t: Target, data: &[u8]) -> Outcome {
     match read {
         Ok(mesh) => {
             check_mesh(&mesh);
-            Outcome::Mesh(mesh)
+            Outcome::Mesh(Box::new(mesh))
         }
         Err(e) => {
             // Messages are shown to people: they must render (and not be empty).
