@@ -146,6 +146,17 @@ pub struct Topology {
     role: Vec<NodeRole>,
     boundary: Vec<bool>,
     on_curved: Vec<bool>,
+    /// Which element families occur, found once so the per-node queries
+    /// ([`Mesh::has_triangles`], …) cost O(1) instead of a scan of all elements.
+    kinds_present: KindsPresent,
+}
+
+/// Which element families a mesh holds.
+#[derive(Clone, Copy, Debug, Default)]
+struct KindsPresent {
+    triangles: bool,
+    quads: bool,
+    quadratic: bool,
 }
 
 /// A planar 2D mesh of triangles and quads, linear or quadratic, possibly mixed.
@@ -223,13 +234,13 @@ impl Mesh {
         (0..self.node_count()).filter(|&n| self.is_free(n)).count()
     }
     pub fn has_quadratic(&self) -> bool {
-        self.kinds.iter().any(|k| k.is_quadratic())
+        self.topo.kinds_present.quadratic
     }
     pub fn has_triangles(&self) -> bool {
-        self.kinds.iter().any(|k| k.is_triangle())
+        self.topo.kinds_present.triangles
     }
     pub fn has_quads(&self) -> bool {
-        self.kinds.iter().any(|k| k.is_quad())
+        self.topo.kinds_present.quads
     }
     /// Signed area of the corner polygon of element `e` (positive when counter-clockwise).
     pub fn corner_area(&self, e: usize) -> f64 {
@@ -726,7 +737,12 @@ fn build_topology(mesh: &Mesh, elem_lines: &[u32]) -> Result<Topology> {
         node_nbrs[fill[e.b as usize] as usize] = e.a;
         fill[e.b as usize] += 1;
     }
-    Ok(Topology { node_elem_start, node_elems, node_nbr_start, node_nbrs, edges, role, boundary, on_curved })
+    let kinds_present = KindsPresent {
+        triangles: mesh.kinds.iter().any(|k| k.is_triangle()),
+        quads: mesh.kinds.iter().any(|k| k.is_quad()),
+        quadratic: mesh.kinds.iter().any(|k| k.is_quadratic()),
+    };
+    Ok(Topology { node_elem_start, node_elems, node_nbr_start, node_nbrs, edges, role, boundary, on_curved, kinds_present })
 }
 
 #[cfg(test)]

@@ -1,1 +1,0 @@
-//! Solvers for a node objective: Fletcher–Reeves conjugate gradients and Freitag's active-set ascent.

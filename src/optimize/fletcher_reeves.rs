@@ -1,0 +1,161 @@
+//! Fletcher–Reeves conjugate gradients as Chen, Tristano & Kwok (2003, §3) use it for
+//! their smooth objective.
+
+use glam::DVec2;
+
+use super::{
+    evaluate, line_search, merit_of, star_scale, DirectionKind, Iterate, SolveOptions, SolveState, Solver, StopReason,
+};
+use crate::objective::{Goal, Objective, Star, Term};
+
+/// Powell's restart test: restart when consecutive gradients are far from orthogonal,
+/// `|g_q·g_{q−1}| ≥ 0.2·|g_q|²` — the conjugate directions have stopped helping.
+const POWELL_RESTART: f64 = 0.2;
+/// A gradient this small relative to the merit (per unit of star size) is zero.
+const GRADIENT_TOLERANCE: f64 = 1e-13;
+
+/// Fletcher–Reeves conjugate gradients (Chen et al. 2003, eqs. 10–12):
+/// `x_q = x_{q−1} + s·d_q`, `d_q = −∇f(x_q) + r_q·d_{q−1}`, `r_q = |∇f(x_q)|²/|∇f(x_{q−1})|²`.
+///
+/// - The first iteration uses the gradient direction, the next ones the conjugate one.
+/// - Restart rule ("after a number of iterations the convergence speed using the conjugate
+///   gradient direction actually slows down … a new gradient direction is used", §3.1):
+///   every [`SolveOptions::restart_every`]-th iteration is a gradient step (2, the
+///   dimension: g, c, g, c, …), and a gradient step is also taken when consecutive gradients fail Powell's orthogonality
+///   test `|g_q·g_{q−1}| ≥ 0.2|g_q|²`, when the conjugate direction is not a descent
+///   direction, and after a line search along a conjugate direction fails.
+/// - The step `s` comes from [`line_search`] (high-low-high bracket grown by an
+///   acceleration factor of 8, halved on failure; quadratic interpolation). The first
+///   trial step is [`SolveOptions::initial_step`] of the star size, later ones the previous
+///   move. A value of +∞ (a barrier) or NaN is "high", so the search never steps into it.
+/// - Every accepted step lowers the objective, so the result is never worse than the start.
+///
+/// For a [`Goal::MaximizeMin`] objective it minimises the negated minimum with the
+/// gradient of one minimal term, for comparison only: that objective is not smooth.
+#[derive(Clone, Debug, Default)]
+pub struct FletcherReeves {
+    pub options: SolveOptions,
+    terms: Vec<Term>,
+}
+
+impl FletcherReeves {
+    pub fn new(options: SolveOptions) -> Self {
+        FletcherReeves { options, terms: Vec::new() }
+    }
+
+    fn eval(&mut self, objective: &dyn Objective, star: &Star, x: DVec2) -> (f64, f64, DVec2) {
+        let goal = objective.goal();
+        let (v, g) = evaluate(objective, star, x, &mut self.terms);
+        let g = if goal == Goal::MaximizeMin { -g } else { g };
+        (v, merit_of(goal, v), g)
+    }
+}
+
+impl Solver for FletcherReeves {
+    fn options(&self) -> &SolveOptions {
+        &self.options
+    }
+
+    fn start(&mut self, objective: &dyn Objective, star: &Star, x0: DVec2) -> SolveState {
+        let mut st = SolveState::new(x0, star_scale(star), self.options.acceleration);
+        if star.is_empty() || !(st.scale.is_finite() && st.scale > 0.0) {
+            st.stop = Some(StopReason::DegenerateStar);
+            return st;
+        }
+        let (v, m, g) = self.eval(objective, star, x0);
+        st.value = v;
+        st.value0 = v;
+        st.merit = m;
+        st.grad = g;
+        if !(m.is_finite() && g.is_finite()) {
+            st.stop = Some(StopReason::NotFinite);
+        }
+        st
+    }
+
+    fn step(&mut self, objective: &dyn Objective, star: &Star, st: &mut SolveState) -> bool {
+        if st.stop.is_some() {
+            return false;
+        }
+        let o = self.options;
+        if st.iterations >= o.max_iter {
+            st.stop = Some(StopReason::MaxIter);
+            return false;
+        }
+        let g = st.grad;
+        let g2 = g.length_squared();
+        if g2 == 0.0 || g.length() * st.scale <= GRADIENT_TOLERANCE * st.merit.abs().max(f64::MIN_POSITIVE) {
+            st.stop = Some(StopReason::Optimal);
+            return false;
+        }
+        // direction
+        let mut kind = DirectionKind::Gradient;
+        let mut d = -g;
+        let prev2 = st.grad_prev.length_squared();
+        let restart = st.restart
+            || st.since_restart + 1 >= o.restart_every
+            || prev2 == 0.0
+            || g.dot(st.grad_prev).abs() >= POWELL_RESTART * g2;
+        if !restart {
+            let conj = -g + (g2 / prev2) * st.dir;
+            if conj.dot(g) < 0.0 && conj.is_finite() {
+                d = conj;
+                kind = DirectionKind::Conjugate;
+            }
+        }
+        // line search along d, keeping the gradient of the lowest point seen
+        let dl = d.length();
+        let first = if st.last_move > 0.0 { st.last_move } else { o.initial_step * st.scale };
+        let t0 = first / dl;
+        let t_min = o.min_step * st.scale / dl;
+        let x = st.x;
+        let mut best = (f64::INFINITY, f64::NAN, DVec2::ZERO); // (merit, value, grad)
+        let mut best_t = 0.0;
+        let found = {
+            let mut phi = |t: f64| {
+                let (v, m, gr) = self.eval(objective, star, x + t * d);
+                if m < best.0 {
+                    best = (m, v, gr);
+                    best_t = t;
+                }
+                m
+            };
+            line_search(&mut phi, st.merit, t0, t_min, &mut st.accel, o.max_evaluations)
+        };
+        let Some(ls) = found else {
+            if kind == DirectionKind::Conjugate {
+                // try again along the gradient before giving up
+                st.restart = true;
+                return true;
+            }
+            st.stop = Some(StopReason::LineSearchFailed);
+            return false;
+        };
+        debug_assert_eq!(ls.t, best_t);
+        let (m_new, v_new, g_new) = best;
+        let x_new = x + best_t * d;
+        let moved = x_new.distance(x);
+        let improvement = st.merit - m_new;
+        st.grad_prev = g;
+        st.dir = d;
+        st.grad = g_new;
+        st.x = x_new;
+        st.value = v_new;
+        st.merit = m_new;
+        st.last_move = moved;
+        st.iterations += 1;
+        st.restart = false;
+        st.since_restart = if kind == DirectionKind::Conjugate { st.since_restart + 1 } else { 0 };
+        if o.record_history {
+            st.history.push(Iterate { x: x_new, value: v_new, direction: kind, step: moved });
+        }
+        if !g_new.is_finite() {
+            st.stop = Some(StopReason::NotFinite);
+        } else if improvement <= o.min_improvement * m_new.abs().max(f64::MIN_POSITIVE) {
+            st.stop = Some(StopReason::SmallImprovement);
+        } else if moved <= o.min_step * st.scale {
+            st.stop = Some(StopReason::SmallStep);
+        }
+        st.stop.is_none()
+    }
+}

@@ -1,0 +1,347 @@
+//! Solvers for one free node's objective over its star: Fletcher–Reeves conjugate
+//! gradients for the smooth objectives (Chen, Tristano & Kwok 2003, §3) and Freitag's
+//! active-set steepest ascent for the max-min objectives (Freitag 1997, Figure 1).
+//!
+//! Both implement [`Solver`] over any `&dyn Objective`. A solve runs as
+//! [`Solver::start`] then [`Solver::step`] until it stops, so the page can animate it;
+//! [`Solver::solve`] does both and returns a [`SolveResult`] with the history as data.
+//! History is recorded only when [`SolveOptions::record_history`] is set, so an ordinary
+//! smoothing pass allocates nothing per node.
+//!
+//! Either solver accepts either goal: Fletcher–Reeves minimises the objective's value for
+//! [`Goal::MinimizeSum`] and its negation (with the subgradient of one minimal term) for
+//! [`Goal::MaximizeMin`] — Chen's "serious convergence problems" made visible; the ascent
+//! maximises the minimum of the terms, or the negated sum as a single term.
+//!
+//! Every length (initial step, smallest step, largest move) is a fraction of the star's
+//! size ([`star_scale`]), so the solvers are scale-free.
+
+use glam::DVec2;
+use serde::Serialize;
+
+use crate::objective::{Goal, Objective, Star, Term};
+
+mod fletcher_reeves;
+mod line_search;
+mod nonsmooth;
+
+pub use fletcher_reeves::FletcherReeves;
+pub use line_search::{line_search, LineSearch};
+pub use nonsmooth::{min_norm_point, HullPoint, MinNorm, NonSmoothAscent};
+
+#[cfg(test)]
+pub(crate) mod test_objectives;
+#[cfg(test)]
+mod tests;
+
+/// Which way a step went.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+pub enum DirectionKind {
+    /// Steepest descent, `−∇f` (Fletcher–Reeves' first iteration and every restart).
+    Gradient,
+    /// Fletcher–Reeves conjugate direction, `−∇f_q + r·d_{q−1}` (Chen eq. 11–12).
+    Conjugate,
+    /// The minimum-norm point of the hull of the active gradients (Freitag, Figure 1).
+    ActiveSet,
+}
+
+/// Why a solve stopped.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+pub enum StopReason {
+    /// The iteration limit ([`SolveOptions::max_iter`]) was reached.
+    MaxIter,
+    /// A zero gradient (Fletcher–Reeves) or a zero min-norm direction (the origin lies in
+    /// the hull of the active gradients): the point is stationary / optimal.
+    Optimal,
+    /// The step shrank below [`SolveOptions::min_step`] of the star size without improving.
+    SmallStep,
+    /// The last accepted step improved the objective by less than
+    /// [`SolveOptions::min_improvement`] (relative).
+    SmallImprovement,
+    /// The line search found no lower point along the direction (no "high-low-high").
+    LineSearchFailed,
+    /// The objective (or its gradient) is not finite at the starting point, e.g. a
+    /// barrier objective on an inverted star.
+    NotFinite,
+    /// The star is empty or has zero size.
+    DegenerateStar,
+}
+
+/// One iteration of a solve: where it went and how.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct Iterate {
+    /// Position after the step.
+    pub x: DVec2,
+    /// The objective's own value there (not negated for max-min objectives).
+    pub value: f64,
+    pub direction: DirectionKind,
+    /// Length of the move, in mesh units (`|x_q − x_{q−1}|`).
+    pub step: f64,
+}
+
+/// What a solve returns.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct SolveResult {
+    /// Final position: never worse than the start by the solver's own measure.
+    pub x: DVec2,
+    /// The objective's value at `x`.
+    pub value: f64,
+    /// Starting position and value.
+    pub x0: DVec2,
+    pub value0: f64,
+    /// Accepted iterations (steps that moved the node).
+    pub iterations: u32,
+    pub stop: StopReason,
+    /// One entry per iteration, when [`SolveOptions::record_history`] is set; empty
+    /// (and unallocated) otherwise.
+    pub history: Vec<Iterate>,
+}
+
+/// Solver settings. Lengths are fractions of the star size ([`star_scale`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SolveOptions {
+    /// Iterations per call. Default 3 (Chen §3.1: "a constant number of three is used as
+    /// the limit of iterations for each optimization-based smoothing call").
+    pub max_iter: u32,
+    /// Record each iterate in [`SolveResult::history`]. Default false.
+    pub record_history: bool,
+    /// Fletcher–Reeves: first trial step of the first line search, as a fraction of the
+    /// star size; later searches start from the previous move. Default 0.01 (Chen: "the
+    /// initial step length is relatively small").
+    pub initial_step: f64,
+    /// Line search acceleration factor at the start of each solve; halved after each
+    /// failure to find a low point (never below 2). Default 8 (Chen §3.2).
+    pub acceleration: f64,
+    /// Fletcher–Reeves: every `restart_every`-th iteration restarts with the gradient
+    /// direction. Default 2 (the dimension: a 2D quadratic is solved exactly in two).
+    pub restart_every: u32,
+    /// Evaluations allowed per line search. Default 40.
+    pub max_evaluations: u32,
+    /// Smallest step, as a fraction of the star size. Default 1e-9.
+    pub min_step: f64,
+    /// Smallest relative improvement `Δf / max(|f|, tiny)` worth another iteration. Default 1e-12.
+    pub min_improvement: f64,
+    /// Non-smooth ascent: terms within this fraction of the largest |term| of the minimum
+    /// are active. Default 1e-6.
+    pub active_tolerance: f64,
+    /// Non-smooth ascent: largest move of one step, as a fraction of the star size.
+    /// Default 0.5.
+    pub max_move: f64,
+}
+
+impl Default for SolveOptions {
+    fn default() -> Self {
+        SolveOptions {
+            max_iter: 3,
+            record_history: false,
+            initial_step: 0.01,
+            acceleration: 8.0,
+            restart_every: 2,
+            max_evaluations: 40,
+            min_step: 1e-9,
+            min_improvement: 1e-12,
+            active_tolerance: 1e-6,
+            max_move: 0.5,
+        }
+    }
+}
+
+impl SolveOptions {
+    pub fn with_max_iter(mut self, n: u32) -> Self {
+        self.max_iter = n;
+        self
+    }
+    pub fn with_history(mut self, on: bool) -> Self {
+        self.record_history = on;
+        self
+    }
+    /// Checks that every setting is usable, naming the first that is not.
+    pub fn validate(&self) -> crate::Result<()> {
+        let positive = |v: f64| v.is_finite() && v > 0.0;
+        let bad = if !positive(self.initial_step) {
+            Some("initial_step must be a positive number")
+        } else if !(self.acceleration.is_finite() && self.acceleration > 1.0) {
+            Some("acceleration must be a number above 1")
+        } else if self.restart_every == 0 {
+            Some("restart_every must be at least 1")
+        } else if self.max_evaluations < 3 {
+            Some("max_evaluations must be at least 3")
+        } else if !positive(self.min_step) {
+            Some("min_step must be a positive number")
+        } else if !(self.min_improvement.is_finite() && self.min_improvement >= 0.0) {
+            Some("min_improvement must be a number ≥ 0")
+        } else if !(self.active_tolerance.is_finite() && self.active_tolerance >= 0.0) {
+            Some("active_tolerance must be a number ≥ 0")
+        } else if !positive(self.max_move) {
+            Some("max_move must be a positive number")
+        } else {
+            None
+        };
+        match bad {
+            Some(m) => Err(crate::Error::invalid(format!("solver options: {m}"))),
+            None => Ok(()),
+        }
+    }
+}
+
+/// Which solver optimises a node.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize)]
+pub enum SolverKind {
+    /// By the objective's goal: Fletcher–Reeves for [`Goal::MinimizeSum`],
+    /// non-smooth ascent for [`Goal::MaximizeMin`].
+    #[default]
+    Auto,
+    FletcherReeves,
+    NonSmoothAscent,
+}
+
+impl SolverKind {
+    /// The concrete solver for an objective of `goal` (`Auto` resolved).
+    pub fn resolve(self, goal: Goal) -> SolverKind {
+        match (self, goal) {
+            (SolverKind::Auto, Goal::MinimizeSum) => SolverKind::FletcherReeves,
+            (SolverKind::Auto, Goal::MaximizeMin) => SolverKind::NonSmoothAscent,
+            (k, _) => k,
+        }
+    }
+}
+
+/// The state of a solve between steps. Public fields are for display; the rest is the
+/// solver's working memory.
+#[derive(Clone, Debug)]
+pub struct SolveState {
+    /// Current position.
+    pub x: DVec2,
+    /// The objective's value at `x`.
+    pub value: f64,
+    /// Accepted iterations so far.
+    pub iterations: u32,
+    /// Set when the solve has stopped.
+    pub stop: Option<StopReason>,
+    /// Iterates so far (empty unless recording).
+    pub history: Vec<Iterate>,
+    x0: DVec2,
+    value0: f64,
+    /// Star size, the unit of every length.
+    scale: f64,
+    /// Fletcher–Reeves: merit (value, negated for max-min) and its gradient at `x`.
+    merit: f64,
+    grad: DVec2,
+    /// Fletcher–Reeves: previous direction and previous gradient.
+    dir: DVec2,
+    grad_prev: DVec2,
+    /// Conjugate iterations since the last gradient step.
+    since_restart: u32,
+    /// Force a gradient direction at the next step.
+    restart: bool,
+    /// Line search acceleration factor (carried across iterations of one solve).
+    accel: f64,
+    /// Length of the last accepted move (0 before the first).
+    last_move: f64,
+}
+
+impl SolveState {
+    fn new(x0: DVec2, scale: f64, accel: f64) -> Self {
+        SolveState {
+            x: x0,
+            value: f64::NAN,
+            iterations: 0,
+            stop: None,
+            history: Vec::new(),
+            x0,
+            value0: f64::NAN,
+            scale,
+            merit: f64::NAN,
+            grad: DVec2::ZERO,
+            dir: DVec2::ZERO,
+            grad_prev: DVec2::ZERO,
+            since_restart: 0,
+            restart: true,
+            accel,
+            last_move: 0.0,
+        }
+    }
+    /// Whether the solve has stopped.
+    pub fn is_done(&self) -> bool {
+        self.stop.is_some()
+    }
+    /// The star size used as the unit of length.
+    pub fn scale(&self) -> f64 {
+        self.scale
+    }
+    /// The finished result (a running solve reports [`StopReason::MaxIter`]).
+    pub fn into_result(self) -> SolveResult {
+        SolveResult {
+            x: self.x,
+            value: self.value,
+            x0: self.x0,
+            value0: self.value0,
+            iterations: self.iterations,
+            stop: self.stop.unwrap_or(StopReason::MaxIter),
+            history: self.history,
+        }
+    }
+}
+
+/// A solver of one node's objective. Implementations own their scratch buffers, so one
+/// solver object serves a whole smoothing pass without allocating per node.
+pub trait Solver {
+    /// The solver's settings.
+    fn options(&self) -> &SolveOptions;
+    /// Evaluates the objective at `x0` and prepares a solve (which may already be stopped,
+    /// e.g. [`StopReason::NotFinite`]).
+    fn start(&mut self, objective: &dyn Objective, star: &Star, x0: DVec2) -> SolveState;
+    /// One iteration. Returns false once the solve has stopped (see [`SolveState::stop`]).
+    fn step(&mut self, objective: &dyn Objective, star: &Star, state: &mut SolveState) -> bool;
+    /// Runs a whole solve from `x0`.
+    fn solve(&mut self, objective: &dyn Objective, star: &Star, x0: DVec2) -> SolveResult {
+        let mut state = self.start(objective, star, x0);
+        while self.step(objective, star, &mut state) {}
+        state.into_result()
+    }
+}
+
+/// The size of a star: the mean length of the corner edges at the free node (the edges
+/// to the next and previous corner of every star element), measured at [`Star::x0`].
+/// 0 for an empty star.
+pub fn star_scale(star: &Star) -> f64 {
+    let mut sum = 0.0;
+    let mut n = 0usize;
+    for e in &star.elems {
+        let k = e.kind.corners();
+        let s = e.slot as usize;
+        sum += e.pts[(s + 1) % k].distance(star.x0) + e.pts[(s + k - 1) % k].distance(star.x0);
+        n += 2;
+    }
+    if n == 0 {
+        0.0
+    } else {
+        sum / n as f64
+    }
+}
+
+/// Evaluates the terms of `objective` at `x` into `buf` and combines them by `goal`
+/// (through [`Objective::terms`] so the scratch buffer is reused; a NaN value reads as the
+/// worst value of the goal).
+pub(crate) fn evaluate(objective: &dyn Objective, star: &Star, x: DVec2, buf: &mut Vec<Term>) -> (f64, DVec2) {
+    buf.clear();
+    objective.terms(star, x, buf);
+    let goal = objective.goal();
+    let (v, g) = crate::objective::combine(goal, buf);
+    let v = if buf.iter().any(|t| t.value.is_nan()) { f64::NAN } else { v };
+    (v, g)
+}
+
+/// The value a minimiser sees: the objective for [`Goal::MinimizeSum`], its negation for
+/// [`Goal::MaximizeMin`]; NaN reads as +∞ ("high").
+pub(crate) fn merit_of(goal: Goal, value: f64) -> f64 {
+    let m = match goal {
+        Goal::MinimizeSum => value,
+        Goal::MaximizeMin => -value,
+    };
+    if m.is_nan() {
+        f64::INFINITY
+    } else {
+        m
+    }
+}

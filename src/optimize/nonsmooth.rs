@@ -1,0 +1,239 @@
+//! Freitag's optimization-based smoothing for max-min objectives (Freitag 1997, Figure 1
+//! and §"Optimization-based Smoothing"): steepest ascent of `φ(x) = min_i q_i(x)` along
+//! the minimum-norm point of the convex hull of the active gradients.
+
+use glam::DVec2;
+use serde::Serialize;
+
+use super::{star_scale, DirectionKind, Iterate, SolveOptions, SolveState, Solver, StopReason};
+use crate::objective::{Goal, Objective, Star, Term};
+
+/// Where the minimum-norm point of a convex hull lies.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+pub enum HullPoint {
+    /// No points were given.
+    Empty,
+    /// At point `i` itself.
+    Vertex(usize),
+    /// Inside the segment between points `i` and `j`.
+    Edge(usize, usize),
+    /// The origin is in the hull (inside a triangle of three of the points, or on a
+    /// segment): the minimum-norm point is the origin.
+    Interior,
+}
+
+/// The minimum-norm point of the convex hull of some points, and where it lies.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct MinNorm {
+    pub point: DVec2,
+    pub support: HullPoint,
+}
+
+/// The minimum-norm point of the convex hull of `points` — the small quadratic program of
+/// Freitag's search direction, solved exactly in 2D.
+///
+/// When the origin is outside the hull the answer lies on the hull's boundary, i.e. at a
+/// point or on a segment between two points: every point and the projection of the origin
+/// onto every segment are tried, and the shortest is kept. It is the true minimum iff it
+/// passes the optimality test `p·g_k ≥ |p|²` for every point `g_k` (the hull lies beyond
+/// the line through `p` normal to `p`); if that fails, the origin is inside the hull
+/// (inside a triangle of three points — in 2D no more are needed) and the answer is the
+/// origin. O(n²) in the number of points, exact for any number of them.
+pub fn min_norm_point(points: &[DVec2]) -> MinNorm {
+    if points.is_empty() {
+        return MinNorm { point: DVec2::ZERO, support: HullPoint::Empty };
+    }
+    let mut best = MinNorm { point: points[0], support: HullPoint::Vertex(0) };
+    let mut best2 = points[0].length_squared();
+    let mut scale2 = 0.0f64;
+    for (i, g) in points.iter().enumerate() {
+        let l2 = g.length_squared();
+        scale2 = scale2.max(l2);
+        if l2 < best2 {
+            best2 = l2;
+            best = MinNorm { point: *g, support: HullPoint::Vertex(i) };
+        }
+    }
+    for i in 0..points.len() {
+        for j in i + 1..points.len() {
+            let (a, d) = (points[i], points[j] - points[i]);
+            let dd = d.length_squared();
+            if dd <= 0.0 {
+                continue;
+            }
+            let lambda = -a.dot(d) / dd;
+            if lambda > 0.0 && lambda < 1.0 {
+                let p = a + lambda * d;
+                let l2 = p.length_squared();
+                if l2 < best2 {
+                    best2 = l2;
+                    best = MinNorm { point: p, support: HullPoint::Edge(i, j) };
+                }
+            }
+        }
+    }
+    // optimality: every point on the far side of the supporting line through p
+    let tol = 1e-12 * scale2;
+    if best2 <= tol || points.iter().any(|g| best.point.dot(*g) < best2 - tol) {
+        return MinNorm { point: DVec2::ZERO, support: HullPoint::Interior };
+    }
+    best
+}
+
+/// Freitag's active-set steepest ascent for `φ(x) = min_i q_i(x)` (Freitag 1997, Figure 1):
+///
+/// - active set: the terms within [`SolveOptions::active_tolerance`] (relative to the
+///   largest |q_i|) of the minimum φ;
+/// - direction `s`: the minimum-norm point of the hull of the active gradients
+///   ([`min_norm_point`]); `s = 0` means x is optimal;
+/// - initial step: the smallest positive `α_j = (q_j − φ)/((g_A − g_j)·s)` over the
+///   non-active terms with `(g_A − g_j)·s > 0`, where `g_A·s = |s|²` is the rate of the
+///   active value along s (the first-order prediction of where the active set changes);
+///   at most [`SolveOptions::max_move`] of the star size;
+/// - accept when φ improves, else halve α until the move is below
+///   [`SolveOptions::min_step`] of the star size;
+/// - stop on `max_iter`, a tiny step, a tiny improvement (MIN_IMP) or a zero direction.
+///
+/// Only improving steps are taken, so the result is never worse than the start. A NaN
+/// term reads as −∞. For a [`Goal::MinimizeSum`] objective the negated sum is the one
+/// term (plain steepest descent with halving).
+#[derive(Clone, Debug, Default)]
+pub struct NonSmoothAscent {
+    pub options: SolveOptions,
+    /// Terms at the current point and at the trial point (swapped on acceptance).
+    terms: Vec<Term>,
+    trial: Vec<Term>,
+    /// Active gradients.
+    active: Vec<DVec2>,
+}
+
+impl NonSmoothAscent {
+    pub fn new(options: SolveOptions) -> Self {
+        NonSmoothAscent { options, ..Default::default() }
+    }
+}
+
+/// Fills `buf` with the terms to maximise the minimum of at `x`, returning φ.
+fn max_min_terms(objective: &dyn Objective, star: &Star, x: DVec2, buf: &mut Vec<Term>) -> f64 {
+    buf.clear();
+    objective.terms(star, x, buf);
+    if objective.goal() == Goal::MinimizeSum {
+        let (v, g) = crate::objective::combine(Goal::MinimizeSum, buf);
+        buf.clear();
+        buf.push(Term { elem: 0, value: -v, grad: -g });
+    }
+    if buf.is_empty() {
+        return f64::NAN;
+    }
+    buf.iter().fold(f64::INFINITY, |m, t| if t.value.is_nan() { f64::NEG_INFINITY } else { m.min(t.value) })
+}
+
+/// The objective's own value from φ.
+fn own_value(goal: Goal, phi: f64) -> f64 {
+    match goal {
+        Goal::MaximizeMin => phi,
+        Goal::MinimizeSum => -phi,
+    }
+}
+
+impl Solver for NonSmoothAscent {
+    fn options(&self) -> &SolveOptions {
+        &self.options
+    }
+
+    fn start(&mut self, objective: &dyn Objective, star: &Star, x0: DVec2) -> SolveState {
+        let mut st = SolveState::new(x0, star_scale(star), self.options.acceleration);
+        if star.is_empty() || !(st.scale.is_finite() && st.scale > 0.0) {
+            st.stop = Some(StopReason::DegenerateStar);
+            return st;
+        }
+        let phi = max_min_terms(objective, star, x0, &mut self.terms);
+        st.value = own_value(objective.goal(), phi);
+        st.value0 = st.value;
+        st.merit = -phi;
+        if !phi.is_finite() {
+            st.stop = Some(StopReason::NotFinite);
+        }
+        st
+    }
+
+    fn step(&mut self, objective: &dyn Objective, star: &Star, st: &mut SolveState) -> bool {
+        if st.stop.is_some() {
+            return false;
+        }
+        let o = self.options;
+        if st.iterations >= o.max_iter {
+            st.stop = Some(StopReason::MaxIter);
+            return false;
+        }
+        let phi = -st.merit;
+        // active set and direction
+        let q_scale = self.terms.iter().filter(|t| t.value.is_finite()).fold(0.0f64, |m, t| m.max(t.value.abs()));
+        let tol = o.active_tolerance * q_scale;
+        self.active.clear();
+        let mut g_scale = 0.0f64;
+        for t in &self.terms {
+            if t.value <= phi + tol {
+                if !t.grad.is_finite() {
+                    st.stop = Some(StopReason::NotFinite);
+                    return false;
+                }
+                g_scale = g_scale.max(t.grad.length());
+                self.active.push(t.grad);
+            }
+        }
+        let s = min_norm_point(&self.active).point;
+        let sl = s.length();
+        if sl <= 1e-12 * g_scale || sl == 0.0 {
+            st.stop = Some(StopReason::Optimal);
+            return false;
+        }
+        // predicted step: where a non-active term falls to the active value
+        let s2 = sl * sl;
+        let mut alpha = o.max_move * st.scale / sl;
+        for t in &self.terms {
+            if t.value > phi + tol && t.value.is_finite() && t.grad.is_finite() {
+                let rate = s2 - t.grad.dot(s);
+                if rate > 0.0 {
+                    let a = (t.value - phi) / rate;
+                    if a > 0.0 && a < alpha {
+                        alpha = a;
+                    }
+                }
+            }
+        }
+        // halve until φ improves
+        let min_move = o.min_step * st.scale;
+        let x = st.x;
+        let phi_new = loop {
+            if alpha * sl < min_move {
+                st.stop = Some(StopReason::SmallStep);
+                return false;
+            }
+            let p = max_min_terms(objective, star, x + alpha * s, &mut self.trial);
+            if p > phi {
+                break p;
+            }
+            alpha *= 0.5;
+        };
+        std::mem::swap(&mut self.terms, &mut self.trial);
+        let x_new = x + alpha * s;
+        st.x = x_new;
+        st.merit = -phi_new;
+        st.value = own_value(objective.goal(), phi_new);
+        st.iterations += 1;
+        st.last_move = alpha * sl;
+        if o.record_history {
+            st.history.push(Iterate {
+                x: x_new,
+                value: st.value,
+                direction: DirectionKind::ActiveSet,
+                step: alpha * sl,
+            });
+        }
+        if phi_new - phi <= o.min_improvement * phi_new.abs().max(q_scale).max(f64::MIN_POSITIVE) {
+            st.stop = Some(StopReason::SmallImprovement);
+        }
+        st.stop.is_none()
+    }
+}

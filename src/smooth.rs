@@ -1,1 +1,0 @@
-//! Smoothing drivers over any objective and solver.

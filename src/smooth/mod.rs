@@ -1,0 +1,621 @@
+//! Smoothing drivers: Laplacian, smart (constrained) Laplacian, optimization, Freitag's
+//! combined schemes C1/C2/C3 and Chen's rules, visiting nodes in input or priority order.
+//!
+//! The drivers work with any [`Objective`] and either solver ([`SolverKind`]): a new
+//! objective never touches this module. A [`Smoother`] owns its scratch buffers (the star,
+//! the solvers' term vectors, the visit schedule) and runs one [`pass`](Smoother::pass)
+//! at a time, so the page can step pass by pass; [`solve_node`] solves one node with its
+//! history for the page's level-set view.
+//!
+//! Nodes move one at a time in place (Gauss–Seidel): a node sees the new positions of the
+//! nodes visited before it. Fixed nodes and mid-side nodes are never smoothed; after a
+//! corner node moves, the mid-side nodes of its straight edges follow it
+//! ([`Mesh::follow_mid_nodes`]); curved boundary edges keep their mid node.
+
+use glam::DVec2;
+use serde::Serialize;
+
+use crate::error::{Error, Result};
+use crate::mesh::Mesh;
+use crate::objective::{Objective, Star, StarElement, Term};
+use crate::optimize::{evaluate, FletcherReeves, NonSmoothAscent, SolveOptions, SolveResult, Solver, SolverKind};
+use crate::quality::{canann_beta_from_corners, corner_edges, lo_alpha_corner, mesh_stats, scaled_jacobian};
+
+#[cfg(test)]
+mod tests;
+
+/// How each free node is smoothed.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+pub enum Strategy {
+    /// Move to the centroid of the neighbouring corner nodes, unconditionally.
+    Laplace,
+    /// Constrained ("smart") Laplacian: move to the centroid only if the star's worst
+    /// quality ([`SmoothOptions::smart_measure`]) strictly improves and no valid star
+    /// element becomes inverted (Freitag 1997; Chen et al. 2003 §1).
+    Smart,
+    /// Optimise every free node with the objective's solver.
+    Opt,
+    /// Freitag's combined approach 1: smart Laplacian if the star's minimum angle exceeds
+    /// the threshold, optimization otherwise.
+    C1,
+    /// Freitag's combined approach 2: smart Laplacian always, then optimization if the
+    /// star's minimum angle still does not exceed the threshold.
+    C2,
+    /// Freitag's combined approach 3: nothing if the star's minimum angle exceeds the
+    /// threshold; otherwise (plain) Laplacian, then optimization if still not above it.
+    C3,
+    /// Chen et al. (2003) §4.1: optimization when the node (1) is connected to a curved
+    /// boundary node, (2) is connected to an invalid element, (3) failed to move under
+    /// constrained Laplacian, or (4) the caller forces it; otherwise constrained Laplacian.
+    Rules,
+}
+
+/// The order in which a pass visits the free nodes.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+pub enum Order {
+    /// Node number order, each free node once ("first come first serve").
+    Input,
+    /// Chen et al. (2003) §4.2, "worst one first": see [`Smoother::plan`].
+    Priority,
+}
+
+/// The star quality that the smart Laplacian must improve, and that orders nodes by priority.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+pub enum Measure {
+    /// The smallest element shape metric in the star: Lo's α for triangles, Canann's β for
+    /// quads (Chen et al. 2003, eqs. 1–2).
+    Shape,
+    /// The smallest sine of the star's element angles (Freitag 1997).
+    MinSine,
+}
+
+/// Settings of the smoothing drivers.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SmoothOptions {
+    /// How each node is smoothed. Default [`Strategy::Rules`] (Chen's algorithm).
+    pub strategy: Strategy,
+    /// Visit order. Default [`Order::Priority`] (Chen §4.2).
+    pub order: Order,
+    /// Threshold angle θ_t of C1/C2/C3, degrees, in (0, 90]: a star "exceeds" it when the
+    /// smallest sine of its angles exceeds sin θ_t (so angles near 180° count as poor too).
+    /// Default 30 (Freitag's best results; she also used 5, 10, 15).
+    pub threshold_deg: f64,
+    /// Solver iterations per optimization call. Default 3 (Chen §3.1).
+    pub max_iter: u32,
+    /// Which solver optimises. Default [`SolverKind::Auto`] (by the objective's goal).
+    pub solver: SolverKind,
+    /// What the smart Laplacian must improve. Default [`Measure::Shape`] (Chen's α/β);
+    /// [`Measure::MinSine`] is Freitag's choice.
+    pub smart_measure: Measure,
+    /// Chen's rule 4: the caller forces optimization for every node under
+    /// [`Strategy::Rules`]. Default false.
+    pub force_optimization: bool,
+    /// Number of priority bins for [`Order::Priority`]. Default 5 (Chen §4.2).
+    pub priority_bins: u32,
+}
+
+impl Default for SmoothOptions {
+    fn default() -> Self {
+        SmoothOptions {
+            strategy: Strategy::Rules,
+            order: Order::Priority,
+            threshold_deg: 30.0,
+            max_iter: 3,
+            solver: SolverKind::Auto,
+            smart_measure: Measure::Shape,
+            force_optimization: false,
+            priority_bins: 5,
+        }
+    }
+}
+
+impl SmoothOptions {
+    pub fn with_strategy(mut self, s: Strategy) -> Self {
+        self.strategy = s;
+        self
+    }
+    pub fn with_order(mut self, o: Order) -> Self {
+        self.order = o;
+        self
+    }
+    pub fn with_threshold_deg(mut self, t: f64) -> Self {
+        self.threshold_deg = t;
+        self
+    }
+    pub fn with_max_iter(mut self, n: u32) -> Self {
+        self.max_iter = n;
+        self
+    }
+    pub fn with_solver(mut self, s: SolverKind) -> Self {
+        self.solver = s;
+        self
+    }
+    pub fn with_smart_measure(mut self, m: Measure) -> Self {
+        self.smart_measure = m;
+        self
+    }
+    /// Checks the settings, naming the first unusable one.
+    pub fn validate(&self) -> Result<()> {
+        if !(self.threshold_deg.is_finite() && self.threshold_deg > 0.0 && self.threshold_deg <= 90.0) {
+            return Err(Error::invalid(format!(
+                "threshold angle {}° is out of range: give an angle above 0° and at most 90°",
+                self.threshold_deg
+            )));
+        }
+        if self.priority_bins == 0 || self.priority_bins > 1000 {
+            return Err(Error::invalid(format!("{} priority bins: give 1 to 1000", self.priority_bins)));
+        }
+        Ok(())
+    }
+    /// The solver settings these options imply (history off).
+    pub fn solve_options(&self) -> SolveOptions {
+        SolveOptions::default().with_max_iter(self.max_iter)
+    }
+}
+
+/// What one pass did and where the mesh stands after it.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct PassRecord {
+    /// 1 for the first pass of a [`Smoother`].
+    pub pass: u32,
+    /// Node visits (with [`Order::Priority`] a poor node is visited up to once per bin).
+    pub visits: u32,
+    /// After the pass: elements with a corner of `det ≤ 0`.
+    pub inverted: usize,
+    /// After the pass: smallest and largest signed corner angle, degrees.
+    pub min_angle_deg: f64,
+    pub max_angle_deg: f64,
+    /// After the pass: smallest element α/β.
+    pub min_quality: f64,
+    /// After the pass: the sum over free nodes of the node objective value (the sum of its
+    /// terms, or their minimum for a max-min objective) — the quantity the optimiser works on,
+    /// summed over the mesh. +∞ when a barrier objective sees an inverted star.
+    pub objective_total: f64,
+    /// Nodes moved by a Laplacian step (plain or smart).
+    pub laplacian_moves: u32,
+    /// Calls to the solver.
+    pub optimization_calls: u32,
+    /// Solver iterations, summed over the calls.
+    pub solver_iterations: u32,
+    /// Time of the node loop (not of the statistics), milliseconds by the caller's clock.
+    pub elapsed_ms: f64,
+}
+
+/// What happened at one node.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize)]
+pub struct NodeOutcome {
+    /// The node ended somewhere else.
+    pub moved: bool,
+    /// A Laplacian position (plain or smart) was taken.
+    pub laplacian: bool,
+    /// The solver was called.
+    pub optimized: bool,
+    /// Solver iterations.
+    pub iterations: u32,
+}
+
+/// The worst measures of a star (or one element) at a position.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct StarQuality {
+    /// Smallest α (triangles) / β (quads).
+    pub min_shape: f64,
+    /// Smallest sine of a corner angle.
+    pub min_sine: f64,
+    /// Elements with a corner of `det ≤ 0`.
+    pub inverted: u32,
+}
+
+impl StarQuality {
+    const BEST: StarQuality = StarQuality { min_shape: f64::INFINITY, min_sine: f64::INFINITY, inverted: 0 };
+    fn measure(&self, m: Measure) -> f64 {
+        match m {
+            Measure::Shape => self.min_shape,
+            Measure::MinSine => self.min_sine,
+        }
+    }
+    fn merge(&mut self, o: StarQuality) {
+        self.min_shape = self.min_shape.min(o.min_shape);
+        self.min_sine = self.min_sine.min(o.min_sine);
+        self.inverted += o.inverted;
+    }
+}
+
+/// Shape, smallest sine and validity of one element from its node coordinates — the same
+/// definitions as [`crate::quality::element_quality`] without the angles and condition
+/// numbers the smoothers do not need.
+pub(crate) fn element_measures(kind: crate::mesh::ElementKind, p: &[DVec2; 9]) -> StarQuality {
+    let k = kind.corners();
+    let ce = corner_edges(kind, p);
+    let mut q = StarQuality::BEST;
+    let mut min_alpha = f64::INFINITY;
+    for &(e1, e2) in &ce[..k] {
+        q.min_sine = q.min_sine.min(scaled_jacobian(e1, e2));
+        if e1.perp_dot(e2) <= 0.0 {
+            q.inverted = 1;
+        }
+        if k == 3 {
+            min_alpha = min_alpha.min(lo_alpha_corner(e1, e2));
+        }
+    }
+    q.min_shape = if k == 3 { min_alpha } else { canann_beta_from_corners(&ce) };
+    q
+}
+
+/// The star's worst measures with the free node at its gathered position (`x = None`,
+/// the mesh as it is) or moved to `x` (mid-side nodes following).
+pub(crate) fn star_quality(star: &Star, x: Option<DVec2>) -> StarQuality {
+    let mut q = StarQuality::BEST;
+    for e in &star.elems {
+        q.merge(element_measures(e.kind, &at(e, x)));
+    }
+    q
+}
+
+fn at(e: &StarElement, x: Option<DVec2>) -> [DVec2; 9] {
+    match x {
+        Some(x) => e.at(x),
+        None => e.pts,
+    }
+}
+
+/// Centroid of the neighbouring corner nodes of `n` (Laplacian smoothing).
+fn centroid(mesh: &Mesh, n: usize) -> Option<DVec2> {
+    let nb = mesh.neighbours(n);
+    if nb.is_empty() {
+        return None;
+    }
+    let s: DVec2 = nb.iter().map(|&m| mesh.nodes[m as usize]).sum();
+    Some(s / nb.len() as f64)
+}
+
+/// A smoothing driver with its scratch buffers. One `Smoother` serves any number of passes
+/// over one mesh (or several meshes in turn); nothing is allocated per node.
+#[derive(Clone, Debug)]
+pub struct Smoother {
+    options: SmoothOptions,
+    star: Star,
+    fr: FletcherReeves,
+    ascent: NonSmoothAscent,
+    terms: Vec<Term>,
+    /// Star quality of each node when the schedule was planned (priority order).
+    quality: Vec<f64>,
+    /// Free nodes, worst first.
+    ranked: Vec<u32>,
+    /// Visit sequence of the current (or last) pass.
+    schedule: Vec<u32>,
+    passes: u32,
+    /// Per-mesh facts, refreshed each pass.
+    quadratic: bool,
+    curved: bool,
+}
+
+impl Smoother {
+    /// A smoother with checked options.
+    pub fn new(options: SmoothOptions) -> Result<Self> {
+        options.validate()?;
+        let solve = options.solve_options();
+        Ok(Smoother {
+            options,
+            star: Star::new(),
+            fr: FletcherReeves::new(solve),
+            ascent: NonSmoothAscent::new(solve),
+            terms: Vec::new(),
+            quality: Vec::new(),
+            ranked: Vec::new(),
+            schedule: Vec::new(),
+            passes: 0,
+            quadratic: false,
+            curved: false,
+        })
+    }
+
+    pub fn options(&self) -> &SmoothOptions {
+        &self.options
+    }
+
+    /// Passes run so far.
+    pub fn passes(&self) -> u32 {
+        self.passes
+    }
+
+    /// The visit sequence planned by the last [`plan`](Self::plan) (or pass).
+    pub fn schedule(&self) -> &[u32] {
+        &self.schedule
+    }
+
+    fn refresh_mesh_facts(&mut self, mesh: &Mesh) {
+        self.quadratic = mesh.has_quadratic();
+        self.curved = self.quadratic && mesh.edges().iter().any(|e| e.curved);
+    }
+
+    /// Plans the visit sequence of the next pass, returns it (also kept in
+    /// [`schedule`](Self::schedule)).
+    ///
+    /// [`Order::Input`]: the free nodes in node order.
+    ///
+    /// [`Order::Priority`] — our reading of Chen et al. (2003) §4.2: the priority is computed
+    /// once per pass from each free node's star quality (the smallest α/β of its elements).
+    /// The range [worst, best] of these is split linearly into `B` =
+    /// [`SmoothOptions::priority_bins`] (5) equal bins; the worst bin has the highest
+    /// priority `B−1`, the best bin priority 0 (all nodes get priority 0 when every star is
+    /// equally good). An inner loop lowers the current priority from `B−1` to 0 and smooths
+    /// every node whose priority is at or above it ("if the current node's priority is less
+    /// than that of the current priority, it will not be smoothed in the inner priority
+    /// loop"). So the worst nodes are visited up to `B` times a pass, the best once; within
+    /// one inner loop nodes go worst first (ties by node number).
+    pub fn plan(&mut self, mesh: &Mesh) -> &[u32] {
+        self.schedule.clear();
+        self.ranked.clear();
+        let n = mesh.node_count();
+        match self.options.order {
+            Order::Input => self.schedule.extend((0..n as u32).filter(|&i| mesh.is_free(i as usize))),
+            Order::Priority => {
+                self.quality.clear();
+                self.quality.resize(n, f64::NAN);
+                for i in 0..n {
+                    if mesh.is_free(i) {
+                        self.star.gather(mesh, i);
+                        self.quality[i] = star_quality(&self.star, None).min_shape;
+                        self.ranked.push(i as u32);
+                    }
+                }
+                let q = &self.quality;
+                self.ranked.sort_unstable_by(|&a, &b| q[a as usize].total_cmp(&q[b as usize]).then(a.cmp(&b)));
+                let bins = self.options.priority_bins;
+                let (Some(&first), Some(&last)) = (self.ranked.first(), self.ranked.last()) else {
+                    return &self.schedule;
+                };
+                let (lo, hi) = (q[first as usize], q[last as usize]);
+                let range = hi - lo;
+                let priority = |v: f64| -> u32 {
+                    if !(range > 0.0 && range.is_finite()) {
+                        return 0;
+                    }
+                    let bin = ((v - lo) / range * bins as f64).floor();
+                    let bin = if bin.is_nan() { 0 } else { (bin.max(0.0) as u32).min(bins - 1) };
+                    bins - 1 - bin
+                };
+                for level in (0..bins).rev() {
+                    for &i in &self.ranked {
+                        if priority(q[i as usize]) < level {
+                            break; // ranked worst first: the rest have lower priority
+                        }
+                        self.schedule.push(i);
+                    }
+                }
+            }
+        }
+        &self.schedule
+    }
+
+    /// One pass over the mesh: plan the visit order, smooth each visit, then measure.
+    /// `clock` returns milliseconds (any origin); the core never reads system time.
+    pub fn pass(&mut self, mesh: &mut Mesh, objective: &dyn Objective, clock: &dyn Fn() -> f64) -> PassRecord {
+        self.passes += 1;
+        self.refresh_mesh_facts(mesh);
+        let t0 = clock();
+        self.plan(mesh);
+        let mut rec = PassRecord {
+            pass: self.passes,
+            visits: 0,
+            inverted: 0,
+            min_angle_deg: 0.0,
+            max_angle_deg: 0.0,
+            min_quality: 0.0,
+            objective_total: 0.0,
+            laplacian_moves: 0,
+            optimization_calls: 0,
+            solver_iterations: 0,
+            elapsed_ms: 0.0,
+        };
+        let schedule = std::mem::take(&mut self.schedule);
+        for &n in &schedule {
+            let o = self.visit(mesh, n as usize, objective);
+            rec.visits += 1;
+            rec.laplacian_moves += (o.laplacian && o.moved) as u32;
+            rec.optimization_calls += o.optimized as u32;
+            rec.solver_iterations += o.iterations;
+        }
+        self.schedule = schedule;
+        rec.elapsed_ms = clock() - t0;
+        let stats = mesh_stats(mesh);
+        rec.inverted = stats.inverted;
+        rec.min_angle_deg = stats.min_angle_deg;
+        rec.max_angle_deg = stats.max_angle_deg;
+        rec.min_quality = stats.min_quality;
+        rec.objective_total = self.objective_total(mesh, objective);
+        rec
+    }
+
+    /// The sum over free nodes of the node objective value (see [`PassRecord::objective_total`]).
+    pub fn objective_total(&mut self, mesh: &Mesh, objective: &dyn Objective) -> f64 {
+        let mut total = 0.0;
+        for n in 0..mesh.node_count() {
+            if mesh.is_free(n) {
+                self.star.gather(mesh, n);
+                total += evaluate(objective, &self.star, mesh.nodes[n], &mut self.terms).0;
+            }
+        }
+        total
+    }
+
+    /// Smooths one node by the strategy (fixed nodes and mid-side nodes are left alone).
+    pub fn smooth_node(&mut self, mesh: &mut Mesh, node: usize, objective: &dyn Objective) -> NodeOutcome {
+        self.refresh_mesh_facts(mesh);
+        self.visit(mesh, node, objective)
+    }
+
+    fn visit(&mut self, mesh: &mut Mesh, n: usize, objective: &dyn Objective) -> NodeOutcome {
+        let mut out = NodeOutcome::default();
+        if n >= mesh.node_count() || !mesh.is_free(n) {
+            return out;
+        }
+        let x0 = mesh.nodes[n];
+        let sine_t = self.options.threshold_deg.to_radians().sin();
+        match self.options.strategy {
+            Strategy::Laplace => {
+                self.laplace(mesh, n, &mut out);
+            }
+            Strategy::Smart => {
+                self.star.gather(mesh, n);
+                self.smart(mesh, n, &mut out);
+            }
+            Strategy::Opt => {
+                self.star.gather(mesh, n);
+                self.optimize(mesh, n, objective, &mut out);
+            }
+            Strategy::C1 => {
+                self.star.gather(mesh, n);
+                if star_quality(&self.star, None).min_sine > sine_t {
+                    self.smart(mesh, n, &mut out);
+                } else {
+                    self.optimize(mesh, n, objective, &mut out);
+                }
+            }
+            Strategy::C2 => {
+                self.star.gather(mesh, n);
+                self.smart(mesh, n, &mut out);
+                if star_quality(&self.star, None).min_sine <= sine_t {
+                    self.optimize(mesh, n, objective, &mut out);
+                }
+            }
+            Strategy::C3 => {
+                self.star.gather(mesh, n);
+                if star_quality(&self.star, None).min_sine <= sine_t {
+                    if self.laplace(mesh, n, &mut out) {
+                        self.restar(mesh.nodes[n]);
+                    }
+                    if star_quality(&self.star, None).min_sine <= sine_t {
+                        self.optimize(mesh, n, objective, &mut out);
+                    }
+                }
+            }
+            Strategy::Rules => {
+                self.star.gather(mesh, n);
+                let forced = self.options.force_optimization
+                    || self.touches_curved_boundary(mesh, n)
+                    || star_quality(&self.star, None).inverted > 0;
+                if forced || !self.smart(mesh, n, &mut out) {
+                    self.optimize(mesh, n, objective, &mut out);
+                }
+            }
+        }
+        out.moved = mesh.nodes[n] != x0;
+        out
+    }
+
+    /// Moves the gathered star's free node to `x` (after a move), keeping the star valid.
+    fn restar(&mut self, x: DVec2) {
+        self.star.x0 = x;
+        for e in &mut self.star.elems {
+            e.pts = e.at(x);
+        }
+    }
+
+    fn place(&mut self, mesh: &mut Mesh, n: usize, x: DVec2) {
+        mesh.nodes[n] = x;
+        if self.quadratic {
+            mesh.follow_mid_nodes(n);
+        }
+    }
+
+    /// Plain Laplacian; returns whether the node moved.
+    fn laplace(&mut self, mesh: &mut Mesh, n: usize, out: &mut NodeOutcome) -> bool {
+        match centroid(mesh, n) {
+            Some(c) if c.is_finite() && c != mesh.nodes[n] => {
+                self.place(mesh, n, c);
+                out.laplacian = true;
+                true
+            }
+            _ => false,
+        }
+    }
+
+    /// Smart Laplacian on the gathered star; returns whether the node moved. The star's
+    /// quality now is measured on the mesh as it is; at the centroid with the mid-side
+    /// nodes of straight edges following.
+    fn smart(&mut self, mesh: &mut Mesh, n: usize, out: &mut NodeOutcome) -> bool {
+        let Some(c) = centroid(mesh, n) else { return false };
+        if !c.is_finite() || c == mesh.nodes[n] {
+            return false;
+        }
+        let m = self.options.smart_measure;
+        let (mut before, mut after) = (f64::INFINITY, f64::INFINITY);
+        for e in &self.star.elems {
+            let q0 = element_measures(e.kind, &e.pts);
+            let q1 = element_measures(e.kind, &e.at(c));
+            if q0.inverted == 0 && q1.inverted > 0 {
+                return false;
+            }
+            before = before.min(q0.measure(m));
+            after = after.min(q1.measure(m));
+        }
+        if after > before {
+            self.place(mesh, n, c);
+            self.restar(c);
+            out.laplacian = true;
+            true
+        } else {
+            false
+        }
+    }
+
+    /// Optimization with the chosen solver on the gathered star.
+    fn optimize(&mut self, mesh: &mut Mesh, n: usize, objective: &dyn Objective, out: &mut NodeOutcome) {
+        let x0 = mesh.nodes[n];
+        let r = match self.options.solver.resolve(objective.goal()) {
+            SolverKind::NonSmoothAscent => self.ascent.solve(objective, &self.star, x0),
+            _ => self.fr.solve(objective, &self.star, x0),
+        };
+        out.optimized = true;
+        out.iterations += r.iterations;
+        if r.x.is_finite() && r.x != x0 {
+            self.place(mesh, n, r.x);
+            self.restar(r.x);
+        }
+    }
+
+    /// Chen's rule 1: the node, a neighbour, or a node of a star element lies on a curved
+    /// boundary edge.
+    fn touches_curved_boundary(&self, mesh: &Mesh, n: usize) -> bool {
+        self.curved
+            && (mesh.is_on_curved_boundary(n)
+                || mesh.neighbours(n).iter().any(|&m| mesh.is_on_curved_boundary(m as usize))
+                || mesh
+                    .node_elements(n)
+                    .iter()
+                    .any(|&e| mesh.element(e as usize).iter().any(|&m| mesh.is_on_curved_boundary(m as usize))))
+    }
+}
+
+/// Runs `passes` passes of a new [`Smoother`] over `mesh`, returning their records.
+pub fn smooth(
+    mesh: &mut Mesh,
+    objective: &dyn Objective,
+    options: SmoothOptions,
+    passes: u32,
+    clock: &dyn Fn() -> f64,
+) -> Result<Vec<PassRecord>> {
+    let mut s = Smoother::new(options)?;
+    Ok((0..passes).map(|_| s.pass(mesh, objective, clock)).collect())
+}
+
+/// Solves the objective at one free node with its history recorded, without moving it
+/// (for the page's level-set view and convergence chart). The solver is chosen by
+/// [`SmoothOptions::solver`]; [`SmoothOptions::max_iter`] limits the iterations.
+pub fn solve_node(mesh: &Mesh, node: usize, objective: &dyn Objective, options: &SmoothOptions) -> Result<SolveResult> {
+    if node >= mesh.node_count() {
+        return Err(Error::node(node, None, format!("no such node: the mesh has {} nodes", mesh.node_count())));
+    }
+    if !mesh.is_free(node) {
+        return Err(Error::node(node, None, "is fixed or not an element corner, so it is never smoothed"));
+    }
+    let mut star = Star::new();
+    star.gather(mesh, node);
+    let solve = options.solve_options().with_history(true);
+    solve.validate()?;
+    Ok(match options.solver.resolve(objective.goal()) {
+        SolverKind::NonSmoothAscent => NonSmoothAscent::new(solve).solve(objective, &star, mesh.nodes[node]),
+        _ => FletcherReeves::new(solve).solve(objective, &star, mesh.nodes[node]),
+    })
+}

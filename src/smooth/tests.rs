@@ -1,0 +1,491 @@
+use std::cell::Cell;
+
+use glam::DVec2;
+use proptest::prelude::prop;
+use proptest::prelude::{any, prop_assert, prop_assert_eq, proptest, ProptestConfig};
+
+use super::*;
+use crate::mesh::{ElementKind, FixedSpec, MeshBuilder};
+use crate::objective::Goal;
+use crate::optimize::test_objectives::{hexagon, ShapeMaxMin, ShapeSum};
+use crate::quality::{element_quality, mesh_stats};
+
+const NO_CLOCK: &dyn Fn() -> f64 = &|| 0.0;
+
+const ALL: [Strategy; 7] =
+    [Strategy::Laplace, Strategy::Smart, Strategy::Opt, Strategy::C1, Strategy::C2, Strategy::C3, Strategy::Rules];
+
+/// A structured grid on integer coordinates (nx × ny cells), interior nodes moved by
+/// `jitter` (cycled, in cell units), triangles split along one diagonal, quads, or 6-node
+/// triangles with mid-side nodes at the edge midpoints. `extra_fixed` interior nodes (by
+/// grid index) are fixed too.
+fn grid(nx: usize, ny: usize, kind: ElementKind, jitter: &[(f64, f64)], extra_fixed: &[usize]) -> Mesh {
+    let mut b = MeshBuilder::new();
+    let id = |i: usize, j: usize| (j * (nx + 1) + i) as u32;
+    let mut k = 0;
+    for j in 0..=ny {
+        for i in 0..=nx {
+            let (mut x, mut y) = (i as f64, j as f64);
+            if i > 0 && i < nx && j > 0 && j < ny && !jitter.is_empty() {
+                let (dx, dy) = jitter[k % jitter.len()];
+                k += 1;
+                x += dx;
+                y += dy;
+            }
+            b.add_node([x, y, 0.0], 0);
+        }
+    }
+    let corners = (nx + 1) * (ny + 1);
+    let mut mids = std::collections::HashMap::new();
+    let mut pts: Vec<[f64; 3]> = Vec::new();
+    let mut elems: Vec<(ElementKind, Vec<u32>)> = Vec::new();
+    for j in 0..ny {
+        for i in 0..nx {
+            let (a, bb, c, d) = (id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1));
+            match kind {
+                ElementKind::Quad4 => elems.push((kind, vec![a, bb, c, d])),
+                _ => {
+                    elems.push((kind, vec![a, bb, c]));
+                    elems.push((kind, vec![a, c, d]));
+                }
+            }
+        }
+    }
+    let mut fixed = vec![false; corners];
+    for &f in extra_fixed {
+        fixed[f] = true;
+    }
+    if kind == ElementKind::Tri6 {
+        // positions are needed for the mid nodes: rebuild the corner list
+        let mut coords = Vec::new();
+        let mut k = 0;
+        for j in 0..=ny {
+            for i in 0..=nx {
+                let (mut x, mut y) = (i as f64, j as f64);
+                if i > 0 && i < nx && j > 0 && j < ny && !jitter.is_empty() {
+                    let (dx, dy) = jitter[k % jitter.len()];
+                    k += 1;
+                    x += dx;
+                    y += dy;
+                }
+                coords.push([x, y]);
+            }
+        }
+        for (_, ids) in elems.iter_mut() {
+            let c = ids.clone();
+            for e in 0..3 {
+                let (p, q) = (c[e], c[(e + 1) % 3]);
+                let key = (p.min(q), p.max(q));
+                let m = *mids.entry(key).or_insert_with(|| {
+                    let (a, b2) = (coords[p as usize], coords[q as usize]);
+                    pts.push([(a[0] + b2[0]) / 2.0, (a[1] + b2[1]) / 2.0, 0.0]);
+                    (corners + pts.len() - 1) as u32
+                });
+                ids.push(m);
+            }
+        }
+        for p in &pts {
+            b.add_node(*p, 0);
+        }
+        fixed.resize(corners + pts.len(), false);
+    }
+    for (kind, ids) in &elems {
+        b.add_element(*kind, ids, 0);
+    }
+    b.fixed = FixedSpec::BoundaryAnd(fixed);
+    let m = b.build().expect("grid mesh");
+    m.sanity_check().unwrap();
+    m
+}
+
+fn jitter_strategy(max: f64) -> impl proptest::strategy::Strategy<Value = Vec<(f64, f64)>> {
+    prop::collection::vec((-max..max, -max..max), 9..20)
+}
+
+fn objective_for(strategy: Strategy, i: usize) -> &'static dyn Objective {
+    // the max-min objective for Freitag's schemes, both for the rest in turn
+    match strategy {
+        Strategy::C1 | Strategy::C2 | Strategy::C3 => &ShapeMaxMin,
+        _ if i % 2 == 0 => &ShapeSum,
+        _ => &ShapeMaxMin,
+    }
+}
+
+#[test]
+fn element_measures_match_element_quality() {
+    let d = DVec2::new;
+    let cases: Vec<(ElementKind, Vec<DVec2>)> = vec![
+        (ElementKind::Tri3, vec![d(0.0, 0.0), d(1.0, 0.1), d(0.3, 0.8)]),
+        (ElementKind::Tri3, vec![d(0.0, 0.0), d(0.3, 0.8), d(1.0, 0.1)]),
+        (ElementKind::Quad4, vec![d(0.0, 0.0), d(1.2, 0.1), d(1.0, 0.8), d(-0.1, 1.1)]),
+        (ElementKind::Quad4, vec![d(0.0, 0.0), d(1.0, 0.0), d(0.0, 1.0), d(1.0, 1.0)]),
+        (ElementKind::Tri6, vec![d(0.0, 0.0), d(2.0, 0.0), d(0.0, 2.0), d(1.0, -0.3), d(1.0, 1.0), d(0.0, 1.0)]),
+    ];
+    for (kind, p) in cases {
+        let mut a = [DVec2::ZERO; 9];
+        a[..p.len()].copy_from_slice(&p);
+        let q = element_quality(kind, &p);
+        let m = element_measures(kind, &a);
+        assert!((q.shape - m.min_shape).abs() < 1e-14, "{kind:?}");
+        assert!((q.min_sine - m.min_sine).abs() < 1e-14, "{kind:?}");
+        assert_eq!(q.inverted, m.inverted == 1, "{kind:?}");
+    }
+}
+
+#[test]
+fn laplace_on_a_regular_grid_is_a_fixed_point() {
+    for kind in [ElementKind::Tri3, ElementKind::Quad4, ElementKind::Tri6] {
+        let mut mesh = grid(5, 4, kind, &[], &[]);
+        let before = mesh.nodes.clone();
+        let opts = SmoothOptions::default().with_strategy(Strategy::Laplace).with_order(Order::Input);
+        let recs = smooth(&mut mesh, &ShapeSum, opts, 2, NO_CLOCK).unwrap();
+        for (a, b) in before.iter().zip(&mesh.nodes) {
+            assert!(a.distance(*b) < 1e-14, "{kind:?}: {a} → {b}");
+        }
+        assert_eq!(recs[1].laplacian_moves, 0);
+    }
+}
+
+#[test]
+fn laplace_moves_to_the_centroid_and_mid_nodes_follow() {
+    let jit = [(0.3, -0.2), (-0.25, 0.1), (0.1, 0.3)];
+    let mut mesh = grid(4, 4, ElementKind::Tri6, &jit, &[]);
+    let mut s =
+        Smoother::new(SmoothOptions::default().with_strategy(Strategy::Laplace).with_order(Order::Input)).unwrap();
+    let n = (0..mesh.node_count()).find(|&n| mesh.is_free(n)).unwrap();
+    let nb: DVec2 =
+        mesh.neighbours(n).iter().map(|&m| mesh.nodes[m as usize]).sum::<DVec2>() / mesh.neighbours(n).len() as f64;
+    let o = s.smooth_node(&mut mesh, n, &ShapeSum);
+    assert!(o.moved && o.laplacian && !o.optimized);
+    assert_eq!(mesh.nodes[n], nb);
+    s.pass(&mut mesh, &ShapeSum, NO_CLOCK);
+    for e in mesh.edges() {
+        if e.mid != crate::mesh::NONE && !e.is_boundary() {
+            let mid = 0.5 * (mesh.nodes[e.a as usize] + mesh.nodes[e.b as usize]);
+            assert!(mesh.nodes[e.mid as usize].distance(mid) < 1e-15, "mid node {} off its edge", e.mid);
+        }
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(12))]
+
+    /// Every strategy, both orders, triangles and quads: fixed nodes stay bit-exact, no
+    /// NaN appears, and the same input gives the same output bit for bit.
+    #[test]
+    fn drivers_keep_fixed_nodes_and_are_deterministic(jit in jitter_strategy(0.35), quads in any::<bool>(), pick in 0usize..4) {
+        let kind = if quads { ElementKind::Quad4 } else { ElementKind::Tri3 };
+        let mesh0 = grid(4, 4, kind, &jit, &[7, 12]);
+        for (i, strategy) in ALL.into_iter().enumerate() {
+            for order in [Order::Input, Order::Priority] {
+                let opts = SmoothOptions::default().with_strategy(strategy).with_order(order);
+                let obj = objective_for(strategy, i + pick);
+                let mut a = mesh0.clone();
+                let ra = smooth(&mut a, obj, opts, 2, NO_CLOCK).unwrap();
+                let mut b = mesh0.clone();
+                let rb = smooth(&mut b, obj, opts, 2, NO_CLOCK).unwrap();
+                prop_assert_eq!(&ra, &rb);
+                for n in 0..a.node_count() {
+                    prop_assert!(a.nodes[n].is_finite());
+                    prop_assert_eq!(a.nodes[n].to_array().map(f64::to_bits), b.nodes[n].to_array().map(f64::to_bits));
+                    if a.fixed[n] {
+                        prop_assert_eq!(a.nodes[n].to_array().map(f64::to_bits), mesh0.nodes[n].to_array().map(f64::to_bits));
+                    }
+                }
+                prop_assert!(ra.iter().all(|r| !r.objective_total.is_nan()));
+            }
+        }
+    }
+
+    /// The smart Laplacian never lowers a star's worst quality nor inverts a valid
+    /// element — node by node, and therefore for the whole mesh.
+    #[test]
+    fn smart_never_makes_a_star_worse(jit in jitter_strategy(0.95), quads in any::<bool>(), sine in any::<bool>()) {
+        let kind = if quads { ElementKind::Quad4 } else { ElementKind::Tri3 };
+        let mut mesh = grid(4, 4, kind, &jit, &[]);
+        let measure = if sine { Measure::MinSine } else { Measure::Shape };
+        let opts = SmoothOptions::default().with_strategy(Strategy::Smart).with_order(Order::Input).with_smart_measure(measure);
+        let mut s = Smoother::new(opts).unwrap();
+        let mut star = Star::new();
+        for _pass in 0..2 {
+            let stats0 = mesh_stats(&mesh);
+            for n in 0..mesh.node_count() {
+                if !mesh.is_free(n) {
+                    continue;
+                }
+                star.gather(&mesh, n);
+                let before: Vec<_> = star.elems.iter().map(|e| element_measures(e.kind, &e.pts)).collect();
+                let q0 = star_quality(&star, None).measure(measure);
+                let o = s.smooth_node(&mut mesh, n, &ShapeSum);
+                star.gather(&mesh, n);
+                let q1 = star_quality(&star, None).measure(measure);
+                prop_assert!(!o.optimized);
+                if o.moved {
+                    prop_assert!(q1 > q0, "node {}: {} → {}", n, q0, q1);
+                } else {
+                    prop_assert_eq!(q1, q0);
+                }
+                for (b, e) in before.iter().zip(&star.elems) {
+                    let a = element_measures(e.kind, &e.pts);
+                    prop_assert!(!(b.inverted == 0 && a.inverted > 0), "node {} inverted element {}", n, e.element);
+                }
+            }
+            let stats1 = mesh_stats(&mesh);
+            prop_assert!(stats1.inverted <= stats0.inverted);
+            if measure == Measure::Shape {
+                prop_assert!(stats1.min_quality >= stats0.min_quality);
+            }
+        }
+    }
+
+    /// Priority order: the worst star is visited first, the worst bin once per bin, and
+    /// a worse node is visited at least as often as a better one.
+    #[test]
+    fn priority_order_visits_worst_first(jit in jitter_strategy(0.45), quads in any::<bool>()) {
+        let kind = if quads { ElementKind::Quad4 } else { ElementKind::Tri3 };
+        let mesh = grid(5, 5, kind, &jit, &[]);
+        let mut s = Smoother::new(SmoothOptions::default().with_order(Order::Priority)).unwrap();
+        let schedule = s.plan(&mesh).to_vec();
+        let mut star = Star::new();
+        let q: Vec<f64> = (0..mesh.node_count())
+            .map(|n| {
+                if !mesh.is_free(n) {
+                    return f64::NAN;
+                }
+                star.gather(&mesh, n);
+                star_quality(&star, None).min_shape
+            })
+            .collect();
+        let worst = (0..mesh.node_count()).filter(|&n| mesh.is_free(n)).min_by(|&a, &b| q[a].total_cmp(&q[b])).unwrap();
+        prop_assert_eq!(schedule[0] as usize, worst);
+        let mut visits = vec![0u32; mesh.node_count()];
+        for &n in &schedule {
+            visits[n as usize] += 1;
+        }
+        let bins = s.options().priority_bins;
+        prop_assert_eq!(visits[worst], bins);
+        for a in 0..mesh.node_count() {
+            prop_assert_eq!(visits[a] > 0, mesh.is_free(a), "every free node once at least");
+            prop_assert!(visits[a] <= bins);
+            for b in 0..mesh.node_count() {
+                if mesh.is_free(a) && mesh.is_free(b) && q[a] < q[b] {
+                    prop_assert!(visits[a] >= visits[b]);
+                }
+            }
+        }
+        // the schedule is one worst-first prefix of the ranking per inner loop, growing
+        let mut ranked: Vec<usize> = (0..mesh.node_count()).filter(|&n| mesh.is_free(n)).collect();
+        ranked.sort_by(|&a, &b| q[a].total_cmp(&q[b]).then(a.cmp(&b)));
+        let mut lengths = Vec::new();
+        let mut pos = 0;
+        while pos < schedule.len() {
+            let mut len = 0;
+            while pos + len < schedule.len() && len < ranked.len() && schedule[pos + len] as usize == ranked[len] {
+                len += 1;
+            }
+            prop_assert!(len > 0, "a segment must start with the worst node");
+            lengths.push(len);
+            pos += len;
+        }
+        prop_assert_eq!(lengths.len() as u32, bins);
+        prop_assert!(lengths.windows(2).all(|w| w[0] <= w[1]));
+        prop_assert_eq!(*lengths.last().unwrap(), ranked.len());
+    }
+}
+
+#[test]
+fn input_order_is_node_order() {
+    let mesh = grid(3, 3, ElementKind::Tri3, &[(0.1, 0.1)], &[5]);
+    let mut s = Smoother::new(SmoothOptions::default().with_order(Order::Input)).unwrap();
+    let free: Vec<u32> = (0..mesh.node_count() as u32).filter(|&n| mesh.is_free(n as usize)).collect();
+    assert_eq!(s.plan(&mesh), &free[..]);
+    assert!(!free.contains(&5));
+}
+
+#[test]
+fn rules_untangle_a_folded_star_by_optimization() {
+    // the centre of a hexagon pushed outside it: some star triangles are inverted
+    let mut mesh = hexagon(DVec2::new(1.3, 0.4));
+    assert!(mesh_stats(&mesh).inverted > 0);
+    let opts = SmoothOptions::default().with_strategy(Strategy::Rules).with_max_iter(20);
+    let mut s = Smoother::new(opts).unwrap();
+    let r1 = s.pass(&mut mesh, &ShapeMaxMin, NO_CLOCK);
+    assert_eq!(r1.optimization_calls, 1, "rule 2: an invalid element calls optimization");
+    assert_eq!(r1.laplacian_moves, 0);
+    let mut last = r1;
+    for _ in 0..5 {
+        last = s.pass(&mut mesh, &ShapeMaxMin, NO_CLOCK);
+    }
+    assert_eq!(last.inverted, 0, "{last:?}");
+    assert!(mesh.nodes[0].length() < 0.05, "{}", mesh.nodes[0]);
+    // once valid, the constrained Laplacian takes over (the centroid is the best place)
+    let mut mesh = hexagon(DVec2::new(0.2, 0.1));
+    let r = s.pass(&mut mesh, &ShapeMaxMin, NO_CLOCK);
+    assert_eq!((r.laplacian_moves, r.optimization_calls), (1, 0));
+    // and a node where the Laplacian cannot help goes to optimization (rule 3)
+    let r = s.pass(&mut mesh, &ShapeMaxMin, NO_CLOCK);
+    assert_eq!((r.laplacian_moves, r.optimization_calls), (0, 1));
+    // rule 4: forced
+    let forced = SmoothOptions { force_optimization: true, ..opts };
+    let mut mesh = hexagon(DVec2::new(0.2, 0.1));
+    let r = Smoother::new(forced).unwrap().pass(&mut mesh, &ShapeMaxMin, NO_CLOCK);
+    assert_eq!((r.laplacian_moves, r.optimization_calls), (0, 1));
+}
+
+#[test]
+fn rules_optimize_next_to_a_curved_boundary() {
+    // interior nodes 5, 6, 9 in place, node 10 = grid (2, 2) pushed off its centroid
+    let mut mesh = grid(3, 3, ElementKind::Tri6, &[(0.0, 0.0), (0.0, 0.0), (0.0, 0.0), (0.2, 0.15)], &[]);
+    // bow out the mid node of the bottom edge 0–1
+    let e = *mesh.edges().iter().find(|e| e.a == 0 && e.b == 1).unwrap();
+    let mut b = MeshBuilder::new();
+    for (i, p) in mesh.nodes.iter().enumerate() {
+        let p = if i == e.mid as usize { *p + DVec2::new(0.0, -0.2) } else { *p };
+        b.add_node([p.x, p.y, 0.0], 0);
+    }
+    for el in 0..mesh.element_count() {
+        b.add_element(mesh.kind(el), mesh.element(el), 0);
+    }
+    let mut flat = std::mem::replace(&mut mesh, b.build().unwrap());
+    assert!(mesh.edges().iter().any(|e| e.curved) && !flat.edges().iter().any(|e| e.curved));
+    let opts = SmoothOptions::default().with_strategy(Strategy::Rules).with_order(Order::Input);
+    let mut s = Smoother::new(opts).unwrap();
+    let near = 5; // grid node (1, 1): corner of the element with the curved edge
+    assert!(mesh.is_free(near));
+    let o = s.smooth_node(&mut mesh, near, &ShapeSum);
+    assert!(o.optimized && !o.laplacian, "rule 1: {o:?}");
+    // the same node with the edge straight: the smart Laplacian does it
+    let o = s.smooth_node(&mut flat, near, &ShapeSum);
+    assert!(o.laplacian && !o.optimized, "{o:?}");
+    let far = 10; // grid node (2, 2): no curved boundary in reach, the smart Laplacian helps
+    let o = s.smooth_node(&mut mesh, far, &ShapeSum);
+    assert!(o.laplacian && o.moved && !o.optimized, "{o:?}");
+    let mid_before = mesh.nodes[e.mid as usize];
+    s.pass(&mut mesh, &ShapeSum, NO_CLOCK);
+    assert_eq!(mesh.nodes[e.mid as usize], mid_before, "the curved edge keeps its mid node");
+}
+
+#[test]
+fn combined_schemes_respect_the_threshold() {
+    // a regular right-triangle grid: every angle ≥ 45°, above a 30° threshold
+    let good = grid(4, 4, ElementKind::Tri3, &[], &[]);
+    for strategy in [Strategy::C1, Strategy::C2, Strategy::C3] {
+        let mut mesh = good.clone();
+        let opts = SmoothOptions::default().with_strategy(strategy).with_threshold_deg(30.0).with_order(Order::Input);
+        let r = Smoother::new(opts).unwrap().pass(&mut mesh, &ShapeMaxMin, NO_CLOCK);
+        assert_eq!(r.optimization_calls, 0, "{strategy:?}");
+        assert_eq!(mesh.nodes, good.nodes, "{strategy:?}");
+    }
+    // one bad node: every scheme optimizes it, C3 leaves the rest alone
+    let mut bad = good.clone();
+    bad.nodes[6] += DVec2::new(0.45, 0.4);
+    for strategy in [Strategy::C1, Strategy::C2, Strategy::C3] {
+        let mut mesh = bad.clone();
+        let opts = SmoothOptions::default().with_strategy(strategy).with_threshold_deg(30.0).with_order(Order::Input);
+        let mut s = Smoother::new(opts).unwrap();
+        let o = s.smooth_node(&mut mesh, 6, &ShapeMaxMin);
+        let mut star = Star::new();
+        star.gather(&bad, 6);
+        let q0 = star_quality(&star, None).min_sine;
+        star.gather(&mesh, 6);
+        let q1 = star_quality(&star, None).min_sine;
+        assert!(o.moved && q1 > q0, "{strategy:?}: {o:?} {q0} → {q1}");
+        if strategy == Strategy::C1 {
+            assert!(o.optimized && !o.laplacian);
+        }
+        if strategy == Strategy::C3 {
+            let far = 18; // grid node (3, 3), with a good star
+            assert_eq!(s.smooth_node(&mut mesh, far, &ShapeMaxMin), NodeOutcome::default());
+        }
+    }
+}
+
+#[test]
+fn pass_record_and_clock() {
+    let mut mesh = grid(4, 4, ElementKind::Quad4, &[(0.2, -0.1), (-0.15, 0.2)], &[]);
+    let t = Cell::new(0.0);
+    let clock = || {
+        t.set(t.get() + 2.5);
+        t.get()
+    };
+    let mut s = Smoother::new(SmoothOptions::default().with_order(Order::Input)).unwrap();
+    let total0 = s.objective_total(&mesh, &ShapeSum);
+    let r = s.pass(&mut mesh, &ShapeSum, &clock);
+    assert_eq!(r.pass, 1);
+    assert_eq!(r.elapsed_ms, 2.5);
+    assert_eq!(r.visits as usize, mesh.free_count());
+    assert!(r.objective_total.is_finite() && r.objective_total < total0, "{total0} → {}", r.objective_total);
+    assert!(r.laplacian_moves + r.optimization_calls > 0);
+    let st = mesh_stats(&mesh);
+    assert_eq!((r.inverted, r.min_quality, r.min_angle_deg), (st.inverted, st.min_quality, st.min_angle_deg));
+    let json = serde_json::to_string(&r).unwrap();
+    assert!(json.contains("\"objective_total\"") && json.contains("\"solver_iterations\""), "{json}");
+    assert_eq!(s.pass(&mut mesh, &ShapeSum, &clock).pass, 2);
+}
+
+#[test]
+fn solve_node_returns_history_and_names_bad_nodes() {
+    let mesh = hexagon(DVec2::new(0.3, -0.2));
+    let before = mesh.nodes.clone();
+    let opts = SmoothOptions::default().with_max_iter(10);
+    let r = solve_node(&mesh, 0, &ShapeMaxMin, &opts).unwrap();
+    assert_eq!(r.history.len(), r.iterations as usize);
+    assert!(r.iterations > 0 && r.value > r.value0);
+    assert_eq!(mesh.nodes, before);
+    let r = solve_node(&mesh, 0, &ShapeSum, &opts).unwrap();
+    assert!(r.history.iter().any(|i| i.direction == crate::optimize::DirectionKind::Gradient));
+    let r = solve_node(&mesh, 0, &ShapeSum, &opts.with_solver(SolverKind::NonSmoothAscent)).unwrap();
+    assert!(r.value < r.value0 && r.history.iter().all(|i| i.direction == crate::optimize::DirectionKind::ActiveSet));
+    let e = solve_node(&mesh, 3, &ShapeSum, &opts).unwrap_err().to_string();
+    assert!(e.contains("node 3") && e.contains("fixed"), "{e}");
+    let e = solve_node(&mesh, 99, &ShapeSum, &opts).unwrap_err().to_string();
+    assert!(e.contains("node 99") && e.contains("7 nodes"), "{e}");
+    assert_eq!(ShapeSum.goal(), Goal::MinimizeSum);
+}
+
+#[test]
+fn bad_options_are_refused() {
+    for t in [0.0, -5.0, 120.0, f64::NAN] {
+        let e = Smoother::new(SmoothOptions::default().with_threshold_deg(t)).unwrap_err().to_string();
+        assert!(e.contains("threshold"), "{e}");
+    }
+    let o = SmoothOptions { priority_bins: 0, ..Default::default() };
+    assert!(Smoother::new(o).is_err());
+}
+
+/// Found by search: moving the centre to the centroid raises the star's worst α (an
+/// inverted element gets less inverted) but inverts a valid element — the smart
+/// Laplacian must refuse the move.
+#[test]
+fn smart_refuses_a_move_that_inverts_a_valid_element() {
+    let ring = [(0.64, 0.38), (0.9, 0.51), (-0.46, 0.48), (-1.39, -0.16), (-0.4, -1.06), (0.62, -0.77)];
+    let mut b = MeshBuilder::new();
+    b.add_node([-1.34, 0.8, 0.0], 0);
+    for (x, y) in ring {
+        b.add_node([x, y, 0.0], 0);
+    }
+    for i in 0..6u32 {
+        b.add_element(ElementKind::Tri3, &[0, 1 + i, 1 + (i + 1) % 6], 0);
+    }
+    let mut mesh = b.build().unwrap();
+    let mut star = Star::new();
+    star.gather(&mesh, 0);
+    let c = centroid(&mesh, 0).unwrap();
+    let (q0, q1) = (star_quality(&star, None), star_quality(&star, Some(c)));
+    assert!(q1.min_shape > q0.min_shape, "the centroid improves the worst α");
+    assert!(star
+        .elems
+        .iter()
+        .any(|e| element_measures(e.kind, &e.pts).inverted == 0 && element_measures(e.kind, &e.at(c)).inverted == 1));
+    let before = mesh.nodes.clone();
+    for strategy in [Strategy::Smart, Strategy::C2] {
+        let opts = SmoothOptions::default().with_strategy(strategy).with_max_iter(0);
+        let o = Smoother::new(opts).unwrap().smooth_node(&mut mesh, 0, &ShapeSum);
+        assert!(!o.laplacian && mesh.nodes == before, "{strategy:?}: {o:?}");
+    }
+    // and fixed nodes are left alone when asked directly
+    let o = Smoother::new(SmoothOptions::default().with_strategy(Strategy::Laplace))
+        .unwrap()
+        .smooth_node(&mut mesh, 3, &ShapeSum);
+    assert_eq!((o, mesh.nodes[3]), (NodeOutcome::default(), before[3]));
+}
