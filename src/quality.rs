@@ -7,9 +7,10 @@
 //! - at corner `i` the two edge vectors are `e1` (towards the next corner) and `e2`
 //!   (towards the previous corner); the corner's Jacobian is `[e1 e2]`, `det = cross(e1, e2)`;
 //! - for quadratic elements `e1`, `e2` are the edges' end tangents scaled to chord length,
-//!   `(4M − 3P0 − P2)/2` (Chen et al. 2003, §2.3: "interior angles and vectors at nodes are
-//!   computed using the tangent vector of the quadratic edge at the given node"); for a
-//!   straight edge this is exactly `P2 − P0`, so linear and quadratic agree.
+//!   `4M − 3P0 − P2`, the derivative at P0 of the edge curve over t ∈ [0, 1] (Chen et al.
+//!   2003, §2.3: "interior angles and vectors at nodes are computed using the tangent vector
+//!   of the quadratic edge at the given node"); for a straight edge this is exactly
+//!   `P2 − P0`, so linear and quadratic agree (dets and lengths included).
 
 use glam::DVec2;
 use serde::Serialize;
@@ -37,6 +38,22 @@ pub fn lo_alpha_corner(e1: DVec2, e2: DVec2) -> f64 {
         return 0.0;
     }
     TWO_SQRT3 * e1.perp_dot(e2) / den
+}
+
+/// Lo's corner α with its partial gradients with respect to the two edge vectors:
+/// `(α, ∂α/∂e1, ∂α/∂e2)`. With `N = cross(e1,e2)` and `D = |e1|² + |e2|² + |e2−e1|²`,
+/// `∂α/∂e = 2√3 (D ∂N/∂e − N ∂D/∂e) / D²`, `∂N/∂e1 = −perp(e2)`, `∂N/∂e2 = perp(e1)`,
+/// `∂D/∂e1 = 4e1 − 2e2`, `∂D/∂e2 = 4e2 − 2e1`. A zero-size corner gives zeros.
+pub fn lo_alpha_corner_gradient(e1: DVec2, e2: DVec2) -> (f64, DVec2, DVec2) {
+    let den = e1.length_squared() + e2.length_squared() + (e2 - e1).length_squared();
+    if den <= 0.0 {
+        return (0.0, DVec2::ZERO, DVec2::ZERO);
+    }
+    let num = e1.perp_dot(e2);
+    let k = TWO_SQRT3 / (den * den);
+    let g1 = k * (den * -e2.perp() - num * (4.0 * e1 - 2.0 * e2));
+    let g2 = k * (den * e1.perp() - num * (4.0 * e2 - 2.0 * e1));
+    (TWO_SQRT3 * num / den, g1, g2)
 }
 
 /// Canann's β of quad abcd — Chen et al. (2003), eq. (2): the α of the four triangles
@@ -67,6 +84,18 @@ pub fn signed_angle(e1: DVec2, e2: DVec2) -> f64 {
     e1.perp_dot(e2).atan2(e1.dot(e2))
 }
 
+/// The signed corner angle with its partial gradients: `(θ, ∂θ/∂e1, ∂θ/∂e2)`.
+/// `θ = arg e2 − arg e1` and `∇ arg v = perp(v)/|v|²`, so `∂θ/∂e1 = −perp(e1)/|e1|²`,
+/// `∂θ/∂e2 = perp(e2)/|e2|²`. Defined away from the jump at θ = ±π (where the gradient
+/// is the same on both sides) and from zero-length edges (zeros there).
+pub fn signed_angle_gradient(e1: DVec2, e2: DVec2) -> (f64, DVec2, DVec2) {
+    let (l1, l2) = (e1.length_squared(), e2.length_squared());
+    if l1 <= 0.0 || l2 <= 0.0 {
+        return (signed_angle(e1, e2), DVec2::ZERO, DVec2::ZERO);
+    }
+    (signed_angle(e1, e2), -e1.perp() / l1, e2.perp() / l2)
+}
+
 /// Which ideal element the condition number is measured against.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Ideal {
@@ -86,6 +115,42 @@ pub fn condition_number(e1: DVec2, e2: DVec2, ideal: Ideal) -> f64 {
         return f64::INFINITY;
     }
     (t1.length_squared() + t2.length_squared()) / det
+}
+
+/// Knupp's corner condition number with its partial gradients,
+/// `(κ, ∂κ/∂e1, ∂κ/∂e2)`. With `T = [t1 t2]`, `F = |t1|² + |t2|²`, `δ = cross(t1,t2)`:
+/// `∂κ/∂t1 = 2t1/δ + F perp(t2)/δ²`, `∂κ/∂t2 = 2t2/δ − F perp(t1)/δ²`, then through
+/// `t2 = (2e2 − e1)/√3` for the triangle ideal. `(+∞, 0, 0)` when `det T ≤ 0` (the barrier).
+pub fn condition_number_gradient(e1: DVec2, e2: DVec2, ideal: Ideal) -> (f64, DVec2, DVec2) {
+    let (t1, t2) = weighted_columns(e1, e2, ideal);
+    let det = t1.perp_dot(t2);
+    if det <= 0.0 {
+        return (f64::INFINITY, DVec2::ZERO, DVec2::ZERO);
+    }
+    let f = t1.length_squared() + t2.length_squared();
+    let kappa = f / det;
+    let g1 = (2.0 * t1 + kappa * t2.perp()) / det;
+    let g2 = (2.0 * t2 - kappa * t1.perp()) / det;
+    match ideal {
+        Ideal::Square => (kappa, g1, g2),
+        Ideal::Triangle => {
+            const INV_SQRT3: f64 = 0.577_350_269_189_625_8;
+            (kappa, g1 - INV_SQRT3 * g2, 2.0 * INV_SQRT3 * g2)
+        }
+    }
+}
+
+/// The scaled Jacobian (sine of the corner angle) with its partial gradients,
+/// `(s, ∂s/∂e1, ∂s/∂e2)`: `s = N/(|e1||e2|)`, `∂s/∂e1 = −perp(e2)/(|e1||e2|) − s e1/|e1|²`,
+/// `∂s/∂e2 = perp(e1)/(|e1||e2|) − s e2/|e2|²`. Zeros for a zero-length edge.
+pub fn scaled_jacobian_gradient(e1: DVec2, e2: DVec2) -> (f64, DVec2, DVec2) {
+    let (l1, l2) = (e1.length_squared(), e2.length_squared());
+    let l = (l1 * l2).sqrt();
+    if l <= 0.0 {
+        return (0.0, DVec2::ZERO, DVec2::ZERO);
+    }
+    let s = e1.perp_dot(e2) / l;
+    (s, -e2.perp() / l - s * e1 / l1, e1.perp() / l - s * e2 / l2)
 }
 
 /// Columns of `T = [e1 e2]·W⁻¹`. For the triangle `W⁻¹ = [[1, −1/√3], [0, 2/√3]]`.
@@ -120,8 +185,8 @@ pub fn corner_edges(kind: ElementKind, p: &[DVec2]) -> [(DVec2, DVec2); 4] {
         let prev = (i + k - 1) % k;
         out[i] = match (kind.mid(i), kind.mid(prev)) {
             (Some(m_next), Some(m_prev)) => (
-                0.5 * (4.0 * p[m_next] - 3.0 * p[i] - p[next]),
-                0.5 * (4.0 * p[m_prev] - 3.0 * p[i] - p[prev]),
+                4.0 * p[m_next] - 3.0 * p[i] - p[next],
+                4.0 * p[m_prev] - 3.0 * p[i] - p[prev],
             ),
             _ => (p[next] - p[i], p[prev] - p[i]),
         };
@@ -388,6 +453,73 @@ mod tests {
         p8[8] = d(0.5, 0.5);
         assert!((element_quality(ElementKind::Quad8, &p8[..8]).shape - 1.0).abs() < EPS);
         assert!((element_quality(ElementKind::Quad9, &p8).shape - 1.0).abs() < EPS);
+    }
+
+    #[test]
+    fn straight_quadratic_tangents_are_the_chords() {
+        let [a, b, c] = equilateral();
+        let p6 = [a, b, c, (a + b) / 2.0, (b + c) / 2.0, (c + a) / 2.0];
+        let lin = corner_edges(ElementKind::Tri3, &p6[..3]);
+        let quad = corner_edges(ElementKind::Tri6, &p6);
+        for i in 0..3 {
+            assert!((lin[i].0 - quad[i].0).length() < EPS && (lin[i].1 - quad[i].1).length() < EPS);
+        }
+    }
+
+    /// Central differences of a function of `(e1, e2)` with respect to each component.
+    fn fd(f: impl Fn(DVec2, DVec2) -> f64, e1: DVec2, e2: DVec2) -> (DVec2, DVec2) {
+        let h = 1e-6;
+        let dx = d(h, 0.0);
+        let dy = d(0.0, h);
+        let c = |a: f64, b: f64| (a - b) / (2.0 * h);
+        (
+            d(c(f(e1 + dx, e2), f(e1 - dx, e2)), c(f(e1 + dy, e2), f(e1 - dy, e2))),
+            d(c(f(e1, e2 + dx), f(e1, e2 - dx)), c(f(e1, e2 + dy), f(e1, e2 - dy))),
+        )
+    }
+
+    #[test]
+    fn metric_gradients_match_central_differences() {
+        let corners = [
+            (d(1.0, 0.1), d(0.3, 0.9)),
+            (d(2.0, -0.5), d(-0.4, 1.3)),
+            (d(0.7, 0.2), d(0.9, -0.6)),  // inverted
+            (d(-1.0, 0.05), d(1.0, 0.3)), // near 180°
+            (d(0.01, 1.0), d(-1.0, 0.02)),
+        ];
+        let close = |a: DVec2, b: DVec2, scale: f64| (a - b).length() <= 1e-6 * scale.max(1.0);
+        for (e1, e2) in corners {
+            let (v, g1, g2) = lo_alpha_corner_gradient(e1, e2);
+            assert!((v - lo_alpha_corner(e1, e2)).abs() < EPS);
+            let (f1, f2) = fd(lo_alpha_corner, e1, e2);
+            assert!(close(g1, f1, 1.0) && close(g2, f2, 1.0), "α {g1} {f1} {g2} {f2}");
+
+            let (v, g1, g2) = signed_angle_gradient(e1, e2);
+            assert!((v - signed_angle(e1, e2)).abs() < EPS);
+            let (f1, f2) = fd(signed_angle, e1, e2);
+            assert!(close(g1, f1, 1.0) && close(g2, f2, 1.0), "θ {g1} {f1} {g2} {f2}");
+
+            let (v, g1, g2) = scaled_jacobian_gradient(e1, e2);
+            assert!((v - scaled_jacobian(e1, e2)).abs() < EPS);
+            let (f1, f2) = fd(scaled_jacobian, e1, e2);
+            assert!(close(g1, f1, 1.0) && close(g2, f2, 1.0), "sine {g1} {f1} {g2} {f2}");
+
+            for ideal in [Ideal::Triangle, Ideal::Square] {
+                let (v, g1, g2) = condition_number_gradient(e1, e2, ideal);
+                let k = condition_number(e1, e2, ideal);
+                if k.is_finite() {
+                    assert!((v - k).abs() < EPS * k);
+                    let (f1, f2) = fd(|a, b| condition_number(a, b, ideal), e1, e2);
+                    let s = g1.length() + g2.length();
+                    assert!(close(g1, f1, s) && close(g2, f2, s), "κ {g1} {f1} {g2} {f2}");
+                } else {
+                    assert!(v.is_infinite() && g1 == DVec2::ZERO && g2 == DVec2::ZERO);
+                }
+            }
+        }
+        // the ideal corners are stationary points of κ (Knupp 1999, §2.6)
+        let (k, g1, g2) = condition_number_gradient(d(1.0, 0.0), d(0.5, 3f64.sqrt() / 2.0), Ideal::Triangle);
+        assert!((k - 2.0).abs() < EPS && g1.length() + g2.length() < 1e-12);
     }
 
     #[test]

@@ -1,0 +1,81 @@
+//! Freitag's max-min angle objective: maximise the minimum sine of the angles of the
+//! star's elements (Freitag 1997, §3: "the minimum sine of the angles in the incident
+//! elements … small near the angles of 0° and 180°").
+
+use glam::DVec2;
+
+use super::corners::ElementJets;
+use super::{impl_objective_by_visit, ObjectiveKind, Star, Term};
+use crate::quality::scaled_jacobian_gradient;
+
+/// Max-min of the sines of every corner angle of every star element — not only the free
+/// node's corners: a quad's far corner and a triangle's other corners count too (their
+/// terms have zero gradient when they do not move). One term per corner, `elem` naming
+/// its element. The sine is signed (`cross/(|e1||e2|)`), so an inverted corner is negative.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct MaxMinSine;
+
+impl MaxMinSine {
+    pub fn kind(&self) -> ObjectiveKind {
+        ObjectiveKind::Sine
+    }
+
+    /// Calls `emit` with one term per corner of every star element.
+    pub fn visit(&self, star: &Star, x: DVec2, mut emit: impl FnMut(Term)) {
+        for (i, el) in star.elems.iter().enumerate() {
+            let j = ElementJets::new(el, x);
+            for c in j.corner_jets() {
+                let (s, g1, g2) = scaled_jacobian_gradient(c.e1, c.e2);
+                emit(Term { elem: i as u32, value: s, grad: c.chain(g1, g2) });
+            }
+        }
+    }
+}
+
+impl_objective_by_visit!(MaxMinSine);
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::objective::testing::*;
+    use crate::objective::Objective;
+
+    #[test]
+    fn regular_hexagon_centre_is_sin_60() {
+        let star = fan_star(&regular_ring(6, 1.0));
+        let mut t = Vec::new();
+        MaxMinSine.terms(&star, DVec2::ZERO, &mut t);
+        assert_eq!(t.len(), 18, "every corner of every element");
+        let (v, _) = MaxMinSine.value_and_gradient(&star, DVec2::ZERO);
+        assert!((v - (std::f64::consts::PI / 3.0).sin()).abs() < 1e-12);
+        // moving the node lowers the minimum
+        assert!(MaxMinSine.value(&star, d(0.1, 0.05)) < v);
+        // the far corners count: a square star's minimum is sin 90° = 1 everywhere
+        let (v, _) = MaxMinSine.value_and_gradient(&quad_star(), DVec2::ZERO);
+        assert!((v - 1.0).abs() < 1e-12);
+        // an angle near 180° is as bad as one near 0°: on the square star, at (0.5, 0.49)
+        // the first quad's free corner is almost straight while its other angles are ≥ 45°
+        let near_flat = MaxMinSine.value(&quad_star(), d(0.5, 0.49));
+        assert!(near_flat > 0.0 && near_flat < 0.02, "{near_flat}");
+    }
+
+    #[test]
+    fn inverted_corners_are_negative() {
+        let star = fan_star(&regular_ring(6, 1.0));
+        assert!(MaxMinSine.value(&star, d(1.3, 0.1)) < 0.0);
+    }
+
+    #[test]
+    fn term_gradients_match_central_differences() {
+        let mut rng = Lcg::new(5);
+        let (mut checked, mut total) = (0, 0);
+        for star in sample_stars() {
+            for _ in 0..30 {
+                let (c, t) = check_term_gradients(&MaxMinSine, &star, rng.point(1.6), 1e-5);
+                checked += c;
+                total += t;
+            }
+        }
+        assert!(checked * 10 >= total * 9, "{checked} of {total}");
+    }
+}

@@ -1,0 +1,141 @@
+//! Knupp's untangling objectives (Knupp 1999, §2.7): they ask only for positive corner
+//! determinants, not for good shapes, and are run before a barrier objective.
+
+use glam::DVec2;
+
+use super::corners::ElementJets;
+use super::{impl_objective_by_visit, ObjectiveKind, Star, Term};
+
+/// The corner determinants of the moving corners, with their gradients:
+/// `det = cross(e1, e2)`, `∂det/∂e1 = −perp(e2)`, `∂det/∂e2 = perp(e1)`.
+fn visit_dets(star: &Star, x: DVec2, mut emit: impl FnMut(u32, f64, DVec2)) {
+    for (i, el) in star.elems.iter().enumerate() {
+        let j = ElementJets::new(el, x);
+        for c in j.corner_jets().iter().filter(|c| c.moves()) {
+            emit(i as u32, c.e1.perp_dot(c.e2), c.chain(-c.e2.perp(), c.e1.perp()));
+        }
+    }
+}
+
+/// Knupp's second untangling objective, `Σ (|det| − det)` over the moving corners of the
+/// star, minimised. Each term is `2·max(0, −det)`: zero for a valid corner, so the sum is
+/// zero exactly when no moving corner is inverted (`det ≥ 0`) and "any untangled mesh
+/// minimises it". Piecewise linear in each det; at `det = 0` the gradient is that of the
+/// valid side (zero). Dimensional (an area), with the plain corner Jacobian `A`
+/// (no ideal weight: only signs matter).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Untangle;
+
+impl Untangle {
+    pub fn kind(&self) -> ObjectiveKind {
+        ObjectiveKind::Untangle
+    }
+
+    /// Calls `emit` with one term per moving corner.
+    pub fn visit(&self, star: &Star, x: DVec2, mut emit: impl FnMut(Term)) {
+        visit_dets(star, x, |elem, det, grad| {
+            let (value, grad) = if det < 0.0 { (-2.0 * det, -2.0 * grad) } else { (0.0, DVec2::ZERO) };
+            emit(Term { elem, value, grad });
+        });
+    }
+}
+
+impl_objective_by_visit!(Untangle);
+
+/// Knupp and Freitag's first untangling objective: maximise the minimum corner
+/// determinant of the moving corners (`max min det`; level sets convex for triangles,
+/// Freitag). One term per moving corner, the det itself.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct MaxMinDet;
+
+impl MaxMinDet {
+    pub fn kind(&self) -> ObjectiveKind {
+        ObjectiveKind::UntangleMinDet
+    }
+
+    /// Calls `emit` with one term per moving corner.
+    pub fn visit(&self, star: &Star, x: DVec2, mut emit: impl FnMut(Term)) {
+        visit_dets(star, x, |elem, value, grad| emit(Term { elem, value, grad }));
+    }
+}
+
+impl_objective_by_visit!(MaxMinDet);
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::objective::testing::*;
+    use crate::objective::Objective;
+    use crate::quality::corner_edges;
+
+    /// Whether every moving corner of the star is valid at `x` (computed independently
+    /// of the objective, from the element's own corners).
+    fn all_moving_dets_positive(star: &Star, x: DVec2) -> bool {
+        star.elems.iter().all(|el| {
+            let p = el.at(x);
+            let p0 = el.at(x + d(1.0, 0.5));
+            let ce = corner_edges(el.kind, &p[..el.kind.node_count()]);
+            let ce0 = corner_edges(el.kind, &p0[..el.kind.node_count()]);
+            ce.iter().zip(&ce0).take(el.kind.corners()).all(|(c, c0)| c == c0 || c.0.perp_dot(c.1) > 0.0)
+        })
+    }
+
+    #[test]
+    fn zero_exactly_when_all_dets_positive() {
+        let mut rng = Lcg::new(17);
+        let (mut zero, mut positive) = (0, 0);
+        for star in sample_stars() {
+            for _ in 0..200 {
+                let x = star.x0 + rng.point(1.5);
+                let v = Untangle.value(&star, x);
+                let valid = all_moving_dets_positive(&star, x);
+                assert_eq!(v == 0.0, valid, "untangle {v} at {x}, valid: {valid}");
+                assert!(v >= 0.0);
+                if valid {
+                    zero += 1;
+                } else {
+                    positive += 1;
+                }
+                // and the max-min det agrees on the sign
+                assert_eq!(MaxMinDet.value(&star, x) > 0.0, valid);
+            }
+        }
+        assert!(zero > 100 && positive > 100, "both cases seen: {zero} {positive}");
+    }
+
+    #[test]
+    fn hand_derived_values() {
+        // one unit right triangle with the free node at the right angle: det = 1 at
+        // every corner (cross of the two edges); reflected through the far edge it is −1
+        let s = star(vec![elem(crate::mesh::ElementKind::Tri3, &[d(0.0, 0.0), d(1.0, 0.0), d(0.0, 1.0)], 0)]);
+        let (v, g) = MaxMinDet.value_and_gradient(&s, d(0.0, 0.0));
+        assert!((v - 1.0).abs() < 1e-15);
+        // d det/dx at the free corner: det = cross(B − x, C − x) → gradient perp(C − B)... = (−1, −1)
+        assert!((g - d(-1.0, -1.0)).length() < 1e-15, "{g}");
+        let (v, g) = Untangle.value_and_gradient(&s, d(1.0, 1.0));
+        // det = cross((0,−1), (−1,0)) = −1 at each of the 3 corners: Σ 2·1 = 6
+        assert!((v - 6.0).abs() < 1e-15, "{v}");
+        assert!((g - 3.0 * 2.0 * d(1.0, 1.0)).length() < 1e-14, "{g}");
+    }
+
+    #[test]
+    fn gradients_match_central_differences() {
+        let mut rng = Lcg::new(19);
+        let (mut checked, mut total) = (0, 0);
+        for star in sample_stars() {
+            for _ in 0..30 {
+                let x = star.x0 + rng.point(1.5);
+                for obj in [&Untangle as &dyn Objective, &MaxMinDet] {
+                    let (c, t) = check_term_gradients(obj, &star, x, 1e-6);
+                    checked += c;
+                    total += t;
+                }
+                // the sum is smooth where no det is near zero
+                if looks_smooth(|p| Untangle.value(&star, p), x, 1e-6) {
+                    check_gradient(&Untangle, &star, x, 1e-6);
+                }
+            }
+        }
+        assert!(checked * 10 >= total * 9, "{checked} of {total}");
+    }
+}
