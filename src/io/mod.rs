@@ -3,10 +3,35 @@
 //!
 //! Readers parse text into a [`MeshBuilder`](crate::mesh::MeshBuilder), recording the
 //! file line of every node and element, so every error names a line or an element.
-//! Nothing here panics on any input.
+//! Nothing here panics on any input, and no header count is trusted for an allocation
+//! before it is checked against the bytes left to read.
+//!
+//! What a written file gives back when read (nodes always bit for bit, printed in the
+//! shortest form that round-trips; elements, their order and kinds always):
+//!
+//! | format | element kinds | fixed flags |
+//! |---|---|---|
+//! | `.msh` 2.2 / 4.1 | all five | exactly (a `$NodeData` view named `fixed`) |
+//! | `.vtk` | all five | exactly (`POINT_DATA` `SCALARS fixed`) |
+//! | `.node`/`.ele` | all `Tri3` or all `Tri6` | boundary ∪ fixed (markers) |
+//! | `.obj`, `.off` | `Tri3`, `Quad4` | none: the boundary |
+//!
+//! Files from elsewhere: `.msh` without that view gets the boundary plus the nodes of line
+//! and point elements; VTK without `fixed` the boundary plus the points of vertex and line
+//! cells; Triangle the boundary plus nonzero-marker nodes; OBJ and OFF the boundary.
 
 use crate::error::{Error, Result};
 use crate::mesh::Mesh;
+
+mod lex;
+mod msh;
+mod objoff;
+mod triangle;
+mod vtk;
+
+/// Files larger than this are refused before they are read (by [`read_path`] and
+/// [`read_bytes`]): 256 MiB, some tens of millions of nodes in any of the text formats.
+pub const MAX_FILE_BYTES: u64 = 256 << 20;
 
 /// A mesh file format, chosen from a file name's extension.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -55,4 +80,120 @@ pub fn unknown_format(name: &str) -> Error {
     Error::invalid(format!(
         "cannot tell the mesh format of '{name}': use .msh, .vtk, .node/.ele, .obj or .off"
     ))
+}
+
+/// Reads a mesh from text in the given format. A Triangle mesh is a `.node`/`.ele`
+/// pair and needs [`read_triangle`].
+pub fn read_str(text: &str, format: Format) -> Result<Mesh> {
+    match format {
+        Format::Msh => msh::read(text),
+        Format::Vtk => vtk::read(text),
+        Format::Obj => objoff::read_obj(text),
+        Format::Off => objoff::read_off(text),
+        Format::Triangle => Err(Error::invalid(
+            "a Triangle mesh is a .node/.ele pair: read both files together (read_triangle)",
+        )),
+    }
+}
+
+/// Reads a mesh from the bytes of a file called `name` (the format follows its
+/// extension). The bytes must be UTF-8 text; the error for anything else names the
+/// byte offset and line (or, for a binary `.msh`/`.vtk`, says that binary is unsupported).
+pub fn read_bytes(bytes: &[u8], name: &str) -> Result<Mesh> {
+    let format = Format::from_name(name).ok_or_else(|| unknown_format(name))?;
+    check_size(bytes.len() as u64, name)?;
+    read_str(utf8(bytes, format)?, format)
+}
+
+/// Reads a Triangle mesh from the texts of its `.node` and `.ele` files.
+pub fn read_triangle(node: &str, ele: &str) -> Result<Mesh> {
+    triangle::read(node, ele)
+}
+
+fn check_size(len: u64, name: &str) -> Result<()> {
+    if len > MAX_FILE_BYTES {
+        return Err(Error::TooLarge(format!(
+            "{name} is {len} bytes, over the limit of {MAX_FILE_BYTES} bytes (256 MiB) for mesh files"
+        )));
+    }
+    Ok(())
+}
+
+/// The bytes as text, or an error naming where they stop being UTF-8.
+fn utf8(bytes: &[u8], format: Format) -> Result<&str> {
+    match std::str::from_utf8(bytes) {
+        Ok(s) => Ok(s),
+        Err(e) => {
+            let at = e.valid_up_to();
+            // A binary .msh or .vtk has a text header: let the reader say "binary".
+            if matches!(format, Format::Msh | Format::Vtk) {
+                // The prefix up to `at` is valid UTF-8 by definition.
+                let head = std::str::from_utf8(&bytes[..at]).unwrap_or("");
+                if let Err(err @ Error::Unsupported { .. }) = read_str(head, format) {
+                    return Err(err);
+                }
+            }
+            let line = 1 + bytes[..at].iter().filter(|&&b| b == b'\n').count();
+            Err(Error::parse(
+                line,
+                format!("the file is not UTF-8 text: byte {at} (0x{:02x}) is not valid UTF-8", bytes[at]),
+            ))
+        }
+    }
+}
+
+/// Reads a mesh file; `x.node` or `x.ele` reads both of the pair. Files over
+/// [`MAX_FILE_BYTES`] are refused before reading.
+#[cfg(not(target_arch = "wasm32"))]
+pub fn read_path(path: &std::path::Path) -> Result<Mesh> {
+    let name = path.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_default();
+    let format = Format::from_name(&name).ok_or_else(|| unknown_format(&path.display().to_string()))?;
+    let load = |p: &std::path::Path| -> Result<Vec<u8>> {
+        let len = std::fs::metadata(p).map_err(|e| Error::Io(format!("cannot read {}: {e}", p.display())))?.len();
+        check_size(len, &p.display().to_string())?;
+        std::fs::read(p).map_err(|e| Error::Io(format!("cannot read {}: {e}", p.display())))
+    };
+    if format == Format::Triangle {
+        let (node, ele) = (path.with_extension("node"), path.with_extension("ele"));
+        let (nb, eb) = (load(&node)?, load(&ele)?);
+        return read_triangle(utf8(&nb, format)?, utf8(&eb, format)?);
+    }
+    read_str(utf8(&load(path)?, format)?, format)
+}
+
+/// Writes a mesh as text. OBJ and OFF hold linear meshes only; Triangle output is a
+/// pair of files (see [`write_triangle`]). What round-trips is documented per format:
+/// nodes (to the last bit), elements and kinds always; fixed flags in `.msh` and `.vtk`.
+pub fn write_string(mesh: &Mesh, format: Format, opts: &WriteOptions) -> Result<String> {
+    match format {
+        Format::Msh => Ok(msh::write(mesh, opts.msh_version)),
+        Format::Vtk => Ok(vtk::write(mesh)),
+        Format::Obj => objoff::write_obj(mesh),
+        Format::Off => objoff::write_off(mesh),
+        Format::Triangle => Err(Error::invalid(
+            "Triangle output is a .node/.ele pair: use write_triangle, or write_path with a .node or .ele name",
+        )),
+    }
+}
+
+/// Writes a triangle mesh (all 3-node or all 6-node triangles) as the texts of a
+/// Triangle `.node` and `.ele` file; fixed nodes get boundary marker 1.
+pub fn write_triangle(mesh: &Mesh) -> Result<(String, String)> {
+    triangle::write(mesh)
+}
+
+/// Writes a mesh file in the format of the path's extension (`.node`/`.ele`: both files).
+#[cfg(not(target_arch = "wasm32"))]
+pub fn write_path(mesh: &Mesh, path: &std::path::Path, opts: &WriteOptions) -> Result<()> {
+    let name = path.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_default();
+    let format = Format::from_name(&name).ok_or_else(|| unknown_format(&path.display().to_string()))?;
+    let save = |p: &std::path::Path, text: &str| {
+        std::fs::write(p, text).map_err(|e| Error::Io(format!("cannot write {}: {e}", p.display())))
+    };
+    if format == Format::Triangle {
+        let (node, ele) = write_triangle(mesh)?;
+        save(&path.with_extension("node"), &node)?;
+        return save(&path.with_extension("ele"), &ele);
+    }
+    save(path, &write_string(mesh, format, opts)?)
 }

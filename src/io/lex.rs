@@ -1,0 +1,293 @@
+//! The small tokenizer the readers share: whitespace-separated tokens that remember
+//! their 1-based line, typed getters whose errors name the line and what was expected,
+//! and a guard that refuses header counts the rest of the input cannot possibly hold
+//! (so a header claiming 10⁹ nodes is refused before anything is allocated).
+
+use crate::error::{Error, Result};
+
+/// A token and the line it is on.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) struct Token<'a> {
+    pub text: &'a str,
+    pub line: usize,
+}
+
+/// A cursor over text, yielding whitespace-separated tokens with their line numbers.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Lexer<'a> {
+    text: &'a str,
+    pos: usize,
+    /// Line of the byte at `pos`.
+    line: usize,
+    /// Line of the last token returned (or the first line before any).
+    last_line: usize,
+}
+
+/// How a token is shown in a message: quoted, and cut short when long.
+pub(crate) fn shown(tok: &str) -> String {
+    const MAX: usize = 40;
+    if tok.chars().count() <= MAX {
+        format!("'{tok}'")
+    } else {
+        let cut: String = tok.chars().take(MAX).collect();
+        format!("'{cut}…'")
+    }
+}
+
+impl<'a> Lexer<'a> {
+    /// A lexer over `text`, whose first line is line `first_line` of the file.
+    pub fn starting_at(text: &'a str, first_line: usize) -> Self {
+        Lexer { text, pos: 0, line: first_line, last_line: first_line }
+    }
+
+    pub fn new(text: &'a str) -> Self {
+        Self::starting_at(text, 1)
+    }
+
+    fn skip_space(&mut self) {
+        let b = self.text.as_bytes();
+        while let Some(&c) = b.get(self.pos) {
+            if c == b'\n' {
+                self.line += 1;
+            } else if !c.is_ascii_whitespace() {
+                break;
+            }
+            self.pos += 1;
+        }
+    }
+
+    /// The next token, or `None` at the end of the text.
+    #[allow(clippy::should_implement_trait)]
+    pub fn next(&mut self) -> Option<Token<'a>> {
+        self.skip_space();
+        let b = self.text.as_bytes();
+        if self.pos >= b.len() {
+            return None;
+        }
+        let start = self.pos;
+        while self.pos < b.len() && !b[self.pos].is_ascii_whitespace() {
+            self.pos += 1;
+        }
+        self.last_line = self.line;
+        // Whitespace bytes are ASCII, so both ends are char boundaries.
+        Some(Token { text: &self.text[start..self.pos], line: self.line })
+    }
+
+    /// The next token without consuming it.
+    pub fn peek(&self) -> Option<Token<'a>> {
+        let mut c = *self;
+        c.next()
+    }
+
+    /// Line of the last token read: where "the file ends here" errors point.
+    pub fn last_line(&self) -> usize {
+        self.last_line
+    }
+
+    /// Bytes not yet read.
+    pub fn remaining(&self) -> usize {
+        self.text.len() - self.pos
+    }
+
+    /// Skips whitespace (and blank lines), then returns the rest of that line, trimmed.
+    /// For the few free-text fields (Gmsh string tags).
+    pub fn text_line(&mut self) -> Option<Token<'a>> {
+        self.skip_space();
+        if self.pos >= self.text.len() {
+            return None;
+        }
+        let rest = &self.text[self.pos..];
+        let end = rest.find('\n').unwrap_or(rest.len());
+        self.pos += end;
+        self.last_line = self.line;
+        Some(Token { text: rest[..end].trim(), line: self.line })
+    }
+
+    /// Skips the rest of the current line and then whole lines up to and including the
+    /// first blank one (the end of a VTK `METADATA` block).
+    pub fn skip_to_blank_line(&mut self) {
+        // rest of the current line
+        let rest = &self.text[self.pos..];
+        match rest.find('\n') {
+            Some(i) => {
+                self.pos += i + 1;
+                self.line += 1;
+            }
+            None => {
+                self.pos = self.text.len();
+                return;
+            }
+        }
+        while self.pos < self.text.len() {
+            let rest = &self.text[self.pos..];
+            let end = rest.find('\n').map(|i| i + 1).unwrap_or(rest.len());
+            let blank = rest[..end].trim().is_empty();
+            self.pos += end;
+            if end > 0 && rest.as_bytes()[end - 1] == b'\n' {
+                self.line += 1;
+            }
+            if blank {
+                break;
+            }
+        }
+    }
+
+    /// The end-of-file error: the file stops where `what` was expected.
+    pub fn eof(&self, what: String) -> Error {
+        Error::parse(self.last_line, format!("the file ends here, but {what} was expected (truncated file?)"))
+    }
+
+    /// The next token, or an end-of-file error saying what was expected.
+    pub fn expect(&mut self, what: impl FnOnce() -> String) -> Result<Token<'a>> {
+        match self.next() {
+            Some(t) => Ok(t),
+            None => Err(self.eof(what())),
+        }
+    }
+
+    /// The next token, which must be `keyword` (ASCII case-insensitive).
+    pub fn keyword(&mut self, keyword: &str, context: impl Fn() -> String) -> Result<Token<'a>> {
+        let t = self.expect(|| format!("'{keyword}' ({})", context()))?;
+        if t.text.eq_ignore_ascii_case(keyword) {
+            Ok(t)
+        } else {
+            Err(Error::parse(t.line, format!("expected '{keyword}' ({}), found {}", context(), shown(t.text))))
+        }
+    }
+
+    /// A non-negative integer.
+    pub fn u64(&mut self, what: impl Fn() -> String) -> Result<(u64, usize)> {
+        let t = self.expect(&what)?;
+        match t.text.parse::<u64>() {
+            Ok(v) => Ok((v, t.line)),
+            Err(_) => Err(Error::parse(
+                t.line,
+                format!("expected {} (a non-negative integer), found {}", what(), shown(t.text)),
+            )),
+        }
+    }
+
+    /// A signed integer.
+    pub fn i64(&mut self, what: impl Fn() -> String) -> Result<(i64, usize)> {
+        let t = self.expect(&what)?;
+        match t.text.parse::<i64>() {
+            Ok(v) => Ok((v, t.line)),
+            Err(_) => Err(Error::parse(t.line, format!("expected {} (an integer), found {}", what(), shown(t.text)))),
+        }
+    }
+
+    /// A finite floating-point number (NaN and infinities are refused here, with the line).
+    pub fn f64(&mut self, what: impl Fn() -> String) -> Result<(f64, usize)> {
+        let t = self.expect(&what)?;
+        parse_f64(t.text, t.line, what).map(|v| (v, t.line))
+    }
+
+    /// Skips `count` tokens without reading them (data the readers do not use).
+    pub fn skip(&mut self, count: u64, what: impl Fn() -> String) -> Result<()> {
+        for _ in 0..count {
+            self.expect(&what)?;
+        }
+        Ok(())
+    }
+
+    /// Refuses a header count that the rest of the input cannot hold when every item
+    /// takes at least `min_bytes` bytes, and counts beyond `u32` indices. Returns the
+    /// count as `usize`, now safe to reserve for.
+    pub fn check_count(&self, count: u64, min_bytes: u64, what: &str, line: usize) -> Result<usize> {
+        check_count(count, self.remaining() as u64, min_bytes, what, line)
+    }
+}
+
+/// See [`Lexer::check_count`]; `room` is the number of bytes left to read.
+pub(crate) fn check_count(count: u64, room: u64, min_bytes: u64, what: &str, line: usize) -> Result<usize> {
+    let most = room / min_bytes.max(1) + 1;
+    if count > most {
+        return Err(Error::parse(
+            line,
+            format!(
+                "the header announces {count} {what}, but the rest of the file ({room} bytes) can hold at most {most} \
+                 (each takes at least {min_bytes} bytes): wrong count or truncated file"
+            ),
+        ));
+    }
+    if count > u32::MAX as u64 - 1 {
+        return Err(Error::TooLarge(format!("line {line}: {count} {what}; smoothlab indexes with 32 bits")));
+    }
+    Ok(count as usize)
+}
+
+/// Parses a finite `f64`, naming `what` and the line when it is not one.
+pub(crate) fn parse_f64(text: &str, line: usize, what: impl Fn() -> String) -> Result<f64> {
+    match text.parse::<f64>() {
+        Ok(v) if v.is_finite() => Ok(v),
+        Ok(_) => Err(Error::parse(line, format!("expected {} (a finite number), found {}", what(), shown(text)))),
+        Err(_) => Err(Error::parse(line, format!("expected {} (a number), found {}", what(), shown(text)))),
+    }
+}
+
+/// The first value that appears twice in an element's node list (in the file's own
+/// numbering, so the message can use it).
+pub(crate) fn repeated<T: PartialEq + Copy>(ids: &[T]) -> Option<T> {
+    (0..ids.len()).find(|&a| ids[a + 1..].contains(&ids[a])).map(|a| ids[a])
+}
+
+/// The lines of a text with their 1-based numbers, each cut at `comment` (if any) and
+/// trimmed; blank lines are left out. For the line-oriented formats (OBJ, OFF, Triangle).
+pub(crate) fn content_lines(text: &str, comment: Option<char>) -> impl Iterator<Item = (usize, &str)> {
+    text.split('\n').enumerate().filter_map(move |(i, l)| {
+        let l = match comment {
+            Some(c) => l.split_once(c).map_or(l, |(a, _)| a),
+            None => l,
+        };
+        let l = l.trim();
+        (!l.is_empty()).then_some((i + 1, l))
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn tokens_know_their_lines() {
+        let mut l = Lexer::new("a b\n\n  c\r\nd");
+        let got: Vec<(&str, usize)> = std::iter::from_fn(|| l.next()).map(|t| (t.text, t.line)).collect();
+        assert_eq!(got, vec![("a", 1), ("b", 1), ("c", 3), ("d", 4)]);
+    }
+
+    #[test]
+    fn typed_getters_name_the_line_and_the_thing() {
+        let mut l = Lexer::new("1\nnan\nx");
+        assert_eq!(l.u64(|| "n".into()).unwrap(), (1, 1));
+        let e = l.f64(|| "the x coordinate".into()).unwrap_err().to_string();
+        assert!(e.starts_with("line 2") && e.contains("finite") && e.contains("the x coordinate"), "{e}");
+        let e = l.u64(|| "a count".into()).unwrap_err().to_string();
+        assert!(e.starts_with("line 3") && e.contains("'x'"), "{e}");
+        let e = l.u64(|| "another count".into()).unwrap_err().to_string();
+        assert!(e.contains("ends here") && e.contains("another count"), "{e}");
+    }
+
+    #[test]
+    fn absurd_counts_are_refused_before_allocating() {
+        let l = Lexer::new("1000000000\n1 2 3\n");
+        let e = l.check_count(1_000_000_000, 8, "nodes", 1).unwrap_err().to_string();
+        assert!(e.contains("1000000000 nodes") && e.starts_with("line 1"), "{e}");
+        assert_eq!(Lexer::new("0 0 0 0").check_count(1, 8, "nodes", 1).unwrap(), 1);
+    }
+
+    #[test]
+    fn text_lines_and_metadata_blocks() {
+        let mut l = Lexer::new("1\n\"my view\"\nMETADATA\nINFORMATION 0\n\nPOINTS");
+        l.next();
+        assert_eq!(l.text_line().unwrap(), Token { text: "\"my view\"", line: 2 });
+        assert_eq!(l.next().unwrap().text, "METADATA");
+        l.skip_to_blank_line();
+        assert_eq!(l.next().unwrap(), Token { text: "POINTS", line: 6 });
+    }
+
+    #[test]
+    fn content_lines_drop_comments_and_blanks() {
+        let v: Vec<_> = content_lines("# c\n1 2 # x\n\n  3\n", Some('#')).collect();
+        assert_eq!(v, vec![(2, "1 2"), (4, "3")]);
+    }
+}

@@ -1,0 +1,636 @@
+//! Gmsh `.msh` ASCII, versions 2.2 (also 2.0, 2.1) and 4.1.
+//!
+//! Read: `$MeshFormat`, `$Nodes`, `$Elements` in both layouts (4.1: entity blocks with
+//! sparse, non-contiguous tags), and a `$NodeData` view named `fixed`; every other section
+//! (`$PhysicalNames`, `$Entities`, `$Periodic`, other views, …) is skipped. Element types
+//! 2 (tri3), 3 (quad4), 9 (tri6), 16 (quad8), 10 (quad9) become elements; lines (1, 8) and
+//! points (15) mark their nodes as fixed (on top of the boundary); anything else is
+//! refused naming the line and the type.
+//!
+//! Written: nodes with tags `1..=n` at full `f64` precision, the elements in order, and
+//! the fixed flags as a one-component `$NodeData` view named `"fixed"` (1 = fixed). When
+//! that view is present it decides the fixed flags exactly, so nodes, elements, kinds and
+//! fixed flags all round-trip; files from Gmsh itself (no such view) get boundary nodes
+//! plus the nodes of line and point elements.
+
+use std::fmt::Write as _;
+
+use crate::error::{Error, Result};
+use crate::io::lex::{repeated, shown, Lexer};
+use crate::io::MshVersion;
+use crate::mesh::{ElementKind, FixedSpec, Mesh, MeshBuilder, NONE};
+
+/// What a Gmsh element type is to us.
+enum GmshType {
+    Surface(ElementKind),
+    /// Lines and points: their nodes are marked fixed.
+    Marker(usize),
+    Unsupported(&'static str),
+}
+
+fn gmsh_type(t: u64) -> GmshType {
+    use GmshType::*;
+    match t {
+        2 => Surface(ElementKind::Tri3),
+        3 => Surface(ElementKind::Quad4),
+        9 => Surface(ElementKind::Tri6),
+        16 => Surface(ElementKind::Quad8),
+        10 => Surface(ElementKind::Quad9),
+        1 => Marker(2),
+        8 => Marker(3),
+        15 => Marker(1),
+        4 => Unsupported("4-node tetrahedron"),
+        5 => Unsupported("8-node hexahedron"),
+        6 => Unsupported("6-node prism"),
+        7 => Unsupported("5-node pyramid"),
+        11 => Unsupported("10-node tetrahedron"),
+        12 => Unsupported("27-node hexahedron"),
+        13 => Unsupported("18-node prism"),
+        14 => Unsupported("14-node pyramid"),
+        17 => Unsupported("20-node hexahedron"),
+        18 => Unsupported("15-node prism"),
+        19 => Unsupported("13-node pyramid"),
+        20 => Unsupported("9-node incomplete cubic triangle"),
+        21 => Unsupported("10-node cubic triangle"),
+        22..=25 => Unsupported("higher-order triangle"),
+        26..=28 => Unsupported("higher-order line"),
+        _ => Unsupported("unknown type"),
+    }
+}
+
+fn unsupported_type(t: u64, line: usize) -> Error {
+    let GmshType::Unsupported(name) = gmsh_type(t) else { unreachable!("only called for unsupported types") };
+    Error::unsupported(
+        Some(line),
+        format!(
+            "Gmsh element type {t} ({name}) is not supported: smoothlab reads triangles (types 2, 9) and \
+             quads (3, 16, 10), and takes lines (1, 8) and points (15) as fixed nodes"
+        ),
+    )
+}
+
+/// Node tags → 0-based node indices, without an array sized by the largest tag unless
+/// the tags are dense enough for that to be small.
+#[derive(Debug)]
+enum TagMap {
+    Dense { min: u64, index: Vec<u32> },
+    Sorted(Vec<(u64, u32)>),
+}
+
+impl TagMap {
+    /// Builds the map; a tag given twice is an error naming both lines.
+    fn new(tags: &[u64], lines: &[u32]) -> Result<TagMap> {
+        let n = tags.len();
+        let (Some(&min), Some(&max)) = (tags.iter().min(), tags.iter().max()) else {
+            return Ok(TagMap::Sorted(Vec::new()));
+        };
+        let dup = |first: u32, second: u32, tag: u64| {
+            Error::node(
+                second as usize,
+                Some(lines[second as usize] as usize),
+                format!("node tag {tag} is defined twice (first at line {})", lines[first as usize]),
+            )
+        };
+        if max - min < 2 * n as u64 + 1024 {
+            let mut index = vec![NONE; (max - min + 1) as usize];
+            for (i, &t) in tags.iter().enumerate() {
+                let slot = &mut index[(t - min) as usize];
+                if *slot != NONE {
+                    return Err(dup(*slot, i as u32, t));
+                }
+                *slot = i as u32;
+            }
+            Ok(TagMap::Dense { min, index })
+        } else {
+            let mut v: Vec<(u64, u32)> = tags.iter().enumerate().map(|(i, &t)| (t, i as u32)).collect();
+            v.sort_unstable();
+            if let Some(w) = v.windows(2).find(|w| w[0].0 == w[1].0) {
+                return Err(dup(w[0].1, w[1].1, w[0].0));
+            }
+            Ok(TagMap::Sorted(v))
+        }
+    }
+
+    fn get(&self, tag: u64) -> Option<u32> {
+        match self {
+            TagMap::Dense { min, index } => {
+                let i = tag.checked_sub(*min)?;
+                index.get(usize::try_from(i).ok()?).copied().filter(|&v| v != NONE)
+            }
+            TagMap::Sorted(v) => v.binary_search_by_key(&tag, |p| p.0).ok().map(|i| v[i].1),
+        }
+    }
+}
+
+/// An element as read: kind, file line and where its node tags start in the tag list.
+struct RawElement {
+    kind: ElementKind,
+    line: u32,
+    start: u32,
+}
+
+struct Reader {
+    builder: MeshBuilder,
+    node_tags: Vec<u64>,
+    node_lines: Vec<u32>,
+    elements: Vec<RawElement>,
+    elem_tags: Vec<u64>,
+    /// Node tags of line and point elements, with their lines.
+    marks: Vec<(u64, u32)>,
+    /// The `fixed` view: (node tag, fixed, line).
+    fixed_view: Option<Vec<(u64, bool, u32)>>,
+    nodes_line: Option<usize>,
+    elements_line: Option<usize>,
+}
+
+#[derive(Clone, Copy, PartialEq)]
+enum Layout {
+    V2,
+    V41,
+}
+
+/// Reads a `.msh` file (ASCII 2.x or 4.1).
+pub(crate) fn read(text: &str) -> Result<Mesh> {
+    let mut lex = Lexer::new(text);
+    let first = lex.expect(|| "'$MeshFormat' (an empty file is not a mesh)".into())?;
+    match first.text {
+        "$MeshFormat" => {}
+        "$NOD" | "$NOE" => {
+            return Err(Error::unsupported(
+                Some(first.line),
+                "this is a version 1 .msh file; save it as version 2.2 or 4.1 (ASCII)",
+            ))
+        }
+        other => {
+            return Err(Error::parse(
+                first.line,
+                format!("not a Gmsh .msh file: expected '$MeshFormat', found {}", shown(other)),
+            ))
+        }
+    }
+    let v = lex.expect(|| "the .msh version (2.2 or 4.1)".into())?;
+    let layout = match v.text {
+        "2" | "2.0" | "2.1" | "2.2" => Layout::V2,
+        "4.1" => Layout::V41,
+        "4" | "4.0" => {
+            return Err(Error::unsupported(
+                Some(v.line),
+                ".msh version 4.0 is not supported; save as 4.1 or 2.2 (ASCII)",
+            ))
+        }
+        other => {
+            return Err(Error::unsupported(
+                Some(v.line),
+                format!(".msh version {} is not supported; smoothlab reads 2.2 and 4.1 (ASCII)", shown(other)),
+            ))
+        }
+    };
+    let (file_type, ft_line) = lex.u64(|| "the file type (0 for ASCII)".into())?;
+    if file_type != 0 {
+        return Err(Error::unsupported(
+            Some(ft_line),
+            "binary .msh files are not supported; save as ASCII (Gmsh option Mesh.Binary = 0)",
+        ));
+    }
+    lex.u64(|| "the data size".into())?;
+    end_of(&mut lex, "MeshFormat", first.line)?;
+
+    let mut r = Reader {
+        builder: MeshBuilder::new(),
+        node_tags: Vec::new(),
+        node_lines: Vec::new(),
+        elements: Vec::new(),
+        elem_tags: Vec::new(),
+        marks: Vec::new(),
+        fixed_view: None,
+        nodes_line: None,
+        elements_line: None,
+    };
+    while let Some(t) = lex.next() {
+        match t.text {
+            "$Nodes" => {
+                if let Some(l) = r.nodes_line {
+                    return Err(Error::parse(t.line, format!("a second $Nodes section (the first is at line {l})")));
+                }
+                r.nodes_line = Some(t.line);
+                match layout {
+                    Layout::V2 => r.nodes_v2(&mut lex)?,
+                    Layout::V41 => r.nodes_v41(&mut lex)?,
+                }
+                end_of(&mut lex, "Nodes", t.line)?;
+            }
+            "$Elements" => {
+                if let Some(l) = r.elements_line {
+                    return Err(Error::parse(t.line, format!("a second $Elements section (the first is at line {l})")));
+                }
+                r.elements_line = Some(t.line);
+                match layout {
+                    Layout::V2 => r.elements_v2(&mut lex)?,
+                    Layout::V41 => r.elements_v41(&mut lex)?,
+                }
+                end_of(&mut lex, "Elements", t.line)?;
+            }
+            "$NodeData" => r.node_data(&mut lex, t.line)?,
+            s if s.starts_with('$') && !s.starts_with("$End") && s.len() > 1 => skip_section(&mut lex, &s[1..], t.line)?,
+            other => {
+                return Err(Error::parse(
+                    t.line,
+                    format!("expected a section such as '$Nodes' or '$Elements', found {}", shown(other)),
+                ))
+            }
+        }
+    }
+    if r.nodes_line.is_none() {
+        return Err(Error::parse(lex.last_line(), "the file ends without a $Nodes section"));
+    }
+    if r.elements_line.is_none() {
+        return Err(Error::parse(lex.last_line(), "the file ends without an $Elements section"));
+    }
+    r.finish()
+}
+
+/// Expects `$End<name>` for the section opened at `open_line`.
+fn end_of(lex: &mut Lexer, name: &str, open_line: usize) -> Result<()> {
+    let t = lex.expect(|| format!("'$End{name}' to close the section opened at line {open_line}"))?;
+    if t.text.strip_prefix("$End") == Some(name) {
+        Ok(())
+    } else {
+        Err(Error::parse(
+            t.line,
+            format!(
+                "expected '$End{name}' to close the section opened at line {open_line}, found {} \
+                 (does the count in the section's header match its data?)",
+                shown(t.text)
+            ),
+        ))
+    }
+}
+
+fn skip_section(lex: &mut Lexer, name: &str, open_line: usize) -> Result<()> {
+    loop {
+        let t = lex.expect(|| format!("'$End{name}' to close the section opened at line {open_line}"))?;
+        if t.text.strip_prefix("$End") == Some(name) {
+            return Ok(());
+        }
+    }
+}
+
+impl Reader {
+    fn add_node(&mut self, lex: &mut Lexer, tag: u64, tag_line: usize, extra: usize) -> Result<()> {
+        let i = self.node_tags.len();
+        let what = |c: &str| format!("the {c} coordinate of node tag {tag} (line {tag_line})");
+        let (x, line) = lex.f64(|| what("x"))?;
+        let (y, _) = lex.f64(|| what("y"))?;
+        let (z, _) = lex.f64(|| what("z"))?;
+        for _ in 0..extra {
+            lex.f64(|| format!("a parametric coordinate of node tag {tag}"))?;
+        }
+        debug_assert_eq!(self.builder.node_count(), i);
+        self.builder.add_node([x, y, z], line);
+        self.node_tags.push(tag);
+        self.node_lines.push(line as u32);
+        Ok(())
+    }
+
+    fn nodes_v2(&mut self, lex: &mut Lexer) -> Result<()> {
+        let (n, line) = lex.u64(|| "the number of nodes".into())?;
+        let n = lex.check_count(n, 8, "nodes", line)?;
+        self.reserve_nodes(n);
+        for i in 0..n {
+            let (tag, tl) = lex.u64(|| format!("the tag of node {} of the {n} announced at line {line}", i + 1))?;
+            self.add_node(lex, tag, tl, 0)?;
+        }
+        Ok(())
+    }
+
+    fn reserve_nodes(&mut self, n: usize) {
+        // Only one $Nodes section is read, so the builder holds no nodes yet.
+        self.builder = MeshBuilder::with_capacity(n, 0);
+        self.node_tags.reserve(n);
+        self.node_lines.reserve(n);
+    }
+
+    fn nodes_v41(&mut self, lex: &mut Lexer) -> Result<()> {
+        let (blocks, bl) = lex.u64(|| "the number of node entity blocks".into())?;
+        let blocks = lex.check_count(blocks, 8, "node entity blocks", bl)?;
+        let (n, nl) = lex.u64(|| "the number of nodes".into())?;
+        let n = lex.check_count(n, 8, "nodes", nl)?;
+        lex.u64(|| "the smallest node tag".into())?;
+        lex.u64(|| "the largest node tag".into())?;
+        self.reserve_nodes(n);
+        let mut tags = Vec::new();
+        for b in 0..blocks {
+            let what = |s: &str| format!("the {s} of node block {} of {blocks}", b + 1);
+            let (dim, dl) = lex.u64(|| what("entity dimension"))?;
+            if dim > 3 {
+                return Err(Error::parse(dl, format!("node block entity dimension must be 0 to 3, found {dim}")));
+            }
+            lex.i64(|| what("entity tag"))?;
+            let (parametric, pl) = lex.u64(|| what("parametric flag"))?;
+            if parametric > 1 {
+                return Err(Error::parse(pl, format!("the parametric flag must be 0 or 1, found {parametric}")));
+            }
+            let (count, cl) = lex.u64(|| what("node count"))?;
+            let left = n - self.node_tags.len();
+            if count > left as u64 {
+                return Err(Error::parse(
+                    cl,
+                    format!("this block has {count} nodes, but only {left} of the {n} announced at line {nl} are left"),
+                ));
+            }
+            tags.clear();
+            for i in 0..count {
+                tags.push(lex.u64(|| format!("tag {} of the {count} in the node block at line {dl}", i + 1))?);
+            }
+            let extra = if parametric == 1 { dim as usize } else { 0 };
+            for &(tag, tl) in &tags {
+                self.add_node(lex, tag, tl, extra)?;
+            }
+        }
+        if self.node_tags.len() != n {
+            return Err(Error::parse(
+                nl,
+                format!("the $Nodes header announces {n} nodes but its blocks hold {}", self.node_tags.len()),
+            ));
+        }
+        Ok(())
+    }
+
+    /// Reads one element's node tags (the kind's count, or the marker's).
+    fn element_nodes(&mut self, lex: &mut Lexer, ty: GmshType, line: usize, number: impl Fn() -> String) -> Result<()> {
+        match ty {
+            GmshType::Surface(kind) => {
+                let start = self.elem_tags.len() as u32;
+                for j in 0..kind.node_count() {
+                    let (tag, _) = lex.u64(|| format!("node {} of {} ({})", j + 1, number(), kind.name()))?;
+                    self.elem_tags.push(tag);
+                }
+                self.elements.push(RawElement { kind, line: line as u32, start });
+            }
+            GmshType::Marker(k) => {
+                for j in 0..k {
+                    let (tag, _) = lex.u64(|| format!("node {} of {}", j + 1, number()))?;
+                    self.marks.push((tag, line as u32));
+                }
+            }
+            GmshType::Unsupported(_) => unreachable!("refused by the callers"),
+        }
+        Ok(())
+    }
+
+    fn elements_v2(&mut self, lex: &mut Lexer) -> Result<()> {
+        let (n, line) = lex.u64(|| "the number of elements".into())?;
+        let n = lex.check_count(n, 10, "elements", line)?;
+        self.elements.reserve(n);
+        for i in 0..n {
+            let number = || format!("element {} of the {n} announced at line {line}", i + 1);
+            let (_, el) = lex.u64(|| format!("the tag of {}", number()))?;
+            let (t, tl) = lex.u64(|| format!("the type of {}", number()))?;
+            let ty = gmsh_type(t);
+            if let GmshType::Unsupported(_) = ty {
+                return Err(unsupported_type(t, tl));
+            }
+            let (ntags, _) = lex.u64(|| format!("the number of tags of {}", number()))?;
+            lex.skip(ntags, || format!("the {ntags} tags of {}", number()))?;
+            self.element_nodes(lex, ty, el, number)?;
+        }
+        Ok(())
+    }
+
+    fn elements_v41(&mut self, lex: &mut Lexer) -> Result<()> {
+        let (blocks, bl) = lex.u64(|| "the number of element entity blocks".into())?;
+        let blocks = lex.check_count(blocks, 8, "element entity blocks", bl)?;
+        let (n, nl) = lex.u64(|| "the number of elements".into())?;
+        let n = lex.check_count(n, 4, "elements", nl)?;
+        lex.u64(|| "the smallest element tag".into())?;
+        lex.u64(|| "the largest element tag".into())?;
+        self.elements.reserve(n);
+        let mut seen = 0usize;
+        for b in 0..blocks {
+            let what = |s: &str| format!("the {s} of element block {} of {blocks}", b + 1);
+            lex.u64(|| what("entity dimension"))?;
+            lex.i64(|| what("entity tag"))?;
+            let (t, tl) = lex.u64(|| what("element type"))?;
+            let ty = gmsh_type(t);
+            if let GmshType::Unsupported(_) = ty {
+                return Err(unsupported_type(t, tl));
+            }
+            let (count, cl) = lex.u64(|| what("element count"))?;
+            if count > (n - seen) as u64 {
+                return Err(Error::parse(
+                    cl,
+                    format!("this block has {count} elements, but only {} of the {n} announced at line {nl} are left", n - seen),
+                ));
+            }
+            for i in 0..count {
+                let number = || format!("element {} of the block at line {tl}", i + 1);
+                let (_, el) = lex.u64(|| format!("the tag of {}", number()))?;
+                let ty = gmsh_type(t);
+                self.element_nodes(lex, ty, el, number)?;
+            }
+            seen += count as usize;
+        }
+        if seen != n {
+            return Err(Error::parse(nl, format!("the $Elements header announces {n} elements but its blocks hold {seen}")));
+        }
+        Ok(())
+    }
+
+    /// A `$NodeData` section: read when its view is named `fixed`, else skipped.
+    fn node_data(&mut self, lex: &mut Lexer, open: usize) -> Result<()> {
+        let (ns, _) = lex.u64(|| "the number of string tags of $NodeData".into())?;
+        let mut name = None;
+        for i in 0..ns {
+            let t = lex.text_line().ok_or_else(|| lex.eof(format!("string tag {} of $NodeData", i + 1)))?;
+            if i == 0 {
+                name = Some(t.text.trim_matches('"'));
+            }
+        }
+        if name != Some("fixed") {
+            return skip_section(lex, "NodeData", open);
+        }
+        let (nr, _) = lex.u64(|| "the number of real tags".into())?;
+        for _ in 0..nr {
+            lex.f64(|| "a real tag".into())?;
+        }
+        let (ni, il) = lex.u64(|| "the number of integer tags".into())?;
+        if ni < 3 {
+            return Err(Error::parse(il, format!("the 'fixed' view needs 3 integer tags (step, components, count), found {ni}")));
+        }
+        let mut ints = [0u64; 3];
+        let mut count_line = il;
+        for i in 0..ni {
+            let (v, l) = lex.u64(|| format!("integer tag {} of the 'fixed' view", i + 1))?;
+            if (i as usize) < 3 {
+                ints[i as usize] = v;
+                count_line = l;
+            }
+        }
+        if ints[1] != 1 {
+            return Err(Error::parse(count_line, format!("the 'fixed' view must have 1 component, found {}", ints[1])));
+        }
+        let n = lex.check_count(ints[2], 4, "values in the 'fixed' view", count_line)?;
+        let mut v = Vec::with_capacity(n);
+        for i in 0..n {
+            let (tag, tl) = lex.u64(|| format!("the node tag of value {} of the 'fixed' view", i + 1))?;
+            let (x, _) = lex.f64(|| format!("the 'fixed' value of node tag {tag}"))?;
+            v.push((tag, x != 0.0, tl as u32));
+        }
+        self.fixed_view = Some(v);
+        end_of(lex, "NodeData", open)
+    }
+
+    fn finish(self) -> Result<Mesh> {
+        let Reader { mut builder, node_tags, node_lines, elements, elem_tags, marks, fixed_view, .. } = self;
+        let map = TagMap::new(&node_tags, &node_lines)?;
+        let range = || match (node_tags.iter().min(), node_tags.iter().max()) {
+            (Some(a), Some(b)) => format!("$Nodes defines tags {a} to {b}"),
+            _ => "$Nodes defines no nodes".to_string(),
+        };
+        let mut ids = [0u32; 9];
+        for (e, raw) in elements.iter().enumerate() {
+            let k = raw.kind.node_count();
+            let tags = &elem_tags[raw.start as usize..raw.start as usize + k];
+            if let Some(t) = repeated(tags) {
+                return Err(Error::element(e, Some(raw.line as usize), format!("node tag {t} appears twice in the element")));
+            }
+            for (j, &tag) in tags.iter().enumerate() {
+                ids[j] = map.get(tag).ok_or_else(|| {
+                    Error::element(e, Some(raw.line as usize), format!("node tag {tag} is not defined ({})", range()))
+                })?;
+            }
+            builder.add_element(raw.kind, &ids[..k], raw.line as usize);
+        }
+        let n = node_tags.len();
+        let resolve = |tag: u64, line: u32, what: &str| {
+            map.get(tag).ok_or_else(|| {
+                Error::parse(line as usize, format!("{what} refers to node tag {tag}, which is not defined ({})", range()))
+            })
+        };
+        builder.fixed = if let Some(view) = fixed_view {
+            let mut f = vec![false; n];
+            for (tag, fixed, line) in view {
+                f[resolve(tag, line, "the 'fixed' view")? as usize] = fixed;
+            }
+            FixedSpec::Exact(f)
+        } else if marks.is_empty() {
+            FixedSpec::Boundary
+        } else {
+            let mut f = vec![false; n];
+            for (tag, line) in marks {
+                f[resolve(tag, line, "a line or point element")? as usize] = true;
+            }
+            FixedSpec::BoundaryAnd(f)
+        };
+        builder.build()
+    }
+}
+
+/// Writes a `.msh` file (ASCII) in the given version; see the module notes for what round-trips.
+pub(crate) fn write(mesh: &Mesh, version: MshVersion) -> String {
+    let n = mesh.node_count();
+    let mut s = String::with_capacity(64 * n + 48 * mesh.element_count() + 256);
+    let v = match version {
+        MshVersion::V22 => "2.2",
+        MshVersion::V41 => "4.1",
+    };
+    // Writing to a String cannot fail.
+    let _ = write!(s, "$MeshFormat\n{v} 0 8\n$EndMeshFormat\n");
+    match version {
+        MshVersion::V22 => {
+            let _ = writeln!(s, "$Nodes\n{n}");
+            for (i, p) in mesh.nodes.iter().enumerate() {
+                let _ = writeln!(s, "{} {:?} {:?} 0", i + 1, p.x, p.y);
+            }
+            let _ = writeln!(s, "$EndNodes\n$Elements\n{}", mesh.element_count());
+            for e in 0..mesh.element_count() {
+                let _ = write!(s, "{} {} 2 0 1", e + 1, type_of(mesh.kind(e)));
+                for &i in mesh.element(e) {
+                    let _ = write!(s, " {}", i + 1);
+                }
+                s.push('\n');
+            }
+            s.push_str("$EndElements\n");
+        }
+        MshVersion::V41 => {
+            let (lo, hi) = mesh.bounds();
+            let _ = writeln!(s, "$Entities\n0 0 1 0\n1 {:?} {:?} 0 {:?} {:?} 0 0 0\n$EndEntities", lo.x, lo.y, hi.x, hi.y);
+            let _ = writeln!(s, "$Nodes\n1 {n} 1 {n}\n2 1 0 {n}");
+            for i in 0..n {
+                let _ = writeln!(s, "{}", i + 1);
+            }
+            for p in &mesh.nodes {
+                let _ = writeln!(s, "{:?} {:?} 0", p.x, p.y);
+            }
+            // One block per run of equal kinds, so the element order is kept.
+            let kinds = mesh.kinds();
+            let runs: Vec<(usize, usize)> = runs(kinds);
+            let m = mesh.element_count();
+            let _ = writeln!(s, "$EndNodes\n$Elements\n{} {m} 1 {m}", runs.len());
+            for (a, b) in runs {
+                let _ = writeln!(s, "2 1 {} {}", type_of(kinds[a]), b - a);
+                for e in a..b {
+                    let _ = write!(s, "{}", e + 1);
+                    for &i in mesh.element(e) {
+                        let _ = write!(s, " {}", i + 1);
+                    }
+                    s.push('\n');
+                }
+            }
+            s.push_str("$EndElements\n");
+        }
+    }
+    let _ = writeln!(s, "$NodeData\n1\n\"fixed\"\n1\n0\n3\n0\n1\n{n}");
+    for (i, &f) in mesh.fixed.iter().enumerate() {
+        let _ = writeln!(s, "{} {}", i + 1, u8::from(f));
+    }
+    s.push_str("$EndNodeData\n");
+    s
+}
+
+/// Maximal runs `[a, b)` of equal kinds.
+fn runs(kinds: &[ElementKind]) -> Vec<(usize, usize)> {
+    let mut out = Vec::new();
+    let mut a = 0;
+    for i in 1..=kinds.len() {
+        if i == kinds.len() || kinds[i] != kinds[a] {
+            out.push((a, i));
+            a = i;
+        }
+    }
+    out
+}
+
+fn type_of(kind: ElementKind) -> u32 {
+    match kind {
+        ElementKind::Tri3 => 2,
+        ElementKind::Quad4 => 3,
+        ElementKind::Tri6 => 9,
+        ElementKind::Quad8 => 16,
+        ElementKind::Quad9 => 10,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn tag_maps_dense_and_sparse() {
+        let m = TagMap::new(&[5, 7, 6], &[1, 2, 3]).unwrap();
+        assert!(matches!(m, TagMap::Dense { .. }));
+        assert_eq!((m.get(5), m.get(6), m.get(7), m.get(8), m.get(4)), (Some(0), Some(2), Some(1), None, None));
+        let m = TagMap::new(&[1, 1_000_000_000_000, 40], &[1, 2, 3]).unwrap();
+        assert!(matches!(m, TagMap::Sorted(_)));
+        assert_eq!((m.get(1_000_000_000_000), m.get(40), m.get(2)), (Some(1), Some(2), None));
+        let e = TagMap::new(&[3, 4, 3], &[10, 11, 12]).unwrap_err().to_string();
+        assert!(e.contains("line 12") && e.contains("first at line 10") && e.contains("tag 3"), "{e}");
+    }
+
+    #[test]
+    fn runs_keep_order() {
+        use ElementKind::*;
+        assert_eq!(runs(&[Tri3, Tri3, Quad4, Tri3]), vec![(0, 2), (2, 3), (3, 4)]);
+        assert_eq!(runs(&[]), vec![]);
+    }
+}

@@ -1,0 +1,606 @@
+//! Legacy VTK, ASCII: `UNSTRUCTURED_GRID` (and simple `POLYDATA` with `POLYGONS`).
+//!
+//! Read: `POINTS n <any type>`; `CELLS` in the legacy layout (`CELLS n size`, then
+//! `k i1 … ik` per cell) and in the VTK 5.1 layout (`OFFSETS` / `CONNECTIVITY`);
+//! `CELL_TYPES` 5 (triangle), 9 (quad), 8 (pixel, reordered to a quad), 22 (6-node
+//! triangle), 23 (8-node quad), 28 (9-node biquadratic quad), 7 (polygon: read when it
+//! has 3 or 4 vertices, refused naming the element and its vertex count otherwise);
+//! vertex and line cells (1, 2, 3, 4, 21) mark their points as fixed. `POINT_DATA` with
+//! `SCALARS fixed …` gives the fixed flags exactly (nonzero = fixed, as Mesquite writes
+//! them); every other attribute, `CELL_DATA`, `FIELD` and `METADATA` block is skipped.
+//! Data may wrap over lines freely; errors still name the line.
+//!
+//! Like Mesquite's own reader, the `size` number of a legacy `CELLS` header (redundant:
+//! the cells carry their own counts) is not held against the file, while a `CELL_TYPES`
+//! count that differs from the number of cells is an error.
+//!
+//! Written: `UNSTRUCTURED_GRID` with `POINTS … double` at full `f64` precision (z = 0),
+//! legacy `CELLS`, `CELL_TYPES`, and `POINT_DATA` `SCALARS fixed int 1`, so nodes,
+//! elements, kinds and fixed flags all round-trip.
+
+use std::fmt::Write as _;
+
+use crate::error::{Error, Result};
+use crate::io::lex::{repeated, shown, Lexer};
+use crate::mesh::{ElementKind, FixedSpec, Mesh, MeshBuilder};
+
+#[derive(Clone, Copy, PartialEq)]
+enum Dataset {
+    UnstructuredGrid,
+    PolyData,
+}
+
+/// Cells as read: flat point indices, offsets, and the line where each cell starts.
+#[derive(Default)]
+struct Cells {
+    conn: Vec<u64>,
+    start: Vec<usize>,
+    lines: Vec<u32>,
+    /// Line of the section header.
+    header: usize,
+}
+
+impl Cells {
+    fn len(&self) -> usize {
+        self.lines.len()
+    }
+    fn cell(&self, i: usize) -> &[u64] {
+        let end = self.start.get(i + 1).copied().unwrap_or(self.conn.len());
+        &self.conn[self.start[i]..end]
+    }
+}
+
+/// What a VTK cell type is to us.
+enum VtkType {
+    Element(ElementKind),
+    Pixel,
+    Polygon,
+    Marker,
+    Unsupported(&'static str),
+}
+
+fn vtk_type(t: u64) -> VtkType {
+    use VtkType::*;
+    match t {
+        5 => Element(ElementKind::Tri3),
+        9 => Element(ElementKind::Quad4),
+        22 => Element(ElementKind::Tri6),
+        23 => Element(ElementKind::Quad8),
+        28 => Element(ElementKind::Quad9),
+        8 => Pixel,
+        7 => Polygon,
+        1 | 2 | 3 | 4 | 21 => Marker,
+        6 => Unsupported("triangle strip"),
+        10 => Unsupported("tetrahedron"),
+        11 => Unsupported("voxel"),
+        12 => Unsupported("hexahedron"),
+        13 => Unsupported("wedge"),
+        14 => Unsupported("pyramid"),
+        24 => Unsupported("quadratic tetrahedron"),
+        25 => Unsupported("quadratic hexahedron"),
+        26 => Unsupported("quadratic wedge"),
+        27 => Unsupported("quadratic pyramid"),
+        _ => Unsupported("not a 2D cell smoothlab knows"),
+    }
+}
+
+struct Reader<'a> {
+    lex: Lexer<'a>,
+    dataset: Dataset,
+    builder: MeshBuilder,
+    points_line: Option<usize>,
+    cells: Option<Cells>,
+    types: Option<(Vec<u64>, Vec<u32>, usize)>,
+    /// POLYDATA `VERTICES`/`LINES`: points to mark fixed.
+    marked: Vec<u64>,
+    fixed: Option<Vec<bool>>,
+}
+
+/// Reads a legacy VTK file.
+pub(crate) fn read(text: &str) -> Result<Mesh> {
+    // The first three lines are line-oriented: version, title, ASCII/BINARY.
+    let mut rest = text;
+    let mut header = ["", "", ""];
+    for (i, h) in header.iter_mut().enumerate() {
+        if rest.is_empty() {
+            return Err(Error::parse(
+                i.max(1),
+                "the file ends inside the VTK header (version line, title line, ASCII line)",
+            ));
+        }
+        let end = rest.find('\n').map_or(rest.len(), |e| e + 1);
+        *h = rest[..end].trim();
+        rest = &rest[end..];
+    }
+    let version = header[0].to_ascii_lowercase();
+    if !version.starts_with("# vtk datafile version") {
+        return Err(Error::parse(
+            1,
+            format!("not a legacy VTK file: line 1 must be '# vtk DataFile Version x.y', found {}", shown(header[0])),
+        ));
+    }
+    if header[2].eq_ignore_ascii_case("BINARY") {
+        return Err(Error::unsupported(Some(3), "binary VTK files are not supported; save as ASCII"));
+    }
+    if !header[2].eq_ignore_ascii_case("ASCII") {
+        return Err(Error::parse(3, format!("expected 'ASCII' or 'BINARY' on line 3, found {}", shown(header[2]))));
+    }
+    let mut lex = Lexer::starting_at(rest, 4);
+    let kw = lex.keyword("DATASET", || "the dataset line after the header".into())?;
+    let ty = lex.expect(|| "the dataset type after DATASET".into())?;
+    let dataset = if ty.text.eq_ignore_ascii_case("UNSTRUCTURED_GRID") {
+        Dataset::UnstructuredGrid
+    } else if ty.text.eq_ignore_ascii_case("POLYDATA") {
+        Dataset::PolyData
+    } else {
+        return Err(Error::unsupported(
+            Some(ty.line.max(kw.line)),
+            format!("VTK dataset {} is not supported; smoothlab reads UNSTRUCTURED_GRID and POLYDATA", shown(ty.text)),
+        ));
+    };
+    let mut r = Reader {
+        lex,
+        dataset,
+        builder: MeshBuilder::new(),
+        points_line: None,
+        cells: None,
+        types: None,
+        marked: Vec::new(),
+        fixed: None,
+    };
+    r.sections()?;
+    r.finish()
+}
+
+fn is(t: &str, kw: &str) -> bool {
+    t.eq_ignore_ascii_case(kw)
+}
+
+impl Reader<'_> {
+    fn sections(&mut self) -> Result<()> {
+        while let Some(t) = self.lex.next() {
+            let k = t.text;
+            if is(k, "POINTS") {
+                if let Some(l) = self.points_line {
+                    return Err(Error::parse(t.line, format!("a second POINTS section (the first is at line {l})")));
+                }
+                self.points(t.line)?;
+            } else if self.dataset == Dataset::UnstructuredGrid && is(k, "CELLS") {
+                if let Some(c) = &self.cells {
+                    return Err(Error::parse(t.line, format!("a second CELLS section (the first is at line {})", c.header)));
+                }
+                self.cells = Some(self.cell_list(t.line, "CELLS")?);
+            } else if self.dataset == Dataset::UnstructuredGrid && is(k, "CELL_TYPES") {
+                self.cell_types(t.line)?;
+            } else if self.dataset == Dataset::PolyData && is(k, "POLYGONS") {
+                if let Some(c) = &self.cells {
+                    return Err(Error::parse(t.line, format!("a second POLYGONS section (the first is at line {})", c.header)));
+                }
+                self.cells = Some(self.cell_list(t.line, "POLYGONS")?);
+            } else if self.dataset == Dataset::PolyData && (is(k, "VERTICES") || is(k, "LINES")) {
+                let c = self.cell_list(t.line, k)?;
+                self.marked.extend_from_slice(&c.conn);
+            } else if self.dataset == Dataset::PolyData && is(k, "TRIANGLE_STRIPS") {
+                return Err(Error::unsupported(Some(t.line), "VTK triangle strips are not supported"));
+            } else if is(k, "POINT_DATA") || is(k, "CELL_DATA") {
+                self.attributes(t.line, is(k, "POINT_DATA"))?;
+            } else if is(k, "FIELD") {
+                self.field(t.line)?;
+            } else if is(k, "METADATA") {
+                self.lex.skip_to_blank_line();
+            } else {
+                let expected = match self.dataset {
+                    Dataset::UnstructuredGrid => "POINTS, CELLS, CELL_TYPES, POINT_DATA or CELL_DATA",
+                    Dataset::PolyData => "POINTS, POLYGONS, VERTICES, LINES, POINT_DATA or CELL_DATA",
+                };
+                return Err(Error::parse(t.line, format!("expected a section ({expected}), found {}", shown(k))));
+            }
+        }
+        Ok(())
+    }
+
+    fn points(&mut self, line: usize) -> Result<()> {
+        let (n, nl) = self.lex.u64(|| "the number of points after POINTS".into())?;
+        let n = self.lex.check_count(n, 6, "points", nl)?;
+        self.lex.expect(|| "the data type of POINTS (float, double, …)".into())?;
+        self.builder = MeshBuilder::with_capacity(n, 0);
+        for i in 0..n {
+            let what = |c: &str| format!("the {c} coordinate of point {i} (of the {n} announced at line {line})");
+            let (x, xl) = self.lex.f64(|| what("x"))?;
+            let (y, _) = self.lex.f64(|| what("y"))?;
+            let (z, _) = self.lex.f64(|| what("z"))?;
+            self.builder.add_node([x, y, z], xl);
+        }
+        self.points_line = Some(line);
+        Ok(())
+    }
+
+    /// A cell list (`CELLS`, `POLYGONS`, `LINES`, …) in either layout.
+    fn cell_list(&mut self, line: usize, name: &str) -> Result<Cells> {
+        let (a, al) = self.lex.u64(|| format!("the number of cells after {name}"))?;
+        let (b, _) = self.lex.u64(|| format!("the size of the {name} list"))?;
+        let mut c = Cells { header: line, ..Default::default() };
+        if self.lex.peek().is_some_and(|t| is(t.text, "OFFSETS")) {
+            // VTK 5.1: `a` offsets (one more than the cells), `b` connectivity entries.
+            self.lex.next();
+            self.lex.expect(|| "the data type of OFFSETS".into())?;
+            let n_off = self.lex.check_count(a, 2, "offsets", al)?;
+            let n_conn = self.lex.check_count(b, 2, "connectivity entries", al)?;
+            let mut offsets = Vec::with_capacity(n_off);
+            for i in 0..n_off {
+                let (o, ol) = self.lex.u64(|| format!("offset {i} of the {n_off} announced at line {line}"))?;
+                if let Some(&(prev, _)) = offsets.last() {
+                    if o < prev {
+                        return Err(Error::parse(ol, format!("offsets must not decrease: {o} follows {prev}")));
+                    }
+                } else if o != 0 {
+                    return Err(Error::parse(ol, format!("the first offset must be 0, found {o}")));
+                }
+                offsets.push((o, ol as u32));
+            }
+            let last = offsets.last().map_or(0, |p| p.0);
+            if last != b {
+                return Err(Error::parse(
+                    offsets.last().map_or(al, |p| p.1 as usize),
+                    format!("the last offset is {last} but the header announces {b} connectivity entries"),
+                ));
+            }
+            self.lex.keyword("CONNECTIVITY", || format!("after the offsets of {name} (line {line})"))?;
+            self.lex.expect(|| "the data type of CONNECTIVITY".into())?;
+            c.conn.reserve(n_conn);
+            let mut cell_lines = Vec::with_capacity(n_conn);
+            for i in 0..n_conn {
+                let (v, vl) = self.lex.u64(|| format!("connectivity entry {i} of the {n_conn} announced at line {line}"))?;
+                c.conn.push(v);
+                cell_lines.push(vl as u32);
+            }
+            for w in offsets.windows(2) {
+                c.start.push(w[0].0 as usize);
+                c.lines.push(cell_lines.get(w[0].0 as usize).copied().unwrap_or(w[0].1));
+            }
+        } else {
+            let n = self.lex.check_count(a, 4, "cells", al)?;
+            c.start.reserve(n);
+            c.lines.reserve(n);
+            c.conn.reserve(self.lex.check_count(b, 2, "list entries", al).unwrap_or(0).min(16 * n));
+            // A keyword where a number should be: the cells' counts do not fit the data.
+            let cut_short = |lex: &Lexer, i: usize| -> Result<()> {
+                match lex.peek() {
+                    Some(t) if t.text.starts_with(|ch: char| ch.is_ascii_alphabetic()) => Err(Error::parse(
+                        t.line,
+                        format!(
+                            "{name} (line {line}) announces {n} cells, but cell {i} is cut short by {}: \
+                             the point counts of the cells do not match the data",
+                            shown(t.text)
+                        ),
+                    )),
+                    _ => Ok(()),
+                }
+            };
+            for i in 0..n {
+                cut_short(&self.lex, i)?;
+                let (k, kl) =
+                    self.lex.u64(|| format!("the point count of cell {i} (of the {n} announced at line {line})"))?;
+                c.start.push(c.conn.len());
+                c.lines.push(kl as u32);
+                for j in 0..k {
+                    cut_short(&self.lex, i)?;
+                    let (v, _) = self.lex.u64(|| format!("point {j} of the {k} of cell {i} (line {kl})"))?;
+                    c.conn.push(v);
+                }
+            }
+        }
+        Ok(c)
+    }
+
+    fn cell_types(&mut self, line: usize) -> Result<()> {
+        let Some(cells) = &self.cells else {
+            return Err(Error::parse(line, "CELL_TYPES comes before any CELLS section"));
+        };
+        if let Some((_, _, l)) = &self.types {
+            return Err(Error::parse(line, format!("a second CELL_TYPES section (the first is at line {l})")));
+        }
+        let (n, nl) = self.lex.u64(|| "the number of cell types".into())?;
+        if n != cells.len() as u64 {
+            return Err(Error::parse(
+                nl,
+                format!("CELL_TYPES announces {n} types, but CELLS (line {}) has {} cells", cells.header, cells.len()),
+            ));
+        }
+        let n = cells.len();
+        let mut types = Vec::with_capacity(n);
+        let mut lines = Vec::with_capacity(n);
+        for i in 0..n {
+            let (t, tl) = self.lex.u64(|| format!("the type of cell {i} (of the {n} at line {line})"))?;
+            types.push(t);
+            lines.push(tl as u32);
+        }
+        self.types = Some((types, lines, line));
+        Ok(())
+    }
+
+    /// The attributes after `POINT_DATA n` / `CELL_DATA n`, up to the next section.
+    fn attributes(&mut self, line: usize, point_data: bool) -> Result<()> {
+        let what = if point_data { "POINT_DATA" } else { "CELL_DATA" };
+        let (n, nl) = self.lex.u64(|| format!("the count after {what}"))?;
+        if point_data {
+            match self.points_line {
+                Some(pl) if n as usize != self.builder.node_count() => {
+                    return Err(Error::parse(
+                        nl,
+                        format!(
+                            "POINT_DATA announces {n} values, but POINTS (line {pl}) has {} points",
+                            self.builder.node_count()
+                        ),
+                    ))
+                }
+                None => return Err(Error::parse(line, "POINT_DATA comes before POINTS")),
+                _ => {}
+            }
+        }
+        let n = self.lex.check_count(n, 2, "values", nl)? as u64;
+        while let Some(t) = self.lex.peek() {
+            let k = t.text;
+            if is(k, "SCALARS") {
+                self.lex.next();
+                let name = self.lex.expect(|| "the name of the SCALARS".into())?;
+                self.lex.expect(|| format!("the data type of SCALARS {}", name.text))?;
+                let mut comps = 1;
+                if let Some(c) = self.lex.peek().filter(|c| c.line == t.line) {
+                    comps = c.text.parse::<u64>().ok().filter(|c| (1..=4).contains(c)).ok_or_else(|| {
+                        Error::parse(c.line, format!("expected the number of components (1 to 4), found {}", shown(c.text)))
+                    })?;
+                    self.lex.next();
+                }
+                if self.lex.peek().is_some_and(|l| is(l.text, "LOOKUP_TABLE")) {
+                    self.lex.next();
+                    self.lex.expect(|| "the name of the LOOKUP_TABLE".into())?;
+                }
+                if point_data && name.text == "fixed" {
+                    if comps != 1 {
+                        return Err(Error::parse(t.line, format!("SCALARS fixed must have 1 component, found {comps}")));
+                    }
+                    let mut f = Vec::with_capacity(n as usize);
+                    for i in 0..n {
+                        let (v, _) = self.lex.f64(|| format!("the 'fixed' value of point {i} (SCALARS at line {})", t.line))?;
+                        f.push(v != 0.0);
+                    }
+                    self.fixed = Some(f);
+                } else {
+                    self.skip_values(n * comps, &format!("SCALARS {}", name.text), t.line)?;
+                }
+            } else if is(k, "COLOR_SCALARS") {
+                self.lex.next();
+                self.lex.expect(|| "the name of the COLOR_SCALARS".into())?;
+                let (c, _) = self.lex.u64(|| "the number of colour values".into())?;
+                self.skip_values(n.saturating_mul(c), "COLOR_SCALARS", t.line)?;
+            } else if is(k, "VECTORS") || is(k, "NORMALS") || is(k, "TENSORS") || is(k, "TENSORS6") {
+                self.lex.next();
+                self.lex.expect(|| format!("the name of the {k}"))?;
+                self.lex.expect(|| format!("the data type of the {k}"))?;
+                let per = if is(k, "TENSORS") { 9 } else if is(k, "TENSORS6") { 6 } else { 3 };
+                self.skip_values(n * per, k, t.line)?;
+            } else if is(k, "TEXTURE_COORDINATES") {
+                self.lex.next();
+                self.lex.expect(|| "the name of the TEXTURE_COORDINATES".into())?;
+                let (d, _) = self.lex.u64(|| "the texture dimension".into())?;
+                self.lex.expect(|| "the data type of the TEXTURE_COORDINATES".into())?;
+                self.skip_values(n.saturating_mul(d), k, t.line)?;
+            } else if is(k, "LOOKUP_TABLE") {
+                self.lex.next();
+                self.lex.expect(|| "the name of the LOOKUP_TABLE".into())?;
+                let (s, _) = self.lex.u64(|| "the size of the LOOKUP_TABLE".into())?;
+                self.skip_values(s.saturating_mul(4), k, t.line)?;
+            } else if is(k, "FIELD") {
+                self.lex.next();
+                self.field(t.line)?;
+            } else if is(k, "METADATA") {
+                self.lex.next();
+                self.lex.skip_to_blank_line();
+            } else {
+                break;
+            }
+        }
+        Ok(())
+    }
+
+    fn skip_values(&mut self, count: u64, what: &str, line: usize) -> Result<()> {
+        self.lex.check_count(count, 2, &format!("values of {what}"), line)?;
+        self.lex.skip(count, || format!("a value of {what} (line {line})"))
+    }
+
+    /// `FIELD name n`, then `n` arrays `name components tuples type` with their values.
+    fn field(&mut self, line: usize) -> Result<()> {
+        self.lex.expect(|| "the name of the FIELD".into())?;
+        let (arrays, al) = self.lex.u64(|| "the number of arrays of the FIELD".into())?;
+        self.lex.check_count(arrays, 8, "field arrays", al)?;
+        for _ in 0..arrays {
+            let name = self.lex.expect(|| format!("the name of an array of the FIELD at line {line}"))?;
+            let (c, _) = self.lex.u64(|| format!("the number of components of array {}", name.text))?;
+            let (t, _) = self.lex.u64(|| format!("the number of tuples of array {}", name.text))?;
+            self.lex.expect(|| format!("the data type of array {}", name.text))?;
+            self.skip_values(c.saturating_mul(t), name.text, name.line)?;
+            if self.lex.peek().is_some_and(|m| is(m.text, "METADATA")) {
+                self.lex.next();
+                self.lex.skip_to_blank_line();
+            }
+        }
+        Ok(())
+    }
+
+    fn finish(self) -> Result<Mesh> {
+        let Reader { lex, dataset, mut builder, points_line, cells, types, mut marked, fixed } = self;
+        if points_line.is_none() {
+            return Err(Error::parse(lex.last_line(), "the file ends without a POINTS section"));
+        }
+        let np = builder.node_count();
+        let Some(cells) = cells else {
+            return Err(Error::Empty(format!(
+                "{np} points but no {} section",
+                if dataset == Dataset::PolyData { "POLYGONS" } else { "CELLS" }
+            )));
+        };
+        let types = match (dataset, types) {
+            (Dataset::UnstructuredGrid, None) => {
+                return Err(Error::parse(
+                    lex.last_line(),
+                    format!("the file ends without the CELL_TYPES section for the {} cells of line {}", cells.len(), cells.header),
+                ))
+            }
+            (_, t) => t,
+        };
+        let mut ids = [0u32; 9];
+        for i in 0..cells.len() {
+            let conn = cells.cell(i);
+            let line = cells.lines[i] as usize;
+            let (ty, type_line) = match &types {
+                Some((t, l, _)) => (t[i], l[i] as usize),
+                None => (7, line), // POLYDATA polygons
+            };
+            let check = |nodes: &[u64], ids: &mut [u32]| -> Result<()> {
+                if let Some(v) = repeated(nodes) {
+                    return Err(Error::element(i, Some(line), format!("point {v} appears twice in the cell")));
+                }
+                for (j, &v) in nodes.iter().enumerate() {
+                    if v >= np as u64 {
+                        return Err(Error::element(
+                            i,
+                            Some(line),
+                            format!("point index {v} is out of range: the file has {np} points (0 to {})", np.saturating_sub(1)),
+                        ));
+                    }
+                    ids[j] = v as u32;
+                }
+                Ok(())
+            };
+            let kind = match vtk_type(ty) {
+                VtkType::Element(kind) => {
+                    if conn.len() != kind.node_count() {
+                        return Err(Error::element(
+                            i,
+                            Some(line),
+                            format!(
+                                "cell type {ty} ({}) needs {} points, but the cell lists {}",
+                                kind.name(),
+                                kind.node_count(),
+                                conn.len()
+                            ),
+                        ));
+                    }
+                    check(conn, &mut ids)?;
+                    kind
+                }
+                VtkType::Pixel => {
+                    if conn.len() != 4 {
+                        return Err(Error::element(i, Some(line), format!("a pixel needs 4 points, but the cell lists {}", conn.len())));
+                    }
+                    check(conn, &mut ids)?;
+                    ids.swap(2, 3);
+                    ElementKind::Quad4
+                }
+                VtkType::Polygon => match conn.len() {
+                    3 | 4 => {
+                        check(conn, &mut ids)?;
+                        if conn.len() == 3 {
+                            ElementKind::Tri3
+                        } else {
+                            ElementKind::Quad4
+                        }
+                    }
+                    k => {
+                        return Err(Error::unsupported(
+                            Some(line),
+                            format!(
+                                "polygons are not supported: element {i} at line {line} has {k} vertices \
+                                 (smoothlab reads triangles and quads)"
+                            ),
+                        ))
+                    }
+                },
+                VtkType::Marker => {
+                    for &v in conn {
+                        if v >= np as u64 {
+                            return Err(Error::element(
+                                i,
+                                Some(line),
+                                format!("point index {v} is out of range: the file has {np} points (0 to {})", np.saturating_sub(1)),
+                            ));
+                        }
+                    }
+                    marked.extend_from_slice(conn);
+                    continue;
+                }
+                VtkType::Unsupported(name) => {
+                    return Err(Error::unsupported(
+                        Some(type_line),
+                        format!(
+                            "VTK cell type {ty} ({name}) of element {i} is not supported: smoothlab reads types 5, 9, \
+                             22, 23, 28 (and 7 with 3 or 4 vertices)"
+                        ),
+                    ))
+                }
+            };
+            builder.add_element(kind, &ids[..kind.node_count()], line);
+        }
+        builder.fixed = if let Some(f) = fixed {
+            FixedSpec::Exact(f)
+        } else if marked.is_empty() {
+            FixedSpec::Boundary
+        } else {
+            let mut f = vec![false; np];
+            for v in marked {
+                match f.get_mut(v as usize) {
+                    Some(s) => *s = true,
+                    None => {
+                        return Err(Error::parse(
+                            lex.last_line(),
+                            format!("a vertex or line cell refers to point {v}, but the file has {np} points"),
+                        ))
+                    }
+                }
+            }
+            FixedSpec::BoundaryAnd(f)
+        };
+        builder.build()
+    }
+}
+
+fn type_of(kind: ElementKind) -> u32 {
+    match kind {
+        ElementKind::Tri3 => 5,
+        ElementKind::Quad4 => 9,
+        ElementKind::Tri6 => 22,
+        ElementKind::Quad8 => 23,
+        ElementKind::Quad9 => 28,
+    }
+}
+
+/// Writes a legacy VTK `UNSTRUCTURED_GRID` (ASCII) with the fixed flags as point data.
+pub(crate) fn write(mesh: &Mesh) -> String {
+    let n = mesh.node_count();
+    let m = mesh.element_count();
+    let size: usize = (0..m).map(|e| mesh.kind(e).node_count() + 1).sum();
+    let mut s = String::with_capacity(48 * n + 40 * m + 256);
+    let _ = write!(s, "# vtk DataFile Version 3.0\nsmoothlab mesh\nASCII\nDATASET UNSTRUCTURED_GRID\nPOINTS {n} double\n");
+    for p in &mesh.nodes {
+        let _ = writeln!(s, "{:?} {:?} 0", p.x, p.y);
+    }
+    let _ = writeln!(s, "CELLS {m} {size}");
+    for e in 0..m {
+        let ids = mesh.element(e);
+        let _ = write!(s, "{}", ids.len());
+        for &i in ids {
+            let _ = write!(s, " {i}");
+        }
+        s.push('\n');
+    }
+    let _ = writeln!(s, "CELL_TYPES {m}");
+    for &k in mesh.kinds() {
+        let _ = writeln!(s, "{}", type_of(k));
+    }
+    let _ = writeln!(s, "POINT_DATA {n}\nSCALARS fixed int 1\nLOOKUP_TABLE default");
+    for &f in &mesh.fixed {
+        let _ = writeln!(s, "{}", u8::from(f));
+    }
+    s
+}
