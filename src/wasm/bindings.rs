@@ -6,8 +6,9 @@ use std::sync::Mutex;
 
 use wasm_bindgen::prelude::*;
 
-use super::playground::{self, Side};
+use super::playground::{self, Settings, Side};
 use super::sample::Sample;
+use crate::io::{self, Format};
 
 /// The message of the last panic, kept by the hook for [`take_panic_message`].
 static LAST_PANIC: Mutex<Option<String>> = Mutex::new(None);
@@ -49,6 +50,19 @@ pub fn samples() -> Result<JsValue, JsError> {
     Ok(serde_wasm_bindgen::to_value(&list)?)
 }
 
+/// Milliseconds from the worker's (or window's) `performance.now()`, else the date.
+fn now_ms() -> f64 {
+    let global = js_sys::global();
+    js_sys::Reflect::get(&global, &JsValue::from_str("performance"))
+        .ok()
+        .and_then(|p| {
+            let now = js_sys::Reflect::get(&p, &JsValue::from_str("now")).ok()?;
+            let now: js_sys::Function = now.dyn_into().ok()?;
+            now.call0(&p).ok()?.as_f64()
+        })
+        .unwrap_or_else(js_sys::Date::now)
+}
+
 fn side(s: &str) -> Result<Side, JsError> {
     serde_wasm_bindgen::from_value(JsValue::from_str(s)).map_err(|_| JsError::new(&format!("no panel '{s}': use old or new")))
 }
@@ -67,6 +81,46 @@ impl Playground {
         let sample: Sample = serde_wasm_bindgen::from_value(JsValue::from_str(name))
             .map_err(|_| JsError::new(&format!("no sample named '{name}'")))?;
         Ok(Playground { inner: playground::Playground::new(sample.generate()?)? })
+    }
+
+    /// A playground on the bytes of a mesh file called `name` (.msh, .vtk, .obj, .off).
+    #[wasm_bindgen(js_name = fromBytes)]
+    pub fn from_bytes(bytes: &[u8], name: &str) -> Result<Playground, JsError> {
+        Ok(Playground { inner: playground::Playground::new(io::read_bytes(bytes, name)?)? })
+    }
+
+    /// A playground on a Triangle mesh: the texts of its `.node` and `.ele` files.
+    #[wasm_bindgen(js_name = fromTriangle)]
+    pub fn from_triangle(node: &str, ele: &str) -> Result<Playground, JsError> {
+        Ok(Playground { inner: playground::Playground::new(io::read_triangle(node, ele)?)? })
+    }
+
+    /// The shared controls: `{ strategy, threshold_deg, order, max_iter }`.
+    #[wasm_bindgen(js_name = setSettings)]
+    pub fn set_settings(&mut self, settings: JsValue) -> Result<(), JsError> {
+        let s: Settings = serde_wasm_bindgen::from_value(settings).map_err(|e| JsError::new(&format!("settings: {e}")))?;
+        Ok(self.inner.set_settings(s)?)
+    }
+
+    /// One smoothing pass on both panels; returns their pass records `[old, new]`.
+    pub fn step(&mut self) -> Result<JsValue, JsError> {
+        Ok(serde_wasm_bindgen::to_value(&self.inner.step(&now_ms))?)
+    }
+
+    /// Perturbs the original mesh (`amount` mean edge lengths, seeded) and resets both panels.
+    pub fn perturb(&mut self, amount: f64, seed: u32) -> Result<(), JsError> {
+        Ok(self.inner.perturb(amount, seed as u64)?)
+    }
+
+    /// A panel's current mesh as the text of a `msh` or `vtk` file.
+    #[wasm_bindgen(js_name = exportMesh)]
+    pub fn export_mesh(&self, panel: &str, format: &str) -> Result<String, JsError> {
+        let format = match format {
+            "msh" => Format::Msh,
+            "vtk" => Format::Vtk,
+            _ => return Err(JsError::new(&format!("cannot export as '{format}': use msh or vtk"))),
+        };
+        Ok(self.inner.export(side(panel)?, format)?)
     }
 
     /// Statistics of one panel (`old` or `new`).

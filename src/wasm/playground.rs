@@ -8,6 +8,7 @@ use serde::{Deserialize, Serialize};
 
 use crate::error::{Error, Result};
 use crate::generate::perturb;
+use crate::io::{write_string, Format, WriteOptions};
 use crate::mesh::Mesh;
 use crate::objective::{objective, Objective, ObjectiveKind};
 use crate::optimize::SolveResult;
@@ -200,6 +201,11 @@ impl Playground {
         Ok(())
     }
 
+    /// A panel's current mesh as the text of a `.msh` (2.2) or `.vtk` file.
+    pub fn export(&self, side: Side, format: Format) -> Result<String> {
+        write_string(&self.panel(side).mesh, format, &WriteOptions::default())
+    }
+
     /// Solves one node of a panel's mesh with the solver's history (for the level-set view),
     /// without moving it.
     pub fn solve_node(&self, side: Side, node: usize) -> Result<SolveResult> {
@@ -344,6 +350,19 @@ mod tests {
         assert_eq!(pg.stats(Side::Old).passes, 0);
         assert_eq!(pg.panel(Side::New).mesh.nodes, pg.original().nodes);
         assert!(pg.perturb(f64::NAN, 1).is_err());
+    }
+
+    #[test]
+    fn export_writes_the_panel_mesh_that_reads_back() {
+        let mut pg = Playground::new(Sample::PlateMixedTangled.generate().unwrap()).unwrap();
+        pg.step(&no_clock);
+        for format in [Format::Msh, Format::Vtk] {
+            let text = pg.export(Side::New, format).unwrap();
+            let back = crate::io::read_str(&text, format).unwrap();
+            assert_eq!(back.node_count(), pg.panel(Side::New).mesh.node_count());
+            assert_eq!(back.nodes, pg.panel(Side::New).mesh.nodes, "{format:?} keeps the smoothed positions");
+            assert_ne!(back.nodes, pg.panel(Side::Old).mesh.nodes);
+        }
     }
 
     #[test]
