@@ -49,3 +49,10 @@ pub use mesh::{
 pub use paint::Marker;
 pub use text::{draw_text, draw_text_rotated, text_width, Align, TextStyle, Valign};
 pub use view::{Frame, View, ZoomPan};
+
+/// The picture as PNG bytes, for the CLI (native builds only: the page hands the
+/// pixels to a canvas and needs no PNG codec).
+#[cfg(not(target_arch = "wasm32"))]
+pub fn encode_png(pixmap: &tiny_skia::Pixmap) -> crate::Result<Vec<u8>> {
+    pixmap.encode_png().map_err(|e| crate::Error::Io(format!("cannot encode the picture as PNG: {e}")))
+}
