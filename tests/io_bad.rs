@@ -34,7 +34,7 @@ const EXPECTED: &[(&str, &[&str])] = &[
     ("empty.vtk", &["empty mesh", "no nodes and no elements"]),
     ("inf_coordinate.vtk", &["line 7", "y coordinate of point 1", "finite", "'inf'"]),
     ("missing_cell_types.vtk", &["line 11", "without the CELL_TYPES section", "line 10"]),
-    ("cell_types_count.vtk", &["line 12", "CELL_TYPES announces 2 types", "has 1 cells"]),
+    ("cell_types_count.vtk", &["line 13", "CELL_TYPES announces 1 types", "has 2 cells"]),
     ("wrong_node_count_for_type.vtk", &["element 0 (line 11)", "needs 4 points", "lists 3"]),
     ("tetra_cell.vtk", &["line 13", "cell type 10 (tetrahedron)", "not supported"]),
     ("truncated_points.vtk", &["line 8", "ends here", "z coordinate of point 2"]),

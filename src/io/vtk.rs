@@ -11,8 +11,10 @@
 //! Data may wrap over lines freely; errors still name the line.
 //!
 //! Like Mesquite's own reader, the `size` number of a legacy `CELLS` header (redundant:
-//! the cells carry their own counts) is not held against the file, while a `CELL_TYPES`
-//! count that differs from the number of cells is an error.
+//! the cells carry their own counts) is not held against the file. A `CELL_TYPES` count
+//! *larger* than the number of cells (Mesquite's `triPatch_*.vtk` announce and list 19
+//! types for 6 cells) is read in full and the first types, one per cell, are used; a
+//! count smaller than the number of cells is an error.
 //!
 //! Written: `UNSTRUCTURED_GRID` with `POINTS … double` at full `f64` precision (z = 0),
 //! legacy `CELLS`, `CELL_TYPES`, and `POINT_DATA` `SCALARS fixed int 1`, so nodes,
@@ -300,11 +302,11 @@ impl Reader<'_> {
         if let Some((_, _, l)) = &self.types {
             return Err(Error::parse(line, format!("a second CELL_TYPES section (the first is at line {l})")));
         }
-        let (n, nl) = self.lex.u64(|| "the number of cell types".into())?;
-        if n != cells.len() as u64 {
+        let (announced, nl) = self.lex.u64(|| "the number of cell types".into())?;
+        if announced < cells.len() as u64 {
             return Err(Error::parse(
                 nl,
-                format!("CELL_TYPES announces {n} types, but CELLS (line {}) has {} cells", cells.header, cells.len()),
+                format!("CELL_TYPES announces {announced} types, but CELLS (line {}) has {} cells", cells.header, cells.len()),
             ));
         }
         let n = cells.len();
@@ -314,6 +316,11 @@ impl Reader<'_> {
             let (t, tl) = self.lex.u64(|| format!("the type of cell {i} (of the {n} at line {line})"))?;
             types.push(t);
             lines.push(tl as u32);
+        }
+        // More types than cells: read (and check) the surplus, use the first ones.
+        let extra = self.lex.check_count(announced - n as u64, 2, "cell types", nl)?;
+        for i in 0..extra {
+            self.lex.u64(|| format!("cell type {} of the {announced} announced at line {nl}", n + i))?;
         }
         self.types = Some((types, lines, line));
         Ok(())
