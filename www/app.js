@@ -22,7 +22,7 @@ const state = {
   node: null, // the node whose level sets are shown
   running: false,
   cancel: false,
-  frame: { w: 0, h: 0 }, // size of the last mesh frame (for picking)
+  frame: { w: 0, h: 0, dpr: 1 }, // the last mesh frame (pointer positions map through it)
 };
 
 const engine = new Engine((err) => recoverFromPanic(err));
@@ -66,7 +66,6 @@ function recoverFromPanic(err) {
   const src = state.lastGood;
   engine
     .restart(async (call) => {
-      await call('settings', readSettings());
       if (src) await loadSource(src, call);
     })
     .then(() => serial(redrawAll))
@@ -150,6 +149,7 @@ async function loadSource(src, call = (...a) => engine.call(...a)) {
     default:
       throw new Error('unknown mesh source');
   }
+  await call('settings', readSettings());
   state.lastGood = src;
   state.node = null;
   $('node').value = '';
@@ -212,11 +212,12 @@ async function readFiles(files) {
 }
 
 // ---- drawing -------------------------------------------------------------------------
+/** Device-pixel size of a canvas as laid out, and the ratio used (at most 2). */
 function canvasPixels(canvas) {
   const dpr = Math.min(window.devicePixelRatio || 1, 2);
   const w = Math.max(64, Math.min(2048, Math.round(canvas.clientWidth * dpr)));
   const h = Math.max(64, Math.min(2048, Math.round(canvas.clientHeight * dpr)));
-  return { w, h };
+  return { w, h, dpr };
 }
 function paint(canvas, pixels, w, h) {
   if (canvas.width !== w) canvas.width = w;
@@ -262,11 +263,11 @@ function fillStats(table, s) {
 }
 
 async function redrawMeshes() {
-  const { w, h } = canvasPixels($('mesh-old'));
-  const f = await engine.call('frame', w, h);
-  paint($('mesh-old'), f.old, f.w, f.h);
-  paint($('mesh-new'), f.new, f.w, f.h);
-  state.frame = { w: f.w, h: f.h };
+  const { w, h, dpr } = canvasPixels($('mesh-old'));
+  const f = await engine.call('frame', w, h, dpr);
+  paint($('mesh-old'), f.old, w, h);
+  paint($('mesh-new'), f.new, w, h);
+  state.frame = { w, h, dpr };
   const st = await engine.call('stats');
   fillStats($('stats-old'), st.old);
   fillStats($('stats-new'), st.new);
@@ -276,10 +277,27 @@ async function redrawCharts() {
   if (EMBED) return;
   const c = canvasPixels($('pass-chart'));
   const hc = canvasPixels($('hist-old'));
-  const r = await engine.call('charts', c.w, c.h, hc.w, hc.h);
+  const r = await engine.call('charts', c.w, c.h, hc.w, hc.h, c.dpr);
   paint($('pass-chart'), r.pass, c.w, c.h);
   paint($('hist-old'), r.hist_old, hc.w, hc.h);
   paint($('hist-new'), r.hist_new, hc.w, hc.h);
+}
+
+const NODE_HINT = 'Click a free (interior) node on either mesh, or type its number. Drag a node to move it on both meshes.';
+
+/** A canvas with a line of text in the middle (drawn, not HTML). */
+function placeholder(canvas, text) {
+  const { w, h } = canvasPixels(canvas);
+  canvas.width = w;
+  canvas.height = h;
+  const g = canvas.getContext('2d');
+  g.fillStyle = '#ffffff';
+  g.fillRect(0, 0, w, h);
+  g.fillStyle = '#5b6470';
+  g.font = `${Math.round(14 * (w / canvas.clientWidth || 1))}px system-ui, sans-serif`;
+  g.textAlign = 'center';
+  g.textBaseline = 'middle';
+  g.fillText(text, w / 2, h / 2);
 }
 
 async function redrawNode() {
@@ -287,13 +305,11 @@ async function redrawNode() {
   const lv = canvasPixels($('level-old'));
   const ch = canvasPixels($('solve-chart'));
   if (state.node === null) {
-    for (const id of ['level-old', 'level-new', 'solve-chart']) {
-      const c = $(id);
-      c.getContext('2d').clearRect(0, 0, c.width, c.height);
-    }
+    for (const id of ['level-old', 'level-new', 'solve-chart']) placeholder($(id), 'Click a free node on a mesh');
+    $('node-hint').textContent = NODE_HINT;
     return;
   }
-  const r = await engine.call('nodeView', state.node, lv.w, lv.h, ch.w, ch.h);
+  const r = await engine.call('nodeView', lv.w, lv.h, ch.w, ch.h, lv.dpr);
   paint($('level-old'), r.level_old, lv.w, lv.h);
   paint($('level-new'), r.level_new, lv.w, lv.h);
   paint($('solve-chart'), r.chart, ch.w, ch.h);
@@ -381,18 +397,31 @@ function perturb() {
 }
 
 // ---- picking and dragging ------------------------------------------------------------
+/** The pointer in CSS pixels of the last frame drawn (what the engine's view maps). */
 function toFrame(canvas, ev) {
   const r = canvas.getBoundingClientRect();
+  const { w, h, dpr } = state.frame;
   return {
-    x: ((ev.clientX - r.left) / r.width) * state.frame.w,
-    y: ((ev.clientY - r.top) / r.height) * state.frame.h,
+    x: ((ev.clientX - r.left) / r.width) * (w / dpr),
+    y: ((ev.clientY - r.top) / r.height) * (h / dpr),
   };
 }
 
+/** Chooses the node whose star is highlighted and whose level sets are drawn. */
 function selectNode(node) {
-  state.node = node;
-  $('node').value = node === null ? '' : String(node);
-  return serial(redrawNode).catch(report);
+  return serial(async () => {
+    try {
+      await engine.call('select', node);
+    } catch (e) {
+      $('node').value = state.node === null ? '' : String(state.node);
+      throw e;
+    }
+    state.node = node;
+    $('node').value = node === null ? '' : String(node);
+    clearError();
+    await redrawMeshes();
+    await redrawNode();
+  }).catch(report);
 }
 
 function attachPointer(canvas) {
@@ -400,10 +429,9 @@ function attachPointer(canvas) {
   canvas.addEventListener('pointerdown', async (ev) => {
     if (state.running || ev.button !== 0) return;
     const p = toFrame(canvas, ev);
-    const { w, h } = state.frame;
     let node;
     try {
-      node = await serial(() => engine.call('pick', p.x, p.y, w, h));
+      node = await serial(() => engine.call('pick', canvas.dataset.side, p.x, p.y));
     } catch (e) {
       report(e);
       return;
@@ -446,13 +474,15 @@ function pumpDrag(d, final = false) {
   if (!p) return;
   d.latest = null;
   d.busy = true;
-  const { w, h } = state.frame;
   serial(async () => {
-    await engine.call('drag', d.node, p.x, p.y, w, h);
-    await redrawMeshes();
+    await engine.call('drag', d.node, p.x, p.y);
     if (final || d.final) {
+      await engine.call('select', d.node);
       state.node = d.node;
       $('node').value = String(d.node);
+    }
+    await redrawMeshes();
+    if (final || d.final) {
       await redrawCharts();
       await redrawNode();
     }
@@ -596,7 +626,6 @@ async function main() {
     return;
   }
   const src = applyHash();
-  await applySettings().catch(report);
   const label = src.kind === 'gmsh' ? src.name : src.name;
   await load(src, label);
   document.body.dataset.ready = '1';

@@ -7,6 +7,7 @@
 
 pub mod playground;
 pub mod sample;
+pub mod views;
 
 #[cfg(target_arch = "wasm32")]
 mod bindings;

@@ -30,6 +30,7 @@ pub enum Side {
 }
 
 impl Side {
+    #[cfg(test)]
     pub const BOTH: [Side; 2] = [Side::Old, Side::New];
     fn index(self) -> usize {
         self as usize
@@ -169,6 +170,7 @@ impl Playground {
         })
     }
 
+    #[cfg(test)]
     pub fn settings(&self) -> Settings {
         self.settings
     }

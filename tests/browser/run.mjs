@@ -186,10 +186,12 @@ try {
   });
 
   await test('clicking a node draws both level sets, the path and the solve history', async () => {
+    const blank = await canvasInfo(page, 'level-new');
     const hit = await clickSomeNode(page, 'mesh-new', ringPoints());
     for (const id of ['level-old', 'level-new', 'solve-chart']) {
       const c = await canvasInfo(page, id);
-      check(c.colours > 20, `${id} looks blank (${c.colours} colours)`);
+      check(c.colours > 100 && c.hash !== blank.hash, `${id} looks blank (${c.colours} colours)`);
+      console.log(`     ${id}: ${c.colours} colours`);
     }
     check((await page.textContent('#node-hint')).includes(String(hit.node)), 'the summary names the node');
     await page.locator('.node-view').screenshot({ path: path.join(OUT, '03-node-view.png') });
@@ -207,6 +209,7 @@ try {
     const files = ['bad_number.msh', 'non_planar.vtk', 'index_out_of_range.obj'].map((f) => path.join(BAD, f));
     for (const f of files) check(existsSync(f), `missing test file ${f}`);
     const before = { s: await stats(page, 'new'), c: await canvasInfo(page, 'mesh-new') };
+    check(Number(before.s.nodes) > 0 && before.c.colours > 8, 'a mesh is shown before');
     for (const f of files) {
       await page.setInputFiles('#file', f);
       await page.waitForFunction(() => !document.getElementById('message').hidden, null, { timeout: TIMEOUT });
@@ -332,11 +335,24 @@ try {
     check(!(await p3.isVisible('.node-view')) && !(await p3.isVisible('.pass-view')), 'embed hides the extra views');
     check(await p3.isVisible('#mesh-old') && await p3.isVisible('#mesh-new'), 'both meshes shown');
     check(await p3.isVisible('#open-full'), 'link to the full page');
-    const overflow = await p3.evaluate(() => document.documentElement.scrollWidth - window.innerWidth);
-    check(overflow <= 0, `horizontal overflow ${overflow}px`);
-    const [a, b] = [await p3.locator('#panel-old').boundingBox(), await p3.locator('#panel-new').boundingBox()];
-    check(b.y >= a.y + a.height - 1, 'panels stack when narrow');
+    const overflow = () => p3.evaluate(() => document.documentElement.scrollWidth - window.innerWidth);
+    const boxes = async () => [await p3.locator('#panel-old').boundingBox(), await p3.locator('#panel-new').boundingBox()];
+    check((await overflow()) <= 0, `horizontal overflow ${await overflow()}px`);
+    let [a, b] = await boxes();
+    check(Math.abs(a.y - b.y) < 1, 'at 480 px the embed shows the panels side by side');
     await shot(p3, '07-embed-480');
+    await p3.setViewportSize({ width: 360, height: 800 });
+    await p3.waitForTimeout(400);
+    await idle(p3);
+    [a, b] = await boxes();
+    check(b.y >= a.y + a.height - 1, 'at 360 px the panels stack');
+    check((await overflow()) <= 0, `horizontal overflow at 360 px: ${await overflow()}px`);
+    // the full page on a phone-sized screen stacks too
+    await p3.goto(`${server.base}#sample=star-quad`);
+    await idle(p3);
+    [a, b] = await boxes();
+    check(b.y >= a.y + a.height - 1 && (await overflow()) <= 0, 'the full page stacks at 360 px');
+    await shot(p3, '08-full-360');
     await p3.close();
   });
 
