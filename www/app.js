@@ -425,40 +425,46 @@ function selectNode(node) {
 }
 
 function attachPointer(canvas) {
-  let drag = null; // {node, start, moved, pending, latest}
-  canvas.addEventListener('pointerdown', async (ev) => {
-    if (state.running || ev.button !== 0) return;
+  // One gesture per press. The pick is asynchronous (the engine is in a worker), so the
+  // button may be released, or the pointer moved, before it answers: the gesture keeps
+  // what happened and finishes when both the pick and the release are in.
+  let gesture = null;
+  const finish = (g) => {
+    if (g.node === null || g.node === undefined) return;
+    if (g.moved) pumpDrag(g, true);
+    else selectNode(g.node);
+  };
+  canvas.addEventListener('pointerdown', (ev) => {
+    if (state.running || ev.button !== 0 || !state.frame.w) return;
     const p = toFrame(canvas, ev);
-    let node;
-    try {
-      node = await serial(() => engine.call('pick', canvas.dataset.side, p.x, p.y));
-    } catch (e) {
-      report(e);
-      return;
-    }
-    if (node === undefined || node === null) return;
+    const g = { node: undefined, start: p, moved: false, up: false, busy: false, latest: null, final: false };
+    gesture = g;
     canvas.setPointerCapture(ev.pointerId);
-    drag = { node, start: p, moved: false, busy: false, latest: null };
+    serial(() => engine.call('pick', canvas.dataset.side, p.x, p.y))
+      .then((node) => {
+        g.node = node === undefined ? null : node;
+        if (g.up) finish(g);
+        else if (g.moved && g.node !== null) pumpDrag(g);
+      })
+      .catch(report);
   });
   canvas.addEventListener('pointermove', (ev) => {
-    if (!drag) return;
+    const g = gesture;
+    if (!g) return;
     const p = toFrame(canvas, ev);
-    if (!drag.moved && Math.hypot(p.x - drag.start.x, p.y - drag.start.y) < 4) return;
-    drag.moved = true;
-    drag.latest = p;
-    pumpDrag(drag);
+    if (!g.moved && Math.hypot(p.x - g.start.x, p.y - g.start.y) < 4) return;
+    g.moved = true;
+    g.latest = p;
+    if (g.node !== undefined && g.node !== null) pumpDrag(g);
   });
   const end = (ev) => {
-    if (!drag) return;
-    const d = drag;
-    drag = null;
+    const g = gesture;
+    if (!g) return;
+    gesture = null;
+    g.up = true;
     if (canvas.hasPointerCapture(ev.pointerId)) canvas.releasePointerCapture(ev.pointerId);
-    if (d.moved) {
-      d.latest = toFrame(canvas, ev);
-      pumpDrag(d, true);
-    } else {
-      selectNode(d.node);
-    }
+    if (g.moved) g.latest = toFrame(canvas, ev);
+    if (g.node !== undefined) finish(g);
   };
   canvas.addEventListener('pointerup', end);
   canvas.addEventListener('pointercancel', end);

@@ -187,7 +187,10 @@ try {
 
   await test('clicking a node draws both level sets, the path and the solve history', async () => {
     const blank = await canvasInfo(page, 'level-new');
+    const before = [await stats(page, 'old'), await stats(page, 'new')];
     const hit = await clickSomeNode(page, 'mesh-new', ringPoints());
+    const after = [await stats(page, 'old'), await stats(page, 'new')];
+    check(JSON.stringify(after) === JSON.stringify(before), 'clicking (not dragging) moved a node');
     for (const id of ['level-old', 'level-new', 'solve-chart']) {
       const c = await canvasInfo(page, id);
       check(c.colours > 100 && c.hash !== blank.hash, `${id} looks blank (${c.colours} colours)`);
