@@ -357,10 +357,10 @@ async function run() {
   let done = 0;
   try {
     for (let i = 0; i < n && !state.cancel; i++) {
+      setStatus(`Running pass ${i + 1} of ${n}… (Stop ends the run after this pass)`);
       await serial(onePass);
       done = i + 1;
       $('progress').value = done;
-      setStatus(`Pass ${done} of ${n}…`);
       await new Promise((r) => requestAnimationFrame(() => r()));
     }
     await serial(async () => {

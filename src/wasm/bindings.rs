@@ -10,8 +10,8 @@ use wasm_bindgen::prelude::*;
 use super::playground::{self, Settings, Side};
 use super::sample::Sample;
 use super::views::Canvas;
-use glam::DVec2;
 use crate::io::{self, Format};
+use glam::DVec2;
 
 /// The message of the last panic, kept by the hook for [`take_panic_message`].
 static LAST_PANIC: Mutex<Option<String>> = Mutex::new(None);
@@ -50,7 +50,7 @@ pub fn samples() -> Result<JsValue, JsError> {
         title: &'static str,
     }
     let list: Vec<Entry> = Sample::ALL.iter().map(|&s| Entry { name: s, title: s.title() }).collect();
-    Ok(to_js(&list)?)
+    to_js(&list)
 }
 
 /// Milliseconds from the worker's (or window's) `performance.now()`, else the date.
@@ -67,7 +67,8 @@ fn now_ms() -> f64 {
 }
 
 fn side(s: &str) -> Result<Side, JsError> {
-    serde_wasm_bindgen::from_value(JsValue::from_str(s)).map_err(|_| JsError::new(&format!("no panel '{s}': use old or new")))
+    serde_wasm_bindgen::from_value(JsValue::from_str(s))
+        .map_err(|_| JsError::new(&format!("no panel '{s}': use old or new")))
 }
 
 /// A record as a plain JS object (maps too, so `#[serde(flatten)]` fields read as properties).
@@ -80,7 +81,8 @@ fn to_js<T: Serialize>(value: &T) -> Result<JsValue, JsError> {
 fn object(entries: &[(&str, JsValue)]) -> Result<JsValue, JsError> {
     let o = js_sys::Object::new();
     for (k, v) in entries {
-        js_sys::Reflect::set(&o, &JsValue::from_str(k), v).map_err(|_| JsError::new("cannot build the result object"))?;
+        js_sys::Reflect::set(&o, &JsValue::from_str(k), v)
+            .map_err(|_| JsError::new("cannot build the result object"))?;
     }
     Ok(o.into())
 }
@@ -139,13 +141,14 @@ impl Playground {
     /// The shared controls: `{ strategy, threshold_deg, order, max_iter }`.
     #[wasm_bindgen(js_name = setSettings)]
     pub fn set_settings(&mut self, settings: JsValue) -> Result<(), JsError> {
-        let s: Settings = serde_wasm_bindgen::from_value(settings).map_err(|e| JsError::new(&format!("settings: {e}")))?;
+        let s: Settings =
+            serde_wasm_bindgen::from_value(settings).map_err(|e| JsError::new(&format!("settings: {e}")))?;
         Ok(self.inner.set_settings(s)?)
     }
 
     /// One smoothing pass on both panels; returns their pass records `[old, new]`.
     pub fn step(&mut self) -> Result<JsValue, JsError> {
-        Ok(to_js(&self.inner.step(&now_ms))?)
+        to_js(&self.inner.step(&now_ms))
     }
 
     /// Perturbs the original mesh (`amount` mean edge lengths, seeded) and resets both panels.
@@ -166,7 +169,7 @@ impl Playground {
 
     /// Statistics of one panel (`old` or `new`).
     pub fn stats(&self, panel: &str) -> Result<JsValue, JsError> {
-        Ok(to_js(&self.inner.stats(side(panel)?))?)
+        to_js(&self.inner.stats(side(panel)?))
     }
 
     /// Both panels back to the mesh as loaded.

@@ -127,7 +127,12 @@ pub struct Panel {
 
 impl Panel {
     fn new(side: Side, mesh: Mesh, options: SmoothOptions) -> Result<Self> {
-        Ok(Panel { mesh, objective: objective(side.objective_kind()), smoother: Smoother::new(options)?, records: Vec::new() })
+        Ok(Panel {
+            mesh,
+            objective: objective(side.objective_kind()),
+            smoother: Smoother::new(options)?,
+            records: Vec::new(),
+        })
     }
 }
 
@@ -327,7 +332,10 @@ mod tests {
             serde_json::from_str(r#"{"strategy":"c2","threshold_deg":10,"order":"input","max_iter":5}"#).unwrap();
         pg.set_settings(s).unwrap();
         assert_eq!(pg.settings().strategy, StrategyChoice::C2);
-        assert!(serde_json::from_str::<Settings>(r#"{"strategy":"magic","threshold_deg":10,"order":"input","max_iter":5}"#).is_err());
+        assert!(serde_json::from_str::<Settings>(
+            r#"{"strategy":"magic","threshold_deg":10,"order":"input","max_iter":5}"#
+        )
+        .is_err());
     }
 
     #[test]

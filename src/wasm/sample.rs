@@ -131,6 +131,12 @@ mod tests {
     }
 
     #[test]
+    fn titles_are_distinct() {
+        let titles: std::collections::HashSet<_> = Sample::ALL.iter().map(|s| s.title()).collect();
+        assert_eq!(titles.len(), Sample::ALL.len());
+    }
+
+    #[test]
     fn names_round_trip_through_serde() {
         for s in Sample::ALL {
             let j = serde_json::to_string(&s).unwrap();

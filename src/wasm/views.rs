@@ -214,11 +214,27 @@ impl Playground {
         };
         let (o, n) = (hist(Side::Old), hist(Side::New));
         let runs = [
-            PassHistory { label: "old (max-min)", min_angle_deg: &o[0], max_angle_deg: &o[1], min_quality: &o[2], inverted: &o[3] },
-            PassHistory { label: "new (Chen et al.)", min_angle_deg: &n[0], max_angle_deg: &n[1], min_quality: &n[2], inverted: &n[3] },
+            PassHistory {
+                label: "old (max-min)",
+                min_angle_deg: &o[0],
+                max_angle_deg: &o[1],
+                min_quality: &o[2],
+                inverted: &o[3],
+            },
+            PassHistory {
+                label: "new (Chen et al.)",
+                min_angle_deg: &n[0],
+                max_angle_deg: &n[1],
+                min_quality: &n[2],
+                inverted: &n[3],
+            },
         ];
         let mut pm = pixmap(c.w, c.h)?;
-        render_pass_histories(&mut pm, &runs, &Chart { title: "Per pass (0 = as loaded)", dpr: c.dpr, ..Chart::default() });
+        render_pass_histories(
+            &mut pm,
+            &runs,
+            &Chart { title: "Per pass (0 = as loaded)", dpr: c.dpr, ..Chart::default() },
+        );
         Ok(pm)
     }
 
@@ -266,7 +282,11 @@ mod tests {
         let free = pg.original().node_count() - 1;
         let at = view.to_css(pg.original().nodes[free]);
         assert_eq!(pg.pick_free_node(Side::New, &view, at + DVec2::new(3.0, -2.0)), Some(free));
-        assert_eq!(pg.pick_free_node(Side::New, &view, view.to_css(pg.original().nodes[0])), None, "fixed nodes are not picked");
+        assert_eq!(
+            pg.pick_free_node(Side::New, &view, view.to_css(pg.original().nodes[0])),
+            None,
+            "fixed nodes are not picked"
+        );
         assert_eq!(pg.pick_free_node(Side::New, &view, DVec2::new(f64::NAN, 0.0)), None);
     }
 
