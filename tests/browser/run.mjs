@@ -289,6 +289,63 @@ try {
     check(png.bytes.subarray(1, 4).toString() === 'PNG', 'png magic');
   });
 
+  await test('a mesh saved from a panel reads back with the same statistics (drop a file)', async () => {
+    await chooseSample(page, 'sample:plate-tri-tangled');
+    await page.click('#step');
+    await page.waitForFunction(() => document.querySelector('#stats-new tr[data-stat="passes"] td')?.textContent === '1', null, { timeout: TIMEOUT });
+    await idle(page);
+    const smoothed = await stats(page, 'new');
+    const [dl] = await Promise.all([page.waitForEvent('download'), page.click('button[data-export="msh"][data-side="new"]')]);
+    const text = readFileSync(await dl.path(), 'utf8');
+    // drop it on the page as a user drags a file from the desktop
+    await page.evaluate(([name, body]) => {
+      const dt = new DataTransfer();
+      dt.items.add(new File([body], name));
+      document.body.dispatchEvent(new DragEvent('drop', { dataTransfer: dt, bubbles: true, cancelable: true }));
+    }, [dl.suggestedFilename(), text]);
+    await page.waitForFunction(() => /Loaded .*_new\.msh/.test(document.getElementById('status').textContent), null, { timeout: TIMEOUT });
+    await idle(page);
+    const back = await stats(page, 'old');
+    for (const k of ['nodes', 'elements', 'inverted', 'min_angle', 'max_angle', 'min_quality']) {
+      check(back[k] === smoothed[k], `${k}: ${back[k]} read back, ${smoothed[k]} saved`);
+    }
+    check(back.passes === '0', 'a loaded file starts with no passes');
+  });
+
+  await test('a node chosen from the keyboard; a fixed node is refused with a message', async () => {
+    await chooseSample(page, 'sample:star-regular');
+    await page.fill('#node', '0');
+    await page.press('#node', 'Enter');
+    await page.waitForFunction(() => !document.getElementById('message').hidden, null, { timeout: TIMEOUT });
+    check(/node 0 cannot be chosen/.test(await page.textContent('#message')), await page.textContent('#message'));
+    await page.fill('#node', '6');
+    await page.press('#node', 'Tab');
+    await page.waitForFunction(() => document.getElementById('message').hidden, null, { timeout: TIMEOUT });
+    await idle(page);
+    const c = await canvasInfo(page, 'level-new');
+    check(c.colours > 100, `level sets of node 6: ${c.colours} colours`);
+    check((await page.textContent('#node-hint')).startsWith('Node 6:'), 'summary');
+  });
+
+  await test('the 100k-node sample loads in the worker while the page keeps drawing frames', async () => {
+    await page.evaluate(() => {
+      window.gaps = [];
+      let last = performance.now();
+      window.keep = true;
+      const f = (t) => { window.gaps.push(t - last); last = t; if (window.keep) requestAnimationFrame(f); };
+      requestAnimationFrame(f);
+    });
+    const t0 = Date.now();
+    await chooseSample(page, 'sample:rand2d-large');
+    const ms = Date.now() - t0;
+    const gap = await page.evaluate(() => { window.keep = false; return Math.max(...window.gaps); });
+    const s = await stats(page, 'new');
+    check(Number(s.nodes) >= 100000, `nodes ${s.nodes}`);
+    check(gap < 250, `the main thread stalled for ${gap.toFixed(0)} ms`);
+    console.log(`     ${s.nodes} nodes, ${s.elements} elements loaded and drawn in ${ms} ms; longest frame gap ${gap.toFixed(0)} ms`);
+    await chooseSample(page, 'sample:plate-tri');
+  });
+
   await test('a panic in the engine is reported and the page keeps working', async () => {
     allowedErrors = ['deliberate panic'];
     const before = await stats(page, 'new');
