@@ -185,6 +185,24 @@ try {
     await shot(page, '02-after-3-passes');
   });
 
+  await test('Stop ends a long Run after the pass in progress', async () => {
+    await chooseSample(page, 'sample:rand2d-tangled');
+    await page.fill('#passes', '40');
+    await page.click('#run');
+    await page.waitForFunction(() => document.getElementById('progress').value >= 1, null, { timeout: TIMEOUT });
+    await page.click('#run'); // now labelled Stop
+    await page.waitForFunction(() => document.getElementById('run').textContent === 'Run', null, { timeout: TIMEOUT });
+    await idle(page);
+    const s = await stats(page, 'new');
+    check(Number(s.passes) >= 1 && Number(s.passes) < 40, `passes after Stop: ${s.passes}`);
+    check(/Stopped after/.test(await page.textContent('#status')), await page.textContent('#status'));
+    await page.fill('#passes', '3');
+    await chooseSample(page, 'sample:plate-tri-tangled');
+    await page.click('#run');
+    await page.waitForFunction(() => document.getElementById('run').textContent === 'Run' && document.getElementById('progress').value === 3, null, { timeout: TIMEOUT });
+    await idle(page);
+  });
+
   await test('clicking a node draws both level sets, the path and the solve history', async () => {
     const blank = await canvasInfo(page, 'level-new');
     const before = [await stats(page, 'old'), await stats(page, 'new')];
