@@ -338,6 +338,7 @@ function step() {
     await onePass();
     await redrawCharts();
     await redrawNode();
+    clearError();
     setStatus('One pass done on both sides.');
   }).catch(report);
 }
@@ -382,6 +383,7 @@ function reset() {
   return serial(async () => {
     await engine.call('reset');
     await redrawAll();
+    clearError();
     setStatus('Both sides reset to the mesh as loaded.');
   }).catch(report);
 }
@@ -392,6 +394,7 @@ function perturb() {
   return serial(async () => {
     await engine.call('perturb', amount, seed);
     await redrawAll();
+    clearError();
     setStatus(`Perturbed the original mesh by ${amount} mean edge lengths (seed ${seed}); both sides start again from it.`);
   }).catch(report);
 }

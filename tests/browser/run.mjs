@@ -118,8 +118,8 @@ async function canvasInfo(page, id) {
     return { colours: colours.size, hash: h >>> 0, w: c.width, h: c.height };
   }, id);
 }
-async function shot(page, name) {
-  await page.screenshot({ path: path.join(OUT, `${name}.png`), fullPage: true });
+async function shot(page, name, fullPage = true) {
+  await page.screenshot({ path: path.join(OUT, `${name}.png`), fullPage });
 }
 async function chooseSample(page, value) {
   await page.selectOption('#sample', value);
@@ -244,7 +244,7 @@ try {
       if (f.endsWith('non_planar.vtk')) check(/planar/.test(msg), `non-planar message: ${msg}`);
     }
     check((await page.getAttribute('#message', 'role')) === 'alert', 'the message is an alert');
-    await shot(page, '05-bad-file');
+    await shot(page, '05-bad-file', false);
   });
 
   await test('a Triangle .node + .ele pair loads when selected together', async () => {
@@ -375,7 +375,7 @@ try {
     check(after.nodes === before.nodes, 'the mesh was reloaded');
     await page.click('#step');
     await page.waitForFunction(() => document.querySelector('#stats-new tr[data-stat="passes"] td')?.textContent === '1', null, { timeout: TIMEOUT });
-    await shot(page, '06-after-panic');
+    await shot(page, '06-after-panic', false);
     allowedErrors = [];
   });
 
