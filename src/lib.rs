@@ -10,13 +10,14 @@
 pub mod error;
 pub mod generate;
 pub mod io;
+pub mod lab;
 pub mod mesh;
 pub mod objective;
 pub mod optimize;
 pub mod quality;
 pub mod render;
 pub mod smooth;
-#[cfg(any(target_arch = "wasm32", test))]
+#[cfg(target_arch = "wasm32")]
 mod wasm;
 
 pub use error::{Error, Result};

@@ -7,7 +7,7 @@
 use glam::DVec2;
 use tiny_skia::Pixmap;
 
-use super::playground::{Playground, Side};
+use super::{Playground, Side};
 use crate::error::{Error, Result};
 use crate::objective::Star;
 use crate::optimize::{DirectionKind, SolveResult};
@@ -259,7 +259,7 @@ impl Playground {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::wasm::sample::Sample;
+    use crate::lab::sample::Sample;
     use std::collections::HashSet;
 
     fn colours(pm: &Pixmap) -> usize {

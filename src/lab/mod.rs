@@ -1,7 +1,11 @@
-//! The playground's state in plain Rust (no web types, so it is tested natively): the
+//! The laboratory: old versus new, side by side. The playground page's state in plain
+//! Rust (no web types; the wasm layer and the CLI's `render` both call it): the
 //! original mesh, and one copy per side — the OLD max-min objective (Freitag 1997, left)
 //! and the NEW smooth objective (Chen, Tristano & Kwok 2003, right) — that the page
 //! smooths, perturbs and drags side by side.
+
+pub mod sample;
+pub mod views;
 
 use glam::DVec2;
 use serde::{Deserialize, Serialize};
@@ -277,7 +281,7 @@ impl Playground {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::wasm::sample::Sample;
+    use crate::lab::sample::Sample;
 
     #[test]
     fn panels_start_equal_and_reset_restores_them() {

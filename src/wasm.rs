@@ -1,4 +1,4 @@
-//! `#[wasm_bindgen]` exports: each converts its arguments, calls [`super::playground`]
+//! `#[wasm_bindgen]` exports: each converts its arguments, calls [`crate::lab`]
 //! or the core, and converts the answer (serde-wasm-bindgen for records, `Vec<u8>` for
 //! pixels). Core errors become `JsError`s carrying the core's message.
 
@@ -7,9 +7,9 @@ use std::sync::Mutex;
 use serde::Serialize;
 use wasm_bindgen::prelude::*;
 
-use super::playground::{self, Settings, Side};
-use super::sample::Sample;
-use super::views::Canvas;
+use crate::lab::{self as playground, Settings, Side};
+use crate::lab::sample::Sample;
+use crate::lab::views::Canvas;
 use crate::io::{self, Format};
 use glam::DVec2;
 
