@@ -8,7 +8,7 @@ WASM := target/wasm32-unknown-unknown/release/smoothlab.wasm
 PORT ?= 8000
 CARGO ?= cargo
 
-.PHONY: serve test site lint unit wasm browser tools browser-tools reproduction
+.PHONY: serve test site lint unit wasm browser tools browser-tools figures reproduction
 
 serve: site
 	@echo "smoothlab playground: http://127.0.0.1:$(PORT)/"
@@ -38,3 +38,7 @@ browser: site browser-tools
 
 reproduction:
 	$(CARGO) run --release --example reproduce > docs/reproduction.md
+
+# the README's pictures (docs/images/), drawn by the CLI from generated meshes
+figures:
+	scripts/figures.sh
