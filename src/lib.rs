@@ -10,6 +10,7 @@
 pub mod error;
 pub mod generate;
 pub mod io;
+pub mod lab;
 pub mod mesh;
 pub mod objective;
 pub mod optimize;
@@ -17,6 +18,8 @@ pub mod permalink;
 pub mod quality;
 pub mod render;
 pub mod smooth;
+#[cfg(target_arch = "wasm32")]
+mod wasm;
 
 pub use error::{Error, Result};
 pub use mesh::{ElementKind, Mesh, MeshBuilder};

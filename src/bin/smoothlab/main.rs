@@ -6,6 +6,8 @@ use clap::{Parser, Subcommand};
 
 mod files;
 mod generate;
+mod render;
+mod smooth;
 mod stats;
 
 #[derive(Parser)]
@@ -23,6 +25,10 @@ enum Command {
     Stats(stats::StatsArgs),
     /// Convert a mesh between formats (by the file extensions).
     Convert(files::ConvertArgs),
+    /// Smooth a mesh: Laplacian, smart, optimization, Freitag's C1/C2/C3 or Chen's rules.
+    Smooth(smooth::SmoothArgs),
+    /// Draw a mesh, level sets, convergence histories or angle histograms to PNG.
+    Render(render::RenderArgs),
 }
 
 fn main() {
@@ -31,6 +37,8 @@ fn main() {
         Command::Generate(a) => generate::run(a),
         Command::Stats(a) => stats::run(a),
         Command::Convert(a) => files::convert(a),
+        Command::Smooth(a) => smooth::run(a),
+        Command::Render(a) => render::run(a),
     };
     if let Err(e) = result {
         eprintln!("smoothlab: {e}");
