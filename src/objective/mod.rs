@@ -46,7 +46,7 @@ pub use condition::{ConditionNumber, Norm, CONDITION_BARRIER};
 pub use new::{adjusted_angle, ChenTristanoKwok, PenaltyLength, EQUILATERAL_PENALTY};
 pub use old::MaxMinShape;
 pub use sine::MaxMinSine;
-pub use untangle::{MaxMinDet, Untangle};
+pub use untangle::{MaxMinDet, Untangle, UNTANGLE_BETA};
 
 /// The objectives smoothlab offers, by their command-line names.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -123,7 +123,7 @@ pub fn objective(kind: ObjectiveKind) -> Box<dyn Objective> {
         ObjectiveKind::New => Box::new(ChenTristanoKwok::default()),
         ObjectiveKind::Condition => Box::new(ConditionNumber { norm: Norm::Two }),
         ObjectiveKind::ConditionMax => Box::new(ConditionNumber { norm: Norm::Infinity }),
-        ObjectiveKind::Untangle => Box::new(Untangle),
+        ObjectiveKind::Untangle => Box::new(Untangle::default()),
         ObjectiveKind::UntangleMinDet => Box::new(MaxMinDet),
     }
 }

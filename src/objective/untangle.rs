@@ -17,24 +17,82 @@ fn visit_dets(star: &Star, x: DVec2, mut emit: impl FnMut(u32, f64, DVec2)) {
     }
 }
 
-/// Knupp's second untangling objective, `Σ (|det| − det)` over the moving corners of the
-/// star, minimised. Each term is `2·max(0, −det)`: zero for a valid corner, so the sum is
-/// zero exactly when no moving corner is inverted (`det ≥ 0`) and "any untangled mesh
-/// minimises it". Piecewise linear in each det; at `det = 0` the gradient is that of the
-/// valid side (zero). Dimensional (an area), with the plain corner Jacobian `A`
-/// (no ideal weight: only signs matter).
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub struct Untangle;
+/// Knupp's second untangling objective, `Σ (|det − β| − (det − β))` over the moving
+/// corners of the star, minimised (Knupp 1999, §2.7, with Mesquite's shift β ≥ 0, its
+/// `UntangleBetaQualityMetric`). Each term is `2·max(0, β − det)`: zero once every
+/// moving corner has `det ≥ β`. Piecewise linear in each det; at `det = β` the gradient
+/// is that of the valid side (zero). Dimensional (an area), with the plain corner
+/// Jacobian `A` (no ideal weight: only signs matter).
+///
+/// Why the shift: with β = 0 (Knupp's form as published) any configuration with every
+/// det ≥ 0 is a minimum, including the *degenerate* ones — a star folded flat, or one
+/// whose free node sits on the line of an opposite edge. Node-by-node descent on a
+/// randomly placed grid walks into exactly those: the objective total falls by three
+/// orders of magnitude while most of the inverted elements stay inverted by a sliver
+/// (det ≈ −10⁻⁶ of the star's mean |det|), and no single node can leave the plateau,
+/// because every term there has a zero or nearly cancelling gradient. Asking for
+/// `det ≥ β > 0` puts the minimum strictly inside the valid region, so a node that
+/// reaches it has left every neighbour it can with a margin.
+///
+/// `beta` is a fraction of the star's mean corner |det| at the node's current position
+/// (`Star::elems[..].pts`, not the trial point: β is one constant through a solve, so the
+/// objective stays piecewise linear and its gradient exact). `beta = 0` is Knupp's form.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Untangle {
+    /// β as a fraction of the star's mean corner |det|. Default [`UNTANGLE_BETA`].
+    pub beta: f64,
+    /// The power `p` each term is raised to. Default 2.
+    pub power: u32,
+}
+
+/// The default shift of [`Untangle`], a fraction of the star's mean corner |det|.
+pub const UNTANGLE_BETA: f64 = 0.05;
+
+impl Default for Untangle {
+    fn default() -> Self {
+        Untangle { beta: UNTANGLE_BETA, power: 2 }
+    }
+}
 
 impl Untangle {
+    /// Knupp's form as published, `Σ (|det| − det)` (β = 0).
+    pub const KNUPP: Untangle = Untangle { beta: 0.0, power: 1 };
+
     pub fn kind(&self) -> ObjectiveKind {
         ObjectiveKind::Untangle
     }
 
+    /// The shift β of `star` in area units: `beta` × the mean |det| of the moving corners
+    /// with the free node where it is now.
+    pub fn shift(&self, star: &Star) -> f64 {
+        if self.beta == 0.0 {
+            return 0.0;
+        }
+        let (mut sum, mut n) = (0.0, 0usize);
+        visit_dets(star, star.x0, |_, det, _| {
+            sum += det.abs();
+            n += 1;
+        });
+        if n == 0 {
+            0.0
+        } else {
+            self.beta * sum / n as f64
+        }
+    }
+
     /// Calls `emit` with one term per moving corner.
     pub fn visit(&self, star: &Star, x: DVec2, mut emit: impl FnMut(Term)) {
+        let beta = self.shift(star);
         visit_dets(star, x, |elem, det, grad| {
-            let (value, grad) = if det < 0.0 { (-2.0 * det, -2.0 * grad) } else { (0.0, DVec2::ZERO) };
+            let (value, grad) = if det < beta {
+                let t = 2.0 * (beta - det);
+                match self.power {
+                    1 => (t, -2.0 * grad),
+                    p => (t.powi(p as i32), -2.0 * p as f64 * t.powi(p as i32 - 1) * grad),
+                }
+            } else {
+                (0.0, DVec2::ZERO)
+            };
             emit(Term { elem, value, grad });
         });
     }
@@ -87,7 +145,7 @@ mod tests {
         for star in sample_stars() {
             for _ in 0..200 {
                 let x = star.x0 + rng.point(1.5);
-                let v = Untangle.value(&star, x);
+                let v = Untangle::KNUPP.value(&star, x);
                 let valid = all_moving_dets_positive(&star, x);
                 assert_eq!(v == 0.0, valid, "untangle {v} at {x}, valid: {valid}");
                 assert!(v >= 0.0);
@@ -112,7 +170,7 @@ mod tests {
         assert!((v - 1.0).abs() < 1e-15);
         // d det/dx at the free corner: det = cross(B − x, C − x) → gradient perp(C − B)... = (−1, −1)
         assert!((g - d(-1.0, -1.0)).length() < 1e-15, "{g}");
-        let (v, g) = Untangle.value_and_gradient(&s, d(1.0, 1.0));
+        let (v, g) = Untangle::KNUPP.value_and_gradient(&s, d(1.0, 1.0));
         // det = cross((0,−1), (−1,0)) = −1 at each of the 3 corners: Σ 2·1 = 6
         assert!((v - 6.0).abs() < 1e-15, "{v}");
         assert!((g - 3.0 * 2.0 * d(1.0, 1.0)).length() < 1e-14, "{g}");
@@ -125,14 +183,14 @@ mod tests {
         for star in sample_stars() {
             for _ in 0..30 {
                 let x = star.x0 + rng.point(1.5);
-                for obj in [&Untangle as &dyn Objective, &MaxMinDet] {
+                for obj in [&Untangle::KNUPP as &dyn Objective, &Untangle::default(), &MaxMinDet] {
                     let (c, t) = check_term_gradients(obj, &star, x, 1e-6);
                     checked += c;
                     total += t;
                 }
                 // the sum is smooth where no det is near zero
-                if looks_smooth(|p| Untangle.value(&star, p), x, 1e-6) {
-                    check_gradient(&Untangle, &star, x, 1e-6);
+                if looks_smooth(|p| Untangle::default().value(&star, p), x, 1e-6) {
+                    check_gradient(&Untangle::default(), &star, x, 1e-6);
                 }
             }
         }

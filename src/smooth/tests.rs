@@ -534,3 +534,83 @@ fn keep_valid_stops_the_new_objective_folding_a_valid_star() {
         assert!(new.value(&star, m.nodes[0]) < f0, "keep_valid {keep}: the objective must fall");
     }
 }
+
+/// A 6 × 6 grid (quads or triangles) of the unit square, boundary fixed, every interior
+/// node placed uniformly at random in the square (Knupp 1999, Fig. 1, smaller).
+fn random_grid(kind: crate::generate::GridKind, seed: u64) -> Mesh {
+    let mut m = crate::generate::grid(6, 6, kind).unwrap();
+    let mut rng = crate::generate::SplitMix64::new(seed);
+    for n in 0..m.node_count() {
+        if m.is_free(n) {
+            m.nodes[n] = DVec2::new(rng.next_f64(), rng.next_f64());
+        }
+    }
+    m
+}
+
+/// Passes of `objective` by optimization, input order, until no element is inverted.
+fn passes_to_valid(mesh: &mut Mesh, objective: &dyn Objective, opts: SmoothOptions, max: u32) -> Option<u32> {
+    let mut s = Smoother::new(opts.with_strategy(Strategy::Opt).with_order(Order::Input)).unwrap();
+    (1..=max).find(|_| s.pass(mesh, objective, NO_CLOCK).inverted == 0)
+}
+
+#[test]
+fn untangle_untangles_random_grids_node_by_node() {
+    use crate::generate::GridKind;
+    use crate::objective::Untangle;
+    let mut untangled = 0;
+    let mut cases = 0;
+    for kind in [GridKind::Quad, GridKind::Tri] {
+        for seed in 1..=4 {
+            let m0 = random_grid(kind, seed);
+            let start = mesh_stats(&m0).inverted;
+            assert!(start > 5, "{kind:?} {seed}: a tangled start ({start})");
+            let mut m = m0.clone();
+            let p = passes_to_valid(&mut m, &Untangle::default(), SmoothOptions::default().with_pass_through_folds(true), 60);
+            cases += 1;
+            if p.is_some() {
+                untangled += 1;
+                // fixed nodes stay put
+                for n in 0..m.node_count() {
+                    if !m.is_free(n) {
+                        assert_eq!(m.nodes[n], m0.nodes[n]);
+                    }
+                }
+            }
+        }
+    }
+    assert_eq!(untangled, cases, "untangled {untangled} of {cases}");
+}
+
+#[test]
+fn the_keep_valid_exception_lets_an_inverted_star_pass_through_a_fold() {
+    // `pass_through_folds` lets an inverted star fold one more element on the way out,
+    // never a valid one.
+    use crate::generate::GridKind;
+    use crate::objective::Untangle;
+    let mut m = random_grid(GridKind::Tri, 7);
+    let mut s =
+        Smoother::new(SmoothOptions::default().with_strategy(Strategy::Opt).with_pass_through_folds(true)).unwrap();
+    for _ in 0..20 {
+        for n in 0..m.node_count() {
+            if !m.is_free(n) {
+                continue;
+            }
+            let star_inverted = |m: &Mesh| {
+                m.node_elements(n)
+                    .iter()
+                    .filter(|&&e| {
+                        let p = m.element_points_array(e as usize);
+                        let k = m.kind(e as usize);
+                        element_quality(k, &p[..k.node_count()]).inverted
+                    })
+                    .count()
+            };
+            let before = star_inverted(&m);
+            s.smooth_node(&mut m, n, &Untangle::default());
+            if before == 0 {
+                assert_eq!(star_inverted(&m), 0, "node {n}: a valid star was folded");
+            }
+        }
+    }
+}
