@@ -173,3 +173,16 @@ fn bad_options_are_refused_with_a_message_and_nothing_written() {
     let r = run(&["smooth", i, "-o", p(&d.join("out.xyz"))]);
     assert!(!r.status.success() && String::from_utf8_lossy(&r.stderr).contains("out.xyz"));
 }
+
+#[test]
+fn pass_through_folds_is_an_option_of_the_solver_strategies_only() {
+    let d = dir("folds");
+    let mesh = tangled_plate(&d);
+    let out = d.join("out.vtk");
+    let json = ok(&["smooth", p(&mesh), "-o", p(&out), "--objective", "untangle", "--strategy", "opt", "--passes", "2", "--pass-through-folds", "--json"]);
+    let v: serde_json::Value = serde_json::from_str(&json).unwrap();
+    assert_eq!(v["passes"].as_array().unwrap().len(), 2);
+    let r = run(&["smooth", p(&mesh), "-o", p(&out), "--strategy", "laplace", "--pass-through-folds"]);
+    assert!(!r.status.success());
+    assert!(String::from_utf8_lossy(&r.stderr).contains("--pass-through-folds"));
+}

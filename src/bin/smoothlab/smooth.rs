@@ -50,6 +50,11 @@ pub struct SmoothArgs {
     /// Solver iterations per optimization call [default: 3]
     #[arg(long)]
     pub max_iter: Option<u32>,
+    /// Let an already inverted star fold one more element when that lowers its total
+    /// inversion (needed to untangle random node positions with `untangle`); off by
+    /// default, so an optimization call never raises a star's inverted count
+    #[arg(long)]
+    pub pass_through_folds: bool,
     /// Print one JSON object instead of a summary
     #[arg(long)]
     pub json: bool,
@@ -181,6 +186,12 @@ fn options(a: &SmoothArgs) -> Result<SmoothOptions, String> {
     }
     if let Some(k) = a.max_iter {
         o = o.with_max_iter(k);
+    }
+    if a.pass_through_folds {
+        if strategy.is_laplacian_only() {
+            return Err(format!("--pass-through-folds: {} never calls the solver", strategy.name()));
+        }
+        o = o.with_pass_through_folds(true);
     }
     o.validate().map_err(|e| e.to_string())?;
     Ok(o)
