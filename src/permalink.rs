@@ -16,30 +16,48 @@
 //! numbers in their shortest exact form, so `decode(&encode(&s)) == Ok(s)` for every
 //! valid state `s` and a state has exactly one encoding.
 
+use serde::{Deserialize, Serialize};
+
 use crate::error::{Error, Result};
 use crate::objective::ObjectiveKind;
 use crate::smooth::{Order, SmoothOptions, Strategy};
 
-/// The sample names a permalink may carry (the page's gallery and its Gmsh files).
+/// The sample names a permalink may carry: every generated sample of the page's gallery
+/// by its serde name ([`Sample`](crate::lab::sample::Sample), kebab-case), then one name
+/// per Gmsh file the page ships (see [`GMSH_FILES`] and [`gmsh_sample_name`]).
 pub const SAMPLES: &[&str] = &[
-    "rand2d",
-    "rand2d-100k",
-    "plate-tri",
-    "plate-quad",
-    "plate-mixed",
     "plate-tri-tangled",
     "plate-quad-tangled",
     "plate-mixed-tangled",
+    "rand2d",
+    "rand2d-tangled",
+    "plate-tri",
+    "plate-quad",
+    "plate-mixed",
     "plate-quadratic",
     "star-regular",
     "star-chen",
     "star-quad",
-    "grid-tri",
-    "grid-quad",
-    "gmsh-plate-tri",
+    "rand2d-large",
+    "gmsh-plate-hole-tri",
     "gmsh-bracket-quad",
     "gmsh-disk-tri6",
 ];
+
+/// The Gmsh files the page ships (its `GMSH_SAMPLES`), each named in [`SAMPLES`] by
+/// [`gmsh_sample_name`].
+pub const GMSH_FILES: &[&str] = &["plate_hole_tri.msh", "bracket_quad.msh", "disk_tri6.msh"];
+
+/// The permalink name of a Gmsh file: `gmsh-`, then the file name without `.msh` and with
+/// every `_` written `-` (`plate_hole_tri.msh` → `gmsh-plate-hole-tri`).
+pub fn gmsh_sample_name(file: &str) -> String {
+    format!("gmsh-{}", file.strip_suffix(".msh").unwrap_or(file).replace('_', "-"))
+}
+
+/// The Gmsh file a permalink sample name stands for, if it names one of [`GMSH_FILES`].
+pub fn gmsh_file(sample: &str) -> Option<&'static str> {
+    GMSH_FILES.iter().copied().find(|f| gmsh_sample_name(f) == sample)
+}
 
 /// Longest hash [`decode`] reads, in bytes (a full canonical hash is under 300).
 pub const MAX_HASH_BYTES: usize = 2048;
@@ -153,6 +171,78 @@ impl PageState {
         check_int("passes", self.passes.into(), 1, MAX_PASSES.into(), || self.passes.to_string())?;
         check_int("maxiter", self.max_iter.into(), 1, MAX_ITER.into(), || self.max_iter.to_string())?;
         Ok(())
+    }
+}
+
+/// A [`PageState`] as named fields with plain values (enums as their URL names), the
+/// shape the page reads and writes: `{sample, seed, amount, strategy, objective,
+/// threshold, passes, order, maxIter, node, embed}`. Fields left out take the defaults
+/// of [`PageState::default`]; unknown fields are refused.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(rename_all = "camelCase", default, deny_unknown_fields)]
+pub struct PageFields {
+    pub sample: Option<String>,
+    pub seed: u64,
+    pub amount: f64,
+    pub strategy: String,
+    pub objective: String,
+    pub threshold: f64,
+    pub passes: u32,
+    pub order: String,
+    pub max_iter: u32,
+    pub node: Option<u32>,
+    pub embed: bool,
+}
+
+impl Default for PageFields {
+    fn default() -> Self {
+        PageFields::from(&PageState::default())
+    }
+}
+
+impl From<&PageState> for PageFields {
+    fn from(s: &PageState) -> Self {
+        PageFields {
+            sample: s.sample.clone(),
+            seed: s.seed,
+            amount: s.amount,
+            strategy: strategy_name(s.strategy).to_string(),
+            objective: s.objective.name().to_string(),
+            threshold: s.threshold_deg,
+            passes: s.passes,
+            order: order_name(s.order).to_string(),
+            max_iter: s.max_iter,
+            node: s.node,
+            embed: s.embed,
+        }
+    }
+}
+
+impl PageFields {
+    /// The state these fields name, checked as [`decode`] checks a hash: an unknown name
+    /// or a value out of range is an error naming its URL key.
+    pub fn to_state(&self) -> Result<PageState> {
+        let state = PageState {
+            sample: self.sample.clone(),
+            seed: self.seed,
+            amount: self.amount,
+            strategy: parse_strategy(&self.strategy).ok_or_else(|| {
+                let names: Vec<&str> = STRATEGIES.iter().map(|p| p.1).collect();
+                bad("strategy", &self.strategy, &format!("one of {}", names.join(", ")))
+            })?,
+            objective: ObjectiveKind::parse(&self.objective).ok_or_else(|| {
+                let names: Vec<&str> = ObjectiveKind::ALL.iter().map(|k| k.name()).collect();
+                bad("objective", &self.objective, &format!("one of {}", names.join(", ")))
+            })?,
+            threshold_deg: self.threshold,
+            passes: self.passes,
+            order: parse_order(&self.order).ok_or_else(|| bad("order", &self.order, "one of input, priority"))?,
+            max_iter: self.max_iter,
+            node: self.node,
+            embed: self.embed,
+        };
+        state.validate()?;
+        Ok(state)
     }
 }
 
@@ -578,6 +668,73 @@ mod tests {
         for name in SAMPLES {
             let s = PageState { sample: Some(name.to_string()), ..PageState::default() };
             assert_eq!(decode(&encode(&s)).unwrap(), s);
+        }
+    }
+
+    #[test]
+    fn samples_are_exactly_the_pages_gallery_and_gmsh_files() {
+        use crate::lab::sample::Sample;
+        let mut want: Vec<String> = Sample::ALL
+            .iter()
+            .map(|s| serde_json::to_value(s).unwrap().as_str().unwrap().to_string())
+            .collect();
+        for name in &want {
+            assert!(SAMPLES.contains(&name.as_str()), "the gallery's {name} is not a permalink sample");
+        }
+        want.extend(GMSH_FILES.iter().map(|f| gmsh_sample_name(f)));
+        assert_eq!(SAMPLES, want.iter().map(String::as_str).collect::<Vec<_>>().as_slice());
+        assert_eq!(gmsh_sample_name("plate_hole_tri.msh"), "gmsh-plate-hole-tri");
+        for f in GMSH_FILES {
+            assert_eq!(gmsh_file(&gmsh_sample_name(f)), Some(*f));
+        }
+        assert_eq!(gmsh_file("plate-tri"), None);
+        assert_eq!(gmsh_file("gmsh-"), None);
+    }
+
+    #[test]
+    fn gmsh_files_are_the_pages_and_are_shipped() {
+        let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
+        let app = std::fs::read_to_string(root.join("www/app.js")).unwrap();
+        let start = app.find("const GMSH_SAMPLES = [").expect("app.js declares GMSH_SAMPLES");
+        let list = &app[start..start + app[start..].find("];").unwrap()];
+        let in_app: Vec<&str> = list
+            .split("['")
+            .skip(1)
+            .map(|item| &item[..item.find('\'').unwrap()])
+            .collect();
+        assert_eq!(in_app, GMSH_FILES);
+        for f in GMSH_FILES {
+            assert!(root.join("www/samples").join(f).is_file(), "www/samples/{f} is missing");
+        }
+    }
+
+    #[test]
+    fn page_fields_round_trip_and_are_checked() {
+        let s = decode("#sample=gmsh-disk-tri6&tangle=1.25&seed=9007199254740993&strategy=c3&objective=old&threshold=15&passes=7&order=input&maxiter=9&node=4&embed=1").unwrap();
+        let f = PageFields::from(&s);
+        assert_eq!((f.strategy.as_str(), f.order.as_str(), f.objective.as_str()), ("c3", "input", "old"));
+        assert_eq!(f.to_state().unwrap(), s);
+        let json = serde_json::to_value(&f).unwrap();
+        assert_eq!(json["maxIter"], 9);
+        let back: PageFields = serde_json::from_value(json).unwrap();
+        assert_eq!(back.to_state().unwrap(), s);
+        // left-out fields are the defaults; unknown fields are refused
+        let f: PageFields = serde_json::from_str(r#"{"passes": 5}"#).unwrap();
+        assert_eq!(f.to_state().unwrap(), PageState { passes: 5, ..PageState::default() });
+        assert!(serde_json::from_str::<PageFields>(r#"{"max_iter": 5}"#).is_err());
+        let cases: &[(PageFields, &str)] = &[
+            (PageFields { strategy: "best".into(), ..PageFields::default() }, "'strategy'"),
+            (PageFields { objective: "x".into(), ..PageFields::default() }, "'objective'"),
+            (PageFields { order: "random".into(), ..PageFields::default() }, "'order'"),
+            (PageFields { max_iter: 51, ..PageFields::default() }, "'maxiter'"),
+            (PageFields { passes: 0, ..PageFields::default() }, "'passes'"),
+            (PageFields { amount: 3.0, ..PageFields::default() }, "'tangle'"),
+            (PageFields { threshold: 0.0, ..PageFields::default() }, "'threshold'"),
+            (PageFields { sample: Some("<img>".into()), ..PageFields::default() }, "'sample'"),
+        ];
+        for (f, key) in cases {
+            let e = f.to_state().unwrap_err().to_string();
+            assert!(e.contains(key), "{f:?}: {e}");
         }
     }
 

@@ -11,6 +11,7 @@ use crate::lab::{self as playground, Settings, Side};
 use crate::lab::sample::Sample;
 use crate::lab::views::Canvas;
 use crate::io::{self, Format};
+use crate::permalink;
 use glam::DVec2;
 
 /// The message of the last panic, kept by the hook for [`take_panic_message`].
@@ -51,6 +52,30 @@ pub fn samples() -> Result<JsValue, JsError> {
     }
     let list: Vec<Entry> = Sample::ALL.iter().map(|&s| Entry { name: s, title: s.title() }).collect();
     to_js(&list)
+}
+
+/// Reads a permalink hash (`#sample=…&passes=…`) with [`crate::permalink::decode`]:
+/// `{sample, seed, amount, strategy, objective, threshold, passes, order, maxIter, node,
+/// embed}`, enums as their URL names, `sample`/`node` null when absent, `seed` a number
+/// (a BigInt beyond 2^53 − 1). A malformed value is an error naming its key.
+#[wasm_bindgen(js_name = decodePermalink)]
+pub fn decode_permalink(hash: &str) -> Result<JsValue, JsError> {
+    let state = permalink::decode(hash)?;
+    let big = state.seed > (1u64 << 53) - 1;
+    let ser = serde_wasm_bindgen::Serializer::new()
+        .serialize_missing_as_null(true)
+        .serialize_large_number_types_as_bigints(big);
+    Ok(permalink::PageFields::from(&state).serialize(&ser)?)
+}
+
+/// Writes the hash (with its `#`) of an object shaped as [`decode_permalink`] returns
+/// (fields left out take their defaults), with [`crate::permalink::encode`] after checking
+/// every value as the decoder would.
+#[wasm_bindgen(js_name = encodePermalink)]
+pub fn encode_permalink(state: JsValue) -> Result<String, JsError> {
+    let fields: permalink::PageFields =
+        serde_wasm_bindgen::from_value(state).map_err(|e| JsError::new(&format!("permalink: {e}")))?;
+    Ok(permalink::encode(&fields.to_state()?))
 }
 
 /// Milliseconds from the worker's (or window's) `performance.now()`, else the date.

@@ -85,46 +85,88 @@ function clampInt(v, lo, hi, dflt) {
   const n = Math.round(Number(v));
   return Number.isFinite(n) ? Math.min(hi, Math.max(lo, n)) : dflt;
 }
-function sourceKey() {
+/** The permalink name of a Gmsh file: `gmsh-`, the name without `.msh`, `_` as `-`
+ * (the rule of `gmsh_sample_name` in src/permalink.rs, which tests this list). */
+function gmshSampleName(file) {
+  return `gmsh-${file.replace(/\.msh$/, '').replaceAll('_', '-')}`;
+}
+/** The permalink sample name of what is loaded, or null (a user's file has none). */
+function sourceSample() {
   const s = state.lastGood;
   if (!s) return null;
-  if (s.kind === 'sample') return ['sample', s.name];
-  if (s.kind === 'gmsh') return ['gmsh', s.name];
+  if (s.kind === 'sample') return s.name;
+  if (s.kind === 'gmsh') return gmshSampleName(s.name);
   return null;
 }
+/** The hash of the loaded sample and the controls, written by the Rust encoder. */
 function permalinkHash() {
-  const p = new URLSearchParams();
-  const key = sourceKey();
-  if (key) p.set(key[0], key[1]);
-  for (const id of SETTINGS) p.set(id, $(id).value);
-  return `#${p.toString()}`;
+  return engine.call('encodePermalink', {
+    sample: sourceSample(),
+    seed: Number($('seed').value),
+    amount: Number($('amount').value),
+    strategy: $('strategy').value,
+    threshold: Number($('threshold').value),
+    passes: Number($('passes').value),
+    order: $('order').value,
+    maxIter: Number($('maxiter').value),
+  });
 }
-function updatePermalink() {
-  const hash = permalinkHash();
+/** Keeps the URL and the permalink link current; a setting the link cannot carry is said
+ * in the message box (the link then keeps its last good value). */
+let permalinkSeq = 0;
+async function writePermalink() {
+  const seq = ++permalinkSeq;
+  let hash;
+  try {
+    hash = await permalinkHash();
+  } catch (e) {
+    if (seq === permalinkSeq) showError(`The permalink cannot hold these settings: ${e.message}`);
+    return;
+  }
+  if (seq !== permalinkSeq) return; // a later change wrote it
   history.replaceState(null, '', `${location.pathname}${location.search}${hash}`);
   $('permalink').href = `${location.pathname}${hash}`;
   if (EMBED) $('open-full').href = `${location.pathname}${hash}`;
 }
-/** Applies the URL hash to the controls; only values the controls offer are taken. */
-function applyHash() {
-  const p = new URLSearchParams(location.hash.slice(1));
+function updatePermalink() {
+  return serial(writePermalink).catch(report);
+}
+/** Reads the URL hash through the Rust decoder and applies it to the controls (a value a
+ * control does not offer is ignored). Returns the source to load and, when the hash could
+ * not be read, the decoder's message (the defaults are then kept). */
+async function applyHash() {
+  const fallback = { kind: 'sample', name: DEFAULT_SAMPLE };
+  let p;
+  try {
+    p = await engine.call('decodePermalink', location.hash);
+  } catch (e) {
+    return { src: fallback, error: e.message };
+  }
+  const values = {
+    strategy: p.strategy,
+    threshold: p.threshold,
+    order: p.order,
+    passes: p.passes,
+    maxiter: p.maxIter,
+    amount: p.amount,
+    seed: p.seed,
+  };
   for (const id of SETTINGS) {
-    const v = p.get(id);
-    if (v === null) continue;
+    const v = String(values[id]);
     const el = $(id);
     if (el.tagName === 'SELECT') {
       if ([...el.options].some((o) => o.value === v)) el.value = v;
     } else {
       const n = Number(v);
-      if (Number.isFinite(n) && n >= Number(el.min) && n <= Number(el.max)) el.value = String(n);
+      if (Number.isFinite(n) && n >= Number(el.min) && n <= Number(el.max)) el.value = v;
     }
   }
   $('amount-out').textContent = $('amount').value;
-  const sample = p.get('sample');
-  const gmsh = p.get('gmsh');
-  if (gmsh && GMSH_SAMPLES.some(([f]) => f === gmsh)) return { kind: 'gmsh', name: gmsh };
-  if (sample && [...$('sample').options].some((o) => o.value === `sample:${sample}`)) return { kind: 'sample', name: sample };
-  return { kind: 'sample', name: DEFAULT_SAMPLE };
+  if (p.sample === null) return { src: fallback };
+  const gmsh = GMSH_SAMPLES.find(([f]) => gmshSampleName(f) === p.sample);
+  if (gmsh) return { src: { kind: 'gmsh', name: gmsh[0] } };
+  if ([...$('sample').options].some((o) => o.value === `sample:${p.sample}`)) return { src: { kind: 'sample', name: p.sample } };
+  return { src: fallback };
 }
 
 // ---- loading -------------------------------------------------------------------------
@@ -177,7 +219,7 @@ function load(src, label) {
     $('sample').value = selectValueOf(src);
     await redrawAll();
     setStatus(`Loaded ${label} in ${Math.round(performance.now() - t0)} ms.`);
-    updatePermalink();
+    await writePermalink();
   }).catch(report);
 }
 
@@ -634,9 +676,9 @@ async function main() {
     document.body.dataset.busy = '0';
     return;
   }
-  const src = applyHash();
-  const label = src.kind === 'gmsh' ? src.name : src.name;
-  await load(src, label);
+  const { src, error } = await applyHash();
+  await load(src, src.name);
+  if (error) showError(`This link's settings could not be read, so the defaults are shown: ${error}`);
   document.body.dataset.ready = '1';
 }
 

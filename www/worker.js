@@ -38,6 +38,8 @@ const handlers = {
   charts: (w, h, hw, hh, dpr) => need().charts(w, h, hw, hh, dpr),
   exportMesh: (side, format) => need().exportMesh(side, format),
   panicForTest: () => wasm.panicForTest(),
+  decodePermalink: (hash) => wasm.decodePermalink(hash),
+  encodePermalink: (fields) => wasm.encodePermalink(fields),
 };
 
 // Buffers of typed arrays in a result, moved (not copied) to the main thread.

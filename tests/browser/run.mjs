@@ -385,6 +385,7 @@ try {
     await page.selectOption('#threshold', '10');
     await page.fill('#passes', '5');
     await page.dispatchEvent('#passes', 'change');
+    await idle(page); // the link is written by the engine's encoder
     const href = await page.getAttribute('#permalink', 'href');
     check(href.includes('sample=star-chen') && href.includes('strategy=c2'), `permalink ${href}`);
     const p2 = await context.newPage();
@@ -402,6 +403,50 @@ try {
     check((await p2.inputValue('#strategy')) === 'rules', 'junk strategy ignored');
     check((await p2.locator('img').count()) === 0, 'no element built from the URL');
     await p2.close();
+  });
+
+  await test('a permalink with a malformed value says why and loads the defaults', async () => {
+    const p4 = await context.newPage();
+    watch(p4, 'bad permalink');
+    await p4.goto(`${server.base}#sample=star-quad&passes=abc&strategy=c1`);
+    await idle(p4);
+    const msg = await p4.textContent('#message');
+    check(await p4.isVisible('#message'), 'the message is shown');
+    check(msg.includes("'passes'") && msg.includes("'abc'") && msg.includes('1 to 100'), `message: ${msg}`);
+    check((await p4.getAttribute('#message', 'role')) === 'alert', 'the message is an alert');
+    check((await p4.inputValue('#sample')) === 'sample:plate-tri-tangled', `sample ${await p4.inputValue('#sample')}`);
+    check((await p4.inputValue('#passes')) === '3' && (await p4.inputValue('#strategy')) === 'rules', 'defaults kept');
+    check((await stats(p4, 'new')).nodes !== undefined, 'the default mesh is loaded');
+    await p4.close();
+  });
+
+  await test('a permalink copied from the page reproduces its sample and controls', async () => {
+    await chooseSample(page, 'gmsh:bracket_quad.msh');
+    await page.selectOption('#strategy', 'smart');
+    await page.selectOption('#threshold', '15');
+    await page.selectOption('#order', 'input');
+    for (const [id, v] of [['passes', '7'], ['maxiter', '9'], ['seed', '42']]) {
+      await page.fill(`#${id}`, v);
+      await page.dispatchEvent(`#${id}`, 'change');
+    }
+    await page.locator('#amount').fill('0.75');
+    await page.dispatchEvent('#amount', 'change');
+    await idle(page);
+    const ids = ['sample', 'strategy', 'threshold', 'order', 'passes', 'maxiter', 'seed', 'amount'];
+    const controls = (pg) => pg.evaluate((ids) => ids.map((id) => document.getElementById(id).value), ids);
+    const want = await controls(page);
+    const href = await page.getAttribute('#permalink', 'href');
+    check(href.includes('#sample=gmsh-bracket-quad&') && href.includes('maxiter=9'), `permalink ${href}`);
+    check(new URL(href, server.base).hash === new URL(page.url()).hash, 'the address bar holds the same hash');
+    const p5 = await context.newPage();
+    watch(p5, 'copied permalink');
+    await p5.goto(new URL(href, server.base).toString());
+    await idle(p5);
+    const got = await controls(p5);
+    check(JSON.stringify(got) === JSON.stringify(want), `controls ${JSON.stringify(got)} != ${JSON.stringify(want)}`);
+    check(await p5.isHidden('#message'), `message: ${await p5.textContent('#message')}`);
+    check((await p5.getAttribute('#permalink', 'href')) === href, 'the reopened page writes the same link');
+    await p5.close();
   });
 
   await test('the embed view is compact and fits a narrow iframe', async () => {
