@@ -116,7 +116,7 @@ impl std::fmt::Display for ObjectiveKind {
 
 /// The objective of a kind, with its default parameters, behind the trait (dynamic
 /// dispatch: one virtual call per evaluation, against tens of metric evaluations inside).
-pub fn objective(kind: ObjectiveKind) -> Box<dyn Objective> {
+pub fn objective(kind: ObjectiveKind) -> Box<dyn Objective + Send + Sync> {
     match kind {
         ObjectiveKind::Old => Box::new(MaxMinShape),
         ObjectiveKind::Sine => Box::new(MaxMinSine),
