@@ -167,6 +167,7 @@ pub struct StarElement {
 impl StarElement {
     /// The element's node coordinates with the free node at `x` (and following mid-side
     /// nodes at their edge midpoints).
+    #[inline]
     pub fn at(&self, x: DVec2) -> [DVec2; 9] {
         let mut p = self.pts;
         let k = self.kind.corners();
