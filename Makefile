@@ -2,12 +2,13 @@
 #   make serve   build the page (wasm + www/) and serve it on http://127.0.0.1:8000
 #   make test    every test: clippy, native unit/integration tests, wasm build, browser tests
 #   make site    build the complete static site into www/ (www/pkg is generated)
+#   make reproduction   rerun the papers' experiments into docs/reproduction.md (a few minutes)
 
 WASM := target/wasm32-unknown-unknown/release/smoothlab.wasm
 PORT ?= 8000
 CARGO ?= cargo
 
-.PHONY: serve test site lint unit wasm browser tools browser-tools
+.PHONY: serve test site lint unit wasm browser tools browser-tools reproduction
 
 serve: site
 	@echo "smoothlab playground: http://127.0.0.1:$(PORT)/"
@@ -34,3 +35,6 @@ site: tools
 
 browser: site browser-tools
 	node tests/browser/run.mjs
+
+reproduction:
+	$(CARGO) run --release --example reproduce > docs/reproduction.md

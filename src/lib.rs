@@ -10,12 +10,15 @@
 pub mod error;
 pub mod generate;
 pub mod io;
+pub mod lab;
 pub mod mesh;
 pub mod objective;
 pub mod optimize;
 pub mod quality;
 pub mod render;
 pub mod smooth;
+#[cfg(target_arch = "wasm32")]
+mod wasm;
 #[cfg(target_arch = "wasm32")]
 mod wasm_bench;
 

@@ -278,8 +278,13 @@ pub struct MeshStats {
     pub quads: usize,
     /// Elements with mid-side nodes.
     pub quadratic: usize,
+    /// Corner nodes the smoothers may move.
     pub free_nodes: usize,
+    /// Nodes flagged fixed (boundary, or as the file says; unused nodes too).
     pub fixed_nodes: usize,
+    /// Mid-side and centre nodes of quadratic elements that are not fixed: they follow
+    /// their corners. `free_nodes + fixed_nodes + following_nodes == nodes`.
+    pub following_nodes: usize,
     /// Elements with a corner of `det ≤ 0` (zero-area ones included).
     pub inverted: usize,
     /// Smallest and largest signed corner angle over all elements, degrees.
@@ -316,7 +321,8 @@ pub fn mesh_stats(mesh: &Mesh) -> MeshStats {
         quads: 0,
         quadratic: 0,
         free_nodes: mesh.free_count(),
-        fixed_nodes: 0,
+        fixed_nodes: mesh.fixed.iter().filter(|&&f| f).count(),
+        following_nodes: 0,
         inverted: 0,
         min_angle_deg: f64::INFINITY,
         max_angle_deg: f64::NEG_INFINITY,
@@ -325,7 +331,7 @@ pub fn mesh_stats(mesh: &Mesh) -> MeshStats {
         max_condition: 0.0,
         angle_histogram_6deg: vec![0; 30],
     };
-    s.fixed_nodes = s.nodes - s.free_nodes;
+    s.following_nodes = s.nodes - s.free_nodes - s.fixed_nodes;
     let mut sum = 0.0;
     for e in 0..mesh.element_count() {
         let kind = mesh.kind(e);

@@ -110,6 +110,7 @@ fn stats_json_agrees_with_independent_formulas_on_a_triangle_fan() {
     assert_eq!(v["quadratic"], 0);
     assert_eq!(v["free_nodes"], 1);
     assert_eq!(v["fixed_nodes"], 6);
+    assert_eq!(v["following_nodes"], 0);
     assert_eq!(v["inverted"], 0);
     close(&v, "min_angle_deg", angles.iter().cloned().fold(f64::INFINITY, f64::min), 1e-9);
     close(&v, "max_angle_deg", angles.iter().cloned().fold(0.0, f64::max), 1e-9);

@@ -93,6 +93,20 @@ pub struct SmoothOptions {
     pub force_optimization: bool,
     /// Number of priority bins for [`Order::Priority`]. Default 5 (Chen §4.2).
     pub priority_bins: u32,
+    /// An optimization call may not invert a star element that was valid when the call
+    /// began: inside the solver such positions read as the worst value, so the line
+    /// search (or the ascent's step halving) stays on the valid side. Default true.
+    ///
+    /// Chen et al. (2003, §3.2) use no such check: their penalty "keeps nodes out of the
+    /// inverted region". With our eq. (8) it does not always — on a star with a sliver
+    /// element the penalty of the sliver outweighs the cost of folding a neighbour (the
+    /// reproduction of Mesquite's `hole_in_square.vtk` in `docs/reproduction.md`: 0
+    /// inverted elements before, 59 after one pass without the check), and Freitag's
+    /// max-min ascent may fold a valid element while it raises the minimum of an inverted
+    /// one. With the check no optimization step raises the number of inverted elements.
+    /// Laplacian steps are not affected: the smart Laplacian has its own check, the plain
+    /// Laplacian (`Laplace`, and the first step of `C3`) is the unchecked method itself.
+    pub keep_valid: bool,
 }
 
 impl Default for SmoothOptions {
@@ -106,6 +120,7 @@ impl Default for SmoothOptions {
             smart_measure: Measure::Shape,
             force_optimization: false,
             priority_bins: 5,
+            keep_valid: true,
         }
     }
 }
@@ -133,6 +148,10 @@ impl SmoothOptions {
     }
     pub fn with_smart_measure(mut self, m: Measure) -> Self {
         self.smart_measure = m;
+        self
+    }
+    pub fn with_keep_valid(mut self, on: bool) -> Self {
+        self.keep_valid = on;
         self
     }
     /// Checks the settings, naming the first unusable one.
@@ -642,8 +661,18 @@ impl Smoother {
     }
 
     /// Optimization with the chosen solver on the gathered star, from the star's position.
+    /// With [`SmoothOptions::keep_valid`] the solver sees the objective through
+    /// [`KeepValid`].
     fn optimize(&mut self, objective: &dyn Objective, out: &mut NodeOutcome) {
         let x0 = self.star.x0;
+        let guarded;
+        let objective: &dyn Objective = if self.options.keep_valid {
+            let limit = self.star.elems.iter().filter(|e| is_inverted(e.kind, &e.pts)).count();
+            guarded = KeepValid { inner: objective, limit };
+            &guarded
+        } else {
+            objective
+        };
         let r = match self.options.solver.resolve(objective.goal()) {
             SolverKind::NonSmoothAscent => self.ascent.solve(objective, &self.star, x0),
             _ => self.fr.solve(objective, &self.star, x0),
@@ -665,6 +694,38 @@ impl Smoother {
                     .node_elements(n)
                     .iter()
                     .any(|&e| mesh.element(e as usize).iter().any(|&m| mesh.is_on_curved_boundary(m as usize))))
+    }
+}
+
+/// Whether an element has a corner with `det ≤ 0` (the definition of
+/// [`crate::quality::ElementQuality::inverted`]).
+fn is_inverted(kind: crate::mesh::ElementKind, p: &[DVec2; 9]) -> bool {
+    corner_edges(kind, p)[..kind.corners()].iter().any(|(e1, e2)| e1.perp_dot(*e2) <= 0.0)
+}
+
+/// An objective seen through [`SmoothOptions::keep_valid`]: the same terms, plus a NaN
+/// term for every star element that was valid (`valid[i]`) and is inverted at the trial
+/// position. Both solvers read NaN as the worst value of the goal (+∞ for a sum, −∞ for a
+/// minimum), so they never step there; at valid positions values and gradients are the
+/// objective's own.
+struct KeepValid<'a> {
+    inner: &'a dyn Objective,
+    limit: usize,
+}
+
+impl Objective for KeepValid<'_> {
+    fn name(&self) -> &'static str {
+        self.inner.name()
+    }
+    fn goal(&self) -> crate::objective::Goal {
+        self.inner.goal()
+    }
+    fn terms(&self, star: &Star, x: DVec2, out: &mut Vec<Term>) {
+        self.inner.terms(star, x, out);
+        let inverted = star.elems.iter().filter(|e| is_inverted(e.kind, &e.at(x))).count();
+        if inverted > self.limit {
+            out.push(Term { elem: 0, value: f64::NAN, grad: DVec2::ZERO });
+        }
     }
 }
 

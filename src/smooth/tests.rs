@@ -489,3 +489,48 @@ fn smart_refuses_a_move_that_inverts_a_valid_element() {
         .smooth_node(&mut mesh, 3, &ShapeSum);
     assert_eq!((o, mesh.nodes[3]), (NodeOutcome::default(), before[3]));
 }
+
+/// Found by the reproduction (Mesquite's `hole_in_square.vtk`, node 63 of the first pass):
+/// a valid star of five quads, one of them a sliver (two of its corners 0.1 apart). With
+/// our eq. (8) the penalty of the sliver's sub-triangles falls fastest by folding two
+/// neighbours, so the unguarded optimizer inverts two valid elements; with
+/// [`SmoothOptions::keep_valid`] (the default) it improves the objective and inverts none.
+#[test]
+fn keep_valid_stops_the_new_objective_folding_a_valid_star() {
+    let d = DVec2::new(1.77273368847903, 1.47674961243878);
+    let ring = [
+        (0.6191798838377767, 1.9635892912613109),
+        (1.1582019613742722, 1.1315519496993298),
+        (2.952745259697628, 0.9328888840885995),
+        (5.0, 2.0),
+        (5.0, 1.0),
+        (2.54992164088809, 2.11978452722374),
+        (5.0, 3.0),
+        (0.722398398237359, 1.92569837299114),
+        (-0.594151124169511, 2.47974288002622),
+        (0.486939211174313, 2.96446619685306),
+    ];
+    let mut b = MeshBuilder::new();
+    b.add_node([d.x, d.y, 0.0], 0);
+    for (x, y) in ring {
+        b.add_node([x, y, 0.0], 0);
+    }
+    for q in [[0, 1, 2, 3], [4, 0, 3, 5], [6, 0, 4, 7], [0, 8, 9, 1], [6, 10, 8, 0]] {
+        b.add_element(ElementKind::Quad4, &q, 0);
+    }
+    let mesh = b.build().unwrap();
+    assert_eq!(mesh_stats(&mesh).inverted, 0);
+    assert_eq!(mesh.free_count(), 1);
+    let new = crate::objective::ChenTristanoKwok::default();
+    let mut star = Star::new();
+    star.gather(&mesh, 0);
+    let f0 = new.value(&star, d);
+    for (keep, inverted) in [(false, 2), (true, 0)] {
+        let mut m = mesh.clone();
+        let opts = SmoothOptions::default().with_strategy(Strategy::Opt).with_keep_valid(keep);
+        let o = Smoother::new(opts).unwrap().smooth_node(&mut m, 0, &new);
+        assert!(o.optimized && o.moved, "keep_valid {keep}: {o:?}");
+        assert_eq!(mesh_stats(&m).inverted, inverted, "keep_valid {keep}");
+        assert!(new.value(&star, m.nodes[0]) < f0, "keep_valid {keep}: the objective must fall");
+    }
+}

@@ -6,6 +6,7 @@ use clap::{Parser, Subcommand};
 
 mod files;
 mod generate;
+mod smooth;
 mod stats;
 
 #[derive(Parser)]
@@ -23,6 +24,8 @@ enum Command {
     Stats(stats::StatsArgs),
     /// Convert a mesh between formats (by the file extensions).
     Convert(files::ConvertArgs),
+    /// Smooth a mesh: Laplacian, smart, optimization, Freitag's C1/C2/C3 or Chen's rules.
+    Smooth(smooth::SmoothArgs),
 }
 
 fn main() {
@@ -31,6 +34,7 @@ fn main() {
         Command::Generate(a) => generate::run(a),
         Command::Stats(a) => stats::run(a),
         Command::Convert(a) => files::convert(a),
+        Command::Smooth(a) => smooth::run(a),
     };
     if let Err(e) = result {
         eprintln!("smoothlab: {e}");

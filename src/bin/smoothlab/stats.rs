@@ -29,7 +29,8 @@ pub fn run(a: StatsArgs) -> Result<(), String> {
 pub fn table(s: &MeshStats) -> String {
     let mut t = String::new();
     let mut row = |k: &str, v: String| t.push_str(&format!("{k:<16} {v}\n"));
-    row("nodes", format!("{} ({} free, {} fixed)", s.nodes, s.free_nodes, s.fixed_nodes));
+    let following = if s.following_nodes > 0 { format!(", {} mid-side following", s.following_nodes) } else { String::new() };
+    row("nodes", format!("{} ({} free, {} fixed{following})", s.nodes, s.free_nodes, s.fixed_nodes));
     row("elements", format!("{} ({} triangles, {} quads, {} quadratic)", s.elements, s.triangles, s.quads, s.quadratic));
     row("inverted", s.inverted.to_string());
     row("angles", format!("min {:.2}°  max {:.2}°", s.min_angle_deg, s.max_angle_deg));

@@ -1,0 +1,255 @@
+//! `smoothlab smooth IN -o OUT [--objective …] [--strategy …] [--threshold DEG]
+//! [--passes N] [--order priority|input] [--max-iter K] [--json]`.
+//!
+//! Which options go with which strategy (refused otherwise, so an option never silently
+//! does nothing):
+//! - `--threshold` only with `c1`, `c2`, `c3` (the only strategies with a threshold);
+//! - `--max-iter` not with `laplace` or `smart` (they never call the solver);
+//! - `--objective` with every strategy: `laplace` and `smart` never move a node by it,
+//!   but each pass still reports its total, so it is accepted and the summary says so;
+//! - `--order` with every strategy (Gauss–Seidel: the order changes the result).
+
+use std::path::PathBuf;
+use std::time::Instant;
+
+use clap::{Args, ValueEnum};
+use serde::Serialize;
+use smoothlab::objective::{objective, ObjectiveKind};
+use smoothlab::quality::{mesh_stats, MeshStats};
+use smoothlab::smooth::{Order, PassRecord, SmoothOptions, Smoother, Strategy};
+
+use crate::files::{read_mesh, write_mesh, MshVersionArg};
+
+/// The largest `--passes` and `--max-iter` accepted: far beyond any use, small enough that
+/// a typing slip does not run for hours.
+const MAX_PASSES: u32 = 10_000;
+const MAX_ITER: u32 = 10_000;
+
+#[derive(Args)]
+pub struct SmoothArgs {
+    /// Input mesh (.msh, .vtk, .node/.ele, .obj, .off)
+    pub input: PathBuf,
+    /// Output mesh; the format follows the extension
+    #[arg(short, long)]
+    pub output: PathBuf,
+    /// Objective of the optimization steps; laplace and smart only report its total [default: new]
+    #[arg(long, value_enum)]
+    pub objective: Option<ObjectiveArg>,
+    /// How each node is smoothed
+    #[arg(long, value_enum, default_value = "rules")]
+    pub strategy: StrategyArg,
+    /// Threshold angle of c1/c2/c3, degrees, in (0, 90] [default: 30]
+    #[arg(long)]
+    pub threshold: Option<f64>,
+    /// Number of passes over the mesh
+    #[arg(long, default_value_t = 3)]
+    pub passes: u32,
+    /// Node order [default: priority for rules, input otherwise]
+    #[arg(long, value_enum)]
+    pub order: Option<OrderArg>,
+    /// Solver iterations per optimization call [default: 3]
+    #[arg(long)]
+    pub max_iter: Option<u32>,
+    /// Print one JSON object instead of a summary
+    #[arg(long)]
+    pub json: bool,
+    /// Version of .msh files written
+    #[arg(long, value_enum, default_value = "2.2")]
+    pub msh_version: MshVersionArg,
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum ObjectiveArg {
+    Old,
+    New,
+    Sine,
+    Condition,
+    ConditionMax,
+    Untangle,
+    UntangleMindet,
+}
+
+impl ObjectiveArg {
+    fn kind(self) -> ObjectiveKind {
+        match self {
+            ObjectiveArg::Old => ObjectiveKind::Old,
+            ObjectiveArg::New => ObjectiveKind::New,
+            ObjectiveArg::Sine => ObjectiveKind::Sine,
+            ObjectiveArg::Condition => ObjectiveKind::Condition,
+            ObjectiveArg::ConditionMax => ObjectiveKind::ConditionMax,
+            ObjectiveArg::Untangle => ObjectiveKind::Untangle,
+            ObjectiveArg::UntangleMindet => ObjectiveKind::UntangleMinDet,
+        }
+    }
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum StrategyArg {
+    Laplace,
+    Smart,
+    Opt,
+    C1,
+    C2,
+    C3,
+    Rules,
+}
+
+impl StrategyArg {
+    fn strategy(self) -> Strategy {
+        match self {
+            StrategyArg::Laplace => Strategy::Laplace,
+            StrategyArg::Smart => Strategy::Smart,
+            StrategyArg::Opt => Strategy::Opt,
+            StrategyArg::C1 => Strategy::C1,
+            StrategyArg::C2 => Strategy::C2,
+            StrategyArg::C3 => Strategy::C3,
+            StrategyArg::Rules => Strategy::Rules,
+        }
+    }
+    fn name(self) -> &'static str {
+        match self {
+            StrategyArg::Laplace => "laplace",
+            StrategyArg::Smart => "smart",
+            StrategyArg::Opt => "opt",
+            StrategyArg::C1 => "c1",
+            StrategyArg::C2 => "c2",
+            StrategyArg::C3 => "c3",
+            StrategyArg::Rules => "rules",
+        }
+    }
+    /// Strategies that never call the solver.
+    fn is_laplacian_only(self) -> bool {
+        matches!(self, StrategyArg::Laplace | StrategyArg::Smart)
+    }
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum OrderArg {
+    Priority,
+    Input,
+}
+
+/// What `--json` prints: one object.
+#[derive(Serialize)]
+struct Report<'a> {
+    objective: &'static str,
+    strategy: &'static str,
+    passes: &'a [PassRecord],
+    /// The same object as `smoothlab stats --json` of the written mesh.
+    #[serde(rename = "final")]
+    final_stats: &'a MeshStats,
+    time_ms: f64,
+}
+
+/// The smoothing options the arguments ask for, or why they cannot be used together.
+fn options(a: &SmoothArgs) -> Result<SmoothOptions, String> {
+    let strategy = a.strategy;
+    if a.passes == 0 || a.passes > MAX_PASSES {
+        return Err(format!("--passes {}: give 1 to {MAX_PASSES}", a.passes));
+    }
+    if let Some(t) = a.threshold {
+        if !matches!(strategy, StrategyArg::C1 | StrategyArg::C2 | StrategyArg::C3) {
+            return Err(format!(
+                "--threshold applies to the combined strategies c1, c2 and c3 only, not to {}",
+                strategy.name()
+            ));
+        }
+        if !(t.is_finite() && t > 0.0 && t <= 90.0) {
+            return Err(format!("--threshold {t}: give an angle in degrees above 0 and at most 90"));
+        }
+    }
+    if let Some(k) = a.max_iter {
+        if strategy.is_laplacian_only() {
+            return Err(format!(
+                "--max-iter: {} never calls the solver, so it has no iterations to limit",
+                strategy.name()
+            ));
+        }
+        if k == 0 || k > MAX_ITER {
+            return Err(format!("--max-iter {k}: give 1 to {MAX_ITER} solver iterations per call"));
+        }
+    }
+    let order = match a.order {
+        Some(OrderArg::Priority) => Order::Priority,
+        Some(OrderArg::Input) => Order::Input,
+        None if strategy == StrategyArg::Rules => Order::Priority,
+        None => Order::Input,
+    };
+    let mut o = SmoothOptions::default().with_strategy(strategy.strategy()).with_order(order);
+    if let Some(t) = a.threshold {
+        o = o.with_threshold_deg(t);
+    }
+    if let Some(k) = a.max_iter {
+        o = o.with_max_iter(k);
+    }
+    o.validate().map_err(|e| e.to_string())?;
+    Ok(o)
+}
+
+pub fn run(a: SmoothArgs) -> Result<(), String> {
+    let opts = options(&a)?;
+    let kind = a.objective.map_or(ObjectiveKind::New, ObjectiveArg::kind);
+    let mut mesh = read_mesh(&a.input)?;
+    let obj = objective(kind);
+    let mut smoother = Smoother::new(opts).map_err(|e| e.to_string())?;
+    let t0 = Instant::now();
+    let clock = move || t0.elapsed().as_secs_f64() * 1e3;
+    let start = clock();
+    let passes: Vec<PassRecord> = (0..a.passes).map(|_| smoother.pass(&mut mesh, &*obj, &clock)).collect();
+    let time_ms = clock() - start;
+    write_mesh(&mesh, &a.output, a.msh_version)?;
+    let final_stats = mesh_stats(&mesh);
+    if a.json {
+        let report = Report {
+            objective: kind.name(),
+            strategy: a.strategy.name(),
+            passes: &passes,
+            final_stats: &final_stats,
+            time_ms,
+        };
+        println!("{}", serde_json::to_string(&report).map_err(|e| e.to_string())?);
+    } else {
+        print!("{}", summary(kind, a.strategy, opts.order, &passes, &final_stats, time_ms));
+    }
+    Ok(())
+}
+
+/// The human-readable summary: one line per pass, then the final state.
+fn summary(
+    kind: ObjectiveKind,
+    strategy: StrategyArg,
+    order: Order,
+    passes: &[PassRecord],
+    s: &MeshStats,
+    ms: f64,
+) -> String {
+    let mut t = format!(
+        "smoothing: strategy {}, objective {kind}{}, {} order\n",
+        strategy.name(),
+        if strategy.is_laplacian_only() { " (measured only: this strategy never optimizes)" } else { "" },
+        match order {
+            Order::Priority => "priority",
+            Order::Input => "input",
+        }
+    );
+    for p in passes {
+        t.push_str(&format!(
+            "pass {:>3}: inverted {:>5}  angles {:>7.2}°–{:>6.2}°  min quality {:>7.4}  objective {:>12.6e}  laplacian {:>6}  optimized {:>6} ({} iterations)  {:.1} ms\n",
+            p.pass,
+            p.inverted,
+            p.min_angle_deg,
+            p.max_angle_deg,
+            p.min_quality,
+            p.objective_total,
+            p.laplacian_moves,
+            p.optimization_calls,
+            p.solver_iterations,
+            p.elapsed_ms
+        ));
+    }
+    t.push_str(&format!(
+        "final: {} elements, {} inverted, angles {:.2}°–{:.2}°, quality min {:.4} mean {:.4}; {:.1} ms\n",
+        s.elements, s.inverted, s.min_angle_deg, s.max_angle_deg, s.min_quality, s.mean_quality, ms
+    ));
+    t
+}

@@ -1,0 +1,148 @@
+//! The page's gallery of generated samples: each name stands for one call of the core's
+//! own generators ([`crate::generate`]), so the page needs no files for them and a
+//! permalink names a sample in a few characters.
+
+use serde::{Deserialize, Serialize};
+
+use crate::error::Result;
+use crate::generate::{perturb, plate, rand2d, star, PlateKind, StarKind};
+use crate::mesh::Mesh;
+
+/// Seed of every generated sample (the page's perturb button takes its own seed).
+pub const SAMPLE_SEED: u64 = 1;
+/// Perturbation of the tangled samples, in mean edge lengths: Chen, Tristano & Kwok
+/// (2003, §5.2) perturb "the nodal locations of each interior node randomly"; 0.5
+/// inverts 32 of the 800 triangles of the plate (seed 1).
+pub const TANGLE_AMOUNT: f64 = 0.5;
+/// Resolution of the plate samples: 40 nodes round the hole, 10 rings (440 corner nodes).
+pub const PLATE_RESOLUTION: usize = 5;
+/// Interior points of the large sample (Freitag's rand2d with ~100k nodes).
+pub const LARGE_INTERIOR: usize = 99_200;
+
+/// A sample mesh made in the browser by the core's generators.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Sample {
+    /// Freitag (1997) Table 1: 500 random points + 20 per side (580 nodes).
+    Rand2d,
+    /// Chen et al. (2003) Figure 13: the plate with a hole, triangles.
+    PlateTri,
+    PlateQuad,
+    PlateMixed,
+    /// The same plates with every free node perturbed ([`TANGLE_AMOUNT`]).
+    PlateTriTangled,
+    PlateQuadTangled,
+    PlateMixedTangled,
+    /// rand2d perturbed: tangled triangles with random sizes.
+    Rand2dTangled,
+    /// Mesquite's `equil_tri` star: six triangles round a displaced free node.
+    StarRegular,
+    /// Chen's non-convex star-shaped configuration (Figure 10, our reading).
+    StarChen,
+    /// Four quads round one free node (Chen Figure 20a, our reading).
+    StarQuad,
+    /// The plate with 6-node triangles, its hole a curved boundary.
+    PlateQuadratic,
+    /// rand2d with about 100 000 nodes, to show that the page stays responsive.
+    Rand2dLarge,
+}
+
+impl Sample {
+    /// Every sample, in gallery order.
+    pub const ALL: [Sample; 13] = [
+        Sample::PlateTriTangled,
+        Sample::PlateQuadTangled,
+        Sample::PlateMixedTangled,
+        Sample::Rand2d,
+        Sample::Rand2dTangled,
+        Sample::PlateTri,
+        Sample::PlateQuad,
+        Sample::PlateMixed,
+        Sample::PlateQuadratic,
+        Sample::StarRegular,
+        Sample::StarChen,
+        Sample::StarQuad,
+        Sample::Rand2dLarge,
+    ];
+
+    /// What the gallery shows for the sample.
+    pub fn title(self) -> &'static str {
+        match self {
+            Sample::Rand2d => "rand2D (Freitag): 580 nodes",
+            Sample::PlateTri => "Plate with a hole: triangles",
+            Sample::PlateQuad => "Plate with a hole: quads",
+            Sample::PlateMixed => "Plate with a hole: mixed",
+            Sample::PlateTriTangled => "Tangled plate: triangles",
+            Sample::PlateQuadTangled => "Tangled plate: quads",
+            Sample::PlateMixedTangled => "Tangled plate: mixed",
+            Sample::Rand2dTangled => "Tangled rand2D",
+            Sample::StarRegular => "Star: regular (Mesquite)",
+            Sample::StarChen => "Star: Chen's star shape",
+            Sample::StarQuad => "Star: quads",
+            Sample::PlateQuadratic => "Quadratic plate, curved hole",
+            Sample::Rand2dLarge => "rand2D, 100k nodes",
+        }
+    }
+
+    /// Makes the mesh.
+    pub fn generate(self) -> Result<Mesh> {
+        let plate1 = |k| plate(k, 1, PLATE_RESOLUTION);
+        let tangled = |m: Mesh| perturb(&m, TANGLE_AMOUNT, SAMPLE_SEED);
+        match self {
+            Sample::Rand2d => rand2d(500, 20, SAMPLE_SEED),
+            Sample::PlateTri => plate1(PlateKind::Tri),
+            Sample::PlateQuad => plate1(PlateKind::Quad),
+            Sample::PlateMixed => plate1(PlateKind::Mixed),
+            Sample::PlateTriTangled => tangled(plate1(PlateKind::Tri)?),
+            Sample::PlateQuadTangled => tangled(plate1(PlateKind::Quad)?),
+            Sample::PlateMixedTangled => tangled(plate1(PlateKind::Mixed)?),
+            Sample::Rand2dTangled => tangled(rand2d(500, 20, SAMPLE_SEED)?),
+            Sample::StarRegular => star(StarKind::Regular, StarKind::Regular.default_k()),
+            Sample::StarChen => star(StarKind::Chen, StarKind::Chen.default_k()),
+            Sample::StarQuad => star(StarKind::Quad, StarKind::Quad.default_k()),
+            Sample::PlateQuadratic => plate(PlateKind::Tri, 2, PLATE_RESOLUTION),
+            Sample::Rand2dLarge => rand2d(LARGE_INTERIOR, 200, SAMPLE_SEED),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::quality::mesh_stats;
+
+    #[test]
+    fn every_small_sample_builds_and_tangled_ones_are_tangled() {
+        for s in Sample::ALL {
+            if s == Sample::Rand2dLarge {
+                continue;
+            }
+            let m = s.generate().unwrap_or_else(|e| panic!("{s:?}: {e}"));
+            m.sanity_check().unwrap();
+            let st = mesh_stats(&m);
+            let name = format!("{s:?}");
+            if name.ends_with("Tangled") {
+                assert!(st.inverted > 0, "{s:?} has no inverted element");
+            } else {
+                assert_eq!(st.inverted, 0, "{s:?}");
+            }
+            assert!(m.free_count() > 0, "{s:?} has nothing to smooth");
+        }
+    }
+
+    #[test]
+    fn titles_are_distinct() {
+        let titles: std::collections::HashSet<_> = Sample::ALL.iter().map(|s| s.title()).collect();
+        assert_eq!(titles.len(), Sample::ALL.len());
+    }
+
+    #[test]
+    fn names_round_trip_through_serde() {
+        for s in Sample::ALL {
+            let j = serde_json::to_string(&s).unwrap();
+            assert_eq!(serde_json::from_str::<Sample>(&j).unwrap(), s);
+        }
+        assert_eq!(serde_json::to_string(&Sample::PlateTriTangled).unwrap(), "\"plate-tri-tangled\"");
+        assert!(serde_json::from_str::<Sample>("\"plate-hexagons\"").is_err());
+    }
+}

@@ -1,0 +1,326 @@
+//! The page's pictures, drawn by [`crate::render`] into tiny-skia pixmaps: both panels'
+//! meshes on one shared scale, one node's level sets with the solver's path (Chen et al.
+//! 2003, Figs. 10 and 20), its solve history, the per-pass curves and the angle
+//! histograms (Freitag 1997, Fig. 3). Every view paints an opaque background, so the
+//! premultiplied pixels are also straight RGBA, as a canvas `ImageData` wants.
+
+use glam::DVec2;
+use tiny_skia::Pixmap;
+
+use super::{Playground, Side};
+use crate::error::{Error, Result};
+use crate::objective::Star;
+use crate::optimize::{DirectionKind, SolveResult};
+use crate::render::{
+    mesh_view, render_angle_histogram, render_chart, render_level_set, render_mesh, render_pass_histories,
+    sample_field, star_bounds, AngleHistogram, Chart, Frame, HistogramSeries, LevelSet, LevelSetView, MeshView,
+    PassHistory, PathKind, Series, View, PICK_RADIUS,
+};
+
+/// Largest side of a picture, device pixels.
+pub const MAX_SIDE: u32 = 4096;
+/// Samples per side of the level-set grid: smooth enough at any canvas size, and cheap.
+pub const LEVEL_SET_SAMPLES: usize = 161;
+/// Room around a star in the level-set view, as a fraction of its size.
+pub const LEVEL_SET_MARGIN: f64 = 0.15;
+
+/// An opaque white pixmap of `w × h` device pixels, or an error saying why not.
+pub fn pixmap(w: u32, h: u32) -> Result<Pixmap> {
+    if w == 0 || h == 0 || w > MAX_SIDE || h > MAX_SIDE {
+        return Err(Error::invalid(format!("a picture of {w} × {h} pixels: give 1 to {MAX_SIDE} on each side")));
+    }
+    let mut pm = Pixmap::new(w, h).ok_or_else(|| Error::invalid(format!("cannot allocate a {w} × {h} picture")))?;
+    pm.fill(tiny_skia::Color::WHITE);
+    Ok(pm)
+}
+
+/// Where a mesh panel is drawn: its size and device-pixel ratio, as the page's canvas.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Canvas {
+    pub w: u32,
+    pub h: u32,
+    pub dpr: f32,
+}
+
+/// What a node's level-set view says in words.
+#[derive(Clone, Debug, PartialEq, serde::Serialize)]
+pub struct NodeSummary {
+    pub node: usize,
+    pub old: SolveSummary,
+    pub new: SolveSummary,
+}
+
+/// One side's solve at a node, in numbers.
+#[derive(Clone, Debug, PartialEq, serde::Serialize)]
+pub struct SolveSummary {
+    pub value0: f64,
+    pub value: f64,
+    pub iterations: u32,
+    pub stop: String,
+}
+
+impl NodeSummary {
+    /// One line for the page.
+    pub fn text(&self) -> String {
+        format!(
+            "Node {}: old objective (min α/β, larger is better) {:.4} → {:.4} in {} iterations ({}); \
+             new objective (smaller is better) {:.4} → {:.4} in {} iterations ({}).",
+            self.node,
+            self.old.value0,
+            self.old.value,
+            self.old.iterations,
+            self.old.stop,
+            self.new.value0,
+            self.new.value,
+            self.new.iterations,
+            self.new.stop
+        )
+    }
+}
+
+fn path_kind(d: DirectionKind) -> PathKind {
+    match d {
+        DirectionKind::Gradient => PathKind::Gradient,
+        DirectionKind::Conjugate => PathKind::Conjugate,
+        DirectionKind::ActiveSet => PathKind::ActiveSet,
+    }
+}
+
+impl Playground {
+    /// The mesh view options of a panel: both panels share the original mesh's bounds, so
+    /// they compare at one scale and a dragged node does not rescale the picture.
+    fn mesh_options(&self, c: Canvas, highlight: Option<usize>) -> MeshView {
+        let mut o = MeshView::default().with_dpr(c.dpr).with_highlight(highlight);
+        o.bounds = Some(self.original().bounds());
+        o
+    }
+
+    /// Draws a panel's mesh coloured by quality, `highlight` with its star.
+    pub fn render_panel(&self, side: Side, c: Canvas, highlight: Option<usize>) -> Result<Pixmap> {
+        let mut pm = pixmap(c.w, c.h)?;
+        render_mesh(&mut pm, &self.panel(side).mesh, &self.mesh_options(c, highlight));
+        Ok(pm)
+    }
+
+    /// The view the panels are drawn with on canvas `c` (the same for both).
+    pub fn panel_view(&self, c: Canvas) -> View {
+        mesh_view(c.w, c.h, &self.panel(Side::Old).mesh, &self.mesh_options(c, None))
+    }
+
+    /// The free node of `side`'s mesh nearest to the CSS pixel `css`, within the render
+    /// module's pick radius; fixed and mid-side nodes are never picked.
+    pub fn pick_free_node(&self, side: Side, view: &View, css: DVec2) -> Option<usize> {
+        if !css.is_finite() {
+            return None;
+        }
+        let mesh = &self.panel(side).mesh;
+        let mut best = None;
+        let mut best_d2 = PICK_RADIUS * PICK_RADIUS;
+        for (n, p) in mesh.nodes.iter().enumerate() {
+            if !mesh.is_free(n) {
+                continue;
+            }
+            let d2 = view.to_css(*p).distance_squared(css);
+            if d2 <= best_d2 {
+                best_d2 = d2;
+                best = Some(n);
+            }
+        }
+        best
+    }
+
+    /// Level sets of one side's objective round `node` (on that side's current mesh),
+    /// with the path the solver takes from the node's position.
+    pub fn render_level_set(&self, side: Side, node: usize, c: Canvas) -> Result<(Pixmap, SolveResult)> {
+        let result = self.solve_node(side, node)?;
+        let panel = self.panel(side);
+        let mut star = Star::new();
+        star.gather(&panel.mesh, node);
+        let bounds = star_bounds(&star, LEVEL_SET_MARGIN);
+        let field = sample_field(panel.objective.as_ref(), &star, bounds, LEVEL_SET_SAMPLES, LEVEL_SET_SAMPLES)?;
+        let mut path = Vec::with_capacity(result.history.len() + 1);
+        path.push((result.x0, PathKind::Start));
+        path.extend(result.history.iter().map(|it| (it.x, path_kind(it.direction))));
+        let title = match side {
+            Side::Old => "old: max-min α/β (Freitag's ascent)",
+            Side::New => "new: Chen et al. (Fletcher–Reeves)",
+        };
+        let data = LevelSet { field: &field, star: &star, path: &path, optimum: Some(result.x), title };
+        let mut pm = pixmap(c.w, c.h)?;
+        render_level_set(&mut pm, &data, &LevelSetView { dpr: c.dpr, ..LevelSetView::default() });
+        Ok((pm, result))
+    }
+
+    /// Both sides' level sets at `node` and a chart of their solve histories.
+    pub fn render_node_view(&self, node: usize, level: Canvas, chart: Canvas) -> Result<([Pixmap; 3], NodeSummary)> {
+        let (old_pm, old) = self.render_level_set(Side::Old, node, level)?;
+        let (new_pm, new) = self.render_level_set(Side::New, node, level)?;
+        let mut pm = pixmap(chart.w, chart.h)?;
+        let full = Frame::of_pixmap(&pm, chart.dpr);
+        let series = |r: &SolveResult| -> Vec<DVec2> {
+            std::iter::once(DVec2::new(0.0, r.value0))
+                .chain(r.history.iter().enumerate().map(|(i, it)| DVec2::new(i as f64 + 1.0, it.value)))
+                .collect()
+        };
+        let (so, sn) = (series(&old), series(&new));
+        render_chart(
+            &mut pm,
+            &[Series::new("old: min α/β", &so)],
+            &Chart {
+                title: "Old objective per iteration (larger is better)",
+                x_label: "iteration",
+                y_label: "min α/β",
+                dpr: chart.dpr,
+                frame: Some(full.row(0, 2, 4.0)),
+                ..Chart::default()
+            },
+        );
+        render_chart(
+            &mut pm,
+            &[Series::new("new: f", &sn).with_color(crate::render::series_color(1))],
+            &Chart {
+                title: "New objective per iteration (smaller is better)",
+                x_label: "iteration",
+                y_label: "f",
+                dpr: chart.dpr,
+                frame: Some(full.row(1, 2, 4.0)),
+                ..Chart::default()
+            },
+        );
+        let summary = |r: &SolveResult| SolveSummary {
+            value0: r.value0,
+            value: r.value,
+            iterations: r.iterations,
+            stop: format!("{:?}", r.stop),
+        };
+        Ok(([old_pm, new_pm, pm], NodeSummary { node, old: summary(&old), new: summary(&new) }))
+    }
+
+    /// Per-pass curves of both sides (min/max angle, min quality, inverted elements;
+    /// pass 0 is the mesh as loaded).
+    pub fn render_pass_chart(&self, c: Canvas) -> Result<Pixmap> {
+        let start = crate::quality::mesh_stats(self.original());
+        let hist = |side: Side| {
+            let r = &self.panel(side).records;
+            let col = |f0: f64, f: &dyn Fn(&crate::smooth::PassRecord) -> f64| -> Vec<f64> {
+                std::iter::once(f0).chain(r.iter().map(f)).collect()
+            };
+            [
+                col(start.min_angle_deg, &|r| r.min_angle_deg),
+                col(start.max_angle_deg, &|r| r.max_angle_deg),
+                col(start.min_quality, &|r| r.min_quality),
+                col(start.inverted as f64, &|r| r.inverted as f64),
+            ]
+        };
+        let (o, n) = (hist(Side::Old), hist(Side::New));
+        let runs = [
+            PassHistory {
+                label: "old (max-min)",
+                min_angle_deg: &o[0],
+                max_angle_deg: &o[1],
+                min_quality: &o[2],
+                inverted: &o[3],
+            },
+            PassHistory {
+                label: "new (Chen et al.)",
+                min_angle_deg: &n[0],
+                max_angle_deg: &n[1],
+                min_quality: &n[2],
+                inverted: &n[3],
+            },
+        ];
+        let mut pm = pixmap(c.w, c.h)?;
+        render_pass_histories(
+            &mut pm,
+            &runs,
+            &Chart { title: "Per pass (0 = as loaded)", dpr: c.dpr, ..Chart::default() },
+        );
+        Ok(pm)
+    }
+
+    /// The angle histogram of a side's mesh over that of the mesh as loaded.
+    pub fn render_histogram(&self, side: Side, c: Canvas) -> Result<Pixmap> {
+        let start = crate::quality::mesh_stats(self.original()).angle_histogram_6deg;
+        let now = self.stats(side).mesh.angle_histogram_6deg;
+        let label = match side {
+            Side::Old => "old (max-min)",
+            Side::New => "new (Chen et al.)",
+        };
+        let mut pm = pixmap(c.w, c.h)?;
+        render_angle_histogram(
+            &mut pm,
+            &[HistogramSeries { label: "as loaded", counts: &start }, HistogramSeries { label, counts: &now }],
+            &AngleHistogram { title: "Corner angles (6° bins)", dpr: c.dpr, ..AngleHistogram::default() },
+        )?;
+        Ok(pm)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::lab::sample::Sample;
+    use std::collections::HashSet;
+
+    fn colours(pm: &Pixmap) -> usize {
+        pm.pixels().iter().map(|p| (p.red(), p.green(), p.blue(), p.alpha())).collect::<HashSet<_>>().len()
+    }
+    fn opaque(pm: &Pixmap) -> bool {
+        pm.pixels().iter().all(|p| p.alpha() == 255)
+    }
+    const C: Canvas = Canvas { w: 300, h: 300, dpr: 1.0 };
+
+    #[test]
+    fn panels_are_drawn_opaque_and_a_pick_finds_the_free_node_drawn_there() {
+        let pg = Playground::new(Sample::StarRegular.generate().unwrap()).unwrap();
+        for side in Side::BOTH {
+            let pm = pg.render_panel(side, C, None).unwrap();
+            assert!(opaque(&pm), "straight alpha = premultiplied only when opaque");
+            assert!(colours(&pm) > 8);
+        }
+        let view = pg.panel_view(C);
+        let free = pg.original().node_count() - 1;
+        let at = view.to_css(pg.original().nodes[free]);
+        assert_eq!(pg.pick_free_node(Side::New, &view, at + DVec2::new(3.0, -2.0)), Some(free));
+        assert_eq!(
+            pg.pick_free_node(Side::New, &view, view.to_css(pg.original().nodes[0])),
+            None,
+            "fixed nodes are not picked"
+        );
+        assert_eq!(pg.pick_free_node(Side::New, &view, DVec2::new(f64::NAN, 0.0)), None);
+    }
+
+    #[test]
+    fn node_view_draws_both_level_sets_and_the_history() {
+        let pg = Playground::new(Sample::StarChen.generate().unwrap()).unwrap();
+        let free = pg.original().node_count() - 1;
+        let ([lo, ln, ch], s) = pg.render_node_view(free, C, Canvas { w: 300, h: 240, dpr: 1.0 }).unwrap();
+        for pm in [&lo, &ln, &ch] {
+            assert!(opaque(pm) && colours(pm) > 20);
+        }
+        assert_ne!(lo.data(), ln.data());
+        assert!(s.new.value <= s.new.value0 && s.old.value >= s.old.value0);
+        assert!(s.text().contains(&format!("Node {free}")));
+        assert!(pg.render_node_view(0, C, C).is_err(), "fixed node");
+    }
+
+    #[test]
+    fn charts_and_histograms_follow_the_passes() {
+        let mut pg = Playground::new(Sample::PlateTriTangled.generate().unwrap()).unwrap();
+        let before = pg.render_pass_chart(C).unwrap();
+        pg.step(&|| 0.0);
+        let after = pg.render_pass_chart(C).unwrap();
+        assert_ne!(before.data(), after.data());
+        let h = pg.render_histogram(Side::New, C).unwrap();
+        assert!(opaque(&h) && colours(&h) > 8);
+    }
+
+    #[test]
+    fn bad_sizes_are_errors_not_panics() {
+        let pg = Playground::new(Sample::StarQuad.generate().unwrap()).unwrap();
+        for (w, h) in [(0, 10), (10, 0), (MAX_SIDE + 1, 10)] {
+            assert!(pg.render_panel(Side::Old, Canvas { w, h, dpr: 1.0 }, None).is_err());
+        }
+        assert!(pg.render_panel(Side::Old, Canvas { w: 50, h: 50, dpr: f32::NAN }, None).is_ok());
+    }
+}

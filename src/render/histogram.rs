@@ -1,0 +1,137 @@
+//! Angle histograms as in Freitag (1997), Figure 3: the percentage of element angles
+//! in each 6° bin over [0°, 180°], several meshes (original, Laplacian, old, new)
+//! overlaid as step outlines.
+
+use tiny_skia::{Color, PathBuilder, Pixmap};
+
+use super::axes::{draw_axes, nice_range, Axis, AxisLabels, Scale, Ticks};
+use super::colormap::series_color;
+use super::paint::{fill, fill_rect, legend, stroke, Key, LegendEntry};
+use super::view::{sane_dpr, Frame};
+use crate::error::{Error, Result};
+
+/// One mesh's angle counts per bin, e.g.
+/// [`MeshStats::angle_histogram_6deg`](crate::quality::MeshStats::angle_histogram_6deg).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct HistogramSeries<'a> {
+    pub label: &'a str,
+    /// Counts (not percentages) of equal bins spanning [0°, 180°].
+    pub counts: &'a [u64],
+}
+
+/// Options of [`render_angle_histogram`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct AngleHistogram<'a> {
+    /// Default "Angle distribution".
+    pub title: &'a str,
+    /// Device-pixel ratio. Default 1.
+    pub dpr: f32,
+    /// Where to draw, CSS pixels. Default the whole pixmap.
+    pub frame: Option<Frame>,
+    /// Default true.
+    pub legend: bool,
+}
+
+impl Default for AngleHistogram<'_> {
+    fn default() -> Self {
+        AngleHistogram { title: "Angle distribution", dpr: 1.0, frame: None, legend: true }
+    }
+}
+
+/// Percentages per bin (0 everywhere when the counts are all zero).
+pub fn percentages(counts: &[u64]) -> Vec<f64> {
+    let total: u64 = counts.iter().sum();
+    counts.iter().map(|&c| if total == 0 { 0.0 } else { 100.0 * c as f64 / total as f64 }).collect()
+}
+
+/// Draws the overlaid histograms. The first series is filled lightly (the reference,
+/// usually the original mesh); the others are outlines, alternately dashed. Fails when
+/// there are no bins or the series disagree on the number of bins.
+pub fn render_angle_histogram(pixmap: &mut Pixmap, series: &[HistogramSeries<'_>], opts: &AngleHistogram<'_>) -> Result<()> {
+    let bins = series.first().map(|s| s.counts.len()).unwrap_or(30);
+    if bins == 0 {
+        return Err(Error::invalid("an angle histogram needs at least one bin"));
+    }
+    if let Some(bad) = series.iter().find(|s| s.counts.len() != bins) {
+        return Err(Error::invalid(format!(
+            "angle histogram series \"{}\" has {} bins but \"{}\" has {}",
+            bad.label,
+            bad.counts.len(),
+            series[0].label,
+            bins
+        )));
+    }
+    let s = sane_dpr(opts.dpr);
+    let frame = opts.frame.unwrap_or(Frame::of_pixmap(pixmap, s));
+    fill_rect(pixmap, frame.x * s, frame.y * s, frame.w * s, frame.h * s, Color::WHITE);
+    let plot = frame.inset(62.0, if opts.title.is_empty() { 12.0 } else { 32.0 }, 14.0, 46.0);
+    let pct: Vec<Vec<f64>> = series.iter().map(|x| percentages(x.counts)).collect();
+    let top = pct.iter().flatten().copied().fold(0.0f64, f64::max);
+    let (_, ymax) = nice_range(0.0, top.max(1.0), 5);
+    let xa = Axis { lo: 0.0, hi: 180.0, scale: Scale::Linear, p0: plot.x * s, p1: plot.right() * s };
+    let ya = Axis { lo: 0.0, hi: ymax, scale: Scale::Linear, p0: plot.bottom() * s, p1: plot.y * s };
+    let xt = Ticks { step: 30.0, values: (0..=6).map(|k| 30.0 * k as f64).collect() };
+    draw_axes(pixmap, &xa, &ya, AxisLabels { title: opts.title, x: "angle (\u{b0})", y: "angles (%)" }, &xt, s);
+
+    // reference lines at the ideal angles 60° and 90°
+    let mut refs = PathBuilder::new();
+    for a in [60.0, 90.0] {
+        if let Some(x) = xa.map(a) {
+            refs.move_to(x, plot.y * s);
+            refs.line_to(x, plot.bottom() * s);
+        }
+    }
+    stroke(pixmap, refs, Color::from_rgba8(0, 0, 0, 70), 1.0 * s, Some([3.0 * s, 3.0 * s]));
+
+    let width = 180.0 / bins as f64;
+    let mut entries = Vec::new();
+    for (i, (ser, p)) in series.iter().zip(&pct).enumerate() {
+        let color = series_color(i);
+        let mut pb = PathBuilder::new();
+        let (bx, by) = (xa.map(0.0).unwrap_or(0.0), ya.map(0.0).unwrap_or(0.0));
+        pb.move_to(bx, by);
+        for (b, v) in p.iter().enumerate() {
+            let (xl, xr) = (xa.map(b as f64 * width).unwrap_or(bx), xa.map((b + 1) as f64 * width).unwrap_or(bx));
+            let y = ya.map(*v).unwrap_or(by);
+            pb.line_to(xl, y);
+            pb.line_to(xr, y);
+        }
+        pb.line_to(xa.map(180.0).unwrap_or(bx), by);
+        let dashed = i % 2 == 0 && i > 0;
+        if i == 0 {
+            let mut area = pb.clone();
+            area.close();
+            fill(pixmap, area, Color::from_rgba8(0, 0, 0, 38), true);
+        }
+        stroke(pixmap, pb, color, if i == 0 { 1.6 * s } else { 2.2 * s }, dashed.then_some([6.0 * s, 3.0 * s]));
+        entries.push(LegendEntry { label: ser.label, color, key: Key::Line { dashed, marker: None } });
+    }
+    if opts.legend {
+        legend(pixmap, &entries, (plot.right() - 6.0) * s, (plot.y + 6.0) * s, true, s);
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn percentages_sum_to_100() {
+        let p = percentages(&[1, 3, 0, 4]);
+        assert_eq!(p, vec![12.5, 37.5, 0.0, 50.0]);
+        assert_eq!(percentages(&[0, 0]), vec![0.0, 0.0]);
+    }
+
+    #[test]
+    fn mismatched_series_are_refused() {
+        let mut p = Pixmap::new(100, 80).unwrap();
+        let a = [1u64; 30];
+        let b = [1u64; 29];
+        let e = render_angle_histogram(&mut p, &[HistogramSeries { label: "a", counts: &a }, HistogramSeries { label: "b", counts: &b }], &AngleHistogram::default())
+            .unwrap_err();
+        assert!(e.to_string().contains("\"b\" has 29 bins"), "{e}");
+        assert!(render_angle_histogram(&mut p, &[HistogramSeries { label: "a", counts: &[] }], &AngleHistogram::default()).is_err());
+        render_angle_histogram(&mut p, &[], &AngleHistogram::default()).unwrap();
+    }
+}

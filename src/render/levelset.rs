@@ -1,0 +1,536 @@
+//! Level sets of one node's objective over the neighbourhood of its star, as in
+//! Chen, Tristano & Kwok (2003), Figures 7, 10 and 20: filled bands and iso-lines,
+//! the feasible region's border, the star's edges, the current position, the optimum
+//! and the solver's path.
+//!
+//! The field is sampled on a grid ([`sample_field`]); iso-lines come from marching
+//! squares ([`iso_segments`](super::contour::iso_segments)) and the bands from the same
+//! bilinear interpolant evaluated per pixel, so lines and bands agree. Samples that are
+//! not finite (a barrier objective's +∞, NaN) are masked: no band, no line, a grey hatch.
+
+use glam::DVec2;
+use tiny_skia::{Color, PathBuilder, Pixmap, PremultipliedColorU8};
+
+use super::colormap::Colormap;
+use super::contour::{chain_segments, iso_segments, Grid};
+use super::mesh::bezier_control;
+use super::paint::{draw_marker, fill_rect, legend, rgba, stroke, Key, LegendEntry, Marker, MarkerStyle};
+use super::text::{draw_text, Align, TextStyle, Valign};
+use super::view::{sane_dpr, Frame, View, ZoomPan};
+use crate::error::{Error, Result};
+use crate::objective::{Goal, Objective, Star};
+use crate::quality::{corner_edges, scaled_jacobian};
+
+/// The most samples [`sample_field`] takes (a 2000 × 2000 grid).
+pub const MAX_SAMPLES: usize = 4_000_000;
+
+/// An objective sampled over a rectangle around a node's star.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Field {
+    pub grid: Grid,
+    /// The objective at each grid point (row-major, see [`Grid`]); may hold +∞ or NaN.
+    pub values: Vec<f64>,
+    /// At each grid point, the smallest sine of a corner angle over the star's elements
+    /// with the node moved there: positive exactly where no element is inverted, so
+    /// its zero level set is the border of the feasible region.
+    pub validity: Vec<f64>,
+    /// Which way the objective is better (the bands are brightest at the best values).
+    pub goal: Goal,
+}
+
+/// A square box around the star: the bounding box of its elements' nodes, widened by
+/// `margin` (a fraction of its size) on every side. A star with no elements gives the
+/// unit box around its node.
+pub fn star_bounds(star: &Star, margin: f64) -> (DVec2, DVec2) {
+    let mut lo = star.x0;
+    let mut hi = star.x0;
+    for el in &star.elems {
+        for p in &el.pts[..el.kind.node_count()] {
+            lo = lo.min(*p);
+            hi = hi.max(*p);
+        }
+    }
+    let size = (hi - lo).max_element();
+    let size = if size > 0.0 && size.is_finite() { size } else { 1.0 };
+    let c = 0.5 * (lo + hi);
+    let half = 0.5 * size * (1.0 + 2.0 * margin.max(0.0));
+    (c - DVec2::splat(half), c + DVec2::splat(half))
+}
+
+/// Samples `objective` (the node of `star` moved to each grid point) and the star's
+/// validity on an `nx × ny` grid over `bounds`.
+pub fn sample_field(objective: &dyn Objective, star: &Star, bounds: (DVec2, DVec2), nx: usize, ny: usize) -> Result<Field> {
+    if nx < 2 || ny < 2 {
+        return Err(Error::invalid(format!("a level-set grid needs at least 2 × 2 samples, not {nx} × {ny}")));
+    }
+    if nx.saturating_mul(ny) > MAX_SAMPLES {
+        return Err(Error::TooLarge(format!("a {nx} × {ny} level-set grid is over the {MAX_SAMPLES} sample limit")));
+    }
+    let (lo, hi) = (bounds.0.min(bounds.1), bounds.0.max(bounds.1));
+    if !lo.is_finite() || !hi.is_finite() || hi.x - lo.x <= 0.0 || hi.y - lo.y <= 0.0 {
+        return Err(Error::invalid(format!("level-set bounds {lo:?}..{hi:?} are not a finite box with area")));
+    }
+    if star.is_empty() {
+        return Err(Error::node(star.node as usize, None, "has no elements around it to draw level sets over"));
+    }
+    let grid = Grid { nx, ny, lo, hi };
+    let mut values = Vec::with_capacity(grid.len());
+    let mut validity = Vec::with_capacity(grid.len());
+    for j in 0..ny {
+        for i in 0..nx {
+            let x = grid.point(i, j);
+            values.push(objective.value(star, x));
+            validity.push(star_validity(star, x));
+        }
+    }
+    Ok(Field { grid, values, validity, goal: objective.goal() })
+}
+
+/// Smallest corner sine over the star's elements with the node at `x`.
+fn star_validity(star: &Star, x: DVec2) -> f64 {
+    let mut v = f64::INFINITY;
+    for el in &star.elems {
+        let p = el.at(x);
+        let k = el.kind.corners();
+        for &(e1, e2) in &corner_edges(el.kind, &p[..el.kind.node_count()])[..k] {
+            v = v.min(scaled_jacobian(e1, e2));
+        }
+    }
+    v
+}
+
+/// How the levels are spaced.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Levels {
+    /// At `n` evenly spaced quantiles of the finite samples: every band covers about the
+    /// same area, so both the bowl and the steep penalty walls get lines. The default (14).
+    Quantiles(usize),
+    /// `n` levels whose distance from the best sample grows geometrically.
+    Log(usize),
+    /// `n` evenly spaced levels between the smallest and largest finite sample.
+    Linear(usize),
+}
+
+impl Default for Levels {
+    fn default() -> Self {
+        Levels::Quantiles(14)
+    }
+}
+
+/// The level values for `field`: finite, strictly increasing, at most `n` of them
+/// (fewer when samples repeat); empty when no sample is finite.
+pub fn choose_levels(field: &Field, levels: Levels) -> Vec<f64> {
+    let mut v: Vec<f64> = field.values.iter().copied().filter(|x| x.is_finite()).collect();
+    if v.len() < 2 {
+        return Vec::new();
+    }
+    v.sort_by(f64::total_cmp);
+    let (min, max) = (v[0], v[v.len() - 1]);
+    let mut out: Vec<f64> = match levels {
+        Levels::Quantiles(n) => (1..=n)
+            .map(|k| {
+                let q = k as f64 / (n + 1) as f64 * (v.len() - 1) as f64;
+                let (i, f) = (q.floor() as usize, q - q.floor());
+                v[i] + f * (v[(i + 1).min(v.len() - 1)] - v[i])
+            })
+            .collect(),
+        Levels::Linear(n) => (1..=n).map(|k| min + (max - min) * k as f64 / (n + 1) as f64).collect(),
+        Levels::Log(n) => {
+            // distances from the best value, spaced geometrically from the 1 % quantile
+            // of the positive distances to the largest
+            let best = if field.goal == Goal::MaximizeMin { max } else { min };
+            let mut d: Vec<f64> = v.iter().map(|x| (x - best).abs()).filter(|d| *d > 0.0).collect();
+            d.sort_by(f64::total_cmp);
+            if d.is_empty() {
+                return Vec::new();
+            }
+            let (d0, d1) = (d[d.len() / 100], d[d.len() - 1]);
+            let d0 = d0.max(d1 * 1e-12);
+            (0..n)
+                .map(|k| {
+                    let t = if n > 1 { k as f64 / (n - 1) as f64 } else { 0.0 };
+                    let dist = d0 * (d1 / d0).powf(t);
+                    if field.goal == Goal::MaximizeMin {
+                        best - dist
+                    } else {
+                        best + dist
+                    }
+                })
+                .collect()
+        }
+    };
+    out.retain(|x| x.is_finite());
+    out.sort_by(f64::total_cmp);
+    out.dedup_by(|a, b| (*a - *b).abs() <= 1e-12 * (1.0 + b.abs()));
+    out
+}
+
+/// How the solver got to an iterate of the path drawn on a level-set panel.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum PathKind {
+    /// The starting position.
+    Start,
+    /// After a steepest-descent (gradient) step.
+    Gradient,
+    /// After a conjugate-direction step (Fletcher–Reeves).
+    Conjugate,
+    /// After an active-set step of Freitag's max-min ascent.
+    ActiveSet,
+    /// After a (smart) Laplacian move.
+    Laplacian,
+}
+
+impl PathKind {
+    const ALL: [PathKind; 5] = [PathKind::Start, PathKind::Gradient, PathKind::Conjugate, PathKind::ActiveSet, PathKind::Laplacian];
+    fn marker(self) -> Marker {
+        match self {
+            PathKind::Start => Marker::Circle,
+            PathKind::Gradient => Marker::Circle,
+            PathKind::Conjugate => Marker::Triangle,
+            PathKind::ActiveSet => Marker::Square,
+            PathKind::Laplacian => Marker::Diamond,
+        }
+    }
+    fn color(self) -> Color {
+        match self {
+            PathKind::Start => Color::WHITE,
+            PathKind::Gradient => rgba(86, 180, 233, 255),
+            PathKind::Conjugate => rgba(230, 159, 0, 255),
+            PathKind::ActiveSet => rgba(204, 121, 167, 255),
+            PathKind::Laplacian => rgba(0, 158, 115, 255),
+        }
+    }
+    fn label(self) -> &'static str {
+        match self {
+            PathKind::Start => "start",
+            PathKind::Gradient => "gradient step",
+            PathKind::Conjugate => "conjugate step",
+            PathKind::ActiveSet => "active-set step",
+            PathKind::Laplacian => "Laplacian move",
+        }
+    }
+}
+
+/// The data of one level-set panel.
+#[derive(Clone, Copy, Debug)]
+pub struct LevelSet<'a> {
+    pub field: &'a Field,
+    /// The star whose edges are drawn (at its gathered position `x0`).
+    pub star: &'a Star,
+    /// The solver's iterates in order, each with how it was reached.
+    pub path: &'a [(DVec2, PathKind)],
+    /// The optimum found, if any.
+    pub optimum: Option<DVec2>,
+    /// Panel title (e.g. "new objective (Chen et al.)").
+    pub title: &'a str,
+}
+
+/// Options of [`render_level_set`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct LevelSetView {
+    /// Default [`Levels::Quantiles`]`(14)`.
+    pub levels: Levels,
+    /// Default viridis.
+    pub colormap: Colormap,
+    /// Device-pixel ratio. Default 1.
+    pub dpr: f32,
+    /// Where to draw, CSS pixels. Default the whole pixmap.
+    pub frame: Option<Frame>,
+    /// Draw iso-lines over the bands. Default true.
+    pub isolines: bool,
+    /// Draw the legend. Default true.
+    pub legend: bool,
+}
+
+impl Default for LevelSetView {
+    fn default() -> Self {
+        LevelSetView { levels: Levels::default(), colormap: Colormap::Viridis, dpr: 1.0, frame: None, isolines: true, legend: true }
+    }
+}
+
+const TITLE_H: f32 = 40.0;
+
+/// Draws one level-set panel and returns its view (world ↔ pixels).
+pub fn render_level_set(pixmap: &mut Pixmap, data: &LevelSet<'_>, opts: &LevelSetView) -> View {
+    let s = sane_dpr(opts.dpr);
+    let frame = opts.frame.unwrap_or(Frame::of_pixmap(pixmap, s));
+    fill_rect(pixmap, frame.x * s, frame.y * s, frame.w * s, frame.h * s, Color::WHITE);
+    let plot = frame.inset(0.0, TITLE_H, 0.0, 0.0);
+    let field = data.field;
+    let grid = field.grid;
+    let view = View::fit(grid.lo, grid.hi, plot, 8.0, ZoomPan::default(), s);
+    let levels = choose_levels(field, opts.levels);
+
+    draw_bands(pixmap, field, &levels, &view, plot, opts.colormap, s);
+
+    let mut segs = Vec::new();
+    let tol = 1e-9 * (grid.hi - grid.lo).max_element();
+    let to_path = |segs: &[[DVec2; 2]]| {
+        let mut pb = PathBuilder::new();
+        for line in chain_segments(segs, tol) {
+            for (i, p) in line.iter().enumerate() {
+                let (x, y) = view.device_xy(*p);
+                if i == 0 {
+                    pb.move_to(x, y);
+                } else {
+                    pb.line_to(x, y);
+                }
+            }
+        }
+        pb
+    };
+    if opts.isolines {
+        for &l in &levels {
+            iso_segments(&grid, &field.values, l, &mut segs);
+        }
+        stroke(pixmap, to_path(&segs), rgba(0, 0, 0, 120), 0.8 * s, None);
+    }
+    // the star's edges at the node's gathered position
+    let mut edges = PathBuilder::new();
+    for el in &data.star.elems {
+        let k = el.kind.corners();
+        let pts: Vec<(f32, f32)> = el.pts[..el.kind.node_count()].iter().map(|p| view.device_xy(*p)).collect();
+        edges.move_to(pts[0].0, pts[0].1);
+        for i in 0..k {
+            let b = pts[(i + 1) % k];
+            match el.kind.mid(i) {
+                Some(m) => {
+                    let c = bezier_control(pts[i], pts[m], b);
+                    edges.quad_to(c.0, c.1, b.0, b.1);
+                }
+                None => edges.line_to(b.0, b.1),
+            }
+        }
+        edges.close();
+    }
+    stroke(pixmap, edges.clone(), rgba(255, 255, 255, 200), 3.2 * s, None);
+    stroke(pixmap, edges, rgba(0, 0, 0, 255), 1.4 * s, None);
+
+    // the feasible border over the star edges it may run along
+    segs.clear();
+    iso_segments(&grid, &field.validity, 0.0, &mut segs);
+    let border = to_path(&segs);
+    stroke(pixmap, border, rgba(228, 26, 28, 255), 2.4 * s, Some([6.0 * s, 4.0 * s]));
+
+    // the path, then its iterates
+    if data.path.len() > 1 {
+        let mut pb = PathBuilder::new();
+        for (i, (p, _)) in data.path.iter().enumerate() {
+            let (x, y) = view.device_xy(*p);
+            if i == 0 {
+                pb.move_to(x, y);
+            } else {
+                pb.line_to(x, y);
+            }
+        }
+        stroke(pixmap, pb.clone(), Color::WHITE, 3.5 * s, None);
+        stroke(pixmap, pb, rgba(0, 0, 0, 255), 1.5 * s, None);
+    }
+    for (p, kind) in data.path {
+        let (x, y) = view.device_xy(*p);
+        draw_marker(pixmap, kind.marker(), x, y, MarkerStyle { r: 4.0 * s, fill: kind.color(), edge: Color::BLACK, width: s });
+    }
+    let (cx, cy) = view.device_xy(data.star.x0);
+    let mut ring = PathBuilder::new();
+    ring.push_circle(cx, cy, 6.5 * s);
+    stroke(pixmap, ring.clone(), Color::WHITE, 3.5 * s, None);
+    stroke(pixmap, ring, Color::BLACK, 1.6 * s, None);
+    if let Some(o) = data.optimum {
+        let (x, y) = view.device_xy(o);
+        draw_marker(pixmap, Marker::Star, x, y, MarkerStyle { r: 6.5 * s, fill: rgba(240, 228, 66, 255), edge: Color::BLACK, width: 1.2 * s });
+    }
+
+    // title and a one-line key to the bands
+    let title = TextStyle::new(14.0 * s).with_align(Align::Centre, Valign::Baseline);
+    draw_text(pixmap, data.title, (frame.x + 0.5 * frame.w) * s, (frame.y + 18.0) * s, title);
+    let sub = TextStyle::new(10.5 * s).with_color(rgba(80, 80, 80, 255)).with_align(Align::Centre, Valign::Baseline);
+    let better = if field.goal == Goal::MaximizeMin { "maximised" } else { "minimised" };
+    let note = format!("{better}: the brighter the band, the better");
+    draw_text(pixmap, &note, (frame.x + 0.5 * frame.w) * s, (frame.y + 33.0) * s, sub);
+
+    if opts.legend {
+        let mut entries = vec![
+            LegendEntry { label: "current position", color: Color::WHITE, key: Key::Marker(Marker::Circle) },
+            LegendEntry { label: "feasible border", color: rgba(228, 26, 28, 255), key: Key::Line { dashed: true, marker: None } },
+            LegendEntry { label: "an element inverted", color: rgba(33, 144, 141, 255), key: Key::Hatched },
+        ];
+        if field.values.iter().any(|v| !v.is_finite()) {
+            entries.push(LegendEntry { label: "objective undefined", color: rgba(225, 225, 225, 255), key: Key::Hatched });
+        }
+        for kind in PathKind::ALL {
+            if kind != PathKind::Start && data.path.iter().any(|(_, k)| *k == kind) {
+                entries.push(LegendEntry { label: kind.label(), color: kind.color(), key: Key::Marker(kind.marker()) });
+            }
+        }
+        if data.optimum.is_some() {
+            entries.push(LegendEntry { label: "optimum", color: rgba(240, 228, 66, 255), key: Key::Marker(Marker::Star) });
+        }
+        let pr = view.device_xy(grid.hi);
+        legend(pixmap, &entries, pr.0 - 4.0 * s, pr.1 + 4.0 * s, true, s * 0.9);
+    }
+    view
+}
+
+/// Per-pixel bands of the bilinear interpolant; masked samples in hatched grey, the
+/// infeasible region striped dark.
+fn draw_bands(pixmap: &mut Pixmap, field: &Field, levels: &[f64], view: &View, plot: Frame, map: Colormap, s: f32) {
+    let (w, h) = (pixmap.width() as i64, pixmap.height() as i64);
+    let x0 = ((plot.x * s).floor() as i64).clamp(0, w);
+    let x1 = ((plot.right() * s).ceil() as i64).clamp(0, w);
+    let y0 = ((plot.y * s).floor() as i64).clamp(0, h);
+    let y1 = ((plot.bottom() * s).ceil() as i64).clamp(0, h);
+    let n = levels.len();
+    let better_high = field.goal == Goal::MaximizeMin;
+    let colours: Vec<[u8; 3]> = (0..=n)
+        .map(|k| {
+            let t = if n == 0 { 0.5 } else { k as f64 / n as f64 };
+            map.rgb(if better_high { t } else { 1.0 - t })
+        })
+        .collect();
+    let stripe = (6.0 * s).max(3.0) as i64;
+    let pixels = pixmap.pixels_mut();
+    for py in y0..y1 {
+        for px in x0..x1 {
+            let p = view.device_to_world(DVec2::new(px as f64 + 0.5, py as f64 + 0.5));
+            let inside = p.x >= field.grid.lo.x && p.x <= field.grid.hi.x && p.y >= field.grid.lo.y && p.y <= field.grid.hi.y;
+            if !inside {
+                continue;
+            }
+            let v = field.grid.bilinear(&field.values, p);
+            let on_stripe = (px + py).rem_euclid(stripe) < (stripe / 3).max(1);
+            let mut c = if v.is_finite() {
+                colours[levels.partition_point(|l| *l <= v)]
+            } else if on_stripe {
+                [150, 150, 150]
+            } else {
+                [225, 225, 225]
+            };
+            let valid = field.grid.bilinear(&field.validity, p);
+            let infeasible = valid.is_nan() || valid <= 0.0;
+            if v.is_finite() && infeasible && on_stripe {
+                // stripes that contrast with the band: dark on light bands, light on dark
+                let luma = (2 * c[0] as u32 + 7 * c[1] as u32 + c[2] as u32) / 10;
+                c = if luma > 100 { c.map(|x| x / 3) } else { c.map(|x| ((x as u32 + 2 * 255) / 3) as u8) };
+            }
+            if let Some(q) = PremultipliedColorU8::from_rgba(c[0], c[1], c[2], 255) {
+                pixels[(py * w + px) as usize] = q;
+            }
+        }
+    }
+}
+
+/// Two level-set panels side by side (old and new objectives), each with its title.
+pub fn render_level_sets_side_by_side(pixmap: &mut Pixmap, left: &LevelSet<'_>, right: &LevelSet<'_>, opts: &LevelSetView) -> (View, View) {
+    let s = sane_dpr(opts.dpr);
+    let frame = opts.frame.unwrap_or(Frame::of_pixmap(pixmap, s));
+    fill_rect(pixmap, frame.x * s, frame.y * s, frame.w * s, frame.h * s, Color::WHITE);
+    let a = render_level_set(pixmap, left, &LevelSetView { frame: Some(frame.column(0, 2, 12.0)), ..*opts });
+    let b = render_level_set(pixmap, right, &LevelSetView { frame: Some(frame.column(1, 2, 12.0)), ..*opts });
+    (a, b)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::mesh::{ElementKind, MeshBuilder};
+    use crate::objective::Term;
+
+    /// An anisotropic bowl around `c` with a barrier (+∞) right of `wall`.
+    struct Bowl {
+        c: DVec2,
+        wall: f64,
+    }
+    impl Objective for Bowl {
+        fn name(&self) -> &'static str {
+            "bowl"
+        }
+        fn goal(&self) -> Goal {
+            Goal::MinimizeSum
+        }
+        fn terms(&self, _star: &Star, x: DVec2, out: &mut Vec<Term>) {
+            let d = x - self.c;
+            let (value, grad) = if x.x > self.wall {
+                (f64::INFINITY, DVec2::ZERO)
+            } else {
+                (d.x * d.x + 4.0 * d.y * d.y, DVec2::new(2.0 * d.x, 8.0 * d.y))
+            };
+            out.push(Term { elem: 0, value, grad });
+        }
+    }
+
+    fn hexagon_star() -> Star {
+        let mut b = MeshBuilder::new();
+        b.add_node([0.0, 0.0, 0.0], 0);
+        for k in 0..6 {
+            let a = k as f64 * std::f64::consts::PI / 3.0;
+            b.add_node([a.cos(), a.sin(), 0.0], 0);
+        }
+        for k in 0..6u32 {
+            b.add_element(ElementKind::Tri3, &[0, 1 + k, 1 + (k + 1) % 6], 0);
+        }
+        let mesh = b.build().unwrap();
+        let mut star = Star::new();
+        star.gather(&mesh, 0);
+        star
+    }
+
+    #[test]
+    fn sampling_checks_its_input() {
+        let star = hexagon_star();
+        let obj = Bowl { c: DVec2::ZERO, wall: 10.0 };
+        let b = star_bounds(&star, 0.1);
+        assert!(matches!(sample_field(&obj, &star, b, 1, 5), Err(Error::Invalid(_))));
+        assert!(matches!(sample_field(&obj, &star, b, 5000, 5000), Err(Error::TooLarge(_))));
+        assert!(sample_field(&obj, &star, (DVec2::ZERO, DVec2::new(1.0, 0.0)), 5, 5).is_err());
+        assert!(sample_field(&obj, &star, (DVec2::ZERO, DVec2::splat(f64::NAN)), 5, 5).is_err());
+        let e = sample_field(&obj, &Star::new(), b, 5, 5).unwrap_err();
+        assert!(e.to_string().contains("node 0"), "{e}");
+    }
+
+    #[test]
+    fn feasible_region_is_the_hexagon_kernel() {
+        // For a convex hexagon star the node may move anywhere inside the hexagon: the
+        // zero line of the validity runs along its edges (apothem √3/2).
+        let star = hexagon_star();
+        let obj = Bowl { c: DVec2::ZERO, wall: 10.0 };
+        let f = sample_field(&obj, &star, star_bounds(&star, 0.1), 121, 121).unwrap();
+        assert!(f.grid.bilinear(&f.validity, DVec2::ZERO) > 0.8);
+        assert!(f.grid.bilinear(&f.validity, DVec2::new(0.0, 0.95)) < 0.0);
+        let mut segs = Vec::new();
+        iso_segments(&f.grid, &f.validity, 0.0, &mut segs);
+        assert!(!segs.is_empty());
+        let apothem = 3f64.sqrt() / 2.0;
+        let h = f.grid.spacing().x;
+        for p in segs.iter().flatten() {
+            // distance to the hexagon boundary along the normal of the nearest edge
+            let a = p.y.atan2(p.x).rem_euclid(std::f64::consts::PI / 3.0) - std::f64::consts::PI / 6.0;
+            let r = p.length() * a.cos();
+            assert!((r - apothem).abs() < 2.0 * h, "border point {p:?} at {r}");
+        }
+    }
+
+    #[test]
+    fn levels_are_increasing_and_masked_samples_ignored() {
+        let star = hexagon_star();
+        let obj = Bowl { c: DVec2::new(0.1, -0.2), wall: 0.5 };
+        let f = sample_field(&obj, &star, star_bounds(&star, 0.1), 41, 41).unwrap();
+        assert!(f.values.iter().any(|v| v.is_infinite()));
+        for lv in [Levels::Quantiles(10), Levels::Log(10), Levels::Linear(10)] {
+            let l = choose_levels(&f, lv);
+            assert!(l.len() >= 8 && l.len() <= 10, "{lv:?}: {l:?}");
+            assert!(l.windows(2).all(|w| w[0] < w[1]) && l.iter().all(|v| v.is_finite()), "{lv:?}: {l:?}");
+        }
+        // quantile levels split the finite samples into bands of about equal counts
+        let l = choose_levels(&f, Levels::Quantiles(4));
+        let finite: Vec<f64> = f.values.iter().copied().filter(|v| v.is_finite()).collect();
+        for (k, lv) in l.iter().enumerate() {
+            let below = finite.iter().filter(|v| *v <= lv).count() as f64 / finite.len() as f64;
+            assert!((below - (k + 1) as f64 / 5.0).abs() < 0.03, "level {k}: {below}");
+        }
+        // log levels crowd near the best value
+        let l = choose_levels(&f, Levels::Log(10));
+        assert!(l[1] - l[0] < l[9] - l[8]);
+        let empty = Field { values: vec![f64::NAN; f.values.len()], ..f.clone() };
+        assert!(choose_levels(&empty, Levels::default()).is_empty());
+    }
+}

@@ -1,0 +1,58 @@
+//! Pictures drawn with tiny-skia: pure functions from data and options to pixels in a
+//! `&mut tiny_skia::Pixmap`. Nothing here knows about the web; the page and the CLI
+//! pass plain data (meshes, sampled fields, paths, series) and get pixels back.
+//!
+//! - [`render_mesh`]: elements coloured by a quality [`Metric`], inverted elements
+//!   hatched, curved quadratic edges, node marks, a highlighted star, a colour bar;
+//!   [`pick_node`] maps a click back to a node.
+//! - [`render_level_set`]: filled level bands and iso-lines of one node's objective
+//!   over its star (Chen et al. 2003, Figs. 7, 10, 20) with the feasible region and the
+//!   solver's path; [`render_level_sets_side_by_side`] for old vs new.
+//! - [`render_chart`] and [`render_pass_histories`]: convergence histories
+//!   (Chen et al. 2003, Figs. 11–12).
+//! - [`render_angle_histogram`]: angle distributions (Freitag 1997, Fig. 3).
+//! - [`render_compare`]: two mesh panels with titles and statistics.
+//!
+//! Sizes in options are CSS pixels; a device-pixel ratio scales them (see [`view`]).
+//! tiny-skia pixels are premultiplied RGBA; every view paints an opaque background, so
+//! the bytes can go to a canvas `ImageData` as they are.
+
+mod axes;
+mod chart;
+mod colormap;
+mod compare;
+mod contour;
+mod histogram;
+mod levelset;
+mod mesh;
+mod paint;
+mod text;
+pub mod view;
+
+#[cfg(test)]
+mod tests;
+
+pub use axes::{format_power_of_ten, format_tick, log_ticks, nice_range, nice_step, nice_ticks, Axis, Scale, Ticks};
+pub use chart::{render_chart, render_pass_histories, Chart, PassHistory, Series};
+pub use colormap::{lightness, series_color, Colormap};
+pub use compare::{render_compare, ComparePanel};
+pub use contour::{iso_segments, Grid};
+pub use histogram::{render_angle_histogram, AngleHistogram, HistogramSeries};
+pub use levelset::{
+    choose_levels, render_level_set, render_level_sets_side_by_side, sample_field, star_bounds, Field, LevelSet,
+    LevelSetView, Levels, PathKind,
+};
+pub use mesh::{
+    bezier_control, mesh_view, pick_node, pick_node_within, render_mesh, MeshView, Metric, Show, COLOUR_BAR_WIDTH,
+    INVERTED, PICK_RADIUS,
+};
+pub use paint::Marker;
+pub use text::{draw_text, draw_text_rotated, text_width, Align, TextStyle, Valign};
+pub use view::{Frame, View, ZoomPan};
+
+/// The picture as PNG bytes, for the CLI (native builds only: the page hands the
+/// pixels to a canvas and needs no PNG codec).
+#[cfg(not(target_arch = "wasm32"))]
+pub fn encode_png(pixmap: &tiny_skia::Pixmap) -> crate::Result<Vec<u8>> {
+    pixmap.encode_png().map_err(|e| crate::Error::Io(format!("cannot encode the picture as PNG: {e}")))
+}

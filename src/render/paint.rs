@@ -1,0 +1,232 @@
+//! Small drawing helpers shared by the views: solid fills and strokes of whole paths,
+//! point markers, and a legend box.
+
+use tiny_skia::{Color, FillRule, Paint, PathBuilder, Pixmap, Rect, Stroke, StrokeDash, Transform};
+
+use super::text::{draw_text, text_width, Align, TextStyle, Valign};
+
+/// The shape of a point marker.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Marker {
+    #[default]
+    Circle,
+    Square,
+    /// Pointing up.
+    Triangle,
+    Diamond,
+    /// A five-pointed star.
+    Star,
+}
+
+pub(crate) fn solid(c: Color) -> Paint<'static> {
+    let mut p = Paint::default();
+    p.set_color(c);
+    p
+}
+
+pub(crate) fn rgba(r: u8, g: u8, b: u8, a: u8) -> Color {
+    Color::from_rgba8(r, g, b, a)
+}
+
+/// Fills the path in `pb` (nonzero winding) and clears nothing: `pb` is consumed.
+pub(crate) fn fill(pixmap: &mut Pixmap, pb: PathBuilder, c: Color, anti_alias: bool) {
+    if let Some(path) = pb.finish() {
+        let mut p = solid(c);
+        p.anti_alias = anti_alias;
+        pixmap.fill_path(&path, &p, FillRule::Winding, Transform::identity(), None);
+    }
+}
+
+/// Strokes the path in `pb` with `width` device pixels, dashed when `dash` is given
+/// (on, off lengths in device pixels).
+pub(crate) fn stroke(pixmap: &mut Pixmap, pb: PathBuilder, c: Color, width: f32, dash: Option<[f32; 2]>) {
+    if let Some(path) = pb.finish() {
+        let s = Stroke {
+            width,
+            line_join: tiny_skia::LineJoin::Round,
+            line_cap: tiny_skia::LineCap::Round,
+            dash: dash.and_then(|d| StrokeDash::new(vec![d[0], d[1]], 0.0)),
+            ..Default::default()
+        };
+        pixmap.stroke_path(&path, &solid(c), &s, Transform::identity(), None);
+    }
+}
+
+/// Adds a marker of half-size `r` centred at `(x, y)` to `pb`.
+pub(crate) fn push_marker(pb: &mut PathBuilder, m: Marker, x: f32, y: f32, r: f32) {
+    if !(x.is_finite() && y.is_finite() && r > 0.0) {
+        return;
+    }
+    match m {
+        Marker::Circle => pb.push_circle(x, y, r),
+        Marker::Square => {
+            let r = 0.85 * r;
+            if let Some(rect) = Rect::from_ltrb(x - r, y - r, x + r, y + r) {
+                pb.push_rect(rect);
+            }
+        }
+        Marker::Triangle => {
+            pb.move_to(x, y - 1.15 * r);
+            pb.line_to(x - r, y + 0.75 * r);
+            pb.line_to(x + r, y + 0.75 * r);
+            pb.close();
+        }
+        Marker::Diamond => {
+            pb.move_to(x, y - 1.2 * r);
+            pb.line_to(x + r, y);
+            pb.line_to(x, y + 1.2 * r);
+            pb.line_to(x - r, y);
+            pb.close();
+        }
+        Marker::Star => {
+            for k in 0..10 {
+                let a = std::f32::consts::PI * (k as f32 / 5.0 - 0.5);
+                let rr = if k % 2 == 0 { 1.3 * r } else { 0.55 * r };
+                let (px, py) = (x + rr * a.cos(), y + rr * a.sin());
+                if k == 0 {
+                    pb.move_to(px, py);
+                } else {
+                    pb.line_to(px, py);
+                }
+            }
+            pb.close();
+        }
+    }
+}
+
+/// How a marker is painted: half-size, fill, outline colour and width (device pixels).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct MarkerStyle {
+    pub r: f32,
+    pub fill: Color,
+    pub edge: Color,
+    pub width: f32,
+}
+
+/// A marker centred at `(x, y)`, filled and outlined.
+pub(crate) fn draw_marker(pixmap: &mut Pixmap, m: Marker, x: f32, y: f32, st: MarkerStyle) {
+    let mut pb = PathBuilder::new();
+    push_marker(&mut pb, m, x, y, st.r);
+    let pb2 = pb.clone();
+    fill(pixmap, pb, st.fill, true);
+    stroke(pixmap, pb2, st.edge, st.width, None);
+}
+
+/// What a legend entry shows beside its label.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) enum Key {
+    /// A line sample, dashed or solid, with an optional marker on it.
+    Line { dashed: bool, marker: Option<Marker> },
+    /// A marker alone.
+    Marker(Marker),
+    /// A filled square with a hatch.
+    Hatched,
+}
+
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct LegendEntry<'a> {
+    pub label: &'a str,
+    pub color: Color,
+    pub key: Key,
+}
+
+/// Width and height of the box [`legend`] draws for `entries`.
+pub(crate) fn legend_size(entries: &[LegendEntry<'_>], s: f32) -> (f32, f32) {
+    if entries.is_empty() {
+        return (0.0, 0.0);
+    }
+    let w = entries.iter().map(|e| text_width(e.label, 11.0 * s)).fold(0.0f32, f32::max) + 24.0 * s + 18.0 * s;
+    (w, 16.0 * s * entries.len() as f32 + 6.0 * s)
+}
+
+/// Draws a legend box with its top-left or top-right corner at `(x, y)` (device pixels,
+/// `right_aligned` picks which); `s` scales sizes (the device-pixel ratio). Returns the
+/// box height.
+pub(crate) fn legend(pixmap: &mut Pixmap, entries: &[LegendEntry<'_>], x: f32, y: f32, right_aligned: bool, s: f32) -> f32 {
+    if entries.is_empty() {
+        return 0.0;
+    }
+    let line_h = 16.0 * s;
+    let pad = 6.0 * s;
+    let (w, h) = legend_size(entries, s);
+    let x0 = if right_aligned { x - w } else { x };
+    if let Some(r) = Rect::from_xywh(x0, y, w, h) {
+        let pb = PathBuilder::from_rect(r);
+        pixmap.fill_path(&pb, &solid(rgba(255, 255, 255, 225)), FillRule::Winding, Transform::identity(), None);
+        pixmap.stroke_path(&pb, &solid(rgba(0, 0, 0, 90)), &Stroke { width: s, ..Default::default() }, Transform::identity(), None);
+    }
+    for (i, e) in entries.iter().enumerate() {
+        let cy = y + pad * 0.5 + line_h * (i as f32 + 0.5);
+        legend_entry(pixmap, e, x0 + pad, cy, s);
+    }
+    h
+}
+
+/// Entries in one row centred on `cx`, at height `cy` (device pixels), without a box.
+pub(crate) fn legend_row(pixmap: &mut Pixmap, entries: &[LegendEntry<'_>], cx: f32, cy: f32, s: f32) {
+    let gap = 18.0 * s;
+    let widths: Vec<f32> = entries.iter().map(|e| 24.0 * s + 6.0 * s + text_width(e.label, 11.0 * s)).collect();
+    let total = widths.iter().sum::<f32>() + gap * entries.len().saturating_sub(1) as f32;
+    let mut x = cx - 0.5 * total;
+    for (e, w) in entries.iter().zip(widths) {
+        legend_entry(pixmap, e, x, cy, s);
+        x += w + gap;
+    }
+}
+
+/// One legend entry: its key from `kx`, its label after it, centred on `cy`.
+fn legend_entry(pixmap: &mut Pixmap, e: &LegendEntry<'_>, kx: f32, cy: f32, s: f32) {
+    let size = 11.0 * s;
+    let key_w = 24.0 * s;
+    let pad = 6.0 * s;
+    {
+        match e.key {
+            Key::Line { dashed, marker } => {
+                let mut pb = PathBuilder::new();
+                pb.move_to(kx, cy);
+                pb.line_to(kx + key_w, cy);
+                stroke(pixmap, pb, e.color, 2.0 * s, dashed.then_some([5.0 * s, 3.0 * s]));
+                if let Some(m) = marker {
+                    draw_marker(pixmap, m, kx + 0.5 * key_w, cy, MarkerStyle { r: 3.5 * s, fill: e.color, edge: e.color, width: s });
+                }
+            }
+            Key::Marker(m) => draw_marker(pixmap, m, kx + 0.5 * key_w, cy, MarkerStyle { r: 4.5 * s, fill: e.color, edge: rgba(0, 0, 0, 255), width: s }),
+            Key::Hatched => {
+                if let Some(r) = Rect::from_xywh(kx + 4.0 * s, cy - 5.0 * s, key_w - 8.0 * s, 10.0 * s) {
+                    let pb = PathBuilder::from_rect(r);
+                    pixmap.fill_path(&pb, &solid(e.color), FillRule::Winding, Transform::identity(), None);
+                    {
+                        let mut h = PathBuilder::new();
+                        let mut t = r.left() - r.height();
+                        while t < r.right() {
+                            h.move_to(t, r.bottom());
+                            h.line_to(t + r.height(), r.top());
+                            t += 4.0 * s;
+                        }
+                        if let (Some(path), Some(mask)) = (h.finish(), rect_mask(pixmap, r)) {
+                            let st = Stroke { width: 1.2 * s, ..Default::default() };
+                            pixmap.stroke_path(&path, &solid(rgba(0, 0, 0, 255)), &st, Transform::identity(), Some(&mask));
+                        }
+                    }
+                    pixmap.stroke_path(&pb, &solid(rgba(0, 0, 0, 160)), &Stroke { width: s, ..Default::default() }, Transform::identity(), None);
+                }
+            }
+        }
+        let style = TextStyle::new(size).with_align(Align::Left, Valign::Middle);
+        draw_text(pixmap, e.label, kx + key_w + pad, cy, style);
+    }
+}
+
+/// A mask that lets through only the rectangle `r`.
+pub(crate) fn rect_mask(pixmap: &Pixmap, r: Rect) -> Option<tiny_skia::Mask> {
+    let mut m = tiny_skia::Mask::new(pixmap.width(), pixmap.height())?;
+    m.fill_path(&PathBuilder::from_rect(r), FillRule::Winding, false, Transform::identity());
+    Some(m)
+}
+
+/// Fills the device rectangle `(x, y, w, h)` (ignored when empty).
+pub(crate) fn fill_rect(pixmap: &mut Pixmap, x: f32, y: f32, w: f32, h: f32, c: Color) {
+    if let Some(r) = Rect::from_xywh(x, y, w, h) {
+        pixmap.fill_rect(r, &solid(c), Transform::identity(), None);
+    }
+}

@@ -1,0 +1,448 @@
+// Browser tests of the playground page, in real Chromium (Debian's), as a user would:
+// open the page, pick samples, smooth, click and drag nodes, load bad files, export,
+// open the permalink and the embed view. Serves www/ itself on a free 127.0.0.1 port.
+// Screenshots go to test-output/browser/. Prints "N passed, M failed"; exits 1 on failure.
+import { spawn } from 'node:child_process';
+import { mkdirSync, readFileSync, existsSync } from 'node:fs';
+import { createServer } from 'node:net';
+import path from 'node:path';
+import { fileURLToPath } from 'node:url';
+import { chromium } from 'playwright-core';
+
+const ROOT = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '../..');
+const WWW = path.join(ROOT, 'www');
+const OUT = path.join(ROOT, 'test-output', 'browser');
+const BAD = path.join(ROOT, 'tests', 'data', 'bad');
+const DATA = path.join(ROOT, 'tests', 'data');
+const CHROMIUM = process.env.CHROMIUM || '/usr/bin/chromium';
+const ARGS = ['--headless', '--no-sandbox', '--disable-gpu', '--disable-quic', '--no-first-run',
+  '--disable-background-networking', '--disable-component-update', '--disable-sync'];
+const TIMEOUT = 60_000;
+
+mkdirSync(OUT, { recursive: true });
+if (!existsSync(path.join(WWW, 'pkg', 'smoothlab_bg.wasm'))) {
+  console.error('www/pkg/smoothlab_bg.wasm is missing: run `make site` first');
+  process.exit(1);
+}
+
+// ---- a static server on a free port ---------------------------------------------------
+function freePort() {
+  return new Promise((resolve, reject) => {
+    const s = createServer();
+    s.once('error', reject);
+    s.listen(0, '127.0.0.1', () => {
+      const { port } = s.address();
+      s.close(() => resolve(port));
+    });
+  });
+}
+async function startServer() {
+  const port = await freePort();
+  const proc = spawn('python3', ['-m', 'http.server', String(port), '--bind', '127.0.0.1', '--directory', WWW], {
+    stdio: ['ignore', 'ignore', 'pipe'],
+  });
+  let log = '';
+  proc.stderr.on('data', (d) => { log += d; });
+  const base = `http://127.0.0.1:${port}/`;
+  for (let i = 0; i < 100; i++) {
+    try {
+      const r = await fetch(base);
+      if (r.ok) return { proc, base, log: () => log };
+    } catch { /* not up yet */ }
+    await new Promise((r) => setTimeout(r, 100));
+  }
+  proc.kill();
+  throw new Error(`the test server did not start: ${log}`);
+}
+
+// ---- a tiny test runner ---------------------------------------------------------------
+const results = [];
+async function test(name, fn) {
+  const t0 = Date.now();
+  try {
+    await fn();
+    results.push({ name, ok: true });
+    console.log(`ok   ${name} (${Date.now() - t0} ms)`);
+  } catch (e) {
+    results.push({ name, ok: false, error: e });
+    console.log(`FAIL ${name}\n     ${String(e && e.stack ? e.stack : e).split('\n').slice(0, 4).join('\n     ')}`);
+  }
+}
+function check(cond, msg) {
+  if (!cond) throw new Error(msg);
+}
+
+// ---- page helpers ---------------------------------------------------------------------
+const externalRequests = [];
+const consoleErrors = [];
+let allowedErrors = []; // substrings of console errors a test provokes on purpose
+
+function watch(page, label) {
+  page.on('request', (req) => {
+    const u = new URL(req.url());
+    if (!['data:', 'blob:'].includes(u.protocol) && u.hostname !== '127.0.0.1') externalRequests.push(req.url());
+  });
+  page.on('console', (msg) => {
+    if (msg.type() === 'error' && !allowedErrors.some((a) => msg.text().includes(a))) consoleErrors.push(`${label}: ${msg.text()}`);
+  });
+  page.on('pageerror', (err) => consoleErrors.push(`${label}: uncaught ${err.message}`));
+  page.on('worker', (w) => {
+    w.on('console', (msg) => {
+      if (msg.type() === 'error' && !allowedErrors.some((a) => msg.text().includes(a))) consoleErrors.push(`${label} worker: ${msg.text()}`);
+    });
+  });
+}
+
+async function idle(page) {
+  await page.waitForFunction(() => document.body.dataset.ready === '1' && document.body.dataset.busy === '0', null, { timeout: TIMEOUT });
+}
+async function stats(page, side) {
+  return page.evaluate((side) => {
+    const out = {};
+    for (const tr of document.querySelectorAll(`#stats-${side} tr`)) out[tr.dataset.stat] = tr.querySelector('td').textContent;
+    return out;
+  }, side);
+}
+/** Distinct colours and a hash of a canvas's pixels. */
+async function canvasInfo(page, id) {
+  return page.evaluate((id) => {
+    const c = document.getElementById(id);
+    const d = c.getContext('2d').getImageData(0, 0, c.width, c.height).data;
+    const colours = new Set();
+    let h = 2166136261;
+    for (let i = 0; i < d.length; i += 4) {
+      const v = (d[i] << 24) | (d[i + 1] << 16) | (d[i + 2] << 8) | d[i + 3];
+      colours.add(v);
+      h = Math.imul(h ^ v, 16777619);
+    }
+    return { colours: colours.size, hash: h >>> 0, w: c.width, h: c.height };
+  }, id);
+}
+async function shot(page, name, fullPage = true) {
+  await page.screenshot({ path: path.join(OUT, `${name}.png`), fullPage });
+}
+async function chooseSample(page, value) {
+  await page.selectOption('#sample', value);
+  await page.waitForFunction((v) => document.getElementById('sample').value === v && document.body.dataset.busy === '0', value, { timeout: TIMEOUT });
+  await idle(page);
+}
+/** Clicks near points of the mesh canvas until a node is chosen (as a user aims at a node). */
+async function clickSomeNode(page, canvasId, fractions) {
+  const box = await page.locator(`#${canvasId}`).boundingBox();
+  for (const [fx, fy] of fractions) {
+    await page.mouse.click(box.x + fx * box.width, box.y + fy * box.height);
+    await idle(page);
+    const v = await page.inputValue('#node');
+    if (v !== '') return { node: Number(v), x: box.x + fx * box.width, y: box.y + fy * box.height };
+  }
+  throw new Error('no click near the mesh chose a node');
+}
+function ringPoints() {
+  // points in the plate's ring between the hole (r = 0.4) and the square (half-width 1)
+  const pts = [];
+  for (let k = 0; k < 24; k++) {
+    const a = (k / 24) * 2 * Math.PI;
+    for (const r of [0.36, 0.3]) pts.push([0.5 + r * Math.cos(a), 0.5 + r * Math.sin(a)]);
+  }
+  return pts;
+}
+
+// ---- the tests ------------------------------------------------------------------------
+const server = await startServer();
+const browser = await chromium.launch({ executablePath: CHROMIUM, args: ARGS });
+const context = await browser.newContext({ viewport: { width: 1280, height: 900 }, acceptDownloads: true });
+const page = await context.newPage();
+page.setDefaultTimeout(TIMEOUT);
+watch(page, 'page');
+
+try {
+  await test('the page opens on the tangled plate and draws both meshes', async () => {
+    await page.goto(server.base);
+    await idle(page);
+    check((await page.title()).includes('smoothlab'), 'title');
+    const s = await stats(page, 'new');
+    check(Number(s.nodes) > 0, `nodes: ${JSON.stringify(s)}`);
+    for (const id of ['mesh-old', 'mesh-new']) {
+      const c = await canvasInfo(page, id);
+      check(c.colours > 8, `${id} looks blank (${c.colours} colours)`);
+    }
+    await shot(page, '01-opened');
+  });
+
+  await test('Run 3 passes on the tangled plate: the new side has no inverted element', async () => {
+    await chooseSample(page, 'sample:plate-tri-tangled');
+    const before = [await stats(page, 'old'), await stats(page, 'new')];
+    check(Number(before[0].inverted) > 0 && Number(before[1].inverted) > 0, `the sample is not tangled: ${before[1].inverted}`);
+    await page.fill('#passes', '3');
+    await page.click('#run');
+    await page.waitForFunction(() => document.getElementById('run').textContent === 'Run' && document.getElementById('progress').value === 3, null, { timeout: TIMEOUT });
+    await idle(page);
+    const after = [await stats(page, 'old'), await stats(page, 'new')];
+    check(after[1].inverted === '0', `new side still has ${after[1].inverted} inverted elements`);
+    check(after[0].passes === '3' && after[1].passes === '3', `passes: ${after[0].passes}/${after[1].passes}`);
+    console.log(`     inverted old ${before[0].inverted} → ${after[0].inverted}, new ${before[1].inverted} → ${after[1].inverted}; ` +
+      `min angle old ${after[0].min_angle}, new ${after[1].min_angle}`);
+    await shot(page, '02-after-3-passes');
+  });
+
+  await test('Stop ends a long Run after the pass in progress', async () => {
+    await chooseSample(page, 'sample:rand2d-tangled');
+    await page.fill('#passes', '40');
+    await page.click('#run');
+    await page.waitForFunction(() => document.getElementById('progress').value >= 1, null, { timeout: TIMEOUT });
+    await page.click('#run'); // now labelled Stop
+    await page.waitForFunction(() => document.getElementById('run').textContent === 'Run', null, { timeout: TIMEOUT });
+    await idle(page);
+    const s = await stats(page, 'new');
+    check(Number(s.passes) >= 1 && Number(s.passes) < 40, `passes after Stop: ${s.passes}`);
+    check(/Stopped after/.test(await page.textContent('#status')), await page.textContent('#status'));
+    await page.fill('#passes', '3');
+    await chooseSample(page, 'sample:plate-tri-tangled');
+    await page.click('#run');
+    await page.waitForFunction(() => document.getElementById('run').textContent === 'Run' && document.getElementById('progress').value === 3, null, { timeout: TIMEOUT });
+    await idle(page);
+  });
+
+  await test('clicking a node draws both level sets, the path and the solve history', async () => {
+    const blank = await canvasInfo(page, 'level-new');
+    const before = [await stats(page, 'old'), await stats(page, 'new')];
+    const hit = await clickSomeNode(page, 'mesh-new', ringPoints());
+    const after = [await stats(page, 'old'), await stats(page, 'new')];
+    check(JSON.stringify(after) === JSON.stringify(before), 'clicking (not dragging) moved a node');
+    for (const id of ['level-old', 'level-new', 'solve-chart']) {
+      const c = await canvasInfo(page, id);
+      check(c.colours > 100 && c.hash !== blank.hash, `${id} looks blank (${c.colours} colours)`);
+      console.log(`     ${id}: ${c.colours} colours`);
+    }
+    check((await page.textContent('#node-hint')).includes(String(hit.node)), 'the summary names the node');
+    await page.locator('.node-view').screenshot({ path: path.join(OUT, '03-node-view.png') });
+  });
+
+  await test('charts per pass and angle histograms are drawn', async () => {
+    for (const id of ['pass-chart', 'hist-old', 'hist-new']) {
+      const c = await canvasInfo(page, id);
+      check(c.colours > 8, `${id} looks blank (${c.colours} colours)`);
+    }
+    await page.locator('.pass-view').screenshot({ path: path.join(OUT, '04-pass-view.png') });
+  });
+
+  await test('a malformed file shows an error and leaves the mesh on screen', async () => {
+    const files = ['bad_number.msh', 'non_planar.vtk', 'index_out_of_range.obj'].map((f) => path.join(BAD, f));
+    for (const f of files) check(existsSync(f), `missing test file ${f}`);
+    const before = { s: await stats(page, 'new'), c: await canvasInfo(page, 'mesh-new') };
+    check(Number(before.s.nodes) > 0 && before.c.colours > 8, 'a mesh is shown before');
+    for (const f of files) {
+      await page.setInputFiles('#file', f);
+      await page.waitForFunction(() => !document.getElementById('message').hidden, null, { timeout: TIMEOUT });
+      await idle(page);
+      const msg = await page.textContent('#message');
+      check(msg.length > 10, `empty message for ${path.basename(f)}`);
+      console.log(`     ${path.basename(f)}: ${msg}`);
+      const after = { s: await stats(page, 'new'), c: await canvasInfo(page, 'mesh-new') };
+      check(JSON.stringify(after.s) === JSON.stringify(before.s), 'the statistics changed');
+      check(after.c.hash === before.c.hash, 'the mesh canvas changed');
+      if (f.endsWith('non_planar.vtk')) check(/planar/.test(msg), `non-planar message: ${msg}`);
+    }
+    check((await page.getAttribute('#message', 'role')) === 'alert', 'the message is an alert');
+    await shot(page, '05-bad-file', false);
+  });
+
+  await test('a Triangle .node + .ele pair loads when selected together', async () => {
+    await page.setInputFiles('#file', [path.join(DATA, 'square_o2.node'), path.join(DATA, 'square_o2.ele')]);
+    await page.waitForFunction(() => document.getElementById('message').hidden && document.body.dataset.busy === '0', null, { timeout: TIMEOUT });
+    const s = await stats(page, 'old');
+    check(Number(s.nodes) > 0, `nodes ${s.nodes}`);
+  });
+
+  await test('a Gmsh sample file is fetched from the site and smoothed by Step', async () => {
+    await chooseSample(page, 'gmsh:bracket_quad.msh');
+    const s0 = await stats(page, 'new');
+    check(s0.nodes === '347', `bracket nodes ${s0.nodes}`);
+    await page.focus('#step');
+    await page.keyboard.press('Enter'); // keyboard works
+    await page.waitForFunction(() => document.querySelector('#stats-new tr[data-stat="passes"] td')?.textContent === '1', null, { timeout: TIMEOUT });
+    await idle(page);
+  });
+
+  await test('dragging a node moves it on both meshes', async () => {
+    await chooseSample(page, 'sample:plate-quad');
+    const before = [await canvasInfo(page, 'mesh-old'), await canvasInfo(page, 'mesh-new')];
+    const hit = await clickSomeNode(page, 'mesh-old', ringPoints());
+    await page.mouse.move(hit.x, hit.y);
+    await page.mouse.down();
+    await page.mouse.move(hit.x + 15, hit.y + 10, { steps: 5 });
+    await page.mouse.up();
+    await idle(page);
+    const after = [await canvasInfo(page, 'mesh-old'), await canvasInfo(page, 'mesh-new')];
+    check(after[0].hash !== before[0].hash && after[1].hash !== before[1].hash, 'a mesh did not change');
+    const s = [await stats(page, 'old'), await stats(page, 'new')];
+    check(s[0].min_angle === s[1].min_angle, `both sides moved alike: ${s[0].min_angle} vs ${s[1].min_angle}`);
+  });
+
+  await test('Perturb tangles the mesh and Reset restores it', async () => {
+    const s0 = await stats(page, 'new');
+    await page.fill('#seed', '7');
+    await page.locator('#amount').fill('1');
+    await page.click('#perturb');
+    await idle(page);
+    const s1 = await stats(page, 'new');
+    check(Number(s1.inverted) > 0, `perturb by 1 gave ${s1.inverted} inverted elements`);
+    await page.click('#reset');
+    await idle(page);
+    const s2 = await stats(page, 'new');
+    check(s2.min_angle === s1.min_angle, 'reset goes back to the perturbed mesh as the new original');
+    check(s0.nodes === s2.nodes, 'node count');
+  });
+
+  await test('export the smoothed mesh as .msh and .vtk and a view as PNG', async () => {
+    const get = async (sel) => {
+      const [dl] = await Promise.all([page.waitForEvent('download'), page.click(sel)]);
+      return { name: dl.suggestedFilename(), bytes: readFileSync(await dl.path()) };
+    };
+    const msh = await get('button[data-export="msh"][data-side="new"]');
+    check(msh.name.endsWith('_new.msh') && msh.bytes.toString().startsWith('$MeshFormat'), `msh: ${msh.name}`);
+    const vtk = await get('button[data-export="vtk"][data-side="old"]');
+    check(vtk.bytes.toString().startsWith('# vtk DataFile'), `vtk: ${vtk.bytes.toString().slice(0, 30)}`);
+    const png = await get('button[data-png="mesh-new"]');
+    check(png.bytes.subarray(1, 4).toString() === 'PNG', 'png magic');
+  });
+
+  await test('a mesh saved from a panel reads back with the same statistics (drop a file)', async () => {
+    await chooseSample(page, 'sample:plate-tri-tangled');
+    await page.click('#step');
+    await page.waitForFunction(() => document.querySelector('#stats-new tr[data-stat="passes"] td')?.textContent === '1', null, { timeout: TIMEOUT });
+    await idle(page);
+    const smoothed = await stats(page, 'new');
+    const [dl] = await Promise.all([page.waitForEvent('download'), page.click('button[data-export="msh"][data-side="new"]')]);
+    const text = readFileSync(await dl.path(), 'utf8');
+    // drop it on the page as a user drags a file from the desktop
+    await page.evaluate(([name, body]) => {
+      const dt = new DataTransfer();
+      dt.items.add(new File([body], name));
+      document.body.dispatchEvent(new DragEvent('drop', { dataTransfer: dt, bubbles: true, cancelable: true }));
+    }, [dl.suggestedFilename(), text]);
+    await page.waitForFunction(() => /Loaded .*_new\.msh/.test(document.getElementById('status').textContent), null, { timeout: TIMEOUT });
+    await idle(page);
+    const back = await stats(page, 'old');
+    for (const k of ['nodes', 'elements', 'inverted', 'min_angle', 'max_angle', 'min_quality']) {
+      check(back[k] === smoothed[k], `${k}: ${back[k]} read back, ${smoothed[k]} saved`);
+    }
+    check(back.passes === '0', 'a loaded file starts with no passes');
+  });
+
+  await test('a node chosen from the keyboard; a fixed node is refused with a message', async () => {
+    await chooseSample(page, 'sample:star-regular');
+    await page.fill('#node', '0');
+    await page.press('#node', 'Enter');
+    await page.waitForFunction(() => !document.getElementById('message').hidden, null, { timeout: TIMEOUT });
+    check(/node 0 cannot be chosen/.test(await page.textContent('#message')), await page.textContent('#message'));
+    await page.fill('#node', '6');
+    await page.press('#node', 'Tab');
+    await page.waitForFunction(() => document.getElementById('message').hidden, null, { timeout: TIMEOUT });
+    await idle(page);
+    const c = await canvasInfo(page, 'level-new');
+    check(c.colours > 100, `level sets of node 6: ${c.colours} colours`);
+    check((await page.textContent('#node-hint')).startsWith('Node 6:'), 'summary');
+  });
+
+  await test('the 100k-node sample loads in the worker while the page keeps drawing frames', async () => {
+    await page.evaluate(() => {
+      window.gaps = [];
+      let last = performance.now();
+      window.keep = true;
+      const f = (t) => { window.gaps.push(t - last); last = t; if (window.keep) requestAnimationFrame(f); };
+      requestAnimationFrame(f);
+    });
+    const t0 = Date.now();
+    await chooseSample(page, 'sample:rand2d-large');
+    const ms = Date.now() - t0;
+    const gap = await page.evaluate(() => { window.keep = false; return Math.max(...window.gaps); });
+    const s = await stats(page, 'new');
+    check(Number(s.nodes) >= 100000, `nodes ${s.nodes}`);
+    check(gap < 250, `the main thread stalled for ${gap.toFixed(0)} ms`);
+    console.log(`     ${s.nodes} nodes, ${s.elements} elements loaded and drawn in ${ms} ms; longest frame gap ${gap.toFixed(0)} ms`);
+    await chooseSample(page, 'sample:plate-tri');
+  });
+
+  await test('a panic in the engine is reported and the page keeps working', async () => {
+    allowedErrors = ['deliberate panic'];
+    const before = await stats(page, 'new');
+    await page.evaluate(() => window.smoothlab.panicForTest());
+    await page.waitForFunction(() => /Internal error/.test(document.getElementById('message').textContent), null, { timeout: TIMEOUT });
+    await idle(page);
+    await page.waitForFunction(() => document.querySelector('#stats-new tr[data-stat="nodes"]') !== null, null, { timeout: TIMEOUT });
+    const after = await stats(page, 'new');
+    check(after.nodes === before.nodes, 'the mesh was reloaded');
+    await page.click('#step');
+    await page.waitForFunction(() => document.querySelector('#stats-new tr[data-stat="passes"] td')?.textContent === '1', null, { timeout: TIMEOUT });
+    await shot(page, '06-after-panic', false);
+    allowedErrors = [];
+  });
+
+  await test('the permalink restores the sample and the settings', async () => {
+    await chooseSample(page, 'sample:star-chen');
+    await page.selectOption('#strategy', 'c2');
+    await page.selectOption('#threshold', '10');
+    await page.fill('#passes', '5');
+    await page.dispatchEvent('#passes', 'change');
+    const href = await page.getAttribute('#permalink', 'href');
+    check(href.includes('sample=star-chen') && href.includes('strategy=c2'), `permalink ${href}`);
+    const p2 = await context.newPage();
+    watch(p2, 'permalink');
+    await p2.goto(new URL(href, server.base).toString());
+    await idle(p2);
+    check((await p2.inputValue('#sample')) === 'sample:star-chen', 'sample');
+    check((await p2.inputValue('#strategy')) === 'c2', 'strategy');
+    check((await p2.inputValue('#threshold')) === '10', 'threshold');
+    check((await p2.inputValue('#passes')) === '5', 'passes');
+    // a hash with junk is ignored, not injected
+    await p2.goto(`${server.base}#sample=%3Cimg%20src%3Dx%3E&strategy=evil&passes=1e9`);
+    await p2.reload();
+    await idle(p2);
+    check((await p2.inputValue('#strategy')) === 'rules', 'junk strategy ignored');
+    check((await p2.locator('img').count()) === 0, 'no element built from the URL');
+    await p2.close();
+  });
+
+  await test('the embed view is compact and fits a narrow iframe', async () => {
+    const p3 = await context.newPage();
+    watch(p3, 'embed');
+    await p3.setViewportSize({ width: 480, height: 800 });
+    await p3.goto(`${server.base}?embed=1#sample=plate-mixed-tangled`);
+    await idle(p3);
+    check(!(await p3.isVisible('.node-view')) && !(await p3.isVisible('.pass-view')), 'embed hides the extra views');
+    check(await p3.isVisible('#mesh-old') && await p3.isVisible('#mesh-new'), 'both meshes shown');
+    check(await p3.isVisible('#open-full'), 'link to the full page');
+    const overflow = () => p3.evaluate(() => document.documentElement.scrollWidth - window.innerWidth);
+    const boxes = async () => [await p3.locator('#panel-old').boundingBox(), await p3.locator('#panel-new').boundingBox()];
+    check((await overflow()) <= 0, `horizontal overflow ${await overflow()}px`);
+    let [a, b] = await boxes();
+    check(Math.abs(a.y - b.y) < 1, 'at 480 px the embed shows the panels side by side');
+    await shot(p3, '07-embed-480');
+    await p3.setViewportSize({ width: 360, height: 800 });
+    await p3.waitForTimeout(400);
+    await idle(p3);
+    [a, b] = await boxes();
+    check(b.y >= a.y + a.height - 1, 'at 360 px the panels stack');
+    check((await overflow()) <= 0, `horizontal overflow at 360 px: ${await overflow()}px`);
+    // the full page on a phone-sized screen stacks too
+    await p3.goto(`${server.base}#sample=star-quad`);
+    await idle(p3);
+    [a, b] = await boxes();
+    check(b.y >= a.y + a.height - 1 && (await overflow()) <= 0, 'the full page stacks at 360 px');
+    await shot(p3, '08-full-360');
+    await p3.close();
+  });
+
+  await test('no request left 127.0.0.1 and the console has no errors', async () => {
+    check(externalRequests.length === 0, `external requests: ${externalRequests.join(', ')}`);
+    check(consoleErrors.length === 0, `console errors:\n${consoleErrors.join('\n')}`);
+  });
+} finally {
+  await browser.close();
+  server.proc.kill();
+}
+
+const failed = results.filter((r) => !r.ok).length;
+console.log(`${results.length - failed} passed, ${failed} failed`);
+process.exit(failed ? 1 : 0);

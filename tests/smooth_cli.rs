@@ -1,0 +1,175 @@
+//! `smoothlab smooth`: the JSON report's shape, its `final` object against
+//! `smoothlab stats --json` of the written file, the human summary, and the refusals.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+use serde_json::Value;
+
+fn bin() -> &'static str {
+    env!("CARGO_BIN_EXE_smoothlab")
+}
+
+fn dir(name: &str) -> PathBuf {
+    let d = std::env::temp_dir().join(format!("smoothlab-smooth-cli-{}-{name}", std::process::id()));
+    std::fs::create_dir_all(&d).unwrap();
+    d
+}
+
+fn run(args: &[&str]) -> Output {
+    Command::new(bin()).args(args).output().unwrap()
+}
+
+fn ok(args: &[&str]) -> String {
+    let out = run(args);
+    assert!(out.status.success(), "{args:?} failed: {}", String::from_utf8_lossy(&out.stderr));
+    String::from_utf8(out.stdout).unwrap()
+}
+
+fn p(path: &Path) -> &str {
+    path.to_str().unwrap()
+}
+
+/// A mixed plate perturbed until it has inverted elements.
+fn tangled_plate(d: &Path) -> PathBuf {
+    let plate = d.join("plate.vtk");
+    let tangled = d.join("tangled.vtk");
+    ok(&["generate", "plate", "--kind", "mixed", "-o", p(&plate)]);
+    ok(&["generate", "perturb", p(&plate), "--amount", "0.6", "--seed", "2", "-o", p(&tangled)]);
+    let s: Value = serde_json::from_str(&ok(&["stats", "--json", p(&tangled)])).unwrap();
+    assert!(s["inverted"].as_u64().unwrap() > 0, "the perturbed plate must be tangled: {s}");
+    tangled
+}
+
+const PASS_FIELDS: [&str; 11] = [
+    "pass",
+    "visits",
+    "inverted",
+    "min_angle_deg",
+    "max_angle_deg",
+    "min_quality",
+    "objective_total",
+    "laplacian_moves",
+    "optimization_calls",
+    "solver_iterations",
+    "elapsed_ms",
+];
+
+#[test]
+fn json_report_has_its_shape_and_final_equals_stats_of_the_output() {
+    let d = dir("json");
+    let input = tangled_plate(&d);
+    for (out_name, extra) in [
+        ("a.vtk", vec![]),
+        ("b.msh", vec!["--strategy", "c2", "--objective", "old", "--threshold", "15", "--passes", "2"]),
+        ("c.vtk", vec!["--strategy", "opt", "--objective", "condition-max", "--order", "priority", "--max-iter", "5"]),
+        ("d.msh", vec!["--strategy", "laplace", "--objective", "untangle-mindet", "--passes", "1"]),
+    ] {
+        let out = d.join(out_name);
+        let mut args = vec!["smooth", p(&input), "-o", p(&out), "--json"];
+        args.extend(extra.iter().copied());
+        let text = ok(&args);
+        assert_eq!(text.trim().lines().count(), 1, "one JSON object on one line: {text}");
+        let v: Value = serde_json::from_str(&text).unwrap();
+        let keys: Vec<&str> = v.as_object().unwrap().keys().map(|k| k.as_str()).collect();
+        let mut sorted = keys.clone();
+        sorted.sort_unstable();
+        assert_eq!(sorted, ["final", "objective", "passes", "strategy", "time_ms"], "{out_name}");
+        let passes = v["passes"].as_array().unwrap();
+        let want = extra.iter().position(|a| *a == "--passes").map_or(3, |i| extra[i + 1].parse::<usize>().unwrap());
+        assert_eq!(passes.len(), want, "{out_name}");
+        for (i, rec) in passes.iter().enumerate() {
+            let o = rec.as_object().unwrap();
+            assert_eq!(o.len(), PASS_FIELDS.len(), "{out_name}: {rec}");
+            for f in PASS_FIELDS {
+                assert!(o.contains_key(f), "{out_name}: pass record without {f}: {rec}");
+            }
+            assert_eq!(rec["pass"].as_u64(), Some(i as u64 + 1));
+            assert!(rec["elapsed_ms"].as_f64().unwrap() >= 0.0);
+        }
+        assert!(v["time_ms"].as_f64().unwrap() >= 0.0);
+        // `final` is exactly `stats --json` of the written file
+        let stats: Value = serde_json::from_str(&ok(&["stats", "--json", p(&out)])).unwrap();
+        assert_eq!(v["final"], stats, "{out_name}");
+        // and the last pass describes the same mesh
+        let last = passes.last().unwrap();
+        assert_eq!(last["inverted"], stats["inverted"], "{out_name}");
+        assert_eq!(last["min_angle_deg"], stats["min_angle_deg"], "{out_name}");
+        assert_eq!(last["min_quality"], stats["min_quality"], "{out_name}");
+    }
+}
+
+#[test]
+fn defaults_are_new_rules_priority_three_passes_and_untangle_the_plate() {
+    let d = dir("defaults");
+    let input = tangled_plate(&d);
+    let out = d.join("s.vtk");
+    let v: Value = serde_json::from_str(&ok(&["smooth", p(&input), "-o", p(&out), "--json"])).unwrap();
+    assert_eq!(v["objective"], "new");
+    assert_eq!(v["strategy"], "rules");
+    let passes = v["passes"].as_array().unwrap();
+    assert_eq!(passes.len(), 3);
+    // priority order visits poor nodes more than once a pass
+    let free = v["final"]["free_nodes"].as_u64().unwrap();
+    assert!(passes[0]["visits"].as_u64().unwrap() > free, "{}", passes[0]);
+    assert_eq!(v["final"]["inverted"], 0, "new + rules untangles this plate in 3 passes");
+    // the same with --order input visits each free node once
+    let v: Value =
+        serde_json::from_str(&ok(&["smooth", p(&input), "-o", p(&out), "--json", "--order", "input"])).unwrap();
+    assert_eq!(v["passes"][0]["visits"].as_u64(), Some(free));
+    // other strategies default to input order
+    let v: Value =
+        serde_json::from_str(&ok(&["smooth", p(&input), "-o", p(&out), "--json", "--strategy", "smart"])).unwrap();
+    assert_eq!(v["passes"][0]["visits"].as_u64(), Some(free));
+    assert_eq!(v["passes"][0]["optimization_calls"], 0);
+}
+
+#[test]
+fn human_summary_has_a_line_per_pass_and_writes_the_mesh() {
+    let d = dir("human");
+    let input = tangled_plate(&d);
+    let out = d.join("s.msh");
+    let text = ok(&["smooth", p(&input), "-o", p(&out), "--passes", "4", "--strategy", "laplace"]);
+    assert_eq!(text.lines().filter(|l| l.starts_with("pass ")).count(), 4, "{text}");
+    assert!(text.contains("measured only"), "laplace says it ignores the objective: {text}");
+    assert!(text.lines().last().unwrap().starts_with("final:"), "{text}");
+    assert!(out.is_file());
+}
+
+#[test]
+fn bad_options_are_refused_with_a_message_and_nothing_written() {
+    let d = dir("bad");
+    let input = tangled_plate(&d);
+    let out = d.join("never.vtk");
+    let i = p(&input);
+    let o = p(&out);
+    for (args, says) in [
+        (vec!["--passes", "0"], "--passes"),
+        (vec!["--max-iter", "0"], "--max-iter"),
+        (vec!["--strategy", "c1", "--threshold", "0"], "--threshold"),
+        (vec!["--strategy", "c3", "--threshold", "90.5"], "--threshold"),
+        (vec!["--strategy", "c2", "--threshold", "NaN"], "--threshold"),
+        (vec!["--threshold", "20"], "c1, c2 and c3"),
+        (vec!["--strategy", "opt", "--threshold", "20"], "c1, c2 and c3"),
+        (vec!["--strategy", "laplace", "--max-iter", "5"], "never calls the solver"),
+        (vec!["--strategy", "smart", "--max-iter", "5"], "never calls the solver"),
+        (vec!["--objective", "best"], "best"),
+        (vec!["--strategy", "fast"], "fast"),
+        (vec!["--order", "random"], "random"),
+        (vec!["--passes", "-1"], "-1"),
+    ] {
+        let mut a = vec!["smooth", i, "-o", o];
+        a.extend(args.iter().copied());
+        let r = run(&a);
+        let err = String::from_utf8_lossy(&r.stderr);
+        assert!(!r.status.success(), "{args:?} must fail");
+        assert!(err.contains(says), "{args:?}: {err}");
+        assert!(r.stdout.is_empty(), "{args:?}: nothing on stdout");
+        assert!(!out.exists(), "{args:?}: no output written");
+    }
+    // unreadable input and unknown output format name the file
+    let r = run(&["smooth", p(&d.join("missing.vtk")), "-o", o]);
+    assert!(!r.status.success() && String::from_utf8_lossy(&r.stderr).contains("missing.vtk"));
+    let r = run(&["smooth", i, "-o", p(&d.join("out.xyz"))]);
+    assert!(!r.status.success() && String::from_utf8_lossy(&r.stderr).contains("out.xyz"));
+}

@@ -1,0 +1,648 @@
+// The playground page: wires the controls to the engine (a worker running the Rust core
+// as wasm) and paints the pixels it returns. Nothing here builds HTML from file content
+// or from the URL: text goes in with textContent only.
+import { Engine } from './engine.js';
+
+const $ = (id) => document.getElementById(id);
+
+/** Gmsh meshes shipped with the site (www/samples/), fetched from the site itself. */
+const GMSH_SAMPLES = [
+  ['plate_hole_tri.msh', 'Gmsh: plate with a hole, triangles'],
+  ['bracket_quad.msh', 'Gmsh: L-bracket, quads'],
+  ['disk_tri6.msh', 'Gmsh: disk, 6-node triangles (curved)'],
+];
+const DEFAULT_SAMPLE = 'plate-tri-tangled';
+const MAX_FILE_BYTES = 256 * 1024 * 1024;
+const SETTINGS = ['strategy', 'threshold', 'order', 'passes', 'maxiter', 'amount', 'seed'];
+const EMBED = new URLSearchParams(location.search).get('embed') === '1';
+
+const state = {
+  source: null, // what is loaded: {kind: 'sample'|'gmsh', name} or {kind: 'file'|'triangle', ...}
+  lastGood: null, // the last source that loaded: reloaded after a panic
+  node: null, // the node whose level sets are shown
+  running: false,
+  cancel: false,
+  frame: { w: 0, h: 0, dpr: 1 }, // the last mesh frame (pointer positions map through it)
+};
+
+const engine = new Engine((err) => recoverFromPanic(err));
+
+// ---- serial queue: one engine operation at a time, in order ---------------------------
+let chain = Promise.resolve();
+let queued = 0;
+function serial(fn) {
+  queued += 1;
+  document.body.dataset.busy = '1';
+  const p = chain.then(fn);
+  chain = p.catch(() => {}).finally(() => {
+    queued -= 1;
+    if (queued === 0) document.body.dataset.busy = '0';
+  });
+  return p;
+}
+
+// ---- messages ------------------------------------------------------------------------
+function showError(text) {
+  const m = $('message');
+  m.textContent = text;
+  m.hidden = false;
+}
+function clearError() {
+  $('message').hidden = true;
+  $('message').textContent = '';
+}
+function setStatus(text) {
+  $('status').textContent = text;
+}
+function report(err) {
+  if (err && err.panic) return; // recoverFromPanic shows it
+  showError(err && err.message ? err.message : String(err));
+}
+
+function recoverFromPanic(err) {
+  showError(`Internal error in the smoothing engine (a bug; please report it): ${err.message}. ` +
+    'The engine was restarted and the mesh reloaded from its source.');
+  state.cancel = true;
+  const src = state.lastGood;
+  engine
+    .restart(async (call) => {
+      if (src) await loadSource(src, call);
+    })
+    .then(() => serial(redrawAll))
+    .catch((e) => showError(`${$('message').textContent} Reloading failed too: ${e.message}`));
+}
+
+// ---- settings and permalink -----------------------------------------------------------
+function readSettings() {
+  return {
+    strategy: $('strategy').value,
+    threshold_deg: Number($('threshold').value),
+    order: $('order').value,
+    max_iter: clampInt($('maxiter').value, 1, 100, 3),
+  };
+}
+function clampInt(v, lo, hi, dflt) {
+  const n = Math.round(Number(v));
+  return Number.isFinite(n) ? Math.min(hi, Math.max(lo, n)) : dflt;
+}
+function sourceKey() {
+  const s = state.lastGood;
+  if (!s) return null;
+  if (s.kind === 'sample') return ['sample', s.name];
+  if (s.kind === 'gmsh') return ['gmsh', s.name];
+  return null;
+}
+function permalinkHash() {
+  const p = new URLSearchParams();
+  const key = sourceKey();
+  if (key) p.set(key[0], key[1]);
+  for (const id of SETTINGS) p.set(id, $(id).value);
+  return `#${p.toString()}`;
+}
+function updatePermalink() {
+  const hash = permalinkHash();
+  history.replaceState(null, '', `${location.pathname}${location.search}${hash}`);
+  $('permalink').href = `${location.pathname}${hash}`;
+  if (EMBED) $('open-full').href = `${location.pathname}${hash}`;
+}
+/** Applies the URL hash to the controls; only values the controls offer are taken. */
+function applyHash() {
+  const p = new URLSearchParams(location.hash.slice(1));
+  for (const id of SETTINGS) {
+    const v = p.get(id);
+    if (v === null) continue;
+    const el = $(id);
+    if (el.tagName === 'SELECT') {
+      if ([...el.options].some((o) => o.value === v)) el.value = v;
+    } else {
+      const n = Number(v);
+      if (Number.isFinite(n) && n >= Number(el.min) && n <= Number(el.max)) el.value = String(n);
+    }
+  }
+  $('amount-out').textContent = $('amount').value;
+  const sample = p.get('sample');
+  const gmsh = p.get('gmsh');
+  if (gmsh && GMSH_SAMPLES.some(([f]) => f === gmsh)) return { kind: 'gmsh', name: gmsh };
+  if (sample && [...$('sample').options].some((o) => o.value === `sample:${sample}`)) return { kind: 'sample', name: sample };
+  return { kind: 'sample', name: DEFAULT_SAMPLE };
+}
+
+// ---- loading -------------------------------------------------------------------------
+async function loadSource(src, call = (...a) => engine.call(...a)) {
+  switch (src.kind) {
+    case 'sample':
+      await call('loadSample', src.name);
+      break;
+    case 'gmsh': {
+      const res = await fetch(`samples/${encodeURIComponent(src.name)}`);
+      if (!res.ok) throw new Error(`could not fetch the sample ${src.name} (HTTP ${res.status})`);
+      const bytes = await res.arrayBuffer();
+      await call('loadFile', src.name, bytes);
+      break;
+    }
+    case 'file':
+      await call('loadFile', src.name, src.bytes.slice(0));
+      break;
+    case 'triangle':
+      await call('loadTriangle', src.node, src.ele);
+      break;
+    default:
+      throw new Error('unknown mesh source');
+  }
+  await call('settings', readSettings());
+  state.lastGood = src;
+  state.node = null;
+  $('node').value = '';
+}
+
+function selectValueOf(src) {
+  if (src.kind === 'sample') return `sample:${src.name}`;
+  if (src.kind === 'gmsh') return `gmsh:${src.name}`;
+  return '';
+}
+
+/** Loads a source; on failure the previous mesh stays on screen and the message says why. */
+function load(src, label) {
+  return serial(async () => {
+    setStatus(`Loading ${label}…`);
+    const t0 = performance.now();
+    try {
+      await loadSource(src);
+    } catch (e) {
+      setStatus('');
+      $('sample').value = state.lastGood ? selectValueOf(state.lastGood) : '';
+      throw e;
+    }
+    clearError();
+    $('sample').value = selectValueOf(src);
+    await redrawAll();
+    setStatus(`Loaded ${label} in ${Math.round(performance.now() - t0)} ms.`);
+    updatePermalink();
+  }).catch(report);
+}
+
+async function readFiles(files) {
+  const list = [...files];
+  if (list.length === 0) return;
+  for (const f of list) {
+    if (f.size > MAX_FILE_BYTES) {
+      showError(`${f.name} is too large (${(f.size / 1048576).toFixed(0)} MB); the page reads files up to ${MAX_FILE_BYTES / 1048576} MB.`);
+      return;
+    }
+  }
+  const ext = (f) => f.name.toLowerCase().split('.').pop();
+  const node = list.find((f) => ext(f) === 'node');
+  const ele = list.find((f) => ext(f) === 'ele');
+  if (node || ele) {
+    if (!(node && ele)) {
+      showError(`A Triangle mesh needs its .node and .ele files together: select or drop both (got only ${(node || ele).name}).`);
+      return;
+    }
+    const [nt, et] = await Promise.all([node.text(), ele.text()]);
+    await load({ kind: 'triangle', node: nt, ele: et, name: `${node.name} + ${ele.name}` }, `${node.name} + ${ele.name}`);
+    return;
+  }
+  if (list.length > 1) {
+    showError(`Drop one mesh file at a time (or a .node and .ele pair); got ${list.length} files.`);
+    return;
+  }
+  const f = list[0];
+  const bytes = await f.arrayBuffer();
+  await load({ kind: 'file', name: f.name, bytes }, f.name);
+}
+
+// ---- drawing -------------------------------------------------------------------------
+/** Device-pixel size of a canvas as laid out, and the ratio used (at most 2). */
+function canvasPixels(canvas) {
+  const dpr = Math.min(window.devicePixelRatio || 1, 2);
+  const w = Math.max(64, Math.min(2048, Math.round(canvas.clientWidth * dpr)));
+  const h = Math.max(64, Math.min(2048, Math.round(canvas.clientHeight * dpr)));
+  return { w, h, dpr };
+}
+function paint(canvas, pixels, w, h) {
+  if (canvas.width !== w) canvas.width = w;
+  if (canvas.height !== h) canvas.height = h;
+  const img = new ImageData(new Uint8ClampedArray(pixels.buffer, pixels.byteOffset, pixels.byteLength), w, h);
+  canvas.getContext('2d').putImageData(img, 0, 0);
+}
+
+const STAT_ROWS = [
+  ['nodes', 'Nodes', (s) => s.nodes],
+  ['elements', 'Elements', (s) => s.elements],
+  ['inverted', 'Inverted elements', (s) => s.inverted],
+  ['min_angle', 'Min angle', (s) => deg(s.min_angle_deg)],
+  ['max_angle', 'Max angle', (s) => deg(s.max_angle_deg)],
+  ['min_quality', 'Min quality (α/β)', (s) => num(s.min_quality)],
+  ['laplacian_moves', 'Laplacian moves', (s) => s.laplacian_moves],
+  ['optimization_calls', 'Optimization calls', (s) => s.optimization_calls],
+  ['passes', 'Passes', (s) => s.passes],
+  ['time', 'Smoothing time', (s) => `${num(s.time_ms, 1)} ms`],
+];
+function deg(v) {
+  return Number.isFinite(v) ? `${v.toFixed(2)}°` : '—';
+}
+function num(v, digits = 4) {
+  return typeof v === 'number' && Number.isFinite(v) ? v.toFixed(digits) : '—';
+}
+function fillStats(table, s) {
+  const body = table.tBodies[0];
+  body.replaceChildren();
+  for (const [key, label, f] of STAT_ROWS) {
+    const v = f(s);
+    if (v === undefined) continue;
+    const tr = document.createElement('tr');
+    tr.dataset.stat = key;
+    const th = document.createElement('th');
+    th.scope = 'row';
+    th.textContent = label;
+    const td = document.createElement('td');
+    td.textContent = String(v);
+    tr.append(th, td);
+    body.append(tr);
+  }
+}
+
+async function redrawMeshes() {
+  const { w, h, dpr } = canvasPixels($('mesh-old'));
+  const f = await engine.call('frame', w, h, dpr);
+  paint($('mesh-old'), f.old, w, h);
+  paint($('mesh-new'), f.new, w, h);
+  state.frame = { w, h, dpr };
+  const st = await engine.call('stats');
+  fillStats($('stats-old'), st.old);
+  fillStats($('stats-new'), st.new);
+}
+
+async function redrawCharts() {
+  if (EMBED) return;
+  const c = canvasPixels($('pass-chart'));
+  const hc = canvasPixels($('hist-old'));
+  const r = await engine.call('charts', c.w, c.h, hc.w, hc.h, c.dpr);
+  paint($('pass-chart'), r.pass, c.w, c.h);
+  paint($('hist-old'), r.hist_old, hc.w, hc.h);
+  paint($('hist-new'), r.hist_new, hc.w, hc.h);
+}
+
+const NODE_HINT = 'Click a free (interior) node on either mesh, or type its number. Drag a node to move it on both meshes.';
+
+/** A canvas with a line of text in the middle (drawn, not HTML). */
+function placeholder(canvas, text) {
+  const { w, h } = canvasPixels(canvas);
+  canvas.width = w;
+  canvas.height = h;
+  const g = canvas.getContext('2d');
+  g.fillStyle = '#ffffff';
+  g.fillRect(0, 0, w, h);
+  g.fillStyle = '#5b6470';
+  g.font = `${Math.round(14 * (w / canvas.clientWidth || 1))}px system-ui, sans-serif`;
+  g.textAlign = 'center';
+  g.textBaseline = 'middle';
+  g.fillText(text, w / 2, h / 2);
+}
+
+async function redrawNode() {
+  if (EMBED) return;
+  const lv = canvasPixels($('level-old'));
+  const ch = canvasPixels($('solve-chart'));
+  if (state.node === null) {
+    for (const id of ['level-old', 'level-new', 'solve-chart']) placeholder($(id), 'Click a free node on a mesh');
+    $('node-hint').textContent = NODE_HINT;
+    return;
+  }
+  const r = await engine.call('nodeView', lv.w, lv.h, ch.w, ch.h, lv.dpr);
+  paint($('level-old'), r.level_old, lv.w, lv.h);
+  paint($('level-new'), r.level_new, lv.w, lv.h);
+  paint($('solve-chart'), r.chart, ch.w, ch.h);
+  $('node-hint').textContent = r.summary;
+}
+
+async function redrawAll() {
+  await redrawMeshes();
+  await redrawCharts();
+  await redrawNode();
+}
+
+// ---- smoothing -----------------------------------------------------------------------
+function applySettings() {
+  return engine.call('settings', readSettings());
+}
+
+async function onePass() {
+  await applySettings();
+  await engine.call('step');
+  await redrawMeshes();
+}
+
+function step() {
+  return serial(async () => {
+    await onePass();
+    await redrawCharts();
+    await redrawNode();
+    clearError();
+    setStatus('One pass done on both sides.');
+  }).catch(report);
+}
+
+async function run() {
+  if (state.running) {
+    state.cancel = true;
+    return;
+  }
+  const n = clampInt($('passes').value, 1, 100, 3);
+  state.running = true;
+  state.cancel = false;
+  $('run').textContent = 'Stop';
+  $('run').setAttribute('aria-pressed', 'true');
+  $('progress').max = n;
+  $('progress').value = 0;
+  let done = 0;
+  try {
+    for (let i = 0; i < n && !state.cancel; i++) {
+      setStatus(`Running pass ${i + 1} of ${n}… (Stop ends the run after this pass)`);
+      await serial(onePass);
+      done = i + 1;
+      $('progress').value = done;
+      await new Promise((r) => requestAnimationFrame(() => r()));
+    }
+    await serial(async () => {
+      await redrawCharts();
+      await redrawNode();
+    });
+    setStatus(state.cancel ? `Stopped after ${done} of ${n} passes.` : `${n} passes done on both sides.`);
+  } catch (e) {
+    report(e);
+  } finally {
+    state.running = false;
+    $('run').textContent = 'Run';
+    $('run').setAttribute('aria-pressed', 'false');
+  }
+}
+
+function reset() {
+  state.cancel = true;
+  return serial(async () => {
+    await engine.call('reset');
+    await redrawAll();
+    clearError();
+    setStatus('Both sides reset to the mesh as loaded.');
+  }).catch(report);
+}
+
+function perturb() {
+  const amount = Number($('amount').value);
+  const seed = clampInt($('seed').value, 0, 4294967295, 1);
+  return serial(async () => {
+    await engine.call('perturb', amount, seed);
+    await redrawAll();
+    clearError();
+    setStatus(`Perturbed the original mesh by ${amount} mean edge lengths (seed ${seed}); both sides start again from it.`);
+  }).catch(report);
+}
+
+// ---- picking and dragging ------------------------------------------------------------
+/** The pointer in CSS pixels of the last frame drawn (what the engine's view maps). */
+function toFrame(canvas, ev) {
+  const r = canvas.getBoundingClientRect();
+  const { w, h, dpr } = state.frame;
+  return {
+    x: ((ev.clientX - r.left) / r.width) * (w / dpr),
+    y: ((ev.clientY - r.top) / r.height) * (h / dpr),
+  };
+}
+
+/** Chooses the node whose star is highlighted and whose level sets are drawn. */
+function selectNode(node) {
+  return serial(async () => {
+    try {
+      await engine.call('select', node);
+    } catch (e) {
+      $('node').value = state.node === null ? '' : String(state.node);
+      throw e;
+    }
+    state.node = node;
+    $('node').value = node === null ? '' : String(node);
+    clearError();
+    await redrawMeshes();
+    await redrawNode();
+  }).catch(report);
+}
+
+function attachPointer(canvas) {
+  // One gesture per press. The pick is asynchronous (the engine is in a worker), so the
+  // button may be released, or the pointer moved, before it answers: the gesture keeps
+  // what happened and finishes when both the pick and the release are in.
+  let gesture = null;
+  const finish = (g) => {
+    if (g.node === null || g.node === undefined) return;
+    if (g.moved) pumpDrag(g, true);
+    else selectNode(g.node);
+  };
+  canvas.addEventListener('pointerdown', (ev) => {
+    if (state.running || ev.button !== 0 || !state.frame.w) return;
+    const p = toFrame(canvas, ev);
+    const g = { node: undefined, start: p, moved: false, up: false, busy: false, latest: null, final: false };
+    gesture = g;
+    canvas.setPointerCapture(ev.pointerId);
+    serial(() => engine.call('pick', canvas.dataset.side, p.x, p.y))
+      .then((node) => {
+        g.node = node === undefined ? null : node;
+        if (g.up) finish(g);
+        else if (g.moved && g.node !== null) pumpDrag(g);
+      })
+      .catch(report);
+  });
+  canvas.addEventListener('pointermove', (ev) => {
+    const g = gesture;
+    if (!g) return;
+    const p = toFrame(canvas, ev);
+    if (!g.moved && Math.hypot(p.x - g.start.x, p.y - g.start.y) < 4) return;
+    g.moved = true;
+    g.latest = p;
+    if (g.node !== undefined && g.node !== null) pumpDrag(g);
+  });
+  const end = (ev) => {
+    const g = gesture;
+    if (!g) return;
+    gesture = null;
+    g.up = true;
+    if (canvas.hasPointerCapture(ev.pointerId)) canvas.releasePointerCapture(ev.pointerId);
+    if (g.moved) g.latest = toFrame(canvas, ev);
+    if (g.node !== undefined) finish(g);
+  };
+  canvas.addEventListener('pointerup', end);
+  canvas.addEventListener('pointercancel', end);
+}
+
+/** Sends the latest drag position; positions that arrive meanwhile are coalesced. */
+function pumpDrag(d, final = false) {
+  if (d.busy) {
+    d.final = d.final || final;
+    return;
+  }
+  const p = d.latest;
+  if (!p) return;
+  d.latest = null;
+  d.busy = true;
+  serial(async () => {
+    await engine.call('drag', d.node, p.x, p.y);
+    if (final || d.final) {
+      await engine.call('select', d.node);
+      state.node = d.node;
+      $('node').value = String(d.node);
+    }
+    await redrawMeshes();
+    if (final || d.final) {
+      await redrawCharts();
+      await redrawNode();
+    }
+  })
+    .catch(report)
+    .finally(() => {
+      d.busy = false;
+      if (d.latest) pumpDrag(d, d.final);
+    });
+}
+
+// ---- export --------------------------------------------------------------------------
+function download(blob, name) {
+  const a = document.createElement('a');
+  a.href = URL.createObjectURL(blob);
+  a.download = name;
+  document.body.append(a);
+  a.click();
+  a.remove();
+  setTimeout(() => URL.revokeObjectURL(a.href), 10000);
+}
+function baseName() {
+  const s = state.lastGood;
+  if (!s) return 'mesh';
+  return String(s.name || 'mesh').replace(/\.[^.]*$/, '').replace(/[^A-Za-z0-9_-]+/g, '_').slice(0, 60) || 'mesh';
+}
+function exportMesh(side, format) {
+  return serial(async () => {
+    const text = await engine.call('exportMesh', side, format);
+    download(new Blob([text], { type: 'text/plain' }), `${baseName()}_${side}.${format}`);
+    setStatus(`Saved the ${side} side as .${format}.`);
+  }).catch(report);
+}
+function exportPng(canvasId) {
+  $(canvasId).toBlob((blob) => {
+    if (blob) download(blob, `${baseName()}_${canvasId}.png`);
+  }, 'image/png');
+}
+
+// ---- start ---------------------------------------------------------------------------
+async function fillGallery() {
+  const list = await engine.call('samples');
+  const sel = $('sample');
+  const gen = document.createElement('optgroup');
+  gen.label = 'Generated in the browser';
+  for (const s of list) {
+    const o = document.createElement('option');
+    o.value = `sample:${s.name}`;
+    o.textContent = s.title;
+    gen.append(o);
+  }
+  const files = document.createElement('optgroup');
+  files.label = 'Meshed by Gmsh (files)';
+  for (const [f, title] of GMSH_SAMPLES) {
+    const o = document.createElement('option');
+    o.value = `gmsh:${f}`;
+    o.textContent = title;
+    files.append(o);
+  }
+  const none = document.createElement('option');
+  none.value = '';
+  none.textContent = '(your file)';
+  none.disabled = true;
+  sel.append(gen, files, none);
+}
+
+function wire() {
+  $('sample').addEventListener('change', () => {
+    const v = $('sample').value;
+    const i = v.indexOf(':');
+    if (i < 0) return;
+    const kind = v.slice(0, i);
+    const name = v.slice(i + 1);
+    const label = $('sample').selectedOptions[0].textContent;
+    load({ kind, name }, label);
+  });
+  $('file').addEventListener('change', async () => {
+    const files = $('file').files;
+    await readFiles(files);
+    $('file').value = '';
+  });
+  document.addEventListener('dragover', (ev) => {
+    ev.preventDefault();
+    document.body.classList.add('dropping');
+  });
+  document.addEventListener('dragleave', (ev) => {
+    if (ev.target === document.documentElement || ev.clientX <= 0) document.body.classList.remove('dropping');
+  });
+  document.addEventListener('drop', (ev) => {
+    ev.preventDefault();
+    document.body.classList.remove('dropping');
+    if (ev.dataTransfer && ev.dataTransfer.files.length) readFiles(ev.dataTransfer.files);
+  });
+  $('step').addEventListener('click', step);
+  $('run').addEventListener('click', run);
+  $('reset').addEventListener('click', reset);
+  $('perturb').addEventListener('click', perturb);
+  $('amount').addEventListener('input', () => {
+    $('amount-out').textContent = $('amount').value;
+  });
+  for (const id of SETTINGS) $(id).addEventListener('change', updatePermalink);
+  $('node').addEventListener('change', () => {
+    const v = $('node').value.trim();
+    selectNode(v === '' ? null : clampInt(v, 0, 2 ** 31, 0));
+  });
+  attachPointer($('mesh-old'));
+  attachPointer($('mesh-new'));
+  for (const b of document.querySelectorAll('button[data-export]')) {
+    b.addEventListener('click', () => exportMesh(b.dataset.side, b.dataset.export));
+  }
+  for (const b of document.querySelectorAll('button[data-png]')) {
+    b.addEventListener('click', () => exportPng(b.dataset.png));
+  }
+  let resizeTimer = 0;
+  window.addEventListener('resize', () => {
+    clearTimeout(resizeTimer);
+    resizeTimer = setTimeout(() => serial(redrawAll).catch(report), 150);
+  });
+}
+
+function setupEmbed() {
+  if (!EMBED) return;
+  document.body.classList.add('embed');
+  const a = document.createElement('a');
+  a.id = 'open-full';
+  a.target = '_blank';
+  a.rel = 'noopener';
+  a.textContent = 'Open the full playground';
+  $('message').before(a);
+}
+
+async function main() {
+  document.body.dataset.busy = '1';
+  setupEmbed();
+  wire();
+  try {
+    await fillGallery();
+  } catch (e) {
+    report(e);
+    document.body.dataset.busy = '0';
+    return;
+  }
+  const src = applyHash();
+  const label = src.kind === 'gmsh' ? src.name : src.name;
+  await load(src, label);
+  document.body.dataset.ready = '1';
+}
+
+// A hook for the browser tests (and the curious): make the engine panic on purpose.
+window.smoothlab = {
+  panicForTest: () => serial(() => engine.call('panicForTest')).catch(report),
+};
+
+main();

@@ -1,0 +1,71 @@
+// The playground's engine: a module worker that owns the wasm module and the one
+// Playground handle, so smoothing a large mesh never freezes the page. The main thread
+// sends {id, cmd, args}; the worker answers {id, ok, result} or {id, ok: false, error,
+// panic}. `panic: true` means the Rust code panicked: the handle may be broken, and the
+// main thread replaces this worker with a fresh one.
+import init, * as wasm from './pkg/smoothlab.js';
+
+const ready = init();
+let pg = null;
+
+function need() {
+  if (!pg) throw new Error('no mesh is loaded yet');
+  return pg;
+}
+
+// Replace the handle only once the new one is built: a failed load keeps the old mesh.
+function replace(next) {
+  if (pg) pg.free();
+  pg = next;
+  return null;
+}
+
+const handlers = {
+  samples: () => wasm.samples(),
+  loadSample: (name) => replace(wasm.Playground.fromSample(name)),
+  loadFile: (name, bytes) => replace(wasm.Playground.fromBytes(new Uint8Array(bytes), name)),
+  loadTriangle: (node, ele) => replace(wasm.Playground.fromTriangle(node, ele)),
+  settings: (s) => need().setSettings(s),
+  stats: () => ({ old: need().stats('old'), new: need().stats('new') }),
+  reset: () => need().reset(),
+  step: () => need().step(),
+  perturb: (amount, seed) => need().perturb(amount, seed),
+  frame: (w, h, dpr) => need().frame(w, h, dpr),
+  pick: (panel, x, y) => need().pickNode(panel, x, y),
+  drag: (node, x, y) => need().dragNode(node, x, y),
+  select: (node) => need().selectNode(node === null ? undefined : node),
+  nodeView: (w, h, cw, ch, dpr) => need().nodeView(w, h, cw, ch, dpr),
+  charts: (w, h, hw, hh, dpr) => need().charts(w, h, hw, hh, dpr),
+  exportMesh: (side, format) => need().exportMesh(side, format),
+  panicForTest: () => wasm.panicForTest(),
+};
+
+// Buffers of typed arrays in a result, moved (not copied) to the main thread.
+function transferables(value, out = []) {
+  if (value instanceof Uint8Array) out.push(value.buffer);
+  else if (value && typeof value === 'object') for (const v of Object.values(value)) transferables(v, out);
+  return out;
+}
+
+self.onmessage = async (ev) => {
+  const { id, cmd, args } = ev.data;
+  try {
+    await ready;
+    const handler = handlers[cmd];
+    if (!handler) throw new Error(`unknown command ${cmd}`);
+    const result = handler(...(args || []));
+    self.postMessage({ id, ok: true, result }, transferables(result));
+  } catch (e) {
+    const panic = wasm.takePanicMessage ? safeTakePanic() : null;
+    const error = panic || (e && e.message) || String(e);
+    self.postMessage({ id, ok: false, error, panic: Boolean(panic) });
+  }
+};
+
+function safeTakePanic() {
+  try {
+    return wasm.takePanicMessage() || null;
+  } catch {
+    return null;
+  }
+}
