@@ -341,6 +341,8 @@ pub struct Smoother {
     /// Per-mesh facts, refreshed each pass.
     quadratic: bool,
     curved: bool,
+    /// `sin θ_t` of the combined schemes, computed once (not per visit).
+    sine_threshold: f64,
 }
 
 impl Smoother {
@@ -360,6 +362,7 @@ impl Smoother {
             passes: 0,
             quadratic: false,
             curved: false,
+            sine_threshold: options.threshold_deg.to_radians().sin(),
         })
     }
 
@@ -545,7 +548,7 @@ impl Smoother {
         }
         let x0 = mesh.nodes[n];
         let mut x = x0;
-        let sine_t = self.options.threshold_deg.to_radians().sin();
+        let sine_t = self.sine_threshold;
         match self.options.strategy {
             Strategy::Laplace => {
                 if let Some(c) = self.laplace(mesh, n, &mut out) {

@@ -60,7 +60,7 @@ try {
   await page.waitForFunction(() => window.benchResult !== undefined, null, { timeout: 20 * 60_000, polling: 500 });
   const result = await page.evaluate(() => window.benchResult);
   if (result.error) throw new Error(result.error);
-  result.browser = await browser.version().then((v) => `Chromium ${v} (headless)`);
+  result.browser = `Chromium ${browser.version()} (headless)`;
   console.log(JSON.stringify(result, null, 2));
 } catch (e) {
   console.error(`bench: ${e}`);
