@@ -44,7 +44,8 @@ fn stream_bound(mesh: &mut Mesh) -> u32 {
 }
 
 fn passes(large: bool) -> Vec<(&'static str, Strategy, ObjectiveKind)> {
-    let mut v = vec![("laplace", Strategy::Laplace, ObjectiveKind::New), ("smart", Strategy::Smart, ObjectiveKind::New)];
+    let mut v =
+        vec![("laplace", Strategy::Laplace, ObjectiveKind::New), ("smart", Strategy::Smart, ObjectiveKind::New)];
     if large {
         v.push(("opt+new", Strategy::Opt, ObjectiveKind::New));
     } else {
@@ -77,9 +78,13 @@ fn smoothing(c: &mut Criterion) {
             let obj = objective(ObjectiveKind::New);
             let options = SmoothOptions::default().with_strategy(Strategy::Opt);
             let mut s = ColouredSmoother::new(&mesh, options).expect("options");
-            g.bench_function(BenchmarkId::new("coloured opt+new", if ColouredSmoother::is_multithreaded() { "parallel" } else { "sequential" }), |b| {
-                b.iter_batched_ref(|| mesh.clone(), |m| s.sweep(m, &*obj), BatchSize::LargeInput)
-            });
+            g.bench_function(
+                BenchmarkId::new(
+                    "coloured opt+new",
+                    if ColouredSmoother::is_multithreaded() { "parallel" } else { "sequential" },
+                ),
+                |b| b.iter_batched_ref(|| mesh.clone(), |m| s.sweep(m, &*obj), BatchSize::LargeInput),
+            );
         }
         g.finish();
     }

@@ -15,7 +15,7 @@ use std::time::Instant;
 
 use smoothlab::generate::rand2d;
 use smoothlab::mesh::Mesh;
-use smoothlab::objective::{objective, ObjectiveKind, Star};
+use smoothlab::objective::{objective, Goal, Objective, ObjectiveKind, Star, Term};
 use smoothlab::quality::mesh_stats;
 use smoothlab::smooth::parallel::{ColouredSmoother, Execution};
 use smoothlab::smooth::{Order, SmoothOptions, Smoother, Strategy};
@@ -100,9 +100,45 @@ fn vm_hwm() -> Option<usize> {
     Some(kb * 1024)
 }
 
+/// An objective that counts the evaluations of another (for the cost analysis).
+struct Counted<'a> {
+    inner: &'a (dyn Objective + Sync),
+    calls: std::cell::Cell<u64>,
+}
+
+impl Objective for Counted<'_> {
+    fn name(&self) -> &'static str {
+        self.inner.name()
+    }
+    fn goal(&self) -> Goal {
+        self.inner.goal()
+    }
+    fn terms(&self, star: &Star, x: glam::DVec2, out: &mut Vec<Term>) {
+        self.calls.set(self.calls.get() + 1);
+        self.inner.terms(star, x, out)
+    }
+    fn value_and_gradient(&self, star: &Star, x: glam::DVec2) -> (f64, glam::DVec2) {
+        self.calls.set(self.calls.get() + 1);
+        self.inner.value_and_gradient(star, x)
+    }
+}
+
+/// Objective evaluations per visit and mean star size of one `opt` sweep with `kind`.
+fn evaluations_per_visit(mesh: &Mesh, kind: ObjectiveKind) -> (f64, f64) {
+    let obj = objective(kind);
+    let counted = Counted { inner: &*obj, calls: std::cell::Cell::new(0) };
+    let mut m = mesh.clone();
+    let visits = Smoother::new(options(Strategy::Opt)).expect("options").sweep(&mut m, &counted).visits;
+    let elements: usize =
+        (0..mesh.node_count()).filter(|&i| mesh.is_free(i)).map(|i| mesh.node_elements(i).len()).sum();
+    (counted.calls.get() as f64 / visits.max(1) as f64, elements as f64 / visits.max(1) as f64)
+}
+
+/// A row of the ratio table: name, target, and the figure of one mesh size.
+type RatioRow<'a> = (&'a str, &'a str, &'a dyn Fn(&SizeReport) -> String);
+
 struct SizeReport {
     nodes: usize,
-    free: usize,
     elements: usize,
     generate_s: f64,
     heap_bytes: usize,
@@ -113,6 +149,8 @@ struct SizeReport {
     levelset: Vec<(String, f64)>,
     /// (name, ns/visit 1 thread, ns/visit all threads)
     parallel: Vec<(String, f64, f64)>,
+    /// (objective, evaluations per visit, elements per star) of an `opt` sweep
+    evaluations: Vec<(String, f64, f64)>,
 }
 
 fn measure(n: usize, quick: bool) -> SizeReport {
@@ -121,7 +159,13 @@ fn measure(n: usize, quick: bool) -> SizeReport {
     let generate_s = t.elapsed().as_secs_f64();
     assert_eq!(mesh_stats(&mesh).inverted, 0, "rand2d is untangled");
     let (spatial, _) = mesh.renumbered_spatially();
-    let reps = if n >= 1_000_000 { 1 } else if n >= 100_000 { 3 } else { 7 };
+    let reps = if n >= 1_000_000 {
+        1
+    } else if n >= 100_000 {
+        3
+    } else {
+        7
+    };
     let reps = if quick { 1 } else { reps };
     let mut rows = Vec::new();
     let both = |f: &dyn Fn(&mut Mesh) -> u32| (time_ns_per_visit(&mesh, reps, f), time_ns_per_visit(&spatial, reps, f));
@@ -164,12 +208,14 @@ fn measure(n: usize, quick: bool) -> SizeReport {
     }
     // coloured passes: deferred on 1 thread and on all threads
     let mut parallel = Vec::new();
-    let colours = ColouredSmoother::new(&spatial, options(Strategy::Laplace)).expect("options").colouring().colour_count();
+    let colours =
+        ColouredSmoother::new(&spatial, options(Strategy::Laplace)).expect("options").colouring().colour_count();
     if ColouredSmoother::is_multithreaded() {
         for (name, strategy, kind) in [PASSES[0], PASSES[2], PASSES[3], PASSES[9]] {
             let obj = objective(kind);
             let run = |m: &mut Mesh| {
-                let mut s = ColouredSmoother::new(m, options(strategy)).expect("options").with_execution(Execution::Deferred);
+                let mut s =
+                    ColouredSmoother::new(m, options(strategy)).expect("options").with_execution(Execution::Deferred);
                 s.sweep(m, &*obj).visits
             };
             let one = with_threads(1, || time_ns_per_visit(&spatial, reps, run));
@@ -177,9 +223,16 @@ fn measure(n: usize, quick: bool) -> SizeReport {
             parallel.push((name.to_string(), one, all));
         }
     }
+    let evaluations = [ObjectiveKind::New, ObjectiveKind::Old]
+        .into_iter()
+        .map(|k| {
+            let (e, s) = evaluations_per_visit(&spatial, k);
+            (k.name().to_string(), e, s)
+        })
+        .collect();
     SizeReport {
+        evaluations,
         nodes: mesh.node_count(),
-        free: mesh.free_count(),
         elements: mesh.element_count(),
         generate_s,
         heap_bytes: mesh.heap_bytes(),
@@ -204,7 +257,11 @@ fn with_threads<R: Send>(_threads: usize, f: impl FnOnce() -> R + Send) -> R {
 fn machine() -> String {
     let cpu = std::fs::read_to_string("/proc/cpuinfo")
         .ok()
-        .and_then(|s| s.lines().find(|l| l.starts_with("model name")).map(|l| l.split(':').nth(1).unwrap_or("").trim().to_string()))
+        .and_then(|s| {
+            s.lines()
+                .find(|l| l.starts_with("model name"))
+                .map(|l| l.split(':').nth(1).unwrap_or("").trim().to_string())
+        })
         .unwrap_or_else(|| "unknown".into());
     let cores = std::thread::available_parallelism().map(|n| n.get()).unwrap_or(1);
     let load = std::fs::read_to_string("/proc/loadavg").unwrap_or_default();
@@ -275,7 +332,8 @@ fn main() {
             }
             j.insert(r.nodes.to_string(), serde_json::Value::Object(m));
         }
-        std::fs::write(&p, serde_json::to_string_pretty(&j).expect("json")).unwrap_or_else(|e| panic!("cannot write {p}: {e}"));
+        std::fs::write(&p, serde_json::to_string_pretty(&j).expect("json"))
+            .unwrap_or_else(|e| panic!("cannot write {p}: {e}"));
     }
 }
 
@@ -289,7 +347,10 @@ fn render(machine: &str, reports: &[SizeReport], hwm: &[(usize, Option<usize>)],
     let mut d = String::new();
     let w = &mut d;
     let _ = writeln!(w, "# Performance\n");
-    let _ = writeln!(w, "Generated by `make performance` (`examples/perf.rs`, `tests/browser/bench.mjs`); do not edit by hand.\n");
+    let _ = writeln!(
+        w,
+        "Generated by `make performance` (`examples/perf.rs`, `tests/browser/bench.mjs`); do not edit by hand.\n"
+    );
     let _ = writeln!(w, "- Date: {}", today());
     let _ = writeln!(w, "- Machine: {machine}");
     let _ = writeln!(w, "- Native: `cargo run --release --features parallel --example perf -- --out docs/performance.md --wasm target/perf/wasm.json`");
@@ -298,6 +359,7 @@ fn render(machine: &str, reports: &[SizeReport], hwm: &[(usize, Option<usize>)],
     let _ = writeln!(w, "Meshes: Freitag's `rand2d` (Delaunay of uniform random points in the unit square, √n points per side, seed {SEED}), untangled. ");
     let _ = writeln!(w, "A pass is one input-order sweep over the free nodes (`Smoother::sweep`, no statistics); each figure is the median of a few passes, each on a fresh copy of the mesh, in **nanoseconds per node visit**. ");
     let _ = writeln!(w, "*File order* is the numbering rand2d gives (interior points in the random order drawn); *Hilbert* is the same mesh after `Mesh::renumbered_spatially()`.\n");
+    let _ = writeln!(w, "Node numbers: smoothlab never renumbers on its own, so `--node N` and written files keep the input's numbering. Renumbering is an explicit step for large meshes: `Mesh::renumbered_spatially()` returns the Hilbert-ordered mesh and the permutation (`perm[new] = old`), and `Mesh::restore_positions` puts smoothed positions back into the input numbering.\n");
     let _ = writeln!(w, "## Native, ns per node-pass\n");
     let mut head = String::from("| pass |");
     let mut rule = String::from("|---|");
@@ -321,10 +383,14 @@ fn render(machine: &str, reports: &[SizeReport], hwm: &[(usize, Option<usize>)],
         let _ = write!(w, " {}k: {};", r.nodes / 1000, fmt_ns(r.stats_ns));
     }
     let _ = writeln!(w, "\n\n## Ratios against the targets (Hilbert order)\n");
-    let _ = writeln!(w, "| ratio | target |{}", reports.iter().map(|r| format!(" {}k |", r.nodes / 1000)).collect::<String>());
+    let _ = writeln!(
+        w,
+        "| ratio | target |{}",
+        reports.iter().map(|r| format!(" {}k |", r.nodes / 1000)).collect::<String>()
+    );
     let _ = writeln!(w, "|---|---|{}", "---:|".repeat(reports.len()));
     let get = |r: &SizeReport, name: &str| r.rows.iter().find(|x| x.0 == name).map(|x| x.2).unwrap_or(f64::NAN);
-    let ratio_rows: [(&str, &str, &dyn Fn(&SizeReport) -> String); 8] = [
+    let ratio_rows: [RatioRow; 8] = [
         ("laplace, ns/node", "≤ 50", &|r| fmt_ns(get(r, "laplace"))),
         ("opt+new, ns/node", "≤ 1000", &|r| fmt_ns(get(r, "opt+new"))),
         ("opt+old, ns/node", "≤ 5000", &|r| fmt_ns(get(r, "opt+old"))),
@@ -341,7 +407,15 @@ fn render(machine: &str, reports: &[SizeReport], hwm: &[(usize, Option<usize>)],
         }),
     ];
     for (name, target, f) in ratio_rows {
-        let _ = writeln!(w, "| {name} | {target} |{}", reports.iter().map(|r| format!(" {} |", f(r))).collect::<String>());
+        let _ =
+            writeln!(w, "| {name} | {target} |{}", reports.iter().map(|r| format!(" {} |", f(r))).collect::<String>());
+    }
+    if let Some(r) = reports.first() {
+        let _ = writeln!(w, "\nWhere the time of `opt` goes ({}k mesh): every visit runs the solver for 3 iterations (Chen §3.1); each iteration's line search evaluates the objective over the whole star several times.", r.nodes / 1000);
+        for (k, e, s) in &r.evaluations {
+            let _ = write!(w, " `{k}`: {e:.1} evaluations per visit over {s:.1} elements;");
+        }
+        let _ = writeln!(w, " one evaluation of `new` costs per element one Lo α with its gradient and two angle penalties, each an `atan2` and three `exp` (eqs. 6–8). So a visit of `opt+new` is about a hundred `atan2`/`exp` pairs: at ~20 ns each that alone is above the 1 µs target, which this algorithm cannot meet without fewer evaluations (a different line search) or a cheaper penalty (a different eq. (8)) — changes of method, not of speed, and not made here.");
     }
     let _ = writeln!(w, "\n## Memory\n");
     for (r, (_, h)) in reports.iter().zip(hwm) {
@@ -357,7 +431,10 @@ fn render(machine: &str, reports: &[SizeReport], hwm: &[(usize, Option<usize>)],
     }
     let _ = writeln!(w, "\nTarget: a 1M-node mesh under 300 MB.\n");
     let _ = writeln!(w, "## Level-set sampling\n");
-    let _ = writeln!(w, "The objective of one node sampled on a 100 × 100 grid over its star (`Objective::value`), ns per sample:");
+    let _ = writeln!(
+        w,
+        "The objective of one node sampled on a 100 × 100 grid over its star (`Objective::value`), ns per sample:"
+    );
     if let Some(r) = reports.first() {
         for (k, v) in &r.levelset {
             let _ = write!(w, " `{k}` {};", fmt_ns(*v));
@@ -369,7 +446,11 @@ fn render(machine: &str, reports: &[SizeReport], hwm: &[(usize, Option<usize>)],
         let _ = writeln!(w, "Not measured: build with `--features parallel`.\n");
     } else {
         let _ = writeln!(w, "Free nodes coloured greedily so that no two of one colour share an element; each colour smoothed on all threads (rayon), moves written after (`ColouredSmoother`, `Execution::Deferred`; bit-identical to the in-place pass in the same order). Hilbert order. ns per node visit on 1 thread → all threads, and the speed-up:\n");
-        let _ = writeln!(w, "| pass |{}", reports.iter().map(|r| format!(" {}k ({} colours) |", r.nodes / 1000, r.colours)).collect::<String>());
+        let _ = writeln!(
+            w,
+            "| pass |{}",
+            reports.iter().map(|r| format!(" {}k ({} colours) |", r.nodes / 1000, r.colours)).collect::<String>()
+        );
         let _ = writeln!(w, "|---|{}", "---|".repeat(reports.len()));
         if let Some(first) = reports.first() {
             for (i, (name, _, _)) in first.parallel.iter().enumerate() {
@@ -424,7 +505,12 @@ fn wasm_table(w: &mut String, v: &serde_json::Value, reports: &[SizeReport]) {
             Some(n) => (fmt_ns(n), format!("{:.2}", ns / n)),
             None => ("not measured".into(), "—".into()),
         };
-        let _ = writeln!(w, "| {name} | {} | {} | {nat_s} | {ratio} |", if hilbert { "Hilbert" } else { "file" }, fmt_ns(ns));
+        let _ = writeln!(
+            w,
+            "| {name} | {} | {} | {nat_s} | {ratio} |",
+            if hilbert { "Hilbert" } else { "file" },
+            fmt_ns(ns)
+        );
     }
     let _ = writeln!(w);
 }

@@ -280,11 +280,12 @@ mod tests {
                     colour_of[n as usize] = c as u32;
                 }
             }
-            for n in 0..mesh.node_count() {
-                assert_eq!(colour_of[n] != NONE, mesh.is_free(n), "{name}: node {n}");
+            for (n, &c) in colour_of.iter().enumerate() {
+                assert_eq!(c != NONE, mesh.is_free(n), "{name}: node {n}");
             }
             for e in 0..mesh.element_count() {
-                let mut seen: Vec<u32> = mesh.element(e).iter().map(|&m| colour_of[m as usize]).filter(|&c| c != NONE).collect();
+                let mut seen: Vec<u32> =
+                    mesh.element(e).iter().map(|&m| colour_of[m as usize]).filter(|&c| c != NONE).collect();
                 let k = seen.len();
                 seen.sort_unstable();
                 seen.dedup();
@@ -319,7 +320,11 @@ mod tests {
                     let cb = in_pool(|| sb.sweep(&mut b, &*obj));
                     assert_eq!(ca, cb, "{name} {strategy:?} {kind}");
                 }
-                let same = a.nodes.iter().zip(&b.nodes).all(|(p, q)| p.x.to_bits() == q.x.to_bits() && p.y.to_bits() == q.y.to_bits());
+                let same = a
+                    .nodes
+                    .iter()
+                    .zip(&b.nodes)
+                    .all(|(p, q)| p.x.to_bits() == q.x.to_bits() && p.y.to_bits() == q.y.to_bits());
                 assert!(same, "{name} {strategy:?} {kind}: deferred and in-place passes differ");
                 assert!(a.nodes != mesh.nodes, "{name} {strategy:?} {kind}: nothing moved, the check shows nothing");
             }
@@ -341,7 +346,8 @@ mod tests {
     #[test]
     fn deferred_pass_over_dependent_nodes_differs() {
         let mesh = perturb(&rand2d(400, 10, 5).unwrap(), 0.3, 2).unwrap();
-        let free: Vec<u32> = (0..mesh.node_count() as u32).map(|n| if mesh.is_free(n as usize) { 0 } else { NONE }).collect();
+        let free: Vec<u32> =
+            (0..mesh.node_count() as u32).map(|n| if mesh.is_free(n as usize) { 0 } else { NONE }).collect();
         let one = Colouring::from_colours(&mesh, &free, 1);
         let obj = objective(ObjectiveKind::New);
         let opts = SmoothOptions::default().with_strategy(Strategy::Laplace);
