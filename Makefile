@@ -9,7 +9,7 @@ WASM := target/wasm32-unknown-unknown/release/smoothlab.wasm
 PORT ?= 8000
 CARGO ?= cargo
 
-.PHONY: serve test site lint unit wasm browser tools browser-tools reproduction performance
+.PHONY: serve test site lint unit wasm browser tools browser-tools figures reproduction performance
 
 serve: site
 	@echo "smoothlab playground: http://127.0.0.1:$(PORT)/"
@@ -45,3 +45,7 @@ performance: site browser-tools
 	@mkdir -p target/perf
 	node tests/browser/bench.mjs --nodes 100000 --reps 3 > target/perf/wasm.json
 	$(CARGO) run --release --features parallel --example perf -- --wasm target/perf/wasm.json --out docs/performance.md
+
+# the README's pictures (docs/images/), drawn by the CLI from generated meshes
+figures:
+	scripts/figures.sh

@@ -14,6 +14,7 @@ pub mod lab;
 pub mod mesh;
 pub mod objective;
 pub mod optimize;
+pub mod permalink;
 pub mod quality;
 pub mod render;
 pub mod smooth;

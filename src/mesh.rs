@@ -563,10 +563,11 @@ impl MeshBuilder {
     pub fn new() -> Self {
         MeshBuilder { elem_start: vec![0], ..Default::default() }
     }
-    /// A builder with room reserved for the given counts, capped so a header that
-    /// claims absurd counts cannot make us allocate before the data is seen.
+    /// A builder with room reserved for the given counts, capped (at 2¹⁶ of each) so a
+    /// header that claims large counts costs a fixed amount until the data is seen;
+    /// beyond that the arrays grow as nodes and elements are added.
     pub fn with_capacity(nodes: usize, elements: usize) -> Self {
-        const CAP: usize = 1 << 20;
+        const CAP: usize = 1 << 16;
         let mut b = Self::new();
         b.points.reserve(nodes.min(CAP));
         b.point_lines.reserve(nodes.min(CAP));
@@ -648,13 +649,24 @@ impl MeshBuilder {
             elem_nodes: self.elem_nodes,
             topo: Topology::default(),
         };
-        // Orientation of the whole mesh by its total signed area.
-        let total: f64 = (0..mesh.kinds.len()).map(|e| mesh.corner_area(e)).sum();
-        if total < 0.0 {
+        // Orientation of the whole mesh by its total signed area, decided by the sign of
+        // total − (total of the reversed mesh), each summed as its own corner order gives:
+        // reversing negates that difference exactly, so a mesh reversed here is never
+        // reversed again when written and read back. (The sign of the total alone flipped
+        // back and forth when huge coordinates left a total of rounding noise.)
+        let reversed_area = |e: usize| {
+            let ids = mesh.element(e);
+            let k = mesh.kinds[e];
+            polygon_area(k.reversed_order()[..k.corners()].iter().map(|&j| mesh.nodes[ids[j] as usize]))
+        };
+        let forward: f64 = (0..mesh.kinds.len()).map(|e| mesh.corner_area(e)).sum();
+        let backward: f64 = (0..mesh.kinds.len()).map(reversed_area).sum();
+        if forward - backward < 0.0 {
             for e in 0..mesh.kinds.len() {
                 let s = mesh.elem_start[e] as usize;
                 let k = mesh.kinds[e];
-                let old: Vec<u32> = mesh.elem_nodes[s..s + k.node_count()].to_vec();
+                let mut old = [0u32; 9];
+                old[..k.node_count()].copy_from_slice(&mesh.elem_nodes[s..s + k.node_count()]);
                 for (i, &j) in k.reversed_order().iter().enumerate() {
                     mesh.elem_nodes[s + i] = old[j];
                 }
@@ -689,7 +701,12 @@ impl MeshBuilder {
         if self.points.iter().all(|p| p[2] == z0) {
             return Ok(self.points.iter().map(|p| DVec2::new(p[0], p[1])).collect());
         }
-        let v = |p: &[f64; 3]| glam::DVec3::new(p[0], p[1], p[2]);
+        // Work in units of the largest coordinate magnitude, so that the cross products
+        // and distances below neither overflow (coordinates near 1e200 once gave NaN
+        // coordinates) nor underflow (near 1e-160, "no area") for any finite input.
+        // The z values differ, so some coordinate is nonzero and the scale is positive.
+        let scale = self.points.iter().flatten().fold(0.0f64, |m, c| m.max(c.abs()));
+        let v = |p: &[f64; 3]| glam::DVec3::new(p[0] / scale, p[1] / scale, p[2] / scale);
         // Newell normal over the corner polygons of all elements.
         let mut normal = glam::DVec3::ZERO;
         for e in 0..self.kinds.len() {
@@ -706,25 +723,49 @@ impl MeshBuilder {
             lo = lo.min(v(p));
             hi = hi.max(v(p));
         }
-        let size = (hi - lo).length().max(f64::MIN_POSITIVE);
-        if normal.length() <= 1e-300 {
+        let size = norm(hi - lo).max(f64::MIN_POSITIVE);
+        // Far-away unused nodes can leave the elements tiny in these units: the normal's
+        // length may be below the square root of the smallest float, hence `norm`.
+        let normal_length = norm(normal);
+        if normal_length <= 1e-300 {
             return Err(Error::invalid("cannot find the plane of the mesh: its elements have no area"));
         }
-        let normal = normal.normalize();
+        let normal = normal / normal_length;
         let centre = self.points.iter().map(v).sum::<glam::DVec3>() / self.points.len() as f64;
         let max_distance = self.points.iter().map(|p| (v(p) - centre).dot(normal).abs()).fold(0.0, f64::max);
         let relative = max_distance / size;
         if relative > PLANAR_TOLERANCE {
-            return Err(Error::NotPlanar { max_distance, relative, tolerance: PLANAR_TOLERANCE });
+            return Err(Error::NotPlanar { max_distance: max_distance * scale, relative, tolerance: PLANAR_TOLERANCE });
         }
         // In-plane basis (u, w) with u × w = normal.
         let helper = if normal.x.abs() < 0.9 { glam::DVec3::X } else { glam::DVec3::Y };
         let u = (helper - normal * helper.dot(normal)).normalize();
         let w = normal.cross(u);
-        Ok(self.points.iter().map(|p| {
+        let mut out = Vec::with_capacity(self.points.len());
+        for (i, p) in self.points.iter().enumerate() {
             let d = v(p) - centre;
-            DVec2::new(d.dot(u), d.dot(w))
-        }).collect())
+            let q = DVec2::new(d.dot(u), d.dot(w)) * scale;
+            if !q.is_finite() {
+                return Err(Error::node(
+                    i,
+                    self.line_of_node(i),
+                    format!("its coordinates in the plane of the mesh are too large for a 64-bit float: {p:?}"),
+                ));
+            }
+            out.push(q);
+        }
+        Ok(out)
+    }
+}
+
+/// Euclidean length without underflow or overflow of the squares (scaled by the
+/// largest component first).
+fn norm(v: glam::DVec3) -> f64 {
+    let m = v.abs().max_element();
+    if m > 0.0 && m.is_finite() {
+        m * (v / m).length()
+    } else {
+        m
     }
 }
 
@@ -1029,12 +1070,62 @@ mod tests {
     }
 
     #[test]
+    fn planar_3d_is_mapped_at_any_scale() {
+        // the tilted unit square scaled by s: its edges keep length s, its angles 90°
+        // (the plane fit once overflowed near 1e154 and underflowed near 1e-160)
+        let (sn, cs) = (30f64.to_radians().sin(), 30f64.to_radians().cos());
+        for s in [1e-300, 1e-160, 1e-100, 1.0, 1e100, 1e200, 1e300] {
+            let mut b = MeshBuilder::new();
+            for (x, y) in [(0.0, 0.0), (1.0, 0.0), (1.0, 1.0), (0.0, 1.0)] {
+                b.add_node([x * s, y * cs * s, (3.0 - y * sn) * s], 0);
+            }
+            b.add_element(ElementKind::Quad4, &[0, 1, 2, 3], 0);
+            let m = b.build().unwrap_or_else(|e| panic!("scale {s:e}: {e}"));
+            m.sanity_check().unwrap();
+            for i in 0..4 {
+                // in units of s, so that the test's own squares neither overflow nor underflow
+                let (p, q, r) = (m.nodes[i] / s, m.nodes[(i + 1) % 4] / s, m.nodes[(i + 2) % 4] / s);
+                assert!(((q - p).length() - 1.0).abs() < 1e-12, "scale {s:e}: edge {i}");
+                let cos = (p - q).normalize().dot((r - q).normalize());
+                assert!(cos.abs() < 1e-12, "scale {s:e}: corner {i}");
+            }
+        }
+    }
+
+    #[test]
     fn heap_bytes_count_every_array() {
         let m = square_two_tris().build().unwrap();
         let b = m.heap_bytes();
         // 4 positions (64 bytes) and 6 element node ids (24) at the least
         assert!(b >= 4 * 16 + 6 * 4, "{b}");
         assert!(b < 4096, "{b}");
+    }
+
+    #[test]
+    fn orientation_is_stable_under_reversal() {
+        // zero-width triangles far from the origin: the total area is rounding noise, and
+        // whatever build decides, building the result again must not reverse it back
+        let x = -2.777777777777778e88;
+        for ys in [[0.15825648112409307, -0.4235812421140439, -0.05955188067518902, 0.136728447068453], [0.1, -0.7, 0.45, 0.5]] {
+            let mut b = MeshBuilder::new();
+            for y in ys {
+                b.add_node([x, y, 0.0], 0);
+            }
+            b.add_element(ElementKind::Tri3, &[0, 1, 2], 0);
+            b.add_element(ElementKind::Tri3, &[1, 3, 2], 0);
+            let once = b.build().unwrap();
+            let mut again = MeshBuilder::new();
+            for p in &once.nodes {
+                again.add_node([p.x, p.y, 0.0], 0);
+            }
+            for e in 0..once.element_count() {
+                again.add_element(once.kind(e), once.element(e), 0);
+            }
+            let twice = again.build().unwrap();
+            for e in 0..once.element_count() {
+                assert_eq!(once.element(e), twice.element(e), "{ys:?}: element {e}");
+            }
+        }
     }
 
     #[test]

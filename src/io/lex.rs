@@ -198,6 +198,18 @@ impl<'a> Lexer<'a> {
     }
 }
 
+/// Most items a reader reserves up front for a count read from a file. A count that
+/// passed [`check_count`] is only *possible* (the rest of the file could hold it), not
+/// backed by data: blank space or a truncated file passes too. So vectors start at most
+/// this large and grow as items are actually read, and what a claim costs before its
+/// data is seen stays fixed (about a megabyte) instead of growing with the claim.
+pub(crate) const PREALLOC_CAP: usize = 1 << 16;
+
+/// Room to reserve for `n` announced items: at most [`PREALLOC_CAP`].
+pub(crate) fn prealloc(n: usize) -> usize {
+    n.min(PREALLOC_CAP)
+}
+
 /// See [`Lexer::check_count`]; `room` is the number of bytes left to read.
 pub(crate) fn check_count(count: u64, room: u64, min_bytes: u64, what: &str, line: usize) -> Result<usize> {
     let most = room / min_bytes.max(1) + 1;

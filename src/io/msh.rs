@@ -16,7 +16,7 @@
 use std::fmt::Write as _;
 
 use crate::error::{Error, Result};
-use crate::io::lex::{repeated, shown, Lexer};
+use crate::io::lex::{prealloc, repeated, shown, Lexer};
 use crate::io::MshVersion;
 use crate::mesh::{ElementKind, FixedSpec, Mesh, MeshBuilder, NONE};
 
@@ -306,8 +306,8 @@ impl Reader {
     fn reserve_nodes(&mut self, n: usize) {
         // Only one $Nodes section is read, so the builder holds no nodes yet.
         self.builder = MeshBuilder::with_capacity(n, 0);
-        self.node_tags.reserve(n);
-        self.node_lines.reserve(n);
+        self.node_tags.reserve(prealloc(n));
+        self.node_lines.reserve(prealloc(n));
     }
 
     fn nodes_v41(&mut self, lex: &mut Lexer) -> Result<()> {
@@ -381,7 +381,7 @@ impl Reader {
     fn elements_v2(&mut self, lex: &mut Lexer) -> Result<()> {
         let (n, line) = lex.u64(|| "the number of elements".into())?;
         let n = lex.check_count(n, 10, "elements", line)?;
-        self.elements.reserve(n);
+        self.elements.reserve(prealloc(n));
         for i in 0..n {
             let number = || format!("element {} of the {n} announced at line {line}", i + 1);
             let (_, el) = lex.u64(|| format!("the tag of {}", number()))?;
@@ -404,7 +404,7 @@ impl Reader {
         let n = lex.check_count(n, 4, "elements", nl)?;
         lex.u64(|| "the smallest element tag".into())?;
         lex.u64(|| "the largest element tag".into())?;
-        self.elements.reserve(n);
+        self.elements.reserve(prealloc(n));
         let mut seen = 0usize;
         for b in 0..blocks {
             let what = |s: &str| format!("the {s} of element block {} of {blocks}", b + 1);
@@ -470,7 +470,7 @@ impl Reader {
             return Err(Error::parse(count_line, format!("the 'fixed' view must have 1 component, found {}", ints[1])));
         }
         let n = lex.check_count(ints[2], 4, "values in the 'fixed' view", count_line)?;
-        let mut v = Vec::with_capacity(n);
+        let mut v = Vec::with_capacity(prealloc(n));
         for i in 0..n {
             let (tag, tl) = lex.u64(|| format!("the node tag of value {} of the 'fixed' view", i + 1))?;
             let (x, _) = lex.f64(|| format!("the 'fixed' value of node tag {tag}"))?;

@@ -61,7 +61,8 @@ pub(crate) fn read_obj(text: &str) -> Result<Mesh> {
                     ids[j] = match i {
                         0 => return Err(Error::parse(line, "vertex index 0 is invalid: OBJ counts from 1 (or -1 for the last)")),
                         i if i > 0 => i - 1,
-                        i if -i <= nv => nv + i,
+                        // `i >= -nv`, not `-i <= nv`: the negation of i64::MIN overflows.
+                        i if i >= -nv => nv + i,
                         i => {
                             return Err(Error::parse(
                                 line,

@@ -15,7 +15,7 @@
 use std::fmt::Write as _;
 
 use crate::error::{Error, Result};
-use crate::io::lex::{check_count, content_lines, parse_f64, repeated, shown};
+use crate::io::lex::{check_count, content_lines, parse_f64, prealloc, repeated, shown};
 use crate::mesh::{ElementKind, FixedSpec, Mesh, MeshBuilder};
 
 /// Our local index `i` takes Triangle's local index `TRIANGLE_ORDER[i]`.
@@ -82,9 +82,12 @@ fn read_nodes(text: &str, b: &mut MeshBuilder) -> Result<(i64, Option<Vec<bool>>
         return Err(Error::parse(hl, "the node count and attribute count must be non-negative, the marker count 0 or 1"));
     }
     let n = check_count(count as u64, text.len() as u64, 6, "nodes", hl)?;
-    let per = 3 + attrs as usize + nmark as usize;
+    // No line can hold more attributes than the file has bytes; checked first so that
+    // the field count below cannot overflow (a 32-bit usize in the page's wasm).
+    let attrs = check_count(attrs as u64, text.len() as u64, 2, "attributes per node", hl)?;
+    let per = 3 + attrs + nmark as usize;
     *b = MeshBuilder::with_capacity(n, 0);
-    let mut marks = (nmark == 1).then(|| Vec::with_capacity(n));
+    let mut marks = (nmark == 1).then(|| Vec::with_capacity(prealloc(n)));
     let mut base = 0;
     for i in 0..n {
         let Some((line, text)) = lines.next() else {
@@ -142,8 +145,9 @@ fn read_elements(text: &str, base: i64, b: &mut MeshBuilder) -> Result<()> {
         return Err(Error::parse(hl, "the triangle and attribute counts must be non-negative"));
     }
     let m = check_count(count as u64, text.len() as u64, 8, "triangles", hl)?;
+    let attrs = check_count(attrs as u64, text.len() as u64, 2, "attributes per triangle", hl)?;
     let np = b.node_count() as i64;
-    let fields = 1 + per as usize + attrs as usize;
+    let fields = 1 + per as usize + attrs;
     let mut ids = [0u32; 6];
     for i in 0..m {
         let Some((line, text)) = lines.next() else {

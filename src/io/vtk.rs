@@ -23,7 +23,7 @@
 use std::fmt::Write as _;
 
 use crate::error::{Error, Result};
-use crate::io::lex::{repeated, shown, Lexer};
+use crate::io::lex::{prealloc, repeated, shown, Lexer};
 use crate::mesh::{ElementKind, FixedSpec, Mesh, MeshBuilder};
 
 #[derive(Clone, Copy, PartialEq)]
@@ -228,7 +228,7 @@ impl Reader<'_> {
             self.lex.expect(|| "the data type of OFFSETS".into())?;
             let n_off = self.lex.check_count(a, 2, "offsets", al)?;
             let n_conn = self.lex.check_count(b, 2, "connectivity entries", al)?;
-            let mut offsets = Vec::with_capacity(n_off);
+            let mut offsets = Vec::with_capacity(prealloc(n_off));
             for i in 0..n_off {
                 let (o, ol) = self.lex.u64(|| format!("offset {i} of the {n_off} announced at line {line}"))?;
                 if let Some(&(prev, _)) = offsets.last() {
@@ -249,8 +249,8 @@ impl Reader<'_> {
             }
             self.lex.keyword("CONNECTIVITY", || format!("after the offsets of {name} (line {line})"))?;
             self.lex.expect(|| "the data type of CONNECTIVITY".into())?;
-            c.conn.reserve(n_conn);
-            let mut cell_lines = Vec::with_capacity(n_conn);
+            c.conn.reserve(prealloc(n_conn));
+            let mut cell_lines = Vec::with_capacity(prealloc(n_conn));
             for i in 0..n_conn {
                 let (v, vl) = self.lex.u64(|| format!("connectivity entry {i} of the {n_conn} announced at line {line}"))?;
                 c.conn.push(v);
@@ -262,9 +262,9 @@ impl Reader<'_> {
             }
         } else {
             let n = self.lex.check_count(a, 4, "cells", al)?;
-            c.start.reserve(n);
-            c.lines.reserve(n);
-            c.conn.reserve(self.lex.check_count(b, 2, "list entries", al).unwrap_or(0).min(16 * n));
+            c.start.reserve(prealloc(n));
+            c.lines.reserve(prealloc(n));
+            c.conn.reserve(prealloc(self.lex.check_count(b, 2, "list entries", al).unwrap_or(0).min(16 * n)));
             // A keyword where a number should be: the cells' counts do not fit the data.
             let cut_short = |lex: &Lexer, i: usize| -> Result<()> {
                 match lex.peek() {
@@ -309,6 +309,9 @@ impl Reader<'_> {
                 format!("CELL_TYPES announces {announced} types, but CELLS (line {}) has {} cells", cells.header, cells.len()),
             ));
         }
+        // The whole announced count must fit in the rest of the file (so the message
+        // names the count the header gives, not the surplus over the cells).
+        self.lex.check_count(announced, 2, "cell types", nl)?;
         let n = cells.len();
         let mut types = Vec::with_capacity(n);
         let mut lines = Vec::with_capacity(n);
@@ -367,7 +370,7 @@ impl Reader<'_> {
                     if comps != 1 {
                         return Err(Error::parse(t.line, format!("SCALARS fixed must have 1 component, found {comps}")));
                     }
-                    let mut f = Vec::with_capacity(n as usize);
+                    let mut f = Vec::with_capacity(prealloc(n as usize));
                     for i in 0..n {
                         let (v, _) = self.lex.f64(|| format!("the 'fixed' value of point {i} (SCALARS at line {})", t.line))?;
                         f.push(v != 0.0);

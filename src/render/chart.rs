@@ -230,7 +230,7 @@ pub fn render_pass_histories(pixmap: &mut Pixmap, runs: &[PassHistory<'_>], char
         draw_text(pixmap, chart.title, (frame.x + 0.5 * frame.w) * s, (frame.y + 19.0) * s, st);
     }
     let run_key = |i: usize| Key::Line { dashed: i % 2 == 1, marker: Some(if i % 2 == 0 { Marker::Circle } else { Marker::Triangle }) };
-    let entries: Vec<LegendEntry<'_>> = runs.iter().enumerate().map(|(i, r)| LegendEntry { label: r.label, color: series_color(i + 2), key: run_key(i) }).collect();
+    let entries: Vec<LegendEntry<'_>> = runs.iter().enumerate().map(|(i, r)| LegendEntry { label: r.label, color: series_color(i + 1), key: run_key(i) }).collect();
     let legend_h = if chart.legend && !entries.is_empty() { 20.0 } else { 0.0 };
     if legend_h > 0.0 {
         legend_row(pixmap, &entries, (frame.x + 0.5 * frame.w) * s, (frame.y + title_h + 8.0) * s, s);
@@ -255,7 +255,7 @@ pub fn render_pass_histories(pixmap: &mut Pixmap, runs: &[PassHistory<'_>], char
             .map(|(i, r)| Series {
                 label: r.label,
                 points: &points[k][i],
-                color: Some(series_color(i + 2)),
+                color: Some(series_color(i + 1)),
                 dashed: i % 2 == 1,
                 marker: Some(if i % 2 == 0 { Marker::Circle } else { Marker::Triangle }),
             })

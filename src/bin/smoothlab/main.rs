@@ -6,6 +6,7 @@ use clap::{Parser, Subcommand};
 
 mod files;
 mod generate;
+mod render;
 mod smooth;
 mod stats;
 
@@ -26,6 +27,8 @@ enum Command {
     Convert(files::ConvertArgs),
     /// Smooth a mesh: Laplacian, smart, optimization, Freitag's C1/C2/C3 or Chen's rules.
     Smooth(smooth::SmoothArgs),
+    /// Draw a mesh, level sets, convergence histories or angle histograms to PNG.
+    Render(render::RenderArgs),
 }
 
 fn main() {
@@ -35,6 +38,7 @@ fn main() {
         Command::Stats(a) => stats::run(a),
         Command::Convert(a) => files::convert(a),
         Command::Smooth(a) => smooth::run(a),
+        Command::Render(a) => render::run(a),
     };
     if let Err(e) = result {
         eprintln!("smoothlab: {e}");

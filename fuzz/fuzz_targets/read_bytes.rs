@@ -1,0 +1,9 @@
+#![no_main]
+//! Fuzz target `read_bytes`: see `Target::ReadBytes` in `src/harness.rs`.
+
+use libfuzzer_sys::fuzz_target;
+use smoothlab_fuzz::harness::{run, Target};
+
+fuzz_target!(|data: &[u8]| {
+    run(Target::ReadBytes, data);
+});

@@ -1,0 +1,69 @@
+#!/usr/bin/env bash
+# Writes the seed corpora (fuzz/seeds/<target>/) from the project's own fixtures
+# (tests/data) and small meshes made by `smoothlab generate`. Run from anywhere:
+#   bash fuzz/make_seeds.sh
+set -euo pipefail
+here="$(cd "$(dirname "$0")" && pwd)"
+root="$(dirname "$here")"
+seeds="$here/seeds"
+gen="$(mktemp -d)"
+trap 'rm -rf "$gen"' EXIT
+
+cargo build --quiet --manifest-path "$root/Cargo.toml" --bin smoothlab
+sl="$root/target/debug/smoothlab"
+
+# Small generated meshes: every element kind, linear and quadratic, both .msh versions.
+for v in 2.2 4.1; do
+  $sl generate star --kind regular -o "$gen/star-regular-$v.msh" --msh-version "$v"
+  $sl generate star --kind quad -o "$gen/star-quad-$v.msh" --msh-version "$v"
+  $sl generate grid --nx 2 --ny 2 --kind tri -o "$gen/grid-tri-$v.msh" --msh-version "$v"
+  $sl generate grid --nx 2 --ny 1 --kind quad -o "$gen/grid-quad-$v.msh" --msh-version "$v"
+  $sl generate plate --kind mixed --resolution 1 -o "$gen/plate-mixed-$v.msh" --msh-version "$v"
+  $sl generate plate --kind tri --order 2 --resolution 1 -o "$gen/plate-tri6-$v.msh" --msh-version "$v"
+  $sl generate plate --kind quad --order 2 --resolution 1 -o "$gen/plate-quad8-$v.msh" --msh-version "$v"
+done
+for m in star-regular star-quad grid-tri grid-quad plate-mixed; do
+  for ext in vtk obj off; do $sl convert "$gen/$m-2.2.msh" "$gen/$m.$ext"; done
+done
+for m in plate-tri6 plate-quad8; do $sl convert "$gen/$m-2.2.msh" "$gen/$m.vtk"; done
+$sl convert "$gen/star-regular-2.2.msh" "$gen/star-regular.node"
+$sl convert "$gen/plate-tri6-2.2.msh" "$gen/plate-tri6.node"
+
+rm -rf "$seeds"
+mkdir -p "$seeds"/{msh22,msh41,vtk,triangle,obj,off,read_bytes,permalink}
+# .msh bodies: the targets supply the $MeshFormat header themselves.
+body() { awk 'NR>3' "$1"; }
+for f in "$gen"/*-2.2.msh; do body "$f" > "$seeds/msh22/$(basename "$f" .msh)"; done
+for f in "$gen"/*-4.1.msh; do body "$f" > "$seeds/msh41/$(basename "$f" .msh)"; done
+for f in "$root"/tests/data/*.msh "$root"/tests/data/bad/*.msh; do
+  case "$(sed -n 2p "$f")" in
+    2*) body "$f" > "$seeds/msh22/fixture-$(basename "$f" .msh)" ;;
+    4.1*) body "$f" > "$seeds/msh41/fixture-$(basename "$f" .msh)" ;;
+  esac
+done
+for ext in vtk obj off; do
+  cp "$gen"/*."$ext" "$seeds/$ext/"
+  for f in "$root"/tests/data/*."$ext" "$root"/tests/data/bad/*."$ext"; do cp "$f" "$seeds/$ext/fixture-$(basename "$f")"; done
+done
+# Triangle: .node, a NUL byte, .ele.
+pair() { { cat "$1.node"; printf '\0'; cat "$1.ele"; } > "$2"; }
+pair "$gen/star-regular" "$seeds/triangle/star-regular"
+pair "$gen/plate-tri6" "$seeds/triangle/plate-tri6"
+for f in "$root"/tests/data/*.node "$root"/tests/data/bad/*.node; do
+  pair "${f%.node}" "$seeds/triangle/fixture-$(basename "$f" .node)"
+done
+# read_bytes: the first byte picks the name (0 .msh, 1 .vtk, 2 .obj, 3 .off, 4 .node).
+tag() { { printf "\\x0$1"; cat "$2"; } > "$3"; }
+tag 0 "$gen/grid-tri-2.2.msh" "$seeds/read_bytes/msh-grid-tri"
+tag 0 "$gen/plate-tri6-4.1.msh" "$seeds/read_bytes/msh-plate-tri6"
+tag 0 "$root/tests/data/bad/binary.msh" "$seeds/read_bytes/msh-binary"
+tag 1 "$gen/plate-quad8.vtk" "$seeds/read_bytes/vtk-plate-quad8"
+tag 1 "$root/tests/data/bad/binary.vtk" "$seeds/read_bytes/vtk-binary"
+tag 2 "$root/tests/data/bad/not_utf8.obj" "$seeds/read_bytes/obj-not-utf8"
+tag 3 "$gen/star-quad.off" "$seeds/read_bytes/off-star-quad"
+tag 4 "$gen/star-regular.node" "$seeds/read_bytes/node-star"
+# permalink hashes
+printf '%s' '#sample=plate-tri&tangle=0.6&seed=3&strategy=rules&objective=new&threshold=30&passes=3&order=priority&maxiter=3&node=17' > "$seeds/permalink/example"
+printf '%s' 'sample=gmsh-disk-tri6&amount=1.5e-3&strategy=c2&objective=condition-max&order=input&embed=1' > "$seeds/permalink/alias"
+printf '%s' '#sample=plate%2Dquad&seed=18446744073709551615&threshold=5&passes=100&maxiter=50&node=4294967295&x=%41+b' > "$seeds/permalink/limits"
+echo "seeds written to $seeds: $(find "$seeds" -type f | wc -l) files, $(du -sh "$seeds" | cut -f1)"

@@ -1,0 +1,198 @@
+//! What each fuzz target does with its input, in plain Rust with no fuzzer types, so the
+//! regression tests (`tests/fuzz_regressions.rs`, which includes this file by path) replay
+//! a kept finding exactly as the fuzzer ran it.
+//!
+//! Every reader target parses the bytes; when a mesh comes back it also computes
+//! `quality::mesh_stats` and writes the mesh in every format, reads each text back and
+//! checks that the round trip keeps what the io module documents (nodes to the last bit,
+//! elements and kinds; fixed flags for `.msh` and `.vtk`). A broken promise panics, which
+//! the fuzzer reports as a crash.
+
+use smoothlab::io::{self, Format, MshVersion, WriteOptions};
+use smoothlab::{quality, Mesh, Result};
+
+/// The fuzz targets, by the names `cargo fuzz run` takes.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Target {
+    /// A `.msh` 2.2 body: the input follows a fixed `$MeshFormat 2.2 0 8` header.
+    Msh22,
+    /// A `.msh` 4.1 body: the input follows a fixed `$MeshFormat 4.1 0 8` header.
+    Msh41,
+    Vtk,
+    /// A Triangle pair: the input up to the first [`TRIANGLE_SEPARATOR`] is the `.node`
+    /// text, the rest the `.ele` text.
+    Triangle,
+    Obj,
+    Off,
+    /// `io::read_bytes` with the file name chosen by the first byte ([`READ_BYTES_NAMES`]).
+    ReadBytes,
+    /// `permalink::decode` of the input as text.
+    Permalink,
+}
+
+impl Target {
+    pub const ALL: [Target; 8] = [
+        Target::Msh22,
+        Target::Msh41,
+        Target::Vtk,
+        Target::Triangle,
+        Target::Obj,
+        Target::Off,
+        Target::ReadBytes,
+        Target::Permalink,
+    ];
+
+    pub fn name(self) -> &'static str {
+        match self {
+            Target::Msh22 => "msh22",
+            Target::Msh41 => "msh41",
+            Target::Vtk => "vtk",
+            Target::Triangle => "triangle",
+            Target::Obj => "obj",
+            Target::Off => "off",
+            Target::ReadBytes => "read_bytes",
+            Target::Permalink => "permalink",
+        }
+    }
+
+    pub fn parse(s: &str) -> Option<Target> {
+        Target::ALL.into_iter().find(|t| t.name() == s)
+    }
+}
+
+/// Splits a `triangle` input into its `.node` and `.ele` parts.
+pub const TRIANGLE_SEPARATOR: u8 = 0;
+
+/// File names `read_bytes` is called with, indexed by the first input byte (modulo the length).
+pub const READ_BYTES_NAMES: [&str; 7] = ["fuzz.msh", "fuzz.vtk", "fuzz.obj", "fuzz.off", "fuzz.node", "fuzz.ele", "fuzz.txt"];
+
+const MSH22_HEADER: &str = "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n";
+const MSH41_HEADER: &str = "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n";
+
+/// What a run gave: a mesh (already checked), a refusal, or (for `permalink`) a decoded state.
+#[derive(Debug)]
+pub enum Outcome {
+    Mesh(Box<Mesh>),
+    Refused(smoothlab::Error),
+    /// Not UTF-8 text, for the targets that take text.
+    NotText,
+    Permalink(Result<smoothlab::permalink::PageState>),
+}
+
+/// Runs target `t` on `data` as the fuzzer does. Panics when a promise is broken.
+pub fn run(t: Target, data: &[u8]) -> Outcome {
+    let text = || std::str::from_utf8(data).ok();
+    let read = match t {
+        Target::Msh22 | Target::Msh41 => {
+            let Some(body) = text() else { return Outcome::NotText };
+            let head = if t == Target::Msh22 { MSH22_HEADER } else { MSH41_HEADER };
+            io::read_str(&format!("{head}{body}"), Format::Msh)
+        }
+        Target::Vtk => match text() {
+            Some(s) => io::read_str(s, Format::Vtk),
+            None => return Outcome::NotText,
+        },
+        Target::Obj => match text() {
+            Some(s) => io::read_str(s, Format::Obj),
+            None => return Outcome::NotText,
+        },
+        Target::Off => match text() {
+            Some(s) => io::read_str(s, Format::Off),
+            None => return Outcome::NotText,
+        },
+        Target::Triangle => {
+            let (node, ele) = match data.iter().position(|&b| b == TRIANGLE_SEPARATOR) {
+                Some(i) => (&data[..i], &data[i + 1..]),
+                None => (data, &[][..]),
+            };
+            match (std::str::from_utf8(node), std::str::from_utf8(ele)) {
+                (Ok(n), Ok(e)) => io::read_triangle(n, e),
+                _ => return Outcome::NotText,
+            }
+        }
+        Target::ReadBytes => {
+            let Some((&first, rest)) = data.split_first() else { return Outcome::NotText };
+            io::read_bytes(rest, READ_BYTES_NAMES[first as usize % READ_BYTES_NAMES.len()])
+        }
+        Target::Permalink => {
+            let Some(s) = text() else { return Outcome::NotText };
+            let decoded = smoothlab::permalink::decode(s);
+            if let Ok(state) = &decoded {
+                // The canonical form decodes to the same state, and is its own canonical form.
+                let canon = smoothlab::permalink::encode(state);
+                let again = smoothlab::permalink::decode(&canon)
+                    .unwrap_or_else(|e| panic!("the canonical form {canon:?} of {s:?} does not decode: {e}"));
+                assert_eq!(&again, state, "decode(encode(s)) != s for {s:?} (canonical {canon:?})");
+                assert_eq!(smoothlab::permalink::encode(&again), canon, "encode is not canonical for {s:?}");
+            }
+            return Outcome::Permalink(decoded);
+        }
+    };
+    match read {
+        Ok(mesh) => {
+            check_mesh(&mesh);
+            Outcome::Mesh(Box::new(mesh))
+        }
+        Err(e) => {
+            // Messages are shown to people: they must render (and not be empty).
+            assert!(!e.to_string().is_empty(), "empty error message: {e:?}");
+            Outcome::Refused(e)
+        }
+    }
+}
+
+/// Everything a mesh that was read must survive: its statistics and a round trip
+/// through every writer that accepts it.
+pub fn check_mesh(mesh: &Mesh) {
+    if let Err(e) = mesh.sanity_check() {
+        panic!("a mesh that was read fails its sanity check: {e}");
+    }
+    let stats = quality::mesh_stats(mesh);
+    assert_eq!((stats.nodes, stats.elements), (mesh.node_count(), mesh.element_count()));
+    for (format, version) in [
+        (Format::Msh, MshVersion::V22),
+        (Format::Msh, MshVersion::V41),
+        (Format::Vtk, MshVersion::V22),
+        (Format::Obj, MshVersion::V22),
+        (Format::Off, MshVersion::V22),
+    ] {
+        let opts = WriteOptions { msh_version: version };
+        let Ok(text) = io::write_string(mesh, format, &opts) else {
+            // OBJ and OFF refuse quadratic elements, by design.
+            assert!(matches!(format, Format::Obj | Format::Off) && mesh.has_quadratic(), "{format:?} refused a mesh");
+            continue;
+        };
+        let back = io::read_str(&text, format)
+            .unwrap_or_else(|e| panic!("{format:?} {version:?} does not read back what it wrote: {e}\n{text}"));
+        same(mesh, &back, matches!(format, Format::Msh | Format::Vtk), &format!("{format:?} {version:?}"));
+    }
+    match io::write_triangle(mesh) {
+        Ok((node, ele)) => {
+            let back = io::read_triangle(&node, &ele)
+                .unwrap_or_else(|e| panic!("Triangle does not read back what it wrote: {e}\n{node}\n{ele}"));
+            same(mesh, &back, false, "Triangle");
+        }
+        Err(_) => assert!(
+            mesh.kinds().iter().any(|k| *k != mesh.kind(0)) || !mesh.kind(0).is_triangle(),
+            "Triangle refused a mesh of triangles of one kind"
+        ),
+    }
+}
+
+fn same(a: &Mesh, b: &Mesh, fixed: bool, what: &str) {
+    assert_eq!(a.node_count(), b.node_count(), "{what}: node count");
+    assert_eq!(a.element_count(), b.element_count(), "{what}: element count");
+    assert_eq!(a.kinds(), b.kinds(), "{what}: element kinds");
+    for (i, (p, q)) in a.nodes.iter().zip(&b.nodes).enumerate() {
+        assert!(
+            p.x.to_bits() == q.x.to_bits() && p.y.to_bits() == q.y.to_bits(),
+            "{what}: node {i} was {p:?}, read back as {q:?}"
+        );
+    }
+    for e in 0..a.element_count() {
+        assert_eq!(a.element(e), b.element(e), "{what}: nodes of element {e}");
+    }
+    if fixed {
+        assert_eq!(a.fixed, b.fixed, "{what}: fixed flags");
+    }
+}

@@ -1,0 +1,294 @@
+//! `smoothlab render IN -o OUT.png --view mesh|levelset|history|histogram|compare …`:
+//! the page's pictures as PNG files, drawn by the same core code (`lab` and `render`).
+//!
+//! Node numbers are 0-based in file order, as everywhere in smoothlab.
+
+use std::path::PathBuf;
+
+use clap::{Args, ValueEnum};
+use smoothlab::lab::views::{pixmap, Canvas};
+use smoothlab::lab::{OrderChoice, Playground, Settings, Side, StrategyChoice};
+use smoothlab::quality::{element_quality, mesh_stats, MeshStats};
+use smoothlab::render::{
+    encode_png, render_angle_histogram, render_compare, render_mesh, AngleHistogram, ComparePanel, HistogramSeries,
+    MeshView, Metric,
+};
+use smoothlab::smooth::{smooth, SmoothOptions, Strategy};
+use smoothlab::Mesh;
+use tiny_skia::{Pixmap, PixmapPaint, Transform};
+
+use crate::smooth::{OrderArg, StrategyArg};
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum ViewArg {
+    /// The mesh coloured by quality (after --passes, default 0, of one objective)
+    Mesh,
+    /// Level sets of a node's objective, old and new side by side, with the solver's path
+    Levelset,
+    /// Convergence: per-pass curves of old vs new, or with --node one node's solve history
+    History,
+    /// Angle histograms (6° bins): as loaded, old, new and plain Laplacian
+    Histogram,
+    /// Old on the left, new on the right, after the passes, with their statistics
+    Compare,
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum MetricArg {
+    /// Lo's α for triangles, Canann's β for quads
+    Alpha,
+    /// The smallest corner angle
+    Angle,
+    /// 2/κ, Knupp's condition number
+    Condition,
+}
+
+#[derive(Args)]
+pub struct RenderArgs {
+    /// Input mesh
+    pub input: PathBuf,
+    /// Output PNG
+    #[arg(short, long)]
+    pub output: PathBuf,
+    /// What to draw
+    #[arg(long, value_enum, default_value = "compare")]
+    pub view: ViewArg,
+    /// Node to study (0-based, file order); default the free node with the worst star
+    #[arg(long)]
+    pub node: Option<usize>,
+    /// Objectives to show: old, new, or old,new
+    #[arg(long, default_value = "old,new")]
+    pub objective: String,
+    /// Metric that colours the elements
+    #[arg(long, value_enum, default_value = "alpha")]
+    pub metric: MetricArg,
+    /// Picture size in pixels, WxH (default by view)
+    #[arg(long)]
+    pub size: Option<String>,
+    /// Device-pixel ratio (2 for sharp pictures on HiDPI screens and in print)
+    #[arg(long, default_value_t = 1.0)]
+    pub dpr: f32,
+    /// Smoothing strategy
+    #[arg(long, value_enum, default_value = "rules")]
+    pub strategy: StrategyArg,
+    /// Threshold angle of c1/c2/c3, degrees
+    #[arg(long, default_value_t = 30.0)]
+    pub threshold: f64,
+    /// Smoothing passes before drawing (default 0 for mesh and levelset, 3 otherwise)
+    #[arg(long)]
+    pub passes: Option<u32>,
+    /// Node order (default priority)
+    #[arg(long, value_enum, default_value = "priority")]
+    pub order: OrderArg,
+    /// Solver iterations per optimization call
+    #[arg(long, default_value_t = 3)]
+    pub max_iter: u32,
+}
+
+/// Which sides `--objective` asks for.
+fn sides(spec: &str) -> Result<Vec<Side>, String> {
+    let mut out = Vec::new();
+    for part in spec.split(',').map(str::trim) {
+        let side = match part {
+            "old" => Side::Old,
+            "new" => Side::New,
+            other => {
+                return Err(format!(
+                    "--objective {other}: the pictures compare the old max-min objective and the new smooth one; \
+                     give old, new or old,new (smooth with other objectives using `smoothlab smooth`)"
+                ))
+            }
+        };
+        if !out.contains(&side) {
+            out.push(side);
+        }
+    }
+    Ok(out)
+}
+
+fn size(spec: Option<&str>, default: (u32, u32)) -> Result<(u32, u32), String> {
+    let Some(s) = spec else { return Ok(default) };
+    let bad = || format!("--size {s}: give WIDTHxHEIGHT in pixels, e.g. 1200x700");
+    let (w, h) = s.split_once(['x', 'X']).ok_or_else(bad)?;
+    Ok((w.trim().parse().map_err(|_| bad())?, h.trim().parse().map_err(|_| bad())?))
+}
+
+fn settings(a: &RenderArgs) -> Settings {
+    Settings {
+        strategy: match a.strategy {
+            StrategyArg::Laplace => StrategyChoice::Laplace,
+            StrategyArg::Smart => StrategyChoice::Smart,
+            StrategyArg::Opt => StrategyChoice::Opt,
+            StrategyArg::C1 => StrategyChoice::C1,
+            StrategyArg::C2 => StrategyChoice::C2,
+            StrategyArg::C3 => StrategyChoice::C3,
+            StrategyArg::Rules => StrategyChoice::Rules,
+        },
+        threshold_deg: a.threshold,
+        order: match a.order {
+            OrderArg::Priority => OrderChoice::Priority,
+            OrderArg::Input => OrderChoice::Input,
+        },
+        max_iter: a.max_iter,
+    }
+}
+
+/// The free node whose star has the smallest element quality (α/β), if any node is free.
+pub fn worst_free_node(mesh: &Mesh) -> Option<usize> {
+    let q: Vec<f64> = (0..mesh.element_count())
+        .map(|e| {
+            let p = mesh.element_points_array(e);
+            element_quality(mesh.kind(e), &p[..mesh.kind(e).node_count()]).shape
+        })
+        .collect();
+    (0..mesh.node_count())
+        .filter(|&n| mesh.is_free(n))
+        .map(|n| (n, mesh.node_elements(n).iter().map(|&e| q[e as usize]).fold(f64::INFINITY, f64::min)))
+        .min_by(|a, b| a.1.total_cmp(&b.1))
+        .map(|(n, _)| n)
+}
+
+/// Places `parts` side by side on one white picture.
+fn side_by_side(parts: &[Pixmap]) -> Result<Pixmap, String> {
+    let w = parts.iter().map(|p| p.width()).sum();
+    let h = parts.iter().map(|p| p.height()).max().unwrap_or(1);
+    let mut out = pixmap(w, h).map_err(|e| e.to_string())?;
+    let mut x = 0;
+    for p in parts {
+        out.draw_pixmap(x as i32, 0, p.as_ref(), &PixmapPaint::default(), Transform::identity(), None);
+        x += p.width();
+    }
+    Ok(out)
+}
+
+fn stat_lines(s: &MeshStats, laplacian_moves: u32, optimization_calls: u32) -> Vec<String> {
+    vec![
+        format!("inverted {}   min quality {:.3}", s.inverted, s.min_quality),
+        format!("angles {:.1}° – {:.1}°", s.min_angle_deg, s.max_angle_deg),
+        format!("Laplacian moves {laplacian_moves}   optimization calls {optimization_calls}"),
+    ]
+}
+
+pub fn run(a: RenderArgs) -> Result<(), String> {
+    let shown = sides(&a.objective)?;
+    if !(a.dpr.is_finite() && a.dpr > 0.0 && a.dpr <= 4.0) {
+        return Err(format!("--dpr {}: give a ratio above 0 and at most 4", a.dpr));
+    }
+    let passes = a.passes.unwrap_or(match a.view {
+        ViewArg::Mesh | ViewArg::Levelset => 0,
+        _ => 3,
+    });
+    if passes > 1000 {
+        return Err(format!("--passes {passes}: give at most 1000"));
+    }
+    let mesh = crate::files::read_mesh(&a.input)?;
+    let original = mesh.clone();
+    let mut lab = Playground::new(mesh).map_err(|e| e.to_string())?;
+    lab.set_settings(settings(&a)).map_err(|e| e.to_string())?;
+    let start = std::time::Instant::now();
+    let clock = move || start.elapsed().as_secs_f64() * 1e3;
+    for _ in 0..passes {
+        lab.step(&clock);
+    }
+    let default_size = match a.view {
+        ViewArg::Mesh => (900, 800),
+        ViewArg::Levelset => (if shown.len() == 2 { 1100 } else { 560 }, 560),
+        ViewArg::History => (1000, 640),
+        ViewArg::Histogram => (900, 520),
+        ViewArg::Compare => (1400, 780),
+    };
+    let (w, h) = size(a.size.as_deref(), default_size)?;
+    let canvas = |w: u32, h: u32| Canvas { w: ((w as f32) * a.dpr) as u32, h: ((h as f32) * a.dpr) as u32, dpr: a.dpr };
+    let first = shown[0];
+    let node = |side: Side| -> Result<usize, String> {
+        let m = &lab.panel(side).mesh;
+        match a.node {
+            Some(n) if n < m.node_count() && m.is_free(n) => Ok(n),
+            Some(n) if n < m.node_count() => Err(format!("--node {n} is not a free corner node: it never moves, so it has no objective to draw")),
+            Some(n) => Err(format!("--node {n}: the mesh has nodes 0 to {}", m.node_count().saturating_sub(1))),
+            None => worst_free_node(m).ok_or_else(|| "the mesh has no free node to study".to_string()),
+        }
+    };
+    let picture = match a.view {
+        ViewArg::Mesh => {
+            let c = canvas(w, h);
+            let mut pm = pixmap(c.w, c.h).map_err(|e| e.to_string())?;
+            let metric = match a.metric {
+                MetricArg::Alpha => Metric::Shape,
+                MetricArg::Angle => Metric::MinAngle,
+                MetricArg::Condition => Metric::Condition,
+            };
+            let mut view = MeshView::default().with_dpr(a.dpr).with_highlight(a.node);
+            view.metric = metric;
+            render_mesh(&mut pm, &lab.panel(first).mesh, &view);
+            pm
+        }
+        ViewArg::Levelset => {
+            let n = node(first)?;
+            let each = canvas(w / shown.len() as u32, h);
+            let mut parts = Vec::new();
+            for &side in &shown {
+                parts.push(lab.render_level_set(side, n, each).map_err(|e| e.to_string())?.0);
+            }
+            side_by_side(&parts)?
+        }
+        ViewArg::History => match a.node {
+            Some(_) => {
+                let n = node(first)?;
+                // the node view's third picture is its solve history (both objectives)
+                let ([_, _, chart], _) = lab.render_node_view(n, canvas(64, 64), canvas(w, h)).map_err(|e| e.to_string())?;
+                chart
+            }
+            None => lab.render_pass_chart(canvas(w, h)).map_err(|e| e.to_string())?,
+        },
+        ViewArg::Histogram => {
+            let as_loaded = mesh_stats(&original).angle_histogram_6deg;
+            let mut laplace = original.clone();
+            let opts = SmoothOptions::default().with_strategy(Strategy::Laplace);
+            let objective = smoothlab::objective::objective(smoothlab::objective::ObjectiveKind::New);
+            smooth(&mut laplace, objective.as_ref(), opts, passes, &|| 0.0).map_err(|e| e.to_string())?;
+            let lap = mesh_stats(&laplace).angle_histogram_6deg;
+            let old = lab.stats(Side::Old).mesh.angle_histogram_6deg;
+            let new = lab.stats(Side::New).mesh.angle_histogram_6deg;
+            let mut series = vec![HistogramSeries { label: "as loaded", counts: &as_loaded }];
+            for &side in &shown {
+                series.push(match side {
+                    Side::Old => HistogramSeries { label: "old (max-min)", counts: &old },
+                    Side::New => HistogramSeries { label: "new (Chen et al.)", counts: &new },
+                });
+            }
+            series.push(HistogramSeries { label: "Laplacian", counts: &lap });
+            let c = canvas(w, h);
+            let mut pm = pixmap(c.w, c.h).map_err(|e| e.to_string())?;
+            let title = format!("Corner angles (6° bins) after {passes} passes");
+            render_angle_histogram(&mut pm, &series, &AngleHistogram { title: &title, dpr: a.dpr, ..AngleHistogram::default() })
+                .map_err(|e| e.to_string())?;
+            pm
+        }
+        ViewArg::Compare => {
+            if shown.len() != 2 {
+                return Err("--view compare shows both objectives: use --objective old,new".into());
+            }
+            let stats = |side: Side| {
+                let records = &lab.panel(side).records;
+                let moves = records.iter().map(|r| r.laplacian_moves).sum();
+                let calls = records.iter().map(|r| r.optimization_calls).sum();
+                stat_lines(&lab.stats(side).mesh, moves, calls)
+            };
+            let (lo, ln) = (stats(Side::Old), stats(Side::New));
+            let title_old = format!("old: max-min objective, {passes} passes");
+            let title_new = format!("new: smooth objective (Chen et al.), {passes} passes");
+            let c = canvas(w, h);
+            let mut pm = pixmap(c.w, c.h).map_err(|e| e.to_string())?;
+            render_compare(
+                &mut pm,
+                &ComparePanel { mesh: &lab.panel(Side::Old).mesh, title: &title_old, lines: &lo },
+                &ComparePanel { mesh: &lab.panel(Side::New).mesh, title: &title_new, lines: &ln },
+                &MeshView::default().with_dpr(a.dpr),
+            );
+            pm
+        }
+    };
+    let png = encode_png(&picture).map_err(|e| e.to_string())?;
+    std::fs::write(&a.output, png).map_err(|e| format!("{}: {e}", a.output.display()))
+}

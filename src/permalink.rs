@@ -1,0 +1,693 @@
+//! The page's permalink: the sample and settings held in the URL hash, e.g.
+//! `#sample=plate-tri&tangle=0.6&seed=3&strategy=rules&objective=new&threshold=30&passes=3&order=priority&maxiter=3&node=17`.
+//!
+//! [`decode`] is strict about what it knows and lenient about what it does not:
+//!
+//! - keys it does not know are ignored (links from a newer page still open);
+//! - a known key with a malformed or out-of-range value is an error naming the key,
+//!   what was found and what is allowed; so is a known key given twice;
+//! - values are percent-decoded as a form (`+` is a space, `%41` is `A`); a broken `%`
+//!   escape or bytes that are not UTF-8 are errors;
+//! - input longer than [`MAX_HASH_BYTES`] is refused before it is looked at;
+//! - a leading `#` is optional, empty pairs (`&&`) are skipped, and nothing panics.
+//!
+//! [`encode`] writes every setting in one canonical order (the order of the example
+//! above, then `embed`), leaving out only an absent sample or node and `embed=0`, with
+//! numbers in their shortest exact form, so `decode(&encode(&s)) == Ok(s)` for every
+//! valid state `s` and a state has exactly one encoding.
+
+use crate::error::{Error, Result};
+use crate::objective::ObjectiveKind;
+use crate::smooth::{Order, SmoothOptions, Strategy};
+
+/// The sample names a permalink may carry (the page's gallery and its Gmsh files).
+pub const SAMPLES: &[&str] = &[
+    "rand2d",
+    "rand2d-100k",
+    "plate-tri",
+    "plate-quad",
+    "plate-mixed",
+    "plate-tri-tangled",
+    "plate-quad-tangled",
+    "plate-mixed-tangled",
+    "plate-quadratic",
+    "star-regular",
+    "star-chen",
+    "star-quad",
+    "grid-tri",
+    "grid-quad",
+    "gmsh-plate-tri",
+    "gmsh-bracket-quad",
+    "gmsh-disk-tri6",
+];
+
+/// Longest hash [`decode`] reads, in bytes (a full canonical hash is under 300).
+pub const MAX_HASH_BYTES: usize = 2048;
+
+/// Largest perturbation amount, in mean edge lengths.
+pub const MAX_AMOUNT: f64 = 2.0;
+/// Largest number of smoothing passes.
+pub const MAX_PASSES: u32 = 100;
+/// Largest number of solver iterations per node.
+pub const MAX_ITER: u32 = 50;
+
+/// The URL names of the smoothing strategies (as the page's menu spells them).
+const STRATEGIES: [(Strategy, &str); 7] = [
+    (Strategy::Laplace, "laplace"),
+    (Strategy::Smart, "smart"),
+    (Strategy::Opt, "opt"),
+    (Strategy::C1, "c1"),
+    (Strategy::C2, "c2"),
+    (Strategy::C3, "c3"),
+    (Strategy::Rules, "rules"),
+];
+
+/// The URL names of the visit orders.
+const ORDERS: [(Order, &str); 2] = [(Order::Input, "input"), (Order::Priority, "priority")];
+
+/// The URL name of a strategy.
+pub fn strategy_name(s: Strategy) -> &'static str {
+    STRATEGIES.iter().find(|p| p.0 == s).map_or("rules", |p| p.1)
+}
+
+/// The strategy with URL name `s` (exact, lowercase).
+pub fn parse_strategy(s: &str) -> Option<Strategy> {
+    STRATEGIES.iter().find(|p| p.1 == s).map(|p| p.0)
+}
+
+/// The URL name of a visit order.
+pub fn order_name(o: Order) -> &'static str {
+    ORDERS.iter().find(|p| p.0 == o).map_or("priority", |p| p.1)
+}
+
+/// The visit order with URL name `s` (exact, lowercase).
+pub fn parse_order(s: &str) -> Option<Order> {
+    ORDERS.iter().find(|p| p.1 == s).map(|p| p.0)
+}
+
+/// What a permalink holds: the sample and the settings of the page.
+#[derive(Clone, Debug, PartialEq)]
+pub struct PageState {
+    /// One of [`SAMPLES`], or none (the page shows its default). Key `sample`.
+    pub sample: Option<String>,
+    /// Seed of the perturbation. Key `seed`; default 1.
+    pub seed: u64,
+    /// Perturbation amount in mean edge lengths, `0 ..= 2`. Key `tangle` (`amount` is
+    /// read as the same key); default 0.5.
+    pub amount: f64,
+    /// Key `strategy`: `laplace`, `smart`, `opt`, `c1`, `c2`, `c3`, `rules`; default rules.
+    pub strategy: Strategy,
+    /// Key `objective`: an [`ObjectiveKind`] name (`old`, `new`, …); default new.
+    pub objective: ObjectiveKind,
+    /// Freitag's threshold angle θ_t in degrees, `0 < t ≤ 90`. Key `threshold`; default 30.
+    pub threshold_deg: f64,
+    /// Smoothing passes, `1 ..= 100`. Key `passes`; default 3.
+    pub passes: u32,
+    /// Key `order`: `input` or `priority`; default priority.
+    pub order: Order,
+    /// Solver iterations per node, `1 ..= 50`. Key `maxiter`; default 3 (Chen §3.1).
+    pub max_iter: u32,
+    /// The node whose level sets are shown. Key `node`; default none.
+    pub node: Option<u32>,
+    /// The page is embedded (no controls). Key `embed` (`1`/`0`, `true`/`false`); default false.
+    pub embed: bool,
+}
+
+impl Default for PageState {
+    fn default() -> Self {
+        let smooth = SmoothOptions::default();
+        PageState {
+            sample: None,
+            seed: 1,
+            amount: 0.5,
+            strategy: smooth.strategy,
+            objective: ObjectiveKind::New,
+            threshold_deg: smooth.threshold_deg,
+            passes: 3,
+            order: smooth.order,
+            max_iter: smooth.max_iter,
+            node: None,
+            embed: false,
+        }
+    }
+}
+
+impl PageState {
+    /// The smoothing options these settings choose (the rest as [`SmoothOptions::default`]).
+    pub fn smooth_options(&self) -> SmoothOptions {
+        SmoothOptions::default()
+            .with_strategy(self.strategy)
+            .with_order(self.order)
+            .with_threshold_deg(self.threshold_deg)
+            .with_max_iter(self.max_iter)
+    }
+
+    /// Checks every field against the ranges [`decode`] allows, naming the first bad one
+    /// by its key.
+    pub fn validate(&self) -> Result<()> {
+        if let Some(s) = &self.sample {
+            check_sample(s)?;
+        }
+        check_amount(self.amount, || self.amount.to_string())?;
+        check_threshold(self.threshold_deg, || self.threshold_deg.to_string())?;
+        check_int("passes", self.passes.into(), 1, MAX_PASSES.into(), || self.passes.to_string())?;
+        check_int("maxiter", self.max_iter.into(), 1, MAX_ITER.into(), || self.max_iter.to_string())?;
+        Ok(())
+    }
+}
+
+/// The keys, in canonical order.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Key {
+    Sample,
+    Tangle,
+    Seed,
+    Strategy,
+    Objective,
+    Threshold,
+    Passes,
+    Order,
+    MaxIter,
+    Node,
+    Embed,
+}
+
+impl Key {
+    const ALL: [Key; 11] = [
+        Key::Sample,
+        Key::Tangle,
+        Key::Seed,
+        Key::Strategy,
+        Key::Objective,
+        Key::Threshold,
+        Key::Passes,
+        Key::Order,
+        Key::MaxIter,
+        Key::Node,
+        Key::Embed,
+    ];
+
+    fn name(self) -> &'static str {
+        match self {
+            Key::Sample => "sample",
+            Key::Tangle => "tangle",
+            Key::Seed => "seed",
+            Key::Strategy => "strategy",
+            Key::Objective => "objective",
+            Key::Threshold => "threshold",
+            Key::Passes => "passes",
+            Key::Order => "order",
+            Key::MaxIter => "maxiter",
+            Key::Node => "node",
+            Key::Embed => "embed",
+        }
+    }
+
+    fn parse(s: &str) -> Option<Key> {
+        if s == "amount" {
+            return Some(Key::Tangle);
+        }
+        Key::ALL.into_iter().find(|k| k.name() == s)
+    }
+}
+
+/// A value as shown in a message: quoted, escaped, cut short when long.
+fn shown(s: &str) -> String {
+    const MAX: usize = 40;
+    let cut: String = s.chars().take(MAX).collect();
+    let more = if s.chars().count() > MAX { "…" } else { "" };
+    format!("'{}{more}'", cut.escape_debug())
+}
+
+fn bad(key: &str, found: &str, allowed: &str) -> Error {
+    Error::invalid(format!("permalink: '{key}' must be {allowed}, found {}", shown(found)))
+}
+
+fn check_sample(s: &str) -> Result<()> {
+    if SAMPLES.contains(&s) {
+        Ok(())
+    } else {
+        Err(bad("sample", s, &format!("one of the samples ({})", SAMPLES.join(", "))))
+    }
+}
+
+fn check_amount(v: f64, found: impl Fn() -> String) -> Result<()> {
+    if (0.0..=MAX_AMOUNT).contains(&v) {
+        Ok(())
+    } else {
+        Err(bad("tangle", &found(), "a number from 0 to 2 (mean edge lengths)"))
+    }
+}
+
+fn check_threshold(v: f64, found: impl Fn() -> String) -> Result<()> {
+    if v > 0.0 && v <= 90.0 {
+        Ok(())
+    } else {
+        Err(bad("threshold", &found(), "an angle in degrees, more than 0 and at most 90"))
+    }
+}
+
+fn check_int(key: &str, v: u64, lo: u64, hi: u64, found: impl Fn() -> String) -> Result<()> {
+    if (lo..=hi).contains(&v) {
+        Ok(())
+    } else {
+        Err(bad(key, &found(), &format!("a whole number from {lo} to {hi}")))
+    }
+}
+
+/// A whole number written in decimal digits only (no sign, no spaces), at most `max`.
+fn parse_uint(key: &str, s: &str, max: u64) -> Result<u64> {
+    let allowed = || format!("a whole number from 0 to {max}");
+    if s.is_empty() || !s.bytes().all(|b| b.is_ascii_digit()) {
+        return Err(bad(key, s, &allowed()));
+    }
+    match s.parse::<u64>() {
+        Ok(v) if v <= max => Ok(v),
+        _ => Err(bad(key, s, &allowed())),
+    }
+}
+
+/// A finite decimal number (digits, `.`, an exponent; no `inf` or `nan`).
+fn parse_real(key: &str, s: &str, allowed: &str) -> Result<f64> {
+    let plain = !s.is_empty() && s.bytes().all(|b| b.is_ascii_digit() || matches!(b, b'.' | b'e' | b'E' | b'+' | b'-'));
+    match s.parse::<f64>() {
+        Ok(v) if plain && v.is_finite() => Ok(if v == 0.0 { 0.0 } else { v }),
+        _ => Err(bad(key, s, allowed)),
+    }
+}
+
+fn hex(b: u8) -> Option<u8> {
+    match b {
+        b'0'..=b'9' => Some(b - b'0'),
+        b'a'..=b'f' => Some(b - b'a' + 10),
+        b'A'..=b'F' => Some(b - b'A' + 10),
+        _ => None,
+    }
+}
+
+/// Form-decodes one key or value: `+` is a space, `%XY` the byte `XY`; the result must
+/// be UTF-8. `what` names the part in errors.
+fn percent_decode(s: &str, what: impl Fn() -> String) -> Result<String> {
+    if !s.bytes().any(|b| b == b'%' || b == b'+') {
+        return Ok(s.to_string());
+    }
+    let b = s.as_bytes();
+    let mut out = Vec::with_capacity(b.len());
+    let mut i = 0;
+    while i < b.len() {
+        match b[i] {
+            b'+' => out.push(b' '),
+            b'%' => {
+                let byte = match (b.get(i + 1).copied().and_then(hex), b.get(i + 2).copied().and_then(hex)) {
+                    (Some(h), Some(l)) => h << 4 | l,
+                    _ => {
+                        let end = (i + 3).min(b.len());
+                        let esc = String::from_utf8_lossy(&b[i..end]);
+                        return Err(Error::invalid(format!(
+                            "permalink: {} has a broken percent escape {} at byte {i} (expected % and two hex digits)",
+                            what(),
+                            shown(&esc)
+                        )));
+                    }
+                };
+                out.push(byte);
+                i += 2;
+            }
+            c => out.push(c),
+        }
+        i += 1;
+    }
+    String::from_utf8(out).map_err(|e| {
+        Error::invalid(format!(
+            "permalink: {} is not UTF-8 once percent-decoded (byte {} is invalid)",
+            what(),
+            e.utf8_error().valid_up_to()
+        ))
+    })
+}
+
+/// Reads a permalink hash (with or without its leading `#`) into a [`PageState`];
+/// keys not given keep their defaults. See the module notes for what is refused.
+pub fn decode(hash: &str) -> Result<PageState> {
+    if hash.len() > MAX_HASH_BYTES {
+        return Err(Error::TooLarge(format!(
+            "the permalink is {} bytes, over the limit of {MAX_HASH_BYTES} bytes",
+            hash.len()
+        )));
+    }
+    let body = hash.strip_prefix('#').unwrap_or(hash);
+    let mut state = PageState::default();
+    let mut seen = [false; Key::ALL.len()];
+    for pair in body.split('&').filter(|p| !p.is_empty()) {
+        let (raw_key, raw_value) = pair.split_once('=').unwrap_or((pair, ""));
+        let key = percent_decode(raw_key, || format!("the key {}", shown(raw_key)))?;
+        let Some(k) = Key::parse(&key) else { continue };
+        let name = k.name();
+        if std::mem::replace(&mut seen[k as usize], true) {
+            return Err(Error::invalid(format!(
+                "permalink: '{name}' is given twice ('amount' and 'tangle' are the same key)"
+            )));
+        }
+        let value = percent_decode(raw_value, || format!("the value of '{name}'"))?;
+        let v = value.as_str();
+        match k {
+            Key::Sample => {
+                check_sample(v)?;
+                state.sample = Some(value.clone());
+            }
+            Key::Tangle => {
+                let a = parse_real(name, v, "a number from 0 to 2 (mean edge lengths)")?;
+                check_amount(a, || value.clone())?;
+                state.amount = a;
+            }
+            Key::Seed => state.seed = parse_uint(name, v, u64::MAX)?,
+            Key::Strategy => {
+                state.strategy = parse_strategy(v).ok_or_else(|| {
+                    let names: Vec<&str> = STRATEGIES.iter().map(|p| p.1).collect();
+                    bad(name, v, &format!("one of {}", names.join(", ")))
+                })?
+            }
+            Key::Objective => {
+                state.objective = ObjectiveKind::parse(v).ok_or_else(|| {
+                    let names: Vec<&str> = ObjectiveKind::ALL.iter().map(|k| k.name()).collect();
+                    bad(name, v, &format!("one of {}", names.join(", ")))
+                })?
+            }
+            Key::Threshold => {
+                let t = parse_real(name, v, "an angle in degrees, more than 0 and at most 90")?;
+                check_threshold(t, || value.clone())?;
+                state.threshold_deg = t;
+            }
+            Key::Passes => {
+                let p = parse_uint(name, v, u64::MAX).map_err(|_| bad(name, v, "a whole number from 1 to 100"))?;
+                check_int(name, p, 1, MAX_PASSES.into(), || value.clone())?;
+                state.passes = p as u32;
+            }
+            Key::Order => {
+                state.order = parse_order(v).ok_or_else(|| bad(name, v, "one of input, priority"))?;
+            }
+            Key::MaxIter => {
+                let m = parse_uint(name, v, u64::MAX).map_err(|_| bad(name, v, "a whole number from 1 to 50"))?;
+                check_int(name, m, 1, MAX_ITER.into(), || value.clone())?;
+                state.max_iter = m as u32;
+            }
+            Key::Node => state.node = Some(parse_uint(name, v, u32::MAX.into())? as u32),
+            Key::Embed => {
+                state.embed = match v {
+                    "1" | "true" => true,
+                    "0" | "false" => false,
+                    _ => return Err(bad(name, v, "1 or 0 (or true or false)")),
+                }
+            }
+        }
+    }
+    Ok(state)
+}
+
+/// The shortest text that parses back to exactly `v` (plain or with an exponent).
+fn real(v: f64) -> String {
+    let plain = v.to_string();
+    let exp = format!("{v:e}");
+    if exp.len() < plain.len() {
+        exp
+    } else {
+        plain
+    }
+}
+
+/// Writes a state as a hash (with its leading `#`), every key in canonical order; see
+/// the module notes. Values outside the ranges [`decode`] allows are written as they are
+/// (and refused by `decode`): check with [`PageState::validate`] first when unsure.
+pub fn encode(s: &PageState) -> String {
+    let mut parts: Vec<String> = Vec::with_capacity(Key::ALL.len());
+    for k in Key::ALL {
+        let value = match k {
+            Key::Sample => match &s.sample {
+                Some(name) => encode_component(name),
+                None => continue,
+            },
+            Key::Tangle => real(s.amount),
+            Key::Seed => s.seed.to_string(),
+            Key::Strategy => strategy_name(s.strategy).to_string(),
+            Key::Objective => s.objective.name().to_string(),
+            Key::Threshold => real(s.threshold_deg),
+            Key::Passes => s.passes.to_string(),
+            Key::Order => order_name(s.order).to_string(),
+            Key::MaxIter => s.max_iter.to_string(),
+            Key::Node => match s.node {
+                Some(n) => n.to_string(),
+                None => continue,
+            },
+            Key::Embed => {
+                if s.embed {
+                    "1".to_string()
+                } else {
+                    continue;
+                }
+            }
+        };
+        parts.push(format!("{}={value}", k.name()));
+    }
+    format!("#{}", parts.join("&"))
+}
+
+/// Percent-encodes everything but ASCII letters, digits and `-._~`.
+fn encode_component(s: &str) -> String {
+    let mut out = String::with_capacity(s.len());
+    for b in s.bytes() {
+        if b.is_ascii_alphanumeric() || matches!(b, b'-' | b'.' | b'_' | b'~') {
+            out.push(b as char);
+        } else {
+            out.push_str(&format!("%{b:02X}"));
+        }
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::smooth::Strategy;
+    use proptest::prelude::*;
+    use proptest::strategy::Strategy as Generator;
+
+    #[test]
+    fn the_example_decodes_to_what_it_says() {
+        let s = decode(
+            "#sample=plate-tri&tangle=0.6&seed=3&strategy=rules&objective=new&threshold=30&passes=3&order=priority&maxiter=3&node=17",
+        )
+        .unwrap();
+        assert_eq!(
+            s,
+            PageState {
+                sample: Some("plate-tri".into()),
+                seed: 3,
+                amount: 0.6,
+                strategy: Strategy::Rules,
+                objective: ObjectiveKind::New,
+                threshold_deg: 30.0,
+                passes: 3,
+                order: Order::Priority,
+                max_iter: 3,
+                node: Some(17),
+                embed: false,
+            }
+        );
+        // …and that example is already the canonical form.
+        assert_eq!(
+            encode(&s),
+            "#sample=plate-tri&tangle=0.6&seed=3&strategy=rules&objective=new&threshold=30&passes=3&order=priority&maxiter=3&node=17"
+        );
+    }
+
+    #[test]
+    fn empty_and_missing_keys_give_the_defaults() {
+        for h in ["", "#", "#&&", "&"] {
+            assert_eq!(decode(h).unwrap(), PageState::default(), "{h:?}");
+        }
+        let s = decode("seed=9").unwrap();
+        assert_eq!(s, PageState { seed: 9, ..PageState::default() });
+        let d = PageState::default();
+        assert_eq!((d.strategy, d.order, d.objective), (Strategy::Rules, Order::Priority, ObjectiveKind::New));
+        assert_eq!((d.threshold_deg, d.max_iter, d.passes, d.amount, d.seed), (30.0, 3, 3, 0.5, 1));
+        d.validate().unwrap();
+    }
+
+    #[test]
+    fn unknown_keys_are_ignored_but_bad_values_of_known_keys_are_not() {
+        assert_eq!(decode("#zoom=3&gmsh=x.msh&seed=4").unwrap().seed, 4);
+        let cases: &[(&str, &[&str])] = &[
+            ("seed=-1", &["'seed'", "'-1'", "whole number"]),
+            ("seed=18446744073709551616", &["'seed'", "18446744073709551615"]),
+            ("seed=", &["'seed'", "''"]),
+            ("seed=%2B3", &["'seed'", "'+3'"]),
+            ("seed=+3", &["'seed'", "' 3'"]),
+            ("tangle=2.5", &["'tangle'", "'2.5'", "0 to 2"]),
+            ("tangle=-0.1", &["'tangle'", "0 to 2"]),
+            ("amount=nan", &["'tangle'", "'nan'"]),
+            ("tangle=inf", &["'tangle'", "'inf'"]),
+            ("threshold=0", &["'threshold'", "more than 0"]),
+            ("threshold=90.5", &["'threshold'", "at most 90"]),
+            ("threshold=1e400", &["'threshold'", "'1e400'"]),
+            ("passes=0", &["'passes'", "1 to 100"]),
+            ("passes=101", &["'passes'", "'101'"]),
+            ("maxiter=51", &["'maxiter'", "1 to 50"]),
+            ("maxiter=3.0", &["'maxiter'", "'3.0'"]),
+            ("strategy=Rules", &["'strategy'", "'Rules'", "laplace, smart, opt, c1, c2, c3, rules"]),
+            ("objective=best", &["'objective'", "'best'", "old, sine, new"]),
+            ("order=random", &["'order'", "input, priority"]),
+            ("node=4294967296", &["'node'", "4294967295"]),
+            ("node=x", &["'node'", "'x'"]),
+            ("embed=yes", &["'embed'", "'yes'"]),
+            ("sample=../../etc/passwd", &["'sample'", "plate-tri", "'../../etc/passwd'"]),
+            ("sample=PLATE-TRI", &["'sample'"]),
+            ("seed=1&seed=2", &["'seed'", "twice"]),
+            ("amount=1&tangle=1", &["'tangle'", "twice"]),
+            ("sample=plate%2", &["the value of 'sample'", "broken percent escape", "'%2'"]),
+            ("seed=%zz", &["'seed'", "'%zz'"]),
+            ("seed%=1", &["the key", "broken percent escape"]),
+            ("sample=%ff", &["'sample'", "not UTF-8"]),
+        ];
+        for (h, want) in cases {
+            let e = decode(h).expect_err(h).to_string();
+            for w in *want {
+                assert!(e.contains(w), "decode({h:?}): {e:?} should contain {w:?}");
+            }
+        }
+    }
+
+    #[test]
+    fn values_are_percent_decoded() {
+        let s = decode("#sample=plate%2Dtri&%73eed=12&objective=condition%2dmax").unwrap();
+        assert_eq!((s.sample.as_deref(), s.seed, s.objective), (Some("plate-tri"), 12, ObjectiveKind::ConditionMax));
+        // '+' is a space, so it is no sign and no digit
+        assert!(decode("seed=1+2").is_err());
+        let s = decode("embed=true&node=0").unwrap();
+        assert!(s.embed);
+        assert_eq!(s.node, Some(0));
+    }
+
+    #[test]
+    fn every_name_round_trips() {
+        for (s, n) in STRATEGIES {
+            assert_eq!((parse_strategy(n), strategy_name(s)), (Some(s), n));
+        }
+        for (o, n) in ORDERS {
+            assert_eq!((parse_order(n), order_name(o)), (Some(o), n));
+        }
+        for name in SAMPLES {
+            let s = PageState { sample: Some(name.to_string()), ..PageState::default() };
+            assert_eq!(decode(&encode(&s)).unwrap(), s);
+        }
+    }
+
+    #[test]
+    fn long_input_is_refused_by_its_length() {
+        let long = format!("#seed=1&{}", "x".repeat(MAX_HASH_BYTES));
+        let e = decode(&long).unwrap_err();
+        assert!(matches!(e, Error::TooLarge(_)) && e.to_string().contains("2048"), "{e}");
+        // just at the limit is read (unknown keys ignored)
+        let at = format!("seed=5&{}", "y".repeat(MAX_HASH_BYTES - 7));
+        assert_eq!(at.len(), MAX_HASH_BYTES);
+        assert_eq!(decode(&at).unwrap().seed, 5);
+    }
+
+    #[test]
+    fn numbers_are_written_short_and_exact() {
+        assert_eq!(real(30.0), "30");
+        assert_eq!(real(0.6), "0.6");
+        assert_eq!(real(5e-324), "5e-324");
+        assert_eq!(real(1e-7), "1e-7");
+        assert_eq!(real(12.5), "12.5");
+        let s = PageState { amount: 5e-324, threshold_deg: f64::MIN_POSITIVE, ..PageState::default() };
+        assert_eq!(decode(&encode(&s)).unwrap(), s);
+        assert!(encode(&s).len() < 200);
+        // -0 reads as +0
+        assert_eq!(decode("tangle=-0").unwrap().amount.to_bits(), 0.0f64.to_bits());
+    }
+
+    #[test]
+    fn smooth_options_carry_the_settings() {
+        let s = decode("strategy=c2&order=input&threshold=15&maxiter=7").unwrap();
+        let o = s.smooth_options();
+        assert_eq!((o.strategy, o.order, o.threshold_deg, o.max_iter), (Strategy::C2, Order::Input, 15.0, 7));
+        o.validate().unwrap();
+    }
+
+    #[test]
+    fn validate_names_the_bad_field() {
+        let e = PageState { passes: 0, ..PageState::default() }.validate().unwrap_err().to_string();
+        assert!(e.contains("'passes'"), "{e}");
+        let e = PageState { sample: Some("nope".into()), ..PageState::default() }.validate().unwrap_err().to_string();
+        assert!(e.contains("'sample'"), "{e}");
+        let e = PageState { threshold_deg: f64::NAN, ..PageState::default() }.validate().unwrap_err().to_string();
+        assert!(e.contains("'threshold'"), "{e}");
+    }
+
+    fn any_amount() -> impl Generator<Value = f64> {
+        prop_oneof![0.0..=MAX_AMOUNT, Just(0.0), Just(MAX_AMOUNT), Just(5e-324), (1u64..1 << 52).prop_map(|m| m as f64 * 2f64.powi(-60))]
+    }
+
+    fn any_threshold() -> impl Generator<Value = f64> {
+        prop_oneof![(0.0..=90.0f64).prop_filter("positive", |t| *t > 0.0), Just(90.0), Just(f64::MIN_POSITIVE), Just(1e-300)]
+    }
+
+    prop_compose! {
+        fn any_state()(
+            sample in proptest::option::of(proptest::sample::select(SAMPLES)),
+            seed in any::<u64>(),
+            amount in any_amount(),
+            strategy in proptest::sample::select(STRATEGIES.map(|p| p.0).to_vec()),
+            objective in proptest::sample::select(ObjectiveKind::ALL.to_vec()),
+            threshold_deg in any_threshold(),
+            passes in 1..=MAX_PASSES,
+            order in proptest::sample::select(ORDERS.map(|p| p.0).to_vec()),
+            max_iter in 1..=MAX_ITER,
+            node in proptest::option::of(any::<u32>()),
+            embed in any::<bool>(),
+        ) -> PageState {
+            PageState { sample: sample.map(String::from), seed, amount, strategy, objective, threshold_deg, passes, order, max_iter, node, embed }
+        }
+    }
+
+    proptest! {
+        #[test]
+        fn decode_of_encode_is_the_identity(s in any_state()) {
+            s.validate().unwrap();
+            let h = encode(&s);
+            prop_assert!(h.len() <= MAX_HASH_BYTES);
+            let back = decode(&h).unwrap();
+            prop_assert_eq!(&back, &s);
+            prop_assert_eq!(back.amount.to_bits(), s.amount.to_bits());
+            prop_assert_eq!(back.threshold_deg.to_bits(), s.threshold_deg.to_bits());
+            // without the '#' too, and the encoding is canonical
+            prop_assert_eq!(decode(&h[1..]).unwrap(), s);
+            prop_assert_eq!(encode(&back), h);
+        }
+
+        #[test]
+        fn decode_never_panics_on_any_text(h in "\\PC{0,300}") {
+            let _ = decode(&h);
+        }
+
+        #[test]
+        fn decode_never_panics_on_pairs_of_known_keys(
+            pairs in proptest::collection::vec(
+                (proptest::sample::select(vec!["sample", "tangle", "amount", "seed", "strategy", "objective",
+                    "threshold", "passes", "order", "maxiter", "node", "embed", "x"]),
+                 "[-+.%0-9a-fA-Fe]{0,12}"), 0..8)
+        ) {
+            let h: Vec<String> = pairs.iter().map(|(k, v)| format!("{k}={v}")).collect();
+            let h = h.join("&");
+            match decode(&h) {
+                // whatever decodes is valid, and re-encodes to something that decodes the same
+                Ok(s) => {
+                    s.validate().unwrap();
+                    prop_assert_eq!(decode(&encode(&s)).unwrap(), s);
+                }
+                Err(e) => prop_assert!(e.to_string().starts_with("permalink: '") || e.to_string().contains("percent")
+                    || e.to_string().contains("UTF-8"), "{}", e),
+            }
+        }
+    }
+}

@@ -1,0 +1,93 @@
+//! `smoothlab render`: every view writes a PNG of the asked size that is not blank, and
+//! bad requests are refused with a message.
+
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+fn bin() -> Command {
+    Command::new(env!("CARGO_BIN_EXE_smoothlab"))
+}
+
+fn dir() -> PathBuf {
+    let d = std::env::temp_dir().join(format!("smoothlab-render-cli-{}", std::process::id()));
+    std::fs::create_dir_all(&d).unwrap();
+    d
+}
+
+fn run(args: &[&str]) -> std::process::Output {
+    bin().args(args).output().unwrap()
+}
+
+/// Width, height and the number of distinct colours of a PNG (read back with tiny-skia).
+fn png_facts(path: &Path) -> (u32, u32, usize) {
+    let pm = tiny_skia::Pixmap::load_png(path).unwrap();
+    let mut colours: Vec<[u8; 4]> = pm.pixels().iter().map(|p| [p.red(), p.green(), p.blue(), p.alpha()]).collect();
+    colours.sort_unstable();
+    colours.dedup();
+    (pm.width(), pm.height(), colours.len())
+}
+
+fn tangled_plate(d: &Path) -> String {
+    let plate = d.join("plate.vtk");
+    let tangled = d.join("tangled.vtk");
+    assert!(run(&["generate", "plate", "--kind", "tri", "-o", plate.to_str().unwrap()]).status.success());
+    let out = run(&["generate", "perturb", plate.to_str().unwrap(), "--amount", "0.5", "--seed", "1", "-o", tangled.to_str().unwrap()]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    tangled.to_str().unwrap().to_string()
+}
+
+#[test]
+fn every_view_draws_a_picture_of_the_asked_size() {
+    let d = dir();
+    let mesh = tangled_plate(&d);
+    let m = smoothlab::io::read_path(Path::new(&mesh)).unwrap();
+    let free = (0..m.node_count()).rev().find(|&n| m.is_free(n)).unwrap().to_string();
+    for (view, extra) in [
+        ("mesh", vec!["--metric", "angle"]),
+        ("mesh", vec!["--metric", "condition", "--passes", "1", "--objective", "old"]),
+        ("levelset", vec![]),
+        ("levelset", vec!["--objective", "new"]),
+        ("history", vec!["--passes", "2"]),
+        ("history", vec!["--node", free.as_str()]),
+        ("histogram", vec!["--passes", "1"]),
+        ("compare", vec!["--passes", "1"]),
+    ] {
+        let out = d.join(format!("{view}.png"));
+        let mut args = vec!["render", &mesh, "-o", out.to_str().unwrap(), "--view", view, "--size", "400x300"];
+        args.extend(extra.iter().copied());
+        let o = run(&args);
+        assert!(o.status.success(), "{view} {extra:?}: {}", String::from_utf8_lossy(&o.stderr));
+        let (w, h, colours) = png_facts(&out);
+        assert_eq!((w, h), (400, 300), "{view} {extra:?}");
+        assert!(colours > 20, "{view} {extra:?}: only {colours} colours — blank?");
+    }
+    // device-pixel ratio 2 doubles the pixels
+    let out = d.join("dpr2.png");
+    let o = run(&["render", &mesh, "-o", out.to_str().unwrap(), "--view", "mesh", "--size", "200x150", "--dpr", "2"]);
+    assert!(o.status.success());
+    assert_eq!(png_facts(&out).0, 400);
+}
+
+#[test]
+fn bad_requests_are_refused_with_a_message() {
+    let d = dir();
+    let mesh = tangled_plate(&d);
+    let out = d.join("x.png");
+    let o = out.to_str().unwrap();
+    for (args, want) in [
+        (vec!["--objective", "sine"], "--objective sine"),
+        (vec!["--view", "levelset", "--node", "0"], "not a free corner node"),
+        (vec!["--view", "levelset", "--node", "99999"], "the mesh has nodes 0 to"),
+        (vec!["--size", "12by"], "WIDTHxHEIGHT"),
+        (vec!["--size", "9000x10"], "give 1 to 4096"),
+        (vec!["--view", "compare", "--objective", "new"], "both objectives"),
+        (vec!["--dpr", "0"], "--dpr"),
+    ] {
+        let mut all = vec!["render", mesh.as_str(), "-o", o];
+        all.extend(args.iter().copied());
+        let r = run(&all);
+        assert!(!r.status.success(), "{args:?} must fail");
+        let err = String::from_utf8_lossy(&r.stderr);
+        assert!(err.contains(want), "{args:?}: {err}");
+    }
+}
