@@ -2,7 +2,8 @@
 //! 1M nodes (generated, not stored), in Hilbert node order, with throughput in node
 //! visits: Laplacian, smart Laplacian, `opt` with each objective, `rules` with `new`, the
 //! bandwidth bound (a sweep that only streams the arrays a Laplacian pass reads), the
-//! level-set sampling of one node (100 × 100 objective values), and a coloured pass.
+//! level-set sampling of one node (100 × 100 objective values), a coloured pass, and
+//! drawing the mesh (`render::render_mesh`, 1024 × 1024).
 //!
 //! `cargo bench` runs them all (several minutes); `cargo bench -- 10k` only the small mesh.
 //! At 1M nodes only the cheap passes (stream, Laplacian, smart) and `opt`/`rules` with
@@ -123,5 +124,19 @@ fn level_sets(c: &mut Criterion) {
     g.finish();
 }
 
-criterion_group!(benches, smoothing, level_sets);
+/// Drawing a whole mesh: `render::render_mesh` into a 1024 × 1024 pixmap.
+fn rendering(c: &mut Criterion) {
+    let mut g = c.benchmark_group("render 1024x1024");
+    g.sample_size(10);
+    for (label, n) in [("10k", 10_000usize), ("100k", 100_000)] {
+        let mesh = bench_mesh(n);
+        let mut pixmap = tiny_skia::Pixmap::new(1024, 1024).expect("a pixmap");
+        let view = smoothlab::render::MeshView::default();
+        g.throughput(Throughput::Elements(mesh.element_count() as u64));
+        g.bench_function(label, |b| b.iter(|| smoothlab::render::render_mesh(&mut pixmap, &mesh, &view)));
+    }
+    g.finish();
+}
+
+criterion_group!(benches, smoothing, level_sets, rendering);
 criterion_main!(benches);

@@ -151,6 +151,8 @@ struct SizeReport {
     parallel: Vec<(String, f64, f64)>,
     /// (objective, evaluations per visit, elements per star) of an `opt` sweep
     evaluations: Vec<(String, f64, f64)>,
+    /// `render::render_mesh` into a 1024 × 1024 pixmap, ns per element (Hilbert order)
+    render_ns: f64,
 }
 
 fn measure(n: usize, quick: bool) -> SizeReport {
@@ -230,7 +232,19 @@ fn measure(n: usize, quick: bool) -> SizeReport {
             (k.name().to_string(), e, s)
         })
         .collect();
+    let render_ns = {
+        let mut pixmap = tiny_skia::Pixmap::new(1024, 1024).expect("a pixmap");
+        let view = smoothlab::render::MeshView::default();
+        let mut times = Vec::new();
+        for _ in 0..reps {
+            let t = Instant::now();
+            smoothlab::render::render_mesh(&mut pixmap, &spatial, &view);
+            times.push(t.elapsed().as_nanos() as f64 / spatial.element_count() as f64);
+        }
+        median(times)
+    };
     SizeReport {
+        render_ns,
         evaluations,
         nodes: mesh.node_count(),
         elements: mesh.element_count(),
@@ -440,7 +454,11 @@ fn render(machine: &str, reports: &[SizeReport], hwm: &[(usize, Option<usize>)],
             let _ = write!(w, " `{k}` {};", fmt_ns(*v));
         }
     }
-    let _ = writeln!(w, "\n\nRendering: not measured here (`src/render` had not landed when this was written).\n");
+    let _ = writeln!(w, "\n\nRendering: `render::render_mesh` (default `MeshView`: elements filled by quality, edges drawn) into a 1024 × 1024 pixmap, ns per element:");
+    for r in reports {
+        let _ = write!(w, " {}k: {};", r.nodes / 1000, fmt_ns(r.render_ns));
+    }
+    let _ = writeln!(w, "\n");
     let _ = writeln!(w, "## Multi-core: coloured passes\n");
     if reports.iter().all(|r| r.parallel.is_empty()) {
         let _ = writeln!(w, "Not measured: build with `--features parallel`.\n");
