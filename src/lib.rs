@@ -20,6 +20,8 @@ pub mod render;
 pub mod smooth;
 #[cfg(target_arch = "wasm32")]
 mod wasm;
+#[cfg(target_arch = "wasm32")]
+mod wasm_bench;
 
 pub use error::{Error, Result};
 pub use mesh::{ElementKind, Mesh, MeshBuilder};

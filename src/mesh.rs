@@ -328,6 +328,107 @@ impl Mesh {
             }
         }
     }
+    /// The same mesh with its nodes renumbered along a Hilbert curve, so that nodes near
+    /// each other in the plane are near each other in memory (the smoothers then find a
+    /// node's star and neighbours in cache), and its elements sorted by their first node
+    /// in the new numbering. Returns the mesh and the permutation `perm`, `perm[new] = old`.
+    ///
+    /// Positions, fixed flags, element kinds and node orders within elements are kept; node
+    /// and element *numbers* change, so a renumbered mesh is for computing on: smooth it,
+    /// then put the positions back into the original numbering with
+    /// [`restore_positions`](Self::restore_positions). Nodes no element uses go last.
+    pub fn renumbered_spatially(&self) -> (Mesh, Vec<u32>) {
+        let n = self.nodes.len();
+        let (lo, hi) = self.bounds();
+        let size = (hi - lo).max_element();
+        let cells = (1u32 << HILBERT_ORDER) as f64;
+        let scale = if size > 0.0 && size.is_finite() { (cells - 1.0) / size } else { 0.0 };
+        let key = |i: usize| -> u64 {
+            if self.topo.role[i] == NodeRole::Unused {
+                return u64::MAX;
+            }
+            let q = ((self.nodes[i] - lo) * scale).clamp(DVec2::ZERO, DVec2::splat(cells - 1.0));
+            hilbert_index(q.x as u32, q.y as u32)
+        };
+        let mut order: Vec<(u64, u32)> = (0..n).map(|i| (key(i), i as u32)).collect();
+        order.sort_unstable();
+        let perm: Vec<u32> = order.iter().map(|&(_, i)| i).collect();
+        drop(order);
+        let mut inv = vec![0u32; n];
+        for (new, &old) in perm.iter().enumerate() {
+            inv[old as usize] = new as u32;
+        }
+        let ne = self.kinds.len();
+        let mut elems: Vec<(u32, u32)> = (0..ne).map(|e| (inv[self.element(e)[0] as usize], e as u32)).collect();
+        elems.sort_unstable();
+        let mut kinds = Vec::with_capacity(ne);
+        let mut elem_start = Vec::with_capacity(ne + 1);
+        let mut elem_nodes = Vec::with_capacity(self.elem_nodes.len());
+        elem_start.push(0);
+        for &(_, e) in &elems {
+            kinds.push(self.kinds[e as usize]);
+            elem_nodes.extend(self.element(e as usize).iter().map(|&i| inv[i as usize]));
+            elem_start.push(elem_nodes.len() as u32);
+        }
+        let mut mesh = Mesh {
+            nodes: perm.iter().map(|&i| self.nodes[i as usize]).collect(),
+            fixed: perm.iter().map(|&i| self.fixed[i as usize]).collect(),
+            kinds,
+            elem_start,
+            elem_nodes,
+            topo: Topology::default(),
+        };
+        // The same elements under other numbers: every check that passed for `self`
+        // passes here, so building the topology cannot fail.
+        mesh.topo = build_topology(&mesh, &[]).expect("renumbering keeps a valid topology");
+        (mesh, perm)
+    }
+
+    /// Copies the node positions of `renumbered`, a mesh made by
+    /// [`renumbered_spatially`](Self::renumbered_spatially) from this one (and smoothed,
+    /// say), back into this mesh's numbering: `self.nodes[perm[i]] = renumbered.nodes[i]`.
+    pub fn restore_positions(&mut self, renumbered: &Mesh, perm: &[u32]) -> Result<()> {
+        let n = self.nodes.len();
+        if renumbered.nodes.len() != n || perm.len() != n {
+            return Err(Error::invalid(format!(
+                "cannot restore positions: {} nodes here, {} in the renumbered mesh, {} in the permutation",
+                n,
+                renumbered.nodes.len(),
+                perm.len()
+            )));
+        }
+        if let Some(&bad) = perm.iter().find(|&&p| p as usize >= n) {
+            return Err(Error::invalid(format!("cannot restore positions: the permutation names node {bad}")));
+        }
+        for (i, &old) in perm.iter().enumerate() {
+            self.nodes[old as usize] = renumbered.nodes[i];
+        }
+        Ok(())
+    }
+
+    /// Bytes held by the mesh: the capacities of all its arrays (positions, flags,
+    /// elements and the topology), not counting the `Mesh` struct itself.
+    pub fn heap_bytes(&self) -> usize {
+        use std::mem::size_of;
+        fn cap<T>(v: &Vec<T>) -> usize {
+            v.capacity() * size_of::<T>()
+        }
+        let t = &self.topo;
+        cap(&self.nodes)
+            + cap(&self.fixed)
+            + cap(&self.kinds)
+            + cap(&self.elem_start)
+            + cap(&self.elem_nodes)
+            + cap(&t.node_elem_start)
+            + cap(&t.node_elems)
+            + cap(&t.node_nbr_start)
+            + cap(&t.node_nbrs)
+            + cap(&t.edges)
+            + cap(&t.role)
+            + cap(&t.boundary)
+            + cap(&t.on_curved)
+    }
+
     /// Checks the invariants of the model; used by the tests (as spade's `sanity_check`).
     pub fn sanity_check(&self) -> std::result::Result<(), String> {
         let n = self.nodes.len();
@@ -384,6 +485,33 @@ impl Topology {
     pub fn boundary_edges(&self) -> impl Iterator<Item = &Edge> {
         self.edges.iter().filter(|e| e.is_boundary())
     }
+}
+
+/// Bits per axis of the Hilbert curve used by [`Mesh::renumbered_spatially`]: a
+/// 65 536 × 65 536 grid over the mesh's bounding square.
+const HILBERT_ORDER: u32 = 16;
+
+/// Index of cell `(x, y)` along the Hilbert curve of order [`HILBERT_ORDER`] (the classic
+/// quadrant-rotation algorithm): consecutive indices are neighbouring cells.
+fn hilbert_index(mut x: u32, mut y: u32) -> u64 {
+    let n = 1u32 << HILBERT_ORDER;
+    let mut d = 0u64;
+    let mut s = n / 2;
+    while s > 0 {
+        let rx = u32::from(x & s > 0);
+        let ry = u32::from(y & s > 0);
+        d += u64::from(s) * u64::from(s) * u64::from((3 * rx) ^ ry);
+        // rotate the quadrant so the curve continues
+        if ry == 0 {
+            if rx == 1 {
+                x = n - 1 - x;
+                y = n - 1 - y;
+            }
+            std::mem::swap(&mut x, &mut y);
+        }
+        s /= 2;
+    }
+    d
 }
 
 /// Signed area of a polygon given by its vertices in order (shoelace formula).
@@ -880,6 +1008,68 @@ mod tests {
     }
 
     #[test]
+    fn hilbert_index_walks_neighbouring_cells() {
+        // the curve visits every cell of a small corner block once, each step to a side neighbour
+        let side = 1u32 << HILBERT_ORDER;
+        let mut cells: Vec<(u64, u32, u32)> =
+            (0..16).flat_map(|x| (0..16).map(move |y| (hilbert_index(x, y), x, y))).collect();
+        cells.sort_unstable();
+        // the first 256 indices fill the 16 × 16 corner block
+        assert_eq!(cells.iter().map(|c| c.0).collect::<Vec<_>>(), (0..256).collect::<Vec<u64>>());
+        for w in cells.windows(2) {
+            let d = w[0].1.abs_diff(w[1].1) + w[0].2.abs_diff(w[1].2);
+            assert_eq!(d, 1, "{:?} -> {:?}", w[0], w[1]);
+        }
+        assert_eq!(hilbert_index(side - 1, 0), u64::from(side) * u64::from(side) - 1);
+    }
+
+    #[test]
+    fn spatial_renumbering_is_a_relabelling() {
+        use crate::generate::{plate, rand2d, PlateKind};
+        for m in [rand2d(3000, 15, 2).unwrap(), plate(PlateKind::Mixed, 2, 3).unwrap()] {
+            let (r, perm) = m.renumbered_spatially();
+            r.sanity_check().unwrap();
+            let mut sorted = perm.clone();
+            sorted.sort_unstable();
+            assert_eq!(sorted, (0..m.node_count() as u32).collect::<Vec<_>>(), "a permutation");
+            let mut inv = vec![0u32; perm.len()];
+            for (new, &old) in perm.iter().enumerate() {
+                inv[old as usize] = new as u32;
+                assert_eq!(r.nodes[new], m.nodes[old as usize]);
+                assert_eq!(r.fixed[new], m.fixed[old as usize]);
+                assert_eq!(r.role(new), m.role(old as usize));
+                assert_eq!(r.is_boundary(new), m.is_boundary(old as usize));
+                assert_eq!(r.neighbours(new).len(), m.neighbours(old as usize).len());
+            }
+            // the same elements, node order within each kept
+            let key = |mesh: &Mesh, e: usize, map: &dyn Fn(u32) -> u32| {
+                (mesh.kind(e) as u8, mesh.element(e).iter().map(|&i| map(i)).collect::<Vec<u32>>())
+            };
+            let mut a: Vec<_> = (0..m.element_count()).map(|e| key(&m, e, &|i| inv[i as usize])).collect();
+            let mut b: Vec<_> = (0..r.element_count()).map(|e| key(&r, e, &|i| i)).collect();
+            a.sort();
+            b.sort();
+            assert_eq!(a, b);
+            assert_eq!(r.edges().iter().filter(|e| e.curved).count(), m.edges().iter().filter(|e| e.curved).count());
+            // and it is local: consecutive nodes are close (mean step a few spacings)
+            let step: f64 = r.nodes.windows(2).map(|w| w[0].distance(w[1])).sum::<f64>() / (r.node_count() - 1) as f64;
+            let before: f64 = m.nodes.windows(2).map(|w| w[0].distance(w[1])).sum::<f64>() / (m.node_count() - 1) as f64;
+            assert!(step < 0.5 * before || step < 4.0 * m.mean_edge_length(), "{step} vs {before}");
+            // positions go back into the original numbering
+            let mut moved = r.clone();
+            for p in &mut moved.nodes {
+                *p += DVec2::new(0.25, -0.5);
+            }
+            let mut back = m.clone();
+            back.restore_positions(&moved, &perm).unwrap();
+            for (p, q) in back.nodes.iter().zip(&m.nodes) {
+                assert_eq!(*p, *q + DVec2::new(0.25, -0.5));
+            }
+            assert!(back.restore_positions(&moved, &perm[1..]).is_err());
+        }
+    }
+
+    #[test]
     fn planar_3d_is_mapped_at_any_scale() {
         // the tilted unit square scaled by s: its edges keep length s, its angles 90°
         // (the plane fit once overflowed near 1e154 and underflowed near 1e-160)
@@ -900,6 +1090,15 @@ mod tests {
                 assert!(cos.abs() < 1e-12, "scale {s:e}: corner {i}");
             }
         }
+    }
+
+    #[test]
+    fn heap_bytes_count_every_array() {
+        let m = square_two_tris().build().unwrap();
+        let b = m.heap_bytes();
+        // 4 positions (64 bytes) and 6 element node ids (24) at the least
+        assert!(b >= 4 * 16 + 6 * 4, "{b}");
+        assert!(b < 4096, "{b}");
     }
 
     #[test]

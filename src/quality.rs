@@ -177,6 +177,7 @@ pub fn scaled_jacobian(e1: DVec2, e2: DVec2) -> f64 {
 /// Edge vectors `(e1, e2)` at each corner of an element, from its node coordinates in
 /// the element's node order (tangents for quadratic elements). Only the first
 /// `kind.corners()` entries are meaningful.
+#[inline]
 pub fn corner_edges(kind: ElementKind, p: &[DVec2]) -> [(DVec2, DVec2); 4] {
     let k = kind.corners();
     let mut out = [(DVec2::ZERO, DVec2::ZERO); 4];

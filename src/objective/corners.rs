@@ -40,6 +40,20 @@ impl CornerJet {
     }
 }
 
+/// The scalar weights `(c1, c2)` of corner `i`'s edge vectors: the formula of
+/// [`quality::corner_edges`] applied to the node weights (the same arithmetic on one
+/// coordinate, so the weights agree with the geometry exactly).
+#[inline]
+fn corner_edge_weights(kind: ElementKind, w: &[f64; 9], i: usize) -> (f64, f64) {
+    let k = kind.corners();
+    let next = (i + 1) % k;
+    let prev = (i + k - 1) % k;
+    match (kind.mid(i), kind.mid(prev)) {
+        (Some(m_next), Some(m_prev)) => (4.0 * w[m_next] - 3.0 * w[i] - w[next], 4.0 * w[m_prev] - 3.0 * w[i] - w[prev]),
+        _ => (w[next] - w[i], w[prev] - w[i]),
+    }
+}
+
 /// One star element evaluated at a trial position: node coordinates, node weights
 /// (`∂node/∂x`, a scalar per node) and the corner jets.
 #[derive(Clone, Copy, Debug)]
@@ -54,6 +68,7 @@ pub struct ElementJets {
 
 impl ElementJets {
     /// Evaluates `el` with its free node at `x`.
+    #[inline]
     pub fn new(el: &StarElement, x: DVec2) -> Self {
         let kind = el.kind;
         let k = kind.corners();
@@ -68,15 +83,11 @@ impl ElementJets {
         if el.follow_prev {
             weights[k + (s + k - 1) % k] = 0.5;
         }
-        let mut w2 = [DVec2::ZERO; 9];
-        for i in 0..n {
-            w2[i] = DVec2::new(weights[i], 0.0);
-        }
         let edges = quality::corner_edges(kind, &pts[..n]);
-        let coeffs = quality::corner_edges(kind, &w2[..n]);
         let mut corners = [CornerJet::default(); 4];
         for i in 0..k {
-            corners[i] = CornerJet { e1: edges[i].0, e2: edges[i].1, c1: coeffs[i].0.x, c2: coeffs[i].1.x };
+            let (c1, c2) = corner_edge_weights(kind, &weights, i);
+            corners[i] = CornerJet { e1: edges[i].0, e2: edges[i].1, c1, c2 };
         }
         ElementJets { kind, slot: s, pts, weights, corners }
     }

@@ -116,7 +116,7 @@ impl std::fmt::Display for ObjectiveKind {
 
 /// The objective of a kind, with its default parameters, behind the trait (dynamic
 /// dispatch: one virtual call per evaluation, against tens of metric evaluations inside).
-pub fn objective(kind: ObjectiveKind) -> Box<dyn Objective> {
+pub fn objective(kind: ObjectiveKind) -> Box<dyn Objective + Send + Sync> {
     match kind {
         ObjectiveKind::Old => Box::new(MaxMinShape),
         ObjectiveKind::Sine => Box::new(MaxMinSine),
@@ -167,6 +167,7 @@ pub struct StarElement {
 impl StarElement {
     /// The element's node coordinates with the free node at `x` (and following mid-side
     /// nodes at their edge midpoints).
+    #[inline]
     pub fn at(&self, x: DVec2) -> [DVec2; 9] {
         let mut p = self.pts;
         let k = self.kind.corners();

@@ -21,6 +21,7 @@ use crate::objective::{Objective, Star, StarElement, Term};
 use crate::optimize::{evaluate, FletcherReeves, NonSmoothAscent, SolveOptions, SolveResult, Solver, SolverKind};
 use crate::quality::{canann_beta_from_corners, corner_edges, lo_alpha_corner, mesh_stats, scaled_jacobian};
 
+pub mod parallel;
 #[cfg(test)]
 mod tests;
 
@@ -221,6 +222,40 @@ pub struct PassRecord {
     pub elapsed_ms: f64,
 }
 
+/// What the node loop of a pass did (the counting part of [`PassRecord`]).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize)]
+pub struct SweepCounts {
+    /// Node visits.
+    pub visits: u32,
+    /// Nodes moved by a Laplacian step (plain or smart).
+    pub laplacian_moves: u32,
+    /// Calls to the solver.
+    pub optimization_calls: u32,
+    /// Solver iterations, summed over the calls.
+    pub solver_iterations: u32,
+}
+
+impl SweepCounts {
+    pub(crate) fn add(&mut self, o: NodeOutcome) {
+        self.visits += 1;
+        self.laplacian_moves += (o.laplacian && o.moved) as u32;
+        self.optimization_calls += o.optimized as u32;
+        self.solver_iterations += o.iterations;
+    }
+    pub(crate) fn merge(&mut self, o: SweepCounts) {
+        self.visits += o.visits;
+        self.laplacian_moves += o.laplacian_moves;
+        self.optimization_calls += o.optimization_calls;
+        self.solver_iterations += o.solver_iterations;
+    }
+    fn add_to(self, rec: &mut PassRecord) {
+        rec.visits += self.visits;
+        rec.laplacian_moves += self.laplacian_moves;
+        rec.optimization_calls += self.optimization_calls;
+        rec.solver_iterations += self.solver_iterations;
+    }
+}
+
 /// What happened at one node.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize)]
 pub struct NodeOutcome {
@@ -327,6 +362,8 @@ pub struct Smoother {
     /// Per-mesh facts, refreshed each pass.
     quadratic: bool,
     curved: bool,
+    /// `sin θ_t` of the combined schemes, computed once (not per visit).
+    sine_threshold: f64,
 }
 
 impl Smoother {
@@ -346,6 +383,7 @@ impl Smoother {
             passes: 0,
             quadratic: false,
             curved: false,
+            sine_threshold: options.threshold_deg.to_radians().sin(),
         })
     }
 
@@ -432,11 +470,23 @@ impl Smoother {
     /// `clock` returns milliseconds (any origin); the core never reads system time.
     pub fn pass(&mut self, mesh: &mut Mesh, objective: &dyn Objective, clock: &dyn Fn() -> f64) -> PassRecord {
         self.passes += 1;
-        self.refresh_mesh_facts(mesh);
         let t0 = clock();
-        self.plan(mesh);
+        let counts = self.sweep(mesh, objective);
+        let elapsed = clock() - t0;
+        self.record(mesh, objective, self.passes, counts, elapsed)
+    }
+
+    /// The record of a pass: its counts and time, and the mesh's statistics now.
+    pub(crate) fn record(
+        &mut self,
+        mesh: &Mesh,
+        objective: &dyn Objective,
+        pass: u32,
+        counts: SweepCounts,
+        elapsed_ms: f64,
+    ) -> PassRecord {
         let mut rec = PassRecord {
-            pass: self.passes,
+            pass,
             visits: 0,
             inverted: 0,
             min_angle_deg: 0.0,
@@ -446,18 +496,9 @@ impl Smoother {
             laplacian_moves: 0,
             optimization_calls: 0,
             solver_iterations: 0,
-            elapsed_ms: 0.0,
+            elapsed_ms,
         };
-        let schedule = std::mem::take(&mut self.schedule);
-        for &n in &schedule {
-            let o = self.visit(mesh, n as usize, objective);
-            rec.visits += 1;
-            rec.laplacian_moves += (o.laplacian && o.moved) as u32;
-            rec.optimization_calls += o.optimized as u32;
-            rec.solver_iterations += o.iterations;
-        }
-        self.schedule = schedule;
-        rec.elapsed_ms = clock() - t0;
+        counts.add_to(&mut rec);
         let stats = mesh_stats(mesh);
         rec.inverted = stats.inverted;
         rec.min_angle_deg = stats.min_angle_deg;
@@ -465,6 +506,28 @@ impl Smoother {
         rec.min_quality = stats.min_quality;
         rec.objective_total = self.objective_total(mesh, objective);
         rec
+    }
+
+    /// The node loop of a pass alone: plans the visit order and smooths each visit, without
+    /// the statistics [`pass`](Self::pass) adds (a whole-mesh [`mesh_stats`] and
+    /// [`objective_total`](Self::objective_total), which cost more than a Laplacian sweep).
+    /// Counts as [`pass`](Self::pass) does; does not count as a pass.
+    pub fn sweep(&mut self, mesh: &mut Mesh, objective: &dyn Objective) -> SweepCounts {
+        self.refresh_mesh_facts(mesh);
+        self.plan(mesh);
+        let schedule = std::mem::take(&mut self.schedule);
+        let counts = self.visit_all(mesh, &schedule, objective);
+        self.schedule = schedule;
+        counts
+    }
+
+    /// Visits the nodes of `order` in turn (the mesh facts must be fresh).
+    pub(crate) fn visit_all(&mut self, mesh: &mut Mesh, order: &[u32], objective: &dyn Objective) -> SweepCounts {
+        let mut c = SweepCounts::default();
+        for &n in order {
+            c.add(self.visit(mesh, n as usize, objective));
+        }
+        c
     }
 
     /// The sum over free nodes of the node objective value (see [`PassRecord::objective_total`]).
@@ -486,49 +549,71 @@ impl Smoother {
     }
 
     fn visit(&mut self, mesh: &mut Mesh, n: usize, objective: &dyn Objective) -> NodeOutcome {
+        let (x, out) = self.decide(mesh, n, objective);
+        if out.moved {
+            self.place(mesh, n, x);
+        }
+        out
+    }
+
+    /// Where the strategy moves node `n`, without writing to the mesh: the new position
+    /// (the old one when it stays) and what happened. The node's own position is tracked
+    /// in the gathered star ([`Star::x0`], kept current by `restar`) and mid-side nodes
+    /// that follow it are moved in the star only, so a node reads nothing but its star and
+    /// its neighbours. Nodes that share no element can therefore be decided in any order,
+    /// or at once ([`crate::smooth::parallel`]), with the same results.
+    pub(crate) fn decide(&mut self, mesh: &Mesh, n: usize, objective: &dyn Objective) -> (DVec2, NodeOutcome) {
         let mut out = NodeOutcome::default();
         if n >= mesh.node_count() || !mesh.is_free(n) {
-            return out;
+            return (DVec2::ZERO, out);
         }
         let x0 = mesh.nodes[n];
-        let sine_t = self.options.threshold_deg.to_radians().sin();
+        let mut x = x0;
+        let sine_t = self.sine_threshold;
         match self.options.strategy {
             Strategy::Laplace => {
-                self.laplace(mesh, n, &mut out);
+                if let Some(c) = self.laplace(mesh, n, &mut out) {
+                    x = c;
+                }
             }
             Strategy::Smart => {
                 self.star.gather(mesh, n);
                 self.smart(mesh, n, &mut out);
+                x = self.star.x0;
             }
             Strategy::Opt => {
                 self.star.gather(mesh, n);
-                self.optimize(mesh, n, objective, &mut out);
+                self.optimize(objective, &mut out);
+                x = self.star.x0;
             }
             Strategy::C1 => {
                 self.star.gather(mesh, n);
                 if star_quality(&self.star, None).min_sine > sine_t {
                     self.smart(mesh, n, &mut out);
                 } else {
-                    self.optimize(mesh, n, objective, &mut out);
+                    self.optimize(objective, &mut out);
                 }
+                x = self.star.x0;
             }
             Strategy::C2 => {
                 self.star.gather(mesh, n);
                 self.smart(mesh, n, &mut out);
                 if star_quality(&self.star, None).min_sine <= sine_t {
-                    self.optimize(mesh, n, objective, &mut out);
+                    self.optimize(objective, &mut out);
                 }
+                x = self.star.x0;
             }
             Strategy::C3 => {
                 self.star.gather(mesh, n);
                 if star_quality(&self.star, None).min_sine <= sine_t {
-                    if self.laplace(mesh, n, &mut out) {
-                        self.restar(mesh.nodes[n]);
+                    if let Some(c) = self.laplace(mesh, n, &mut out) {
+                        self.restar(c);
                     }
                     if star_quality(&self.star, None).min_sine <= sine_t {
-                        self.optimize(mesh, n, objective, &mut out);
+                        self.optimize(objective, &mut out);
                     }
                 }
+                x = self.star.x0;
             }
             Strategy::Rules => {
                 self.star.gather(mesh, n);
@@ -536,12 +621,13 @@ impl Smoother {
                     || self.touches_curved_boundary(mesh, n)
                     || star_quality(&self.star, None).inverted > 0;
                 if forced || !self.smart(mesh, n, &mut out) {
-                    self.optimize(mesh, n, objective, &mut out);
+                    self.optimize(objective, &mut out);
                 }
+                x = self.star.x0;
             }
         }
-        out.moved = mesh.nodes[n] != x0;
-        out
+        out.moved = x != x0;
+        (x, out)
     }
 
     /// Moves the gathered star's free node to `x` (after a move), keeping the star valid.
@@ -559,24 +645,23 @@ impl Smoother {
         }
     }
 
-    /// Plain Laplacian; returns whether the node moved.
-    fn laplace(&mut self, mesh: &mut Mesh, n: usize, out: &mut NodeOutcome) -> bool {
+    /// Plain Laplacian: the centroid when the node moves there, `None` when it stays.
+    fn laplace(&mut self, mesh: &Mesh, n: usize, out: &mut NodeOutcome) -> Option<DVec2> {
         match centroid(mesh, n) {
             Some(c) if c.is_finite() && c != mesh.nodes[n] => {
-                self.place(mesh, n, c);
                 out.laplacian = true;
-                true
+                Some(c)
             }
-            _ => false,
+            _ => None,
         }
     }
 
-    /// Smart Laplacian on the gathered star; returns whether the node moved. The star's
-    /// quality now is measured on the mesh as it is; at the centroid with the mid-side
-    /// nodes of straight edges following.
-    fn smart(&mut self, mesh: &mut Mesh, n: usize, out: &mut NodeOutcome) -> bool {
+    /// Smart Laplacian on the gathered star; returns whether the node moved (the star is
+    /// moved with it). The star's quality now is measured at the star's position; at the
+    /// centroid with the mid-side nodes of straight edges following.
+    fn smart(&mut self, mesh: &Mesh, n: usize, out: &mut NodeOutcome) -> bool {
         let Some(c) = centroid(mesh, n) else { return false };
-        if !c.is_finite() || c == mesh.nodes[n] {
+        if !c.is_finite() || c == self.star.x0 {
             return false;
         }
         let m = self.options.smart_measure;
@@ -591,7 +676,6 @@ impl Smoother {
             after = after.min(q1.measure(m));
         }
         if after > before {
-            self.place(mesh, n, c);
             self.restar(c);
             out.laplacian = true;
             true
@@ -600,11 +684,11 @@ impl Smoother {
         }
     }
 
-    /// Optimization with the chosen solver on the gathered star.
+    /// Optimization with the chosen solver on the gathered star, from the star's position.
     /// With [`SmoothOptions::keep_valid`] the solver sees the objective through
     /// [`KeepValid`].
-    fn optimize(&mut self, mesh: &mut Mesh, n: usize, objective: &dyn Objective, out: &mut NodeOutcome) {
-        let x0 = mesh.nodes[n];
+    fn optimize(&mut self, objective: &dyn Objective, out: &mut NodeOutcome) {
+        let x0 = self.star.x0;
         let guarded;
         let objective: &dyn Objective = if self.options.keep_valid {
             let limit = self.star.elems.iter().filter(|e| is_inverted(e.kind, &e.pts)).count();
@@ -625,7 +709,6 @@ impl Smoother {
         out.optimized = true;
         out.iterations += r.iterations;
         if r.x.is_finite() && r.x != x0 {
-            self.place(mesh, n, r.x);
             self.restar(r.x);
         }
     }

@@ -1,0 +1,142 @@
+//! Criterion benchmarks of one smoothing pass on Freitag's rand2d meshes of 10k, 100k and
+//! 1M nodes (generated, not stored), in Hilbert node order, with throughput in node
+//! visits: Laplacian, smart Laplacian, `opt` with each objective, `rules` with `new`, the
+//! bandwidth bound (a sweep that only streams the arrays a Laplacian pass reads), the
+//! level-set sampling of one node (100 × 100 objective values), a coloured pass, and
+//! drawing the mesh (`render::render_mesh`, 1024 × 1024).
+//!
+//! `cargo bench` runs them all (several minutes); `cargo bench -- 10k` only the small mesh.
+//! At 1M nodes only the cheap passes (stream, Laplacian, smart) and `opt`/`rules` with
+//! `new` run, to keep the run bounded. `examples/perf.rs` makes the tables of
+//! `docs/performance.md` from the same passes.
+
+use std::time::Duration;
+
+use criterion::{criterion_group, criterion_main, BatchSize, BenchmarkId, Criterion, Throughput};
+use glam::DVec2;
+use smoothlab::generate::rand2d;
+use smoothlab::mesh::Mesh;
+use smoothlab::objective::{objective, ObjectiveKind, Star};
+use smoothlab::smooth::parallel::ColouredSmoother;
+use smoothlab::smooth::{Order, SmoothOptions, Smoother, Strategy};
+
+/// rand2d with `n` nodes (as `examples/perf.rs`: √n per side, seed 2003), Hilbert order.
+fn bench_mesh(n: usize) -> Mesh {
+    let per_side = ((n as f64).sqrt() as usize).max(1);
+    rand2d(n - 4 * per_side, per_side, 2003).expect("rand2d").renumbered_spatially().0
+}
+
+/// The Laplacian's memory traffic without its work: free flags, CSR neighbours, positions.
+fn stream_bound(mesh: &mut Mesh) -> u32 {
+    let mut visits = 0;
+    for i in 0..mesh.node_count() {
+        if mesh.fixed[i] {
+            continue;
+        }
+        let nb = mesh.topology().neighbours(i);
+        let mut s = DVec2::ZERO;
+        for &j in nb {
+            s += mesh.nodes[j as usize];
+        }
+        mesh.nodes[i] = s / nb.len() as f64;
+        visits += 1;
+    }
+    visits
+}
+
+fn passes(large: bool) -> Vec<(&'static str, Strategy, ObjectiveKind)> {
+    let mut v =
+        vec![("laplace", Strategy::Laplace, ObjectiveKind::New), ("smart", Strategy::Smart, ObjectiveKind::New)];
+    if large {
+        v.push(("opt+new", Strategy::Opt, ObjectiveKind::New));
+    } else {
+        for k in ObjectiveKind::ALL {
+            v.push((Box::leak(format!("opt+{k}").into_boxed_str()), Strategy::Opt, k));
+        }
+    }
+    v.push(("rules+new", Strategy::Rules, ObjectiveKind::New));
+    v
+}
+
+fn smoothing(c: &mut Criterion) {
+    for (label, n) in [("10k", 10_000usize), ("100k", 100_000), ("1M", 1_000_000)] {
+        let mesh = bench_mesh(n);
+        let free = mesh.free_count() as u64;
+        let mut g = c.benchmark_group(format!("pass/{label}"));
+        g.sample_size(10).throughput(Throughput::Elements(free));
+        g.measurement_time(Duration::from_secs(if n >= 1_000_000 { 20 } else { 5 }));
+        g.warm_up_time(Duration::from_millis(500));
+        g.bench_function("stream bound", |b| b.iter_batched_ref(|| mesh.clone(), stream_bound, BatchSize::LargeInput));
+        for (name, strategy, kind) in passes(n >= 1_000_000) {
+            let obj = objective(kind);
+            let options = SmoothOptions::default().with_strategy(strategy).with_order(Order::Input);
+            let mut s = Smoother::new(options).expect("options");
+            g.bench_function(name, |b| {
+                b.iter_batched_ref(|| mesh.clone(), |m| s.sweep(m, &*obj), BatchSize::LargeInput)
+            });
+        }
+        if n <= 100_000 {
+            let obj = objective(ObjectiveKind::New);
+            let options = SmoothOptions::default().with_strategy(Strategy::Opt);
+            let mut s = ColouredSmoother::new(&mesh, options).expect("options");
+            g.bench_function(
+                BenchmarkId::new(
+                    "coloured opt+new",
+                    if ColouredSmoother::is_multithreaded() { "parallel" } else { "sequential" },
+                ),
+                |b| b.iter_batched_ref(|| mesh.clone(), |m| s.sweep(m, &*obj), BatchSize::LargeInput),
+            );
+        }
+        g.finish();
+    }
+}
+
+/// The level-set view of one node: its objective sampled on a 100 × 100 grid over its star.
+fn level_sets(c: &mut Criterion) {
+    let mesh = bench_mesh(10_000);
+    let node = (0..mesh.node_count()).find(|&i| mesh.is_free(i)).expect("a free node");
+    let mut star = Star::new();
+    star.gather(&mesh, node);
+    let (mut lo, mut hi) = (star.x0, star.x0);
+    for e in &star.elems {
+        for p in &e.pts[..e.kind.node_count()] {
+            lo = lo.min(*p);
+            hi = hi.max(*p);
+        }
+    }
+    let mut g = c.benchmark_group("level set 100x100");
+    g.sample_size(10).throughput(Throughput::Elements(10_000));
+    for kind in [ObjectiveKind::New, ObjectiveKind::Old] {
+        let obj = objective(kind);
+        g.bench_function(kind.name(), |b| {
+            b.iter(|| {
+                let mut acc = 0.0;
+                for j in 0..100 {
+                    for i in 0..100 {
+                        let x = lo + (hi - lo) * DVec2::new(i as f64 / 99.0, j as f64 / 99.0);
+                        acc += obj.value(&star, x);
+                    }
+                }
+                acc
+            })
+        });
+    }
+    g.finish();
+}
+
+/// Drawing a whole mesh: `render::render_mesh` into a 1024 × 1024 pixmap.
+fn rendering(c: &mut Criterion) {
+    let mut g = c.benchmark_group("render 1024x1024");
+    g.sample_size(10);
+    for (label, n) in [("10k", 10_000usize), ("100k", 100_000)] {
+        let mesh = bench_mesh(n);
+        let mut pixmap = tiny_skia::Pixmap::new(1024, 1024).expect("a pixmap");
+        let view = smoothlab::render::MeshView::default();
+        g.throughput(Throughput::Elements(mesh.element_count() as u64));
+        g.bench_function(label, |b| b.iter(|| smoothlab::render::render_mesh(&mut pixmap, &mesh, &view)));
+    }
+    g.finish();
+}
+
+criterion_group!(benches, smoothing, level_sets, rendering);
+criterion_main!(benches);
