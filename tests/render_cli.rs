@@ -8,8 +8,9 @@ fn bin() -> Command {
     Command::new(env!("CARGO_BIN_EXE_smoothlab"))
 }
 
-fn dir() -> PathBuf {
-    let d = std::env::temp_dir().join(format!("smoothlab-render-cli-{}", std::process::id()));
+/// A folder of the test's own: the tests run in parallel and write files of the same names.
+fn dir(test: &str) -> PathBuf {
+    let d = std::env::temp_dir().join(format!("smoothlab-render-cli-{}-{test}", std::process::id()));
     std::fs::create_dir_all(&d).unwrap();
     d
 }
@@ -38,7 +39,7 @@ fn tangled_plate(d: &Path) -> String {
 
 #[test]
 fn every_view_draws_a_picture_of_the_asked_size() {
-    let d = dir();
+    let d = dir("views");
     let mesh = tangled_plate(&d);
     let m = smoothlab::io::read_path(Path::new(&mesh)).unwrap();
     let free = (0..m.node_count()).rev().find(|&n| m.is_free(n)).unwrap().to_string();
@@ -70,7 +71,7 @@ fn every_view_draws_a_picture_of_the_asked_size() {
 
 #[test]
 fn bad_requests_are_refused_with_a_message() {
-    let d = dir();
+    let d = dir("refusals");
     let mesh = tangled_plate(&d);
     let out = d.join("x.png");
     let o = out.to_str().unwrap();
