@@ -3,7 +3,7 @@
 // open the permalink and the embed view. Serves www/ itself on a free 127.0.0.1 port.
 // Screenshots go to test-output/browser/. Prints "N passed, M failed"; exits 1 on failure.
 import { spawn } from 'node:child_process';
-import { mkdirSync, readFileSync, existsSync } from 'node:fs';
+import { mkdirSync, readFileSync, readdirSync, existsSync } from 'node:fs';
 import { createServer } from 'node:net';
 import path from 'node:path';
 import { fileURLToPath } from 'node:url';
@@ -226,18 +226,27 @@ try {
     await page.locator('.pass-view').screenshot({ path: path.join(OUT, '04-pass-view.png') });
   });
 
-  await test('a malformed file shows an error and leaves the mesh on screen', async () => {
-    const files = ['bad_number.msh', 'non_planar.vtk', 'index_out_of_range.obj'].map((f) => path.join(BAD, f));
-    for (const f of files) check(existsSync(f), `missing test file ${f}`);
+  await test('every file of the malformed corpus shows an error and leaves the mesh on screen', async () => {
+    // each file of tests/data/bad/ alone, and its Triangle .node + .ele pairs selected together
+    const names = readdirSync(BAD).sort();
+    const singles = names.filter((f) => !/\.(node|ele)$/.test(f)).map((f) => [path.join(BAD, f)]);
+    const pairs = names.filter((f) => f.endsWith('.node'))
+      .map((f) => [path.join(BAD, f), path.join(BAD, f.replace(/\.node$/, '.ele'))]);
+    const files = [...singles, ...pairs];
+    check(files.length >= 40, `the corpus has only ${files.length} cases`);
+    for (const set of files) for (const f of set) check(existsSync(f), `missing test file ${f}`);
     const before = { s: await stats(page, 'new'), c: await canvasInfo(page, 'mesh-new') };
     check(Number(before.s.nodes) > 0 && before.c.colours > 8, 'a mesh is shown before');
-    for (const f of files) {
-      await page.setInputFiles('#file', f);
+    for (const set of files) {
+      const f = set[0];
+      // clear the box so the message read below is this file's, not the previous one's
+      await page.evaluate(() => { const m = document.getElementById('message'); m.textContent = ''; m.hidden = true; });
+      await page.setInputFiles('#file', set);
       await page.waitForFunction(() => !document.getElementById('message').hidden, null, { timeout: TIMEOUT });
       await idle(page);
       const msg = await page.textContent('#message');
       check(msg.length > 10, `empty message for ${path.basename(f)}`);
-      console.log(`     ${path.basename(f)}: ${msg}`);
+      console.log(`     ${set.map((x) => path.basename(x)).join(' + ')}: ${msg}`);
       const after = { s: await stats(page, 'new'), c: await canvasInfo(page, 'mesh-new') };
       check(JSON.stringify(after.s) === JSON.stringify(before.s), 'the statistics changed');
       check(after.c.hash === before.c.hash, 'the mesh canvas changed');
