@@ -43,7 +43,9 @@ pub enum Strategy {
     /// star's minimum angle still does not exceed the threshold.
     C2,
     /// Freitag's combined approach 3: nothing if the star's minimum angle exceeds the
-    /// threshold; otherwise (plain) Laplacian, then optimization if still not above it.
+    /// threshold; otherwise (plain) Laplacian, then optimization if still not above it —
+    /// and the node stays put if the two together left its star worse (by
+    /// [`SmoothOptions::smart_measure`], or with more inverted elements) than they found it.
     C3,
     /// Chen et al. (2003) §4.1: optimization when the node (1) is connected to a curved
     /// boundary node, (2) is connected to an invalid element, (3) failed to move under
@@ -605,12 +607,23 @@ impl Smoother {
             }
             Strategy::C3 => {
                 self.star.gather(mesh, n);
-                if star_quality(&self.star, None).min_sine <= sine_t {
+                let before = star_quality(&self.star, None);
+                if before.min_sine <= sine_t {
                     if let Some(c) = self.laplace(mesh, n, &mut out) {
                         self.restar(c);
                     }
                     if star_quality(&self.star, None).min_sine <= sine_t {
                         self.optimize(objective, &mut out);
+                    }
+                    // Freitag's C3 starts with the plain Laplacian, which may fold an element
+                    // or lower the star's quality (the smart Laplacian's measure), and the
+                    // optimization from there may not win it back. Like the other combined
+                    // schemes, C3 never leaves a star worse than it found it: then the node
+                    // stays where it was.
+                    let after = star_quality(&self.star, None);
+                    let m = self.options.smart_measure;
+                    if after.inverted > before.inverted || after.measure(m) < before.measure(m) {
+                        self.restar(x0);
                     }
                 }
                 x = self.star.x0;
