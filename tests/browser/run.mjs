@@ -2,57 +2,20 @@
 // open the page, pick samples, smooth, click and drag nodes, load bad files, export,
 // open the permalink and the embed view. Serves www/ itself on a free 127.0.0.1 port.
 // Screenshots go to test-output/browser/. Prints "N passed, M failed"; exits 1 on failure.
-import { spawn } from 'node:child_process';
 import { mkdirSync, readFileSync, readdirSync, existsSync } from 'node:fs';
-import { createServer } from 'node:net';
 import path from 'node:path';
-import { fileURLToPath } from 'node:url';
 import { chromium } from 'playwright-core';
+import { ROOT, WWW, CHROMIUM, CHROMIUM_ARGS as ARGS, startServer } from './serve.mjs';
 
-const ROOT = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '../..');
-const WWW = path.join(ROOT, 'www');
 const OUT = path.join(ROOT, 'test-output', 'browser');
 const BAD = path.join(ROOT, 'tests', 'data', 'bad');
 const DATA = path.join(ROOT, 'tests', 'data');
-const CHROMIUM = process.env.CHROMIUM || '/usr/bin/chromium';
-const ARGS = ['--headless', '--no-sandbox', '--disable-gpu', '--disable-quic', '--no-first-run',
-  '--disable-background-networking', '--disable-component-update', '--disable-sync'];
 const TIMEOUT = 60_000;
 
 mkdirSync(OUT, { recursive: true });
 if (!existsSync(path.join(WWW, 'pkg', 'smoothlab_bg.wasm'))) {
   console.error('www/pkg/smoothlab_bg.wasm is missing: run `make site` first');
   process.exit(1);
-}
-
-// ---- a static server on a free port ---------------------------------------------------
-function freePort() {
-  return new Promise((resolve, reject) => {
-    const s = createServer();
-    s.once('error', reject);
-    s.listen(0, '127.0.0.1', () => {
-      const { port } = s.address();
-      s.close(() => resolve(port));
-    });
-  });
-}
-async function startServer() {
-  const port = await freePort();
-  const proc = spawn('python3', ['-m', 'http.server', String(port), '--bind', '127.0.0.1', '--directory', WWW], {
-    stdio: ['ignore', 'ignore', 'pipe'],
-  });
-  let log = '';
-  proc.stderr.on('data', (d) => { log += d; });
-  const base = `http://127.0.0.1:${port}/`;
-  for (let i = 0; i < 100; i++) {
-    try {
-      const r = await fetch(base);
-      if (r.ok) return { proc, base, log: () => log };
-    } catch { /* not up yet */ }
-    await new Promise((r) => setTimeout(r, 100));
-  }
-  proc.kill();
-  throw new Error(`the test server did not start: ${log}`);
 }
 
 // ---- a tiny test runner ---------------------------------------------------------------
