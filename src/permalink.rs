@@ -69,40 +69,6 @@ pub const MAX_PASSES: u32 = 100;
 /// Largest number of solver iterations per node.
 pub const MAX_ITER: u32 = 50;
 
-/// The URL names of the smoothing strategies (as the page's menu spells them).
-const STRATEGIES: [(Strategy, &str); 7] = [
-    (Strategy::Laplace, "laplace"),
-    (Strategy::Smart, "smart"),
-    (Strategy::Opt, "opt"),
-    (Strategy::C1, "c1"),
-    (Strategy::C2, "c2"),
-    (Strategy::C3, "c3"),
-    (Strategy::Rules, "rules"),
-];
-
-/// The URL names of the visit orders.
-const ORDERS: [(Order, &str); 2] = [(Order::Input, "input"), (Order::Priority, "priority")];
-
-/// The URL name of a strategy.
-pub fn strategy_name(s: Strategy) -> &'static str {
-    STRATEGIES.iter().find(|p| p.0 == s).map_or("rules", |p| p.1)
-}
-
-/// The strategy with URL name `s` (exact, lowercase).
-pub fn parse_strategy(s: &str) -> Option<Strategy> {
-    STRATEGIES.iter().find(|p| p.1 == s).map(|p| p.0)
-}
-
-/// The URL name of a visit order.
-pub fn order_name(o: Order) -> &'static str {
-    ORDERS.iter().find(|p| p.0 == o).map_or("priority", |p| p.1)
-}
-
-/// The visit order with URL name `s` (exact, lowercase).
-pub fn parse_order(s: &str) -> Option<Order> {
-    ORDERS.iter().find(|p| p.1 == s).map(|p| p.0)
-}
-
 /// What a permalink holds: the sample and the settings of the page.
 #[derive(Clone, Debug, PartialEq)]
 pub struct PageState {
@@ -206,11 +172,11 @@ impl From<&PageState> for PageFields {
             sample: s.sample.clone(),
             seed: s.seed,
             amount: s.amount,
-            strategy: strategy_name(s.strategy).to_string(),
+            strategy: s.strategy.name().to_string(),
             objective: s.objective.name().to_string(),
             threshold: s.threshold_deg,
             passes: s.passes,
-            order: order_name(s.order).to_string(),
+            order: s.order.name().to_string(),
             max_iter: s.max_iter,
             node: s.node,
             embed: s.embed,
@@ -226,8 +192,8 @@ impl PageFields {
             sample: self.sample.clone(),
             seed: self.seed,
             amount: self.amount,
-            strategy: parse_strategy(&self.strategy).ok_or_else(|| {
-                let names: Vec<&str> = STRATEGIES.iter().map(|p| p.1).collect();
+            strategy: Strategy::parse(&self.strategy).ok_or_else(|| {
+                let names: Vec<&str> = Strategy::ALL.iter().map(|s| s.name()).collect();
                 bad("strategy", &self.strategy, &format!("one of {}", names.join(", ")))
             })?,
             objective: ObjectiveKind::parse(&self.objective).ok_or_else(|| {
@@ -236,7 +202,7 @@ impl PageFields {
             })?,
             threshold_deg: self.threshold,
             passes: self.passes,
-            order: parse_order(&self.order).ok_or_else(|| bad("order", &self.order, "one of input, priority"))?,
+            order: Order::parse(&self.order).ok_or_else(|| bad("order", &self.order, "one of input, priority"))?,
             max_iter: self.max_iter,
             node: self.node,
             embed: self.embed,
@@ -452,8 +418,8 @@ pub fn decode(hash: &str) -> Result<PageState> {
             }
             Key::Seed => state.seed = parse_uint(name, v, u64::MAX)?,
             Key::Strategy => {
-                state.strategy = parse_strategy(v).ok_or_else(|| {
-                    let names: Vec<&str> = STRATEGIES.iter().map(|p| p.1).collect();
+                state.strategy = Strategy::parse(v).ok_or_else(|| {
+                    let names: Vec<&str> = Strategy::ALL.iter().map(|s| s.name()).collect();
                     bad(name, v, &format!("one of {}", names.join(", ")))
                 })?
             }
@@ -474,7 +440,7 @@ pub fn decode(hash: &str) -> Result<PageState> {
                 state.passes = p as u32;
             }
             Key::Order => {
-                state.order = parse_order(v).ok_or_else(|| bad(name, v, "one of input, priority"))?;
+                state.order = Order::parse(v).ok_or_else(|| bad(name, v, "one of input, priority"))?;
             }
             Key::MaxIter => {
                 let m = parse_uint(name, v, u64::MAX).map_err(|_| bad(name, v, "a whole number from 1 to 50"))?;
@@ -518,11 +484,11 @@ pub fn encode(s: &PageState) -> String {
             },
             Key::Tangle => real(s.amount),
             Key::Seed => s.seed.to_string(),
-            Key::Strategy => strategy_name(s.strategy).to_string(),
+            Key::Strategy => s.strategy.name().to_string(),
             Key::Objective => s.objective.name().to_string(),
             Key::Threshold => real(s.threshold_deg),
             Key::Passes => s.passes.to_string(),
-            Key::Order => order_name(s.order).to_string(),
+            Key::Order => s.order.name().to_string(),
             Key::MaxIter => s.max_iter.to_string(),
             Key::Node => match s.node {
                 Some(n) => n.to_string(),
@@ -659,11 +625,11 @@ mod tests {
 
     #[test]
     fn every_name_round_trips() {
-        for (s, n) in STRATEGIES {
-            assert_eq!((parse_strategy(n), strategy_name(s)), (Some(s), n));
+        for s in Strategy::ALL {
+            assert_eq!(Strategy::parse(s.name()), Some(s));
         }
-        for (o, n) in ORDERS {
-            assert_eq!((parse_order(n), order_name(o)), (Some(o), n));
+        for o in Order::ALL {
+            assert_eq!(Order::parse(o.name()), Some(o));
         }
         for name in SAMPLES {
             let s = PageState { sample: Some(name.to_string()), ..PageState::default() };
@@ -794,11 +760,11 @@ mod tests {
             sample in proptest::option::of(proptest::sample::select(SAMPLES)),
             seed in any::<u64>(),
             amount in any_amount(),
-            strategy in proptest::sample::select(STRATEGIES.map(|p| p.0).to_vec()),
+            strategy in proptest::sample::select(Strategy::ALL.to_vec()),
             objective in proptest::sample::select(ObjectiveKind::ALL.to_vec()),
             threshold_deg in any_threshold(),
             passes in 1..=MAX_PASSES,
-            order in proptest::sample::select(ORDERS.map(|p| p.0).to_vec()),
+            order in proptest::sample::select(Order::ALL.to_vec()),
             max_iter in 1..=MAX_ITER,
             node in proptest::option::of(any::<u32>()),
             embed in any::<bool>(),

@@ -53,6 +53,28 @@ pub enum Strategy {
     Rules,
 }
 
+impl Strategy {
+    /// Every strategy, in menu order.
+    pub const ALL: [Strategy; 7] =
+        [Strategy::Laplace, Strategy::Smart, Strategy::Opt, Strategy::C1, Strategy::C2, Strategy::C3, Strategy::Rules];
+    /// The name used on the command line, in permalinks and on the page.
+    pub fn name(self) -> &'static str {
+        match self {
+            Strategy::Laplace => "laplace",
+            Strategy::Smart => "smart",
+            Strategy::Opt => "opt",
+            Strategy::C1 => "c1",
+            Strategy::C2 => "c2",
+            Strategy::C3 => "c3",
+            Strategy::Rules => "rules",
+        }
+    }
+    /// The strategy called `name` (exact, lowercase).
+    pub fn parse(name: &str) -> Option<Strategy> {
+        Self::ALL.into_iter().find(|s| s.name() == name)
+    }
+}
+
 /// The order in which a pass visits the free nodes.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
 pub enum Order {
@@ -60,6 +82,22 @@ pub enum Order {
     Input,
     /// Chen et al. (2003) §4.2, "worst one first": see [`Smoother::plan`].
     Priority,
+}
+
+impl Order {
+    /// Both orders.
+    pub const ALL: [Order; 2] = [Order::Input, Order::Priority];
+    /// The name used on the command line, in permalinks and on the page.
+    pub fn name(self) -> &'static str {
+        match self {
+            Order::Input => "input",
+            Order::Priority => "priority",
+        }
+    }
+    /// The order called `name` (exact, lowercase).
+    pub fn parse(name: &str) -> Option<Order> {
+        Self::ALL.into_iter().find(|o| o.name() == name)
+    }
 }
 
 /// The star quality that the smart Laplacian must improve, and that orders nodes by priority.

@@ -112,15 +112,7 @@ impl StrategyArg {
         }
     }
     fn name(self) -> &'static str {
-        match self {
-            StrategyArg::Laplace => "laplace",
-            StrategyArg::Smart => "smart",
-            StrategyArg::Opt => "opt",
-            StrategyArg::C1 => "c1",
-            StrategyArg::C2 => "c2",
-            StrategyArg::C3 => "c3",
-            StrategyArg::Rules => "rules",
-        }
+        self.strategy().name()
     }
     /// Strategies that never call the solver.
     fn is_laplacian_only(self) -> bool {
