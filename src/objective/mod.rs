@@ -261,9 +261,10 @@ pub trait Objective {
 }
 
 /// Combines terms by the goal: sum (with summed gradient) or minimum (with the gradient
-/// of the first minimal term). An empty set gives 0.
+/// of the first minimal term). An empty set gives 0; a NaN term makes the value NaN (the
+/// solvers read it as the worst value of the goal).
 pub fn combine(goal: Goal, terms: &[Term]) -> (f64, DVec2) {
-    match goal {
+    let (v, g) = match goal {
         Goal::MinimizeSum => terms.iter().fold((0.0, DVec2::ZERO), |(v, g), t| (v + t.value, g + t.grad)),
         Goal::MaximizeMin => terms
             .iter()
@@ -273,7 +274,11 @@ pub fn combine(goal: Goal, terms: &[Term]) -> (f64, DVec2) {
             })
             .map(|t| (t.value, t.grad))
             .unwrap_or((0.0, DVec2::ZERO)),
+    };
+    if goal == Goal::MaximizeMin && terms.iter().any(|t| t.value.is_nan()) {
+        return (f64::NAN, g);
     }
+    (v, g)
 }
 
 /// Implements [`Objective`] for a type with inherent `kind(&self) -> ObjectiveKind` and
@@ -309,11 +314,12 @@ pub(crate) struct Fold {
     value: f64,
     grad: DVec2,
     any: bool,
+    nan: bool,
 }
 
 impl Fold {
     pub(crate) fn new(goal: Goal) -> Self {
-        Fold { goal, value: 0.0, grad: DVec2::ZERO, any: false }
+        Fold { goal, value: 0.0, grad: DVec2::ZERO, any: false, nan: false }
     }
     pub(crate) fn add(&mut self, t: Term) {
         match self.goal {
@@ -322,6 +328,7 @@ impl Fold {
                 self.grad += t.grad;
             }
             Goal::MaximizeMin => {
+                self.nan |= t.value.is_nan();
                 // strictly smaller replaces: the first minimal term wins, as in `combine`
                 if !self.any || t.value < self.value {
                     self.value = t.value;
@@ -332,7 +339,7 @@ impl Fold {
         self.any = true;
     }
     pub(crate) fn finish(self) -> (f64, DVec2) {
-        (self.value, self.grad)
+        (if self.nan { f64::NAN } else { self.value }, self.grad)
     }
 }
 

@@ -7,6 +7,7 @@ use glam::DVec2;
 
 use super::corners::ElementJets;
 use super::{impl_objective_by_visit, ObjectiveKind, Star, Term};
+use crate::mesh::ElementKind;
 use crate::quality::{lo_alpha_corner_gradient, signed_angle_gradient};
 
 /// √3.
@@ -22,13 +23,22 @@ const SQRT3: f64 = 1.732_050_807_568_877_2;
 /// everywhere else. For θ ≥ 0 the mirror factor differs from 1 by less than
 /// e^{−2π} ≈ 0.19%. ω rises from 0 to its maximum ≈ 1.87 at θ ≈ 131° and returns to 0
 /// at 180°; it is negative, down to ≈ −1.87 at −131°, for inverted angles.
+#[inline]
 pub fn adjusted_angle(theta: f64) -> (f64, f64) {
-    let ep = (-2.0 * (PI - theta)).exp();
-    let em = (-2.0 * (PI + theta)).exp();
+    // ω is odd and ω' even: evaluate at |θ| so the symmetry is exact in floating point,
+    // with e^{−2(π+a)} = e^{−4π} / e^{−2(π−a)} (one exponential for both factors; for
+    // a ≤ π the quotient is at most 1)
+    let a = theta.abs();
+    let ep = (-2.0 * (PI - a)).exp();
+    let em = EXP_MINUS_4PI / ep;
     let w = (1.0 - ep) * (1.0 - em);
     let dw = -2.0 * ep * (1.0 - em) + 2.0 * em * (1.0 - ep);
-    (theta * w, w + theta * dw)
+    let omega = a * w;
+    (if theta < 0.0 { -omega } else { omega }, w + a * dw)
 }
+
+/// e^{−4π}.
+const EXP_MINUS_4PI: f64 = 3.487_342_356_208_997_3e-6;
 
 /// Which length scales an angle's penalty: `(ℓ/c)²` with `c = |AB|`, the edge opposite the
 /// free node C, and ℓ one of the edges at C.
@@ -141,75 +151,135 @@ impl ChenTristanoKwok {
 
     /// Calls `emit` with one term per star element.
     pub fn visit(&self, star: &Star, x: DVec2, mut emit: impl FnMut(Term)) {
+        let w = if star.mixed { 3.0 } else { 1.0 };
         for (i, el) in star.elems.iter().enumerate() {
-            let j = ElementJets::new(el, x);
-            let f = j.slot;
-            let (value, grad) = if el.kind.is_triangle() {
-                let (v, g) = self.sub_triangle(&j, f, (f + 1) % 3, (f + 2) % 3);
-                let w = if star.mixed { 3.0 } else { 1.0 };
+            let (value, grad) = if el.kind == ElementKind::Tri3 {
+                // the common case, without the general element machinery (same arithmetic)
+                let s = el.slot as usize;
+                let (v, g) = self.sub_triangle(&SubTriangle::linear(x, el.pts[(s + 1) % 3], el.pts[(s + 2) % 3]));
                 (w * v, w * g)
             } else {
-                let (n, o, p) = ((f + 1) % 4, (f + 2) % 4, (f + 3) % 4);
-                let (v1, g1) = self.sub_triangle(&j, f, n, o);
-                let (v2, g2) = self.sub_triangle(&j, f, o, p);
-                let (v3, g3) = self.sub_triangle(&j, f, n, p);
-                (v1 + v2 + v3, g1 + g2 + g3)
+                let j = ElementJets::new(el, x);
+                let f = j.slot;
+                if el.kind.is_triangle() {
+                    let (v, g) = self.sub_triangle(&SubTriangle::of(&j, f, (f + 1) % 3, (f + 2) % 3));
+                    (w * v, w * g)
+                } else {
+                    let (n, o, p) = ((f + 1) % 4, (f + 2) % 4, (f + 3) % 4);
+                    let (v1, g1) = self.sub_triangle(&SubTriangle::of(&j, f, n, o));
+                    let (v2, g2) = self.sub_triangle(&SubTriangle::of(&j, f, o, p));
+                    let (v3, g3) = self.sub_triangle(&SubTriangle::of(&j, f, n, p));
+                    (v1 + v2 + v3, g1 + g2 + g3)
+                }
             };
             emit(Term { elem: i as u32, value, grad });
         }
     }
 
-    /// `(1 − α_C)² + f_θ(A) + f_θ(B)` of the counter-clockwise triangle (C, A, B) of
-    /// corners of `j`, C the free corner, with its gradient.
-    fn sub_triangle(&self, j: &ElementJets, c: usize, a: usize, b: usize) -> (f64, DVec2) {
-        let (u1, cu1) = j.dir(c, a);
-        let (u2, cu2) = j.dir(c, b);
+    /// `(1 − α_C)² + f_θ(A) + f_θ(B)` of the counter-clockwise triangle (C, A, B), C the
+    /// free corner, with its gradient.
+    fn sub_triangle(&self, t: &SubTriangle) -> (f64, DVec2) {
+        let ((u1, cu1), (u2, cu2)) = (t.c_to_a, t.c_to_b);
         let (alpha, g1, g2) = lo_alpha_corner_gradient(u1, u2);
         let mut value = (1.0 - alpha) * (1.0 - alpha);
         let mut grad = -2.0 * (1.0 - alpha) * (cu1 * g1 + cu2 * g2);
         if self.k1 == 0.0 {
             return (value, grad);
         }
-        let (ab, cab) = j.chord(a, b);
+        let (ab, cab) = t.ab;
         let ab2 = ab.length_squared();
         if ab2 <= 0.0 {
             return (value, grad); // A and B coincide: no angle to speak of
         }
-        let (ca, cb) = (j.chord(c, a), j.chord(c, b));
         let (len_a, len_b) = match self.length {
-            PenaltyLength::Adjacent => (ca, cb),
-            PenaltyLength::Opposite => (cb, ca),
+            PenaltyLength::Adjacent => (t.ca, t.cb),
+            PenaltyLength::Opposite => (t.cb, t.ca),
         };
+        let inv_ab2 = 1.0 / ab2;
         // at A: from the edge towards B to the edge towards C
-        let (v, g) = self.penalty(j.dir(a, b), j.dir(a, c), len_a, (ab, cab, ab2));
+        let (v, g) = self.penalty(t.a_to_b, t.a_to_c, len_a, (ab, cab, inv_ab2));
         value += v;
         grad += g;
         // at B: from the edge towards C to the edge towards A
-        let (v, g) = self.penalty(j.dir(b, c), j.dir(b, a), len_b, (ab, cab, ab2));
+        let (v, g) = self.penalty(t.b_to_c, t.b_to_a, len_b, (ab, cab, inv_ab2));
         (value + v, grad + g)
     }
 
     /// `k1 (ℓ/c)² exp(−k2 ω(θ))` for the corner angle θ from `e1` to `e2`, with `len` the
-    /// chord of length ℓ and `c` the chord AB (vector, weight, |AB|²), and its gradient.
+    /// chord of length ℓ and `c` the chord AB (vector, weight, 1/|AB|²), and its gradient.
+    #[inline]
     fn penalty(
         &self,
         (e1, c1): (DVec2, f64),
         (e2, c2): (DVec2, f64),
         (len, clen): (DVec2, f64),
-        (ab, cab, ab2): (DVec2, f64, f64),
+        (ab, cab, inv_ab2): (DVec2, f64, f64),
     ) -> (f64, DVec2) {
         let (theta, gt1, gt2) = signed_angle_gradient(e1, e2);
         let grad_theta = c1 * gt1 + c2 * gt2;
         let (omega, domega) = adjusted_angle(theta);
-        let r = len.length_squared() / ab2;
+        let r = len.length_squared() * inv_ab2;
         // ∇(ℓ²/c²) = (2 clen ℓ − r · 2 cab c) / c²; cab = 0 unless A or B moves with C
-        let grad_r = 2.0 * (clen * len - r * cab * ab) / ab2;
+        let grad_r = (2.0 * inv_ab2) * (clen * len - r * cab * ab);
         let e = self.k1 * (-self.k2 * omega).exp();
         (e * r, e * (grad_r - self.k2 * domega * r * grad_theta))
     }
 }
 
 impl_objective_by_visit!(ChenTristanoKwok);
+
+/// The vectors one triangle (C, A, B) of the objective reads, each with its weight
+/// (`v = c·x + const`, see `corners.rs`): the directions at each corner towards the
+/// others (edge vectors, or end tangents of quadratic edges) and the chords.
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct SubTriangle {
+    c_to_a: (DVec2, f64),
+    c_to_b: (DVec2, f64),
+    a_to_b: (DVec2, f64),
+    a_to_c: (DVec2, f64),
+    b_to_c: (DVec2, f64),
+    b_to_a: (DVec2, f64),
+    /// Chords AB, CA, CB.
+    ab: (DVec2, f64),
+    ca: (DVec2, f64),
+    cb: (DVec2, f64),
+}
+
+impl SubTriangle {
+    /// Corners `c`, `a`, `b` of a star element's jets.
+    #[inline]
+    fn of(j: &ElementJets, c: usize, a: usize, b: usize) -> Self {
+        SubTriangle {
+            c_to_a: j.dir(c, a),
+            c_to_b: j.dir(c, b),
+            a_to_b: j.dir(a, b),
+            a_to_c: j.dir(a, c),
+            b_to_c: j.dir(b, c),
+            b_to_a: j.dir(b, a),
+            ab: j.chord(a, b),
+            ca: j.chord(c, a),
+            cb: j.chord(c, b),
+        }
+    }
+
+    /// A straight-sided triangle with the free node C at `x` and A, B fixed: what
+    /// [`SubTriangle::of`] gives for a linear triangle, computed directly.
+    #[inline]
+    fn linear(x: DVec2, a: DVec2, b: DVec2) -> Self {
+        let (ca, cb, ab) = (a - x, b - x, b - a);
+        SubTriangle {
+            c_to_a: (ca, -1.0),
+            c_to_b: (cb, -1.0),
+            a_to_b: (ab, 0.0),
+            a_to_c: (x - a, 1.0),
+            b_to_c: (x - b, 1.0),
+            b_to_a: (a - b, 0.0),
+            ab: (ab, 0.0),
+            ca: (ca, -1.0),
+            cb: (cb, -1.0),
+        }
+    }
+}
 
 #[cfg(test)]
 mod tests;

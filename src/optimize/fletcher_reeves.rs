@@ -4,9 +4,9 @@
 use glam::DVec2;
 
 use super::{
-    evaluate, line_search, merit_of, star_scale, DirectionKind, Iterate, SolveOptions, SolveState, Solver, StopReason,
+    line_search, merit_of, star_scale, DirectionKind, Iterate, SolveOptions, SolveState, Solver, StopReason,
 };
-use crate::objective::{Goal, Objective, Star, Term};
+use crate::objective::{Goal, Objective, Star};
 
 /// Powell's restart test: restart when consecutive gradients are far from orthogonal,
 /// `|g_q·g_{q−1}| ≥ 0.2·|g_q|²` — the conjugate directions have stopped helping.
@@ -35,17 +35,17 @@ const GRADIENT_TOLERANCE: f64 = 1e-13;
 #[derive(Clone, Debug, Default)]
 pub struct FletcherReeves {
     pub options: SolveOptions,
-    terms: Vec<Term>,
 }
 
 impl FletcherReeves {
     pub fn new(options: SolveOptions) -> Self {
-        FletcherReeves { options, terms: Vec::new() }
+        FletcherReeves { options }
     }
 
     fn eval(&mut self, objective: &dyn Objective, star: &Star, x: DVec2) -> (f64, f64, DVec2) {
         let goal = objective.goal();
-        let (v, g) = evaluate(objective, star, x, &mut self.terms);
+        // the folded value and gradient (no terms collected; a NaN term gives NaN)
+        let (v, g) = objective.value_and_gradient(star, x);
         let g = if goal == Goal::MaximizeMin { -g } else { g };
         (v, merit_of(goal, v), g)
     }

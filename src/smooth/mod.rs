@@ -783,6 +783,18 @@ fn is_inverted(kind: crate::mesh::ElementKind, p: &[DVec2; 9]) -> bool {
     corner_edges(kind, p)[..kind.corners()].iter().any(|(e1, e2)| e1.perp_dot(*e2) <= 0.0)
 }
 
+/// [`is_inverted`] of a star element with its free node at `x`; a linear triangle without
+/// the general element machinery (the same corner edge vectors, so the same answer).
+fn is_inverted_at(el: &crate::objective::StarElement, x: DVec2) -> bool {
+    if el.kind != crate::mesh::ElementKind::Tri3 {
+        return is_inverted(el.kind, &el.at(x));
+    }
+    let s = el.slot as usize;
+    let (a, b) = (el.pts[(s + 1) % 3], el.pts[(s + 2) % 3]);
+    // corners C (free), A, B: (next − this, previous − this)
+    (a - x).perp_dot(b - x) <= 0.0 || (b - a).perp_dot(x - a) <= 0.0 || (x - b).perp_dot(a - b) <= 0.0
+}
+
 /// An objective seen through [`SmoothOptions::keep_valid`]: the same terms, plus a NaN
 /// term at a trial position that raises the star's number of inverted elements — unless
 /// [`SmoothOptions::pass_through_folds`] is set, the star was inverted to begin with and
@@ -822,14 +834,23 @@ impl Objective for KeepValid<'_> {
     }
     fn terms(&self, star: &Star, x: DVec2, out: &mut Vec<Term>) {
         self.inner.terms(star, x, out);
-        let inverted = star.elems.iter().filter(|e| is_inverted(e.kind, &e.at(x))).count();
-        // a valid star must stay valid; an inverted one may fold another element on the
-        // way out, provided its total inversion falls (see `SmoothOptions::keep_valid`)
-        let refuse = inverted > self.limit
-            && (!self.pass_through_folds || self.limit == 0 || inversion(star, x) >= self.inversion0);
-        if refuse {
+        if self.refuses(star, x) {
             out.push(Term { elem: 0, value: f64::NAN, grad: DVec2::ZERO });
         }
+    }
+    fn value_and_gradient(&self, star: &Star, x: DVec2) -> (f64, DVec2) {
+        let (v, g) = self.inner.value_and_gradient(star, x);
+        (if self.refuses(star, x) { f64::NAN } else { v }, g)
+    }
+}
+
+impl KeepValid<'_> {
+    /// Whether a trial position is refused: a valid star must stay valid; an inverted one
+    /// may fold another element on the way out, provided its total inversion falls (see
+    /// [`SmoothOptions::keep_valid`]).
+    fn refuses(&self, star: &Star, x: DVec2) -> bool {
+        let inverted = star.elems.iter().filter(|e| is_inverted_at(e, x)).count();
+        inverted > self.limit && (!self.pass_through_folds || self.limit == 0 || inversion(star, x) >= self.inversion0)
     }
 }
 

@@ -447,3 +447,42 @@ fn straight_quadratic_elements_match_linear() {
     assert!(obj.value(&curved(&hex, -0.15), DVec2::ZERO) > straight + 0.01);
     assert!(obj.value(&curved(&hex, 0.15), DVec2::ZERO) < straight - 0.01);
 }
+
+// The linear-triangle fast path -----------------------------------------------------------
+
+/// `SubTriangle::linear` is an optimisation only: for every slot of the free node and any
+/// position (valid, inverted, degenerate) it gives bit for bit what the general element
+/// machinery gives, so the objective's values and gradients cannot differ between them.
+#[test]
+fn linear_triangle_fast_path_equals_the_general_jets() {
+    let mut rng = Lcg::new(97);
+    for _ in 0..500 {
+        let pts = [rng.point(2.0), rng.point(2.0), rng.point(2.0)];
+        for slot in 0..3 {
+            let el = elem(ElementKind::Tri3, &pts, slot);
+            for x in [rng.point(3.0), pts[(slot + 1) % 3], 0.5 * (pts[(slot + 1) % 3] + pts[(slot + 2) % 3])] {
+                let j = crate::objective::corners::ElementJets::new(&el, x);
+                let general = SubTriangle::of(&j, slot, (slot + 1) % 3, (slot + 2) % 3);
+                let fast = SubTriangle::linear(x, pts[(slot + 1) % 3], pts[(slot + 2) % 3]);
+                assert_eq!(general, fast, "slot {slot}, x {x}");
+            }
+        }
+    }
+    // and through the objective: its folded value and gradient over a star of linear
+    // triangles are the sums of the general path's sub-triangles
+    let s = fan_star(&regular_ring(6, 1.0));
+    let obj = new();
+    for _ in 0..50 {
+        let x = rng.point(1.5);
+        let (v, g) = obj.value_and_gradient(&s, x);
+        let (mut v2, mut g2) = (0.0, DVec2::ZERO);
+        for el in &s.elems {
+            let j = crate::objective::corners::ElementJets::new(el, x);
+            let f = j.slot;
+            let (a, b) = obj.sub_triangle(&SubTriangle::of(&j, f, (f + 1) % 3, (f + 2) % 3));
+            v2 += a;
+            g2 += b;
+        }
+        assert_eq!((v, g), (v2, g2));
+    }
+}

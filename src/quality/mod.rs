@@ -17,6 +17,8 @@ use serde::Serialize;
 
 use crate::mesh::{ElementKind, Mesh};
 
+pub mod elementary;
+
 /// `2√3`, Lo's normalisation so an equilateral triangle has α = 1.
 const TWO_SQRT3: f64 = 3.464_101_615_137_754_6;
 /// α of the right isosceles triangle, `√3/2`: Canann's normalisation so a square has β = 1.
@@ -32,6 +34,7 @@ pub fn lo_alpha(a: DVec2, b: DVec2, c: DVec2) -> f64 {
 /// Lo's α of the triangle spanned at a corner by edge vectors `e1`, `e2`:
 /// `2√3·cross(e1,e2) / (|e1|² + |e2|² + |e2−e1|²)`. Used for quadratic elements with
 /// the edge tangents as `e1`, `e2` (FORMULAS.md §1). A zero-size corner gives 0.
+#[inline]
 pub fn lo_alpha_corner(e1: DVec2, e2: DVec2) -> f64 {
     let den = e1.length_squared() + e2.length_squared() + (e2 - e1).length_squared();
     if den <= 0.0 {
@@ -44,6 +47,7 @@ pub fn lo_alpha_corner(e1: DVec2, e2: DVec2) -> f64 {
 /// `(α, ∂α/∂e1, ∂α/∂e2)`. With `N = cross(e1,e2)` and `D = |e1|² + |e2|² + |e2−e1|²`,
 /// `∂α/∂e = 2√3 (D ∂N/∂e − N ∂D/∂e) / D²`, `∂N/∂e1 = −perp(e2)`, `∂N/∂e2 = perp(e1)`,
 /// `∂D/∂e1 = 4e1 − 2e2`, `∂D/∂e2 = 4e2 − 2e1`. A zero-size corner gives zeros.
+#[inline]
 pub fn lo_alpha_corner_gradient(e1: DVec2, e2: DVec2) -> (f64, DVec2, DVec2) {
     let den = e1.length_squared() + e2.length_squared() + (e2 - e1).length_squared();
     if den <= 0.0 {
@@ -80,14 +84,16 @@ pub fn canann_beta_from_corners(corners: &[(DVec2, DVec2); 4]) -> f64 {
 
 /// Signed angle at a corner from `e1` to `e2`: `atan2(cross, dot)`, in (−π, π].
 /// Negative means the corner is inverted.
+#[inline]
 pub fn signed_angle(e1: DVec2, e2: DVec2) -> f64 {
-    e1.perp_dot(e2).atan2(e1.dot(e2))
+    elementary::atan2(e1.perp_dot(e2), e1.dot(e2))
 }
 
 /// The signed corner angle with its partial gradients: `(θ, ∂θ/∂e1, ∂θ/∂e2)`.
 /// `θ = arg e2 − arg e1` and `∇ arg v = perp(v)/|v|²`, so `∂θ/∂e1 = −perp(e1)/|e1|²`,
 /// `∂θ/∂e2 = perp(e2)/|e2|²`. Defined away from the jump at θ = ±π (where the gradient
 /// is the same on both sides) and from zero-length edges (zeros there).
+#[inline]
 pub fn signed_angle_gradient(e1: DVec2, e2: DVec2) -> (f64, DVec2, DVec2) {
     let (l1, l2) = (e1.length_squared(), e2.length_squared());
     if l1 <= 0.0 || l2 <= 0.0 {
