@@ -167,3 +167,19 @@ fn stats_human_table_and_errors() {
     let out = Command::new(bin()).arg("stats").arg("/nonexistent/x.vtk").output().unwrap();
     assert!(!out.status.success());
 }
+
+/// A triangle of zero area loads with a warning that names it, and the warning's claim
+/// that it counts as inverted agrees with the statistics; a thin but valid triangle is not
+/// named.
+#[test]
+fn zero_area_elements_are_named_and_counted_as_inverted() {
+    // element 1 is (1,0)-(2,0)-(3,0): collinear; element 0 is a valid thin sliver
+    let text = vtk(&[(0.0, 0.0), (1.0, 0.0), (0.5, 1e-9), (2.0, 0.0), (3.0, 0.0)], &[&[0, 1, 2], &[1, 3, 4]], &[5, 5]);
+    let p = tmp("zero-area.vtk", &text);
+    let out = Command::new(bin()).arg("stats").arg(&p).arg("--json").output().unwrap();
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(err.contains("1 element(s) of zero area (element 1)") && err.contains("count as inverted"), "{err}");
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(v["inverted"], 1, "{v}");
+}

@@ -4,13 +4,23 @@ use std::path::{Path, PathBuf};
 
 use clap::{Args, ValueEnum};
 use smoothlab::io::{self, MshVersion, WriteOptions};
+use smoothlab::quality::element_quality;
 use smoothlab::Mesh;
 
 /// Reads a mesh, naming the file in any error, and warns (stderr) about elements
 /// of zero area, which load but count as inverted until smoothed.
 pub fn read_mesh(path: &Path) -> Result<Mesh, String> {
     let mesh = io::read_path(path).map_err(|e| format!("{}: {e}", path.display()))?;
-    let flat: Vec<usize> = (0..mesh.element_count()).filter(|&e| mesh.corner_area(e) == 0.0).collect();
+    // zero area by the shoelace formula and inverted by the metrics' own test (a corner
+    // with det ≤ 0), so the warning never contradicts the `inverted` count of the stats
+    let flat: Vec<usize> = (0..mesh.element_count())
+        .filter(|&e| {
+            mesh.corner_area(e) == 0.0 && {
+                let kind = mesh.kind(e);
+                element_quality(kind, &mesh.element_points_array(e)[..kind.node_count()]).inverted
+            }
+        })
+        .collect();
     if !flat.is_empty() {
         let shown: Vec<String> = flat.iter().take(5).map(|e| e.to_string()).collect();
         eprintln!(
