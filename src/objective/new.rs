@@ -8,6 +8,7 @@ use glam::DVec2;
 use super::corners::ElementJets;
 use super::{impl_objective_by_visit, ObjectiveKind, Star, Term};
 use crate::mesh::ElementKind;
+use crate::quality::elementary::exp;
 use crate::quality::{lo_alpha_corner_gradient, signed_angle_gradient};
 
 /// √3.
@@ -29,7 +30,7 @@ pub fn adjusted_angle(theta: f64) -> (f64, f64) {
     // with e^{−2(π+a)} = e^{−4π} / e^{−2(π−a)} (one exponential for both factors; for
     // a ≤ π the quotient is at most 1)
     let a = theta.abs();
-    let ep = (-2.0 * (PI - a)).exp();
+    let ep = exp(-2.0 * (PI - a));
     let em = EXP_MINUS_4PI / ep;
     let w = (1.0 - ep) * (1.0 - em);
     let dw = -2.0 * ep * (1.0 - em) + 2.0 * em * (1.0 - ep);
@@ -132,7 +133,7 @@ impl ChenTristanoKwok {
     pub fn with_equilateral_penalty(eps: f64) -> Self {
         let (w60, dw60) = adjusted_angle(PI / 3.0);
         let k2 = 2.0 * SQRT3 / dw60;
-        ChenTristanoKwok { k1: eps * (k2 * w60).exp(), k2, length: PenaltyLength::Adjacent }
+        ChenTristanoKwok { k1: eps * exp(k2 * w60), k2, length: PenaltyLength::Adjacent }
     }
 
     /// The same objective with the penalty scaled by `length`.
@@ -146,7 +147,7 @@ impl ChenTristanoKwok {
 
     /// One angle's penalty `k1 · ratio2 · exp(−k2 ω(θ))`, `ratio2` the squared length ratio.
     pub fn angle_penalty(&self, theta: f64, ratio2: f64) -> f64 {
-        self.k1 * ratio2 * (-self.k2 * adjusted_angle(theta).0).exp()
+        self.k1 * ratio2 * exp(-self.k2 * adjusted_angle(theta).0)
     }
 
     /// Calls `emit` with one term per star element.
@@ -221,7 +222,7 @@ impl ChenTristanoKwok {
         let r = len.length_squared() * inv_ab2;
         // ∇(ℓ²/c²) = (2 clen ℓ − r · 2 cab c) / c²; cab = 0 unless A or B moves with C
         let grad_r = (2.0 * inv_ab2) * (clen * len - r * cab * ab);
-        let e = self.k1 * (-self.k2 * omega).exp();
+        let e = self.k1 * exp(-self.k2 * omega);
         (e * r, e * (grad_r - self.k2 * domega * r * grad_theta))
     }
 }

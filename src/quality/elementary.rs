@@ -1,19 +1,69 @@
-//! `atan2` for the metrics and the `new` objective's inner loop, written out so it inlines.
+//! `exp` and `atan2` for the metrics and the `new` objective's inner loop, written out so
+//! they inline.
 //!
 //! One evaluation of Chen et al.'s objective on a star of six triangles takes twelve
-//! `atan2` (the signed angles of eqs. 6–8), and a smoothing visit about thirteen
-//! evaluations. The platform's `atan2` is a call into the C library natively (≈ 17 ns on
-//! the machines of `docs/performance.md`) and a compiled port of fdlibm's in WebAssembly;
-//! this is Cephes' rational approximation of `atan` with the octant reduction done once,
-//! inlined (≈ 10 ns), within 2 ulp of the library's (the tests compare them over millions
-//! of arguments), and the same on every platform, as it uses only `+ − × ÷`.
-//! (`exp`, the other function of that loop, stays the library's: glibc's table-driven
-//! `exp` is faster than any division-based one we can inline.)
+//! `atan2` and twenty-four `exp` (the signed angles and penalties of eqs. 6–8), and a
+//! smoothing visit about thirteen evaluations. The platform's functions are calls into the
+//! C library natively and, in WebAssembly, into a compiled port of fdlibm, whose `exp`
+//! waits on a division (≈ 37 ns in a dependent chain, against ≈ 6 ns for glibc's
+//! table-driven one). These are inlined versions with only `+ − × ÷`, table lookups and
+//! bit operations, so they give the same results on every platform: `exp` table-driven
+//! (2^(j/64) and a degree-5 polynomial, no division), `atan2` Cephes' rational `atan`
+//! with the octant reduction done once. The tests compare them with `f64::exp` and
+//! `f64::atan2` over millions of arguments: within 2 ulp.
 //!
-//! Zeros, infinities and NaN go to the standard library, so the edge cases behave exactly
-//! as `f64::atan2` does.
+//! Zeros, infinities, NaN and arguments beyond the fast paths' ranges go to the standard
+//! library, so the edge cases behave exactly as `f64::exp`/`f64::atan2` do.
 
 use std::f64::consts::{FRAC_PI_2, FRAC_PI_4, PI};
+
+/// `2^(j/64)`, j = 0..63, correctly rounded.
+#[allow(clippy::excessive_precision, clippy::approx_constant)]
+const EXP2_64THS: [f64; 64] = [
+    1.0, 1.0108892860517005, 1.0218971486541166, 1.0330248790212284,
+    1.0442737824274138, 1.0556451783605572, 1.0671404006768237, 1.0787607977571199,
+    1.0905077326652577, 1.102382583307841, 1.1143867425958924, 1.1265216186082418,
+    1.1387886347566916, 1.1511892299529827, 1.1637248587775775, 1.1763969916502812,
+    1.189207115002721, 1.202156731452703, 1.215247359980469, 1.22848053610687,
+    1.241857812073484, 1.255380757024691, 1.2690509571917332, 1.2828700160787783,
+    1.2968395546510096, 1.3109612115247644, 1.3252366431597413, 1.339667524053303,
+    1.3542555469368927, 1.3690024229745905, 1.383909881963832, 1.3989796725383112,
+    1.4142135623730951, 1.42961333839197, 1.4451808069770467, 1.460917794180647,
+    1.4768261459394993, 1.4929077282912648, 1.5091644275934228, 1.5255981507445384,
+    1.5422108254079407, 1.559004400237837, 1.5759808451078865, 1.593142151342267,
+    1.6104903319492543, 1.6280274218573478, 1.645755478153965, 1.6636765803267364,
+    1.681792830507429, 1.7001063537185235, 1.718619298122478, 1.7373338352737062,
+    1.7562521603732995, 1.7753764925265212, 1.7947090750031072, 1.8142521755003989,
+    1.8340080864093424, 1.8539791250833855, 1.8741676341103, 1.8945759815869656,
+    1.9152065613971474, 1.9360617934922943, 1.9571441241754002, 1.978456026387951,
+];
+
+/// `e^x`. `x = (64k + j)·ln2/64 + r` with `|r| ≤ ln2/128` (ln2/64 split in a high part
+/// exact in products with the integer and a low part), `e^x = 2^k · 2^(j/64) · e^r`, and
+/// `e^r − 1` by its Taylor polynomial of degree 5 (the next term is below 4·10⁻¹⁷ of 1).
+#[inline(always)]
+#[allow(clippy::excessive_precision)] // fdlibm's split of ln 2, as printed
+pub fn exp(x: f64) -> f64 {
+    const INV_LN2_64: f64 = 64.0 * std::f64::consts::LOG2_E;
+    // fdlibm's split of ln 2 (the high part has 32 significant bits), divided by 64 (exact)
+    const LN2_64_HI: f64 = 6.931_471_803_691_238_164_90e-1 / 64.0;
+    const LN2_64_LO: f64 = 1.908_214_929_270_587_700_02e-10 / 64.0;
+    // the library handles overflow, underflow, subnormals and NaN
+    if x.is_nan() || x.abs() >= 708.0 {
+        return x.exp();
+    }
+    // nearest integer to 64x/ln2 (a cast: `round` is a library call on baseline x86-64);
+    // |m| < 2^17, so m·LN2_64_HI is exact
+    let t = x * INV_LN2_64;
+    let m = (t + if t < 0.0 { -0.5 } else { 0.5 }) as i64;
+    let mf = m as f64;
+    let r = (x - mf * LN2_64_HI) - mf * LN2_64_LO;
+    let p = r + r * r * (0.5 + r * (1.0 / 6.0 + r * (1.0 / 24.0 + r * (1.0 / 120.0))));
+    let two_j = EXP2_64THS[(m & 63) as usize];
+    // m >> 6 is floor(m / 64): |k| ≤ 1022, so 2^k is a normal number
+    let scale = f64::from_bits((((m >> 6) + 1023) as u64) << 52);
+    (two_j + two_j * p) * scale
+}
 
 /// `atan t` for `0 ≤ t ≤ 1`: Cephes' method. For `t > 0.66`, `atan t = π/4 + atan((t−1)/(t+1))`;
 /// then `atan z = z + z³·P(z²)/Q(z²)`, P and Q of degrees 4 and 5.
@@ -81,6 +131,26 @@ mod tests {
             s = s.wrapping_mul(6_364_136_223_846_793_005).wrapping_add(1_442_695_040_888_963_407);
             lo + (hi - lo) * ((s >> 11) as f64 / (1u64 << 53) as f64)
         })
+    }
+
+    #[test]
+    fn exp_is_within_two_ulp_of_the_library() {
+        let mut worst = 0;
+        // the objective's range (|−k2 ω| < 7, 2θ − 2π in [−4π, 0]) densely, then everything
+        for (lo, hi, n) in [(-13.0, 8.0, 2_000_000), (-708.0, 708.0, 1_000_000), (-1e-6, 1e-6, 100_000)] {
+            for x in uniform(7, lo, hi).take(n) {
+                worst = worst.max(ulps(exp(x), x.exp()));
+            }
+        }
+        assert!(worst <= 2, "exp is {worst} ulp from the library");
+        for x in [0.0, -0.0, 1.0, -1.0, 700.0, -700.0, 707.9, -707.9, 708.0, 709.5, 710.0, -745.0, -746.0, 1e300, -1e300] {
+            let (a, b) = (exp(x), x.exp());
+            assert!(a == b || ulps(a, b) <= 2, "exp({x}) = {a}, library {b}");
+        }
+        assert_eq!(exp(0.0), 1.0);
+        assert_eq!(exp(f64::INFINITY), f64::INFINITY);
+        assert_eq!(exp(f64::NEG_INFINITY), 0.0);
+        assert!(exp(f64::NAN).is_nan());
     }
 
     #[test]
