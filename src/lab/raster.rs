@@ -191,8 +191,11 @@ fn fill_triangle(buf: &mut [u8], w: usize, h: usize, a: (i64, i64), b: (i64, i64
     }
     let (a, b, c) = if area > 0 { (a, b, c) } else { (a, c, b) };
     let half = SUB / 2;
-    let first = |lo: i64| (lo - half).div_euclid(SUB) + ((lo - half).rem_euclid(SUB) != 0) as i64;
-    let last = |hi: i64| (hi - half).div_euclid(SUB);
+    // first and last pixel whose centre is at or after `lo` / at or before `hi`: ceiling
+    // and floor division by SUB (a power of two: arithmetic shifts)
+    const SHIFT: u32 = SUB.trailing_zeros();
+    let first = |lo: i64| (lo - half + SUB - 1) >> SHIFT;
+    let last = |hi: i64| (hi - half) >> SHIFT;
     let x0 = first(a.0.min(b.0).min(c.0)).max(0);
     let x1 = last(a.0.max(b.0).max(c.0)).min(w as i64 - 1);
     let y0 = first(a.1.min(b.1).min(c.1)).max(0);
