@@ -519,6 +519,15 @@ impl Playground {
     /// Keeps the records and statistics of a completed pass.
     fn finish_pass(&mut self, mut run: PassRun) -> PassProgress {
         let mut records = Vec::with_capacity(2);
+        for side in 0..2 {
+            // a version of its own for the final positions and buckets: nothing drawn
+            // during the pass (part-smoothed) can be taken for them
+            let moved = run.saved[side].as_ref().is_some_and(|s| s.version != self.panels[side].version);
+            if moved {
+                let v = self.fresh_version();
+                self.panels[side].version = v;
+            }
+        }
         for (side, p) in self.panels.iter_mut().enumerate() {
             let (summary, q) = run.done[side].take().expect("both panels were measured");
             p.quick = q;

@@ -346,4 +346,31 @@ mod tests {
         }
         assert!(pg.render_panel(Side::Old, Canvas { w: 50, h: 50, dpr: f32::NAN }, None).is_ok());
     }
+
+    #[test]
+    fn a_picture_drawn_during_a_pass_is_not_reused_after_it() {
+        let mesh = crate::generate::rand2d(20000, 140, 4).unwrap();
+        let mut pg = Playground::new(mesh).unwrap();
+        let c = Canvas { w: 200, h: 200, dpr: 1.0 };
+        let t = std::cell::Cell::new(0.0);
+        let clock = || {
+            t.set(t.get() + 1.0);
+            t.get()
+        };
+        pg.begin_pass();
+        let mut p = pg.continue_pass(&clock, 2.0).unwrap();
+        while p.stage != "measure" || p.side != Side::Old {
+            p = pg.continue_pass(&clock, 2.0).unwrap();
+        }
+        let during = pg.render_panel(Side::Old, c, None).unwrap();
+        while !pg.continue_pass(&clock, 50.0).unwrap().done {}
+        let after = pg.render_panel(Side::Old, c, None).unwrap();
+        let panel = pg.panel(Side::Old);
+        let opts = pg.mesh_options(c, None);
+        let mut fresh = pixmap(c.w, c.h).unwrap();
+        let view = raster::view_of(&fresh, &panel.mesh, &opts);
+        raster::render_fine(&mut fresh, &panel.mesh, &panel.buckets, &view, &opts);
+        assert_eq!(after.data(), fresh.data());
+        assert_ne!(during.data(), after.data(), "the colours changed with the statistics");
+    }
 }
