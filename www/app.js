@@ -426,6 +426,9 @@ async function smoothPass(i, n) {
     return result;
   };
   let slices = 0;
+  if ($('order').value === 'priority') {
+    setStatus(`Pass ${i + 1} of ${n}: ordering the nodes of the old side, worst first…`);
+  }
   for (;;) {
     if (state.cancel) {
       await call('abortPass');
@@ -435,6 +438,7 @@ async function smoothPass(i, n) {
     slices += 1;
     $('progress').value = i + p.fraction;
     if (p.done) return { records: p.records, slices, ...cost };
+    if (state.cancel) continue; // "Stopping…" stays on screen
     const pct = Math.floor(p.fraction * 100);
     setStatus(`Pass ${i + 1} of ${n}: ${SIDE_NAME[p.side]} side, ${STAGE_NAME[p.stage] || p.stage}… ${pct}% (Stop undoes this pass)`);
   }
@@ -448,9 +452,15 @@ function setRunning(on) {
 }
 
 /** Runs `n` passes, redrawing the meshes after each; the Run button stops it. */
+/** Asks the run in progress to stop, and says so at once. */
+function requestStop() {
+  state.cancel = true;
+  setStatus('Stopping: the pass in progress is being undone…');
+}
+
 async function smooth(n) {
   if (state.running) {
-    state.cancel = true;
+    requestStop();
     return;
   }
   const t0 = now();
@@ -490,21 +500,22 @@ async function smooth(n) {
       await nextFrame();
     }
     const c0 = now();
-    setStatus(state.cancel ? 'Stopping…' : 'Drawing the charts…');
+    if (!state.cancel) setStatus('Drawing the charts…');
     await serial(async () => {
       await redrawCharts();
       await redrawNode();
     });
     const charts_ms = now() - c0;
     const total = now() - t0;
-    if (state.cancel) {
+    const stopped = state.cancel && done < n;
+    if (stopped) {
       setStatus(`Stopped after ${done} of ${n} passes (the pass in progress was undone).`);
     } else if (n === 1) {
       setStatus(`One pass done on both sides in ${Math.round(total)} ms.`);
     } else {
       setStatus(`${n} passes done on both sides in ${(total / 1000).toFixed(1)} s.`);
     }
-    const record = { n, done, stopped: state.cancel, total_ms: total, charts_ms, passes, memory_bytes: engine.memory };
+    const record = { n, done, stopped, total_ms: total, charts_ms, passes, memory_bytes: engine.memory };
     if (n === 1 && passes.length === 1) metrics.lastStep = { ...passes[0], charts_ms, all_ms: total };
     metrics.run = record;
     clearError();
@@ -522,7 +533,7 @@ function step() {
 
 function run() {
   if (state.running) {
-    state.cancel = true;
+    requestStop();
     return;
   }
   return smooth(clampInt($('passes').value, 1, 100, 3));

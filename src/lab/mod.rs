@@ -504,6 +504,9 @@ impl Playground {
                         }
                         run.side = 1;
                         run.stage = Stage::Plan;
+                        // the slice ends here: planning the new side may take long (the
+                        // priority order measures every star), and the page can say so
+                        break;
                     }
                 }
             }
