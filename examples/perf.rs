@@ -679,6 +679,27 @@ fn page_section(path: Option<&str>) -> String {
         "\n- Stop during a pass: the page is idle again after {} ms (the pass is undone: both meshes as before it).",
         ms(&stop["to_idle_ms"])
     );
+    if let Some(ms_) = m["stop_while_ordering"]["to_status_ms"].as_f64() {
+        let _ = writeln!(
+            w,
+            "- Stop right after a click with the default settings (rules, priority order), while the smoother orders the nodes worst first \
+             (one call of the core's `Smoother::plan`, which the page cannot divide): {ms_:.0} ms."
+        );
+    }
+    let d = &m["default_step"];
+    if !d.is_null() {
+        let _ = writeln!(
+            w,
+            "- One Step with the default settings: {:.1} s to the redrawn meshes (smoothing old {:.1} s, new {:.1} s; {} node visits a side in \
+             priority order), in {} slices; the main thread's longest gap between frames meanwhile {} ms.",
+            f(&d["wall_ms"]) / 1000.0,
+            f(&d["sweep_ms"][0]) / 1000.0,
+            f(&d["sweep_ms"][1]) / 1000.0,
+            d["visits"][0],
+            d["slices"],
+            ms(&d["longest_frame_gap_ms"])
+        );
+    }
     let _ = writeln!(
         w,
         "- wasm memory (`memory.buffer.byteLength`, which never shrinks): {} at the end, {} at most. The page holds the 1M mesh twice (one per side; the mesh as loaded as positions only).\n",

@@ -7,9 +7,11 @@
 //  2. the 1M-node sample: its load, "Run" of 3 passes (time per pass, progress updates
 //     during each pass), "Stop" during a pass (how long until the page is idle again),
 //     the longest gap between animation frames and the lateness of a 50 ms interval on
-//     the main thread all along, and the wasm memory.
+//     the main thread all along, and the wasm memory; then, with the page's default
+//     settings (rules, priority order), Stop right after a click (while the smoother
+//     orders the nodes) and one whole Step (about a minute and a half).
 // Prints JSON on stdout. A benchmark, not a test: slow (minutes), not part of `make test`.
-//   node tests/browser/page_bench.mjs [--reps 3] [--million-strategy smart] [--no-million]
+//   node tests/browser/page_bench.mjs [--reps 3] [--million-strategy smart] [--no-million] [--no-million-default]
 // Needs www/pkg from `make site` and playwright-core in tests/browser/node_modules.
 import { existsSync } from 'node:fs';
 import path from 'node:path';
@@ -23,6 +25,7 @@ function arg(name, fallback) {
 const reps = Math.max(1, Number(arg('reps', '3')));
 const millionStrategy = arg('million-strategy', 'smart');
 const skipMillion = process.argv.includes('--no-million');
+const skipMillionDefault = process.argv.includes('--no-million-default');
 const log = (s) => process.stderr.write(`page bench: ${s}\n`);
 
 if (!existsSync(path.join(WWW, 'pkg', 'smoothlab_bg.wasm'))) {
@@ -195,6 +198,25 @@ try {
     await idle(page, HOUR);
     const stopToIdle = Date.now() - t0;
     million.stop = { to_status_ms: stopToStatus, to_idle_ms: stopToIdle, ...(await stopWatching(page)) };
+
+    log('1M: the default settings: Stop while the nodes are ordered, then one Step');
+    await setControls(page, 'rules', 'priority');
+    await page.click('#step');
+    await page.waitForTimeout(50);
+    const t1 = Date.now();
+    await page.click('#run'); // Stop
+    await page.waitForFunction(() => /Stopped after/.test(document.getElementById('status').textContent), null, { timeout: HOUR, polling: 20 });
+    million.stop_while_ordering = { to_status_ms: Date.now() - t1 };
+    await idle(page, HOUR);
+    if (!skipMillionDefault) {
+      await watchMainThread(page);
+      await page.click('#step');
+      await page.waitForFunction(() => /One pass done/.test(document.getElementById('status').textContent), null, { timeout: 2 * HOUR, polling: 500 });
+      await idle(page, HOUR);
+      const step = await page.evaluate(() => window.smoothlab.metrics.lastStep);
+      million.default_step = { ...step, ...(await stopWatching(page)) };
+      log(`1M: default Step ${(step.wall_ms / 1000).toFixed(1)} s`);
+    }
     million.memory = await page.evaluate(() => window.smoothlab.memory());
     result.million = million;
     log(`1M: loaded in ${(load.ms / 1000).toFixed(1)} s, 3 passes in ${(run.total_ms / 1000).toFixed(1)} s, stop ${stopToStatus} ms, memory peak ${(million.memory.peak_bytes / 2 ** 20).toFixed(0)} MiB`);
