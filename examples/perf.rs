@@ -690,7 +690,7 @@ fn page_section(path: Option<&str>) -> String {
     if !d.is_null() {
         let _ = writeln!(
             w,
-            "- One Step with the default settings: {:.1} s to the redrawn meshes (smoothing old {:.1} s, new {:.1} s; {} node visits a side in \
+            "- One Step with the default settings, on the mesh as the run above left it: {:.1} s to the redrawn meshes (smoothing old {:.1} s, new {:.1} s; {} node visits a side in \
              priority order), in {} slices; the main thread's longest gap between frames meanwhile {} ms.",
             f(&d["wall_ms"]) / 1000.0,
             f(&d["sweep_ms"][0]) / 1000.0,
