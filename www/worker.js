@@ -30,7 +30,6 @@ const handlers = {
   loadFile: (name, bytes) => replace(wasm.Playground.fromBytes(new Uint8Array(bytes), name)),
   loadTriangle: (node, ele) => replace(wasm.Playground.fromTriangle(node, ele)),
   settings: (s) => need().setSettings(s),
-  stats: () => ({ old: need().stats('old'), new: need().stats('new') }),
   reset: () => need().reset(),
   step: () => need().step(),
   beginPass: () => need().beginPass(),

@@ -2,12 +2,13 @@
 //! 1M-node mesh on a canvas of a few hundred pixels). [`crate::render::render_mesh`]
 //! draws such a mesh without edges or node marks and without anti-aliasing, but still
 //! builds a tiny-skia path per element and measures every element with all its metrics
-//! (about 0.5 µs per element natively); here each element's shape (α or β, the same
-//! value and colour bucket) is measured alone and its corner polygon is scan-converted
-//! straight into a bucket per pixel, in fixed point with the top-left rule, so
-//! neighbouring elements share their edge pixels without gaps.
-//! Inverted elements, the highlighted star and the colour bar are drawn as
-//! `render_mesh` draws them (the same shapes, strokes and colours), with tiny-skia.
+//! (about 0.5 µs per element natively). Here each element's colour bucket comes with the
+//! statistics the page keeps anyway ([`super::stats::QuickAcc`]: the bucket of its α or
+//! β, as `render_mesh` chooses it), and its corner polygon is scan-converted straight
+//! into a bucket per pixel, in fixed point with the top-left rule, so neighbouring
+//! elements share their edge pixels without gaps (about 60 ns per element natively).
+//! Inverted elements (red, hatched, outlined), the highlighted star and the colour bar
+//! look as `render_mesh` draws them; the tests compare the two pictures.
 
 use tiny_skia::{Color, FillRule, Mask, Paint, PathBuilder, Pixmap, Rect, Stroke, Transform};
 
