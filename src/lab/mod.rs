@@ -3,6 +3,12 @@
 //! original mesh, and one copy per side — the OLD max-min objective (Freitag 1997, left)
 //! and the NEW smooth objective (Chen, Tristano & Kwok 2003, right) — that the page
 //! smooths, perturbs and drags side by side.
+//!
+//! At scale (up to [`MAX_NODES`]): a pass can run in slices of a time budget
+//! ([`Playground::begin_pass`], [`Playground::continue_pass`], [`Playground::abort_pass`])
+//! with the same result as [`Playground::step`]; each panel keeps the cheap statistics its
+//! table shows ([`stats::QuickStats`]) and each element's colour bucket up to date, a
+//! version naming its positions, and its last picture ([`raster`] draws fine meshes).
 
 pub mod raster;
 pub mod sample;
