@@ -3,7 +3,7 @@
 #   make test    every test: clippy, native unit/integration tests, wasm build, browser tests
 #   make site    build the complete static site into www/ (www/pkg is generated)
 #   make reproduction   rerun the papers' experiments into docs/reproduction.md (a few minutes)
-#   make performance    rerun the benchmarks (native and in Chromium) into docs/performance.md (~10 minutes)
+#   make performance    rerun the benchmarks (native, in Chromium, in the page) into docs/performance.md (~15 minutes)
 
 WASM := target/wasm32-unknown-unknown/release/smoothlab.wasm
 PORT ?= 8000
@@ -40,11 +40,13 @@ browser: site browser-tools
 reproduction:
 	$(CARGO) run --release --example reproduce > docs/reproduction.md
 
-# The wasm bench first (its JSON feeds the wasm/native table), then the native figures.
+# The browser benches first (the wasm bench's JSON feeds the wasm/native table, the page
+# bench's the "In the page" section), then the native figures.
 performance: site browser-tools
 	@mkdir -p target/perf
 	node tests/browser/bench.mjs --nodes 100000 --reps 3 > target/perf/wasm.json
-	$(CARGO) run --release --features parallel --example perf -- --wasm target/perf/wasm.json --out docs/performance.md
+	node tests/browser/page_bench.mjs --reps 3 > target/perf/page.json
+	$(CARGO) run --release --features parallel --example perf -- --wasm target/perf/wasm.json --page target/perf/page.json --out docs/performance.md
 
 # the README's pictures (docs/images/), drawn by the CLI from generated meshes
 figures:

@@ -312,6 +312,8 @@ fn fmt_ns(v: f64) -> String {
 fn main() {
     let mut sizes = vec![10_000, 100_000, 1_000_000];
     let mut wasm: Option<String> = None;
+    let mut page: Option<String> = None;
+    let mut page_only = false;
     let mut out: Option<String> = None;
     let mut json_out: Option<String> = None;
     let mut quick = false;
@@ -320,6 +322,8 @@ fn main() {
         match a.as_str() {
             "--sizes" => sizes = args.next().unwrap_or_default().split(',').filter_map(|s| s.parse().ok()).collect(),
             "--wasm" => wasm = args.next(),
+            "--page" => page = args.next(),
+            "--page-only" => page_only = true,
             "--out" => out = args.next(),
             "--json" => json_out = args.next(),
             "--quick" => quick = true,
@@ -328,6 +332,11 @@ fn main() {
                 std::process::exit(2);
             }
         }
+    }
+    if page_only {
+        // the "In the page" section alone, from the page bench's JSON (no native run)
+        print!("{}", page_section(page.as_deref()));
+        return;
     }
     let machine = machine();
     let mut reports = Vec::new();
@@ -338,7 +347,7 @@ fn main() {
         hwm_after.push((n, vm_hwm()));
         reports.push(r);
     }
-    let doc = render(&machine, &reports, &hwm_after, wasm.as_deref());
+    let doc = render(&machine, &reports, &hwm_after, wasm.as_deref()) + &page_section(page.as_deref());
     match out {
         Some(p) => std::fs::write(&p, &doc).unwrap_or_else(|e| panic!("cannot write {p}: {e}")),
         None => print!("{doc}"),
@@ -537,4 +546,171 @@ fn wasm_table(w: &mut String, v: &serde_json::Value, reports: &[SizeReport]) {
         );
     }
     let _ = writeln!(w);
+}
+
+/// The "In the page" section from the JSON of `node tests/browser/page_bench.mjs`
+/// (`--page FILE`; `--page-only` prints this section alone, without a native run): the
+/// playground page itself at 100k and 1M nodes.
+fn page_section(path: Option<&str>) -> String {
+    let mut w = String::new();
+    let _ = writeln!(w, "## In the page
+");
+    let v: serde_json::Value = match path.map(std::fs::read_to_string) {
+        None => {
+            let _ = writeln!(w, "Not measured in this run (no `--page` file).\n");
+            return w;
+        }
+        Some(Err(e)) => {
+            let _ = writeln!(w, "The page bench's output could not be read ({e}).\n");
+            return w;
+        }
+        Some(Ok(text)) => match serde_json::from_str(&text) {
+            Ok(v) => v,
+            Err(e) => {
+                let _ = writeln!(w, "The page bench's output could not be read ({e}).\n");
+                return w;
+            }
+        },
+    };
+    let f = |x: &serde_json::Value| x.as_f64().unwrap_or(f64::NAN);
+    let ms = |x: &serde_json::Value| format!("{:.0}", f(x));
+    let pair = |x: &serde_json::Value| format!("{} / {}", ms(&x[0]), ms(&x[1]));
+    let h = &v["hundred_k"];
+    let steps = h["steps"].as_array().cloned().unwrap_or_default();
+    let canvas = steps.first().map(|s| &s["median"]["canvas"]).cloned().unwrap_or_default();
+    let _ = writeln!(
+        w,
+        "The playground page itself (`www/index.html`), driven as a user drives it by `node tests/browser/page_bench.mjs` \
+         ({}, viewport {}×{}, mesh canvases {}×{} device pixels); the figures are the page's own measurements \
+         (`window.smoothlab.metrics`). A pass runs in the worker in slices of {} ms, so the progress bar moves and Stop is \
+         heard during a pass; the statistics after a pass are the table's (inverted elements, extreme angles, smallest quality, \
+         one pass over the elements), the angle histograms are computed when the charts are drawn.\n",
+        v["browser"].as_str().unwrap_or("Chromium"),
+        v["viewport"][0],
+        v["viewport"][1],
+        canvas[0],
+        canvas[1],
+        v["slice_ms"]
+    );
+    let _ = writeln!(
+        w,
+        "### One pass + redraw, {} nodes ({} elements)\n\nStep on the mesh as loaded: from the click to both meshes and both statistics tables redrawn (target < 100 ms), \
+         median of {} clicks; then where the time went, old / new side, ms. The charts (per-pass curves, two angle histograms) are drawn after.\n",
+        h["nodes"],
+        h["elements"],
+        steps.first().map(|s| s["reps"].clone()).unwrap_or_default()
+    );
+    let _ = writeln!(w, "| settings | click → redrawn | < 100 ms | all but smoothing | smoothing | statistics | rendering | copy out of wasm | messages | putImageData | charts after |");
+    let _ = writeln!(w, "|---|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|");
+    for s in &steps {
+        let m = &s["median"];
+        let wall = f(&m["wall_ms"]);
+        let _ = writeln!(
+            w,
+            "| {} | {:.0} ms | {} | {:.0} ms | {} | {} | {} | {:.1} | {:.1} | {:.1} / {:.1} | {} |",
+            s["name"].as_str().unwrap_or("?"),
+            wall,
+            if wall < 100.0 { "met" } else { "not met" },
+            wall - f(&m["sweep_ms"][0]) - f(&m["sweep_ms"][1]),
+            pair(&m["sweep_ms"]),
+            pair(&m["stats_ms"]),
+            pair(&m["render_ms"]),
+            f(&m["copy_ms"]),
+            f(&m["messaging_ms"]) + f(&m["transfer_ms"]),
+            f(&m["paint_ms"][0]),
+            f(&m["paint_ms"][1]),
+            ms(&m["charts_ms"])
+        );
+    }
+    let _ = writeln!(
+        w,
+        "\nBoth sides smooth with the same settings: the default is Chen's rules in priority order, with the max-min objective on the \
+         old side and the new objective on the new side. *Smoothing* is the node loop of each side (planning the order included): the \
+         strategies' own cost per node visit, measured natively and in wasm in the sections above. *All but smoothing* is the rest of the \
+         click's time: statistics, drawing both meshes, copying and moving the pixels, the worker's messages, painting and the tables."
+    );
+    let load = &h["load"];
+    let _ = writeln!(
+        w,
+        "\nLoading the {}-node sample (generated in wasm, statistics, first drawing): {} ms; the main thread's longest gap between animation frames meanwhile {} ms.\n",
+        h["nodes"],
+        ms(&load["ms"]),
+        ms(&load["longest_frame_gap_ms"])
+    );
+    let m = &v["million"];
+    if m.is_null() {
+        let _ = writeln!(w, "The 1M-node sample was not measured in this run.\n");
+        return w;
+    }
+    let _ = writeln!(w, "### 1M nodes: load, 3 passes, Stop\n");
+    let load = &m["load"];
+    let mib = |x: &serde_json::Value| format!("{:.0} MiB", f(x) / 1048576.0);
+    let _ = writeln!(
+        w,
+        "- The sample ({} nodes, {} elements, generated in wasm) loads and is drawn in {:.1} s; the main thread's longest gap between animation frames meanwhile {} ms, a 50 ms interval at most {} ms late.",
+        m["nodes"],
+        m["elements"],
+        f(&load["ms"]) / 1000.0,
+        ms(&load["longest_frame_gap_ms"]),
+        ms(&load["worst_interval_lateness_ms"])
+    );
+    let run = &m["run"];
+    let passes = run["passes"].as_array().cloned().unwrap_or_default();
+    let _ = writeln!(
+        w,
+        "- Run, 3 passes of {}: {:.1} s in all (charts included). The main thread's longest gap between frames during the run {} ms, a 50 ms interval at most {} ms late.",
+        m["strategy"].as_str().unwrap_or("?"),
+        f(&run["total_ms"]) / 1000.0,
+        ms(&run["longest_frame_gap_ms"]),
+        ms(&run["worst_interval_lateness_ms"])
+    );
+    let _ = writeln!(w, "\n| pass | pass + redraw | slices | progress updates during the pass | smoothing old / new | statistics old / new | rendering old / new |");
+    let _ = writeln!(w, "|---:|---:|---:|---:|---:|---:|---:|");
+    for (i, p) in passes.iter().enumerate() {
+        let _ = writeln!(
+            w,
+            "| {} | {:.1} s | {} | {} | {} ms | {} ms | {} ms |",
+            p["pass"],
+            f(&p["wall_ms"]) / 1000.0,
+            p["slices"],
+            run["progress_updates_within_pass"][i],
+            pair(&p["sweep_ms"]),
+            pair(&p["stats_ms"]),
+            pair(&p["render_ms"])
+        );
+    }
+    let stop = &m["stop"];
+    let _ = writeln!(
+        w,
+        "\n- Stop during a pass: the page is idle again after {} ms (the pass is undone: both meshes as before it).",
+        ms(&stop["to_idle_ms"])
+    );
+    if let Some(ms_) = m["stop_while_ordering"]["to_status_ms"].as_f64() {
+        let _ = writeln!(
+            w,
+            "- Stop right after a click with the default settings (rules, priority order), while the smoother orders the nodes worst first \
+             (one call of the core's `Smoother::plan`, which the page cannot divide): {ms_:.0} ms."
+        );
+    }
+    let d = &m["default_step"];
+    if !d.is_null() {
+        let _ = writeln!(
+            w,
+            "- One Step with the default settings, on the mesh as the run above left it: {:.1} s to the redrawn meshes (smoothing old {:.1} s, new {:.1} s; {} node visits a side in \
+             priority order), in {} slices; the main thread's longest gap between frames meanwhile {} ms.",
+            f(&d["wall_ms"]) / 1000.0,
+            f(&d["sweep_ms"][0]) / 1000.0,
+            f(&d["sweep_ms"][1]) / 1000.0,
+            d["visits"][0],
+            d["slices"],
+            ms(&d["longest_frame_gap_ms"])
+        );
+    }
+    let _ = writeln!(
+        w,
+        "- wasm memory (`memory.buffer.byteLength`, which never shrinks): {} at the end, {} at most. The page holds the 1M mesh twice (one per side; the mesh as loaded as positions only).\n",
+        mib(&m["memory"]["bytes"]),
+        mib(&m["memory"]["peak_bytes"])
+    );
+    w
 }

@@ -42,15 +42,18 @@ pub fn panic_for_test() {
     panic!("deliberate panic requested by the page's self-test");
 }
 
-/// The gallery of generated samples: `[{ name, title }]` in gallery order.
+/// The gallery of generated samples: `[{ name, title, linkable }]` in gallery order
+/// (`linkable`: a permalink can name it).
 #[wasm_bindgen]
 pub fn samples() -> Result<JsValue, JsError> {
     #[derive(serde::Serialize)]
     struct Entry {
         name: Sample,
         title: &'static str,
+        linkable: bool,
     }
-    let list: Vec<Entry> = Sample::ALL.iter().map(|&s| Entry { name: s, title: s.title() }).collect();
+    let list: Vec<Entry> =
+        Sample::GALLERY.iter().map(|&s| Entry { name: s, title: s.title(), linkable: s.linkable() }).collect();
     to_js(&list)
 }
 
@@ -112,10 +115,15 @@ fn object(entries: &[(&str, JsValue)]) -> Result<JsValue, JsError> {
     Ok(o.into())
 }
 
-/// Pixels for a canvas `ImageData` (opaque, so straight RGBA).
+/// Pixels for a canvas `ImageData` (opaque, so straight RGBA): one copy out of the wasm
+/// memory into a buffer of its own, which the worker then moves (not copies) to the page.
 fn pixels(pm: tiny_skia::Pixmap) -> JsValue {
     js_sys::Uint8Array::from(pm.data()).into()
 }
+
+/// What a mesh panel last sent to the page: its positions' version, the canvas and the
+/// highlighted node. The same again is not drawn nor sent again.
+type Shown = (u64, Canvas, Option<usize>);
 
 fn canvas(w: u32, h: u32, dpr: f32) -> Canvas {
     Canvas { w, h, dpr }
@@ -129,11 +137,12 @@ pub struct Playground {
     inner: playground::Playground,
     canvas: Option<Canvas>,
     node: Option<usize>,
+    shown: [Option<Shown>; 2],
 }
 
 impl Playground {
     fn wrap(inner: playground::Playground) -> Playground {
-        Playground { inner, canvas: None, node: None }
+        Playground { inner, canvas: None, node: None, shown: [None, None] }
     }
     fn view(&self) -> Result<crate::render::View, JsError> {
         let c = self.canvas.ok_or_else(|| JsError::new("the mesh has not been drawn yet"))?;
@@ -176,6 +185,29 @@ impl Playground {
         to_js(&self.inner.step(&now_ms))
     }
 
+    /// Starts a pass to be run in slices by [`continue_pass`](Self::continue_pass)
+    /// (the same result as [`step`](Self::step)); a pass in progress is abandoned.
+    #[wasm_bindgen(js_name = beginPass)]
+    pub fn begin_pass(&mut self) {
+        self.inner.begin_pass();
+    }
+
+    /// Runs the pass for about `budget_ms` milliseconds: `{ done, fraction, side, stage,
+    /// visits, planned, records }` (`records` `[old, new]` once done).
+    #[wasm_bindgen(js_name = continuePass)]
+    pub fn continue_pass(&mut self, budget_ms: f64) -> Result<JsValue, JsError> {
+        if budget_ms.is_nan() || budget_ms <= 0.0 {
+            return Err(JsError::new(&format!("a pass slice of {budget_ms} ms: give a positive budget")));
+        }
+        to_js(&self.inner.continue_pass(&now_ms, budget_ms)?)
+    }
+
+    /// Abandons the pass in progress: both panels as before it.
+    #[wasm_bindgen(js_name = abortPass)]
+    pub fn abort_pass(&mut self) {
+        self.inner.abort_pass();
+    }
+
     /// Perturbs the original mesh (`amount` mean edge lengths, seeded) and resets both panels.
     pub fn perturb(&mut self, amount: f64, seed: u32) -> Result<(), JsError> {
         Ok(self.inner.perturb(amount, seed as u64)?)
@@ -192,9 +224,10 @@ impl Playground {
         Ok(self.inner.export(side(panel)?, format)?)
     }
 
-    /// Statistics of one panel (`old` or `new`).
+    /// The statistics table of one panel (`old` or `new`): nodes, elements, inverted,
+    /// min/max angle, min quality and the work of the passes.
     pub fn stats(&self, panel: &str) -> Result<JsValue, JsError> {
-        to_js(&self.inner.stats(side(panel)?))
+        to_js(&self.inner.table(side(panel)?))
     }
 
     /// Both panels back to the mesh as loaded.
@@ -203,13 +236,40 @@ impl Playground {
     }
 
     /// Draws both panels' meshes on canvases of `w × h` device pixels at ratio `dpr`:
-    /// `{ old, new }` RGBA pixels. The chosen node is highlighted with its star.
-    pub fn frame(&mut self, w: u32, h: u32, dpr: f32) -> Result<JsValue, JsError> {
+    /// `{ old, new, render_ms: [old, new], copy_ms }`, RGBA pixels of each panel, or
+    /// `null` for a panel whose last picture sent shows the same positions, canvas and
+    /// highlight (unless `force`). The chosen node is highlighted with its star.
+    pub fn frame(&mut self, w: u32, h: u32, dpr: f32, force: bool) -> Result<JsValue, JsError> {
         let c = canvas(w, h, dpr);
-        let old = self.inner.render_panel(Side::Old, c, self.node)?;
-        let new = self.inner.render_panel(Side::New, c, self.node)?;
+        let mut out = Vec::new();
+        let mut render_ms = [0.0; 2];
+        let mut copy_ms = 0.0;
+        for s in [Side::Old, Side::New] {
+            let i = s as usize;
+            let key = (self.inner.version(s), c, self.node);
+            if !force && self.shown[i] == Some(key) {
+                out.push(JsValue::NULL);
+                continue;
+            }
+            let t0 = now_ms();
+            let pm = self.inner.render_panel(s, c, self.node)?;
+            let t1 = now_ms();
+            out.push(pixels(pm));
+            copy_ms += now_ms() - t1;
+            render_ms[i] = t1 - t0;
+            self.shown[i] = Some(key);
+        }
         self.canvas = Some(c);
-        object(&[("old", pixels(old)), ("new", pixels(new))])
+        let new = out.pop().unwrap_or(JsValue::NULL);
+        let old = out.pop().unwrap_or(JsValue::NULL);
+        object(&[("old", old), ("new", new), ("render_ms", to_js(&render_ms)?), ("copy_ms", JsValue::from_f64(copy_ms))])
+    }
+
+    /// Forgets what was sent: the next [`frame`](Self::frame) draws both panels (after
+    /// the page cleared or replaced its canvases).
+    #[wasm_bindgen(js_name = forgetFrames)]
+    pub fn forget_frames(&mut self) {
+        self.shown = [None, None];
     }
 
     /// The free node of a panel nearest to the CSS pixel `(x, y)` of the last frame, if
@@ -231,7 +291,7 @@ impl Playground {
     #[wasm_bindgen(js_name = selectNode)]
     pub fn select_node(&mut self, node: Option<u32>) -> Result<(), JsError> {
         if let Some(n) = node {
-            let m = self.inner.original();
+            let m = self.inner.topology();
             if n as usize >= m.node_count() || !m.is_free(n as usize) {
                 return Err(JsError::new(&format!(
                     "node {n} cannot be chosen: pick a free (interior) node, 0 to {}",

@@ -15,6 +15,18 @@ const DEFAULT_SAMPLE = 'plate-tri-tangled';
 const MAX_FILE_BYTES = 256 * 1024 * 1024;
 const SETTINGS = ['strategy', 'threshold', 'order', 'passes', 'maxiter', 'amount', 'seed'];
 const EMBED = new URLSearchParams(location.search).get('embed') === '1';
+/** Milliseconds of smoothing per call to the worker during a pass: the progress bar
+ * moves and Stop is heard at least this often. */
+const SLICE_MS = 50;
+/** Generated samples a permalink cannot name (filled from the engine's gallery). */
+const UNLINKABLE = new Set();
+
+const now = () => performance.now();
+const nextFrame = () => new Promise((r) => requestAnimationFrame(() => r()));
+
+/** What the page measured of itself, for the curious and the page benchmark
+ * (tests/browser/page_bench.mjs): see `window.smoothlab` at the end. */
+const metrics = { lastLoad: null, lastStep: null, run: null };
 
 const state = {
   source: null, // what is loaded: {kind: 'sample'|'gmsh', name} or {kind: 'file'|'triangle', ...}
@@ -94,7 +106,7 @@ function gmshSampleName(file) {
 function sourceSample() {
   const s = state.lastGood;
   if (!s) return null;
-  if (s.kind === 'sample') return s.name;
+  if (s.kind === 'sample') return UNLINKABLE.has(s.name) ? null : s.name;
   if (s.kind === 'gmsh') return gmshSampleName(s.name);
   return null;
 }
@@ -126,6 +138,10 @@ async function writePermalink() {
   if (seq !== permalinkSeq) return; // a later change wrote it
   history.replaceState(null, '', `${location.pathname}${location.search}${hash}`);
   $('permalink').href = `${location.pathname}${hash}`;
+  const s = state.lastGood;
+  $('permalink').title = s && s.kind === 'sample' && UNLINKABLE.has(s.name)
+    ? 'This sample is too large to open from a link: the link keeps the settings only.'
+    : '';
   if (EMBED) $('open-full').href = `${location.pathname}${hash}`;
 }
 function updatePermalink() {
@@ -205,20 +221,28 @@ function selectValueOf(src) {
 
 /** Loads a source; on failure the previous mesh stays on screen and the message says why. */
 function load(src, label) {
+  state.cancel = true; // a new mesh ends a run
   return serial(async () => {
     setStatus(`Loading ${label}…`);
-    const t0 = performance.now();
+    const t0 = now();
+    $('progress').removeAttribute('value'); // indeterminate while the worker builds it
     try {
       await loadSource(src);
     } catch (e) {
       setStatus('');
       $('sample').value = state.lastGood ? selectValueOf(state.lastGood) : '';
       throw e;
+    } finally {
+      $('progress').max = 1;
+      $('progress').value = 0;
     }
+    const t1 = now();
     clearError();
     $('sample').value = selectValueOf(src);
     await redrawAll();
-    setStatus(`Loaded ${label} in ${Math.round(performance.now() - t0)} ms.`);
+    const ms = now() - t0;
+    metrics.lastLoad = { label, ms, build_ms: t1 - t0, draw_ms: now() - t1, memory_bytes: engine.memory };
+    setStatus(`Loaded ${label} in ${Math.round(ms)} ms.`);
     await writePermalink();
   }).catch(report);
 }
@@ -261,11 +285,14 @@ function canvasPixels(canvas) {
   const h = Math.max(64, Math.min(2048, Math.round(canvas.clientHeight * dpr)));
   return { w, h, dpr };
 }
+/** Puts RGBA pixels (moved here from the worker, not copied) on a canvas; returns the ms it took. */
 function paint(canvas, pixels, w, h) {
+  const t0 = now();
   if (canvas.width !== w) canvas.width = w;
   if (canvas.height !== h) canvas.height = h;
   const img = new ImageData(new Uint8ClampedArray(pixels.buffer, pixels.byteOffset, pixels.byteLength), w, h);
   canvas.getContext('2d').putImageData(img, 0, 0);
+  return now() - t0;
 }
 
 const STAT_ROWS = [
@@ -304,15 +331,29 @@ function fillStats(table, s) {
   }
 }
 
+/** Draws both meshes (a panel whose picture would not change is not sent again) and
+ * their statistics tables; returns where the time went. */
 async function redrawMeshes() {
+  const t0 = now();
   const { w, h, dpr } = canvasPixels($('mesh-old'));
-  const f = await engine.call('frame', w, h, dpr);
-  paint($('mesh-old'), f.old, w, h);
-  paint($('mesh-new'), f.new, w, h);
+  const { result: f, timing } = await engine.timed('frame', w, h, dpr, false);
+  const paint_ms = [0, 0];
+  if (f.old) paint_ms[0] = paint($('mesh-old'), f.old, w, h);
+  if (f.new) paint_ms[1] = paint($('mesh-new'), f.new, w, h);
   state.frame = { w, h, dpr };
-  const st = await engine.call('stats');
-  fillStats($('stats-old'), st.old);
-  fillStats($('stats-new'), st.new);
+  const t1 = now();
+  fillStats($('stats-old'), f.stats.old);
+  fillStats($('stats-new'), f.stats.new);
+  return {
+    frame_ms: t1 - t0,
+    render_ms: f.render_ms,
+    copy_ms: f.copy_ms,
+    transfer_ms: timing.received - timing.worker.end,
+    paint_ms,
+    sent: [Boolean(f.old), Boolean(f.new)],
+    canvas: [w, h],
+    table_ms: now() - t1,
+  };
 }
 
 async function redrawCharts() {
@@ -365,59 +406,137 @@ async function redrawAll() {
 }
 
 // ---- smoothing -----------------------------------------------------------------------
-function applySettings() {
-  return engine.call('settings', readSettings());
+const SIDE_NAME = { old: 'old (max-min)', new: 'new (smooth)' };
+const STAGE_NAME = { plan: 'ordering the nodes', smooth: 'smoothing', measure: 'measuring' };
+
+/**
+ * One pass on both sides, in slices of SLICE_MS in the worker so the progress bar moves
+ * during the pass and Stop is heard within a slice. Returns the pass records, or null
+ * when stopped (the worker then puts both meshes back as they were before the pass).
+ * `i` and `n` place the pass in its run for the progress bar.
+ */
+async function smoothPass(i, n) {
+  // the worker's time in its commands, and the round trips' time beyond it
+  const cost = { worker_ms: 0, messaging_ms: 0 };
+  const call = async (cmd, ...args) => {
+    const { result, timing: t } = await engine.timed(cmd, ...args);
+    const w = t.worker.end - t.worker.start;
+    cost.worker_ms += w;
+    cost.messaging_ms += t.received - t.sent - w;
+    return result;
+  };
+  let slices = 0;
+  if ($('order').value === 'priority') {
+    setStatus(`Pass ${i + 1} of ${n}: ordering the nodes of the old side, worst first…`);
+  }
+  for (;;) {
+    if (state.cancel) {
+      await call('abortPass');
+      return null;
+    }
+    const p = await (slices === 0 ? call('pass', readSettings(), SLICE_MS) : call('continuePass', SLICE_MS));
+    slices += 1;
+    $('progress').value = i + p.fraction;
+    if (p.done) return { records: p.records, slices, ...cost };
+    if (state.cancel) continue; // "Stopping…" stays on screen
+    const pct = Math.floor(p.fraction * 100);
+    setStatus(`Pass ${i + 1} of ${n}: ${SIDE_NAME[p.side]} side, ${STAGE_NAME[p.stage] || p.stage}… ${pct}% (Stop undoes this pass)`);
+  }
 }
 
-async function onePass() {
-  await applySettings();
-  await engine.call('step');
-  await redrawMeshes();
+function setRunning(on) {
+  state.running = on;
+  $('run').textContent = on ? 'Stop' : 'Run';
+  $('run').setAttribute('aria-pressed', on ? 'true' : 'false');
+  $('step').disabled = on;
 }
 
-function step() {
-  return serial(async () => {
-    await onePass();
-    await redrawCharts();
-    await redrawNode();
-    clearError();
-    setStatus('One pass done on both sides.');
-  }).catch(report);
+/** Runs `n` passes, redrawing the meshes after each; the Run button stops it. */
+/** Asks the run in progress to stop, and says so at once. */
+function requestStop() {
+  state.cancel = true;
+  setStatus('Stopping: the pass in progress is being undone…');
 }
 
-async function run() {
+async function smooth(n) {
   if (state.running) {
-    state.cancel = true;
+    requestStop();
     return;
   }
-  const n = clampInt($('passes').value, 1, 100, 3);
-  state.running = true;
+  const t0 = now();
+  setRunning(true);
   state.cancel = false;
-  $('run').textContent = 'Stop';
-  $('run').setAttribute('aria-pressed', 'true');
   $('progress').max = n;
   $('progress').value = 0;
   let done = 0;
+  const passes = [];
   try {
     for (let i = 0; i < n && !state.cancel; i++) {
-      setStatus(`Running pass ${i + 1} of ${n}… (Stop ends the run after this pass)`);
-      await serial(onePass);
+      setStatus(`Pass ${i + 1} of ${n}…`);
+      const p0 = now();
+      const r = await serial(async () => {
+        const pass = await smoothPass(i, n);
+        if (!pass) return null;
+        const p1 = now();
+        const draw = await redrawMeshes();
+        return { ...pass, pass_ms: p1 - p0, draw, meshes_ms: now() - p0 };
+      });
+      if (!r) break;
       done = i + 1;
       $('progress').value = done;
-      await new Promise((r) => requestAnimationFrame(() => r()));
+      const [ro, rn] = r.records;
+      passes.push({
+        pass: ro.pass,
+        wall_ms: r.meshes_ms,
+        pass_ms: r.pass_ms,
+        slices: r.slices,
+        worker_ms: r.worker_ms,
+        messaging_ms: r.messaging_ms,
+        sweep_ms: [ro.elapsed_ms, rn.elapsed_ms],
+        stats_ms: [ro.stats_ms, rn.stats_ms],
+        visits: [ro.visits, rn.visits],
+        ...r.draw,
+      });
+      await nextFrame();
     }
+    const c0 = now();
+    if (!state.cancel) setStatus('Drawing the charts…');
     await serial(async () => {
       await redrawCharts();
       await redrawNode();
     });
-    setStatus(state.cancel ? `Stopped after ${done} of ${n} passes.` : `${n} passes done on both sides.`);
+    const charts_ms = now() - c0;
+    const total = now() - t0;
+    const stopped = state.cancel && done < n;
+    if (stopped) {
+      setStatus(`Stopped after ${done} of ${n} passes (the pass in progress was undone).`);
+    } else if (n === 1) {
+      setStatus(`One pass done on both sides in ${Math.round(total)} ms.`);
+    } else {
+      setStatus(`${n} passes done on both sides in ${(total / 1000).toFixed(1)} s.`);
+    }
+    const record = { n, done, stopped, total_ms: total, charts_ms, passes, memory_bytes: engine.memory };
+    if (n === 1 && passes.length === 1) metrics.lastStep = { ...passes[0], charts_ms, all_ms: total };
+    metrics.run = record;
+    clearError();
   } catch (e) {
     report(e);
   } finally {
-    state.running = false;
-    $('run').textContent = 'Run';
-    $('run').setAttribute('aria-pressed', 'false');
+    setRunning(false);
+    state.cancel = false;
   }
+}
+
+function step() {
+  return smooth(1);
+}
+
+function run() {
+  if (state.running) {
+    requestStop();
+    return;
+  }
+  return smooth(clampInt($('passes').value, 1, 100, 3));
 }
 
 function reset() {
@@ -431,6 +550,7 @@ function reset() {
 }
 
 function perturb() {
+  state.cancel = true;
   const amount = Number($('amount').value);
   const seed = clampInt($('seed').value, 0, 4294967295, 1);
   return serial(async () => {
@@ -583,6 +703,7 @@ async function fillGallery() {
     const o = document.createElement('option');
     o.value = `sample:${s.name}`;
     o.textContent = s.title;
+    if (!s.linkable) UNLINKABLE.add(s.name);
     gen.append(o);
   }
   const files = document.createElement('optgroup');
@@ -683,8 +804,12 @@ async function main() {
 }
 
 // A hook for the browser tests (and the curious): make the engine panic on purpose.
+// The page's own measurements: the last load and the last Step (where the time of "one
+// pass + redraw" went), the last run (per pass), and the wasm memory.
 window.smoothlab = {
   panicForTest: () => serial(() => engine.call('panicForTest')).catch(report),
+  metrics,
+  memory: () => ({ bytes: engine.memory, peak_bytes: engine.peakMemory }),
 };
 
 main();

@@ -6,6 +6,8 @@ export class Engine {
     this.onPanic = onPanic;
     this.nextId = 1;
     this.pending = new Map();
+    this.memory = 0; // bytes of the wasm memory at the last answer
+    this.peakMemory = 0; // the most seen (wasm memory never shrinks; a restart starts again)
     this.gate = Promise.resolve(); // calls wait behind a reload after a restart
     this.spawn();
   }
@@ -13,11 +15,18 @@ export class Engine {
   spawn() {
     this.worker = new Worker(new URL('./worker.js', import.meta.url), { type: 'module' });
     this.worker.onmessage = (ev) => {
-      const { id, ok, result, error, panic } = ev.data;
+      const received = performance.timeOrigin + performance.now();
+      const { id, ok, result, error, panic, t, memory } = ev.data;
+      if (memory) {
+        this.memory = memory;
+        this.peakMemory = Math.max(this.peakMemory, memory);
+      }
       const p = this.pending.get(id);
       if (!p) return;
       this.pending.delete(id);
-      if (ok) p.resolve(result);
+      if (t) p.timing.worker = t;
+      p.timing.received = received;
+      if (ok) p.resolve(p.timed ? { result, timing: p.timing } : result);
       else {
         const err = new Error(error);
         err.panic = Boolean(panic);
@@ -35,13 +44,23 @@ export class Engine {
 
   /** Calls a worker command; resolves with its result, rejects with the core's message. */
   call(cmd, ...args) {
-    return this.gate.then(() => this.raw(cmd, ...args));
+    return this.gate.then(() => this.raw(cmd, args, false));
   }
 
-  raw(cmd, ...args) {
+  /**
+   * As `call`, resolving with `{ result, timing }`: `timing` has `sent` and `received`
+   * (the page's clock) and `worker: { start, end }` (the worker's), all in ms since the
+   * epoch, so `received − worker.end` is the time the answer took to arrive.
+   */
+  timed(cmd, ...args) {
+    return this.gate.then(() => this.raw(cmd, args, true));
+  }
+
+  raw(cmd, args, timed = false) {
     const id = this.nextId++;
     return new Promise((resolve, reject) => {
-      this.pending.set(id, { resolve, reject });
+      const timing = { sent: performance.timeOrigin + performance.now() };
+      this.pending.set(id, { resolve, reject, timed, timing });
       const transfer = args.filter((a) => a instanceof ArrayBuffer);
       this.worker.postMessage({ id, cmd, args }, transfer);
     });
@@ -57,7 +76,7 @@ export class Engine {
     for (const p of this.pending.values()) p.reject(err);
     this.pending.clear();
     this.spawn();
-    const run = reload((cmd, ...args) => this.raw(cmd, ...args));
+    const run = reload((cmd, ...args) => this.raw(cmd, args));
     this.gate = run.catch(() => {});
     return run;
   }

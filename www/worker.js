@@ -2,10 +2,14 @@
 // Playground handle, so smoothing a large mesh never freezes the page. The main thread
 // sends {id, cmd, args}; the worker answers {id, ok, result} or {id, ok: false, error,
 // panic}. `panic: true` means the Rust code panicked: the handle may be broken, and the
-// main thread replaces this worker with a fresh one.
+// main thread replaces this worker with a fresh one. Every answer also carries `t`, the
+// worker's start and end of the command (ms since the epoch, performance.timeOrigin +
+// now, so the page can compare them with its own clock), and `memory`, the size of the
+// wasm memory in bytes.
 import init, * as wasm from './pkg/smoothlab.js';
 
 const ready = init();
+let exports = null;
 let pg = null;
 
 function need() {
@@ -26,11 +30,27 @@ const handlers = {
   loadFile: (name, bytes) => replace(wasm.Playground.fromBytes(new Uint8Array(bytes), name)),
   loadTriangle: (node, ele) => replace(wasm.Playground.fromTriangle(node, ele)),
   settings: (s) => need().setSettings(s),
-  stats: () => ({ old: need().stats('old'), new: need().stats('new') }),
   reset: () => need().reset(),
   step: () => need().step(),
+  beginPass: () => need().beginPass(),
+  // settings, beginPass and the first slice in one message (a short pass is one round trip)
+  pass: (settings, budgetMs) => {
+    const p = need();
+    p.setSettings(settings);
+    p.beginPass();
+    return p.continuePass(budgetMs);
+  },
+  continuePass: (budgetMs) => need().continuePass(budgetMs),
+  abortPass: () => need().abortPass(),
   perturb: (amount, seed) => need().perturb(amount, seed),
-  frame: (w, h, dpr) => need().frame(w, h, dpr),
+  // the pictures of both meshes and their statistics tables, in one message
+  frame: (w, h, dpr, force) => {
+    const p = need();
+    const f = p.frame(w, h, dpr, Boolean(force));
+    f.stats = { old: p.stats('old'), new: p.stats('new') };
+    return f;
+  },
+  forgetFrames: () => need().forgetFrames(),
   pick: (panel, x, y) => need().pickNode(panel, x, y),
   drag: (node, x, y) => need().dragNode(node, x, y),
   select: (node) => need().selectNode(node === null ? undefined : node),
@@ -49,18 +69,30 @@ function transferables(value, out = []) {
   return out;
 }
 
+const clock = () => performance.timeOrigin + performance.now();
+function memoryBytes() {
+  try {
+    return exports ? exports.memory.buffer.byteLength : 0;
+  } catch {
+    return 0;
+  }
+}
+
 self.onmessage = async (ev) => {
   const { id, cmd, args } = ev.data;
+  let start = clock();
   try {
-    await ready;
+    exports = await ready;
+    start = clock();
     const handler = handlers[cmd];
     if (!handler) throw new Error(`unknown command ${cmd}`);
     const result = handler(...(args || []));
-    self.postMessage({ id, ok: true, result }, transferables(result));
+    const t = { start, end: clock() };
+    self.postMessage({ id, ok: true, result, t, memory: memoryBytes() }, transferables(result));
   } catch (e) {
     const panic = wasm.takePanicMessage ? safeTakePanic() : null;
     const error = panic || (e && e.message) || String(e);
-    self.postMessage({ id, ok: false, error, panic: Boolean(panic) });
+    self.postMessage({ id, ok: false, error, panic: Boolean(panic), t: { start, end: clock() }, memory: memoryBytes() });
   }
 };
 

@@ -3,12 +3,23 @@
 //! original mesh, and one copy per side — the OLD max-min objective (Freitag 1997, left)
 //! and the NEW smooth objective (Chen, Tristano & Kwok 2003, right) — that the page
 //! smooths, perturbs and drags side by side.
+//!
+//! At scale (up to [`MAX_NODES`]): a pass can run in slices of a time budget
+//! ([`Playground::begin_pass`], [`Playground::continue_pass`], [`Playground::abort_pass`])
+//! with the same result as [`Playground::step`]; each panel keeps the cheap statistics its
+//! table shows ([`stats::QuickStats`]) and each element's colour bucket up to date, a
+//! version naming its positions, and its last picture ([`raster`] draws fine meshes).
 
+pub mod raster;
 pub mod sample;
+pub mod stats;
 pub mod views;
+
+use std::cell::{OnceCell, RefCell};
 
 use glam::DVec2;
 use serde::{Deserialize, Serialize};
+use tiny_skia::Pixmap;
 
 use crate::error::{Error, Result};
 use crate::generate::perturb;
@@ -16,12 +27,17 @@ use crate::io::{write_string, Format, WriteOptions};
 use crate::mesh::Mesh;
 use crate::objective::{objective, Objective, ObjectiveKind};
 use crate::optimize::SolveResult;
-use crate::quality::{mesh_stats, MeshStats};
-use crate::smooth::{solve_node, Order, PassRecord, SmoothOptions, Smoother, Strategy};
+use crate::quality::MeshStats;
+use crate::smooth::{solve_node, NodeOutcome, Order, SmoothOptions, Smoother, Strategy, SweepCounts};
+use stats::{full_stats, quick_stats_and_buckets, QuickAcc, QuickStats};
+use views::Canvas;
 
-/// Node count above which the page refuses a mesh: the playground holds three copies and
-/// draws every element each frame.
+/// Node count above which the page refuses a mesh: the playground holds two copies (and
+/// the positions as loaded) and draws every element each frame.
 pub const MAX_NODES: usize = 1_000_000;
+
+/// Elements measured per slice of a pass's statistics (see [`Playground::continue_pass`]).
+const STATS_SLICE: usize = 32 * 1024;
 
 /// The two panels of the page.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
@@ -121,22 +137,82 @@ impl Settings {
     }
 }
 
+/// What one pass did on one panel and where its mesh stands after it (the page's
+/// per-pass record: [`crate::smooth::PassRecord`] without the objective total, which the
+/// page never shows and which costs more than a Laplacian pass).
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct PassSummary {
+    /// 1 for the first pass since the last reset.
+    pub pass: u32,
+    /// Node visits (with priority order a poor node is visited up to once per bin).
+    pub visits: u32,
+    /// After the pass: elements with a corner of `det ≤ 0`.
+    pub inverted: usize,
+    /// After the pass: smallest and largest signed corner angle, degrees.
+    pub min_angle_deg: f64,
+    pub max_angle_deg: f64,
+    /// After the pass: smallest element α/β.
+    pub min_quality: f64,
+    /// Nodes moved by a Laplacian step (plain or smart).
+    pub laplacian_moves: u32,
+    /// Calls to the solver.
+    pub optimization_calls: u32,
+    /// Solver iterations, summed over the calls.
+    pub solver_iterations: u32,
+    /// Time of the node loop (planning the order included), milliseconds by the caller's clock.
+    pub elapsed_ms: f64,
+    /// Time of the statistics after it, milliseconds.
+    pub stats_ms: f64,
+}
+
 /// One panel: its current mesh, its objective and driver, and its passes since the last reset.
 pub struct Panel {
     pub mesh: Mesh,
     pub objective: Box<dyn Objective>,
     smoother: Smoother,
-    pub records: Vec<PassRecord>,
+    pub records: Vec<PassSummary>,
+    /// Names the mesh's current positions: equal versions, equal positions (caches
+    /// compare it).
+    version: u64,
+    /// The table's statistics of the current positions.
+    quick: QuickStats,
+    /// Each element's colour bucket for the current positions (see [`stats::bucket_of`]).
+    buckets: Vec<u8>,
+    /// The full statistics (angle histogram included), computed when first asked for.
+    full: OnceCell<MeshStats>,
+    /// The last mesh picture drawn without a highlight, with the version and canvas it shows.
+    picture: RefCell<Option<(u64, Canvas, Pixmap)>>,
 }
 
 impl Panel {
-    fn new(side: Side, mesh: Mesh, options: SmoothOptions) -> Result<Self> {
+    fn new(side: Side, mesh: Mesh, options: SmoothOptions, version: u64, full: &MeshStats, buckets: Vec<u8>) -> Result<Self> {
         Ok(Panel {
             mesh,
             objective: objective(side.objective_kind()),
             smoother: Smoother::new(options)?,
             records: Vec::new(),
+            version,
+            quick: quick_of(full),
+            buckets,
+            full: OnceCell::from(full.clone()),
+            picture: RefCell::new(None),
         })
+    }
+
+    /// The mesh's positions changed (to a new version).
+    fn changed(&mut self, version: u64) {
+        self.version = version;
+        self.quick = quick_stats_and_buckets(&self.mesh, &mut self.buckets);
+        self.full = OnceCell::new();
+    }
+}
+
+fn quick_of(s: &MeshStats) -> QuickStats {
+    QuickStats {
+        inverted: s.inverted,
+        min_angle_deg: s.min_angle_deg,
+        max_angle_deg: s.max_angle_deg,
+        min_quality: s.min_quality,
     }
 }
 
@@ -154,11 +230,100 @@ pub struct PanelStats {
     pub time_ms: f64,
 }
 
-/// The page's state: see the module docs.
+/// The page's statistics table: [`PanelStats`] with the cheap statistics of
+/// [`QuickStats`] in place of the full ones.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct PanelTable {
+    pub side: Side,
+    pub nodes: usize,
+    pub elements: usize,
+    #[serde(flatten)]
+    pub mesh: QuickStats,
+    pub passes: usize,
+    pub laplacian_moves: u64,
+    pub optimization_calls: u64,
+    pub solver_iterations: u64,
+    pub time_ms: f64,
+}
+
+/// Where a pass in slices stands (see [`Playground::continue_pass`]).
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct PassProgress {
+    /// The pass is complete (`records` holds its two records) and the meshes are final.
+    pub done: bool,
+    /// Of the whole pass (both panels), 0 to 1.
+    pub fraction: f64,
+    /// The panel being smoothed or measured.
+    pub side: Side,
+    /// `plan`, `smooth` or `measure` (or `done`).
+    pub stage: &'static str,
+    /// Node visits done on this panel and planned for it.
+    pub visits: usize,
+    pub planned: usize,
+    /// `[old, new]` when done.
+    pub records: Option<[PassSummary; 2]>,
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Stage {
+    Plan,
+    Smooth,
+    Measure,
+}
+
+/// A panel as it was when a pass began on it, to put back if the pass is abandoned.
+struct Saved {
+    nodes: Vec<DVec2>,
+    version: u64,
+    quick: QuickStats,
+    buckets: Vec<u8>,
+    full: OnceCell<MeshStats>,
+}
+
+/// A pass in progress: the old panel's sweep and statistics, then the new panel's.
+struct PassRun {
+    side: usize,
+    stage: Stage,
+    schedule: Vec<u32>,
+    pos: usize,
+    counts: SweepCounts,
+    sweep_ms: f64,
+    acc: QuickAcc,
+    stats_ms: f64,
+    /// Node visits per slice, adapted to the time they take.
+    slice: usize,
+    saved: [Option<Saved>; 2],
+    done: [Option<(PassSummary, QuickStats)>; 2],
+}
+
+fn add_outcome(c: &mut SweepCounts, o: NodeOutcome) {
+    c.visits += 1;
+    c.laplacian_moves += (o.laplacian && o.moved) as u32;
+    c.optimization_calls += o.optimized as u32;
+    c.solver_iterations += o.iterations;
+}
+
+fn merge_counts(c: &mut SweepCounts, o: SweepCounts) {
+    c.visits += o.visits;
+    c.laplacian_moves += o.laplacian_moves;
+    c.optimization_calls += o.optimization_calls;
+    c.solver_iterations += o.solver_iterations;
+}
+
+/// The page's state: see the module docs. The mesh as loaded is kept as positions only
+/// (the panels' meshes carry the topology), so a 1M-node mesh is held twice, not three times.
 pub struct Playground {
-    original: Mesh,
+    original: Vec<DVec2>,
+    original_version: u64,
+    original_stats: MeshStats,
+    original_buckets: Vec<u8>,
+    bounds: (DVec2, DVec2),
+    /// Mean edge length of the mesh as loaded: whether its edges are drawn.
+    mean_edge: f64,
     settings: Settings,
     panels: [Panel; 2],
+    next_version: u64,
+    run: Option<PassRun>,
 }
 
 impl Playground {
@@ -172,11 +337,31 @@ impl Playground {
         }
         let settings = Settings::default();
         let o = settings.smooth_options()?;
+        let full = full_stats(&mesh);
+        let mut buckets = Vec::new();
+        quick_stats_and_buckets(&mesh, &mut buckets);
+        let original = mesh.nodes.clone();
+        let bounds = mesh.bounds();
+        let mean_edge = mesh.mean_edge_length();
+        let old = Panel::new(Side::Old, mesh.clone(), o, 1, &full, buckets.clone())?;
+        let new = Panel::new(Side::New, mesh, o, 1, &full, buckets.clone())?;
         Ok(Playground {
-            panels: [Panel::new(Side::Old, mesh.clone(), o)?, Panel::new(Side::New, mesh.clone(), o)?],
-            original: mesh,
+            original,
+            original_version: 1,
+            original_stats: full,
+            original_buckets: buckets,
+            bounds,
+            mean_edge,
             settings,
+            panels: [old, new],
+            next_version: 1,
+            run: None,
         })
+    }
+
+    fn fresh_version(&mut self) -> u64 {
+        self.next_version += 1;
+        self.next_version
     }
 
     #[cfg(test)]
@@ -184,9 +369,11 @@ impl Playground {
         self.settings
     }
 
-    /// New settings for the next passes (the meshes stay as they are).
+    /// New settings for the next passes (the meshes stay as they are; a pass in
+    /// progress is abandoned).
     pub fn set_settings(&mut self, settings: Settings) -> Result<()> {
         let o = settings.smooth_options()?;
+        self.abort_pass();
         for p in &mut self.panels {
             p.smoother = Smoother::new(o)?;
         }
@@ -195,19 +382,207 @@ impl Playground {
     }
 
     /// One smoothing pass on both panels; `clock` gives milliseconds (the core reads no time).
-    pub fn step(&mut self, clock: &dyn Fn() -> f64) -> [PassRecord; 2] {
-        self.panels.each_mut().map(|p| {
-            let mut rec = p.smoother.pass(&mut p.mesh, p.objective.as_ref(), clock);
-            rec.pass = p.records.len() as u32 + 1;
-            p.records.push(rec.clone());
-            rec
-        })
+    pub fn step(&mut self, clock: &dyn Fn() -> f64) -> [PassSummary; 2] {
+        self.begin_pass();
+        loop {
+            let p = self.continue_pass(clock, f64::INFINITY).expect("a pass was begun");
+            if let Some(records) = p.records {
+                return records;
+            }
+        }
+    }
+
+    /// Starts a pass to be run in slices by [`continue_pass`](Self::continue_pass)
+    /// (a pass already in progress is abandoned first). The result is the same as
+    /// [`step`](Self::step)'s, bit for bit: the old panel is swept in the order the
+    /// smoother plans, then measured, then the new panel.
+    pub fn begin_pass(&mut self) {
+        self.abort_pass();
+        self.run = Some(PassRun {
+            side: 0,
+            stage: Stage::Plan,
+            schedule: Vec::new(),
+            pos: 0,
+            counts: SweepCounts::default(),
+            sweep_ms: 0.0,
+            acc: QuickAcc::default(),
+            stats_ms: 0.0,
+            slice: 64,
+            saved: [None, None],
+            done: [None, None],
+        });
+    }
+
+    /// Whether a pass is in progress.
+    pub fn pass_in_progress(&self) -> bool {
+        self.run.is_some()
+    }
+
+    /// Runs the pass begun by [`begin_pass`](Self::begin_pass) for about `budget_ms`
+    /// milliseconds of `clock` (at least one slice: a planning, a few node visits or a
+    /// slice of the statistics), and says where it stands. When it is done the records
+    /// are kept, as after [`step`](Self::step). While a pass is in progress the panels'
+    /// meshes are part-smoothed and their statistics those before the pass.
+    pub fn continue_pass(&mut self, clock: &dyn Fn() -> f64, budget_ms: f64) -> Result<PassProgress> {
+        let mut run = self.run.take().ok_or_else(|| Error::invalid("no pass is in progress: begin one first"))?;
+        let start = clock();
+        loop {
+            let side = run.side;
+            match run.stage {
+                Stage::Plan => {
+                    let t0 = clock();
+                    let p = &mut self.panels[side];
+                    run.saved[side] = Some(Saved {
+                        nodes: p.mesh.nodes.clone(),
+                        version: p.version,
+                        quick: p.quick,
+                        buckets: p.buckets.clone(),
+                        full: p.full.clone(),
+                    });
+                    p.smoother.plan(&p.mesh);
+                    run.schedule.clear();
+                    run.schedule.extend_from_slice(p.smoother.schedule());
+                    run.pos = 0;
+                    run.counts = SweepCounts::default();
+                    run.sweep_ms = clock() - t0;
+                    run.stage = Stage::Smooth;
+                }
+                Stage::Smooth if run.pos < run.schedule.len() => {
+                    if run.pos == 0 {
+                        let v = self.fresh_version();
+                        self.panels[side].version = v;
+                    }
+                    let t0 = clock();
+                    let p = &mut self.panels[side];
+                    let end = (run.pos + run.slice).min(run.schedule.len());
+                    if run.pos == 0 {
+                        // smooth_node refreshes the smoother's facts about the mesh
+                        // (quadratic, curved), as a whole sweep does before its visits
+                        let o = p.smoother.smooth_node(&mut p.mesh, run.schedule[0] as usize, p.objective.as_ref());
+                        add_outcome(&mut run.counts, o);
+                        run.pos = 1;
+                    }
+                    let c = p.smoother.visit_all(&mut p.mesh, &run.schedule[run.pos..end], p.objective.as_ref());
+                    merge_counts(&mut run.counts, c);
+                    run.pos = end;
+                    let dt = clock() - t0;
+                    run.sweep_ms += dt;
+                    // slices of about a tenth of the budget (at most 20 ms): the budget
+                    // is kept to within a slice
+                    let target = (budget_ms / 10.0).clamp(1.0, 20.0);
+                    if dt < target / 2.0 {
+                        run.slice = (run.slice * 2).min(1 << 20);
+                    } else if dt > target * 2.0 {
+                        run.slice = (run.slice / 2).max(1);
+                    }
+                }
+                Stage::Smooth => {
+                    run.stage = Stage::Measure;
+                    run.acc = QuickAcc::default();
+                    run.stats_ms = 0.0;
+                }
+                Stage::Measure => {
+                    let t0 = clock();
+                    let p = &mut self.panels[side];
+                    let n = p.mesh.element_count();
+                    let from = run.acc.done;
+                    run.acc.add(&p.mesh, from..(from + STATS_SLICE).min(n), Some(&mut p.buckets));
+                    run.stats_ms += clock() - t0;
+                    if run.acc.done >= n {
+                        let q = run.acc.finish();
+                        let c = run.counts;
+                        let summary = PassSummary {
+                            pass: p.records.len() as u32 + 1,
+                            visits: c.visits,
+                            inverted: q.inverted,
+                            min_angle_deg: q.min_angle_deg,
+                            max_angle_deg: q.max_angle_deg,
+                            min_quality: q.min_quality,
+                            laplacian_moves: c.laplacian_moves,
+                            optimization_calls: c.optimization_calls,
+                            solver_iterations: c.solver_iterations,
+                            elapsed_ms: run.sweep_ms,
+                            stats_ms: run.stats_ms,
+                        };
+                        run.done[side] = Some((summary, q));
+                        if side == 1 {
+                            return Ok(self.finish_pass(run));
+                        }
+                        run.side = 1;
+                        run.stage = Stage::Plan;
+                        // the slice ends here: planning the new side may take long (the
+                        // priority order measures every star), and the page can say so
+                        break;
+                    }
+                }
+            }
+            if clock() - start >= budget_ms {
+                break;
+            }
+        }
+        let progress = progress_of(&run, &self.panels);
+        self.run = Some(run);
+        Ok(progress)
+    }
+
+    /// Keeps the records and statistics of a completed pass.
+    fn finish_pass(&mut self, mut run: PassRun) -> PassProgress {
+        let mut records = Vec::with_capacity(2);
+        for side in 0..2 {
+            // a version of its own for the final positions and buckets: nothing drawn
+            // during the pass (part-smoothed) can be taken for them
+            let moved = run.saved[side].as_ref().is_some_and(|s| s.version != self.panels[side].version);
+            if moved {
+                let v = self.fresh_version();
+                self.panels[side].version = v;
+            }
+        }
+        for (side, p) in self.panels.iter_mut().enumerate() {
+            let (summary, q) = run.done[side].take().expect("both panels were measured");
+            p.quick = q;
+            p.full = OnceCell::new();
+            p.records.push(summary.clone());
+            records.push(summary);
+        }
+        let records: [PassSummary; 2] = records.try_into().expect("two panels");
+        PassProgress {
+            done: true,
+            fraction: 1.0,
+            side: Side::New,
+            stage: "done",
+            visits: run.counts.visits as usize,
+            planned: run.schedule.len(),
+            records: Some(records),
+        }
+    }
+
+    /// Abandons the pass in progress, if any: both panels go back to where they were
+    /// before it (positions, statistics and version), so it leaves no trace.
+    pub fn abort_pass(&mut self) {
+        let Some(run) = self.run.take() else { return };
+        for (p, saved) in self.panels.iter_mut().zip(run.saved) {
+            if let Some(s) = saved {
+                p.mesh.nodes = s.nodes;
+                p.version = s.version;
+                p.quick = s.quick;
+                p.buckets = s.buckets;
+                p.full = s.full;
+            }
+        }
     }
 
     /// The original mesh perturbed ([`perturb`]: `amount` mean edge lengths, seeded);
     /// both panels start again from it.
     pub fn perturb(&mut self, amount: f64, seed: u64) -> Result<()> {
-        self.original = perturb(&self.original, amount, seed)?;
+        self.abort_pass();
+        let mesh = &mut self.panels[0].mesh;
+        mesh.nodes.copy_from_slice(&self.original);
+        let perturbed = perturb(mesh, amount, seed)?;
+        self.original_stats = full_stats(&perturbed);
+        quick_stats_and_buckets(&perturbed, &mut self.original_buckets);
+        self.mean_edge = perturbed.mean_edge_length();
+        self.original = perturbed.nodes;
+        self.original_version = self.fresh_version();
         self.reset();
         Ok(())
     }
@@ -224,21 +599,64 @@ impl Playground {
         solve_node(&p.mesh, node, p.objective.as_ref(), &self.settings.smooth_options()?)
     }
 
-    pub fn original(&self) -> &Mesh {
+    /// The node positions as loaded (or as last perturbed).
+    pub fn original_nodes(&self) -> &[DVec2] {
         &self.original
+    }
+
+    /// The mesh's topology and fixed flags (the panels share them; positions differ).
+    pub fn topology(&self) -> &Mesh {
+        &self.panels[0].mesh
+    }
+
+    /// Bounds of the mesh as loaded: both panels are drawn at this scale.
+    pub fn bounds(&self) -> (DVec2, DVec2) {
+        self.bounds
+    }
+
+    /// Statistics of the mesh as loaded (or as last perturbed).
+    pub fn original_stats(&self) -> &MeshStats {
+        &self.original_stats
     }
 
     pub fn panel(&self, side: Side) -> &Panel {
         &self.panels[side.index()]
     }
 
-    /// Statistics of a panel's current mesh.
-    pub fn stats(&self, side: Side) -> PanelStats {
+    /// The version of a panel's positions: it changes whenever they do.
+    pub fn version(&self, side: Side) -> u64 {
+        self.panel(side).version
+    }
+
+    /// The full statistics of a panel's current mesh (computed once per version).
+    pub fn full_stats(&self, side: Side) -> &MeshStats {
         let p = self.panel(side);
-        let r = &p.records;
+        p.full.get_or_init(|| full_stats(&p.mesh))
+    }
+
+    /// Statistics of a panel's current mesh, with the work done since the last reset.
+    pub fn stats(&self, side: Side) -> PanelStats {
+        let t = self.table(side);
         PanelStats {
             side,
-            mesh: mesh_stats(&p.mesh),
+            mesh: self.full_stats(side).clone(),
+            passes: t.passes,
+            laplacian_moves: t.laplacian_moves,
+            optimization_calls: t.optimization_calls,
+            solver_iterations: t.solver_iterations,
+            time_ms: t.time_ms,
+        }
+    }
+
+    /// What the page's statistics table shows of a panel (cheap: kept up to date).
+    pub fn table(&self, side: Side) -> PanelTable {
+        let p = self.panel(side);
+        let r = &p.records;
+        PanelTable {
+            side,
+            nodes: p.mesh.node_count(),
+            elements: p.mesh.element_count(),
+            mesh: p.quick,
             passes: r.len(),
             laplacian_moves: r.iter().map(|r| r.laplacian_moves as u64).sum(),
             optimization_calls: r.iter().map(|r| r.optimization_calls as u64).sum(),
@@ -249,9 +667,15 @@ impl Playground {
 
     /// Both panels back to the original mesh, their records cleared.
     pub fn reset(&mut self) {
+        self.abort_pass();
         let o = self.settings.smooth_options().expect("the settings were checked when set");
+        let quick = quick_of(&self.original_stats);
         for p in &mut self.panels {
-            p.mesh = self.original.clone();
+            p.mesh.nodes.copy_from_slice(&self.original);
+            p.version = self.original_version;
+            p.quick = quick;
+            p.buckets.clone_from(&self.original_buckets);
+            p.full = OnceCell::from(self.original_stats.clone());
             p.records.clear();
             p.smoother = Smoother::new(o).expect("the settings were checked when set");
         }
@@ -260,7 +684,7 @@ impl Playground {
     /// Moves a free node to `to` on both panels' current meshes (the mouse drag); its
     /// mid-side nodes follow. Fixed nodes, mid-side nodes and unknown nodes are refused.
     pub fn move_node(&mut self, node: usize, to: DVec2) -> Result<()> {
-        let m = &self.original;
+        let m = self.topology();
         if node >= m.node_count() {
             return Err(Error::node(node, None, format!("no such node: the mesh has {} nodes", m.node_count())));
         }
@@ -270,11 +694,42 @@ impl Playground {
         if !to.is_finite() {
             return Err(Error::invalid(format!("cannot move node {node} to a non-finite position {to}")));
         }
-        for p in &mut self.panels {
+        self.abort_pass();
+        for side in 0..2 {
+            let v = self.fresh_version();
+            let p = &mut self.panels[side];
             p.mesh.nodes[node] = to;
             p.mesh.follow_mid_nodes(node);
+            p.changed(v);
         }
         Ok(())
+    }
+}
+
+/// How far the pass is: each panel is half, its sweep nine tenths of that and its
+/// statistics the rest (a panel not yet planned counts as not begun).
+fn progress_of(run: &PassRun, panels: &[Panel; 2]) -> PassProgress {
+    let side = run.side;
+    let sweep = match run.stage {
+        Stage::Plan => 0.0,
+        _ if run.schedule.is_empty() => 1.0,
+        _ => run.pos as f64 / run.schedule.len() as f64,
+    };
+    let elements = panels[side].mesh.element_count().max(1);
+    let measure = if run.stage == Stage::Measure { run.acc.done as f64 / elements as f64 } else { 0.0 };
+    let within = 0.9 * sweep + 0.1 * measure;
+    PassProgress {
+        done: false,
+        fraction: ((side as f64 + within) / 2.0).clamp(0.0, 1.0),
+        side: if side == 0 { Side::Old } else { Side::New },
+        stage: match run.stage {
+            Stage::Plan => "plan",
+            Stage::Smooth => "smooth",
+            Stage::Measure => "measure",
+        },
+        visits: run.pos,
+        planned: run.schedule.len(),
+        records: None,
     }
 }
 
@@ -289,14 +744,14 @@ mod tests {
         let before = pg.stats(Side::Old);
         assert_eq!(before.mesh, pg.stats(Side::New).mesh);
         assert!(before.mesh.inverted > 0);
-        let free = (0..pg.original().node_count()).find(|&n| pg.original().is_free(n)).unwrap();
+        let free = (0..pg.topology().node_count()).find(|&n| pg.topology().is_free(n)).unwrap();
         pg.move_node(free, DVec2::new(0.9, 0.9)).unwrap();
         for s in Side::BOTH {
             assert_eq!(pg.panel(s).mesh.nodes[free], DVec2::new(0.9, 0.9));
         }
         pg.reset();
         assert_eq!(pg.stats(Side::Old), before);
-        assert_eq!(pg.panel(Side::New).mesh.nodes, pg.original().nodes);
+        assert_eq!(pg.panel(Side::New).mesh.nodes, pg.original_nodes());
     }
 
     fn no_clock() -> f64 {
@@ -345,7 +800,7 @@ mod tests {
     #[test]
     fn node_solve_moves_towards_better_and_leaves_the_mesh() {
         let pg = Playground::new(Sample::StarRegular.generate().unwrap()).unwrap();
-        let free = pg.original().node_count() - 1;
+        let free = pg.topology().node_count() - 1;
         let before = pg.panel(Side::New).mesh.nodes.clone();
         let new = pg.solve_node(Side::New, free).unwrap();
         assert!(new.value <= new.value0 && !new.history.is_empty());
@@ -362,7 +817,7 @@ mod tests {
         pg.perturb(1.0, 7).unwrap();
         assert!(pg.stats(Side::Old).mesh.inverted > 0);
         assert_eq!(pg.stats(Side::Old).passes, 0);
-        assert_eq!(pg.panel(Side::New).mesh.nodes, pg.original().nodes);
+        assert_eq!(pg.panel(Side::New).mesh.nodes, pg.original_nodes());
         assert!(pg.perturb(f64::NAN, 1).is_err());
     }
 
@@ -382,19 +837,19 @@ mod tests {
     #[test]
     fn dragging_refuses_fixed_unknown_and_non_finite() {
         let mut pg = Playground::new(Sample::StarRegular.generate().unwrap()).unwrap();
-        let n = pg.original().node_count();
+        let n = pg.topology().node_count();
         let e = pg.move_node(0, DVec2::ZERO).unwrap_err().to_string();
         assert!(e.contains("node 0") && e.contains("fixed"), "{e}");
         let e = pg.move_node(n, DVec2::ZERO).unwrap_err().to_string();
         assert!(e.contains("no such node"), "{e}");
         assert!(pg.move_node(n - 1, DVec2::new(f64::NAN, 0.0)).is_err());
-        assert_eq!(pg.panel(Side::Old).mesh.nodes, pg.original().nodes, "a refused move changes nothing");
+        assert_eq!(pg.panel(Side::Old).mesh.nodes, pg.original_nodes(), "a refused move changes nothing");
     }
 
     #[test]
     fn quadratic_mid_nodes_follow_a_drag() {
         let mut pg = Playground::new(Sample::PlateQuadratic.generate().unwrap()).unwrap();
-        let m = pg.original().clone();
+        let m = pg.topology().clone();
         let free = (0..m.node_count()).find(|&n| m.is_free(n)).unwrap();
         let to = m.nodes[free] + DVec2::new(0.01, -0.02);
         pg.move_node(free, to).unwrap();
@@ -405,5 +860,129 @@ mod tests {
                 assert!(moved.nodes[e.mid as usize].distance(mid) < 1e-12);
             }
         }
+    }
+
+    /// A clock that advances 1 ms per reading, so budgets end passes in many slices.
+    fn ticking() -> impl Fn() -> f64 {
+        let t = std::cell::Cell::new(0.0);
+        move || {
+            t.set(t.get() + 1.0);
+            t.get()
+        }
+    }
+
+    #[test]
+    fn a_pass_in_slices_is_the_smoothers_pass_bit_for_bit() {
+        use crate::smooth::Smoother;
+        let samples = [Sample::PlateMixedTangled, Sample::PlateQuadratic, Sample::Rand2dTangled];
+        let strategies = [
+            StrategyChoice::Laplace,
+            StrategyChoice::Smart,
+            StrategyChoice::Opt,
+            StrategyChoice::C1,
+            StrategyChoice::C2,
+            StrategyChoice::C3,
+            StrategyChoice::Rules,
+        ];
+        for sample in samples {
+            let mesh = sample.generate().unwrap();
+            for strategy in strategies {
+                for order in [OrderChoice::Input, OrderChoice::Priority] {
+                    let settings = Settings { strategy, order, ..Settings::default() };
+                    let mut pg = Playground::new(mesh.clone()).unwrap();
+                    pg.set_settings(settings).unwrap();
+                    let clock = ticking();
+                    for pass in 1..=2u32 {
+                        pg.begin_pass();
+                        let mut slices = 0;
+                        let records = loop {
+                            slices += 1;
+                            let p = pg.continue_pass(&clock, 3.0).unwrap();
+                            assert!((0.0..=1.0).contains(&p.fraction));
+                            if let Some(r) = p.records {
+                                break r;
+                            }
+                        };
+                        assert!(slices > 2, "{sample:?} {strategy:?}: {slices} slices");
+                        assert!(!pg.pass_in_progress());
+                        for side in Side::BOTH {
+                            let mut m = mesh.clone();
+                            let mut s = Smoother::new(settings.smooth_options().unwrap()).unwrap();
+                            let obj = objective(side.objective_kind());
+                            let mut rec = None;
+                            for _ in 0..pass {
+                                rec = Some(s.pass(&mut m, obj.as_ref(), &|| 0.0));
+                            }
+                            let rec = rec.unwrap();
+                            let what = format!("{sample:?} {strategy:?} {order:?} pass {pass} {side:?}");
+                            assert_eq!(pg.panel(side).mesh.nodes, m.nodes, "{what}");
+                            let got = &records[side as usize];
+                            assert_eq!(
+                                (got.pass, got.visits, got.laplacian_moves, got.optimization_calls, got.solver_iterations),
+                                (pass, rec.visits, rec.laplacian_moves, rec.optimization_calls, rec.solver_iterations),
+                                "{what}"
+                            );
+                            assert_eq!(
+                                (got.inverted, got.min_angle_deg, got.max_angle_deg, got.min_quality),
+                                (rec.inverted, rec.min_angle_deg, rec.max_angle_deg, rec.min_quality),
+                                "{what}"
+                            );
+                            let mut buckets = Vec::new();
+                            assert_eq!(pg.table(side).mesh, stats::quick_stats_and_buckets(&m, &mut buckets), "{what}");
+                            assert_eq!(pg.panel(side).buckets, buckets, "{what}");
+                        }
+                    }
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn an_abandoned_pass_leaves_no_trace() {
+        let mut pg = Playground::new(Sample::Rand2dTangled.generate().unwrap()).unwrap();
+        pg.step(&no_clock);
+        let before = [pg.panel(Side::Old).mesh.nodes.clone(), pg.panel(Side::New).mesh.nodes.clone()];
+        let versions = [pg.version(Side::Old), pg.version(Side::New)];
+        let tables = [pg.table(Side::Old), pg.table(Side::New)];
+        let clock = ticking();
+        pg.begin_pass();
+        let mut p = pg.continue_pass(&clock, 2.0).unwrap();
+        while p.side == Side::Old {
+            p = pg.continue_pass(&clock, 2.0).unwrap();
+        }
+        assert!(!p.done && p.fraction >= 0.5);
+        assert_ne!(pg.panel(Side::Old).mesh.nodes, before[0], "the old panel was smoothed");
+        pg.abort_pass();
+        assert!(!pg.pass_in_progress());
+        for side in Side::BOTH {
+            assert_eq!(pg.panel(side).mesh.nodes, before[side as usize]);
+            assert_eq!(pg.version(side), versions[side as usize]);
+            assert_eq!(pg.table(side), tables[side as usize]);
+        }
+        assert!(pg.continue_pass(&clock, 1.0).is_err(), "nothing to continue");
+        // a drag, a reset or new settings abandon a pass in progress too
+        pg.begin_pass();
+        pg.continue_pass(&clock, 2.0).unwrap();
+        pg.set_settings(Settings::default()).unwrap();
+        assert!(!pg.pass_in_progress());
+        assert_eq!(pg.panel(Side::Old).mesh.nodes, before[0]);
+    }
+
+    #[test]
+    fn versions_name_positions_and_reset_returns_to_the_first() {
+        let mut pg = Playground::new(Sample::PlateTri.generate().unwrap()).unwrap();
+        let v0 = pg.version(Side::Old);
+        assert_eq!(v0, pg.version(Side::New));
+        pg.step(&no_clock);
+        let v1 = pg.version(Side::Old);
+        assert_ne!(v1, v0);
+        assert_ne!(pg.version(Side::New), v1, "each panel's positions have their own version");
+        let free = (0..pg.topology().node_count()).find(|&n| pg.topology().is_free(n)).unwrap();
+        pg.move_node(free, DVec2::new(0.2, 0.3)).unwrap();
+        assert_ne!(pg.version(Side::Old), v1);
+        assert_eq!(pg.table(Side::Old).mesh, stats::quick_stats(&pg.panel(Side::Old).mesh));
+        pg.reset();
+        assert_eq!((pg.version(Side::Old), pg.version(Side::New)), (v0, v0));
+        assert_eq!(pg.full_stats(Side::New), pg.original_stats());
     }
 }

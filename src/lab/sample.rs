@@ -18,6 +18,10 @@ pub const TANGLE_AMOUNT: f64 = 0.5;
 pub const PLATE_RESOLUTION: usize = 5;
 /// Interior points of the large sample (Freitag's rand2d with ~100k nodes).
 pub const LARGE_INTERIOR: usize = 99_200;
+/// Points per side and interior points of the 1M sample: exactly 1 000 000 nodes, the
+/// most the page takes ([`super::MAX_NODES`]).
+pub const MILLION_PER_SIDE: usize = 1000;
+pub const MILLION_INTERIOR: usize = 1_000_000 - 4 * MILLION_PER_SIDE;
 
 /// A sample mesh made in the browser by the core's generators.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
@@ -45,10 +49,25 @@ pub enum Sample {
     PlateQuadratic,
     /// rand2d with about 100 000 nodes, to show that the page stays responsive.
     Rand2dLarge,
+    /// rand2d with 1 000 000 nodes (about 2 million triangles): the page at its limit.
+    /// In the gallery but not in [`Sample::ALL`], the samples a permalink can name: a
+    /// shared link or an embedded page should never start a load of this size.
+    Rand2dMillion,
 }
 
 impl Sample {
-    /// Every sample, in gallery order.
+    /// The gallery: [`Sample::ALL`], then the 1M-node sample.
+    pub const GALLERY: [Sample; 14] = {
+        let mut g = [Sample::Rand2dMillion; 14];
+        let mut i = 0;
+        while i < Sample::ALL.len() {
+            g[i] = Sample::ALL[i];
+            i += 1;
+        }
+        g
+    };
+
+    /// Every sample a permalink can name, in gallery order.
     pub const ALL: [Sample; 13] = [
         Sample::PlateTriTangled,
         Sample::PlateQuadTangled,
@@ -81,7 +100,13 @@ impl Sample {
             Sample::StarQuad => "Star: quads",
             Sample::PlateQuadratic => "Quadratic plate, curved hole",
             Sample::Rand2dLarge => "rand2D, 100k nodes",
+            Sample::Rand2dMillion => "rand2D, 1M nodes (large: slow, ~700 MB of memory)",
         }
+    }
+
+    /// Whether a permalink can name the sample (see [`Sample::Rand2dMillion`]).
+    pub fn linkable(self) -> bool {
+        Sample::ALL.contains(&self)
     }
 
     /// Makes the mesh.
@@ -102,6 +127,7 @@ impl Sample {
             Sample::StarQuad => star(StarKind::Quad, StarKind::Quad.default_k()),
             Sample::PlateQuadratic => plate(PlateKind::Tri, 2, PLATE_RESOLUTION),
             Sample::Rand2dLarge => rand2d(LARGE_INTERIOR, 200, SAMPLE_SEED),
+            Sample::Rand2dMillion => rand2d(MILLION_INTERIOR, MILLION_PER_SIDE, SAMPLE_SEED),
         }
     }
 }
@@ -132,13 +158,23 @@ mod tests {
 
     #[test]
     fn titles_are_distinct() {
-        let titles: std::collections::HashSet<_> = Sample::ALL.iter().map(|s| s.title()).collect();
-        assert_eq!(titles.len(), Sample::ALL.len());
+        let titles: std::collections::HashSet<_> = Sample::GALLERY.iter().map(|s| s.title()).collect();
+        assert_eq!(titles.len(), Sample::GALLERY.len());
+    }
+
+    #[test]
+    fn the_gallery_is_every_linkable_sample_then_the_million() {
+        assert_eq!(&Sample::GALLERY[..Sample::ALL.len()], &Sample::ALL);
+        assert_eq!(Sample::GALLERY[Sample::ALL.len()..], [Sample::Rand2dMillion]);
+        assert!(Sample::ALL.iter().all(|s| s.linkable()) && !Sample::Rand2dMillion.linkable());
+        assert!(Sample::Rand2dMillion.title().contains("1M") && Sample::Rand2dMillion.title().contains("slow"));
+        assert_eq!(serde_json::to_string(&Sample::Rand2dMillion).unwrap(), "\"rand2d-million\"");
+        assert_eq!(MILLION_INTERIOR + 4 * MILLION_PER_SIDE, super::super::MAX_NODES);
     }
 
     #[test]
     fn names_round_trip_through_serde() {
-        for s in Sample::ALL {
+        for s in Sample::GALLERY {
             let j = serde_json::to_string(&s).unwrap();
             assert_eq!(serde_json::from_str::<Sample>(&j).unwrap(), s);
         }

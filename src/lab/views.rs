@@ -7,7 +7,7 @@
 use glam::DVec2;
 use tiny_skia::Pixmap;
 
-use super::{Playground, Side};
+use super::{raster, Playground, Side};
 use crate::error::{Error, Result};
 use crate::objective::Star;
 use crate::optimize::{DirectionKind, SolveResult};
@@ -91,14 +91,37 @@ impl Playground {
     /// they compare at one scale and a dragged node does not rescale the picture.
     fn mesh_options(&self, c: Canvas, highlight: Option<usize>) -> MeshView {
         let mut o = MeshView::default().with_dpr(c.dpr).with_highlight(highlight);
-        o.bounds = Some(self.original().bounds());
+        o.bounds = Some(self.bounds());
         o
     }
 
-    /// Draws a panel's mesh coloured by quality, `highlight` with its star.
+    /// Draws a panel's mesh coloured by quality, `highlight` with its star. A mesh too
+    /// fine for its edges to show (judged on the mesh as loaded) is drawn by
+    /// [`raster::render_fine`] (the same picture, much faster), and its picture without
+    /// the highlight is kept: drawn again for the same positions and canvas, only the
+    /// highlight is added.
     pub fn render_panel(&self, side: Side, c: Canvas, highlight: Option<usize>) -> Result<Pixmap> {
         let mut pm = pixmap(c.w, c.h)?;
-        render_mesh(&mut pm, &self.panel(side).mesh, &self.mesh_options(c, highlight));
+        let panel = self.panel(side);
+        let opts = self.mesh_options(c, highlight);
+        let view = raster::view_of(&pm, &panel.mesh, &opts);
+        if !raster::applies(self.mean_edge, &view, &opts) {
+            render_mesh(&mut pm, &panel.mesh, &opts);
+            return Ok(pm);
+        }
+        {
+            let mut cache = panel.picture.borrow_mut();
+            match cache.as_ref() {
+                Some((v, cc, base)) if *v == panel.version && *cc == c => pm = base.clone(),
+                _ => {
+                    raster::render_fine(&mut pm, &panel.mesh, &panel.buckets, &view, &MeshView { highlight: None, ..opts });
+                    *cache = Some((panel.version, c, pm.clone()));
+                }
+            }
+        }
+        if let Some(n) = highlight {
+            raster::draw_highlight(&mut pm, &panel.mesh, &view, n, c.dpr);
+        }
         Ok(pm)
     }
 
@@ -199,10 +222,10 @@ impl Playground {
     /// Per-pass curves of both sides (min/max angle, min quality, inverted elements;
     /// pass 0 is the mesh as loaded).
     pub fn render_pass_chart(&self, c: Canvas) -> Result<Pixmap> {
-        let start = crate::quality::mesh_stats(self.original());
+        let start = self.original_stats();
         let hist = |side: Side| {
             let r = &self.panel(side).records;
-            let col = |f0: f64, f: &dyn Fn(&crate::smooth::PassRecord) -> f64| -> Vec<f64> {
+            let col = |f0: f64, f: &dyn Fn(&super::PassSummary) -> f64| -> Vec<f64> {
                 std::iter::once(f0).chain(r.iter().map(f)).collect()
             };
             [
@@ -240,8 +263,8 @@ impl Playground {
 
     /// The angle histogram of a side's mesh over that of the mesh as loaded.
     pub fn render_histogram(&self, side: Side, c: Canvas) -> Result<Pixmap> {
-        let start = crate::quality::mesh_stats(self.original()).angle_histogram_6deg;
-        let now = self.stats(side).mesh.angle_histogram_6deg;
+        let start = &self.original_stats().angle_histogram_6deg;
+        let now = &self.full_stats(side).angle_histogram_6deg;
         let label = match side {
             Side::Old => "old (max-min)",
             Side::New => "new (Chen et al.)",
@@ -249,7 +272,7 @@ impl Playground {
         let mut pm = pixmap(c.w, c.h)?;
         render_angle_histogram(
             &mut pm,
-            &[HistogramSeries { label: "as loaded", counts: &start }, HistogramSeries { label, counts: &now }],
+            &[HistogramSeries { label: "as loaded", counts: start }, HistogramSeries { label, counts: now }],
             &AngleHistogram { title: "Corner angles (6° bins)", dpr: c.dpr, ..AngleHistogram::default() },
         )?;
         Ok(pm)
@@ -279,11 +302,11 @@ mod tests {
             assert!(colours(&pm) > 8);
         }
         let view = pg.panel_view(C);
-        let free = pg.original().node_count() - 1;
-        let at = view.to_css(pg.original().nodes[free]);
+        let free = pg.topology().node_count() - 1;
+        let at = view.to_css(pg.original_nodes()[free]);
         assert_eq!(pg.pick_free_node(Side::New, &view, at + DVec2::new(3.0, -2.0)), Some(free));
         assert_eq!(
-            pg.pick_free_node(Side::New, &view, view.to_css(pg.original().nodes[0])),
+            pg.pick_free_node(Side::New, &view, view.to_css(pg.original_nodes()[0])),
             None,
             "fixed nodes are not picked"
         );
@@ -293,7 +316,7 @@ mod tests {
     #[test]
     fn node_view_draws_both_level_sets_and_the_history() {
         let pg = Playground::new(Sample::StarChen.generate().unwrap()).unwrap();
-        let free = pg.original().node_count() - 1;
+        let free = pg.topology().node_count() - 1;
         let ([lo, ln, ch], s) = pg.render_node_view(free, C, Canvas { w: 300, h: 240, dpr: 1.0 }).unwrap();
         for pm in [&lo, &ln, &ch] {
             assert!(opaque(pm) && colours(pm) > 20);
@@ -322,5 +345,32 @@ mod tests {
             assert!(pg.render_panel(Side::Old, Canvas { w, h, dpr: 1.0 }, None).is_err());
         }
         assert!(pg.render_panel(Side::Old, Canvas { w: 50, h: 50, dpr: f32::NAN }, None).is_ok());
+    }
+
+    #[test]
+    fn a_picture_drawn_during_a_pass_is_not_reused_after_it() {
+        let mesh = crate::generate::rand2d(20000, 140, 4).unwrap();
+        let mut pg = Playground::new(mesh).unwrap();
+        let c = Canvas { w: 200, h: 200, dpr: 1.0 };
+        let t = std::cell::Cell::new(0.0);
+        let clock = || {
+            t.set(t.get() + 1.0);
+            t.get()
+        };
+        pg.begin_pass();
+        let mut p = pg.continue_pass(&clock, 2.0).unwrap();
+        while p.stage != "measure" || p.side != Side::Old {
+            p = pg.continue_pass(&clock, 2.0).unwrap();
+        }
+        let during = pg.render_panel(Side::Old, c, None).unwrap();
+        while !pg.continue_pass(&clock, 50.0).unwrap().done {}
+        let after = pg.render_panel(Side::Old, c, None).unwrap();
+        let panel = pg.panel(Side::Old);
+        let opts = pg.mesh_options(c, None);
+        let mut fresh = pixmap(c.w, c.h).unwrap();
+        let view = raster::view_of(&fresh, &panel.mesh, &opts);
+        raster::render_fine(&mut fresh, &panel.mesh, &panel.buckets, &view, &opts);
+        assert_eq!(after.data(), fresh.data());
+        assert_ne!(during.data(), after.data(), "the colours changed with the statistics");
     }
 }

@@ -333,6 +333,55 @@ try {
     check(Number(s.nodes) >= 100000, `nodes ${s.nodes}`);
     check(gap < 250, `the main thread stalled for ${gap.toFixed(0)} ms`);
     console.log(`     ${s.nodes} nodes, ${s.elements} elements loaded and drawn in ${ms} ms; longest frame gap ${gap.toFixed(0)} ms`);
+  });
+
+  await test('the 1M sample is listed; a pass on 100k nodes shows progress as it goes, and Stop undoes it within a second', async () => {
+    const title = await page.$eval('#sample option[value="sample:rand2d-million"]', (o) => o.textContent);
+    check(/1M/.test(title) && /slow/i.test(title), `the 1M sample's title: ${title}`);
+    check((await stats(page, 'new')).nodes === '100000', 'the 100k sample is loaded');
+    await page.selectOption('#strategy', 'smart');
+    await page.selectOption('#order', 'input');
+    await idle(page);
+    await page.evaluate(() => {
+      const p = document.getElementById('progress');
+      window.seen = [];
+      window.watcher = new MutationObserver(() => window.seen.push(Number(p.value)));
+      window.watcher.observe(p, { attributes: true, attributeFilter: ['value'] });
+    });
+    await page.click('#step');
+    await page.waitForFunction(() => /One pass done/.test(document.getElementById('status').textContent), null, { timeout: TIMEOUT });
+    await idle(page);
+    const seen = await page.evaluate(() => { window.watcher.disconnect(); return window.seen; });
+    const during = seen.filter((v) => v > 0 && v < 1);
+    const step = await page.evaluate(() => window.smoothlab.metrics.lastStep);
+    // every slice but the last moves the bar (a pass that fits in two slices has little to show)
+    check(step.slices < 3 || during.length >= step.slices - 1, `${step.slices} slices, progress during the pass: ${JSON.stringify(seen)}`);
+    check(during.every((v, i) => i === 0 || v >= during[i - 1]), `progress went back: ${JSON.stringify(during)}`);
+    console.log(`     smart pass + redraw: ${step.wall_ms.toFixed(0)} ms in ${step.slices} slices, progress ${during.map((v) => v.toFixed(2)).join(' ')}`);
+    // a long pass (Chen's rules, priority order, about 10 s here), stopped early
+    await page.selectOption('#strategy', 'rules');
+    await page.selectOption('#order', 'priority');
+    await idle(page);
+    const before = { s: await stats(page, 'new'), c: await canvasInfo(page, 'mesh-new') };
+    await page.evaluate(() => { window.seen = []; window.watcher.observe(document.getElementById('progress'), { attributes: true, attributeFilter: ['value'] }); });
+    await page.click('#run');
+    await page.waitForFunction(() => window.seen.filter((v) => v % 1 > 0).length >= 3, null, { timeout: TIMEOUT, polling: 10 });
+    const t0 = Date.now();
+    await page.click('#run'); // Stop
+    await page.waitForFunction(() => /Stopped after \d+ of/.test(document.getElementById('status').textContent), null, { timeout: TIMEOUT, polling: 10 });
+    const stopMs = Date.now() - t0;
+    await idle(page);
+    check(stopMs < 1500, `Stop took ${stopMs} ms`);
+    const done = Number(/Stopped after (\d+) of/.exec(await page.textContent('#status'))[1]);
+    const after = { s: await stats(page, 'new'), c: await canvasInfo(page, 'mesh-new') };
+    check(Number(after.s.passes) === Number(before.s.passes) + done, `passes ${before.s.passes} + ${done} whole ones, but ${after.s.passes}`);
+    if (done === 0) {
+      // (a faster smoother may finish a pass before the click: then whole passes are kept)
+      check(JSON.stringify(after.s) === JSON.stringify(before.s), `the stopped pass left a trace: ${JSON.stringify(after.s)}`);
+      check(after.c.hash === before.c.hash, 'the stopped pass changed the picture');
+    }
+    await page.evaluate(() => window.watcher.disconnect());
+    console.log(`     Stop during a rules pass: idle again after ${stopMs} ms, ${done} whole passes kept, the pass in progress undone`);
     await chooseSample(page, 'sample:plate-tri');
   });
 
