@@ -10,13 +10,13 @@
 //! Inverted elements (red, hatched, outlined), the highlighted star and the colour bar
 //! look as `render_mesh` draws them; the tests compare the two pictures.
 
-use tiny_skia::{Color, FillRule, Mask, Paint, PathBuilder, Pixmap, Rect, Stroke, Transform};
+use tiny_skia::{Color, FillRule, Paint, PathBuilder, Pixmap, Rect, Stroke, Transform};
 
 use super::stats::{BUCKETS, INVERTED_BUCKET};
 use crate::mesh::Mesh;
 use crate::render::{
-    bezier_control, draw_text, format_tick, mesh_view, nice_ticks, Align, Colormap, Frame, MeshView, Metric, Show,
-    TextStyle, Valign, View, COLOUR_BAR_WIDTH, INVERTED,
+    draw_colour_bar, draw_inverted, mesh_view, push_element, Frame, MeshView, Metric, Show,
+    View, COLOUR_BAR_WIDTH, INVERTED,
 };
 
 /// Sub-pixel steps per pixel of the fixed-point rasterizer.
@@ -149,7 +149,7 @@ pub fn render_fine(pixmap: &mut Pixmap, mesh: &Mesh, buckets: &[u8], view: &View
             }
         }
     }
-    draw_inverted(pixmap, far_inverted, s);
+    draw_inverted(pixmap, far_inverted, s, None);
 
     // the outline of the inverted elements, as render_mesh strokes it
     if !inverted.is_empty() {
@@ -280,117 +280,6 @@ fn stroke(pixmap: &mut Pixmap, pb: PathBuilder, c: Color, width: f32) {
             ..Default::default()
         };
         pixmap.stroke_path(&path, &solid(c), &st, Transform::identity(), None);
-    }
-}
-
-/// The outline of element `e` (curved edges as quadratic Béziers) in device pixels, as
-/// `render_mesh` builds it. False (nothing added) when a node is not finite.
-fn push_element(pb: &mut PathBuilder, mesh: &Mesh, view: &View, e: usize) -> bool {
-    let kind = mesh.kind(e);
-    let ids = mesh.element(e);
-    let k = kind.corners();
-    let mut pts = [(0.0f32, 0.0f32); 9];
-    for (i, &n) in ids.iter().enumerate() {
-        let (x, y) = view.device_xy(mesh.nodes[n as usize]);
-        if !(x.is_finite() && y.is_finite()) {
-            return false;
-        }
-        pts[i] = (x, y);
-    }
-    pb.move_to(pts[0].0, pts[0].1);
-    for i in 0..k {
-        let b = pts[(i + 1) % k];
-        match kind.mid(i) {
-            Some(m) => {
-                let (c0, c1) = bezier_control(pts[i], pts[m], b);
-                pb.quad_to(c0, c1, b.0, b.1);
-            }
-            None => pb.line_to(b.0, b.1),
-        }
-    }
-    pb.close();
-    true
-}
-
-/// Inverted elements as `render_mesh` draws them: red fill, black diagonal hatch clipped
-/// to them, thick dark red outline.
-fn draw_inverted(pixmap: &mut Pixmap, pb: PathBuilder, s: f32) {
-    let Some(path) = pb.finish() else { return };
-    let red = Color::from_rgba8(INVERTED[0], INVERTED[1], INVERTED[2], 255);
-    pixmap.fill_path(&path, &solid(red), FillRule::Winding, Transform::identity(), None);
-    if let Some(mut mask) = Mask::new(pixmap.width(), pixmap.height()) {
-        mask.fill_path(&path, FillRule::Winding, true, Transform::identity());
-        let b = path.bounds();
-        let mut hatch = PathBuilder::new();
-        let step = 6.0 * s;
-        let span = b.height();
-        let mut t = (b.left() - span) - (b.left() - span).rem_euclid(step);
-        while t <= b.right() {
-            hatch.move_to(t, b.bottom());
-            hatch.line_to(t + span, b.top());
-            t += step;
-        }
-        if let Some(h) = hatch.finish() {
-            let st = Stroke { width: 1.3 * s, ..Default::default() };
-            pixmap.stroke_path(&h, &solid(rgba(0, 0, 0, 230)), &st, Transform::identity(), Some(&mask));
-        }
-    }
-    let st = Stroke { width: 2.5 * s, line_join: tiny_skia::LineJoin::Round, ..Default::default() };
-    pixmap.stroke_path(&path, &solid(rgba(120, 0, 0, 255)), &st, Transform::identity(), None);
-}
-
-/// The colour bar as `render_mesh` draws it: title, gradient, ticks, and the inverted
-/// swatch with the count of inverted elements.
-fn draw_colour_bar(pixmap: &mut Pixmap, area: Frame, map: Colormap, (d0, d1): (f64, f64), title: &str, n_inverted: usize, s: f32) {
-    let bar_w = 14.0;
-    let x = area.x + 8.0;
-    let top = area.y + 34.0;
-    let bottom = (area.bottom() - 56.0).min(top + 320.0);
-    if bottom - top < 30.0 {
-        return;
-    }
-    let label = TextStyle::new(11.0 * s).with_color(rgba(30, 30, 30, 255));
-    draw_text(pixmap, title, x * s, (area.y + 20.0) * s, label.with_align(Align::Left, Valign::Baseline));
-    let (x0, x1) = (x * s, (x + bar_w) * s);
-    let (y0, y1) = (top * s, bottom * s);
-    let rows = (y1 - y0).ceil().max(1.0) as usize;
-    for r in 0..rows {
-        let t = 1.0 - (r as f64 + 0.5) / rows as f64;
-        fill_rect(pixmap, x0, y0 + r as f32, x1 - x0, 1.0, map.color(t));
-    }
-    let mut frame = PathBuilder::new();
-    if let Some(r) = Rect::from_ltrb(x0, y0, x1, y1) {
-        frame.push_rect(r);
-    }
-    let ticks = nice_ticks(d0, d1, 5);
-    for &v in &ticks.values {
-        let y = y1 - (y1 - y0) * ((v - d0) / (d1 - d0)) as f32;
-        frame.move_to(x1, y);
-        frame.line_to(x1 + 4.0 * s, y);
-        draw_text(pixmap, &format_tick(v, ticks.step), x1 + 7.0 * s, y, label.with_align(Align::Left, Valign::Middle));
-    }
-    stroke(pixmap, frame, rgba(30, 30, 30, 255), s);
-    let sy = y1 + 14.0 * s;
-    if let Some(r) = Rect::from_xywh(x0, sy, x1 - x0, 12.0 * s) {
-        pixmap.fill_rect(r, &solid(Color::from_rgba8(INVERTED[0], INVERTED[1], INVERTED[2], 255)), Transform::identity(), None);
-        let mut hatch = PathBuilder::new();
-        let mut t = r.left() - r.height();
-        while t < r.right() {
-            hatch.move_to(t, r.bottom());
-            hatch.line_to(t + r.height(), r.top());
-            t += 4.0 * s;
-        }
-        let mut mask = Mask::new(pixmap.width(), pixmap.height());
-        if let Some(m) = mask.as_mut() {
-            m.fill_path(&PathBuilder::from_rect(r), FillRule::Winding, false, Transform::identity());
-        }
-        if let (Some(hp), Some(mask)) = (hatch.finish(), mask) {
-            let st = Stroke { width: 1.2 * s, ..Default::default() };
-            pixmap.stroke_path(&hp, &solid(rgba(0, 0, 0, 230)), &st, Transform::identity(), Some(&mask));
-        }
-        let pb = PathBuilder::from_rect(r);
-        pixmap.stroke_path(&pb, &solid(rgba(120, 0, 0, 255)), &Stroke { width: 1.5 * s, ..Default::default() }, Transform::identity(), None);
-        draw_text(pixmap, &format!("inverted ({n_inverted})"), x1 + 5.0 * s, sy + 6.0 * s, label.with_align(Align::Left, Valign::Middle));
     }
 }
 

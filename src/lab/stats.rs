@@ -288,26 +288,7 @@ fn cot_bar(key: f64, below: bool) -> f64 {
 /// `mesh_stats` computes it twice), and the scaled Jacobians no statistic shows are not
 /// computed. For the page's angle histograms.
 pub fn full_stats(mesh: &Mesh) -> MeshStats {
-    let nodes = mesh.node_count();
-    let free_nodes = mesh.free_count();
-    let fixed_nodes = mesh.fixed.iter().filter(|&&f| f).count();
-    let mut s = MeshStats {
-        nodes,
-        elements: mesh.element_count(),
-        triangles: 0,
-        quads: 0,
-        quadratic: 0,
-        free_nodes,
-        fixed_nodes,
-        following_nodes: nodes - free_nodes - fixed_nodes,
-        inverted: 0,
-        min_angle_deg: f64::INFINITY,
-        max_angle_deg: f64::NEG_INFINITY,
-        min_quality: f64::INFINITY,
-        mean_quality: 0.0,
-        max_condition: 0.0,
-        angle_histogram_6deg: vec![0; 30],
-    };
+    let mut s = MeshStats::empty(mesh);
     let mut sum = 0.0;
     for e in 0..mesh.element_count() {
         let kind = mesh.kind(e);

@@ -318,26 +318,36 @@ pub fn angle_bin(angle: f64) -> usize {
     ((deg / 6.0 + 1e-9) as usize).min(29)
 }
 
+impl MeshStats {
+    /// The node and element counts of `mesh`, with every statistic the elements add up
+    /// at its starting value (no elements seen yet).
+    pub fn empty(mesh: &Mesh) -> MeshStats {
+        let nodes = mesh.node_count();
+        let free_nodes = mesh.free_count();
+        let fixed_nodes = mesh.fixed.iter().filter(|&&f| f).count();
+        MeshStats {
+            nodes,
+            elements: mesh.element_count(),
+            triangles: 0,
+            quads: 0,
+            quadratic: 0,
+            free_nodes,
+            fixed_nodes,
+            following_nodes: nodes - free_nodes - fixed_nodes,
+            inverted: 0,
+            min_angle_deg: f64::INFINITY,
+            max_angle_deg: f64::NEG_INFINITY,
+            min_quality: f64::INFINITY,
+            mean_quality: 0.0,
+            max_condition: 0.0,
+            angle_histogram_6deg: vec![0; 30],
+        }
+    }
+}
+
 /// Computes [`MeshStats`] for a mesh.
 pub fn mesh_stats(mesh: &Mesh) -> MeshStats {
-    let mut s = MeshStats {
-        nodes: mesh.node_count(),
-        elements: mesh.element_count(),
-        triangles: 0,
-        quads: 0,
-        quadratic: 0,
-        free_nodes: mesh.free_count(),
-        fixed_nodes: mesh.fixed.iter().filter(|&&f| f).count(),
-        following_nodes: 0,
-        inverted: 0,
-        min_angle_deg: f64::INFINITY,
-        max_angle_deg: f64::NEG_INFINITY,
-        min_quality: f64::INFINITY,
-        mean_quality: 0.0,
-        max_condition: 0.0,
-        angle_histogram_6deg: vec![0; 30],
-    };
-    s.following_nodes = s.nodes - s.free_nodes - s.fixed_nodes;
+    let mut s = MeshStats::empty(mesh);
     let mut sum = 0.0;
     for e in 0..mesh.element_count() {
         let kind = mesh.kind(e);

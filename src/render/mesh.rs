@@ -188,7 +188,7 @@ pub fn pick_node_within(mesh: &Mesh, view: &View, px: f64, py: f64, radius: f64)
 
 /// Adds the outline of element `e` (curved edges as quadratic Béziers) to `pb`, in
 /// device pixels. Returns false (adding nothing) when a node is not finite.
-fn push_element(pb: &mut PathBuilder, mesh: &Mesh, view: &View, e: usize) -> bool {
+pub(crate) fn push_element(pb: &mut PathBuilder, mesh: &Mesh, view: &View, e: usize) -> bool {
     let kind = mesh.kind(e);
     let ids = mesh.element(e);
     let k = kind.corners();
@@ -387,7 +387,7 @@ fn stroke_masked(pixmap: &mut Pixmap, pb: PathBuilder, c: Color, width: f32, mas
 }
 
 /// Inverted elements: red fill, black diagonal hatch clipped to them, thick outline.
-fn draw_inverted(pixmap: &mut Pixmap, pb: PathBuilder, s: f32, clip: Option<&Mask>) {
+pub(crate) fn draw_inverted(pixmap: &mut Pixmap, pb: PathBuilder, s: f32, clip: Option<&Mask>) {
     let Some(path) = pb.finish() else { return };
     pixmap.fill_path(&path, &solid(inverted_color()), FillRule::Winding, Transform::identity(), clip);
     if let Some(mut mask) = Mask::new(pixmap.width(), pixmap.height()) {
@@ -445,7 +445,15 @@ fn draw_nodes(pixmap: &mut Pixmap, mesh: &Mesh, view: &View, s: f32, clip: Optio
 
 /// The colour bar in `area` (CSS pixels): title, gradient, ticks, and the inverted
 /// swatch with the count of inverted elements.
-fn draw_colour_bar(pixmap: &mut Pixmap, area: Frame, map: Colormap, (d0, d1): (f64, f64), title: &str, n_inverted: usize, s: f32) {
+pub(crate) fn draw_colour_bar(
+    pixmap: &mut Pixmap,
+    area: Frame,
+    map: Colormap,
+    (d0, d1): (f64, f64),
+    title: &str,
+    n_inverted: usize,
+    s: f32,
+) {
     let bar_w = 14.0;
     let x = area.x + 8.0;
     let top = area.y + 34.0;

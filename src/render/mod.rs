@@ -47,6 +47,8 @@ pub use mesh::{
     INVERTED, PICK_RADIUS,
 };
 pub use paint::Marker;
+/// The pieces of `render_mesh` the page's fast raster view (`lab::raster`) draws with.
+pub(crate) use mesh::{draw_colour_bar, draw_inverted, push_element};
 pub use text::{draw_text, draw_text_rotated, text_width, Align, TextStyle, Valign};
 pub use view::{Frame, View, ZoomPan};
 
