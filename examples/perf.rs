@@ -695,7 +695,7 @@ fn page_section(path: Option<&str>) -> String {
         let _ = writeln!(
             w,
             "- Stop right after a click with the default settings (rules, priority order), while the smoother orders the nodes worst first \
-             (one call of the core's `Smoother::plan`, which the page cannot divide): {ms_:.0} ms."
+             (`Smoother::begin_plan`/`plan_some`, in slices like the sweep): {ms_:.0} ms."
         );
     }
     let d = &m["default_step"];

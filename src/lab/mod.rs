@@ -266,7 +266,10 @@ pub struct PassProgress {
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 enum Stage {
+    /// Save the panel and begin planning its visit order.
     Plan,
+    /// Plan in slices (the priority order measures every star).
+    Planning,
     Smooth,
     Measure,
 }
@@ -292,8 +295,23 @@ struct PassRun {
     stats_ms: f64,
     /// Node visits per slice, adapted to the time they take.
     slice: usize,
+    /// Stars measured per planning slice, adapted likewise.
+    plan_slice: usize,
     saved: [Option<Saved>; 2],
     done: [Option<(PassSummary, QuickStats)>; 2],
+}
+
+/// The next slice size after a slice of `size` took `dt` ms: slices of about a tenth of
+/// the budget (at most 20 ms), so the budget is kept to within a slice.
+fn adapt_slice(size: usize, dt: f64, budget_ms: f64) -> usize {
+    let target = (budget_ms / 10.0).clamp(1.0, 20.0);
+    if dt < target / 2.0 {
+        (size * 2).min(1 << 20)
+    } else if dt > target * 2.0 {
+        (size / 2).max(1)
+    } else {
+        size
+    }
 }
 
 fn add_outcome(c: &mut SweepCounts, o: NodeOutcome) {
@@ -408,6 +426,7 @@ impl Playground {
             acc: QuickAcc::default(),
             stats_ms: 0.0,
             slice: 64,
+            plan_slice: 1024,
             saved: [None, None],
             done: [None, None],
         });
@@ -439,13 +458,24 @@ impl Playground {
                         buckets: p.buckets.clone(),
                         full: p.full.clone(),
                     });
-                    p.smoother.plan(&p.mesh);
-                    run.schedule.clear();
-                    run.schedule.extend_from_slice(p.smoother.schedule());
-                    run.pos = 0;
-                    run.counts = SweepCounts::default();
+                    p.smoother.begin_plan(&p.mesh);
                     run.sweep_ms = clock() - t0;
-                    run.stage = Stage::Smooth;
+                    run.stage = Stage::Planning;
+                }
+                Stage::Planning => {
+                    let t0 = clock();
+                    let p = &mut self.panels[side];
+                    let done = p.smoother.plan_some(&p.mesh, run.plan_slice);
+                    let dt = clock() - t0;
+                    run.sweep_ms += dt;
+                    run.plan_slice = adapt_slice(run.plan_slice, dt, budget_ms);
+                    if done {
+                        run.schedule.clear();
+                        run.schedule.extend_from_slice(p.smoother.schedule());
+                        run.pos = 0;
+                        run.counts = SweepCounts::default();
+                        run.stage = Stage::Smooth;
+                    }
                 }
                 Stage::Smooth if run.pos < run.schedule.len() => {
                     if run.pos == 0 {
@@ -467,14 +497,7 @@ impl Playground {
                     run.pos = end;
                     let dt = clock() - t0;
                     run.sweep_ms += dt;
-                    // slices of about a tenth of the budget (at most 20 ms): the budget
-                    // is kept to within a slice
-                    let target = (budget_ms / 10.0).clamp(1.0, 20.0);
-                    if dt < target / 2.0 {
-                        run.slice = (run.slice * 2).min(1 << 20);
-                    } else if dt > target * 2.0 {
-                        run.slice = (run.slice / 2).max(1);
-                    }
+                    run.slice = adapt_slice(run.slice, dt, budget_ms);
                 }
                 Stage::Smooth => {
                     run.stage = Stage::Measure;
@@ -510,8 +533,8 @@ impl Playground {
                         }
                         run.side = 1;
                         run.stage = Stage::Plan;
-                        // the slice ends here: planning the new side may take long (the
-                        // priority order measures every star), and the page can say so
+                        // the slice ends here, so the page can say that the new side's
+                        // turn has come before its planning begins
                         break;
                     }
                 }
@@ -711,7 +734,7 @@ impl Playground {
 fn progress_of(run: &PassRun, panels: &[Panel; 2]) -> PassProgress {
     let side = run.side;
     let sweep = match run.stage {
-        Stage::Plan => 0.0,
+        Stage::Plan | Stage::Planning => 0.0,
         _ if run.schedule.is_empty() => 1.0,
         _ => run.pos as f64 / run.schedule.len() as f64,
     };
@@ -723,7 +746,7 @@ fn progress_of(run: &PassRun, panels: &[Panel; 2]) -> PassProgress {
         fraction: ((side as f64 + within) / 2.0).clamp(0.0, 1.0),
         side: if side == 0 { Side::Old } else { Side::New },
         stage: match run.stage {
-            Stage::Plan => "plan",
+            Stage::Plan | Stage::Planning => "plan",
             Stage::Smooth => "smooth",
             Stage::Measure => "measure",
         },

@@ -398,6 +398,8 @@ pub struct Smoother {
     ranked: Vec<u32>,
     /// Visit sequence of the current (or last) pass.
     schedule: Vec<u32>,
+    /// Next node to measure while planning in steps ([`Smoother::plan_some`]).
+    plan_next: usize,
     passes: u32,
     /// Per-mesh facts, refreshed each pass.
     quadratic: bool,
@@ -420,6 +422,7 @@ impl Smoother {
             quality: Vec::new(),
             ranked: Vec::new(),
             schedule: Vec::new(),
+            plan_next: 0,
             passes: 0,
             quadratic: false,
             curved: false,
@@ -462,48 +465,86 @@ impl Smoother {
     /// loop"). So the worst nodes are visited up to `B` times a pass, the best once; within
     /// one inner loop nodes go worst first (ties by node number).
     pub fn plan(&mut self, mesh: &Mesh) -> &[u32] {
+        self.begin_plan(mesh);
+        while !self.plan_some(mesh, usize::MAX) {}
+        &self.schedule
+    }
+
+    /// Starts planning the next pass in steps: [`plan_some`](Self::plan_some) until it
+    /// returns true gives the same [`schedule`](Self::schedule) as [`plan`](Self::plan),
+    /// for a caller that must stay responsive (the page: measuring every star of a
+    /// 1M-node mesh for the priority order takes seconds).
+    pub fn begin_plan(&mut self, mesh: &Mesh) {
         self.schedule.clear();
         self.ranked.clear();
+        self.plan_next = 0;
+        if self.options.order == Order::Priority {
+            self.quality.clear();
+            self.quality.resize(mesh.node_count(), f64::NAN);
+        }
+    }
+
+    /// Plans on from where [`begin_plan`](Self::begin_plan) or the last call left off,
+    /// measuring at most `max_stars` more stars (at least one) for the priority order.
+    /// Returns true when the schedule is complete.
+    pub fn plan_some(&mut self, mesh: &Mesh, max_stars: usize) -> bool {
         let n = mesh.node_count();
+        if self.plan_next >= n {
+            return true;
+        }
         match self.options.order {
-            Order::Input => self.schedule.extend((0..n as u32).filter(|&i| mesh.is_free(i as usize))),
+            Order::Input => {
+                self.schedule.extend((0..n as u32).filter(|&i| mesh.is_free(i as usize)));
+                self.plan_next = n;
+                true
+            }
             Order::Priority => {
-                self.quality.clear();
-                self.quality.resize(n, f64::NAN);
-                for i in 0..n {
+                let mut measured = 0usize;
+                while self.plan_next < n && measured < max_stars.max(1) {
+                    let i = self.plan_next;
                     if mesh.is_free(i) {
                         self.star.gather(mesh, i);
                         self.quality[i] = star_quality(&self.star, None).min_shape;
                         self.ranked.push(i as u32);
+                        measured += 1;
                     }
+                    self.plan_next += 1;
                 }
-                let q = &self.quality;
-                self.ranked.sort_unstable_by(|&a, &b| q[a as usize].total_cmp(&q[b as usize]).then(a.cmp(&b)));
-                let bins = self.options.priority_bins;
-                let (Some(&first), Some(&last)) = (self.ranked.first(), self.ranked.last()) else {
-                    return &self.schedule;
-                };
-                let (lo, hi) = (q[first as usize], q[last as usize]);
-                let range = hi - lo;
-                let priority = |v: f64| -> u32 {
-                    if !(range > 0.0 && range.is_finite()) {
-                        return 0;
-                    }
-                    let bin = ((v - lo) / range * bins as f64).floor();
-                    let bin = if bin.is_nan() { 0 } else { (bin.max(0.0) as u32).min(bins - 1) };
-                    bins - 1 - bin
-                };
-                for level in (0..bins).rev() {
-                    for &i in &self.ranked {
-                        if priority(q[i as usize]) < level {
-                            break; // ranked worst first: the rest have lower priority
-                        }
-                        self.schedule.push(i);
-                    }
+                if self.plan_next < n {
+                    return false;
                 }
+                self.schedule_by_priority();
+                true
             }
         }
-        &self.schedule
+    }
+
+    /// The priority schedule from the measured star qualities (see [`plan`](Self::plan)).
+    fn schedule_by_priority(&mut self) {
+        let q = &self.quality;
+        self.ranked.sort_unstable_by(|&a, &b| q[a as usize].total_cmp(&q[b as usize]).then(a.cmp(&b)));
+        let bins = self.options.priority_bins;
+        let (Some(&first), Some(&last)) = (self.ranked.first(), self.ranked.last()) else {
+            return;
+        };
+        let (lo, hi) = (q[first as usize], q[last as usize]);
+        let range = hi - lo;
+        let priority = |v: f64| -> u32 {
+            if !(range > 0.0 && range.is_finite()) {
+                return 0;
+            }
+            let bin = ((v - lo) / range * bins as f64).floor();
+            let bin = if bin.is_nan() { 0 } else { (bin.max(0.0) as u32).min(bins - 1) };
+            bins - 1 - bin
+        };
+        for level in (0..bins).rev() {
+            for &i in &self.ranked {
+                if priority(q[i as usize]) < level {
+                    break; // ranked worst first: the rest have lower priority
+                }
+                self.schedule.push(i);
+            }
+        }
     }
 
     /// One pass over the mesh: plan the visit order, smooth each visit, then measure.

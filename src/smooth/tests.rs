@@ -293,6 +293,34 @@ proptest! {
     }
 }
 
+/// Planning in steps of any size gives the plan of one call, in both orders, and a
+/// smoother reused after a plan in steps plans the next pass afresh.
+#[test]
+fn planning_in_steps_gives_the_same_schedule() {
+    let mesh = grid(7, 6, ElementKind::Tri3, &[(0.3, -0.2), (0.1, 0.25), (-0.35, 0.1)], &[9]);
+    for order in [Order::Priority, Order::Input] {
+        let mut whole = Smoother::new(SmoothOptions::default().with_order(order)).unwrap();
+        let want = whole.plan(&mesh).to_vec();
+        assert!(!want.is_empty());
+        for step in [1, 2, 5, 1000] {
+            let mut s = Smoother::new(SmoothOptions::default().with_order(order)).unwrap();
+            for _ in 0..2 {
+                s.begin_plan(&mesh);
+                let mut calls = 1;
+                while !s.plan_some(&mesh, step) {
+                    calls += 1;
+                    assert!(calls <= mesh.node_count() + 1, "planning must end");
+                }
+                assert!(s.plan_some(&mesh, step), "a finished plan stays finished");
+                assert_eq!(s.schedule(), &want[..], "{order:?}, steps of {step}");
+                if order == Order::Priority && step == 1 {
+                    assert!(calls > 20, "steps of one star: {calls} calls");
+                }
+            }
+        }
+    }
+}
+
 #[test]
 fn input_order_is_node_order() {
     let mesh = grid(3, 3, ElementKind::Tri3, &[(0.1, 0.1)], &[5]);

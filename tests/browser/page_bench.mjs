@@ -9,7 +9,7 @@
 //     the longest gap between animation frames and the lateness of a 50 ms interval on
 //     the main thread all along, and the wasm memory; then, with the page's default
 //     settings (rules, priority order), Stop right after a click (while the smoother
-//     orders the nodes) and one whole Step (about a minute and a half).
+//     orders the nodes, in slices) and one whole Step (about a minute).
 // Prints JSON on stdout. A benchmark, not a test: slow (minutes), not part of `make test`.
 //   node tests/browser/page_bench.mjs [--reps 3] [--million-strategy smart] [--no-million] [--no-million-default]
 // Needs www/pkg from `make site` and playwright-core in tests/browser/node_modules.
