@@ -29,7 +29,7 @@ use crate::objective::{objective, Objective, ObjectiveKind};
 use crate::optimize::SolveResult;
 use crate::quality::MeshStats;
 use crate::smooth::{solve_node, NodeOutcome, Order, SmoothOptions, Smoother, Strategy, SweepCounts};
-use stats::{full_stats, quick_stats_and_buckets, QuickAcc, QuickStats};
+use stats::{quick_stats_and_buckets, QuickAcc, QuickStats};
 use views::Canvas;
 
 /// Node count above which the page refuses a mesh: the playground holds two copies (and
@@ -355,7 +355,7 @@ impl Playground {
         }
         let settings = Settings::default();
         let o = settings.smooth_options()?;
-        let full = full_stats(&mesh);
+        let full = crate::quality::mesh_stats(&mesh);
         let mut buckets = Vec::new();
         quick_stats_and_buckets(&mesh, &mut buckets);
         let original = mesh.nodes.clone();
@@ -601,7 +601,7 @@ impl Playground {
         let mesh = &mut self.panels[0].mesh;
         mesh.nodes.copy_from_slice(&self.original);
         let perturbed = perturb(mesh, amount, seed)?;
-        self.original_stats = full_stats(&perturbed);
+        self.original_stats = crate::quality::mesh_stats(&perturbed);
         quick_stats_and_buckets(&perturbed, &mut self.original_buckets);
         self.mean_edge = perturbed.mean_edge_length();
         self.original = perturbed.nodes;
@@ -654,7 +654,7 @@ impl Playground {
     /// The full statistics of a panel's current mesh (computed once per version).
     pub fn full_stats(&self, side: Side) -> &MeshStats {
         let p = self.panel(side);
-        p.full.get_or_init(|| full_stats(&p.mesh))
+        p.full.get_or_init(|| crate::quality::mesh_stats(&p.mesh))
     }
 
     /// Statistics of a panel's current mesh, with the work done since the last reset.

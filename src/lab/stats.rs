@@ -11,9 +11,7 @@ use glam::DVec2;
 use serde::Serialize;
 
 use crate::mesh::{ElementKind, Mesh};
-use crate::quality::{
-    angle_bin, canann_beta_from_corners, condition_number, corner_edges, lo_alpha_corner, signed_angle, Ideal, MeshStats,
-};
+use crate::quality::{canann_beta_from_corners, corner_edges, lo_alpha_corner, signed_angle};
 
 /// What the page's statistics table and per-pass chart show of a mesh.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]
@@ -283,54 +281,6 @@ fn cot_bar(key: f64, below: bool) -> f64 {
     }
 }
 
-/// [`crate::quality::mesh_stats`], the same values to the last bit, for about half the
-/// work: each corner's `atan2` serves the extreme angles and the histogram alike (where
-/// `mesh_stats` computes it twice), and the scaled Jacobians no statistic shows are not
-/// computed. For the page's angle histograms.
-pub fn full_stats(mesh: &Mesh) -> MeshStats {
-    let mut s = MeshStats::empty(mesh);
-    let mut sum = 0.0;
-    for e in 0..mesh.element_count() {
-        let kind = mesh.kind(e);
-        let p = mesh.element_points_array(e);
-        let k = kind.corners();
-        if kind.is_triangle() {
-            s.triangles += 1;
-        } else {
-            s.quads += 1;
-        }
-        if kind.is_quadratic() {
-            s.quadratic += 1;
-        }
-        let ce = corner_edges(kind, &p[..kind.node_count()]);
-        let ideal = if k == 3 { Ideal::Triangle } else { Ideal::Square };
-        let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
-        let mut condition: f64 = 0.0;
-        let mut inverted = false;
-        let mut min_alpha = f64::INFINITY;
-        for &(e1, e2) in &ce[..k] {
-            let ang = signed_angle(e1, e2);
-            lo = lo.min(ang);
-            hi = hi.max(ang);
-            s.angle_histogram_6deg[angle_bin(ang)] += 1;
-            condition = condition.max(condition_number(e1, e2, ideal));
-            inverted |= e1.perp_dot(e2) <= 0.0;
-            min_alpha = min_alpha.min(lo_alpha_corner(e1, e2));
-        }
-        let shape = if k == 3 { min_alpha } else { canann_beta_from_corners(&ce) };
-        s.inverted += inverted as usize;
-        s.min_angle_deg = s.min_angle_deg.min(lo.to_degrees());
-        s.max_angle_deg = s.max_angle_deg.max(hi.to_degrees());
-        s.min_quality = s.min_quality.min(shape);
-        sum += shape;
-        s.max_condition = s.max_condition.max(condition);
-    }
-    if s.elements > 0 {
-        s.mean_quality = sum / s.elements as f64;
-    }
-    s
-}
-
 /// [`QuickStats`] of a whole mesh.
 pub fn quick_stats(mesh: &Mesh) -> QuickStats {
     let mut acc = QuickAcc::default();
@@ -356,7 +306,6 @@ mod tests {
     fn same_as_mesh_stats(m: &Mesh) {
         let q = quick_stats(m);
         let s = mesh_stats(m);
-        assert_eq!(full_stats(m), s);
         assert_eq!(q.inverted, s.inverted);
         assert_eq!(q.min_angle_deg, s.min_angle_deg);
         assert_eq!(q.max_angle_deg, s.max_angle_deg);

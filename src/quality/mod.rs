@@ -345,14 +345,17 @@ impl MeshStats {
     }
 }
 
-/// Computes [`MeshStats`] for a mesh.
+/// Computes [`MeshStats`] for a mesh: per element the metrics of [`element_quality`]
+/// (the same values to the last bit — a test folds `element_quality` to check), with each
+/// corner's signed angle computed once for the extreme angles and the histogram alike,
+/// and without the scaled Jacobians no statistic shows.
 pub fn mesh_stats(mesh: &Mesh) -> MeshStats {
     let mut s = MeshStats::empty(mesh);
     let mut sum = 0.0;
     for e in 0..mesh.element_count() {
         let kind = mesh.kind(e);
         let p = mesh.element_points_array(e);
-        let p = &p[..kind.node_count()];
+        let k = kind.corners();
         if kind.is_triangle() {
             s.triangles += 1;
         } else {
@@ -361,18 +364,28 @@ pub fn mesh_stats(mesh: &Mesh) -> MeshStats {
         if kind.is_quadratic() {
             s.quadratic += 1;
         }
-        let q = element_quality(kind, p);
-        if q.inverted {
-            s.inverted += 1;
+        let ce = corner_edges(kind, &p[..kind.node_count()]);
+        let ideal = if k == 3 { Ideal::Triangle } else { Ideal::Square };
+        let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
+        let mut condition: f64 = 0.0;
+        let mut inverted = false;
+        let mut min_alpha = f64::INFINITY;
+        for &(e1, e2) in &ce[..k] {
+            let ang = signed_angle(e1, e2);
+            lo = lo.min(ang);
+            hi = hi.max(ang);
+            s.angle_histogram_6deg[angle_bin(ang)] += 1;
+            condition = condition.max(condition_number(e1, e2, ideal));
+            inverted |= e1.perp_dot(e2) <= 0.0;
+            min_alpha = min_alpha.min(lo_alpha_corner(e1, e2));
         }
-        s.min_angle_deg = s.min_angle_deg.min(q.min_angle.to_degrees());
-        s.max_angle_deg = s.max_angle_deg.max(q.max_angle.to_degrees());
-        s.min_quality = s.min_quality.min(q.shape);
-        sum += q.shape;
-        s.max_condition = s.max_condition.max(q.condition);
-        for (e1, e2) in &corner_edges(kind, p)[..kind.corners()] {
-            s.angle_histogram_6deg[angle_bin(signed_angle(*e1, *e2))] += 1;
-        }
+        let shape = if k == 3 { min_alpha } else { canann_beta_from_corners(&ce) };
+        s.inverted += inverted as usize;
+        s.min_angle_deg = s.min_angle_deg.min(lo.to_degrees());
+        s.max_angle_deg = s.max_angle_deg.max(hi.to_degrees());
+        s.min_quality = s.min_quality.min(shape);
+        sum += shape;
+        s.max_condition = s.max_condition.max(condition);
     }
     if s.elements > 0 {
         s.mean_quality = sum / s.elements as f64;
@@ -383,6 +396,55 @@ pub fn mesh_stats(mesh: &Mesh) -> MeshStats {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// `mesh_stats` by folding [`element_quality`] element by element: what
+    /// `mesh_stats` must equal bit for bit.
+    fn mesh_stats_by_element_quality(mesh: &Mesh) -> MeshStats {
+        let mut s = MeshStats::empty(mesh);
+        let mut sum = 0.0;
+        for e in 0..mesh.element_count() {
+            let kind = mesh.kind(e);
+            let p = mesh.element_points_array(e);
+            let p = &p[..kind.node_count()];
+            if kind.is_triangle() {
+                s.triangles += 1;
+            } else {
+                s.quads += 1;
+            }
+            if kind.is_quadratic() {
+                s.quadratic += 1;
+            }
+            let q = element_quality(kind, p);
+            s.inverted += q.inverted as usize;
+            s.min_angle_deg = s.min_angle_deg.min(q.min_angle.to_degrees());
+            s.max_angle_deg = s.max_angle_deg.max(q.max_angle.to_degrees());
+            s.min_quality = s.min_quality.min(q.shape);
+            sum += q.shape;
+            s.max_condition = s.max_condition.max(q.condition);
+            for (e1, e2) in &corner_edges(kind, p)[..kind.corners()] {
+                s.angle_histogram_6deg[angle_bin(signed_angle(*e1, *e2))] += 1;
+            }
+        }
+        if s.elements > 0 {
+            s.mean_quality = sum / s.elements as f64;
+        }
+        s
+    }
+
+    #[test]
+    fn mesh_stats_equals_element_quality_folded() {
+        use crate::generate::{grid, perturb, plate, rand2d, GridKind, PlateKind};
+        let mut meshes = vec![rand2d(300, 12, 4).unwrap(), grid(6, 5, GridKind::Quad).unwrap()];
+        for k in [PlateKind::Tri, PlateKind::Quad, PlateKind::Mixed] {
+            meshes.push(plate(k, 1, 3).unwrap());
+            meshes.push(plate(k, 2, 3).unwrap());
+        }
+        let tangled: Vec<Mesh> = meshes.iter().map(|m| perturb(m, 0.6, 5).unwrap()).collect();
+        meshes.extend(tangled);
+        for m in &meshes {
+            assert_eq!(mesh_stats(m), mesh_stats_by_element_quality(m));
+        }
+    }
     use std::f64::consts::PI;
 
     fn d(x: f64, y: f64) -> DVec2 {
