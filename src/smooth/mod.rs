@@ -880,8 +880,12 @@ impl Objective for KeepValid<'_> {
         }
     }
     fn value_and_gradient(&self, star: &Star, x: DVec2) -> (f64, DVec2) {
-        let (v, g) = self.inner.value_and_gradient(star, x);
-        (if self.refuses(star, x) { f64::NAN } else { v }, g)
+        // a refused position is NaN whatever the objective says there: skip evaluating it
+        // (the solvers never use the gradient of a NaN point)
+        if self.refuses(star, x) {
+            return (f64::NAN, DVec2::ZERO);
+        }
+        self.inner.value_and_gradient(star, x)
     }
 }
 
