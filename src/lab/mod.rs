@@ -65,48 +65,15 @@ impl Side {
     }
 }
 
-/// The page's strategy menu, in the words of [`Strategy`].
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(rename_all = "lowercase")]
-pub enum StrategyChoice {
-    Laplace,
-    Smart,
-    Opt,
-    C1,
-    C2,
-    C3,
-    Rules,
-}
-
-impl From<StrategyChoice> for Strategy {
-    fn from(s: StrategyChoice) -> Self {
-        match s {
-            StrategyChoice::Laplace => Strategy::Laplace,
-            StrategyChoice::Smart => Strategy::Smart,
-            StrategyChoice::Opt => Strategy::Opt,
-            StrategyChoice::C1 => Strategy::C1,
-            StrategyChoice::C2 => Strategy::C2,
-            StrategyChoice::C3 => Strategy::C3,
-            StrategyChoice::Rules => Strategy::Rules,
-        }
-    }
-}
-
-/// The page's node-order menu.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(rename_all = "lowercase")]
-pub enum OrderChoice {
-    Input,
-    Priority,
-}
-
 /// The shared controls of the page (both sides smooth with the same settings).
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 pub struct Settings {
-    pub strategy: StrategyChoice,
+    /// By its name (`rules`, `c2`, …), as the page's menus give it.
+    pub strategy: Strategy,
     /// Freitag's threshold angle θ_t, degrees.
     pub threshold_deg: f64,
-    pub order: OrderChoice,
+    /// `input` or `priority`.
+    pub order: Order,
     /// Solver iterations per optimization call.
     pub max_iter: u32,
 }
@@ -114,7 +81,7 @@ pub struct Settings {
 impl Default for Settings {
     /// Chen's algorithm: rules, priority order, 3 iterations per call; θ_t = 30°.
     fn default() -> Self {
-        Settings { strategy: StrategyChoice::Rules, threshold_deg: 30.0, order: OrderChoice::Priority, max_iter: 3 }
+        Settings { strategy: Strategy::Rules, threshold_deg: 30.0, order: Order::Priority, max_iter: 3 }
     }
 }
 
@@ -125,11 +92,8 @@ impl Settings {
             return Err(Error::invalid(format!("{} solver iterations: give 1 to 1000", self.max_iter)));
         }
         let o = SmoothOptions::default()
-            .with_strategy(self.strategy.into())
-            .with_order(match self.order {
-                OrderChoice::Input => Order::Input,
-                OrderChoice::Priority => Order::Priority,
-            })
+            .with_strategy(self.strategy)
+            .with_order(self.order)
             .with_threshold_deg(self.threshold_deg)
             .with_max_iter(self.max_iter);
         o.validate()?;
@@ -813,7 +777,7 @@ mod tests {
         let s: Settings =
             serde_json::from_str(r#"{"strategy":"c2","threshold_deg":10,"order":"input","max_iter":5}"#).unwrap();
         pg.set_settings(s).unwrap();
-        assert_eq!(pg.settings().strategy, StrategyChoice::C2);
+        assert_eq!(pg.settings().strategy, Strategy::C2);
         assert!(serde_json::from_str::<Settings>(
             r#"{"strategy":"magic","threshold_deg":10,"order":"input","max_iter":5}"#
         )
@@ -898,19 +862,11 @@ mod tests {
     fn a_pass_in_slices_is_the_smoothers_pass_bit_for_bit() {
         use crate::smooth::Smoother;
         let samples = [Sample::PlateMixedTangled, Sample::PlateQuadratic, Sample::Rand2dTangled];
-        let strategies = [
-            StrategyChoice::Laplace,
-            StrategyChoice::Smart,
-            StrategyChoice::Opt,
-            StrategyChoice::C1,
-            StrategyChoice::C2,
-            StrategyChoice::C3,
-            StrategyChoice::Rules,
-        ];
+        let strategies = Strategy::ALL;
         for sample in samples {
             let mesh = sample.generate().unwrap();
             for strategy in strategies {
-                for order in [OrderChoice::Input, OrderChoice::Priority] {
+                for order in [Order::Input, Order::Priority] {
                     let settings = Settings { strategy, order, ..Settings::default() };
                     let mut pg = Playground::new(mesh.clone()).unwrap();
                     pg.set_settings(settings).unwrap();

@@ -13,7 +13,7 @@
 //! ([`Mesh::follow_mid_nodes`]); curved boundary edges keep their mid node.
 
 use glam::DVec2;
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 
 use crate::error::{Error, Result};
 use crate::mesh::Mesh;
@@ -25,8 +25,9 @@ pub mod parallel;
 #[cfg(test)]
 mod tests;
 
-/// How each free node is smoothed.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+/// How each free node is smoothed. (De)serialised by its [`name`](Strategy::name).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
 pub enum Strategy {
     /// Move to the centroid of the neighbouring corner nodes, unconditionally.
     Laplace,
@@ -76,7 +77,8 @@ impl Strategy {
 }
 
 /// The order in which a pass visits the free nodes.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
 pub enum Order {
     /// Node number order, each free node once ("first come first serve").
     Input,

@@ -7,7 +7,7 @@ use std::path::PathBuf;
 
 use clap::{Args, ValueEnum};
 use smoothlab::lab::views::{pixmap, Canvas};
-use smoothlab::lab::{OrderChoice, Playground, Settings, Side, StrategyChoice};
+use smoothlab::lab::{Playground, Settings, Side};
 use smoothlab::quality::{element_quality, mesh_stats, MeshStats};
 use smoothlab::render::{
     encode_png, render_angle_histogram, render_compare, render_mesh, AngleHistogram, ComparePanel, HistogramSeries,
@@ -114,23 +114,7 @@ fn size(spec: Option<&str>, default: (u32, u32)) -> Result<(u32, u32), String> {
 }
 
 fn settings(a: &RenderArgs) -> Settings {
-    Settings {
-        strategy: match a.strategy {
-            StrategyArg::Laplace => StrategyChoice::Laplace,
-            StrategyArg::Smart => StrategyChoice::Smart,
-            StrategyArg::Opt => StrategyChoice::Opt,
-            StrategyArg::C1 => StrategyChoice::C1,
-            StrategyArg::C2 => StrategyChoice::C2,
-            StrategyArg::C3 => StrategyChoice::C3,
-            StrategyArg::Rules => StrategyChoice::Rules,
-        },
-        threshold_deg: a.threshold,
-        order: match a.order {
-            OrderArg::Priority => OrderChoice::Priority,
-            OrderArg::Input => OrderChoice::Input,
-        },
-        max_iter: a.max_iter,
-    }
+    Settings { strategy: a.strategy.strategy(), threshold_deg: a.threshold, order: a.order.order(), max_iter: a.max_iter }
 }
 
 /// The free node whose star has the smallest element quality (α/β), if any node is free.

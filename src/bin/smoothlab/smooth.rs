@@ -100,7 +100,7 @@ pub enum StrategyArg {
 }
 
 impl StrategyArg {
-    fn strategy(self) -> Strategy {
+    pub fn strategy(self) -> Strategy {
         match self {
             StrategyArg::Laplace => Strategy::Laplace,
             StrategyArg::Smart => Strategy::Smart,
@@ -124,6 +124,15 @@ impl StrategyArg {
 pub enum OrderArg {
     Priority,
     Input,
+}
+
+impl OrderArg {
+    pub fn order(self) -> Order {
+        match self {
+            OrderArg::Priority => Order::Priority,
+            OrderArg::Input => Order::Input,
+        }
+    }
 }
 
 /// What `--json` prints: one object.
@@ -167,8 +176,7 @@ fn options(a: &SmoothArgs) -> Result<SmoothOptions, String> {
         }
     }
     let order = match a.order {
-        Some(OrderArg::Priority) => Order::Priority,
-        Some(OrderArg::Input) => Order::Input,
+        Some(o) => o.order(),
         None if strategy == StrategyArg::Rules => Order::Priority,
         None => Order::Input,
     };
