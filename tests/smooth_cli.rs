@@ -41,8 +41,9 @@ fn tangled_plate(d: &Path) -> PathBuf {
     tangled
 }
 
-const PASS_FIELDS: [&str; 11] = [
+const PASS_FIELDS: [&str; 12] = [
     "pass",
+    "untangle_sweeps",
     "visits",
     "inverted",
     "min_angle_deg",
@@ -74,7 +75,7 @@ fn json_report_has_its_shape_and_final_equals_stats_of_the_output() {
         let keys: Vec<&str> = v.as_object().unwrap().keys().map(|k| k.as_str()).collect();
         let mut sorted = keys.clone();
         sorted.sort_unstable();
-        assert_eq!(sorted, ["final", "objective", "passes", "strategy", "time_ms"], "{out_name}");
+        assert_eq!(sorted, ["final", "objective", "passes", "strategy", "time_ms", "untangling_impossible"], "{out_name}");
         let passes = v["passes"].as_array().unwrap();
         let want = extra.iter().position(|a| *a == "--passes").map_or(3, |i| extra[i + 1].parse::<usize>().unwrap());
         assert_eq!(passes.len(), want, "{out_name}");
@@ -113,10 +114,14 @@ fn defaults_are_new_rules_priority_three_passes_and_untangle_the_plate() {
     let free = v["final"]["free_nodes"].as_u64().unwrap();
     assert!(passes[0]["visits"].as_u64().unwrap() > free, "{}", passes[0]);
     assert_eq!(v["final"]["inverted"], 0, "new + rules untangles this plate in 3 passes");
-    // the same with --order input visits each free node once
+    // the same with --order input visits each free node once, then again only in
+    // untangling sweeps (while elements are inverted)
     let v: Value =
         serde_json::from_str(&ok(&["smooth", p(&input), "-o", p(&out), "--json", "--order", "input"])).unwrap();
-    assert_eq!(v["passes"][0]["visits"].as_u64(), Some(free));
+    let first = &v["passes"][0];
+    let (visits, sweeps) = (first["visits"].as_u64().unwrap(), first["untangle_sweeps"].as_u64().unwrap());
+    assert!(visits >= free && (visits > free) == (sweeps > 0), "{first}");
+    assert!(sweeps <= u64::from(smoothlab::smooth::UNTANGLE_SWEEPS));
     // other strategies default to input order
     let v: Value =
         serde_json::from_str(&ok(&["smooth", p(&input), "-o", p(&out), "--json", "--strategy", "smart"])).unwrap();
@@ -185,4 +190,84 @@ fn pass_through_folds_is_an_option_of_the_solver_strategies_only() {
     let r = run(&["smooth", p(&mesh), "-o", p(&out), "--strategy", "laplace", "--pass-through-folds"]);
     assert!(!r.status.success());
     assert!(String::from_utf8_lossy(&r.stderr).contains("--pass-through-folds"));
+}
+
+#[test]
+fn no_pass_through_folds_and_the_penalty_design_are_options_too() {
+    let d = dir("penalty");
+    let mesh = tangled_plate(&d);
+    let out = d.join("out.vtk");
+    let json = |extra: &[&str]| -> Value {
+        let mut args = vec!["smooth", p(&mesh), "-o", p(&out), "--passes", "1", "--json"];
+        args.extend_from_slice(extra);
+        serde_json::from_str(&ok(&args)).unwrap()
+    };
+    // the penalty design changes the result; the default is the barrier
+    let default = json(&[]);
+    assert_eq!(json(&["--penalty", "barrier"])["final"], default["final"]);
+    assert_ne!(json(&["--penalty", "angle"])["final"], default["final"]);
+    // the default passes through folds for `new`: forcing it on changes nothing, off does
+    assert_eq!(json(&["--pass-through-folds"])["final"], default["final"]);
+    assert_ne!(json(&["--no-pass-through-folds"])["final"], default["final"]);
+    // refused where it would do nothing, or with an unknown design
+    for (args, says) in [
+        (vec!["--objective", "old", "--penalty", "angle"], "--objective new"),
+        (vec!["--penalty", "cubic"], "cubic"),
+        (vec!["--strategy", "smart", "--no-pass-through-folds"], "--no-pass-through-folds"),
+    ] {
+        let mut all = vec!["smooth", p(&mesh), "-o", p(&out)];
+        all.extend(args.iter().copied());
+        let r = run(&all);
+        assert!(!r.status.success(), "{args:?}");
+        assert!(String::from_utf8_lossy(&r.stderr).contains(says), "{args:?}: {}", String::from_utf8_lossy(&r.stderr));
+    }
+}
+
+/// Three triangles, every node fixed by the file; the third is clockwise (inverted), and
+/// the fourth has two fixed nodes at one point.
+const STUCK_VTK: &str = "# vtk DataFile Version 3.0
+inverted corners of fixed nodes, and coincident fixed nodes
+ASCII
+DATASET UNSTRUCTURED_GRID
+POINTS 7 double
+0.2 0.2 0
+1 0 0
+0 1 0
+-1 0 0
+0 -1 0
+1 1 0
+1 1 0
+CELLS 5 20
+3 0 1 2
+3 0 2 3
+3 1 4 3
+3 1 5 2
+3 0 6 5
+CELL_TYPES 5
+5 5 5 5 5
+POINT_DATA 7
+SCALARS fixed int 1
+LOOKUP_TABLE default
+0 1 1 1 1 1 1
+";
+
+#[test]
+fn smooth_names_the_elements_it_cannot_untangle_and_why() {
+    let d = dir("stuck");
+    let input = d.join("stuck.vtk");
+    std::fs::write(&input, STUCK_VTK).unwrap();
+    let out = d.join("out.vtk");
+    let text = ok(&["smooth", p(&input), "-o", p(&out)]);
+    assert!(text.contains("untangling is impossible for 2 of the 2 inverted elements"), "{text}");
+    assert!(text.contains("element 2: its corner at node"), "{text}");
+    assert!(text.contains("all fixed"), "{text}");
+    assert!(text.contains("element 4: nodes 6 and 5 are fixed and at the same point"), "{text}");
+    let v: Value = serde_json::from_str(&ok(&["smooth", p(&input), "-o", p(&out), "--json"])).unwrap();
+    let list = v["untangling_impossible"].as_array().unwrap();
+    assert_eq!(list.iter().map(|o| o["element"].as_u64().unwrap()).collect::<Vec<_>>(), [2, 4]);
+    // a mesh that untangles reports none
+    let plate = tangled_plate(&d);
+    let v: Value = serde_json::from_str(&ok(&["smooth", p(&plate), "-o", p(&out), "--json"])).unwrap();
+    assert_eq!(v["final"]["inverted"], 0);
+    assert_eq!(v["untangling_impossible"], serde_json::json!([]));
 }

@@ -28,7 +28,7 @@ use crate::mesh::Mesh;
 use crate::objective::{objective, Objective, ObjectiveKind};
 use crate::optimize::SolveResult;
 use crate::quality::MeshStats;
-use crate::smooth::{solve_node, NodeOutcome, Order, SmoothOptions, Smoother, Strategy, SweepCounts};
+use crate::smooth::{solve_node, Order, SmoothOptions, Smoother, Strategy, SweepCounts};
 use stats::{quick_stats_and_buckets, QuickAcc, QuickStats};
 use views::Canvas;
 
@@ -123,6 +123,8 @@ pub struct PassSummary {
     pub optimization_calls: u32,
     /// Solver iterations, summed over the calls.
     pub solver_iterations: u32,
+    /// Untangling sweeps after the planned visits (their visits are in `visits`).
+    pub untangle_sweeps: u32,
     /// Time of the node loop (planning the order included), milliseconds by the caller's clock.
     pub elapsed_ms: f64,
     /// Time of the statistics after it, milliseconds.
@@ -261,6 +263,10 @@ struct PassRun {
     slice: usize,
     /// Stars measured per planning slice, adapted likewise.
     plan_slice: usize,
+    /// The schedule is an untangling sweep's (after the planned visits).
+    untangling: bool,
+    /// Moves counted when the current untangling sweep began.
+    sweep_start_moves: u32,
     saved: [Option<Saved>; 2],
     done: [Option<(PassSummary, QuickStats)>; 2],
 }
@@ -276,20 +282,6 @@ fn adapt_slice(size: usize, dt: f64, budget_ms: f64) -> usize {
     } else {
         size
     }
-}
-
-fn add_outcome(c: &mut SweepCounts, o: NodeOutcome) {
-    c.visits += 1;
-    c.laplacian_moves += (o.laplacian && o.moved) as u32;
-    c.optimization_calls += o.optimized as u32;
-    c.solver_iterations += o.iterations;
-}
-
-fn merge_counts(c: &mut SweepCounts, o: SweepCounts) {
-    c.visits += o.visits;
-    c.laplacian_moves += o.laplacian_moves;
-    c.optimization_calls += o.optimization_calls;
-    c.solver_iterations += o.solver_iterations;
 }
 
 /// The page's state: see the module docs. The mesh as loaded is kept as positions only
@@ -391,6 +383,8 @@ impl Playground {
             stats_ms: 0.0,
             slice: 64,
             plan_slice: 1024,
+            untangling: false,
+            sweep_start_moves: 0,
             saved: [None, None],
             done: [None, None],
         });
@@ -438,35 +432,52 @@ impl Playground {
                         run.schedule.extend_from_slice(p.smoother.schedule());
                         run.pos = 0;
                         run.counts = SweepCounts::default();
+                        run.untangling = false;
                         run.stage = Stage::Smooth;
                     }
                 }
                 Stage::Smooth if run.pos < run.schedule.len() => {
-                    if run.pos == 0 {
+                    if run.pos == 0 && !run.untangling {
                         let v = self.fresh_version();
                         self.panels[side].version = v;
                     }
                     let t0 = clock();
                     let p = &mut self.panels[side];
                     let end = (run.pos + run.slice).min(run.schedule.len());
-                    if run.pos == 0 {
+                    if run.pos == 0 && !run.untangling {
                         // smooth_node refreshes the smoother's facts about the mesh
                         // (quadratic, curved), as a whole sweep does before its visits
                         let o = p.smoother.smooth_node(&mut p.mesh, run.schedule[0] as usize, p.objective.as_ref());
-                        add_outcome(&mut run.counts, o);
+                        run.counts.add(o);
                         run.pos = 1;
                     }
                     let c = p.smoother.visit_all(&mut p.mesh, &run.schedule[run.pos..end], p.objective.as_ref());
-                    merge_counts(&mut run.counts, c);
+                    run.counts.merge(c);
                     run.pos = end;
                     let dt = clock() - t0;
                     run.sweep_ms += dt;
                     run.slice = adapt_slice(run.slice, dt, budget_ms);
                 }
                 Stage::Smooth => {
-                    run.stage = Stage::Measure;
-                    run.acc = QuickAcc::default();
-                    run.stats_ms = 0.0;
+                    // the planned visits (or an untangling sweep) are done: another
+                    // untangling sweep, as `Smoother::sweep` runs them, or the statistics
+                    let t0 = clock();
+                    let p = &mut self.panels[side];
+                    let moved = !run.untangling || run.counts.moves > run.sweep_start_moves;
+                    let again = moved && p.smoother.plan_untangle_sweep(&p.mesh, run.counts.untangle_sweeps);
+                    run.sweep_ms += clock() - t0;
+                    if again {
+                        run.untangling = true;
+                        run.counts.untangle_sweeps += 1;
+                        run.sweep_start_moves = run.counts.moves;
+                        run.schedule.clear();
+                        run.schedule.extend_from_slice(p.smoother.revisits());
+                        run.pos = 0;
+                    } else {
+                        run.stage = Stage::Measure;
+                        run.acc = QuickAcc::default();
+                        run.stats_ms = 0.0;
+                    }
                 }
                 Stage::Measure => {
                     let t0 = clock();
@@ -488,6 +499,7 @@ impl Playground {
                             laplacian_moves: c.laplacian_moves,
                             optimization_calls: c.optimization_calls,
                             solver_iterations: c.solver_iterations,
+                            untangle_sweeps: c.untangle_sweeps,
                             elapsed_ms: run.sweep_ms,
                             stats_ms: run.stats_ms,
                         };
@@ -699,7 +711,7 @@ fn progress_of(run: &PassRun, panels: &[Panel; 2]) -> PassProgress {
     let side = run.side;
     let sweep = match run.stage {
         Stage::Plan | Stage::Planning => 0.0,
-        _ if run.schedule.is_empty() => 1.0,
+        _ if run.schedule.is_empty() || run.untangling => 1.0,
         _ => run.pos as f64 / run.schedule.len() as f64,
     };
     let elements = panels[side].mesh.element_count().max(1);

@@ -13,7 +13,7 @@
 //! |---|---|---|---|
 //! | `old` | [`MaxMinShape`] | max-min | α (triangles) / β (quads) per element — Chen et al.'s previous method |
 //! | `sine` | [`MaxMinSine`] | max-min | sine of every corner angle of the star — Freitag 1997 |
-//! | `new` | [`ChenTristanoKwok`] | sum | `(1 − α)²` + angle penalty per element — Chen et al. 2003, eqs. (3)–(9) |
+//! | `new` | [`ChenTristanoKwok`] | sum | `(1 − α)²` + angle penalty per element — Chen et al. 2003, eqs. (3)–(9); the penalty ([`Penalty`]): a regularised barrier (default) or the first adjusted-angle design |
 //! | `condition` | [`ConditionNumber`] (2-norm) | sum | κ² per moving corner — Knupp 1999 |
 //! | `condition-max` | [`ConditionNumber`] (∞-norm) | max-min | −κ per moving corner |
 //! | `untangle` | [`Untangle`] | sum | `|det| − det` per moving corner — Knupp 1999, §2.7 |
@@ -43,7 +43,10 @@ pub(crate) mod testing;
 mod untangle;
 
 pub use condition::{ConditionNumber, Norm, CONDITION_BARRIER};
-pub use new::{adjusted_angle, ChenTristanoKwok, PenaltyLength, EQUILATERAL_PENALTY};
+pub use new::{
+    adjusted_angle, regularised_determinant, AnglePenalty, ChenTristanoKwok, Penalty, PenaltyLength, RegularisedBarrier,
+    BARRIER_EPSILON, BARRIER_WEIGHT, EQUILATERAL_PENALTY,
+};
 pub use old::MaxMinShape;
 pub use sine::MaxMinSine;
 pub use untangle::{MaxMinDet, Untangle, UNTANGLE_BETA};
@@ -97,6 +100,13 @@ impl ObjectiveKind {
         Self::ALL.into_iter().find(|k| k.name() == s)
     }
 
+    /// Whether objectives of this kind are built to untangle (see
+    /// [`Objective::untangles`]): `new` (its penalty is finite on inverted stars and falls
+    /// as a fold gets shallower) and `untangle`.
+    pub fn untangles(self) -> bool {
+        matches!(self, ObjectiveKind::New | ObjectiveKind::Untangle)
+    }
+
     /// How this kind's terms combine (which solver fits it).
     pub fn goal(self) -> Goal {
         match self {
@@ -117,10 +127,16 @@ impl std::fmt::Display for ObjectiveKind {
 /// The objective of a kind, with its default parameters, behind the trait (dynamic
 /// dispatch: one virtual call per evaluation, against tens of metric evaluations inside).
 pub fn objective(kind: ObjectiveKind) -> Box<dyn Objective + Send + Sync> {
+    objective_with(kind, Penalty::default())
+}
+
+/// [`objective`], with the design of the `new` objective's angle penalty (the other kinds
+/// have none and ignore it).
+pub fn objective_with(kind: ObjectiveKind, penalty: Penalty) -> Box<dyn Objective + Send + Sync> {
     match kind {
         ObjectiveKind::Old => Box::new(MaxMinShape),
         ObjectiveKind::Sine => Box::new(MaxMinSine),
-        ObjectiveKind::New => Box::new(ChenTristanoKwok::default()),
+        ObjectiveKind::New => Box::new(ChenTristanoKwok::with_penalty(penalty)),
         ObjectiveKind::Condition => Box::new(ConditionNumber { norm: Norm::Two }),
         ObjectiveKind::ConditionMax => Box::new(ConditionNumber { norm: Norm::Infinity }),
         ObjectiveKind::Untangle => Box::new(Untangle::default()),
@@ -245,6 +261,13 @@ pub trait Objective {
     fn name(&self) -> &'static str;
     /// How the terms combine.
     fn goal(&self) -> Goal;
+    /// Whether the objective is built to untangle: finite, and lower, as a fold gets
+    /// shallower. Drivers then let an already inverted star pass through one more fold
+    /// when its total inversion falls (`SmoothOptions::pass_through_folds`, unless set).
+    /// Default false.
+    fn untangles(&self) -> bool {
+        false
+    }
     /// Appends the terms at position `x` (values and gradients) to `out`.
     fn terms(&self, star: &Star, x: DVec2, out: &mut Vec<Term>);
     /// The objective value at `x`: the sum or the minimum of the terms.
@@ -292,6 +315,9 @@ macro_rules! impl_objective_by_visit {
             }
             fn goal(&self) -> $crate::objective::Goal {
                 self.kind().goal()
+            }
+            fn untangles(&self) -> bool {
+                self.kind().untangles()
             }
             fn terms(&self, star: &$crate::objective::Star, x: glam::DVec2, out: &mut Vec<$crate::objective::Term>) {
                 self.visit(star, x, |t| out.push(t));
@@ -350,6 +376,9 @@ impl<O: Objective + ?Sized> Objective for Box<O> {
     fn goal(&self) -> Goal {
         (**self).goal()
     }
+    fn untangles(&self) -> bool {
+        (**self).untangles()
+    }
     fn terms(&self, star: &Star, x: DVec2, out: &mut Vec<Term>) {
         (**self).terms(star, x, out)
     }
@@ -367,6 +396,9 @@ impl<O: Objective + ?Sized> Objective for &O {
     }
     fn goal(&self) -> Goal {
         (**self).goal()
+    }
+    fn untangles(&self) -> bool {
+        (**self).untangles()
     }
     fn terms(&self, star: &Star, x: DVec2, out: &mut Vec<Term>) {
         (**self).terms(star, x, out)
@@ -410,6 +442,9 @@ mod tests {
         for star in sample_stars() {
             for _ in 0..10 {
                 let x = star.x0 + rng.point(1.5);
+                // evaluated where a solve starting at x evaluates it: the barrier of `new`
+                // is +∞ at inverted positions of a star that starts valid
+                let star = Star { x0: x, ..star.clone() };
                 for k in ObjectiveKind::ALL {
                     let obj = objective(k);
                     t.clear();
@@ -457,10 +492,11 @@ mod tests {
         let mut rng = Lcg::new(43);
         for _ in 0..20 {
             let x = rng.point(1.2);
+            let (from_mesh, built) = (Star { x0: x, ..gathered.clone() }, Star { x0: x, ..explicit.clone() });
             for k in ObjectiveKind::ALL {
                 let obj = objective(k);
-                let (a, ga) = obj.value_and_gradient(&gathered, x);
-                let (b, gb) = obj.value_and_gradient(&explicit, x);
+                let (a, ga) = obj.value_and_gradient(&from_mesh, x);
+                let (b, gb) = obj.value_and_gradient(&built, x);
                 assert!((a - b).abs() <= 1e-12 * (1.0 + a.abs()), "{k}: {a} {b}");
                 assert!((ga - gb).length() <= 1e-10 * (1.0 + ga.length()), "{k}");
             }

@@ -21,9 +21,12 @@ use crate::objective::{Objective, Star, StarElement, Term};
 use crate::optimize::{evaluate, FletcherReeves, NonSmoothAscent, SolveOptions, SolveResult, Solver, SolverKind};
 use crate::quality::{canann_beta_from_corners, corner_edges, lo_alpha_corner, mesh_stats, scaled_jacobian};
 
+mod obstacles;
 pub mod parallel;
 #[cfg(test)]
 mod tests;
+
+pub use obstacles::{untangling_obstacles, Obstacle};
 
 /// How each free node is smoothed. (De)serialised by its [`name`](Strategy::name).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
@@ -152,20 +155,27 @@ pub struct SmoothOptions {
     pub keep_valid: bool,
     /// With [`SmoothOptions::keep_valid`]: a star that is already inverted when the call
     /// begins may fold one more element when that lowers its total inversion
-    /// `Σ max(0, −det)` over all its corners. A valid star is still never folded. Default
-    /// false; set it for the untangling objectives.
+    /// `Σ max(0, −det)` over all its corners. A valid star is still never folded. `None`
+    /// (the default): on for objectives built to untangle ([`Objective::untangles`]:
+    /// `new` and `untangle`), off for the others; `Some` forces it.
     ///
     /// Untangling often has to pass through such an intermediate state — the free node
     /// crosses an edge of one element to leave the deeper fold of another — and a count
     /// alone cannot see that progress. Measured on Knupp's random 10 × 10 grids
-    /// (`docs/reproduction.md`, §4): `untangle` with the count alone untangles none of 10,
-    /// with this exception all of them. With `new` + `rules` it is a trade, so it is off by
-    /// default: on Mesquite's tangled meshes 8 instead of 6 of 13 are untangled within 3
-    /// passes and 38 instead of 26 of 45 perturbed order-1 plates within 30, but the mesh's
-    /// inverted count no longer falls pass after pass (`hole_in_square_tanglap.vtk`:
-    /// 23 → 29 in the first pass) and the meshes it does not untangle end more folded.
-    pub pass_through_folds: bool,
+    /// (`docs/reproduction.md`): `untangle` with the count alone untangles none of 10,
+    /// with this exception all of them; `new` with its barrier penalty needs it likewise
+    /// (the count guard made 50–76% of its line searches on inverted stars fail).
+    pub pass_through_folds: Option<bool>,
+    /// Untangling sweeps after the planned visits of a pass: while elements are inverted,
+    /// revisit the free nodes of the inverted elements and their free neighbours, worst
+    /// star first; at most this many sweeps, and none after a sweep that moved no node.
+    /// Only strategies that optimise revisit (`laplace` and `smart` cannot untangle).
+    /// Default [`UNTANGLE_SWEEPS`]; 0 turns them off.
+    pub untangle_sweeps: u32,
 }
+
+/// The default number of untangling sweeps per pass ([`SmoothOptions::untangle_sweeps`]).
+pub const UNTANGLE_SWEEPS: u32 = 10;
 
 impl Default for SmoothOptions {
     fn default() -> Self {
@@ -179,7 +189,8 @@ impl Default for SmoothOptions {
             force_optimization: false,
             priority_bins: 5,
             keep_valid: true,
-            pass_through_folds: false,
+            pass_through_folds: None,
+            untangle_sweeps: UNTANGLE_SWEEPS,
         }
     }
 }
@@ -209,8 +220,13 @@ impl SmoothOptions {
         self.smart_measure = m;
         self
     }
+    /// Forces [`SmoothOptions::pass_through_folds`] on or off.
     pub fn with_pass_through_folds(mut self, on: bool) -> Self {
-        self.pass_through_folds = on;
+        self.pass_through_folds = Some(on);
+        self
+    }
+    pub fn with_untangle_sweeps(mut self, n: u32) -> Self {
+        self.untangle_sweeps = n;
         self
     }
     pub fn with_keep_valid(mut self, on: bool) -> Self {
@@ -224,6 +240,9 @@ impl SmoothOptions {
                 "threshold angle {}° is out of range: give an angle above 0° and at most 90°",
                 self.threshold_deg
             )));
+        }
+        if self.untangle_sweeps > 1000 {
+            return Err(Error::invalid(format!("{} untangling sweeps: give 0 to 1000", self.untangle_sweeps)));
         }
         if self.priority_bins == 0 || self.priority_bins > 1000 {
             return Err(Error::invalid(format!("{} priority bins: give 1 to 1000", self.priority_bins)));
@@ -260,6 +279,9 @@ pub struct PassRecord {
     pub optimization_calls: u32,
     /// Solver iterations, summed over the calls.
     pub solver_iterations: u32,
+    /// Untangling sweeps run after the planned visits ([`SmoothOptions::untangle_sweeps`]);
+    /// their visits are counted in `visits`.
+    pub untangle_sweeps: u32,
     /// Time of the node loop (not of the statistics), milliseconds by the caller's clock.
     pub elapsed_ms: f64,
 }
@@ -275,6 +297,10 @@ pub struct SweepCounts {
     pub optimization_calls: u32,
     /// Solver iterations, summed over the calls.
     pub solver_iterations: u32,
+    /// Visits that moved their node.
+    pub moves: u32,
+    /// Untangling sweeps ([`SmoothOptions::untangle_sweeps`]).
+    pub untangle_sweeps: u32,
 }
 
 impl SweepCounts {
@@ -283,18 +309,22 @@ impl SweepCounts {
         self.laplacian_moves += (o.laplacian && o.moved) as u32;
         self.optimization_calls += o.optimized as u32;
         self.solver_iterations += o.iterations;
+        self.moves += o.moved as u32;
     }
     pub(crate) fn merge(&mut self, o: SweepCounts) {
         self.visits += o.visits;
         self.laplacian_moves += o.laplacian_moves;
         self.optimization_calls += o.optimization_calls;
         self.solver_iterations += o.solver_iterations;
+        self.moves += o.moves;
+        self.untangle_sweeps += o.untangle_sweeps;
     }
     fn add_to(self, rec: &mut PassRecord) {
         rec.visits += self.visits;
         rec.laplacian_moves += self.laplacian_moves;
         rec.optimization_calls += self.optimization_calls;
         rec.solver_iterations += self.solver_iterations;
+        rec.untangle_sweeps += self.untangle_sweeps;
     }
 }
 
@@ -402,6 +432,10 @@ pub struct Smoother {
     schedule: Vec<u32>,
     /// Next node to measure while planning in steps ([`Smoother::plan_some`]).
     plan_next: usize,
+    /// Visit sequence of the current (or last) untangling sweep.
+    revisits: Vec<u32>,
+    /// Per node: whether it is already in `revisits` (scratch, all false between uses).
+    marked: Vec<bool>,
     passes: u32,
     /// Per-mesh facts, refreshed each pass.
     quadratic: bool,
@@ -425,6 +459,8 @@ impl Smoother {
             ranked: Vec::new(),
             schedule: Vec::new(),
             plan_next: 0,
+            revisits: Vec::new(),
+            marked: Vec::new(),
             passes: 0,
             quadratic: false,
             curved: false,
@@ -579,6 +615,7 @@ impl Smoother {
             laplacian_moves: 0,
             optimization_calls: 0,
             solver_iterations: 0,
+            untangle_sweeps: 0,
             elapsed_ms,
         };
         counts.add_to(&mut rec);
@@ -599,9 +636,63 @@ impl Smoother {
         self.refresh_mesh_facts(mesh);
         self.plan(mesh);
         let schedule = std::mem::take(&mut self.schedule);
-        let counts = self.visit_all(mesh, &schedule, objective);
+        let mut counts = self.visit_all(mesh, &schedule, objective);
         self.schedule = schedule;
+        let mut moved = true;
+        while moved && self.plan_untangle_sweep(mesh, counts.untangle_sweeps) {
+            let revisits = std::mem::take(&mut self.revisits);
+            let c = self.visit_all(mesh, &revisits, objective);
+            self.revisits = revisits;
+            moved = c.moves > 0;
+            counts.merge(c);
+            counts.untangle_sweeps += 1;
+        }
         counts
+    }
+
+    /// Plans untangling sweep number `done + 1` of a pass after its planned visits (see
+    /// [`SmoothOptions::untangle_sweeps`]): the free nodes of every inverted element and
+    /// the free neighbours of its corners, worst star first (smallest α/β, ties by node
+    /// number), into [`revisits`](Self::revisits). Returns false — no sweep — when no
+    /// element is inverted, `done` sweeps are the limit, or the strategy never optimises.
+    /// The caller stops sweeping after a sweep that moved no node.
+    pub fn plan_untangle_sweep(&mut self, mesh: &Mesh, done: u32) -> bool {
+        self.revisits.clear();
+        if done >= self.options.untangle_sweeps || matches!(self.options.strategy, Strategy::Laplace | Strategy::Smart) {
+            return false;
+        }
+        self.marked.clear();
+        self.marked.resize(mesh.node_count(), false);
+        for e in 0..mesh.element_count() {
+            let kind = mesh.kind(e);
+            if !is_inverted(kind, &mesh.element_points_array(e)) {
+                continue;
+            }
+            for &c in &mesh.element(e)[..kind.corners()] {
+                let c = c as usize;
+                for m in std::iter::once(c).chain(mesh.neighbours(c).iter().map(|&m| m as usize)) {
+                    if mesh.is_free(m) && !self.marked[m] {
+                        self.marked[m] = true;
+                        self.revisits.push(m as u32);
+                    }
+                }
+            }
+        }
+        let mut ranked: Vec<(f64, u32)> = Vec::with_capacity(self.revisits.len());
+        for &n in &self.revisits {
+            self.marked[n as usize] = false;
+            self.star.gather(mesh, n as usize);
+            ranked.push((star_quality(&self.star, None).min_shape, n));
+        }
+        ranked.sort_unstable_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
+        self.revisits.clear();
+        self.revisits.extend(ranked.iter().map(|&(_, n)| n));
+        !self.revisits.is_empty()
+    }
+
+    /// The visit sequence of the last untangling sweep planned.
+    pub fn revisits(&self) -> &[u32] {
+        &self.revisits
     }
 
     /// Visits the nodes of `order` in turn (the mesh facts must be fresh).
@@ -786,11 +877,12 @@ impl Smoother {
         let guarded;
         let objective: &dyn Objective = if self.options.keep_valid {
             let limit = self.star.elems.iter().filter(|e| is_inverted(e.kind, &e.pts)).count();
+            let pass_through_folds = self.options.pass_through_folds.unwrap_or_else(|| objective.untangles());
             guarded = KeepValid {
                 inner: objective,
                 limit,
-                inversion0: if self.options.pass_through_folds { inversion(&self.star, x0) } else { 0.0 },
-                pass_through_folds: self.options.pass_through_folds,
+                inversion0: if pass_through_folds && limit > 0 { inversion(&self.star, x0) } else { 0.0 },
+                pass_through_folds,
             };
             &guarded
         } else {
@@ -850,7 +942,7 @@ struct KeepValid<'a> {
     limit: usize,
     /// The star's [`inversion`] when the call began.
     inversion0: f64,
-    /// [`SmoothOptions::pass_through_folds`].
+    /// [`SmoothOptions::pass_through_folds`], resolved for the objective.
     pass_through_folds: bool,
 }
 
@@ -874,6 +966,9 @@ impl Objective for KeepValid<'_> {
     }
     fn goal(&self) -> crate::objective::Goal {
         self.inner.goal()
+    }
+    fn untangles(&self) -> bool {
+        self.inner.untangles()
     }
     fn terms(&self, star: &Star, x: DVec2, out: &mut Vec<Term>) {
         self.inner.terms(star, x, out);

@@ -549,10 +549,20 @@ fn keep_valid_stops_the_new_objective_folding_a_valid_star() {
     let mesh = b.build().unwrap();
     assert_eq!(mesh_stats(&mesh).inverted, 0);
     assert_eq!(mesh.free_count(), 1);
-    let new = crate::objective::ChenTristanoKwok::default();
+    // the first design of eq. (8), which folds this star without the guard
+    let new = crate::objective::ChenTristanoKwok::with_penalty(crate::objective::Penalty::Angle);
     let mut star = Star::new();
     star.gather(&mesh, 0);
     let f0 = new.value(&star, d);
+    // the barrier (the default design) never folds it, guard or not
+    let barrier = crate::objective::ChenTristanoKwok::default();
+    for keep in [false, true] {
+        let mut m = mesh.clone();
+        let opts = SmoothOptions::default().with_strategy(Strategy::Opt).with_keep_valid(keep);
+        let o = Smoother::new(opts).unwrap().smooth_node(&mut m, 0, &barrier);
+        assert!(o.optimized && o.moved, "barrier, keep_valid {keep}: {o:?}");
+        assert_eq!(mesh_stats(&m).inverted, 0, "barrier, keep_valid {keep}");
+    }
     for (keep, inverted) in [(false, 2), (true, 0)] {
         let mut m = mesh.clone();
         let opts = SmoothOptions::default().with_strategy(Strategy::Opt).with_keep_valid(keep);

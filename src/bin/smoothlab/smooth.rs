@@ -7,16 +7,22 @@
 //! - `--max-iter` not with `laplace` or `smart` (they never call the solver);
 //! - `--objective` with every strategy: `laplace` and `smart` never move a node by it,
 //!   but each pass still reports its total, so it is accepted and the summary says so;
-//! - `--order` with every strategy (Gauss–Seidel: the order changes the result).
+//! - `--order` with every strategy (Gauss–Seidel: the order changes the result);
+//! - `--penalty` only with the `new` objective (the design of its eq. (8));
+//! - `--pass-through-folds` / `--no-pass-through-folds` not with `laplace` or `smart`.
+//!
+//! When elements stay inverted because no smoother can make them valid (an inverted corner
+//! of fixed nodes, coincident fixed nodes), the summary names them and says why (`--json`:
+//! `untangling_impossible`).
 
 use std::path::PathBuf;
 use std::time::Instant;
 
 use clap::{Args, ValueEnum};
 use serde::Serialize;
-use smoothlab::objective::{objective, ObjectiveKind};
+use smoothlab::objective::{objective_with, ObjectiveKind, Penalty};
 use smoothlab::quality::{mesh_stats, MeshStats};
-use smoothlab::smooth::{Order, PassRecord, SmoothOptions, Smoother, Strategy};
+use smoothlab::smooth::{untangling_obstacles, Obstacle, Order, PassRecord, SmoothOptions, Smoother, Strategy};
 
 use crate::files::{read_mesh, write_mesh, MshVersionArg};
 
@@ -50,17 +56,31 @@ pub struct SmoothArgs {
     /// Solver iterations per optimization call [default: 3]
     #[arg(long)]
     pub max_iter: Option<u32>,
+    /// Design of the new objective's angle penalty, eq. (8): barrier (regularised, the
+    /// default) or angle (the first design, on the adjusted angle)
+    #[arg(long, value_parser = penalty_parser())]
+    pub penalty: Option<Penalty>,
     /// Let an already inverted star fold one more element when that lowers its total
-    /// inversion (needed to untangle random node positions with `untangle`); off by
-    /// default, so an optimization call never raises a star's inverted count
-    #[arg(long)]
+    /// inversion [default: on for the untangling objectives new and untangle, off otherwise;
+    /// a valid star is never folded]
+    #[arg(long, overrides_with = "no_pass_through_folds")]
     pub pass_through_folds: bool,
+    /// Never let an optimization call raise a star's inverted count
+    #[arg(long, overrides_with = "pass_through_folds")]
+    pub no_pass_through_folds: bool,
     /// Print one JSON object instead of a summary
     #[arg(long)]
     pub json: bool,
     /// Version of .msh files written
     #[arg(long, value_enum, default_value = "2.2")]
     pub msh_version: MshVersionArg,
+}
+
+/// `--penalty`'s values, from the core's own names.
+fn penalty_parser() -> impl clap::builder::TypedValueParser<Value = Penalty> {
+    use clap::builder::TypedValueParser;
+    clap::builder::PossibleValuesParser::new(Penalty::ALL.map(Penalty::name))
+        .map(|s: String| Penalty::parse(&s).expect("one of the possible values"))
 }
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
@@ -144,6 +164,8 @@ struct Report<'a> {
     /// The same object as `smoothlab stats --json` of the written mesh.
     #[serde(rename = "final")]
     final_stats: &'a MeshStats,
+    /// Inverted elements no smoother can make valid, and why (empty when there are none).
+    untangling_impossible: &'a [Obstacle],
     time_ms: f64,
 }
 
@@ -187,11 +209,15 @@ fn options(a: &SmoothArgs) -> Result<SmoothOptions, String> {
     if let Some(k) = a.max_iter {
         o = o.with_max_iter(k);
     }
-    if a.pass_through_folds {
+    if a.pass_through_folds || a.no_pass_through_folds {
+        let flag = if a.pass_through_folds { "--pass-through-folds" } else { "--no-pass-through-folds" };
         if strategy.is_laplacian_only() {
-            return Err(format!("--pass-through-folds: {} never calls the solver", strategy.name()));
+            return Err(format!("{flag}: {} never calls the solver", strategy.name()));
         }
-        o = o.with_pass_through_folds(true);
+        o = o.with_pass_through_folds(a.pass_through_folds);
+    }
+    if a.penalty.is_some() && a.objective.is_some_and(|k| k.kind() != ObjectiveKind::New) {
+        return Err("--penalty chooses the design of the new objective's penalty: use it with --objective new".into());
     }
     o.validate().map_err(|e| e.to_string())?;
     Ok(o)
@@ -201,7 +227,7 @@ pub fn run(a: SmoothArgs) -> Result<(), String> {
     let opts = options(&a)?;
     let kind = a.objective.map_or(ObjectiveKind::New, ObjectiveArg::kind);
     let mut mesh = read_mesh(&a.input)?;
-    let obj = objective(kind);
+    let obj = objective_with(kind, a.penalty.unwrap_or_default());
     let mut smoother = Smoother::new(opts).map_err(|e| e.to_string())?;
     let t0 = Instant::now();
     let clock = move || t0.elapsed().as_secs_f64() * 1e3;
@@ -210,17 +236,20 @@ pub fn run(a: SmoothArgs) -> Result<(), String> {
     let time_ms = clock() - start;
     write_mesh(&mesh, &a.output, a.msh_version)?;
     let final_stats = mesh_stats(&mesh);
+    let obstacles = if final_stats.inverted > 0 { untangling_obstacles(&mesh) } else { Vec::new() };
     if a.json {
         let report = Report {
             objective: kind.name(),
             strategy: a.strategy.name(),
             passes: &passes,
             final_stats: &final_stats,
+            untangling_impossible: &obstacles,
             time_ms,
         };
         println!("{}", serde_json::to_string(&report).map_err(|e| e.to_string())?);
     } else {
         print!("{}", summary(kind, a.strategy, opts.order, &passes, &final_stats, time_ms));
+        print!("{}", obstacle_summary(&obstacles, final_stats.inverted));
     }
     Ok(())
 }
@@ -245,7 +274,7 @@ fn summary(
     );
     for p in passes {
         t.push_str(&format!(
-            "pass {:>3}: inverted {:>5}  angles {:>7.2}°–{:>6.2}°  min quality {:>7.4}  objective {:>12.6e}  laplacian {:>6}  optimized {:>6} ({} iterations)  {:.1} ms\n",
+            "pass {:>3}: inverted {:>5}  angles {:>7.2}°–{:>6.2}°  min quality {:>7.4}  objective {:>12.6e}  laplacian {:>6}  optimized {:>6} ({} iterations){}  {:.1} ms\n",
             p.pass,
             p.inverted,
             p.min_angle_deg,
@@ -255,6 +284,10 @@ fn summary(
             p.laplacian_moves,
             p.optimization_calls,
             p.solver_iterations,
+            match p.untangle_sweeps {
+                0 => String::new(),
+                n => format!(", {n} untangling sweep{}", if n == 1 { "" } else { "s" }),
+            },
             p.elapsed_ms
         ));
     }
@@ -262,5 +295,21 @@ fn summary(
         "final: {} elements, {} inverted, angles {:.2}°–{:.2}°, quality min {:.4} mean {:.4}; {:.1} ms\n",
         s.elements, s.inverted, s.min_angle_deg, s.max_angle_deg, s.min_quality, s.mean_quality, ms
     ));
+    t
+}
+
+/// The elements no smoother can make valid, one line each, after a line that says how many
+/// of the inverted elements they are (nothing when there are none).
+fn obstacle_summary(obstacles: &[Obstacle], inverted: usize) -> String {
+    if obstacles.is_empty() {
+        return String::new();
+    }
+    let mut t = format!(
+        "untangling is impossible for {} of the {inverted} inverted elements (fixed nodes decide them):\n",
+        obstacles.len()
+    );
+    for o in obstacles {
+        t.push_str(&format!("  element {}: {}\n", o.element, o.reason));
+    }
     t
 }

@@ -11,13 +11,32 @@ use crate::objective::testing::*;
 use crate::objective::Objective;
 use crate::quality::element_quality;
 
+/// The first design (adjusted-angle penalty), whose tests these are unless said.
 fn new() -> ChenTristanoKwok {
+    ChenTristanoKwok::with_penalty(Penalty::Angle)
+}
+
+/// The first design with the literal-reading length.
+fn literal() -> ChenTristanoKwok {
+    ChenTristanoKwok::Angle(AnglePenalty { length: PenaltyLength::Opposite, ..AnglePenalty::default() })
+}
+
+/// The regularised barrier (the default design).
+fn barrier() -> ChenTristanoKwok {
     ChenTristanoKwok::default()
 }
 
 /// `Σ (1 − α)²` alone: the objective without its penalty.
 fn alpha_only() -> ChenTristanoKwok {
-    ChenTristanoKwok { k1: 0.0, ..ChenTristanoKwok::default() }
+    ChenTristanoKwok::without_penalty()
+}
+
+/// The star with its free node's current position at `x`: the barrier's δ is taken there,
+/// as an optimization call starting at `x` takes it.
+fn at_start(s: &Star, x: DVec2) -> Star {
+    let mut t = s.clone();
+    t.x0 = x;
+    t
 }
 
 /// Whether every element of the star is valid (no corner with det ≤ 0) at `x`.
@@ -128,11 +147,12 @@ fn transformed(s: &Star, map: impl Fn(DVec2) -> DVec2) -> Star {
 
 #[test]
 fn invariant_under_scaling_translation_and_rotation() {
-    let obj = new();
+    for obj in [new(), barrier()] {
     let mut rng = Lcg::new(23);
     for s in sample_stars() {
         for _ in 0..10 {
             let x = s.x0 + rng.point(1.5); // valid and inverted positions
+            let s = at_start(&s, x); // δ > 0 where x is inverted
             let (v, g) = obj.value_and_gradient(&s, x);
             for (angle, scale, shift) in
                 [(0.7, 1e-3, d(5.0, -2.0)), (-2.0, 1e3, d(-1e3, 40.0)), (3.0, 0.37, d(0.0, 0.0))]
@@ -147,13 +167,14 @@ fn invariant_under_scaling_translation_and_rotation() {
             }
         }
     }
+    }
 }
 
 // 2. Growth of the penalty, and its normalisation on the equilateral triangle -----------
 
 #[test]
 fn penalty_grows_towards_zero_and_inverted_angles() {
-    let obj = new();
+    let obj = AnglePenalty::default();
     let eq = obj.angle_penalty(PI / 3.0, 1.0);
     assert!((eq - EQUILATERAL_PENALTY).abs() < 1e-12, "ε on the equilateral angle: {eq}");
     let p = |deg: f64| obj.angle_penalty(deg.to_radians(), 1.0);
@@ -201,8 +222,13 @@ fn little_to_no_effect_on_the_equilateral_triangle() {
         assert!(new().value(&s, apex + p) > v);
     }
     // the same holds for the literal-reading length
-    let lit = new().with_length(PenaltyLength::Opposite);
-    assert!(lit.value_and_gradient(&s, apex).1.length() < 1e-12);
+    assert!(literal().value_and_gradient(&s, apex).1.length() < 1e-12);
+    // and for the barrier: (1 − α)² = 0, η = 1, so the value is k1 and the gradient 0
+    let (v, g) = barrier().value_and_gradient(&s, apex);
+    assert!((v - BARRIER_WEIGHT).abs() < 1e-15 && g.length() < 1e-12, "{v} {g}");
+    for p in regular_ring(16, 0.02) {
+        assert!(barrier().value(&s, apex + p) > v);
+    }
 }
 
 // 3. Continuity across the ±π ray --------------------------------------------------------
@@ -264,8 +290,16 @@ proptest! {
         let near_node = s.elems.iter().any(|e| e.pts[..e.kind.corners()].iter().any(|p| p.distance(x) < 1e-3 && *p != s.x0));
         prop_assume!(!near_node);
         check_gradient(&new(), s, x, 1e-5);
-        check_gradient(&new().with_length(PenaltyLength::Opposite), s, x, 1e-5);
+        check_gradient(&literal(), s, x, 1e-5);
         check_gradient(&alpha_only(), s, x, 1e-5);
+        // the barrier: δ = 0 where the star is valid at x (and x its start), δ > 0 where
+        // it is inverted (the start of an untangling call)
+        let start = at_start(s, x);
+        check_gradient(&barrier(), &start, x, 1e-5);
+        // and δ from the star's own position, wherever the value is finite
+        if barrier().value(s, x).is_finite() && star_valid(s, x) {
+            check_gradient(&barrier(), s, x, 1e-5);
+        }
     }
 }
 
@@ -280,6 +314,7 @@ fn gradient_checks_cover_inverted_positions() {
         for _ in 0..20 {
             let x = s.x0 + rng.point(1.6);
             check_gradient(&new(), &s, x, 1e-5);
+            check_gradient(&barrier(), &at_start(&s, x), x, 1e-5);
         }
     }
 }
@@ -288,7 +323,7 @@ fn gradient_checks_cover_inverted_positions() {
 
 #[test]
 fn centre_of_a_regular_star_is_the_minimiser() {
-    let obj = new();
+    for obj in [new(), barrier()] {
     for k in 4..=8 {
         let s = fan_star(&regular_ring(k, 1.0));
         let (v0, g) = obj.value_and_gradient(&s, DVec2::ZERO);
@@ -309,6 +344,7 @@ fn centre_of_a_regular_star_is_the_minimiser() {
     }
     let (_, g) = obj.value_and_gradient(&quad_star(), DVec2::ZERO);
     assert!(g.length() < 1e-12);
+    }
 }
 
 // 6. One minimum ----------------------------------------------------------------------------
@@ -327,7 +363,7 @@ fn single_minimum_on_star_shaped_and_quad_configurations() {
 #[test]
 fn literal_opposite_length_has_spurious_minima() {
     // why the default departs from the extracted text (see `PenaltyLength::Opposite`)
-    let lit = new().with_length(PenaltyLength::Opposite);
+    let lit = literal();
     let s = fan_star(&star_polygon());
     let minima = grid_minima(|p| lit.value(&s, p), d(-1.3, -1.3), d(1.3, 1.3), 131);
     assert!(minima.len() > 3, "{minima:?}");
@@ -383,7 +419,7 @@ fn without_the_penalty_descent_does_not_untangle() {
 
 #[test]
 fn quad_term_is_its_three_sub_triangles() {
-    let obj = new();
+    for obj in [new(), barrier()] {
     let mut ring = square_ring();
     let mut rng = Lcg::new(37);
     for p in ring.iter_mut() {
@@ -403,12 +439,20 @@ fn quad_term_is_its_three_sub_triangles() {
                 elem(ElementKind::Tri3, &[c, o, p], 0),
                 elem(ElementKind::Tri3, &[c, n, p], 0),
             ]);
+            // both stars start where the quad star's node is (valid, with margin), so the
+            // barrier's δ is 0 for both and the sums must agree, +∞ included
+            assert_eq!((obj.delta(&qs), obj.delta(&tris)), (0.0, 0.0));
             let (v, g) = obj.value_and_gradient(&tris, x);
+            if v.is_infinite() {
+                assert_eq!(term.value, v);
+                continue;
+            }
             assert!(
                 (term.value - v).abs() <= 1e-12 * (1.0 + v.abs())
                     && (term.grad - g).length() <= 1e-10 * (1.0 + g.length())
             );
         }
+    }
     }
 }
 
@@ -462,7 +506,7 @@ fn linear_triangle_fast_path_equals_the_general_jets() {
             let el = elem(ElementKind::Tri3, &pts, slot);
             for x in [rng.point(3.0), pts[(slot + 1) % 3], 0.5 * (pts[(slot + 1) % 3] + pts[(slot + 2) % 3])] {
                 let j = crate::objective::corners::ElementJets::new(&el, x);
-                let general = SubTriangle::of(&j, slot, (slot + 1) % 3, (slot + 2) % 3);
+                let general = SubTriangle::of(&j, slot, (slot + 1) % 3, (slot + 2) % 3, true);
                 let fast = SubTriangle::linear(x, pts[(slot + 1) % 3], pts[(slot + 2) % 3]);
                 assert_eq!(general, fast, "slot {slot}, x {x}");
             }
@@ -470,19 +514,203 @@ fn linear_triangle_fast_path_equals_the_general_jets() {
     }
     // and through the objective: its folded value and gradient over a star of linear
     // triangles are the sums of the general path's sub-triangles
-    let s = fan_star(&regular_ring(6, 1.0));
-    let obj = new();
-    for _ in 0..50 {
-        let x = rng.point(1.5);
-        let (v, g) = obj.value_and_gradient(&s, x);
-        let (mut v2, mut g2) = (0.0, DVec2::ZERO);
-        for el in &s.elems {
-            let j = crate::objective::corners::ElementJets::new(el, x);
-            let f = j.slot;
-            let (a, b) = obj.sub_triangle(&SubTriangle::of(&j, f, (f + 1) % 3, (f + 2) % 3));
-            v2 += a;
-            g2 += b;
+    for obj in [new(), barrier()] {
+        for _ in 0..50 {
+            let x = rng.point(1.5);
+            let s = at_start(&fan_star(&regular_ring(6, 1.0)), x);
+            let delta = obj.delta(&s);
+            let (v, g) = obj.value_and_gradient(&s, x);
+            let (mut v2, mut g2) = (0.0, DVec2::ZERO);
+            for el in &s.elems {
+                let j = crate::objective::corners::ElementJets::new(el, x);
+                let f = j.slot;
+                let (a, b) = obj.sub_triangle(&SubTriangle::of(&j, f, (f + 1) % 3, (f + 2) % 3, true), delta);
+                v2 += a;
+                g2 += b;
+            }
+            assert_eq!((v, g), (v2, g2));
         }
-        assert_eq!((v, g), (v2, g2));
     }
+}
+
+// The regularised barrier (the default design of eq. (8)) ---------------------------------
+
+/// `η_δ²` of the straight triangle (C, A, B), C free.
+fn eta2_of(c: DVec2, a: DVec2, b: DVec2, delta: f64) -> f64 {
+    let t = SubTriangle::linear(c, a, b);
+    barrier::RegularisedBarrier::eta2(&barrier::CornerND::of(t.c_to_a, t.c_to_b), delta).0
+}
+
+#[test]
+fn eta_is_the_cotangent_sum_and_the_inverse_of_alpha() {
+    let mut rng = Lcg::new(101);
+    for _ in 0..500 {
+        let (c, a, b) = (rng.point(2.0), rng.point(2.0), rng.point(2.0));
+        let (c, a, b) = if (a - c).perp_dot(b - c) > 0.0 { (c, a, b) } else { (c, b, a) };
+        let angle = |p: DVec2, q: DVec2, r: DVec2| (q - p).angle_to(r - p).abs();
+        let cot = |t: f64| t.cos() / t.sin();
+        let eta = (cot(angle(c, a, b)) + cot(angle(a, b, c)) + cot(angle(b, c, a))) / 3f64.sqrt();
+        let got = eta2_of(c, a, b, 0.0).sqrt();
+        assert!((got - eta).abs() <= 1e-9 * eta, "{got} {eta}");
+        let q = element_quality(ElementKind::Tri3, &[c, a, b]);
+        assert!((got * q.shape - 1.0).abs() < 1e-9, "η·α = {}", got * q.shape);
+    }
+    // hand-derived: equilateral 1; right isosceles (45°, 45°, 90°): (1 + 1 + 0)/√3
+    assert!((eta2_of(d(0.5, 3f64.sqrt() / 2.0), d(0.0, 0.0), d(1.0, 0.0), 0.0) - 1.0).abs() < 1e-15);
+    assert!((eta2_of(d(0.0, 1.0), d(0.0, 0.0), d(1.0, 0.0), 0.0) - 4.0 / 3.0).abs() < 1e-15);
+}
+
+#[test]
+fn delta_makes_the_worst_corner_a_sliver_of_eps_rho() {
+    // h_δ(N_min) = ε·ρ exactly, for any inverted start
+    let obj = RegularisedBarrier::default();
+    let mut rng = Lcg::new(103);
+    for s in sample_stars() {
+        for _ in 0..20 {
+            let x = s.x0 + rng.point(1.6);
+            let start = at_start(&s, x);
+            let delta = ChenTristanoKwok::Barrier(obj).delta(&start);
+            let mut ns = Vec::new();
+            for el in &start.elems {
+                each_sub_triangle(el, x, |t| {
+                    ns.push(t.c_to_a.0.perp_dot(t.c_to_b.0));
+                    if !t.straight {
+                        ns.push(t.a_to_b.0.perp_dot(t.a_to_c.0));
+                        ns.push(t.b_to_c.0.perp_dot(t.b_to_a.0));
+                    }
+                });
+            }
+            let rho = ns.iter().map(|n| n.abs()).sum::<f64>() / ns.len() as f64;
+            let n_min = ns.iter().copied().fold(f64::INFINITY, f64::min);
+            let m = BARRIER_EPSILON * rho;
+            if n_min >= m {
+                assert_eq!(delta, 0.0);
+            } else {
+                assert!(delta > 0.0);
+                let (h, _) = regularised_determinant(n_min, delta);
+                assert!((h - m).abs() <= 1e-9 * m, "h(N_min) = {h}, ερ = {m}");
+            }
+        }
+    }
+    // a valid star with margin: δ = 0
+    assert_eq!(barrier().delta(&fan_star(&regular_ring(6, 1.0))), 0.0);
+}
+
+#[test]
+fn barrier_on_valid_stars() {
+    // δ = 0 at a valid start: +∞ at every position that folds a sub-triangle, finite at
+    // every valid one, and growing without bound towards the fold
+    let obj = barrier();
+    let mut rng = Lcg::new(107);
+    for (name, s) in configurations() {
+        assert_eq!(obj.delta(&s), 0.0, "{name}");
+        for _ in 0..300 {
+            let x = s.x0 + rng.point(1.6);
+            let v = obj.value(&s, x);
+            assert_eq!(v.is_finite(), star_valid(&s, x), "{name} at {x}: {v}");
+        }
+    }
+    // approaching the edge AB of a triangle from inside
+    let (a, b) = (d(0.0, 0.0), d(1.0, 0.0));
+    let tri = star(vec![elem(ElementKind::Tri3, &[d(0.5, 0.8), a, b], 0)]);
+    let mut prev = 0.0;
+    for h in [0.5, 0.1, 1e-2, 1e-4, 1e-8] {
+        let v = obj.value(&tri, d(0.3, h));
+        assert!(v > prev && v.is_finite(), "{h}: {v}");
+        prev = v;
+    }
+    assert!(prev > 1e12);
+    assert_eq!(obj.value(&tri, d(0.3, 0.0)), f64::INFINITY);
+}
+
+#[test]
+fn finite_on_inverted_stars_and_growing_with_the_depth_of_the_fold() {
+    let obj = barrier();
+    let mut rng = Lcg::new(109);
+    for (name, s) in configurations() {
+        for x0 in inverted_starts(&s, 113, 10) {
+            let start = at_start(&s, x0);
+            assert!(obj.delta(&start) > 0.0, "{name}");
+            for _ in 0..50 {
+                let x = x0 + rng.point(2.0);
+                let (v, g) = obj.value_and_gradient(&start, x);
+                assert!(v.is_finite() && g.is_finite(), "{name} at {x}");
+            }
+        }
+    }
+    // one triangle, δ fixed: the value grows as C goes deeper through AB
+    let (a, b) = (d(0.0, 0.0), d(1.0, 0.0));
+    let tri = at_start(&star(vec![elem(ElementKind::Tri3, &[d(0.5, 0.8), a, b], 0)]), d(0.5, -0.1));
+    let mut prev = 0.0;
+    for depth in [-0.05, -0.1, -0.2, -0.4, -0.8, -1.6] {
+        let v = obj.value(&tri, d(0.5, depth));
+        assert!(v > prev, "{depth}: {v}");
+        prev = v;
+    }
+}
+
+/// Optimization calls as the driver makes them: each starts where the last ended (δ taken
+/// there) and descends at most `iters` steps.
+fn untangle_by_calls(obj: &dyn Objective, s: &Star, mut x: DVec2, calls: usize, iters: usize) -> DVec2 {
+    for _ in 0..calls {
+        if star_valid(s, x) {
+            break;
+        }
+        x = descend(obj, &at_start(s, x), x, 0.2, iters);
+    }
+    x
+}
+
+#[test]
+fn barrier_descent_from_inverted_starts_untangles() {
+    let obj = barrier();
+    for (name, s) in configurations() {
+        for x0 in inverted_starts(&s, 31, 25) {
+            let x = untangle_by_calls(&obj, &s, x0, 10, 400);
+            assert!(star_valid(&s, x), "{name}: from {x0} descent stopped at {x}, still inverted");
+        }
+    }
+    // from (3, 1), outside the hexagon star, where (1 − α)² alone runs off (Fig. 2)
+    let s = fan_star(&regular_ring(6, 1.0));
+    let x = untangle_by_calls(&obj, &s, d(3.0, 1.0), 10, 400);
+    assert!(star_valid(&s, x));
+    let x = descend(&obj, &at_start(&s, x), x, 0.2, 4000);
+    assert!(x.length() < 1e-3, "{x}");
+}
+
+#[test]
+fn barrier_has_one_minimum_on_star_shaped_and_quad_configurations() {
+    let obj = barrier();
+    for (name, s) in configurations() {
+        // δ = 0 (a valid start)
+        let minima = grid_minima(|p| obj.value(&s, p), d(-1.3, -1.3), d(1.3, 1.3), 131);
+        assert_eq!(minima.len(), 1, "{name}: sampled local minima at {minima:?}");
+        assert!(star_valid(&s, minima[0]), "{name}");
+        // δ > 0 (an inverted start): still one minimum
+        let x0 = inverted_starts(&s, 127, 1)[0];
+        let start = at_start(&s, x0);
+        let minima = grid_minima(|p| obj.value(&start, p), d(-1.3, -1.3), d(1.3, 1.3), 131);
+        assert_eq!(minima.len(), 1, "{name} from {x0}: sampled local minima at {minima:?}");
+    }
+}
+
+#[test]
+fn barrier_on_quadratic_elements_sees_curved_edges() {
+    let obj = barrier();
+    for lin in [fan_star(&regular_ring(5, 1.0)), dented_quads(), mixed_star()] {
+        let quad = quadratic(&lin);
+        for x in [d(0.1, 0.2), d(-0.2, 0.1)] {
+            let (a, ga) = obj.value_and_gradient(&lin, x);
+            let (b, gb) = obj.value_and_gradient(&quad, x);
+            assert!((a - b).abs() <= 1e-12 * (1.0 + a.abs()) && (ga - gb).length() <= 1e-9 * (1.0 + ga.length()));
+        }
+    }
+    // the corners at the ring nodes are measured with the far edge's tangent: bowing it
+    // either way makes them less equilateral, so the penalty rises, and more with the bow
+    // (the first design read an outward bow as an opened angle, a gain)
+    let hex = fan_star(&regular_ring(6, 1.0));
+    let at = |bulge: f64| obj.value(&curved(&hex, bulge), DVec2::ZERO);
+    assert!((at(0.0) - 6.0 * BARRIER_WEIGHT).abs() < 1e-12, "{}", at(0.0));
+    assert!(at(-0.15) > at(-0.05) && at(-0.05) > at(0.0) + 1e-3);
+    assert!(at(0.15) > at(0.05) && at(0.05) > at(0.0) + 1e-3);
 }
