@@ -25,7 +25,7 @@ use crate::error::{Error, Result};
 use crate::generate::perturb;
 use crate::io::{write_string, Format, WriteOptions};
 use crate::mesh::Mesh;
-use crate::objective::{objective, Objective, ObjectiveKind};
+use crate::objective::{objective_with, Objective, ObjectiveKind, Penalty};
 use crate::optimize::SolveResult;
 use crate::quality::MeshStats;
 use crate::smooth::{solve_node, Order, SmoothOptions, Smoother, Strategy, SweepCounts};
@@ -76,12 +76,23 @@ pub struct Settings {
     pub order: Order,
     /// Solver iterations per optimization call.
     pub max_iter: u32,
+    /// The design of the new objective's penalty (the new side's), by its name
+    /// (`barrier`, `angle`); absent means the default.
+    #[serde(default)]
+    pub penalty: Penalty,
 }
 
 impl Default for Settings {
-    /// Chen's algorithm: rules, priority order, 3 iterations per call; θ_t = 30°.
+    /// Chen's algorithm: rules, priority order, 3 iterations per call; θ_t = 30°; the
+    /// barrier penalty.
     fn default() -> Self {
-        Settings { strategy: Strategy::Rules, threshold_deg: 30.0, order: Order::Priority, max_iter: 3 }
+        Settings {
+            strategy: Strategy::Rules,
+            threshold_deg: 30.0,
+            order: Order::Priority,
+            max_iter: 3,
+            penalty: Penalty::default(),
+        }
     }
 }
 
@@ -151,11 +162,11 @@ pub struct Panel {
 }
 
 impl Panel {
-    fn new(side: Side, mesh: Mesh, options: SmoothOptions, version: u64, full: &MeshStats, buckets: Vec<u8>) -> Result<Self> {
+    fn new(side: Side, mesh: Mesh, settings: &Settings, version: u64, full: &MeshStats, buckets: Vec<u8>) -> Result<Self> {
         Ok(Panel {
             mesh,
-            objective: objective(side.objective_kind()),
-            smoother: Smoother::new(options)?,
+            objective: objective_with(side.objective_kind(), settings.penalty),
+            smoother: Smoother::new(settings.smooth_options()?)?,
             records: Vec::new(),
             version,
             quick: quick_of(full),
@@ -310,15 +321,14 @@ impl Playground {
             )));
         }
         let settings = Settings::default();
-        let o = settings.smooth_options()?;
         let full = crate::quality::mesh_stats(&mesh);
         let mut buckets = Vec::new();
         quick_stats_and_buckets(&mesh, &mut buckets);
         let original = mesh.nodes.clone();
         let bounds = mesh.bounds();
         let mean_edge = mesh.mean_edge_length();
-        let old = Panel::new(Side::Old, mesh.clone(), o, 1, &full, buckets.clone())?;
-        let new = Panel::new(Side::New, mesh, o, 1, &full, buckets.clone())?;
+        let old = Panel::new(Side::Old, mesh.clone(), &settings, 1, &full, buckets.clone())?;
+        let new = Panel::new(Side::New, mesh, &settings, 1, &full, buckets.clone())?;
         Ok(Playground {
             original,
             original_version: 1,
@@ -348,8 +358,9 @@ impl Playground {
     pub fn set_settings(&mut self, settings: Settings) -> Result<()> {
         let o = settings.smooth_options()?;
         self.abort_pass();
-        for p in &mut self.panels {
+        for (p, side) in self.panels.iter_mut().zip([Side::Old, Side::New]) {
             p.smoother = Smoother::new(o)?;
+            p.objective = objective_with(side.objective_kind(), settings.penalty);
         }
         self.settings = settings;
         Ok(())
@@ -769,6 +780,10 @@ mod tests {
         let [old, new] = last.unwrap();
         assert_eq!((old.pass, new.pass), (3, 3));
         assert_eq!(new.inverted, 0, "Chen et al. untangle the perturbed plate in 3 passes");
+        // the page's default sample tells Chen's claim: the new side ends better than the old
+        let (o, n) = (pg.full_stats(Side::Old).clone(), pg.full_stats(Side::New).clone());
+        assert!(n.min_angle_deg > o.min_angle_deg, "min angle: new {} old {}", n.min_angle_deg, o.min_angle_deg);
+        assert!(n.mean_quality > o.mean_quality, "mean quality: new {} old {}", n.mean_quality, o.mean_quality);
         let s = pg.stats(Side::New);
         assert_eq!(s.mesh.inverted, 0);
         assert_eq!(s.passes, 3);
@@ -899,7 +914,7 @@ mod tests {
                         for side in Side::BOTH {
                             let mut m = mesh.clone();
                             let mut s = Smoother::new(settings.smooth_options().unwrap()).unwrap();
-                            let obj = objective(side.objective_kind());
+                            let obj = objective_with(side.objective_kind(), settings.penalty);
                             let mut rec = None;
                             for _ in 0..pass {
                                 rec = Some(s.pass(&mut m, obj.as_ref(), &|| 0.0));

@@ -354,8 +354,12 @@ pub fn render_level_set(pixmap: &mut Pixmap, data: &LevelSet<'_>, opts: &LevelSe
             LegendEntry { label: "feasible border", color: rgba(228, 26, 28, 255), key: Key::Line { dashed: true, marker: None } },
             LegendEntry { label: "an element inverted", color: rgba(33, 144, 141, 255), key: Key::Hatched },
         ];
-        if field.values.iter().any(|v| !v.is_finite()) {
+        // +∞ is a barrier's value where a valid element would fold (the `new` objective on a
+        // valid star); NaN is a value the objective does not define
+        if field.values.iter().any(|v| v.is_nan()) {
             entries.push(LegendEntry { label: "objective undefined", color: rgba(225, 225, 225, 255), key: Key::Hatched });
+        } else if field.values.iter().any(|v| v.is_infinite()) {
+            entries.push(LegendEntry { label: "+∞: the barrier", color: rgba(225, 225, 225, 255), key: Key::Hatched });
         }
         for kind in PathKind::ALL {
             if kind != PathKind::Start && data.path.iter().any(|(_, k)| *k == kind) {

@@ -143,6 +143,9 @@ try {
     const after = [await stats(page, 'old'), await stats(page, 'new')];
     check(after[1].inverted === '0', `new side still has ${after[1].inverted} inverted elements`);
     check(after[0].passes === '3' && after[1].passes === '3', `passes: ${after[0].passes}/${after[1].passes}`);
+    // Chen's claim on the page's default sample: the new objective ends with the larger min angle
+    check(parseFloat(after[1].min_angle) > parseFloat(after[0].min_angle),
+      `min angle: new ${after[1].min_angle} is not above old ${after[0].min_angle}`);
     console.log(`     inverted old ${before[0].inverted} → ${after[0].inverted}, new ${before[1].inverted} → ${after[1].inverted}; ` +
       `min angle old ${after[0].min_angle}, new ${after[1].min_angle}`);
     await shot(page, '02-after-3-passes');

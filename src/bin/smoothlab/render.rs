@@ -83,6 +83,9 @@ pub struct RenderArgs {
     /// Solver iterations per optimization call
     #[arg(long, default_value_t = 3)]
     pub max_iter: u32,
+    /// Design of the new objective's penalty: barrier (the default) or angle (the first design)
+    #[arg(long, value_parser = crate::smooth::penalty_parser(), default_value = "barrier")]
+    pub penalty: smoothlab::objective::Penalty,
 }
 
 /// Which sides `--objective` asks for.
@@ -114,7 +117,13 @@ fn size(spec: Option<&str>, default: (u32, u32)) -> Result<(u32, u32), String> {
 }
 
 fn settings(a: &RenderArgs) -> Settings {
-    Settings { strategy: a.strategy.strategy(), threshold_deg: a.threshold, order: a.order.order(), max_iter: a.max_iter }
+    Settings {
+        strategy: a.strategy.strategy(),
+        threshold_deg: a.threshold,
+        order: a.order.order(),
+        max_iter: a.max_iter,
+        penalty: a.penalty,
+    }
 }
 
 /// The free node whose star has the smallest element quality (α/β), if any node is free.
@@ -229,7 +238,7 @@ pub fn run(a: RenderArgs) -> Result<(), String> {
             let as_loaded = mesh_stats(&original).angle_histogram_6deg;
             let mut laplace = original.clone();
             let opts = SmoothOptions::default().with_strategy(Strategy::Laplace);
-            let objective = smoothlab::objective::objective(smoothlab::objective::ObjectiveKind::New);
+            let objective = smoothlab::objective::objective_with(smoothlab::objective::ObjectiveKind::New, a.penalty);
             smooth(&mut laplace, objective.as_ref(), opts, passes, &|| 0.0).map_err(|e| e.to_string())?;
             let lap = mesh_stats(&laplace).angle_histogram_6deg;
             let old = lab.stats(Side::Old).mesh.angle_histogram_6deg;

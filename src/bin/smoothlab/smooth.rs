@@ -77,7 +77,7 @@ pub struct SmoothArgs {
 }
 
 /// `--penalty`'s values, from the core's own names.
-fn penalty_parser() -> impl clap::builder::TypedValueParser<Value = Penalty> {
+pub fn penalty_parser() -> impl clap::builder::TypedValueParser<Value = Penalty> {
     use clap::builder::TypedValueParser;
     clap::builder::PossibleValuesParser::new(Penalty::ALL.map(Penalty::name))
         .map(|s: String| Penalty::parse(&s).expect("one of the possible values"))
