@@ -304,7 +304,8 @@ fn freitag_table_1(out: &mut String) {
         }
     }
     for (choice, design) in NEW_DESIGNS {
-        let tag = if choice == NEW_ANGLE { format!(" ({design})") } else { String::new() };
+        let tag = if choice == NEW_ANGLE { " (angle design)" } else { "" };
+        let _ = design;
         for (name, o) in [
             ("opt, `new`", opts(Strategy::Opt, Order::Input)),
             ("rules, `new`, input order", opts(Strategy::Rules, Order::Input)),
@@ -396,7 +397,7 @@ fn freitag_table_1(out: &mut String) {
     let c3 = find("C3 30°, `sine`");
     let new_rules = find("rules, `new`, priority");
     let new_opt = find("opt, `new`");
-    let angle_rules = find("rules, `new`, priority (angle (first design))");
+    let angle_rules = find("rules, `new`, priority (angle design)");
     let _ = writeln!(
         out,
         "\nMeasured: optimization with `sine` costs {:.1}× the smart Laplacian here (Freitag: about 5×; the time \

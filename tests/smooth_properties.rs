@@ -125,6 +125,30 @@ proptest! {
     }
 
     #[test]
+    fn new_never_folds_a_valid_star(
+        shape in 0u8..3, size in 0usize..100, seed in 1u64..10_000, amount in 0.3f64..1.2,
+    ) {
+        // tangled meshes: an inverted star may pass through a fold on its way out (the
+        // default for `new`), a valid one never gains an inverted element
+        let base = small_mesh(shape, size, seed, amount);
+        for penalty in Penalty::ALL {
+            let obj = ChenTristanoKwok::with_penalty(penalty);
+            for strategy in [Strategy::Opt, Strategy::Rules] {
+                let mut m = base.clone();
+                let mut s = Smoother::new(options(strategy)).unwrap();
+                let order: Vec<u32> = s.plan(&m).to_vec();
+                for n in order {
+                    let n = n as usize;
+                    let (_, inv0) = star_state(&m, n);
+                    s.smooth_node(&mut m, n, &obj);
+                    let (_, inv1) = star_state(&m, n);
+                    prop_assert!(inv0 > 0 || inv1 == 0, "{penalty}/{strategy:?}: node {n} folded a valid star ({inv1})");
+                }
+            }
+        }
+    }
+
+    #[test]
     fn fixed_nodes_stay_and_nothing_goes_non_finite(
         shape in 0u8..3, size in 0usize..100, seed in 1u64..10_000, amount in 0.0f64..1.0, collapse in any::<bool>(),
     ) {

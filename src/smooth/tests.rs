@@ -652,3 +652,45 @@ fn the_keep_valid_exception_lets_an_inverted_star_pass_through_a_fold() {
         }
     }
 }
+
+/// Untangling sweeps end: at the limit, or after a sweep that moved no node, and never
+/// when nothing is inverted or the strategy cannot optimise.
+#[test]
+fn untangling_sweeps_terminate() {
+    use crate::mesh::FixedSpec;
+    // a fan of four triangles round the free node 0, plus a clockwise triangle of fixed
+    // nodes that no smoother can change: every pass has an inverted element left
+    let mut b = MeshBuilder::new();
+    for (x, y) in [(0.1, 0.05), (1.0, 0.0), (0.0, 1.0), (-1.0, 0.0), (0.0, -1.0)] {
+        b.add_node([x, y, 0.0], 0);
+    }
+    for t in [[0, 1, 2], [0, 2, 3], [0, 3, 4], [0, 4, 1], [1, 4, 3]] {
+        b.add_element(ElementKind::Tri3, &t, 0);
+    }
+    b.fixed = FixedSpec::Exact(vec![false, true, true, true, true]);
+    let mesh = b.build().unwrap();
+    assert!(mesh_stats(&mesh).inverted > 0);
+    let new = crate::objective::ChenTristanoKwok::default();
+    for (limit, strategy) in [(UNTANGLE_SWEEPS, Strategy::Rules), (3, Strategy::Opt), (0, Strategy::Rules)] {
+        let mut m = mesh.clone();
+        let opts = SmoothOptions::default().with_strategy(strategy).with_untangle_sweeps(limit);
+        let r = Smoother::new(opts).unwrap().pass(&mut m, &new, &|| 0.0);
+        assert!(r.inverted > 0);
+        // the free node settles within a sweep or two; then a sweep moves nothing and ends them
+        assert!(r.untangle_sweeps <= limit.min(3), "{strategy:?}, limit {limit}: {} sweeps", r.untangle_sweeps);
+        assert!(limit == 0 || r.untangle_sweeps >= 1);
+    }
+    // strategies that never optimise do not sweep
+    for strategy in [Strategy::Laplace, Strategy::Smart] {
+        let mut m = mesh.clone();
+        let r = Smoother::new(SmoothOptions::default().with_strategy(strategy)).unwrap().pass(&mut m, &new, &|| 0.0);
+        assert_eq!(r.untangle_sweeps, 0, "{strategy:?}");
+    }
+    // a valid mesh never sweeps
+    let mut g = crate::generate::grid(4, 4, crate::generate::GridKind::Tri).unwrap();
+    let r = Smoother::new(SmoothOptions::default()).unwrap().pass(&mut g, &new, &|| 0.0);
+    assert_eq!((r.inverted, r.untangle_sweeps), (0, 0));
+    // and the limit is checked
+    assert!(Smoother::new(SmoothOptions::default().with_untangle_sweeps(1001)).is_err());
+}
+
