@@ -72,6 +72,9 @@ pub fn max_iter_unused(s: Strategy) -> Option<String> {
     }
 }
 
+// a link may ask for no more than a batch run allows
+const _: () = assert!(BATCH_PASSES.max >= PASSES.max && BATCH_MAX_ITER.max >= MAX_ITER.max);
+
 /// A strategy as people name it.
 pub fn strategy_words(s: Strategy) -> &'static str {
     match s {
@@ -184,7 +187,6 @@ mod tests {
         assert!((0.0..=MAX_AMOUNT).contains(&d.amount));
         assert!(THRESHOLDS.contains(&d.threshold_deg));
         assert!(d.validate().is_ok());
-        assert!(BATCH_PASSES.max >= PASSES.max && BATCH_MAX_ITER.max >= MAX_ITER.max);
     }
 
     #[test]

@@ -735,6 +735,7 @@ try {
     const box = await p8.locator('#mesh-old').boundingBox();
     check(box.y + box.height / 2 < 844, `the old mesh starts at ${box.y} px, below the first screen`);
     check(!/left|right/.test(await p8.textContent('.lede')), 'the intro says left/right');
+    await shot(p8, '10-phone-first-screen', false);
     await p8.click('#run');
     await p8.waitForFunction(() => /2 passes done/.test(document.getElementById('status').textContent), null, { timeout: TIMEOUT });
     await idle(p8);
@@ -751,7 +752,7 @@ try {
       return dark;
     });
     check(edge === 0, `${edge} dark pixels at the right edge of the mesh canvas`);
-    await shot(p8, '10-phone-390', false);
+    await shot(p8, '10-phone-after-run', false);
     await p8.locator('.pass-view').screenshot({ path: path.join(OUT, '11-phone-charts.png') });
     // a tap reaches a node a finger covers
     const t = await p8.evaluate(() => window.smoothlab.pickRadius({ pointerType: 'touch' }));
