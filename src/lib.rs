@@ -11,6 +11,7 @@ pub mod error;
 pub mod generate;
 pub mod io;
 pub mod lab;
+pub mod limits;
 pub mod mesh;
 pub mod objective;
 pub mod optimize;

@@ -1,5 +1,5 @@
 //! The page's permalink: the sample and settings held in the URL hash, e.g.
-//! `#sample=plate-tri&tangle=0.6&seed=3&strategy=rules&objective=new&threshold=30&passes=3&order=priority&maxiter=3&node=17`.
+//! `#sample=plate-tri&tangle=0.6&seed=3&perturbed=1&strategy=rules&objective=new&threshold=30&passes=3&order=priority&maxiter=3&node=17`.
 //!
 //! [`decode`] is strict about what it knows and lenient about what it does not:
 //!
@@ -62,12 +62,8 @@ pub fn gmsh_file(sample: &str) -> Option<&'static str> {
 /// Longest hash [`decode`] reads, in bytes (a full canonical hash is under 300).
 pub const MAX_HASH_BYTES: usize = 2048;
 
-/// Largest perturbation amount, in mean edge lengths.
-pub const MAX_AMOUNT: f64 = 2.0;
-/// Largest number of smoothing passes.
-pub const MAX_PASSES: u32 = 100;
-/// Largest number of solver iterations per node.
-pub const MAX_ITER: u32 = 50;
+pub use crate::limits::MAX_AMOUNT;
+use crate::limits::{self, amount_words};
 
 /// What a permalink holds: the sample and the settings of the page.
 #[derive(Clone, Debug, PartialEq)]
@@ -79,6 +75,9 @@ pub struct PageState {
     /// Perturbation amount in mean edge lengths, `0 ..= 2`. Key `tangle` (`amount` is
     /// read as the same key); default 0.5.
     pub amount: f64,
+    /// The mesh on screen is the sample perturbed by `amount` with `seed` (the page's
+    /// Perturb button). Key `perturbed` (`1`/`0`, `true`/`false`); default false.
+    pub perturbed: bool,
     /// Key `strategy`: `laplace`, `smart`, `opt`, `c1`, `c2`, `c3`, `rules`; default rules.
     pub strategy: Strategy,
     /// Key `objective`: an [`ObjectiveKind`] name (`old`, `new`, …); default new.
@@ -104,6 +103,7 @@ impl Default for PageState {
             sample: None,
             seed: 1,
             amount: 0.5,
+            perturbed: false,
             strategy: smooth.strategy,
             objective: ObjectiveKind::New,
             threshold_deg: smooth.threshold_deg,
@@ -134,8 +134,8 @@ impl PageState {
         }
         check_amount(self.amount, || self.amount.to_string())?;
         check_threshold(self.threshold_deg, || self.threshold_deg.to_string())?;
-        check_int("passes", self.passes.into(), 1, MAX_PASSES.into(), || self.passes.to_string())?;
-        check_int("maxiter", self.max_iter.into(), 1, MAX_ITER.into(), || self.max_iter.to_string())?;
+        check_int("passes", self.passes.into(), limits::PASSES, || self.passes.to_string())?;
+        check_int("maxiter", self.max_iter.into(), limits::MAX_ITER, || self.max_iter.to_string())?;
         Ok(())
     }
 }
@@ -150,6 +150,7 @@ pub struct PageFields {
     pub sample: Option<String>,
     pub seed: u64,
     pub amount: f64,
+    pub perturbed: bool,
     pub strategy: String,
     pub objective: String,
     pub threshold: f64,
@@ -172,6 +173,7 @@ impl From<&PageState> for PageFields {
             sample: s.sample.clone(),
             seed: s.seed,
             amount: s.amount,
+            perturbed: s.perturbed,
             strategy: s.strategy.name().to_string(),
             objective: s.objective.name().to_string(),
             threshold: s.threshold_deg,
@@ -192,6 +194,7 @@ impl PageFields {
             sample: self.sample.clone(),
             seed: self.seed,
             amount: self.amount,
+            perturbed: self.perturbed,
             strategy: Strategy::parse(&self.strategy).ok_or_else(|| {
                 let names: Vec<&str> = Strategy::ALL.iter().map(|s| s.name()).collect();
                 bad("strategy", &self.strategy, &format!("one of {}", names.join(", ")))
@@ -218,6 +221,7 @@ enum Key {
     Sample,
     Tangle,
     Seed,
+    Perturbed,
     Strategy,
     Objective,
     Threshold,
@@ -229,10 +233,11 @@ enum Key {
 }
 
 impl Key {
-    const ALL: [Key; 11] = [
+    const ALL: [Key; 12] = [
         Key::Sample,
         Key::Tangle,
         Key::Seed,
+        Key::Perturbed,
         Key::Strategy,
         Key::Objective,
         Key::Threshold,
@@ -248,6 +253,7 @@ impl Key {
             Key::Sample => "sample",
             Key::Tangle => "tangle",
             Key::Seed => "seed",
+            Key::Perturbed => "perturbed",
             Key::Strategy => "strategy",
             Key::Objective => "objective",
             Key::Threshold => "threshold",
@@ -291,7 +297,7 @@ fn check_amount(v: f64, found: impl Fn() -> String) -> Result<()> {
     if (0.0..=MAX_AMOUNT).contains(&v) {
         Ok(())
     } else {
-        Err(bad("tangle", &found(), "a number from 0 to 2 (mean edge lengths)"))
+        Err(bad("tangle", &found(), &amount_words()))
     }
 }
 
@@ -303,11 +309,11 @@ fn check_threshold(v: f64, found: impl Fn() -> String) -> Result<()> {
     }
 }
 
-fn check_int(key: &str, v: u64, lo: u64, hi: u64, found: impl Fn() -> String) -> Result<()> {
-    if (lo..=hi).contains(&v) {
+fn check_int(key: &str, v: u64, range: limits::IntRange, found: impl Fn() -> String) -> Result<()> {
+    if range.contains(v) {
         Ok(())
     } else {
-        Err(bad(key, &found(), &format!("a whole number from {lo} to {hi}")))
+        Err(bad(key, &found(), &range.words()))
     }
 }
 
@@ -412,11 +418,12 @@ pub fn decode(hash: &str) -> Result<PageState> {
                 state.sample = Some(value.clone());
             }
             Key::Tangle => {
-                let a = parse_real(name, v, "a number from 0 to 2 (mean edge lengths)")?;
+                let a = parse_real(name, v, &amount_words())?;
                 check_amount(a, || value.clone())?;
                 state.amount = a;
             }
-            Key::Seed => state.seed = parse_uint(name, v, u64::MAX)?,
+            Key::Seed => state.seed = parse_uint(name, v, limits::SEED.max)?,
+            Key::Perturbed => state.perturbed = parse_flag(name, v)?,
             Key::Strategy => {
                 state.strategy = Strategy::parse(v).ok_or_else(|| {
                     let names: Vec<&str> = Strategy::ALL.iter().map(|s| s.name()).collect();
@@ -435,29 +442,63 @@ pub fn decode(hash: &str) -> Result<PageState> {
                 state.threshold_deg = t;
             }
             Key::Passes => {
-                let p = parse_uint(name, v, u64::MAX).map_err(|_| bad(name, v, "a whole number from 1 to 100"))?;
-                check_int(name, p, 1, MAX_PASSES.into(), || value.clone())?;
+                let p = parse_uint(name, v, u64::MAX).map_err(|_| bad(name, v, &limits::PASSES.words()))?;
+                check_int(name, p, limits::PASSES, || value.clone())?;
                 state.passes = p as u32;
             }
             Key::Order => {
                 state.order = Order::parse(v).ok_or_else(|| bad(name, v, "one of input, priority"))?;
             }
             Key::MaxIter => {
-                let m = parse_uint(name, v, u64::MAX).map_err(|_| bad(name, v, "a whole number from 1 to 50"))?;
-                check_int(name, m, 1, MAX_ITER.into(), || value.clone())?;
+                let m = parse_uint(name, v, u64::MAX).map_err(|_| bad(name, v, &limits::MAX_ITER.words()))?;
+                check_int(name, m, limits::MAX_ITER, || value.clone())?;
                 state.max_iter = m as u32;
             }
             Key::Node => state.node = Some(parse_uint(name, v, u32::MAX.into())? as u32),
-            Key::Embed => {
-                state.embed = match v {
-                    "1" | "true" => true,
-                    "0" | "false" => false,
-                    _ => return Err(bad(name, v, "1 or 0 (or true or false)")),
-                }
-            }
+            Key::Embed => state.embed = parse_flag(name, v)?,
         }
     }
     Ok(state)
+}
+
+fn parse_flag(key: &str, v: &str) -> Result<bool> {
+    match v {
+        "1" | "true" => Ok(true),
+        "0" | "false" => Ok(false),
+        _ => Err(bad(key, v, "1 or 0 (or true or false)")),
+    }
+}
+
+/// Checks one control's text as the page's user typed it, by the permalink's own rules
+/// for its key (`passes`, `maxiter`, `seed`, `tangle`, `threshold`, …): `Ok` or a message
+/// for people, naming the control by its label and saying the allowed range.
+pub fn check_control(key: &str, text: &str) -> std::result::Result<(), String> {
+    let text = text.trim();
+    let Some(k) = Key::parse(key) else { return Err(format!("there is no setting called '{key}'")) };
+    let label = match k {
+        Key::Tangle => "Perturb amount",
+        Key::Seed => "Seed",
+        Key::Passes => "Passes",
+        Key::MaxIter => "Max iterations",
+        Key::Threshold => "Threshold angle",
+        Key::Node => "Node",
+        _ => k.name(),
+    };
+    if text.is_empty() {
+        return Err(format!("{label}: enter a value"));
+    }
+    let pair = format!("{}={}", k.name(), encode_component(text));
+    decode(&pair).map(|_| ()).map_err(|e| {
+        let msg = e.to_string();
+        // "permalink: 'passes' must be …, found '2.5'" → "Passes must be …; '2.5' is not."
+        let body = msg.split_once(&format!("'{}' must be ", k.name())).map(|(_, b)| b).unwrap_or(&msg);
+        let (allowed, found) = body.rsplit_once(", found ").unwrap_or((body, ""));
+        if found.is_empty() {
+            format!("{label} must be {allowed}.")
+        } else {
+            format!("{label} must be {allowed}; {found} is not.")
+        }
+    })
 }
 
 /// The shortest text that parses back to exactly `v` (plain or with an exponent).
@@ -484,6 +525,13 @@ pub fn encode(s: &PageState) -> String {
             },
             Key::Tangle => real(s.amount),
             Key::Seed => s.seed.to_string(),
+            Key::Perturbed => {
+                if s.perturbed {
+                    "1".to_string()
+                } else {
+                    continue;
+                }
+            }
             Key::Strategy => s.strategy.name().to_string(),
             Key::Objective => s.objective.name().to_string(),
             Key::Threshold => real(s.threshold_deg),
@@ -528,6 +576,30 @@ mod tests {
     use proptest::strategy::Strategy as Generator;
 
     #[test]
+    fn perturbed_round_trips_and_is_left_out_when_false() {
+        let s = decode("#sample=plate-tri&tangle=0.6&seed=3&perturbed=1").unwrap();
+        assert!(s.perturbed);
+        assert_eq!(encode(&s), "#sample=plate-tri&tangle=0.6&seed=3&perturbed=1&strategy=rules&objective=new&threshold=30&passes=3&order=priority&maxiter=3");
+        assert!(!encode(&PageState::default()).contains("perturbed"));
+        assert!(decode("perturbed=yes").unwrap_err().to_string().contains("'perturbed'"));
+    }
+
+    #[test]
+    fn a_control_is_checked_with_its_label_and_range_in_words() {
+        assert_eq!(check_control("passes", "7"), Ok(()));
+        assert_eq!(
+            check_control("passes", "2.5").unwrap_err(),
+            "Passes must be a whole number from 1 to 100; '2.5' is not."
+        );
+        assert_eq!(check_control("passes", "500").unwrap_err(), "Passes must be a whole number from 1 to 100; '500' is not.");
+        assert_eq!(check_control("maxiter", "0").unwrap_err(), "Max iterations must be a whole number from 1 to 50; '0' is not.");
+        assert!(check_control("seed", "-3").unwrap_err().starts_with("Seed must be a whole number from 0 to"));
+        assert!(check_control("tangle", "3").unwrap_err().starts_with("Perturb amount must be a number from 0 to 2"));
+        assert_eq!(check_control("passes", " ").unwrap_err(), "Passes: enter a value");
+        assert_eq!(check_control("seed", " 12 "), Ok(()));
+    }
+
+    #[test]
     fn the_example_decodes_to_what_it_says() {
         let s = decode(
             "#sample=plate-tri&tangle=0.6&seed=3&strategy=rules&objective=new&threshold=30&passes=3&order=priority&maxiter=3&node=17",
@@ -539,6 +611,7 @@ mod tests {
                 sample: Some("plate-tri".into()),
                 seed: 3,
                 amount: 0.6,
+                perturbed: false,
                 strategy: Strategy::Rules,
                 objective: ObjectiveKind::New,
                 threshold_deg: 30.0,
@@ -763,13 +836,14 @@ mod tests {
             strategy in proptest::sample::select(Strategy::ALL.to_vec()),
             objective in proptest::sample::select(ObjectiveKind::ALL.to_vec()),
             threshold_deg in any_threshold(),
-            passes in 1..=MAX_PASSES,
+            passes in 1..=limits::PASSES.max as u32,
             order in proptest::sample::select(Order::ALL.to_vec()),
-            max_iter in 1..=MAX_ITER,
+            max_iter in 1..=limits::MAX_ITER.max as u32,
             node in proptest::option::of(any::<u32>()),
             embed in any::<bool>(),
+            perturbed in any::<bool>(),
         ) -> PageState {
-            PageState { sample: sample.map(String::from), seed, amount, strategy, objective, threshold_deg, passes, order, max_iter, node, embed }
+            PageState { sample: sample.map(String::from), seed, amount, perturbed, strategy, objective, threshold_deg, passes, order, max_iter, node, embed }
         }
     }
 
@@ -796,7 +870,7 @@ mod tests {
         #[test]
         fn decode_never_panics_on_pairs_of_known_keys(
             pairs in proptest::collection::vec(
-                (proptest::sample::select(vec!["sample", "tangle", "amount", "seed", "strategy", "objective",
+                (proptest::sample::select(vec!["sample", "tangle", "amount", "seed", "perturbed", "strategy", "objective",
                     "threshold", "passes", "order", "maxiter", "node", "embed", "x"]),
                  "[-+.%0-9a-fA-Fe]{0,12}"), 0..8)
         ) {

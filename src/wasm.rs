@@ -81,6 +81,20 @@ pub fn encode_permalink(state: JsValue) -> Result<String, JsError> {
     Ok(permalink::encode(&fields.to_state()?))
 }
 
+/// The page's controls: their ranges, defaults and labels, and which strategy uses which
+/// control (see [`crate::limits::page_controls`]): the page builds its inputs from this.
+#[wasm_bindgen]
+pub fn controls() -> Result<JsValue, JsError> {
+    to_js(&crate::limits::page_controls())
+}
+
+/// Checks the text of one control (by its permalink key) as the permalink would read it:
+/// `null` when it is valid, else a message for people with the allowed range in words.
+#[wasm_bindgen(js_name = checkControl)]
+pub fn check_control(key: &str, text: &str) -> Option<String> {
+    permalink::check_control(key, text).err()
+}
+
 /// Milliseconds from the worker's (or window's) `performance.now()`, else the date.
 fn now_ms() -> f64 {
     let global = js_sys::global();
@@ -208,9 +222,14 @@ impl Playground {
         self.inner.abort_pass();
     }
 
-    /// Perturbs the original mesh (`amount` mean edge lengths, seeded) and resets both panels.
-    pub fn perturb(&mut self, amount: f64, seed: u32) -> Result<(), JsError> {
-        Ok(self.inner.perturb(amount, seed as u64)?)
+    /// Perturbs the original mesh (`amount` mean edge lengths, seeded) and resets both
+    /// panels. The seed is the control's text (a whole number up to 2^64 − 1, beyond what
+    /// a JS number holds exactly), checked as the permalink checks it.
+    pub fn perturb(&mut self, amount: f64, seed: &str) -> Result<(), JsError> {
+        permalink::check_control("seed", seed).map_err(|e| JsError::new(&e))?;
+        permalink::check_control("tangle", &amount.to_string()).map_err(|e| JsError::new(&e))?;
+        let seed: u64 = seed.trim().parse().map_err(|_| JsError::new("Seed: enter a whole number"))?;
+        Ok(self.inner.perturb(amount, seed)?)
     }
 
     /// A panel's current mesh as the text of a `msh` or `vtk` file.
@@ -272,12 +291,13 @@ impl Playground {
         self.shown = [None, None];
     }
 
-    /// The free node of a panel nearest to the CSS pixel `(x, y)` of the last frame, if
-    /// one is within the pick radius.
+    /// The node of a panel nearest to the CSS pixel `(x, y)` of the last frame within
+    /// `radius` CSS pixels: `{ node, nearest, message }` (see [`crate::lab::pick::Pick`]).
     #[wasm_bindgen(js_name = pickNode)]
-    pub fn pick_node(&self, panel: &str, x: f64, y: f64) -> Result<Option<u32>, JsError> {
+    pub fn pick_node(&self, panel: &str, x: f64, y: f64, radius: f64) -> Result<JsValue, JsError> {
         let view = self.view()?;
-        Ok(self.inner.pick_free_node(side(panel)?, &view, DVec2::new(x, y)).map(|n| n as u32))
+        let radius = if radius.is_finite() && radius > 0.0 { radius.min(64.0) } else { crate::render::PICK_RADIUS };
+        to_js(&self.inner.pick(side(panel)?, &view, DVec2::new(x, y), radius))
     }
 
     /// Moves a free node to the CSS pixel `(x, y)` of the last frame, on both panels.
@@ -291,12 +311,8 @@ impl Playground {
     #[wasm_bindgen(js_name = selectNode)]
     pub fn select_node(&mut self, node: Option<u32>) -> Result<(), JsError> {
         if let Some(n) = node {
-            let m = self.inner.topology();
-            if n as usize >= m.node_count() || !m.is_free(n as usize) {
-                return Err(JsError::new(&format!(
-                    "node {n} cannot be chosen: pick a free (interior) node, 0 to {}",
-                    m.node_count().saturating_sub(1)
-                )));
+            if let Some(why) = crate::lab::pick::why_not_free(self.inner.topology(), n as usize) {
+                return Err(JsError::new(&format!("Node {n} cannot be chosen: {why}.")));
             }
         }
         self.node = node.map(|n| n as usize);

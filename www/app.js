@@ -29,6 +29,11 @@ const nextFrame = () => new Promise((r) => requestAnimationFrame(() => r()));
 const metrics = { lastLoad: null, lastStep: null, run: null };
 
 const state = {
+  controls: null, // ranges, defaults and per-strategy reasons, from the core (limits.rs)
+  invalid: new Map(), // control id → its message, while what is typed there is not valid
+  perturbed: null, // {amount, seed} when the mesh on screen is the loaded one perturbed
+  generation: 0, // counts what replaces the meshes (load, Perturb, Reset): a run's last words are for its own
+  lastHash: null, // the hash this page last wrote or applied
   source: null, // what is loaded: {kind: 'sample'|'gmsh', name} or {kind: 'file'|'triangle', ...}
   lastGood: null, // the last source that loaded: reloaded after a panic
   node: null, // the node whose level sets are shown
@@ -56,12 +61,14 @@ function serial(fn) {
 // ---- messages ------------------------------------------------------------------------
 function showError(text) {
   const m = $('message');
+  delete m.dataset.control;
   m.textContent = text;
   m.hidden = false;
 }
 function clearError() {
   $('message').hidden = true;
   $('message').textContent = '';
+  delete $('message').dataset.control;
 }
 function setStatus(text) {
   $('status').textContent = text;
@@ -90,12 +97,73 @@ function readSettings() {
     strategy: $('strategy').value,
     threshold_deg: Number($('threshold').value),
     order: $('order').value,
-    max_iter: clampInt($('maxiter').value, 1, 100, 3),
+    max_iter: Number($('maxiter').value),
   };
 }
-function clampInt(v, lo, hi, dflt) {
-  const n = Math.round(Number(v));
-  return Number.isFinite(n) ? Math.min(hi, Math.max(lo, n)) : dflt;
+
+// ---- controls: built from the core's ranges, checked where they are edited ------------
+/** The permalink key by which the core checks each typed control. */
+const CHECKED = { passes: 'passes', maxiter: 'maxiter', seed: 'seed', amount: 'tangle' };
+
+/** Sets the inputs' ranges and defaults from the core (the one place they are written). */
+function buildControls(c) {
+  state.controls = c;
+  for (const id of ['passes', 'maxiter']) {
+    const el = $(id);
+    el.min = c[id].min;
+    el.max = c[id].max;
+    el.step = '1';
+    el.value = c[id].default;
+    el.title = `${c[id].label}: ${c[id].words}`;
+    el.dataset.help = el.title;
+  }
+  $('seed').value = c.seed.default;
+  $('seed').title = `Seed: ${c.seed.words}`;
+  const a = $('amount');
+  a.min = String(c.amount.min);
+  a.max = String(c.amount.max);
+  a.step = String(c.amount.step);
+  a.value = String(c.amount.default);
+  a.title = `Perturb amount: ${c.amount.words}`;
+  $('amount-out').textContent = a.value;
+  const t = $('threshold');
+  t.replaceChildren();
+  for (const v of c.threshold.options) {
+    const o = document.createElement('option');
+    o.value = String(v);
+    o.textContent = `${v}°`;
+    t.append(o);
+  }
+  t.value = String(c.threshold.default);
+  showStrategyReasons();
+}
+
+/** Disables the controls the chosen strategy does not use, saying why (as the CLI refuses them). */
+function showStrategyReasons() {
+  const info = state.controls.strategies.find((s) => s.name === $('strategy').value);
+  for (const [id, why] of [['threshold', info && info.threshold_unused], ['maxiter', info && info.max_iter_unused]]) {
+    $(id).disabled = Boolean(why);
+    $(`${id}-why`).textContent = why ? `Not used: ${why}.` : '';
+    $(id).title = why ? `Not used: ${why}.` : $(id).dataset.help || '';
+  }
+}
+
+/** Checks one typed control with the core's rules; shows or clears its message. */
+async function checkControl(id) {
+  const text = $(id).value;
+  const msg = await engine.call('checkControl', CHECKED[id], text);
+  if ($(id).value !== text) return; // typed on meanwhile: that check will answer
+  if (msg) state.invalid.set(id, msg);
+  else state.invalid.delete(id);
+  $(id).setAttribute('aria-invalid', msg ? 'true' : 'false');
+  $(`${id}-error`).textContent = msg || '';
+  // a refusal that named this control is stale once it is valid
+  if (!msg && $('message').dataset.control === id) clearError();
+}
+/** The first message of a control that is not valid (ignoring controls not in use). */
+function invalidMessage(ids) {
+  for (const id of ids) if (state.invalid.has(id) && !$(id).disabled) return state.invalid.get(id);
+  return null;
 }
 /** The permalink name of a Gmsh file: `gmsh-`, the name without `.msh`, `_` as `-`
  * (the rule of `gmsh_sample_name` in src/permalink.rs, which tests this list). */
@@ -114,8 +182,10 @@ function sourceSample() {
 function permalinkHash() {
   return engine.call('encodePermalink', {
     sample: sourceSample(),
-    seed: Number($('seed').value),
-    amount: Number($('amount').value),
+    seed: state.perturbed ? BigInt(state.perturbed.seed) : BigInt($('seed').value.trim()),
+    amount: state.perturbed ? state.perturbed.amount : Number($('amount').value),
+    perturbed: Boolean(state.perturbed),
+    node: state.node,
     strategy: $('strategy').value,
     threshold: Number($('threshold').value),
     passes: Number($('passes').value),
@@ -128,21 +198,42 @@ function permalinkHash() {
 let permalinkSeq = 0;
 async function writePermalink() {
   const seq = ++permalinkSeq;
+  // a control being edited is not valid yet: the link keeps its last good value, and the
+  // control itself says what it wants
+  if (invalidMessage(Object.keys(CHECKED))) return;
   let hash;
   try {
     hash = await permalinkHash();
   } catch (e) {
-    if (seq === permalinkSeq) showError(`The permalink cannot hold these settings: ${e.message}`);
+    if (seq === permalinkSeq) showError(`The link cannot hold these settings: ${e.message.replace(/^permalink: /, '')}`);
     return;
   }
   if (seq !== permalinkSeq) return; // a later change wrote it
+  state.lastHash = hash;
   history.replaceState(null, '', `${location.pathname}${location.search}${hash}`);
   $('permalink').href = `${location.pathname}${hash}`;
   const s = state.lastGood;
-  $('permalink').title = s && s.kind === 'sample' && UNLINKABLE.has(s.name)
-    ? 'This sample is too large to open from a link: the link keeps the settings only.'
-    : '';
+  let note = '';
+  if (s && s.kind === 'sample' && UNLINKABLE.has(s.name)) {
+    note = 'This sample is too large to open from a link: the link keeps the settings only, with the default sample.';
+  } else if (s && (s.kind === 'file' || s.kind === 'triangle')) {
+    note = `Your own file (${s.name}) cannot travel in a link: the link opens these settings on the default sample.`;
+  }
+  $('permalink').title = note;
+  $('permalink-note').textContent = note;
   if (EMBED) $('open-full').href = `${location.pathname}${hash}`;
+}
+/** The page's address with the current hash, for the Copy link button. */
+async function copyLink() {
+  await serial(writePermalink);
+  const url = new URL($('permalink').getAttribute('href'), location.href).toString();
+  try {
+    await navigator.clipboard.writeText(url);
+    setStatus(`Link copied: ${url}`);
+  } catch {
+    setStatus(`Copy this link: ${url}`);
+  }
+  $('copy-link').dataset.copied = url;
 }
 function updatePermalink() {
   return serial(writePermalink).catch(report);
@@ -173,16 +264,47 @@ async function applyHash() {
     if (el.tagName === 'SELECT') {
       if ([...el.options].some((o) => o.value === v)) el.value = v;
     } else {
-      const n = Number(v);
-      if (Number.isFinite(n) && n >= Number(el.min) && n <= Number(el.max)) el.value = v;
+      el.value = v; // the decoder checked it against the same ranges
     }
   }
+  for (const id of Object.keys(CHECKED)) {
+    state.invalid.delete(id);
+    $(id).setAttribute('aria-invalid', 'false');
+    $(`${id}-error`).textContent = '';
+  }
   $('amount-out').textContent = $('amount').value;
-  if (p.sample === null) return { src: fallback };
+  showStrategyReasons();
+  const extra = { perturbed: p.perturbed ? { amount: p.amount, seed: String(p.seed) } : null, node: p.node };
+  if (p.sample === null) return { src: fallback, ...extra };
   const gmsh = GMSH_SAMPLES.find(([f]) => gmshSampleName(f) === p.sample);
-  if (gmsh) return { src: { kind: 'gmsh', name: gmsh[0] } };
-  if ([...$('sample').options].some((o) => o.value === `sample:${p.sample}`)) return { src: { kind: 'sample', name: p.sample } };
-  return { src: fallback };
+  if (gmsh) return { src: { kind: 'gmsh', name: gmsh[0] }, ...extra };
+  if ([...$('sample').options].some((o) => o.value === `sample:${p.sample}`)) return { src: { kind: 'sample', name: p.sample }, ...extra };
+  return { src: fallback, ...extra };
+}
+
+/** The label of a source as the sample menu shows it (not its internal name). */
+function labelOf(src) {
+  const o = [...$('sample').options].find((x) => x.value === selectValueOf(src));
+  return o ? o.textContent : src.name;
+}
+
+/** Opens what a hash names: its sample (unless it is already loaded and unperturbed),
+ * its perturbation and its node. The controls were set by applyHash. */
+async function openHash({ src, error, perturbed, node }) {
+  const same = state.lastGood && selectValueOf(state.lastGood) === selectValueOf(src) && selectValueOf(src) !== '';
+  if (!same || state.perturbed || perturbed) await load(src, labelOf(src), { keepHash: true });
+  if (perturbed) await perturbWith(perturbed.amount, perturbed.seed, { keepHash: true });
+  if (node !== null && node !== undefined) await selectNode(node, { keepHash: true });
+  else if (state.node !== null) await selectNode(null, { keepHash: true });
+  if (error) showError(`This link's settings could not be read, so the defaults are shown: ${error.replace(/^permalink: /, '')}`);
+  await serial(writePermalink).catch(report);
+}
+
+/** The user edited the hash or went Back or Forward: show what the address now names. */
+async function onAddressChange() {
+  if (location.hash === state.lastHash) return; // this page wrote it
+  state.lastHash = location.hash;
+  await openHash(await applyHash());
 }
 
 // ---- loading -------------------------------------------------------------------------
@@ -210,6 +332,7 @@ async function loadSource(src, call = (...a) => engine.call(...a)) {
   await call('settings', readSettings());
   state.lastGood = src;
   state.node = null;
+  state.perturbed = null;
   $('node').value = '';
 }
 
@@ -220,8 +343,8 @@ function selectValueOf(src) {
 }
 
 /** Loads a source; on failure the previous mesh stays on screen and the message says why. */
-function load(src, label) {
-  state.cancel = true; // a new mesh ends a run
+function load(src, label, { keepHash = false } = {}) {
+  const stopped = endRun();
   return serial(async () => {
     setStatus(`Loading ${label}…`);
     const t0 = now();
@@ -242,9 +365,18 @@ function load(src, label) {
     await redrawAll();
     const ms = now() - t0;
     metrics.lastLoad = { label, ms, build_ms: t1 - t0, draw_ms: now() - t1, memory_bytes: engine.memory };
-    setStatus(`Loaded ${label} in ${Math.round(ms)} ms.`);
-    await writePermalink();
+    setStatus(`Loaded ${label} in ${Math.round(ms)} ms.${stopped}`);
+    if (!keepHash) await writePermalink();
   }).catch(report);
+}
+
+/** Something replaces the meshes: a run in progress stops, and says nothing more (what
+ * replaced them says what happened). Returns the words to add to that. */
+function endRun() {
+  state.generation += 1;
+  if (!state.running) return '';
+  state.cancel = true;
+  return ' The run in progress was stopped.';
 }
 
 async function readFiles(files) {
@@ -333,7 +465,21 @@ function fillStats(table, s) {
 
 /** Draws both meshes (a panel whose picture would not change is not sent again) and
  * their statistics tables; returns where the time went. */
+/** In an embed the page must fit its frame without scrolling: the mesh canvases shrink
+ * (staying square) by what the page is taller than the frame. */
+function fitEmbed() {
+  if (!EMBED) return false;
+  const canvases = [$('mesh-old'), $('mesh-new')];
+  const over = document.documentElement.scrollHeight - window.innerHeight;
+  if (over <= 0) return false;
+  const side = Math.max(120, canvases[0].clientWidth - over - 2);
+  if (side >= canvases[0].clientWidth) return false;
+  for (const c of canvases) c.style.width = `${side}px`;
+  return true;
+}
+
 async function redrawMeshes() {
+  fitEmbed();
   const t0 = now();
   const { w, h, dpr } = canvasPixels($('mesh-old'));
   const { result: f, timing } = await engine.timed('frame', w, h, dpr, false);
@@ -344,6 +490,7 @@ async function redrawMeshes() {
   const t1 = now();
   fillStats($('stats-old'), f.stats.old);
   fillStats($('stats-new'), f.stats.new);
+  if (fitEmbed()) return redrawMeshes(); // the tables took room: the canvases shrink, once more at most
   return {
     frame_ms: t1 - t0,
     render_ms: f.render_ms,
@@ -464,6 +611,7 @@ async function smooth(n) {
     return;
   }
   const t0 = now();
+  const generation = state.generation;
   setRunning(true);
   state.cancel = false;
   $('progress').max = n;
@@ -500,7 +648,7 @@ async function smooth(n) {
       await nextFrame();
     }
     const c0 = now();
-    if (!state.cancel) setStatus('Drawing the charts…');
+    if (!state.cancel && generation === state.generation) setStatus('Drawing the charts…');
     await serial(async () => {
       await redrawCharts();
       await redrawNode();
@@ -508,7 +656,9 @@ async function smooth(n) {
     const charts_ms = now() - c0;
     const total = now() - t0;
     const stopped = state.cancel && done < n;
-    if (stopped) {
+    if (generation !== state.generation) {
+      // a load, Perturb or Reset replaced the meshes and said so: its words stay
+    } else if (stopped) {
       setStatus(`Stopped after ${done} of ${n} passes (the pass in progress was undone).`);
     } else if (n === 1) {
       setStatus(`One pass done on both sides in ${Math.round(total)} ms.`);
@@ -520,14 +670,24 @@ async function smooth(n) {
     metrics.run = record;
     clearError();
   } catch (e) {
-    report(e);
+    if (generation === state.generation) report(e);
   } finally {
     setRunning(false);
     state.cancel = false;
   }
 }
 
+/** Refuses to start while a control it needs is not valid, saying which and why. */
+function refuseInvalid(ids) {
+  const id = ids.find((i) => state.invalid.has(i) && !$(i).disabled);
+  if (!id) return false;
+  showError(`${state.invalid.get(id)} Correct it first.`);
+  $('message').dataset.control = id;
+  return true;
+}
+
 function step() {
+  if (!state.running && refuseInvalid(['maxiter'])) return;
   return smooth(1);
 }
 
@@ -536,29 +696,41 @@ function run() {
     requestStop();
     return;
   }
-  return smooth(clampInt($('passes').value, 1, 100, 3));
+  if (refuseInvalid(['passes', 'maxiter'])) return;
+  return smooth(Number($('passes').value));
 }
 
 function reset() {
-  state.cancel = true;
+  const stopped = endRun();
   return serial(async () => {
     await engine.call('reset');
     await redrawAll();
     clearError();
-    setStatus('Both sides reset to the mesh as loaded.');
+    const what = state.perturbed ? 'the mesh as loaded and perturbed' : 'the mesh as loaded';
+    setStatus(`Both sides reset to ${what}.${stopped}`);
+  }).catch(report);
+}
+
+/** "1 mean edge length", "0.5 mean edge lengths". */
+function edgeLengths(amount) {
+  return `${amount} mean edge length${amount === 1 ? '' : 's'}`;
+}
+
+function perturbWith(amount, seed, { keepHash = false } = {}) {
+  const stopped = endRun();
+  return serial(async () => {
+    await engine.call('perturb', amount, seed);
+    state.perturbed = { amount, seed };
+    await redrawAll();
+    clearError();
+    setStatus(`Perturbed the mesh as loaded by ${edgeLengths(amount)} (seed ${seed}); both sides start again from it.${stopped}`);
+    if (!keepHash) await writePermalink();
   }).catch(report);
 }
 
 function perturb() {
-  state.cancel = true;
-  const amount = Number($('amount').value);
-  const seed = clampInt($('seed').value, 0, 4294967295, 1);
-  return serial(async () => {
-    await engine.call('perturb', amount, seed);
-    await redrawAll();
-    clearError();
-    setStatus(`Perturbed the original mesh by ${amount} mean edge lengths (seed ${seed}); both sides start again from it.`);
-  }).catch(report);
+  if (refuseInvalid(['amount', 'seed'])) return;
+  return perturbWith(Number($('amount').value), $('seed').value.trim());
 }
 
 // ---- picking and dragging ------------------------------------------------------------
@@ -573,7 +745,7 @@ function toFrame(canvas, ev) {
 }
 
 /** Chooses the node whose star is highlighted and whose level sets are drawn. */
-function selectNode(node) {
+function selectNode(node, { keepHash = false } = {}) {
   return serial(async () => {
     try {
       await engine.call('select', node);
@@ -584,9 +756,22 @@ function selectNode(node) {
     state.node = node;
     $('node').value = node === null ? '' : String(node);
     clearError();
+    showPickNote(null);
     await redrawMeshes();
     await redrawNode();
+    if (!keepHash) await writePermalink();
   }).catch(report);
+}
+
+/** Says why a press chose no node (or clears that). */
+function showPickNote(text) {
+  $('pick-note').hidden = !text;
+  $('pick-note').textContent = text || '';
+}
+
+/** How far from a node a press still takes it, CSS pixels: a finger is wider than a mouse pointer. */
+function pickRadius(ev) {
+  return ev.pointerType === 'touch' || ev.pointerType === 'pen' ? 24 : 14;
 }
 
 function attachPointer(canvas) {
@@ -605,9 +790,10 @@ function attachPointer(canvas) {
     const g = { node: undefined, start: p, moved: false, up: false, busy: false, latest: null, final: false };
     gesture = g;
     canvas.setPointerCapture(ev.pointerId);
-    serial(() => engine.call('pick', canvas.dataset.side, p.x, p.y))
-      .then((node) => {
-        g.node = node === undefined ? null : node;
+    serial(() => engine.call('pick', canvas.dataset.side, p.x, p.y, pickRadius(ev)))
+      .then((pick) => {
+        g.node = pick.node === undefined ? null : pick.node;
+        if (g.node === null && !g.moved) showPickNote(pick.message);
         if (g.up) finish(g);
         else if (g.moved && g.node !== null) pumpDrag(g);
       })
@@ -615,7 +801,10 @@ function attachPointer(canvas) {
   });
   canvas.addEventListener('pointermove', (ev) => {
     const g = gesture;
-    if (!g) return;
+    if (!g) {
+      if (ev.pointerType === 'mouse') hover(canvas, ev);
+      return;
+    }
     const p = toFrame(canvas, ev);
     if (!g.moved && Math.hypot(p.x - g.start.x, p.y - g.start.y) < 4) return;
     g.moved = true;
@@ -631,8 +820,39 @@ function attachPointer(canvas) {
     if (g.moved) g.latest = toFrame(canvas, ev);
     if (g.node !== undefined) finish(g);
   };
+  canvas.addEventListener('pointerleave', () => {
+    canvas.parentElement.querySelector('.hover-label').hidden = true;
+  });
   canvas.addEventListener('pointerup', end);
   canvas.addEventListener('pointercancel', end);
+}
+
+/** Shows the number of the node under the mouse (one question to the engine at a time;
+ * none while it is busy). */
+let hovering = false;
+function hover(canvas, ev) {
+  const label = canvas.parentElement.querySelector('.hover-label');
+  if (hovering || queued > 0 || state.running || !state.frame.w) return;
+  hovering = true;
+  const p = toFrame(canvas, ev);
+  const r = canvas.getBoundingClientRect();
+  const at = { x: ev.clientX - r.left, y: ev.clientY - r.top };
+  engine
+    .call('pick', canvas.dataset.side, p.x, p.y, pickRadius(ev))
+    .then((pick) => {
+      if (pick.nearest === null || pick.nearest === undefined) {
+        label.hidden = true;
+        return;
+      }
+      label.textContent = pick.node !== null && pick.node !== undefined ? `node ${pick.nearest}` : `node ${pick.nearest} (${pick.message.includes('mid-side') ? 'mid-side' : 'fixed'})`;
+      label.style.left = `${Math.round(at.x + 12)}px`;
+      label.style.top = `${Math.round(at.y - 8)}px`;
+      label.hidden = false;
+    })
+    .catch(() => {})
+    .finally(() => {
+      hovering = false;
+    });
 }
 
 /** Sends the latest drag position; positions that arrive meanwhile are coalesced. */
@@ -656,6 +876,7 @@ function pumpDrag(d, final = false) {
     if (final || d.final) {
       await redrawCharts();
       await redrawNode();
+      await writePermalink();
     }
   })
     .catch(report)
@@ -755,11 +976,24 @@ function wire() {
   $('amount').addEventListener('input', () => {
     $('amount-out').textContent = $('amount').value;
   });
-  for (const id of SETTINGS) $(id).addEventListener('change', updatePermalink);
+  for (const id of SETTINGS) {
+    if (!CHECKED[id]) $(id).addEventListener('change', updatePermalink);
+  }
   $('node').addEventListener('change', () => {
     const v = $('node').value.trim();
-    selectNode(v === '' ? null : clampInt(v, 0, 2 ** 31, 0));
+    if (v !== '' && !/^\d+$/.test(v)) {
+      showError(`Node: enter a node number (a whole number from 0), not '${v}'.`);
+      return;
+    }
+    selectNode(v === '' ? null : Number(v));
   });
+  $('copy-link').addEventListener('click', () => copyLink().catch(report));
+  $('strategy').addEventListener('change', showStrategyReasons);
+  for (const id of Object.keys(CHECKED)) {
+    $(id).addEventListener('input', () => checkControl(id).then(() => updatePermalink()).catch(report));
+  }
+  window.addEventListener('hashchange', () => onAddressChange().catch(report));
+  window.addEventListener('popstate', () => onAddressChange().catch(report));
   attachPointer($('mesh-old'));
   attachPointer($('mesh-new'));
   for (const b of document.querySelectorAll('button[data-export]')) {
@@ -771,7 +1005,10 @@ function wire() {
   let resizeTimer = 0;
   window.addEventListener('resize', () => {
     clearTimeout(resizeTimer);
-    resizeTimer = setTimeout(() => serial(redrawAll).catch(report), 150);
+    resizeTimer = setTimeout(() => {
+      if (EMBED) for (const id of ['mesh-old', 'mesh-new']) $(id).style.width = '';
+      serial(redrawAll).catch(report);
+    }, 150);
   });
 }
 
@@ -791,15 +1028,15 @@ async function main() {
   setupEmbed();
   wire();
   try {
+    buildControls(await engine.call('controls'));
     await fillGallery();
   } catch (e) {
     report(e);
     document.body.dataset.busy = '0';
     return;
   }
-  const { src, error } = await applyHash();
-  await load(src, src.name);
-  if (error) showError(`This link's settings could not be read, so the defaults are shown: ${error}`);
+  state.lastHash = location.hash;
+  await openHash(await applyHash());
   document.body.dataset.ready = '1';
 }
 
@@ -809,6 +1046,7 @@ async function main() {
 window.smoothlab = {
   panicForTest: () => serial(() => engine.call('panicForTest')).catch(report),
   metrics,
+  pickRadius,
   memory: () => ({ bytes: engine.memory, peak_bytes: engine.peakMemory }),
 };
 

@@ -26,6 +26,8 @@ function replace(next) {
 
 const handlers = {
   samples: () => wasm.samples(),
+  controls: () => wasm.controls(),
+  checkControl: (key, text) => wasm.checkControl(key, text),
   loadSample: (name) => replace(wasm.Playground.fromSample(name)),
   loadFile: (name, bytes) => replace(wasm.Playground.fromBytes(new Uint8Array(bytes), name)),
   loadTriangle: (node, ele) => replace(wasm.Playground.fromTriangle(node, ele)),
@@ -51,7 +53,7 @@ const handlers = {
     return f;
   },
   forgetFrames: () => need().forgetFrames(),
-  pick: (panel, x, y) => need().pickNode(panel, x, y),
+  pick: (panel, x, y, radius) => need().pickNode(panel, x, y, radius),
   drag: (node, x, y) => need().dragNode(node, x, y),
   select: (node) => need().selectNode(node === null ? undefined : node),
   nodeView: (w, h, cw, ch, dpr) => need().nodeView(w, h, cw, ch, dpr),

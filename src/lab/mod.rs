@@ -10,6 +10,7 @@
 //! table shows ([`stats::QuickStats`]) and each element's colour bucket up to date, a
 //! version naming its positions, and its last picture ([`raster`] draws fine meshes).
 
+pub mod pick;
 pub mod raster;
 pub mod sample;
 pub mod stats;
@@ -99,8 +100,9 @@ impl Default for Settings {
 impl Settings {
     /// The drivers' options (checked).
     pub fn smooth_options(&self) -> Result<SmoothOptions> {
-        if self.max_iter == 0 || self.max_iter > 1000 {
-            return Err(Error::invalid(format!("{} solver iterations: give 1 to 1000", self.max_iter)));
+        let range = crate::limits::BATCH_MAX_ITER;
+        if !range.contains(self.max_iter.into()) {
+            return Err(Error::invalid(format!("{} solver iterations: give {}", self.max_iter, range.words())));
         }
         let o = SmoothOptions::default()
             .with_strategy(self.strategy)

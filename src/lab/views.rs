@@ -10,11 +10,11 @@ use tiny_skia::Pixmap;
 use super::{raster, Playground, Side};
 use crate::error::{Error, Result};
 use crate::objective::Star;
-use crate::optimize::{DirectionKind, SolveResult};
+use crate::optimize::{DirectionKind, SolveResult, StopReason};
 use crate::render::{
     mesh_view, render_angle_histogram, render_chart, render_level_set, render_mesh, render_pass_histories,
     sample_field, star_bounds, AngleHistogram, Chart, Frame, HistogramSeries, LevelSet, LevelSetView, MeshView,
-    PassHistory, PathKind, Series, View, PICK_RADIUS,
+    PassHistory, PathKind, Series, View,
 };
 
 /// Largest side of a picture, device pixels.
@@ -78,6 +78,19 @@ impl NodeSummary {
     }
 }
 
+/// Why a solve stopped, as the page says it.
+pub fn stop_words(s: StopReason) -> &'static str {
+    match s {
+        StopReason::MaxIter => "stopped at the iteration limit",
+        StopReason::Optimal => "at an optimum",
+        StopReason::SmallStep => "the step became too small to help",
+        StopReason::SmallImprovement => "the improvement became negligible",
+        StopReason::LineSearchFailed => "no better point along the search direction",
+        StopReason::NotFinite => "the objective is not finite here (an inverted element)",
+        StopReason::DegenerateStar => "the star has no size",
+    }
+}
+
 fn path_kind(d: DirectionKind) -> PathKind {
     match d {
         DirectionKind::Gradient => PathKind::Gradient,
@@ -128,28 +141,6 @@ impl Playground {
     /// The view the panels are drawn with on canvas `c` (the same for both).
     pub fn panel_view(&self, c: Canvas) -> View {
         mesh_view(c.w, c.h, &self.panel(Side::Old).mesh, &self.mesh_options(c, None))
-    }
-
-    /// The free node of `side`'s mesh nearest to the CSS pixel `css`, within the render
-    /// module's pick radius; fixed and mid-side nodes are never picked.
-    pub fn pick_free_node(&self, side: Side, view: &View, css: DVec2) -> Option<usize> {
-        if !css.is_finite() {
-            return None;
-        }
-        let mesh = &self.panel(side).mesh;
-        let mut best = None;
-        let mut best_d2 = PICK_RADIUS * PICK_RADIUS;
-        for (n, p) in mesh.nodes.iter().enumerate() {
-            if !mesh.is_free(n) {
-                continue;
-            }
-            let d2 = view.to_css(*p).distance_squared(css);
-            if d2 <= best_d2 {
-                best_d2 = d2;
-                best = Some(n);
-            }
-        }
-        best
     }
 
     /// Level sets of one side's objective round `node` (on that side's current mesh),
@@ -214,7 +205,7 @@ impl Playground {
             value0: r.value0,
             value: r.value,
             iterations: r.iterations,
-            stop: format!("{:?}", r.stop),
+            stop: stop_words(r.stop).to_string(),
         };
         Ok(([old_pm, new_pm, pm], NodeSummary { node, old: summary(&old), new: summary(&new) }))
     }
@@ -283,6 +274,7 @@ impl Playground {
 mod tests {
     use super::*;
     use crate::lab::sample::Sample;
+    use crate::render::PICK_RADIUS;
     use std::collections::HashSet;
 
     fn colours(pm: &Pixmap) -> usize {
@@ -304,13 +296,13 @@ mod tests {
         let view = pg.panel_view(C);
         let free = pg.topology().node_count() - 1;
         let at = view.to_css(pg.original_nodes()[free]);
-        assert_eq!(pg.pick_free_node(Side::New, &view, at + DVec2::new(3.0, -2.0)), Some(free));
+        assert_eq!(pg.pick(Side::New, &view, at + DVec2::new(3.0, -2.0), PICK_RADIUS).node, Some(free));
         assert_eq!(
-            pg.pick_free_node(Side::New, &view, view.to_css(pg.original_nodes()[0])),
+            pg.pick(Side::New, &view, view.to_css(pg.original_nodes()[0]), PICK_RADIUS).node,
             None,
             "fixed nodes are not picked"
         );
-        assert_eq!(pg.pick_free_node(Side::New, &view, DVec2::new(f64::NAN, 0.0)), None);
+        assert_eq!(pg.pick(Side::New, &view, DVec2::new(f64::NAN, 0.0), PICK_RADIUS).node, None);
     }
 
     #[test]
@@ -324,6 +316,7 @@ mod tests {
         assert_ne!(lo.data(), ln.data());
         assert!(s.new.value <= s.new.value0 && s.old.value >= s.old.value0);
         assert!(s.text().contains(&format!("Node {free}")));
+        assert!(!s.text().contains("MaxIter") && !s.text().contains("LineSearch"), "{}", s.text());
         assert!(pg.render_node_view(0, C, C).is_err(), "fixed node");
     }
 
@@ -336,6 +329,44 @@ mod tests {
         assert_ne!(before.data(), after.data());
         let h = pg.render_histogram(Side::New, C).unwrap();
         assert!(opaque(&h) && colours(&h) > 8);
+    }
+
+    #[test]
+    fn the_colour_bar_legend_is_not_cut_off_at_the_right_edge() {
+        // a tangled plate with dozens of inverted elements: "inverted" and its count must
+        // end inside the picture at every width and pixel ratio
+        let pg = Playground::new(Sample::PlateTriTangled.generate().unwrap()).unwrap();
+        assert!(pg.table(Side::Old).mesh.inverted >= 10);
+        for dpr in [1.0f32, 1.5, 2.0, 3.0] {
+            for css in [240u32, 300, 390, 520, 640] {
+                let side = (css as f32 * dpr) as u32;
+                let pm = pg.render_panel(Side::Old, Canvas { w: side, h: side, dpr }, None).unwrap();
+                let edge = (2.0 * dpr).ceil() as u32;
+                for y in 0..side {
+                    for x in side - edge..side {
+                        let p = pm.pixel(x, y).unwrap();
+                        assert!(
+                            p.red() > 200 && p.green() > 200 && p.blue() > 200,
+                            "dpr {dpr}, {css} px: ink at the right edge ({x}, {y})"
+                        );
+                    }
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn the_old_solvers_path_shows_where_it_runs_along_a_star_edge() {
+        // nodes 200 and 320 of the tangled plate: the old solver's first step runs along a
+        // star edge (black), and its later iterates sit under the optimum
+        let pg = Playground::new(Sample::PlateTriTangled.generate().unwrap()).unwrap();
+        let (r, g, b) = crate::render::PATH_RGB;
+        for node in [200, 320] {
+            let (pm, res) = pg.render_level_set(Side::Old, node, Canvas { w: 400, h: 400, dpr: 1.0 }).unwrap();
+            assert!(res.x.distance(res.x0) > 1e-3, "node {node} moved");
+            let ink = pm.pixels().iter().filter(|p| (p.red(), p.green(), p.blue()) == (r, g, b)).count();
+            assert!(ink > 40, "node {node}: {ink} pixels of the path");
+        }
     }
 
     #[test]

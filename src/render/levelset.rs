@@ -165,6 +165,13 @@ pub fn choose_levels(field: &Field, levels: Levels) -> Vec<f64> {
     out
 }
 
+/// The solver's path on a level-set panel: a magenta no band of the colour map and no
+/// star edge (black) has.
+pub const PATH_RGB: (u8, u8, u8) = (204, 0, 153);
+fn path_color() -> Color {
+    rgba(PATH_RGB.0, PATH_RGB.1, PATH_RGB.2, 255)
+}
+
 /// How the solver got to an iterate of the path drawn on a level-set panel.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum PathKind {
@@ -323,8 +330,28 @@ pub fn render_level_set(pixmap: &mut Pixmap, data: &LevelSet<'_>, opts: &LevelSe
                 pb.line_to(x, y);
             }
         }
-        stroke(pixmap, pb.clone(), Color::WHITE, 3.5 * s, None);
-        stroke(pixmap, pb, rgba(0, 0, 0, 255), 1.5 * s, None);
+        // in a colour of its own (the star's edges are black: a step along one of them
+        // vanished into it), with an arrowhead where each step ends
+        let mut heads = PathBuilder::new();
+        for w in data.path.windows(2) {
+            let (a, b) = (view.device_xy(w[0].0), view.device_xy(w[1].0));
+            let (dx, dy) = (b.0 - a.0, b.1 - a.1);
+            let len = (dx * dx + dy * dy).sqrt();
+            if len < 9.0 * s {
+                continue;
+            }
+            let (ux, uy) = (dx / len, dy / len);
+            let (bx, by) = (b.0 - ux * 4.0 * s, b.1 - uy * 4.0 * s);
+            heads.move_to(bx, by);
+            heads.line_to(bx - ux * 8.0 * s - uy * 4.0 * s, by - uy * 8.0 * s + ux * 4.0 * s);
+            heads.line_to(bx - ux * 8.0 * s + uy * 4.0 * s, by - uy * 8.0 * s - ux * 4.0 * s);
+            heads.close();
+        }
+        stroke(pixmap, pb.clone(), Color::WHITE, 4.5 * s, None);
+        stroke(pixmap, pb, path_color(), 2.2 * s, None);
+        if let Some(h) = heads.finish() {
+            pixmap.fill_path(&h, &super::paint::solid(path_color()), tiny_skia::FillRule::Winding, tiny_skia::Transform::identity(), None);
+        }
     }
     for (p, kind) in data.path {
         let (x, y) = view.device_xy(*p);
@@ -360,6 +387,9 @@ pub fn render_level_set(pixmap: &mut Pixmap, data: &LevelSet<'_>, opts: &LevelSe
             entries.push(LegendEntry { label: "objective undefined", color: rgba(225, 225, 225, 255), key: Key::Hatched });
         } else if field.values.iter().any(|v| v.is_infinite()) {
             entries.push(LegendEntry { label: "+∞: the barrier", color: rgba(225, 225, 225, 255), key: Key::Hatched });
+        }
+        if data.path.len() > 1 {
+            entries.push(LegendEntry { label: "solver's path", color: path_color(), key: Key::Line { dashed: false, marker: None } });
         }
         for kind in PathKind::ALL {
             if kind != PathKind::Start && data.path.iter().any(|(_, k)| *k == kind) {

@@ -499,6 +499,14 @@ pub(crate) fn draw_colour_bar(
         }
         let pb = PathBuilder::from_rect(r);
         pixmap.stroke_path(&pb, &solid(rgba(120, 0, 0, 255)), &Stroke { width: 1.5 * s, ..Default::default() }, Transform::identity(), None);
-        draw_text(pixmap, &format!("inverted ({n_inverted})"), x1 + 5.0 * s, sy + 6.0 * s, label.with_align(Align::Left, Valign::Middle));
+        draw_text(pixmap, "inverted", x1 + 5.0 * s, sy + 6.0 * s, label.with_align(Align::Left, Valign::Middle));
+        // the count on a line of its own, under the swatch, made smaller if it would not
+        // fit the bar's width (a mesh may have millions of inverted elements)
+        let count = format!("{n_inverted} element{}", if n_inverted == 1 { "" } else { "s" });
+        let room = (area.right() - 4.0) * s - x0;
+        let size = 11.0 * s;
+        let wide = super::text::text_width(&count, size);
+        let fit = if wide > room { size * room / wide } else { size };
+        draw_text(pixmap, &count, x0, sy + 26.0 * s, TextStyle { size: fit, ..label }.with_align(Align::Left, Valign::Middle));
     }
 }

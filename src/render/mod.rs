@@ -38,7 +38,7 @@ pub use colormap::{lightness, series_color, Colormap};
 pub use compare::{render_compare, ComparePanel};
 pub use contour::{iso_segments, Grid};
 pub use histogram::{render_angle_histogram, AngleHistogram, HistogramSeries};
-pub use levelset::{
+pub use levelset::{PATH_RGB, 
     choose_levels, render_level_set, render_level_sets_side_by_side, sample_field, star_bounds, Field, LevelSet,
     LevelSetView, Levels, PathKind,
 };

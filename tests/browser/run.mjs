@@ -310,7 +310,7 @@ try {
     await page.fill('#node', '0');
     await page.press('#node', 'Enter');
     await page.waitForFunction(() => !document.getElementById('message').hidden, null, { timeout: TIMEOUT });
-    check(/node 0 cannot be chosen/.test(await page.textContent('#message')), await page.textContent('#message'));
+    check(/Node 0 cannot be chosen: node 0 is fixed/.test(await page.textContent('#message')), await page.textContent('#message'));
     await page.fill('#node', '6');
     await page.press('#node', 'Tab');
     await page.waitForFunction(() => document.getElementById('message').hidden, null, { timeout: TIMEOUT });
@@ -446,7 +446,7 @@ try {
 
   await test('a permalink copied from the page reproduces its sample and controls', async () => {
     await chooseSample(page, 'gmsh:bracket_quad.msh');
-    await page.selectOption('#strategy', 'smart');
+    await page.selectOption('#strategy', 'c3');
     await page.selectOption('#threshold', '15');
     await page.selectOption('#order', 'input');
     for (const [id, v] of [['passes', '7'], ['maxiter', '9'], ['seed', '42']]) {
@@ -501,6 +501,280 @@ try {
     check(b.y >= a.y + a.height - 1 && (await overflow()) <= 0, 'the full page stacks at 360 px');
     await shot(p3, '08-full-360');
     await p3.close();
+  });
+
+  // ---- the page as a lecturer uses it -----------------------------------------------
+  await test('a permalink reproduces Perturb (amount, seed) and the chosen node; Copy link copies it', async () => {
+    await chooseSample(page, 'sample:plate-tri');
+    await page.fill('#seed', '5');
+    await page.locator('#amount').fill('0.8');
+    await idle(page);
+    await page.click('#perturb');
+    await idle(page);
+    const hit = await clickSomeNode(page, 'mesh-new', ringPoints());
+    await idle(page);
+    const want = [await stats(page, 'old'), await stats(page, 'new')];
+    check(Number(want[0].inverted) > 0, `the perturbed plate has ${want[0].inverted} inverted elements`);
+    const href = await page.getAttribute('#permalink', 'href');
+    for (const part of ['sample=plate-tri&', 'tangle=0.8', 'seed=5', 'perturbed=1', `node=${hit.node}`]) {
+      check(href.includes(part), `the link ${href} lacks ${part}`);
+    }
+    await context.grantPermissions(['clipboard-read', 'clipboard-write'], { origin: server.base.replace(/\/$/, '') });
+    await page.click('#copy-link');
+    await page.waitForFunction(() => document.getElementById('copy-link').dataset.copied, null, { timeout: TIMEOUT });
+    const copied = await page.getAttribute('#copy-link', 'data-copied');
+    check(copied === new URL(href, server.base).toString(), `copied ${copied}`);
+    check((await page.textContent('#status')).includes(copied), `status: ${await page.textContent('#status')}`);
+    const clip = await page.evaluate(() => navigator.clipboard.readText().catch(() => null));
+    check(clip === null || clip === copied, `clipboard holds ${clip}`);
+    const p6 = await context.newPage();
+    watch(p6, 'perturbed permalink');
+    await p6.goto(copied);
+    await idle(p6);
+    const got = [await stats(p6, 'old'), await stats(p6, 'new')];
+    check(JSON.stringify(got) === JSON.stringify(want), `reopened ${JSON.stringify(got)} != ${JSON.stringify(want)}`);
+    check((await p6.inputValue('#node')) === String(hit.node), `node ${await p6.inputValue('#node')}`);
+    check((await canvasInfo(p6, 'level-new')).colours > 100, 'the level sets of the node are drawn');
+    check((await p6.getAttribute('#permalink', 'href')) === href, 'the reopened page writes the same link');
+    await p6.close();
+  });
+
+  await test('with the user\'s own file loaded, the link says it cannot carry the file', async () => {
+    await page.setInputFiles('#file', [path.join(DATA, 'square_o2.node'), path.join(DATA, 'square_o2.ele')]);
+    await page.waitForFunction(() => /Loaded square_o2/.test(document.getElementById('status').textContent), null, { timeout: TIMEOUT });
+    await idle(page);
+    const note = await page.textContent('#permalink-note');
+    check(/Your own file \(square_o2\.node \+ square_o2\.ele\) cannot travel in a link/.test(note), `note: ${note}`);
+    check(await page.isVisible('#permalink-note'), 'the note is visible');
+    await chooseSample(page, 'sample:star-chen');
+    check((await page.textContent('#permalink-note')) === '', 'a sample clears the note');
+  });
+
+  await test('editing the hash or going Back shows what the address names', async () => {
+    const p7 = await context.newPage();
+    watch(p7, 'hash edits');
+    await p7.goto(`${server.base}#sample=star-quad&passes=2`);
+    await idle(p7);
+    check((await p7.inputValue('#sample')) === 'sample:star-quad', 'opened on star-quad');
+    await p7.evaluate(() => { location.hash = '#sample=star-regular&strategy=c2&passes=4&node=6'; });
+    await p7.waitForFunction(() => document.getElementById('sample').value === 'sample:star-regular' && document.getElementById('node').value === '6', null, { timeout: TIMEOUT });
+    await idle(p7);
+    check((await p7.inputValue('#strategy')) === 'c2' && (await p7.inputValue('#passes')) === '4', 'settings of the edited hash');
+    await p7.goBack();
+    await p7.waitForFunction(() => document.getElementById('sample').value === 'sample:star-quad', null, { timeout: TIMEOUT });
+    await idle(p7);
+    check((await p7.inputValue('#passes')) === '2' && (await p7.inputValue('#node')) === '', 'Back restores the settings and no node');
+    await p7.close();
+  });
+
+  await test('typed controls are checked as they are edited, with the range in words, from one source', async () => {
+    await chooseSample(page, 'sample:star-chen');
+    const html = readFileSync(path.join(WWW, 'index.html'), 'utf8');
+    check(!/id="(passes|maxiter|seed|amount)"[^>]*\b(min|max|value)=/.test(html), 'the HTML writes no range of its own');
+    const attrs = await page.evaluate(() => ['passes', 'maxiter'].map((id) => [document.getElementById(id).min, document.getElementById(id).max]));
+    check(JSON.stringify(attrs) === '[["1","100"],["1","50"]]', `ranges from the core: ${JSON.stringify(attrs)}`);
+    const before = await stats(page, 'new');
+    await page.fill('#passes', '2.5');
+    await page.waitForFunction(() => document.getElementById('passes-error').textContent !== '', null, { timeout: TIMEOUT });
+    check((await page.textContent('#passes-error')) === "Passes must be a whole number from 1 to 100; '2.5' is not.", await page.textContent('#passes-error'));
+    check((await page.getAttribute('#passes', 'aria-invalid')) === 'true', 'aria-invalid');
+    await page.click('#run');
+    await idle(page);
+    const msg = await page.textContent('#message');
+    check(/Passes must be .* Correct it first\./.test(msg) && !/invalid type|u32|Error:/.test(msg), `message: ${msg}`);
+    check(JSON.stringify(await stats(page, 'new')) === JSON.stringify(before), 'nothing ran');
+    await page.fill('#passes', '500');
+    await page.waitForFunction(() => /'500' is not/.test(document.getElementById('passes-error').textContent), null, { timeout: TIMEOUT });
+    await page.fill('#passes', '2');
+    await page.waitForFunction(() => document.getElementById('passes-error').textContent === '', null, { timeout: TIMEOUT });
+    await idle(page);
+    check(await page.isHidden('#message'), 'the refusal goes once the value is fixed');
+    check((await page.getAttribute('#permalink', 'href')).includes('passes=2'), 'the link follows the fixed value');
+    await page.fill('#seed', '-3');
+    await page.waitForFunction(() => document.getElementById('seed-error').textContent !== '', null, { timeout: TIMEOUT });
+    check(/^Seed must be a whole number from 0 to 18446744073709551615; '-3' is not\.$/.test(await page.textContent('#seed-error')), await page.textContent('#seed-error'));
+    await page.click('#perturb');
+    await idle(page);
+    check(/Seed must be/.test(await page.textContent('#message')), 'Perturb refuses a negative seed');
+    await page.fill('#seed', '18446744073709551615');
+    await page.waitForFunction(() => document.getElementById('seed-error').textContent === '', null, { timeout: TIMEOUT });
+    await page.locator('#amount').fill('1');
+    await idle(page);
+    await page.click('#perturb');
+    await idle(page);
+    const status = await page.textContent('#status');
+    check(status.includes('by 1 mean edge length (seed 18446744073709551615)'), `status: ${status}`);
+    await page.click('#run');
+    await page.waitForFunction(() => /2 passes done/.test(document.getElementById('status').textContent), null, { timeout: TIMEOUT });
+    await idle(page);
+    await page.fill('#node', '6');
+    await page.press('#node', 'Enter');
+    await idle(page);
+    const summary = await page.textContent('#node-hint');
+    check(!/MaxIter|LineSearchFailed|SmallStep|Optimal\b|NotFinite/.test(summary), `summary: ${summary}`);
+    await chooseSample(page, 'sample:plate-tri-tangled');
+    check(!/plate-tri-tangled/.test(await page.textContent('#status')), `status: ${await page.textContent('#status')}`);
+  });
+
+  await test('Perturb, Reset or a new sample during a run say what happened, not the run', async () => {
+    await page.selectOption('#strategy', 'rules');
+    for (const [action, want] of [['#perturb', /^Perturbed .* The run in progress was stopped\.$/], ['#reset', /^Both sides reset .* The run in progress was stopped\.$/], ['sample', /^Loaded .* The run in progress was stopped\.$/]]) {
+      await chooseSample(page, 'sample:rand2d-tangled');
+      await page.fill('#passes', '40');
+      await idle(page);
+      await page.click('#run');
+      await page.waitForFunction(() => document.getElementById('progress').value >= 1, null, { timeout: TIMEOUT });
+      if (action === 'sample') await page.selectOption('#sample', 'sample:plate-quad');
+      else await page.click(action);
+      await page.waitForFunction(() => document.getElementById('run').textContent === 'Run', null, { timeout: TIMEOUT });
+      await idle(page);
+      const status = await page.textContent('#status');
+      check(want.test(status), `${action}: status ${status}`);
+      const s = await stats(page, 'new');
+      check(s.passes === '0', `${action}: ${s.passes} passes shown after it`);
+    }
+    await page.fill('#passes', '3');
+    await idle(page);
+  });
+
+  await test('controls the strategy does not use are disabled, saying why', async () => {
+    const look = () => page.evaluate(() => ({
+      threshold: document.getElementById('threshold').disabled,
+      thresholdWhy: document.getElementById('threshold-why').textContent,
+      maxiter: document.getElementById('maxiter').disabled,
+      maxiterWhy: document.getElementById('maxiter-why').textContent,
+    }));
+    await page.selectOption('#strategy', 'rules');
+    let c = await look();
+    check(c.threshold && /Chen's rules decide by their own tests/.test(c.thresholdWhy) && !c.maxiter, JSON.stringify(c));
+    await page.selectOption('#strategy', 'c2');
+    c = await look();
+    check(!c.threshold && c.thresholdWhy === '' && !c.maxiter, JSON.stringify(c));
+    await page.selectOption('#strategy', 'laplace');
+    c = await look();
+    check(c.threshold && c.maxiter && /never calls the solver/.test(c.maxiterWhy), JSON.stringify(c));
+    await page.selectOption('#strategy', 'rules');
+    await idle(page);
+  });
+
+  await test('a press near a node: chosen within reach, else a note says why; hover shows the node number', async () => {
+    await chooseSample(page, 'sample:plate-quadratic');
+    const box = await page.locator('#mesh-new').boundingBox();
+    // the hover label names nodes as the mouse passes over them
+    const seen = { free: null, fixed: null, mid: null };
+    for (let i = 0; i < 60 && !(seen.free && seen.fixed && seen.mid); i++) {
+      for (let j = 0; j < 60 && !(seen.free && seen.fixed && seen.mid); j += 1) {
+        let x = box.x + ((i + 0.5) / 60) * box.width;
+        let y = box.y + ((j + 0.5) / 60) * box.height;
+        if ((i + j) % 3) continue;
+        await page.mouse.move(x, y);
+        await page.waitForFunction(() => true);
+        await page.waitForTimeout(5);
+        const hovered = await page.evaluate(() => {
+          const l = document.querySelector('#panel-new .hover-label');
+          return l.hidden ? null : { label: l.textContent, left: parseFloat(l.style.left), top: parseFloat(l.style.top) };
+        });
+        if (!hovered) continue;
+        // where the label was asked for (it may lag the mouse by a move): left = x + 12, top = y − 8
+        const label = hovered.label;
+        x = box.x + hovered.left - 12;
+        y = box.y + hovered.top + 8;
+        if (/\(mid-side\)$/.test(label)) seen.mid ??= { x, y, label };
+        else if (/\(fixed\)$/.test(label)) seen.fixed ??= { x, y, label };
+        else if (/^node \d+$/.test(label)) seen.free ??= { x, y, label };
+      }
+    }
+    check(seen.free && seen.fixed && seen.mid, `hover labels seen: ${JSON.stringify(seen)}`);
+    await page.mouse.click(seen.mid.x, seen.mid.y);
+    await idle(page);
+    await page.waitForFunction(() => !document.getElementById('pick-note').hidden, null, { timeout: TIMEOUT });
+    const note = await page.textContent('#pick-note');
+    check(/is a mid-side node of a quadratic element/.test(note), `note: ${note}`);
+    await page.mouse.click(seen.fixed.x, seen.fixed.y);
+    await idle(page);
+    check(/is fixed: it is on the boundary/.test(await page.textContent('#pick-note')), await page.textContent('#pick-note'));
+    await page.mouse.click(seen.free.x, seen.free.y);
+    await idle(page);
+    check(await page.isHidden('#pick-note'), 'choosing a node clears the note');
+    check(`node ${await page.inputValue('#node')}` === seen.free.label, `chose ${await page.inputValue('#node')} under ${seen.free.label}`);
+    // a typed mid-side node is refused, saying it is one
+    const mid = /node (\d+)/.exec(seen.mid.label)[1];
+    await page.fill('#node', mid);
+    await page.press('#node', 'Enter');
+    await page.waitForFunction(() => !document.getElementById('message').hidden, null, { timeout: TIMEOUT });
+    check(/mid-side node/.test(await page.textContent('#message')), await page.textContent('#message'));
+    // a tap reaches farther than a mouse click: every tap within 20 px of a free node takes it
+    const hit = await clickSomeNode(page, 'mesh-new', ringPoints());
+    const radius = await page.evaluate(() => window.smoothlab.pickRadius({ pointerType: 'touch' }));
+    check(radius >= 20, `touch radius ${radius}`);
+    console.log(`     hover: ${seen.free.label}, ${seen.fixed.label}, ${seen.mid.label}; chose node ${hit.node}`);
+  });
+
+  await test('the old solver\'s path shows at nodes 200 and 320 of the default sample', async () => {
+    await chooseSample(page, 'sample:plate-tri-tangled');
+    for (const node of ['200', '320']) {
+      await page.fill('#node', node);
+      await page.press('#node', 'Enter');
+      await page.waitForFunction((n) => document.getElementById('node-hint').textContent.startsWith(`Node ${n}:`), node, { timeout: TIMEOUT });
+      await idle(page);
+      const ink = await page.evaluate(() => {
+        const c = document.getElementById('level-old');
+        const d = c.getContext('2d').getImageData(0, 0, c.width, c.height).data;
+        let n = 0;
+        for (let i = 0; i < d.length; i += 4) if (d[i] === 204 && d[i + 1] === 0 && d[i + 2] === 153) n++;
+        return n;
+      });
+      check(ink > 40, `node ${node}: ${ink} pixels of the old solver's path`);
+    }
+    await page.locator('#level-old').screenshot({ path: path.join(OUT, '09-old-path-node-320.png') });
+  });
+
+  await test('on a phone (390×844) the first screen shows a mesh, the charts have height, the legend is whole', async () => {
+    const phone = await browser.newContext({ viewport: { width: 390, height: 844 }, deviceScaleFactor: 3, isMobile: true, hasTouch: true });
+    const p8 = await phone.newPage();
+    watch(p8, 'phone');
+    await p8.goto(`${server.base}#sample=plate-tri-tangled&passes=2`);
+    await idle(p8);
+    const box = await p8.locator('#mesh-old').boundingBox();
+    check(box.y + box.height / 2 < 844, `the old mesh starts at ${box.y} px, below the first screen`);
+    check(!/left|right/.test(await p8.textContent('.lede')), 'the intro says left/right');
+    await shot(p8, '10-phone-first-screen', false);
+    await p8.click('#run');
+    await p8.waitForFunction(() => /2 passes done/.test(document.getElementById('status').textContent), null, { timeout: TIMEOUT });
+    await idle(p8);
+    for (const id of ['pass-chart', 'hist-old', 'hist-new']) {
+      const b = await p8.locator(`#${id}`).boundingBox();
+      check(b.height >= 250, `${id} is ${b.height} px high`);
+    }
+    // nothing inked in the canvas's last pixel columns: the legend ends inside it
+    const edge = await p8.evaluate(() => {
+      const c = document.getElementById('mesh-old');
+      const d = c.getContext('2d').getImageData(c.width - 4, 0, 4, c.height).data;
+      let dark = 0;
+      for (let i = 0; i < d.length; i += 4) if (d[i] < 200 || d[i + 1] < 200 || d[i + 2] < 200) dark++;
+      return dark;
+    });
+    check(edge === 0, `${edge} dark pixels at the right edge of the mesh canvas`);
+    await shot(p8, '10-phone-after-run', false);
+    await p8.locator('.pass-view').screenshot({ path: path.join(OUT, '11-phone-charts.png') });
+    // a tap reaches a node a finger covers
+    const t = await p8.evaluate(() => window.smoothlab.pickRadius({ pointerType: 'touch' }));
+    check(t >= 20, `touch reach ${t}`);
+    await phone.close();
+  });
+
+  await test('the README\'s 520×760 iframe holds the whole embed, without scrolling', async () => {
+    const host = await context.newPage();
+    watch(host, 'iframe host');
+    await host.setViewportSize({ width: 1280, height: 900 });
+    await host.setContent(`<iframe id="f" src="${server.base}?embed=1#sample=plate-tri-tangled&strategy=rules&order=priority&passes=3" width="520" height="760" style="border:0"></iframe>`);
+    const frame = await (await host.$('#f')).contentFrame();
+    await frame.waitForFunction(() => document.body.dataset.ready === '1' && document.body.dataset.busy === '0', null, { timeout: TIMEOUT });
+    const fit = await frame.evaluate(() => ({ h: document.documentElement.scrollHeight, inner: window.innerHeight, w: document.documentElement.scrollWidth, iw: window.innerWidth }));
+    check(fit.h <= fit.inner && fit.w <= fit.iw, `the embed is ${fit.w}×${fit.h} in a ${fit.iw}×${fit.inner} frame`);
+    check((await frame.locator('#mesh-new').boundingBox()).height > 150, 'the meshes are still of a useful size');
+    await host.locator('#f').screenshot({ path: path.join(OUT, '12-embed-iframe-520.png') });
+    await host.close();
   });
 
   await test('no request left 127.0.0.1 and the console has no errors', async () => {

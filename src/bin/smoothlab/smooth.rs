@@ -26,10 +26,7 @@ use smoothlab::smooth::{untangling_obstacles, Obstacle, Order, PassRecord, Smoot
 
 use crate::files::{read_mesh, write_mesh, MshVersionArg};
 
-/// The largest `--passes` and `--max-iter` accepted: far beyond any use, small enough that
-/// a typing slip does not run for hours.
-const MAX_PASSES: u32 = 10_000;
-const MAX_ITER: u32 = 10_000;
+use smoothlab::limits::{self, BATCH_MAX_ITER, BATCH_PASSES};
 
 #[derive(Args)]
 pub struct SmoothArgs {
@@ -136,7 +133,7 @@ impl StrategyArg {
     }
     /// Strategies that never call the solver.
     fn is_laplacian_only(self) -> bool {
-        matches!(self, StrategyArg::Laplace | StrategyArg::Smart)
+        limits::max_iter_unused(self.strategy()).is_some()
     }
 }
 
@@ -172,11 +169,11 @@ struct Report<'a> {
 /// The smoothing options the arguments ask for, or why they cannot be used together.
 fn options(a: &SmoothArgs) -> Result<SmoothOptions, String> {
     let strategy = a.strategy;
-    if a.passes == 0 || a.passes > MAX_PASSES {
-        return Err(format!("--passes {}: give 1 to {MAX_PASSES}", a.passes));
+    if !BATCH_PASSES.contains(a.passes.into()) {
+        return Err(format!("--passes {}: give 1 to {}", a.passes, BATCH_PASSES.max));
     }
     if let Some(t) = a.threshold {
-        if !matches!(strategy, StrategyArg::C1 | StrategyArg::C2 | StrategyArg::C3) {
+        if limits::threshold_unused(strategy.strategy()).is_some() {
             return Err(format!(
                 "--threshold applies to the combined strategies c1, c2 and c3 only, not to {}",
                 strategy.name()
@@ -193,8 +190,8 @@ fn options(a: &SmoothArgs) -> Result<SmoothOptions, String> {
                 strategy.name()
             ));
         }
-        if k == 0 || k > MAX_ITER {
-            return Err(format!("--max-iter {k}: give 1 to {MAX_ITER} solver iterations per call"));
+        if !BATCH_MAX_ITER.contains(k.into()) {
+            return Err(format!("--max-iter {k}: give 1 to {} solver iterations per call", BATCH_MAX_ITER.max));
         }
     }
     let order = match a.order {
