@@ -29,6 +29,83 @@ fn same_mesh(a: &Mesh, b: &Mesh, what: &str) {
     assert_eq!(a.fixed, b.fixed, "{what}: fixed flags");
 }
 
+// ---- 1. non-planar meshes -----------------------------------------------------------------
+
+/// The node a non-planar refusal names, and the message.
+fn not_planar(text: &str, format: Format) -> (usize, String) {
+    match io::read_str(text, format) {
+        Err(e @ Error::NotPlanar { node, .. }) => (node, e.to_string()),
+        other => panic!("expected NotPlanar, got {:?}", other.map(|m| m.node_count())),
+    }
+}
+
+/// The rand2D of the issue (580 nodes) as OBJ text, node `lifted` at z = `z`.
+fn rand2d_obj(lifted: usize, z: f64) -> String {
+    let m = smoothlab::generate::rand2d(500, 20, 7).unwrap();
+    assert_eq!(m.node_count(), 580);
+    let obj = io::write_string(&m, Format::Obj, &WriteOptions::default()).unwrap();
+    let mut seen = 0;
+    let mut out = String::new();
+    for line in obj.lines() {
+        if line.starts_with("v ") {
+            if seen == lifted {
+                let mut t: Vec<&str> = line.split(' ').collect();
+                let zs = z.to_string();
+                t.truncate(3);
+                out += &format!("{} {zs}\n", t.join(" "));
+                seen += 1;
+                continue;
+            }
+            seen += 1;
+        }
+        out += line;
+        out.push('\n');
+    }
+    out
+}
+
+/// One node lifted far off an otherwise flat mesh is refused, naming that node, however
+/// small its lift is next to the bounding box it inflates (the fit tilted toward it and
+/// squeezed the other nodes onto lines).
+#[test]
+fn an_outlier_node_is_refused_by_name() {
+    // the 2 x 2 quad grid with a corner at z = 1e6 (tests/data/bad/non_planar_outlier.obj)
+    let text = std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/bad/non_planar_outlier.obj")).unwrap();
+    let (node, msg) = not_planar(&text, Format::Obj);
+    assert_eq!(node, 8, "{msg}");
+    // a 580-node rand2D with one interior node at z = 3e6, and at heights down to a
+    // thousandth of an element
+    for z in [3e6, 1.0, 1e-3] {
+        for lifted in [0, 100, 579] {
+            let (node, msg) = not_planar(&rand2d_obj(lifted, z), Format::Obj);
+            assert_eq!(node, lifted, "z = {z}: {msg}");
+            assert!(msg.contains(&format!("node {lifted} (line ")), "{msg}");
+        }
+    }
+}
+
+/// Planar meshes still read: tilted, far from the origin, and with their coordinates
+/// rounded to 6 significant digits, as many tools print them (the tolerance excuses
+/// rounding relative to the coordinates' magnitude).
+#[test]
+fn rounded_tilted_planes_still_read() {
+    let m = smoothlab::generate::rand2d(2000, 30, 3).unwrap();
+    let (s, c) = (0.3f64.sin(), 0.3f64.cos());
+    for (origin, digits) in [(0.0, 6), (1e3, 7), (-5e4, 9)] {
+        let mut obj = String::new();
+        for p in &m.nodes {
+            let q = [origin + p.x, origin + p.y * c, origin + p.y * s];
+            obj += &format!("v {:.*e} {:.*e} {:.*e}\n", digits - 1, q[0], digits - 1, q[1], digits - 1, q[2]);
+        }
+        for e in 0..m.element_count() {
+            let ids: Vec<String> = m.element(e).iter().map(|i| (i + 1).to_string()).collect();
+            obj += &format!("f {}\n", ids.join(" "));
+        }
+        let back = io::read_str(&obj, Format::Obj).unwrap_or_else(|e| panic!("origin {origin}, {digits} digits: {e}"));
+        assert_eq!(back.element_count(), m.element_count());
+    }
+}
+
 // ---- 2. a UTF-8 byte-order mark -------------------------------------------------------
 
 /// A leading BOM is skipped in every format: the file reads as the same file without it

@@ -45,7 +45,7 @@ const EXPECTED: &[(&str, &[&str])] = &[
     ("bad_header.vtk", &["line 1", "# vtk DataFile Version"]),
     ("binary.vtk", &["line 3", "binary VTK files are not supported"]),
     ("huge_count.vtk", &["line 5", "1000000000 points"]),
-    ("non_planar.vtk", &["not planar", "off their best-fit plane"]),
+    ("non_planar.vtk", &["not planar: node", "off the plane of the mesh", "times the size of its elements"]),
     ("point_data_count.vtk", &["line 14", "POINT_DATA announces 3 values", "4 points"]),
     ("bad_fixed_value.vtk", &["line 17", "'fixed' value of point 2", "'yes'"]),
     ("unknown_section.vtk", &["line 15", "expected a section", "'POLYGONS'"]),
@@ -63,6 +63,7 @@ const EXPECTED: &[(&str, &[&str])] = &[
     ("not_utf8.obj", &["line 3", "not UTF-8", "byte 29 (0xe9)"]),
     ("repeated_node.obj", &["element 0 (line 4)", "vertex 3 appears twice"]),
     ("cr_only_nan_coordinate.obj", &["line 3", "vertex 2", "'nan'"]),
+    ("non_planar_outlier.obj", &["not planar: node 8 (line 10) lies 1.000e6 off the plane", "7.071e5 times the size"]),
     // OFF
     ("repeated_node.off", &["element 0 (line 6)", "vertex 1 appears twice"]),
     ("cr_only_index_out_of_range.off", &["element 0 (line 6)", "vertex index 3 is out of range"]),
