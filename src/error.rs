@@ -101,7 +101,7 @@ pub(crate) fn shown_number(x: f64) -> String {
         "an unknown amount".into()
     } else if x.is_infinite() {
         if x > 0.0 { "infinitely many".into() } else { "minus infinity".into() }
-    } else if x != 0.0 && !(1e-3..1e6).contains(&x.abs()) {
+    } else if x != 0.0 && !(1e-3..1e4).contains(&x.abs()) {
         format!("{x:.3e}")
     } else {
         let s = format!("{x:.4}");

@@ -248,7 +248,9 @@ impl Mesh {
         let ids = self.element(e);
         polygon_area((0..k).map(|i| self.nodes[ids[i] as usize]))
     }
-    /// Mean length of the element edges (corner to corner); 0 for an empty mesh.
+    /// Mean length of the element edges (corner to corner); 0 for an empty mesh. Each
+    /// length by `hypot`, so that it neither overflows near 1e300 nor underflows near
+    /// 1e-300 (the renderer decides from it whether edges are drawn).
     pub fn mean_edge_length(&self) -> f64 {
         let edges = &self.topo.edges;
         if edges.is_empty() {
@@ -256,7 +258,10 @@ impl Mesh {
         }
         let s: f64 = edges
             .iter()
-            .map(|e| self.nodes[e.a as usize].distance(self.nodes[e.b as usize]))
+            .map(|e| {
+                let d = self.nodes[e.a as usize] - self.nodes[e.b as usize];
+                d.x.hypot(d.y)
+            })
             .sum();
         s / edges.len() as f64
     }
@@ -541,6 +546,23 @@ pub enum FixedSpec {
     BoundaryAnd(Vec<bool>),
 }
 
+/// The largest coordinate magnitude smoothlab computes with, `f64::MAX / 16` (about
+/// 1.1e307): differences of coordinates and the end tangents `4M − 3P0 − P2` of quadratic
+/// edges stay finite below it.
+pub const MAX_COORDINATE: f64 = f64::MAX / 16.0;
+
+/// Why a coordinate cannot be computed with, if it cannot: beyond [`MAX_COORDINATE`].
+/// (Tiny ones are fine: a subnormal next to 1e-300 is a jittered zero, and the metrics
+/// work in each element's own scale.)
+fn beyond_arithmetic(c: f64) -> Option<String> {
+    (c.abs() > MAX_COORDINATE).then(|| {
+        format!(
+            "coordinate {c:e} is too large to compute with: smoothlab takes magnitudes up to {MAX_COORDINATE:.1e} \
+             (differences and quadratic edge tangents of larger ones overflow 64-bit floats)"
+        )
+    })
+}
+
 /// Relative tolerance within which 3D points count as planar: of the size of a node's
 /// elements, or of its coordinates' magnitude (rounding), whichever is larger.
 pub const PLANAR_TOLERANCE: f64 = 1e-5;
@@ -618,6 +640,9 @@ impl MeshBuilder {
             if !p.iter().all(|c| c.is_finite()) {
                 return Err(Error::node(i, self.line_of_node(i), format!("coordinate is not a finite number: {p:?}")));
             }
+            if let Some(why) = p.iter().find_map(|&c| beyond_arithmetic(c)) {
+                return Err(Error::node(i, self.line_of_node(i), why));
+            }
         }
         let n = self.points.len();
         for e in 0..self.kinds.len() {
@@ -655,13 +680,22 @@ impl MeshBuilder {
         // reversing negates that difference exactly, so a mesh reversed here is never
         // reversed again when written and read back. (The sign of the total alone flipped
         // back and forth when huge coordinates left a total of rounding noise.)
-        let reversed_area = |e: usize| {
-            let ids = mesh.element(e);
-            let k = mesh.kinds[e];
-            polygon_area(k.reversed_order()[..k.corners()].iter().map(|&j| mesh.nodes[ids[j] as usize]))
+        // The areas are taken in units of the largest coordinate (a power of two, exact):
+        // near 1e-200 they underflowed to 0 and a clockwise mesh stayed clockwise.
+        let unit = {
+            let m = mesh.nodes.iter().fold(0.0f64, |m, p| m.max(p.x.abs()).max(p.y.abs()));
+            let mut v = [DVec2::new(m, 0.0)];
+            let f = crate::quality::to_unit_scale(&mut v);
+            f[0] * f[1]
         };
-        let forward: f64 = (0..mesh.kinds.len()).map(|e| mesh.corner_area(e)).sum();
-        let backward: f64 = (0..mesh.kinds.len()).map(reversed_area).sum();
+        let area_in = |e: usize, order: &[usize]| {
+            let ids = mesh.element(e);
+            polygon_area(order.iter().map(|&j| mesh.nodes[ids[j] as usize] * unit))
+        };
+        let forward: f64 = (0..mesh.kinds.len()).map(|e| area_in(e, &[0, 1, 2, 3][..mesh.kinds[e].corners()])).sum();
+        let backward: f64 = (0..mesh.kinds.len())
+            .map(|e| area_in(e, &mesh.kinds[e].reversed_order()[..mesh.kinds[e].corners()]))
+            .sum();
         if forward - backward < 0.0 {
             for e in 0..mesh.kinds.len() {
                 let s = mesh.elem_start[e] as usize;
@@ -793,7 +827,7 @@ impl MeshBuilder {
             let distance = (v(p).dot(normal) - offset).abs();
             let own = if size[i] > 0.0 { size[i] } else { largest };
             let allowed = PLANAR_TOLERANCE * own.max(v(p).abs().max_element()).max(centre.abs().max_element());
-            if distance > allowed && worst.is_none_or(|(_, d, _)| distance > d) {
+            if distance > allowed && worst.map_or(true, |(_, d, _)| distance > d) {
                 worst = Some((i, distance, own));
             }
         }

@@ -51,6 +51,7 @@ const EXPECTED: &[(&str, &[&str])] = &[
     ("unknown_section.vtk", &["line 15", "expected a section", "'POLYGONS'"]),
     ("repeated_node.vtk", &["element 0 (line 10)", "point 2 appears twice"]),
     ("cr_only_inf_coordinate.vtk", &["line 7", "y coordinate of point 1", "'inf'"]),
+    ("huge_coordinate.vtk", &["node 1 (line 7)", "coordinate 1.5e308 is too large to compute with", "1.1e307"]),
     ("two_fixed_arrays.vtk", &["line 17", "a second SCALARS fixed (the first is at line 14)"]),
     // OBJ
     ("nan_coordinate.obj", &["line 3", "vertex 2", "finite", "'nan'"]),

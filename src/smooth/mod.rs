@@ -861,7 +861,7 @@ fn inversion(star: &Star, x: DVec2) -> f64 {
     let mut t = 0.0;
     for e in &star.elems {
         let p = e.at(x);
-        for (e1, e2) in &corner_edges(e.kind, &p)[..e.kind.corners()] {
+        for (e1, e2) in &crate::quality::corner_edge_vectors(e.kind, &p)[..e.kind.corners()] {
             t += (-e1.perp_dot(*e2)).max(0.0);
         }
     }
