@@ -789,7 +789,6 @@ impl Smoother {
             guarded = KeepValid {
                 inner: objective,
                 limit,
-                inversion0: if self.options.pass_through_folds { inversion(&self.star, x0) } else { 0.0 },
                 pass_through_folds: self.options.pass_through_folds,
             };
             &guarded
@@ -848,8 +847,6 @@ struct KeepValid<'a> {
     inner: &'a dyn Objective,
     /// Inverted star elements when the call began.
     limit: usize,
-    /// The star's [`inversion`] when the call began.
-    inversion0: f64,
     /// [`SmoothOptions::pass_through_folds`].
     pass_through_folds: bool,
 }
@@ -897,7 +894,10 @@ impl KeepValid<'_> {
     /// [`SmoothOptions::keep_valid`]).
     fn refuses(&self, star: &Star, x: DVec2) -> bool {
         let inverted = star.elems.iter().filter(|e| is_inverted_at(e, x)).count();
-        inverted > self.limit && (!self.pass_through_folds || self.limit == 0 || inversion(star, x) >= self.inversion0)
+        // the inversion at the start is taken from the star the solver passes, so that it
+        // is in the same frame as at `x` (a solver may pass a rescaled copy: optimize)
+        inverted > self.limit
+            && (!self.pass_through_folds || self.limit == 0 || inversion(star, x) >= inversion(star, star.x0))
     }
 }
 
