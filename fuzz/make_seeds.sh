@@ -27,6 +27,9 @@ for m in star-regular star-quad grid-tri grid-quad plate-mixed; do
 done
 for m in plate-tri6 plate-quad8; do $sl convert "$gen/$m-2.2.msh" "$gen/$m.vtk"; done
 $sl convert "$gen/star-regular-2.2.msh" "$gen/star-regular.node"
+# Issue 16's classes: a rand2D with one node lifted far off its plane (a mistyped exponent).
+$sl generate rand2d --points 60 --per-side 5 --seed 7 -o "$gen/rand2d.obj"
+awk '/^v /{n++; if (n==10) {$4="3e6"}} {print}' "$gen/rand2d.obj" > "$gen/rand2d-outlier.obj"
 $sl convert "$gen/plate-tri6-2.2.msh" "$gen/plate-tri6.node"
 
 rm -rf "$seeds"
@@ -44,7 +47,10 @@ done
 for ext in vtk obj off; do
   cp "$gen"/*."$ext" "$seeds/$ext/"
   for f in "$root"/tests/data/*."$ext" "$root"/tests/data/bad/*."$ext"; do cp "$f" "$seeds/$ext/fixture-$(basename "$f")"; done
+  # byte-order marks, extreme scales (tests/data/hardening)
+  for f in "$root"/tests/data/hardening/*."$ext"; do cp "$f" "$seeds/$ext/hardening-$(basename "$f")"; done
 done
+cp "$gen/rand2d-outlier.obj" "$seeds/obj/rand2d-outlier.obj"
 # Triangle: .node, a NUL byte, .ele.
 pair() { { cat "$1.node"; printf '\0'; cat "$1.ele"; } > "$2"; }
 pair "$gen/star-regular" "$seeds/triangle/star-regular"
@@ -52,6 +58,7 @@ pair "$gen/plate-tri6" "$seeds/triangle/plate-tri6"
 for f in "$root"/tests/data/*.node "$root"/tests/data/bad/*.node; do
   pair "${f%.node}" "$seeds/triangle/fixture-$(basename "$f" .node)"
 done
+pair "$root/tests/data/hardening/bom" "$seeds/triangle/hardening-bom"
 # read_bytes: the first byte picks the name (0 .msh, 1 .vtk, 2 .obj, 3 .off, 4 .node).
 tag() { { printf "\\x0$1"; cat "$2"; } > "$3"; }
 tag 0 "$gen/grid-tri-2.2.msh" "$seeds/read_bytes/msh-grid-tri"
@@ -62,6 +69,11 @@ tag 1 "$root/tests/data/bad/binary.vtk" "$seeds/read_bytes/vtk-binary"
 tag 2 "$root/tests/data/bad/not_utf8.obj" "$seeds/read_bytes/obj-not-utf8"
 tag 3 "$gen/star-quad.off" "$seeds/read_bytes/off-star-quad"
 tag 4 "$gen/star-regular.node" "$seeds/read_bytes/node-star"
+tag 0 "$root/tests/data/hardening/bom.msh" "$seeds/read_bytes/msh-bom"
+tag 1 "$root/tests/data/hardening/triangles_1e300.vtk" "$seeds/read_bytes/vtk-1e300"
+tag 2 "$root/tests/data/hardening/bom.obj" "$seeds/read_bytes/obj-bom"
+tag 2 "$gen/rand2d-outlier.obj" "$seeds/read_bytes/obj-rand2d-outlier"
+tag 4 "$root/tests/data/hardening/bom.node" "$seeds/read_bytes/node-bom"
 # permalink hashes
 printf '%s' '#sample=plate-tri&tangle=0.6&seed=3&strategy=rules&objective=new&threshold=30&passes=3&order=priority&maxiter=3&node=17' > "$seeds/permalink/example"
 printf '%s' 'sample=gmsh-disk-tri6&amount=1.5e-3&strategy=c2&objective=condition-max&order=input&embed=1' > "$seeds/permalink/alias"

@@ -13,8 +13,10 @@ pub enum Error {
     Element { element: usize, line: Option<usize>, message: String },
     /// A node is invalid (0-based node index as read, with its file line when known).
     Node { node: usize, line: Option<usize>, message: String },
-    /// Points are given in 3D and do not lie on one plane.
-    NotPlanar { max_distance: f64, relative: f64, tolerance: f64 },
+    /// Points are given in 3D and do not lie on one plane: `node` (0-based, with its file
+    /// line when known) is the farthest off, by `max_distance`, which is `relative` times
+    /// the size of the largest element it belongs to.
+    NotPlanar { node: usize, line: Option<usize>, max_distance: f64, relative: f64, tolerance: f64 },
     /// The input is well-formed but asks for something smoothlab does not do
     /// (polygons, volume cells, binary files, …).
     Unsupported { line: Option<usize>, message: String },
@@ -67,13 +69,17 @@ impl fmt::Display for Error {
                 at_line(f, *line)?;
                 write!(f, ": {message}")
             }
-            Error::NotPlanar { max_distance, relative, tolerance } => write!(
-                f,
-                "the mesh is not planar: points lie up to {max_distance:.4} off their best-fit plane \
-                 ({:.3}% of the mesh size; the tolerance is {:.1e}); smoothlab smooths planar 2D meshes only",
-                relative * 100.0,
-                tolerance
-            ),
+            Error::NotPlanar { node, line, max_distance, relative, tolerance } => {
+                write!(f, "the mesh is not planar: node {node}")?;
+                at_line(f, *line)?;
+                write!(
+                    f,
+                    " lies {} off the plane of the mesh, {} times the size of its elements (the tolerance is {tolerance:.0e}); \
+                     smoothlab smooths planar 2D meshes only",
+                    shown_number(*max_distance),
+                    shown_number(*relative)
+                )
+            }
             Error::Unsupported { line, message } => {
                 if let Some(l) = line {
                     write!(f, "line {l}: ")?;
@@ -85,6 +91,21 @@ impl fmt::Display for Error {
             Error::Invalid(m) => write!(f, "{m}"),
             Error::Io(m) => write!(f, "{m}"),
         }
+    }
+}
+
+/// A number for a message: 4 significant digits, in scientific notation when very large
+/// or small, and never "NaN" (shown as "an unknown amount", which no caller should need).
+pub(crate) fn shown_number(x: f64) -> String {
+    if x.is_nan() {
+        "an unknown amount".into()
+    } else if x.is_infinite() {
+        if x > 0.0 { "infinitely many".into() } else { "minus infinity".into() }
+    } else if x != 0.0 && !(1e-3..1e4).contains(&x.abs()) {
+        format!("{x:.3e}")
+    } else {
+        let s = format!("{x:.4}");
+        s.trim_end_matches('0').trim_end_matches('.').to_string()
     }
 }
 

@@ -248,7 +248,9 @@ impl Mesh {
         let ids = self.element(e);
         polygon_area((0..k).map(|i| self.nodes[ids[i] as usize]))
     }
-    /// Mean length of the element edges (corner to corner); 0 for an empty mesh.
+    /// Mean length of the element edges (corner to corner); 0 for an empty mesh. Each
+    /// length by `hypot`, so that it neither overflows near 1e300 nor underflows near
+    /// 1e-300 (the renderer decides from it whether edges are drawn).
     pub fn mean_edge_length(&self) -> f64 {
         let edges = &self.topo.edges;
         if edges.is_empty() {
@@ -256,7 +258,10 @@ impl Mesh {
         }
         let s: f64 = edges
             .iter()
-            .map(|e| self.nodes[e.a as usize].distance(self.nodes[e.b as usize]))
+            .map(|e| {
+                let d = self.nodes[e.a as usize] - self.nodes[e.b as usize];
+                d.x.hypot(d.y)
+            })
             .sum();
         s / edges.len() as f64
     }
@@ -541,7 +546,25 @@ pub enum FixedSpec {
     BoundaryAnd(Vec<bool>),
 }
 
-/// Relative tolerance (of the bounding-box diagonal) within which 3D points count as planar.
+/// The largest coordinate magnitude smoothlab computes with, `f64::MAX / 16` (about
+/// 1.1e307): differences of coordinates and the end tangents `4M − 3P0 − P2` of quadratic
+/// edges stay finite below it.
+pub const MAX_COORDINATE: f64 = f64::MAX / 16.0;
+
+/// Why a coordinate cannot be computed with, if it cannot: beyond [`MAX_COORDINATE`].
+/// (Tiny ones are fine: a subnormal next to 1e-300 is a jittered zero, and the metrics
+/// work in each element's own scale.)
+fn beyond_arithmetic(c: f64) -> Option<String> {
+    (c.abs() > MAX_COORDINATE).then(|| {
+        format!(
+            "coordinate {c:e} is too large to compute with: smoothlab takes magnitudes up to {MAX_COORDINATE:.1e} \
+             (differences and quadratic edge tangents of larger ones overflow 64-bit floats)"
+        )
+    })
+}
+
+/// Relative tolerance within which 3D points count as planar: of the size of a node's
+/// elements, or of its coordinates' magnitude (rounding), whichever is larger.
 pub const PLANAR_TOLERANCE: f64 = 1e-5;
 
 /// Collects what a reader found in a file, then validates it and builds a [`Mesh`].
@@ -617,6 +640,9 @@ impl MeshBuilder {
             if !p.iter().all(|c| c.is_finite()) {
                 return Err(Error::node(i, self.line_of_node(i), format!("coordinate is not a finite number: {p:?}")));
             }
+            if let Some(why) = p.iter().find_map(|&c| beyond_arithmetic(c)) {
+                return Err(Error::node(i, self.line_of_node(i), why));
+            }
         }
         let n = self.points.len();
         for e in 0..self.kinds.len() {
@@ -654,13 +680,22 @@ impl MeshBuilder {
         // reversing negates that difference exactly, so a mesh reversed here is never
         // reversed again when written and read back. (The sign of the total alone flipped
         // back and forth when huge coordinates left a total of rounding noise.)
-        let reversed_area = |e: usize| {
-            let ids = mesh.element(e);
-            let k = mesh.kinds[e];
-            polygon_area(k.reversed_order()[..k.corners()].iter().map(|&j| mesh.nodes[ids[j] as usize]))
+        // The areas are taken in units of the largest coordinate (a power of two, exact):
+        // near 1e-200 they underflowed to 0 and a clockwise mesh stayed clockwise.
+        let unit = {
+            let m = mesh.nodes.iter().fold(0.0f64, |m, p| m.max(p.x.abs()).max(p.y.abs()));
+            let mut v = [DVec2::new(m, 0.0)];
+            let f = crate::quality::to_unit_scale(&mut v);
+            f[0] * f[1]
         };
-        let forward: f64 = (0..mesh.kinds.len()).map(|e| mesh.corner_area(e)).sum();
-        let backward: f64 = (0..mesh.kinds.len()).map(reversed_area).sum();
+        let area_in = |e: usize, order: &[usize]| {
+            let ids = mesh.element(e);
+            polygon_area(order.iter().map(|&j| mesh.nodes[ids[j] as usize] * unit))
+        };
+        let forward: f64 = (0..mesh.kinds.len()).map(|e| area_in(e, &[0, 1, 2, 3][..mesh.kinds[e].corners()])).sum();
+        let backward: f64 = (0..mesh.kinds.len())
+            .map(|e| area_in(e, &mesh.kinds[e].reversed_order()[..mesh.kinds[e].corners()]))
+            .sum();
         if forward - backward < 0.0 {
             for e in 0..mesh.kinds.len() {
                 let s = mesh.elem_start[e] as usize;
@@ -693,9 +728,18 @@ impl MeshBuilder {
         Ok(mesh)
     }
 
-    /// 2D coordinates of the points: as given when every z is equal, else in the
-    /// best-fit plane of the elements (normal by Newell's method, so elements come out
-    /// counter-clockwise); refuses non-planar input saying by how much.
+    /// 2D coordinates of the points: as given when every z is equal, else in the plane of
+    /// the elements; refuses non-planar input naming the node farthest off, how far, and
+    /// how that compares with the size of its elements.
+    ///
+    /// The plane is fitted robustly, so that one node far off (a mistyped exponent) can
+    /// neither tilt it nor hide behind the size it gives the mesh: its normal is the
+    /// component-wise median of the elements' unit normals (each element one vote,
+    /// whatever its size; signs aligned), and its offset the median of the nodes'
+    /// offsets. Each node must then lie within [`PLANAR_TOLERANCE`] of the size of the
+    /// largest element it belongs to (measured in the plane), or of its own coordinates'
+    /// magnitude, whichever is larger: rounding in the file is excused, an outlier is not,
+    /// however large the mesh around it.
     fn to_plane(&self) -> Result<Vec<DVec2>> {
         let z0 = self.points.first().map(|p| p[2]).unwrap_or(0.0);
         if self.points.iter().all(|p| p[2] == z0) {
@@ -707,55 +751,119 @@ impl MeshBuilder {
         // The z values differ, so some coordinate is nonzero and the scale is positive.
         let scale = self.points.iter().flatten().fold(0.0f64, |m, c| m.max(c.abs()));
         let v = |p: &[f64; 3]| glam::DVec3::new(p[0] / scale, p[1] / scale, p[2] / scale);
-        // Newell normal over the corner polygons of all elements.
-        let mut normal = glam::DVec3::ZERO;
+        let elem = |e: usize| &self.elem_nodes[self.elem_start[e] as usize..self.elem_start[e + 1] as usize];
+        // Each element's unit normal (Newell's method on its corner polygon, in units of
+        // its own extent from its first corner, so that tiny elements do not underflow).
+        let mut normals = Vec::with_capacity(self.kinds.len());
         for e in 0..self.kinds.len() {
-            let ids = &self.elem_nodes[self.elem_start[e] as usize..];
+            let ids = elem(e);
             let k = self.kinds[e].corners();
+            let o = v(&self.points[ids[0] as usize]);
+            let extent = ids[..k].iter().fold(0.0f64, |m, &i| m.max((v(&self.points[i as usize]) - o).abs().max_element()));
+            if extent == 0.0 {
+                continue;
+            }
+            let mut n = glam::DVec3::ZERO;
             for i in 0..k {
-                let a = v(&self.points[ids[i] as usize]);
-                let b = v(&self.points[ids[(i + 1) % k] as usize]);
-                normal += a.cross(b);
+                let a = (v(&self.points[ids[i] as usize]) - o) / extent;
+                let b = (v(&self.points[ids[(i + 1) % k] as usize]) - o) / extent;
+                n += a.cross(b);
+            }
+            if norm(n) > 1e-12 {
+                normals.push(n / norm(n));
             }
         }
-        let (mut lo, mut hi) = (glam::DVec3::splat(f64::INFINITY), glam::DVec3::splat(f64::NEG_INFINITY));
-        for p in &self.points {
-            lo = lo.min(v(p));
-            hi = hi.max(v(p));
-        }
-        let size = norm(hi - lo).max(f64::MIN_POSITIVE);
-        // Far-away unused nodes can leave the elements tiny in these units: the normal's
-        // length may be below the square root of the smallest float, hence `norm`.
-        let normal_length = norm(normal);
-        if normal_length <= 1e-300 {
+        if normals.is_empty() {
             return Err(Error::invalid("cannot find the plane of the mesh: its elements have no area"));
         }
-        let normal = normal / normal_length;
-        let centre = self.points.iter().map(v).sum::<glam::DVec3>() / self.points.len() as f64;
-        let max_distance = self.points.iter().map(|p| (v(p) - centre).dot(normal).abs()).fold(0.0, f64::max);
-        let relative = max_distance / size;
-        if relative > PLANAR_TOLERANCE {
-            return Err(Error::NotPlanar { max_distance: max_distance * scale, relative, tolerance: PLANAR_TOLERANCE });
+        // Two rounds: align the signs to a guess, take the median, align to that.
+        let mut normal = normals[0];
+        for _ in 0..2 {
+            let aligned = |c: usize| normals.iter().map(move |n| if n.dot(normal) < 0.0 { -n[c] } else { n[c] });
+            let m = glam::DVec3::new(median(aligned(0).collect()), median(aligned(1).collect()), median(aligned(2).collect()));
+            if norm(m) > 0.0 {
+                normal = m / norm(m);
+            }
         }
+        // The mesh faces +normal where its elements do by area (Newell over all of them),
+        // so that elements come out counter-clockwise as they were drawn.
+        let mut facing = 0.0;
+        for e in 0..self.kinds.len() {
+            let ids = elem(e);
+            let k = self.kinds[e].corners();
+            for i in 0..k {
+                facing += v(&self.points[ids[i] as usize]).cross(v(&self.points[ids[(i + 1) % k] as usize])).dot(normal);
+            }
+        }
+        if facing < 0.0 {
+            normal = -normal;
+        }
+        let offset = median(self.points.iter().map(|p| v(p).dot(normal)).collect());
         // In-plane basis (u, w) with u × w = normal.
         let helper = if normal.x.abs() < 0.9 { glam::DVec3::X } else { glam::DVec3::Y };
         let u = (helper - normal * helper.dot(normal)).normalize();
         let w = normal.cross(u);
-        let mut out = Vec::with_capacity(self.points.len());
+        let centre = normal * offset;
+        let flat: Vec<DVec2> = self.points.iter().map(|p| v(p) - centre).map(|d| DVec2::new(d.dot(u), d.dot(w))).collect();
+        // Each node's size: the largest element it belongs to, in the plane (the diagonal
+        // of the element's bounding box there). Unused nodes get the largest element's.
+        let mut size = vec![0.0f64; self.points.len()];
+        let mut largest = 0.0f64;
+        for e in 0..self.kinds.len() {
+            let ids = elem(e);
+            let (mut lo, mut hi) = (DVec2::splat(f64::INFINITY), DVec2::splat(f64::NEG_INFINITY));
+            for &i in ids {
+                lo = lo.min(flat[i as usize]);
+                hi = hi.max(flat[i as usize]);
+            }
+            let d = (hi - lo).length();
+            largest = largest.max(d);
+            for &i in ids {
+                size[i as usize] = size[i as usize].max(d);
+            }
+        }
+        let mut worst: Option<(usize, f64, f64)> = None;
         for (i, p) in self.points.iter().enumerate() {
-            let d = v(p) - centre;
-            let q = DVec2::new(d.dot(u), d.dot(w)) * scale;
+            let distance = (v(p).dot(normal) - offset).abs();
+            let own = if size[i] > 0.0 { size[i] } else { largest };
+            let allowed = PLANAR_TOLERANCE * own.max(v(p).abs().max_element()).max(centre.abs().max_element());
+            if distance > allowed && worst.map_or(true, |(_, d, _)| distance > d) {
+                worst = Some((i, distance, own));
+            }
+        }
+        if let Some((node, distance, own)) = worst {
+            return Err(Error::NotPlanar {
+                node,
+                line: self.line_of_node(node),
+                max_distance: distance * scale,
+                relative: if own > 0.0 { distance / own } else { f64::INFINITY },
+                tolerance: PLANAR_TOLERANCE,
+            });
+        }
+        let mut out = Vec::with_capacity(self.points.len());
+        for (i, q) in flat.iter().enumerate() {
+            let q = *q * scale;
             if !q.is_finite() {
                 return Err(Error::node(
                     i,
                     self.line_of_node(i),
-                    format!("its coordinates in the plane of the mesh are too large for a 64-bit float: {p:?}"),
+                    format!("its coordinates in the plane of the mesh are too large for a 64-bit float: {:?}", self.points[i]),
                 ));
             }
             out.push(q);
         }
         Ok(out)
     }
+}
+
+/// The median of the values (the upper one of the middle two for an even count); NaN-free
+/// input.
+fn median(mut values: Vec<f64>) -> f64 {
+    if values.is_empty() {
+        return 0.0;
+    }
+    let mid = values.len() / 2;
+    *values.select_nth_unstable_by(mid, f64::total_cmp).1
 }
 
 /// Euclidean length without underflow or overflow of the squares (scaled by the

@@ -28,6 +28,10 @@ const EXPECTED: &[(&str, &[&str])] = &[
     ("version1.msh", &["line 1", "version 1"]),
     ("block_count_mismatch.msh", &["line 18", "element 2 of the block at line 16", "'$EndElements'"]),
     ("repeated_node.msh", &["element 0 (line 12)", "node tag 2 appears twice"]),
+    // issue 16: lines end at a lone CR too; a fixed set says nothing twice
+    ("cr_only_bad_number.msh", &["line 7", "y coordinate of node tag 2", "'0.0.0'"]),
+    ("fixed_node_twice.msh", &["line 24", "'fixed' view lists node tag 1 twice (first at line 22)"]),
+    ("two_fixed_views.msh", &["line 24", "a second 'fixed' view (the first is at line 14)"]),
     // VTK
     ("index_out_of_range.vtk", &["element 0 (line 11)", "point index 9 is out of range", "0 to 3"]),
     ("polygon_cell.vtk", &["line 13", "polygons are not supported: element 0 at line 13 has 5 vertices"]),
@@ -41,11 +45,14 @@ const EXPECTED: &[(&str, &[&str])] = &[
     ("bad_header.vtk", &["line 1", "# vtk DataFile Version"]),
     ("binary.vtk", &["line 3", "binary VTK files are not supported"]),
     ("huge_count.vtk", &["line 5", "1000000000 points"]),
-    ("non_planar.vtk", &["not planar", "off their best-fit plane"]),
+    ("non_planar.vtk", &["not planar: node", "off the plane of the mesh", "times the size of its elements"]),
     ("point_data_count.vtk", &["line 14", "POINT_DATA announces 3 values", "4 points"]),
     ("bad_fixed_value.vtk", &["line 17", "'fixed' value of point 2", "'yes'"]),
     ("unknown_section.vtk", &["line 15", "expected a section", "'POLYGONS'"]),
     ("repeated_node.vtk", &["element 0 (line 10)", "point 2 appears twice"]),
+    ("cr_only_inf_coordinate.vtk", &["line 7", "y coordinate of point 1", "'inf'"]),
+    ("huge_coordinate.vtk", &["node 1 (line 7)", "coordinate 1.5e308 is too large to compute with", "1.1e307"]),
+    ("two_fixed_arrays.vtk", &["line 17", "a second SCALARS fixed (the first is at line 14)"]),
     // OBJ
     ("nan_coordinate.obj", &["line 3", "vertex 2", "finite", "'nan'"]),
     ("polygon_face.obj", &["line 6", "5 vertices", "polygons are not supported"]),
@@ -56,8 +63,11 @@ const EXPECTED: &[(&str, &[&str])] = &[
     ("no_elements.obj", &["empty mesh"]),
     ("not_utf8.obj", &["line 3", "not UTF-8", "byte 29 (0xe9)"]),
     ("repeated_node.obj", &["element 0 (line 4)", "vertex 3 appears twice"]),
+    ("cr_only_nan_coordinate.obj", &["line 3", "vertex 2", "'nan'"]),
+    ("non_planar_outlier.obj", &["not planar: node 8 (line 10) lies 1.000e6 off the plane", "7.071e5 times the size"]),
     // OFF
     ("repeated_node.off", &["element 0 (line 6)", "vertex 1 appears twice"]),
+    ("cr_only_index_out_of_range.off", &["element 0 (line 6)", "vertex index 3 is out of range"]),
     ("wrong_count.off", &["line 2", "5 vertices", "ends after 4"]),
     ("index_out_of_range.off", &["element 0 (line 6)", "vertex index 3 is out of range", "0 to 2"]),
     ("huge_count.off", &["line 2", "2000000000 vertices"]),

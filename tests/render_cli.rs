@@ -83,6 +83,9 @@ fn bad_requests_are_refused_with_a_message() {
         (vec!["--size", "9000x10"], "give 1 to 4096"),
         (vec!["--view", "compare", "--objective", "new"], "both objectives"),
         (vec!["--dpr", "0"], "--dpr"),
+        // issue 16: the mesh view drew a highlight for a node that does not exist
+        (vec!["--view", "mesh", "--node", "99999"], "--node 99999: the mesh has nodes 0 to"),
+        (vec!["--view", "histogram", "--node", "99999"], "--node 99999: the mesh has nodes 0 to"),
     ] {
         let mut all = vec!["render", mesh.as_str(), "-o", o];
         all.extend(args.iter().copied());
@@ -91,4 +94,20 @@ fn bad_requests_are_refused_with_a_message() {
         let err = String::from_utf8_lossy(&r.stderr);
         assert!(err.contains(want), "{args:?}: {err}");
     }
+}
+
+/// Over the million nodes the pictures take, the refusal is the command-line tool's own,
+/// with the file's name (it was the page's "use the command-line tool"). Issue 16.
+#[test]
+fn a_mesh_over_the_render_limit_is_refused_in_this_tools_words() {
+    let d = dir("too-many");
+    let big = d.join("big.vtk");
+    let o = run(&["generate", "grid", "--nx", "1001", "--ny", "1000", "-o", big.to_str().unwrap()]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let r = run(&["render", big.to_str().unwrap(), "-o", d.join("x.png").to_str().unwrap(), "--view", "mesh"]);
+    assert!(!r.status.success());
+    let err = String::from_utf8_lossy(&r.stderr);
+    assert!(err.contains("big.vtk") && err.contains("1003002 nodes") && err.contains("render draws meshes of at most 1000000"), "{err}");
+    assert!(!err.contains("the page") && !err.contains("use the command-line tool"), "{err}");
+    std::fs::remove_dir_all(&d).unwrap();
 }

@@ -7,6 +7,12 @@
 //! checks that the round trip keeps what the io module documents (nodes to the last bit,
 //! elements and kinds; fixed flags for `.msh` and `.vtk`). A broken promise panics, which
 //! the fuzzer reports as a crash.
+//!
+//! Since issue 16 also: a leading byte-order mark changes nothing (the text targets read
+//! every input twice, with and without one); no statistic is NaN, nor any message of an
+//! input that does not say NaN itself; and the
+//! statistics of a mesh are those of the same mesh scaled by a power of two up to the
+//! largest coordinates smoothlab takes (the metrics work in each element's own scale).
 
 use smoothlab::io::{self, Format, MshVersion, WriteOptions};
 use smoothlab::{quality, Mesh, Result};
@@ -128,16 +134,52 @@ pub fn run(t: Target, data: &[u8]) -> Outcome {
             return Outcome::Permalink(decoded);
         }
     };
+    // The text targets again with a byte-order mark in front (one: a text that starts
+    // with one already is read as it is): the same outcome.
+    let bom = |s: &str| if s.starts_with('\u{feff}') { s.to_string() } else { format!("\u{feff}{s}") };
+    let with_bom = match t {
+        Target::Msh22 | Target::Msh41 => text().map(|body| {
+            let head = if t == Target::Msh22 { MSH22_HEADER } else { MSH41_HEADER };
+            io::read_str(&bom(&format!("{head}{body}")), Format::Msh)
+        }),
+        Target::Vtk => text().map(|s| io::read_str(&bom(s), Format::Vtk)),
+        Target::Obj => text().map(|s| io::read_str(&bom(s), Format::Obj)),
+        Target::Off => text().map(|s| io::read_str(&bom(s), Format::Off)),
+        _ => None,
+    };
+    match (&read, with_bom) {
+        (Ok(a), Some(Ok(b))) => same(a, &b, true, "with a byte-order mark"),
+        (Err(a), Some(Err(b))) => assert_eq!(a.to_string(), b.to_string(), "a byte-order mark changed the message"),
+        (a, Some(b)) => panic!("a byte-order mark changed the outcome: {:?} vs {:?}", a.as_ref().map(|_| ()), b.map(|_| ())),
+        (_, None) => {}
+    }
     match read {
         Ok(mesh) => {
             check_mesh(&mesh);
             Outcome::Mesh(Box::new(mesh))
         }
         Err(e) => {
-            // Messages are shown to people: they must render (and not be empty).
-            assert!(!e.to_string().is_empty(), "empty error message: {e:?}");
+            // Messages are shown to people: they must render (and not be empty, nor say NaN).
+            let m = e.to_string();
+            assert!(!m.is_empty(), "empty error message: {e:?}");
+            // (a message may quote the input, which may say NaN itself)
+            let quoted = String::from_utf8_lossy(data).to_ascii_lowercase().contains("nan");
+            assert!(quoted || !m.contains("NaN"), "NaN in a message: {m}");
             Outcome::Refused(e)
         }
+    }
+}
+
+/// Statistics that must not be NaN (κ may be +∞: an inverted element).
+fn no_nan(s: &quality::MeshStats, what: &str) {
+    for (name, v) in [
+        ("min_angle_deg", s.min_angle_deg),
+        ("max_angle_deg", s.max_angle_deg),
+        ("min_quality", s.min_quality),
+        ("mean_quality", s.mean_quality),
+        ("max_condition", s.max_condition),
+    ] {
+        assert!(!v.is_nan(), "{what}: {name} is NaN");
     }
 }
 
@@ -149,6 +191,26 @@ pub fn check_mesh(mesh: &Mesh) {
     }
     let stats = quality::mesh_stats(mesh);
     assert_eq!((stats.nodes, stats.elements), (mesh.node_count(), mesh.element_count()));
+    no_nan(&stats, "mesh_stats");
+    // The same mesh scaled up by a power of two (exact) towards the largest coordinates
+    // smoothlab takes has the same statistics, bit for bit.
+    let largest = mesh.nodes.iter().fold(0.0f64, |m, p| m.max(p.x.abs()).max(p.y.abs()));
+    if largest > 0.0 {
+        let room = (smoothlab::mesh::MAX_COORDINATE / largest).log2().floor() as i32;
+        if room >= 1 {
+            let f = 2f64.powi(room.min(1000));
+            let mut scaled = mesh.clone();
+            for p in &mut scaled.nodes {
+                *p *= f;
+            }
+            let s = quality::mesh_stats(&scaled);
+            assert_eq!(
+                (s.inverted, &s.angle_histogram_6deg, s.min_quality.to_bits(), s.max_condition.to_bits()),
+                (stats.inverted, &stats.angle_histogram_6deg, stats.min_quality.to_bits(), stats.max_condition.to_bits()),
+                "the statistics changed with the scale (×{f:e})"
+            );
+        }
+    }
     for (format, version) in [
         (Format::Msh, MshVersion::V22),
         (Format::Msh, MshVersion::V41),

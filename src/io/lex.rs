@@ -2,6 +2,8 @@
 //! their 1-based line, typed getters whose errors name the line and what was expected,
 //! and a guard that refuses header counts the rest of the input cannot possibly hold
 //! (so a header claiming 10⁹ nodes is refused before anything is allocated).
+//!
+//! A line ends at `\n`, `\r\n` or a lone `\r` (old Mac files), everywhere lines are counted.
 
 use crate::error::{Error, Result};
 
@@ -47,7 +49,7 @@ impl<'a> Lexer<'a> {
     fn skip_space(&mut self) {
         let b = self.text.as_bytes();
         while let Some(&c) = b.get(self.pos) {
-            if c == b'\n' {
+            if c == b'\n' || (c == b'\r' && b.get(self.pos + 1) != Some(&b'\n')) {
                 self.line += 1;
             } else if !c.is_ascii_whitespace() {
                 break;
@@ -96,40 +98,36 @@ impl<'a> Lexer<'a> {
         if self.pos >= self.text.len() {
             return None;
         }
-        let rest = &self.text[self.pos..];
-        let end = rest.find('\n').unwrap_or(rest.len());
-        self.pos += end;
+        let (line, _) = split_line(&self.text[self.pos..]);
+        self.pos += line.len();
         self.last_line = self.line;
-        Some(Token { text: rest[..end].trim(), line: self.line })
+        Some(Token { text: line.trim(), line: self.line })
     }
 
     /// Skips the rest of the current line and then whole lines up to and including the
     /// first blank one (the end of a VTK `METADATA` block).
     pub fn skip_to_blank_line(&mut self) {
         // rest of the current line
-        let rest = &self.text[self.pos..];
-        match rest.find('\n') {
-            Some(i) => {
-                self.pos += i + 1;
-                self.line += 1;
+        let (_, next) = split_line(&self.text[self.pos..]);
+        let Some(mut rest) = next else {
+            self.pos = self.text.len();
+            return;
+        };
+        self.line += 1;
+        loop {
+            let (line, next) = split_line(rest);
+            match next {
+                Some(n) => {
+                    self.line += 1;
+                    rest = n;
+                }
+                None => rest = &rest[line.len()..],
             }
-            None => {
-                self.pos = self.text.len();
-                return;
-            }
-        }
-        while self.pos < self.text.len() {
-            let rest = &self.text[self.pos..];
-            let end = rest.find('\n').map(|i| i + 1).unwrap_or(rest.len());
-            let blank = rest[..end].trim().is_empty();
-            self.pos += end;
-            if end > 0 && rest.as_bytes()[end - 1] == b'\n' {
-                self.line += 1;
-            }
-            if blank {
+            if line.trim().is_empty() || rest.is_empty() {
                 break;
             }
         }
+        self.pos = self.text.len() - rest.len();
     }
 
     /// The end-of-file error: the file stops where `what` was expected.
@@ -243,10 +241,38 @@ pub(crate) fn repeated<T: PartialEq + Copy>(ids: &[T]) -> Option<T> {
     (0..ids.len()).find(|&a| ids[a + 1..].contains(&ids[a])).map(|a| ids[a])
 }
 
+/// The first line of `text` (without its line end) and the text after that line end,
+/// if it has one. A line ends at `\n`, `\r\n` or a lone `\r`.
+pub(crate) fn split_line(text: &str) -> (&str, Option<&str>) {
+    match text.find(['\n', '\r']) {
+        None => (text, None),
+        Some(i) => {
+            let end = if text[i..].starts_with("\r\n") { i + 2 } else { i + 1 };
+            (&text[..i], Some(&text[end..]))
+        }
+    }
+}
+
+/// The lines of a text, split at any line end (see [`split_line`]).
+pub(crate) fn lines(text: &str) -> impl Iterator<Item = &str> {
+    let mut rest = Some(text);
+    std::iter::from_fn(move || {
+        let (line, next) = split_line(rest?);
+        rest = next;
+        Some(line)
+    })
+}
+
+/// The line (1-based) of byte `at` of `bytes`, counting any line end.
+pub(crate) fn line_of_byte(bytes: &[u8], at: usize) -> usize {
+    let b = &bytes[..at.min(bytes.len())];
+    1 + (0..b.len()).filter(|&i| b[i] == b'\n' || (b[i] == b'\r' && bytes.get(i + 1) != Some(&b'\n'))).count()
+}
+
 /// The lines of a text with their 1-based numbers, each cut at `comment` (if any) and
 /// trimmed; blank lines are left out. For the line-oriented formats (OBJ, OFF, Triangle).
 pub(crate) fn content_lines(text: &str, comment: Option<char>) -> impl Iterator<Item = (usize, &str)> {
-    text.split('\n').enumerate().filter_map(move |(i, l)| {
+    lines(text).enumerate().filter_map(move |(i, l)| {
         let l = match comment {
             Some(c) => l.split_once(c).map_or(l, |(a, _)| a),
             None => l,
@@ -293,6 +319,25 @@ mod tests {
         l.next();
         assert_eq!(l.text_line().unwrap(), Token { text: "\"my view\"", line: 2 });
         assert_eq!(l.next().unwrap().text, "METADATA");
+        l.skip_to_blank_line();
+        assert_eq!(l.next().unwrap(), Token { text: "POINTS", line: 6 });
+    }
+
+    #[test]
+    fn every_line_end_counts() {
+        // \n, \r\n and a lone \r (old Mac files) each end one line
+        let mut l = Lexer::new("a\rb\r\nc\n\rd\r\re");
+        let got: Vec<(&str, usize)> = std::iter::from_fn(|| l.next()).map(|t| (t.text, t.line)).collect();
+        assert_eq!(got, vec![("a", 1), ("b", 2), ("c", 3), ("d", 5), ("e", 7)]);
+        assert_eq!(lines("a\rb\r\nc\n\rd").collect::<Vec<_>>(), vec!["a", "b", "c", "", "d"]);
+        assert_eq!(lines("a\n").collect::<Vec<_>>(), vec!["a", ""]);
+        let v: Vec<_> = content_lines("# c\r1 2\r\r3", Some('#')).collect();
+        assert_eq!(v, vec![(2, "1 2"), (4, "3")]);
+        assert_eq!(line_of_byte(b"a\rb\r\nc\nd", 7), 4);
+        let mut l = Lexer::new("1\r\"my view\"\rMETADATA\rINFORMATION 0\r\rPOINTS");
+        l.next();
+        assert_eq!(l.text_line().unwrap(), Token { text: "\"my view\"", line: 2 });
+        l.next();
         l.skip_to_blank_line();
         assert_eq!(l.next().unwrap(), Token { text: "POINTS", line: 6 });
     }

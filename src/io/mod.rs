@@ -29,9 +29,18 @@ mod objoff;
 mod triangle;
 mod vtk;
 
-/// Files larger than this are refused before they are read (by [`read_path`] and
-/// [`read_bytes`]): 256 MiB, some tens of millions of nodes in any of the text formats.
-pub const MAX_FILE_BYTES: u64 = 256 << 20;
+/// The size limit of mesh files, for reading and writing alike: files larger than this
+/// are refused before they are read (by [`read_path`] and [`read_bytes`]), and the
+/// writers refuse to produce one (so what smoothlab writes, it reads back). 1 GiB: some
+/// seven million nodes in `.msh`, the most verbose format (a 2.5-million-node mesh is
+/// about 340 MB there).
+pub const MAX_FILE_BYTES: u64 = 1 << 30;
+
+/// The page's own limit on the files it reads (`www/app.js` checks it before reading,
+/// holding the file and the mesh in the browser's memory). Every file of a mesh the page
+/// holds (at most [`crate::lab::MAX_NODES`] nodes) is smaller, so what the page exports,
+/// it reads back.
+pub const PAGE_MAX_FILE_BYTES: u64 = 256 << 20;
 
 /// A mesh file format, chosen from a file name's extension.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -84,7 +93,9 @@ pub fn unknown_format(name: &str) -> Error {
 
 /// Reads a mesh from text in the given format. A Triangle mesh is a `.node`/`.ele`
 /// pair and needs [`read_triangle`].
+/// A leading UTF-8 byte-order mark (as some Windows editors write) is skipped.
 pub fn read_str(text: &str, format: Format) -> Result<Mesh> {
+    let text = without_bom(text);
     match format {
         Format::Msh => msh::read(text),
         Format::Vtk => vtk::read(text),
@@ -106,17 +117,37 @@ pub fn read_bytes(bytes: &[u8], name: &str) -> Result<Mesh> {
 }
 
 /// Reads a Triangle mesh from the texts of its `.node` and `.ele` files.
+/// A leading byte-order mark in either is skipped.
 pub fn read_triangle(node: &str, ele: &str) -> Result<Mesh> {
-    triangle::read(node, ele)
+    triangle::read(without_bom(node), without_bom(ele))
+}
+
+/// The text without a leading UTF-8 byte-order mark (U+FEFF), which is not part of the
+/// content: left in, it glued itself to the first token (an OBJ's first `v` line was
+/// not a `v` line any more; `$MeshFormat` was not recognised).
+fn without_bom(text: &str) -> &str {
+    text.strip_prefix('\u{feff}').unwrap_or(text)
 }
 
 fn check_size(len: u64, name: &str) -> Result<()> {
     if len > MAX_FILE_BYTES {
         return Err(Error::TooLarge(format!(
-            "{name} is {len} bytes, over the limit of {MAX_FILE_BYTES} bytes (256 MiB) for mesh files"
+            "{name} is {len} bytes, over the limit of {MAX_FILE_BYTES} bytes (1 GiB) for mesh files"
         )));
     }
     Ok(())
+}
+
+/// Refuses to write a text that would be refused when read back (see [`MAX_FILE_BYTES`]).
+fn check_written(text: String, ext: &str) -> Result<String> {
+    let len = text.len() as u64;
+    if len > MAX_FILE_BYTES {
+        return Err(Error::TooLarge(format!(
+            "the mesh as {ext} would be {len} bytes, over the limit of {MAX_FILE_BYTES} bytes (1 GiB) \
+             smoothlab reads back; a more compact format (.vtk) may fit"
+        )));
+    }
+    Ok(text)
 }
 
 /// The bytes as text, or an error naming where they stop being UTF-8.
@@ -133,7 +164,7 @@ fn utf8(bytes: &[u8], format: Format) -> Result<&str> {
                     return Err(err);
                 }
             }
-            let line = 1 + bytes[..at].iter().filter(|&&b| b == b'\n').count();
+            let line = lex::line_of_byte(bytes, at);
             Err(Error::parse(
                 line,
                 format!("the file is not UTF-8 text: byte {at} (0x{:02x}) is not valid UTF-8", bytes[at]),
@@ -142,23 +173,68 @@ fn utf8(bytes: &[u8], format: Format) -> Result<&str> {
     }
 }
 
-/// Reads a mesh file; `x.node` or `x.ele` reads both of the pair. Files over
-/// [`MAX_FILE_BYTES`] are refused before reading.
+/// Reads a mesh file; `x.node` or `x.ele` reads both of the pair. Only regular files
+/// are read (a device such as `/dev/zero`, a named pipe or a directory is refused, also
+/// behind a symbolic link); files over [`MAX_FILE_BYTES`] are refused before reading, and
+/// the read itself stops after that many bytes whatever the file's metadata says.
 #[cfg(not(target_arch = "wasm32"))]
 pub fn read_path(path: &std::path::Path) -> Result<Mesh> {
     let name = path.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_default();
     let format = Format::from_name(&name).ok_or_else(|| unknown_format(&path.display().to_string()))?;
-    let load = |p: &std::path::Path| -> Result<Vec<u8>> {
-        let len = std::fs::metadata(p).map_err(|e| Error::Io(format!("cannot read {}: {e}", p.display())))?.len();
-        check_size(len, &p.display().to_string())?;
-        std::fs::read(p).map_err(|e| Error::Io(format!("cannot read {}: {e}", p.display())))
-    };
     if format == Format::Triangle {
-        let (node, ele) = (path.with_extension("node"), path.with_extension("ele"));
-        let (nb, eb) = (load(&node)?, load(&ele)?);
+        let (node, ele) = triangle_pair(path, &name)?;
+        let (nb, eb) = (read_file(&node)?, read_file(&ele)?);
         return read_triangle(utf8(&nb, format)?, utf8(&eb, format)?);
     }
-    read_str(utf8(&load(path)?, format)?, format)
+    read_str(utf8(&read_file(path)?, format)?, format)
+}
+
+/// The `.node` and `.ele` paths of a Triangle pair named by either. A name that is only
+/// the extension (`.node`) has no stem to pair: it is refused rather than taken as the
+/// stem `.node` (which made `.node.node` and `.node.ele`).
+#[cfg(not(target_arch = "wasm32"))]
+fn triangle_pair(path: &std::path::Path, name: &str) -> Result<(std::path::PathBuf, std::path::PathBuf)> {
+    let stem = name.rsplit_once('.').map_or("", |(stem, _)| stem);
+    if stem.is_empty() {
+        return Err(Error::invalid(format!(
+            "'{}': a Triangle pair needs a name before the extension, such as mesh.node and mesh.ele",
+            path.display()
+        )));
+    }
+    let base = path.with_file_name(stem);
+    let with = |ext: &str| {
+        let mut p = base.clone().into_os_string();
+        p.push(".");
+        p.push(ext);
+        std::path::PathBuf::from(p)
+    };
+    Ok((with("node"), with("ele")))
+}
+
+/// The bytes of a regular file of at most [`MAX_FILE_BYTES`] bytes.
+#[cfg(not(target_arch = "wasm32"))]
+fn read_file(p: &std::path::Path) -> Result<Vec<u8>> {
+    use std::io::Read;
+    let fail = |e: std::io::Error| Error::Io(format!("cannot read {}: {e}", p.display()));
+    let regular = |meta: &std::fs::Metadata| -> Result<()> {
+        if meta.is_file() {
+            return Ok(());
+        }
+        let what = if meta.is_dir() { "a directory" } else { "a device, pipe or socket" };
+        Err(Error::Io(format!("cannot read {}: it is {what}, not a regular file", p.display())))
+    };
+    // Checked before opening, since opening a named pipe waits for a writer, and again
+    // on the opened file, which is the one read.
+    regular(&std::fs::metadata(p).map_err(fail)?)?;
+    let file = std::fs::File::open(p).map_err(fail)?;
+    let meta = file.metadata().map_err(fail)?;
+    regular(&meta)?;
+    check_size(meta.len(), &p.display().to_string())?;
+    let mut bytes = Vec::with_capacity(meta.len() as usize);
+    // One byte past the limit tells a file that grew while it was read.
+    file.take(MAX_FILE_BYTES + 1).read_to_end(&mut bytes).map_err(fail)?;
+    check_size(bytes.len() as u64, &p.display().to_string())?;
+    Ok(bytes)
 }
 
 /// Writes a mesh as text. OBJ and OFF hold linear meshes only; Triangle output is a
@@ -166,10 +242,10 @@ pub fn read_path(path: &std::path::Path) -> Result<Mesh> {
 /// nodes (to the last bit), elements and kinds always; fixed flags in `.msh` and `.vtk`.
 pub fn write_string(mesh: &Mesh, format: Format, opts: &WriteOptions) -> Result<String> {
     match format {
-        Format::Msh => Ok(msh::write(mesh, opts.msh_version)),
-        Format::Vtk => Ok(vtk::write(mesh)),
-        Format::Obj => objoff::write_obj(mesh),
-        Format::Off => objoff::write_off(mesh),
+        Format::Msh => check_written(msh::write(mesh, opts.msh_version), ".msh"),
+        Format::Vtk => check_written(vtk::write(mesh), ".vtk"),
+        Format::Obj => check_written(objoff::write_obj(mesh)?, ".obj"),
+        Format::Off => check_written(objoff::write_off(mesh)?, ".off"),
         Format::Triangle => Err(Error::invalid(
             "Triangle output is a .node/.ele pair: use write_triangle, or write_path with a .node or .ele name",
         )),
@@ -179,7 +255,8 @@ pub fn write_string(mesh: &Mesh, format: Format, opts: &WriteOptions) -> Result<
 /// Writes a triangle mesh (all 3-node or all 6-node triangles) as the texts of a
 /// Triangle `.node` and `.ele` file; fixed nodes get boundary marker 1.
 pub fn write_triangle(mesh: &Mesh) -> Result<(String, String)> {
-    triangle::write(mesh)
+    let (node, ele) = triangle::write(mesh)?;
+    Ok((check_written(node, ".node")?, check_written(ele, ".ele")?))
 }
 
 /// Writes a mesh file in the format of the path's extension (`.node`/`.ele`: both files).
@@ -191,9 +268,10 @@ pub fn write_path(mesh: &Mesh, path: &std::path::Path, opts: &WriteOptions) -> R
         std::fs::write(p, text).map_err(|e| Error::Io(format!("cannot write {}: {e}", p.display())))
     };
     if format == Format::Triangle {
+        let (node_path, ele_path) = triangle_pair(path, &name)?;
         let (node, ele) = write_triangle(mesh)?;
-        save(&path.with_extension("node"), &node)?;
-        return save(&path.with_extension("ele"), &ele);
+        save(&node_path, &node)?;
+        return save(&ele_path, &ele);
     }
     save(path, &write_string(mesh, format, opts)?)
 }

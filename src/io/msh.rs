@@ -139,6 +139,8 @@ struct Reader {
     marks: Vec<(u64, u32)>,
     /// The `fixed` view: (node tag, fixed, line).
     fixed_view: Option<Vec<(u64, bool, u32)>>,
+    /// Line of the `$NodeData` section of the `fixed` view.
+    fixed_view_line: Option<usize>,
     nodes_line: Option<usize>,
     elements_line: Option<usize>,
 }
@@ -203,6 +205,7 @@ pub(crate) fn read(text: &str) -> Result<Mesh> {
         elem_tags: Vec::new(),
         marks: Vec::new(),
         fixed_view: None,
+        fixed_view_line: None,
         nodes_line: None,
         elements_line: None,
     };
@@ -449,6 +452,11 @@ impl Reader {
         if name != Some("fixed") {
             return skip_section(lex, "NodeData", open);
         }
+        if let Some(first) = self.fixed_view_line {
+            // which one should win is anybody's guess: say so rather than pick one
+            return Err(Error::parse(open, format!("a second 'fixed' view (the first is at line {first}): give one")));
+        }
+        self.fixed_view_line = Some(open);
         let (nr, _) = lex.u64(|| "the number of real tags".into())?;
         for _ in 0..nr {
             lex.f64(|| "a real tag".into())?;
@@ -509,8 +517,18 @@ impl Reader {
         };
         builder.fixed = if let Some(view) = fixed_view {
             let mut f = vec![false; n];
+            // the line each node's value came from, to refuse a node listed twice
+            let mut seen = vec![0u32; n];
             for (tag, fixed, line) in view {
-                f[resolve(tag, line, "the 'fixed' view")? as usize] = fixed;
+                let i = resolve(tag, line, "the 'fixed' view")? as usize;
+                if seen[i] != 0 {
+                    return Err(Error::parse(
+                        line as usize,
+                        format!("the 'fixed' view lists node tag {tag} twice (first at line {}): give each node once", seen[i]),
+                    ));
+                }
+                seen[i] = line.max(1);
+                f[i] = fixed;
             }
             FixedSpec::Exact(f)
         } else if marks.is_empty() {

@@ -23,7 +23,7 @@
 use std::fmt::Write as _;
 
 use crate::error::{Error, Result};
-use crate::io::lex::{prealloc, repeated, shown, Lexer};
+use crate::io::lex::{prealloc, repeated, shown, split_line, Lexer};
 use crate::mesh::{ElementKind, FixedSpec, Mesh, MeshBuilder};
 
 #[derive(Clone, Copy, PartialEq)]
@@ -96,6 +96,8 @@ struct Reader<'a> {
     /// POLYDATA `VERTICES`/`LINES`: points to mark fixed.
     marked: Vec<u64>,
     fixed: Option<Vec<bool>>,
+    /// Line of the `SCALARS fixed` that gave `fixed`.
+    fixed_line: Option<usize>,
 }
 
 /// Reads a legacy VTK file.
@@ -110,9 +112,9 @@ pub(crate) fn read(text: &str) -> Result<Mesh> {
                 "the file ends inside the VTK header (version line, title line, ASCII line)",
             ));
         }
-        let end = rest.find('\n').map_or(rest.len(), |e| e + 1);
-        *h = rest[..end].trim();
-        rest = &rest[end..];
+        let (line, next) = split_line(rest);
+        *h = line.trim();
+        rest = next.unwrap_or("");
     }
     let version = header[0].to_ascii_lowercase();
     if !version.starts_with("# vtk datafile version") {
@@ -149,6 +151,7 @@ pub(crate) fn read(text: &str) -> Result<Mesh> {
         types: None,
         marked: Vec::new(),
         fixed: None,
+        fixed_line: None,
     };
     r.sections()?;
     r.finish()
@@ -367,6 +370,13 @@ impl Reader<'_> {
                     self.lex.expect(|| "the name of the LOOKUP_TABLE".into())?;
                 }
                 if point_data && name.text == "fixed" {
+                    if let Some(first) = self.fixed_line {
+                        return Err(Error::parse(
+                            t.line,
+                            format!("a second SCALARS fixed (the first is at line {first}): give one"),
+                        ));
+                    }
+                    self.fixed_line = Some(t.line);
                     if comps != 1 {
                         return Err(Error::parse(t.line, format!("SCALARS fixed must have 1 component, found {comps}")));
                     }
@@ -439,7 +449,7 @@ impl Reader<'_> {
     }
 
     fn finish(self) -> Result<Mesh> {
-        let Reader { lex, dataset, mut builder, points_line, cells, types, mut marked, fixed } = self;
+        let Reader { lex, dataset, mut builder, points_line, cells, types, mut marked, fixed, .. } = self;
         if points_line.is_none() {
             return Err(Error::parse(lex.last_line(), "the file ends without a POINTS section"));
         }

@@ -4,11 +4,11 @@
 //! Every node of a star element is an affine function of the free node's position `x`
 //! with a *scalar* weight: 1 for the free node itself, ½ for a mid-side node that follows
 //! it (it stays at the midpoint of its straight edge), 0 for everything else. The corner
-//! edge vectors of [`quality::corner_edges`] (chords, or the end tangents `4M − 3P0 − P2`
+//! edge vectors of [`quality::corner_edge_vectors`] (chords, or the end tangents `4M − 3P0 − P2`
 //! of quadratic edges) are linear in the node coordinates with scalar coefficients, so
 //! each edge vector is `e = c·x + const` for a scalar `c`, and its Jacobian is `c·I`.
 //! The chain rule from a metric's partials `∂q/∂e1`, `∂q/∂e2` to `∂q/∂x` is then just
-//! `c1·∂q/∂e1 + c2·∂q/∂e2` ([`CornerJet::chain`]). We get `c` by applying `corner_edges`
+//! `c1·∂q/∂e1 + c2·∂q/∂e2` ([`CornerJet::chain`]). We get `c` by applying `corner_edge_vectors`
 //! itself to the node weights, so the derivative can never disagree with the geometry.
 
 use glam::DVec2;
@@ -41,7 +41,7 @@ impl CornerJet {
 }
 
 /// The scalar weights `(c1, c2)` of corner `i`'s edge vectors: the formula of
-/// [`quality::corner_edges`] applied to the node weights (the same arithmetic on one
+/// [`quality::corner_edge_vectors`] applied to the node weights (the same arithmetic on one
 /// coordinate, so the weights agree with the geometry exactly).
 #[inline]
 fn corner_edge_weights(kind: ElementKind, w: &[f64; 9], i: usize) -> (f64, f64) {
@@ -83,7 +83,7 @@ impl ElementJets {
         if el.follow_prev {
             weights[k + (s + k - 1) % k] = 0.5;
         }
-        let edges = quality::corner_edges(kind, &pts[..n]);
+        let edges = quality::corner_edge_vectors(kind, &pts[..n]);
         let mut corners = [CornerJet::default(); 4];
         for i in 0..k {
             let (c1, c2) = corner_edge_weights(kind, &weights, i);

@@ -144,6 +144,38 @@ pub fn objective_with(kind: ObjectiveKind, penalty: Penalty) -> Box<dyn Objectiv
     }
 }
 
+/// Refuses, with the reason, a mesh whose objective values `kind` cannot hold. The
+/// untangling objectives work with corner determinants, areas in mesh units: with edges
+/// beyond 1e150 they overflow (a pass total of +∞ and −∞ stars is NaN), below 1e-150
+/// they vanish. The nodes would still move as at any other scale (the solvers work in
+/// each star's own frame), but the totals would mean nothing. Every other objective is a
+/// ratio of lengths and takes any scale.
+pub fn check_scale(kind: ObjectiveKind, mesh: &Mesh) -> crate::Result<()> {
+    if !matches!(kind, ObjectiveKind::Untangle | ObjectiveKind::UntangleMinDet) {
+        return Ok(());
+    }
+    let (mut lo, mut hi) = (f64::INFINITY, 0.0f64);
+    for e in mesh.edges() {
+        let d = mesh.nodes[e.a as usize] - mesh.nodes[e.b as usize];
+        let l = d.x.hypot(d.y);
+        hi = hi.max(l);
+        if l > 0.0 {
+            lo = lo.min(l);
+        }
+    }
+    let why = if hi > 1e150 {
+        format!("edges up to {hi:.3e} long")
+    } else if lo < 1e-150 {
+        format!("edges down to {lo:.3e} long")
+    } else {
+        return Ok(());
+    };
+    Err(crate::Error::invalid(format!(
+        "{kind} works with element areas, which for {why} are beyond 64-bit floats (edges from 1e-150 to 1e150 \
+         are fine): give the mesh in other units, or use an objective that is a ratio of lengths (new, old, …)"
+    )))
+}
+
 /// How an objective's terms combine, and which way is better.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Goal {

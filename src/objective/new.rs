@@ -117,8 +117,22 @@ impl ChenTristanoKwok {
         }
     }
 
-    /// Calls `emit` with one term per star element.
+    /// Calls `emit` with one term per star element. A star far from unit size (edges beyond
+    /// 2^±200, where the squared lengths of N and D would overflow or underflow) is
+    /// evaluated in a copy scaled by a power of two, which is exact: the values are ratios
+    /// and come out the same, the gradient is scaled back.
     pub fn visit(&self, star: &Star, x: DVec2, mut emit: impl FnMut(Term)) {
+        match extreme_scale_factor(star) {
+            Some(f) => {
+                let unit = crate::optimize::scaled_star(star, f);
+                self.visit_at_unit_scale(&unit, f * x, |t| emit(Term { grad: f * t.grad, ..t }));
+            }
+            None => self.visit_at_unit_scale(star, x, emit),
+        }
+    }
+
+    /// [`visit`](Self::visit) for a star whose edges are within 2^±200.
+    fn visit_at_unit_scale(&self, star: &Star, x: DVec2, mut emit: impl FnMut(Term)) {
         let w = if star.mixed { 3.0 } else { 1.0 };
         let delta = self.delta(star);
         for (i, el) in star.elems.iter().enumerate() {
@@ -147,6 +161,26 @@ impl ChenTristanoKwok {
                 ((1.0 - alpha) * (1.0 - alpha) + p, -2.0 * (1.0 - alpha) * grad_alpha + gp)
             }
         }
+    }
+}
+
+/// The power of two that brings `star` to unit size when its largest edge component at the
+/// free node lies outside 2^±200 (squares of such lengths leave the doubles); `None` for
+/// the stars of every ordinary mesh, at the cost of one max per element.
+#[inline]
+fn extreme_scale_factor(star: &Star) -> Option<f64> {
+    const LO: f64 = 6.223_015_277_861_142e-61; // 2^-200
+    const HI: f64 = 1.606_938_044_258_990_3e60; // 2^200
+    let mut m = 0.0f64;
+    for e in &star.elems {
+        let (k, s) = (e.kind.corners(), e.slot as usize);
+        m = m.max((e.pts[(s + 1) % k] - star.x0).abs().max_element());
+        m = m.max((e.pts[(s + k - 1) % k] - star.x0).abs().max_element());
+    }
+    if m == 0.0 || (LO..=HI).contains(&m) {
+        None
+    } else {
+        crate::optimize::unit_factor(m)
     }
 }
 

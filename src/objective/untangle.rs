@@ -7,12 +7,12 @@ use super::corners::ElementJets;
 use super::{impl_objective_by_visit, ObjectiveKind, Star, Term};
 
 /// The corner determinants of the moving corners, with their gradients:
-/// `det = cross(e1, e2)`, `∂det/∂e1 = −perp(e2)`, `∂det/∂e2 = perp(e1)`.
+/// `det = cross(e1, e2)` (±∞, never NaN, where it overflows: [`crate::quality::corner_det`]), `∂det/∂e1 = −perp(e2)`, `∂det/∂e2 = perp(e1)`.
 fn visit_dets(star: &Star, x: DVec2, mut emit: impl FnMut(u32, f64, DVec2)) {
     for (i, el) in star.elems.iter().enumerate() {
         let j = ElementJets::new(el, x);
         for c in j.corner_jets().iter().filter(|c| c.moves()) {
-            emit(i as u32, c.e1.perp_dot(c.e2), c.chain(-c.e2.perp(), c.e1.perp()));
+            emit(i as u32, crate::quality::corner_det(c.e1, c.e2), c.chain(-c.e2.perp(), c.e1.perp()));
         }
     }
 }

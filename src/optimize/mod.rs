@@ -14,7 +14,12 @@
 //! maximises the minimum of the terms, or the negated sum as a single term.
 //!
 //! Every length (initial step, smallest step, largest move) is a fraction of the star's
-//! size ([`star_scale`]), so the solvers are scale-free.
+//! size ([`star_scale`]), so the solvers are scale-free; and a star far from unit size
+//! (beyond 2^±64) is solved in its own frame, multiplied by a power of two to unit size
+//! and the result multiplied back ([`Solver::solve`]). Powers of two are exact, so a
+//! solve at any scale moves the node exactly as at unit scale: without this the squared
+//! lengths and gradient products over- or underflowed and each solver silently stopped
+//! moving nodes outside a window of scales (about 1e±75).
 
 use glam::DVec2;
 use serde::Serialize;
@@ -293,12 +298,63 @@ pub trait Solver {
     fn start(&mut self, objective: &dyn Objective, star: &Star, x0: DVec2) -> SolveState;
     /// One iteration. Returns false once the solve has stopped (see [`SolveState::stop`]).
     fn step(&mut self, objective: &dyn Objective, star: &Star, state: &mut SolveState) -> bool;
-    /// Runs a whole solve from `x0`.
+    /// Runs a whole solve from `x0`. A star beyond 2^±64 in size is solved in its own
+    /// frame (see the module docs): positions and step lengths come back in mesh units;
+    /// objective values are those of the star in its own frame, the same for every
+    /// objective that is a ratio of lengths (all but `untangle` and `untangle-mindet`,
+    /// whose dets are then in units of the star size squared).
     fn solve(&mut self, objective: &dyn Objective, star: &Star, x0: DVec2) -> SolveResult {
+        if let Some(f) = unit_factor(star_scale(star)) {
+            let scaled = scaled_star(star, f);
+            let mut state = self.start(objective, &scaled, x0 * f);
+            while self.step(objective, &scaled, &mut state) {}
+            let mut r = state.into_result();
+            let back = 1.0 / f;
+            r.x *= back;
+            r.x0 = x0;
+            for it in &mut r.history {
+                it.x *= back;
+                it.step *= back;
+            }
+            return r;
+        }
         let mut state = self.start(objective, star, x0);
         while self.step(objective, star, &mut state) {}
         state.into_result()
     }
+}
+
+/// The power of two that brings a star of size `scale` to [1, 2), when the size is
+/// beyond 2^±64 (and the factor and its inverse are finite); `None` otherwise.
+pub fn unit_factor(scale: f64) -> Option<f64> {
+    const WINDOW: f64 = 18_446_744_073_709_551_616.0; // 2^64
+    if !scale.is_normal() || (1.0 / WINDOW..=WINDOW).contains(&scale) {
+        return None;
+    }
+    let e = ((scale.to_bits() >> 52) & 0x7ff) as i32 - 1023;
+    // 2^-e and 2^e are both finite normal numbers for |e| ≤ 1022
+    (e.abs() <= 1022).then(|| 2f64.powi(-e))
+}
+
+/// A copy of the star with every coordinate multiplied by `f` (a power of two: exact).
+pub(crate) fn scaled_star(star: &Star, f: f64) -> Star {
+    let mut s = star.clone();
+    s.x0 *= f;
+    for e in &mut s.elems {
+        for p in &mut e.pts {
+            *p *= f;
+        }
+    }
+    s
+}
+
+/// `|v|` without overflow or underflow of the squares.
+fn robust_length(v: DVec2) -> f64 {
+    let m = v.x.abs().max(v.y.abs());
+    if m == 0.0 || !m.is_finite() {
+        return m;
+    }
+    m * (v / m).length()
 }
 
 /// The size of a star: the mean length of the corner edges at the free node (the edges
@@ -310,13 +366,14 @@ pub fn star_scale(star: &Star) -> f64 {
     for e in &star.elems {
         let k = e.kind.corners();
         let s = e.slot as usize;
-        sum += e.pts[(s + 1) % k].distance(star.x0) + e.pts[(s + k - 1) % k].distance(star.x0);
+        // halved before summing, so that sizes near the largest double do not overflow
+        sum += 0.5 * robust_length(e.pts[(s + 1) % k] - star.x0) + 0.5 * robust_length(e.pts[(s + k - 1) % k] - star.x0);
         n += 2;
     }
     if n == 0 {
         0.0
     } else {
-        sum / n as f64
+        sum / (n / 2) as f64
     }
 }
 

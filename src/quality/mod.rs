@@ -28,7 +28,8 @@ pub const ALPHA_90: f64 = 0.866_025_403_784_438_6;
 /// `α = 2√3 · cross(B−A, C−A) / (|AB|² + |BC|² + |CA|²)`. In [−1, 1]; 1 for the
 /// equilateral triangle, 0 when degenerate, negative when clockwise (inverted).
 pub fn lo_alpha(a: DVec2, b: DVec2, c: DVec2) -> f64 {
-    lo_alpha_corner(b - a, c - a)
+    let (e1, e2) = corner_edges(ElementKind::Tri3, &[a, b, c])[0];
+    lo_alpha_corner(e1, e2)
 }
 
 /// Lo's α of the triangle spanned at a corner by edge vectors `e1`, `e2`:
@@ -36,6 +37,9 @@ pub fn lo_alpha(a: DVec2, b: DVec2, c: DVec2) -> f64 {
 /// the edge tangents as `e1`, `e2` (FORMULAS.md §1). A zero-size corner gives 0.
 #[inline]
 pub fn lo_alpha_corner(e1: DVec2, e2: DVec2) -> f64 {
+    if let Some((e1, e2, _)) = beyond_safe_scale(e1, e2) {
+        return lo_alpha_corner(e1, e2);
+    }
     let den = e1.length_squared() + e2.length_squared() + (e2 - e1).length_squared();
     if den <= 0.0 {
         return 0.0;
@@ -49,6 +53,10 @@ pub fn lo_alpha_corner(e1: DVec2, e2: DVec2) -> f64 {
 /// `∂D/∂e1 = 4e1 − 2e2`, `∂D/∂e2 = 4e2 − 2e1`. A zero-size corner gives zeros.
 #[inline]
 pub fn lo_alpha_corner_gradient(e1: DVec2, e2: DVec2) -> (f64, DVec2, DVec2) {
+    if let Some((e1, e2, f)) = beyond_safe_scale(e1, e2) {
+        let (a, g1, g2) = lo_alpha_corner_gradient(e1, e2);
+        return (a, gradient_back(g1, f), gradient_back(g2, f));
+    }
     let den = e1.length_squared() + e2.length_squared() + (e2 - e1).length_squared();
     if den <= 0.0 {
         return (0.0, DVec2::ZERO, DVec2::ZERO);
@@ -63,7 +71,8 @@ pub fn lo_alpha_corner_gradient(e1: DVec2, e2: DVec2) -> (f64, DVec2, DVec2) {
 /// Canann's β of quad abcd — Chen et al. (2003), eq. (2): the α of the four triangles
 /// of both diagonals, `β = min(α1..α4)/α90 − n_neg`. 1 for the square.
 pub fn canann_beta(a: DVec2, b: DVec2, c: DVec2, d: DVec2) -> f64 {
-    canann_beta_from_corners(&[(b - a, d - a), (c - b, a - b), (d - c, b - c), (a - d, c - d)])
+    // corner i of corner_edges is (next − this, previous − this): (b − a, d − a) at a, …
+    canann_beta_from_corners(&corner_edges(ElementKind::Quad4, &[a, b, c, d]))
 }
 
 /// β from the four corners' edge vectors. The triangle (a,b,c) of eq. (2) is the corner
@@ -86,6 +95,9 @@ pub fn canann_beta_from_corners(corners: &[(DVec2, DVec2); 4]) -> f64 {
 /// Negative means the corner is inverted.
 #[inline]
 pub fn signed_angle(e1: DVec2, e2: DVec2) -> f64 {
+    if let Some((e1, e2, _)) = beyond_safe_scale(e1, e2) {
+        return signed_angle(e1, e2);
+    }
     elementary::atan2(e1.perp_dot(e2), e1.dot(e2))
 }
 
@@ -95,11 +107,34 @@ pub fn signed_angle(e1: DVec2, e2: DVec2) -> f64 {
 /// is the same on both sides) and from zero-length edges (zeros there).
 #[inline]
 pub fn signed_angle_gradient(e1: DVec2, e2: DVec2) -> (f64, DVec2, DVec2) {
+    if let Some((e1, e2, f)) = beyond_safe_scale(e1, e2) {
+        let (a, g1, g2) = signed_angle_gradient(e1, e2);
+        return (a, gradient_back(g1, f), gradient_back(g2, f));
+    }
     let (l1, l2) = (e1.length_squared(), e2.length_squared());
     if l1 <= 0.0 || l2 <= 0.0 {
         return (signed_angle(e1, e2), DVec2::ZERO, DVec2::ZERO);
     }
     (signed_angle(e1, e2), -e1.perp() / l1, e2.perp() / l2)
+}
+
+/// The corner determinant `cross(e1, e2)` without NaN: where the products overflow (edges
+/// beyond about 1e154) it is computed in unit scale and scaled back, giving `±∞` (or `±0`
+/// where it underflows) of the right sign instead of `∞ − ∞`.
+#[inline]
+pub fn corner_det(e1: DVec2, e2: DVec2) -> f64 {
+    match beyond_safe_scale(e1, e2) {
+        None => e1.perp_dot(e2),
+        Some((u1, u2, f)) => {
+            let back = 1.0 / (f[0] * f[1]);
+            if back.is_finite() && back != 0.0 {
+                u1.perp_dot(u2) * back * back
+            } else {
+                // the factor itself is beyond the doubles: one step at a time
+                u1.perp_dot(u2) / f[0] / f[0] / f[1] / f[1]
+            }
+        }
+    }
 }
 
 /// Which ideal element the condition number is measured against.
@@ -115,6 +150,9 @@ pub enum Ideal {
 /// element, `T = A·W⁻¹`: `κ(T) = ‖T‖²_F / det T` (Knupp 1999, §§3–4, 2D). 2 for the
 /// ideal corner; `+∞` when `det T ≤ 0` (the barrier).
 pub fn condition_number(e1: DVec2, e2: DVec2, ideal: Ideal) -> f64 {
+    if let Some((e1, e2, _)) = beyond_safe_scale(e1, e2) {
+        return condition_number(e1, e2, ideal);
+    }
     let (t1, t2) = weighted_columns(e1, e2, ideal);
     let det = t1.perp_dot(t2);
     if det <= 0.0 {
@@ -128,6 +166,10 @@ pub fn condition_number(e1: DVec2, e2: DVec2, ideal: Ideal) -> f64 {
 /// `∂κ/∂t1 = 2t1/δ + F perp(t2)/δ²`, `∂κ/∂t2 = 2t2/δ − F perp(t1)/δ²`, then through
 /// `t2 = (2e2 − e1)/√3` for the triangle ideal. `(+∞, 0, 0)` when `det T ≤ 0` (the barrier).
 pub fn condition_number_gradient(e1: DVec2, e2: DVec2, ideal: Ideal) -> (f64, DVec2, DVec2) {
+    if let Some((e1, e2, f)) = beyond_safe_scale(e1, e2) {
+        let (k, g1, g2) = condition_number_gradient(e1, e2, ideal);
+        return (k, gradient_back(g1, f), gradient_back(g2, f));
+    }
     let (t1, t2) = weighted_columns(e1, e2, ideal);
     let det = t1.perp_dot(t2);
     if det <= 0.0 {
@@ -150,6 +192,10 @@ pub fn condition_number_gradient(e1: DVec2, e2: DVec2, ideal: Ideal) -> (f64, DV
 /// `(s, ∂s/∂e1, ∂s/∂e2)`: `s = N/(|e1||e2|)`, `∂s/∂e1 = −perp(e2)/(|e1||e2|) − s e1/|e1|²`,
 /// `∂s/∂e2 = perp(e1)/(|e1||e2|) − s e2/|e2|²`. Zeros for a zero-length edge.
 pub fn scaled_jacobian_gradient(e1: DVec2, e2: DVec2) -> (f64, DVec2, DVec2) {
+    if let Some((e1, e2, f)) = beyond_safe_scale(e1, e2) {
+        let (v, g1, g2) = scaled_jacobian_gradient(e1, e2);
+        return (v, gradient_back(g1, f), gradient_back(g2, f));
+    }
     let (l1, l2) = (e1.length_squared(), e2.length_squared());
     let l = (l1 * l2).sqrt();
     if l <= 0.0 {
@@ -173,6 +219,9 @@ pub fn weighted_columns(e1: DVec2, e2: DVec2, ideal: Ideal) -> (DVec2, DVec2) {
 /// Scaled Jacobian of a corner: `cross(e1,e2) / (|e1||e2|)`, the sine of the signed
 /// corner angle. 0 for a zero-length edge.
 pub fn scaled_jacobian(e1: DVec2, e2: DVec2) -> f64 {
+    if let Some((e1, e2, _)) = beyond_safe_scale(e1, e2) {
+        return scaled_jacobian(e1, e2);
+    }
     let l = e1.length() * e2.length();
     if l <= 0.0 {
         return 0.0;
@@ -181,10 +230,102 @@ pub fn scaled_jacobian(e1: DVec2, e2: DVec2) -> f64 {
 }
 
 /// Edge vectors `(e1, e2)` at each corner of an element, from its node coordinates in
-/// the element's node order (tangents for quadratic elements). Only the first
-/// `kind.corners()` entries are meaningful.
+/// the element's node order (tangents for quadratic elements), in the element's own
+/// scale: multiplied by a power of two that brings the largest component to [1, 2). Every
+/// metric here is a ratio of lengths, so its value is that of the element as given; the
+/// power of two is exact, so for elements of ordinary size the values are bit for bit
+/// those of the raw edges, and at sizes near 1e±200, where squared lengths and cross
+/// products over- or underflowed (α null, κ 0, a valid triangle "inverted"), they are
+/// still right. Only the first `kind.corners()` entries are meaningful.
 #[inline]
 pub fn corner_edges(kind: ElementKind, p: &[DVec2]) -> [(DVec2, DVec2); 4] {
+    // the points in units of their magnitude, so that the differences (and the tangents'
+    // 4M − 3P0 − P2) cannot overflow, then the edges in units of their own size
+    let mut q = [DVec2::ZERO; 9];
+    let n = p.len().min(9);
+    q[..n].copy_from_slice(&p[..n]);
+    to_unit_scale(&mut q[..n]);
+    let mut out = corner_edge_vectors(kind, &q[..n]);
+    let k = kind.corners();
+    let mut flat = [DVec2::ZERO; 8];
+    for i in 0..k {
+        (flat[2 * i], flat[2 * i + 1]) = out[i];
+    }
+    to_unit_scale(&mut flat[..2 * k]);
+    for i in 0..k {
+        out[i] = (flat[2 * i], flat[2 * i + 1]);
+    }
+    out
+}
+
+/// Multiplies the vectors by a power of two (exact) that brings their largest component
+/// into [1, 2), and returns it as two finite factors whose product it is (it may itself
+/// be beyond the doubles, 2^1074 for the smallest subnormal); leaves the vectors as they
+/// are, returning `[1, 1]`, when they are all zero (or not finite).
+pub fn to_unit_scale(v: &mut [DVec2]) -> [f64; 2] {
+    let largest = |v: &[DVec2]| v.iter().fold(0.0f64, |m, p| m.max(p.x.abs()).max(p.y.abs()));
+    let m = largest(v);
+    if m == 0.0 || !m.is_finite() {
+        return [1.0, 1.0];
+    }
+    // from far outside [2^-598, 2^598] in one step first, so the final factor (the inverse
+    // of m's power of two) is itself a finite double
+    let pre = if m < pow2(-598) {
+        pow2(598)
+    } else if m > pow2(598) {
+        pow2(-598)
+    } else {
+        1.0
+    };
+    if pre != 1.0 {
+        for p in v.iter_mut() {
+            *p *= pre;
+        }
+    }
+    let unit = f64::from_bits((m * pre).to_bits() & 0x7ff0_0000_0000_0000);
+    let inv = 1.0 / unit;
+    if inv != 1.0 {
+        for p in v.iter_mut() {
+            *p *= inv;
+        }
+    }
+    [pre, inv]
+}
+
+/// `2^e` for a normal exponent (|e| ≤ 1022).
+#[inline]
+fn pow2(e: i32) -> f64 {
+    f64::from_bits(((e + 1023) as u64) << 52)
+}
+
+/// Corner edge vectors brought to unit scale when their size is beyond 2^±200, where the
+/// metrics' squares and products of squares would over- or underflow: `(e1, e2, f)` with
+/// the factors `f` (as [`to_unit_scale`] returns them), `None` when they are fine as they
+/// are (so ordinary elements take no detour and keep their bits).
+#[inline]
+fn beyond_safe_scale(e1: DVec2, e2: DVec2) -> Option<(DVec2, DVec2, [f64; 2])> {
+    let (lo, hi) = (pow2(-200), pow2(200));
+    let m = e1.x.abs().max(e1.y.abs()).max(e2.x.abs()).max(e2.y.abs());
+    if (lo..=hi).contains(&m) || m == 0.0 || !m.is_finite() {
+        return None;
+    }
+    let mut v = [e1, e2];
+    let f = to_unit_scale(&mut v);
+    Some((v[0], v[1], f))
+}
+
+/// A gradient taken at edges multiplied by `f` (see [`beyond_safe_scale`]) brought back to
+/// the edges as given, for a metric that is a ratio of lengths: `∂q/∂e = f ∂q/∂(f e)`.
+#[inline]
+fn gradient_back(g: DVec2, f: [f64; 2]) -> DVec2 {
+    g * f[0] * f[1]
+}
+
+/// The corner edge vectors of [`corner_edges`] in the mesh's own units (the objectives'
+/// derivatives need the true lengths): chords, or for quadratic elements the end tangents
+/// `4M − 3P0 − P2`.
+#[inline]
+pub fn corner_edge_vectors(kind: ElementKind, p: &[DVec2]) -> [(DVec2, DVec2); 4] {
     let k = kind.corners();
     let mut out = [(DVec2::ZERO, DVec2::ZERO); 4];
     for i in 0..k {

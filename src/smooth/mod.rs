@@ -881,7 +881,6 @@ impl Smoother {
             guarded = KeepValid {
                 inner: objective,
                 limit,
-                inversion0: if pass_through_folds && limit > 0 { inversion(&self.star, x0) } else { 0.0 },
                 pass_through_folds,
             };
             &guarded
@@ -940,8 +939,6 @@ struct KeepValid<'a> {
     inner: &'a dyn Objective,
     /// Inverted star elements when the call began.
     limit: usize,
-    /// The star's [`inversion`] when the call began.
-    inversion0: f64,
     /// [`SmoothOptions::pass_through_folds`], resolved for the objective.
     pass_through_folds: bool,
 }
@@ -953,7 +950,7 @@ fn inversion(star: &Star, x: DVec2) -> f64 {
     let mut t = 0.0;
     for e in &star.elems {
         let p = e.at(x);
-        for (e1, e2) in &corner_edges(e.kind, &p)[..e.kind.corners()] {
+        for (e1, e2) in &crate::quality::corner_edge_vectors(e.kind, &p)[..e.kind.corners()] {
             t += (-e1.perp_dot(*e2)).max(0.0);
         }
     }
@@ -992,7 +989,10 @@ impl KeepValid<'_> {
     /// [`SmoothOptions::keep_valid`]).
     fn refuses(&self, star: &Star, x: DVec2) -> bool {
         let inverted = star.elems.iter().filter(|e| is_inverted_at(e, x)).count();
-        inverted > self.limit && (!self.pass_through_folds || self.limit == 0 || inversion(star, x) >= self.inversion0)
+        // the inversion at the start is taken from the star the solver passes, so that it
+        // is in the same frame as at `x` (a solver may pass a rescaled copy: optimize)
+        inverted > self.limit
+            && (!self.pass_through_folds || self.limit == 0 || inversion(star, x) >= inversion(star, star.x0))
     }
 }
 

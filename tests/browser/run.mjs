@@ -3,6 +3,7 @@
 // open the permalink and the embed view. Serves www/ itself on a free 127.0.0.1 port.
 // Screenshots go to test-output/browser/. Prints "N passed, M failed"; exits 1 on failure.
 import { mkdirSync, readFileSync, readdirSync, existsSync } from 'node:fs';
+import { spawnSync } from 'node:child_process';
 import path from 'node:path';
 import { chromium } from 'playwright-core';
 import { ROOT, WWW, CHROMIUM, CHROMIUM_ARGS as ARGS, startServer } from './serve.mjs';
@@ -10,6 +11,7 @@ import { ROOT, WWW, CHROMIUM, CHROMIUM_ARGS as ARGS, startServer } from './serve
 const OUT = path.join(ROOT, 'test-output', 'browser');
 const BAD = path.join(ROOT, 'tests', 'data', 'bad');
 const DATA = path.join(ROOT, 'tests', 'data');
+const HARDENING = path.join(DATA, 'hardening');
 const TIMEOUT = 60_000;
 
 mkdirSync(OUT, { recursive: true });
@@ -227,6 +229,39 @@ try {
     await page.waitForFunction(() => document.getElementById('message').hidden && document.body.dataset.busy === '0', null, { timeout: TIMEOUT });
     const s = await stats(page, 'old');
     check(Number(s.nodes) > 0, `nodes ${s.nodes}`);
+  });
+
+  await test('issue 16 inputs: the page says what the command-line tool says, and reads BOM files as it does', async () => {
+    // the command-line tool's own words ("smoothlab: FILE: message"), by the binary cargo builds
+    const cli = (args) => spawnSync('cargo', ['run', '--quiet', '--bin', 'smoothlab', '--', ...args], { cwd: ROOT, encoding: 'utf8' });
+    const refused = ['non_planar_outlier.obj', 'non_planar.vtk', 'cr_only_bad_number.msh', 'cr_only_inf_coordinate.vtk',
+      'cr_only_nan_coordinate.obj', 'cr_only_index_out_of_range.off', 'fixed_node_twice.msh', 'two_fixed_views.msh',
+      'two_fixed_arrays.vtk', 'huge_coordinate.vtk'];
+    for (const name of refused) {
+      const file = path.join(BAD, name);
+      const r = cli(['stats', file]);
+      check(r.status === 1, `${name}: the command-line tool did not refuse it (${r.status}): ${r.stderr}`);
+      const said = r.stderr.trim().split('\n').pop();
+      await page.evaluate(() => { const m = document.getElementById('message'); m.textContent = ''; m.hidden = true; });
+      await page.setInputFiles('#file', [file]);
+      await page.waitForFunction(() => !document.getElementById('message').hidden, null, { timeout: TIMEOUT });
+      await idle(page);
+      const msg = await page.textContent('#message');
+      check(said === `smoothlab: ${file}: ${msg}`, `${name}: the page says\n       ${msg}\n     the command-line tool\n       ${said}`);
+      check(!/NaN/.test(msg), `${name}: NaN in ${msg}`);
+    }
+    // files with a byte-order mark load, with the node counts the command-line tool reads
+    for (const set of [['bom.obj'], ['bom.off'], ['bom.msh'], ['bom.vtk'], ['bom.node', 'bom.ele']]) {
+      const files = set.map((f) => path.join(HARDENING, f));
+      const r = cli(['stats', '--json', files[0]]);
+      check(r.status === 0, `${set[0]}: ${r.stderr}`);
+      const nodes = JSON.parse(r.stdout).nodes;
+      await page.setInputFiles('#file', files);
+      await page.waitForFunction(() => document.getElementById('message').hidden && document.body.dataset.busy === '0', null, { timeout: TIMEOUT });
+      await idle(page);
+      const s = await stats(page, 'old');
+      check(Number(s.nodes) === nodes, `${set.join(' + ')}: the page has ${s.nodes} nodes, the command-line tool ${nodes}`);
+    }
   });
 
   await test('a Gmsh sample file is fetched from the site and smoothed by Step', async () => {

@@ -7,7 +7,7 @@ use std::path::PathBuf;
 
 use clap::{Args, ValueEnum};
 use smoothlab::lab::views::{pixmap, Canvas};
-use smoothlab::lab::{Playground, Settings, Side};
+use smoothlab::lab::{Playground, Settings, Side, MAX_NODES};
 use smoothlab::quality::{element_quality, mesh_stats, MeshStats};
 use smoothlab::render::{
     encode_png, render_angle_histogram, render_compare, render_mesh, AngleHistogram, ComparePanel, HistogramSeries,
@@ -162,6 +162,10 @@ fn stat_lines(s: &MeshStats, laplacian_moves: u32, optimization_calls: u32) -> V
     ]
 }
 
+fn no_such_node(n: usize, mesh: &Mesh) -> String {
+    format!("--node {n}: the mesh has nodes 0 to {}", mesh.node_count().saturating_sub(1))
+}
+
 pub fn run(a: RenderArgs) -> Result<(), String> {
     let shown = sides(&a.objective)?;
     if !(a.dpr.is_finite() && a.dpr > 0.0 && a.dpr <= 4.0) {
@@ -175,6 +179,21 @@ pub fn run(a: RenderArgs) -> Result<(), String> {
         return Err(format!("--passes {passes}: give at most 1000"));
     }
     let mesh = crate::files::read_mesh(&a.input)?;
+    // The pictures are drawn by the page's code, which holds at most MAX_NODES nodes: say
+    // so in this tool's words, with the file's name (the page's own message pointed to
+    // the command-line tool, which this is).
+    if mesh.node_count() > MAX_NODES {
+        return Err(format!(
+            "{}: the mesh has {} nodes; render draws meshes of at most {MAX_NODES} nodes \
+             (stats, smooth and convert take larger ones)",
+            a.input.display(),
+            mesh.node_count()
+        ));
+    }
+    // a --node that does not exist is refused by every view, not only the ones that use it
+    if let Some(n) = a.node.filter(|&n| n >= mesh.node_count()) {
+        return Err(no_such_node(n, &mesh));
+    }
     let original = mesh.clone();
     let mut lab = Playground::new(mesh).map_err(|e| e.to_string())?;
     lab.set_settings(settings(&a)).map_err(|e| e.to_string())?;
@@ -198,7 +217,7 @@ pub fn run(a: RenderArgs) -> Result<(), String> {
         match a.node {
             Some(n) if n < m.node_count() && m.is_free(n) => Ok(n),
             Some(n) if n < m.node_count() => Err(format!("--node {n} is not a free corner node: it never moves, so it has no objective to draw")),
-            Some(n) => Err(format!("--node {n}: the mesh has nodes 0 to {}", m.node_count().saturating_sub(1))),
+            Some(n) => Err(no_such_node(n, m)),
             None => worst_free_node(m).ok_or_else(|| "the mesh has no free node to study".to_string()),
         }
     };

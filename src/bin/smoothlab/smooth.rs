@@ -224,6 +224,7 @@ pub fn run(a: SmoothArgs) -> Result<(), String> {
     let opts = options(&a)?;
     let kind = a.objective.map_or(ObjectiveKind::New, ObjectiveArg::kind);
     let mut mesh = read_mesh(&a.input)?;
+    smoothlab::objective::check_scale(kind, &mesh).map_err(|e| format!("{}: {e}", a.input.display()))?;
     let obj = objective_with(kind, a.penalty.unwrap_or_default());
     let mut smoother = Smoother::new(opts).map_err(|e| e.to_string())?;
     let t0 = Instant::now();
