@@ -218,17 +218,29 @@ impl StarElement {
     #[inline]
     pub fn at(&self, x: DVec2) -> [DVec2; 9] {
         let mut p = self.pts;
-        let k = self.kind.corners();
-        let s = self.slot as usize;
+        Self::place(self.kind, self.slot, self.follow_next, self.follow_prev, &mut p, x);
+        p
+    }
+
+    /// Moves the free node to `x` in place (mid-side nodes following): `pts` becomes
+    /// [`at(x)`](Self::at) without copying the array.
+    #[inline]
+    pub fn move_free_node(&mut self, x: DVec2) {
+        Self::place(self.kind, self.slot, self.follow_next, self.follow_prev, &mut self.pts, x);
+    }
+
+    #[inline]
+    fn place(kind: ElementKind, slot: u8, follow_next: bool, follow_prev: bool, p: &mut [DVec2; 9], x: DVec2) {
+        let k = kind.corners();
+        let s = slot as usize;
         p[s] = x;
-        if self.follow_next {
+        if follow_next {
             p[k + s] = 0.5 * (x + p[(s + 1) % k]);
         }
-        if self.follow_prev {
+        if follow_prev {
             let prev = (s + k - 1) % k;
             p[k + prev] = 0.5 * (x + p[prev]);
         }
-        p
     }
 }
 
@@ -269,14 +281,19 @@ impl Star {
                     !mesh.fixed[mid] && !mesh.is_on_curved_boundary(mid) && mesh.role(mid) == NodeRole::Mid
                 })
             };
+            // filled in place: a StarElement is 160 bytes, built once where it lives
             self.elems.push(StarElement {
                 kind,
                 element: e as u32,
-                pts: mesh.element_points_array(e),
+                pts: [DVec2::ZERO; 9],
                 slot: slot as u8,
                 follow_next: follows(slot),
                 follow_prev: follows((slot + k - 1) % k),
             });
+            let pts = &mut self.elems.last_mut().expect("just pushed").pts;
+            for (p, &n) in pts.iter_mut().zip(ids) {
+                *p = mesh.nodes[n as usize];
+            }
         }
     }
     pub fn len(&self) -> usize {

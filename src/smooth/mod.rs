@@ -388,6 +388,45 @@ pub(crate) fn element_measures(kind: crate::mesh::ElementKind, p: &[DVec2; 9]) -
     q
 }
 
+/// 2√3, the normalisation of Lo's α.
+const TWO_SQRT3: f64 = 3.464_101_615_137_754_6;
+
+/// The shape measure (α/β, [`Measure::Shape`]) of a star element with its free node at `x`
+/// and whether the element is inverted: what [`element_measures`] gives for them, without
+/// the sines. A linear triangle is measured from its three points directly (one cross
+/// product: its corners share one determinant), the common case of the smart Laplacian and
+/// the priority order; elements of other kinds, and triangles whose squared edge lengths
+/// leave the doubles' comfortable range (beyond about 2^±450), by [`element_measures`].
+#[inline]
+pub(crate) fn element_shape_at(e: &StarElement, x: DVec2) -> (f64, bool) {
+    if e.kind == crate::mesh::ElementKind::Tri3 {
+        let s = e.slot as usize;
+        let (a, b) = (e.pts[(s + 1) % 3], e.pts[(s + 2) % 3]);
+        let (u, v) = (a - x, b - x);
+        let n = u.perp_dot(v);
+        let d = u.length_squared() + v.length_squared() + (b - a).length_squared();
+        const LO: f64 = 2.409_919_865_102_884e-271; // 2^-900
+        const HI: f64 = 8.452_712_498_170_644e270; // 2^900
+        if (LO..=HI).contains(&d) {
+            return (TWO_SQRT3 * n / d, n <= 0.0);
+        }
+    }
+    let q = element_measures(e.kind, &e.at(x));
+    (q.min_shape, q.inverted > 0)
+}
+
+/// The smallest shape measure (α/β) of the star with its free node at `x` and the number
+/// of its inverted elements ([`element_shape_at`] over the star).
+pub(crate) fn star_shape(star: &Star, x: DVec2) -> (f64, u32) {
+    let (mut min, mut inverted) = (f64::INFINITY, 0);
+    for e in &star.elems {
+        let (q, inv) = element_shape_at(e, x);
+        min = min.min(q);
+        inverted += inv as u32;
+    }
+    (min, inverted)
+}
+
 /// The star's worst measures with the free node at its gathered position (`x = None`,
 /// the mesh as it is) or moved to `x` (mid-side nodes following).
 pub(crate) fn star_quality(star: &Star, x: Option<DVec2>) -> StarQuality {
@@ -542,7 +581,7 @@ impl Smoother {
                     let i = self.plan_next;
                     if mesh.is_free(i) {
                         self.star.gather(mesh, i);
-                        self.quality[i] = star_quality(&self.star, None).min_shape;
+                        self.quality[i] = star_shape(&self.star, self.star.x0).0;
                         self.ranked.push(i as u32);
                         measured += 1;
                     }
@@ -682,7 +721,7 @@ impl Smoother {
         for &n in &self.revisits {
             self.marked[n as usize] = false;
             self.star.gather(mesh, n as usize);
-            ranked.push((star_quality(&self.star, None).min_shape, n));
+            ranked.push((star_shape(&self.star, self.star.x0).0, n));
         }
         ranked.sort_unstable_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
         self.revisits.clear();
@@ -804,7 +843,7 @@ impl Smoother {
                 self.star.gather(mesh, n);
                 let forced = self.options.force_optimization
                     || self.touches_curved_boundary(mesh, n)
-                    || star_quality(&self.star, None).inverted > 0;
+                    || star_shape(&self.star, self.star.x0).1 > 0;
                 if forced || !self.smart(mesh, n, &mut out) {
                     self.optimize(objective, &mut out);
                 }
@@ -819,7 +858,7 @@ impl Smoother {
     fn restar(&mut self, x: DVec2) {
         self.star.x0 = x;
         for e in &mut self.star.elems {
-            e.pts = e.at(x);
+            e.move_free_node(x);
         }
     }
 
@@ -851,14 +890,20 @@ impl Smoother {
         }
         let m = self.options.smart_measure;
         let (mut before, mut after) = (f64::INFINITY, f64::INFINITY);
+        let x0 = self.star.x0;
         for e in &self.star.elems {
-            let q0 = element_measures(e.kind, &e.pts);
-            let q1 = element_measures(e.kind, &e.at(c));
-            if q0.inverted == 0 && q1.inverted > 0 {
+            let ((q0, inv0), (q1, inv1)) = match m {
+                Measure::Shape => (element_shape_at(e, x0), element_shape_at(e, c)),
+                Measure::MinSine => {
+                    let (q0, q1) = (element_measures(e.kind, &e.pts), element_measures(e.kind, &e.at(c)));
+                    ((q0.min_sine, q0.inverted > 0), (q1.min_sine, q1.inverted > 0))
+                }
+            };
+            if !inv0 && inv1 {
                 return false;
             }
-            before = before.min(q0.measure(m));
-            after = after.min(q1.measure(m));
+            before = before.min(q0);
+            after = after.min(q1);
         }
         if after > before {
             self.restar(c);
