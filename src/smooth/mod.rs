@@ -395,19 +395,35 @@ const TWO_SQRT3: f64 = 3.464_101_615_137_754_6;
 /// and whether the element is inverted: what [`element_measures`] gives for them, without
 /// the sines. A linear triangle is measured from its three points directly (one cross
 /// product: its corners share one determinant), the common case of the smart Laplacian and
-/// the priority order; elements of other kinds, and triangles whose squared edge lengths
-/// leave the doubles' comfortable range (beyond about 2^±450), by [`element_measures`].
+/// the priority order, scaled by a power of two when its squared edge lengths would leave
+/// the doubles (so the same at every scale); elements of other kinds by
+/// [`element_measures`].
 #[inline]
 pub(crate) fn element_shape_at(e: &StarElement, x: DVec2) -> (f64, bool) {
     if e.kind == crate::mesh::ElementKind::Tri3 {
         let s = e.slot as usize;
         let (a, b) = (e.pts[(s + 1) % 3], e.pts[(s + 2) % 3]);
-        let (u, v) = (a - x, b - x);
-        let n = u.perp_dot(v);
-        let d = u.length_squared() + v.length_squared() + (b - a).length_squared();
+        let (mut u, mut v, mut w) = (a - x, b - x, b - a);
+        let squares = |u: DVec2, v: DVec2, w: DVec2| u.length_squared() + v.length_squared() + w.length_squared();
+        if u == DVec2::ZERO && v == DVec2::ZERO {
+            return (0.0, true); // three coincident points: α 0, as lo_alpha_corner; det 0: inverted
+        }
+        let mut d = squares(u, v, w);
         const LO: f64 = 2.409_919_865_102_884e-271; // 2^-900
         const HI: f64 = 8.452_712_498_170_644e270; // 2^900
+        if !(LO..=HI).contains(&d) {
+            // the squares leave the doubles: the same formula on the points scaled by a
+            // power of two (exact, and before subtracting: differences of tiny coordinates
+            // can be subnormal), so α is the same, bit for bit, at every scale
+            let m = u.abs().max_element().max(v.abs().max_element()).max(w.abs().max_element());
+            if let Some(f) = crate::optimize::unit_factor(m) {
+                let (a, b, x) = (f * a, f * b, f * x);
+                (u, v, w) = (a - x, b - x, b - a);
+                d = squares(u, v, w);
+            }
+        }
         if (LO..=HI).contains(&d) {
+            let n = u.perp_dot(v);
             return (TWO_SQRT3 * n / d, n <= 0.0);
         }
     }

@@ -699,3 +699,22 @@ fn untangling_sweeps_terminate() {
     assert!(Smoother::new(SmoothOptions::default().with_untangle_sweeps(1001)).is_err());
 }
 
+
+/// The smart Laplacian's and the priority order's shape measure of a linear triangle is the
+/// same, bit for bit, at every scale (the squares are taken in the triangle's own scale).
+#[test]
+fn linear_triangle_shape_is_the_same_at_every_scale() {
+    use crate::objective::testing::{elem, Lcg};
+    let mut rng = Lcg::new(17);
+    for _ in 0..200 {
+        let pts = [rng.point(1.0), rng.point(1.0), rng.point(1.0)];
+        let x = rng.point(1.0);
+        let el = elem(ElementKind::Tri3, &pts, 0);
+        let unit = element_shape_at(&el, x);
+        for e in (-1000..=1000).step_by(50) {
+            let f = 2f64.powi(e);
+            let scaled = elem(ElementKind::Tri3, &pts.map(|p| f * p), 0);
+            assert_eq!(element_shape_at(&scaled, f * x), unit, "2^{e}: {pts:?} {x}");
+        }
+    }
+}
