@@ -27,6 +27,7 @@ mod lex;
 mod msh;
 mod objoff;
 mod triangle;
+pub use triangle::flat_note;
 mod vtk;
 
 /// Files larger than this are refused before they are read (by [`read_path`] and
@@ -108,6 +109,21 @@ pub fn read_bytes(bytes: &[u8], name: &str) -> Result<Mesh> {
 /// Reads a Triangle mesh from the texts of its `.node` and `.ele` files.
 pub fn read_triangle(node: &str, ele: &str) -> Result<Mesh> {
     triangle::read(node, ele)
+}
+
+/// Writes node position `p` as the 3D formats do, `x y z` (Rust's shortest exact
+/// decimals): `x y 0` for a 2D mesh, else the point in the mesh's own 3D plane
+/// ([`Mesh::to_3d`]), so a mesh read from 3D is written back where it was.
+pub(crate) fn write_xyz(s: &mut String, mesh: &Mesh, p: glam::DVec2) {
+    use std::fmt::Write;
+    // writing to a String cannot fail
+    let _ = match mesh.plane {
+        None => write!(s, "{:?} {:?} 0", p.x, p.y),
+        Some(_) => {
+            let q = mesh.to_3d(p);
+            write!(s, "{:?} {:?} {:?}", q.x, q.y, q.z)
+        }
+    };
 }
 
 fn check_size(len: u64, name: &str) -> Result<()> {
