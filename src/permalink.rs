@@ -144,12 +144,7 @@ impl PageState {
         check_threshold(self.threshold_deg, || self.threshold_deg.to_string())?;
         check_int("passes", self.passes.into(), limits::PASSES, || self.passes.to_string())?;
         check_int("maxiter", self.max_iter.into(), limits::MAX_ITER, || self.max_iter.to_string())?;
-        for (c, key, side) in [(self.compare[0], "a-penalty", "a"), (self.compare[1], "b-penalty", "b")] {
-            if c.objective != ObjectiveKind::New && c.penalty != Penalty::default() {
-                return Err(bad(key, c.penalty.name(), &format!("given only when '{side}' is new (it is {})", c.objective.name())));
-            }
-        }
-        Ok(())
+        check_penalties(&self.compare)
     }
 }
 
@@ -232,6 +227,16 @@ impl PageFields {
         state.validate()?;
         Ok(state)
     }
+}
+
+/// A penalty is a design of `new`: another objective keeps the default (written nowhere).
+fn check_penalties(compare: &[Choice; 2]) -> Result<()> {
+    for (c, key, side) in [(compare[0], "a-penalty", "a"), (compare[1], "b-penalty", "b")] {
+        if c.objective != ObjectiveKind::New && c.penalty != Penalty::default() {
+            return Err(bad(key, c.penalty.name(), &format!("given only when '{side}' is new (it is {})", c.objective.name())));
+        }
+    }
+    Ok(())
 }
 
 fn parse_objective(key: &str, v: &str) -> Result<ObjectiveKind> {
@@ -500,11 +505,7 @@ pub fn decode(hash: &str) -> Result<PageState> {
             Key::Embed => state.embed = parse_flag(name, v)?,
         }
     }
-    for (c, key, side) in [(state.compare[0], "a-penalty", "a"), (state.compare[1], "b-penalty", "b")] {
-        if c.objective != ObjectiveKind::New && c.penalty != Penalty::default() {
-            return Err(bad(key, c.penalty.name(), &format!("given only when '{side}' is new (it is {})", c.objective.name())));
-        }
-    }
+    check_penalties(&state.compare)?;
     Ok(state)
 }
 
