@@ -537,7 +537,7 @@ function fillTables(stats) {
   const pair = [stats.old, stats.new];
   for (const [i, side] of ['old', 'new'].entries()) {
     const s = pair[i];
-    $(`title-${side}`).textContent = s.title;
+    $(`title-${side}`).textContent = EMBED ? s.label : s.title;
     const body = $(`stats-${side}`).tBodies[0];
     body.replaceChildren();
     for (const [key, label, get, dir, fmt = String, detail] of STAT_ROWS) {
@@ -556,11 +556,9 @@ function fillTables(stats) {
         td.textContent = fmt(v);
         td.dataset.value = String(v);
         if (betterSide(dir, get(pair[0]), get(pair[1])) === i) {
-          td.classList.add('better');
-          const sr = document.createElement('span');
-          sr.className = 'sr';
-          sr.textContent = ' (the better side)';
-          td.append(sr);
+          td.classList.add('better'); // marked ✓ by the style sheet
+          td.setAttribute('aria-label', `${td.textContent}, the better of the two`);
+          td.title = 'the better of the two sides';
         }
       }
       tr.append(th, td);

@@ -295,6 +295,8 @@ pub struct PanelTable {
     pub side: Side,
     /// The panel's heading: its letter and what it smooths with ([`Choice::title`]).
     pub title: String,
+    /// The same, short ([`Choice::label`]), for a compact page.
+    pub label: String,
     pub nodes: usize,
     pub elements: usize,
     #[serde(flatten)]
@@ -798,6 +800,7 @@ impl Playground {
         PanelTable {
             side,
             title: format!("{}: {}", side.letter(), self.settings.choice(side).title()),
+            label: self.side_label(side),
             nodes: p.mesh.node_count(),
             elements: p.mesh.element_count(),
             mesh: p.quick,
