@@ -127,8 +127,27 @@ pub struct StrategyInfo {
     pub max_iter_unused: Option<String>,
 }
 
+/// A name a menu offers, with its words for people.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Named {
+    pub name: &'static str,
+    pub words: &'static str,
+}
+
+/// One panel of the page: its permalink letter, its colour everywhere, and what it
+/// compares by default (`objective`, `penalty`).
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct PanelInfo {
+    pub side: crate::lab::Side,
+    pub letter: &'static str,
+    pub rgb: [u8; 3],
+    pub objective: &'static str,
+    pub penalty: &'static str,
+}
+
 /// Everything the page needs to build and check its controls, keyed by the permalink's
-/// keys: `{ passes, maxiter, seed, amount, threshold, strategies }`.
+/// keys: `{ passes, maxiter, seed, amount, threshold, strategies, objectives, penalties,
+/// panels }`.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct PageControls {
     pub passes: IntControl,
@@ -137,6 +156,12 @@ pub struct PageControls {
     pub amount: AmountControl,
     pub threshold: ThresholdControl,
     pub strategies: Vec<StrategyInfo>,
+    /// Every objective a panel can run ([`ObjectiveKind::ALL`](crate::objective::ObjectiveKind::ALL)).
+    pub objectives: Vec<Named>,
+    /// The designs of `new`'s penalty ([`Penalty::ALL`](crate::objective::Penalty::ALL)).
+    pub penalties: Vec<Named>,
+    /// The left panel (A), then the right (B).
+    pub panels: Vec<PanelInfo>,
 }
 
 fn int_control(label: &'static str, r: IntRange, default: u64) -> IntControl {
@@ -166,6 +191,19 @@ pub fn page_controls() -> PageControls {
                 words: strategy_words(s),
                 threshold_unused: threshold_unused(s),
                 max_iter_unused: max_iter_unused(s),
+            })
+            .collect(),
+        objectives: crate::objective::ObjectiveKind::ALL.iter().map(|k| Named { name: k.name(), words: k.describe() }).collect(),
+        penalties: crate::objective::Penalty::ALL.iter().map(|p| Named { name: p.name(), words: p.describe() }).collect(),
+        panels: crate::lab::Side::BOTH
+            .iter()
+            .zip(d.compare)
+            .map(|(&side, c)| PanelInfo {
+                side,
+                letter: side.letter(),
+                rgb: side.rgb(),
+                objective: c.objective.name(),
+                penalty: c.penalty.name(),
             })
             .collect(),
     }

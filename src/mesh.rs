@@ -170,9 +170,37 @@ pub struct Mesh {
     elem_start: Vec<u32>,
     elem_nodes: Vec<u32>,
     topo: Topology,
+    /// The 3D plane the file's points lay in, when they were not in the xy plane at z = 0
+    /// (see [`Mesh::to_3d`]); `None` for a 2D mesh.
+    pub plane: Option<Plane>,
+}
+
+/// A plane in 3D: the point that 2D coordinates `(0, 0)` stand for and two orthonormal
+/// axes along which the mesh's 2D `x` and `y` run.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Plane {
+    pub origin: glam::DVec3,
+    pub u: glam::DVec3,
+    pub w: glam::DVec3,
+}
+
+impl Plane {
+    /// The 3D point of the plane's 2D coordinates `p`.
+    pub fn to_3d(&self, p: DVec2) -> glam::DVec3 {
+        self.origin + self.u * p.x + self.w * p.y
+    }
 }
 
 impl Mesh {
+    /// The 3D position of a 2D point of the mesh: in the plane the file's points lay in
+    /// (so a mesh read from 3D is written back where it was), else at z = 0.
+    pub fn to_3d(&self, p: DVec2) -> glam::DVec3 {
+        match &self.plane {
+            Some(plane) => plane.to_3d(p),
+            None => glam::DVec3::new(p.x, p.y, 0.0),
+        }
+    }
+
     pub fn node_count(&self) -> usize {
         self.nodes.len()
     }
@@ -382,6 +410,7 @@ impl Mesh {
             elem_start,
             elem_nodes,
             topo: Topology::default(),
+            plane: self.plane,
         };
         // The same elements under other numbers: every check that passed for `self`
         // passes here, so building the topology cannot fail.
@@ -666,8 +695,9 @@ impl MeshBuilder {
                 }
             }
         }
-        let nodes = self.to_plane()?;
+        let (nodes, plane) = self.to_plane()?;
         let mut mesh = Mesh {
+            plane,
             nodes,
             fixed: vec![false; n],
             kinds: self.kinds,
@@ -730,7 +760,8 @@ impl MeshBuilder {
 
     /// 2D coordinates of the points: as given when every z is equal, else in the plane of
     /// the elements; refuses non-planar input naming the node farthest off, how far, and
-    /// how that compares with the size of its elements.
+    /// how that compares with the size of its elements. With them the plane to map them
+    /// back into 3D (`None` when every z is 0), so writers put the mesh back where it was.
     ///
     /// The plane is fitted robustly, so that one node far off (a mistyped exponent) can
     /// neither tilt it nor hide behind the size it gives the mesh: its normal is the
@@ -740,10 +771,11 @@ impl MeshBuilder {
     /// largest element it belongs to (measured in the plane), or of its own coordinates'
     /// magnitude, whichever is larger: rounding in the file is excused, an outlier is not,
     /// however large the mesh around it.
-    fn to_plane(&self) -> Result<Vec<DVec2>> {
+    fn to_plane(&self) -> Result<(Vec<DVec2>, Option<Plane>)> {
         let z0 = self.points.first().map(|p| p[2]).unwrap_or(0.0);
         if self.points.iter().all(|p| p[2] == z0) {
-            return Ok(self.points.iter().map(|p| DVec2::new(p[0], p[1])).collect());
+            let plane = (z0 != 0.0).then_some(Plane { origin: glam::DVec3::new(0.0, 0.0, z0), u: glam::DVec3::X, w: glam::DVec3::Y });
+            return Ok((self.points.iter().map(|p| DVec2::new(p[0], p[1])).collect(), plane));
         }
         // Work in units of the largest coordinate magnitude, so that the cross products
         // and distances below neither overflow (coordinates near 1e200 once gave NaN
@@ -852,7 +884,7 @@ impl MeshBuilder {
             }
             out.push(q);
         }
-        Ok(out)
+        Ok((out, Some(Plane { origin: centre * scale, u, w })))
     }
 }
 

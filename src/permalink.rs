@@ -1,5 +1,10 @@
 //! The page's permalink: the sample and settings held in the URL hash, e.g.
-//! `#sample=plate-tri&tangle=0.6&seed=3&perturbed=1&strategy=rules&objective=new&threshold=30&passes=3&order=priority&maxiter=3&node=17`.
+//! `#sample=plate-tri&tangle=0.6&seed=3&perturbed=1&strategy=rules&a=old&b=new&b-penalty=barrier&threshold=30&passes=3&order=priority&maxiter=3&node=17`.
+//!
+//! `a` and `b` are the objectives of the left and the right panel (`objective` is read as
+//! `b`, as links written before the page compared any two objectives name it);
+//! `a-penalty` and `b-penalty` are the penalty designs of a side running `new`, written
+//! for such a side only.
 //!
 //! [`decode`] is strict about what it knows and lenient about what it does not:
 //!
@@ -19,7 +24,8 @@
 use serde::{Deserialize, Serialize};
 
 use crate::error::{Error, Result};
-use crate::objective::ObjectiveKind;
+use crate::lab::Choice;
+use crate::objective::{ObjectiveKind, Penalty};
 use crate::smooth::{Order, SmoothOptions, Strategy};
 
 /// The sample names a permalink may carry: every generated sample of the page's gallery
@@ -80,8 +86,10 @@ pub struct PageState {
     pub perturbed: bool,
     /// Key `strategy`: `laplace`, `smart`, `opt`, `c1`, `c2`, `c3`, `rules`; default rules.
     pub strategy: Strategy,
-    /// Key `objective`: an [`ObjectiveKind`] name (`old`, `new`, …); default new.
-    pub objective: ObjectiveKind,
+    /// What the left (A) and right (B) panels smooth with. Keys `a` and `b`: an
+    /// [`ObjectiveKind`] name (`old`, `new`, …), defaults old and new; `a-penalty`,
+    /// `b-penalty`: a [`Penalty`] name for a side running `new`, default barrier.
+    pub compare: [Choice; 2],
     /// Freitag's threshold angle θ_t in degrees, `0 < t ≤ 90`. Key `threshold`; default 30.
     pub threshold_deg: f64,
     /// Smoothing passes, `1 ..= 100`. Key `passes`; default 3.
@@ -105,7 +113,7 @@ impl Default for PageState {
             amount: 0.5,
             perturbed: false,
             strategy: smooth.strategy,
-            objective: ObjectiveKind::New,
+            compare: crate::lab::Settings::default().compare,
             threshold_deg: smooth.threshold_deg,
             passes: 3,
             order: smooth.order,
@@ -136,13 +144,13 @@ impl PageState {
         check_threshold(self.threshold_deg, || self.threshold_deg.to_string())?;
         check_int("passes", self.passes.into(), limits::PASSES, || self.passes.to_string())?;
         check_int("maxiter", self.max_iter.into(), limits::MAX_ITER, || self.max_iter.to_string())?;
-        Ok(())
+        check_penalties(&self.compare)
     }
 }
 
 /// A [`PageState`] as named fields with plain values (enums as their URL names), the
-/// shape the page reads and writes: `{sample, seed, amount, strategy, objective,
-/// threshold, passes, order, maxIter, node, embed}`. Fields left out take the defaults
+/// shape the page reads and writes: `{sample, seed, amount, perturbed, strategy, a,
+/// aPenalty, b, bPenalty, threshold, passes, order, maxIter, node, embed}`. Fields left out take the defaults
 /// of [`PageState::default`]; unknown fields are refused.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(rename_all = "camelCase", default, deny_unknown_fields)]
@@ -152,7 +160,10 @@ pub struct PageFields {
     pub amount: f64,
     pub perturbed: bool,
     pub strategy: String,
-    pub objective: String,
+    pub a: String,
+    pub a_penalty: String,
+    pub b: String,
+    pub b_penalty: String,
     pub threshold: f64,
     pub passes: u32,
     pub order: String,
@@ -175,7 +186,10 @@ impl From<&PageState> for PageFields {
             amount: s.amount,
             perturbed: s.perturbed,
             strategy: s.strategy.name().to_string(),
-            objective: s.objective.name().to_string(),
+            a: s.compare[0].objective.name().to_string(),
+            a_penalty: s.compare[0].penalty.name().to_string(),
+            b: s.compare[1].objective.name().to_string(),
+            b_penalty: s.compare[1].penalty.name().to_string(),
             threshold: s.threshold_deg,
             passes: s.passes,
             order: s.order.name().to_string(),
@@ -199,10 +213,10 @@ impl PageFields {
                 let names: Vec<&str> = Strategy::ALL.iter().map(|s| s.name()).collect();
                 bad("strategy", &self.strategy, &format!("one of {}", names.join(", ")))
             })?,
-            objective: ObjectiveKind::parse(&self.objective).ok_or_else(|| {
-                let names: Vec<&str> = ObjectiveKind::ALL.iter().map(|k| k.name()).collect();
-                bad("objective", &self.objective, &format!("one of {}", names.join(", ")))
-            })?,
+            compare: [
+                Choice { objective: parse_objective("a", &self.a)?, penalty: parse_penalty("a-penalty", &self.a_penalty)? },
+                Choice { objective: parse_objective("b", &self.b)?, penalty: parse_penalty("b-penalty", &self.b_penalty)? },
+            ],
             threshold_deg: self.threshold,
             passes: self.passes,
             order: Order::parse(&self.order).ok_or_else(|| bad("order", &self.order, "one of input, priority"))?,
@@ -215,6 +229,30 @@ impl PageFields {
     }
 }
 
+/// A penalty is a design of `new`: another objective keeps the default (written nowhere).
+fn check_penalties(compare: &[Choice; 2]) -> Result<()> {
+    for (c, key, side) in [(compare[0], "a-penalty", "a"), (compare[1], "b-penalty", "b")] {
+        if c.objective != ObjectiveKind::New && c.penalty != Penalty::default() {
+            return Err(bad(key, c.penalty.name(), &format!("given only when '{side}' is new (it is {})", c.objective.name())));
+        }
+    }
+    Ok(())
+}
+
+fn parse_objective(key: &str, v: &str) -> Result<ObjectiveKind> {
+    ObjectiveKind::parse(v).ok_or_else(|| {
+        let names: Vec<&str> = ObjectiveKind::ALL.iter().map(|k| k.name()).collect();
+        bad(key, v, &format!("one of {}", names.join(", ")))
+    })
+}
+
+fn parse_penalty(key: &str, v: &str) -> Result<Penalty> {
+    Penalty::parse(v).ok_or_else(|| {
+        let names: Vec<&str> = Penalty::ALL.iter().map(|p| p.name()).collect();
+        bad(key, v, &format!("one of {}", names.join(", ")))
+    })
+}
+
 /// The keys, in canonical order.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 enum Key {
@@ -223,7 +261,10 @@ enum Key {
     Seed,
     Perturbed,
     Strategy,
-    Objective,
+    A,
+    APenalty,
+    B,
+    BPenalty,
     Threshold,
     Passes,
     Order,
@@ -233,13 +274,16 @@ enum Key {
 }
 
 impl Key {
-    const ALL: [Key; 12] = [
+    const ALL: [Key; 15] = [
         Key::Sample,
         Key::Tangle,
         Key::Seed,
         Key::Perturbed,
         Key::Strategy,
-        Key::Objective,
+        Key::A,
+        Key::APenalty,
+        Key::B,
+        Key::BPenalty,
         Key::Threshold,
         Key::Passes,
         Key::Order,
@@ -255,7 +299,10 @@ impl Key {
             Key::Seed => "seed",
             Key::Perturbed => "perturbed",
             Key::Strategy => "strategy",
-            Key::Objective => "objective",
+            Key::A => "a",
+            Key::APenalty => "a-penalty",
+            Key::B => "b",
+            Key::BPenalty => "b-penalty",
             Key::Threshold => "threshold",
             Key::Passes => "passes",
             Key::Order => "order",
@@ -266,8 +313,10 @@ impl Key {
     }
 
     fn parse(s: &str) -> Option<Key> {
-        if s == "amount" {
-            return Some(Key::Tangle);
+        match s {
+            "amount" => return Some(Key::Tangle),
+            "objective" => return Some(Key::B),
+            _ => {}
         }
         Key::ALL.into_iter().find(|k| k.name() == s)
     }
@@ -407,7 +456,7 @@ pub fn decode(hash: &str) -> Result<PageState> {
         let name = k.name();
         if std::mem::replace(&mut seen[k as usize], true) {
             return Err(Error::invalid(format!(
-                "permalink: '{name}' is given twice ('amount' and 'tangle' are the same key)"
+                "permalink: '{name}' is given twice ('amount' and 'tangle' are the same key, so are 'objective' and 'b')"
             )));
         }
         let value = percent_decode(raw_value, || format!("the value of '{name}'"))?;
@@ -430,12 +479,10 @@ pub fn decode(hash: &str) -> Result<PageState> {
                     bad(name, v, &format!("one of {}", names.join(", ")))
                 })?
             }
-            Key::Objective => {
-                state.objective = ObjectiveKind::parse(v).ok_or_else(|| {
-                    let names: Vec<&str> = ObjectiveKind::ALL.iter().map(|k| k.name()).collect();
-                    bad(name, v, &format!("one of {}", names.join(", ")))
-                })?
-            }
+            Key::A => state.compare[0].objective = parse_objective(name, v)?,
+            Key::APenalty => state.compare[0].penalty = parse_penalty(name, v)?,
+            Key::B => state.compare[1].objective = parse_objective(name, v)?,
+            Key::BPenalty => state.compare[1].penalty = parse_penalty(name, v)?,
             Key::Threshold => {
                 let t = parse_real(name, v, "an angle in degrees, more than 0 and at most 90")?;
                 check_threshold(t, || value.clone())?;
@@ -458,6 +505,7 @@ pub fn decode(hash: &str) -> Result<PageState> {
             Key::Embed => state.embed = parse_flag(name, v)?,
         }
     }
+    check_penalties(&state.compare)?;
     Ok(state)
 }
 
@@ -533,7 +581,15 @@ pub fn encode(s: &PageState) -> String {
                 }
             }
             Key::Strategy => s.strategy.name().to_string(),
-            Key::Objective => s.objective.name().to_string(),
+            Key::A => s.compare[0].objective.name().to_string(),
+            Key::B => s.compare[1].objective.name().to_string(),
+            Key::APenalty | Key::BPenalty => {
+                let c = s.compare[(k == Key::BPenalty) as usize];
+                if c.objective != ObjectiveKind::New {
+                    continue;
+                }
+                c.penalty.name().to_string()
+            }
             Key::Threshold => real(s.threshold_deg),
             Key::Passes => s.passes.to_string(),
             Key::Order => s.order.name().to_string(),
@@ -579,7 +635,7 @@ mod tests {
     fn perturbed_round_trips_and_is_left_out_when_false() {
         let s = decode("#sample=plate-tri&tangle=0.6&seed=3&perturbed=1").unwrap();
         assert!(s.perturbed);
-        assert_eq!(encode(&s), "#sample=plate-tri&tangle=0.6&seed=3&perturbed=1&strategy=rules&objective=new&threshold=30&passes=3&order=priority&maxiter=3");
+        assert_eq!(encode(&s), "#sample=plate-tri&tangle=0.6&seed=3&perturbed=1&strategy=rules&a=old&b=new&b-penalty=barrier&threshold=30&passes=3&order=priority&maxiter=3");
         assert!(!encode(&PageState::default()).contains("perturbed"));
         assert!(decode("perturbed=yes").unwrap_err().to_string().contains("'perturbed'"));
     }
@@ -602,7 +658,7 @@ mod tests {
     #[test]
     fn the_example_decodes_to_what_it_says() {
         let s = decode(
-            "#sample=plate-tri&tangle=0.6&seed=3&strategy=rules&objective=new&threshold=30&passes=3&order=priority&maxiter=3&node=17",
+            "#sample=plate-tri&tangle=0.6&seed=3&strategy=rules&a=old&b=new&b-penalty=barrier&threshold=30&passes=3&order=priority&maxiter=3&node=17",
         )
         .unwrap();
         assert_eq!(
@@ -613,7 +669,7 @@ mod tests {
                 amount: 0.6,
                 perturbed: false,
                 strategy: Strategy::Rules,
-                objective: ObjectiveKind::New,
+                compare: [Choice::OLD, Choice::NEW],
                 threshold_deg: 30.0,
                 passes: 3,
                 order: Order::Priority,
@@ -625,8 +681,27 @@ mod tests {
         // …and that example is already the canonical form.
         assert_eq!(
             encode(&s),
-            "#sample=plate-tri&tangle=0.6&seed=3&strategy=rules&objective=new&threshold=30&passes=3&order=priority&maxiter=3&node=17"
+            "#sample=plate-tri&tangle=0.6&seed=3&strategy=rules&a=old&b=new&b-penalty=barrier&threshold=30&passes=3&order=priority&maxiter=3&node=17"
         );
+    }
+
+    #[test]
+    fn either_side_names_any_objective_and_new_its_penalty() {
+        let s = decode("#a=new&a-penalty=angle&b=condition").unwrap();
+        assert_eq!(
+            s.compare,
+            [Choice { objective: ObjectiveKind::New, penalty: Penalty::Angle }, Choice { objective: ObjectiveKind::Condition, penalty: Penalty::Barrier }]
+        );
+        let h = encode(&s);
+        assert!(h.contains("&a=new&a-penalty=angle&b=condition&threshold"), "{h}");
+        // links written before the comparison name the right side 'objective'
+        assert_eq!(decode("#objective=sine").unwrap().compare[1].objective, ObjectiveKind::Sine);
+        assert!(decode("#objective=sine&b=old").unwrap_err().to_string().contains("twice"));
+        // a penalty belongs to new only
+        let e = decode("#a=old&a-penalty=angle").unwrap_err().to_string();
+        assert!(e.contains("'a-penalty'") && e.contains("only when 'a' is new"), "{e}");
+        assert!(decode("#b-penalty=barrier&b=sine").is_ok(), "the default penalty is no penalty");
+        assert!(decode("#b-penalty=spring").unwrap_err().to_string().contains("barrier, angle"));
     }
 
     #[test]
@@ -637,7 +712,7 @@ mod tests {
         let s = decode("seed=9").unwrap();
         assert_eq!(s, PageState { seed: 9, ..PageState::default() });
         let d = PageState::default();
-        assert_eq!((d.strategy, d.order, d.objective), (Strategy::Rules, Order::Priority, ObjectiveKind::New));
+        assert_eq!((d.strategy, d.order, d.compare), (Strategy::Rules, Order::Priority, [Choice::OLD, Choice::NEW]));
         assert_eq!((d.threshold_deg, d.max_iter, d.passes, d.amount, d.seed), (30.0, 3, 3, 0.5, 1));
         d.validate().unwrap();
     }
@@ -663,7 +738,7 @@ mod tests {
             ("maxiter=51", &["'maxiter'", "1 to 50"]),
             ("maxiter=3.0", &["'maxiter'", "'3.0'"]),
             ("strategy=Rules", &["'strategy'", "'Rules'", "laplace, smart, opt, c1, c2, c3, rules"]),
-            ("objective=best", &["'objective'", "'best'", "old, sine, new"]),
+            ("objective=best", &["'b'", "'best'", "old, sine, new"]),
             ("order=random", &["'order'", "input, priority"]),
             ("node=4294967296", &["'node'", "4294967295"]),
             ("node=x", &["'node'", "'x'"]),
@@ -688,7 +763,7 @@ mod tests {
     #[test]
     fn values_are_percent_decoded() {
         let s = decode("#sample=plate%2Dtri&%73eed=12&objective=condition%2dmax").unwrap();
-        assert_eq!((s.sample.as_deref(), s.seed, s.objective), (Some("plate-tri"), 12, ObjectiveKind::ConditionMax));
+        assert_eq!((s.sample.as_deref(), s.seed, s.compare[1].objective), (Some("plate-tri"), 12, ObjectiveKind::ConditionMax));
         // '+' is a space, so it is no sign and no digit
         assert!(decode("seed=1+2").is_err());
         let s = decode("embed=true&node=0").unwrap();
@@ -751,7 +826,7 @@ mod tests {
     fn page_fields_round_trip_and_are_checked() {
         let s = decode("#sample=gmsh-disk-tri6&tangle=1.25&seed=9007199254740993&strategy=c3&objective=old&threshold=15&passes=7&order=input&maxiter=9&node=4&embed=1").unwrap();
         let f = PageFields::from(&s);
-        assert_eq!((f.strategy.as_str(), f.order.as_str(), f.objective.as_str()), ("c3", "input", "old"));
+        assert_eq!((f.strategy.as_str(), f.order.as_str(), f.b.as_str()), ("c3", "input", "old"));
         assert_eq!(f.to_state().unwrap(), s);
         let json = serde_json::to_value(&f).unwrap();
         assert_eq!(json["maxIter"], 9);
@@ -763,7 +838,8 @@ mod tests {
         assert!(serde_json::from_str::<PageFields>(r#"{"max_iter": 5}"#).is_err());
         let cases: &[(PageFields, &str)] = &[
             (PageFields { strategy: "best".into(), ..PageFields::default() }, "'strategy'"),
-            (PageFields { objective: "x".into(), ..PageFields::default() }, "'objective'"),
+            (PageFields { b: "x".into(), ..PageFields::default() }, "'b'"),
+            (PageFields { a_penalty: "angle".into(), ..PageFields::default() }, "'a-penalty'"),
             (PageFields { order: "random".into(), ..PageFields::default() }, "'order'"),
             (PageFields { max_iter: 51, ..PageFields::default() }, "'maxiter'"),
             (PageFields { passes: 0, ..PageFields::default() }, "'passes'"),
@@ -834,7 +910,9 @@ mod tests {
             seed in any::<u64>(),
             amount in any_amount(),
             strategy in proptest::sample::select(Strategy::ALL.to_vec()),
-            objective in proptest::sample::select(ObjectiveKind::ALL.to_vec()),
+            a in proptest::sample::select(ObjectiveKind::ALL.to_vec()),
+            b in proptest::sample::select(ObjectiveKind::ALL.to_vec()),
+            penalties in proptest::sample::select(vec![[Penalty::Barrier, Penalty::Angle], [Penalty::Angle, Penalty::Barrier], [Penalty::Angle; 2], [Penalty::Barrier; 2]]),
             threshold_deg in any_threshold(),
             passes in 1..=limits::PASSES.max as u32,
             order in proptest::sample::select(Order::ALL.to_vec()),
@@ -843,7 +921,10 @@ mod tests {
             embed in any::<bool>(),
             perturbed in any::<bool>(),
         ) -> PageState {
-            PageState { sample: sample.map(String::from), seed, amount, perturbed, strategy, objective, threshold_deg, passes, order, max_iter, node, embed }
+            // a penalty only for a side running new
+            let choice = |objective, penalty| Choice { objective, penalty: if objective == ObjectiveKind::New { penalty } else { Penalty::default() } };
+            let compare = [choice(a, penalties[0]), choice(b, penalties[1])];
+            PageState { sample: sample.map(String::from), seed, amount, perturbed, strategy, compare, threshold_deg, passes, order, max_iter, node, embed }
         }
     }
 
@@ -870,7 +951,7 @@ mod tests {
         #[test]
         fn decode_never_panics_on_pairs_of_known_keys(
             pairs in proptest::collection::vec(
-                (proptest::sample::select(vec!["sample", "tangle", "amount", "seed", "perturbed", "strategy", "objective",
+                (proptest::sample::select(vec!["sample", "tangle", "amount", "seed", "perturbed", "strategy", "objective", "a", "b", "a-penalty", "b-penalty",
                     "threshold", "passes", "order", "maxiter", "node", "embed", "x"]),
                  "[-+.%0-9a-fA-Fe]{0,12}"), 0..8)
         ) {

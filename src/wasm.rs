@@ -58,8 +58,8 @@ pub fn samples() -> Result<JsValue, JsError> {
 }
 
 /// Reads a permalink hash (`#sample=…&passes=…`) with [`crate::permalink::decode`]:
-/// `{sample, seed, amount, strategy, objective, threshold, passes, order, maxIter, node,
-/// embed}`, enums as their URL names, `sample`/`node` null when absent, `seed` a number
+/// `{sample, seed, amount, perturbed, strategy, a, aPenalty, b, bPenalty, threshold, passes,
+/// order, maxIter, node, embed}`, enums as their URL names, `sample`/`node` null when absent, `seed` a number
 /// (a BigInt beyond 2^53 − 1). A malformed value is an error naming its key.
 #[wasm_bindgen(js_name = decodePermalink)]
 pub fn decode_permalink(hash: &str) -> Result<JsValue, JsError> {
@@ -186,7 +186,8 @@ impl Playground {
         Ok(Playground::wrap(playground::Playground::new(io::read_triangle(node, ele)?)?))
     }
 
-    /// The shared controls: `{ strategy, threshold_deg, order, max_iter }`.
+    /// The shared controls and what each side smooths with: `{ strategy, threshold_deg,
+    /// order, max_iter, compare: [{ objective, penalty }, { objective, penalty }] }`.
     #[wasm_bindgen(js_name = setSettings)]
     pub fn set_settings(&mut self, settings: JsValue) -> Result<(), JsError> {
         let s: Settings =
@@ -334,14 +335,16 @@ impl Playground {
         ])
     }
 
-    /// The per-pass chart (`w × h`) and both angle histograms (`hw × hh`):
-    /// `{ pass, hist_old, hist_new, records }`.
-    pub fn charts(&self, w: u32, h: u32, hw: u32, hh: u32, dpr: f32) -> Result<JsValue, JsError> {
+    /// The per-pass chart (`w × h`) and both angle histograms (`hw × hh`, on one scale,
+    /// logarithmic when `log_y`), with both statistics tables (measured in full now):
+    /// `{ pass, hist_old, hist_new, stats: { old, new } }`.
+    pub fn charts(&self, w: u32, h: u32, hw: u32, hh: u32, dpr: f32, log_y: bool) -> Result<JsValue, JsError> {
         let hc = canvas(hw, hh, dpr);
-        object(&[
-            ("pass", pixels(self.inner.render_pass_chart(canvas(w, h, dpr))?)),
-            ("hist_old", pixels(self.inner.render_histogram(Side::Old, hc)?)),
-            ("hist_new", pixels(self.inner.render_histogram(Side::New, hc)?)),
-        ])
+        let pass = pixels(self.inner.render_pass_chart(canvas(w, h, dpr))?);
+        let hist_old = pixels(self.inner.render_histogram(Side::Old, hc, log_y)?);
+        let hist_new = pixels(self.inner.render_histogram(Side::New, hc, log_y)?);
+        // after the histograms: the full statistics are at hand for the tables' detail
+        let stats = object(&[("old", self.stats("old")?), ("new", self.stats("new")?)])?;
+        object(&[("pass", pass), ("hist_old", hist_old), ("hist_new", hist_new), ("stats", stats)])
     }
 }

@@ -13,7 +13,9 @@ const GMSH_SAMPLES = [
 ];
 const DEFAULT_SAMPLE = 'plate-tri-tangled';
 const MAX_FILE_BYTES = 256 * 1024 * 1024;
-const SETTINGS = ['strategy', 'threshold', 'order', 'passes', 'maxiter', 'amount', 'seed'];
+const SETTINGS = ['strategy', 'threshold', 'order', 'passes', 'maxiter', 'amount', 'seed', 'objective-a', 'penalty-a', 'objective-b', 'penalty-b'];
+/** The compare menus of the left (A) and right (B) panel. */
+const COMPARE = [['objective-a', 'penalty-a'], ['objective-b', 'penalty-b']];
 const EMBED = new URLSearchParams(location.search).get('embed') === '1';
 /** Milliseconds of smoothing per call to the worker during a pass: the progress bar
  * moves and Stop is heard at least this often. */
@@ -37,6 +39,7 @@ const state = {
   source: null, // what is loaded: {kind: 'sample'|'gmsh', name} or {kind: 'file'|'triangle', ...}
   lastGood: null, // the last source that loaded: reloaded after a panic
   node: null, // the node whose level sets are shown
+  compare: null, // what the engine smooths each side with (as the compare menus said when last sent)
   running: false,
   cancel: false,
   frame: { w: 0, h: 0, dpr: 1 }, // the last mesh frame (pointer positions map through it)
@@ -98,7 +101,14 @@ function readSettings() {
     threshold_deg: Number($('threshold').value),
     order: $('order').value,
     max_iter: Number($('maxiter').value),
+    compare: COMPARE.map((_, i) => readChoice(i)),
   };
+}
+/** What side `i` (0 = A, 1 = B) smooths with; a penalty only for `new` (else the default design). */
+function readChoice(i) {
+  const [obj, pen] = COMPARE[i];
+  const objective = $(obj).value;
+  return { objective, penalty: $(pen).disabled ? state.controls.penalties[0].name : $(pen).value };
 }
 
 // ---- controls: built from the core's ranges, checked where they are edited ------------
@@ -136,6 +146,50 @@ function buildControls(c) {
   }
   t.value = String(c.threshold.default);
   showStrategyReasons();
+  // compare: every objective and penalty design the core offers, by its names
+  for (const [i, [obj, pen]] of COMPARE.entries()) {
+    const panel = c.panels[i];
+    fillMenu($(obj), c.objectives.map((o) => [o.name, `${o.name}: ${o.words}`]), panel.objective);
+    fillMenu($(pen), c.penalties.map((p) => [p.name, `${p.name}: ${p.words}`]), panel.penalty);
+    document.documentElement.style.setProperty(`--side-${panel.side}`, `rgb(${panel.rgb.join(',')})`);
+  }
+  showPenaltyReasons();
+}
+function fillMenu(select, entries, value) {
+  select.replaceChildren();
+  for (const [v, text] of entries) {
+    const o = document.createElement('option');
+    o.value = v;
+    o.textContent = text;
+    select.append(o);
+  }
+  select.value = value;
+}
+/** A penalty is a design of `new`: its menu is disabled, saying so, for another objective. */
+function showPenaltyReasons() {
+  for (const [obj, pen] of COMPARE) {
+    const other = $(obj).value !== 'new';
+    $(pen).disabled = other;
+    const why = other ? `Not used: only the new objective has a penalty (this side runs ${$(obj).value}).` : '';
+    $(`${pen}-why`).textContent = why;
+    $(pen).title = why;
+  }
+}
+/** A side now runs something else: both sides start again from the mesh as loaded. */
+function changeCompare() {
+  showPenaltyReasons();
+  const stopped = endRun();
+  return serial(async () => {
+    await engine.call('settings', readSettings());
+    state.compare = COMPARE.map((_, i) => readChoice(i));
+    await engine.call('reset');
+    await redrawAll();
+    clearError();
+    const [a, b] = [readChoice(0), readChoice(1)];
+    const name = (c) => (c.objective === 'new' ? `new (${c.penalty} penalty)` : c.objective);
+    setStatus(`Comparing A, ${name(a)}, with B, ${name(b)}: both sides start again from the mesh as loaded.${stopped}`);
+    await writePermalink();
+  }).catch(report);
 }
 
 /** Disables the controls the chosen strategy does not use, saying why (as the CLI refuses them). */
@@ -191,6 +245,10 @@ function permalinkHash() {
     passes: Number($('passes').value),
     order: $('order').value,
     maxIter: Number($('maxiter').value),
+    a: readChoice(0).objective,
+    aPenalty: readChoice(0).penalty,
+    b: readChoice(1).objective,
+    bPenalty: readChoice(1).penalty,
   });
 }
 /** Keeps the URL and the permalink link current; a setting the link cannot carry is said
@@ -257,6 +315,10 @@ async function applyHash() {
     maxiter: p.maxIter,
     amount: p.amount,
     seed: p.seed,
+    'objective-a': p.a,
+    'penalty-a': p.aPenalty,
+    'objective-b': p.b,
+    'penalty-b': p.bPenalty,
   };
   for (const id of SETTINGS) {
     const v = String(values[id]);
@@ -274,6 +336,7 @@ async function applyHash() {
   }
   $('amount-out').textContent = $('amount').value;
   showStrategyReasons();
+  showPenaltyReasons();
   const extra = { perturbed: p.perturbed ? { amount: p.amount, seed: String(p.seed) } : null, node: p.node };
   if (p.sample === null) return { src: fallback, ...extra };
   const gmsh = GMSH_SAMPLES.find(([f]) => gmshSampleName(f) === p.sample);
@@ -293,11 +356,17 @@ function labelOf(src) {
 async function openHash({ src, error, perturbed, node }) {
   const same = state.lastGood && selectValueOf(state.lastGood) === selectValueOf(src) && selectValueOf(src) !== '';
   if (!same || state.perturbed || perturbed) await load(src, labelOf(src), { keepHash: true });
+  else if (!sameCompare()) await changeCompare();
   if (perturbed) await perturbWith(perturbed.amount, perturbed.seed, { keepHash: true });
   if (node !== null && node !== undefined) await selectNode(node, { keepHash: true });
   else if (state.node !== null) await selectNode(null, { keepHash: true });
   if (error) showError(`This link's settings could not be read, so the defaults are shown: ${error.replace(/^permalink: /, '')}`);
   await serial(writePermalink).catch(report);
+}
+
+/** Whether the engine smooths each side with what the menus say. */
+function sameCompare() {
+  return JSON.stringify(state.compare) === JSON.stringify(COMPARE.map((_, i) => readChoice(i)));
 }
 
 /** The user edited the hash or went Back or Forward: show what the address now names. */
@@ -330,6 +399,7 @@ async function loadSource(src, call = (...a) => engine.call(...a)) {
       throw new Error('unknown mesh source');
   }
   await call('settings', readSettings());
+  state.compare = COMPARE.map((_, i) => readChoice(i));
   state.lastGood = src;
   state.node = null;
   state.perturbed = null;
@@ -427,17 +497,23 @@ function paint(canvas, pixels, w, h) {
   return now() - t0;
 }
 
+/** The table's rows: key, label, value, and which way is better (`higher`, `lower`, or
+ * none): the better of the two sides is marked. `detail` rows need every corner measured
+ * (large meshes: after the run). */
 const STAT_ROWS = [
   ['nodes', 'Nodes', (s) => s.nodes],
   ['elements', 'Elements', (s) => s.elements],
-  ['inverted', 'Inverted elements', (s) => s.inverted],
-  ['min_angle', 'Min angle', (s) => deg(s.min_angle_deg)],
-  ['max_angle', 'Max angle', (s) => deg(s.max_angle_deg)],
-  ['min_quality', 'Min quality (α/β)', (s) => num(s.min_quality)],
+  ['inverted', 'Inverted elements', (s) => s.inverted, 'lower'],
+  ['min_angle', 'Min angle', (s) => s.min_angle_deg, 'higher', deg],
+  ['max_angle', 'Max angle', (s) => s.max_angle_deg, 'lower', deg],
+  ['min_quality', 'Min quality (α/β)', (s) => s.min_quality, 'higher', num],
+  ['mean_quality', 'Mean quality (α/β)', (s) => s.detail && s.detail.mean_quality, 'higher', num, true],
+  ['small_angles', 'Angles under 18°', (s) => s.detail && s.detail.small_angle_share, 'lower', pct, true],
+  ['max_condition', 'Worst κ (condition number)', (s) => s.detail && (s.detail.max_condition ?? Infinity), 'lower', kappa, true],
   ['laplacian_moves', 'Laplacian moves', (s) => s.laplacian_moves],
   ['optimization_calls', 'Optimization calls', (s) => s.optimization_calls],
   ['passes', 'Passes', (s) => s.passes],
-  ['time', 'Smoothing time', (s) => `${num(s.time_ms, 1)} ms`],
+  ['time', 'Smoothing time', (s) => s.time_ms, null, (v) => `${num(v, 1)} ms`],
 ];
 function deg(v) {
   return Number.isFinite(v) ? `${v.toFixed(2)}°` : '—';
@@ -445,21 +521,49 @@ function deg(v) {
 function num(v, digits = 4) {
   return typeof v === 'number' && Number.isFinite(v) ? v.toFixed(digits) : '—';
 }
-function fillStats(table, s) {
-  const body = table.tBodies[0];
-  body.replaceChildren();
-  for (const [key, label, f] of STAT_ROWS) {
-    const v = f(s);
-    if (v === undefined) continue;
-    const tr = document.createElement('tr');
-    tr.dataset.stat = key;
-    const th = document.createElement('th');
-    th.scope = 'row';
-    th.textContent = label;
-    const td = document.createElement('td');
-    td.textContent = String(v);
-    tr.append(th, td);
-    body.append(tr);
+function pct(v) {
+  return `${(100 * v).toFixed(v > 0 && v < 0.001 ? 3 : 1)}%`;
+}
+function kappa(v) {
+  return v === Infinity ? '∞ (inverted)' : num(v, 3);
+}
+/** Which side's value is better (0 = A, 1 = B), or null for a tie or no direction. */
+function betterSide(dir, a, b) {
+  if (!dir || typeof a !== 'number' || typeof b !== 'number' || Number.isNaN(a) || Number.isNaN(b) || a === b) return null;
+  return (dir === 'higher') === (a > b) ? 0 : 1;
+}
+/** Fills both tables side by side, marking the better value of each row. */
+function fillTables(stats) {
+  const pair = [stats.old, stats.new];
+  for (const [i, side] of ['old', 'new'].entries()) {
+    const s = pair[i];
+    $(`title-${side}`).textContent = EMBED ? s.label : s.title;
+    const body = $(`stats-${side}`).tBodies[0];
+    body.replaceChildren();
+    for (const [key, label, get, dir, fmt = String, detail] of STAT_ROWS) {
+      const v = get(s);
+      const tr = document.createElement('tr');
+      tr.dataset.stat = key;
+      const th = document.createElement('th');
+      th.scope = 'row';
+      th.textContent = label;
+      const td = document.createElement('td');
+      if (detail && !s.detail) {
+        td.textContent = 'after the run';
+        td.classList.add('pending');
+        td.title = 'This mesh is large: this row is measured when the charts are drawn, after a run.';
+      } else {
+        td.textContent = fmt(v);
+        td.dataset.value = String(v);
+        if (betterSide(dir, get(pair[0]), get(pair[1])) === i) {
+          td.classList.add('better'); // marked ✓ by the style sheet
+          td.setAttribute('aria-label', `${td.textContent}, the better of the two`);
+          td.title = 'the better of the two sides';
+        }
+      }
+      tr.append(th, td);
+      body.append(tr);
+    }
   }
 }
 
@@ -488,8 +592,7 @@ async function redrawMeshes() {
   if (f.new) paint_ms[1] = paint($('mesh-new'), f.new, w, h);
   state.frame = { w, h, dpr };
   const t1 = now();
-  fillStats($('stats-old'), f.stats.old);
-  fillStats($('stats-new'), f.stats.new);
+  fillTables(f.stats);
   if (fitEmbed()) return redrawMeshes(); // the tables took room: the canvases shrink, once more at most
   return {
     frame_ms: t1 - t0,
@@ -507,10 +610,11 @@ async function redrawCharts() {
   if (EMBED) return;
   const c = canvasPixels($('pass-chart'));
   const hc = canvasPixels($('hist-old'));
-  const r = await engine.call('charts', c.w, c.h, hc.w, hc.h, c.dpr);
+  const r = await engine.call('charts', c.w, c.h, hc.w, hc.h, c.dpr, $('hist-log').checked);
   paint($('pass-chart'), r.pass, c.w, c.h);
   paint($('hist-old'), r.hist_old, hc.w, hc.h);
   paint($('hist-new'), r.hist_new, hc.w, hc.h);
+  fillTables(r.stats); // the detail rows of a large mesh are measured by now
 }
 
 const NODE_HINT = 'Click a free (interior) node on either mesh, or type its number. Drag a node to move it on both meshes.';
@@ -553,7 +657,7 @@ async function redrawAll() {
 }
 
 // ---- smoothing -----------------------------------------------------------------------
-const SIDE_NAME = { old: 'old (max-min)', new: 'new (smooth)' };
+const SIDE_NAME = { old: 'A', new: 'B' };
 const STAGE_NAME = { plan: 'ordering the nodes', smooth: 'smoothing', measure: 'measuring' };
 
 /**
@@ -977,8 +1081,13 @@ function wire() {
     $('amount-out').textContent = $('amount').value;
   });
   for (const id of SETTINGS) {
-    if (!CHECKED[id]) $(id).addEventListener('change', updatePermalink);
+    if (!CHECKED[id] && !id.includes('-')) $(id).addEventListener('change', updatePermalink);
   }
+  for (const [obj, pen] of COMPARE) {
+    $(obj).addEventListener('change', changeCompare);
+    $(pen).addEventListener('change', changeCompare);
+  }
+  $('hist-log').addEventListener('change', () => serial(redrawCharts).catch(report));
   $('node').addEventListener('change', () => {
     const v = $('node').value.trim();
     if (v !== '' && !/^\d+$/.test(v)) {

@@ -57,7 +57,7 @@ const handlers = {
   drag: (node, x, y) => need().dragNode(node, x, y),
   select: (node) => need().selectNode(node === null ? undefined : node),
   nodeView: (w, h, cw, ch, dpr) => need().nodeView(w, h, cw, ch, dpr),
-  charts: (w, h, hw, hh, dpr) => need().charts(w, h, hw, hh, dpr),
+  charts: (w, h, hw, hh, dpr, logY) => need().charts(w, h, hw, hh, dpr, Boolean(logY)),
   exportMesh: (side, format) => need().exportMesh(side, format),
   panicForTest: () => wasm.panicForTest(),
   decodePermalink: (hash) => wasm.decodePermalink(hash),

@@ -27,6 +27,7 @@ mod lex;
 mod msh;
 mod objoff;
 mod triangle;
+pub use triangle::flat_note;
 mod vtk;
 
 /// The size limit of mesh files, for reading and writing alike: files larger than this
@@ -127,6 +128,21 @@ pub fn read_triangle(node: &str, ele: &str) -> Result<Mesh> {
 /// not a `v` line any more; `$MeshFormat` was not recognised).
 fn without_bom(text: &str) -> &str {
     text.strip_prefix('\u{feff}').unwrap_or(text)
+}
+
+/// Writes node position `p` as the 3D formats do, `x y z` (Rust's shortest exact
+/// decimals): `x y 0` for a 2D mesh, else the point in the mesh's own 3D plane
+/// ([`Mesh::to_3d`]), so a mesh read from 3D is written back where it was.
+pub(crate) fn write_xyz(s: &mut String, mesh: &Mesh, p: glam::DVec2) {
+    use std::fmt::Write;
+    // writing to a String cannot fail
+    let _ = match mesh.plane {
+        None => write!(s, "{:?} {:?} 0", p.x, p.y),
+        Some(_) => {
+            let q = mesh.to_3d(p);
+            write!(s, "{:?} {:?} {:?}", q.x, q.y, q.z)
+        }
+    };
 }
 
 fn check_size(len: u64, name: &str) -> Result<()> {

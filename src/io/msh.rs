@@ -558,7 +558,9 @@ pub(crate) fn write(mesh: &Mesh, version: MshVersion) -> String {
         MshVersion::V22 => {
             let _ = writeln!(s, "$Nodes\n{n}");
             for (i, p) in mesh.nodes.iter().enumerate() {
-                let _ = writeln!(s, "{} {:?} {:?} 0", i + 1, p.x, p.y);
+                let _ = write!(s, "{} ", i + 1);
+                super::write_xyz(&mut s, mesh, *p);
+                s.push('\n');
             }
             let _ = writeln!(s, "$EndNodes\n$Elements\n{}", mesh.element_count());
             for e in 0..mesh.element_count() {
@@ -571,14 +573,29 @@ pub(crate) fn write(mesh: &Mesh, version: MshVersion) -> String {
             s.push_str("$EndElements\n");
         }
         MshVersion::V41 => {
-            let (lo, hi) = mesh.bounds();
-            let _ = writeln!(s, "$Entities\n0 0 1 0\n1 {:?} {:?} 0 {:?} {:?} 0 0 0\n$EndEntities", lo.x, lo.y, hi.x, hi.y);
+            // the surface's bounding box, in 3D
+            let (lo, hi) = mesh.nodes.iter().map(|&p| mesh.to_3d(p)).fold(
+                (glam::DVec3::splat(f64::INFINITY), glam::DVec3::splat(f64::NEG_INFINITY)),
+                |(lo, hi), q| (lo.min(q), hi.max(q)),
+            );
+            let z = |v: f64| if mesh.plane.is_none() { "0".to_string() } else { format!("{v:?}") };
+            let _ = writeln!(
+                s,
+                "$Entities\n0 0 1 0\n1 {:?} {:?} {} {:?} {:?} {} 0 0\n$EndEntities",
+                lo.x,
+                lo.y,
+                z(lo.z),
+                hi.x,
+                hi.y,
+                z(hi.z)
+            );
             let _ = writeln!(s, "$Nodes\n1 {n} 1 {n}\n2 1 0 {n}");
             for i in 0..n {
                 let _ = writeln!(s, "{}", i + 1);
             }
             for p in &mesh.nodes {
-                let _ = writeln!(s, "{:?} {:?} 0", p.x, p.y);
+                super::write_xyz(&mut s, mesh, *p);
+                s.push('\n');
             }
             // One block per run of equal kinds, so the element order is kept.
             let kinds = mesh.kinds();

@@ -197,7 +197,9 @@ pub(crate) fn write_obj(mesh: &Mesh) -> Result<String> {
     let mut s = String::with_capacity(48 * mesh.node_count() + 24 * mesh.element_count() + 64);
     s.push_str("# written by smoothlab\n");
     for p in &mesh.nodes {
-        let _ = writeln!(s, "v {:?} {:?} 0", p.x, p.y);
+        s.push_str("v ");
+        super::write_xyz(&mut s, mesh, *p);
+        s.push('\n');
     }
     for e in 0..mesh.element_count() {
         s.push('f');
@@ -215,7 +217,8 @@ pub(crate) fn write_off(mesh: &Mesh) -> Result<String> {
     let mut s = String::with_capacity(48 * mesh.node_count() + 24 * mesh.element_count() + 64);
     let _ = writeln!(s, "OFF\n{} {} 0", mesh.node_count(), mesh.element_count());
     for p in &mesh.nodes {
-        let _ = writeln!(s, "{:?} {:?} 0", p.x, p.y);
+        super::write_xyz(&mut s, mesh, *p);
+        s.push('\n');
     }
     for e in 0..mesh.element_count() {
         let ids = mesh.element(e);

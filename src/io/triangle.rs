@@ -191,6 +191,19 @@ fn read_elements(text: &str, base: i64, b: &mut MeshBuilder) -> Result<()> {
 }
 
 /// Writes a triangle mesh as a `.node` and an `.ele` text (1-based, markers = fixed flags).
+/// Why a Triangle file cannot keep a mesh's 3D plane, when it had one: `.node` holds 2D
+/// points, so the coordinates written are those in the mesh's own plane.
+pub fn flat_note(mesh: &Mesh) -> Option<String> {
+    let p = mesh.plane?;
+    Some(format!(
+        "the mesh lay in a 3D plane (through {:?} along {:?} and {:?}); Triangle's .node holds 2D points, \
+         so these are its coordinates in that plane (write .msh, .vtk, .obj or .off to keep the plane)",
+        p.origin.to_array(),
+        p.u.to_array(),
+        p.w.to_array()
+    ))
+}
+
 pub(crate) fn write(mesh: &Mesh) -> Result<(String, String)> {
     let kind = mesh.kind(0);
     if let Some(e) = (0..mesh.element_count()).find(|&e| mesh.kind(e) != kind || !kind.is_triangle()) {
@@ -202,7 +215,11 @@ pub(crate) fn write(mesh: &Mesh) -> Result<(String, String)> {
         )));
     }
     let mut node = String::with_capacity(48 * mesh.node_count() + 64);
-    let _ = writeln!(node, "# written by smoothlab: number x y boundary-marker (1 = fixed)\n{} 2 0 1", mesh.node_count());
+    let _ = writeln!(node, "# written by smoothlab: number x y boundary-marker (1 = fixed)");
+    if let Some(note) = flat_note(mesh) {
+        let _ = writeln!(node, "# {note}");
+    }
+    let _ = writeln!(node, "{} 2 0 1", mesh.node_count());
     for (i, p) in mesh.nodes.iter().enumerate() {
         let _ = writeln!(node, "{} {:?} {:?} {}", i + 1, p.x, p.y, u8::from(mesh.fixed[i]));
     }

@@ -603,7 +603,8 @@ pub(crate) fn write(mesh: &Mesh) -> String {
     let mut s = String::with_capacity(48 * n + 40 * m + 256);
     let _ = write!(s, "# vtk DataFile Version 3.0\nsmoothlab mesh\nASCII\nDATASET UNSTRUCTURED_GRID\nPOINTS {n} double\n");
     for p in &mesh.nodes {
-        let _ = writeln!(s, "{:?} {:?} 0", p.x, p.y);
+        super::write_xyz(&mut s, mesh, *p);
+        s.push('\n');
     }
     let _ = writeln!(s, "CELLS {m} {size}");
     for e in 0..m {

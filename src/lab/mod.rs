@@ -40,33 +40,100 @@ pub const MAX_NODES: usize = 1_000_000;
 /// Elements measured per slice of a pass's statistics (see [`Playground::continue_pass`]).
 const STATS_SLICE: usize = 32 * 1024;
 
-/// The two panels of the page.
+/// The two panels of the page: the left one (A) and the right one (B). Each smooths
+/// with its own [`Choice`] of objective; by default the left runs Chen et al.'s
+/// "previous method" (the old max-min objective, Freitag 1997) and the right their new
+/// smooth one, so the panels keep the names `old` and `new`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "lowercase")]
 pub enum Side {
-    /// Freitag's max-min objective (the "previous method" of Chen et al.).
+    /// The left panel (A), by default Freitag's max-min objective.
     Old,
-    /// Chen, Tristano & Kwok's smooth objective.
+    /// The right panel (B), by default Chen, Tristano & Kwok's smooth objective.
     New,
 }
 
 impl Side {
-    #[cfg(test)]
     pub const BOTH: [Side; 2] = [Side::Old, Side::New];
     fn index(self) -> usize {
         self as usize
     }
-    /// The objective a side smooths with: Chen et al.'s "previous method" (max-min α/β,
-    /// Freitag's active-set ascent) or their new smooth one (Fletcher–Reeves).
-    pub fn objective_kind(self) -> ObjectiveKind {
+    /// `A` or `B`, as the page heads its panels.
+    pub fn letter(self) -> &'static str {
         match self {
-            Side::Old => ObjectiveKind::Old,
-            Side::New => ObjectiveKind::New,
+            Side::Old => "A",
+            Side::New => "B",
         }
+    }
+    /// The colour of this side wherever it is drawn (meshes' titles, charts, histograms,
+    /// legends; the page takes it from here): the Okabe–Ito orange for the left side and
+    /// blue for the right, told apart by people with any colour vision.
+    pub fn rgb(self) -> [u8; 3] {
+        match self {
+            Side::Old => crate::render::SERIES[1],
+            Side::New => crate::render::SERIES[2],
+        }
+    }
+    /// [`rgb`](Self::rgb) as a tiny-skia colour.
+    pub fn color(self) -> tiny_skia::Color {
+        let [r, g, b] = self.rgb();
+        tiny_skia::Color::from_rgba8(r, g, b, 255)
     }
 }
 
-/// The shared controls of the page (both sides smooth with the same settings).
+/// What a panel smooths with: an objective and, for `new`, the design of its penalty.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+pub struct Choice {
+    /// By its command-line name (`old`, `sine`, `new`, `condition`, …).
+    pub objective: ObjectiveKind,
+    /// The penalty of `new` (`barrier`, `angle`); absent means the default. Other
+    /// objectives have no penalty: it is then the default.
+    #[serde(default)]
+    pub penalty: Penalty,
+}
+
+impl Choice {
+    /// The left panel's default: the old max-min objective.
+    pub const OLD: Choice = Choice { objective: ObjectiveKind::Old, penalty: Penalty::Barrier };
+    /// The right panel's default: the new objective with its default penalty.
+    pub const NEW: Choice = Choice { objective: ObjectiveKind::New, penalty: Penalty::Barrier };
+
+    /// The objective it names.
+    pub fn build(self) -> Box<dyn Objective> {
+        objective_with(self.objective, self.penalty)
+    }
+
+    /// A short label for legends: `old (max-min α/β …)`, `new (…, angle penalty)`.
+    pub fn label(self) -> String {
+        match self.objective {
+            ObjectiveKind::New => format!("new, {} penalty", self.penalty.name()),
+            k => format!("{} ({})", k.name(), k.describe().split(" (").next().unwrap_or("")),
+        }
+    }
+
+    /// A title for a picture or a panel: the label and who it is from.
+    pub fn title(self) -> String {
+        match self.objective {
+            ObjectiveKind::New => format!("new: {}, {} penalty", self.objective.describe(), self.penalty.name()),
+            k => format!("{}: {}", k.name(), k.describe()),
+        }
+    }
+
+    /// Checks that a penalty is given only to `new` (as the command line refuses it).
+    fn validate(self) -> Result<()> {
+        if self.objective != ObjectiveKind::New && self.penalty != Penalty::default() {
+            return Err(Error::invalid(format!(
+                "the {} penalty is a design of the new objective; {} has no penalty",
+                self.penalty.name(),
+                self.objective.name()
+            )));
+        }
+        Ok(())
+    }
+}
+
+/// The shared controls of the page (both sides smooth with the same settings), and what
+/// each side smooths with.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 pub struct Settings {
     /// By its name (`rules`, `c2`, …), as the page's menus give it.
@@ -77,29 +144,36 @@ pub struct Settings {
     pub order: Order,
     /// Solver iterations per optimization call.
     pub max_iter: u32,
-    /// The design of the new objective's penalty (the new side's), by its name
-    /// (`barrier`, `angle`); absent means the default.
-    #[serde(default)]
-    pub penalty: Penalty,
+    /// What the left (A) and the right (B) panel smooth with; absent means old against
+    /// new (with the barrier penalty).
+    #[serde(default = "default_compare")]
+    pub compare: [Choice; 2],
+}
+
+fn default_compare() -> [Choice; 2] {
+    [Choice::OLD, Choice::NEW]
 }
 
 impl Default for Settings {
-    /// Chen's algorithm: rules, priority order, 3 iterations per call; θ_t = 30°; the
-    /// barrier penalty.
+    /// Chen's algorithm: rules, priority order, 3 iterations per call; θ_t = 30°; old
+    /// against new with the barrier penalty.
     fn default() -> Self {
         Settings {
             strategy: Strategy::Rules,
             threshold_deg: 30.0,
             order: Order::Priority,
             max_iter: 3,
-            penalty: Penalty::default(),
+            compare: default_compare(),
         }
     }
 }
 
 impl Settings {
-    /// The drivers' options (checked).
+    /// The drivers' options (checked), after checking each side's choice.
     pub fn smooth_options(&self) -> Result<SmoothOptions> {
+        for c in self.compare {
+            c.validate()?;
+        }
         let range = crate::limits::BATCH_MAX_ITER;
         if !range.contains(self.max_iter.into()) {
             return Err(Error::invalid(format!("{} solver iterations: give {}", self.max_iter, range.words())));
@@ -111,6 +185,11 @@ impl Settings {
             .with_max_iter(self.max_iter);
         o.validate()?;
         Ok(o)
+    }
+
+    /// What `side` smooths with.
+    pub fn choice(&self, side: Side) -> Choice {
+        self.compare[side.index()]
     }
 }
 
@@ -167,7 +246,7 @@ impl Panel {
     fn new(side: Side, mesh: Mesh, settings: &Settings, version: u64, full: &MeshStats, buckets: Vec<u8>) -> Result<Self> {
         Ok(Panel {
             mesh,
-            objective: objective_with(side.objective_kind(), settings.penalty),
+            objective: settings.choice(side).build(),
             smoother: Smoother::new(settings.smooth_options()?)?,
             records: Vec::new(),
             version,
@@ -214,15 +293,55 @@ pub struct PanelStats {
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct PanelTable {
     pub side: Side,
+    /// The panel's heading: its letter and what it smooths with ([`Choice::title`]).
+    pub title: String,
+    /// The same, short ([`Choice::label`]), for a compact page.
+    pub label: String,
     pub nodes: usize,
     pub elements: usize,
     #[serde(flatten)]
     pub mesh: QuickStats,
+    /// The rows that need every corner measured, when they were (see [`TableDetail`]).
+    pub detail: Option<TableDetail>,
     pub passes: usize,
     pub laplacian_moves: u64,
     pub optimization_calls: u64,
     pub solver_iterations: u64,
     pub time_ms: f64,
+}
+
+/// Corners under this angle, degrees, count as poor in the table: Freitag (1997) judges
+/// meshes by their angle distribution (Fig. 3), and 18° is three of its 6° bins.
+pub const SMALL_ANGLE_DEG: f64 = 18.0;
+
+/// Meshes with at most this many elements have their table's [`TableDetail`] measured
+/// after every change; larger ones when their charts are drawn (after a run).
+pub const DETAIL_MAX_ELEMENTS: usize = 250_000;
+
+/// The rows of the table that come from the full statistics ([`MeshStats`]), which
+/// measure every corner's angle and every element's condition number.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct TableDetail {
+    /// Mean element quality α/β.
+    pub mean_quality: f64,
+    /// Share of corner angles under [`SMALL_ANGLE_DEG`], 0 to 1 (inverted corners count).
+    pub small_angle_share: f64,
+    /// Worst condition number κ; `None` when an element is inverted (κ = ∞).
+    pub max_condition: Option<f64>,
+}
+
+impl TableDetail {
+    /// The detail rows of full statistics.
+    pub fn of(s: &MeshStats) -> TableDetail {
+        let bins = (SMALL_ANGLE_DEG / 6.0) as usize;
+        let total: u64 = s.angle_histogram_6deg.iter().sum();
+        let small: u64 = s.angle_histogram_6deg.iter().take(bins).sum();
+        TableDetail {
+            mean_quality: s.mean_quality,
+            small_angle_share: if total == 0 { 0.0 } else { small as f64 / total as f64 },
+            max_condition: s.max_condition.is_finite().then_some(s.max_condition),
+        }
+    }
 }
 
 /// Where a pass in slices stands (see [`Playground::continue_pass`]).
@@ -350,7 +469,7 @@ impl Playground {
         self.next_version
     }
 
-    #[cfg(test)]
+    /// The settings the next passes use.
     pub fn settings(&self) -> Settings {
         self.settings
     }
@@ -360,9 +479,9 @@ impl Playground {
     pub fn set_settings(&mut self, settings: Settings) -> Result<()> {
         let o = settings.smooth_options()?;
         self.abort_pass();
-        for (p, side) in self.panels.iter_mut().zip([Side::Old, Side::New]) {
+        for (p, side) in self.panels.iter_mut().zip(Side::BOTH) {
             p.smoother = Smoother::new(o)?;
-            p.objective = objective_with(side.objective_kind(), settings.penalty);
+            p.objective = settings.choice(side).build();
         }
         self.settings = settings;
         Ok(())
@@ -660,15 +779,32 @@ impl Playground {
         }
     }
 
+    /// The table's detail rows of a panel: measured now for a mesh of at most
+    /// [`DETAIL_MAX_ELEMENTS`] elements, else only when the full statistics are at hand;
+    /// never during a pass (its mesh is part-smoothed).
+    fn detail(&self, side: Side) -> Option<TableDetail> {
+        let p = self.panel(side);
+        if self.run.is_some() {
+            return None;
+        }
+        if let Some(full) = p.full.get() {
+            return Some(TableDetail::of(full));
+        }
+        (p.mesh.element_count() <= DETAIL_MAX_ELEMENTS).then(|| TableDetail::of(self.full_stats(side)))
+    }
+
     /// What the page's statistics table shows of a panel (cheap: kept up to date).
     pub fn table(&self, side: Side) -> PanelTable {
         let p = self.panel(side);
         let r = &p.records;
         PanelTable {
             side,
+            title: format!("{}: {}", side.letter(), self.settings.choice(side).title()),
+            label: self.side_label(side),
             nodes: p.mesh.node_count(),
             elements: p.mesh.element_count(),
             mesh: p.quick,
+            detail: self.detail(side),
             passes: r.len(),
             laplacian_moves: r.iter().map(|r| r.laplacian_moves as u64).sum(),
             optimization_calls: r.iter().map(|r| r.optimization_calls as u64).sum(),
@@ -919,7 +1055,7 @@ mod tests {
                         for side in Side::BOTH {
                             let mut m = mesh.clone();
                             let mut s = Smoother::new(settings.smooth_options().unwrap()).unwrap();
-                            let obj = objective_with(side.objective_kind(), settings.penalty);
+                            let obj = settings.choice(side).build();
                             let mut rec = None;
                             for _ in 0..pass {
                                 rec = Some(s.pass(&mut m, obj.as_ref(), &|| 0.0));

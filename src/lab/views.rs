@@ -9,12 +9,12 @@ use tiny_skia::Pixmap;
 
 use super::{raster, Playground, Side};
 use crate::error::{Error, Result};
-use crate::objective::Star;
+use crate::objective::{Goal, Star};
 use crate::optimize::{DirectionKind, SolveResult, StopReason};
 use crate::render::{
     mesh_view, render_angle_histogram, render_chart, render_level_set, render_mesh, render_pass_histories,
     sample_field, star_bounds, AngleHistogram, Chart, Frame, HistogramSeries, LevelSet, LevelSetView, MeshView,
-    PassHistory, PathKind, Series, View,
+    percentages, PassHistory, PathKind, Series, View,
 };
 
 /// Largest side of a picture, device pixels.
@@ -53,28 +53,43 @@ pub struct NodeSummary {
 /// One side's solve at a node, in numbers.
 #[derive(Clone, Debug, PartialEq, serde::Serialize)]
 pub struct SolveSummary {
+    /// What the side smooths with ([`Choice::label`](super::Choice::label)).
+    pub label: String,
+    /// `larger` (a max-min objective) or `smaller` (a sum to minimise) is better.
+    pub better: &'static str,
     pub value0: f64,
     pub value: f64,
     pub iterations: u32,
     pub stop: String,
 }
 
+impl SolveSummary {
+    fn text(&self, side: Side) -> String {
+        format!(
+            "{}, {} ({} is better): {:.4} → {:.4} in {} iterations ({})",
+            side.letter(),
+            self.label,
+            self.better,
+            self.value0,
+            self.value,
+            self.iterations,
+            self.stop
+        )
+    }
+}
+
 impl NodeSummary {
     /// One line for the page.
     pub fn text(&self) -> String {
-        format!(
-            "Node {}: old objective (min α/β, larger is better) {:.4} → {:.4} in {} iterations ({}); \
-             new objective (smaller is better) {:.4} → {:.4} in {} iterations ({}).",
-            self.node,
-            self.old.value0,
-            self.old.value,
-            self.old.iterations,
-            self.old.stop,
-            self.new.value0,
-            self.new.value,
-            self.new.iterations,
-            self.new.stop
-        )
+        format!("Node {}: {}; {}.", self.node, self.old.text(Side::Old), self.new.text(Side::New))
+    }
+}
+
+/// `larger` or `smaller`: which values of an objective are better.
+fn better_words(goal: Goal) -> &'static str {
+    match goal {
+        Goal::MaximizeMin => "larger",
+        Goal::MinimizeSum => "smaller",
     }
 }
 
@@ -155,11 +170,8 @@ impl Playground {
         let mut path = Vec::with_capacity(result.history.len() + 1);
         path.push((result.x0, PathKind::Start));
         path.extend(result.history.iter().map(|it| (it.x, path_kind(it.direction))));
-        let title = match side {
-            Side::Old => "old: max-min α/β (Freitag's ascent)",
-            Side::New => "new: Chen et al. (Fletcher–Reeves)",
-        };
-        let data = LevelSet { field: &field, star: &star, path: &path, optimum: Some(result.x), title };
+        let title = format!("{}: {}", side.letter(), self.settings.choice(side).title());
+        let data = LevelSet { field: &field, star: &star, path: &path, optimum: Some(result.x), title: &title };
         let mut pm = pixmap(c.w, c.h)?;
         render_level_set(&mut pm, &data, &LevelSetView { dpr: c.dpr, ..LevelSetView::default() });
         Ok((pm, result))
@@ -177,37 +189,33 @@ impl Playground {
                 .collect()
         };
         let (so, sn) = (series(&old), series(&new));
-        render_chart(
-            &mut pm,
-            &[Series::new("old: min α/β", &so)],
-            &Chart {
-                title: "Old objective per iteration (larger is better)",
-                x_label: "iteration",
-                y_label: "min α/β",
-                dpr: chart.dpr,
-                frame: Some(full.row(0, 2, 4.0)),
-                ..Chart::default()
-            },
-        );
-        render_chart(
-            &mut pm,
-            &[Series::new("new: f", &sn).with_color(crate::render::series_color(1))],
-            &Chart {
-                title: "New objective per iteration (smaller is better)",
-                x_label: "iteration",
-                y_label: "f",
-                dpr: chart.dpr,
-                frame: Some(full.row(1, 2, 4.0)),
-                ..Chart::default()
-            },
-        );
-        let summary = |r: &SolveResult| SolveSummary {
+        for (i, (side, points)) in [(Side::Old, &so), (Side::New, &sn)].into_iter().enumerate() {
+            let choice = self.settings.choice(side);
+            let label = format!("{}: {}", side.letter(), choice.label());
+            let title = format!("{label}, per iteration ({} is better)", better_words(choice.objective.goal()));
+            render_chart(
+                &mut pm,
+                &[Series::new(&label, points).with_color(side.color())],
+                &Chart {
+                    title: &title,
+                    x_label: "iteration",
+                    y_label: "objective",
+                    dpr: chart.dpr,
+                    frame: Some(full.row(i, 2, 4.0)),
+                    legend: false,
+                    ..Chart::default()
+                },
+            );
+        }
+        let summary = |side: Side, r: &SolveResult| SolveSummary {
+            label: self.settings.choice(side).label(),
+            better: better_words(self.settings.choice(side).objective.goal()),
             value0: r.value0,
             value: r.value,
             iterations: r.iterations,
             stop: stop_words(r.stop).to_string(),
         };
-        Ok(([old_pm, new_pm, pm], NodeSummary { node, old: summary(&old), new: summary(&new) }))
+        Ok(([old_pm, new_pm, pm], NodeSummary { node, old: summary(Side::Old, &old), new: summary(Side::New, &new) }))
     }
 
     /// Per-pass curves of both sides (min/max angle, min quality, inverted elements;
@@ -226,50 +234,67 @@ impl Playground {
                 col(start.inverted as f64, &|r| r.inverted as f64),
             ]
         };
-        let (o, n) = (hist(Side::Old), hist(Side::New));
-        let runs = [
-            PassHistory {
-                label: "old (max-min)",
-                min_angle_deg: &o[0],
-                max_angle_deg: &o[1],
-                min_quality: &o[2],
-                inverted: &o[3],
-            },
-            PassHistory {
-                label: "new (Chen et al.)",
-                min_angle_deg: &n[0],
-                max_angle_deg: &n[1],
-                min_quality: &n[2],
-                inverted: &n[3],
-            },
-        ];
+        let cols = [hist(Side::Old), hist(Side::New)];
+        let labels = Side::BOTH.map(|side| self.side_label(side));
+        let runs: Vec<PassHistory<'_>> = Side::BOTH
+            .iter()
+            .map(|&side| {
+                let c = &cols[side as usize];
+                PassHistory {
+                    label: &labels[side as usize],
+                    min_angle_deg: &c[0],
+                    max_angle_deg: &c[1],
+                    min_quality: &c[2],
+                    inverted: &c[3],
+                    color: Some(side.color()),
+                }
+            })
+            .collect();
         let mut pm = pixmap(c.w, c.h)?;
-        render_pass_histories(
-            &mut pm,
-            &runs,
-            &Chart { title: "Per pass (0 = as loaded)", dpr: c.dpr, ..Chart::default() },
-        );
+        render_pass_histories(&mut pm, &runs, &Chart { title: "Per pass (0 = as loaded)", dpr: c.dpr, ..Chart::default() });
         Ok(pm)
     }
 
-    /// The angle histogram of a side's mesh over that of the mesh as loaded.
-    pub fn render_histogram(&self, side: Side, c: Canvas) -> Result<Pixmap> {
+    /// `A: old (max-min α/β)`, as legends name a side.
+    pub fn side_label(&self, side: Side) -> String {
+        format!("{}: {}", side.letter(), self.settings.choice(side).label())
+    }
+
+    /// The y scale both angle histograms share: the largest percentage in any bin of
+    /// either side or of the mesh as loaded, so the two pictures compare at a glance.
+    pub fn histogram_top(&self) -> f64 {
+        let top = |c: &[u64]| percentages(c).into_iter().fold(0.0, f64::max);
+        Side::BOTH
+            .iter()
+            .map(|&s| top(&self.full_stats(s).angle_histogram_6deg))
+            .fold(top(&self.original_stats().angle_histogram_6deg), f64::max)
+    }
+
+    /// The angle histogram of a side's mesh over that of the mesh as loaded, on the
+    /// scale both sides share ([`histogram_top`](Self::histogram_top)), linear or
+    /// logarithmic.
+    pub fn render_histogram(&self, side: Side, c: Canvas, log_y: bool) -> Result<Pixmap> {
         let start = &self.original_stats().angle_histogram_6deg;
         let now = &self.full_stats(side).angle_histogram_6deg;
-        let label = match side {
-            Side::Old => "old (max-min)",
-            Side::New => "new (Chen et al.)",
-        };
+        let label = self.side_label(side);
         let mut pm = pixmap(c.w, c.h)?;
         render_angle_histogram(
             &mut pm,
-            &[HistogramSeries { label: "as loaded", counts: start }, HistogramSeries { label, counts: now }],
-            &AngleHistogram { title: "Corner angles (6° bins)", dpr: c.dpr, ..AngleHistogram::default() },
+            &[
+                HistogramSeries { label: "as loaded", counts: start, color: None },
+                HistogramSeries { label: &label, counts: now, color: Some(side.color()) },
+            ],
+            &AngleHistogram {
+                title: "Corner angles (6° bins)",
+                dpr: c.dpr,
+                y_top: Some(self.histogram_top()),
+                log_y,
+                ..AngleHistogram::default()
+            },
         )?;
         Ok(pm)
     }
 }
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -327,7 +352,7 @@ mod tests {
         pg.step(&|| 0.0);
         let after = pg.render_pass_chart(C).unwrap();
         assert_ne!(before.data(), after.data());
-        let h = pg.render_histogram(Side::New, C).unwrap();
+        let h = pg.render_histogram(Side::New, C, false).unwrap();
         assert!(opaque(&h) && colours(&h) > 8);
     }
 

@@ -51,8 +51,9 @@ pub use old::MaxMinShape;
 pub use sine::MaxMinSine;
 pub use untangle::{MaxMinDet, Untangle, UNTANGLE_BETA};
 
-/// The objectives smoothlab offers, by their command-line names.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+/// The objectives smoothlab offers, by their command-line names (serde uses the same names).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, serde::Serialize, serde::Deserialize)]
+#[serde(rename_all = "kebab-case")]
 pub enum ObjectiveKind {
     /// `old`: maximise the minimum α/β of the star (Chen et al.'s previous method).
     Old,
@@ -67,6 +68,7 @@ pub enum ObjectiveKind {
     /// `untangle`: Knupp's Σ(|det| − det), zero once every corner is valid.
     Untangle,
     /// `untangle-mindet`: maximise the minimum corner det (Knupp & Freitag).
+    #[serde(rename = "untangle-mindet")]
     UntangleMinDet,
 }
 
@@ -92,6 +94,19 @@ impl ObjectiveKind {
             ObjectiveKind::ConditionMax => "condition-max",
             ObjectiveKind::Untangle => "untangle",
             ObjectiveKind::UntangleMinDet => "untangle-mindet",
+        }
+    }
+
+    /// What it is, in a few words for people (the page's menus and picture titles).
+    pub fn describe(self) -> &'static str {
+        match self {
+            ObjectiveKind::Old => "max-min α/β (Freitag's ascent)",
+            ObjectiveKind::Sine => "max-min sine (Freitag)",
+            ObjectiveKind::New => "Chen, Tristano & Kwok (Fletcher–Reeves)",
+            ObjectiveKind::Condition => "condition number κ, 2-norm (Knupp)",
+            ObjectiveKind::ConditionMax => "condition number κ, worst corner (Knupp)",
+            ObjectiveKind::Untangle => "untangling Σ(|det| − det) (Knupp)",
+            ObjectiveKind::UntangleMinDet => "max-min det (Knupp & Freitag)",
         }
     }
 
@@ -472,6 +487,8 @@ mod tests {
         for k in ObjectiveKind::ALL {
             assert_eq!(ObjectiveKind::parse(k.name()), Some(k));
             assert_eq!(k.to_string(), k.name());
+            // serde (the page, the lab's settings) uses the command-line names
+            assert_eq!(serde_json::to_string(&k).unwrap(), format!("\"{}\"", k.name()));
             let obj = objective(k);
             assert_eq!(obj.name(), k.name());
             assert_eq!(obj.goal(), k.goal());

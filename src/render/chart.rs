@@ -4,7 +4,7 @@
 use glam::DVec2;
 use tiny_skia::{Color, PathBuilder, Pixmap, Rect, Stroke, StrokeDash, Transform};
 
-use super::axes::{draw_axes, nice_range, nice_ticks, Axis, AxisLabels, Scale, Ticks};
+use super::axes::{draw_axes, format_tick, nice_range, nice_ticks, Axis, AxisLabels, Scale, Ticks};
 use super::colormap::series_color;
 use super::paint::{fill_rect, legend, legend_row, legend_size, push_marker, rect_mask, solid, Key, LegendEntry, Marker};
 use super::text::{draw_text, Align, TextStyle, Valign};
@@ -60,11 +60,17 @@ pub struct Chart<'a> {
     pub frame: Option<Frame>,
     /// Draw the legend (top right, inside the plot). Default true.
     pub legend: bool,
+    /// A broken y axis: when some points lie below this value and others at or above it,
+    /// the axis spans only the values at or above it, and the points below sit in a band
+    /// under a break mark, each with its value written beside it (a mesh as loaded with
+    /// an inverted corner of −176° would otherwise squash every later pass into a line).
+    /// Default `None`.
+    pub y_break: Option<f64>,
 }
 
 impl Default for Chart<'_> {
     fn default() -> Self {
-        Chart { title: "", x_label: "", y_label: "", log_y: false, integer_x: true, y_range: None, dpr: 1.0, frame: None, legend: true }
+        Chart { title: "", x_label: "", y_label: "", log_y: false, integer_x: true, y_range: None, dpr: 1.0, frame: None, legend: true, y_break: None }
     }
 }
 
@@ -90,6 +96,22 @@ fn data_range(series: &[Series<'_>], log_y: bool) -> (Range, Range) {
     (xr, yr)
 }
 
+/// For a y axis broken at `b`: `Some((below, above))`, the ranges of the finite values
+/// below `b` and at or above it, when there are both.
+fn broken_range(series: &[Series<'_>], b: f64) -> Option<((f64, f64), (f64, f64))> {
+    let (mut lo, mut hi): (Range, Range) = (None, None);
+    for p in series.iter().flat_map(|s| s.points).filter(|p| p.is_finite()) {
+        let r = if p.y < b { &mut lo } else { &mut hi };
+        *r = Some(match *r {
+            Some((a, c)) => (a.min(p.y), c.max(p.y)),
+            None => (p.y, p.y),
+        });
+    }
+    let (lo, hi) = (lo?, hi?);
+    // worth it only when the values below would take more than half the axis
+    (hi.0 - lo.0 > 2.0 * (hi.1 - hi.0).max(f64::MIN_POSITIVE)).then_some((lo, hi))
+}
+
 /// Ticks for an x axis of whole numbers.
 fn integer_ticks(lo: f64, hi: f64) -> Ticks {
     let t = nice_ticks(lo, hi, 8);
@@ -110,7 +132,15 @@ pub fn render_chart(pixmap: &mut Pixmap, series: &[Series<'_>], chart: &Chart<'_
     let left = if chart.y_label.is_empty() { 48.0 } else { 66.0 };
     let bottom = if chart.x_label.is_empty() { 28.0 } else { 46.0 };
     let plot = frame.inset(left, top, 14.0, bottom);
-    let (xr, yr) = data_range(series, chart.log_y);
+    let (xr, mut yr) = data_range(series, chart.log_y);
+    // the values below a break, if the axis is broken: the range is of the others
+    let below = match (chart.y_break, chart.log_y) {
+        (Some(b), false) => broken_range(series, b),
+        _ => None,
+    };
+    if let Some((_, above)) = below {
+        yr = Some(above);
+    }
     let (x0, x1) = match xr {
         Some((a, b)) if chart.integer_x => (a.floor(), b.ceil().max(a.floor() + 1.0)),
         Some((a, b)) => nice_range(a, b, 6),
@@ -127,10 +157,48 @@ pub fn render_chart(pixmap: &mut Pixmap, series: &[Series<'_>], chart: &Chart<'_
         (_, None, true) => (1.0, 10.0),
         (_, None, false) => (0.0, 1.0),
     };
+    // a broken axis keeps a band of BAND css pixels at the bottom: the axis is extended
+    // linearly over it, so values at or above the break map as they would without it
+    const BAND: f32 = 18.0;
+    let (y0, band_value) = match below {
+        Some(_) if plot.h > 3.0 * BAND => {
+            let ext = (y1 - y0) * BAND as f64 / (plot.h - BAND) as f64;
+            (y0 - ext, Some(y0 - ext / 2.0))
+        }
+        _ => (y0, None),
+    };
     let xa = Axis { lo: x0, hi: x1, scale: Scale::Linear, p0: plot.x * s, p1: plot.right() * s };
     let ya = Axis { lo: y0, hi: y1, scale, p0: plot.bottom() * s, p1: plot.y * s };
     let xt = if chart.integer_x { integer_ticks(x0, x1) } else { nice_ticks(x0, x1, 6) };
     draw_axes(pixmap, &xa, &ya, AxisLabels { title: chart.title, x: chart.x_label, y: chart.y_label }, &xt, s);
+    let mut band_labels: Vec<(f32, f32, String)> = Vec::new();
+    if band_value.is_some() {
+        // the band: no ticks nor grid in it, a shaded strip and a break mark on the axis
+        let (l, b) = (plot.x * s, plot.bottom() * s);
+        let top = (plot.bottom() - BAND) * s;
+        fill_rect(pixmap, frame.x * s, top, l - frame.x * s - 0.5 * s, BAND * s, Color::WHITE);
+        fill_rect(pixmap, l + 0.5 * s, top, plot.w * s - s, BAND * s - 0.5 * s, Color::from_rgba8(238, 238, 238, 255));
+        let _ = b;
+        let mut zig = PathBuilder::new();
+        let y = top;
+        zig.move_to(l - 6.0 * s, y + 3.0 * s);
+        zig.line_to(l - 2.0 * s, y - 3.0 * s);
+        zig.line_to(l + 2.0 * s, y + 3.0 * s);
+        zig.line_to(l + 6.0 * s, y - 3.0 * s);
+        if let Some(path) = zig.finish() {
+            pixmap.stroke_path(&path, &solid(Color::from_rgba8(40, 40, 40, 255)), &Stroke { width: 1.5 * s, ..Default::default() }, Transform::identity(), None);
+        }
+        let st = TextStyle::new(10.0 * s).with_color(Color::from_rgba8(40, 40, 40, 255)).with_align(Align::Right, Valign::Middle);
+        draw_text(pixmap, "below", l - 4.0 * s, top + 0.5 * BAND * s, st);
+    }
+    // where a point is drawn: in the band when it is below the break
+    let place = |p: &DVec2| -> Option<(f32, f32)> {
+        let y = match (band_value, chart.y_break) {
+            (Some(v), Some(b)) if p.y < b => v,
+            _ => p.y,
+        };
+        Some((xa.map(p.x)?, ya.map(y)?))
+    };
 
     let clip = Rect::from_xywh(plot.x * s - 4.0 * s, plot.y * s - 4.0 * s, (plot.w + 8.0) * s, (plot.h + 8.0) * s).and_then(|r| rect_mask(pixmap, r));
     let mut drawn = false;
@@ -142,8 +210,14 @@ pub fn render_chart(pixmap: &mut Pixmap, series: &[Series<'_>], chart: &Chart<'_
         let mut marks = PathBuilder::new();
         let mut pen_down = false;
         for p in ser.points {
-            match (xa.map(p.x), ya.map(p.y)) {
-                (Some(x), Some(y)) => {
+            match place(p) {
+                Some((x, y)) => {
+                    if band_value.is_some() && chart.y_break.is_some_and(|b| p.y < b) && p.y.is_finite() {
+                        let text = format_tick(p.y, if p.y.abs() >= 10.0 { 1.0 } else { 0.1 });
+                        if !band_labels.iter().any(|(bx, _, t)| (*bx - x).abs() < 1.0 && *t == text) {
+                            band_labels.push((x, y, text));
+                        }
+                    }
                     if let (true, Some(&(px, py))) = (pen_down, ink.last()) {
                         let n = ((x - px).hypot(y - py) / (4.0 * s)).ceil().min(500.0) as usize;
                         for k in 1..n {
@@ -178,6 +252,10 @@ pub fn render_chart(pixmap: &mut Pixmap, series: &[Series<'_>], chart: &Chart<'_
         if let Some(path) = marks.finish() {
             pixmap.fill_path(&path, &solid(color), tiny_skia::FillRule::Winding, Transform::identity(), clip.as_ref());
         }
+    }
+    let st = TextStyle::new(10.0 * s).with_color(Color::from_rgba8(20, 20, 20, 255)).with_align(Align::Left, Valign::Middle);
+    for (x, y, text) in &band_labels {
+        draw_text(pixmap, text, x + 5.0 * s, *y, st);
     }
     if !drawn {
         let st = TextStyle::new(12.0 * s).with_color(Color::from_rgba8(120, 120, 120, 255)).with_align(Align::Centre, Valign::Middle);
@@ -215,6 +293,8 @@ pub struct PassHistory<'a> {
     pub min_quality: &'a [f64],
     /// Number of inverted elements.
     pub inverted: &'a [f64],
+    /// Its colour; `None`: the series palette's, by position (from the second).
+    pub color: Option<Color>,
 }
 
 /// Four small charts (min angle, max angle, min quality, inverted elements against
@@ -230,24 +310,26 @@ pub fn render_pass_histories(pixmap: &mut Pixmap, runs: &[PassHistory<'_>], char
         draw_text(pixmap, chart.title, (frame.x + 0.5 * frame.w) * s, (frame.y + 19.0) * s, st);
     }
     let run_key = |i: usize| Key::Line { dashed: i % 2 == 1, marker: Some(if i % 2 == 0 { Marker::Circle } else { Marker::Triangle }) };
-    let entries: Vec<LegendEntry<'_>> = runs.iter().enumerate().map(|(i, r)| LegendEntry { label: r.label, color: series_color(i + 1), key: run_key(i) }).collect();
+    let entries: Vec<LegendEntry<'_>> = runs.iter().enumerate().map(|(i, r)| LegendEntry { label: r.label, color: r.color.unwrap_or(series_color(i + 1)), key: run_key(i) }).collect();
     let legend_h = if chart.legend && !entries.is_empty() { 20.0 } else { 0.0 };
     if legend_h > 0.0 {
         legend_row(pixmap, &entries, (frame.x + 0.5 * frame.w) * s, (frame.y + title_h + 8.0) * s, s);
     }
     let top = title_h + legend_h;
     let body = frame.inset(0.0, top, 0.0, 0.0);
-    let panels: [(&str, Column); 4] = [
-        ("min angle (\u{b0})", |r| r.min_angle_deg),
-        ("max angle (\u{b0})", |r| r.max_angle_deg),
-        ("min quality (\u{3b1} / \u{3b2})", |r| r.min_quality),
-        ("inverted elements", |r| r.inverted),
+    // the angle charts break their axis at 0°: an inverted corner as loaded (−176°) sits
+    // in a band below, and the passes after it keep the whole height
+    let panels: [(&str, Column, Option<f64>); 4] = [
+        ("min angle (\u{b0})", |r| r.min_angle_deg, Some(0.0)),
+        ("max angle (\u{b0})", |r| r.max_angle_deg, Some(0.0)),
+        ("min quality (\u{3b1} / \u{3b2})", |r| r.min_quality, None),
+        ("inverted elements", |r| r.inverted, None),
     ];
     let points: Vec<Vec<Vec<DVec2>>> = panels
         .iter()
-        .map(|(_, get)| runs.iter().map(|r| get(r).iter().enumerate().map(|(i, v)| DVec2::new(i as f64, *v)).collect()).collect())
+        .map(|(_, get, _)| runs.iter().map(|r| get(r).iter().enumerate().map(|(i, v)| DVec2::new(i as f64, *v)).collect()).collect())
         .collect();
-    for (k, (title, _)) in panels.iter().enumerate() {
+    for (k, &(title, _, y_break)) in panels.iter().enumerate() {
         let cell = body.row(k / 2, 2, 4.0).column(k % 2, 2, 8.0);
         let series: Vec<Series<'_>> = runs
             .iter()
@@ -255,12 +337,12 @@ pub fn render_pass_histories(pixmap: &mut Pixmap, runs: &[PassHistory<'_>], char
             .map(|(i, r)| Series {
                 label: r.label,
                 points: &points[k][i],
-                color: Some(series_color(i + 1)),
+                color: Some(r.color.unwrap_or(series_color(i + 1))),
                 dashed: i % 2 == 1,
                 marker: Some(if i % 2 == 0 { Marker::Circle } else { Marker::Triangle }),
             })
             .collect();
-        let sub = Chart { title, x_label: "pass", y_label: "", log_y: false, integer_x: true, y_range: None, dpr: s, frame: Some(cell), legend: false };
+        let sub = Chart { title, x_label: "pass", y_label: "", log_y: false, integer_x: true, y_range: None, dpr: s, frame: Some(cell), legend: false, y_break };
         render_chart(pixmap, &series, &sub);
     }
 }
@@ -280,6 +362,42 @@ mod tests {
         assert_eq!(x, Some((2.0, 3.0)));
         assert_eq!(y, Some((1e-3, 10.0)));
         assert_eq!(data_range(&[], true), (None, None));
+    }
+
+    /// Rows of the chart where colour `c` is drawn in column `x`.
+    fn rows_of(p: &Pixmap, x: u32, c: (u8, u8, u8)) -> Vec<u32> {
+        (0..p.height()).filter(|&y| {
+            let px = p.pixel(x, y).unwrap();
+            (px.red(), px.green(), px.blue()) == c
+        }).collect()
+    }
+
+    #[test]
+    fn a_broken_axis_keeps_the_passes_readable_beside_a_folded_start() {
+        // pass 0: an inverted corner of −176°; passes 1–3 between 20° and 30°
+        let pts = [DVec2::new(0.0, -176.0), DVec2::new(1.0, 20.0), DVec2::new(2.0, 25.0), DVec2::new(3.0, 30.0)];
+        let blue = Color::from_rgba8(0, 0, 255, 255);
+        let ser = [Series::new("", &pts).with_color(blue)];
+        let draw = |y_break| {
+            let mut p = Pixmap::new(300, 240).unwrap();
+            render_chart(&mut p, &ser, &Chart { legend: false, y_break, ..Chart::default() });
+            p
+        };
+        // the plot spans x = 48 … 286 for passes 0 … 3: pass 1 at 127, pass 3 at 286
+        let spread = |p: &Pixmap| {
+            let (a, b) = (rows_of(p, 127, (0, 0, 255)), rows_of(p, 283, (0, 0, 255)));
+            a.iter().sum::<u32>() as f64 / a.len() as f64 - b.iter().sum::<u32>() as f64 / b.len() as f64
+        };
+        let (plain, broken) = (spread(&draw(None)), spread(&draw(Some(0.0))));
+        assert!(plain < 30.0, "without the break the passes are squashed: {plain} px");
+        assert!(broken > 100.0, "with it they use the height: {broken} px");
+        // a start above the break needs none: the same picture
+        let above = [DVec2::new(0.0, 5.0), DVec2::new(1.0, 20.0)];
+        let mut a = Pixmap::new(200, 150).unwrap();
+        let mut b = a.clone();
+        render_chart(&mut a, &[Series::new("", &above)], &Chart::default());
+        render_chart(&mut b, &[Series::new("", &above)], &Chart { y_break: Some(0.0), ..Chart::default() });
+        assert_eq!(a.data(), b.data());
     }
 
     #[test]

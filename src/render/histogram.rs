@@ -17,6 +17,8 @@ pub struct HistogramSeries<'a> {
     pub label: &'a str,
     /// Counts (not percentages) of equal bins spanning [0°, 180°].
     pub counts: &'a [u64],
+    /// Its colour; `None`: the series palette's, by position.
+    pub color: Option<Color>,
 }
 
 /// Options of [`render_angle_histogram`].
@@ -30,13 +32,22 @@ pub struct AngleHistogram<'a> {
     pub frame: Option<Frame>,
     /// Default true.
     pub legend: bool,
+    /// The largest percentage the y axis must show (several pictures on one scale);
+    /// `None`: this picture's own largest. Default `None`.
+    pub y_top: Option<f64>,
+    /// A logarithmic percentage axis (down to [`LOG_FLOOR_PCT`]; empty bins sit on the
+    /// axis), which shows the few very poor angles beside the many good ones. Default false.
+    pub log_y: bool,
 }
 
 impl Default for AngleHistogram<'_> {
     fn default() -> Self {
-        AngleHistogram { title: "Angle distribution", dpr: 1.0, frame: None, legend: true }
+        AngleHistogram { title: "Angle distribution", dpr: 1.0, frame: None, legend: true, y_top: None, log_y: false }
     }
 }
+
+/// The bottom of a logarithmic histogram axis, percent: one angle in 100,000.
+pub const LOG_FLOOR_PCT: f64 = 1e-3;
 
 /// Percentages per bin (0 everywhere when the counts are all zero).
 pub fn percentages(counts: &[u64]) -> Vec<f64> {
@@ -66,10 +77,19 @@ pub fn render_angle_histogram(pixmap: &mut Pixmap, series: &[HistogramSeries<'_>
     fill_rect(pixmap, frame.x * s, frame.y * s, frame.w * s, frame.h * s, Color::WHITE);
     let plot = frame.inset(62.0, if opts.title.is_empty() { 12.0 } else { 32.0 }, 14.0, 46.0);
     let pct: Vec<Vec<f64>> = series.iter().map(|x| percentages(x.counts)).collect();
-    let top = pct.iter().flatten().copied().fold(0.0f64, f64::max);
-    let (_, ymax) = nice_range(0.0, top.max(1.0), 5);
+    let own = pct.iter().flatten().copied().fold(0.0f64, f64::max);
+    let top = match opts.y_top {
+        Some(t) if t.is_finite() => own.max(t),
+        _ => own,
+    };
     let xa = Axis { lo: 0.0, hi: 180.0, scale: Scale::Linear, p0: plot.x * s, p1: plot.right() * s };
-    let ya = Axis { lo: 0.0, hi: ymax, scale: Scale::Linear, p0: plot.bottom() * s, p1: plot.y * s };
+    let ya = if opts.log_y {
+        let hi = 10f64.powf(top.max(LOG_FLOOR_PCT * 10.0).log10().ceil());
+        Axis { lo: LOG_FLOOR_PCT, hi, scale: Scale::Log, p0: plot.bottom() * s, p1: plot.y * s }
+    } else {
+        let (_, ymax) = nice_range(0.0, top.max(1.0), 5);
+        Axis { lo: 0.0, hi: ymax, scale: Scale::Linear, p0: plot.bottom() * s, p1: plot.y * s }
+    };
     let xt = Ticks { step: 30.0, values: (0..=6).map(|k| 30.0 * k as f64).collect() };
     draw_axes(pixmap, &xa, &ya, AxisLabels { title: opts.title, x: "angle (\u{b0})", y: "angles (%)" }, &xt, s);
 
@@ -86,13 +106,14 @@ pub fn render_angle_histogram(pixmap: &mut Pixmap, series: &[HistogramSeries<'_>
     let width = 180.0 / bins as f64;
     let mut entries = Vec::new();
     for (i, (ser, p)) in series.iter().zip(&pct).enumerate() {
-        let color = series_color(i);
+        let color = ser.color.unwrap_or(series_color(i));
         let mut pb = PathBuilder::new();
-        let (bx, by) = (xa.map(0.0).unwrap_or(0.0), ya.map(0.0).unwrap_or(0.0));
+        // the axis line: 0 on a linear axis, the floor on a log one (empty bins sit there)
+        let (bx, by) = (xa.map(0.0).unwrap_or(0.0), plot.bottom() * s);
         pb.move_to(bx, by);
         for (b, v) in p.iter().enumerate() {
             let (xl, xr) = (xa.map(b as f64 * width).unwrap_or(bx), xa.map((b + 1) as f64 * width).unwrap_or(bx));
-            let y = ya.map(*v).unwrap_or(by);
+            let y = ya.map(v.max(ya.lo)).unwrap_or(by).min(by);
             pb.line_to(xl, y);
             pb.line_to(xr, y);
         }
@@ -128,10 +149,47 @@ mod tests {
         let mut p = Pixmap::new(100, 80).unwrap();
         let a = [1u64; 30];
         let b = [1u64; 29];
-        let e = render_angle_histogram(&mut p, &[HistogramSeries { label: "a", counts: &a }, HistogramSeries { label: "b", counts: &b }], &AngleHistogram::default())
+        let e = render_angle_histogram(&mut p, &[HistogramSeries { label: "a", counts: &a, color: None }, HistogramSeries { label: "b", counts: &b, color: None }], &AngleHistogram::default())
             .unwrap_err();
         assert!(e.to_string().contains("\"b\" has 29 bins"), "{e}");
-        assert!(render_angle_histogram(&mut p, &[HistogramSeries { label: "a", counts: &[] }], &AngleHistogram::default()).is_err());
+        assert!(render_angle_histogram(&mut p, &[HistogramSeries { label: "a", counts: &[], color: None }], &AngleHistogram::default()).is_err());
         render_angle_histogram(&mut p, &[], &AngleHistogram::default()).unwrap();
+    }
+
+    /// The height of a bar's top above the axis, device pixels, for counts `c` in `bin`.
+    fn bar_height(counts: &[u64], bin: usize, opts: &AngleHistogram<'_>) -> u32 {
+        let mut p = Pixmap::new(300, 200).unwrap();
+        let c = Color::from_rgba8(0, 0, 255, 255);
+        let series = [HistogramSeries { label: "", counts, color: Some(c) }];
+        render_angle_histogram(&mut p, &series, &AngleHistogram { title: "", legend: false, ..*opts }).unwrap();
+        // the bin's middle column: the topmost blue pixel
+        let plot_x0 = 62.0;
+        let x = (plot_x0 + (300.0 - 62.0 - 14.0) * (bin as f64 + 0.5) / counts.len() as f64) as u32;
+        let top = (0..200).find(|&y| {
+            let px = p.pixel(x, y).unwrap();
+            px.blue() > 200 && px.red() < 60
+        });
+        200 - top.expect("the bar is drawn")
+    }
+
+    #[test]
+    fn a_shared_top_puts_two_histograms_on_one_scale() {
+        // 50% in a bin: on its own scale it reaches the top; with a shared top of 100% half as high
+        let counts = [1u64, 1, 0, 0, 0, 0];
+        let own = bar_height(&counts, 0, &AngleHistogram::default());
+        let shared = bar_height(&counts, 0, &AngleHistogram { y_top: Some(100.0), ..AngleHistogram::default() });
+        assert!(shared < own, "own {own}, shared {shared}");
+        // 50% of a 0..100 axis: half the plot (200 − 12 − 46 = 142 px) above the axis at y = 154
+        assert!((shared as i32 - (46 + 71)).abs() <= 2, "{shared}");
+    }
+
+    #[test]
+    fn a_log_axis_shows_a_rare_bin_that_a_linear_one_flattens() {
+        // one angle in 10,000 in the first bin
+        let counts = [1u64, 9999, 0];
+        let lin = bar_height(&counts, 0, &AngleHistogram::default());
+        let log = bar_height(&counts, 0, &AngleHistogram { log_y: true, ..AngleHistogram::default() });
+        // 0.01% is one decade above the floor of five: a fifth of the 142-px plot
+        assert!(log > lin + 20, "linear {lin}, log {log}");
     }
 }

@@ -34,10 +34,10 @@ mod tests;
 
 pub use axes::{format_power_of_ten, format_tick, log_ticks, nice_range, nice_step, nice_ticks, Axis, Scale, Ticks};
 pub use chart::{render_chart, render_pass_histories, Chart, PassHistory, Series};
-pub use colormap::{lightness, series_color, Colormap};
+pub use colormap::{lightness, series_color, Colormap, SERIES};
 pub use compare::{render_compare, ComparePanel};
 pub use contour::{iso_segments, Grid};
-pub use histogram::{render_angle_histogram, AngleHistogram, HistogramSeries};
+pub use histogram::{percentages, render_angle_histogram, AngleHistogram, HistogramSeries};
 pub use levelset::{PATH_RGB, 
     choose_levels, render_level_set, render_level_sets_side_by_side, sample_field, star_bounds, Field, LevelSet,
     LevelSetView, Levels, PathKind,

@@ -288,6 +288,7 @@ fn golden_pass_histories() {
         max_angle_deg: &[175.9, 158.0, 149.0, 145.0],
         min_quality: &[-0.4, 0.21, 0.33, 0.38],
         inverted: &[12.0, 3.0, 1.0, 1.0],
+        color: None,
     };
     let new = PassHistory {
         label: "new (Chen et al.)",
@@ -295,6 +296,7 @@ fn golden_pass_histories() {
         max_angle_deg: &[175.9, 150.0, 144.0, 143.5],
         min_quality: &[-0.4, 0.3, 0.41, 0.44],
         inverted: &[12.0, 0.0, 0.0, 0.0],
+        color: None,
     };
     let mut p = pixmap(700, 480);
     render_pass_histories(&mut p, &[old, new], &Chart { title: "Per pass: old vs new", ..Default::default() });
@@ -308,9 +310,9 @@ fn golden_angle_histogram() {
     };
     let (a, b, c) = (bell(60.0, 30.0, 400.0), bell(60.0, 16.0, 600.0), bell(60.0, 11.0, 800.0));
     let series = [
-        HistogramSeries { label: "original", counts: &a },
-        HistogramSeries { label: "Laplacian", counts: &b },
-        HistogramSeries { label: "new", counts: &c },
+        HistogramSeries { color: None, label: "original", counts: &a },
+        HistogramSeries { color: None, label: "Laplacian", counts: &b },
+        HistogramSeries { color: None, label: "new", counts: &c },
     ];
     let mut p = pixmap(560, 340);
     render_angle_histogram(&mut p, &series, &AngleHistogram::default()).unwrap();

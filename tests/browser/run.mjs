@@ -815,6 +815,165 @@ try {
     await host.close();
   });
 
+  await test('the tables compare what the papers judge by, the better side marked', async () => {
+    await page.goto(`${server.base}#sample=plate-tri-tangled&passes=3`);
+    await idle(page);
+    await page.click('#run');
+    await page.waitForFunction(() => /3 passes done/.test(document.getElementById('status').textContent), null, { timeout: TIMEOUT });
+    await idle(page);
+    const rows = ['inverted', 'min_angle', 'max_angle', 'min_quality', 'mean_quality', 'small_angles', 'max_condition'];
+    const dirs = { inverted: 'lower', min_angle: 'higher', max_angle: 'lower', min_quality: 'higher', mean_quality: 'higher', small_angles: 'lower', max_condition: 'lower' };
+    const cells = await page.evaluate((rows) => {
+      const out = {};
+      for (const key of rows) {
+        out[key] = ['old', 'new'].map((side) => {
+          const td = document.querySelector(`#stats-${side} tr[data-stat="${key}"] td`);
+          return td && { text: td.textContent, value: td.dataset.value, better: td.classList.contains('better') };
+        });
+      }
+      return out;
+    }, rows);
+    let marked = 0;
+    for (const key of rows) {
+      const [a, b] = cells[key];
+      check(a && b && a.value !== undefined && b.value !== undefined, `row ${key} is missing: ${JSON.stringify(cells[key])}`);
+      const [va, vb] = [Number(a.value), Number(b.value)];
+      const want = va === vb ? null : (dirs[key] === 'higher') === va > vb ? 0 : 1;
+      check(a.better === (want === 0) && b.better === (want === 1), `row ${key}: A ${va}, B ${vb}, marks ${a.better}/${b.better}`);
+      marked += want === null ? 0 : 1;
+    }
+    check(marked >= 4, `only ${marked} rows mark a better side`);
+    // after 3 passes on the tangled plate, B (new) has no inverted element and the better mean quality
+    check(cells.inverted[1].value === '0', `B inverted ${cells.inverted[1].value}`);
+    check(cells.mean_quality[1].better, 'B has the better mean quality');
+    check(/%$/.test(cells.small_angles[0].text), cells.small_angles[0].text);
+    check(/better/.test(await page.getAttribute('#stats-new tr[data-stat="mean_quality"] td', 'aria-label')), 'the mark is said to screen readers');
+    await page.locator('main.panels').screenshot({ path: path.join(OUT, '13-tables-compared.png') });
+  });
+
+  await test('one colour per side in every chart; histograms share a scale, with a log option; the angle chart is broken', async () => {
+    const ink = (id) => page.evaluate(({ id, rgb }) => {
+      const c = document.getElementById(id);
+      const d = c.getContext('2d').getImageData(0, 0, c.width, c.height).data;
+      const n = rgb.map(() => 0);
+      for (let i = 0; i < d.length; i += 4) {
+        rgb.forEach(([r, g, b], k) => {
+          if (d[i] === r && d[i + 1] === g && d[i + 2] === b) n[k] += 1;
+        });
+      }
+      return n;
+    }, { id, rgb: sideRgb });
+    const sideRgb = await page.evaluate(() => ['--side-old', '--side-new'].map((v) => getComputedStyle(document.documentElement).getPropertyValue(v).match(/\d+/g).map(Number)));
+    check(JSON.stringify(sideRgb[0]) !== JSON.stringify(sideRgb[1]), `the sides share a colour ${JSON.stringify(sideRgb)}`);
+    const [ho, hn, pc] = [await ink('hist-old'), await ink('hist-new'), await ink('pass-chart')];
+    check(ho[0] > 50 && ho[1] === 0, `A's histogram in A's colour only: ${ho}`);
+    check(hn[1] > 50 && hn[0] === 0, `B's histogram in B's colour only: ${hn}`);
+    check(pc[0] > 50 && pc[1] > 50, `the pass chart shows both colours: ${pc}`);
+    // the panel headings carry the same colours
+    const border = await page.evaluate(() => ['title-old', 'title-new'].map((id) => getComputedStyle(document.getElementById(id)).borderLeftColor));
+    check(border[0] === `rgb(${sideRgb[0].join(', ')})` && border[1] === `rgb(${sideRgb[1].join(', ')})`, `headings ${border}`);
+    // both histograms are drawn on one scale: the same y-axis labels, so the same pixels
+    // left of the plot; the log option redraws both
+    const axis = (id) => page.evaluate((id) => {
+      const c = document.getElementById(id);
+      const k = c.width / c.clientWidth;
+      return Array.from(c.getContext('2d').getImageData(0, 0, Math.round(56 * k), c.height).data).join(',');
+    }, id);
+    check((await axis('hist-old')) === (await axis('hist-new')), 'the two histograms have different y axes');
+    const before = await canvasInfo(page, 'hist-old');
+    await page.check('#hist-log');
+    await idle(page);
+    check((await canvasInfo(page, 'hist-old')).hash !== before.hash, 'the log scale changed nothing');
+    check((await axis('hist-old')) === (await axis('hist-new')), 'on the log scale the axes differ');
+    await page.locator('.pass-view').screenshot({ path: path.join(OUT, '14-charts-log-broken-axis.png') });
+    await page.uncheck('#hist-log');
+    await idle(page);
+  });
+
+  await test('compare A with B: any objective on either side, a penalty for new, carried in the link', async () => {
+    await page.goto(`${server.base}#sample=plate-tri-tangled&passes=1`);
+    await idle(page);
+    const menu = await page.evaluate(() => [...document.getElementById('objective-a').options].map((o) => o.value));
+    for (const name of ['old', 'sine', 'new', 'condition', 'untangle']) check(menu.includes(name), `A offers no ${name}: ${menu}`);
+    check(await page.isDisabled('#penalty-a'), 'A runs old by default: no penalty');
+    check(/only the new objective/.test(await page.textContent('#penalty-a-why')), 'the reason is said');
+    check(!(await page.isDisabled('#penalty-b')), 'B runs new: its penalty is chosen');
+    await page.selectOption('#objective-a', 'sine');
+    await idle(page);
+    await page.selectOption('#penalty-b', 'angle');
+    await idle(page);
+    check(/^A: sine/.test(await page.textContent('#title-old')), await page.textContent('#title-old'));
+    check(/angle penalty/.test(await page.textContent('#title-new')), await page.textContent('#title-new'));
+    const hash = await page.evaluate(() => location.hash);
+    check(hash.includes('a=sine') && hash.includes('b=new&b-penalty=angle') && !hash.includes('a-penalty'), hash);
+    await page.click('#step');
+    await page.waitForFunction(() => /One pass done/.test(document.getElementById('status').textContent), null, { timeout: TIMEOUT });
+    await idle(page);
+    // the panels smoothed differently from old vs new-barrier: compare with that run
+    const sineAngle = [await stats(page, 'old'), await stats(page, 'new')];
+    await page.goto(`${server.base}#sample=plate-tri-tangled&passes=1`);
+    await idle(page);
+    await page.click('#step');
+    await page.waitForFunction(() => /One pass done/.test(document.getElementById('status').textContent), null, { timeout: TIMEOUT });
+    await idle(page);
+    const oldNew = [await stats(page, 'old'), await stats(page, 'new')];
+    check(sineAngle[0].min_angle !== oldNew[0].min_angle || sineAngle[0].min_quality !== oldNew[0].min_quality, 'A ran the same objective');
+    check(sineAngle[1].min_angle !== oldNew[1].min_angle || sineAngle[1].mean_quality !== oldNew[1].mean_quality, 'B ran the same penalty');
+    // the link reopens the comparison
+    await page.goto(`${server.base}${hash}`);
+    await idle(page);
+    check((await page.inputValue('#objective-a')) === 'sine' && (await page.inputValue('#penalty-b')) === 'angle', 'the link lost the comparison');
+    check(/^A: sine/.test(await page.textContent('#title-old')), 'the heading after the link');
+    // an old link naming 'objective' still opens, as B's
+    await page.goto(`${server.base}#sample=plate-tri&objective=condition`);
+    await idle(page);
+    check((await page.inputValue('#objective-b')) === 'condition', 'objective= is read as B');
+    // a penalty for a side that has none is refused, saying why
+    await page.goto(`${server.base}#sample=plate-tri&a=old&a-penalty=angle`);
+    await idle(page);
+    check(/only when 'a' is new/.test(await page.textContent('#message')), await page.textContent('#message'));
+    await page.goto(`${server.base}#sample=plate-tri-tangled&passes=3`);
+    await idle(page);
+  });
+
+  await test('a mesh from a tilted 3D plane is exported in its own plane, not flattened', async () => {
+    // a 4 × 4 grid in the plane through (1, -2, 3) along (0.6, 0, 0.8) and (0, 1, 0.3)
+    const v = [];
+    const f = [];
+    for (let j = 0; j < 4; j++) {
+      for (let i = 0; i < 4; i++) {
+        const t = i > 0 && i < 3 && j > 0 && j < 3 ? 0.2 : 0;
+        const [a, b] = [i + t, j - t];
+        v.push([1 + 0.6 * a, -2 + b, 3 + 0.8 * a + 0.3 * b]);
+      }
+    }
+    for (let j = 0; j < 3; j++) for (let i = 0; i < 3; i++) {
+      const k = j * 4 + i + 1;
+      f.push(`f ${k} ${k + 1} ${k + 5}`, `f ${k} ${k + 5} ${k + 4}`);
+    }
+    const obj = `${v.map((p) => `v ${p.join(' ')}`).join('\n')}\n${f.join('\n')}\n`;
+    await page.setInputFiles('#file', { name: 'tilted.obj', mimeType: 'text/plain', buffer: Buffer.from(obj) });
+    await page.waitForFunction(() => /Loaded tilted\.obj/.test(document.getElementById('status').textContent), null, { timeout: TIMEOUT });
+    await idle(page);
+    await page.click('#step');
+    await page.waitForFunction(() => /One pass done/.test(document.getElementById('status').textContent), null, { timeout: TIMEOUT });
+    await idle(page);
+    const [dl] = await Promise.all([page.waitForEvent('download'), page.click('button[data-export="vtk"][data-side="new"]')]);
+    const lines = readFileSync(await dl.path(), 'utf8').split('\n');
+    const at = lines.findIndex((l) => l.startsWith('POINTS'));
+    const pts = lines.slice(at + 1, at + 17).map((l) => l.trim().split(/\s+/).map(Number));
+    // every point lies in the plane: its normal (0.6, 0, 0.8) × (0, 1, 0.3) through (1, -2, 3)
+    const n = [0 * 0.3 - 0.8 * 1, 0.8 * 0 - 0.6 * 0.3, 0.6 * 1 - 0];
+    const len = Math.hypot(...n);
+    for (const p of pts) {
+      const d = ((p[0] - 1) * n[0] + (p[1] + 2) * n[1] + (p[2] - 3) * n[2]) / len;
+      check(Math.abs(d) < 1e-9, `a point ${p} is ${d} off the plane`);
+    }
+    check(pts.some((p) => Math.abs(p[2]) > 1), 'the points were flattened to z = 0');
+    // the fixed corners are where they were
+    for (const k of [0, 3, 12, 15]) check(Math.hypot(...pts[k].map((c, i) => c - v[k][i])) < 1e-9, `corner ${k} moved: ${pts[k]}`);
+  });
+
   await test('no request left 127.0.0.1 and the console has no errors', async () => {
     check(externalRequests.length === 0, `external requests: ${externalRequests.join(', ')}`);
     check(consoleErrors.length === 0, `console errors:\n${consoleErrors.join('\n')}`);

@@ -51,7 +51,14 @@ pub fn write_mesh(mesh: &Mesh, path: &Path, msh: MshVersionArg) -> Result<(), St
             MshVersionArg::V41 => MshVersion::V41,
         },
     };
-    io::write_path(mesh, path, &opts).map_err(|e| format!("{}: {e}", path.display()))
+    io::write_path(mesh, path, &opts).map_err(|e| format!("{}: {e}", path.display()))?;
+    let ext = path.extension().and_then(|e| e.to_str()).unwrap_or("").to_ascii_lowercase();
+    if ext == "node" || ext == "ele" {
+        if let Some(note) = io::flat_note(mesh) {
+            eprintln!("{}: note: {note}", path.display());
+        }
+    }
+    Ok(())
 }
 
 #[derive(Args)]

@@ -7,7 +7,7 @@ use std::path::PathBuf;
 
 use clap::{Args, ValueEnum};
 use smoothlab::lab::views::{pixmap, Canvas};
-use smoothlab::lab::{Playground, Settings, Side, MAX_NODES};
+use smoothlab::lab::{Choice, Playground, Settings, Side, MAX_NODES};
 use smoothlab::quality::{element_quality, mesh_stats, MeshStats};
 use smoothlab::render::{
     encode_png, render_angle_histogram, render_compare, render_mesh, AngleHistogram, ComparePanel, HistogramSeries,
@@ -122,7 +122,7 @@ fn settings(a: &RenderArgs) -> Settings {
         threshold_deg: a.threshold,
         order: a.order.order(),
         max_iter: a.max_iter,
-        penalty: a.penalty,
+        compare: [Choice::OLD, Choice { penalty: a.penalty, ..Choice::NEW }],
     }
 }
 
@@ -262,14 +262,14 @@ pub fn run(a: RenderArgs) -> Result<(), String> {
             let lap = mesh_stats(&laplace).angle_histogram_6deg;
             let old = lab.stats(Side::Old).mesh.angle_histogram_6deg;
             let new = lab.stats(Side::New).mesh.angle_histogram_6deg;
-            let mut series = vec![HistogramSeries { label: "as loaded", counts: &as_loaded }];
+            let mut series = vec![HistogramSeries { label: "as loaded", counts: &as_loaded, color: None }];
             for &side in &shown {
                 series.push(match side {
-                    Side::Old => HistogramSeries { label: "old (max-min)", counts: &old },
-                    Side::New => HistogramSeries { label: "new (Chen et al.)", counts: &new },
+                    Side::Old => HistogramSeries { label: "old (max-min)", counts: &old, color: Some(Side::Old.color()) },
+                    Side::New => HistogramSeries { label: "new (Chen et al.)", counts: &new, color: Some(Side::New.color()) },
                 });
             }
-            series.push(HistogramSeries { label: "Laplacian", counts: &lap });
+            series.push(HistogramSeries { label: "Laplacian", counts: &lap, color: None });
             let c = canvas(w, h);
             let mut pm = pixmap(c.w, c.h).map_err(|e| e.to_string())?;
             let title = format!("Corner angles (6° bins) after {passes} passes");
