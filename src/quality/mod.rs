@@ -239,6 +239,15 @@ pub fn scaled_jacobian(e1: DVec2, e2: DVec2) -> f64 {
 /// still right. Only the first `kind.corners()` entries are meaningful.
 #[inline]
 pub fn corner_edges(kind: ElementKind, p: &[DVec2]) -> [(DVec2, DVec2); 4] {
+    // Ordinary elements: the edges as they are. Their components lie within 2^±200, where
+    // every product the metrics take is a normal double, so each scale-free result (a
+    // ratio, an angle, a sign) has exactly the bits it has at unit scale.
+    let k = kind.corners();
+    let raw = corner_edge_vectors(kind, p);
+    let m = raw[..k].iter().fold(0.0f64, |m, (a, b)| m.max(a.abs().max_element()).max(b.abs().max_element()));
+    if (pow2(-200)..=pow2(200)).contains(&m) {
+        return raw;
+    }
     // the points in units of their magnitude, so that the differences (and the tangents'
     // 4M − 3P0 − P2) cannot overflow, then the edges in units of their own size
     let mut q = [DVec2::ZERO; 9];
@@ -246,7 +255,6 @@ pub fn corner_edges(kind: ElementKind, p: &[DVec2]) -> [(DVec2, DVec2); 4] {
     q[..n].copy_from_slice(&p[..n]);
     to_unit_scale(&mut q[..n]);
     let mut out = corner_edge_vectors(kind, &q[..n]);
-    let k = kind.corners();
     let mut flat = [DVec2::ZERO; 8];
     for i in 0..k {
         (flat[2 * i], flat[2 * i + 1]) = out[i];

@@ -114,8 +114,9 @@ impl CornerND {
         if self.d <= 0.0 {
             return (0.0, DVec2::ZERO);
         }
-        let alpha = TWO_SQRT3 * self.n / self.d;
-        (alpha, (TWO_SQRT3 * self.grad_n - alpha * self.grad_d) / self.d)
+        let inv_d = 1.0 / self.d;
+        let alpha = TWO_SQRT3 * self.n * inv_d;
+        (alpha, (TWO_SQRT3 * self.grad_n - alpha * self.grad_d) * inv_d)
     }
 }
 
@@ -136,14 +137,16 @@ impl RegularisedBarrier {
         if c.d <= 0.0 {
             return (0.0, DVec2::ZERO); // the three corners coincide: no shape to penalise
         }
-        let (h, s) = regularised_determinant(c.n, delta);
+        // δ = 0 (every valid star with margin): h = s = N, no square root
+        let (h, s) = if delta == 0.0 { (c.n.max(0.0), c.n) } else { regularised_determinant(c.n, delta) };
         if h <= 0.0 || h.is_nan() {
             return (f64::INFINITY, DVec2::ZERO);
         }
+        let (inv_d, inv_s) = (1.0 / c.d, 1.0 / s);
         let eta = c.d / (TWO_SQRT3 * h);
         let eta2 = eta * eta;
         // ∇η = η (∇D/D − ∇N/s)
-        (eta2, 2.0 * eta2 * (c.grad_d / c.d - c.grad_n / s))
+        (eta2, 2.0 * eta2 * (c.grad_d * inv_d - c.grad_n * inv_s))
     }
 
     /// `(1 − α_C)² + k1 η²` of the sub-triangle with its gradient, `delta` from
