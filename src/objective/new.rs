@@ -150,7 +150,8 @@ impl ChenTristanoKwok {
     }
 
     /// The term of one sub-triangle (C, A, B), C the free corner, with its gradient.
-    #[inline]
+    /// Inlined into the loops, so that the vectors a design does not read are never made.
+    #[inline(always)]
     fn sub_triangle(&self, t: &SubTriangle, delta: f64) -> (f64, DVec2) {
         match self {
             ChenTristanoKwok::Barrier(b) => b.of(t, delta),
@@ -189,6 +190,15 @@ fn extreme_scale_factor(star: &Star) -> Option<f64> {
 fn barrier_delta(b: &RegularisedBarrier, star: &Star) -> f64 {
     let (mut sum, mut count, mut min) = (0.0, 0usize, f64::INFINITY);
     for el in &star.elems {
+        if el.kind == ElementKind::Tri3 {
+            // the N of SubTriangle::linear at x0, without making the rest of it
+            let (s, x0) = (el.slot as usize, star.x0);
+            let n = (el.pts[(s + 1) % 3] - x0).perp_dot(el.pts[(s + 2) % 3] - x0);
+            sum += n.abs();
+            count += 1;
+            min = min.min(n);
+            continue;
+        }
         each_sub_triangle(el, star.x0, |t| {
             let mut add = |n: f64| {
                 sum += n.abs();
@@ -207,7 +217,7 @@ fn barrier_delta(b: &RegularisedBarrier, star: &Star) -> f64 {
 
 /// Calls `f` with each sub-triangle of a star element whose free node is at `x`: the
 /// element itself for a triangle, the three of eq. (9) for a quad.
-#[inline]
+#[inline(always)]
 fn each_sub_triangle(el: &StarElement, x: DVec2, mut f: impl FnMut(&SubTriangle)) {
     if el.kind == ElementKind::Tri3 {
         // the common case, without the general element machinery (same arithmetic)
@@ -269,7 +279,7 @@ impl SubTriangle {
 
     /// A straight-sided triangle with the free node C at `x` and A, B fixed: what
     /// [`SubTriangle::of`] gives for a linear triangle, computed directly.
-    #[inline]
+    #[inline(always)]
     fn linear(x: DVec2, a: DVec2, b: DVec2) -> Self {
         let (ca, cb, ab) = (a - x, b - x, b - a);
         SubTriangle {

@@ -97,7 +97,7 @@ pub(super) struct CornerND {
 }
 
 impl CornerND {
-    #[inline]
+    #[inline(always)]
     pub(super) fn of((u1, c1): (DVec2, f64), (u2, c2): (DVec2, f64)) -> Self {
         let n = u1.perp_dot(u2);
         let w = u2 - u1;
@@ -109,7 +109,7 @@ impl CornerND {
     }
 
     /// Lo's α = 2√3·N/D and its gradient (0 when the corner has no extent).
-    #[inline]
+    #[inline(always)]
     pub(super) fn alpha(&self) -> (f64, DVec2) {
         if self.d <= 0.0 {
             return (0.0, DVec2::ZERO);
@@ -132,7 +132,7 @@ pub fn regularised_determinant(n: f64, delta: f64) -> (f64, f64) {
 impl RegularisedBarrier {
     /// `η_δ²` of one corner with its gradient; +∞ (gradient 0) where `h_δ = 0`, which is
     /// only where δ = 0 and N ≤ 0.
-    #[inline]
+    #[inline(always)]
     pub(super) fn eta2(c: &CornerND, delta: f64) -> (f64, DVec2) {
         if c.d <= 0.0 {
             return (0.0, DVec2::ZERO); // the three corners coincide: no shape to penalise
@@ -150,8 +150,8 @@ impl RegularisedBarrier {
     }
 
     /// `(1 − α_C)² + k1 η²` of the sub-triangle with its gradient, `delta` from
-    /// [`RegularisedBarrier::delta`].
-    #[inline]
+    /// [`RegularisedBarrier::delta_from`].
+    #[inline(always)]
     pub(super) fn of(&self, t: &SubTriangle, delta: f64) -> (f64, DVec2) {
         let at_c = CornerND::of(t.c_to_a, t.c_to_b);
         let (alpha, grad_alpha) = at_c.alpha();
