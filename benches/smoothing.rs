@@ -16,7 +16,7 @@ use criterion::{criterion_group, criterion_main, BatchSize, BenchmarkId, Criteri
 use glam::DVec2;
 use smoothlab::generate::rand2d;
 use smoothlab::mesh::Mesh;
-use smoothlab::objective::{objective, ObjectiveKind, Star};
+use smoothlab::objective::{objective, objective_with, ObjectiveKind, Penalty, Star};
 use smoothlab::smooth::parallel::ColouredSmoother;
 use smoothlab::smooth::{Order, SmoothOptions, Smoother, Strategy};
 
@@ -44,17 +44,28 @@ fn stream_bound(mesh: &mut Mesh) -> u32 {
     visits
 }
 
-fn passes(large: bool) -> Vec<(&'static str, Strategy, ObjectiveKind)> {
-    let mut v =
-        vec![("laplace", Strategy::Laplace, ObjectiveKind::New), ("smart", Strategy::Smart, ObjectiveKind::New)];
+/// The passes benched: a name, the strategy, the objective (with the design of `new`'s
+/// penalty) and the node order.
+type Pass = (&'static str, Strategy, ObjectiveKind, Penalty, Order);
+
+fn passes(large: bool) -> Vec<Pass> {
+    let new = |name, strategy, order| (name, strategy, ObjectiveKind::New, Penalty::Barrier, order);
+    let mut v = vec![new("laplace", Strategy::Laplace, Order::Input), new("smart", Strategy::Smart, Order::Input)];
     if large {
-        v.push(("opt+new", Strategy::Opt, ObjectiveKind::New));
+        v.push(new("opt+new", Strategy::Opt, Order::Input));
     } else {
         for k in ObjectiveKind::ALL {
-            v.push((Box::leak(format!("opt+{k}").into_boxed_str()), Strategy::Opt, k));
+            v.push((Box::leak(format!("opt+{k}").into_boxed_str()), Strategy::Opt, k, Penalty::Barrier, Order::Input));
+        }
+        // the first design of the new objective's penalty, for the comparison of the two
+        v.push(("opt+new (angle penalty)", Strategy::Opt, ObjectiveKind::New, Penalty::Angle, Order::Input));
+        // Freitag's combined schemes, with her objective
+        for (name, strategy) in [("c1+sine", Strategy::C1), ("c2+sine", Strategy::C2), ("c3+sine", Strategy::C3)] {
+            v.push((name, strategy, ObjectiveKind::Sine, Penalty::Barrier, Order::Input));
         }
     }
-    v.push(("rules+new", Strategy::Rules, ObjectiveKind::New));
+    v.push(new("rules+new", Strategy::Rules, Order::Input));
+    v.push(new("rules+new, priority", Strategy::Rules, Order::Priority));
     v
 }
 
@@ -67,9 +78,9 @@ fn smoothing(c: &mut Criterion) {
         g.measurement_time(Duration::from_secs(if n >= 1_000_000 { 20 } else { 5 }));
         g.warm_up_time(Duration::from_millis(500));
         g.bench_function("stream bound", |b| b.iter_batched_ref(|| mesh.clone(), stream_bound, BatchSize::LargeInput));
-        for (name, strategy, kind) in passes(n >= 1_000_000) {
-            let obj = objective(kind);
-            let options = SmoothOptions::default().with_strategy(strategy).with_order(Order::Input);
+        for (name, strategy, kind, penalty, order) in passes(n >= 1_000_000) {
+            let obj = objective_with(kind, penalty);
+            let options = SmoothOptions::default().with_strategy(strategy).with_order(order);
             let mut s = Smoother::new(options).expect("options");
             g.bench_function(name, |b| {
                 b.iter_batched_ref(|| mesh.clone(), |m| s.sweep(m, &*obj), BatchSize::LargeInput)
