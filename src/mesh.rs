@@ -657,7 +657,7 @@ impl MeshBuilder {
     /// Validates (finite coordinates, indices in range, no repeated node in an element,
     /// at least one element, planarity), maps 3D points to the mesh's plane, orients
     /// the mesh counter-clockwise as a whole, builds the topology and the fixed flags.
-    pub fn build(self) -> Result<Mesh> {
+    pub fn build(mut self) -> Result<Mesh> {
         if self.kinds.is_empty() {
             return Err(Error::Empty(if self.points.is_empty() {
                 "no nodes and no elements".into()
@@ -696,15 +696,14 @@ impl MeshBuilder {
             }
         }
         let (nodes, plane) = self.to_plane()?;
-        let mut mesh = Mesh {
-            plane,
-            nodes,
-            fixed: vec![false; n],
-            kinds: self.kinds,
-            elem_start: self.elem_start,
-            elem_nodes: self.elem_nodes,
-            topo: Topology::default(),
-        };
+        // the 3D points are not needed past the plane: let them go before the topology is
+        // built (24 bytes a node), and give back what the readers' growing left unused
+        self.points = Vec::new();
+        let (mut kinds, mut elem_start, mut elem_nodes) = (self.kinds, self.elem_start, self.elem_nodes);
+        kinds.shrink_to_fit();
+        elem_start.shrink_to_fit();
+        elem_nodes.shrink_to_fit();
+        let mut mesh = Mesh { plane, nodes, fixed: vec![false; n], kinds, elem_start, elem_nodes, topo: Topology::default() };
         // Orientation of the whole mesh by its total signed area, decided by the sign of
         // total − (total of the reversed mesh), each summed as its own corner order gives:
         // reversing negates that difference exactly, so a mesh reversed here is never
@@ -951,19 +950,28 @@ fn build_topology(mesh: &Mesh, elem_lines: &[u32]) -> Result<Topology> {
             };
         }
     }
-    // edges: sort (min, max, elem, local) records
-    let mut recs: Vec<(u32, u32, u32, u32)> = Vec::with_capacity(ne * 4);
+    // edges: sort (min, max, elem·4 + local edge) records, 12 bytes each (the mid-side
+    // node is looked up from the element when the edge is made), exactly as many as edge
+    // uses: the largest temporary of the topology (72 MB for 2M triangles)
+    if ne >= 1 << 30 {
+        return Err(Error::TooLarge(format!("the mesh has {ne} elements; smoothlab takes at most 2^30 (1073741824)")));
+    }
+    let uses: usize = mesh.kinds.iter().map(|k| k.corners()).sum();
+    let mut recs: Vec<(u32, u32, u32)> = Vec::with_capacity(uses);
     for e in 0..ne {
-        let k = mesh.kinds[e];
         let ids = mesh.element(e);
-        let c = k.corners();
+        let c = mesh.kinds[e].corners();
         for i in 0..c {
             let (a, b) = (ids[i], ids[(i + 1) % c]);
-            let mid = k.mid(i).map(|m| ids[m]).unwrap_or(NONE);
-            recs.push((a.min(b), a.max(b), e as u32, mid));
+            recs.push((a.min(b), a.max(b), (e as u32) << 2 | i as u32));
         }
     }
     recs.sort_unstable();
+    let elem_of = |r: &(u32, u32, u32)| r.2 >> 2;
+    let mid_of = |r: &(u32, u32, u32)| {
+        let e = (r.2 >> 2) as usize;
+        mesh.kinds[e].mid((r.2 & 3) as usize).map(|m| mesh.element(e)[m]).unwrap_or(NONE)
+    };
     let line = |e: u32| elem_lines.get(e as usize).copied().filter(|&l| l > 0).map(|l| l as usize);
     let mut edges = Vec::with_capacity(recs.len() / 2 + 1);
     let mut i = 0;
@@ -972,12 +980,12 @@ fn build_topology(mesh: &Mesh, elem_lines: &[u32]) -> Result<Topology> {
         while j < recs.len() && recs[j].0 == recs[i].0 && recs[j].1 == recs[i].1 {
             j += 1;
         }
-        let (a, b, e0, m0) = recs[i];
+        let (a, b, e0, m0) = (recs[i].0, recs[i].1, elem_of(&recs[i]), mid_of(&recs[i]));
         if j - i > 2 {
-            let es: Vec<String> = recs[i..j].iter().map(|r| r.2.to_string()).collect();
+            let es: Vec<String> = recs[i..j].iter().map(|r| elem_of(r).to_string()).collect();
             return Err(Error::element(
-                recs[i + 2].2 as usize,
-                line(recs[i + 2].2),
+                elem_of(&recs[i + 2]) as usize,
+                line(elem_of(&recs[i + 2])),
                 format!(
                     "edge between nodes {} and {} is shared by {} elements ({}); a 2D mesh edge belongs to one or two",
                     a + 1,
@@ -987,9 +995,9 @@ fn build_topology(mesh: &Mesh, elem_lines: &[u32]) -> Result<Topology> {
                 ),
             ));
         }
-        let e1 = if j - i == 2 { recs[i + 1].2 } else { NONE };
-        if j - i == 2 && recs[i + 1].3 != m0 {
-            let (m1, other) = (recs[i + 1].3, recs[i + 1].2);
+        let e1 = if j - i == 2 { elem_of(&recs[i + 1]) } else { NONE };
+        if j - i == 2 && mid_of(&recs[i + 1]) != m0 {
+            let (m1, other) = (mid_of(&recs[i + 1]), elem_of(&recs[i + 1]));
             let desc = |m: u32| if m == NONE { "none".to_string() } else { (m + 1).to_string() };
             return Err(Error::element(
                 other as usize,

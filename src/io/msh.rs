@@ -151,8 +151,8 @@ enum Layout {
     V41,
 }
 
-/// Reads a `.msh` file (ASCII 2.x or 4.1).
-pub(crate) fn read(text: &str) -> Result<Mesh> {
+/// Reads a `.msh` file (ASCII 2.x or 4.1) into a builder (see [`super::parse_str`]).
+pub(crate) fn parse(text: &str) -> Result<MeshBuilder> {
     let mut lex = Lexer::new(text);
     let first = lex.expect(|| "'$MeshFormat' (an empty file is not a mesh)".into())?;
     match first.text {
@@ -488,7 +488,7 @@ impl Reader {
         end_of(lex, "NodeData", open)
     }
 
-    fn finish(self) -> Result<Mesh> {
+    fn finish(self) -> Result<MeshBuilder> {
         let Reader { mut builder, node_tags, node_lines, elements, elem_tags, marks, fixed_view, .. } = self;
         let map = TagMap::new(&node_tags, &node_lines)?;
         let range = || match (node_tags.iter().min(), node_tags.iter().max()) {
@@ -540,7 +540,7 @@ impl Reader {
             }
             FixedSpec::BoundaryAnd(f)
         };
-        builder.build()
+        Ok(builder)
     }
 }
 

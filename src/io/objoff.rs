@@ -29,7 +29,7 @@ fn face_kind(k: usize, line: usize, what: &str) -> Result<ElementKind> {
 }
 
 /// Reads an OBJ file.
-pub(crate) fn read_obj(text: &str) -> Result<Mesh> {
+pub(crate) fn parse_obj(text: &str) -> Result<MeshBuilder> {
     let mut b = MeshBuilder::new();
     // Faces as 0-based vertex indices (checked once all vertices are known).
     let mut faces: Vec<(ElementKind, [i64; 4], usize)> = Vec::new();
@@ -94,11 +94,11 @@ pub(crate) fn read_obj(text: &str) -> Result<Mesh> {
         }
         b.add_element(*kind, &ids[..kind.node_count()], *line);
     }
-    b.build()
+    Ok(b)
 }
 
 /// Reads an OFF file.
-pub(crate) fn read_off(text: &str) -> Result<Mesh> {
+pub(crate) fn parse_off(text: &str) -> Result<MeshBuilder> {
     let mut lines = content_lines(text, Some('#'));
     let Some((hl, head)) = lines.next() else {
         return Err(Error::Empty("the OFF file is empty".into()));
@@ -178,7 +178,7 @@ pub(crate) fn read_off(text: &str) -> Result<Mesh> {
             format!("unexpected {} after the {nv} vertices and {nf} faces the counts (line {cl}) announce", shown(l)),
         ));
     }
-    b.build()
+    Ok(b)
 }
 
 fn linear_only(mesh: &Mesh, format: &str) -> Result<()> {

@@ -100,8 +100,8 @@ struct Reader<'a> {
     fixed_line: Option<usize>,
 }
 
-/// Reads a legacy VTK file.
-pub(crate) fn read(text: &str) -> Result<Mesh> {
+/// Reads a legacy VTK file into a builder (see [`super::parse_str`]).
+pub(crate) fn parse(text: &str) -> Result<MeshBuilder> {
     // The first three lines are line-oriented: version, title, ASCII/BINARY.
     let mut rest = text;
     let mut header = ["", "", ""];
@@ -448,7 +448,7 @@ impl Reader<'_> {
         Ok(())
     }
 
-    fn finish(self) -> Result<Mesh> {
+    fn finish(self) -> Result<MeshBuilder> {
         let Reader { lex, dataset, mut builder, points_line, cells, types, mut marked, fixed, .. } = self;
         if points_line.is_none() {
             return Err(Error::parse(lex.last_line(), "the file ends without a POINTS section"));
@@ -581,7 +581,7 @@ impl Reader<'_> {
             }
             FixedSpec::BoundaryAnd(f)
         };
-        builder.build()
+        Ok(builder)
     }
 }
 
