@@ -321,6 +321,18 @@ impl Playground {
         Ok(self.inner.move_node(node as usize, to)?)
     }
 
+    /// Moves the chosen node by `(dx, dy)` CSS pixels of the last frame from where it is on
+    /// `panel`, on both panels (the arrow keys), undoably.
+    #[wasm_bindgen(js_name = nudgeNode)]
+    pub fn nudge_node(&mut self, panel: &str, dx: f64, dy: f64) -> Result<(), JsError> {
+        let node = self.node.ok_or_else(|| JsError::new("no node is chosen: click a free node first"))?;
+        let view = self.view()?;
+        let from = self.inner.panel(side(panel)?).mesh.nodes[node];
+        let to = from + DVec2::new(dx, -dy) / view.scale();
+        self.inner.remember_before_move(node)?;
+        Ok(self.inner.move_node(node, to)?)
+    }
+
     /// Chooses the node whose star is highlighted and whose level sets are shown (`undefined`: none).
     #[wasm_bindgen(js_name = selectNode)]
     pub fn select_node(&mut self, node: Option<u32>) -> Result<(), JsError> {

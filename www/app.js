@@ -541,6 +541,18 @@ const STAT_ROWS = [
   ['passes', 'Passes', (s) => s.passes],
   ['time', 'Smoothing time', (s) => s.time_ms, null, (v) => `${num(v, 1)} ms`],
 ];
+/** What a table row means, as its tooltip. */
+const ROW_HELP = {
+  inverted: 'Elements whose corners run the wrong way round (negative area): a tangled mesh. Fewer is better.',
+  min_angle: 'The smallest corner angle of any element (negative in an inverted element). Larger is better.',
+  max_angle: 'The largest corner angle of any element. Smaller is better.',
+  min_quality: "The worst element quality: Lo's α for triangles, Canann's β for quads (1 ideal, below 0 inverted).",
+  mean_quality: 'The mean element quality (α for triangles, β for quads).',
+  small_angles: "The share of corner angles under 18° (Freitag's Fig. 3 view).",
+  max_condition: "The worst condition number κ = ‖A‖‖A⁻¹‖ of an element's Jacobian (Knupp): 1 ideal, ∞ inverted.",
+  laplacian_moves: 'Nodes moved by a (plain or smart) Laplacian step, over the passes.',
+  optimization_calls: 'Calls to the solver, over the passes.',
+};
 function deg(v) {
   return Number.isFinite(v) ? `${v.toFixed(2)}°` : '—';
 }
@@ -573,6 +585,7 @@ function fillTables(stats) {
       const th = document.createElement('th');
       th.scope = 'row';
       th.textContent = label;
+      if (ROW_HELP[key]) th.title = ROW_HELP[key];
       const td = document.createElement('td');
       if (detail && !s.detail) {
         td.textContent = 'after the run';
@@ -984,6 +997,23 @@ function attachPointer(canvas) {
     if (g.moved) g.latest = toFrame(canvas, ev);
     if (g.node !== undefined) finish(g);
   };
+  canvas.addEventListener('keydown', (ev) => {
+    const step = { ArrowLeft: [-1, 0], ArrowRight: [1, 0], ArrowUp: [0, -1], ArrowDown: [0, 1] }[ev.key];
+    if (!step || ev.ctrlKey || ev.metaKey || ev.altKey) return;
+    ev.preventDefault(); // the page does not scroll under a moving node
+    if (state.node === null || state.running) {
+      showPickNote(state.node === null ? 'Choose a free node first (click it): the arrow keys move the chosen node.' : null);
+      return;
+    }
+    const k = ev.shiftKey ? 10 : 1;
+    const node = state.node;
+    serial(async () => {
+      await engine.call('nudge', canvas.dataset.side, step[0] * k, step[1] * k);
+      await redrawMeshes();
+      await redrawNode();
+      setStatus(`Node ${node} moved ${k} px ${ev.key.replace('Arrow', '').toLowerCase()} on both sides (Ctrl+Z takes it back).`);
+    }).catch(report);
+  });
   canvas.addEventListener('pointerleave', () => {
     canvas.parentElement.querySelector('.hover-label').hidden = true;
   });

@@ -67,6 +67,7 @@ const handlers = {
   resetZoom: () => need().resetZoom(),
   rememberBeforeMove: (node) => need().rememberBeforeMove(node),
   undo: () => need().undo(),
+  nudge: (panel, dx, dy) => need().nudgeNode(panel, dx, dy),
   undoState: () => need().undoState(),
   smoothNode: (w, h, cw, ch, dpr) => need().smoothNode(w, h, cw, ch, dpr),
   figure: (w, h, dpr) => need().figure(w, h, dpr),

@@ -1224,6 +1224,50 @@ try {
     check(/give 1 to 4096 on each side/.test(await page.textContent('#message')), await page.textContent('#message'));
   });
 
+  await test('help panel and tooltips; canvases focusable; arrow keys move the chosen node; every Save PNG has its own name', async () => {
+    await page.goto(`${server.base}#sample=plate-tri`);
+    await idle(page);
+    await page.click('#help summary');
+    const help = await page.textContent('#help');
+    for (const term of ['α', 'β', 'κ', 'Inverted element', 'C1, C2, C3', "Chen's rules", 'Priority order', 'Level set']) check(help.includes(term), `the help says nothing of ${term}`);
+    const papers = await page.$$eval('#help a', (as) => as.map((a) => a.textContent));
+    check(papers.length === 3 && /Chen/.test(papers[0]) && /Freitag/.test(papers[1]) && /Knupp/.test(papers[2]), `papers: ${papers}`);
+    await page.locator('#help').screenshot({ path: path.join(OUT, '23-help.png') });
+    await page.click('#help summary');
+    // tooltips on the terms where they are used
+    for (const sel of ['#stats-new tr[data-stat="inverted"] th', '#stats-new tr[data-stat="max_condition"] th', '#stats-new tr[data-stat="min_quality"] th', '#strategy option[value="c1"]', '#strategy option[value="rules"]', '#order option[value="priority"]']) {
+      const title = await page.getAttribute(sel, 'title');
+      check(title && title.length > 20, `${sel} has no tooltip`);
+    }
+    // every canvas is reached by Tab
+    const canvases = await page.$$eval('canvas', (cs) => cs.map((c) => [c.id, c.tabIndex]));
+    check(canvases.every(([, t]) => t === 0), `canvases not focusable: ${JSON.stringify(canvases)}`);
+    // the buttons that save something each have a name of their own
+    const names = await page.$$eval('button[data-png], button[data-export]', (bs) => bs.map((b) => b.getAttribute('aria-label') || b.textContent));
+    check(new Set(names).size === names.length && names.every((n) => /Save/.test(n)), `names: ${names.join(' | ')}`);
+    check((await page.locator('button[data-png="hist-new"]').getAttribute('aria-label')) === "Save PNG of B's angle histogram", 'the histogram B button');
+    // arrow keys: nothing chosen says so; a chosen node moves, and Ctrl+Z takes it back
+    await page.locator('#mesh-new').focus();
+    await page.keyboard.press('ArrowRight');
+    check(/arrow keys move the chosen node/.test(await page.textContent('#pick-note')), await page.textContent('#pick-note'));
+    const hit = await clickSomeNode(page, 'mesh-new', ringPoints());
+    const before = await canvasInfo(page, 'mesh-new');
+    await page.locator('#mesh-new').focus();
+    const scroll = await page.evaluate(() => window.scrollY);
+    await page.keyboard.press('Shift+ArrowUp');
+    await idle(page);
+    await page.keyboard.press('ArrowLeft');
+    await idle(page);
+    check((await canvasInfo(page, 'mesh-new')).hash !== before.hash, 'the arrow keys moved nothing');
+    check(await page.evaluate(() => window.scrollY) === scroll, 'the page scrolled under the arrow keys');
+    check(new RegExp(`Node ${hit.node} moved 1 px left`).test(await page.textContent('#status')), await page.textContent('#status'));
+    await page.keyboard.press('Control+z');
+    await idle(page);
+    await page.keyboard.press('Control+z');
+    await idle(page);
+    check((await canvasInfo(page, 'mesh-new')).hash === before.hash, 'Ctrl+Z took back the two key moves');
+  });
+
   await test('no request left 127.0.0.1 and the console has no errors', async () => {
     check(externalRequests.length === 0, `external requests: ${externalRequests.join(', ')}`);
     check(consoleErrors.length === 0, `console errors:\n${consoleErrors.join('\n')}`);
