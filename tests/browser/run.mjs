@@ -96,6 +96,7 @@ async function chooseSample(page, value) {
 }
 /** Clicks near points of the mesh canvas until a node is chosen (as a user aims at a node). */
 async function clickSomeNode(page, canvasId, fractions) {
+  await page.locator(`#${canvasId}`).scrollIntoViewIfNeeded();
   const box = await page.locator(`#${canvasId}`).boundingBox();
   for (const [fx, fy] of fractions) {
     await page.mouse.click(box.x + fx * box.width, box.y + fy * box.height);
@@ -990,9 +991,9 @@ try {
   /** The README's embedded views: each in a 520-px iframe of the height the README gives. */
   const EMBED_VIEWS = [
     ['mesh', 300, ['mesh-old', 'mesh-new']],
-    ['levelset', 300, ['level-old', 'level-new']],
+    ['levelset', 380, ['level-old', 'level-new']],
     ['compare', 540, ['mesh-old', 'mesh-new']],
-    ['history', 320, ['pass-chart']],
+    ['history', 420, ['pass-chart']],
     ['histogram', 280, ['hist-old', 'hist-new']],
   ];
 
@@ -1108,6 +1109,7 @@ try {
     await idle(p);
     check((await canvasInfo(p, 'mesh-old')).hash !== before.hash, 'a pinch did not zoom');
     check((await p.inputValue('#node')) === '', 'a pinch chose a node');
+    await shot(p, '24-phone-pinched-390', false);
     await phone.close();
   });
 
@@ -1177,6 +1179,8 @@ try {
     await idle(page);
     check((await canvasInfo(page, 'mesh-new')).hash === before.hash, 'undo puts the node back');
     await shot(page, '22-smooth-this-node');
+    await page.locator('.node-view').scrollIntoViewIfNeeded();
+    await shot(page, '22-smooth-this-node-1280', false);
   });
 
   await test('Save figure: A | B with titles, colour bar and statistics at the chosen size and pixel ratio', async () => {
