@@ -135,9 +135,9 @@ fn pixels(pm: tiny_skia::Pixmap) -> JsValue {
     js_sys::Uint8Array::from(pm.data()).into()
 }
 
-/// What a mesh panel last sent to the page: its positions' version, the canvas and the
-/// highlighted node. The same again is not drawn nor sent again.
-type Shown = (u64, Canvas, Option<usize>);
+/// What a mesh panel last sent to the page: its positions' version, the canvas, the
+/// highlighted node and the zoom. The same again is not drawn nor sent again.
+type Shown = (u64, Canvas, Option<usize>, crate::render::ZoomPan);
 
 fn canvas(w: u32, h: u32, dpr: f32) -> Canvas {
     Canvas { w, h, dpr }
@@ -152,11 +152,24 @@ pub struct Playground {
     canvas: Option<Canvas>,
     node: Option<usize>,
     shown: [Option<Shown>; 2],
+    /// The canvas the level sets were last drawn on (pointer positions map through it).
+    level_canvas: Option<Canvas>,
 }
 
 impl Playground {
+    /// The chosen node and the canvas its level sets were last drawn on.
+    fn level_drawn(&self) -> Result<(usize, Canvas), JsError> {
+        let node = self.node.ok_or_else(|| JsError::new("no node is chosen"))?;
+        let c = self.level_canvas.ok_or_else(|| JsError::new("the level sets have not been drawn yet"))?;
+        Ok((node, c))
+    }
+    fn undo_state(&self, node: Option<usize>) -> Result<JsValue, JsError> {
+        let node = node.map_or(JsValue::UNDEFINED, |n| JsValue::from(n as u32));
+        let next = self.inner.undo_node().map_or(JsValue::UNDEFINED, |n| JsValue::from(n as u32));
+        object(&[("node", node), ("next", next), ("depth", JsValue::from(self.inner.undo_depth() as u32))])
+    }
     fn wrap(inner: playground::Playground) -> Playground {
-        Playground { inner, canvas: None, node: None, shown: [None, None] }
+        Playground { inner, canvas: None, node: None, shown: [None, None], level_canvas: None }
     }
     fn view(&self) -> Result<crate::render::View, JsError> {
         let c = self.canvas.ok_or_else(|| JsError::new("the mesh has not been drawn yet"))?;
@@ -266,7 +279,7 @@ impl Playground {
         let mut copy_ms = 0.0;
         for s in [Side::Old, Side::New] {
             let i = s as usize;
-            let key = (self.inner.version(s), c, self.node);
+            let key = (self.inner.version(s), c, self.node, self.inner.zoom());
             if !force && self.shown[i] == Some(key) {
                 out.push(JsValue::NULL);
                 continue;
@@ -308,6 +321,18 @@ impl Playground {
         Ok(self.inner.move_node(node as usize, to)?)
     }
 
+    /// Moves the chosen node by `(dx, dy)` CSS pixels of the last frame from where it is on
+    /// `panel`, on both panels (the arrow keys), undoably.
+    #[wasm_bindgen(js_name = nudgeNode)]
+    pub fn nudge_node(&mut self, panel: &str, dx: f64, dy: f64) -> Result<(), JsError> {
+        let node = self.node.ok_or_else(|| JsError::new("no node is chosen: click a free node first"))?;
+        let view = self.view()?;
+        let from = self.inner.panel(side(panel)?).mesh.nodes[node];
+        let to = from + DVec2::new(dx, -dy) / view.scale();
+        self.inner.remember_before_move(node)?;
+        Ok(self.inner.move_node(node, to)?)
+    }
+
     /// Chooses the node whose star is highlighted and whose level sets are shown (`undefined`: none).
     #[wasm_bindgen(js_name = selectNode)]
     pub fn select_node(&mut self, node: Option<u32>) -> Result<(), JsError> {
@@ -323,8 +348,9 @@ impl Playground {
     /// The chosen node's level sets (old, new: `w × h`), its solve history chart
     /// (`cw × ch`) and a one-line summary: `{ level_old, level_new, chart, summary }`.
     #[wasm_bindgen(js_name = nodeView)]
-    pub fn node_view(&self, w: u32, h: u32, cw: u32, ch: u32, dpr: f32) -> Result<JsValue, JsError> {
+    pub fn node_view(&mut self, w: u32, h: u32, cw: u32, ch: u32, dpr: f32) -> Result<JsValue, JsError> {
         let node = self.node.ok_or_else(|| JsError::new("no node is chosen"))?;
+        self.level_canvas = Some(canvas(w, h, dpr));
         let ([lo, ln, chart], summary) = self.inner.render_node_view(node, canvas(w, h, dpr), canvas(cw, ch, dpr))?;
         object(&[
             ("level_old", pixels(lo)),
@@ -333,6 +359,91 @@ impl Playground {
             ("summary", JsValue::from_str(&summary.text())),
             ("solve", to_js(&summary)?),
         ])
+    }
+
+    /// The free node with the worst star (on B's mesh), or `undefined` when none is free.
+    #[wasm_bindgen(js_name = worstFreeNode)]
+    pub fn worst_free_node(&self) -> Option<u32> {
+        crate::lab::pick::worst_free_node(&self.inner.panel(Side::New).mesh).map(|n| n as u32)
+    }
+
+    /// Magnifies both meshes `factor` times about the CSS pixel `(x, y)` of the last frame.
+    #[wasm_bindgen(js_name = zoomMeshes)]
+    pub fn zoom_meshes(&mut self, x: f64, y: f64, factor: f64) -> Result<(), JsError> {
+        let c = self.canvas.ok_or_else(|| JsError::new("the mesh has not been drawn yet"))?;
+        self.inner.zoom_meshes_at(c, DVec2::new(x, y), factor);
+        Ok(())
+    }
+
+    /// Moves both meshes' pictures by `(dx, dy)` CSS pixels.
+    #[wasm_bindgen(js_name = panMeshes)]
+    pub fn pan_meshes(&mut self, dx: f64, dy: f64) {
+        self.inner.pan_meshes(DVec2::new(dx, dy));
+    }
+
+    /// Magnifies both level sets `factor` times about the CSS pixel `(x, y)` of `panel`'s
+    /// level set as last drawn.
+    #[wasm_bindgen(js_name = zoomLevelSets)]
+    pub fn zoom_level_sets(&mut self, panel: &str, x: f64, y: f64, factor: f64) -> Result<(), JsError> {
+        let (node, c) = self.level_drawn()?;
+        self.inner.zoom_level_sets_at(side(panel)?, node, c, DVec2::new(x, y), factor);
+        Ok(())
+    }
+
+    /// Moves both level sets by `(dx, dy)` CSS pixels of `panel`'s level set as last drawn.
+    #[wasm_bindgen(js_name = panLevelSets)]
+    pub fn pan_level_sets(&mut self, panel: &str, dx: f64, dy: f64) -> Result<(), JsError> {
+        let (node, c) = self.level_drawn()?;
+        self.inner.pan_level_sets(side(panel)?, node, c, DVec2::new(dx, dy));
+        Ok(())
+    }
+
+    /// The meshes and the level sets as fitted again.
+    #[wasm_bindgen(js_name = resetZoom)]
+    pub fn reset_zoom(&mut self) {
+        self.inner.reset_zoom();
+    }
+
+    /// Keeps the positions round `node` for [`undo`](Self::undo) (a drag, as it starts).
+    #[wasm_bindgen(js_name = rememberBeforeMove)]
+    pub fn remember_before_move(&mut self, node: u32) -> Result<(), JsError> {
+        Ok(self.inner.remember_before_move(node as usize)?)
+    }
+
+    /// Takes back the latest move: `{ node, depth }` (`node` undefined when there was none;
+    /// `depth`: moves left to undo).
+    pub fn undo(&mut self) -> Result<JsValue, JsError> {
+        let node = self.inner.undo();
+        self.undo_state(node)
+    }
+
+    /// `{ node, depth }`: the node the next undo moves back, and how many moves it can take back.
+    #[wasm_bindgen(js_name = undoState)]
+    pub fn undo_info(&self) -> Result<JsValue, JsError> {
+        self.undo_state(self.inner.undo_node())
+    }
+
+    /// One solver call on the chosen node on each side, which then moves to what it
+    /// found: the node view of that call (as [`node_view`](Self::node_view), drawn
+    /// before the move, so its history is the call's).
+    #[wasm_bindgen(js_name = smoothNode)]
+    pub fn smooth_node(&mut self, w: u32, h: u32, cw: u32, ch: u32, dpr: f32) -> Result<JsValue, JsError> {
+        let node = self.node.ok_or_else(|| JsError::new("no node is chosen: click a free node first"))?;
+        let view = self.node_view(w, h, cw, ch, dpr)?;
+        self.inner.smooth_one_node(node)?;
+        Ok(view)
+    }
+
+    /// The figure for slides: A | B with titles, the colour bar and statistics
+    /// (`smoothlab render --view compare`), `w × h` CSS pixels at ratio `dpr`:
+    /// `{ pixels, w, h }` (device pixels).
+    pub fn figure(&self, w: u32, h: u32, dpr: f32) -> Result<JsValue, JsError> {
+        if !(dpr.is_finite() && dpr > 0.0 && dpr <= 4.0) {
+            return Err(JsError::new(&format!("a pixel ratio of {dpr}: give one above 0 and at most 4")));
+        }
+        let c = canvas(((w as f32) * dpr).round() as u32, ((h as f32) * dpr).round() as u32, dpr);
+        let pm = self.inner.render_figure(c)?;
+        object(&[("pixels", pixels(pm)), ("w", JsValue::from(c.w)), ("h", JsValue::from(c.h))])
     }
 
     /// The per-pass chart (`w × h`) and both angle histograms (`hw × hh`, on one scale,

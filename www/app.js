@@ -16,7 +16,20 @@ const MAX_FILE_BYTES = 256 * 1024 * 1024;
 const SETTINGS = ['strategy', 'threshold', 'order', 'passes', 'maxiter', 'amount', 'seed', 'objective-a', 'penalty-a', 'objective-b', 'penalty-b'];
 /** The compare menus of the left (A) and right (B) panel. */
 const COMPARE = [['objective-a', 'penalty-a'], ['objective-b', 'penalty-b']];
-const EMBED = new URLSearchParams(location.search).get('embed') === '1';
+const PARAMS = new URLSearchParams(location.search);
+const EMBED = PARAMS.get('embed') === '1';
+/** The views `?embed=1&view=…` embeds alone, filling the frame: the canvases each shows,
+ * which drawing fills them, and whether the embed first runs the hash's passes (as
+ * `smoothlab render` does for the same views). */
+const VIEWS = {
+  mesh: { canvases: ['mesh-old', 'mesh-new'], draws: 'meshes', passes: false },
+  levelset: { canvases: ['level-old', 'level-new'], draws: 'node', passes: false },
+  compare: { canvases: ['mesh-old', 'mesh-new'], draws: 'meshes', passes: true },
+  history: { canvases: ['pass-chart'], draws: 'charts', passes: true },
+  histogram: { canvases: ['hist-old', 'hist-new'], draws: 'charts', passes: true },
+};
+const VIEW_NAME = EMBED ? PARAMS.get('view') : null;
+const VIEW = VIEW_NAME !== null && Object.hasOwn(VIEWS, VIEW_NAME) ? VIEWS[VIEW_NAME] : null;
 /** Milliseconds of smoothing per call to the worker during a pass: the progress bar
  * moves and Stop is heard at least this often. */
 const SLICE_MS = 50;
@@ -43,6 +56,7 @@ const state = {
   running: false,
   cancel: false,
   frame: { w: 0, h: 0, dpr: 1 }, // the last mesh frame (pointer positions map through it)
+  level: null, // the canvas the level sets were last drawn on (likewise)
 };
 
 const engine = new Engine((err) => recoverFromPanic(err));
@@ -364,6 +378,18 @@ async function openHash({ src, error, perturbed, node }) {
   await serial(writePermalink).catch(report);
 }
 
+/** An embedded view shows what `smoothlab render` shows for it: the level sets of the
+ * hash's node (else of the free node with the worst star), the other views after the
+ * hash's passes. */
+async function openView() {
+  if (!VIEW) return;
+  if (VIEW_NAME === 'levelset' && state.node === null) {
+    const worst = await serial(() => engine.call('worstNode'));
+    if (worst !== null) await selectNode(worst, { keepHash: true });
+  }
+  if (VIEW.passes) await smooth(Number($('passes').value));
+}
+
 /** Whether the engine smooths each side with what the menus say. */
 function sameCompare() {
   return JSON.stringify(state.compare) === JSON.stringify(COMPARE.map((_, i) => readChoice(i)));
@@ -515,6 +541,18 @@ const STAT_ROWS = [
   ['passes', 'Passes', (s) => s.passes],
   ['time', 'Smoothing time', (s) => s.time_ms, null, (v) => `${num(v, 1)} ms`],
 ];
+/** What a table row means, as its tooltip. */
+const ROW_HELP = {
+  inverted: 'Elements whose corners run the wrong way round (negative area): a tangled mesh. Fewer is better.',
+  min_angle: 'The smallest corner angle of any element (negative in an inverted element). Larger is better.',
+  max_angle: 'The largest corner angle of any element. Smaller is better.',
+  min_quality: "The worst element quality: Lo's α for triangles, Canann's β for quads (1 ideal, below 0 inverted).",
+  mean_quality: 'The mean element quality (α for triangles, β for quads).',
+  small_angles: "The share of corner angles under 18° (Freitag's Fig. 3 view).",
+  max_condition: "The worst condition number κ = ‖A‖‖A⁻¹‖ of an element's Jacobian (Knupp): 1 ideal, ∞ inverted.",
+  laplacian_moves: 'Nodes moved by a (plain or smart) Laplacian step, over the passes.',
+  optimization_calls: 'Calls to the solver, over the passes.',
+};
 function deg(v) {
   return Number.isFinite(v) ? `${v.toFixed(2)}°` : '—';
 }
@@ -547,6 +585,7 @@ function fillTables(stats) {
       const th = document.createElement('th');
       th.scope = 'row';
       th.textContent = label;
+      if (ROW_HELP[key]) th.title = ROW_HELP[key];
       const td = document.createElement('td');
       if (detail && !s.detail) {
         td.textContent = 'after the run';
@@ -573,6 +612,7 @@ function fillTables(stats) {
  * (staying square) by what the page is taller than the frame. */
 function fitEmbed() {
   if (!EMBED) return false;
+  if (VIEW) return fitView();
   const canvases = [$('mesh-old'), $('mesh-new')];
   const over = document.documentElement.scrollHeight - window.innerHeight;
   if (over <= 0) return false;
@@ -580,6 +620,23 @@ function fitEmbed() {
   if (side >= canvases[0].clientWidth) return false;
   for (const c of canvases) c.style.width = `${side}px`;
   return true;
+}
+
+/** An embedded view fills its frame: its canvases take the height the rest leaves, side
+ * by side (stacked, one above the other, in a frame narrower than 480 px). Returns
+ * whether their size changed. */
+function fitView() {
+  const cs = VIEW.canvases.map($);
+  const stacked = window.innerWidth < 480 && cs.length > 1;
+  document.body.classList.toggle('stacked', stacked);
+  const before = cs.map((c) => c.style.height);
+  const probe = 40;
+  for (const c of cs) c.style.height = `${probe}px`;
+  const rest = document.body.getBoundingClientRect().height - probe * (stacked ? cs.length : 1);
+  const avail = window.innerHeight - rest - 1;
+  const h = Math.max(100, Math.floor(stacked ? avail / cs.length : avail));
+  for (const c of cs) c.style.height = `${h}px`;
+  return cs.some((c, i) => c.style.height !== before[i]);
 }
 
 async function redrawMeshes() {
@@ -594,6 +651,7 @@ async function redrawMeshes() {
   const t1 = now();
   fillTables(f.stats);
   if (fitEmbed()) return redrawMeshes(); // the tables took room: the canvases shrink, once more at most
+  await refreshUndo();
   return {
     frame_ms: t1 - t0,
     render_ms: f.render_ms,
@@ -607,7 +665,8 @@ async function redrawMeshes() {
 }
 
 async function redrawCharts() {
-  if (EMBED) return;
+  if (EMBED && !(VIEW && VIEW.draws === 'charts')) return;
+  if (VIEW) fitView();
   const c = canvasPixels($('pass-chart'));
   const hc = canvasPixels($('hist-old'));
   const r = await engine.call('charts', c.w, c.h, hc.w, hc.h, c.dpr, $('hist-log').checked);
@@ -635,15 +694,18 @@ function placeholder(canvas, text) {
 }
 
 async function redrawNode() {
-  if (EMBED) return;
+  if (EMBED && !(VIEW && VIEW.draws === 'node')) return;
+  if (VIEW) fitView();
   const lv = canvasPixels($('level-old'));
   const ch = canvasPixels($('solve-chart'));
+  $('smooth-node').disabled = state.node === null || state.running;
   if (state.node === null) {
     for (const id of ['level-old', 'level-new', 'solve-chart']) placeholder($(id), 'Click a free node on a mesh');
     $('node-hint').textContent = NODE_HINT;
     return;
   }
   const r = await engine.call('nodeView', lv.w, lv.h, ch.w, ch.h, lv.dpr);
+  state.level = lv;
   paint($('level-old'), r.level_old, lv.w, lv.h);
   paint($('level-new'), r.level_new, lv.w, lv.h);
   paint($('solve-chart'), r.chart, ch.w, ch.h);
@@ -700,6 +762,8 @@ function setRunning(on) {
   $('run').textContent = on ? 'Stop' : 'Run';
   $('run').setAttribute('aria-pressed', on ? 'true' : 'false');
   $('step').disabled = on;
+  $('smooth-node').disabled = on || state.node === null;
+  if (on) $('undo').disabled = true;
 }
 
 /** Runs `n` passes, redrawing the meshes after each; the Run button stops it. */
@@ -884,22 +948,30 @@ function attachPointer(canvas) {
   // what happened and finishes when both the pick and the release are in.
   let gesture = null;
   const finish = (g) => {
+    if (g.node === null && g.moved) pumpPan(g);
     if (g.node === null || g.node === undefined) return;
     if (g.moved) pumpDrag(g, true);
     else selectNode(g.node);
   };
+  const zoom = zoomer((at, f) => engine.call('zoomMeshes', at.x, at.y, f), redrawMeshes);
+  const touches = attachZoom(canvas, () => toFrame.bind(null, canvas), zoom, () => {
+    if (gesture) gesture.cancelled = true; // a second finger: the press becomes a pinch
+    gesture = null;
+  });
   canvas.addEventListener('pointerdown', (ev) => {
-    if (state.running || ev.button !== 0 || !state.frame.w) return;
+    if (state.running || ev.button !== 0 || !state.frame.w || touches.size > 1) return;
     const p = toFrame(canvas, ev);
     const g = { node: undefined, start: p, moved: false, up: false, busy: false, latest: null, final: false };
     gesture = g;
     canvas.setPointerCapture(ev.pointerId);
     serial(() => engine.call('pick', canvas.dataset.side, p.x, p.y, pickRadius(ev)))
       .then((pick) => {
+        if (g.cancelled) return;
         g.node = pick.node === undefined ? null : pick.node;
         if (g.node === null && !g.moved) showPickNote(pick.message);
         if (g.up) finish(g);
         else if (g.moved && g.node !== null) pumpDrag(g);
+        else if (g.moved) pumpPan(g);
       })
       .catch(report);
   });
@@ -913,7 +985,8 @@ function attachPointer(canvas) {
     if (!g.moved && Math.hypot(p.x - g.start.x, p.y - g.start.y) < 4) return;
     g.moved = true;
     g.latest = p;
-    if (g.node !== undefined && g.node !== null) pumpDrag(g);
+    if (g.node === null) pumpPan(g);
+    else if (g.node !== undefined) pumpDrag(g);
   });
   const end = (ev) => {
     const g = gesture;
@@ -924,9 +997,155 @@ function attachPointer(canvas) {
     if (g.moved) g.latest = toFrame(canvas, ev);
     if (g.node !== undefined) finish(g);
   };
+  canvas.addEventListener('keydown', (ev) => {
+    const step = { ArrowLeft: [-1, 0], ArrowRight: [1, 0], ArrowUp: [0, -1], ArrowDown: [0, 1] }[ev.key];
+    if (!step || ev.ctrlKey || ev.metaKey || ev.altKey) return;
+    ev.preventDefault(); // the page does not scroll under a moving node
+    if (state.node === null || state.running) {
+      showPickNote(state.node === null ? 'Choose a free node first (click it): the arrow keys move the chosen node.' : null);
+      return;
+    }
+    const k = ev.shiftKey ? 10 : 1;
+    const node = state.node;
+    serial(async () => {
+      await engine.call('nudge', canvas.dataset.side, step[0] * k, step[1] * k);
+      await redrawMeshes();
+      await redrawNode();
+      setStatus(`Node ${node} moved ${k} px ${ev.key.replace('Arrow', '').toLowerCase()} on both sides (Ctrl+Z takes it back).`);
+    }).catch(report);
+  });
   canvas.addEventListener('pointerleave', () => {
     canvas.parentElement.querySelector('.hover-label').hidden = true;
   });
+  canvas.addEventListener('pointerup', end);
+  canvas.addEventListener('pointercancel', end);
+}
+
+/**
+ * Zooms by the mouse wheel, by a pinch of two fingers, and fits again on a double-click,
+ * on `canvas` whose pointer positions `point()(ev)` gives in the engine's CSS pixels.
+ * `onPinch` is told when a second finger lands. Returns the map of pointers down.
+ */
+function attachZoom(canvas, point, zoom, onPinch = () => {}) {
+  const down = new Map();
+  let pinch = 0;
+  const spread = () => {
+    const [a, b] = [...down.values()];
+    return { d: Math.hypot(a.x - b.x, a.y - b.y), mid: { x: (a.x + b.x) / 2, y: (a.y + b.y) / 2 } };
+  };
+  canvas.addEventListener('wheel', (ev) => {
+    if (state.running) return;
+    ev.preventDefault();
+    zoom(point()(ev), Math.exp(-ev.deltaY * (ev.deltaMode === 1 ? 0.05 : 0.0015)));
+  }, { passive: false });
+  canvas.addEventListener('pointerdown', (ev) => {
+    down.set(ev.pointerId, point()(ev));
+    if (down.size === 2) {
+      onPinch();
+      pinch = spread().d;
+    }
+  });
+  canvas.addEventListener('pointermove', (ev) => {
+    if (!down.has(ev.pointerId)) return;
+    down.set(ev.pointerId, point()(ev));
+    if (down.size !== 2 || !pinch || state.running) return;
+    const { d, mid } = spread();
+    if (d > 0 && Math.abs(d / pinch - 1) > 0.02) {
+      zoom(mid, d / pinch);
+      pinch = d;
+    }
+  });
+  const up = (ev) => {
+    down.delete(ev.pointerId);
+    if (down.size < 2) pinch = 0;
+  };
+  canvas.addEventListener('pointerup', up);
+  canvas.addEventListener('pointercancel', up);
+  canvas.addEventListener('dblclick', () => {
+    if (state.running) return;
+    serial(async () => {
+      await engine.call('resetZoom');
+      await redrawMeshes();
+      await redrawNode();
+    }).catch(report);
+  });
+  return down;
+}
+
+/** A zoom that asks the engine once at a time: factors that arrive meanwhile multiply. */
+function zoomer(call, redraw) {
+  const acc = { factor: 1, at: null, busy: false };
+  const go = (at, factor) => {
+    acc.factor *= factor;
+    acc.at = at;
+    if (acc.busy) return;
+    const f = acc.factor;
+    acc.factor = 1;
+    acc.busy = true;
+    serial(async () => {
+      await call(at, f);
+      await redraw();
+    })
+      .catch(report)
+      .finally(() => {
+        acc.busy = false;
+        if (acc.factor !== 1) go(acc.at, 1);
+      });
+  };
+  return go;
+}
+
+/** Moves a picture by the pointer's way since the last move sent (`call(dx, dy)`);
+ * moves that arrive meanwhile are coalesced. */
+function panner(call, redraw) {
+  const go = (g) => {
+    if (g.panBusy || !g.latest || g.latest === g.panFrom) return;
+    const from = g.panFrom || g.start;
+    const to = g.latest;
+    g.panFrom = to;
+    g.panBusy = true;
+    showPickNote(null);
+    serial(async () => {
+      await call(to.x - from.x, to.y - from.y);
+      await redraw();
+    })
+      .catch(report)
+      .finally(() => {
+        g.panBusy = false;
+        go(g);
+      });
+  };
+  return go;
+}
+const pumpPan = panner((dx, dy) => engine.call('panMeshes', dx, dy), redrawMeshes);
+
+/** Zoom and pan on a level-set canvas (`panel` old or new); both level sets follow. */
+function attachLevelZoom(canvas, panel) {
+  const point = () => (ev) => {
+    const r = canvas.getBoundingClientRect();
+    const { w, h, dpr } = state.level || { w: r.width, h: r.height, dpr: 1 };
+    return { x: ((ev.clientX - r.left) / r.width) * (w / dpr), y: ((ev.clientY - r.top) / r.height) * (h / dpr) };
+  };
+  let g = null;
+  const ready = () => state.node !== null && state.level && !state.running;
+  const zoom = zoomer((at, f) => engine.call('zoomLevelSets', panel, at.x, at.y, f), redrawNode);
+  const touches = attachZoom(canvas, point, (at, f) => ready() && zoom(at, f), () => {
+    g = null;
+  });
+  const pan = panner((dx, dy) => engine.call('panLevelSets', panel, dx, dy), redrawNode);
+  canvas.addEventListener('pointerdown', (ev) => {
+    if (!ready() || ev.button !== 0 || touches.size > 1) return;
+    canvas.setPointerCapture(ev.pointerId);
+    g = { start: point()(ev), latest: null };
+  });
+  canvas.addEventListener('pointermove', (ev) => {
+    if (!g) return;
+    g.latest = point()(ev);
+    pan(g);
+  });
+  const end = () => {
+    g = null;
+  };
   canvas.addEventListener('pointerup', end);
   canvas.addEventListener('pointercancel', end);
 }
@@ -970,6 +1189,10 @@ function pumpDrag(d, final = false) {
   d.latest = null;
   d.busy = true;
   serial(async () => {
+    if (!d.remembered) {
+      d.remembered = true; // undo takes the whole drag back
+      await engine.call('rememberBeforeMove', d.node);
+    }
     await engine.call('drag', d.node, p.x, p.y);
     if (final || d.final) {
       await engine.call('select', d.node);
@@ -988,6 +1211,70 @@ function pumpDrag(d, final = false) {
       d.busy = false;
       if (d.latest) pumpDrag(d, d.final);
     });
+}
+
+// ---- undo, one node, the figure --------------------------------------------------------
+/** The Undo button says what it would take back, or why it cannot. */
+async function refreshUndo() {
+  const u = await engine.call('undoState');
+  const b = $('undo');
+  b.disabled = u.depth === 0 || state.running;
+  b.textContent = u.depth ? `Undo move of node ${u.next}` : 'Undo move';
+  b.title = u.depth
+    ? `Put node ${u.next} back where it was before its last move, on both sides (Ctrl+Z); ${u.depth} move${u.depth === 1 ? '' : 's'} can be undone.`
+    : 'Nothing to undo: a move (a drag or Smooth this node) can be taken back until the next pass, Reset or Perturb.';
+}
+
+function undo() {
+  if (state.running) return;
+  return serial(async () => {
+    const u = await engine.call('undo');
+    if (u.node === undefined) {
+      setStatus('Nothing to undo.');
+      return;
+    }
+    await redrawMeshes();
+    await redrawCharts();
+    await redrawNode();
+    setStatus(`Node ${u.node} is back where it was before its last move, on both sides.`);
+  }).catch(report);
+}
+
+/** One solver call on the chosen node on each side; the node view shows that call. */
+function smoothThisNode() {
+  if (state.running || state.node === null) return;
+  return serial(async () => {
+    const node = state.node;
+    const lv = canvasPixels($('level-old'));
+    const ch = canvasPixels($('solve-chart'));
+    const r = await engine.call('smoothNode', lv.w, lv.h, ch.w, ch.h, lv.dpr);
+    state.level = lv;
+    paint($('level-old'), r.level_old, lv.w, lv.h);
+    paint($('level-new'), r.level_new, lv.w, lv.h);
+    paint($('solve-chart'), r.chart, ch.w, ch.h);
+    $('node-hint').textContent = `One solver call on each side moved node ${node} to its optimum; the pictures show that call. ${r.summary}`;
+    await redrawMeshes();
+    await redrawCharts();
+    setStatus(`Node ${node} smoothed by one solver call on each side (Undo takes it back).`);
+  }).catch(report);
+}
+
+/** The figure for slides, drawn by the core at the size and pixel ratio chosen. */
+function saveFigure() {
+  return serial(async () => {
+    const [w, h] = ['figure-w', 'figure-h'].map((id) => $(id).value.trim());
+    if (!/^\d+$/.test(w) || !/^\d+$/.test(h) || Number(w) < 1 || Number(h) < 1) {
+      throw new Error(`Figure: give its width and height in whole pixels from 1 (got ${w || 'nothing'} × ${h || 'nothing'}).`);
+    }
+    const dpr = Number($('figure-dpr').value);
+    const f = await engine.call('figure', Number(w), Number(h), dpr);
+    const c = document.createElement('canvas');
+    paint(c, f.pixels, f.w, f.h);
+    const blob = await new Promise((resolve) => c.toBlob(resolve, 'image/png'));
+    download(blob, `${baseName()}_figure_${w}x${h}@${dpr}x.png`);
+    $('figure-note').textContent = `Saved a figure of ${f.w} × ${f.h} pixels (${w} × ${h} at ${dpr}×).`;
+    clearError();
+  }).catch(report);
 }
 
 // ---- export --------------------------------------------------------------------------
@@ -1105,6 +1392,18 @@ function wire() {
   window.addEventListener('popstate', () => onAddressChange().catch(report));
   attachPointer($('mesh-old'));
   attachPointer($('mesh-new'));
+  attachLevelZoom($('level-old'), 'old');
+  attachLevelZoom($('level-new'), 'new');
+  $('undo').addEventListener('click', undo);
+  document.addEventListener('keydown', (ev) => {
+    const typing = ev.target instanceof HTMLElement && ev.target.matches('input, select, textarea');
+    if ((ev.ctrlKey || ev.metaKey) && !ev.shiftKey && !ev.altKey && ev.key.toLowerCase() === 'z' && !typing) {
+      ev.preventDefault();
+      undo();
+    }
+  });
+  $('smooth-node').addEventListener('click', smoothThisNode);
+  $('save-figure').addEventListener('click', saveFigure);
   for (const b of document.querySelectorAll('button[data-export]')) {
     b.addEventListener('click', () => exportMesh(b.dataset.side, b.dataset.export));
   }
@@ -1124,6 +1423,7 @@ function wire() {
 function setupEmbed() {
   if (!EMBED) return;
   document.body.classList.add('embed');
+  if (VIEW) document.body.classList.add('view', `view-${VIEW_NAME}`);
   const a = document.createElement('a');
   a.id = 'open-full';
   a.target = '_blank';
@@ -1146,6 +1446,10 @@ async function main() {
   }
   state.lastHash = location.hash;
   await openHash(await applyHash());
+  if (VIEW_NAME !== null && !VIEW) {
+    showError(`view=${VIEW_NAME}: an embed shows one of the views ${Object.keys(VIEWS).join(', ')}; this is the compact page.`);
+  }
+  await openView();
   document.body.dataset.ready = '1';
 }
 

@@ -15,6 +15,7 @@ pub mod raster;
 pub mod sample;
 pub mod stats;
 pub mod views;
+pub mod interact;
 
 use std::cell::{OnceCell, RefCell};
 
@@ -238,8 +239,8 @@ pub struct Panel {
     buckets: Vec<u8>,
     /// The full statistics (angle histogram included), computed when first asked for.
     full: OnceCell<MeshStats>,
-    /// The last mesh picture drawn without a highlight, with the version and canvas it shows.
-    picture: RefCell<Option<(u64, Canvas, Pixmap)>>,
+    /// The last mesh picture drawn without a highlight, with the version, canvas and zoom it shows.
+    picture: RefCell<Option<(u64, Canvas, crate::render::ZoomPan, Pixmap)>>,
 }
 
 impl Panel {
@@ -430,6 +431,12 @@ pub struct Playground {
     panels: [Panel; 2],
     next_version: u64,
     run: Option<PassRun>,
+    /// The user's zoom and pan on the mesh panels (both panels share it).
+    zoom: crate::render::ZoomPan,
+    /// The part of a star the level-set views show (both sides share it).
+    level_window: interact::LevelWindow,
+    /// What undo puts back: the latest move last.
+    undo: Vec<interact::Undo>,
 }
 
 impl Playground {
@@ -461,6 +468,9 @@ impl Playground {
             panels: [old, new],
             next_version: 1,
             run: None,
+            zoom: crate::render::ZoomPan::default(),
+            level_window: interact::LevelWindow::default(),
+            undo: Vec::new(),
         })
     }
 
@@ -504,6 +514,7 @@ impl Playground {
     /// smoother plans, then measured, then the new panel.
     pub fn begin_pass(&mut self) {
         self.abort_pass();
+        self.undo.clear(); // a move before a pass is not undone over the pass's work
         self.run = Some(PassRun {
             side: 0,
             stage: Stage::Plan,
@@ -816,6 +827,7 @@ impl Playground {
     /// Both panels back to the original mesh, their records cleared.
     pub fn reset(&mut self) {
         self.abort_pass();
+        self.undo.clear();
         let o = self.settings.smooth_options().expect("the settings were checked when set");
         let quick = quick_of(&self.original_stats);
         for p in &mut self.panels {
@@ -832,6 +844,19 @@ impl Playground {
     /// Moves a free node to `to` on both panels' current meshes (the mouse drag); its
     /// mid-side nodes follow. Fixed nodes, mid-side nodes and unknown nodes are refused.
     pub fn move_node(&mut self, node: usize, to: DVec2) -> Result<()> {
+        self.check_movable(node)?;
+        if !to.is_finite() {
+            return Err(Error::invalid(format!("cannot move node {node} to a non-finite position {to}")));
+        }
+        self.abort_pass();
+        for side in Side::BOTH {
+            self.place(side, node, to);
+        }
+        Ok(())
+    }
+
+    /// Refuses a node the user cannot move: unknown, fixed or mid-side.
+    fn check_movable(&self, node: usize) -> Result<()> {
         let m = self.topology();
         if node >= m.node_count() {
             return Err(Error::node(node, None, format!("no such node: the mesh has {} nodes", m.node_count())));
@@ -839,18 +864,16 @@ impl Playground {
         if !m.is_free(node) {
             return Err(Error::node(node, None, "is fixed or a mid-side node, so it cannot be dragged"));
         }
-        if !to.is_finite() {
-            return Err(Error::invalid(format!("cannot move node {node} to a non-finite position {to}")));
-        }
-        self.abort_pass();
-        for side in 0..2 {
-            let v = self.fresh_version();
-            let p = &mut self.panels[side];
-            p.mesh.nodes[node] = to;
-            p.mesh.follow_mid_nodes(node);
-            p.changed(v);
-        }
         Ok(())
+    }
+
+    /// Puts a node of one panel at `to` (its mid-side nodes follow): a new version.
+    fn place(&mut self, side: Side, node: usize, to: DVec2) {
+        let v = self.fresh_version();
+        let p = &mut self.panels[side.index()];
+        p.mesh.nodes[node] = to;
+        p.mesh.follow_mid_nodes(node);
+        p.changed(v);
     }
 }
 

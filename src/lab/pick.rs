@@ -6,6 +6,7 @@ use serde::Serialize;
 
 use super::{Playground, Side};
 use crate::mesh::{Mesh, NodeRole};
+use crate::quality::element_quality;
 use crate::render::View;
 
 /// What a press at a point of a panel found.
@@ -80,6 +81,22 @@ impl Playground {
             },
         }
     }
+}
+
+/// The free node whose star has the smallest element quality (α/β), if any node is free:
+/// the node `smoothlab render` studies and an embedded level-set view opens on.
+pub fn worst_free_node(mesh: &Mesh) -> Option<usize> {
+    let q: Vec<f64> = (0..mesh.element_count())
+        .map(|e| {
+            let p = mesh.element_points_array(e);
+            element_quality(mesh.kind(e), &p[..mesh.kind(e).node_count()]).shape
+        })
+        .collect();
+    (0..mesh.node_count())
+        .filter(|&n| mesh.is_free(n))
+        .map(|n| (n, mesh.node_elements(n).iter().map(|&e| q[e as usize]).fold(f64::INFINITY, f64::min)))
+        .min_by(|a, b| a.1.total_cmp(&b.1))
+        .map(|(n, _)| n)
 }
 
 #[cfg(test)]

@@ -12,8 +12,8 @@ use crate::error::{Error, Result};
 use crate::objective::{Goal, Star};
 use crate::optimize::{DirectionKind, SolveResult, StopReason};
 use crate::render::{
-    mesh_view, render_angle_histogram, render_chart, render_level_set, render_mesh, render_pass_histories,
-    sample_field, star_bounds, AngleHistogram, Chart, Frame, HistogramSeries, LevelSet, LevelSetView, MeshView,
+    mesh_view, render_angle_histogram, render_compare, ComparePanel, render_chart, render_level_set, render_mesh, render_pass_histories,
+    sample_field, AngleHistogram, Chart, Frame, HistogramSeries, LevelSet, LevelSetView, MeshView,
     percentages, PassHistory, PathKind, Series, View,
 };
 
@@ -85,6 +85,15 @@ impl NodeSummary {
     }
 }
 
+/// The worst condition number as a figure says it (∞ when an element is inverted).
+fn kappa_words(k: f64) -> String {
+    if k.is_finite() {
+        format!("{k:.3}")
+    } else {
+        "∞ (inverted)".to_string()
+    }
+}
+
 /// `larger` or `smaller`: which values of an objective are better.
 fn better_words(goal: Goal) -> &'static str {
     match goal {
@@ -118,7 +127,7 @@ impl Playground {
     /// The mesh view options of a panel: both panels share the original mesh's bounds, so
     /// they compare at one scale and a dragged node does not rescale the picture.
     fn mesh_options(&self, c: Canvas, highlight: Option<usize>) -> MeshView {
-        let mut o = MeshView::default().with_dpr(c.dpr).with_highlight(highlight);
+        let mut o = MeshView::default().with_dpr(c.dpr).with_highlight(highlight).with_zoom(self.zoom());
         o.bounds = Some(self.bounds());
         o
     }
@@ -140,10 +149,10 @@ impl Playground {
         {
             let mut cache = panel.picture.borrow_mut();
             match cache.as_ref() {
-                Some((v, cc, base)) if *v == panel.version && *cc == c => pm = base.clone(),
+                Some((v, cc, z, base)) if *v == panel.version && *cc == c && *z == opts.zoom => pm = base.clone(),
                 _ => {
                     raster::render_fine(&mut pm, &panel.mesh, &panel.buckets, &view, &MeshView { highlight: None, ..opts });
-                    *cache = Some((panel.version, c, pm.clone()));
+                    *cache = Some((panel.version, c, opts.zoom, pm.clone()));
                 }
             }
         }
@@ -165,7 +174,7 @@ impl Playground {
         let panel = self.panel(side);
         let mut star = Star::new();
         star.gather(&panel.mesh, node);
-        let bounds = star_bounds(&star, LEVEL_SET_MARGIN);
+        let (_, bounds) = self.level_bounds(side, node);
         let field = sample_field(panel.objective.as_ref(), &star, bounds, LEVEL_SET_SAMPLES, LEVEL_SET_SAMPLES)?;
         let mut path = Vec::with_capacity(result.history.len() + 1);
         path.push((result.x0, PathKind::Start));
@@ -173,7 +182,8 @@ impl Playground {
         let title = format!("{}: {}", side.letter(), self.settings.choice(side).title());
         let data = LevelSet { field: &field, star: &star, path: &path, optimum: Some(result.x), title: &title };
         let mut pm = pixmap(c.w, c.h)?;
-        render_level_set(&mut pm, &data, &LevelSetView { dpr: c.dpr, ..LevelSetView::default() });
+        let clip = !self.level_window().is_whole();
+        render_level_set(&mut pm, &data, &LevelSetView { dpr: c.dpr, clip, ..LevelSetView::default() });
         Ok((pm, result))
     }
 
@@ -252,6 +262,35 @@ impl Playground {
             .collect();
         let mut pm = pixmap(c.w, c.h)?;
         render_pass_histories(&mut pm, &runs, &Chart { title: "Per pass (0 = as loaded)", dpr: c.dpr, ..Chart::default() });
+        Ok(pm)
+    }
+
+    /// The figure for slides: A's mesh on the left and B's on the right, on one scale,
+    /// each titled with what it runs and how many passes, with its statistics under it and
+    /// the quality colour bar ([`render_compare`]; `smoothlab render --view compare`).
+    pub fn render_figure(&self, c: Canvas) -> Result<Pixmap> {
+        let lines = |side: Side| {
+            let t = self.table(side);
+            let s = self.full_stats(side);
+            vec![
+                format!("inverted {}   min quality {:.3}   mean quality {:.3}", s.inverted, s.min_quality, s.mean_quality),
+                format!("angles {:.1}° – {:.1}°   worst κ {}", s.min_angle_deg, s.max_angle_deg, kappa_words(s.max_condition)),
+                format!("Laplacian moves {}   optimization calls {}", t.laplacian_moves, t.optimization_calls),
+            ]
+        };
+        let title = |side: Side| {
+            let n = self.panel(side).records.len();
+            format!("{}, {n} pass{}", self.side_label(side), if n == 1 { "" } else { "es" })
+        };
+        let (lo, ln) = (lines(Side::Old), lines(Side::New));
+        let (to, tn) = (title(Side::Old), title(Side::New));
+        let mut pm = pixmap(c.w, c.h)?;
+        render_compare(
+            &mut pm,
+            &ComparePanel { mesh: &self.panel(Side::Old).mesh, title: &to, lines: &lo },
+            &ComparePanel { mesh: &self.panel(Side::New).mesh, title: &tn, lines: &ln },
+            &MeshView::default().with_dpr(c.dpr),
+        );
         Ok(pm)
     }
 

@@ -247,15 +247,24 @@ pub struct LevelSetView {
     pub isolines: bool,
     /// Draw the legend. Default true.
     pub legend: bool,
+    /// Whiten what the star and the path draw outside the field's box (a zoomed view
+    /// samples only the part of the star it shows). Default false.
+    pub clip: bool,
 }
 
 impl Default for LevelSetView {
     fn default() -> Self {
-        LevelSetView { levels: Levels::default(), colormap: Colormap::Viridis, dpr: 1.0, frame: None, isolines: true, legend: true }
+        LevelSetView { levels: Levels::default(), colormap: Colormap::Viridis, dpr: 1.0, frame: None, isolines: true, legend: true, clip: false }
     }
 }
 
 const TITLE_H: f32 = 40.0;
+
+/// The view a level-set panel of `frame` (CSS pixels) draws the world box `lo..hi` with:
+/// the one [`render_level_set`] uses for a field sampled over that box.
+pub fn level_set_view(frame: Frame, lo: DVec2, hi: DVec2, dpr: f32) -> View {
+    View::fit(lo, hi, frame.inset(0.0, TITLE_H, 0.0, 0.0), 8.0, ZoomPan::default(), sane_dpr(dpr))
+}
 
 /// Draws one level-set panel and returns its view (world ↔ pixels).
 pub fn render_level_set(pixmap: &mut Pixmap, data: &LevelSet<'_>, opts: &LevelSetView) -> View {
@@ -265,7 +274,7 @@ pub fn render_level_set(pixmap: &mut Pixmap, data: &LevelSet<'_>, opts: &LevelSe
     let plot = frame.inset(0.0, TITLE_H, 0.0, 0.0);
     let field = data.field;
     let grid = field.grid;
-    let view = View::fit(grid.lo, grid.hi, plot, 8.0, ZoomPan::default(), s);
+    let view = level_set_view(frame, grid.lo, grid.hi, s);
     let levels = choose_levels(field, opts.levels);
 
     draw_bands(pixmap, field, &levels, &view, plot, opts.colormap, s);
@@ -365,6 +374,17 @@ pub fn render_level_set(pixmap: &mut Pixmap, data: &LevelSet<'_>, opts: &LevelSe
     if let Some(o) = data.optimum {
         let (x, y) = view.device_xy(o);
         draw_marker(pixmap, Marker::Star, x, y, MarkerStyle { r: 6.5 * s, fill: rgba(240, 228, 66, 255), edge: Color::BLACK, width: 1.2 * s });
+    }
+
+    if opts.clip {
+        // what lies outside the sampled box is not part of this view
+        let (a, b) = (view.device_xy(grid.lo), view.device_xy(grid.hi));
+        let (x0, x1, y0, y1) = (a.0.min(b.0), a.0.max(b.0), a.1.min(b.1), a.1.max(b.1));
+        let (fx, fy, fr, fb) = (frame.x * s, frame.y * s, frame.right() * s, frame.bottom() * s);
+        fill_rect(pixmap, fx, fy, frame.w * s, y0 - fy, Color::WHITE);
+        fill_rect(pixmap, fx, y1, frame.w * s, fb - y1, Color::WHITE);
+        fill_rect(pixmap, fx, y0, x0 - fx, y1 - y0, Color::WHITE);
+        fill_rect(pixmap, x1, y0, fr - x1, y1 - y0, Color::WHITE);
     }
 
     // title and a one-line key to the bands

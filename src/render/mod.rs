@@ -39,7 +39,7 @@ pub use compare::{render_compare, ComparePanel};
 pub use contour::{iso_segments, Grid};
 pub use histogram::{percentages, render_angle_histogram, AngleHistogram, HistogramSeries};
 pub use levelset::{PATH_RGB, 
-    choose_levels, render_level_set, render_level_sets_side_by_side, sample_field, star_bounds, Field, LevelSet,
+    choose_levels, level_set_view, render_level_set, render_level_sets_side_by_side, sample_field, star_bounds, Field, LevelSet,
     LevelSetView, Levels, PathKind,
 };
 pub use mesh::{

@@ -22,7 +22,10 @@ if (!existsSync(path.join(WWW, 'pkg', 'smoothlab_bg.wasm'))) {
 
 // ---- a tiny test runner ---------------------------------------------------------------
 const results = [];
+/** ONLY=regex runs the tests whose names match (and the last, which checks the console). */
+const ONLY = process.env.ONLY ? new RegExp(process.env.ONLY) : null;
 async function test(name, fn) {
+  if (ONLY && !ONLY.test(name) && !/^no request left/.test(name)) return;
   const t0 = Date.now();
   try {
     await fn();
@@ -93,6 +96,7 @@ async function chooseSample(page, value) {
 }
 /** Clicks near points of the mesh canvas until a node is chosen (as a user aims at a node). */
 async function clickSomeNode(page, canvasId, fractions) {
+  await page.locator(`#${canvasId}`).scrollIntoViewIfNeeded();
   const box = await page.locator(`#${canvasId}`).boundingBox();
   for (const [fx, fy] of fractions) {
     await page.mouse.click(box.x + fx * box.width, box.y + fy * box.height);
@@ -972,6 +976,300 @@ try {
     check(pts.some((p) => Math.abs(p[2]) > 1), 'the points were flattened to z = 0');
     // the fixed corners are where they were
     for (const k of [0, 3, 12, 15]) check(Math.hypot(...pts[k].map((c, i) => c - v[k][i])) < 1e-9, `corner ${k} moved: ${pts[k]}`);
+  });
+
+  // ---- for teaching material ------------------------------------------------------------
+  /** A host page with the embed in an iframe of `w × h`; returns the host and the frame. */
+  async function embedIn(query, hash, w, h) {
+    const host = await context.newPage();
+    watch(host, `iframe ${query}`);
+    await host.setContent(`<iframe id="f" src="${server.base}?${query}${hash}" width="${w}" height="${h}" style="border:0"></iframe>`);
+    const frame = await (await host.$('#f')).contentFrame();
+    await frame.waitForFunction(() => document.body.dataset.ready === '1' && document.body.dataset.busy === '0', null, { timeout: TIMEOUT });
+    return { host, frame };
+  }
+  /** The README's embedded views: each in a 520-px iframe of the height the README gives. */
+  const EMBED_VIEWS = [
+    ['mesh', 300, ['mesh-old', 'mesh-new']],
+    ['levelset', 380, ['level-old', 'level-new']],
+    ['compare', 540, ['mesh-old', 'mesh-new']],
+    ['history', 420, ['pass-chart']],
+    ['histogram', 280, ['hist-old', 'hist-new']],
+  ];
+
+  await test('embed=1&view=…: each view alone fills its 520-px frame, with the settings of the hash', async () => {
+    const hash = '#sample=plate-tri-tangled&strategy=rules&order=priority&passes=3';
+    for (const [view, h, canvases] of EMBED_VIEWS) {
+      const { host, frame } = await embedIn(`embed=1&view=${view}`, hash, 520, h);
+      const fit = await frame.evaluate(() => ({ h: document.documentElement.scrollHeight, inner: window.innerHeight, w: document.documentElement.scrollWidth, iw: window.innerWidth }));
+      check(fit.h <= fit.inner && fit.w <= fit.iw, `${view}: ${fit.w}×${fit.h} in a ${fit.iw}×${fit.inner} frame`);
+      for (const id of canvases) {
+        const box = await frame.locator(`#${id}`).boundingBox();
+        check(box && box.height >= 100 && box.width >= 200, `${view}: #${id} is ${JSON.stringify(box)}`);
+        if (view !== 'compare') check(box.y + box.height >= h - 30, `${view}: #${id} ends at ${box.y + box.height} of ${h}: the view does not fill its frame`);
+        check((await canvasInfo(frame, id)).colours > 8, `${view}: #${id} looks blank`);
+      }
+      for (const sel of ['.controls', '.load', '.foot']) check(!(await frame.isVisible(sel)), `${view}: ${sel} is shown`);
+      const others = ['mesh-new', 'level-new', 'pass-chart', 'hist-new', 'solve-chart'].filter((id) => !canvases.includes(id));
+      for (const id of others) check(!(await frame.isVisible(`#${id}`)), `${view}: #${id} is shown too`);
+      const run = await frame.evaluate(() => window.smoothlab.metrics.run);
+      if (['compare', 'history', 'histogram'].includes(view)) check(run && run.done === 3, `${view}: ran ${JSON.stringify(run && run.done)} of the hash's 3 passes`);
+      else check(run === null, `${view}: ran passes the view does not show`);
+      if (view === 'levelset') check(/^\d+$/.test(await frame.inputValue('#node')), 'the level sets of a node (the worst one when the hash names none)');
+      if (view === 'compare') {
+        const t = await frame.locator('#stats-new').boundingBox();
+        check(t && t.y + t.height >= h - 40, `the compare view keeps its tables, down to the frame's foot: ${JSON.stringify(t)}`);
+      }
+      await host.locator('#f').screenshot({ path: path.join(OUT, `20-embed-${view}-520.png`) });
+      await host.close();
+    }
+    // the hash's node, and a view it does not know said in words
+    const { host, frame } = await embedIn('embed=1&view=levelset', '#sample=plate-tri&node=40', 520, 300);
+    check((await frame.inputValue('#node')) === '40', 'the hash\'s node');
+    await host.close();
+    const bad = await embedIn('embed=1&view=mesh3d', '#sample=plate-tri', 520, 760);
+    check(/view=mesh3d: an embed shows one of the views mesh, levelset, compare, history, histogram/.test(await bad.frame.textContent('#message')), 'an unknown view is named');
+    await bad.host.close();
+  });
+
+  await test('zoom and pan: wheel, drag on empty space and a pinch on the meshes and the level sets; double-click fits again', async () => {
+    await page.goto(`${server.base}#sample=plate-tri`);
+    await idle(page);
+    await page.locator('#mesh-new').scrollIntoViewIfNeeded();
+    const fitted = await canvasInfo(page, 'mesh-new');
+    const box = await page.locator('#mesh-new').boundingBox();
+    await page.mouse.move(box.x + box.width * 0.3, box.y + box.height * 0.3);
+    await page.mouse.wheel(0, -600);
+    await idle(page);
+    const zoomed = await canvasInfo(page, 'mesh-new');
+    check(zoomed.hash !== fitted.hash, 'the wheel changed nothing');
+    check((await canvasInfo(page, 'mesh-old')).hash !== fitted.hash, 'both meshes zoom');
+    // a drag from the hole (no node there) pans, choosing no node
+    const hole = { x: box.x + box.width * 0.5, y: box.y + box.height * 0.5 };
+    // the hole's centre, (0.5, 0.5) fitted, is at 0.3 + 0.2 × the zoom after the wheel
+    const z = Math.exp(600 * 0.0015);
+    const inHole = { x: box.x + box.width * (0.3 + 0.2 * z), y: box.y + box.height * (0.3 + 0.2 * z) };
+    await page.mouse.move(inHole.x, inHole.y);
+    await page.mouse.down();
+    await page.mouse.move(inHole.x - 60, inHole.y - 40, { steps: 6 });
+    await page.mouse.up();
+    await idle(page);
+    check((await canvasInfo(page, 'mesh-new')).hash !== zoomed.hash, 'a drag on empty space did not pan');
+    check((await page.inputValue('#node')) === '', 'a pan chose a node');
+    check(await page.isHidden('#pick-note'), 'a pan is not a missed press');
+    // nodes are still chosen and dragged through the zoomed view
+    const hit = await clickSomeNode(page, 'mesh-new', ringPoints());
+    check(hit.node >= 0, 'a node chosen on the zoomed mesh');
+    await page.mouse.dblclick(hole.x, hole.y);
+    await idle(page);
+    const refit = await canvasInfo(page, 'mesh-new');
+    // the chosen node is highlighted now: compare with that picture fitted
+    await page.fill('#node', '');
+    await page.dispatchEvent('#node', 'change');
+    await idle(page);
+    check((await canvasInfo(page, 'mesh-new')).hash === fitted.hash, 'a double-click fits the meshes again exactly');
+    check(refit.hash !== zoomed.hash, 'double-click');
+    // the level sets
+    await page.fill('#node', String(hit.node));
+    await page.dispatchEvent('#node', 'change');
+    await idle(page);
+    await page.locator('#level-new').scrollIntoViewIfNeeded();
+    const lv = [await canvasInfo(page, 'level-old'), await canvasInfo(page, 'level-new')];
+    const lb = await page.locator('#level-new').boundingBox();
+    await page.mouse.move(lb.x + lb.width / 2, lb.y + lb.height * 0.6);
+    await page.mouse.wheel(0, -500);
+    await idle(page);
+    const lz = [await canvasInfo(page, 'level-old'), await canvasInfo(page, 'level-new')];
+    check(lz[0].hash !== lv[0].hash && lz[1].hash !== lv[1].hash, 'both level sets zoom');
+    await page.mouse.move(lb.x + lb.width / 2, lb.y + lb.height * 0.6);
+    await page.mouse.down();
+    await page.mouse.move(lb.x + lb.width / 2 + 40, lb.y + lb.height * 0.6 + 20, { steps: 4 });
+    await page.mouse.up();
+    await idle(page);
+    check((await canvasInfo(page, 'level-new')).hash !== lz[1].hash, 'a drag pans the level sets');
+    await page.mouse.dblclick(lb.x + lb.width / 2, lb.y + lb.height / 2);
+    await idle(page);
+    check((await canvasInfo(page, 'level-new')).hash === lv[1].hash, 'a double-click fits the level sets again');
+    await shot(page, '21-zoom-level-sets');
+    // a pinch of two fingers on a touch screen zooms the meshes
+    const phone = await browser.newContext({ viewport: { width: 390, height: 844 }, deviceScaleFactor: 2, isMobile: true, hasTouch: true });
+    const p = await phone.newPage();
+    watch(p, 'pinch');
+    await p.goto(`${server.base}#sample=plate-tri`);
+    await idle(p);
+    const before = await canvasInfo(p, 'mesh-old');
+    const b = await p.locator('#mesh-old').boundingBox();
+    const cdp = await phone.newCDPSession(p);
+    const cx = b.x + b.width / 2;
+    const cy = b.y + b.height / 2;
+    const fingers = (d) => [{ x: cx - d, y: cy, id: 1 }, { x: cx + d, y: cy, id: 2 }];
+    await cdp.send('Input.dispatchTouchEvent', { type: 'touchStart', touchPoints: fingers(20) });
+    for (const d of [30, 45, 60, 80]) await cdp.send('Input.dispatchTouchEvent', { type: 'touchMove', touchPoints: fingers(d) });
+    await cdp.send('Input.dispatchTouchEvent', { type: 'touchEnd', touchPoints: [] });
+    await idle(p);
+    check((await canvasInfo(p, 'mesh-old')).hash !== before.hash, 'a pinch did not zoom');
+    check((await p.inputValue('#node')) === '', 'a pinch chose a node');
+    await shot(p, '24-phone-pinched-390', false);
+    await phone.close();
+  });
+
+  await test('undo takes back a drag, by the button and by Ctrl+Z', async () => {
+    await page.goto(`${server.base}#sample=plate-quad`);
+    await idle(page);
+    check(await page.isDisabled('#undo'), 'nothing to undo at first');
+    const hit = await clickSomeNode(page, 'mesh-old', ringPoints());
+    await idle(page);
+    const before = [await canvasInfo(page, 'mesh-old'), await canvasInfo(page, 'mesh-new'), await stats(page, 'new')];
+    let at = { x: hit.x, y: hit.y };
+    const drag = async (dx, dy) => {
+      await page.mouse.move(at.x, at.y);
+      await page.mouse.down();
+      await page.mouse.move(at.x + dx, at.y + dy, { steps: 6 });
+      await page.mouse.up();
+      await idle(page);
+      at = { x: at.x + dx, y: at.y + dy };
+    };
+    await drag(18, 12);
+    check((await canvasInfo(page, 'mesh-new')).hash !== before[1].hash, 'the drag moved nothing');
+    check(!(await page.isDisabled('#undo')), 'Undo is offered');
+    check(new RegExp(`node ${hit.node}`).test(await page.textContent('#undo')), await page.textContent('#undo'));
+    await page.click('#undo');
+    await idle(page);
+    check((await canvasInfo(page, 'mesh-old')).hash === before[0].hash && (await canvasInfo(page, 'mesh-new')).hash === before[1].hash, 'the button put the node back exactly');
+    check(JSON.stringify(await stats(page, 'new')) === JSON.stringify(before[2]), 'the table as before');
+    check(await page.isDisabled('#undo'), 'nothing left to undo');
+    at = { x: hit.x, y: hit.y };
+    await drag(-14, 9);
+    await drag(10, -16);
+    await page.locator('#mesh-new').focus();
+    await page.keyboard.press('Control+z');
+    await idle(page);
+    await page.keyboard.press('Control+z');
+    await idle(page);
+    check((await canvasInfo(page, 'mesh-new')).hash === before[1].hash, 'Ctrl+Z twice took back both drags');
+    await drag(12, 12);
+    await page.click('#step');
+    await idle(page);
+    check(await page.isDisabled('#undo'), 'a pass ends what undo can take back');
+  });
+
+  await test('Smooth this node: one solver call on the chosen node, its history shown, undoable', async () => {
+    await page.goto(`${server.base}#sample=plate-tri&perturbed=1&tangle=0.4&seed=3`);
+    await idle(page);
+    check(await page.isDisabled('#smooth-node'), 'no node, nothing to smooth');
+    const hit = await clickSomeNode(page, 'mesh-new', ringPoints());
+    await idle(page);
+    const before = await canvasInfo(page, 'mesh-new');
+    const summary = await page.textContent('#node-hint');
+    await page.click('#smooth-node');
+    await idle(page);
+    const hint = await page.textContent('#node-hint');
+    check(new RegExp(`One solver call on each side moved node ${hit.node}`).test(hint), hint);
+    check(hint.includes(summary), `the history shown is the call's: ${hint} vs ${summary}`);
+    check((await canvasInfo(page, 'mesh-new')).hash !== before.hash, 'the node did not move');
+    // from where it is now, the solve has little left to do
+    const m = /B, .* \(\w+ is better\): (-?[\d.]+) → (-?[\d.]+)/.exec(hint);
+    check(m, hint);
+    await page.fill('#node', String(hit.node));
+    await page.dispatchEvent('#node', 'change');
+    await idle(page);
+    const again = /B, .* \(\w+ is better\): (-?[\d.]+) →/.exec(await page.textContent('#node-hint'));
+    check(Math.abs(Number(again[1]) - Number(m[2])) < 1e-3, `B starts where the call ended: ${again[1]} vs ${m[2]}`);
+    await page.click('#undo');
+    await idle(page);
+    check((await canvasInfo(page, 'mesh-new')).hash === before.hash, 'undo puts the node back');
+    await shot(page, '22-smooth-this-node');
+    await page.locator('.node-view').scrollIntoViewIfNeeded();
+    await shot(page, '22-smooth-this-node-1280', false);
+  });
+
+  await test('Save figure: A | B with titles, colour bar and statistics at the chosen size and pixel ratio', async () => {
+    await page.goto(`${server.base}#sample=plate-tri-tangled&passes=2`);
+    await idle(page);
+    await page.click('#run');
+    await page.waitForFunction(() => /2 passes done/.test(document.getElementById('status').textContent), null, { timeout: TIMEOUT });
+    await idle(page);
+    await page.fill('#figure-w', '800');
+    await page.fill('#figure-h', '450');
+    await page.selectOption('#figure-dpr', '2');
+    const [dl] = await Promise.all([page.waitForEvent('download'), page.click('#save-figure')]);
+    const bytes = readFileSync(await dl.path());
+    check(bytes.subarray(1, 4).toString() === 'PNG', 'a PNG');
+    const [w, h] = [bytes.readUInt32BE(16), bytes.readUInt32BE(20)];
+    check(w === 1600 && h === 900, `the figure is ${w}×${h}`);
+    check(/_figure_800x450@2x\.png$/.test(dl.suggestedFilename()), dl.suggestedFilename());
+    check(/1600 × 900 pixels/.test(await page.textContent('#figure-note')), await page.textContent('#figure-note'));
+    // drawn by the core (the picture the command-line tool's compare view draws): shown here to be looked at
+    const info = await page.evaluate(async (b64) => {
+      const img = new Image();
+      img.src = `data:image/png;base64,${b64}`;
+      await img.decode();
+      const c = document.createElement('canvas');
+      c.width = img.width;
+      c.height = img.height;
+      const g = c.getContext('2d');
+      g.drawImage(img, 0, 0);
+      const half = (x0) => {
+        const d = g.getImageData(x0, 60, img.width / 2 - 80, img.height - 200).data;
+        const s = new Set();
+        for (let i = 0; i < d.length; i += 16) s.add((d[i] << 16) | (d[i + 1] << 8) | d[i + 2]);
+        return s.size;
+      };
+      return { left: half(0), right: half(img.width / 2) };
+    }, bytes.toString('base64'));
+    check(info.left > 20 && info.right > 20, `both meshes drawn: ${JSON.stringify(info)}`);
+    await page.fill('#figure-w', 'wide');
+    await page.click('#save-figure');
+    await idle(page);
+    check(/Figure: give its width and height in whole pixels/.test(await page.textContent('#message')), await page.textContent('#message'));
+    await page.fill('#figure-w', '3000');
+    await page.click('#save-figure');
+    await idle(page);
+    check(/give 1 to 4096 on each side/.test(await page.textContent('#message')), await page.textContent('#message'));
+  });
+
+  await test('help panel and tooltips; canvases focusable; arrow keys move the chosen node; every Save PNG has its own name', async () => {
+    await page.goto(`${server.base}#sample=plate-tri`);
+    await idle(page);
+    await page.click('#help summary');
+    const help = await page.textContent('#help');
+    for (const term of ['α', 'β', 'κ', 'Inverted element', 'C1, C2, C3', "Chen's rules", 'Priority order', 'Level set']) check(help.includes(term), `the help says nothing of ${term}`);
+    const papers = await page.$$eval('#help a', (as) => as.map((a) => a.textContent));
+    check(papers.length === 3 && /Chen/.test(papers[0]) && /Freitag/.test(papers[1]) && /Knupp/.test(papers[2]), `papers: ${papers}`);
+    await page.locator('#help').screenshot({ path: path.join(OUT, '23-help.png') });
+    await page.click('#help summary');
+    // tooltips on the terms where they are used
+    for (const sel of ['#stats-new tr[data-stat="inverted"] th', '#stats-new tr[data-stat="max_condition"] th', '#stats-new tr[data-stat="min_quality"] th', '#strategy option[value="c1"]', '#strategy option[value="rules"]', '#order option[value="priority"]']) {
+      const title = await page.getAttribute(sel, 'title');
+      check(title && title.length > 20, `${sel} has no tooltip`);
+    }
+    // every canvas is reached by Tab
+    const canvases = await page.$$eval('canvas', (cs) => cs.map((c) => [c.id, c.tabIndex]));
+    check(canvases.every(([, t]) => t === 0), `canvases not focusable: ${JSON.stringify(canvases)}`);
+    // the buttons that save something each have a name of their own
+    const names = await page.$$eval('button[data-png], button[data-export]', (bs) => bs.map((b) => b.getAttribute('aria-label') || b.textContent));
+    check(new Set(names).size === names.length && names.every((n) => /Save/.test(n)), `names: ${names.join(' | ')}`);
+    check((await page.locator('button[data-png="hist-new"]').getAttribute('aria-label')) === "Save PNG of B's angle histogram", 'the histogram B button');
+    // arrow keys: nothing chosen says so; a chosen node moves, and Ctrl+Z takes it back
+    await page.locator('#mesh-new').focus();
+    await page.keyboard.press('ArrowRight');
+    check(/arrow keys move the chosen node/.test(await page.textContent('#pick-note')), await page.textContent('#pick-note'));
+    const hit = await clickSomeNode(page, 'mesh-new', ringPoints());
+    const before = await canvasInfo(page, 'mesh-new');
+    await page.locator('#mesh-new').focus();
+    const scroll = await page.evaluate(() => window.scrollY);
+    await page.keyboard.press('Shift+ArrowUp');
+    await idle(page);
+    await page.keyboard.press('ArrowLeft');
+    await idle(page);
+    check((await canvasInfo(page, 'mesh-new')).hash !== before.hash, 'the arrow keys moved nothing');
+    check(await page.evaluate(() => window.scrollY) === scroll, 'the page scrolled under the arrow keys');
+    check(new RegExp(`Node ${hit.node} moved 1 px left`).test(await page.textContent('#status')), await page.textContent('#status'));
+    await page.keyboard.press('Control+z');
+    await idle(page);
+    await page.keyboard.press('Control+z');
+    await idle(page);
+    check((await canvasInfo(page, 'mesh-new')).hash === before.hash, 'Ctrl+Z took back the two key moves');
   });
 
   await test('no request left 127.0.0.1 and the console has no errors', async () => {

@@ -6,11 +6,12 @@
 use std::path::PathBuf;
 
 use clap::{Args, ValueEnum};
+use smoothlab::lab::pick::worst_free_node;
 use smoothlab::lab::views::{pixmap, Canvas};
 use smoothlab::lab::{Choice, Playground, Settings, Side, MAX_NODES};
-use smoothlab::quality::{element_quality, mesh_stats, MeshStats};
+use smoothlab::quality::mesh_stats;
 use smoothlab::render::{
-    encode_png, render_angle_histogram, render_compare, render_mesh, AngleHistogram, ComparePanel, HistogramSeries,
+    encode_png, render_angle_histogram, render_mesh, AngleHistogram, HistogramSeries,
     MeshView, Metric,
 };
 use smoothlab::smooth::{smooth, SmoothOptions, Strategy};
@@ -126,21 +127,6 @@ fn settings(a: &RenderArgs) -> Settings {
     }
 }
 
-/// The free node whose star has the smallest element quality (α/β), if any node is free.
-pub fn worst_free_node(mesh: &Mesh) -> Option<usize> {
-    let q: Vec<f64> = (0..mesh.element_count())
-        .map(|e| {
-            let p = mesh.element_points_array(e);
-            element_quality(mesh.kind(e), &p[..mesh.kind(e).node_count()]).shape
-        })
-        .collect();
-    (0..mesh.node_count())
-        .filter(|&n| mesh.is_free(n))
-        .map(|n| (n, mesh.node_elements(n).iter().map(|&e| q[e as usize]).fold(f64::INFINITY, f64::min)))
-        .min_by(|a, b| a.1.total_cmp(&b.1))
-        .map(|(n, _)| n)
-}
-
 /// Places `parts` side by side on one white picture.
 fn side_by_side(parts: &[Pixmap]) -> Result<Pixmap, String> {
     let w = parts.iter().map(|p| p.width()).sum();
@@ -152,14 +138,6 @@ fn side_by_side(parts: &[Pixmap]) -> Result<Pixmap, String> {
         x += p.width();
     }
     Ok(out)
-}
-
-fn stat_lines(s: &MeshStats, laplacian_moves: u32, optimization_calls: u32) -> Vec<String> {
-    vec![
-        format!("inverted {}   min quality {:.3}", s.inverted, s.min_quality),
-        format!("angles {:.1}° – {:.1}°", s.min_angle_deg, s.max_angle_deg),
-        format!("Laplacian moves {laplacian_moves}   optimization calls {optimization_calls}"),
-    ]
 }
 
 fn no_such_node(n: usize, mesh: &Mesh) -> String {
@@ -281,24 +259,7 @@ pub fn run(a: RenderArgs) -> Result<(), String> {
             if shown.len() != 2 {
                 return Err("--view compare shows both objectives: use --objective old,new".into());
             }
-            let stats = |side: Side| {
-                let records = &lab.panel(side).records;
-                let moves = records.iter().map(|r| r.laplacian_moves).sum();
-                let calls = records.iter().map(|r| r.optimization_calls).sum();
-                stat_lines(&lab.stats(side).mesh, moves, calls)
-            };
-            let (lo, ln) = (stats(Side::Old), stats(Side::New));
-            let title_old = format!("old: max-min objective, {passes} passes");
-            let title_new = format!("new: smooth objective (Chen et al.), {passes} passes");
-            let c = canvas(w, h);
-            let mut pm = pixmap(c.w, c.h).map_err(|e| e.to_string())?;
-            render_compare(
-                &mut pm,
-                &ComparePanel { mesh: &lab.panel(Side::Old).mesh, title: &title_old, lines: &lo },
-                &ComparePanel { mesh: &lab.panel(Side::New).mesh, title: &title_new, lines: &ln },
-                &MeshView::default().with_dpr(a.dpr),
-            );
-            pm
+            lab.render_figure(canvas(w, h)).map_err(|e| e.to_string())?
         }
     };
     let png = encode_png(&picture).map_err(|e| e.to_string())?;
