@@ -388,11 +388,15 @@ pub fn render_level_set(pixmap: &mut Pixmap, data: &LevelSet<'_>, opts: &LevelSe
     }
 
     // title and a one-line key to the bands
-    let title = TextStyle::new(14.0 * s).with_align(Align::Centre, Valign::Baseline);
+    // both shrink to fit a narrow frame (an embedded view) rather than be clipped
+    let room = (frame.w - 8.0) * s;
+    let title = TextStyle::new(super::text::size_to_fit(data.title, 14.0 * s, room)).with_align(Align::Centre, Valign::Baseline);
     draw_text(pixmap, data.title, (frame.x + 0.5 * frame.w) * s, (frame.y + 18.0) * s, title);
-    let sub = TextStyle::new(10.5 * s).with_color(rgba(80, 80, 80, 255)).with_align(Align::Centre, Valign::Baseline);
     let better = if field.goal == Goal::MaximizeMin { "maximised" } else { "minimised" };
     let note = format!("{better}: the brighter the band, the better");
+    let sub = TextStyle::new(super::text::size_to_fit(&note, 10.5 * s, room))
+        .with_color(rgba(80, 80, 80, 255))
+        .with_align(Align::Centre, Valign::Baseline);
     draw_text(pixmap, &note, (frame.x + 0.5 * frame.w) * s, (frame.y + 33.0) * s, sub);
 
     if opts.legend {

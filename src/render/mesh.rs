@@ -504,9 +504,7 @@ pub(crate) fn draw_colour_bar(
         // fit the bar's width (a mesh may have millions of inverted elements)
         let count = format!("{n_inverted} element{}", if n_inverted == 1 { "" } else { "s" });
         let room = (area.right() - 4.0) * s - x0;
-        let size = 11.0 * s;
-        let wide = super::text::text_width(&count, size);
-        let fit = if wide > room { size * room / wide } else { size };
+        let fit = super::text::size_to_fit(&count, 11.0 * s, room);
         draw_text(pixmap, &count, x0, sy + 26.0 * s, TextStyle { size: fit, ..label }.with_align(Align::Left, Valign::Middle));
     }
 }

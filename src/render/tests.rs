@@ -453,3 +453,15 @@ fn large_mesh_renders_fast() {
 }
 
 
+
+/// A title too wide for its frame is drawn smaller, not clipped; one that fits keeps its size.
+#[test]
+fn text_shrinks_to_fit_its_width() {
+    use super::text::{size_to_fit, text_width};
+    let title = "B: new: Chen, Tristano & Kwok (Fletcher–Reeves), barrier penalty";
+    let full = text_width(title, 14.0);
+    let fit = size_to_fit(title, 14.0, 200.0);
+    assert!(full > 200.0 && fit < 14.0);
+    assert!(text_width(title, fit) <= 200.0 + 0.5, "{}", text_width(title, fit));
+    assert_eq!(size_to_fit("A: old", 14.0, 200.0), 14.0);
+}

@@ -73,6 +73,17 @@ impl TextStyle {
     }
 }
 
+/// The font size, at most `size`, at which `text` is at most `width` device pixels wide
+/// (a title or count that would not fit its frame is drawn smaller, not clipped).
+pub fn size_to_fit(text: &str, size: f32, width: f32) -> f32 {
+    let wide = text_width(text, size);
+    if wide > width && wide > 0.0 {
+        size * width.max(0.0) / wide
+    } else {
+        size
+    }
+}
+
 /// Width in device pixels of `text` at `size`.
 pub fn text_width(text: &str, size: f32) -> f32 {
     let f = font().as_scaled(PxScale::from(size.max(0.0)));
