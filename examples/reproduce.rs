@@ -303,9 +303,8 @@ fn freitag_table_1(out: &mut String) {
             ));
         }
     }
-    for (choice, design) in NEW_DESIGNS {
+    for (choice, _) in NEW_DESIGNS {
         let tag = if choice == NEW_ANGLE { " (angle design)" } else { "" };
-        let _ = design;
         for (name, o) in [
             ("opt, `new`", opts(Strategy::Opt, Order::Input)),
             ("rules, `new`, input order", opts(Strategy::Rules, Order::Input)),

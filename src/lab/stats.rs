@@ -11,7 +11,7 @@ use glam::DVec2;
 use serde::Serialize;
 
 use crate::mesh::{ElementKind, Mesh};
-use crate::quality::{canann_beta_from_corners, corner_edges, lo_alpha_corner, signed_angle};
+use crate::quality::{canann_beta_from_corners, corner_edges, lo_alpha_corner, signed_angle, TWO_SQRT3};
 
 /// What the page's statistics table and per-pass chart show of a mesh.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]
@@ -250,8 +250,6 @@ impl QuickAcc {
     }
 }
 
-/// `2√3`, Lo's normalisation (as in [`crate::quality`]).
-const TWO_SQRT3: f64 = 3.464_101_615_137_754_6;
 
 /// The cotangent bar of [`QuickAcc`] for the best pseudo-angle `key`: valid corners
 /// beyond it cannot be the extreme one. Keys at or below 0 (an inverted corner) leave no

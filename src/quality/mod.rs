@@ -20,7 +20,7 @@ use crate::mesh::{ElementKind, Mesh};
 pub mod elementary;
 
 /// `2√3`, Lo's normalisation so an equilateral triangle has α = 1.
-const TWO_SQRT3: f64 = 3.464_101_615_137_754_6;
+pub(crate) const TWO_SQRT3: f64 = 3.464_101_615_137_754_6;
 /// α of the right isosceles triangle, `√3/2`: Canann's normalisation so a square has β = 1.
 pub const ALPHA_90: f64 = 0.866_025_403_784_438_6;
 

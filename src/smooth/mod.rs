@@ -19,7 +19,9 @@ use crate::error::{Error, Result};
 use crate::mesh::Mesh;
 use crate::objective::{Objective, Star, StarElement, Term};
 use crate::optimize::{evaluate, FletcherReeves, NonSmoothAscent, SolveOptions, SolveResult, Solver, SolverKind};
-use crate::quality::{canann_beta_from_corners, corner_edges, lo_alpha_corner, mesh_stats, scaled_jacobian};
+use crate::quality::{
+    canann_beta_from_corners, corner_edges, lo_alpha_corner, mesh_stats, scaled_jacobian, TWO_SQRT3,
+};
 
 mod obstacles;
 pub mod parallel;
@@ -388,8 +390,6 @@ pub(crate) fn element_measures(kind: crate::mesh::ElementKind, p: &[DVec2; 9]) -
     q
 }
 
-/// 2√3, the normalisation of Lo's α.
-const TWO_SQRT3: f64 = 3.464_101_615_137_754_6;
 
 /// The shape measure (α/β, [`Measure::Shape`]) of a star element with its free node at `x`
 /// and whether the element is inverted: what [`element_measures`] gives for them, without

@@ -3,9 +3,8 @@
 use glam::DVec2;
 
 use super::SubTriangle;
+use crate::quality::TWO_SQRT3;
 
-/// 2√3, the normalisation of Lo's α.
-const TWO_SQRT3: f64 = 3.464_101_615_137_754_6;
 
 /// Default weight `k1` of the barrier: its value on an equilateral triangle (η = 1).
 /// Chosen by measurement (`docs/reproduction.md`, §7).
