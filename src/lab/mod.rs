@@ -398,8 +398,6 @@ struct PassRun {
     plan_slice: usize,
     /// The schedule is an untangling sweep's (after the planned visits).
     untangling: bool,
-    /// Moves counted when the current untangling sweep began.
-    sweep_start_moves: u32,
     saved: [Option<Saved>; 2],
     done: [Option<(PassSummary, QuickStats)>; 2],
 }
@@ -527,7 +525,6 @@ impl Playground {
             slice: 64,
             plan_slice: 1024,
             untangling: false,
-            sweep_start_moves: 0,
             saved: [None, None],
             done: [None, None],
         });
@@ -606,13 +603,10 @@ impl Playground {
                     // untangling sweep, as `Smoother::sweep` runs them, or the statistics
                     let t0 = clock();
                     let p = &mut self.panels[side];
-                    let moved = !run.untangling || run.counts.moves > run.sweep_start_moves;
-                    let again = moved && p.smoother.plan_untangle_sweep(&p.mesh, run.counts.untangle_sweeps);
+                    let again = p.smoother.plan_untangle_sweep(&p.mesh, &mut run.counts);
                     run.sweep_ms += clock() - t0;
                     if again {
                         run.untangling = true;
-                        run.counts.untangle_sweeps += 1;
-                        run.sweep_start_moves = run.counts.moves;
                         run.schedule.clear();
                         run.schedule.extend_from_slice(p.smoother.revisits());
                         run.pos = 0;

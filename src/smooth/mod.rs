@@ -491,6 +491,9 @@ pub struct Smoother {
     revisits: Vec<u32>,
     /// Per node: whether it is already in `revisits` (scratch, all false between uses).
     marked: Vec<bool>,
+    /// The pass's move count when its last untangling sweep was planned (`None` before the
+    /// first sweep of a pass): a sweep that added no move ends the sweeps.
+    sweep_moves_from: Option<u32>,
     passes: u32,
     /// Per-mesh facts, refreshed each pass.
     quadratic: bool,
@@ -516,6 +519,7 @@ impl Smoother {
             plan_next: 0,
             revisits: Vec::new(),
             marked: Vec::new(),
+            sweep_moves_from: None,
             passes: 0,
             quadratic: false,
             curved: false,
@@ -569,6 +573,7 @@ impl Smoother {
     /// 1M-node mesh for the priority order takes seconds).
     pub fn begin_plan(&mut self, mesh: &Mesh) {
         self.schedule.clear();
+        self.sweep_moves_from = None;
         self.ranked.clear();
         self.plan_next = 0;
         if self.options.order == Order::Priority {
@@ -693,27 +698,29 @@ impl Smoother {
         let schedule = std::mem::take(&mut self.schedule);
         let mut counts = self.visit_all(mesh, &schedule, objective);
         self.schedule = schedule;
-        let mut moved = true;
-        while moved && self.plan_untangle_sweep(mesh, counts.untangle_sweeps) {
+        while self.plan_untangle_sweep(mesh, &mut counts) {
             let revisits = std::mem::take(&mut self.revisits);
             let c = self.visit_all(mesh, &revisits, objective);
             self.revisits = revisits;
-            moved = c.moves > 0;
             counts.merge(c);
-            counts.untangle_sweeps += 1;
         }
         counts
     }
 
-    /// Plans untangling sweep number `done + 1` of a pass after its planned visits (see
+    /// Plans the next untangling sweep of a pass whose visits so far `counts` holds (see
     /// [`SmoothOptions::untangle_sweeps`]): the free nodes of every inverted element and
     /// the free neighbours of its corners, worst star first (smallest α/β, ties by node
-    /// number), into [`revisits`](Self::revisits). Returns false — no sweep — when no
-    /// element is inverted, `done` sweeps are the limit, or the strategy never optimises.
-    /// The caller stops sweeping after a sweep that moved no node.
-    pub fn plan_untangle_sweep(&mut self, mesh: &Mesh, done: u32) -> bool {
+    /// number), into [`revisits`](Self::revisits), counted in `counts.untangle_sweeps`.
+    /// Returns false — no sweep — when no element is inverted, the sweeps are at their
+    /// limit, the last sweep moved no node, or the strategy never optimises. The one
+    /// place that decides, for [`sweep`](Self::sweep) and for the page's sliced pass.
+    pub fn plan_untangle_sweep(&mut self, mesh: &Mesh, counts: &mut SweepCounts) -> bool {
         self.revisits.clear();
-        if done >= self.options.untangle_sweeps || matches!(self.options.strategy, Strategy::Laplace | Strategy::Smart) {
+        let stalled = self.sweep_moves_from.is_some_and(|m| counts.moves == m);
+        if stalled
+            || counts.untangle_sweeps >= self.options.untangle_sweeps
+            || matches!(self.options.strategy, Strategy::Laplace | Strategy::Smart)
+        {
             return false;
         }
         self.marked.clear();
@@ -742,7 +749,12 @@ impl Smoother {
         ranked.sort_unstable_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
         self.revisits.clear();
         self.revisits.extend(ranked.iter().map(|&(_, n)| n));
-        !self.revisits.is_empty()
+        if self.revisits.is_empty() {
+            return false;
+        }
+        counts.untangle_sweeps += 1;
+        self.sweep_moves_from = Some(counts.moves);
+        true
     }
 
     /// The visit sequence of the last untangling sweep planned.
