@@ -955,6 +955,7 @@ impl Smoother {
                 inner: objective,
                 limit,
                 pass_through_folds,
+                inversion0: std::cell::OnceCell::new(),
             };
             &guarded
         } else {
@@ -1014,6 +1015,9 @@ struct KeepValid<'a> {
     limit: usize,
     /// [`SmoothOptions::pass_through_folds`], resolved for the objective.
     pass_through_folds: bool,
+    /// The star's [`inversion`] at its start, taken once, from the star the solver passes
+    /// (a solve passes one star throughout: the gathered one or one rescaled copy).
+    inversion0: std::cell::OnceCell<f64>,
 }
 
 /// How deeply the star is inverted with its free node at `x`: `Σ max(0, −det)` over every
@@ -1065,7 +1069,9 @@ impl KeepValid<'_> {
         // the inversion at the start is taken from the star the solver passes, so that it
         // is in the same frame as at `x` (a solver may pass a rescaled copy: optimize)
         inverted > self.limit
-            && (!self.pass_through_folds || self.limit == 0 || inversion(star, x) >= inversion(star, star.x0))
+            && (!self.pass_through_folds
+                || self.limit == 0
+                || inversion(star, x) >= *self.inversion0.get_or_init(|| inversion(star, star.x0)))
     }
 }
 
