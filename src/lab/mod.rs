@@ -935,13 +935,13 @@ mod tests {
         let [old, new] = last.unwrap();
         assert_eq!((old.pass, new.pass), (3, 3));
         assert_eq!(new.inverted, 0, "Chen et al. untangle the perturbed plate in 3 passes");
-        // the page's default sample: the new side ends with the better mean quality and
-        // largest angle; the smallest angle stays within a degree of the max-min objective's,
-        // which optimises exactly that (its worst triangles have two fixed nodes, one free)
+        // the page's default sample (issue 11): the new side beats the max-min objective on
+        // what both sides are judged by: smallest and largest angle, worst and mean quality
         let (o, n) = (pg.full_stats(Side::Old).clone(), pg.full_stats(Side::New).clone());
-        assert!(n.mean_quality > o.mean_quality + 0.005, "mean quality: new {} old {}", n.mean_quality, o.mean_quality);
+        assert!(n.min_angle_deg > o.min_angle_deg, "min angle: new {} old {}", n.min_angle_deg, o.min_angle_deg);
+        assert!(n.min_quality > o.min_quality, "min quality: new {} old {}", n.min_quality, o.min_quality);
+        assert!(n.mean_quality > o.mean_quality + 0.01, "mean quality: new {} old {}", n.mean_quality, o.mean_quality);
         assert!(n.max_angle_deg < o.max_angle_deg - 1.0, "max angle: new {} old {}", n.max_angle_deg, o.max_angle_deg);
-        assert!((n.min_angle_deg - o.min_angle_deg).abs() < 1.0, "min angle: new {} old {}", n.min_angle_deg, o.min_angle_deg);
         let s = pg.stats(Side::New);
         assert_eq!(s.mesh.inverted, 0);
         assert_eq!(s.passes, 3);

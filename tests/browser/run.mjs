@@ -149,12 +149,13 @@ try {
     const after = [await stats(page, 'old'), await stats(page, 'new')];
     check(after[1].inverted === '0', `new side still has ${after[1].inverted} inverted elements`);
     check(after[0].passes === '3' && after[1].passes === '3', `passes: ${after[0].passes}/${after[1].passes}`);
-    // the page's default sample: the new objective ends with the smaller largest angle, and
-    // its smallest angle within a degree of the max-min objective's (which optimises just that)
-    check(parseFloat(after[1].max_angle) < parseFloat(after[0].max_angle) - 1,
-      `max angle: new ${after[1].max_angle} is not below old ${after[0].max_angle}`);
-    check(Math.abs(parseFloat(after[1].min_angle) - parseFloat(after[0].min_angle)) < 1,
-      `min angle: new ${after[1].min_angle}, old ${after[0].min_angle}`);
+    // the page's default sample (issue 11): the new objective ends with the larger smallest
+    // angle, the smaller largest angle and the better worst and mean quality
+    const num = (side, key) => parseFloat(after[side][key]);
+    check(num(1, 'min_angle') > num(0, 'min_angle'), `min angle: new ${after[1].min_angle}, old ${after[0].min_angle}`);
+    check(num(1, 'max_angle') < num(0, 'max_angle') - 1, `max angle: new ${after[1].max_angle} is not below old ${after[0].max_angle}`);
+    check(num(1, 'min_quality') > num(0, 'min_quality'), `min quality: new ${after[1].min_quality}, old ${after[0].min_quality}`);
+    check(num(1, 'mean_quality') > num(0, 'mean_quality'), `mean quality: new ${after[1].mean_quality}, old ${after[0].mean_quality}`);
     console.log(`     inverted old ${before[0].inverted} → ${after[0].inverted}, new ${before[1].inverted} → ${after[1].inverted}; ` +
       `min angle old ${after[0].min_angle}, new ${after[1].min_angle}; max angle old ${after[0].max_angle}, new ${after[1].max_angle}`);
     await shot(page, '02-after-3-passes');
