@@ -4,21 +4,13 @@
 //! stated here, file by file. The counts and flags are parsed here independently of
 //! the reader.
 
+mod common;
+
 use std::path::{Path, PathBuf};
 
 use smoothlab::io::read_path;
 use smoothlab::mesh::NodeRole;
 use smoothlab::Error;
-
-fn suite() -> Option<PathBuf> {
-    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/meshes/mesquite");
-    if root.is_dir() {
-        Some(root)
-    } else {
-        println!("external Mesquite suite skipped: ../shared/meshes/mesquite not found");
-        None
-    }
-}
 
 fn walk(dir: &Path, out: &mut Vec<PathBuf>) {
     for entry in std::fs::read_dir(dir).unwrap() {
@@ -96,7 +88,7 @@ const CORRUPT_CELLS: &str = "quads/untangled/shashkov_quad_opt.vtk";
 
 #[test]
 fn every_mesquite_file_loads_or_is_refused_for_its_reason() {
-    let Some(root) = suite() else { return };
+    let Some(root) = common::mesquite_meshes() else { return };
     let mut files = Vec::new();
     walk(&root, &mut files);
     files.sort();
@@ -149,13 +141,13 @@ fn every_mesquite_file_loads_or_is_refused_for_its_reason() {
 }
 
 fn load(rel: &str) -> Option<smoothlab::Mesh> {
-    let root = suite()?;
+    let root = common::mesquite_meshes()?;
     Some(read_path(&root.join(rel)).unwrap())
 }
 
 /// Raw signed area of the corner polygons in the file's own x, y (before any mapping).
 fn raw_xy_area(rel: &str) -> f64 {
-    let text = std::fs::read_to_string(suite().unwrap().join(rel)).unwrap();
+    let text = std::fs::read_to_string(common::mesquite_meshes().unwrap().join(rel)).unwrap();
     let tok: Vec<&str> = text.split_whitespace().collect();
     let p = tok.iter().position(|t| *t == "POINTS").unwrap();
     let n: usize = tok[p + 1].parse().unwrap();

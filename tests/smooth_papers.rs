@@ -3,9 +3,11 @@
 //! perturbed plate and Mesquite's tangled meshes that `new` + `rules` untangles stay
 //! untangled within the stated passes, and the new objective's average quality on
 //! Freitag's rand2D beats the max-min objectives'. Mesquite's files are read from
-//! `../shared/meshes`; when that folder is absent those tests say so and return.
+//! `../shared/meshes`; when that folder is absent those tests say so and return, and fail
+//! under `CI=true` ([`common::mesquite_meshes`]).
 
-use std::path::{Path, PathBuf};
+mod common;
+
 
 use smoothlab::generate::{perturb, plate, rand2d, star, PlateKind, StarKind};
 use smoothlab::io;
@@ -16,15 +18,6 @@ use smoothlab::Mesh;
 
 const NO_CLOCK: &dyn Fn() -> f64 = &|| 0.0;
 
-fn meshes() -> Option<PathBuf> {
-    let d = Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/meshes/mesquite");
-    if d.is_dir() {
-        Some(d)
-    } else {
-        println!("external mesh suite not found ({}): skipped", d.display());
-        None
-    }
-}
 
 fn worst_alpha_error(mesh: &Mesh) -> f64 {
     (0..mesh.element_count())
@@ -66,7 +59,7 @@ fn the_regular_star_becomes_equilateral_under_every_objective() {
 
 #[test]
 fn mesquite_equil_tri_meshes_become_equilateral() {
-    let Some(dir) = meshes() else { return };
+    let Some(dir) = common::mesquite_meshes() else { return };
     for file in ["equil_tri.vtk", "equil_tri2.vtk"] {
         let m = io::read_path(&dir.join("tris/untangled").join(file)).unwrap();
         for kind in [ObjectiveKind::New, ObjectiveKind::Old, ObjectiveKind::Condition] {
@@ -110,7 +103,7 @@ fn the_perturbed_plate_is_untangled_by_new_rules() {
 
 #[test]
 fn mesquite_tangled_meshes_new_rules_untangles_in_three_passes() {
-    let Some(dir) = meshes() else { return };
+    let Some(dir) = common::mesquite_meshes() else { return };
     for file in [
         "tris/tangled/horse-tri-1.vtk",
         "tris/tangled/horseshoe.vtk",
