@@ -1,6 +1,8 @@
 //! Knupp's condition-number objectives (Knupp 1999, §§2.1, 2.6): the condition number
 //! κ of each corner Jacobian that moves with the free node, combined over the star as a
 //! 2-norm (the average element) or an ∞-norm (the worst element).
+//!
+//! The formulas, in one notation: `docs/formulas.md` §5.
 
 use glam::DVec2;
 

@@ -1,6 +1,8 @@
 //! The NEW objective of Chen, Tristano & Kwok (2003), §2: smooth, and it untangles and
 //! smooths in one process. Two designs of its lost angle penalty, eq. (8): the regularised
 //! barrier (`barrier.rs`, the default) and the first, adjusted-angle design (`angle.rs`).
+//!
+//! The formulas, in one notation: `docs/formulas.md` §3.
 
 use glam::DVec2;
 use serde::{Deserialize, Serialize};

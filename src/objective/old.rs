@@ -1,6 +1,8 @@
 //! The OLD objective: maximise the minimum element shape of the star — α for
 //! triangles, β for quads (Chen, Tristano & Kwok 2003, §5.3, "our previous method";
 //! Canann et al. 1998). Non-smooth: the gradient jumps where the worst element changes.
+//!
+//! The formulas, in one notation: `docs/formulas.md` §2.
 
 use glam::DVec2;
 

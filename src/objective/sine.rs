@@ -1,6 +1,8 @@
 //! Freitag's max-min angle objective: maximise the minimum sine of the angles of the
 //! star's elements (Freitag 1997, §3: "the minimum sine of the angles in the incident
 //! elements … small near the angles of 0° and 180°").
+//!
+//! The formulas, in one notation: `docs/formulas.md` §2.
 
 use glam::DVec2;
 

@@ -1,5 +1,7 @@
 //! Knupp's untangling objectives (Knupp 1999, §2.7): they ask only for positive corner
 //! determinants, not for good shapes, and are run before a barrier objective.
+//!
+//! The formulas, in one notation: `docs/formulas.md` §5.
 
 use glam::DVec2;
 

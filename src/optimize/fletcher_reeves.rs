@@ -1,5 +1,7 @@
 //! Fletcher–Reeves conjugate gradients as Chen, Tristano & Kwok (2003, §3) use it for
 //! their smooth objective.
+//!
+//! The formulas, in one notation: `docs/formulas.md` §3.
 
 use glam::DVec2;
 

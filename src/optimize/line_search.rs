@@ -1,6 +1,8 @@
 //! Chen's one-dimensional search (Chen, Tristano & Kwok 2003, §3.2): find a
 //! "high-low-high" bracket by growing the step with an acceleration factor, then place
 //! the step at the vertex of the parabola through the three points.
+//!
+//! The formulas, in one notation: `docs/formulas.md` §3.
 
 /// The outcome of a successful line search.
 #[derive(Clone, Copy, Debug, PartialEq)]

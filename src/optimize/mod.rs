@@ -20,6 +20,8 @@
 //! solve at any scale moves the node exactly as at unit scale: without this the squared
 //! lengths and gradient products over- or underflowed and each solver silently stopped
 //! moving nodes outside a window of scales (about 1e±75).
+//!
+//! The formulas, in one notation: `docs/formulas.md` §6.
 
 use glam::DVec2;
 use serde::Serialize;

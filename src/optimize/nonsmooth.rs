@@ -1,6 +1,8 @@
 //! Freitag's optimization-based smoothing for max-min objectives (Freitag 1997, Figure 1
 //! and §"Optimization-based Smoothing"): steepest ascent of `φ(x) = min_i q_i(x)` along
 //! the minimum-norm point of the convex hull of the active gradients.
+//!
+//! The formulas, in one notation: `docs/formulas.md` §2.
 
 use glam::DVec2;
 use serde::Serialize;

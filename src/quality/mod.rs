@@ -1,7 +1,7 @@
 //! Element shape metrics: pure functions of an element's corner (and mid-side)
 //! coordinates, and the mesh statistics built from them.
 //!
-//! Conventions (see the papers restated in FORMULAS.md §1):
+//! Conventions (see `docs/formulas.md` §1):
 //! - elements are counter-clockwise when valid; every metric is signed so an inverted
 //!   element scores below a valid one;
 //! - at corner `i` the two edge vectors are `e1` (towards the next corner) and `e2`
@@ -34,7 +34,7 @@ pub fn lo_alpha(a: DVec2, b: DVec2, c: DVec2) -> f64 {
 
 /// Lo's α of the triangle spanned at a corner by edge vectors `e1`, `e2`:
 /// `2√3·cross(e1,e2) / (|e1|² + |e2|² + |e2−e1|²)`. Used for quadratic elements with
-/// the edge tangents as `e1`, `e2` (FORMULAS.md §1). A zero-size corner gives 0.
+/// the edge tangents as `e1`, `e2` (`docs/formulas.md` §1). A zero-size corner gives 0.
 #[inline]
 pub fn lo_alpha_corner(e1: DVec2, e2: DVec2) -> f64 {
     if let Some((e1, e2, _)) = beyond_safe_scale(e1, e2) {

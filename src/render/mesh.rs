@@ -216,7 +216,7 @@ pub(crate) fn push_element(pb: &mut PathBuilder, mesh: &Mesh, view: &View, e: us
 }
 
 /// Control point of the quadratic Bézier from `p0` to `p2` that passes through `m` at
-/// its middle (t = ½): `2m − (p0 + p2)/2`. The quadratic edge of FORMULAS.md §1 is this
+/// its middle (t = ½): `2m − (p0 + p2)/2`. The quadratic edge of `docs/formulas.md` §1 is this
 /// same parabola, so the drawn curve is the element's true edge.
 pub fn bezier_control(p0: (f32, f32), m: (f32, f32), p2: (f32, f32)) -> (f32, f32) {
     (2.0 * m.0 - 0.5 * (p0.0 + p2.0), 2.0 * m.1 - 0.5 * (p0.1 + p2.1))

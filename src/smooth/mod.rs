@@ -11,6 +11,8 @@
 //! nodes visited before it. Fixed nodes and mid-side nodes are never smoothed; after a
 //! corner node moves, the mid-side nodes of its straight edges follow it
 //! ([`Mesh::follow_mid_nodes`]); curved boundary edges keep their mid node.
+//!
+//! The formulas, in one notation: `docs/formulas.md` §4.
 
 use glam::DVec2;
 use serde::{Deserialize, Serialize};

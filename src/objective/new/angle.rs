@@ -2,6 +2,8 @@
 //! Chen et al.'s eqs. (6)–(7). Kept selectable ([`super::Penalty::Angle`]) so the page and
 //! the reproduction can show why the penalty's shape matters; the default is now the
 //! regularised barrier of `barrier.rs`.
+//!
+//! The formulas, in one notation: `docs/formulas.md` §3.
 
 use std::f64::consts::PI;
 

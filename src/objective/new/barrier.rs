@@ -1,4 +1,6 @@
 //! Our eq. (8), second design (the default): a regularised barrier on the inverse of Lo's α.
+//!
+//! The formulas, in one notation: `docs/formulas.md` §3.
 
 use glam::DVec2;
 

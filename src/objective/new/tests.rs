@@ -1,4 +1,4 @@
-//! Tests of the properties Chen et al. state for the new objective (FORMULAS.md §3), one
+//! Tests of the properties Chen et al. state for the new objective (`docs/formulas.md` §3), one
 //! test per property, on stars built from explicit coordinates.
 
 use std::f64::consts::PI;
