@@ -165,10 +165,8 @@ pub struct SmoothOptions {
     ///
     /// Untangling often has to pass through such an intermediate state — the free node
     /// crosses an edge of one element to leave the deeper fold of another — and a count
-    /// alone cannot see that progress. Measured on Knupp's random 10 × 10 grids
-    /// (`docs/reproduction.md`): `untangle` with the count alone untangles none of 10,
-    /// with this exception all of them; `new` with its barrier penalty needs it likewise
-    /// (the count guard made 50–76% of its line searches on inverted stars fail).
+    /// alone cannot see that progress (`docs/reproduction.md` §4 shows what it changes on
+    /// Knupp's random grids).
     pub pass_through_folds: Option<bool>,
     /// Untangling sweeps after the planned visits of a pass: while elements are inverted,
     /// revisit the free nodes of the inverted elements and their free neighbours, worst

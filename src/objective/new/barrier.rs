@@ -63,18 +63,12 @@ pub const BARRIER_EPSILON: f64 = 0.01;
 /// objective finite and well scaled. ε = [`BARRIER_EPSILON`] = 0.01.
 ///
 /// # Constants
-/// `k1` = [`BARRIER_WEIGHT`] = 0.15, measured (`docs/reproduction.md` §7: `new` + `rules`
-/// on Freitag's rand2D, Knupp's random grids and the page's tangled plate for k1 from 0.02
-/// to 1): the smallest and largest angles improve as k1 grows to about 0.15 and stay
-/// nearly flat beyond (η² is itself a shape measure that weighs the worst elements most,
-/// so the mean α does not suffer); at 0.15 every random grid untangles within 2 passes.
-/// On the page's tangled plate the new side ends with the better mean quality and largest
-/// angle whatever k1, and at 0.15 the better smallest angle too (23.27° against 23.07°);
-/// the two sides' smallest angles stay within half a degree at every k1 (the worst
-/// triangles there have two fixed nodes, and the max-min objective optimises exactly their
-/// angle). Untangling does not hinge on the
-/// weight: the barrier's growth does it. 0.02, the first
-/// design's weight, gives 18.4° / 137.7° on rand2D instead of 20.1° / 134.4°.
+/// `k1` = [`BARRIER_WEIGHT`] = 0.15, chosen by measurement (`docs/reproduction.md` §7
+/// scans 0.02 to 1 on Freitag's rand2D, Knupp's random grids and the page's tangled plate):
+/// the smallest and largest angles improve as k1 grows to about 0.15 and stay nearly flat
+/// beyond, because η² is itself a shape measure that weighs the worst elements most, so
+/// the mean α does not suffer. Untangling does not hinge on the weight: the barrier's
+/// growth does it.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct RegularisedBarrier {
     /// Weight of `η²`; default [`BARRIER_WEIGHT`]. 0 leaves `Σ (1 − α)²` alone.
