@@ -53,6 +53,19 @@
 //! # Ok::<(), smoothlab::Error>(())
 //! ```
 
+/// Declares a fieldless enum together with `ALL`, every variant in declaration order, so
+/// a variant added to the enum is in `ALL` (and so in every menu, CLI list and test built
+/// from it) without a second edit that could be forgotten.
+macro_rules! enum_with_all {
+    ($(#[$m:meta])* $vis:vis enum $name:ident { $($(#[$vm:meta])* $v:ident,)+ }) => {
+        $(#[$m])* $vis enum $name { $($(#[$vm])* $v,)+ }
+        impl $name {
+            /// Every variant, in declaration order.
+            pub const ALL: [$name; [$(stringify!($v)),+].len()] = [$($name::$v),+];
+        }
+    };
+}
+
 pub mod error;
 pub mod generate;
 pub mod io;

@@ -180,7 +180,7 @@ proptest! {
         shape in 0u8..3, size in 0usize..100, seed in 1u64..10_000, amount in 0.0f64..1.0, pick in 0usize..49,
     ) {
         let base = small_mesh(shape, size, seed, amount);
-        let kind = ObjectiveKind::ALL[pick % 7];
+        let kind = ObjectiveKind::ALL[pick % ObjectiveKind::ALL.len()];
         let strategy = STRATEGIES[pick / 7];
         let order = if pick % 2 == 0 { Order::Priority } else { Order::Input };
         let runs: Vec<Vec<[u64; 2]>> = (0..2)

@@ -51,39 +51,30 @@ pub use old::MaxMinShape;
 pub use sine::MaxMinSine;
 pub use untangle::{MaxMinDet, Untangle, UNTANGLE_BETA};
 
-/// The objectives smoothlab offers, by their command-line names (serde uses the same names).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, serde::Serialize, serde::Deserialize)]
-#[serde(rename_all = "kebab-case")]
-pub enum ObjectiveKind {
-    /// `old`: maximise the minimum α/β of the star (Chen et al.'s previous method).
-    Old,
-    /// `sine`: maximise the minimum sine of the star's angles (Freitag 1997).
-    Sine,
-    /// `new`: Chen, Tristano & Kwok's smooth objective (α plus an angle penalty).
-    New,
-    /// `condition`: Knupp's condition number, 2-norm (sum of κ² — the average element).
-    Condition,
-    /// `condition-max`: Knupp's condition number, ∞-norm (the worst corner).
-    ConditionMax,
-    /// `untangle`: Knupp's Σ(|det| − det), zero once every corner is valid.
-    Untangle,
-    /// `untangle-mindet`: maximise the minimum corner det (Knupp & Freitag).
-    #[serde(rename = "untangle-mindet")]
-    UntangleMinDet,
+enum_with_all! {
+    /// The objectives smoothlab offers, by their command-line names (serde uses the same names).
+    #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, serde::Serialize, serde::Deserialize)]
+    #[serde(rename_all = "kebab-case")]
+    pub enum ObjectiveKind {
+        /// `old`: maximise the minimum α/β of the star (Chen et al.'s previous method).
+        Old,
+        /// `sine`: maximise the minimum sine of the star's angles (Freitag 1997).
+        Sine,
+        /// `new`: Chen, Tristano & Kwok's smooth objective (α plus an angle penalty).
+        New,
+        /// `condition`: Knupp's condition number, 2-norm (sum of κ² — the average element).
+        Condition,
+        /// `condition-max`: Knupp's condition number, ∞-norm (the worst corner).
+        ConditionMax,
+        /// `untangle`: Knupp's Σ(|det| − det), zero once every corner is valid.
+        Untangle,
+        /// `untangle-mindet`: maximise the minimum corner det (Knupp & Freitag).
+        #[serde(rename = "untangle-mindet")]
+        UntangleMinDet,
+    }
 }
 
 impl ObjectiveKind {
-    /// Every kind, in the order of the command-line help.
-    pub const ALL: [ObjectiveKind; 7] = [
-        ObjectiveKind::Old,
-        ObjectiveKind::Sine,
-        ObjectiveKind::New,
-        ObjectiveKind::Condition,
-        ObjectiveKind::ConditionMax,
-        ObjectiveKind::Untangle,
-        ObjectiveKind::UntangleMinDet,
-    ];
-
     /// The command-line name.
     pub fn name(self) -> &'static str {
         match self {

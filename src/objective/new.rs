@@ -17,20 +17,20 @@ mod barrier;
 pub use angle::{adjusted_angle, AnglePenalty, PenaltyLength, EQUILATERAL_PENALTY};
 pub use barrier::{regularised_determinant, RegularisedBarrier, BARRIER_EPSILON, BARRIER_WEIGHT};
 
-/// The designs of the angle penalty (our eq. (8)), by their command-line names.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
-#[serde(rename_all = "lowercase")]
-pub enum Penalty {
-    /// `barrier`: [`RegularisedBarrier`], `k1·η_δ²` (the default).
-    #[default]
-    Barrier,
-    /// `angle`: [`AnglePenalty`], the first design on the adjusted angle of eqs. (6)–(7).
-    Angle,
+enum_with_all! {
+    /// The designs of the angle penalty (our eq. (8)), by their command-line names.
+    #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
+    #[serde(rename_all = "lowercase")]
+    pub enum Penalty {
+        /// `barrier`: [`RegularisedBarrier`], `k1·η_δ²` (the default).
+        #[default]
+        Barrier,
+        /// `angle`: [`AnglePenalty`], the first design on the adjusted angle of eqs. (6)–(7).
+        Angle,
+    }
 }
 
 impl Penalty {
-    /// Both designs, the default first.
-    pub const ALL: [Penalty; 2] = [Penalty::Barrier, Penalty::Angle];
     /// The name on the command line, in permalinks and on the page.
     pub fn name(self) -> &'static str {
         match self {

@@ -32,39 +32,38 @@ mod tests;
 
 pub use obstacles::{untangling_obstacles, Obstacle};
 
-/// How each free node is smoothed. (De)serialised by its [`name`](Strategy::name).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(rename_all = "lowercase")]
-pub enum Strategy {
-    /// Move to the centroid of the neighbouring corner nodes, unconditionally.
-    Laplace,
-    /// Constrained ("smart") Laplacian: move to the centroid only if the star's worst
-    /// quality ([`SmoothOptions::smart_measure`]) strictly improves and no valid star
-    /// element becomes inverted (Freitag 1997; Chen et al. 2003 §1).
-    Smart,
-    /// Optimise every free node with the objective's solver.
-    Opt,
-    /// Freitag's combined approach 1: smart Laplacian if the star's minimum angle exceeds
-    /// the threshold, optimization otherwise.
-    C1,
-    /// Freitag's combined approach 2: smart Laplacian always, then optimization if the
-    /// star's minimum angle still does not exceed the threshold.
-    C2,
-    /// Freitag's combined approach 3: nothing if the star's minimum angle exceeds the
-    /// threshold; otherwise (plain) Laplacian, then optimization if still not above it —
-    /// and the node stays put if the two together left its star worse (by
-    /// [`SmoothOptions::smart_measure`], or with more inverted elements) than they found it.
-    C3,
-    /// Chen et al. (2003) §4.1: optimization when the node (1) is connected to a curved
-    /// boundary node, (2) is connected to an invalid element, (3) failed to move under
-    /// constrained Laplacian, or (4) the caller forces it; otherwise constrained Laplacian.
-    Rules,
+enum_with_all! {
+    /// How each free node is smoothed. (De)serialised by its [`name`](Strategy::name).
+    #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+    #[serde(rename_all = "lowercase")]
+    pub enum Strategy {
+        /// Move to the centroid of the neighbouring corner nodes, unconditionally.
+        Laplace,
+        /// Constrained ("smart") Laplacian: move to the centroid only if the star's worst
+        /// quality ([`SmoothOptions::smart_measure`]) strictly improves and no valid star
+        /// element becomes inverted (Freitag 1997; Chen et al. 2003 §1).
+        Smart,
+        /// Optimise every free node with the objective's solver.
+        Opt,
+        /// Freitag's combined approach 1: smart Laplacian if the star's minimum angle exceeds
+        /// the threshold, optimization otherwise.
+        C1,
+        /// Freitag's combined approach 2: smart Laplacian always, then optimization if the
+        /// star's minimum angle still does not exceed the threshold.
+        C2,
+        /// Freitag's combined approach 3: nothing if the star's minimum angle exceeds the
+        /// threshold; otherwise (plain) Laplacian, then optimization if still not above it —
+        /// and the node stays put if the two together left its star worse (by
+        /// [`SmoothOptions::smart_measure`], or with more inverted elements) than they found it.
+        C3,
+        /// Chen et al. (2003) §4.1: optimization when the node (1) is connected to a curved
+        /// boundary node, (2) is connected to an invalid element, (3) failed to move under
+        /// constrained Laplacian, or (4) the caller forces it; otherwise constrained Laplacian.
+        Rules,
+    }
 }
 
 impl Strategy {
-    /// Every strategy, in menu order.
-    pub const ALL: [Strategy; 7] =
-        [Strategy::Laplace, Strategy::Smart, Strategy::Opt, Strategy::C1, Strategy::C2, Strategy::C3, Strategy::Rules];
     /// The name used on the command line, in permalinks and on the page.
     pub fn name(self) -> &'static str {
         match self {
@@ -83,19 +82,19 @@ impl Strategy {
     }
 }
 
-/// The order in which a pass visits the free nodes.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(rename_all = "lowercase")]
-pub enum Order {
-    /// Node number order, each free node once ("first come first serve").
-    Input,
-    /// Chen et al. (2003) §4.2, "worst one first": see [`Smoother::plan`].
-    Priority,
+enum_with_all! {
+    /// The order in which a pass visits the free nodes.
+    #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+    #[serde(rename_all = "lowercase")]
+    pub enum Order {
+        /// Node number order, each free node once ("first come first serve").
+        Input,
+        /// Chen et al. (2003) §4.2, "worst one first": see [`Smoother::plan`].
+        Priority,
+    }
 }
 
 impl Order {
-    /// Both orders.
-    pub const ALL: [Order; 2] = [Order::Input, Order::Priority];
     /// The name used on the command line, in permalinks and on the page.
     pub fn name(self) -> &'static str {
         match self {

@@ -18,7 +18,7 @@ use smoothlab::smooth::{smooth, SmoothOptions, Strategy};
 use smoothlab::Mesh;
 use tiny_skia::{Pixmap, PixmapPaint, Transform};
 
-use crate::smooth::{OrderArg, StrategyArg};
+use crate::smooth::{order_parser, strategy_parser};
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
 pub enum ViewArg {
@@ -70,8 +70,8 @@ pub struct RenderArgs {
     #[arg(long, default_value_t = 1.0)]
     pub dpr: f32,
     /// Smoothing strategy
-    #[arg(long, value_enum, default_value = "rules")]
-    pub strategy: StrategyArg,
+    #[arg(long, value_parser = strategy_parser(), default_value = "rules")]
+    pub strategy: smoothlab::smooth::Strategy,
     /// Threshold angle of c1/c2/c3, degrees
     #[arg(long, default_value_t = 30.0)]
     pub threshold: f64,
@@ -79,8 +79,8 @@ pub struct RenderArgs {
     #[arg(long)]
     pub passes: Option<u32>,
     /// Node order (default priority)
-    #[arg(long, value_enum, default_value = "priority")]
-    pub order: OrderArg,
+    #[arg(long, value_parser = order_parser(), default_value = "priority")]
+    pub order: smoothlab::smooth::Order,
     /// Solver iterations per optimization call
     #[arg(long, default_value_t = 3)]
     pub max_iter: u32,
@@ -119,9 +119,9 @@ fn size(spec: Option<&str>, default: (u32, u32)) -> Result<(u32, u32), String> {
 
 fn settings(a: &RenderArgs) -> Settings {
     Settings {
-        strategy: a.strategy.strategy(),
+        strategy: a.strategy,
         threshold_deg: a.threshold,
-        order: a.order.order(),
+        order: a.order,
         max_iter: a.max_iter,
         compare: [Choice::OLD, Choice { penalty: a.penalty, ..Choice::NEW }],
     }

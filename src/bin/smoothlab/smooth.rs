@@ -18,7 +18,7 @@
 use std::path::PathBuf;
 use std::time::Instant;
 
-use clap::{Args, ValueEnum};
+use clap::Args;
 use serde::Serialize;
 use smoothlab::objective::{objective_with, ObjectiveKind, Penalty};
 use smoothlab::quality::{mesh_stats, MeshStats};
@@ -36,11 +36,11 @@ pub struct SmoothArgs {
     #[arg(short, long)]
     pub output: PathBuf,
     /// Objective of the optimization steps; laplace and smart only report its total [default: new]
-    #[arg(long, value_enum)]
-    pub objective: Option<ObjectiveArg>,
+    #[arg(long, value_parser = named(&ObjectiveKind::ALL, ObjectiveKind::name))]
+    pub objective: Option<ObjectiveKind>,
     /// How each node is smoothed
-    #[arg(long, value_enum, default_value = "rules")]
-    pub strategy: StrategyArg,
+    #[arg(long, value_parser = strategy_parser(), default_value = "rules")]
+    pub strategy: Strategy,
     /// Threshold angle of c1/c2/c3, degrees, in (0, 90] [default: 30]
     #[arg(long)]
     pub threshold: Option<f64>,
@@ -48,8 +48,8 @@ pub struct SmoothArgs {
     #[arg(long, default_value_t = 3)]
     pub passes: u32,
     /// Node order [default: priority for rules, input otherwise]
-    #[arg(long, value_enum)]
-    pub order: Option<OrderArg>,
+    #[arg(long, value_parser = order_parser())]
+    pub order: Option<Order>,
     /// Solver iterations per optimization call [default: 3]
     #[arg(long)]
     pub max_iter: Option<u32>,
@@ -73,83 +73,36 @@ pub struct SmoothArgs {
     pub msh_version: MshVersionArg,
 }
 
-/// `--penalty`'s values, from the core's own names.
-pub fn penalty_parser() -> impl clap::builder::TypedValueParser<Value = Penalty> {
+/// A value parser for one of the core's named choices: the possible values are `all`'s
+/// names, in the core's order, so the CLI lists exactly what the core offers (no mirror
+/// enum to keep in step with it).
+pub fn named<T: Copy + Send + Sync + 'static>(
+    all: &'static [T],
+    name: fn(T) -> &'static str,
+) -> impl clap::builder::TypedValueParser<Value = T> {
     use clap::builder::TypedValueParser;
-    clap::builder::PossibleValuesParser::new(Penalty::ALL.map(Penalty::name))
-        .map(|s: String| Penalty::parse(&s).expect("one of the possible values"))
+    clap::builder::PossibleValuesParser::new(all.iter().map(|&t| name(t)))
+        .map(move |s: String| *all.iter().find(|&&t| name(t) == s).expect("one of the possible values"))
 }
 
-#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
-pub enum ObjectiveArg {
-    Old,
-    New,
-    Sine,
-    Condition,
-    ConditionMax,
-    Untangle,
-    UntangleMindet,
+/// `--penalty`'s values.
+pub fn penalty_parser() -> impl clap::builder::TypedValueParser<Value = Penalty> {
+    named(&Penalty::ALL, Penalty::name)
 }
 
-impl ObjectiveArg {
-    fn kind(self) -> ObjectiveKind {
-        match self {
-            ObjectiveArg::Old => ObjectiveKind::Old,
-            ObjectiveArg::New => ObjectiveKind::New,
-            ObjectiveArg::Sine => ObjectiveKind::Sine,
-            ObjectiveArg::Condition => ObjectiveKind::Condition,
-            ObjectiveArg::ConditionMax => ObjectiveKind::ConditionMax,
-            ObjectiveArg::Untangle => ObjectiveKind::Untangle,
-            ObjectiveArg::UntangleMindet => ObjectiveKind::UntangleMinDet,
-        }
-    }
+/// `--strategy`'s values.
+pub fn strategy_parser() -> impl clap::builder::TypedValueParser<Value = Strategy> {
+    named(&Strategy::ALL, Strategy::name)
 }
 
-#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
-pub enum StrategyArg {
-    Laplace,
-    Smart,
-    Opt,
-    C1,
-    C2,
-    C3,
-    Rules,
+/// `--order`'s values.
+pub fn order_parser() -> impl clap::builder::TypedValueParser<Value = Order> {
+    named(&Order::ALL, Order::name)
 }
 
-impl StrategyArg {
-    pub fn strategy(self) -> Strategy {
-        match self {
-            StrategyArg::Laplace => Strategy::Laplace,
-            StrategyArg::Smart => Strategy::Smart,
-            StrategyArg::Opt => Strategy::Opt,
-            StrategyArg::C1 => Strategy::C1,
-            StrategyArg::C2 => Strategy::C2,
-            StrategyArg::C3 => Strategy::C3,
-            StrategyArg::Rules => Strategy::Rules,
-        }
-    }
-    fn name(self) -> &'static str {
-        self.strategy().name()
-    }
-    /// Strategies that never call the solver.
-    fn is_laplacian_only(self) -> bool {
-        limits::max_iter_unused(self.strategy()).is_some()
-    }
-}
-
-#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
-pub enum OrderArg {
-    Priority,
-    Input,
-}
-
-impl OrderArg {
-    pub fn order(self) -> Order {
-        match self {
-            OrderArg::Priority => Order::Priority,
-            OrderArg::Input => Order::Input,
-        }
-    }
+/// Strategies that never call the solver.
+fn is_laplacian_only(strategy: Strategy) -> bool {
+    limits::max_iter_unused(strategy).is_some()
 }
 
 /// What `--json` prints: one object.
@@ -173,7 +126,7 @@ fn options(a: &SmoothArgs) -> Result<SmoothOptions, String> {
         return Err(format!("--passes {}: give 1 to {}", a.passes, BATCH_PASSES.max));
     }
     if let Some(t) = a.threshold {
-        if limits::threshold_unused(strategy.strategy()).is_some() {
+        if limits::threshold_unused(strategy).is_some() {
             return Err(format!(
                 "--threshold applies to the combined strategies c1, c2 and c3 only, not to {}",
                 strategy.name()
@@ -184,7 +137,7 @@ fn options(a: &SmoothArgs) -> Result<SmoothOptions, String> {
         }
     }
     if let Some(k) = a.max_iter {
-        if strategy.is_laplacian_only() {
+        if is_laplacian_only(strategy) {
             return Err(format!(
                 "--max-iter: {} never calls the solver, so it has no iterations to limit",
                 strategy.name()
@@ -195,11 +148,11 @@ fn options(a: &SmoothArgs) -> Result<SmoothOptions, String> {
         }
     }
     let order = match a.order {
-        Some(o) => o.order(),
-        None if strategy == StrategyArg::Rules => Order::Priority,
+        Some(o) => o,
+        None if strategy == Strategy::Rules => Order::Priority,
         None => Order::Input,
     };
-    let mut o = SmoothOptions::default().with_strategy(strategy.strategy()).with_order(order);
+    let mut o = SmoothOptions::default().with_strategy(strategy).with_order(order);
     if let Some(t) = a.threshold {
         o = o.with_threshold_deg(t);
     }
@@ -208,12 +161,12 @@ fn options(a: &SmoothArgs) -> Result<SmoothOptions, String> {
     }
     if a.pass_through_folds || a.no_pass_through_folds {
         let flag = if a.pass_through_folds { "--pass-through-folds" } else { "--no-pass-through-folds" };
-        if strategy.is_laplacian_only() {
+        if is_laplacian_only(strategy) {
             return Err(format!("{flag}: {} never calls the solver", strategy.name()));
         }
         o = o.with_pass_through_folds(a.pass_through_folds);
     }
-    if a.penalty.is_some() && a.objective.is_some_and(|k| k.kind() != ObjectiveKind::New) {
+    if a.penalty.is_some() && a.objective.is_some_and(|k| k != ObjectiveKind::New) {
         return Err("--penalty chooses the design of the new objective's penalty: use it with --objective new".into());
     }
     o.validate().map_err(|e| e.to_string())?;
@@ -222,7 +175,7 @@ fn options(a: &SmoothArgs) -> Result<SmoothOptions, String> {
 
 pub fn run(a: SmoothArgs) -> Result<(), String> {
     let opts = options(&a)?;
-    let kind = a.objective.map_or(ObjectiveKind::New, ObjectiveArg::kind);
+    let kind = a.objective.unwrap_or(ObjectiveKind::New);
     let mut mesh = read_mesh(&a.input)?;
     smoothlab::objective::check_scale(kind, &mesh).map_err(|e| format!("{}: {e}", a.input.display()))?;
     let obj = objective_with(kind, a.penalty.unwrap_or_default());
@@ -255,7 +208,7 @@ pub fn run(a: SmoothArgs) -> Result<(), String> {
 /// The human-readable summary: one line per pass, then the final state.
 fn summary(
     kind: ObjectiveKind,
-    strategy: StrategyArg,
+    strategy: Strategy,
     order: Order,
     passes: &[PassRecord],
     s: &MeshStats,
@@ -264,7 +217,7 @@ fn summary(
     let mut t = format!(
         "smoothing: strategy {}, objective {kind}{}, {} order\n",
         strategy.name(),
-        if strategy.is_laplacian_only() { " (measured only: this strategy never optimizes)" } else { "" },
+        if is_laplacian_only(strategy) { " (measured only: this strategy never optimizes)" } else { "" },
         match order {
             Order::Priority => "priority",
             Order::Input => "input",
