@@ -2,9 +2,10 @@
 //! gradients for the smooth objectives (Chen, Tristano & Kwok 2003, §3) and Freitag's
 //! active-set steepest ascent for the max-min objectives (Freitag 1997, Figure 1).
 //!
-//! Both implement [`Solver`] over any `&dyn Objective`. A solve runs as
-//! [`Solver::start`] then [`Solver::step`] until it stops, so the page can animate it;
-//! [`Solver::solve`] does both and returns a [`SolveResult`] with the history as data.
+//! Both implement [`Solver`] over any `&dyn Objective`; [`Solvers`] holds one of each and
+//! picks by [`SolverKind`]. A solve is [`Solver::start`] then [`Solver::step`] until it
+//! stops: [`Solver::solve`] runs them, at unit scale or in a rescaled copy of the star, and
+//! returns a [`SolveResult`] with the history as data (the page draws that history).
 //! History is recorded only when [`SolveOptions::record_history`] is set, so an ordinary
 //! smoothing pass allocates nothing per node.
 //!
@@ -202,13 +203,25 @@ pub enum SolverKind {
     NonSmoothAscent,
 }
 
-impl SolverKind {
-    /// The concrete solver for an objective of `goal` (`Auto` resolved).
-    pub fn resolve(self, goal: Goal) -> SolverKind {
-        match (self, goal) {
-            (SolverKind::Auto, Goal::MinimizeSum) => SolverKind::FletcherReeves,
-            (SolverKind::Auto, Goal::MaximizeMin) => SolverKind::NonSmoothAscent,
-            (k, _) => k,
+/// One solver of each kind, built once from the same [`SolveOptions`] and chosen per call
+/// by [`SolverKind`]: the drivers hold one of these, so a new solver is one field here and
+/// one arm of [`Solvers::get`] (which the compiler asks for), not an edit of each driver.
+#[derive(Clone, Debug)]
+pub struct Solvers {
+    fletcher_reeves: FletcherReeves,
+    non_smooth_ascent: NonSmoothAscent,
+}
+
+impl Solvers {
+    /// Every solver with options `o`.
+    pub fn new(o: SolveOptions) -> Self {
+        Solvers { fletcher_reeves: FletcherReeves::new(o), non_smooth_ascent: NonSmoothAscent::new(o) }
+    }
+    /// The solver `kind` names for an objective of `goal` ([`SolverKind::Auto`] resolved).
+    pub fn get(&mut self, kind: SolverKind, goal: Goal) -> &mut dyn Solver {
+        match (kind, goal) {
+            (SolverKind::FletcherReeves, _) | (SolverKind::Auto, Goal::MinimizeSum) => &mut self.fletcher_reeves,
+            (SolverKind::NonSmoothAscent, _) | (SolverKind::Auto, Goal::MaximizeMin) => &mut self.non_smooth_ascent,
         }
     }
 }

@@ -20,7 +20,7 @@ use serde::{Deserialize, Serialize};
 use crate::error::{Error, Result};
 use crate::mesh::Mesh;
 use crate::objective::{Objective, Star, StarElement, Term};
-use crate::optimize::{evaluate, FletcherReeves, NonSmoothAscent, SolveOptions, SolveResult, Solver, SolverKind};
+use crate::optimize::{evaluate, SolveOptions, SolveResult, SolverKind, Solvers};
 use crate::quality::{
     canann_beta_from_corners, corner_edges, lo_alpha_corner, mesh_stats, scaled_jacobian, TWO_SQRT3,
 };
@@ -475,8 +475,7 @@ fn centroid(mesh: &Mesh, n: usize) -> Option<DVec2> {
 pub struct Smoother {
     options: SmoothOptions,
     star: Star,
-    fr: FletcherReeves,
-    ascent: NonSmoothAscent,
+    solvers: Solvers,
     terms: Vec<Term>,
     /// Star quality of each node when the schedule was planned (priority order).
     quality: Vec<f64>,
@@ -509,8 +508,7 @@ impl Smoother {
         Ok(Smoother {
             options,
             star: Star::new(),
-            fr: FletcherReeves::new(solve),
-            ascent: NonSmoothAscent::new(solve),
+            solvers: Solvers::new(solve),
             terms: Vec::new(),
             quality: Vec::new(),
             ranked: Vec::new(),
@@ -960,10 +958,7 @@ impl Smoother {
         } else {
             objective
         };
-        let r = match self.options.solver.resolve(objective.goal()) {
-            SolverKind::NonSmoothAscent => self.ascent.solve(objective, &self.star, x0),
-            _ => self.fr.solve(objective, &self.star, x0),
-        };
+        let r = self.solvers.get(self.options.solver, objective.goal()).solve(objective, &self.star, x0);
         out.optimized = true;
         out.iterations += r.iterations;
         if r.x.is_finite() && r.x != x0 {
@@ -1100,8 +1095,5 @@ pub fn solve_node(mesh: &Mesh, node: usize, objective: &dyn Objective, options: 
     star.gather(mesh, node);
     let solve = options.solve_options().with_history(true);
     solve.validate()?;
-    Ok(match options.solver.resolve(objective.goal()) {
-        SolverKind::NonSmoothAscent => NonSmoothAscent::new(solve).solve(objective, &star, mesh.nodes[node]),
-        _ => FletcherReeves::new(solve).solve(objective, &star, mesh.nodes[node]),
-    })
+    Ok(Solvers::new(solve).get(options.solver, objective.goal()).solve(objective, &star, mesh.nodes[node]))
 }
