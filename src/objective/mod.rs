@@ -424,47 +424,33 @@ impl Fold {
     }
 }
 
-impl<O: Objective + ?Sized> Objective for Box<O> {
-    fn name(&self) -> &'static str {
-        (**self).name()
-    }
-    fn goal(&self) -> Goal {
-        (**self).goal()
-    }
-    fn untangles(&self) -> bool {
-        (**self).untangles()
-    }
-    fn terms(&self, star: &Star, x: DVec2, out: &mut Vec<Term>) {
-        (**self).terms(star, x, out)
-    }
-    fn value(&self, star: &Star, x: DVec2) -> f64 {
-        (**self).value(star, x)
-    }
-    fn value_and_gradient(&self, star: &Star, x: DVec2) -> (f64, DVec2) {
-        (**self).value_and_gradient(star, x)
-    }
+/// Forwards every method of [`Objective`] through a pointer type, so a boxed objective
+/// and a reference to one are objectives too.
+macro_rules! forward_objective {
+    ($($ptr:ty),+) => {$(
+        impl<O: Objective + ?Sized> Objective for $ptr {
+            fn name(&self) -> &'static str {
+                (**self).name()
+            }
+            fn goal(&self) -> Goal {
+                (**self).goal()
+            }
+            fn untangles(&self) -> bool {
+                (**self).untangles()
+            }
+            fn terms(&self, star: &Star, x: DVec2, out: &mut Vec<Term>) {
+                (**self).terms(star, x, out)
+            }
+            fn value(&self, star: &Star, x: DVec2) -> f64 {
+                (**self).value(star, x)
+            }
+            fn value_and_gradient(&self, star: &Star, x: DVec2) -> (f64, DVec2) {
+                (**self).value_and_gradient(star, x)
+            }
+        }
+    )+};
 }
-
-impl<O: Objective + ?Sized> Objective for &O {
-    fn name(&self) -> &'static str {
-        (**self).name()
-    }
-    fn goal(&self) -> Goal {
-        (**self).goal()
-    }
-    fn untangles(&self) -> bool {
-        (**self).untangles()
-    }
-    fn terms(&self, star: &Star, x: DVec2, out: &mut Vec<Term>) {
-        (**self).terms(star, x, out)
-    }
-    fn value(&self, star: &Star, x: DVec2) -> f64 {
-        (**self).value(star, x)
-    }
-    fn value_and_gradient(&self, star: &Star, x: DVec2) -> (f64, DVec2) {
-        (**self).value_and_gradient(star, x)
-    }
-}
+forward_objective!(Box<O>, &O);
 
 #[cfg(test)]
 mod tests {

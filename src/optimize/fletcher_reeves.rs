@@ -6,7 +6,7 @@
 use glam::DVec2;
 
 use super::{
-    line_search, merit_of, star_scale, DirectionKind, Iterate, SolveOptions, SolveState, Solver, StopReason,
+    line_search, merit_of, DirectionKind, Iterate, SolveOptions, SolveState, Solver, StopReason,
 };
 use crate::objective::{Goal, Objective, Star};
 
@@ -59,9 +59,8 @@ impl Solver for FletcherReeves {
     }
 
     fn start(&mut self, objective: &dyn Objective, star: &Star, x0: DVec2) -> SolveState {
-        let mut st = SolveState::new(x0, star_scale(star), self.options.acceleration);
-        if star.is_empty() || !(st.scale.is_finite() && st.scale > 0.0) {
-            st.stop = Some(StopReason::DegenerateStar);
+        let mut st = SolveState::begin(star, x0, &self.options);
+        if st.is_done() {
             return st;
         }
         let (v, m, g) = self.eval(objective, star, x0);
@@ -76,14 +75,10 @@ impl Solver for FletcherReeves {
     }
 
     fn step(&mut self, objective: &dyn Objective, star: &Star, st: &mut SolveState) -> bool {
-        if st.stop.is_some() {
+        if !st.may_iterate(&self.options) {
             return false;
         }
         let o = self.options;
-        if st.iterations >= o.max_iter {
-            st.stop = Some(StopReason::MaxIter);
-            return false;
-        }
         let g = st.grad;
         let g2 = g.length_squared();
         if g2 == 0.0 || g.length() * st.scale <= GRADIENT_TOLERANCE * st.merit.abs().max(f64::MIN_POSITIVE) {

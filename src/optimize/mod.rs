@@ -261,6 +261,28 @@ pub struct SolveState {
 }
 
 impl SolveState {
+    /// A solve of `star` from `x0`, already stopped ([`StopReason::DegenerateStar`]) when
+    /// the star is empty or has no finite positive size: what every solver's `start`
+    /// checks first.
+    fn begin(star: &Star, x0: DVec2, options: &SolveOptions) -> Self {
+        let mut st = SolveState::new(x0, star_scale(star), options.acceleration);
+        if star.is_empty() || !(st.scale.is_finite() && st.scale > 0.0) {
+            st.stop = Some(StopReason::DegenerateStar);
+        }
+        st
+    }
+    /// Whether another iteration may run: false once stopped; at `max_iter` iterations the
+    /// solve stops with [`StopReason::MaxIter`]. What every solver's `step` checks first.
+    fn may_iterate(&mut self, options: &SolveOptions) -> bool {
+        if self.stop.is_some() {
+            return false;
+        }
+        if self.iterations >= options.max_iter {
+            self.stop = Some(StopReason::MaxIter);
+            return false;
+        }
+        true
+    }
     fn new(x0: DVec2, scale: f64, accel: f64) -> Self {
         SolveState {
             x: x0,

@@ -7,7 +7,7 @@
 use glam::DVec2;
 use serde::Serialize;
 
-use super::{star_scale, DirectionKind, Iterate, SolveOptions, SolveState, Solver, StopReason};
+use super::{DirectionKind, Iterate, SolveOptions, SolveState, Solver, StopReason};
 use crate::objective::{Goal, Objective, Star, Term};
 
 /// Where the minimum-norm point of a convex hull lies.
@@ -144,9 +144,8 @@ impl Solver for NonSmoothAscent {
     }
 
     fn start(&mut self, objective: &dyn Objective, star: &Star, x0: DVec2) -> SolveState {
-        let mut st = SolveState::new(x0, star_scale(star), self.options.acceleration);
-        if star.is_empty() || !(st.scale.is_finite() && st.scale > 0.0) {
-            st.stop = Some(StopReason::DegenerateStar);
+        let mut st = SolveState::begin(star, x0, &self.options);
+        if st.is_done() {
             return st;
         }
         let phi = max_min_terms(objective, star, x0, &mut self.terms);
@@ -160,14 +159,10 @@ impl Solver for NonSmoothAscent {
     }
 
     fn step(&mut self, objective: &dyn Objective, star: &Star, st: &mut SolveState) -> bool {
-        if st.stop.is_some() {
+        if !st.may_iterate(&self.options) {
             return false;
         }
         let o = self.options;
-        if st.iterations >= o.max_iter {
-            st.stop = Some(StopReason::MaxIter);
-            return false;
-        }
         let phi = -st.merit;
         // active set and direction
         let q_scale = self.terms.iter().filter(|t| t.value.is_finite()).fold(0.0f64, |m, t| m.max(t.value.abs()));

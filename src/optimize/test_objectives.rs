@@ -28,6 +28,31 @@ pub fn unit_star() -> Star {
     s
 }
 
+/// An anisotropic bowl `d.x² + 4·d.y²`, `d = x − c` (minimised), with a barrier right of
+/// `wall`: +∞ there (the level-set views' hatched region).
+pub struct WalledBowl {
+    pub c: DVec2,
+    pub wall: f64,
+}
+
+impl Objective for WalledBowl {
+    fn name(&self) -> &'static str {
+        "bowl"
+    }
+    fn goal(&self) -> Goal {
+        Goal::MinimizeSum
+    }
+    fn terms(&self, _star: &Star, x: DVec2, out: &mut Vec<Term>) {
+        let d = x - self.c;
+        let (value, grad) = if x.x > self.wall {
+            (f64::INFINITY, DVec2::ZERO)
+        } else {
+            (d.x * d.x + 4.0 * d.y * d.y, DVec2::new(2.0 * d.x, 8.0 * d.y))
+        };
+        out.push(Term { elem: 0, value, grad });
+    }
+}
+
 /// `(x − c)ᵀ A (x − c)` with symmetric positive definite `A`: minimum 0 at `c`.
 pub struct Bowl {
     pub centre: DVec2,

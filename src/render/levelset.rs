@@ -490,47 +490,7 @@ pub fn render_level_sets_side_by_side(pixmap: &mut Pixmap, left: &LevelSet<'_>, 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::mesh::{ElementKind, MeshBuilder};
-    use crate::objective::Term;
-
-    /// An anisotropic bowl around `c` with a barrier (+∞) right of `wall`.
-    struct Bowl {
-        c: DVec2,
-        wall: f64,
-    }
-    impl Objective for Bowl {
-        fn name(&self) -> &'static str {
-            "bowl"
-        }
-        fn goal(&self) -> Goal {
-            Goal::MinimizeSum
-        }
-        fn terms(&self, _star: &Star, x: DVec2, out: &mut Vec<Term>) {
-            let d = x - self.c;
-            let (value, grad) = if x.x > self.wall {
-                (f64::INFINITY, DVec2::ZERO)
-            } else {
-                (d.x * d.x + 4.0 * d.y * d.y, DVec2::new(2.0 * d.x, 8.0 * d.y))
-            };
-            out.push(Term { elem: 0, value, grad });
-        }
-    }
-
-    fn hexagon_star() -> Star {
-        let mut b = MeshBuilder::new();
-        b.add_node([0.0, 0.0, 0.0], 0);
-        for k in 0..6 {
-            let a = k as f64 * std::f64::consts::PI / 3.0;
-            b.add_node([a.cos(), a.sin(), 0.0], 0);
-        }
-        for k in 0..6u32 {
-            b.add_element(ElementKind::Tri3, &[0, 1 + k, 1 + (k + 1) % 6], 0);
-        }
-        let mesh = b.build().unwrap();
-        let mut star = Star::new();
-        star.gather(&mesh, 0);
-        star
-    }
+    use crate::optimize::test_objectives::{unit_star as hexagon_star, WalledBowl as Bowl};
 
     #[test]
     fn sampling_checks_its_input() {

@@ -179,28 +179,7 @@ fn golden_compare() {
     golden("compare", &p);
 }
 
-/// An anisotropic bowl (minimised) with a barrier right of `wall`: +∞ there.
-struct Bowl {
-    c: DVec2,
-    wall: f64,
-}
-
-impl Objective for Bowl {
-    fn name(&self) -> &'static str {
-        "bowl"
-    }
-    fn goal(&self) -> Goal {
-        Goal::MinimizeSum
-    }
-    fn terms(&self, _star: &Star, x: DVec2, out: &mut Vec<Term>) {
-        let d = x - self.c;
-        if x.x > self.wall {
-            out.push(Term { elem: 0, value: f64::INFINITY, grad: DVec2::ZERO });
-        } else {
-            out.push(Term { elem: 0, value: d.x * d.x + 4.0 * d.y * d.y, grad: DVec2::new(2.0 * d.x, 8.0 * d.y) });
-        }
-    }
-}
+use crate::optimize::test_objectives::WalledBowl as Bowl;
 
 /// The worst corner α at the free node over the star (maximised): a max-min objective
 /// whose gradients are central differences, enough for a picture.
