@@ -5,6 +5,7 @@ use proptest::prelude::prop;
 use proptest::prelude::{any, prop_assert, prop_assert_eq, proptest, ProptestConfig};
 
 use super::*;
+use crate::optimize::SolverKind;
 use crate::mesh::{ElementKind, FixedSpec, MeshBuilder};
 use crate::objective::Goal;
 use crate::optimize::test_objectives::{hexagon, ShapeMaxMin, ShapeSum};

@@ -1,0 +1,143 @@
+//! The measures the drivers take of a star or one element at a trial position: its worst
+//! shape and sine, and whether it is inverted.
+
+use glam::DVec2;
+
+use crate::objective::{Star, StarElement};
+use crate::quality::{canann_beta_from_corners, corner_edges, lo_alpha_corner, scaled_jacobian, TWO_SQRT3};
+
+use super::*;
+
+/// The worst measures of a star (or one element) at a position.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct StarQuality {
+    /// Smallest α (triangles) / β (quads).
+    pub min_shape: f64,
+    /// Smallest sine of a corner angle.
+    pub min_sine: f64,
+    /// Elements with a corner of `det ≤ 0`.
+    pub inverted: u32,
+}
+
+impl StarQuality {
+    const BEST: StarQuality = StarQuality { min_shape: f64::INFINITY, min_sine: f64::INFINITY, inverted: 0 };
+    pub(super) fn measure(&self, m: Measure) -> f64 {
+        match m {
+            Measure::Shape => self.min_shape,
+            Measure::MinSine => self.min_sine,
+        }
+    }
+    fn merge(&mut self, o: StarQuality) {
+        self.min_shape = self.min_shape.min(o.min_shape);
+        self.min_sine = self.min_sine.min(o.min_sine);
+        self.inverted += o.inverted;
+    }
+}
+
+/// Shape, smallest sine and validity of one element from its node coordinates — the same
+/// definitions as [`crate::quality::element_quality`] without the angles and condition
+/// numbers the smoothers do not need.
+pub(crate) fn element_measures(kind: crate::mesh::ElementKind, p: &[DVec2; 9]) -> StarQuality {
+    let k = kind.corners();
+    let ce = corner_edges(kind, p);
+    let mut q = StarQuality::BEST;
+    let mut min_alpha = f64::INFINITY;
+    for &(e1, e2) in &ce[..k] {
+        q.min_sine = q.min_sine.min(scaled_jacobian(e1, e2));
+        if e1.perp_dot(e2) <= 0.0 {
+            q.inverted = 1;
+        }
+        if k == 3 {
+            min_alpha = min_alpha.min(lo_alpha_corner(e1, e2));
+        }
+    }
+    q.min_shape = if k == 3 { min_alpha } else { canann_beta_from_corners(&ce) };
+    q
+}
+
+/// The shape measure (α/β, [`Measure::Shape`]) of a star element with its free node at `x`
+/// and whether the element is inverted: what [`element_measures`] gives for them, without
+/// the sines. A linear triangle is measured from its three points directly (one cross
+/// product: its corners share one determinant), the common case of the smart Laplacian and
+/// the priority order, scaled by a power of two when its squared edge lengths would leave
+/// the doubles (so the same at every scale); elements of other kinds by
+/// [`element_measures`].
+#[inline]
+pub(crate) fn element_shape_at(e: &StarElement, x: DVec2) -> (f64, bool) {
+    if e.kind == crate::mesh::ElementKind::Tri3 {
+        let s = e.slot as usize;
+        let (a, b) = (e.pts[(s + 1) % 3], e.pts[(s + 2) % 3]);
+        let (mut u, mut v, mut w) = (a - x, b - x, b - a);
+        let squares = |u: DVec2, v: DVec2, w: DVec2| u.length_squared() + v.length_squared() + w.length_squared();
+        if u == DVec2::ZERO && v == DVec2::ZERO {
+            return (0.0, true); // three coincident points: α 0, as lo_alpha_corner; det 0: inverted
+        }
+        let mut d = squares(u, v, w);
+        const LO: f64 = 2.409_919_865_102_884e-271; // 2^-900
+        const HI: f64 = 8.452_712_498_170_644e270; // 2^900
+        if !(LO..=HI).contains(&d) {
+            // the squares leave the doubles: the same formula on the points scaled by a
+            // power of two (exact, and before subtracting: differences of tiny coordinates
+            // can be subnormal), so α is the same, bit for bit, at every scale
+            let m = u.abs().max_element().max(v.abs().max_element()).max(w.abs().max_element());
+            if let Some(f) = crate::optimize::unit_factor(m) {
+                let (a, b, x) = (f * a, f * b, f * x);
+                (u, v, w) = (a - x, b - x, b - a);
+                d = squares(u, v, w);
+            }
+        }
+        if (LO..=HI).contains(&d) {
+            let n = u.perp_dot(v);
+            return (TWO_SQRT3 * n / d, n <= 0.0);
+        }
+    }
+    let q = element_measures(e.kind, &e.at(x));
+    (q.min_shape, q.inverted > 0)
+}
+
+/// The smallest shape measure (α/β) of the star with its free node at `x` and the number
+/// of its inverted elements ([`element_shape_at`] over the star).
+pub(crate) fn star_shape(star: &Star, x: DVec2) -> (f64, u32) {
+    let (mut min, mut inverted) = (f64::INFINITY, 0);
+    for e in &star.elems {
+        let (q, inv) = element_shape_at(e, x);
+        min = min.min(q);
+        inverted += inv as u32;
+    }
+    (min, inverted)
+}
+
+/// The star's worst measures with the free node at its gathered position (`x = None`,
+/// the mesh as it is) or moved to `x` (mid-side nodes following).
+pub(crate) fn star_quality(star: &Star, x: Option<DVec2>) -> StarQuality {
+    let mut q = StarQuality::BEST;
+    for e in &star.elems {
+        q.merge(element_measures(e.kind, &at(e, x)));
+    }
+    q
+}
+
+pub(super) fn at(e: &StarElement, x: Option<DVec2>) -> [DVec2; 9] {
+    match x {
+        Some(x) => e.at(x),
+        None => e.pts,
+    }
+}
+
+/// Whether an element has a corner with `det ≤ 0` (the definition of
+/// [`crate::quality::ElementQuality::inverted`]).
+pub(super) fn is_inverted(kind: crate::mesh::ElementKind, p: &[DVec2; 9]) -> bool {
+    corner_edges(kind, p)[..kind.corners()].iter().any(|(e1, e2)| e1.perp_dot(*e2) <= 0.0)
+}
+
+/// [`is_inverted`] of a star element with its free node at `x`; a linear triangle without
+/// the general element machinery (the same corner edge vectors, so the same answer).
+pub(super) fn is_inverted_at(el: &crate::objective::StarElement, x: DVec2) -> bool {
+    if el.kind != crate::mesh::ElementKind::Tri3 {
+        return is_inverted(el.kind, &el.at(x));
+    }
+    let s = el.slot as usize;
+    let (a, b) = (el.pts[(s + 1) % 3], el.pts[(s + 2) % 3]);
+    // corners C (free), A, B: (next − this, previous − this)
+    (a - x).perp_dot(b - x) <= 0.0 || (b - a).perp_dot(x - a) <= 0.0 || (x - b).perp_dot(a - b) <= 0.0
+}

@@ -1,0 +1,161 @@
+//! Planning a pass: the visit order (input or Chen's priority) and the untangling sweeps.
+
+use crate::mesh::Mesh;
+
+use super::*;
+
+impl Smoother {
+    /// Plans the visit sequence of the next pass, returns it (also kept in
+    /// [`schedule`](Self::schedule)).
+    ///
+    /// [`Order::Input`]: the free nodes in node order.
+    ///
+    /// [`Order::Priority`] — our reading of Chen et al. (2003) §4.2: the priority is computed
+    /// once per pass from each free node's star quality (the smallest α/β of its elements).
+    /// The range [worst, best] of these is split linearly into `B` =
+    /// [`SmoothOptions::priority_bins`] (5) equal bins; the worst bin has the highest
+    /// priority `B−1`, the best bin priority 0 (all nodes get priority 0 when every star is
+    /// equally good). An inner loop lowers the current priority from `B−1` to 0 and smooths
+    /// every node whose priority is at or above it ("if the current node's priority is less
+    /// than that of the current priority, it will not be smoothed in the inner priority
+    /// loop"). So the worst nodes are visited up to `B` times a pass, the best once; within
+    /// one inner loop nodes go worst first (ties by node number).
+    pub fn plan(&mut self, mesh: &Mesh) -> &[u32] {
+        self.begin_plan(mesh);
+        while !self.plan_some(mesh, usize::MAX) {}
+        &self.schedule
+    }
+
+    /// Starts planning the next pass in steps: [`plan_some`](Self::plan_some) until it
+    /// returns true gives the same [`schedule`](Self::schedule) as [`plan`](Self::plan),
+    /// for a caller that must stay responsive (the page: measuring every star of a
+    /// 1M-node mesh for the priority order takes seconds).
+    pub fn begin_plan(&mut self, mesh: &Mesh) {
+        self.schedule.clear();
+        self.sweep_moves_from = None;
+        self.ranked.clear();
+        self.plan_next = 0;
+        if self.options.order == Order::Priority {
+            self.quality.clear();
+            self.quality.resize(mesh.node_count(), f64::NAN);
+        }
+    }
+
+    /// Plans on from where [`begin_plan`](Self::begin_plan) or the last call left off,
+    /// measuring at most `max_stars` more stars (at least one) for the priority order.
+    /// Returns true when the schedule is complete.
+    pub fn plan_some(&mut self, mesh: &Mesh, max_stars: usize) -> bool {
+        let n = mesh.node_count();
+        if self.plan_next >= n {
+            return true;
+        }
+        match self.options.order {
+            Order::Input => {
+                self.schedule.extend((0..n as u32).filter(|&i| mesh.is_free(i as usize)));
+                self.plan_next = n;
+                true
+            }
+            Order::Priority => {
+                let mut measured = 0usize;
+                while self.plan_next < n && measured < max_stars.max(1) {
+                    let i = self.plan_next;
+                    if mesh.is_free(i) {
+                        self.star.gather(mesh, i);
+                        self.quality[i] = star_shape(&self.star, self.star.x0).0;
+                        self.ranked.push(i as u32);
+                        measured += 1;
+                    }
+                    self.plan_next += 1;
+                }
+                if self.plan_next < n {
+                    return false;
+                }
+                self.schedule_by_priority();
+                true
+            }
+        }
+    }
+
+    /// The priority schedule from the measured star qualities (see [`plan`](Self::plan)).
+    fn schedule_by_priority(&mut self) {
+        let q = &self.quality;
+        self.ranked.sort_unstable_by(|&a, &b| q[a as usize].total_cmp(&q[b as usize]).then(a.cmp(&b)));
+        let bins = self.options.priority_bins;
+        let (Some(&first), Some(&last)) = (self.ranked.first(), self.ranked.last()) else {
+            return;
+        };
+        let (lo, hi) = (q[first as usize], q[last as usize]);
+        let range = hi - lo;
+        let priority = |v: f64| -> u32 {
+            if !(range > 0.0 && range.is_finite()) {
+                return 0;
+            }
+            let bin = ((v - lo) / range * bins as f64).floor();
+            let bin = if bin.is_nan() { 0 } else { (bin.max(0.0) as u32).min(bins - 1) };
+            bins - 1 - bin
+        };
+        for level in (0..bins).rev() {
+            for &i in &self.ranked {
+                if priority(q[i as usize]) < level {
+                    break; // ranked worst first: the rest have lower priority
+                }
+                self.schedule.push(i);
+            }
+        }
+    }
+
+    /// Plans the next untangling sweep of a pass whose visits so far `counts` holds (see
+    /// [`SmoothOptions::untangle_sweeps`]): the free nodes of every inverted element and
+    /// the free neighbours of its corners, worst star first (smallest α/β, ties by node
+    /// number), into [`revisits`](Self::revisits), counted in `counts.untangle_sweeps`.
+    /// Returns false — no sweep — when no element is inverted, the sweeps are at their
+    /// limit, the last sweep moved no node, or the strategy never optimises. The one
+    /// place that decides, for [`sweep`](Self::sweep) and for the page's sliced pass.
+    pub fn plan_untangle_sweep(&mut self, mesh: &Mesh, counts: &mut SweepCounts) -> bool {
+        self.revisits.clear();
+        let stalled = self.sweep_moves_from.is_some_and(|m| counts.moves == m);
+        if stalled
+            || counts.untangle_sweeps >= self.options.untangle_sweeps
+            || matches!(self.options.strategy, Strategy::Laplace | Strategy::Smart)
+        {
+            return false;
+        }
+        self.marked.clear();
+        self.marked.resize(mesh.node_count(), false);
+        for e in 0..mesh.element_count() {
+            let kind = mesh.kind(e);
+            if !is_inverted(kind, &mesh.element_points_array(e)) {
+                continue;
+            }
+            for &c in &mesh.element(e)[..kind.corners()] {
+                let c = c as usize;
+                for m in std::iter::once(c).chain(mesh.neighbours(c).iter().map(|&m| m as usize)) {
+                    if mesh.is_free(m) && !self.marked[m] {
+                        self.marked[m] = true;
+                        self.revisits.push(m as u32);
+                    }
+                }
+            }
+        }
+        let mut ranked: Vec<(f64, u32)> = Vec::with_capacity(self.revisits.len());
+        for &n in &self.revisits {
+            self.marked[n as usize] = false;
+            self.star.gather(mesh, n as usize);
+            ranked.push((star_shape(&self.star, self.star.x0).0, n));
+        }
+        ranked.sort_unstable_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
+        self.revisits.clear();
+        self.revisits.extend(ranked.iter().map(|&(_, n)| n));
+        if self.revisits.is_empty() {
+            return false;
+        }
+        counts.untangle_sweeps += 1;
+        self.sweep_moves_from = Some(counts.moves);
+        true
+    }
+
+    /// The visit sequence of the last untangling sweep planned.
+    pub fn revisits(&self) -> &[u32] {
+        &self.revisits
+    }
+}
