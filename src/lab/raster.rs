@@ -12,7 +12,8 @@
 
 use tiny_skia::{Color, FillRule, Paint, PathBuilder, Pixmap, Rect, Stroke, Transform};
 
-use super::stats::{BUCKETS, INVERTED_BUCKET};
+use super::stats::INVERTED_BUCKET;
+use crate::render::{bucket_color, BUCKETS};
 use crate::mesh::Mesh;
 use crate::render::{
     draw_colour_bar, draw_inverted, mesh_view, push_element, Frame, MeshView, Metric, Show,
@@ -143,7 +144,7 @@ pub fn render_fine(pixmap: &mut Pixmap, mesh: &Mesh, buckets: &[u8], view: &View
         let mut pb = PathBuilder::new();
         if push_element(&mut pb, mesh, view, e as usize) {
             if let Some(path) = pb.finish() {
-                let mut p = solid(opts.colormap.color((v - 1) as f64 / (BUCKETS - 1) as f64));
+                let mut p = solid(bucket_color(opts.colormap, (v - 1) as usize));
                 p.anti_alias = false;
                 pixmap.fill_path(&path, &p, FillRule::Winding, Transform::identity(), None);
             }

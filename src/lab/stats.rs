@@ -12,6 +12,7 @@ use serde::Serialize;
 
 use crate::mesh::{ElementKind, Mesh};
 use crate::quality::{canann_beta_from_corners, corner_edges, lo_alpha_corner, signed_angle, TWO_SQRT3};
+use crate::render::bucket;
 
 /// What the page's statistics table and per-pass chart show of a mesh.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]
@@ -86,19 +87,14 @@ impl Extreme {
     }
 }
 
-/// Colour buckets of the quality map (as `render_mesh`'s): an element's bucket is
-/// `round(clamp(α or β, 0, 1) × 63)`; [`QuickAcc::add`] writes it plus one, or
-/// [`INVERTED_BUCKET`] for an inverted element.
-pub const BUCKETS: usize = 64;
-/// The bucket of an inverted element.
+/// The bucket of an inverted element (the others hold [`bucket_of`]).
 pub const INVERTED_BUCKET: u8 = 255;
 
-/// The bucket (plus one) of an element of shape `q`.
+/// What [`QuickAcc::add`] writes for a valid element of shape `q` (α or β, coloured over
+/// [0, 1]): its colour bucket ([`crate::render::bucket`]) plus one.
 #[inline]
 pub fn bucket_of(q: f64) -> u8 {
-    // + 0.5 and a cast: `round` for these non-negative values, without a call
-    let q = if q > 0.0 { q.min(1.0) } else { 0.0 };
-    (q * (BUCKETS - 1) as f64 + 0.5) as u8 + 1
+    bucket(q) as u8 + 1
 }
 
 /// [`QuickStats`] accumulated over element ranges, in any order.

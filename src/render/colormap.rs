@@ -56,6 +56,26 @@ impl Colormap {
     }
 }
 
+/// How many colours the mesh views use: a quality map is drawn in this many flat colours
+/// (the page's fast raster and the CLI's vector renderer alike), `BUCKETS − 1` steps
+/// from the bottom of the colour map to its top.
+pub const BUCKETS: usize = 64;
+
+/// The colour bucket of a value at `t` of the colour map's range (0 bottom, 1 top):
+/// `round(clamp(t, 0, 1) × (BUCKETS − 1))`, and 0 for NaN. The one definition both mesh
+/// renderers use.
+#[inline]
+pub fn bucket(t: f64) -> usize {
+    // + 0.5 and a cast: `round` for these non-negative values, without a call
+    let t = if t > 0.0 { t.min(1.0) } else { 0.0 };
+    (t * (BUCKETS - 1) as f64 + 0.5) as usize
+}
+
+/// The colour map's colour for bucket `b` (see [`bucket`]).
+pub fn bucket_color(colormap: Colormap, b: usize) -> tiny_skia::Color {
+    colormap.color(b as f64 / (BUCKETS - 1) as f64)
+}
+
 /// CIE L* (0 = black, 100 = white) of an 8-bit sRGB colour, D65 white.
 pub fn lightness(rgb: [u8; 3]) -> f64 {
     let lin = |c: u8| {

@@ -7,7 +7,7 @@ use glam::DVec2;
 use tiny_skia::{Color, FillRule, Mask, PathBuilder, Pixmap, Rect, Stroke, Transform};
 
 use super::axes::{format_tick, nice_ticks};
-use super::colormap::Colormap;
+use super::colormap::{bucket, bucket_color, Colormap, BUCKETS};
 use super::paint::{fill, fill_rect, push_marker, rgba, solid, stroke, Marker};
 use super::text::{draw_text, Align, TextStyle, Valign};
 use super::view::{sane_dpr, Frame, View, ZoomPan};
@@ -147,7 +147,6 @@ pub const COLOUR_BAR_WIDTH: f32 = 84.0;
 pub const INVERTED: [u8; 3] = [228, 26, 28];
 /// Default radius of [`pick_node`], CSS pixels.
 pub const PICK_RADIUS: f64 = 12.0;
-const BUCKETS: usize = 64;
 
 /// The view (world ↔ pixels) that [`render_mesh`] uses for `mesh` on a pixmap of
 /// `width × height` device pixels, without drawing: for mapping pointer events.
@@ -274,7 +273,7 @@ pub fn render_mesh(pixmap: &mut Pixmap, mesh: &Mesh, opts: &MeshView) -> View {
             push_element(&mut inverted, mesh, &view, e);
         } else {
             let t = (opts.metric.value(&q) - d0) / (d1 - d0);
-            let b = ((t.clamp(0.0, 1.0) * (BUCKETS - 1) as f64).round()) as usize;
+            let b = bucket(t);
             push_element(&mut buckets[b], mesh, &view, e);
         }
     }
@@ -283,7 +282,7 @@ pub fn render_mesh(pixmap: &mut Pixmap, mesh: &Mesh, opts: &MeshView) -> View {
     let smooth_fill = show_edges && mesh.element_count() <= 20_000;
     for (b, pb) in buckets.into_iter().enumerate() {
         if !pb.is_empty() {
-            let c = opts.colormap.color(b as f64 / (BUCKETS - 1) as f64);
+            let c = bucket_color(opts.colormap, b);
             fill_masked(pixmap, pb, c, smooth_fill, clip);
         }
     }
