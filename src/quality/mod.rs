@@ -383,6 +383,21 @@ impl ElementQuality {
 
 /// All metrics of an element of `kind` with node coordinates `p` (element node order).
 pub fn element_quality(kind: ElementKind, p: &[DVec2]) -> ElementQuality {
+    measure_element::<true, true, true>(kind, p, |_| {})
+}
+
+/// The one per-corner loop behind every element measure (statistics, the smoothers' star
+/// measures, the mesh view): the corner edges of `kind` at `p`, then per corner the signed
+/// angle (with `ANGLES`, also passed to `on_angle`, e.g. for a histogram), the sine and
+/// scaled Jacobian (`SINES`), the condition number (`CONDITION`), the inverted test and
+/// Lo's α; β for quads. What a caller does not ask for is left at its starting value
+/// (angles ±∞, sines +∞, condition 0) and costs nothing: the flags are constants.
+#[inline]
+pub fn measure_element<const ANGLES: bool, const CONDITION: bool, const SINES: bool>(
+    kind: ElementKind,
+    p: &[DVec2],
+    mut on_angle: impl FnMut(f64),
+) -> ElementQuality {
     let k = kind.corners();
     let ce = corner_edges(kind, p);
     let ideal = if k == 3 { Ideal::Triangle } else { Ideal::Square };
@@ -397,17 +412,24 @@ pub fn element_quality(kind: ElementKind, p: &[DVec2]) -> ElementQuality {
     };
     let mut min_alpha = f64::INFINITY;
     for &(e1, e2) in &ce[..k] {
-        let ang = signed_angle(e1, e2);
-        q.min_angle = q.min_angle.min(ang);
-        q.max_angle = q.max_angle.max(ang);
-        let s = scaled_jacobian(e1, e2);
-        q.min_sine = q.min_sine.min(s);
-        q.scaled_jacobian = q.scaled_jacobian.min(s);
-        q.condition = q.condition.max(condition_number(e1, e2, ideal));
-        if e1.perp_dot(e2) <= 0.0 {
-            q.inverted = true;
+        if ANGLES {
+            let ang = signed_angle(e1, e2);
+            q.min_angle = q.min_angle.min(ang);
+            q.max_angle = q.max_angle.max(ang);
+            on_angle(ang);
         }
-        min_alpha = min_alpha.min(lo_alpha_corner(e1, e2));
+        if SINES {
+            let s = scaled_jacobian(e1, e2);
+            q.min_sine = q.min_sine.min(s);
+            q.scaled_jacobian = q.scaled_jacobian.min(s);
+        }
+        if CONDITION {
+            q.condition = q.condition.max(condition_number(e1, e2, ideal));
+        }
+        q.inverted |= e1.perp_dot(e2) <= 0.0;
+        if k == 3 {
+            min_alpha = min_alpha.min(lo_alpha_corner(e1, e2));
+        }
     }
     if k == 3 {
         q.shape = min_alpha;
@@ -504,7 +526,6 @@ pub fn mesh_stats(mesh: &Mesh) -> MeshStats {
     for e in 0..mesh.element_count() {
         let kind = mesh.kind(e);
         let p = mesh.element_points_array(e);
-        let k = kind.corners();
         if kind.is_triangle() {
             s.triangles += 1;
         } else {
@@ -513,28 +534,14 @@ pub fn mesh_stats(mesh: &Mesh) -> MeshStats {
         if kind.is_quadratic() {
             s.quadratic += 1;
         }
-        let ce = corner_edges(kind, &p[..kind.node_count()]);
-        let ideal = if k == 3 { Ideal::Triangle } else { Ideal::Square };
-        let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
-        let mut condition: f64 = 0.0;
-        let mut inverted = false;
-        let mut min_alpha = f64::INFINITY;
-        for &(e1, e2) in &ce[..k] {
-            let ang = signed_angle(e1, e2);
-            lo = lo.min(ang);
-            hi = hi.max(ang);
-            s.angle_histogram_6deg[angle_bin(ang)] += 1;
-            condition = condition.max(condition_number(e1, e2, ideal));
-            inverted |= e1.perp_dot(e2) <= 0.0;
-            min_alpha = min_alpha.min(lo_alpha_corner(e1, e2));
-        }
-        let shape = if k == 3 { min_alpha } else { canann_beta_from_corners(&ce) };
-        s.inverted += inverted as usize;
-        s.min_angle_deg = s.min_angle_deg.min(lo.to_degrees());
-        s.max_angle_deg = s.max_angle_deg.max(hi.to_degrees());
-        s.min_quality = s.min_quality.min(shape);
-        sum += shape;
-        s.max_condition = s.max_condition.max(condition);
+        let hist = &mut s.angle_histogram_6deg;
+        let q = measure_element::<true, true, false>(kind, &p[..kind.node_count()], |ang| hist[angle_bin(ang)] += 1);
+        s.inverted += q.inverted as usize;
+        s.min_angle_deg = s.min_angle_deg.min(q.min_angle.to_degrees());
+        s.max_angle_deg = s.max_angle_deg.max(q.max_angle.to_degrees());
+        s.min_quality = s.min_quality.min(q.shape);
+        sum += q.shape;
+        s.max_condition = s.max_condition.max(q.condition);
     }
     if s.elements > 0 {
         s.mean_quality = sum / s.elements as f64;

@@ -4,7 +4,7 @@
 use glam::DVec2;
 
 use crate::objective::{Star, StarElement};
-use crate::quality::{canann_beta_from_corners, corner_edges, lo_alpha_corner, scaled_jacobian, TWO_SQRT3};
+use crate::quality::{corner_edges, measure_element, TWO_SQRT3};
 
 use super::*;
 
@@ -38,21 +38,8 @@ impl StarQuality {
 /// definitions as [`crate::quality::element_quality`] without the angles and condition
 /// numbers the smoothers do not need.
 pub(crate) fn element_measures(kind: crate::mesh::ElementKind, p: &[DVec2; 9]) -> StarQuality {
-    let k = kind.corners();
-    let ce = corner_edges(kind, p);
-    let mut q = StarQuality::BEST;
-    let mut min_alpha = f64::INFINITY;
-    for &(e1, e2) in &ce[..k] {
-        q.min_sine = q.min_sine.min(scaled_jacobian(e1, e2));
-        if e1.perp_dot(e2) <= 0.0 {
-            q.inverted = 1;
-        }
-        if k == 3 {
-            min_alpha = min_alpha.min(lo_alpha_corner(e1, e2));
-        }
-    }
-    q.min_shape = if k == 3 { min_alpha } else { canann_beta_from_corners(&ce) };
-    q
+    let q = measure_element::<false, false, true>(kind, p, |_| {});
+    StarQuality { min_shape: q.shape, min_sine: q.min_sine, inverted: q.inverted as u32 }
 }
 
 /// The shape measure (α/β, [`Measure::Shape`]) of a star element with its free node at `x`
