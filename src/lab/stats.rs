@@ -11,7 +11,7 @@ use glam::DVec2;
 use serde::Serialize;
 
 use crate::mesh::{ElementKind, Mesh};
-use crate::quality::{canann_beta_from_corners, corner_edges, lo_alpha_corner, signed_angle, TWO_SQRT3};
+use crate::quality::{lo_alpha_corner, measure_element, signed_angle, TWO_SQRT3};
 use crate::render::bucket;
 
 /// What the page's statistics table and per-pass chart show of a mesh.
@@ -209,19 +209,10 @@ impl QuickAcc {
 
     /// Any element from its node coordinates (element order); its bucket.
     fn element(&mut self, kind: ElementKind, p: &[DVec2]) -> u8 {
-        let k = kind.corners();
-        let ce = corner_edges(kind, p);
-        let mut bad = false;
-        let mut min_alpha = f64::INFINITY;
-        for &(e1, e2) in &ce[..k] {
-            let cross = e1.perp_dot(e2);
-            bad |= cross <= 0.0;
-            self.corner(e1, e2, cross, e1.dot(e2));
-            if k == 3 {
-                min_alpha = min_alpha.min(lo_alpha_corner(e1, e2));
-            }
-        }
-        let shape = if k == 3 { min_alpha } else { canann_beta_from_corners(&ce) };
+        let q = measure_element::<false, false, false>(kind, p, |e1, e2, _| {
+            self.corner(e1, e2, e1.perp_dot(e2), e1.dot(e2));
+        });
+        let (shape, bad) = (q.shape, q.inverted);
         if shape < self.min_quality {
             self.min_quality = shape;
             self.quality_bar = shape + shape.abs() * 1e-9 + 1e-300;

@@ -383,12 +383,13 @@ impl ElementQuality {
 
 /// All metrics of an element of `kind` with node coordinates `p` (element node order).
 pub fn element_quality(kind: ElementKind, p: &[DVec2]) -> ElementQuality {
-    measure_element::<true, true, true>(kind, p, |_| {})
+    measure_element::<true, true, true>(kind, p, |_, _, _| {})
 }
 
 /// The one per-corner loop behind every element measure (statistics, the smoothers' star
-/// measures, the mesh view): the corner edges of `kind` at `p`, then per corner the signed
-/// angle (with `ANGLES`, also passed to `on_angle`, e.g. for a histogram), the sine and
+/// measures, the mesh view, the page's statistics): the corner edges of `kind` at `p`, then
+/// per corner `on_corner(e1, e2, angle)` (the signed angle with `ANGLES`, NaN without;
+/// e.g. for a histogram), the signed angle's extremes (`ANGLES`), the sine and
 /// scaled Jacobian (`SINES`), the condition number (`CONDITION`), the inverted test and
 /// Lo's α; β for quads. What a caller does not ask for is left at its starting value
 /// (angles ±∞, sines +∞, condition 0) and costs nothing: the flags are constants.
@@ -396,7 +397,7 @@ pub fn element_quality(kind: ElementKind, p: &[DVec2]) -> ElementQuality {
 pub fn measure_element<const ANGLES: bool, const CONDITION: bool, const SINES: bool>(
     kind: ElementKind,
     p: &[DVec2],
-    mut on_angle: impl FnMut(f64),
+    mut on_corner: impl FnMut(DVec2, DVec2, f64),
 ) -> ElementQuality {
     let k = kind.corners();
     let ce = corner_edges(kind, p);
@@ -412,12 +413,12 @@ pub fn measure_element<const ANGLES: bool, const CONDITION: bool, const SINES: b
     };
     let mut min_alpha = f64::INFINITY;
     for &(e1, e2) in &ce[..k] {
+        let ang = if ANGLES { signed_angle(e1, e2) } else { f64::NAN };
         if ANGLES {
-            let ang = signed_angle(e1, e2);
             q.min_angle = q.min_angle.min(ang);
             q.max_angle = q.max_angle.max(ang);
-            on_angle(ang);
         }
+        on_corner(e1, e2, ang);
         if SINES {
             let s = scaled_jacobian(e1, e2);
             q.min_sine = q.min_sine.min(s);
@@ -535,7 +536,7 @@ pub fn mesh_stats(mesh: &Mesh) -> MeshStats {
             s.quadratic += 1;
         }
         let hist = &mut s.angle_histogram_6deg;
-        let q = measure_element::<true, true, false>(kind, &p[..kind.node_count()], |ang| hist[angle_bin(ang)] += 1);
+        let q = measure_element::<true, true, false>(kind, &p[..kind.node_count()], |_, _, ang| hist[angle_bin(ang)] += 1);
         s.inverted += q.inverted as usize;
         s.min_angle_deg = s.min_angle_deg.min(q.min_angle.to_degrees());
         s.max_angle_deg = s.max_angle_deg.max(q.max_angle.to_degrees());

@@ -38,7 +38,7 @@ impl StarQuality {
 /// definitions as [`crate::quality::element_quality`] without the angles and condition
 /// numbers the smoothers do not need.
 pub(crate) fn element_measures(kind: crate::mesh::ElementKind, p: &[DVec2; 9]) -> StarQuality {
-    let q = measure_element::<false, false, true>(kind, p, |_| {});
+    let q = measure_element::<false, false, true>(kind, p, |_, _, _| {});
     StarQuality { min_shape: q.shape, min_sine: q.min_sine, inverted: q.inverted as u32 }
 }
 
