@@ -115,7 +115,7 @@ impl Default for PageState {
             strategy: smooth.strategy,
             compare: crate::lab::Settings::default().compare,
             threshold_deg: smooth.threshold_deg,
-            passes: 3,
+            passes: crate::smooth::DEFAULT_PASSES,
             order: smooth.order,
             max_iter: smooth.max_iter,
             node: None,

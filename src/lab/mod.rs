@@ -156,14 +156,15 @@ fn default_compare() -> [Choice; 2] {
 }
 
 impl Default for Settings {
-    /// Chen's algorithm: rules, priority order, 3 iterations per call; θ_t = 30°; old
-    /// against new with the barrier penalty.
+    /// The core's defaults ([`SmoothOptions::default`]: Chen's algorithm, rules in priority
+    /// order, 3 iterations per call; θ_t = 30°); old against new with the barrier penalty.
     fn default() -> Self {
+        let d = SmoothOptions::default();
         Settings {
-            strategy: Strategy::Rules,
-            threshold_deg: 30.0,
-            order: Order::Priority,
-            max_iter: 3,
+            strategy: d.strategy,
+            threshold_deg: d.threshold_deg,
+            order: d.order,
+            max_iter: d.max_iter,
             compare: default_compare(),
         }
     }

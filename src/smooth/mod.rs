@@ -36,7 +36,9 @@ use guard::KeepValid;
 pub(crate) use measure::{element_measures, element_shape_at, star_quality, star_shape};
 use measure::{is_inverted, is_inverted_at};
 pub use obstacles::{untangling_obstacles, Obstacle};
-pub use options::{Measure, Order, SmoothOptions, Strategy, UNTANGLE_SWEEPS};
+pub use options::{
+    Measure, Order, SmoothOptions, Strategy, DEFAULT_MAX_ITER, DEFAULT_PASSES, DEFAULT_THRESHOLD_DEG, UNTANGLE_SWEEPS,
+};
 pub use records::{NodeOutcome, PassRecord, SweepCounts};
 
 /// Centroid of the neighbouring corner nodes of `n` (Laplacian smoothing).

@@ -152,13 +152,21 @@ pub struct SmoothOptions {
 /// The default number of untangling sweeps per pass ([`SmoothOptions::untangle_sweeps`]).
 pub const UNTANGLE_SWEEPS: u32 = 10;
 
+/// Passes of a run unless asked otherwise: Chen et al. untangle the plate in 3 (§5.2), and
+/// Freitag's Table 1 runs 3 (the CLI's `--passes`, the page's passes control).
+pub const DEFAULT_PASSES: u32 = 3;
+/// Solver iterations per optimization call: Chen et al.'s 3 (§4.1).
+pub const DEFAULT_MAX_ITER: u32 = 3;
+/// Threshold angle of Freitag's combined schemes, degrees: her best rows use 30°.
+pub const DEFAULT_THRESHOLD_DEG: f64 = 30.0;
+
 impl Default for SmoothOptions {
     fn default() -> Self {
         SmoothOptions {
             strategy: Strategy::Rules,
             order: Order::Priority,
-            threshold_deg: 30.0,
-            max_iter: 3,
+            threshold_deg: DEFAULT_THRESHOLD_DEG,
+            max_iter: DEFAULT_MAX_ITER,
             solver: SolverKind::Auto,
             smart_measure: Measure::Shape,
             force_optimization: false,

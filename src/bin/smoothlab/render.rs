@@ -73,7 +73,7 @@ pub struct RenderArgs {
     #[arg(long, value_parser = strategy_parser(), default_value = "rules")]
     pub strategy: smoothlab::smooth::Strategy,
     /// Threshold angle of c1/c2/c3, degrees
-    #[arg(long, default_value_t = 30.0)]
+    #[arg(long, default_value_t = smoothlab::smooth::DEFAULT_THRESHOLD_DEG)]
     pub threshold: f64,
     /// Smoothing passes before drawing (default 0 for mesh and levelset, 3 otherwise)
     #[arg(long)]
@@ -82,7 +82,7 @@ pub struct RenderArgs {
     #[arg(long, value_parser = order_parser(), default_value = "priority")]
     pub order: smoothlab::smooth::Order,
     /// Solver iterations per optimization call
-    #[arg(long, default_value_t = 3)]
+    #[arg(long, default_value_t = smoothlab::smooth::DEFAULT_MAX_ITER)]
     pub max_iter: u32,
     /// Design of the new objective's penalty: barrier (the default) or angle (the first design)
     #[arg(long, value_parser = crate::smooth::penalty_parser(), default_value = "barrier")]
@@ -151,7 +151,7 @@ pub fn run(a: RenderArgs) -> Result<(), String> {
     }
     let passes = a.passes.unwrap_or(match a.view {
         ViewArg::Mesh | ViewArg::Levelset => 0,
-        _ => 3,
+        _ => smoothlab::smooth::DEFAULT_PASSES,
     });
     if passes > 1000 {
         return Err(format!("--passes {passes}: give at most 1000"));

@@ -45,7 +45,7 @@ pub struct SmoothArgs {
     #[arg(long)]
     pub threshold: Option<f64>,
     /// Number of passes over the mesh
-    #[arg(long, default_value_t = 3)]
+    #[arg(long, default_value_t = smoothlab::smooth::DEFAULT_PASSES)]
     pub passes: u32,
     /// Node order [default: priority for rules, input otherwise]
     #[arg(long, value_parser = order_parser())]
