@@ -24,6 +24,7 @@ fn grid(nx: usize, ny: usize, kind: ElementKind, jitter: &[(f64, f64)], extra_fi
     let mut b = MeshBuilder::new();
     let id = |i: usize, j: usize| (j * (nx + 1) + i) as u32;
     let mut k = 0;
+    let mut coords = Vec::new();
     for j in 0..=ny {
         for i in 0..=nx {
             let (mut x, mut y) = (i as f64, j as f64);
@@ -34,6 +35,7 @@ fn grid(nx: usize, ny: usize, kind: ElementKind, jitter: &[(f64, f64)], extra_fi
                 y += dy;
             }
             b.add_node([x, y, 0.0], 0);
+            coords.push([x, y]);
         }
     }
     let corners = (nx + 1) * (ny + 1);
@@ -57,21 +59,6 @@ fn grid(nx: usize, ny: usize, kind: ElementKind, jitter: &[(f64, f64)], extra_fi
         fixed[f] = true;
     }
     if kind == ElementKind::Tri6 {
-        // positions are needed for the mid nodes: rebuild the corner list
-        let mut coords = Vec::new();
-        let mut k = 0;
-        for j in 0..=ny {
-            for i in 0..=nx {
-                let (mut x, mut y) = (i as f64, j as f64);
-                if i > 0 && i < nx && j > 0 && j < ny && !jitter.is_empty() {
-                    let (dx, dy) = jitter[k % jitter.len()];
-                    k += 1;
-                    x += dx;
-                    y += dy;
-                }
-                coords.push([x, y]);
-            }
-        }
         for (_, ids) in elems.iter_mut() {
             let c = ids.clone();
             for e in 0..3 {
