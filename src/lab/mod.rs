@@ -355,13 +355,27 @@ pub struct PassProgress {
     pub fraction: f64,
     /// The panel being smoothed or measured.
     pub side: Side,
-    /// `plan`, `smooth` or `measure` (or `done`).
-    pub stage: &'static str,
+    /// What the pass is doing on that panel.
+    pub stage: PassStage,
     /// Node visits done on this panel and planned for it.
     pub visits: usize,
     pub planned: usize,
     /// `[old, new]` when done.
     pub records: Option<[PassSummary; 2]>,
+}
+
+/// What a pass in slices is doing, as the page is told ([`PassProgress::stage`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum PassStage {
+    /// Planning the visit order (the priority order measures every star).
+    Plan,
+    /// Visiting the nodes (the planned visits, then any untangling sweeps).
+    Smooth,
+    /// Measuring the smoothed mesh's statistics.
+    Measure,
+    /// The pass is complete.
+    Done,
 }
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -585,13 +599,6 @@ impl Playground {
                     let t0 = clock();
                     let p = &mut self.panels[side];
                     let end = (run.pos + run.slice).min(run.schedule.len());
-                    if run.pos == 0 && !run.untangling {
-                        // smooth_node refreshes the smoother's facts about the mesh
-                        // (quadratic, curved), as a whole sweep does before its visits
-                        let o = p.smoother.smooth_node(&mut p.mesh, run.schedule[0] as usize, p.objective.as_ref());
-                        run.counts.add(o);
-                        run.pos = 1;
-                    }
                     let c = p.smoother.visit_all(&mut p.mesh, &run.schedule[run.pos..end], p.objective.as_ref());
                     run.counts.merge(c);
                     run.pos = end;
@@ -686,7 +693,7 @@ impl Playground {
             done: true,
             fraction: 1.0,
             side: Side::New,
-            stage: "done",
+            stage: PassStage::Done,
             visits: run.counts.visits as usize,
             planned: run.schedule.len(),
             records: Some(records),
@@ -889,9 +896,9 @@ fn progress_of(run: &PassRun, panels: &[Panel; 2]) -> PassProgress {
         fraction: ((side as f64 + within) / 2.0).clamp(0.0, 1.0),
         side: if side == 0 { Side::Old } else { Side::New },
         stage: match run.stage {
-            Stage::Plan | Stage::Planning => "plan",
-            Stage::Smooth => "smooth",
-            Stage::Measure => "measure",
+            Stage::Plan | Stage::Planning => PassStage::Plan,
+            Stage::Smooth => PassStage::Smooth,
+            Stage::Measure => PassStage::Measure,
         },
         visits: run.pos,
         planned: run.schedule.len(),

@@ -338,6 +338,7 @@ impl Playground {
 mod tests {
     use super::*;
     use crate::lab::sample::Sample;
+    use crate::lab::PassStage;
     use crate::render::PICK_RADIUS;
     use std::collections::HashSet;
 
@@ -454,7 +455,7 @@ mod tests {
         };
         pg.begin_pass();
         let mut p = pg.continue_pass(&clock, 2.0).unwrap();
-        while p.stage != "measure" || p.side != Side::Old {
+        while p.stage != PassStage::Measure || p.side != Side::Old {
             p = pg.continue_pass(&clock, 2.0).unwrap();
         }
         let during = pg.render_panel(Side::Old, c, None).unwrap();

@@ -174,7 +174,6 @@ impl Smoother {
     /// [`objective_total`](Self::objective_total), which cost more than a Laplacian sweep).
     /// Counts as [`pass`](Self::pass) does; does not count as a pass.
     pub fn sweep(&mut self, mesh: &mut Mesh, objective: &dyn Objective) -> SweepCounts {
-        self.refresh_mesh_facts(mesh);
         self.plan(mesh);
         let schedule = std::mem::take(&mut self.schedule);
         let mut counts = self.visit_all(mesh, &schedule, objective);

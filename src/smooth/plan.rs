@@ -30,7 +30,10 @@ impl Smoother {
     /// returns true gives the same [`schedule`](Self::schedule) as [`plan`](Self::plan),
     /// for a caller that must stay responsive (the page: measuring every star of a
     /// 1M-node mesh for the priority order takes seconds).
+    /// A pass begins here: the smoother takes the facts its visits need about the mesh
+    /// (quadratic elements, curved edges) now.
     pub fn begin_plan(&mut self, mesh: &Mesh) {
+        self.refresh_mesh_facts(mesh);
         self.schedule.clear();
         self.sweep_moves_from = None;
         self.ranked.clear();
