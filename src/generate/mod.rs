@@ -13,6 +13,7 @@ mod plate;
 mod prng;
 mod rand2d;
 mod star;
+mod trig;
 
 pub use grid::{grid, GridKind};
 pub use perturb::perturb;

@@ -101,7 +101,8 @@ fn node_bound(order: u8, resolution: usize) -> Option<usize> {
 fn ring_point(i: usize, j: usize, n: usize) -> DVec2 {
     let (m, rings) = (8 * n, 2 * n);
     let theta = std::f64::consts::TAU * j as f64 / m as f64;
-    let hole = PLATE_HOLE_RADIUS * DVec2::new(theta.cos(), theta.sin());
+    let (sin, cos) = super::trig::sin_cos(theta);
+    let hole = PLATE_HOLE_RADIUS * DVec2::new(cos, sin);
     if i == 0 {
         hole
     } else if i == rings {
