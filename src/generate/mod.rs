@@ -20,7 +20,7 @@ pub use perturb::perturb;
 pub use plate::{plate, PlateKind, PLATE_HALF_WIDTH, PLATE_HOLE_RADIUS};
 pub use prng::SplitMix64;
 pub use rand2d::rand2d;
-pub use star::{quadratic_star, star, QuadraticStar, StarKind};
+pub use star::{quadratic_star, star, QuadraticStar, StarKind, CURVED_BULGE, PUSHED_MID_HEIGHT};
 
 use glam::DVec2;
 
