@@ -397,15 +397,19 @@ pub(crate) fn draw_inverted(pixmap: &mut Pixmap, pb: PathBuilder, s: f32, clip: 
                 *m = ((*m as u16 * *k as u16) / 255) as u8;
             }
         }
+        // the hatched box: the element's bounds within the picture (an element flung
+        // far away by a solver spans millions of pixels; the mask clips to it anyway)
         let b = path.bounds();
+        let (left, right) = (b.left().max(0.0), b.right().min(pixmap.width() as f32));
+        let (top, bottom) = (b.top().max(0.0), b.bottom().min(pixmap.height() as f32));
         let mut hatch = PathBuilder::new();
         let step = 6.0 * s;
-        let span = b.height();
-        // lines x − y = const, from the bottom-left to the top-right of the bounds
-        let mut t = (b.left() - span) - (b.left() - span).rem_euclid(step);
-        while t <= b.right() {
-            hatch.move_to(t, b.bottom());
-            hatch.line_to(t + span, b.top());
+        let span = bottom - top;
+        // lines x − y = const, from the bottom-left to the top-right of the box
+        let mut t = (left - span) - (left - span).rem_euclid(step);
+        while left < right && top < bottom && t <= right {
+            hatch.move_to(t, bottom);
+            hatch.line_to(t + span, top);
             t += step;
         }
         if let Some(h) = hatch.finish() {
