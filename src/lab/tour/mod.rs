@@ -41,6 +41,18 @@ pub struct Figure {
     measured: fn() -> Result<String>,
 }
 
+/// A figure's name and source, for the tour's menu.
+#[derive(Clone, Copy, Debug, Serialize)]
+pub struct Entry {
+    pub name: &'static str,
+    pub source: &'static str,
+}
+
+/// The tour's menu, in order.
+pub fn entries() -> Vec<Entry> {
+    FIGURES.iter().map(|f| Entry { name: f.name, source: f.source }).collect()
+}
+
 /// The views a figure can point at.
 pub const VIEWS: [&str; 4] = ["levelset", "compare", "history", "histogram"];
 
@@ -93,7 +105,7 @@ impl Figure {
             look: self.look,
             claim: self.claim,
             measured: self.measured()?,
-            table: self.name == "freitag-t1",
+            rows: if self.name == "freitag-t1" { pictures::FREITAG_METHODS.len() } else { 0 },
         })
     }
 }
@@ -114,8 +126,8 @@ pub struct Card {
     pub look: &'static str,
     pub claim: &'static str,
     pub measured: String,
-    /// The figure has a table the page fills row by row ([`pictures::freitag_row`]).
-    pub table: bool,
+    /// Rows of the table the page fills one by one ([`pictures::freitag_row`]); 0: none.
+    pub rows: usize,
 }
 
 /// The figure named `name`, with its place in the tour.
