@@ -59,6 +59,7 @@ const state = {
   cancel: false,
   frame: { w: 0, h: 0, dpr: 1 }, // the last mesh frame (pointer positions map through it)
   figure: null, // the tour's figure on show (its card from the core), or null
+  viewOfFigure: false, // an embed shows the view its figure chose (not one named by view=)
   level: null, // the canvas the level sets were last drawn on (likewise)
 };
 
@@ -427,9 +428,12 @@ async function openFigure(name) {
   state.figure = card;
   document.body.dataset.figure = '';
   document.body.dataset.figureRows = '0';
-  if (EMBED && !VIEW && Object.hasOwn(VIEWS, card.view)) {
+  // an embedded figure shows its own view, unless the address names one (`view=`)
+  if (EMBED && (!VIEW || state.viewOfFigure) && Object.hasOwn(VIEWS, card.view)) {
+    if (VIEW_NAME) document.body.classList.remove(`view-${VIEW_NAME}`);
     VIEW_NAME = card.view;
     VIEW = VIEWS[card.view];
+    state.viewOfFigure = true;
     document.body.classList.add('view', `view-${VIEW_NAME}`);
   }
   showCard(card);
