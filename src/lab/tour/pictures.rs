@@ -358,11 +358,13 @@ fn chen_11(fig: &Figure, c: Canvas) -> Result<Vec<Pixmap>> {
     let (pg, st) = fig.playground()?;
     let node = st.node.ok_or_else(|| Error::invalid("chen-11 names no node"))? as usize;
     let (level, r) = pg.render_level_set(Side::New, node, c)?;
-    let line: Vec<DVec2> = std::iter::once(DVec2::new(0.0, r.value0))
-        .chain(r.history.iter().enumerate().map(|(i, it)| DVec2::new(i as f64 + 1.0, it.value)))
+    // the excess over the final value, on a log axis (the final point, 0, is left out)
+    let excess = |v: f64| v - r.value;
+    let line: Vec<DVec2> = std::iter::once(DVec2::new(0.0, excess(r.value0)))
+        .chain(r.history.iter().enumerate().map(|(i, it)| DVec2::new(i as f64 + 1.0, excess(it.value))))
         .collect();
     let pick = |k: DirectionKind| -> Vec<DVec2> {
-        r.history.iter().enumerate().filter(|(_, it)| it.direction == k).map(|(i, it)| DVec2::new(i as f64 + 1.0, it.value)).collect()
+        r.history.iter().enumerate().filter(|(_, it)| it.direction == k).map(|(i, it)| DVec2::new(i as f64 + 1.0, excess(it.value))).collect()
     };
     let (g, cj) = (pick(DirectionKind::Gradient), pick(DirectionKind::Conjugate));
     // each marked point its own one-point series, so no line joins the marks
@@ -378,9 +380,9 @@ fn chen_11(fig: &Figure, c: Canvas) -> Result<Vec<Pixmap>> {
         &mut chart,
         &series,
         &Chart {
-            title: "new objective per iteration: ● g (gradient), ■ c (conjugate)",
+            title: "new objective above its final value: ● g (gradient), ■ c (conjugate)",
             x_label: "iteration",
-            y_label: "objective",
+            y_label: "f − f(final)",
             log_y: true,
             legend: false,
             dpr: c.dpr,
@@ -392,12 +394,18 @@ fn chen_11(fig: &Figure, c: Canvas) -> Result<Vec<Pixmap>> {
 
 pub(super) fn chen_11_measured() -> Result<String> {
     let (_, r) = solves("chen-11")?;
-    let steps: Vec<String> = r.history.iter().map(|it| format!("{} {:.3}", letter(it.direction), it.step)).collect();
+    let steps: Vec<String> = r.history.iter().map(|it| format!("{} {:.4}", letter(it.direction), it.step)).collect();
     let total = r.value0 - r.value;
     let after3 = r.history.get(2).map_or(r.value, |it| it.value);
     let share = if total > 0.0 { 100.0 * (r.value0 - after3) / total } else { 100.0 };
+    let ratio = match r.history.as_slice() {
+        [a, b, ..] if a.step > 0.0 => b.step / a.step,
+        _ => f64::NAN,
+    };
     Ok(format!(
-        "Measured: {} iterations, the steps (direction, length) {}; the first three make {share:.0}% of the decrease.",
+        "Measured: {} iterations, the steps (direction, length) {}: the first conjugate step is {ratio:.1} times the \
+         gradient step before it, and our solver restarts with the gradient every second iteration (Chen et al. \
+         restart when progress slows); the first three iterations make {share:.1}% of the decrease.",
         r.iterations,
         steps.join(", ")
     ))
