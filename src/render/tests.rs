@@ -480,8 +480,7 @@ fn an_inverted_element_flung_far_away_is_hatched_only_where_it_shows() {
     m.nodes[3] = glam::DVec2::new(1.0e12, -0.5e12);
     assert!(crate::quality::mesh_stats(&m).inverted > 0);
     let mut pm = tiny_skia::Pixmap::new(300, 300).unwrap();
-    let mut view = MeshView::default();
-    view.bounds = Some((glam::DVec2::ZERO, glam::DVec2::ONE));
+    let view = MeshView { bounds: Some((glam::DVec2::ZERO, glam::DVec2::ONE)), ..MeshView::default() };
     render_mesh(&mut pm, &m, &view);
     let dark = pm.pixels().iter().filter(|p| p.alpha() == 255 && p.red() < 40 && p.green() < 40 && p.blue() < 40).count();
     let red = pm.pixels().iter().filter(|p| p.red() > 150 && p.green() < 80 && p.blue() < 80).count();

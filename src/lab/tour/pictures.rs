@@ -264,7 +264,7 @@ pub(super) fn chen_6_measured() -> Result<String> {
     let at = |deg: f64| design.angle_penalty(deg.to_radians(), 1.0);
     let ratio = at(0.0) / at(60.0);
     Ok(format!(
-        "Measured: a millimetre either side of the ray θ is {:.1}° and {:.1}°, ω {:.3}° and {:.3}°; the angle design's \
+        "Measured: a thousandth of |AB| either side of the ray θ is {:.1}° and {:.1}°, ω {:.3}° and {:.3}°; the angle design's \
          penalty is {ratio:.0} times its equilateral value at 0°, and the barrier's is infinite there on a valid star. \
          With Chen's rules on rand2D the barrier reaches a min angle of {}° and the angle design {}° (docs/reproduction.md §1).",
         l.to_degrees(),
@@ -679,7 +679,7 @@ pub(super) fn freitag_3_measured() -> Result<String> {
 
 /// The random grid as loaded, untangled (passes of `untangle` until no element is
 /// inverted, at most 100), then after 10 passes of `condition`; and `new` + `rules`
-/// after 3 passes — as the reproduction's §4.
+/// after 10 passes — as the reproduction's §4.
 fn knupp_runs() -> Result<Vec<(String, Mesh)>> {
     let (_, fig) = find("knupp-1")?;
     let (pg, _) = fig.playground()?;
@@ -704,14 +704,14 @@ fn knupp_runs() -> Result<Vec<(String, Mesh)>> {
     let mut n = m0.clone();
     let mut s = Smoother::new(SmoothOptions::default())?;
     let new = objective_with(ObjectiveKind::New, Penalty::Barrier);
-    for _ in 0..3 {
+    for _ in 0..10 {
         s.pass(&mut n, new.as_ref(), &|| 0.0);
     }
     Ok(vec![
         ("1a. initial tangled mesh".into(), m0),
         (format!("1b. untangled ({passes} passes of untangle)"), untangled),
         ("1c. optimized with κ (10 passes)".into(), m),
-        ("new + rules, 3 passes".into(), n),
+        ("new + rules, 10 passes".into(), n),
     ])
 }
 
