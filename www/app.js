@@ -422,7 +422,9 @@ async function openFigure(name) {
   try {
     card = await engine.call('tourCard', name);
   } catch (e) {
-    showError(e.message);
+    // an unknown name: the playground as it is (or the defaults, on a first load), and why
+    if (!state.lastGood) await openHash(await applyHash('#'));
+    showError(`This link names no figure of the tour: ${e.message}`);
     return;
   }
   state.figure = card;

@@ -1340,6 +1340,12 @@ try {
     await page.waitForFunction(() => document.body.dataset.figure === 'chen-10', null, { timeout: 2 * TIMEOUT });
     await idle(page);
     check((await page.getAttribute('#tour-open', 'href')) === '#figure=chen-2', 'the header links the tour');
+    // an unknown figure: the page opens anyway and says which figures there are
+    await page.goto(`${server.base}?open=none#figure=chen-99`);
+    await idle(page);
+    check(/no figure named 'chen-99'.*chen-2/.test(await page.textContent('#message')), await page.textContent('#message'));
+    check((await canvasInfo(page, 'mesh-new')).colours > 8, 'the default mesh is drawn');
+    await openFigure(page, 'chen-2');
     await page.click('#tour-close');
     await idle(page);
     check(await page.locator('#tour').isHidden(), 'the tour closes');
