@@ -723,8 +723,8 @@ pub(super) fn knupp_1_measured() -> Result<String> {
     let row = ["quad", "1"];
     Ok(format!(
         "Measured on this grid (docs/reproduction.md §4): {} elements inverted at the start; `untangle` (passes, inverted \
-         after) {} with worst / mean κ {}; after `condition` (inverted, worst / mean κ) {}; `new` + `rules` untangles \
-         in {} passes, worst / mean κ then given.",
+         after, of which flat) {}, leaving worst / mean κ {}; then `condition` (inverted, worst / mean κ) {}; `new` + \
+         `rules` (passes to 0 inverted, worst / mean κ after 10 passes) {}.",
         repro(4, &row, "inverted at start")?,
         repro(4, &row, "`untangle`: passes, inverted after (of which flat)")?,
         repro(4, &row, "worst / mean κ after untangle")?,
