@@ -2,6 +2,7 @@
 #   make serve   build the page (wasm + www/) and serve it on http://127.0.0.1:8000
 #   make test    every test: clippy, native unit/integration tests, wasm build, browser tests
 #   make site    build the complete static site into www/ (www/pkg is generated)
+#   make figures        the README's pictures and the papers' figures (docs/figures.md)
 #   make reproduction   rerun the papers' experiments into docs/reproduction.md (a few minutes)
 #   make performance    rerun the benchmarks (native, in Chromium, in the page) into docs/performance.md (~15 minutes)
 
@@ -48,6 +49,8 @@ performance: site browser-tools
 	node tests/browser/page_bench.mjs --reps 3 > target/perf/page.json
 	$(CARGO) run --release --features parallel --example perf -- --wasm target/perf/wasm.json --page target/perf/page.json --out docs/performance.md
 
-# the README's pictures (docs/images/), drawn by the CLI from generated meshes
+# the README's pictures (docs/images/), drawn by the CLI from generated meshes, then the
+# papers' figures of the page's tour (docs/figures/*.png and docs/figures.md)
 figures:
 	scripts/figures.sh
+	$(CARGO) run --release --example figures

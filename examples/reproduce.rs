@@ -21,7 +21,7 @@ use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
-use smoothlab::generate::{grid, perturb, plate, rand2d, GridKind, PlateKind, SplitMix64};
+use smoothlab::generate::{perturb, plate, rand2d, GridKind, PlateKind};
 use smoothlab::objective::{objective_with, ChenTristanoKwok, Objective, ObjectiveKind, Penalty, RegularisedBarrier, BARRIER_WEIGHT};
 use smoothlab::quality::{corner_edges, element_quality, lo_alpha_corner, mesh_stats};
 use smoothlab::smooth::{Measure, Order, PassRecord, SmoothOptions, Smoother, Strategy};
@@ -800,16 +800,10 @@ fn mesquite_tangled(out: &mut String) {
 // ---------------------------------------------------------------------------------------
 // 4. Knupp Fig. 1
 
-/// A 10 × 10 grid with every interior node placed uniformly at random in the unit square.
+/// A 10 × 10 grid with every interior node placed uniformly at random in the unit square
+/// (the page's `grid-random-tangled` sample is seed 1 of the quads).
 fn random_grid(kind: GridKind, seed: u64) -> Mesh {
-    let mut m = grid(10, 10, kind).expect("grid");
-    let mut rng = SplitMix64::new(seed);
-    for n in 0..m.node_count() {
-        if m.is_free(n) {
-            m.nodes[n] = glam::DVec2::new(rng.next_f64(), rng.next_f64());
-        }
-    }
-    m
+    smoothlab::generate::random_grid(10, kind, seed).expect("grid")
 }
 
 /// Whether Knupp's Σ(|det| − det) as published (no shift, not squared) untangles `mesh`

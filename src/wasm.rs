@@ -57,6 +57,46 @@ pub fn samples() -> Result<JsValue, JsError> {
     to_js(&list)
 }
 
+/// The figures tour's menu: `[{ name, source }]` ([`crate::lab::tour`]).
+#[wasm_bindgen(js_name = tourFigures)]
+pub fn tour_figures() -> Result<JsValue, JsError> {
+    to_js(&crate::lab::tour::entries())
+}
+
+/// One figure of the tour: `{ name, index, count, prev, next, source, caption, hash, view,
+/// run, look, claim, measured, rows }` (`hash` the playground state to open).
+#[wasm_bindgen(js_name = tourCard)]
+pub fn tour_card(name: &str) -> Result<JsValue, JsError> {
+    let (i, fig) = crate::lab::tour::find(name)?;
+    to_js(&fig.card(i)?)
+}
+
+/// A figure's picture, `w × h` CSS pixels at ratio `dpr`: `{ pixels, w, h }` (device pixels).
+#[wasm_bindgen(js_name = tourPicture)]
+pub fn tour_picture(name: &str, w: u32, h: u32, dpr: f32) -> Result<JsValue, JsError> {
+    if !(dpr.is_finite() && dpr > 0.0 && dpr <= 4.0) {
+        return Err(JsError::new(&format!("a pixel ratio of {dpr}: give one above 0 and at most 4")));
+    }
+    let c = Canvas { w: ((w as f32) * dpr).round() as u32, h: ((h as f32) * dpr).round() as u32, dpr };
+    let pm = crate::lab::tour::pictures::render(name, c)?;
+    let (pw, ph) = (pm.width(), pm.height());
+    object(&[("pixels", pixels(pm)), ("w", JsValue::from(pw)), ("h", JsValue::from(ph))])
+}
+
+/// Row `i` of Freitag's Table 1, smoothed now: `{ method, min_angle_deg, max_angle_deg,
+/// laplacian_moves, optimization_calls, reproduction_min, reproduction_max, paper }`.
+#[wasm_bindgen(js_name = tourRow)]
+pub fn tour_row(i: u32) -> Result<JsValue, JsError> {
+    to_js(&crate::lab::tour::pictures::freitag_row(i as usize)?)
+}
+
+/// The default size of a figure's picture, CSS pixels: `[w, h]`.
+#[wasm_bindgen(js_name = tourPictureSize)]
+pub fn tour_picture_size(name: &str) -> Result<JsValue, JsError> {
+    let (_, fig) = crate::lab::tour::find(name)?;
+    to_js(&crate::lab::tour::pictures::default_size(fig.name))
+}
+
 /// Reads a permalink hash (`#sample=…&passes=…`) with [`crate::permalink::decode`]:
 /// `{sample, seed, amount, perturbed, strategy, a, aPenalty, b, bPenalty, threshold, passes,
 /// order, maxIter, node, embed}`, enums as their URL names, `sample`/`node` null when absent, `seed` a number

@@ -28,8 +28,10 @@ const VIEWS = {
   history: { canvases: ['pass-chart'], draws: 'charts', passes: true },
   histogram: { canvases: ['hist-old', 'hist-new'], draws: 'charts', passes: true },
 };
-const VIEW_NAME = EMBED ? PARAMS.get('view') : null;
-const VIEW = VIEW_NAME !== null && Object.hasOwn(VIEWS, VIEW_NAME) ? VIEWS[VIEW_NAME] : null;
+let VIEW_NAME = EMBED ? PARAMS.get('view') : null;
+let VIEW = VIEW_NAME !== null && Object.hasOwn(VIEWS, VIEW_NAME) ? VIEWS[VIEW_NAME] : null;
+/** `#figure=NAME`: a figure of the papers' tour (src/lab/tour), opened in its state. */
+const FIGURE_HASH = /^#figure=([a-z0-9-]{1,40})$/;
 /** Milliseconds of smoothing per call to the worker during a pass: the progress bar
  * moves and Stop is heard at least this often. */
 const SLICE_MS = 50;
@@ -56,6 +58,8 @@ const state = {
   running: false,
   cancel: false,
   frame: { w: 0, h: 0, dpr: 1 }, // the last mesh frame (pointer positions map through it)
+  figure: null, // the tour's figure on show (its card from the core), or null
+  viewOfFigure: false, // an embed shows the view its figure chose (not one named by view=)
   level: null, // the canvas the level sets were last drawn on (likewise)
 };
 
@@ -313,11 +317,11 @@ function updatePermalink() {
 /** Reads the URL hash through the Rust decoder and applies it to the controls (a value a
  * control does not offer is ignored). Returns the source to load and, when the hash could
  * not be read, the decoder's message (the defaults are then kept). */
-async function applyHash() {
+async function applyHash(hash = location.hash) {
   const fallback = { kind: 'sample', name: DEFAULT_SAMPLE };
   let p;
   try {
-    p = await engine.call('decodePermalink', location.hash);
+    p = await engine.call('decodePermalink', hash);
   } catch (e) {
     return { src: fallback, error: e.message };
   }
@@ -367,7 +371,7 @@ function labelOf(src) {
 
 /** Opens what a hash names: its sample (unless it is already loaded and unperturbed),
  * its perturbation and its node. The controls were set by applyHash. */
-async function openHash({ src, error, perturbed, node }) {
+async function openHash({ src, error, perturbed, node }, { keepLink = false } = {}) {
   const same = state.lastGood && selectValueOf(state.lastGood) === selectValueOf(src) && selectValueOf(src) !== '';
   if (!same || state.perturbed || perturbed) await load(src, labelOf(src), { keepHash: true });
   else if (!sameCompare()) await changeCompare();
@@ -375,7 +379,7 @@ async function openHash({ src, error, perturbed, node }) {
   if (node !== null && node !== undefined) await selectNode(node, { keepHash: true });
   else if (state.node !== null) await selectNode(null, { keepHash: true });
   if (error) showError(`This link's settings could not be read, so the defaults are shown: ${error.replace(/^permalink: /, '')}`);
-  await serial(writePermalink).catch(report);
+  if (!keepLink) await serial(writePermalink).catch(report);
 }
 
 /** An embedded view shows what `smoothlab render` shows for it: the level sets of the
@@ -399,7 +403,135 @@ function sameCompare() {
 async function onAddressChange() {
   if (location.hash === state.lastHash) return; // this page wrote it
   state.lastHash = location.hash;
+  const fig = FIGURE_HASH.exec(location.hash);
+  if (fig) return openFigure(fig[1]);
+  if (state.figure) {
+    state.figure = null;
+    $('tour').hidden = true;
+    delete document.body.dataset.figure;
+  }
   await openHash(await applyHash());
+}
+
+// ---- the figures tour ---------------------------------------------------------------
+/** Opens a figure of the tour: its words, the playground in its state (sample, settings,
+ * node; its passes run when the figure says so), its picture and, for Freitag's table,
+ * the rows smoothed one by one. The address stays `#figure=NAME`. */
+async function openFigure(name) {
+  let card;
+  try {
+    card = await engine.call('tourCard', name);
+  } catch (e) {
+    // an unknown name: the playground as it is (or the defaults, on a first load), and why
+    if (!state.lastGood) await openHash(await applyHash('#'));
+    showError(`This link names no figure of the tour: ${e.message}`);
+    return;
+  }
+  state.figure = card;
+  document.body.dataset.figure = '';
+  document.body.dataset.figureRows = '0';
+  // an embedded figure shows its own view, unless the address names one (`view=`)
+  if (EMBED && (!VIEW || state.viewOfFigure) && Object.hasOwn(VIEWS, card.view)) {
+    if (VIEW_NAME) document.body.classList.remove(`view-${VIEW_NAME}`);
+    VIEW_NAME = card.view;
+    VIEW = VIEWS[card.view];
+    state.viewOfFigure = true;
+    document.body.classList.add('view', `view-${VIEW_NAME}`);
+  }
+  showCard(card);
+  await openHash(await applyHash(`#${card.hash}`), { keepLink: true });
+  const link = `#figure=${card.name}`;
+  state.lastHash = link;
+  history.replaceState(null, '', `${location.pathname}${location.search}${link}`);
+  $('permalink').href = `${location.pathname}${link}`;
+  if (EMBED) $('open-full').href = `${location.pathname}${link}`;
+  await drawFigurePicture();
+  if (card.run) await smooth(Number($('passes').value));
+  if (card.rows) await fillTourTable(card);
+  if (state.figure === card) document.body.dataset.figure = card.name;
+}
+
+function showCard(card) {
+  $('tour').hidden = false;
+  $('tour-title').textContent = `${card.index + 1} of ${card.count}: ${card.source}`;
+  $('tour-caption').textContent = card.caption;
+  $('tour-look').textContent = card.look;
+  $('tour-claim').textContent = card.claim;
+  $('tour-measured').textContent = card.measured;
+  $('tour-menu').value = card.name;
+  $('tour-prev').dataset.figure = card.prev;
+  $('tour-next').dataset.figure = card.next;
+  $('tour-link').href = `#figure=${card.name}`;
+  $('tour-link').textContent = `Link to this figure (#figure=${card.name})`;
+  $('tour-table').hidden = !card.rows;
+  $('tour-rows').replaceChildren();
+}
+
+/** The figure's own picture (the core draws it: `smoothlab render --figure NAME`), as
+ * wide as the panel and in the picture's proportions. */
+async function drawFigurePicture() {
+  const card = state.figure;
+  if (!card) return;
+  const canvas = $('tour-picture');
+  const [w0, h0] = await engine.call('tourPictureSize', card.name);
+  const w = Math.max(200, Math.min(w0, Math.round(canvas.parentElement.clientWidth - 4)));
+  const h = Math.round((w * h0) / w0);
+  const dpr = Math.min(window.devicePixelRatio || 1, 2);
+  const r = await engine.call('tourPicture', card.name, w, h, dpr);
+  if (state.figure !== card) return;
+  canvas.style.aspectRatio = `${w} / ${h}`;
+  canvas.style.maxWidth = `${w}px`;
+  paint(canvas, r.pixels, r.w, r.h);
+}
+
+/** Freitag's Table 1: each row smoothed now in the worker (3 passes on seed 1), then shown. */
+async function fillTourTable(card) {
+  const body = $('tour-rows');
+  for (let i = 0; i < card.rows; i++) {
+    const r = await engine.call('tourRow', i);
+    if (state.figure !== card) return;
+    const tr = document.createElement('tr');
+    const cells = [
+      r.method.replaceAll('`', ''),
+      `${r.min_angle_deg.toFixed(2)}°`,
+      `${r.max_angle_deg.toFixed(1)}°`,
+      String(r.laplacian_moves),
+      String(r.optimization_calls),
+      r.reproduction_min,
+      r.reproduction_max,
+      r.paper,
+    ];
+    for (const [k, text] of cells.entries()) {
+      const td = document.createElement(k === 0 ? 'th' : 'td');
+      if (k === 0) td.scope = 'row';
+      td.textContent = text;
+      tr.append(td);
+    }
+    body.append(tr);
+    document.body.dataset.figureRows = String(i + 1);
+  }
+}
+
+function goFigure(name) {
+  if (!name) return;
+  location.hash = `figure=${name}`; // hashchange opens it, and Back returns
+}
+
+function closeTour() {
+  state.figure = null;
+  $('tour').hidden = true;
+  delete document.body.dataset.figure;
+  updatePermalink();
+}
+
+async function fillTourMenu() {
+  const list = await engine.call('tourFigures');
+  for (const f of list) {
+    const o = document.createElement('option');
+    o.value = f.name;
+    o.textContent = `${f.source} (${f.name})`;
+    $('tour-menu').append(o);
+  }
 }
 
 // ---- loading -------------------------------------------------------------------------
@@ -1384,6 +1516,10 @@ function wire() {
     selectNode(v === '' ? null : Number(v));
   });
   $('copy-link').addEventListener('click', () => copyLink().catch(report));
+  $('tour-prev').addEventListener('click', () => goFigure($('tour-prev').dataset.figure));
+  $('tour-next').addEventListener('click', () => goFigure($('tour-next').dataset.figure));
+  $('tour-menu').addEventListener('change', () => goFigure($('tour-menu').value));
+  $('tour-close').addEventListener('click', closeTour);
   $('strategy').addEventListener('change', showStrategyReasons);
   for (const id of Object.keys(CHECKED)) {
     $(id).addEventListener('input', () => checkControl(id).then(() => updatePermalink()).catch(report));
@@ -1416,6 +1552,7 @@ function wire() {
     resizeTimer = setTimeout(() => {
       if (EMBED) for (const id of ['mesh-old', 'mesh-new']) $(id).style.width = '';
       serial(redrawAll).catch(report);
+      serial(drawFigurePicture).catch(report);
     }, 150);
   });
 }
@@ -1439,12 +1576,19 @@ async function main() {
   try {
     buildControls(await engine.call('controls'));
     await fillGallery();
+    await fillTourMenu();
   } catch (e) {
     report(e);
     document.body.dataset.busy = '0';
     return;
   }
   state.lastHash = location.hash;
+  const fig = FIGURE_HASH.exec(location.hash);
+  if (fig) {
+    await openFigure(fig[1]);
+    document.body.dataset.ready = '1';
+    return;
+  }
   await openHash(await applyHash());
   if (VIEW_NAME !== null && !VIEW) {
     showError(`view=${VIEW_NAME}: an embed shows one of the views ${Object.keys(VIEWS).join(', ')}; this is the compact page.`);
@@ -1461,6 +1605,7 @@ window.smoothlab = {
   metrics,
   pickRadius,
   memory: () => ({ bytes: engine.memory, peak_bytes: engine.peakMemory }),
+  figure: () => state.figure,
 };
 
 main();

@@ -72,6 +72,11 @@ const handlers = {
   smoothNode: (w, h, cw, ch, dpr) => need().smoothNode(w, h, cw, ch, dpr),
   figure: (w, h, dpr) => need().figure(w, h, dpr),
   panicForTest: () => wasm.panicForTest(),
+  tourFigures: () => wasm.tourFigures(),
+  tourCard: (name) => wasm.tourCard(name),
+  tourPicture: (name, w, h, dpr) => wasm.tourPicture(name, w, h, dpr),
+  tourPictureSize: (name) => wasm.tourPictureSize(name),
+  tourRow: (i) => wasm.tourRow(i),
   decodePermalink: (hash) => wasm.decodePermalink(hash),
   encodePermalink: (fields) => wasm.encodePermalink(fields),
 };

@@ -49,6 +49,20 @@ pub fn grid(nx: usize, ny: usize, kind: GridKind) -> Result<Mesh> {
     a.build()
 }
 
+/// Knupp (1999), Fig. 1: an `n × n` [`grid`] of the unit square with every interior node
+/// placed uniformly at random in the square (seeded), boundary fixed — a tangled mesh,
+/// unlike the other generators' (the reproduction's §4 uses `n = 10`, seeds 1–5).
+pub fn random_grid(n: usize, kind: GridKind, seed: u64) -> Result<Mesh> {
+    let mut m = grid(n, n, kind)?;
+    let mut rng = super::SplitMix64::new(seed);
+    for i in 0..m.node_count() {
+        if m.is_free(i) {
+            m.nodes[i] = DVec2::new(rng.next_f64(), rng.next_f64());
+        }
+    }
+    Ok(m)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

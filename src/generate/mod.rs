@@ -4,8 +4,9 @@
 //!
 //! Everything here is deterministic: the seeded generators draw from [`SplitMix64`],
 //! whose stream is fixed by this crate, so a seed names the same mesh on every platform.
-//! Every generated mesh is counter-clockwise with no inverted element, and its boundary
-//! nodes are fixed (the stars: every node but the centre).
+//! Every generated mesh is counter-clockwise with no inverted element (but those of
+//! [`perturb`] and [`random_grid`], made to be tangled), and its boundary nodes are fixed
+//! (the stars: every node but the centre).
 
 mod grid;
 mod perturb;
@@ -15,12 +16,12 @@ mod rand2d;
 mod star;
 mod trig;
 
-pub use grid::{grid, GridKind};
+pub use grid::{grid, random_grid, GridKind};
 pub use perturb::perturb;
 pub use plate::{plate, PlateKind, PLATE_HALF_WIDTH, PLATE_HOLE_RADIUS};
 pub use prng::SplitMix64;
 pub use rand2d::rand2d;
-pub use star::{star, StarKind};
+pub use star::{quadratic_star, star, QuadraticStar, StarKind, CURVED_BULGE, PUSHED_MID_HEIGHT};
 
 use glam::DVec2;
 

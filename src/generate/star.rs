@@ -116,6 +116,72 @@ pub fn star(kind: StarKind, k: usize) -> Result<Mesh> {
     a.build()
 }
 
+/// The quadratic (6-node triangle) stars of Chen, Tristano & Kwok (2003), whose pictures
+/// are lost; these are our readings of their captions. Ring nodes fixed, the centre free;
+/// mid-side nodes of the spokes follow the centre.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum QuadraticStar {
+    /// Figure 9, "configuration with one quadratic edge": six triangles round the centre
+    /// of a regular hexagon of radius 1 with a horizontal top edge, that edge curved in
+    /// towards the centre (its mid node at height [`PUSHED_MID_HEIGHT`] instead of
+    /// √3/2). Its end tangents meet at (0, 2h − √3/2): "the best location for the
+    /// center node is below the intersection of the two dash lines". The centre starts
+    /// at the hexagon's centre.
+    PushedEdge,
+    /// Figure 16, "a node with three edges close to a curved boundary and two quadratic
+    /// boundary edges": the centre joined to (−1, 0), (0, 0), (1, 0) of a bottom boundary
+    /// whose two quadratic edges bulge up to [`CURVED_BULGE`], and to (1, 1), (0, 1),
+    /// (−1, 1) above. The end tangents of the bulges leave (±1, 0) at 31° from the
+    /// horizontal, so the centre must stay above those lines: it starts at (0.25, 0.85),
+    /// and the Laplacian's centroid, (0, 0.5), lies below them (an inverted element).
+    CurvedBoundary,
+}
+
+/// Height of the pushed-in top edge's mid node ([`QuadraticStar::PushedEdge`]).
+pub const PUSHED_MID_HEIGHT: f64 = 0.5;
+/// Height of the bottom edges' mid nodes ([`QuadraticStar::CurvedBoundary`]).
+pub const CURVED_BULGE: f64 = 0.15;
+
+/// A quadratic star (see [`QuadraticStar`]): the ring's corners first
+/// (counter-clockwise), then the free centre, then the mid-side nodes.
+pub fn quadratic_star(kind: QuadraticStar) -> Result<Mesh> {
+    let (ring, centre, curved): (Vec<DVec2>, DVec2, Vec<(usize, DVec2)>) = match kind {
+        QuadraticStar::PushedEdge => {
+            let step = std::f64::consts::TAU / 6.0;
+            let ring = (0..6).map(|i| {
+                let a = step * (i as f64 + 0.5) - std::f64::consts::FRAC_PI_2;
+                DVec2::new(a.cos(), a.sin())
+            });
+            let ring: Vec<DVec2> = ring.collect();
+            // corners at −60°, 0°, 60°, …: the edge from ring[2] (60°) to ring[3] (120°) is the top one
+            (ring, DVec2::ZERO, vec![(2, DVec2::new(0.0, PUSHED_MID_HEIGHT))])
+        }
+        QuadraticStar::CurvedBoundary => {
+            let ring = [(-1.0, 0.0), (0.0, 0.0), (1.0, 0.0), (1.0, 1.0), (0.0, 1.0), (-1.0, 1.0)];
+            let ring: Vec<DVec2> = ring.iter().map(|&(x, y)| DVec2::new(x, y)).collect();
+            (ring, DVec2::new(0.25, 0.85), vec![(0, DVec2::new(-0.5, CURVED_BULGE)), (1, DVec2::new(0.5, CURVED_BULGE))])
+        }
+    };
+    let k = ring.len();
+    let mut a = Assembly::with_capacity(3 * k + 1, k);
+    for p in &ring {
+        a.node(*p);
+    }
+    let c = a.node(centre);
+    let spoke: Vec<u32> = ring.iter().map(|p| a.node(0.5 * (*p + centre))).collect();
+    let outer: Vec<u32> = (0..k)
+        .map(|i| {
+            let mid = curved.iter().find(|(e, _)| *e == i).map_or(0.5 * (ring[i] + ring[(i + 1) % k]), |(_, m)| *m);
+            a.node(mid)
+        })
+        .collect();
+    for i in 0..k {
+        let j = (i + 1) % k;
+        a.element(ElementKind::Tri6, &[c, i as u32, j as u32, spoke[i], outer[i], spoke[j]]);
+    }
+    a.build()
+}
+
 /// How far from the origin one can go in the unit direction `d` and stay inside the
 /// kernel of the counter-clockwise polygon `ring` (which must contain the origin in its
 /// kernel): the kernel is the intersection of the half-planes left of each edge `a → b`,
@@ -216,6 +282,19 @@ mod tests {
         assert!(mesh_stats(&beyond).inverted > 0);
         beyond.nodes[8] = c * 1.98;
         assert_eq!(mesh_stats(&beyond).inverted, 0);
+    }
+
+    #[test]
+    fn quadratic_stars_are_valid_with_one_free_node_by_their_curved_edges() {
+        for kind in [QuadraticStar::PushedEdge, QuadraticStar::CurvedBoundary] {
+            let m = quadratic_star(kind).unwrap();
+            assert_valid(&m);
+            assert_eq!(free_node(&m), 6, "{kind:?}: the centre follows the ring");
+            assert_eq!(m.element_count(), 6);
+            let curved = m.edges().iter().filter(|e| e.curved).count();
+            assert_eq!(curved, if kind == QuadraticStar::PushedEdge { 1 } else { 2 }, "{kind:?}");
+            assert!(m.has_quadratic());
+        }
     }
 
     #[test]

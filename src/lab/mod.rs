@@ -14,6 +14,7 @@ pub mod pick;
 pub mod raster;
 pub mod sample;
 pub mod stats;
+pub mod tour;
 pub mod views;
 pub mod interact;
 

@@ -5,7 +5,7 @@
 use serde::{Deserialize, Serialize};
 
 use crate::error::Result;
-use crate::generate::{perturb, plate, rand2d, star, PlateKind, StarKind};
+use crate::generate::{perturb, plate, quadratic_star, rand2d, random_grid, star, GridKind, PlateKind, QuadraticStar, StarKind};
 use crate::mesh::Mesh;
 
 /// Seed of every generated sample (the page's perturb button takes its own seed).
@@ -14,6 +14,8 @@ pub const SAMPLE_SEED: u64 = 1;
 /// (2003, §5.2) perturb "the nodal locations of each interior node randomly"; 0.5
 /// inverts 32 of the 800 triangles of the plate (seed 1).
 pub const TANGLE_AMOUNT: f64 = 0.5;
+/// Cells per side of the random grid (Knupp's Figure 1; the reproduction's §4).
+pub const RANDOM_GRID_CELLS: usize = 10;
 /// Resolution of the plate samples: 40 nodes round the hole, 10 rings (440 corner nodes).
 pub const PLATE_RESOLUTION: usize = 5;
 /// Interior points of the large sample (Freitag's rand2d with ~100k nodes).
@@ -45,6 +47,15 @@ pub enum Sample {
     StarChen,
     /// Four quads round one free node (Chen Figure 20a, our reading).
     StarQuad,
+    /// Six 6-node triangles, the top edge curved in towards the free node (Chen Figure 9,
+    /// our reading: [`QuadraticStar::PushedEdge`]).
+    StarPushed,
+    /// A free node joined to a curved quadratic boundary (Chen Figure 16, our reading:
+    /// [`QuadraticStar::CurvedBoundary`]).
+    StarCurved,
+    /// Knupp (1999) Figure 1: a 10 × 10 quad grid, every interior node at a random place
+    /// in the square (seed 1), as the reproduction's §4.
+    GridRandomTangled,
     /// The plate with 6-node triangles, its hole a curved boundary.
     PlateQuadratic,
     /// rand2d with about 100 000 nodes, to show that the page stays responsive.
@@ -57,8 +68,8 @@ pub enum Sample {
 
 impl Sample {
     /// The gallery: [`Sample::ALL`], then the 1M-node sample.
-    pub const GALLERY: [Sample; 14] = {
-        let mut g = [Sample::Rand2dMillion; 14];
+    pub const GALLERY: [Sample; 17] = {
+        let mut g = [Sample::Rand2dMillion; 17];
         let mut i = 0;
         while i < Sample::ALL.len() {
             g[i] = Sample::ALL[i];
@@ -68,7 +79,7 @@ impl Sample {
     };
 
     /// Every sample a permalink can name, in gallery order.
-    pub const ALL: [Sample; 13] = [
+    pub const ALL: [Sample; 16] = [
         Sample::PlateTriTangled,
         Sample::PlateQuadTangled,
         Sample::PlateMixedTangled,
@@ -81,6 +92,9 @@ impl Sample {
         Sample::StarRegular,
         Sample::StarChen,
         Sample::StarQuad,
+        Sample::StarPushed,
+        Sample::StarCurved,
+        Sample::GridRandomTangled,
         Sample::Rand2dLarge,
     ];
 
@@ -98,6 +112,9 @@ impl Sample {
             Sample::StarRegular => "Star: regular (Mesquite)",
             Sample::StarChen => "Star: Chen's star shape",
             Sample::StarQuad => "Star: quads",
+            Sample::StarPushed => "Star: pushed-in quadratic edge",
+            Sample::StarCurved => "Star: by a curved boundary",
+            Sample::GridRandomTangled => "Random grid (Knupp)",
             Sample::PlateQuadratic => "Quadratic plate, curved hole",
             Sample::Rand2dLarge => "rand2D, 100k nodes",
             Sample::Rand2dMillion => "rand2D, 1M nodes (large: slow, ~700 MB of memory)",
@@ -125,6 +142,9 @@ impl Sample {
             Sample::StarRegular => star(StarKind::Regular, StarKind::Regular.default_k()),
             Sample::StarChen => star(StarKind::Chen, StarKind::Chen.default_k()),
             Sample::StarQuad => star(StarKind::Quad, StarKind::Quad.default_k()),
+            Sample::StarPushed => quadratic_star(QuadraticStar::PushedEdge),
+            Sample::StarCurved => quadratic_star(QuadraticStar::CurvedBoundary),
+            Sample::GridRandomTangled => random_grid(RANDOM_GRID_CELLS, GridKind::Quad, SAMPLE_SEED),
             Sample::PlateQuadratic => plate(PlateKind::Tri, 2, PLATE_RESOLUTION),
             Sample::Rand2dLarge => rand2d(LARGE_INTERIOR, 200, SAMPLE_SEED),
             Sample::Rand2dMillion => rand2d(MILLION_INTERIOR, MILLION_PER_SIDE, SAMPLE_SEED),

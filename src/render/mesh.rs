@@ -199,6 +199,10 @@ pub(crate) fn push_element(pb: &mut PathBuilder, mesh: &Mesh, view: &View, e: us
         }
         pts[i] = (x, y);
     }
+    let n = ids.len();
+    if pts[..n].iter().any(|p| p.0.abs() > FAR_PX || p.1.abs() > FAR_PX) {
+        return push_far_element(pb, &pts[..n], kind);
+    }
     pb.move_to(pts[0].0, pts[0].1);
     for i in 0..k {
         let b = pts[(i + 1) % k];
@@ -209,6 +213,95 @@ pub(crate) fn push_element(pb: &mut PathBuilder, mesh: &Mesh, view: &View, e: us
             }
             None => pb.line_to(b.0, b.1),
         }
+    }
+    pb.close();
+    true
+}
+
+/// Device coordinates beyond which an element is clipped before it is drawn: tiny-skia's
+/// rasterizer fails on paths millions of pixels across (a solver can fling a node of a
+/// tangled mesh that far), and every picture lies well inside.
+const FAR_PX: f32 = 65_536.0;
+
+/// An edge with an end beyond [`FAR_PX`]: its chords (16 for a curved one) clipped to
+/// the square of half-side [`FAR_PX`] (Liang–Barsky).
+fn push_far_edge(path: &mut PathBuilder, a: (f32, f32), mid: Option<(f32, f32)>, b: (f32, f32)) {
+    let mut pts = vec![a];
+    if let Some(m) = mid {
+        let c = bezier_control(a, m, b);
+        for j in 1..16 {
+            let t = j as f32 / 16.0;
+            let u = 1.0 - t;
+            pts.push((u * u * a.0 + 2.0 * u * t * c.0 + t * t * b.0, u * u * a.1 + 2.0 * u * t * c.1 + t * t * b.1));
+        }
+    }
+    pts.push(b);
+    for w in pts.windows(2) {
+        let (p, q) = (w[0], w[1]);
+        let d = (q.0 - p.0, q.1 - p.1);
+        let (mut t0, mut t1) = (0.0f32, 1.0f32);
+        let mut keep = true;
+        for (dp, v) in [(-d.0, p.0 + FAR_PX), (d.0, FAR_PX - p.0), (-d.1, p.1 + FAR_PX), (d.1, FAR_PX - p.1)] {
+            if dp == 0.0 {
+                keep &= v >= 0.0;
+            } else {
+                let r = v / dp;
+                if dp < 0.0 {
+                    t0 = t0.max(r);
+                } else {
+                    t1 = t1.min(r);
+                }
+            }
+        }
+        if keep && t0 <= t1 {
+            path.move_to(p.0 + t0 * d.0, p.1 + t0 * d.1);
+            path.line_to(p.0 + t1 * d.0, p.1 + t1 * d.1);
+        }
+    }
+}
+
+/// An element with a corner beyond [`FAR_PX`]: its outline (curved edges as 16 chords)
+/// clipped to the square of half-side [`FAR_PX`] (Sutherland–Hodgman), which holds the
+/// picture, so what shows is unchanged.
+fn push_far_element(pb: &mut PathBuilder, pts: &[(f32, f32)], kind: crate::mesh::ElementKind) -> bool {
+    let k = kind.corners();
+    let mut poly: Vec<(f32, f32)> = Vec::with_capacity(16 * k);
+    for i in 0..k {
+        let (a, b) = (pts[i], pts[(i + 1) % k]);
+        poly.push(a);
+        if let Some(m) = kind.mid(i) {
+            let c = bezier_control(a, pts[m], b);
+            for j in 1..16 {
+                let t = j as f32 / 16.0;
+                let u = 1.0 - t;
+                poly.push((u * u * a.0 + 2.0 * u * t * c.0 + t * t * b.0, u * u * a.1 + 2.0 * u * t * c.1 + t * t * b.1));
+            }
+        }
+    }
+    // clip against x ≥ −F, x ≤ F, y ≥ −F, y ≤ F in turn
+    for (axis, sign) in [(0, 1.0f32), (0, -1.0), (1, 1.0), (1, -1.0)] {
+        let inside = |p: (f32, f32)| sign * if axis == 0 { p.0 } else { p.1 } >= -FAR_PX;
+        let mut out = Vec::with_capacity(poly.len() + 4);
+        for i in 0..poly.len() {
+            let (a, b) = (poly[i], poly[(i + 1) % poly.len()]);
+            let (ia, ib) = (inside(a), inside(b));
+            if ia {
+                out.push(a);
+            }
+            if ia != ib {
+                let (va, vb) = if axis == 0 { (a.0, b.0) } else { (a.1, b.1) };
+                let t = (-FAR_PX * sign - va) / (vb - va);
+                out.push((a.0 + t * (b.0 - a.0), a.1 + t * (b.1 - a.1)));
+            }
+        }
+        poly = out;
+        if poly.is_empty() {
+            return false;
+        }
+    }
+    pb.move_to(poly[0].0, poly[0].1);
+    for p in &poly[1..] {
+        pb.line_to(p.0, p.1);
     }
     pb.close();
     true
@@ -309,6 +402,11 @@ pub fn render_mesh(pixmap: &mut Pixmap, mesh: &Mesh, opts: &MeshView) -> View {
                 continue;
             }
             let path = if edge.is_boundary() { &mut outer } else { &mut inner };
+            let far = |p: (f32, f32)| p.0.abs() > FAR_PX || p.1.abs() > FAR_PX;
+            if far(pa) || far(pb_) || mid.is_some_and(far) {
+                push_far_edge(path, pa, mid, pb_);
+                continue;
+            }
             path.move_to(pa.0, pa.1);
             match mid {
                 Some(m) => {
@@ -396,15 +494,19 @@ pub(crate) fn draw_inverted(pixmap: &mut Pixmap, pb: PathBuilder, s: f32, clip: 
                 *m = ((*m as u16 * *k as u16) / 255) as u8;
             }
         }
+        // the hatched box: the element's bounds within the picture (an element flung
+        // far away by a solver spans millions of pixels; the mask clips to it anyway)
         let b = path.bounds();
+        let (left, right) = (b.left().max(0.0), b.right().min(pixmap.width() as f32));
+        let (top, bottom) = (b.top().max(0.0), b.bottom().min(pixmap.height() as f32));
         let mut hatch = PathBuilder::new();
         let step = 6.0 * s;
-        let span = b.height();
-        // lines x − y = const, from the bottom-left to the top-right of the bounds
-        let mut t = (b.left() - span) - (b.left() - span).rem_euclid(step);
-        while t <= b.right() {
-            hatch.move_to(t, b.bottom());
-            hatch.line_to(t + span, b.top());
+        let span = bottom - top;
+        // lines x − y = const, from the bottom-left to the top-right of the box
+        let mut t = (left - span) - (left - span).rem_euclid(step);
+        while left < right && top < bottom && t <= right {
+            hatch.move_to(t, bottom);
+            hatch.line_to(t + span, top);
             t += step;
         }
         if let Some(h) = hatch.finish() {

@@ -12,6 +12,8 @@
 //!   (Chen et al. 2003, Figs. 11–12).
 //! - [`render_angle_histogram`]: angle distributions (Freitag 1997, Fig. 3).
 //! - [`render_compare`]: two mesh panels with titles and statistics.
+//! - [`render_sketch`]: a triangle and the lines its free corner moves along, to read a
+//!   1-D curve beside (Chen et al. 2003, Figs. 2, 6); [`render_titled`]: panels in a grid.
 //!
 //! Sizes in options are CSS pixels; a device-pixel ratio scales them (see [`view`]).
 //! tiny-skia pixels are premultiplied RGBA; every view paints an opaque background, so
@@ -26,6 +28,7 @@ mod histogram;
 mod levelset;
 mod mesh;
 mod paint;
+mod profile;
 mod text;
 pub mod view;
 
@@ -47,6 +50,7 @@ pub use mesh::{
     INVERTED, PICK_RADIUS,
 };
 pub use paint::Marker;
+pub use profile::{render_sketch, render_titled, Sketch, SketchLine};
 /// The pieces of `render_mesh` the page's fast raster view (`lab::raster`) draws with.
 pub(crate) use mesh::{draw_colour_bar, draw_inverted, push_element};
 pub use text::{draw_text, draw_text_rotated, text_width, Align, TextStyle, Valign};

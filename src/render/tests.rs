@@ -452,3 +452,24 @@ fn text_shrinks_to_fit_its_width() {
     assert!(text_width(title, fit) <= 200.0 + 0.5, "{}", text_width(title, fit));
     assert_eq!(size_to_fit("A: old", 14.0, 200.0), 14.0);
 }
+
+#[test]
+fn an_inverted_element_flung_far_away_is_hatched_only_where_it_shows() {
+    // the max-min objective can fling a node of a tangled mesh a billion units away: the
+    // hatching covers the picture, not the element's whole bounds (which hung the page)
+    let mut b = crate::mesh::MeshBuilder::with_capacity(4, 2);
+    for p in [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [1.0, 1.0, 0.0], [0.0, 1.0, 0.0]] {
+        b.add_node(p, 0);
+    }
+    b.add_element(crate::mesh::ElementKind::Tri3, &[0, 1, 2], 0);
+    b.add_element(crate::mesh::ElementKind::Tri3, &[0, 2, 3], 0);
+    let mut m = b.build().unwrap();
+    m.nodes[3] = glam::DVec2::new(1.0e12, -0.5e12);
+    assert!(crate::quality::mesh_stats(&m).inverted > 0);
+    let mut pm = tiny_skia::Pixmap::new(300, 300).unwrap();
+    let view = MeshView { bounds: Some((glam::DVec2::ZERO, glam::DVec2::ONE)), ..MeshView::default() };
+    render_mesh(&mut pm, &m, &view);
+    let dark = pm.pixels().iter().filter(|p| p.alpha() == 255 && p.red() < 40 && p.green() < 40 && p.blue() < 40).count();
+    let red = pm.pixels().iter().filter(|p| p.red() > 150 && p.green() < 80 && p.blue() < 80).count();
+    assert!(red > 40 && dark > 40, "the visible part is red and hatched: {red} red, {dark} dark pixels");
+}

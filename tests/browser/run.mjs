@@ -1273,6 +1273,103 @@ try {
     check((await canvasInfo(page, 'mesh-new')).hash === before.hash, 'Ctrl+Z took back the two key moves');
   });
 
+  // the figures tour (issue 13): every figure opens by its link, in its state, with its views drawn
+  const FIGURES = ['chen-2', 'chen-6', 'chen-9', 'chen-10', 'chen-11', 'chen-13', 'chen-16', 'chen-20', 'freitag-t1', 'freitag-3', 'knupp-1'];
+  /** Opens `#figure=NAME` (a fresh load) and waits until its passes ran and its table filled. */
+  async function openFigure(p, name, query = '') {
+    await p.goto(`${server.base}${query || `?open=${name}`}#figure=${name}`);
+    await p.waitForFunction((n) => document.body.dataset.figure === n && document.body.dataset.busy === '0', name, { timeout: 4 * TIMEOUT });
+    await idle(p);
+    return p.evaluate(() => window.smoothlab.figure());
+  }
+  for (const name of FIGURES) {
+    await test(`#figure=${name} opens its state, its picture and its view`, async () => {
+      const card = await openFigure(page, name);
+      check(card && card.name === name, `card: ${JSON.stringify(card)}`);
+      check(page.url().endsWith(`#figure=${name}`), `the address keeps the figure: ${page.url()}`);
+      const text = await page.textContent('#tour-text');
+      check(/\d/.test(await page.textContent('#tour-measured')) && text.length > 200, `text: ${text}`);
+      check((await page.textContent('#tour-title')).includes(card.source), 'title');
+      check((await page.textContent('#tour-caption')).length > 10, 'caption');
+      const pic = await canvasInfo(page, 'tour-picture');
+      check(pic.colours > 50 && pic.w > 400, `the figure's picture looks blank (${pic.colours} colours, ${pic.w} px)`);
+      const hash = new URLSearchParams(card.hash);
+      check((await page.inputValue('#sample')) === `sample:${hash.get('sample')}`, `sample ${await page.inputValue('#sample')}`);
+      for (const [key, id] of [['strategy', 'strategy'], ['a', 'objective-a'], ['b', 'objective-b']]) {
+        if (hash.has(key)) check((await page.inputValue(`#${id}`)) === hash.get(key), `${id}: ${await page.inputValue(`#${id}`)}`);
+      }
+      if (hash.has('node')) {
+        check((await page.inputValue('#node')) === hash.get('node'), `node selected: '${await page.inputValue('#node')}'`);
+        for (const id of ['level-old', 'level-new', 'solve-chart']) {
+          const c = await canvasInfo(page, id);
+          check(c.colours > 100, `${id} looks blank (${c.colours} colours)`);
+        }
+      }
+      const s = [await stats(page, 'old'), await stats(page, 'new')];
+      const passes = card.run ? hash.get('passes') || '3' : '0';
+      check(s[0].passes === passes && s[1].passes === passes, `passes run: ${s[0].passes}/${s[1].passes}, want ${passes}`);
+      for (const id of ['mesh-old', 'mesh-new', 'pass-chart', 'hist-old', 'hist-new']) {
+        const c = await canvasInfo(page, id);
+        check(c.colours > 8, `${id} looks blank (${c.colours} colours)`);
+      }
+      if (card.rows) {
+        const rows = await page.$$eval('#tour-rows tr', (trs) => trs.map((tr) => [...tr.children].map((c) => c.textContent)));
+        check(rows.length === card.rows, `table rows: ${rows.length} of ${card.rows}`);
+        check(rows.every((r) => r.length === 8 && /\d/.test(r[1]) && /\[/.test(r[5])), `rows: ${JSON.stringify(rows)}`);
+        check(rows.some((r) => /18\.20/.test(r[7])), 'Freitag\'s numbers beside ours');
+      }
+      if (name === 'chen-13' || name === 'knupp-1') check(s[1].inverted === '0', `the new side is untangled: ${s[1].inverted}`);
+      await page.locator('#tour').screenshot({ path: path.join(OUT, `figure-${name}.png`) });
+      const view = { levelset: '.node-view', compare: '.panels', history: '.pass-view', histogram: '.pass-view' }[card.view];
+      await page.locator(view).screenshot({ path: path.join(OUT, `figure-${name}-view.png`) });
+    });
+  }
+
+  await test('the tour: Next and Previous walk it, the menu jumps, Back returns, the header links it', async () => {
+    await openFigure(page, 'chen-10');
+    await page.click('#tour-next');
+    await page.waitForFunction(() => document.body.dataset.figure === 'chen-11', null, { timeout: 2 * TIMEOUT });
+    check(page.url().endsWith('#figure=chen-11'), page.url());
+    await page.click('#tour-prev');
+    await page.waitForFunction(() => document.body.dataset.figure === 'chen-10', null, { timeout: 2 * TIMEOUT });
+    await page.selectOption('#tour-menu', 'knupp-1');
+    await page.waitForFunction(() => document.body.dataset.figure === 'knupp-1', null, { timeout: 4 * TIMEOUT });
+    await idle(page);
+    check((await page.getAttribute('#tour-next', 'data-figure')) === 'chen-2', 'the tour wraps round');
+    await page.goBack();
+    await page.waitForFunction(() => document.body.dataset.figure === 'chen-10', null, { timeout: 2 * TIMEOUT });
+    await idle(page);
+    check((await page.getAttribute('#tour-open', 'href')) === '#figure=chen-2', 'the header links the tour');
+    // an unknown figure: the page opens anyway and says which figures there are
+    await page.goto(`${server.base}?open=none#figure=chen-99`);
+    await idle(page);
+    check(/no figure named 'chen-99'.*chen-2/.test(await page.textContent('#message')), await page.textContent('#message'));
+    check((await canvasInfo(page, 'mesh-new')).colours > 8, 'the default mesh is drawn');
+    await openFigure(page, 'chen-2');
+    await page.click('#tour-close');
+    await idle(page);
+    check(await page.locator('#tour').isHidden(), 'the tour closes');
+    check(!page.url().includes('figure='), `closed, the address is the playground's: ${page.url()}`);
+  });
+
+  await test('?embed=1#figure=NAME embeds one figure: its words, its picture and its view in a 520-px frame', async () => {
+    const frame = await context.newPage();
+    watch(frame, 'embed-figure');
+    await frame.setViewportSize({ width: 520, height: 760 });
+    for (const [name, canvases] of [['chen-10', ['level-old', 'level-new']], ['freitag-3', ['hist-old', 'hist-new']], ['knupp-1', ['mesh-old', 'mesh-new']]]) {
+      await openFigure(frame, name, '?embed=1');
+      check(await frame.evaluate(() => document.body.classList.contains('embed') && document.body.classList.contains('view')), 'an embedded view');
+      check(await frame.locator('#tour').isVisible(), 'the figure is shown');
+      check((await canvasInfo(frame, 'tour-picture')).colours > 50, 'its picture');
+      for (const id of canvases) {
+        check(await frame.locator(`#${id}`).isVisible(), `${id} is shown`);
+        check((await canvasInfo(frame, id)).colours > 8, `${id} looks blank`);
+      }
+      await frame.screenshot({ path: path.join(OUT, `figure-embed-${name}-520.png`) });
+    }
+    await frame.close();
+  });
+
   await test('no request left 127.0.0.1 and the console has no errors', async () => {
     check(externalRequests.length === 0, `external requests: ${externalRequests.join(', ')}`);
     check(consoleErrors.length === 0, `console errors:\n${consoleErrors.join('\n')}`);

@@ -1,5 +1,7 @@
 //! `smoothlab render IN -o OUT.png --view mesh|levelset|history|histogram|compare …`:
 //! the page's pictures as PNG files, drawn by the same core code (`lab` and `render`).
+//! `smoothlab render --figure NAME -o OUT.png`: a figure of the page's tour
+//! (`lab::tour`), drawn from its own state (no input mesh).
 //!
 //! Node numbers are 0-based in file order, as everywhere in smoothlab.
 
@@ -46,8 +48,14 @@ pub enum MetricArg {
 
 #[derive(Args)]
 pub struct RenderArgs {
-    /// Input mesh
-    pub input: PathBuf,
+    /// Input mesh (not with --figure)
+    #[arg(required_unless_present = "figure", conflicts_with = "figure")]
+    pub input: Option<PathBuf>,
+    /// A figure of the papers, as the page's tour shows it: chen-2, chen-6, chen-9, chen-10,
+    /// chen-11, chen-13, chen-16, chen-20, freitag-t1, freitag-3, knupp-1 (draws its own
+    /// state; --size and --dpr apply)
+    #[arg(long)]
+    pub figure: Option<String>,
     /// Output PNG
     #[arg(short, long)]
     pub output: PathBuf,
@@ -149,6 +157,10 @@ pub fn run(a: RenderArgs) -> Result<(), String> {
     if !(a.dpr.is_finite() && a.dpr > 0.0 && a.dpr <= 4.0) {
         return Err(format!("--dpr {}: give a ratio above 0 and at most 4", a.dpr));
     }
+    if let Some(name) = &a.figure {
+        return figure(name, &a);
+    }
+    let input = a.input.clone().ok_or("give an input mesh, or --figure NAME")?;
     let passes = a.passes.unwrap_or(match a.view {
         ViewArg::Mesh | ViewArg::Levelset => 0,
         _ => smoothlab::smooth::DEFAULT_PASSES,
@@ -156,7 +168,7 @@ pub fn run(a: RenderArgs) -> Result<(), String> {
     if passes > 1000 {
         return Err(format!("--passes {passes}: give at most 1000"));
     }
-    let mesh = crate::files::read_mesh(&a.input)?;
+    let mesh = crate::files::read_mesh(&input)?;
     // The pictures are drawn by the page's code, which holds at most MAX_NODES nodes: say
     // so in this tool's words, with the file's name (the page's own message pointed to
     // the command-line tool, which this is).
@@ -164,7 +176,7 @@ pub fn run(a: RenderArgs) -> Result<(), String> {
         return Err(format!(
             "{}: the mesh has {} nodes; render draws meshes of at most {MAX_NODES} nodes \
              (stats, smooth and convert take larger ones)",
-            a.input.display(),
+            input.display(),
             mesh.node_count()
         ));
     }
@@ -262,6 +274,16 @@ pub fn run(a: RenderArgs) -> Result<(), String> {
             lab.render_figure(canvas(w, h)).map_err(|e| e.to_string())?
         }
     };
+    let png = encode_png(&picture).map_err(|e| e.to_string())?;
+    std::fs::write(&a.output, png).map_err(|e| format!("{}: {e}", a.output.display()))
+}
+
+/// `--figure NAME`: the tour's picture of that figure.
+fn figure(name: &str, a: &RenderArgs) -> Result<(), String> {
+    let fig = smoothlab::lab::tour::find(name).map_err(|e| format!("--figure {name}: {e}"))?.1;
+    let (w, h) = size(a.size.as_deref(), smoothlab::lab::tour::pictures::default_size(fig.name))?;
+    let c = Canvas { w: ((w as f32) * a.dpr) as u32, h: ((h as f32) * a.dpr) as u32, dpr: a.dpr };
+    let picture = smoothlab::lab::tour::pictures::render(fig.name, c).map_err(|e| e.to_string())?;
     let png = encode_png(&picture).map_err(|e| e.to_string())?;
     std::fs::write(&a.output, png).map_err(|e| format!("{}: {e}", a.output.display()))
 }

@@ -1,0 +1,311 @@
+//! The figures tour: each figure of the three papers that smoothlab can make, as a live
+//! state of the playground (a permalink hash: mesh, node, objectives, settings), the view
+//! to look at, the paper's caption and 2–4 sentences — what to look at, what the paper
+//! claims, what our reproduction measured. Written once, here: the page (through the wasm
+//! layer), `smoothlab render --figure NAME` and `docs/figures.md` (`make figures`) all
+//! read this table, and every number it quotes is either computed when asked
+//! ([`Figure::measured`]) or read from `docs/reproduction.md` ([`measured::cell`]).
+
+pub mod measured;
+pub mod pictures;
+
+use serde::Serialize;
+
+use crate::error::{Error, Result};
+use crate::permalink::{self, PageState};
+
+use super::sample::Sample;
+use super::{Playground, Settings};
+
+/// One figure of the tour.
+#[derive(Clone, Copy, Debug)]
+pub struct Figure {
+    /// Its name in `#figure=NAME` and on the command line.
+    pub name: &'static str,
+    /// The paper and figure: "Chen, Tristano & Kwok (2003), Fig. 2".
+    pub source: &'static str,
+    /// The paper's caption, as printed (its pictures are lost in our copy).
+    pub caption: &'static str,
+    /// The playground's state: a permalink hash, checked by [`permalink::decode`].
+    pub hash: &'static str,
+    /// The page's view to look at: `levelset`, `compare`, `history` or `histogram`
+    /// (the names of `?embed=1&view=`).
+    pub view: &'static str,
+    /// The page runs the hash's passes when it opens the figure.
+    pub run: bool,
+    /// What to look at.
+    pub look: &'static str,
+    /// What the paper claims.
+    pub claim: &'static str,
+    /// What our reproduction measured, computed when asked.
+    measured: fn() -> Result<String>,
+}
+
+/// A figure's name and source, for the tour's menu.
+#[derive(Clone, Copy, Debug, Serialize)]
+pub struct Entry {
+    pub name: &'static str,
+    pub source: &'static str,
+}
+
+/// The tour's menu, in order.
+pub fn entries() -> Vec<Entry> {
+    FIGURES.iter().map(|f| Entry { name: f.name, source: f.source }).collect()
+}
+
+/// The views a figure can point at.
+pub const VIEWS: [&str; 4] = ["levelset", "compare", "history", "histogram"];
+
+impl Figure {
+    /// What our reproduction measured, in words with its numbers (computed now, or read
+    /// from `docs/reproduction.md`).
+    pub fn measured(&self) -> Result<String> {
+        (self.measured)()
+    }
+
+    /// The playground state of its hash.
+    pub fn state(&self) -> Result<PageState> {
+        permalink::decode(self.hash)
+    }
+
+    /// A playground in the figure's state (its passes not yet run).
+    pub fn playground(&self) -> Result<(Playground, PageState)> {
+        let st = self.state()?;
+        let name = st.sample.clone().ok_or_else(|| Error::invalid(format!("figure {}: its state names no sample", self.name)))?;
+        let sample: Sample = serde_json::from_value(serde_json::Value::String(name.clone()))
+            .map_err(|_| Error::invalid(format!("figure {}: no generated sample '{name}'", self.name)))?;
+        let mut pg = Playground::new(sample.generate()?)?;
+        if st.perturbed {
+            pg.perturb(st.amount, st.seed)?;
+        }
+        pg.set_settings(Settings {
+            strategy: st.strategy,
+            threshold_deg: st.threshold_deg,
+            order: st.order,
+            max_iter: st.max_iter,
+            compare: st.compare,
+        })?;
+        Ok((pg, st))
+    }
+
+    /// The figure in words and numbers, as the page shows it.
+    pub fn card(&self, index: usize) -> Result<Card> {
+        let n = FIGURES.len();
+        Ok(Card {
+            name: self.name,
+            index,
+            count: n,
+            prev: FIGURES[(index + n - 1) % n].name,
+            next: FIGURES[(index + 1) % n].name,
+            source: self.source,
+            caption: self.caption,
+            hash: self.hash,
+            view: self.view,
+            run: self.run,
+            look: self.look,
+            claim: self.claim,
+            measured: self.measured()?,
+            rows: if self.name == "freitag-t1" { pictures::FREITAG_METHODS.len() } else { 0 },
+        })
+    }
+}
+
+/// A figure as the page receives it.
+#[derive(Clone, Debug, Serialize)]
+pub struct Card {
+    pub name: &'static str,
+    pub index: usize,
+    pub count: usize,
+    pub prev: &'static str,
+    pub next: &'static str,
+    pub source: &'static str,
+    pub caption: &'static str,
+    pub hash: &'static str,
+    pub view: &'static str,
+    pub run: bool,
+    pub look: &'static str,
+    pub claim: &'static str,
+    pub measured: String,
+    /// Rows of the table the page fills one by one ([`pictures::freitag_row`]); 0: none.
+    pub rows: usize,
+}
+
+/// The figure named `name`, with its place in the tour.
+pub fn find(name: &str) -> Result<(usize, &'static Figure)> {
+    FIGURES.iter().enumerate().find(|(_, f)| f.name == name).ok_or_else(|| {
+        let names: Vec<&str> = FIGURES.iter().map(|f| f.name).collect();
+        Error::invalid(format!("no figure named '{name}': the tour has {}", names.join(", ")))
+    })
+}
+
+use measured::cell;
+use pictures as p;
+
+/// The tour, in the papers' order.
+pub static FIGURES: [Figure; 11] = [
+    Figure {
+        name: "chen-2",
+        source: "Chen, Tristano & Kwok (2003), Fig. 2",
+        caption: "α for a triangle. (a) A triangle with point C perturbed over the x-y plane. (b) The change of α on y=0 and y=2. (c) The 3D plots of α; (d) the contour of α on the x-y plane.",
+        hash: "sample=star-regular&strategy=opt&a=old&b=new&node=6",
+        view: "levelset",
+        run: false,
+        look: "The curves are Lo's α of triangle ABC (A, B fixed on y = 1) as C slides along y = 2, where ABC is valid, and along y = 0, where it is inverted; beside them the new objective along the same lines. Below, the level sets of the old max-min α and of the new objective round the star's free node.",
+        claim: "Chen et al.: α alone cannot untangle — from an inverted C it says move away, in the negative x-direction, because α rises towards 0 far from AB.",
+        measured: p::chen_2_measured,
+    },
+    Figure {
+        name: "chen-6",
+        source: "Chen, Tristano & Kwok (2003), Figs. 6–7",
+        caption: "Fig. 6: angle is not a continuous function in (x,y) plane. (a) Angle distribution over x-y plane; (b) weight function introduced to make adjusted angle smooth; (c) the adjusted angle. Fig. 7: the penalty term and the objective function.",
+        hash: "sample=star-regular&strategy=opt&a=new&a-penalty=angle&b=new&b-penalty=barrier&node=6",
+        view: "levelset",
+        run: false,
+        look: "Left: the signed angle θ at A as C crosses the ray x = 0, y > 1 along y = 2 — it jumps from +180° to −180° — and Chen's adjusted angle ω, which is continuous there. Right: the penalty as a function of the angle, both our designs of the lost eq. (8). Below: the level sets of the two designs at one node.",
+        claim: "Chen et al.: the adjusted angle ω = wθ is continuous everywhere but at A and B, and the penalty rises rapidly as an angle nears 0 and goes negative, so the objective untangles.",
+        measured: p::chen_6_measured,
+    },
+    Figure {
+        name: "chen-9",
+        source: "Chen, Tristano & Kwok (2003), Fig. 9",
+        caption: "Configuration with one quadratic edge.",
+        hash: "sample=star-pushed&strategy=opt&a=old&b=new&maxiter=20&node=6",
+        view: "levelset",
+        run: false,
+        look: "The top edge of the hexagon is quadratic, its mid node pushed down towards the free node; its end tangents (the paper's dashed lines) meet on the y axis. Look at where each objective's optimum (the end of the solver's path) lies.",
+        claim: "Chen et al.: \"when the top edge is pushed toward the center node, the best location for the center node is below the intersection of the two dash lines\".",
+        measured: p::chen_9_measured,
+    },
+    Figure {
+        name: "chen-10",
+        source: "Chen, Tristano & Kwok (2003), Fig. 10",
+        caption: "Example with star shaped configuration with 10c illustrating the level sets in the feasible region.",
+        hash: "sample=star-chen&strategy=opt&a=old&b=new&maxiter=20&node=8",
+        view: "levelset",
+        run: false,
+        look: "A star-shaped, non-convex ring (our reading of the lost picture). Compare the level sets: the max-min objective's are kinked polygons, the new objective's are smooth and, inside the feasible region (unhatched), nearly convex; follow each solver's path.",
+        claim: "Chen et al.: even though the level sets outside the valid region are non-convex, their near convexity inside it lets the optimization converge faster.",
+        measured: p::chen_10_measured,
+    },
+    Figure {
+        name: "chen-11",
+        source: "Chen, Tristano & Kwok (2003), Figs. 11–12",
+        caption: "Fig. 11: convergence history. Fig. 12: The convergence history for a node using conjugate gradient direction.",
+        hash: "sample=rand2d&strategy=opt&a=old&b=new&maxiter=10&node=169",
+        view: "levelset",
+        run: false,
+        look: "One node of rand2D solved by Fletcher–Reeves for up to 10 iterations: how far the objective is above its final value after each iteration, each step marked g (gradient direction) or c (conjugate direction); the path on the level sets uses the same marks.",
+        claim: "Chen et al.: the first (gradient) step is short, the conjugate step after it much longer, then progress slows and a gradient step restarts the process; the first few iterations do most of the work, so three per call suffice.",
+        measured: p::chen_11_measured,
+    },
+    Figure {
+        name: "chen-13",
+        source: "Chen, Tristano & Kwok (2003), Figs. 13–15",
+        caption: "Fig. 13: untangling example. Fig. 14: untangling, initial mesh and first iteration mesh. Fig. 15: untangling, second iteration mesh and third iteration mesh.",
+        hash: "sample=plate-tri&tangle=1.5&seed=1&perturbed=1&strategy=rules&a=old&b=new&passes=3&order=priority",
+        view: "history",
+        run: true,
+        look: "The plate with a hole, every interior node perturbed by 1.5 mean edge lengths (nodes pushed outside the plate, as in Chen's picture), smoothed pass by pass: the per-pass chart counts the inverted elements of each side; the meshes show the result.",
+        claim: "Chen et al.: the new objective with their rules untangles the plate in 3 passes in priority order (§4.2 says 4), against 7 in first-come-first-served order.",
+        measured: p::chen_13_measured,
+    },
+    Figure {
+        name: "chen-16",
+        source: "Chen, Tristano & Kwok (2003), Figs. 16–17",
+        caption: "Fig. 16: a node with three edges close to a curved boundary and two quadratic boundary edges. Fig. 17: quadratic curved boundary quads.",
+        hash: "sample=star-curved&strategy=opt&a=old&b=new&passes=1&maxiter=20&node=6",
+        view: "compare",
+        run: true,
+        look: "A free node joined to a curved quadratic boundary (our reading of the lost picture). The picture shows it as loaded, after a Laplacian step and after one optimization call of the new objective; the meshes show one pass of each objective.",
+        claim: "Chen et al.: a difficult case for smoothers made for linear elements; constrained Laplacian smoothing does poorly, their optimization gives the higher quality.",
+        measured: p::chen_16_measured,
+    },
+    Figure {
+        name: "chen-20",
+        source: "Chen, Tristano & Kwok (2003), Fig. 20",
+        caption: "(a) Test quadrilateral configuration with the center node being smoothed; (b) Maximizing Minimum Objective Function; (c) The newly presented objective function.",
+        hash: "sample=star-quad&strategy=opt&a=old&b=new&maxiter=20&node=8",
+        view: "levelset",
+        run: false,
+        look: "Four quads round one node (our reading of the lost configuration). Left the max-min objective: its level sets have kinks where the worst element changes; right the new objective: smooth level sets with one minimum.",
+        claim: "Chen et al.: the max-min objective \"posed serious convergence problems for any optimization method\"; the new one is smooth with only one minimum.",
+        measured: p::chen_20_measured,
+    },
+    Figure {
+        name: "freitag-t1",
+        source: "Freitag (1997), Table 1",
+        caption: "Mesh quality improvement for rand2D.",
+        hash: "sample=rand2d&strategy=opt&a=sine&b=new&passes=3&order=input",
+        view: "compare",
+        run: true,
+        look: "Freitag's rand2D (500 random points, 20 per side). The table runs every strategy for 3 passes on this mesh (seed 1) and fills in live, beside our mean over five seeds and Freitag's published numbers; the meshes show optimization of the smallest sine (A) and of the new objective (B).",
+        claim: "Freitag: optimization raises the smallest angle from 0.71° to 18.2° where the Laplacian reaches 10.5°; the combined schemes C2 and C3 at 30° match it (18.55°) at a fraction of the optimization calls.",
+        measured: p::freitag_t1_measured,
+    },
+    Figure {
+        name: "freitag-3",
+        source: "Freitag (1997), Fig. 3",
+        caption: "The distribution of angles in the original mesh and the same mesh after three passes of the indicated smoothing techniques.",
+        hash: "sample=rand2d&strategy=opt&a=sine&b=new&passes=3&order=input",
+        view: "histogram",
+        run: true,
+        look: "The share of corner angles in each 6° bin of rand2D as generated and after 3 passes of each method; the histograms below compare optimization of the smallest sine (A) with the new objective (B).",
+        claim: "Freitag: the optimization-based smoothers eliminate the extremal angles more effectively than the Laplacian.",
+        measured: p::freitag_3_measured,
+    },
+    Figure {
+        name: "knupp-1",
+        source: "Knupp (1999), Fig. 1",
+        caption: "1a. Initial Tangled Mesh; 1b. Untangled Mesh; 1c. Optimized w/κ.",
+        hash: "sample=grid-random-tangled&strategy=opt&a=untangle&b=new&passes=10&order=input",
+        view: "compare",
+        run: true,
+        look: "A 10 × 10 grid whose interior nodes were placed at random: as loaded, untangled by Knupp's untangling objective, then optimized by the condition number κ, and, last, the new objective with Chen's rules, which untangles and smooths in one. The meshes below show 10 passes of optimization in input order with the untangling objective (A) and the new one (B).",
+        claim: "Knupp: the untangling objective removes every negative Jacobian, but \"the overall quality still leaves much to be desired\"; the condition number optimizer then improves it much.",
+        measured: p::knupp_1_measured,
+    },
+];
+
+/// The cells of `docs/reproduction.md` a figure quotes, with `cell`'s errors.
+pub(crate) fn repro(section: u32, row: &[&str], column: &str) -> Result<String> {
+    cell(section, row, column)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn names_are_unique_and_views_known() {
+        let names: std::collections::HashSet<_> = FIGURES.iter().map(|f| f.name).collect();
+        assert_eq!(names.len(), FIGURES.len());
+        for f in &FIGURES {
+            assert!(VIEWS.contains(&f.view), "{}: view {}", f.name, f.view);
+            assert_eq!(find(f.name).unwrap().1.name, f.name);
+        }
+        assert!(find("chen-99").unwrap_err().to_string().contains("chen-2"));
+    }
+
+    #[test]
+    fn every_state_opens_and_its_node_is_free() {
+        for f in &FIGURES {
+            let (pg, st) = f.playground().unwrap_or_else(|e| panic!("{}: {e}", f.name));
+            assert_eq!(permalink::decode(&permalink::encode(&st)).unwrap(), st, "{}", f.name);
+            if let Some(n) = st.node {
+                assert!(pg.topology().is_free(n as usize), "{}: node {n}", f.name);
+            }
+            assert!(f.view != "levelset" || st.node.is_some(), "{}: a level-set figure names its node", f.name);
+        }
+    }
+
+    #[test]
+    fn every_measured_text_reads_its_numbers() {
+        for (i, f) in FIGURES.iter().enumerate() {
+            let c = f.card(i).unwrap_or_else(|e| panic!("{}: {e}", f.name));
+            assert!(c.measured.chars().any(|ch| ch.is_ascii_digit()), "{}: {}", f.name, c.measured);
+            let sentences = [c.look, c.claim, &c.measured].iter().map(|s| s.matches(". ").count() + 1).sum::<usize>();
+            assert!((3..=8).contains(&sentences), "{}: {sentences} sentences", f.name);
+        }
+        assert_eq!(FIGURES[0].card(0).unwrap().prev, "knupp-1");
+    }
+}
