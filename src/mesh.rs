@@ -660,6 +660,17 @@ impl MeshBuilder {
         b.elem_lines.reserve(elements.min(CAP));
         b
     }
+    /// Reserves room for exactly this many more nodes, elements and element node ids (for
+    /// counts that are known, not claimed by a file): no array then grows by doubling,
+    /// which in wasm copies it and holds both copies for a moment.
+    pub(crate) fn reserve_exact(&mut self, nodes: usize, elements: usize, element_nodes: usize) {
+        self.points.reserve_exact(nodes);
+        self.point_lines.reserve_exact(nodes);
+        self.kinds.reserve_exact(elements);
+        self.elem_start.reserve_exact(elements);
+        self.elem_lines.reserve_exact(elements);
+        self.elem_nodes.reserve_exact(element_nodes);
+    }
     /// Adds a node given in 3D (`z = 0` for 2D formats); `line` is its file line (0 if none).
     pub fn add_node(&mut self, p: [f64; 3], line: usize) -> usize {
         self.points.push(p);
