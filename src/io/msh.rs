@@ -710,6 +710,31 @@ mod tests {
     }
 
     #[test]
+    fn elements_before_or_after_nodes_read_alike() {
+        // $Nodes first: elements are resolved as they are read; $Elements first: at the end
+        let nodes = "$Nodes\n4\n10 0 0 0\n20 1 0 0\n30 1 1 0\n40 0 1 0\n$EndNodes\n";
+        let elements = |third: u64| {
+            format!("$Elements\n3\n1 15 2 0 1 10\n2 2 2 0 1 10 20 30\n3 2 2 0 1 10 30 {third}\n$EndElements\n")
+        };
+        let head = "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n";
+        let build = |text: String| parse(&text).and_then(|b| b.build());
+        let a = build(format!("{head}{nodes}{}", elements(40))).unwrap();
+        let b = build(format!("{head}{}{nodes}", elements(40))).unwrap();
+        assert_eq!((a.nodes.clone(), a.fixed.clone()), (b.nodes.clone(), b.fixed.clone()));
+        for e in 0..2 {
+            assert_eq!((a.kind(e), a.element(e)), (b.kind(e), b.element(e)));
+        }
+        // an undefined tag names the same element and line either way, after a later
+        // syntax error has had its say
+        let ea = build(format!("{head}{nodes}{}", elements(41))).unwrap_err().to_string();
+        let eb = build(format!("{head}{}{nodes}", elements(41))).unwrap_err().to_string();
+        assert!(ea.contains("element 1") && ea.contains("tag 41") && ea.contains("tags 10 to 40"), "{ea}");
+        assert_eq!(ea.replace("line 15", "line 8"), eb, "the lines differ by the node section's 7 lines");
+        let late = build(format!("{head}{nodes}{}$Bad\n", elements(41))).unwrap_err().to_string();
+        assert!(late.contains("line 17") && late.contains("EndBad"), "{late}");
+    }
+
+    #[test]
     fn runs_keep_order() {
         use ElementKind::*;
         assert_eq!(runs(&[Tri3, Tri3, Quad4, Tri3]), vec![(0, 2), (2, 3), (3, 4)]);
