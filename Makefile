@@ -42,12 +42,13 @@ reproduction:
 	$(CARGO) run --release --example reproduce > docs/reproduction.md
 
 # The browser benches first (the wasm bench's JSON feeds the wasm/native table, the page
-# bench's the "In the page" section), then the native figures.
+# bench's the "In the page" section, the page's memory the memory section), then the native figures.
 performance: site browser-tools
 	@mkdir -p target/perf
 	node tests/browser/bench.mjs --nodes 100000 --reps 3 > target/perf/wasm.json
 	node tests/browser/page_bench.mjs --reps 3 > target/perf/page.json
-	$(CARGO) run --release --features parallel --example perf -- --wasm target/perf/wasm.json --page target/perf/page.json --out docs/performance.md
+	node tests/browser/page_memory.mjs > target/perf/page-memory.json
+	$(CARGO) run --release --features parallel --example perf -- --wasm target/perf/wasm.json --page target/perf/page.json --page-memory target/perf/page-memory.json --out docs/performance.md
 
 # the README's pictures (docs/images/), drawn by the CLI from generated meshes, then the
 # papers' figures of the page's tour (docs/figures/*.png and docs/figures.md)

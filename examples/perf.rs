@@ -3,12 +3,16 @@
 //!
 //! ```text
 //! cargo run --release --features parallel --example perf -- \
-//!     [--sizes 10000,100000,1000000] [--wasm wasm.json] [--out docs/performance.md] [--json native.json]
+//!     [--sizes 10000,100000,1000000] [--wasm wasm.json] [--page page.json]
+//!     [--page-memory page-memory.json] [--out docs/performance.md] [--json native.json]
+//! cargo run --release --example perf -- --memory-only [--page-memory page-memory.json]
 //! ```
 //!
 //! Every figure is the median of a few timed passes, each over a fresh copy of the same
 //! generated mesh (the copy is not timed), in nanoseconds per node visit. `--wasm` reads the
 //! browser bench's JSON (`node tests/browser/bench.mjs`) and adds the wasm/native table.
+//! The memory section (alone with `--memory-only`, printed) measures each command in a
+//! child process of this program (`--memory-child`), whose peak resident memory it reports.
 
 use std::fmt::Write as _;
 use std::time::Instant;
@@ -139,9 +143,6 @@ type TargetRow<'a> = (&'a str, &'a str, &'a dyn Fn(&SizeReport) -> f64, f64);
 
 struct SizeReport {
     nodes: usize,
-    elements: usize,
-    generate_s: f64,
-    heap_bytes: usize,
     colours: usize,
     /// Greedy colouring of the free nodes, ns per node (made once per mesh, not in the passes)
     colouring_ns: f64,
@@ -158,9 +159,7 @@ struct SizeReport {
 }
 
 fn measure(n: usize, quick: bool) -> SizeReport {
-    let t = Instant::now();
     let mesh = bench_mesh(n);
-    let generate_s = t.elapsed().as_secs_f64();
     assert_eq!(mesh_stats(&mesh).inverted, 0, "rand2d is untangled");
     let (spatial, _) = mesh.renumbered_spatially();
     let reps = if n >= 1_000_000 {
@@ -252,9 +251,6 @@ fn measure(n: usize, quick: bool) -> SizeReport {
         render_ns,
         evaluations,
         nodes: mesh.node_count(),
-        elements: mesh.element_count(),
-        generate_s,
-        heap_bytes: mesh.heap_bytes(),
         colours,
         colouring_ns,
         rows,
@@ -314,6 +310,8 @@ fn main() {
     let mut wasm: Option<String> = None;
     let mut page: Option<String> = None;
     let mut page_only = false;
+    let mut memory_only = false;
+    let mut page_memory: Option<String> = None;
     let mut out: Option<String> = None;
     let mut json_out: Option<String> = None;
     let mut quick = false;
@@ -324,6 +322,12 @@ fn main() {
             "--wasm" => wasm = args.next(),
             "--page" => page = args.next(),
             "--page-only" => page_only = true,
+            "--memory-only" => memory_only = true,
+            "--page-memory" => page_memory = args.next(),
+            "--memory-child" => {
+                memory_child(&args.by_ref().collect::<Vec<_>>());
+                return;
+            }
             "--out" => out = args.next(),
             "--json" => json_out = args.next(),
             "--quick" => quick = true,
@@ -338,16 +342,20 @@ fn main() {
         print!("{}", page_section(page.as_deref()));
         return;
     }
+    if memory_only {
+        // the memory section alone (no timing), as the whole run writes it
+        print!("{}", memory_section(page_memory.as_deref()));
+        return;
+    }
     let machine = machine();
     let mut reports = Vec::new();
-    let mut hwm_after = Vec::new();
     for &n in &sizes {
         eprintln!("perf: {n} nodes …");
         let r = measure(n, quick);
-        hwm_after.push((n, vm_hwm()));
         reports.push(r);
     }
-    let doc = render(&machine, &reports, &hwm_after, wasm.as_deref()) + &page_section(page.as_deref());
+    let memory = memory_section(page_memory.as_deref());
+    let doc = render(&machine, &reports, &memory, wasm.as_deref()) + &page_section(page.as_deref());
     match out {
         Some(p) => std::fs::write(&p, &doc).unwrap_or_else(|e| panic!("cannot write {p}: {e}")),
         None => print!("{doc}"),
@@ -372,7 +380,7 @@ fn native(reports: &[SizeReport], nodes: usize, name: &str) -> Option<(f64, f64)
     r.rows.iter().find(|row| row.0 == name).map(|row| (row.1, row.2))
 }
 
-fn render(machine: &str, reports: &[SizeReport], hwm: &[(usize, Option<usize>)], wasm: Option<&str>) -> String {
+fn render(machine: &str, reports: &[SizeReport], memory: &str, wasm: Option<&str>) -> String {
     let mut d = String::new();
     let w = &mut d;
     let _ = writeln!(w, "# Performance\n");
@@ -459,19 +467,7 @@ fn render(machine: &str, reports: &[SizeReport], hwm: &[(usize, Option<usize>)],
         }
         let _ = writeln!(w, " one evaluation of `new` (the barrier design of eq. (8)) costs per sub-triangle one Lo α and one η² with their gradients: a handful of divisions, and a square root only where the star started inverted or near-degenerate (δ > 0). Chen's high-low-high search needs at least three evaluations per iteration (a low point, a high point, the parabola's vertex), so a visit of 3 iterations takes at least 10 evaluations. The 1 µs target needs fewer evaluations: a first step that usually needs no bracket (Newton from the analytic 2×2 Hessian, simple for linear triangles, whose N is linear and D quadratic in the node's position), measured against Chen's search for quality as well as speed; not made yet.");
     }
-    let _ = writeln!(w, "\n## Memory\n");
-    for (r, (_, h)) in reports.iter().zip(hwm) {
-        let _ = writeln!(
-            w,
-            "- {} nodes, {} elements: the mesh holds {:.1} MB (`Mesh::heap_bytes`, capacities of all arrays); peak resident memory of the run so far {} (generation with spade included); generated in {:.2} s.",
-            r.nodes,
-            r.elements,
-            r.heap_bytes as f64 / 1e6,
-            h.map(|b| format!("{:.0} MB", b as f64 / 1e6)).unwrap_or_else(|| "unknown".into()),
-            r.generate_s
-        );
-    }
-    let _ = writeln!(w, "\nTarget: a 1M-node mesh under 300 MB.\n");
+    let _ = write!(w, "\n{memory}");
     let _ = writeln!(w, "## Level-set sampling\n");
     let _ = writeln!(
         w,
@@ -564,6 +560,185 @@ fn wasm_table(w: &mut String, v: &serde_json::Value, reports: &[SizeReport]) {
 /// The "In the page" section from the JSON of `node tests/browser/page_bench.mjs`
 /// (`--page FILE`; `--page-only` prints this section alone, without a native run): the
 /// playground page itself at 100k and 1M nodes.
+/// The mesh of the memory figures: the 1M-node rand2D of the memory issue (Freitag's
+/// rand2d with 999 576 points inside and 1000 per side, seed 2003: 1 003 576 nodes).
+const MEMORY_MESH: (usize, usize, u64) = (999_576, 1000, SEED);
+
+/// The commands whose peak resident memory the memory section reports, each run in a
+/// child process (`--memory-child`): (what it does, its words for `memory_child`).
+const MEMORY_COMMANDS: [(&str, &[&str]); 6] = [
+    ("`smoothlab generate rand2d` (spade's Delaunay), written as .msh", &["generate"]),
+    ("`smoothlab stats` (read the .msh, statistics)", &["stats"]),
+    ("`smoothlab smooth`: read, 3 passes of rules + new in priority order (the default), write", &["smooth", "rules"]),
+    ("`smooth --strategy laplace`: read, 3 passes, write", &["smooth", "laplace"]),
+    ("`smooth --strategy opt`: read, 3 passes, write", &["smooth", "opt"]),
+    ("`smooth --strategy smart`: read, 3 passes, write", &["smooth", "smart"]),
+];
+
+/// A command of [`MEMORY_COMMANDS`] as `smoothlab` runs it (the library calls of its
+/// `generate`, `stats` and `smooth`), then prints this process's peak resident memory.
+/// Words: `generate OUT`, `stats IN`, `smooth STRATEGY IN OUT`.
+fn memory_child(words: &[String]) {
+    let w: Vec<&str> = words.iter().map(String::as_str).collect();
+    let opts = smoothlab::io::WriteOptions::default();
+    match w.as_slice() {
+        ["generate", out] => {
+            let (inside, per_side, seed) = MEMORY_MESH;
+            let mesh = rand2d(inside, per_side, seed).expect("rand2d");
+            smoothlab::io::write_path(&mesh, std::path::Path::new(out), &opts).expect("write");
+        }
+        ["stats", input] => {
+            let mesh = smoothlab::io::read_path(std::path::Path::new(input)).expect("read");
+            std::hint::black_box(mesh_stats(&mesh));
+        }
+        ["smooth", strategy, input, out] => {
+            let mut mesh = smoothlab::io::read_path(std::path::Path::new(input)).expect("read");
+            let (strategy, order) = match *strategy {
+                "rules" => (Strategy::Rules, Order::Priority),
+                "laplace" => (Strategy::Laplace, Order::Input),
+                "opt" => (Strategy::Opt, Order::Input),
+                "smart" => (Strategy::Smart, Order::Input),
+                other => panic!("perf: no strategy {other}"),
+            };
+            let obj = objective(ObjectiveKind::New);
+            let mut smoother =
+                Smoother::new(SmoothOptions::default().with_strategy(strategy).with_order(order)).expect("options");
+            let t0 = Instant::now();
+            let clock = move || t0.elapsed().as_secs_f64() * 1e3;
+            for _ in 0..3 {
+                std::hint::black_box(smoother.pass(&mut mesh, &*obj, &clock));
+            }
+            smoothlab::io::write_path(&mesh, std::path::Path::new(out), &opts).expect("write");
+            std::hint::black_box(mesh_stats(&mesh));
+        }
+        _ => panic!("perf: --memory-child generate OUT | stats IN | smooth STRATEGY IN OUT"),
+    }
+    println!("{}", vm_hwm().unwrap_or(0));
+}
+
+/// The peak resident memory, bytes, of a child running `memory_child` with `words`.
+fn child_peak(words: &[&str]) -> Option<usize> {
+    let exe = std::env::current_exe().ok()?;
+    let out = std::process::Command::new(exe).arg("--memory-child").args(words).output().ok()?;
+    if !out.status.success() {
+        eprintln!("perf: --memory-child {}: {}", words.join(" "), String::from_utf8_lossy(&out.stderr));
+        return None;
+    }
+    String::from_utf8(out.stdout).ok()?.trim().parse().ok()
+}
+
+/// The memory section: the bytes of each array of the 1M-node mesh per node and per
+/// element, the peak resident memory of each command on it, and the page's wasm memory
+/// (from `tests/browser/page_memory.mjs`'s JSON, when given).
+fn memory_section(page_memory: Option<&str>) -> String {
+    let mut w = String::new();
+    let (inside, per_side, seed) = MEMORY_MESH;
+    eprintln!("perf: memory …");
+    let mesh = rand2d(inside, per_side, seed).expect("rand2d");
+    let (n, e) = (mesh.node_count(), mesh.element_count());
+    let _ = writeln!(w, "## Memory\n");
+    let _ = writeln!(
+        w,
+        "The 1M-node rand2D of the memory issue (rand2d with {inside} points inside and {per_side} per side, seed {seed}: {n} nodes, {e} triangles, {} edges). \
+         Each array of the mesh (`Mesh::memory_parts`, capacities) in bytes per node and per element; *shared* arrays are shared by the mesh's clones \
+         (`Mesh` keeps the elements and the topology behind one `Arc`: a clone copies positions and fixed flags only, so the page's two sides hold them once).\n",
+        mesh.edges().len()
+    );
+    let _ = writeln!(w, "| array | MB | bytes per node | bytes per element | shared |\n|---|---:|---:|---:|---|");
+    let parts = mesh.memory_parts();
+    for p in &parts {
+        let _ = writeln!(
+            w,
+            "| {} | {:.1} | {:.2} | {:.2} | {} |",
+            p.name,
+            p.bytes as f64 / 1e6,
+            p.bytes as f64 / n as f64,
+            p.bytes as f64 / e as f64,
+            if p.shared { "yes" } else { "no" }
+        );
+    }
+    let total: usize = parts.iter().map(|p| p.bytes).sum();
+    let own: usize = parts.iter().filter(|p| !p.shared).map(|p| p.bytes).sum();
+    let _ = writeln!(
+        w,
+        "| **the mesh** (`Mesh::heap_bytes`) | **{:.1}** | **{:.1}** | **{:.1}** | |\n| a clone's own arrays | {:.1} | {:.1} | {:.1} | |\n",
+        total as f64 / 1e6,
+        total as f64 / n as f64,
+        total as f64 / e as f64,
+        own as f64 / 1e6,
+        own as f64 / n as f64,
+        own as f64 / e as f64
+    );
+    // the commands, each in a child process, on the mesh written as .msh
+    let dir = std::env::temp_dir().join(format!("smoothlab-perf-memory-{}", std::process::id()));
+    let _ = std::fs::create_dir_all(&dir);
+    let file = dir.join("rand2d-1m.msh");
+    let out = dir.join("smoothed.msh");
+    smoothlab::io::write_path(&mesh, &file, &smoothlab::io::WriteOptions::default()).expect("write the test mesh");
+    drop(mesh);
+    let size = std::fs::metadata(&file).map(|m| m.len()).unwrap_or(0);
+    let _ = writeln!(
+        w,
+        "Peak resident memory of each command on that mesh ({:.0} MB as .msh 2.2), the whole process: the library calls of `smoothlab`'s commands run in a child process of `examples/perf.rs`, whose `VmHWM` (what `/usr/bin/time -v` reports as maximum resident set size) is read at its end. \
+         Target of the memory issue: read, 3 passes and written in ≤ 250 MB.\n",
+        size as f64 / 1e6
+    );
+    let _ = writeln!(w, "| command | peak RSS | ≤ 250 MB |\n|---|---:|---|");
+    let (f, o) = (file.to_string_lossy().into_owned(), out.to_string_lossy().into_owned());
+    let gen_out = dir.join("generated.msh").to_string_lossy().into_owned();
+    for (what, words) in MEMORY_COMMANDS {
+        let mut args: Vec<&str> = words.to_vec();
+        match words[0] {
+            "generate" => args.push(&gen_out),
+            "stats" => args.push(&f),
+            _ => {
+                args.push(&f);
+                args.push(&o);
+            }
+        }
+        eprintln!("perf: memory of {}", args.join(" "));
+        let peak = child_peak(&args);
+        let shown = peak.map(|b| format!("{:.0} MB", b as f64 / 1e6)).unwrap_or_else(|| "failed".into());
+        let met = match (words[0], peak) {
+            ("smooth", Some(b)) => if b as f64 <= 250e6 { "✓" } else { "✗" },
+            _ => "",
+        };
+        let _ = writeln!(w, "| {what} | {shown} | {met} |");
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+    let _ = writeln!(
+        w,
+        "\nWhere the bytes of a command go (by heaptrack): the peak of every command that reads a file is in reading, where the file's text is held whole \
+         with what has been read (the nodes with their lines and tags, the elements as node indices); the text is let go before the mesh is built. \
+         Building the topology holds the mesh being built and the edge uses filed by node (8 bytes a use, 24 bytes a triangle); a pass adds the smoother's \
+         visit order and the statistics' arrays; writing adds a 64 KiB buffer (the text goes to the file in chunks).\n"
+    );
+    // the page
+    let _ = writeln!(w, "The page (`node tests/browser/page_memory.mjs`): the worker's wasm memory (`memory.buffer.byteLength`, which never shrinks) with the 1M-node sample (generated in wasm), both sides. Target: ≤ 400 MiB.\n");
+    let v: Option<serde_json::Value> =
+        page_memory.and_then(|p| std::fs::read_to_string(p).ok()).and_then(|t| serde_json::from_str(&t).ok());
+    match v {
+        None => {
+            let _ = writeln!(w, "Not measured in this run (no `--page-memory` file).\n");
+        }
+        Some(v) => {
+            let mib = |x: &serde_json::Value| x.as_f64().map(|b| b / (1u64 << 20) as f64).unwrap_or(f64::NAN);
+            let mark = |x: f64| if x <= 400.0 { "✓" } else { "✗" };
+            let (loaded, smoothed) = (mib(&v["loaded"]["peak_bytes"]), mib(&v["smoothed"]["peak_bytes"]));
+            let _ = writeln!(
+                w,
+                "| {} ({} nodes, {} elements) | wasm memory | ≤ 400 MiB |\n|---|---:|---|\n| the sample loaded and drawn | {loaded:.0} MiB | {} |\n| after one Step (rules, priority order, both sides) | {smoothed:.0} MiB | {} |\n",
+                v["browser"].as_str().unwrap_or("Chromium"),
+                v["nodes"],
+                v["elements"],
+                mark(loaded),
+                mark(smoothed)
+            );
+        }
+    }
+    w
+}
+
 fn page_section(path: Option<&str>) -> String {
     let mut w = String::new();
     let _ = writeln!(w, "## In the page
@@ -727,7 +902,7 @@ fn page_section(path: Option<&str>) -> String {
     }
     let _ = writeln!(
         w,
-        "- wasm memory (`memory.buffer.byteLength`, which never shrinks): {} at the end, {} at most. The page holds the 1M mesh twice (one per side; the mesh as loaded as positions only).\n",
+        "- wasm memory (`memory.buffer.byteLength`, which never shrinks): {} at the end, {} at most. The two sides share the mesh's elements and topology (clones of a `Mesh` share them) and each holds its own positions; the mesh as loaded is kept as positions only.\n",
         mib(&m["memory"]["bytes"]),
         mib(&m["memory"]["peak_bytes"])
     );

@@ -8,6 +8,8 @@
 //! signed area positive by reversing *every* element when it is negative, never one
 //! element alone, so a tangled mesh stays tangled until it is smoothed.
 
+use std::sync::Arc;
+
 use glam::DVec2;
 use serde::Serialize;
 
@@ -122,15 +124,15 @@ pub struct Edge {
     pub b: u32,
     /// Mid-side node, or [`NONE`].
     pub mid: u32,
-    /// The one or two elements using the edge; `elems[1] == NONE` on the boundary.
-    pub elems: [u32; 2],
+    /// Used by one element only.
+    pub boundary: bool,
     /// A boundary edge whose mid-side node is off the chord (curved boundary).
     pub curved: bool,
 }
 
 impl Edge {
     pub fn is_boundary(&self) -> bool {
-        self.elems[1] == NONE
+        self.boundary
     }
 }
 
@@ -151,6 +153,25 @@ pub struct Topology {
     kinds_present: KindsPresent,
 }
 
+/// One array of a mesh and its size (see [`Mesh::memory_parts`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct MemoryPart {
+    pub name: &'static str,
+    /// Its capacity in bytes.
+    pub bytes: usize,
+    /// Whether clones of the mesh share it.
+    pub shared: bool,
+}
+
+/// What a mesh's clones share: the elements and the topology built from them.
+#[derive(Debug, Default)]
+struct Connectivity {
+    kinds: Vec<ElementKind>,
+    elem_start: Vec<u32>,
+    elem_nodes: Vec<u32>,
+    topo: Topology,
+}
+
 /// Which element families a mesh holds.
 #[derive(Clone, Copy, Debug, Default)]
 struct KindsPresent {
@@ -160,16 +181,17 @@ struct KindsPresent {
 }
 
 /// A planar 2D mesh of triangles and quads, linear or quadratic, possibly mixed.
+///
+/// The elements and the topology never change once built, and clones share them: a
+/// clone copies the positions and fixed flags only (17 bytes a node), so the page's
+/// two sides hold one connectivity between them.
 #[derive(Clone, Debug)]
 pub struct Mesh {
     /// Node positions. The smoothers move corner nodes here; mid-side nodes follow.
     pub nodes: Vec<DVec2>,
     /// Nodes that never move.
     pub fixed: Vec<bool>,
-    kinds: Vec<ElementKind>,
-    elem_start: Vec<u32>,
-    elem_nodes: Vec<u32>,
-    topo: Topology,
+    conn: Arc<Connectivity>,
     /// The 3D plane the file's points lay in, when they were not in the xy plane at z = 0
     /// (see [`Mesh::to_3d`]); `None` for a 2D mesh.
     pub plane: Option<Plane>,
@@ -205,17 +227,17 @@ impl Mesh {
         self.nodes.len()
     }
     pub fn element_count(&self) -> usize {
-        self.kinds.len()
+        self.conn.kinds.len()
     }
     pub fn kind(&self, e: usize) -> ElementKind {
-        self.kinds[e]
+        self.conn.kinds[e]
     }
     pub fn kinds(&self) -> &[ElementKind] {
-        &self.kinds
+        &self.conn.kinds
     }
     /// The node indices of element `e`, in the order documented at the top of this module.
     pub fn element(&self, e: usize) -> &[u32] {
-        &self.elem_nodes[self.elem_start[e] as usize..self.elem_start[e + 1] as usize]
+        &self.conn.elem_nodes[self.conn.elem_start[e] as usize..self.conn.elem_start[e + 1] as usize]
     }
     /// Positions of the nodes of element `e`, copied into `out` (cleared first).
     pub fn element_points(&self, e: usize, out: &mut Vec<DVec2>) {
@@ -231,48 +253,48 @@ impl Mesh {
         p
     }
     pub fn topology(&self) -> &Topology {
-        &self.topo
+        &self.conn.topo
     }
     /// Elements that use node `n` (its star).
     pub fn node_elements(&self, n: usize) -> &[u32] {
-        self.topo.node_elements(n)
+        self.conn.topo.node_elements(n)
     }
     /// Corner nodes joined to corner node `n` by an element edge.
     pub fn neighbours(&self, n: usize) -> &[u32] {
-        self.topo.neighbours(n)
+        self.conn.topo.neighbours(n)
     }
     pub fn edges(&self) -> &[Edge] {
-        &self.topo.edges
+        &self.conn.topo.edges
     }
     pub fn is_boundary(&self, n: usize) -> bool {
-        self.topo.boundary[n]
+        self.conn.topo.boundary[n]
     }
     pub fn role(&self, n: usize) -> NodeRole {
-        self.topo.role[n]
+        self.conn.topo.role[n]
     }
     /// Whether node `n` is an end or mid node of a curved boundary edge.
     pub fn is_on_curved_boundary(&self, n: usize) -> bool {
-        self.topo.on_curved[n]
+        self.conn.topo.on_curved[n]
     }
     /// A node the smoothers may move: a corner that is not fixed.
     pub fn is_free(&self, n: usize) -> bool {
-        !self.fixed[n] && self.topo.role[n] == NodeRole::Corner
+        !self.fixed[n] && self.conn.topo.role[n] == NodeRole::Corner
     }
     pub fn free_count(&self) -> usize {
         (0..self.node_count()).filter(|&n| self.is_free(n)).count()
     }
     pub fn has_quadratic(&self) -> bool {
-        self.topo.kinds_present.quadratic
+        self.conn.topo.kinds_present.quadratic
     }
     pub fn has_triangles(&self) -> bool {
-        self.topo.kinds_present.triangles
+        self.conn.topo.kinds_present.triangles
     }
     pub fn has_quads(&self) -> bool {
-        self.topo.kinds_present.quads
+        self.conn.topo.kinds_present.quads
     }
     /// Signed area of the corner polygon of element `e` (positive when counter-clockwise).
     pub fn corner_area(&self, e: usize) -> f64 {
-        let k = self.kinds[e].corners();
+        let k = self.conn.kinds[e].corners();
         let ids = self.element(e);
         polygon_area((0..k).map(|i| self.nodes[ids[i] as usize]))
     }
@@ -280,7 +302,7 @@ impl Mesh {
     /// length by `hypot`, so that it neither overflows near 1e300 nor underflows near
     /// 1e-300 (the renderer decides from it whether edges are drawn).
     pub fn mean_edge_length(&self) -> f64 {
-        let edges = &self.topo.edges;
+        let edges = &self.conn.topo.edges;
         if edges.is_empty() {
             return 0.0;
         }
@@ -298,7 +320,7 @@ impl Mesh {
         let mut lo = DVec2::splat(f64::INFINITY);
         let mut hi = DVec2::splat(f64::NEG_INFINITY);
         for (n, p) in self.nodes.iter().enumerate() {
-            if self.topo.role[n] != NodeRole::Unused {
+            if self.conn.topo.role[n] != NodeRole::Unused {
                 lo = lo.min(*p);
                 hi = hi.max(*p);
             }
@@ -310,13 +332,13 @@ impl Mesh {
     /// This is the rule by which mid-side nodes follow the corners the smoothers move;
     /// curved boundary edges keep their mid node. Call after moving corner nodes.
     pub fn update_mid_nodes(&mut self) {
-        for e in &self.topo.edges {
+        for e in &self.conn.topo.edges {
             if e.mid != NONE && !e.curved && !self.fixed[e.mid as usize] {
                 self.nodes[e.mid as usize] = 0.5 * (self.nodes[e.a as usize] + self.nodes[e.b as usize]);
             }
         }
-        for el in 0..self.kinds.len() {
-            if self.kinds[el] == ElementKind::Quad9 {
+        for el in 0..self.conn.kinds.len() {
+            if self.conn.kinds[el] == ElementKind::Quad9 {
                 let ids = self.element(el);
                 let c = ids[8] as usize;
                 if !self.fixed[c] {
@@ -332,30 +354,30 @@ impl Mesh {
         if !self.has_quadratic() {
             return;
         }
-        for &el in self.topo.node_elements(n) {
+        for &el in self.conn.topo.node_elements(n) {
             let el = el as usize;
-            let kind = self.kinds[el];
+            let kind = self.conn.kinds[el];
             if !kind.is_quadratic() {
                 continue;
             }
-            let start = self.elem_start[el] as usize;
+            let start = self.conn.elem_start[el] as usize;
             let k = kind.corners();
             for i in 0..k {
-                let a = self.elem_nodes[start + i] as usize;
-                let b = self.elem_nodes[start + (i + 1) % k] as usize;
+                let a = self.conn.elem_nodes[start + i] as usize;
+                let b = self.conn.elem_nodes[start + (i + 1) % k] as usize;
                 if a != n && b != n {
                     continue;
                 }
-                let m = self.elem_nodes[start + k + i] as usize;
-                if self.fixed[m] || self.topo.on_curved[m] {
+                let m = self.conn.elem_nodes[start + k + i] as usize;
+                if self.fixed[m] || self.conn.topo.on_curved[m] {
                     continue;
                 }
                 self.nodes[m] = 0.5 * (self.nodes[a] + self.nodes[b]);
             }
             if kind == ElementKind::Quad9 {
-                let c = self.elem_nodes[start + 8] as usize;
+                let c = self.conn.elem_nodes[start + 8] as usize;
                 if !self.fixed[c] {
-                    let s: DVec2 = (0..8).map(|i| self.nodes[self.elem_nodes[start + i] as usize]).sum();
+                    let s: DVec2 = (0..8).map(|i| self.nodes[self.conn.elem_nodes[start + i] as usize]).sum();
                     self.nodes[c] = s / 8.0;
                 }
             }
@@ -377,7 +399,7 @@ impl Mesh {
         let cells = (1u32 << HILBERT_ORDER) as f64;
         let scale = if size > 0.0 && size.is_finite() { (cells - 1.0) / size } else { 0.0 };
         let key = |i: usize| -> u64 {
-            if self.topo.role[i] == NodeRole::Unused {
+            if self.conn.topo.role[i] == NodeRole::Unused {
                 return u64::MAX;
             }
             let q = ((self.nodes[i] - lo) * scale).clamp(DVec2::ZERO, DVec2::splat(cells - 1.0));
@@ -391,31 +413,34 @@ impl Mesh {
         for (new, &old) in perm.iter().enumerate() {
             inv[old as usize] = new as u32;
         }
-        let ne = self.kinds.len();
+        let ne = self.conn.kinds.len();
         let mut elems: Vec<(u32, u32)> = (0..ne).map(|e| (inv[self.element(e)[0] as usize], e as u32)).collect();
         elems.sort_unstable();
         let mut kinds = Vec::with_capacity(ne);
         let mut elem_start = Vec::with_capacity(ne + 1);
-        let mut elem_nodes = Vec::with_capacity(self.elem_nodes.len());
+        let mut elem_nodes = Vec::with_capacity(self.conn.elem_nodes.len());
         elem_start.push(0);
         for &(_, e) in &elems {
-            kinds.push(self.kinds[e as usize]);
+            kinds.push(self.conn.kinds[e as usize]);
             elem_nodes.extend(self.element(e as usize).iter().map(|&i| inv[i as usize]));
             elem_start.push(elem_nodes.len() as u32);
         }
         let mut mesh = Mesh {
             nodes: perm.iter().map(|&i| self.nodes[i as usize]).collect(),
             fixed: perm.iter().map(|&i| self.fixed[i as usize]).collect(),
-            kinds,
-            elem_start,
-            elem_nodes,
-            topo: Topology::default(),
+            conn: Arc::new(Connectivity { kinds, elem_start, elem_nodes, topo: Topology::default() }),
             plane: self.plane,
         };
         // The same elements under other numbers: every check that passed for `self`
         // passes here, so building the topology cannot fail.
-        mesh.topo = build_topology(&mesh, &[]).expect("renumbering keeps a valid topology");
+        let topo = build_topology(&mesh, &[]).expect("renumbering keeps a valid topology");
+        mesh.connectivity_mut().topo = topo;
         (mesh, perm)
+    }
+
+    /// The connectivity of a mesh being built, not shared yet.
+    fn connectivity_mut(&mut self) -> &mut Connectivity {
+        Arc::get_mut(&mut self.conn).expect("a mesh being built shares nothing")
     }
 
     /// Copies the node positions of `renumbered`, a mesh made by
@@ -441,40 +466,48 @@ impl Mesh {
     }
 
     /// Bytes held by the mesh: the capacities of all its arrays (positions, flags,
-    /// elements and the topology), not counting the `Mesh` struct itself.
+    /// elements and the topology, shared ones included), not counting the `Mesh`
+    /// struct itself. [`memory_parts`](Self::memory_parts) says where they are.
     pub fn heap_bytes(&self) -> usize {
-        use std::mem::size_of;
-        fn cap<T>(v: &Vec<T>) -> usize {
-            v.capacity() * size_of::<T>()
+        self.memory_parts().iter().map(|p| p.bytes).sum()
+    }
+
+    /// Each array of the mesh with the bytes it holds (its capacity), and whether clones
+    /// share it (the elements and the topology) or each has its own (positions, flags).
+    pub fn memory_parts(&self) -> Vec<MemoryPart> {
+        fn part<T>(name: &'static str, v: &Vec<T>, shared: bool) -> MemoryPart {
+            MemoryPart { name, bytes: v.capacity() * std::mem::size_of::<T>(), shared }
         }
-        let t = &self.topo;
-        cap(&self.nodes)
-            + cap(&self.fixed)
-            + cap(&self.kinds)
-            + cap(&self.elem_start)
-            + cap(&self.elem_nodes)
-            + cap(&t.node_elem_start)
-            + cap(&t.node_elems)
-            + cap(&t.node_nbr_start)
-            + cap(&t.node_nbrs)
-            + cap(&t.edges)
-            + cap(&t.role)
-            + cap(&t.boundary)
-            + cap(&t.on_curved)
+        let (c, t) = (&*self.conn, &self.conn.topo);
+        vec![
+            part("node positions (DVec2)", &self.nodes, false),
+            part("fixed flags", &self.fixed, false),
+            part("element kinds", &c.kinds, true),
+            part("element offsets (u32)", &c.elem_start, true),
+            part("element nodes (u32)", &c.elem_nodes, true),
+            part("node → elements offsets (u32)", &t.node_elem_start, true),
+            part("node → elements (u32)", &t.node_elems, true),
+            part("node → neighbours offsets (u32)", &t.node_nbr_start, true),
+            part("node → neighbours (u32)", &t.node_nbrs, true),
+            part("edges (a, b, mid, flags: 16 bytes)", &t.edges, true),
+            part("node roles", &t.role, true),
+            part("boundary flags", &t.boundary, true),
+            part("curved-boundary flags", &t.on_curved, true),
+        ]
     }
 
     /// Checks the invariants of the model; used by the tests (as spade's `sanity_check`).
     pub fn sanity_check(&self) -> std::result::Result<(), String> {
         let n = self.nodes.len();
-        if self.fixed.len() != n || self.topo.role.len() != n || self.topo.boundary.len() != n {
+        if self.fixed.len() != n || self.conn.topo.role.len() != n || self.conn.topo.boundary.len() != n {
             return Err("per-node arrays differ in length".into());
         }
-        if self.elem_start.len() != self.kinds.len() + 1 {
+        if self.conn.elem_start.len() != self.conn.kinds.len() + 1 {
             return Err("element offsets".into());
         }
-        for e in 0..self.kinds.len() {
+        for e in 0..self.conn.kinds.len() {
             let ids = self.element(e);
-            if ids.len() != self.kinds[e].node_count() {
+            if ids.len() != self.conn.kinds[e].node_count() {
                 return Err(format!("element {e} has {} nodes", ids.len()));
             }
             for &i in ids {
@@ -491,14 +524,14 @@ impl Mesh {
                 return Err("non-finite coordinate".into());
             }
         }
-        for (i, e) in self.topo.edges.iter().enumerate() {
+        for (i, e) in self.conn.topo.edges.iter().enumerate() {
             if e.a >= e.b {
                 return Err(format!("edge {i} not ordered"));
             }
             if !self.neighbours(e.a as usize).contains(&e.b) || !self.neighbours(e.b as usize).contains(&e.a) {
                 return Err(format!("edge {i} missing from neighbour lists"));
             }
-            if e.is_boundary() && !(self.topo.boundary[e.a as usize] && self.topo.boundary[e.b as usize]) {
+            if e.is_boundary() && !(self.conn.topo.boundary[e.a as usize] && self.conn.topo.boundary[e.b as usize]) {
                 return Err(format!("boundary edge {i} has an interior end"));
             }
         }
@@ -627,6 +660,17 @@ impl MeshBuilder {
         b.elem_lines.reserve(elements.min(CAP));
         b
     }
+    /// Reserves room for exactly this many more nodes, elements and element node ids (for
+    /// counts that are known, not claimed by a file): no array then grows by doubling,
+    /// which in wasm copies it and holds both copies for a moment.
+    pub(crate) fn reserve_exact(&mut self, nodes: usize, elements: usize, element_nodes: usize) {
+        self.points.reserve_exact(nodes);
+        self.point_lines.reserve_exact(nodes);
+        self.kinds.reserve_exact(elements);
+        self.elem_start.reserve_exact(elements);
+        self.elem_lines.reserve_exact(elements);
+        self.elem_nodes.reserve_exact(element_nodes);
+    }
     /// Adds a node given in 3D (`z = 0` for 2D formats); `line` is its file line (0 if none).
     pub fn add_node(&mut self, p: [f64; 3], line: usize) -> usize {
         self.points.push(p);
@@ -638,6 +682,10 @@ impl MeshBuilder {
     }
     pub fn element_count(&self) -> usize {
         self.kinds.len()
+    }
+    /// The file line of every node added (0 where none was given).
+    pub(crate) fn node_lines(&self) -> &[u32] {
+        &self.point_lines
     }
     /// Adds an element with 0-based node indices (checked in [`build`](Self::build)).
     pub fn add_element(&mut self, kind: ElementKind, nodes: &[u32], line: usize) {
@@ -703,7 +751,12 @@ impl MeshBuilder {
         kinds.shrink_to_fit();
         elem_start.shrink_to_fit();
         elem_nodes.shrink_to_fit();
-        let mut mesh = Mesh { plane, nodes, fixed: vec![false; n], kinds, elem_start, elem_nodes, topo: Topology::default() };
+        let mut mesh = Mesh {
+            plane,
+            nodes,
+            fixed: vec![false; n],
+            conn: Arc::new(Connectivity { kinds, elem_start, elem_nodes, topo: Topology::default() }),
+        };
         // Orientation of the whole mesh by its total signed area, decided by the sign of
         // total − (total of the reversed mesh), each summed as its own corner order gives:
         // reversing negates that difference exactly, so a mesh reversed here is never
@@ -721,23 +774,25 @@ impl MeshBuilder {
             let ids = mesh.element(e);
             polygon_area(order.iter().map(|&j| mesh.nodes[ids[j] as usize] * unit))
         };
-        let forward: f64 = (0..mesh.kinds.len()).map(|e| area_in(e, &[0, 1, 2, 3][..mesh.kinds[e].corners()])).sum();
-        let backward: f64 = (0..mesh.kinds.len())
-            .map(|e| area_in(e, &mesh.kinds[e].reversed_order()[..mesh.kinds[e].corners()]))
+        let forward: f64 = (0..mesh.conn.kinds.len()).map(|e| area_in(e, &[0, 1, 2, 3][..mesh.conn.kinds[e].corners()])).sum();
+        let backward: f64 = (0..mesh.conn.kinds.len())
+            .map(|e| area_in(e, &mesh.conn.kinds[e].reversed_order()[..mesh.conn.kinds[e].corners()]))
             .sum();
         if forward - backward < 0.0 {
-            for e in 0..mesh.kinds.len() {
-                let s = mesh.elem_start[e] as usize;
-                let k = mesh.kinds[e];
+            let c = mesh.connectivity_mut();
+            for e in 0..c.kinds.len() {
+                let s = c.elem_start[e] as usize;
+                let k = c.kinds[e];
                 let mut old = [0u32; 9];
-                old[..k.node_count()].copy_from_slice(&mesh.elem_nodes[s..s + k.node_count()]);
+                old[..k.node_count()].copy_from_slice(&c.elem_nodes[s..s + k.node_count()]);
                 for (i, &j) in k.reversed_order().iter().enumerate() {
-                    mesh.elem_nodes[s + i] = old[j];
+                    c.elem_nodes[s + i] = old[j];
                 }
             }
         }
-        mesh.topo = build_topology(&mesh, &self.elem_lines)?;
-        let boundary = mesh.topo.boundary.clone();
+        let topo = build_topology(&mesh, &self.elem_lines)?;
+        mesh.connectivity_mut().topo = topo;
+        let boundary = mesh.conn.topo.boundary.clone();
         mesh.fixed = match self.fixed {
             FixedSpec::Boundary => boundary,
             FixedSpec::Exact(f) => {
@@ -750,7 +805,7 @@ impl MeshBuilder {
         };
         // Nodes no element uses never move.
         for i in 0..n {
-            if mesh.topo.role[i] == NodeRole::Unused {
+            if mesh.conn.topo.role[i] == NodeRole::Unused {
                 mesh.fixed[i] = true;
             }
         }
@@ -910,7 +965,7 @@ fn norm(v: glam::DVec3) -> f64 {
 
 fn build_topology(mesh: &Mesh, elem_lines: &[u32]) -> Result<Topology> {
     let n = mesh.nodes.len();
-    let ne = mesh.kinds.len();
+    let ne = mesh.conn.kinds.len();
     // node -> elements (counting sort)
     let mut count = vec![0u32; n + 1];
     for e in 0..ne {
@@ -933,7 +988,7 @@ fn build_topology(mesh: &Mesh, elem_lines: &[u32]) -> Result<Topology> {
     // roles
     let mut role = vec![NodeRole::Unused; n];
     for e in 0..ne {
-        let k = mesh.kinds[e];
+        let k = mesh.conn.kinds[e];
         for (j, &i) in mesh.element(e).iter().enumerate() {
             let r = if j < k.corners() {
                 NodeRole::Corner
@@ -950,71 +1005,97 @@ fn build_topology(mesh: &Mesh, elem_lines: &[u32]) -> Result<Topology> {
             };
         }
     }
-    // edges: sort (min, max, elem·4 + local edge) records, 12 bytes each (the mid-side
-    // node is looked up from the element when the edge is made), exactly as many as edge
-    // uses: the largest temporary of the topology (72 MB for 2M triangles)
+    // edges: every corner edge (a, b), a < b, of every element, as (b, element·4 + local
+    // edge) filed under a by a counting sort (8 bytes a use: the largest temporary of
+    // the topology, 48 MB for 2M triangles), then each node's short list sorted, so that
+    // edges come out ordered by (a, b) with their elements in increasing order; they are
+    // counted first so that their array is allocated once, exactly.
     if ne >= 1 << 30 {
         return Err(Error::TooLarge(format!("the mesh has {ne} elements; smoothlab takes at most 2^30 (1073741824)")));
     }
-    let uses: usize = mesh.kinds.iter().map(|k| k.corners()).sum();
-    let mut recs: Vec<(u32, u32, u32)> = Vec::with_capacity(uses);
-    for e in 0..ne {
+    let corner_edges = |e: usize| {
         let ids = mesh.element(e);
-        let c = mesh.kinds[e].corners();
-        for i in 0..c {
-            let (a, b) = (ids[i], ids[(i + 1) % c]);
-            recs.push((a.min(b), a.max(b), (e as u32) << 2 | i as u32));
+        let c = mesh.conn.kinds[e].corners();
+        (0..c).map(move |i| (ids[i].min(ids[(i + 1) % c]), ids[i].max(ids[(i + 1) % c]), i as u32))
+    };
+    let mut use_start = vec![0u32; n + 1];
+    for e in 0..ne {
+        for (a, _, _) in corner_edges(e) {
+            use_start[a as usize + 1] += 1;
         }
     }
-    recs.sort_unstable();
-    let elem_of = |r: &(u32, u32, u32)| r.2 >> 2;
-    let mid_of = |r: &(u32, u32, u32)| {
-        let e = (r.2 >> 2) as usize;
-        mesh.kinds[e].mid((r.2 & 3) as usize).map(|m| mesh.element(e)[m]).unwrap_or(NONE)
+    for i in 0..n {
+        use_start[i + 1] += use_start[i];
+    }
+    let mut uses = vec![(0u32, 0u32); use_start[n] as usize];
+    {
+        let mut fill = use_start.clone();
+        for e in 0..ne {
+            for (a, b, i) in corner_edges(e) {
+                uses[fill[a as usize] as usize] = (b, (e as u32) << 2 | i);
+                fill[a as usize] += 1;
+            }
+        }
+    }
+    let mut edge_count = 0usize;
+    for a in 0..n {
+        let recs = &mut uses[use_start[a] as usize..use_start[a + 1] as usize];
+        recs.sort_unstable();
+        edge_count += recs.iter().enumerate().filter(|&(k, r)| k == 0 || recs[k - 1].0 != r.0).count();
+    }
+    let mid_of = |r: u32| {
+        let e = (r >> 2) as usize;
+        mesh.conn.kinds[e].mid((r & 3) as usize).map(|m| mesh.element(e)[m]).unwrap_or(NONE)
     };
     let line = |e: u32| elem_lines.get(e as usize).copied().filter(|&l| l > 0).map(|l| l as usize);
-    let mut edges = Vec::with_capacity(recs.len() / 2 + 1);
-    let mut i = 0;
-    while i < recs.len() {
-        let mut j = i + 1;
-        while j < recs.len() && recs[j].0 == recs[i].0 && recs[j].1 == recs[i].1 {
-            j += 1;
+    let mut edges = Vec::with_capacity(edge_count);
+    for a in 0..n {
+        let recs = &uses[use_start[a] as usize..use_start[a + 1] as usize];
+        let mut i = 0;
+        while i < recs.len() {
+            let mut j = i + 1;
+            while j < recs.len() && recs[j].0 == recs[i].0 {
+                j += 1;
+            }
+            let (a, b, e0, m0) = (a as u32, recs[i].0, recs[i].1 >> 2, mid_of(recs[i].1));
+            if j - i > 2 {
+                let es: Vec<String> = recs[i..j].iter().map(|r| (r.1 >> 2).to_string()).collect();
+                let third = recs[i + 2].1 >> 2;
+                return Err(Error::element(
+                    third as usize,
+                    line(third),
+                    format!(
+                        "edge between nodes {} and {} is shared by {} elements ({}); a 2D mesh edge belongs to one or two",
+                        a + 1,
+                        b + 1,
+                        j - i,
+                        es.join(", ")
+                    ),
+                ));
+            }
+            if j - i == 2 && mid_of(recs[i + 1].1) != m0 {
+                let (m1, other) = (mid_of(recs[i + 1].1), recs[i + 1].1 >> 2);
+                let desc = |m: u32| if m == NONE { "none".to_string() } else { (m + 1).to_string() };
+                return Err(Error::element(
+                    other as usize,
+                    line(other),
+                    format!(
+                        "shares the edge between nodes {} and {} with element {} but they disagree on its mid-side node ({} vs {})",
+                        a + 1,
+                        b + 1,
+                        e0,
+                        desc(m1),
+                        desc(m0)
+                    ),
+                ));
+            }
+            edges.push(Edge { a, b, mid: m0, boundary: j - i == 1, curved: false });
+            i = j;
         }
-        let (a, b, e0, m0) = (recs[i].0, recs[i].1, elem_of(&recs[i]), mid_of(&recs[i]));
-        if j - i > 2 {
-            let es: Vec<String> = recs[i..j].iter().map(|r| elem_of(r).to_string()).collect();
-            return Err(Error::element(
-                elem_of(&recs[i + 2]) as usize,
-                line(elem_of(&recs[i + 2])),
-                format!(
-                    "edge between nodes {} and {} is shared by {} elements ({}); a 2D mesh edge belongs to one or two",
-                    a + 1,
-                    b + 1,
-                    j - i,
-                    es.join(", ")
-                ),
-            ));
-        }
-        let e1 = if j - i == 2 { elem_of(&recs[i + 1]) } else { NONE };
-        if j - i == 2 && mid_of(&recs[i + 1]) != m0 {
-            let (m1, other) = (mid_of(&recs[i + 1]), elem_of(&recs[i + 1]));
-            let desc = |m: u32| if m == NONE { "none".to_string() } else { (m + 1).to_string() };
-            return Err(Error::element(
-                other as usize,
-                line(other),
-                format!(
-                    "shares the edge between nodes {} and {} with element {} but they disagree on its mid-side node ({} vs {})",
-                    a + 1,
-                    b + 1,
-                    e0,
-                    desc(m1),
-                    desc(m0)
-                ),
-            ));
-        }
-        edges.push(Edge { a, b, mid: m0, elems: [e0, e1], curved: false });
-        i = j;
     }
+    debug_assert_eq!(edges.len(), edge_count);
+    drop(uses);
+    drop(use_start);
     // boundary flags and curved boundary edges
     let mut boundary = vec![false; n];
     let mut on_curved = vec![false; n];
@@ -1055,9 +1136,9 @@ fn build_topology(mesh: &Mesh, elem_lines: &[u32]) -> Result<Topology> {
         fill[e.b as usize] += 1;
     }
     let kinds_present = KindsPresent {
-        triangles: mesh.kinds.iter().any(|k| k.is_triangle()),
-        quads: mesh.kinds.iter().any(|k| k.is_quad()),
-        quadratic: mesh.kinds.iter().any(|k| k.is_quadratic()),
+        triangles: mesh.conn.kinds.iter().any(|k| k.is_triangle()),
+        quads: mesh.conn.kinds.iter().any(|k| k.is_quad()),
+        quadratic: mesh.conn.kinds.iter().any(|k| k.is_quadratic()),
     };
     Ok(Topology { node_elem_start, node_elems, node_nbr_start, node_nbrs, edges, role, boundary, on_curved, kinds_present })
 }
@@ -1247,6 +1328,21 @@ mod tests {
         // 4 positions (64 bytes) and 6 element node ids (24) at the least
         assert!(b >= 4 * 16 + 6 * 4, "{b}");
         assert!(b < 4096, "{b}");
+        // 5 edges of 16 bytes, exactly as many as there are
+        let edges = m.memory_parts().into_iter().find(|p| p.name.starts_with("edges")).unwrap();
+        assert_eq!(edges.bytes, 5 * 16);
+        assert_eq!(std::mem::size_of::<Edge>(), 16);
+    }
+
+    #[test]
+    fn clones_share_the_connectivity() {
+        let m = square_two_tris().build().unwrap();
+        let mut c = m.clone();
+        assert!(Arc::ptr_eq(&m.conn, &c.conn));
+        c.nodes[0].x += 0.5;
+        assert_eq!(m.nodes[0].x, 0.0, "positions are each clone's own");
+        let own: usize = m.memory_parts().iter().filter(|p| !p.shared).map(|p| p.bytes).sum();
+        assert_eq!(own, m.nodes.capacity() * 16 + m.fixed.capacity());
     }
 
     #[test]

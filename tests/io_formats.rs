@@ -241,3 +241,32 @@ fn unused_nodes_are_kept_and_fixed() {
     assert_eq!(back.nodes, m.nodes);
     assert!(back.fixed[2]);
 }
+
+#[test]
+fn files_stream_the_same_bytes_and_refusals_make_no_file() {
+    // write_path hands the text to the file in chunks: the bytes must be write_string's
+    let big = smoothlab::generate::rand2d(3000, 20, 5).unwrap(); // a text of several chunks
+    let dir = std::env::temp_dir().join(format!("smoothlab-io-stream-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    for (name, format) in [("m.msh", Format::Msh), ("m.vtk", Format::Vtk), ("m.obj", Format::Obj), ("m.off", Format::Off)] {
+        let path = dir.join(name);
+        io::write_path(&big, &path, &Default::default()).unwrap();
+        let text = io::write_string(&big, format, &Default::default()).unwrap();
+        assert!(text.len() > 1 << 17, "{name}: {} bytes", text.len());
+        assert_eq!(std::fs::read(&path).unwrap(), text.as_bytes(), "{name}");
+    }
+    io::write_path(&big, &dir.join("m.node"), &Default::default()).unwrap();
+    let (node, ele) = io::write_triangle(&big).unwrap();
+    assert_eq!(std::fs::read(dir.join("m.node")).unwrap(), node.as_bytes());
+    assert_eq!(std::fs::read(dir.join("m.ele")).unwrap(), ele.as_bytes());
+    // what a format cannot hold is refused before any file is made
+    let quadratic = read("offsets_tri6.vtk");
+    for name in ["q.obj", "q.off"] {
+        assert!(io::write_path(&quadratic, &dir.join(name), &Default::default()).is_err());
+        assert!(!dir.join(name).exists(), "{name}");
+    }
+    let quads = read("grid_lines.msh");
+    assert!(io::write_path(&quads, &dir.join("q.node"), &Default::default()).is_err());
+    assert!(!dir.join("q.node").exists() && !dir.join("q.ele").exists());
+    std::fs::remove_dir_all(&dir).unwrap();
+}

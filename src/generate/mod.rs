@@ -46,8 +46,11 @@ struct Assembly {
 }
 
 impl Assembly {
+    /// Room for `nodes` nodes and `elements` elements of three nodes (more grow as needed).
     fn with_capacity(nodes: usize, elements: usize) -> Self {
-        Assembly { b: MeshBuilder::with_capacity(nodes, elements) }
+        let mut b = MeshBuilder::new();
+        b.reserve_exact(nodes, elements, 3 * elements);
+        Assembly { b }
     }
     fn node(&mut self, p: DVec2) -> u32 {
         self.b.add_node([p.x, p.y, 0.0], 0) as u32

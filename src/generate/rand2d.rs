@@ -56,11 +56,14 @@ pub fn rand2d(interior: usize, per_side: usize, seed: u64) -> Result<Mesh> {
     for q in &pts {
         a.node(*q);
     }
+    drop(pts);
     for f in dt.inner_faces() {
         // spade's faces are counter-clockwise; `bulk_load_stable` keeps our numbering
         let [v0, v1, v2] = f.vertices();
         a.element(ElementKind::Tri3, &[v0.index() as u32, v1.index() as u32, v2.index() as u32]);
     }
+    // the triangulation (about 200 bytes a point) is let go before the topology is built
+    drop(dt);
     a.build()
 }
 

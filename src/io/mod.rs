@@ -26,6 +26,8 @@ use crate::mesh::{Mesh, MeshBuilder};
 mod lex;
 mod msh;
 mod objoff;
+mod out;
+use out::Out;
 mod triangle;
 pub use triangle::flat_note;
 mod vtk;
@@ -140,9 +142,9 @@ fn without_bom(text: &str) -> &str {
 /// Writes node position `p` as the 3D formats do, `x y z` (Rust's shortest exact
 /// decimals): `x y 0` for a 2D mesh, else the point in the mesh's own 3D plane
 /// ([`Mesh::to_3d`]), so a mesh read from 3D is written back where it was.
-pub(crate) fn write_xyz(s: &mut String, mesh: &Mesh, p: glam::DVec2) {
+pub(crate) fn write_xyz(s: &mut Out, mesh: &Mesh, p: glam::DVec2) {
     use std::fmt::Write;
-    // writing to a String cannot fail
+    // writing to an `Out` cannot fail
     let _ = match mesh.plane {
         None => write!(s, "{:?} {:?} 0", p.x, p.y),
         Some(_) => {
@@ -161,16 +163,16 @@ fn check_size(len: u64, name: &str) -> Result<()> {
     Ok(())
 }
 
-/// Refuses to write a text that would be refused when read back (see [`MAX_FILE_BYTES`]).
-fn check_written(text: String, ext: &str) -> Result<String> {
-    let len = text.len() as u64;
+/// Refuses to write a text of `len` bytes that would be refused when read back (see
+/// [`MAX_FILE_BYTES`]).
+fn check_written(len: u64, ext: &str) -> Result<()> {
     if len > MAX_FILE_BYTES {
         return Err(Error::TooLarge(format!(
             "the mesh as {ext} would be {len} bytes, over the limit of {MAX_FILE_BYTES} bytes (1 GiB) \
              smoothlab reads back; a more compact format (.vtk) may fit"
         )));
     }
-    Ok(text)
+    Ok(())
 }
 
 /// The bytes as text, or an error naming where they stop being UTF-8.
@@ -269,37 +271,91 @@ fn read_file(p: &std::path::Path) -> Result<Vec<u8>> {
 /// pair of files (see [`write_triangle`]). What round-trips is documented per format:
 /// nodes (to the last bit), elements and kinds always; fixed flags in `.msh` and `.vtk`.
 pub fn write_string(mesh: &Mesh, format: Format, opts: &WriteOptions) -> Result<String> {
-    match format {
-        Format::Msh => check_written(msh::write(mesh, opts.msh_version), ".msh"),
-        Format::Vtk => check_written(vtk::write(mesh), ".vtk"),
-        Format::Obj => check_written(objoff::write_obj(mesh)?, ".obj"),
-        Format::Off => check_written(objoff::write_off(mesh)?, ".off"),
-        Format::Triangle => Err(Error::invalid(
-            "Triangle output is a .node/.ele pair: use write_triangle, or write_path with a .node or .ele name",
-        )),
-    }
+    let mut out = Out::string(64 * mesh.node_count() + 48 * mesh.element_count() + 256);
+    write_to(mesh, format, opts, &mut out)?;
+    Ok(out.into_string())
+}
+
+/// Writes a mesh in `format` (not Triangle's pair) into `out`, refusing a text over
+/// [`MAX_FILE_BYTES`] when it is done.
+fn write_to(mesh: &Mesh, format: Format, opts: &WriteOptions, out: &mut Out) -> Result<()> {
+    let ext = match format {
+        Format::Msh => {
+            msh::write(mesh, opts.msh_version, out);
+            ".msh"
+        }
+        Format::Vtk => {
+            vtk::write(mesh, out);
+            ".vtk"
+        }
+        Format::Obj => {
+            objoff::write_obj(mesh, out)?;
+            ".obj"
+        }
+        Format::Off => {
+            objoff::write_off(mesh, out)?;
+            ".off"
+        }
+        Format::Triangle => {
+            return Err(Error::invalid(
+                "Triangle output is a .node/.ele pair: use write_triangle, or write_path with a .node or .ele name",
+            ))
+        }
+    };
+    check_written(out.len(), ext)
 }
 
 /// Writes a triangle mesh (all 3-node or all 6-node triangles) as the texts of a
 /// Triangle `.node` and `.ele` file; fixed nodes get boundary marker 1.
 pub fn write_triangle(mesh: &Mesh) -> Result<(String, String)> {
-    let (node, ele) = triangle::write(mesh)?;
-    Ok((check_written(node, ".node")?, check_written(ele, ".ele")?))
+    let (mut node, mut ele) = (Out::string(48 * mesh.node_count() + 64), Out::string(40 * mesh.element_count() + 64));
+    triangle::write(mesh, &mut node, &mut ele)?;
+    check_written(node.len(), ".node")?;
+    check_written(ele.len(), ".ele")?;
+    Ok((node.into_string(), ele.into_string()))
 }
 
+/// Bytes per node and per element that no format's line exceeds: an index of at most 10
+/// digits, three coordinates of at most 25 characters each (Rust's shortest exact
+/// form), up to nine node numbers of at most 11 characters with their spaces.
+const LINE_BOUND: u64 = 256;
+
 /// Writes a mesh file in the format of the path's extension (`.node`/`.ele`: both files).
+/// The text goes to the file in chunks, never whole in memory. A mesh whose text could
+/// pass [`MAX_FILE_BYTES`] (by [`LINE_BOUND`]) is measured first, so that a text too large
+/// is refused before anything is written, as it always was.
 #[cfg(not(target_arch = "wasm32"))]
 pub fn write_path(mesh: &Mesh, path: &std::path::Path, opts: &WriteOptions) -> Result<()> {
     let name = path.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_default();
     let format = Format::from_name(&name).ok_or_else(|| unknown_format(&path.display().to_string()))?;
-    let save = |p: &std::path::Path, text: &str| {
-        std::fs::write(p, text).map_err(|e| Error::Io(format!("cannot write {}: {e}", p.display())))
-    };
+    let bound = LINE_BOUND * (mesh.node_count() as u64 + mesh.element_count() as u64) + 4096;
+    let cannot = |p: &std::path::Path, e: std::io::Error| Error::Io(format!("cannot write {}: {e}", p.display()));
     if format == Format::Triangle {
         let (node_path, ele_path) = triangle_pair(path, &name)?;
-        let (node, ele) = write_triangle(mesh)?;
-        save(&node_path, &node)?;
-        return save(&ele_path, &ele);
+        triangle::writable(mesh)?;
+        if bound > MAX_FILE_BYTES {
+            let (mut node, mut ele) = (Out::counter(), Out::counter());
+            triangle::write(mesh, &mut node, &mut ele)?;
+            check_written(node.len(), ".node")?;
+            check_written(ele.len(), ".ele")?;
+        }
+        let mut nf = std::fs::File::create(&node_path).map_err(|e| cannot(&node_path, e))?;
+        let mut ef = std::fs::File::create(&ele_path).map_err(|e| cannot(&ele_path, e))?;
+        let (mut node, mut ele) = (Out::file(&mut nf), Out::file(&mut ef));
+        triangle::write(mesh, &mut node, &mut ele)?;
+        node.finish().map_err(|e| cannot(&node_path, e))?;
+        return ele.finish().map_err(|e| cannot(&ele_path, e));
     }
-    save(path, &write_string(mesh, format, opts)?)
+    match format {
+        Format::Obj => objoff::linear_only(mesh, "OBJ")?,
+        Format::Off => objoff::linear_only(mesh, "OFF")?,
+        _ => {}
+    }
+    if bound > MAX_FILE_BYTES {
+        write_to(mesh, format, opts, &mut Out::counter())?;
+    }
+    let mut file = std::fs::File::create(path).map_err(|e| cannot(path, e))?;
+    let mut out = Out::file(&mut file);
+    write_to(mesh, format, opts, &mut out)?;
+    out.finish().map_err(|e| cannot(path, e))
 }

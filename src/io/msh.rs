@@ -17,6 +17,7 @@ use std::fmt::Write as _;
 
 use crate::error::{Error, Result};
 use crate::io::lex::{prealloc, repeated, shown, Lexer};
+use crate::io::out::Out;
 use crate::io::MshVersion;
 use crate::mesh::{ElementKind, FixedSpec, Mesh, MeshBuilder, NONE};
 
@@ -132,7 +133,17 @@ struct RawElement {
 struct Reader {
     builder: MeshBuilder,
     node_tags: Vec<u64>,
-    node_lines: Vec<u32>,
+    /// Node tags → indices, made when `$Elements` follows `$Nodes` (as it does in every
+    /// file Gmsh writes): the elements then go straight into the builder as indices,
+    /// and `elements` and `elem_tags` stay empty.
+    map: Option<TagMap>,
+    /// In that case, the first element that names an undefined node tag or one tag
+    /// twice: reported when the whole file has been read, as the raw elements' errors are.
+    element_error: Option<Error>,
+    /// Surface elements read so far.
+    surface_elements: usize,
+    /// The elements as read, when `$Elements` comes before `$Nodes` (or the node tags
+    /// repeat): resolved when the whole file has been read.
     elements: Vec<RawElement>,
     elem_tags: Vec<u64>,
     /// Node tags of line and point elements, with their lines.
@@ -200,7 +211,9 @@ pub(crate) fn parse(text: &str) -> Result<MeshBuilder> {
     let mut r = Reader {
         builder: MeshBuilder::new(),
         node_tags: Vec::new(),
-        node_lines: Vec::new(),
+        map: None,
+        element_error: None,
+        surface_elements: 0,
         elements: Vec::new(),
         elem_tags: Vec::new(),
         marks: Vec::new(),
@@ -227,6 +240,10 @@ pub(crate) fn parse(text: &str) -> Result<MeshBuilder> {
                     return Err(Error::parse(t.line, format!("a second $Elements section (the first is at line {l})")));
                 }
                 r.elements_line = Some(t.line);
+                if r.nodes_line.is_some() {
+                    // a repeated tag leaves the map unmade: `finish` reports it
+                    r.map = TagMap::new(&r.node_tags, r.builder.node_lines()).ok();
+                }
                 match layout {
                     Layout::V2 => r.elements_v2(&mut lex)?,
                     Layout::V41 => r.elements_v41(&mut lex)?,
@@ -291,7 +308,6 @@ impl Reader {
         debug_assert_eq!(self.builder.node_count(), i);
         self.builder.add_node([x, y, z], line);
         self.node_tags.push(tag);
-        self.node_lines.push(line as u32);
         Ok(())
     }
 
@@ -310,7 +326,6 @@ impl Reader {
         // Only one $Nodes section is read, so the builder holds no nodes yet.
         self.builder = MeshBuilder::with_capacity(n, 0);
         self.node_tags.reserve(prealloc(n));
-        self.node_lines.reserve(prealloc(n));
     }
 
     fn nodes_v41(&mut self, lex: &mut Lexer) -> Result<()> {
@@ -362,6 +377,20 @@ impl Reader {
     /// Reads one element's node tags (the kind's count, or the marker's).
     fn element_nodes(&mut self, lex: &mut Lexer, ty: GmshType, line: usize, number: impl Fn() -> String) -> Result<()> {
         match ty {
+            GmshType::Surface(kind) if self.map.is_some() => {
+                let mut tags = [0u64; 9];
+                for (j, tag) in tags[..kind.node_count()].iter_mut().enumerate() {
+                    *tag = lex.u64(|| format!("node {} of {} ({})", j + 1, number(), kind.name()))?.0;
+                }
+                let e = self.surface_elements;
+                self.surface_elements += 1;
+                if self.element_error.is_none() {
+                    match self.resolve(e, &tags[..kind.node_count()], line) {
+                        Ok(ids) => self.builder.add_element(kind, &ids[..kind.node_count()], line),
+                        Err(err) => self.element_error = Some(err),
+                    }
+                }
+            }
             GmshType::Surface(kind) => {
                 let start = self.elem_tags.len() as u32;
                 for j in 0..kind.node_count() {
@@ -488,27 +517,47 @@ impl Reader {
         end_of(lex, "NodeData", open)
     }
 
-    fn finish(self) -> Result<MeshBuilder> {
-        let Reader { mut builder, node_tags, node_lines, elements, elem_tags, marks, fixed_view, .. } = self;
-        let map = TagMap::new(&node_tags, &node_lines)?;
-        let range = || match (node_tags.iter().min(), node_tags.iter().max()) {
+    /// What `$Nodes` defined, for messages about undefined tags.
+    fn tag_range(&self) -> String {
+        match (self.node_tags.iter().min(), self.node_tags.iter().max()) {
             (Some(a), Some(b)) => format!("$Nodes defines tags {a} to {b}"),
             _ => "$Nodes defines no nodes".to_string(),
-        };
-        let mut ids = [0u32; 9];
-        for (e, raw) in elements.iter().enumerate() {
-            let k = raw.kind.node_count();
-            let tags = &elem_tags[raw.start as usize..raw.start as usize + k];
-            if let Some(t) = repeated(tags) {
-                return Err(Error::element(e, Some(raw.line as usize), format!("node tag {t} appears twice in the element")));
-            }
-            for (j, &tag) in tags.iter().enumerate() {
-                ids[j] = map.get(tag).ok_or_else(|| {
-                    Error::element(e, Some(raw.line as usize), format!("node tag {tag} is not defined ({})", range()))
-                })?;
-            }
-            builder.add_element(raw.kind, &ids[..k], raw.line as usize);
         }
+    }
+
+    /// The node indices of surface element `e` (on file line `line`) from its node tags,
+    /// or the error naming the element: a tag given twice, or not defined.
+    fn resolve(&self, e: usize, tags: &[u64], line: usize) -> Result<[u32; 9]> {
+        let map = self.map.as_ref().expect("resolve after the map is made");
+        if let Some(t) = repeated(tags) {
+            return Err(Error::element(e, Some(line), format!("node tag {t} appears twice in the element")));
+        }
+        let mut ids = [0u32; 9];
+        for (j, &tag) in tags.iter().enumerate() {
+            ids[j] = map
+                .get(tag)
+                .ok_or_else(|| Error::element(e, Some(line), format!("node tag {tag} is not defined ({})", self.tag_range())))?;
+        }
+        Ok(ids)
+    }
+
+    fn finish(mut self) -> Result<MeshBuilder> {
+        if let Some(err) = self.element_error.take() {
+            return Err(err);
+        }
+        if self.map.is_none() {
+            self.map = Some(TagMap::new(&self.node_tags, self.builder.node_lines())?);
+            let (elements, elem_tags) = (std::mem::take(&mut self.elements), std::mem::take(&mut self.elem_tags));
+            for (e, raw) in elements.iter().enumerate() {
+                let k = raw.kind.node_count();
+                let ids = self.resolve(e, &elem_tags[raw.start as usize..raw.start as usize + k], raw.line as usize)?;
+                self.builder.add_element(raw.kind, &ids[..k], raw.line as usize);
+            }
+        }
+        let range = self.tag_range();
+        let Reader { mut builder, node_tags, map, marks, fixed_view, .. } = self;
+        let map = map.expect("made above");
+        let range = || range.clone();
         let n = node_tags.len();
         let resolve = |tag: u64, line: u32, what: &str| {
             map.get(tag).ok_or_else(|| {
@@ -545,21 +594,20 @@ impl Reader {
 }
 
 /// Writes a `.msh` file (ASCII) in the given version; see the module notes for what round-trips.
-pub(crate) fn write(mesh: &Mesh, version: MshVersion) -> String {
+pub(crate) fn write(mesh: &Mesh, version: MshVersion, s: &mut Out) {
     let n = mesh.node_count();
-    let mut s = String::with_capacity(64 * n + 48 * mesh.element_count() + 256);
     let v = match version {
         MshVersion::V22 => "2.2",
         MshVersion::V41 => "4.1",
     };
-    // Writing to a String cannot fail.
+    // Writing to an `Out` cannot fail (a file's error is kept for `Out::finish`).
     let _ = write!(s, "$MeshFormat\n{v} 0 8\n$EndMeshFormat\n");
     match version {
         MshVersion::V22 => {
             let _ = writeln!(s, "$Nodes\n{n}");
             for (i, p) in mesh.nodes.iter().enumerate() {
                 let _ = write!(s, "{} ", i + 1);
-                super::write_xyz(&mut s, mesh, *p);
+                super::write_xyz(s, mesh, *p);
                 s.push('\n');
             }
             let _ = writeln!(s, "$EndNodes\n$Elements\n{}", mesh.element_count());
@@ -594,7 +642,7 @@ pub(crate) fn write(mesh: &Mesh, version: MshVersion) -> String {
                 let _ = writeln!(s, "{}", i + 1);
             }
             for p in &mesh.nodes {
-                super::write_xyz(&mut s, mesh, *p);
+                super::write_xyz(s, mesh, *p);
                 s.push('\n');
             }
             // One block per run of equal kinds, so the element order is kept.
@@ -620,7 +668,6 @@ pub(crate) fn write(mesh: &Mesh, version: MshVersion) -> String {
         let _ = writeln!(s, "{} {}", i + 1, u8::from(f));
     }
     s.push_str("$EndNodeData\n");
-    s
 }
 
 /// Maximal runs `[a, b)` of equal kinds.
@@ -660,6 +707,31 @@ mod tests {
         assert_eq!((m.get(1_000_000_000_000), m.get(40), m.get(2)), (Some(1), Some(2), None));
         let e = TagMap::new(&[3, 4, 3], &[10, 11, 12]).unwrap_err().to_string();
         assert!(e.contains("line 12") && e.contains("first at line 10") && e.contains("tag 3"), "{e}");
+    }
+
+    #[test]
+    fn elements_before_or_after_nodes_read_alike() {
+        // $Nodes first: elements are resolved as they are read; $Elements first: at the end
+        let nodes = "$Nodes\n4\n10 0 0 0\n20 1 0 0\n30 1 1 0\n40 0 1 0\n$EndNodes\n";
+        let elements = |third: u64| {
+            format!("$Elements\n3\n1 15 2 0 1 10\n2 2 2 0 1 10 20 30\n3 2 2 0 1 10 30 {third}\n$EndElements\n")
+        };
+        let head = "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n";
+        let build = |text: String| parse(&text).and_then(|b| b.build());
+        let a = build(format!("{head}{nodes}{}", elements(40))).unwrap();
+        let b = build(format!("{head}{}{nodes}", elements(40))).unwrap();
+        assert_eq!((a.nodes.clone(), a.fixed.clone()), (b.nodes.clone(), b.fixed.clone()));
+        for e in 0..2 {
+            assert_eq!((a.kind(e), a.element(e)), (b.kind(e), b.element(e)));
+        }
+        // an undefined tag names the same element and line either way, after a later
+        // syntax error has had its say
+        let ea = build(format!("{head}{nodes}{}", elements(41))).unwrap_err().to_string();
+        let eb = build(format!("{head}{}{nodes}", elements(41))).unwrap_err().to_string();
+        assert!(ea.contains("element 1") && ea.contains("tag 41") && ea.contains("tags 10 to 40"), "{ea}");
+        assert_eq!(ea.replace("line 15", "line 8"), eb, "the lines differ by the node section's 7 lines");
+        let late = build(format!("{head}{nodes}{}$Bad\n", elements(41))).unwrap_err().to_string();
+        assert!(late.contains("line 17") && late.contains("EndBad"), "{late}");
     }
 
     #[test]

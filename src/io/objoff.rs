@@ -14,6 +14,7 @@ use std::fmt::Write as _;
 
 use crate::error::{Error, Result};
 use crate::io::lex::{check_count, content_lines, parse_f64, repeated, shown};
+use crate::io::out::Out;
 use crate::mesh::{ElementKind, Mesh, MeshBuilder};
 
 fn face_kind(k: usize, line: usize, what: &str) -> Result<ElementKind> {
@@ -181,7 +182,7 @@ pub(crate) fn parse_off(text: &str) -> Result<MeshBuilder> {
     Ok(b)
 }
 
-fn linear_only(mesh: &Mesh, format: &str) -> Result<()> {
+pub(crate) fn linear_only(mesh: &Mesh, format: &str) -> Result<()> {
     match mesh.kinds().iter().position(|k| k.is_quadratic()) {
         Some(e) => Err(Error::invalid(format!(
             "{format} holds linear triangles and quads only, but element {e} is a {}; write .msh or .vtk instead",
@@ -192,13 +193,12 @@ fn linear_only(mesh: &Mesh, format: &str) -> Result<()> {
 }
 
 /// Writes an OBJ file (linear meshes only).
-pub(crate) fn write_obj(mesh: &Mesh) -> Result<String> {
+pub(crate) fn write_obj(mesh: &Mesh, s: &mut Out) -> Result<()> {
     linear_only(mesh, "OBJ")?;
-    let mut s = String::with_capacity(48 * mesh.node_count() + 24 * mesh.element_count() + 64);
     s.push_str("# written by smoothlab\n");
     for p in &mesh.nodes {
         s.push_str("v ");
-        super::write_xyz(&mut s, mesh, *p);
+        super::write_xyz(s, mesh, *p);
         s.push('\n');
     }
     for e in 0..mesh.element_count() {
@@ -208,16 +208,15 @@ pub(crate) fn write_obj(mesh: &Mesh) -> Result<String> {
         }
         s.push('\n');
     }
-    Ok(s)
+    Ok(())
 }
 
 /// Writes an OFF file (linear meshes only).
-pub(crate) fn write_off(mesh: &Mesh) -> Result<String> {
+pub(crate) fn write_off(mesh: &Mesh, s: &mut Out) -> Result<()> {
     linear_only(mesh, "OFF")?;
-    let mut s = String::with_capacity(48 * mesh.node_count() + 24 * mesh.element_count() + 64);
     let _ = writeln!(s, "OFF\n{} {} 0", mesh.node_count(), mesh.element_count());
     for p in &mesh.nodes {
-        super::write_xyz(&mut s, mesh, *p);
+        super::write_xyz(s, mesh, *p);
         s.push('\n');
     }
     for e in 0..mesh.element_count() {
@@ -228,5 +227,5 @@ pub(crate) fn write_off(mesh: &Mesh) -> Result<String> {
         }
         s.push('\n');
     }
-    Ok(s)
+    Ok(())
 }

@@ -16,6 +16,7 @@ use std::fmt::Write as _;
 
 use crate::error::{Error, Result};
 use crate::io::lex::{check_count, content_lines, parse_f64, prealloc, repeated, shown};
+use crate::io::out::Out;
 use crate::mesh::{ElementKind, FixedSpec, Mesh, MeshBuilder};
 
 /// Our local index `i` takes Triangle's local index `TRIANGLE_ORDER[i]`.
@@ -204,7 +205,8 @@ pub fn flat_note(mesh: &Mesh) -> Option<String> {
     ))
 }
 
-pub(crate) fn write(mesh: &Mesh) -> Result<(String, String)> {
+/// The one kind of triangles of the mesh, or why Triangle's files cannot hold it.
+pub(crate) fn writable(mesh: &Mesh) -> Result<ElementKind> {
     let kind = mesh.kind(0);
     if let Some(e) = (0..mesh.element_count()).find(|&e| mesh.kind(e) != kind || !kind.is_triangle()) {
         return Err(Error::invalid(format!(
@@ -214,7 +216,11 @@ pub(crate) fn write(mesh: &Mesh) -> Result<(String, String)> {
             kind.name()
         )));
     }
-    let mut node = String::with_capacity(48 * mesh.node_count() + 64);
+    Ok(kind)
+}
+
+pub(crate) fn write(mesh: &Mesh, node: &mut Out, ele: &mut Out) -> Result<()> {
+    let kind = writable(mesh)?;
     let _ = writeln!(node, "# written by smoothlab: number x y boundary-marker (1 = fixed)");
     if let Some(note) = flat_note(mesh) {
         let _ = writeln!(node, "# {note}");
@@ -224,7 +230,6 @@ pub(crate) fn write(mesh: &Mesh) -> Result<(String, String)> {
         let _ = writeln!(node, "{} {:?} {:?} {}", i + 1, p.x, p.y, u8::from(mesh.fixed[i]));
     }
     let per = kind.node_count();
-    let mut ele = String::with_capacity(40 * mesh.element_count() + 64);
     let _ = writeln!(ele, "{} {per} 0", mesh.element_count());
     let mut theirs = [0u32; 6];
     for e in 0..mesh.element_count() {
@@ -238,5 +243,5 @@ pub(crate) fn write(mesh: &Mesh) -> Result<(String, String)> {
         }
         ele.push('\n');
     }
-    Ok((node, ele))
+    Ok(())
 }

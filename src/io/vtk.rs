@@ -24,6 +24,7 @@ use std::fmt::Write as _;
 
 use crate::error::{Error, Result};
 use crate::io::lex::{prealloc, repeated, shown, split_line, Lexer};
+use crate::io::out::Out;
 use crate::mesh::{ElementKind, FixedSpec, Mesh, MeshBuilder};
 
 #[derive(Clone, Copy, PartialEq)]
@@ -596,14 +597,13 @@ fn type_of(kind: ElementKind) -> u32 {
 }
 
 /// Writes a legacy VTK `UNSTRUCTURED_GRID` (ASCII) with the fixed flags as point data.
-pub(crate) fn write(mesh: &Mesh) -> String {
+pub(crate) fn write(mesh: &Mesh, s: &mut Out) {
     let n = mesh.node_count();
     let m = mesh.element_count();
     let size: usize = (0..m).map(|e| mesh.kind(e).node_count() + 1).sum();
-    let mut s = String::with_capacity(48 * n + 40 * m + 256);
     let _ = write!(s, "# vtk DataFile Version 3.0\nsmoothlab mesh\nASCII\nDATASET UNSTRUCTURED_GRID\nPOINTS {n} double\n");
     for p in &mesh.nodes {
-        super::write_xyz(&mut s, mesh, *p);
+        super::write_xyz(s, mesh, *p);
         s.push('\n');
     }
     let _ = writeln!(s, "CELLS {m} {size}");
@@ -623,5 +623,4 @@ pub(crate) fn write(mesh: &Mesh) -> String {
     for &f in &mesh.fixed {
         let _ = writeln!(s, "{}", u8::from(f));
     }
-    s
 }

@@ -117,7 +117,7 @@ impl Sample {
             Sample::GridRandomTangled => "Random grid (Knupp)",
             Sample::PlateQuadratic => "Quadratic plate, curved hole",
             Sample::Rand2dLarge => "rand2D, 100k nodes",
-            Sample::Rand2dMillion => "rand2D, 1M nodes (large: slow, ~700 MB of memory)",
+            Sample::Rand2dMillion => "rand2D, 1M nodes (large: slow, ~350 MB of memory)",
         }
     }
 
