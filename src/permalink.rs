@@ -32,8 +32,8 @@ use crate::smooth::{Order, SmoothOptions, Strategy};
 /// by its serde name ([`Sample`](crate::lab::sample::Sample), kebab-case), then one name
 /// per Gmsh file the page ships (see [`GMSH_FILES`] and [`gmsh_sample_name`]).
 pub const SAMPLES: &[&str] = &[
-    "plate-tri-tangled",
     "plate-quad-tangled",
+    "plate-tri-tangled",
     "plate-mixed-tangled",
     "rand2d",
     "rand2d-tangled",

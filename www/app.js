@@ -11,7 +11,8 @@ const GMSH_SAMPLES = [
   ['bracket_quad.msh', 'Gmsh: L-bracket, quads'],
   ['disk_tri6.msh', 'Gmsh: disk, 6-node triangles (curved)'],
 ];
-const DEFAULT_SAMPLE = 'plate-tri-tangled';
+/** The sample the page opens on: the first of the engine's gallery (`Sample::DEFAULT`). */
+let defaultSample = null;
 const MAX_FILE_BYTES = 256 * 1024 * 1024;
 const SETTINGS = ['strategy', 'threshold', 'order', 'passes', 'maxiter', 'amount', 'seed', 'objective-a', 'penalty-a', 'objective-b', 'penalty-b'];
 /** The compare menus of the left (A) and right (B) panel. */
@@ -318,7 +319,7 @@ function updatePermalink() {
  * control does not offer is ignored). Returns the source to load and, when the hash could
  * not be read, the decoder's message (the defaults are then kept). */
 async function applyHash(hash = location.hash) {
-  const fallback = { kind: 'sample', name: DEFAULT_SAMPLE };
+  const fallback = { kind: 'sample', name: defaultSample };
   let p;
   try {
     p = await engine.call('decodePermalink', hash);
@@ -1440,6 +1441,7 @@ function exportPng(canvasId) {
 // ---- start ---------------------------------------------------------------------------
 async function fillGallery() {
   const list = await engine.call('samples');
+  defaultSample = list[0].name;
   const sel = $('sample');
   const gen = document.createElement('optgroup');
   gen.label = 'Generated in the browser';

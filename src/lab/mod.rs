@@ -934,7 +934,7 @@ mod tests {
 
     #[test]
     fn three_passes_untangle_the_tangled_plate_on_the_new_side() {
-        let mut pg = Playground::new(Sample::PlateTriTangled.generate().unwrap()).unwrap();
+        let mut pg = Playground::new(Sample::DEFAULT.generate().unwrap()).unwrap();
         let start = pg.stats(Side::New).mesh.inverted;
         assert!(start > 0);
         let mut last = None;
