@@ -41,20 +41,20 @@ struct Run {
 
 impl Run {
     fn last_inverted(&self, before: usize) -> usize {
-        self.passes.last().map_or(before, |p| p.inverted)
+        self.passes.last().map_or(before, |p| p.after.inverted)
     }
     /// Passes until the first with no inverted element, if any.
     fn passes_to_valid(&self) -> Option<usize> {
-        self.passes.iter().position(|p| p.inverted == 0).map(|i| i + 1)
+        self.passes.iter().position(|p| p.after.inverted == 0).map(|i| i + 1)
     }
     fn ms(&self) -> f64 {
         self.passes.iter().map(|p| p.elapsed_ms).sum()
     }
     fn laplacian_moves(&self) -> u32 {
-        self.passes.iter().map(|p| p.laplacian_moves).sum()
+        self.passes.iter().map(|p| p.counts.laplacian_moves).sum()
     }
     fn optimization_calls(&self) -> u32 {
-        self.passes.iter().map(|p| p.optimization_calls).sum()
+        self.passes.iter().map(|p| p.counts.optimization_calls).sum()
     }
 }
 
@@ -131,7 +131,7 @@ fn never(_: &PassRecord) -> bool {
 }
 
 fn untangled(p: &PassRecord) -> bool {
-    p.inverted == 0
+    p.after.inverted == 0
 }
 
 /// Mean and range of some numbers, as `mean [min–max]` with `d` decimals.
@@ -349,10 +349,10 @@ fn freitag_table_1(out: &mut String) {
             let r = run(m, *kind, *o, 3, never);
             let last = r.passes.last().expect("three passes");
             if name == "rules, `new`, priority" {
-                inverted_after.push(last.inverted);
+                inverted_after.push(last.after.inverted);
             }
-            row.min.push(last.min_angle_deg);
-            row.max.push(last.max_angle_deg);
+            row.min.push(last.after.min_angle_deg);
+            row.max.push(last.after.max_angle_deg);
             row.lap.push(r.laplacian_moves() as f64);
             row.opt.push(r.optimization_calls() as f64);
             row.ms.push(r.ms());
@@ -609,10 +609,10 @@ fn chen_plate(out: &mut String) {
                             None => cells[d][o].1 += 1,
                         }
                         if d == 0 && o == 0 {
-                            ang.push(r.passes.last().expect("a pass").min_angle_deg);
+                            ang.push(r.passes.last().expect("a pass").after.min_angle_deg);
                         }
                         let s0 = mesh_stats(&m).inverted;
-                        trajectories.push(std::iter::once(s0).chain(r.passes.iter().map(|p| p.inverted)).collect());
+                        trajectories.push(std::iter::once(s0).chain(r.passes.iter().map(|p| p.after.inverted)).collect());
                     }
                     if example.is_none() && d == 0 && label == "tri" && amount == 1.5 {
                         let i = trajectories.pop().expect("input");
@@ -737,7 +737,7 @@ fn mesquite_tangled(out: &mut String) {
         let cell = |choice: Choice| {
             let new = run(&mesh, choice, opts(Strategy::Rules, Order::Priority), 10, untangled);
             let first3: Vec<String> =
-                (0..3).map(|i| new.passes.get(i).map_or("·".into(), |p| p.inverted.to_string())).collect();
+                (0..3).map(|i| new.passes.get(i).map_or("·".into(), |p| p.after.inverted.to_string())).collect();
             format!(
                 "{} — {}",
                 first3.join("/"),
@@ -774,7 +774,7 @@ fn mesquite_tangled(out: &mut String) {
             None => format!("not in 10, {} left, —", unt.last_inverted(s0.inverted)),
         };
         let old = run(&mesh, ObjectiveKind::Old, opts(Strategy::Opt, Order::Input), 10, never);
-        let old_cell = format!("{} / {}", old.passes[2].inverted, old.passes[9].inverted);
+        let old_cell = format!("{} / {}", old.passes[2].after.inverted, old.passes[9].after.inverted);
         let _ = writeln!(
             out,
             "| {name} | {} | {} | {} | {new_cell} | {angle_cell} | {unt_cell} | {old_cell} |",
@@ -813,7 +813,7 @@ fn knupp_as_published(mesh: &Mesh, max: u32) -> bool {
     let mut m = mesh.clone();
     let mut s = Smoother::new(untangle_opts()).expect("valid options");
     let c = clock();
-    (0..max).any(|_| s.pass(&mut m, &smoothlab::objective::Untangle::KNUPP, &c).inverted == 0)
+    (0..max).any(|_| s.pass(&mut m, &smoothlab::objective::Untangle::KNUPP, &c).after.inverted == 0)
 }
 
 /// Inverted elements whose most negative corner det is tiny (below 10⁻⁶ of the mean
@@ -954,7 +954,7 @@ fn equilateral(out: &mut String) {
             while passes < MAX_PASSES && worst_alpha_error(&m) > 1e-6 {
                 let r = s.pass(&mut m, &*obj, &c);
                 passes += 1;
-                iters += r.solver_iterations;
+                iters += r.counts.solver_iterations;
             }
             let _ = writeln!(
                 out,
@@ -994,7 +994,7 @@ fn visit_cost(out: &mut String) {
             for (d, (choice, _)) in NEW_DESIGNS.iter().enumerate() {
                 let r = run(&mesh, *choice, o, 1, never);
                 let p = &r.passes[0];
-                ns[d].push(p.elapsed_ms * 1e6 / p.visits as f64);
+                ns[d].push(p.elapsed_ms * 1e6 / p.counts.visits as f64);
             }
         }
         let median = |v: &mut Vec<f64>| {
@@ -1042,8 +1042,8 @@ fn barrier_weight(out: &mut String) {
         for m in &meshes {
             let r = run_with(m, &obj, o, 3, never);
             let last = r.passes.last().expect("three passes");
-            mn.push(last.min_angle_deg);
-            mx.push(last.max_angle_deg);
+            mn.push(last.after.min_angle_deg);
+            mx.push(last.after.max_angle_deg);
             q.push(mesh_stats(&r.mesh).mean_quality);
         }
         let passes: Vec<Option<usize>> = grids.iter().map(|g| run_with(g, &obj, o, 10, untangled).passes_to_valid()).collect();

@@ -41,8 +41,10 @@ fn tangled_plate(d: &Path) -> PathBuf {
     tangled
 }
 
-const PASS_FIELDS: [&str; 12] = [
+const PASS_FIELDS: [&str; 14] = [
     "pass",
+    "moves",
+    "stats_ms",
     "untangle_sweeps",
     "visits",
     "inverted",

@@ -78,9 +78,9 @@ fn passes_to_untangle(mesh: &Mesh, max: u32) -> Option<u32> {
     let mut last = mesh_stats(&m).inverted;
     for p in 1..=max {
         let r = s.pass(&mut m, &*obj, NO_CLOCK);
-        assert!(r.inverted <= last, "the inverted count rose {last} → {} in pass {p}", r.inverted);
-        last = r.inverted;
-        if r.inverted == 0 {
+        assert!(r.after.inverted <= last, "the inverted count rose {last} → {} in pass {p}", r.after.inverted);
+        last = r.after.inverted;
+        if r.after.inverted == 0 {
             return Some(p);
         }
     }

@@ -161,8 +161,8 @@ proptest! {
                 let mut s = Smoother::new(options(strategy)).unwrap();
                 for _ in 0..2 {
                     let r = s.pass(&mut m, &*obj, NO_CLOCK);
-                    prop_assert!(!r.objective_total.is_nan(), "{kind}/{strategy:?}: {r:?}");
-                    prop_assert!(r.min_angle_deg.is_finite() && r.min_quality.is_finite(), "{kind}/{strategy:?}: {r:?}");
+                    prop_assert!(r.objective_total.is_some_and(|t| !t.is_nan()), "{kind}/{strategy:?}: {r:?}");
+                    prop_assert!(r.after.min_angle_deg.is_finite() && r.after.min_quality.is_finite(), "{kind}/{strategy:?}: {r:?}");
                 }
                 for n in 0..m.node_count() {
                     prop_assert!(m.nodes[n].is_finite(), "{kind}/{strategy:?}: node {n} at {}", m.nodes[n]);
@@ -210,8 +210,8 @@ proptest! {
         let mut s = Smoother::new(SmoothOptions::default()).unwrap();
         for _ in 0..4 {
             let r = s.pass(&mut m, &obj, NO_CLOCK);
-            prop_assert!(r.inverted <= last, "inverted {} → {}", last, r.inverted);
-            last = r.inverted;
+            prop_assert!(r.after.inverted <= last, "inverted {} → {}", last, r.after.inverted);
+            last = r.after.inverted;
         }
     }
 }
@@ -253,8 +253,8 @@ fn without_the_validity_check_new_rules_can_fold_a_valid_mesh() {
         // one optimization call, without the untangling sweeps that would follow a fold
         let opts = SmoothOptions::default().with_keep_valid(keep).with_untangle_sweeps(0);
         let r = Smoother::new(opts).unwrap().pass(&mut m, obj, NO_CLOCK);
-        assert_eq!(r.optimization_calls, 1, "rule 3: the constrained Laplacian cannot help this star");
-        assert_eq!(r.inverted, after, "{:?}, keep_valid {keep}", obj.penalty());
+        assert_eq!(r.counts.optimization_calls, 1, "rule 3: the constrained Laplacian cannot help this star");
+        assert_eq!(r.after.inverted, after, "{:?}, keep_valid {keep}", obj.penalty());
     }
 }
 

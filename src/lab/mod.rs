@@ -196,35 +196,10 @@ impl Settings {
     }
 }
 
-/// What one pass did on one panel and where its mesh stands after it (the page's
-/// per-pass record: [`crate::smooth::PassRecord`] without the objective total, which the
-/// page never shows and which costs more than a Laplacian pass).
-#[derive(Clone, Debug, PartialEq, Serialize)]
-pub struct PassSummary {
-    /// 1 for the first pass since the last reset.
-    pub pass: u32,
-    /// Node visits (with priority order a poor node is visited up to once per bin).
-    pub visits: u32,
-    /// After the pass: elements with a corner of `det ≤ 0`.
-    pub inverted: usize,
-    /// After the pass: smallest and largest signed corner angle, degrees.
-    pub min_angle_deg: f64,
-    pub max_angle_deg: f64,
-    /// After the pass: smallest element α/β.
-    pub min_quality: f64,
-    /// Nodes moved by a Laplacian step (plain or smart).
-    pub laplacian_moves: u32,
-    /// Calls to the solver.
-    pub optimization_calls: u32,
-    /// Solver iterations, summed over the calls.
-    pub solver_iterations: u32,
-    /// Untangling sweeps after the planned visits (their visits are in `visits`).
-    pub untangle_sweeps: u32,
-    /// Time of the node loop (planning the order included), milliseconds by the caller's clock.
-    pub elapsed_ms: f64,
-    /// Time of the statistics after it, milliseconds.
-    pub stats_ms: f64,
-}
+/// What one pass did on one panel and where its mesh stands after it: the core's record,
+/// without the objective total (the page never shows it, and it costs more than a
+/// Laplacian pass).
+pub type PassSummary = crate::smooth::PassRecord;
 
 /// One panel: its current mesh, its objective and driver, and its passes since the last reset.
 pub struct Panel {
@@ -253,7 +228,7 @@ impl Panel {
             smoother: Smoother::new(settings.smooth_options()?)?,
             records: Vec::new(),
             version,
-            quick: quick_of(full),
+            quick: full.quick(),
             buckets,
             full: OnceCell::from(full.clone()),
             picture: RefCell::new(None),
@@ -268,12 +243,29 @@ impl Panel {
     }
 }
 
-fn quick_of(s: &MeshStats) -> QuickStats {
-    QuickStats {
-        inverted: s.inverted,
-        min_angle_deg: s.min_angle_deg,
-        max_angle_deg: s.max_angle_deg,
-        min_quality: s.min_quality,
+
+/// The work a panel's passes did since the last reset: its records, summed.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize)]
+pub struct WorkDone {
+    pub passes: usize,
+    pub laplacian_moves: u64,
+    pub optimization_calls: u64,
+    pub solver_iterations: u64,
+    /// Smoothing time summed over the passes, milliseconds by the caller's clock.
+    pub time_ms: f64,
+}
+
+impl WorkDone {
+    /// The sums of `records`.
+    pub fn of(records: &[PassSummary]) -> WorkDone {
+        let sum = |f: fn(&PassSummary) -> u32| records.iter().map(|r| f(r) as u64).sum();
+        WorkDone {
+            passes: records.len(),
+            laplacian_moves: sum(|r| r.counts.laplacian_moves),
+            optimization_calls: sum(|r| r.counts.optimization_calls),
+            solver_iterations: sum(|r| r.counts.solver_iterations),
+            time_ms: records.iter().map(|r| r.elapsed_ms).sum(),
+        }
     }
 }
 
@@ -283,12 +275,8 @@ pub struct PanelStats {
     pub side: Side,
     #[serde(flatten)]
     pub mesh: MeshStats,
-    pub passes: usize,
-    pub laplacian_moves: u64,
-    pub optimization_calls: u64,
-    pub solver_iterations: u64,
-    /// Smoothing time summed over the passes, milliseconds by the caller's clock.
-    pub time_ms: f64,
+    #[serde(flatten)]
+    pub work: WorkDone,
 }
 
 /// The page's statistics table: [`PanelStats`] with the cheap statistics of
@@ -306,11 +294,8 @@ pub struct PanelTable {
     pub mesh: QuickStats,
     /// The rows that need every corner measured, when they were (see [`TableDetail`]).
     pub detail: Option<TableDetail>,
-    pub passes: usize,
-    pub laplacian_moves: u64,
-    pub optimization_calls: u64,
-    pub solver_iterations: u64,
-    pub time_ms: f64,
+    #[serde(flatten)]
+    pub work: WorkDone,
 }
 
 /// Corners under this angle, degrees, count as poor in the table: Freitag (1997) judges
@@ -634,18 +619,11 @@ impl Playground {
                     run.stats_ms += clock() - t0;
                     if run.acc.done >= n {
                         let q = run.acc.finish();
-                        let c = run.counts;
                         let summary = PassSummary {
                             pass: p.records.len() as u32 + 1,
-                            visits: c.visits,
-                            inverted: q.inverted,
-                            min_angle_deg: q.min_angle_deg,
-                            max_angle_deg: q.max_angle_deg,
-                            min_quality: q.min_quality,
-                            laplacian_moves: c.laplacian_moves,
-                            optimization_calls: c.optimization_calls,
-                            solver_iterations: c.solver_iterations,
-                            untangle_sweeps: c.untangle_sweeps,
+                            counts: run.counts,
+                            after: q,
+                            objective_total: None,
                             elapsed_ms: run.sweep_ms,
                             stats_ms: run.stats_ms,
                         };
@@ -781,16 +759,7 @@ impl Playground {
 
     /// Statistics of a panel's current mesh, with the work done since the last reset.
     pub fn stats(&self, side: Side) -> PanelStats {
-        let t = self.table(side);
-        PanelStats {
-            side,
-            mesh: self.full_stats(side).clone(),
-            passes: t.passes,
-            laplacian_moves: t.laplacian_moves,
-            optimization_calls: t.optimization_calls,
-            solver_iterations: t.solver_iterations,
-            time_ms: t.time_ms,
-        }
+        PanelStats { side, mesh: self.full_stats(side).clone(), work: WorkDone::of(&self.panel(side).records) }
     }
 
     /// The table's detail rows of a panel: measured now for a mesh of at most
@@ -810,7 +779,6 @@ impl Playground {
     /// What the page's statistics table shows of a panel (cheap: kept up to date).
     pub fn table(&self, side: Side) -> PanelTable {
         let p = self.panel(side);
-        let r = &p.records;
         PanelTable {
             side,
             title: format!("{}: {}", side.letter(), self.settings.choice(side).title()),
@@ -819,11 +787,7 @@ impl Playground {
             elements: p.mesh.element_count(),
             mesh: p.quick,
             detail: self.detail(side),
-            passes: r.len(),
-            laplacian_moves: r.iter().map(|r| r.laplacian_moves as u64).sum(),
-            optimization_calls: r.iter().map(|r| r.optimization_calls as u64).sum(),
-            solver_iterations: r.iter().map(|r| r.solver_iterations as u64).sum(),
-            time_ms: r.iter().map(|r| r.elapsed_ms).sum(),
+            work: WorkDone::of(&p.records),
         }
     }
 
@@ -832,7 +796,7 @@ impl Playground {
         self.abort_pass();
         self.undo.clear();
         let o = self.settings.smooth_options().expect("the settings were checked when set");
-        let quick = quick_of(&self.original_stats);
+        let quick = self.original_stats.quick();
         for p in &mut self.panels {
             p.mesh.nodes.copy_from_slice(&self.original);
             p.version = self.original_version;
@@ -943,7 +907,7 @@ mod tests {
         }
         let [old, new] = last.unwrap();
         assert_eq!((old.pass, new.pass), (3, 3));
-        assert_eq!(new.inverted, 0, "Chen et al. untangle the perturbed plate in 3 passes");
+        assert_eq!(new.after.inverted, 0, "Chen et al. untangle the perturbed plate in 3 passes");
         // the page's default sample (issue 11): the new side beats the max-min objective on
         // what both sides are judged by: smallest and largest angle, worst and mean quality
         let (o, n) = (pg.full_stats(Side::Old).clone(), pg.full_stats(Side::New).clone());
@@ -953,11 +917,11 @@ mod tests {
         assert!(n.max_angle_deg < o.max_angle_deg - 1.0, "max angle: new {} old {}", n.max_angle_deg, o.max_angle_deg);
         let s = pg.stats(Side::New);
         assert_eq!(s.mesh.inverted, 0);
-        assert_eq!(s.passes, 3);
-        assert!(s.optimization_calls > 0);
-        assert_eq!(pg.stats(Side::Old).passes, 3);
+        assert_eq!(s.work.passes, 3);
+        assert!(s.work.optimization_calls > 0);
+        assert_eq!(pg.stats(Side::Old).work.passes, 3);
         pg.reset();
-        assert_eq!(pg.stats(Side::New).passes, 0);
+        assert_eq!(pg.stats(Side::New).work.passes, 0);
         assert_eq!(pg.stats(Side::New).mesh.inverted, start);
     }
 
@@ -997,7 +961,7 @@ mod tests {
         pg.step(&no_clock);
         pg.perturb(1.0, 7).unwrap();
         assert!(pg.stats(Side::Old).mesh.inverted > 0);
-        assert_eq!(pg.stats(Side::Old).passes, 0);
+        assert_eq!(pg.stats(Side::Old).work.passes, 0);
         assert_eq!(pg.panel(Side::New).mesh.nodes, pg.original_nodes());
         assert!(pg.perturb(f64::NAN, 1).is_err());
     }
@@ -1091,13 +1055,13 @@ mod tests {
                             assert_eq!(pg.panel(side).mesh.nodes, m.nodes, "{what}");
                             let got = &records[side as usize];
                             assert_eq!(
-                                (got.pass, got.visits, got.laplacian_moves, got.optimization_calls, got.solver_iterations),
-                                (pass, rec.visits, rec.laplacian_moves, rec.optimization_calls, rec.solver_iterations),
+                                (got.pass, got.counts.visits, got.counts.laplacian_moves, got.counts.optimization_calls, got.counts.solver_iterations),
+                                (pass, rec.counts.visits, rec.counts.laplacian_moves, rec.counts.optimization_calls, rec.counts.solver_iterations),
                                 "{what}"
                             );
                             assert_eq!(
-                                (got.inverted, got.min_angle_deg, got.max_angle_deg, got.min_quality),
-                                (rec.inverted, rec.min_angle_deg, rec.max_angle_deg, rec.min_quality),
+                                (got.after.inverted, got.after.min_angle_deg, got.after.max_angle_deg, got.after.min_quality),
+                                (rec.after.inverted, rec.after.min_angle_deg, rec.after.max_angle_deg, rec.after.min_quality),
                                 "{what}"
                             );
                             let mut buckets = Vec::new();

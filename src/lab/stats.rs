@@ -8,23 +8,12 @@
 use std::ops::Range;
 
 use glam::DVec2;
-use serde::Serialize;
 
 use crate::mesh::{ElementKind, Mesh};
+pub use crate::quality::QuickStats;
 use crate::quality::{lo_alpha_corner, measure_element, signed_angle, TWO_SQRT3};
 use crate::render::bucket;
 
-/// What the page's statistics table and per-pass chart show of a mesh.
-#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
-pub struct QuickStats {
-    /// Elements with a corner of `det ≤ 0`.
-    pub inverted: usize,
-    /// Smallest and largest signed corner angle, degrees.
-    pub min_angle_deg: f64,
-    pub max_angle_deg: f64,
-    /// Smallest α (triangles) / β (quads).
-    pub min_quality: f64,
-}
 
 /// A pseudo-angle of the corner `(cross, dot) = (e1 × e2, e1 · e2)`: a value in [−2, 2]
 /// that orders corners as `atan2(cross, dot)` does (signed zeros included), for the

@@ -238,10 +238,10 @@ impl Playground {
                 std::iter::once(f0).chain(r.iter().map(f)).collect()
             };
             [
-                col(start.min_angle_deg, &|r| r.min_angle_deg),
-                col(start.max_angle_deg, &|r| r.max_angle_deg),
-                col(start.min_quality, &|r| r.min_quality),
-                col(start.inverted as f64, &|r| r.inverted as f64),
+                col(start.min_angle_deg, &|r| r.after.min_angle_deg),
+                col(start.max_angle_deg, &|r| r.after.max_angle_deg),
+                col(start.min_quality, &|r| r.after.min_quality),
+                col(start.inverted as f64, &|r| r.after.inverted as f64),
             ]
         };
         let cols = [hist(Side::Old), hist(Side::New)];
@@ -275,7 +275,7 @@ impl Playground {
             vec![
                 format!("inverted {}   min quality {:.3}   mean quality {:.3}", s.inverted, s.min_quality, s.mean_quality),
                 format!("angles {:.1}° – {:.1}°   worst κ {}", s.min_angle_deg, s.max_angle_deg, kappa_words(s.max_condition)),
-                format!("Laplacian moves {}   optimization calls {}", t.laplacian_moves, t.optimization_calls),
+                format!("Laplacian moves {}   optimization calls {}", t.work.laplacian_moves, t.work.optimization_calls),
             ]
         };
         let title = |side: Side| {

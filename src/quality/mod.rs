@@ -478,6 +478,20 @@ pub struct MeshStats {
     pub angle_histogram_6deg: Vec<u64>,
 }
 
+/// Where a mesh stands, in the numbers a pass record carries (and the page's table and
+/// per-pass chart show): [`MeshStats`]'s extremes, which the page measures cheaply
+/// (`lab::stats`) and the CLI takes from [`mesh_stats`] ([`MeshStats::quick`]).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct QuickStats {
+    /// Elements with a corner of `det ≤ 0`.
+    pub inverted: usize,
+    /// Smallest and largest signed corner angle, degrees.
+    pub min_angle_deg: f64,
+    pub max_angle_deg: f64,
+    /// Smallest α (triangles) / β (quads).
+    pub min_quality: f64,
+}
+
 /// Bin of a signed corner angle (radians) in the 6° histogram: bin i holds
 /// [6i°, 6i+6°); 180° goes in the last bin, zero and negative angles in the first.
 pub fn angle_bin(angle: f64) -> usize {
@@ -491,6 +505,16 @@ pub fn angle_bin(angle: f64) -> usize {
 }
 
 impl MeshStats {
+    /// The extremes a pass record carries.
+    pub fn quick(&self) -> QuickStats {
+        QuickStats {
+            inverted: self.inverted,
+            min_angle_deg: self.min_angle_deg,
+            max_angle_deg: self.max_angle_deg,
+            min_quality: self.min_quality,
+        }
+    }
+
     /// The node and element counts of `mesh`, with every statistic the elements add up
     /// at its starting value (no elements seen yet).
     pub fn empty(mesh: &Mesh) -> MeshStats {

@@ -133,7 +133,7 @@ impl Smoother {
         let t0 = clock();
         let counts = self.sweep(mesh, objective);
         let elapsed = clock() - t0;
-        self.record(mesh, objective, self.passes, counts, elapsed)
+        self.record(mesh, objective, self.passes, counts, elapsed, clock)
     }
 
     /// The record of a pass: its counts and time, and the mesh's statistics now.
@@ -144,29 +144,12 @@ impl Smoother {
         pass: u32,
         counts: SweepCounts,
         elapsed_ms: f64,
+        clock: &dyn Fn() -> f64,
     ) -> PassRecord {
-        let mut rec = PassRecord {
-            pass,
-            visits: 0,
-            inverted: 0,
-            min_angle_deg: 0.0,
-            max_angle_deg: 0.0,
-            min_quality: 0.0,
-            objective_total: 0.0,
-            laplacian_moves: 0,
-            optimization_calls: 0,
-            solver_iterations: 0,
-            untangle_sweeps: 0,
-            elapsed_ms,
-        };
-        counts.add_to(&mut rec);
-        let stats = mesh_stats(mesh);
-        rec.inverted = stats.inverted;
-        rec.min_angle_deg = stats.min_angle_deg;
-        rec.max_angle_deg = stats.max_angle_deg;
-        rec.min_quality = stats.min_quality;
-        rec.objective_total = self.objective_total(mesh, objective);
-        rec
+        let t0 = clock();
+        let after = mesh_stats(mesh).quick();
+        let objective_total = Some(self.objective_total(mesh, objective));
+        PassRecord { pass, counts, after, objective_total, elapsed_ms, stats_ms: clock() - t0 }
     }
 
     /// The node loop of a pass alone: plans the visit order and smooths each visit, without

@@ -210,7 +210,7 @@ impl ColouredSmoother {
         let t0 = clock();
         let counts = self.sweep(mesh, objective);
         let elapsed = clock() - t0;
-        self.main.record(mesh, objective, self.passes, counts, elapsed)
+        self.main.record(mesh, objective, self.passes, counts, elapsed, clock)
     }
 }
 
@@ -368,11 +368,11 @@ mod tests {
         let mut s = ColouredSmoother::new(&small, SmoothOptions::default()).unwrap();
         let r = s.pass(&mut small, &*obj, &|| 0.0);
         assert_eq!(r.pass, 1);
-        assert_eq!(r.visits as usize, small.free_count());
-        assert_eq!(r.inverted, 0);
+        assert_eq!(r.counts.visits as usize, small.free_count());
+        assert_eq!(r.after.inverted, 0);
         let mut big = rand2d(500, 10, 2).unwrap();
         let r = s.pass(&mut big, &*obj, &|| 0.0);
-        assert_eq!(r.visits as usize, big.free_count(), "the colouring follows the mesh");
+        assert_eq!(r.counts.visits as usize, big.free_count(), "the colouring follows the mesh");
         assert_eq!(s.colouring().order().len(), big.free_count());
     }
 }

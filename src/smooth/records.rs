@@ -2,35 +2,32 @@
 
 use serde::Serialize;
 
-/// What one pass did and where the mesh stands after it.
+use crate::quality::QuickStats;
+
+/// What one pass did and where the mesh stands after it: the record of a pass for the CLI
+/// (`smooth --json`), the page and the benches alike. In JSON its parts are flattened
+/// into one object (`pass`, `visits`, …, `inverted`, `min_angle_deg`, …).
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct PassRecord {
-    /// 1 for the first pass of a [`Smoother`].
+    /// 1 for the first pass of a [`Smoother`](super::Smoother) (on the page: since the last reset).
     pub pass: u32,
-    /// Node visits (with [`Order::Priority`] a poor node is visited up to once per bin).
-    pub visits: u32,
-    /// After the pass: elements with a corner of `det ≤ 0`.
-    pub inverted: usize,
-    /// After the pass: smallest and largest signed corner angle, degrees.
-    pub min_angle_deg: f64,
-    pub max_angle_deg: f64,
-    /// After the pass: smallest element α/β.
-    pub min_quality: f64,
+    /// What the node loop did (with [`Order::Priority`](super::Order::Priority) a poor node is visited up to once
+    /// per bin; untangling sweeps' visits count in `visits`).
+    #[serde(flatten)]
+    pub counts: SweepCounts,
+    /// Where the mesh stands after the pass.
+    #[serde(flatten)]
+    pub after: QuickStats,
     /// After the pass: the sum over free nodes of the node objective value (the sum of its
-    /// terms, or their minimum for a max-min objective) — the quantity the optimiser works on,
-    /// summed over the mesh. +∞ when a barrier objective sees an inverted star.
-    pub objective_total: f64,
-    /// Nodes moved by a Laplacian step (plain or smart).
-    pub laplacian_moves: u32,
-    /// Calls to the solver.
-    pub optimization_calls: u32,
-    /// Solver iterations, summed over the calls.
-    pub solver_iterations: u32,
-    /// Untangling sweeps run after the planned visits ([`SmoothOptions::untangle_sweeps`]);
-    /// their visits are counted in `visits`.
-    pub untangle_sweeps: u32,
-    /// Time of the node loop (not of the statistics), milliseconds by the caller's clock.
+    /// terms, or their minimum for a max-min objective) — the quantity the optimiser works
+    /// on, summed over the mesh; +∞ when a barrier objective sees an inverted star. `None`
+    /// where it is not measured (the page: it costs more than a Laplacian pass).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub objective_total: Option<f64>,
+    /// Time of the node loop (planning the order included), milliseconds by the caller's clock.
     pub elapsed_ms: f64,
+    /// Time of the statistics after it, milliseconds.
+    pub stats_ms: f64,
 }
 
 /// What the node loop of a pass did (the counting part of [`PassRecord`]).
@@ -65,13 +62,6 @@ impl SweepCounts {
         self.solver_iterations += o.solver_iterations;
         self.moves += o.moves;
         self.untangle_sweeps += o.untangle_sweeps;
-    }
-    pub(super) fn add_to(self, rec: &mut PassRecord) {
-        rec.visits += self.visits;
-        rec.laplacian_moves += self.laplacian_moves;
-        rec.optimization_calls += self.optimization_calls;
-        rec.solver_iterations += self.solver_iterations;
-        rec.untangle_sweeps += self.untangle_sweeps;
     }
 }
 

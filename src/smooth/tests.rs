@@ -130,7 +130,7 @@ fn laplace_on_a_regular_grid_is_a_fixed_point() {
         for (a, b) in before.iter().zip(&mesh.nodes) {
             assert!(a.distance(*b) < 1e-14, "{kind:?}: {a} → {b}");
         }
-        assert_eq!(recs[1].laplacian_moves, 0);
+        assert_eq!(recs[1].counts.laplacian_moves, 0);
     }
 }
 
@@ -180,7 +180,7 @@ proptest! {
                         prop_assert_eq!(a.nodes[n].to_array().map(f64::to_bits), mesh0.nodes[n].to_array().map(f64::to_bits));
                     }
                 }
-                prop_assert!(ra.iter().all(|r| !r.objective_total.is_nan()));
+                prop_assert!(ra.iter().all(|r| r.objective_total.is_some_and(|t| !t.is_nan())));
             }
         }
     }
@@ -331,26 +331,26 @@ fn rules_untangle_a_folded_star_by_optimization() {
     let opts = SmoothOptions::default().with_strategy(Strategy::Rules).with_max_iter(20);
     let mut s = Smoother::new(opts).unwrap();
     let r1 = s.pass(&mut mesh, &ShapeMaxMin, NO_CLOCK);
-    assert_eq!(r1.optimization_calls, 1, "rule 2: an invalid element calls optimization");
-    assert_eq!(r1.laplacian_moves, 0);
+    assert_eq!(r1.counts.optimization_calls, 1, "rule 2: an invalid element calls optimization");
+    assert_eq!(r1.counts.laplacian_moves, 0);
     let mut last = r1;
     for _ in 0..5 {
         last = s.pass(&mut mesh, &ShapeMaxMin, NO_CLOCK);
     }
-    assert_eq!(last.inverted, 0, "{last:?}");
+    assert_eq!(last.after.inverted, 0, "{last:?}");
     assert!(mesh.nodes[0].length() < 0.05, "{}", mesh.nodes[0]);
     // once valid, the constrained Laplacian takes over (the centroid is the best place)
     let mut mesh = hexagon(DVec2::new(0.2, 0.1));
     let r = s.pass(&mut mesh, &ShapeMaxMin, NO_CLOCK);
-    assert_eq!((r.laplacian_moves, r.optimization_calls), (1, 0));
+    assert_eq!((r.counts.laplacian_moves, r.counts.optimization_calls), (1, 0));
     // and a node where the Laplacian cannot help goes to optimization (rule 3)
     let r = s.pass(&mut mesh, &ShapeMaxMin, NO_CLOCK);
-    assert_eq!((r.laplacian_moves, r.optimization_calls), (0, 1));
+    assert_eq!((r.counts.laplacian_moves, r.counts.optimization_calls), (0, 1));
     // rule 4: forced
     let forced = SmoothOptions { force_optimization: true, ..opts };
     let mut mesh = hexagon(DVec2::new(0.2, 0.1));
     let r = Smoother::new(forced).unwrap().pass(&mut mesh, &ShapeMaxMin, NO_CLOCK);
-    assert_eq!((r.laplacian_moves, r.optimization_calls), (0, 1));
+    assert_eq!((r.counts.laplacian_moves, r.counts.optimization_calls), (0, 1));
 }
 
 #[test]
@@ -394,7 +394,7 @@ fn combined_schemes_respect_the_threshold() {
         let mut mesh = good.clone();
         let opts = SmoothOptions::default().with_strategy(strategy).with_threshold_deg(30.0).with_order(Order::Input);
         let r = Smoother::new(opts).unwrap().pass(&mut mesh, &ShapeMaxMin, NO_CLOCK);
-        assert_eq!(r.optimization_calls, 0, "{strategy:?}");
+        assert_eq!(r.counts.optimization_calls, 0, "{strategy:?}");
         assert_eq!(mesh.nodes, good.nodes, "{strategy:?}");
     }
     // one bad node: every scheme optimizes it, C3 leaves the rest alone
@@ -434,11 +434,12 @@ fn pass_record_and_clock() {
     let r = s.pass(&mut mesh, &ShapeSum, &clock);
     assert_eq!(r.pass, 1);
     assert_eq!(r.elapsed_ms, 2.5);
-    assert_eq!(r.visits as usize, mesh.free_count());
-    assert!(r.objective_total.is_finite() && r.objective_total < total0, "{total0} → {}", r.objective_total);
-    assert!(r.laplacian_moves + r.optimization_calls > 0);
+    assert_eq!(r.counts.visits as usize, mesh.free_count());
+    let t = r.objective_total.expect("the core measures it");
+    assert!(t.is_finite() && t < total0, "{total0} → {t}");
+    assert!(r.counts.laplacian_moves + r.counts.optimization_calls > 0);
     let st = mesh_stats(&mesh);
-    assert_eq!((r.inverted, r.min_quality, r.min_angle_deg), (st.inverted, st.min_quality, st.min_angle_deg));
+    assert_eq!((r.after.inverted, r.after.min_quality, r.after.min_angle_deg), (st.inverted, st.min_quality, st.min_angle_deg));
     let json = serde_json::to_string(&r).unwrap();
     assert!(json.contains("\"objective_total\"") && json.contains("\"solver_iterations\""), "{json}");
     assert_eq!(s.pass(&mut mesh, &ShapeSum, &clock).pass, 2);
@@ -582,7 +583,7 @@ fn random_grid(kind: crate::generate::GridKind, seed: u64) -> Mesh {
 /// Passes of `objective` by optimization, input order, until no element is inverted.
 fn passes_to_valid(mesh: &mut Mesh, objective: &dyn Objective, opts: SmoothOptions, max: u32) -> Option<u32> {
     let mut s = Smoother::new(opts.with_strategy(Strategy::Opt).with_order(Order::Input)).unwrap();
-    (1..=max).find(|_| s.pass(mesh, objective, NO_CLOCK).inverted == 0)
+    (1..=max).find(|_| s.pass(mesh, objective, NO_CLOCK).after.inverted == 0)
 }
 
 #[test]
@@ -668,21 +669,21 @@ fn untangling_sweeps_terminate() {
         let mut m = mesh.clone();
         let opts = SmoothOptions::default().with_strategy(strategy).with_untangle_sweeps(limit);
         let r = Smoother::new(opts).unwrap().pass(&mut m, &new, &|| 0.0);
-        assert!(r.inverted > 0);
+        assert!(r.after.inverted > 0);
         // the free node settles within a sweep or two; then a sweep moves nothing and ends them
-        assert!(r.untangle_sweeps <= limit.min(3), "{strategy:?}, limit {limit}: {} sweeps", r.untangle_sweeps);
-        assert!(limit == 0 || r.untangle_sweeps >= 1);
+        assert!(r.counts.untangle_sweeps <= limit.min(3), "{strategy:?}, limit {limit}: {} sweeps", r.counts.untangle_sweeps);
+        assert!(limit == 0 || r.counts.untangle_sweeps >= 1);
     }
     // strategies that never optimise do not sweep
     for strategy in [Strategy::Laplace, Strategy::Smart] {
         let mut m = mesh.clone();
         let r = Smoother::new(SmoothOptions::default().with_strategy(strategy)).unwrap().pass(&mut m, &new, &|| 0.0);
-        assert_eq!(r.untangle_sweeps, 0, "{strategy:?}");
+        assert_eq!(r.counts.untangle_sweeps, 0, "{strategy:?}");
     }
     // a valid mesh never sweeps
     let mut g = crate::generate::grid(4, 4, crate::generate::GridKind::Tri).unwrap();
     let r = Smoother::new(SmoothOptions::default()).unwrap().pass(&mut g, &new, &|| 0.0);
-    assert_eq!((r.inverted, r.untangle_sweeps), (0, 0));
+    assert_eq!((r.after.inverted, r.counts.untangle_sweeps), (0, 0));
     // and the limit is checked
     assert!(Smoother::new(SmoothOptions::default().with_untangle_sweeps(1001)).is_err());
 }

@@ -564,8 +564,8 @@ pub fn freitag_row(i: usize) -> Result<FreitagRow> {
         let obj = objective_with(kind, Penalty::Barrier);
         for _ in 0..3 {
             let r = s.pass(&mut mesh, obj.as_ref(), &|| 0.0);
-            lap += r.laplacian_moves;
-            opt += r.optimization_calls;
+            lap += r.counts.laplacian_moves;
+            opt += r.counts.optimization_calls;
         }
     }
     let stats = mesh_stats(&mesh);
@@ -691,7 +691,7 @@ fn knupp_runs() -> Result<Vec<(String, Mesh)>> {
     let mut passes = 0;
     while passes < 100 {
         passes += 1;
-        if s.pass(&mut m, untangle.as_ref(), &|| 0.0).inverted == 0 {
+        if s.pass(&mut m, untangle.as_ref(), &|| 0.0).after.inverted == 0 {
             break;
         }
     }
