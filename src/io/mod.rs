@@ -318,6 +318,7 @@ pub fn write_triangle(mesh: &Mesh) -> Result<(String, String)> {
 /// Bytes per node and per element that no format's line exceeds: an index of at most 10
 /// digits, three coordinates of at most 25 characters each (Rust's shortest exact
 /// form), up to nine node numbers of at most 11 characters with their spaces.
+#[cfg(not(target_arch = "wasm32"))]
 const LINE_BOUND: u64 = 256;
 
 /// Writes a mesh file in the format of the path's extension (`.node`/`.ele`: both files).

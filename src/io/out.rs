@@ -20,6 +20,8 @@ pub(crate) struct Out<'w> {
     error: Option<std::io::Error>,
 }
 
+// The page writes strings only: files (and the count before a file) are native.
+#[cfg_attr(target_arch = "wasm32", allow(dead_code))]
 enum Mode<'w> {
     Keep,
     File(&'w mut dyn std::io::Write),
@@ -32,10 +34,12 @@ impl<'w> Out<'w> {
         Out { buf: String::with_capacity(capacity), mode: Mode::Keep, passed: 0, error: None }
     }
     /// The text goes to `w` in chunks.
+    #[cfg(not(target_arch = "wasm32"))]
     pub fn file(w: &'w mut dyn std::io::Write) -> Self {
         Out { buf: String::with_capacity(CHUNK + 256), mode: Mode::File(w), passed: 0, error: None }
     }
     /// The text is only measured.
+    #[cfg(not(target_arch = "wasm32"))]
     pub fn counter() -> Self {
         Out { buf: String::with_capacity(CHUNK + 256), mode: Mode::Count, passed: 0, error: None }
     }
@@ -76,6 +80,7 @@ impl<'w> Out<'w> {
         self.buf
     }
     /// Hands on what is left; the first error of the file, if any.
+    #[cfg(not(target_arch = "wasm32"))]
     pub fn finish(&mut self) -> std::io::Result<()> {
         self.drain();
         if let Mode::File(w) = &mut self.mode {
