@@ -1,0 +1,409 @@
+//! Building a mesh: nodes and elements as a file gives them, checked, mapped to the
+//! mesh's plane, oriented, with the topology built and the fixed flags set.
+
+use std::sync::Arc;
+
+use glam::DVec2;
+
+use crate::error::{Error, Result};
+
+use super::*;
+
+/// Signed area of a polygon given by its vertices in order (shoelace formula).
+pub fn polygon_area(pts: impl Iterator<Item = DVec2> + Clone) -> f64 {
+    let first = pts.clone().next();
+    let Some(first) = first else { return 0.0 };
+    let mut s = 0.0;
+    let mut prev = first;
+    for p in pts.skip(1) {
+        s += prev.perp_dot(p);
+        prev = p;
+    }
+    s += prev.perp_dot(first);
+    0.5 * s
+}
+
+/// How the fixed flags of a mesh are decided.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub enum FixedSpec {
+    /// Boundary nodes (of corner-to-corner edges used by one element, with their mid nodes).
+    #[default]
+    Boundary,
+    /// Exactly as the file says (VTK `POINT_DATA` scalar `fixed`).
+    Exact(Vec<bool>),
+    /// Boundary nodes plus the nodes the file marks (Gmsh line/point elements,
+    /// Triangle boundary markers).
+    BoundaryAnd(Vec<bool>),
+}
+
+/// The largest coordinate magnitude smoothlab computes with, `f64::MAX / 16` (about
+/// 1.1e307): differences of coordinates and the end tangents `4M − 3P0 − P2` of quadratic
+/// edges stay finite below it.
+pub const MAX_COORDINATE: f64 = f64::MAX / 16.0;
+
+/// Why a coordinate cannot be computed with, if it cannot: beyond [`MAX_COORDINATE`].
+/// (Tiny ones are fine: a subnormal next to 1e-300 is a jittered zero, and the metrics
+/// work in each element's own scale.)
+fn beyond_arithmetic(c: f64) -> Option<String> {
+    (c.abs() > MAX_COORDINATE).then(|| {
+        format!(
+            "coordinate {c:e} is too large to compute with: smoothlab takes magnitudes up to {MAX_COORDINATE:.1e} \
+             (differences and quadratic edge tangents of larger ones overflow 64-bit floats)"
+        )
+    })
+}
+
+/// Relative tolerance within which 3D points count as planar: of the size of a node's
+/// elements, or of its coordinates' magnitude (rounding), whichever is larger.
+pub const PLANAR_TOLERANCE: f64 = 1e-5;
+
+/// Collects what a reader found in a file, then validates it and builds a [`Mesh`].
+/// Readers record the file line of every node and element so that errors found here
+/// can still name the line.
+#[derive(Clone, Debug, Default)]
+pub struct MeshBuilder {
+    points: Vec<[f64; 3]>,
+    point_lines: Vec<u32>,
+    kinds: Vec<ElementKind>,
+    elem_start: Vec<u32>,
+    elem_nodes: Vec<u32>,
+    elem_lines: Vec<u32>,
+    /// How fixed flags are decided.
+    pub fixed: FixedSpec,
+}
+
+impl MeshBuilder {
+    pub fn new() -> Self {
+        MeshBuilder { elem_start: vec![0], ..Default::default() }
+    }
+    /// A builder with room reserved for the given counts, capped (at 2¹⁶ of each) so a
+    /// header that claims large counts costs a fixed amount until the data is seen;
+    /// beyond that the arrays grow as nodes and elements are added.
+    pub fn with_capacity(nodes: usize, elements: usize) -> Self {
+        const CAP: usize = 1 << 16;
+        let mut b = Self::new();
+        b.points.reserve(nodes.min(CAP));
+        b.point_lines.reserve(nodes.min(CAP));
+        b.kinds.reserve(elements.min(CAP));
+        b.elem_lines.reserve(elements.min(CAP));
+        b
+    }
+    /// Reserves room for exactly this many more nodes, elements and element node ids (for
+    /// counts that are known, not claimed by a file): no array then grows by doubling,
+    /// which in wasm copies it and holds both copies for a moment.
+    pub(crate) fn reserve_exact(&mut self, nodes: usize, elements: usize, element_nodes: usize) {
+        self.points.reserve_exact(nodes);
+        self.point_lines.reserve_exact(nodes);
+        self.kinds.reserve_exact(elements);
+        self.elem_start.reserve_exact(elements);
+        self.elem_lines.reserve_exact(elements);
+        self.elem_nodes.reserve_exact(element_nodes);
+    }
+    /// Adds a node given in 3D (`z = 0` for 2D formats); `line` is its file line (0 if none).
+    pub fn add_node(&mut self, p: [f64; 3], line: usize) -> usize {
+        self.points.push(p);
+        self.point_lines.push(line as u32);
+        self.points.len() - 1
+    }
+    pub fn node_count(&self) -> usize {
+        self.points.len()
+    }
+    pub fn element_count(&self) -> usize {
+        self.kinds.len()
+    }
+    /// The file line of every node added (0 where none was given).
+    pub(crate) fn node_lines(&self) -> &[u32] {
+        &self.point_lines
+    }
+    /// Adds an element with 0-based node indices (checked in [`build`](Self::build)).
+    pub fn add_element(&mut self, kind: ElementKind, nodes: &[u32], line: usize) {
+        debug_assert_eq!(nodes.len(), kind.node_count());
+        self.kinds.push(kind);
+        self.elem_nodes.extend_from_slice(nodes);
+        self.elem_start.push(self.elem_nodes.len() as u32);
+        self.elem_lines.push(line as u32);
+    }
+    fn line_of_elem(&self, e: usize) -> Option<usize> {
+        self.elem_lines.get(e).copied().filter(|&l| l > 0).map(|l| l as usize)
+    }
+    fn line_of_node(&self, n: usize) -> Option<usize> {
+        self.point_lines.get(n).copied().filter(|&l| l > 0).map(|l| l as usize)
+    }
+
+    /// Validates (finite coordinates, indices in range, no repeated node in an element,
+    /// at least one element, planarity), maps 3D points to the mesh's plane, orients
+    /// the mesh counter-clockwise as a whole, builds the topology and the fixed flags.
+    pub fn build(mut self) -> Result<Mesh> {
+        if self.kinds.is_empty() {
+            return Err(Error::Empty(if self.points.is_empty() {
+                "no nodes and no elements".into()
+            } else {
+                format!("{} nodes but no triangle or quad elements", self.points.len())
+            }));
+        }
+        for (i, p) in self.points.iter().enumerate() {
+            if !p.iter().all(|c| c.is_finite()) {
+                return Err(Error::node(i, self.line_of_node(i), format!("coordinate is not a finite number: {p:?}")));
+            }
+            if let Some(why) = p.iter().find_map(|&c| beyond_arithmetic(c)) {
+                return Err(Error::node(i, self.line_of_node(i), why));
+            }
+        }
+        let n = self.points.len();
+        for e in 0..self.kinds.len() {
+            let ids = &self.elem_nodes[self.elem_start[e] as usize..self.elem_start[e + 1] as usize];
+            for &i in ids {
+                if i as usize >= n {
+                    return Err(Error::element(
+                        e,
+                        self.line_of_elem(e),
+                        format!("refers to node {} but the mesh has {} nodes", i as u64 + 1, n),
+                    ));
+                }
+            }
+            for a in 0..ids.len() {
+                if ids[a + 1..].contains(&ids[a]) {
+                    return Err(Error::element(
+                        e,
+                        self.line_of_elem(e),
+                        format!("{} uses node {} twice", self.kinds[e].name(), ids[a] as u64 + 1),
+                    ));
+                }
+            }
+        }
+        let (nodes, plane) = self.to_plane()?;
+        // the 3D points are not needed past the plane: let them go before the topology is
+        // built (24 bytes a node), and give back what the readers' growing left unused
+        self.points = Vec::new();
+        let (mut kinds, mut elem_start, mut elem_nodes) = (self.kinds, self.elem_start, self.elem_nodes);
+        kinds.shrink_to_fit();
+        elem_start.shrink_to_fit();
+        elem_nodes.shrink_to_fit();
+        let mut mesh = Mesh {
+            plane,
+            nodes,
+            fixed: vec![false; n],
+            conn: Arc::new(Connectivity { kinds, elem_start, elem_nodes, topo: Topology::default() }),
+        };
+        // Orientation of the whole mesh by its total signed area, decided by the sign of
+        // total − (total of the reversed mesh), each summed as its own corner order gives:
+        // reversing negates that difference exactly, so a mesh reversed here is never
+        // reversed again when written and read back. (The sign of the total alone flipped
+        // back and forth when huge coordinates left a total of rounding noise.)
+        // The areas are taken in units of the largest coordinate (a power of two, exact):
+        // near 1e-200 they underflowed to 0 and a clockwise mesh stayed clockwise.
+        let unit = {
+            let m = mesh.nodes.iter().fold(0.0f64, |m, p| m.max(p.x.abs()).max(p.y.abs()));
+            let mut v = [DVec2::new(m, 0.0)];
+            let f = crate::quality::to_unit_scale(&mut v);
+            f[0] * f[1]
+        };
+        let area_in = |e: usize, order: &[usize]| {
+            let ids = mesh.element(e);
+            polygon_area(order.iter().map(|&j| mesh.nodes[ids[j] as usize] * unit))
+        };
+        let forward: f64 =
+            (0..mesh.conn.kinds.len()).map(|e| area_in(e, &[0, 1, 2, 3][..mesh.conn.kinds[e].corners()])).sum();
+        let backward: f64 = (0..mesh.conn.kinds.len())
+            .map(|e| area_in(e, &mesh.conn.kinds[e].reversed_order()[..mesh.conn.kinds[e].corners()]))
+            .sum();
+        if forward - backward < 0.0 {
+            let c = mesh.connectivity_mut();
+            for e in 0..c.kinds.len() {
+                let s = c.elem_start[e] as usize;
+                let k = c.kinds[e];
+                let mut old = [0u32; 9];
+                old[..k.node_count()].copy_from_slice(&c.elem_nodes[s..s + k.node_count()]);
+                for (i, &j) in k.reversed_order().iter().enumerate() {
+                    c.elem_nodes[s + i] = old[j];
+                }
+            }
+        }
+        let topo = build_topology(&mesh, &self.elem_lines)?;
+        mesh.connectivity_mut().topo = topo;
+        let boundary = mesh.conn.topo.boundary.clone();
+        mesh.fixed = match self.fixed {
+            FixedSpec::Boundary => boundary,
+            FixedSpec::Exact(f) => {
+                if f.len() != n {
+                    return Err(Error::invalid(format!("{} fixed flags for {} nodes", f.len(), n)));
+                }
+                f
+            }
+            FixedSpec::BoundaryAnd(f) => {
+                boundary.iter().zip(f.iter().chain(std::iter::repeat(&false))).map(|(a, b)| *a || *b).collect()
+            }
+        };
+        // Nodes no element uses never move.
+        for i in 0..n {
+            if mesh.conn.topo.role[i] == NodeRole::Unused {
+                mesh.fixed[i] = true;
+            }
+        }
+        Ok(mesh)
+    }
+
+    /// 2D coordinates of the points: as given when every z is equal, else in the plane of
+    /// the elements; refuses non-planar input naming the node farthest off, how far, and
+    /// how that compares with the size of its elements. With them the plane to map them
+    /// back into 3D (`None` when every z is 0), so writers put the mesh back where it was.
+    ///
+    /// The plane is fitted robustly, so that one node far off (a mistyped exponent) can
+    /// neither tilt it nor hide behind the size it gives the mesh: its normal is the
+    /// component-wise median of the elements' unit normals (each element one vote,
+    /// whatever its size; signs aligned), and its offset the median of the nodes'
+    /// offsets. Each node must then lie within [`PLANAR_TOLERANCE`] of the size of the
+    /// largest element it belongs to (measured in the plane), or of its own coordinates'
+    /// magnitude, whichever is larger: rounding in the file is excused, an outlier is not,
+    /// however large the mesh around it.
+    fn to_plane(&self) -> Result<(Vec<DVec2>, Option<Plane>)> {
+        let z0 = self.points.first().map(|p| p[2]).unwrap_or(0.0);
+        if self.points.iter().all(|p| p[2] == z0) {
+            let plane = (z0 != 0.0).then_some(Plane {
+                origin: glam::DVec3::new(0.0, 0.0, z0),
+                u: glam::DVec3::X,
+                w: glam::DVec3::Y,
+            });
+            return Ok((self.points.iter().map(|p| DVec2::new(p[0], p[1])).collect(), plane));
+        }
+        // Work in units of the largest coordinate magnitude, so that the cross products
+        // and distances below neither overflow (coordinates near 1e200 once gave NaN
+        // coordinates) nor underflow (near 1e-160, "no area") for any finite input.
+        // The z values differ, so some coordinate is nonzero and the scale is positive.
+        let scale = self.points.iter().flatten().fold(0.0f64, |m, c| m.max(c.abs()));
+        let v = |p: &[f64; 3]| glam::DVec3::new(p[0] / scale, p[1] / scale, p[2] / scale);
+        let elem = |e: usize| &self.elem_nodes[self.elem_start[e] as usize..self.elem_start[e + 1] as usize];
+        // Each element's unit normal (Newell's method on its corner polygon, in units of
+        // its own extent from its first corner, so that tiny elements do not underflow).
+        let mut normals = Vec::with_capacity(self.kinds.len());
+        for e in 0..self.kinds.len() {
+            let ids = elem(e);
+            let k = self.kinds[e].corners();
+            let o = v(&self.points[ids[0] as usize]);
+            let extent =
+                ids[..k].iter().fold(0.0f64, |m, &i| m.max((v(&self.points[i as usize]) - o).abs().max_element()));
+            if extent == 0.0 {
+                continue;
+            }
+            let mut n = glam::DVec3::ZERO;
+            for i in 0..k {
+                let a = (v(&self.points[ids[i] as usize]) - o) / extent;
+                let b = (v(&self.points[ids[(i + 1) % k] as usize]) - o) / extent;
+                n += a.cross(b);
+            }
+            if norm(n) > 1e-12 {
+                normals.push(n / norm(n));
+            }
+        }
+        if normals.is_empty() {
+            return Err(Error::invalid("cannot find the plane of the mesh: its elements have no area"));
+        }
+        // Two rounds: align the signs to a guess, take the median, align to that.
+        let mut normal = normals[0];
+        for _ in 0..2 {
+            let aligned = |c: usize| normals.iter().map(move |n| if n.dot(normal) < 0.0 { -n[c] } else { n[c] });
+            let m = glam::DVec3::new(
+                median(aligned(0).collect()),
+                median(aligned(1).collect()),
+                median(aligned(2).collect()),
+            );
+            if norm(m) > 0.0 {
+                normal = m / norm(m);
+            }
+        }
+        // The mesh faces +normal where its elements do by area (Newell over all of them),
+        // so that elements come out counter-clockwise as they were drawn.
+        let mut facing = 0.0;
+        for e in 0..self.kinds.len() {
+            let ids = elem(e);
+            let k = self.kinds[e].corners();
+            for i in 0..k {
+                facing +=
+                    v(&self.points[ids[i] as usize]).cross(v(&self.points[ids[(i + 1) % k] as usize])).dot(normal);
+            }
+        }
+        if facing < 0.0 {
+            normal = -normal;
+        }
+        let offset = median(self.points.iter().map(|p| v(p).dot(normal)).collect());
+        // In-plane basis (u, w) with u × w = normal.
+        let helper = if normal.x.abs() < 0.9 { glam::DVec3::X } else { glam::DVec3::Y };
+        let u = (helper - normal * helper.dot(normal)).normalize();
+        let w = normal.cross(u);
+        let centre = normal * offset;
+        let flat: Vec<DVec2> =
+            self.points.iter().map(|p| v(p) - centre).map(|d| DVec2::new(d.dot(u), d.dot(w))).collect();
+        // Each node's size: the largest element it belongs to, in the plane (the diagonal
+        // of the element's bounding box there). Unused nodes get the largest element's.
+        let mut size = vec![0.0f64; self.points.len()];
+        let mut largest = 0.0f64;
+        for e in 0..self.kinds.len() {
+            let ids = elem(e);
+            let (mut lo, mut hi) = (DVec2::splat(f64::INFINITY), DVec2::splat(f64::NEG_INFINITY));
+            for &i in ids {
+                lo = lo.min(flat[i as usize]);
+                hi = hi.max(flat[i as usize]);
+            }
+            let d = (hi - lo).length();
+            largest = largest.max(d);
+            for &i in ids {
+                size[i as usize] = size[i as usize].max(d);
+            }
+        }
+        let mut worst: Option<(usize, f64, f64)> = None;
+        for (i, p) in self.points.iter().enumerate() {
+            let distance = (v(p).dot(normal) - offset).abs();
+            let own = if size[i] > 0.0 { size[i] } else { largest };
+            let allowed = PLANAR_TOLERANCE * own.max(v(p).abs().max_element()).max(centre.abs().max_element());
+            if distance > allowed && worst.map_or(true, |(_, d, _)| distance > d) {
+                worst = Some((i, distance, own));
+            }
+        }
+        if let Some((node, distance, own)) = worst {
+            return Err(Error::NotPlanar {
+                node,
+                line: self.line_of_node(node),
+                max_distance: distance * scale,
+                relative: if own > 0.0 { distance / own } else { f64::INFINITY },
+                tolerance: PLANAR_TOLERANCE,
+            });
+        }
+        let mut out = Vec::with_capacity(self.points.len());
+        for (i, q) in flat.iter().enumerate() {
+            let q = *q * scale;
+            if !q.is_finite() {
+                return Err(Error::node(
+                    i,
+                    self.line_of_node(i),
+                    format!(
+                        "its coordinates in the plane of the mesh are too large for a 64-bit float: {:?}",
+                        self.points[i]
+                    ),
+                ));
+            }
+            out.push(q);
+        }
+        Ok((out, Some(Plane { origin: centre * scale, u, w })))
+    }
+}
+
+/// The median of the values (the upper one of the middle two for an even count); NaN-free
+/// input.
+fn median(mut values: Vec<f64>) -> f64 {
+    if values.is_empty() {
+        return 0.0;
+    }
+    let mid = values.len() / 2;
+    *values.select_nth_unstable_by(mid, f64::total_cmp).1
+}
+
+/// Euclidean length without underflow or overflow of the squares (scaled by the
+/// largest component first).
+fn norm(v: glam::DVec3) -> f64 {
+    let m = v.abs().max_element();
+    if m > 0.0 && m.is_finite() {
+        m * (v / m).length()
+    } else {
+        m
+    }
+}

@@ -1,0 +1,389 @@
+//! The mesh model: node positions (`glam::DVec2`), elements of five kinds, a per-node
+//! `fixed` flag, and the topology built once into flat (CSR-style) arrays.
+//!
+//! Element node order follows Gmsh and VTK: the corners counter-clockwise, then the
+//! mid-side nodes of the edges (corner 0→1, 1→2, …), then (9-node quad) the centre.
+//!
+//! Orientation is a property of the whole mesh: [`MeshBuilder::build`] makes the total
+//! signed area positive by reversing *every* element when it is negative, never one
+//! element alone, so a tangled mesh stays tangled until it is smoothed.
+
+use std::sync::Arc;
+
+use glam::DVec2;
+use serde::Serialize;
+
+
+mod builder;
+mod kind;
+mod renumber;
+#[cfg(test)]
+mod tests;
+mod topology;
+
+pub use builder::{polygon_area, FixedSpec, MeshBuilder, MAX_COORDINATE, PLANAR_TOLERANCE};
+pub use kind::{ElementKind, NodeRole};
+use topology::build_topology;
+
+/// Marker for "no such index" in the flat arrays.
+pub const NONE: u32 = u32::MAX;
+
+
+/// An edge between two corner nodes, with its mid-side node when quadratic.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct Edge {
+    /// Corner nodes, `a < b`.
+    pub a: u32,
+    pub b: u32,
+    /// Mid-side node, or [`NONE`].
+    pub mid: u32,
+    /// Used by one element only.
+    pub boundary: bool,
+    /// A boundary edge whose mid-side node is off the chord (curved boundary).
+    pub curved: bool,
+}
+
+impl Edge {
+    pub fn is_boundary(&self) -> bool {
+        self.boundary
+    }
+}
+
+/// Connectivity, built once from the elements: node → elements, node → neighbour
+/// corner nodes, the unique edges, and boundary flags. Flat arrays with offsets.
+#[derive(Clone, Debug, Default)]
+pub struct Topology {
+    node_elem_start: Vec<u32>,
+    node_elems: Vec<u32>,
+    node_nbr_start: Vec<u32>,
+    node_nbrs: Vec<u32>,
+    edges: Vec<Edge>,
+    role: Vec<NodeRole>,
+    boundary: Vec<bool>,
+    on_curved: Vec<bool>,
+    /// Which element families occur, found once so the per-node queries
+    /// ([`Mesh::has_triangles`], …) cost O(1) instead of a scan of all elements.
+    kinds_present: KindsPresent,
+}
+
+/// One array of a mesh and its size (see [`Mesh::memory_parts`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct MemoryPart {
+    pub name: &'static str,
+    /// Its capacity in bytes.
+    pub bytes: usize,
+    /// Whether clones of the mesh share it.
+    pub shared: bool,
+}
+
+/// What a mesh's clones share: the elements and the topology built from them.
+#[derive(Debug, Default)]
+struct Connectivity {
+    kinds: Vec<ElementKind>,
+    elem_start: Vec<u32>,
+    elem_nodes: Vec<u32>,
+    topo: Topology,
+}
+
+/// Which element families a mesh holds.
+#[derive(Clone, Copy, Debug, Default)]
+struct KindsPresent {
+    triangles: bool,
+    quads: bool,
+    quadratic: bool,
+}
+
+/// A planar 2D mesh of triangles and quads, linear or quadratic, possibly mixed.
+///
+/// The elements and the topology never change once built, and clones share them: a
+/// clone copies the positions and fixed flags only (17 bytes a node), so the page's
+/// two sides hold one connectivity between them.
+#[derive(Clone, Debug)]
+pub struct Mesh {
+    /// Node positions. The smoothers move corner nodes here; mid-side nodes follow.
+    pub nodes: Vec<DVec2>,
+    /// Nodes that never move.
+    pub fixed: Vec<bool>,
+    conn: Arc<Connectivity>,
+    /// The 3D plane the file's points lay in, when they were not in the xy plane at z = 0
+    /// (see [`Mesh::to_3d`]); `None` for a 2D mesh.
+    pub plane: Option<Plane>,
+}
+
+/// A plane in 3D: the point that 2D coordinates `(0, 0)` stand for and two orthonormal
+/// axes along which the mesh's 2D `x` and `y` run.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Plane {
+    pub origin: glam::DVec3,
+    pub u: glam::DVec3,
+    pub w: glam::DVec3,
+}
+
+impl Plane {
+    /// The 3D point of the plane's 2D coordinates `p`.
+    pub fn to_3d(&self, p: DVec2) -> glam::DVec3 {
+        self.origin + self.u * p.x + self.w * p.y
+    }
+}
+
+impl Mesh {
+    /// The 3D position of a 2D point of the mesh: in the plane the file's points lay in
+    /// (so a mesh read from 3D is written back where it was), else at z = 0.
+    pub fn to_3d(&self, p: DVec2) -> glam::DVec3 {
+        match &self.plane {
+            Some(plane) => plane.to_3d(p),
+            None => glam::DVec3::new(p.x, p.y, 0.0),
+        }
+    }
+
+    pub fn node_count(&self) -> usize {
+        self.nodes.len()
+    }
+    pub fn element_count(&self) -> usize {
+        self.conn.kinds.len()
+    }
+    pub fn kind(&self, e: usize) -> ElementKind {
+        self.conn.kinds[e]
+    }
+    pub fn kinds(&self) -> &[ElementKind] {
+        &self.conn.kinds
+    }
+    /// The node indices of element `e`, in the order documented at the top of this module.
+    pub fn element(&self, e: usize) -> &[u32] {
+        &self.conn.elem_nodes[self.conn.elem_start[e] as usize..self.conn.elem_start[e + 1] as usize]
+    }
+    /// Positions of the nodes of element `e`, copied into `out` (cleared first).
+    pub fn element_points(&self, e: usize, out: &mut Vec<DVec2>) {
+        out.clear();
+        out.extend(self.element(e).iter().map(|&n| self.nodes[n as usize]));
+    }
+    /// Positions of the nodes of element `e` in a fixed-size array (unused slots are zero).
+    pub fn element_points_array(&self, e: usize) -> [DVec2; 9] {
+        let mut p = [DVec2::ZERO; 9];
+        for (i, &n) in self.element(e).iter().enumerate() {
+            p[i] = self.nodes[n as usize];
+        }
+        p
+    }
+    pub fn topology(&self) -> &Topology {
+        &self.conn.topo
+    }
+    /// Elements that use node `n` (its star).
+    pub fn node_elements(&self, n: usize) -> &[u32] {
+        self.conn.topo.node_elements(n)
+    }
+    /// Corner nodes joined to corner node `n` by an element edge.
+    pub fn neighbours(&self, n: usize) -> &[u32] {
+        self.conn.topo.neighbours(n)
+    }
+    pub fn edges(&self) -> &[Edge] {
+        &self.conn.topo.edges
+    }
+    pub fn is_boundary(&self, n: usize) -> bool {
+        self.conn.topo.boundary[n]
+    }
+    pub fn role(&self, n: usize) -> NodeRole {
+        self.conn.topo.role[n]
+    }
+    /// Whether node `n` is an end or mid node of a curved boundary edge.
+    pub fn is_on_curved_boundary(&self, n: usize) -> bool {
+        self.conn.topo.on_curved[n]
+    }
+    /// A node the smoothers may move: a corner that is not fixed.
+    pub fn is_free(&self, n: usize) -> bool {
+        !self.fixed[n] && self.conn.topo.role[n] == NodeRole::Corner
+    }
+    pub fn free_count(&self) -> usize {
+        (0..self.node_count()).filter(|&n| self.is_free(n)).count()
+    }
+    pub fn has_quadratic(&self) -> bool {
+        self.conn.topo.kinds_present.quadratic
+    }
+    pub fn has_triangles(&self) -> bool {
+        self.conn.topo.kinds_present.triangles
+    }
+    pub fn has_quads(&self) -> bool {
+        self.conn.topo.kinds_present.quads
+    }
+    /// Signed area of the corner polygon of element `e` (positive when counter-clockwise).
+    pub fn corner_area(&self, e: usize) -> f64 {
+        let k = self.conn.kinds[e].corners();
+        let ids = self.element(e);
+        polygon_area((0..k).map(|i| self.nodes[ids[i] as usize]))
+    }
+    /// Mean length of the element edges (corner to corner); 0 for an empty mesh. Each
+    /// length by `hypot`, so that it neither overflows near 1e300 nor underflows near
+    /// 1e-300 (the renderer decides from it whether edges are drawn).
+    pub fn mean_edge_length(&self) -> f64 {
+        let edges = &self.conn.topo.edges;
+        if edges.is_empty() {
+            return 0.0;
+        }
+        let s: f64 = edges
+            .iter()
+            .map(|e| {
+                let d = self.nodes[e.a as usize] - self.nodes[e.b as usize];
+                d.x.hypot(d.y)
+            })
+            .sum();
+        s / edges.len() as f64
+    }
+    /// Axis-aligned bounds (min, max) of the nodes used by elements.
+    pub fn bounds(&self) -> (DVec2, DVec2) {
+        let mut lo = DVec2::splat(f64::INFINITY);
+        let mut hi = DVec2::splat(f64::NEG_INFINITY);
+        for (n, p) in self.nodes.iter().enumerate() {
+            if self.conn.topo.role[n] != NodeRole::Unused {
+                lo = lo.min(*p);
+                hi = hi.max(*p);
+            }
+        }
+        (lo, hi)
+    }
+    /// Place every mid-side node of an interior (not curved-boundary) edge at the midpoint
+    /// of its corners, and every 9-node centre at the mean of its eight edge nodes.
+    /// This is the rule by which mid-side nodes follow the corners the smoothers move;
+    /// curved boundary edges keep their mid node. Call after moving corner nodes.
+    pub fn update_mid_nodes(&mut self) {
+        for e in &self.conn.topo.edges {
+            if e.mid != NONE && !e.curved && !self.fixed[e.mid as usize] {
+                self.nodes[e.mid as usize] = 0.5 * (self.nodes[e.a as usize] + self.nodes[e.b as usize]);
+            }
+        }
+        for el in 0..self.conn.kinds.len() {
+            if self.conn.kinds[el] == ElementKind::Quad9 {
+                let ids = self.element(el);
+                let c = ids[8] as usize;
+                if !self.fixed[c] {
+                    let s: DVec2 = ids[..8].iter().map(|&n| self.nodes[n as usize]).sum();
+                    self.nodes[c] = s / 8.0;
+                }
+            }
+        }
+    }
+    /// Mid-side nodes that follow corner node `n` (on its non-curved edges), so a
+    /// driver can move them right after moving `n`.
+    pub fn follow_mid_nodes(&mut self, n: usize) {
+        if !self.has_quadratic() {
+            return;
+        }
+        for &el in self.conn.topo.node_elements(n) {
+            let el = el as usize;
+            let kind = self.conn.kinds[el];
+            if !kind.is_quadratic() {
+                continue;
+            }
+            let start = self.conn.elem_start[el] as usize;
+            let k = kind.corners();
+            for i in 0..k {
+                let a = self.conn.elem_nodes[start + i] as usize;
+                let b = self.conn.elem_nodes[start + (i + 1) % k] as usize;
+                if a != n && b != n {
+                    continue;
+                }
+                let m = self.conn.elem_nodes[start + k + i] as usize;
+                if self.fixed[m] || self.conn.topo.on_curved[m] {
+                    continue;
+                }
+                self.nodes[m] = 0.5 * (self.nodes[a] + self.nodes[b]);
+            }
+            if kind == ElementKind::Quad9 {
+                let c = self.conn.elem_nodes[start + 8] as usize;
+                if !self.fixed[c] {
+                    let s: DVec2 = (0..8).map(|i| self.nodes[self.conn.elem_nodes[start + i] as usize]).sum();
+                    self.nodes[c] = s / 8.0;
+                }
+            }
+        }
+    }
+
+
+    /// Bytes held by the mesh: the capacities of all its arrays (positions, flags,
+    /// elements and the topology, shared ones included), not counting the `Mesh`
+    /// struct itself. [`memory_parts`](Self::memory_parts) says where they are.
+    pub fn heap_bytes(&self) -> usize {
+        self.memory_parts().iter().map(|p| p.bytes).sum()
+    }
+
+    /// Each array of the mesh with the bytes it holds (its capacity), and whether clones
+    /// share it (the elements and the topology) or each has its own (positions, flags).
+    pub fn memory_parts(&self) -> Vec<MemoryPart> {
+        fn part<T>(name: &'static str, v: &Vec<T>, shared: bool) -> MemoryPart {
+            MemoryPart { name, bytes: v.capacity() * std::mem::size_of::<T>(), shared }
+        }
+        let (c, t) = (&*self.conn, &self.conn.topo);
+        vec![
+            part("node positions (DVec2)", &self.nodes, false),
+            part("fixed flags", &self.fixed, false),
+            part("element kinds", &c.kinds, true),
+            part("element offsets (u32)", &c.elem_start, true),
+            part("element nodes (u32)", &c.elem_nodes, true),
+            part("node → elements offsets (u32)", &t.node_elem_start, true),
+            part("node → elements (u32)", &t.node_elems, true),
+            part("node → neighbours offsets (u32)", &t.node_nbr_start, true),
+            part("node → neighbours (u32)", &t.node_nbrs, true),
+            part("edges (a, b, mid, flags: 16 bytes)", &t.edges, true),
+            part("node roles", &t.role, true),
+            part("boundary flags", &t.boundary, true),
+            part("curved-boundary flags", &t.on_curved, true),
+        ]
+    }
+
+    /// Checks the invariants of the model; used by the tests (as spade's `sanity_check`).
+    pub fn sanity_check(&self) -> std::result::Result<(), String> {
+        let n = self.nodes.len();
+        if self.fixed.len() != n || self.conn.topo.role.len() != n || self.conn.topo.boundary.len() != n {
+            return Err("per-node arrays differ in length".into());
+        }
+        if self.conn.elem_start.len() != self.conn.kinds.len() + 1 {
+            return Err("element offsets".into());
+        }
+        for e in 0..self.conn.kinds.len() {
+            let ids = self.element(e);
+            if ids.len() != self.conn.kinds[e].node_count() {
+                return Err(format!("element {e} has {} nodes", ids.len()));
+            }
+            for &i in ids {
+                if i as usize >= n {
+                    return Err(format!("element {e} refers to node {i}"));
+                }
+                if !self.node_elements(i as usize).contains(&(e as u32)) {
+                    return Err(format!("node {i} does not list element {e}"));
+                }
+            }
+        }
+        for p in &self.nodes {
+            if !p.is_finite() {
+                return Err("non-finite coordinate".into());
+            }
+        }
+        for (i, e) in self.conn.topo.edges.iter().enumerate() {
+            if e.a >= e.b {
+                return Err(format!("edge {i} not ordered"));
+            }
+            if !self.neighbours(e.a as usize).contains(&e.b) || !self.neighbours(e.b as usize).contains(&e.a) {
+                return Err(format!("edge {i} missing from neighbour lists"));
+            }
+            if e.is_boundary() && !(self.conn.topo.boundary[e.a as usize] && self.conn.topo.boundary[e.b as usize]) {
+                return Err(format!("boundary edge {i} has an interior end"));
+            }
+        }
+        Ok(())
+    }
+}
+
+impl Topology {
+    pub fn node_elements(&self, n: usize) -> &[u32] {
+        &self.node_elems[self.node_elem_start[n] as usize..self.node_elem_start[n + 1] as usize]
+    }
+    pub fn neighbours(&self, n: usize) -> &[u32] {
+        &self.node_nbrs[self.node_nbr_start[n] as usize..self.node_nbr_start[n + 1] as usize]
+    }
+    pub fn edges(&self) -> &[Edge] {
+        &self.edges
+    }
+    pub fn boundary_edges(&self) -> impl Iterator<Item = &Edge> {
+        self.edges.iter().filter(|e| e.is_boundary())
+    }
+}
+

@@ -1,0 +1,195 @@
+//! The flat (CSR-style) topology, built once: node → elements, node → neighbours, edges.
+
+use crate::error::{Error, Result};
+
+use super::*;
+
+pub(super) fn build_topology(mesh: &Mesh, elem_lines: &[u32]) -> Result<Topology> {
+    let n = mesh.nodes.len();
+    let ne = mesh.conn.kinds.len();
+    // node -> elements (counting sort)
+    let mut count = vec![0u32; n + 1];
+    for e in 0..ne {
+        for &i in mesh.element(e) {
+            count[i as usize + 1] += 1;
+        }
+    }
+    for i in 0..n {
+        count[i + 1] += count[i];
+    }
+    let node_elem_start = count.clone();
+    let mut node_elems = vec![0u32; *count.last().unwrap() as usize];
+    let mut fill = count;
+    for e in 0..ne {
+        for &i in mesh.element(e) {
+            node_elems[fill[i as usize] as usize] = e as u32;
+            fill[i as usize] += 1;
+        }
+    }
+    // roles
+    let mut role = vec![NodeRole::Unused; n];
+    for e in 0..ne {
+        let k = mesh.conn.kinds[e];
+        for (j, &i) in mesh.element(e).iter().enumerate() {
+            let r = if j < k.corners() {
+                NodeRole::Corner
+            } else if j < 2 * k.corners() {
+                NodeRole::Mid
+            } else {
+                NodeRole::Centre
+            };
+            let slot = &mut role[i as usize];
+            *slot = match (*slot, r) {
+                (NodeRole::Unused, r) => r,
+                (NodeRole::Corner, _) | (_, NodeRole::Corner) => NodeRole::Corner,
+                (s, _) => s,
+            };
+        }
+    }
+    // edges: every corner edge (a, b), a < b, of every element, as (b, element·4 + local
+    // edge) filed under a by a counting sort (8 bytes a use: the largest temporary of
+    // the topology, 48 MB for 2M triangles), then each node's short list sorted, so that
+    // edges come out ordered by (a, b) with their elements in increasing order; they are
+    // counted first so that their array is allocated once, exactly.
+    if ne >= 1 << 30 {
+        return Err(Error::TooLarge(format!("the mesh has {ne} elements; smoothlab takes at most 2^30 (1073741824)")));
+    }
+    let corner_edges = |e: usize| {
+        let ids = mesh.element(e);
+        let c = mesh.conn.kinds[e].corners();
+        (0..c).map(move |i| (ids[i].min(ids[(i + 1) % c]), ids[i].max(ids[(i + 1) % c]), i as u32))
+    };
+    let mut use_start = vec![0u32; n + 1];
+    for e in 0..ne {
+        for (a, _, _) in corner_edges(e) {
+            use_start[a as usize + 1] += 1;
+        }
+    }
+    for i in 0..n {
+        use_start[i + 1] += use_start[i];
+    }
+    let mut uses = vec![(0u32, 0u32); use_start[n] as usize];
+    {
+        let mut fill = use_start.clone();
+        for e in 0..ne {
+            for (a, b, i) in corner_edges(e) {
+                uses[fill[a as usize] as usize] = (b, (e as u32) << 2 | i);
+                fill[a as usize] += 1;
+            }
+        }
+    }
+    let mut edge_count = 0usize;
+    for a in 0..n {
+        let recs = &mut uses[use_start[a] as usize..use_start[a + 1] as usize];
+        recs.sort_unstable();
+        edge_count += recs.iter().enumerate().filter(|&(k, r)| k == 0 || recs[k - 1].0 != r.0).count();
+    }
+    let mid_of = |r: u32| {
+        let e = (r >> 2) as usize;
+        mesh.conn.kinds[e].mid((r & 3) as usize).map(|m| mesh.element(e)[m]).unwrap_or(NONE)
+    };
+    let line = |e: u32| elem_lines.get(e as usize).copied().filter(|&l| l > 0).map(|l| l as usize);
+    let mut edges = Vec::with_capacity(edge_count);
+    for a in 0..n {
+        let recs = &uses[use_start[a] as usize..use_start[a + 1] as usize];
+        let mut i = 0;
+        while i < recs.len() {
+            let mut j = i + 1;
+            while j < recs.len() && recs[j].0 == recs[i].0 {
+                j += 1;
+            }
+            let (a, b, e0, m0) = (a as u32, recs[i].0, recs[i].1 >> 2, mid_of(recs[i].1));
+            if j - i > 2 {
+                let es: Vec<String> = recs[i..j].iter().map(|r| (r.1 >> 2).to_string()).collect();
+                let third = recs[i + 2].1 >> 2;
+                return Err(Error::element(
+                    third as usize,
+                    line(third),
+                    format!(
+                        "edge between nodes {} and {} is shared by {} elements ({}); a 2D mesh edge belongs to one or two",
+                        a + 1,
+                        b + 1,
+                        j - i,
+                        es.join(", ")
+                    ),
+                ));
+            }
+            if j - i == 2 && mid_of(recs[i + 1].1) != m0 {
+                let (m1, other) = (mid_of(recs[i + 1].1), recs[i + 1].1 >> 2);
+                let desc = |m: u32| if m == NONE { "none".to_string() } else { (m + 1).to_string() };
+                return Err(Error::element(
+                    other as usize,
+                    line(other),
+                    format!(
+                        "shares the edge between nodes {} and {} with element {} but they disagree on its mid-side node ({} vs {})",
+                        a + 1,
+                        b + 1,
+                        e0,
+                        desc(m1),
+                        desc(m0)
+                    ),
+                ));
+            }
+            edges.push(Edge { a, b, mid: m0, boundary: j - i == 1, curved: false });
+            i = j;
+        }
+    }
+    debug_assert_eq!(edges.len(), edge_count);
+    drop(uses);
+    drop(use_start);
+    // boundary flags and curved boundary edges
+    let mut boundary = vec![false; n];
+    let mut on_curved = vec![false; n];
+    for e in edges.iter_mut() {
+        if e.is_boundary() {
+            boundary[e.a as usize] = true;
+            boundary[e.b as usize] = true;
+            if e.mid != NONE {
+                boundary[e.mid as usize] = true;
+                let (pa, pb, pm) = (mesh.nodes[e.a as usize], mesh.nodes[e.b as usize], mesh.nodes[e.mid as usize]);
+                let chord = pb - pa;
+                let off = (pm - pa).perp_dot(chord).abs() / chord.length().max(f64::MIN_POSITIVE);
+                if off > 1e-6 * chord.length() {
+                    e.curved = true;
+                    on_curved[e.a as usize] = true;
+                    on_curved[e.b as usize] = true;
+                    on_curved[e.mid as usize] = true;
+                }
+            }
+        }
+    }
+    // node -> neighbour corners via edges (CSR)
+    let mut deg = vec![0u32; n + 1];
+    for e in &edges {
+        deg[e.a as usize + 1] += 1;
+        deg[e.b as usize + 1] += 1;
+    }
+    for i in 0..n {
+        deg[i + 1] += deg[i];
+    }
+    let node_nbr_start = deg.clone();
+    let mut node_nbrs = vec![0u32; *deg.last().unwrap() as usize];
+    let mut fill = deg;
+    for e in &edges {
+        node_nbrs[fill[e.a as usize] as usize] = e.b;
+        fill[e.a as usize] += 1;
+        node_nbrs[fill[e.b as usize] as usize] = e.a;
+        fill[e.b as usize] += 1;
+    }
+    let kinds_present = KindsPresent {
+        triangles: mesh.conn.kinds.iter().any(|k| k.is_triangle()),
+        quads: mesh.conn.kinds.iter().any(|k| k.is_quad()),
+        quadratic: mesh.conn.kinds.iter().any(|k| k.is_quadratic()),
+    };
+    Ok(Topology {
+        node_elem_start,
+        node_elems,
+        node_nbr_start,
+        node_nbrs,
+        edges,
+        role,
+        boundary,
+        on_curved,
+        kinds_present,
+    })
+}
