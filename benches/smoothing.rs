@@ -30,15 +30,15 @@ fn bench_mesh(n: usize) -> Mesh {
 fn stream_bound(mesh: &mut Mesh) -> u32 {
     let mut visits = 0;
     for i in 0..mesh.node_count() {
-        if mesh.fixed[i] {
+        if mesh.fixed()[i] {
             continue;
         }
         let nb = mesh.topology().neighbours(i);
         let mut s = DVec2::ZERO;
         for &j in nb {
-            s += mesh.nodes[j as usize];
+            s += mesh.nodes()[j as usize];
         }
-        mesh.nodes[i] = s / nb.len() as f64;
+        mesh.nodes_mut()[i] = s / nb.len() as f64;
         visits += 1;
     }
     visits

@@ -57,16 +57,16 @@ fn stream_bound(mesh: &mut Mesh) -> u32 {
     let n = mesh.node_count();
     let mut visits = 0;
     for i in 0..n {
-        if mesh.fixed[i] {
+        if mesh.fixed()[i] {
             continue;
         }
         let nb = mesh.topology().neighbours(i);
         let mut s = glam::DVec2::ZERO;
         for &j in nb {
-            s += mesh.nodes[j as usize];
+            s += mesh.nodes()[j as usize];
         }
         let p = s / nb.len() as f64;
-        mesh.nodes[i] = p;
+        mesh.nodes_mut()[i] = p;
         visits += 1;
     }
     visits

@@ -465,7 +465,7 @@ fn freitag_boundary(out: &mut String, meshes: &[Mesh]) {
                 w = (a, e);
             }
         }
-        (w.0.to_degrees(), m.element(w.1).iter().filter(|&&n| m.fixed[n as usize]).count())
+        (w.0.to_degrees(), m.element(w.1).iter().filter(|&&n| m.fixed()[n as usize]).count())
     };
     let _ = writeln!(
         out,

@@ -31,7 +31,7 @@
 //! // the boundary is fixed; the free node goes to the centre, where every angle is 45° or 90°
 //! let after = mesh_stats(&mesh);
 //! assert!(after.min_angle_deg > before.min_angle_deg);
-//! assert!((mesh.nodes[4] - glam::DVec2::splat(0.5)).length() < 1e-3);
+//! assert!((mesh.nodes()[4] - glam::DVec2::splat(0.5)).length() < 1e-3);
 //! assert!((after.min_angle_deg - 45.0).abs() < 0.1);
 //!
 //! let text = write_string(&mesh, Format::Vtk, &WriteOptions::default())?;

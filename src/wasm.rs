@@ -367,7 +367,7 @@ impl Playground {
     pub fn nudge_node(&mut self, panel: &str, dx: f64, dy: f64) -> Result<(), JsError> {
         let node = self.node.ok_or_else(|| JsError::new("no node is chosen: click a free node first"))?;
         let view = self.view()?;
-        let from = self.inner.panel(side(panel)?).mesh.nodes[node];
+        let from = self.inner.panel(side(panel)?).mesh.nodes()[node];
         let to = from + DVec2::new(dx, -dy) / view.scale();
         self.inner.remember_before_move(node)?;
         Ok(self.inner.move_node(node, to)?)

@@ -43,7 +43,7 @@ impl BenchMesh {
 
     /// Puts the working copy back to the generated mesh.
     pub fn reset(&mut self) {
-        self.work.nodes.clone_from(&self.original.nodes);
+        self.work.nodes_mut().copy_from_slice(self.original.nodes());
     }
 
     /// One input-order sweep of `strategy` (`laplace`, `smart`, `opt`, `rules`) with the

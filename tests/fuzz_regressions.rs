@@ -75,7 +75,7 @@ fn kept_findings_stay_fixed() {
         match (run(target_of(file), &bytes), expect) {
             (Outcome::Mesh(m), Expect::Mesh { nodes, elements }) => {
                 assert_eq!((m.node_count(), m.element_count()), (*nodes, *elements), "{file}");
-                assert!(m.nodes.iter().all(|p| p.is_finite()), "{file}: non-finite coordinates");
+                assert!(m.nodes().iter().all(|p| p.is_finite()), "{file}: non-finite coordinates");
             }
             (Outcome::Refused(e), Expect::Refused(want)) => {
                 let msg = e.to_string();

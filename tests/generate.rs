@@ -60,7 +60,7 @@ fn grid_plate_and_star_counts() {
     let curved: Vec<_> = p.edges().iter().filter(|e| e.curved).collect();
     assert_eq!(curved.len(), 16);
     for e in curved {
-        assert!((p.nodes[e.mid as usize].length() - 0.4).abs() < 1e-12);
+        assert!((p.nodes()[e.mid as usize].length() - 0.4).abs() < 1e-12);
     }
     for (kind, k, nodes) in [("regular", None, 7), ("chen", None, 9), ("quad", None, 9), ("quad", Some("6"), 13)] {
         let mut args = vec!["star", "--kind", kind];
@@ -81,8 +81,8 @@ fn perturb_tangles_and_keeps_the_boundary() {
     assert!(mesh_stats(&t).inverted > 0);
     let r = src.mean_edge_length();
     for n in 0..src.node_count() {
-        let d = src.nodes[n].distance(t.nodes[n]);
-        if src.fixed[n] {
+        let d = src.nodes()[n].distance(t.nodes()[n]);
+        if src.fixed()[n] {
             assert!(d < 1e-12, "fixed node {n} moved");
         } else {
             assert!(d <= r * (1.0 + 1e-9), "node {n} moved {d} > {r}");
@@ -111,7 +111,7 @@ fn sample(name: &str) -> Mesh {
     m.sanity_check().unwrap();
     assert_eq!(mesh_stats(&m).inverted, 0, "{name}");
     for n in 0..m.node_count() {
-        assert!(!m.is_boundary(n) || m.fixed[n], "{name}: boundary node {n} is free");
+        assert!(!m.is_boundary(n) || m.fixed()[n], "{name}: boundary node {n} is free");
     }
     m
 }
@@ -130,7 +130,7 @@ fn gmsh_samples_load_valid() {
     for e in d.edges().iter().filter(|e| e.is_boundary()) {
         boundary += 1;
         assert!(e.curved, "boundary edge {e:?}");
-        let q = d.nodes[e.mid as usize];
+        let q = d.nodes()[e.mid as usize];
         let on_circle = (q.length() - 1.0).abs() < 1e-9;
         let l = q - glam::DVec2::new(0.1, 0.05);
         let (u, v) = (l.x * turn.cos() + l.y * turn.sin(), -l.x * turn.sin() + l.y * turn.cos());

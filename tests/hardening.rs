@@ -21,12 +21,12 @@ fn scratch(name: &str) -> PathBuf {
 }
 
 fn same_mesh(a: &Mesh, b: &Mesh, what: &str) {
-    assert_eq!(a.nodes, b.nodes, "{what}: nodes");
+    assert_eq!(a.nodes(), b.nodes(), "{what}: nodes");
     assert_eq!(a.element_count(), b.element_count(), "{what}: elements");
     for e in 0..a.element_count() {
         assert_eq!((a.kind(e), a.element(e)), (b.kind(e), b.element(e)), "{what}: element {e}");
     }
-    assert_eq!(a.fixed, b.fixed, "{what}: fixed flags");
+    assert_eq!(a.fixed(), b.fixed(), "{what}: fixed flags");
 }
 
 // ---- 1. non-planar meshes -----------------------------------------------------------------
@@ -93,7 +93,7 @@ fn rounded_tilted_planes_still_read() {
     let (s, c) = (0.3f64.sin(), 0.3f64.cos());
     for (origin, digits) in [(0.0, 6), (1e3, 7), (-5e4, 9)] {
         let mut obj = String::new();
-        for p in &m.nodes {
+        for p in m.nodes() {
             let q = [origin + p.x, origin + p.y * c, origin + p.y * s];
             obj += &format!("v {:.*e} {:.*e} {:.*e}\n", digits - 1, q[0], digits - 1, q[1], digits - 1, q[2]);
         }
@@ -132,7 +132,7 @@ fn byte_order_mark_is_skipped_in_every_format() {
     // the OBJ: four vertices and two faces, the first vertex kept
     let m = io::read_path(&data("bom.obj")).unwrap();
     assert_eq!((m.node_count(), m.element_count()), (4, 2));
-    assert_eq!(m.nodes[0], DVec2::ZERO);
+    assert_eq!(m.nodes()[0], DVec2::ZERO);
 }
 
 // ---- 3. metrics and solvers at extreme scales -------------------------------------------------
@@ -206,7 +206,7 @@ fn render_draws_the_same_mesh_at_any_scale() {
     let reference = draw(&base);
     for e in [-900, 996] {
         let mut m = base.clone();
-        for p in &mut m.nodes {
+        for p in m.nodes_mut() {
             *p *= 2f64.powi(e);
         }
         assert!(draw(&m).data() == reference.data(), "the picture at 2^{e} differs");
@@ -233,15 +233,15 @@ fn solvers_are_scale_invariant_and_records_hold_no_nan() {
         let opts = SmoothOptions { pass_through_folds: Some(untangling), ..SmoothOptions::default().with_strategy(Strategy::Opt) };
         let mut reference = base.clone();
         let r0 = smooth(&mut reference, objective(k).as_ref(), opts, 1, &|| 0.0).unwrap();
-        assert!(reference.nodes != base.nodes, "{k}: nothing moved at unit scale");
+        assert!(reference.nodes() != base.nodes(), "{k}: nothing moved at unit scale");
         for e in (-1000..=1000).step_by(50) {
             let f = 2f64.powi(e);
             let mut m = base.clone();
-            for p in &mut m.nodes {
+            for p in m.nodes_mut() {
                 *p *= f;
             }
             let r = smooth(&mut m, objective(k).as_ref(), opts, 1, &|| 0.0).unwrap();
-            for (i, (a, b)) in m.nodes.iter().zip(&reference.nodes).enumerate() {
+            for (i, (a, b)) in m.nodes().iter().zip(reference.nodes()).enumerate() {
                 assert!(*a == *b * f, "{k} at 2^{e}: node {i} at {a}, expected {}", *b * f);
             }
             let t = r[0].objective_total.expect("the core measures it");
@@ -334,7 +334,7 @@ fn a_written_large_msh_reads_back() {
     let d = scratch("large");
     let mut m = smoothlab::generate::grid(1580, 1580, smoothlab::generate::GridKind::Tri).unwrap();
     // coordinates with all their digits, as after smoothing
-    for p in &mut m.nodes {
+    for p in m.nodes_mut() {
         *p = *p * std::f64::consts::PI + DVec2::new(1.0 / 3.0, 2.0 / 7.0);
     }
     let path = d.join("big.msh");
@@ -344,7 +344,7 @@ fn a_written_large_msh_reads_back() {
     assert!(len <= io::MAX_FILE_BYTES);
     let back = io::read_path(&path).unwrap_or_else(|e| panic!("{len} bytes written, not read back: {e}"));
     assert_eq!(back.node_count(), m.node_count());
-    assert_eq!(back.nodes, m.nodes);
+    assert_eq!(back.nodes(), m.nodes());
     std::fs::remove_dir_all(&d).unwrap();
 }
 
@@ -356,7 +356,7 @@ fn the_page_reads_what_it_exports() {
     let side = (smoothlab::lab::MAX_NODES as f64).sqrt() as usize - 1;
     let mut m = smoothlab::generate::grid(side, side, smoothlab::generate::GridKind::Tri).unwrap();
     assert!(m.node_count() <= smoothlab::lab::MAX_NODES);
-    for p in &mut m.nodes {
+    for p in m.nodes_mut() {
         // 17 significant digits, a sign and a three-digit exponent on every coordinate
         *p = -(*p + DVec2::new(1.0 / 3.0, 1.0 / 7.0)) * 1.2345678901234567e-123;
     }

@@ -37,20 +37,20 @@ fn msh22_with_sparse_tags_skipped_sections_and_marker_lines() {
     assert_eq!((m.node_count(), m.element_count()), (9, 4));
     assert!(m.kinds().iter().all(|&k| k == ElementKind::Quad4));
     // tags 10, 20, … 90 → indices 0 … 8 in file order
-    assert_eq!(m.nodes[4], p(1.0, 1.0));
-    assert_eq!(m.nodes[8], p(2.0, 2.0));
+    assert_eq!(m.nodes()[4], p(1.0, 1.0));
+    assert_eq!(m.nodes()[8], p(2.0, 2.0));
     assert_eq!(m.element(0), &[0, 1, 4, 3]);
     assert!((total_area(&m) - 4.0).abs() < 1e-15);
     // the centre is interior, and fixed only because the line element 20-50 marks it
     assert!(!m.is_boundary(4));
-    assert!(m.fixed.iter().all(|&f| f));
+    assert!(m.fixed().iter().all(|&f| f));
 
     // the same file without that line: the centre is free
     let text = std::fs::read_to_string(data("grid_lines.msh")).unwrap();
     let text = text.replace("7\n1 1 2", "6\n1 1 2").replace("3 1 2 1 3 20 50\n", "");
     let m = io::read_str(&text, Format::Msh).unwrap();
-    assert_eq!(m.fixed.iter().filter(|&&f| !f).count(), 1);
-    assert!(!m.fixed[4]);
+    assert_eq!(m.fixed().iter().filter(|&&f| !f).count(), 1);
+    assert!(!m.fixed()[4]);
 }
 
 #[test]
@@ -59,7 +59,7 @@ fn msh41_with_several_blocks_parametric_nodes_and_huge_tags() {
     assert_eq!((m.node_count(), m.element_count()), (9, 6));
     // node order is the order of appearance across blocks
     let want = [p(0., 0.), p(2., 0.), p(0., 2.), p(2., 2.), p(1., 0.), p(2., 1.), p(1., 2.), p(0., 1.), p(1., 1.)];
-    assert_eq!(m.nodes, want);
+    assert_eq!(m.nodes(), want);
     use ElementKind::*;
     assert_eq!(m.kinds(), &[Quad4, Quad4, Tri3, Tri3, Tri3, Tri3]);
     assert_eq!(
@@ -68,7 +68,7 @@ fn msh41_with_several_blocks_parametric_nodes_and_huge_tags() {
     );
     assert!((total_area(&m) - 4.0).abs() < 1e-15);
     // node 8 (tag 56) is interior and fixed by the point element
-    assert!(!m.is_boundary(8) && m.fixed[8]);
+    assert!(!m.is_boundary(8) && m.fixed()[8]);
 }
 
 #[test]
@@ -76,11 +76,11 @@ fn vtk_wrapped_data_skipped_attributes_and_exact_fixed_flags() {
     let m = read("wrapped.vtk");
     assert_eq!((m.node_count(), m.element_count()), (6, 3));
     assert_eq!(m.kinds(), &[ElementKind::Quad4, ElementKind::Tri3, ElementKind::Tri3]);
-    assert_eq!(m.nodes[5], p(2.0, 1.0));
+    assert_eq!(m.nodes()[5], p(2.0, 1.0));
     assert_eq!(elements(&m), vec![vec![0, 1, 4, 3], vec![1, 2, 5], vec![1, 5, 4]]);
     assert!((total_area(&m) - 2.0).abs() < 1e-15);
     // exactly as the file says, although nodes 1, 4 and 5 are on the boundary
-    assert_eq!(m.fixed, vec![true, false, true, true, false, false]);
+    assert_eq!(m.fixed(), vec![true, false, true, true, false, false]);
 }
 
 #[test]
@@ -91,7 +91,7 @@ fn vtk_51_offsets_layout_with_metadata_and_quadratic_triangles() {
     assert_eq!(elements(&m), vec![vec![0, 1, 2, 4, 5, 6], vec![0, 2, 3, 6, 7, 8]]);
     assert!((total_area(&m) - 4.0).abs() < 1e-15);
     // no fixed data: the boundary, mid-nodes included; the diagonal's mid-node is free
-    let free: Vec<usize> = (0..9).filter(|&i| !m.fixed[i]).collect();
+    let free: Vec<usize> = (0..9).filter(|&i| !m.fixed()[i]).collect();
     assert_eq!(free, vec![6]);
 }
 
@@ -110,8 +110,8 @@ fn triangle_o2_mid_nodes_are_remapped_onto_their_edges() {
     for e in 0..2 {
         let ids = m.element(e);
         for i in 0..3 {
-            let (a, b) = (m.nodes[ids[i] as usize], m.nodes[ids[(i + 1) % 3] as usize]);
-            assert_eq!(m.nodes[ids[3 + i] as usize], 0.5 * (a + b), "element {e}, edge {i}");
+            let (a, b) = (m.nodes()[ids[i] as usize], m.nodes()[ids[(i + 1) % 3] as usize]);
+            assert_eq!(m.nodes()[ids[3 + i] as usize], 0.5 * (a + b), "element {e}, edge {i}");
         }
     }
     // 1-based file numbers → 0-based indices: element 1 is nodes 1 2 3 | 7 6 5
@@ -127,9 +127,9 @@ fn triangle_zero_based_with_attributes_and_a_marked_interior_node() {
     let ele = "4 3 1\n0 0 1 4 0.0\n1 1 2 4 0.0\n2 2 3 4 0.0\n3 3 0 4 0.0\n";
     let m = io::read_triangle(node, ele).unwrap();
     assert_eq!(m.element(0), &[0, 1, 4]);
-    assert!(!m.is_boundary(4) && m.fixed[4]);
+    assert!(!m.is_boundary(4) && m.fixed()[4]);
     let unmarked = node.replace("7.5 5 #", "7.5 0 #");
-    assert!(!io::read_triangle(&unmarked, ele).unwrap().fixed[4]);
+    assert!(!io::read_triangle(&unmarked, ele).unwrap().fixed()[4]);
 }
 
 #[test]
@@ -171,7 +171,7 @@ fn strip(f: impl Fn(f64, f64) -> [f64; 3]) -> [[f64; 3]; 6] {
 fn planar_3d_input_is_mapped_and_oriented_counter_clockwise() {
     // z = 5, counter-clockwise: kept as x, y
     let m = io::read_str(&vtk_strip(&strip(|x, y| [x, y, 5.0]), false), Format::Vtk).unwrap();
-    assert_eq!(m.nodes[4], p(1.0, 1.0));
+    assert_eq!(m.nodes()[4], p(1.0, 1.0));
     // z = -5 facing down (clockwise seen from +z): every element comes out CCW
     let m = io::read_str(&vtk_strip(&strip(|x, y| [x, y, -5.0]), true), Format::Vtk).unwrap();
     for e in 0..2 {
@@ -184,7 +184,7 @@ fn planar_3d_input_is_mapped_and_oriented_counter_clockwise() {
         for e in 0..2 {
             assert!((m.corner_area(e) - 1.0).abs() < 1e-12, "element {e}: {}", m.corner_area(e));
         }
-        assert!((m.nodes[0].distance(m.nodes[2]) - 2.0).abs() < 1e-12, "lengths are kept");
+        assert!((m.nodes()[0].distance(m.nodes()[2]) - 2.0).abs() < 1e-12, "lengths are kept");
     }
     // the plane y = -5
     let m = io::read_str(&vtk_strip(&strip(|x, y| [x, -5.0, y]), false), Format::Vtk).unwrap();
@@ -238,8 +238,8 @@ fn unused_nodes_are_kept_and_fixed() {
     let m = b.build().unwrap();
     let text = io::write_string(&m, Format::Off, &Default::default()).unwrap();
     let back = io::read_str(&text, Format::Off).unwrap();
-    assert_eq!(back.nodes, m.nodes);
-    assert!(back.fixed[2]);
+    assert_eq!(back.nodes(), m.nodes());
+    assert!(back.fixed()[2]);
 }
 
 #[test]

@@ -127,7 +127,7 @@ fn every_mesquite_file_loads_or_is_refused_for_its_reason() {
                 for (n, &fixed) in f.iter().enumerate() {
                     // nodes no element uses are always fixed
                     let want = fixed || mesh.role(n) == NodeRole::Unused;
-                    assert_eq!(mesh.fixed[n], want, "{rel}: fixed flag of node {n}");
+                    assert_eq!(mesh.fixed()[n], want, "{rel}: fixed flag of node {n}");
                 }
             }
             let total: f64 = (0..mesh.element_count()).map(|e| mesh.corner_area(e)).sum();
@@ -207,7 +207,7 @@ fn quadratic_meshes_keep_their_mid_nodes() {
     for e in 0..mesh.element_count() {
         let ids = mesh.element(e);
         for i in 0..3 {
-            let (a, b, m) = (mesh.nodes[ids[i] as usize], mesh.nodes[ids[(i + 1) % 3] as usize], mesh.nodes[ids[3 + i] as usize]);
+            let (a, b, m) = (mesh.nodes()[ids[i] as usize], mesh.nodes()[ids[(i + 1) % 3] as usize], mesh.nodes()[ids[3 + i] as usize]);
             assert!(m.distance(0.5 * (a + b)) < 0.5 * a.distance(b), "element {e} edge {i}");
         }
     }

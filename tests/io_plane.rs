@@ -61,7 +61,7 @@ fn every_3d_format_writes_the_mesh_back_in_its_own_plane() {
     let plane = mesh.plane.expect("the mesh keeps its plane");
     assert!(plane.u.dot(plane.w).abs() < TOL && (plane.u.length() - 1.0).abs() < TOL);
     for (i, p) in pts.iter().enumerate() {
-        assert!(mesh.to_3d(mesh.nodes[i]).distance(*p) < TOL, "node {i}");
+        assert!(mesh.to_3d(mesh.nodes()[i]).distance(*p) < TOL, "node {i}");
     }
     let normal = a.cross(b).normalize();
     for format in [Format::Obj, Format::Off, Format::Vtk, Format::Msh] {
@@ -73,13 +73,13 @@ fn every_3d_format_writes_the_mesh_back_in_its_own_plane() {
         }
         // a smoothed node moves within the plane
         let mut moved = mesh.clone();
-        moved.nodes[5] += DVec2::new(0.05, -0.02);
+        moved.nodes_mut()[5] += DVec2::new(0.05, -0.02);
         let q = points_of(&io::write_string(&moved, format, &WriteOptions::default()).unwrap(), format)[5];
         assert!((q - o).dot(normal).abs() < TOL, "{format:?}: the moved node left the plane");
         assert!(q.distance(pts[5]) > 0.04);
         // and reads back as the same 2D mesh
         let again = io::read_str(&text, format).unwrap();
-        for (q, p) in again.nodes.iter().zip(&pts) {
+        for (q, p) in again.nodes().iter().zip(&pts) {
             assert!(again.to_3d(*q).distance(*p) < TOL);
         }
     }

@@ -88,7 +88,7 @@ fn grid(nx: usize, ny: usize, family: Family, jitter: &[(f64, f64)], scale: f64,
 
 fn same_geometry(a: &Mesh, b: &Mesh, what: &str) {
     assert_eq!(a.node_count(), b.node_count(), "{what}: node count");
-    for (i, (p, q)) in a.nodes.iter().zip(&b.nodes).enumerate() {
+    for (i, (p, q)) in a.nodes().iter().zip(b.nodes()).enumerate() {
         assert!(
             p.x.to_bits() == q.x.to_bits() && p.y.to_bits() == q.y.to_bits(),
             "{what}: node {i}: {p:?} became {q:?}"
@@ -110,18 +110,18 @@ fn check_all_formats(m: &Mesh) {
         let text = io::write_string(m, Format::Msh, &WriteOptions { msh_version: v }).unwrap();
         let back = io::read_str(&text, Format::Msh).unwrap();
         same_geometry(m, &back, &format!("msh {v:?}"));
-        assert_eq!(back.fixed, m.fixed, "msh {v:?}: fixed");
+        assert_eq!(back.fixed(), m.fixed(), "msh {v:?}: fixed");
     }
     let text = io::write_string(m, Format::Vtk, &WriteOptions::default()).unwrap();
     let back = io::read_str(&text, Format::Vtk).unwrap();
     same_geometry(m, &back, "vtk");
-    assert_eq!(back.fixed, m.fixed, "vtk: fixed");
+    assert_eq!(back.fixed(), m.fixed(), "vtk: fixed");
     if !m.has_quadratic() {
         for f in [Format::Obj, Format::Off] {
             let text = io::write_string(m, f, &WriteOptions::default()).unwrap();
             let back = io::read_str(&text, f).unwrap();
             same_geometry(m, &back, &format!("{f:?}"));
-            assert_eq!(back.fixed, boundary_fixed(m), "{f:?}: fixed = boundary");
+            assert_eq!(back.fixed(), boundary_fixed(m), "{f:?}: fixed = boundary");
         }
     }
     let one_kind = m.kinds().iter().all(|&k| k == m.kind(0));
@@ -129,8 +129,8 @@ fn check_all_formats(m: &Mesh) {
         let (node, ele) = io::write_triangle(m).unwrap();
         let back = io::read_triangle(&node, &ele).unwrap();
         same_geometry(m, &back, "triangle");
-        let want: Vec<bool> = boundary_fixed(m).iter().zip(&m.fixed).map(|(a, b)| *a || *b).collect();
-        assert_eq!(back.fixed, want, "triangle: fixed = boundary ∪ markers");
+        let want: Vec<bool> = boundary_fixed(m).iter().zip(m.fixed()).map(|(a, b)| *a || *b).collect();
+        assert_eq!(back.fixed(), want, "triangle: fixed = boundary ∪ markers");
     } else {
         assert!(io::write_triangle(m).is_err());
     }
@@ -193,7 +193,7 @@ fn awkward_numbers_survive() {
     // shortest round-trip forms: exponents, subnormal-adjacent, negative zero
     let jitter = [(f64::EPSILON, -0.0), (1e-17, 0.1 + 0.2 - 0.3), (-1.0 / 3.0 + 0.3, 0.25)];
     let mut m = grid(2, 1, Family::Quad4, &jitter, 1e-300, &[true]);
-    m.nodes[0] = DVec2::new(-0.0, 0.0);
+    m.nodes_mut()[0] = DVec2::new(-0.0, 0.0);
     check_all_formats(&m);
     let m = grid(2, 1, Family::Tri3, &jitter, 1e300, &[false]);
     check_all_formats(&m);

@@ -122,7 +122,7 @@ fn mesquite_tangled_meshes_new_rules_untangles_in_three_passes() {
     let m = io::read_path(&dir.join("mixed/tangled/hybrid_3quad_1tri_tangled.vtk")).unwrap();
     let free: Vec<usize> = (0..m.node_count()).filter(|&n| m.is_free(n)).collect();
     assert_eq!(free.len(), 3);
-    assert!(free.iter().all(|&n| m.nodes[n] == m.nodes[free[0]]));
+    assert!(free.iter().all(|&n| m.nodes()[n] == m.nodes()[free[0]]));
     // the others: never worse, pass after pass
     for file in [
         "quads/tangled/hole_in_square_tanglap.vtk",

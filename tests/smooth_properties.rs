@@ -71,10 +71,10 @@ fn check_visits(mesh: &mut Mesh, strategy: Strategy, kind: ObjectiveKind) -> Res
         let n = n as usize;
         let (q0, inv0) = star_state(mesh, n);
         star.gather(mesh, n);
-        let x0 = mesh.nodes[n];
+        let x0 = mesh.nodes()[n];
         let f0 = obj.value(&star, x0);
         s.smooth_node(mesh, n, &*obj);
-        let x1 = mesh.nodes[n];
+        let x1 = mesh.nodes()[n];
         let (q1, inv1) = star_state(mesh, n);
         prop_assert!(inv1 <= inv0, "{strategy:?}/{kind}: node {n} raised its star's inverted count {inv0} → {inv1}");
         match kind {
@@ -94,9 +94,9 @@ fn check_visits(mesh: &mut Mesh, strategy: Strategy, kind: ObjectiveKind) -> Res
 fn degenerate(mut m: Mesh) -> Mesh {
     let free: Vec<usize> = (0..m.node_count()).filter(|&n| m.is_free(n)).collect();
     if free.len() >= 3 {
-        m.nodes[free[0]] = m.nodes[free[1]];
+        m.nodes_mut()[free[0]] = m.nodes()[free[1]];
         let nb = m.neighbours(free[2]).to_vec();
-        m.nodes[free[2]] = 0.5 * (m.nodes[nb[0] as usize] + m.nodes[nb[1] as usize]);
+        m.nodes_mut()[free[2]] = 0.5 * (m.nodes()[nb[0] as usize] + m.nodes()[nb[1] as usize]);
     }
     m
 }
@@ -165,9 +165,9 @@ proptest! {
                     prop_assert!(r.after.min_angle_deg.is_finite() && r.after.min_quality.is_finite(), "{kind}/{strategy:?}: {r:?}");
                 }
                 for n in 0..m.node_count() {
-                    prop_assert!(m.nodes[n].is_finite(), "{kind}/{strategy:?}: node {n} at {}", m.nodes[n]);
-                    if m.fixed[n] {
-                        prop_assert_eq!(m.nodes[n].to_array().map(f64::to_bits), base.nodes[n].to_array().map(f64::to_bits));
+                    prop_assert!(m.nodes()[n].is_finite(), "{kind}/{strategy:?}: node {n} at {}", m.nodes()[n]);
+                    if m.fixed()[n] {
+                        prop_assert_eq!(m.nodes()[n].to_array().map(f64::to_bits), base.nodes()[n].to_array().map(f64::to_bits));
                     }
                 }
                 prop_assert!(m.sanity_check().is_ok());
@@ -188,7 +188,7 @@ proptest! {
                 let mut m = base.clone();
                 let o = SmoothOptions::default().with_strategy(strategy).with_order(order);
                 smoothlab::smooth::smooth(&mut m, &*objective(kind), o, 3, NO_CLOCK).unwrap();
-                m.nodes.iter().map(|p| p.to_array().map(f64::to_bits)).collect()
+                m.nodes().iter().map(|p| p.to_array().map(f64::to_bits)).collect()
             })
             .collect();
         prop_assert_eq!(&runs[0], &runs[1], "{}/{:?}", kind, strategy);
@@ -283,7 +283,7 @@ fn c3_leaves_a_star_no_worse_even_when_its_plain_laplacian_would() {
     assert!(o.laplacian, "the star is poor, so C3 tries its Laplacian: {o:?}");
     assert_eq!(inv0, 0);
     assert!(q1 >= q0 && inv1 <= inv0, "C3 made the star worse: ({q0}, {inv0}) → ({q1}, {inv1})");
-    assert!(!o.moved && m.nodes[0] == mesh.nodes[0], "the worsening move is undone: {o:?}");
+    assert!(!o.moved && m.nodes()[0] == mesh.nodes()[0], "the worsening move is undone: {o:?}");
     // the smart Laplacian of C2 refuses the same move and the optimization only improves
     let mut m = mesh.clone();
     Smoother::new(options(Strategy::C2)).unwrap().smooth_node(&mut m, 0, &*obj);

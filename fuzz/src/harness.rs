@@ -194,13 +194,13 @@ pub fn check_mesh(mesh: &Mesh) {
     no_nan(&stats, "mesh_stats");
     // The same mesh scaled up by a power of two (exact) towards the largest coordinates
     // smoothlab takes has the same statistics, bit for bit.
-    let largest = mesh.nodes.iter().fold(0.0f64, |m, p| m.max(p.x.abs()).max(p.y.abs()));
+    let largest = mesh.nodes().iter().fold(0.0f64, |m, p| m.max(p.x.abs()).max(p.y.abs()));
     if largest > 0.0 {
         let room = (smoothlab::mesh::MAX_COORDINATE / largest).log2().floor() as i32;
         if room >= 1 {
             let f = 2f64.powi(room.min(1000));
             let mut scaled = mesh.clone();
-            for p in &mut scaled.nodes {
+            for p in scaled.nodes_mut() {
                 *p *= f;
             }
             let s = quality::mesh_stats(&scaled);
@@ -248,13 +248,13 @@ fn same(a: &Mesh, b: &Mesh, fixed: bool, what: &str) {
     if what != "Triangle" && (a.plane.is_some() || b.plane.is_some()) {
         // written in its own 3D plane and read back (Triangle writes 2D coordinates): the plane is fitted again, so the
         // 2D coordinates may differ by a rigid motion; the 3D points agree to rounding
-        let scale = a.nodes.iter().map(|&p| a.to_3d(p).abs().max_element()).fold(f64::MIN_POSITIVE, f64::max);
-        for (i, (p, q)) in a.nodes.iter().zip(&b.nodes).enumerate() {
+        let scale = a.nodes().iter().map(|&p| a.to_3d(p).abs().max_element()).fold(f64::MIN_POSITIVE, f64::max);
+        for (i, (p, q)) in a.nodes().iter().zip(b.nodes()).enumerate() {
             let (p3, q3) = (a.to_3d(*p), b.to_3d(*q));
             assert!((p3 - q3).abs().max_element() <= 1e-9 * scale, "{what}: node {i} was at {p3:?}, read back at {q3:?}");
         }
     } else {
-        for (i, (p, q)) in a.nodes.iter().zip(&b.nodes).enumerate() {
+        for (i, (p, q)) in a.nodes().iter().zip(b.nodes()).enumerate() {
             assert!(
                 p.x.to_bits() == q.x.to_bits() && p.y.to_bits() == q.y.to_bits(),
                 "{what}: node {i} was {p:?}, read back as {q:?}"
@@ -265,6 +265,6 @@ fn same(a: &Mesh, b: &Mesh, fixed: bool, what: &str) {
         assert_eq!(a.element(e), b.element(e), "{what}: nodes of element {e}");
     }
     if fixed {
-        assert_eq!(a.fixed, b.fixed, "{what}: fixed flags");
+        assert_eq!(a.fixed(), b.fixed(), "{what}: fixed flags");
     }
 }

@@ -57,7 +57,7 @@ pub fn random_grid(n: usize, kind: GridKind, seed: u64) -> Result<Mesh> {
     let mut rng = super::SplitMix64::new(seed);
     for i in 0..m.node_count() {
         if m.is_free(i) {
-            m.nodes[i] = DVec2::new(rng.next_f64(), rng.next_f64());
+            m.nodes_mut()[i] = DVec2::new(rng.next_f64(), rng.next_f64());
         }
     }
     Ok(m)

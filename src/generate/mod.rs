@@ -78,7 +78,7 @@ pub(crate) mod test_util {
         }
         for n in 0..m.node_count() {
             if m.is_boundary(n) {
-                assert!(m.fixed[n], "boundary node {n} is free");
+                assert!(m.fixed()[n], "boundary node {n} is free");
             }
         }
     }

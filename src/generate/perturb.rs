@@ -23,7 +23,7 @@ pub fn perturb(mesh: &Mesh, amount: f64, seed: u64) -> Result<Mesh> {
     let mut rng = SplitMix64::new(seed);
     for n in 0..out.node_count() {
         if out.is_free(n) {
-            out.nodes[n] += radius * rng.in_unit_disk();
+            out.nodes_mut()[n] += radius * rng.in_unit_disk();
         }
     }
     out.update_mid_nodes();
@@ -42,9 +42,9 @@ mod tests {
     fn check_moves(before: &Mesh, after: &Mesh, amount: f64) {
         let r = amount * before.mean_edge_length();
         for n in 0..before.node_count() {
-            let d = before.nodes[n].distance(after.nodes[n]);
-            if before.fixed[n] {
-                assert_eq!(before.nodes[n], after.nodes[n], "fixed node {n} moved");
+            let d = before.nodes()[n].distance(after.nodes()[n]);
+            if before.fixed()[n] {
+                assert_eq!(before.nodes()[n], after.nodes()[n], "fixed node {n} moved");
             } else if before.role(n) == NodeRole::Corner {
                 assert!(d <= r * (1.0 + 1e-12), "node {n} moved {d} > {r}");
             }
@@ -57,13 +57,13 @@ mod tests {
         let p = perturb(&m, 0.7, 3).unwrap();
         p.sanity_check().unwrap();
         check_moves(&m, &p, 0.7);
-        let moved = (0..m.node_count()).filter(|&n| m.nodes[n] != p.nodes[n]).count();
+        let moved = (0..m.node_count()).filter(|&n| m.nodes()[n] != p.nodes()[n]).count();
         assert_eq!(moved, m.free_count());
         // uniform in the disk: E|offset|² = r²/2
         let r = 0.7 * m.mean_edge_length();
         let mean_sq = (0..m.node_count())
             .filter(|&n| m.is_free(n))
-            .map(|n| m.nodes[n].distance_squared(p.nodes[n]))
+            .map(|n| m.nodes()[n].distance_squared(p.nodes()[n]))
             .sum::<f64>()
             / m.free_count() as f64;
         assert!((mean_sq / (r * r) - 0.5).abs() < 0.05, "{}", mean_sq / (r * r));
@@ -73,11 +73,11 @@ mod tests {
     fn seeded_and_deterministic() {
         let m = grid(8, 8, GridKind::Quad).unwrap();
         let a = perturb(&m, 0.3, 11).unwrap();
-        assert_eq!(a.nodes, perturb(&m, 0.3, 11).unwrap().nodes);
+        assert_eq!(a.nodes(), perturb(&m, 0.3, 11).unwrap().nodes());
         let b = perturb(&m, 0.3, 12).unwrap();
-        let differ = (0..m.node_count()).filter(|&n| a.nodes[n] != b.nodes[n]).count();
+        let differ = (0..m.node_count()).filter(|&n| a.nodes()[n] != b.nodes()[n]).count();
         assert_eq!(differ, m.free_count());
-        assert_eq!(perturb(&m, 0.0, 5).unwrap().nodes, m.nodes);
+        assert_eq!(perturb(&m, 0.0, 5).unwrap().nodes(), m.nodes());
     }
 
     #[test]
@@ -98,9 +98,9 @@ mod tests {
         check_moves(&m, &p, 0.8);
         for e in p.edges() {
             assert_ne!(e.mid, NONE);
-            let (a, b, c) = (p.nodes[e.a as usize], p.nodes[e.b as usize], p.nodes[e.mid as usize]);
+            let (a, b, c) = (p.nodes()[e.a as usize], p.nodes()[e.b as usize], p.nodes()[e.mid as usize]);
             if e.curved {
-                assert_eq!(c, m.nodes[e.mid as usize], "curved boundary mid nodes stay");
+                assert_eq!(c, m.nodes()[e.mid as usize], "curved boundary mid nodes stay");
             } else {
                 assert!(c.distance(0.5 * (a + b)) < 1e-12, "mid node follows its corners");
             }

@@ -216,10 +216,10 @@ mod tests {
     fn boundary_is_the_hole_and_the_square() {
         for kind in KINDS {
             let p = plate(kind, 1, 3).unwrap();
-            for (i, &q) in p.nodes.iter().enumerate() {
+            for (i, &q) in p.nodes().iter().enumerate() {
                 let bnd = on_hole(q) || on_square(q);
                 assert_eq!(p.is_boundary(i), bnd, "node {i} at {q}");
-                assert_eq!(p.fixed[i], bnd, "node {i}");
+                assert_eq!(p.fixed()[i], bnd, "node {i}");
             }
             // the cells fill the square less the hole's inscribed 24-gon
             let m = 24.0;
@@ -228,7 +228,7 @@ mod tests {
             assert!((area - (4.0 * PLATE_HALF_WIDTH.powi(2) - hole)).abs() < 1e-12, "{area}");
             // the four corners of the square are nodes
             for c in [DVec2::new(1.0, 1.0), DVec2::new(-1.0, 1.0), DVec2::new(-1.0, -1.0), DVec2::new(1.0, -1.0)] {
-                assert!(p.nodes.iter().any(|q| q.distance(c) < 1e-15), "{c}");
+                assert!(p.nodes().iter().any(|q| q.distance(c) < 1e-15), "{c}");
             }
         }
     }
@@ -237,8 +237,8 @@ mod tests {
     fn mixed_has_quads_round_the_hole() {
         let p = plate(PlateKind::Mixed, 1, 2).unwrap();
         for e in 0..p.element_count() {
-            let touches_hole = p.element(e).iter().any(|&i| on_hole(p.nodes[i as usize]));
-            let touches_square = p.element(e).iter().any(|&i| on_square(p.nodes[i as usize]));
+            let touches_hole = p.element(e).iter().any(|&i| on_hole(p.nodes()[i as usize]));
+            let touches_square = p.element(e).iter().any(|&i| on_square(p.nodes()[i as usize]));
             if touches_hole {
                 assert!(p.kind(e).is_quad());
             }
@@ -256,13 +256,13 @@ mod tests {
             let mut curved = 0;
             for e in p.edges() {
                 assert_ne!(e.mid, crate::mesh::NONE);
-                let (a, b, c) = (p.nodes[e.a as usize], p.nodes[e.b as usize], p.nodes[e.mid as usize]);
+                let (a, b, c) = (p.nodes()[e.a as usize], p.nodes()[e.b as usize], p.nodes()[e.mid as usize]);
                 assert_eq!(p.role(e.mid as usize), NodeRole::Mid);
                 if on_hole(a) && on_hole(b) {
                     assert!((c.length() - PLATE_HOLE_RADIUS).abs() < 1e-12, "hole mid node on the circle");
                     // halfway round the arc
                     assert!((c.distance(a) - c.distance(b)).abs() < 1e-12);
-                    assert!(e.curved && e.is_boundary() && p.fixed[e.mid as usize]);
+                    assert!(e.curved && e.is_boundary() && p.fixed()[e.mid as usize]);
                     curved += 1;
                 } else {
                     assert!(c.distance(0.5 * (a + b)) < 1e-15, "straight edges have mid nodes at the midpoint");
@@ -273,7 +273,7 @@ mod tests {
             // mid nodes stay where update_mid_nodes would put them
             let mut q = p.clone();
             q.update_mid_nodes();
-            assert_eq!(q.nodes, p.nodes);
+            assert_eq!(q.nodes(), p.nodes());
         }
     }
 

@@ -150,10 +150,10 @@ mod tests {
     #[test]
     fn boundary_is_the_square_and_fixed() {
         let m = rand2d(200, 10, 4).unwrap();
-        for (i, p) in m.nodes.iter().enumerate() {
+        for (i, p) in m.nodes().iter().enumerate() {
             let on_square = p.x == 0.0 || p.x == 1.0 || p.y == 0.0 || p.y == 1.0;
             assert_eq!(on_square, i < 40, "node {i} at {p}");
-            assert_eq!(m.fixed[i], on_square, "node {i}");
+            assert_eq!(m.fixed()[i], on_square, "node {i}");
             assert_eq!(m.is_boundary(i), on_square, "node {i}");
         }
     }
@@ -162,20 +162,20 @@ mod tests {
     fn seeded_and_deterministic() {
         let a = rand2d(300, 10, 7).unwrap();
         let b = rand2d(300, 10, 7).unwrap();
-        assert_eq!(a.nodes, b.nodes);
+        assert_eq!(a.nodes(), b.nodes());
         for e in 0..a.element_count() {
             assert_eq!(a.element(e), b.element(e));
         }
         let c = rand2d(300, 10, 8).unwrap();
-        assert_eq!(a.nodes[..40], c.nodes[..40], "the boundary does not depend on the seed");
-        let moved = a.nodes.iter().zip(&c.nodes).filter(|(p, q)| p != q).count();
+        assert_eq!(a.nodes()[..40], c.nodes()[..40], "the boundary does not depend on the seed");
+        let moved = a.nodes().iter().zip(c.nodes()).filter(|(p, q)| p != q).count();
         assert_eq!(moved, 300, "every interior point differs with another seed");
     }
 
     #[test]
     fn points_are_uniform_and_separated() {
         let m = rand2d(4000, 10, 11).unwrap();
-        let inner = &m.nodes[40..];
+        let inner = &m.nodes()[40..];
         // each quarter of the square holds about a quarter of the points (σ ≈ 27)
         let q = inner.iter().filter(|p| p.x < 0.5 && p.y < 0.5).count();
         assert!((q as i64 - 1000).abs() < 150, "{q}");

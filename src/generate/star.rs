@@ -223,7 +223,7 @@ mod tests {
                 assert_eq!(c, m.node_count() - 1, "the free node is the last");
                 assert_eq!(m.node_elements(c).len(), k);
                 assert_eq!(m.node_count(), if kind == StarKind::Quad { 2 * k + 1 } else { k + 1 });
-                assert!(m.nodes[c].length() > 0.05, "{kind:?} k={k}: the free node starts off-centre");
+                assert!(m.nodes()[c].length() > 0.05, "{kind:?} k={k}: the free node starts off-centre");
             }
         }
         assert!(star(StarKind::Chen, 8).is_ok() && star(StarKind::Quad, 4).is_ok());
@@ -234,12 +234,12 @@ mod tests {
         let m = star(StarKind::Regular, 6).unwrap();
         let s3 = 3f64.sqrt();
         let expect = [(0.0, 2.0), (-s3, 1.0), (-s3, -1.0), (0.0, -2.0), (s3, -1.0), (s3, 1.0), (-0.8, -0.8)];
-        for (p, (x, y)) in m.nodes.iter().zip(expect) {
+        for (p, (x, y)) in m.nodes().iter().zip(expect) {
             assert!(p.distance(DVec2::new(x, y)) < 1e-12, "{p}");
         }
         // with the free node at the centre every triangle is equilateral
         for i in 0..6 {
-            assert!((lo_alpha(DVec2::ZERO, m.nodes[i], m.nodes[(i + 1) % 6]) - 1.0).abs() < 1e-12);
+            assert!((lo_alpha(DVec2::ZERO, m.nodes()[i], m.nodes()[(i + 1) % 6]) - 1.0).abs() < 1e-12);
         }
     }
 
@@ -247,7 +247,7 @@ mod tests {
     fn chen_star_is_star_shaped_and_not_convex() {
         for k in (6..=20).step_by(2) {
             let m = star(StarKind::Chen, k).unwrap();
-            let ring = &m.nodes[..k];
+            let ring = &m.nodes()[..k];
             for i in 0..k {
                 let (prev, p, next) = (ring[(i + k - 1) % k], ring[i], ring[(i + 1) % k]);
                 let turn = (p - prev).perp_dot(next - p);
@@ -255,7 +255,7 @@ mod tests {
                 assert_eq!(turn < 0.0, i % 2 == 1, "k={k} corner {i}: {turn}");
             }
             // star-shaped about the origin and about the start: every triangle valid
-            let c = m.nodes[k];
+            let c = m.nodes()[k];
             for i in 0..k {
                 assert!(lo_alpha(DVec2::ZERO, ring[i], ring[(i + 1) % k]) > 0.0);
                 assert!(lo_alpha(c, ring[i], ring[(i + 1) % k]) > 0.0);
@@ -270,17 +270,17 @@ mod tests {
     fn quad_star_four_is_a_distorted_three_by_three_grid() {
         let m = star(StarKind::Quad, 4).unwrap();
         let expect = [(1.0, 0.0), (1.4, 1.4), (0.0, 1.0), (-1.0, 1.0), (-1.0, 0.0), (-1.0, -1.0), (0.0, -1.0), (1.0, -1.0)];
-        for (p, (x, y)) in m.nodes.iter().zip(expect) {
+        for (p, (x, y)) in m.nodes().iter().zip(expect) {
             assert!(p.distance(DVec2::new(x, y)) < 1e-12, "{p}");
         }
         let s = mesh_stats(&m);
         assert!(s.min_quality > 0.0 && s.min_quality < 0.9, "valid but not ideal: {}", s.min_quality);
         // the free node lies half-way to where some quad corner would fold
-        let c = m.nodes[8];
+        let c = m.nodes()[8];
         let mut beyond = m.clone();
-        beyond.nodes[8] = c * 2.02;
+        beyond.nodes_mut()[8] = c * 2.02;
         assert!(mesh_stats(&beyond).inverted > 0);
-        beyond.nodes[8] = c * 1.98;
+        beyond.nodes_mut()[8] = c * 1.98;
         assert_eq!(mesh_stats(&beyond).inverted, 0);
     }
 

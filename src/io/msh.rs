@@ -605,7 +605,7 @@ pub(crate) fn write(mesh: &Mesh, version: MshVersion, s: &mut Out) {
     match version {
         MshVersion::V22 => {
             let _ = writeln!(s, "$Nodes\n{n}");
-            for (i, p) in mesh.nodes.iter().enumerate() {
+            for (i, p) in mesh.nodes().iter().enumerate() {
                 let _ = write!(s, "{} ", i + 1);
                 super::write_xyz(s, mesh, *p);
                 s.push('\n');
@@ -622,7 +622,7 @@ pub(crate) fn write(mesh: &Mesh, version: MshVersion, s: &mut Out) {
         }
         MshVersion::V41 => {
             // the surface's bounding box, in 3D
-            let (lo, hi) = mesh.nodes.iter().map(|&p| mesh.to_3d(p)).fold(
+            let (lo, hi) = mesh.nodes().iter().map(|&p| mesh.to_3d(p)).fold(
                 (glam::DVec3::splat(f64::INFINITY), glam::DVec3::splat(f64::NEG_INFINITY)),
                 |(lo, hi), q| (lo.min(q), hi.max(q)),
             );
@@ -641,7 +641,7 @@ pub(crate) fn write(mesh: &Mesh, version: MshVersion, s: &mut Out) {
             for i in 0..n {
                 let _ = writeln!(s, "{}", i + 1);
             }
-            for p in &mesh.nodes {
+            for p in mesh.nodes() {
                 super::write_xyz(s, mesh, *p);
                 s.push('\n');
             }
@@ -664,7 +664,7 @@ pub(crate) fn write(mesh: &Mesh, version: MshVersion, s: &mut Out) {
         }
     }
     let _ = writeln!(s, "$NodeData\n1\n\"fixed\"\n1\n0\n3\n0\n1\n{n}");
-    for (i, &f) in mesh.fixed.iter().enumerate() {
+    for (i, &f) in mesh.fixed().iter().enumerate() {
         let _ = writeln!(s, "{} {}", i + 1, u8::from(f));
     }
     s.push_str("$EndNodeData\n");
@@ -720,7 +720,7 @@ mod tests {
         let build = |text: String| parse(&text).and_then(|b| b.build());
         let a = build(format!("{head}{nodes}{}", elements(40))).unwrap();
         let b = build(format!("{head}{}{nodes}", elements(40))).unwrap();
-        assert_eq!((a.nodes.clone(), a.fixed.clone()), (b.nodes.clone(), b.fixed.clone()));
+        assert_eq!((a.nodes().to_vec(), a.fixed().to_vec()), (b.nodes().to_vec(), b.fixed().to_vec()));
         for e in 0..2 {
             assert_eq!((a.kind(e), a.element(e)), (b.kind(e), b.element(e)));
         }

@@ -196,7 +196,7 @@ pub(crate) fn linear_only(mesh: &Mesh, format: &str) -> Result<()> {
 pub(crate) fn write_obj(mesh: &Mesh, s: &mut Out) -> Result<()> {
     linear_only(mesh, "OBJ")?;
     s.push_str("# written by smoothlab\n");
-    for p in &mesh.nodes {
+    for p in mesh.nodes() {
         s.push_str("v ");
         super::write_xyz(s, mesh, *p);
         s.push('\n');
@@ -215,7 +215,7 @@ pub(crate) fn write_obj(mesh: &Mesh, s: &mut Out) -> Result<()> {
 pub(crate) fn write_off(mesh: &Mesh, s: &mut Out) -> Result<()> {
     linear_only(mesh, "OFF")?;
     let _ = writeln!(s, "OFF\n{} {} 0", mesh.node_count(), mesh.element_count());
-    for p in &mesh.nodes {
+    for p in mesh.nodes() {
         super::write_xyz(s, mesh, *p);
         s.push('\n');
     }

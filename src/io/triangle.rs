@@ -226,8 +226,8 @@ pub(crate) fn write(mesh: &Mesh, node: &mut Out, ele: &mut Out) -> Result<()> {
         let _ = writeln!(node, "# {note}");
     }
     let _ = writeln!(node, "{} 2 0 1", mesh.node_count());
-    for (i, p) in mesh.nodes.iter().enumerate() {
-        let _ = writeln!(node, "{} {:?} {:?} {}", i + 1, p.x, p.y, u8::from(mesh.fixed[i]));
+    for (i, p) in mesh.nodes().iter().enumerate() {
+        let _ = writeln!(node, "{} {:?} {:?} {}", i + 1, p.x, p.y, u8::from(mesh.fixed()[i]));
     }
     let per = kind.node_count();
     let _ = writeln!(ele, "{} {per} 0", mesh.element_count());

@@ -602,7 +602,7 @@ pub(crate) fn write(mesh: &Mesh, s: &mut Out) {
     let m = mesh.element_count();
     let size: usize = (0..m).map(|e| mesh.kind(e).node_count() + 1).sum();
     let _ = write!(s, "# vtk DataFile Version 3.0\nsmoothlab mesh\nASCII\nDATASET UNSTRUCTURED_GRID\nPOINTS {n} double\n");
-    for p in &mesh.nodes {
+    for p in mesh.nodes() {
         super::write_xyz(s, mesh, *p);
         s.push('\n');
     }
@@ -620,7 +620,7 @@ pub(crate) fn write(mesh: &Mesh, s: &mut Out) {
         let _ = writeln!(s, "{}", type_of(k));
     }
     let _ = writeln!(s, "POINT_DATA {n}\nSCALARS fixed int 1\nLOOKUP_TABLE default");
-    for &f in &mesh.fixed {
+    for &f in mesh.fixed() {
         let _ = writeln!(s, "{}", u8::from(f));
     }
 }

@@ -141,7 +141,7 @@ impl Playground {
         }
         ids.sort_unstable();
         ids.dedup();
-        let saved = Side::BOTH.map(|s| ids.iter().map(|&n| (n, self.panel(s).mesh.nodes[n])).collect());
+        let saved = Side::BOTH.map(|s| ids.iter().map(|&n| (n, self.panel(s).mesh.nodes()[n])).collect());
         self.undo.push(Undo { node, saved });
         Ok(())
     }
@@ -165,7 +165,7 @@ impl Playground {
             let v = self.fresh_version();
             let p = &mut self.panels[side.index()];
             for &(n, x) in &u.saved[side.index()] {
-                p.mesh.nodes[n] = x;
+                p.mesh.nodes_mut()[n] = x;
             }
             p.changed(v);
         }
@@ -207,16 +207,16 @@ mod tests {
     #[test]
     fn undo_puts_back_every_position_a_move_changed_on_both_sides() {
         let mut pg = perturbed_plate();
-        let before = Side::BOTH.map(|s| pg.panel(s).mesh.nodes.clone());
+        let before = Side::BOTH.map(|s| pg.panel(s).mesh.nodes().to_vec());
         let n = worst(&pg);
         pg.remember_before_move(n).unwrap();
-        pg.move_node(n, pg.panel(Side::Old).mesh.nodes[n] + DVec2::new(0.01, -0.02)).unwrap();
-        pg.move_node(n, pg.panel(Side::Old).mesh.nodes[n] + DVec2::new(0.01, 0.0)).unwrap();
-        assert_ne!(pg.panel(Side::Old).mesh.nodes, before[0]);
+        pg.move_node(n, pg.panel(Side::Old).mesh.nodes()[n] + DVec2::new(0.01, -0.02)).unwrap();
+        pg.move_node(n, pg.panel(Side::Old).mesh.nodes()[n] + DVec2::new(0.01, 0.0)).unwrap();
+        assert_ne!(pg.panel(Side::Old).mesh.nodes(), before[0]);
         assert_eq!((pg.undo_depth(), pg.undo_node()), (1, Some(n)));
         assert_eq!(pg.undo(), Some(n));
         for s in Side::BOTH {
-            assert_eq!(pg.panel(s).mesh.nodes, before[s.index()], "bit for bit");
+            assert_eq!(pg.panel(s).mesh.nodes(), before[s.index()], "bit for bit");
         }
         assert_eq!(pg.undo(), None);
         // a pass ends what can be undone
@@ -238,7 +238,7 @@ mod tests {
             let r = &results[s.index()];
             assert_eq!(r.x, solved[s.index()].x, "the same call as the level-set view's");
             assert!(!r.history.is_empty(), "with its history");
-            assert_eq!(pg.panel(s).mesh.nodes[n], r.x);
+            assert_eq!(pg.panel(s).mesh.nodes()[n], r.x);
         }
         // the new objective is a sum to minimise: it did not get worse
         let r = &results[Side::New.index()];

@@ -451,7 +451,7 @@ impl Playground {
         let full = crate::quality::mesh_stats(&mesh);
         let mut buckets = Vec::new();
         quick_stats_and_buckets(&mesh, &mut buckets);
-        let original = mesh.nodes.clone();
+        let original = mesh.nodes().to_vec();
         let bounds = mesh.bounds();
         let mean_edge = mesh.mean_edge_length();
         let old = Panel::new(Side::Old, mesh.clone(), &settings, 1, &full, buckets.clone())?;
@@ -551,7 +551,7 @@ impl Playground {
                     let t0 = clock();
                     let p = &mut self.panels[side];
                     run.saved[side] = Some(Saved {
-                        nodes: p.mesh.nodes.clone(),
+                        nodes: p.mesh.nodes().to_vec(),
                         version: p.version,
                         quick: p.quick,
                         buckets: p.buckets.clone(),
@@ -685,7 +685,7 @@ impl Playground {
         let Some(run) = self.run.take() else { return };
         for (p, saved) in self.panels.iter_mut().zip(run.saved) {
             if let Some(s) = saved {
-                p.mesh.nodes = s.nodes;
+                p.mesh.nodes_mut().copy_from_slice(&s.nodes);
                 p.version = s.version;
                 p.quick = s.quick;
                 p.buckets = s.buckets;
@@ -699,12 +699,12 @@ impl Playground {
     pub fn perturb(&mut self, amount: f64, seed: u64) -> Result<()> {
         self.abort_pass();
         let mesh = &mut self.panels[0].mesh;
-        mesh.nodes.copy_from_slice(&self.original);
+        mesh.nodes_mut().copy_from_slice(&self.original);
         let perturbed = perturb(mesh, amount, seed)?;
         self.original_stats = crate::quality::mesh_stats(&perturbed);
         quick_stats_and_buckets(&perturbed, &mut self.original_buckets);
         self.mean_edge = perturbed.mean_edge_length();
-        self.original = perturbed.nodes;
+        self.original = perturbed.nodes().to_vec();
         self.original_version = self.fresh_version();
         self.reset();
         Ok(())
@@ -798,7 +798,7 @@ impl Playground {
         let o = self.settings.smooth_options().expect("the settings were checked when set");
         let quick = self.original_stats.quick();
         for p in &mut self.panels {
-            p.mesh.nodes.copy_from_slice(&self.original);
+            p.mesh.nodes_mut().copy_from_slice(&self.original);
             p.version = self.original_version;
             p.quick = quick;
             p.buckets.clone_from(&self.original_buckets);
@@ -838,7 +838,7 @@ impl Playground {
     fn place(&mut self, side: Side, node: usize, to: DVec2) {
         let v = self.fresh_version();
         let p = &mut self.panels[side.index()];
-        p.mesh.nodes[node] = to;
+        p.mesh.nodes_mut()[node] = to;
         p.mesh.follow_mid_nodes(node);
         p.changed(v);
     }
@@ -885,11 +885,11 @@ mod tests {
         let free = (0..pg.topology().node_count()).find(|&n| pg.topology().is_free(n)).unwrap();
         pg.move_node(free, DVec2::new(0.9, 0.9)).unwrap();
         for s in Side::BOTH {
-            assert_eq!(pg.panel(s).mesh.nodes[free], DVec2::new(0.9, 0.9));
+            assert_eq!(pg.panel(s).mesh.nodes()[free], DVec2::new(0.9, 0.9));
         }
         pg.reset();
         assert_eq!(pg.stats(Side::Old), before);
-        assert_eq!(pg.panel(Side::New).mesh.nodes, pg.original_nodes());
+        assert_eq!(pg.panel(Side::New).mesh.nodes(), pg.original_nodes());
     }
 
     fn no_clock() -> f64 {
@@ -946,12 +946,12 @@ mod tests {
     fn node_solve_moves_towards_better_and_leaves_the_mesh() {
         let pg = Playground::new(Sample::StarRegular.generate().unwrap()).unwrap();
         let free = pg.topology().node_count() - 1;
-        let before = pg.panel(Side::New).mesh.nodes.clone();
+        let before = pg.panel(Side::New).mesh.nodes().to_vec();
         let new = pg.solve_node(Side::New, free).unwrap();
         assert!(new.value <= new.value0 && !new.history.is_empty());
         let old = pg.solve_node(Side::Old, free).unwrap();
         assert!(old.value >= old.value0, "max-min: the minimum never drops");
-        assert_eq!(pg.panel(Side::New).mesh.nodes, before);
+        assert_eq!(pg.panel(Side::New).mesh.nodes(), before);
         assert!(pg.solve_node(Side::New, 0).is_err(), "a fixed node has no solve");
     }
 
@@ -962,7 +962,7 @@ mod tests {
         pg.perturb(1.0, 7).unwrap();
         assert!(pg.stats(Side::Old).mesh.inverted > 0);
         assert_eq!(pg.stats(Side::Old).work.passes, 0);
-        assert_eq!(pg.panel(Side::New).mesh.nodes, pg.original_nodes());
+        assert_eq!(pg.panel(Side::New).mesh.nodes(), pg.original_nodes());
         assert!(pg.perturb(f64::NAN, 1).is_err());
     }
 
@@ -974,8 +974,8 @@ mod tests {
             let text = pg.export(Side::New, format).unwrap();
             let back = crate::io::read_str(&text, format).unwrap();
             assert_eq!(back.node_count(), pg.panel(Side::New).mesh.node_count());
-            assert_eq!(back.nodes, pg.panel(Side::New).mesh.nodes, "{format:?} keeps the smoothed positions");
-            assert_ne!(back.nodes, pg.panel(Side::Old).mesh.nodes);
+            assert_eq!(back.nodes(), pg.panel(Side::New).mesh.nodes(), "{format:?} keeps the smoothed positions");
+            assert_ne!(back.nodes(), pg.panel(Side::Old).mesh.nodes());
         }
     }
 
@@ -988,7 +988,7 @@ mod tests {
         let e = pg.move_node(n, DVec2::ZERO).unwrap_err().to_string();
         assert!(e.contains("no such node"), "{e}");
         assert!(pg.move_node(n - 1, DVec2::new(f64::NAN, 0.0)).is_err());
-        assert_eq!(pg.panel(Side::Old).mesh.nodes, pg.original_nodes(), "a refused move changes nothing");
+        assert_eq!(pg.panel(Side::Old).mesh.nodes(), pg.original_nodes(), "a refused move changes nothing");
     }
 
     #[test]
@@ -996,13 +996,13 @@ mod tests {
         let mut pg = Playground::new(Sample::PlateQuadratic.generate().unwrap()).unwrap();
         let m = pg.topology().clone();
         let free = (0..m.node_count()).find(|&n| m.is_free(n)).unwrap();
-        let to = m.nodes[free] + DVec2::new(0.01, -0.02);
+        let to = m.nodes()[free] + DVec2::new(0.01, -0.02);
         pg.move_node(free, to).unwrap();
         let moved = &pg.panel(Side::New).mesh;
         for e in m.edges() {
             if e.mid != crate::mesh::NONE && (e.a as usize == free || e.b as usize == free) && !e.curved {
-                let mid = 0.5 * (moved.nodes[e.a as usize] + moved.nodes[e.b as usize]);
-                assert!(moved.nodes[e.mid as usize].distance(mid) < 1e-12);
+                let mid = 0.5 * (moved.nodes()[e.a as usize] + moved.nodes()[e.b as usize]);
+                assert!(moved.nodes()[e.mid as usize].distance(mid) < 1e-12);
             }
         }
     }
@@ -1052,7 +1052,7 @@ mod tests {
                             }
                             let rec = rec.unwrap();
                             let what = format!("{sample:?} {strategy:?} {order:?} pass {pass} {side:?}");
-                            assert_eq!(pg.panel(side).mesh.nodes, m.nodes, "{what}");
+                            assert_eq!(pg.panel(side).mesh.nodes(), m.nodes(), "{what}");
                             let got = &records[side as usize];
                             assert_eq!(
                                 (got.pass, got.counts.visits, got.counts.laplacian_moves, got.counts.optimization_calls, got.counts.solver_iterations),
@@ -1078,7 +1078,7 @@ mod tests {
     fn an_abandoned_pass_leaves_no_trace() {
         let mut pg = Playground::new(Sample::Rand2dTangled.generate().unwrap()).unwrap();
         pg.step(&no_clock);
-        let before = [pg.panel(Side::Old).mesh.nodes.clone(), pg.panel(Side::New).mesh.nodes.clone()];
+        let before = [pg.panel(Side::Old).mesh.nodes().to_vec(), pg.panel(Side::New).mesh.nodes().to_vec()];
         let versions = [pg.version(Side::Old), pg.version(Side::New)];
         let tables = [pg.table(Side::Old), pg.table(Side::New)];
         let clock = ticking();
@@ -1088,11 +1088,11 @@ mod tests {
             p = pg.continue_pass(&clock, 2.0).unwrap();
         }
         assert!(!p.done && p.fraction >= 0.5);
-        assert_ne!(pg.panel(Side::Old).mesh.nodes, before[0], "the old panel was smoothed");
+        assert_ne!(pg.panel(Side::Old).mesh.nodes(), before[0], "the old panel was smoothed");
         pg.abort_pass();
         assert!(!pg.pass_in_progress());
         for side in Side::BOTH {
-            assert_eq!(pg.panel(side).mesh.nodes, before[side as usize]);
+            assert_eq!(pg.panel(side).mesh.nodes(), before[side as usize]);
             assert_eq!(pg.version(side), versions[side as usize]);
             assert_eq!(pg.table(side), tables[side as usize]);
         }
@@ -1102,7 +1102,7 @@ mod tests {
         pg.continue_pass(&clock, 2.0).unwrap();
         pg.set_settings(Settings::default()).unwrap();
         assert!(!pg.pass_in_progress());
-        assert_eq!(pg.panel(Side::Old).mesh.nodes, before[0]);
+        assert_eq!(pg.panel(Side::Old).mesh.nodes(), before[0]);
     }
 
     #[test]

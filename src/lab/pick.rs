@@ -53,7 +53,7 @@ impl Playground {
         let mut nearest = None;
         let mut best = radius * radius;
         if css.is_finite() {
-            for (n, p) in mesh.nodes.iter().enumerate() {
+            for (n, p) in mesh.nodes().iter().enumerate() {
                 if mesh.role(n) == NodeRole::Unused {
                     continue;
                 }

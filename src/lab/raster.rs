@@ -63,7 +63,7 @@ pub fn render_fine(pixmap: &mut Pixmap, mesh: &Mesh, buckets: &[u8], view: &View
 
     // device positions of all nodes in fixed point (i32::MIN: far away or not finite)
     let pts: Vec<(i32, i32)> = mesh
-        .nodes
+        .nodes()
         .iter()
         .map(|p| {
             let d = view.to_device(*p);
@@ -247,7 +247,7 @@ pub fn draw_highlight(pixmap: &mut Pixmap, mesh: &Mesh, view: &View, node: usize
         push_element(&mut star, mesh, view, e as usize);
     }
     stroke(pixmap, star, rgba(230, 159, 0, 255), 3.0 * s);
-    let (x, y) = view.device_xy(mesh.nodes[node]);
+    let (x, y) = view.device_xy(mesh.nodes()[node]);
     if x.is_finite() && y.is_finite() {
         let mut ring = PathBuilder::new();
         ring.push_circle(x, y, 7.0 * s);

@@ -133,7 +133,7 @@ impl QuickAcc {
             let kind = mesh.kind(e);
             let b = if kind == ElementKind::Tri3 {
                 let ids = mesh.element(e);
-                let [a, b, c] = [ids[0], ids[1], ids[2]].map(|i| mesh.nodes[i as usize]);
+                let [a, b, c] = [ids[0], ids[1], ids[2]].map(|i| mesh.nodes()[i as usize]);
                 self.triangle(a, b, c)
             } else {
                 self.element(kind, &mesh.element_points_array(e)[..kind.node_count()])

@@ -100,10 +100,10 @@ struct KindsPresent {
 /// two sides hold one connectivity between them.
 #[derive(Clone, Debug)]
 pub struct Mesh {
-    /// Node positions. The smoothers move corner nodes here; mid-side nodes follow.
-    pub nodes: Vec<DVec2>,
-    /// Nodes that never move.
-    pub fixed: Vec<bool>,
+    /// Node positions, one per node of the topology (see [`Mesh::nodes_mut`]).
+    nodes: Vec<DVec2>,
+    /// Nodes that never move, one flag per node; set when the mesh is built.
+    fixed: Vec<bool>,
     conn: Arc<Connectivity>,
     /// The 3D plane the file's points lay in, when they were not in the xy plane at z = 0
     /// (see [`Mesh::to_3d`]); `None` for a 2D mesh.
@@ -138,6 +138,22 @@ impl Mesh {
 
     pub fn node_count(&self) -> usize {
         self.nodes.len()
+    }
+    /// Node positions. The smoothers move corner nodes; mid-side nodes follow.
+    pub fn nodes(&self) -> &[DVec2] {
+        &self.nodes
+    }
+    /// Node positions to move. A slice, so the count always matches the topology's.
+    pub fn nodes_mut(&mut self) -> &mut [DVec2] {
+        &mut self.nodes
+    }
+    /// Per node, whether it never moves. Fixed when the mesh is built ([`MeshBuilder`]'s
+    /// `fixed`) and never changed after, so the free nodes are a property of the mesh.
+    pub fn fixed(&self) -> &[bool] {
+        &self.fixed
+    }
+    pub fn is_fixed(&self, n: usize) -> bool {
+        self.fixed[n]
     }
     pub fn element_count(&self) -> usize {
         self.conn.kinds.len()

@@ -162,7 +162,7 @@ pub fn check_scale(kind: ObjectiveKind, mesh: &Mesh) -> crate::Result<()> {
     }
     let (mut lo, mut hi) = (f64::INFINITY, 0.0f64);
     for e in mesh.edges() {
-        let d = mesh.nodes[e.a as usize] - mesh.nodes[e.b as usize];
+        let d = mesh.nodes()[e.a as usize] - mesh.nodes()[e.b as usize];
         let l = d.x.hypot(d.y);
         hi = hi.max(l);
         if l > 0.0 {
@@ -270,7 +270,7 @@ impl Star {
     /// Fills the star of `node` from `mesh`.
     pub fn gather(&mut self, mesh: &Mesh, node: usize) {
         self.node = node as u32;
-        self.x0 = mesh.nodes[node];
+        self.x0 = mesh.nodes()[node];
         self.mixed = mesh.has_triangles() && mesh.has_quads();
         self.elems.clear();
         for &e in mesh.node_elements(node) {
@@ -284,7 +284,7 @@ impl Star {
             let follows = |edge: usize| {
                 kind.mid(edge).is_some_and(|m| {
                     let mid = ids[m] as usize;
-                    !mesh.fixed[mid] && !mesh.is_on_curved_boundary(mid) && mesh.role(mid) == NodeRole::Mid
+                    !mesh.fixed()[mid] && !mesh.is_on_curved_boundary(mid) && mesh.role(mid) == NodeRole::Mid
                 })
             };
             // filled in place: a StarElement is 160 bytes, built once where it lives
@@ -298,7 +298,7 @@ impl Star {
             });
             let pts = &mut self.elems.last_mut().expect("just pushed").pts;
             for (p, &n) in pts.iter_mut().zip(ids) {
-                *p = mesh.nodes[n as usize];
+                *p = mesh.nodes()[n as usize];
             }
         }
     }
@@ -547,7 +547,7 @@ mod tests {
         // and moving the node in the mesh (mid nodes following) gives the same objective
         // values as evaluating the gathered star at the new position
         let mut moved = mesh.clone();
-        moved.nodes[0] = d(0.2, -0.1);
+        moved.nodes_mut()[0] = d(0.2, -0.1);
         moved.follow_mid_nodes(0);
         let mut again = Star::new();
         again.gather(&moved, 0);

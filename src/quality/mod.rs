@@ -520,7 +520,7 @@ impl MeshStats {
     pub fn empty(mesh: &Mesh) -> MeshStats {
         let nodes = mesh.node_count();
         let free_nodes = mesh.free_count();
-        let fixed_nodes = mesh.fixed.iter().filter(|&&f| f).count();
+        let fixed_nodes = mesh.fixed().iter().filter(|&&f| f).count();
         MeshStats {
             nodes,
             elements: mesh.element_count(),

@@ -172,7 +172,7 @@ pub fn pick_node_within(mesh: &Mesh, view: &View, px: f64, py: f64, radius: f64)
     }
     let mut best = None;
     let mut best_d2 = radius * radius;
-    for (n, p) in mesh.nodes.iter().enumerate() {
+    for (n, p) in mesh.nodes().iter().enumerate() {
         if mesh.role(n) == NodeRole::Unused {
             continue;
         }
@@ -193,7 +193,7 @@ pub(crate) fn push_element(pb: &mut PathBuilder, mesh: &Mesh, view: &View, e: us
     let k = kind.corners();
     let mut pts = [(0.0f32, 0.0f32); 9];
     for (i, &n) in ids.iter().enumerate() {
-        let (x, y) = view.device_xy(mesh.nodes[n as usize]);
+        let (x, y) = view.device_xy(mesh.nodes()[n as usize]);
         if !(x.is_finite() && y.is_finite()) {
             return false;
         }
@@ -388,9 +388,9 @@ pub fn render_mesh(pixmap: &mut Pixmap, mesh: &Mesh, opts: &MeshView) -> View {
         let mut inner = PathBuilder::new();
         let mut outer = PathBuilder::new();
         for edge in mesh.edges() {
-            let (a, b) = (mesh.nodes[edge.a as usize], mesh.nodes[edge.b as usize]);
+            let (a, b) = (mesh.nodes()[edge.a as usize], mesh.nodes()[edge.b as usize]);
             let (pa, pb_) = (view.device_xy(a), view.device_xy(b));
-            let mid = (edge.mid != NONE).then(|| view.device_xy(mesh.nodes[edge.mid as usize]));
+            let mid = (edge.mid != NONE).then(|| view.device_xy(mesh.nodes()[edge.mid as usize]));
             let mut lo = (pa.0.min(pb_.0), pa.1.min(pb_.1));
             let mut hi = (pa.0.max(pb_.0), pa.1.max(pb_.1));
             if let Some(m) = mid {
@@ -433,7 +433,7 @@ pub fn render_mesh(pixmap: &mut Pixmap, mesh: &Mesh, opts: &MeshView) -> View {
         draw_nodes(pixmap, mesh, &view, s, clip);
     }
     if let Some(n) = opts.highlight.filter(|&n| n < mesh.node_count()) {
-        let (x, y) = view.device_xy(mesh.nodes[n]);
+        let (x, y) = view.device_xy(mesh.nodes()[n]);
         let mut ring = PathBuilder::new();
         push_marker(&mut ring, Marker::Circle, x, y, 7.0 * s);
         stroke_masked(pixmap, ring.clone(), rgba(0, 0, 0, 255), 3.5 * s, clip);
@@ -525,14 +525,14 @@ fn draw_nodes(pixmap: &mut Pixmap, mesh: &Mesh, view: &View, s: f32, clip: Optio
     let mut fixed = PathBuilder::new();
     let mut free = PathBuilder::new();
     let mut mid = PathBuilder::new();
-    for (n, p) in mesh.nodes.iter().enumerate() {
+    for (n, p) in mesh.nodes().iter().enumerate() {
         let (x, y) = view.device_xy(*p);
         if !(x > -10.0 && y > -10.0 && x < w + 10.0 && y < h + 10.0) {
             continue;
         }
         match mesh.role(n) {
             NodeRole::Unused => {}
-            NodeRole::Corner if mesh.fixed[n] => push_marker(&mut fixed, Marker::Square, x, y, 3.2 * s),
+            NodeRole::Corner if mesh.fixed()[n] => push_marker(&mut fixed, Marker::Square, x, y, 3.2 * s),
             NodeRole::Corner => push_marker(&mut free, Marker::Circle, x, y, 3.0 * s),
             NodeRole::Mid | NodeRole::Centre => push_marker(&mut mid, Marker::Circle, x, y, 1.8 * s),
         }

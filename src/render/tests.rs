@@ -358,7 +358,7 @@ fn picking_finds_the_nearest_node_within_the_radius() {
     for dpr in [1.0, 2.0] {
         let opts = MeshView { zoom: ZoomPan { zoom: 1.7, pan: DVec2::new(-30.0, 12.0) }, dpr, ..Default::default() };
         let view = mesh_view(600 * dpr as u32, 400 * dpr as u32, &mesh, &opts);
-        for (n, p) in mesh.nodes.iter().enumerate() {
+        for (n, p) in mesh.nodes().iter().enumerate() {
             let css = view.to_css(*p);
             if css.x < 0.0 || css.y < 0.0 || css.x > 600.0 || css.y > 400.0 {
                 continue;
@@ -371,7 +371,7 @@ fn picking_finds_the_nearest_node_within_the_radius() {
         assert_eq!(pick_node(&mesh, &view, far.x, far.y), None);
         assert_eq!(pick_node(&mesh, &view, f64::NAN, 0.0), None);
         // half-way between two neighbours, the nearer one wins
-        let (a, b) = (view.to_css(mesh.nodes[0]), view.to_css(mesh.nodes[1]));
+        let (a, b) = (view.to_css(mesh.nodes()[0]), view.to_css(mesh.nodes()[1]));
         let q = a + 0.4 * (b - a);
         assert_eq!(pick_node_within(&mesh, &view, q.x, q.y, 1e9), Some(0));
     }
@@ -383,7 +383,7 @@ fn mesh_fits_inside_the_frame_left_of_the_colour_bar() {
     let opts = MeshView::default().with_dpr(1.5);
     let view = mesh_view(900, 600, &mesh, &opts);
     let (w, h) = (900.0 / 1.5, 600.0 / 1.5);
-    for p in &mesh.nodes {
+    for p in mesh.nodes() {
         let c = view.to_css(*p);
         assert!(c.x >= 16.0 - 1e-9 && c.y >= 16.0 - 1e-9, "{c:?}");
         assert!(c.x <= w - COLOUR_BAR_WIDTH as f64 - 16.0 + 1e-9 && c.y <= h - 16.0 + 1e-9, "{c:?}");
@@ -402,7 +402,7 @@ fn png_round_trip() {
 #[test]
 fn odd_inputs_do_not_panic() {
     let mut mesh = two_elements();
-    mesh.nodes[4] = DVec2::new(f64::NAN, 1.0);
+    mesh.nodes_mut()[4] = DVec2::new(f64::NAN, 1.0);
     let mut p = pixmap(50, 40);
     render_mesh(&mut p, &mesh, &MeshView { highlight: Some(99), dpr: 0.0, margin: 100.0, ..Default::default() });
     render_mesh(&mut p, &mesh, &MeshView { zoom: ZoomPan { zoom: -1.0, pan: DVec2::splat(f64::INFINITY) }, ..Default::default() });
@@ -464,7 +464,7 @@ fn an_inverted_element_flung_far_away_is_hatched_only_where_it_shows() {
     b.add_element(crate::mesh::ElementKind::Tri3, &[0, 1, 2], 0);
     b.add_element(crate::mesh::ElementKind::Tri3, &[0, 2, 3], 0);
     let mut m = b.build().unwrap();
-    m.nodes[3] = glam::DVec2::new(1.0e12, -0.5e12);
+    m.nodes_mut()[3] = glam::DVec2::new(1.0e12, -0.5e12);
     assert!(crate::quality::mesh_stats(&m).inverted > 0);
     let mut pm = tiny_skia::Pixmap::new(300, 300).unwrap();
     let view = MeshView { bounds: Some((glam::DVec2::ZERO, glam::DVec2::ONE)), ..MeshView::default() };

@@ -47,7 +47,7 @@ fn centroid(mesh: &Mesh, n: usize) -> Option<DVec2> {
     if nb.is_empty() {
         return None;
     }
-    let s: DVec2 = nb.iter().map(|&m| mesh.nodes[m as usize]).sum();
+    let s: DVec2 = nb.iter().map(|&m| mesh.nodes()[m as usize]).sum();
     Some(s / nb.len() as f64)
 }
 
@@ -186,7 +186,7 @@ impl Smoother {
         for n in 0..mesh.node_count() {
             if mesh.is_free(n) {
                 self.star.gather(mesh, n);
-                total += evaluate(objective, &self.star, mesh.nodes[n], &mut self.terms).0;
+                total += evaluate(objective, &self.star, mesh.nodes()[n], &mut self.terms).0;
             }
         }
         total
@@ -217,7 +217,7 @@ impl Smoother {
         if n >= mesh.node_count() || !mesh.is_free(n) {
             return (DVec2::ZERO, out);
         }
-        let x0 = mesh.nodes[n];
+        let x0 = mesh.nodes()[n];
         let mut x = x0;
         let sine_t = self.sine_threshold;
         match self.options.strategy {
@@ -300,7 +300,7 @@ impl Smoother {
     }
 
     fn place(&mut self, mesh: &mut Mesh, n: usize, x: DVec2) {
-        mesh.nodes[n] = x;
+        mesh.nodes_mut()[n] = x;
         if self.quadratic {
             mesh.follow_mid_nodes(n);
         }
@@ -309,7 +309,7 @@ impl Smoother {
     /// Plain Laplacian: the centroid when the node moves there, `None` when it stays.
     fn laplace(&mut self, mesh: &Mesh, n: usize, out: &mut NodeOutcome) -> Option<DVec2> {
         match centroid(mesh, n) {
-            Some(c) if c.is_finite() && c != mesh.nodes[n] => {
+            Some(c) if c.is_finite() && c != mesh.nodes()[n] => {
                 out.laplacian = true;
                 Some(c)
             }
@@ -418,5 +418,5 @@ pub fn solve_node(mesh: &Mesh, node: usize, objective: &dyn Objective, options: 
     star.gather(mesh, node);
     let solve = options.solve_options().with_history(true);
     solve.validate()?;
-    Ok(Solvers::new(solve).get(options.solver, objective.goal()).solve(objective, &star, mesh.nodes[node]))
+    Ok(Solvers::new(solve).get(options.solver, objective.goal()).solve(objective, &star, mesh.nodes()[node]))
 }

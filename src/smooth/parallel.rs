@@ -321,12 +321,12 @@ mod tests {
                     assert_eq!(ca, cb, "{name} {strategy:?} {kind}");
                 }
                 let same = a
-                    .nodes
+                    .nodes()
                     .iter()
-                    .zip(&b.nodes)
+                    .zip(b.nodes())
                     .all(|(p, q)| p.x.to_bits() == q.x.to_bits() && p.y.to_bits() == q.y.to_bits());
                 assert!(same, "{name} {strategy:?} {kind}: deferred and in-place passes differ");
-                assert!(a.nodes != mesh.nodes, "{name} {strategy:?} {kind}: nothing moved, the check shows nothing");
+                assert!(a.nodes() != mesh.nodes(), "{name} {strategy:?} {kind}: nothing moved, the check shows nothing");
             }
         }
     }
@@ -358,7 +358,7 @@ mod tests {
             s.sweep(&mut m, &*obj);
             m
         };
-        assert_ne!(run(Execution::InPlace).nodes, run(Execution::Deferred).nodes);
+        assert_ne!(run(Execution::InPlace).nodes(), run(Execution::Deferred).nodes());
     }
 
     #[test]

@@ -124,10 +124,10 @@ fn element_measures_match_element_quality() {
 fn laplace_on_a_regular_grid_is_a_fixed_point() {
     for kind in [ElementKind::Tri3, ElementKind::Quad4, ElementKind::Tri6] {
         let mut mesh = grid(5, 4, kind, &[], &[]);
-        let before = mesh.nodes.clone();
+        let before = mesh.nodes().to_vec();
         let opts = SmoothOptions::default().with_strategy(Strategy::Laplace).with_order(Order::Input);
         let recs = smooth(&mut mesh, &ShapeSum, opts, 2, NO_CLOCK).unwrap();
-        for (a, b) in before.iter().zip(&mesh.nodes) {
+        for (a, b) in before.iter().zip(mesh.nodes()) {
             assert!(a.distance(*b) < 1e-14, "{kind:?}: {a} → {b}");
         }
         assert_eq!(recs[1].counts.laplacian_moves, 0);
@@ -142,15 +142,15 @@ fn laplace_moves_to_the_centroid_and_mid_nodes_follow() {
         Smoother::new(SmoothOptions::default().with_strategy(Strategy::Laplace).with_order(Order::Input)).unwrap();
     let n = (0..mesh.node_count()).find(|&n| mesh.is_free(n)).unwrap();
     let nb: DVec2 =
-        mesh.neighbours(n).iter().map(|&m| mesh.nodes[m as usize]).sum::<DVec2>() / mesh.neighbours(n).len() as f64;
+        mesh.neighbours(n).iter().map(|&m| mesh.nodes()[m as usize]).sum::<DVec2>() / mesh.neighbours(n).len() as f64;
     let o = s.smooth_node(&mut mesh, n, &ShapeSum);
     assert!(o.moved && o.laplacian && !o.optimized);
-    assert_eq!(mesh.nodes[n], nb);
+    assert_eq!(mesh.nodes()[n], nb);
     s.pass(&mut mesh, &ShapeSum, NO_CLOCK);
     for e in mesh.edges() {
         if e.mid != crate::mesh::NONE && !e.is_boundary() {
-            let mid = 0.5 * (mesh.nodes[e.a as usize] + mesh.nodes[e.b as usize]);
-            assert!(mesh.nodes[e.mid as usize].distance(mid) < 1e-15, "mid node {} off its edge", e.mid);
+            let mid = 0.5 * (mesh.nodes()[e.a as usize] + mesh.nodes()[e.b as usize]);
+            assert!(mesh.nodes()[e.mid as usize].distance(mid) < 1e-15, "mid node {} off its edge", e.mid);
         }
     }
 }
@@ -174,10 +174,10 @@ proptest! {
                 let rb = smooth(&mut b, obj, opts, 2, NO_CLOCK).unwrap();
                 prop_assert_eq!(&ra, &rb);
                 for n in 0..a.node_count() {
-                    prop_assert!(a.nodes[n].is_finite());
-                    prop_assert_eq!(a.nodes[n].to_array().map(f64::to_bits), b.nodes[n].to_array().map(f64::to_bits));
-                    if a.fixed[n] {
-                        prop_assert_eq!(a.nodes[n].to_array().map(f64::to_bits), mesh0.nodes[n].to_array().map(f64::to_bits));
+                    prop_assert!(a.nodes()[n].is_finite());
+                    prop_assert_eq!(a.nodes()[n].to_array().map(f64::to_bits), b.nodes()[n].to_array().map(f64::to_bits));
+                    if a.fixed()[n] {
+                        prop_assert_eq!(a.nodes()[n].to_array().map(f64::to_bits), mesh0.nodes()[n].to_array().map(f64::to_bits));
                     }
                 }
                 prop_assert!(ra.iter().all(|r| r.objective_total.is_some_and(|t| !t.is_nan())));
@@ -338,7 +338,7 @@ fn rules_untangle_a_folded_star_by_optimization() {
         last = s.pass(&mut mesh, &ShapeMaxMin, NO_CLOCK);
     }
     assert_eq!(last.after.inverted, 0, "{last:?}");
-    assert!(mesh.nodes[0].length() < 0.05, "{}", mesh.nodes[0]);
+    assert!(mesh.nodes()[0].length() < 0.05, "{}", mesh.nodes()[0]);
     // once valid, the constrained Laplacian takes over (the centroid is the best place)
     let mut mesh = hexagon(DVec2::new(0.2, 0.1));
     let r = s.pass(&mut mesh, &ShapeMaxMin, NO_CLOCK);
@@ -360,7 +360,7 @@ fn rules_optimize_next_to_a_curved_boundary() {
     // bow out the mid node of the bottom edge 0–1
     let e = *mesh.edges().iter().find(|e| e.a == 0 && e.b == 1).unwrap();
     let mut b = MeshBuilder::new();
-    for (i, p) in mesh.nodes.iter().enumerate() {
+    for (i, p) in mesh.nodes().iter().enumerate() {
         let p = if i == e.mid as usize { *p + DVec2::new(0.0, -0.2) } else { *p };
         b.add_node([p.x, p.y, 0.0], 0);
     }
@@ -381,9 +381,9 @@ fn rules_optimize_next_to_a_curved_boundary() {
     let far = 10; // grid node (2, 2): no curved boundary in reach, the smart Laplacian helps
     let o = s.smooth_node(&mut mesh, far, &ShapeSum);
     assert!(o.laplacian && o.moved && !o.optimized, "{o:?}");
-    let mid_before = mesh.nodes[e.mid as usize];
+    let mid_before = mesh.nodes()[e.mid as usize];
     s.pass(&mut mesh, &ShapeSum, NO_CLOCK);
-    assert_eq!(mesh.nodes[e.mid as usize], mid_before, "the curved edge keeps its mid node");
+    assert_eq!(mesh.nodes()[e.mid as usize], mid_before, "the curved edge keeps its mid node");
 }
 
 #[test]
@@ -395,11 +395,11 @@ fn combined_schemes_respect_the_threshold() {
         let opts = SmoothOptions::default().with_strategy(strategy).with_threshold_deg(30.0).with_order(Order::Input);
         let r = Smoother::new(opts).unwrap().pass(&mut mesh, &ShapeMaxMin, NO_CLOCK);
         assert_eq!(r.counts.optimization_calls, 0, "{strategy:?}");
-        assert_eq!(mesh.nodes, good.nodes, "{strategy:?}");
+        assert_eq!(mesh.nodes(), good.nodes(), "{strategy:?}");
     }
     // one bad node: every scheme optimizes it, C3 leaves the rest alone
     let mut bad = good.clone();
-    bad.nodes[6] += DVec2::new(0.45, 0.4);
+    bad.nodes_mut()[6] += DVec2::new(0.45, 0.4);
     for strategy in [Strategy::C1, Strategy::C2, Strategy::C3] {
         let mut mesh = bad.clone();
         let opts = SmoothOptions::default().with_strategy(strategy).with_threshold_deg(30.0).with_order(Order::Input);
@@ -448,12 +448,12 @@ fn pass_record_and_clock() {
 #[test]
 fn solve_node_returns_history_and_names_bad_nodes() {
     let mesh = hexagon(DVec2::new(0.3, -0.2));
-    let before = mesh.nodes.clone();
+    let before = mesh.nodes().to_vec();
     let opts = SmoothOptions::default().with_max_iter(10);
     let r = solve_node(&mesh, 0, &ShapeMaxMin, &opts).unwrap();
     assert_eq!(r.history.len(), r.iterations as usize);
     assert!(r.iterations > 0 && r.value > r.value0);
-    assert_eq!(mesh.nodes, before);
+    assert_eq!(mesh.nodes(), before);
     let r = solve_node(&mesh, 0, &ShapeSum, &opts).unwrap();
     assert!(r.history.iter().any(|i| i.direction == crate::optimize::DirectionKind::Gradient));
     let r = solve_node(&mesh, 0, &ShapeSum, &opts.with_solver(SolverKind::NonSmoothAscent)).unwrap();
@@ -499,17 +499,17 @@ fn smart_refuses_a_move_that_inverts_a_valid_element() {
         .elems
         .iter()
         .any(|e| element_measures(e.kind, &e.pts).inverted == 0 && element_measures(e.kind, &e.at(c)).inverted == 1));
-    let before = mesh.nodes.clone();
+    let before = mesh.nodes().to_vec();
     for strategy in [Strategy::Smart, Strategy::C2] {
         let opts = SmoothOptions::default().with_strategy(strategy).with_max_iter(0);
         let o = Smoother::new(opts).unwrap().smooth_node(&mut mesh, 0, &ShapeSum);
-        assert!(!o.laplacian && mesh.nodes == before, "{strategy:?}: {o:?}");
+        assert!(!o.laplacian && mesh.nodes() == before, "{strategy:?}: {o:?}");
     }
     // and fixed nodes are left alone when asked directly
     let o = Smoother::new(SmoothOptions::default().with_strategy(Strategy::Laplace))
         .unwrap()
         .smooth_node(&mut mesh, 3, &ShapeSum);
-    assert_eq!((o, mesh.nodes[3]), (NodeOutcome::default(), before[3]));
+    assert_eq!((o, mesh.nodes()[3]), (NodeOutcome::default(), before[3]));
 }
 
 /// Found by the reproduction (Mesquite's `hole_in_square.vtk`, node 63 of the first pass):
@@ -563,7 +563,7 @@ fn keep_valid_stops_the_new_objective_folding_a_valid_star() {
         let o = Smoother::new(opts).unwrap().smooth_node(&mut m, 0, &new);
         assert!(o.optimized && o.moved, "keep_valid {keep}: {o:?}");
         assert_eq!(mesh_stats(&m).inverted, inverted, "keep_valid {keep}");
-        assert!(new.value(&star, m.nodes[0]) < f0, "keep_valid {keep}: the objective must fall");
+        assert!(new.value(&star, m.nodes()[0]) < f0, "keep_valid {keep}: the objective must fall");
     }
 }
 
@@ -574,7 +574,7 @@ fn random_grid(kind: crate::generate::GridKind, seed: u64) -> Mesh {
     let mut rng = crate::generate::SplitMix64::new(seed);
     for n in 0..m.node_count() {
         if m.is_free(n) {
-            m.nodes[n] = DVec2::new(rng.next_f64(), rng.next_f64());
+            m.nodes_mut()[n] = DVec2::new(rng.next_f64(), rng.next_f64());
         }
     }
     m
@@ -605,7 +605,7 @@ fn untangle_untangles_random_grids_node_by_node() {
                 // fixed nodes stay put
                 for n in 0..m.node_count() {
                     if !m.is_free(n) {
-                        assert_eq!(m.nodes[n], m0.nodes[n]);
+                        assert_eq!(m.nodes()[n], m0.nodes()[n]);
                     }
                 }
             }
