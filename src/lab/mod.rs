@@ -5,11 +5,12 @@
 //! smooths, perturbs and drags side by side.
 //!
 //! At scale (up to [`MAX_NODES`]): a pass can run in slices of a time budget
-//! ([`Playground::begin_pass`], [`Playground::continue_pass`], [`Playground::abort_pass`])
-//! with the same result as [`Playground::step`]; each panel keeps the cheap statistics its
+//! ([`Playground::begin_pass`], [`Playground::continue_pass`], [`Playground::abort_pass`];
+//! the state machine is [`pass`]) with the same result as [`Playground::step`]; each panel keeps the cheap statistics its
 //! table shows ([`stats::QuickStats`]) and each element's colour bucket up to date, a
 //! version naming its positions, and its last picture ([`raster`] draws fine meshes).
 
+pub mod pass;
 pub mod pick;
 pub mod raster;
 pub mod sample;
@@ -31,16 +32,15 @@ use crate::mesh::Mesh;
 use crate::objective::{objective_with, Objective, ObjectiveKind, Penalty};
 use crate::optimize::SolveResult;
 use crate::quality::MeshStats;
-use crate::smooth::{solve_node, Order, SmoothOptions, Smoother, Strategy, SweepCounts};
-use stats::{quick_stats_and_buckets, QuickAcc, QuickStats};
+use crate::smooth::{solve_node, Order, SmoothOptions, Smoother, Strategy};
+use pass::PassRun;
+pub use pass::{PassProgress, PassStage};
+use stats::{quick_stats_and_buckets, QuickStats};
 use views::Canvas;
 
 /// Node count above which the page refuses a mesh: the playground holds two copies (and
 /// the positions as loaded) and draws every element each frame.
 pub const MAX_NODES: usize = 1_000_000;
-
-/// Elements measured per slice of a pass's statistics (see [`Playground::continue_pass`]).
-const STATS_SLICE: usize = 32 * 1024;
 
 /// The two panels of the page: the left one (A) and the right one (B). Each smooths
 /// with its own [`Choice`] of objective; by default the left runs Chen et al.'s
@@ -332,87 +332,14 @@ impl TableDetail {
     }
 }
 
-/// Where a pass in slices stands (see [`Playground::continue_pass`]).
-#[derive(Clone, Debug, PartialEq, Serialize)]
-pub struct PassProgress {
-    /// The pass is complete (`records` holds its two records) and the meshes are final.
-    pub done: bool,
-    /// Of the whole pass (both panels), 0 to 1.
-    pub fraction: f64,
-    /// The panel being smoothed or measured.
-    pub side: Side,
-    /// What the pass is doing on that panel.
-    pub stage: PassStage,
-    /// Node visits done on this panel and planned for it.
-    pub visits: usize,
-    pub planned: usize,
-    /// `[old, new]` when done.
-    pub records: Option<[PassSummary; 2]>,
-}
+/// Hands out the numbers that name a panel's positions: each call a new one.
+#[derive(Debug)]
+struct Versions(u64);
 
-/// What a pass in slices is doing, as the page is told ([`PassProgress::stage`]).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
-#[serde(rename_all = "lowercase")]
-pub enum PassStage {
-    /// Planning the visit order (the priority order measures every star).
-    Plan,
-    /// Visiting the nodes (the planned visits, then any untangling sweeps).
-    Smooth,
-    /// Measuring the smoothed mesh's statistics.
-    Measure,
-    /// The pass is complete.
-    Done,
-}
-
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-enum Stage {
-    /// Save the panel and begin planning its visit order.
-    Plan,
-    /// Plan in slices (the priority order measures every star).
-    Planning,
-    Smooth,
-    Measure,
-}
-
-/// A panel as it was when a pass began on it, to put back if the pass is abandoned.
-struct Saved {
-    nodes: Vec<DVec2>,
-    version: u64,
-    quick: QuickStats,
-    buckets: Vec<u8>,
-    full: OnceCell<MeshStats>,
-}
-
-/// A pass in progress: the old panel's sweep and statistics, then the new panel's.
-struct PassRun {
-    side: usize,
-    stage: Stage,
-    schedule: Vec<u32>,
-    pos: usize,
-    counts: SweepCounts,
-    sweep_ms: f64,
-    acc: QuickAcc,
-    stats_ms: f64,
-    /// Node visits per slice, adapted to the time they take.
-    slice: usize,
-    /// Stars measured per planning slice, adapted likewise.
-    plan_slice: usize,
-    /// The schedule is an untangling sweep's (after the planned visits).
-    untangling: bool,
-    saved: [Option<Saved>; 2],
-    done: [Option<(PassSummary, QuickStats)>; 2],
-}
-
-/// The next slice size after a slice of `size` took `dt` ms: slices of about a tenth of
-/// the budget (at most 20 ms), so the budget is kept to within a slice.
-fn adapt_slice(size: usize, dt: f64, budget_ms: f64) -> usize {
-    let target = (budget_ms / 10.0).clamp(1.0, 20.0);
-    if dt < target / 2.0 {
-        (size * 2).min(1 << 20)
-    } else if dt > target * 2.0 {
-        (size / 2).max(1)
-    } else {
-        size
+impl Versions {
+    fn fresh(&mut self) -> u64 {
+        self.0 += 1;
+        self.0
     }
 }
 
@@ -428,7 +355,7 @@ pub struct Playground {
     mean_edge: f64,
     settings: Settings,
     panels: [Panel; 2],
-    next_version: u64,
+    versions: Versions,
     run: Option<PassRun>,
     /// The user's zoom and pan on the mesh panels (both panels share it).
     zoom: crate::render::ZoomPan,
@@ -465,7 +392,7 @@ impl Playground {
             mean_edge,
             settings,
             panels: [old, new],
-            next_version: 1,
+            versions: Versions(1),
             run: None,
             zoom: crate::render::ZoomPan::default(),
             level_window: interact::LevelWindow::default(),
@@ -474,8 +401,7 @@ impl Playground {
     }
 
     fn fresh_version(&mut self) -> u64 {
-        self.next_version += 1;
-        self.next_version
+        self.versions.fresh()
     }
 
     /// The settings the next passes use.
@@ -510,25 +436,11 @@ impl Playground {
     /// Starts a pass to be run in slices by [`continue_pass`](Self::continue_pass)
     /// (a pass already in progress is abandoned first). The result is the same as
     /// [`step`](Self::step)'s, bit for bit: the old panel is swept in the order the
-    /// smoother plans, then measured, then the new panel.
+    /// smoother plans, then measured, then the new panel ([`pass`] runs it).
     pub fn begin_pass(&mut self) {
         self.abort_pass();
         self.undo.clear(); // a move before a pass is not undone over the pass's work
-        self.run = Some(PassRun {
-            side: 0,
-            stage: Stage::Plan,
-            schedule: Vec::new(),
-            pos: 0,
-            counts: SweepCounts::default(),
-            sweep_ms: 0.0,
-            acc: QuickAcc::default(),
-            stats_ms: 0.0,
-            slice: 64,
-            plan_slice: 1024,
-            untangling: false,
-            saved: [None, None],
-            done: [None, None],
-        });
+        self.run = Some(PassRun::new());
     }
 
     /// Whether a pass is in progress.
@@ -542,155 +454,19 @@ impl Playground {
     /// are kept, as after [`step`](Self::step). While a pass is in progress the panels'
     /// meshes are part-smoothed and their statistics those before the pass.
     pub fn continue_pass(&mut self, clock: &dyn Fn() -> f64, budget_ms: f64) -> Result<PassProgress> {
-        let mut run = self.run.take().ok_or_else(|| Error::invalid("no pass is in progress: begin one first"))?;
-        let start = clock();
-        loop {
-            let side = run.side;
-            match run.stage {
-                Stage::Plan => {
-                    let t0 = clock();
-                    let p = &mut self.panels[side];
-                    run.saved[side] = Some(Saved {
-                        nodes: p.mesh.nodes().to_vec(),
-                        version: p.version,
-                        quick: p.quick,
-                        buckets: p.buckets.clone(),
-                        full: p.full.clone(),
-                    });
-                    p.smoother.begin_plan(&p.mesh);
-                    run.sweep_ms = clock() - t0;
-                    run.stage = Stage::Planning;
-                }
-                Stage::Planning => {
-                    let t0 = clock();
-                    let p = &mut self.panels[side];
-                    let done = p.smoother.plan_some(&p.mesh, run.plan_slice);
-                    let dt = clock() - t0;
-                    run.sweep_ms += dt;
-                    run.plan_slice = adapt_slice(run.plan_slice, dt, budget_ms);
-                    if done {
-                        run.schedule.clear();
-                        run.schedule.extend_from_slice(p.smoother.schedule());
-                        run.pos = 0;
-                        run.counts = SweepCounts::default();
-                        run.untangling = false;
-                        run.stage = Stage::Smooth;
-                    }
-                }
-                Stage::Smooth if run.pos < run.schedule.len() => {
-                    if run.pos == 0 && !run.untangling {
-                        let v = self.fresh_version();
-                        self.panels[side].version = v;
-                    }
-                    let t0 = clock();
-                    let p = &mut self.panels[side];
-                    let end = (run.pos + run.slice).min(run.schedule.len());
-                    let c = p.smoother.visit_all(&mut p.mesh, &run.schedule[run.pos..end], p.objective.as_ref());
-                    run.counts.merge(c);
-                    run.pos = end;
-                    let dt = clock() - t0;
-                    run.sweep_ms += dt;
-                    run.slice = adapt_slice(run.slice, dt, budget_ms);
-                }
-                Stage::Smooth => {
-                    // the planned visits (or an untangling sweep) are done: another
-                    // untangling sweep, as `Smoother::sweep` runs them, or the statistics
-                    let t0 = clock();
-                    let p = &mut self.panels[side];
-                    let again = p.smoother.plan_untangle_sweep(&p.mesh, &mut run.counts);
-                    run.sweep_ms += clock() - t0;
-                    if again {
-                        run.untangling = true;
-                        run.schedule.clear();
-                        run.schedule.extend_from_slice(p.smoother.revisits());
-                        run.pos = 0;
-                    } else {
-                        run.stage = Stage::Measure;
-                        run.acc = QuickAcc::default();
-                        run.stats_ms = 0.0;
-                    }
-                }
-                Stage::Measure => {
-                    let t0 = clock();
-                    let p = &mut self.panels[side];
-                    let n = p.mesh.element_count();
-                    let from = run.acc.done;
-                    run.acc.add(&p.mesh, from..(from + STATS_SLICE).min(n), Some(&mut p.buckets));
-                    run.stats_ms += clock() - t0;
-                    if run.acc.done >= n {
-                        let q = run.acc.finish();
-                        let summary = PassSummary {
-                            pass: p.records.len() as u32 + 1,
-                            counts: run.counts,
-                            after: q,
-                            objective_total: None,
-                            elapsed_ms: run.sweep_ms,
-                            stats_ms: run.stats_ms,
-                        };
-                        run.done[side] = Some((summary, q));
-                        if side == 1 {
-                            return Ok(self.finish_pass(run));
-                        }
-                        run.side = 1;
-                        run.stage = Stage::Plan;
-                        // the slice ends here, so the page can say that the new side's
-                        // turn has come before its planning begins
-                        break;
-                    }
-                }
-            }
-            if clock() - start >= budget_ms {
-                break;
-            }
+        let run = self.run.as_mut().ok_or_else(|| Error::invalid("no pass is in progress: begin one first"))?;
+        if run.advance(&mut self.panels, &mut self.versions, clock, budget_ms) {
+            let run = self.run.take().expect("the pass just advanced");
+            return Ok(run.finish(&mut self.panels, &mut self.versions));
         }
-        let progress = progress_of(&run, &self.panels);
-        self.run = Some(run);
-        Ok(progress)
-    }
-
-    /// Keeps the records and statistics of a completed pass.
-    fn finish_pass(&mut self, mut run: PassRun) -> PassProgress {
-        let mut records = Vec::with_capacity(2);
-        for side in 0..2 {
-            // a version of its own for the final positions and buckets: nothing drawn
-            // during the pass (part-smoothed) can be taken for them
-            let moved = run.saved[side].as_ref().is_some_and(|s| s.version != self.panels[side].version);
-            if moved {
-                let v = self.fresh_version();
-                self.panels[side].version = v;
-            }
-        }
-        for (side, p) in self.panels.iter_mut().enumerate() {
-            let (summary, q) = run.done[side].take().expect("both panels were measured");
-            p.quick = q;
-            p.full = OnceCell::new();
-            p.records.push(summary.clone());
-            records.push(summary);
-        }
-        let records: [PassSummary; 2] = records.try_into().expect("two panels");
-        PassProgress {
-            done: true,
-            fraction: 1.0,
-            side: Side::New,
-            stage: PassStage::Done,
-            visits: run.counts.visits as usize,
-            planned: run.schedule.len(),
-            records: Some(records),
-        }
+        Ok(run.progress(&self.panels))
     }
 
     /// Abandons the pass in progress, if any: both panels go back to where they were
     /// before it (positions, statistics and version), so it leaves no trace.
     pub fn abort_pass(&mut self) {
-        let Some(run) = self.run.take() else { return };
-        for (p, saved) in self.panels.iter_mut().zip(run.saved) {
-            if let Some(s) = saved {
-                p.mesh.nodes_mut().copy_from_slice(&s.nodes);
-                p.version = s.version;
-                p.quick = s.quick;
-                p.buckets = s.buckets;
-                p.full = s.full;
-            }
+        if let Some(run) = self.run.take() {
+            run.undo(&mut self.panels);
         }
     }
 
@@ -844,33 +620,6 @@ impl Playground {
     }
 }
 
-/// How far the pass is: each panel is half, its sweep nine tenths of that and its
-/// statistics the rest (a panel not yet planned counts as not begun).
-fn progress_of(run: &PassRun, panels: &[Panel; 2]) -> PassProgress {
-    let side = run.side;
-    let sweep = match run.stage {
-        Stage::Plan | Stage::Planning => 0.0,
-        _ if run.schedule.is_empty() || run.untangling => 1.0,
-        _ => run.pos as f64 / run.schedule.len() as f64,
-    };
-    let elements = panels[side].mesh.element_count().max(1);
-    let measure = if run.stage == Stage::Measure { run.acc.done as f64 / elements as f64 } else { 0.0 };
-    let within = 0.9 * sweep + 0.1 * measure;
-    PassProgress {
-        done: false,
-        fraction: ((side as f64 + within) / 2.0).clamp(0.0, 1.0),
-        side: if side == 0 { Side::Old } else { Side::New },
-        stage: match run.stage {
-            Stage::Plan | Stage::Planning => PassStage::Plan,
-            Stage::Smooth => PassStage::Smooth,
-            Stage::Measure => PassStage::Measure,
-        },
-        visits: run.pos,
-        planned: run.schedule.len(),
-        records: None,
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -1005,104 +754,6 @@ mod tests {
                 assert!(moved.nodes()[e.mid as usize].distance(mid) < 1e-12);
             }
         }
-    }
-
-    /// A clock that advances 1 ms per reading, so budgets end passes in many slices.
-    fn ticking() -> impl Fn() -> f64 {
-        let t = std::cell::Cell::new(0.0);
-        move || {
-            t.set(t.get() + 1.0);
-            t.get()
-        }
-    }
-
-    #[test]
-    fn a_pass_in_slices_is_the_smoothers_pass_bit_for_bit() {
-        use crate::smooth::Smoother;
-        let samples = [Sample::PlateMixedTangled, Sample::PlateQuadratic, Sample::Rand2dTangled];
-        let strategies = Strategy::ALL;
-        for sample in samples {
-            let mesh = sample.generate().unwrap();
-            for strategy in strategies {
-                for order in [Order::Input, Order::Priority] {
-                    let settings = Settings { strategy, order, ..Settings::default() };
-                    let mut pg = Playground::new(mesh.clone()).unwrap();
-                    pg.set_settings(settings).unwrap();
-                    let clock = ticking();
-                    for pass in 1..=2u32 {
-                        pg.begin_pass();
-                        let mut slices = 0;
-                        let records = loop {
-                            slices += 1;
-                            let p = pg.continue_pass(&clock, 3.0).unwrap();
-                            assert!((0.0..=1.0).contains(&p.fraction));
-                            if let Some(r) = p.records {
-                                break r;
-                            }
-                        };
-                        assert!(slices > 2, "{sample:?} {strategy:?}: {slices} slices");
-                        assert!(!pg.pass_in_progress());
-                        for side in Side::BOTH {
-                            let mut m = mesh.clone();
-                            let mut s = Smoother::new(settings.smooth_options().unwrap()).unwrap();
-                            let obj = settings.choice(side).build();
-                            let mut rec = None;
-                            for _ in 0..pass {
-                                rec = Some(s.pass(&mut m, obj.as_ref(), &|| 0.0));
-                            }
-                            let rec = rec.unwrap();
-                            let what = format!("{sample:?} {strategy:?} {order:?} pass {pass} {side:?}");
-                            assert_eq!(pg.panel(side).mesh.nodes(), m.nodes(), "{what}");
-                            let got = &records[side as usize];
-                            assert_eq!(
-                                (got.pass, got.counts.visits, got.counts.laplacian_moves, got.counts.optimization_calls, got.counts.solver_iterations),
-                                (pass, rec.counts.visits, rec.counts.laplacian_moves, rec.counts.optimization_calls, rec.counts.solver_iterations),
-                                "{what}"
-                            );
-                            assert_eq!(
-                                (got.after.inverted, got.after.min_angle_deg, got.after.max_angle_deg, got.after.min_quality),
-                                (rec.after.inverted, rec.after.min_angle_deg, rec.after.max_angle_deg, rec.after.min_quality),
-                                "{what}"
-                            );
-                            let mut buckets = Vec::new();
-                            assert_eq!(pg.table(side).mesh, stats::quick_stats_and_buckets(&m, &mut buckets), "{what}");
-                            assert_eq!(pg.panel(side).buckets, buckets, "{what}");
-                        }
-                    }
-                }
-            }
-        }
-    }
-
-    #[test]
-    fn an_abandoned_pass_leaves_no_trace() {
-        let mut pg = Playground::new(Sample::Rand2dTangled.generate().unwrap()).unwrap();
-        pg.step(&no_clock);
-        let before = [pg.panel(Side::Old).mesh.nodes().to_vec(), pg.panel(Side::New).mesh.nodes().to_vec()];
-        let versions = [pg.version(Side::Old), pg.version(Side::New)];
-        let tables = [pg.table(Side::Old), pg.table(Side::New)];
-        let clock = ticking();
-        pg.begin_pass();
-        let mut p = pg.continue_pass(&clock, 2.0).unwrap();
-        while p.side == Side::Old {
-            p = pg.continue_pass(&clock, 2.0).unwrap();
-        }
-        assert!(!p.done && p.fraction >= 0.5);
-        assert_ne!(pg.panel(Side::Old).mesh.nodes(), before[0], "the old panel was smoothed");
-        pg.abort_pass();
-        assert!(!pg.pass_in_progress());
-        for side in Side::BOTH {
-            assert_eq!(pg.panel(side).mesh.nodes(), before[side as usize]);
-            assert_eq!(pg.version(side), versions[side as usize]);
-            assert_eq!(pg.table(side), tables[side as usize]);
-        }
-        assert!(pg.continue_pass(&clock, 1.0).is_err(), "nothing to continue");
-        // a drag, a reset or new settings abandon a pass in progress too
-        pg.begin_pass();
-        pg.continue_pass(&clock, 2.0).unwrap();
-        pg.set_settings(Settings::default()).unwrap();
-        assert!(!pg.pass_in_progress());
-        assert_eq!(pg.panel(Side::Old).mesh.nodes(), before[0]);
     }
 
     #[test]
