@@ -33,7 +33,7 @@ awk '/^v /{n++; if (n==10) {$4="3e6"}} {print}' "$gen/rand2d.obj" > "$gen/rand2d
 $sl convert "$gen/plate-tri6-2.2.msh" "$gen/plate-tri6.node"
 
 rm -rf "$seeds"
-mkdir -p "$seeds"/{msh22,msh41,vtk,triangle,obj,off,read_bytes,permalink}
+mkdir -p "$seeds"/{msh22,msh41,vtk,triangle,obj,off,read_bytes}
 # .msh bodies: the targets supply the $MeshFormat header themselves.
 body() { awk 'NR>3' "$1"; }
 for f in "$gen"/*-2.2.msh; do body "$f" > "$seeds/msh22/$(basename "$f" .msh)"; done
@@ -74,8 +74,4 @@ tag 1 "$root/tests/data/hardening/triangles_1e300.vtk" "$seeds/read_bytes/vtk-1e
 tag 2 "$root/tests/data/hardening/bom.obj" "$seeds/read_bytes/obj-bom"
 tag 2 "$gen/rand2d-outlier.obj" "$seeds/read_bytes/obj-rand2d-outlier"
 tag 4 "$root/tests/data/hardening/bom.node" "$seeds/read_bytes/node-bom"
-# permalink hashes
-printf '%s' '#sample=plate-tri&tangle=0.6&seed=3&strategy=rules&objective=new&threshold=30&passes=3&order=priority&maxiter=3&node=17' > "$seeds/permalink/example"
-printf '%s' 'sample=gmsh-disk-tri6&amount=1.5e-3&strategy=c2&objective=condition-max&order=input&embed=1' > "$seeds/permalink/alias"
-printf '%s' '#sample=plate%2Dquad&seed=18446744073709551615&threshold=5&passes=100&maxiter=50&node=4294967295&x=%41+b' > "$seeds/permalink/limits"
 echo "seeds written to $seeds: $(find "$seeds" -type f | wc -l) files, $(du -sh "$seeds" | cut -f1)"

@@ -7,7 +7,7 @@ cd "$(dirname "$0")"
 secs="${1:-300}"
 shift || true
 targets=("$@")
-[ ${#targets[@]} -eq 0 ] && targets=(msh22 msh41 vtk triangle obj off read_bytes permalink)
+[ ${#targets[@]} -eq 0 ] && targets=(msh22 msh41 vtk triangle obj off read_bytes)
 export RUSTC_BOOTSTRAP=1
 cargo +stable fuzz build -O -a -s none || exit 1
 mkdir -p logs

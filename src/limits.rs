@@ -88,6 +88,25 @@ pub fn strategy_words(s: Strategy) -> &'static str {
     }
 }
 
+/// The label of each control the user types into, by its permalink key: in the page's
+/// tooltips and in every message about the control.
+const CONTROL_LABELS: [(&str, &str); 5] = [
+    ("passes", "Passes"),
+    ("maxiter", "Max iterations"),
+    ("seed", "Seed"),
+    ("tangle", "Perturb amount"),
+    ("threshold", "Threshold angle"),
+];
+
+/// The label of the control behind a permalink key, if the user types it.
+pub fn control_label(key: &str) -> Option<&'static str> {
+    CONTROL_LABELS.iter().find(|(k, _)| *k == key).map(|(_, l)| *l)
+}
+
+fn label(key: &str) -> &'static str {
+    control_label(key).expect("a key of CONTROL_LABELS")
+}
+
 /// A whole-number control of the page.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct IntControl {
@@ -172,18 +191,22 @@ fn int_control(label: &'static str, r: IntRange, default: u64) -> IntControl {
 pub fn page_controls() -> PageControls {
     let d = PageState::default();
     PageControls {
-        passes: int_control("Passes", PASSES, d.passes.into()),
-        maxiter: int_control("Max iterations", MAX_ITER, d.max_iter.into()),
-        seed: int_control("Seed", SEED, d.seed),
+        passes: int_control(label("passes"), PASSES, d.passes.into()),
+        maxiter: int_control(label("maxiter"), MAX_ITER, d.settings.max_iter.into()),
+        seed: int_control(label("seed"), SEED, d.seed),
         amount: AmountControl {
-            label: "Perturb amount",
+            label: label("tangle"),
             min: 0.0,
             max: MAX_AMOUNT,
             step: AMOUNT_STEP,
             default: d.amount,
             words: amount_words(),
         },
-        threshold: ThresholdControl { label: "Threshold angle", options: THRESHOLDS.to_vec(), default: d.threshold_deg },
+        threshold: ThresholdControl {
+            label: label("threshold"),
+            options: THRESHOLDS.to_vec(),
+            default: d.settings.threshold_deg,
+        },
         strategies: Strategy::ALL
             .iter()
             .map(|&s| StrategyInfo {
@@ -197,7 +220,7 @@ pub fn page_controls() -> PageControls {
         penalties: crate::objective::Penalty::ALL.iter().map(|p| Named { name: p.name(), words: p.describe() }).collect(),
         panels: crate::lab::Side::BOTH
             .iter()
-            .zip(d.compare)
+            .zip(d.settings.compare)
             .map(|(&side, c)| PanelInfo {
                 side,
                 letter: side.letter(),
@@ -221,9 +244,9 @@ mod tests {
     #[test]
     fn the_defaults_lie_in_their_ranges_and_the_threshold_default_is_offered() {
         let d = PageState::default();
-        assert!(PASSES.contains(d.passes.into()) && MAX_ITER.contains(d.max_iter.into()) && SEED.contains(d.seed));
+        assert!(PASSES.contains(d.passes.into()) && MAX_ITER.contains(d.settings.max_iter.into()) && SEED.contains(d.seed));
         assert!((0.0..=MAX_AMOUNT).contains(&d.amount));
-        assert!(THRESHOLDS.contains(&d.threshold_deg));
+        assert!(THRESHOLDS.contains(&d.settings.threshold_deg));
         assert!(d.validate().is_ok());
     }
 

@@ -97,10 +97,9 @@ pub fn tour_picture_size(name: &str) -> Result<JsValue, JsError> {
     to_js(&crate::lab::tour::pictures::default_size(fig.name))
 }
 
-/// Reads a permalink hash (`#sample=…&passes=…`) with [`crate::permalink::decode`]:
-/// `{sample, seed, amount, perturbed, strategy, a, aPenalty, b, bPenalty, threshold, passes,
-/// order, maxIter, node, embed}`, enums as their URL names, `sample`/`node` null when absent, `seed` a number
-/// (a BigInt beyond 2^53 − 1). A malformed value is an error naming its key.
+/// Reads a permalink hash (`#sample=…&passes=…`) with [`crate::permalink::decode`]: the
+/// [`PageState`](crate::permalink::PageState) as it is, `sample`/`node` null when absent,
+/// `seed` a number (a BigInt beyond 2^53 − 1). A malformed value is an error naming its key.
 #[wasm_bindgen(js_name = decodePermalink)]
 pub fn decode_permalink(hash: &str) -> Result<JsValue, JsError> {
     let state = permalink::decode(hash)?;
@@ -108,7 +107,7 @@ pub fn decode_permalink(hash: &str) -> Result<JsValue, JsError> {
     let ser = serde_wasm_bindgen::Serializer::new()
         .serialize_missing_as_null(true)
         .serialize_large_number_types_as_bigints(big);
-    Ok(permalink::PageFields::from(&state).serialize(&ser)?)
+    Ok(state.serialize(&ser)?)
 }
 
 /// Writes the hash (with its `#`) of an object shaped as [`decode_permalink`] returns
@@ -116,9 +115,10 @@ pub fn decode_permalink(hash: &str) -> Result<JsValue, JsError> {
 /// every value as the decoder would.
 #[wasm_bindgen(js_name = encodePermalink)]
 pub fn encode_permalink(state: JsValue) -> Result<String, JsError> {
-    let fields: permalink::PageFields =
+    let state: permalink::PageState =
         serde_wasm_bindgen::from_value(state).map_err(|e| JsError::new(&format!("permalink: {e}")))?;
-    Ok(permalink::encode(&fields.to_state()?))
+    state.validate()?;
+    Ok(permalink::encode(&state))
 }
 
 /// The page's controls: their ranges, defaults and labels, and which strategy uses which

@@ -259,15 +259,8 @@ function permalinkHash() {
     amount: state.perturbed ? state.perturbed.amount : Number($('amount').value),
     perturbed: Boolean(state.perturbed),
     node: state.node,
-    strategy: $('strategy').value,
-    threshold: Number($('threshold').value),
+    settings: readSettings(),
     passes: Number($('passes').value),
-    order: $('order').value,
-    maxIter: Number($('maxiter').value),
-    a: readChoice(0).objective,
-    aPenalty: readChoice(0).penalty,
-    b: readChoice(1).objective,
-    bPenalty: readChoice(1).penalty,
   });
 }
 /** Keeps the URL and the permalink link current; a setting the link cannot carry is said
@@ -326,18 +319,19 @@ async function applyHash(hash = location.hash) {
   } catch (e) {
     return { src: fallback, error: e.message };
   }
+  const c = p.settings;
   const values = {
-    strategy: p.strategy,
-    threshold: p.threshold,
-    order: p.order,
+    strategy: c.strategy,
+    threshold: c.threshold_deg,
+    order: c.order,
     passes: p.passes,
-    maxiter: p.maxIter,
+    maxiter: c.max_iter,
     amount: p.amount,
     seed: p.seed,
-    'objective-a': p.a,
-    'penalty-a': p.aPenalty,
-    'objective-b': p.b,
-    'penalty-b': p.bPenalty,
+    'objective-a': c.compare[0].objective,
+    'penalty-a': c.compare[0].penalty,
+    'objective-b': c.compare[1].objective,
+    'penalty-b': c.compare[1].penalty,
   };
   for (const id of SETTINGS) {
     const v = String(values[id]);

@@ -15,7 +15,7 @@
 //! largest coordinates smoothlab takes (the metrics work in each element's own scale).
 
 use smoothlab::io::{self, Format, MshVersion, WriteOptions};
-use smoothlab::{quality, Mesh, Result};
+use smoothlab::{quality, Mesh};
 
 /// The fuzz targets, by the names `cargo fuzz run` takes.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -32,12 +32,10 @@ pub enum Target {
     Off,
     /// `io::read_bytes` with the file name chosen by the first byte ([`READ_BYTES_NAMES`]).
     ReadBytes,
-    /// `permalink::decode` of the input as text.
-    Permalink,
 }
 
 impl Target {
-    pub const ALL: [Target; 8] = [
+    pub const ALL: [Target; 7] = [
         Target::Msh22,
         Target::Msh41,
         Target::Vtk,
@@ -45,7 +43,6 @@ impl Target {
         Target::Obj,
         Target::Off,
         Target::ReadBytes,
-        Target::Permalink,
     ];
 
     pub fn name(self) -> &'static str {
@@ -57,7 +54,6 @@ impl Target {
             Target::Obj => "obj",
             Target::Off => "off",
             Target::ReadBytes => "read_bytes",
-            Target::Permalink => "permalink",
         }
     }
 
@@ -75,14 +71,13 @@ pub const READ_BYTES_NAMES: [&str; 7] = ["fuzz.msh", "fuzz.vtk", "fuzz.obj", "fu
 const MSH22_HEADER: &str = "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n";
 const MSH41_HEADER: &str = "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n";
 
-/// What a run gave: a mesh (already checked), a refusal, or (for `permalink`) a decoded state.
+/// What a run gave: a mesh (already checked) or a refusal.
 #[derive(Debug)]
 pub enum Outcome {
     Mesh(Box<Mesh>),
     Refused(smoothlab::Error),
     /// Not UTF-8 text, for the targets that take text.
     NotText,
-    Permalink(Result<smoothlab::permalink::PageState>),
 }
 
 /// Runs target `t` on `data` as the fuzzer does. Panics when a promise is broken.
@@ -119,19 +114,6 @@ pub fn run(t: Target, data: &[u8]) -> Outcome {
         Target::ReadBytes => {
             let Some((&first, rest)) = data.split_first() else { return Outcome::NotText };
             io::read_bytes(rest, READ_BYTES_NAMES[first as usize % READ_BYTES_NAMES.len()])
-        }
-        Target::Permalink => {
-            let Some(s) = text() else { return Outcome::NotText };
-            let decoded = smoothlab::permalink::decode(s);
-            if let Ok(state) = &decoded {
-                // The canonical form decodes to the same state, and is its own canonical form.
-                let canon = smoothlab::permalink::encode(state);
-                let again = smoothlab::permalink::decode(&canon)
-                    .unwrap_or_else(|e| panic!("the canonical form {canon:?} of {s:?} does not decode: {e}"));
-                assert_eq!(&again, state, "decode(encode(s)) != s for {s:?} (canonical {canon:?})");
-                assert_eq!(smoothlab::permalink::encode(&again), canon, "encode is not canonical for {s:?}");
-            }
-            return Outcome::Permalink(decoded);
         }
     };
     // The text targets again with a byte-order mark in front (one: a text that starts

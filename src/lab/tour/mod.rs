@@ -15,10 +15,10 @@ use crate::error::{Error, Result};
 use crate::permalink::{self, PageState};
 
 use super::sample::Sample;
-use super::{Playground, Settings};
+use super::Playground;
 
 /// One figure of the tour.
-#[derive(Clone, Copy, Debug)]
+#[derive(Clone, Copy, Debug, Serialize)]
 pub struct Figure {
     /// Its name in `#figure=NAME` and on the command line.
     pub name: &'static str,
@@ -38,6 +38,7 @@ pub struct Figure {
     /// What the paper claims.
     pub claim: &'static str,
     /// What our reproduction measured, computed when asked.
+    #[serde(skip)]
     measured: fn() -> Result<String>,
 }
 
@@ -78,13 +79,7 @@ impl Figure {
         if st.perturbed {
             pg.perturb(st.amount, st.seed)?;
         }
-        pg.set_settings(Settings {
-            strategy: st.strategy,
-            threshold_deg: st.threshold_deg,
-            order: st.order,
-            max_iter: st.max_iter,
-            compare: st.compare,
-        })?;
+        pg.set_settings(st.settings)?;
         Ok((pg, st))
     }
 
@@ -92,18 +87,11 @@ impl Figure {
     pub fn card(&self, index: usize) -> Result<Card> {
         let n = FIGURES.len();
         Ok(Card {
-            name: self.name,
+            figure: *self,
             index,
             count: n,
             prev: FIGURES[(index + n - 1) % n].name,
             next: FIGURES[(index + 1) % n].name,
-            source: self.source,
-            caption: self.caption,
-            hash: self.hash,
-            view: self.view,
-            run: self.run,
-            look: self.look,
-            claim: self.claim,
             measured: self.measured()?,
             rows: if self.name == "freitag-t1" { pictures::FREITAG_METHODS.len() } else { 0 },
         })
@@ -113,18 +101,13 @@ impl Figure {
 /// A figure as the page receives it.
 #[derive(Clone, Debug, Serialize)]
 pub struct Card {
-    pub name: &'static str,
+    /// The figure's fields (`name`, `source`, `caption`, `hash`, `view`, `run`, `look`, `claim`).
+    #[serde(flatten)]
+    pub figure: Figure,
     pub index: usize,
     pub count: usize,
     pub prev: &'static str,
     pub next: &'static str,
-    pub source: &'static str,
-    pub caption: &'static str,
-    pub hash: &'static str,
-    pub view: &'static str,
-    pub run: bool,
-    pub look: &'static str,
-    pub claim: &'static str,
     pub measured: String,
     /// Rows of the table the page fills one by one ([`pictures::freitag_row`]); 0: none.
     pub rows: usize,
@@ -303,7 +286,7 @@ mod tests {
         for (i, f) in FIGURES.iter().enumerate() {
             let c = f.card(i).unwrap_or_else(|e| panic!("{}: {e}", f.name));
             assert!(c.measured.chars().any(|ch| ch.is_ascii_digit()), "{}: {}", f.name, c.measured);
-            let sentences = [c.look, c.claim, &c.measured].iter().map(|s| s.matches(". ").count() + 1).sum::<usize>();
+            let sentences = [c.figure.look, c.figure.claim, &c.measured].iter().map(|s| s.matches(". ").count() + 1).sum::<usize>();
             assert!((3..=8).contains(&sentences), "{}: {sentences} sentences", f.name);
         }
         assert_eq!(FIGURES[0].card(0).unwrap().prev, "knupp-1");

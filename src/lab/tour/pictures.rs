@@ -419,7 +419,7 @@ fn plate_passes(order: Order) -> Result<Vec<Mesh>> {
     let (_, fig) = find("chen-13")?;
     let (pg, st) = fig.playground()?;
     let mut m = pg.panel(Side::New).mesh.clone();
-    let mut s = Smoother::new(st.smooth_options().with_order(order))?;
+    let mut s = Smoother::new(st.settings.smooth_options()?.with_order(order))?;
     let obj = objective_with(ObjectiveKind::New, Penalty::Barrier);
     let mut out = vec![m.clone()];
     for _ in 0..3 {
@@ -474,7 +474,7 @@ fn curved_runs() -> Result<Vec<(String, Mesh)>> {
         (Strategy::Opt, "optimization, new objective"),
     ] {
         let mut m = m0.clone();
-        let mut s = Smoother::new(st.smooth_options().with_strategy(strategy))?;
+        let mut s = Smoother::new(st.settings.smooth_options()?.with_strategy(strategy))?;
         s.pass(&mut m, new.as_ref(), &|| 0.0);
         out.push((title.to_string(), m));
     }
