@@ -515,18 +515,20 @@ impl MeshStats {
         }
     }
 
-    /// The node and element counts of `mesh`, with every statistic the elements add up
-    /// at its starting value (no elements seen yet).
+    /// The node and element counts of `mesh` (by kind too: they do not depend on the
+    /// positions), with every statistic the elements' positions add up at its starting
+    /// value (no elements measured yet).
     pub fn empty(mesh: &Mesh) -> MeshStats {
         let nodes = mesh.node_count();
         let free_nodes = mesh.free_count();
         let fixed_nodes = mesh.fixed().iter().filter(|&&f| f).count();
+        let triangles = mesh.kinds().iter().filter(|k| k.is_triangle()).count();
         MeshStats {
             nodes,
             elements: mesh.element_count(),
-            triangles: 0,
-            quads: 0,
-            quadratic: 0,
+            triangles,
+            quads: mesh.element_count() - triangles,
+            quadratic: mesh.kinds().iter().filter(|k| k.is_quadratic()).count(),
             free_nodes,
             fixed_nodes,
             following_nodes: nodes - free_nodes - fixed_nodes,
@@ -551,14 +553,6 @@ pub fn mesh_stats(mesh: &Mesh) -> MeshStats {
     for e in 0..mesh.element_count() {
         let kind = mesh.kind(e);
         let p = mesh.element_points_array(e);
-        if kind.is_triangle() {
-            s.triangles += 1;
-        } else {
-            s.quads += 1;
-        }
-        if kind.is_quadratic() {
-            s.quadratic += 1;
-        }
         let hist = &mut s.angle_histogram_6deg;
         let q = measure_element::<true, true, false>(kind, &p[..kind.node_count()], |_, _, ang| hist[angle_bin(ang)] += 1);
         s.inverted += q.inverted as usize;
@@ -587,14 +581,6 @@ mod tests {
             let kind = mesh.kind(e);
             let p = mesh.element_points_array(e);
             let p = &p[..kind.node_count()];
-            if kind.is_triangle() {
-                s.triangles += 1;
-            } else {
-                s.quads += 1;
-            }
-            if kind.is_quadratic() {
-                s.quadratic += 1;
-            }
             let q = element_quality(kind, p);
             s.inverted += q.inverted as usize;
             s.min_angle_deg = s.min_angle_deg.min(q.min_angle.to_degrees());

@@ -214,8 +214,9 @@ impl ColouredSmoother {
     }
 }
 
-/// Decides every node of one colour against the mesh as it is, into `out`.
-#[cfg(not(all(feature = "parallel", not(target_arch = "wasm32"))))]
+/// Decides every node of one colour against the mesh as it is, into `out`: on the rayon
+/// pool when built with `parallel` (each unit of work with its own copy of the driver's
+/// scratch buffers), else in order on this thread.
 fn decide_all(
     s: &mut Smoother,
     mesh: &Mesh,
@@ -223,31 +224,21 @@ fn decide_all(
     objective: &(dyn Objective + Sync),
     out: &mut [(DVec2, NodeOutcome)],
 ) {
-    for (o, &n) in out.iter_mut().zip(nodes) {
-        *o = s.decide(mesh, n as usize, objective);
+    let decide = |w: &mut Smoother, out: &mut [(DVec2, NodeOutcome)], nodes: &[u32]| {
+        for (o, &n) in out.iter_mut().zip(nodes) {
+            *o = w.decide(mesh, n as usize, objective);
+        }
+    };
+    #[cfg(all(feature = "parallel", not(target_arch = "wasm32")))]
+    {
+        use rayon::prelude::*;
+        let template: &Smoother = s;
+        out.par_chunks_mut(CHUNK)
+            .zip(nodes.par_chunks(CHUNK))
+            .for_each_init(|| template.clone(), |w, (out, nodes)| decide(w, out, nodes));
     }
-}
-
-/// Decides every node of one colour against the mesh as it is, into `out`, on the rayon
-/// pool; each unit of work gets its own copy of the driver's scratch buffers.
-#[cfg(all(feature = "parallel", not(target_arch = "wasm32")))]
-fn decide_all(
-    s: &mut Smoother,
-    mesh: &Mesh,
-    nodes: &[u32],
-    objective: &(dyn Objective + Sync),
-    out: &mut [(DVec2, NodeOutcome)],
-) {
-    use rayon::prelude::*;
-    let template: &Smoother = s;
-    out.par_chunks_mut(CHUNK).zip(nodes.par_chunks(CHUNK)).for_each_init(
-        || template.clone(),
-        |w, (out, nodes)| {
-            for (o, &n) in out.iter_mut().zip(nodes) {
-                *o = w.decide(mesh, n as usize, objective);
-            }
-        },
-    );
+    #[cfg(not(all(feature = "parallel", not(target_arch = "wasm32"))))]
+    decide(s, out, nodes);
 }
 
 #[cfg(test)]
