@@ -137,10 +137,14 @@ pub struct ThresholdControl {
     pub default: f64,
 }
 
-/// One strategy: its name, and why each control does nothing with it (`null`: it matters).
+/// One strategy: its name, its menu entry, and why each control does nothing with it
+/// (`null`: it matters).
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct StrategyInfo {
     pub name: &'static str,
+    /// The menu's text and tooltip ([`Strategy::label`], [`Strategy::describe`]).
+    pub label: &'static str,
+    pub title: &'static str,
     pub words: &'static str,
     pub threshold_unused: Option<String>,
     pub max_iter_unused: Option<String>,
@@ -151,6 +155,14 @@ pub struct StrategyInfo {
 pub struct Named {
     pub name: &'static str,
     pub words: &'static str,
+}
+
+/// An entry of a menu: the value, its text and its tooltip.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct MenuEntry {
+    pub name: &'static str,
+    pub label: &'static str,
+    pub title: &'static str,
 }
 
 /// One panel of the page: its permalink letter, its colour everywhere, and what it
@@ -165,16 +177,20 @@ pub struct PanelInfo {
 }
 
 /// Everything the page needs to build and check its controls, keyed by the permalink's
-/// keys: `{ passes, maxiter, seed, amount, threshold, strategies, objectives, penalties,
-/// panels }`.
+/// keys: `{ settings, passes, maxiter, seed, amount, threshold, strategies, orders,
+/// objectives, penalties, panels }`.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct PageControls {
+    /// The default settings (strategy, order, …), which the menus start on.
+    pub settings: crate::lab::Settings,
     pub passes: IntControl,
     pub maxiter: IntControl,
     pub seed: IntControl,
     pub amount: AmountControl,
     pub threshold: ThresholdControl,
     pub strategies: Vec<StrategyInfo>,
+    /// Every visit order ([`Order::ALL`](crate::smooth::Order::ALL)).
+    pub orders: Vec<MenuEntry>,
     /// Every objective a panel can run ([`ObjectiveKind::ALL`](crate::objective::ObjectiveKind::ALL)).
     pub objectives: Vec<Named>,
     /// The designs of `new`'s penalty ([`Penalty::ALL`](crate::objective::Penalty::ALL)).
@@ -191,6 +207,7 @@ fn int_control(label: &'static str, r: IntRange, default: u64) -> IntControl {
 pub fn page_controls() -> PageControls {
     let d = PageState::default();
     PageControls {
+        settings: d.settings,
         passes: int_control(label("passes"), PASSES, d.passes.into()),
         maxiter: int_control(label("maxiter"), MAX_ITER, d.settings.max_iter.into()),
         seed: int_control(label("seed"), SEED, d.seed),
@@ -211,10 +228,16 @@ pub fn page_controls() -> PageControls {
             .iter()
             .map(|&s| StrategyInfo {
                 name: s.name(),
+                label: s.label(),
+                title: s.describe(),
                 words: strategy_words(s),
                 threshold_unused: threshold_unused(s),
                 max_iter_unused: max_iter_unused(s),
             })
+            .collect(),
+        orders: crate::smooth::Order::ALL
+            .iter()
+            .map(|&o| MenuEntry { name: o.name(), label: o.label(), title: o.describe() })
             .collect(),
         objectives: crate::objective::ObjectiveKind::ALL.iter().map(|k| Named { name: k.name(), words: k.describe() }).collect(),
         penalties: crate::objective::Penalty::ALL.iter().map(|p| Named { name: p.name(), words: p.describe() }).collect(),

@@ -164,6 +164,8 @@ function buildControls(c) {
     t.append(o);
   }
   t.value = String(c.threshold.default);
+  fillMenu($('strategy'), c.strategies.map((s) => [s.name, s.label, s.title]), c.settings.strategy);
+  fillMenu($('order'), c.orders.map((o) => [o.name, o.label, o.title]), c.settings.order);
   showStrategyReasons();
   // compare: every objective and penalty design the core offers, by its names
   for (const [i, [obj, pen]] of COMPARE.entries()) {
@@ -174,12 +176,14 @@ function buildControls(c) {
   }
   showPenaltyReasons();
 }
+/** Fills a menu with `[value, text, tooltip]` entries (the tooltip may be absent). */
 function fillMenu(select, entries, value) {
   select.replaceChildren();
-  for (const [v, text] of entries) {
+  for (const [v, text, title] of entries) {
     const o = document.createElement('option');
     o.value = v;
     o.textContent = text;
+    if (title) o.title = title;
     select.append(o);
   }
   select.value = value;

@@ -50,6 +50,38 @@ impl Strategy {
             Strategy::Rules => "rules",
         }
     }
+    /// As the page's menu shows it.
+    pub fn label(self) -> &'static str {
+        match self {
+            Strategy::Laplace => "Laplacian",
+            Strategy::Smart => "Smart Laplacian",
+            Strategy::Opt => "Optimization only",
+            Strategy::C1 => "Freitag C1",
+            Strategy::C2 => "Freitag C2",
+            Strategy::C3 => "Freitag C3",
+            Strategy::Rules => "Chen's rules (smart Laplacian, else optimize)",
+        }
+    }
+    /// What it does, in a sentence (the menu's tooltip and the command line's help).
+    pub fn describe(self) -> &'static str {
+        match self {
+            Strategy::Laplace => "Move each node to the centre of its neighbours (may tangle the mesh)",
+            Strategy::Smart => "Move each node to the centre of its neighbours only where that does not worsen its star",
+            Strategy::Opt => "Optimize every free node with the chosen objectives",
+            Strategy::C1 => {
+                "Freitag's C1: smart Laplacian where the star's smallest angle is above the threshold, else optimization"
+            }
+            Strategy::C2 => {
+                "Freitag's C2: smart Laplacian, then optimization where the smallest angle is still not above the threshold"
+            }
+            Strategy::C3 => {
+                "Freitag's C3: only stars whose smallest angle is not above the threshold: Laplacian, then optimization if still not above it"
+            }
+            Strategy::Rules => {
+                "Chen's rules: optimize a node next to an inverted element or a curved boundary, or one the constrained Laplacian could not move; else the constrained Laplacian"
+            }
+        }
+    }
     /// The strategy called `name` (exact, lowercase).
     pub fn parse(name: &str) -> Option<Strategy> {
         Self::ALL.into_iter().find(|s| s.name() == name)
@@ -74,6 +106,20 @@ impl Order {
         match self {
             Order::Input => "input",
             Order::Priority => "priority",
+        }
+    }
+    /// As the page's menu shows it.
+    pub fn label(self) -> &'static str {
+        match self {
+            Order::Input => "Input order",
+            Order::Priority => "Priority (worst first)",
+        }
+    }
+    /// What it does, in a sentence (the menu's tooltip and the command line's help).
+    pub fn describe(self) -> &'static str {
+        match self {
+            Order::Input => "In the order of the file",
+            Order::Priority => "Worst star first, in bins of quality (Chen et al. §4.2)",
         }
     }
     /// The order called `name` (exact, lowercase).
