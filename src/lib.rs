@@ -66,6 +66,25 @@ macro_rules! enum_with_all {
     };
 }
 
+/// Declares a fieldless enum with `ALL` (as [`enum_with_all!`]) and, from one table, each
+/// variant's `name()` (on the command line) and `describe()` (its help): `Tri =>
+/// ("tri", "two triangles per square"),`.
+macro_rules! enum_with_names {
+    ($(#[$m:meta])* $vis:vis enum $name:ident { $($(#[$vm:meta])* $v:ident => ($s:literal, $d:literal),)+ }) => {
+        enum_with_all! { $(#[$m])* $vis enum $name { $($(#[$vm])* $v,)+ } }
+        impl $name {
+            /// Its name on the command line.
+            pub fn name(self) -> &'static str {
+                match self { $($name::$v => $s,)+ }
+            }
+            /// What it is, in a few words (the command line's help).
+            pub fn describe(self) -> &'static str {
+                match self { $($name::$v => $d,)+ }
+            }
+        }
+    };
+}
+
 pub mod error;
 pub mod generate;
 pub mod io;

@@ -6,15 +6,17 @@ use super::{check_size, Assembly};
 use crate::error::{Error, Result};
 use crate::mesh::{ElementKind, Mesh};
 
-/// The elements of a [`grid`].
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub enum GridKind {
-    /// Each square split into two triangles by its diagonal from lower left to upper
-    /// right: one fixed direction, so every interior node has six neighbours.
-    #[default]
-    Tri,
-    /// One quad per square.
-    Quad,
+enum_with_names! {
+    /// The elements of a [`grid`].
+    #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+    pub enum GridKind {
+        /// Each square split into two triangles by its diagonal from lower left to upper
+        /// right: one fixed direction, so every interior node has six neighbours.
+        #[default]
+        Tri => ("tri", "two triangles per square, split lower-left to upper-right"),
+        /// One quad per square.
+        Quad => ("quad", "one quad per square"),
+    }
 }
 
 /// A structured `nx × ny` grid on the unit square `[0,1]²`: `(nx+1)(ny+1)` nodes, numbered

@@ -15,16 +15,18 @@ pub const PLATE_HALF_WIDTH: f64 = 1.0;
 /// a plate with a hole; these proportions are ours.
 pub const PLATE_HOLE_RADIUS: f64 = 0.4;
 
-/// The elements of a [`plate`].
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub enum PlateKind {
-    /// Each O-grid quad split into two triangles by its shorter diagonal.
-    #[default]
-    Tri,
-    /// The O-grid of quads.
-    Quad,
-    /// Quads in the inner half of the rings (round the hole), triangles outside.
-    Mixed,
+enum_with_names! {
+    /// The elements of a [`plate`].
+    #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+    pub enum PlateKind {
+        /// Each O-grid quad split into two triangles by its shorter diagonal.
+        #[default]
+        Tri => ("tri", "triangles (each O-grid quad split by its shorter diagonal)"),
+        /// The O-grid of quads.
+        Quad => ("quad", "the O-grid of quads"),
+        /// Quads in the inner half of the rings (round the hole), triangles outside.
+        Mixed => ("mixed", "quads round the hole, triangles outside"),
+    }
 }
 
 /// A square plate `[−1, 1]²` with a hole of radius 0.4 at the centre, meshed as an

@@ -7,30 +7,32 @@ use super::Assembly;
 use crate::error::{Error, Result};
 use crate::mesh::{ElementKind, Mesh};
 
-/// Which star to build with [`star`].
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub enum StarKind {
-    /// Mesquite's `equil_tri`: `k` triangles round a regular `k`-gon of radius 2 whose
-    /// first node is at (0, 2); the free node starts displaced from the centre (at
-    /// (−0.8, −0.8) for `k = 6`, exactly as Mesquite's file). Optimised, the centre is
-    /// the answer and, for `k = 6`, every triangle is equilateral.
-    #[default]
-    Regular,
-    /// An irregular star-shaped but non-convex ring, like Chen, Tristano & Kwok (2003),
-    /// Figure 10 "example with star shaped configuration" (its picture is lost; this is
-    /// our reading): `k` nodes (`k` even, ≥ 6) alternating between spikes at radius
-    /// 0.85–1.25 and notches at radius 0.25–0.3, angles slightly uneven, so every notch
-    /// is a reflex corner and the valid region of the free node (the polygon's kernel)
-    /// is a small convex set round the origin. The free node starts off-centre, 60% of
-    /// the way from the origin to the kernel's edge in the direction (−0.8, −0.6).
-    Chen,
-    /// `k` quads round the free node (`k ≥ 3`; 4 gives the 3 × 3 grid), like Chen's
-    /// Figure 8 and the "test quadrilateral configuration" of Figure 20a (lost; ours):
-    /// spoke nodes at radius 1, the outer corners where the spokes' perpendiculars meet,
-    /// the first outer corner pulled out by 1.4 so the star is not symmetric, and the
-    /// free node half-way from the origin to the edge of its valid region in the
-    /// direction (−0.8, −0.6).
-    Quad,
+enum_with_names! {
+    /// Which star to build with [`star`].
+    #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+    pub enum StarKind {
+        /// Mesquite's `equil_tri`: `k` triangles round a regular `k`-gon of radius 2 whose
+        /// first node is at (0, 2); the free node starts displaced from the centre (at
+        /// (−0.8, −0.8) for `k = 6`, exactly as Mesquite's file). Optimised, the centre is
+        /// the answer and, for `k = 6`, every triangle is equilateral.
+        #[default]
+        Regular => ("regular", "Mesquite's equil_tri: k triangles round a regular k-gon"),
+        /// An irregular star-shaped but non-convex ring, like Chen, Tristano & Kwok (2003),
+        /// Figure 10 "example with star shaped configuration" (its picture is lost; this is
+        /// our reading): `k` nodes (`k` even, ≥ 6) alternating between spikes at radius
+        /// 0.85–1.25 and notches at radius 0.25–0.3, angles slightly uneven, so every notch
+        /// is a reflex corner and the valid region of the free node (the polygon's kernel)
+        /// is a small convex set round the origin. The free node starts off-centre, 60% of
+        /// the way from the origin to the kernel's edge in the direction (−0.8, −0.6).
+        Chen => ("chen", "a star-shaped, non-convex ring of triangles (Chen et al., Fig. 10)"),
+        /// `k` quads round the free node (`k ≥ 3`; 4 gives the 3 × 3 grid), like Chen's
+        /// Figure 8 and the "test quadrilateral configuration" of Figure 20a (lost; ours):
+        /// spoke nodes at radius 1, the outer corners where the spokes' perpendiculars meet,
+        /// the first outer corner pulled out by 1.4 so the star is not symmetric, and the
+        /// free node half-way from the origin to the edge of its valid region in the
+        /// direction (−0.8, −0.6).
+        Quad => ("quad", "k quads round the free node (Chen et al., Figs. 8 and 20a)"),
+    }
 }
 
 impl StarKind {

@@ -56,14 +56,16 @@ pub enum Format {
     Off,
 }
 
-/// Which `.msh` version to write.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub enum MshVersion {
-    /// 2.2 ASCII: what most other tools read (the default).
-    #[default]
-    V22,
-    /// 4.1 ASCII.
-    V41,
+enum_with_names! {
+    /// Which `.msh` version to write.
+    #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+    pub enum MshVersion {
+        /// 2.2 ASCII: what most other tools read (the default).
+        #[default]
+        V22 => ("2.2", "ASCII 2.2, what most other tools read"),
+        /// 4.1 ASCII.
+        V41 => ("4.1", "ASCII 4.1"),
+    }
 }
 
 /// Options for writing.

@@ -14,18 +14,20 @@ use super::view::{sane_dpr, Frame, View, ZoomPan};
 use crate::mesh::{Mesh, NodeRole, NONE};
 use crate::quality::{element_quality, ElementQuality};
 
-/// Which element metric colours the elements (all from
-/// [`element_quality`](crate::quality::element_quality)).
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub enum Metric {
-    /// Lo's α for triangles, Canann's β for quads (Chen et al. 2003, eqs. 1–2), on [0, 1].
-    #[default]
-    Shape,
-    /// The smallest corner angle in degrees, on [0°, 60°] for triangle meshes and
-    /// [0°, 90°] when quads are present (the ideal element's angle).
-    MinAngle,
-    /// Knupp's `2/κ` (Knupp 1999), on [0, 1].
-    Condition,
+enum_with_names! {
+    /// Which element metric colours the elements (all from
+    /// [`element_quality`](crate::quality::element_quality)).
+    #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+    pub enum Metric {
+        /// Lo's α for triangles, Canann's β for quads (Chen et al. 2003, eqs. 1–2), on [0, 1].
+        #[default]
+        Shape => ("alpha", "Lo's α for triangles, Canann's β for quads"),
+        /// The smallest corner angle in degrees, on [0°, 60°] for triangle meshes and
+        /// [0°, 90°] when quads are present (the ideal element's angle).
+        MinAngle => ("angle", "the smallest corner angle"),
+        /// Knupp's `2/κ` (Knupp 1999), on [0, 1].
+        Condition => ("condition", "2/κ, Knupp's condition number"),
+    }
 }
 
 impl Metric {

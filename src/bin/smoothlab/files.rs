@@ -2,7 +2,7 @@
 
 use std::path::{Path, PathBuf};
 
-use clap::{Args, ValueEnum};
+use clap::Args;
 use smoothlab::io::{self, MshVersion, WriteOptions};
 use smoothlab::quality::element_quality;
 use smoothlab::Mesh;
@@ -34,23 +34,14 @@ pub fn read_mesh(path: &Path) -> Result<Mesh, String> {
     Ok(mesh)
 }
 
-/// `.msh` version to write.
-#[derive(Clone, Copy, Debug, ValueEnum)]
-pub enum MshVersionArg {
-    #[value(name = "2.2")]
-    V22,
-    #[value(name = "4.1")]
-    V41,
+/// `--msh-version`'s values.
+pub fn msh_version_parser() -> impl clap::builder::TypedValueParser<Value = MshVersion> {
+    crate::smooth::named(&MshVersion::ALL, MshVersion::name, MshVersion::describe)
 }
 
 /// Writes a mesh in the format of the file's extension.
-pub fn write_mesh(mesh: &Mesh, path: &Path, msh: MshVersionArg) -> Result<(), String> {
-    let opts = WriteOptions {
-        msh_version: match msh {
-            MshVersionArg::V22 => MshVersion::V22,
-            MshVersionArg::V41 => MshVersion::V41,
-        },
-    };
+pub fn write_mesh(mesh: &Mesh, path: &Path, msh_version: MshVersion) -> Result<(), String> {
+    let opts = WriteOptions { msh_version };
     io::write_path(mesh, path, &opts).map_err(|e| format!("{}: {e}", path.display()))?;
     let ext = path.extension().and_then(|e| e.to_str()).unwrap_or("").to_ascii_lowercase();
     if ext == "node" || ext == "ele" {
@@ -68,8 +59,8 @@ pub struct ConvertArgs {
     /// Output mesh; the format follows the extension
     pub output: PathBuf,
     /// Version of .msh files written
-    #[arg(long, value_enum, default_value = "2.2")]
-    pub msh_version: MshVersionArg,
+    #[arg(long, value_parser = msh_version_parser(), default_value = MshVersion::default().name())]
+    pub msh_version: MshVersion,
 }
 
 pub fn convert(a: ConvertArgs) -> Result<(), String> {

@@ -2,11 +2,14 @@
 
 use std::path::PathBuf;
 
-use clap::{Args, Subcommand, ValueEnum};
+use clap::{Args, Subcommand};
+
+use crate::smooth::named;
 use smoothlab::generate::{self, GridKind, PlateKind, StarKind};
 use smoothlab::Mesh;
 
-use crate::files::{read_mesh, write_mesh, MshVersionArg};
+use crate::files::{msh_version_parser, read_mesh, write_mesh};
+use smoothlab::io::MshVersion;
 
 #[derive(Args)]
 pub struct GenerateArgs {
@@ -21,8 +24,8 @@ pub struct Output {
     #[arg(short, long)]
     pub output: PathBuf,
     /// Version of .msh files written
-    #[arg(long, value_enum, default_value = "2.2")]
-    pub msh_version: MshVersionArg,
+    #[arg(long, value_parser = msh_version_parser(), default_value = MshVersion::default().name())]
+    pub msh_version: MshVersion,
 }
 
 #[derive(Subcommand)]
@@ -50,16 +53,16 @@ pub enum Kind {
         #[arg(long, default_value_t = 10)]
         ny: usize,
         /// Triangles (each square split lower-left to upper-right) or quads
-        #[arg(long, value_enum, default_value = "tri")]
-        kind: GridKindArg,
+        #[arg(long, value_parser = named(&GridKind::ALL, GridKind::name, GridKind::describe), default_value = GridKind::default().name())]
+        kind: GridKind,
         #[command(flatten)]
         out: Output,
     },
     /// A square plate [-1,1]² with a hole of radius 0.4 (O-grid)
     Plate {
         /// Triangles, quads, or quads round the hole and triangles outside
-        #[arg(long, value_enum, default_value = "tri")]
-        kind: PlateKindArg,
+        #[arg(long, value_parser = named(&PlateKind::ALL, PlateKind::name, PlateKind::describe), default_value = PlateKind::default().name())]
+        kind: PlateKind,
         /// 1 for linear elements, 2 for quadratic ones with a curved hole
         #[arg(long, default_value_t = 1)]
         order: u8,
@@ -72,8 +75,8 @@ pub enum Kind {
     /// One free node with a ring of fixed neighbours
     Star {
         /// Regular (Mesquite's equil_tri), Chen's non-convex star, or quads
-        #[arg(long, value_enum, default_value = "regular")]
-        kind: StarKindArg,
+        #[arg(long, value_parser = named(&StarKind::ALL, StarKind::name, StarKind::describe), default_value = StarKind::default().name())]
+        kind: StarKind,
         /// Elements round the free node [default: 6 regular, 8 chen, 4 quad]
         #[arg(long)]
         k: Option<usize>,
@@ -95,50 +98,16 @@ pub enum Kind {
     },
 }
 
-#[derive(Clone, Copy, Debug, ValueEnum)]
-pub enum GridKindArg {
-    Tri,
-    Quad,
-}
-
-#[derive(Clone, Copy, Debug, ValueEnum)]
-pub enum PlateKindArg {
-    Tri,
-    Quad,
-    Mixed,
-}
-
-#[derive(Clone, Copy, Debug, ValueEnum)]
-pub enum StarKindArg {
-    Regular,
-    Chen,
-    Quad,
-}
-
 pub fn run(a: GenerateArgs) -> Result<(), String> {
     let (mesh, out): (Mesh, Output) = match a.kind {
         Kind::Rand2d { points, per_side, seed, out } => (generate::rand2d(points, per_side, seed).map_err(|e| e.to_string())?, out),
         Kind::Grid { nx, ny, kind, out } => {
-            let kind = match kind {
-                GridKindArg::Tri => GridKind::Tri,
-                GridKindArg::Quad => GridKind::Quad,
-            };
             (generate::grid(nx, ny, kind).map_err(|e| e.to_string())?, out)
         }
         Kind::Plate { kind, order, resolution, out } => {
-            let kind = match kind {
-                PlateKindArg::Tri => PlateKind::Tri,
-                PlateKindArg::Quad => PlateKind::Quad,
-                PlateKindArg::Mixed => PlateKind::Mixed,
-            };
             (generate::plate(kind, order, resolution).map_err(|e| e.to_string())?, out)
         }
         Kind::Star { kind, k, out } => {
-            let kind = match kind {
-                StarKindArg::Regular => StarKind::Regular,
-                StarKindArg::Chen => StarKind::Chen,
-                StarKindArg::Quad => StarKind::Quad,
-            };
             (generate::star(kind, k.unwrap_or(kind.default_k())).map_err(|e| e.to_string())?, out)
         }
         Kind::Perturb { input, amount, seed, out } => {

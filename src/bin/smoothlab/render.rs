@@ -36,15 +36,6 @@ pub enum ViewArg {
     Compare,
 }
 
-#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
-pub enum MetricArg {
-    /// Lo's α for triangles, Canann's β for quads
-    Alpha,
-    /// The smallest corner angle
-    Angle,
-    /// 2/κ, Knupp's condition number
-    Condition,
-}
 
 #[derive(Args)]
 pub struct RenderArgs {
@@ -69,8 +60,8 @@ pub struct RenderArgs {
     #[arg(long, default_value = "old,new")]
     pub objective: String,
     /// Metric that colours the elements
-    #[arg(long, value_enum, default_value = "alpha")]
-    pub metric: MetricArg,
+    #[arg(long, value_parser = crate::smooth::named(&Metric::ALL, Metric::name, Metric::describe), default_value = Metric::default().name())]
+    pub metric: Metric,
     /// Picture size in pixels, WxH (default by view)
     #[arg(long)]
     pub size: Option<String>,
@@ -78,7 +69,7 @@ pub struct RenderArgs {
     #[arg(long, default_value_t = 1.0)]
     pub dpr: f32,
     /// Smoothing strategy
-    #[arg(long, value_parser = strategy_parser(), default_value = "rules")]
+    #[arg(long, value_parser = strategy_parser(), default_value = smoothlab::smooth::SmoothOptions::default().strategy.name())]
     pub strategy: smoothlab::smooth::Strategy,
     /// Threshold angle of c1/c2/c3, degrees
     #[arg(long, default_value_t = smoothlab::smooth::DEFAULT_THRESHOLD_DEG)]
@@ -215,13 +206,8 @@ pub fn run(a: RenderArgs) -> Result<(), String> {
         ViewArg::Mesh => {
             let c = canvas(w, h);
             let mut pm = pixmap(c.w, c.h).map_err(|e| e.to_string())?;
-            let metric = match a.metric {
-                MetricArg::Alpha => Metric::Shape,
-                MetricArg::Angle => Metric::MinAngle,
-                MetricArg::Condition => Metric::Condition,
-            };
             let mut view = MeshView::default().with_dpr(a.dpr).with_highlight(a.node);
-            view.metric = metric;
+            view.metric = a.metric;
             render_mesh(&mut pm, &lab.panel(first).mesh, &view);
             pm
         }

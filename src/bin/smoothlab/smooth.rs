@@ -24,7 +24,8 @@ use smoothlab::objective::{objective_with, ObjectiveKind, Penalty};
 use smoothlab::quality::{mesh_stats, MeshStats};
 use smoothlab::smooth::{untangling_obstacles, Obstacle, Order, PassRecord, SmoothOptions, Smoother, Strategy};
 
-use crate::files::{read_mesh, write_mesh, MshVersionArg};
+use crate::files::{msh_version_parser, read_mesh, write_mesh};
+use smoothlab::io::MshVersion;
 
 use smoothlab::limits::{self, BATCH_MAX_ITER, BATCH_PASSES};
 
@@ -36,10 +37,10 @@ pub struct SmoothArgs {
     #[arg(short, long)]
     pub output: PathBuf,
     /// Objective of the optimization steps; laplace and smart only report its total [default: new]
-    #[arg(long, value_parser = named(&ObjectiveKind::ALL, ObjectiveKind::name))]
+    #[arg(long, value_parser = named(&ObjectiveKind::ALL, ObjectiveKind::name, ObjectiveKind::describe))]
     pub objective: Option<ObjectiveKind>,
     /// How each node is smoothed
-    #[arg(long, value_parser = strategy_parser(), default_value = "rules")]
+    #[arg(long, value_parser = strategy_parser(), default_value = SmoothOptions::default().strategy.name())]
     pub strategy: Strategy,
     /// Threshold angle of c1/c2/c3, degrees, in (0, 90] [default: 30]
     #[arg(long)]
@@ -69,35 +70,36 @@ pub struct SmoothArgs {
     #[arg(long)]
     pub json: bool,
     /// Version of .msh files written
-    #[arg(long, value_enum, default_value = "2.2")]
-    pub msh_version: MshVersionArg,
+    #[arg(long, value_parser = msh_version_parser(), default_value = MshVersion::default().name())]
+    pub msh_version: MshVersion,
 }
 
 /// A value parser for one of the core's named choices: the possible values are `all`'s
-/// names, in the core's order, so the CLI lists exactly what the core offers (no mirror
-/// enum to keep in step with it).
+/// names with their descriptions, in the core's order, so the CLI lists exactly what the
+/// core offers (no mirror enum to keep in step with it).
 pub fn named<T: Copy + Send + Sync + 'static>(
     all: &'static [T],
     name: fn(T) -> &'static str,
+    describe: fn(T) -> &'static str,
 ) -> impl clap::builder::TypedValueParser<Value = T> {
-    use clap::builder::TypedValueParser;
-    clap::builder::PossibleValuesParser::new(all.iter().map(|&t| name(t)))
+    use clap::builder::{PossibleValue, TypedValueParser};
+    clap::builder::PossibleValuesParser::new(all.iter().map(|&t| PossibleValue::new(name(t)).help(describe(t))))
         .map(move |s: String| *all.iter().find(|&&t| name(t) == s).expect("one of the possible values"))
 }
 
 /// `--penalty`'s values.
 pub fn penalty_parser() -> impl clap::builder::TypedValueParser<Value = Penalty> {
-    named(&Penalty::ALL, Penalty::name)
+    named(&Penalty::ALL, Penalty::name, Penalty::describe)
 }
 
 /// `--strategy`'s values.
 pub fn strategy_parser() -> impl clap::builder::TypedValueParser<Value = Strategy> {
-    named(&Strategy::ALL, Strategy::name)
+    named(&Strategy::ALL, Strategy::name, Strategy::describe)
 }
 
 /// `--order`'s values.
 pub fn order_parser() -> impl clap::builder::TypedValueParser<Value = Order> {
-    named(&Order::ALL, Order::name)
+    named(&Order::ALL, Order::name, Order::describe)
 }
 
 /// Strategies that never call the solver.
