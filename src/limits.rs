@@ -57,7 +57,9 @@ pub fn threshold_unused(s: Strategy) -> Option<String> {
         Strategy::Rules => {
             Some("Chen's rules decide by their own tests (curved boundary, invalid element, Laplacian failed), not by an angle".into())
         }
-        _ => Some(format!("only Freitag's C1, C2 and C3 use a threshold angle, not {}", strategy_words(s))),
+        Strategy::Laplace | Strategy::Smart | Strategy::Opt => {
+            Some(format!("only Freitag's C1, C2 and C3 use a threshold angle, not {}", strategy_words(s)))
+        }
     }
 }
 
@@ -68,7 +70,7 @@ pub fn max_iter_unused(s: Strategy) -> Option<String> {
         Strategy::Laplace | Strategy::Smart => {
             Some(format!("{} never calls the solver, so it has no iterations to limit", strategy_words(s)))
         }
-        _ => None,
+        Strategy::Opt | Strategy::C1 | Strategy::C2 | Strategy::C3 | Strategy::Rules => None,
     }
 }
 
