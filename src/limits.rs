@@ -199,6 +199,10 @@ pub struct PageControls {
     pub penalties: Vec<Named>,
     /// The left panel (A), then the right (B).
     pub panels: Vec<PanelInfo>,
+    /// The file input's extensions (`.msh`, …, every [`Format`](crate::io::Format)'s) and
+    /// the same in words.
+    pub file_extensions: Vec<String>,
+    pub file_extensions_words: String,
 }
 
 fn int_control(label: &'static str, r: IntRange, default: u64) -> IntControl {
@@ -254,6 +258,11 @@ pub fn page_controls() -> PageControls {
                 penalty: c.penalty.name(),
             })
             .collect(),
+        file_extensions: crate::io::Format::ALL
+            .iter()
+            .flat_map(|f| f.extensions().iter().map(|e| format!(".{e}")))
+            .collect(),
+        file_extensions_words: crate::io::extensions_in_words(),
     }
 }
 

@@ -164,6 +164,8 @@ function buildControls(c) {
     t.append(o);
   }
   t.value = String(c.threshold.default);
+  $('file').accept = c.file_extensions.join(',');
+  $('drop-hint').textContent = `…or drop a ${c.file_extensions_words} file (a .node and .ele pair together) anywhere on the page.`;
   fillMenu($('strategy'), c.strategies.map((s) => [s.name, s.label, s.title]), c.settings.strategy);
   fillMenu($('order'), c.orders.map((o) => [o.name, o.label, o.title]), c.settings.order);
   showStrategyReasons();

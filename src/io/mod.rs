@@ -45,15 +45,17 @@ pub const MAX_FILE_BYTES: u64 = 1 << 30;
 /// it reads back.
 pub const PAGE_MAX_FILE_BYTES: u64 = 256 << 20;
 
-/// A mesh file format, chosen from a file name's extension.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Format {
-    Msh,
-    Vtk,
-    /// Triangle's `.node` + `.ele` pair.
-    Triangle,
-    Obj,
-    Off,
+enum_with_all! {
+    /// A mesh file format, chosen from a file name's extension.
+    #[derive(Clone, Copy, Debug, PartialEq, Eq)]
+    pub enum Format {
+        Msh,
+        Vtk,
+        /// Triangle's `.node` + `.ele` pair.
+        Triangle,
+        Obj,
+        Off,
+    }
 }
 
 enum_with_names! {
@@ -75,25 +77,37 @@ pub struct WriteOptions {
 }
 
 impl Format {
+    /// Its file extensions, lowercase and without the dot (Triangle's pair has two).
+    pub fn extensions(self) -> &'static [&'static str] {
+        match self {
+            Format::Msh => &["msh"],
+            Format::Vtk => &["vtk"],
+            Format::Triangle => &["node", "ele"],
+            Format::Obj => &["obj"],
+            Format::Off => &["off"],
+        }
+    }
+
     /// The format of a file name by its extension (`.node` and `.ele` both mean Triangle).
     pub fn from_name(name: &str) -> Option<Format> {
         let ext = name.rsplit_once('.')?.1.to_ascii_lowercase();
-        Some(match ext.as_str() {
-            "msh" => Format::Msh,
-            "vtk" => Format::Vtk,
-            "node" | "ele" => Format::Triangle,
-            "obj" => Format::Obj,
-            "off" => Format::Off,
-            _ => return None,
-        })
+        Format::ALL.into_iter().find(|f| f.extensions().contains(&ext.as_str()))
+    }
+}
+
+/// Every format's extensions in words: `.msh, .vtk, .node/.ele, .obj or .off`.
+pub fn extensions_in_words() -> String {
+    let each: Vec<String> =
+        Format::ALL.iter().map(|f| f.extensions().iter().map(|e| format!(".{e}")).collect::<Vec<_>>().join("/")).collect();
+    match each.split_last() {
+        Some((last, rest)) if !rest.is_empty() => format!("{} or {last}", rest.join(", ")),
+        _ => each.concat(),
     }
 }
 
 /// Error for a name whose extension is not a mesh format.
 pub fn unknown_format(name: &str) -> Error {
-    Error::invalid(format!(
-        "cannot tell the mesh format of '{name}': use .msh, .vtk, .node/.ele, .obj or .off"
-    ))
+    Error::invalid(format!("cannot tell the mesh format of '{name}': use {}", extensions_in_words()))
 }
 
 /// Reads a mesh from text in the given format. A Triangle mesh is a `.node`/`.ele`
@@ -361,4 +375,26 @@ pub fn write_path(mesh: &Mesh, path: &std::path::Path, opts: &WriteOptions) -> R
     let mut out = Out::file(&mut file);
     write_to(mesh, format, opts, &mut out)?;
     out.finish().map_err(|e| cannot(path, e))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_format_is_found_by_each_of_its_extensions_and_named_in_the_message() {
+        for f in Format::ALL {
+            for e in f.extensions() {
+                assert_eq!(Format::from_name(&format!("mesh.{e}")), Some(f));
+                assert_eq!(Format::from_name(&format!("MESH.{}", e.to_uppercase())), Some(f));
+            }
+        }
+        assert_eq!(Format::from_name("mesh.txt"), None);
+        assert_eq!(Format::from_name("msh"), None, "no extension");
+        assert_eq!(extensions_in_words(), ".msh, .vtk, .node/.ele, .obj or .off");
+        assert_eq!(
+            unknown_format("a.stl").to_string(),
+            "cannot tell the mesh format of 'a.stl': use .msh, .vtk, .node/.ele, .obj or .off"
+        );
+    }
 }
