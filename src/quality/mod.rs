@@ -543,6 +543,19 @@ impl MeshStats {
     }
 }
 
+impl MeshStats {
+    /// Folds one element's measures in (its angles' histogram aside); returns its shape
+    /// quality, for the mean.
+    fn add(&mut self, q: &ElementQuality) -> f64 {
+        self.inverted += q.inverted as usize;
+        self.min_angle_deg = self.min_angle_deg.min(q.min_angle.to_degrees());
+        self.max_angle_deg = self.max_angle_deg.max(q.max_angle.to_degrees());
+        self.min_quality = self.min_quality.min(q.shape);
+        self.max_condition = self.max_condition.max(q.condition);
+        q.shape
+    }
+}
+
 /// Computes [`MeshStats`] for a mesh: per element the metrics of [`element_quality`]
 /// (the same values to the last bit — a test folds `element_quality` to check), with each
 /// corner's signed angle computed once for the extreme angles and the histogram alike,
@@ -555,12 +568,7 @@ pub fn mesh_stats(mesh: &Mesh) -> MeshStats {
         let p = mesh.element_points_array(e);
         let hist = &mut s.angle_histogram_6deg;
         let q = measure_element::<true, true, false>(kind, &p[..kind.node_count()], |_, _, ang| hist[angle_bin(ang)] += 1);
-        s.inverted += q.inverted as usize;
-        s.min_angle_deg = s.min_angle_deg.min(q.min_angle.to_degrees());
-        s.max_angle_deg = s.max_angle_deg.max(q.max_angle.to_degrees());
-        s.min_quality = s.min_quality.min(q.shape);
-        sum += q.shape;
-        s.max_condition = s.max_condition.max(q.condition);
+        sum += s.add(&q);
     }
     if s.elements > 0 {
         s.mean_quality = sum / s.elements as f64;
@@ -582,12 +590,7 @@ mod tests {
             let p = mesh.element_points_array(e);
             let p = &p[..kind.node_count()];
             let q = element_quality(kind, p);
-            s.inverted += q.inverted as usize;
-            s.min_angle_deg = s.min_angle_deg.min(q.min_angle.to_degrees());
-            s.max_angle_deg = s.max_angle_deg.max(q.max_angle.to_degrees());
-            s.min_quality = s.min_quality.min(q.shape);
-            sum += q.shape;
-            s.max_condition = s.max_condition.max(q.condition);
+            sum += s.add(&q);
             for (e1, e2) in &corner_edges(kind, p)[..kind.corners()] {
                 s.angle_histogram_6deg[angle_bin(signed_angle(*e1, *e2))] += 1;
             }
