@@ -76,24 +76,28 @@ fn options(strategy: Strategy) -> SmoothOptions {
     SmoothOptions::default().with_strategy(strategy).with_order(Order::Input)
 }
 
-/// One input-order sweep of `strategy` with objective `kind`; returns visits.
-fn sweep(mesh: &mut Mesh, strategy: Strategy, kind: ObjectiveKind) -> u32 {
+/// One input-order sweep of `strategy` with objective `kind` (Newton's first trial on or
+/// off); returns visits.
+fn sweep(mesh: &mut Mesh, strategy: Strategy, kind: ObjectiveKind, newton: bool) -> u32 {
     let obj = objective(kind);
-    Smoother::new(options(strategy)).expect("options").sweep(mesh, &*obj).visits
+    Smoother::new(options(strategy).with_newton(newton)).expect("options").sweep(mesh, &*obj).visits
 }
 
-/// The passes measured, by name: strategy and objective.
-const PASSES: [(&str, Strategy, ObjectiveKind); 10] = [
-    ("laplace", Strategy::Laplace, ObjectiveKind::New),
-    ("smart", Strategy::Smart, ObjectiveKind::New),
-    ("opt+new", Strategy::Opt, ObjectiveKind::New),
-    ("opt+old", Strategy::Opt, ObjectiveKind::Old),
-    ("opt+sine", Strategy::Opt, ObjectiveKind::Sine),
-    ("opt+condition", Strategy::Opt, ObjectiveKind::Condition),
-    ("opt+condition-max", Strategy::Opt, ObjectiveKind::ConditionMax),
-    ("opt+untangle", Strategy::Opt, ObjectiveKind::Untangle),
-    ("opt+untangle-mindet", Strategy::Opt, ObjectiveKind::UntangleMinDet),
-    ("rules+new", Strategy::Rules, ObjectiveKind::New),
+/// The passes measured, by name: strategy, objective and whether Fletcher–Reeves tries
+/// Newton's step first (`SmoothOptions::newton`, off by default).
+const PASSES: [(&str, Strategy, ObjectiveKind, bool); 12] = [
+    ("laplace", Strategy::Laplace, ObjectiveKind::New, false),
+    ("smart", Strategy::Smart, ObjectiveKind::New, false),
+    ("opt+new", Strategy::Opt, ObjectiveKind::New, false),
+    ("opt+old", Strategy::Opt, ObjectiveKind::Old, false),
+    ("opt+sine", Strategy::Opt, ObjectiveKind::Sine, false),
+    ("opt+condition", Strategy::Opt, ObjectiveKind::Condition, false),
+    ("opt+condition-max", Strategy::Opt, ObjectiveKind::ConditionMax, false),
+    ("opt+untangle", Strategy::Opt, ObjectiveKind::Untangle, false),
+    ("opt+untangle-mindet", Strategy::Opt, ObjectiveKind::UntangleMinDet, false),
+    ("rules+new", Strategy::Rules, ObjectiveKind::New, false),
+    ("opt+new, Newton", Strategy::Opt, ObjectiveKind::New, true),
+    ("rules+new, Newton", Strategy::Rules, ObjectiveKind::New, true),
 ];
 
 /// Peak resident memory of this process, bytes (Linux `VmHWM`).
@@ -125,14 +129,20 @@ impl Objective for Counted<'_> {
         self.calls.set(self.calls.get() + 1);
         self.inner.value_and_gradient(star, x)
     }
+    fn value_gradient_hessian(&self, star: &Star, x: glam::DVec2) -> Option<(f64, glam::DVec2, glam::DMat2)> {
+        self.calls.set(self.calls.get() + 1);
+        self.inner.value_gradient_hessian(star, x)
+    }
 }
 
-/// Objective evaluations per visit and mean star size of one `opt` sweep with `kind`.
-fn evaluations_per_visit(mesh: &Mesh, kind: ObjectiveKind) -> (f64, f64) {
+/// Objective evaluations per visit and mean star size of one `opt` sweep with `kind`
+/// (with Newton's first trial or without).
+fn evaluations_per_visit(mesh: &Mesh, kind: ObjectiveKind, newton: bool) -> (f64, f64) {
     let obj = objective(kind);
     let counted = Counted { inner: &*obj, calls: std::cell::Cell::new(0) };
     let mut m = mesh.clone();
-    let visits = Smoother::new(options(Strategy::Opt)).expect("options").sweep(&mut m, &counted).visits;
+    let visits =
+        Smoother::new(options(Strategy::Opt).with_newton(newton)).expect("options").sweep(&mut m, &counted).visits;
     let elements: usize =
         (0..mesh.node_count()).filter(|&i| mesh.is_free(i)).map(|i| mesh.node_elements(i).len()).sum();
     (counted.calls.get() as f64 / visits.max(1) as f64, elements as f64 / visits.max(1) as f64)
@@ -174,8 +184,8 @@ fn measure(n: usize, quick: bool) -> SizeReport {
     let both = |f: &dyn Fn(&mut Mesh) -> u32| (time_ns_per_visit(&mesh, reps, f), time_ns_per_visit(&spatial, reps, f));
     let (a, b) = both(&stream_bound);
     rows.push(("stream bound".to_string(), a, b));
-    for (name, strategy, kind) in PASSES {
-        let (a, b) = both(&|m: &mut Mesh| sweep(m, strategy, kind));
+    for (name, strategy, kind, newton) in PASSES {
+        let (a, b) = both(&|m: &mut Mesh| sweep(m, strategy, kind, newton));
         rows.push((name.to_string(), a, b));
     }
     // the statistics a full pass adds (mesh_stats + objective total), per free node
@@ -215,7 +225,7 @@ fn measure(n: usize, quick: bool) -> SizeReport {
     let colours = smoothlab::smooth::parallel::Colouring::greedy(&spatial).colour_count();
     let colouring_ns = t.elapsed().as_nanos() as f64 / spatial.free_count() as f64;
     if ColouredSmoother::is_multithreaded() {
-        for (name, strategy, kind) in [PASSES[0], PASSES[2], PASSES[3], PASSES[9]] {
+        for (name, strategy, kind, _) in [PASSES[0], PASSES[2], PASSES[3], PASSES[9]] {
             let obj = objective(kind);
             // coloured once, outside the timing (the colouring depends on the topology only)
             let coloured =
@@ -229,11 +239,11 @@ fn measure(n: usize, quick: bool) -> SizeReport {
             parallel.push((name.to_string(), one, all));
         }
     }
-    let evaluations = [ObjectiveKind::New, ObjectiveKind::Old]
+    let evaluations = [(ObjectiveKind::New, false), (ObjectiveKind::Old, false), (ObjectiveKind::New, true)]
         .into_iter()
-        .map(|k| {
-            let (e, s) = evaluations_per_visit(&spatial, k);
-            (k.name().to_string(), e, s)
+        .map(|(k, newton)| {
+            let (e, s) = evaluations_per_visit(&spatial, k, newton);
+            (format!("`{}`{}", k.name(), if newton { " with Newton's first trial" } else { "" }), e, s)
         })
         .collect();
     let render_ns = {
@@ -463,7 +473,7 @@ fn render(machine: &str, reports: &[SizeReport], memory: &str, wasm: Option<&str
     if let Some(r) = reports.first() {
         let _ = writeln!(w, "\nWhere the time of `opt` goes ({}k mesh): every visit runs the solver for 3 iterations (Chen §3.1); each iteration's line search evaluates the objective over the whole star several times.", r.nodes / 1000);
         for (k, e, s) in &r.evaluations {
-            let _ = write!(w, " `{k}`: {e:.1} evaluations per visit over {s:.1} elements;");
+            let _ = write!(w, " {k}: {e:.1} evaluations per visit over {s:.1} elements;");
         }
         let _ = writeln!(w, " one evaluation of `new` (the barrier design of eq. (8)) costs per sub-triangle one Lo α and one η² with their gradients: a handful of divisions, and a square root only where the star started inverted or near-degenerate (δ > 0). Chen's high-low-high search needs at least three evaluations per iteration (a low point, a high point, the parabola's vertex), so a visit of 3 iterations takes at least 10 evaluations. The 1 µs target needs fewer evaluations: a first step that usually needs no bracket (Newton from the analytic 2×2 Hessian, simple for linear triangles, whose N is linear and D quadratic in the node's position), measured against Chen's search for quality as well as speed; not made yet.");
     }

@@ -51,6 +51,9 @@ pub enum DirectionKind {
     Conjugate,
     /// The minimum-norm point of the hull of the active gradients (Freitag, Figure 1).
     ActiveSet,
+    /// A full Newton step `−(∇²f)⁻¹∇f`, taken without a line search because it lowered the
+    /// objective enough (Armijo); see [`SolveOptions::newton`].
+    Newton,
 }
 
 /// Why a solve stopped.
@@ -135,6 +138,12 @@ pub struct SolveOptions {
     /// Non-smooth ascent: largest move of one step, as a fraction of the star size.
     /// Default 0.5.
     pub max_move: f64,
+    /// Fletcher–Reeves: when the objective has an analytic Hessian
+    /// ([`Objective::value_gradient_hessian`]) that is positive definite at the current
+    /// point, first try the Newton step `−(∇²f)⁻¹∇f` (at most one star size long) and take
+    /// it when it lowers the objective by at least 10⁻⁴ of the decrease its gradient
+    /// promises (Armijo); otherwise the iteration is Chen's, as without. Default false.
+    pub newton: bool,
 }
 
 impl Default for SolveOptions {
@@ -150,6 +159,7 @@ impl Default for SolveOptions {
             min_improvement: 1e-12,
             active_tolerance: 1e-6,
             max_move: 0.5,
+            newton: false,
         }
     }
 }
@@ -247,6 +257,9 @@ pub struct SolveState {
     /// Fletcher–Reeves: merit (value, negated for max-min) and its gradient at `x`.
     merit: f64,
     grad: DVec2,
+    /// Fletcher–Reeves with [`SolveOptions::newton`]: the merit's Hessian at `x`, when the
+    /// objective has one.
+    hess: Option<glam::DMat2>,
     /// Fletcher–Reeves: previous direction and previous gradient.
     dir: DVec2,
     grad_prev: DVec2,
@@ -295,6 +308,7 @@ impl SolveState {
             scale,
             merit: f64::NAN,
             grad: DVec2::ZERO,
+            hess: None,
             dir: DVec2::ZERO,
             grad_prev: DVec2::ZERO,
             since_restart: 0,
