@@ -274,11 +274,11 @@ pub struct SolveState {
 }
 
 impl SolveState {
-    /// A solve of `star` from `x0`, already stopped ([`StopReason::DegenerateStar`]) when
+    /// A solve of `star` (of size `scale`, its [`star_scale`]) from `x0`, already stopped ([`StopReason::DegenerateStar`]) when
     /// the star is empty or has no finite positive size: what every solver's `start`
     /// checks first.
-    fn begin(star: &Star, x0: DVec2, options: &SolveOptions) -> Self {
-        let mut st = SolveState::new(x0, star_scale(star), options.acceleration);
+    fn begin(star: &Star, x0: DVec2, scale: f64, options: &SolveOptions) -> Self {
+        let mut st = SolveState::new(x0, scale, options.acceleration);
         if star.is_empty() || !(st.scale.is_finite() && st.scale > 0.0) {
             st.stop = Some(StopReason::DegenerateStar);
         }
@@ -346,7 +346,12 @@ pub trait Solver {
     fn options(&self) -> &SolveOptions;
     /// Evaluates the objective at `x0` and prepares a solve (which may already be stopped,
     /// e.g. [`StopReason::NotFinite`]).
-    fn start(&mut self, objective: &dyn Objective, star: &Star, x0: DVec2) -> SolveState;
+    fn start(&mut self, objective: &dyn Objective, star: &Star, x0: DVec2) -> SolveState {
+        self.start_at_scale(objective, star, x0, star_scale(star))
+    }
+    /// [`start`](Self::start) for a star whose [`star_scale`] the caller has at hand
+    /// ([`solve`](Self::solve) measures it once for both the frame and the solve).
+    fn start_at_scale(&mut self, objective: &dyn Objective, star: &Star, x0: DVec2, scale: f64) -> SolveState;
     /// One iteration. Returns false once the solve has stopped (see [`SolveState::stop`]).
     fn step(&mut self, objective: &dyn Objective, star: &Star, state: &mut SolveState) -> bool;
     /// Runs a whole solve from `x0`. A star beyond 2^±64 in size is solved in its own
@@ -355,7 +360,8 @@ pub trait Solver {
     /// objective that is a ratio of lengths (all but `untangle` and `untangle-mindet`,
     /// whose dets are then in units of the star size squared).
     fn solve(&mut self, objective: &dyn Objective, star: &Star, x0: DVec2) -> SolveResult {
-        if let Some(f) = unit_factor(star_scale(star)) {
+        let scale = star_scale(star);
+        if let Some(f) = unit_factor(scale) {
             let scaled = scaled_star(star, f);
             let mut state = self.start(objective, &scaled, x0 * f);
             while self.step(objective, &scaled, &mut state) {}
@@ -369,7 +375,7 @@ pub trait Solver {
             }
             return r;
         }
-        let mut state = self.start(objective, star, x0);
+        let mut state = self.start_at_scale(objective, star, x0, scale);
         while self.step(objective, star, &mut state) {}
         state.into_result()
     }
