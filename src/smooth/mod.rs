@@ -422,14 +422,9 @@ impl Smoother {
         let x0 = self.star.x0;
         let guarded;
         let objective: &dyn Objective = if self.options.keep_valid {
-            // a linear triangle by its three points (the same corner edge vectors), other
-            // kinds as gathered
-            let limit = self
-                .star
-                .elems
-                .iter()
-                .filter(|e| if e.kind == crate::mesh::ElementKind::Tri3 { is_inverted_at(e, x0) } else { is_inverted(e.kind, &e.pts) })
-                .count();
+            // by the corner edges scaled to unit size (the gathered star is in mesh units,
+            // where a triangle's own cross products can underflow)
+            let limit = self.star.elems.iter().filter(|e| is_inverted(e.kind, &e.pts)).count();
             let pass_through_folds = self.options.pass_through_folds.unwrap_or_else(|| objective.untangles());
             guarded = KeepValid {
                 inner: objective,
