@@ -120,6 +120,7 @@ fn path_kind(d: DirectionKind) -> PathKind {
         DirectionKind::Gradient => PathKind::Gradient,
         DirectionKind::Conjugate => PathKind::Conjugate,
         DirectionKind::ActiveSet => PathKind::ActiveSet,
+        DirectionKind::Newton => PathKind::Newton,
     }
 }
 

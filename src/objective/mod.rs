@@ -336,6 +336,13 @@ pub trait Objective {
         self.terms(star, x, &mut t);
         combine(self.goal(), &t)
     }
+    /// Value, gradient and Hessian (2×2, symmetric) at `x`, for a smooth objective that has
+    /// an analytic Hessian (`new` with its barrier); `None` otherwise (the default). The
+    /// value and gradient are [`value_and_gradient`](Self::value_and_gradient)'s. Newton's
+    /// first trial in Fletcher–Reeves ([`crate::optimize::SolveOptions::newton`]) uses it.
+    fn value_gradient_hessian(&self, _star: &Star, _x: DVec2) -> Option<(f64, DVec2, glam::DMat2)> {
+        None
+    }
 }
 
 /// Combines terms by the goal: sum (with summed gradient) or minimum (with the gradient
@@ -361,9 +368,11 @@ pub fn combine(goal: Goal, terms: &[Term]) -> (f64, DVec2) {
 
 /// Implements [`Objective`] for a type with inherent `kind(&self) -> ObjectiveKind` and
 /// `visit(&self, &Star, DVec2, impl FnMut(Term))`: `terms` collects the visited terms,
-/// `value_and_gradient` folds them without allocating.
+/// `value_and_gradient` folds them without allocating. A second argument names an inherent
+/// `fn(&self, &Star, DVec2) -> Option<(f64, DVec2, DMat2)>` that gives
+/// `value_gradient_hessian`.
 macro_rules! impl_objective_by_visit {
-    ($t:ty) => {
+    (@impl $t:ty, $($hessian_fn:item)?) => {
         impl $crate::objective::Objective for $t {
             fn name(&self) -> &'static str {
                 self.kind().name()
@@ -382,7 +391,20 @@ macro_rules! impl_objective_by_visit {
                 self.visit(star, x, |t| fold.add(t));
                 fold.finish()
             }
+            $($hessian_fn)?
         }
+    };
+    ($t:ty, $hessian:ident) => {
+        impl_objective_by_visit!(@impl $t, fn value_gradient_hessian(
+            &self,
+            star: &$crate::objective::Star,
+            x: glam::DVec2,
+        ) -> Option<(f64, glam::DVec2, glam::DMat2)> {
+            self.$hessian(star, x)
+        });
+    };
+    ($t:ty) => {
+        impl_objective_by_visit!(@impl $t,);
     };
 }
 pub(crate) use impl_objective_by_visit;
@@ -446,6 +468,9 @@ macro_rules! forward_objective {
             }
             fn value_and_gradient(&self, star: &Star, x: DVec2) -> (f64, DVec2) {
                 (**self).value_and_gradient(star, x)
+            }
+            fn value_gradient_hessian(&self, star: &Star, x: DVec2) -> Option<(f64, DVec2, glam::DMat2)> {
+                (**self).value_gradient_hessian(star, x)
             }
         }
     )+};

@@ -4,7 +4,7 @@
 //!
 //! The formulas, in one notation: `docs/formulas.md` §3.
 
-use glam::DVec2;
+use glam::{DMat2, DVec2};
 use serde::{Deserialize, Serialize};
 
 use super::corners::ElementJets;
@@ -127,41 +127,84 @@ impl ChenTristanoKwok {
         match extreme_scale_factor(star) {
             Some(f) => {
                 let unit = crate::optimize::scaled_star(star, f);
-                self.visit_at_unit_scale(&unit, f * x, |t| emit(Term { grad: f * t.grad, ..t }));
+                self.visit_at_unit_scale::<false>(&unit, f * x, |i, value, grad, _| {
+                    emit(Term { elem: i as u32, value, grad: f * grad })
+                });
             }
-            None => self.visit_at_unit_scale(star, x, emit),
+            None => self.visit_at_unit_scale::<false>(star, x, |i, value, grad, _| {
+                emit(Term { elem: i as u32, value, grad })
+            }),
         }
     }
 
-    /// [`visit`](Self::visit) for a star whose edges are within 2^±200.
-    fn visit_at_unit_scale(&self, star: &Star, x: DVec2, mut emit: impl FnMut(Term)) {
+    /// Value, gradient and Hessian (2×2) of the objective at `x`, for the barrier design
+    /// (`None` for the angle design, which has no analytic Hessian here). Every vector of a
+    /// sub-triangle is affine in the free node with a scalar weight, so N is linear and D
+    /// quadratic in it, at every element kind (`barrier.rs`, [`RegularisedBarrier::of`]).
+    /// The value and gradient are those of [`visit`](Self::visit), bit for bit.
+    pub fn with_hessian(&self, star: &Star, x: DVec2) -> Option<(f64, DVec2, DMat2)> {
+        if !matches!(self, ChenTristanoKwok::Barrier(_)) {
+            return None;
+        }
+        let mut sum = (0.0, DVec2::ZERO, DMat2::ZERO);
+        let mut add = |_: usize, v: f64, g: DVec2, h: DMat2| {
+            sum.0 += v;
+            sum.1 += g;
+            sum.2 += h;
+        };
+        match extreme_scale_factor(star) {
+            Some(f) => {
+                let unit = crate::optimize::scaled_star(star, f);
+                self.visit_at_unit_scale::<true>(&unit, f * x, |i, v, g, h| add(i, v, f * g, h * (f * f)));
+            }
+            None => self.visit_at_unit_scale::<true>(star, x, add),
+        }
+        Some(sum)
+    }
+
+    /// [`visit`](Self::visit) for a star whose edges are within 2^±200: `emit` gets each
+    /// element's index, value, gradient and (when `HESSIAN`, else zero) Hessian.
+    #[inline(always)]
+    fn visit_at_unit_scale<const HESSIAN: bool>(
+        &self,
+        star: &Star,
+        x: DVec2,
+        mut emit: impl FnMut(usize, f64, DVec2, DMat2),
+    ) {
         let w = if star.mixed { 3.0 } else { 1.0 };
         let delta = self.delta(star);
         for (i, el) in star.elems.iter().enumerate() {
-            let (mut value, mut grad) = (0.0, DVec2::ZERO);
+            let (mut value, mut grad, mut hess) = (0.0, DVec2::ZERO, DMat2::ZERO);
             each_sub_triangle(el, x, |t| {
-                let (v, g) = self.sub_triangle(t, delta);
+                let (v, g, h) = self.sub_triangle::<HESSIAN>(t, delta);
                 value += v;
                 grad += g;
+                if HESSIAN {
+                    hess += h;
+                }
             });
             if el.kind.is_triangle() {
                 (value, grad) = (w * value, w * grad);
+                if HESSIAN {
+                    hess *= w;
+                }
             }
-            emit(Term { elem: i as u32, value, grad });
+            emit(i, value, grad, hess);
         }
     }
 
-    /// The term of one sub-triangle (C, A, B), C the free corner, with its gradient.
+    /// The term of one sub-triangle (C, A, B), C the free corner, with its gradient (and
+    /// Hessian when `HESSIAN`: the barrier design only, zero for the angle design).
     /// Inlined into the loops, so that the vectors a design does not read are never made.
     #[inline(always)]
-    fn sub_triangle(&self, t: &SubTriangle, delta: f64) -> (f64, DVec2) {
+    fn sub_triangle<const HESSIAN: bool>(&self, t: &SubTriangle, delta: f64) -> (f64, DVec2, DMat2) {
         match self {
-            ChenTristanoKwok::Barrier(b) => b.of(t, delta),
+            ChenTristanoKwok::Barrier(b) => b.of::<HESSIAN>(t, delta),
             ChenTristanoKwok::Angle(a) => {
                 let at_c = barrier::CornerND::of(t.c_to_a, t.c_to_b);
                 let (alpha, grad_alpha) = at_c.alpha();
                 let (p, gp) = a.of(t);
-                ((1.0 - alpha) * (1.0 - alpha) + p, -2.0 * (1.0 - alpha) * grad_alpha + gp)
+                ((1.0 - alpha) * (1.0 - alpha) + p, -2.0 * (1.0 - alpha) * grad_alpha + gp, DMat2::ZERO)
             }
         }
     }
@@ -240,7 +283,7 @@ fn each_sub_triangle(el: &StarElement, x: DVec2, mut f: impl FnMut(&SubTriangle)
     }
 }
 
-impl_objective_by_visit!(ChenTristanoKwok);
+impl_objective_by_visit!(ChenTristanoKwok, with_hessian);
 
 /// The vectors one triangle (C, A, B) of the objective reads, each with its weight
 /// (`v = c·x + const`, see `corners.rs`): the directions at each corner towards the

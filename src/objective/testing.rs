@@ -219,6 +219,26 @@ pub fn check_gradient(obj: &dyn Objective, s: &Star, x: DVec2, tol: f64) {
     );
 }
 
+/// Checks the analytic Hessian of a smooth objective ([`Objective::value_gradient_hessian`],
+/// which must give one) against central differences of its analytic gradient, column by
+/// column: `|H e_i − (g(x + h e_i) − g(x − h e_i))/2h| ≤ tol·(1 + |that|)`; and that its value
+/// and gradient are `value_and_gradient`'s, bit for bit. Panics with the position on failure.
+pub fn check_hessian(obj: &dyn Objective, s: &Star, x: DVec2, tol: f64) {
+    let h = 1e-6;
+    let (v, g, hess) = obj.value_gradient_hessian(s, x).expect("an analytic Hessian");
+    assert_eq!((v, g), obj.value_and_gradient(s, x), "{}: value and gradient at {x}", obj.name());
+    assert!(hess.x_axis.y == hess.y_axis.x || (hess.x_axis.y - hess.y_axis.x).abs() <= 1e-12 * hess.x_axis.y.abs(), "symmetric");
+    for (i, col) in [hess.x_axis, hess.y_axis].into_iter().enumerate() {
+        let e = if i == 0 { d(h, 0.0) } else { d(0.0, h) };
+        let fd = (obj.value_and_gradient(s, x + e).1 - obj.value_and_gradient(s, x - e).1) / (2.0 * h);
+        assert!(
+            (col - fd).length() <= tol * (1.0 + fd.length()),
+            "{}: Hessian column {i} {col} but central differences {fd} at {x}",
+            obj.name()
+        );
+    }
+}
+
 /// The value of term `i` at `x`.
 pub fn term_value(obj: &dyn Objective, s: &Star, x: DVec2, i: usize) -> f64 {
     let mut t: Vec<Term> = Vec::new();

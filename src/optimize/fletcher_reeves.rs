@@ -3,7 +3,7 @@
 //!
 //! The formulas, in one notation: `docs/formulas.md` §3.
 
-use glam::DVec2;
+use glam::{DMat2, DVec2};
 
 use super::{
     line_search, merit_of, DirectionKind, Iterate, SolveOptions, SolveState, Solver, StopReason,
@@ -15,6 +15,12 @@ use crate::objective::{Goal, Objective, Star};
 const POWELL_RESTART: f64 = 0.2;
 /// A gradient this small relative to the merit (per unit of star size) is zero.
 const GRADIENT_TOLERANCE: f64 = 1e-13;
+/// Armijo's constant for a Newton step: accepted when it lowers the merit by at least this
+/// fraction of the decrease the gradient promises, `f(x + p) ≤ f(x) + c·∇f·p`.
+const NEWTON_ARMIJO: f64 = 1e-4;
+/// A Newton step whose fall exceeds the quadratic model's promise by this factor is
+/// extended by a line search along it.
+const NEWTON_EXTEND: f64 = 1.1;
 
 /// Fletcher–Reeves conjugate gradients (Chen et al. 2003, eqs. 10–12):
 /// `x_q = x_{q−1} + s·d_q`, `d_q = −∇f(x_q) + r_q·d_{q−1}`, `r_q = |∇f(x_q)|²/|∇f(x_{q−1})|²`.
@@ -51,6 +57,34 @@ impl FletcherReeves {
         let g = if goal == Goal::MaximizeMin { -g } else { g };
         (v, merit_of(goal, v), g)
     }
+
+    /// [`eval`](Self::eval) with the Hessian, when Newton steps are on and the objective
+    /// (smooth: [`Goal::MinimizeSum`]) has one.
+    fn eval_hessian(
+        &mut self,
+        objective: &dyn Objective,
+        star: &Star,
+        x: DVec2,
+    ) -> (f64, f64, DVec2, Option<DMat2>) {
+        if self.options.newton && objective.goal() == Goal::MinimizeSum {
+            if let Some((v, g, h)) = objective.value_gradient_hessian(star, x) {
+                return (v, merit_of(Goal::MinimizeSum, v), g, Some(h));
+            }
+        }
+        let (v, m, g) = self.eval(objective, star, x);
+        (v, m, g, None)
+    }
+
+    /// The Newton step `−H⁻¹g` when `H` is positive definite and the step is finite and at
+    /// most `limit` long.
+    fn newton_step(g: DVec2, h: DMat2, limit: f64) -> Option<DVec2> {
+        let det = h.determinant();
+        if !(h.x_axis.x > 0.0 && det > 0.0 && det.is_finite()) {
+            return None;
+        }
+        let p = -(h.inverse() * g);
+        (p.is_finite() && p.length() <= limit && p != DVec2::ZERO).then_some(p)
+    }
 }
 
 impl Solver for FletcherReeves {
@@ -58,16 +92,17 @@ impl Solver for FletcherReeves {
         &self.options
     }
 
-    fn start(&mut self, objective: &dyn Objective, star: &Star, x0: DVec2) -> SolveState {
-        let mut st = SolveState::begin(star, x0, &self.options);
+    fn start_at_scale(&mut self, objective: &dyn Objective, star: &Star, x0: DVec2, scale: f64) -> SolveState {
+        let mut st = SolveState::begin(star, x0, scale, &self.options);
         if st.is_done() {
             return st;
         }
-        let (v, m, g) = self.eval(objective, star, x0);
+        let (v, m, g, h) = self.eval_hessian(objective, star, x0);
         st.value = v;
         st.value0 = v;
         st.merit = m;
         st.grad = g;
+        st.hess = h;
         if !(m.is_finite() && g.is_finite()) {
             st.stop = Some(StopReason::NotFinite);
         }
@@ -84,6 +119,52 @@ impl Solver for FletcherReeves {
         if g2 == 0.0 || g.length() * st.scale <= GRADIENT_TOLERANCE * st.merit.abs().max(f64::MIN_POSITIVE) {
             st.stop = Some(StopReason::Optimal);
             return false;
+        }
+        // Newton's step first, when there is a Hessian and it is positive definite
+        if let Some(p) = st.hess.and_then(|h| Self::newton_step(g, h, st.scale)) {
+            let x = st.x;
+            let first = self.eval_hessian(objective, star, x + p);
+            let (_, m1, _, _) = first;
+            if m1.is_finite() && m1 <= st.merit + NEWTON_ARMIJO * g.dot(p) {
+                // the quadratic model promises −½ g·p; a fall well beyond that (a barrier
+                // seen from afar: Newton's step is then a fraction of the way) asks for a
+                // longer step along p, by Chen's search from t = 1 with acceleration 2
+                let mut best = (1.0, first);
+                if (st.merit - m1) > NEWTON_EXTEND * (-0.5 * g.dot(p)) {
+                    let mut accel = 2.0;
+                    let mut phi = |t: f64| {
+                        if t == 1.0 {
+                            return m1;
+                        }
+                        let e = self.eval_hessian(objective, star, x + t * p);
+                        if e.1 < best.1 .1 {
+                            best = (t, e);
+                        }
+                        e.1
+                    };
+                    let _ = line_search(&mut phi, st.merit, 1.0, 1.0, &mut accel, o.max_evaluations);
+                }
+                let (t, (v_new, m_new, g_new, h_new)) = best;
+                let x_new = x + t * p;
+                let moved = x_new.distance(x);
+                let improvement = st.merit - m_new;
+                st.grad_prev = g;
+                st.dir = p;
+                st.grad = g_new;
+                st.hess = h_new;
+                st.x = x_new;
+                st.value = v_new;
+                st.merit = m_new;
+                st.last_move = moved;
+                st.iterations += 1;
+                // a conjugate direction after a Newton step means nothing: restart
+                st.restart = true;
+                st.since_restart = 0;
+                if o.record_history {
+                    st.history.push(Iterate { x: x_new, value: v_new, direction: DirectionKind::Newton, step: moved });
+                }
+                return self.check_stop(st, improvement, m_new, g_new, moved);
+            }
         }
         // direction
         let mut kind = DirectionKind::Gradient;
@@ -106,13 +187,13 @@ impl Solver for FletcherReeves {
         let t0 = first / dl;
         let t_min = o.min_step * st.scale / dl;
         let x = st.x;
-        let mut best = (f64::INFINITY, f64::NAN, DVec2::ZERO); // (merit, value, grad)
+        let mut best = (f64::INFINITY, f64::NAN, DVec2::ZERO, None); // (merit, value, grad, Hessian)
         let mut best_t = 0.0;
         let found = {
             let mut phi = |t: f64| {
-                let (v, m, gr) = self.eval(objective, star, x + t * d);
+                let (v, m, gr, h) = self.eval_hessian(objective, star, x + t * d);
                 if m < best.0 {
-                    best = (m, v, gr);
+                    best = (m, v, gr, h);
                     best_t = t;
                 }
                 m
@@ -129,13 +210,14 @@ impl Solver for FletcherReeves {
             return false;
         };
         debug_assert_eq!(ls.t, best_t);
-        let (m_new, v_new, g_new) = best;
+        let (m_new, v_new, g_new, h_new) = best;
         let x_new = x + best_t * d;
         let moved = x_new.distance(x);
         let improvement = st.merit - m_new;
         st.grad_prev = g;
         st.dir = d;
         st.grad = g_new;
+        st.hess = h_new;
         st.x = x_new;
         st.value = v_new;
         st.merit = m_new;
@@ -146,6 +228,15 @@ impl Solver for FletcherReeves {
         if o.record_history {
             st.history.push(Iterate { x: x_new, value: v_new, direction: kind, step: moved });
         }
+        self.check_stop(st, improvement, m_new, g_new, moved)
+    }
+}
+
+impl FletcherReeves {
+    /// After an accepted step: stops on a gradient that is not finite, too small an
+    /// improvement or too short a move; returns whether the solve goes on.
+    fn check_stop(&self, st: &mut SolveState, improvement: f64, m_new: f64, g_new: DVec2, moved: f64) -> bool {
+        let o = &self.options;
         if !g_new.is_finite() {
             st.stop = Some(StopReason::NotFinite);
         } else if improvement <= o.min_improvement * m_new.abs().max(f64::MIN_POSITIVE) {

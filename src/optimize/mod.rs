@@ -51,6 +51,9 @@ pub enum DirectionKind {
     Conjugate,
     /// The minimum-norm point of the hull of the active gradients (Freitag, Figure 1).
     ActiveSet,
+    /// A full Newton step `−(∇²f)⁻¹∇f`, taken without a line search because it lowered the
+    /// objective enough (Armijo); see [`SolveOptions::newton`].
+    Newton,
 }
 
 /// Why a solve stopped.
@@ -135,6 +138,12 @@ pub struct SolveOptions {
     /// Non-smooth ascent: largest move of one step, as a fraction of the star size.
     /// Default 0.5.
     pub max_move: f64,
+    /// Fletcher–Reeves: when the objective has an analytic Hessian
+    /// ([`Objective::value_gradient_hessian`]) that is positive definite at the current
+    /// point, first try the Newton step `−(∇²f)⁻¹∇f` (at most one star size long) and take
+    /// it when it lowers the objective by at least 10⁻⁴ of the decrease its gradient
+    /// promises (Armijo); otherwise the iteration is Chen's, as without. Default false.
+    pub newton: bool,
 }
 
 impl Default for SolveOptions {
@@ -150,6 +159,7 @@ impl Default for SolveOptions {
             min_improvement: 1e-12,
             active_tolerance: 1e-6,
             max_move: 0.5,
+            newton: false,
         }
     }
 }
@@ -247,6 +257,9 @@ pub struct SolveState {
     /// Fletcher–Reeves: merit (value, negated for max-min) and its gradient at `x`.
     merit: f64,
     grad: DVec2,
+    /// Fletcher–Reeves with [`SolveOptions::newton`]: the merit's Hessian at `x`, when the
+    /// objective has one.
+    hess: Option<glam::DMat2>,
     /// Fletcher–Reeves: previous direction and previous gradient.
     dir: DVec2,
     grad_prev: DVec2,
@@ -261,11 +274,11 @@ pub struct SolveState {
 }
 
 impl SolveState {
-    /// A solve of `star` from `x0`, already stopped ([`StopReason::DegenerateStar`]) when
+    /// A solve of `star` (of size `scale`, its [`star_scale`]) from `x0`, already stopped ([`StopReason::DegenerateStar`]) when
     /// the star is empty or has no finite positive size: what every solver's `start`
     /// checks first.
-    fn begin(star: &Star, x0: DVec2, options: &SolveOptions) -> Self {
-        let mut st = SolveState::new(x0, star_scale(star), options.acceleration);
+    fn begin(star: &Star, x0: DVec2, scale: f64, options: &SolveOptions) -> Self {
+        let mut st = SolveState::new(x0, scale, options.acceleration);
         if star.is_empty() || !(st.scale.is_finite() && st.scale > 0.0) {
             st.stop = Some(StopReason::DegenerateStar);
         }
@@ -295,6 +308,7 @@ impl SolveState {
             scale,
             merit: f64::NAN,
             grad: DVec2::ZERO,
+            hess: None,
             dir: DVec2::ZERO,
             grad_prev: DVec2::ZERO,
             since_restart: 0,
@@ -332,7 +346,12 @@ pub trait Solver {
     fn options(&self) -> &SolveOptions;
     /// Evaluates the objective at `x0` and prepares a solve (which may already be stopped,
     /// e.g. [`StopReason::NotFinite`]).
-    fn start(&mut self, objective: &dyn Objective, star: &Star, x0: DVec2) -> SolveState;
+    fn start(&mut self, objective: &dyn Objective, star: &Star, x0: DVec2) -> SolveState {
+        self.start_at_scale(objective, star, x0, star_scale(star))
+    }
+    /// [`start`](Self::start) for a star whose [`star_scale`] the caller has at hand
+    /// ([`solve`](Self::solve) measures it once for both the frame and the solve).
+    fn start_at_scale(&mut self, objective: &dyn Objective, star: &Star, x0: DVec2, scale: f64) -> SolveState;
     /// One iteration. Returns false once the solve has stopped (see [`SolveState::stop`]).
     fn step(&mut self, objective: &dyn Objective, star: &Star, state: &mut SolveState) -> bool;
     /// Runs a whole solve from `x0`. A star beyond 2^±64 in size is solved in its own
@@ -341,7 +360,8 @@ pub trait Solver {
     /// objective that is a ratio of lengths (all but `untangle` and `untangle-mindet`,
     /// whose dets are then in units of the star size squared).
     fn solve(&mut self, objective: &dyn Objective, star: &Star, x0: DVec2) -> SolveResult {
-        if let Some(f) = unit_factor(star_scale(star)) {
+        let scale = star_scale(star);
+        if let Some(f) = unit_factor(scale) {
             let scaled = scaled_star(star, f);
             let mut state = self.start(objective, &scaled, x0 * f);
             while self.step(objective, &scaled, &mut state) {}
@@ -355,7 +375,7 @@ pub trait Solver {
             }
             return r;
         }
-        let mut state = self.start(objective, star, x0);
+        let mut state = self.start_at_scale(objective, star, x0, scale);
         while self.step(objective, star, &mut state) {}
         state.into_result()
     }

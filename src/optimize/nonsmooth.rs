@@ -143,8 +143,8 @@ impl Solver for NonSmoothAscent {
         &self.options
     }
 
-    fn start(&mut self, objective: &dyn Objective, star: &Star, x0: DVec2) -> SolveState {
-        let mut st = SolveState::begin(star, x0, &self.options);
+    fn start_at_scale(&mut self, objective: &dyn Objective, star: &Star, x0: DVec2, scale: f64) -> SolveState {
+        let mut st = SolveState::begin(star, x0, scale, &self.options);
         if st.is_done() {
             return st;
         }

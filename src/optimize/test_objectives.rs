@@ -84,6 +84,11 @@ impl Objective for Bowl {
         let ad = self.mul(d);
         out.push(Term { elem: 0, value: d.dot(ad), grad: 2.0 * ad });
     }
+    fn value_gradient_hessian(&self, star: &Star, x: DVec2) -> Option<(f64, DVec2, glam::DMat2)> {
+        let (v, g) = self.value_and_gradient(star, x);
+        let a = glam::DMat2::from_cols(DVec2::new(self.a[0][0], self.a[1][0]), DVec2::new(self.a[0][1], self.a[1][1]));
+        Some((v, g, a * 2.0))
+    }
 }
 
 /// A Rosenbrock-like valley `(1 − x)² + b·(y − x²)²`: minimum 0 at (1, 1).

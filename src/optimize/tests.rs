@@ -307,3 +307,51 @@ proptest! {
         prop_assert!(g.value >= g.value0);
     }
 }
+
+// ---------------------------------------------------------------- Newton's first trial
+
+#[test]
+fn newton_solves_a_bowl_in_one_step_and_falls_back_without_a_hessian() {
+    let star = unit_star();
+    let newton = SolveOptions { newton: true, ..recording(3) };
+    for (ratio, angle) in [(1.0, 0.0), (20.0, 0.3), (300.0, -1.1)] {
+        let bowl = Bowl::elongated(d(0.1, -0.05), ratio, angle);
+        let r = FletcherReeves::new(newton).solve(&bowl, &star, d(-0.2, 0.2));
+        assert_eq!(r.history[0].direction, DirectionKind::Newton);
+        assert!(r.history[0].x.distance(d(0.1, -0.05)) < 1e-12, "{ratio}: {:?}", r.history[0]);
+        assert!(r.value <= 1e-24 && r.value < r.value0);
+        // Chen's search alone needs its iterations for the same bowl, and never says Newton
+        let c = FletcherReeves::new(recording(3)).solve(&bowl, &star, d(-0.2, 0.2));
+        assert!(c.history.iter().all(|i| i.direction != DirectionKind::Newton));
+    }
+    // an objective without a Hessian: the same iterations as without the option
+    let rb = Rosenbrock { b: 10.0 };
+    let with = FletcherReeves::new(newton).solve(&rb, &star, d(-0.5, 0.5));
+    let without = FletcherReeves::new(recording(3)).solve(&rb, &star, d(-0.5, 0.5));
+    assert_eq!(with, without);
+}
+
+#[test]
+fn newton_steps_never_leave_a_barrier_star_worse() {
+    // the new objective on stars of every kind, from positions around their nodes: every
+    // solve with Newton's first trial ends finite and no higher than it started, and
+    // Newton's steps are taken
+    use crate::objective::testing::{sample_stars, Lcg};
+    use crate::objective::ChenTristanoKwok;
+    let obj = ChenTristanoKwok::default();
+    let mut rng = Lcg::new(5);
+    let mut newton_steps = 0;
+    for star in sample_stars() {
+        for _ in 0..20 {
+            let x = star.x0 + rng.point(0.3);
+            let star = Star { x0: x, ..star.clone() };
+            let r = FletcherReeves::new(SolveOptions { newton: true, ..recording(3) }).solve(&obj, &star, x);
+            if !r.value0.is_finite() {
+                continue;
+            }
+            assert!(r.value <= r.value0 && r.value.is_finite(), "{r:?}");
+            newton_steps += r.history.iter().filter(|i| i.direction == DirectionKind::Newton).count();
+        }
+    }
+    assert!(newton_steps > 100, "{newton_steps}");
+}

@@ -183,18 +183,22 @@ pub enum PathKind {
     Conjugate,
     /// After an active-set step of Freitag's max-min ascent.
     ActiveSet,
+    /// After a Newton step (Fletcher–Reeves with Newton's first trial).
+    Newton,
     /// After a (smart) Laplacian move.
     Laplacian,
 }
 
 impl PathKind {
-    const ALL: [PathKind; 5] = [PathKind::Start, PathKind::Gradient, PathKind::Conjugate, PathKind::ActiveSet, PathKind::Laplacian];
+    const ALL: [PathKind; 6] =
+        [PathKind::Start, PathKind::Gradient, PathKind::Conjugate, PathKind::ActiveSet, PathKind::Newton, PathKind::Laplacian];
     fn marker(self) -> Marker {
         match self {
             PathKind::Start => Marker::Circle,
             PathKind::Gradient => Marker::Circle,
             PathKind::Conjugate => Marker::Triangle,
             PathKind::ActiveSet => Marker::Square,
+            PathKind::Newton => Marker::Triangle,
             PathKind::Laplacian => Marker::Diamond,
         }
     }
@@ -204,6 +208,7 @@ impl PathKind {
             PathKind::Gradient => rgba(86, 180, 233, 255),
             PathKind::Conjugate => rgba(230, 159, 0, 255),
             PathKind::ActiveSet => rgba(204, 121, 167, 255),
+            PathKind::Newton => rgba(213, 94, 0, 255),
             PathKind::Laplacian => rgba(0, 158, 115, 255),
         }
     }
@@ -213,6 +218,7 @@ impl PathKind {
             PathKind::Gradient => "gradient step",
             PathKind::Conjugate => "conjugate step",
             PathKind::ActiveSet => "active-set step",
+            PathKind::Newton => "Newton step",
             PathKind::Laplacian => "Laplacian move",
         }
     }

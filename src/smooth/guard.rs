@@ -62,6 +62,12 @@ impl Objective for KeepValid<'_> {
         }
         self.inner.value_and_gradient(star, x)
     }
+    fn value_gradient_hessian(&self, star: &Star, x: DVec2) -> Option<(f64, DVec2, glam::DMat2)> {
+        if self.refuses(star, x) {
+            return Some((f64::NAN, DVec2::ZERO, glam::DMat2::ZERO));
+        }
+        self.inner.value_gradient_hessian(star, x)
+    }
 }
 
 impl KeepValid<'_> {

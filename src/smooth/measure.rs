@@ -53,33 +53,45 @@ pub(crate) fn element_measures(kind: crate::mesh::ElementKind, p: &[DVec2; 9]) -
 pub(crate) fn element_shape_at(e: &StarElement, x: DVec2) -> (f64, bool) {
     if e.kind == crate::mesh::ElementKind::Tri3 {
         let s = e.slot as usize;
-        let (a, b) = (e.pts[(s + 1) % 3], e.pts[(s + 2) % 3]);
-        let (mut u, mut v, mut w) = (a - x, b - x, b - a);
-        let squares = |u: DVec2, v: DVec2, w: DVec2| u.length_squared() + v.length_squared() + w.length_squared();
-        if u == DVec2::ZERO && v == DVec2::ZERO {
-            return (0.0, true); // three coincident points: α 0, as lo_alpha_corner; det 0: inverted
-        }
-        let mut d = squares(u, v, w);
-        const LO: f64 = 2.409_919_865_102_884e-271; // 2^-900
-        const HI: f64 = 8.452_712_498_170_644e270; // 2^900
-        if !(LO..=HI).contains(&d) {
-            // the squares leave the doubles: the same formula on the points scaled by a
-            // power of two (exact, and before subtracting: differences of tiny coordinates
-            // can be subnormal), so α is the same, bit for bit, at every scale
-            let m = u.abs().max_element().max(v.abs().max_element()).max(w.abs().max_element());
-            if let Some(f) = crate::optimize::unit_factor(m) {
-                let (a, b, x) = (f * a, f * b, f * x);
-                (u, v, w) = (a - x, b - x, b - a);
-                d = squares(u, v, w);
-            }
-        }
-        if (LO..=HI).contains(&d) {
-            let n = u.perp_dot(v);
-            return (TWO_SQRT3 * n / d, n <= 0.0);
+        if let Some(q) = triangle_shape_at(e.pts[(s + 1) % 3], e.pts[(s + 2) % 3], x) {
+            return q;
         }
     }
     let q = element_measures(e.kind, &e.at(x));
     (q.min_shape, q.inverted > 0)
+}
+
+/// Lo's α of the linear triangle (x, a, b) (the free node at `x`, then the element's next
+/// two corners in order) and whether it is inverted, from its three points directly (one
+/// cross product: the corners share one determinant), scaled by a power of two when its
+/// squared edge lengths would leave the doubles (so the same at every scale); `None` where
+/// even that does not bring them back (the general path of [`element_shape_at`] decides).
+#[inline(always)]
+pub(crate) fn triangle_shape_at(a: DVec2, b: DVec2, x: DVec2) -> Option<(f64, bool)> {
+    let (mut u, mut v, mut w) = (a - x, b - x, b - a);
+    let squares = |u: DVec2, v: DVec2, w: DVec2| u.length_squared() + v.length_squared() + w.length_squared();
+    if u == DVec2::ZERO && v == DVec2::ZERO {
+        return Some((0.0, true)); // three coincident points: α 0, as lo_alpha_corner; det 0: inverted
+    }
+    let mut d = squares(u, v, w);
+    const LO: f64 = 2.409_919_865_102_884e-271; // 2^-900
+    const HI: f64 = 8.452_712_498_170_644e270; // 2^900
+    if !(LO..=HI).contains(&d) {
+        // the squares leave the doubles: the same formula on the points scaled by a
+        // power of two (exact, and before subtracting: differences of tiny coordinates
+        // can be subnormal), so α is the same, bit for bit, at every scale
+        let m = u.abs().max_element().max(v.abs().max_element()).max(w.abs().max_element());
+        if let Some(f) = crate::optimize::unit_factor(m) {
+            let (a, b, x) = (f * a, f * b, f * x);
+            (u, v, w) = (a - x, b - x, b - a);
+            d = squares(u, v, w);
+        }
+    }
+    if (LO..=HI).contains(&d) {
+        let n = u.perp_dot(v);
+        return Some((TWO_SQRT3 * n / d, n <= 0.0));
+    }
+    None
 }
 
 /// The smallest shape measure (α/β) of the star with its free node at `x` and the number

@@ -193,6 +193,9 @@ pub struct SmoothOptions {
     /// Only strategies that optimise revisit (`laplace` and `smart` cannot untangle).
     /// Default [`UNTANGLE_SWEEPS`]; 0 turns them off.
     pub untangle_sweeps: u32,
+    /// Fletcher–Reeves tries a Newton step first where the objective has an analytic
+    /// Hessian ([`SolveOptions::newton`]). Default false.
+    pub newton: bool,
 }
 
 /// The default number of untangling sweeps per pass ([`SmoothOptions::untangle_sweeps`]).
@@ -220,6 +223,7 @@ impl Default for SmoothOptions {
             keep_valid: true,
             pass_through_folds: None,
             untangle_sweeps: UNTANGLE_SWEEPS,
+            newton: false,
         }
     }
 }
@@ -262,6 +266,10 @@ impl SmoothOptions {
         self.keep_valid = on;
         self
     }
+    pub fn with_newton(mut self, on: bool) -> Self {
+        self.newton = on;
+        self
+    }
     /// Checks the settings, naming the first unusable one.
     pub fn validate(&self) -> Result<()> {
         if !(self.threshold_deg.is_finite() && self.threshold_deg > 0.0 && self.threshold_deg <= 90.0) {
@@ -280,6 +288,6 @@ impl SmoothOptions {
     }
     /// The solver settings these options imply (history off).
     pub fn solve_options(&self) -> SolveOptions {
-        SolveOptions::default().with_max_iter(self.max_iter)
+        SolveOptions { newton: self.newton, ..SolveOptions::default().with_max_iter(self.max_iter) }
     }
 }

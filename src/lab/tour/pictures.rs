@@ -351,6 +351,7 @@ fn letter(d: DirectionKind) -> &'static str {
         DirectionKind::Gradient => "g",
         DirectionKind::Conjugate => "c",
         DirectionKind::ActiveSet => "a",
+        DirectionKind::Newton => "n",
     }
 }
 

@@ -2,7 +2,7 @@
 //!
 //! The formulas, in one notation: `docs/formulas.md` §3.
 
-use glam::DVec2;
+use glam::{DMat2, DVec2};
 
 use super::SubTriangle;
 use crate::quality::TWO_SQRT3;
@@ -93,6 +93,9 @@ pub(super) struct CornerND {
     pub d: f64,
     pub grad_n: DVec2,
     pub grad_d: DVec2,
+    /// The Hessian of D is this multiple of the identity (each edge vector is linear in the
+    /// free node with a scalar weight, so D is quadratic in it); N is linear, its Hessian 0.
+    pub hess_d: f64,
 }
 
 impl CornerND {
@@ -104,7 +107,9 @@ impl CornerND {
         // ∂N/∂u1 = −perp(u2), ∂N/∂u2 = perp(u1); ∂D/∂u1 = 4u1 − 2u2, ∂D/∂u2 = 4u2 − 2u1
         let grad_n = c1 * -u2.perp() + c2 * u1.perp();
         let grad_d = c1 * (4.0 * u1 - 2.0 * u2) + c2 * (4.0 * u2 - 2.0 * u1);
-        CornerND { n, d, grad_n, grad_d }
+        // D = |u1|² + |u2|² + |u2 − u1|², u = c·x + const: ∇²D = 2(c1² + c2² + (c2 − c1)²) I
+        let hess_d = 2.0 * (c1 * c1 + c2 * c2 + (c2 - c1) * (c2 - c1));
+        CornerND { n, d, grad_n, grad_d, hess_d }
     }
 
     /// Lo's α = 2√3·N/D and its gradient (0 when the corner has no extent).
@@ -117,6 +122,24 @@ impl CornerND {
         let alpha = TWO_SQRT3 * self.n * inv_d;
         (alpha, (TWO_SQRT3 * self.grad_n - alpha * self.grad_d) * inv_d)
     }
+
+    /// The Hessian of α from [`alpha`](Self::alpha)'s value and gradient: differentiating
+    /// `D·∇α = 2√3·∇N − α·∇D` (∇N constant) gives
+    /// `∇²α = −(∇α ∇Dᵀ + ∇D ∇αᵀ + α ∇²D) / D` (0 when the corner has no extent).
+    #[inline(always)]
+    pub(super) fn alpha_hessian(&self, alpha: f64, grad_alpha: DVec2) -> DMat2 {
+        if self.d <= 0.0 {
+            return DMat2::ZERO;
+        }
+        let sym = outer(grad_alpha, self.grad_d) + outer(self.grad_d, grad_alpha);
+        (sym + DMat2::from_diagonal(DVec2::splat(alpha * self.hess_d))) * (-1.0 / self.d)
+    }
+}
+
+/// The outer product `a bᵀ`.
+#[inline(always)]
+pub(super) fn outer(a: DVec2, b: DVec2) -> DMat2 {
+    DMat2::from_cols(a * b.x, a * b.y)
 }
 
 /// `h_δ(N) = (N + √(N² + 4δ²))/2` and `s = √(N² + 4δ²)` (so `dh/dN = h/s`), without
@@ -129,45 +152,63 @@ pub fn regularised_determinant(n: f64, delta: f64) -> (f64, f64) {
 }
 
 impl RegularisedBarrier {
-    /// `η_δ²` of one corner with its gradient; +∞ (gradient 0) where `h_δ = 0`, which is
-    /// only where δ = 0 and N ≤ 0.
+    /// `η_δ²` of one corner with its gradient, and its Hessian when `HESSIAN` (a zero matrix
+    /// otherwise; the value and gradient are the same arithmetic either way); +∞ (gradient
+    /// 0) where `h_δ = 0`, which is only where δ = 0 and N ≤ 0. With `ln η = ln D − ln h − ln 2√3`,
+    /// `∇ ln η = ∇D/D − ∇N/s` (as `dh/dN = h/s`) and, ∇N being constant and `ds/dN = N/s`,
+    /// `∇² ln η = ∇²D/D − ∇D ∇Dᵀ/D² + (N/s³) ∇N ∇Nᵀ`; then
+    /// `∇² η² = 2η² (2 ∇ln η ∇ln ηᵀ + ∇² ln η)`.
     #[inline(always)]
-    pub(super) fn eta2(c: &CornerND, delta: f64) -> (f64, DVec2) {
+    pub(super) fn eta2<const HESSIAN: bool>(c: &CornerND, delta: f64) -> (f64, DVec2, DMat2) {
         if c.d <= 0.0 {
-            return (0.0, DVec2::ZERO); // the three corners coincide: no shape to penalise
+            return (0.0, DVec2::ZERO, DMat2::ZERO); // the three corners coincide: no shape to penalise
         }
         // δ = 0 (every valid star with margin): h = s = N, no square root
         let (h, s) = if delta == 0.0 { (c.n.max(0.0), c.n) } else { regularised_determinant(c.n, delta) };
         if h <= 0.0 || h.is_nan() {
-            return (f64::INFINITY, DVec2::ZERO);
+            return (f64::INFINITY, DVec2::ZERO, DMat2::ZERO);
         }
         let (inv_d, inv_s) = (1.0 / c.d, 1.0 / s);
         let eta = c.d / (TWO_SQRT3 * h);
         let eta2 = eta * eta;
         // ∇η = η (∇D/D − ∇N/s)
-        (eta2, 2.0 * eta2 * (c.grad_d * inv_d - c.grad_n * inv_s))
+        let grad_ln = c.grad_d * inv_d - c.grad_n * inv_s;
+        let hess = if HESSIAN {
+            let hess_ln = DMat2::from_diagonal(DVec2::splat(c.hess_d * inv_d)) - outer(c.grad_d, c.grad_d) * (inv_d * inv_d)
+                + outer(c.grad_n, c.grad_n) * (c.n * inv_s * inv_s * inv_s);
+            (outer(grad_ln, grad_ln) * 2.0 + hess_ln) * (2.0 * eta2)
+        } else {
+            DMat2::ZERO
+        };
+        (eta2, 2.0 * eta2 * grad_ln, hess)
     }
 
     /// `(1 − α_C)² + k1 η²` of the sub-triangle with its gradient, `delta` from
-    /// [`RegularisedBarrier::delta_from`].
+    /// [`RegularisedBarrier::delta_from`]; with the Hessian when `HESSIAN` (zero otherwise): `∇²(1 − α)² =
+    /// 2 ∇α ∇αᵀ − 2(1 − α) ∇²α`, plus `k1` times the Hessians of [`eta2`](Self::eta2).
     #[inline(always)]
-    pub(super) fn of(&self, t: &SubTriangle, delta: f64) -> (f64, DVec2) {
+    pub(super) fn of<const HESSIAN: bool>(&self, t: &SubTriangle, delta: f64) -> (f64, DVec2, DMat2) {
         let at_c = CornerND::of(t.c_to_a, t.c_to_b);
         let (alpha, grad_alpha) = at_c.alpha();
         let value = (1.0 - alpha) * (1.0 - alpha);
         let grad = -2.0 * (1.0 - alpha) * grad_alpha;
-        if self.k1 == 0.0 {
-            return (value, grad);
-        }
-        let (p, gp) = if t.straight {
-            Self::eta2(&at_c, delta)
+        let hess = if HESSIAN {
+            outer(grad_alpha, grad_alpha) * 2.0 - at_c.alpha_hessian(alpha, grad_alpha) * (2.0 * (1.0 - alpha))
         } else {
-            let (pc, gc) = Self::eta2(&at_c, delta);
-            let (pa, ga) = Self::eta2(&CornerND::of(t.a_to_b, t.a_to_c), delta);
-            let (pb, gb) = Self::eta2(&CornerND::of(t.b_to_c, t.b_to_a), delta);
-            ((pc + pa + pb) / 3.0, (gc + ga + gb) / 3.0)
+            DMat2::ZERO
         };
-        (value + self.k1 * p, grad + self.k1 * gp)
+        if self.k1 == 0.0 {
+            return (value, grad, hess);
+        }
+        let (p, gp, hp) = if t.straight {
+            Self::eta2::<HESSIAN>(&at_c, delta)
+        } else {
+            let (pc, gc, hc) = Self::eta2::<HESSIAN>(&at_c, delta);
+            let (pa, ga, ha) = Self::eta2::<HESSIAN>(&CornerND::of(t.a_to_b, t.a_to_c), delta);
+            let (pb, gb, hb) = Self::eta2::<HESSIAN>(&CornerND::of(t.b_to_c, t.b_to_a), delta);
+            ((pc + pa + pb) / 3.0, (gc + ga + gb) / 3.0, (hc + ha + hb) * (1.0 / 3.0))
+        };
+        (value + self.k1 * p, grad + self.k1 * gp, hess + hp * self.k1)
     }
 
     /// δ of a star whose sub-triangle corners at the node's current position have N

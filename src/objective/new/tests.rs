@@ -296,12 +296,17 @@ proptest! {
         // it is inverted (the start of an untangling call)
         let start = at_start(s, x);
         check_gradient(&barrier(), &start, x, 1e-5);
+        // its Hessian (Newton's step), there and without the penalty
+        check_hessian(&barrier(), &start, x, 1e-5);
+        check_hessian(&alpha_only(), s, x, 1e-5);
+        prop_assert!(new().value_gradient_hessian(s, x).is_none());
         // and δ from the star's own position (δ = 0: the pure barrier) where the star is
         // valid, away from the barrier's pole (central differences cannot follow a value
         // that grows a thousandfold within their step)
         let v = barrier().value(s, x);
         if v.is_finite() && v < 1e3 && star_valid(s, x) {
             check_gradient(&barrier(), s, x, 1e-5);
+            check_hessian(&barrier(), s, x, 1e-5);
         }
     }
 }
@@ -527,7 +532,7 @@ fn linear_triangle_fast_path_equals_the_general_jets() {
             for el in &s.elems {
                 let j = crate::objective::corners::ElementJets::new(el, x);
                 let f = j.slot;
-                let (a, b) = obj.sub_triangle(&SubTriangle::of(&j, f, (f + 1) % 3, (f + 2) % 3, true), delta);
+                let (a, b, _) = obj.sub_triangle::<false>(&SubTriangle::of(&j, f, (f + 1) % 3, (f + 2) % 3, true), delta);
                 v2 += a;
                 g2 += b;
             }
@@ -541,7 +546,7 @@ fn linear_triangle_fast_path_equals_the_general_jets() {
 /// `η_δ²` of the straight triangle (C, A, B), C free.
 fn eta2_of(c: DVec2, a: DVec2, b: DVec2, delta: f64) -> f64 {
     let t = SubTriangle::linear(c, a, b);
-    barrier::RegularisedBarrier::eta2(&barrier::CornerND::of(t.c_to_a, t.c_to_b), delta).0
+    barrier::RegularisedBarrier::eta2::<false>(&barrier::CornerND::of(t.c_to_a, t.c_to_b), delta).0
 }
 
 #[test]
