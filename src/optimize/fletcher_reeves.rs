@@ -145,25 +145,10 @@ impl Solver for FletcherReeves {
                     let _ = line_search(&mut phi, st.merit, 1.0, 1.0, &mut accel, o.max_evaluations);
                 }
                 let (t, (v_new, m_new, g_new, h_new)) = best;
-                let x_new = x + t * p;
-                let moved = x_new.distance(x);
-                let improvement = st.merit - m_new;
-                st.grad_prev = g;
-                st.dir = p;
-                st.grad = g_new;
-                st.hess = h_new;
-                st.x = x_new;
-                st.value = v_new;
-                st.merit = m_new;
-                st.last_move = moved;
-                st.iterations += 1;
                 // a conjugate direction after a Newton step means nothing: restart
                 st.restart = true;
                 st.since_restart = 0;
-                if o.record_history {
-                    st.history.push(Iterate { x: x_new, value: v_new, direction: DirectionKind::Newton, step: moved });
-                }
-                return self.check_stop(st, improvement, m_new, g_new, moved);
+                return self.accept(st, x + t * p, p, (v_new, m_new, g_new, h_new), DirectionKind::Newton);
             }
         }
         // direction
@@ -211,11 +196,28 @@ impl Solver for FletcherReeves {
         };
         debug_assert_eq!(ls.t, best_t);
         let (m_new, v_new, g_new, h_new) = best;
-        let x_new = x + best_t * d;
-        let moved = x_new.distance(x);
+        st.restart = false;
+        st.since_restart = if kind == DirectionKind::Conjugate { st.since_restart + 1 } else { 0 };
+        self.accept(st, x + best_t * d, d, (v_new, m_new, g_new, h_new), kind)
+    }
+}
+
+impl FletcherReeves {
+    /// Moves the solve to the accepted point `x_new`, reached along `dir`, where the
+    /// objective is `(value, merit, gradient, Hessian)`; records the iterate and says
+    /// whether the solve goes on ([`check_stop`](Self::check_stop)).
+    fn accept(
+        &self,
+        st: &mut SolveState,
+        x_new: DVec2,
+        dir: DVec2,
+        (v_new, m_new, g_new, h_new): (f64, f64, DVec2, Option<DMat2>),
+        kind: DirectionKind,
+    ) -> bool {
+        let moved = x_new.distance(st.x);
         let improvement = st.merit - m_new;
-        st.grad_prev = g;
-        st.dir = d;
+        st.grad_prev = st.grad;
+        st.dir = dir;
         st.grad = g_new;
         st.hess = h_new;
         st.x = x_new;
@@ -223,16 +225,12 @@ impl Solver for FletcherReeves {
         st.merit = m_new;
         st.last_move = moved;
         st.iterations += 1;
-        st.restart = false;
-        st.since_restart = if kind == DirectionKind::Conjugate { st.since_restart + 1 } else { 0 };
-        if o.record_history {
+        if self.options.record_history {
             st.history.push(Iterate { x: x_new, value: v_new, direction: kind, step: moved });
         }
         self.check_stop(st, improvement, m_new, g_new, moved)
     }
-}
 
-impl FletcherReeves {
     /// After an accepted step: stops on a gradient that is not finite, too small an
     /// improvement or too short a move; returns whether the solve goes on.
     fn check_stop(&self, st: &mut SolveState, improvement: f64, m_new: f64, g_new: DVec2, moved: f64) -> bool {
