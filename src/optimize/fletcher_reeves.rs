@@ -92,12 +92,8 @@ impl Solver for FletcherReeves {
         &self.options
     }
 
-    fn start_at_scale(&mut self, objective: &dyn Objective, star: &Star, x0: DVec2, scale: f64) -> SolveState {
-        let mut st = SolveState::begin(star, x0, scale, &self.options);
-        if st.is_done() {
-            return st;
-        }
-        let (v, m, g, h) = self.eval_hessian(objective, star, x0);
+    fn evaluate_start(&mut self, objective: &dyn Objective, star: &Star, st: &mut SolveState) {
+        let (v, m, g, h) = self.eval_hessian(objective, star, st.x);
         st.value = v;
         st.value0 = v;
         st.merit = m;
@@ -106,7 +102,6 @@ impl Solver for FletcherReeves {
         if !(m.is_finite() && g.is_finite()) {
             st.stop = Some(StopReason::NotFinite);
         }
-        st
     }
 
     fn step(&mut self, objective: &dyn Objective, star: &Star, st: &mut SolveState) -> bool {

@@ -351,7 +351,17 @@ pub trait Solver {
     }
     /// [`start`](Self::start) for a star whose [`star_scale`] the caller has at hand
     /// ([`solve`](Self::solve) measures it once for both the frame and the solve).
-    fn start_at_scale(&mut self, objective: &dyn Objective, star: &Star, x0: DVec2, scale: f64) -> SolveState;
+    fn start_at_scale(&mut self, objective: &dyn Objective, star: &Star, x0: DVec2, scale: f64) -> SolveState {
+        let mut st = SolveState::begin(star, x0, scale, self.options());
+        if !st.is_done() {
+            self.evaluate_start(objective, star, &mut st);
+        }
+        st
+    }
+    /// Evaluates the objective at the start `st.x` into `st` (value, merit, and what the
+    /// solver keeps), stopping it when that is not finite. Called by
+    /// [`start_at_scale`](Self::start_at_scale) unless [`SolveState::begin`] stopped it.
+    fn evaluate_start(&mut self, objective: &dyn Objective, star: &Star, st: &mut SolveState);
     /// One iteration. Returns false once the solve has stopped (see [`SolveState::stop`]).
     fn step(&mut self, objective: &dyn Objective, star: &Star, state: &mut SolveState) -> bool;
     /// Runs a whole solve from `x0`. A star beyond 2^±64 in size is solved in its own

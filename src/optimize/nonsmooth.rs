@@ -143,19 +143,14 @@ impl Solver for NonSmoothAscent {
         &self.options
     }
 
-    fn start_at_scale(&mut self, objective: &dyn Objective, star: &Star, x0: DVec2, scale: f64) -> SolveState {
-        let mut st = SolveState::begin(star, x0, scale, &self.options);
-        if st.is_done() {
-            return st;
-        }
-        let phi = max_min_terms(objective, star, x0, &mut self.terms);
+    fn evaluate_start(&mut self, objective: &dyn Objective, star: &Star, st: &mut SolveState) {
+        let phi = max_min_terms(objective, star, st.x, &mut self.terms);
         st.value = own_value(objective.goal(), phi);
         st.value0 = st.value;
         st.merit = -phi;
         if !phi.is_finite() {
             st.stop = Some(StopReason::NotFinite);
         }
-        st
     }
 
     fn step(&mut self, objective: &dyn Objective, star: &Star, st: &mut SolveState) -> bool {
