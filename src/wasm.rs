@@ -153,18 +153,6 @@ fn side(s: &str) -> Result<Side, JsError> {
         .map_err(|_| JsError::new(&format!("no panel '{s}': use old or new")))
 }
 
-/// Points as x, y pairs, flat (what a Float64Array carries between workers).
-fn flat(points: &[DVec2]) -> Vec<f64> {
-    points.iter().flat_map(|p| [p.x, p.y]).collect()
-}
-
-fn points(flat: &[f64]) -> Result<Vec<DVec2>, JsError> {
-    if flat.len() % 2 != 0 {
-        return Err(JsError::new(&format!("{} coordinates: x and y per node", flat.len())));
-    }
-    Ok(flat.chunks_exact(2).map(|c| DVec2::new(c[0], c[1])).collect())
-}
-
 /// A record as a plain JS object (maps too, so `#[serde(flatten)]` fields read as properties).
 fn to_js<T: Serialize>(value: &T) -> Result<JsValue, JsError> {
     let ser = serde_wasm_bindgen::Serializer::new().serialize_maps_as_objects(true);
@@ -280,52 +268,6 @@ impl Playground {
             return Err(JsError::new(&format!("a pass slice of {budget_ms} ms: give a positive budget")));
         }
         to_js(&self.inner.continue_pass(&now_ms, budget_ms)?)
-    }
-
-    /// As [`begin_pass`](Self::begin_pass), but the new panel's sweep is run by another
-    /// worker at the same time ([`begin_sweep`](Self::begin_sweep) there) and handed in by
-    /// [`deliver_sweep`](Self::deliver_sweep); `continuePass` says `stage: "elsewhere"`
-    /// while it waits for it.
-    #[wasm_bindgen(js_name = beginPassNewElsewhere)]
-    pub fn begin_pass_new_elsewhere(&mut self) {
-        self.inner.begin_pass_new_elsewhere();
-    }
-
-    /// Hands in the new panel's sweep from the other worker (`takeSweep`'s `nodes`,
-    /// `counts` and `sweep_ms`).
-    #[wasm_bindgen(js_name = deliverSweep)]
-    pub fn deliver_sweep(&mut self, nodes: &[f64], counts: JsValue, sweep_ms: f64) -> Result<(), JsError> {
-        let counts = serde_wasm_bindgen::from_value(counts).map_err(|e| JsError::new(&format!("sweep counts: {e}")))?;
-        Ok(self.inner.deliver_sweep(points(nodes)?, counts, sweep_ms)?)
-    }
-
-    /// Starts the new panel's sweep alone (run by `continuePass`, taken by `takeSweep`):
-    /// the other worker's half of [`begin_pass_new_elsewhere`](Self::begin_pass_new_elsewhere).
-    #[wasm_bindgen(js_name = beginSweep)]
-    pub fn begin_sweep(&mut self) {
-        self.inner.begin_sweep();
-    }
-
-    /// The sweep done: `{ nodes: Float64Array (x, y per node), counts, sweep_ms }`; the
-    /// panel is put back as before it.
-    #[wasm_bindgen(js_name = takeSweep)]
-    pub fn take_sweep(&mut self) -> Result<JsValue, JsError> {
-        let (nodes, counts, ms) = self.inner.take_sweep()?;
-        let nodes = js_sys::Float64Array::from(flat(&nodes).as_slice());
-        object(&[("nodes", nodes.into()), ("counts", to_js(&counts)?), ("sweep_ms", JsValue::from_f64(ms))])
-    }
-
-    /// A panel's current positions, x and y per node.
-    #[wasm_bindgen(js_name = panelNodes)]
-    pub fn panel_nodes(&self, panel: &str) -> Result<Vec<f64>, JsError> {
-        Ok(flat(self.inner.panel(side(panel)?).mesh.nodes()))
-    }
-
-    /// Replaces a panel's positions (x and y per node; another worker's, to sweep them
-    /// here); its statistics are measured again.
-    #[wasm_bindgen(js_name = setPanelNodes)]
-    pub fn set_panel_nodes(&mut self, panel: &str, nodes: &[f64]) -> Result<(), JsError> {
-        Ok(self.inner.set_panel_nodes(side(panel)?, &points(nodes)?)?)
     }
 
     /// Abandons the pass in progress: both panels as before it.

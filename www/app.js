@@ -66,29 +66,6 @@ const state = {
 
 const engine = new Engine((err) => recoverFromPanic(err));
 
-// A second engine, on the second core, that sweeps the new side of each pass while the
-// first sweeps the old side (smoothPass). It holds the same mesh, loaded after the page's
-// load and in the background; until it has it, passes run on the first engine alone.
-// The results are the same bit for bit (lab::pass::Mode).
-let sweeper = null; // { engine, src, ready } — `ready` once it holds `src`
-function startSweeper(src) {
-  if (!sweeper) {
-    sweeper = { engine: new Engine((err) => recoverFromPanic(err)), src: null, ready: false };
-  }
-  const s = sweeper;
-  s.src = src;
-  s.ready = false;
-  loadInto(src, (...a) => s.engine.call(...a))
-    .then(() => {
-      if (s.src === src) s.ready = true;
-    })
-    .catch(() => {}); // a mesh the first engine took is taken here too; if not, passes stay on one engine
-}
-function dropSweeper() {
-  if (sweeper) sweeper.engine.worker.terminate();
-  sweeper = null;
-}
-
 // ---- serial queue: one engine operation at a time, in order ---------------------------
 let chain = Promise.resolve();
 let queued = 0;
@@ -124,7 +101,6 @@ function report(err) {
 }
 
 function recoverFromPanic(err) {
-  dropSweeper(); // a panic in either engine: both start again (the first reloads the mesh)
   showError(`Internal error in the smoothing engine (a bug; please report it): ${err.message}. ` +
     'The engine was restarted and the mesh reloaded from its source.');
   state.cancel = true;
@@ -133,10 +109,7 @@ function recoverFromPanic(err) {
     .restart(async (call) => {
       if (src) await loadSource(src, call);
     })
-    .then(() => {
-      if (src) startSweeper(src);
-      return serial(redrawAll);
-    })
+    .then(() => serial(redrawAll))
     .catch((e) => showError(`${$('message').textContent} Reloading failed too: ${e.message}`));
 }
 
@@ -558,17 +531,6 @@ async function fillTourMenu() {
 
 // ---- loading -------------------------------------------------------------------------
 async function loadSource(src, call = (...a) => engine.call(...a)) {
-  await loadInto(src, call);
-  await call('settings', readSettings());
-  state.compare = COMPARE.map((_, i) => readChoice(i));
-  state.lastGood = src;
-  state.node = null;
-  state.perturbed = null;
-  $('node').value = '';
-}
-
-/** Loads a source's mesh into an engine (`call` is its call). */
-async function loadInto(src, call) {
   switch (src.kind) {
     case 'sample':
       await call('loadSample', src.name);
@@ -589,6 +551,12 @@ async function loadInto(src, call) {
     default:
       throw new Error('unknown mesh source');
   }
+  await call('settings', readSettings());
+  state.compare = COMPARE.map((_, i) => readChoice(i));
+  state.lastGood = src;
+  state.node = null;
+  state.perturbed = null;
+  $('node').value = '';
 }
 
 function selectValueOf(src) {
@@ -620,7 +588,6 @@ function load(src, label, { keepHash = false } = {}) {
     await redrawAll();
     const ms = now() - t0;
     metrics.lastLoad = { label, ms, build_ms: t1 - t0, draw_ms: now() - t1, memory_bytes: engine.memory };
-    startSweeper(src);
     setStatus(`Loaded ${label} in ${Math.round(ms)} ms.${stopped}`);
     if (!keepHash) await writePermalink();
   }).catch(report);
@@ -905,62 +872,19 @@ async function smoothPass(i, n) {
   if ($('order').value === 'priority') {
     setStatus(`Pass ${i + 1} of ${n}: ordering the nodes of the old side, worst first…`);
   }
-  const settings = readSettings();
-  const two = window.smoothlab.twoEngines && sweeper && sweeper.ready && sweeper.src === state.lastGood;
-  const helper = two ? sweeper.engine : null;
-  // with a second engine: the new side's sweep there, at the same time as the old side's here
-  let swept = null;
-  let newFraction = 0.5; // the second engine's progress, as a fraction of the whole pass
-  if (helper) {
-    const nodes = await call('panelNodes', 'new');
-    swept = sweepNewSide(helper, settings, nodes, (f) => { newFraction = f; });
-    swept.catch(() => {}); // awaited below; a failure is reported there
-  }
-  try {
-    for (;;) {
-      if (state.cancel) {
-        if (swept) await swept.catch(() => null);
-        await call('abortPass');
-        return null;
-      }
-      let p;
-      if (slices > 0) p = await call('continuePass', SLICE_MS);
-      else if (helper) p = await call('passNewElsewhere', settings, SLICE_MS);
-      else p = await call('pass', settings, SLICE_MS);
-      if (p.stage === 'elsewhere') {
-        const s = await swept;
-        if (!s) continue; // stopped: the next turn undoes the pass
-        p = await call('deliverSweep', s.nodes.buffer, s.counts, s.sweep_ms, SLICE_MS);
-      }
-      slices += 1;
-      const fraction = helper && p.side === 'old' ? p.fraction + newFraction - 0.5 : p.fraction;
-      $('progress').value = i + fraction;
-      if (p.done) return { records: p.records, slices, ...cost };
-      if (state.cancel) continue; // "Stopping…" stays on screen
-      const pct = Math.floor(fraction * 100);
-      const where = helper && p.side === 'old' ? 'both sides at once' : `${SIDE_NAME[p.side]} side`;
-      setStatus(`Pass ${i + 1} of ${n}: ${where}, ${STAGE_NAME[p.stage] || p.stage}… ${pct}% (Stop undoes this pass)`);
-    }
-  } catch (e) {
-    if (!e.panic) await call('abortPass').catch(() => {});
-    throw e;
-  }
-}
-
-/** The new side's sweep on the second engine from `nodes` (the new side's positions), in
- * slices; resolves with `takeSweep`'s result, or null when stopped. */
-async function sweepNewSide(helper, settings, nodes, progress) {
-  let p = await helper.call('sweep', settings, nodes.buffer, SLICE_MS);
-  while (!p.done) {
-    progress(p.fraction);
+  for (;;) {
     if (state.cancel) {
-      await helper.call('abortPass');
+      await call('abortPass');
       return null;
     }
-    p = await helper.call('continuePass', SLICE_MS);
+    const p = await (slices === 0 ? call('pass', readSettings(), SLICE_MS) : call('continuePass', SLICE_MS));
+    slices += 1;
+    $('progress').value = i + p.fraction;
+    if (p.done) return { records: p.records, slices, ...cost };
+    if (state.cancel) continue; // "Stopping…" stays on screen
+    const pct = Math.floor(p.fraction * 100);
+    setStatus(`Pass ${i + 1} of ${n}: ${SIDE_NAME[p.side]} side, ${STAGE_NAME[p.stage] || p.stage}… ${pct}% (Stop undoes this pass)`);
   }
-  progress(p.fraction);
-  return helper.call('takeSweep');
 }
 
 function setRunning(on) {
@@ -1682,10 +1606,8 @@ async function main() {
 window.smoothlab = {
   panicForTest: () => serial(() => engine.call('panicForTest')).catch(report),
   metrics,
-  // whether a pass sweeps its two sides on two engines (the page bench compares with one)
-  twoEngines: true,
   pickRadius,
-  memory: () => ({ bytes: engine.memory, peak_bytes: engine.peakMemory, sweeper_bytes: sweeper ? sweeper.engine.memory : 0 }),
+  memory: () => ({ bytes: engine.memory, peak_bytes: engine.peakMemory }),
   figure: () => state.figure,
 };
 

@@ -43,29 +43,6 @@ const handlers = {
     return p.continuePass(budgetMs);
   },
   continuePass: (budgetMs) => need().continuePass(budgetMs),
-  // The two halves of a pass on two workers (two cores): this worker sweeps the old side
-  // and measures both; a second worker, with the same mesh, sweeps the new side from its
-  // positions (`panelNodes` here, `sweep` there, `takeSweep`, then `deliverSweep` here).
-  passNewElsewhere: (settings, budgetMs) => {
-    const p = need();
-    p.setSettings(settings);
-    p.beginPassNewElsewhere();
-    return p.continuePass(budgetMs);
-  },
-  panelNodes: (side) => need().panelNodes(side),
-  sweep: (settings, nodes, budgetMs) => {
-    const p = need();
-    p.setSettings(settings);
-    p.setPanelNodes('new', new Float64Array(nodes));
-    p.beginSweep();
-    return p.continuePass(budgetMs);
-  },
-  takeSweep: () => need().takeSweep(),
-  deliverSweep: (nodes, counts, sweepMs, budgetMs) => {
-    const p = need();
-    p.deliverSweep(new Float64Array(nodes), counts, sweepMs);
-    return p.continuePass(budgetMs);
-  },
   abortPass: () => need().abortPass(),
   perturb: (amount, seed) => need().perturb(amount, seed),
   // the pictures of both meshes and their statistics tables, in one message
@@ -106,7 +83,7 @@ const handlers = {
 
 // Buffers of typed arrays in a result, moved (not copied) to the main thread.
 function transferables(value, out = []) {
-  if (value instanceof Uint8Array || value instanceof Float64Array) out.push(value.buffer);
+  if (value instanceof Uint8Array) out.push(value.buffer);
   else if (value && typeof value === 'object') for (const v of Object.values(value)) transferables(v, out);
   return out;
 }

@@ -32,7 +32,7 @@ use crate::mesh::Mesh;
 use crate::objective::{objective_with, Objective, ObjectiveKind, Penalty};
 use crate::optimize::SolveResult;
 use crate::quality::MeshStats;
-use crate::smooth::{solve_node, Order, SmoothOptions, Smoother, Strategy, SweepCounts};
+use crate::smooth::{solve_node, Order, SmoothOptions, Smoother, Strategy};
 use pass::PassRun;
 pub use pass::{PassProgress, PassStage};
 use stats::{quick_stats_and_buckets, QuickStats};
@@ -244,17 +244,6 @@ impl Panel {
 }
 
 
-/// Positions handed in from outside (another playground's): one finite point per node.
-fn check_positions(nodes: &[DVec2], count: usize) -> Result<()> {
-    if nodes.len() != count {
-        return Err(Error::invalid(format!("{} positions for a mesh of {count} nodes", nodes.len())));
-    }
-    if let Some(i) = nodes.iter().position(|p| !p.is_finite()) {
-        return Err(Error::invalid(format!("node {i}: a non-finite position {}", nodes[i])));
-    }
-    Ok(())
-}
-
 /// The work a panel's passes did since the last reset: its records, summed.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Serialize)]
 pub struct WorkDone {
@@ -368,8 +357,6 @@ pub struct Playground {
     panels: [Panel; 2],
     versions: Versions,
     run: Option<PassRun>,
-    /// A sweep alone ([`Playground::begin_sweep`]) that is done, until it is taken.
-    swept: Option<PassRun>,
     /// The user's zoom and pan on the mesh panels (both panels share it).
     zoom: crate::render::ZoomPan,
     /// The part of a star the level-set views show (both sides share it).
@@ -407,7 +394,6 @@ impl Playground {
             panels: [old, new],
             versions: Versions(1),
             run: None,
-            swept: None,
             zoom: crate::render::ZoomPan::default(),
             level_window: interact::LevelWindow::default(),
             undo: Vec::new(),
@@ -454,64 +440,7 @@ impl Playground {
     pub fn begin_pass(&mut self) {
         self.abort_pass();
         self.undo.clear(); // a move before a pass is not undone over the pass's work
-        self.run = Some(PassRun::new(pass::Mode::Both));
-    }
-
-    /// As [`begin_pass`](Self::begin_pass), but only the old panel is swept here: the new
-    /// panel's sweep is run elsewhere at the same time (another playground on the same
-    /// mesh, settings and new-panel positions: [`begin_sweep`](Self::begin_sweep)) and
-    /// handed in by [`deliver_sweep`](Self::deliver_sweep); this playground measures it.
-    /// The result is [`step`](Self::step)'s, bit for bit. Until the sweep is handed in, a
-    /// pass whose old panel is done says so ([`PassStage::Elsewhere`]).
-    pub fn begin_pass_new_elsewhere(&mut self) {
-        self.abort_pass();
-        self.undo.clear();
-        self.run = Some(PassRun::new(pass::Mode::NewElsewhere));
-    }
-
-    /// Hands in the new panel's sweep for the pass begun by
-    /// [`begin_pass_new_elsewhere`](Self::begin_pass_new_elsewhere): the positions after it,
-    /// its counts and its time (ms).
-    pub fn deliver_sweep(&mut self, nodes: Vec<DVec2>, counts: SweepCounts, sweep_ms: f64) -> Result<()> {
-        let run = self.run.as_mut().ok_or_else(|| Error::invalid("no pass is in progress: begin one first"))?;
-        if !run.waits_for_sweep() {
-            return Err(Error::invalid("this pass does not wait for a sweep"));
-        }
-        check_positions(&nodes, self.panels[1].mesh.node_count())?;
-        run.deliver(pass::Sweep { nodes, counts, sweep_ms });
-        Ok(())
-    }
-
-    /// Starts the new panel's sweep alone, to be run by [`continue_pass`](Self::continue_pass)
-    /// and taken by [`take_sweep`](Self::take_sweep): the other half of
-    /// [`begin_pass_new_elsewhere`](Self::begin_pass_new_elsewhere).
-    pub fn begin_sweep(&mut self) {
-        self.abort_pass();
-        self.undo.clear();
-        self.run = Some(PassRun::new(pass::Mode::NewSweepOnly));
-    }
-
-    /// The new panel's sweep once [`continue_pass`](Self::continue_pass) said it is done:
-    /// the positions after it, its counts and its time (ms). The panel is put back as it
-    /// was before the sweep.
-    pub fn take_sweep(&mut self) -> Result<(Vec<DVec2>, SweepCounts, f64)> {
-        let done = self.swept.take().ok_or_else(|| Error::invalid("no sweep is done"))?;
-        let s = done.take_sweep(&mut self.panels);
-        Ok((s.nodes, s.counts, s.sweep_ms))
-    }
-
-    /// Replaces a panel's positions (another playground's, to sweep them here): its
-    /// statistics are measured again and its records kept.
-    pub fn set_panel_nodes(&mut self, side: Side, nodes: &[DVec2]) -> Result<()> {
-        let n = self.panel(side).mesh.node_count();
-        check_positions(nodes, n)?;
-        self.abort_pass();
-        self.undo.clear();
-        let version = self.fresh_version();
-        let p = &mut self.panels[side.index()];
-        p.mesh.nodes_mut().copy_from_slice(nodes);
-        p.changed(version);
-        Ok(())
+        self.run = Some(PassRun::new());
     }
 
     /// Whether a pass is in progress.
@@ -528,11 +457,6 @@ impl Playground {
         let run = self.run.as_mut().ok_or_else(|| Error::invalid("no pass is in progress: begin one first"))?;
         if run.advance(&mut self.panels, &mut self.versions, clock, budget_ms) {
             let run = self.run.take().expect("the pass just advanced");
-            if run.sweep_only() {
-                let p = run.progress(&self.panels);
-                self.swept = Some(run);
-                return Ok(PassProgress { done: true, ..p });
-            }
             return Ok(run.finish(&mut self.panels, &mut self.versions));
         }
         Ok(run.progress(&self.panels))
@@ -542,9 +466,6 @@ impl Playground {
     /// before it (positions, statistics and version), so it leaves no trace.
     pub fn abort_pass(&mut self) {
         if let Some(run) = self.run.take() {
-            run.undo(&mut self.panels);
-        }
-        if let Some(run) = self.swept.take() {
             run.undo(&mut self.panels);
         }
     }

@@ -46,9 +46,6 @@ pub enum PassStage {
     Smooth,
     /// Measuring the smoothed mesh's statistics.
     Measure,
-    /// Waiting for the new panel's sweep, run elsewhere (another worker with a copy of
-    /// the mesh), to be handed in ([`super::Playground::deliver_sweep`]).
-    Elsewhere,
     /// The pass is complete.
     Done,
 }
@@ -61,27 +58,6 @@ enum Stage {
     Planning,
     Smooth,
     Measure,
-    /// The new panel's sweep is run elsewhere and not handed in yet.
-    Elsewhere,
-}
-
-/// Which panels a pass sweeps here.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub(super) enum Mode {
-    /// Both panels: the old one, then the new one.
-    Both,
-    /// The old panel; the new panel's sweep is run elsewhere at the same time and handed
-    /// in ([`PassRun::deliver`]), then measured here.
-    NewElsewhere,
-    /// Only the new panel's sweep (no statistics): the other half of `NewElsewhere`.
-    NewSweepOnly,
-}
-
-/// A sweep run elsewhere: the new panel's positions after it, its counts and its time.
-pub(super) struct Sweep {
-    pub nodes: Vec<DVec2>,
-    pub counts: SweepCounts,
-    pub sweep_ms: f64,
 }
 
 /// A panel as it was when a pass began on it, to put back if the pass is abandoned.
@@ -95,9 +71,6 @@ struct Saved {
 
 /// A pass in progress: the old panel's sweep and statistics, then the new panel's.
 pub(super) struct PassRun {
-    mode: Mode,
-    /// The new panel's sweep, handed in (mode `NewElsewhere`) and not yet installed.
-    delivered: Option<Sweep>,
     side: usize,
     stage: Stage,
     schedule: Vec<u32>,
@@ -131,12 +104,10 @@ fn adapt_slice(size: usize, dt: f64, budget_ms: f64) -> usize {
 
 
 impl PassRun {
-    /// A pass about to begin: on the old panel, or on the new one for `NewSweepOnly`.
-    pub(super) fn new(mode: Mode) -> PassRun {
+    /// A pass about to begin on the old panel.
+    pub(super) fn new() -> PassRun {
         PassRun {
-            mode,
-            delivered: None,
-            side: if mode == Mode::NewSweepOnly { 1 } else { 0 },
+            side: 0,
             stage: Stage::Plan,
             schedule: Vec::new(),
             pos: 0,
@@ -167,17 +138,6 @@ impl PassRun {
             let side = self.side;
             let p = &mut panels[side];
             match self.stage {
-                Stage::Plan if side == 1 && self.mode == Mode::NewElsewhere => {
-                    self.stage = Stage::Elsewhere;
-                    if !self.install_delivered(p, versions) {
-                        return false;
-                    }
-                }
-                Stage::Elsewhere => {
-                    if !self.install_delivered(p, versions) {
-                        return false;
-                    }
-                }
                 Stage::Plan => {
                     let t0 = clock();
                     self.saved[side] = Some(Saved {
@@ -230,8 +190,6 @@ impl PassRun {
                         self.schedule.clear();
                         self.schedule.extend_from_slice(p.smoother.revisits());
                         self.pos = 0;
-                    } else if self.mode == Mode::NewSweepOnly {
-                        return true;
                     } else {
                         self.stage = Stage::Measure;
                         self.acc = QuickAcc::default();
@@ -270,53 +228,6 @@ impl PassRun {
                 return false;
             }
         }
-    }
-
-    /// Hands in the new panel's sweep, run elsewhere from the same positions with the
-    /// same settings (mode `NewElsewhere`); it is installed when the old panel is done.
-    pub(super) fn deliver(&mut self, sweep: Sweep) {
-        self.delivered = Some(sweep);
-    }
-
-    /// Whether this is the new panel's sweep alone (mode `NewSweepOnly`).
-    pub(super) fn sweep_only(&self) -> bool {
-        self.mode == Mode::NewSweepOnly
-    }
-
-    /// Whether the pass waits for the new panel's sweep (mode `NewElsewhere`).
-    pub(super) fn waits_for_sweep(&self) -> bool {
-        self.mode == Mode::NewElsewhere && self.delivered.is_none() && self.done[1].is_none()
-    }
-
-    /// Installs the delivered sweep in the new panel `p` (saved first, so Stop still puts
-    /// it back), to be measured; false when nothing was delivered yet.
-    fn install_delivered(&mut self, p: &mut Panel, versions: &mut Versions) -> bool {
-        let Some(sweep) = self.delivered.take() else { return false };
-        self.saved[1] = Some(Saved {
-            nodes: p.mesh.nodes().to_vec(),
-            version: p.version,
-            quick: p.quick,
-            buckets: p.buckets.clone(),
-            full: p.full.clone(),
-        });
-        p.mesh.nodes_mut().copy_from_slice(&sweep.nodes);
-        p.version = versions.fresh();
-        self.counts = sweep.counts;
-        self.sweep_ms = sweep.sweep_ms;
-        self.schedule.clear();
-        self.pos = 0;
-        self.stage = Stage::Measure;
-        self.acc = QuickAcc::default();
-        self.stats_ms = 0.0;
-        true
-    }
-
-    /// The new panel's sweep of a completed `NewSweepOnly` pass (its positions, counts and
-    /// time); the panel is put back as it was before the pass.
-    pub(super) fn take_sweep(self, panels: &mut [Panel; 2]) -> Sweep {
-        let sweep = Sweep { nodes: panels[1].mesh.nodes().to_vec(), counts: self.counts, sweep_ms: self.sweep_ms };
-        self.undo(panels);
-        sweep
     }
 
     /// Keeps the records and statistics of a completed pass in the panels.
@@ -366,7 +277,7 @@ impl PassRun {
     pub(super) fn progress(&self, panels: &[Panel; 2]) -> PassProgress {
         let side = self.side;
         let sweep = match self.stage {
-            Stage::Plan | Stage::Planning | Stage::Elsewhere => 0.0,
+            Stage::Plan | Stage::Planning => 0.0,
             _ if self.schedule.is_empty() || self.untangling => 1.0,
             _ => self.pos as f64 / self.schedule.len() as f64,
         };
@@ -381,7 +292,6 @@ impl PassRun {
                 Stage::Plan | Stage::Planning => PassStage::Plan,
                 Stage::Smooth => PassStage::Smooth,
                 Stage::Measure => PassStage::Measure,
-                Stage::Elsewhere => PassStage::Elsewhere,
             },
             visits: self.pos,
             planned: self.schedule.len(),
@@ -465,63 +375,6 @@ mod tests {
                         }
                     }
                 }
-            }
-        }
-    }
-
-    /// The new panel swept by a second playground (as a second worker does it) and handed
-    /// in: the same pass as one playground's, bit for bit, whichever half ends first; and
-    /// the sweeping playground is left as it was.
-    #[test]
-    fn a_pass_whose_new_panel_is_swept_elsewhere_is_the_same_bit_for_bit() {
-        for sample in [Sample::PlateMixedTangled, Sample::Rand2dTangled] {
-            let mesh = sample.generate().unwrap();
-            for strategy in [Strategy::Rules, Strategy::Smart] {
-                let settings = Settings { strategy, order: Order::Priority, ..Settings::default() };
-                let mut one = Playground::new(mesh.clone()).unwrap();
-                let mut main = Playground::new(mesh.clone()).unwrap();
-                let mut helper = Playground::new(mesh.clone()).unwrap();
-                for pg in [&mut one, &mut main, &mut helper] {
-                    pg.set_settings(settings).unwrap();
-                }
-                let clock = ticking();
-                for pass in 1..=2u32 {
-                    let expected = one.step(&no_clock);
-                    helper.set_panel_nodes(Side::New, main.panel(Side::New).mesh.nodes()).unwrap();
-                    let before = (helper.panel(Side::New).mesh.nodes().to_vec(), helper.table(Side::New));
-                    main.begin_pass_new_elsewhere();
-                    helper.begin_sweep();
-                    while !helper.continue_pass(&clock, 3.0).unwrap().done {}
-                    let (nodes, counts, ms) = helper.take_sweep().unwrap();
-                    assert_eq!((helper.panel(Side::New).mesh.nodes().to_vec(), helper.table(Side::New)), before);
-                    // the second pass hands the sweep in before the old panel is done
-                    if pass == 2 {
-                        main.deliver_sweep(nodes.clone(), counts, ms).unwrap();
-                    }
-                    let records = loop {
-                        let p = main.continue_pass(&clock, 3.0).unwrap();
-                        if let Some(r) = p.records {
-                            break r;
-                        }
-                        if p.stage == PassStage::Elsewhere {
-                            assert!((p.fraction - 0.5).abs() < 1e-12, "{}", p.fraction);
-                            main.deliver_sweep(nodes.clone(), counts, ms).unwrap();
-                        }
-                    };
-                    let what = format!("{sample:?} {strategy:?} pass {pass}");
-                    for side in Side::BOTH {
-                        assert_eq!(main.panel(side).mesh.nodes(), one.panel(side).mesh.nodes(), "{what} {side:?}");
-                        assert_eq!(main.table(side).mesh, one.table(side).mesh, "{what} {side:?}");
-                        assert_eq!(main.panel(side).buckets, one.panel(side).buckets, "{what} {side:?}");
-                        let (got, want) = (&records[side as usize], &expected[side as usize]);
-                        assert_eq!((got.pass, got.counts, got.after), (want.pass, want.counts, want.after), "{what} {side:?}");
-                    }
-                }
-                assert!(main.deliver_sweep(vec![DVec2::ZERO; 3], SweepCounts::default(), 0.0).is_err(), "no pass waits");
-                main.begin_pass_new_elsewhere();
-                let n = mesh.node_count();
-                assert!(main.deliver_sweep(vec![DVec2::ZERO; n - 1], SweepCounts::default(), 0.0).is_err(), "too few");
-                assert!(main.deliver_sweep(vec![DVec2::NAN; n], SweepCounts::default(), 0.0).is_err(), "not finite");
             }
         }
     }
