@@ -15,7 +15,6 @@
 // Prints JSON on stdout. A benchmark, not a test: slow (minutes), not part of `make test`.
 //   node tests/browser/page_bench.mjs [--reps 3] [--million-strategy smart] [--no-million] [--no-million-default]
 //     [--startup-only] [--default-only] (only the first visit; only the default settings at 100k)
-//     [--one-engine] (both sides of a pass one after the other in one worker, as before)
 // Needs www/pkg from `make site` and playwright-core in tests/browser/node_modules.
 import { existsSync } from 'node:fs';
 import path from 'node:path';
@@ -32,7 +31,6 @@ const skipMillion = process.argv.includes('--no-million');
 const skipMillionDefault = process.argv.includes('--no-million-default');
 const startupOnly = process.argv.includes('--startup-only');
 const defaultOnly = process.argv.includes('--default-only');
-const oneEngine = process.argv.includes('--one-engine'); // the sides one after the other in one worker
 const log = (s) => process.stderr.write(`page bench: ${s}\n`);
 
 if (!existsSync(path.join(WWW, 'pkg', 'smoothlab_bg.wasm'))) {
@@ -151,8 +149,6 @@ try {
   page.on('pageerror', (e) => log(`page error: ${e}`));
   await page.goto(server.base);
   await idle(page);
-  if (oneEngine) await page.evaluate(() => { window.smoothlab.twoEngines = false; });
-  result.engines = oneEngine ? 1 : 2;
 
   // ---- 1. the 100k sample: one pass + redraw -------------------------------------------
   log('loading the 100k sample');
