@@ -16,7 +16,8 @@
 //   node tests/browser/page_bench.mjs [--reps 3] [--million-strategy smart] [--no-million] [--no-million-default]
 //     [--startup-only] [--default-only] (only the first visit; only the default settings at 100k)
 // Needs www/pkg from `make site` and playwright-core in tests/browser/node_modules.
-import { existsSync } from 'node:fs';
+import { existsSync, readFileSync } from 'node:fs';
+import { gzipSync } from 'node:zlib';
 import path from 'node:path';
 import { chromium } from 'playwright-core';
 import { WWW, CHROMIUM, CHROMIUM_ARGS as ARGS, startServer } from './serve.mjs';
@@ -121,6 +122,9 @@ try {
     viewport: [1280, 900],
     slice_ms: 50,
   };
+  // the module the page loads, as served and as gzip -9 sends it
+  const wasm = readFileSync(path.join(WWW, 'pkg', 'smoothlab_bg.wasm'));
+  result.wasm = { bytes: wasm.length, gzip_bytes: gzipSync(wasm, { level: 9 }).length };
 
   // ---- 0. the first visit: navigation → first mesh drawn, in fresh pages ----------------
   {
