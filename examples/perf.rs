@@ -845,9 +845,9 @@ fn page_section(path: Option<&str>) -> String {
     let _ = writeln!(
         w,
         "\nWhat was tried for these targets (issue 15), each measured on its own: the site build runs binaryen's `wasm-opt -O3` (npm's; \
-         597 → 556 KB gzipped; `-Oz` 5 KB smaller and no faster; `opt-level = \"s\"` for the crate 11 KB smaller before wasm-opt, \
-         not kept); the module is built with 128-bit SIMD, which tiny-skia's `simd` feature uses (556 → 513 KB gzipped, node visits \
-         and drawing faster); after a load or Reset the two panels show the same positions and the mesh is drawn once for both. \
+         601 → 560 KB gzipped; `-Oz` 4 KB smaller and no faster; `opt-level = \"s\"` for the crate 21 KB smaller after wasm-opt, \
+         its speed not measured, not kept); the module is built with 128-bit SIMD, which tiny-skia's `simd` feature uses (560 → 513 KB \
+         gzipped, node visits and drawing faster); after a load or Reset the two panels show the same positions and the mesh is drawn once for both. \
          What is left of the module is code the page uses: the core's file readers and writers, tiny-skia's pipelines (lowp and \
          highp, ~350 KB before gzip) and glyph outlines for the labels, the charts, the tour's pictures. Sweeping the two sides of a \
          pass in two workers at once (bit for bit the same result) was built and measured: on this 2-core machine with other builds \
