@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Installs what the wasm build and the browser tests need, when it is missing:
-# the wasm32 target, the wasm-bindgen CLI at the exact version of the crate,
-# Debian's Chromium, and playwright-core (no browser download). Fast when all is there.
+# the wasm32 target, the wasm-bindgen CLI at the exact version of the crate, npm's
+# binaryen (wasm-opt, which shrinks the page's module), Debian's Chromium, and
+# playwright-core (no browser download). Fast when all is there.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -18,6 +19,12 @@ if [ "$have" != "$want" ]; then
   echo "ensure-tools: installing wasm-bindgen-cli $want (found '${have:-none}'; takes a few minutes once)"
   # no --locked: one of its pinned dependencies is not in the registry mirror
   cargo install wasm-bindgen-cli --version "$want"
+fi
+
+# npm's binaryen, not Debian's: Debian's older wasm-opt writes a module that fails to load
+if [ ! -x tools/node_modules/.bin/wasm-opt ]; then
+  echo "ensure-tools: installing binaryen's wasm-opt from npm"
+  (cd tools && npm ci --no-audit --no-fund --silent 2>/dev/null || npm install --no-audit --no-fund --silent)
 fi
 
 if [ "${1:-}" = "--browser" ]; then

@@ -44,7 +44,7 @@ const nextFrame = () => new Promise((r) => requestAnimationFrame(() => r()));
 
 /** What the page measured of itself, for the curious and the page benchmark
  * (tests/browser/page_bench.mjs): see `window.smoothlab` at the end. */
-const metrics = { lastLoad: null, lastStep: null, run: null };
+const metrics = { lastLoad: null, lastStep: null, run: null, startup: null };
 
 const state = {
   controls: null, // ranges, defaults and per-strategy reasons, from the core (limits.rs)
@@ -780,6 +780,9 @@ async function redrawMeshes() {
   const paint_ms = [0, 0];
   if (f.old) paint_ms[0] = paint($('mesh-old'), f.old, w, h);
   if (f.new) paint_ms[1] = paint($('mesh-new'), f.new, w, h);
+  if (metrics.startup && !metrics.startup.first_mesh_ms && (f.old || f.new)) {
+    Object.assign(metrics.startup, { first_mesh_ms: now(), first_frame_ms: now() - t0, first_render_ms: f.render_ms });
+  }
   state.frame = { w, h, dpr };
   const t1 = now();
   fillTables(f.stats);
@@ -1576,9 +1579,13 @@ async function main() {
   setupEmbed();
   wire();
   try {
-    buildControls(await engine.call('controls'));
+    // the first answer waits for the worker to start and the wasm module to be compiled
+    const { result: controls, timing } = await engine.timed('controls');
+    metrics.startup = { engine_ready_ms: timing.worker.start - performance.timeOrigin, first_mesh_ms: 0 };
+    buildControls(controls);
     await fillGallery();
     await fillTourMenu();
+    metrics.startup.menus_ms = now();
   } catch (e) {
     report(e);
     document.body.dataset.busy = '0';

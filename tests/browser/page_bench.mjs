@@ -1,5 +1,7 @@
 // The playground page at scale, measured in headless Chromium (Debian's) as a user uses
 // it, for the "In the page" section of docs/performance.md (`make performance`):
+//  0. the first visit: from the navigation to the first mesh drawn (the page opens on a
+//     sample generated in wasm), in fresh pages, and when the engine (worker + wasm) was ready;
 //  1. the 100k-node sample: its load, then "Step" (one pass on both sides and the redraw
 //     of both meshes and tables) for the page's default settings, laplace and smart —
 //     the time from the click to the redrawn meshes, and where it went (the page's own
@@ -12,8 +14,11 @@
 //     orders the nodes, in slices) and one whole Step (about a minute).
 // Prints JSON on stdout. A benchmark, not a test: slow (minutes), not part of `make test`.
 //   node tests/browser/page_bench.mjs [--reps 3] [--million-strategy smart] [--no-million] [--no-million-default]
+//     [--startup-only] [--default-only] (only the first visit; only the default settings at 100k)
 // Needs www/pkg from `make site` and playwright-core in tests/browser/node_modules.
-import { existsSync } from 'node:fs';
+import { existsSync, readFileSync } from 'node:fs';
+import { gzipSync } from 'node:zlib';
+import os from 'node:os';
 import path from 'node:path';
 import { chromium } from 'playwright-core';
 import { WWW, CHROMIUM, CHROMIUM_ARGS as ARGS, startServer } from './serve.mjs';
@@ -26,6 +31,8 @@ const reps = Math.max(1, Number(arg('reps', '3')));
 const millionStrategy = arg('million-strategy', 'smart');
 const skipMillion = process.argv.includes('--no-million');
 const skipMillionDefault = process.argv.includes('--no-million-default');
+const startupOnly = process.argv.includes('--startup-only');
+const defaultOnly = process.argv.includes('--default-only');
 const log = (s) => process.stderr.write(`page bench: ${s}\n`);
 
 if (!existsSync(path.join(WWW, 'pkg', 'smoothlab_bg.wasm'))) {
@@ -111,15 +118,44 @@ let code = 0;
 try {
   browser = await chromium.launch({ executablePath: CHROMIUM, args: ARGS });
   const context = await browser.newContext({ viewport: { width: 1280, height: 900 } });
-  const page = await context.newPage();
-  page.on('pageerror', (e) => log(`page error: ${e}`));
-  await page.goto(server.base);
-  await idle(page);
   const result = {
     browser: `Chromium ${browser.version()} (headless)`,
     viewport: [1280, 900],
     slice_ms: 50,
   };
+  // other work on the same cores slows every figure: the load average at the start
+  result.load_average = os.loadavg().map((x) => Number(x.toFixed(2)));
+  // the module the page loads, as served and gzipped (zlib level 9, as gzip -9)
+  const wasm = readFileSync(path.join(WWW, 'pkg', 'smoothlab_bg.wasm'));
+  result.wasm = { bytes: wasm.length, gzip_bytes: gzipSync(wasm, { level: 9 }).length };
+
+  // ---- 0. the first visit: navigation → first mesh drawn, in fresh pages ----------------
+  {
+    const runs = [];
+    for (let r = 0; r < Math.max(reps, 5); r++) {
+      const fresh = await browser.newContext({ viewport: { width: 1280, height: 900 } });
+      const p = await fresh.newPage();
+      p.on('pageerror', (e) => log(`page error: ${e}`));
+      await p.goto(server.base);
+      await idle(p);
+      const m = await p.evaluate(() => ({ ...window.smoothlab.metrics.startup, load: window.smoothlab.metrics.lastLoad }));
+      runs.push({ first_mesh_ms: m.first_mesh_ms, engine_ready_ms: m.engine_ready_ms, menus_ms: m.menus_ms, first_frame_ms: m.first_frame_ms, first_render_ms: m.first_render_ms,
+        sample: m.load.label, sample_build_ms: m.load.build_ms, sample_draw_ms: m.load.draw_ms });
+      await fresh.close();
+    }
+    const m = medianOf(runs);
+    result.startup = { runs: runs.length, median: m, all: runs };
+    log(`first visit: first mesh drawn ${m.first_mesh_ms.toFixed(0)} ms after the navigation (engine ready ${m.engine_ready_ms.toFixed(0)} ms; ${runs.map((x) => x.first_mesh_ms.toFixed(0)).join(', ')})`);
+  }
+  if (startupOnly) {
+    console.log(JSON.stringify(result, null, 2));
+    throw Object.assign(new Error('done'), { done: true });
+  }
+
+  const page = await context.newPage();
+  page.on('pageerror', (e) => log(`page error: ${e}`));
+  await page.goto(server.base);
+  await idle(page);
 
   // ---- 1. the 100k sample: one pass + redraw -------------------------------------------
   log('loading the 100k sample');
@@ -129,7 +165,7 @@ try {
   const main100k = await stopWatching(page);
   const table = await page.evaluate(() => Object.fromEntries([...document.querySelectorAll('#stats-new tr')].map((tr) => [tr.dataset.stat, tr.querySelector('td').textContent])));
   result.hundred_k = { nodes: Number(table.nodes), elements: Number(table.elements), load: { ...load100k, ...main100k }, steps: [] };
-  for (const s of SETTINGS_100K) {
+  for (const s of defaultOnly ? SETTINGS_100K.slice(0, 1) : SETTINGS_100K) {
     await setControls(page, s.strategy, s.order);
     const runs = [];
     for (let r = 0; r < reps; r++) {
@@ -223,8 +259,10 @@ try {
   }
   console.log(JSON.stringify(result, null, 2));
 } catch (e) {
-  console.error(`page bench: ${e}`);
-  code = 1;
+  if (!e.done) {
+    console.error(`page bench: ${e}`);
+    code = 1;
+  }
 } finally {
   if (browser) await browser.close();
   server.proc.kill();
