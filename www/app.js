@@ -402,6 +402,19 @@ function sameCompare() {
 
 /** The user edited the hash or went Back or Forward: show what the address now names. */
 async function onAddressChange() {
+  try {
+    await openAddress();
+  } finally {
+    markAddressHandled();
+  }
+}
+/** Says on the body which address the page has opened (`data-hash`), for tests and tools:
+ * a link that changes only the hash reloads nothing, so its handling starts after the
+ * navigation has ended. */
+function markAddressHandled() {
+  document.body.dataset.hash = location.hash;
+}
+async function openAddress() {
   if (location.hash === state.lastHash) return; // this page wrote it
   state.lastHash = location.hash;
   const fig = FIGURE_HASH.exec(location.hash);
@@ -1595,6 +1608,7 @@ async function main() {
   const fig = FIGURE_HASH.exec(location.hash);
   if (fig) {
     await openFigure(fig[1]);
+    markAddressHandled();
     document.body.dataset.ready = '1';
     return;
   }
@@ -1603,6 +1617,7 @@ async function main() {
     showError(`view=${VIEW_NAME}: an embed shows one of the views ${Object.keys(VIEWS).join(', ')}; this is the compact page.`);
   }
   await openView();
+  markAddressHandled();
   document.body.dataset.ready = '1';
 }
 

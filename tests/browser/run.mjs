@@ -64,6 +64,13 @@ function watch(page, label) {
 async function idle(page) {
   await page.waitForFunction(() => document.body.dataset.ready === '1' && document.body.dataset.busy === '0', null, { timeout: TIMEOUT });
 }
+/** Opens `url` and waits until the page has opened its address: a URL that differs only
+ * in its hash reloads nothing, and the page handles the hash after `goto` returns. */
+async function open(page, url) {
+  await page.goto(url);
+  await page.waitForFunction(() => document.body.dataset.hash === location.hash, null, { timeout: TIMEOUT });
+  await idle(page);
+}
 async function stats(page, side) {
   return page.evaluate((side) => {
     const out = {};
@@ -897,8 +904,7 @@ try {
   });
 
   await test('compare A with B: any objective on either side, a penalty for new, carried in the link', async () => {
-    await page.goto(`${server.base}#sample=plate-tri-tangled&passes=1`);
-    await idle(page);
+    await open(page, `${server.base}#sample=plate-tri-tangled&passes=1`);
     const menu = await page.evaluate(() => [...document.getElementById('objective-a').options].map((o) => o.value));
     for (const name of ['old', 'sine', 'new', 'condition', 'untangle']) check(menu.includes(name), `A offers no ${name}: ${menu}`);
     check(await page.isDisabled('#penalty-a'), 'A runs old by default: no penalty');
@@ -917,8 +923,7 @@ try {
     await idle(page);
     // the panels smoothed differently from old vs new-barrier: compare with that run
     const sineAngle = [await stats(page, 'old'), await stats(page, 'new')];
-    await page.goto(`${server.base}#sample=plate-tri-tangled&passes=1`);
-    await idle(page);
+    await open(page, `${server.base}#sample=plate-tri-tangled&passes=1`);
     await page.click('#step');
     await page.waitForFunction(() => /One pass done/.test(document.getElementById('status').textContent), null, { timeout: TIMEOUT });
     await idle(page);
@@ -926,20 +931,16 @@ try {
     check(sineAngle[0].min_angle !== oldNew[0].min_angle || sineAngle[0].min_quality !== oldNew[0].min_quality, 'A ran the same objective');
     check(sineAngle[1].min_angle !== oldNew[1].min_angle || sineAngle[1].mean_quality !== oldNew[1].mean_quality, 'B ran the same penalty');
     // the link reopens the comparison
-    await page.goto(`${server.base}${hash}`);
-    await idle(page);
+    await open(page, `${server.base}${hash}`);
     check((await page.inputValue('#objective-a')) === 'sine' && (await page.inputValue('#penalty-b')) === 'angle', 'the link lost the comparison');
     check(/^A: sine/.test(await page.textContent('#title-old')), 'the heading after the link');
     // an old link naming 'objective' still opens, as B's
-    await page.goto(`${server.base}#sample=plate-tri&objective=condition`);
-    await idle(page);
+    await open(page, `${server.base}#sample=plate-tri&objective=condition`);
     check((await page.inputValue('#objective-b')) === 'condition', 'objective= is read as B');
     // a penalty for a side that has none is refused, saying why
-    await page.goto(`${server.base}#sample=plate-tri&a=old&a-penalty=angle`);
-    await idle(page);
+    await open(page, `${server.base}#sample=plate-tri&a=old&a-penalty=angle`);
     check(/only when 'a' is new/.test(await page.textContent('#message')), await page.textContent('#message'));
-    await page.goto(`${server.base}#sample=plate-tri-tangled&passes=3`);
-    await idle(page);
+    await open(page, `${server.base}#sample=plate-tri-tangled&passes=3`);
   });
 
   await test('a mesh from a tilted 3D plane is exported in its own plane, not flattened', async () => {
