@@ -285,36 +285,31 @@ impl Smoother {
                 x = self.star.x0;
             }
             Strategy::Rules => {
+                // rule 1 (a curved boundary node next to it) or the caller's force:
+                // optimised without trying the Laplacian
+                let forced = self.options.force_optimization || self.touches_curved_boundary(mesh, n);
                 // the smart Laplacian from the mesh where it can; the star is gathered only
                 // when the node is optimised (rule 2: an inverted element; rule 3: the smart
                 // Laplacian did not move it)
-                let direct = if self.options.force_optimization || self.touches_curved_boundary(mesh, n) {
-                    None
-                } else {
-                    self.smart_on_triangles(mesh, n)
-                };
-                match direct {
+                match (!forced).then(|| self.smart_on_triangles(mesh, n)).flatten() {
                     Some(TriangleSmart { inverted: 0, to: Some(c) }) => {
                         out.laplacian = true;
-                        out.moved = c != x0;
-                        return (c, out);
+                        x = c;
                     }
                     Some(_) => {
                         self.star.gather(mesh, n);
                         self.optimize(objective, &mut out);
-                        out.moved = self.star.x0 != x0;
-                        return (self.star.x0, out);
+                        x = self.star.x0;
                     }
-                    None => {}
+                    None => {
+                        self.star.gather(mesh, n);
+                        let optimise = forced || star_shape(&self.star, self.star.x0).1 > 0;
+                        if optimise || !self.smart(mesh, n, &mut out) {
+                            self.optimize(objective, &mut out);
+                        }
+                        x = self.star.x0;
+                    }
                 }
-                self.star.gather(mesh, n);
-                let forced = self.options.force_optimization
-                    || self.touches_curved_boundary(mesh, n)
-                    || star_shape(&self.star, self.star.x0).1 > 0;
-                if forced || !self.smart(mesh, n, &mut out) {
-                    self.optimize(objective, &mut out);
-                }
-                x = self.star.x0;
             }
         }
         out.moved = x != x0;
