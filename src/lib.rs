@@ -97,6 +97,7 @@ pub mod permalink;
 pub mod quality;
 pub mod render;
 pub mod smooth;
+pub mod surface;
 #[cfg(target_arch = "wasm32")]
 mod wasm;
 #[cfg(target_arch = "wasm32")]

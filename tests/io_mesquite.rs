@@ -8,7 +8,8 @@ mod common;
 
 use std::path::{Path, PathBuf};
 
-use smoothlab::io::read_path;
+use smoothlab::io::{read_model_path, read_path};
+use smoothlab::surface::Model;
 use smoothlab::mesh::NodeRole;
 use smoothlab::Error;
 
@@ -100,6 +101,7 @@ fn every_mesquite_file_loads_or_is_refused_for_its_reason() {
         let h = header(&text);
         let result = read_path(path);
         if NOT_PLANAR.contains(&rel.as_str()) {
+            // refused as a planar mesh, read as a surface
             match result {
                 Err(e @ Error::NotPlanar { relative, .. }) => {
                     assert!(relative > 0.01, "{rel}: {relative}");
@@ -107,6 +109,11 @@ fn every_mesquite_file_loads_or_is_refused_for_its_reason() {
                 }
                 other => panic!("{rel}: expected NotPlanar, got {:?}", other.map(|m| m.node_count())),
             }
+            let Ok(Model::Surface(s)) = read_model_path(path) else { panic!("{rel} must load as a surface") };
+            assert_eq!(s.node_count(), h.points, "{rel}");
+            let st = s.stats();
+            assert!(st.surface && st.inverted == 0, "{rel}: {st:?}");
+            assert_eq!(st.max_distance_from_surface, Some(0.0), "{rel}: the nodes are the reference's vertices");
         } else if POLYGONS.contains(&rel.as_str()) {
             let (i, line, k) = h.first_polygon.expect("a polygon file has a polygon");
             let e = result.err().unwrap_or_else(|| panic!("{rel} must be refused"));

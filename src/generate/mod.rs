@@ -14,6 +14,7 @@ mod plate;
 mod prng;
 mod rand2d;
 mod star;
+mod surface;
 mod trig;
 
 pub use grid::{grid, random_grid, GridKind};
@@ -21,6 +22,7 @@ pub use perturb::perturb;
 pub use plate::{plate, PlateKind, PLATE_HALF_WIDTH, PLATE_HOLE_RADIUS};
 pub use prng::SplitMix64;
 pub use rand2d::rand2d;
+pub use surface::{surface, SurfaceKind, SurfaceShape, MAX_SURFACE_RESOLUTION};
 pub use star::{quadratic_star, star, QuadraticStar, StarKind, CURVED_BULGE, PUSHED_MID_HEIGHT};
 
 use glam::DVec2;

@@ -22,6 +22,7 @@
 
 use crate::error::{Error, Result};
 use crate::mesh::{Mesh, MeshBuilder};
+use crate::surface::Model;
 
 mod lex;
 mod msh;
@@ -142,6 +143,24 @@ pub fn read_bytes(bytes: &[u8], name: &str) -> Result<Mesh> {
     read_str(utf8(bytes, format)?, format)
 }
 
+/// Reads what a text holds: a planar mesh ([`read_str`]'s), or a surface in 3D when its
+/// points are not in a plane ([`MeshBuilder::build_model`]).
+pub fn read_model_str(text: &str, format: Format) -> Result<Model> {
+    parse_str(text, format)?.build_model()
+}
+
+/// [`read_bytes`] for a planar mesh or a surface (see [`read_model_str`]).
+pub fn read_model_bytes(bytes: &[u8], name: &str) -> Result<Model> {
+    let format = Format::from_name(name).ok_or_else(|| unknown_format(name))?;
+    check_size(bytes.len() as u64, name)?;
+    if format == Format::Triangle {
+        return Err(Error::invalid(
+            "a Triangle mesh is a .node/.ele pair: read both files together (read_triangle)",
+        ));
+    }
+    read_model_str(utf8(bytes, format)?, format)
+}
+
 /// Reads a Triangle mesh from the texts of its `.node` and `.ele` files.
 /// A leading byte-order mark in either is skipped.
 pub fn read_triangle(node: &str, ele: &str) -> Result<Mesh> {
@@ -155,19 +174,62 @@ fn without_bom(text: &str) -> &str {
     text.strip_prefix('\u{feff}').unwrap_or(text)
 }
 
-/// Writes node position `p` as the 3D formats do, `x y z` (Rust's shortest exact
-/// decimals): `x y 0` for a 2D mesh, else the point in the mesh's own 3D plane
-/// ([`Mesh::to_3d`]), so a mesh read from 3D is written back where it was.
-pub(crate) fn write_xyz(s: &mut Out, mesh: &Mesh, p: glam::DVec2) {
-    use std::fmt::Write;
-    // writing to an `Out` cannot fail
-    let _ = match mesh.plane {
-        None => write!(s, "{:?} {:?} 0", p.x, p.y),
-        Some(_) => {
-            let q = mesh.to_3d(p);
-            write!(s, "{:?} {:?} {:?}", q.x, q.y, q.z)
+/// What the writers write: a planar mesh (its 2D positions, in its own plane) or a
+/// surface (its 3D positions), with the elements and fixed flags of `mesh`.
+#[derive(Clone, Copy, Debug)]
+pub struct Writable<'a> {
+    pub mesh: &'a Mesh,
+    /// A surface's node positions; `None` for a planar mesh.
+    points: Option<&'a [glam::DVec3]>,
+}
+
+impl<'a> From<&'a Mesh> for Writable<'a> {
+    fn from(mesh: &'a Mesh) -> Self {
+        Writable { mesh, points: None }
+    }
+}
+
+impl<'a> From<&'a crate::surface::Surface> for Writable<'a> {
+    fn from(s: &'a crate::surface::Surface) -> Self {
+        Writable { mesh: s.flat(), points: Some(s.points()) }
+    }
+}
+
+impl<'a> From<&'a crate::surface::Model> for Writable<'a> {
+    fn from(m: &'a crate::surface::Model) -> Self {
+        match m {
+            crate::surface::Model::Planar(mesh) => mesh.into(),
+            crate::surface::Model::Surface(s) => s.into(),
         }
-    };
+    }
+}
+
+impl Writable<'_> {
+    /// Node `i` in 3D: a surface's point, a planar mesh's in its plane ([`Mesh::to_3d`]).
+    pub(crate) fn xyz(&self, i: usize) -> glam::DVec3 {
+        match self.points {
+            Some(p) => p[i],
+            None => self.mesh.to_3d(self.mesh.nodes()[i]),
+        }
+    }
+    /// Whether every node is at z = 0 (a 2D mesh): the writers write `x y 0`.
+    pub(crate) fn in_xy_plane(&self) -> bool {
+        self.points.is_none() && self.mesh.plane.is_none()
+    }
+    /// Writes node `i` as the 3D formats do, `x y z` (Rust's shortest exact decimals):
+    /// `x y 0` for a 2D mesh, else the point in 3D, so a mesh read from 3D is written
+    /// back where it was.
+    pub(crate) fn write_xyz(&self, s: &mut Out, i: usize) {
+        use std::fmt::Write;
+        // writing to an `Out` cannot fail
+        let _ = if self.in_xy_plane() {
+            let p = self.mesh.nodes()[i];
+            write!(s, "{:?} {:?} 0", p.x, p.y)
+        } else {
+            let q = self.xyz(i);
+            write!(s, "{:?} {:?} {:?}", q.x, q.y, q.z)
+        };
+    }
 }
 
 fn check_size(len: u64, name: &str) -> Result<()> {
@@ -220,19 +282,31 @@ fn utf8(bytes: &[u8], format: Format) -> Result<&str> {
 /// the read itself stops after that many bytes whatever the file's metadata says.
 #[cfg(not(target_arch = "wasm32"))]
 pub fn read_path(path: &std::path::Path) -> Result<Mesh> {
+    read_path_as(path, MeshBuilder::build)
+}
+
+/// [`read_path`] for a planar mesh or a surface (see [`read_model_str`]); a Triangle pair
+/// is planar.
+#[cfg(not(target_arch = "wasm32"))]
+pub fn read_model_path(path: &std::path::Path) -> Result<Model> {
+    read_path_as(path, MeshBuilder::build_model)
+}
+
+#[cfg(not(target_arch = "wasm32"))]
+fn read_path_as<T: From<Mesh>>(path: &std::path::Path, build: fn(MeshBuilder) -> Result<T>) -> Result<T> {
     let name = path.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_default();
     let format = Format::from_name(&name).ok_or_else(|| unknown_format(&path.display().to_string()))?;
     if format == Format::Triangle {
         let (node, ele) = triangle_pair(path, &name)?;
         let (nb, eb) = (read_file(&node)?, read_file(&ele)?);
-        return read_triangle(utf8(&nb, format)?, utf8(&eb, format)?);
+        return read_triangle(utf8(&nb, format)?, utf8(&eb, format)?).map(T::from);
     }
     // the file's bytes are dropped before the mesh is built
     let builder = {
         let bytes = read_file(path)?;
         parse_str(utf8(&bytes, format)?, format)?
     };
-    builder.build()
+    build(builder)
 }
 
 /// The `.node` and `.ele` paths of a Triangle pair named by either. A name that is only
@@ -286,15 +360,16 @@ fn read_file(p: &std::path::Path) -> Result<Vec<u8>> {
 /// Writes a mesh as text. OBJ and OFF hold linear meshes only; Triangle output is a
 /// pair of files (see [`write_triangle`]). What round-trips is documented per format:
 /// nodes (to the last bit), elements and kinds always; fixed flags in `.msh` and `.vtk`.
-pub fn write_string(mesh: &Mesh, format: Format, opts: &WriteOptions) -> Result<String> {
-    let mut out = Out::string(64 * mesh.node_count() + 48 * mesh.element_count() + 256);
+pub fn write_string<'a>(mesh: impl Into<Writable<'a>>, format: Format, opts: &WriteOptions) -> Result<String> {
+    let mesh = mesh.into();
+    let mut out = Out::string(64 * mesh.mesh.node_count() + 48 * mesh.mesh.element_count() + 256);
     write_to(mesh, format, opts, &mut out)?;
     Ok(out.into_string())
 }
 
 /// Writes a mesh in `format` (not Triangle's pair) into `out`, refusing a text over
 /// [`MAX_FILE_BYTES`] when it is done.
-fn write_to(mesh: &Mesh, format: Format, opts: &WriteOptions, out: &mut Out) -> Result<()> {
+fn write_to(mesh: Writable, format: Format, opts: &WriteOptions, out: &mut Out) -> Result<()> {
     let ext = match format {
         Format::Msh => {
             msh::write(mesh, opts.msh_version, out);
@@ -323,8 +398,10 @@ fn write_to(mesh: &Mesh, format: Format, opts: &WriteOptions, out: &mut Out) -> 
 
 /// Writes a triangle mesh (all 3-node or all 6-node triangles) as the texts of a
 /// Triangle `.node` and `.ele` file; fixed nodes get boundary marker 1.
-pub fn write_triangle(mesh: &Mesh) -> Result<(String, String)> {
-    let (mut node, mut ele) = (Out::string(48 * mesh.node_count() + 64), Out::string(40 * mesh.element_count() + 64));
+pub fn write_triangle<'a>(mesh: impl Into<Writable<'a>>) -> Result<(String, String)> {
+    let mesh = mesh.into();
+    let (mut node, mut ele) =
+        (Out::string(48 * mesh.mesh.node_count() + 64), Out::string(40 * mesh.mesh.element_count() + 64));
     triangle::write(mesh, &mut node, &mut ele)?;
     check_written(node.len(), ".node")?;
     check_written(ele.len(), ".ele")?;
@@ -342,10 +419,11 @@ const LINE_BOUND: u64 = 256;
 /// pass [`MAX_FILE_BYTES`] (by [`LINE_BOUND`]) is measured first, so that a text too large
 /// is refused before anything is written, as it always was.
 #[cfg(not(target_arch = "wasm32"))]
-pub fn write_path(mesh: &Mesh, path: &std::path::Path, opts: &WriteOptions) -> Result<()> {
+pub fn write_path<'a>(mesh: impl Into<Writable<'a>>, path: &std::path::Path, opts: &WriteOptions) -> Result<()> {
+    let mesh = mesh.into();
     let name = path.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_default();
     let format = Format::from_name(&name).ok_or_else(|| unknown_format(&path.display().to_string()))?;
-    let bound = LINE_BOUND * (mesh.node_count() as u64 + mesh.element_count() as u64) + 4096;
+    let bound = LINE_BOUND * (mesh.mesh.node_count() as u64 + mesh.mesh.element_count() as u64) + 4096;
     let cannot = |p: &std::path::Path, e: std::io::Error| Error::Io(format!("cannot write {}: {e}", p.display()));
     if format == Format::Triangle {
         let (node_path, ele_path) = triangle_pair(path, &name)?;
@@ -364,8 +442,8 @@ pub fn write_path(mesh: &Mesh, path: &std::path::Path, opts: &WriteOptions) -> R
         return ele.finish().map_err(|e| cannot(&ele_path, e));
     }
     match format {
-        Format::Obj => objoff::linear_only(mesh, "OBJ")?,
-        Format::Off => objoff::linear_only(mesh, "OFF")?,
+        Format::Obj => objoff::linear_only(mesh.mesh, "OBJ")?,
+        Format::Off => objoff::linear_only(mesh.mesh, "OFF")?,
         _ => {}
     }
     if bound > MAX_FILE_BYTES {

@@ -19,7 +19,7 @@ use crate::error::{Error, Result};
 use crate::io::lex::{prealloc, repeated, shown, Lexer};
 use crate::io::out::Out;
 use crate::io::MshVersion;
-use crate::mesh::{ElementKind, FixedSpec, Mesh, MeshBuilder, NONE};
+use crate::mesh::{ElementKind, FixedSpec, MeshBuilder, NONE};
 
 /// What a Gmsh element type is to us.
 enum GmshType {
@@ -594,7 +594,8 @@ impl Reader {
 }
 
 /// Writes a `.msh` file (ASCII) in the given version; see the module notes for what round-trips.
-pub(crate) fn write(mesh: &Mesh, version: MshVersion, s: &mut Out) {
+pub(crate) fn write(w: super::Writable, version: MshVersion, s: &mut Out) {
+    let mesh = w.mesh;
     let n = mesh.node_count();
     let v = match version {
         MshVersion::V22 => "2.2",
@@ -605,9 +606,9 @@ pub(crate) fn write(mesh: &Mesh, version: MshVersion, s: &mut Out) {
     match version {
         MshVersion::V22 => {
             let _ = writeln!(s, "$Nodes\n{n}");
-            for (i, p) in mesh.nodes().iter().enumerate() {
+            for i in 0..n {
                 let _ = write!(s, "{} ", i + 1);
-                super::write_xyz(s, mesh, *p);
+                w.write_xyz(s, i);
                 s.push('\n');
             }
             let _ = writeln!(s, "$EndNodes\n$Elements\n{}", mesh.element_count());
@@ -622,11 +623,11 @@ pub(crate) fn write(mesh: &Mesh, version: MshVersion, s: &mut Out) {
         }
         MshVersion::V41 => {
             // the surface's bounding box, in 3D
-            let (lo, hi) = mesh.nodes().iter().map(|&p| mesh.to_3d(p)).fold(
+            let (lo, hi) = (0..n).map(|i| w.xyz(i)).fold(
                 (glam::DVec3::splat(f64::INFINITY), glam::DVec3::splat(f64::NEG_INFINITY)),
                 |(lo, hi), q| (lo.min(q), hi.max(q)),
             );
-            let z = |v: f64| if mesh.plane.is_none() { "0".to_string() } else { format!("{v:?}") };
+            let z = |v: f64| if w.in_xy_plane() { "0".to_string() } else { format!("{v:?}") };
             let _ = writeln!(
                 s,
                 "$Entities\n0 0 1 0\n1 {:?} {:?} {} {:?} {:?} {} 0 0\n$EndEntities",
@@ -641,8 +642,8 @@ pub(crate) fn write(mesh: &Mesh, version: MshVersion, s: &mut Out) {
             for i in 0..n {
                 let _ = writeln!(s, "{}", i + 1);
             }
-            for p in mesh.nodes() {
-                super::write_xyz(s, mesh, *p);
+            for i in 0..n {
+                w.write_xyz(s, i);
                 s.push('\n');
             }
             // One block per run of equal kinds, so the element order is kept.

@@ -193,12 +193,13 @@ pub(crate) fn linear_only(mesh: &Mesh, format: &str) -> Result<()> {
 }
 
 /// Writes an OBJ file (linear meshes only).
-pub(crate) fn write_obj(mesh: &Mesh, s: &mut Out) -> Result<()> {
+pub(crate) fn write_obj(w: super::Writable, s: &mut Out) -> Result<()> {
+    let mesh = w.mesh;
     linear_only(mesh, "OBJ")?;
     s.push_str("# written by smoothlab\n");
-    for p in mesh.nodes() {
+    for i in 0..mesh.node_count() {
         s.push_str("v ");
-        super::write_xyz(s, mesh, *p);
+        w.write_xyz(s, i);
         s.push('\n');
     }
     for e in 0..mesh.element_count() {
@@ -212,11 +213,12 @@ pub(crate) fn write_obj(mesh: &Mesh, s: &mut Out) -> Result<()> {
 }
 
 /// Writes an OFF file (linear meshes only).
-pub(crate) fn write_off(mesh: &Mesh, s: &mut Out) -> Result<()> {
+pub(crate) fn write_off(w: super::Writable, s: &mut Out) -> Result<()> {
+    let mesh = w.mesh;
     linear_only(mesh, "OFF")?;
     let _ = writeln!(s, "OFF\n{} {} 0", mesh.node_count(), mesh.element_count());
-    for p in mesh.nodes() {
-        super::write_xyz(s, mesh, *p);
+    for i in 0..mesh.node_count() {
+        w.write_xyz(s, i);
         s.push('\n');
     }
     for e in 0..mesh.element_count() {

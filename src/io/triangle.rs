@@ -206,7 +206,13 @@ pub fn flat_note(mesh: &Mesh) -> Option<String> {
 }
 
 /// The one kind of triangles of the mesh, or why Triangle's files cannot hold it.
-pub(crate) fn writable(mesh: &Mesh) -> Result<ElementKind> {
+pub(crate) fn writable(w: super::Writable) -> Result<ElementKind> {
+    if w.points.is_some() {
+        return Err(Error::invalid(
+            "Triangle's .node holds 2D points and this mesh is a surface in 3D; write .msh, .vtk, .obj or .off instead",
+        ));
+    }
+    let mesh = w.mesh;
     let kind = mesh.kind(0);
     if let Some(e) = (0..mesh.element_count()).find(|&e| mesh.kind(e) != kind || !kind.is_triangle()) {
         return Err(Error::invalid(format!(
@@ -219,8 +225,9 @@ pub(crate) fn writable(mesh: &Mesh) -> Result<ElementKind> {
     Ok(kind)
 }
 
-pub(crate) fn write(mesh: &Mesh, node: &mut Out, ele: &mut Out) -> Result<()> {
-    let kind = writable(mesh)?;
+pub(crate) fn write(w: super::Writable, node: &mut Out, ele: &mut Out) -> Result<()> {
+    let kind = writable(w)?;
+    let mesh = w.mesh;
     let _ = writeln!(node, "# written by smoothlab: number x y boundary-marker (1 = fixed)");
     if let Some(note) = flat_note(mesh) {
         let _ = writeln!(node, "# {note}");

@@ -25,7 +25,7 @@ use std::fmt::Write as _;
 use crate::error::{Error, Result};
 use crate::io::lex::{prealloc, repeated, shown, split_line, Lexer};
 use crate::io::out::Out;
-use crate::mesh::{ElementKind, FixedSpec, Mesh, MeshBuilder};
+use crate::mesh::{ElementKind, FixedSpec, MeshBuilder};
 
 #[derive(Clone, Copy, PartialEq)]
 enum Dataset {
@@ -597,13 +597,14 @@ fn type_of(kind: ElementKind) -> u32 {
 }
 
 /// Writes a legacy VTK `UNSTRUCTURED_GRID` (ASCII) with the fixed flags as point data.
-pub(crate) fn write(mesh: &Mesh, s: &mut Out) {
+pub(crate) fn write(w: super::Writable, s: &mut Out) {
+    let mesh = w.mesh;
     let n = mesh.node_count();
     let m = mesh.element_count();
     let size: usize = (0..m).map(|e| mesh.kind(e).node_count() + 1).sum();
     let _ = write!(s, "# vtk DataFile Version 3.0\nsmoothlab mesh\nASCII\nDATASET UNSTRUCTURED_GRID\nPOINTS {n} double\n");
-    for p in mesh.nodes() {
-        super::write_xyz(s, mesh, *p);
+    for i in 0..n {
+        w.write_xyz(s, i);
         s.push('\n');
     }
     let _ = writeln!(s, "CELLS {m} {size}");

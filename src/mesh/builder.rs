@@ -133,7 +133,100 @@ impl MeshBuilder {
     /// Validates (finite coordinates, indices in range, no repeated node in an element,
     /// at least one element, planarity), maps 3D points to the mesh's plane, orients
     /// the mesh counter-clockwise as a whole, builds the topology and the fixed flags.
-    pub fn build(mut self) -> Result<Mesh> {
+    pub fn build(self) -> Result<Mesh> {
+        self.check()?;
+        let flat = self.to_plane()?;
+        self.planar(flat)
+    }
+
+    /// The planar mesh of the checked nodes and elements, with their 2D coordinates and
+    /// plane from [`to_plane`](Self::to_plane).
+    fn planar(mut self, (nodes, plane): (Vec<DVec2>, Option<Plane>)) -> Result<Mesh> {
+        let n = self.points.len();
+        // the 3D points are not needed past the plane: let them go before the topology is
+        // built (24 bytes a node), and give back what the readers' growing left unused
+        self.points = Vec::new();
+        let (mut kinds, mut elem_start, mut elem_nodes) = (self.kinds, self.elem_start, self.elem_nodes);
+        kinds.shrink_to_fit();
+        elem_start.shrink_to_fit();
+        elem_nodes.shrink_to_fit();
+        let mut mesh = Mesh {
+            plane,
+            nodes,
+            fixed: vec![false; n],
+            conn: Arc::new(Connectivity { kinds, elem_start, elem_nodes, topo: Topology::default() }),
+        };
+        // Orientation of the whole mesh by its total signed area, decided by the sign of
+        // total − (total of the reversed mesh), each summed as its own corner order gives:
+        // reversing negates that difference exactly, so a mesh reversed here is never
+        // reversed again when written and read back. (The sign of the total alone flipped
+        // back and forth when huge coordinates left a total of rounding noise.)
+        // The areas are taken in units of the largest coordinate (a power of two, exact):
+        // near 1e-200 they underflowed to 0 and a clockwise mesh stayed clockwise.
+        let unit = {
+            let m = mesh.nodes.iter().fold(0.0f64, |m, p| m.max(p.x.abs()).max(p.y.abs()));
+            let mut v = [DVec2::new(m, 0.0)];
+            let f = crate::quality::to_unit_scale(&mut v);
+            f[0] * f[1]
+        };
+        let area_in = |e: usize, order: &[usize]| {
+            let ids = mesh.element(e);
+            polygon_area(order.iter().map(|&j| mesh.nodes[ids[j] as usize] * unit))
+        };
+        let forward: f64 =
+            (0..mesh.conn.kinds.len()).map(|e| area_in(e, &[0, 1, 2, 3][..mesh.conn.kinds[e].corners()])).sum();
+        let backward: f64 = (0..mesh.conn.kinds.len())
+            .map(|e| area_in(e, &mesh.conn.kinds[e].reversed_order()[..mesh.conn.kinds[e].corners()]))
+            .sum();
+        if forward - backward < 0.0 {
+            for e in 0..mesh.element_count() {
+                mesh.reverse_element(e);
+            }
+        }
+        finish(mesh, &self.elem_lines, self.fixed)
+    }
+
+    /// Builds what the file holds: a planar [`Mesh`] when its points lie in a plane (as
+    /// [`build`](Self::build)), else a surface in 3D — the checks of a planar mesh, the
+    /// elements oriented consistently (see [`Surface`](crate::surface::Surface)), with its
+    /// points as given.
+    pub fn build_model(self) -> Result<crate::surface::Model> {
+        self.check()?;
+        match self.to_plane() {
+            Err(Error::NotPlanar { .. }) => {}
+            flat => return self.planar(flat?).map(crate::surface::Model::Planar),
+        }
+        self.surface(None).map(crate::surface::Model::Surface)
+    }
+
+    /// Builds a surface in 3D whatever its points (a generator's, on `analytic`'s exact
+    /// surface when given; see [`Surface`](crate::surface::Surface)).
+    pub fn build_surface(self, analytic: Option<crate::surface::Analytic>) -> Result<crate::surface::Surface> {
+        self.check()?;
+        self.surface(analytic)
+    }
+
+    fn surface(mut self, analytic: Option<crate::surface::Analytic>) -> Result<crate::surface::Surface> {
+        let points: Vec<glam::DVec3> = std::mem::take(&mut self.points).into_iter().map(glam::DVec3::from).collect();
+        let n = points.len();
+        let mesh = Mesh {
+            plane: None,
+            nodes: vec![DVec2::ZERO; n],
+            fixed: vec![false; n],
+            conn: Arc::new(Connectivity {
+                kinds: self.kinds,
+                elem_start: self.elem_start,
+                elem_nodes: self.elem_nodes,
+                topo: Topology::default(),
+            }),
+        };
+        let mesh = finish(mesh, &self.elem_lines, self.fixed)?;
+        crate::surface::Surface::from_parts(points, mesh, analytic)
+    }
+
+    /// The checks every mesh passes, planar or surface: at least one element, finite
+    /// coordinates the arithmetic can hold, node indices in range, no node twice in an element.
+    fn check(&self) -> Result<()> {
         if self.kinds.is_empty() {
             return Err(Error::Empty(if self.points.is_empty() {
                 "no nodes and no elements".into()
@@ -171,76 +264,7 @@ impl MeshBuilder {
                 }
             }
         }
-        let (nodes, plane) = self.to_plane()?;
-        // the 3D points are not needed past the plane: let them go before the topology is
-        // built (24 bytes a node), and give back what the readers' growing left unused
-        self.points = Vec::new();
-        let (mut kinds, mut elem_start, mut elem_nodes) = (self.kinds, self.elem_start, self.elem_nodes);
-        kinds.shrink_to_fit();
-        elem_start.shrink_to_fit();
-        elem_nodes.shrink_to_fit();
-        let mut mesh = Mesh {
-            plane,
-            nodes,
-            fixed: vec![false; n],
-            conn: Arc::new(Connectivity { kinds, elem_start, elem_nodes, topo: Topology::default() }),
-        };
-        // Orientation of the whole mesh by its total signed area, decided by the sign of
-        // total − (total of the reversed mesh), each summed as its own corner order gives:
-        // reversing negates that difference exactly, so a mesh reversed here is never
-        // reversed again when written and read back. (The sign of the total alone flipped
-        // back and forth when huge coordinates left a total of rounding noise.)
-        // The areas are taken in units of the largest coordinate (a power of two, exact):
-        // near 1e-200 they underflowed to 0 and a clockwise mesh stayed clockwise.
-        let unit = {
-            let m = mesh.nodes.iter().fold(0.0f64, |m, p| m.max(p.x.abs()).max(p.y.abs()));
-            let mut v = [DVec2::new(m, 0.0)];
-            let f = crate::quality::to_unit_scale(&mut v);
-            f[0] * f[1]
-        };
-        let area_in = |e: usize, order: &[usize]| {
-            let ids = mesh.element(e);
-            polygon_area(order.iter().map(|&j| mesh.nodes[ids[j] as usize] * unit))
-        };
-        let forward: f64 =
-            (0..mesh.conn.kinds.len()).map(|e| area_in(e, &[0, 1, 2, 3][..mesh.conn.kinds[e].corners()])).sum();
-        let backward: f64 = (0..mesh.conn.kinds.len())
-            .map(|e| area_in(e, &mesh.conn.kinds[e].reversed_order()[..mesh.conn.kinds[e].corners()]))
-            .sum();
-        if forward - backward < 0.0 {
-            let c = mesh.connectivity_mut();
-            for e in 0..c.kinds.len() {
-                let s = c.elem_start[e] as usize;
-                let k = c.kinds[e];
-                let mut old = [0u32; 9];
-                old[..k.node_count()].copy_from_slice(&c.elem_nodes[s..s + k.node_count()]);
-                for (i, &j) in k.reversed_order().iter().enumerate() {
-                    c.elem_nodes[s + i] = old[j];
-                }
-            }
-        }
-        let topo = build_topology(&mesh, &self.elem_lines)?;
-        mesh.connectivity_mut().topo = topo;
-        let boundary = mesh.conn.topo.boundary.clone();
-        mesh.fixed = match self.fixed {
-            FixedSpec::Boundary => boundary,
-            FixedSpec::Exact(f) => {
-                if f.len() != n {
-                    return Err(Error::invalid(format!("{} fixed flags for {} nodes", f.len(), n)));
-                }
-                f
-            }
-            FixedSpec::BoundaryAnd(f) => {
-                boundary.iter().zip(f.iter().chain(std::iter::repeat(&false))).map(|(a, b)| *a || *b).collect()
-            }
-        };
-        // Nodes no element uses never move.
-        for i in 0..n {
-            if mesh.conn.topo.role[i] == NodeRole::Unused {
-                mesh.fixed[i] = true;
-            }
-        }
-        Ok(mesh)
+        Ok(())
     }
 
     /// 2D coordinates of the points: as given when every z is equal, else in the plane of
@@ -385,6 +409,35 @@ impl MeshBuilder {
         }
         Ok((out, Some(Plane { origin: centre * scale, u, w })))
     }
+}
+
+/// The last step of building any mesh: the topology from the elements (with the lines
+/// of the file for its errors) and the fixed flags as `fixed` says; nodes no element
+/// uses never move.
+pub(super) fn finish(mut mesh: Mesh, elem_lines: &[u32], fixed: FixedSpec) -> Result<Mesh> {
+    let n = mesh.nodes.len();
+    let topo = build_topology(&mesh, elem_lines)?;
+    mesh.connectivity_mut().topo = topo;
+    let boundary = mesh.conn.topo.boundary.clone();
+    mesh.fixed = match fixed {
+        FixedSpec::Boundary => boundary,
+        FixedSpec::Exact(f) => {
+            if f.len() != n {
+                return Err(Error::invalid(format!("{} fixed flags for {} nodes", f.len(), n)));
+            }
+            f
+        }
+        FixedSpec::BoundaryAnd(f) => {
+            boundary.iter().zip(f.iter().chain(std::iter::repeat(&false))).map(|(a, b)| *a || *b).collect()
+        }
+    };
+    // Nodes no element uses never move.
+    for i in 0..n {
+        if mesh.conn.topo.role[i] == NodeRole::Unused {
+            mesh.fixed[i] = true;
+        }
+    }
+    Ok(mesh)
 }
 
 /// The median of the values (the upper one of the middle two for an even count); NaN-free

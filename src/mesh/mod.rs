@@ -25,6 +25,15 @@ pub use builder::{polygon_area, FixedSpec, MeshBuilder, MAX_COORDINATE, PLANAR_T
 pub use kind::{ElementKind, NodeRole};
 use topology::build_topology;
 
+/// A node that follows a moved corner ([`Mesh::for_each_follower`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Follower {
+    /// A mid-side node, placed at the middle of its edge's corners `a` and `b`.
+    Mid { mid: usize, a: usize, b: usize },
+    /// A 9-node quad's centre, placed at the mean of the element's other eight nodes.
+    Centre { centre: usize, element: usize },
+}
+
 /// Marker for "no such index" in the flat arrays.
 pub const NONE: u32 = u32::MAX;
 
@@ -123,6 +132,22 @@ impl Plane {
     /// The 3D point of the plane's 2D coordinates `p`.
     pub fn to_3d(&self, p: DVec2) -> glam::DVec3 {
         self.origin + self.u * p.x + self.w * p.y
+    }
+    /// The 2D coordinates of the orthogonal projection of `q` onto the plane.
+    pub fn to_2d(&self, q: glam::DVec3) -> DVec2 {
+        let d = q - self.origin;
+        DVec2::new(d.dot(self.u), d.dot(self.w))
+    }
+    /// The plane through `origin` with the unit normal `normal`, its axes `u × w = normal`
+    /// (`u` in the xy plane's direction nearest to x where it can be).
+    pub fn with_normal(origin: glam::DVec3, normal: glam::DVec3) -> Plane {
+        let helper = if normal.x.abs() < 0.9 { glam::DVec3::X } else { glam::DVec3::Y };
+        let u = (helper - normal * helper.dot(normal)).normalize();
+        Plane { origin, u, w: normal.cross(u) }
+    }
+    /// The plane's unit normal, `u × w`.
+    pub fn normal(&self) -> glam::DVec3 {
+        self.u.cross(self.w)
     }
 }
 
@@ -283,6 +308,36 @@ impl Mesh {
         if !self.has_quadratic() {
             return;
         }
+        let mut nodes = std::mem::take(&mut self.nodes);
+        self.for_each_follower(n, |f| match f {
+            Follower::Mid { mid, a, b } => nodes[mid] = 0.5 * (nodes[a] + nodes[b]),
+            Follower::Centre { centre, element } => {
+                let s: DVec2 = self.element(element)[..8].iter().map(|&i| nodes[i as usize]).sum();
+                nodes[centre] = s / 8.0;
+            }
+        });
+        self.nodes = nodes;
+    }
+
+    /// Puts every node of corner node `n`'s elements at `at(node)`, then the nodes that
+    /// follow `n` where they follow ([`follow_mid_nodes`](Self::follow_mid_nodes)): a
+    /// surface's star flattened into this mesh's scratch positions.
+    pub(crate) fn set_star(&mut self, n: usize, at: impl Fn(usize) -> DVec2) {
+        for &e in self.conn.topo.node_elements(n) {
+            let e = e as usize;
+            for &m in &self.conn.elem_nodes[self.conn.elem_start[e] as usize..self.conn.elem_start[e + 1] as usize] {
+                self.nodes[m as usize] = at(m as usize);
+            }
+        }
+        self.follow_mid_nodes(n);
+    }
+
+    /// The nodes that follow corner node `n` when it moves, in the order they are to be
+    /// placed: per element of its star, the mid-side node of each of its edges at `n`
+    /// (unless fixed or on a curved boundary edge), then a 9-node quad's centre (unless
+    /// fixed). The one rule for planar meshes ([`follow_mid_nodes`](Self::follow_mid_nodes))
+    /// and surfaces.
+    pub(crate) fn for_each_follower(&self, n: usize, mut f: impl FnMut(Follower)) {
         for &el in self.conn.topo.node_elements(n) {
             let el = el as usize;
             let kind = self.conn.kinds[el];
@@ -301,18 +356,50 @@ impl Mesh {
                 if self.fixed[m] || self.conn.topo.on_curved[m] {
                     continue;
                 }
-                self.nodes[m] = 0.5 * (self.nodes[a] + self.nodes[b]);
+                f(Follower::Mid { mid: m, a, b });
             }
             if kind == ElementKind::Quad9 {
                 let c = self.conn.elem_nodes[start + 8] as usize;
                 if !self.fixed[c] {
-                    let s: DVec2 = (0..8).map(|i| self.nodes[self.conn.elem_nodes[start + i] as usize]).sum();
-                    self.nodes[c] = s / 8.0;
+                    f(Follower::Centre { centre: c, element: el });
                 }
             }
         }
     }
 
+    /// Marks the boundary edges `curved` says are curved, with their nodes (a surface
+    /// decides in 3D, where the planar test of the builder cannot). Only while the mesh
+    /// is being built: its topology is not shared yet.
+    pub(crate) fn mark_curved_boundary(&mut self, curved: impl Fn(&Edge) -> bool) {
+        let topo = &mut self.connectivity_mut().topo;
+        for e in topo.edges.iter_mut().filter(|e| e.boundary && e.mid != NONE) {
+            if curved(e) {
+                e.curved = true;
+                for n in [e.a, e.b, e.mid] {
+                    topo.on_curved[n as usize] = true;
+                }
+            }
+        }
+    }
+    /// Fixes the nodes `also` says, besides those fixed already (a surface's feature
+    /// curves). Only while the mesh is being built.
+    pub(crate) fn fix_also(&mut self, also: impl Fn(usize) -> bool) {
+        for (n, f) in self.fixed.iter_mut().enumerate() {
+            *f |= also(n);
+        }
+    }
+    /// Reverses the order of the nodes of element `e` (its orientation). Only while the
+    /// mesh is being built.
+    pub(crate) fn reverse_element(&mut self, e: usize) {
+        let c = self.connectivity_mut();
+        let s = c.elem_start[e] as usize;
+        let k = c.kinds[e];
+        let mut old = [0u32; 9];
+        old[..k.node_count()].copy_from_slice(&c.elem_nodes[s..s + k.node_count()]);
+        for (i, &j) in k.reversed_order().iter().enumerate() {
+            c.elem_nodes[s + i] = old[j];
+        }
+    }
 
     /// Bytes held by the mesh: the capacities of all its arrays (positions, flags,
     /// elements and the topology, shared ones included), not counting the `Mesh`

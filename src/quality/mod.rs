@@ -476,6 +476,12 @@ pub struct MeshStats {
     /// Counts (not percentages) of corner angles in 30 bins of 6° over [0°, 180°];
     /// negative angles count in the first bin (Freitag 1997, Figure 3).
     pub angle_histogram_6deg: Vec<u64>,
+    /// Whether the mesh is a surface in 3D ([`crate::surface`]), its elements measured each
+    /// in its own plane.
+    pub surface: bool,
+    /// For a surface, the largest distance of a node from the reference surface.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub max_distance_from_surface: Option<f64>,
 }
 
 /// Where a mesh stands, in the numbers a pass record carries (and the page's table and
@@ -539,6 +545,8 @@ impl MeshStats {
             mean_quality: 0.0,
             max_condition: 0.0,
             angle_histogram_6deg: vec![0; 30],
+            surface: false,
+            max_distance_from_surface: None,
         }
     }
 }
@@ -561,11 +569,17 @@ impl MeshStats {
 /// corner's signed angle computed once for the extreme angles and the histogram alike,
 /// and without the scaled Jacobians no statistic shows.
 pub fn mesh_stats(mesh: &Mesh) -> MeshStats {
+    mesh_stats_with(mesh, |e| mesh.element_points_array(e))
+}
+
+/// [`mesh_stats`] of `mesh`'s elements with element `e`'s nodes at `points(e)` (a
+/// surface's elements, each in its own plane).
+pub fn mesh_stats_with(mesh: &Mesh, points: impl Fn(usize) -> [DVec2; 9]) -> MeshStats {
     let mut s = MeshStats::empty(mesh);
     let mut sum = 0.0;
     for e in 0..mesh.element_count() {
         let kind = mesh.kind(e);
-        let p = mesh.element_points_array(e);
+        let p = points(e);
         let hist = &mut s.angle_histogram_6deg;
         let q = measure_element::<true, true, false>(kind, &p[..kind.node_count()], |_, _, ang| hist[angle_bin(ang)] += 1);
         sum += s.add(&q);

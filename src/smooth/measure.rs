@@ -125,7 +125,7 @@ pub(super) fn at(e: &StarElement, x: Option<DVec2>) -> [DVec2; 9] {
 
 /// Whether an element has a corner with `det ≤ 0` (the definition of
 /// [`crate::quality::ElementQuality::inverted`]).
-pub(super) fn is_inverted(kind: crate::mesh::ElementKind, p: &[DVec2; 9]) -> bool {
+pub(crate) fn is_inverted(kind: crate::mesh::ElementKind, p: &[DVec2; 9]) -> bool {
     corner_edges(kind, p)[..kind.corners()].iter().any(|(e1, e2)| e1.perp_dot(*e2) <= 0.0)
 }
 

@@ -34,7 +34,8 @@ mod tests;
 
 use guard::KeepValid;
 pub(crate) use measure::{element_measures, element_shape_at, star_quality, star_shape, triangle_shape_at};
-use measure::{is_inverted, is_inverted_at};
+pub(crate) use measure::is_inverted;
+use measure::is_inverted_at;
 pub use obstacles::{untangling_obstacles, Obstacle};
 pub use options::{
     Measure, Order, SmoothOptions, Strategy, DEFAULT_MAX_ITER, DEFAULT_PASSES, DEFAULT_THRESHOLD_DEG, UNTANGLE_SWEEPS,
@@ -49,6 +50,64 @@ fn centroid(mesh: &Mesh, n: usize) -> Option<DVec2> {
     }
     let s: DVec2 = nb.iter().map(|&m| mesh.nodes()[m as usize]).sum();
     Some(s / nb.len() as f64)
+}
+
+/// Where a driver reads a node's star and puts the node it moved. A planar mesh is its own
+/// view ([`Planar`]); a surface flattens each star into its tangent plane first
+/// ([`crate::surface`]). The drivers are generic over it, so the planar path pays nothing.
+pub(crate) trait StarView {
+    /// The elements, topology and fixed flags.
+    fn mesh(&self) -> &Mesh;
+    /// A planar mesh in which free node `n`'s star — its elements' nodes — has its
+    /// positions now (a planar mesh: itself).
+    fn star_mesh(&mut self, n: usize) -> &Mesh;
+    /// Moves free node `n` to `x`, a position in the coordinates of the last
+    /// [`star_mesh(n)`](Self::star_mesh); the mid-side nodes that follow it follow.
+    fn place(&mut self, n: usize, x: DVec2);
+    /// Whether element `e` is inverted now.
+    fn is_inverted(&self, e: usize) -> bool;
+}
+
+/// A planar mesh as its own [`StarView`].
+pub(crate) struct Planar<'a>(pub &'a mut Mesh);
+
+impl StarView for Planar<'_> {
+    #[inline]
+    fn mesh(&self) -> &Mesh {
+        self.0
+    }
+    #[inline]
+    fn star_mesh(&mut self, _: usize) -> &Mesh {
+        self.0
+    }
+    #[inline]
+    fn place(&mut self, n: usize, x: DVec2) {
+        self.0.nodes_mut()[n] = x;
+        self.0.follow_mid_nodes(n);
+    }
+    fn is_inverted(&self, e: usize) -> bool {
+        is_inverted(self.0.kind(e), &self.0.element_points_array(e))
+    }
+}
+
+/// A planar mesh seen read-only, for planning (which never places a node).
+struct Reading<'a>(&'a Mesh);
+
+impl StarView for Reading<'_> {
+    #[inline]
+    fn mesh(&self) -> &Mesh {
+        self.0
+    }
+    #[inline]
+    fn star_mesh(&mut self, _: usize) -> &Mesh {
+        self.0
+    }
+    fn place(&mut self, _: usize, _: DVec2) {
+        unreachable!("planning does not move nodes")
+    }
+    fn is_inverted(&self, e: usize) -> bool {
+        is_inverted(self.0.kind(e), &self.0.element_points_array(e))
+    }
 }
 
 /// A smoothing driver with its scratch buffers. One `Smoother` serves any number of passes
@@ -157,34 +216,48 @@ impl Smoother {
     /// [`objective_total`](Self::objective_total), which cost more than a Laplacian sweep).
     /// Counts as [`pass`](Self::pass) does; does not count as a pass.
     pub fn sweep(&mut self, mesh: &mut Mesh, objective: &dyn Objective) -> SweepCounts {
-        self.plan(mesh);
+        self.sweep_in(&mut Planar(mesh), objective)
+    }
+
+    /// [`sweep`](Self::sweep) over any [`StarView`].
+    pub(crate) fn sweep_in(&mut self, view: &mut impl StarView, objective: &dyn Objective) -> SweepCounts {
+        self.begin_plan(view.mesh());
+        while !self.plan_some_in(view, usize::MAX) {}
         let schedule = std::mem::take(&mut self.schedule);
-        let mut counts = self.visit_all(mesh, &schedule, objective);
+        let mut counts = self.visit_all_in(view, &schedule, objective);
         self.schedule = schedule;
-        while self.plan_untangle_sweep(mesh, &mut counts) {
+        while self.plan_untangle_sweep_in(view, &mut counts) {
             let revisits = std::mem::take(&mut self.revisits);
-            let c = self.visit_all(mesh, &revisits, objective);
+            let c = self.visit_all_in(view, &revisits, objective);
             self.revisits = revisits;
             counts.merge(c);
         }
         counts
     }
 
-
     /// Visits the nodes of `order` in turn (the mesh facts must be fresh).
     pub(crate) fn visit_all(&mut self, mesh: &mut Mesh, order: &[u32], objective: &dyn Objective) -> SweepCounts {
+        self.visit_all_in(&mut Planar(mesh), order, objective)
+    }
+
+    fn visit_all_in(&mut self, view: &mut impl StarView, order: &[u32], objective: &dyn Objective) -> SweepCounts {
         let mut c = SweepCounts::default();
         for &n in order {
-            c.add(self.visit(mesh, n as usize, objective));
+            c.add(self.visit(view, n as usize, objective));
         }
         c
     }
 
     /// The sum over free nodes of the node objective value (see [`PassRecord::objective_total`]).
     pub fn objective_total(&mut self, mesh: &Mesh, objective: &dyn Objective) -> f64 {
+        self.objective_total_in(&mut Reading(mesh), objective)
+    }
+
+    pub(crate) fn objective_total_in(&mut self, view: &mut impl StarView, objective: &dyn Objective) -> f64 {
         let mut total = 0.0;
-        for n in 0..mesh.node_count() {
-            if mesh.is_free(n) {
+        for n in 0..view.mesh().node_count() {
+            if view.mesh().is_free(n) {
+                let mesh = view.star_mesh(n);
                 self.star.gather(mesh, n);
                 total += evaluate(objective, &self.star, mesh.nodes()[n], &mut self.terms).0;
             }
@@ -195,13 +268,16 @@ impl Smoother {
     /// Smooths one node by the strategy (fixed nodes and mid-side nodes are left alone).
     pub fn smooth_node(&mut self, mesh: &mut Mesh, node: usize, objective: &dyn Objective) -> NodeOutcome {
         self.refresh_mesh_facts(mesh);
-        self.visit(mesh, node, objective)
+        self.visit(&mut Planar(mesh), node, objective)
     }
 
-    fn visit(&mut self, mesh: &mut Mesh, n: usize, objective: &dyn Objective) -> NodeOutcome {
-        let (x, out) = self.decide(mesh, n, objective);
+    fn visit(&mut self, view: &mut impl StarView, n: usize, objective: &dyn Objective) -> NodeOutcome {
+        if n >= view.mesh().node_count() || !view.mesh().is_free(n) {
+            return NodeOutcome::default();
+        }
+        let (x, out) = self.decide(view.star_mesh(n), n, objective);
         if out.moved {
-            self.place(mesh, n, x);
+            view.place(n, x);
         }
         out
     }
@@ -321,13 +397,6 @@ impl Smoother {
         self.star.x0 = x;
         for e in &mut self.star.elems {
             e.move_free_node(x);
-        }
-    }
-
-    fn place(&mut self, mesh: &mut Mesh, n: usize, x: DVec2) {
-        mesh.nodes_mut()[n] = x;
-        if self.quadratic {
-            mesh.follow_mid_nodes(n);
         }
     }
 

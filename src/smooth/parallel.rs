@@ -17,7 +17,7 @@
 
 use glam::DVec2;
 
-use super::{NodeOutcome, PassRecord, SmoothOptions, Smoother, SweepCounts};
+use super::{NodeOutcome, PassRecord, Planar, SmoothOptions, Smoother, StarView, SweepCounts};
 use crate::error::Result;
 use crate::mesh::{Mesh, NONE};
 use crate::objective::Objective;
@@ -194,7 +194,7 @@ impl ColouredSmoother {
                     for (&n, &(x, o)) in nodes.iter().zip(&self.moves) {
                         counts.add(o);
                         if o.moved {
-                            self.main.place(mesh, n as usize, x);
+                            Planar(&mut *mesh).place(n as usize, x);
                         }
                     }
                 }

@@ -48,12 +48,18 @@ impl Smoother {
     /// measuring at most `max_stars` more stars (at least one) for the priority order.
     /// Returns true when the schedule is complete.
     pub fn plan_some(&mut self, mesh: &Mesh, max_stars: usize) -> bool {
-        let n = mesh.node_count();
+        self.plan_some_in(&mut Reading(mesh), max_stars)
+    }
+
+    /// [`plan_some`](Self::plan_some) over any [`StarView`].
+    pub(crate) fn plan_some_in(&mut self, view: &mut impl StarView, max_stars: usize) -> bool {
+        let n = view.mesh().node_count();
         if self.plan_next >= n {
             return true;
         }
         match self.options.order {
             Order::Input => {
+                let mesh = view.mesh();
                 self.schedule.extend((0..n as u32).filter(|&i| mesh.is_free(i as usize)));
                 self.plan_next = n;
                 true
@@ -62,8 +68,8 @@ impl Smoother {
                 let mut measured = 0usize;
                 while self.plan_next < n && measured < max_stars.max(1) {
                     let i = self.plan_next;
-                    if mesh.is_free(i) {
-                        self.star.gather(mesh, i);
+                    if view.mesh().is_free(i) {
+                        self.star.gather(view.star_mesh(i), i);
                         self.quality[i] = star_shape(&self.star, self.star.x0).0;
                         self.ranked.push(i as u32);
                         measured += 1;
@@ -115,6 +121,11 @@ impl Smoother {
     /// limit, the last sweep moved no node, or the strategy never optimises. The one
     /// place that decides, for [`sweep`](Self::sweep) and for the page's sliced pass.
     pub fn plan_untangle_sweep(&mut self, mesh: &Mesh, counts: &mut SweepCounts) -> bool {
+        self.plan_untangle_sweep_in(&mut Reading(mesh), counts)
+    }
+
+    /// [`plan_untangle_sweep`](Self::plan_untangle_sweep) over any [`StarView`].
+    pub(crate) fn plan_untangle_sweep_in(&mut self, view: &mut impl StarView, counts: &mut SweepCounts) -> bool {
         self.revisits.clear();
         let stalled = self.sweep_moves_from.is_some_and(|m| counts.moves == m);
         if stalled
@@ -123,11 +134,12 @@ impl Smoother {
         {
             return false;
         }
+        let mesh = view.mesh();
         self.marked.clear();
         self.marked.resize(mesh.node_count(), false);
         for e in 0..mesh.element_count() {
             let kind = mesh.kind(e);
-            if !is_inverted(kind, &mesh.element_points_array(e)) {
+            if !view.is_inverted(e) {
                 continue;
             }
             for &c in &mesh.element(e)[..kind.corners()] {
@@ -143,7 +155,7 @@ impl Smoother {
         let mut ranked: Vec<(f64, u32)> = Vec::with_capacity(self.revisits.len());
         for &n in &self.revisits {
             self.marked[n as usize] = false;
-            self.star.gather(mesh, n as usize);
+            self.star.gather(view.star_mesh(n as usize), n as usize);
             ranked.push((star_shape(&self.star, self.star.x0).0, n));
         }
         ranked.sort_unstable_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));

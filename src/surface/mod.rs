@@ -1,0 +1,350 @@
+//! Surface meshes: triangles and quads, linear or quadratic, mixed, open or closed, in 3D
+//! — what Chen, Tristano & Kwok (2003) smooth ("quadratic mixed surface meshes", their
+//! Figs. 18–19).
+//!
+//! The planar core serves a surface unchanged. A [`Surface`] keeps its nodes in 3D
+//! ([`Surface::points`]) and its elements, topology and fixed flags in a planar [`Mesh`]
+//! whose 2D positions are scratch ([`Surface::flat`]): before a driver looks at a free
+//! node, the node's star is flattened into its tangent plane there (the normal is the
+//! star's area-weighted normal), so every metric, objective, solver and strategy runs on
+//! it as on a planar star; the node's new 2D position is lifted back into the plane and
+//! projected onto the [`Reference`] surface (`view`). A planar mesh never passes
+//! through here, so planar results and speed are what they were.
+//!
+//! An element's metrics are taken in its own plane, oriented by the reference surface's
+//! normal at its centre: an element whose normal opposes the surface's is inverted
+//! ([`Surface::element_points_2d`]).
+
+use std::sync::Arc;
+
+use glam::{DVec2, DVec3};
+
+use crate::error::{Error, Result};
+use crate::mesh::{Mesh, NodeRole, Plane, NONE};
+use crate::quality::{mesh_stats_with, MeshStats};
+
+mod reference;
+mod view;
+
+pub use reference::{closest_on_triangle, Analytic, Facets, Projected, Reference};
+pub use view::{perturb_surface, smooth_surface, SurfaceSmoother};
+
+/// What a mesh file holds: a planar mesh (the 2D core) or a surface in 3D.
+#[derive(Clone, Debug)]
+#[allow(clippy::large_enum_variant)]
+pub enum Model {
+    Planar(Mesh),
+    Surface(Surface),
+}
+
+impl From<Mesh> for Model {
+    fn from(m: Mesh) -> Model {
+        Model::Planar(m)
+    }
+}
+
+impl Model {
+    /// The elements, topology and fixed flags (for a surface, with scratch positions:
+    /// see [`Surface::flat`]).
+    pub fn mesh(&self) -> &Mesh {
+        match self {
+            Model::Planar(m) => m,
+            Model::Surface(s) => &s.flat,
+        }
+    }
+    /// The statistics `stats` prints.
+    pub fn stats(&self) -> MeshStats {
+        match self {
+            Model::Planar(m) => crate::quality::mesh_stats(m),
+            Model::Surface(s) => s.stats(),
+        }
+    }
+    /// The planar mesh, or an error saying that `what` takes planar meshes only.
+    pub fn planar(self, what: &str) -> Result<Mesh> {
+        match self {
+            Model::Planar(m) => Ok(m),
+            Model::Surface(_) => {
+                Err(Error::invalid(format!("{what} takes planar meshes only; this mesh is a surface in 3D")))
+            }
+        }
+    }
+}
+
+/// Dihedral angle over which an edge between two elements is a feature curve (its nodes
+/// stay fixed), degrees.
+pub const FEATURE_ANGLE_DEG: f64 = 30.0;
+
+/// A surface mesh in 3D with the surface its nodes stay on (see the module docs).
+#[derive(Clone, Debug)]
+pub struct Surface {
+    points: Vec<DVec3>,
+    flat: Mesh,
+    /// Shared by clones (the page's two sides).
+    reference: Arc<Reference>,
+    /// Per node, the facet of the reference its last projection landed on.
+    hint: Vec<u32>,
+    /// Per node, whether it lies on a feature curve (an edge whose dihedral angle is
+    /// over [`FEATURE_ANGLE_DEG`]).
+    feature: Vec<bool>,
+}
+
+impl Surface {
+    /// A surface from its points and its elements with their topology and fixed flags
+    /// (as the builder makes them). The elements are oriented consistently — across every
+    /// edge two elements run opposite ways — each closed part outward, each open part as
+    /// most of its elements were given; a non-orientable surface is refused. Boundary
+    /// edges whose mid-side node is off the chord are curved; nodes on feature curves are
+    /// fixed. The reference is `analytic` when given, else the elements as they are now.
+    pub(crate) fn from_parts(points: Vec<DVec3>, mut flat: Mesh, analytic: Option<Analytic>) -> Result<Surface> {
+        orient(&mut flat, &points)?;
+        flat.mark_curved_boundary(|e| {
+            let (a, b, m) = (points[e.a as usize], points[e.b as usize], points[e.mid as usize]);
+            let chord = b - a;
+            let off = (m - a).cross(chord).length() / chord.length().max(f64::MIN_POSITIVE);
+            off > 1e-6 * chord.length()
+        });
+        let feature = feature_nodes(&flat, &points, FEATURE_ANGLE_DEG);
+        flat.fix_also(|n| feature[n]);
+        let reference = match analytic {
+            Some(a) => Reference::Analytic(a),
+            None => Reference::Facets(Facets::new(&points, flat.kinds(), |e| flat.element(e))),
+        };
+        let hint = match &reference {
+            Reference::Facets(f) => (0..points.len()).map(|n| f.triangle_at_vertex(n)).collect(),
+            Reference::Analytic(_) => vec![NONE; points.len()],
+        };
+        Ok(Surface { points, flat, reference: Arc::new(reference), hint, feature })
+    }
+
+    /// Node positions in 3D.
+    pub fn points(&self) -> &[DVec3] {
+        &self.points
+    }
+    /// The elements, topology and fixed flags as a planar mesh. Its 2D positions are
+    /// scratch (the star last flattened), not the surface's: read [`points`](Self::points).
+    pub fn flat(&self) -> &Mesh {
+        &self.flat
+    }
+    pub fn reference(&self) -> &Reference {
+        &self.reference
+    }
+    /// Whether node `n` lies on a feature curve.
+    pub fn is_feature(&self, n: usize) -> bool {
+        self.feature[n]
+    }
+    pub fn node_count(&self) -> usize {
+        self.points.len()
+    }
+    pub fn element_count(&self) -> usize {
+        self.flat.element_count()
+    }
+
+    /// The nearest point of the reference to `p`, searched from node `n`'s last facet.
+    pub(crate) fn project_near(&self, p: DVec3, n: usize) -> Projected {
+        self.reference.project(p, self.hint[n])
+    }
+
+    /// The reference surface's unit normal at the centre of element `e`.
+    pub fn reference_normal(&self, e: usize) -> DVec3 {
+        let ids = self.flat.element(e);
+        let k = self.flat.kind(e).corners();
+        let centre = ids[..k].iter().map(|&i| self.points[i as usize]).sum::<DVec3>() / k as f64;
+        self.project_near(centre, ids[0] as usize).normal
+    }
+
+    /// Element `e`'s nodes in its own plane (2D), oriented so that the element reads as
+    /// inverted there when its normal opposes the reference surface's: the plane through
+    /// its corners' centre with the normal of its corner polygon (Newell's, the best-fit
+    /// plane's for a warped quad), turned to face the way the reference does. Unused
+    /// slots are zero, as [`Mesh::element_points_array`].
+    pub fn element_points_2d(&self, e: usize) -> [DVec2; 9] {
+        let ids = self.flat.element(e);
+        let k = self.flat.kind(e).corners();
+        let corner = |i: usize| self.points[ids[i] as usize];
+        let centre = (0..k).map(corner).sum::<DVec3>() / k as f64;
+        let own = (0..k).map(|i| (corner(i) - centre).cross(corner((i + 1) % k) - centre)).sum::<DVec3>();
+        let towards = self.reference_normal(e);
+        let normal = match own.try_normalize() {
+            Some(n) if n.dot(towards) < 0.0 => -n,
+            Some(n) => n,
+            None => towards,
+        };
+        let plane = Plane::with_normal(centre, normal);
+        let mut p = [DVec2::ZERO; 9];
+        for (q, &i) in p.iter_mut().zip(ids) {
+            *q = plane.to_2d(self.points[i as usize]);
+        }
+        p
+    }
+
+    /// The largest distance of a node (used by an element) from the reference surface.
+    pub fn max_distance_from_reference(&self) -> f64 {
+        (0..self.points.len())
+            .filter(|&n| self.flat.role(n) != NodeRole::Unused)
+            .map(|n| (self.project_near(self.points[n], n).point - self.points[n]).length())
+            .fold(0.0, f64::max)
+    }
+
+    /// The edge of the bounding box of the nodes used by elements, longest side.
+    pub fn size(&self) -> f64 {
+        let (mut lo, mut hi) = (DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY));
+        for (n, p) in self.points.iter().enumerate() {
+            if self.flat.role(n) != NodeRole::Unused {
+                lo = lo.min(*p);
+                hi = hi.max(*p);
+            }
+        }
+        (hi - lo).max_element().max(0.0)
+    }
+
+    /// [`MeshStats`] with every element measured in its own plane
+    /// ([`element_points_2d`](Self::element_points_2d)), `surface` set and the largest
+    /// distance from the reference.
+    pub fn stats(&self) -> MeshStats {
+        let mut s = mesh_stats_with(&self.flat, |e| self.element_points_2d(e));
+        s.surface = true;
+        s.max_distance_from_surface = Some(self.max_distance_from_reference());
+        s
+    }
+
+    /// The mean length of the corner-to-corner edges, in 3D.
+    pub fn mean_edge_length(&self) -> f64 {
+        let edges = self.flat.edges();
+        if edges.is_empty() {
+            return 0.0;
+        }
+        edges.iter().map(|e| (self.points[e.a as usize] - self.points[e.b as usize]).length()).sum::<f64>()
+            / edges.len() as f64
+    }
+}
+
+/// The normal of element `e`'s corner polygon, its length twice the area (Newell's sum
+/// about the first corner).
+fn element_normal(mesh: &Mesh, points: &[DVec3], e: usize) -> DVec3 {
+    let ids = mesh.element(e);
+    let k = mesh.kind(e).corners();
+    let o = points[ids[0] as usize];
+    (0..k).map(|i| (points[ids[i] as usize] - o).cross(points[ids[(i + 1) % k] as usize] - o)).sum()
+}
+
+/// The other element across corner edge `a → b` of an element, and whether it runs the
+/// edge the same way (`a → b` too).
+fn across(mesh: &Mesh, e: usize, a: u32, b: u32) -> Option<(usize, bool)> {
+    for &f in mesh.node_elements(a as usize) {
+        let f = f as usize;
+        if f == e {
+            continue;
+        }
+        let ids = mesh.element(f);
+        let k = mesh.kind(f).corners();
+        let Some(i) = ids[..k].iter().position(|&x| x == a) else { continue };
+        if ids[(i + 1) % k] == b {
+            return Some((f, true));
+        }
+        if ids[(i + k - 1) % k] == b {
+            return Some((f, false));
+        }
+    }
+    None
+}
+
+/// Orients the elements consistently (see [`Surface::from_parts`]).
+fn orient(mesh: &mut Mesh, points: &[DVec3]) -> Result<()> {
+    let ne = mesh.element_count();
+    // per element: its part (connected by edges) and whether it is reversed
+    let (mut part, mut flip) = (vec![u32::MAX; ne], vec![false; ne]);
+    let mut parts = 0u32;
+    let mut queue = Vec::new();
+    for seed in 0..ne {
+        if part[seed] != u32::MAX {
+            continue;
+        }
+        part[seed] = parts;
+        queue.push(seed);
+        let (mut members, mut flipped, mut closed, mut volume) = (Vec::new(), 0usize, true, 0.0);
+        while let Some(e) = queue.pop() {
+            members.push(e);
+            flipped += flip[e] as usize;
+            let ids = mesh.element(e);
+            let k = mesh.kind(e).corners();
+            for i in 0..k {
+                let (a, b) = (ids[i], ids[(i + 1) % k]);
+                let Some((f, same)) = across(mesh, e, a, b) else {
+                    closed = false;
+                    continue;
+                };
+                // same direction: the two disagree unless exactly one is reversed
+                let want = flip[e] ^ same;
+                if part[f] == u32::MAX {
+                    part[f] = parts;
+                    flip[f] = want;
+                    queue.push(f);
+                } else if flip[f] != want {
+                    return Err(Error::element(
+                        f,
+                        None,
+                        format!("cannot be oriented with element {e}: the surface is not orientable (a Möbius band?)"),
+                    ));
+                }
+            }
+        }
+        for &e in &members {
+            // the part's signed volume about its first node, as it will be oriented
+            let ids = mesh.element(e);
+            let k = mesh.kind(e).corners();
+            let o = points[mesh.element(members[0])[0] as usize];
+            let p = |i: usize| points[ids[i] as usize] - o;
+            let v: f64 = (1..k - 1).map(|i| p(0).dot(p(i).cross(p(i + 1)))).sum();
+            volume += if flip[e] { -v } else { v };
+        }
+        let reverse_part = if closed { volume < 0.0 } else { 2 * flipped > members.len() };
+        if reverse_part {
+            for &e in &members {
+                flip[e] = !flip[e];
+            }
+        }
+        parts += 1;
+    }
+    for (e, &f) in flip.iter().enumerate() {
+        if f {
+            mesh.reverse_element(e);
+        }
+    }
+    Ok(())
+}
+
+/// Turn of the normal across an edge above which the edge is read as a fold (a tangle,
+/// two elements lying over each other), not a feature curve, degrees.
+pub const FOLD_ANGLE_DEG: f64 = 150.0;
+
+/// Nodes on feature curves: the ends (and mid-side node) of every edge between two
+/// elements whose normals differ by more than `angle_deg` (and less than
+/// [`FOLD_ANGLE_DEG`]: a tangled surface loaded from a file keeps its folds free).
+fn feature_nodes(mesh: &Mesh, points: &[DVec3], angle_deg: f64) -> Vec<bool> {
+    let mut feature = vec![false; points.len()];
+    let (cos, fold) = (angle_deg.to_radians().cos(), FOLD_ANGLE_DEG.to_radians().cos());
+    for e in 0..mesh.element_count() {
+        let ids = mesh.element(e);
+        let k = mesh.kind(e).corners();
+        for i in 0..k {
+            let (a, b) = (ids[i], ids[(i + 1) % k]);
+            // each interior edge once, from the element that runs it a → b with a < b
+            if a > b {
+                continue;
+            }
+            let Some((f, _)) = across(mesh, e, a, b) else { continue };
+            let (n1, n2) = (element_normal(mesh, points, e), element_normal(mesh, points, f));
+            let (Some(n1), Some(n2)) = (n1.try_normalize(), n2.try_normalize()) else { continue };
+            if n1.dot(n2) < cos && n1.dot(n2) > fold {
+                feature[a as usize] = true;
+                feature[b as usize] = true;
+                if let Some(m) = mesh.kind(e).mid(i) {
+                    feature[ids[m] as usize] = true;
+                }
+            }
+        }
+    }
+    feature
+}
+#[cfg(test)]
+mod tests;

@@ -1,0 +1,480 @@
+//! The reference surface a surface mesh's nodes stay on: the mesh as it was loaded, as
+//! flat triangles ([`Facets`]), or an exact analytic surface a generator knows
+//! ([`Analytic`]). A moved node is projected back onto it by [`Reference::project`].
+
+use glam::DVec3;
+
+use crate::mesh::{ElementKind, NONE};
+
+/// Where a point projects onto the reference: the nearest point found, the reference's
+/// unit normal there (oriented as the mesh's elements), and the facet it lies on
+/// ([`NONE`] for an analytic surface), which starts the next search for the same node.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Projected {
+    pub point: DVec3,
+    pub normal: DVec3,
+    pub face: u32,
+}
+
+/// The surface nodes are projected onto.
+#[derive(Clone, Debug)]
+pub enum Reference {
+    /// The loaded mesh's elements as flat triangles (see [`Facets`]).
+    Facets(Facets),
+    /// An exact surface (generated samples).
+    Analytic(Analytic),
+}
+
+impl Reference {
+    /// The nearest point of the reference to `p`, searched from the facet `hint` (a
+    /// node's last projection, or [`NONE`]).
+    pub fn project(&self, p: DVec3, hint: u32) -> Projected {
+        match self {
+            Reference::Facets(f) => f.project(p, hint),
+            Reference::Analytic(a) => a.project(p),
+        }
+    }
+    /// What the reference is, in words (for `stats`).
+    pub fn describe(&self) -> String {
+        match self {
+            Reference::Facets(f) => format!("the loaded mesh, {} flat triangles", f.triangles.len()),
+            Reference::Analytic(a) => a.describe(),
+        }
+    }
+}
+
+/// An exact surface, with its closest point and normal in closed form.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Analytic {
+    /// The sphere of `radius` about `centre`, normal outward.
+    Sphere { centre: DVec3, radius: f64 },
+    /// The cylinder of `radius` about the z axis from `z0` to `z1`, closed by flat caps
+    /// (normal outward on the side and the caps). A point projects onto the nearest part.
+    CappedCylinder { radius: f64, z0: f64, z1: f64 },
+    /// The torus about the z axis: tube of radius `minor` round the circle of radius
+    /// `major` in the plane z = 0, normal outward.
+    Torus { major: f64, minor: f64 },
+}
+
+impl Analytic {
+    fn describe(&self) -> String {
+        match *self {
+            Analytic::Sphere { radius, .. } => format!("a sphere of radius {radius}"),
+            Analytic::CappedCylinder { radius, z0, z1 } => {
+                format!("a cylinder of radius {radius} from z = {z0} to {z1}, with caps")
+            }
+            Analytic::Torus { major, minor } => format!("a torus of radii {major} and {minor}"),
+        }
+    }
+
+    /// The nearest point of the surface to `p` and the outward normal there.
+    pub fn project(&self, p: DVec3) -> Projected {
+        let (point, normal) = match *self {
+            Analytic::Sphere { centre, radius } => {
+                let n = (p - centre).try_normalize().unwrap_or(DVec3::Z);
+                (centre + n * radius, n)
+            }
+            Analytic::CappedCylinder { radius, z0, z1 } => {
+                let radial = DVec3::new(p.x, p.y, 0.0).try_normalize().unwrap_or(DVec3::X);
+                // the side, then each cap: the nearest wins
+                let side = (radial * radius + DVec3::Z * p.z.clamp(z0, z1), radial);
+                let r = DVec3::new(p.x, p.y, 0.0).length().min(radius);
+                let bottom = (radial * r + DVec3::Z * z0, -DVec3::Z);
+                let top = (radial * r + DVec3::Z * z1, DVec3::Z);
+                let d = |c: &(DVec3, DVec3)| (c.0 - p).length_squared();
+                let mut best = side;
+                for c in [bottom, top] {
+                    if d(&c) < d(&best) {
+                        best = c;
+                    }
+                }
+                best
+            }
+            Analytic::Torus { major, minor } => {
+                let radial = DVec3::new(p.x, p.y, 0.0).try_normalize().unwrap_or(DVec3::X);
+                let ring = radial * major;
+                let n = (p - ring).try_normalize().unwrap_or(radial);
+                (ring + n * minor, n)
+            }
+        };
+        Projected { point, normal, face: NONE }
+    }
+}
+
+/// The loaded mesh as flat triangles: a linear triangle is one, a quad two (split along
+/// its diagonal 0–2), a 6-node triangle four and a quadratic quad eight (about its centre
+/// node, or for the 8-node quad the serendipity centre), through the mid-side nodes: the
+/// piecewise linear surface through every node of the file. Vertices are the mesh's
+/// node numbers, plus one added point per 8-node quad.
+#[derive(Clone, Debug)]
+pub struct Facets {
+    points: Vec<DVec3>,
+    triangles: Vec<[u32; 3]>,
+    /// Vertex → triangles (CSR), for the walk.
+    vert_start: Vec<u32>,
+    vert_tris: Vec<u32>,
+    grid: Grid,
+}
+
+/// Steps the walk takes before the spatial index is asked instead.
+const MAX_WALK: usize = 256;
+
+impl Facets {
+    /// The facets of the elements (`kinds`, each element's nodes by `element`) over
+    /// `points`.
+    pub fn new<'a>(points: &[DVec3], kinds: &[ElementKind], element: impl Fn(usize) -> &'a [u32]) -> Facets {
+        let mut pts = points.to_vec();
+        let mut triangles = Vec::with_capacity(kinds.len() * 2);
+        for (e, &kind) in kinds.iter().enumerate() {
+            let ids = element(e);
+            match kind {
+                ElementKind::Tri3 => triangles.push([ids[0], ids[1], ids[2]]),
+                ElementKind::Quad4 => {
+                    triangles.push([ids[0], ids[1], ids[2]]);
+                    triangles.push([ids[0], ids[2], ids[3]]);
+                }
+                ElementKind::Tri6 => {
+                    let [a, b, c, ab, bc, ca] = [ids[0], ids[1], ids[2], ids[3], ids[4], ids[5]];
+                    triangles.extend([[a, ab, ca], [ab, b, bc], [ca, bc, c], [ab, bc, ca]]);
+                }
+                ElementKind::Quad8 | ElementKind::Quad9 => {
+                    let centre = if kind == ElementKind::Quad9 {
+                        ids[8]
+                    } else {
+                        // the serendipity quad's centre: −¼ Σ corners + ½ Σ mid-sides
+                        let c: DVec3 =
+                            (0..4).map(|i| -0.25 * pts[ids[i] as usize] + 0.5 * pts[ids[4 + i] as usize]).sum();
+                        pts.push(c);
+                        (pts.len() - 1) as u32
+                    };
+                    for i in 0..4 {
+                        let (c0, m, c1) = (ids[i], ids[4 + i], ids[(i + 1) % 4]);
+                        triangles.push([c0, m, centre]);
+                        triangles.push([m, c1, centre]);
+                    }
+                }
+            }
+        }
+        let mut vert_start = vec![0u32; pts.len() + 1];
+        for t in &triangles {
+            for &v in t {
+                vert_start[v as usize + 1] += 1;
+            }
+        }
+        for i in 0..pts.len() {
+            vert_start[i + 1] += vert_start[i];
+        }
+        let mut fill = vert_start.clone();
+        let mut vert_tris = vec![0u32; triangles.len() * 3];
+        for (t, tri) in triangles.iter().enumerate() {
+            for &v in tri {
+                vert_tris[fill[v as usize] as usize] = t as u32;
+                fill[v as usize] += 1;
+            }
+        }
+        let grid = Grid::new(&pts, &triangles);
+        Facets { points: pts, triangles, vert_start, vert_tris, grid }
+    }
+
+    /// A triangle with vertex `v`, to start the walk from a node where it was loaded
+    /// ([`NONE`] when no triangle has it).
+    pub fn triangle_at_vertex(&self, v: usize) -> u32 {
+        self.around(v).first().copied().unwrap_or(NONE)
+    }
+
+    fn around(&self, v: usize) -> &[u32] {
+        match (self.vert_start.get(v), self.vert_start.get(v + 1)) {
+            (Some(&a), Some(&b)) => &self.vert_tris[a as usize..b as usize],
+            _ => &[],
+        }
+    }
+
+    fn corners(&self, t: u32) -> [DVec3; 3] {
+        self.triangles[t as usize].map(|v| self.points[v as usize])
+    }
+
+    /// The unit normal of triangle `t` (zero for a degenerate one).
+    fn normal(&self, t: u32) -> DVec3 {
+        let [a, b, c] = self.corners(t);
+        (b - a).cross(c - a).normalize_or_zero()
+    }
+
+    /// The nearest point of the facets to `p`: a walk from `hint` over neighbouring
+    /// triangles while the distance falls (the local nearest point, which for a node
+    /// moved within its star is the one meant), else the spatial index's global nearest.
+    pub fn project(&self, p: DVec3, hint: u32) -> Projected {
+        if (hint as usize) < self.triangles.len() {
+            if let Some(t) = self.walk(p, hint) {
+                return self.projected(p, t);
+            }
+        }
+        let t = self.grid.nearest(p, |t| closest_on_triangle(p, self.corners(t)).0);
+        self.projected(p, t)
+    }
+
+    fn projected(&self, p: DVec3, t: u32) -> Projected {
+        if t == NONE {
+            return Projected { point: p, normal: DVec3::Z, face: NONE };
+        }
+        let (point, _) = closest_on_triangle(p, self.corners(t));
+        Projected { point, normal: self.normal(t), face: t }
+    }
+
+    /// The walk: from triangle `t`, go to the nearest of the triangles that share a
+    /// vertex with it while that one is strictly nearer to `p`. (Across edges alone, a
+    /// point could stop on a face it lies behind, a local nearest point on the far side
+    /// of a thin or sharp part.) `None` when it has not settled within [`MAX_WALK`] steps.
+    fn walk(&self, p: DVec3, mut t: u32) -> Option<u32> {
+        let dist = |t: u32| (closest_on_triangle(p, self.corners(t)).0 - p).length_squared();
+        let mut d = dist(t);
+        for _ in 0..MAX_WALK {
+            let mut best = (d, t);
+            for &v in &self.triangles[t as usize] {
+                for &u in self.around(v as usize) {
+                    if u != best.1 {
+                        let du = dist(u);
+                        if du < best.0 {
+                            best = (du, u);
+                        }
+                    }
+                }
+            }
+            if best.1 == t {
+                return Some(t);
+            }
+            (d, t) = best;
+        }
+        None
+    }
+}
+
+/// The nearest point of triangle `[a, b, c]` to `p` and its barycentric weights (Ericson,
+/// *Real-Time Collision Detection*, §5.1.5): a weight is exactly 0 where the point lies on
+/// the opposite edge.
+pub fn closest_on_triangle(p: DVec3, [a, b, c]: [DVec3; 3]) -> (DVec3, [f64; 3]) {
+    let (ab, ac, ap) = (b - a, c - a, p - a);
+    let (d1, d2) = (ab.dot(ap), ac.dot(ap));
+    if d1 <= 0.0 && d2 <= 0.0 {
+        return (a, [1.0, 0.0, 0.0]);
+    }
+    let bp = p - b;
+    let (d3, d4) = (ab.dot(bp), ac.dot(bp));
+    if d3 >= 0.0 && d4 <= d3 {
+        return (b, [0.0, 1.0, 0.0]);
+    }
+    let vc = d1 * d4 - d3 * d2;
+    if vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0 {
+        let v = d1 / (d1 - d3);
+        return (a + ab * v, [1.0 - v, v, 0.0]);
+    }
+    let cp = p - c;
+    let (d5, d6) = (ab.dot(cp), ac.dot(cp));
+    if d6 >= 0.0 && d5 <= d6 {
+        return (c, [0.0, 0.0, 1.0]);
+    }
+    let vb = d5 * d2 - d1 * d6;
+    if vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0 {
+        let w = d2 / (d2 - d6);
+        return (a + ac * w, [1.0 - w, 0.0, w]);
+    }
+    let va = d3 * d6 - d5 * d4;
+    if va <= 0.0 && (d4 - d3) >= 0.0 && (d5 - d6) >= 0.0 {
+        let w = (d4 - d3) / ((d4 - d3) + (d5 - d6));
+        return (b + (c - b) * w, [0.0, 1.0 - w, w]);
+    }
+    let denom = 1.0 / (va + vb + vc);
+    let (v, w) = (vb * denom, vc * denom);
+    if !(v.is_finite() && w.is_finite()) {
+        // a degenerate triangle: its nearest corner
+        let best = [a, b, c].into_iter().enumerate().min_by(|x, y| (x.1 - p).length().total_cmp(&(y.1 - p).length()));
+        let (i, q) = best.expect("three corners");
+        let mut bary = [0.0; 3];
+        bary[i] = 1.0;
+        return (q, bary);
+    }
+    (a + ab * v + ac * w, [1.0 - v - w, v, w])
+}
+
+/// A uniform grid of cells over the facets' bounding box, each cell listing the triangles
+/// whose bounding boxes meet it: the global nearest-triangle search.
+#[derive(Clone, Debug)]
+struct Grid {
+    lo: DVec3,
+    cell: f64,
+    dims: [usize; 3],
+    start: Vec<u32>,
+    tris: Vec<u32>,
+}
+
+impl Grid {
+    fn new(points: &[DVec3], triangles: &[[u32; 3]]) -> Grid {
+        let (mut lo, mut hi) = (DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY));
+        for t in triangles {
+            for &v in t {
+                lo = lo.min(points[v as usize]);
+                hi = hi.max(points[v as usize]);
+            }
+        }
+        if triangles.is_empty() || !(lo.is_finite() && hi.is_finite()) {
+            return Grid { lo: DVec3::ZERO, cell: 1.0, dims: [1; 3], start: vec![0, 0], tris: Vec::new() };
+        }
+        let size = (hi - lo).max_element().max(f64::MIN_POSITIVE);
+        // about two triangles a cell on a surface: cells ~ √(triangles) along the longest side
+        let along = ((triangles.len() as f64).sqrt().ceil() as usize).clamp(1, 256);
+        let cell = size / along as f64;
+        let dims = [0, 1, 2].map(|i| (((hi[i] - lo[i]) / cell).floor() as usize + 1).min(257));
+        let index = |c: [usize; 3]| (c[2] * dims[1] + c[1]) * dims[0] + c[0];
+        let cell_of =
+            |p: DVec3| [0, 1, 2].map(|i| (((p[i] - lo[i]) / cell).floor().max(0.0) as usize).min(dims[i] - 1));
+        let mut count = vec![0u32; dims[0] * dims[1] * dims[2] + 1];
+        let cells = |t: &[u32; 3], f: &mut dyn FnMut(usize)| {
+            let (mut a, mut b) = (DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY));
+            for &v in t {
+                a = a.min(points[v as usize]);
+                b = b.max(points[v as usize]);
+            }
+            let (ca, cb) = (cell_of(a), cell_of(b));
+            for z in ca[2]..=cb[2] {
+                for y in ca[1]..=cb[1] {
+                    for x in ca[0]..=cb[0] {
+                        f(index([x, y, z]));
+                    }
+                }
+            }
+        };
+        for t in triangles {
+            cells(t, &mut |c| count[c + 1] += 1);
+        }
+        for i in 1..count.len() {
+            count[i] += count[i - 1];
+        }
+        let mut fill = count.clone();
+        let mut tris = vec![0u32; *count.last().expect("one cell at least") as usize];
+        for (i, t) in triangles.iter().enumerate() {
+            cells(t, &mut |c| {
+                tris[fill[c] as usize] = i as u32;
+                fill[c] += 1;
+            });
+        }
+        Grid { lo, cell, dims, start: count, tris }
+    }
+
+    /// The triangle nearest to `p` by `nearest_point`, searching shells of cells outward
+    /// from `p`'s cell until the next shell is farther than the best found.
+    fn nearest(&self, p: DVec3, nearest_point: impl Fn(u32) -> DVec3) -> u32 {
+        let dims = self.dims;
+        let rel = (p - self.lo) / self.cell;
+        let centre = [0, 1, 2].map(|i| (rel[i].floor().max(0.0) as usize).min(dims[i] - 1));
+        let reach = dims.into_iter().max().unwrap_or(1);
+        let (mut best, mut best_d) = (NONE, f64::INFINITY);
+        // the distance from p to its cell's outside, so a shell r away is at least this far
+        let inside = [0, 1, 2]
+            .map(|i| {
+                let f = rel[i] - centre[i] as f64;
+                f.min(1.0 - f).max(0.0)
+            })
+            .into_iter()
+            .fold(f64::INFINITY, f64::min)
+            * self.cell;
+        for r in 0..=reach {
+            if best != NONE && inside + (r as f64 - 1.0).max(0.0) * self.cell > best_d {
+                break;
+            }
+            let range = |i: usize| centre[i].saturating_sub(r)..=(centre[i] + r).min(dims[i] - 1);
+            for z in range(2) {
+                for y in range(1) {
+                    for x in range(0) {
+                        let shell = [x, y, z].iter().zip(centre).any(|(&c, m)| c.abs_diff(m) == r);
+                        if !shell {
+                            continue;
+                        }
+                        let c = (z * dims[1] + y) * dims[0] + x;
+                        for &t in &self.tris[self.start[c] as usize..self.start[c + 1] as usize] {
+                            let d = (nearest_point(t) - p).length();
+                            if d < best_d || (d == best_d && t < best) {
+                                (best, best_d) = (t, d);
+                            }
+                        }
+                    }
+                }
+            }
+        }
+        best
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn closest_point_regions_by_hand() {
+        let tri = [DVec3::ZERO, DVec3::X, DVec3::Y];
+        // above the face: straight down, all weights positive
+        let (q, w) = closest_on_triangle(DVec3::new(0.25, 0.25, 3.0), tri);
+        assert_eq!(q, DVec3::new(0.25, 0.25, 0.0));
+        assert!(w.iter().all(|&x| x > 0.0));
+        // beyond the corner a: a
+        assert_eq!(closest_on_triangle(DVec3::new(-1.0, -1.0, 1.0), tri), (DVec3::ZERO, [1.0, 0.0, 0.0]));
+        // beyond the edge a–b: onto it, the weight of c zero
+        let (q, w) = closest_on_triangle(DVec3::new(0.5, -2.0, 0.0), tri);
+        assert_eq!(q, DVec3::new(0.5, 0.0, 0.0));
+        assert_eq!(w, [0.5, 0.5, 0.0]);
+        // beyond the hypotenuse
+        let (q, w) = closest_on_triangle(DVec3::new(1.0, 1.0, 0.0), tri);
+        assert!((q - DVec3::new(0.5, 0.5, 0.0)).length() < 1e-15 && w[0] == 0.0);
+    }
+
+    /// An octahedron of radius 1 as facets.
+    fn octahedron() -> Facets {
+        let p = [DVec3::X, DVec3::Y, -DVec3::X, -DVec3::Y, DVec3::Z, -DVec3::Z];
+        let tris: Vec<[u32; 3]> = (0..4u32).flat_map(|i| [[i, (i + 1) % 4, 4], [(i + 1) % 4, i, 5]]).collect();
+        let flat: Vec<u32> = tris.iter().flatten().copied().collect();
+        Facets::new(&p, &[ElementKind::Tri3; 8], |e| &flat[3 * e..3 * e + 3])
+    }
+
+    #[test]
+    fn the_walk_and_the_grid_find_the_same_nearest_point() {
+        let f = octahedron();
+        let mut rng = crate::generate::SplitMix64::new(7);
+        let mut coordinate = || 4.0 * rng.next_f64() - 2.0;
+        for i in 0..1000 {
+            // half the points anywhere, half near the surface (a node moved in its star)
+            let mut p = DVec3::new(coordinate(), coordinate(), coordinate());
+            if i % 2 == 1 {
+                let q = p / p.abs().element_sum();
+                p = q + 0.1 * DVec3::new(coordinate(), coordinate(), coordinate());
+            }
+            let global = f.project(p, NONE);
+            // brute force
+            let brute =
+                (0..8u32).map(|t| (closest_on_triangle(p, f.corners(t)).0 - p).length()).fold(f64::INFINITY, f64::min);
+            assert!(((global.point - p).length() - brute).abs() < 1e-12, "{p}");
+            // from every triangle that shares a vertex with the one it lands on (a node's
+            // last facet, for a node moved within its star), the walk finds it too; from
+            // the far side it may stop on a ridge facing away, a local nearest point
+            if i % 2 == 0 {
+                continue;
+            }
+            let near = f.triangles[global.face as usize];
+            for hint in (0..8u32).filter(|&t| f.triangles[t as usize].iter().any(|v| near.contains(v))) {
+                let walked = f.project(p, hint);
+                assert!(((walked.point - p).length() - brute).abs() < 1e-12, "{p} from {hint}");
+            }
+        }
+    }
+
+    #[test]
+    fn analytic_projections_by_hand() {
+        let s = Analytic::Sphere { centre: DVec3::new(1.0, 0.0, 0.0), radius: 2.0 };
+        let q = s.project(DVec3::new(1.0, 0.0, 5.0));
+        assert_eq!((q.point, q.normal), (DVec3::new(1.0, 0.0, 2.0), DVec3::Z));
+        let t = Analytic::Torus { major: 3.0, minor: 1.0 };
+        let q = t.project(DVec3::new(0.0, 5.0, 0.0));
+        assert_eq!((q.point, q.normal), (DVec3::new(0.0, 4.0, 0.0), DVec3::Y));
+        let c = Analytic::CappedCylinder { radius: 1.0, z0: 0.0, z1: 2.0 };
+        assert_eq!(c.project(DVec3::new(3.0, 0.0, 1.0)).point, DVec3::new(1.0, 0.0, 1.0));
+        let top = c.project(DVec3::new(0.2, 0.0, 2.5));
+        assert_eq!((top.point, top.normal), (DVec3::new(0.2, 0.0, 2.0), DVec3::Z));
+    }
+}

@@ -1,0 +1,159 @@
+//! Smoothing a surface with the planar drivers (see the module docs of
+//! [`crate::surface`]): a free node's star flattened into its tangent plane, the driver's
+//! 2D answer lifted back and projected onto the reference surface.
+
+use glam::{DVec2, DVec3};
+
+use super::Surface;
+use crate::error::{Error, Result};
+use crate::generate::SplitMix64;
+use crate::mesh::{Follower, Mesh, Plane};
+use crate::objective::Objective;
+use crate::smooth::{is_inverted, PassRecord, SmoothOptions, Smoother, StarView};
+
+/// A surface seen by a driver: each star flattened into the tangent plane at its node.
+pub(crate) struct SurfaceView<'a> {
+    surface: &'a mut Surface,
+    /// The tangent plane of the star flattened last.
+    plane: Plane,
+}
+
+impl<'a> SurfaceView<'a> {
+    pub(crate) fn new(surface: &'a mut Surface) -> Self {
+        SurfaceView { surface, plane: Plane { origin: DVec3::ZERO, u: DVec3::X, w: DVec3::Y } }
+    }
+}
+
+impl Surface {
+    /// The tangent plane at free node `n`: through the node, normal to its star's
+    /// area-weighted normal (the sum of its elements' Newell normals, which for a closed
+    /// ring of elements depends on the ring alone, not on where the node is, so a tangled
+    /// star has one too), or the reference's normal there when that sum is zero or faces
+    /// away from the reference.
+    pub(crate) fn tangent_plane(&self, n: usize) -> Plane {
+        let x = self.points[n];
+        let star: DVec3 = self
+            .flat
+            .node_elements(n)
+            .iter()
+            .map(|&e| super::element_normal(&self.flat, &self.points, e as usize))
+            .sum();
+        let reference = self.project_near(x, n).normal;
+        let normal = match star.try_normalize() {
+            Some(s) if s.dot(reference) > 0.0 => s,
+            _ => reference,
+        };
+        Plane::with_normal(x, normal)
+    }
+
+    /// Moves node `n` to the projection of `p` onto the reference, and the nodes that
+    /// follow it to the projections of their edges' middles (a 9-node quad's centre: of
+    /// its eight nodes' mean).
+    pub(crate) fn place(&mut self, n: usize, p: DVec3) {
+        self.move_to(n, p);
+        if !self.flat.has_quadratic() {
+            return;
+        }
+        let mut follow = Vec::new();
+        self.flat.for_each_follower(n, |f| follow.push(f));
+        for f in follow {
+            match f {
+                Follower::Mid { mid, a, b } => self.move_to(mid, 0.5 * (self.points[a] + self.points[b])),
+                Follower::Centre { centre, element } => {
+                    let s: DVec3 = self.flat.element(element)[..8].iter().map(|&i| self.points[i as usize]).sum();
+                    self.move_to(centre, s / 8.0);
+                }
+            }
+        }
+    }
+
+    fn move_to(&mut self, n: usize, p: DVec3) {
+        let q = self.project_near(p, n);
+        self.points[n] = q.point;
+        self.hint[n] = q.face;
+    }
+}
+
+impl StarView for SurfaceView<'_> {
+    fn mesh(&self) -> &Mesh {
+        &self.surface.flat
+    }
+
+    fn star_mesh(&mut self, n: usize) -> &Mesh {
+        // the nodes that follow n sit where they will be put in the plane, so the star is
+        // the same at n's position whether it moved there or not
+        let plane = self.surface.tangent_plane(n);
+        let points = &self.surface.points;
+        self.surface.flat.set_star(n, |m| plane.to_2d(points[m]));
+        self.plane = plane;
+        &self.surface.flat
+    }
+
+    fn place(&mut self, n: usize, x: DVec2) {
+        let p = self.plane.to_3d(x);
+        self.surface.place(n, p);
+    }
+
+    fn is_inverted(&self, e: usize) -> bool {
+        is_inverted(self.surface.flat.kind(e), &self.surface.element_points_2d(e))
+    }
+}
+
+/// A [`Smoother`] for surfaces: every strategy, order and objective of the planar driver,
+/// on each star flattened into its tangent plane.
+#[derive(Clone, Debug)]
+pub struct SurfaceSmoother {
+    smoother: Smoother,
+    passes: u32,
+}
+
+impl SurfaceSmoother {
+    pub fn new(options: SmoothOptions) -> Result<Self> {
+        Ok(SurfaceSmoother { smoother: Smoother::new(options)?, passes: 0 })
+    }
+
+    /// One pass over the surface, with its record (as [`Smoother::pass`]).
+    pub fn pass(&mut self, surface: &mut Surface, objective: &dyn Objective, clock: &dyn Fn() -> f64) -> PassRecord {
+        self.passes += 1;
+        let t0 = clock();
+        let counts = self.smoother.sweep_in(&mut SurfaceView::new(surface), objective);
+        let elapsed_ms = clock() - t0;
+        let t1 = clock();
+        let after = surface.stats().quick();
+        let objective_total = Some(self.smoother.objective_total_in(&mut SurfaceView::new(surface), objective));
+        PassRecord { pass: self.passes, counts, after, objective_total, elapsed_ms, stats_ms: clock() - t1 }
+    }
+}
+
+/// Runs `passes` passes of a new [`SurfaceSmoother`] over `surface`.
+pub fn smooth_surface(
+    surface: &mut Surface,
+    objective: &dyn Objective,
+    options: SmoothOptions,
+    passes: u32,
+    clock: &dyn Fn() -> f64,
+) -> Result<Vec<PassRecord>> {
+    let mut s = SurfaceSmoother::new(options)?;
+    Ok((0..passes).map(|_| s.pass(surface, objective, clock)).collect())
+}
+
+/// A copy of `surface` with every free node moved in its tangent plane by a seeded random
+/// offset in the disk of radius `amount × mean edge length`, then projected back onto the
+/// reference (the planar [`perturb`](crate::generate::perturb) on a surface); the nodes
+/// that follow move with them. Node by node in node order, from [`SplitMix64`].
+pub fn perturb_surface(surface: &Surface, amount: f64, seed: u64) -> Result<Surface> {
+    if !(amount.is_finite() && amount >= 0.0) {
+        return Err(Error::invalid(format!("the perturbation amount must be a finite number ≥ 0, not {amount}")));
+    }
+    let radius = amount * surface.mean_edge_length();
+    let mut out = surface.clone();
+    let mut rng = SplitMix64::new(seed);
+    for n in 0..out.node_count() {
+        if out.flat.is_free(n) {
+            let plane = out.tangent_plane(n);
+            let p = plane.to_3d(radius * rng.in_unit_disk());
+            out.place(n, p);
+        }
+    }
+    Ok(out)
+}
