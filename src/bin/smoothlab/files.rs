@@ -5,12 +5,29 @@ use std::path::{Path, PathBuf};
 use clap::Args;
 use smoothlab::io::{self, MshVersion, WriteOptions};
 use smoothlab::quality::element_quality;
+use smoothlab::surface::Model;
 use smoothlab::Mesh;
 
-/// Reads a mesh, naming the file in any error, and warns (stderr) about elements
-/// of zero area, which load but count as inverted until smoothed.
+/// Reads a planar mesh or a surface, naming the file in any error; warns about a planar
+/// mesh's elements of zero area as [`read_mesh`] does.
+pub fn read_model(path: &Path) -> Result<Model, String> {
+    let model = io::read_model_path(path).map_err(|e| format!("{}: {e}", path.display()))?;
+    if let Model::Planar(mesh) = &model {
+        warn_zero_area(mesh, path);
+    }
+    Ok(model)
+}
+
+/// Reads a planar mesh (a surface is refused, saying that `what` takes planar meshes
+/// only), naming the file in any error, and warns (stderr) about elements of zero area,
+/// which load but count as inverted until smoothed.
 pub fn read_mesh(path: &Path) -> Result<Mesh, String> {
     let mesh = io::read_path(path).map_err(|e| format!("{}: {e}", path.display()))?;
+    warn_zero_area(&mesh, path);
+    Ok(mesh)
+}
+
+fn warn_zero_area(mesh: &Mesh, path: &Path) {
     // zero area by the shoelace formula and inverted by the metrics' own test (a corner
     // with det ≤ 0), so the warning never contradicts the `inverted` count of the stats
     let flat: Vec<usize> = (0..mesh.element_count())
@@ -31,7 +48,6 @@ pub fn read_mesh(path: &Path) -> Result<Mesh, String> {
             if flat.len() > 5 { ", …" } else { "" }
         );
     }
-    Ok(mesh)
 }
 
 /// `--msh-version`'s values.
@@ -39,13 +55,14 @@ pub fn msh_version_parser() -> impl clap::builder::TypedValueParser<Value = MshV
     crate::smooth::named(&MshVersion::ALL, MshVersion::name, MshVersion::describe)
 }
 
-/// Writes a mesh in the format of the file's extension.
-pub fn write_mesh(mesh: &Mesh, path: &Path, msh_version: MshVersion) -> Result<(), String> {
+/// Writes a mesh (planar or a surface) in the format of the file's extension.
+pub fn write_mesh<'a>(mesh: impl Into<io::Writable<'a>>, path: &Path, msh_version: MshVersion) -> Result<(), String> {
     let opts = WriteOptions { msh_version };
+    let mesh = mesh.into();
     io::write_path(mesh, path, &opts).map_err(|e| format!("{}: {e}", path.display()))?;
     let ext = path.extension().and_then(|e| e.to_str()).unwrap_or("").to_ascii_lowercase();
     if ext == "node" || ext == "ele" {
-        if let Some(note) = io::flat_note(mesh) {
+        if let Some(note) = io::flat_note(mesh.mesh) {
             eprintln!("{}: note: {note}", path.display());
         }
     }
@@ -64,6 +81,6 @@ pub struct ConvertArgs {
 }
 
 pub fn convert(a: ConvertArgs) -> Result<(), String> {
-    let mesh = read_mesh(&a.input)?;
-    write_mesh(&mesh, &a.output, a.msh_version)
+    let model = read_model(&a.input)?;
+    write_mesh(&model, &a.output, a.msh_version)
 }

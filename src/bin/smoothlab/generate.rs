@@ -5,10 +5,11 @@ use std::path::PathBuf;
 use clap::{Args, Subcommand};
 
 use crate::smooth::named;
-use smoothlab::generate::{self, GridKind, PlateKind, StarKind};
+use smoothlab::generate::{self, GridKind, PlateKind, StarKind, SurfaceKind, SurfaceShape};
+use smoothlab::surface::{perturb_surface, Model};
 use smoothlab::Mesh;
 
-use crate::files::{msh_version_parser, read_mesh, write_mesh};
+use crate::files::{msh_version_parser, read_model, write_mesh};
 use smoothlab::io::MshVersion;
 
 #[derive(Args)]
@@ -83,7 +84,14 @@ pub enum Kind {
         #[command(flatten)]
         out: Output,
     },
-    /// Move every free node of a mesh at random (to tangle it)
+    /// A surface sample on the unit sphere (a cube-sphere)
+    Sphere(SurfaceArgs),
+    /// A surface sample on a cylinder of radius 1 and height 2 with flat caps (feature edges at the rims)
+    Cylinder(SurfaceArgs),
+    /// A surface sample on a torus of radii 3 and 1
+    Torus(SurfaceArgs),
+    /// Move every free node of a mesh at random (to tangle it); a surface's nodes move in
+    /// their tangent planes and back onto the surface
     Perturb {
         /// The mesh to perturb
         input: PathBuf,
@@ -98,8 +106,32 @@ pub enum Kind {
     },
 }
 
+/// The options of the surface samples.
+#[derive(Args)]
+pub struct SurfaceArgs {
+    /// Quads, triangles (each quad split), or quads with every other one split
+    #[arg(long, value_parser = named(&SurfaceKind::ALL, SurfaceKind::name, SurfaceKind::describe), default_value = SurfaceKind::default().name())]
+    kind: SurfaceKind,
+    /// 1 for linear elements, 2 for quadratic ones with their mid-side nodes on the surface
+    #[arg(long, default_value_t = 1)]
+    order: u8,
+    /// Cells along each edge of the cube the sphere and cylinder are made from (the torus:
+    /// 4 times as many round its tube, 12 times round its axis)
+    #[arg(long, default_value_t = 8)]
+    resolution: usize,
+    #[command(flatten)]
+    out: Output,
+}
+
 pub fn run(a: GenerateArgs) -> Result<(), String> {
+    let surface_sample = |shape: SurfaceShape, s: SurfaceArgs| {
+        let surface = generate::surface(shape, s.kind, s.order, s.resolution).map_err(|e| e.to_string())?;
+        write_mesh(&surface, &s.out.output, s.out.msh_version)
+    };
     let (mesh, out): (Mesh, Output) = match a.kind {
+        Kind::Sphere(s) => return surface_sample(SurfaceShape::Sphere, s),
+        Kind::Cylinder(s) => return surface_sample(SurfaceShape::Cylinder, s),
+        Kind::Torus(s) => return surface_sample(SurfaceShape::Torus, s),
         Kind::Rand2d { points, per_side, seed, out } => (generate::rand2d(points, per_side, seed).map_err(|e| e.to_string())?, out),
         Kind::Grid { nx, ny, kind, out } => {
             (generate::grid(nx, ny, kind).map_err(|e| e.to_string())?, out)
@@ -110,10 +142,13 @@ pub fn run(a: GenerateArgs) -> Result<(), String> {
         Kind::Star { kind, k, out } => {
             (generate::star(kind, k.unwrap_or(kind.default_k())).map_err(|e| e.to_string())?, out)
         }
-        Kind::Perturb { input, amount, seed, out } => {
-            let mesh = read_mesh(&input)?;
-            (generate::perturb(&mesh, amount, seed).map_err(|e| format!("{}: {e}", input.display()))?, out)
-        }
+        Kind::Perturb { input, amount, seed, out } => match read_model(&input)? {
+            Model::Planar(mesh) => (generate::perturb(&mesh, amount, seed).map_err(|e| format!("{}: {e}", input.display()))?, out),
+            Model::Surface(s) => {
+                let moved = perturb_surface(&s, amount, seed).map_err(|e| format!("{}: {e}", input.display()))?;
+                return write_mesh(&moved, &out.output, out.msh_version);
+            }
+        },
     };
     write_mesh(&mesh, &out.output, out.msh_version)
 }

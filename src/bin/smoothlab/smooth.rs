@@ -21,10 +21,11 @@ use std::time::Instant;
 use clap::Args;
 use serde::Serialize;
 use smoothlab::objective::{objective_with, ObjectiveKind, Penalty};
-use smoothlab::quality::{mesh_stats, MeshStats};
+use smoothlab::quality::MeshStats;
+use smoothlab::surface::{Model, SurfaceSmoother};
 use smoothlab::smooth::{untangling_obstacles, Obstacle, Order, PassRecord, SmoothOptions, Smoother, Strategy};
 
-use crate::files::{msh_version_parser, read_mesh, write_mesh};
+use crate::files::{msh_version_parser, read_model, write_mesh};
 use smoothlab::io::MshVersion;
 
 use smoothlab::limits::{self, BATCH_MAX_ITER, BATCH_PASSES};
@@ -178,18 +179,32 @@ fn options(a: &SmoothArgs) -> Result<SmoothOptions, String> {
 pub fn run(a: SmoothArgs) -> Result<(), String> {
     let opts = options(&a)?;
     let kind = a.objective.unwrap_or(ObjectiveKind::New);
-    let mut mesh = read_mesh(&a.input)?;
-    smoothlab::objective::check_scale(kind, &mesh).map_err(|e| format!("{}: {e}", a.input.display()))?;
+    let mut model = read_model(&a.input)?;
+    if let Model::Planar(mesh) = &model {
+        smoothlab::objective::check_scale(kind, mesh).map_err(|e| format!("{}: {e}", a.input.display()))?;
+    }
     let obj = objective_with(kind, a.penalty.unwrap_or_default());
-    let mut smoother = Smoother::new(opts).map_err(|e| e.to_string())?;
     let t0 = Instant::now();
     let clock = move || t0.elapsed().as_secs_f64() * 1e3;
     let start = clock();
-    let passes: Vec<PassRecord> = (0..a.passes).map(|_| smoother.pass(&mut mesh, &*obj, &clock)).collect();
+    let passes: Vec<PassRecord> = match &mut model {
+        Model::Planar(mesh) => {
+            let mut smoother = Smoother::new(opts).map_err(|e| e.to_string())?;
+            (0..a.passes).map(|_| smoother.pass(mesh, &*obj, &clock)).collect()
+        }
+        Model::Surface(surface) => {
+            let mut smoother = SurfaceSmoother::new(opts).map_err(|e| e.to_string())?;
+            (0..a.passes).map(|_| smoother.pass(surface, &*obj, &clock)).collect()
+        }
+    };
     let time_ms = clock() - start;
-    write_mesh(&mesh, &a.output, a.msh_version)?;
-    let final_stats = mesh_stats(&mesh);
-    let obstacles = if final_stats.inverted > 0 { untangling_obstacles(&mesh) } else { Vec::new() };
+    write_mesh(&model, &a.output, a.msh_version)?;
+    let final_stats = model.stats();
+    // the obstacles are found in the plane (a surface's fixed nodes have no common one)
+    let obstacles = match &model {
+        Model::Planar(mesh) if final_stats.inverted > 0 => untangling_obstacles(mesh),
+        _ => Vec::new(),
+    };
     if a.json {
         let report = Report {
             objective: kind.name(),
@@ -248,6 +263,9 @@ fn summary(
         "final: {} elements, {} inverted, angles {:.2}°–{:.2}°, quality min {:.4} mean {:.4}; {:.1} ms\n",
         s.elements, s.inverted, s.min_angle_deg, s.max_angle_deg, s.min_quality, s.mean_quality, ms
     ));
+    if let Some(d) = s.max_distance_from_surface {
+        t.push_str(&format!("surface: every node within {d:.3e} of the surface as it was loaded\n"));
+    }
     t
 }
 

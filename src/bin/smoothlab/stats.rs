@@ -3,7 +3,7 @@
 use std::path::PathBuf;
 
 use clap::Args;
-use smoothlab::quality::{mesh_stats, MeshStats};
+use smoothlab::quality::MeshStats;
 
 #[derive(Args)]
 pub struct StatsArgs {
@@ -15,8 +15,7 @@ pub struct StatsArgs {
 }
 
 pub fn run(a: StatsArgs) -> Result<(), String> {
-    let mesh = crate::files::read_mesh(&a.mesh)?;
-    let s = mesh_stats(&mesh);
+    let s = crate::files::read_model(&a.mesh)?.stats();
     if a.json {
         println!("{}", serde_json::to_string(&s).map_err(|e| e.to_string())?);
     } else {
@@ -29,6 +28,9 @@ pub fn run(a: StatsArgs) -> Result<(), String> {
 pub fn table(s: &MeshStats) -> String {
     let mut t = String::new();
     let mut row = |k: &str, v: String| t.push_str(&format!("{k:<16} {v}\n"));
+    if let Some(d) = s.max_distance_from_surface {
+        row("surface", format!("in 3D, each element measured in its own plane; nodes at most {d:.3e} from the surface"));
+    }
     let following = if s.following_nodes > 0 { format!(", {} mid-side following", s.following_nodes) } else { String::new() };
     row("nodes", format!("{} ({} free, {} fixed{following})", s.nodes, s.free_nodes, s.fixed_nodes));
     row("elements", format!("{} ({} triangles, {} quads, {} quadratic)", s.elements, s.triangles, s.quads, s.quadratic));
