@@ -20,7 +20,7 @@ use std::sync::Arc;
 use glam::{DVec2, DVec3};
 
 use crate::error::{Error, Result};
-use crate::mesh::{Mesh, NodeRole, Plane, NONE};
+use crate::mesh::{Mesh, NodeRole, Plane};
 use crate::quality::{mesh_stats_with, MeshStats};
 
 mod reference;
@@ -81,7 +81,9 @@ pub struct Surface {
     flat: Mesh,
     /// Shared by clones (the page's two sides).
     reference: Arc<Reference>,
-    /// Per node, the facet of the reference its last projection landed on.
+    /// Per node, the facet of the reference its last projection landed on (for an
+    /// analytic surface, the smooth part it is on): where its next search starts, and
+    /// the part it stays on.
     hint: Vec<u32>,
     /// Per node, whether it lies on a feature curve (an edge whose dihedral angle is
     /// over [`FEATURE_ANGLE_DEG`]).
@@ -107,11 +109,14 @@ impl Surface {
         flat.fix_also(|n| feature[n]);
         let reference = match analytic {
             Some(a) => Reference::Analytic(a),
-            None => Reference::Facets(Facets::new(&points, flat.kinds(), |e| flat.element(e))),
+            None => {
+                let part = smooth_parts(&flat, &points, FEATURE_ANGLE_DEG);
+                Reference::Facets(Facets::new(&points, flat.kinds(), |e| flat.element(e), |e| part[e]))
+            }
         };
         let hint = match &reference {
             Reference::Facets(f) => (0..points.len()).map(|n| f.triangle_at_vertex(n)).collect(),
-            Reference::Analytic(_) => vec![NONE; points.len()],
+            Reference::Analytic(a) => points.iter().map(|&p| a.part_of(p)).collect(),
         };
         Ok(Surface { points, flat, reference: Arc::new(reference), hint, feature })
     }
@@ -317,12 +322,20 @@ fn orient(mesh: &mut Mesh, points: &[DVec3]) -> Result<()> {
 /// two elements lying over each other), not a feature curve, degrees.
 pub const FOLD_ANGLE_DEG: f64 = 150.0;
 
-/// Nodes on feature curves: the ends (and mid-side node) of every edge between two
-/// elements whose normals differ by more than `angle_deg` (and less than
-/// [`FOLD_ANGLE_DEG`]: a tangled surface loaded from a file keeps its folds free).
+/// Whether the edge between elements `e` and `f` is on a feature curve: their normals
+/// differ by more than `angle_deg` (and less than [`FOLD_ANGLE_DEG`]: a tangled surface
+/// loaded from a file keeps its folds free).
+fn is_feature_edge(mesh: &Mesh, points: &[DVec3], e: usize, f: usize, angle_deg: f64) -> bool {
+    let (cos, fold) = (angle_deg.to_radians().cos(), FOLD_ANGLE_DEG.to_radians().cos());
+    let (n1, n2) = (element_normal(mesh, points, e), element_normal(mesh, points, f));
+    let (Some(n1), Some(n2)) = (n1.try_normalize(), n2.try_normalize()) else { return false };
+    n1.dot(n2) < cos && n1.dot(n2) > fold
+}
+
+/// Nodes on feature curves: the ends (and mid-side node) of every feature edge
+/// ([`is_feature_edge`]).
 fn feature_nodes(mesh: &Mesh, points: &[DVec3], angle_deg: f64) -> Vec<bool> {
     let mut feature = vec![false; points.len()];
-    let (cos, fold) = (angle_deg.to_radians().cos(), FOLD_ANGLE_DEG.to_radians().cos());
     for e in 0..mesh.element_count() {
         let ids = mesh.element(e);
         let k = mesh.kind(e).corners();
@@ -333,9 +346,7 @@ fn feature_nodes(mesh: &Mesh, points: &[DVec3], angle_deg: f64) -> Vec<bool> {
                 continue;
             }
             let Some((f, _)) = across(mesh, e, a, b) else { continue };
-            let (n1, n2) = (element_normal(mesh, points, e), element_normal(mesh, points, f));
-            let (Some(n1), Some(n2)) = (n1.try_normalize(), n2.try_normalize()) else { continue };
-            if n1.dot(n2) < cos && n1.dot(n2) > fold {
+            if is_feature_edge(mesh, points, e, f, angle_deg) {
                 feature[a as usize] = true;
                 feature[b as usize] = true;
                 if let Some(m) = mesh.kind(e).mid(i) {
@@ -346,5 +357,35 @@ fn feature_nodes(mesh: &Mesh, points: &[DVec3], angle_deg: f64) -> Vec<bool> {
     }
     feature
 }
+
+/// The smooth parts of the surface: elements joined by edges that are not feature edges,
+/// numbered from 0 (per element, its part).
+fn smooth_parts(mesh: &Mesh, points: &[DVec3], angle_deg: f64) -> Vec<u32> {
+    let mut part = vec![u32::MAX; mesh.element_count()];
+    let mut parts = 0;
+    let mut queue = Vec::new();
+    for seed in 0..mesh.element_count() {
+        if part[seed] != u32::MAX {
+            continue;
+        }
+        part[seed] = parts;
+        queue.push(seed);
+        while let Some(e) = queue.pop() {
+            let ids = mesh.element(e);
+            let k = mesh.kind(e).corners();
+            for i in 0..k {
+                if let Some((f, _)) = across(mesh, e, ids[i], ids[(i + 1) % k]) {
+                    if part[f] == u32::MAX && !is_feature_edge(mesh, points, e, f, angle_deg) {
+                        part[f] = parts;
+                        queue.push(f);
+                    }
+                }
+            }
+        }
+        parts += 1;
+    }
+    part
+}
+
 #[cfg(test)]
 mod tests;

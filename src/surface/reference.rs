@@ -7,8 +7,8 @@ use glam::DVec3;
 use crate::mesh::{ElementKind, NONE};
 
 /// Where a point projects onto the reference: the nearest point found, the reference's
-/// unit normal there (oriented as the mesh's elements), and the facet it lies on
-/// ([`NONE`] for an analytic surface), which starts the next search for the same node.
+/// unit normal there (oriented as the mesh's elements), and the facet it lies on (for an
+/// analytic surface, the smooth part), which starts the next search for the same node.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Projected {
     pub point: DVec3,
@@ -26,12 +26,13 @@ pub enum Reference {
 }
 
 impl Reference {
-    /// The nearest point of the reference to `p`, searched from the facet `hint` (a
-    /// node's last projection, or [`NONE`]).
+    /// The nearest point of the reference to `p` on the smooth part `hint` lies on (a
+    /// node's last projection's facet, or for an analytic surface its part), searched
+    /// from there; anywhere when `hint` is [`NONE`]. A node never crosses a feature curve.
     pub fn project(&self, p: DVec3, hint: u32) -> Projected {
         match self {
             Reference::Facets(f) => f.project(p, hint),
-            Reference::Analytic(a) => a.project(p),
+            Reference::Analytic(a) => a.project(p, hint),
         }
     }
     /// What the reference is, in words (for `stats`).
@@ -67,37 +68,55 @@ impl Analytic {
         }
     }
 
-    /// The nearest point of the surface to `p` and the outward normal there.
-    pub fn project(&self, p: DVec3) -> Projected {
-        let (point, normal) = match *self {
+    /// The smooth part of the surface point `p` lies on: for the capped cylinder 0 the
+    /// side, 1 the bottom cap, 2 the top (a rim point: the side); 0 for the others.
+    pub fn part_of(&self, p: DVec3) -> u32 {
+        match *self {
+            Analytic::CappedCylinder { radius, z0, z1 } => {
+                let on_side = (DVec3::new(p.x, p.y, 0.0).length() - radius).abs() <= 1e-9 * radius;
+                if on_side {
+                    0
+                } else if (p.z - z0).abs() <= (p.z - z1).abs() {
+                    1
+                } else {
+                    2
+                }
+            }
+            _ => 0,
+        }
+    }
+
+    /// The nearest point of part `part` of the surface to `p` (of the whole surface for
+    /// [`NONE`]) and the outward normal there.
+    pub fn project(&self, p: DVec3, part: u32) -> Projected {
+        let (point, normal, part) = match *self {
             Analytic::Sphere { centre, radius } => {
                 let n = (p - centre).try_normalize().unwrap_or(DVec3::Z);
-                (centre + n * radius, n)
+                (centre + n * radius, n, 0)
             }
             Analytic::CappedCylinder { radius, z0, z1 } => {
                 let radial = DVec3::new(p.x, p.y, 0.0).try_normalize().unwrap_or(DVec3::X);
-                // the side, then each cap: the nearest wins
-                let side = (radial * radius + DVec3::Z * p.z.clamp(z0, z1), radial);
                 let r = DVec3::new(p.x, p.y, 0.0).length().min(radius);
-                let bottom = (radial * r + DVec3::Z * z0, -DVec3::Z);
-                let top = (radial * r + DVec3::Z * z1, DVec3::Z);
-                let d = |c: &(DVec3, DVec3)| (c.0 - p).length_squared();
-                let mut best = side;
-                for c in [bottom, top] {
-                    if d(&c) < d(&best) {
-                        best = c;
-                    }
-                }
-                best
+                let parts = [
+                    (radial * radius + DVec3::Z * p.z.clamp(z0, z1), radial),
+                    (radial * r + DVec3::Z * z0, -DVec3::Z),
+                    (radial * r + DVec3::Z * z1, DVec3::Z),
+                ];
+                let d = |i: usize| (parts[i].0 - p).length_squared();
+                let i = match part {
+                    0..=2 => part as usize,
+                    _ => (0..3).min_by(|&a, &b| d(a).total_cmp(&d(b))).unwrap_or(0),
+                };
+                (parts[i].0, parts[i].1, i as u32)
             }
             Analytic::Torus { major, minor } => {
                 let radial = DVec3::new(p.x, p.y, 0.0).try_normalize().unwrap_or(DVec3::X);
                 let ring = radial * major;
                 let n = (p - ring).try_normalize().unwrap_or(radial);
-                (ring + n * minor, n)
+                (ring + n * minor, n, 0)
             }
         };
-        Projected { point, normal, face: NONE }
+        Projected { point, normal, face: part }
     }
 }
 
@@ -110,6 +129,9 @@ impl Analytic {
 pub struct Facets {
     points: Vec<DVec3>,
     triangles: Vec<[u32; 3]>,
+    /// Per triangle, the smooth part of the surface it belongs to (its element's part:
+    /// parts meet at feature curves).
+    part: Vec<u32>,
     /// Vertex → triangles (CSR), for the walk.
     vert_start: Vec<u32>,
     vert_tris: Vec<u32>,
@@ -120,11 +142,17 @@ pub struct Facets {
 const MAX_WALK: usize = 256;
 
 impl Facets {
-    /// The facets of the elements (`kinds`, each element's nodes by `element`) over
-    /// `points`.
-    pub fn new<'a>(points: &[DVec3], kinds: &[ElementKind], element: impl Fn(usize) -> &'a [u32]) -> Facets {
+    /// The facets of the elements (`kinds`, each element's nodes by `element`, its smooth
+    /// part by `part`) over `points`.
+    pub fn new<'a>(
+        points: &[DVec3],
+        kinds: &[ElementKind],
+        element: impl Fn(usize) -> &'a [u32],
+        part: impl Fn(usize) -> u32,
+    ) -> Facets {
         let mut pts = points.to_vec();
         let mut triangles = Vec::with_capacity(kinds.len() * 2);
+        let mut parts = Vec::with_capacity(kinds.len() * 2);
         for (e, &kind) in kinds.iter().enumerate() {
             let ids = element(e);
             match kind {
@@ -154,6 +182,7 @@ impl Facets {
                     }
                 }
             }
+            parts.resize(triangles.len(), part(e));
         }
         let mut vert_start = vec![0u32; pts.len() + 1];
         for t in &triangles {
@@ -173,7 +202,7 @@ impl Facets {
             }
         }
         let grid = Grid::new(&pts, &triangles);
-        Facets { points: pts, triangles, vert_start, vert_tris, grid }
+        Facets { points: pts, triangles, part: parts, vert_start, vert_tris, grid }
     }
 
     /// A triangle with vertex `v`, to start the walk from a node where it was loaded
@@ -203,12 +232,16 @@ impl Facets {
     /// triangles while the distance falls (the local nearest point, which for a node
     /// moved within its star is the one meant), else the spatial index's global nearest.
     pub fn project(&self, p: DVec3, hint: u32) -> Projected {
-        if (hint as usize) < self.triangles.len() {
+        let part = self.part.get(hint as usize).copied();
+        if part.is_some() {
             if let Some(t) = self.walk(p, hint) {
                 return self.projected(p, t);
             }
         }
-        let t = self.grid.nearest(p, |t| closest_on_triangle(p, self.corners(t)).0);
+        let t = self.grid.nearest(p, |t| match part {
+            Some(k) if self.part[t as usize] != k => None,
+            _ => Some(closest_on_triangle(p, self.corners(t)).0),
+        });
         self.projected(p, t)
     }
 
@@ -226,12 +259,13 @@ impl Facets {
     /// of a thin or sharp part.) `None` when it has not settled within [`MAX_WALK`] steps.
     fn walk(&self, p: DVec3, mut t: u32) -> Option<u32> {
         let dist = |t: u32| (closest_on_triangle(p, self.corners(t)).0 - p).length_squared();
+        let part = self.part[t as usize];
         let mut d = dist(t);
         for _ in 0..MAX_WALK {
             let mut best = (d, t);
             for &v in &self.triangles[t as usize] {
                 for &u in self.around(v as usize) {
-                    if u != best.1 {
+                    if u != best.1 && self.part[u as usize] == part {
                         let du = dist(u);
                         if du < best.0 {
                             best = (du, u);
@@ -359,9 +393,9 @@ impl Grid {
         Grid { lo, cell, dims, start: count, tris }
     }
 
-    /// The triangle nearest to `p` by `nearest_point`, searching shells of cells outward
+    /// The triangle nearest to `p` by `nearest_point` (`None`: not a candidate), searching shells of cells outward
     /// from `p`'s cell until the next shell is farther than the best found.
-    fn nearest(&self, p: DVec3, nearest_point: impl Fn(u32) -> DVec3) -> u32 {
+    fn nearest(&self, p: DVec3, nearest_point: impl Fn(u32) -> Option<DVec3>) -> u32 {
         let dims = self.dims;
         let rel = (p - self.lo) / self.cell;
         let centre = [0, 1, 2].map(|i| (rel[i].floor().max(0.0) as usize).min(dims[i] - 1));
@@ -390,7 +424,8 @@ impl Grid {
                         }
                         let c = (z * dims[1] + y) * dims[0] + x;
                         for &t in &self.tris[self.start[c] as usize..self.start[c + 1] as usize] {
-                            let d = (nearest_point(t) - p).length();
+                            let Some(q) = nearest_point(t) else { continue };
+                            let d = (q - p).length();
                             if d < best_d || (d == best_d && t < best) {
                                 (best, best_d) = (t, d);
                             }
@@ -430,7 +465,7 @@ mod tests {
         let p = [DVec3::X, DVec3::Y, -DVec3::X, -DVec3::Y, DVec3::Z, -DVec3::Z];
         let tris: Vec<[u32; 3]> = (0..4u32).flat_map(|i| [[i, (i + 1) % 4, 4], [(i + 1) % 4, i, 5]]).collect();
         let flat: Vec<u32> = tris.iter().flatten().copied().collect();
-        Facets::new(&p, &[ElementKind::Tri3; 8], |e| &flat[3 * e..3 * e + 3])
+        Facets::new(&p, &[ElementKind::Tri3; 8], |e| &flat[3 * e..3 * e + 3], |_| 0)
     }
 
     #[test]
@@ -467,14 +502,17 @@ mod tests {
     #[test]
     fn analytic_projections_by_hand() {
         let s = Analytic::Sphere { centre: DVec3::new(1.0, 0.0, 0.0), radius: 2.0 };
-        let q = s.project(DVec3::new(1.0, 0.0, 5.0));
+        let q = s.project(DVec3::new(1.0, 0.0, 5.0), NONE);
         assert_eq!((q.point, q.normal), (DVec3::new(1.0, 0.0, 2.0), DVec3::Z));
         let t = Analytic::Torus { major: 3.0, minor: 1.0 };
-        let q = t.project(DVec3::new(0.0, 5.0, 0.0));
+        let q = t.project(DVec3::new(0.0, 5.0, 0.0), NONE);
         assert_eq!((q.point, q.normal), (DVec3::new(0.0, 4.0, 0.0), DVec3::Y));
         let c = Analytic::CappedCylinder { radius: 1.0, z0: 0.0, z1: 2.0 };
-        assert_eq!(c.project(DVec3::new(3.0, 0.0, 1.0)).point, DVec3::new(1.0, 0.0, 1.0));
-        let top = c.project(DVec3::new(0.2, 0.0, 2.5));
-        assert_eq!((top.point, top.normal), (DVec3::new(0.2, 0.0, 2.0), DVec3::Z));
+        assert_eq!(c.project(DVec3::new(3.0, 0.0, 1.0), NONE).point, DVec3::new(1.0, 0.0, 1.0));
+        let top = c.project(DVec3::new(0.2, 0.0, 2.5), NONE);
+        assert_eq!((top.point, top.normal, top.face), (DVec3::new(0.2, 0.0, 2.0), DVec3::Z, 2));
+        // kept on its part: a side point pulled over the top stays on the side, at the rim
+        let side = c.project(DVec3::new(0.9, 0.0, 2.5), 0);
+        assert_eq!((side.point, side.normal), (DVec3::new(1.0, 0.0, 2.0), DVec3::X));
     }
 }
