@@ -393,3 +393,24 @@ fn golden_quadratic_saddle_at_dpr_2() {
     assert!(px.red() < 120 && px.green() < 120, "the edge is stroked through the mid node: {px:?}");
     golden("surface_quadratic_saddle_dpr2", &p);
 }
+
+/// Whichever way the camera turns, every point lies in the frame less the margin, left of
+/// the colour bar and under the title.
+#[test]
+fn every_camera_keeps_the_mesh_inside_the_plot() {
+    let (points, _, _) = uv_sphere();
+    let shifted: Vec<DVec3> = points.iter().map(|p| *p * DVec3::new(3.0, 1.0, 0.5) + DVec3::new(10.0, -4.0, 2.0)).collect();
+    for yaw in (0..360).step_by(15) {
+        for pitch in (-90..=90).step_by(15) {
+            let camera = Camera { yaw: yaw as f64, pitch: pitch as f64, zoom: 1.0 };
+            let mut p = Pixmap::new(300, 200).unwrap();
+            let opts = SurfaceView { camera, title: Some("t".into()), ..Default::default() };
+            let proj = render_surface(&mut p, &Faces { points: &shifted, ..Default::default() }, &opts);
+            for q in &shifted {
+                let c = proj.to_css(*q);
+                let (x1, y1) = (300.0 - COLOUR_BAR_WIDTH as f64 - 16.0, 200.0 - 16.0);
+                assert!(c.x >= 16.0 - EPS && c.x <= x1 + EPS && c.y >= 26.0 + 16.0 - EPS && c.y <= y1 + EPS, "{camera:?}: {c:?}");
+            }
+        }
+    }
+}
