@@ -414,3 +414,29 @@ fn every_camera_keeps_the_mesh_inside_the_plot() {
         }
     }
 }
+
+/// An 8-node ring is a quadratic quad: its bowed edge is the parabola through the mid
+/// node (at a quarter of the edge it bulges ¾ of the mid node's offset, where the polyline
+/// through the mid node reaches ½), and the straight ones stay straight.
+#[test]
+fn a_quadratic_quad_is_drawn_with_its_parabolic_edge() {
+    let h = 0.8;
+    let (x, z) = (DVec3::X, DVec3::Z);
+    let ring_pts = [-x - z, -z * (1.0 + h), x - z, x, x + z, z, -x + z, -x];
+    let points: Vec<DVec3> = ring_pts.to_vec();
+    assert!(newell_normal(&points).y < 0.0, "faces the viewer");
+    let faces = Faces { points: &points, ring_start: &[0, 8], rings: &[0, 1, 2, 3, 4, 5, 6, 7], values: &[1.0], inverted: &[] };
+    let mut p = Pixmap::new(200, 200).unwrap();
+    let proj = render_surface(&mut p, &faces, &SurfaceView { show_edges: false, ..front_view() });
+    let filled = |q: DVec3| {
+        let d = proj.to_device(q);
+        let px = p.pixel(d.x.round() as u32, d.y.round() as u32).unwrap();
+        (px.red(), px.green(), px.blue()) != (255, 255, 255)
+    };
+    // at a quarter of the bowed edge: the curve is 0.75 h below the chord
+    assert!(filled(DVec3::new(-0.5, 0.0, -1.0 - 0.68 * h)), "inside the parabola, outside the polyline");
+    assert!(!filled(DVec3::new(-0.5, 0.0, -1.0 - 0.82 * h)), "outside the parabola");
+    assert!(filled(DVec3::new(0.0, 0.0, -1.0 - 0.95 * h)) && !filled(DVec3::new(0.0, 0.0, -1.0 - 1.08 * h)));
+    // a straight edge stays where it is
+    assert!(filled(DVec3::new(0.95, 0.0, 0.0)) && !filled(DVec3::new(1.08, 0.0, 0.0)));
+}
