@@ -14,6 +14,9 @@
 //! - [`render_compare`]: two mesh panels with titles and statistics.
 //! - [`render_sketch`]: a triangle and the lines its free corner moves along, to read a
 //!   1-D curve beside (Chen et al. 2003, Figs. 2, 6); [`render_titled`]: panels in a grid.
+//! - [`render_surface`]: a surface mesh in 3D seen by an orbit [`Camera`], faces in their
+//!   quality colour, shaded and depth-sorted, inverted ones hatched; the returned
+//!   [`Projection`] maps points to pixels and picks nodes.
 //!
 //! Sizes in options are CSS pixels; a device-pixel ratio scales them (see [`view`]).
 //! tiny-skia pixels are premultiplied RGBA; every view paints an opaque background, so
@@ -31,6 +34,7 @@ mod paint;
 mod profile;
 mod text;
 pub mod view;
+mod view3d;
 
 #[cfg(test)]
 mod tests;
@@ -55,6 +59,10 @@ pub use profile::{render_sketch, render_titled, Sketch, SketchLine};
 pub(crate) use mesh::{draw_colour_bar, draw_inverted, push_element};
 pub use text::{draw_text, draw_text_rotated, text_width, Align, TextStyle, Valign};
 pub use view::{Frame, View, ZoomPan};
+pub use view3d::{
+    newell_normal, render_surface, shade, Camera, Faces, Projection, SurfaceView, AMBIENT, BACK_FACE, DEGREES_PER_PIXEL, MAX_DRAG_PITCH,
+    ZOOM_RANGE,
+};
 
 /// The picture as PNG bytes, for the CLI (native builds only: the page hands the
 /// pixels to a canvas and needs no PNG codec).

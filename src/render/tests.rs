@@ -473,3 +473,5 @@ fn an_inverted_element_flung_far_away_is_hatched_only_where_it_shows() {
     let red = pm.pixels().iter().filter(|p| p.red() > 150 && p.green() < 80 && p.blue() < 80).count();
     assert!(red > 40 && dark > 40, "the visible part is red and hatched: {red} red, {dark} dark pixels");
 }
+
+mod view3d;
