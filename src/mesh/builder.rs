@@ -220,8 +220,9 @@ impl MeshBuilder {
                 topo: Topology::default(),
             }),
         };
+        let flags_given = !matches!(self.fixed, FixedSpec::Boundary);
         let mesh = finish(mesh, &self.elem_lines, self.fixed)?;
-        crate::surface::Surface::from_parts(points, mesh, analytic)
+        crate::surface::Surface::from_parts(points, mesh, analytic, flags_given)
     }
 
     /// The checks every mesh passes, planar or surface: at least one element, finite

@@ -23,9 +23,11 @@ use crate::error::{Error, Result};
 use crate::mesh::{Mesh, NodeRole, Plane};
 use crate::quality::{mesh_stats_with, MeshStats};
 
+mod picture;
 mod reference;
 mod view;
 
+pub use picture::SurfaceFaces;
 pub use reference::{closest_on_triangle, Analytic, Facets, Projected, Reference};
 pub use view::{perturb_surface, smooth_surface, SurfaceSmoother};
 
@@ -95,9 +97,20 @@ impl Surface {
     /// (as the builder makes them). The elements are oriented consistently — across every
     /// edge two elements run opposite ways — each closed part outward, each open part as
     /// most of its elements were given; a non-orientable surface is refused. Boundary
-    /// edges whose mid-side node is off the chord are curved; nodes on feature curves are
-    /// fixed. The reference is `analytic` when given, else the elements as they are now.
-    pub(crate) fn from_parts(points: Vec<DVec3>, mut flat: Mesh, analytic: Option<Analytic>) -> Result<Surface> {
+    /// edges whose mid-side node is off the chord are curved. The reference is `analytic`
+    /// when given, else the elements as they are now.
+    ///
+    /// Feature curves are the exact surface's, else found by their dihedral angles
+    /// ([`Features::is_edge`]); their nodes are fixed. When the file gave the fixed flags (`flags_given`), the file
+    /// decides: only edges between two nodes it fixed can be feature curves, and no node
+    /// is fixed besides its own — so a tangled surface written with its flags and read
+    /// back keeps its folds free, where the angles alone would take them for creases.
+    pub(crate) fn from_parts(
+        points: Vec<DVec3>,
+        mut flat: Mesh,
+        analytic: Option<Analytic>,
+        flags_given: bool,
+    ) -> Result<Surface> {
         orient(&mut flat, &points)?;
         flat.mark_curved_boundary(|e| {
             let (a, b, m) = (points[e.a as usize], points[e.b as usize], points[e.mid as usize]);
@@ -105,14 +118,19 @@ impl Surface {
             let off = (m - a).cross(chord).length() / chord.length().max(f64::MIN_POSITIVE);
             off > 1e-6 * chord.length()
         });
-        let feature = feature_nodes(&flat, &points, FEATURE_ANGLE_DEG);
-        flat.fix_also(|n| feature[n]);
+        let given = flags_given.then(|| flat.fixed().to_vec());
+        let features = Features { mesh: &flat, points: &points, angle_deg: FEATURE_ANGLE_DEG, fixed: given.as_deref() };
+        // an exact surface knows its feature curves (the cylinder's rims); else the angles say
+        let (feature, part): (Vec<bool>, Vec<u32>) = match analytic {
+            Some(a) => (points.iter().map(|&p| a.on_feature(p)).collect(), Vec::new()),
+            None => (features.nodes(), features.parts()),
+        };
+        if !flags_given {
+            flat.fix_also(|n| feature[n]);
+        }
         let reference = match analytic {
             Some(a) => Reference::Analytic(a),
-            None => {
-                let part = smooth_parts(&flat, &points, FEATURE_ANGLE_DEG);
-                Reference::Facets(Facets::new(&points, flat.kinds(), |e| flat.element(e), |e| part[e]))
-            }
+            None => Reference::Facets(Box::new(Facets::new(&points, flat.kinds(), |e| flat.element(e), |e| part[e]))),
         };
         let hint = match &reference {
             Reference::Facets(f) => (0..points.len()).map(|n| f.triangle_at_vertex(n)).collect(),
@@ -322,69 +340,86 @@ fn orient(mesh: &mut Mesh, points: &[DVec3]) -> Result<()> {
 /// two elements lying over each other), not a feature curve, degrees.
 pub const FOLD_ANGLE_DEG: f64 = 150.0;
 
-/// Whether the edge between elements `e` and `f` is on a feature curve: their normals
-/// differ by more than `angle_deg` (and less than [`FOLD_ANGLE_DEG`]: a tangled surface
-/// loaded from a file keeps its folds free).
-fn is_feature_edge(mesh: &Mesh, points: &[DVec3], e: usize, f: usize, angle_deg: f64) -> bool {
-    let (cos, fold) = (angle_deg.to_radians().cos(), FOLD_ANGLE_DEG.to_radians().cos());
-    let (n1, n2) = (element_normal(mesh, points, e), element_normal(mesh, points, f));
-    let (Some(n1), Some(n2)) = (n1.try_normalize(), n2.try_normalize()) else { return false };
-    n1.dot(n2) < cos && n1.dot(n2) > fold
+/// Finds a surface's feature curves and the smooth parts between them.
+struct Features<'a> {
+    mesh: &'a Mesh,
+    points: &'a [DVec3],
+    angle_deg: f64,
+    /// The file's fixed flags, when it gave them: only edges between fixed nodes qualify.
+    fixed: Option<&'a [bool]>,
 }
 
-/// Nodes on feature curves: the ends (and mid-side node) of every feature edge
-/// ([`is_feature_edge`]).
-fn feature_nodes(mesh: &Mesh, points: &[DVec3], angle_deg: f64) -> Vec<bool> {
-    let mut feature = vec![false; points.len()];
-    for e in 0..mesh.element_count() {
-        let ids = mesh.element(e);
-        let k = mesh.kind(e).corners();
-        for i in 0..k {
-            let (a, b) = (ids[i], ids[(i + 1) % k]);
-            // each interior edge once, from the element that runs it a → b with a < b
-            if a > b {
-                continue;
-            }
-            let Some((f, _)) = across(mesh, e, a, b) else { continue };
-            if is_feature_edge(mesh, points, e, f, angle_deg) {
-                feature[a as usize] = true;
-                feature[b as usize] = true;
-                if let Some(m) = mesh.kind(e).mid(i) {
-                    feature[ids[m] as usize] = true;
-                }
-            }
+impl Features<'_> {
+    /// Whether the edge `a`–`b` between elements `e` and `f` is on a feature curve: their
+    /// normals differ by more than the angle and less than [`FOLD_ANGLE_DEG`] (a greater
+    /// turn is a fold, one element lying over the other), and, when the file fixed nodes,
+    /// it fixed both ends.
+    fn is_edge(&self, e: usize, f: usize, a: u32, b: u32) -> bool {
+        if self.fixed.is_some_and(|fixed| !(fixed[a as usize] && fixed[b as usize])) {
+            return false;
         }
+        let (cos, fold) = (self.angle_deg.to_radians().cos(), FOLD_ANGLE_DEG.to_radians().cos());
+        let (n1, n2) = (element_normal(self.mesh, self.points, e), element_normal(self.mesh, self.points, f));
+        let (Some(n1), Some(n2)) = (n1.try_normalize(), n2.try_normalize()) else { return false };
+        n1.dot(n2) < cos && n1.dot(n2) > fold
     }
-    feature
-}
 
-/// The smooth parts of the surface: elements joined by edges that are not feature edges,
-/// numbered from 0 (per element, its part).
-fn smooth_parts(mesh: &Mesh, points: &[DVec3], angle_deg: f64) -> Vec<u32> {
-    let mut part = vec![u32::MAX; mesh.element_count()];
-    let mut parts = 0;
-    let mut queue = Vec::new();
-    for seed in 0..mesh.element_count() {
-        if part[seed] != u32::MAX {
-            continue;
-        }
-        part[seed] = parts;
-        queue.push(seed);
-        while let Some(e) = queue.pop() {
+    /// Nodes on feature curves: the ends (and mid-side node) of every feature edge.
+    fn nodes(&self) -> Vec<bool> {
+        let mesh = self.mesh;
+        let mut feature = vec![false; self.points.len()];
+        for e in 0..mesh.element_count() {
             let ids = mesh.element(e);
             let k = mesh.kind(e).corners();
             for i in 0..k {
-                if let Some((f, _)) = across(mesh, e, ids[i], ids[(i + 1) % k]) {
-                    if part[f] == u32::MAX && !is_feature_edge(mesh, points, e, f, angle_deg) {
-                        part[f] = parts;
-                        queue.push(f);
+                let (a, b) = (ids[i], ids[(i + 1) % k]);
+                // each interior edge once, from the element that runs it a → b with a < b
+                if a > b {
+                    continue;
+                }
+                let Some((f, _)) = across(mesh, e, a, b) else { continue };
+                if self.is_edge(e, f, a, b) {
+                    feature[a as usize] = true;
+                    feature[b as usize] = true;
+                    if let Some(m) = mesh.kind(e).mid(i) {
+                        feature[ids[m] as usize] = true;
                     }
                 }
             }
         }
-        parts += 1;
+        feature
     }
-    part
+
+    /// The smooth parts: elements joined by edges that are not feature edges, numbered
+    /// from 0 (per element, its part).
+    fn parts(&self) -> Vec<u32> {
+        let mesh = self.mesh;
+        let mut part = vec![u32::MAX; mesh.element_count()];
+        let mut parts = 0;
+        let mut queue = Vec::new();
+        for seed in 0..mesh.element_count() {
+            if part[seed] != u32::MAX {
+                continue;
+            }
+            part[seed] = parts;
+            queue.push(seed);
+            while let Some(e) = queue.pop() {
+                let ids = mesh.element(e);
+                let k = mesh.kind(e).corners();
+                for i in 0..k {
+                    let (a, b) = (ids[i], ids[(i + 1) % k]);
+                    if let Some((f, _)) = across(mesh, e, a, b) {
+                        if part[f] == u32::MAX && !self.is_edge(e, f, a, b) {
+                            part[f] = parts;
+                            queue.push(f);
+                        }
+                    }
+                }
+            }
+            parts += 1;
+        }
+        part
+    }
 }
 
 #[cfg(test)]

@@ -20,7 +20,7 @@ pub struct Projected {
 #[derive(Clone, Debug)]
 pub enum Reference {
     /// The loaded mesh's elements as flat triangles (see [`Facets`]).
-    Facets(Facets),
+    Facets(Box<Facets>),
     /// An exact surface (generated samples).
     Analytic(Analytic),
 }
@@ -65,6 +65,18 @@ impl Analytic {
                 format!("a cylinder of radius {radius} from z = {z0} to {z1}, with caps")
             }
             Analytic::Torus { major, minor } => format!("a torus of radii {major} and {minor}"),
+        }
+    }
+
+    /// Whether the surface point `p` lies on a feature curve: the capped cylinder's rims.
+    pub fn on_feature(&self, p: DVec3) -> bool {
+        match *self {
+            Analytic::CappedCylinder { radius, z0, z1 } => {
+                let on_side = (DVec3::new(p.x, p.y, 0.0).length() - radius).abs() <= 1e-9 * radius;
+                let on_cap = (p.z - z0).abs() <= 1e-9 * (z1 - z0) || (p.z - z1).abs() <= 1e-9 * (z1 - z0);
+                on_side && on_cap
+            }
+            _ => false,
         }
     }
 
@@ -132,6 +144,10 @@ pub struct Facets {
     /// Per triangle, the smooth part of the surface it belongs to (its element's part:
     /// parts meet at feature curves).
     part: Vec<u32>,
+    /// Per vertex, the unit normal of its triangles (their normals summed, each weighted
+    /// by its area), interpolated across a triangle for the normal at a point: smooth
+    /// over the facets, and right where one facet of a tangled file is turned over.
+    vertex_normal: Vec<DVec3>,
     /// Vertex → triangles (CSR), for the walk.
     vert_start: Vec<u32>,
     vert_tris: Vec<u32>,
@@ -202,7 +218,18 @@ impl Facets {
             }
         }
         let grid = Grid::new(&pts, &triangles);
-        Facets { points: pts, triangles, part: parts, vert_start, vert_tris, grid }
+        let mut vertex_normal = vec![DVec3::ZERO; pts.len()];
+        for t in &triangles {
+            let [a, b, c] = t.map(|v| pts[v as usize]);
+            let n = (b - a).cross(c - a);
+            for &v in t {
+                vertex_normal[v as usize] += n;
+            }
+        }
+        for n in &mut vertex_normal {
+            *n = n.normalize_or_zero();
+        }
+        Facets { points: pts, triangles, part: parts, vertex_normal, vert_start, vert_tris, grid }
     }
 
     /// A triangle with vertex `v`, to start the walk from a node where it was loaded
@@ -249,8 +276,11 @@ impl Facets {
         if t == NONE {
             return Projected { point: p, normal: DVec3::Z, face: NONE };
         }
-        let (point, _) = closest_on_triangle(p, self.corners(t));
-        Projected { point, normal: self.normal(t), face: t }
+        let (point, bary) = closest_on_triangle(p, self.corners(t));
+        let tri = self.triangles[t as usize];
+        let blended: DVec3 = (0..3).map(|i| bary[i] * self.vertex_normal[tri[i] as usize]).sum();
+        let normal = blended.try_normalize().unwrap_or_else(|| self.normal(t));
+        Projected { point, normal, face: t }
     }
 
     /// The walk: from triangle `t`, go to the nearest of the triangles that share a

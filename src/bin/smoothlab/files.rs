@@ -8,23 +8,15 @@ use smoothlab::quality::element_quality;
 use smoothlab::surface::Model;
 use smoothlab::Mesh;
 
-/// Reads a planar mesh or a surface, naming the file in any error; warns about a planar
-/// mesh's elements of zero area as [`read_mesh`] does.
+/// Reads a planar mesh or a surface, naming the file in any error, and warns (stderr)
+/// about a planar mesh's elements of zero area, which load but count as inverted until
+/// smoothed.
 pub fn read_model(path: &Path) -> Result<Model, String> {
     let model = io::read_model_path(path).map_err(|e| format!("{}: {e}", path.display()))?;
     if let Model::Planar(mesh) = &model {
         warn_zero_area(mesh, path);
     }
     Ok(model)
-}
-
-/// Reads a planar mesh (a surface is refused, saying that `what` takes planar meshes
-/// only), naming the file in any error, and warns (stderr) about elements of zero area,
-/// which load but count as inverted until smoothed.
-pub fn read_mesh(path: &Path) -> Result<Mesh, String> {
-    let mesh = io::read_path(path).map_err(|e| format!("{}: {e}", path.display()))?;
-    warn_zero_area(&mesh, path);
-    Ok(mesh)
 }
 
 fn warn_zero_area(mesh: &Mesh, path: &Path) {

@@ -13,10 +13,11 @@ use smoothlab::lab::views::{pixmap, Canvas};
 use smoothlab::lab::{Choice, Playground, Settings, Side, MAX_NODES};
 use smoothlab::quality::mesh_stats;
 use smoothlab::render::{
-    encode_png, render_angle_histogram, render_mesh, AngleHistogram, HistogramSeries,
-    MeshView, Metric,
+    encode_png, render_angle_histogram, render_mesh, AngleHistogram, HistogramSeries, MeshView, Metric,
 };
+use smoothlab::render::{Camera, SurfaceView};
 use smoothlab::smooth::{smooth, SmoothOptions, Strategy};
+use smoothlab::surface::{Model, Surface, SurfaceSmoother};
 use smoothlab::Mesh;
 use tiny_skia::{Pixmap, PixmapPaint, Transform};
 
@@ -35,7 +36,6 @@ pub enum ViewArg {
     /// Old on the left, new on the right, after the passes, with their statistics
     Compare,
 }
-
 
 #[derive(Args)]
 pub struct RenderArgs {
@@ -86,6 +86,10 @@ pub struct RenderArgs {
     /// Design of the new objective's penalty: barrier (the default) or angle (the first design)
     #[arg(long, value_parser = crate::smooth::penalty_parser(), default_value = "barrier")]
     pub penalty: smoothlab::objective::Penalty,
+    /// A surface's 3D view: yaw and pitch in degrees and a zoom factor, YAW,PITCH[,ZOOM]
+    /// (default 30,25,1); --view mesh and compare draw surfaces
+    #[arg(long, allow_hyphen_values = true)]
+    pub camera: Option<String>,
 }
 
 /// Which sides `--objective` asks for.
@@ -159,7 +163,16 @@ pub fn run(a: RenderArgs) -> Result<(), String> {
     if passes > 1000 {
         return Err(format!("--passes {passes}: give at most 1000"));
     }
-    let mesh = crate::files::read_mesh(&input)?;
+    let camera = a.camera.as_deref().map(Camera::parse).transpose().map_err(|e| format!("--camera: {e}"))?;
+    let mesh = match crate::files::read_model(&input)? {
+        Model::Planar(mesh) => {
+            if camera.is_some() {
+                return Err("--camera turns the 3D view of a surface; this mesh is planar".into());
+            }
+            mesh
+        }
+        Model::Surface(s) => return surface(&a, &input, s, camera.unwrap_or_default(), passes, &shown),
+    };
     // The pictures are drawn by the page's code, which holds at most MAX_NODES nodes: say
     // so in this tool's words, with the file's name (the page's own message pointed to
     // the command-line tool, which this is).
@@ -197,7 +210,9 @@ pub fn run(a: RenderArgs) -> Result<(), String> {
         let m = &lab.panel(side).mesh;
         match a.node {
             Some(n) if n < m.node_count() && m.is_free(n) => Ok(n),
-            Some(n) if n < m.node_count() => Err(format!("--node {n} is not a free corner node: it never moves, so it has no objective to draw")),
+            Some(n) if n < m.node_count() => {
+                Err(format!("--node {n} is not a free corner node: it never moves, so it has no objective to draw"))
+            }
             Some(n) => Err(no_such_node(n, m)),
             None => worst_free_node(m).ok_or_else(|| "the mesh has no free node to study".to_string()),
         }
@@ -224,7 +239,8 @@ pub fn run(a: RenderArgs) -> Result<(), String> {
             Some(_) => {
                 let n = node(first)?;
                 // the node view's third picture is its solve history (both objectives)
-                let ([_, _, chart], _) = lab.render_node_view(n, canvas(64, 64), canvas(w, h)).map_err(|e| e.to_string())?;
+                let ([_, _, chart], _) =
+                    lab.render_node_view(n, canvas(64, 64), canvas(w, h)).map_err(|e| e.to_string())?;
                 chart
             }
             None => lab.render_pass_chart(canvas(w, h)).map_err(|e| e.to_string())?,
@@ -241,16 +257,24 @@ pub fn run(a: RenderArgs) -> Result<(), String> {
             let mut series = vec![HistogramSeries { label: "as loaded", counts: &as_loaded, color: None }];
             for &side in &shown {
                 series.push(match side {
-                    Side::Old => HistogramSeries { label: "old (max-min)", counts: &old, color: Some(Side::Old.color()) },
-                    Side::New => HistogramSeries { label: "new (Chen et al.)", counts: &new, color: Some(Side::New.color()) },
+                    Side::Old => {
+                        HistogramSeries { label: "old (max-min)", counts: &old, color: Some(Side::Old.color()) }
+                    }
+                    Side::New => {
+                        HistogramSeries { label: "new (Chen et al.)", counts: &new, color: Some(Side::New.color()) }
+                    }
                 });
             }
             series.push(HistogramSeries { label: "Laplacian", counts: &lap, color: None });
             let c = canvas(w, h);
             let mut pm = pixmap(c.w, c.h).map_err(|e| e.to_string())?;
             let title = format!("Corner angles (6° bins) after {passes} passes");
-            render_angle_histogram(&mut pm, &series, &AngleHistogram { title: &title, dpr: a.dpr, ..AngleHistogram::default() })
-                .map_err(|e| e.to_string())?;
+            render_angle_histogram(
+                &mut pm,
+                &series,
+                &AngleHistogram { title: &title, dpr: a.dpr, ..AngleHistogram::default() },
+            )
+            .map_err(|e| e.to_string())?;
             pm
         }
         ViewArg::Compare => {
@@ -270,6 +294,67 @@ fn figure(name: &str, a: &RenderArgs) -> Result<(), String> {
     let (w, h) = size(a.size.as_deref(), smoothlab::lab::tour::pictures::default_size(fig.name))?;
     let c = Canvas { w: ((w as f32) * a.dpr) as u32, h: ((h as f32) * a.dpr) as u32, dpr: a.dpr };
     let picture = smoothlab::lab::tour::pictures::render(fig.name, c).map_err(|e| e.to_string())?;
+    let png = encode_png(&picture).map_err(|e| e.to_string())?;
+    std::fs::write(&a.output, png).map_err(|e| format!("{}: {e}", a.output.display()))
+}
+
+/// `--view mesh` or `compare` of a surface, in the 3D view: as loaded (or after the
+/// passes of the first objective asked for), or old and new side by side after the
+/// passes, with the lab's settings (strategy, order, iterations, the new objective's penalty).
+fn surface(
+    a: &RenderArgs,
+    input: &std::path::Path,
+    s: Surface,
+    camera: Camera,
+    passes: u32,
+    shown: &[Side],
+) -> Result<(), String> {
+    if s.node_count() > MAX_NODES {
+        return Err(format!(
+            "{}: the mesh has {} nodes; render draws meshes of at most {MAX_NODES} nodes",
+            input.display(),
+            s.node_count()
+        ));
+    }
+    let sides: Vec<Side> = match a.view {
+        ViewArg::Mesh => vec![shown[0]],
+        ViewArg::Compare if shown.len() == 2 => shown.to_vec(),
+        ViewArg::Compare => return Err("--view compare shows both objectives: use --objective old,new".into()),
+        other => {
+            return Err(format!(
+                "--view {}: a surface is drawn by --view mesh or compare (its level sets and charts: not yet)",
+                format!("{other:?}").to_lowercase()
+            ))
+        }
+    };
+    let settings = settings(a);
+    let opts = settings.smooth_options().map_err(|e| e.to_string())?;
+    let (w, h) = size(a.size.as_deref(), if sides.len() == 2 { (1400, 760) } else { (900, 800) })?;
+    let each = w / sides.len() as u32;
+    let mut parts = Vec::new();
+    for side in sides {
+        let mut t = s.clone();
+        let choice = settings.compare[side as usize];
+        let objective = choice.build();
+        let mut smoother = SurfaceSmoother::new(opts).map_err(|e| e.to_string())?;
+        for _ in 0..passes {
+            smoother.pass(&mut t, objective.as_ref(), &|| 0.0);
+        }
+        let st = t.stats();
+        let title = format!(
+            "{} after {passes} pass{}: {} inverted, angles {:.1}°–{:.1}°",
+            if passes == 0 { "as loaded".to_string() } else { format!("{}: {}", side.letter(), choice.label()) },
+            if passes == 1 { "" } else { "es" },
+            st.inverted,
+            st.min_angle_deg,
+            st.max_angle_deg
+        );
+        let mut pm = pixmap(((each as f32) * a.dpr) as u32, ((h as f32) * a.dpr) as u32).map_err(|e| e.to_string())?;
+        let view = SurfaceView { camera, dpr: a.dpr, title: Some(title), ..SurfaceView::default() };
+        t.render(&mut pm, a.metric, &view);
+        parts.push(pm);
+    }
+    let picture = side_by_side(&parts)?;
     let png = encode_png(&picture).map_err(|e| e.to_string())?;
     std::fs::write(&a.output, png).map_err(|e| format!("{}: {e}", a.output.display()))
 }
