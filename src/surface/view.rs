@@ -157,3 +157,56 @@ pub fn perturb_surface(surface: &Surface, amount: f64, seed: u64) -> Result<Surf
     }
     Ok(out)
 }
+
+impl Surface {
+    /// Free node `n`'s star flattened into its tangent plane, as a planar mesh of its own
+    /// with every node fixed but `n` (its number in that mesh comes second): what the drivers
+    /// see of the node, for the planar views of one node (the level sets of its objective,
+    /// its solver's path).
+    pub fn star_in_tangent_plane(&self, n: usize) -> Result<(Mesh, usize)> {
+        if n >= self.node_count() {
+            return Err(Error::node(n, None, format!("no such node: the mesh has {} nodes", self.node_count())));
+        }
+        if !self.flat.is_free(n) {
+            return Err(Error::node(n, None, "is fixed or not an element corner, so it is never smoothed"));
+        }
+        let mut s = self.clone();
+        let flat = SurfaceView::new(&mut s).star_mesh(n).clone();
+        let mut local = vec![u32::MAX; flat.node_count()];
+        let mut b = crate::mesh::MeshBuilder::new();
+        let mut fixed = Vec::new();
+        for &e in flat.node_elements(n) {
+            let ids: Vec<u32> = flat
+                .element(e as usize)
+                .iter()
+                .map(|&m| {
+                    if local[m as usize] == u32::MAX {
+                        let p = flat.nodes()[m as usize];
+                        local[m as usize] = b.add_node([p.x, p.y, 0.0], 0) as u32;
+                        fixed.push(m as usize != n);
+                    }
+                    local[m as usize]
+                })
+                .collect();
+            b.add_element(flat.kind(e as usize), &ids, 0);
+        }
+        b.fixed = crate::mesh::FixedSpec::Exact(fixed);
+        Ok((b.build()?, local[n] as usize))
+    }
+
+    /// The free node whose star has the worst element (smallest α/β, each element in its
+    /// own plane), as the planar views choose by default.
+    pub fn worst_free_node(&self) -> Option<usize> {
+        let q: Vec<f64> = (0..self.element_count())
+            .map(|e| {
+                let kind = self.flat.kind(e);
+                crate::quality::element_quality(kind, &self.element_points_2d(e)[..kind.node_count()]).shape
+            })
+            .collect();
+        (0..self.node_count())
+            .filter(|&n| self.flat.is_free(n))
+            .map(|n| (n, self.flat.node_elements(n).iter().map(|&e| q[e as usize]).fold(f64::INFINITY, f64::min)))
+            .min_by(|a, b| a.1.total_cmp(&b.1))
+            .map(|(n, _)| n)
+    }
+}

@@ -320,9 +320,10 @@ fn surface(
         ViewArg::Mesh => vec![shown[0]],
         ViewArg::Compare if shown.len() == 2 => shown.to_vec(),
         ViewArg::Compare => return Err("--view compare shows both objectives: use --objective old,new".into()),
+        ViewArg::Levelset => return surface_level_sets(a, &s, passes, shown),
         other => {
             return Err(format!(
-                "--view {}: a surface is drawn by --view mesh or compare (its level sets and charts: not yet)",
+                "--view {}: a surface is drawn by --view mesh, compare or levelset",
                 format!("{other:?}").to_lowercase()
             ))
         }
@@ -353,6 +354,30 @@ fn surface(
         let view = SurfaceView { camera, dpr: a.dpr, title: Some(title), ..SurfaceView::default() };
         t.render(&mut pm, a.metric, &view);
         parts.push(pm);
+    }
+    let picture = side_by_side(&parts)?;
+    let png = encode_png(&picture).map_err(|e| e.to_string())?;
+    std::fs::write(&a.output, png).map_err(|e| format!("{}: {e}", a.output.display()))
+}
+
+/// `--view levelset` of a surface: the node's star flattened into its tangent plane,
+/// where the drivers see it, with the planar view's level sets of each objective asked for.
+fn surface_level_sets(a: &RenderArgs, s: &Surface, passes: u32, shown: &[Side]) -> Result<(), String> {
+    if passes > 0 {
+        return Err("--view levelset of a surface draws the mesh as loaded: give no --passes".into());
+    }
+    let node = match a.node {
+        Some(n) => n,
+        None => s.worst_free_node().ok_or("the mesh has no free node to study")?,
+    };
+    let (star, n) = s.star_in_tangent_plane(node).map_err(|e| format!("--node {node}: {e}"))?;
+    let mut lab = Playground::new(star).map_err(|e| e.to_string())?;
+    lab.set_settings(settings(a)).map_err(|e| e.to_string())?;
+    let (w, h) = size(a.size.as_deref(), (if shown.len() == 2 { 1100 } else { 560 }, 560))?;
+    let each = Canvas { w: ((w / shown.len() as u32) as f32 * a.dpr) as u32, h: ((h as f32) * a.dpr) as u32, dpr: a.dpr };
+    let mut parts = Vec::new();
+    for &side in shown {
+        parts.push(lab.render_level_set(side, n, each).map_err(|e| e.to_string())?.0);
     }
     let picture = side_by_side(&parts)?;
     let png = encode_png(&picture).map_err(|e| e.to_string())?;
