@@ -17,4 +17,10 @@ $S generate rand2d --seed 1 -o "$tmp/rand2d.vtk"
 $S render "$tmp/rand2d.vtk" -o docs/images/levelset-rand2d.png --view levelset --node 120 --size 1100x560
 # Freitag's Figure 3: angle histograms after 3 passes
 $S render "$tmp/rand2d.vtk" -o docs/images/histogram-rand2d.png --view histogram --passes 3 --size 900x480
-echo "wrote docs/images/{compare-tangled-plate,levelset-rand2d,histogram-rand2d}.png"
+# a surface (Chen et al.'s Figs. 18-19 in spirit): a mixed torus tangled in its tangent
+# planes, as loaded, then old and new after one pass
+$S generate torus --kind mixed --resolution 3 -o "$tmp/torus.vtk"
+$S generate perturb "$tmp/torus.vtk" --amount 0.7 --seed 2 -o "$tmp/torus-tangled.vtk"
+$S render "$tmp/torus-tangled.vtk" -o docs/images/surface-torus-tangled.png --view mesh --size 700x520
+$S render "$tmp/torus-tangled.vtk" -o docs/images/surface-torus-compare.png --view compare --passes 1 --size 1400x560
+echo "wrote docs/images/{compare-tangled-plate,levelset-rand2d,histogram-rand2d,surface-torus-tangled,surface-torus-compare}.png"

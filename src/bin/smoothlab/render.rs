@@ -342,14 +342,13 @@ fn surface(
             smoother.pass(&mut t, objective.as_ref(), &|| 0.0);
         }
         let st = t.stats();
-        let title = format!(
-            "{} after {passes} pass{}: {} inverted, angles {:.1}°–{:.1}°",
-            if passes == 0 { "as loaded".to_string() } else { format!("{}: {}", side.letter(), choice.label()) },
-            if passes == 1 { "" } else { "es" },
-            st.inverted,
-            st.min_angle_deg,
-            st.max_angle_deg
-        );
+        let when = match passes {
+            0 => "as loaded".to_string(),
+            1 => format!("{}: {} after 1 pass", side.letter(), choice.label()),
+            n => format!("{}: {} after {n} passes", side.letter(), choice.label()),
+        };
+        let title =
+            format!("{when}: {} inverted, angles {:.1}°–{:.1}°", st.inverted, st.min_angle_deg, st.max_angle_deg);
         let mut pm = pixmap(((each as f32) * a.dpr) as u32, ((h as f32) * a.dpr) as u32).map_err(|e| e.to_string())?;
         let view = SurfaceView { camera, dpr: a.dpr, title: Some(title), ..SurfaceView::default() };
         t.render(&mut pm, a.metric, &view);
