@@ -51,9 +51,9 @@ fn samples_are_surfaces_and_a_tangled_one_untangles_in_three_passes() {
             assert_eq!(s["inverted"], 0, "{shape} {kind}");
             assert_eq!(s["max_distance_from_surface"].as_f64(), Some(0.0), "the nodes are the reference's vertices");
             // OBJ keeps no fixed flags, so a tangled OBJ's folds read as creases; a tangled
-            // quadratic file is its own reference, whose folds the mid-side nodes are
-            // projected onto (docs/reproduction.md §9 untangles quadratic samples on their
-            // exact surfaces)
+            // quadratic file is its own (flat, folded) reference, on which an element may
+            // stay inverted (README: Surface meshes; docs/reproduction.md §9 untangles the
+            // quadratic samples on their exact surfaces)
             if ext == "obj" || order == "2" {
                 continue;
             }

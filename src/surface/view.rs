@@ -67,6 +67,36 @@ impl Surface {
         }
     }
 
+    /// [`place`](Self::place), undone when it folds a valid star (measured in 3D, each
+    /// element in its own plane), the planar drivers' promise: the planar guard keeps the
+    /// flattened star valid, but the
+    /// projection back onto the surface, of the node and of the mid-side nodes following
+    /// it, can still fold an element where the reference curves or is itself folded (a
+    /// tangled file). Returns whether the node moved.
+    pub(crate) fn place_keeping_valid(&mut self, n: usize, p: DVec3) -> bool {
+        let star: Vec<usize> = self.flat.node_elements(n).iter().map(|&e| e as usize).collect();
+        let inverted = |s: &Surface, e: usize| is_inverted(s.flat.kind(e), &s.element_points_2d(e));
+        let before: Vec<bool> = star.iter().map(|&e| inverted(self, e)).collect();
+        let mut moved = vec![n];
+        self.flat.for_each_follower(n, |f| {
+            moved.push(match f {
+                Follower::Mid { mid, .. } => mid,
+                Follower::Centre { centre, .. } => centre,
+            })
+        });
+        let saved: Vec<(DVec3, u32)> = moved.iter().map(|&m| (self.points[m], self.hint[m])).collect();
+        self.place(n, p);
+        let after: Vec<bool> = star.iter().map(|&e| inverted(self, e)).collect();
+        if before.iter().all(|&b| !b) && after.iter().any(|&a| a) {
+            for (&m, &(q, h)) in moved.iter().zip(&saved) {
+                self.points[m] = q;
+                self.hint[m] = h;
+            }
+            return false;
+        }
+        true
+    }
+
     fn move_to(&mut self, n: usize, p: DVec3) {
         let q = self.project_near(p, n);
         self.points[n] = q.point;
@@ -91,7 +121,7 @@ impl StarView for SurfaceView<'_> {
 
     fn place(&mut self, n: usize, x: DVec2) {
         let p = self.plane.to_3d(x);
-        self.surface.place(n, p);
+        self.surface.place_keeping_valid(n, p);
     }
 
     fn is_inverted(&self, e: usize) -> bool {
