@@ -82,6 +82,9 @@ const NEW_DESIGNS: [(Choice, &str); 2] = [
     (NEW_ANGLE, "angle (first design)"),
 ];
 
+/// Table 1's row of `new` + `rules` in priority order with Newton's first trial off.
+const CHEN_ALONE: &str = "rules, `new`, priority, Chen's search alone (no Newton step)";
+
 /// Runs passes of `strategy` with objective `choice` until `max_passes` or until `stop`
 /// says so after a pass.
 fn run(
@@ -228,7 +231,7 @@ fn main() {
          statistics) on that machine, one run each: read them as ratios, not as absolutes.\n\n\
          Unless a table says otherwise: boundary nodes are fixed (Mesquite's files: their `fixed` flags), each \
          optimization call runs at most 3 solver iterations (Chen §3.1), the new objective is solved by \
-         Fletcher–Reeves and the max-min ones (`old`, `sine`) by Freitag's active-set ascent. Angles are in degrees; \
+         Fletcher–Reeves trying Newton's step first (`SmoothOptions::newton`, `docs/formulas.md` §3) and the max-min ones (`old`, `sine`) by Freitag's active-set ascent. Angles are in degrees; \
          \"min angle\" is the smallest signed corner angle of the mesh (negative when an element is inverted).\n",
         today(),
         cpu_model()
@@ -329,6 +332,12 @@ fn freitag_table_1(out: &mut String) {
             ("rules, `new`, priority, 10 iterations/call", opts(Strategy::Rules, Order::Priority).with_max_iter(10)),
         ] {
             configs.push((format!("{name}{tag}"), "—".into(), choice, o));
+        }
+        if choice != NEW_ANGLE {
+            // the default tries Newton's step first (the barrier design has a Hessian);
+            // Chen's search alone for comparison (`docs/performance.md`)
+            let o = opts(Strategy::Rules, Order::Priority).with_newton(false);
+            configs.push((format!("{CHEN_ALONE}{tag}"), "—".into(), choice, o));
         }
     }
 
@@ -444,6 +453,17 @@ fn freitag_table_1(out: &mut String) {
          {} on the min angle ({nmin:.2}°) and {} on the max angle ({nmax:.1}°).\n",
         if nmin >= paper_min { "is at least as good" } else { "falls short" },
         if nmax <= paper_max { "at least as good" } else { "worse" },
+    );
+    let chen = find(CHEN_ALONE);
+    let _ = writeln!(
+        out,
+        "With Chen's search alone (no Newton step: the default before issue 15) `new` + `rules` reaches {:.2}° / \
+         {:.1}° in {:.1} ms, against {nmin:.2}° / {nmax:.1}° in {:.1} ms with Newton's first trial; the choice is \
+         measured in `docs/performance.md`.\n",
+        mean(&chen.min),
+        mean(&chen.max),
+        mean(&chen.ms),
+        mean(&new_rules.ms),
     );
     if mean(&new_rules.min) > best {
         let _ = writeln!(
@@ -921,14 +941,15 @@ fn knupp_figure_1(out: &mut String) {
         out,
         "\n`untangle` by node-by-node optimization untangled {unt_ok} of {cases} random grids within {MAX_UNTANGLE} \
          passes ({left} elements left inverted, {flat} of them folded flat: their most negative corner det is within \
-         10⁻⁶ of the mean |det|), `new` + `rules` {new_ok} of {cases} in at most {new_max} passes (with the angle \
+         10⁻⁶ of the mean |det|), `new` + `rules` {new_ok} of {cases} in at most {new_max} pass{} (with the angle \
          design: {angle_ok} of {cases} in 10). Knupp's form as published, Σ(|det| − \
          det) (β = 0, not squared), untangles {knupp_ok} of {cases} in {MAX_UNTANGLE} passes: node by node, its \
          det = 0 plateau holds nodes on the edge of their feasible region with slivers left inverted, and the sum of \
          kinks stalls Fletcher–Reeves (a non-smooth function); the shift β and the square (Mesquite's p = 2) remove \
          both. Here an already inverted star may fold one more element when its total inversion Σ max(0, −det) \
          falls (`SmoothOptions::pass_through_folds`); with the validity check on the count alone `untangle` leaves \
-         {count_left} of {cases} grids tangled.\n"
+         {count_left} of {cases} grids tangled.\n",
+        if new_max == 1 { "" } else { "es" },
     );
 }
 

@@ -142,7 +142,9 @@ pub struct SolveOptions {
     /// ([`Objective::value_gradient_hessian`]) that is positive definite at the current
     /// point, first try the Newton step `−(∇²f)⁻¹∇f` (at most one star size long) and take
     /// it when it lowers the objective by at least 10⁻⁴ of the decrease its gradient
-    /// promises (Armijo); otherwise the iteration is Chen's, as without. Default false.
+    /// promises (Armijo); otherwise the iteration is Chen's, as without. Default false
+    /// here (the solver alone is Chen's); the smoother's default turns it on
+    /// ([`crate::smooth::SmoothOptions::newton`]).
     pub newton: bool,
 }
 

@@ -177,7 +177,7 @@ pub static FIGURES: [Figure; 11] = [
         hash: "sample=rand2d&strategy=opt&a=old&b=new&maxiter=10&node=169",
         view: "levelset",
         run: false,
-        look: "One node of rand2D solved by Fletcher–Reeves for up to 10 iterations: how far the objective is above its final value after each iteration, each step marked g (gradient direction) or c (conjugate direction); the path on the level sets uses the same marks.",
+        look: "One node of rand2D solved by Fletcher–Reeves for up to 10 iterations: how far the objective is above its final value after each iteration, each step marked g (gradient direction), c (conjugate direction) or n (Newton's step, which our solver tries first by default); the path on the level sets uses the same marks.",
         claim: "Chen et al.: the first (gradient) step is short, the conjugate step after it much longer, then progress slows and a gradient step restarts the process; the first few iterations do most of the work, so three per call suffice.",
         measured: p::chen_11_measured,
     },
