@@ -1195,7 +1195,7 @@ fn surfaces(out: &mut String) {
         "## 9. Surface meshes (Chen, Tristano & Kwok 2003, §5, Figs. 18–19)\n\n\
          A surface's free node is smoothed in its tangent plane: its star is flattened there, every strategy and \
          objective runs on it as on a planar star, and the new position is projected back onto the surface as it was \
-         loaded (the file's elements as flat triangles), or onto the exact surface of a generated sample. Every element \
+         loaded (the file's elements: flat triangles, or a quadratic element's curved patch), or onto the exact surface of a generated sample. Every element \
          is measured in its own plane; an element facing against the surface counts as inverted. \
          \"distance\" is the largest distance of a node from that surface after smoothing.\n"
     );

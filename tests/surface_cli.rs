@@ -135,3 +135,36 @@ fn mesquite_surface_files_load_and_smooth() {
         assert!(f2["max_distance_from_surface"].as_f64().unwrap() < 1e-12, "{f}");
     }
 }
+
+#[test]
+fn slide_curves_lets_the_rims_move_and_is_refused_for_planar_meshes() {
+    let d = dir("slide");
+    let c = d.join("c.obj");
+    ok(&["generate", "cylinder", "--resolution", "4", "-o", p(&c)]);
+    let tangled = d.join("t.obj");
+    ok(&["generate", "perturb", p(&c), "--amount", "0.3", "--seed", "2", "-o", p(&tangled)]);
+    let (fixed, sliding) = (d.join("fixed.obj"), d.join("sliding.obj"));
+    ok(&["smooth", p(&tangled), "-o", p(&fixed)]);
+    ok(&["smooth", p(&tangled), "-o", p(&sliding), "--slide-curves"]);
+    let vertices = |path: &Path| -> Vec<[f64; 3]> {
+        let text = std::fs::read_to_string(path).unwrap();
+        let xyz = |l: &str| {
+            let v: Vec<f64> = l.split_whitespace().skip(1).map(|c| c.parse().unwrap()).collect();
+            [v[0], v[1], v[2]]
+        };
+        text.lines().filter(|l| l.starts_with("v ")).map(xyz).collect()
+    };
+    let (t, f, s) = (vertices(&tangled), vertices(&fixed), vertices(&sliding));
+    // the rim nodes: on a cap's plane and on the circle
+    let rim: Vec<usize> =
+        (0..t.len()).filter(|&i| t[i][2].abs() == 1.0 && (t[i][0].hypot(t[i][1]) - 1.0).abs() < 1e-12).collect();
+    assert_eq!(rim.len(), 32, "two rims of 16 nodes");
+    assert!(rim.iter().all(|&i| f[i] == t[i]), "fixed rims stay");
+    assert!(rim.iter().all(|&i| s[i][2] == t[i][2]), "sliding rim nodes stay on their rims' planes");
+    assert!(rim.iter().filter(|&&i| s[i] != t[i]).count() > 16, "sliding rim nodes move");
+    assert_eq!(stats(&sliding)["inverted"], 0);
+    let g = d.join("g.vtk");
+    ok(&["generate", "grid", "-o", p(&g)]);
+    let e = refused(&["smooth", p(&g), "-o", p(&d.join("x.vtk")), "--slide-curves"]);
+    assert!(e.contains("--slide-curves") && e.contains("planar"), "{e}");
+}

@@ -388,6 +388,15 @@ impl Mesh {
             *f |= also(n);
         }
     }
+    /// Frees the nodes `free` says (a surface's nodes sliding along its curves). Only
+    /// while a surface is being made.
+    pub(crate) fn release(&mut self, free: impl Fn(usize) -> bool) {
+        for (n, f) in self.fixed.iter_mut().enumerate() {
+            if free(n) {
+                *f = false;
+            }
+        }
+    }
     /// Reverses the order of the nodes of element `e` (its orientation). Only while the
     /// mesh is being built.
     pub(crate) fn reverse_element(&mut self, e: usize) {

@@ -23,6 +23,7 @@ use crate::error::{Error, Result};
 use crate::mesh::{Mesh, NodeRole, Plane};
 use crate::quality::{mesh_stats_with, MeshStats};
 
+mod curves;
 mod picture;
 mod reference;
 mod view;
@@ -90,6 +91,15 @@ pub struct Surface {
     /// Per node, whether it lies on a feature curve (an edge whose dihedral angle is
     /// over [`FEATURE_ANGLE_DEG`]).
     feature: Vec<bool>,
+    /// Whether the file gave the fixed flags (then it decides which nodes move).
+    flags_given: bool,
+    /// The edges of the feature curves and open boundaries as loaded: their corner nodes
+    /// and whether the edge is straight (1: no mid-side node).
+    curve_edges: Arc<Vec<[u32; 3]>>,
+    /// The curves the nodes slide along, when they do ([`Surface::slide_along_curves`]).
+    curves: Option<Arc<curves::Curves>>,
+    /// Per sliding node, the curve edge (as loaded) its last move landed on.
+    curve_hint: Vec<[u32; 2]>,
 }
 
 impl Surface {
@@ -125,6 +135,27 @@ impl Surface {
             Some(a) => (points.iter().map(|&p| a.on_feature(p)).collect(), Vec::new()),
             None => (features.nodes(), features.parts()),
         };
+        // the curves: open boundaries, and feature edges (each interior edge once)
+        let mut curve_edges = Vec::new();
+        for e in 0..flat.element_count() {
+            let (ids, kind) = (flat.element(e), flat.kind(e));
+            let k = kind.corners();
+            for i in 0..k {
+                let (a, b) = (ids[i], ids[(i + 1) % k]);
+                let straight = kind.mid(i).is_none() as u32;
+                let on_curve = match across(&flat, e, a, b) {
+                    None => true,
+                    Some((f, _)) if a < b => match analytic {
+                        Some(an) => an.on_feature(points[a as usize]) && an.on_feature(points[b as usize]),
+                        None => features.is_edge(e, f, a, b),
+                    },
+                    Some(_) => false,
+                };
+                if on_curve {
+                    curve_edges.push([a, b, straight]);
+                }
+            }
+        }
         if !flags_given {
             flat.fix_also(|n| feature[n]);
         }
@@ -136,7 +167,17 @@ impl Surface {
             Reference::Facets(f) => (0..points.len()).map(|n| f.triangle_at_vertex(n)).collect(),
             Reference::Analytic(a) => points.iter().map(|&p| a.part_of(p)).collect(),
         };
-        Ok(Surface { points, flat, reference: Arc::new(reference), hint, feature })
+        Ok(Surface {
+            points,
+            flat,
+            reference: Arc::new(reference),
+            hint,
+            feature,
+            flags_given,
+            curve_edges: Arc::new(curve_edges),
+            curves: None,
+            curve_hint: Vec::new(),
+        })
     }
 
     /// Node positions in 3D.

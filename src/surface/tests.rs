@@ -233,3 +233,37 @@ fn surfaces_round_trip_through_every_3d_format() {
         }
     }
 }
+
+/// Feature curves slide when asked: the cylinder's rim nodes move along the rims — the
+/// exact circles of the sample, the polyline of the rims as loaded from a file without
+/// fixed flags — and nowhere else.
+#[test]
+fn nodes_slide_along_feature_curves_when_asked() {
+    use crate::io::{read_model_str, write_string, Format, WriteOptions};
+    let sample = surface(SurfaceShape::Cylinder, SurfaceKind::Quad, 1, 4).unwrap();
+    let text = write_string(&sample, Format::Obj, &WriteOptions::default()).unwrap();
+    let Ok(Model::Surface(read)) = read_model_str(&text, Format::Obj) else { panic!("a surface") };
+    for (name, s) in [("exact", sample), ("from a file", read)] {
+        let rim: Vec<usize> = (0..s.node_count()).filter(|&n| s.is_feature(n)).collect();
+        assert_eq!(rim.len(), 2 * 16, "{name}: two rims of 16 nodes");
+        assert!(rim.iter().all(|&n| s.flat().is_fixed(n)), "{name}: fixed unless asked");
+        let mut t = perturb_surface(&s, 0.3, 5).unwrap();
+        t.slide_along_curves();
+        assert!(rim.iter().all(|&n| t.slides(n) && t.flat().is_free(n)), "{name}: every rim node slides");
+        let before = t.clone();
+        smooth_surface(&mut t, objective(ObjectiveKind::New).as_ref(), SmoothOptions::default(), 3, &|| 0.0).unwrap();
+        let moved = rim.iter().filter(|&&n| t.points()[n] != before.points()[n]).count();
+        assert!(moved > rim.len() / 2, "{name}: {moved} rim nodes moved");
+        for &n in &rim {
+            let (p, q) = (t.points()[n], s.points()[n]);
+            assert_eq!(p.z, q.z, "{name}: node {n} stays on its rim's plane");
+            let r = DVec3::new(p.x, p.y, 0.0).length();
+            // on the circle, or on the polyline of its chords (inside it by the sagitta at most)
+            let sagitta = 1.0 - (std::f64::consts::PI / 16.0).cos();
+            assert!(r <= 1.0 + 1e-12 && r >= 1.0 - sagitta - 1e-12, "{name}: node {n} at radius {r}");
+        }
+        let st = t.stats();
+        assert_eq!(st.inverted, 0, "{name}");
+        assert!(st.max_distance_from_surface.unwrap() < 1e-9 * t.size(), "{name}");
+    }
+}

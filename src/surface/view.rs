@@ -50,6 +50,10 @@ impl Surface {
     /// follow it to the projections of their edges' middles (a 9-node quad's centre: of
     /// its eight nodes' mean).
     pub(crate) fn place(&mut self, n: usize, p: DVec3) {
+        if self.slides(n) {
+            // a sliding node's curve edges are straight: no node follows it
+            return self.slide_to(n, p);
+        }
         self.move_to(n, p);
         if !self.flat.has_quadratic() {
             return;
@@ -85,12 +89,16 @@ impl Surface {
             })
         });
         let saved: Vec<(DVec3, u32)> = moved.iter().map(|&m| (self.points[m], self.hint[m])).collect();
+        let curve_hint = self.curve_hint.get(n).copied();
         self.place(n, p);
         let after: Vec<bool> = star.iter().map(|&e| inverted(self, e)).collect();
         if before.iter().all(|&b| !b) && after.iter().any(|&a| a) {
             for (&m, &(q, h)) in moved.iter().zip(&saved) {
                 self.points[m] = q;
                 self.hint[m] = h;
+            }
+            if let Some(c) = curve_hint {
+                self.curve_hint[n] = c;
             }
             return false;
         }

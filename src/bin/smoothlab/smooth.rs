@@ -14,6 +14,9 @@
 //! When elements stay inverted because no smoother can make them valid (an inverted corner
 //! of fixed nodes, coincident fixed nodes), the summary names them and says why (`--json`:
 //! `untangling_impossible`).
+//!
+//! `--slide-curves` (surfaces only): the nodes of the feature curves and open boundaries
+//! slide along them instead of staying fixed.
 
 use std::path::PathBuf;
 use std::time::Instant;
@@ -68,6 +71,10 @@ pub struct SmoothArgs {
     #[arg(long, overrides_with = "pass_through_folds")]
     pub no_pass_through_folds: bool,
     /// Print one JSON object instead of a summary
+    /// A surface's feature curves and open boundaries: their nodes slide along them
+    /// instead of staying fixed (corners of the curves stay; a file's own fixed flags decide)
+    #[arg(long)]
+    pub slide_curves: bool,
     #[arg(long)]
     pub json: bool,
     /// Version of .msh files written
@@ -180,6 +187,9 @@ pub fn run(a: SmoothArgs) -> Result<(), String> {
     let opts = options(&a)?;
     let kind = a.objective.unwrap_or(ObjectiveKind::New);
     let mut model = read_model(&a.input)?;
+    if a.slide_curves && matches!(model, Model::Planar(_)) {
+        return Err("--slide-curves: the nodes of a surface's feature curves slide along them; this mesh is planar".into());
+    }
     if let Model::Planar(mesh) = &model {
         smoothlab::objective::check_scale(kind, mesh).map_err(|e| format!("{}: {e}", a.input.display()))?;
     }
@@ -193,6 +203,9 @@ pub fn run(a: SmoothArgs) -> Result<(), String> {
             (0..a.passes).map(|_| smoother.pass(mesh, &*obj, &clock)).collect()
         }
         Model::Surface(surface) => {
+            if a.slide_curves {
+                surface.slide_along_curves();
+            }
             let mut smoother = SurfaceSmoother::new(opts).map_err(|e| e.to_string())?;
             (0..a.passes).map(|_| smoother.pass(surface, &*obj, &clock)).collect()
         }

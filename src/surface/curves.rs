@@ -1,0 +1,128 @@
+//! Feature curves and open boundaries as curves their nodes slide along
+//! ([`Surface::slide_along_curves`]): a node with exactly two curve edges, both
+//! straight (linear elements), moves along the curve — the polyline of the curve edges as
+//! loaded, or an exact surface's own curve (the capped cylinder's rims) — instead of
+//! staying fixed. Corners of curves (one curve edge, or three and more) stay fixed.
+
+use std::sync::Arc;
+
+use glam::DVec3;
+
+use super::{Analytic, Reference, Surface};
+use crate::mesh::NONE;
+
+/// The curves of a surface as loaded, for the nodes that slide along them.
+#[derive(Clone, Debug)]
+pub(crate) struct Curves {
+    /// Per node, its two neighbours along the curve when it slides; `[NONE; 2]` else.
+    nbrs: Vec<[u32; 2]>,
+    /// The nodes' positions as loaded: the polyline the sliding nodes stay on.
+    origin: Vec<DVec3>,
+}
+
+impl Curves {
+    /// Whether node `n` slides along a curve.
+    pub(crate) fn slides(&self, n: usize) -> bool {
+        self.nbrs.get(n).is_some_and(|b| b[0] != NONE)
+    }
+
+    /// The nearest point of the polyline to `p`, walking from the segment `from` (a
+    /// curve edge as loaded) to the next one while that is strictly nearer; with the
+    /// segment it lies on.
+    fn on_polyline(&self, p: DVec3, from: [u32; 2]) -> (DVec3, [u32; 2]) {
+        let nearest = |[a, b]: [u32; 2]| {
+            let (pa, pb) = (self.origin[a as usize], self.origin[b as usize]);
+            let d = pb - pa;
+            let t = if d.length_squared() > 0.0 { ((p - pa).dot(d) / d.length_squared()).clamp(0.0, 1.0) } else { 0.0 };
+            (pa + t * d, t)
+        };
+        let mut seg = from;
+        let (mut q, mut t) = nearest(seg);
+        for _ in 0..self.origin.len() {
+            // past an end that is itself a sliding node: the segment beyond it
+            let (end, other) = if t <= 0.0 {
+                (seg[0], seg[1])
+            } else if t >= 1.0 {
+                (seg[1], seg[0])
+            } else {
+                break;
+            };
+            let Some(&next) = self.nbrs[end as usize].iter().find(|&&m| m != other && m != NONE) else { break };
+            let cand = [end, next];
+            let (qc, tc) = nearest(cand);
+            if (qc - p).length_squared() < (q - p).length_squared() {
+                (seg, q, t) = (cand, qc, tc);
+            } else {
+                break;
+            }
+        }
+        (q, seg)
+    }
+}
+
+impl Analytic {
+    /// The nearest point to `p` of the exact curve through `on` (a point of a feature
+    /// curve): for the capped cylinder, the rim circle at `on`'s height.
+    fn on_curve(&self, p: DVec3, on: DVec3) -> Option<DVec3> {
+        match *self {
+            Analytic::CappedCylinder { radius, .. } => {
+                let radial = DVec3::new(p.x, p.y, 0.0).try_normalize()?;
+                Some(radial * radius + DVec3::Z * on.z)
+            }
+            _ => None,
+        }
+    }
+}
+
+impl Surface {
+    /// Lets the nodes of the feature curves and open boundaries slide along them (see the
+    /// module docs) rather than stay fixed. When the file gave the fixed flags, the file
+    /// decides and nothing changes.
+    pub fn slide_along_curves(&mut self) {
+        if self.flags_given || self.curves.is_some() {
+            return;
+        }
+        let n = self.points.len();
+        let mut count = vec![0u8; n];
+        let mut nbrs = vec![[NONE; 2]; n];
+        let mut curved = vec![false; n];
+        for &[a, b, straight] in self.curve_edges.iter() {
+            for (x, y) in [(a, b), (b, a)] {
+                let c = &mut count[x as usize];
+                if (*c as usize) < 2 {
+                    nbrs[x as usize][*c as usize] = y;
+                }
+                *c = c.saturating_add(1);
+                curved[x as usize] |= straight == 0;
+            }
+        }
+        for i in 0..n {
+            if count[i] != 2 || curved[i] || self.flat.role(i) != crate::mesh::NodeRole::Corner {
+                nbrs[i] = [NONE; 2];
+            }
+        }
+        let curves = Curves { nbrs, origin: self.points.clone() };
+        self.flat.release(|i| curves.slides(i));
+        self.curve_hint = (0..n).map(|i| [i as u32, curves.nbrs[i][0]]).collect();
+        self.curves = Some(Arc::new(curves));
+    }
+
+    /// Whether node `n` slides along a curve.
+    pub fn slides(&self, n: usize) -> bool {
+        self.curves.as_ref().is_some_and(|c| c.slides(n))
+    }
+
+    /// Moves sliding node `n` to the nearest point of its curve to `p`.
+    pub(crate) fn slide_to(&mut self, n: usize, p: DVec3) {
+        let Some(curves) = self.curves.clone() else { return };
+        if let Reference::Analytic(a) = &*self.reference {
+            if let Some(q) = a.on_curve(p, curves.origin[n]) {
+                self.points[n] = q;
+                return;
+            }
+        }
+        let (q, seg) = curves.on_polyline(p, self.curve_hint[n]);
+        self.points[n] = q;
+        self.curve_hint[n] = seg;
+    }
+}
