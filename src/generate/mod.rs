@@ -19,6 +19,7 @@ mod trig;
 
 pub use grid::{grid, random_grid, GridKind};
 pub use perturb::perturb;
+pub(crate) use perturb::perturbation_radius;
 pub use plate::{plate, PlateKind, PLATE_HALF_WIDTH, PLATE_HOLE_RADIUS};
 pub use prng::SplitMix64;
 pub use rand2d::rand2d;

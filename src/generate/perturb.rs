@@ -15,10 +15,7 @@ use crate::mesh::Mesh;
 /// The free nodes draw their offsets in node order from [`SplitMix64`] seeded with
 /// `seed`, so the result is the same on every platform. `amount` must be finite and ≥ 0.
 pub fn perturb(mesh: &Mesh, amount: f64, seed: u64) -> Result<Mesh> {
-    if !(amount.is_finite() && amount >= 0.0) {
-        return Err(Error::invalid(format!("the perturbation amount must be a finite number ≥ 0, not {amount}")));
-    }
-    let radius = amount * mesh.mean_edge_length();
+    let radius = perturbation_radius(amount, mesh.mean_edge_length())?;
     let mut out = mesh.clone();
     let mut rng = SplitMix64::new(seed);
     for n in 0..out.node_count() {
@@ -28,6 +25,15 @@ pub fn perturb(mesh: &Mesh, amount: f64, seed: u64) -> Result<Mesh> {
     }
     out.update_mid_nodes();
     Ok(out)
+}
+
+/// The largest move of a perturbation of `amount` mean edge lengths (the one check of the
+/// amount, for planar meshes and surfaces).
+pub(crate) fn perturbation_radius(amount: f64, mean_edge_length: f64) -> Result<f64> {
+    if !(amount.is_finite() && amount >= 0.0) {
+        return Err(Error::invalid(format!("the perturbation amount must be a finite number ≥ 0, not {amount}")));
+    }
+    Ok(amount * mean_edge_length)
 }
 
 #[cfg(test)]

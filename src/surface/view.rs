@@ -180,10 +180,7 @@ pub fn smooth_surface(
 /// reference (the planar [`perturb`](crate::generate::perturb) on a surface); the nodes
 /// that follow move with them. Node by node in node order, from [`SplitMix64`].
 pub fn perturb_surface(surface: &Surface, amount: f64, seed: u64) -> Result<Surface> {
-    if !(amount.is_finite() && amount >= 0.0) {
-        return Err(Error::invalid(format!("the perturbation amount must be a finite number ≥ 0, not {amount}")));
-    }
-    let radius = amount * surface.mean_edge_length();
+    let radius = crate::generate::perturbation_radius(amount, surface.mean_edge_length())?;
     let mut out = surface.clone();
     let mut rng = SplitMix64::new(seed);
     for n in 0..out.node_count() {
