@@ -2,8 +2,8 @@
 //! 1M nodes (generated, not stored), in Hilbert node order, with throughput in node
 //! visits: Laplacian, smart Laplacian, `opt` with each objective, `rules` with `new`, the
 //! bandwidth bound (a sweep that only streams the arrays a Laplacian pass reads), the
-//! level-set sampling of one node (100 × 100 objective values), a coloured pass, and
-//! drawing the mesh (`render::render_mesh`, 1024 × 1024).
+//! level-set sampling of one node (100 × 100 objective values), a coloured pass, a pass
+//! over a tangled surface mesh, and drawing the mesh (`render::render_mesh`, 1024 × 1024).
 //!
 //! `cargo bench` runs them all (several minutes); `cargo bench -- 10k` only the small mesh.
 //! At 1M nodes only the cheap passes (stream, Laplacian, smart) and `opt`/`rules` with
@@ -102,6 +102,29 @@ fn smoothing(c: &mut Criterion) {
     }
 }
 
+/// One pass over a tangled surface (issue 17): a cube-sphere of 3 × 32 × 32 quads, split
+/// into triangles every other one, perturbed in its tangent planes, `rules` + `new` and
+/// `laplace` — each star flattened into its tangent plane, each move projected back onto
+/// the sphere. Throughput in node visits, to read beside the planar passes.
+fn surfaces(c: &mut Criterion) {
+    use smoothlab::generate::{surface, SurfaceKind, SurfaceShape};
+    use smoothlab::surface::{perturb_surface, SurfaceSmoother};
+    let sample = surface(SurfaceShape::Sphere, SurfaceKind::Mixed, 1, 32).expect("a sample");
+    let tangled = perturb_surface(&sample, 0.5, 1).expect("perturbed");
+    let mut g = c.benchmark_group("surface pass/sphere 6k");
+    g.sample_size(10).throughput(Throughput::Elements(tangled.flat().free_count() as u64));
+    g.measurement_time(Duration::from_secs(5));
+    for (name, strategy) in [("laplace", Strategy::Laplace), ("rules+new", Strategy::Rules)] {
+        let obj = objective(ObjectiveKind::New);
+        let options = SmoothOptions::default().with_strategy(strategy).with_order(Order::Priority);
+        let mut s = SurfaceSmoother::new(options).expect("options");
+        g.bench_function(name, |b| {
+            b.iter_batched_ref(|| tangled.clone(), |t| s.pass(t, &*obj, &|| 0.0), BatchSize::LargeInput)
+        });
+    }
+    g.finish();
+}
+
 /// The level-set view of one node: its objective sampled on a 100 × 100 grid over its star.
 fn level_sets(c: &mut Criterion) {
     let mesh = bench_mesh(10_000);
@@ -149,5 +172,5 @@ fn rendering(c: &mut Criterion) {
     g.finish();
 }
 
-criterion_group!(benches, smoothing, level_sets, rendering);
+criterion_group!(benches, smoothing, surfaces, level_sets, rendering);
 criterion_main!(benches);
