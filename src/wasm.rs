@@ -7,7 +7,9 @@ use std::sync::Mutex;
 use serde::Serialize;
 use wasm_bindgen::prelude::*;
 
+use crate::lab::surface as surface_lab;
 use crate::lab::{self as playground, Settings, Side};
+use crate::surface::Model;
 use crate::lab::sample::Sample;
 use crate::lab::views::Canvas;
 use crate::io::{self, Format};
@@ -148,6 +150,13 @@ fn now_ms() -> f64 {
         .unwrap_or_else(js_sys::Date::now)
 }
 
+/// The Perturb controls checked as the permalink checks them: the seed as a number.
+fn perturb_seed(amount: f64, seed: &str) -> Result<u64, JsError> {
+    permalink::check_control("seed", seed).map_err(|e| JsError::new(&e))?;
+    permalink::check_control("tangle", &amount.to_string()).map_err(|e| JsError::new(&e))?;
+    seed.trim().parse().map_err(|_| JsError::new("Seed: enter a whole number"))
+}
+
 fn side(s: &str) -> Result<Side, JsError> {
     serde_wasm_bindgen::from_value(JsValue::from_str(s))
         .map_err(|_| JsError::new(&format!("no panel '{s}': use old or new")))
@@ -173,6 +182,31 @@ fn object(entries: &[(&str, JsValue)]) -> Result<JsValue, JsError> {
 /// memory into a buffer of its own, which the worker then moves (not copies) to the page.
 fn pixels(pm: tiny_skia::Pixmap) -> JsValue {
     js_sys::Uint8Array::from(pm.data()).into()
+}
+
+fn sample(name: &str) -> Result<Sample, JsError> {
+    serde_wasm_bindgen::from_value(JsValue::from_str(name)).map_err(|_| JsError::new(&format!("no sample named '{name}'")))
+}
+
+/// The handle for a model: a [`Playground`] for a planar mesh, a [`SurfaceLab`] for a surface.
+fn open(model: Model) -> Result<JsValue, JsError> {
+    Ok(match model {
+        Model::Planar(m) => Playground::wrap(playground::Playground::new(m)?).into(),
+        Model::Surface(s) => SurfaceLab { inner: surface_lab::SurfaceLab::new(s)?, canvas: None }.into(),
+    })
+}
+
+/// A gallery sample by its name: a `Playground`, or a `SurfaceLab` for a surface sample.
+#[wasm_bindgen(js_name = openSample)]
+pub fn open_sample(name: &str) -> Result<JsValue, JsError> {
+    open(sample(name)?.model()?)
+}
+
+/// The bytes of a mesh file called `name` (.msh, .vtk, .obj, .off): a `Playground` for a
+/// planar mesh, a `SurfaceLab` for a surface in 3D.
+#[wasm_bindgen(js_name = openBytes)]
+pub fn open_bytes(bytes: &[u8], name: &str) -> Result<JsValue, JsError> {
+    open(io::read_model_bytes(bytes, name)?)
 }
 
 /// What a mesh panel last sent to the page: its positions' version, the canvas, the
@@ -222,9 +256,7 @@ impl Playground {
     /// A playground on a generated sample, by its gallery name (`plate-tri-tangled`, …).
     #[wasm_bindgen(js_name = fromSample)]
     pub fn from_sample(name: &str) -> Result<Playground, JsError> {
-        let sample: Sample = serde_wasm_bindgen::from_value(JsValue::from_str(name))
-            .map_err(|_| JsError::new(&format!("no sample named '{name}'")))?;
-        Ok(Playground::wrap(playground::Playground::new(sample.generate()?)?))
+        Ok(Playground::wrap(playground::Playground::new(sample(name)?.generate()?)?))
     }
 
     /// A playground on the bytes of a mesh file called `name` (.msh, .vtk, .obj, .off).
@@ -280,9 +312,7 @@ impl Playground {
     /// panels. The seed is the control's text (a whole number up to 2^64 − 1, beyond what
     /// a JS number holds exactly), checked as the permalink checks it.
     pub fn perturb(&mut self, amount: f64, seed: &str) -> Result<(), JsError> {
-        permalink::check_control("seed", seed).map_err(|e| JsError::new(&e))?;
-        permalink::check_control("tangle", &amount.to_string()).map_err(|e| JsError::new(&e))?;
-        let seed: u64 = seed.trim().parse().map_err(|_| JsError::new("Seed: enter a whole number"))?;
+        let seed = perturb_seed(amount, seed)?;
         Ok(self.inner.perturb(amount, seed)?)
     }
 
@@ -507,5 +537,107 @@ impl Playground {
         // after the histograms: the full statistics are at hand for the tables' detail
         let stats = object(&[("old", self.stats("old")?), ("new", self.stats("new")?)])?;
         object(&[("pass", pass), ("hist_old", hist_old), ("hist_new", hist_new), ("stats", stats)])
+    }
+}
+
+/// The page's state for a surface in 3D: one opaque handle (see
+/// [`surface_lab::SurfaceLab`]), with the canvas its sides were last drawn on.
+#[wasm_bindgen]
+pub struct SurfaceLab {
+    inner: surface_lab::SurfaceLab,
+    canvas: Option<Canvas>,
+}
+
+#[wasm_bindgen]
+impl SurfaceLab {
+    /// As [`Playground::set_settings`].
+    #[wasm_bindgen(js_name = setSettings)]
+    pub fn set_settings(&mut self, settings: JsValue) -> Result<(), JsError> {
+        let s: Settings =
+            serde_wasm_bindgen::from_value(settings).map_err(|e| JsError::new(&format!("settings: {e}")))?;
+        Ok(self.inner.set_settings(s)?)
+    }
+
+    /// One smoothing pass on both sides; returns their pass records `[old, new]`.
+    pub fn step(&mut self) -> Result<JsValue, JsError> {
+        to_js(&self.inner.step(&now_ms))
+    }
+
+    /// Both sides back to the surface as loaded.
+    pub fn reset(&mut self) {
+        self.inner.reset();
+    }
+
+    /// Perturbs the surface as loaded in its tangent planes (as [`Playground::perturb`]).
+    pub fn perturb(&mut self, amount: f64, seed: &str) -> Result<(), JsError> {
+        let seed = perturb_seed(amount, seed)?;
+        Ok(self.inner.perturb(amount, seed)?)
+    }
+
+    /// A side's surface as the text of a `msh`, `vtk`, `obj` or `off` file.
+    #[wasm_bindgen(js_name = exportMesh)]
+    pub fn export_mesh(&self, panel: &str, format: &str) -> Result<String, JsError> {
+        let f = match Format::from_name(&format!("mesh.{format}")) {
+            Some(f) if f != Format::Triangle => f,
+            _ => return Err(JsError::new(&format!("cannot export a surface as '{format}': use msh, vtk, obj or off"))),
+        };
+        Ok(self.inner.export(side(panel)?, f)?)
+    }
+
+    /// The statistics table of one side (`old` or `new`), as [`Playground::stats`], with
+    /// `max_distance_from_surface`.
+    pub fn stats(&self, panel: &str) -> Result<JsValue, JsError> {
+        to_js(&self.inner.table(side(panel)?))
+    }
+
+    /// Both sides drawn by the shared camera on canvases of `w × h` device pixels at
+    /// ratio `dpr`: `{ old, new, render_ms: [old, new], copy_ms }` (RGBA pixels).
+    pub fn frame(&mut self, w: u32, h: u32, dpr: f32) -> Result<JsValue, JsError> {
+        let c = canvas(w, h, dpr);
+        let mut out = Vec::new();
+        let (mut render_ms, mut copy_ms) = ([0.0; 2], 0.0);
+        for s in Side::BOTH {
+            let t0 = now_ms();
+            let (pm, _) = self.inner.render(s, c)?;
+            let t1 = now_ms();
+            out.push(pixels(pm));
+            copy_ms += now_ms() - t1;
+            render_ms[s as usize] = t1 - t0;
+        }
+        self.canvas = Some(c);
+        let new = out.pop().unwrap_or(JsValue::NULL);
+        let old = out.pop().unwrap_or(JsValue::NULL);
+        object(&[("old", old), ("new", new), ("render_ms", to_js(&render_ms)?), ("copy_ms", JsValue::from_f64(copy_ms))])
+    }
+
+    /// Turns the shared camera by a drag of `(dx, dy)` CSS pixels.
+    pub fn orbit(&mut self, dx: f64, dy: f64) {
+        self.inner.orbit(dx, dy);
+    }
+
+    /// Magnifies both views `factor` times (within the camera's range).
+    pub fn zoom(&mut self, factor: f64) {
+        self.inner.zoom(factor);
+    }
+
+    /// The camera as it starts.
+    #[wasm_bindgen(js_name = resetZoom)]
+    pub fn reset_zoom(&mut self) {
+        self.inner.reset_camera();
+    }
+
+    /// The shared camera: `{ yaw, pitch, zoom }` (degrees, degrees, factor).
+    pub fn camera(&self) -> Result<JsValue, JsError> {
+        let c = self.inner.camera();
+        object(&[("yaw", c.yaw.into()), ("pitch", c.pitch.into()), ("zoom", c.zoom.into())])
+    }
+
+    /// The node of a side under the CSS pixel `(x, y)` of the last frame within `radius`
+    /// CSS pixels (the near side of the surface winning), or `undefined`.
+    #[wasm_bindgen(js_name = pickNode)]
+    pub fn pick_node(&self, panel: &str, x: f64, y: f64, radius: f64) -> Result<Option<u32>, JsError> {
+        let c = self.canvas.ok_or_else(|| JsError::new("the surface has not been drawn yet"))?;
+        let radius = if radius.is_finite() && radius > 0.0 { radius.min(64.0) } else { crate::render::PICK_RADIUS };
+        Ok(self.inner.pick(side(panel)?, c, DVec2::new(x, y), radius)?.map(|n| n as u32))
     }
 }

@@ -62,6 +62,7 @@ const state = {
   figure: null, // the tour's figure on show (its card from the core), or null
   viewOfFigure: false, // an embed shows the view its figure chose (not one named by view=)
   level: null, // the canvas the level sets were last drawn on (likewise)
+  surface: false, // the mesh is a surface in 3D: its views orbit, and the planar-only views wait
 };
 
 const engine = new Engine((err) => recoverFromPanic(err));
@@ -290,7 +291,9 @@ async function writePermalink() {
   $('permalink').href = `${location.pathname}${hash}`;
   const s = state.lastGood;
   let note = '';
-  if (s && s.kind === 'sample' && UNLINKABLE.has(s.name)) {
+  if (s && s.kind === 'sample' && UNLINKABLE.has(s.name) && state.surface) {
+    note = 'A surface sample cannot be opened from a link yet: the link keeps the settings only, with the default sample.';
+  } else if (s && s.kind === 'sample' && UNLINKABLE.has(s.name)) {
     note = 'This sample is too large to open from a link: the link keeps the settings only, with the default sample.';
   } else if (s && (s.kind === 'file' || s.kind === 'triangle')) {
     note = `Your own file (${s.name}) cannot travel in a link: the link opens these settings on the default sample.`;
@@ -550,19 +553,20 @@ async function fillTourMenu() {
 
 // ---- loading -------------------------------------------------------------------------
 async function loadSource(src, call = (...a) => engine.call(...a)) {
+  let loaded = { surface: false };
   switch (src.kind) {
     case 'sample':
-      await call('loadSample', src.name);
+      loaded = await call('loadSample', src.name);
       break;
     case 'gmsh': {
       const res = await fetch(`samples/${encodeURIComponent(src.name)}`);
       if (!res.ok) throw new Error(`could not fetch the sample ${src.name} (HTTP ${res.status})`);
       const bytes = await res.arrayBuffer();
-      await call('loadFile', src.name, bytes);
+      loaded = await call('loadFile', src.name, bytes);
       break;
     }
     case 'file':
-      await call('loadFile', src.name, src.bytes.slice(0));
+      loaded = await call('loadFile', src.name, src.bytes.slice(0));
       break;
     case 'triangle':
       await call('loadTriangle', src.node, src.ele);
@@ -576,6 +580,41 @@ async function loadSource(src, call = (...a) => engine.call(...a)) {
   state.node = null;
   state.perturbed = null;
   $('node').value = '';
+  showSurfaceMode(loaded.surface);
+}
+
+/** What a surface does not have (yet) on the page, and why: these controls wait,
+ * saying so, while a surface is loaded (as a strategy's unused controls do). */
+const PLANAR_ONLY = {
+  node: 'a node of a surface moves in its tangent plane: the level sets are drawn for planar meshes',
+  'smooth-node': 'the level sets and one-node smoothing are for planar meshes',
+  undo: 'nodes of a surface are not dragged (a drag turns the view)',
+  'hist-log': 'the per-pass chart and the angle histograms are drawn for planar meshes',
+  'save-figure': 'the figure for slides is drawn for planar meshes; save each 3D view as a PNG',
+};
+
+/** Puts the page in the surface mode (or back in the planar one). */
+function showSurfaceMode(on) {
+  state.surface = on;
+  showPickNote(null); // it spoke of the mesh before
+  document.body.classList.toggle('surface', on);
+  $('surface-note').hidden = !on;
+  for (const [id, why] of Object.entries(PLANAR_ONLY)) {
+    const el = $(id);
+    if (on) {
+      el.disabled = true;
+      el.title = `Not for a surface: ${why}.`;
+    } else {
+      el.disabled = id === 'smooth-node' ? state.node === null : id === 'undo' ? el.disabled : false;
+      el.title = el.dataset.help || '';
+    }
+  }
+  for (const id of ['mesh-old', 'mesh-new']) {
+    const letter = id === 'mesh-old' ? 'A' : 'B';
+    $(id).setAttribute('aria-label', on
+      ? `Surface of panel ${letter} in 3D, coloured by quality; drag to turn, wheel to zoom`
+      : `Mesh of panel ${letter}, coloured by quality; arrow keys move the chosen node`);
+  }
 }
 
 function selectValueOf(src) {
@@ -682,6 +721,7 @@ const STAT_ROWS = [
   ['mean_quality', 'Mean quality (α/β)', (s) => s.detail && s.detail.mean_quality, 'higher', num, true],
   ['small_angles', 'Angles under 18°', (s) => s.detail && s.detail.small_angle_share, 'lower', pct, true],
   ['max_condition', 'Worst κ (condition number)', (s) => s.detail && (s.detail.max_condition ?? Infinity), 'lower', kappa, true],
+  ['surface_distance', 'Largest distance from the surface', (s) => s.max_distance_from_surface, 'lower', (v) => v.toExponential(2), false, true],
   ['laplacian_moves', 'Laplacian moves', (s) => s.laplacian_moves],
   ['optimization_calls', 'Optimization calls', (s) => s.optimization_calls],
   ['passes', 'Passes', (s) => s.passes],
@@ -696,6 +736,7 @@ const ROW_HELP = {
   mean_quality: 'The mean element quality (α for triangles, β for quads).',
   small_angles: "The share of corner angles under 18° (Freitag's Fig. 3 view).",
   max_condition: "The worst condition number κ = ‖A‖‖A⁻¹‖ of an element's Jacobian (Knupp): 1 ideal, ∞ inverted.",
+  surface_distance: 'A surface only: how far the node farthest from the surface it lies on is from it, in the mesh\'s units (nodes are moved in their tangent plane, then put back on the surface).',
   laplacian_moves: 'Nodes moved by a (plain or smart) Laplacian step, over the passes.',
   optimization_calls: 'Calls to the solver, over the passes.',
 };
@@ -724,8 +765,9 @@ function fillTables(stats) {
     $(`title-${side}`).textContent = EMBED ? s.label : s.title;
     const body = $(`stats-${side}`).tBodies[0];
     body.replaceChildren();
-    for (const [key, label, get, dir, fmt = String, detail] of STAT_ROWS) {
+    for (const [key, label, get, dir, fmt = String, detail, surfaceOnly] of STAT_ROWS) {
       const v = get(s);
+      if (surfaceOnly && (v === null || v === undefined)) continue;
       const tr = document.createElement('tr');
       tr.dataset.stat = key;
       const th = document.createElement('th');
@@ -816,6 +858,10 @@ async function redrawMeshes() {
 async function redrawCharts() {
   if (EMBED && !(VIEW && VIEW.draws === 'charts')) return;
   if (VIEW) fitView();
+  if (state.surface) {
+    for (const id of ['pass-chart', 'hist-old', 'hist-new']) placeholder($(id), 'Drawn for planar meshes; this is a surface');
+    return;
+  }
   const c = canvasPixels($('pass-chart'));
   const hc = canvasPixels($('hist-old'));
   const r = await engine.call('charts', c.w, c.h, hc.w, hc.h, c.dpr, $('hist-log').checked);
@@ -847,7 +893,12 @@ async function redrawNode() {
   if (VIEW) fitView();
   const lv = canvasPixels($('level-old'));
   const ch = canvasPixels($('solve-chart'));
-  $('smooth-node').disabled = state.node === null || state.running;
+  $('smooth-node').disabled = state.node === null || state.running || state.surface;
+  if (state.surface) {
+    for (const id of ['level-old', 'level-new', 'solve-chart']) placeholder($(id), 'Drawn for planar meshes; this is a surface');
+    $('node-hint').textContent = `Not for a surface: ${PLANAR_ONLY.node}.`;
+    return;
+  }
   if (state.node === null) {
     for (const id of ['level-old', 'level-new', 'solve-chart']) placeholder($(id), 'Click a free node on a mesh');
     $('node-hint').textContent = NODE_HINT;
@@ -911,7 +962,7 @@ function setRunning(on) {
   $('run').textContent = on ? 'Stop' : 'Run';
   $('run').setAttribute('aria-pressed', on ? 'true' : 'false');
   $('step').disabled = on;
-  $('smooth-node').disabled = on || state.node === null;
+  $('smooth-node').disabled = on || state.node === null || state.surface;
   if (on) $('undo').disabled = true;
 }
 
@@ -1109,6 +1160,11 @@ function attachPointer(canvas) {
   });
   canvas.addEventListener('pointerdown', (ev) => {
     if (state.running || ev.button !== 0 || !state.frame.w || touches.size > 1) return;
+    if (state.surface) {
+      gesture = { orbit: true, start: { x: ev.clientX, y: ev.clientY }, last: { x: ev.clientX, y: ev.clientY }, moved: false };
+      canvas.setPointerCapture(ev.pointerId);
+      return;
+    }
     const p = toFrame(canvas, ev);
     const g = { node: undefined, start: p, moved: false, up: false, busy: false, latest: null, final: false };
     gesture = g;
@@ -1127,7 +1183,15 @@ function attachPointer(canvas) {
   canvas.addEventListener('pointermove', (ev) => {
     const g = gesture;
     if (!g) {
-      if (ev.pointerType === 'mouse') hover(canvas, ev);
+      if (ev.pointerType === 'mouse' && !state.surface) hover(canvas, ev);
+      return;
+    }
+    if (g.orbit) {
+      // CSS pixels of the drag, as the camera takes them
+      if (!g.moved && Math.hypot(ev.clientX - g.start.x, ev.clientY - g.start.y) < 3) return;
+      g.moved = true;
+      orbitBy(ev.clientX - g.last.x, ev.clientY - g.last.y);
+      g.last = { x: ev.clientX, y: ev.clientY };
       return;
     }
     const p = toFrame(canvas, ev);
@@ -1143,12 +1207,16 @@ function attachPointer(canvas) {
     gesture = null;
     g.up = true;
     if (canvas.hasPointerCapture(ev.pointerId)) canvas.releasePointerCapture(ev.pointerId);
+    if (g.orbit) {
+      if (!g.moved && ev.type === 'pointerup') sayNode(canvas, ev);
+      return;
+    }
     if (g.moved) g.latest = toFrame(canvas, ev);
     if (g.node !== undefined) finish(g);
   };
   canvas.addEventListener('keydown', (ev) => {
     const step = { ArrowLeft: [-1, 0], ArrowRight: [1, 0], ArrowUp: [0, -1], ArrowDown: [0, 1] }[ev.key];
-    if (!step || ev.ctrlKey || ev.metaKey || ev.altKey) return;
+    if (!step || ev.ctrlKey || ev.metaKey || ev.altKey || state.surface) return;
     ev.preventDefault(); // the page does not scroll under a moving node
     if (state.node === null || state.running) {
       showPickNote(state.node === null ? 'Choose a free node first (click it): the arrow keys move the chosen node.' : null);
@@ -1168,6 +1236,36 @@ function attachPointer(canvas) {
   });
   canvas.addEventListener('pointerup', end);
   canvas.addEventListener('pointercancel', end);
+}
+
+/** Turns both surface views by a drag of `(dx, dy)` CSS pixels; turns that arrive while
+ * the engine draws are added up and sent as one. */
+const orbitPump = { dx: 0, dy: 0, busy: false };
+function orbitBy(dx, dy) {
+  orbitPump.dx += dx;
+  orbitPump.dy += dy;
+  if (orbitPump.busy || (orbitPump.dx === 0 && orbitPump.dy === 0)) return;
+  const [x, y] = [orbitPump.dx, orbitPump.dy];
+  orbitPump.dx = 0;
+  orbitPump.dy = 0;
+  orbitPump.busy = true;
+  serial(async () => {
+    await engine.call('orbit', x, y);
+    await redrawMeshes();
+  })
+    .catch(report)
+    .finally(() => {
+      orbitPump.busy = false;
+      orbitBy(0, 0);
+    });
+}
+
+/** A click on a surface view says which node is there (the near side of the surface). */
+function sayNode(canvas, ev) {
+  const p = toFrame(canvas, ev);
+  serial(() => engine.call('pickSurface', canvas.dataset.side, p.x, p.y, pickRadius(ev)))
+    .then((node) => showPickNote(node === null ? 'No node there: drag to turn the surface, wheel to zoom.' : `Node ${node} of the surface.`))
+    .catch(report);
 }
 
 /**
@@ -1365,6 +1463,7 @@ function pumpDrag(d, final = false) {
 // ---- undo, one node, the figure --------------------------------------------------------
 /** The Undo button says what it would take back, or why it cannot. */
 async function refreshUndo() {
+  if (state.surface) return; // disabled, saying why (showSurfaceMode)
   const u = await engine.call('undoState');
   const b = $('undo');
   b.disabled = u.depth === 0 || state.running;
@@ -1375,7 +1474,7 @@ async function refreshUndo() {
 }
 
 function undo() {
-  if (state.running) return;
+  if (state.running || state.surface) return;
   return serial(async () => {
     const u = await engine.call('undo');
     if (u.node === undefined) {

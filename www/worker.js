@@ -17,60 +17,82 @@ function need() {
   return pg;
 }
 
+// The handle is a Playground (a planar mesh) or a SurfaceLab (a surface in 3D).
+const isSurface = () => pg instanceof wasm.SurfaceLab;
+
+/** The handle of a planar mesh: what only a planar mesh has (level sets, dragging, charts). */
+function planar() {
+  if (need() && isSurface()) throw new Error('this view takes planar meshes only; this mesh is a surface in 3D');
+  return pg;
+}
+
+/** The handle of a surface: what only a surface has (its camera). */
+function surface() {
+  if (!(need() && isSurface())) throw new Error('the 3D view takes surfaces only; this mesh is planar');
+  return pg;
+}
+
 // Replace the handle only once the new one is built: a failed load keeps the old mesh.
+// Says which kind of handle it is.
 function replace(next) {
   if (pg) pg.free();
   pg = next;
-  return null;
+  return { surface: isSurface() };
 }
 
 const handlers = {
   samples: () => wasm.samples(),
   controls: () => wasm.controls(),
   checkControl: (key, text) => wasm.checkControl(key, text),
-  loadSample: (name) => replace(wasm.Playground.fromSample(name)),
-  loadFile: (name, bytes) => replace(wasm.Playground.fromBytes(new Uint8Array(bytes), name)),
+  loadSample: (name) => replace(wasm.openSample(name)),
+  loadFile: (name, bytes) => replace(wasm.openBytes(new Uint8Array(bytes), name)),
   loadTriangle: (node, ele) => replace(wasm.Playground.fromTriangle(node, ele)),
   settings: (s) => need().setSettings(s),
   reset: () => need().reset(),
   step: () => need().step(),
-  beginPass: () => need().beginPass(),
-  // settings, beginPass and the first slice in one message (a short pass is one round trip)
+  beginPass: () => planar().beginPass(),
+  // settings, beginPass and the first slice in one message (a short pass is one round trip);
+  // a surface's pass runs whole
   pass: (settings, budgetMs) => {
     const p = need();
     p.setSettings(settings);
+    if (isSurface()) return { done: true, fraction: 1, records: p.step() };
     p.beginPass();
     return p.continuePass(budgetMs);
   },
-  continuePass: (budgetMs) => need().continuePass(budgetMs),
-  abortPass: () => need().abortPass(),
+  continuePass: (budgetMs) => planar().continuePass(budgetMs),
+  abortPass: () => (isSurface() ? null : need().abortPass()),
   perturb: (amount, seed) => need().perturb(amount, seed),
   // the pictures of both meshes and their statistics tables, in one message
   frame: (w, h, dpr, force) => {
     const p = need();
-    const f = p.frame(w, h, dpr, Boolean(force));
+    const f = isSurface() ? p.frame(w, h, dpr) : p.frame(w, h, dpr, Boolean(force));
     f.stats = { old: p.stats('old'), new: p.stats('new') };
     return f;
   },
-  forgetFrames: () => need().forgetFrames(),
-  pick: (panel, x, y, radius) => need().pickNode(panel, x, y, radius),
-  drag: (node, x, y) => need().dragNode(node, x, y),
-  select: (node) => need().selectNode(node === null ? undefined : node),
-  nodeView: (w, h, cw, ch, dpr) => need().nodeView(w, h, cw, ch, dpr),
-  charts: (w, h, hw, hh, dpr, logY) => need().charts(w, h, hw, hh, dpr, Boolean(logY)),
+  forgetFrames: () => (isSurface() ? null : need().forgetFrames()),
+  pick: (panel, x, y, radius) => planar().pickNode(panel, x, y, radius),
+  pickSurface: (panel, x, y, radius) => surface().pickNode(panel, x, y, radius) ?? null,
+  drag: (node, x, y) => planar().dragNode(node, x, y),
+  select: (node) => planar().selectNode(node === null ? undefined : node),
+  nodeView: (w, h, cw, ch, dpr) => planar().nodeView(w, h, cw, ch, dpr),
+  charts: (w, h, hw, hh, dpr, logY) => planar().charts(w, h, hw, hh, dpr, Boolean(logY)),
   exportMesh: (side, format) => need().exportMesh(side, format),
-  worstNode: () => need().worstFreeNode() ?? null,
-  zoomMeshes: (x, y, factor) => need().zoomMeshes(x, y, factor),
-  panMeshes: (dx, dy) => need().panMeshes(dx, dy),
-  zoomLevelSets: (panel, x, y, factor) => need().zoomLevelSets(panel, x, y, factor),
-  panLevelSets: (panel, dx, dy) => need().panLevelSets(panel, dx, dy),
+  worstNode: () => planar().worstFreeNode() ?? null,
+  // the wheel: a surface's camera zooms about the centre of its view
+  zoomMeshes: (x, y, factor) => (isSurface() ? need().zoom(factor) : need().zoomMeshes(x, y, factor)),
+  panMeshes: (dx, dy) => planar().panMeshes(dx, dy),
+  orbit: (dx, dy) => surface().orbit(dx, dy),
+  camera: () => surface().camera(),
+  zoomLevelSets: (panel, x, y, factor) => planar().zoomLevelSets(panel, x, y, factor),
+  panLevelSets: (panel, dx, dy) => planar().panLevelSets(panel, dx, dy),
   resetZoom: () => need().resetZoom(),
-  rememberBeforeMove: (node) => need().rememberBeforeMove(node),
-  undo: () => need().undo(),
-  nudge: (panel, dx, dy) => need().nudgeNode(panel, dx, dy),
-  undoState: () => need().undoState(),
-  smoothNode: (w, h, cw, ch, dpr) => need().smoothNode(w, h, cw, ch, dpr),
-  figure: (w, h, dpr) => need().figure(w, h, dpr),
+  rememberBeforeMove: (node) => planar().rememberBeforeMove(node),
+  undo: () => planar().undo(),
+  nudge: (panel, dx, dy) => planar().nudgeNode(panel, dx, dy),
+  undoState: () => planar().undoState(),
+  smoothNode: (w, h, cw, ch, dpr) => planar().smoothNode(w, h, cw, ch, dpr),
+  figure: (w, h, dpr) => planar().figure(w, h, dpr),
   panicForTest: () => wasm.panicForTest(),
   tourFigures: () => wasm.tourFigures(),
   tourCard: (name) => wasm.tourCard(name),

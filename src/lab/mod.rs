@@ -15,6 +15,7 @@ pub mod pick;
 pub mod raster;
 pub mod sample;
 pub mod stats;
+pub mod surface;
 pub mod tour;
 pub mod views;
 pub mod interact;
@@ -194,6 +195,16 @@ impl Settings {
     pub fn choice(&self, side: Side) -> Choice {
         self.compare[side.index()]
     }
+
+    /// A side's heading: its letter and what it smooths with ([`Choice::title`]).
+    pub fn side_title(&self, side: Side) -> String {
+        format!("{}: {}", side.letter(), self.choice(side).title())
+    }
+
+    /// The same, short ([`Choice::label`]), for a compact page.
+    pub fn side_label(&self, side: Side) -> String {
+        format!("{}: {}", side.letter(), self.choice(side).label())
+    }
 }
 
 /// What one pass did on one panel and where its mesh stands after it: the core's record,
@@ -294,6 +305,9 @@ pub struct PanelTable {
     pub mesh: QuickStats,
     /// The rows that need every corner measured, when they were (see [`TableDetail`]).
     pub detail: Option<TableDetail>,
+    /// A surface's largest distance of a node from its reference surface; `None` for a
+    /// planar mesh.
+    pub max_distance_from_surface: Option<f64>,
     #[serde(flatten)]
     pub work: WorkDone,
 }
@@ -557,12 +571,13 @@ impl Playground {
         let p = self.panel(side);
         PanelTable {
             side,
-            title: format!("{}: {}", side.letter(), self.settings.choice(side).title()),
+            title: self.settings.side_title(side),
             label: self.side_label(side),
             nodes: p.mesh.node_count(),
             elements: p.mesh.element_count(),
             mesh: p.quick,
             detail: self.detail(side),
+            max_distance_from_surface: None,
             work: WorkDone::of(&p.records),
         }
     }

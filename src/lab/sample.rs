@@ -4,9 +4,10 @@
 
 use serde::{Deserialize, Serialize};
 
-use crate::error::Result;
-use crate::generate::{perturb, plate, quadratic_star, rand2d, random_grid, star, GridKind, PlateKind, QuadraticStar, StarKind};
+use crate::error::{Error, Result};
+use crate::generate::{perturb, plate, surface, SurfaceKind, SurfaceShape, quadratic_star, rand2d, random_grid, star, GridKind, PlateKind, QuadraticStar, StarKind};
 use crate::mesh::Mesh;
+use crate::surface::{perturb_surface, Model};
 
 /// Seed of every generated sample (the page's perturb button takes its own seed).
 pub const SAMPLE_SEED: u64 = 1;
@@ -24,6 +25,10 @@ pub const LARGE_INTERIOR: usize = 99_200;
 /// most the page takes ([`super::MAX_NODES`]).
 pub const MILLION_PER_SIDE: usize = 1000;
 pub const MILLION_INTERIOR: usize = 1_000_000 - 4 * MILLION_PER_SIDE;
+/// Resolution of the surface samples ([`surface`]): 6 cells along each edge of the
+/// sphere's cube (216 quads), of the cylinder's cap squares, and 8 × 24 cells round the torus.
+pub const SURFACE_RESOLUTION: usize = 6;
+pub const TORUS_RESOLUTION: usize = 2;
 
 /// A sample mesh made in the browser by the core's generators.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
@@ -60,6 +65,14 @@ pub enum Sample {
     PlateQuadratic,
     /// rand2d with about 100 000 nodes, to show that the page stays responsive.
     Rand2dLarge,
+    /// The unit sphere (a cube-sphere of quads), every free node perturbed in its tangent
+    /// plane ([`TANGLE_AMOUNT`]): a tangled surface (Chen et al. 2003 smooth surface meshes).
+    SphereTangled,
+    /// A torus of quads and triangles, perturbed likewise.
+    TorusTangled,
+    /// A cylinder with flat caps (O-grids; its rims are feature curves whose nodes stay
+    /// fixed), quads, perturbed likewise.
+    CylinderCapped,
     /// rand2d with 1 000 000 nodes (about 2 million triangles): the page at its limit.
     /// In the gallery but not in [`Sample::ALL`], the samples a permalink can name: a
     /// shared link or an embedded page should never start a load of this size.
@@ -67,16 +80,24 @@ pub enum Sample {
 }
 
 impl Sample {
-    /// The gallery: [`Sample::ALL`], then the 1M-node sample.
-    pub const GALLERY: [Sample; 17] = {
-        let mut g = [Sample::Rand2dMillion; 17];
+    /// The gallery: [`Sample::ALL`], the surfaces, then the 1M-node sample.
+    pub const GALLERY: [Sample; 20] = {
+        let mut g = [Sample::Rand2dMillion; 20];
         let mut i = 0;
         while i < Sample::ALL.len() {
             g[i] = Sample::ALL[i];
             i += 1;
         }
+        let mut j = 0;
+        while j < Sample::SURFACES.len() {
+            g[i + j] = Sample::SURFACES[j];
+            j += 1;
+        }
         g
     };
+
+    /// The surface samples, in gallery order (a permalink does not name them yet).
+    pub const SURFACES: [Sample; 3] = [Sample::SphereTangled, Sample::TorusTangled, Sample::CylinderCapped];
 
     /// The sample the page opens on, first in the gallery: the tangled quad plate, where
     /// Chen et al.'s case is plainest — the max-min objective's β is kinked on quads (their
@@ -123,6 +144,9 @@ impl Sample {
             Sample::GridRandomTangled => "Random grid (Knupp)",
             Sample::PlateQuadratic => "Quadratic plate, curved hole",
             Sample::Rand2dLarge => "rand2D, 100k nodes",
+            Sample::SphereTangled => "Surface: tangled sphere, quads",
+            Sample::TorusTangled => "Surface: tangled torus, mixed",
+            Sample::CylinderCapped => "Surface: capped cylinder, perturbed quads",
             Sample::Rand2dMillion => "rand2D, 1M nodes (large: slow, ~350 MB of memory)",
         }
     }
@@ -132,7 +156,21 @@ impl Sample {
         Sample::ALL.contains(&self)
     }
 
-    /// Makes the mesh.
+    /// Makes the mesh: a planar one, or a surface in 3D ([`Sample::SURFACES`]).
+    pub fn model(self) -> Result<Model> {
+        let tangled = |s| perturb_surface(&s, TANGLE_AMOUNT, SAMPLE_SEED);
+        let r = SURFACE_RESOLUTION;
+        Ok(match self {
+            Sample::SphereTangled => Model::Surface(tangled(surface(SurfaceShape::Sphere, SurfaceKind::Quad, 1, r)?)?),
+            Sample::TorusTangled => {
+                Model::Surface(tangled(surface(SurfaceShape::Torus, SurfaceKind::Mixed, 1, TORUS_RESOLUTION)?)?)
+            }
+            Sample::CylinderCapped => Model::Surface(tangled(surface(SurfaceShape::Cylinder, SurfaceKind::Quad, 1, r)?)?),
+            planar => Model::Planar(planar.generate()?),
+        })
+    }
+
+    /// Makes the planar mesh; a surface sample is refused (see [`model`](Self::model)).
     pub fn generate(self) -> Result<Mesh> {
         let plate1 = |k| plate(k, 1, PLATE_RESOLUTION);
         let tangled = |m: Mesh| perturb(&m, TANGLE_AMOUNT, SAMPLE_SEED);
@@ -154,6 +192,9 @@ impl Sample {
             Sample::PlateQuadratic => plate(PlateKind::Tri, 2, PLATE_RESOLUTION),
             Sample::Rand2dLarge => rand2d(LARGE_INTERIOR, 200, SAMPLE_SEED),
             Sample::Rand2dMillion => rand2d(MILLION_INTERIOR, MILLION_PER_SIDE, SAMPLE_SEED),
+            Sample::SphereTangled | Sample::TorusTangled | Sample::CylinderCapped => {
+                Err(Error::invalid(format!("the sample '{}' is a surface in 3D, not a planar mesh", self.title())))
+            }
         }
     }
 }
@@ -183,16 +224,32 @@ mod tests {
     }
 
     #[test]
+    fn surface_samples_are_tangled_surfaces_and_planar_ones_planar() {
+        for s in Sample::SURFACES {
+            let Model::Surface(m) = s.model().unwrap() else { panic!("{s:?} is not a surface") };
+            let st = m.stats();
+            assert!(st.surface && st.inverted > 0, "{s:?}: {} inverted", st.inverted);
+            assert!(st.max_distance_from_surface.unwrap() < 1e-9, "{s:?} is on its surface");
+            let e = s.generate().unwrap_err().to_string();
+            assert!(e.contains("surface in 3D"), "{e}");
+        }
+        assert!(matches!(Sample::PlateTri.model().unwrap(), Model::Planar(_)));
+    }
+
+    #[test]
     fn titles_are_distinct() {
         let titles: std::collections::HashSet<_> = Sample::GALLERY.iter().map(|s| s.title()).collect();
         assert_eq!(titles.len(), Sample::GALLERY.len());
     }
 
     #[test]
-    fn the_gallery_is_every_linkable_sample_then_the_million() {
-        assert_eq!(&Sample::GALLERY[..Sample::ALL.len()], &Sample::ALL);
-        assert_eq!(Sample::GALLERY[Sample::ALL.len()..], [Sample::Rand2dMillion]);
+    fn the_gallery_is_every_linkable_sample_the_surfaces_then_the_million() {
+        let n = Sample::ALL.len();
+        assert_eq!(&Sample::GALLERY[..n], &Sample::ALL);
+        assert_eq!(&Sample::GALLERY[n..n + 3], &Sample::SURFACES);
+        assert_eq!(Sample::GALLERY[n + 3..], [Sample::Rand2dMillion]);
         assert!(Sample::ALL.iter().all(|s| s.linkable()) && !Sample::Rand2dMillion.linkable());
+        assert!(Sample::SURFACES.iter().all(|s| !s.linkable()));
         assert!(Sample::Rand2dMillion.title().contains("1M") && Sample::Rand2dMillion.title().contains("slow"));
         assert_eq!(serde_json::to_string(&Sample::Rand2dMillion).unwrap(), "\"rand2d-million\"");
         assert_eq!(MILLION_INTERIOR + 4 * MILLION_PER_SIDE, super::super::MAX_NODES);

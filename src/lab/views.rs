@@ -180,7 +180,7 @@ impl Playground {
         let mut path = Vec::with_capacity(result.history.len() + 1);
         path.push((result.x0, PathKind::Start));
         path.extend(result.history.iter().map(|it| (it.x, path_kind(it.direction))));
-        let title = format!("{}: {}", side.letter(), self.settings.choice(side).title());
+        let title = self.settings.side_title(side);
         let data = LevelSet { field: &field, star: &star, path: &path, optimum: Some(result.x), title: &title };
         let mut pm = pixmap(c.w, c.h)?;
         let clip = !self.level_window().is_whole();
@@ -297,7 +297,7 @@ impl Playground {
 
     /// `A: old (max-min α/β)`, as legends name a side.
     pub fn side_label(&self, side: Side) -> String {
-        format!("{}: {}", side.letter(), self.settings.choice(side).label())
+        self.settings.side_label(side)
     }
 
     /// The y scale both angle histograms share: the largest percentage in any bin of
