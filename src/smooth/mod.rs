@@ -83,7 +83,9 @@ impl StarView for Planar<'_> {
     #[inline]
     fn place(&mut self, n: usize, x: DVec2) {
         self.0.nodes_mut()[n] = x;
-        self.0.follow_mid_nodes(n);
+        if self.0.has_quadratic() {
+            self.0.follow_mid_nodes(n);
+        }
     }
     fn is_inverted(&self, e: usize) -> bool {
         is_inverted(self.0.kind(e), &self.0.element_points_array(e))
