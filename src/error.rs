@@ -75,7 +75,7 @@ impl fmt::Display for Error {
                 write!(
                     f,
                     " lies {} off the plane of the mesh, {} times the size of its elements (the tolerance is {tolerance:.0e}); \
-                     smoothlab smooths planar 2D meshes only",
+                     it is a surface in 3D, not a planar mesh (io::read_model_* reads it as one)",
                     shown_number(*max_distance),
                     shown_number(*relative)
                 )

@@ -168,3 +168,19 @@ fn slide_curves_lets_the_rims_move_and_is_refused_for_planar_meshes() {
     let e = refused(&["smooth", p(&g), "-o", p(&d.join("x.vtk")), "--slide-curves"]);
     assert!(e.contains("--slide-curves") && e.contains("planar"), "{e}");
 }
+
+/// A planar mesh with one coordinate mistyped (issue 16's outlier) reads as a surface; the
+/// tool says so, naming the node and how far off it lies.
+#[test]
+fn a_mistyped_coordinate_is_named_when_a_mesh_reads_as_a_surface() {
+    let f = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/bad/non_planar_outlier.obj");
+    let out = run(&["stats", "--json", p(&f)]);
+    assert!(out.status.success());
+    let err = String::from_utf8(out.stderr).unwrap();
+    assert!(
+        err.contains("read as a surface in 3D: node 8 (line 10) lies 1.000e6 off the plane of the mesh, 7.071e5 times the size of its elements"),
+        "{err}"
+    );
+    let s: Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(s["surface"], Value::Bool(true));
+}

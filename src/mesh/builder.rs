@@ -192,11 +192,20 @@ impl MeshBuilder {
     /// points as given.
     pub fn build_model(self) -> Result<crate::surface::Model> {
         self.check()?;
-        match self.to_plane() {
-            Err(Error::NotPlanar { .. }) => {}
+        let why = match self.to_plane() {
+            Err(Error::NotPlanar { node, line, max_distance, relative, .. }) => {
+                let at = line.map_or(String::new(), |l| format!(" (line {l})"));
+                format!(
+                    "node {node}{at} lies {} off the plane of the mesh, {} times the size of its elements",
+                    crate::error::shown_number(max_distance),
+                    crate::error::shown_number(relative)
+                )
+            }
             flat => return self.planar(flat?).map(crate::surface::Model::Planar),
-        }
-        self.surface(None).map(crate::surface::Model::Surface)
+        };
+        let mut s = self.surface(None)?;
+        s.set_not_planar(why);
+        Ok(crate::surface::Model::Surface(s))
     }
 
     /// Builds a surface in 3D whatever its points (a generator's, on `analytic`'s exact

@@ -100,6 +100,9 @@ pub struct Surface {
     curves: Option<Arc<curves::Curves>>,
     /// Per sliding node, the curve edge (as loaded) its last move landed on.
     curve_hint: Vec<[u32; 2]>,
+    /// Why the file's points were read as a surface: the node farthest off the plane the
+    /// mesh would lie in, and how far (a mistyped coordinate shows here).
+    not_planar: Option<String>,
 }
 
 impl Surface {
@@ -177,9 +180,18 @@ impl Surface {
             curve_edges: Arc::new(curve_edges),
             curves: None,
             curve_hint: Vec::new(),
+            not_planar: None,
         })
     }
 
+    /// Why a file's points were read as a surface, when they were: the node farthest off
+    /// the plane the mesh would lie in, how far, and how that compares with its elements.
+    pub fn not_planar(&self) -> Option<&str> {
+        self.not_planar.as_deref()
+    }
+    pub(crate) fn set_not_planar(&mut self, why: String) {
+        self.not_planar = Some(why);
+    }
     /// Node positions in 3D.
     pub fn points(&self) -> &[DVec3] {
         &self.points

@@ -13,8 +13,14 @@ use smoothlab::Mesh;
 /// smoothed.
 pub fn read_model(path: &Path) -> Result<Model, String> {
     let model = io::read_model_path(path).map_err(|e| format!("{}: {e}", path.display()))?;
-    if let Model::Planar(mesh) = &model {
-        warn_zero_area(mesh, path);
+    match &model {
+        Model::Planar(mesh) => warn_zero_area(mesh, path),
+        // a mistyped coordinate makes a planar mesh a surface: say which node did
+        Model::Surface(s) => {
+            if let Some(why) = s.not_planar() {
+                eprintln!("smoothlab: note: {}: read as a surface in 3D: {why}", path.display());
+            }
+        }
     }
     Ok(model)
 }
