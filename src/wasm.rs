@@ -626,6 +626,13 @@ impl SurfaceLab {
         self.inner.reset_camera();
     }
 
+    /// Why the file's points were read as a surface (the node farthest off the plane the
+    /// mesh would lie in, and how far), or `undefined` for a sample.
+    #[wasm_bindgen(js_name = notPlanar)]
+    pub fn not_planar(&self) -> Option<String> {
+        self.inner.original().not_planar().map(str::to_string)
+    }
+
     /// The shared camera: `{ yaw, pitch, zoom }` (degrees, degrees, factor).
     pub fn camera(&self) -> Result<JsValue, JsError> {
         let c = self.inner.camera();

@@ -580,7 +580,7 @@ async function loadSource(src, call = (...a) => engine.call(...a)) {
   state.node = null;
   state.perturbed = null;
   $('node').value = '';
-  showSurfaceMode(loaded.surface);
+  showSurfaceMode(loaded.surface, loaded.notPlanar);
 }
 
 /** What a surface does not have (yet) on the page, and why: these controls wait,
@@ -593,12 +593,16 @@ const PLANAR_ONLY = {
   'save-figure': 'the figure for slides is drawn for planar meshes; save each 3D view as a PNG',
 };
 
-/** Puts the page in the surface mode (or back in the planar one). */
-function showSurfaceMode(on) {
+/** Puts the page in the surface mode (or back in the planar one); `why` says why a file
+ * read as a surface (the node farthest off the plane it would lie in: a mistyped
+ * coordinate shows here, as the command-line tool says it). */
+function showSurfaceMode(on, why = null) {
   state.surface = on;
   showPickNote(null); // it spoke of the mesh before
   document.body.classList.toggle('surface', on);
   $('surface-note').hidden = !on;
+  $('surface-why').hidden = !(on && why);
+  $('surface-why').textContent = on && why ? `Read as a surface in 3D: ${why}.` : '';
   for (const [id, why] of Object.entries(PLANAR_ONLY)) {
     const el = $(id);
     if (on) {

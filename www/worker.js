@@ -37,7 +37,7 @@ function surface() {
 function replace(next) {
   if (pg) pg.free();
   pg = next;
-  return { surface: isSurface() };
+  return { surface: isSurface(), notPlanar: isSurface() ? pg.notPlanar() ?? null : null };
 }
 
 const handlers = {

@@ -284,6 +284,11 @@ try {
       check(await page.evaluate(() => document.body.classList.contains('surface')), `${name}: the page reads a surface`);
       const s = await stats(page, 'old');
       check(Number(s.nodes) === said.nodes && Number(s.elements) === said.elements, `${name}: the page has ${JSON.stringify(s)}, the command-line tool ${r.stdout}`);
+      // and both say why: the node farthest off the plane, and how far
+      const note = r.stderr.trim().split('\n').find((l) => l.includes('read as a surface in 3D: ')) ?? '';
+      const why = await page.textContent('#surface-why');
+      check(note.endsWith(why.replace(/^Read as a surface in 3D: /, '').replace(/\.$/, '')) && why.includes('off the plane'),
+        `${name}: the page says\n       ${why}\n     the command-line tool\n       ${note}`);
     }
     // files with a byte-order mark load, with the node counts the command-line tool reads
     for (const set of [['bom.obj'], ['bom.off'], ['bom.msh'], ['bom.vtk'], ['bom.node', 'bom.ele']]) {
