@@ -37,6 +37,7 @@ mod condition;
 mod corners;
 mod new;
 mod old;
+mod point;
 mod sine;
 #[cfg(test)]
 pub(crate) mod testing;
@@ -44,10 +45,11 @@ mod untangle;
 
 pub use condition::{ConditionNumber, Norm, CONDITION_BARRIER};
 pub use new::{
-    adjusted_angle, regularised_determinant, AnglePenalty, ChenTristanoKwok, Penalty, PenaltyLength, RegularisedBarrier,
-    BARRIER_EPSILON, BARRIER_WEIGHT, EQUILATERAL_PENALTY,
+    adjusted_angle, regularised_determinant, AnglePenalty, ChenTristanoKwok, Penalty, PenaltyLength,
+    RegularisedBarrier, BARRIER_EPSILON, BARRIER_WEIGHT, EQUILATERAL_PENALTY,
 };
 pub use old::MaxMinShape;
+pub use point::{NodeStar, Point};
 pub use sine::MaxMinSine;
 pub use untangle::{MaxMinDet, Untangle, UNTANGLE_BETA};
 
@@ -194,11 +196,12 @@ pub enum Goal {
 /// One term of an objective at a position, with its gradient with respect to the
 /// free node's position.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Term {
-    /// Index of the element in [`Star::elems`] the term belongs to.
+pub struct Term<V = DVec2> {
+    /// Index of the element in the star (for a planar star, in [`Star::elems`]) the term
+    /// belongs to.
     pub elem: u32,
     pub value: f64,
-    pub grad: DVec2,
+    pub grad: V,
 }
 
 /// One element of a star, with its node coordinates and where the free node sits.
@@ -310,8 +313,23 @@ impl Star {
     }
 }
 
+impl NodeStar for Star {
+    type Point = DVec2;
+    #[inline]
+    fn len(&self) -> usize {
+        self.elems.len()
+    }
+    #[inline]
+    fn size(&self) -> f64 {
+        crate::optimize::star_scale(self)
+    }
+    fn scaled(&self, f: f64) -> Self {
+        crate::optimize::scaled_star(self, f)
+    }
+}
+
 /// An objective of a free node's position over its star (see the module docs).
-pub trait Objective {
+pub trait Objective<S: NodeStar = Star> {
     /// A short name, as on the command line (`new`, `old`, …).
     fn name(&self) -> &'static str;
     /// How the terms combine.
@@ -324,23 +342,24 @@ pub trait Objective {
         false
     }
     /// Appends the terms at position `x` (values and gradients) to `out`.
-    fn terms(&self, star: &Star, x: DVec2, out: &mut Vec<Term>);
+    fn terms(&self, star: &S, x: S::Point, out: &mut Vec<Term<S::Point>>);
     /// The objective value at `x`: the sum or the minimum of the terms.
-    fn value(&self, star: &Star, x: DVec2) -> f64 {
+    fn value(&self, star: &S, x: S::Point) -> f64 {
         self.value_and_gradient(star, x).0
     }
     /// Value and gradient at `x`. For a max-min objective the gradient is that of one
     /// active (minimum) term — a subgradient; Freitag's solver uses [`terms`](Self::terms).
-    fn value_and_gradient(&self, star: &Star, x: DVec2) -> (f64, DVec2) {
+    fn value_and_gradient(&self, star: &S, x: S::Point) -> (f64, S::Point) {
         let mut t = Vec::with_capacity(star.len() * 3);
         self.terms(star, x, &mut t);
         combine(self.goal(), &t)
     }
-    /// Value, gradient and Hessian (2×2, symmetric) at `x`, for a smooth objective that has
+    /// Value, gradient and Hessian (symmetric) at `x`, for a smooth objective that has
     /// an analytic Hessian (`new` with its barrier); `None` otherwise (the default). The
     /// value and gradient are [`value_and_gradient`](Self::value_and_gradient)'s. Newton's
     /// first trial in Fletcher–Reeves ([`crate::optimize::SolveOptions::newton`]) uses it.
-    fn value_gradient_hessian(&self, _star: &Star, _x: DVec2) -> Option<(f64, DVec2, glam::DMat2)> {
+    #[allow(clippy::type_complexity)]
+    fn value_gradient_hessian(&self, _star: &S, _x: S::Point) -> Option<(f64, S::Point, <S::Point as Point>::Hessian)> {
         None
     }
 }
@@ -348,17 +367,17 @@ pub trait Objective {
 /// Combines terms by the goal: sum (with summed gradient) or minimum (with the gradient
 /// of the first minimal term). An empty set gives 0; a NaN term makes the value NaN (the
 /// solvers read it as the worst value of the goal).
-pub fn combine(goal: Goal, terms: &[Term]) -> (f64, DVec2) {
+pub fn combine<V: Point>(goal: Goal, terms: &[Term<V>]) -> (f64, V) {
     let (v, g) = match goal {
-        Goal::MinimizeSum => terms.iter().fold((0.0, DVec2::ZERO), |(v, g), t| (v + t.value, g + t.grad)),
+        Goal::MinimizeSum => terms.iter().fold((0.0, V::ZERO), |(v, g), t| (v + t.value, g + t.grad)),
         Goal::MaximizeMin => terms
             .iter()
-            .fold(None, |best: Option<&Term>, t| match best {
+            .fold(None, |best: Option<&Term<V>>, t| match best {
                 Some(b) if b.value <= t.value => Some(b),
                 _ => Some(t),
             })
             .map(|t| (t.value, t.grad))
-            .unwrap_or((0.0, DVec2::ZERO)),
+            .unwrap_or((0.0, V::ZERO)),
     };
     if goal == Goal::MaximizeMin && terms.iter().any(|t| t.value.is_nan()) {
         return (f64::NAN, g);
@@ -412,19 +431,19 @@ pub(crate) use impl_objective_by_visit;
 /// Folds terms as [`combine`] does, one at a time, so objectives can evaluate
 /// [`Objective::value_and_gradient`] without collecting their terms.
 #[derive(Clone, Copy, Debug)]
-pub(crate) struct Fold {
+pub(crate) struct Fold<V = DVec2> {
     goal: Goal,
     value: f64,
-    grad: DVec2,
+    grad: V,
     any: bool,
     nan: bool,
 }
 
-impl Fold {
+impl<V: Point> Fold<V> {
     pub(crate) fn new(goal: Goal) -> Self {
-        Fold { goal, value: 0.0, grad: DVec2::ZERO, any: false, nan: false }
+        Fold { goal, value: 0.0, grad: V::ZERO, any: false, nan: false }
     }
-    pub(crate) fn add(&mut self, t: Term) {
+    pub(crate) fn add(&mut self, t: Term<V>) {
         match self.goal {
             Goal::MinimizeSum => {
                 self.value += t.value;
@@ -441,7 +460,7 @@ impl Fold {
         }
         self.any = true;
     }
-    pub(crate) fn finish(self) -> (f64, DVec2) {
+    pub(crate) fn finish(self) -> (f64, V) {
         (if self.nan { f64::NAN } else { self.value }, self.grad)
     }
 }
@@ -450,7 +469,7 @@ impl Fold {
 /// and a reference to one are objectives too.
 macro_rules! forward_objective {
     ($($ptr:ty),+) => {$(
-        impl<O: Objective + ?Sized> Objective for $ptr {
+        impl<S: NodeStar, O: Objective<S> + ?Sized> Objective<S> for $ptr {
             fn name(&self) -> &'static str {
                 (**self).name()
             }
@@ -460,16 +479,20 @@ macro_rules! forward_objective {
             fn untangles(&self) -> bool {
                 (**self).untangles()
             }
-            fn terms(&self, star: &Star, x: DVec2, out: &mut Vec<Term>) {
+            fn terms(&self, star: &S, x: S::Point, out: &mut Vec<Term<S::Point>>) {
                 (**self).terms(star, x, out)
             }
-            fn value(&self, star: &Star, x: DVec2) -> f64 {
+            fn value(&self, star: &S, x: S::Point) -> f64 {
                 (**self).value(star, x)
             }
-            fn value_and_gradient(&self, star: &Star, x: DVec2) -> (f64, DVec2) {
+            fn value_and_gradient(&self, star: &S, x: S::Point) -> (f64, S::Point) {
                 (**self).value_and_gradient(star, x)
             }
-            fn value_gradient_hessian(&self, star: &Star, x: DVec2) -> Option<(f64, DVec2, glam::DMat2)> {
+            fn value_gradient_hessian(
+                &self,
+                star: &S,
+                x: S::Point,
+            ) -> Option<(f64, S::Point, <S::Point as Point>::Hessian)> {
                 (**self).value_gradient_hessian(star, x)
             }
         }

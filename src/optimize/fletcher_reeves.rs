@@ -3,12 +3,8 @@
 //!
 //! The formulas, in one notation: `docs/formulas.md` §3.
 
-use glam::{DMat2, DVec2};
-
-use super::{
-    line_search, merit_of, DirectionKind, Iterate, SolveOptions, SolveState, Solver, StopReason,
-};
-use crate::objective::{Goal, Objective, Star};
+use super::{line_search, merit_of, DirectionKind, Iterate, SolveOptions, SolveState, Solver, StopReason};
+use crate::objective::{Goal, NodeStar, Objective, Point};
 
 /// Powell's restart test: restart when consecutive gradients are far from orthogonal,
 /// `|g_q·g_{q−1}| ≥ 0.2·|g_q|²` — the conjugate directions have stopped helping.
@@ -50,7 +46,7 @@ impl FletcherReeves {
         FletcherReeves { options }
     }
 
-    fn eval(&mut self, objective: &dyn Objective, star: &Star, x: DVec2) -> (f64, f64, DVec2) {
+    fn eval<S: NodeStar>(&mut self, objective: &dyn Objective<S>, star: &S, x: S::Point) -> (f64, f64, S::Point) {
         let goal = objective.goal();
         // the folded value and gradient (no terms collected; a NaN term gives NaN)
         let (v, g) = objective.value_and_gradient(star, x);
@@ -60,12 +56,13 @@ impl FletcherReeves {
 
     /// [`eval`](Self::eval) with the Hessian, when Newton steps are on and the objective
     /// (smooth: [`Goal::MinimizeSum`]) has one.
-    fn eval_hessian(
+    #[allow(clippy::type_complexity)]
+    fn eval_hessian<S: NodeStar>(
         &mut self,
-        objective: &dyn Objective,
-        star: &Star,
-        x: DVec2,
-    ) -> (f64, f64, DVec2, Option<DMat2>) {
+        objective: &dyn Objective<S>,
+        star: &S,
+        x: S::Point,
+    ) -> (f64, f64, S::Point, Option<<S::Point as Point>::Hessian>) {
         if self.options.newton && objective.goal() == Goal::MinimizeSum {
             if let Some((v, g, h)) = objective.value_gradient_hessian(star, x) {
                 return (v, merit_of(Goal::MinimizeSum, v), g, Some(h));
@@ -74,25 +71,14 @@ impl FletcherReeves {
         let (v, m, g) = self.eval(objective, star, x);
         (v, m, g, None)
     }
-
-    /// The Newton step `−H⁻¹g` when `H` is positive definite and the step is finite and at
-    /// most `limit` long.
-    fn newton_step(g: DVec2, h: DMat2, limit: f64) -> Option<DVec2> {
-        let det = h.determinant();
-        if !(h.x_axis.x > 0.0 && det > 0.0 && det.is_finite()) {
-            return None;
-        }
-        let p = -(h.inverse() * g);
-        (p.is_finite() && p.length() <= limit && p != DVec2::ZERO).then_some(p)
-    }
 }
 
-impl Solver for FletcherReeves {
+impl<S: NodeStar> Solver<S> for FletcherReeves {
     fn options(&self) -> &SolveOptions {
         &self.options
     }
 
-    fn evaluate_start(&mut self, objective: &dyn Objective, star: &Star, st: &mut SolveState) {
+    fn evaluate_start(&mut self, objective: &dyn Objective<S>, star: &S, st: &mut SolveState<S::Point>) {
         let (v, m, g, h) = self.eval_hessian(objective, star, st.x);
         st.value = v;
         st.value0 = v;
@@ -104,7 +90,7 @@ impl Solver for FletcherReeves {
         }
     }
 
-    fn step(&mut self, objective: &dyn Objective, star: &Star, st: &mut SolveState) -> bool {
+    fn step(&mut self, objective: &dyn Objective<S>, star: &S, st: &mut SolveState<S::Point>) -> bool {
         if !st.may_iterate(&self.options) {
             return false;
         }
@@ -116,7 +102,7 @@ impl Solver for FletcherReeves {
             return false;
         }
         // Newton's step first, when there is a Hessian and it is positive definite
-        if let Some(p) = st.hess.and_then(|h| Self::newton_step(g, h, st.scale)) {
+        if let Some(p) = st.hess.and_then(|h| S::Point::newton_step(g, h, st.scale)) {
             let x = st.x;
             let first = self.eval_hessian(objective, star, x + p);
             let (_, m1, _, _) = first;
@@ -131,7 +117,7 @@ impl Solver for FletcherReeves {
                         if t == 1.0 {
                             return m1;
                         }
-                        let e = self.eval_hessian(objective, star, x + t * p);
+                        let e = self.eval_hessian(objective, star, x + p * t);
                         if e.1 < best.1 .1 {
                             best = (t, e);
                         }
@@ -143,7 +129,7 @@ impl Solver for FletcherReeves {
                 // a conjugate direction after a Newton step means nothing: restart
                 st.restart = true;
                 st.since_restart = 0;
-                return self.accept(st, x + t * p, p, (v_new, m_new, g_new, h_new), DirectionKind::Newton);
+                return self.accept(st, x + p * t, p, (v_new, m_new, g_new, h_new), DirectionKind::Newton);
             }
         }
         // direction
@@ -155,7 +141,7 @@ impl Solver for FletcherReeves {
             || prev2 == 0.0
             || g.dot(st.grad_prev).abs() >= POWELL_RESTART * g2;
         if !restart {
-            let conj = -g + (g2 / prev2) * st.dir;
+            let conj = -g + st.dir * (g2 / prev2);
             if conj.dot(g) < 0.0 && conj.is_finite() {
                 d = conj;
                 kind = DirectionKind::Conjugate;
@@ -167,11 +153,11 @@ impl Solver for FletcherReeves {
         let t0 = first / dl;
         let t_min = o.min_step * st.scale / dl;
         let x = st.x;
-        let mut best = (f64::INFINITY, f64::NAN, DVec2::ZERO, None); // (merit, value, grad, Hessian)
+        let mut best = (f64::INFINITY, f64::NAN, S::Point::ZERO, None); // (merit, value, grad, Hessian)
         let mut best_t = 0.0;
         let found = {
             let mut phi = |t: f64| {
-                let (v, m, gr, h) = self.eval_hessian(objective, star, x + t * d);
+                let (v, m, gr, h) = self.eval_hessian(objective, star, x + d * t);
                 if m < best.0 {
                     best = (m, v, gr, h);
                     best_t = t;
@@ -193,7 +179,7 @@ impl Solver for FletcherReeves {
         let (m_new, v_new, g_new, h_new) = best;
         st.restart = false;
         st.since_restart = if kind == DirectionKind::Conjugate { st.since_restart + 1 } else { 0 };
-        self.accept(st, x + best_t * d, d, (v_new, m_new, g_new, h_new), kind)
+        self.accept(st, x + d * best_t, d, (v_new, m_new, g_new, h_new), kind)
     }
 }
 
@@ -201,12 +187,12 @@ impl FletcherReeves {
     /// Moves the solve to the accepted point `x_new`, reached along `dir`, where the
     /// objective is `(value, merit, gradient, Hessian)`; records the iterate and says
     /// whether the solve goes on ([`check_stop`](Self::check_stop)).
-    fn accept(
+    fn accept<V: Point>(
         &self,
-        st: &mut SolveState,
-        x_new: DVec2,
-        dir: DVec2,
-        (v_new, m_new, g_new, h_new): (f64, f64, DVec2, Option<DMat2>),
+        st: &mut SolveState<V>,
+        x_new: V,
+        dir: V,
+        (v_new, m_new, g_new, h_new): (f64, f64, V, Option<V::Hessian>),
         kind: DirectionKind,
     ) -> bool {
         let moved = x_new.distance(st.x);
@@ -228,7 +214,7 @@ impl FletcherReeves {
 
     /// After an accepted step: stops on a gradient that is not finite, too small an
     /// improvement or too short a move; returns whether the solve goes on.
-    fn check_stop(&self, st: &mut SolveState, improvement: f64, m_new: f64, g_new: DVec2, moved: f64) -> bool {
+    fn check_stop<V: Point>(&self, st: &mut SolveState<V>, improvement: f64, m_new: f64, g_new: V, moved: f64) -> bool {
         let o = &self.options;
         if !g_new.is_finite() {
             st.stop = Some(StopReason::NotFinite);

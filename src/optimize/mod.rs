@@ -27,7 +27,7 @@
 use glam::DVec2;
 use serde::Serialize;
 
-use crate::objective::{Goal, Objective, Star, Term};
+use crate::objective::{Goal, NodeStar, Objective, Point, Star, Term};
 
 mod fletcher_reeves;
 mod line_search;
@@ -80,9 +80,9 @@ pub enum StopReason {
 
 /// One iteration of a solve: where it went and how.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]
-pub struct Iterate {
+pub struct Iterate<V = DVec2> {
     /// Position after the step.
-    pub x: DVec2,
+    pub x: V,
     /// The objective's own value there (not negated for max-min objectives).
     pub value: f64,
     pub direction: DirectionKind,
@@ -92,20 +92,20 @@ pub struct Iterate {
 
 /// What a solve returns.
 #[derive(Clone, Debug, PartialEq, Serialize)]
-pub struct SolveResult {
+pub struct SolveResult<V = DVec2> {
     /// Final position: never worse than the start by the solver's own measure.
-    pub x: DVec2,
+    pub x: V,
     /// The objective's value at `x`.
     pub value: f64,
     /// Starting position and value.
-    pub x0: DVec2,
+    pub x0: V,
     pub value0: f64,
     /// Accepted iterations (steps that moved the node).
     pub iterations: u32,
     pub stop: StopReason,
     /// One entry per iteration, when [`SolveOptions::record_history`] is set; empty
     /// (and unallocated) otherwise.
-    pub history: Vec<Iterate>,
+    pub history: Vec<Iterate<V>>,
 }
 
 /// Solver settings. Lengths are fractions of the star size ([`star_scale`]).
@@ -219,18 +219,18 @@ pub enum SolverKind {
 /// by [`SolverKind`]: the drivers hold one of these, so a new solver is one field here and
 /// one arm of [`Solvers::get`] (which the compiler asks for), not an edit of each driver.
 #[derive(Clone, Debug)]
-pub struct Solvers {
+pub struct Solvers<S: NodeStar = Star> {
     fletcher_reeves: FletcherReeves,
-    non_smooth_ascent: NonSmoothAscent,
+    non_smooth_ascent: NonSmoothAscent<S::Point>,
 }
 
-impl Solvers {
+impl<S: NodeStar> Solvers<S> {
     /// Every solver with options `o`.
     pub fn new(o: SolveOptions) -> Self {
         Solvers { fletcher_reeves: FletcherReeves::new(o), non_smooth_ascent: NonSmoothAscent::new(o) }
     }
     /// The solver `kind` names for an objective of `goal` ([`SolverKind::Auto`] resolved).
-    pub fn get(&mut self, kind: SolverKind, goal: Goal) -> &mut dyn Solver {
+    pub fn get(&mut self, kind: SolverKind, goal: Goal) -> &mut dyn Solver<S> {
         match (kind, goal) {
             (SolverKind::FletcherReeves, _) | (SolverKind::Auto, Goal::MinimizeSum) => &mut self.fletcher_reeves,
             (SolverKind::NonSmoothAscent, _) | (SolverKind::Auto, Goal::MaximizeMin) => &mut self.non_smooth_ascent,
@@ -241,9 +241,9 @@ impl Solvers {
 /// The state of a solve between steps. Public fields are for display; the rest is the
 /// solver's working memory.
 #[derive(Clone, Debug)]
-pub struct SolveState {
+pub struct SolveState<V: Point = DVec2> {
     /// Current position.
-    pub x: DVec2,
+    pub x: V,
     /// The objective's value at `x`.
     pub value: f64,
     /// Accepted iterations so far.
@@ -251,20 +251,20 @@ pub struct SolveState {
     /// Set when the solve has stopped.
     pub stop: Option<StopReason>,
     /// Iterates so far (empty unless recording).
-    pub history: Vec<Iterate>,
-    x0: DVec2,
+    pub history: Vec<Iterate<V>>,
+    x0: V,
     value0: f64,
     /// Star size, the unit of every length.
     scale: f64,
     /// Fletcher–Reeves: merit (value, negated for max-min) and its gradient at `x`.
     merit: f64,
-    grad: DVec2,
+    grad: V,
     /// Fletcher–Reeves with [`SolveOptions::newton`]: the merit's Hessian at `x`, when the
     /// objective has one.
-    hess: Option<glam::DMat2>,
+    hess: Option<V::Hessian>,
     /// Fletcher–Reeves: previous direction and previous gradient.
-    dir: DVec2,
-    grad_prev: DVec2,
+    dir: V,
+    grad_prev: V,
     /// Conjugate iterations since the last gradient step.
     since_restart: u32,
     /// Force a gradient direction at the next step.
@@ -275,11 +275,11 @@ pub struct SolveState {
     last_move: f64,
 }
 
-impl SolveState {
+impl<V: Point> SolveState<V> {
     /// A solve of `star` (of size `scale`, its [`star_scale`]) from `x0`, already stopped ([`StopReason::DegenerateStar`]) when
     /// the star is empty or has no finite positive size: what every solver's `start`
     /// checks first.
-    fn begin(star: &Star, x0: DVec2, scale: f64, options: &SolveOptions) -> Self {
+    fn begin<S: NodeStar<Point = V>>(star: &S, x0: V, scale: f64, options: &SolveOptions) -> Self {
         let mut st = SolveState::new(x0, scale, options.acceleration);
         if star.is_empty() || !(st.scale.is_finite() && st.scale > 0.0) {
             st.stop = Some(StopReason::DegenerateStar);
@@ -298,7 +298,7 @@ impl SolveState {
         }
         true
     }
-    fn new(x0: DVec2, scale: f64, accel: f64) -> Self {
+    fn new(x0: V, scale: f64, accel: f64) -> Self {
         SolveState {
             x: x0,
             value: f64::NAN,
@@ -309,10 +309,10 @@ impl SolveState {
             value0: f64::NAN,
             scale,
             merit: f64::NAN,
-            grad: DVec2::ZERO,
+            grad: V::ZERO,
             hess: None,
-            dir: DVec2::ZERO,
-            grad_prev: DVec2::ZERO,
+            dir: V::ZERO,
+            grad_prev: V::ZERO,
             since_restart: 0,
             restart: true,
             accel,
@@ -328,7 +328,7 @@ impl SolveState {
         self.scale
     }
     /// The finished result (a running solve reports [`StopReason::MaxIter`]).
-    pub fn into_result(self) -> SolveResult {
+    pub fn into_result(self) -> SolveResult<V> {
         SolveResult {
             x: self.x,
             value: self.value,
@@ -343,17 +343,23 @@ impl SolveState {
 
 /// A solver of one node's objective. Implementations own their scratch buffers, so one
 /// solver object serves a whole smoothing pass without allocating per node.
-pub trait Solver {
+pub trait Solver<S: NodeStar = Star> {
     /// The solver's settings.
     fn options(&self) -> &SolveOptions;
     /// Evaluates the objective at `x0` and prepares a solve (which may already be stopped,
     /// e.g. [`StopReason::NotFinite`]).
-    fn start(&mut self, objective: &dyn Objective, star: &Star, x0: DVec2) -> SolveState {
-        self.start_at_scale(objective, star, x0, star_scale(star))
+    fn start(&mut self, objective: &dyn Objective<S>, star: &S, x0: S::Point) -> SolveState<S::Point> {
+        self.start_at_scale(objective, star, x0, star.size())
     }
-    /// [`start`](Self::start) for a star whose [`star_scale`] the caller has at hand
-    /// ([`solve`](Self::solve) measures it once for both the frame and the solve).
-    fn start_at_scale(&mut self, objective: &dyn Objective, star: &Star, x0: DVec2, scale: f64) -> SolveState {
+    /// [`start`](Self::start) for a star whose size ([`NodeStar::size`]) the caller has at
+    /// hand ([`solve`](Self::solve) measures it once for both the frame and the solve).
+    fn start_at_scale(
+        &mut self,
+        objective: &dyn Objective<S>,
+        star: &S,
+        x0: S::Point,
+        scale: f64,
+    ) -> SolveState<S::Point> {
         let mut st = SolveState::begin(star, x0, scale, self.options());
         if !st.is_done() {
             self.evaluate_start(objective, star, &mut st);
@@ -363,18 +369,18 @@ pub trait Solver {
     /// Evaluates the objective at the start `st.x` into `st` (value, merit, and what the
     /// solver keeps), stopping it when that is not finite. Called by
     /// [`start_at_scale`](Self::start_at_scale) unless [`SolveState::begin`] stopped it.
-    fn evaluate_start(&mut self, objective: &dyn Objective, star: &Star, st: &mut SolveState);
+    fn evaluate_start(&mut self, objective: &dyn Objective<S>, star: &S, st: &mut SolveState<S::Point>);
     /// One iteration. Returns false once the solve has stopped (see [`SolveState::stop`]).
-    fn step(&mut self, objective: &dyn Objective, star: &Star, state: &mut SolveState) -> bool;
+    fn step(&mut self, objective: &dyn Objective<S>, star: &S, state: &mut SolveState<S::Point>) -> bool;
     /// Runs a whole solve from `x0`. A star beyond 2^±64 in size is solved in its own
     /// frame (see the module docs): positions and step lengths come back in mesh units;
     /// objective values are those of the star in its own frame, the same for every
     /// objective that is a ratio of lengths (all but `untangle` and `untangle-mindet`,
     /// whose dets are then in units of the star size squared).
-    fn solve(&mut self, objective: &dyn Objective, star: &Star, x0: DVec2) -> SolveResult {
-        let scale = star_scale(star);
+    fn solve(&mut self, objective: &dyn Objective<S>, star: &S, x0: S::Point) -> SolveResult<S::Point> {
+        let scale = star.size();
         if let Some(f) = unit_factor(scale) {
-            let scaled = scaled_star(star, f);
+            let scaled = star.scaled(f);
             let mut state = self.start(objective, &scaled, x0 * f);
             while self.step(objective, &scaled, &mut state) {}
             let mut r = state.into_result();
@@ -436,7 +442,8 @@ pub fn star_scale(star: &Star) -> f64 {
         let k = e.kind.corners();
         let s = e.slot as usize;
         // halved before summing, so that sizes near the largest double do not overflow
-        sum += 0.5 * robust_length(e.pts[(s + 1) % k] - star.x0) + 0.5 * robust_length(e.pts[(s + k - 1) % k] - star.x0);
+        sum +=
+            0.5 * robust_length(e.pts[(s + 1) % k] - star.x0) + 0.5 * robust_length(e.pts[(s + k - 1) % k] - star.x0);
         n += 2;
     }
     if n == 0 {
@@ -449,7 +456,12 @@ pub fn star_scale(star: &Star) -> f64 {
 /// Evaluates the terms of `objective` at `x` into `buf` and combines them by `goal`
 /// (through [`Objective::terms`] so the scratch buffer is reused; a NaN value reads as the
 /// worst value of the goal).
-pub(crate) fn evaluate(objective: &dyn Objective, star: &Star, x: DVec2, buf: &mut Vec<Term>) -> (f64, DVec2) {
+pub(crate) fn evaluate<S: NodeStar>(
+    objective: &dyn Objective<S>,
+    star: &S,
+    x: S::Point,
+    buf: &mut Vec<Term<S::Point>>,
+) -> (f64, S::Point) {
     buf.clear();
     objective.terms(star, x, buf);
     let goal = objective.goal();

@@ -8,7 +8,7 @@ use glam::DVec2;
 use serde::Serialize;
 
 use super::{DirectionKind, Iterate, SolveOptions, SolveState, Solver, StopReason};
-use crate::objective::{Goal, Objective, Star, Term};
+use crate::objective::{Goal, NodeStar, Objective, Point, Term};
 
 /// Where the minimum-norm point of a convex hull lies.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
@@ -19,31 +19,36 @@ pub enum HullPoint {
     Vertex(usize),
     /// Inside the segment between points `i` and `j`.
     Edge(usize, usize),
-    /// The origin is in the hull (inside a triangle of three of the points, or on a
-    /// segment): the minimum-norm point is the origin.
+    /// Inside the triangle of points `i`, `j` and `k` (in 3D only).
+    Face(usize, usize, usize),
+    /// The origin is in the hull (inside a triangle of three of the points in 2D, a
+    /// tetrahedron of four in 3D, or on a segment or face): the minimum-norm point is the
+    /// origin.
     Interior,
 }
 
 /// The minimum-norm point of the convex hull of some points, and where it lies.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]
-pub struct MinNorm {
-    pub point: DVec2,
+pub struct MinNorm<V = DVec2> {
+    pub point: V,
     pub support: HullPoint,
 }
 
 /// The minimum-norm point of the convex hull of `points` — the small quadratic program of
-/// Freitag's search direction, solved exactly in 2D.
+/// Freitag's search direction, solved exactly in 2D and in 3D.
 ///
 /// When the origin is outside the hull the answer lies on the hull's boundary, i.e. at a
-/// point or on a segment between two points: every point and the projection of the origin
-/// onto every segment are tried, and the shortest is kept. It is the true minimum iff it
-/// passes the optimality test `p·g_k ≥ |p|²` for every point `g_k` (the hull lies beyond
-/// the line through `p` normal to `p`); if that fails, the origin is inside the hull
-/// (inside a triangle of three points — in 2D no more are needed) and the answer is the
-/// origin. O(n²) in the number of points, exact for any number of them.
-pub fn min_norm_point(points: &[DVec2]) -> MinNorm {
+/// point, on a segment between two points or (in 3D) inside a triangle of three: every
+/// point and the projection of the origin onto every segment (and, in 3D, onto the plane
+/// of every triangle, when it falls inside it) are tried, and the shortest is kept. It is
+/// the true minimum iff it passes the optimality test `p·g_k ≥ |p|²` for every point `g_k`
+/// (the hull lies beyond the plane through `p` normal to `p`); if that fails, the origin
+/// is inside the hull (inside a triangle of three points in 2D, a tetrahedron of four in
+/// 3D — Carathéodory: no more are needed) and the answer is the origin. O(n²) in the
+/// number of points in 2D, O(n³) in 3D, exact for any number of them.
+pub fn min_norm_point<V: Point>(points: &[V]) -> MinNorm<V> {
     if points.is_empty() {
-        return MinNorm { point: DVec2::ZERO, support: HullPoint::Empty };
+        return MinNorm { point: V::ZERO, support: HullPoint::Empty };
     }
     let mut best = MinNorm { point: points[0], support: HullPoint::Vertex(0) };
     let mut best2 = points[0].length_squared();
@@ -65,7 +70,7 @@ pub fn min_norm_point(points: &[DVec2]) -> MinNorm {
             }
             let lambda = -a.dot(d) / dd;
             if lambda > 0.0 && lambda < 1.0 {
-                let p = a + lambda * d;
+                let p = a + d * lambda;
                 let l2 = p.length_squared();
                 if l2 < best2 {
                     best2 = l2;
@@ -74,12 +79,44 @@ pub fn min_norm_point(points: &[DVec2]) -> MinNorm {
             }
         }
     }
-    // optimality: every point on the far side of the supporting line through p
+    if V::DIM == 3 {
+        for i in 0..points.len() {
+            for j in i + 1..points.len() {
+                for k in j + 1..points.len() {
+                    if let Some(p) = origin_onto_triangle(points[i], points[j], points[k]) {
+                        let l2 = p.length_squared();
+                        if l2 < best2 {
+                            best2 = l2;
+                            best = MinNorm { point: p, support: HullPoint::Face(i, j, k) };
+                        }
+                    }
+                }
+            }
+        }
+    }
+    // optimality: every point on the far side of the supporting line (plane) through p
     let tol = 1e-12 * scale2;
     if best2 <= tol || points.iter().any(|g| best.point.dot(*g) < best2 - tol) {
-        return MinNorm { point: DVec2::ZERO, support: HullPoint::Interior };
+        return MinNorm { point: V::ZERO, support: HullPoint::Interior };
     }
     best
+}
+
+/// The projection of the origin onto the plane of the triangle `a b c`, when it falls
+/// strictly inside the triangle: `a + λ(b − a) + μ(c − a)` with the normal equations
+/// `[u·u u·v; u·v v·v][λ μ]ᵀ = −[a·u a·v]ᵀ` solved by Cramer's rule; `None` for a
+/// degenerate triangle or a projection outside it.
+fn origin_onto_triangle<V: Point>(a: V, b: V, c: V) -> Option<V> {
+    let (u, v) = (b - a, c - a);
+    let (uu, uv, vv) = (u.dot(u), u.dot(v), v.dot(v));
+    let det = uu * vv - uv * uv;
+    if det.is_nan() || det <= 1e-14 * uu * vv {
+        return None;
+    }
+    let (au, av) = (a.dot(u), a.dot(v));
+    let lambda = (-au * vv + av * uv) / det;
+    let mu = (-av * uu + au * uv) / det;
+    (lambda > 0.0 && mu > 0.0 && lambda + mu < 1.0).then(|| a + u * lambda + v * mu)
 }
 
 /// Freitag's active-set steepest ascent for `φ(x) = min_i q_i(x)` (Freitag 1997, Figure 1):
@@ -100,23 +137,28 @@ pub fn min_norm_point(points: &[DVec2]) -> MinNorm {
 /// term reads as −∞. For a [`Goal::MinimizeSum`] objective the negated sum is the one
 /// term (plain steepest descent with halving).
 #[derive(Clone, Debug, Default)]
-pub struct NonSmoothAscent {
+pub struct NonSmoothAscent<V = DVec2> {
     pub options: SolveOptions,
     /// Terms at the current point and at the trial point (swapped on acceptance).
-    terms: Vec<Term>,
-    trial: Vec<Term>,
+    terms: Vec<Term<V>>,
+    trial: Vec<Term<V>>,
     /// Active gradients.
-    active: Vec<DVec2>,
+    active: Vec<V>,
 }
 
-impl NonSmoothAscent {
+impl<V: Point> NonSmoothAscent<V> {
     pub fn new(options: SolveOptions) -> Self {
         NonSmoothAscent { options, ..Default::default() }
     }
 }
 
 /// Fills `buf` with the terms to maximise the minimum of at `x`, returning φ.
-fn max_min_terms(objective: &dyn Objective, star: &Star, x: DVec2, buf: &mut Vec<Term>) -> f64 {
+fn max_min_terms<S: NodeStar>(
+    objective: &dyn Objective<S>,
+    star: &S,
+    x: S::Point,
+    buf: &mut Vec<Term<S::Point>>,
+) -> f64 {
     buf.clear();
     objective.terms(star, x, buf);
     if objective.goal() == Goal::MinimizeSum {
@@ -138,12 +180,12 @@ fn own_value(goal: Goal, phi: f64) -> f64 {
     }
 }
 
-impl Solver for NonSmoothAscent {
+impl<S: NodeStar> Solver<S> for NonSmoothAscent<S::Point> {
     fn options(&self) -> &SolveOptions {
         &self.options
     }
 
-    fn evaluate_start(&mut self, objective: &dyn Objective, star: &Star, st: &mut SolveState) {
+    fn evaluate_start(&mut self, objective: &dyn Objective<S>, star: &S, st: &mut SolveState<S::Point>) {
         let phi = max_min_terms(objective, star, st.x, &mut self.terms);
         st.value = own_value(objective.goal(), phi);
         st.value0 = st.value;
@@ -153,7 +195,7 @@ impl Solver for NonSmoothAscent {
         }
     }
 
-    fn step(&mut self, objective: &dyn Objective, star: &Star, st: &mut SolveState) -> bool {
+    fn step(&mut self, objective: &dyn Objective<S>, star: &S, st: &mut SolveState<S::Point>) -> bool {
         if !st.may_iterate(&self.options) {
             return false;
         }
@@ -202,14 +244,14 @@ impl Solver for NonSmoothAscent {
                 st.stop = Some(StopReason::SmallStep);
                 return false;
             }
-            let p = max_min_terms(objective, star, x + alpha * s, &mut self.trial);
+            let p = max_min_terms(objective, star, x + s * alpha, &mut self.trial);
             if p > phi {
                 break p;
             }
             alpha *= 0.5;
         };
         std::mem::swap(&mut self.terms, &mut self.trial);
-        let x_new = x + alpha * s;
+        let x_new = x + s * alpha;
         st.x = x_new;
         st.merit = -phi_new;
         st.value = own_value(objective.goal(), phi_new);

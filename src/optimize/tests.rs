@@ -196,7 +196,7 @@ fn min_norm_point_cases() {
     // opposite gradients: the origin is on the segment
     let m = min_norm_point(&[d(1.0, 2.0), d(-1.0, -2.0)]);
     assert!(m.point.length() < 1e-15);
-    assert_eq!(min_norm_point(&[]).support, HullPoint::Empty);
+    assert_eq!(min_norm_point::<DVec2>(&[]).support, HullPoint::Empty);
     // many repeated and active points
     let many: Vec<_> = (0..12).map(|i| d(1.0, (i % 4) as f64 - 1.5)).collect();
     let m = min_norm_point(&many);
@@ -221,6 +221,43 @@ proptest! {
         for g in &pts {
             prop_assert!(p.length() <= g.length() + 1e-12);
         }
+    }
+}
+
+#[test]
+fn min_norm_point_in_three_dimensions() {
+    use glam::DVec3;
+    let v = DVec3::new;
+    // the origin projects inside a triangle in the plane z = 1: the nearest point is (0,0,1)
+    let tri = [v(1.0, 0.0, 1.0), v(-1.0, 1.0, 1.0), v(-1.0, -1.0, 1.0)];
+    let m = min_norm_point(&tri);
+    assert!(m.point.distance(v(0.0, 0.0, 1.0)) < 1e-15 && m.support == HullPoint::Face(0, 1, 2), "{m:?}");
+    // a fourth point below the origin closes a tetrahedron around it: optimal
+    let m = min_norm_point(&[tri[0], tri[1], tri[2], v(0.0, 0.0, -1.0)]);
+    assert_eq!((m.point, m.support), (DVec3::ZERO, HullPoint::Interior));
+    // a triangle whose plane projection falls outside it: an edge (x = 1 edge's middle)
+    let m = min_norm_point(&[v(1.0, -1.0, 0.0), v(1.0, 1.0, 0.0), v(3.0, 0.0, 2.0)]);
+    assert!(m.point.distance(v(1.0, 0.0, 0.0)) < 1e-15 && m.support == HullPoint::Edge(0, 1), "{m:?}");
+    // a vertex
+    let m = min_norm_point(&[v(0.0, 0.0, 2.0), v(1.0, 1.0, 3.0)]);
+    assert_eq!(m.support, HullPoint::Vertex(0));
+}
+
+proptest! {
+    #[test]
+    fn min_norm_point_is_the_nearest_hull_point_in_3d(
+        pts in prop::collection::vec((-3.0f64..3.0, -3.0f64..3.0, -3.0f64..3.0), 1..7),
+        w in prop::collection::vec(0.01f64..1.0, 7),
+    ) {
+        use glam::DVec3;
+        let pts: Vec<DVec3> = pts.into_iter().map(|(x, y, z)| DVec3::new(x, y, z)).collect();
+        let p = min_norm_point(&pts).point;
+        for g in &pts {
+            prop_assert!(p.dot(*g) >= p.length_squared() - 1e-9);
+        }
+        let ws: f64 = w[..pts.len()].iter().sum();
+        let combo: DVec3 = pts.iter().zip(&w).map(|(g, wi)| *g * (*wi / ws)).sum();
+        prop_assert!(p.length() <= combo.length() + 1e-9);
     }
 }
 
