@@ -35,6 +35,8 @@ pub trait Point:
     const DIM: usize;
     /// The Hessian of an objective at a position: a symmetric `DIM × DIM` matrix.
     type Hessian: Copy + Debug + PartialEq + Send + Sync;
+    /// The zero matrix.
+    const ZERO_HESSIAN: Self::Hessian;
     fn dot(self, other: Self) -> f64;
     fn length(self) -> f64;
     fn length_squared(self) -> f64;
@@ -51,6 +53,7 @@ macro_rules! point_by_glam {
             const ZERO: Self = <$v>::ZERO;
             const DIM: usize = $dim;
             type Hessian = $m;
+            const ZERO_HESSIAN: $m = <$m>::ZERO;
             #[inline]
             fn dot(self, other: Self) -> f64 {
                 <$v>::dot(self, other)

@@ -10,7 +10,7 @@ use super::*;
 
 /// The worst measures of a star (or one element) at a position.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub(crate) struct StarQuality {
+pub struct StarQuality {
     /// Smallest α (triangles) / β (quads).
     pub min_shape: f64,
     /// Smallest sine of a corner angle.
@@ -20,8 +20,10 @@ pub(crate) struct StarQuality {
 }
 
 impl StarQuality {
-    const BEST: StarQuality = StarQuality { min_shape: f64::INFINITY, min_sine: f64::INFINITY, inverted: 0 };
-    pub(super) fn measure(&self, m: Measure) -> f64 {
+    /// Nothing measured yet: every minimum +∞, nothing inverted.
+    pub const BEST: StarQuality = StarQuality { min_shape: f64::INFINITY, min_sine: f64::INFINITY, inverted: 0 };
+    /// The measure `m` of these.
+    pub fn measure(&self, m: Measure) -> f64 {
         match m {
             Measure::Shape => self.min_shape,
             Measure::MinSine => self.min_sine,

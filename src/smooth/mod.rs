@@ -18,7 +18,7 @@ use glam::DVec2;
 
 use crate::error::{Error, Result};
 use crate::mesh::Mesh;
-use crate::objective::{Objective, Star, Term};
+use crate::objective::{Objective, Point, Star, Term};
 use crate::optimize::{evaluate, SolveResult, Solvers};
 use crate::quality::mesh_stats;
 
@@ -26,29 +26,33 @@ mod guard;
 mod measure;
 mod obstacles;
 mod options;
+pub mod parallel;
 mod plan;
 mod records;
-pub mod parallel;
+mod space;
 #[cfg(test)]
 mod tests;
 
 use guard::KeepValid;
-pub(crate) use measure::{element_measures, element_shape_at, star_quality, star_shape, triangle_shape_at};
 pub(crate) use measure::is_inverted;
-use measure::is_inverted_at;
+pub(crate) use measure::triangle_shape_at;
+pub use measure::StarQuality;
+#[cfg(test)]
+pub(crate) use measure::{element_measures, element_shape_at, star_quality, star_shape};
 pub use obstacles::{untangling_obstacles, Obstacle};
 pub use options::{
     Measure, Order, SmoothOptions, Strategy, DEFAULT_MAX_ITER, DEFAULT_PASSES, DEFAULT_THRESHOLD_DEG, UNTANGLE_SWEEPS,
 };
 pub use records::{NodeOutcome, PassRecord, SweepCounts};
+pub use space::{DriverStar, FastSmart, SmoothMesh};
 
 /// Centroid of the neighbouring corner nodes of `n` (Laplacian smoothing).
-fn centroid(mesh: &Mesh, n: usize) -> Option<DVec2> {
+fn centroid<M: SmoothMesh + ?Sized>(mesh: &M, n: usize) -> Option<M::Point> {
     let nb = mesh.neighbours(n);
     if nb.is_empty() {
         return None;
     }
-    let s: DVec2 = nb.iter().map(|&m| mesh.nodes()[m as usize]).sum();
+    let s = nb.iter().fold(M::Point::ZERO, |s, &m| s + mesh.position(m as usize));
     Some(s / nb.len() as f64)
 }
 
@@ -56,14 +60,16 @@ fn centroid(mesh: &Mesh, n: usize) -> Option<DVec2> {
 /// view ([`Planar`]); a surface flattens each star into its tangent plane first
 /// ([`crate::surface`]). The drivers are generic over it, so the planar path pays nothing.
 pub(crate) trait StarView {
+    /// The mesh the drivers read (planar for a planar mesh and a surface).
+    type Mesh: SmoothMesh;
     /// The elements, topology and fixed flags.
-    fn mesh(&self) -> &Mesh;
-    /// A planar mesh in which free node `n`'s star — its elements' nodes — has its
-    /// positions now (a planar mesh: itself).
-    fn star_mesh(&mut self, n: usize) -> &Mesh;
+    fn mesh(&self) -> &Self::Mesh;
+    /// A mesh in which free node `n`'s star — its elements' nodes — has its positions
+    /// now (a planar or tetrahedral mesh: itself).
+    fn star_mesh(&mut self, n: usize) -> &Self::Mesh;
     /// Moves free node `n` to `x`, a position in the coordinates of the last
     /// [`star_mesh(n)`](Self::star_mesh); the mid-side nodes that follow it follow.
-    fn place(&mut self, n: usize, x: DVec2);
+    fn place(&mut self, n: usize, x: <Self::Mesh as SmoothMesh>::Point);
     /// Whether element `e` is inverted now.
     fn is_inverted(&self, e: usize) -> bool;
 }
@@ -72,6 +78,7 @@ pub(crate) trait StarView {
 pub(crate) struct Planar<'a>(pub &'a mut Mesh);
 
 impl StarView for Planar<'_> {
+    type Mesh = Mesh;
     #[inline]
     fn mesh(&self) -> &Mesh {
         self.0
@@ -96,6 +103,7 @@ impl StarView for Planar<'_> {
 struct Reading<'a>(&'a Mesh);
 
 impl StarView for Reading<'_> {
+    type Mesh = Mesh;
     #[inline]
     fn mesh(&self) -> &Mesh {
         self.0
@@ -114,12 +122,16 @@ impl StarView for Reading<'_> {
 
 /// A smoothing driver with its scratch buffers. One `Smoother` serves any number of passes
 /// over one mesh (or several meshes in turn); nothing is allocated per node.
+///
+/// The smoother is generic over the star it gathers ([`DriverStar`]): a planar mesh's
+/// [`Star`] (the default) or a tetrahedral mesh's ([`crate::volume`]); every strategy,
+/// order and sweep below is written once for both.
 #[derive(Clone, Debug)]
-pub struct Smoother {
+pub struct Smoother<S: DriverStar = Star> {
     options: SmoothOptions,
-    star: Star,
-    solvers: Solvers,
-    terms: Vec<Term>,
+    star: S,
+    solvers: Solvers<S>,
+    terms: Vec<Term<S::Point>>,
     /// Star quality of each node when the schedule was planned (priority order).
     quality: Vec<f64>,
     /// Free nodes, worst first.
@@ -143,14 +155,14 @@ pub struct Smoother {
     sine_threshold: f64,
 }
 
-impl Smoother {
+impl<S: DriverStar> Smoother<S> {
     /// A smoother with checked options.
     pub fn new(options: SmoothOptions) -> Result<Self> {
         options.validate()?;
         let solve = options.solve_options();
         Ok(Smoother {
             options,
-            star: Star::new(),
+            star: S::default(),
             solvers: Solvers::new(solve),
             terms: Vec::new(),
             quality: Vec::new(),
@@ -181,12 +193,287 @@ impl Smoother {
         &self.schedule
     }
 
-    fn refresh_mesh_facts(&mut self, mesh: &Mesh) {
+    fn refresh_mesh_facts(&mut self, mesh: &S::Mesh) {
         self.quadratic = mesh.has_quadratic();
-        self.curved = self.quadratic && mesh.edges().iter().any(|e| e.curved);
+        self.curved = self.quadratic && mesh.has_curved_edges();
     }
 
+    /// [`sweep`](Smoother::sweep) over any [`StarView`].
+    pub(crate) fn sweep_in<V: StarView<Mesh = S::Mesh>>(
+        &mut self,
+        view: &mut V,
+        objective: &dyn Objective<S>,
+    ) -> SweepCounts {
+        self.begin_plan(view.mesh());
+        while !self.plan_some_in(view, usize::MAX) {}
+        let schedule = std::mem::take(&mut self.schedule);
+        let mut counts = self.visit_all_in(view, &schedule, objective);
+        self.schedule = schedule;
+        while self.plan_untangle_sweep_in(view, &mut counts) {
+            let revisits = std::mem::take(&mut self.revisits);
+            let c = self.visit_all_in(view, &revisits, objective);
+            self.revisits = revisits;
+            counts.merge(c);
+        }
+        counts
+    }
 
+    pub(crate) fn visit_all_in<V: StarView<Mesh = S::Mesh>>(
+        &mut self,
+        view: &mut V,
+        order: &[u32],
+        objective: &dyn Objective<S>,
+    ) -> SweepCounts {
+        let mut c = SweepCounts::default();
+        for &n in order {
+            c.add(self.visit(view, n as usize, objective));
+        }
+        c
+    }
+
+    pub(crate) fn objective_total_in<V: StarView<Mesh = S::Mesh>>(
+        &mut self,
+        view: &mut V,
+        objective: &dyn Objective<S>,
+    ) -> f64 {
+        let mut total = 0.0;
+        for n in 0..view.mesh().node_count() {
+            if view.mesh().is_free(n) {
+                let mesh = view.star_mesh(n);
+                self.star.gather(mesh, n);
+                total += evaluate(objective, &self.star, mesh.position(n), &mut self.terms).0;
+            }
+        }
+        total
+    }
+
+    fn visit<V: StarView<Mesh = S::Mesh>>(
+        &mut self,
+        view: &mut V,
+        n: usize,
+        objective: &dyn Objective<S>,
+    ) -> NodeOutcome {
+        if n >= view.mesh().node_count() || !view.mesh().is_free(n) {
+            return NodeOutcome::default();
+        }
+        let (x, out) = self.decide(view.star_mesh(n), n, objective);
+        if out.moved {
+            view.place(n, x);
+        }
+        out
+    }
+
+    /// Where the strategy moves node `n`, without writing to the mesh: the new position
+    /// (the old one when it stays) and what happened. The node's own position is tracked
+    /// in the gathered star ([`Star::x0`], kept current by `restar`) and mid-side nodes
+    /// that follow it are moved in the star only, so a node reads nothing but its star and
+    /// its neighbours. Nodes that share no element can therefore be decided in any order,
+    /// or at once ([`crate::smooth::parallel`]), with the same results.
+    pub(crate) fn decide(&mut self, mesh: &S::Mesh, n: usize, objective: &dyn Objective<S>) -> (S::Point, NodeOutcome) {
+        let mut out = NodeOutcome::default();
+        if n >= mesh.node_count() || !mesh.is_free(n) {
+            return (S::Point::ZERO, out);
+        }
+        let x0 = mesh.position(n);
+        let mut x = x0;
+        let sine_t = self.sine_threshold;
+        match self.options.strategy {
+            Strategy::Laplace => {
+                if let Some(c) = self.laplace(mesh, n, &mut out) {
+                    x = c;
+                }
+            }
+            Strategy::Smart => match S::smart_from_mesh(mesh, n, self.options.smart_measure) {
+                Some(t) => {
+                    if let Some(c) = t.to {
+                        out.laplacian = true;
+                        x = c;
+                    }
+                }
+                None => {
+                    self.star.gather(mesh, n);
+                    self.smart(mesh, n, &mut out);
+                    x = self.star.x0();
+                }
+            },
+            Strategy::Opt => {
+                self.star.gather(mesh, n);
+                self.optimize(objective, &mut out);
+                x = self.star.x0();
+            }
+            Strategy::C1 => {
+                self.star.gather(mesh, n);
+                if self.star.quality(None).min_sine > sine_t {
+                    self.smart(mesh, n, &mut out);
+                } else {
+                    self.optimize(objective, &mut out);
+                }
+                x = self.star.x0();
+            }
+            Strategy::C2 => {
+                self.star.gather(mesh, n);
+                self.smart(mesh, n, &mut out);
+                if self.star.quality(None).min_sine <= sine_t {
+                    self.optimize(objective, &mut out);
+                }
+                x = self.star.x0();
+            }
+            Strategy::C3 => {
+                self.star.gather(mesh, n);
+                let before = self.star.quality(None);
+                if before.min_sine <= sine_t {
+                    if let Some(c) = self.laplace(mesh, n, &mut out) {
+                        self.restar(c);
+                    }
+                    if self.star.quality(None).min_sine <= sine_t {
+                        self.optimize(objective, &mut out);
+                    }
+                    // Freitag's C3 starts with the plain Laplacian, which may fold an element
+                    // or lower the star's quality (the smart Laplacian's measure), and the
+                    // optimization from there may not win it back. Like the other combined
+                    // schemes, C3 never leaves a star worse than it found it: then the node
+                    // stays where it was.
+                    let after = self.star.quality(None);
+                    let m = self.options.smart_measure;
+                    if after.inverted > before.inverted || after.measure(m) < before.measure(m) {
+                        self.restar(x0);
+                    }
+                }
+                x = self.star.x0();
+            }
+            Strategy::Rules => {
+                // rule 1 (a curved boundary node next to it) or the caller's force:
+                // optimised without trying the Laplacian
+                let forced = self.options.force_optimization || self.touches_curved_boundary(mesh, n);
+                // the smart Laplacian from the mesh where it can; the star is gathered only
+                // when the node is optimised (rule 2: an inverted element; rule 3: the smart
+                // Laplacian did not move it)
+                match (!forced).then(|| S::smart_from_mesh(mesh, n, self.options.smart_measure)).flatten() {
+                    Some(FastSmart { inverted: 0, to: Some(c) }) => {
+                        out.laplacian = true;
+                        x = c;
+                    }
+                    Some(_) => {
+                        self.star.gather(mesh, n);
+                        self.optimize(objective, &mut out);
+                        x = self.star.x0();
+                    }
+                    None => {
+                        self.star.gather(mesh, n);
+                        let optimise = forced || self.star.shape_at(self.star.x0()).1 > 0;
+                        if optimise || !self.smart(mesh, n, &mut out) {
+                            self.optimize(objective, &mut out);
+                        }
+                        x = self.star.x0();
+                    }
+                }
+            }
+        }
+        out.moved = x != x0;
+        (x, out)
+    }
+
+    /// Moves the gathered star's free node to `x` (after a move), keeping the star valid.
+    fn restar(&mut self, x: S::Point) {
+        self.star.restar(x);
+    }
+
+    /// Plain Laplacian: the centroid when the node moves there, `None` when it stays.
+    fn laplace(&mut self, mesh: &S::Mesh, n: usize, out: &mut NodeOutcome) -> Option<S::Point> {
+        match centroid(mesh, n) {
+            Some(c) if c.is_finite() && c != mesh.position(n) => {
+                out.laplacian = true;
+                Some(c)
+            }
+            _ => None,
+        }
+    }
+
+    /// Smart Laplacian on the gathered star; returns whether the node moved (the star is
+    /// moved with it). The star's quality now is measured at the star's position; at the
+    /// centroid with the mid-side nodes of straight edges following
+    /// ([`DriverStar::smart_accepts`]).
+    fn smart(&mut self, mesh: &S::Mesh, n: usize, out: &mut NodeOutcome) -> bool {
+        let Some(c) = centroid(mesh, n) else { return false };
+        if !c.is_finite() || c == self.star.x0() {
+            return false;
+        }
+        if self.star.smart_accepts(c, self.options.smart_measure) {
+            self.restar(c);
+            out.laplacian = true;
+            true
+        } else {
+            false
+        }
+    }
+
+    /// Optimization with the chosen solver on the gathered star, from the star's position.
+    /// With [`SmoothOptions::keep_valid`] the solver sees the objective through
+    /// [`KeepValid`].
+    fn optimize(&mut self, objective: &dyn Objective<S>, out: &mut NodeOutcome) {
+        let x0 = self.star.x0();
+        let guarded;
+        let objective: &dyn Objective<S> = if self.options.keep_valid {
+            // by the corner edges scaled to unit size (the gathered star is in mesh units,
+            // where a triangle's own cross products can underflow)
+            let limit = self.star.inverted_now();
+            let pass_through_folds = self.options.pass_through_folds.unwrap_or_else(|| objective.untangles());
+            guarded = KeepValid { inner: objective, limit, pass_through_folds, inversion0: std::cell::OnceCell::new() };
+            &guarded
+        } else {
+            objective
+        };
+        let r = self.solvers.get(self.options.solver, objective.goal()).solve(objective, &self.star, x0);
+        out.optimized = true;
+        out.iterations += r.iterations;
+        if r.x.is_finite() && r.x != x0 {
+            self.restar(r.x);
+        }
+    }
+
+    /// Chen's rule 1: the node, a neighbour, or a node of a star element lies on a curved
+    /// boundary edge.
+    fn touches_curved_boundary(&self, mesh: &S::Mesh, n: usize) -> bool {
+        self.curved && mesh.touches_curved_boundary(n)
+    }
+}
+
+/// The smart Laplacian's test ([`DriverStar::smart_accepts`]) on a planar star of linear
+/// triangles, read from the mesh without gathering the star: per element the two other
+/// corners, where a gathered star copies 160 bytes. The same arithmetic in the same order
+/// ([`triangle_shape_at`], what [`element_shape_at`] computes for a linear triangle), so
+/// the same answer. `None` when an element of the star is not a linear triangle, a
+/// triangle needs the general measure (squares beyond the doubles even when scaled), or
+/// the measure is not [`Measure::Shape`]: the gathered star decides then.
+fn smart_on_triangles(mesh: &Mesh, n: usize, measure: Measure) -> Option<FastSmart<DVec2>> {
+    if measure != Measure::Shape {
+        return None;
+    }
+    let x0 = mesh.nodes()[n];
+    let c = centroid(mesh, n).filter(|c| c.is_finite() && *c != x0);
+    let (mut before, mut after, mut inverted, mut folds) = (f64::INFINITY, f64::INFINITY, 0u32, false);
+    for &e in mesh.node_elements(n) {
+        let e = e as usize;
+        if mesh.kind(e) != crate::mesh::ElementKind::Tri3 {
+            return None;
+        }
+        let ids = mesh.element(e);
+        let s = ids.iter().position(|&i| i as usize == n)?;
+        let (a, b) = (mesh.nodes()[ids[(s + 1) % 3] as usize], mesh.nodes()[ids[(s + 2) % 3] as usize]);
+        let (q0, inv0) = triangle_shape_at(a, b, x0)?;
+        inverted += inv0 as u32;
+        before = before.min(q0);
+        if let Some(c) = c {
+            let (q1, inv1) = triangle_shape_at(a, b, c)?;
+            folds |= !inv0 && inv1;
+            after = after.min(q1);
+        }
+    }
+    Some(FastSmart { inverted, to: c.filter(|_| !folds && after > before) })
+}
+
+/// The planar mesh's entry points: a pass with its record, a sweep, one node.
+impl Smoother<Star> {
     /// One pass over the mesh: plan the visit order, smooth each visit, then measure.
     /// `clock` returns milliseconds (any origin); the core never reads system time.
     pub fn pass(&mut self, mesh: &mut Mesh, objective: &dyn Objective, clock: &dyn Fn() -> f64) -> PassRecord {
@@ -221,33 +508,9 @@ impl Smoother {
         self.sweep_in(&mut Planar(mesh), objective)
     }
 
-    /// [`sweep`](Self::sweep) over any [`StarView`].
-    pub(crate) fn sweep_in(&mut self, view: &mut impl StarView, objective: &dyn Objective) -> SweepCounts {
-        self.begin_plan(view.mesh());
-        while !self.plan_some_in(view, usize::MAX) {}
-        let schedule = std::mem::take(&mut self.schedule);
-        let mut counts = self.visit_all_in(view, &schedule, objective);
-        self.schedule = schedule;
-        while self.plan_untangle_sweep_in(view, &mut counts) {
-            let revisits = std::mem::take(&mut self.revisits);
-            let c = self.visit_all_in(view, &revisits, objective);
-            self.revisits = revisits;
-            counts.merge(c);
-        }
-        counts
-    }
-
     /// Visits the nodes of `order` in turn (the mesh facts must be fresh).
     pub(crate) fn visit_all(&mut self, mesh: &mut Mesh, order: &[u32], objective: &dyn Objective) -> SweepCounts {
         self.visit_all_in(&mut Planar(mesh), order, objective)
-    }
-
-    fn visit_all_in(&mut self, view: &mut impl StarView, order: &[u32], objective: &dyn Objective) -> SweepCounts {
-        let mut c = SweepCounts::default();
-        for &n in order {
-            c.add(self.visit(view, n as usize, objective));
-        }
-        c
     }
 
     /// The sum over free nodes of the node objective value (see [`PassRecord::objective_total`]).
@@ -255,281 +518,11 @@ impl Smoother {
         self.objective_total_in(&mut Reading(mesh), objective)
     }
 
-    pub(crate) fn objective_total_in(&mut self, view: &mut impl StarView, objective: &dyn Objective) -> f64 {
-        let mut total = 0.0;
-        for n in 0..view.mesh().node_count() {
-            if view.mesh().is_free(n) {
-                let mesh = view.star_mesh(n);
-                self.star.gather(mesh, n);
-                total += evaluate(objective, &self.star, mesh.nodes()[n], &mut self.terms).0;
-            }
-        }
-        total
-    }
-
     /// Smooths one node by the strategy (fixed nodes and mid-side nodes are left alone).
     pub fn smooth_node(&mut self, mesh: &mut Mesh, node: usize, objective: &dyn Objective) -> NodeOutcome {
         self.refresh_mesh_facts(mesh);
         self.visit(&mut Planar(mesh), node, objective)
     }
-
-    fn visit(&mut self, view: &mut impl StarView, n: usize, objective: &dyn Objective) -> NodeOutcome {
-        if n >= view.mesh().node_count() || !view.mesh().is_free(n) {
-            return NodeOutcome::default();
-        }
-        let (x, out) = self.decide(view.star_mesh(n), n, objective);
-        if out.moved {
-            view.place(n, x);
-        }
-        out
-    }
-
-    /// Where the strategy moves node `n`, without writing to the mesh: the new position
-    /// (the old one when it stays) and what happened. The node's own position is tracked
-    /// in the gathered star ([`Star::x0`], kept current by `restar`) and mid-side nodes
-    /// that follow it are moved in the star only, so a node reads nothing but its star and
-    /// its neighbours. Nodes that share no element can therefore be decided in any order,
-    /// or at once ([`crate::smooth::parallel`]), with the same results.
-    pub(crate) fn decide(&mut self, mesh: &Mesh, n: usize, objective: &dyn Objective) -> (DVec2, NodeOutcome) {
-        let mut out = NodeOutcome::default();
-        if n >= mesh.node_count() || !mesh.is_free(n) {
-            return (DVec2::ZERO, out);
-        }
-        let x0 = mesh.nodes()[n];
-        let mut x = x0;
-        let sine_t = self.sine_threshold;
-        match self.options.strategy {
-            Strategy::Laplace => {
-                if let Some(c) = self.laplace(mesh, n, &mut out) {
-                    x = c;
-                }
-            }
-            Strategy::Smart => match self.smart_on_triangles(mesh, n) {
-                Some(t) => {
-                    if let Some(c) = t.to {
-                        out.laplacian = true;
-                        x = c;
-                    }
-                }
-                None => {
-                    self.star.gather(mesh, n);
-                    self.smart(mesh, n, &mut out);
-                    x = self.star.x0;
-                }
-            },
-            Strategy::Opt => {
-                self.star.gather(mesh, n);
-                self.optimize(objective, &mut out);
-                x = self.star.x0;
-            }
-            Strategy::C1 => {
-                self.star.gather(mesh, n);
-                if star_quality(&self.star, None).min_sine > sine_t {
-                    self.smart(mesh, n, &mut out);
-                } else {
-                    self.optimize(objective, &mut out);
-                }
-                x = self.star.x0;
-            }
-            Strategy::C2 => {
-                self.star.gather(mesh, n);
-                self.smart(mesh, n, &mut out);
-                if star_quality(&self.star, None).min_sine <= sine_t {
-                    self.optimize(objective, &mut out);
-                }
-                x = self.star.x0;
-            }
-            Strategy::C3 => {
-                self.star.gather(mesh, n);
-                let before = star_quality(&self.star, None);
-                if before.min_sine <= sine_t {
-                    if let Some(c) = self.laplace(mesh, n, &mut out) {
-                        self.restar(c);
-                    }
-                    if star_quality(&self.star, None).min_sine <= sine_t {
-                        self.optimize(objective, &mut out);
-                    }
-                    // Freitag's C3 starts with the plain Laplacian, which may fold an element
-                    // or lower the star's quality (the smart Laplacian's measure), and the
-                    // optimization from there may not win it back. Like the other combined
-                    // schemes, C3 never leaves a star worse than it found it: then the node
-                    // stays where it was.
-                    let after = star_quality(&self.star, None);
-                    let m = self.options.smart_measure;
-                    if after.inverted > before.inverted || after.measure(m) < before.measure(m) {
-                        self.restar(x0);
-                    }
-                }
-                x = self.star.x0;
-            }
-            Strategy::Rules => {
-                // rule 1 (a curved boundary node next to it) or the caller's force:
-                // optimised without trying the Laplacian
-                let forced = self.options.force_optimization || self.touches_curved_boundary(mesh, n);
-                // the smart Laplacian from the mesh where it can; the star is gathered only
-                // when the node is optimised (rule 2: an inverted element; rule 3: the smart
-                // Laplacian did not move it)
-                match (!forced).then(|| self.smart_on_triangles(mesh, n)).flatten() {
-                    Some(TriangleSmart { inverted: 0, to: Some(c) }) => {
-                        out.laplacian = true;
-                        x = c;
-                    }
-                    Some(_) => {
-                        self.star.gather(mesh, n);
-                        self.optimize(objective, &mut out);
-                        x = self.star.x0;
-                    }
-                    None => {
-                        self.star.gather(mesh, n);
-                        let optimise = forced || star_shape(&self.star, self.star.x0).1 > 0;
-                        if optimise || !self.smart(mesh, n, &mut out) {
-                            self.optimize(objective, &mut out);
-                        }
-                        x = self.star.x0;
-                    }
-                }
-            }
-        }
-        out.moved = x != x0;
-        (x, out)
-    }
-
-    /// Moves the gathered star's free node to `x` (after a move), keeping the star valid.
-    fn restar(&mut self, x: DVec2) {
-        self.star.x0 = x;
-        for e in &mut self.star.elems {
-            e.move_free_node(x);
-        }
-    }
-
-    /// Plain Laplacian: the centroid when the node moves there, `None` when it stays.
-    fn laplace(&mut self, mesh: &Mesh, n: usize, out: &mut NodeOutcome) -> Option<DVec2> {
-        match centroid(mesh, n) {
-            Some(c) if c.is_finite() && c != mesh.nodes()[n] => {
-                out.laplacian = true;
-                Some(c)
-            }
-            _ => None,
-        }
-    }
-
-    /// The smart Laplacian's test ([`smart`](Self::smart)) on a star of linear triangles,
-    /// read from the mesh without gathering the star: per element the two other corners,
-    /// where a gathered star copies 160 bytes. The same arithmetic in the same order
-    /// ([`triangle_shape_at`], what [`element_shape_at`] computes for a linear triangle), so
-    /// the same answer. `None` when an element of the star is not a linear triangle, a
-    /// triangle needs the general measure (squares beyond the doubles even when scaled), or
-    /// the measure is not [`Measure::Shape`]: the gathered star decides then.
-    fn smart_on_triangles(&self, mesh: &Mesh, n: usize) -> Option<TriangleSmart> {
-        if self.options.smart_measure != Measure::Shape {
-            return None;
-        }
-        let x0 = mesh.nodes()[n];
-        let c = centroid(mesh, n).filter(|c| c.is_finite() && *c != x0);
-        let (mut before, mut after, mut inverted, mut folds) = (f64::INFINITY, f64::INFINITY, 0u32, false);
-        for &e in mesh.node_elements(n) {
-            let e = e as usize;
-            if mesh.kind(e) != crate::mesh::ElementKind::Tri3 {
-                return None;
-            }
-            let ids = mesh.element(e);
-            let s = ids.iter().position(|&i| i as usize == n)?;
-            let (a, b) = (mesh.nodes()[ids[(s + 1) % 3] as usize], mesh.nodes()[ids[(s + 2) % 3] as usize]);
-            let (q0, inv0) = triangle_shape_at(a, b, x0)?;
-            inverted += inv0 as u32;
-            before = before.min(q0);
-            if let Some(c) = c {
-                let (q1, inv1) = triangle_shape_at(a, b, c)?;
-                folds |= !inv0 && inv1;
-                after = after.min(q1);
-            }
-        }
-        Some(TriangleSmart { inverted, to: c.filter(|_| !folds && after > before) })
-    }
-
-    /// Smart Laplacian on the gathered star; returns whether the node moved (the star is
-    /// moved with it). The star's quality now is measured at the star's position; at the
-    /// centroid with the mid-side nodes of straight edges following.
-    fn smart(&mut self, mesh: &Mesh, n: usize, out: &mut NodeOutcome) -> bool {
-        let Some(c) = centroid(mesh, n) else { return false };
-        if !c.is_finite() || c == self.star.x0 {
-            return false;
-        }
-        let m = self.options.smart_measure;
-        let (mut before, mut after) = (f64::INFINITY, f64::INFINITY);
-        let x0 = self.star.x0;
-        for e in &self.star.elems {
-            let ((q0, inv0), (q1, inv1)) = match m {
-                Measure::Shape => (element_shape_at(e, x0), element_shape_at(e, c)),
-                Measure::MinSine => {
-                    let (q0, q1) = (element_measures(e.kind, &e.pts), element_measures(e.kind, &e.at(c)));
-                    ((q0.min_sine, q0.inverted > 0), (q1.min_sine, q1.inverted > 0))
-                }
-            };
-            if !inv0 && inv1 {
-                return false;
-            }
-            before = before.min(q0);
-            after = after.min(q1);
-        }
-        if after > before {
-            self.restar(c);
-            out.laplacian = true;
-            true
-        } else {
-            false
-        }
-    }
-
-    /// Optimization with the chosen solver on the gathered star, from the star's position.
-    /// With [`SmoothOptions::keep_valid`] the solver sees the objective through
-    /// [`KeepValid`].
-    fn optimize(&mut self, objective: &dyn Objective, out: &mut NodeOutcome) {
-        let x0 = self.star.x0;
-        let guarded;
-        let objective: &dyn Objective = if self.options.keep_valid {
-            // by the corner edges scaled to unit size (the gathered star is in mesh units,
-            // where a triangle's own cross products can underflow)
-            let limit = self.star.elems.iter().filter(|e| is_inverted(e.kind, &e.pts)).count();
-            let pass_through_folds = self.options.pass_through_folds.unwrap_or_else(|| objective.untangles());
-            guarded = KeepValid {
-                inner: objective,
-                limit,
-                pass_through_folds,
-                inversion0: std::cell::OnceCell::new(),
-            };
-            &guarded
-        } else {
-            objective
-        };
-        let r = self.solvers.get(self.options.solver, objective.goal()).solve(objective, &self.star, x0);
-        out.optimized = true;
-        out.iterations += r.iterations;
-        if r.x.is_finite() && r.x != x0 {
-            self.restar(r.x);
-        }
-    }
-
-    /// Chen's rule 1: the node, a neighbour, or a node of a star element lies on a curved
-    /// boundary edge.
-    fn touches_curved_boundary(&self, mesh: &Mesh, n: usize) -> bool {
-        self.curved
-            && (mesh.is_on_curved_boundary(n)
-                || mesh.neighbours(n).iter().any(|&m| mesh.is_on_curved_boundary(m as usize))
-                || mesh
-                    .node_elements(n)
-                    .iter()
-                    .any(|&e| mesh.element(e as usize).iter().any(|&m| mesh.is_on_curved_boundary(m as usize))))
-    }
-}
-
-
-/// What [`Smoother::smart_on_triangles`] found: the star's inverted elements at the node's
-/// position, and the centroid when the smart Laplacian moves the node there.
-#[derive(Clone, Copy, Debug, PartialEq)]
-struct TriangleSmart {
-    inverted: u32,
-    to: Option<DVec2>,
 }
 
 /// Runs `passes` passes of a new [`Smoother`] over `mesh`, returning their records.

@@ -34,9 +34,8 @@ pub fn untangling_obstacles(mesh: &Mesh) -> Vec<Obstacle> {
         let p = mesh.element_points_array(e);
         let edges = corner_edges(kind, &p);
         let fixed = |i: usize| !mesh.is_free(ids[i] as usize);
-        let coincident = (0..k)
-            .flat_map(|i| (i + 1..k).map(move |j| (i, j)))
-            .find(|&(i, j)| fixed(i) && fixed(j) && p[i] == p[j]);
+        let coincident =
+            (0..k).flat_map(|i| (i + 1..k).map(move |j| (i, j))).find(|&(i, j)| fixed(i) && fixed(j) && p[i] == p[j]);
         if let Some((i, j)) = coincident {
             if edges[..k].iter().any(|(e1, e2)| e1.perp_dot(*e2) <= 0.0) {
                 out.push(Obstacle {

@@ -317,7 +317,10 @@ mod tests {
                     .zip(b.nodes())
                     .all(|(p, q)| p.x.to_bits() == q.x.to_bits() && p.y.to_bits() == q.y.to_bits());
                 assert!(same, "{name} {strategy:?} {kind}: deferred and in-place passes differ");
-                assert!(a.nodes() != mesh.nodes(), "{name} {strategy:?} {kind}: nothing moved, the check shows nothing");
+                assert!(
+                    a.nodes() != mesh.nodes(),
+                    "{name} {strategy:?} {kind}: nothing moved, the check shows nothing"
+                );
             }
         }
     }

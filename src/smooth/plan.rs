@@ -4,7 +4,7 @@ use crate::mesh::Mesh;
 
 use super::*;
 
-impl Smoother {
+impl Smoother<Star> {
     /// Plans the visit sequence of the next pass, returns it (also kept in
     /// [`schedule`](Self::schedule)).
     ///
@@ -26,13 +26,29 @@ impl Smoother {
         &self.schedule
     }
 
+    /// Plans on from where [`begin_plan`](Self::begin_plan) or the last call left off,
+    /// measuring at most `max_stars` more stars (at least one) for the priority order.
+    /// Returns true when the schedule is complete.
+    pub fn plan_some(&mut self, mesh: &Mesh, max_stars: usize) -> bool {
+        self.plan_some_in(&mut Reading(mesh), max_stars)
+    }
+
+    /// Plans the next untangling sweep of a pass whose visits so far `counts` holds (see
+    /// [`plan_untangle_sweep_in`](Self::plan_untangle_sweep_in)). The one place that
+    /// decides, for [`sweep`](Self::sweep) and for the page's sliced pass.
+    pub fn plan_untangle_sweep(&mut self, mesh: &Mesh, counts: &mut SweepCounts) -> bool {
+        self.plan_untangle_sweep_in(&mut Reading(mesh), counts)
+    }
+}
+
+impl<S: DriverStar> Smoother<S> {
     /// Starts planning the next pass in steps: [`plan_some`](Self::plan_some) until it
     /// returns true gives the same [`schedule`](Self::schedule) as [`plan`](Self::plan),
     /// for a caller that must stay responsive (the page: measuring every star of a
     /// 1M-node mesh for the priority order takes seconds).
     /// A pass begins here: the smoother takes the facts its visits need about the mesh
     /// (quadratic elements, curved edges) now.
-    pub fn begin_plan(&mut self, mesh: &Mesh) {
+    pub fn begin_plan(&mut self, mesh: &S::Mesh) {
         self.refresh_mesh_facts(mesh);
         self.schedule.clear();
         self.sweep_moves_from = None;
@@ -44,15 +60,8 @@ impl Smoother {
         }
     }
 
-    /// Plans on from where [`begin_plan`](Self::begin_plan) or the last call left off,
-    /// measuring at most `max_stars` more stars (at least one) for the priority order.
-    /// Returns true when the schedule is complete.
-    pub fn plan_some(&mut self, mesh: &Mesh, max_stars: usize) -> bool {
-        self.plan_some_in(&mut Reading(mesh), max_stars)
-    }
-
-    /// [`plan_some`](Self::plan_some) over any [`StarView`].
-    pub(crate) fn plan_some_in(&mut self, view: &mut impl StarView, max_stars: usize) -> bool {
+    /// [`plan_some`](Smoother::plan_some) over any [`StarView`].
+    pub(crate) fn plan_some_in<V: StarView<Mesh = S::Mesh>>(&mut self, view: &mut V, max_stars: usize) -> bool {
         let n = view.mesh().node_count();
         if self.plan_next >= n {
             return true;
@@ -70,7 +79,7 @@ impl Smoother {
                     let i = self.plan_next;
                     if view.mesh().is_free(i) {
                         self.star.gather(view.star_mesh(i), i);
-                        self.quality[i] = star_shape(&self.star, self.star.x0).0;
+                        self.quality[i] = self.star.shape_at(self.star.x0()).0;
                         self.ranked.push(i as u32);
                         measured += 1;
                     }
@@ -118,14 +127,12 @@ impl Smoother {
     /// the free neighbours of its corners, worst star first (smallest α/β, ties by node
     /// number), into [`revisits`](Self::revisits), counted in `counts.untangle_sweeps`.
     /// Returns false — no sweep — when no element is inverted, the sweeps are at their
-    /// limit, the last sweep moved no node, or the strategy never optimises. The one
-    /// place that decides, for [`sweep`](Self::sweep) and for the page's sliced pass.
-    pub fn plan_untangle_sweep(&mut self, mesh: &Mesh, counts: &mut SweepCounts) -> bool {
-        self.plan_untangle_sweep_in(&mut Reading(mesh), counts)
-    }
-
-    /// [`plan_untangle_sweep`](Self::plan_untangle_sweep) over any [`StarView`].
-    pub(crate) fn plan_untangle_sweep_in(&mut self, view: &mut impl StarView, counts: &mut SweepCounts) -> bool {
+    /// limit, the last sweep moved no node, or the strategy never optimises.
+    pub(crate) fn plan_untangle_sweep_in<V: StarView<Mesh = S::Mesh>>(
+        &mut self,
+        view: &mut V,
+        counts: &mut SweepCounts,
+    ) -> bool {
         self.revisits.clear();
         let stalled = self.sweep_moves_from.is_some_and(|m| counts.moves == m);
         if stalled
@@ -138,11 +145,10 @@ impl Smoother {
         self.marked.clear();
         self.marked.resize(mesh.node_count(), false);
         for e in 0..mesh.element_count() {
-            let kind = mesh.kind(e);
             if !view.is_inverted(e) {
                 continue;
             }
-            for &c in &mesh.element(e)[..kind.corners()] {
+            for &c in mesh.element_corners(e) {
                 let c = c as usize;
                 for m in std::iter::once(c).chain(mesh.neighbours(c).iter().map(|&m| m as usize)) {
                     if mesh.is_free(m) && !self.marked[m] {
@@ -156,7 +162,7 @@ impl Smoother {
         for &n in &self.revisits {
             self.marked[n as usize] = false;
             self.star.gather(view.star_mesh(n as usize), n as usize);
-            ranked.push((star_shape(&self.star, self.star.x0).0, n));
+            ranked.push((self.star.shape_at(self.star.x0()).0, n));
         }
         ranked.sort_unstable_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
         self.revisits.clear();

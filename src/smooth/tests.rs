@@ -5,10 +5,10 @@ use proptest::prelude::prop;
 use proptest::prelude::{any, prop_assert, prop_assert_eq, proptest, ProptestConfig};
 
 use super::*;
-use crate::optimize::SolverKind;
 use crate::mesh::{ElementKind, FixedSpec, MeshBuilder};
 use crate::objective::Goal;
 use crate::optimize::test_objectives::{hexagon, ShapeMaxMin, ShapeSum};
+use crate::optimize::SolverKind;
 use crate::quality::{element_quality, mesh_stats};
 
 const NO_CLOCK: &dyn Fn() -> f64 = &|| 0.0;
@@ -439,7 +439,10 @@ fn pass_record_and_clock() {
     assert!(t.is_finite() && t < total0, "{total0} → {t}");
     assert!(r.counts.laplacian_moves + r.counts.optimization_calls > 0);
     let st = mesh_stats(&mesh);
-    assert_eq!((r.after.inverted, r.after.min_quality, r.after.min_angle_deg), (st.inverted, st.min_quality, st.min_angle_deg));
+    assert_eq!(
+        (r.after.inverted, r.after.min_quality, r.after.min_angle_deg),
+        (st.inverted, st.min_quality, st.min_angle_deg)
+    );
     let json = serde_json::to_string(&r).unwrap();
     assert!(json.contains("\"objective_total\"") && json.contains("\"solver_iterations\""), "{json}");
     assert_eq!(s.pass(&mut mesh, &ShapeSum, &clock).pass, 2);
@@ -468,11 +471,11 @@ fn solve_node_returns_history_and_names_bad_nodes() {
 #[test]
 fn bad_options_are_refused() {
     for t in [0.0, -5.0, 120.0, f64::NAN] {
-        let e = Smoother::new(SmoothOptions::default().with_threshold_deg(t)).unwrap_err().to_string();
+        let e = Smoother::<Star>::new(SmoothOptions::default().with_threshold_deg(t)).unwrap_err().to_string();
         assert!(e.contains("threshold"), "{e}");
     }
     let o = SmoothOptions { priority_bins: 0, ..Default::default() };
-    assert!(Smoother::new(o).is_err());
+    assert!(Smoother::<Star>::new(o).is_err());
 }
 
 /// Found by search: moving the centre to the centroid raises the star's worst α (an
@@ -598,7 +601,12 @@ fn untangle_untangles_random_grids_node_by_node() {
             let start = mesh_stats(&m0).inverted;
             assert!(start > 5, "{kind:?} {seed}: a tangled start ({start})");
             let mut m = m0.clone();
-            let p = passes_to_valid(&mut m, &Untangle::default(), SmoothOptions::default().with_pass_through_folds(true), 60);
+            let p = passes_to_valid(
+                &mut m,
+                &Untangle::default(),
+                SmoothOptions::default().with_pass_through_folds(true),
+                60,
+            );
             cases += 1;
             if p.is_some() {
                 untangled += 1;
@@ -671,7 +679,11 @@ fn untangling_sweeps_terminate() {
         let r = Smoother::new(opts).unwrap().pass(&mut m, &new, &|| 0.0);
         assert!(r.after.inverted > 0);
         // the free node settles within a sweep or two; then a sweep moves nothing and ends them
-        assert!(r.counts.untangle_sweeps <= limit.min(3), "{strategy:?}, limit {limit}: {} sweeps", r.counts.untangle_sweeps);
+        assert!(
+            r.counts.untangle_sweeps <= limit.min(3),
+            "{strategy:?}, limit {limit}: {} sweeps",
+            r.counts.untangle_sweeps
+        );
         assert!(limit == 0 || r.counts.untangle_sweeps >= 1);
     }
     // strategies that never optimise do not sweep
@@ -685,9 +697,8 @@ fn untangling_sweeps_terminate() {
     let r = Smoother::new(SmoothOptions::default()).unwrap().pass(&mut g, &new, &|| 0.0);
     assert_eq!((r.after.inverted, r.counts.untangle_sweeps), (0, 0));
     // and the limit is checked
-    assert!(Smoother::new(SmoothOptions::default().with_untangle_sweeps(1001)).is_err());
+    assert!(Smoother::<Star>::new(SmoothOptions::default().with_untangle_sweeps(1001)).is_err());
 }
-
 
 /// The smart Laplacian's and the priority order's shape measure of a linear triangle is the
 /// same, bit for bit, at every scale (the squares are taken in the triangle's own scale).
@@ -717,10 +728,10 @@ fn smart_from_the_mesh_decides_as_the_gathered_star() {
     let valid = rand2d(300, 12, 7).unwrap();
     let tangled = perturb(&valid, 0.5, 3).unwrap();
     for mesh in [valid, tangled] {
-        let mut s = Smoother::new(SmoothOptions::default().with_strategy(Strategy::Smart)).unwrap();
+        let mut s: Smoother = Smoother::new(SmoothOptions::default().with_strategy(Strategy::Smart)).unwrap();
         let (mut moved, mut inverted) = (0, 0);
         for n in (0..mesh.node_count()).filter(|&n| mesh.is_free(n)) {
-            let direct = s.smart_on_triangles(&mesh, n).expect("a star of linear triangles");
+            let direct = super::smart_on_triangles(&mesh, n, Measure::Shape).expect("a star of linear triangles");
             s.star.gather(&mesh, n);
             assert_eq!(direct.inverted, star_shape(&s.star, s.star.x0).1, "node {n}");
             let mut out = NodeOutcome::default();
@@ -734,6 +745,10 @@ fn smart_from_the_mesh_decides_as_the_gathered_star() {
     }
     // a quad star is not read from the mesh
     let quads = grid(3, 3, ElementKind::Quad4, &[(0.1, -0.1)], &[]);
-    let s = Smoother::new(SmoothOptions::default()).unwrap();
-    assert!((0..quads.node_count()).filter(|&n| quads.is_free(n)).all(|n| s.smart_on_triangles(&quads, n).is_none()));
+    assert!((0..quads.node_count()).filter(|&n| quads.is_free(n)).all(|n| super::smart_on_triangles(
+        &quads,
+        n,
+        Measure::Shape
+    )
+    .is_none()));
 }

@@ -113,6 +113,7 @@ impl Surface {
 }
 
 impl StarView for SurfaceView<'_> {
+    type Mesh = Mesh;
     fn mesh(&self) -> &Mesh {
         &self.surface.flat
     }

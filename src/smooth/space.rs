@@ -1,0 +1,188 @@
+//! What the drivers need of a mesh and of a free node's star, in any dimension: the
+//! planar [`Mesh`] with its [`Star`] of triangles and quads, or a tetrahedral mesh with
+//! its star of tetrahedra ([`crate::volume`]). The drivers (Laplacian, smart, opt, C1/C2/C3,
+//! rules, priority order, untangling sweeps) are written once over these two traits.
+
+use crate::mesh::Mesh;
+use crate::objective::{NodeStar, Point, Star};
+
+use super::measure::{element_measures, element_shape_at, is_inverted, is_inverted_at, star_quality, star_shape};
+use super::{Measure, StarQuality};
+
+/// A mesh as the drivers read it: free nodes, their positions and neighbours, and the
+/// elements' corners (for the untangling sweeps).
+pub trait SmoothMesh {
+    /// Where a node is: [`glam::DVec2`] or [`glam::DVec3`].
+    type Point: Point;
+    fn node_count(&self) -> usize;
+    /// A node the smoothers may move: a corner that is not fixed.
+    fn is_free(&self, n: usize) -> bool;
+    fn position(&self, n: usize) -> Self::Point;
+    /// The corner nodes that share an edge with corner `n` (Laplacian smoothing).
+    fn neighbours(&self, n: usize) -> &[u32];
+    fn element_count(&self) -> usize;
+    /// The corner nodes of element `e`.
+    fn element_corners(&self, e: usize) -> &[u32];
+    /// Whether the mesh has quadratic elements (mid-side nodes follow their corners).
+    fn has_quadratic(&self) -> bool;
+    /// Whether a quadratic mesh has curved boundary edges (Chen's rule 1). Default false.
+    fn has_curved_edges(&self) -> bool {
+        false
+    }
+    /// Chen's rule 1: node `n`, a neighbour, or a node of a star element lies on a curved
+    /// boundary edge. Default false.
+    fn touches_curved_boundary(&self, _n: usize) -> bool {
+        false
+    }
+}
+
+/// A free node's star as the drivers measure it: gathered from its mesh, moved, and
+/// measured at trial positions (the worst shape, the worst sine, inverted elements).
+pub trait DriverStar: NodeStar + Default {
+    /// The mesh it is gathered from.
+    type Mesh: SmoothMesh<Point = Self::Point>;
+    /// Fills the star of `node` from `mesh`.
+    fn gather(&mut self, mesh: &Self::Mesh, node: usize);
+    /// The free node's position now (gathered, or moved by [`restar`](Self::restar)).
+    fn x0(&self) -> Self::Point;
+    /// Moves the free node to `x` (mid-side nodes following).
+    fn restar(&mut self, x: Self::Point);
+    /// The smallest shape measure of the star with its free node at `x`, and its number
+    /// of inverted elements (the priority order, Chen's rule 2).
+    fn shape_at(&self, x: Self::Point) -> (f64, u32);
+    /// The star's worst measures with the free node where it is (`None`) or at `x`.
+    fn quality(&self, x: Option<Self::Point>) -> StarQuality;
+    /// The smart Laplacian's test (Freitag 1997): moving the free node to `c` folds no
+    /// valid element and raises the star's worst `measure`.
+    fn smart_accepts(&self, c: Self::Point, measure: Measure) -> bool;
+    /// The number of elements inverted as gathered (the validity guard's limit).
+    fn inverted_now(&self) -> usize;
+    /// The number of elements inverted with the free node at `x`.
+    fn inverted_at(&self, x: Self::Point) -> usize;
+    /// How deeply the star is inverted with the free node at `x`: the sum of the negative
+    /// parts of its corner Jacobian determinants (0 for a valid star), compared only
+    /// within one star.
+    fn inversion(&self, x: Self::Point) -> f64;
+    /// The smart Laplacian's test read straight from the mesh, where a kind of star has
+    /// such a shortcut (the planar star of linear triangles); `None` otherwise (the
+    /// default), and the gathered star decides.
+    fn smart_from_mesh(_mesh: &Self::Mesh, _n: usize, _measure: Measure) -> Option<FastSmart<Self::Point>> {
+        None
+    }
+}
+
+/// What [`DriverStar::smart_from_mesh`] found: the star's inverted elements at the node's
+/// position, and the centroid when the smart Laplacian moves the node there.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct FastSmart<P> {
+    pub inverted: u32,
+    pub to: Option<P>,
+}
+
+impl SmoothMesh for Mesh {
+    type Point = glam::DVec2;
+    #[inline]
+    fn node_count(&self) -> usize {
+        Mesh::node_count(self)
+    }
+    #[inline]
+    fn is_free(&self, n: usize) -> bool {
+        Mesh::is_free(self, n)
+    }
+    #[inline]
+    fn position(&self, n: usize) -> glam::DVec2 {
+        self.nodes()[n]
+    }
+    #[inline]
+    fn neighbours(&self, n: usize) -> &[u32] {
+        Mesh::neighbours(self, n)
+    }
+    #[inline]
+    fn element_count(&self) -> usize {
+        Mesh::element_count(self)
+    }
+    #[inline]
+    fn element_corners(&self, e: usize) -> &[u32] {
+        &self.element(e)[..self.kind(e).corners()]
+    }
+    #[inline]
+    fn has_quadratic(&self) -> bool {
+        Mesh::has_quadratic(self)
+    }
+    fn has_curved_edges(&self) -> bool {
+        self.edges().iter().any(|e| e.curved)
+    }
+    fn touches_curved_boundary(&self, n: usize) -> bool {
+        self.is_on_curved_boundary(n)
+            || Mesh::neighbours(self, n).iter().any(|&m| self.is_on_curved_boundary(m as usize))
+            || self
+                .node_elements(n)
+                .iter()
+                .any(|&e| self.element(e as usize).iter().any(|&m| self.is_on_curved_boundary(m as usize)))
+    }
+}
+
+impl DriverStar for Star {
+    type Mesh = Mesh;
+    #[inline]
+    fn gather(&mut self, mesh: &Mesh, node: usize) {
+        Star::gather(self, mesh, node)
+    }
+    #[inline]
+    fn x0(&self) -> glam::DVec2 {
+        self.x0
+    }
+    #[inline]
+    fn restar(&mut self, x: glam::DVec2) {
+        self.x0 = x;
+        for e in &mut self.elems {
+            e.move_free_node(x);
+        }
+    }
+    #[inline]
+    fn shape_at(&self, x: glam::DVec2) -> (f64, u32) {
+        star_shape(self, x)
+    }
+    #[inline]
+    fn quality(&self, x: Option<glam::DVec2>) -> StarQuality {
+        star_quality(self, x)
+    }
+    fn smart_accepts(&self, c: glam::DVec2, m: Measure) -> bool {
+        let (mut before, mut after) = (f64::INFINITY, f64::INFINITY);
+        let x0 = self.x0;
+        for e in &self.elems {
+            let ((q0, inv0), (q1, inv1)) = match m {
+                Measure::Shape => (element_shape_at(e, x0), element_shape_at(e, c)),
+                Measure::MinSine => {
+                    let (q0, q1) = (element_measures(e.kind, &e.pts), element_measures(e.kind, &e.at(c)));
+                    ((q0.min_sine, q0.inverted > 0), (q1.min_sine, q1.inverted > 0))
+                }
+            };
+            if !inv0 && inv1 {
+                return false;
+            }
+            before = before.min(q0);
+            after = after.min(q1);
+        }
+        after > before
+    }
+    fn inverted_now(&self) -> usize {
+        self.elems.iter().filter(|e| is_inverted(e.kind, &e.pts)).count()
+    }
+    fn inverted_at(&self, x: glam::DVec2) -> usize {
+        self.elems.iter().filter(|e| is_inverted_at(e, x)).count()
+    }
+    fn inversion(&self, x: glam::DVec2) -> f64 {
+        let mut t = 0.0;
+        for e in &self.elems {
+            let p = e.at(x);
+            for (e1, e2) in &crate::quality::corner_edge_vectors(e.kind, &p)[..e.kind.corners()] {
+                t += (-e1.perp_dot(*e2)).max(0.0);
+            }
+        }
+        t
+    }
+    fn smart_from_mesh(mesh: &Mesh, n: usize, measure: Measure) -> Option<FastSmart<glam::DVec2>> {
+        super::smart_on_triangles(mesh, n, measure)
+    }
+}
