@@ -41,6 +41,7 @@ mod point;
 mod sine;
 #[cfg(test)]
 pub(crate) mod testing;
+mod tet;
 mod untangle;
 
 pub use condition::{ConditionNumber, Norm, CONDITION_BARRIER};
@@ -51,6 +52,7 @@ pub use new::{
 pub use old::MaxMinShape;
 pub use point::{NodeStar, Point};
 pub use sine::MaxMinSine;
+pub use tet::{tet_objective, RegularisedMeanRatio, StarTet, TetObjective, TetStar};
 pub use untangle::{MaxMinDet, Untangle, UNTANGLE_BETA};
 
 enum_with_all! {

@@ -18,6 +18,7 @@ use serde::Serialize;
 use crate::mesh::{ElementKind, Mesh};
 
 pub mod elementary;
+pub mod tet;
 
 /// `2√3`, Lo's normalisation so an equilateral triangle has α = 1.
 pub(crate) const TWO_SQRT3: f64 = 3.464_101_615_137_754_6;
@@ -340,10 +341,9 @@ pub fn corner_edge_vectors(kind: ElementKind, p: &[DVec2]) -> [(DVec2, DVec2); 4
         let next = (i + 1) % k;
         let prev = (i + k - 1) % k;
         out[i] = match (kind.mid(i), kind.mid(prev)) {
-            (Some(m_next), Some(m_prev)) => (
-                4.0 * p[m_next] - 3.0 * p[i] - p[next],
-                4.0 * p[m_prev] - 3.0 * p[i] - p[prev],
-            ),
+            (Some(m_next), Some(m_prev)) => {
+                (4.0 * p[m_next] - 3.0 * p[i] - p[next], 4.0 * p[m_prev] - 3.0 * p[i] - p[prev])
+            }
             _ => (p[next] - p[i], p[prev] - p[i]),
         };
     }
@@ -581,7 +581,8 @@ pub fn mesh_stats_with(mesh: &Mesh, points: impl Fn(usize) -> [DVec2; 9]) -> Mes
         let kind = mesh.kind(e);
         let p = points(e);
         let hist = &mut s.angle_histogram_6deg;
-        let q = measure_element::<true, true, false>(kind, &p[..kind.node_count()], |_, _, ang| hist[angle_bin(ang)] += 1);
+        let q =
+            measure_element::<true, true, false>(kind, &p[..kind.node_count()], |_, _, ang| hist[angle_bin(ang)] += 1);
         sum += s.add(&q);
     }
     if s.elements > 0 {

@@ -1,0 +1,414 @@
+//! The objectives of one free node of a tetrahedral mesh, over its star of tetrahedra:
+//! the planar objectives carried to solids, by the same command-line names
+//! ([`ObjectiveKind`]), behind the same [`Objective`] trait, so the same solvers and
+//! drivers run them ([`tet_objective`]).
+//!
+//! | kind | goal | terms, per tetrahedron of the star |
+//! |---|---|---|
+//! | `old` | max-min | the mean ratio `q` (the 3D shape measure Chen's α generalises) |
+//! | `sine` | max-min | the signed sine of each of the six dihedral angles — Freitag 1997 |
+//! | `new` | sum | `(1 − q_δ)² + k1·η_δ²`, the mean ratio with Escobar et al.'s regularised determinant — Chen's form carried to solids |
+//! | `condition` | sum | κ², Knupp's condition number with the equilateral-tetrahedron weight |
+//! | `condition-max` | max-min | −κ |
+//! | `untangle` | sum | Knupp's `(|6V − β| − (6V − β))²`, with the planar shift β |
+//! | `untangle-mindet` | max-min | 6V, the Jacobian determinant |
+//!
+//! Every term is a function of the tetrahedron's four corners with the free node first
+//! (the star keeps each tetrahedron in an even permutation of its corners, so its volume
+//! keeps its sign: [`crate::quality::tet::with_first`]), and its gradient is analytic.
+//! The formulas, in one notation: `docs/formulas.md` §8.
+
+use glam::DVec3;
+
+use super::{Goal, NodeStar, Objective, ObjectiveKind, Term, BARRIER_EPSILON, BARRIER_WEIGHT, CONDITION_BARRIER};
+use crate::quality::tet as q3;
+
+/// One tetrahedron of a star: its corners with the free node first.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct StarTet {
+    /// Element index in the mesh.
+    pub element: u32,
+    /// The corners, the free node's first, in an even permutation of the element's order.
+    pub pts: [DVec3; 4],
+}
+
+impl StarTet {
+    /// The corners with the free node at `x`.
+    #[inline]
+    pub fn at(&self, x: DVec3) -> [DVec3; 4] {
+        let mut p = self.pts;
+        p[0] = x;
+        p
+    }
+}
+
+/// The star of a free node of a tetrahedral mesh: the tetrahedra that have it as a
+/// corner, gathered once per visit (a reusable scratch buffer, as the planar
+/// [`Star`](super::Star)).
+#[derive(Clone, Debug, Default)]
+pub struct TetStar {
+    /// The free node.
+    pub node: u32,
+    /// Its position (when gathered, then as the driver moves it).
+    pub x0: DVec3,
+    pub tets: Vec<StarTet>,
+}
+
+impl NodeStar for TetStar {
+    type Point = DVec3;
+    #[inline]
+    fn len(&self) -> usize {
+        self.tets.len()
+    }
+    /// The mean length of the edges from the free node to the other corners, at `x0`.
+    fn size(&self) -> f64 {
+        if self.tets.is_empty() {
+            return 0.0;
+        }
+        let sum: f64 = self.tets.iter().map(|t| t.pts[1..].iter().map(|p| p.distance(self.x0)).sum::<f64>()).sum();
+        sum / (3 * self.tets.len()) as f64
+    }
+    fn scaled(&self, f: f64) -> Self {
+        let mut s = self.clone();
+        s.x0 *= f;
+        for t in &mut s.tets {
+            for p in &mut t.pts {
+                *p *= f;
+            }
+        }
+        s
+    }
+}
+
+/// The objective of `kind` for tetrahedral meshes, with its default parameters.
+pub fn tet_objective(kind: ObjectiveKind) -> Box<dyn Objective<TetStar> + Send + Sync> {
+    match kind {
+        ObjectiveKind::Old => Box::new(TetObjective::MeanRatio),
+        ObjectiveKind::Sine => Box::new(TetObjective::DihedralSine),
+        ObjectiveKind::New => Box::new(TetObjective::Regularised(RegularisedMeanRatio::default())),
+        ObjectiveKind::Condition => Box::new(TetObjective::Condition),
+        ObjectiveKind::ConditionMax => Box::new(TetObjective::ConditionMax),
+        ObjectiveKind::Untangle => Box::new(TetObjective::Untangle { beta: super::UNTANGLE_BETA }),
+        ObjectiveKind::UntangleMinDet => Box::new(TetObjective::MinDet),
+    }
+}
+
+/// Chen, Tristano & Kwok's objective carried to solids: per tetrahedron
+/// `(1 − q_δ)² + k1·η_δ²` with `η_δ = ‖T‖²_F / (3·h_δ(σ)^{2/3})` and `q_δ = 1/η_δ`, where
+/// `T = A·W⁻¹` is the corner Jacobian weighted by the equilateral tetrahedron (Knupp
+/// 1999), `σ = det T` and `h_δ(σ) = (σ + √(σ² + 4δ²))/2` the regularised determinant of
+/// Escobar, Rodríguez, Montenegro, Montero & González-Yuste (2003), who state exactly this
+/// `η_δ` for tetrahedra. With δ = 0 it is the mean ratio `q` (1 for the regular
+/// tetrahedron) and a barrier (+∞ where σ ≤ 0); with δ > 0 it is finite and smooth on
+/// inverted stars and falls as a fold gets shallower, so one process untangles and
+/// smooths — the planar design ([`super::RegularisedBarrier`]) in 3D.
+///
+/// δ is set once per solve from the star as gathered, as in the plane: with `m = ε·mean|σ|`
+/// and `σ_min` the smallest σ, `δ = √(m(m − σ_min))` when `σ_min < m`, else 0 (the worst
+/// tetrahedron counts as a valid sliver of determinant `m`).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct RegularisedMeanRatio {
+    /// Weight of `η_δ²`; default the planar [`BARRIER_WEIGHT`].
+    pub k1: f64,
+    /// Fraction of the star's mean |σ| that sets δ; default the planar [`BARRIER_EPSILON`].
+    pub epsilon: f64,
+}
+
+impl Default for RegularisedMeanRatio {
+    fn default() -> Self {
+        RegularisedMeanRatio { k1: BARRIER_WEIGHT, epsilon: BARRIER_EPSILON }
+    }
+}
+
+/// The objectives of a tetrahedral star (see the module docs).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum TetObjective {
+    MeanRatio,
+    DihedralSine,
+    Regularised(RegularisedMeanRatio),
+    Condition,
+    ConditionMax,
+    Untangle { beta: f64 },
+    MinDet,
+}
+
+impl RegularisedMeanRatio {
+    /// δ of a star (see the type docs).
+    pub fn delta(&self, star: &TetStar) -> f64 {
+        if star.tets.is_empty() || self.epsilon == 0.0 {
+            return 0.0;
+        }
+        let (mut sum, mut min) = (0.0, f64::INFINITY);
+        for t in &star.tets {
+            let s = q3::WeightedJacobian::of(&t.pts).sigma;
+            sum += s.abs();
+            min = min.min(s);
+        }
+        let m = self.epsilon * sum / star.tets.len() as f64;
+        if m > 0.0 && m.is_finite() && min < m {
+            (m * (m - min)).sqrt()
+        } else {
+            0.0
+        }
+    }
+
+    /// The term of one tetrahedron with its gradient.
+    fn term(&self, p: &[DVec3; 4], delta: f64) -> (f64, DVec3) {
+        let j = q3::WeightedJacobian::of(p);
+        if j.frob2 <= 0.0 {
+            return (0.0, DVec3::ZERO); // four coincident corners: no shape to penalise
+        }
+        let (h, s) =
+            if delta == 0.0 { (j.sigma.max(0.0), j.sigma) } else { super::regularised_determinant(j.sigma, delta) };
+        if h <= 0.0 || h.is_nan() {
+            return (f64::INFINITY, DVec3::ZERO);
+        }
+        // η = F / (3 h^{2/3}); ∇ln η = ∇F/F − (2/3)·∇σ/s (dh/dσ = h/s)
+        let eta = j.frob2 / (3.0 * h.cbrt() * h.cbrt());
+        let grad_ln = j.grad_frob2 / j.frob2 - j.grad_sigma * (2.0 / (3.0 * s));
+        let q = 1.0 / eta;
+        // (1 − q)², ∇q = −q ∇ln η
+        let value = (1.0 - q) * (1.0 - q) + self.k1 * eta * eta;
+        let grad = 2.0 * (1.0 - q) * q * grad_ln + self.k1 * 2.0 * eta * eta * grad_ln;
+        (value, grad)
+    }
+}
+
+impl TetObjective {
+    fn kind(&self) -> ObjectiveKind {
+        match self {
+            TetObjective::MeanRatio => ObjectiveKind::Old,
+            TetObjective::DihedralSine => ObjectiveKind::Sine,
+            TetObjective::Regularised(_) => ObjectiveKind::New,
+            TetObjective::Condition => ObjectiveKind::Condition,
+            TetObjective::ConditionMax => ObjectiveKind::ConditionMax,
+            TetObjective::Untangle { .. } => ObjectiveKind::Untangle,
+            TetObjective::MinDet => ObjectiveKind::UntangleMinDet,
+        }
+    }
+
+    /// Calls `emit` with every term at `x`.
+    fn visit(&self, star: &TetStar, x: DVec3, mut emit: impl FnMut(Term<DVec3>)) {
+        match *self {
+            TetObjective::Regularised(r) => {
+                let delta = r.delta(star);
+                for (i, t) in star.tets.iter().enumerate() {
+                    let (value, grad) = r.term(&t.at(x), delta);
+                    emit(Term { elem: i as u32, value, grad });
+                }
+            }
+            TetObjective::MeanRatio => {
+                for (i, t) in star.tets.iter().enumerate() {
+                    let (value, grad) = q3::mean_ratio_grad0(&t.at(x));
+                    emit(Term { elem: i as u32, value, grad });
+                }
+            }
+            TetObjective::DihedralSine => {
+                for (i, t) in star.tets.iter().enumerate() {
+                    for (value, grad) in q3::dihedral_sines_grad0(&t.at(x)) {
+                        emit(Term { elem: i as u32, value, grad });
+                    }
+                }
+            }
+            TetObjective::Condition | TetObjective::ConditionMax => {
+                let max = matches!(self, TetObjective::ConditionMax);
+                for (i, t) in star.tets.iter().enumerate() {
+                    let p = t.at(x);
+                    let (kappa, g) = q3::condition_number_grad0(&p);
+                    // behind the barrier (σ ≤ 0, or κ² beyond it): a huge finite value with
+                    // zero gradient, as in the plane ([`CONDITION_BARRIER`])
+                    let valid = q3::signed_volume(&p) > 0.0 && kappa.is_finite() && kappa * kappa < CONDITION_BARRIER;
+                    let (value, grad) = match (max, valid) {
+                        (false, true) => (kappa * kappa, 2.0 * kappa * g),
+                        (false, false) => (CONDITION_BARRIER, DVec3::ZERO),
+                        (true, true) => (-kappa, -g),
+                        (true, false) => (-CONDITION_BARRIER, DVec3::ZERO),
+                    };
+                    emit(Term { elem: i as u32, value, grad });
+                }
+            }
+            TetObjective::Untangle { beta } => {
+                // β: a fraction of the star's mean |6V| as gathered, one constant per solve
+                let shift = if star.tets.is_empty() {
+                    0.0
+                } else {
+                    beta * star.tets.iter().map(|t| (6.0 * q3::signed_volume(&t.pts)).abs()).sum::<f64>()
+                        / star.tets.len() as f64
+                };
+                for (i, t) in star.tets.iter().enumerate() {
+                    let (v, g) = q3::signed_volume_grad0(&t.at(x));
+                    let (det, gdet) = (6.0 * v, 6.0 * g);
+                    let (value, grad) = if det < shift {
+                        let d = 2.0 * (shift - det);
+                        (d * d, -4.0 * d * gdet)
+                    } else {
+                        (0.0, DVec3::ZERO)
+                    };
+                    emit(Term { elem: i as u32, value, grad });
+                }
+            }
+            TetObjective::MinDet => {
+                for (i, t) in star.tets.iter().enumerate() {
+                    let (v, g) = q3::signed_volume_grad0(&t.at(x));
+                    emit(Term { elem: i as u32, value: 6.0 * v, grad: 6.0 * g });
+                }
+            }
+        }
+    }
+}
+
+impl Objective<TetStar> for TetObjective {
+    fn name(&self) -> &'static str {
+        self.kind().name()
+    }
+    fn goal(&self) -> Goal {
+        self.kind().goal()
+    }
+    fn untangles(&self) -> bool {
+        self.kind().untangles()
+    }
+    fn terms(&self, star: &TetStar, x: DVec3, out: &mut Vec<Term<DVec3>>) {
+        self.visit(star, x, |t| out.push(t));
+    }
+    fn value_and_gradient(&self, star: &TetStar, x: DVec3) -> (f64, DVec3) {
+        let mut fold = super::Fold::new(self.goal());
+        self.visit(star, x, |t| fold.add(t));
+        fold.finish()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::quality::tet::EQUILATERAL_W;
+
+    struct Lcg(u64);
+    impl Lcg {
+        fn next(&mut self) -> f64 {
+            self.0 = self.0.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+            (self.0 >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
+        }
+        fn point(&mut self) -> DVec3 {
+            DVec3::new(self.next(), self.next(), self.next())
+        }
+    }
+
+    /// A star of `n` random tetrahedra around `x0` (each with the free node first).
+    fn random_star(rng: &mut Lcg, n: usize, x0: DVec3) -> TetStar {
+        let tets = (0..n)
+            .map(|e| StarTet { element: e as u32, pts: [x0, x0 + rng.point(), x0 + rng.point(), x0 + rng.point()] })
+            .collect();
+        TetStar { node: 0, x0, tets }
+    }
+
+    /// The regular tetrahedron's star of one element: every objective at its best.
+    fn regular_star() -> TetStar {
+        let pts = [DVec3::ZERO, EQUILATERAL_W.x_axis, EQUILATERAL_W.y_axis, EQUILATERAL_W.z_axis];
+        TetStar { node: 0, x0: DVec3::ZERO, tets: vec![StarTet { element: 0, pts }] }
+    }
+
+    #[test]
+    fn values_on_the_regular_tetrahedron_by_hand() {
+        let s = regular_star();
+        let v = |k| tet_objective(k).value(&s, DVec3::ZERO);
+        // q = η = 1: (1 − 1)² + k1·1²
+        assert!((v(ObjectiveKind::New) - BARRIER_WEIGHT).abs() < 1e-13);
+        assert!((v(ObjectiveKind::Old) - 1.0).abs() < 1e-14);
+        assert!((v(ObjectiveKind::Sine) - 2.0 * 2f64.sqrt() / 3.0).abs() < 1e-14);
+        assert!((v(ObjectiveKind::Condition) - 9.0).abs() < 1e-12);
+        assert!((v(ObjectiveKind::ConditionMax) + 3.0).abs() < 1e-13);
+        assert_eq!(v(ObjectiveKind::Untangle), 0.0);
+        // 6V = 6/(6√2)
+        assert!((v(ObjectiveKind::UntangleMinDet) - 1.0 / 2f64.sqrt()).abs() < 1e-14);
+        // the regular apex is a stationary point of the smooth objectives
+        for k in [ObjectiveKind::New, ObjectiveKind::Condition] {
+            let (_, g) = tet_objective(k).value_and_gradient(&s, DVec3::ZERO);
+            // a single tetrahedron: moving the apex changes the shape, and the regular
+            // one is the best, so the gradient vanishes
+            assert!(g.length() < 1e-12, "{k}: {g}");
+        }
+    }
+
+    #[test]
+    fn gradients_agree_with_central_differences() {
+        let mut rng = Lcg(3);
+        let h = 1e-6;
+        let mut checked = 0;
+        for round in 0..80 {
+            let x0 = rng.point();
+            let star = random_star(&mut rng, 2 + round % 5, x0);
+            let tangled = star.tets.iter().any(|t| q3::signed_volume(&t.pts) <= 0.0);
+            // steep near a flat tetrahedron: away from those
+            if star.tets.iter().any(|t| q3::signed_volume(&t.pts).abs() < 0.02) {
+                continue;
+            }
+            let x = x0 + rng.point() * 0.01;
+            for k in ObjectiveKind::ALL {
+                let obj = tet_objective(k);
+                let mut terms = Vec::new();
+                obj.terms(&star, x, &mut terms);
+                for (i, t) in terms.iter().enumerate() {
+                    if t.value.abs() >= CONDITION_BARRIER || !t.value.is_finite() {
+                        continue; // behind a barrier: a constant
+                    }
+                    let term_at = |y: DVec3| {
+                        let mut v = Vec::new();
+                        obj.terms(&star, y, &mut v);
+                        v[i].value
+                    };
+                    let mut fd = DVec3::ZERO;
+                    for c in 0..3 {
+                        let mut e = DVec3::ZERO;
+                        e[c] = h;
+                        fd[c] = (term_at(x + e) - term_at(x - e)) / (2.0 * h);
+                    }
+                    let scale = t.grad.length().max(fd.length()).max(1e-3);
+                    assert!(
+                        (fd - t.grad).length() <= 2e-6 * scale,
+                        "{k} term {i} (tangled {tangled}): {} vs {fd}",
+                        t.grad
+                    );
+                    checked += 1;
+                }
+            }
+        }
+        assert!(checked > 500, "{checked}");
+    }
+
+    #[test]
+    fn new_is_finite_on_a_tangled_star_and_a_barrier_on_a_valid_one() {
+        let mut rng = Lcg(9);
+        let obj = tet_objective(ObjectiveKind::New);
+        let mut tangled_seen = 0;
+        for _ in 0..50 {
+            let x0 = rng.point();
+            let star = random_star(&mut rng, 4, x0);
+            let inverted = star.tets.iter().filter(|t| q3::signed_volume(&t.pts) <= 0.0).count();
+            let (v, g) = obj.value_and_gradient(&star, x0);
+            if inverted > 0 {
+                tangled_seen += 1;
+                assert!(v.is_finite() && g.is_finite(), "{v} {g}");
+            } else {
+                assert!(v.is_finite() && g.is_finite(), "{v} {g}");
+            }
+        }
+        assert!(tangled_seen > 10, "{tangled_seen}");
+        // a known crossing: the regular apex moved through the opposite face
+        let s = regular_star();
+        let beyond = (EQUILATERAL_W.x_axis + EQUILATERAL_W.y_axis + EQUILATERAL_W.z_axis) / 3.0 * 2.0;
+        assert_eq!(obj.value(&s, beyond), f64::INFINITY);
+    }
+
+    #[test]
+    fn scaled_star_keeps_shape_values() {
+        let mut rng = Lcg(5);
+        let star = random_star(&mut rng, 5, DVec3::new(0.1, 0.2, 0.3));
+        let f = 2f64.powi(40);
+        let big = star.scaled(f);
+        assert_eq!(big.size(), star.size() * f);
+        for k in [ObjectiveKind::New, ObjectiveKind::Old, ObjectiveKind::Sine, ObjectiveKind::Condition] {
+            let (a, b) = (tet_objective(k).value(&star, star.x0), tet_objective(k).value(&big, big.x0));
+            assert!((a - b).abs() <= 1e-12 * a.abs().max(1.0), "{k}: {a} {b}");
+        }
+    }
+}

@@ -1,0 +1,473 @@
+//! Quality of a linear tetrahedron, from its four corners: signed volume, the six
+//! dihedral angles and their sines (Freitag 1997), Knupp's condition number with the
+//! equilateral-tetrahedron weight (Knupp 1999, §3) and the mean ratio; each a pure
+//! function of the corners, with its gradient with respect to corner 0 (the free node:
+//! callers put it first by an even permutation, [`with_first`], which keeps the volume's
+//! sign).
+//!
+//! A tetrahedron `(p0, p1, p2, p3)` is valid (right-handed) when its signed volume
+//! `V = (p1 − p0)·((p2 − p0)×(p3 − p0))/6` is positive, inverted when `V ≤ 0`.
+//!
+//! The formulas, in one notation: `docs/formulas.md` §8.
+
+use glam::{DMat3, DVec3};
+
+/// The six edges in the order of [`dihedral_angles`] and [`dihedral_sines`]: 01, 02, 03,
+/// 12, 13, 23.
+pub const TET_EDGES: [[usize; 2]; 6] = [[0, 1], [0, 2], [0, 3], [1, 2], [1, 3], [2, 3]];
+
+/// The corners not on each edge of [`TET_EDGES`]: the dihedral angle at edge `ij` is the
+/// angle between the faces opposite `k` and `l`.
+const OFF_EDGE: [[usize; 2]; 6] = [[2, 3], [1, 3], [1, 2], [0, 3], [0, 2], [0, 1]];
+
+/// Knupp's ideal weight for tetrahedra (Knupp 1999, §3): the columns are the edge
+/// vectors from one corner of the regular tetrahedron of unit edge, `(1, 0, 0)`,
+/// `(1/2, √3/2, 0)`, `(1/2, √3/6, √(2/3))`, so `A·W⁻¹` takes the ideal element to the
+/// physical one.
+pub const EQUILATERAL_W: DMat3 = DMat3::from_cols_array(&[
+    1.0,
+    0.0,
+    0.0,
+    0.5,
+    0.866_025_403_784_438_6, // √3/2
+    0.0,
+    0.5,
+    0.288_675_134_594_812_9, // √3/6
+    0.816_496_580_927_726,   // √(2/3)
+]);
+
+/// `W⁻¹` of [`EQUILATERAL_W`], by hand (W is upper triangular): columns `(1, 0, 0)`,
+/// `(−1/√3, 2/√3, 0)`, `(−1/√6, −1/√6, √(3/2))`.
+pub const EQUILATERAL_W_INVERSE: DMat3 = DMat3::from_cols_array(&[
+    1.0,
+    0.0,
+    0.0,
+    -0.577_350_269_189_625_8, // −1/√3
+    1.154_700_538_379_251_5,  // 2/√3
+    0.0,
+    -0.408_248_290_463_863, // −1/√6
+    -0.408_248_290_463_863, // −1/√6
+    1.224_744_871_391_589,  // √(3/2)
+]);
+
+/// Signed volume `(p1 − p0)·((p2 − p0)×(p3 − p0))/6`: positive for a valid (right-handed)
+/// tetrahedron.
+#[inline]
+pub fn signed_volume(p: &[DVec3; 4]) -> f64 {
+    (p[1] - p[0]).dot((p[2] - p[0]).cross(p[3] - p[0])) / 6.0
+}
+
+/// Whether the tetrahedron is inverted: `V ≤ 0` (zero volume included), or its volume is
+/// not a number.
+#[inline]
+pub fn is_inverted(p: &[DVec3; 4]) -> bool {
+    signed_volume(p).is_nan() || signed_volume(p) <= 0.0
+}
+
+/// The corners with corner `i` first, by an even permutation (so the signed volume is
+/// unchanged): `(0 1 2 3)`, `(1 0 3 2)`, `(2 3 0 1)`, `(3 2 1 0)`.
+#[inline]
+pub fn with_first(p: &[DVec3; 4], i: usize) -> [DVec3; 4] {
+    const EVEN: [[usize; 4]; 4] = [[0, 1, 2, 3], [1, 0, 3, 2], [2, 3, 0, 1], [3, 2, 1, 0]];
+    EVEN[i].map(|k| p[k])
+}
+
+/// Signed volume with its gradient with respect to corner 0: `∇_{p0} V = −(p2 − p1)×(p3 − p1)/6`
+/// (V is affine in each corner).
+#[inline]
+pub fn signed_volume_grad0(p: &[DVec3; 4]) -> (f64, DVec3) {
+    (signed_volume(p), -(p[2] - p[1]).cross(p[3] - p[1]) / 6.0)
+}
+
+/// The area vector of the face opposite corner `k`, pointing out of a valid tetrahedron:
+/// half the cross product of two of its edges, ordered against the corner.
+#[inline]
+fn face_area_vector(p: &[DVec3; 4], k: usize) -> DVec3 {
+    // faces opposite 0..3, each ordered so that its normal points away from the corner
+    const FACES: [[usize; 3]; 4] = [[1, 2, 3], [0, 3, 2], [0, 1, 3], [0, 2, 1]];
+    let [a, b, c] = FACES[k];
+    0.5 * (p[b] - p[a]).cross(p[c] - p[a])
+}
+
+/// The six interior dihedral angles, radians, at the edges of [`TET_EDGES`]: at edge `ij`,
+/// `π` minus the angle between the outward normals of the faces opposite the other two
+/// corners. For an inverted tetrahedron both normals turn inward together, so the angles
+/// are those of its mirror image, in [0, π] (whether it is inverted is [`is_inverted`]'s
+/// to say). NaN where a face has no area.
+pub fn dihedral_angles(p: &[DVec3; 4]) -> [f64; 6] {
+    let n = [0, 1, 2, 3].map(|k| face_area_vector(p, k));
+    OFF_EDGE.map(|[k, l]| {
+        let c = -n[k].dot(n[l]) / (n[k].length() * n[l].length());
+        c.clamp(-1.0, 1.0).acos()
+    })
+}
+
+/// The signed sine of each dihedral angle (edges of [`TET_EDGES`]): at edge `e` between
+/// the faces of areas `A_k`, `A_l`, `sin θ_e = 3·V·|e| / (2·A_k·A_l)` (from
+/// `V = 2·A_k·A_l·sin θ_e / (3|e|)`), with the signed volume, so negative when the
+/// tetrahedron is inverted — Freitag's max-min dihedral measure, carried on through
+/// inversion. NaN where a face has no area.
+pub fn dihedral_sines(p: &[DVec3; 4]) -> [f64; 6] {
+    let v = signed_volume(p);
+    let a = [0, 1, 2, 3].map(|k| face_area_vector(p, k).length());
+    let mut s = [0.0; 6];
+    for (e, [i, j]) in TET_EDGES.iter().enumerate() {
+        let [k, l] = OFF_EDGE[e];
+        s[e] = 1.5 * v * p[*i].distance(p[*j]) / (a[k] * a[l]);
+    }
+    s
+}
+
+/// [`dihedral_sines`] with the gradient of each with respect to corner 0, by the product
+/// rule on `3V|e|/(2 A_k A_l)`: `∇V` from [`signed_volume_grad0`], `∇|e| = (p0 − pj)/|e|`
+/// on the edges at corner 0 (else 0), and `∇A = ((b − c) × n̂)/2` for a face `(p0, b, c)`
+/// with unit normal `n̂` (else 0).
+pub fn dihedral_sines_grad0(p: &[DVec3; 4]) -> [(f64, DVec3); 6] {
+    let (v, gv) = signed_volume_grad0(p);
+    const FACES: [[usize; 3]; 4] = [[1, 2, 3], [0, 3, 2], [0, 1, 3], [0, 2, 1]];
+    let mut area = [0.0; 4];
+    let mut g_area = [DVec3::ZERO; 4];
+    for k in 0..4 {
+        let n = face_area_vector(p, k);
+        let len = n.length();
+        area[k] = len;
+        if k != 0 && len > 0.0 {
+            // the face's corner 0 is first in its order (b, c the other two)
+            let [_, b, c] = FACES[k];
+            g_area[k] = 0.5 * (p[b] - p[c]).cross(n / len);
+        }
+    }
+    let mut out = [(0.0, DVec3::ZERO); 6];
+    for (e, &[i, j]) in TET_EDGES.iter().enumerate() {
+        let [k, l] = OFF_EDGE[e];
+        let len = p[i].distance(p[j]);
+        let g_len = if i == 0 && len > 0.0 { (p[0] - p[j]) / len } else { DVec3::ZERO };
+        let denom = area[k] * area[l];
+        let s = 1.5 * v * len / denom;
+        let g = 1.5 * (gv * len + v * g_len) / denom - s * (g_area[k] / area[k] + g_area[l] / area[l]);
+        out[e] = (s, g);
+    }
+    out
+}
+
+/// The weighted corner Jacobian `T = A·W⁻¹` at corner 0, `A = [p1 − p0, p2 − p0, p3 − p0]`.
+#[inline]
+fn weighted_jacobian(p: &[DVec3; 4]) -> DMat3 {
+    DMat3::from_cols(p[1] - p[0], p[2] - p[0], p[3] - p[0]) * EQUILATERAL_W_INVERSE
+}
+
+#[inline]
+fn frobenius2(m: &DMat3) -> f64 {
+    m.x_axis.length_squared() + m.y_axis.length_squared() + m.z_axis.length_squared()
+}
+
+/// The weighted corner Jacobian `T = A·W⁻¹` at corner 0 with `F = ‖T‖²_F` and `σ = det T`,
+/// and their gradients with respect to corner 0: every column of `A` moves by `−dp0`, so
+/// `∇F = −2·T·W⁻ᵀ𝟙` and `∇σ = 6∇V·det W⁻¹` ([`signed_volume_grad0`]).
+#[derive(Clone, Copy, Debug)]
+pub struct WeightedJacobian {
+    pub t: DMat3,
+    pub frob2: f64,
+    pub grad_frob2: DVec3,
+    pub sigma: f64,
+    pub grad_sigma: DVec3,
+}
+
+impl WeightedJacobian {
+    pub fn of(p: &[DVec3; 4]) -> Self {
+        let t = weighted_jacobian(p);
+        let det_w_inv = EQUILATERAL_W_INVERSE.determinant();
+        let (v, gv) = signed_volume_grad0(p);
+        WeightedJacobian {
+            t,
+            frob2: frobenius2(&t),
+            grad_frob2: -2.0 * (t * (EQUILATERAL_W_INVERSE.transpose() * DVec3::ONE)),
+            sigma: 6.0 * v * det_w_inv,
+            grad_sigma: 6.0 * gv * det_w_inv,
+        }
+    }
+}
+
+/// Knupp's condition number of the tetrahedron, `κ = ‖T‖_F·‖T⁻¹‖_F` with `T = A·W⁻¹`
+/// (Knupp 1999, §3: with the weight, the same at every corner, and `3/κ` is a shape
+/// measure): 3 for the regular tetrahedron, growing without bound as it degenerates; +∞
+/// for zero volume. An inverted tetrahedron has the κ of its mirror image: the objectives
+/// put their barrier on the sign of the volume.
+pub fn condition_number(p: &[DVec3; 4]) -> f64 {
+    let t = weighted_jacobian(p);
+    let det = t.determinant();
+    if det == 0.0 || !det.is_finite() {
+        return if det.is_nan() { f64::NAN } else { f64::INFINITY };
+    }
+    (frobenius2(&t) * frobenius2(&t.inverse())).sqrt()
+}
+
+/// `3/κ`, in [0, 1]: 1 for the regular tetrahedron, 0 for a flat one (Knupp's theorem).
+pub fn condition_shape(p: &[DVec3; 4]) -> f64 {
+    3.0 / condition_number(p)
+}
+
+/// [`condition_number`] with its gradient with respect to corner 0. With `F = ‖T‖²`,
+/// `G = ‖T⁻¹‖²`, `κ = √(FG)`: every column of `A` moves by `−dp0`, so
+/// `∇F = −2·T·W⁻ᵀ𝟙` and, with `B = A⁻¹` and `S = W·B = T⁻¹`, `∇G = 2·Bᵀ·Wᵀ·S·Bᵀ·𝟙`;
+/// `∇κ = (G∇F + F∇G)/(2κ)`. (+∞, 0) for zero volume.
+pub fn condition_number_grad0(p: &[DVec3; 4]) -> (f64, DVec3) {
+    let a = DMat3::from_cols(p[1] - p[0], p[2] - p[0], p[3] - p[0]);
+    let det = a.determinant();
+    if det == 0.0 || !det.is_finite() {
+        return (if det.is_nan() { f64::NAN } else { f64::INFINITY }, DVec3::ZERO);
+    }
+    let j = WeightedJacobian::of(p);
+    let b = a.inverse();
+    let s = EQUILATERAL_W * b;
+    let (f, g, grad_f) = (j.frob2, frobenius2(&s), j.grad_frob2);
+    let kappa = (f * g).sqrt();
+    let grad_g = 2.0 * (b.transpose() * EQUILATERAL_W.transpose() * s * b.transpose() * DVec3::ONE);
+    (kappa, (g * grad_f + f * grad_g) / (2.0 * kappa))
+}
+
+/// The mean ratio `q = 3·σ^{2/3}/‖T‖²_F` with `σ = det T`, `T = A·W⁻¹` (Liu & Joe; the
+/// inverse of Escobar et al.'s η): 1 for the regular tetrahedron, 0 for a flat one, and
+/// negative for an inverted one (`σ^{2/3}` taken as `sign(σ)·|σ|^{2/3}`), so it falls on
+/// continuously through inversion. 0 when the four corners coincide.
+pub fn mean_ratio(p: &[DVec3; 4]) -> f64 {
+    let t = weighted_jacobian(p);
+    let f = frobenius2(&t);
+    if f == 0.0 {
+        return 0.0;
+    }
+    let c = t.determinant().cbrt();
+    3.0 * c * c.abs() / f
+}
+
+/// [`mean_ratio`] with its gradient with respect to corner 0:
+/// `∇q = q·((2/3)·∇σ/σ − ∇F/F)`, `∇σ = −cof(A)𝟙·det W⁻¹` (from [`signed_volume_grad0`]:
+/// `σ = 6V·det W⁻¹`), `∇F = −2·T·W⁻ᵀ𝟙`. At σ = 0 the gradient is not finite (the
+/// measure has a vertical tangent there) and is returned as 0.
+pub fn mean_ratio_grad0(p: &[DVec3; 4]) -> (f64, DVec3) {
+    let j = WeightedJacobian::of(p);
+    if j.frob2 == 0.0 {
+        return (0.0, DVec3::ZERO);
+    }
+    let c = j.sigma.cbrt();
+    let q = 3.0 * c * c.abs() / j.frob2;
+    if j.sigma == 0.0 {
+        return (q, DVec3::ZERO);
+    }
+    (q, q * ((2.0 / 3.0) * j.grad_sigma / j.sigma - j.grad_frob2 / j.frob2))
+}
+
+/// Every measure of one tetrahedron, for statistics.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct TetMeasures {
+    pub volume: f64,
+    /// Smallest and largest dihedral angle, degrees.
+    pub min_dihedral_deg: f64,
+    pub max_dihedral_deg: f64,
+    /// Smallest signed sine of a dihedral angle.
+    pub min_sine: f64,
+    /// Knupp's κ.
+    pub condition: f64,
+    pub mean_ratio: f64,
+    pub inverted: bool,
+    /// The six dihedral angles, degrees.
+    pub dihedral_deg: [f64; 6],
+}
+
+/// [`TetMeasures`] of one tetrahedron.
+pub fn tet_measures(p: &[DVec3; 4]) -> TetMeasures {
+    let dihedral_deg = dihedral_angles(p).map(f64::to_degrees);
+    let volume = signed_volume(p);
+    TetMeasures {
+        volume,
+        min_dihedral_deg: dihedral_deg.iter().copied().fold(f64::INFINITY, f64::min),
+        max_dihedral_deg: dihedral_deg.iter().copied().fold(f64::NEG_INFINITY, f64::max),
+        min_sine: dihedral_sines(p).into_iter().fold(f64::INFINITY, f64::min),
+        condition: condition_number(p),
+        mean_ratio: mean_ratio(p),
+        inverted: volume.is_nan() || volume <= 0.0,
+        dihedral_deg,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn regular() -> [DVec3; 4] {
+        // the regular tetrahedron of unit edge, W's columns from the origin: right-handed
+        [DVec3::ZERO, EQUILATERAL_W.x_axis, EQUILATERAL_W.y_axis, EQUILATERAL_W.z_axis]
+    }
+    fn corner() -> [DVec3; 4] {
+        [DVec3::ZERO, DVec3::X, DVec3::Y, DVec3::Z]
+    }
+
+    struct Lcg(u64);
+    impl Lcg {
+        fn next(&mut self) -> f64 {
+            self.0 = self.0.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+            (self.0 >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
+        }
+        fn point(&mut self) -> DVec3 {
+            DVec3::new(self.next(), self.next(), self.next())
+        }
+    }
+
+    #[test]
+    fn w_inverse_is_the_inverse_of_w() {
+        let i = EQUILATERAL_W * EQUILATERAL_W_INVERSE;
+        assert!(i.abs_diff_eq(DMat3::IDENTITY, 1e-15), "{i}");
+        // W's columns have unit length and meet at 60°
+        for c in [EQUILATERAL_W.x_axis, EQUILATERAL_W.y_axis, EQUILATERAL_W.z_axis] {
+            assert!((c.length() - 1.0).abs() < 1e-15);
+        }
+        assert!((EQUILATERAL_W.y_axis.dot(EQUILATERAL_W.z_axis) - 0.5).abs() < 1e-15);
+    }
+
+    #[test]
+    fn the_regular_tetrahedron_by_hand() {
+        let p = regular();
+        // V = a³/(6√2)
+        assert!((signed_volume(&p) - 1.0 / (6.0 * 2f64.sqrt())).abs() < 1e-15);
+        // every dihedral angle arccos(1/3) = 70.5288°, sine 2√2/3
+        for a in dihedral_angles(&p) {
+            assert!((a - (1.0f64 / 3.0).acos()).abs() < 1e-14, "{a}");
+        }
+        for s in dihedral_sines(&p) {
+            assert!((s - 2.0 * 2f64.sqrt() / 3.0).abs() < 1e-14, "{s}");
+        }
+        // T = W·W⁻¹ = I: κ = ‖I‖‖I‖ = 3, mean ratio 3·1/3 = 1
+        assert!((condition_number(&p) - 3.0).abs() < 1e-14);
+        assert!((condition_shape(&p) - 1.0).abs() < 1e-14);
+        assert!((mean_ratio(&p) - 1.0).abs() < 1e-14);
+    }
+
+    #[test]
+    fn the_right_corner_tetrahedron_by_hand() {
+        // (0,0,0), e1, e2, e3: the faces at the origin are the coordinate planes, so the
+        // dihedral angles at edges 01, 02, 03 are 90°; at edge 12 the faces are z = 0
+        // (normal −e3) and x + y + z = 1 (normal (1,1,1)/√3): cos θ = −(−e3)·(1,1,1)/√3...
+        // the interior angle has cos θ = 1/√3, θ = 54.7356°; the same at 13 and 23.
+        let p = corner();
+        assert!((signed_volume(&p) - 1.0 / 6.0).abs() < 1e-16);
+        let a = dihedral_angles(&p);
+        for e in 0..3 {
+            assert!((a[e].to_degrees() - 90.0).abs() < 1e-12, "{a:?}");
+        }
+        for e in 3..6 {
+            assert!((a[e] - (1.0 / 3f64.sqrt()).acos()).abs() < 1e-14, "{a:?}");
+        }
+        // sines: 1 at the right angles; √(2/3) at the others (sin of arccos(1/√3))
+        let s = dihedral_sines(&p);
+        for (e, s) in s.iter().enumerate() {
+            let expected = if e < 3 { 1.0 } else { (2.0f64 / 3.0).sqrt() };
+            assert!((s - expected).abs() < 1e-14, "edge {e}: {s}");
+        }
+        // T = W⁻¹: ‖W⁻¹‖² = 1 + 1/3 + 4/3 + 1/6 + 1/6 + 3/2 = 9/2, ‖W‖² = 3,
+        // κ = √(27/2); det T = det W⁻¹ = 1/(1·(√3/2)·√(2/3)) = √2, mean ratio 3·2^{1/3}/(9/2)
+        assert!((condition_number(&p) - (27.0f64 / 2.0).sqrt()).abs() < 1e-13);
+        assert!((mean_ratio(&p) - 3.0 * 2f64.cbrt() / 4.5).abs() < 1e-14);
+    }
+
+    #[test]
+    fn flat_and_inverted_tetrahedra() {
+        let flat = [DVec3::ZERO, DVec3::X, DVec3::Y, DVec3::new(0.3, 0.3, 0.0)];
+        assert_eq!(signed_volume(&flat), 0.0);
+        assert!(is_inverted(&flat));
+        assert_eq!(condition_number(&flat), f64::INFINITY);
+        assert_eq!(mean_ratio(&flat), 0.0);
+        assert!(dihedral_sines(&flat).iter().all(|s| *s == 0.0));
+        // swapping two corners mirrors it: volume, sines and mean ratio change sign; the
+        // angles and κ are those of the mirror image
+        let p = regular();
+        let m = [p[1], p[0], p[2], p[3]];
+        assert!(signed_volume(&m) < 0.0 && is_inverted(&m));
+        assert!(dihedral_sines(&m).iter().all(|s| *s < 0.0));
+        assert!((mean_ratio(&m) + 1.0).abs() < 1e-14);
+        assert!((condition_number(&m) - 3.0).abs() < 1e-13);
+        for a in dihedral_angles(&m) {
+            assert!((a - (1.0f64 / 3.0).acos()).abs() < 1e-14);
+        }
+        // NaN in, NaN out: no panic
+        let nan = [DVec3::NAN, DVec3::X, DVec3::Y, DVec3::Z];
+        assert!(is_inverted(&nan));
+        assert!(condition_number(&nan).is_nan() && mean_ratio(&nan).is_nan());
+        let _ = (dihedral_angles(&nan), dihedral_sines_grad0(&nan), condition_number_grad0(&nan), tet_measures(&nan));
+    }
+
+    #[test]
+    fn measures_are_invariant_to_motion_scale_and_the_even_permutations() {
+        let mut rng = Lcg(7);
+        for _ in 0..50 {
+            let p = [rng.point(), rng.point(), rng.point(), rng.point()];
+            let rot = glam::DQuat::from_axis_angle(rng.point().normalize(), rng.next() * 3.0);
+            let shift = rng.point() * 10.0;
+            let moved = p.map(|x| rot * x * 3.5 + shift);
+            let rel = |a: f64, b: f64| (a - b).abs() <= 1e-10 * a.abs().max(1.0);
+            assert!(rel(condition_number(&p), condition_number(&moved)));
+            assert!(rel(mean_ratio(&p), mean_ratio(&moved)));
+            for (a, b) in dihedral_sines(&p).iter().zip(dihedral_sines(&moved)) {
+                assert!(rel(*a, b));
+            }
+            // κ and the mean ratio are the same at every corner (Knupp's theorem)
+            for i in 0..4 {
+                let q = with_first(&p, i);
+                assert_eq!(signed_volume(&q).signum(), signed_volume(&p).signum());
+                assert!((signed_volume(&q) - signed_volume(&p)).abs() <= 1e-14);
+                assert!(rel(condition_number(&q), condition_number(&p)), "corner {i}");
+                assert!(rel(mean_ratio(&q), mean_ratio(&p)), "corner {i}");
+            }
+        }
+    }
+
+    /// Central differences of `f` at corner 0 against the analytic gradient.
+    fn check(f: impl Fn(&[DVec3; 4]) -> f64, g: DVec3, p: &[DVec3; 4], what: &str) {
+        let h = 1e-6;
+        let mut fd = DVec3::ZERO;
+        for k in 0..3 {
+            let mut a = *p;
+            let mut b = *p;
+            a[0][k] += h;
+            b[0][k] -= h;
+            fd[k] = (f(&a) - f(&b)) / (2.0 * h);
+        }
+        let scale = g.length().max(fd.length()).max(1e-3);
+        assert!((fd - g).length() <= 1e-6 * scale, "{what}: analytic {g} vs differences {fd} at {p:?}");
+    }
+
+    #[test]
+    fn gradients_agree_with_central_differences() {
+        let mut rng = Lcg(11);
+        let mut inverted = 0;
+        for _ in 0..200 {
+            let p = [rng.point(), rng.point(), rng.point(), rng.point()];
+            let v = signed_volume(&p);
+            // away from the flat configurations, where the measures are steep
+            if v.abs() < 0.02 {
+                continue;
+            }
+            inverted += (v < 0.0) as u32;
+            check(signed_volume, signed_volume_grad0(&p).1, &p, "volume");
+            for (e, (s, g)) in dihedral_sines_grad0(&p).into_iter().enumerate() {
+                assert!((s - dihedral_sines(&p)[e]).abs() < 1e-14);
+                check(|q| dihedral_sines(q)[e], g, &p, "sine");
+            }
+            let (k, g) = condition_number_grad0(&p);
+            assert!((k - condition_number(&p)).abs() <= 1e-12 * k);
+            check(condition_number, g, &p, "condition number");
+            let (q, g) = mean_ratio_grad0(&p);
+            assert!((q - mean_ratio(&p)).abs() < 1e-14);
+            check(mean_ratio, g, &p, "mean ratio");
+        }
+        assert!(inverted > 20, "inverted tetrahedra checked: {inverted}");
+    }
+
+    #[test]
+    fn tet_measures_gathers_them() {
+        let m = tet_measures(&corner());
+        assert!((m.min_dihedral_deg - 54.735_610_317_245_35).abs() < 1e-10);
+        assert!((m.max_dihedral_deg - 90.0).abs() < 1e-12);
+        assert!(!m.inverted && (m.volume - 1.0 / 6.0).abs() < 1e-16);
+        assert!((m.min_sine - (2.0f64 / 3.0).sqrt()).abs() < 1e-14);
+    }
+}
