@@ -98,6 +98,7 @@ pub mod quality;
 pub mod render;
 pub mod smooth;
 pub mod surface;
+pub mod volume;
 #[cfg(target_arch = "wasm32")]
 mod wasm;
 #[cfg(target_arch = "wasm32")]

@@ -8,6 +8,7 @@
 //! [`perturb`] and [`random_grid`], made to be tangled), and its boundary nodes are fixed
 //! (the stars: every node but the centre).
 
+mod cube;
 mod grid;
 mod perturb;
 mod plate;
@@ -17,14 +18,15 @@ mod star;
 mod surface;
 mod trig;
 
+pub use cube::tet_cube;
 pub use grid::{grid, random_grid, GridKind};
-pub use perturb::perturb;
 pub(crate) use perturb::perturbation_radius;
+pub use perturb::{perturb, perturb_volume};
 pub use plate::{plate, PlateKind, PLATE_HALF_WIDTH, PLATE_HOLE_RADIUS};
 pub use prng::SplitMix64;
 pub use rand2d::rand2d;
-pub use surface::{surface, SurfaceKind, SurfaceShape, MAX_SURFACE_RESOLUTION};
 pub use star::{quadratic_star, star, QuadraticStar, StarKind, CURVED_BULGE, PUSHED_MID_HEIGHT};
+pub use surface::{surface, SurfaceKind, SurfaceShape, MAX_SURFACE_RESOLUTION};
 
 use glam::DVec2;
 

@@ -27,6 +27,24 @@ pub fn perturb(mesh: &Mesh, amount: f64, seed: u64) -> Result<Mesh> {
     Ok(out)
 }
 
+/// A copy of a tetrahedral mesh with every free node moved by a seeded random offset
+/// uniformly distributed in the ball of radius `amount × mean edge length` (mid-edge nodes
+/// follow their corners); fixed nodes never move. A structured cube perturbed by 0.5–1
+/// is Knupp's kind of tangled test mesh (Knupp 1999, §4: "randomly perturbed interior
+/// nodes"). Seeded as [`perturb`]: the free nodes draw in node order from [`SplitMix64`].
+pub fn perturb_volume(mesh: &crate::volume::TetMesh, amount: f64, seed: u64) -> Result<crate::volume::TetMesh> {
+    let radius = perturbation_radius(amount, mesh.mean_edge_length())?;
+    let mut out = mesh.clone();
+    let mut rng = SplitMix64::new(seed);
+    for n in 0..out.node_count() {
+        if out.is_free(n) {
+            out.nodes_mut()[n] += radius * rng.in_unit_ball();
+            out.follow_mid_nodes(n);
+        }
+    }
+    Ok(out)
+}
+
 /// The largest move of a perturbation of `amount` mean edge lengths (the one check of the
 /// amount, for planar meshes and surfaces).
 pub(crate) fn perturbation_radius(amount: f64, mean_edge_length: f64) -> Result<f64> {

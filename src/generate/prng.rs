@@ -46,6 +46,18 @@ impl SplitMix64 {
             }
         }
     }
+
+    /// A point uniformly distributed in the open unit ball, by rejection from the cube
+    /// `[−1, 1)³` (on average 1.91 triples of draws).
+    pub fn in_unit_ball(&mut self) -> glam::DVec3 {
+        loop {
+            let p =
+                glam::DVec3::new(2.0 * self.next_f64() - 1.0, 2.0 * self.next_f64() - 1.0, 2.0 * self.next_f64() - 1.0);
+            if p.length_squared() < 1.0 {
+                return p;
+            }
+        }
+    }
 }
 
 #[cfg(test)]

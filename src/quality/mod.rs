@@ -482,6 +482,15 @@ pub struct MeshStats {
     /// For a surface, the largest distance of a node from the reference surface.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub max_distance_from_surface: Option<f64>,
+    /// For a tetrahedral mesh ([`crate::volume`]), the number of tetrahedra (then the
+    /// angles are dihedral angles, the quality the mean ratio); absent from JSON for a
+    /// planar mesh or a surface.
+    #[serde(skip_serializing_if = "is_zero")]
+    pub tetrahedra: usize,
+}
+
+fn is_zero(n: &usize) -> bool {
+    *n == 0
 }
 
 /// Where a mesh stands, in the numbers a pass record carries (and the page's table and
@@ -547,6 +556,7 @@ impl MeshStats {
             angle_histogram_6deg: vec![0; 30],
             surface: false,
             max_distance_from_surface: None,
+            tetrahedra: 0,
         }
     }
 }

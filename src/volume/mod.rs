@@ -1,0 +1,416 @@
+//! Tetrahedral meshes: the model, its statistics, and smoothing by the planar drivers
+//! (Freitag 1997's rand3D experiments, Knupp 1999's condition number in 3D).
+//!
+//! A [`TetMesh`] holds linear (4-node) or quadratic (10-node) tetrahedra, with the
+//! adjacency the drivers read built once, flat (CSR): the tetrahedra at each corner node,
+//! each corner node's edge neighbours and, for quadratic meshes, the mid-edge nodes that
+//! follow each corner. Fixed nodes are those of the boundary faces (faces of one
+//! tetrahedron), or as the file says.
+//!
+//! The smoothers are the planar ones: [`smooth`] implements their two traits for a
+//! tetrahedral mesh and its star, so every strategy, order and objective runs unchanged.
+
+use glam::DVec3;
+
+use crate::error::{Error, Result};
+use crate::mesh::{FixedSpec, NodeRole};
+use crate::quality::tet as q3;
+
+mod smooth;
+mod stats;
+#[cfg(test)]
+mod tests;
+
+pub use smooth::{smooth_volume, VolumeSmoother};
+pub use stats::volume_stats;
+
+/// The node order of a 10-node tetrahedron (VTK's `QUADRATIC_TETRA`): corners 0–3, then
+/// the middle nodes of the edges (0,1), (1,2), (0,2), (0,3), (1,3), (2,3).
+pub const TET10_EDGES: [[usize; 2]; 6] = [[0, 1], [1, 2], [0, 2], [0, 3], [1, 3], [2, 3]];
+
+/// Linear or quadratic tetrahedra (one kind per mesh).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize)]
+pub enum TetOrder {
+    /// 4 corner nodes.
+    Linear,
+    /// 4 corners and 6 mid-edge nodes ([`TET10_EDGES`]).
+    Quadratic,
+}
+
+impl TetOrder {
+    /// Nodes per tetrahedron: 4 or 10.
+    pub fn nodes(self) -> usize {
+        match self {
+            TetOrder::Linear => 4,
+            TetOrder::Quadratic => 10,
+        }
+    }
+}
+
+/// What a reader found, before it is checked: nodes and tetrahedra with their file lines
+/// (0 where none), and how the fixed flags are decided.
+#[derive(Clone, Debug)]
+pub struct TetParts {
+    pub nodes: Vec<DVec3>,
+    pub node_lines: Vec<u32>,
+    pub order: TetOrder,
+    /// Node ids, [`TetOrder::nodes`] per tetrahedron.
+    pub elements: Vec<u32>,
+    pub element_lines: Vec<u32>,
+    pub fixed: FixedSpec,
+}
+
+/// A mesh of tetrahedra (see the module docs).
+#[derive(Clone, Debug)]
+pub struct TetMesh {
+    nodes: Vec<DVec3>,
+    order: TetOrder,
+    elements: Vec<u32>,
+    fixed: Vec<bool>,
+    role: Vec<NodeRole>,
+    /// CSR: the tetrahedra with node n as a corner.
+    tet_start: Vec<u32>,
+    tets: Vec<u32>,
+    /// CSR: the corner nodes sharing an edge with corner n.
+    nb_start: Vec<u32>,
+    nb: Vec<u32>,
+    /// CSR (quadratic meshes): the (mid node, other end) of every edge at corner n.
+    follow_start: Vec<u32>,
+    follow: Vec<[u32; 2]>,
+    /// Faces of one tetrahedron, outward (right-handed seen from outside).
+    boundary: Vec<[u32; 3]>,
+}
+
+/// Faces of a tetrahedron by local corners, each ordered so that its normal points away
+/// from the opposite corner of a valid tetrahedron.
+const FACES: [[usize; 3]; 4] = [[1, 2, 3], [0, 3, 2], [0, 1, 3], [0, 2, 1]];
+
+/// Builds CSR arrays from (key, value) pairs over `n` keys.
+fn csr(n: usize, pairs: &mut [(u32, u32)]) -> (Vec<u32>, Vec<u32>) {
+    pairs.sort_unstable();
+    let mut start = vec![0u32; n + 1];
+    for &(k, _) in pairs.iter() {
+        start[k as usize + 1] += 1;
+    }
+    for i in 0..n {
+        start[i + 1] += start[i];
+    }
+    (start, pairs.iter().map(|&(_, v)| v).collect())
+}
+
+impl TetMesh {
+    /// Checks what a reader found and builds the mesh. Errors name the node or element
+    /// and its file line: no tetrahedra, a coordinate that is not a finite number (or too
+    /// large to compute with), a node id out of range, a node repeated in a tetrahedron,
+    /// a node that is a corner of one tetrahedron and a mid-edge node of another, a
+    /// tetrahedron without volume, a face of more than two tetrahedra. A mesh given
+    /// left-handed (negative total volume) is turned over, every tetrahedron with it;
+    /// single inverted tetrahedra stay (a tangled mesh is the smoothers' input).
+    pub fn build(parts: TetParts) -> Result<TetMesh> {
+        let TetParts { nodes, node_lines, order, mut elements, element_lines, fixed } = parts;
+        let k = order.nodes();
+        let line = |lines: &[u32], i: usize| lines.get(i).copied().filter(|&l| l > 0).map(|l| l as usize);
+        if elements.is_empty() {
+            return Err(Error::Empty("the mesh has no tetrahedra".into()));
+        }
+        debug_assert_eq!(elements.len() % k, 0);
+        for (i, p) in nodes.iter().enumerate() {
+            if !p.is_finite() {
+                return Err(Error::node(i, line(&node_lines, i), format!("coordinate {p} is not a finite number")));
+            }
+            if p.abs().max_element() > crate::mesh::MAX_COORDINATE {
+                return Err(Error::node(
+                    i,
+                    line(&node_lines, i),
+                    format!("coordinate {p} is too large to compute with"),
+                ));
+            }
+        }
+        let n = nodes.len();
+        let count = elements.len() / k;
+        let mut role = vec![NodeRole::Unused; n];
+        for e in 0..count {
+            let ids = &elements[e * k..(e + 1) * k];
+            for (j, &id) in ids.iter().enumerate() {
+                if id as usize >= n {
+                    return Err(Error::element(
+                        e,
+                        line(&element_lines, e),
+                        format!("node {id} does not exist: the mesh has {n} nodes (0 to {})", n.saturating_sub(1)),
+                    ));
+                }
+                if ids[..j].contains(&id) {
+                    return Err(Error::element(
+                        e,
+                        line(&element_lines, e),
+                        format!("node {id} appears twice in the tetrahedron"),
+                    ));
+                }
+            }
+        }
+        for e in 0..count {
+            for (j, &id) in elements[e * k..(e + 1) * k].iter().enumerate() {
+                let r = if j < 4 { NodeRole::Corner } else { NodeRole::Mid };
+                match (role[id as usize], r) {
+                    (NodeRole::Unused, r) => role[id as usize] = r,
+                    (a, b) if a != b => {
+                        return Err(Error::element(
+                            e,
+                            line(&element_lines, e),
+                            format!("node {id} is a corner of one tetrahedron and a mid-edge node of another"),
+                        ))
+                    }
+                    _ => {}
+                }
+            }
+        }
+        // volume, in units of each tetrahedron's own size, and the whole mesh's handedness
+        let corners = |els: &[u32], e: usize| [0, 1, 2, 3].map(|j| nodes[els[e * k + j] as usize]);
+        let mut total = 0.0;
+        for e in 0..count {
+            let p = corners(&elements, e);
+            let v = q3::signed_volume(&p);
+            let size = q3::TET_EDGES.iter().map(|&[a, b]| p[a].distance(p[b])).sum::<f64>() / 6.0;
+            if v.abs() <= 1e-12 * size * size * size || v.is_nan() {
+                return Err(Error::element(
+                    e,
+                    line(&element_lines, e),
+                    "the tetrahedron has no volume: its four corners lie in a plane",
+                ));
+            }
+            total += v / (size * size * size);
+        }
+        if total < 0.0 {
+            for e in 0..count {
+                let t = &mut elements[e * k..(e + 1) * k];
+                t.swap(1, 2);
+                if k == 10 {
+                    // edges (0,1)↔(0,2) and (1,3)↔(2,3); (1,2) and (0,3) stay
+                    t.swap(4, 6);
+                    t.swap(8, 9);
+                }
+            }
+        }
+        // faces: boundary (one tetrahedron) or shared (two); more is not a manifold
+        let mut faces: Vec<([u32; 3], u32, u8)> = Vec::with_capacity(4 * count);
+        for e in 0..count {
+            for (f, loc) in FACES.iter().enumerate() {
+                let mut key = loc.map(|j| elements[e * k + j]);
+                key.sort_unstable();
+                faces.push((key, e as u32, f as u8));
+            }
+        }
+        faces.sort_unstable();
+        let mut boundary = Vec::new();
+        let mut i = 0;
+        while i < faces.len() {
+            let mut j = i + 1;
+            while j < faces.len() && faces[j].0 == faces[i].0 {
+                j += 1;
+            }
+            if j - i > 2 {
+                let e = faces[i + 2].1 as usize;
+                return Err(Error::element(
+                    e,
+                    line(&element_lines, e),
+                    format!("its face {:?} is a face of {} tetrahedra (at most two share a face)", faces[i].0, j - i),
+                ));
+            }
+            if j - i == 1 {
+                let (_, e, f) = faces[i];
+                boundary.push(FACES[f as usize].map(|c| elements[e as usize * k + c]));
+            }
+            i = j;
+        }
+        // fixed flags
+        let mut on_boundary = vec![false; n];
+        for f in &boundary {
+            for &c in f {
+                on_boundary[c as usize] = true;
+            }
+        }
+        if k == 10 {
+            // a mid-edge node is on the boundary when both ends of its edge are on a
+            // boundary face together
+            let mut edge_on_boundary = std::collections::HashSet::new();
+            for f in &boundary {
+                for (a, b) in [(f[0], f[1]), (f[1], f[2]), (f[2], f[0])] {
+                    edge_on_boundary.insert((a.min(b), a.max(b)));
+                }
+            }
+            for e in 0..count {
+                let t = &elements[e * k..(e + 1) * k];
+                for (m, &[a, b]) in TET10_EDGES.iter().enumerate() {
+                    let (a, b) = (t[a], t[b]);
+                    if edge_on_boundary.contains(&(a.min(b), a.max(b))) {
+                        on_boundary[t[4 + m] as usize] = true;
+                    }
+                }
+            }
+        }
+        let mut fixed = match fixed {
+            FixedSpec::Boundary => on_boundary,
+            FixedSpec::Exact(f) => f,
+            FixedSpec::BoundaryAnd(f) => on_boundary.iter().zip(&f).map(|(a, b)| *a || *b).collect(),
+        };
+        fixed.resize(n, false);
+        for (f, r) in fixed.iter_mut().zip(&role) {
+            *f |= *r == NodeRole::Unused;
+        }
+        // adjacency, flat
+        let mut pairs: Vec<(u32, u32)> = Vec::with_capacity(4 * count);
+        for e in 0..count {
+            for j in 0..4 {
+                pairs.push((elements[e * k + j], e as u32));
+            }
+        }
+        let (tet_start, tets) = csr(n, &mut pairs);
+        pairs.clear();
+        for e in 0..count {
+            for &[a, b] in &q3::TET_EDGES {
+                let (a, b) = (elements[e * k + a], elements[e * k + b]);
+                pairs.push((a, b));
+                pairs.push((b, a));
+            }
+        }
+        pairs.sort_unstable();
+        pairs.dedup();
+        let (nb_start, nb) = csr(n, &mut pairs);
+        let (mut follow_start, mut follow) = (vec![0u32; n + 1], Vec::new());
+        if k == 10 {
+            let mut triples: Vec<(u32, u32, u32)> = Vec::with_capacity(12 * count);
+            for e in 0..count {
+                let t = &elements[e * k..(e + 1) * k];
+                for (m, &[a, b]) in TET10_EDGES.iter().enumerate() {
+                    triples.push((t[a], t[4 + m], t[b]));
+                    triples.push((t[b], t[4 + m], t[a]));
+                }
+            }
+            triples.sort_unstable();
+            triples.dedup();
+            for &(c, _, _) in &triples {
+                follow_start[c as usize + 1] += 1;
+            }
+            for i in 0..n {
+                follow_start[i + 1] += follow_start[i];
+            }
+            follow = triples.iter().map(|&(_, m, o)| [m, o]).collect();
+        }
+        Ok(TetMesh {
+            nodes,
+            order,
+            elements,
+            fixed,
+            role,
+            tet_start,
+            tets,
+            nb_start,
+            nb,
+            follow_start,
+            follow,
+            boundary,
+        })
+    }
+
+    /// A linear mesh from points and tetrahedra (generators), boundary nodes fixed.
+    pub fn from_tets(nodes: Vec<DVec3>, tets: &[[u32; 4]]) -> Result<TetMesh> {
+        TetMesh::build(TetParts {
+            node_lines: Vec::new(),
+            nodes,
+            order: TetOrder::Linear,
+            elements: tets.iter().flatten().copied().collect(),
+            element_lines: Vec::new(),
+            fixed: FixedSpec::Boundary,
+        })
+    }
+
+    pub fn node_count(&self) -> usize {
+        self.nodes.len()
+    }
+    pub fn element_count(&self) -> usize {
+        self.elements.len() / self.order.nodes()
+    }
+    pub fn order(&self) -> TetOrder {
+        self.order
+    }
+    pub fn is_quadratic(&self) -> bool {
+        self.order == TetOrder::Quadratic
+    }
+    pub fn nodes(&self) -> &[DVec3] {
+        &self.nodes
+    }
+    /// The positions, to move nodes (the smoothers' `place`).
+    pub fn nodes_mut(&mut self) -> &mut [DVec3] {
+        &mut self.nodes
+    }
+    /// The node ids of tetrahedron `e`: 4, or 10 in [`TET10_EDGES`]' order.
+    pub fn element(&self, e: usize) -> &[u32] {
+        let k = self.order.nodes();
+        &self.elements[e * k..(e + 1) * k]
+    }
+    /// The corners of tetrahedron `e`.
+    pub fn corners(&self, e: usize) -> [DVec3; 4] {
+        let ids = self.element(e);
+        [0, 1, 2, 3].map(|j| self.nodes[ids[j] as usize])
+    }
+    pub fn fixed(&self) -> &[bool] {
+        &self.fixed
+    }
+    pub fn role(&self, n: usize) -> NodeRole {
+        self.role[n]
+    }
+    /// A node the smoothers may move: a corner that is not fixed.
+    pub fn is_free(&self, n: usize) -> bool {
+        !self.fixed[n] && self.role[n] == NodeRole::Corner
+    }
+    pub fn free_count(&self) -> usize {
+        (0..self.node_count()).filter(|&n| self.is_free(n)).count()
+    }
+    /// The tetrahedra with corner `n`.
+    pub fn node_tets(&self, n: usize) -> &[u32] {
+        &self.tets[self.tet_start[n] as usize..self.tet_start[n + 1] as usize]
+    }
+    /// The corner nodes sharing an edge with corner `n`.
+    pub fn neighbours(&self, n: usize) -> &[u32] {
+        &self.nb[self.nb_start[n] as usize..self.nb_start[n + 1] as usize]
+    }
+    /// The boundary faces (faces of one tetrahedron), outward.
+    pub fn boundary_faces(&self) -> &[[u32; 3]] {
+        &self.boundary
+    }
+    /// Puts the mid-edge nodes of corner `n`'s edges that are not fixed at their edges'
+    /// middles (after `n` moved). Nothing for a linear mesh.
+    pub fn follow_mid_nodes(&mut self, n: usize) {
+        for i in self.follow_start[n] as usize..self.follow_start[n + 1] as usize {
+            let [m, o] = self.follow[i];
+            if !self.fixed[m as usize] {
+                self.nodes[m as usize] = 0.5 * (self.nodes[n] + self.nodes[o as usize]);
+            }
+        }
+    }
+    /// The mean length of the tetrahedra's edges (each edge counted once per tetrahedron
+    /// it belongs to); 0 for an empty mesh.
+    pub fn mean_edge_length(&self) -> f64 {
+        let count = self.element_count();
+        if count == 0 {
+            return 0.0;
+        }
+        let sum: f64 = (0..count)
+            .map(|e| {
+                let p = self.corners(e);
+                q3::TET_EDGES.iter().map(|&[a, b]| p[a].distance(p[b])).sum::<f64>()
+            })
+            .sum();
+        sum / (6 * count) as f64
+    }
+    /// The length of the bounding box's diagonal.
+    pub fn size(&self) -> f64 {
+        let (lo, hi) =
+            self.nodes.iter().fold((DVec3::INFINITY, DVec3::NEG_INFINITY), |(l, h), p| (l.min(*p), h.max(*p)));
+        if self.nodes.is_empty() {
+            0.0
+        } else {
+            lo.distance(hi)
+        }
+    }
+}

@@ -1,0 +1,179 @@
+use glam::DVec3;
+
+use super::*;
+use crate::error::Error;
+use crate::generate::tet_cube;
+
+#[test]
+fn a_cube_of_six_tetrahedra_by_hand() {
+    let m = tet_cube(1).unwrap();
+    assert_eq!((m.node_count(), m.element_count()), (8, 6));
+    // every corner of the cube is on the boundary: nothing to smooth
+    assert_eq!(m.free_count(), 0);
+    // 12 boundary triangles (2 per cube face), total volume 1, all positive
+    assert_eq!(m.boundary_faces().len(), 12);
+    let v: f64 = (0..6).map(|e| q3::signed_volume(&m.corners(e))).sum();
+    assert!((v - 1.0).abs() < 1e-15);
+    assert!((0..6).all(|e| q3::signed_volume(&m.corners(e)) > 0.0));
+    // Kuhn's six share the main diagonal 0–7: those two nodes are in every tetrahedron
+    // and are neighbours of all others
+    assert_eq!(m.node_tets(0).len(), 6);
+    assert_eq!(m.node_tets(7).len(), 6);
+    assert_eq!(m.neighbours(0), &[1, 2, 3, 4, 5, 6, 7]);
+    // a cube corner off the diagonal (1 = x) is in the two tetrahedra of the paths
+    // x→xy and x→xz, with neighbours 0, 3 (xy), 5 (xz) and 7
+    assert_eq!(m.node_tets(1).len(), 2);
+    assert_eq!(m.neighbours(1), &[0, 3, 5, 7]);
+}
+
+#[test]
+fn a_grid_of_two_cubes_a_side_has_one_free_node() {
+    let m = tet_cube(2).unwrap();
+    assert_eq!((m.node_count(), m.element_count()), (27, 48));
+    let free: Vec<usize> = (0..27).filter(|&n| m.is_free(n)).collect();
+    assert_eq!(free, vec![13]); // the centre (1,1,1) of the 3×3×3 lattice
+    assert_eq!(m.nodes()[13], DVec3::splat(0.5));
+    assert_eq!(m.boundary_faces().len(), 6 * 8);
+    // the boundary faces point outward: their area vectors sum to zero, and each one's
+    // normal points away from the centre
+    for f in m.boundary_faces() {
+        let [a, b, c] = f.map(|i| m.nodes()[i as usize]);
+        let n = (b - a).cross(c - a);
+        assert!(n.dot((a + b + c) / 3.0 - DVec3::splat(0.5)) > 0.0);
+    }
+}
+
+fn parts(nodes: Vec<DVec3>, elements: Vec<u32>) -> TetParts {
+    TetParts {
+        node_lines: (0..nodes.len() as u32).map(|i| i + 2).collect(),
+        element_lines: (0..(elements.len() / 4) as u32).map(|i| i + 100).collect(),
+        nodes,
+        order: TetOrder::Linear,
+        elements,
+        fixed: FixedSpec::Boundary,
+    }
+}
+
+fn unit() -> Vec<DVec3> {
+    vec![DVec3::ZERO, DVec3::X, DVec3::Y, DVec3::Z, DVec3::ONE]
+}
+
+#[test]
+fn bad_input_gives_errors_naming_the_node_or_element_and_line() {
+    let err = |p: TetParts| TetMesh::build(p).unwrap_err().to_string();
+    assert_eq!(err(parts(unit(), vec![])), Error::Empty("the mesh has no tetrahedra".into()).to_string());
+    let mut nan = unit();
+    nan[2].y = f64::NAN;
+    assert!(
+        err(parts(nan, vec![0, 1, 2, 3])).starts_with("node 2 (line 4): coordinate"),
+        "{}",
+        err(parts(unit(), vec![]))
+    );
+    let e = err(parts(unit(), vec![0, 1, 2, 9]));
+    assert!(e.starts_with("element 0 (line 100): node 9 does not exist: the mesh has 5 nodes"), "{e}");
+    let e = err(parts(unit(), vec![0, 1, 2, 3, 0, 1, 1, 4]));
+    assert!(e.starts_with("element 1 (line 101): node 1 appears twice"), "{e}");
+    let mut flat = unit();
+    flat[3] = DVec3::new(0.3, 0.3, 0.0);
+    let e = err(parts(flat, vec![0, 1, 2, 3]));
+    assert!(e.starts_with("element 0 (line 100): the tetrahedron has no volume"), "{e}");
+    // three tetrahedra on one face
+    let mut three = unit();
+    three.push(DVec3::new(0.2, 0.2, -1.0));
+    three.push(DVec3::new(0.2, 0.2, 2.0));
+    let e = err(parts(three, vec![0, 1, 2, 3, 0, 2, 1, 5, 0, 1, 2, 6]));
+    assert!(e.contains("is a face of 3 tetrahedra"), "{e}");
+}
+
+#[test]
+fn a_left_handed_mesh_is_turned_over() {
+    // every tetrahedron given with negative volume: the file's convention
+    let m = tet_cube(2).unwrap();
+    let mirrored: Vec<u32> = (0..m.element_count())
+        .flat_map(|e| {
+            let t = m.element(e);
+            [t[0], t[2], t[1], t[3]]
+        })
+        .collect();
+    let turned = TetMesh::build(parts(m.nodes().to_vec(), mirrored)).unwrap();
+    assert!((0..turned.element_count()).all(|e| q3::signed_volume(&turned.corners(e)) > 0.0));
+    // a single inverted tetrahedron in a right-handed mesh stays inverted (tangled)
+    let mut tangled = m.nodes().to_vec();
+    tangled[13] = DVec3::new(1.2, 0.5, 0.5);
+    let t =
+        TetMesh::build(parts(tangled, (0..m.element_count()).flat_map(|e| m.element(e).to_vec()).collect())).unwrap();
+    assert!((0..t.element_count()).any(|e| q3::signed_volume(&t.corners(e)) < 0.0));
+}
+
+mod smoothing {
+    use super::*;
+    use crate::generate::perturb_volume;
+    use crate::objective::{tet_objective, ObjectiveKind};
+    use crate::smooth::{SmoothOptions, Strategy};
+
+    fn no_clock() -> f64 {
+        0.0
+    }
+
+    fn passes(mesh: &mut TetMesh, kind: ObjectiveKind, strategy: Strategy, n: u32) -> Vec<crate::smooth::PassRecord> {
+        let o = SmoothOptions::default().with_strategy(strategy);
+        smooth_volume(mesh, &*tet_objective(kind), o, n, &no_clock).unwrap()
+    }
+
+    #[test]
+    fn every_strategy_and_objective_keeps_fixed_nodes_and_repeats_exactly() {
+        let start = perturb_volume(&tet_cube(3).unwrap(), 0.6, 4).unwrap();
+        for strategy in Strategy::ALL {
+            for kind in ObjectiveKind::ALL {
+                let mut a = start.clone();
+                let mut b = start.clone();
+                passes(&mut a, kind, strategy, 2);
+                passes(&mut b, kind, strategy, 2);
+                assert_eq!(a.nodes(), b.nodes(), "{strategy:?} {kind}: not deterministic");
+                for n in 0..a.node_count() {
+                    assert!(a.nodes()[n].is_finite(), "{strategy:?} {kind}: node {n} {}", a.nodes()[n]);
+                    if !a.is_free(n) {
+                        assert_eq!(a.nodes()[n], start.nodes()[n], "{strategy:?} {kind}: fixed node {n} moved");
+                    }
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn no_valid_tetrahedron_is_inverted_by_the_smart_or_guarded_strategies() {
+        let start = perturb_volume(&tet_cube(4).unwrap(), 0.25, 2).unwrap();
+        assert_eq!(volume_stats(&start).inverted, 0, "the start must be valid");
+        for strategy in [Strategy::Smart, Strategy::Opt, Strategy::C1, Strategy::C2, Strategy::C3, Strategy::Rules] {
+            for kind in ObjectiveKind::ALL {
+                let mut m = start.clone();
+                passes(&mut m, kind, strategy, 2);
+                assert_eq!(volume_stats(&m).inverted, 0, "{strategy:?} {kind}");
+            }
+        }
+    }
+
+    #[test]
+    fn new_with_rules_untangles_a_tangled_cube_and_improves_it() {
+        for seed in 1..=3 {
+            let mut m = perturb_volume(&tet_cube(4).unwrap(), 0.8, seed).unwrap();
+            let before = volume_stats(&m);
+            assert!(before.inverted > 0, "seed {seed}: not tangled");
+            let records = passes(&mut m, ObjectiveKind::New, Strategy::Rules, 3);
+            let after = volume_stats(&m);
+            assert_eq!(after.inverted, 0, "seed {seed}: {} inverted after 3 passes ({records:?})", after.inverted);
+            assert!(after.min_angle_deg > 5.0, "seed {seed}: {}", after.min_angle_deg);
+        }
+    }
+
+    #[test]
+    fn smart_laplacian_improves_the_worst_tetrahedron_of_each_star() {
+        let start = perturb_volume(&tet_cube(4).unwrap(), 0.3, 7).unwrap();
+        let mut m = start.clone();
+        let o = SmoothOptions::default().with_strategy(Strategy::Smart);
+        let mut s = VolumeSmoother::new(o).unwrap();
+        s.sweep(&mut m, &*tet_objective(ObjectiveKind::New));
+        assert!(volume_stats(&m).min_quality >= volume_stats(&start).min_quality);
+        assert!(m.nodes() != start.nodes());
+    }
+}
