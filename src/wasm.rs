@@ -7,13 +7,13 @@ use std::sync::Mutex;
 use serde::Serialize;
 use wasm_bindgen::prelude::*;
 
-use crate::lab::surface as surface_lab;
-use crate::lab::{self as playground, Settings, Side};
-use crate::surface::Model;
-use crate::lab::sample::Sample;
-use crate::lab::views::Canvas;
 use crate::io::{self, Format};
+use crate::lab::sample::Sample;
+use crate::lab::surface as surface_lab;
+use crate::lab::views::Canvas;
+use crate::lab::{self as playground, Settings, Side};
 use crate::permalink;
+use crate::surface::Model;
 use glam::DVec2;
 
 /// The message of the last panic, kept by the hook for [`take_panic_message`].
@@ -185,7 +185,8 @@ fn pixels(pm: tiny_skia::Pixmap) -> JsValue {
 }
 
 fn sample(name: &str) -> Result<Sample, JsError> {
-    serde_wasm_bindgen::from_value(JsValue::from_str(name)).map_err(|_| JsError::new(&format!("no sample named '{name}'")))
+    serde_wasm_bindgen::from_value(JsValue::from_str(name))
+        .map_err(|_| JsError::new(&format!("no sample named '{name}'")))
 }
 
 /// The handle for a model: a [`Playground`] for a planar mesh, a [`SurfaceLab`] for a surface.
@@ -193,6 +194,13 @@ fn open(model: Model) -> Result<JsValue, JsError> {
     Ok(match model {
         Model::Planar(m) => Playground::wrap(playground::Playground::new(m)?).into(),
         Model::Surface(s) => SurfaceLab { inner: surface_lab::SurfaceLab::new(s)?, canvas: None }.into(),
+        Model::Volume(v) => {
+            return Err(JsError::new(&format!(
+                "this file holds {} tetrahedra: the page shows planar and surface meshes; the command-line tool \
+                 (smoothlab stats, smooth) takes tetrahedral meshes",
+                v.element_count()
+            )))
+        }
     })
 }
 
@@ -375,7 +383,12 @@ impl Playground {
         self.canvas = Some(c);
         let new = out.pop().unwrap_or(JsValue::NULL);
         let old = out.pop().unwrap_or(JsValue::NULL);
-        object(&[("old", old), ("new", new), ("render_ms", to_js(&render_ms)?), ("copy_ms", JsValue::from_f64(copy_ms))])
+        object(&[
+            ("old", old),
+            ("new", new),
+            ("render_ms", to_js(&render_ms)?),
+            ("copy_ms", JsValue::from_f64(copy_ms)),
+        ])
     }
 
     /// Forgets what was sent: the next [`frame`](Self::frame) draws both panels (after
@@ -607,7 +620,12 @@ impl SurfaceLab {
         self.canvas = Some(c);
         let new = out.pop().unwrap_or(JsValue::NULL);
         let old = out.pop().unwrap_or(JsValue::NULL);
-        object(&[("old", old), ("new", new), ("render_ms", to_js(&render_ms)?), ("copy_ms", JsValue::from_f64(copy_ms))])
+        object(&[
+            ("old", old),
+            ("new", new),
+            ("render_ms", to_js(&render_ms)?),
+            ("copy_ms", JsValue::from_f64(copy_ms)),
+        ])
     }
 
     /// Turns the shared camera by a drag of `(dx, dy)` CSS pixels.

@@ -77,7 +77,11 @@ pub fn plate(kind: PlateKind, order: u8, resolution: usize) -> Result<Mesh> {
             } else {
                 let d02 = pos[c[0] as usize].distance_squared(pos[c[2] as usize]);
                 let d13 = pos[c[1] as usize].distance_squared(pos[c[3] as usize]);
-                let (t1, t2) = if d02 <= d13 { ([c[0], c[1], c[2]], [c[0], c[2], c[3]]) } else { ([c[0], c[1], c[3]], [c[1], c[2], c[3]]) };
+                let (t1, t2) = if d02 <= d13 {
+                    ([c[0], c[1], c[2]], [c[0], c[2], c[3]])
+                } else {
+                    ([c[0], c[1], c[3]], [c[1], c[2], c[3]])
+                };
                 mids.element(&mut a, &pos, ElementKind::Tri3, &t1);
                 mids.element(&mut a, &pos, ElementKind::Tri3, &t2);
             }

@@ -72,7 +72,8 @@ pub fn star(kind: StarKind, k: usize) -> Result<Mesh> {
         StarKind::Regular => {
             let ring: Vec<DVec2> = (0..k).map(|i| polar(2.0, std::f64::consts::FRAC_PI_2 + step * i as f64)).collect();
             // Mesquite's displacement for k = 6, scaled with the inradius for other k
-            let centre = DVec2::new(-0.8, -0.8) * (super::trig::cos(std::f64::consts::PI / k as f64) / super::trig::cos(std::f64::consts::PI / 6.0));
+            let centre = DVec2::new(-0.8, -0.8)
+                * (super::trig::cos(std::f64::consts::PI / k as f64) / super::trig::cos(std::f64::consts::PI / 6.0));
             (ring, centre, false)
         }
         StarKind::Chen => {
@@ -161,7 +162,11 @@ pub fn quadratic_star(kind: QuadraticStar) -> Result<Mesh> {
         QuadraticStar::CurvedBoundary => {
             let ring = [(-1.0, 0.0), (0.0, 0.0), (1.0, 0.0), (1.0, 1.0), (0.0, 1.0), (-1.0, 1.0)];
             let ring: Vec<DVec2> = ring.iter().map(|&(x, y)| DVec2::new(x, y)).collect();
-            (ring, DVec2::new(0.25, 0.85), vec![(0, DVec2::new(-0.5, CURVED_BULGE)), (1, DVec2::new(0.5, CURVED_BULGE))])
+            (
+                ring,
+                DVec2::new(0.25, 0.85),
+                vec![(0, DVec2::new(-0.5, CURVED_BULGE)), (1, DVec2::new(0.5, CURVED_BULGE))],
+            )
         }
     };
     let k = ring.len();
@@ -271,7 +276,8 @@ mod tests {
     #[test]
     fn quad_star_four_is_a_distorted_three_by_three_grid() {
         let m = star(StarKind::Quad, 4).unwrap();
-        let expect = [(1.0, 0.0), (1.4, 1.4), (0.0, 1.0), (-1.0, 1.0), (-1.0, 0.0), (-1.0, -1.0), (0.0, -1.0), (1.0, -1.0)];
+        let expect =
+            [(1.0, 0.0), (1.4, 1.4), (0.0, 1.0), (-1.0, 1.0), (-1.0, 0.0), (-1.0, -1.0), (0.0, -1.0), (1.0, -1.0)];
         for (p, (x, y)) in m.nodes().iter().zip(expect) {
             assert!(p.distance(DVec2::new(x, y)) < 1e-12, "{p}");
         }

@@ -16,6 +16,11 @@
 //! | `.node`/`.ele` | all `Tri3` or all `Tri6` | boundary ∪ fixed (markers) |
 //! | `.obj`, `.off` | `Tri3`, `Quad4` | none: the boundary |
 //!
+//! Tetrahedral meshes ([`crate::volume`]) are read from `.msh` (types 4, 11), `.vtk`
+//! (cell types 10, 24) and TetGen's `.node`/`.ele` pair (dimension 3, 4 or 10 nodes), and
+//! written to the same formats ([`write_model_string`], [`write_model_path`]) with the
+//! fixed flags kept as for planar meshes; OBJ and OFF hold surfaces only.
+//!
 //! Files from elsewhere: `.msh` without that view gets the boundary plus the nodes of line
 //! and point elements; VTK without `fixed` the boundary plus the points of vertex and line
 //! cells; Triangle the boundary plus nonzero-marker nodes; OBJ and OFF the boundary.
@@ -31,6 +36,7 @@ mod out;
 use out::Out;
 mod triangle;
 pub use triangle::flat_note;
+mod volume;
 mod vtk;
 
 /// The size limit of mesh files, for reading and writing alike: files larger than this
@@ -98,8 +104,10 @@ impl Format {
 
 /// Every format's extensions in words: `.msh, .vtk, .node/.ele, .obj or .off`.
 pub fn extensions_in_words() -> String {
-    let each: Vec<String> =
-        Format::ALL.iter().map(|f| f.extensions().iter().map(|e| format!(".{e}")).collect::<Vec<_>>().join("/")).collect();
+    let each: Vec<String> = Format::ALL
+        .iter()
+        .map(|f| f.extensions().iter().map(|e| format!(".{e}")).collect::<Vec<_>>().join("/"))
+        .collect();
     match each.split_last() {
         Some((last, rest)) if !rest.is_empty() => format!("{} or {last}", rest.join(", ")),
         _ => each.concat(),
@@ -128,9 +136,9 @@ fn parse_str(text: &str, format: Format) -> Result<MeshBuilder> {
         Format::Vtk => vtk::parse(text),
         Format::Obj => objoff::parse_obj(text),
         Format::Off => objoff::parse_off(text),
-        Format::Triangle => Err(Error::invalid(
-            "a Triangle mesh is a .node/.ele pair: read both files together (read_triangle)",
-        )),
+        Format::Triangle => {
+            Err(Error::invalid("a Triangle mesh is a .node/.ele pair: read both files together (read_triangle)"))
+        }
     }
 }
 
@@ -154,9 +162,7 @@ pub fn read_model_bytes(bytes: &[u8], name: &str) -> Result<Model> {
     let format = Format::from_name(name).ok_or_else(|| unknown_format(name))?;
     check_size(bytes.len() as u64, name)?;
     if format == Format::Triangle {
-        return Err(Error::invalid(
-            "a Triangle mesh is a .node/.ele pair: read both files together (read_triangle)",
-        ));
+        return Err(Error::invalid("a Triangle mesh is a .node/.ele pair: read both files together (read_triangle)"));
     }
     read_model_str(utf8(bytes, format)?, format)
 }
@@ -165,6 +171,12 @@ pub fn read_model_bytes(bytes: &[u8], name: &str) -> Result<Model> {
 /// A leading byte-order mark in either is skipped.
 pub fn read_triangle(node: &str, ele: &str) -> Result<Mesh> {
     triangle::read(without_bom(node), without_bom(ele))
+}
+
+/// Reads what a `.node`/`.ele` pair holds: a Triangle mesh, or TetGen's tetrahedra
+/// (dimension 3 in `.node`) as a tetrahedral model.
+pub fn read_model_pair(node: &str, ele: &str) -> Result<Model> {
+    triangle::read_model(without_bom(node), without_bom(ele))
 }
 
 /// The text without a leading UTF-8 byte-order mark (U+FEFF), which is not part of the
@@ -192,15 +204,6 @@ impl<'a> From<&'a Mesh> for Writable<'a> {
 impl<'a> From<&'a crate::surface::Surface> for Writable<'a> {
     fn from(s: &'a crate::surface::Surface) -> Self {
         Writable { mesh: s.flat(), points: Some(s.points()) }
-    }
-}
-
-impl<'a> From<&'a crate::surface::Model> for Writable<'a> {
-    fn from(m: &'a crate::surface::Model) -> Self {
-        match m {
-            crate::surface::Model::Planar(mesh) => mesh.into(),
-            crate::surface::Model::Surface(s) => s.into(),
-        }
     }
 }
 
@@ -293,13 +296,14 @@ pub fn read_model_path(path: &std::path::Path) -> Result<Model> {
 }
 
 #[cfg(not(target_arch = "wasm32"))]
-fn read_path_as<T: From<Mesh>>(path: &std::path::Path, build: fn(MeshBuilder) -> Result<T>) -> Result<T> {
+fn read_path_as<T>(path: &std::path::Path, build: fn(MeshBuilder) -> Result<T>) -> Result<T> {
     let name = path.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_default();
     let format = Format::from_name(&name).ok_or_else(|| unknown_format(&path.display().to_string()))?;
     if format == Format::Triangle {
         let (node, ele) = triangle_pair(path, &name)?;
         let (nb, eb) = (read_file(&node)?, read_file(&ele)?);
-        return read_triangle(utf8(&nb, format)?, utf8(&eb, format)?).map(T::from);
+        let b = triangle::parse(without_bom(utf8(&nb, format)?), without_bom(utf8(&eb, format)?))?;
+        return build(b);
     }
     // the file's bytes are dropped before the mesh is built
     let builder = {
@@ -453,6 +457,75 @@ pub fn write_path<'a>(mesh: impl Into<Writable<'a>>, path: &std::path::Path, opt
     let mut out = Out::file(&mut file);
     write_to(mesh, format, opts, &mut out)?;
     out.finish().map_err(|e| cannot(path, e))
+}
+
+/// Writes what a model holds as text in `format`: a planar mesh or a surface as
+/// [`write_string`] does, a tetrahedral mesh as `.msh` or `.vtk` (TetGen's pair: see
+/// [`write_model_path`]; OBJ and OFF hold no volumes).
+pub fn write_model_string(model: &Model, format: Format, opts: &WriteOptions) -> Result<String> {
+    match model {
+        Model::Planar(m) => write_string(m, format, opts),
+        Model::Surface(sf) => write_string(sf, format, opts),
+        Model::Volume(v) => {
+            let mut out = Out::string(80 * v.node_count() + 48 * v.element_count() + 256);
+            let ext = match format {
+                Format::Msh => {
+                    volume::write_msh(v, opts.msh_version, &mut out);
+                    ".msh"
+                }
+                Format::Vtk => {
+                    volume::write_vtk(v, &mut out);
+                    ".vtk"
+                }
+                other => return Err(volume_refused(other)),
+            };
+            check_written(out.len(), ext)?;
+            Ok(out.into_string())
+        }
+    }
+}
+
+/// Writes a tetrahedral mesh as the texts of a TetGen `.node` (1-based, dimension 3,
+/// marker 1 on fixed nodes) and `.ele` file.
+pub fn write_tetgen(mesh: &crate::volume::TetMesh) -> Result<(String, String)> {
+    let (mut node, mut ele) = (Out::string(80 * mesh.node_count() + 64), Out::string(48 * mesh.element_count() + 64));
+    volume::write_tetgen(mesh, &mut node, &mut ele);
+    check_written(node.len(), ".node")?;
+    check_written(ele.len(), ".ele")?;
+    Ok((node.into_string(), ele.into_string()))
+}
+
+/// Why `format` cannot hold a tetrahedral mesh (as text).
+fn volume_refused(format: Format) -> Error {
+    Error::invalid(match format {
+        Format::Triangle => "TetGen's output is a .node/.ele pair: write it to a path ending in .node or .ele".into(),
+        f => format!(
+            "{f:?} files hold surfaces, not tetrahedra: write a tetrahedral mesh as .msh, .vtk or a TetGen .node/.ele pair"
+        ),
+    })
+}
+
+/// Writes what a model holds to a file in the format of the path's extension: a planar
+/// mesh or a surface as [`write_path`] does; a tetrahedral mesh as `.msh`, `.vtk` or a
+/// TetGen `.node`/`.ele` pair.
+#[cfg(not(target_arch = "wasm32"))]
+pub fn write_model_path(model: &Model, path: &std::path::Path, opts: &WriteOptions) -> Result<()> {
+    let v = match model {
+        Model::Planar(m) => return write_path(m, path, opts),
+        Model::Surface(sf) => return write_path(sf, path, opts),
+        Model::Volume(v) => v,
+    };
+    let name = path.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_default();
+    let format = Format::from_name(&name).ok_or_else(|| unknown_format(&path.display().to_string()))?;
+    let cannot = |p: &std::path::Path, e: std::io::Error| Error::Io(format!("cannot write {}: {e}", p.display()));
+    if format == Format::Triangle {
+        let (node_path, ele_path) = triangle_pair(path, &name)?;
+        let (node, ele) = write_tetgen(v)?;
+        std::fs::write(&node_path, node).map_err(|e| cannot(&node_path, e))?;
+        return std::fs::write(&ele_path, ele).map_err(|e| cannot(&ele_path, e));
+    }
+    let text = write_model_string(model, format, opts)?;
+    std::fs::write(path, text).map_err(|e| cannot(path, e))
 }
 
 #[cfg(test)]

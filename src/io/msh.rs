@@ -24,6 +24,8 @@ use crate::mesh::{ElementKind, FixedSpec, MeshBuilder, NONE};
 /// What a Gmsh element type is to us.
 enum GmshType {
     Surface(ElementKind),
+    /// A tetrahedron of 4 or 10 nodes ([`crate::volume`]).
+    Solid(usize),
     /// Lines and points: their nodes are marked fixed.
     Marker(usize),
     Unsupported(&'static str),
@@ -40,11 +42,11 @@ fn gmsh_type(t: u64) -> GmshType {
         1 => Marker(2),
         8 => Marker(3),
         15 => Marker(1),
-        4 => Unsupported("4-node tetrahedron"),
+        4 => Solid(4),
         5 => Unsupported("8-node hexahedron"),
         6 => Unsupported("6-node prism"),
         7 => Unsupported("5-node pyramid"),
-        11 => Unsupported("10-node tetrahedron"),
+        11 => Solid(10),
         12 => Unsupported("27-node hexahedron"),
         13 => Unsupported("18-node prism"),
         14 => Unsupported("14-node pyramid"),
@@ -64,8 +66,8 @@ fn unsupported_type(t: u64, line: usize) -> Error {
     Error::unsupported(
         Some(line),
         format!(
-            "Gmsh element type {t} ({name}) is not supported: smoothlab reads triangles (types 2, 9) and \
-             quads (3, 16, 10), and takes lines (1, 8) and points (15) as fixed nodes"
+            "Gmsh element type {t} ({name}) is not supported: smoothlab reads triangles (types 2, 9), \
+             quads (3, 16, 10) and tetrahedra (4, 11), and takes lines (1, 8) and points (15) as fixed nodes"
         ),
     )
 }
@@ -148,6 +150,10 @@ struct Reader {
     elem_tags: Vec<u64>,
     /// Node tags of line and point elements, with their lines.
     marks: Vec<(u64, u32)>,
+    /// Tetrahedra as read (node tags, 4 or 10 each, in Gmsh's order) with their lines:
+    /// resolved when the whole file has been read.
+    tet_tags: Vec<u64>,
+    tet_lines: Vec<(u32, u8)>,
     /// The `fixed` view: (node tag, fixed, line).
     fixed_view: Option<Vec<(u64, bool, u32)>>,
     /// Line of the `$NodeData` section of the `fixed` view.
@@ -217,6 +223,8 @@ pub(crate) fn parse(text: &str) -> Result<MeshBuilder> {
         elements: Vec::new(),
         elem_tags: Vec::new(),
         marks: Vec::new(),
+        tet_tags: Vec::new(),
+        tet_lines: Vec::new(),
         fixed_view: None,
         fixed_view_line: None,
         nodes_line: None,
@@ -251,7 +259,9 @@ pub(crate) fn parse(text: &str) -> Result<MeshBuilder> {
                 end_of(&mut lex, "Elements", t.line)?;
             }
             "$NodeData" => r.node_data(&mut lex, t.line)?,
-            s if s.starts_with('$') && !s.starts_with("$End") && s.len() > 1 => skip_section(&mut lex, &s[1..], t.line)?,
+            s if s.starts_with('$') && !s.starts_with("$End") && s.len() > 1 => {
+                skip_section(&mut lex, &s[1..], t.line)?
+            }
             other => {
                 return Err(Error::parse(
                     t.line,
@@ -399,6 +409,13 @@ impl Reader {
                 }
                 self.elements.push(RawElement { kind, line: line as u32, start });
             }
+            GmshType::Solid(k) => {
+                for j in 0..k {
+                    let (tag, _) = lex.u64(|| format!("node {} of {} (a {k}-node tetrahedron)", j + 1, number()))?;
+                    self.tet_tags.push(tag);
+                }
+                self.tet_lines.push((line as u32, k as u8));
+            }
             GmshType::Marker(k) => {
                 for j in 0..k {
                     let (tag, _) = lex.u64(|| format!("node {} of {}", j + 1, number()))?;
@@ -451,7 +468,10 @@ impl Reader {
             if count > (n - seen) as u64 {
                 return Err(Error::parse(
                     cl,
-                    format!("this block has {count} elements, but only {} of the {n} announced at line {nl} are left", n - seen),
+                    format!(
+                        "this block has {count} elements, but only {} of the {n} announced at line {nl} are left",
+                        n - seen
+                    ),
                 ));
             }
             for i in 0..count {
@@ -463,7 +483,10 @@ impl Reader {
             seen += count as usize;
         }
         if seen != n {
-            return Err(Error::parse(nl, format!("the $Elements header announces {n} elements but its blocks hold {seen}")));
+            return Err(Error::parse(
+                nl,
+                format!("the $Elements header announces {n} elements but its blocks hold {seen}"),
+            ));
         }
         Ok(())
     }
@@ -492,7 +515,10 @@ impl Reader {
         }
         let (ni, il) = lex.u64(|| "the number of integer tags".into())?;
         if ni < 3 {
-            return Err(Error::parse(il, format!("the 'fixed' view needs 3 integer tags (step, components, count), found {ni}")));
+            return Err(Error::parse(
+                il,
+                format!("the 'fixed' view needs 3 integer tags (step, components, count), found {ni}"),
+            ));
         }
         let mut ints = [0u64; 3];
         let mut count_line = il;
@@ -528,15 +554,22 @@ impl Reader {
     /// The node indices of surface element `e` (on file line `line`) from its node tags,
     /// or the error naming the element: a tag given twice, or not defined.
     fn resolve(&self, e: usize, tags: &[u64], line: usize) -> Result<[u32; 9]> {
+        let ids = self.resolve_nodes(e, tags, line, "element")?;
+        Ok(std::array::from_fn(|j| ids[j]))
+    }
+
+    /// The node indices of `tags` (at most 10), for an element or tetrahedron `e` (`what`)
+    /// on file line `line`, or the error naming it: a tag given twice, or not defined.
+    fn resolve_nodes(&self, e: usize, tags: &[u64], line: usize, what: &str) -> Result<[u32; 10]> {
         let map = self.map.as_ref().expect("resolve after the map is made");
         if let Some(t) = repeated(tags) {
-            return Err(Error::element(e, Some(line), format!("node tag {t} appears twice in the element")));
+            return Err(Error::element(e, Some(line), format!("node tag {t} appears twice in the {what}")));
         }
-        let mut ids = [0u32; 9];
+        let mut ids = [0u32; 10];
         for (j, &tag) in tags.iter().enumerate() {
-            ids[j] = map
-                .get(tag)
-                .ok_or_else(|| Error::element(e, Some(line), format!("node tag {tag} is not defined ({})", self.tag_range())))?;
+            ids[j] = map.get(tag).ok_or_else(|| {
+                Error::element(e, Some(line), format!("node tag {tag} is not defined ({})", self.tag_range()))
+            })?;
         }
         Ok(ids)
     }
@@ -554,6 +587,17 @@ impl Reader {
                 self.builder.add_element(raw.kind, &ids[..k], raw.line as usize);
             }
         }
+        let mut at = 0;
+        for (t, &(line, k)) in self.tet_lines.iter().enumerate() {
+            let k = k as usize;
+            let mut ids = self.resolve_nodes(t, &self.tet_tags[at..at + k], line as usize, "tetrahedron")?;
+            if k == 10 {
+                // Gmsh's mid-edge order (0,1) (1,2) (2,0) (3,0) (3,2) (3,1) → VTK's (…, (1,3), (2,3))
+                ids.swap(8, 9);
+            }
+            at += k;
+            self.builder.add_tet(&ids[..k], line as usize)?;
+        }
         let range = self.tag_range();
         let Reader { mut builder, node_tags, map, marks, fixed_view, .. } = self;
         let map = map.expect("made above");
@@ -561,7 +605,10 @@ impl Reader {
         let n = node_tags.len();
         let resolve = |tag: u64, line: u32, what: &str| {
             map.get(tag).ok_or_else(|| {
-                Error::parse(line as usize, format!("{what} refers to node tag {tag}, which is not defined ({})", range()))
+                Error::parse(
+                    line as usize,
+                    format!("{what} refers to node tag {tag}, which is not defined ({})", range()),
+                )
             })
         };
         builder.fixed = if let Some(view) = fixed_view {
@@ -573,7 +620,10 @@ impl Reader {
                 if seen[i] != 0 {
                     return Err(Error::parse(
                         line as usize,
-                        format!("the 'fixed' view lists node tag {tag} twice (first at line {}): give each node once", seen[i]),
+                        format!(
+                            "the 'fixed' view lists node tag {tag} twice (first at line {}): give each node once",
+                            seen[i]
+                        ),
                     ));
                 }
                 seen[i] = line.max(1);
@@ -623,10 +673,11 @@ pub(crate) fn write(w: super::Writable, version: MshVersion, s: &mut Out) {
         }
         MshVersion::V41 => {
             // the surface's bounding box, in 3D
-            let (lo, hi) = (0..n).map(|i| w.xyz(i)).fold(
-                (glam::DVec3::splat(f64::INFINITY), glam::DVec3::splat(f64::NEG_INFINITY)),
-                |(lo, hi), q| (lo.min(q), hi.max(q)),
-            );
+            let (lo, hi) = (0..n)
+                .map(|i| w.xyz(i))
+                .fold((glam::DVec3::splat(f64::INFINITY), glam::DVec3::splat(f64::NEG_INFINITY)), |(lo, hi), q| {
+                    (lo.min(q), hi.max(q))
+                });
             let z = |v: f64| if w.in_xy_plane() { "0".to_string() } else { format!("{v:?}") };
             let _ = writeln!(
                 s,
@@ -664,8 +715,13 @@ pub(crate) fn write(w: super::Writable, version: MshVersion, s: &mut Out) {
             s.push_str("$EndElements\n");
         }
     }
-    let _ = writeln!(s, "$NodeData\n1\n\"fixed\"\n1\n0\n3\n0\n1\n{n}");
-    for (i, &f) in mesh.fixed().iter().enumerate() {
+    write_fixed_view(mesh.fixed(), s);
+}
+
+/// The fixed flags as a one-component `$NodeData` view named `"fixed"` (1 = fixed).
+pub(crate) fn write_fixed_view(fixed: &[bool], s: &mut Out) {
+    let _ = writeln!(s, "$NodeData\n1\n\"fixed\"\n1\n0\n3\n0\n1\n{}", fixed.len());
+    for (i, &f) in fixed.iter().enumerate() {
         let _ = writeln!(s, "{} {}", i + 1, u8::from(f));
     }
     s.push_str("$EndNodeData\n");

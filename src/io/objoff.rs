@@ -56,20 +56,28 @@ pub(crate) fn parse_obj(text: &str) -> Result<MeshBuilder> {
                 for (j, r) in refs.iter().enumerate() {
                     let v = r.split('/').next().unwrap_or("");
                     let i: i64 = v.parse().map_err(|_| {
-                        Error::parse(line, format!("expected a vertex index for corner {} of the face, found {}", j + 1, shown(r)))
+                        Error::parse(
+                            line,
+                            format!("expected a vertex index for corner {} of the face, found {}", j + 1, shown(r)),
+                        )
                     })?;
                     let nv = b.node_count() as i64;
                     ids[j] = match i {
-                        0 => return Err(Error::parse(line, "vertex index 0 is invalid: OBJ counts from 1 (or -1 for the last)")),
+                        0 => {
+                            return Err(Error::parse(
+                                line,
+                                "vertex index 0 is invalid: OBJ counts from 1 (or -1 for the last)",
+                            ))
+                        }
                         i if i > 0 => i - 1,
                         // `i >= -nv`, not `-i <= nv`: the negation of i64::MIN overflows.
                         i if i >= -nv => nv + i,
-                        i => {
-                            return Err(Error::parse(
-                                line,
-                                format!("relative vertex index {i} reaches before the first vertex (valid here: -1 to -{nv})"),
-                            ))
-                        }
+                        i => return Err(Error::parse(
+                            line,
+                            format!(
+                                "relative vertex index {i} reaches before the first vertex (valid here: -1 to -{nv})"
+                            ),
+                        )),
                     };
                 }
                 faces.push((kind, ids, line));
@@ -107,7 +115,10 @@ pub(crate) fn parse_off(text: &str) -> Result<MeshBuilder> {
     let mut tokens = head.split_whitespace();
     let magic = tokens.next().unwrap_or("");
     if !matches!(magic, "OFF" | "COFF" | "NOFF" | "CNOFF") {
-        return Err(Error::parse(hl, format!("not an OFF file: expected 'OFF' on the first line, found {}", shown(magic))));
+        return Err(Error::parse(
+            hl,
+            format!("not an OFF file: expected 'OFF' on the first line, found {}", shown(magic)),
+        ));
     }
     if tokens.clone().next().is_some_and(|t| t.eq_ignore_ascii_case("BINARY")) {
         return Err(Error::unsupported(Some(hl), "binary OFF files are not supported"));
@@ -154,16 +165,24 @@ pub(crate) fn parse_off(text: &str) -> Result<MeshBuilder> {
         };
         let mut f = l.split_whitespace();
         let k = f.next().unwrap_or("");
-        let k: usize = k.parse().map_err(|_| Error::parse(line, format!("expected the vertex count of face {e}, found {}", shown(k))))?;
+        let k: usize = k
+            .parse()
+            .map_err(|_| Error::parse(line, format!("expected the vertex count of face {e}, found {}", shown(k))))?;
         let kind = face_kind(k, line, &format!("face {e}"))?;
         for (j, id) in ids.iter_mut().enumerate().take(k) {
-            let t = f.next().ok_or_else(|| Error::parse(line, format!("face {e} announces {k} vertices but lists {j}")))?;
-            let v: u64 = t.parse().map_err(|_| Error::parse(line, format!("expected vertex index {j} of face {e}, found {}", shown(t))))?;
+            let t =
+                f.next().ok_or_else(|| Error::parse(line, format!("face {e} announces {k} vertices but lists {j}")))?;
+            let v: u64 = t.parse().map_err(|_| {
+                Error::parse(line, format!("expected vertex index {j} of face {e}, found {}", shown(t)))
+            })?;
             if v >= nv as u64 {
                 return Err(Error::element(
                     e,
                     Some(line),
-                    format!("vertex index {v} is out of range: the file has {nv} vertices (0 to {})", nv.saturating_sub(1)),
+                    format!(
+                        "vertex index {v} is out of range: the file has {nv} vertices (0 to {})",
+                        nv.saturating_sub(1)
+                    ),
                 ));
             }
             *id = v as u32;

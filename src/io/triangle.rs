@@ -1,4 +1,10 @@
-//! Shewchuk's Triangle `.node` / `.ele` pair.
+//! Shewchuk's Triangle `.node` / `.ele` pair, and Si's TetGen pair of the same names.
+//!
+//! TetGen's files are Triangle's in 3D: `.node` of dimension 3 (`number x y z …`) and
+//! `.ele` of 4 or 10 nodes per tetrahedron (`-o2`: the six extra nodes taken as the
+//! middles of edges 1-2, 2-3, 3-1, 1-4, 2-4, 3-4 in TetGen's 1-based words, which is VTK's
+//! order); such a pair is read as a tetrahedral mesh ([`crate::volume`]) and written back
+//! in the same layout.
 //!
 //! `.node`: a header `n 2 attributes markers(0|1)`, then `number x y [attributes] [marker]`
 //! per node; numbering starts at 0 or 1 (decided by the first node) and is consecutive.
@@ -32,7 +38,9 @@ fn in_file(e: Error, file: &str) -> Error {
         Error::Node { node, line, message } => {
             Error::Node { node, line, message: format!("{message} (line numbers of the .node file)") }
         }
-        Error::Unsupported { line, message } => Error::Unsupported { line, message: format!("{message} (in the {file} file)") },
+        Error::Unsupported { line, message } => {
+            Error::Unsupported { line, message: format!("{message} (in the {file} file)") }
+        }
         other => other,
     }
 }
@@ -43,7 +51,12 @@ fn int(tok: &str, line: usize, what: impl Fn() -> String) -> Result<i64> {
 }
 
 /// Reads the header line of a file: its integers, at least `min` of them.
-fn header<'a>(lines: &mut impl Iterator<Item = (usize, &'a str)>, file: &str, fields: &str, min: usize) -> Result<(usize, Vec<i64>)> {
+fn header<'a>(
+    lines: &mut impl Iterator<Item = (usize, &'a str)>,
+    file: &str,
+    fields: &str,
+    min: usize,
+) -> Result<(usize, Vec<i64>)> {
     let Some((line, text)) = lines.next() else {
         return Err(Error::Empty(format!("the {file} file has no header line ({fields})")));
     };
@@ -58,35 +71,50 @@ fn header<'a>(lines: &mut impl Iterator<Item = (usize, &'a str)>, file: &str, fi
 }
 
 pub(crate) fn read(node: &str, ele: &str) -> Result<Mesh> {
+    parse(node, ele)?.build().map_err(|e| in_file(e, ".ele"))
+}
+
+/// What a `.node`/`.ele` pair holds, before it is built: triangles, or TetGen's tetrahedra.
+pub(crate) fn parse(node: &str, ele: &str) -> Result<MeshBuilder> {
     let mut b = MeshBuilder::new();
-    let (base, marks) = read_nodes(node, &mut b).map_err(|e| in_file(e, ".node"))?;
-    read_elements(ele, base, &mut b).map_err(|e| in_file(e, ".ele"))?;
+    let (base, marks, dim) = read_nodes(node, &mut b).map_err(|e| in_file(e, ".node"))?;
+    read_elements(ele, base, dim, &mut b).map_err(|e| in_file(e, ".ele"))?;
     b.fixed = match marks {
         Some(m) => FixedSpec::BoundaryAnd(m),
         None => FixedSpec::Boundary,
     };
-    b.build().map_err(|e| in_file(e, ".ele"))
+    Ok(b)
 }
 
-/// Reads the nodes; returns the first node number and the boundary marks, if any.
-fn read_nodes(text: &str, b: &mut MeshBuilder) -> Result<(i64, Option<Vec<bool>>)> {
+/// [`parse`] then built as a model ([`MeshBuilder::build_model`]): a planar mesh, or
+/// TetGen's tetrahedra; errors say which file.
+pub(crate) fn read_model(node: &str, ele: &str) -> Result<crate::surface::Model> {
+    parse(node, ele)?.build_model().map_err(|e| in_file(e, ".ele"))
+}
+
+/// Reads the nodes; returns the first node number, the boundary marks, if any, and the
+/// dimension (2: Triangle, 3: TetGen).
+fn read_nodes(text: &str, b: &mut MeshBuilder) -> Result<(i64, Option<Vec<bool>>, i64)> {
     let mut lines = content_lines(text, Some('#'));
     let (hl, h) = header(&mut lines, ".node", "nodes, dimension, attributes, boundary markers", 1)?;
     let count = h[0];
     let dim = h.get(1).copied().unwrap_or(2);
     let attrs = h.get(2).copied().unwrap_or(0);
     let nmark = h.get(3).copied().unwrap_or(0);
-    if dim != 2 {
-        return Err(Error::parse(hl, format!("Triangle meshes are 2D: the dimension must be 2, found {dim}")));
+    if dim != 2 && dim != 3 {
+        return Err(Error::parse(hl, format!("the dimension must be 2 (Triangle) or 3 (TetGen), found {dim}")));
     }
     if attrs < 0 || !(0..=1).contains(&nmark) || count < 0 {
-        return Err(Error::parse(hl, "the node count and attribute count must be non-negative, the marker count 0 or 1"));
+        return Err(Error::parse(
+            hl,
+            "the node count and attribute count must be non-negative, the marker count 0 or 1",
+        ));
     }
     let n = check_count(count as u64, text.len() as u64, 6, "nodes", hl)?;
     // No line can hold more attributes than the file has bytes; checked first so that
     // the field count below cannot overflow (a 32-bit usize in the page's wasm).
     let attrs = check_count(attrs as u64, text.len() as u64, 2, "attributes per node", hl)?;
-    let per = 3 + attrs + nmark as usize;
+    let per = 1 + dim as usize + attrs + nmark as usize;
     *b = MeshBuilder::with_capacity(n, 0);
     let mut marks = (nmark == 1).then(|| Vec::with_capacity(prealloc(n)));
     let mut base = 0;
@@ -99,8 +127,9 @@ fn read_nodes(text: &str, b: &mut MeshBuilder) -> Result<(i64, Option<Vec<bool>>
             return Err(Error::parse(
                 line,
                 format!(
-                    "a node line has {per} values here (number, x, y, {attrs} attribute(s), {nmark} marker(s), \
+                    "a node line has {per} values here (number, {}, {attrs} attribute(s), {nmark} marker(s), \
                      as the header at line {hl} says), found {}",
+                    if dim == 2 { "x, y" } else { "x, y, z" },
                     f.len()
                 ),
             ));
@@ -119,7 +148,8 @@ fn read_nodes(text: &str, b: &mut MeshBuilder) -> Result<(i64, Option<Vec<bool>>
         }
         let x = parse_f64(f[1], line, || format!("the x coordinate of node {number}"))?;
         let y = parse_f64(f[2], line, || format!("the y coordinate of node {number}"))?;
-        b.add_node([x, y, 0.0], line);
+        let z = if dim == 3 { parse_f64(f[3], line, || format!("the z coordinate of node {number}"))? } else { 0.0 };
+        b.add_node([x, y, z], line);
         if let Some(m) = marks.as_mut() {
             m.push(int(f[per - 1], line, || format!("the boundary marker of node {number}"))? != 0);
         }
@@ -130,17 +160,22 @@ fn read_nodes(text: &str, b: &mut MeshBuilder) -> Result<(i64, Option<Vec<bool>>
             format!("unexpected {} after the {n} nodes the header (line {hl}) announces", shown(text)),
         ));
     }
-    Ok((base, marks))
+    Ok((base, marks, dim))
 }
 
-fn read_elements(text: &str, base: i64, b: &mut MeshBuilder) -> Result<()> {
+fn read_elements(text: &str, base: i64, dim: i64, b: &mut MeshBuilder) -> Result<()> {
+    if dim == 3 {
+        return read_tetrahedra(text, base, b);
+    }
     let mut lines = content_lines(text, Some('#'));
     let (hl, h) = header(&mut lines, ".ele", "triangles, nodes per triangle, attributes", 2)?;
     let (count, per, attrs) = (h[0], h[1], h.get(2).copied().unwrap_or(0));
     let kind = match per {
         3 => ElementKind::Tri3,
         6 => ElementKind::Tri6,
-        _ => return Err(Error::unsupported(Some(hl), format!("triangles with {per} nodes are not supported (3 or 6)"))),
+        _ => {
+            return Err(Error::unsupported(Some(hl), format!("triangles with {per} nodes are not supported (3 or 6)")))
+        }
     };
     if count < 0 || attrs < 0 {
         return Err(Error::parse(hl, "the triangle and attribute counts must be non-negative"));
@@ -178,7 +213,11 @@ fn read_elements(text: &str, base: i64, b: &mut MeshBuilder) -> Result<()> {
             ids[ours] = (v - base) as u32;
         }
         if let Some(v) = repeated(&ids[..per as usize]) {
-            return Err(Error::element(i, Some(line), format!("node {} appears twice in the triangle", v as i64 + base)));
+            return Err(Error::element(
+                i,
+                Some(line),
+                format!("node {} appears twice in the triangle", v as i64 + base),
+            ));
         }
         b.add_element(kind, &ids[..per as usize], line);
     }
@@ -186,6 +225,69 @@ fn read_elements(text: &str, base: i64, b: &mut MeshBuilder) -> Result<()> {
         return Err(Error::parse(
             line,
             format!("unexpected {} after the {m} triangles the header (line {hl}) announces", shown(text)),
+        ));
+    }
+    Ok(())
+}
+
+/// TetGen's `.ele`: a header `m 4|10 attributes`, then `number n1 … n4 [n5 … n10]
+/// [attributes]` (see the module docs for the order of the extra nodes).
+fn read_tetrahedra(text: &str, base: i64, b: &mut MeshBuilder) -> Result<()> {
+    let mut lines = content_lines(text, Some('#'));
+    let (hl, h) = header(&mut lines, ".ele", "tetrahedra, nodes per tetrahedron, attributes", 2)?;
+    let (count, per, attrs) = (h[0], h[1], h.get(2).copied().unwrap_or(0));
+    if per != 4 && per != 10 {
+        return Err(Error::unsupported(Some(hl), format!("tetrahedra with {per} nodes are not supported (4 or 10)")));
+    }
+    if count < 0 || attrs < 0 {
+        return Err(Error::parse(hl, "the tetrahedron and attribute counts must be non-negative"));
+    }
+    let m = check_count(count as u64, text.len() as u64, 10, "tetrahedra", hl)?;
+    let attrs = check_count(attrs as u64, text.len() as u64, 2, "attributes per tetrahedron", hl)?;
+    let np = b.node_count() as i64;
+    let per = per as usize;
+    let fields = 1 + per + attrs;
+    let mut ids = [0u32; 10];
+    for i in 0..m {
+        let Some((line, text)) = lines.next() else {
+            return Err(Error::parse(hl, format!("the header announces {m} tetrahedra, but the file ends after {i}")));
+        };
+        let f: Vec<&str> = text.split_whitespace().collect();
+        if f.len() != fields {
+            return Err(Error::parse(
+                line,
+                format!(
+                    "a tetrahedron line has {fields} values here (number, {per} nodes, {attrs} attribute(s), as the \
+                     header at line {hl} says), found {}",
+                    f.len()
+                ),
+            ));
+        }
+        int(f[0], line, || "the tetrahedron number".into())?;
+        for (j, id) in ids[..per].iter_mut().enumerate() {
+            let v = int(f[1 + j], line, || format!("node {} of tetrahedron {i}", j + 1))?;
+            if v < base || v >= base + np {
+                return Err(Error::element(
+                    i,
+                    Some(line),
+                    format!("node {v} is out of range: the .node file numbers its nodes {base} to {}", base + np - 1),
+                ));
+            }
+            *id = (v - base) as u32;
+        }
+        if let Some(v) = repeated(&ids[..per]) {
+            return Err(Error::element(
+                i,
+                Some(line),
+                format!("node {} appears twice in the tetrahedron", v as i64 + base),
+            ));
+        }
+        b.add_tet(&ids[..per], line)?;
+    }
+    if let Some((line, text)) = lines.next() {
+        return Err(Error::parse(
+            line,
+            format!("unexpected {} after the {m} tetrahedra the header (line {hl}) announces", shown(text)),
         ));
     }
     Ok(())

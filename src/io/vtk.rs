@@ -56,6 +56,8 @@ impl Cells {
 /// What a VTK cell type is to us.
 enum VtkType {
     Element(ElementKind),
+    /// A tetrahedron of 4 or 10 nodes ([`crate::volume`]).
+    Solid(usize),
     Pixel,
     Polygon,
     Marker,
@@ -74,12 +76,12 @@ fn vtk_type(t: u64) -> VtkType {
         7 => Polygon,
         1 | 2 | 3 | 4 | 21 => Marker,
         6 => Unsupported("triangle strip"),
-        10 => Unsupported("tetrahedron"),
+        10 => Solid(4),
         11 => Unsupported("voxel"),
         12 => Unsupported("hexahedron"),
         13 => Unsupported("wedge"),
         14 => Unsupported("pyramid"),
-        24 => Unsupported("quadratic tetrahedron"),
+        24 => Solid(10),
         25 => Unsupported("quadratic hexahedron"),
         26 => Unsupported("quadratic wedge"),
         27 => Unsupported("quadratic pyramid"),
@@ -173,14 +175,20 @@ impl Reader<'_> {
                 self.points(t.line)?;
             } else if self.dataset == Dataset::UnstructuredGrid && is(k, "CELLS") {
                 if let Some(c) = &self.cells {
-                    return Err(Error::parse(t.line, format!("a second CELLS section (the first is at line {})", c.header)));
+                    return Err(Error::parse(
+                        t.line,
+                        format!("a second CELLS section (the first is at line {})", c.header),
+                    ));
                 }
                 self.cells = Some(self.cell_list(t.line, "CELLS")?);
             } else if self.dataset == Dataset::UnstructuredGrid && is(k, "CELL_TYPES") {
                 self.cell_types(t.line)?;
             } else if self.dataset == Dataset::PolyData && is(k, "POLYGONS") {
                 if let Some(c) = &self.cells {
-                    return Err(Error::parse(t.line, format!("a second POLYGONS section (the first is at line {})", c.header)));
+                    return Err(Error::parse(
+                        t.line,
+                        format!("a second POLYGONS section (the first is at line {})", c.header),
+                    ));
                 }
                 self.cells = Some(self.cell_list(t.line, "POLYGONS")?);
             } else if self.dataset == Dataset::PolyData && (is(k, "VERTICES") || is(k, "LINES")) {
@@ -256,7 +264,8 @@ impl Reader<'_> {
             c.conn.reserve(prealloc(n_conn));
             let mut cell_lines = Vec::with_capacity(prealloc(n_conn));
             for i in 0..n_conn {
-                let (v, vl) = self.lex.u64(|| format!("connectivity entry {i} of the {n_conn} announced at line {line}"))?;
+                let (v, vl) =
+                    self.lex.u64(|| format!("connectivity entry {i} of the {n_conn} announced at line {line}"))?;
                 c.conn.push(v);
                 cell_lines.push(vl as u32);
             }
@@ -310,7 +319,11 @@ impl Reader<'_> {
         if announced < cells.len() as u64 {
             return Err(Error::parse(
                 nl,
-                format!("CELL_TYPES announces {announced} types, but CELLS (line {}) has {} cells", cells.header, cells.len()),
+                format!(
+                    "CELL_TYPES announces {announced} types, but CELLS (line {}) has {} cells",
+                    cells.header,
+                    cells.len()
+                ),
             ));
         }
         // The whole announced count must fit in the rest of the file (so the message
@@ -362,7 +375,10 @@ impl Reader<'_> {
                 let mut comps = 1;
                 if let Some(c) = self.lex.peek().filter(|c| c.line == t.line) {
                     comps = c.text.parse::<u64>().ok().filter(|c| (1..=4).contains(c)).ok_or_else(|| {
-                        Error::parse(c.line, format!("expected the number of components (1 to 4), found {}", shown(c.text)))
+                        Error::parse(
+                            c.line,
+                            format!("expected the number of components (1 to 4), found {}", shown(c.text)),
+                        )
                     })?;
                     self.lex.next();
                 }
@@ -379,11 +395,15 @@ impl Reader<'_> {
                     }
                     self.fixed_line = Some(t.line);
                     if comps != 1 {
-                        return Err(Error::parse(t.line, format!("SCALARS fixed must have 1 component, found {comps}")));
+                        return Err(Error::parse(
+                            t.line,
+                            format!("SCALARS fixed must have 1 component, found {comps}"),
+                        ));
                     }
                     let mut f = Vec::with_capacity(prealloc(n as usize));
                     for i in 0..n {
-                        let (v, _) = self.lex.f64(|| format!("the 'fixed' value of point {i} (SCALARS at line {})", t.line))?;
+                        let (v, _) =
+                            self.lex.f64(|| format!("the 'fixed' value of point {i} (SCALARS at line {})", t.line))?;
                         f.push(v != 0.0);
                     }
                     self.fixed = Some(f);
@@ -399,7 +419,13 @@ impl Reader<'_> {
                 self.lex.next();
                 self.lex.expect(|| format!("the name of the {k}"))?;
                 self.lex.expect(|| format!("the data type of the {k}"))?;
-                let per = if is(k, "TENSORS") { 9 } else if is(k, "TENSORS6") { 6 } else { 3 };
+                let per = if is(k, "TENSORS") {
+                    9
+                } else if is(k, "TENSORS6") {
+                    6
+                } else {
+                    3
+                };
                 self.skip_values(n * per, k, t.line)?;
             } else if is(k, "TEXTURE_COORDINATES") {
                 self.lex.next();
@@ -465,7 +491,11 @@ impl Reader<'_> {
             (Dataset::UnstructuredGrid, None) => {
                 return Err(Error::parse(
                     lex.last_line(),
-                    format!("the file ends without the CELL_TYPES section for the {} cells of line {}", cells.len(), cells.header),
+                    format!(
+                        "the file ends without the CELL_TYPES section for the {} cells of line {}",
+                        cells.len(),
+                        cells.header
+                    ),
                 ))
             }
             (_, t) => t,
@@ -487,7 +517,10 @@ impl Reader<'_> {
                         return Err(Error::element(
                             i,
                             Some(line),
-                            format!("point index {v} is out of range: the file has {np} points (0 to {})", np.saturating_sub(1)),
+                            format!(
+                                "point index {v} is out of range: the file has {np} points (0 to {})",
+                                np.saturating_sub(1)
+                            ),
                         ));
                     }
                     ids[j] = v as u32;
@@ -511,9 +544,29 @@ impl Reader<'_> {
                     check(conn, &mut ids)?;
                     kind
                 }
+                VtkType::Solid(k) => {
+                    if conn.len() != k {
+                        return Err(Error::element(
+                            i,
+                            Some(line),
+                            format!(
+                                "cell type {ty} (a {k}-node tetrahedron) needs {k} points, but the cell lists {}",
+                                conn.len()
+                            ),
+                        ));
+                    }
+                    let mut tet = [0u32; 10];
+                    check(conn, &mut tet)?;
+                    builder.add_tet(&tet[..k], line)?;
+                    continue;
+                }
                 VtkType::Pixel => {
                     if conn.len() != 4 {
-                        return Err(Error::element(i, Some(line), format!("a pixel needs 4 points, but the cell lists {}", conn.len())));
+                        return Err(Error::element(
+                            i,
+                            Some(line),
+                            format!("a pixel needs 4 points, but the cell lists {}", conn.len()),
+                        ));
                     }
                     check(conn, &mut ids)?;
                     ids.swap(2, 3);
@@ -544,7 +597,10 @@ impl Reader<'_> {
                             return Err(Error::element(
                                 i,
                                 Some(line),
-                                format!("point index {v} is out of range: the file has {np} points (0 to {})", np.saturating_sub(1)),
+                                format!(
+                                    "point index {v} is out of range: the file has {np} points (0 to {})",
+                                    np.saturating_sub(1)
+                                ),
                             ));
                         }
                     }
@@ -556,7 +612,7 @@ impl Reader<'_> {
                         Some(type_line),
                         format!(
                             "VTK cell type {ty} ({name}) of element {i} is not supported: smoothlab reads types 5, 9, \
-                             22, 23, 28 (and 7 with 3 or 4 vertices)"
+                             22, 23, 28 (and 7 with 3 or 4 vertices) and tetrahedra (10, 24)"
                         ),
                     ))
                 }
@@ -602,7 +658,8 @@ pub(crate) fn write(w: super::Writable, s: &mut Out) {
     let n = mesh.node_count();
     let m = mesh.element_count();
     let size: usize = (0..m).map(|e| mesh.kind(e).node_count() + 1).sum();
-    let _ = write!(s, "# vtk DataFile Version 3.0\nsmoothlab mesh\nASCII\nDATASET UNSTRUCTURED_GRID\nPOINTS {n} double\n");
+    let _ =
+        write!(s, "# vtk DataFile Version 3.0\nsmoothlab mesh\nASCII\nDATASET UNSTRUCTURED_GRID\nPOINTS {n} double\n");
     for i in 0..n {
         w.write_xyz(s, i);
         s.push('\n');
@@ -620,8 +677,13 @@ pub(crate) fn write(w: super::Writable, s: &mut Out) {
     for &k in mesh.kinds() {
         let _ = writeln!(s, "{}", type_of(k));
     }
-    let _ = writeln!(s, "POINT_DATA {n}\nSCALARS fixed int 1\nLOOKUP_TABLE default");
-    for &f in mesh.fixed() {
+    write_fixed(mesh.fixed(), s);
+}
+
+/// The fixed flags as `POINT_DATA` scalar `fixed` (1 = fixed).
+pub(crate) fn write_fixed(fixed: &[bool], s: &mut Out) {
+    let _ = writeln!(s, "POINT_DATA {}\nSCALARS fixed int 1\nLOOKUP_TABLE default", fixed.len());
+    for &f in fixed {
         let _ = writeln!(s, "{}", u8::from(f));
     }
 }

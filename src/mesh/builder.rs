@@ -68,6 +68,11 @@ pub struct MeshBuilder {
     elem_start: Vec<u32>,
     elem_nodes: Vec<u32>,
     elem_lines: Vec<u32>,
+    /// Tetrahedra ([`crate::volume`]): node ids, 4 or 10 each in VTK's order, with their
+    /// lines; a file with any is a tetrahedral mesh.
+    tets: Vec<u32>,
+    tet_lines: Vec<u32>,
+    tet_order: Option<crate::volume::TetOrder>,
     /// How fixed flags are decided.
     pub fixed: FixedSpec,
 }
@@ -115,6 +120,57 @@ impl MeshBuilder {
     pub(crate) fn node_lines(&self) -> &[u32] {
         &self.point_lines
     }
+    /// Adds a tetrahedron with 0-based node indices, 4 or 10 in VTK's order
+    /// ([`crate::volume::TET10_EDGES`]), checked in [`build_model`](Self::build_model); a
+    /// file that mixes 4- and 10-node tetrahedra is refused here, naming the line.
+    pub fn add_tet(&mut self, nodes: &[u32], line: usize) -> Result<()> {
+        use crate::volume::TetOrder;
+        let order = if nodes.len() == 10 { TetOrder::Quadratic } else { TetOrder::Linear };
+        debug_assert!(nodes.len() == 4 || nodes.len() == 10);
+        match self.tet_order {
+            Some(o) if o != order => {
+                return Err(Error::element(
+                    self.tet_lines.len(),
+                    Some(line).filter(|&l| l > 0),
+                    "the file mixes 4-node and 10-node tetrahedra: smoothlab takes one kind per mesh",
+                ))
+            }
+            _ => self.tet_order = Some(order),
+        }
+        self.tets.extend_from_slice(nodes);
+        self.tet_lines.push(line as u32);
+        Ok(())
+    }
+
+    /// The tetrahedral mesh of the tetrahedra added; the nodes of any triangles or quads
+    /// in the file (the boundary faces Gmsh writes) are marked fixed, as lines and points
+    /// are.
+    fn volume(self) -> Result<crate::volume::TetMesh> {
+        let n = self.points.len();
+        let mut marks = vec![false; n];
+        for &i in &self.elem_nodes {
+            if let Some(m) = marks.get_mut(i as usize) {
+                *m = true;
+            }
+        }
+        let fixed = match self.fixed {
+            FixedSpec::Exact(f) => FixedSpec::Exact(f),
+            FixedSpec::BoundaryAnd(f) => FixedSpec::BoundaryAnd(
+                f.iter().zip(marks.iter().chain(std::iter::repeat(&false))).map(|(a, b)| *a || *b).collect(),
+            ),
+            FixedSpec::Boundary if marks.iter().any(|&m| m) => FixedSpec::BoundaryAnd(marks),
+            FixedSpec::Boundary => FixedSpec::Boundary,
+        };
+        crate::volume::TetMesh::build(crate::volume::TetParts {
+            nodes: self.points.iter().map(|&p| glam::DVec3::from(p)).collect(),
+            node_lines: self.point_lines,
+            order: self.tet_order.unwrap_or(crate::volume::TetOrder::Linear),
+            elements: self.tets,
+            element_lines: self.tet_lines,
+            fixed,
+        })
+    }
+
     /// Adds an element with 0-based node indices (checked in [`build`](Self::build)).
     pub fn add_element(&mut self, kind: ElementKind, nodes: &[u32], line: usize) {
         debug_assert_eq!(nodes.len(), kind.node_count());
@@ -134,6 +190,12 @@ impl MeshBuilder {
     /// at least one element, planarity), maps 3D points to the mesh's plane, orients
     /// the mesh counter-clockwise as a whole, builds the topology and the fixed flags.
     pub fn build(self) -> Result<Mesh> {
+        if !self.tets.is_empty() {
+            return Err(Error::unsupported(
+                self.tet_lines.first().map(|&l| l as usize).filter(|&l| l > 0),
+                "the file holds tetrahedra, not a planar mesh (smoothlab's stats and smooth take tetrahedral meshes)",
+            ));
+        }
         self.check()?;
         let flat = self.to_plane()?;
         self.planar(flat)
@@ -191,6 +253,9 @@ impl MeshBuilder {
     /// elements oriented consistently (see [`Surface`](crate::surface::Surface)), with its
     /// points as given.
     pub fn build_model(self) -> Result<crate::surface::Model> {
+        if !self.tets.is_empty() {
+            return self.volume().map(crate::surface::Model::Volume);
+        }
         self.check()?;
         let why = match self.to_plane() {
             Err(Error::NotPlanar { node, line, max_distance, relative, .. }) => {

@@ -32,12 +32,14 @@ pub use picture::SurfaceFaces;
 pub use reference::{closest_on_triangle, Analytic, Facets, Projected, Reference};
 pub use view::{perturb_surface, smooth_surface, SurfaceSmoother};
 
-/// What a mesh file holds: a planar mesh (the 2D core) or a surface in 3D.
+/// What a mesh file holds: a planar mesh (the 2D core), a surface in 3D, or a mesh of
+/// tetrahedra ([`crate::volume`]).
 #[derive(Clone, Debug)]
 #[allow(clippy::large_enum_variant)]
 pub enum Model {
     Planar(Mesh),
     Surface(Surface),
+    Volume(crate::volume::TetMesh),
 }
 
 impl From<Mesh> for Model {
@@ -47,12 +49,13 @@ impl From<Mesh> for Model {
 }
 
 impl Model {
-    /// The elements, topology and fixed flags (for a surface, with scratch positions:
-    /// see [`Surface::flat`]).
-    pub fn mesh(&self) -> &Mesh {
+    /// The elements, topology and fixed flags of a planar mesh or a surface (for a
+    /// surface, with scratch positions: see [`Surface::flat`]); `None` for tetrahedra.
+    pub fn mesh(&self) -> Option<&Mesh> {
         match self {
-            Model::Planar(m) => m,
-            Model::Surface(s) => &s.flat,
+            Model::Planar(m) => Some(m),
+            Model::Surface(s) => Some(&s.flat),
+            Model::Volume(_) => None,
         }
     }
     /// The statistics `stats` prints.
@@ -60,6 +63,7 @@ impl Model {
         match self {
             Model::Planar(m) => crate::quality::mesh_stats(m),
             Model::Surface(s) => s.stats(),
+            Model::Volume(v) => crate::volume::volume_stats(v),
         }
     }
     /// The planar mesh, or an error saying that `what` takes planar meshes only.
@@ -68,6 +72,9 @@ impl Model {
             Model::Planar(m) => Ok(m),
             Model::Surface(_) => {
                 Err(Error::invalid(format!("{what} takes planar meshes only; this mesh is a surface in 3D")))
+            }
+            Model::Volume(_) => {
+                Err(Error::invalid(format!("{what} takes planar meshes only; this mesh is made of tetrahedra")))
             }
         }
     }

@@ -324,6 +324,40 @@ impl TetMesh {
         })
     }
 
+    /// The 10-node mesh of a linear one: a node at the middle of every edge (shared by
+    /// the tetrahedra around it, fixed when the edge lies on the boundary); a quadratic
+    /// mesh comes back as it is.
+    pub fn to_quadratic(&self) -> Result<TetMesh> {
+        if self.is_quadratic() {
+            return Ok(self.clone());
+        }
+        let mut nodes = self.nodes.clone();
+        let mut mid = std::collections::HashMap::new();
+        let mut elements = Vec::with_capacity(10 * self.element_count());
+        for e in 0..self.element_count() {
+            let t: [u32; 4] = self.element(e).try_into().expect("a linear mesh has 4 nodes a tetrahedron");
+            elements.extend_from_slice(&t);
+            for [a, b] in TET10_EDGES {
+                let key = (t[a].min(t[b]), t[a].max(t[b]));
+                let id = *mid.entry(key).or_insert_with(|| {
+                    nodes.push(0.5 * (self.nodes[t[a] as usize] + self.nodes[t[b] as usize]));
+                    (nodes.len() - 1) as u32
+                });
+                elements.push(id);
+            }
+        }
+        let mut fixed = self.fixed.clone();
+        fixed.resize(nodes.len(), false);
+        TetMesh::build(TetParts {
+            nodes,
+            node_lines: Vec::new(),
+            order: TetOrder::Quadratic,
+            elements,
+            element_lines: Vec::new(),
+            fixed: FixedSpec::BoundaryAnd(fixed),
+        })
+    }
+
     pub fn node_count(&self) -> usize {
         self.nodes.len()
     }

@@ -21,6 +21,7 @@ pub fn read_model(path: &Path) -> Result<Model, String> {
                 eprintln!("smoothlab: note: {}: read as a surface in 3D: {why}", path.display());
             }
         }
+        Model::Volume(_) => {}
     }
     Ok(model)
 }
@@ -67,9 +68,20 @@ pub fn write_mesh<'a>(mesh: impl Into<io::Writable<'a>>, path: &Path, msh_versio
     Ok(())
 }
 
+/// Writes what a model holds (planar, surface or tetrahedra) in the format of the file's
+/// extension.
+pub fn write_model(model: &Model, path: &Path, msh_version: MshVersion) -> Result<(), String> {
+    match model {
+        Model::Planar(m) => write_mesh(m, path, msh_version),
+        Model::Surface(s) => write_mesh(s, path, msh_version),
+        Model::Volume(_) => io::write_model_path(model, path, &WriteOptions { msh_version })
+            .map_err(|e| format!("{}: {e}", path.display())),
+    }
+}
+
 #[derive(Args)]
 pub struct ConvertArgs {
-    /// Input mesh (.msh, .vtk, .node/.ele, .obj, .off)
+    /// Input mesh (.msh, .vtk, .node/.ele, .obj, .off; tetrahedra in .msh, .vtk, TetGen .node/.ele)
     pub input: PathBuf,
     /// Output mesh; the format follows the extension
     pub output: PathBuf,
@@ -80,5 +92,5 @@ pub struct ConvertArgs {
 
 pub fn convert(a: ConvertArgs) -> Result<(), String> {
     let model = read_model(&a.input)?;
-    write_mesh(&model, &a.output, a.msh_version)
+    write_model(&model, &a.output, a.msh_version)
 }

@@ -9,7 +9,7 @@ use smoothlab::generate::{self, GridKind, PlateKind, StarKind, SurfaceKind, Surf
 use smoothlab::surface::{perturb_surface, Model};
 use smoothlab::Mesh;
 
-use crate::files::{msh_version_parser, read_model, write_mesh};
+use crate::files::{msh_version_parser, read_model, write_mesh, write_model};
 use smoothlab::io::MshVersion;
 
 #[derive(Args)]
@@ -90,8 +90,31 @@ pub enum Kind {
     Cylinder(SurfaceArgs),
     /// A surface sample on a torus of radii 3 and 1
     Torus(SurfaceArgs),
+    /// Freitag's rand3d: Delaunay tetrahedra of random points in the unit cube (boundary
+    /// points at the interior's density)
+    Rand3d {
+        /// Points in all, corners, edges and faces included
+        #[arg(long, default_value_t = generate::RAND3D_POINTS)]
+        points: usize,
+        /// Seed of the random points
+        #[arg(long, default_value_t = 1)]
+        seed: u64,
+        #[command(flatten)]
+        out: Output,
+    },
+    /// The unit cube in tetrahedra: N cubes a side, each cut into Kuhn's six tetrahedra
+    Cube {
+        /// Cubes along each side
+        #[arg(long, default_value_t = 8)]
+        cells: usize,
+        /// 1 for 4-node tetrahedra, 2 for 10-node ones (a node at the middle of every edge)
+        #[arg(long, default_value_t = 1)]
+        order: u8,
+        #[command(flatten)]
+        out: Output,
+    },
     /// Move every free node of a mesh at random (to tangle it); a surface's nodes move in
-    /// their tangent planes and back onto the surface
+    /// their tangent planes and back onto the surface, a tetrahedral mesh's in a ball
     Perturb {
         /// The mesh to perturb
         input: PathBuf,
@@ -132,10 +155,10 @@ pub fn run(a: GenerateArgs) -> Result<(), String> {
         Kind::Sphere(s) => return surface_sample(SurfaceShape::Sphere, s),
         Kind::Cylinder(s) => return surface_sample(SurfaceShape::Cylinder, s),
         Kind::Torus(s) => return surface_sample(SurfaceShape::Torus, s),
-        Kind::Rand2d { points, per_side, seed, out } => (generate::rand2d(points, per_side, seed).map_err(|e| e.to_string())?, out),
-        Kind::Grid { nx, ny, kind, out } => {
-            (generate::grid(nx, ny, kind).map_err(|e| e.to_string())?, out)
+        Kind::Rand2d { points, per_side, seed, out } => {
+            (generate::rand2d(points, per_side, seed).map_err(|e| e.to_string())?, out)
         }
+        Kind::Grid { nx, ny, kind, out } => (generate::grid(nx, ny, kind).map_err(|e| e.to_string())?, out),
         Kind::Plate { kind, order, resolution, out } => {
             (generate::plate(kind, order, resolution).map_err(|e| e.to_string())?, out)
         }
@@ -143,12 +166,32 @@ pub fn run(a: GenerateArgs) -> Result<(), String> {
             (generate::star(kind, k.unwrap_or(kind.default_k())).map_err(|e| e.to_string())?, out)
         }
         Kind::Perturb { input, amount, seed, out } => match read_model(&input)? {
-            Model::Planar(mesh) => (generate::perturb(&mesh, amount, seed).map_err(|e| format!("{}: {e}", input.display()))?, out),
+            Model::Planar(mesh) => {
+                (generate::perturb(&mesh, amount, seed).map_err(|e| format!("{}: {e}", input.display()))?, out)
+            }
             Model::Surface(s) => {
                 let moved = perturb_surface(&s, amount, seed).map_err(|e| format!("{}: {e}", input.display()))?;
                 return write_mesh(&moved, &out.output, out.msh_version);
             }
+            Model::Volume(v) => {
+                let moved =
+                    generate::perturb_volume(&v, amount, seed).map_err(|e| format!("{}: {e}", input.display()))?;
+                return write_model(&Model::Volume(moved), &out.output, out.msh_version);
+            }
         },
+        Kind::Rand3d { points, seed, out } => {
+            let mesh = generate::rand3d(points, seed).map_err(|e| e.to_string())?;
+            return write_model(&Model::Volume(mesh), &out.output, out.msh_version);
+        }
+        Kind::Cube { cells, order, out } => {
+            let cube = generate::tet_cube(cells).map_err(|e| e.to_string())?;
+            let cube = match order {
+                1 => cube,
+                2 => cube.to_quadratic().map_err(|e| e.to_string())?,
+                o => return Err(format!("--order {o}: give 1 (4-node tetrahedra) or 2 (10-node)")),
+            };
+            return write_model(&Model::Volume(cube), &out.output, out.msh_version);
+        }
     };
     write_mesh(&mesh, &out.output, out.msh_version)
 }

@@ -172,6 +172,13 @@ pub fn run(a: RenderArgs) -> Result<(), String> {
             mesh
         }
         Model::Surface(s) => return surface(&a, &input, s, camera.unwrap_or_default(), passes, &shown),
+        Model::Volume(_) => {
+            return Err(format!(
+                "{}: render draws planar meshes and surfaces; pictures of tetrahedral meshes are not available yet \
+                 (stats and smooth take them)",
+                input.display()
+            ))
+        }
     };
     // The pictures are drawn by the page's code, which holds at most MAX_NODES nodes: say
     // so in this tool's words, with the file's name (the page's own message pointed to
@@ -373,7 +380,8 @@ fn surface_level_sets(a: &RenderArgs, s: &Surface, passes: u32, shown: &[Side]) 
     let mut lab = Playground::new(star).map_err(|e| e.to_string())?;
     lab.set_settings(settings(a)).map_err(|e| e.to_string())?;
     let (w, h) = size(a.size.as_deref(), (if shown.len() == 2 { 1100 } else { 560 }, 560))?;
-    let each = Canvas { w: ((w / shown.len() as u32) as f32 * a.dpr) as u32, h: ((h as f32) * a.dpr) as u32, dpr: a.dpr };
+    let each =
+        Canvas { w: ((w / shown.len() as u32) as f32 * a.dpr) as u32, h: ((h as f32) * a.dpr) as u32, dpr: a.dpr };
     let mut parts = Vec::new();
     for &side in shown {
         parts.push(lab.render_level_set(side, n, each).map_err(|e| e.to_string())?.0);

@@ -23,12 +23,13 @@ use std::time::Instant;
 
 use clap::Args;
 use serde::Serialize;
-use smoothlab::objective::{objective_with, ObjectiveKind, Penalty};
+use smoothlab::objective::{objective_with, tet_objective, ObjectiveKind, Penalty};
 use smoothlab::quality::MeshStats;
-use smoothlab::surface::{Model, SurfaceSmoother};
 use smoothlab::smooth::{untangling_obstacles, Obstacle, Order, PassRecord, SmoothOptions, Smoother, Strategy};
+use smoothlab::surface::{Model, SurfaceSmoother};
+use smoothlab::volume::VolumeSmoother;
 
-use crate::files::{msh_version_parser, read_model, write_mesh};
+use crate::files::{msh_version_parser, read_model, write_model};
 use smoothlab::io::MshVersion;
 
 use smoothlab::limits::{self, BATCH_MAX_ITER, BATCH_PASSES};
@@ -187,8 +188,16 @@ pub fn run(a: SmoothArgs) -> Result<(), String> {
     let opts = options(&a)?;
     let kind = a.objective.unwrap_or(ObjectiveKind::New);
     let mut model = read_model(&a.input)?;
-    if a.slide_curves && matches!(model, Model::Planar(_)) {
-        return Err("--slide-curves: the nodes of a surface's feature curves slide along them; this mesh is planar".into());
+    if a.slide_curves && !matches!(model, Model::Surface(_)) {
+        let what = if matches!(model, Model::Planar(_)) { "planar" } else { "made of tetrahedra" };
+        return Err(format!(
+            "--slide-curves: the nodes of a surface's feature curves slide along them; this mesh is {what}"
+        ));
+    }
+    if a.penalty.is_some() && matches!(model, Model::Volume(_)) {
+        return Err(
+            "--penalty: the angle penalty's designs are planar; tetrahedra take new's regularised barrier".into()
+        );
     }
     if let Model::Planar(mesh) = &model {
         smoothlab::objective::check_scale(kind, mesh).map_err(|e| format!("{}: {e}", a.input.display()))?;
@@ -209,9 +218,14 @@ pub fn run(a: SmoothArgs) -> Result<(), String> {
             let mut smoother = SurfaceSmoother::new(opts).map_err(|e| e.to_string())?;
             (0..a.passes).map(|_| smoother.pass(surface, &*obj, &clock)).collect()
         }
+        Model::Volume(mesh) => {
+            let obj = tet_objective(kind);
+            let mut smoother = VolumeSmoother::new(opts).map_err(|e| e.to_string())?;
+            (1..=a.passes).map(|p| smoother.pass(mesh, &*obj, p, &clock)).collect()
+        }
     };
     let time_ms = clock() - start;
-    write_mesh(&model, &a.output, a.msh_version)?;
+    write_model(&model, &a.output, a.msh_version)?;
     let final_stats = model.stats();
     // the obstacles are found in the plane (a surface's fixed nodes have no common one)
     let obstacles = match &model {

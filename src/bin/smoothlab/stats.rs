@@ -29,20 +29,46 @@ pub fn table(s: &MeshStats) -> String {
     let mut t = String::new();
     let mut row = |k: &str, v: String| t.push_str(&format!("{k:<16} {v}\n"));
     if let Some(d) = s.max_distance_from_surface {
-        row("surface", format!("in 3D, each element measured in its own plane; nodes at most {d:.3e} from the surface"));
+        row(
+            "surface",
+            format!("in 3D, each element measured in its own plane; nodes at most {d:.3e} from the surface"),
+        );
     }
-    let following = if s.following_nodes > 0 { format!(", {} mid-side following", s.following_nodes) } else { String::new() };
+    let following =
+        if s.following_nodes > 0 { format!(", {} mid-side following", s.following_nodes) } else { String::new() };
     row("nodes", format!("{} ({} free, {} fixed{following})", s.nodes, s.free_nodes, s.fixed_nodes));
-    row("elements", format!("{} ({} triangles, {} quads, {} quadratic)", s.elements, s.triangles, s.quads, s.quadratic));
+    let solid = s.tetrahedra > 0;
+    if solid {
+        row("elements", format!("{} tetrahedra ({} quadratic)", s.tetrahedra, s.quadratic));
+    } else {
+        row(
+            "elements",
+            format!("{} ({} triangles, {} quads, {} quadratic)", s.elements, s.triangles, s.quads, s.quadratic),
+        );
+    }
     row("inverted", s.inverted.to_string());
-    row("angles", format!("min {:.2}°  max {:.2}°", s.min_angle_deg, s.max_angle_deg));
-    row("quality α/β", format!("min {:.4}  mean {:.4}", s.min_quality, s.mean_quality));
+    row(
+        if solid { "dihedral angles" } else { "angles" },
+        format!("min {:.2}°  max {:.2}°", s.min_angle_deg, s.max_angle_deg),
+    );
+    row(
+        if solid { "mean ratio" } else { "quality α/β" },
+        format!("min {:.4}  mean {:.4}", s.min_quality, s.mean_quality),
+    );
     row(
         "condition κ",
-        if s.max_condition.is_finite() { format!("max {:.4}", s.max_condition) } else { "max ∞ (inverted elements)".into() },
+        if s.max_condition.is_finite() {
+            format!("max {:.4}", s.max_condition)
+        } else {
+            "max ∞ (inverted elements)".into()
+        },
     );
     let total: u64 = s.angle_histogram_6deg.iter().sum();
-    t.push_str("angle histogram (6° bins, % of corner angles):\n");
+    t.push_str(if solid {
+        "dihedral angle histogram (6° bins, % of dihedral angles):\n"
+    } else {
+        "angle histogram (6° bins, % of corner angles):\n"
+    });
     for (i, &c) in s.angle_histogram_6deg.iter().enumerate() {
         if c == 0 {
             continue;
