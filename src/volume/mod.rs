@@ -18,11 +18,13 @@ use crate::quality::tet as q3;
 
 mod smooth;
 mod stats;
+mod swap;
 #[cfg(test)]
 mod tests;
 
 pub use smooth::{smooth_volume, VolumeSmoother};
 pub use stats::volume_stats;
+pub use swap::swap_max_min_dihedral;
 
 /// The node order of a 10-node tetrahedron (VTK's `QUADRATIC_TETRA`): corners 0–3, then
 /// the middle nodes of the edges (0,1), (1,2), (0,2), (0,3), (1,3), (2,3).
