@@ -125,6 +125,33 @@ fn surfaces(c: &mut Criterion) {
     g.finish();
 }
 
+/// One pass over Freitag's rand3D (1086 points, about 5900 tetrahedra) with each of her
+/// strategies and the new objective with Chen's rules: the planar drivers on tetrahedra.
+fn tetrahedra(c: &mut Criterion) {
+    use smoothlab::generate::{rand3d, RAND3D_POINTS};
+    use smoothlab::objective::tet_objective;
+    use smoothlab::volume::VolumeSmoother;
+    let mesh = rand3d(RAND3D_POINTS, 1).expect("rand3d");
+    let mut g = c.benchmark_group("volume pass/rand3d");
+    g.sample_size(10).throughput(Throughput::Elements(mesh.free_count() as u64));
+    g.measurement_time(Duration::from_secs(5));
+    for (name, strategy, kind) in [
+        ("laplace", Strategy::Laplace, ObjectiveKind::Sine),
+        ("smart", Strategy::Smart, ObjectiveKind::Sine),
+        ("opt+sine", Strategy::Opt, ObjectiveKind::Sine),
+        ("opt+new", Strategy::Opt, ObjectiveKind::New),
+        ("rules+new", Strategy::Rules, ObjectiveKind::New),
+    ] {
+        let obj = tet_objective(kind);
+        // Freitag's strategies in node order, as her table ran them; Chen's rules worst first
+        let order = if strategy == Strategy::Rules { Order::Priority } else { Order::Input };
+        let mut s =
+            VolumeSmoother::new(SmoothOptions::default().with_strategy(strategy).with_order(order)).expect("options");
+        g.bench_function(name, |b| b.iter_batched_ref(|| mesh.clone(), |m| s.sweep(m, &*obj), BatchSize::LargeInput));
+    }
+    g.finish();
+}
+
 /// The level-set view of one node: its objective sampled on a 100 × 100 grid over its star.
 fn level_sets(c: &mut Criterion) {
     let mesh = bench_mesh(10_000);
@@ -172,5 +199,5 @@ fn rendering(c: &mut Criterion) {
     g.finish();
 }
 
-criterion_group!(benches, smoothing, surfaces, level_sets, rendering);
+criterion_group!(benches, smoothing, surfaces, tetrahedra, level_sets, rendering);
 criterion_main!(benches);
