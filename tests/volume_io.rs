@@ -1,8 +1,8 @@
 //! Tetrahedral meshes in files and on the command line: every format round-trips
 //! (`.msh` 2.2 and 4.1, `.vtk`, TetGen `.node`/`.ele`; 4- and 10-node), Gmsh's and
 //! TetGen's node orders are read as they are written by those tools, bad files are refused
-//! naming the line or element, and `generate cube`, `perturb`, `stats`, `smooth` and
-//! `convert` work on tetrahedra.
+//! naming the line or element, and `generate cube`, `perturb`, `stats`, `smooth`,
+//! `convert` and `render` work on tetrahedra.
 
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
@@ -181,6 +181,15 @@ fn the_command_line_generates_perturbs_measures_smooths_and_converts_tetrahedra(
     // what does not apply to tetrahedra is refused, saying why
     assert!(refused(&["smooth", p(&tangled), "--slide-curves", "-o", p(&smoothed)])
         .contains("this mesh is made of tetrahedra"));
-    assert!(refused(&["render", p(&tangled), "-o", p(&d.join("x.png"))]).contains("tetrahedral"));
+    // pictures: the cut 3D view, old and new side by side, and the dihedral histograms
+    let png = d.join("compare.png");
+    ok(&["render", p(&tangled), "--view", "compare", "--passes", "1", "--cut", "y=0.5", "-o", p(&png)]);
+    assert!(std::fs::read(&png).unwrap().starts_with(b"\x89PNG"));
+    ok(&["render", p(&tangled), "--view", "histogram", "-o", p(&d.join("h.png"))]);
+    assert!(refused(&["render", p(&tangled), "--view", "levelset", "-o", p(&png)]).contains("tetrahedral"));
+    assert!(refused(&["render", p(&tangled), "--cut", "w=2", "-o", p(&png)]).contains("--cut"));
+    let grid = d.join("grid.vtk");
+    ok(&["generate", "grid", "-o", p(&grid)]);
+    assert!(refused(&["render", p(&grid), "--cut", "z=0.5", "-o", p(&png)]).contains("not made of tetrahedra"));
     assert!(refused(&["convert", p(&tangled), p(&d.join("x.obj"))]).contains("not tetrahedra"));
 }

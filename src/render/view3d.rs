@@ -99,7 +99,11 @@ impl Camera {
         let (dx, dy) = (if dx.is_finite() { dx } else { 0.0 }, if dy.is_finite() { dy } else { 0.0 });
         let yaw = (self.yaw - DEGREES_PER_PIXEL * dx).rem_euclid(360.0);
         let pitch = (self.pitch + DEGREES_PER_PIXEL * dy).clamp(-MAX_DRAG_PITCH, MAX_DRAG_PITCH);
-        Camera { yaw: if yaw.is_finite() { yaw } else { 0.0 }, pitch: if pitch.is_finite() { pitch } else { 0.0 }, ..self }
+        Camera {
+            yaw: if yaw.is_finite() { yaw } else { 0.0 },
+            pitch: if pitch.is_finite() { pitch } else { 0.0 },
+            ..self
+        }
     }
 
     /// Magnified by `factor` (a wheel step), within [`ZOOM_RANGE`]; a factor that is not
@@ -138,8 +142,10 @@ impl Camera {
 /// around it. A ring of 6 or 8 nodes is a quadratic triangle or quad listed corner, mid,
 /// corner, mid, …, and its edges are drawn as the parabolas through the mid nodes; any
 /// other ring (3 or 4 nodes for linear faces) is drawn as a polygon. `values[f]` in
-/// [0, 1] is the face's place on the colour map; `inverted[f]` marks an inverted element.
-/// Missing values count as 0 and missing flags as not inverted; a face with a node id
+/// [0, 1] is the face's place on the colour map; `inverted[f]` marks an inverted element;
+/// `faded[f]` draws the face pale, behind what matters (a tetrahedral mesh's boundary
+/// around its cut). Missing values count as 0 and missing flags as not inverted and not
+/// faded; a face with a node id
 /// out of range, fewer than 3 nodes, or a coordinate that is not finite is not drawn.
 #[derive(Clone, Copy, Debug, Default)]
 pub struct Faces<'a> {
@@ -148,6 +154,7 @@ pub struct Faces<'a> {
     pub rings: &'a [u32],
     pub values: &'a [f64],
     pub inverted: &'a [bool],
+    pub faded: &'a [bool],
 }
 
 impl Faces<'_> {
@@ -362,13 +369,14 @@ pub fn render_surface(pixmap: &mut Pixmap, faces: &Faces, opts: &SurfaceView) ->
         let Some(ring) = faces.ring(f) else { continue };
         let pts: Vec<DVec3> = ring.iter().map(|&n| faces.points[n as usize]).collect();
         let Some(pb) = face_path(&pts, &proj) else { continue };
-        if faces.inverted.get(f).copied().unwrap_or(false) {
+        let faded = faces.faded.get(f).copied().unwrap_or(false);
+        if !faded && faces.inverted.get(f).copied().unwrap_or(false) {
             draw_inverted(pixmap, pb, s, clip);
             continue;
         }
         let Some(path) = pb.finish() else { continue };
         let value = faces.values.get(f).copied().unwrap_or(0.0);
-        let base = bucket_color(opts.colormap, bucket(value));
+        let base = if faded { faded_colour() } else { bucket_color(opts.colormap, bucket(value)) };
         let colour = shaded(base, shade(newell_normal(&pts), light, proj.forward));
         let mut paint = solid(colour);
         paint.anti_alias = opts.show_edges;
@@ -416,6 +424,11 @@ pub fn shade(normal: DVec3, light: DVec3, view: DVec3) -> f64 {
     } else {
         lambert
     }
+}
+
+/// The colour of a faded face, before the light: a pale grey.
+fn faded_colour() -> Color {
+    Color::from_rgba8(222, 224, 228, 255)
 }
 
 fn shaded(c: Color, k: f64) -> Color {
@@ -504,7 +517,10 @@ fn clip_to_far(mut poly: Vec<(f32, f32)>) -> Vec<(f32, f32)> {
 
 /// A mask for the frame when it does not cover the whole pixmap.
 fn frame_mask(pixmap: &Pixmap, frame: Frame, s: f32) -> Option<Mask> {
-    let full = frame.x <= 0.0 && frame.y <= 0.0 && frame.right() * s >= pixmap.width() as f32 && frame.bottom() * s >= pixmap.height() as f32;
+    let full = frame.x <= 0.0
+        && frame.y <= 0.0
+        && frame.right() * s >= pixmap.width() as f32
+        && frame.bottom() * s >= pixmap.height() as f32;
     if full {
         return None;
     }

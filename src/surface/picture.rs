@@ -28,6 +28,7 @@ impl SurfaceFaces {
             rings: &self.rings,
             values: &self.values,
             inverted: &self.inverted,
+            faded: &[],
         }
     }
 }

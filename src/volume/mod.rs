@@ -16,12 +16,14 @@ use crate::error::{Error, Result};
 use crate::mesh::{FixedSpec, NodeRole};
 use crate::quality::tet as q3;
 
+mod picture;
 mod smooth;
 mod stats;
 mod swap;
 #[cfg(test)]
 mod tests;
 
+pub use picture::{Cut, CutFaces};
 pub use smooth::{smooth_volume, VolumeSmoother};
 pub use stats::volume_stats;
 pub use swap::swap_max_min_dihedral;

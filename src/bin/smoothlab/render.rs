@@ -11,6 +11,7 @@ use clap::{Args, ValueEnum};
 use smoothlab::lab::pick::worst_free_node;
 use smoothlab::lab::views::{pixmap, Canvas};
 use smoothlab::lab::{Choice, Playground, Settings, Side, MAX_NODES};
+use smoothlab::objective::tet_objective;
 use smoothlab::quality::mesh_stats;
 use smoothlab::render::{
     encode_png, render_angle_histogram, render_mesh, AngleHistogram, HistogramSeries, MeshView, Metric,
@@ -18,6 +19,7 @@ use smoothlab::render::{
 use smoothlab::render::{Camera, SurfaceView};
 use smoothlab::smooth::{smooth, SmoothOptions, Strategy};
 use smoothlab::surface::{Model, Surface, SurfaceSmoother};
+use smoothlab::volume::{smooth_volume, volume_stats, Cut, TetMesh};
 use smoothlab::Mesh;
 use tiny_skia::{Pixmap, PixmapPaint, Transform};
 
@@ -90,6 +92,10 @@ pub struct RenderArgs {
     /// (default 30,25,1); --view mesh and compare draw surfaces
     #[arg(long, allow_hyphen_values = true)]
     pub camera: Option<String>,
+    /// A tetrahedral mesh's cut plane, AXIS=FRACTION of its extent (default z=0.5): the
+    /// tetrahedra beyond it are taken away, the faces it opens coloured by mean ratio
+    #[arg(long)]
+    pub cut: Option<String>,
 }
 
 /// Which sides `--objective` asks for.
@@ -172,14 +178,11 @@ pub fn run(a: RenderArgs) -> Result<(), String> {
             mesh
         }
         Model::Surface(s) => return surface(&a, &input, s, camera.unwrap_or_default(), passes, &shown),
-        Model::Volume(_) => {
-            return Err(format!(
-                "{}: render draws planar meshes and surfaces; pictures of tetrahedral meshes are not available yet \
-                 (stats and smooth take them)",
-                input.display()
-            ))
-        }
+        Model::Volume(v) => return volume(&a, &input, v, camera.unwrap_or_default(), passes, &shown),
     };
+    if a.cut.is_some() {
+        return Err("--cut cuts a tetrahedral mesh; this mesh is not made of tetrahedra".into());
+    }
     // The pictures are drawn by the page's code, which holds at most MAX_NODES nodes: say
     // so in this tool's words, with the file's name (the page's own message pointed to
     // the command-line tool, which this is).
@@ -362,6 +365,87 @@ fn surface(
         parts.push(pm);
     }
     let picture = side_by_side(&parts)?;
+    let png = encode_png(&picture).map_err(|e| e.to_string())?;
+    std::fs::write(&a.output, png).map_err(|e| format!("{}: {e}", a.output.display()))
+}
+
+/// A tetrahedral mesh, cut (`--cut`) and drawn in the 3D view: `--view mesh` (as loaded,
+/// or after the passes of the first objective asked for), `compare` (old and new side by
+/// side after the passes) or `histogram` (the dihedral angles, 6° bins: as loaded, old,
+/// new), with the lab's strategy, order and iterations.
+fn volume(
+    a: &RenderArgs,
+    input: &std::path::Path,
+    v: TetMesh,
+    camera: Camera,
+    passes: u32,
+    shown: &[Side],
+) -> Result<(), String> {
+    if v.node_count() > MAX_NODES {
+        return Err(format!(
+            "{}: the mesh has {} nodes; render draws meshes of at most {MAX_NODES} nodes",
+            input.display(),
+            v.node_count()
+        ));
+    }
+    let cut = a.cut.as_deref().map(Cut::parse).transpose().map_err(|e| format!("--cut: {e}"))?.unwrap_or_default();
+    let sides: Vec<Side> = match a.view {
+        ViewArg::Mesh => vec![shown[0]],
+        ViewArg::Compare | ViewArg::Histogram if shown.len() == 2 => shown.to_vec(),
+        ViewArg::Compare | ViewArg::Histogram => {
+            return Err("--view compare and histogram show both objectives: use --objective old,new".into())
+        }
+        other => {
+            return Err(format!(
+                "--view {}: a tetrahedral mesh is drawn by --view mesh, compare or histogram",
+                format!("{other:?}").to_lowercase()
+            ))
+        }
+    };
+    let settings = settings(a);
+    let opts = settings.smooth_options().map_err(|e| e.to_string())?;
+    let mut smoothed = Vec::new();
+    for &side in &sides {
+        let mut t = v.clone();
+        let kind = settings.compare[side as usize].objective;
+        smooth_volume(&mut t, &*tet_objective(kind), opts, passes, &|| 0.0).map_err(|e| e.to_string())?;
+        smoothed.push((side, kind, t));
+    }
+    let picture = if a.view == ViewArg::Histogram {
+        let (w, h) = size(a.size.as_deref(), (900, 520))?;
+        let mut pm = pixmap(((w as f32) * a.dpr) as u32, ((h as f32) * a.dpr) as u32).map_err(|e| e.to_string())?;
+        let loaded = volume_stats(&v).angle_histogram_6deg;
+        let counts: Vec<(String, Vec<u64>)> = smoothed
+            .iter()
+            .map(|(side, kind, t)| (format!("{}: {kind}", side.letter()), volume_stats(t).angle_histogram_6deg))
+            .collect();
+        let mut series = vec![HistogramSeries { label: "as loaded", counts: &loaded, color: None }];
+        series.extend(counts.iter().map(|(l, c)| HistogramSeries { label: l, counts: c, color: None }));
+        let title = format!("Dihedral angles after {passes} passes");
+        let opts = AngleHistogram { title: &title, dpr: a.dpr, ..AngleHistogram::default() };
+        render_angle_histogram(&mut pm, &series, &opts).map_err(|e| e.to_string())?;
+        pm
+    } else {
+        let (w, h) = size(a.size.as_deref(), if sides.len() == 2 { (1400, 760) } else { (900, 800) })?;
+        let each = w / sides.len() as u32;
+        let mut parts = Vec::new();
+        for (side, kind, t) in &smoothed {
+            let st = volume_stats(t);
+            let when = match passes {
+                0 => "as loaded".to_string(),
+                1 => format!("{}: {kind} after 1 pass", side.letter()),
+                n => format!("{}: {kind} after {n} passes", side.letter()),
+            };
+            let title =
+                format!("{when}: {} inverted, dihedral {:.1}°–{:.1}°", st.inverted, st.min_angle_deg, st.max_angle_deg);
+            let mut pm =
+                pixmap(((each as f32) * a.dpr) as u32, ((h as f32) * a.dpr) as u32).map_err(|e| e.to_string())?;
+            let view = SurfaceView { camera, dpr: a.dpr, title: Some(title), ..SurfaceView::default() };
+            t.render_cut(&mut pm, cut, &view);
+            parts.push(pm);
+        }
+        side_by_side(&parts)?
+    };
     let png = encode_png(&picture).map_err(|e| e.to_string())?;
     std::fs::write(&a.output, png).map_err(|e| format!("{}: {e}", a.output.display()))
 }

@@ -50,7 +50,8 @@ fn yaw_0_pitch_0_looks_along_plus_y_with_x_right_and_z_up() {
         assert!(q.x >= 10.0 - EPS && q.x <= 190.0 + EPS && q.y >= 10.0 - EPS && q.y <= 90.0 + EPS, "{q:?}");
     }
     // zoom scales about the centre; the device pixel is dpr × the CSS pixel
-    let z = Projection::fit(&box_corners(), &Camera { zoom: 2.5, ..cam }, Frame::new(0.0, 0.0, 200.0, 100.0), 10.0, 2.0);
+    let z =
+        Projection::fit(&box_corners(), &Camera { zoom: 2.5, ..cam }, Frame::new(0.0, 0.0, 200.0, 100.0), 10.0, 2.0);
     assert!(close(z.to_css(DVec3::new(3.0, 3.0, 0.0)), DVec2::new(100.0 + 2.5 * k, 50.0)));
     assert!(close(z.to_device(DVec3::new(3.0, 3.0, 0.0)), 2.0 * DVec2::new(100.0 + 2.5 * k, 50.0)));
 }
@@ -109,12 +110,22 @@ fn a_face_in_front_is_painted_over_one_behind_whatever_their_order() {
             points.rotate_left(4);
             values.reverse();
         }
-        let faces = Faces { points: &points, ring_start: &[0, 4, 8], rings: &rings, values: &values, inverted: &[] };
+        let faces = Faces {
+            points: &points,
+            ring_start: &[0, 4, 8],
+            rings: &rings,
+            values: &values,
+            inverted: &[],
+            faded: &[],
+        };
         let mut p = Pixmap::new(120, 120).unwrap();
         let proj = render_surface(&mut p, &faces, &front_view());
         let c = proj.to_device(DVec3::new(0.3, 0.0, 0.2));
         let px = p.pixel(c.x as u32, c.y as u32).unwrap();
-        assert!(px.green() > 150 && px.blue() < 60, "front_first {front_first}: the yellow front face shows, got {px:?}");
+        assert!(
+            px.green() > 150 && px.blue() < 60,
+            "front_first {front_first}: the yellow front face shows, got {px:?}"
+        );
     }
 }
 
@@ -138,7 +149,14 @@ fn the_light_follows_lambert_and_back_faces_are_darker() {
         square_at(&mut points, &mut rings, 0.0, away);
         let n = newell_normal(&points);
         assert!((n - if away { 8.0 } else { -8.0 } * DVec3::Y).length() < EPS, "{n:?}");
-        let faces = Faces { points: &points, ring_start: &[0, 4], rings: &rings, values: &[0.5], inverted: &[false] };
+        let faces = Faces {
+            points: &points,
+            ring_start: &[0, 4],
+            rings: &rings,
+            values: &[0.5],
+            inverted: &[false],
+            faded: &[],
+        };
         let mut p = Pixmap::new(100, 100).unwrap();
         render_surface(&mut p, &faces, &front_view());
         let px = p.pixel(50, 50).unwrap();
@@ -157,7 +175,8 @@ fn the_light_follows_lambert_and_back_faces_are_darker() {
 fn an_inverted_face_is_red_and_hatched() {
     let (mut points, mut rings) = (Vec::new(), Vec::new());
     square_at(&mut points, &mut rings, 0.0, false);
-    let faces = Faces { points: &points, ring_start: &[0, 4], rings: &rings, values: &[0.5], inverted: &[true] };
+    let faces =
+        Faces { points: &points, ring_start: &[0, 4], rings: &rings, values: &[0.5], inverted: &[true], faded: &[] };
     let mut p = Pixmap::new(100, 100).unwrap();
     render_surface(&mut p, &faces, &front_view());
     let (mut red, mut dark) = (0, 0);
@@ -189,7 +208,18 @@ fn odd_input_draws_what_it_can_and_never_panics() {
     assert_eq!(proj.pick(&one, 40.0, 30.0, 1.0), Some(0));
     // all points equal: a face of zero size, drawn as nothing (or a dot), mapped to the centre
     let same = [DVec3::splat(5.0); 4];
-    let proj = render_surface(&mut p, &Faces { points: &same, ring_start: &[0, 4], rings: &[0, 1, 2, 3], values: &[1.0], inverted: &[false] }, &opts);
+    let proj = render_surface(
+        &mut p,
+        &Faces {
+            points: &same,
+            ring_start: &[0, 4],
+            rings: &[0, 1, 2, 3],
+            values: &[1.0],
+            inverted: &[false],
+            faded: &[],
+        },
+        &opts,
+    );
     assert!(close(proj.to_css(same[0]), DVec2::new(40.0, 30.0)));
     // a NaN and an infinite coordinate: those faces are skipped, the good one is drawn
     let (mut points, mut rings) = (Vec::new(), Vec::new());
@@ -198,7 +228,14 @@ fn odd_input_draws_what_it_can_and_never_panics() {
     }
     points[5].x = f64::NAN;
     points[10].z = f64::INFINITY;
-    let faces = Faces { points: &points, ring_start: &[0, 4, 8, 12], rings: &rings, values: &[1.0, 0.0, 0.0], inverted: &[] };
+    let faces = Faces {
+        points: &points,
+        ring_start: &[0, 4, 8, 12],
+        rings: &rings,
+        values: &[1.0, 0.0, 0.0],
+        inverted: &[],
+        faded: &[],
+    };
     let proj = render_surface(&mut p, &faces, &opts);
     assert!(proj.scale().is_finite() && painted(&p) > 100);
     // slices that do not match: short values and flags, a ring past the end, ids out of
@@ -209,9 +246,17 @@ fn odd_input_draws_what_it_can_and_never_panics() {
         rings: &[0, 1, 2, 3, 9, 1, 2],
         values: &[],
         inverted: &[],
+        faded: &[],
     };
     render_surface(&mut p, &faces, &opts);
-    let faces = Faces { points: &points[..4], ring_start: &[0, 2, 4, 7], rings: &[0, 1, 2, 3, 0, 1, 99], values: &[f64::NAN], inverted: &[true, true, true, true] };
+    let faces = Faces {
+        points: &points[..4],
+        ring_start: &[0, 2, 4, 7],
+        rings: &[0, 1, 2, 3, 0, 1, 99],
+        values: &[f64::NAN],
+        inverted: &[true, true, true, true],
+        faded: &[],
+    };
     render_surface(&mut p, &faces, &opts);
     // a camera and options gone wrong
     let wild = SurfaceView {
@@ -223,13 +268,36 @@ fn odd_input_draws_what_it_can_and_never_panics() {
         domain: (f64::NAN, 0.0),
         ..Default::default()
     };
-    let faces = Faces { points: &points[..4], ring_start: &[0, 4], rings: &rings[..4], values: &[0.5], inverted: &[] };
+    let faces = Faces {
+        points: &points[..4],
+        ring_start: &[0, 4],
+        rings: &rings[..4],
+        values: &[0.5],
+        inverted: &[],
+        faded: &[],
+    };
     render_surface(&mut p, &faces, &wild);
     // coordinates far beyond the picture (clipped, not handed to the rasterizer whole)
-    let far = [DVec3::new(-1.0, 0.0, -1.0), DVec3::new(1.0, 0.0, -1.0), DVec3::new(1e12, 0.0, 1e12), DVec3::new(-1.0, 0.0, 1.0)];
+    let far = [
+        DVec3::new(-1.0, 0.0, -1.0),
+        DVec3::new(1.0, 0.0, -1.0),
+        DVec3::new(1e12, 0.0, 1e12),
+        DVec3::new(-1.0, 0.0, 1.0),
+    ];
     let mut big = Pixmap::new(100, 100).unwrap();
     let opts = SurfaceView { camera: Camera { zoom: 100.0, ..front_view().camera }, ..front_view() };
-    render_surface(&mut big, &Faces { points: &far, ring_start: &[0, 4], rings: &[0, 1, 2, 3], values: &[1.0], inverted: &[true] }, &opts);
+    render_surface(
+        &mut big,
+        &Faces {
+            points: &far,
+            ring_start: &[0, 4],
+            rings: &[0, 1, 2, 3],
+            values: &[1.0],
+            inverted: &[true],
+            faded: &[],
+        },
+        &opts,
+    );
     let mut tiny = Pixmap::new(1, 1).unwrap();
     render_surface(&mut tiny, &faces, &SurfaceView::default());
 }
@@ -277,7 +345,13 @@ fn picking_prefers_the_near_side_then_the_nearest_on_screen() {
         DVec3::new(0.1, -1.0, 0.0), // in front, a little to the right
         DVec3::new(0.0, 0.0, f64::NAN),
     ];
-    let p = Projection::fit(&pts, &Camera { yaw: 0.0, pitch: 0.0, zoom: 1.0 }, Frame::new(0.0, 0.0, 200.0, 200.0), 0.0, 1.0);
+    let p = Projection::fit(
+        &pts,
+        &Camera { yaw: 0.0, pitch: 0.0, zoom: 1.0 },
+        Frame::new(0.0, 0.0, 200.0, 200.0),
+        0.0,
+        1.0,
+    );
     let c = p.to_css(DVec3::ZERO);
     assert_eq!(p.pick(&pts, c.x, c.y, 5.0), Some(1));
     let right = p.to_css(pts[3]);
@@ -334,16 +408,22 @@ fn golden_uv_sphere() {
     let n = start.len() - 1;
     // every face points outwards
     for f in 0..n {
-        let ring: Vec<DVec3> = rings[start[f] as usize..start[f + 1] as usize].iter().map(|&i| points[i as usize]).collect();
+        let ring: Vec<DVec3> =
+            rings[start[f] as usize..start[f + 1] as usize].iter().map(|&i| points[i as usize]).collect();
         let c = ring.iter().sum::<DVec3>() / ring.len() as f64;
         assert!(newell_normal(&ring).dot(c) > 0.0, "face {f}");
     }
     let values: Vec<f64> = (0..n).map(|f| ((f * 7) % 11) as f64 / 10.0).collect();
     let mut inverted = vec![false; n];
     inverted[13] = true;
-    let faces = Faces { points: &points, ring_start: &start, rings: &rings, values: &values, inverted: &inverted };
+    let faces =
+        Faces { points: &points, ring_start: &start, rings: &rings, values: &values, inverted: &inverted, faded: &[] };
     let mut p = Pixmap::new(420, 320).unwrap();
-    let opts = SurfaceView { camera: Camera { yaw: -60.0, pitch: 20.0, zoom: 1.0 }, bar_title: "Canann's \u{3b2}".into(), ..Default::default() };
+    let opts = SurfaceView {
+        camera: Camera { yaw: -60.0, pitch: 20.0, zoom: 1.0 },
+        bar_title: "Canann's \u{3b2}".into(),
+        ..Default::default()
+    };
     render_surface(&mut p, &faces, &opts);
     golden("surface_uv_sphere", &p);
 }
@@ -383,9 +463,15 @@ fn golden_quadratic_saddle_at_dpr_2() {
     let values: Vec<f64> = (0..8).map(|f| 0.3 + 0.09 * f as f64).collect();
     let mut inverted = [false; 8];
     inverted[5] = true;
-    let faces = Faces { points: &points, ring_start: &start, rings: &rings, values: &values, inverted: &inverted };
+    let faces =
+        Faces { points: &points, ring_start: &start, rings: &rings, values: &values, inverted: &inverted, faded: &[] };
     let mut p = Pixmap::new(760, 560).unwrap();
-    let opts = SurfaceView { dpr: 2.0, title: Some("quadratic saddle".into()), bar_title: "Lo's \u{3b1}".into(), ..Default::default() };
+    let opts = SurfaceView {
+        dpr: 2.0,
+        title: Some("quadratic saddle".into()),
+        bar_title: "Lo's \u{3b1}".into(),
+        ..Default::default()
+    };
     let proj = render_surface(&mut p, &faces, &opts);
     // a mid node of a curved edge is drawn where it projects (the edge passes through it)
     let m = proj.to_device(points[1]);
@@ -399,7 +485,8 @@ fn golden_quadratic_saddle_at_dpr_2() {
 #[test]
 fn every_camera_keeps_the_mesh_inside_the_plot() {
     let (points, _, _) = uv_sphere();
-    let shifted: Vec<DVec3> = points.iter().map(|p| *p * DVec3::new(3.0, 1.0, 0.5) + DVec3::new(10.0, -4.0, 2.0)).collect();
+    let shifted: Vec<DVec3> =
+        points.iter().map(|p| *p * DVec3::new(3.0, 1.0, 0.5) + DVec3::new(10.0, -4.0, 2.0)).collect();
     for yaw in (0..360).step_by(15) {
         for pitch in (-90..=90).step_by(15) {
             let camera = Camera { yaw: yaw as f64, pitch: pitch as f64, zoom: 1.0 };
@@ -409,7 +496,10 @@ fn every_camera_keeps_the_mesh_inside_the_plot() {
             for q in &shifted {
                 let c = proj.to_css(*q);
                 let (x1, y1) = (300.0 - COLOUR_BAR_WIDTH as f64 - 16.0, 200.0 - 16.0);
-                assert!(c.x >= 16.0 - EPS && c.x <= x1 + EPS && c.y >= 26.0 + 16.0 - EPS && c.y <= y1 + EPS, "{camera:?}: {c:?}");
+                assert!(
+                    c.x >= 16.0 - EPS && c.x <= x1 + EPS && c.y >= 26.0 + 16.0 - EPS && c.y <= y1 + EPS,
+                    "{camera:?}: {c:?}"
+                );
             }
         }
     }
@@ -425,7 +515,14 @@ fn a_quadratic_quad_is_drawn_with_its_parabolic_edge() {
     let ring_pts = [-x - z, -z * (1.0 + h), x - z, x, x + z, z, -x + z, -x];
     let points: Vec<DVec3> = ring_pts.to_vec();
     assert!(newell_normal(&points).y < 0.0, "faces the viewer");
-    let faces = Faces { points: &points, ring_start: &[0, 8], rings: &[0, 1, 2, 3, 4, 5, 6, 7], values: &[1.0], inverted: &[] };
+    let faces = Faces {
+        points: &points,
+        ring_start: &[0, 8],
+        rings: &[0, 1, 2, 3, 4, 5, 6, 7],
+        values: &[1.0],
+        inverted: &[],
+        faded: &[],
+    };
     let mut p = Pixmap::new(200, 200).unwrap();
     let proj = render_surface(&mut p, &faces, &SurfaceView { show_edges: false, ..front_view() });
     let filled = |q: DVec3| {
@@ -439,4 +536,18 @@ fn a_quadratic_quad_is_drawn_with_its_parabolic_edge() {
     assert!(filled(DVec3::new(0.0, 0.0, -1.0 - 0.95 * h)) && !filled(DVec3::new(0.0, 0.0, -1.0 - 1.08 * h)));
     // a straight edge stays where it is
     assert!(filled(DVec3::new(0.95, 0.0, 0.0)) && !filled(DVec3::new(1.08, 0.0, 0.0)));
+}
+
+/// A tangled cube of tetrahedra cut half way up z: the cut coloured by mean ratio, an
+/// inverted tetrahedron hatched, the boundary faded.
+#[test]
+fn golden_tetrahedra_cut() {
+    let cube = crate::generate::tet_cube(3).unwrap();
+    let m = crate::generate::perturb_volume(&cube, 0.9, 2).unwrap();
+    let cut = m.cut_faces(crate::volume::Cut::default(), Camera::default().basis().2);
+    assert!(cut.inverted.iter().zip(&cut.faded).any(|(&i, &f)| i && !f), "the picture must show an inverted face");
+    let mut p = Pixmap::new(360, 300).unwrap();
+    let view = SurfaceView { title: Some("z = ½".into()), ..SurfaceView::default() };
+    m.render_cut(&mut p, crate::volume::Cut::default(), &view);
+    golden("tetrahedra_cut", &p);
 }
