@@ -23,4 +23,11 @@ $S generate torus --kind mixed --resolution 3 -o "$tmp/torus.vtk"
 $S generate perturb "$tmp/torus.vtk" --amount 0.7 --seed 2 -o "$tmp/torus-tangled.vtk"
 $S render "$tmp/torus-tangled.vtk" -o docs/images/surface-torus-tangled.png --view mesh --size 700x520
 $S render "$tmp/torus-tangled.vtk" -o docs/images/surface-torus-compare.png --view compare --passes 1 --size 1400x560
-echo "wrote docs/images/{compare-tangled-plate,levelset-rand2d,histogram-rand2d,surface-torus-tangled,surface-torus-compare}.png"
+# tetrahedra: Freitag's rand3D cut half way up z, and a cube of tetrahedra tangled by
+# Knupp's random moves, old and new after one pass, cut across y
+$S generate rand3d --seed 1 -o "$tmp/rand3d.vtk"
+$S render "$tmp/rand3d.vtk" -o docs/images/rand3d-cut.png --view mesh --cut z=0.5 --size 700x560
+$S generate cube --cells 8 -o "$tmp/cube.vtk"
+$S generate perturb "$tmp/cube.vtk" --amount 0.8 --seed 1 -o "$tmp/cube-tangled.vtk"
+$S render "$tmp/cube-tangled.vtk" -o docs/images/cube-tangled-compare.png --view compare --passes 1 --cut y=0.5 --size 1400x560
+echo "wrote docs/images/{compare-tangled-plate,levelset-rand2d,histogram-rand2d,surface-torus-tangled,surface-torus-compare,rand3d-cut,cube-tangled-compare}.png"
