@@ -11,6 +11,7 @@ use crate::io::{self, Format};
 use crate::lab::sample::Sample;
 use crate::lab::surface as surface_lab;
 use crate::lab::views::Canvas;
+use crate::lab::volume as volume_lab;
 use crate::lab::{self as playground, Settings, Side};
 use crate::permalink;
 use crate::surface::Model;
@@ -194,13 +195,7 @@ fn open(model: Model) -> Result<JsValue, JsError> {
     Ok(match model {
         Model::Planar(m) => Playground::wrap(playground::Playground::new(m)?).into(),
         Model::Surface(s) => SurfaceLab { inner: surface_lab::SurfaceLab::new(s)?, canvas: None }.into(),
-        Model::Volume(v) => {
-            return Err(JsError::new(&format!(
-                "this file holds {} tetrahedra: the page shows planar and surface meshes; the command-line tool \
-                 (smoothlab stats, smooth) takes tetrahedral meshes",
-                v.element_count()
-            )))
-        }
+        Model::Volume(v) => VolumeLab { inner: volume_lab::VolumeLab::new(v)? }.into(),
     })
 }
 
@@ -664,5 +659,128 @@ impl SurfaceLab {
         let c = self.canvas.ok_or_else(|| JsError::new("the surface has not been drawn yet"))?;
         let radius = if radius.is_finite() && radius > 0.0 { radius.min(64.0) } else { crate::render::PICK_RADIUS };
         Ok(self.inner.pick(side(panel)?, c, DVec2::new(x, y), radius)?.map(|n| n as u32))
+    }
+}
+
+/// The page's state for a tetrahedral mesh: one opaque handle (see
+/// [`volume_lab::VolumeLab`]), with the surface lab's methods (the worker treats both as
+/// the 3D view) and the cut plane's and the dihedral histograms'.
+#[wasm_bindgen]
+pub struct VolumeLab {
+    inner: volume_lab::VolumeLab,
+}
+
+#[wasm_bindgen]
+impl VolumeLab {
+    /// As [`Playground::set_settings`] (each side's objective carried to tetrahedra).
+    #[wasm_bindgen(js_name = setSettings)]
+    pub fn set_settings(&mut self, settings: JsValue) -> Result<(), JsError> {
+        let s: Settings =
+            serde_wasm_bindgen::from_value(settings).map_err(|e| JsError::new(&format!("settings: {e}")))?;
+        Ok(self.inner.set_settings(s)?)
+    }
+
+    /// One smoothing pass on both sides; returns their pass records `[old, new]`.
+    pub fn step(&mut self) -> Result<JsValue, JsError> {
+        to_js(&self.inner.step(&now_ms))
+    }
+
+    /// Both sides back to the mesh as loaded.
+    pub fn reset(&mut self) {
+        self.inner.reset();
+    }
+
+    /// Moves the free nodes of the mesh as loaded at random (as [`Playground::perturb`]).
+    pub fn perturb(&mut self, amount: f64, seed: &str) -> Result<(), JsError> {
+        let seed = perturb_seed(amount, seed)?;
+        Ok(self.inner.perturb(amount, seed)?)
+    }
+
+    /// A side's mesh as the text of a `msh` or `vtk` file.
+    #[wasm_bindgen(js_name = exportMesh)]
+    pub fn export_mesh(&self, panel: &str, format: &str) -> Result<String, JsError> {
+        let f = match Format::from_name(&format!("mesh.{format}")) {
+            Some(f @ (Format::Msh | Format::Vtk)) => f,
+            _ => return Err(JsError::new(&format!("cannot export tetrahedra as '{format}': use msh or vtk"))),
+        };
+        Ok(self.inner.export(side(panel)?, f)?)
+    }
+
+    /// The statistics table of one side (`old` or `new`): dihedral angles, mean ratio.
+    pub fn stats(&self, panel: &str) -> Result<JsValue, JsError> {
+        to_js(&self.inner.table(side(panel)?))
+    }
+
+    /// Both sides cut and drawn by the shared camera on canvases of `w × h` device pixels
+    /// at ratio `dpr`: `{ old, new, render_ms: [old, new], copy_ms }` (RGBA pixels).
+    pub fn frame(&mut self, w: u32, h: u32, dpr: f32) -> Result<JsValue, JsError> {
+        let c = canvas(w, h, dpr);
+        let mut out = Vec::new();
+        let (mut render_ms, mut copy_ms) = ([0.0; 2], 0.0);
+        for s in Side::BOTH {
+            let t0 = now_ms();
+            let (pm, _) = self.inner.render(s, c)?;
+            let t1 = now_ms();
+            out.push(pixels(pm));
+            copy_ms += now_ms() - t1;
+            render_ms[s as usize] = t1 - t0;
+        }
+        let new = out.pop().unwrap_or(JsValue::NULL);
+        let old = out.pop().unwrap_or(JsValue::NULL);
+        object(&[
+            ("old", old),
+            ("new", new),
+            ("render_ms", to_js(&render_ms)?),
+            ("copy_ms", JsValue::from_f64(copy_ms)),
+        ])
+    }
+
+    /// Both sides' dihedral angle histograms beside the mesh as loaded, on canvases of
+    /// `w × h` device pixels: `{ old, new }` (RGBA pixels).
+    pub fn histograms(&self, w: u32, h: u32, dpr: f32) -> Result<JsValue, JsError> {
+        let c = canvas(w, h, dpr);
+        let old = pixels(self.inner.render_histogram(Side::Old, c)?);
+        let new = pixels(self.inner.render_histogram(Side::New, c)?);
+        object(&[("old", old), ("new", new)])
+    }
+
+    /// Cuts both sides across `axis` (0, 1, 2: x, y, z) at the fraction `at` of the extent.
+    #[wasm_bindgen(js_name = setCut)]
+    pub fn set_cut(&mut self, axis: u32, at: f64) -> Result<(), JsError> {
+        Ok(self.inner.set_cut(axis as usize, at)?)
+    }
+
+    /// Turns the shared camera by a drag of `(dx, dy)` CSS pixels.
+    pub fn orbit(&mut self, dx: f64, dy: f64) {
+        self.inner.orbit(dx, dy);
+    }
+
+    /// Magnifies both views `factor` times (within the camera's range).
+    pub fn zoom(&mut self, factor: f64) {
+        self.inner.zoom(factor);
+    }
+
+    /// The camera as it starts.
+    #[wasm_bindgen(js_name = resetZoom)]
+    pub fn reset_zoom(&mut self) {
+        self.inner.reset_camera();
+    }
+
+    /// Always `undefined`: a tetrahedral mesh is not read as a surface.
+    #[wasm_bindgen(js_name = notPlanar)]
+    pub fn not_planar(&self) -> Option<String> {
+        None
+    }
+
+    /// The shared camera: `{ yaw, pitch, zoom }` (degrees, degrees, factor).
+    pub fn camera(&self) -> Result<JsValue, JsError> {
+        let c = self.inner.camera();
+        object(&[("yaw", c.yaw.into()), ("pitch", c.pitch.into()), ("zoom", c.zoom.into())])
+    }
+
+    /// No node is picked in the cut view (`undefined`): its faces hide the nodes behind.
+    #[wasm_bindgen(js_name = pickNode)]
+    pub fn pick_node(&self, _panel: &str, _x: f64, _y: f64, _radius: f64) -> Option<u32> {
+        None
     }
 }

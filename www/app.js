@@ -63,6 +63,7 @@ const state = {
   viewOfFigure: false, // an embed shows the view its figure chose (not one named by view=)
   level: null, // the canvas the level sets were last drawn on (likewise)
   surface: false, // the mesh is a surface in 3D: its views orbit, and the planar-only views wait
+  volume: false, // the mesh is made of tetrahedra (a 3D view too), drawn cut by a plane
 };
 
 const engine = new Engine((err) => recoverFromPanic(err));
@@ -580,7 +581,7 @@ async function loadSource(src, call = (...a) => engine.call(...a)) {
   state.node = null;
   state.perturbed = null;
   $('node').value = '';
-  showSurfaceMode(loaded.surface, loaded.notPlanar);
+  showSurfaceMode(loaded.surface, loaded.notPlanar, Boolean(loaded.volume));
 }
 
 /** What a surface does not have (yet) on the page, and why: these controls wait,
@@ -596,18 +597,25 @@ const PLANAR_ONLY = {
 /** Puts the page in the surface mode (or back in the planar one); `why` says why a file
  * read as a surface (the node farthest off the plane it would lie in: a mistyped
  * coordinate shows here, as the command-line tool says it). */
-function showSurfaceMode(on, why = null) {
+function showSurfaceMode(on, why = null, volume = false) {
   state.surface = on;
+  state.volume = on && volume;
   showPickNote(null); // it spoke of the mesh before
   document.body.classList.toggle('surface', on);
-  $('surface-note').hidden = !on;
+  $('surface-note').hidden = !on || state.volume;
+  $('volume-note').hidden = !state.volume;
+  if (state.volume) {
+    $('cut-axis').value = '2';
+    $('cut-at').value = '0.5';
+    $('cut-at-out').textContent = '0.50';
+  }
   $('surface-why').hidden = !(on && why);
   $('surface-why').textContent = on && why ? `Read as a surface in 3D: ${why}.` : '';
   for (const [id, why] of Object.entries(PLANAR_ONLY)) {
     const el = $(id);
     if (on) {
       el.disabled = true;
-      el.title = `Not for a surface: ${why}.`;
+      el.title = state.volume ? `Not for tetrahedra: ${why.replace(/a surface/g, 'a 3D mesh')}.` : `Not for a surface: ${why}.`;
     } else {
       el.disabled = id === 'smooth-node' ? state.node === null : id === 'undo' ? el.disabled : false;
       el.title = el.dataset.help || '';
@@ -616,7 +624,9 @@ function showSurfaceMode(on, why = null) {
   for (const id of ['mesh-old', 'mesh-new']) {
     const letter = id === 'mesh-old' ? 'A' : 'B';
     $(id).setAttribute('aria-label', on
-      ? `Surface of panel ${letter} in 3D, coloured by quality; drag to turn, wheel to zoom`
+      ? (state.volume
+        ? `Tetrahedra of panel ${letter}, cut by a plane, coloured by mean ratio; drag to turn, wheel to zoom`
+        : `Surface of panel ${letter} in 3D, coloured by quality; drag to turn, wheel to zoom`)
       : `Mesh of panel ${letter}, coloured by quality; arrow keys move the chosen node`);
   }
 }
@@ -731,6 +741,16 @@ const STAT_ROWS = [
   ['passes', 'Passes', (s) => s.passes],
   ['time', 'Smoothing time', (s) => s.time_ms, null, (v) => `${num(v, 1)} ms`],
 ];
+/** A tetrahedral mesh's names for the rows whose meaning changes in 3D. */
+const VOLUME_LABELS = {
+  elements: 'Tetrahedra',
+  inverted: 'Inverted tetrahedra',
+  min_angle: 'Min dihedral angle',
+  max_angle: 'Max dihedral angle',
+  min_quality: 'Min mean ratio',
+  mean_quality: 'Mean of the mean ratio',
+  small_angles: 'Dihedral angles under 18°',
+};
 /** What a table row means, as its tooltip. */
 const ROW_HELP = {
   inverted: 'Elements whose corners run the wrong way round (negative area): a tangled mesh. Fewer is better.',
@@ -776,7 +796,7 @@ function fillTables(stats) {
       tr.dataset.stat = key;
       const th = document.createElement('th');
       th.scope = 'row';
-      th.textContent = label;
+      th.textContent = (state.volume && VOLUME_LABELS[key]) || label;
       if (ROW_HELP[key]) th.title = ROW_HELP[key];
       const td = document.createElement('td');
       if (detail && !s.detail) {
@@ -862,6 +882,14 @@ async function redrawMeshes() {
 async function redrawCharts() {
   if (EMBED && !(VIEW && VIEW.draws === 'charts')) return;
   if (VIEW) fitView();
+  if (state.volume) {
+    placeholder($('pass-chart'), 'Drawn for planar meshes; the tables follow the tetrahedra pass by pass');
+    const hc = canvasPixels($('hist-old'));
+    const r = await engine.call('volumeHistograms', hc.w, hc.h, hc.dpr);
+    paint($('hist-old'), r.old, hc.w, hc.h);
+    paint($('hist-new'), r.new, hc.w, hc.h);
+    return;
+  }
   if (state.surface) {
     for (const id of ['pass-chart', 'hist-old', 'hist-new']) placeholder($(id), 'Drawn for planar meshes; this is a surface');
     return;
@@ -1628,6 +1656,18 @@ function wire() {
     $(pen).addEventListener('change', changeCompare);
   }
   $('hist-log').addEventListener('change', () => serial(redrawCharts).catch(report));
+  // the cut plane of tetrahedra: both views follow as the slider moves
+  const cut = () => {
+    const at = Number($('cut-at').value);
+    $('cut-at-out').textContent = at.toFixed(2);
+    if (!state.volume) return;
+    serial(async () => {
+      await engine.call('setCut', Number($('cut-axis').value), at);
+      await redrawMeshes();
+    }).catch(report);
+  };
+  $('cut-at').addEventListener('input', cut);
+  $('cut-axis').addEventListener('change', cut);
   $('node').addEventListener('change', () => {
     const v = $('node').value.trim();
     if (v !== '' && !/^\d+$/.test(v)) {

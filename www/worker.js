@@ -17,12 +17,20 @@ function need() {
   return pg;
 }
 
-// The handle is a Playground (a planar mesh) or a SurfaceLab (a surface in 3D).
-const isSurface = () => pg instanceof wasm.SurfaceLab;
+// The handle is a Playground (a planar mesh), a SurfaceLab (a surface in 3D) or a
+// VolumeLab (tetrahedra, drawn cut by a plane): the last two share the 3D view's methods.
+const isVolume = () => pg instanceof wasm.VolumeLab;
+const isSurface = () => pg instanceof wasm.SurfaceLab || isVolume();
 
 /** The handle of a planar mesh: what only a planar mesh has (level sets, dragging, charts). */
 function planar() {
   if (need() && isSurface()) throw new Error('this view takes planar meshes only; this mesh is a surface in 3D');
+  return pg;
+}
+
+/** The handle of tetrahedra: what only they have (the cut plane, dihedral histograms). */
+function volume() {
+  if (!(need() && isVolume())) throw new Error('the cut plane takes tetrahedral meshes only');
   return pg;
 }
 
@@ -37,7 +45,7 @@ function surface() {
 function replace(next) {
   if (pg) pg.free();
   pg = next;
-  return { surface: isSurface(), notPlanar: isSurface() ? pg.notPlanar() ?? null : null };
+  return { surface: isSurface(), volume: isVolume(), notPlanar: isSurface() ? pg.notPlanar() ?? null : null };
 }
 
 const handlers = {
@@ -84,6 +92,8 @@ const handlers = {
   panMeshes: (dx, dy) => planar().panMeshes(dx, dy),
   orbit: (dx, dy) => surface().orbit(dx, dy),
   camera: () => surface().camera(),
+  setCut: (axis, at) => volume().setCut(axis, at),
+  volumeHistograms: (w, h, dpr) => volume().histograms(w, h, dpr),
   zoomLevelSets: (panel, x, y, factor) => planar().zoomLevelSets(panel, x, y, factor),
   panLevelSets: (panel, dx, dy) => planar().panLevelSets(panel, dx, dy),
   resetZoom: () => need().resetZoom(),

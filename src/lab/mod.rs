@@ -10,6 +10,7 @@
 //! table shows ([`stats::QuickStats`]) and each element's colour bucket up to date, a
 //! version naming its positions, and its last picture ([`raster`] draws fine meshes).
 
+pub mod interact;
 pub mod pass;
 pub mod pick;
 pub mod raster;
@@ -18,7 +19,7 @@ pub mod stats;
 pub mod surface;
 pub mod tour;
 pub mod views;
-pub mod interact;
+pub mod volume;
 
 use std::cell::{OnceCell, RefCell};
 
@@ -232,7 +233,14 @@ pub struct Panel {
 }
 
 impl Panel {
-    fn new(side: Side, mesh: Mesh, settings: &Settings, version: u64, full: &MeshStats, buckets: Vec<u8>) -> Result<Self> {
+    fn new(
+        side: Side,
+        mesh: Mesh,
+        settings: &Settings,
+        version: u64,
+        full: &MeshStats,
+        buckets: Vec<u8>,
+    ) -> Result<Self> {
         Ok(Panel {
             mesh,
             objective: settings.choice(side).build(),
@@ -253,7 +261,6 @@ impl Panel {
         self.full = OnceCell::new();
     }
 }
-
 
 /// The work a panel's passes did since the last reset: its records, summed.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Serialize)]

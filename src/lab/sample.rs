@@ -5,7 +5,10 @@
 use serde::{Deserialize, Serialize};
 
 use crate::error::{Error, Result};
-use crate::generate::{perturb, plate, surface, SurfaceKind, SurfaceShape, quadratic_star, rand2d, random_grid, star, GridKind, PlateKind, QuadraticStar, StarKind};
+use crate::generate::{
+    perturb, plate, quadratic_star, rand2d, random_grid, star, surface, GridKind, PlateKind, QuadraticStar, StarKind,
+    SurfaceKind, SurfaceShape,
+};
 use crate::mesh::Mesh;
 use crate::surface::{perturb_surface, Model};
 
@@ -73,6 +76,9 @@ pub enum Sample {
     /// A cylinder with flat caps (O-grids; its rims are feature curves whose nodes stay
     /// fixed), quads, perturbed likewise.
     CylinderCapped,
+    /// Freitag (1997) Table 2: rand3D, 1086 points in the unit cube in about 5900
+    /// tetrahedra ([`crate::generate::rand3d`]).
+    Rand3d,
     /// rand2d with 1 000 000 nodes (about 2 million triangles): the page at its limit.
     /// In the gallery but not in [`Sample::ALL`], the samples a permalink can name: a
     /// shared link or an embedded page should never start a load of this size.
@@ -80,9 +86,9 @@ pub enum Sample {
 }
 
 impl Sample {
-    /// The gallery: [`Sample::ALL`], the surfaces, then the 1M-node sample.
-    pub const GALLERY: [Sample; 20] = {
-        let mut g = [Sample::Rand2dMillion; 20];
+    /// The gallery: [`Sample::ALL`], the surfaces, the tetrahedra, then the 1M-node sample.
+    pub const GALLERY: [Sample; 21] = {
+        let mut g = [Sample::Rand2dMillion; 21];
         let mut i = 0;
         while i < Sample::ALL.len() {
             g[i] = Sample::ALL[i];
@@ -93,6 +99,7 @@ impl Sample {
             g[i + j] = Sample::SURFACES[j];
             j += 1;
         }
+        g[i + j] = Sample::Rand3d;
         g
     };
 
@@ -147,6 +154,7 @@ impl Sample {
             Sample::SphereTangled => "Surface: tangled sphere, quads",
             Sample::TorusTangled => "Surface: tangled torus, mixed",
             Sample::CylinderCapped => "Surface: capped cylinder, perturbed quads",
+            Sample::Rand3d => "Tetrahedra: rand3D (Freitag), 1086 nodes",
             Sample::Rand2dMillion => "rand2D, 1M nodes (large: slow, ~350 MB of memory)",
         }
     }
@@ -165,7 +173,10 @@ impl Sample {
             Sample::TorusTangled => {
                 Model::Surface(tangled(surface(SurfaceShape::Torus, SurfaceKind::Mixed, 1, TORUS_RESOLUTION)?)?)
             }
-            Sample::CylinderCapped => Model::Surface(tangled(surface(SurfaceShape::Cylinder, SurfaceKind::Quad, 1, r)?)?),
+            Sample::CylinderCapped => {
+                Model::Surface(tangled(surface(SurfaceShape::Cylinder, SurfaceKind::Quad, 1, r)?)?)
+            }
+            Sample::Rand3d => Model::Volume(crate::generate::rand3d(crate::generate::RAND3D_POINTS, SAMPLE_SEED)?),
             planar => Model::Planar(planar.generate()?),
         })
     }
@@ -194,6 +205,9 @@ impl Sample {
             Sample::Rand2dMillion => rand2d(MILLION_INTERIOR, MILLION_PER_SIDE, SAMPLE_SEED),
             Sample::SphereTangled | Sample::TorusTangled | Sample::CylinderCapped => {
                 Err(Error::invalid(format!("the sample '{}' is a surface in 3D, not a planar mesh", self.title())))
+            }
+            Sample::Rand3d => {
+                Err(Error::invalid(format!("the sample '{}' is made of tetrahedra, not a planar mesh", self.title())))
             }
         }
     }
@@ -243,13 +257,16 @@ mod tests {
     }
 
     #[test]
-    fn the_gallery_is_every_linkable_sample_the_surfaces_then_the_million() {
+    fn the_gallery_is_every_linkable_sample_the_surfaces_the_tetrahedra_then_the_million() {
         let n = Sample::ALL.len();
         assert_eq!(&Sample::GALLERY[..n], &Sample::ALL);
         assert_eq!(&Sample::GALLERY[n..n + 3], &Sample::SURFACES);
-        assert_eq!(Sample::GALLERY[n + 3..], [Sample::Rand2dMillion]);
+        assert_eq!(Sample::GALLERY[n + 3..], [Sample::Rand3d, Sample::Rand2dMillion]);
         assert!(Sample::ALL.iter().all(|s| s.linkable()) && !Sample::Rand2dMillion.linkable());
-        assert!(Sample::SURFACES.iter().all(|s| !s.linkable()));
+        assert!(Sample::SURFACES.iter().all(|s| !s.linkable()) && !Sample::Rand3d.linkable());
+        let Model::Volume(v) = Sample::Rand3d.model().unwrap() else { panic!("rand3d is tetrahedral") };
+        assert_eq!(v.node_count(), crate::generate::RAND3D_POINTS);
+        assert!(Sample::Rand3d.generate().unwrap_err().to_string().contains("tetrahedra"));
         assert!(Sample::Rand2dMillion.title().contains("1M") && Sample::Rand2dMillion.title().contains("slow"));
         assert_eq!(serde_json::to_string(&Sample::Rand2dMillion).unwrap(), "\"rand2d-million\"");
         assert_eq!(MILLION_INTERIOR + 4 * MILLION_PER_SIDE, super::super::MAX_NODES);

@@ -93,6 +93,20 @@ pub fn tet_objective(kind: ObjectiveKind) -> Box<dyn Objective<TetStar> + Send +
     }
 }
 
+/// What the objective of `kind` is on tetrahedra, in a few words for people (the page's
+/// headings of a tetrahedral mesh; the planar words are [`ObjectiveKind::describe`]).
+pub fn describe_tet(kind: ObjectiveKind) -> &'static str {
+    match kind {
+        ObjectiveKind::Old => "max-min mean ratio (Freitag's ascent)",
+        ObjectiveKind::Sine => "max-min dihedral sine (Freitag)",
+        ObjectiveKind::New => "Chen, Tristano & Kwok in 3D (Fletcher–Reeves)",
+        ObjectiveKind::Condition => "condition number κ, 2-norm (Knupp)",
+        ObjectiveKind::ConditionMax => "condition number κ, worst tetrahedron (Knupp)",
+        ObjectiveKind::Untangle => "untangling Σ(|6V| − 6V) (Knupp)",
+        ObjectiveKind::UntangleMinDet => "max-min 6V (Knupp & Freitag)",
+    }
+}
+
 /// Chen, Tristano & Kwok's objective carried to solids: per tetrahedron
 /// `(1 − q_δ)² + k1·η_δ²` with `η_δ = ‖T‖²_F / (3·h_δ(σ)^{2/3})` and `q_δ = 1/η_δ`, where
 /// `T = A·W⁻¹` is the corner Jacobian weighted by the equilateral tetrahedron (Knupp

@@ -1409,7 +1409,11 @@ try {
   }
   /** A 1280 × 900 screenshot of the two views and their tables. */
   async function panelsShot(page, name) {
-    await page.evaluate(() => document.getElementById('surface-note').scrollIntoView());
+    // the note above the panels: a surface's, or the tetrahedra's
+    await page.evaluate(() => {
+      const note = document.getElementById('surface-note');
+      (note.hidden ? document.getElementById('volume-note') : note).scrollIntoView();
+    });
     await shot(page, name, false);
   }
   /** Steps until B has no inverted element (at most `max` passes); returns the passes taken. */
@@ -1558,6 +1562,54 @@ try {
     check(s2.passes === '0' && s2.min_angle !== s1.min_angle, `perturbed: ${JSON.stringify(s2)}`);
     check(Number(s2.surface_distance) < 1e-6, `the perturbed nodes are on the surface: ${s2.surface_distance}`);
     check((await canvasInfo(page, 'mesh-new')).hash !== b1.hash, 'the perturbed surface is drawn');
+  });
+
+  await test("Freitag's rand3D: tetrahedra cut by a plane, smoothed old vs new, their dihedral histograms, exported and read back", async () => {
+    await chooseSample(page, 'sample:rand3d');
+    check(await page.evaluate(() => document.body.classList.contains('surface')), 'tetrahedra use the 3D view');
+    check(await page.locator('#volume-note').isVisible() && await page.locator('#surface-note').isHidden(), 'the tetrahedra note, not the surface one');
+    const s0 = await stats(page, 'new');
+    check(s0.nodes === '1086' && Number(s0.elements) > 5000 && s0.inverted === '0', `rand3D: ${JSON.stringify(s0)}`);
+    check(await page.evaluate(() => [...document.querySelectorAll('#stats-new th')].some((th) => th.textContent === 'Min dihedral angle')), 'the table names dihedral angles');
+    for (const id of ['node', 'smooth-node', 'save-figure']) {
+      check(/^Not for tetrahedra: /.test(await page.getAttribute(`#${id}`, 'title')), `#${id} says why it waits`);
+    }
+    const a0 = await canvasInfo(page, 'mesh-old');
+    check(a0.colours > 50, 'the cut is drawn coloured');
+    const h0 = await canvasInfo(page, 'hist-new');
+    check(h0.colours > 3, 'the dihedral histogram is drawn');
+    await panelsShot(page, 'volume-rand3d-loaded');
+    // the cut plane moves: across x at 0.3, both views change
+    await page.selectOption('#cut-axis', '0');
+    await page.locator('#cut-at').fill('0.3');
+    const a1 = await changed(page, 'mesh-old', a0);
+    check(await page.textContent('#cut-at-out') === '0.30', 'the slider shows where the plane is');
+    // one pass: the smallest dihedral angle grows on both sides, nothing is inverted
+    await page.click('#step');
+    await page.waitForFunction(() => /One pass done/.test(document.getElementById('status').textContent), null, { timeout: TIMEOUT });
+    await idle(page);
+    const [o1, n1] = [await stats(page, 'old'), await stats(page, 'new')];
+    for (const s of [o1, n1]) {
+      check(s.passes === '1' && s.inverted === '0', `a pass: ${JSON.stringify(s)}`);
+      check(Number.parseFloat(s.min_angle) > Number.parseFloat(s0.min_angle), `the smallest dihedral angle grows: ${s0.min_angle} → ${s.min_angle}`);
+    }
+    await changed(page, 'mesh-old', a1);
+    await changed(page, 'hist-new', h0);
+    await panelsShot(page, 'volume-rand3d-smoothed');
+    await shot(page, 'volume-rand3d-page');
+    // B's mesh exported as .vtk (cell type 10) reads back as tetrahedra
+    const [dl] = await Promise.all([page.waitForEvent('download'), page.click('button[data-export="vtk"][data-side="new"]')]);
+    const text = readFileSync(await dl.path(), 'utf8');
+    check(/CELL_TYPES/.test(text) && text.split('CELL_TYPES')[1].trim().split(/\s+/)[1] === '10', 'a .vtk of tetrahedra');
+    await page.setInputFiles('#file', { name: 'rand3d_b.vtk', mimeType: 'text/plain', buffer: Buffer.from(text) });
+    await page.waitForFunction(() => /Loaded rand3d_b\.vtk/.test(document.getElementById('status').textContent), null, { timeout: TIMEOUT });
+    await idle(page);
+    const back = await stats(page, 'old');
+    check(back.nodes === '1086' && back.min_angle === n1.min_angle, `read back: ${JSON.stringify(back)} vs ${JSON.stringify(n1)}`);
+    // a planar sample brings the planar page back
+    await chooseSample(page, 'sample:plate-tri');
+    check(await page.locator('#volume-note').isHidden(), 'the tetrahedra note is hidden for a planar mesh');
+    check(!(await page.locator('#node').isDisabled()), 'the planar controls are back');
   });
 
   await test('no request left 127.0.0.1 and the console has no errors', async () => {
