@@ -548,6 +548,24 @@ impl Playground {
     }
 }
 
+/// Both sides drawn by `render`: `{ old, new, render_ms: [old, new], copy_ms }`
+/// (RGBA pixels), the 3D views' frame.
+fn both_sides(render: impl Fn(Side) -> crate::Result<tiny_skia::Pixmap>) -> Result<JsValue, JsError> {
+    let mut out = Vec::new();
+    let (mut render_ms, mut copy_ms) = ([0.0; 2], 0.0);
+    for s in Side::BOTH {
+        let t0 = now_ms();
+        let pm = render(s)?;
+        let t1 = now_ms();
+        out.push(pixels(pm));
+        copy_ms += now_ms() - t1;
+        render_ms[s as usize] = t1 - t0;
+    }
+    let new = out.pop().unwrap_or(JsValue::NULL);
+    let old = out.pop().unwrap_or(JsValue::NULL);
+    object(&[("old", old), ("new", new), ("render_ms", to_js(&render_ms)?), ("copy_ms", JsValue::from_f64(copy_ms))])
+}
+
 /// The page's state for a surface in 3D: one opaque handle (see
 /// [`surface_lab::SurfaceLab`]), with the canvas its sides were last drawn on.
 #[wasm_bindgen]
@@ -602,25 +620,9 @@ impl SurfaceLab {
     /// ratio `dpr`: `{ old, new, render_ms: [old, new], copy_ms }` (RGBA pixels).
     pub fn frame(&mut self, w: u32, h: u32, dpr: f32) -> Result<JsValue, JsError> {
         let c = canvas(w, h, dpr);
-        let mut out = Vec::new();
-        let (mut render_ms, mut copy_ms) = ([0.0; 2], 0.0);
-        for s in Side::BOTH {
-            let t0 = now_ms();
-            let (pm, _) = self.inner.render(s, c)?;
-            let t1 = now_ms();
-            out.push(pixels(pm));
-            copy_ms += now_ms() - t1;
-            render_ms[s as usize] = t1 - t0;
-        }
+        let f = both_sides(|s| Ok(self.inner.render(s, c)?.0))?;
         self.canvas = Some(c);
-        let new = out.pop().unwrap_or(JsValue::NULL);
-        let old = out.pop().unwrap_or(JsValue::NULL);
-        object(&[
-            ("old", old),
-            ("new", new),
-            ("render_ms", to_js(&render_ms)?),
-            ("copy_ms", JsValue::from_f64(copy_ms)),
-        ])
+        Ok(f)
     }
 
     /// Turns the shared camera by a drag of `(dx, dy)` CSS pixels.
@@ -715,24 +717,7 @@ impl VolumeLab {
     /// at ratio `dpr`: `{ old, new, render_ms: [old, new], copy_ms }` (RGBA pixels).
     pub fn frame(&mut self, w: u32, h: u32, dpr: f32) -> Result<JsValue, JsError> {
         let c = canvas(w, h, dpr);
-        let mut out = Vec::new();
-        let (mut render_ms, mut copy_ms) = ([0.0; 2], 0.0);
-        for s in Side::BOTH {
-            let t0 = now_ms();
-            let (pm, _) = self.inner.render(s, c)?;
-            let t1 = now_ms();
-            out.push(pixels(pm));
-            copy_ms += now_ms() - t1;
-            render_ms[s as usize] = t1 - t0;
-        }
-        let new = out.pop().unwrap_or(JsValue::NULL);
-        let old = out.pop().unwrap_or(JsValue::NULL);
-        object(&[
-            ("old", old),
-            ("new", new),
-            ("render_ms", to_js(&render_ms)?),
-            ("copy_ms", JsValue::from_f64(copy_ms)),
-        ])
+        both_sides(|s| Ok(self.inner.render(s, c)?.0))
     }
 
     /// Both sides' dihedral angle histograms beside the mesh as loaded, on canvases of
