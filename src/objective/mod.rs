@@ -266,6 +266,42 @@ pub struct Star {
     pub elems: Vec<StarElement>,
     /// True when the mesh has both triangles and quads (Chen's ×3 triangle weight applies).
     pub mixed: bool,
+    /// What `new` reads of the star at `x0` at every evaluation of a solve, worked out at
+    /// the first ([`StarMemo`]).
+    pub(crate) memo: StarMemo,
+}
+
+/// Facts of a star at its position [`Star::x0`] that an objective reads at every
+/// evaluation of a solve and that do not depend on the trial position: worked out at the
+/// first evaluation and kept while the star stays at that `x0` (a visit of `opt` with
+/// `new` evaluates one star some 6 times). [`Star::gather`] forgets them, and so does a
+/// clone (a clone is made to be changed), so they are never read for another star; a
+/// star moved by [`move_free_node`](StarElement::move_free_node) with `x0` set is
+/// another position, and is worked out again. The same bits come out as without it.
+#[derive(Debug, Default)]
+pub(crate) struct StarMemo(std::cell::Cell<Option<(DVec2, new::StarAtRest)>>);
+
+impl Clone for StarMemo {
+    fn clone(&self) -> Self {
+        StarMemo::default()
+    }
+}
+
+impl StarMemo {
+    /// The facts of `star` at `star.x0`, from `work` the first time.
+    #[inline]
+    pub(crate) fn get(star: &Star, work: impl FnOnce(&Star) -> new::StarAtRest) -> new::StarAtRest {
+        match star.memo.0.get() {
+            Some((at, facts)) if at.x.to_bits() == star.x0.x.to_bits() && at.y.to_bits() == star.x0.y.to_bits() => {
+                facts
+            }
+            _ => {
+                let facts = work(star);
+                star.memo.0.set(Some((star.x0, facts)));
+                facts
+            }
+        }
+    }
 }
 
 impl Star {
@@ -277,6 +313,7 @@ impl Star {
         self.node = node as u32;
         self.x0 = mesh.nodes()[node];
         self.mixed = mesh.has_triangles() && mesh.has_quads();
+        self.memo = StarMemo::default();
         self.elems.clear();
         for &e in mesh.node_elements(node) {
             let e = e as usize;

@@ -131,9 +131,8 @@ impl ChenTristanoKwok {
                     emit(Term { elem: i as u32, value, grad: f * grad })
                 });
             }
-            None => self.visit_at_unit_scale::<false>(star, x, |i, value, grad, _| {
-                emit(Term { elem: i as u32, value, grad })
-            }),
+            None => self
+                .visit_at_unit_scale::<false>(star, x, |i, value, grad, _| emit(Term { elem: i as u32, value, grad })),
         }
     }
 
@@ -212,17 +211,12 @@ impl ChenTristanoKwok {
 
 /// The power of two that brings `star` to unit size when its largest edge component at the
 /// free node lies outside 2^±200 (squares of such lengths leave the doubles); `None` for
-/// the stars of every ordinary mesh, at the cost of one max per element.
+/// the stars of every ordinary mesh.
 #[inline]
 fn extreme_scale_factor(star: &Star) -> Option<f64> {
     const LO: f64 = 6.223_015_277_861_142e-61; // 2^-200
     const HI: f64 = 1.606_938_044_258_990_3e60; // 2^200
-    let mut m = 0.0f64;
-    for e in &star.elems {
-        let (k, s) = (e.kind.corners(), e.slot as usize);
-        m = m.max((e.pts[(s + 1) % k] - star.x0).abs().max_element());
-        m = m.max((e.pts[(s + k - 1) % k] - star.x0).abs().max_element());
-    }
+    let m = StarAtRest::of(star).extent;
     if m == 0.0 || (LO..=HI).contains(&m) {
         None
     } else {
@@ -233,31 +227,64 @@ fn extreme_scale_factor(star: &Star) -> Option<f64> {
 /// δ of `star` at its current position: the corner N values of its sub-triangles there.
 #[inline]
 fn barrier_delta(b: &RegularisedBarrier, star: &Star) -> f64 {
-    let (mut sum, mut count, mut min) = (0.0, 0usize, f64::INFINITY);
-    for el in &star.elems {
-        if el.kind == ElementKind::Tri3 {
-            // the N of SubTriangle::linear at x0, without making the rest of it
-            let (s, x0) = (el.slot as usize, star.x0);
-            let n = (el.pts[(s + 1) % 3] - x0).perp_dot(el.pts[(s + 2) % 3] - x0);
-            sum += n.abs();
-            count += 1;
-            min = min.min(n);
-            continue;
+    let r = StarAtRest::of(star);
+    b.delta_from(r.n_sum, r.n_count, r.n_min)
+}
+
+/// What the objective reads of a star at its position [`Star::x0`], the same at every
+/// evaluation of a solve: worked out once per position ([`crate::objective::StarMemo`]).
+#[derive(Clone, Copy, Debug, Default)]
+pub(crate) struct StarAtRest {
+    /// The largest edge component at the free node (to the next and previous corner of
+    /// every element), for [`extreme_scale_factor`].
+    extent: f64,
+    /// The corner N values of the star's sub-triangles, for δ
+    /// ([`RegularisedBarrier::delta_from`]): the sum of |N|, their number, the smallest.
+    n_sum: f64,
+    n_count: usize,
+    n_min: f64,
+}
+
+impl StarAtRest {
+    /// The facts of `star` at `star.x0`, kept in the star between evaluations.
+    #[inline]
+    fn of(star: &Star) -> StarAtRest {
+        crate::objective::StarMemo::get(star, StarAtRest::work_out)
+    }
+
+    fn work_out(star: &Star) -> StarAtRest {
+        let mut extent = 0.0f64;
+        for e in &star.elems {
+            let (k, s) = (e.kind.corners(), e.slot as usize);
+            extent = extent.max((e.pts[(s + 1) % k] - star.x0).abs().max_element());
+            extent = extent.max((e.pts[(s + k - 1) % k] - star.x0).abs().max_element());
         }
-        each_sub_triangle(el, star.x0, |t| {
-            let mut add = |n: f64| {
+        let (mut sum, mut count, mut min) = (0.0, 0usize, f64::INFINITY);
+        for el in &star.elems {
+            if el.kind == ElementKind::Tri3 {
+                // the N of SubTriangle::linear at x0, without making the rest of it
+                let (s, x0) = (el.slot as usize, star.x0);
+                let n = (el.pts[(s + 1) % 3] - x0).perp_dot(el.pts[(s + 2) % 3] - x0);
                 sum += n.abs();
                 count += 1;
                 min = min.min(n);
-            };
-            add(t.c_to_a.0.perp_dot(t.c_to_b.0));
-            if !t.straight {
-                add(t.a_to_b.0.perp_dot(t.a_to_c.0));
-                add(t.b_to_c.0.perp_dot(t.b_to_a.0));
+                continue;
             }
-        });
+            each_sub_triangle(el, star.x0, |t| {
+                let mut add = |n: f64| {
+                    sum += n.abs();
+                    count += 1;
+                    min = min.min(n);
+                };
+                add(t.c_to_a.0.perp_dot(t.c_to_b.0));
+                if !t.straight {
+                    add(t.a_to_b.0.perp_dot(t.a_to_c.0));
+                    add(t.b_to_c.0.perp_dot(t.b_to_a.0));
+                }
+            });
+        }
+        StarAtRest { extent, n_sum: sum, n_count: count, n_min: min }
     }
-    b.delta_from(sum, count, min)
 }
 
 /// Calls `f` with each sub-triangle of a star element whose free node is at `x`: the

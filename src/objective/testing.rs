@@ -56,7 +56,7 @@ pub fn star(elems: Vec<StarElement>) -> Star {
     }
     let mixed = elems.iter().any(|e| e.kind.is_triangle()) && elems.iter().any(|e| e.kind.is_quad());
     let x0 = elems.first().map(|e| e.pts[e.slot as usize]).unwrap_or_default();
-    Star { node: 0, x0, elems, mixed }
+    Star { node: 0, x0, elems, mixed, memo: Default::default() }
 }
 
 /// `k` points on the circle of radius `r` about the origin, the first at angle 0.
@@ -227,7 +227,10 @@ pub fn check_hessian(obj: &dyn Objective, s: &Star, x: DVec2, tol: f64) {
     let h = 1e-6;
     let (v, g, hess) = obj.value_gradient_hessian(s, x).expect("an analytic Hessian");
     assert_eq!((v, g), obj.value_and_gradient(s, x), "{}: value and gradient at {x}", obj.name());
-    assert!(hess.x_axis.y == hess.y_axis.x || (hess.x_axis.y - hess.y_axis.x).abs() <= 1e-12 * hess.x_axis.y.abs(), "symmetric");
+    assert!(
+        hess.x_axis.y == hess.y_axis.x || (hess.x_axis.y - hess.y_axis.x).abs() <= 1e-12 * hess.x_axis.y.abs(),
+        "symmetric"
+    );
     for (i, col) in [hess.x_axis, hess.y_axis].into_iter().enumerate() {
         let e = if i == 0 { d(h, 0.0) } else { d(0.0, h) };
         let fd = (obj.value_and_gradient(s, x + e).1 - obj.value_and_gradient(s, x - e).1) / (2.0 * h);
