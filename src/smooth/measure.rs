@@ -128,6 +128,18 @@ pub(super) fn at(e: &StarElement, x: Option<DVec2>) -> [DVec2; 9] {
 /// Whether an element has a corner with `det ≤ 0` (the definition of
 /// [`crate::quality::ElementQuality::inverted`]).
 pub(crate) fn is_inverted(kind: crate::mesh::ElementKind, p: &[DVec2; 9]) -> bool {
+    if kind == crate::mesh::ElementKind::Tri3 {
+        // the common case: corner_edges' raw vectors and range test written out for three
+        // corners (the same vectors, so the same answer), the general path beyond the range
+        let (a, b, c) = (p[0], p[1], p[2]);
+        let e = [(b - a, c - a), (c - b, a - b), (a - c, b - c)];
+        let m = e.iter().fold(0.0f64, |m, (u, v)| m.max(u.abs().max_element()).max(v.abs().max_element()));
+        const LO: f64 = 6.223_015_277_861_142e-61; // 2^-200
+        const HI: f64 = 1.606_938_044_258_990_3e60; // 2^200
+        if (LO..=HI).contains(&m) {
+            return e.iter().any(|(u, v)| u.perp_dot(*v) <= 0.0);
+        }
+    }
     corner_edges(kind, p)[..kind.corners()].iter().any(|(e1, e2)| e1.perp_dot(*e2) <= 0.0)
 }
 
