@@ -96,6 +96,26 @@ pub(crate) fn triangle_shape_at(a: DVec2, b: DVec2, x: DVec2) -> Option<(f64, bo
     None
 }
 
+/// [`triangle_shape_at`] of one triangle at two positions `x` and `y` of its free corner,
+/// the two divisions in the lanes of one vector division (IEEE quotients, so the same bits
+/// as two scalar ones): the smart Laplacian's test of a linear triangle before and after.
+/// The scalar function decides where either position needs more than the plain formula.
+#[inline]
+pub(crate) fn triangle_shape_at_both(a: DVec2, b: DVec2, x: DVec2, y: DVec2) -> Option<((f64, bool), (f64, bool))> {
+    let (u0, v0, u1, v1, w) = (a - x, b - x, a - y, b - y, b - a);
+    let squares = |u: DVec2, v: DVec2| u.length_squared() + v.length_squared() + w.length_squared();
+    let (d0, d1) = (squares(u0, v0), squares(u1, v1));
+    const LO: f64 = 2.409_919_865_102_884e-271; // 2^-900, as triangle_shape_at
+    const HI: f64 = 8.452_712_498_170_644e270; // 2^900
+    let plain = |u: DVec2, v: DVec2, d: f64| !(u == DVec2::ZERO && v == DVec2::ZERO) && (LO..=HI).contains(&d);
+    if plain(u0, v0, d0) && plain(u1, v1, d1) {
+        let (n0, n1) = (u0.perp_dot(v0), u1.perp_dot(v1));
+        let q = DVec2::new(TWO_SQRT3 * n0, TWO_SQRT3 * n1) / DVec2::new(d0, d1);
+        return Some(((q.x, n0 <= 0.0), (q.y, n1 <= 0.0)));
+    }
+    Some((triangle_shape_at(a, b, x)?, triangle_shape_at(a, b, y)?))
+}
+
 /// The smallest shape measure (α/β) of the star with its free node at `x` and the number
 /// of its inverted elements ([`element_shape_at`] over the star).
 pub(crate) fn star_shape(star: &Star, x: DVec2) -> (f64, u32) {

@@ -36,6 +36,7 @@ mod tests;
 use guard::KeepValid;
 pub(crate) use measure::is_inverted;
 pub(crate) use measure::triangle_shape_at;
+use measure::triangle_shape_at_both;
 pub use measure::StarQuality;
 #[cfg(test)]
 pub(crate) use measure::{element_measures, element_shape_at, star_quality, star_shape};
@@ -460,14 +461,17 @@ fn smart_on_triangles(mesh: &Mesh, n: usize, measure: Measure) -> Option<FastSma
         let ids = mesh.element(e);
         let s = ids.iter().position(|&i| i as usize == n)?;
         let (a, b) = (mesh.nodes()[ids[(s + 1) % 3] as usize], mesh.nodes()[ids[(s + 2) % 3] as usize]);
-        let (q0, inv0) = triangle_shape_at(a, b, x0)?;
+        let Some(c) = c else {
+            let (q0, inv0) = triangle_shape_at(a, b, x0)?;
+            inverted += inv0 as u32;
+            before = before.min(q0);
+            continue;
+        };
+        let ((q0, inv0), (q1, inv1)) = triangle_shape_at_both(a, b, x0, c)?;
         inverted += inv0 as u32;
         before = before.min(q0);
-        if let Some(c) = c {
-            let (q1, inv1) = triangle_shape_at(a, b, c)?;
-            folds |= !inv0 && inv1;
-            after = after.min(q1);
-        }
+        folds |= !inv0 && inv1;
+        after = after.min(q1);
     }
     Some(FastSmart { inverted, to: c.filter(|_| !folds && after > before) })
 }
