@@ -35,8 +35,8 @@ use crate::objective::{objective_with, Objective, ObjectiveKind, Penalty};
 use crate::optimize::SolveResult;
 use crate::quality::MeshStats;
 use crate::smooth::{solve_node, Order, SmoothOptions, Smoother, Strategy};
-use pass::PassRun;
-pub use pass::{PassProgress, PassStage};
+pub use pass::{PassProgress, PassStage, SideSweep};
+use pass::{PassRun, RunKind};
 use stats::{quick_stats_and_buckets, QuickStats};
 use views::Canvas;
 
@@ -378,6 +378,9 @@ pub struct Playground {
     panels: [Panel; 2],
     versions: Versions,
     run: Option<PassRun>,
+    /// A completed sweep for another engine ([`begin_sweep`](Self::begin_sweep)): the
+    /// panel's swept positions and what the sweep did, until taken.
+    swept: Option<(Vec<DVec2>, SideSweep)>,
     /// The user's zoom and pan on the mesh panels (both panels share it).
     zoom: crate::render::ZoomPan,
     /// The part of a star the level-set views show (both sides share it).
@@ -415,6 +418,7 @@ impl Playground {
             panels: [old, new],
             versions: Versions(1),
             run: None,
+            swept: None,
             zoom: crate::render::ZoomPan::default(),
             level_window: interact::LevelWindow::default(),
             undo: Vec::new(),
@@ -464,6 +468,74 @@ impl Playground {
         self.run = Some(PassRun::new());
     }
 
+    /// Starts a pass split between two engines (the page's two workers): this playground
+    /// runs the new panel's pass as [`begin_pass`](Self::begin_pass) does, while another
+    /// one, on the same mesh with the same settings, sweeps the old panel
+    /// ([`begin_sweep`](Self::begin_sweep)); its result is handed over with
+    /// [`adopt_sweep`](Self::adopt_sweep), then measured here. Until then
+    /// [`continue_pass`](Self::continue_pass) says [`PassStage::Wait`]. The records and
+    /// positions are [`step`](Self::step)'s, bit for bit.
+    pub fn begin_split_pass(&mut self) {
+        self.abort_pass();
+        self.undo.clear();
+        self.run = Some(PassRun::of(RunKind::Split));
+    }
+
+    /// Starts the sweep of one panel alone, from the positions `nodes` (x, y interleaved: the
+    /// other engine's panel), for a split pass: run it with
+    /// [`continue_pass`](Self::continue_pass), then [`take_sweep`](Self::take_sweep). No
+    /// statistics are taken, and this playground's panels are left as they were.
+    pub fn begin_sweep(&mut self, side: Side, nodes: &[f64]) -> Result<()> {
+        self.abort_pass();
+        let nodes = self.positions_from(nodes)?;
+        self.swept = None;
+        let mut run = PassRun::of(RunKind::Sweep(side.index()));
+        // the sweep starts from the other engine's positions; the run saves the panel's
+        // own, and puts them back when the sweep is taken or abandoned
+        run.save(&self.panels);
+        self.panels[side.index()].mesh.nodes_mut().copy_from_slice(&nodes);
+        self.run = Some(run);
+        Ok(())
+    }
+
+    /// The sweep begun by [`begin_sweep`](Self::begin_sweep), once
+    /// [`continue_pass`](Self::continue_pass) said it is done: the swept positions (x, y
+    /// interleaved) and what the sweep did. `None` before that, and after it was taken.
+    pub fn take_sweep(&mut self) -> Option<(Vec<f64>, SideSweep)> {
+        self.swept.take().map(|(nodes, sweep)| (nodes.iter().flat_map(|p| [p.x, p.y]).collect(), sweep))
+    }
+
+    /// Hands the old panel's sweep, made by another engine, to the split pass in progress
+    /// ([`begin_split_pass`](Self::begin_split_pass)): its positions (x, y interleaved)
+    /// and what it did.
+    pub fn adopt_sweep(&mut self, nodes: &[f64], sweep: SideSweep) -> Result<()> {
+        let nodes = self.positions_from(nodes)?;
+        let run =
+            self.run.as_mut().ok_or_else(|| Error::invalid("no pass is in progress: begin a split pass first"))?;
+        run.adopt(&mut self.panels, &mut self.versions, &nodes, sweep).map_err(Error::invalid)
+    }
+
+    /// The positions of a panel, x and y interleaved (what [`begin_sweep`](Self::begin_sweep) takes).
+    pub fn panel_positions(&self, side: Side) -> Vec<f64> {
+        self.panels[side.index()].mesh.nodes().iter().flat_map(|p| [p.x, p.y]).collect()
+    }
+
+    /// Positions from x, y interleaved, checked against the mesh: one pair per node, finite.
+    fn positions_from(&self, xy: &[f64]) -> Result<Vec<DVec2>> {
+        let n = self.panels[0].mesh.node_count();
+        if xy.len() != 2 * n {
+            return Err(Error::invalid(format!(
+                "{} coordinates for a mesh of {n} nodes: give x and y of each",
+                xy.len()
+            )));
+        }
+        let nodes: Vec<DVec2> = xy.chunks_exact(2).map(|c| DVec2::new(c[0], c[1])).collect();
+        if let Some(i) = nodes.iter().position(|p| !p.is_finite()) {
+            return Err(Error::invalid(format!("node {i} has a coordinate that is not a finite number")));
+        }
+        Ok(nodes)
+    }
+
     /// Whether a pass is in progress.
     pub fn pass_in_progress(&self) -> bool {
         self.run.is_some()
@@ -478,6 +550,11 @@ impl Playground {
         let run = self.run.as_mut().ok_or_else(|| Error::invalid("no pass is in progress: begin one first"))?;
         if run.advance(&mut self.panels, &mut self.versions, clock, budget_ms) {
             let run = self.run.take().expect("the pass just advanced");
+            if run.is_sweep() {
+                let side = run.side();
+                self.swept = Some(run.finish_sweep(&mut self.panels));
+                return Ok(PassProgress::swept(side));
+            }
             return Ok(run.finish(&mut self.panels, &mut self.versions));
         }
         Ok(run.progress(&self.panels))

@@ -4,11 +4,19 @@
 //! large mesh. The result is [`Smoother::pass`](crate::smooth::Smoother::pass)'s, bit
 //! for bit; the playground ([`super::Playground::begin_pass`], `continue_pass`,
 //! `abort_pass`) only holds the run.
+//!
+//! The two panels' sweeps are independent, so a pass can also be *split* between two
+//! engines (the page's two workers, on two cores): one playground sweeps the old panel
+//! alone ([`super::Playground::begin_sweep`], no statistics, the panel put back after),
+//! while the other runs a split pass ([`super::Playground::begin_split_pass`]): the new
+//! panel as usual, then the old panel's sweep adopted from the first
+//! ([`super::Playground::adopt_sweep`]) and measured. The records and positions are the
+//! whole pass's, bit for bit.
 
 use std::cell::OnceCell;
 
 use glam::DVec2;
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 
 use super::stats::{QuickAcc, QuickStats};
 use super::{Panel, PassSummary, Side, Versions};
@@ -46,8 +54,31 @@ pub enum PassStage {
     Smooth,
     /// Measuring the smoothed mesh's statistics.
     Measure,
+    /// A split pass waits for the other engine's sweep of the old panel
+    /// ([`super::Playground::adopt_sweep`]).
+    Wait,
     /// The pass is complete.
     Done,
+}
+
+/// The sweep of one panel by another engine, for [`super::Playground::adopt_sweep`]: what
+/// its node loop did and how long it took (the positions travel beside it).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct SideSweep {
+    pub counts: SweepCounts,
+    /// The node loop's time (planning included), milliseconds.
+    pub sweep_ms: f64,
+}
+
+/// Which part of a pass a run does.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(super) enum RunKind {
+    /// Both panels: the old one, then the new one.
+    Whole,
+    /// The new panel, then the old one's sweep adopted from another engine and measured.
+    Split,
+    /// The sweep of one panel alone, without statistics, for another engine.
+    Sweep(usize),
 }
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -69,8 +100,34 @@ struct Saved {
     full: OnceCell<MeshStats>,
 }
 
-/// A pass in progress: the old panel's sweep and statistics, then the new panel's.
+impl Saved {
+    fn of(p: &Panel) -> Saved {
+        Saved {
+            nodes: p.mesh.nodes().to_vec(),
+            version: p.version,
+            quick: p.quick,
+            buckets: p.buckets.clone(),
+            full: p.full.clone(),
+        }
+    }
+}
+
+impl PassProgress {
+    /// A sweep for another engine, complete (its result is taken apart from this).
+    pub(super) fn swept(side: Side) -> PassProgress {
+        PassProgress { done: true, fraction: 1.0, side, stage: PassStage::Done, visits: 0, planned: 0, records: None }
+    }
+}
+
+/// A pass in progress: the old panel's sweep and statistics, then the new panel's (in
+/// the order of [`RunKind`]).
 pub(super) struct PassRun {
+    kind: RunKind,
+    /// The panels in the order the run takes them, and how many of them it has done.
+    order: [usize; 2],
+    k: usize,
+    /// A split run: the old panel's sweep, once adopted.
+    adopted: Option<SideSweep>,
     side: usize,
     stage: Stage,
     schedule: Vec<u32>,
@@ -102,12 +159,25 @@ fn adapt_slice(size: usize, dt: f64, budget_ms: f64) -> usize {
     }
 }
 
-
 impl PassRun {
     /// A pass about to begin on the old panel.
     pub(super) fn new() -> PassRun {
+        PassRun::of(RunKind::Whole)
+    }
+
+    /// A run of the given kind about to begin on its first panel.
+    pub(super) fn of(kind: RunKind) -> PassRun {
+        let order = match kind {
+            RunKind::Whole => [0, 1],
+            RunKind::Split => [1, 0],
+            RunKind::Sweep(side) => [side, side],
+        };
         PassRun {
-            side: 0,
+            kind,
+            order,
+            k: 0,
+            adopted: None,
+            side: order[0],
             stage: Stage::Plan,
             schedule: Vec::new(),
             pos: 0,
@@ -138,15 +208,20 @@ impl PassRun {
             let side = self.side;
             let p = &mut panels[side];
             match self.stage {
+                Stage::Plan if self.kind == RunKind::Split && side == 0 => {
+                    // the old panel was swept by another engine: measure it once adopted
+                    let Some(sweep) = self.adopted else { return false };
+                    self.counts = sweep.counts;
+                    self.sweep_ms = sweep.sweep_ms;
+                    self.stage = Stage::Measure;
+                    self.acc = QuickAcc::default();
+                    self.stats_ms = 0.0;
+                }
                 Stage::Plan => {
                     let t0 = clock();
-                    self.saved[side] = Some(Saved {
-                        nodes: p.mesh.nodes().to_vec(),
-                        version: p.version,
-                        quick: p.quick,
-                        buckets: p.buckets.clone(),
-                        full: p.full.clone(),
-                    });
+                    if self.saved[side].is_none() {
+                        self.saved[side] = Some(Saved::of(p));
+                    }
                     p.smoother.begin_plan(&p.mesh);
                     self.sweep_ms = clock() - t0;
                     self.stage = Stage::Planning;
@@ -190,6 +265,10 @@ impl PassRun {
                         self.schedule.clear();
                         self.schedule.extend_from_slice(p.smoother.revisits());
                         self.pos = 0;
+                    } else if let RunKind::Sweep(_) = self.kind {
+                        // a sweep for another engine ends here: that engine measures
+                        self.adopted = Some(SideSweep { counts: self.counts, sweep_ms: self.sweep_ms });
+                        return true;
                     } else {
                         self.stage = Stage::Measure;
                         self.acc = QuickAcc::default();
@@ -213,12 +292,13 @@ impl PassRun {
                             stats_ms: self.stats_ms,
                         };
                         self.done[side] = Some((summary, q));
-                        if side == 1 {
+                        self.k += 1;
+                        if self.k == 2 {
                             return true;
                         }
-                        self.side = 1;
+                        self.side = self.order[self.k];
                         self.stage = Stage::Plan;
-                        // the slice ends here, so the page can say that the new side's
+                        // the slice ends here, so the page can say that the other side's
                         // turn has come before its planning begins
                         return false;
                     }
@@ -258,6 +338,61 @@ impl PassRun {
         }
     }
 
+    /// A split run adopts the old panel's sweep made by another engine: its positions
+    /// `nodes` and what it did. The panel is saved first, so an abandoned pass puts it
+    /// back; it is measured when the new panel is done.
+    pub(super) fn adopt(
+        &mut self,
+        panels: &mut [Panel; 2],
+        versions: &mut Versions,
+        nodes: &[DVec2],
+        sweep: SideSweep,
+    ) -> Result<(), &'static str> {
+        if self.kind != RunKind::Split {
+            return Err("the pass in progress is not split between two engines");
+        }
+        if self.adopted.is_some() {
+            return Err("the old side's sweep was adopted already");
+        }
+        let p = &mut panels[0];
+        self.saved[0] = Some(Saved::of(p));
+        p.mesh.nodes_mut().copy_from_slice(nodes);
+        p.version = versions.fresh();
+        self.adopted = Some(sweep);
+        Ok(())
+    }
+
+    /// The result of a completed [`RunKind::Sweep`]: the panel's swept positions and what
+    /// the sweep did; the panel itself is put back as it was.
+    pub(super) fn finish_sweep(self, panels: &mut [Panel; 2]) -> (Vec<DVec2>, SideSweep) {
+        let nodes = panels[self.side].mesh.nodes().to_vec();
+        let sweep = self.adopted.unwrap_or_default();
+        self.undo(panels);
+        (nodes, sweep)
+    }
+
+    /// Saves the panels as they are before the run (a sweep's panel gets the other
+    /// engine's positions after this).
+    pub(super) fn save(&mut self, panels: &[Panel; 2]) {
+        for (saved, p) in self.saved.iter_mut().zip(panels) {
+            *saved = Some(Saved::of(p));
+        }
+    }
+
+    /// The panel the run is on.
+    pub(super) fn side(&self) -> Side {
+        if self.side == 0 {
+            Side::Old
+        } else {
+            Side::New
+        }
+    }
+
+    /// Whether this run sweeps one panel for another engine.
+    pub(super) fn is_sweep(&self) -> bool {
+        matches!(self.kind, RunKind::Sweep(_))
+    }
+
     /// Puts both panels back where they were before the pass (positions, statistics and
     /// version), so an abandoned pass leaves no trace.
     pub(super) fn undo(self, panels: &mut [Panel; 2]) {
@@ -272,23 +407,27 @@ impl PassRun {
         }
     }
 
-    /// How far the pass is: each panel is half, its sweep nine tenths of that and its
-    /// statistics the rest (a panel not yet planned counts as not begun).
+    /// How far the run is: each panel is an equal share, its sweep nine tenths of that and
+    /// its statistics the rest (a panel not yet planned counts as not begun; a sweep for
+    /// another engine is its whole share).
     pub(super) fn progress(&self, panels: &[Panel; 2]) -> PassProgress {
         let side = self.side;
+        let waiting = self.kind == RunKind::Split && side == 0 && self.adopted.is_none();
         let sweep = match self.stage {
+            _ if waiting => 0.0,
             Stage::Plan | Stage::Planning => 0.0,
             _ if self.schedule.is_empty() || self.untangling => 1.0,
             _ => self.pos as f64 / self.schedule.len() as f64,
         };
         let elements = panels[side].mesh.element_count().max(1);
         let measure = if self.stage == Stage::Measure { self.acc.done as f64 / elements as f64 } else { 0.0 };
-        let within = 0.9 * sweep + 0.1 * measure;
+        let (within, shares) = if self.is_sweep() { (sweep, 1.0) } else { (0.9 * sweep + 0.1 * measure, 2.0) };
         PassProgress {
             done: false,
-            fraction: ((side as f64 + within) / 2.0).clamp(0.0, 1.0),
+            fraction: ((self.k as f64 + within) / shares).clamp(0.0, 1.0),
             side: if side == 0 { Side::Old } else { Side::New },
             stage: match self.stage {
+                _ if waiting => PassStage::Wait,
                 Stage::Plan | Stage::Planning => PassStage::Plan,
                 Stage::Smooth => PassStage::Smooth,
                 Stage::Measure => PassStage::Measure,
@@ -360,13 +499,35 @@ mod tests {
                             assert_eq!(pg.panel(side).mesh.nodes(), m.nodes(), "{what}");
                             let got = &records[side as usize];
                             assert_eq!(
-                                (got.pass, got.counts.visits, got.counts.laplacian_moves, got.counts.optimization_calls, got.counts.solver_iterations),
-                                (pass, rec.counts.visits, rec.counts.laplacian_moves, rec.counts.optimization_calls, rec.counts.solver_iterations),
+                                (
+                                    got.pass,
+                                    got.counts.visits,
+                                    got.counts.laplacian_moves,
+                                    got.counts.optimization_calls,
+                                    got.counts.solver_iterations
+                                ),
+                                (
+                                    pass,
+                                    rec.counts.visits,
+                                    rec.counts.laplacian_moves,
+                                    rec.counts.optimization_calls,
+                                    rec.counts.solver_iterations
+                                ),
                                 "{what}"
                             );
                             assert_eq!(
-                                (got.after.inverted, got.after.min_angle_deg, got.after.max_angle_deg, got.after.min_quality),
-                                (rec.after.inverted, rec.after.min_angle_deg, rec.after.max_angle_deg, rec.after.min_quality),
+                                (
+                                    got.after.inverted,
+                                    got.after.min_angle_deg,
+                                    got.after.max_angle_deg,
+                                    got.after.min_quality
+                                ),
+                                (
+                                    rec.after.inverted,
+                                    rec.after.min_angle_deg,
+                                    rec.after.max_angle_deg,
+                                    rec.after.min_quality
+                                ),
                                 "{what}"
                             );
                             let mut buckets = Vec::new();
@@ -408,5 +569,106 @@ mod tests {
         pg.set_settings(Settings::default()).unwrap();
         assert!(!pg.pass_in_progress());
         assert_eq!(pg.panel(Side::Old).mesh.nodes(), before[0]);
+    }
+
+    #[test]
+    fn a_pass_split_between_two_engines_is_the_whole_pass_bit_for_bit() {
+        let samples = [Sample::PlateMixedTangled, Sample::Rand2dTangled, Sample::PlateQuadratic];
+        for sample in samples {
+            let mesh = sample.generate().unwrap();
+            for (strategy, order) in
+                [(Strategy::Rules, Order::Priority), (Strategy::Opt, Order::Input), (Strategy::C2, Order::Input)]
+            {
+                let settings = Settings { strategy, order, ..Settings::default() };
+                let [mut whole, mut primary, mut helper] = [(); 3].map(|_| Playground::new(mesh.clone()).unwrap());
+                for pg in [&mut whole, &mut primary, &mut helper] {
+                    pg.set_settings(settings).unwrap();
+                }
+                let clock = ticking();
+                for pass in 1..=2u32 {
+                    let what = format!("{sample:?} {strategy:?} {order:?} pass {pass}");
+                    let expected = whole.step(&clock);
+                    primary.begin_split_pass();
+                    let helper_before = helper.panel(Side::Old).mesh.nodes().to_vec();
+                    helper.begin_sweep(Side::Old, &primary.panel_positions(Side::Old)).unwrap();
+                    // the first pass hands the sweep over while the new panel is smoothed,
+                    // the second once the split pass waits for it
+                    if pass == 2 {
+                        while primary.continue_pass(&clock, 3.0).unwrap().stage != PassStage::Wait {}
+                        let p = primary.continue_pass(&clock, 3.0).unwrap();
+                        assert_eq!((p.stage, p.done, p.fraction), (PassStage::Wait, false, 0.5), "{what}");
+                    }
+                    assert!(helper.take_sweep().is_none(), "not before it is done");
+                    while !helper.continue_pass(&clock, 3.0).unwrap().done {}
+                    assert_eq!(helper.panel(Side::Old).mesh.nodes(), helper_before, "{what}: the helper is put back");
+                    let (nodes, sweep) = helper.take_sweep().unwrap();
+                    assert!(helper.take_sweep().is_none());
+                    primary.adopt_sweep(&nodes, sweep).unwrap();
+                    assert!(primary.adopt_sweep(&nodes, sweep).is_err(), "adopted once");
+                    let records = loop {
+                        let p = primary.continue_pass(&clock, 3.0).unwrap();
+                        assert!((0.0..=1.0).contains(&p.fraction));
+                        if let Some(r) = p.records {
+                            break r;
+                        }
+                    };
+                    for side in Side::BOTH {
+                        let (got, want) = (&records[side as usize], &expected[side as usize]);
+                        assert_eq!(primary.panel(side).mesh.nodes(), whole.panel(side).mesh.nodes(), "{what} {side:?}");
+                        assert_eq!(
+                            (got.pass, got.counts, got.after),
+                            (want.pass, want.counts, want.after),
+                            "{what} {side:?}"
+                        );
+                        // the same but for the times the ticking clock gave
+                        let untimed = |mut t: super::super::PanelTable| {
+                            t.work.time_ms = 0.0;
+                            t
+                        };
+                        assert_eq!(untimed(primary.table(side)), untimed(whole.table(side)), "{what} {side:?}");
+                        assert_eq!(primary.panel(side).buckets, whole.panel(side).buckets, "{what} {side:?}");
+                    }
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn an_abandoned_split_pass_leaves_no_trace_and_bad_sweeps_are_refused() {
+        let mesh = Sample::Rand2dTangled.generate().unwrap();
+        let (mut primary, mut helper) = (Playground::new(mesh.clone()).unwrap(), Playground::new(mesh).unwrap());
+        let before = [primary.panel(Side::Old).mesh.nodes().to_vec(), primary.panel(Side::New).mesh.nodes().to_vec()];
+        let tables = [primary.table(Side::Old), primary.table(Side::New)];
+        let n = before[0].len();
+        let clock = ticking();
+        helper.begin_sweep(Side::Old, &primary.panel_positions(Side::Old)).unwrap();
+        while !helper.continue_pass(&clock, 2.0).unwrap().done {}
+        let (nodes, sweep) = helper.take_sweep().unwrap();
+        assert!(sweep.counts.visits > 0 && nodes != primary.panel_positions(Side::Old));
+        assert!(primary.adopt_sweep(&nodes, sweep).is_err(), "no split pass in progress");
+        primary.begin_pass();
+        assert!(primary.adopt_sweep(&nodes, sweep).is_err(), "a whole pass adopts nothing");
+        primary.begin_split_pass();
+        assert!(primary.adopt_sweep(&nodes[1..], sweep).is_err(), "one coordinate short");
+        let mut nan = nodes.clone();
+        nan[7] = f64::NAN;
+        let e = primary.adopt_sweep(&nan, sweep).unwrap_err().to_string();
+        assert!(e.contains("node 3"), "{e}");
+        assert!(helper.begin_sweep(Side::Old, &vec![0.0; 2 * n + 2]).is_err());
+        primary.continue_pass(&clock, 2.0).unwrap();
+        primary.adopt_sweep(&nodes, sweep).unwrap();
+        primary.continue_pass(&clock, 2.0).unwrap();
+        primary.abort_pass();
+        assert!(!primary.pass_in_progress());
+        for side in Side::BOTH {
+            assert_eq!(primary.panel(side).mesh.nodes(), before[side as usize]);
+            assert_eq!(primary.table(side), tables[side as usize]);
+        }
+        // an abandoned sweep puts the helper back too
+        helper.begin_sweep(Side::Old, &nodes).unwrap();
+        helper.continue_pass(&clock, 1.0).unwrap();
+        helper.abort_pass();
+        assert_eq!(helper.panel(Side::Old).mesh.nodes(), before[0]);
+        assert!(helper.take_sweep().is_none());
     }
 }

@@ -1,6 +1,6 @@
 //! What a pass did: the counts of its node loop and the record of a whole pass.
 
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 
 use crate::quality::QuickStats;
 
@@ -31,7 +31,7 @@ pub struct PassRecord {
 }
 
 /// What the node loop of a pass did (the counting part of [`PassRecord`]).
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
 pub struct SweepCounts {
     /// Node visits.
     pub visits: u32,
