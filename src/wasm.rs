@@ -12,7 +12,7 @@ use crate::lab::sample::Sample;
 use crate::lab::surface as surface_lab;
 use crate::lab::views::Canvas;
 use crate::lab::volume as volume_lab;
-use crate::lab::{self as playground, Settings, Side};
+use crate::lab::{self as playground, Settings, Side, SideSweep};
 use crate::permalink;
 use crate::surface::Model;
 use glam::DVec2;
@@ -303,6 +303,54 @@ impl Playground {
             return Err(JsError::new(&format!("a pass slice of {budget_ms} ms: give a positive budget")));
         }
         to_js(&self.inner.continue_pass(&now_ms, budget_ms)?)
+    }
+
+    /// The number of nodes of the mesh.
+    #[wasm_bindgen(js_name = nodeCount)]
+    pub fn node_count(&self) -> usize {
+        self.inner.topology().node_count()
+    }
+
+    /// Starts a pass split with a second engine (another worker, on the same mesh and
+    /// settings), which sweeps the old panel (`beginSweep`); run it with `continuePass`
+    /// (stage `wait` until `adoptSweep` hands the sweep over). The same result as `step`.
+    #[wasm_bindgen(js_name = beginSplitPass)]
+    pub fn begin_split_pass(&mut self) {
+        self.inner.begin_split_pass();
+    }
+
+    /// The positions of panel `side` (`old` or `new`), x and y interleaved.
+    #[wasm_bindgen(js_name = panelPositions)]
+    pub fn panel_positions(&self, side: &str) -> Result<js_sys::Float64Array, JsError> {
+        Ok(js_sys::Float64Array::from(&self.inner.panel_positions(self::side(side)?)[..]))
+    }
+
+    /// Starts the sweep of panel `side` alone from `nodes` (the other engine's positions,
+    /// x and y interleaved), for a split pass; run it with `continuePass`, then `takeSweep`.
+    #[wasm_bindgen(js_name = beginSweep)]
+    pub fn begin_sweep(&mut self, side: &str, nodes: &[f64]) -> Result<(), JsError> {
+        Ok(self.inner.begin_sweep(self::side(side)?, nodes)?)
+    }
+
+    /// The completed sweep: `{ nodes: Float64Array, sweep: { counts, sweep_ms } }`, or
+    /// undefined when there is none.
+    #[wasm_bindgen(js_name = takeSweep)]
+    pub fn take_sweep(&mut self) -> Result<JsValue, JsError> {
+        match self.inner.take_sweep() {
+            Some((nodes, sweep)) => {
+                object(&[("nodes", js_sys::Float64Array::from(&nodes[..]).into()), ("sweep", to_js(&sweep)?)])
+            }
+            None => Ok(JsValue::UNDEFINED),
+        }
+    }
+
+    /// Hands the old panel's sweep (`takeSweep`'s `nodes` and `sweep`, from the other
+    /// engine) to the split pass in progress.
+    #[wasm_bindgen(js_name = adoptSweep)]
+    pub fn adopt_sweep(&mut self, nodes: &[f64], sweep: JsValue) -> Result<(), JsError> {
+        let sweep: SideSweep =
+            serde_wasm_bindgen::from_value(sweep).map_err(|e| JsError::new(&format!("a sweep's record: {e}")))?;
+        Ok(self.inner.adopt_sweep(nodes, sweep)?)
     }
 
     /// Abandons the pass in progress: both panels as before it.

@@ -554,6 +554,19 @@ async function fillTourMenu() {
 
 // ---- loading -------------------------------------------------------------------------
 async function loadSource(src, call = (...a) => engine.call(...a)) {
+  const loaded = await sendSource(src, call);
+  await call('settings', readSettings());
+  state.compare = COMPARE.map((_, i) => readChoice(i));
+  state.lastGood = src;
+  state.node = null;
+  state.perturbed = null;
+  $('node').value = '';
+  showSurfaceMode(loaded.surface, loaded.notPlanar, Boolean(loaded.volume));
+  return loaded;
+}
+
+/** Has a worker load a source; says what it loaded (`{ surface, volume, notPlanar, nodes }`). */
+async function sendSource(src, call) {
   let loaded = { surface: false };
   switch (src.kind) {
     case 'sample':
@@ -570,18 +583,50 @@ async function loadSource(src, call = (...a) => engine.call(...a)) {
       loaded = await call('loadFile', src.name, src.bytes.slice(0));
       break;
     case 'triangle':
-      await call('loadTriangle', src.node, src.ele);
+      loaded = await call('loadTriangle', src.node, src.ele);
       break;
     default:
       throw new Error('unknown mesh source');
   }
-  await call('settings', readSettings());
-  state.compare = COMPARE.map((_, i) => readChoice(i));
-  state.lastGood = src;
-  state.node = null;
-  state.perturbed = null;
-  $('node').value = '';
-  showSurfaceMode(loaded.surface, loaded.notPlanar, Boolean(loaded.volume));
+  return loaded;
+}
+
+// ---- the second worker ---------------------------------------------------------------
+/** A planar mesh of SPLIT_MIN_NODES to SPLIT_MAX_NODES nodes is also loaded into a second
+ * worker, which sweeps the old side (A) of each pass while the first worker smooths the
+ * new side (B): the two sides are independent, so on two cores a pass takes about the
+ * longer side's time rather than both sides' (the same result, bit for bit: the core's
+ * split pass, lab::pass). A smaller mesh is not worth a second copy of it; a larger one
+ * would take the two workers' memory together past the page's 400 MiB
+ * (docs/performance.md). `?workers=1` keeps one worker. */
+const SPLIT_MIN_NODES = 20000;
+const SPLIT_MAX_NODES = 500000;
+const helper = { engine: null, src: null, ok: false };
+
+/** Loads `src` (just loaded, with `nodes` nodes) into the second worker, in the background;
+ * passes use it once it is ready. Any other mesh stops it. */
+function startHelper(src, nodes) {
+  stopHelper();
+  if (!(nodes >= SPLIT_MIN_NODES && nodes <= SPLIT_MAX_NODES) || PARAMS.get('workers') === '1') return;
+  const e = new Engine(() => stopHelper()); // a panic there: passes go on in one worker
+  Object.assign(helper, { engine: e, src, ok: false });
+  sendSource(src, (...a) => e.call(...a))
+    .then(() => {
+      if (helper.engine === e) helper.ok = true;
+    })
+    .catch(() => {
+      if (helper.engine === e) stopHelper();
+    });
+}
+
+function stopHelper() {
+  if (helper.engine) helper.engine.worker.terminate();
+  Object.assign(helper, { engine: null, src: null, ok: false });
+}
+
+/** The second worker, when it holds the mesh on screen. */
+function readyHelper() {
+  return helper.ok && helper.src === state.lastGood && !state.surface ? helper.engine : null;
 }
 
 /** What a surface does not have (yet) on the page, and why: these controls wait,
@@ -644,8 +689,9 @@ function load(src, label, { keepHash = false } = {}) {
     setStatus(`Loading ${label}…`);
     const t0 = now();
     $('progress').removeAttribute('value'); // indeterminate while the worker builds it
+    let loaded;
     try {
-      await loadSource(src);
+      loaded = await loadSource(src);
     } catch (e) {
       setStatus('');
       $('sample').value = state.lastGood ? selectValueOf(state.lastGood) : '';
@@ -660,6 +706,7 @@ function load(src, label, { keepHash = false } = {}) {
     await redrawAll();
     const ms = now() - t0;
     metrics.lastLoad = { label, ms, build_ms: t1 - t0, draw_ms: now() - t1, memory_bytes: engine.memory };
+    startHelper(src, loaded.nodes);
     setStatus(`Loaded ${label} in ${Math.round(ms)} ms.${stopped}`);
     if (!keepHash) await writePermalink();
   }).catch(report);
@@ -952,7 +999,7 @@ async function redrawAll() {
 
 // ---- smoothing -----------------------------------------------------------------------
 const SIDE_NAME = { old: 'A', new: 'B' };
-const STAGE_NAME = { plan: 'ordering the nodes', smooth: 'smoothing', measure: 'measuring' };
+const STAGE_NAME = { plan: 'ordering the nodes', smooth: 'smoothing', measure: 'measuring', wait: 'waiting for the other worker' };
 
 /**
  * One pass on both sides, in slices of SLICE_MS in the worker so the progress bar moves
@@ -970,6 +1017,11 @@ async function smoothPass(i, n) {
     cost.messaging_ms += t.received - t.sent - w;
     return result;
   };
+  const second = readyHelper();
+  if (second) {
+    const r = await splitPass(i, n, call, cost, second);
+    if (r !== undefined) return r;
+  }
   let slices = 0;
   if ($('order').value === 'priority') {
     setStatus(`Pass ${i + 1} of ${n}: ordering the nodes of the old side, worst first…`);
@@ -982,10 +1034,74 @@ async function smoothPass(i, n) {
     const p = await (slices === 0 ? call('pass', readSettings(), SLICE_MS) : call('continuePass', SLICE_MS));
     slices += 1;
     $('progress').value = i + p.fraction;
-    if (p.done) return { records: p.records, slices, ...cost };
+    if (p.done) return { records: p.records, slices, workers: 1, ...cost };
     if (state.cancel) continue; // "Stopping…" stays on screen
     const pct = Math.floor(p.fraction * 100);
     setStatus(`Pass ${i + 1} of ${n}: ${SIDE_NAME[p.side]} side, ${STAGE_NAME[p.stage] || p.stage}… ${pct}% (Stop undoes this pass)`);
+  }
+}
+
+/**
+ * One pass split between the two workers (see SPLIT_MIN_NODES): the second sweeps the old
+ * side from this worker's positions while this one smooths the new side, then takes the
+ * old side's sweep over and measures it. As smoothPass; `undefined` when the second worker
+ * failed (it is dropped, the pass undone, and the caller runs it in one worker).
+ */
+async function splitPass(i, n, call, cost, second) {
+  const settings = readSettings();
+  const nodes = await call('positions', 'old');
+  let swept = null; // the second worker's result, once it has it
+  let failed = null;
+  let oldFraction = 0;
+  const sweeping = (async () => {
+    let p = await second.call('sweep', settings, 'old', nodes, SLICE_MS);
+    while (!p.done) {
+      oldFraction = p.fraction;
+      if (state.cancel) {
+        await second.call('abortPass');
+        return null;
+      }
+      p = await second.call('continueSweep', SLICE_MS);
+    }
+    oldFraction = 1;
+    swept = p.result;
+    return swept;
+  })().catch((e) => {
+    failed = e;
+    return null;
+  });
+  let slices = 1;
+  let p = await call('splitPass', settings, SLICE_MS);
+  let adopted = false;
+  for (;;) {
+    if (failed) {
+      await call('abortPass');
+      stopHelper();
+      return undefined;
+    }
+    if (state.cancel) {
+      await call('abortPass');
+      await sweeping;
+      return null;
+    }
+    if (!adopted && swept) {
+      await call('adoptSweep', swept.nodes, swept.sweep);
+      adopted = true;
+    }
+    // the new side is the first half of this worker's pass, the old side's statistics the
+    // last twentieth of its second half; the old side's sweep is the second worker's
+    const newPart = Math.min(1, 2 * p.fraction);
+    const oldPart = 0.9 * oldFraction + Math.max(0, 2 * p.fraction - 1.9);
+    $('progress').value = i + (p.done ? 1 : Math.min(1, (newPart + oldPart) / 2));
+    if (p.done) return { records: p.records, slices, workers: 2, ...cost };
+    setStatus(`Pass ${i + 1} of ${n}, in two workers: A side ${Math.floor(100 * oldFraction)}%, B side ${Math.floor(100 * newPart)}%… (Stop undoes this pass)`);
+    if (p.stage === 'wait' && !adopted) {
+      // this worker is done with the new side: wait for the old side's sweep, a slice at a time
+      await Promise.race([sweeping, new Promise((r) => setTimeout(r, SLICE_MS))]);
+      continue;
+    }
+    p = await call('continuePass', SLICE_MS);
+    slices += 1;
   }
 }
 
@@ -1038,6 +1154,7 @@ async function smooth(n) {
         wall_ms: r.meshes_ms,
         pass_ms: r.pass_ms,
         slices: r.slices,
+        workers: r.workers,
         worker_ms: r.worker_ms,
         messaging_ms: r.messaging_ms,
         sweep_ms: [ro.elapsed_ms, rn.elapsed_ms],
@@ -1771,7 +1888,15 @@ window.smoothlab = {
   panicForTest: () => serial(() => engine.call('panicForTest')).catch(report),
   metrics,
   pickRadius,
-  memory: () => ({ bytes: engine.memory, peak_bytes: engine.peakMemory }),
+  memory: () => ({
+    bytes: engine.memory,
+    peak_bytes: engine.peakMemory,
+    // the second worker's, when a pass is split (0 when there is none)
+    second_bytes: helper.engine ? helper.engine.memory : 0,
+    second_peak_bytes: helper.engine ? helper.engine.peakMemory : 0,
+  }),
+  // whether passes are split between two workers now (see SPLIT_MIN_NODES)
+  twoWorkers: () => readyHelper() !== null,
   figure: () => state.figure,
 };
 

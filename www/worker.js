@@ -45,7 +45,12 @@ function surface() {
 function replace(next) {
   if (pg) pg.free();
   pg = next;
-  return { surface: isSurface(), volume: isVolume(), notPlanar: isSurface() ? pg.notPlanar() ?? null : null };
+  return {
+    surface: isSurface(),
+    volume: isVolume(),
+    notPlanar: isSurface() ? pg.notPlanar() ?? null : null,
+    nodes: isSurface() ? null : pg.nodeCount(),
+  };
 }
 
 const handlers = {
@@ -69,6 +74,24 @@ const handlers = {
     return p.continuePass(budgetMs);
   },
   continuePass: (budgetMs) => planar().continuePass(budgetMs),
+  // a pass split between two workers (lab::pass): this one smooths the new side and measures
+  // both, the other sweeps the old side from this one's positions and hands them back
+  splitPass: (settings, budgetMs) => {
+    const p = planar();
+    p.setSettings(settings);
+    p.beginSplitPass();
+    return p.continuePass(budgetMs);
+  },
+  positions: (side) => planar().panelPositions(side),
+  adoptSweep: (nodes, sweep) => planar().adoptSweep(nodes, sweep),
+  // the other worker's part: the old side's sweep, its result taken with the last slice
+  sweep: (settings, side, nodes, budgetMs) => {
+    const p = planar();
+    p.setSettings(settings);
+    p.beginSweep(side, nodes);
+    return sweepSlice(p, budgetMs);
+  },
+  continueSweep: (budgetMs) => sweepSlice(planar(), budgetMs),
   abortPass: () => (isSurface() ? null : need().abortPass()),
   perturb: (amount, seed) => need().perturb(amount, seed),
   // the pictures of both meshes and their statistics tables, in one message
@@ -113,9 +136,19 @@ const handlers = {
   encodePermalink: (fields) => wasm.encodePermalink(fields),
 };
 
+/** A slice of a sweep for the other worker; the sweep's positions and record once done. */
+function sweepSlice(p, budgetMs) {
+  const progress = p.continuePass(budgetMs);
+  if (progress.done) progress.result = p.takeSweep();
+  return progress;
+}
+
 // Buffers of typed arrays in a result, moved (not copied) to the main thread.
+// (never the wasm memory itself: results are copies out of it)
 function transferables(value, out = []) {
-  if (value instanceof Uint8Array) out.push(value.buffer);
+  if (ArrayBuffer.isView(value)) {
+    if (!(exports && value.buffer === exports.memory.buffer)) out.push(value.buffer);
+  }
   else if (value && typeof value === 'object') for (const v of Object.values(value)) transferables(v, out);
   return out;
 }

@@ -413,6 +413,49 @@ try {
     console.log(`     ${s.nodes} nodes, ${s.elements} elements loaded and drawn in ${ms} ms; longest frame gap ${gap.toFixed(0)} ms`);
   });
 
+  await test('a pass split between two workers gives the meshes one worker gives, bit for bit', async () => {
+    // the 100k sample is loaded: the second worker loads it too, in the background
+    await page.waitForFunction(() => window.smoothlab.twoWorkers(), null, { timeout: TIMEOUT, polling: 100 });
+    const onePass = async (p) => {
+      await p.selectOption('#strategy', 'rules');
+      await p.selectOption('#order', 'priority');
+      await idle(p);
+      await p.click('#step');
+      await p.waitForFunction(() => /One pass done/.test(document.getElementById('status').textContent), null, { timeout: TIMEOUT });
+      await idle(p);
+      const meshes = [];
+      for (const side of ['old', 'new']) {
+        const [dl] = await Promise.all([p.waitForEvent('download'), p.click(`button[data-export="msh"][data-side="${side}"]`)]);
+        meshes.push(readFileSync(await dl.path()).toString());
+      }
+      const step = await p.evaluate(() => window.smoothlab.metrics.lastStep);
+      return { meshes, step, old: await stats(p, 'old'), new: await stats(p, 'new') };
+    };
+    const two = await onePass(page);
+    check(two.step.workers === 2, `the pass ran in ${two.step.workers} worker(s)`);
+    const other = await context.newPage();
+    other.setDefaultTimeout(TIMEOUT);
+    watch(other, 'one worker');
+    try {
+      await other.goto(`${server.base}?workers=1`);
+      await idle(other);
+      await chooseSample(other, 'sample:rand2d-large');
+      const one = await onePass(other);
+      check(one.step.workers === 1, `?workers=1 ran the pass in ${one.step.workers} workers`);
+      for (const [i, side] of ['old', 'new'].entries()) {
+        check(two.meshes[i] === one.meshes[i], `the ${side} side differs between two workers and one`);
+        for (const row of ['inverted', 'min_angle', 'max_angle', 'min_quality', 'laplacian_moves', 'optimization_calls', 'passes']) {
+          check(two[side][row] === one[side][row], `${side} ${row}: ${two[side][row]} with two workers, ${one[side][row]} with one`);
+        }
+      }
+      console.log(`     one default Step: ${two.step.wall_ms.toFixed(0)} ms in two workers, ${one.step.wall_ms.toFixed(0)} ms in one; the same meshes (${two.meshes[1].length} bytes of .msh a side)`);
+    } finally {
+      await other.close();
+    }
+    await page.click('#reset');
+    await idle(page);
+  });
+
   await test('the 1M sample is listed; a pass on 100k nodes shows progress as it goes, and Stop undoes it within a second', async () => {
     const title = await page.$eval('#sample option[value="sample:rand2d-million"]', (o) => o.textContent);
     check(/1M/.test(title) && /slow/i.test(title), `the 1M sample's title: ${title}`);
