@@ -25,7 +25,7 @@ pub(crate) use perturb::perturbation_radius;
 pub use perturb::{perturb, perturb_volume};
 pub use plate::{plate, PlateKind, PLATE_HALF_WIDTH, PLATE_HOLE_RADIUS};
 pub use prng::SplitMix64;
-pub use rand2d::rand2d;
+pub use rand2d::{rand2d, rand2d_spatial};
 pub use rand3d::{delaunay_tetrahedra, rand3d, RAND3D_POINTS};
 pub use star::{quadratic_star, star, QuadraticStar, StarKind, CURVED_BULGE, PUSHED_MID_HEIGHT};
 pub use surface::{surface, SurfaceKind, SurfaceShape, MAX_SURFACE_RESOLUTION};

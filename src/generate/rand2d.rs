@@ -24,6 +24,20 @@ const MIN_SEPARATION: f64 = 1e-3;
 /// interior points in the order drawn. The triangulation is spade's, with exact
 /// predicates; the points come from [`SplitMix64`] seeded with `seed`.
 pub fn rand2d(interior: usize, per_side: usize, seed: u64) -> Result<Mesh> {
+    rand2d_numbered(interior, per_side, seed, false)
+}
+
+/// [`rand2d`]'s mesh with its nodes numbered along a Hilbert curve instead: the same
+/// points, so the same triangulation, but a node's star and neighbours lie near it in
+/// memory (as after [`Mesh::renumbered_spatially`], without building the mesh twice).
+/// The page's large samples are made so: a smoother visiting their nodes finds what it
+/// reads in cache, where [`rand2d`]'s numbering (the order drawn) scatters it over the
+/// whole mesh.
+pub fn rand2d_spatial(interior: usize, per_side: usize, seed: u64) -> Result<Mesh> {
+    rand2d_numbered(interior, per_side, seed, true)
+}
+
+fn rand2d_numbered(interior: usize, per_side: usize, seed: u64, spatial: bool) -> Result<Mesh> {
     if per_side == 0 {
         return Err(Error::invalid("rand2d needs at least one boundary point per side (the corners)"));
     }
@@ -45,6 +59,10 @@ pub fn rand2d(interior: usize, per_side: usize, seed: u64) -> Result<Mesh> {
         }
     }
     draw_interior(&mut pts, interior, seed)?;
+    if spatial {
+        let grid = crate::mesh::HilbertGrid::over(DVec2::ZERO, DVec2::ONE);
+        pts.sort_by_cached_key(|&q| grid.key(q));
+    }
 
     let vertices: Vec<Point2<f64>> = pts.iter().map(|q| Point2::new(q.x, q.y)).collect();
     let dt = DelaunayTriangulation::<Point2<f64>>::bulk_load_stable(vertices)
@@ -123,6 +141,35 @@ fn draw_interior(pts: &mut Vec<DVec2>, count: usize, seed: u64) -> Result<()> {
 mod tests {
     use super::*;
     use crate::generate::test_util::assert_valid;
+
+    #[test]
+    fn the_spatial_numbering_is_the_same_mesh_with_neighbours_near_in_memory() {
+        let (drawn, spatial) = (rand2d(3000, 30, 7).unwrap(), rand2d_spatial(3000, 30, 7).unwrap());
+        assert_valid(&spatial);
+        assert_eq!((spatial.node_count(), spatial.element_count()), (drawn.node_count(), drawn.element_count()));
+        assert_eq!(spatial.free_count(), drawn.free_count());
+        // the same triangles, as sets of points
+        let triangles = |m: &Mesh| {
+            let mut t: Vec<[(u64, u64); 3]> = (0..m.element_count())
+                .map(|e| {
+                    let mut c = [0, 1, 2].map(|k| {
+                        let p = m.nodes()[m.element(e)[k] as usize];
+                        (p.x.to_bits(), p.y.to_bits())
+                    });
+                    c.sort_unstable();
+                    c
+                })
+                .collect();
+            t.sort_unstable();
+            t
+        };
+        assert_eq!(triangles(&spatial), triangles(&drawn));
+        // an edge joins nodes far fewer numbers apart
+        let spread =
+            |m: &Mesh| m.edges().iter().map(|e| (e.a as f64 - e.b as f64).abs()).sum::<f64>() / m.edges().len() as f64;
+        assert!(spread(&spatial) * 10.0 < spread(&drawn), "{} vs {}", spread(&spatial), spread(&drawn));
+        assert_eq!(spatial.nodes(), rand2d_spatial(3000, 30, 7).unwrap().nodes(), "deterministic");
+    }
 
     #[test]
     fn freitag_counts() {

@@ -6,8 +6,8 @@ use serde::{Deserialize, Serialize};
 
 use crate::error::{Error, Result};
 use crate::generate::{
-    perturb, plate, quadratic_star, rand2d, random_grid, star, surface, GridKind, PlateKind, QuadraticStar, StarKind,
-    SurfaceKind, SurfaceShape,
+    perturb, plate, quadratic_star, rand2d, rand2d_spatial, random_grid, star, surface, GridKind, PlateKind,
+    QuadraticStar, StarKind, SurfaceKind, SurfaceShape,
 };
 use crate::mesh::Mesh;
 use crate::surface::{perturb_surface, Model};
@@ -201,8 +201,8 @@ impl Sample {
             Sample::StarCurved => quadratic_star(QuadraticStar::CurvedBoundary),
             Sample::GridRandomTangled => random_grid(RANDOM_GRID_CELLS, GridKind::Quad, SAMPLE_SEED),
             Sample::PlateQuadratic => plate(PlateKind::Tri, 2, PLATE_RESOLUTION),
-            Sample::Rand2dLarge => rand2d(LARGE_INTERIOR, 200, SAMPLE_SEED),
-            Sample::Rand2dMillion => rand2d(MILLION_INTERIOR, MILLION_PER_SIDE, SAMPLE_SEED),
+            Sample::Rand2dLarge => rand2d_spatial(LARGE_INTERIOR, 200, SAMPLE_SEED),
+            Sample::Rand2dMillion => rand2d_spatial(MILLION_INTERIOR, MILLION_PER_SIDE, SAMPLE_SEED),
             Sample::SphereTangled | Sample::TorusTangled | Sample::CylinderCapped => {
                 Err(Error::invalid(format!("the sample '{}' is a surface in 3D, not a planar mesh", self.title())))
             }

@@ -13,10 +13,10 @@ use std::sync::Arc;
 use glam::DVec2;
 use serde::Serialize;
 
-
 mod builder;
 mod kind;
 mod renumber;
+pub(crate) use renumber::HilbertGrid;
 #[cfg(test)]
 mod tests;
 mod topology;
@@ -36,7 +36,6 @@ pub(crate) enum Follower {
 
 /// Marker for "no such index" in the flat arrays.
 pub const NONE: u32 = u32::MAX;
-
 
 /// An edge between two corner nodes, with its mid-side node when quadratic.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]
@@ -498,4 +497,3 @@ impl Topology {
         self.edges.iter().filter(|e| e.is_boundary())
     }
 }
-

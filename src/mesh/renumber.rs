@@ -21,15 +21,12 @@ impl Mesh {
     pub fn renumbered_spatially(&self) -> (Mesh, Vec<u32>) {
         let n = self.nodes.len();
         let (lo, hi) = self.bounds();
-        let size = (hi - lo).max_element();
-        let cells = (1u32 << HILBERT_ORDER) as f64;
-        let scale = if size > 0.0 && size.is_finite() { (cells - 1.0) / size } else { 0.0 };
+        let grid = HilbertGrid::over(lo, hi);
         let key = |i: usize| -> u64 {
             if self.conn.topo.role[i] == NodeRole::Unused {
                 return u64::MAX;
             }
-            let q = ((self.nodes[i] - lo) * scale).clamp(DVec2::ZERO, DVec2::splat(cells - 1.0));
-            hilbert_index(q.x as u32, q.y as u32)
+            grid.key(self.nodes[i])
         };
         let mut order: Vec<(u64, u32)> = (0..n).map(|i| (key(i), i as u32)).collect();
         order.sort_unstable();
@@ -89,6 +86,32 @@ impl Mesh {
             self.nodes[old as usize] = renumbered.nodes[i];
         }
         Ok(())
+    }
+}
+
+/// The cells of a Hilbert curve of order [`HILBERT_ORDER`] laid over a bounding box's
+/// square: [`key`](Self::key) numbers points along the curve, so sorting by it puts points
+/// near in the plane near in the order ([`Mesh::renumbered_spatially`], and generators
+/// that number their nodes so, `generate::rand2d_spatial`).
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct HilbertGrid {
+    lo: DVec2,
+    scale: f64,
+}
+
+impl HilbertGrid {
+    /// The grid over the box from `lo` to `hi`.
+    pub(crate) fn over(lo: DVec2, hi: DVec2) -> HilbertGrid {
+        let size = (hi - lo).max_element();
+        let cells = (1u32 << HILBERT_ORDER) as f64;
+        HilbertGrid { lo, scale: if size > 0.0 && size.is_finite() { (cells - 1.0) / size } else { 0.0 } }
+    }
+
+    /// The index along the curve of the cell holding `p` (points outside go to the nearest cell).
+    pub(crate) fn key(&self, p: DVec2) -> u64 {
+        let cells = (1u32 << HILBERT_ORDER) as f64;
+        let q = ((p - self.lo) * self.scale).clamp(DVec2::ZERO, DVec2::splat(cells - 1.0));
+        hilbert_index(q.x as u32, q.y as u32)
     }
 }
 
