@@ -165,6 +165,12 @@ try {
   const main100k = await stopWatching(page);
   const table = await page.evaluate(() => Object.fromEntries([...document.querySelectorAll('#stats-new tr')].map((tr) => [tr.dataset.stat, tr.querySelector('td').textContent])));
   result.hundred_k = { nodes: Number(table.nodes), elements: Number(table.elements), load: { ...load100k, ...main100k }, steps: [] };
+  // the page splits each pass of a mesh this size between two workers once the second one
+  // has loaded it (in the background, after the load): the Steps are timed from then
+  const t2 = Date.now();
+  const two = await page.waitForFunction(() => window.smoothlab.twoWorkers(), null, { timeout: 120_000, polling: 20 }).then(() => true, () => false);
+  result.hundred_k.second_worker_ready_ms = two ? Date.now() - t2 : null;
+  log(two ? `the second worker was ready ${Date.now() - t2} ms after the load` : 'no second worker: passes in one worker');
   for (const s of defaultOnly ? SETTINGS_100K.slice(0, 1) : SETTINGS_100K) {
     await setControls(page, s.strategy, s.order);
     const runs = [];
