@@ -273,13 +273,14 @@ pub struct Star {
 
 /// Facts of a star at its position [`Star::x0`] that an objective reads at every
 /// evaluation of a solve and that do not depend on the trial position: worked out at the
-/// first evaluation and kept while the star stays at that `x0` (a visit of `opt` with
-/// `new` evaluates one star some 6 times). [`Star::gather`] forgets them, and so does a
-/// clone (a clone is made to be changed), so they are never read for another star; a
-/// star moved by [`move_free_node`](StarElement::move_free_node) with `x0` set is
-/// another position, and is worked out again. The same bits come out as without it.
+/// first evaluation and kept (a visit of `opt` with `new` evaluates one star some 6
+/// times). [`Star::gather`] and the drivers' moves of the star forget them, and so does a
+/// clone (a clone is made to be changed); they are kept with the `x0` they were worked out
+/// at, and a star whose `x0` was set since gets them worked out again at every evaluation,
+/// so they are never read for another position. The same bits come out as without it.
+/// A `OnceLock`, so a star can be shared between threads (the coloured passes).
 #[derive(Debug, Default)]
-pub(crate) struct StarMemo(std::cell::Cell<Option<(DVec2, new::StarAtRest)>>);
+pub(crate) struct StarMemo(std::sync::OnceLock<(DVec2, new::StarAtRest)>);
 
 impl Clone for StarMemo {
     fn clone(&self) -> Self {
@@ -288,19 +289,25 @@ impl Clone for StarMemo {
 }
 
 impl StarMemo {
-    /// The facts of `star` at `star.x0`, from `work` the first time.
+    /// The facts of `star` at `star.x0`, from `work` unless kept for that position.
     #[inline]
-    pub(crate) fn get(star: &Star, work: impl FnOnce(&Star) -> new::StarAtRest) -> new::StarAtRest {
+    pub(crate) fn get(star: &Star, work: impl Fn(&Star) -> new::StarAtRest) -> new::StarAtRest {
+        let same = |at: &DVec2| at.x.to_bits() == star.x0.x.to_bits() && at.y.to_bits() == star.x0.y.to_bits();
         match star.memo.0.get() {
-            Some((at, facts)) if at.x.to_bits() == star.x0.x.to_bits() && at.y.to_bits() == star.x0.y.to_bits() => {
-                facts
-            }
-            _ => {
+            Some((at, facts)) if same(at) => *facts,
+            Some(_) => work(star),
+            None => {
                 let facts = work(star);
-                star.memo.0.set(Some((star.x0, facts)));
+                let _ = star.memo.0.set((star.x0, facts));
                 facts
             }
         }
+    }
+
+    /// Forgets the facts (the star is about to move or be refilled).
+    #[inline]
+    pub(crate) fn forget(&mut self) {
+        self.0.take();
     }
 }
 
@@ -313,7 +320,7 @@ impl Star {
         self.node = node as u32;
         self.x0 = mesh.nodes()[node];
         self.mixed = mesh.has_triangles() && mesh.has_quads();
-        self.memo = StarMemo::default();
+        self.memo.forget();
         self.elems.clear();
         for &e in mesh.node_elements(node) {
             let e = e as usize;

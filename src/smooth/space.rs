@@ -135,6 +135,7 @@ impl DriverStar for Star {
     #[inline]
     fn restar(&mut self, x: glam::DVec2) {
         self.x0 = x;
+        self.memo.forget();
         for e in &mut self.elems {
             e.move_free_node(x);
         }
