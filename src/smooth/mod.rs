@@ -452,7 +452,32 @@ fn smart_on_triangles(mesh: &Mesh, n: usize, measure: Measure) -> Option<FastSma
     }
     let x0 = mesh.nodes()[n];
     let c = centroid(mesh, n).filter(|c| c.is_finite() && *c != x0);
-    let (mut before, mut after, mut inverted, mut folds) = (f64::INFINITY, f64::INFINITY, 0u32, false);
+    let t = triangles_at(mesh, n, c)?;
+    Some(FastSmart { inverted: t.inverted, to: c.filter(|_| !t.folds && t.after > t.before) })
+}
+
+/// The smallest shape measure (α) of a planar star of linear triangles at the node's
+/// position, read from the mesh as [`smart_on_triangles`] reads it: what
+/// [`DriverStar::shape_at`] of the gathered star gives, bit for bit (the priority order
+/// measures every star so). `None` where [`smart_on_triangles`] is.
+pub(crate) fn shape_on_triangles(mesh: &Mesh, n: usize) -> Option<f64> {
+    triangles_at(mesh, n, None).map(|t| t.before)
+}
+
+/// What the smart Laplacian's test reads of a star of linear triangles (see
+/// [`smart_on_triangles`]): the smallest α now and with the node at `c`, the elements
+/// inverted now, and whether the move folds one.
+struct TrianglesAt {
+    before: f64,
+    after: f64,
+    inverted: u32,
+    folds: bool,
+}
+
+#[inline]
+fn triangles_at(mesh: &Mesh, n: usize, c: Option<DVec2>) -> Option<TrianglesAt> {
+    let x0 = mesh.nodes()[n];
+    let mut t = TrianglesAt { before: f64::INFINITY, after: f64::INFINITY, inverted: 0, folds: false };
     for &e in mesh.node_elements(n) {
         let e = e as usize;
         if mesh.kind(e) != crate::mesh::ElementKind::Tri3 {
@@ -463,17 +488,17 @@ fn smart_on_triangles(mesh: &Mesh, n: usize, measure: Measure) -> Option<FastSma
         let (a, b) = (mesh.nodes()[ids[(s + 1) % 3] as usize], mesh.nodes()[ids[(s + 2) % 3] as usize]);
         let Some(c) = c else {
             let (q0, inv0) = triangle_shape_at(a, b, x0)?;
-            inverted += inv0 as u32;
-            before = before.min(q0);
+            t.inverted += inv0 as u32;
+            t.before = t.before.min(q0);
             continue;
         };
         let ((q0, inv0), (q1, inv1)) = triangle_shape_at_both(a, b, x0, c)?;
-        inverted += inv0 as u32;
-        before = before.min(q0);
-        folds |= !inv0 && inv1;
-        after = after.min(q1);
+        t.inverted += inv0 as u32;
+        t.before = t.before.min(q0);
+        t.folds |= !inv0 && inv1;
+        t.after = t.after.min(q1);
     }
-    Some(FastSmart { inverted, to: c.filter(|_| !folds && after > before) })
+    Some(t)
 }
 
 /// The planar mesh's entry points: a pass with its record, a sweep, one node.

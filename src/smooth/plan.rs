@@ -78,8 +78,14 @@ impl<S: DriverStar> Smoother<S> {
                 while self.plan_next < n && measured < max_stars.max(1) {
                     let i = self.plan_next;
                     if view.mesh().is_free(i) {
-                        self.star.gather(view.star_mesh(i), i);
-                        self.quality[i] = self.star.shape_at(self.star.x0()).0;
+                        let mesh = view.star_mesh(i);
+                        self.quality[i] = match S::shape_from_mesh(mesh, i) {
+                            Some(q) => q,
+                            None => {
+                                self.star.gather(mesh, i);
+                                self.star.shape_at(self.star.x0()).0
+                            }
+                        };
                         self.ranked.push(i as u32);
                         measured += 1;
                     }
@@ -97,7 +103,17 @@ impl<S: DriverStar> Smoother<S> {
     /// The priority schedule from the measured star qualities (see [`plan`](Self::plan)).
     fn schedule_by_priority(&mut self) {
         let q = &self.quality;
-        self.ranked.sort_unstable_by(|&a, &b| q[a as usize].total_cmp(&q[b as usize]).then(a.cmp(&b)));
+        // sorted as (key, node) pairs, not through a comparator that looks the qualities up
+        // (random reads over the whole array); the key orders as `f64::total_cmp` does
+        let key = |v: f64| {
+            let b = v.to_bits() as i64;
+            b ^ ((((b >> 63) as u64) >> 1) as i64)
+        };
+        let mut keyed: Vec<(i64, u32)> = self.ranked.iter().map(|&i| (key(q[i as usize]), i)).collect();
+        keyed.sort_unstable();
+        self.ranked.clear();
+        self.ranked.extend(keyed.iter().map(|&(_, i)| i));
+        drop(keyed);
         let bins = self.options.priority_bins;
         let (Some(&first), Some(&last)) = (self.ranked.first(), self.ranked.last()) else {
             return;

@@ -69,6 +69,12 @@ pub trait DriverStar: NodeStar + Default {
     fn smart_from_mesh(_mesh: &Self::Mesh, _n: usize, _measure: Measure) -> Option<FastSmart<Self::Point>> {
         None
     }
+    /// [`shape_at`](Self::shape_at)`(x0).0` of node `n`'s star read straight from the mesh,
+    /// where a kind of star has such a shortcut; `None` otherwise (the default), and the
+    /// gathered star is measured.
+    fn shape_from_mesh(_mesh: &Self::Mesh, _n: usize) -> Option<f64> {
+        None
+    }
 }
 
 /// What [`DriverStar::smart_from_mesh`] found: the star's inverted elements at the node's
@@ -185,5 +191,8 @@ impl DriverStar for Star {
     }
     fn smart_from_mesh(mesh: &Mesh, n: usize, measure: Measure) -> Option<FastSmart<glam::DVec2>> {
         super::smart_on_triangles(mesh, n, measure)
+    }
+    fn shape_from_mesh(mesh: &Mesh, n: usize) -> Option<f64> {
+        super::shape_on_triangles(mesh, n)
     }
 }
