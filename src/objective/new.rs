@@ -226,10 +226,8 @@ impl ChenTristanoKwok {
 /// the stars of every ordinary mesh.
 #[inline]
 fn extreme_scale_factor(star: &Star) -> Option<f64> {
-    const LO: f64 = 6.223_015_277_861_142e-61; // 2^-200
-    const HI: f64 = 1.606_938_044_258_990_3e60; // 2^200
     let m = StarAtRest::of(star).extent;
-    if m == 0.0 || (LO..=HI).contains(&m) {
+    if m == 0.0 || crate::quality::SAFE_SCALE.contains(&m) {
         None
     } else {
         crate::optimize::unit_factor(m)

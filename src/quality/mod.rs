@@ -22,6 +22,11 @@ pub mod tet;
 
 /// `2√3`, Lo's normalisation so an equilateral triangle has α = 1.
 pub(crate) const TWO_SQRT3: f64 = 3.464_101_615_137_754_6;
+
+/// Edge vectors whose largest component lies in 2^±200 are measured as they are: every
+/// product the metrics take of them is a normal double (see [`corner_edges`]); beyond it
+/// they are brought to unit scale first. One range for every metric and objective.
+pub(crate) const SAFE_SCALE: std::ops::RangeInclusive<f64> = 6.223_015_277_861_142e-61..=1.606_938_044_258_990_3e60;
 /// α of the right isosceles triangle, `√3/2`: Canann's normalisation so a square has β = 1.
 pub const ALPHA_90: f64 = 0.866_025_403_784_438_6;
 
@@ -246,7 +251,7 @@ pub fn corner_edges(kind: ElementKind, p: &[DVec2]) -> [(DVec2, DVec2); 4] {
     let k = kind.corners();
     let raw = corner_edge_vectors(kind, p);
     let m = raw[..k].iter().fold(0.0f64, |m, (a, b)| m.max(a.abs().max_element()).max(b.abs().max_element()));
-    if (pow2(-200)..=pow2(200)).contains(&m) {
+    if SAFE_SCALE.contains(&m) {
         return raw;
     }
     // the points in units of their magnitude, so that the differences (and the tangents'
@@ -313,9 +318,8 @@ fn pow2(e: i32) -> f64 {
 /// are (so ordinary elements take no detour and keep their bits).
 #[inline]
 fn beyond_safe_scale(e1: DVec2, e2: DVec2) -> Option<(DVec2, DVec2, [f64; 2])> {
-    let (lo, hi) = (pow2(-200), pow2(200));
     let m = e1.x.abs().max(e1.y.abs()).max(e2.x.abs()).max(e2.y.abs());
-    if (lo..=hi).contains(&m) || m == 0.0 || !m.is_finite() {
+    if SAFE_SCALE.contains(&m) || m == 0.0 || !m.is_finite() {
         return None;
     }
     let mut v = [e1, e2];
@@ -604,6 +608,11 @@ pub fn mesh_stats_with(mesh: &Mesh, points: impl Fn(usize) -> [DVec2; 9]) -> Mes
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn the_safe_scale_is_two_to_the_plus_minus_200() {
+        assert_eq!((*SAFE_SCALE.start(), *SAFE_SCALE.end()), (pow2(-200), pow2(200)));
+    }
 
     /// `mesh_stats` by folding [`element_quality`] element by element: what
     /// `mesh_stats` must equal bit for bit.

@@ -63,6 +63,11 @@ pub(crate) fn element_shape_at(e: &StarElement, x: DVec2) -> (f64, bool) {
     (q.min_shape, q.inverted > 0)
 }
 
+/// The sums of squared edge lengths for which [`triangle_shape_at`] takes its plain
+/// formula (2.4e-271, about 2^-899, to 2^900): within it the cross product and the
+/// quotient are normal doubles.
+const PLAIN_SQUARES: std::ops::RangeInclusive<f64> = 2.409_919_865_102_884e-271..=8.452_712_498_170_644e270;
+
 /// Lo's α of the linear triangle (x, a, b) (the free node at `x`, then the element's next
 /// two corners in order) and whether it is inverted, from its three points directly (one
 /// cross product: the corners share one determinant), scaled by a power of two when its
@@ -76,9 +81,7 @@ pub(crate) fn triangle_shape_at(a: DVec2, b: DVec2, x: DVec2) -> Option<(f64, bo
         return Some((0.0, true)); // three coincident points: α 0, as lo_alpha_corner; det 0: inverted
     }
     let mut d = squares(u, v, w);
-    const LO: f64 = 2.409_919_865_102_884e-271; // 2^-900
-    const HI: f64 = 8.452_712_498_170_644e270; // 2^900
-    if !(LO..=HI).contains(&d) {
+    if !PLAIN_SQUARES.contains(&d) {
         // the squares leave the doubles: the same formula on the points scaled by a
         // power of two (exact, and before subtracting: differences of tiny coordinates
         // can be subnormal), so α is the same, bit for bit, at every scale
@@ -89,7 +92,7 @@ pub(crate) fn triangle_shape_at(a: DVec2, b: DVec2, x: DVec2) -> Option<(f64, bo
             d = squares(u, v, w);
         }
     }
-    if (LO..=HI).contains(&d) {
+    if PLAIN_SQUARES.contains(&d) {
         let n = u.perp_dot(v);
         return Some((TWO_SQRT3 * n / d, n <= 0.0));
     }
@@ -105,9 +108,7 @@ pub(crate) fn triangle_shape_at_both(a: DVec2, b: DVec2, x: DVec2, y: DVec2) -> 
     let (u0, v0, u1, v1, w) = (a - x, b - x, a - y, b - y, b - a);
     let squares = |u: DVec2, v: DVec2| u.length_squared() + v.length_squared() + w.length_squared();
     let (d0, d1) = (squares(u0, v0), squares(u1, v1));
-    const LO: f64 = 2.409_919_865_102_884e-271; // 2^-900, as triangle_shape_at
-    const HI: f64 = 8.452_712_498_170_644e270; // 2^900
-    let plain = |u: DVec2, v: DVec2, d: f64| !(u == DVec2::ZERO && v == DVec2::ZERO) && (LO..=HI).contains(&d);
+    let plain = |u: DVec2, v: DVec2, d: f64| !(u == DVec2::ZERO && v == DVec2::ZERO) && PLAIN_SQUARES.contains(&d);
     if plain(u0, v0, d0) && plain(u1, v1, d1) {
         let (n0, n1) = (u0.perp_dot(v0), u1.perp_dot(v1));
         let q = DVec2::new(TWO_SQRT3 * n0, TWO_SQRT3 * n1) / DVec2::new(d0, d1);
@@ -154,9 +155,7 @@ pub(crate) fn is_inverted(kind: crate::mesh::ElementKind, p: &[DVec2; 9]) -> boo
         let (a, b, c) = (p[0], p[1], p[2]);
         let e = [(b - a, c - a), (c - b, a - b), (a - c, b - c)];
         let m = e.iter().fold(0.0f64, |m, (u, v)| m.max(u.abs().max_element()).max(v.abs().max_element()));
-        const LO: f64 = 6.223_015_277_861_142e-61; // 2^-200
-        const HI: f64 = 1.606_938_044_258_990_3e60; // 2^200
-        if (LO..=HI).contains(&m) {
+        if crate::quality::SAFE_SCALE.contains(&m) {
             return e.iter().any(|(u, v)| u.perp_dot(*v) <= 0.0);
         }
     }
