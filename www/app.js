@@ -1053,22 +1053,21 @@ async function splitPass(i, n, call, cost, second) {
   let swept = null; // the second worker's result, once it has it
   let failed = null;
   let oldFraction = 0;
+  // settles when the second worker is done, stopped or failed (never rejects)
   const sweeping = (async () => {
     let p = await second.call('sweep', settings, 'old', nodes, SLICE_MS);
     while (!p.done) {
       oldFraction = p.fraction;
       if (state.cancel) {
         await second.call('abortPass');
-        return null;
+        return;
       }
       p = await second.call('continueSweep', SLICE_MS);
     }
     oldFraction = 1;
     swept = p.result;
-    return swept;
   })().catch((e) => {
     failed = e;
-    return null;
   });
   let slices = 1;
   let p = await call('splitPass', settings, SLICE_MS);
@@ -1888,13 +1887,7 @@ window.smoothlab = {
   panicForTest: () => serial(() => engine.call('panicForTest')).catch(report),
   metrics,
   pickRadius,
-  memory: () => ({
-    bytes: engine.memory,
-    peak_bytes: engine.peakMemory,
-    // the second worker's, when a pass is split (0 when there is none)
-    second_bytes: helper.engine ? helper.engine.memory : 0,
-    second_peak_bytes: helper.engine ? helper.engine.peakMemory : 0,
-  }),
+  memory: () => ({ bytes: engine.memory, peak_bytes: engine.peakMemory }),
   // whether passes are split between two workers now (see SPLIT_MIN_NODES)
   twoWorkers: () => readyHelper() !== null,
   figure: () => state.figure,

@@ -389,6 +389,11 @@ pub struct Playground {
     undo: Vec<interact::Undo>,
 }
 
+/// Positions as x, y interleaved, the form in which they travel between two engines.
+fn interleaved(nodes: &[DVec2]) -> Vec<f64> {
+    nodes.iter().flat_map(|p| [p.x, p.y]).collect()
+}
+
 impl Playground {
     /// A playground on `mesh`: both panels start from it.
     pub fn new(mesh: Mesh) -> Result<Self> {
@@ -502,7 +507,7 @@ impl Playground {
     /// [`continue_pass`](Self::continue_pass) said it is done: the swept positions (x, y
     /// interleaved) and what the sweep did. `None` before that, and after it was taken.
     pub fn take_sweep(&mut self) -> Option<(Vec<f64>, SideSweep)> {
-        self.swept.take().map(|(nodes, sweep)| (nodes.iter().flat_map(|p| [p.x, p.y]).collect(), sweep))
+        self.swept.take().map(|(nodes, sweep)| (interleaved(&nodes), sweep))
     }
 
     /// Hands the old panel's sweep, made by another engine, to the split pass in progress
@@ -517,10 +522,11 @@ impl Playground {
 
     /// The positions of a panel, x and y interleaved (what [`begin_sweep`](Self::begin_sweep) takes).
     pub fn panel_positions(&self, side: Side) -> Vec<f64> {
-        self.panels[side.index()].mesh.nodes().iter().flat_map(|p| [p.x, p.y]).collect()
+        interleaved(self.panels[side.index()].mesh.nodes())
     }
 
-    /// Positions from x, y interleaved, checked against the mesh: one pair per node, finite.
+    /// Positions from x, y interleaved ([`interleaved`]'s form), checked against the mesh:
+    /// one pair per node, finite.
     fn positions_from(&self, xy: &[f64]) -> Result<Vec<DVec2>> {
         let n = self.panels[0].mesh.node_count();
         if xy.len() != 2 * n {

@@ -126,9 +126,9 @@ pub(super) struct PassRun {
     /// The panels in the order the run takes them, and how many of them it has done.
     order: [usize; 2],
     k: usize,
-    /// A split run: the old panel's sweep, once adopted.
-    adopted: Option<SideSweep>,
-    side: usize,
+    /// The old panel's sweep by another engine, once a split run adopted it; a sweep run's
+    /// own, once made.
+    sweep: Option<SideSweep>,
     stage: Stage,
     schedule: Vec<u32>,
     pos: usize,
@@ -176,8 +176,7 @@ impl PassRun {
             kind,
             order,
             k: 0,
-            adopted: None,
-            side: order[0],
+            sweep: None,
             stage: Stage::Plan,
             schedule: Vec::new(),
             pos: 0,
@@ -205,12 +204,12 @@ impl PassRun {
     ) -> bool {
         let start = clock();
         loop {
-            let side = self.side;
+            let side = self.panel();
             let p = &mut panels[side];
             match self.stage {
                 Stage::Plan if self.kind == RunKind::Split && side == 0 => {
                     // the old panel was swept by another engine: measure it once adopted
-                    let Some(sweep) = self.adopted else { return false };
+                    let Some(sweep) = self.sweep else { return false };
                     self.counts = sweep.counts;
                     self.sweep_ms = sweep.sweep_ms;
                     self.stage = Stage::Measure;
@@ -267,7 +266,7 @@ impl PassRun {
                         self.pos = 0;
                     } else if let RunKind::Sweep(_) = self.kind {
                         // a sweep for another engine ends here: that engine measures
-                        self.adopted = Some(SideSweep { counts: self.counts, sweep_ms: self.sweep_ms });
+                        self.sweep = Some(SideSweep { counts: self.counts, sweep_ms: self.sweep_ms });
                         return true;
                     } else {
                         self.stage = Stage::Measure;
@@ -296,7 +295,6 @@ impl PassRun {
                         if self.k == 2 {
                             return true;
                         }
-                        self.side = self.order[self.k];
                         self.stage = Stage::Plan;
                         // the slice ends here, so the page can say that the other side's
                         // turn has come before its planning begins
@@ -351,41 +349,41 @@ impl PassRun {
         if self.kind != RunKind::Split {
             return Err("the pass in progress is not split between two engines");
         }
-        if self.adopted.is_some() {
+        if self.sweep.is_some() {
             return Err("the old side's sweep was adopted already");
         }
         let p = &mut panels[0];
         self.saved[0] = Some(Saved::of(p));
         p.mesh.nodes_mut().copy_from_slice(nodes);
         p.version = versions.fresh();
-        self.adopted = Some(sweep);
+        self.sweep = Some(sweep);
         Ok(())
     }
 
     /// The result of a completed [`RunKind::Sweep`]: the panel's swept positions and what
     /// the sweep did; the panel itself is put back as it was.
     pub(super) fn finish_sweep(self, panels: &mut [Panel; 2]) -> (Vec<DVec2>, SideSweep) {
-        let nodes = panels[self.side].mesh.nodes().to_vec();
-        let sweep = self.adopted.unwrap_or_default();
+        let nodes = panels[self.panel()].mesh.nodes().to_vec();
+        let sweep = self.sweep.unwrap_or_default();
         self.undo(panels);
         (nodes, sweep)
     }
 
-    /// Saves the panels as they are before the run (a sweep's panel gets the other
-    /// engine's positions after this).
+    /// Saves the panel of a sweep run as it is before the run (it gets the other engine's
+    /// positions after this).
     pub(super) fn save(&mut self, panels: &[Panel; 2]) {
-        for (saved, p) in self.saved.iter_mut().zip(panels) {
-            *saved = Some(Saved::of(p));
-        }
+        let side = self.panel();
+        self.saved[side] = Some(Saved::of(&panels[side]));
+    }
+
+    /// The index of the panel the run is on.
+    fn panel(&self) -> usize {
+        self.order[self.k.min(1)]
     }
 
     /// The panel the run is on.
     pub(super) fn side(&self) -> Side {
-        if self.side == 0 {
-            Side::Old
-        } else {
-            Side::New
-        }
+        Side::BOTH[self.panel()]
     }
 
     /// Whether this run sweeps one panel for another engine.
@@ -411,8 +409,8 @@ impl PassRun {
     /// its statistics the rest (a panel not yet planned counts as not begun; a sweep for
     /// another engine is its whole share).
     pub(super) fn progress(&self, panels: &[Panel; 2]) -> PassProgress {
-        let side = self.side;
-        let waiting = self.kind == RunKind::Split && side == 0 && self.adopted.is_none();
+        let side = self.panel();
+        let waiting = self.kind == RunKind::Split && side == 0 && self.sweep.is_none();
         let sweep = match self.stage {
             _ if waiting => 0.0,
             Stage::Plan | Stage::Planning => 0.0,
@@ -425,7 +423,7 @@ impl PassRun {
         PassProgress {
             done: false,
             fraction: ((self.k as f64 + within) / shares).clamp(0.0, 1.0),
-            side: if side == 0 { Side::Old } else { Side::New },
+            side: Side::BOTH[side],
             stage: match self.stage {
                 _ if waiting => PassStage::Wait,
                 Stage::Plan | Stage::Planning => PassStage::Plan,

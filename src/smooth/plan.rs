@@ -113,7 +113,6 @@ impl<S: DriverStar> Smoother<S> {
         keyed.sort_unstable();
         self.ranked.clear();
         self.ranked.extend(keyed.iter().map(|&(_, i)| i));
-        drop(keyed);
         let bins = self.options.priority_bins;
         let (Some(&first), Some(&last)) = (self.ranked.first(), self.ranked.last()) else {
             return;
