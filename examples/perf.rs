@@ -956,7 +956,7 @@ fn page_section(path: Option<&str>) -> String {
     let workers = steps.first().map(|s| f(&s["median"]["workers"])).unwrap_or(f64::NAN);
     let _ = writeln!(
         w,
-        "\nA planar mesh of 20k to 500k nodes is smoothed in two workers (`www/app.js`, `SPLIT_MIN_NODES`): after a load a second \
+        "\nA planar mesh of 20k to 500k nodes is smoothed in two workers (`www/app/workers.js`, `SPLIT_MIN_NODES`): after a load a second \
          worker loads the same mesh in the background{}; each pass then sends it the old side's positions, it sweeps them while \
          the first worker smooths the new side, and the first adopts its sweep and measures it (`lab::pass`, the same records and \
          meshes as one worker, bit for bit: a unit test and a browser test compare them). The default Step above ran in {} worker(s); \

@@ -513,8 +513,8 @@ mod tests {
     #[test]
     fn gmsh_files_are_the_pages_and_are_shipped() {
         let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
-        let app = std::fs::read_to_string(root.join("www/app.js")).unwrap();
-        let start = app.find("const GMSH_SAMPLES = [").expect("app.js declares GMSH_SAMPLES");
+        let app = std::fs::read_to_string(root.join("www/app/state.js")).unwrap();
+        let start = app.find("const GMSH_SAMPLES = [").expect("www/app/state.js declares GMSH_SAMPLES");
         let list = &app[start..start + app[start..].find("];").unwrap()];
         let in_app: Vec<&str> = list
             .split("['")

@@ -368,10 +368,10 @@ fn the_page_reads_what_it_exports() {
     }
     let (node, ele) = io::write_triangle(&m).unwrap();
     assert!(((node.len() + ele.len()) as u64) < io::PAGE_MAX_FILE_BYTES);
-    let app = std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("www/app.js")).unwrap();
+    let app = std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("www/app/state.js")).unwrap();
     assert!(
         app.contains(&format!("const MAX_FILE_BYTES = {} * 1024 * 1024;", io::PAGE_MAX_FILE_BYTES >> 20)),
-        "www/app.js checks io::PAGE_MAX_FILE_BYTES"
+        "www/app/state.js checks io::PAGE_MAX_FILE_BYTES"
     );
 }
 

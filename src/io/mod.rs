@@ -46,7 +46,7 @@ mod vtk;
 /// about 340 MB there).
 pub const MAX_FILE_BYTES: u64 = 1 << 30;
 
-/// The page's own limit on the files it reads (`www/app.js` checks it before reading,
+/// The page's own limit on the files it reads (`www/app/state.js` checks it before reading,
 /// holding the file and the mesh in the browser's memory). Every file of a mesh the page
 /// holds (at most [`crate::lab::MAX_NODES`] nodes) is smaller, so what the page exports,
 /// it reads back.

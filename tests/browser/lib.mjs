@@ -1,0 +1,130 @@
+// What every browser suite shares: the tiny test runner, the console and request watch,
+// and the page helpers (open, idle, statistics, canvas hashes, screenshots, clicks).
+import { mkdirSync, readFileSync, readdirSync, existsSync } from 'node:fs';
+import { spawnSync } from 'node:child_process';
+import path from 'node:path';
+import { chromium } from 'playwright-core';
+import { ROOT, WWW, CHROMIUM, CHROMIUM_ARGS as ARGS, startServer } from './serve.mjs';
+
+export const OUT = path.join(ROOT, 'test-output', 'browser');
+export const BAD = path.join(ROOT, 'tests', 'data', 'bad');
+export const DATA = path.join(ROOT, 'tests', 'data');
+export const HARDENING = path.join(DATA, 'hardening');
+export const TIMEOUT = 60_000;
+/** Mesquite's meshes, read in place beside the repository (not copied into it): absent on
+ * a developer's machine their test says so and passes; absent under CI=true it fails. */
+export const MESQUITE = path.join(ROOT, '..', 'shared', 'meshes', 'mesquite');
+export const CI = Boolean(process.env.CI) && !['false', '0'].includes(process.env.CI);
+
+mkdirSync(OUT, { recursive: true });
+if (!existsSync(path.join(WWW, 'pkg', 'smoothlab_bg.wasm'))) {
+  console.error('www/pkg/smoothlab_bg.wasm is missing: run `make site` first');
+  process.exit(1);
+}
+
+// ---- a tiny test runner ---------------------------------------------------------------
+export const results = [];
+/** ONLY=regex runs the tests whose names match (and the last, which checks the console). */
+export const ONLY = process.env.ONLY ? new RegExp(process.env.ONLY) : null;
+export async function test(name, fn) {
+  if (ONLY && !ONLY.test(name) && !/^no request left/.test(name)) return;
+  const t0 = Date.now();
+  try {
+    await fn();
+    results.push({ name, ok: true });
+    console.log(`ok   ${name} (${Date.now() - t0} ms)`);
+  } catch (e) {
+    results.push({ name, ok: false, error: e });
+    console.log(`FAIL ${name}\n     ${String(e && e.stack ? e.stack : e).split('\n').slice(0, 4).join('\n     ')}`);
+  }
+}
+export function check(cond, msg) {
+  if (!cond) throw new Error(msg);
+}
+
+// ---- page helpers ---------------------------------------------------------------------
+export const externalRequests = [];
+export const consoleErrors = [];
+/** Substrings of console errors a test provokes on purpose (set with allowErrors). */
+let allowedErrors = [];
+export function allowErrors(list) {
+  allowedErrors = list;
+}
+
+export function watch(page, label) {
+  page.on('request', (req) => {
+    const u = new URL(req.url());
+    if (!['data:', 'blob:'].includes(u.protocol) && u.hostname !== '127.0.0.1') externalRequests.push(req.url());
+  });
+  page.on('console', (msg) => {
+    if (msg.type() === 'error' && !allowedErrors.some((a) => msg.text().includes(a))) consoleErrors.push(`${label}: ${msg.text()}`);
+  });
+  page.on('pageerror', (err) => consoleErrors.push(`${label}: uncaught ${err.message}`));
+  page.on('worker', (w) => {
+    w.on('console', (msg) => {
+      if (msg.type() === 'error' && !allowedErrors.some((a) => msg.text().includes(a))) consoleErrors.push(`${label} worker: ${msg.text()}`);
+    });
+  });
+}
+
+export async function idle(page) {
+  await page.waitForFunction(() => document.body.dataset.ready === '1' && document.body.dataset.busy === '0', null, { timeout: TIMEOUT });
+}
+/** Opens `url` and waits until the page has opened its address: a URL that differs only
+ * in its hash reloads nothing, and the page handles the hash after `goto` returns. */
+export async function open(page, url) {
+  await page.goto(url);
+  await page.waitForFunction(() => document.body.dataset.hash === location.hash, null, { timeout: TIMEOUT });
+  await idle(page);
+}
+export async function stats(page, side) {
+  return page.evaluate((side) => {
+    const out = {};
+    for (const tr of document.querySelectorAll(`#stats-${side} tr`)) out[tr.dataset.stat] = tr.querySelector('td').textContent;
+    return out;
+  }, side);
+}
+/** Distinct colours and a hash of a canvas's pixels. */
+export async function canvasInfo(page, id) {
+  return page.evaluate((id) => {
+    const c = document.getElementById(id);
+    const d = c.getContext('2d').getImageData(0, 0, c.width, c.height).data;
+    const colours = new Set();
+    let h = 2166136261;
+    for (let i = 0; i < d.length; i += 4) {
+      const v = (d[i] << 24) | (d[i + 1] << 16) | (d[i + 2] << 8) | d[i + 3];
+      colours.add(v);
+      h = Math.imul(h ^ v, 16777619);
+    }
+    return { colours: colours.size, hash: h >>> 0, w: c.width, h: c.height };
+  }, id);
+}
+export async function shot(page, name, fullPage = true) {
+  await page.screenshot({ path: path.join(OUT, `${name}.png`), fullPage });
+}
+export async function chooseSample(page, value) {
+  await page.selectOption('#sample', value);
+  await page.waitForFunction((v) => document.getElementById('sample').value === v && document.body.dataset.busy === '0', value, { timeout: TIMEOUT });
+  await idle(page);
+}
+/** Clicks near points of the mesh canvas until a node is chosen (as a user aims at a node). */
+export async function clickSomeNode(page, canvasId, fractions) {
+  await page.locator(`#${canvasId}`).scrollIntoViewIfNeeded();
+  const box = await page.locator(`#${canvasId}`).boundingBox();
+  for (const [fx, fy] of fractions) {
+    await page.mouse.click(box.x + fx * box.width, box.y + fy * box.height);
+    await idle(page);
+    const v = await page.inputValue('#node');
+    if (v !== '') return { node: Number(v), x: box.x + fx * box.width, y: box.y + fy * box.height };
+  }
+  throw new Error('no click near the mesh chose a node');
+}
+export function ringPoints() {
+  // points in the plate's ring between the hole (r = 0.4) and the square (half-width 1)
+  const pts = [];
+  for (let k = 0; k < 24; k++) {
+    const a = (k / 24) * 2 * Math.PI;
+    for (const r of [0.36, 0.3]) pts.push([0.5 + r * Math.cos(a), 0.5 + r * Math.sin(a)]);
+  }
+  return pts;
+}

@@ -1,0 +1,137 @@
+// The controls: the settings they make, their ranges and defaults from the core (limits.rs,
+// written once), the compare menus, what a strategy does not use, typed values checked.
+import { $, COMPARE, clearError, engine, report, serial, setStatus, state } from './state.js';
+import { writePermalink } from './permalink.js';
+import { endRun } from './loading.js';
+import { redrawAll } from './draw.js';
+
+export function readSettings() {
+  return {
+    strategy: $('strategy').value,
+    threshold_deg: Number($('threshold').value),
+    order: $('order').value,
+    max_iter: Number($('maxiter').value),
+    compare: COMPARE.map((_, i) => readChoice(i)),
+  };
+}
+/** What side `i` (0 = A, 1 = B) smooths with; a penalty only for `new` (else the default design). */
+export function readChoice(i) {
+  const [obj, pen] = COMPARE[i];
+  const objective = $(obj).value;
+  return { objective, penalty: $(pen).disabled ? state.controls.penalties[0].name : $(pen).value };
+}
+
+// ---- controls: built from the core's ranges, checked where they are edited ------------
+/** The permalink key by which the core checks each typed control. */
+export const CHECKED = { passes: 'passes', maxiter: 'maxiter', seed: 'seed', amount: 'tangle' };
+
+/** Sets the inputs' ranges and defaults from the core (the one place they are written). */
+export function buildControls(c) {
+  state.controls = c;
+  for (const id of ['passes', 'maxiter']) {
+    const el = $(id);
+    el.min = c[id].min;
+    el.max = c[id].max;
+    el.step = '1';
+    el.value = c[id].default;
+    el.title = `${c[id].label}: ${c[id].words}`;
+    el.dataset.help = el.title;
+  }
+  $('seed').value = c.seed.default;
+  $('seed').title = `Seed: ${c.seed.words}`;
+  const a = $('amount');
+  a.min = String(c.amount.min);
+  a.max = String(c.amount.max);
+  a.step = String(c.amount.step);
+  a.value = String(c.amount.default);
+  a.title = `Perturb amount: ${c.amount.words}`;
+  $('amount-out').textContent = a.value;
+  const t = $('threshold');
+  t.replaceChildren();
+  for (const v of c.threshold.options) {
+    const o = document.createElement('option');
+    o.value = String(v);
+    o.textContent = `${v}°`;
+    t.append(o);
+  }
+  t.value = String(c.threshold.default);
+  $('file').accept = c.file_extensions.join(',');
+  $('drop-hint').textContent = `…or drop a ${c.file_extensions_words} file (a .node and .ele pair together) anywhere on the page.`;
+  fillMenu($('strategy'), c.strategies.map((s) => [s.name, s.label, s.title]), c.settings.strategy);
+  fillMenu($('order'), c.orders.map((o) => [o.name, o.label, o.title]), c.settings.order);
+  showStrategyReasons();
+  // compare: every objective and penalty design the core offers, by its names
+  for (const [i, [obj, pen]] of COMPARE.entries()) {
+    const panel = c.panels[i];
+    fillMenu($(obj), c.objectives.map((o) => [o.name, `${o.name}: ${o.words}`]), panel.objective);
+    fillMenu($(pen), c.penalties.map((p) => [p.name, `${p.name}: ${p.words}`]), panel.penalty);
+    document.documentElement.style.setProperty(`--side-${panel.side}`, `rgb(${panel.rgb.join(',')})`);
+  }
+  showPenaltyReasons();
+}
+/** Fills a menu with `[value, text, tooltip]` entries (the tooltip may be absent). */
+export function fillMenu(select, entries, value) {
+  select.replaceChildren();
+  for (const [v, text, title] of entries) {
+    const o = document.createElement('option');
+    o.value = v;
+    o.textContent = text;
+    if (title) o.title = title;
+    select.append(o);
+  }
+  select.value = value;
+}
+/** A penalty is a design of `new`: its menu is disabled, saying so, for another objective. */
+export function showPenaltyReasons() {
+  for (const [obj, pen] of COMPARE) {
+    const other = $(obj).value !== 'new';
+    $(pen).disabled = other;
+    const why = other ? `Not used: only the new objective has a penalty (this side runs ${$(obj).value}).` : '';
+    $(`${pen}-why`).textContent = why;
+    $(pen).title = why;
+  }
+}
+/** A side now runs something else: both sides start again from the mesh as loaded. */
+export function changeCompare() {
+  showPenaltyReasons();
+  const stopped = endRun();
+  return serial(async () => {
+    await engine.call('settings', readSettings());
+    state.compare = COMPARE.map((_, i) => readChoice(i));
+    await engine.call('reset');
+    await redrawAll();
+    clearError();
+    const [a, b] = [readChoice(0), readChoice(1)];
+    const name = (c) => (c.objective === 'new' ? `new (${c.penalty} penalty)` : c.objective);
+    setStatus(`Comparing A, ${name(a)}, with B, ${name(b)}: both sides start again from the mesh as loaded.${stopped}`);
+    await writePermalink();
+  }).catch(report);
+}
+
+/** Disables the controls the chosen strategy does not use, saying why (as the CLI refuses them). */
+export function showStrategyReasons() {
+  const info = state.controls.strategies.find((s) => s.name === $('strategy').value);
+  for (const [id, why] of [['threshold', info && info.threshold_unused], ['maxiter', info && info.max_iter_unused]]) {
+    $(id).disabled = Boolean(why);
+    $(`${id}-why`).textContent = why ? `Not used: ${why}.` : '';
+    $(id).title = why ? `Not used: ${why}.` : $(id).dataset.help || '';
+  }
+}
+
+/** Checks one typed control with the core's rules; shows or clears its message. */
+export async function checkControl(id) {
+  const text = $(id).value;
+  const msg = await engine.call('checkControl', CHECKED[id], text);
+  if ($(id).value !== text) return; // typed on meanwhile: that check will answer
+  if (msg) state.invalid.set(id, msg);
+  else state.invalid.delete(id);
+  $(id).setAttribute('aria-invalid', msg ? 'true' : 'false');
+  $(`${id}-error`).textContent = msg || '';
+  // a refusal that named this control is stale once it is valid
+  if (!msg && $('message').dataset.control === id) clearError();
+}
+/** The first message of a control that is not valid (ignoring controls not in use). */
+export function invalidMessage(ids) {
+  for (const id of ids) if (state.invalid.has(id) && !$(id).disabled) return state.invalid.get(id);
+  return null;
+}

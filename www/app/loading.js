@@ -1,0 +1,169 @@
+// Loading: a sample, a Gmsh file of the site or the user's file into the engine; the page's
+// planar, surface or volume mode; the previous mesh kept when a load fails.
+import { $, COMPARE, MAX_FILE_BYTES, clearError, engine, metrics, now, report, serial, setStatus, showError, state } from './state.js';
+import { readChoice, readSettings } from './controls.js';
+import { writePermalink } from './permalink.js';
+import { startHelper } from './workers.js';
+import { redrawAll } from './draw.js';
+import { showPickNote } from './pointer.js';
+
+
+export async function loadSource(src, call = (...a) => engine.call(...a)) {
+  const loaded = await sendSource(src, call);
+  await call('settings', readSettings());
+  state.compare = COMPARE.map((_, i) => readChoice(i));
+  state.lastGood = src;
+  state.node = null;
+  state.perturbed = null;
+  $('node').value = '';
+  showSurfaceMode(loaded.surface, loaded.notPlanar, Boolean(loaded.volume));
+  return loaded;
+}
+
+/** Has a worker load a source; says what it loaded (`{ surface, volume, notPlanar, nodes }`). */
+export async function sendSource(src, call) {
+  let loaded = { surface: false };
+  switch (src.kind) {
+    case 'sample':
+      loaded = await call('loadSample', src.name);
+      break;
+    case 'gmsh': {
+      const res = await fetch(`samples/${encodeURIComponent(src.name)}`);
+      if (!res.ok) throw new Error(`could not fetch the sample ${src.name} (HTTP ${res.status})`);
+      const bytes = await res.arrayBuffer();
+      loaded = await call('loadFile', src.name, bytes);
+      break;
+    }
+    case 'file':
+      loaded = await call('loadFile', src.name, src.bytes.slice(0));
+      break;
+    case 'triangle':
+      loaded = await call('loadTriangle', src.node, src.ele);
+      break;
+    default:
+      throw new Error('unknown mesh source');
+  }
+  return loaded;
+}
+
+/** What a surface does not have (yet) on the page, and why: these controls wait,
+ * saying so, while a surface is loaded (as a strategy's unused controls do). */
+export const PLANAR_ONLY = {
+  node: 'a node of a surface moves in its tangent plane: the level sets are drawn for planar meshes',
+  'smooth-node': 'the level sets and one-node smoothing are for planar meshes',
+  undo: 'nodes of a surface are not dragged (a drag turns the view)',
+  'hist-log': 'the per-pass chart and the angle histograms are drawn for planar meshes',
+  'save-figure': 'the figure for slides is drawn for planar meshes; save each 3D view as a PNG',
+};
+
+/** Puts the page in the surface mode (or back in the planar one); `why` says why a file
+ * read as a surface (the node farthest off the plane it would lie in: a mistyped
+ * coordinate shows here, as the command-line tool says it). */
+export function showSurfaceMode(on, why = null, volume = false) {
+  state.surface = on;
+  state.volume = on && volume;
+  showPickNote(null); // it spoke of the mesh before
+  document.body.classList.toggle('surface', on);
+  $('surface-note').hidden = !on || state.volume;
+  $('volume-note').hidden = !state.volume;
+  if (state.volume) {
+    $('cut-axis').value = '2';
+    $('cut-at').value = '0.5';
+    $('cut-at-out').textContent = '0.50';
+  }
+  $('surface-why').hidden = !(on && why);
+  $('surface-why').textContent = on && why ? `Read as a surface in 3D: ${why}.` : '';
+  for (const [id, why] of Object.entries(PLANAR_ONLY)) {
+    const el = $(id);
+    if (on) {
+      el.disabled = true;
+      el.title = state.volume ? `Not for tetrahedra: ${why.replace(/a surface/g, 'a 3D mesh')}.` : `Not for a surface: ${why}.`;
+    } else {
+      el.disabled = id === 'smooth-node' ? state.node === null : id === 'undo' ? el.disabled : false;
+      el.title = el.dataset.help || '';
+    }
+  }
+  for (const id of ['mesh-old', 'mesh-new']) {
+    const letter = id === 'mesh-old' ? 'A' : 'B';
+    $(id).setAttribute('aria-label', on
+      ? (state.volume
+        ? `Tetrahedra of panel ${letter}, cut by a plane, coloured by mean ratio; drag to turn, wheel to zoom`
+        : `Surface of panel ${letter} in 3D, coloured by quality; drag to turn, wheel to zoom`)
+      : `Mesh of panel ${letter}, coloured by quality; arrow keys move the chosen node`);
+  }
+}
+
+export function selectValueOf(src) {
+  if (src.kind === 'sample') return `sample:${src.name}`;
+  if (src.kind === 'gmsh') return `gmsh:${src.name}`;
+  return '';
+}
+
+/** Loads a source; on failure the previous mesh stays on screen and the message says why. */
+export function load(src, label, { keepHash = false } = {}) {
+  const stopped = endRun();
+  return serial(async () => {
+    setStatus(`Loading ${label}…`);
+    const t0 = now();
+    $('progress').removeAttribute('value'); // indeterminate while the worker builds it
+    let loaded;
+    try {
+      loaded = await loadSource(src);
+    } catch (e) {
+      setStatus('');
+      $('sample').value = state.lastGood ? selectValueOf(state.lastGood) : '';
+      throw e;
+    } finally {
+      $('progress').max = 1;
+      $('progress').value = 0;
+    }
+    const t1 = now();
+    clearError();
+    $('sample').value = selectValueOf(src);
+    await redrawAll();
+    const ms = now() - t0;
+    metrics.lastLoad = { label, ms, build_ms: t1 - t0, draw_ms: now() - t1, memory_bytes: engine.memory };
+    startHelper(src, loaded.nodes);
+    setStatus(`Loaded ${label} in ${Math.round(ms)} ms.${stopped}`);
+    if (!keepHash) await writePermalink();
+  }).catch(report);
+}
+
+/** Something replaces the meshes: a run in progress stops, and says nothing more (what
+ * replaced them says what happened). Returns the words to add to that. */
+export function endRun() {
+  state.generation += 1;
+  if (!state.running) return '';
+  state.cancel = true;
+  return ' The run in progress was stopped.';
+}
+
+export async function readFiles(files) {
+  const list = [...files];
+  if (list.length === 0) return;
+  for (const f of list) {
+    if (f.size > MAX_FILE_BYTES) {
+      showError(`${f.name} is too large (${(f.size / 1048576).toFixed(0)} MB); the page reads files up to ${MAX_FILE_BYTES / 1048576} MB.`);
+      return;
+    }
+  }
+  const ext = (f) => f.name.toLowerCase().split('.').pop();
+  const node = list.find((f) => ext(f) === 'node');
+  const ele = list.find((f) => ext(f) === 'ele');
+  if (node || ele) {
+    if (!(node && ele)) {
+      showError(`A Triangle mesh needs its .node and .ele files together: select or drop both (got only ${(node || ele).name}).`);
+      return;
+    }
+    const [nt, et] = await Promise.all([node.text(), ele.text()]);
+    await load({ kind: 'triangle', node: nt, ele: et, name: `${node.name} + ${ele.name}` }, `${node.name} + ${ele.name}`);
+    return;
+  }
+  if (list.length > 1) {
+    showError(`Drop one mesh file at a time (or a .node and .ele pair); got ${list.length} files.`);
+    return;
+  }
+  const f = list[0];
+  const bytes = await f.arrayBuffer();
+  await load({ kind: 'file', name: f.name, bytes }, f.name);
+}

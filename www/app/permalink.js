@@ -1,0 +1,193 @@
+// The address: the permalink written and read by the core's encoder (src/permalink.rs),
+// what a hash opens, the embedded views, Back and Forward.
+import { $, COMPARE, EMBED, FIGURE_HASH, GMSH_SAMPLES, SETTINGS, UNLINKABLE, engine, gallery, report, serial, setStatus, showError, state, view } from './state.js';
+import { CHECKED, changeCompare, invalidMessage, readChoice, readSettings, showPenaltyReasons, showStrategyReasons } from './controls.js';
+import { openFigure } from './tour.js';
+import { load, selectValueOf } from './loading.js';
+import { perturbWith, smooth } from './run.js';
+import { selectNode } from './pointer.js';
+
+/** The permalink name of a Gmsh file: `gmsh-`, the name without `.msh`, `_` as `-`
+ * (the rule of `gmsh_sample_name` in src/permalink.rs, which tests this list). */
+export function gmshSampleName(file) {
+  return `gmsh-${file.replace(/\.msh$/, '').replaceAll('_', '-')}`;
+}
+/** The permalink sample name of what is loaded, or null (a user's file has none). */
+export function sourceSample() {
+  const s = state.lastGood;
+  if (!s) return null;
+  if (s.kind === 'sample') return UNLINKABLE.has(s.name) ? null : s.name;
+  if (s.kind === 'gmsh') return gmshSampleName(s.name);
+  return null;
+}
+/** The hash of the loaded sample and the controls, written by the Rust encoder. */
+export function permalinkHash() {
+  return engine.call('encodePermalink', {
+    sample: sourceSample(),
+    seed: state.perturbed ? BigInt(state.perturbed.seed) : BigInt($('seed').value.trim()),
+    amount: state.perturbed ? state.perturbed.amount : Number($('amount').value),
+    perturbed: Boolean(state.perturbed),
+    node: state.node,
+    settings: readSettings(),
+    passes: Number($('passes').value),
+  });
+}
+/** Keeps the URL and the permalink link current; a setting the link cannot carry is said
+ * in the message box (the link then keeps its last good value). */
+export let permalinkSeq = 0;
+export async function writePermalink() {
+  const seq = ++permalinkSeq;
+  // a control being edited is not valid yet: the link keeps its last good value, and the
+  // control itself says what it wants
+  if (invalidMessage(Object.keys(CHECKED))) return;
+  let hash;
+  try {
+    hash = await permalinkHash();
+  } catch (e) {
+    if (seq === permalinkSeq) showError(`The link cannot hold these settings: ${e.message.replace(/^permalink: /, '')}`);
+    return;
+  }
+  if (seq !== permalinkSeq) return; // a later change wrote it
+  state.lastHash = hash;
+  history.replaceState(null, '', `${location.pathname}${location.search}${hash}`);
+  $('permalink').href = `${location.pathname}${hash}`;
+  const s = state.lastGood;
+  let note = '';
+  if (s && s.kind === 'sample' && UNLINKABLE.has(s.name) && state.surface) {
+    note = 'A surface sample cannot be opened from a link yet: the link keeps the settings only, with the default sample.';
+  } else if (s && s.kind === 'sample' && UNLINKABLE.has(s.name)) {
+    note = 'This sample is too large to open from a link: the link keeps the settings only, with the default sample.';
+  } else if (s && (s.kind === 'file' || s.kind === 'triangle')) {
+    note = `Your own file (${s.name}) cannot travel in a link: the link opens these settings on the default sample.`;
+  }
+  $('permalink').title = note;
+  $('permalink-note').textContent = note;
+  if (EMBED) $('open-full').href = `${location.pathname}${hash}`;
+}
+/** The page's address with the current hash, for the Copy link button. */
+export async function copyLink() {
+  await serial(writePermalink);
+  const url = new URL($('permalink').getAttribute('href'), location.href).toString();
+  try {
+    await navigator.clipboard.writeText(url);
+    setStatus(`Link copied: ${url}`);
+  } catch {
+    setStatus(`Copy this link: ${url}`);
+  }
+  $('copy-link').dataset.copied = url;
+}
+export function updatePermalink() {
+  return serial(writePermalink).catch(report);
+}
+/** Reads the URL hash through the Rust decoder and applies it to the controls (a value a
+ * control does not offer is ignored). Returns the source to load and, when the hash could
+ * not be read, the decoder's message (the defaults are then kept). */
+export async function applyHash(hash = location.hash) {
+  const fallback = { kind: 'sample', name: gallery.defaultSample };
+  let p;
+  try {
+    p = await engine.call('decodePermalink', hash);
+  } catch (e) {
+    return { src: fallback, error: e.message };
+  }
+  const c = p.settings;
+  const values = {
+    strategy: c.strategy,
+    threshold: c.threshold_deg,
+    order: c.order,
+    passes: p.passes,
+    maxiter: c.max_iter,
+    amount: p.amount,
+    seed: p.seed,
+    'objective-a': c.compare[0].objective,
+    'penalty-a': c.compare[0].penalty,
+    'objective-b': c.compare[1].objective,
+    'penalty-b': c.compare[1].penalty,
+  };
+  for (const id of SETTINGS) {
+    const v = String(values[id]);
+    const el = $(id);
+    if (el.tagName === 'SELECT') {
+      if ([...el.options].some((o) => o.value === v)) el.value = v;
+    } else {
+      el.value = v; // the decoder checked it against the same ranges
+    }
+  }
+  for (const id of Object.keys(CHECKED)) {
+    state.invalid.delete(id);
+    $(id).setAttribute('aria-invalid', 'false');
+    $(`${id}-error`).textContent = '';
+  }
+  $('amount-out').textContent = $('amount').value;
+  showStrategyReasons();
+  showPenaltyReasons();
+  const extra = { perturbed: p.perturbed ? { amount: p.amount, seed: String(p.seed) } : null, node: p.node };
+  if (p.sample === null) return { src: fallback, ...extra };
+  const gmsh = GMSH_SAMPLES.find(([f]) => gmshSampleName(f) === p.sample);
+  if (gmsh) return { src: { kind: 'gmsh', name: gmsh[0] }, ...extra };
+  if ([...$('sample').options].some((o) => o.value === `sample:${p.sample}`)) return { src: { kind: 'sample', name: p.sample }, ...extra };
+  return { src: fallback, ...extra };
+}
+
+/** The label of a source as the sample menu shows it (not its internal name). */
+export function labelOf(src) {
+  const o = [...$('sample').options].find((x) => x.value === selectValueOf(src));
+  return o ? o.textContent : src.name;
+}
+
+/** Opens what a hash names: its sample (unless it is already loaded and unperturbed),
+ * its perturbation and its node. The controls were set by applyHash. */
+export async function openHash({ src, error, perturbed, node }, { keepLink = false } = {}) {
+  const same = state.lastGood && selectValueOf(state.lastGood) === selectValueOf(src) && selectValueOf(src) !== '';
+  if (!same || state.perturbed || perturbed) await load(src, labelOf(src), { keepHash: true });
+  else if (!sameCompare()) await changeCompare();
+  if (perturbed) await perturbWith(perturbed.amount, perturbed.seed, { keepHash: true });
+  if (node !== null && node !== undefined) await selectNode(node, { keepHash: true });
+  else if (state.node !== null) await selectNode(null, { keepHash: true });
+  if (error) showError(`This link's settings could not be read, so the defaults are shown: ${error.replace(/^permalink: /, '')}`);
+  if (!keepLink) await serial(writePermalink).catch(report);
+}
+
+/** An embedded view shows what `smoothlab render` shows for it: the level sets of the
+ * hash's node (else of the free node with the worst star), the other views after the
+ * hash's passes. */
+export async function openView() {
+  if (!view.spec) return;
+  if (view.name === 'levelset' && state.node === null) {
+    const worst = await serial(() => engine.call('worstNode'));
+    if (worst !== null) await selectNode(worst, { keepHash: true });
+  }
+  if (view.spec.passes) await smooth(Number($('passes').value));
+}
+
+/** Whether the engine smooths each side with what the menus say. */
+export function sameCompare() {
+  return JSON.stringify(state.compare) === JSON.stringify(COMPARE.map((_, i) => readChoice(i)));
+}
+
+/** The user edited the hash or went Back or Forward: show what the address now names. */
+export async function onAddressChange() {
+  try {
+    await openAddress();
+  } finally {
+    markAddressHandled();
+  }
+}
+/** Says on the body which address the page has opened (`data-hash`), for tests and tools:
+ * a link that changes only the hash reloads nothing, so its handling starts after the
+ * navigation has ended. */
+export function markAddressHandled() {
+  document.body.dataset.hash = location.hash;
+}
+export async function openAddress() {
+  if (location.hash === state.lastHash) return; // this page wrote it
+  state.lastHash = location.hash;
+  const fig = FIGURE_HASH.exec(location.hash);
+  if (fig) return openFigure(fig[1]);
+  if (state.figure) {
+    state.figure = null;
+    $('tour').hidden = true;
+    delete document.body.dataset.figure;
+  }
+  await openHash(await applyHash());
+}

@@ -1,0 +1,98 @@
+// The statistics tables of the two panels, the better side of each row marked.
+import { $, EMBED, state } from './state.js';
+
+/** The table's rows: key, label, value, and which way is better (`higher`, `lower`, or
+ * none): the better of the two sides is marked. `detail` rows need every corner measured
+ * (large meshes: after the run). */
+export const STAT_ROWS = [
+  ['nodes', 'Nodes', (s) => s.nodes],
+  ['elements', 'Elements', (s) => s.elements],
+  ['inverted', 'Inverted elements', (s) => s.inverted, 'lower'],
+  ['min_angle', 'Min angle', (s) => s.min_angle_deg, 'higher', deg],
+  ['max_angle', 'Max angle', (s) => s.max_angle_deg, 'lower', deg],
+  ['min_quality', 'Min quality (α/β)', (s) => s.min_quality, 'higher', num],
+  ['mean_quality', 'Mean quality (α/β)', (s) => s.detail && s.detail.mean_quality, 'higher', num, true],
+  ['small_angles', 'Angles under 18°', (s) => s.detail && s.detail.small_angle_share, 'lower', pct, true],
+  ['max_condition', 'Worst κ (condition number)', (s) => s.detail && (s.detail.max_condition ?? Infinity), 'lower', kappa, true],
+  ['surface_distance', 'Largest distance from the surface', (s) => s.max_distance_from_surface, 'lower', (v) => v.toExponential(2), false, true],
+  ['laplacian_moves', 'Laplacian moves', (s) => s.laplacian_moves],
+  ['optimization_calls', 'Optimization calls', (s) => s.optimization_calls],
+  ['passes', 'Passes', (s) => s.passes],
+  ['time', 'Smoothing time', (s) => s.time_ms, null, (v) => `${num(v, 1)} ms`],
+];
+/** A tetrahedral mesh's names for the rows whose meaning changes in 3D. */
+export const VOLUME_LABELS = {
+  elements: 'Tetrahedra',
+  inverted: 'Inverted tetrahedra',
+  min_angle: 'Min dihedral angle',
+  max_angle: 'Max dihedral angle',
+  min_quality: 'Min mean ratio',
+  mean_quality: 'Mean of the mean ratio',
+  small_angles: 'Dihedral angles under 18°',
+};
+/** What a table row means, as its tooltip. */
+export const ROW_HELP = {
+  inverted: 'Elements whose corners run the wrong way round (negative area): a tangled mesh. Fewer is better.',
+  min_angle: 'The smallest corner angle of any element (negative in an inverted element). Larger is better.',
+  max_angle: 'The largest corner angle of any element. Smaller is better.',
+  min_quality: "The worst element quality: Lo's α for triangles, Canann's β for quads (1 ideal, below 0 inverted).",
+  mean_quality: 'The mean element quality (α for triangles, β for quads).',
+  small_angles: "The share of corner angles under 18° (Freitag's Fig. 3 view).",
+  max_condition: "The worst condition number κ = ‖A‖‖A⁻¹‖ of an element's Jacobian (Knupp): 1 ideal, ∞ inverted.",
+  surface_distance: 'A surface only: how far the node farthest from the surface it lies on is from it, in the mesh\'s units (nodes are moved in their tangent plane, then put back on the surface).',
+  laplacian_moves: 'Nodes moved by a (plain or smart) Laplacian step, over the passes.',
+  optimization_calls: 'Calls to the solver, over the passes.',
+};
+export function deg(v) {
+  return Number.isFinite(v) ? `${v.toFixed(2)}°` : '—';
+}
+export function num(v, digits = 4) {
+  return typeof v === 'number' && Number.isFinite(v) ? v.toFixed(digits) : '—';
+}
+export function pct(v) {
+  return `${(100 * v).toFixed(v > 0 && v < 0.001 ? 3 : 1)}%`;
+}
+export function kappa(v) {
+  return v === Infinity ? '∞ (inverted)' : num(v, 3);
+}
+/** Which side's value is better (0 = A, 1 = B), or null for a tie or no direction. */
+export function betterSide(dir, a, b) {
+  if (!dir || typeof a !== 'number' || typeof b !== 'number' || Number.isNaN(a) || Number.isNaN(b) || a === b) return null;
+  return (dir === 'higher') === (a > b) ? 0 : 1;
+}
+/** Fills both tables side by side, marking the better value of each row. */
+export function fillTables(stats) {
+  const pair = [stats.old, stats.new];
+  for (const [i, side] of ['old', 'new'].entries()) {
+    const s = pair[i];
+    $(`title-${side}`).textContent = EMBED ? s.label : s.title;
+    const body = $(`stats-${side}`).tBodies[0];
+    body.replaceChildren();
+    for (const [key, label, get, dir, fmt = String, detail, surfaceOnly] of STAT_ROWS) {
+      const v = get(s);
+      if (surfaceOnly && (v === null || v === undefined)) continue;
+      const tr = document.createElement('tr');
+      tr.dataset.stat = key;
+      const th = document.createElement('th');
+      th.scope = 'row';
+      th.textContent = (state.volume && VOLUME_LABELS[key]) || label;
+      if (ROW_HELP[key]) th.title = ROW_HELP[key];
+      const td = document.createElement('td');
+      if (detail && !s.detail) {
+        td.textContent = 'after the run';
+        td.classList.add('pending');
+        td.title = 'This mesh is large: this row is measured when the charts are drawn, after a run.';
+      } else {
+        td.textContent = fmt(v);
+        td.dataset.value = String(v);
+        if (betterSide(dir, get(pair[0]), get(pair[1])) === i) {
+          td.classList.add('better'); // marked ✓ by the style sheet
+          td.setAttribute('aria-label', `${td.textContent}, the better of the two`);
+          td.title = 'the better of the two sides';
+        }
+      }
+      tr.append(th, td);
+      body.append(tr);
+    }
+  }
+}

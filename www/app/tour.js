@@ -1,0 +1,126 @@
+// The figures tour: one figure of the papers at a time, with its words and picture, and
+// the playground in the figure's state.
+import { $, EMBED, VIEWS, engine, showError, state, view } from './state.js';
+import { applyHash, openHash, updatePermalink } from './permalink.js';
+import { paint } from './draw.js';
+import { smooth } from './run.js';
+
+/** Opens a figure of the tour: its words, the playground in its state (sample, settings,
+ * node; its passes run when the figure says so), its picture and, for Freitag's table,
+ * the rows smoothed one by one. The address stays `#figure=NAME`. */
+export async function openFigure(name) {
+  let card;
+  try {
+    card = await engine.call('tourCard', name);
+  } catch (e) {
+    // an unknown name: the playground as it is (or the defaults, on a first load), and why
+    if (!state.lastGood) await openHash(await applyHash('#'));
+    showError(`This link names no figure of the tour: ${e.message}`);
+    return;
+  }
+  state.figure = card;
+  document.body.dataset.figure = '';
+  document.body.dataset.figureRows = '0';
+  // an embedded figure shows its own view, unless the address names one (`view=`)
+  if (EMBED && (!view.spec || state.viewOfFigure) && Object.hasOwn(VIEWS, card.view)) {
+    if (view.name) document.body.classList.remove(`view-${view.name}`);
+    view.name = card.view;
+    view.spec = VIEWS[card.view];
+    state.viewOfFigure = true;
+    document.body.classList.add('view', `view-${view.name}`);
+  }
+  showCard(card);
+  await openHash(await applyHash(`#${card.hash}`), { keepLink: true });
+  const link = `#figure=${card.name}`;
+  state.lastHash = link;
+  history.replaceState(null, '', `${location.pathname}${location.search}${link}`);
+  $('permalink').href = `${location.pathname}${link}`;
+  if (EMBED) $('open-full').href = `${location.pathname}${link}`;
+  await drawFigurePicture();
+  if (card.run) await smooth(Number($('passes').value));
+  if (card.rows) await fillTourTable(card);
+  if (state.figure === card) document.body.dataset.figure = card.name;
+}
+
+export function showCard(card) {
+  $('tour').hidden = false;
+  $('tour-title').textContent = `${card.index + 1} of ${card.count}: ${card.source}`;
+  $('tour-caption').textContent = card.caption;
+  $('tour-look').textContent = card.look;
+  $('tour-claim').textContent = card.claim;
+  $('tour-measured').textContent = card.measured;
+  $('tour-menu').value = card.name;
+  $('tour-prev').dataset.figure = card.prev;
+  $('tour-next').dataset.figure = card.next;
+  $('tour-link').href = `#figure=${card.name}`;
+  $('tour-link').textContent = `Link to this figure (#figure=${card.name})`;
+  $('tour-table').hidden = !card.rows;
+  $('tour-rows').replaceChildren();
+}
+
+/** The figure's own picture (the core draws it: `smoothlab render --figure NAME`), as
+ * wide as the panel and in the picture's proportions. */
+export async function drawFigurePicture() {
+  const card = state.figure;
+  if (!card) return;
+  const canvas = $('tour-picture');
+  const [w0, h0] = await engine.call('tourPictureSize', card.name);
+  const w = Math.max(200, Math.min(w0, Math.round(canvas.parentElement.clientWidth - 4)));
+  const h = Math.round((w * h0) / w0);
+  const dpr = Math.min(window.devicePixelRatio || 1, 2);
+  const r = await engine.call('tourPicture', card.name, w, h, dpr);
+  if (state.figure !== card) return;
+  canvas.style.aspectRatio = `${w} / ${h}`;
+  canvas.style.maxWidth = `${w}px`;
+  paint(canvas, r.pixels, r.w, r.h);
+}
+
+/** Freitag's Table 1: each row smoothed now in the worker (3 passes on seed 1), then shown. */
+export async function fillTourTable(card) {
+  const body = $('tour-rows');
+  for (let i = 0; i < card.rows; i++) {
+    const r = await engine.call('tourRow', i);
+    if (state.figure !== card) return;
+    const tr = document.createElement('tr');
+    const cells = [
+      r.method.replaceAll('`', ''),
+      `${r.min_angle_deg.toFixed(2)}°`,
+      `${r.max_angle_deg.toFixed(1)}°`,
+      String(r.laplacian_moves),
+      String(r.optimization_calls),
+      r.reproduction_min,
+      r.reproduction_max,
+      r.paper,
+    ];
+    for (const [k, text] of cells.entries()) {
+      const td = document.createElement(k === 0 ? 'th' : 'td');
+      if (k === 0) td.scope = 'row';
+      td.textContent = text;
+      tr.append(td);
+    }
+    body.append(tr);
+    document.body.dataset.figureRows = String(i + 1);
+  }
+}
+
+export function goFigure(name) {
+  if (!name) return;
+  location.hash = `figure=${name}`; // hashchange opens it, and Back returns
+}
+
+export function closeTour() {
+  state.figure = null;
+  $('tour').hidden = true;
+  delete document.body.dataset.figure;
+  updatePermalink();
+}
+
+export async function fillTourMenu() {
+  const list = await engine.call('tourFigures');
+  for (const f of list) {
+    const o = document.createElement('option');
+    o.value = f.name;
+    o.textContent = `${f.source} (${f.name})`;
+    $('tour-menu').append(o);
+  }
+}
