@@ -40,11 +40,19 @@ function surface() {
   return pg;
 }
 
+// The page's theme for every picture (dark or light, the smallest label in CSS px): kept
+// here, so each new handle and the tour's pictures draw in it.
+let theme = { dark: false, labelPx: 14 };
+function applyTheme() {
+  if (pg && pg.setTheme) pg.setTheme(theme.dark, theme.labelPx);
+}
+
 // Replace the handle only once the new one is built: a failed load keeps the old mesh.
 // Says which kind of handle it is.
 function replace(next) {
   if (pg) pg.free();
   pg = next;
+  applyTheme();
   return {
     surface: isSurface(),
     volume: isVolume(),
@@ -55,6 +63,11 @@ function replace(next) {
 
 const handlers = {
   samples: () => wasm.samples(),
+  theme: (dark, labelPx) => {
+    theme = { dark: Boolean(dark), labelPx: Number(labelPx) };
+    applyTheme();
+    return null;
+  },
   controls: () => wasm.controls(),
   checkControl: (key, text) => wasm.checkControl(key, text),
   loadSample: (name) => replace(wasm.openSample(name)),

@@ -35,7 +35,7 @@ export async function test(name, fn) {
     console.log(`ok   ${name} (${Date.now() - t0} ms)`);
   } catch (e) {
     results.push({ name, ok: false, error: e });
-    console.log(`FAIL ${name}\n     ${String(e && e.stack ? e.stack : e).split('\n').slice(0, 4).join('\n     ')}`);
+    console.log(`FAIL ${name}\n     ${String(e && e.stack ? e.stack : e).split('\n').slice(0, process.env.ONLY ? 30 : 4).join('\n     ')}`);
   }
 }
 export function check(cond, msg) {
@@ -67,6 +67,13 @@ export function watch(page, label) {
   });
 }
 
+/** Opens the side column's folded disclosures (Compare, Perturb) as a user would, by
+ * their summaries, so their controls can be used. */
+export async function unfold(page) {
+  for (const id of ['compare-box', 'perturb-box']) {
+    if (await page.evaluate((id) => !document.getElementById(id).open, id)) await page.click(`#${id} > summary`);
+  }
+}
 export async function idle(page) {
   await page.waitForFunction(() => document.body.dataset.ready === '1' && document.body.dataset.busy === '0', null, { timeout: TIMEOUT });
 }

@@ -9,7 +9,7 @@ import path from 'node:path';
 import { chromium } from 'playwright-core';
 import { CHROMIUM, CHROMIUM_ARGS as ARGS, startServer } from './serve.mjs';
 import {
-  OUT, BAD, DATA, HARDENING, TIMEOUT, MESQUITE, CI, results, ONLY, test, check, externalRequests, consoleErrors, allowErrors, watch, idle, open, stats, canvasInfo, shot, chooseSample, clickSomeNode, ringPoints,
+  OUT, BAD, DATA, HARDENING, TIMEOUT, MESQUITE, CI, results, ONLY, test, check, unfold, externalRequests, consoleErrors, allowErrors, watch, idle, open, stats, canvasInfo, shot, chooseSample, clickSomeNode, ringPoints,
 } from './lib.mjs';
 
 // ---- the tests ------------------------------------------------------------------------
@@ -216,8 +216,11 @@ try {
 
   await test('Perturb tangles the mesh and Reset restores it', async () => {
     const s0 = await stats(page, 'new');
+    await unfold(page);
     await page.fill('#seed', '7');
+    await unfold(page);
     await page.locator('#amount').fill('1');
+    await unfold(page);
     await page.click('#perturb');
     await idle(page);
     const s1 = await stats(page, 'new');
@@ -456,6 +459,7 @@ try {
       await page.fill(`#${id}`, v);
       await page.dispatchEvent(`#${id}`, 'change');
     }
+    await unfold(page);
     await page.locator('#amount').fill('0.75');
     await page.dispatchEvent('#amount', 'change');
     await idle(page);
@@ -488,20 +492,20 @@ try {
     const overflow = () => p3.evaluate(() => document.documentElement.scrollWidth - window.innerWidth);
     const boxes = async () => [await p3.locator('#panel-old').boundingBox(), await p3.locator('#panel-new').boundingBox()];
     check((await overflow()) <= 0, `horizontal overflow ${await overflow()}px`);
-    let [a, b] = await boxes();
-    check(Math.abs(a.y - b.y) < 1, 'at 480 px the embed shows the panels side by side');
+    const fits = () => p3.evaluate(() => document.documentElement.scrollHeight <= window.innerHeight);
+    check(await fits(), 'at 480 × 800 the embed scrolls');
     await shot(p3, '07-embed-480');
     await p3.setViewportSize({ width: 360, height: 800 });
     await p3.waitForTimeout(400);
     await idle(p3);
-    [a, b] = await boxes();
-    check(b.y >= a.y + a.height - 1, 'at 360 px the panels stack');
-    check((await overflow()) <= 0, `horizontal overflow at 360 px: ${await overflow()}px`);
-    // the full page on a phone-sized screen stacks too
+    const [a, b] = await boxes();
+    check(b.y >= a.y + a.height - 1, 'at 360 × 800 the panels stack (larger than side by side)');
+    check((await overflow()) <= 0 && (await fits()), `overflow at 360 px: ${await overflow()}px`);
+    // the full page on a phone-sized screen shows one panel at a time, with its A/B switch
     await p3.goto(`${server.base}#sample=star-quad`);
     await idle(p3);
-    [a, b] = await boxes();
-    check(b.y >= a.y + a.height - 1 && (await overflow()) <= 0, 'the full page stacks at 360 px');
+    check(await p3.isVisible('#mesh-old') && !(await p3.isVisible('#mesh-new')) && (await p3.isVisible('#show-b')), 'the full page at 360 px: A, and a switch to B');
+    check((await overflow()) <= 0, 'the full page scrolls sideways at 360 px');
     await shot(p3, '08-full-360');
     await p3.close();
   });
@@ -509,9 +513,12 @@ try {
   // ---- the page as a lecturer uses it -----------------------------------------------
   await test('a permalink reproduces Perturb (amount, seed) and the chosen node; Copy link copies it', async () => {
     await chooseSample(page, 'sample:plate-tri');
+    await unfold(page);
     await page.fill('#seed', '5');
+    await unfold(page);
     await page.locator('#amount').fill('0.8');
     await idle(page);
+    await unfold(page);
     await page.click('#perturb');
     await idle(page);
     const hit = await clickSomeNode(page, 'mesh-new', ringPoints());
@@ -593,16 +600,21 @@ try {
     await idle(page);
     check(await page.isHidden('#message'), 'the refusal goes once the value is fixed');
     check((await page.getAttribute('#permalink', 'href')).includes('passes=2'), 'the link follows the fixed value');
+    await unfold(page);
     await page.fill('#seed', '-3');
     await page.waitForFunction(() => document.getElementById('seed-error').textContent !== '', null, { timeout: TIMEOUT });
     check(/^Seed must be a whole number from 0 to 18446744073709551615; '-3' is not\.$/.test(await page.textContent('#seed-error')), await page.textContent('#seed-error'));
+    await unfold(page);
     await page.click('#perturb');
     await idle(page);
     check(/Seed must be/.test(await page.textContent('#message')), 'Perturb refuses a negative seed');
+    await unfold(page);
     await page.fill('#seed', '18446744073709551615');
     await page.waitForFunction(() => document.getElementById('seed-error').textContent === '', null, { timeout: TIMEOUT });
+    await unfold(page);
     await page.locator('#amount').fill('1');
     await idle(page);
+    await unfold(page);
     await page.click('#perturb');
     await idle(page);
     const status = await page.textContent('#status');
@@ -862,8 +874,10 @@ try {
     check(await page.isDisabled('#penalty-a'), 'A runs old by default: no penalty');
     check(/only the new objective/.test(await page.textContent('#penalty-a-why')), 'the reason is said');
     check(!(await page.isDisabled('#penalty-b')), 'B runs new: its penalty is chosen');
+    await unfold(page);
     await page.selectOption('#objective-a', 'sine');
     await idle(page);
+    await unfold(page);
     await page.selectOption('#penalty-b', 'angle');
     await idle(page);
     check(/^A: sine/.test(await page.textContent('#title-old')), await page.textContent('#title-old'));
@@ -1306,7 +1320,7 @@ try {
     check(!page.url().includes('figure='), `closed, the address is the playground's: ${page.url()}`);
   });
 
-  await test('?embed=1#figure=NAME embeds one figure: its words, its picture and its view in a 520-px frame', async () => {
+  await test('?embed=1#figure=NAME embeds one figure: its words and its picture in a 520-px frame, Live view its view', async () => {
     const frame = await context.newPage();
     watch(frame, 'embed-figure');
     await frame.setViewportSize({ width: 520, height: 760 });
@@ -1315,11 +1329,20 @@ try {
       check(await frame.evaluate(() => document.body.classList.contains('embed') && document.body.classList.contains('view')), 'an embedded view');
       check(await frame.locator('#tour').isVisible(), 'the figure is shown');
       check((await canvasInfo(frame, 'tour-picture')).colours > 50, 'its picture');
+      for (const id of canvases) check(!(await frame.locator(`#${id}`).isVisible()), `${id} is shown before Live view`);
+      await frame.screenshot({ path: path.join(OUT, `figure-embed-${name}-520.png`) });
+      // Live view: the view the figure was made from, in its place
+      await frame.click('#figure-live');
+      await idle(frame);
+      check(!(await frame.locator('#tour-picture').isVisible()), 'the picture stays beside the live view');
       for (const id of canvases) {
         check(await frame.locator(`#${id}`).isVisible(), `${id} is shown`);
         check((await canvasInfo(frame, id)).colours > 8, `${id} looks blank`);
       }
-      await frame.screenshot({ path: path.join(OUT, `figure-embed-${name}-520.png`) });
+      check(await frame.evaluate(() => document.documentElement.scrollHeight <= window.innerHeight), `${name}: the live view scrolls`);
+      await frame.screenshot({ path: path.join(OUT, `figure-embed-${name}-520-live.png`) });
+      await frame.click('#figure-live');
+      await idle(frame);
     }
     await frame.close();
   });
@@ -1483,6 +1506,7 @@ try {
     check(nodes.length === Number(s0.nodes) && nodes.some((p) => Math.abs(p[3]) > 0.1), 'the nodes keep their z');
     // Perturb moves the nodes in their tangent planes, on the surface, and starts both sides again
     const b1 = await canvasInfo(page, 'mesh-new');
+    await unfold(page);
     await page.click('#perturb');
     await page.waitForFunction(() => /^Perturbed/.test(document.getElementById('status').textContent), null, { timeout: TIMEOUT });
     await idle(page);

@@ -81,6 +81,15 @@ export function fillMenu(select, entries, value) {
   }
   select.value = value;
 }
+/** The Compare disclosure's summary: what each side runs, so it says so folded. */
+function showCompareSummary() {
+  const name = (i) => {
+    const c = readChoice(i);
+    return c.objective === 'new' ? `new (${c.penalty})` : c.objective;
+  };
+  $('compare-summary').textContent = `A ${name(0)}, B ${name(1)}`;
+}
+
 /** A penalty is a design of `new`: its menu is disabled, saying so, for another objective. */
 export function showPenaltyReasons() {
   for (const [obj, pen] of COMPARE) {
@@ -90,6 +99,7 @@ export function showPenaltyReasons() {
     $(`${pen}-why`).textContent = why;
     $(pen).title = why;
   }
+  showCompareSummary();
 }
 /** A side now runs something else: both sides start again from the mesh as loaded. */
 export function changeCompare() {

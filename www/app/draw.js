@@ -21,43 +21,104 @@ export function paint(canvas, pixels, w, h) {
   return now() - t0;
 }
 
-/** Draws both meshes (a panel whose picture would not change is not sent again) and
- * their statistics tables; returns where the time went. */
-/** In an embed the page must fit its frame without scrolling: the mesh canvases shrink
- * (staying square) by what the page is taller than the frame. */
+/** The part of the page an embed fills its frame with: the box whose height the frame
+ * leaves (a flex item of the embed's column) and the canvases in it. */
+function embedTarget() {
+  if (state.figure && !document.body.classList.contains('live')) return null; // the tour's picture: tour.js
+  if (view.spec && view.spec.draws === 'charts') return { box: document.querySelector('.pass-view'), canvases: view.spec.canvases.map($) };
+  if (view.spec) return { box: document.querySelector('.stage'), canvases: view.spec.canvases.map($) };
+  return { box: document.querySelector('.stage'), canvases: [$('mesh-old'), $('mesh-new')] };
+}
+
+/** Sizes the canvases to the layout; returns whether a size changed. On the full page the
+ * meshes are as large as their column and the height the window leaves below the bars
+ * (so both are whole on the first screen); in an embed, see fitFrame. */
 export function fitEmbed() {
-  if (!EMBED) return false;
-  if (view.spec) return fitView();
-  const canvases = [$('mesh-old'), $('mesh-new')];
-  const over = document.documentElement.scrollHeight - window.innerHeight;
-  if (over <= 0) return false;
-  const side = Math.max(120, canvases[0].clientWidth - over - 2);
-  if (side >= canvases[0].clientWidth) return false;
-  for (const c of canvases) c.style.width = `${side}px`;
-  return true;
+  if (!EMBED) {
+    capMeshes();
+    return false;
+  }
+  return fitFrame();
 }
 
-/** An embedded view fills its frame: its canvases take the height the rest leaves, side
- * by side (stacked, one above the other, in a frame narrower than 480 px). Returns
- * whether their size changed. */
-export function fitView() {
-  const cs = view.spec.canvases.map($);
-  const stacked = window.innerWidth < 480 && cs.length > 1;
-  document.body.classList.toggle('stacked', stacked);
-  const before = cs.map((c) => c.style.height);
+/** The full page: the meshes no taller than the window leaves under the bars above them. */
+function capMeshes() {
+  const root = document.documentElement;
+  if (window.innerWidth <= 600) {
+    root.style.removeProperty('--mesh-max');
+    return;
+  }
+  const wrap = $('mesh-old').parentElement;
+  // with the tour open the meshes are below it: as large as the window under the run bar
+  const top = state.figure
+    ? document.querySelector('.runbar').offsetHeight + $('title-old').offsetHeight + 24
+    : wrap.getBoundingClientRect().top + window.scrollY;
+  const cap = Math.max(300, Math.floor(window.innerHeight - top - 12));
+  root.style.setProperty('--mesh-max', `${cap}px`);
+}
+
+/** How tall the content of a box is (not the box: a flex item is as tall as it is given). */
+export function contentHeight(box) {
+  const top = box.getBoundingClientRect().top;
+  let bottom = top;
+  for (const el of box.children) {
+    if (el.getClientRects().length === 0) continue;
+    bottom = Math.max(bottom, el.getBoundingClientRect().bottom + parseFloat(getComputedStyle(el).marginBottom || '0'));
+  }
+  return bottom - top + parseFloat(getComputedStyle(box).paddingBottom || '0') + parseFloat(getComputedStyle(box).borderBottomWidth || '0');
+}
+
+/** An embed fills its frame without scrolling: its canvases take the whole room the rest
+ * of the column leaves (the core draws a mesh, level sets or a chart into any rectangle),
+ * side by side or stacked, whichever makes the smaller side of each larger; the tables
+ * give their room up ('tight') when the pictures would otherwise be under 40 % of the
+ * frame's short side. */
+function fitFrame() {
+  const t = embedTarget();
+  if (!t) return false;
+  const { box, canvases } = t;
+  const body = document.body;
+  const before = canvases.map((c) => `${c.style.width}x${c.style.height}`);
   const probe = 40;
-  for (const c of cs) c.style.height = `${probe}px`;
-  const rest = document.body.getBoundingClientRect().height - probe * (stacked ? cs.length : 1);
-  const avail = window.innerHeight - rest - 1;
-  const h = Math.max(100, Math.floor(stacked ? avail / cs.length : avail));
-  for (const c of cs) c.style.height = `${h}px`;
-  return cs.some((c, i) => c.style.height !== before[i]);
+  const n = canvases.length;
+  const measure = (stacked, tight) => {
+    body.classList.toggle('stacked', stacked);
+    body.classList.toggle('tight', tight);
+    for (const c of canvases) {
+      c.style.width = `${probe}px`;
+      c.style.height = `${probe}px`;
+    }
+    const rows = stacked ? n : 1;
+    const extra = contentHeight(box) - probe * rows; // titles, tables, captions, padding
+    const w = canvases[0].parentElement.clientWidth;
+    const h = Math.floor((box.clientHeight - extra) / rows) - 1;
+    return { w, h, stacked, tight };
+  };
+  const short = Math.min(window.innerWidth, window.innerHeight);
+  const side = (s) => Math.min(s.w, s.h);
+  let best = null;
+  for (const tight of [false, true]) {
+    for (const stacked of n > 1 ? [false, true] : [false]) {
+      const s = measure(stacked, tight);
+      if (!best || side(s) > side(best)) best = s;
+    }
+    if (side(best) >= 0.4 * short) break;
+  }
+  body.classList.toggle('stacked', best.stacked);
+  body.classList.toggle('tight', best.tight);
+  for (const c of canvases) {
+    c.style.width = `${Math.max(60, best.w)}px`;
+    c.style.height = `${Math.max(60, best.h)}px`;
+  }
+  return canvases.some((c, i) => `${c.style.width}x${c.style.height}` !== before[i]);
 }
 
-export async function redrawMeshes() {
+export async function redrawMeshes(again = true) {
   fitEmbed();
   const t0 = now();
-  const { w, h, dpr } = canvasPixels($('mesh-old'));
+  // a phone shows one panel at a time: the size is the shown one's (both are drawn alike)
+  const shown = $('mesh-old').clientWidth ? $('mesh-old') : $('mesh-new');
+  const { w, h, dpr } = canvasPixels(shown);
   const { result: f, timing } = await engine.timed('frame', w, h, dpr, false);
   const paint_ms = [0, 0];
   if (f.old) paint_ms[0] = paint($('mesh-old'), f.old, w, h);
@@ -68,7 +129,7 @@ export async function redrawMeshes() {
   state.frame = { w, h, dpr };
   const t1 = now();
   fillTables(f.stats);
-  if (fitEmbed()) return redrawMeshes(); // the tables took room: the canvases shrink, once more at most
+  if (again && fitEmbed()) return redrawMeshes(false); // the tables took room: the canvases shrink, once more at most
   await refreshUndo();
   return {
     frame_ms: t1 - t0,
@@ -84,7 +145,7 @@ export async function redrawMeshes() {
 
 export async function redrawCharts() {
   if (EMBED && !(view.spec && view.spec.draws === 'charts')) return;
-  if (view.spec) fitView();
+  fitEmbed();
   if (state.volume) {
     placeholder($('pass-chart'), 'Drawn for planar meshes; the tables follow the tetrahedra pass by pass');
     const hc = canvasPixels($('hist-old'));
@@ -125,7 +186,7 @@ export function placeholder(canvas, text) {
 
 export async function redrawNode() {
   if (EMBED && !(view.spec && view.spec.draws === 'node')) return;
-  if (view.spec) fitView();
+  fitEmbed();
   const lv = canvasPixels($('level-old'));
   const ch = canvasPixels($('solve-chart'));
   $('smooth-node').disabled = state.node === null || state.running || state.surface;

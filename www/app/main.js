@@ -1,5 +1,5 @@
 // The playground page's entry: wires the controls, fills the menus and opens the address.
-import { $, COMPARE, EMBED, FIGURE_HASH, GMSH_SAMPLES, SETTINGS, UNLINKABLE, VIEWS, engine, gallery, metrics, now, report, serial, showError, state, view } from './state.js';
+import { $, COMPARE, EMBED, PARAMS, FIGURE_HASH, GMSH_SAMPLES, SETTINGS, UNLINKABLE, VIEWS, engine, gallery, metrics, now, report, serial, showError, state, view } from './state.js';
 import { CHECKED, buildControls, changeCompare, checkControl, showStrategyReasons } from './controls.js';
 import { applyHash, copyLink, markAddressHandled, onAddressChange, openHash, openView, updatePermalink } from './permalink.js';
 import { closeTour, drawFigurePicture, fillTourMenu, goFigure, openFigure } from './tour.js';
@@ -10,6 +10,7 @@ import { perturb, reset, run, step } from './run.js';
 import { attachLevelZoom, attachPointer, pickRadius, selectNode } from './pointer.js';
 import { saveFigure, smoothThisNode, undo } from './undo.js';
 import { exportMesh, exportPng } from './export.js';
+import { sendTheme, startTheme, wirePresentation } from './present.js';
 
 export async function fillGallery() {
   const list = await engine.call('samples');
@@ -124,6 +125,7 @@ export function wire() {
       undo();
     }
   });
+  wirePresentation({ closeTour });
   $('smooth-node').addEventListener('click', smoothThisNode);
   $('save-figure').addEventListener('click', saveFigure);
   for (const b of document.querySelectorAll('button[data-export]')) {
@@ -136,27 +138,50 @@ export function wire() {
   window.addEventListener('resize', () => {
     clearTimeout(resizeTimer);
     resizeTimer = setTimeout(() => {
-      if (EMBED) for (const id of ['mesh-old', 'mesh-new']) $(id).style.width = '';
       serial(redrawAll).catch(report);
       serial(drawFigurePicture).catch(report);
     }, 150);
   });
 }
 
+/** `?embed=1`: the compact page that fills its frame; `&caption=0` leaves the words out. A
+ * link opens the full playground in the same state (in the header bar, or in the tour's
+ * bar for a figure); an embedded figure shows its picture, and "Live view" the view it
+ * was made from. */
 export function setupEmbed() {
   if (!EMBED) return;
   document.body.classList.add('embed');
   if (view.spec) document.body.classList.add('view', `view-${view.name}`);
+  if (PARAMS.get('caption') === '0') document.body.classList.add('nocaption');
   const a = document.createElement('a');
   a.id = 'open-full';
   a.target = '_blank';
   a.rel = 'noopener';
   a.textContent = 'Open the full playground';
-  $('message').before(a);
+  $('theme-toggle').before(a);
+  const live = document.createElement('button');
+  live.type = 'button';
+  live.id = 'figure-live';
+  live.className = 'quiet';
+  live.setAttribute('aria-pressed', 'false');
+  live.textContent = 'Live view';
+  live.title = 'The playground in the state this figure was made from (Step and Run smooth it)';
+  live.addEventListener('click', () => {
+    const on = document.body.classList.toggle('live');
+    live.setAttribute('aria-pressed', on ? 'true' : 'false');
+    serial(redrawAll).catch(report);
+    serial(drawFigurePicture).catch(report);
+  });
+  $('tour-link').before(live);
+  // a figure's own bar links the full page too (its header is hidden)
+  const b = a.cloneNode(true);
+  b.id = 'open-full-figure';
+  $('tour-bar-end').append(b);
 }
 
 export async function main() {
   document.body.dataset.busy = '1';
+  startTheme();
   setupEmbed();
   wire();
   try {
@@ -164,6 +189,7 @@ export async function main() {
     const { result: controls, timing } = await engine.timed('controls');
     metrics.startup = { engine_ready_ms: timing.worker.start - performance.timeOrigin, first_mesh_ms: 0 };
     buildControls(controls);
+    await sendTheme();
     await fillGallery();
     await fillTourMenu();
     metrics.startup.menus_ms = now();

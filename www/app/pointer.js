@@ -1,7 +1,8 @@
 // The pointer on the canvases: picking, dragging and nudging a node, zoom and pan, turning
 // a 3D view, the hover label.
-import { $, clearError, engine, queued, report, serial, setStatus, state } from './state.js';
+import { $, EMBED, clearError, engine, queued, report, serial, setStatus, state } from './state.js';
 import { writePermalink } from './permalink.js';
+import { showNodeBadge, showTab } from './present.js';
 import { redrawCharts, redrawMeshes, redrawNode } from './draw.js';
 
 
@@ -26,8 +27,11 @@ export function selectNode(node, { keepHash = false } = {}) {
     }
     state.node = node;
     $('node').value = node === null ? '' : String(node);
+    showNodeBadge();
     clearError();
     showPickNote(null);
+    // the node's level sets are in the side column's Node tab, next to the meshes
+    if (node !== null && !EMBED) showTab('node', { cue: true });
     await redrawMeshes();
     await redrawNode();
     if (!keepHash) await writePermalink();
@@ -120,6 +124,7 @@ export function attachPointer(canvas) {
   canvas.addEventListener('keydown', (ev) => {
     const step = { ArrowLeft: [-1, 0], ArrowRight: [1, 0], ArrowUp: [0, -1], ArrowDown: [0, 1] }[ev.key];
     if (!step || ev.ctrlKey || ev.metaKey || ev.altKey || state.surface) return;
+    if (state.node === null && state.figure) return; // the tour's keys: the next figure
     ev.preventDefault(); // the page does not scroll under a moving node
     if (state.node === null || state.running) {
       showPickNote(state.node === null ? 'Choose a free node first (click it): the arrow keys move the chosen node.' : null);

@@ -2,7 +2,7 @@
 // the playground in the figure's state.
 import { $, EMBED, VIEWS, engine, showError, state, view } from './state.js';
 import { applyHash, openHash, updatePermalink } from './permalink.js';
-import { paint } from './draw.js';
+import { contentHeight, paint } from './draw.js';
 import { smooth } from './run.js';
 
 /** Opens a figure of the tour: its words, the playground in its state (sample, settings,
@@ -58,20 +58,34 @@ export function showCard(card) {
   $('tour-rows').replaceChildren();
 }
 
-/** The figure's own picture (the core draws it: `smoothlab render --figure NAME`), as
- * wide as the panel and in the picture's proportions. */
+/** The figure's own picture (the core draws it: `smoothlab render --figure NAME`), in the
+ * picture's proportions: on the page as wide as the tour's card (at most its own width)
+ * and whole in the window under the bars; in an embed, as large as the frame leaves
+ * under the figure's words (its view shows instead once "Live view" is pressed). */
 export async function drawFigurePicture() {
   const card = state.figure;
   if (!card) return;
   const canvas = $('tour-picture');
   const [w0, h0] = await engine.call('tourPictureSize', card.name);
-  const w = Math.max(200, Math.min(w0, Math.round(canvas.parentElement.clientWidth - 4)));
-  const h = Math.round((w * h0) / w0);
+  if (state.figure !== card) return;
+  const tour = $('tour');
+  const inEmbed = EMBED && !document.body.classList.contains('live');
+  if (EMBED && !inEmbed) return; // hidden behind the live view
+  const probe = 40;
+  canvas.style.width = `${probe}px`;
+  canvas.style.height = `${probe}px`;
+  const availW = Math.max(120, tour.clientWidth - 24);
+  const availH = inEmbed
+    ? Math.max(80, tour.clientHeight - (contentHeight(tour) - probe) - 2)
+    : Math.max(240, window.innerHeight - 150);
+  const scale = Math.min(availW / w0, availH / h0, inEmbed ? 2 : 1);
+  const w = Math.max(120, Math.round(w0 * scale));
+  const h = Math.max(60, Math.round(h0 * scale));
+  canvas.style.width = `${w}px`;
+  canvas.style.height = `${h}px`;
   const dpr = Math.min(window.devicePixelRatio || 1, 2);
   const r = await engine.call('tourPicture', card.name, w, h, dpr);
   if (state.figure !== card) return;
-  canvas.style.aspectRatio = `${w} / ${h}`;
-  canvas.style.maxWidth = `${w}px`;
   paint(canvas, r.pixels, r.w, r.h);
 }
 
