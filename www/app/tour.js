@@ -74,10 +74,12 @@ export async function drawFigurePicture() {
   const probe = 40;
   canvas.style.width = `${probe}px`;
   canvas.style.height = `${probe}px`;
-  const availW = Math.max(120, tour.clientWidth - 24);
+  const availW = Math.max(120, canvas.parentElement.clientWidth - 4);
+  // the page: whole in the window below where it starts (the tour's bar and title above it)
+  const top = canvas.getBoundingClientRect().top + window.scrollY;
   const availH = inEmbed
     ? Math.max(80, tour.clientHeight - (contentHeight(tour) - probe) - 2)
-    : Math.max(240, window.innerHeight - 150);
+    : Math.max(240, window.innerHeight - Math.min(top, 200) - 16);
   const scale = Math.min(availW / w0, availH / h0, inEmbed ? 2 : 1);
   const w = Math.max(120, Math.round(w0 * scale));
   const h = Math.max(60, Math.round(h0 * scale));
