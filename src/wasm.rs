@@ -14,6 +14,7 @@ use crate::lab::views::Canvas;
 use crate::lab::volume as volume_lab;
 use crate::lab::{self as playground, Settings, Side, SideSweep};
 use crate::permalink;
+use crate::render::Theme;
 use crate::surface::Model;
 use glam::DVec2;
 
@@ -74,14 +75,16 @@ pub fn tour_card(name: &str) -> Result<JsValue, JsError> {
     to_js(&fig.card(i)?)
 }
 
-/// A figure's picture, `w × h` CSS pixels at ratio `dpr`: `{ pixels, w, h }` (device pixels).
+/// A figure's picture, `w × h` CSS pixels at ratio `dpr`, in the dark or the light theme
+/// with labels of at least `label_px` CSS pixels (as [`Playground::set_theme`]):
+/// `{ pixels, w, h }` (device pixels).
 #[wasm_bindgen(js_name = tourPicture)]
-pub fn tour_picture(name: &str, w: u32, h: u32, dpr: f32) -> Result<JsValue, JsError> {
+pub fn tour_picture(name: &str, w: u32, h: u32, dpr: f32, dark: bool, label_px: f32) -> Result<JsValue, JsError> {
     if !(dpr.is_finite() && dpr > 0.0 && dpr <= 4.0) {
         return Err(JsError::new(&format!("a pixel ratio of {dpr}: give one above 0 and at most 4")));
     }
     let c = Canvas { w: ((w as f32) * dpr).round() as u32, h: ((h as f32) * dpr).round() as u32, dpr };
-    let pm = crate::lab::tour::pictures::render(name, c)?;
+    let pm = crate::lab::tour::pictures::render(name, c, &Theme::for_page(dark, label_px))?;
     let (pw, ph) = (pm.width(), pm.height());
     object(&[("pixels", pixels(pm)), ("w", JsValue::from(pw)), ("h", JsValue::from(ph))])
 }
@@ -434,6 +437,16 @@ impl Playground {
         ])
     }
 
+    /// Draws every later picture (meshes, level sets, charts, histograms, the figure) in
+    /// the dark (projector) or the light theme, every label at least `label_px` CSS
+    /// pixels (0: each label its own size); forgets the frames sent, so the next
+    /// [`frame`](Self::frame) draws both panels.
+    #[wasm_bindgen(js_name = setTheme)]
+    pub fn set_theme(&mut self, dark: bool, label_px: f32) {
+        self.inner.set_theme(Theme::for_page(dark, label_px));
+        self.shown = [None, None];
+    }
+
     /// Forgets what was sent: the next [`frame`](Self::frame) draws both panels (after
     /// the page cleared or replaced its canvases).
     #[wasm_bindgen(js_name = forgetFrames)]
@@ -683,6 +696,13 @@ impl SurfaceLab {
         self.inner.zoom(factor);
     }
 
+    /// Draws every later picture in the dark (projector) or the light theme, every label
+    /// at least `label_px` CSS pixels (as [`Playground::set_theme`]).
+    #[wasm_bindgen(js_name = setTheme)]
+    pub fn set_theme(&mut self, dark: bool, label_px: f32) {
+        self.inner.set_theme(Theme::for_page(dark, label_px));
+    }
+
     /// The camera as it starts.
     #[wasm_bindgen(js_name = resetZoom)]
     pub fn reset_zoom(&mut self) {
@@ -791,6 +811,13 @@ impl VolumeLab {
     /// Magnifies both views `factor` times (within the camera's range).
     pub fn zoom(&mut self, factor: f64) {
         self.inner.zoom(factor);
+    }
+
+    /// Draws every later picture in the dark (projector) or the light theme, every label
+    /// at least `label_px` CSS pixels (as [`Playground::set_theme`]).
+    #[wasm_bindgen(js_name = setTheme)]
+    pub fn set_theme(&mut self, dark: bool, label_px: f32) {
+        self.inner.set_theme(Theme::for_page(dark, label_px));
     }
 
     /// The camera as it starts.

@@ -106,7 +106,7 @@ impl Playground {
     fn level_view(&self, side: Side, node: usize, c: Canvas) -> ((DVec2, DVec2), View) {
         let (whole, shown) = self.level_bounds(side, node);
         let frame = Frame::new(0.0, 0.0, c.w as f32 / c.dpr, c.h as f32 / c.dpr);
-        (whole, level_set_view(frame, shown.0, shown.1, c.dpr))
+        (whole, level_set_view(frame, shown.0, shown.1, c.dpr, &self.theme()))
     }
 
     /// Magnifies the level-set views `factor` times about the CSS pixel `at` of `side`'s

@@ -41,7 +41,7 @@ pub fn applies(mean_edge: f64, view: &View, opts: &MeshView) -> bool {
         // render_mesh's rule: only where edges are ≥ 10 CSS px, which implies edges shown
         Show::Auto => hidden_edges,
     };
-    hidden_edges && hidden_nodes && opts.metric == Metric::Shape && opts.frame.is_none() && opts.background.is_some()
+    hidden_edges && hidden_nodes && opts.metric == Metric::Shape && opts.frame.is_none() && opts.background
 }
 
 /// The view `render_mesh` uses on this pixmap.
@@ -58,7 +58,7 @@ pub fn view_of(pixmap: &Pixmap, mesh: &Mesh, opts: &MeshView) -> View {
 pub fn render_fine(pixmap: &mut Pixmap, mesh: &Mesh, buckets: &[u8], view: &View, opts: &MeshView) -> usize {
     let (w, h) = (pixmap.width() as usize, pixmap.height() as usize);
     let s = crate::render::view::sane_dpr(opts.dpr);
-    let bg = opts.background.unwrap_or(Color::WHITE);
+    let bg = opts.theme.paper;
     pixmap.fill(bg);
 
     // device positions of all nodes in fixed point (i32::MIN: far away or not finite)
@@ -169,7 +169,7 @@ pub fn render_fine(pixmap: &mut Pixmap, mesh: &Mesh, buckets: &[u8], view: &View
         let bar = Frame::new(frame.right() - COLOUR_BAR_WIDTH, frame.y, COLOUR_BAR_WIDTH, frame.h);
         fill_rect(pixmap, bar.x * s, bar.y * s, bar.w * s, bar.h * s, bg);
         let (d0, d1) = opts.metric.domain(mesh);
-        draw_colour_bar(pixmap, bar, opts.colormap, (d0, d1), opts.metric.label(mesh), inverted.len(), s);
+        draw_colour_bar(pixmap, bar, opts.colormap, (d0, d1), opts.metric.label(mesh), inverted.len(), s, &opts.theme);
     }
     inverted.len()
 }

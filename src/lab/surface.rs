@@ -49,6 +49,8 @@ pub struct SurfaceLab {
     settings: Settings,
     sides: [SurfaceSide; 2],
     camera: Camera,
+    /// The colours and label sizes every picture is drawn with.
+    theme: crate::render::Theme,
 }
 
 impl SurfaceLab {
@@ -69,7 +71,7 @@ impl SurfaceLab {
             SurfaceSide::new(Side::Old, surface.clone(), stats.clone(), &settings)?,
             SurfaceSide::new(Side::New, surface.clone(), stats.clone(), &settings)?,
         ];
-        Ok(SurfaceLab { original: surface, original_stats: stats, settings, sides, camera: Camera::default() })
+        Ok(SurfaceLab { original: surface, original_stats: stats, settings, sides, camera: Camera::default(), theme: crate::render::Theme::light() })
     }
 
     fn side(&self, side: Side) -> &SurfaceSide {
@@ -182,6 +184,16 @@ impl SurfaceLab {
         self.camera = self.camera.zoomed(factor);
     }
 
+    /// The theme every later picture is drawn with.
+    pub fn theme(&self) -> crate::render::Theme {
+        self.theme
+    }
+
+    /// Draws every later picture with `theme`.
+    pub fn set_theme(&mut self, theme: crate::render::Theme) {
+        self.theme = theme;
+    }
+
     /// The camera as it starts.
     pub fn reset_camera(&mut self) {
         self.camera = Camera::default();
@@ -189,7 +201,7 @@ impl SurfaceLab {
 
     /// The options a side is drawn with on canvas `c`: the shared camera, the side's title.
     fn view(&self, side: Side, c: Canvas) -> SurfaceView {
-        SurfaceView { camera: self.camera, dpr: c.dpr, title: Some(self.settings.side_title(side)), ..SurfaceView::default() }
+        SurfaceView { camera: self.camera, dpr: c.dpr, title: Some(self.settings.side_title(side)), theme: self.theme, ..SurfaceView::default() }
     }
 
     /// A side's surface drawn by the 3D view on a canvas of `c.w × c.h` device pixels,

@@ -130,6 +130,7 @@ impl Playground {
     fn mesh_options(&self, c: Canvas, highlight: Option<usize>) -> MeshView {
         let mut o = MeshView::default().with_dpr(c.dpr).with_highlight(highlight).with_zoom(self.zoom());
         o.bounds = Some(self.bounds());
+        o.theme = self.theme();
         o
     }
 
@@ -184,7 +185,7 @@ impl Playground {
         let data = LevelSet { field: &field, star: &star, path: &path, optimum: Some(result.x), title: &title };
         let mut pm = pixmap(c.w, c.h)?;
         let clip = !self.level_window().is_whole();
-        render_level_set(&mut pm, &data, &LevelSetView { dpr: c.dpr, clip, ..LevelSetView::default() });
+        render_level_set(&mut pm, &data, &LevelSetView { dpr: c.dpr, clip, theme: self.theme(), ..LevelSetView::default() });
         Ok((pm, result))
     }
 
@@ -206,7 +207,7 @@ impl Playground {
             let title = format!("{label}, per iteration ({} is better)", better_words(choice.objective.goal()));
             render_chart(
                 &mut pm,
-                &[Series::new(&label, points).with_color(side.color())],
+                &[Series::new(&label, points).with_color(self.theme().side(side as usize))],
                 &Chart {
                     title: &title,
                     x_label: "iteration",
@@ -214,6 +215,7 @@ impl Playground {
                     dpr: chart.dpr,
                     frame: Some(full.row(i, 2, 4.0)),
                     legend: false,
+                    theme: self.theme(),
                     ..Chart::default()
                 },
             );
@@ -257,12 +259,12 @@ impl Playground {
                     max_angle_deg: &c[1],
                     min_quality: &c[2],
                     inverted: &c[3],
-                    color: Some(side.color()),
+                    color: Some(self.theme().side(side as usize)),
                 }
             })
             .collect();
         let mut pm = pixmap(c.w, c.h)?;
-        render_pass_histories(&mut pm, &runs, &Chart { title: "Per pass (0 = as loaded)", dpr: c.dpr, ..Chart::default() });
+        render_pass_histories(&mut pm, &runs, &Chart { title: "Per pass (0 = as loaded)", dpr: c.dpr, theme: self.theme(), ..Chart::default() });
         Ok(pm)
     }
 
@@ -290,7 +292,7 @@ impl Playground {
             &mut pm,
             &ComparePanel { mesh: &self.panel(Side::Old).mesh, title: &to, lines: &lo },
             &ComparePanel { mesh: &self.panel(Side::New).mesh, title: &tn, lines: &ln },
-            &MeshView::default().with_dpr(c.dpr),
+            &MeshView { theme: self.theme(), ..MeshView::default().with_dpr(c.dpr) },
         );
         Ok(pm)
     }
@@ -322,13 +324,14 @@ impl Playground {
             &mut pm,
             &[
                 HistogramSeries { label: "as loaded", counts: start, color: None },
-                HistogramSeries { label: &label, counts: now, color: Some(side.color()) },
+                HistogramSeries { label: &label, counts: now, color: Some(self.theme().side(side as usize)) },
             ],
             &AngleHistogram {
                 title: "Corner angles (6° bins)",
                 dpr: c.dpr,
                 y_top: Some(self.histogram_top()),
                 log_y,
+                theme: self.theme(),
                 ..AngleHistogram::default()
             },
         )?;

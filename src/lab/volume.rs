@@ -51,6 +51,8 @@ pub struct VolumeLab {
     sides: [VolumeSide; 2],
     camera: Camera,
     cut: Cut,
+    /// The colours and label sizes every picture is drawn with.
+    theme: crate::render::Theme,
 }
 
 impl VolumeLab {
@@ -76,6 +78,7 @@ impl VolumeLab {
             sides,
             camera: Camera::default(),
             cut: Cut::default(),
+            theme: crate::render::Theme::light(),
         })
     }
 
@@ -195,6 +198,16 @@ impl VolumeLab {
         self.camera = self.camera.zoomed(factor);
     }
 
+    /// The theme every later picture is drawn with.
+    pub fn theme(&self) -> crate::render::Theme {
+        self.theme
+    }
+
+    /// Draws every later picture with `theme`.
+    pub fn set_theme(&mut self, theme: crate::render::Theme) {
+        self.theme = theme;
+    }
+
     /// The camera as it starts.
     pub fn reset_camera(&mut self) {
         self.camera = Camera::default();
@@ -223,6 +236,7 @@ impl VolumeLab {
             camera: self.camera,
             dpr: c.dpr,
             title: Some(self.side_title(side)),
+            theme: self.theme,
             ..SurfaceView::default()
         };
         let proj = self.mesh(side).render_cut(&mut pm, self.cut, &view);
@@ -247,7 +261,7 @@ impl VolumeLab {
             HistogramSeries { label: &label, counts: &self.side(side).stats.angle_histogram_6deg, color: None },
         ];
         let title = format!("Dihedral angles, {}", self.side_title(side));
-        let opts = AngleHistogram { title: &title, dpr: c.dpr, y_top: Some(top), ..AngleHistogram::default() };
+        let opts = AngleHistogram { title: &title, dpr: c.dpr, y_top: Some(top), theme: self.theme, ..AngleHistogram::default() };
         render_angle_histogram(&mut pm, &series, &opts)?;
         Ok(pm)
     }

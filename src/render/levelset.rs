@@ -14,7 +14,8 @@ use tiny_skia::{Color, PathBuilder, Pixmap, PremultipliedColorU8};
 use super::colormap::Colormap;
 use super::contour::{chain_segments, iso_segments, Grid};
 use super::mesh::bezier_control;
-use super::paint::{draw_marker, fill_rect, legend, rgba, stroke, Key, LegendEntry, Marker, MarkerStyle};
+use super::paint::{draw_marker, fill_rect, legend, rgba, stroke, Key, LegendEntry, LegendStyle, Marker, MarkerStyle};
+use super::theme::Theme;
 use super::text::{draw_text, Align, TextStyle, Valign};
 use super::view::{sane_dpr, Frame, View, ZoomPan};
 use crate::error::{Error, Result};
@@ -256,31 +257,42 @@ pub struct LevelSetView {
     /// Whiten what the star and the path draw outside the field's box (a zoomed view
     /// samples only the part of the star it shows). Default false.
     pub clip: bool,
+    /// Colours and label sizes. Default [`Theme::light`].
+    pub theme: Theme,
 }
 
 impl Default for LevelSetView {
     fn default() -> Self {
-        LevelSetView { levels: Levels::default(), colormap: Colormap::Viridis, dpr: 1.0, frame: None, isolines: true, legend: true, clip: false }
+        LevelSetView { levels: Levels::default(), colormap: Colormap::Viridis, dpr: 1.0, frame: None, isolines: true, legend: true, clip: false, theme: Theme::light() }
     }
 }
 
-const TITLE_H: f32 = 40.0;
+/// The baselines of a level-set panel's title and note and the height of the band they
+/// take above the plot, CSS pixels: 18, 33 and 40, grown with the theme's labels.
+fn title_band(theme: &Theme) -> (f32, f32, f32) {
+    let (g_title, g_note) = (theme.grow(14.0), theme.grow(10.5));
+    let title = 18.0 * g_title;
+    let note = title + 15.0 * g_note;
+    (title, note, note + 7.0 * g_note)
+}
 
 /// The view a level-set panel of `frame` (CSS pixels) draws the world box `lo..hi` with:
 /// the one [`render_level_set`] uses for a field sampled over that box.
-pub fn level_set_view(frame: Frame, lo: DVec2, hi: DVec2, dpr: f32) -> View {
-    View::fit(lo, hi, frame.inset(0.0, TITLE_H, 0.0, 0.0), 8.0, ZoomPan::default(), sane_dpr(dpr))
+pub fn level_set_view(frame: Frame, lo: DVec2, hi: DVec2, dpr: f32, theme: &Theme) -> View {
+    View::fit(lo, hi, frame.inset(0.0, title_band(theme).2, 0.0, 0.0), 8.0, ZoomPan::default(), sane_dpr(dpr))
 }
 
 /// Draws one level-set panel and returns its view (world ↔ pixels).
 pub fn render_level_set(pixmap: &mut Pixmap, data: &LevelSet<'_>, opts: &LevelSetView) -> View {
     let s = sane_dpr(opts.dpr);
     let frame = opts.frame.unwrap_or(Frame::of_pixmap(pixmap, s));
-    fill_rect(pixmap, frame.x * s, frame.y * s, frame.w * s, frame.h * s, Color::WHITE);
-    let plot = frame.inset(0.0, TITLE_H, 0.0, 0.0);
+    let theme = &opts.theme;
+    fill_rect(pixmap, frame.x * s, frame.y * s, frame.w * s, frame.h * s, theme.paper);
+    let (title_y, note_y, title_h) = title_band(theme);
+    let plot = frame.inset(0.0, title_h, 0.0, 0.0);
     let field = data.field;
     let grid = field.grid;
-    let view = level_set_view(frame, grid.lo, grid.hi, s);
+    let view = level_set_view(frame, grid.lo, grid.hi, s, theme);
     let levels = choose_levels(field, opts.levels);
 
     draw_bands(pixmap, field, &levels, &view, plot, opts.colormap, s);
@@ -387,23 +399,23 @@ pub fn render_level_set(pixmap: &mut Pixmap, data: &LevelSet<'_>, opts: &LevelSe
         let (a, b) = (view.device_xy(grid.lo), view.device_xy(grid.hi));
         let (x0, x1, y0, y1) = (a.0.min(b.0), a.0.max(b.0), a.1.min(b.1), a.1.max(b.1));
         let (fx, fy, fr, fb) = (frame.x * s, frame.y * s, frame.right() * s, frame.bottom() * s);
-        fill_rect(pixmap, fx, fy, frame.w * s, y0 - fy, Color::WHITE);
-        fill_rect(pixmap, fx, y1, frame.w * s, fb - y1, Color::WHITE);
-        fill_rect(pixmap, fx, y0, x0 - fx, y1 - y0, Color::WHITE);
-        fill_rect(pixmap, x1, y0, fr - x1, y1 - y0, Color::WHITE);
+        fill_rect(pixmap, fx, fy, frame.w * s, y0 - fy, theme.paper);
+        fill_rect(pixmap, fx, y1, frame.w * s, fb - y1, theme.paper);
+        fill_rect(pixmap, fx, y0, x0 - fx, y1 - y0, theme.paper);
+        fill_rect(pixmap, x1, y0, fr - x1, y1 - y0, theme.paper);
     }
 
     // title and a one-line key to the bands
     // both shrink to fit a narrow frame (an embedded view) rather than be clipped
     let room = (frame.w - 8.0) * s;
-    let title = TextStyle::new(super::text::size_to_fit(data.title, 14.0 * s, room)).with_align(Align::Centre, Valign::Baseline);
-    draw_text(pixmap, data.title, (frame.x + 0.5 * frame.w) * s, (frame.y + 18.0) * s, title);
+    // (never below the theme's smallest label)
+    let fit = |text: &str, size: f32| theme.text_px(super::text::size_to_fit(text, size, room), s);
+    let title = TextStyle::new(fit(data.title, 14.0 * s)).with_color(theme.ink).with_align(Align::Centre, Valign::Baseline);
+    draw_text(pixmap, data.title, (frame.x + 0.5 * frame.w) * s, (frame.y + title_y) * s, title);
     let better = if field.goal == Goal::MaximizeMin { "maximised" } else { "minimised" };
     let note = format!("{better}: the brighter the band, the better");
-    let sub = TextStyle::new(super::text::size_to_fit(&note, 10.5 * s, room))
-        .with_color(rgba(80, 80, 80, 255))
-        .with_align(Align::Centre, Valign::Baseline);
-    draw_text(pixmap, &note, (frame.x + 0.5 * frame.w) * s, (frame.y + 33.0) * s, sub);
+    let sub = TextStyle::new(fit(&note, 10.5 * s)).with_color(theme.muted).with_align(Align::Centre, Valign::Baseline);
+    draw_text(pixmap, &note, (frame.x + 0.5 * frame.w) * s, (frame.y + note_y) * s, sub);
 
     if opts.legend {
         let mut entries = vec![
@@ -430,7 +442,7 @@ pub fn render_level_set(pixmap: &mut Pixmap, data: &LevelSet<'_>, opts: &LevelSe
             entries.push(LegendEntry { label: "optimum", color: rgba(240, 228, 66, 255), key: Key::Marker(Marker::Star) });
         }
         let pr = view.device_xy(grid.hi);
-        legend(pixmap, &entries, pr.0 - 4.0 * s, pr.1 + 4.0 * s, true, s * 0.9);
+        legend(pixmap, &entries, pr.0 - 4.0 * s, pr.1 + 4.0 * s, true, &LegendStyle { theme, s: s * 0.9, dpr: s });
     }
     view
 }
@@ -487,7 +499,7 @@ fn draw_bands(pixmap: &mut Pixmap, field: &Field, levels: &[f64], view: &View, p
 pub fn render_level_sets_side_by_side(pixmap: &mut Pixmap, left: &LevelSet<'_>, right: &LevelSet<'_>, opts: &LevelSetView) -> (View, View) {
     let s = sane_dpr(opts.dpr);
     let frame = opts.frame.unwrap_or(Frame::of_pixmap(pixmap, s));
-    fill_rect(pixmap, frame.x * s, frame.y * s, frame.w * s, frame.h * s, Color::WHITE);
+    fill_rect(pixmap, frame.x * s, frame.y * s, frame.w * s, frame.h * s, opts.theme.paper);
     let a = render_level_set(pixmap, left, &LevelSetView { frame: Some(frame.column(0, 2, 12.0)), ..*opts });
     let b = render_level_set(pixmap, right, &LevelSetView { frame: Some(frame.column(1, 2, 12.0)), ..*opts });
     (a, b)

@@ -10,6 +10,7 @@ use super::axes::{format_tick, nice_ticks};
 use super::colormap::{bucket, bucket_color, Colormap, BUCKETS};
 use super::paint::{fill, fill_rect, push_marker, rgba, solid, stroke, Marker};
 use super::text::{draw_text, Align, TextStyle, Valign};
+use super::theme::Theme;
 use super::view::{sane_dpr, Frame, View, ZoomPan};
 use crate::mesh::{Mesh, NodeRole, NONE};
 use crate::quality::{element_quality, ElementQuality};
@@ -97,8 +98,11 @@ pub struct MeshView {
     /// The world box to fit instead of the mesh's bounds (so several panels share a
     /// scale). Default `None`.
     pub bounds: Option<(DVec2, DVec2)>,
-    /// Background filled first; `None` leaves the pixmap as it is. Default white.
-    pub background: Option<Color>,
+    /// Fill the frame with the theme's paper first (else leave the pixmap as it is).
+    /// Default true.
+    pub background: bool,
+    /// Colours and label sizes. Default [`Theme::light`].
+    pub theme: Theme,
 }
 
 impl Default for MeshView {
@@ -115,7 +119,8 @@ impl Default for MeshView {
             nodes: Show::Auto,
             highlight: None,
             bounds: None,
-            background: Some(Color::WHITE),
+            background: true,
+            theme: Theme::light(),
         }
     }
 }
@@ -323,8 +328,9 @@ pub fn render_mesh(pixmap: &mut Pixmap, mesh: &Mesh, opts: &MeshView) -> View {
     let s = dpr;
     let frame = opts.frame.unwrap_or(Frame::of_pixmap(pixmap, dpr));
     let view = mesh_view(pixmap.width(), pixmap.height(), mesh, &MeshView { frame: Some(frame), ..*opts });
-    if let Some(bg) = opts.background {
-        fill_rect(pixmap, frame.x * s, frame.y * s, frame.w * s, frame.h * s, bg);
+    let theme = &opts.theme;
+    if opts.background {
+        fill_rect(pixmap, frame.x * s, frame.y * s, frame.w * s, frame.h * s, theme.paper);
     }
     let clip = frame_mask(pixmap, frame, s);
     let clip = clip.as_ref();
@@ -419,7 +425,7 @@ pub fn render_mesh(pixmap: &mut Pixmap, mesh: &Mesh, opts: &MeshView) -> View {
             }
         }
         stroke_masked(pixmap, inner, rgba(25, 25, 25, 200), 0.9 * s, clip);
-        stroke_masked(pixmap, outer, rgba(0, 0, 0, 255), 1.8 * s, clip);
+        stroke_masked(pixmap, outer, theme.ink, 1.8 * s, clip);
     }
 
     // The highlighted node's star.
@@ -445,8 +451,8 @@ pub fn render_mesh(pixmap: &mut Pixmap, mesh: &Mesh, opts: &MeshView) -> View {
     if opts.colour_bar {
         let bar = Frame::new(frame.right() - COLOUR_BAR_WIDTH, frame.y, COLOUR_BAR_WIDTH, frame.h);
         // a zoomed mesh may run under the bar: give the bar its own ground
-        fill_rect(pixmap, bar.x * s, bar.y * s, bar.w * s, bar.h * s, opts.background.unwrap_or(Color::WHITE));
-        draw_colour_bar(pixmap, bar, opts.colormap, (d0, d1), opts.metric.label(mesh), n_inverted, s);
+        fill_rect(pixmap, bar.x * s, bar.y * s, bar.w * s, bar.h * s, theme.paper);
+        draw_colour_bar(pixmap, bar, opts.colormap, (d0, d1), opts.metric.label(mesh), n_inverted, s, theme);
     }
     view
 }
@@ -556,6 +562,7 @@ pub(crate) fn draw_colour_bar(
     title: &str,
     n_inverted: usize,
     s: f32,
+    theme: &Theme,
 ) {
     let bar_w = 14.0;
     let x = area.x + 8.0;
@@ -564,7 +571,7 @@ pub(crate) fn draw_colour_bar(
     if bottom - top < 30.0 {
         return;
     }
-    let label = TextStyle::new(11.0 * s).with_color(rgba(30, 30, 30, 255));
+    let label = TextStyle::new(theme.text_px(11.0 * s, s)).with_color(theme.caption);
     draw_text(pixmap, title, x * s, (area.y + 20.0) * s, label.with_align(Align::Left, Valign::Baseline));
     let (x0, x1) = (x * s, (x + bar_w) * s);
     let (y0, y1) = (top * s, bottom * s);
@@ -584,7 +591,7 @@ pub(crate) fn draw_colour_bar(
         frame.line_to(x1 + 4.0 * s, y);
         draw_text(pixmap, &format_tick(v, ticks.step), x1 + 7.0 * s, y, label.with_align(Align::Left, Valign::Middle));
     }
-    stroke(pixmap, frame, rgba(30, 30, 30, 255), s, None);
+    stroke(pixmap, frame, theme.caption, s, None);
     // inverted swatch
     let sy = y1 + 14.0 * s;
     if let Some(r) = Rect::from_xywh(x0, sy, x1 - x0, 12.0 * s) {
@@ -607,7 +614,7 @@ pub(crate) fn draw_colour_bar(
         // fit the bar's width (a mesh may have millions of inverted elements)
         let count = format!("{n_inverted} element{}", if n_inverted == 1 { "" } else { "s" });
         let room = (area.right() - 4.0) * s - x0;
-        let fit = super::text::size_to_fit(&count, 11.0 * s, room);
+        let fit = theme.text_px(super::text::size_to_fit(&count, 11.0 * s, room), s);
         draw_text(pixmap, &count, x0, sy + 26.0 * s, TextStyle { size: fit, ..label }.with_align(Align::Left, Valign::Middle));
     }
 }

@@ -33,6 +33,7 @@ mod mesh;
 mod paint;
 mod profile;
 mod text;
+mod theme;
 pub mod view;
 mod view3d;
 
@@ -54,10 +55,11 @@ pub use mesh::{
     INVERTED, PICK_RADIUS,
 };
 pub use paint::Marker;
-pub use profile::{render_sketch, render_titled, Sketch, SketchLine};
+pub use profile::{render_sketch, render_titled, title_band, Sketch, SketchLine};
 /// The pieces of `render_mesh` the page's fast raster view (`lab::raster`) draws with.
 pub(crate) use mesh::{draw_colour_bar, draw_inverted, push_element};
 pub use text::{draw_text, draw_text_rotated, text_width, Align, TextStyle, Valign};
+pub use theme::Theme;
 pub use view::{Frame, View, ZoomPan};
 pub use view3d::{
     newell_normal, render_surface, shade, Camera, Faces, Projection, SurfaceView, AMBIENT, BACK_FACE, DEGREES_PER_PIXEL, MAX_DRAG_PITCH,

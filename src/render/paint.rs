@@ -4,6 +4,7 @@
 use tiny_skia::{Color, FillRule, Paint, PathBuilder, Pixmap, Rect, Stroke, StrokeDash, Transform};
 
 use super::text::{draw_text, text_width, Align, TextStyle, Valign};
+use super::theme::Theme;
 
 /// The shape of a point marker.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -130,53 +131,84 @@ pub(crate) struct LegendEntry<'a> {
     pub key: Key,
 }
 
+/// How a legend is drawn: the theme's colours and label rule, `s` scaling its sizes
+/// (the device-pixel ratio, or a fraction of it) and `dpr` the device-pixel ratio the
+/// theme's smallest label is measured at.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct LegendStyle<'a> {
+    pub theme: &'a Theme,
+    pub s: f32,
+    pub dpr: f32,
+}
+
+impl LegendStyle<'_> {
+    /// The label size, device pixels.
+    pub fn text(&self) -> f32 {
+        self.theme.text_px(11.0 * self.s, self.dpr)
+    }
+    /// How much the labels grew over their own size (1 when they did not).
+    pub fn grow(&self) -> f32 {
+        self.text() / (11.0 * self.s)
+    }
+    /// The height of one entry, device pixels.
+    pub fn line_h(&self) -> f32 {
+        16.0 * self.s * self.grow()
+    }
+    /// The width of one entry: key, gap, label.
+    pub fn entry_w(&self, e: &LegendEntry<'_>) -> f32 {
+        24.0 * self.s + 6.0 * self.s + text_width(e.label, self.text())
+    }
+}
+
 /// Width and height of the box [`legend`] draws for `entries`.
-pub(crate) fn legend_size(entries: &[LegendEntry<'_>], s: f32) -> (f32, f32) {
+pub(crate) fn legend_size(entries: &[LegendEntry<'_>], st: &LegendStyle<'_>) -> (f32, f32) {
     if entries.is_empty() {
         return (0.0, 0.0);
     }
-    let w = entries.iter().map(|e| text_width(e.label, 11.0 * s)).fold(0.0f32, f32::max) + 24.0 * s + 18.0 * s;
-    (w, 16.0 * s * entries.len() as f32 + 6.0 * s)
+    let s = st.s;
+    let w = entries.iter().map(|e| text_width(e.label, st.text())).fold(0.0f32, f32::max) + 24.0 * s + 18.0 * s;
+    (w, st.line_h() * entries.len() as f32 + 6.0 * s)
 }
 
 /// Draws a legend box with its top-left or top-right corner at `(x, y)` (device pixels,
-/// `right_aligned` picks which); `s` scales sizes (the device-pixel ratio). Returns the
-/// box height.
-pub(crate) fn legend(pixmap: &mut Pixmap, entries: &[LegendEntry<'_>], x: f32, y: f32, right_aligned: bool, s: f32) -> f32 {
+/// `right_aligned` picks which). Returns the box height.
+pub(crate) fn legend(pixmap: &mut Pixmap, entries: &[LegendEntry<'_>], x: f32, y: f32, right_aligned: bool, st: &LegendStyle<'_>) -> f32 {
     if entries.is_empty() {
         return 0.0;
     }
-    let line_h = 16.0 * s;
+    let s = st.s;
+    let line_h = st.line_h();
     let pad = 6.0 * s;
-    let (w, h) = legend_size(entries, s);
+    let (w, h) = legend_size(entries, st);
     let x0 = if right_aligned { x - w } else { x };
     if let Some(r) = Rect::from_xywh(x0, y, w, h) {
         let pb = PathBuilder::from_rect(r);
-        pixmap.fill_path(&pb, &solid(rgba(255, 255, 255, 225)), FillRule::Winding, Transform::identity(), None);
-        pixmap.stroke_path(&pb, &solid(rgba(0, 0, 0, 90)), &Stroke { width: s, ..Default::default() }, Transform::identity(), None);
+        pixmap.fill_path(&pb, &solid(st.theme.legend_fill), FillRule::Winding, Transform::identity(), None);
+        pixmap.stroke_path(&pb, &solid(st.theme.legend_border), &Stroke { width: s, ..Default::default() }, Transform::identity(), None);
     }
     for (i, e) in entries.iter().enumerate() {
         let cy = y + pad * 0.5 + line_h * (i as f32 + 0.5);
-        legend_entry(pixmap, e, x0 + pad, cy, s);
+        legend_entry(pixmap, e, x0 + pad, cy, st);
     }
     h
 }
 
 /// Entries in one row centred on `cx`, at height `cy` (device pixels), without a box.
-pub(crate) fn legend_row(pixmap: &mut Pixmap, entries: &[LegendEntry<'_>], cx: f32, cy: f32, s: f32) {
-    let gap = 18.0 * s;
-    let widths: Vec<f32> = entries.iter().map(|e| 24.0 * s + 6.0 * s + text_width(e.label, 11.0 * s)).collect();
+pub(crate) fn legend_row(pixmap: &mut Pixmap, entries: &[LegendEntry<'_>], cx: f32, cy: f32, st: &LegendStyle<'_>) {
+    let gap = 18.0 * st.s;
+    let widths: Vec<f32> = entries.iter().map(|e| st.entry_w(e)).collect();
     let total = widths.iter().sum::<f32>() + gap * entries.len().saturating_sub(1) as f32;
     let mut x = cx - 0.5 * total;
     for (e, w) in entries.iter().zip(widths) {
-        legend_entry(pixmap, e, x, cy, s);
+        legend_entry(pixmap, e, x, cy, st);
         x += w + gap;
     }
 }
 
 /// One legend entry: its key from `kx`, its label after it, centred on `cy`.
-fn legend_entry(pixmap: &mut Pixmap, e: &LegendEntry<'_>, kx: f32, cy: f32, s: f32) {
-    let size = 11.0 * s;
+fn legend_entry(pixmap: &mut Pixmap, e: &LegendEntry<'_>, kx: f32, cy: f32, st: &LegendStyle<'_>) {
+    let s = st.s;
+    let size = st.text();
     let key_w = 24.0 * s;
     let pad = 6.0 * s;
     {
@@ -190,7 +222,7 @@ fn legend_entry(pixmap: &mut Pixmap, e: &LegendEntry<'_>, kx: f32, cy: f32, s: f
                     draw_marker(pixmap, m, kx + 0.5 * key_w, cy, MarkerStyle { r: 3.5 * s, fill: e.color, edge: e.color, width: s });
                 }
             }
-            Key::Marker(m) => draw_marker(pixmap, m, kx + 0.5 * key_w, cy, MarkerStyle { r: 4.5 * s, fill: e.color, edge: rgba(0, 0, 0, 255), width: s }),
+            Key::Marker(m) => draw_marker(pixmap, m, kx + 0.5 * key_w, cy, MarkerStyle { r: 4.5 * s, fill: e.color, edge: st.theme.ink, width: s }),
             Key::Hatched => {
                 if let Some(r) = Rect::from_xywh(kx + 4.0 * s, cy - 5.0 * s, key_w - 8.0 * s, 10.0 * s) {
                     let pb = PathBuilder::from_rect(r);
@@ -212,7 +244,7 @@ fn legend_entry(pixmap: &mut Pixmap, e: &LegendEntry<'_>, kx: f32, cy: f32, s: f
                 }
             }
         }
-        let style = TextStyle::new(size).with_align(Align::Left, Valign::Middle);
+        let style = TextStyle::new(size).with_color(st.theme.ink).with_align(Align::Left, Valign::Middle);
         draw_text(pixmap, e.label, kx + key_w + pad, cy, style);
     }
 }

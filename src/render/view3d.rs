@@ -25,6 +25,7 @@ use tiny_skia::{Color, FillRule, Mask, PathBuilder, Pixmap, Rect, Stroke, Transf
 
 use super::colormap::{bucket, bucket_color, Colormap};
 use super::mesh::{bezier_control, draw_colour_bar, draw_inverted, COLOUR_BAR_WIDTH};
+use super::theme::Theme;
 use super::paint::{fill_rect, rect_mask, rgba, solid};
 use super::text::{draw_text, size_to_fit, Align, TextStyle, Valign};
 use super::view::{sane_dpr, Frame};
@@ -196,8 +197,8 @@ pub struct SurfaceView {
     pub domain: (f64, f64),
     /// Default viridis.
     pub colormap: Colormap,
-    /// Filled first. Default white.
-    pub background: Color,
+    /// Colours (its paper filled first) and label sizes. Default [`Theme::light`].
+    pub theme: Theme,
 }
 
 impl Default for SurfaceView {
@@ -213,7 +214,7 @@ impl Default for SurfaceView {
             bar_title: "quality".to_string(),
             domain: (0.0, 1.0),
             colormap: Colormap::Viridis,
-            background: Color::WHITE,
+            theme: Theme::light(),
         }
     }
 }
@@ -338,8 +339,9 @@ impl Projection {
 pub fn render_surface(pixmap: &mut Pixmap, faces: &Faces, opts: &SurfaceView) -> Projection {
     let s = sane_dpr(opts.dpr);
     let frame = opts.frame.unwrap_or(Frame::of_pixmap(pixmap, s));
-    fill_rect(pixmap, frame.x * s, frame.y * s, frame.w * s, frame.h * s, opts.background);
-    let top = if opts.title.is_some() { TITLE_H } else { 0.0 };
+    let theme = &opts.theme;
+    fill_rect(pixmap, frame.x * s, frame.y * s, frame.w * s, frame.h * s, theme.paper);
+    let top = if opts.title.is_some() { TITLE_H * theme.grow(14.0) } else { 0.0 };
     let right = if opts.colour_bar { COLOUR_BAR_WIDTH } else { 0.0 };
     let plot = frame.inset(0.0, top, right, 0.0);
     let proj = Projection::fit(faces.points, &opts.camera, plot, opts.margin, s);
@@ -388,16 +390,16 @@ pub fn render_surface(pixmap: &mut Pixmap, faces: &Faces, opts: &SurfaceView) ->
 
     if let Some(title) = &opts.title {
         let size = size_to_fit(title, 14.0, (frame.w - 8.0).max(1.0));
-        let style = TextStyle::new(size * s).with_align(Align::Centre, Valign::Baseline);
-        draw_text(pixmap, title, (plot.x + 0.5 * plot.w) * s, (frame.y + 18.0) * s, style);
+        let style = TextStyle::new(theme.text_px(size * s, s)).with_color(theme.ink).with_align(Align::Centre, Valign::Baseline);
+        draw_text(pixmap, title, (plot.x + 0.5 * plot.w) * s, (frame.y + 18.0 * theme.grow(14.0)) * s, style);
     }
     if opts.colour_bar {
         let bar = Frame::new(frame.right() - COLOUR_BAR_WIDTH, frame.y + top, COLOUR_BAR_WIDTH, frame.h - top);
-        fill_rect(pixmap, bar.x * s, bar.y * s, bar.w * s, bar.h * s, opts.background);
+        fill_rect(pixmap, bar.x * s, bar.y * s, bar.w * s, bar.h * s, theme.paper);
         let n_inverted = faces.inverted.iter().take(faces.count()).filter(|&&b| b).count();
         let (d0, d1) = opts.domain;
         let domain = if d0.is_finite() && d1.is_finite() && d1 > d0 { (d0, d1) } else { (0.0, 1.0) };
-        draw_colour_bar(pixmap, bar, opts.colormap, domain, &opts.bar_title, n_inverted, s);
+        draw_colour_bar(pixmap, bar, opts.colormap, domain, &opts.bar_title, n_inverted, s, theme);
     }
     proj
 }
