@@ -393,7 +393,9 @@ impl Playground {
     }
 
     /// Draws both panels' meshes on canvases of `w × h` device pixels at ratio `dpr`:
-    /// `{ old, new, render_ms: [old, new], copy_ms }`, RGBA pixels of each panel, or
+    /// `{ old, new, render_ms: [old, new], copy_ms, colour_bar }`, RGBA pixels of each
+    /// panel, `colour_bar` whether the pictures carry the colour bar (false: the canvas is
+    /// too small for it, show the scale beside it), or
     /// `null` for a panel whose last picture sent shows the same positions, canvas and
     /// highlight (unless `force`). The chosen node is highlighted with its star.
     pub fn frame(&mut self, w: u32, h: u32, dpr: f32, force: bool) -> Result<JsValue, JsError> {
@@ -434,6 +436,7 @@ impl Playground {
             ("new", new),
             ("render_ms", to_js(&render_ms)?),
             ("copy_ms", JsValue::from_f64(copy_ms)),
+            ("colour_bar", JsValue::from_bool(self.inner.panel_colour_bar(c))),
         ])
     }
 
@@ -609,9 +612,9 @@ impl Playground {
     }
 }
 
-/// Both sides drawn by `render`: `{ old, new, render_ms: [old, new], copy_ms }`
-/// (RGBA pixels), the 3D views' frame.
-fn both_sides(render: impl Fn(Side) -> crate::Result<tiny_skia::Pixmap>) -> Result<JsValue, JsError> {
+/// Both sides drawn by `render`: `{ old, new, render_ms: [old, new], copy_ms, colour_bar }`
+/// (RGBA pixels; `colour_bar` whether they carry the colour bar), the 3D views' frame.
+fn both_sides(render: impl Fn(Side) -> crate::Result<tiny_skia::Pixmap>, colour_bar: bool) -> Result<JsValue, JsError> {
     let mut out = Vec::new();
     let (mut render_ms, mut copy_ms) = ([0.0; 2], 0.0);
     for s in Side::BOTH {
@@ -624,7 +627,13 @@ fn both_sides(render: impl Fn(Side) -> crate::Result<tiny_skia::Pixmap>) -> Resu
     }
     let new = out.pop().unwrap_or(JsValue::NULL);
     let old = out.pop().unwrap_or(JsValue::NULL);
-    object(&[("old", old), ("new", new), ("render_ms", to_js(&render_ms)?), ("copy_ms", JsValue::from_f64(copy_ms))])
+    object(&[
+        ("old", old),
+        ("new", new),
+        ("render_ms", to_js(&render_ms)?),
+        ("copy_ms", JsValue::from_f64(copy_ms)),
+        ("colour_bar", JsValue::from_bool(colour_bar)),
+    ])
 }
 
 /// The page's state for a surface in 3D: one opaque handle (see
@@ -678,10 +687,10 @@ impl SurfaceLab {
     }
 
     /// Both sides drawn by the shared camera on canvases of `w × h` device pixels at
-    /// ratio `dpr`: `{ old, new, render_ms: [old, new], copy_ms }` (RGBA pixels).
+    /// ratio `dpr`: `{ old, new, render_ms: [old, new], copy_ms, colour_bar }` (RGBA pixels).
     pub fn frame(&mut self, w: u32, h: u32, dpr: f32) -> Result<JsValue, JsError> {
         let c = canvas(w, h, dpr);
-        let f = both_sides(|s| Ok(self.inner.render(s, c)?.0))?;
+        let f = both_sides(|s| Ok(self.inner.render(s, c)?.0), self.inner.colour_bar_shown(c))?;
         self.canvas = Some(c);
         Ok(f)
     }
@@ -782,10 +791,10 @@ impl VolumeLab {
     }
 
     /// Both sides cut and drawn by the shared camera on canvases of `w × h` device pixels
-    /// at ratio `dpr`: `{ old, new, render_ms: [old, new], copy_ms }` (RGBA pixels).
+    /// at ratio `dpr`: `{ old, new, render_ms: [old, new], copy_ms, colour_bar }` (RGBA pixels).
     pub fn frame(&mut self, w: u32, h: u32, dpr: f32) -> Result<JsValue, JsError> {
         let c = canvas(w, h, dpr);
-        both_sides(|s| Ok(self.inner.render(s, c)?.0))
+        both_sides(|s| Ok(self.inner.render(s, c)?.0), self.inner.colour_bar_shown(c))
     }
 
     /// Both sides' dihedral angle histograms beside the mesh as loaded, on canvases of

@@ -40,11 +40,15 @@ function surface() {
   return pg;
 }
 
+// The theme the page last chose ([dark, labelPx]), given to every handle loaded after it.
+let theme = null;
+
 // Replace the handle only once the new one is built: a failed load keeps the old mesh.
 // Says which kind of handle it is.
 function replace(next) {
   if (pg) pg.free();
   pg = next;
+  if (theme) pg.setTheme(...theme);
   return {
     surface: isSurface(),
     volume: isVolume(),
@@ -61,6 +65,11 @@ const handlers = {
   loadFile: (name, bytes) => replace(wasm.openBytes(new Uint8Array(bytes), name)),
   loadTriangle: (node, ele) => replace(wasm.Playground.fromTriangle(node, ele)),
   settings: (s) => need().setSettings(s),
+  // the theme of every later picture: dark (projector) or light, labels >= labelPx CSS px
+  theme: (dark, labelPx) => {
+    theme = [Boolean(dark), labelPx];
+    return need().setTheme(dark, labelPx);
+  },
   reset: () => need().reset(),
   step: () => need().step(),
   beginPass: () => planar().beginPass(),
@@ -129,7 +138,7 @@ const handlers = {
   panicForTest: () => wasm.panicForTest(),
   tourFigures: () => wasm.tourFigures(),
   tourCard: (name) => wasm.tourCard(name),
-  tourPicture: (name, w, h, dpr) => wasm.tourPicture(name, w, h, dpr),
+  tourPicture: (name, w, h, dpr, dark = false, labelPx = 0) => wasm.tourPicture(name, w, h, dpr, Boolean(dark), labelPx),
   tourPictureSize: (name) => wasm.tourPictureSize(name),
   tourRow: (i) => wasm.tourRow(i),
   decodePermalink: (hash) => wasm.decodePermalink(hash),

@@ -389,6 +389,9 @@ pub struct Playground {
     undo: Vec<interact::Undo>,
     /// The colours and label sizes every picture is drawn with.
     theme: crate::render::Theme,
+    /// The CSS pixels each side's level-set legend took when it was last drawn, so a
+    /// pointer on it maps as it was drawn.
+    level_legend: std::cell::Cell<[f32; 2]>,
 }
 
 /// Positions as x, y interleaved, the form in which they travel between two engines.
@@ -430,6 +433,7 @@ impl Playground {
             level_window: interact::LevelWindow::default(),
             undo: Vec::new(),
             theme: crate::render::Theme::light(),
+            level_legend: std::cell::Cell::new([0.0; 2]),
         })
     }
 

@@ -16,8 +16,8 @@ use super::stats::INVERTED_BUCKET;
 use crate::render::{bucket_color, BUCKETS};
 use crate::mesh::Mesh;
 use crate::render::{
-    draw_colour_bar, draw_inverted, mesh_view, push_element, Frame, MeshView, Metric, Show,
-    View, COLOUR_BAR_WIDTH, INVERTED,
+    colour_bar_band, draw_colour_bar, draw_inverted, mesh_view, push_element, Frame, MeshView, Metric, Show,
+    View, INVERTED,
 };
 
 /// Sub-pixel steps per pixel of the fixed-point rasterizer.
@@ -164,9 +164,8 @@ pub fn render_fine(pixmap: &mut Pixmap, mesh: &Mesh, buckets: &[u8], view: &View
         }
     }
 
-    if opts.colour_bar {
-        let frame = Frame::new(0.0, 0.0, w as f32 / s, h as f32 / s);
-        let bar = Frame::new(frame.right() - COLOUR_BAR_WIDTH, frame.y, COLOUR_BAR_WIDTH, frame.h);
+    let frame = Frame::new(0.0, 0.0, w as f32 / s, h as f32 / s);
+    if let Some(bar) = opts.colour_bar.then(|| colour_bar_band(frame, opts.metric.label(mesh), &opts.theme)).flatten() {
         fill_rect(pixmap, bar.x * s, bar.y * s, bar.w * s, bar.h * s, bg);
         let (d0, d1) = opts.metric.domain(mesh);
         draw_colour_bar(pixmap, bar, opts.colormap, (d0, d1), opts.metric.label(mesh), inverted.len(), s, &opts.theme);

@@ -184,6 +184,15 @@ impl SurfaceLab {
         self.camera = self.camera.zoomed(factor);
     }
 
+    /// Whether a side drawn on canvas `c` carries the colour bar (a small canvas leaves it
+    /// out, and the page shows the scale beside it).
+    pub fn colour_bar_shown(&self, c: Canvas) -> bool {
+        let frame = crate::render::Frame::new(0.0, 0.0, c.w as f32 / c.dpr, c.h as f32 / c.dpr);
+        // under the title's band, as the 3D view lays it out
+        let top = 26.0 * self.theme.grow(14.0);
+        crate::render::colour_bar_band(frame.inset(0.0, top, 0.0, 0.0), crate::render::Metric::Shape.label(self.original.flat()), &self.theme).is_some()
+    }
+
     /// The theme every later picture is drawn with.
     pub fn theme(&self) -> crate::render::Theme {
         self.theme

@@ -5,7 +5,7 @@ use glam::DVec2;
 use tiny_skia::{Color, PathBuilder, Pixmap, Rect, Stroke, StrokeDash, Transform};
 
 use super::axes::{draw_axes, format_tick, nice_range, nice_ticks, Axis, AxisLabels, Scale, Ticks};
-use super::paint::{fill_rect, legend, legend_row, legend_size, push_marker, rect_mask, solid, Key, LegendEntry, LegendStyle, Marker};
+use super::paint::{fill_rect, legend_band, legend_band_height, push_marker, rect_mask, solid, Key, LegendEntry, LegendStyle, Marker};
 use super::theme::Theme;
 use super::text::{draw_text, Align, TextStyle, Valign};
 use super::view::{sane_dpr, Frame};
@@ -58,7 +58,7 @@ pub struct Chart<'a> {
     pub dpr: f32,
     /// Where to draw, CSS pixels. Default the whole pixmap.
     pub frame: Option<Frame>,
-    /// Draw the legend (top right, inside the plot). Default true.
+    /// Draw the legend (in a band under the plot, which shrinks to make room). Default true.
     pub legend: bool,
     /// A broken y axis: when some points lie below this value and others at or above it,
     /// the axis spans only the values at or above it, and the points below sit in a band
@@ -135,7 +135,20 @@ pub fn render_chart(pixmap: &mut Pixmap, series: &[Series<'_>], chart: &Chart<'_
     let top = if chart.title.is_empty() { 12.0 } else { 32.0 * theme.grow(14.0) };
     let left = if chart.y_label.is_empty() { 48.0 } else { 66.0 } * theme.grow(11.0);
     let bottom = if chart.x_label.is_empty() { 28.0 } else { 46.0 } * theme.grow(11.0);
-    let plot = frame.inset(left, top, 14.0, bottom);
+    // the legend's band under the axes: never over the curves
+    let ls = LegendStyle { theme, s, dpr: s };
+    let entries: Vec<LegendEntry<'_>> = if chart.legend {
+        series
+            .iter()
+            .enumerate()
+            .filter(|(_, x)| !x.label.is_empty())
+            .map(|(i, x)| LegendEntry { label: x.label, color: x.color.unwrap_or(theme.series(i)), key: Key::Line { dashed: x.dashed, marker: x.marker } })
+            .collect()
+    } else {
+        Vec::new()
+    };
+    let legend_h = legend_band_height(&entries, (frame.w - 16.0) * s, &ls) / s;
+    let plot = frame.inset(left, top, 14.0, bottom + legend_h);
     let (xr, mut yr) = data_range(series, chart.log_y);
     // the values below a break, if the axis is broken: the range is of the others
     let below = match (chart.y_break, chart.log_y) {
@@ -206,8 +219,6 @@ pub fn render_chart(pixmap: &mut Pixmap, series: &[Series<'_>], chart: &Chart<'_
 
     let clip = Rect::from_xywh(plot.x * s - 4.0 * s, plot.y * s - 4.0 * s, (plot.w + 8.0) * s, (plot.h + 8.0) * s).and_then(|r| rect_mask(pixmap, r));
     let mut drawn = false;
-    // device points of the curves, sampled every few pixels, to place the legend
-    let mut ink: Vec<(f32, f32)> = Vec::new();
     for (i, ser) in series.iter().enumerate() {
         let color = ser.color.unwrap_or(theme.series(i));
         let mut pb = PathBuilder::new();
@@ -222,14 +233,6 @@ pub fn render_chart(pixmap: &mut Pixmap, series: &[Series<'_>], chart: &Chart<'_
                             band_labels.push((x, y, text));
                         }
                     }
-                    if let (true, Some(&(px, py))) = (pen_down, ink.last()) {
-                        let n = ((x - px).hypot(y - py) / (4.0 * s)).ceil().min(500.0) as usize;
-                        for k in 1..n {
-                            let t = k as f32 / n as f32;
-                            ink.push((px + t * (x - px), py + t * (y - py)));
-                        }
-                    }
-                    ink.push((x, y));
                     if pen_down {
                         pb.line_to(x, y);
                     } else {
@@ -266,21 +269,8 @@ pub fn render_chart(pixmap: &mut Pixmap, series: &[Series<'_>], chart: &Chart<'_
         let c = plot.centre();
         draw_text(pixmap, "no data", c.x as f32 * s, c.y as f32 * s, st);
     }
-    if chart.legend && series.iter().any(|x| !x.label.is_empty()) {
-        let entries: Vec<LegendEntry<'_>> = series
-            .iter()
-            .enumerate()
-            .filter(|(_, x)| !x.label.is_empty())
-            .map(|(i, x)| LegendEntry { label: x.label, color: x.color.unwrap_or(theme.series(i)), key: Key::Line { dashed: x.dashed, marker: x.marker } })
-            .collect();
-        let ls = LegendStyle { theme, s, dpr: s };
-        let (lw, lh) = legend_size(&entries, &ls);
-        let (l, r, t, b) = ((plot.x + 6.0) * s, (plot.right() - 6.0) * s, (plot.y + 6.0) * s, (plot.bottom() - 6.0) * s);
-        // the corner whose box covers the fewest curve samples (top right on ties)
-        let corners = [(r - lw, t), (l, t), (r - lw, b - lh), (l, b - lh)];
-        let covered = |&(x, y): &(f32, f32)| ink.iter().filter(|(px, py)| *px >= x - 3.0 * s && *px <= x + lw + 3.0 * s && *py >= y - 3.0 * s && *py <= y + lh + 3.0 * s).count();
-        let best = corners.iter().min_by_key(|c| covered(c)).copied().unwrap_or(corners[0]);
-        legend(pixmap, &entries, best.0, best.1, false, &ls);
+    if !entries.is_empty() {
+        legend_band(pixmap, &entries, (frame.x + 8.0) * s, (frame.bottom() - legend_h) * s, (frame.w - 16.0) * s, &ls);
     }
 }
 
@@ -318,10 +308,9 @@ pub fn render_pass_histories(pixmap: &mut Pixmap, runs: &[PassHistory<'_>], char
     let run_key = |i: usize| Key::Line { dashed: i % 2 == 1, marker: Some(if i % 2 == 0 { Marker::Circle } else { Marker::Triangle }) };
     let entries: Vec<LegendEntry<'_>> = runs.iter().enumerate().map(|(i, r)| LegendEntry { label: r.label, color: r.color.unwrap_or(theme.series(i + 1)), key: run_key(i) }).collect();
     let ls = LegendStyle { theme, s, dpr: s };
-    let legend_h = if chart.legend && !entries.is_empty() { 20.0 * ls.grow() } else { 0.0 };
-    if legend_h > 0.0 {
-        legend_row(pixmap, &entries, (frame.x + 0.5 * frame.w) * s, (frame.y + title_h + 8.0 * ls.grow()) * s, &ls);
-    }
+    let entries = if chart.legend { entries } else { Vec::new() };
+    let legend_h = legend_band_height(&entries, (frame.w - 16.0) * s, &ls) / s;
+    legend_band(pixmap, &entries, (frame.x + 8.0) * s, (frame.y + title_h) * s, (frame.w - 16.0) * s, &ls);
     let top = title_h + legend_h;
     let body = frame.inset(0.0, top, 0.0, 0.0);
     // the angle charts break their axis at 0°: an inverted corner as loaded (−176°) sits

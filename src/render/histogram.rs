@@ -5,7 +5,7 @@
 use tiny_skia::{Color, PathBuilder, Pixmap};
 
 use super::axes::{draw_axes, nice_range, Axis, AxisLabels, Scale, Ticks};
-use super::paint::{fill, fill_rect, legend, stroke, Key, LegendEntry, LegendStyle};
+use super::paint::{fill, fill_rect, legend_band, legend_band_height, stroke, Key, LegendEntry, LegendStyle};
 use super::theme::Theme;
 use super::view::{sane_dpr, Frame};
 use crate::error::{Error, Result};
@@ -81,7 +81,19 @@ pub fn render_angle_histogram(pixmap: &mut Pixmap, series: &[HistogramSeries<'_>
     // room for the labels, grown with them when the theme makes them larger
     let (g_tick, g_title) = (theme.grow(11.0), theme.grow(14.0));
     let top = if opts.title.is_empty() { 12.0 } else { 32.0 * g_title };
-    let plot = frame.inset(62.0 * g_tick, top, 14.0, 46.0 * g_tick);
+    // the legend's band under the axes: never over the bars
+    let ls = LegendStyle { theme, s, dpr: s };
+    let entries: Vec<LegendEntry<'_>> = if opts.legend {
+        series
+            .iter()
+            .enumerate()
+            .map(|(i, ser)| LegendEntry { label: ser.label, color: ser.color.unwrap_or(theme.series(i)), key: Key::Line { dashed: i % 2 == 0 && i > 0, marker: None } })
+            .collect()
+    } else {
+        Vec::new()
+    };
+    let legend_h = legend_band_height(&entries, (frame.w - 16.0) * s, &ls) / s;
+    let plot = frame.inset(62.0 * g_tick, top, 14.0, 46.0 * g_tick + legend_h);
     let pct: Vec<Vec<f64>> = series.iter().map(|x| percentages(x.counts)).collect();
     let own = pct.iter().flatten().copied().fold(0.0f64, f64::max);
     let top = match opts.y_top {
@@ -110,7 +122,6 @@ pub fn render_angle_histogram(pixmap: &mut Pixmap, series: &[HistogramSeries<'_>
     stroke(pixmap, refs, theme.reference, 1.0 * s, Some([3.0 * s, 3.0 * s]));
 
     let width = 180.0 / bins as f64;
-    let mut entries = Vec::new();
     for (i, (ser, p)) in series.iter().zip(&pct).enumerate() {
         let color = ser.color.unwrap_or(theme.series(i));
         let mut pb = PathBuilder::new();
@@ -131,11 +142,8 @@ pub fn render_angle_histogram(pixmap: &mut Pixmap, series: &[HistogramSeries<'_>
             fill(pixmap, area, theme.shade, true);
         }
         stroke(pixmap, pb, color, if i == 0 { 1.6 * s } else { 2.2 * s }, dashed.then_some([6.0 * s, 3.0 * s]));
-        entries.push(LegendEntry { label: ser.label, color, key: Key::Line { dashed, marker: None } });
     }
-    if opts.legend {
-        legend(pixmap, &entries, (plot.right() - 6.0) * s, (plot.y + 6.0) * s, true, &LegendStyle { theme, s, dpr: s });
-    }
+    legend_band(pixmap, &entries, (frame.x + 8.0) * s, (frame.bottom() - legend_h) * s, (frame.w - 16.0) * s, &ls);
     Ok(())
 }
 

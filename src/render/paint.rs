@@ -1,5 +1,5 @@
 //! Small drawing helpers shared by the views: solid fills and strokes of whole paths,
-//! point markers, and a legend box.
+//! point markers, and legends in a band of their own.
 
 use tiny_skia::{Color, FillRule, Paint, PathBuilder, Pixmap, Rect, Stroke, StrokeDash, Transform};
 
@@ -160,39 +160,6 @@ impl LegendStyle<'_> {
     }
 }
 
-/// Width and height of the box [`legend`] draws for `entries`.
-pub(crate) fn legend_size(entries: &[LegendEntry<'_>], st: &LegendStyle<'_>) -> (f32, f32) {
-    if entries.is_empty() {
-        return (0.0, 0.0);
-    }
-    let s = st.s;
-    let w = entries.iter().map(|e| text_width(e.label, st.text())).fold(0.0f32, f32::max) + 24.0 * s + 18.0 * s;
-    (w, st.line_h() * entries.len() as f32 + 6.0 * s)
-}
-
-/// Draws a legend box with its top-left or top-right corner at `(x, y)` (device pixels,
-/// `right_aligned` picks which). Returns the box height.
-pub(crate) fn legend(pixmap: &mut Pixmap, entries: &[LegendEntry<'_>], x: f32, y: f32, right_aligned: bool, st: &LegendStyle<'_>) -> f32 {
-    if entries.is_empty() {
-        return 0.0;
-    }
-    let s = st.s;
-    let line_h = st.line_h();
-    let pad = 6.0 * s;
-    let (w, h) = legend_size(entries, st);
-    let x0 = if right_aligned { x - w } else { x };
-    if let Some(r) = Rect::from_xywh(x0, y, w, h) {
-        let pb = PathBuilder::from_rect(r);
-        pixmap.fill_path(&pb, &solid(st.theme.legend_fill), FillRule::Winding, Transform::identity(), None);
-        pixmap.stroke_path(&pb, &solid(st.theme.legend_border), &Stroke { width: s, ..Default::default() }, Transform::identity(), None);
-    }
-    for (i, e) in entries.iter().enumerate() {
-        let cy = y + pad * 0.5 + line_h * (i as f32 + 0.5);
-        legend_entry(pixmap, e, x0 + pad, cy, st);
-    }
-    h
-}
-
 /// Entries in one row centred on `cx`, at height `cy` (device pixels), without a box.
 pub(crate) fn legend_row(pixmap: &mut Pixmap, entries: &[LegendEntry<'_>], cx: f32, cy: f32, st: &LegendStyle<'_>) {
     let gap = 18.0 * st.s;
@@ -203,6 +170,62 @@ pub(crate) fn legend_row(pixmap: &mut Pixmap, entries: &[LegendEntry<'_>], cx: f
         legend_entry(pixmap, e, x, cy, st);
         x += w + gap;
     }
+}
+
+/// The rows of a legend laid out in `width` device pixels: as many entries on a row as
+/// fit (at least one), rows top to bottom.
+pub(crate) fn legend_rows(entries: &[LegendEntry<'_>], width: f32, st: &LegendStyle<'_>) -> Vec<std::ops::Range<usize>> {
+    let gap = 18.0 * st.s;
+    let mut rows = Vec::new();
+    let (mut start, mut used) = (0, 0.0f32);
+    for (i, e) in entries.iter().enumerate() {
+        let w = st.entry_w(e);
+        if i > start && used + gap + w > width {
+            rows.push(start..i);
+            start = i;
+            used = w;
+        } else {
+            used += if i > start { gap + w } else { w };
+        }
+    }
+    if start < entries.len() {
+        rows.push(start..entries.len());
+    }
+    rows
+}
+
+/// The height in device pixels of the band [`legend_band`] draws `entries` in, `width`
+/// device pixels wide (0 with no entries).
+pub(crate) fn legend_band_height(entries: &[LegendEntry<'_>], width: f32, st: &LegendStyle<'_>) -> f32 {
+    let rows = legend_rows(entries, width, st).len();
+    if rows == 0 {
+        0.0
+    } else {
+        rows as f32 * st.line_h() + 4.0 * st.s
+    }
+}
+
+/// A legend outside the data: rows of entries, each row centred, in a band of `width`
+/// device pixels whose top-left corner is `(x, y)`, without a box. Returns its height.
+pub(crate) fn legend_band(pixmap: &mut Pixmap, entries: &[LegendEntry<'_>], x: f32, y: f32, width: f32, st: &LegendStyle<'_>) -> f32 {
+    let rows = legend_rows(entries, width, st);
+    let line_h = st.line_h();
+    let gap = 18.0 * st.s;
+    let widest = rows
+        .iter()
+        .map(|r| entries[r.clone()].iter().map(|e| st.entry_w(e)).sum::<f32>() + gap * (r.len().saturating_sub(1)) as f32)
+        .fold(0.0f32, f32::max);
+    let h = legend_band_height(entries, width, st);
+    if let Some(r) = Rect::from_xywh(x + 0.5 * (width - widest) - 6.0 * st.s, y, widest + 12.0 * st.s, h) {
+        let pb = PathBuilder::from_rect(r);
+        pixmap.fill_path(&pb, &solid(st.theme.legend_fill), FillRule::Winding, Transform::identity(), None);
+        pixmap.stroke_path(&pb, &solid(st.theme.legend_border), &Stroke { width: st.s, ..Default::default() }, Transform::identity(), None);
+    }
+    for (k, r) in rows.iter().enumerate() {
+        let cy = y + 2.0 * st.s + line_h * (k as f32 + 0.5);
+        legend_row(pixmap, &entries[r.clone()], x + 0.5 * width, cy, st);
+    }
+    h
 }
 
 /// One legend entry: its key from `kx`, its label after it, centred on `cy`.
