@@ -497,7 +497,7 @@ fn every_label_is_at_least_the_pages_size() {
     for theme in [Theme::for_page(false, 14.0), Theme::for_page(true, 14.0)] {
         for dpr in [1.0f32, 2.0] {
             let px = |w: u32, h: u32| pixmap((w as f32 * dpr) as u32, (h as f32 * dpr) as u32);
-            let mut views: Vec<(&str, Box<dyn Fn()>)> = Vec::new();
+            let mut views: Vec<(&str, Drawing<'_>)> = Vec::new();
             views.push(("mesh", Box::new(|| {
                 for side in [200u32, 320, 640] {
                     let mut p = px(side, side);
@@ -559,6 +559,9 @@ fn every_label_is_at_least_the_pages_size() {
     render_level_set(&mut pixmap(440, 480), &data, &LevelSetView::default());
     assert!((take_smallest_text() - 9.9).abs() < 1e-3);
 }
+
+/// A view drawn by the label size test.
+type Drawing<'a> = Box<dyn Fn() + 'a>;
 
 fn view3d_sphere() -> (Vec<glam::DVec3>, Vec<u32>, Vec<u32>) {
     let mut points = Vec::new();
