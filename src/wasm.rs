@@ -14,6 +14,7 @@ use crate::lab::views::Canvas;
 use crate::lab::volume as volume_lab;
 use crate::lab::{self as playground, Settings, Side, SideSweep};
 use crate::permalink;
+use crate::render::Theme;
 use crate::surface::Model;
 use glam::DVec2;
 
@@ -74,14 +75,16 @@ pub fn tour_card(name: &str) -> Result<JsValue, JsError> {
     to_js(&fig.card(i)?)
 }
 
-/// A figure's picture, `w × h` CSS pixels at ratio `dpr`: `{ pixels, w, h }` (device pixels).
+/// A figure's picture, `w × h` CSS pixels at ratio `dpr`, in the dark or the light theme
+/// with labels of at least `label_px` CSS pixels (as [`Playground::set_theme`]):
+/// `{ pixels, w, h }` (device pixels).
 #[wasm_bindgen(js_name = tourPicture)]
-pub fn tour_picture(name: &str, w: u32, h: u32, dpr: f32) -> Result<JsValue, JsError> {
+pub fn tour_picture(name: &str, w: u32, h: u32, dpr: f32, dark: bool, label_px: f32) -> Result<JsValue, JsError> {
     if !(dpr.is_finite() && dpr > 0.0 && dpr <= 4.0) {
         return Err(JsError::new(&format!("a pixel ratio of {dpr}: give one above 0 and at most 4")));
     }
     let c = Canvas { w: ((w as f32) * dpr).round() as u32, h: ((h as f32) * dpr).round() as u32, dpr };
-    let pm = crate::lab::tour::pictures::render(name, c)?;
+    let pm = crate::lab::tour::pictures::render(name, c, &Theme::for_page(dark, label_px))?;
     let (pw, ph) = (pm.width(), pm.height());
     object(&[("pixels", pixels(pm)), ("w", JsValue::from(pw)), ("h", JsValue::from(ph))])
 }
@@ -390,7 +393,9 @@ impl Playground {
     }
 
     /// Draws both panels' meshes on canvases of `w × h` device pixels at ratio `dpr`:
-    /// `{ old, new, render_ms: [old, new], copy_ms }`, RGBA pixels of each panel, or
+    /// `{ old, new, render_ms: [old, new], copy_ms, colour_bar }`, RGBA pixels of each
+    /// panel, `colour_bar` whether the pictures carry the colour bar (false: the canvas is
+    /// too small for it, show the scale beside it), or
     /// `null` for a panel whose last picture sent shows the same positions, canvas and
     /// highlight (unless `force`). The chosen node is highlighted with its star.
     pub fn frame(&mut self, w: u32, h: u32, dpr: f32, force: bool) -> Result<JsValue, JsError> {
@@ -431,7 +436,18 @@ impl Playground {
             ("new", new),
             ("render_ms", to_js(&render_ms)?),
             ("copy_ms", JsValue::from_f64(copy_ms)),
+            ("colour_bar", JsValue::from_bool(self.inner.panel_colour_bar(c))),
         ])
+    }
+
+    /// Draws every later picture (meshes, level sets, charts, histograms, the figure) in
+    /// the dark (projector) or the light theme, every label at least `label_px` CSS
+    /// pixels (0: each label its own size); forgets the frames sent, so the next
+    /// [`frame`](Self::frame) draws both panels.
+    #[wasm_bindgen(js_name = setTheme)]
+    pub fn set_theme(&mut self, dark: bool, label_px: f32) {
+        self.inner.set_theme(Theme::for_page(dark, label_px));
+        self.shown = [None, None];
     }
 
     /// Forgets what was sent: the next [`frame`](Self::frame) draws both panels (after
@@ -596,9 +612,9 @@ impl Playground {
     }
 }
 
-/// Both sides drawn by `render`: `{ old, new, render_ms: [old, new], copy_ms }`
-/// (RGBA pixels), the 3D views' frame.
-fn both_sides(render: impl Fn(Side) -> crate::Result<tiny_skia::Pixmap>) -> Result<JsValue, JsError> {
+/// Both sides drawn by `render`: `{ old, new, render_ms: [old, new], copy_ms, colour_bar }`
+/// (RGBA pixels; `colour_bar` whether they carry the colour bar), the 3D views' frame.
+fn both_sides(render: impl Fn(Side) -> crate::Result<tiny_skia::Pixmap>, colour_bar: bool) -> Result<JsValue, JsError> {
     let mut out = Vec::new();
     let (mut render_ms, mut copy_ms) = ([0.0; 2], 0.0);
     for s in Side::BOTH {
@@ -611,7 +627,13 @@ fn both_sides(render: impl Fn(Side) -> crate::Result<tiny_skia::Pixmap>) -> Resu
     }
     let new = out.pop().unwrap_or(JsValue::NULL);
     let old = out.pop().unwrap_or(JsValue::NULL);
-    object(&[("old", old), ("new", new), ("render_ms", to_js(&render_ms)?), ("copy_ms", JsValue::from_f64(copy_ms))])
+    object(&[
+        ("old", old),
+        ("new", new),
+        ("render_ms", to_js(&render_ms)?),
+        ("copy_ms", JsValue::from_f64(copy_ms)),
+        ("colour_bar", JsValue::from_bool(colour_bar)),
+    ])
 }
 
 /// The page's state for a surface in 3D: one opaque handle (see
@@ -665,10 +687,10 @@ impl SurfaceLab {
     }
 
     /// Both sides drawn by the shared camera on canvases of `w × h` device pixels at
-    /// ratio `dpr`: `{ old, new, render_ms: [old, new], copy_ms }` (RGBA pixels).
+    /// ratio `dpr`: `{ old, new, render_ms: [old, new], copy_ms, colour_bar }` (RGBA pixels).
     pub fn frame(&mut self, w: u32, h: u32, dpr: f32) -> Result<JsValue, JsError> {
         let c = canvas(w, h, dpr);
-        let f = both_sides(|s| Ok(self.inner.render(s, c)?.0))?;
+        let f = both_sides(|s| Ok(self.inner.render(s, c)?.0), self.inner.colour_bar_shown(c))?;
         self.canvas = Some(c);
         Ok(f)
     }
@@ -681,6 +703,13 @@ impl SurfaceLab {
     /// Magnifies both views `factor` times (within the camera's range).
     pub fn zoom(&mut self, factor: f64) {
         self.inner.zoom(factor);
+    }
+
+    /// Draws every later picture in the dark (projector) or the light theme, every label
+    /// at least `label_px` CSS pixels (as [`Playground::set_theme`]).
+    #[wasm_bindgen(js_name = setTheme)]
+    pub fn set_theme(&mut self, dark: bool, label_px: f32) {
+        self.inner.set_theme(Theme::for_page(dark, label_px));
     }
 
     /// The camera as it starts.
@@ -762,10 +791,10 @@ impl VolumeLab {
     }
 
     /// Both sides cut and drawn by the shared camera on canvases of `w × h` device pixels
-    /// at ratio `dpr`: `{ old, new, render_ms: [old, new], copy_ms }` (RGBA pixels).
+    /// at ratio `dpr`: `{ old, new, render_ms: [old, new], copy_ms, colour_bar }` (RGBA pixels).
     pub fn frame(&mut self, w: u32, h: u32, dpr: f32) -> Result<JsValue, JsError> {
         let c = canvas(w, h, dpr);
-        both_sides(|s| Ok(self.inner.render(s, c)?.0))
+        both_sides(|s| Ok(self.inner.render(s, c)?.0), self.inner.colour_bar_shown(c))
     }
 
     /// Both sides' dihedral angle histograms beside the mesh as loaded, on canvases of
@@ -791,6 +820,13 @@ impl VolumeLab {
     /// Magnifies both views `factor` times (within the camera's range).
     pub fn zoom(&mut self, factor: f64) {
         self.inner.zoom(factor);
+    }
+
+    /// Draws every later picture in the dark (projector) or the light theme, every label
+    /// at least `label_px` CSS pixels (as [`Playground::set_theme`]).
+    #[wasm_bindgen(js_name = setTheme)]
+    pub fn set_theme(&mut self, dark: bool, label_px: f32) {
+        self.inner.set_theme(Theme::for_page(dark, label_px));
     }
 
     /// The camera as it starts.

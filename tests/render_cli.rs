@@ -111,3 +111,38 @@ fn a_mesh_over_the_render_limit_is_refused_in_this_tools_words() {
     assert!(!err.contains("the page") && !err.contains("use the command-line tool"), "{err}");
     std::fs::remove_dir_all(&d).unwrap();
 }
+
+/// `--theme dark` draws the projector theme: the level sets of Chen's star configuration,
+/// compared pixel for pixel with `tests/images/cli_levelset_dark.png`
+/// (`UPDATE_GOLDEN=1` rewrites it). The default stays the light theme.
+#[test]
+fn the_dark_theme_draws_the_golden_picture() {
+    let d = dir("dark");
+    let star = d.join("star.vtk");
+    let o = run(&["generate", "star", "--kind", "chen", "-o", star.to_str().unwrap()]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let out = d.join("dark.png");
+    let args = ["render", star.to_str().unwrap(), "-o", out.to_str().unwrap(), "--view", "levelset", "--size", "760x420"];
+    let o = run(&[&args[..], &["--theme", "dark"]].concat());
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let got = tiny_skia::Pixmap::load_png(&out).unwrap();
+    let golden = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/images/cli_levelset_dark.png");
+    if std::env::var_os("UPDATE_GOLDEN").is_some() {
+        got.save_png(&golden).unwrap();
+    }
+    let want = tiny_skia::Pixmap::load_png(&golden).unwrap();
+    assert_eq!((got.width(), got.height()), (want.width(), want.height()));
+    let differ = got.pixels().iter().zip(want.pixels()).filter(|(a, b)| a != b).count();
+    assert_eq!(differ, 0, "{differ} pixels differ from {}", golden.display());
+    // the corner is the dark paper (#14171b); the light default's is white
+    let c = got.pixel(1, 1).unwrap();
+    assert_eq!((c.red(), c.green(), c.blue()), (20, 23, 27));
+    let light = d.join("light.png");
+    let o = run(&["render", star.to_str().unwrap(), "-o", light.to_str().unwrap(), "--view", "levelset", "--size", "760x420"]);
+    assert!(o.status.success());
+    let c = tiny_skia::Pixmap::load_png(&light).unwrap().pixel(1, 1).unwrap();
+    assert_eq!((c.red(), c.green(), c.blue()), (255, 255, 255));
+    let o = run(&[&args[..], &["--theme", "sepia"]].concat());
+    assert!(!o.status.success());
+    std::fs::remove_dir_all(&d).unwrap();
+}

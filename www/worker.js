@@ -42,9 +42,9 @@ function surface() {
 
 // The page's theme for every picture (dark or light, the smallest label in CSS px): kept
 // here, so each new handle and the tour's pictures draw in it.
-let theme = { dark: false, labelPx: 14 };
+let theme = { dark: false, labelPx: 0 };
 function applyTheme() {
-  if (pg && pg.setTheme) pg.setTheme(theme.dark, theme.labelPx);
+  if (pg) pg.setTheme(theme.dark, theme.labelPx);
 }
 
 // Replace the handle only once the new one is built: a failed load keeps the old mesh.
@@ -63,6 +63,7 @@ function replace(next) {
 
 const handlers = {
   samples: () => wasm.samples(),
+  // the theme of every later picture: dark (projector) or light, labels >= labelPx CSS px
   theme: (dark, labelPx) => {
     theme = { dark: Boolean(dark), labelPx: Number(labelPx) };
     applyTheme();
@@ -142,7 +143,8 @@ const handlers = {
   panicForTest: () => wasm.panicForTest(),
   tourFigures: () => wasm.tourFigures(),
   tourCard: (name) => wasm.tourCard(name),
-  tourPicture: (name, w, h, dpr) => wasm.tourPicture(name, w, h, dpr),
+  // the tour's pictures in the page's theme too
+  tourPicture: (name, w, h, dpr) => wasm.tourPicture(name, w, h, dpr, theme.dark, theme.labelPx),
   tourPictureSize: (name) => wasm.tourPictureSize(name),
   tourRow: (i) => wasm.tourRow(i),
   decodePermalink: (hash) => wasm.decodePermalink(hash),

@@ -8,7 +8,7 @@ use super::{Playground, Side};
 use crate::error::{Error, Result};
 use crate::objective::Star;
 use crate::optimize::SolveResult;
-use crate::render::{level_set_view, star_bounds, Frame, View, ZoomPan};
+use crate::render::{feasible_bounds, level_set_view, Frame, View, ZoomPan};
 
 /// Least and greatest magnification of a zoomed view: beyond these a picture shows
 /// nothing more (one element over the canvas, or the mesh as a dot).
@@ -94,11 +94,17 @@ impl Playground {
         self.level_window
     }
 
-    /// The star's box round `node` on one side, and the part of it shown.
+    /// The box a level set of `node` on one side starts from (the feasible region round
+    /// the node, its position and the optimum the side's solver finds:
+    /// [`feasible_bounds`]), and the part of it shown.
     pub(crate) fn level_bounds(&self, side: Side, node: usize) -> ((DVec2, DVec2), (DVec2, DVec2)) {
         let mut star = Star::new();
         star.gather(&self.panel(side).mesh, node);
-        let whole = star_bounds(&star, LEVEL_SET_MARGIN);
+        let mut keep = vec![star.x0];
+        if let Ok(r) = self.solve_node(side, node) {
+            keep.push(r.x);
+        }
+        let whole = feasible_bounds(&star, &keep, LEVEL_SET_MARGIN);
         (whole, self.level_window.within(whole))
     }
 
@@ -106,7 +112,7 @@ impl Playground {
     fn level_view(&self, side: Side, node: usize, c: Canvas) -> ((DVec2, DVec2), View) {
         let (whole, shown) = self.level_bounds(side, node);
         let frame = Frame::new(0.0, 0.0, c.w as f32 / c.dpr, c.h as f32 / c.dpr);
-        (whole, level_set_view(frame, shown.0, shown.1, c.dpr))
+        (whole, level_set_view(frame, shown.0, shown.1, c.dpr, &self.theme(), self.level_legend.get()[side as usize]))
     }
 
     /// Magnifies the level-set views `factor` times about the CSS pixel `at` of `side`'s

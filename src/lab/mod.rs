@@ -387,6 +387,11 @@ pub struct Playground {
     level_window: interact::LevelWindow,
     /// What undo puts back: the latest move last.
     undo: Vec<interact::Undo>,
+    /// The colours and label sizes every picture is drawn with.
+    theme: crate::render::Theme,
+    /// The CSS pixels each side's level-set legend took when it was last drawn, so a
+    /// pointer on it maps as it was drawn.
+    level_legend: std::cell::Cell<[f32; 2]>,
 }
 
 /// Positions as x, y interleaved, the form in which they travel between two engines.
@@ -427,7 +432,24 @@ impl Playground {
             zoom: crate::render::ZoomPan::default(),
             level_window: interact::LevelWindow::default(),
             undo: Vec::new(),
+            theme: crate::render::Theme::light(),
+            level_legend: std::cell::Cell::new([0.0; 2]),
         })
+    }
+
+    /// The theme every later picture is drawn with.
+    pub fn theme(&self) -> crate::render::Theme {
+        self.theme
+    }
+
+    /// Draws every later picture with `theme`, forgetting the kept mesh pictures.
+    pub fn set_theme(&mut self, theme: crate::render::Theme) {
+        if self.theme != theme {
+            self.theme = theme;
+            for p in &self.panels {
+                p.picture.replace(None);
+            }
+        }
     }
 
     fn fresh_version(&mut self) -> u64 {

@@ -16,8 +16,8 @@ use super::stats::INVERTED_BUCKET;
 use crate::render::{bucket_color, BUCKETS};
 use crate::mesh::Mesh;
 use crate::render::{
-    draw_colour_bar, draw_inverted, mesh_view, push_element, Frame, MeshView, Metric, Show,
-    View, COLOUR_BAR_WIDTH, INVERTED,
+    colour_bar_band, draw_colour_bar, draw_inverted, mesh_view, push_element, Frame, MeshView, Metric, Show,
+    View, INVERTED,
 };
 
 /// Sub-pixel steps per pixel of the fixed-point rasterizer.
@@ -41,7 +41,7 @@ pub fn applies(mean_edge: f64, view: &View, opts: &MeshView) -> bool {
         // render_mesh's rule: only where edges are ≥ 10 CSS px, which implies edges shown
         Show::Auto => hidden_edges,
     };
-    hidden_edges && hidden_nodes && opts.metric == Metric::Shape && opts.frame.is_none() && opts.background.is_some()
+    hidden_edges && hidden_nodes && opts.metric == Metric::Shape && opts.frame.is_none() && opts.background
 }
 
 /// The view `render_mesh` uses on this pixmap.
@@ -58,7 +58,7 @@ pub fn view_of(pixmap: &Pixmap, mesh: &Mesh, opts: &MeshView) -> View {
 pub fn render_fine(pixmap: &mut Pixmap, mesh: &Mesh, buckets: &[u8], view: &View, opts: &MeshView) -> usize {
     let (w, h) = (pixmap.width() as usize, pixmap.height() as usize);
     let s = crate::render::view::sane_dpr(opts.dpr);
-    let bg = opts.background.unwrap_or(Color::WHITE);
+    let bg = opts.theme.paper;
     pixmap.fill(bg);
 
     // device positions of all nodes in fixed point (i32::MIN: far away or not finite)
@@ -164,12 +164,11 @@ pub fn render_fine(pixmap: &mut Pixmap, mesh: &Mesh, buckets: &[u8], view: &View
         }
     }
 
-    if opts.colour_bar {
-        let frame = Frame::new(0.0, 0.0, w as f32 / s, h as f32 / s);
-        let bar = Frame::new(frame.right() - COLOUR_BAR_WIDTH, frame.y, COLOUR_BAR_WIDTH, frame.h);
+    let frame = Frame::new(0.0, 0.0, w as f32 / s, h as f32 / s);
+    if let Some(bar) = opts.colour_bar.then(|| colour_bar_band(frame, opts.metric.label(mesh), &opts.theme)).flatten() {
         fill_rect(pixmap, bar.x * s, bar.y * s, bar.w * s, bar.h * s, bg);
         let (d0, d1) = opts.metric.domain(mesh);
-        draw_colour_bar(pixmap, bar, opts.colormap, (d0, d1), opts.metric.label(mesh), inverted.len(), s);
+        draw_colour_bar(pixmap, bar, opts.colormap, (d0, d1), opts.metric.label(mesh), inverted.len(), s, &opts.theme);
     }
     inverted.len()
 }

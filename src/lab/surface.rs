@@ -49,6 +49,8 @@ pub struct SurfaceLab {
     settings: Settings,
     sides: [SurfaceSide; 2],
     camera: Camera,
+    /// The colours and label sizes every picture is drawn with.
+    theme: crate::render::Theme,
 }
 
 impl SurfaceLab {
@@ -69,7 +71,7 @@ impl SurfaceLab {
             SurfaceSide::new(Side::Old, surface.clone(), stats.clone(), &settings)?,
             SurfaceSide::new(Side::New, surface.clone(), stats.clone(), &settings)?,
         ];
-        Ok(SurfaceLab { original: surface, original_stats: stats, settings, sides, camera: Camera::default() })
+        Ok(SurfaceLab { original: surface, original_stats: stats, settings, sides, camera: Camera::default(), theme: crate::render::Theme::light() })
     }
 
     fn side(&self, side: Side) -> &SurfaceSide {
@@ -182,6 +184,25 @@ impl SurfaceLab {
         self.camera = self.camera.zoomed(factor);
     }
 
+    /// Whether a side drawn on canvas `c` carries the colour bar (a small canvas leaves it
+    /// out, and the page shows the scale beside it).
+    pub fn colour_bar_shown(&self, c: Canvas) -> bool {
+        let frame = crate::render::Frame::new(0.0, 0.0, c.w as f32 / c.dpr, c.h as f32 / c.dpr);
+        // under the title's band, as the 3D view lays it out
+        let top = 26.0 * self.theme.grow(14.0);
+        crate::render::colour_bar_band(frame.inset(0.0, top, 0.0, 0.0), crate::render::Metric::Shape.label(self.original.flat()), &self.theme).is_some()
+    }
+
+    /// The theme every later picture is drawn with.
+    pub fn theme(&self) -> crate::render::Theme {
+        self.theme
+    }
+
+    /// Draws every later picture with `theme`.
+    pub fn set_theme(&mut self, theme: crate::render::Theme) {
+        self.theme = theme;
+    }
+
     /// The camera as it starts.
     pub fn reset_camera(&mut self) {
         self.camera = Camera::default();
@@ -189,7 +210,7 @@ impl SurfaceLab {
 
     /// The options a side is drawn with on canvas `c`: the shared camera, the side's title.
     fn view(&self, side: Side, c: Canvas) -> SurfaceView {
-        SurfaceView { camera: self.camera, dpr: c.dpr, title: Some(self.settings.side_title(side)), ..SurfaceView::default() }
+        SurfaceView { camera: self.camera, dpr: c.dpr, title: Some(self.settings.side_title(side)), theme: self.theme, ..SurfaceView::default() }
     }
 
     /// A side's surface drawn by the 3D view on a canvas of `c.w × c.h` device pixels,

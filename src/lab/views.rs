@@ -12,7 +12,7 @@ use crate::error::{Error, Result};
 use crate::objective::{Goal, Star};
 use crate::optimize::{DirectionKind, SolveResult, StopReason};
 use crate::render::{
-    mesh_view, render_angle_histogram, render_compare, ComparePanel, render_chart, render_level_set, render_mesh, render_pass_histories,
+    level_set_legend_height, mesh_view, render_angle_histogram, render_compare, ComparePanel, render_chart, render_level_set, render_mesh, render_pass_histories,
     sample_field, AngleHistogram, Chart, Frame, HistogramSeries, LevelSet, LevelSetView, MeshView,
     percentages, PassHistory, PathKind, Series, View,
 };
@@ -21,8 +21,9 @@ use crate::render::{
 pub const MAX_SIDE: u32 = 4096;
 /// Samples per side of the level-set grid: smooth enough at any canvas size, and cheap.
 pub const LEVEL_SET_SAMPLES: usize = 161;
-/// Room around a star in the level-set view, as a fraction of its size.
-pub const LEVEL_SET_MARGIN: f64 = 0.15;
+/// Room around the feasible region (with the start and the optimum) in the level-set
+/// view, as a fraction of its size.
+pub const LEVEL_SET_MARGIN: f64 = 0.1;
 
 /// An opaque white pixmap of `w × h` device pixels, or an error saying why not.
 pub fn pixmap(w: u32, h: u32) -> Result<Pixmap> {
@@ -130,6 +131,7 @@ impl Playground {
     fn mesh_options(&self, c: Canvas, highlight: Option<usize>) -> MeshView {
         let mut o = MeshView::default().with_dpr(c.dpr).with_highlight(highlight).with_zoom(self.zoom());
         o.bounds = Some(self.bounds());
+        o.theme = self.theme();
         o
     }
 
@@ -163,6 +165,12 @@ impl Playground {
         Ok(pm)
     }
 
+    /// Whether the panels on canvas `c` carry the colour bar (a small canvas leaves it
+    /// out, and the page shows the scale beside it).
+    pub fn panel_colour_bar(&self, c: Canvas) -> bool {
+        crate::render::mesh_colour_bar_shown(c.w, c.h, &self.panel(Side::Old).mesh, &self.mesh_options(c, None))
+    }
+
     /// The view the panels are drawn with on canvas `c` (the same for both).
     pub fn panel_view(&self, c: Canvas) -> View {
         mesh_view(c.w, c.h, &self.panel(Side::Old).mesh, &self.mesh_options(c, None))
@@ -183,8 +191,13 @@ impl Playground {
         let title = self.settings.side_title(side);
         let data = LevelSet { field: &field, star: &star, path: &path, optimum: Some(result.x), title: &title };
         let mut pm = pixmap(c.w, c.h)?;
-        let clip = !self.level_window().is_whole();
-        render_level_set(&mut pm, &data, &LevelSetView { dpr: c.dpr, clip, ..LevelSetView::default() });
+        // the window frames the feasible region, not the whole star: what lies outside it
+        // is not drawn
+        let opts = LevelSetView { dpr: c.dpr, clip: true, theme: self.theme(), ..LevelSetView::default() };
+        let mut legend = self.level_legend.get();
+        legend[side as usize] = level_set_legend_height(&data, &opts, c.w as f32 / crate::render::view::sane_dpr(c.dpr));
+        self.level_legend.set(legend);
+        render_level_set(&mut pm, &data, &opts);
         Ok((pm, result))
     }
 
@@ -206,7 +219,7 @@ impl Playground {
             let title = format!("{label}, per iteration ({} is better)", better_words(choice.objective.goal()));
             render_chart(
                 &mut pm,
-                &[Series::new(&label, points).with_color(side.color())],
+                &[Series::new(&label, points).with_color(self.theme().side(side as usize))],
                 &Chart {
                     title: &title,
                     x_label: "iteration",
@@ -214,6 +227,7 @@ impl Playground {
                     dpr: chart.dpr,
                     frame: Some(full.row(i, 2, 4.0)),
                     legend: false,
+                    theme: self.theme(),
                     ..Chart::default()
                 },
             );
@@ -257,12 +271,12 @@ impl Playground {
                     max_angle_deg: &c[1],
                     min_quality: &c[2],
                     inverted: &c[3],
-                    color: Some(side.color()),
+                    color: Some(self.theme().side(side as usize)),
                 }
             })
             .collect();
         let mut pm = pixmap(c.w, c.h)?;
-        render_pass_histories(&mut pm, &runs, &Chart { title: "Per pass (0 = as loaded)", dpr: c.dpr, ..Chart::default() });
+        render_pass_histories(&mut pm, &runs, &Chart { title: "Per pass (0 = as loaded)", dpr: c.dpr, theme: self.theme(), ..Chart::default() });
         Ok(pm)
     }
 
@@ -290,7 +304,7 @@ impl Playground {
             &mut pm,
             &ComparePanel { mesh: &self.panel(Side::Old).mesh, title: &to, lines: &lo },
             &ComparePanel { mesh: &self.panel(Side::New).mesh, title: &tn, lines: &ln },
-            &MeshView::default().with_dpr(c.dpr),
+            &MeshView { theme: self.theme(), ..MeshView::default().with_dpr(c.dpr) },
         );
         Ok(pm)
     }
@@ -322,13 +336,14 @@ impl Playground {
             &mut pm,
             &[
                 HistogramSeries { label: "as loaded", counts: start, color: None },
-                HistogramSeries { label: &label, counts: now, color: Some(side.color()) },
+                HistogramSeries { label: &label, counts: now, color: Some(self.theme().side(side as usize)) },
             ],
             &AngleHistogram {
                 title: "Corner angles (6° bins)",
                 dpr: c.dpr,
                 y_top: Some(self.histogram_top()),
                 log_y,
+                theme: self.theme(),
                 ..AngleHistogram::default()
             },
         )?;

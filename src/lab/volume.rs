@@ -51,6 +51,8 @@ pub struct VolumeLab {
     sides: [VolumeSide; 2],
     camera: Camera,
     cut: Cut,
+    /// The colours and label sizes every picture is drawn with.
+    theme: crate::render::Theme,
 }
 
 impl VolumeLab {
@@ -76,6 +78,7 @@ impl VolumeLab {
             sides,
             camera: Camera::default(),
             cut: Cut::default(),
+            theme: crate::render::Theme::light(),
         })
     }
 
@@ -195,6 +198,25 @@ impl VolumeLab {
         self.camera = self.camera.zoomed(factor);
     }
 
+    /// Whether a side drawn on canvas `c` carries the colour bar (a small canvas leaves it
+    /// out, and the page shows the scale beside it).
+    pub fn colour_bar_shown(&self, c: Canvas) -> bool {
+        let frame = crate::render::Frame::new(0.0, 0.0, c.w as f32 / c.dpr, c.h as f32 / c.dpr);
+        // under the title's band, as the 3D view lays it out
+        let top = 26.0 * self.theme.grow(14.0);
+        crate::render::colour_bar_band(frame.inset(0.0, top, 0.0, 0.0), "mean ratio", &self.theme).is_some()
+    }
+
+    /// The theme every later picture is drawn with.
+    pub fn theme(&self) -> crate::render::Theme {
+        self.theme
+    }
+
+    /// Draws every later picture with `theme`.
+    pub fn set_theme(&mut self, theme: crate::render::Theme) {
+        self.theme = theme;
+    }
+
     /// The camera as it starts.
     pub fn reset_camera(&mut self) {
         self.camera = Camera::default();
@@ -223,6 +245,7 @@ impl VolumeLab {
             camera: self.camera,
             dpr: c.dpr,
             title: Some(self.side_title(side)),
+            theme: self.theme,
             ..SurfaceView::default()
         };
         let proj = self.mesh(side).render_cut(&mut pm, self.cut, &view);
@@ -247,7 +270,7 @@ impl VolumeLab {
             HistogramSeries { label: &label, counts: &self.side(side).stats.angle_histogram_6deg, color: None },
         ];
         let title = format!("Dihedral angles, {}", self.side_title(side));
-        let opts = AngleHistogram { title: &title, dpr: c.dpr, y_top: Some(top), ..AngleHistogram::default() };
+        let opts = AngleHistogram { title: &title, dpr: c.dpr, y_top: Some(top), theme: self.theme, ..AngleHistogram::default() };
         render_angle_histogram(&mut pm, &series, &opts)?;
         Ok(pm)
     }

@@ -1,9 +1,10 @@
 //! Axes of the charts: "nice" tick values (the 1-2-5 rule), decade ticks for log
 //! scales, tick labels, and the drawing of a plot box with its ticks and labels.
 
-use tiny_skia::{Color, Paint, PathBuilder, Pixmap, Stroke, Transform};
+use tiny_skia::{Paint, PathBuilder, Pixmap, Stroke, Transform};
 
 use super::text::{draw_text, draw_text_rotated, Align, TextStyle, Valign};
+use super::theme::Theme;
 
 /// Tick values along an axis and their spacing.
 #[derive(Clone, Debug, PartialEq)]
@@ -225,12 +226,13 @@ pub struct AxisLabels<'a> {
 
 /// Draws the plot box (`x` and `y` axes in device pixels), light grid lines at the ticks,
 /// tick labels and axis titles. `s` is the device-pixel ratio for sizes.
-pub(crate) fn draw_axes(pixmap: &mut Pixmap, x: &Axis, y: &Axis, labels: AxisLabels<'_>, x_ticks: &Ticks, s: f32) {
+pub(crate) fn draw_axes(pixmap: &mut Pixmap, x: &Axis, y: &Axis, labels: AxisLabels<'_>, x_ticks: &Ticks, s: f32, theme: &Theme) {
     let (l, r) = (x.p0.min(x.p1), x.p0.max(x.p1));
     let (t, b) = (y.p0.min(y.p1), y.p0.max(y.p1));
     let mut grid = PathBuilder::new();
     let mut ticks = PathBuilder::new();
-    let small = TextStyle::new(11.0 * s).with_color(Color::from_rgba8(40, 40, 40, 255));
+    let tick_px = theme.text_px(11.0 * s, s);
+    let small = TextStyle::new(tick_px).with_color(theme.text);
     for (&v, label) in x_ticks.values.iter().zip(tick_labels(x, x_ticks)) {
         if let Some(px) = x.map(v) {
             grid.move_to(px, t);
@@ -252,11 +254,11 @@ pub(crate) fn draw_axes(pixmap: &mut Pixmap, x: &Axis, y: &Axis, labels: AxisLab
         }
     }
     let mut paint = Paint::default();
-    paint.set_color_rgba8(0, 0, 0, 28);
+    paint.set_color(theme.grid);
     if let Some(p) = grid.finish() {
         pixmap.stroke_path(&p, &paint, &Stroke { width: 1.0 * s, ..Default::default() }, Transform::identity(), None);
     }
-    paint.set_color_rgba8(40, 40, 40, 255);
+    paint.set_color(theme.text);
     let stroke = Stroke { width: 1.0 * s, ..Default::default() };
     if let Some(p) = ticks.finish() {
         pixmap.stroke_path(&p, &paint, &stroke, Transform::identity(), None);
@@ -265,18 +267,20 @@ pub(crate) fn draw_axes(pixmap: &mut Pixmap, x: &Axis, y: &Axis, labels: AxisLab
         let p = PathBuilder::from_rect(rect);
         pixmap.stroke_path(&p, &paint, &stroke, Transform::identity(), None);
     }
-    let label = TextStyle::new(12.0 * s).with_color(Color::from_rgba8(20, 20, 20, 255));
+    let label = TextStyle::new(theme.text_px(12.0 * s, s)).with_color(theme.label);
+    // below the tick labels, however large the theme makes them
+    let below = 22.0 * s * theme.grow(11.0);
     if !labels.x.is_empty() {
-        draw_text(pixmap, labels.x, 0.5 * (l + r), b + 22.0 * s, label.with_align(Align::Centre, Valign::Top));
+        draw_text(pixmap, labels.x, 0.5 * (l + r), b + below, label.with_align(Align::Centre, Valign::Top));
     }
     if !labels.y.is_empty() {
         // left of the widest tick label
-        let widest = y_labels.iter().map(|l| super::text::text_width(l, 11.0 * s)).fold(0.0f32, f32::max);
+        let widest = y_labels.iter().map(|l| super::text::text_width(l, tick_px)).fold(0.0f32, f32::max);
         let lx = l - 10.0 * s - widest - 8.0 * s;
         draw_text_rotated(pixmap, labels.y, lx, 0.5 * (t + b), label.with_align(Align::Centre, Valign::Bottom), -90.0);
     }
     if !labels.title.is_empty() {
-        let title = TextStyle::new(14.0 * s).with_color(Color::BLACK).with_align(Align::Centre, Valign::Bottom);
+        let title = TextStyle::new(theme.text_px(14.0 * s, s)).with_color(theme.ink).with_align(Align::Centre, Valign::Bottom);
         draw_text(pixmap, labels.title, 0.5 * (l + r), t - 8.0 * s, title);
     }
 }

@@ -5,8 +5,8 @@ use glam::DVec2;
 use tiny_skia::{Color, PathBuilder, Pixmap, Rect, Stroke, StrokeDash, Transform};
 
 use super::axes::{draw_axes, format_tick, nice_range, nice_ticks, Axis, AxisLabels, Scale, Ticks};
-use super::colormap::series_color;
-use super::paint::{fill_rect, legend, legend_row, legend_size, push_marker, rect_mask, solid, Key, LegendEntry, Marker};
+use super::paint::{fill_rect, legend_band, legend_band_height, push_marker, rect_mask, solid, Key, LegendEntry, LegendStyle, Marker};
+use super::theme::Theme;
 use super::text::{draw_text, Align, TextStyle, Valign};
 use super::view::{sane_dpr, Frame};
 
@@ -16,7 +16,7 @@ use super::view::{sane_dpr, Frame};
 pub struct Series<'a> {
     pub label: &'a str,
     pub points: &'a [DVec2],
-    /// Default `None`: the `i`-th series takes [`series_color`]`(i)`.
+    /// Default `None`: the `i`-th series takes the theme's [`Theme::series`]`(i)`.
     pub color: Option<Color>,
     /// Default false.
     pub dashed: bool,
@@ -58,7 +58,7 @@ pub struct Chart<'a> {
     pub dpr: f32,
     /// Where to draw, CSS pixels. Default the whole pixmap.
     pub frame: Option<Frame>,
-    /// Draw the legend (top right, inside the plot). Default true.
+    /// Draw the legend (in a band under the plot, which shrinks to make room). Default true.
     pub legend: bool,
     /// A broken y axis: when some points lie below this value and others at or above it,
     /// the axis spans only the values at or above it, and the points below sit in a band
@@ -66,11 +66,13 @@ pub struct Chart<'a> {
     /// an inverted corner of −176° would otherwise squash every later pass into a line).
     /// Default `None`.
     pub y_break: Option<f64>,
+    /// Colours and label sizes. Default [`Theme::light`].
+    pub theme: Theme,
 }
 
 impl Default for Chart<'_> {
     fn default() -> Self {
-        Chart { title: "", x_label: "", y_label: "", log_y: false, integer_x: true, y_range: None, dpr: 1.0, frame: None, legend: true, y_break: None }
+        Chart { title: "", x_label: "", y_label: "", log_y: false, integer_x: true, y_range: None, dpr: 1.0, frame: None, legend: true, y_break: None, theme: Theme::light() }
     }
 }
 
@@ -127,11 +129,26 @@ fn integer_ticks(lo: f64, hi: f64) -> Ticks {
 pub fn render_chart(pixmap: &mut Pixmap, series: &[Series<'_>], chart: &Chart<'_>) {
     let s = sane_dpr(chart.dpr);
     let frame = chart.frame.unwrap_or(Frame::of_pixmap(pixmap, s));
-    fill_rect(pixmap, frame.x * s, frame.y * s, frame.w * s, frame.h * s, Color::WHITE);
-    let top = if chart.title.is_empty() { 12.0 } else { 32.0 };
-    let left = if chart.y_label.is_empty() { 48.0 } else { 66.0 };
-    let bottom = if chart.x_label.is_empty() { 28.0 } else { 46.0 };
-    let plot = frame.inset(left, top, 14.0, bottom);
+    let theme = &chart.theme;
+    fill_rect(pixmap, frame.x * s, frame.y * s, frame.w * s, frame.h * s, theme.paper);
+    // room for the labels, grown with them when the theme makes them larger
+    let top = if chart.title.is_empty() { 12.0 } else { 32.0 * theme.grow(14.0) };
+    let left = if chart.y_label.is_empty() { 48.0 } else { 66.0 } * theme.grow(11.0);
+    let bottom = if chart.x_label.is_empty() { 28.0 } else { 46.0 } * theme.grow(11.0);
+    // the legend's band under the axes: never over the curves
+    let ls = LegendStyle { theme, s, dpr: s };
+    let entries: Vec<LegendEntry<'_>> = if chart.legend {
+        series
+            .iter()
+            .enumerate()
+            .filter(|(_, x)| !x.label.is_empty())
+            .map(|(i, x)| LegendEntry { label: x.label, color: x.color.unwrap_or(theme.series(i)), key: Key::Line { dashed: x.dashed, marker: x.marker } })
+            .collect()
+    } else {
+        Vec::new()
+    };
+    let legend_h = legend_band_height(&entries, (frame.w - 16.0) * s, &ls) / s;
+    let plot = frame.inset(left, top, 14.0, bottom + legend_h);
     let (xr, mut yr) = data_range(series, chart.log_y);
     // the values below a break, if the axis is broken: the range is of the others
     let below = match (chart.y_break, chart.log_y) {
@@ -170,14 +187,14 @@ pub fn render_chart(pixmap: &mut Pixmap, series: &[Series<'_>], chart: &Chart<'_
     let xa = Axis { lo: x0, hi: x1, scale: Scale::Linear, p0: plot.x * s, p1: plot.right() * s };
     let ya = Axis { lo: y0, hi: y1, scale, p0: plot.bottom() * s, p1: plot.y * s };
     let xt = if chart.integer_x { integer_ticks(x0, x1) } else { nice_ticks(x0, x1, 6) };
-    draw_axes(pixmap, &xa, &ya, AxisLabels { title: chart.title, x: chart.x_label, y: chart.y_label }, &xt, s);
+    draw_axes(pixmap, &xa, &ya, AxisLabels { title: chart.title, x: chart.x_label, y: chart.y_label }, &xt, s, theme);
     let mut band_labels: Vec<(f32, f32, String)> = Vec::new();
     if band_value.is_some() {
         // the band: no ticks nor grid in it, a shaded strip and a break mark on the axis
         let (l, b) = (plot.x * s, plot.bottom() * s);
         let top = (plot.bottom() - BAND) * s;
-        fill_rect(pixmap, frame.x * s, top, l - frame.x * s - 0.5 * s, BAND * s, Color::WHITE);
-        fill_rect(pixmap, l + 0.5 * s, top, plot.w * s - s, BAND * s - 0.5 * s, Color::from_rgba8(238, 238, 238, 255));
+        fill_rect(pixmap, frame.x * s, top, l - frame.x * s - 0.5 * s, BAND * s, theme.paper);
+        fill_rect(pixmap, l + 0.5 * s, top, plot.w * s - s, BAND * s - 0.5 * s, theme.band);
         let _ = b;
         let mut zig = PathBuilder::new();
         let y = top;
@@ -186,9 +203,9 @@ pub fn render_chart(pixmap: &mut Pixmap, series: &[Series<'_>], chart: &Chart<'_
         zig.line_to(l + 2.0 * s, y + 3.0 * s);
         zig.line_to(l + 6.0 * s, y - 3.0 * s);
         if let Some(path) = zig.finish() {
-            pixmap.stroke_path(&path, &solid(Color::from_rgba8(40, 40, 40, 255)), &Stroke { width: 1.5 * s, ..Default::default() }, Transform::identity(), None);
+            pixmap.stroke_path(&path, &solid(theme.text), &Stroke { width: 1.5 * s, ..Default::default() }, Transform::identity(), None);
         }
-        let st = TextStyle::new(10.0 * s).with_color(Color::from_rgba8(40, 40, 40, 255)).with_align(Align::Right, Valign::Middle);
+        let st = TextStyle::new(theme.text_px(10.0 * s, s)).with_color(theme.text).with_align(Align::Right, Valign::Middle);
         draw_text(pixmap, "below", l - 4.0 * s, top + 0.5 * BAND * s, st);
     }
     // where a point is drawn: in the band when it is below the break
@@ -202,10 +219,8 @@ pub fn render_chart(pixmap: &mut Pixmap, series: &[Series<'_>], chart: &Chart<'_
 
     let clip = Rect::from_xywh(plot.x * s - 4.0 * s, plot.y * s - 4.0 * s, (plot.w + 8.0) * s, (plot.h + 8.0) * s).and_then(|r| rect_mask(pixmap, r));
     let mut drawn = false;
-    // device points of the curves, sampled every few pixels, to place the legend
-    let mut ink: Vec<(f32, f32)> = Vec::new();
     for (i, ser) in series.iter().enumerate() {
-        let color = ser.color.unwrap_or(series_color(i));
+        let color = ser.color.unwrap_or(theme.series(i));
         let mut pb = PathBuilder::new();
         let mut marks = PathBuilder::new();
         let mut pen_down = false;
@@ -218,14 +233,6 @@ pub fn render_chart(pixmap: &mut Pixmap, series: &[Series<'_>], chart: &Chart<'_
                             band_labels.push((x, y, text));
                         }
                     }
-                    if let (true, Some(&(px, py))) = (pen_down, ink.last()) {
-                        let n = ((x - px).hypot(y - py) / (4.0 * s)).ceil().min(500.0) as usize;
-                        for k in 1..n {
-                            let t = k as f32 / n as f32;
-                            ink.push((px + t * (x - px), py + t * (y - py)));
-                        }
-                    }
-                    ink.push((x, y));
                     if pen_down {
                         pb.line_to(x, y);
                     } else {
@@ -253,29 +260,17 @@ pub fn render_chart(pixmap: &mut Pixmap, series: &[Series<'_>], chart: &Chart<'_
             pixmap.fill_path(&path, &solid(color), tiny_skia::FillRule::Winding, Transform::identity(), clip.as_ref());
         }
     }
-    let st = TextStyle::new(10.0 * s).with_color(Color::from_rgba8(20, 20, 20, 255)).with_align(Align::Left, Valign::Middle);
+    let st = TextStyle::new(theme.text_px(10.0 * s, s)).with_color(theme.label).with_align(Align::Left, Valign::Middle);
     for (x, y, text) in &band_labels {
         draw_text(pixmap, text, x + 5.0 * s, *y, st);
     }
     if !drawn {
-        let st = TextStyle::new(12.0 * s).with_color(Color::from_rgba8(120, 120, 120, 255)).with_align(Align::Centre, Valign::Middle);
+        let st = TextStyle::new(theme.text_px(12.0 * s, s)).with_color(theme.faint).with_align(Align::Centre, Valign::Middle);
         let c = plot.centre();
         draw_text(pixmap, "no data", c.x as f32 * s, c.y as f32 * s, st);
     }
-    if chart.legend && series.iter().any(|x| !x.label.is_empty()) {
-        let entries: Vec<LegendEntry<'_>> = series
-            .iter()
-            .enumerate()
-            .filter(|(_, x)| !x.label.is_empty())
-            .map(|(i, x)| LegendEntry { label: x.label, color: x.color.unwrap_or(series_color(i)), key: Key::Line { dashed: x.dashed, marker: x.marker } })
-            .collect();
-        let (lw, lh) = legend_size(&entries, s);
-        let (l, r, t, b) = ((plot.x + 6.0) * s, (plot.right() - 6.0) * s, (plot.y + 6.0) * s, (plot.bottom() - 6.0) * s);
-        // the corner whose box covers the fewest curve samples (top right on ties)
-        let corners = [(r - lw, t), (l, t), (r - lw, b - lh), (l, b - lh)];
-        let covered = |&(x, y): &(f32, f32)| ink.iter().filter(|(px, py)| *px >= x - 3.0 * s && *px <= x + lw + 3.0 * s && *py >= y - 3.0 * s && *py <= y + lh + 3.0 * s).count();
-        let best = corners.iter().min_by_key(|c| covered(c)).copied().unwrap_or(corners[0]);
-        legend(pixmap, &entries, best.0, best.1, false, s);
+    if !entries.is_empty() {
+        legend_band(pixmap, &entries, (frame.x + 8.0) * s, (frame.bottom() - legend_h) * s, (frame.w - 16.0) * s, &ls);
     }
 }
 
@@ -293,7 +288,7 @@ pub struct PassHistory<'a> {
     pub min_quality: &'a [f64],
     /// Number of inverted elements.
     pub inverted: &'a [f64],
-    /// Its colour; `None`: the series palette's, by position (from the second).
+    /// Its colour; `None`: the theme's series palette, by position (from the second).
     pub color: Option<Color>,
 }
 
@@ -303,18 +298,19 @@ pub struct PassHistory<'a> {
 pub fn render_pass_histories(pixmap: &mut Pixmap, runs: &[PassHistory<'_>], chart: &Chart<'_>) {
     let s = sane_dpr(chart.dpr);
     let frame = chart.frame.unwrap_or(Frame::of_pixmap(pixmap, s));
-    fill_rect(pixmap, frame.x * s, frame.y * s, frame.w * s, frame.h * s, Color::WHITE);
-    let title_h = if chart.title.is_empty() { 0.0 } else { 26.0 };
+    let theme = &chart.theme;
+    fill_rect(pixmap, frame.x * s, frame.y * s, frame.w * s, frame.h * s, theme.paper);
+    let title_h = if chart.title.is_empty() { 0.0 } else { 26.0 * theme.grow(15.0) };
     if title_h > 0.0 {
-        let st = TextStyle::new(15.0 * s).with_align(Align::Centre, Valign::Baseline);
-        draw_text(pixmap, chart.title, (frame.x + 0.5 * frame.w) * s, (frame.y + 19.0) * s, st);
+        let st = TextStyle::new(theme.text_px(15.0 * s, s)).with_color(theme.ink).with_align(Align::Centre, Valign::Baseline);
+        draw_text(pixmap, chart.title, (frame.x + 0.5 * frame.w) * s, (frame.y + 19.0 * theme.grow(15.0)) * s, st);
     }
     let run_key = |i: usize| Key::Line { dashed: i % 2 == 1, marker: Some(if i % 2 == 0 { Marker::Circle } else { Marker::Triangle }) };
-    let entries: Vec<LegendEntry<'_>> = runs.iter().enumerate().map(|(i, r)| LegendEntry { label: r.label, color: r.color.unwrap_or(series_color(i + 1)), key: run_key(i) }).collect();
-    let legend_h = if chart.legend && !entries.is_empty() { 20.0 } else { 0.0 };
-    if legend_h > 0.0 {
-        legend_row(pixmap, &entries, (frame.x + 0.5 * frame.w) * s, (frame.y + title_h + 8.0) * s, s);
-    }
+    let entries: Vec<LegendEntry<'_>> = runs.iter().enumerate().map(|(i, r)| LegendEntry { label: r.label, color: r.color.unwrap_or(theme.series(i + 1)), key: run_key(i) }).collect();
+    let ls = LegendStyle { theme, s, dpr: s };
+    let entries = if chart.legend { entries } else { Vec::new() };
+    let legend_h = legend_band_height(&entries, (frame.w - 16.0) * s, &ls) / s;
+    legend_band(pixmap, &entries, (frame.x + 8.0) * s, (frame.y + title_h) * s, (frame.w - 16.0) * s, &ls);
     let top = title_h + legend_h;
     let body = frame.inset(0.0, top, 0.0, 0.0);
     // the angle charts break their axis at 0°: an inverted corner as loaded (−176°) sits
@@ -337,12 +333,12 @@ pub fn render_pass_histories(pixmap: &mut Pixmap, runs: &[PassHistory<'_>], char
             .map(|(i, r)| Series {
                 label: r.label,
                 points: &points[k][i],
-                color: Some(r.color.unwrap_or(series_color(i + 1))),
+                color: Some(r.color.unwrap_or(theme.series(i + 1))),
                 dashed: i % 2 == 1,
                 marker: Some(if i % 2 == 0 { Marker::Circle } else { Marker::Triangle }),
             })
             .collect();
-        let sub = Chart { title, x_label: "pass", y_label: "", log_y: false, integer_x: true, y_range: None, dpr: s, frame: Some(cell), legend: false, y_break };
+        let sub = Chart { title, x_label: "pass", y_label: "", log_y: false, integer_x: true, y_range: None, dpr: s, frame: Some(cell), legend: false, y_break, theme: *theme };
         render_chart(pixmap, &series, &sub);
     }
 }

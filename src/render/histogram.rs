@@ -5,8 +5,8 @@
 use tiny_skia::{Color, PathBuilder, Pixmap};
 
 use super::axes::{draw_axes, nice_range, Axis, AxisLabels, Scale, Ticks};
-use super::colormap::series_color;
-use super::paint::{fill, fill_rect, legend, stroke, Key, LegendEntry};
+use super::paint::{fill, fill_rect, legend_band, legend_band_height, stroke, Key, LegendEntry, LegendStyle};
+use super::theme::Theme;
 use super::view::{sane_dpr, Frame};
 use crate::error::{Error, Result};
 
@@ -17,7 +17,7 @@ pub struct HistogramSeries<'a> {
     pub label: &'a str,
     /// Counts (not percentages) of equal bins spanning [0°, 180°].
     pub counts: &'a [u64],
-    /// Its colour; `None`: the series palette's, by position.
+    /// Its colour; `None`: the theme's series palette, by position.
     pub color: Option<Color>,
 }
 
@@ -38,11 +38,13 @@ pub struct AngleHistogram<'a> {
     /// A logarithmic percentage axis (down to [`LOG_FLOOR_PCT`]; empty bins sit on the
     /// axis), which shows the few very poor angles beside the many good ones. Default false.
     pub log_y: bool,
+    /// Colours and label sizes. Default [`Theme::light`].
+    pub theme: Theme,
 }
 
 impl Default for AngleHistogram<'_> {
     fn default() -> Self {
-        AngleHistogram { title: "Angle distribution", dpr: 1.0, frame: None, legend: true, y_top: None, log_y: false }
+        AngleHistogram { title: "Angle distribution", dpr: 1.0, frame: None, legend: true, y_top: None, log_y: false, theme: Theme::light() }
     }
 }
 
@@ -74,8 +76,24 @@ pub fn render_angle_histogram(pixmap: &mut Pixmap, series: &[HistogramSeries<'_>
     }
     let s = sane_dpr(opts.dpr);
     let frame = opts.frame.unwrap_or(Frame::of_pixmap(pixmap, s));
-    fill_rect(pixmap, frame.x * s, frame.y * s, frame.w * s, frame.h * s, Color::WHITE);
-    let plot = frame.inset(62.0, if opts.title.is_empty() { 12.0 } else { 32.0 }, 14.0, 46.0);
+    let theme = &opts.theme;
+    fill_rect(pixmap, frame.x * s, frame.y * s, frame.w * s, frame.h * s, theme.paper);
+    // room for the labels, grown with them when the theme makes them larger
+    let (g_tick, g_title) = (theme.grow(11.0), theme.grow(14.0));
+    let top = if opts.title.is_empty() { 12.0 } else { 32.0 * g_title };
+    // the legend's band under the axes: never over the bars
+    let ls = LegendStyle { theme, s, dpr: s };
+    let entries: Vec<LegendEntry<'_>> = if opts.legend {
+        series
+            .iter()
+            .enumerate()
+            .map(|(i, ser)| LegendEntry { label: ser.label, color: ser.color.unwrap_or(theme.series(i)), key: Key::Line { dashed: i % 2 == 0 && i > 0, marker: None } })
+            .collect()
+    } else {
+        Vec::new()
+    };
+    let legend_h = legend_band_height(&entries, (frame.w - 16.0) * s, &ls) / s;
+    let plot = frame.inset(62.0 * g_tick, top, 14.0, 46.0 * g_tick + legend_h);
     let pct: Vec<Vec<f64>> = series.iter().map(|x| percentages(x.counts)).collect();
     let own = pct.iter().flatten().copied().fold(0.0f64, f64::max);
     let top = match opts.y_top {
@@ -91,7 +109,7 @@ pub fn render_angle_histogram(pixmap: &mut Pixmap, series: &[HistogramSeries<'_>
         Axis { lo: 0.0, hi: ymax, scale: Scale::Linear, p0: plot.bottom() * s, p1: plot.y * s }
     };
     let xt = Ticks { step: 30.0, values: (0..=6).map(|k| 30.0 * k as f64).collect() };
-    draw_axes(pixmap, &xa, &ya, AxisLabels { title: opts.title, x: "angle (\u{b0})", y: "angles (%)" }, &xt, s);
+    draw_axes(pixmap, &xa, &ya, AxisLabels { title: opts.title, x: "angle (\u{b0})", y: "angles (%)" }, &xt, s, theme);
 
     // reference lines at the ideal angles 60° and 90°
     let mut refs = PathBuilder::new();
@@ -101,12 +119,11 @@ pub fn render_angle_histogram(pixmap: &mut Pixmap, series: &[HistogramSeries<'_>
             refs.line_to(x, plot.bottom() * s);
         }
     }
-    stroke(pixmap, refs, Color::from_rgba8(0, 0, 0, 70), 1.0 * s, Some([3.0 * s, 3.0 * s]));
+    stroke(pixmap, refs, theme.reference, 1.0 * s, Some([3.0 * s, 3.0 * s]));
 
     let width = 180.0 / bins as f64;
-    let mut entries = Vec::new();
     for (i, (ser, p)) in series.iter().zip(&pct).enumerate() {
-        let color = ser.color.unwrap_or(series_color(i));
+        let color = ser.color.unwrap_or(theme.series(i));
         let mut pb = PathBuilder::new();
         // the axis line: 0 on a linear axis, the floor on a log one (empty bins sit there)
         let (bx, by) = (xa.map(0.0).unwrap_or(0.0), plot.bottom() * s);
@@ -122,14 +139,11 @@ pub fn render_angle_histogram(pixmap: &mut Pixmap, series: &[HistogramSeries<'_>
         if i == 0 {
             let mut area = pb.clone();
             area.close();
-            fill(pixmap, area, Color::from_rgba8(0, 0, 0, 38), true);
+            fill(pixmap, area, theme.shade, true);
         }
         stroke(pixmap, pb, color, if i == 0 { 1.6 * s } else { 2.2 * s }, dashed.then_some([6.0 * s, 3.0 * s]));
-        entries.push(LegendEntry { label: ser.label, color, key: Key::Line { dashed, marker: None } });
     }
-    if opts.legend {
-        legend(pixmap, &entries, (plot.right() - 6.0) * s, (plot.y + 6.0) * s, true, s);
-    }
+    legend_band(pixmap, &entries, (frame.x + 8.0) * s, (frame.bottom() - legend_h) * s, (frame.w - 16.0) * s, &ls);
     Ok(())
 }
 

@@ -14,7 +14,8 @@ use tiny_skia::{Color, PathBuilder, Pixmap, PremultipliedColorU8};
 use super::colormap::Colormap;
 use super::contour::{chain_segments, iso_segments, Grid};
 use super::mesh::bezier_control;
-use super::paint::{draw_marker, fill_rect, legend, rgba, stroke, Key, LegendEntry, Marker, MarkerStyle};
+use super::paint::{draw_marker, fill_rect, legend_band, legend_band_height, rgba, stroke, Key, LegendEntry, LegendStyle, Marker, MarkerStyle};
+use super::theme::Theme;
 use super::text::{draw_text, Align, TextStyle, Valign};
 use super::view::{sane_dpr, Frame, View, ZoomPan};
 use crate::error::{Error, Result};
@@ -52,6 +53,47 @@ pub fn star_bounds(star: &Star, margin: f64) -> (DVec2, DVec2) {
     }
     let size = (hi - lo).max_element();
     let size = if size > 0.0 && size.is_finite() { size } else { 1.0 };
+    let c = 0.5 * (lo + hi);
+    let half = 0.5 * size * (1.0 + 2.0 * margin.max(0.0));
+    (c - DVec2::splat(half), c + DVec2::splat(half))
+}
+
+/// A square box framing where the node of `star` can go without inverting an element of
+/// it (its feasible region, found on a grid over the star's box) together with the points
+/// of `keep` (the start, the optimum found), widened by `margin` (a fraction of its size)
+/// on every side: a level-set view's first window, in which the feasible region is not a
+/// speck of the star's extent. A star with no feasible point (a tangled one) gets
+/// [`star_bounds`]; the box is never smaller than 2% of the star's.
+pub fn feasible_bounds(star: &Star, keep: &[DVec2], margin: f64) -> (DVec2, DVec2) {
+    const N: usize = 97;
+    let whole = star_bounds(star, margin);
+    if star.is_empty() {
+        return whole;
+    }
+    let (b0, b1) = star_bounds(star, 0.05);
+    let step = (b1 - b0) / (N - 1) as f64;
+    let (mut lo, mut hi) = (DVec2::splat(f64::INFINITY), DVec2::splat(f64::NEG_INFINITY));
+    for j in 0..N {
+        for i in 0..N {
+            let p = b0 + step * DVec2::new(i as f64, j as f64);
+            if star_validity(star, p) > 0.0 {
+                lo = lo.min(p);
+                hi = hi.max(p);
+            }
+        }
+    }
+    if lo.x > hi.x {
+        return whole;
+    }
+    // the border lies within a grid step of the outermost feasible samples
+    lo -= step;
+    hi += step;
+    for p in keep.iter().filter(|p| p.is_finite()) {
+        lo = lo.min(*p);
+        hi = hi.max(*p);
+    }
+    let star_size = (b1 - b0).max_element();
+    let size = (hi - lo).max_element().max(0.02 * star_size);
     let c = 0.5 * (lo + hi);
     let half = 0.5 * size * (1.0 + 2.0 * margin.max(0.0));
     (c - DVec2::splat(half), c + DVec2::splat(half))
@@ -251,36 +293,95 @@ pub struct LevelSetView {
     pub frame: Option<Frame>,
     /// Draw iso-lines over the bands. Default true.
     pub isolines: bool,
-    /// Draw the legend. Default true.
+    /// Draw the legend (in a band under the plot, which shrinks to make room). Default true.
     pub legend: bool,
     /// Whiten what the star and the path draw outside the field's box (a zoomed view
     /// samples only the part of the star it shows). Default false.
     pub clip: bool,
+    /// Colours and label sizes. Default [`Theme::light`].
+    pub theme: Theme,
 }
 
 impl Default for LevelSetView {
     fn default() -> Self {
-        LevelSetView { levels: Levels::default(), colormap: Colormap::Viridis, dpr: 1.0, frame: None, isolines: true, legend: true, clip: false }
+        LevelSetView { levels: Levels::default(), colormap: Colormap::Viridis, dpr: 1.0, frame: None, isolines: true, legend: true, clip: false, theme: Theme::light() }
     }
 }
 
-const TITLE_H: f32 = 40.0;
+/// The baselines of a level-set panel's title and note and the height of the band they
+/// take above the plot, CSS pixels: 18, 33 and 40, grown with the theme's labels.
+fn title_band(theme: &Theme) -> (f32, f32, f32) {
+    let (g_title, g_note) = (theme.grow(14.0), theme.grow(10.5));
+    let title = 18.0 * g_title;
+    let note = title + 15.0 * g_note;
+    (title, note, note + 7.0 * g_note)
+}
 
-/// The view a level-set panel of `frame` (CSS pixels) draws the world box `lo..hi` with:
+/// The view a level-set panel of `frame` (CSS pixels) draws the world box `lo..hi` with,
+/// its legend taking `legend_h` CSS pixels under the plot ([`level_set_legend_height`]):
 /// the one [`render_level_set`] uses for a field sampled over that box.
-pub fn level_set_view(frame: Frame, lo: DVec2, hi: DVec2, dpr: f32) -> View {
-    View::fit(lo, hi, frame.inset(0.0, TITLE_H, 0.0, 0.0), 8.0, ZoomPan::default(), sane_dpr(dpr))
+pub fn level_set_view(frame: Frame, lo: DVec2, hi: DVec2, dpr: f32, theme: &Theme, legend_h: f32) -> View {
+    View::fit(lo, hi, plot_frame(frame, theme, legend_h), 8.0, ZoomPan::default(), sane_dpr(dpr))
+}
+
+/// The plot of a level-set panel: the frame less the title band and the legend's.
+fn plot_frame(frame: Frame, theme: &Theme, legend_h: f32) -> Frame {
+    frame.inset(0.0, title_band(theme).2, 0.0, legend_h.max(0.0))
+}
+
+/// What a level-set panel's legend lists for `data`.
+fn legend_entries<'a>(data: &LevelSet<'a>) -> Vec<LegendEntry<'a>> {
+    let field = data.field;
+    let mut entries = vec![
+        LegendEntry { label: "current position", color: Color::WHITE, key: Key::Marker(Marker::Circle) },
+        LegendEntry { label: "feasible border", color: rgba(228, 26, 28, 255), key: Key::Line { dashed: true, marker: None } },
+        LegendEntry { label: "an element inverted", color: rgba(33, 144, 141, 255), key: Key::Hatched },
+    ];
+    // +∞ is a barrier's value where a valid element would fold (the `new` objective on a
+    // valid star); NaN is a value the objective does not define
+    if field.values.iter().any(|v| v.is_nan()) {
+        entries.push(LegendEntry { label: "objective undefined", color: rgba(225, 225, 225, 255), key: Key::Hatched });
+    } else if field.values.iter().any(|v| v.is_infinite()) {
+        entries.push(LegendEntry { label: "+∞: the barrier", color: rgba(225, 225, 225, 255), key: Key::Hatched });
+    }
+    if data.path.len() > 1 {
+        entries.push(LegendEntry { label: "solver's path", color: path_color(), key: Key::Line { dashed: false, marker: None } });
+    }
+    for kind in PathKind::ALL {
+        if kind != PathKind::Start && data.path.iter().any(|(_, k)| *k == kind) {
+            entries.push(LegendEntry { label: kind.label(), color: kind.color(), key: Key::Marker(kind.marker()) });
+        }
+    }
+    if data.optimum.is_some() {
+        entries.push(LegendEntry { label: "optimum", color: rgba(240, 228, 66, 255), key: Key::Marker(Marker::Star) });
+    }
+    entries
+}
+
+/// The CSS pixels the legend of `data` takes under the plot of a panel `frame_w` CSS
+/// pixels wide drawn with `opts` (0 without a legend): what [`level_set_view`] needs to
+/// map pointer positions as [`render_level_set`] drew them.
+pub fn level_set_legend_height(data: &LevelSet<'_>, opts: &LevelSetView, frame_w: f32) -> f32 {
+    if !opts.legend {
+        return 0.0;
+    }
+    let s = sane_dpr(opts.dpr);
+    let ls = LegendStyle { theme: &opts.theme, s: s * 0.9, dpr: s };
+    legend_band_height(&legend_entries(data), (frame_w - 8.0) * s, &ls) / s
 }
 
 /// Draws one level-set panel and returns its view (world ↔ pixels).
 pub fn render_level_set(pixmap: &mut Pixmap, data: &LevelSet<'_>, opts: &LevelSetView) -> View {
     let s = sane_dpr(opts.dpr);
     let frame = opts.frame.unwrap_or(Frame::of_pixmap(pixmap, s));
-    fill_rect(pixmap, frame.x * s, frame.y * s, frame.w * s, frame.h * s, Color::WHITE);
-    let plot = frame.inset(0.0, TITLE_H, 0.0, 0.0);
+    let theme = &opts.theme;
+    fill_rect(pixmap, frame.x * s, frame.y * s, frame.w * s, frame.h * s, theme.paper);
+    let (title_y, note_y, _) = title_band(theme);
+    let legend_h = level_set_legend_height(data, opts, frame.w);
+    let plot = plot_frame(frame, theme, legend_h);
     let field = data.field;
     let grid = field.grid;
-    let view = level_set_view(frame, grid.lo, grid.hi, s);
+    let view = level_set_view(frame, grid.lo, grid.hi, s, theme, legend_h);
     let levels = choose_levels(field, opts.levels);
 
     draw_bands(pixmap, field, &levels, &view, plot, opts.colormap, s);
@@ -387,50 +488,27 @@ pub fn render_level_set(pixmap: &mut Pixmap, data: &LevelSet<'_>, opts: &LevelSe
         let (a, b) = (view.device_xy(grid.lo), view.device_xy(grid.hi));
         let (x0, x1, y0, y1) = (a.0.min(b.0), a.0.max(b.0), a.1.min(b.1), a.1.max(b.1));
         let (fx, fy, fr, fb) = (frame.x * s, frame.y * s, frame.right() * s, frame.bottom() * s);
-        fill_rect(pixmap, fx, fy, frame.w * s, y0 - fy, Color::WHITE);
-        fill_rect(pixmap, fx, y1, frame.w * s, fb - y1, Color::WHITE);
-        fill_rect(pixmap, fx, y0, x0 - fx, y1 - y0, Color::WHITE);
-        fill_rect(pixmap, x1, y0, fr - x1, y1 - y0, Color::WHITE);
+        fill_rect(pixmap, fx, fy, frame.w * s, y0 - fy, theme.paper);
+        fill_rect(pixmap, fx, y1, frame.w * s, fb - y1, theme.paper);
+        fill_rect(pixmap, fx, y0, x0 - fx, y1 - y0, theme.paper);
+        fill_rect(pixmap, x1, y0, fr - x1, y1 - y0, theme.paper);
     }
 
     // title and a one-line key to the bands
     // both shrink to fit a narrow frame (an embedded view) rather than be clipped
     let room = (frame.w - 8.0) * s;
-    let title = TextStyle::new(super::text::size_to_fit(data.title, 14.0 * s, room)).with_align(Align::Centre, Valign::Baseline);
-    draw_text(pixmap, data.title, (frame.x + 0.5 * frame.w) * s, (frame.y + 18.0) * s, title);
+    // (never below the theme's smallest label)
+    let fit = |text: &str, size: f32| theme.text_px(super::text::size_to_fit(text, size, room), s);
+    let title = TextStyle::new(fit(data.title, 14.0 * s)).with_color(theme.ink).with_align(Align::Centre, Valign::Baseline);
+    draw_text(pixmap, data.title, (frame.x + 0.5 * frame.w) * s, (frame.y + title_y) * s, title);
     let better = if field.goal == Goal::MaximizeMin { "maximised" } else { "minimised" };
     let note = format!("{better}: the brighter the band, the better");
-    let sub = TextStyle::new(super::text::size_to_fit(&note, 10.5 * s, room))
-        .with_color(rgba(80, 80, 80, 255))
-        .with_align(Align::Centre, Valign::Baseline);
-    draw_text(pixmap, &note, (frame.x + 0.5 * frame.w) * s, (frame.y + 33.0) * s, sub);
+    let sub = TextStyle::new(fit(&note, 10.5 * s)).with_color(theme.muted).with_align(Align::Centre, Valign::Baseline);
+    draw_text(pixmap, &note, (frame.x + 0.5 * frame.w) * s, (frame.y + note_y) * s, sub);
 
     if opts.legend {
-        let mut entries = vec![
-            LegendEntry { label: "current position", color: Color::WHITE, key: Key::Marker(Marker::Circle) },
-            LegendEntry { label: "feasible border", color: rgba(228, 26, 28, 255), key: Key::Line { dashed: true, marker: None } },
-            LegendEntry { label: "an element inverted", color: rgba(33, 144, 141, 255), key: Key::Hatched },
-        ];
-        // +∞ is a barrier's value where a valid element would fold (the `new` objective on a
-        // valid star); NaN is a value the objective does not define
-        if field.values.iter().any(|v| v.is_nan()) {
-            entries.push(LegendEntry { label: "objective undefined", color: rgba(225, 225, 225, 255), key: Key::Hatched });
-        } else if field.values.iter().any(|v| v.is_infinite()) {
-            entries.push(LegendEntry { label: "+∞: the barrier", color: rgba(225, 225, 225, 255), key: Key::Hatched });
-        }
-        if data.path.len() > 1 {
-            entries.push(LegendEntry { label: "solver's path", color: path_color(), key: Key::Line { dashed: false, marker: None } });
-        }
-        for kind in PathKind::ALL {
-            if kind != PathKind::Start && data.path.iter().any(|(_, k)| *k == kind) {
-                entries.push(LegendEntry { label: kind.label(), color: kind.color(), key: Key::Marker(kind.marker()) });
-            }
-        }
-        if data.optimum.is_some() {
-            entries.push(LegendEntry { label: "optimum", color: rgba(240, 228, 66, 255), key: Key::Marker(Marker::Star) });
-        }
-        let pr = view.device_xy(grid.hi);
-        legend(pixmap, &entries, pr.0 - 4.0 * s, pr.1 + 4.0 * s, true, s * 0.9);
+        let ls = LegendStyle { theme, s: s * 0.9, dpr: s };
+        legend_band(pixmap, &legend_entries(data), (frame.x + 4.0) * s, (frame.bottom() - legend_h) * s, (frame.w - 8.0) * s, &ls);
     }
     view
 }
@@ -487,7 +565,7 @@ fn draw_bands(pixmap: &mut Pixmap, field: &Field, levels: &[f64], view: &View, p
 pub fn render_level_sets_side_by_side(pixmap: &mut Pixmap, left: &LevelSet<'_>, right: &LevelSet<'_>, opts: &LevelSetView) -> (View, View) {
     let s = sane_dpr(opts.dpr);
     let frame = opts.frame.unwrap_or(Frame::of_pixmap(pixmap, s));
-    fill_rect(pixmap, frame.x * s, frame.y * s, frame.w * s, frame.h * s, Color::WHITE);
+    fill_rect(pixmap, frame.x * s, frame.y * s, frame.w * s, frame.h * s, opts.theme.paper);
     let a = render_level_set(pixmap, left, &LevelSetView { frame: Some(frame.column(0, 2, 12.0)), ..*opts });
     let b = render_level_set(pixmap, right, &LevelSetView { frame: Some(frame.column(1, 2, 12.0)), ..*opts });
     (a, b)

@@ -10,6 +10,7 @@ use super::axes::{format_tick, nice_ticks};
 use super::colormap::{bucket, bucket_color, Colormap, BUCKETS};
 use super::paint::{fill, fill_rect, push_marker, rgba, solid, stroke, Marker};
 use super::text::{draw_text, Align, TextStyle, Valign};
+use super::theme::Theme;
 use super::view::{sane_dpr, Frame, View, ZoomPan};
 use crate::mesh::{Mesh, NodeRole, NONE};
 use crate::quality::{element_quality, ElementQuality};
@@ -84,7 +85,8 @@ pub struct MeshView {
     pub frame: Option<Frame>,
     /// Space around the mesh, CSS pixels. Default 16.
     pub margin: f32,
-    /// Draw the colour bar (it takes [`COLOUR_BAR_WIDTH`] on the right). Default true.
+    /// Draw the colour bar: a thin band along the bottom ([`colour_bar_band`]), left out
+    /// when the frame is too small for it. Default true.
     pub colour_bar: bool,
     /// Element edges; `Auto` draws them when edges are on average at least 5 device
     /// pixels long (shorter ones turn the picture into a dark texture).
@@ -97,8 +99,11 @@ pub struct MeshView {
     /// The world box to fit instead of the mesh's bounds (so several panels share a
     /// scale). Default `None`.
     pub bounds: Option<(DVec2, DVec2)>,
-    /// Background filled first; `None` leaves the pixmap as it is. Default white.
-    pub background: Option<Color>,
+    /// Fill the frame with the theme's paper first (else leave the pixmap as it is).
+    /// Default true.
+    pub background: bool,
+    /// Colours and label sizes. Default [`Theme::light`].
+    pub theme: Theme,
 }
 
 impl Default for MeshView {
@@ -115,7 +120,8 @@ impl Default for MeshView {
             nodes: Show::Auto,
             highlight: None,
             bounds: None,
-            background: Some(Color::WHITE),
+            background: true,
+            theme: Theme::light(),
         }
     }
 }
@@ -143,8 +149,10 @@ impl MeshView {
     }
 }
 
-/// CSS pixels the colour bar takes on the right of the frame.
-pub const COLOUR_BAR_WIDTH: f32 = 84.0;
+/// The most of a picture's short side the colour bar's band may take.
+pub const COLOUR_BAR_SHARE: f32 = 0.12;
+/// The shortest gradient strip worth drawing, CSS pixels.
+const MIN_STRIP: f32 = 48.0;
 /// Fill of inverted elements (sRGB): a red that no colour of viridis comes near.
 pub const INVERTED: [u8; 3] = [228, 26, 28];
 /// Default radius of [`pick_node`], CSS pixels.
@@ -155,7 +163,10 @@ pub const PICK_RADIUS: f64 = 12.0;
 pub fn mesh_view(width: u32, height: u32, mesh: &Mesh, opts: &MeshView) -> View {
     let dpr = sane_dpr(opts.dpr);
     let frame = opts.frame.unwrap_or(Frame::new(0.0, 0.0, width as f32 / dpr, height as f32 / dpr));
-    let plot = if opts.colour_bar { frame.inset(0.0, 0.0, COLOUR_BAR_WIDTH, 0.0) } else { frame };
+    let plot = match opts.colour_bar.then(|| colour_bar_band(frame, opts.metric.label(mesh), &opts.theme)).flatten() {
+        Some(bar) => frame.inset(0.0, 0.0, 0.0, bar.h),
+        None => frame,
+    };
     let (lo, hi) = opts.bounds.unwrap_or_else(|| mesh.bounds());
     View::fit(lo, hi, plot, opts.margin, opts.zoom, dpr)
 }
@@ -323,8 +334,9 @@ pub fn render_mesh(pixmap: &mut Pixmap, mesh: &Mesh, opts: &MeshView) -> View {
     let s = dpr;
     let frame = opts.frame.unwrap_or(Frame::of_pixmap(pixmap, dpr));
     let view = mesh_view(pixmap.width(), pixmap.height(), mesh, &MeshView { frame: Some(frame), ..*opts });
-    if let Some(bg) = opts.background {
-        fill_rect(pixmap, frame.x * s, frame.y * s, frame.w * s, frame.h * s, bg);
+    let theme = &opts.theme;
+    if opts.background {
+        fill_rect(pixmap, frame.x * s, frame.y * s, frame.w * s, frame.h * s, theme.paper);
     }
     let clip = frame_mask(pixmap, frame, s);
     let clip = clip.as_ref();
@@ -419,7 +431,7 @@ pub fn render_mesh(pixmap: &mut Pixmap, mesh: &Mesh, opts: &MeshView) -> View {
             }
         }
         stroke_masked(pixmap, inner, rgba(25, 25, 25, 200), 0.9 * s, clip);
-        stroke_masked(pixmap, outer, rgba(0, 0, 0, 255), 1.8 * s, clip);
+        stroke_masked(pixmap, outer, theme.ink, 1.8 * s, clip);
     }
 
     // The highlighted node's star.
@@ -442,13 +454,40 @@ pub fn render_mesh(pixmap: &mut Pixmap, mesh: &Mesh, opts: &MeshView) -> View {
         stroke_masked(pixmap, ring, rgba(230, 159, 0, 255), 2.0 * s, clip);
     }
 
-    if opts.colour_bar {
-        let bar = Frame::new(frame.right() - COLOUR_BAR_WIDTH, frame.y, COLOUR_BAR_WIDTH, frame.h);
+    if let Some(bar) = opts.colour_bar.then(|| colour_bar_band(frame, opts.metric.label(mesh), theme)).flatten() {
         // a zoomed mesh may run under the bar: give the bar its own ground
-        fill_rect(pixmap, bar.x * s, bar.y * s, bar.w * s, bar.h * s, opts.background.unwrap_or(Color::WHITE));
-        draw_colour_bar(pixmap, bar, opts.colormap, (d0, d1), opts.metric.label(mesh), n_inverted, s);
+        fill_rect(pixmap, bar.x * s, bar.y * s, bar.w * s, bar.h * s, theme.paper);
+        draw_colour_bar(pixmap, bar, opts.colormap, (d0, d1), opts.metric.label(mesh), n_inverted, s, theme);
     }
     view
+}
+
+/// Whether [`render_mesh`] draws the colour bar for `mesh` with `opts` on a pixmap of
+/// `width × height` device pixels (a small picture leaves it out, and the page shows the
+/// scale beside it instead).
+pub fn mesh_colour_bar_shown(width: u32, height: u32, mesh: &Mesh, opts: &MeshView) -> bool {
+    let dpr = sane_dpr(opts.dpr);
+    let frame = opts.frame.unwrap_or(Frame::new(0.0, 0.0, width as f32 / dpr, height as f32 / dpr));
+    opts.colour_bar && colour_bar_band(frame, opts.metric.label(mesh), &opts.theme).is_some()
+}
+
+/// The colour bar's label size, CSS pixels.
+fn bar_label(theme: &Theme) -> f32 {
+    theme.text_px(11.0, 1.0)
+}
+
+/// The band along the bottom of `frame` (CSS pixels) that the colour bar titled `title`
+/// takes in `theme`: one line of the title, the gradient between its end values and the
+/// inverted swatch with its count, [`COLOUR_BAR_SHARE`] of the frame's short side at most.
+/// `None` when it does not fit (the bar is then left out).
+pub fn colour_bar_band(frame: Frame, title: &str, theme: &Theme) -> Option<Frame> {
+    let l = bar_label(theme);
+    let h = l * 1.35 + 8.0;
+    let tw = |t: &str| super::text::text_width(t, l);
+    // the widest end values of the metrics' domains and a five-digit count
+    let need = 8.0 + tw(title) + 10.0 + tw("0") + 5.0 + MIN_STRIP + 5.0 + tw("60") + 12.0 + l + 4.0 + tw("99999") + 8.0;
+    let fits = h <= COLOUR_BAR_SHARE * frame.w.min(frame.h) && need <= frame.w;
+    fits.then(|| Frame::new(frame.x, frame.bottom() - h, frame.w, h))
 }
 
 fn inverted_color() -> Color {
@@ -546,8 +585,10 @@ fn draw_nodes(pixmap: &mut Pixmap, mesh: &Mesh, view: &View, s: f32, clip: Optio
     stroke_masked(pixmap, outline, rgba(30, 30, 30, 255), 1.2 * s, clip);
 }
 
-/// The colour bar in `area` (CSS pixels): title, gradient, ticks, and the inverted
-/// swatch with the count of inverted elements.
+/// The colour bar in the band `area` (CSS pixels, from [`colour_bar_band`]), on one
+/// line: the title, the gradient between its end values with the ticks between marked on
+/// it, and the inverted swatch with the count of inverted elements.
+#[allow(clippy::too_many_arguments)]
 pub(crate) fn draw_colour_bar(
     pixmap: &mut Pixmap,
     area: Frame,
@@ -556,38 +597,54 @@ pub(crate) fn draw_colour_bar(
     title: &str,
     n_inverted: usize,
     s: f32,
+    theme: &Theme,
 ) {
-    let bar_w = 14.0;
-    let x = area.x + 8.0;
-    let top = area.y + 34.0;
-    let bottom = (area.bottom() - 56.0).min(top + 320.0);
-    if bottom - top < 30.0 {
+    let l = bar_label(theme);
+    let label = TextStyle::new(l * s).with_color(theme.caption).with_align(Align::Left, Valign::Middle);
+    let tw = |t: &str| super::text::text_width(t, l);
+    let cy = area.y + 0.5 * area.h;
+    let ticks = nice_ticks(d0, d1, 5);
+    let (lo, hi) = (format_tick(d0, ticks.step), format_tick(d1, ticks.step));
+    let swatch = l;
+    let long = format!("{n_inverted} inverted");
+    let mut x = area.x + 8.0;
+    draw_text(pixmap, title, x * s, cy * s, label);
+    x += tw(title) + 10.0;
+    draw_text(pixmap, &lo, x * s, cy * s, label);
+    x += tw(&lo) + 5.0;
+    // the count in words when there is room, else the number alone
+    let tail = |count: &str| 5.0 + tw(&hi) + 12.0 + swatch + 4.0 + tw(count) + 8.0;
+    let count = if area.right() - tail(&long) - x >= MIN_STRIP { long } else { n_inverted.to_string() };
+    let strip_end = area.right() - tail(&count);
+    if strip_end - x < 8.0 {
         return;
     }
-    let label = TextStyle::new(11.0 * s).with_color(rgba(30, 30, 30, 255));
-    draw_text(pixmap, title, x * s, (area.y + 20.0) * s, label.with_align(Align::Left, Valign::Baseline));
-    let (x0, x1) = (x * s, (x + bar_w) * s);
-    let (y0, y1) = (top * s, bottom * s);
-    let rows = (y1 - y0).ceil().max(1.0) as usize;
-    for r in 0..rows {
-        let t = 1.0 - (r as f64 + 0.5) / rows as f64;
-        fill_rect(pixmap, x0, y0 + r as f32, x1 - x0, 1.0, map.color(t));
+    let sh = 0.8 * l;
+    let (x0, x1) = (x * s, strip_end * s);
+    let (y0, y1) = ((cy - 0.5 * sh) * s, (cy + 0.5 * sh) * s);
+    let cols = (x1 - x0).ceil().max(1.0) as usize;
+    for c in 0..cols {
+        let t = (c as f64 + 0.5) / cols as f64;
+        fill_rect(pixmap, x0 + c as f32, y0, 1.0, y1 - y0, map.color(t));
     }
     let mut frame = PathBuilder::new();
     if let Some(r) = Rect::from_ltrb(x0, y0, x1, y1) {
         frame.push_rect(r);
     }
-    let ticks = nice_ticks(d0, d1, 5);
     for &v in &ticks.values {
-        let y = y1 - (y1 - y0) * ((v - d0) / (d1 - d0)) as f32;
-        frame.move_to(x1, y);
-        frame.line_to(x1 + 4.0 * s, y);
-        draw_text(pixmap, &format_tick(v, ticks.step), x1 + 7.0 * s, y, label.with_align(Align::Left, Valign::Middle));
+        let t = ((v - d0) / (d1 - d0)) as f32;
+        if t > 0.01 && t < 0.99 {
+            let tx = x0 + (x1 - x0) * t;
+            frame.move_to(tx, y1);
+            frame.line_to(tx, y1 - 0.3 * sh * s);
+        }
     }
-    stroke(pixmap, frame, rgba(30, 30, 30, 255), s, None);
+    stroke(pixmap, frame, theme.caption, s, None);
+    let mut x = strip_end + 5.0;
+    draw_text(pixmap, &hi, x * s, cy * s, label);
+    x += tw(&hi) + 12.0;
     // inverted swatch
-    let sy = y1 + 14.0 * s;
-    if let Some(r) = Rect::from_xywh(x0, sy, x1 - x0, 12.0 * s) {
+    if let Some(r) = Rect::from_xywh(x * s, (cy - 0.5 * swatch) * s, swatch * s, swatch * s) {
         pixmap.fill_rect(r, &solid(inverted_color()), Transform::identity(), None);
         let mut hatch = PathBuilder::new();
         let mut t = r.left() - r.height();
@@ -602,12 +659,6 @@ pub(crate) fn draw_colour_bar(
         }
         let pb = PathBuilder::from_rect(r);
         pixmap.stroke_path(&pb, &solid(rgba(120, 0, 0, 255)), &Stroke { width: 1.5 * s, ..Default::default() }, Transform::identity(), None);
-        draw_text(pixmap, "inverted", x1 + 5.0 * s, sy + 6.0 * s, label.with_align(Align::Left, Valign::Middle));
-        // the count on a line of its own, under the swatch, made smaller if it would not
-        // fit the bar's width (a mesh may have millions of inverted elements)
-        let count = format!("{n_inverted} element{}", if n_inverted == 1 { "" } else { "s" });
-        let room = (area.right() - 4.0) * s - x0;
-        let fit = super::text::size_to_fit(&count, 11.0 * s, room);
-        draw_text(pixmap, &count, x0, sy + 26.0 * s, TextStyle { size: fit, ..label }.with_align(Align::Left, Valign::Middle));
     }
+    draw_text(pixmap, &count, (x + swatch + 4.0) * s, cy * s, label);
 }

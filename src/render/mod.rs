@@ -33,6 +33,7 @@ mod mesh;
 mod paint;
 mod profile;
 mod text;
+mod theme;
 pub mod view;
 mod view3d;
 
@@ -46,18 +47,19 @@ pub use compare::{render_compare, ComparePanel};
 pub use contour::{iso_segments, Grid};
 pub use histogram::{percentages, render_angle_histogram, AngleHistogram, HistogramSeries};
 pub use levelset::{PATH_RGB, 
-    choose_levels, level_set_view, render_level_set, render_level_sets_side_by_side, sample_field, star_bounds, Field, LevelSet,
+    choose_levels, feasible_bounds, level_set_legend_height, level_set_view, render_level_set, render_level_sets_side_by_side, sample_field, star_bounds, Field, LevelSet,
     LevelSetView, Levels, PathKind,
 };
 pub use mesh::{
-    bezier_control, mesh_view, pick_node, pick_node_within, render_mesh, MeshView, Metric, Show, COLOUR_BAR_WIDTH,
-    INVERTED, PICK_RADIUS,
+    bezier_control, colour_bar_band, mesh_colour_bar_shown, mesh_view, pick_node, pick_node_within, render_mesh, MeshView, Metric,
+    Show, COLOUR_BAR_SHARE, INVERTED, PICK_RADIUS,
 };
 pub use paint::Marker;
-pub use profile::{render_sketch, render_titled, Sketch, SketchLine};
+pub use profile::{render_sketch, render_titled, title_band, Sketch, SketchLine};
 /// The pieces of `render_mesh` the page's fast raster view (`lab::raster`) draws with.
 pub(crate) use mesh::{draw_colour_bar, draw_inverted, push_element};
 pub use text::{draw_text, draw_text_rotated, text_width, Align, TextStyle, Valign};
+pub use theme::Theme;
 pub use view::{Frame, View, ZoomPan};
 pub use view3d::{
     newell_normal, render_surface, shade, Camera, Faces, Projection, SurfaceView, AMBIENT, BACK_FACE, DEGREES_PER_PIXEL, MAX_DRAG_PITCH,

@@ -1,9 +1,10 @@
 //! Small drawing helpers shared by the views: solid fills and strokes of whole paths,
-//! point markers, and a legend box.
+//! point markers, and legends in a band of their own.
 
 use tiny_skia::{Color, FillRule, Paint, PathBuilder, Pixmap, Rect, Stroke, StrokeDash, Transform};
 
 use super::text::{draw_text, text_width, Align, TextStyle, Valign};
+use super::theme::Theme;
 
 /// The shape of a point marker.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -130,53 +131,107 @@ pub(crate) struct LegendEntry<'a> {
     pub key: Key,
 }
 
-/// Width and height of the box [`legend`] draws for `entries`.
-pub(crate) fn legend_size(entries: &[LegendEntry<'_>], s: f32) -> (f32, f32) {
-    if entries.is_empty() {
-        return (0.0, 0.0);
-    }
-    let w = entries.iter().map(|e| text_width(e.label, 11.0 * s)).fold(0.0f32, f32::max) + 24.0 * s + 18.0 * s;
-    (w, 16.0 * s * entries.len() as f32 + 6.0 * s)
+/// How a legend is drawn: the theme's colours and label rule, `s` scaling its sizes
+/// (the device-pixel ratio, or a fraction of it) and `dpr` the device-pixel ratio the
+/// theme's smallest label is measured at.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct LegendStyle<'a> {
+    pub theme: &'a Theme,
+    pub s: f32,
+    pub dpr: f32,
 }
 
-/// Draws a legend box with its top-left or top-right corner at `(x, y)` (device pixels,
-/// `right_aligned` picks which); `s` scales sizes (the device-pixel ratio). Returns the
-/// box height.
-pub(crate) fn legend(pixmap: &mut Pixmap, entries: &[LegendEntry<'_>], x: f32, y: f32, right_aligned: bool, s: f32) -> f32 {
-    if entries.is_empty() {
-        return 0.0;
+impl LegendStyle<'_> {
+    /// The label size, device pixels.
+    pub fn text(&self) -> f32 {
+        self.theme.text_px(11.0 * self.s, self.dpr)
     }
-    let line_h = 16.0 * s;
-    let pad = 6.0 * s;
-    let (w, h) = legend_size(entries, s);
-    let x0 = if right_aligned { x - w } else { x };
-    if let Some(r) = Rect::from_xywh(x0, y, w, h) {
-        let pb = PathBuilder::from_rect(r);
-        pixmap.fill_path(&pb, &solid(rgba(255, 255, 255, 225)), FillRule::Winding, Transform::identity(), None);
-        pixmap.stroke_path(&pb, &solid(rgba(0, 0, 0, 90)), &Stroke { width: s, ..Default::default() }, Transform::identity(), None);
+    /// How much the labels grew over their own size (1 when they did not).
+    pub fn grow(&self) -> f32 {
+        self.text() / (11.0 * self.s)
     }
-    for (i, e) in entries.iter().enumerate() {
-        let cy = y + pad * 0.5 + line_h * (i as f32 + 0.5);
-        legend_entry(pixmap, e, x0 + pad, cy, s);
+    /// The height of one entry, device pixels.
+    pub fn line_h(&self) -> f32 {
+        16.0 * self.s * self.grow()
     }
-    h
+    /// The width of one entry: key, gap, label.
+    pub fn entry_w(&self, e: &LegendEntry<'_>) -> f32 {
+        24.0 * self.s + 6.0 * self.s + text_width(e.label, self.text())
+    }
 }
 
 /// Entries in one row centred on `cx`, at height `cy` (device pixels), without a box.
-pub(crate) fn legend_row(pixmap: &mut Pixmap, entries: &[LegendEntry<'_>], cx: f32, cy: f32, s: f32) {
-    let gap = 18.0 * s;
-    let widths: Vec<f32> = entries.iter().map(|e| 24.0 * s + 6.0 * s + text_width(e.label, 11.0 * s)).collect();
+pub(crate) fn legend_row(pixmap: &mut Pixmap, entries: &[LegendEntry<'_>], cx: f32, cy: f32, st: &LegendStyle<'_>) {
+    let gap = 18.0 * st.s;
+    let widths: Vec<f32> = entries.iter().map(|e| st.entry_w(e)).collect();
     let total = widths.iter().sum::<f32>() + gap * entries.len().saturating_sub(1) as f32;
     let mut x = cx - 0.5 * total;
     for (e, w) in entries.iter().zip(widths) {
-        legend_entry(pixmap, e, x, cy, s);
+        legend_entry(pixmap, e, x, cy, st);
         x += w + gap;
     }
 }
 
+/// The rows of a legend laid out in `width` device pixels: as many entries on a row as
+/// fit (at least one), rows top to bottom.
+pub(crate) fn legend_rows(entries: &[LegendEntry<'_>], width: f32, st: &LegendStyle<'_>) -> Vec<std::ops::Range<usize>> {
+    let gap = 18.0 * st.s;
+    let mut rows = Vec::new();
+    let (mut start, mut used) = (0, 0.0f32);
+    for (i, e) in entries.iter().enumerate() {
+        let w = st.entry_w(e);
+        if i > start && used + gap + w > width {
+            rows.push(start..i);
+            start = i;
+            used = w;
+        } else {
+            used += if i > start { gap + w } else { w };
+        }
+    }
+    if start < entries.len() {
+        rows.push(start..entries.len());
+    }
+    rows
+}
+
+/// The height in device pixels of the band [`legend_band`] draws `entries` in, `width`
+/// device pixels wide (0 with no entries).
+pub(crate) fn legend_band_height(entries: &[LegendEntry<'_>], width: f32, st: &LegendStyle<'_>) -> f32 {
+    let rows = legend_rows(entries, width, st).len();
+    if rows == 0 {
+        0.0
+    } else {
+        rows as f32 * st.line_h() + 4.0 * st.s
+    }
+}
+
+/// A legend outside the data: rows of entries, each row centred, in a band of `width`
+/// device pixels whose top-left corner is `(x, y)`, without a box. Returns its height.
+pub(crate) fn legend_band(pixmap: &mut Pixmap, entries: &[LegendEntry<'_>], x: f32, y: f32, width: f32, st: &LegendStyle<'_>) -> f32 {
+    let rows = legend_rows(entries, width, st);
+    let line_h = st.line_h();
+    let gap = 18.0 * st.s;
+    let widest = rows
+        .iter()
+        .map(|r| entries[r.clone()].iter().map(|e| st.entry_w(e)).sum::<f32>() + gap * (r.len().saturating_sub(1)) as f32)
+        .fold(0.0f32, f32::max);
+    let h = legend_band_height(entries, width, st);
+    if let Some(r) = Rect::from_xywh(x + 0.5 * (width - widest) - 6.0 * st.s, y, widest + 12.0 * st.s, h) {
+        let pb = PathBuilder::from_rect(r);
+        pixmap.fill_path(&pb, &solid(st.theme.legend_fill), FillRule::Winding, Transform::identity(), None);
+        pixmap.stroke_path(&pb, &solid(st.theme.legend_border), &Stroke { width: st.s, ..Default::default() }, Transform::identity(), None);
+    }
+    for (k, r) in rows.iter().enumerate() {
+        let cy = y + 2.0 * st.s + line_h * (k as f32 + 0.5);
+        legend_row(pixmap, &entries[r.clone()], x + 0.5 * width, cy, st);
+    }
+    h
+}
+
 /// One legend entry: its key from `kx`, its label after it, centred on `cy`.
-fn legend_entry(pixmap: &mut Pixmap, e: &LegendEntry<'_>, kx: f32, cy: f32, s: f32) {
-    let size = 11.0 * s;
+fn legend_entry(pixmap: &mut Pixmap, e: &LegendEntry<'_>, kx: f32, cy: f32, st: &LegendStyle<'_>) {
+    let s = st.s;
+    let size = st.text();
     let key_w = 24.0 * s;
     let pad = 6.0 * s;
     {
@@ -190,7 +245,7 @@ fn legend_entry(pixmap: &mut Pixmap, e: &LegendEntry<'_>, kx: f32, cy: f32, s: f
                     draw_marker(pixmap, m, kx + 0.5 * key_w, cy, MarkerStyle { r: 3.5 * s, fill: e.color, edge: e.color, width: s });
                 }
             }
-            Key::Marker(m) => draw_marker(pixmap, m, kx + 0.5 * key_w, cy, MarkerStyle { r: 4.5 * s, fill: e.color, edge: rgba(0, 0, 0, 255), width: s }),
+            Key::Marker(m) => draw_marker(pixmap, m, kx + 0.5 * key_w, cy, MarkerStyle { r: 4.5 * s, fill: e.color, edge: st.theme.ink, width: s }),
             Key::Hatched => {
                 if let Some(r) = Rect::from_xywh(kx + 4.0 * s, cy - 5.0 * s, key_w - 8.0 * s, 10.0 * s) {
                     let pb = PathBuilder::from_rect(r);
@@ -212,7 +267,7 @@ fn legend_entry(pixmap: &mut Pixmap, e: &LegendEntry<'_>, kx: f32, cy: f32, s: f
                 }
             }
         }
-        let style = TextStyle::new(size).with_align(Align::Left, Valign::Middle);
+        let style = TextStyle::new(size).with_color(st.theme.ink).with_align(Align::Left, Valign::Middle);
         draw_text(pixmap, e.label, kx + key_w + pad, cy, style);
     }
 }

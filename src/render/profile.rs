@@ -8,6 +8,7 @@ use tiny_skia::{Color, PathBuilder, Pixmap, PixmapPaint, Transform};
 
 use super::paint::{draw_marker, fill_rect, stroke, MarkerStyle};
 use super::text::{draw_text, size_to_fit, Align, TextStyle, Valign};
+use super::theme::Theme;
 use super::view::{sane_dpr, Frame, View, ZoomPan};
 use super::Marker;
 
@@ -32,20 +33,23 @@ pub struct Sketch<'a> {
     pub dashed: &'a [(DVec2, DVec2)],
 }
 
-/// Draws `sketch` into `frame` (CSS pixels) at pixel ratio `dpr`: the segment joining the
-/// fixed points, each line in its colour with its label at its end, the dashed segments.
-pub fn render_sketch(pixmap: &mut Pixmap, sketch: &Sketch<'_>, frame: Frame, dpr: f32) {
+/// Draws `sketch` into `frame` (CSS pixels) at pixel ratio `dpr` in `theme`: the segment
+/// joining the fixed points, each line in its colour with its label at its end, the
+/// dashed segments.
+pub fn render_sketch(pixmap: &mut Pixmap, sketch: &Sketch<'_>, frame: Frame, dpr: f32, theme: &Theme) {
     let s = sane_dpr(dpr);
-    fill_rect(pixmap, frame.x * s, frame.y * s, frame.w * s, frame.h * s, Color::WHITE);
+    fill_rect(pixmap, frame.x * s, frame.y * s, frame.w * s, frame.h * s, theme.paper);
     let title = 13.0;
     draw_text(
         pixmap,
         sketch.title,
         (frame.x + frame.w / 2.0) * s,
         (frame.y + 4.0) * s,
-        TextStyle::new(size_to_fit(sketch.title, title, frame.w - 8.0) * s).with_align(Align::Centre, Valign::Top),
+        TextStyle::new(theme.text_px(size_to_fit(sketch.title, title, frame.w - 8.0) * s, s))
+            .with_color(theme.ink)
+            .with_align(Align::Centre, Valign::Top),
     );
-    let inner = frame.inset(0.0, 24.0, 0.0, 0.0);
+    let inner = frame.inset(0.0, 24.0 * theme.grow(13.0), 0.0, 0.0);
     let mut lo = DVec2::splat(f64::INFINITY);
     let mut hi = DVec2::splat(f64::NEG_INFINITY);
     let pts = sketch.points.iter().map(|p| p.0).chain(sketch.lines.iter().flat_map(|l| [l.from, l.to]));
@@ -61,7 +65,7 @@ pub fn render_sketch(pixmap: &mut Pixmap, sketch: &Sketch<'_>, frame: Frame, dpr
         let (x1, y1) = xy(b);
         pb.move_to(x0, y0);
         pb.line_to(x1, y1);
-        stroke(pixmap, pb, Color::from_rgba8(90, 90, 90, 255), 1.2 * s, Some([5.0 * s, 4.0 * s]));
+        stroke(pixmap, pb, theme.dashed, 1.2 * s, Some([5.0 * s, 4.0 * s]));
     }
     for l in sketch.lines {
         let mut pb = PathBuilder::new();
@@ -70,7 +74,7 @@ pub fn render_sketch(pixmap: &mut Pixmap, sketch: &Sketch<'_>, frame: Frame, dpr
         pb.move_to(x0, y0);
         pb.line_to(x1, y1);
         stroke(pixmap, pb, l.color, 2.0 * s, None);
-        draw_text(pixmap, l.label, x1 - 2.0 * s, y1 - 3.0 * s, TextStyle::new(11.0 * s).with_color(l.color).with_align(Align::Right, Valign::Bottom));
+        draw_text(pixmap, l.label, x1 - 2.0 * s, y1 - 3.0 * s, TextStyle::new(theme.text_px(11.0 * s, s)).with_color(l.color).with_align(Align::Right, Valign::Bottom));
     }
     if sketch.points.len() > 1 {
         let mut pb = PathBuilder::new();
@@ -82,32 +86,40 @@ pub fn render_sketch(pixmap: &mut Pixmap, sketch: &Sketch<'_>, frame: Frame, dpr
                 pb.line_to(x, y);
             }
         }
-        stroke(pixmap, pb, Color::BLACK, 2.0 * s, None);
+        stroke(pixmap, pb, theme.ink, 2.0 * s, None);
     }
     for (p, label) in sketch.points {
         let (x, y) = xy(*p);
-        draw_marker(pixmap, Marker::Circle, x, y, MarkerStyle { r: 4.0 * s, fill: Color::BLACK, edge: Color::WHITE, width: 1.0 * s });
-        draw_text(pixmap, label, x + 6.0 * s, y - 4.0 * s, TextStyle::new(13.0 * s).with_align(Align::Left, Valign::Bottom));
+        draw_marker(pixmap, Marker::Circle, x, y, MarkerStyle { r: 4.0 * s, fill: theme.ink, edge: theme.paper, width: 1.0 * s });
+        draw_text(pixmap, label, x + 6.0 * s, y - 4.0 * s, TextStyle::new(theme.text_px(13.0 * s, s)).with_color(theme.ink).with_align(Align::Left, Valign::Bottom));
     }
 }
 
 /// Places `parts` (pictures at pixel ratio `dpr`) in a grid of `cols` columns under a
-/// title, each cell the size of the largest part: one picture of several panels.
-pub fn render_titled(parts: &[Pixmap], cols: usize, title: &str, dpr: f32) -> Option<Pixmap> {
+/// title, on `theme`'s paper, each cell the size of the largest part: one picture of
+/// several panels.
+pub fn render_titled(parts: &[Pixmap], cols: usize, title: &str, dpr: f32, theme: &Theme) -> Option<Pixmap> {
     let s = sane_dpr(dpr);
     let cols = cols.clamp(1, parts.len().max(1));
     let rows = parts.len().div_ceil(cols).max(1);
     let cw = parts.iter().map(|p| p.width()).max()?;
     let ch = parts.iter().map(|p| p.height()).max()?;
-    let head = (28.0 * s).round() as u32;
+    let head = (title_band(theme) * s).round() as u32;
     let mut out = Pixmap::new(cw * cols as u32, head + ch * rows as u32)?;
-    out.fill(Color::WHITE);
+    out.fill(theme.paper);
     let size = size_to_fit(title, 15.0, out.width() as f32 / s - 16.0);
     let mid = out.width() as f32 / 2.0;
-    draw_text(&mut out, title, mid, 6.0 * s, TextStyle::new(size * s).with_align(Align::Centre, Valign::Top));
+    let style = TextStyle::new(theme.text_px(size * s, s)).with_color(theme.ink).with_align(Align::Centre, Valign::Top);
+    draw_text(&mut out, title, mid, 6.0 * s, style);
     for (i, p) in parts.iter().enumerate() {
         let (x, y) = ((i % cols) as u32 * cw, head + (i / cols) as u32 * ch);
         out.draw_pixmap(x as i32, y as i32, p.as_ref(), &PixmapPaint::default(), Transform::identity(), None);
     }
     Some(out)
+}
+
+/// The height of [`render_titled`]'s title band, CSS pixels: 28, grown with the theme's
+/// labels.
+pub fn title_band(theme: &Theme) -> f32 {
+    28.0 * theme.grow(15.0)
 }

@@ -7,7 +7,7 @@
 use std::path::{Path, PathBuf};
 
 use glam::DVec2;
-use tiny_skia::Pixmap;
+use tiny_skia::{Color, Pixmap};
 
 use super::*;
 use crate::mesh::{ElementKind, Mesh, MeshBuilder};
@@ -378,15 +378,17 @@ fn picking_finds_the_nearest_node_within_the_radius() {
 }
 
 #[test]
-fn mesh_fits_inside_the_frame_left_of_the_colour_bar() {
+fn mesh_fits_inside_the_frame_above_the_colour_bar() {
     let mesh = grid_mesh(5, 0.3);
     let opts = MeshView::default().with_dpr(1.5);
     let view = mesh_view(900, 600, &mesh, &opts);
     let (w, h) = (900.0 / 1.5, 600.0 / 1.5);
+    let bar = colour_bar_band(Frame::new(0.0, 0.0, w as f32, h as f32), opts.metric.label(&mesh), &opts.theme).unwrap();
+    assert!(bar.h > 10.0 && bar.h <= COLOUR_BAR_SHARE * 400.0 && bar.y + bar.h == h as f32);
     for p in mesh.nodes() {
         let c = view.to_css(*p);
         assert!(c.x >= 16.0 - 1e-9 && c.y >= 16.0 - 1e-9, "{c:?}");
-        assert!(c.x <= w - COLOUR_BAR_WIDTH as f64 - 16.0 + 1e-9 && c.y <= h - 16.0 + 1e-9, "{c:?}");
+        assert!(c.x <= w - 16.0 + 1e-9 && c.y <= h - bar.h as f64 - 16.0 + 1e-9, "{c:?}");
     }
 }
 
@@ -475,3 +477,202 @@ fn an_inverted_element_flung_far_away_is_hatched_only_where_it_shows() {
 }
 
 mod view3d;
+
+/// The page's theme (14-px labels, light or dark) at pixel ratios 1 and 2: every text of
+/// every view is at least 14 CSS pixels, as `text.rs` records the smallest size drawn.
+#[test]
+fn every_label_is_at_least_the_pages_size() {
+    use super::text::take_smallest_text;
+    let mesh = folded_star();
+    let star = pentagon_star();
+    let obj = Bowl { c: DVec2::new(-0.05, 0.05), wall: 0.7 };
+    let field = sample_field(&obj, &star, star_bounds(&star, 0.08), 41, 41).unwrap();
+    let path = [(star.x0, PathKind::Start), (DVec2::new(0.1, 0.1), PathKind::Gradient), (DVec2::new(0.0, 0.02), PathKind::Conjugate)];
+    let data = LevelSet { field: &field, star: &star, path: &path, optimum: Some(obj.c), title: "bowl with a barrier" };
+    let pts: Vec<DVec2> = (0..=12).map(|i| DVec2::new(i as f64, 3.0 * 0.5f64.powi(i))).collect();
+    let below: Vec<DVec2> = vec![DVec2::new(0.0, -170.0), DVec2::new(1.0, 20.0), DVec2::new(2.0, 25.0)];
+    let counts: Vec<u64> = (0..30).map(|b| (b * 7 % 13) as u64).collect();
+    let lines = vec!["min angle 3.4°".to_string(), "inverted 1".to_string()];
+    let (sphere, rings, starts) = view3d_sphere();
+    for theme in [Theme::for_page(false, 14.0), Theme::for_page(true, 14.0)] {
+        for dpr in [1.0f32, 2.0] {
+            let px = |w: u32, h: u32| pixmap((w as f32 * dpr) as u32, (h as f32 * dpr) as u32);
+            let mut views: Vec<(&str, Drawing<'_>)> = Vec::new();
+            views.push(("mesh", Box::new(|| {
+                for side in [200u32, 320, 640] {
+                    let mut p = px(side, side);
+                    render_mesh(&mut p, &mesh, &MeshView { theme, dpr, highlight: Some(4), ..Default::default() });
+                }
+            })));
+            views.push(("compare", Box::new(|| {
+                let mut p = px(760, 420);
+                let panel = ComparePanel { mesh: &mesh, title: "a mesh", lines: &lines };
+                render_compare(&mut p, &panel, &panel, &MeshView { theme, dpr, ..Default::default() });
+            })));
+            views.push(("level set", Box::new(|| {
+                for (w, h) in [(260u32, 380u32), (440, 480)] {
+                    let mut p = px(w, h);
+                    render_level_set(&mut p, &data, &LevelSetView { theme, dpr, ..Default::default() });
+                }
+            })));
+            views.push(("charts", Box::new(|| {
+                let mut p = px(520, 340);
+                let ser = [Series::new("a curve", &pts), Series::new("another", &pts).with_dash(true)];
+                render_chart(&mut p, &ser, &Chart { title: "t", x_label: "x", y_label: "y", log_y: true, theme, dpr, ..Default::default() });
+                let ser = [Series::new("folded", &below)];
+                render_chart(&mut p, &ser, &Chart { title: "t", y_break: Some(0.0), theme, dpr, ..Default::default() });
+                render_chart(&mut p, &[], &Chart { theme, dpr, ..Default::default() });
+                let h = PassHistory { label: "A", min_angle_deg: &[1.0, 2.0], max_angle_deg: &[170.0, 150.0], min_quality: &[0.1, 0.2], inverted: &[3.0, 0.0], color: None };
+                let mut p = px(700, 480);
+                render_pass_histories(&mut p, &[h], &Chart { title: "Per pass", theme, dpr, ..Default::default() });
+            })));
+            views.push(("histogram", Box::new(|| {
+                let mut p = px(520, 280);
+                let ser = [HistogramSeries { label: "as loaded", counts: &counts, color: None }];
+                render_angle_histogram(&mut p, &ser, &AngleHistogram { theme, dpr, ..Default::default() }).unwrap();
+            })));
+            views.push(("3D", Box::new(|| {
+                for side in [200u32, 400] {
+                    let mut p = px(side, side);
+                    let faces = Faces { points: &sphere, rings: &rings, ring_start: &starts, ..Default::default() };
+                    render_surface(&mut p, &faces, &SurfaceView { title: Some("a sphere".into()), theme, dpr, ..Default::default() });
+                }
+            })));
+            views.push(("sketch and titled", Box::new(|| {
+                let mut p = px(300, 260);
+                let lines = [SketchLine { from: DVec2::ZERO, to: DVec2::X, color: theme.ink, label: "y = 0" }];
+                let sketch = Sketch { title: "a sketch", points: &[(DVec2::Y, "A")], lines: &lines, dashed: &[] };
+                render_sketch(&mut p, &sketch, Frame::new(0.0, 0.0, 300.0, 260.0), dpr, &theme);
+                render_titled(&[p], 1, "a figure", dpr, &theme).unwrap();
+            })));
+            for (name, draw) in &views {
+                take_smallest_text();
+                draw();
+                let smallest = take_smallest_text();
+                assert!(smallest.is_finite(), "{name}: no text drawn");
+                assert!(smallest >= 14.0 * dpr - 1e-3, "{name}, dark {}, dpr {dpr}: a label of {smallest} px", theme.paper != Color::WHITE);
+            }
+        }
+    }
+    // the light theme keeps each label's own size: the legend's 9.9 px
+    take_smallest_text();
+    render_level_set(&mut pixmap(440, 480), &data, &LevelSetView::default());
+    assert!((take_smallest_text() - 9.9).abs() < 1e-3);
+}
+
+/// A view drawn by the label size test.
+type Drawing<'a> = Box<dyn Fn() + 'a>;
+
+fn view3d_sphere() -> (Vec<glam::DVec3>, Vec<u32>, Vec<u32>) {
+    let mut points = Vec::new();
+    let mut rings = Vec::new();
+    let mut offsets = vec![0u32];
+    let (nu, nv) = (12usize, 8usize);
+    for j in 0..=nv {
+        for i in 0..nu {
+            let (u, v) = (i as f64 / nu as f64 * std::f64::consts::TAU, j as f64 / nv as f64 * std::f64::consts::PI);
+            points.push(glam::DVec3::new(v.sin() * u.cos(), v.sin() * u.sin(), v.cos()));
+        }
+    }
+    for j in 0..nv {
+        for i in 0..nu {
+            let a = (j * nu + i) as u32;
+            let b = (j * nu + (i + 1) % nu) as u32;
+            rings.extend([a, b, b + nu as u32, a + nu as u32]);
+            offsets.push(rings.len() as u32);
+        }
+    }
+    (points, rings, offsets)
+}
+
+/// A square mesh fills at least 70% of a square canvas's side at every size from 150 px,
+/// in the light and the page's theme: the colour bar takes at most 12% of the side or is
+/// left out, never half the canvas.
+#[test]
+fn a_mesh_fills_most_of_a_small_canvas() {
+    let mesh = grid_mesh(6, 0.0);
+    let (lo, hi) = mesh.bounds();
+    for theme in [Theme::light(), Theme::for_page(true, 14.0)] {
+        for dpr in [1.0f32, 2.0] {
+            for side in (150..=1000).step_by(10) {
+                let d = (side as f32 * dpr) as u32;
+                let opts = MeshView { theme, dpr, ..Default::default() };
+                let view = mesh_view(d, d, &mesh, &opts);
+                let extent = (view.to_css(hi) - view.to_css(lo)).abs().min_element();
+                assert!(extent >= 0.7 * side as f64 - 1e-6, "{side} px at dpr {dpr}: {extent}");
+                let frame = Frame::new(0.0, 0.0, side as f32, side as f32);
+                let bar = colour_bar_band(frame, opts.metric.label(&mesh), &theme);
+                assert_eq!(bar.is_some(), mesh_colour_bar_shown(d, d, &mesh, &opts));
+                if let Some(b) = bar {
+                    assert!(b.h <= COLOUR_BAR_SHARE * side as f32);
+                }
+                if side <= 180 {
+                    assert!(bar.is_none(), "{side} px: no room for a bar");
+                }
+                if side >= 400 {
+                    assert!(bar.is_some(), "{side} px: the bar is drawn");
+                }
+            }
+        }
+    }
+}
+
+/// The 3D view, titled as the page draws it, keeps a sphere at least 70% of a square
+/// canvas's side from 150 px.
+#[test]
+fn a_surface_fills_most_of_a_small_canvas() {
+    let (points, rings, starts) = view3d_sphere();
+    for theme in [Theme::light(), Theme::for_page(true, 14.0)] {
+        for side in (150..=600u32).step_by(25) {
+            let mut p = pixmap(side, side);
+            let faces = Faces { points: &points, rings: &rings, ring_start: &starts, ..Default::default() };
+            let proj = render_surface(&mut p, &faces, &SurfaceView { title: Some("A: old".into()), theme, ..Default::default() });
+            let xs: Vec<f64> = points.iter().map(|q| proj.to_css(*q).x).collect();
+            let width = xs.iter().cloned().fold(f64::MIN, f64::max) - xs.iter().cloned().fold(f64::MAX, f64::min);
+            assert!(width >= 0.7 * side as f64, "{side} px: {width}");
+        }
+    }
+}
+
+/// The level-set window frames the feasible region with the start and the optimum: for
+/// a star whose node can move only in a sliver, the window is a fraction of the star's.
+#[test]
+fn the_level_set_window_frames_the_feasible_region() {
+    // a star-shaped ring of six spikes: the node can move only within the inner part
+    // before a triangle folds
+    let mut nodes = vec![[0.05, 0.02]];
+    for k in 0..12 {
+        let a = k as f64 * std::f64::consts::PI / 6.0;
+        let r = if k % 2 == 0 { 1.0 } else { 0.3 };
+        nodes.push([r * a.cos(), r * a.sin()]);
+    }
+    let tris: Vec<[u32; 3]> = (0..12u32).map(|k| [0, 1 + k, 1 + (k + 1) % 12]).collect();
+    let e: Vec<(ElementKind, &[u32])> = tris.iter().map(|t| (ElementKind::Tri3, &t[..])).collect();
+    let mesh = build(&nodes, &e);
+    let mut star = Star::new();
+    star.gather(&mesh, 0);
+    let whole = star_bounds(&star, 0.1);
+    let opt = DVec2::new(-0.05, 0.1);
+    let (lo, hi) = feasible_bounds(&star, &[star.x0, opt], 0.1);
+    let (ws, fs) = ((whole.1 - whole.0).x, (hi - lo).x);
+    assert!(fs < 0.5 * ws, "the window {fs} is not the star's {ws}");
+    for p in [star.x0, opt] {
+        assert!(p.cmpge(lo).all() && p.cmple(hi).all(), "{p} in {lo}..{hi}");
+    }
+    // every feasible point of the star lies in it
+    for j in 0..60 {
+        for i in 0..60 {
+            let p = whole.0 + (whole.1 - whole.0) * DVec2::new(i as f64 / 59.0, j as f64 / 59.0);
+            let valid = star.elems.iter().all(|el| {
+                let q = el.at(p);
+                let ce = corner_edges(el.kind, &q[..el.kind.node_count()]);
+                ce[..3].iter().all(|(a, b)| crate::quality::scaled_jacobian(*a, *b) > 0.0)
+            });
+            if valid {
+                assert!(p.cmpge(lo).all() && p.cmple(hi).all(), "feasible {p} outside {lo}..{hi}");
+            }
+        }
+    }
+    // a star with no feasible point keeps its own box
+    assert_eq!(feasible_bounds(&Star::new(), &[], 0.1), star_bounds(&Star::new(), 0.1));
+}

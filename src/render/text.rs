@@ -130,6 +130,10 @@ pub fn draw_text(pixmap: &mut Pixmap, text: &str, x: f32, y: f32, style: TextSty
     if !drawable(&style, x, y) {
         return;
     }
+    #[cfg(test)]
+    if !text.trim().is_empty() {
+        SMALLEST.with(|c| c.set(c.get().min(style.size)));
+    }
     let (mut caret, base) = origin(text, x, y, &style);
     let f = font().as_scaled(PxScale::from(style.size));
     let (w, h) = (pixmap.width() as i64, pixmap.height() as i64);
@@ -167,6 +171,20 @@ pub fn draw_text(pixmap: &mut Pixmap, text: &str, x: f32, y: f32, style: TextSty
             }
         });
     }
+}
+
+#[cfg(test)]
+thread_local! {
+    /// The smallest size (device pixels) of a non-blank text drawn on this thread since
+    /// [`take_smallest_text`] was last called: what the label size tests read.
+    static SMALLEST: std::cell::Cell<f32> = const { std::cell::Cell::new(f32::INFINITY) };
+}
+
+/// The smallest size (device pixels) of a non-blank text drawn on this thread since the
+/// last call (∞ when none was), and starts again.
+#[cfg(test)]
+pub(crate) fn take_smallest_text() -> f32 {
+    SMALLEST.with(|c| c.replace(f32::INFINITY))
 }
 
 /// Draws `text` turned by `angle_deg` (clockwise on screen, e.g. −90 for a y-axis

@@ -24,7 +24,8 @@ use glam::{DVec2, DVec3};
 use tiny_skia::{Color, FillRule, Mask, PathBuilder, Pixmap, Rect, Stroke, Transform};
 
 use super::colormap::{bucket, bucket_color, Colormap};
-use super::mesh::{bezier_control, draw_colour_bar, draw_inverted, COLOUR_BAR_WIDTH};
+use super::mesh::{bezier_control, colour_bar_band, draw_colour_bar, draw_inverted};
+use super::theme::Theme;
 use super::paint::{fill_rect, rect_mask, rgba, solid};
 use super::text::{draw_text, size_to_fit, Align, TextStyle, Valign};
 use super::view::{sane_dpr, Frame};
@@ -188,7 +189,8 @@ pub struct SurfaceView {
     pub show_edges: bool,
     /// A title above the picture. Default none.
     pub title: Option<String>,
-    /// Draw the colour bar (it takes [`COLOUR_BAR_WIDTH`] on the right). Default true.
+    /// Draw the colour bar: a thin band along the bottom, left out when the frame is too
+    /// small for it ([`colour_bar_band`](super::colour_bar_band)). Default true.
     pub colour_bar: bool,
     /// The colour bar's title. Default "quality".
     pub bar_title: String,
@@ -196,8 +198,8 @@ pub struct SurfaceView {
     pub domain: (f64, f64),
     /// Default viridis.
     pub colormap: Colormap,
-    /// Filled first. Default white.
-    pub background: Color,
+    /// Colours (its paper filled first) and label sizes. Default [`Theme::light`].
+    pub theme: Theme,
 }
 
 impl Default for SurfaceView {
@@ -213,7 +215,7 @@ impl Default for SurfaceView {
             bar_title: "quality".to_string(),
             domain: (0.0, 1.0),
             colormap: Colormap::Viridis,
-            background: Color::WHITE,
+            theme: Theme::light(),
         }
     }
 }
@@ -338,11 +340,14 @@ impl Projection {
 pub fn render_surface(pixmap: &mut Pixmap, faces: &Faces, opts: &SurfaceView) -> Projection {
     let s = sane_dpr(opts.dpr);
     let frame = opts.frame.unwrap_or(Frame::of_pixmap(pixmap, s));
-    fill_rect(pixmap, frame.x * s, frame.y * s, frame.w * s, frame.h * s, opts.background);
-    let top = if opts.title.is_some() { TITLE_H } else { 0.0 };
-    let right = if opts.colour_bar { COLOUR_BAR_WIDTH } else { 0.0 };
-    let plot = frame.inset(0.0, top, right, 0.0);
-    let proj = Projection::fit(faces.points, &opts.camera, plot, opts.margin, s);
+    let theme = &opts.theme;
+    fill_rect(pixmap, frame.x * s, frame.y * s, frame.w * s, frame.h * s, theme.paper);
+    let top = if opts.title.is_some() { TITLE_H * theme.grow(14.0) } else { 0.0 };
+    let bar = opts.colour_bar.then(|| colour_bar_band(frame.inset(0.0, top, 0.0, 0.0), &opts.bar_title, theme)).flatten();
+    let plot = frame.inset(0.0, top, 0.0, bar.map_or(0.0, |b| b.h));
+    // a small picture keeps a thinner margin, so the surface never shrinks to a dot
+    let margin = opts.margin.min((0.03 * frame.w.min(frame.h)).max(4.0));
+    let proj = Projection::fit(faces.points, &opts.camera, plot, margin, s);
     if frame.w * s < 1.0 || frame.h * s < 1.0 {
         return proj;
     }
@@ -388,16 +393,15 @@ pub fn render_surface(pixmap: &mut Pixmap, faces: &Faces, opts: &SurfaceView) ->
 
     if let Some(title) = &opts.title {
         let size = size_to_fit(title, 14.0, (frame.w - 8.0).max(1.0));
-        let style = TextStyle::new(size * s).with_align(Align::Centre, Valign::Baseline);
-        draw_text(pixmap, title, (plot.x + 0.5 * plot.w) * s, (frame.y + 18.0) * s, style);
+        let style = TextStyle::new(theme.text_px(size * s, s)).with_color(theme.ink).with_align(Align::Centre, Valign::Baseline);
+        draw_text(pixmap, title, (plot.x + 0.5 * plot.w) * s, (frame.y + 18.0 * theme.grow(14.0)) * s, style);
     }
-    if opts.colour_bar {
-        let bar = Frame::new(frame.right() - COLOUR_BAR_WIDTH, frame.y + top, COLOUR_BAR_WIDTH, frame.h - top);
-        fill_rect(pixmap, bar.x * s, bar.y * s, bar.w * s, bar.h * s, opts.background);
+    if let Some(bar) = bar {
+        fill_rect(pixmap, bar.x * s, bar.y * s, bar.w * s, bar.h * s, theme.paper);
         let n_inverted = faces.inverted.iter().take(faces.count()).filter(|&&b| b).count();
         let (d0, d1) = opts.domain;
         let domain = if d0.is_finite() && d1.is_finite() && d1 > d0 { (d0, d1) } else { (0.0, 1.0) };
-        draw_colour_bar(pixmap, bar, opts.colormap, domain, &opts.bar_title, n_inverted, s);
+        draw_colour_bar(pixmap, bar, opts.colormap, domain, &opts.bar_title, n_inverted, s, theme);
     }
     proj
 }

@@ -16,7 +16,7 @@ use smoothlab::quality::mesh_stats;
 use smoothlab::render::{
     encode_png, render_angle_histogram, render_mesh, AngleHistogram, HistogramSeries, MeshView, Metric,
 };
-use smoothlab::render::{Camera, SurfaceView};
+use smoothlab::render::{Camera, SurfaceView, Theme};
 use smoothlab::smooth::{smooth, SmoothOptions, Strategy};
 use smoothlab::surface::{Model, Surface, SurfaceSmoother};
 use smoothlab::volume::{smooth_volume, volume_stats, Cut, TetMesh};
@@ -37,6 +37,24 @@ pub enum ViewArg {
     Histogram,
     /// Old on the left, new on the right, after the passes, with their statistics
     Compare,
+}
+
+/// The colours a picture is drawn in.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum ThemeArg {
+    /// Black on white, labels at their own sizes
+    Light,
+    /// For projectors: light ink on a dark paper, labels at least 14 px
+    Dark,
+}
+
+impl ThemeArg {
+    fn theme(self) -> Theme {
+        match self {
+            ThemeArg::Light => Theme::light(),
+            ThemeArg::Dark => Theme::dark(),
+        }
+    }
 }
 
 #[derive(Args)]
@@ -96,6 +114,9 @@ pub struct RenderArgs {
     /// tetrahedra beyond it are taken away, the faces it opens coloured by mean ratio
     #[arg(long)]
     pub cut: Option<String>,
+    /// Colours: light (black on white) or dark (for projectors, with larger labels)
+    #[arg(long, value_enum, default_value = "light")]
+    pub theme: ThemeArg,
 }
 
 /// Which sides `--objective` asks for.
@@ -136,11 +157,12 @@ fn settings(a: &RenderArgs) -> Settings {
     }
 }
 
-/// Places `parts` side by side on one white picture.
-fn side_by_side(parts: &[Pixmap]) -> Result<Pixmap, String> {
+/// Places `parts` side by side on one picture of `theme`'s paper.
+fn side_by_side(parts: &[Pixmap], theme: &Theme) -> Result<Pixmap, String> {
     let w = parts.iter().map(|p| p.width()).sum();
     let h = parts.iter().map(|p| p.height()).max().unwrap_or(1);
     let mut out = pixmap(w, h).map_err(|e| e.to_string())?;
+    out.fill(theme.paper);
     let mut x = 0;
     for p in parts {
         out.draw_pixmap(x as i32, 0, p.as_ref(), &PixmapPaint::default(), Transform::identity(), None);
@@ -201,6 +223,8 @@ pub fn run(a: RenderArgs) -> Result<(), String> {
     let original = mesh.clone();
     let mut lab = Playground::new(mesh).map_err(|e| e.to_string())?;
     lab.set_settings(settings(&a)).map_err(|e| e.to_string())?;
+    let theme = a.theme.theme();
+    lab.set_theme(theme);
     let start = std::time::Instant::now();
     let clock = move || start.elapsed().as_secs_f64() * 1e3;
     for _ in 0..passes {
@@ -233,6 +257,7 @@ pub fn run(a: RenderArgs) -> Result<(), String> {
             let mut pm = pixmap(c.w, c.h).map_err(|e| e.to_string())?;
             let mut view = MeshView::default().with_dpr(a.dpr).with_highlight(a.node);
             view.metric = a.metric;
+            view.theme = theme;
             render_mesh(&mut pm, &lab.panel(first).mesh, &view);
             pm
         }
@@ -243,7 +268,7 @@ pub fn run(a: RenderArgs) -> Result<(), String> {
             for &side in &shown {
                 parts.push(lab.render_level_set(side, n, each).map_err(|e| e.to_string())?.0);
             }
-            side_by_side(&parts)?
+            side_by_side(&parts, &theme)?
         }
         ViewArg::History => match a.node {
             Some(_) => {
@@ -268,10 +293,10 @@ pub fn run(a: RenderArgs) -> Result<(), String> {
             for &side in &shown {
                 series.push(match side {
                     Side::Old => {
-                        HistogramSeries { label: "old (max-min)", counts: &old, color: Some(Side::Old.color()) }
+                        HistogramSeries { label: "old (max-min)", counts: &old, color: Some(theme.side(0)) }
                     }
                     Side::New => {
-                        HistogramSeries { label: "new (Chen et al.)", counts: &new, color: Some(Side::New.color()) }
+                        HistogramSeries { label: "new (Chen et al.)", counts: &new, color: Some(theme.side(1)) }
                     }
                 });
             }
@@ -282,7 +307,7 @@ pub fn run(a: RenderArgs) -> Result<(), String> {
             render_angle_histogram(
                 &mut pm,
                 &series,
-                &AngleHistogram { title: &title, dpr: a.dpr, ..AngleHistogram::default() },
+                &AngleHistogram { title: &title, dpr: a.dpr, theme, ..AngleHistogram::default() },
             )
             .map_err(|e| e.to_string())?;
             pm
@@ -303,7 +328,7 @@ fn figure(name: &str, a: &RenderArgs) -> Result<(), String> {
     let fig = smoothlab::lab::tour::find(name).map_err(|e| format!("--figure {name}: {e}"))?.1;
     let (w, h) = size(a.size.as_deref(), smoothlab::lab::tour::pictures::default_size(fig.name))?;
     let c = Canvas { w: ((w as f32) * a.dpr) as u32, h: ((h as f32) * a.dpr) as u32, dpr: a.dpr };
-    let picture = smoothlab::lab::tour::pictures::render(fig.name, c).map_err(|e| e.to_string())?;
+    let picture = smoothlab::lab::tour::pictures::render(fig.name, c, &a.theme.theme()).map_err(|e| e.to_string())?;
     let png = encode_png(&picture).map_err(|e| e.to_string())?;
     std::fs::write(&a.output, png).map_err(|e| format!("{}: {e}", a.output.display()))
 }
@@ -360,11 +385,11 @@ fn surface(
         let title =
             format!("{when}: {} inverted, angles {:.1}°–{:.1}°", st.inverted, st.min_angle_deg, st.max_angle_deg);
         let mut pm = pixmap(((each as f32) * a.dpr) as u32, ((h as f32) * a.dpr) as u32).map_err(|e| e.to_string())?;
-        let view = SurfaceView { camera, dpr: a.dpr, title: Some(title), ..SurfaceView::default() };
+        let view = SurfaceView { camera, dpr: a.dpr, title: Some(title), theme: a.theme.theme(), ..SurfaceView::default() };
         t.render(&mut pm, a.metric, &view);
         parts.push(pm);
     }
-    let picture = side_by_side(&parts)?;
+    let picture = side_by_side(&parts, &a.theme.theme())?;
     let png = encode_png(&picture).map_err(|e| e.to_string())?;
     std::fs::write(&a.output, png).map_err(|e| format!("{}: {e}", a.output.display()))
 }
@@ -422,7 +447,7 @@ fn volume(
         let mut series = vec![HistogramSeries { label: "as loaded", counts: &loaded, color: None }];
         series.extend(counts.iter().map(|(l, c)| HistogramSeries { label: l, counts: c, color: None }));
         let title = format!("Dihedral angles after {passes} passes");
-        let opts = AngleHistogram { title: &title, dpr: a.dpr, ..AngleHistogram::default() };
+        let opts = AngleHistogram { title: &title, dpr: a.dpr, theme: a.theme.theme(), ..AngleHistogram::default() };
         render_angle_histogram(&mut pm, &series, &opts).map_err(|e| e.to_string())?;
         pm
     } else {
@@ -440,11 +465,11 @@ fn volume(
                 format!("{when}: {} inverted, dihedral {:.1}°–{:.1}°", st.inverted, st.min_angle_deg, st.max_angle_deg);
             let mut pm =
                 pixmap(((each as f32) * a.dpr) as u32, ((h as f32) * a.dpr) as u32).map_err(|e| e.to_string())?;
-            let view = SurfaceView { camera, dpr: a.dpr, title: Some(title), ..SurfaceView::default() };
+            let view = SurfaceView { camera, dpr: a.dpr, title: Some(title), theme: a.theme.theme(), ..SurfaceView::default() };
             t.render_cut(&mut pm, cut, &view);
             parts.push(pm);
         }
-        side_by_side(&parts)?
+        side_by_side(&parts, &a.theme.theme())?
     };
     let png = encode_png(&picture).map_err(|e| e.to_string())?;
     std::fs::write(&a.output, png).map_err(|e| format!("{}: {e}", a.output.display()))
@@ -463,6 +488,7 @@ fn surface_level_sets(a: &RenderArgs, s: &Surface, passes: u32, shown: &[Side]) 
     let (star, n) = s.star_in_tangent_plane(node).map_err(|e| format!("--node {node}: {e}"))?;
     let mut lab = Playground::new(star).map_err(|e| e.to_string())?;
     lab.set_settings(settings(a)).map_err(|e| e.to_string())?;
+    lab.set_theme(a.theme.theme());
     let (w, h) = size(a.size.as_deref(), (if shown.len() == 2 { 1100 } else { 560 }, 560))?;
     let each =
         Canvas { w: ((w / shown.len() as u32) as f32 * a.dpr) as u32, h: ((h as f32) * a.dpr) as u32, dpr: a.dpr };
@@ -470,7 +496,7 @@ fn surface_level_sets(a: &RenderArgs, s: &Surface, passes: u32, shown: &[Side]) 
     for &side in shown {
         parts.push(lab.render_level_set(side, n, each).map_err(|e| e.to_string())?.0);
     }
-    let picture = side_by_side(&parts)?;
+    let picture = side_by_side(&parts, &a.theme.theme())?;
     let png = encode_png(&picture).map_err(|e| e.to_string())?;
     std::fs::write(&a.output, png).map_err(|e| format!("{}: {e}", a.output.display()))
 }

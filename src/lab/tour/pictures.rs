@@ -21,13 +21,10 @@ use crate::optimize::{DirectionKind, SolveResult};
 use crate::quality::{lo_alpha, mesh_stats, signed_angle, MeshStats};
 use crate::render::{
     percentages, render_angle_histogram, render_chart, render_mesh, render_sketch, render_titled, series_color, AngleHistogram,
-    Chart, Frame, HistogramSeries, Marker, MeshView, Series, Sketch, SketchLine,
+    Chart, Frame, HistogramSeries, Marker, MeshView, Series, Sketch, SketchLine, Theme,
 };
-use crate::render::{draw_text, Align, TextStyle, Valign};
+use crate::render::{draw_text, title_band, Align, TextStyle, Valign};
 use crate::smooth::{Measure, Order, SmoothOptions, Smoother, Strategy};
-
-/// Height of a figure's title band, CSS pixels.
-const HEAD: f32 = 28.0;
 
 /// The size a figure's picture is drawn at by default, CSS pixels.
 pub fn default_size(name: &str) -> (u32, u32) {
@@ -40,47 +37,51 @@ pub fn default_size(name: &str) -> (u32, u32) {
     }
 }
 
-/// The figure `name`'s picture on a canvas of `c.w × c.h` device pixels.
-pub fn render(name: &str, c: Canvas) -> Result<Pixmap> {
+/// The figure `name`'s picture on a canvas of `c.w × c.h` device pixels, in `theme`.
+pub fn render(name: &str, c: Canvas, theme: &Theme) -> Result<Pixmap> {
+    let t = theme;
     let (_, fig) = find(name)?;
     pixmap(c.w, c.h)?; // the size is checked before any work
     let title = format!("{} — {}", fig.source, fig.name);
     let parts = match fig.name {
-        "chen-2" => chen_2(part(c, 3, 1))?,
-        "chen-6" => chen_6(part(c, 3, 1))?,
-        "chen-9" | "chen-10" | "chen-20" => level_sets(fig, part(c, 2, 1))?,
-        "chen-11" => chen_11(fig, part(c, 2, 1))?,
-        "chen-13" => chen_13(part(c, 4, 2))?,
-        "chen-16" => chen_16(part(c, 4, 1))?,
-        "freitag-t1" => vec![freitag_table(part(c, 1, 1))?],
-        "freitag-3" => vec![freitag_histogram(part(c, 1, 1))?],
-        "knupp-1" => knupp_1(part(c, 4, 1))?,
+        "chen-2" => chen_2(part(c, 3, 1, t), t)?,
+        "chen-6" => chen_6(part(c, 3, 1, t), t)?,
+        "chen-9" | "chen-10" | "chen-20" => level_sets(fig, part(c, 2, 1, t), t)?,
+        "chen-11" => chen_11(fig, part(c, 2, 1, t), t)?,
+        "chen-13" => chen_13(part(c, 4, 2, t), t)?,
+        "chen-16" => chen_16(part(c, 4, 1, t), t)?,
+        "freitag-t1" => vec![freitag_table(part(c, 1, 1, t), t)?],
+        "freitag-3" => vec![freitag_histogram(part(c, 1, 1, t), t)?],
+        "knupp-1" => knupp_1(part(c, 4, 1, t), t)?,
         _ => return Err(Error::invalid(format!("figure {name} has no picture"))),
     };
     let cols = match fig.name {
         "chen-13" => 4,
         _ => parts.len(),
     };
-    render_titled(&parts, cols, &title, c.dpr).ok_or_else(|| Error::invalid("cannot allocate the figure"))
+    render_titled(&parts, cols, &title, c.dpr, t).ok_or_else(|| Error::invalid("cannot allocate the figure"))
 }
 
 /// The canvas of one of `cols × rows` panels under the title band.
-fn part(c: Canvas, cols: u32, rows: u32) -> Canvas {
-    let head = (HEAD * c.dpr.max(0.1)).round() as u32;
+fn part(c: Canvas, cols: u32, rows: u32, t: &Theme) -> Canvas {
+    let head = (title_band(t) * c.dpr.max(0.1)).round() as u32;
     Canvas { w: (c.w / cols).max(1), h: (c.h.saturating_sub(head) / rows).max(1), dpr: c.dpr }
 }
 
 /// A mesh on its own panel with a title and a line of statistics under it.
-fn mesh_panel(mesh: &Mesh, title: &str, c: Canvas) -> Result<Pixmap> {
+fn mesh_panel(mesh: &Mesh, title: &str, c: Canvas, t: &Theme) -> Result<Pixmap> {
     let mut pm = pixmap(c.w, c.h)?;
     let s = c.dpr;
     let full = Frame::of_pixmap(&pm, s);
     let st = mesh_stats(mesh);
     let line = format!("inverted {}, angles {:.1}°–{:.1}°", st.inverted, st.min_angle_deg, st.max_angle_deg);
-    render_mesh(&mut pm, mesh, &MeshView::default().with_dpr(s).with_frame(full.inset(0.0, 40.0, 0.0, 0.0)));
-    let style = |size: f32| TextStyle::new(size * s).with_align(Align::Centre, Valign::Top);
+    // the title (13 px) and the line (11 px) above the mesh, grown with the theme's labels
+    let (g13, g11) = (t.grow(13.0), t.grow(11.0));
+    let head = 22.0 * g13 + 18.0 * g11;
+    render_mesh(&mut pm, mesh, &MeshView { theme: *t, ..MeshView::default().with_dpr(s).with_frame(full.inset(0.0, head, 0.0, 0.0)) });
+    let style = |size: f32| TextStyle::new(t.text_px(size * s, s)).with_color(t.ink).with_align(Align::Centre, Valign::Top);
     draw_text(&mut pm, title, full.w / 2.0 * s, 4.0 * s, style(13.0));
-    draw_text(&mut pm, &line, full.w / 2.0 * s, 22.0 * s, style(11.0));
+    draw_text(&mut pm, &line, full.w / 2.0 * s, (4.0 + 18.0 * g13) * s, style(11.0));
     Ok(pm)
 }
 
@@ -123,7 +124,7 @@ fn triangle_star(at: DVec2) -> Result<Star> {
     Ok(star)
 }
 
-fn chen_2(c: Canvas) -> Result<Vec<Pixmap>> {
+fn chen_2(c: Canvas, t: &Theme) -> Result<Vec<Pixmap>> {
     let colors = [series_color(2), series_color(1)];
     let mut sketch = pixmap(c.w, c.h)?;
     let frame = Frame::of_pixmap(&sketch, c.dpr);
@@ -138,6 +139,7 @@ fn chen_2(c: Canvas) -> Result<Vec<Pixmap>> {
         &Sketch { title: "(a) triangle ABC, C moving", points: &[(A2, "A"), (B2, "B")], lines: &lines, dashed: &[] },
         frame,
         c.dpr,
+        t,
     );
     let alpha: Vec<Vec<DVec2>> = LINES2.iter().map(|&y| xs(X2.0, X2.1).map(|x| DVec2::new(x, alpha2(DVec2::new(x, y)))).collect()).collect();
     let new = objective_with(ObjectiveKind::New, Penalty::Barrier);
@@ -151,7 +153,7 @@ fn chen_2(c: Canvas) -> Result<Vec<Pixmap>> {
         let mut pm = pixmap(c.w, c.h)?;
         let series: Vec<Series<'_>> =
             pts.iter().zip(labels).zip(colors).map(|((p, l), col)| Series::new(l, p).with_color(col)).collect();
-        render_chart(&mut pm, &series, &Chart { title, x_label: "x of C", y_label, log_y, integer_x: false, dpr: c.dpr, ..Chart::default() });
+        render_chart(&mut pm, &series, &Chart { title, x_label: "x of C", y_label, log_y, integer_x: false, dpr: c.dpr, theme: *t, ..Chart::default() });
         Ok(pm)
     };
     Ok(vec![
@@ -202,7 +204,7 @@ fn barrier_of_angle(theta: f64, delta: f64) -> f64 {
     BARRIER_WEIGHT * eta * eta
 }
 
-fn chen_6(c: Canvas) -> Result<Vec<Pixmap>> {
+fn chen_6(c: Canvas, t: &Theme) -> Result<Vec<Pixmap>> {
     let mut sketch = pixmap(c.w, c.h)?;
     let frame = Frame::of_pixmap(&sketch, c.dpr);
     let line = [SketchLine { from: DVec2::new(-2.0, Y6), to: DVec2::new(2.0, Y6), color: series_color(2), label: "C on y = 2" }];
@@ -216,6 +218,7 @@ fn chen_6(c: Canvas) -> Result<Vec<Pixmap>> {
         },
         frame,
         c.dpr,
+        t,
     );
     let deg = 180.0 / PI;
     let mut theta = Vec::new();
@@ -236,7 +239,7 @@ fn chen_6(c: Canvas) -> Result<Vec<Pixmap>> {
     render_chart(
         &mut a,
         &[Series::new("θ at A (signed)", &theta).with_color(series_color(1)), Series::new("adjusted ω = wθ", &omega).with_color(series_color(2))],
-        &Chart { title: "θ jumps ±180° at x = 0; ω does not", x_label: "x of C on y = 2", y_label: "degrees", integer_x: false, dpr: c.dpr, ..Chart::default() },
+        &Chart { title: "θ jumps ±180° at x = 0; ω does not", x_label: "x of C on y = 2", y_label: "degrees", integer_x: false, dpr: c.dpr, theme: *t, ..Chart::default() },
     );
     let angles: Vec<f64> = xs(-179.0, 179.0).collect();
     let design = AnglePenalty::default();
@@ -252,7 +255,7 @@ fn chen_6(c: Canvas) -> Result<Vec<Pixmap>> {
             Series::new("barrier, δ = 0 (valid star)", &barrier0).with_color(series_color(2)),
             Series::new("barrier, δ = 0.1 (tangled)", &barrier_d).with_color(series_color(2)).with_dash(true),
         ],
-        &Chart { title: "eq. (8), our two designs", x_label: "angle, degrees", y_label: "penalty", log_y: true, integer_x: false, dpr: c.dpr, ..Chart::default() },
+        &Chart { title: "eq. (8), our two designs", x_label: "angle, degrees", y_label: "penalty", log_y: true, integer_x: false, dpr: c.dpr, theme: *t, ..Chart::default() },
     );
     Ok(vec![sketch, a, b])
 }
@@ -283,8 +286,9 @@ fn first(cell: &str) -> &str {
 
 // ---- level sets: Figs. 9, 10, 20 ------------------------------------------------------
 
-fn level_sets(fig: &Figure, c: Canvas) -> Result<Vec<Pixmap>> {
-    let (pg, st) = fig.playground()?;
+fn level_sets(fig: &Figure, c: Canvas, t: &Theme) -> Result<Vec<Pixmap>> {
+    let (mut pg, st) = fig.playground()?;
+    pg.set_theme(*t);
     let node = st.node.ok_or_else(|| Error::invalid(format!("figure {} names no node", fig.name)))? as usize;
     let (old, _) = pg.render_level_set(Side::Old, node, c)?;
     let (new, _) = pg.render_level_set(Side::New, node, c)?;
@@ -355,8 +359,9 @@ fn letter(d: DirectionKind) -> &'static str {
     }
 }
 
-fn chen_11(fig: &Figure, c: Canvas) -> Result<Vec<Pixmap>> {
-    let (pg, st) = fig.playground()?;
+fn chen_11(fig: &Figure, c: Canvas, t: &Theme) -> Result<Vec<Pixmap>> {
+    let (mut pg, st) = fig.playground()?;
+    pg.set_theme(*t);
     let node = st.node.ok_or_else(|| Error::invalid("chen-11 names no node"))? as usize;
     let (level, r) = pg.render_level_set(Side::New, node, c)?;
     // the excess over the final value, on a log axis (the final point, 0, is left out)
@@ -369,7 +374,7 @@ fn chen_11(fig: &Figure, c: Canvas) -> Result<Vec<Pixmap>> {
     };
     let (g, cj, n) = (pick(DirectionKind::Gradient), pick(DirectionKind::Conjugate), pick(DirectionKind::Newton));
     // each marked point its own one-point series, so no line joins the marks
-    let mut series = vec![Series::new("objective", &line).with_color(Side::New.color())];
+    let mut series = vec![Series::new("objective", &line).with_color(t.side(Side::New as usize))];
     for p in &g {
         series.push(Series::new("g: gradient step", std::slice::from_ref(p)).with_color(series_color(1)).with_marker(Marker::Circle));
     }
@@ -390,7 +395,7 @@ fn chen_11(fig: &Figure, c: Canvas) -> Result<Vec<Pixmap>> {
             log_y: true,
             legend: false,
             dpr: c.dpr,
-            ..Chart::default()
+            theme: *t, ..Chart::default()
         },
     );
     Ok(vec![level, chart])
@@ -449,12 +454,12 @@ fn plate_passes(order: Order) -> Result<Vec<Mesh>> {
     Ok(out)
 }
 
-fn chen_13(c: Canvas) -> Result<Vec<Pixmap>> {
+fn chen_13(c: Canvas, t: &Theme) -> Result<Vec<Pixmap>> {
     let mut parts = Vec::new();
     for (order, name) in [(Order::Priority, "priority order"), (Order::Input, "input order")] {
         for (i, m) in plate_passes(order)?.iter().enumerate() {
             let title = if i == 0 { format!("as loaded ({name})") } else { format!("pass {i}, new + rules, {name}") };
-            parts.push(mesh_panel(m, &title, c)?);
+            parts.push(mesh_panel(m, &title, c, t)?);
         }
     }
     Ok(parts)
@@ -501,8 +506,8 @@ fn curved_runs() -> Result<Vec<(String, Mesh)>> {
     Ok(out)
 }
 
-fn chen_16(c: Canvas) -> Result<Vec<Pixmap>> {
-    curved_runs()?.iter().map(|(t, m)| mesh_panel(m, t, c)).collect()
+fn chen_16(c: Canvas, theme: &Theme) -> Result<Vec<Pixmap>> {
+    curved_runs()?.iter().map(|(t, m)| mesh_panel(m, t, c, theme)).collect()
 }
 
 pub(super) fn chen_16_measured() -> Result<String> {
@@ -602,17 +607,18 @@ pub fn freitag_row(i: usize) -> Result<FreitagRow> {
     })
 }
 
-fn freitag_table(c: Canvas) -> Result<Pixmap> {
+fn freitag_table(c: Canvas, theme: &Theme) -> Result<Pixmap> {
     let mut pm = pixmap(c.w, c.h)?;
+    pm.fill(theme.paper);
     let s = c.dpr;
     let w = c.w as f32 / s;
     let cols = [0.0, 0.25, 0.38, 0.51, 0.61, 0.71, 0.86];
     let head = ["method", "min angle, seed 1", "max angle, seed 1", "Lap. moves", "opt. calls", "min angle, seeds 1–5", "Freitag: min / max (lap / opt)"];
     let rows = FREITAG_METHODS.len() + 1;
     let line = ((c.h as f32 / s - 8.0) / rows as f32).min(30.0);
-    let size = (line * 0.5).clamp(8.0, 13.0);
+    let size = theme.text_px((line * 0.5).clamp(8.0, 13.0), 1.0);
     let text = |pm: &mut Pixmap, t: &str, col: usize, row: usize| {
-        draw_text(pm, t, (8.0 + cols[col] * (w - 16.0)) * s, (4.0 + line * (row as f32 + 0.5)) * s, TextStyle::new(size * s).with_align(Align::Left, Valign::Middle));
+        draw_text(pm, t, (8.0 + cols[col] * (w - 16.0)) * s, (4.0 + line * (row as f32 + 0.5)) * s, TextStyle::new(size * s).with_color(theme.ink).with_align(Align::Left, Valign::Middle));
     };
     for (i, h) in head.iter().enumerate() {
         text(&mut pm, h, i, 0);
@@ -651,7 +657,7 @@ pub(super) fn freitag_t1_measured() -> Result<String> {
 /// The methods of Fig. 3's picture (rows of [`FREITAG_METHODS`]).
 const FIG3_ROWS: [usize; 5] = [0, 1, 3, 5, 8];
 
-fn freitag_histogram(c: Canvas) -> Result<Pixmap> {
+fn freitag_histogram(c: Canvas, t: &Theme) -> Result<Pixmap> {
     let rows: Vec<FreitagRow> = FIG3_ROWS.iter().map(|&i| freitag_row(i)).collect::<Result<_>>()?;
     let labels: Vec<String> = rows.iter().map(|r| r.method.replace('`', "")).collect();
     let series: Vec<HistogramSeries<'_>> = rows
@@ -668,7 +674,7 @@ fn freitag_histogram(c: Canvas) -> Result<Pixmap> {
     render_angle_histogram(
         &mut pm,
         &series,
-        &AngleHistogram { title: "rand2D (seed 1): corner angles after 3 passes, 6° bins", dpr: c.dpr, ..AngleHistogram::default() },
+        &AngleHistogram { title: "rand2D (seed 1): corner angles after 3 passes, 6° bins", dpr: c.dpr, theme: *t, ..AngleHistogram::default() },
     )?;
     Ok(pm)
 }
@@ -735,8 +741,8 @@ fn knupp_runs() -> Result<Vec<(String, Mesh)>> {
     ])
 }
 
-fn knupp_1(c: Canvas) -> Result<Vec<Pixmap>> {
-    knupp_runs()?.iter().map(|(t, m)| mesh_panel(m, t, c)).collect()
+fn knupp_1(c: Canvas, theme: &Theme) -> Result<Vec<Pixmap>> {
+    knupp_runs()?.iter().map(|(t, m)| mesh_panel(m, t, c, theme)).collect()
 }
 
 pub(super) fn knupp_1_measured() -> Result<String> {
@@ -800,11 +806,11 @@ mod tests {
     #[test]
     fn every_figure_draws_a_picture_with_ink() {
         for f in &FIGURES {
-            let pm = render(f.name, Canvas { w: 900, h: 420, dpr: 1.0 }).unwrap_or_else(|e| panic!("{}: {e}", f.name));
+            let pm = render(f.name, Canvas { w: 900, h: 420, dpr: 1.0 }, &Theme::light()).unwrap_or_else(|e| panic!("{}: {e}", f.name));
             let dark = pm.pixels().iter().filter(|p| p.red() < 128 && p.green() < 128).count();
             let colours: std::collections::HashSet<_> = pm.pixels().iter().map(|p| (p.red(), p.green(), p.blue())).collect();
             assert!(dark > 500 && colours.len() > 20, "{}: {dark} dark pixels, {} colours", f.name, colours.len());
         }
-        assert!(render("chen-2", Canvas { w: 0, h: 10, dpr: 1.0 }).is_err());
+        assert!(render("chen-2", Canvas { w: 0, h: 10, dpr: 1.0 }, &Theme::light()).is_err());
     }
 }

@@ -495,9 +495,11 @@ fn every_camera_keeps_the_mesh_inside_the_plot() {
             let proj = render_surface(&mut p, &Faces { points: &shifted, ..Default::default() }, &opts);
             for q in &shifted {
                 let c = proj.to_css(*q);
-                let (x1, y1) = (300.0 - COLOUR_BAR_WIDTH as f64 - 16.0, 200.0 - 16.0);
+                // the margin of a 200-px picture is 6 px; the colour bar's band is under it
+                let bar_h = colour_bar_band(Frame::new(0.0, 26.0, 300.0, 174.0), "quality", &Theme::light()).map_or(0.0, |b| b.h);
+                let (x1, y1) = (300.0 - 6.0, 200.0 - bar_h as f64 - 6.0);
                 assert!(
-                    c.x >= 16.0 - EPS && c.x <= x1 + EPS && c.y >= 26.0 + 16.0 - EPS && c.y <= y1 + EPS,
+                    c.x >= 6.0 - EPS && c.x <= x1 + EPS && c.y >= 26.0 + 6.0 - EPS && c.y <= y1 + EPS,
                     "{camera:?}: {c:?}"
                 );
             }
