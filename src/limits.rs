@@ -173,7 +173,9 @@ pub struct MenuEntry {
 pub struct PanelInfo {
     pub side: crate::lab::Side,
     pub letter: &'static str,
+    /// The side's colour in the light theme, and in the dark one (`render::Theme`).
     pub rgb: [u8; 3],
+    pub rgb_dark: [u8; 3],
     pub objective: &'static str,
     pub penalty: &'static str,
 }
@@ -203,6 +205,9 @@ pub struct PageControls {
     /// the same in words.
     pub file_extensions: Vec<String>,
     pub file_extensions_words: String,
+    /// The quality colour map's anchors (viridis, 0 to 1), for the page's own colour key
+    /// where a canvas is too small for the drawn colour bar.
+    pub quality_ramp: [[u8; 3]; 9],
 }
 
 fn int_control(label: &'static str, r: IntRange, default: u64) -> IntControl {
@@ -254,6 +259,7 @@ pub fn page_controls() -> PageControls {
                 side,
                 letter: side.letter(),
                 rgb: side.rgb(),
+                rgb_dark: crate::render::Theme::dark().sides[side as usize],
                 objective: c.objective.name(),
                 penalty: c.penalty.name(),
             })
@@ -263,6 +269,7 @@ pub fn page_controls() -> PageControls {
             .flat_map(|f| f.extensions().iter().map(|e| format!(".{e}")))
             .collect(),
         file_extensions_words: crate::io::extensions_in_words(),
+        quality_ramp: crate::render::VIRIDIS,
     }
 }
 

@@ -18,7 +18,7 @@ pub enum Colormap {
 
 /// Viridis at `t = 0, 1/8, …, 1` (matplotlib's table sampled at nine points, 8-bit sRGB);
 /// between anchors the map interpolates linearly in sRGB, which keeps L* monotone.
-const VIRIDIS: [[u8; 3]; 9] = [
+pub const VIRIDIS: [[u8; 3]; 9] = [
     [68, 1, 84],
     [71, 44, 122],
     [59, 81, 139],

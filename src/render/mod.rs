@@ -42,7 +42,7 @@ mod tests;
 
 pub use axes::{format_power_of_ten, format_tick, log_ticks, nice_range, nice_step, nice_ticks, Axis, Scale, Ticks};
 pub use chart::{render_chart, render_pass_histories, Chart, PassHistory, Series};
-pub use colormap::{bucket, bucket_color, lightness, series_color, Colormap, BUCKETS, SERIES};
+pub use colormap::{bucket, bucket_color, lightness, series_color, Colormap, BUCKETS, SERIES, VIRIDIS};
 pub use compare::{render_compare, ComparePanel};
 pub use contour::{iso_segments, Grid};
 pub use histogram::{percentages, render_angle_histogram, AngleHistogram, HistogramSeries};

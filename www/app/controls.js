@@ -65,8 +65,11 @@ export function buildControls(c) {
     const panel = c.panels[i];
     fillMenu($(obj), c.objectives.map((o) => [o.name, `${o.name}: ${o.words}`]), panel.objective);
     fillMenu($(pen), c.penalties.map((p) => [p.name, `${p.name}: ${p.words}`]), panel.penalty);
-    document.documentElement.style.setProperty(`--side-${panel.side}`, `rgb(${panel.rgb.join(',')})`);
+    document.documentElement.style.setProperty(`--side-${panel.side}-light`, `rgb(${panel.rgb.join(',')})`);
+    document.documentElement.style.setProperty(`--side-${panel.side}-dark`, `rgb(${panel.rgb_dark.join(',')})`);
   }
+  const ramp = c.quality_ramp.map((rgb, i) => `rgb(${rgb.join(',')}) ${((100 * i) / (c.quality_ramp.length - 1)).toFixed(1)}%`);
+  document.documentElement.style.setProperty('--quality-ramp', `linear-gradient(to right, ${ramp.join(', ')})`);
   showPenaltyReasons();
 }
 /** Fills a menu with `[value, text, tooltip]` entries (the tooltip may be absent). */

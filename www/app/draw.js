@@ -55,6 +55,10 @@ function capMeshes() {
     : wrap.getBoundingClientRect().top + window.scrollY;
   const cap = Math.max(300, Math.floor(window.innerHeight - top - 12));
   root.style.setProperty('--mesh-max', `${cap}px`);
+  // the side column ends at the window's foot (it scrolls inside), from where it starts
+  // (from the stage's top: the column itself is sticky, its box moves as the page scrolls)
+  const sideTop = document.querySelector('.stage').getBoundingClientRect().top + window.scrollY;
+  root.style.setProperty('--side-max', `${Math.max(320, Math.floor(window.innerHeight - Math.min(sideTop, window.innerHeight / 2) - 8))}px`);
 }
 
 /** How tall the content of a box is (not the box: a flex item is as tall as it is given). */
@@ -113,7 +117,21 @@ function fitFrame() {
   return canvases.some((c, i) => `${c.style.width}x${c.style.height}` !== before[i]);
 }
 
-export async function redrawMeshes(again = true) {
+/** The quality scale in HTML, shown when the canvases were too small for the core to draw
+ * its colour bar (the key's words name the measure the meshes are coloured by). */
+function showColourKey(on) {
+  const key = $('colour-key');
+  if (key.hidden === !on) return false;
+  key.hidden = !on;
+  $('colour-key-text').textContent = state.volume
+    ? 'mean ratio of the cut faces: 0 (poor) to 1 (ideal)'
+    : 'quality (α for triangles, β for quads): 0 (poor) to 1 (ideal)';
+  return true;
+}
+
+/** `refits`: how many times more the canvases may be fitted again to what the tables and
+ * the colour key took (each fit only shrinks them or leaves them, so this ends). */
+export async function redrawMeshes(refits = 2) {
   fitEmbed();
   const t0 = now();
   // a phone shows one panel at a time: the size is the shown one's (both are drawn alike)
@@ -127,9 +145,11 @@ export async function redrawMeshes(again = true) {
     Object.assign(metrics.startup, { first_mesh_ms: now(), first_frame_ms: now() - t0, first_render_ms: f.render_ms });
   }
   state.frame = { w, h, dpr };
+  const keyChanged = showColourKey(f.colour_bar === false);
   const t1 = now();
   fillTables(f.stats);
-  if (again && fitEmbed()) return redrawMeshes(false); // the tables took room: the canvases shrink, once more at most
+  // the tables or the colour key took room: the canvases shrink (a bounded number of times)
+  if (refits > 0 && (refits === 2 || keyChanged) && fitEmbed()) return redrawMeshes(refits - 1);
   await refreshUndo();
   return {
     frame_ms: t1 - t0,

@@ -287,7 +287,7 @@ export default async function ({ server, context }) {
       await idle(p);
       check((await p.evaluate(() => document.documentElement.dataset.theme)) === 'dark', 'the toggle chose dark');
       check(lum(await corner('mesh-old')) < 60 && lum(await corner('mesh-new')) < 60, `the pictures did not follow: ${await corner('mesh-old')}`);
-      const bg = await p.evaluate(() => getComputedStyle(document.body).backgroundColor);
+      const bg = await p.evaluate(() => getComputedStyle(document.documentElement).backgroundColor);
       check(/rgb\((\d+), (\d+), (\d+)\)/.test(bg) && lum(bg.match(/\d+/g).map(Number)) < 60, `the page is not dark: ${bg}`);
       await p.screenshot({ path: path.join(OUT, 'dark-1366x768.png') });
       // the choice is kept for the next visit; ?theme=light overrides it
