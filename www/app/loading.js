@@ -73,14 +73,15 @@ export function showSurfaceMode(on, why = null, volume = false) {
   }
   $('surface-why').hidden = !(on && why);
   $('surface-why').textContent = on && why ? `Read as a surface in 3D: ${why}.` : '';
-  for (const [id, why] of Object.entries(PLANAR_ONLY)) {
+  for (const id of Object.keys(PLANAR_ONLY)) {
     const el = $(id);
-    if (on) {
+    const waits = planarOnlyWhy(id);
+    if (waits) {
       el.disabled = true;
-      el.title = state.volume ? `Not for tetrahedra: ${why.replace(/a surface/g, 'a 3D mesh')}.` : `Not for a surface: ${why}.`;
+      el.title = waits;
     } else {
       el.disabled = id === 'smooth-node' ? state.node === null : id === 'undo' ? el.disabled : false;
-      el.title = el.dataset.help || '';
+      el.title = id === 'hist-log' ? HIST_LOG_HELP[state.volume ? 'volume' : 'planar'] : el.dataset.help || '';
     }
   }
   for (const id of ['mesh-old', 'mesh-new']) {
@@ -97,6 +98,33 @@ export function selectValueOf(src) {
   if (src.kind === 'sample') return `sample:${src.name}`;
   if (src.kind === 'gmsh') return `gmsh:${src.name}`;
   return '';
+}
+
+/** The label of a source as the sample menu shows it (not its internal name); a user's
+ * file by its name. */
+export function labelOf(src) {
+  if (src.kind === 'file' || src.kind === 'triangle') return `your file ${src.name}`;
+  const o = [...$('sample').options].find((x) => x.value === selectValueOf(src));
+  return o ? o.textContent : src.name;
+}
+
+/** The sample menu shows the mesh on screen: a sample by its entry, a user's file as
+ * "(your file: NAME)". */
+export function showSource(src) {
+  const mine = [...$('sample').options].find((o) => o.value === '');
+  const file = src && (src.kind === 'file' || src.kind === 'triangle');
+  if (mine) mine.textContent = file ? `(your file: ${src.name})` : '(your file)';
+  $('sample').value = src ? selectValueOf(src) : '';
+}
+
+/** A load that failed: the message box says why (the core's words, as the command-line
+ * tool says them), the status line says it too, with the mesh still on screen, and the
+ * sample menu names that mesh. */
+export function refuseLoad(name, reason) {
+  const prev = state.lastGood;
+  showSource(prev);
+  const still = prev ? ` Still showing ${labelOf(prev)}.` : '';
+  setStatus(`Could not open ${name}: ${String(reason).replace(/[.\s]+$/, '')}.${still}`);
 }
 
 /** Loads a source; on failure the previous mesh stays on screen and the message says why. */
