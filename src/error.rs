@@ -18,8 +18,10 @@ pub enum Error {
     /// the size of the largest element it belongs to.
     NotPlanar { node: usize, line: Option<usize>, max_distance: f64, relative: f64, tolerance: f64 },
     /// The input is well-formed but asks for something smoothlab does not do
-    /// (polygons, volume cells, binary files, …).
-    Unsupported { line: Option<usize>, message: String },
+    /// (polygons, volume cells, binary files, …). `lead`, when given, says it first in
+    /// words a reader of the mesh knows (`hexahedra are not supported yet`), before the
+    /// line and the file's own terms (`VTK cell type 12`).
+    Unsupported { lead: Option<String>, line: Option<usize>, message: String },
     /// The mesh has no elements (or no nodes).
     Empty(String),
     /// The input is larger than a stated limit.
@@ -41,7 +43,12 @@ impl Error {
         Error::Node { node, line, message: message.into() }
     }
     pub fn unsupported(line: Option<usize>, message: impl Into<String>) -> Self {
-        Error::Unsupported { line, message: message.into() }
+        Error::Unsupported { lead: None, line, message: message.into() }
+    }
+    /// An element kind smoothlab does not read, said first in plain words (`lead`, e.g.
+    /// `hexahedra are not supported yet`), then the line and the file's terms.
+    pub fn unsupported_kind(lead: impl Into<String>, line: usize, message: impl Into<String>) -> Self {
+        Error::Unsupported { lead: Some(lead.into()), line: Some(line), message: message.into() }
     }
     pub fn invalid(message: impl Into<String>) -> Self {
         Error::Invalid(message.into())
@@ -80,7 +87,10 @@ impl fmt::Display for Error {
                     shown_number(*relative)
                 )
             }
-            Error::Unsupported { line, message } => {
+            Error::Unsupported { lead, line, message } => {
+                if let Some(lead) = lead {
+                    write!(f, "{lead}: ")?;
+                }
                 if let Some(l) = line {
                     write!(f, "line {l}: ")?;
                 }

@@ -31,9 +31,13 @@ use crate::limits::{self, amount_words, IntRange, MAX_AMOUNT};
 use crate::objective::{ObjectiveKind, Penalty};
 use crate::smooth::{Order, Strategy};
 
-/// The sample names a permalink may carry: every generated sample of the page's gallery
-/// by its serde name ([`Sample`](crate::lab::sample::Sample), kebab-case), then one name
-/// per Gmsh file the page ships (see [`GMSH_FILES`] and [`gmsh_sample_name`]).
+/// The sample names a permalink may carry: every sample of the page's gallery (its sample
+/// menu: [`Sample::GALLERY`](crate::lab::sample::Sample::GALLERY), planar, surfaces,
+/// tetrahedra and the large ones alike) by its name ([`Sample::name`](crate::lab::sample::Sample::name),
+/// kebab-case), then one name per Gmsh file the page ships (see [`GMSH_FILES`] and
+/// [`gmsh_sample_name`]). This is the one rule for which samples a link names: the page's
+/// Copy link, `#sample=NAME` and the tour's figures (the command-line tool's `--figure`)
+/// all go through it.
 pub const SAMPLES: &[&str] = &[
     "plate-quad-tangled",
     "plate-tri-tangled",
@@ -51,10 +55,20 @@ pub const SAMPLES: &[&str] = &[
     "star-curved",
     "grid-random-tangled",
     "rand2d-large",
+    "sphere-tangled",
+    "torus-tangled",
+    "cylinder-capped",
+    "rand3d",
+    "rand2d-million",
     "gmsh-plate-hole-tri",
     "gmsh-bracket-quad",
     "gmsh-disk-tri6",
 ];
+
+/// Whether a permalink can name a sample of the gallery (every one can: see [`SAMPLES`]).
+pub fn linkable(sample: crate::lab::sample::Sample) -> bool {
+    SAMPLES.contains(&sample.name())
+}
 
 /// The Gmsh files the page ships (its `GMSH_SAMPLES`), each named in [`SAMPLES`] by
 /// [`gmsh_sample_name`].
@@ -207,7 +221,7 @@ fn read(s: &mut PageState, key: &'static str, v: &str) -> std::result::Result<()
             .iter()
             .find(|&&x| x == v)
             .map(|x| s.sample = Some(x.to_string()))
-            .ok_or_else(|| format!("one of the samples ({})", SAMPLES.join(", "))),
+            .ok_or_else(|| format!("the name of a sample of the gallery, one of {}", SAMPLES.join(", "))),
         "tangle" => number(v, |a| (0.0..=MAX_AMOUNT).contains(&a), amount_words).map(|a| s.amount = a),
         "seed" => whole(v, limits::SEED).map(|n| s.seed = n),
         "perturbed" => flag(v).map(|f| s.perturbed = f),
@@ -493,12 +507,15 @@ mod tests {
     #[test]
     fn samples_are_exactly_the_pages_gallery_and_gmsh_files() {
         use crate::lab::sample::Sample;
-        let mut want: Vec<String> = Sample::ALL
+        // every sample of the gallery (the page's sample menu), surfaces, tetrahedra and
+        // the large ones included, by the name serde gives it (the name the page sends)
+        let mut want: Vec<String> = Sample::GALLERY
             .iter()
             .map(|s| serde_json::to_value(s).unwrap().as_str().unwrap().to_string())
             .collect();
-        for name in &want {
-            assert!(SAMPLES.contains(&name.as_str()), "the gallery's {name} is not a permalink sample");
+        for (s, name) in Sample::GALLERY.iter().zip(&want) {
+            assert_eq!(s.name(), name);
+            assert!(linkable(*s), "the gallery's {name} is not a permalink sample");
         }
         want.extend(GMSH_FILES.iter().map(|f| gmsh_sample_name(f)));
         assert_eq!(SAMPLES, want.iter().map(String::as_str).collect::<Vec<_>>().as_slice());
@@ -508,6 +525,35 @@ mod tests {
         }
         assert_eq!(gmsh_file("plate-tri"), None);
         assert_eq!(gmsh_file("gmsh-"), None);
+    }
+
+    #[test]
+    fn every_gallery_sample_opens_from_a_link_and_is_written_back() {
+        use crate::lab::sample::Sample;
+        for s in Sample::GALLERY {
+            let hash = format!("#sample={}&passes=2", s.name());
+            let st = decode(&hash).unwrap_or_else(|e| panic!("{hash}: {e}"));
+            assert_eq!(st.sample.as_deref(), Some(s.name()));
+            let back = encode(&st);
+            assert!(back.starts_with(&format!("#sample={}&", s.name())) && back.contains("&passes=2&"), "{back}");
+            assert_eq!(decode(&back).unwrap(), st);
+        }
+        // the surfaces and the tetrahedra by name (they once were left out of links)
+        for name in ["sphere-tangled", "torus-tangled", "cylinder-capped", "rand3d", "rand2d-large", "rand2d-million"] {
+            assert_eq!(decode(&format!("sample={name}")).unwrap().sample.as_deref(), Some(name));
+        }
+    }
+
+    #[test]
+    fn an_unknown_sample_is_refused_listing_every_valid_name() {
+        for bad in ["rand3D", "sphere", "gmsh-bracket", "rand2d-1m"] {
+            let e = decode(&format!("#sample={bad}")).unwrap_err().to_string();
+            assert!(e.starts_with("permalink: 'sample' must be the name of a sample of the gallery, one of "), "{e}");
+            assert!(e.ends_with(&format!(", found '{bad}'")), "{e}");
+            for name in SAMPLES {
+                assert!(e.contains(&format!(" {name},")) || e.contains(&format!(" {name}, found")), "{name} is not listed: {e}");
+            }
+        }
     }
 
     #[test]

@@ -798,11 +798,12 @@ impl VolumeLab {
     }
 
     /// Both sides' dihedral angle histograms beside the mesh as loaded, on canvases of
-    /// `w × h` device pixels: `{ old, new }` (RGBA pixels).
-    pub fn histograms(&self, w: u32, h: u32, dpr: f32) -> Result<JsValue, JsError> {
+    /// `w × h` device pixels, the percentages on a logarithmic scale when `log_y`:
+    /// `{ old, new }` (RGBA pixels).
+    pub fn histograms(&self, w: u32, h: u32, dpr: f32, log_y: bool) -> Result<JsValue, JsError> {
         let c = canvas(w, h, dpr);
-        let old = pixels(self.inner.render_histogram(Side::Old, c)?);
-        let new = pixels(self.inner.render_histogram(Side::New, c)?);
+        let old = pixels(self.inner.render_histogram(Side::Old, c, log_y)?);
+        let new = pixels(self.inner.render_histogram(Side::New, c, log_y)?);
         object(&[("old", old), ("new", new)])
     }
 

@@ -24,7 +24,9 @@ const isSurface = () => pg instanceof wasm.SurfaceLab || isVolume();
 
 /** The handle of a planar mesh: what only a planar mesh has (level sets, dragging, charts). */
 function planar() {
-  if (need() && isSurface()) throw new Error('this view takes planar meshes only; this mesh is a surface in 3D');
+  if (need() && isSurface()) {
+    throw new Error(`this view takes planar meshes only; this mesh is ${isVolume() ? 'made of tetrahedra' : 'a surface in 3D'}`);
+  }
   return pg;
 }
 
@@ -130,7 +132,7 @@ const handlers = {
   orbit: (dx, dy) => surface().orbit(dx, dy),
   camera: () => surface().camera(),
   setCut: (axis, at) => volume().setCut(axis, at),
-  volumeHistograms: (w, h, dpr) => volume().histograms(w, h, dpr),
+  volumeHistograms: (w, h, dpr, logY) => volume().histograms(w, h, dpr, Boolean(logY)),
   zoomLevelSets: (panel, x, y, factor) => planar().zoomLevelSets(panel, x, y, factor),
   panLevelSets: (panel, dx, dy) => planar().panLevelSets(panel, dx, dy),
   resetZoom: () => need().resetZoom(),

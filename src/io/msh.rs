@@ -28,7 +28,9 @@ enum GmshType {
     Solid(usize),
     /// Lines and points: their nodes are marked fixed.
     Marker(usize),
-    Unsupported(&'static str),
+    /// The element's name in Gmsh's terms and, for a kind a reader of the mesh knows by
+    /// name, that name in plain words (plural), which the message leads with.
+    Unsupported(&'static str, Option<&'static str>),
 }
 
 fn gmsh_type(t: u64) -> GmshType {
@@ -43,33 +45,41 @@ fn gmsh_type(t: u64) -> GmshType {
         8 => Marker(3),
         15 => Marker(1),
         4 => Solid(4),
-        5 => Unsupported("8-node hexahedron"),
-        6 => Unsupported("6-node prism"),
-        7 => Unsupported("5-node pyramid"),
+        5 => Unsupported("8-node hexahedron", Some("hexahedra")),
+        6 => Unsupported("6-node prism", Some("prisms (wedges)")),
+        7 => Unsupported("5-node pyramid", Some("pyramids")),
         11 => Solid(10),
-        12 => Unsupported("27-node hexahedron"),
-        13 => Unsupported("18-node prism"),
-        14 => Unsupported("14-node pyramid"),
-        17 => Unsupported("20-node hexahedron"),
-        18 => Unsupported("15-node prism"),
-        19 => Unsupported("13-node pyramid"),
-        20 => Unsupported("9-node incomplete cubic triangle"),
-        21 => Unsupported("10-node cubic triangle"),
-        22..=25 => Unsupported("higher-order triangle"),
-        26..=28 => Unsupported("higher-order line"),
-        _ => Unsupported("unknown type"),
+        12 => Unsupported("27-node hexahedron", Some("quadratic hexahedra")),
+        13 => Unsupported("18-node prism", Some("quadratic prisms (wedges)")),
+        14 => Unsupported("14-node pyramid", Some("quadratic pyramids")),
+        17 => Unsupported("20-node hexahedron", Some("quadratic hexahedra")),
+        18 => Unsupported("15-node prism", Some("quadratic prisms (wedges)")),
+        19 => Unsupported("13-node pyramid", Some("quadratic pyramids")),
+        20 => Unsupported("9-node incomplete cubic triangle", Some("cubic triangles")),
+        21 => Unsupported("10-node cubic triangle", Some("cubic triangles")),
+        22..=25 => Unsupported("higher-order triangle", Some("triangles above second order")),
+        26..=28 => Unsupported("higher-order line", Some("lines above second order")),
+        _ => Unsupported("unknown type", None),
     }
 }
 
+/// What smoothlab reads of a `.msh` file, said after a refused element type.
+const GMSH_READS: &str = "smoothlab reads triangles (types 2, 9), quads (3, 16, 10) and tetrahedra (4, 11), \
+                          and takes lines (1, 8) and points (15) as fixed nodes";
+
+/// The refusal of element type `t` (given at `line`): in plain words first when the kind
+/// has a name people know (`hexahedra are not supported yet: line 17: Gmsh element type 5
+/// (8-node hexahedron); smoothlab reads …`).
 fn unsupported_type(t: u64, line: usize) -> Error {
-    let GmshType::Unsupported(name) = gmsh_type(t) else { unreachable!("only called for unsupported types") };
-    Error::unsupported(
-        Some(line),
-        format!(
-            "Gmsh element type {t} ({name}) is not supported: smoothlab reads triangles (types 2, 9), \
-             quads (3, 16, 10) and tetrahedra (4, 11), and takes lines (1, 8) and points (15) as fixed nodes"
+    let GmshType::Unsupported(name, words) = gmsh_type(t) else { unreachable!("only called for unsupported types") };
+    match words {
+        Some(words) => Error::unsupported_kind(
+            format!("{words} are not supported yet"),
+            line,
+            format!("Gmsh element type {t} ({name}); {GMSH_READS}"),
         ),
-    )
+        None => Error::unsupported(Some(line), format!("Gmsh element type {t} ({name}) is not supported: {GMSH_READS}")),
+    }
 }
 
 /// Node tags → 0-based node indices, without an array sized by the largest tag unless
@@ -422,7 +432,7 @@ impl Reader {
                     self.marks.push((tag, line as u32));
                 }
             }
-            GmshType::Unsupported(_) => unreachable!("refused by the callers"),
+            GmshType::Unsupported(..) => unreachable!("refused by the callers"),
         }
         Ok(())
     }
@@ -436,7 +446,7 @@ impl Reader {
             let (_, el) = lex.u64(|| format!("the tag of {}", number()))?;
             let (t, tl) = lex.u64(|| format!("the type of {}", number()))?;
             let ty = gmsh_type(t);
-            if let GmshType::Unsupported(_) = ty {
+            if let GmshType::Unsupported(..) = ty {
                 return Err(unsupported_type(t, tl));
             }
             let (ntags, _) = lex.u64(|| format!("the number of tags of {}", number()))?;
@@ -461,7 +471,7 @@ impl Reader {
             lex.i64(|| what("entity tag"))?;
             let (t, tl) = lex.u64(|| what("element type"))?;
             let ty = gmsh_type(t);
-            if let GmshType::Unsupported(_) = ty {
+            if let GmshType::Unsupported(..) = ty {
                 return Err(unsupported_type(t, tl));
             }
             let (count, cl) = lex.u64(|| what("element count"))?;
@@ -789,6 +799,33 @@ mod tests {
         assert_eq!(ea.replace("line 15", "line 8"), eb, "the lines differ by the node section's 7 lines");
         let late = build(format!("{head}{nodes}{}$Bad\n", elements(41))).unwrap_err().to_string();
         assert!(late.contains("line 17") && late.contains("EndBad"), "{late}");
+    }
+
+    #[test]
+    fn solid_kinds_other_than_tetrahedra_are_refused_in_plain_words_first() {
+        // one element of each type (its node list is never read), in 2.2 and 4.1
+        let v22 = |t: u64| format!("$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Elements\n1\n1 {t} 2 0 1 1 2 3 4\n$EndElements\n");
+        let v41 = |t: u64| format!("$MeshFormat\n4.1 0 8\n$EndMeshFormat\n$Elements\n1 1 1 1\n3 1 {t} 1\n1 1 2 3 4\n$EndElements\n");
+        let cases = [
+            (5, "hexahedra are not supported yet: line 6: Gmsh element type 5 (8-node hexahedron); smoothlab reads triangles"),
+            (6, "prisms (wedges) are not supported yet: line 6: Gmsh element type 6 (6-node prism); "),
+            (7, "pyramids are not supported yet: line 6: Gmsh element type 7 (5-node pyramid); "),
+            (12, "quadratic hexahedra are not supported yet: line 6: Gmsh element type 12 (27-node hexahedron)"),
+            (17, "quadratic hexahedra are not supported yet: line 6: Gmsh element type 17 (20-node hexahedron)"),
+            (18, "quadratic prisms (wedges) are not supported yet: line 6: Gmsh element type 18 (15-node prism)"),
+            (19, "quadratic pyramids are not supported yet: line 6: Gmsh element type 19 (13-node pyramid)"),
+        ];
+        for (t, want) in cases {
+            let e = parse(&v22(t)).unwrap_err();
+            assert!(matches!(e, Error::Unsupported { line: Some(6), .. }), "{e:?}");
+            assert!(e.to_string().starts_with(want), "type {t}: {e}");
+            assert!(e.to_string().contains("tetrahedra (4, 11)"), "{e}");
+            let e = parse(&v41(t)).unwrap_err().to_string();
+            assert!(e.starts_with(want), "type {t} in 4.1: {e}");
+        }
+        // a type with no name people know keeps the file's terms alone, line first
+        let e = parse(&v22(99)).unwrap_err().to_string();
+        assert!(e.starts_with("line 6: Gmsh element type 99 (unknown type) is not supported: smoothlab reads"), "{e}");
     }
 
     #[test]

@@ -38,8 +38,8 @@ fn in_file(e: Error, file: &str) -> Error {
         Error::Node { node, line, message } => {
             Error::Node { node, line, message: format!("{message} (line numbers of the .node file)") }
         }
-        Error::Unsupported { line, message } => {
-            Error::Unsupported { line, message: format!("{message} (in the {file} file)") }
+        Error::Unsupported { lead, line, message } => {
+            Error::Unsupported { lead, line, message: format!("{message} (in the {file} file)") }
         }
         other => other,
     }

@@ -61,7 +61,9 @@ enum VtkType {
     Pixel,
     Polygon,
     Marker,
-    Unsupported(&'static str),
+    /// The cell's name in VTK's terms and, for a kind a reader of the mesh knows by name,
+    /// that name in plain words (plural), which the message leads with.
+    Unsupported(&'static str, Option<&'static str>),
 }
 
 fn vtk_type(t: u64) -> VtkType {
@@ -75,17 +77,17 @@ fn vtk_type(t: u64) -> VtkType {
         8 => Pixel,
         7 => Polygon,
         1 | 2 | 3 | 4 | 21 => Marker,
-        6 => Unsupported("triangle strip"),
+        6 => Unsupported("triangle strip", Some("triangle strips")),
         10 => Solid(4),
-        11 => Unsupported("voxel"),
-        12 => Unsupported("hexahedron"),
-        13 => Unsupported("wedge"),
-        14 => Unsupported("pyramid"),
+        11 => Unsupported("voxel", Some("hexahedra (voxels)")),
+        12 => Unsupported("hexahedron", Some("hexahedra")),
+        13 => Unsupported("wedge", Some("wedges (prisms)")),
+        14 => Unsupported("pyramid", Some("pyramids")),
         24 => Solid(10),
-        25 => Unsupported("quadratic hexahedron"),
-        26 => Unsupported("quadratic wedge"),
-        27 => Unsupported("quadratic pyramid"),
-        _ => Unsupported("not a 2D cell smoothlab knows"),
+        25 => Unsupported("quadratic hexahedron", Some("quadratic hexahedra")),
+        26 => Unsupported("quadratic wedge", Some("quadratic wedges (prisms)")),
+        27 => Unsupported("quadratic pyramid", Some("quadratic pyramids")),
+        _ => Unsupported("not a 2D cell smoothlab knows", None),
     }
 }
 
@@ -607,14 +609,20 @@ impl Reader<'_> {
                     marked.extend_from_slice(conn);
                     continue;
                 }
-                VtkType::Unsupported(name) => {
-                    return Err(Error::unsupported(
-                        Some(type_line),
-                        format!(
-                            "VTK cell type {ty} ({name}) of element {i} is not supported: smoothlab reads types 5, 9, \
-                             22, 23, 28 (and 7 with 3 or 4 vertices) and tetrahedra (10, 24)"
+                VtkType::Unsupported(name, words) => {
+                    const READS: &str = "smoothlab reads types 5, 9, 22, 23, 28 (and 7 with 3 or 4 vertices) \
+                                         and tetrahedra (10, 24)";
+                    return Err(match words {
+                        Some(words) => Error::unsupported_kind(
+                            format!("{words} are not supported yet"),
+                            type_line,
+                            format!("VTK cell type {ty} ({name}) of element {i}; {READS}"),
                         ),
-                    ))
+                        None => Error::unsupported(
+                            Some(type_line),
+                            format!("VTK cell type {ty} ({name}) of element {i} is not supported: {READS}"),
+                        ),
+                    });
                 }
             };
             builder.add_element(kind, &ids[..kind.node_count()], line);
@@ -685,5 +693,41 @@ pub(crate) fn write_fixed(fixed: &[bool], s: &mut Out) {
     let _ = writeln!(s, "POINT_DATA {}\nSCALARS fixed int 1\nLOOKUP_TABLE default", fixed.len());
     for &f in fixed {
         let _ = writeln!(s, "{}", u8::from(f));
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn solid_kinds_other_than_tetrahedra_are_refused_in_plain_words_first() {
+        // one cell of each type (eight points, one cell), the type at line 17
+        let file = |t: u64| {
+            format!(
+                "# vtk DataFile Version 3.0\nt\nASCII\nDATASET UNSTRUCTURED_GRID\nPOINTS 8 float\n\
+                 0 0 0\n1 0 0\n1 1 0\n0 1 0\n0 0 1\n1 0 1\n1 1 1\n0 1 1\n\
+                 CELLS 1 9\n8 0 1 2 3 4 5 6 7\nCELL_TYPES 1\n{t}\n"
+            )
+        };
+        let cases = [
+            (12, "hexahedra are not supported yet: line 17: VTK cell type 12 (hexahedron) of element 0; smoothlab reads"),
+            (11, "hexahedra (voxels) are not supported yet: line 17: VTK cell type 11 (voxel) of element 0; "),
+            (13, "wedges (prisms) are not supported yet: line 17: VTK cell type 13 (wedge) of element 0; "),
+            (14, "pyramids are not supported yet: line 17: VTK cell type 14 (pyramid) of element 0; "),
+            (25, "quadratic hexahedra are not supported yet: line 17: VTK cell type 25 (quadratic hexahedron)"),
+            (26, "quadratic wedges (prisms) are not supported yet: line 17: VTK cell type 26 (quadratic wedge)"),
+            (27, "quadratic pyramids are not supported yet: line 17: VTK cell type 27 (quadratic pyramid)"),
+        ];
+        for (t, want) in cases {
+            let e = parse(&file(t)).unwrap_err();
+            assert!(matches!(e, Error::Unsupported { line: Some(17), .. }), "{e:?}");
+            let e = e.to_string();
+            assert!(e.starts_with(want), "type {t}: {e}");
+            assert!(e.ends_with("and tetrahedra (10, 24)"), "{e}");
+        }
+        // a type with no name people know keeps the file's terms alone, line first
+        let e = parse(&file(42)).unwrap_err().to_string();
+        assert!(e.starts_with("line 17: VTK cell type 42 (not a 2D cell smoothlab knows) of element 0 is not supported"), "{e}");
     }
 }

@@ -79,9 +79,8 @@ pub enum Sample {
     /// Freitag (1997) Table 2: rand3D, 1086 points in the unit cube in about 5900
     /// tetrahedra ([`crate::generate::rand3d`]).
     Rand3d,
-    /// rand2d with 1 000 000 nodes (about 2 million triangles): the page at its limit.
-    /// In the gallery but not in [`Sample::ALL`], the samples a permalink can name: a
-    /// shared link or an embedded page should never start a load of this size.
+    /// rand2d with 1 000 000 nodes (about 2 million triangles): the page at its limit
+    /// (last in the gallery, its title says it is slow).
     Rand2dMillion,
 }
 
@@ -103,7 +102,7 @@ impl Sample {
         g
     };
 
-    /// The surface samples, in gallery order (a permalink does not name them yet).
+    /// The surface samples, in gallery order.
     pub const SURFACES: [Sample; 3] = [Sample::SphereTangled, Sample::TorusTangled, Sample::CylinderCapped];
 
     /// The sample the page opens on, first in the gallery: the tangled quad plate, where
@@ -112,7 +111,8 @@ impl Sample {
     /// 20 seeds (`docs/reproduction.md` §8; on triangles the two are level).
     pub const DEFAULT: Sample = Sample::ALL[0];
 
-    /// Every sample a permalink can name, in gallery order.
+    /// The planar samples of the gallery but the 1M-node one, in gallery order (a
+    /// permalink names every sample of [`Sample::GALLERY`]: [`crate::permalink::SAMPLES`]).
     pub const ALL: [Sample; 16] = [
         Sample::PlateQuadTangled,
         Sample::PlateTriTangled,
@@ -159,9 +159,37 @@ impl Sample {
         }
     }
 
-    /// Whether a permalink can name the sample (see [`Sample::Rand2dMillion`]).
+    /// The sample's name, as serde writes it (kebab-case): the page's menu value and the
+    /// permalink's `sample=`.
+    pub const fn name(self) -> &'static str {
+        match self {
+            Sample::Rand2d => "rand2d",
+            Sample::PlateTri => "plate-tri",
+            Sample::PlateQuad => "plate-quad",
+            Sample::PlateMixed => "plate-mixed",
+            Sample::PlateTriTangled => "plate-tri-tangled",
+            Sample::PlateQuadTangled => "plate-quad-tangled",
+            Sample::PlateMixedTangled => "plate-mixed-tangled",
+            Sample::Rand2dTangled => "rand2d-tangled",
+            Sample::StarRegular => "star-regular",
+            Sample::StarChen => "star-chen",
+            Sample::StarQuad => "star-quad",
+            Sample::StarPushed => "star-pushed",
+            Sample::StarCurved => "star-curved",
+            Sample::GridRandomTangled => "grid-random-tangled",
+            Sample::PlateQuadratic => "plate-quadratic",
+            Sample::Rand2dLarge => "rand2d-large",
+            Sample::SphereTangled => "sphere-tangled",
+            Sample::TorusTangled => "torus-tangled",
+            Sample::CylinderCapped => "cylinder-capped",
+            Sample::Rand3d => "rand3d",
+            Sample::Rand2dMillion => "rand2d-million",
+        }
+    }
+
+    /// Whether a permalink can name the sample ([`crate::permalink::linkable`]: all can).
     pub fn linkable(self) -> bool {
-        Sample::ALL.contains(&self)
+        crate::permalink::linkable(self)
     }
 
     /// Makes the mesh: a planar one, or a surface in 3D ([`Sample::SURFACES`]).
@@ -262,8 +290,7 @@ mod tests {
         assert_eq!(&Sample::GALLERY[..n], &Sample::ALL);
         assert_eq!(&Sample::GALLERY[n..n + 3], &Sample::SURFACES);
         assert_eq!(Sample::GALLERY[n + 3..], [Sample::Rand3d, Sample::Rand2dMillion]);
-        assert!(Sample::ALL.iter().all(|s| s.linkable()) && !Sample::Rand2dMillion.linkable());
-        assert!(Sample::SURFACES.iter().all(|s| !s.linkable()) && !Sample::Rand3d.linkable());
+        assert!(Sample::GALLERY.iter().all(|s| s.linkable()), "a link names every sample of the gallery");
         let Model::Volume(v) = Sample::Rand3d.model().unwrap() else { panic!("rand3d is tetrahedral") };
         assert_eq!(v.node_count(), crate::generate::RAND3D_POINTS);
         assert!(Sample::Rand3d.generate().unwrap_err().to_string().contains("tetrahedra"));
@@ -277,6 +304,7 @@ mod tests {
         for s in Sample::GALLERY {
             let j = serde_json::to_string(&s).unwrap();
             assert_eq!(serde_json::from_str::<Sample>(&j).unwrap(), s);
+            assert_eq!(j, format!("\"{}\"", s.name()));
         }
         assert_eq!(serde_json::to_string(&Sample::PlateTriTangled).unwrap(), "\"plate-tri-tangled\"");
         assert!(serde_json::from_str::<Sample>("\"plate-hexagons\"").is_err());

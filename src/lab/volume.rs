@@ -253,8 +253,9 @@ impl VolumeLab {
     }
 
     /// A side's dihedral angles (6° bins, Freitag's Fig. 3) beside the mesh as loaded, on
-    /// a canvas of `c.w × c.h` device pixels; both sides on one percentage scale.
-    pub fn render_histogram(&self, side: Side, c: Canvas) -> Result<Pixmap> {
+    /// a canvas of `c.w × c.h` device pixels; both sides on one percentage scale, linear or
+    /// logarithmic (`log_y`, as the planar angle histograms).
+    pub fn render_histogram(&self, side: Side, c: Canvas, log_y: bool) -> Result<Pixmap> {
         let mut pm = pixmap(c.w, c.h)?;
         let pct = |h: &[u64]| {
             let total: u64 = h.iter().sum();
@@ -270,7 +271,7 @@ impl VolumeLab {
             HistogramSeries { label: &label, counts: &self.side(side).stats.angle_histogram_6deg, color: None },
         ];
         let title = format!("Dihedral angles, {}", self.side_title(side));
-        let opts = AngleHistogram { title: &title, dpr: c.dpr, y_top: Some(top), theme: self.theme, ..AngleHistogram::default() };
+        let opts = AngleHistogram { title: &title, dpr: c.dpr, y_top: Some(top), log_y, theme: self.theme, ..AngleHistogram::default() };
         render_angle_histogram(&mut pm, &series, &opts)?;
         Ok(pm)
     }
@@ -321,8 +322,12 @@ mod tests {
         let (pm, _) = l.render(Side::Old, c).unwrap();
         // not blank: the cut is coloured
         assert!(pm.pixels().iter().any(|p| p.red() != p.green() || p.green() != p.blue()));
-        let h = l.render_histogram(Side::New, c).unwrap();
+        let h = l.render_histogram(Side::New, c, false).unwrap();
         assert_eq!((h.width(), h.height()), (300, 240));
+        // the log scale draws the same counts differently (the small bins stand taller)
+        let log = l.render_histogram(Side::New, c, true).unwrap();
+        assert_eq!((log.width(), log.height()), (300, 240));
+        assert_ne!(h.data(), log.data(), "the log scale changes the picture");
         let text = l.export(Side::New, Format::Vtk).unwrap();
         let Model::Volume(back) = crate::io::read_model_str(&text, Format::Vtk).unwrap() else {
             panic!("not tetrahedra")

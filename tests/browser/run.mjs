@@ -1393,7 +1393,7 @@ try {
       check(/^Not for a surface: /.test(await page.getAttribute(`#${id}`, 'title')), `#${id} says why`);
     }
     check(/planar/.test(await page.textContent('#node-hint')), 'the node view says why it waits');
-    check(/cannot be opened from a link/.test(await page.textContent('#permalink-note')), 'the permalink says it holds no surface');
+    check((await page.textContent('#permalink-note')) === '' && (await page.getAttribute('#permalink', 'href')).includes('#sample=sphere-tangled&'), 'the link carries the surface sample');
     const a0 = await canvasInfo(page, 'mesh-old');
     const b0 = await canvasInfo(page, 'mesh-new');
     check(a0.colours > 50 && b0.colours > 50, 'both sides are drawn shaded');

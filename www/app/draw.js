@@ -1,6 +1,6 @@
 // Drawing: the engine's pixels on the canvases, sized to the layout (and to an embed's frame).
 import { $, EMBED, engine, metrics, now, state, view } from './state.js';
-import { PLANAR_ONLY } from './loading.js';
+import { planarOnlyWhy } from './loading.js';
 import { fillTables } from './tables.js';
 import { refreshUndo } from './undo.js';
 
@@ -169,13 +169,13 @@ export async function redrawCharts() {
   if (state.volume) {
     placeholder($('pass-chart'), 'Drawn for planar meshes; the tables follow the tetrahedra pass by pass');
     const hc = canvasPixels($('hist-old'));
-    const r = await engine.call('volumeHistograms', hc.w, hc.h, hc.dpr);
+    const r = await engine.call('volumeHistograms', hc.w, hc.h, hc.dpr, $('hist-log').checked);
     paint($('hist-old'), r.old, hc.w, hc.h);
     paint($('hist-new'), r.new, hc.w, hc.h);
     return;
   }
   if (state.surface) {
-    for (const id of ['pass-chart', 'hist-old', 'hist-new']) placeholder($(id), 'Drawn for planar meshes; this is a surface');
+    for (const id of ['pass-chart', 'hist-old', 'hist-new']) placeholder($(id), 'Drawn for planar meshes; this is a surface in 3D');
     return;
   }
   const c = canvasPixels($('pass-chart'));
@@ -211,8 +211,9 @@ export async function redrawNode() {
   const ch = canvasPixels($('solve-chart'));
   $('smooth-node').disabled = state.node === null || state.running || state.surface;
   if (state.surface) {
-    for (const id of ['level-old', 'level-new', 'solve-chart']) placeholder($(id), 'Drawn for planar meshes; this is a surface');
-    $('node-hint').textContent = `Not for a surface: ${PLANAR_ONLY.node}.`;
+    const what = state.volume ? 'these are tetrahedra' : 'this is a surface in 3D';
+    for (const id of ['level-old', 'level-new', 'solve-chart']) placeholder($(id), `Drawn for planar meshes; ${what}`);
+    $('node-hint').textContent = planarOnlyWhy('node');
     return;
   }
   if (state.node === null) {

@@ -46,14 +46,42 @@ export async function sendSource(src, call) {
   return loaded;
 }
 
-/** What a surface does not have (yet) on the page, and why: these controls wait,
- * saying so, while a surface is loaded (as a strategy's unused controls do). */
+/** What a surface or tetrahedra do not have (yet) on the page, and why, in the words of
+ * each: these controls wait, saying so, while such a mesh is loaded (as a strategy's
+ * unused controls do). A `volume` of null: the control works for tetrahedra too. */
 export const PLANAR_ONLY = {
-  node: 'a node of a surface moves in its tangent plane: the level sets are drawn for planar meshes',
-  'smooth-node': 'the level sets and one-node smoothing are for planar meshes',
-  undo: 'nodes of a surface are not dragged (a drag turns the view)',
-  'hist-log': 'the per-pass chart and the angle histograms are drawn for planar meshes',
-  'save-figure': 'the figure for slides is drawn for planar meshes; save each 3D view as a PNG',
+  node: {
+    surface: 'a node of a surface moves in its tangent plane: the level sets are drawn for planar meshes',
+    volume: 'the cut view of tetrahedra picks no node (its faces hide the nodes behind them), and the level sets are drawn for planar meshes',
+  },
+  'smooth-node': {
+    surface: 'the level sets and one-node smoothing are for planar meshes',
+    volume: 'the level sets and one-node smoothing are for planar meshes',
+  },
+  undo: {
+    surface: 'nodes of a surface are not dragged (a drag turns the view)',
+    volume: 'nodes of tetrahedra are not dragged (a drag turns the view)',
+  },
+  'hist-log': {
+    surface: 'the per-pass chart and the angle histograms are drawn for planar meshes',
+    volume: null, // the dihedral-angle histograms take the log scale too
+  },
+  'save-figure': {
+    surface: 'the figure for slides is drawn for planar meshes; save each 3D view as a PNG',
+    volume: 'the figure for slides is drawn for planar meshes; save each cut view as a PNG',
+  },
+};
+/** Why a control waits for the mesh on screen (`Not for a surface: …` or `Not for
+ * tetrahedra: …`), or null when it works for it. */
+export function planarOnlyWhy(id) {
+  if (!state.surface) return null;
+  const why = PLANAR_ONLY[id][state.volume ? 'volume' : 'surface'];
+  return why ? `${state.volume ? 'Not for tetrahedra' : 'Not for a surface'}: ${why}.` : null;
+}
+/** What the log-scale box scales for the mesh on screen, as its tooltip when it works. */
+export const HIST_LOG_HELP = {
+  planar: 'The corner-angle histograms of both sides on a logarithmic scale: the few very poor angles show.',
+  volume: 'The dihedral-angle histograms of both sides on a logarithmic scale: the few very poor angles show.',
 };
 
 /** Puts the page in the surface mode (or back in the planar one); `why` says why a file
@@ -73,14 +101,15 @@ export function showSurfaceMode(on, why = null, volume = false) {
   }
   $('surface-why').hidden = !(on && why);
   $('surface-why').textContent = on && why ? `Read as a surface in 3D: ${why}.` : '';
-  for (const [id, why] of Object.entries(PLANAR_ONLY)) {
+  for (const id of Object.keys(PLANAR_ONLY)) {
     const el = $(id);
-    if (on) {
+    const waits = planarOnlyWhy(id);
+    if (waits) {
       el.disabled = true;
-      el.title = state.volume ? `Not for tetrahedra: ${why.replace(/a surface/g, 'a 3D mesh')}.` : `Not for a surface: ${why}.`;
+      el.title = waits;
     } else {
       el.disabled = id === 'smooth-node' ? state.node === null : id === 'undo' ? el.disabled : false;
-      el.title = el.dataset.help || '';
+      el.title = id === 'hist-log' ? HIST_LOG_HELP[state.volume ? 'volume' : 'planar'] : el.dataset.help || '';
     }
   }
   for (const id of ['mesh-old', 'mesh-new']) {
@@ -99,6 +128,33 @@ export function selectValueOf(src) {
   return '';
 }
 
+/** The label of a source as the sample menu shows it (not its internal name); a user's
+ * file by its name. */
+export function labelOf(src) {
+  if (src.kind === 'file' || src.kind === 'triangle') return `your file ${src.name}`;
+  const o = [...$('sample').options].find((x) => x.value === selectValueOf(src));
+  return o ? o.textContent : src.name;
+}
+
+/** The sample menu shows the mesh on screen: a sample by its entry, a user's file as
+ * "(your file: NAME)". */
+export function showSource(src) {
+  const mine = [...$('sample').options].find((o) => o.value === '');
+  const file = src && (src.kind === 'file' || src.kind === 'triangle');
+  if (mine) mine.textContent = file ? `(your file: ${src.name})` : '(your file)';
+  $('sample').value = src ? selectValueOf(src) : '';
+}
+
+/** A load that failed: the message box says why (the core's words, as the command-line
+ * tool says them), the status line says it too, with the mesh still on screen, and the
+ * sample menu names that mesh. */
+export function refuseLoad(name, reason) {
+  const prev = state.lastGood;
+  showSource(prev);
+  const still = prev ? ` Still showing ${labelOf(prev)}.` : '';
+  setStatus(`Could not open ${name}: ${String(reason).replace(/[.\s]+$/, '')}.${still}`);
+}
+
 /** Loads a source; on failure the previous mesh stays on screen and the message says why. */
 export function load(src, label, { keepHash = false } = {}) {
   const stopped = endRun();
@@ -110,8 +166,7 @@ export function load(src, label, { keepHash = false } = {}) {
     try {
       loaded = await loadSource(src);
     } catch (e) {
-      setStatus('');
-      $('sample').value = state.lastGood ? selectValueOf(state.lastGood) : '';
+      if (!e.panic) refuseLoad(label, e && e.message ? e.message : String(e));
       throw e;
     } finally {
       $('progress').max = 1;
@@ -119,7 +174,7 @@ export function load(src, label, { keepHash = false } = {}) {
     }
     const t1 = now();
     clearError();
-    $('sample').value = selectValueOf(src);
+    showSource(src);
     await redrawAll();
     const ms = now() - t0;
     metrics.lastLoad = { label, ms, build_ms: t1 - t0, draw_ms: now() - t1, memory_bytes: engine.memory };
@@ -143,7 +198,9 @@ export async function readFiles(files) {
   if (list.length === 0) return;
   for (const f of list) {
     if (f.size > MAX_FILE_BYTES) {
-      showError(`${f.name} is too large (${(f.size / 1048576).toFixed(0)} MB); the page reads files up to ${MAX_FILE_BYTES / 1048576} MB.`);
+      const why = `${f.name} is too large (${(f.size / 1048576).toFixed(0)} MB); the page reads files up to ${MAX_FILE_BYTES / 1048576} MB.`;
+      showError(why);
+      refuseLoad(f.name, why);
       return;
     }
   }
@@ -152,7 +209,9 @@ export async function readFiles(files) {
   const ele = list.find((f) => ext(f) === 'ele');
   if (node || ele) {
     if (!(node && ele)) {
-      showError(`A Triangle mesh needs its .node and .ele files together: select or drop both (got only ${(node || ele).name}).`);
+      const why = `A Triangle mesh needs its .node and .ele files together: select or drop both (got only ${(node || ele).name}).`;
+      showError(why);
+      refuseLoad((node || ele).name, why);
       return;
     }
     const [nt, et] = await Promise.all([node.text(), ele.text()]);
@@ -160,7 +219,9 @@ export async function readFiles(files) {
     return;
   }
   if (list.length > 1) {
-    showError(`Drop one mesh file at a time (or a .node and .ele pair); got ${list.length} files.`);
+    const why = `Drop one mesh file at a time (or a .node and .ele pair); got ${list.length} files.`;
+    showError(why);
+    refuseLoad(list.map((f) => f.name).join(', '), why);
     return;
   }
   const f = list[0];

@@ -1,5 +1,5 @@
 // The playground page's entry: wires the controls, fills the menus and opens the address.
-import { $, COMPARE, EMBED, PARAMS, FIGURE_HASH, GMSH_SAMPLES, SETTINGS, UNLINKABLE, VIEWS, engine, gallery, metrics, now, report, serial, showError, state, view } from './state.js';
+import { $, COMPARE, EMBED, PARAMS, FIGURE_HASH, GMSH_SAMPLES, SETTINGS, VIEWS, engine, gallery, metrics, now, report, serial, showError, state, view } from './state.js';
 import { CHECKED, buildControls, changeCompare, checkControl, showStrategyReasons } from './controls.js';
 import { applyHash, copyLink, markAddressHandled, onAddressChange, openHash, openView, updatePermalink } from './permalink.js';
 import { closeTour, drawFigurePicture, fillTourMenu, goFigure, openFigure } from './tour.js';
@@ -22,7 +22,6 @@ export async function fillGallery() {
     const o = document.createElement('option');
     o.value = `sample:${s.name}`;
     o.textContent = s.title;
-    if (!s.linkable) UNLINKABLE.add(s.name);
     gen.append(o);
   }
   const files = document.createElement('optgroup');

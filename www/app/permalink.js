@@ -1,9 +1,9 @@
 // The address: the permalink written and read by the core's encoder (src/permalink.rs),
 // what a hash opens, the embedded views, Back and Forward.
-import { $, COMPARE, EMBED, FIGURE_HASH, GMSH_SAMPLES, SETTINGS, UNLINKABLE, engine, gallery, report, serial, setStatus, showError, state, view } from './state.js';
+import { $, COMPARE, EMBED, FIGURE_HASH, GMSH_SAMPLES, SETTINGS, engine, gallery, report, serial, setStatus, showError, state, view } from './state.js';
 import { CHECKED, changeCompare, invalidMessage, readChoice, readSettings, showPenaltyReasons, showStrategyReasons } from './controls.js';
 import { openFigure } from './tour.js';
-import { load, selectValueOf } from './loading.js';
+import { labelOf, load, selectValueOf } from './loading.js';
 import { perturbWith, smooth } from './run.js';
 import { selectNode } from './pointer.js';
 
@@ -12,11 +12,12 @@ import { selectNode } from './pointer.js';
 export function gmshSampleName(file) {
   return `gmsh-${file.replace(/\.msh$/, '').replaceAll('_', '-')}`;
 }
-/** The permalink sample name of what is loaded, or null (a user's file has none). */
+/** The permalink sample name of what is loaded, or null (a user's file has none). Every
+ * sample of the gallery has one (src/permalink.rs, SAMPLES), surfaces and tetrahedra too. */
 export function sourceSample() {
   const s = state.lastGood;
   if (!s) return null;
-  if (s.kind === 'sample') return UNLINKABLE.has(s.name) ? null : s.name;
+  if (s.kind === 'sample') return s.name;
   if (s.kind === 'gmsh') return gmshSampleName(s.name);
   return null;
 }
@@ -53,11 +54,7 @@ export async function writePermalink() {
   $('permalink').href = `${location.pathname}${hash}`;
   const s = state.lastGood;
   let note = '';
-  if (s && s.kind === 'sample' && UNLINKABLE.has(s.name) && state.surface) {
-    note = 'A surface sample cannot be opened from a link yet: the link keeps the settings only, with the default sample.';
-  } else if (s && s.kind === 'sample' && UNLINKABLE.has(s.name)) {
-    note = 'This sample is too large to open from a link: the link keeps the settings only, with the default sample.';
-  } else if (s && (s.kind === 'file' || s.kind === 'triangle')) {
+  if (s && (s.kind === 'file' || s.kind === 'triangle')) {
     note = `Your own file (${s.name}) cannot travel in a link: the link opens these settings on the default sample.`;
   }
   $('permalink').title = note;
@@ -129,12 +126,6 @@ export async function applyHash(hash = location.hash) {
   return { src: fallback, ...extra };
 }
 
-/** The label of a source as the sample menu shows it (not its internal name). */
-export function labelOf(src) {
-  const o = [...$('sample').options].find((x) => x.value === selectValueOf(src));
-  return o ? o.textContent : src.name;
-}
-
 /** Opens what a hash names: its sample (unless it is already loaded and unperturbed),
  * its perturbation and its node. The controls were set by applyHash. */
 export async function openHash({ src, error, perturbed, node }, { keepLink = false } = {}) {
@@ -142,7 +133,8 @@ export async function openHash({ src, error, perturbed, node }, { keepLink = fal
   if (!same || state.perturbed || perturbed) await load(src, labelOf(src), { keepHash: true });
   else if (!sameCompare()) await changeCompare();
   if (perturbed) await perturbWith(perturbed.amount, perturbed.seed, { keepHash: true });
-  if (node !== null && node !== undefined) await selectNode(node, { keepHash: true });
+  // a node is chosen on a planar mesh only (a 3D view picks none: see PLANAR_ONLY)
+  if (node !== null && node !== undefined && !state.surface) await selectNode(node, { keepHash: true });
   else if (state.node !== null) await selectNode(null, { keepHash: true });
   if (error) showError(`This link's settings could not be read, so the defaults are shown: ${error.replace(/^permalink: /, '')}`);
   if (!keepLink) await serial(writePermalink).catch(report);

@@ -168,8 +168,13 @@ export function orbitBy(dx, dy) {
     });
 }
 
-/** A click on a surface view says which node is there (the near side of the surface). */
+/** A click on a surface view says which node is there (the near side of the surface); the
+ * cut view of tetrahedra picks none (its faces hide the nodes behind them). */
 export function sayNode(canvas, ev) {
+  if (state.volume) {
+    showPickNote('The cut view of tetrahedra picks no node: drag to turn it, wheel to zoom, move the cut plane to look inside.');
+    return;
+  }
   const p = toFrame(canvas, ev);
   serial(() => engine.call('pickSurface', canvas.dataset.side, p.x, p.y, pickRadius(ev)))
     .then((node) => showPickNote(node === null ? 'No node there: drag to turn the surface, wheel to zoom.' : `Node ${node} of the surface.`))

@@ -42,8 +42,6 @@ export const FIGURE_HASH = /^#figure=([a-z0-9-]{1,40})$/;
 /** Milliseconds of smoothing per call to the worker during a pass: the progress bar
  * moves and Stop is heard at least this often. */
 export const SLICE_MS = 50;
-/** Generated samples a permalink cannot name (filled from the engine's gallery). */
-export const UNLINKABLE = new Set();
 
 export const now = () => performance.now();
 export const nextFrame = () => new Promise((r) => requestAnimationFrame(() => r()));

@@ -20,6 +20,16 @@ export const STAT_ROWS = [
   ['passes', 'Passes', (s) => s.passes],
   ['time', 'Smoothing time', (s) => s.time_ms, null, (v) => `${num(v, 1)} ms`],
 ];
+/** A tetrahedral mesh's tooltips for the rows whose meaning changes in 3D. */
+export const VOLUME_HELP = {
+  inverted: 'Tetrahedra of negative volume (their corners in the wrong order): a tangled mesh. Fewer is better.',
+  min_angle: 'The smallest dihedral angle (the angle between two faces) of any tetrahedron. Larger is better.',
+  max_angle: 'The largest dihedral angle of any tetrahedron. Smaller is better.',
+  min_quality: 'The worst mean ratio of a tetrahedron (1 for the regular tetrahedron, below 0 inverted). Larger is better.',
+  mean_quality: 'The mean of the mean ratio over the tetrahedra.',
+  small_angles: "The share of dihedral angles under 18° (Freitag's Fig. 3 view).",
+  max_condition: "The worst condition number κ = ‖T‖‖T⁻¹‖ (Frobenius norms) of a tetrahedron's Jacobian T, weighted by the regular tetrahedron (Knupp): 3 at best (the regular tetrahedron), growing without bound as it degenerates, ∞ when it is inverted. Smaller is better.",
+};
 /** A tetrahedral mesh's names for the rows whose meaning changes in 3D. */
 export const VOLUME_LABELS = {
   elements: 'Tetrahedra',
@@ -38,7 +48,7 @@ export const ROW_HELP = {
   min_quality: "The worst element quality: Lo's α for triangles, Canann's β for quads (1 ideal, below 0 inverted).",
   mean_quality: 'The mean element quality (α for triangles, β for quads).',
   small_angles: "The share of corner angles under 18° (Freitag's Fig. 3 view).",
-  max_condition: "The worst condition number κ = ‖A‖‖A⁻¹‖ of an element's Jacobian (Knupp): 1 ideal, ∞ inverted.",
+  max_condition: "The worst condition number κ = ‖T‖‖T⁻¹‖ (Frobenius norms) of an element's corner Jacobian T, weighted by the ideal element (Knupp): 2 at best (a corner of an equilateral triangle or a square), growing without bound as the element degenerates, ∞ when it is inverted. Smaller is better.",
   surface_distance: 'A surface only: how far the node farthest from the surface it lies on is from it, in the mesh\'s units (nodes are moved in their tangent plane, then put back on the surface).',
   laplacian_moves: 'Nodes moved by a (plain or smart) Laplacian step, over the passes.',
   optimization_calls: 'Calls to the solver, over the passes.',
@@ -60,7 +70,9 @@ export function betterSide(dir, a, b) {
   if (!dir || typeof a !== 'number' || typeof b !== 'number' || Number.isNaN(a) || Number.isNaN(b) || a === b) return null;
   return (dir === 'higher') === (a > b) ? 0 : 1;
 }
-/** Fills both tables side by side, marking the better value of each row. */
+/** Fills both tables side by side, marking the better value of each row where the two
+ * values as shown differ (90.00° beside 90.00° is a tie to the reader, whatever the
+ * digits not shown). */
 export function fillTables(stats) {
   const pair = [stats.old, stats.new];
   for (const [i, side] of ['old', 'new'].entries()) {
@@ -76,7 +88,8 @@ export function fillTables(stats) {
       const th = document.createElement('th');
       th.scope = 'row';
       th.textContent = (state.volume && VOLUME_LABELS[key]) || label;
-      if (ROW_HELP[key]) th.title = ROW_HELP[key];
+      const help = (state.volume && VOLUME_HELP[key]) || ROW_HELP[key];
+      if (help) th.title = help;
       const td = document.createElement('td');
       if (detail && !s.detail) {
         td.textContent = 'after the run';
@@ -85,7 +98,8 @@ export function fillTables(stats) {
       } else {
         td.textContent = fmt(v);
         td.dataset.value = String(v);
-        if (betterSide(dir, get(pair[0]), get(pair[1])) === i) {
+        const shown = pair.map((p) => (detail && !p.detail ? null : fmt(get(p))));
+        if (shown[0] !== shown[1] && betterSide(dir, get(pair[0]), get(pair[1])) === i) {
           td.classList.add('better'); // marked ✓ by the style sheet
           td.setAttribute('aria-label', `${td.textContent}, the better of the two`);
           td.title = 'the better of the two sides';
