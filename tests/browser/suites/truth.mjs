@@ -2,7 +2,7 @@
 // ✓ marks, the words for surfaces and tetrahedra, a refused file, and a link for every
 // sample of the gallery.
 import path from 'node:path';
-import { BAD, DATA, TIMEOUT, test, check, watch, idle, open, stats, canvasInfo, shot, chooseSample } from '../lib.mjs';
+import { BAD, DATA, TIMEOUT, test, check, watch, idle, open, stats, canvasInfo, shot, chooseSample, unfold } from '../lib.mjs';
 
 /** A new page of the shared context whose canvases' drawn words are recorded
  * (`window.drawnTexts`: the placeholders of what a mesh does not have). */
@@ -268,7 +268,9 @@ export default async function ({ server, context }) {
     await p.selectOption('#strategy', 'c3');
     await p.fill('#passes', '2');
     await p.dispatchEvent('#passes', 'change');
+    await unfold(p);
     await p.fill('#seed', '7');
+    await unfold(p);
     await p.click('#perturb');
     await p.waitForFunction(() => /^Perturbed/.test(document.getElementById('status').textContent), null, { timeout: TIMEOUT });
     await idle(p);
