@@ -1361,13 +1361,10 @@ try {
     }
     throw new Error(`${id} did not change`);
   }
-  /** A 1280 × 900 screenshot of the two views and their tables. */
+  /** A 1280 × 900 screenshot of the first screen: the two views, the run bar and, in the
+   * side column, the 3D note (a surface's, or the tetrahedra's with its cut). */
   async function panelsShot(page, name) {
-    // the note above the panels: a surface's, or the tetrahedra's
-    await page.evaluate(() => {
-      const note = document.getElementById('surface-note');
-      (note.hidden ? document.getElementById('volume-note') : note).scrollIntoView();
-    });
+    await page.evaluate(() => window.scrollTo(0, 0));
     await shot(page, name, false);
   }
   /** Steps until B has no inverted element (at most `max` passes); returns the passes taken. */
