@@ -566,13 +566,14 @@ pub(super) fn chen_13_measured() -> Result<String> {
     let row = ["tri", "1.5"];
     Ok(format!(
         "Measured with Chen's algorithm as published (no untangling sweeps, which are ours, and Chen's line search \
-         alone), inverted elements pass by pass: {} in priority order, {} in input order — {} passes against {}; \
-         seeds {}–{} of this plate take {} and {} passes. With our sweeps (the page's default, the live panels) \
+         alone), inverted elements pass by pass: {} in priority order, {} in input order — {} {} against {}; \
+         seeds {}–{} of this plate take {} passes in priority order and {} in input order. With our sweeps (the page's default, the live panels) \
          every plate of the reproduction untangles in the first pass in either order: {} and {} passes over its five \
          seeds at this amount (docs/reproduction.md §2).",
         words(&counts.priority),
         words(&counts.input),
         passes(&counts.priority),
+        if passes_to_zero(&counts.priority) == Some(1) { "pass" } else { "passes" },
         passes(&counts.input),
         CHEN13_SEEDS.start(),
         CHEN13_SEEDS.end(),
@@ -1073,10 +1074,10 @@ fn chen_18(c: Canvas, t: &Theme) -> Result<Vec<Pixmap>> {
         Ok(pm)
     };
     let after = |side: Side| {
-        format!("{}, {passes} passes: {} inverted", settings.side_label(side), counts[side.index()][passes])
+        format!("{}: {}, {passes} passes: {} inverted", side.letter(), settings.choice(side).objective, counts[side.index()][passes])
     };
     Ok(vec![
-        draw(lab.original(), format!("as loaded: {} of {} elements inverted", counts[0][0], lab.original().element_count()))?,
+        draw(lab.original(), format!("as loaded: {} inverted", counts[0][0]))?,
         draw(lab.surface(Side::Old), after(Side::Old))?,
         draw(lab.surface(Side::New), after(Side::New))?,
     ])
