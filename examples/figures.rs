@@ -38,7 +38,7 @@ fn main() {
         let _ = writeln!(
             md,
             "## {}. {} — `{}`\n\n**The paper's caption:** \"{}\"\n\n![{}](figures/{}.png)\n\n{} {} {}\n\n\
-             On the page: [`#figure={}`](../www/index.html#figure={}) (the playground state `#{}`, the {} view).\n",
+             On the page: [`#figure={}`](../www/index.html#figure={}) ({}, the {} view).\n",
             i + 1,
             f.source,
             f.name,
@@ -50,7 +50,11 @@ fn main() {
             card.measured,
             f.name,
             f.name,
-            f.hash,
+            match smoothlab::lab::tour::gallery_sample(f.name) {
+                // a surface or tetrahedra: a permalink cannot name the mesh, the figure does
+                Some(s) => format!("the gallery's “{}” with the settings `#{}`", s.title(), f.hash),
+                None => format!("the playground state `#{}`", f.hash),
+            },
             f.view
         );
         eprintln!("wrote docs/figures/{}.png", f.name);

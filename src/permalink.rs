@@ -58,6 +58,7 @@ pub const SAMPLES: &[&str] = &[
     "sphere-tangled",
     "torus-tangled",
     "cylinder-capped",
+    "torus-quadratic-tangled",
     "rand3d",
     "rand2d-million",
     "gmsh-plate-hole-tri",
@@ -539,7 +540,7 @@ mod tests {
             assert_eq!(decode(&back).unwrap(), st);
         }
         // the surfaces and the tetrahedra by name (they once were left out of links)
-        for name in ["sphere-tangled", "torus-tangled", "cylinder-capped", "rand3d", "rand2d-large", "rand2d-million"] {
+        for name in ["sphere-tangled", "torus-tangled", "cylinder-capped", "torus-quadratic-tangled", "rand3d", "rand2d-large", "rand2d-million"] {
             assert_eq!(decode(&format!("sample={name}")).unwrap().sample.as_deref(), Some(name));
         }
     }

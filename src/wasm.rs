@@ -96,6 +96,13 @@ pub fn tour_row(i: u32) -> Result<JsValue, JsError> {
     to_js(&crate::lab::tour::pictures::freitag_row(i as usize)?)
 }
 
+/// Row `i` of figure `name`'s live table (Freitag's Table 1 or 2), smoothed now:
+/// `{ method, cells }`, the cells under the card's `columns`.
+#[wasm_bindgen(js_name = tourTableRow)]
+pub fn tour_table_row(name: &str, i: u32) -> Result<JsValue, JsError> {
+    to_js(&crate::lab::tour::pictures::table_row(name, i as usize)?)
+}
+
 /// The default size of a figure's picture, CSS pixels: `[w, h]`.
 #[wasm_bindgen(js_name = tourPictureSize)]
 pub fn tour_picture_size(name: &str) -> Result<JsValue, JsError> {

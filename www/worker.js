@@ -149,6 +149,7 @@ const handlers = {
   tourPicture: (name, w, h, dpr) => wasm.tourPicture(name, w, h, dpr, theme.dark, theme.labelPx),
   tourPictureSize: (name) => wasm.tourPictureSize(name),
   tourRow: (i) => wasm.tourRow(i),
+  tourTableRow: (name, i) => wasm.tourTableRow(name, i),
   decodePermalink: (hash) => wasm.decodePermalink(hash),
   encodePermalink: (fields) => wasm.encodePermalink(fields),
 };

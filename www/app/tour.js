@@ -1,6 +1,6 @@
 // The figures tour: one figure of the papers at a time, with its words and picture, and
 // the playground in the figure's state.
-import { $, EMBED, VIEWS, engine, showError, state, view } from './state.js';
+import { $, EMBED, VIEWS, engine, now, showError, state, view } from './state.js';
 import { applyHash, openHash, updatePermalink } from './permalink.js';
 import { contentHeight, paint } from './draw.js';
 import { smooth } from './run.js';
@@ -30,7 +30,10 @@ export async function openFigure(name) {
     document.body.classList.add('view', `view-${view.name}`);
   }
   showCard(card);
-  await openHash(await applyHash(`#${card.hash}`), { keepLink: true });
+  const opened = await applyHash(`#${card.hash}`);
+  // a surface or tetrahedra: the hash holds the settings, the card names the gallery's mesh
+  if (card.gallery) opened.src = { kind: 'sample', name: card.gallery };
+  await openHash(opened, { keepLink: true });
   const link = `#figure=${card.name}`;
   state.lastHash = link;
   history.replaceState(null, '', `${location.pathname}${location.search}${link}`);
@@ -56,6 +59,16 @@ export function showCard(card) {
   $('tour-link').textContent = `Link to this figure (#figure=${card.name})`;
   $('tour-table').hidden = !card.rows;
   $('tour-rows').replaceChildren();
+  // a table figure shows its table once: on the page the table filling live, in an embed
+  // (where the table gives way) the picture the core draws of it
+  $('tour-picture').hidden = Boolean(card.rows) && !EMBED;
+  $('tour-table-caption').textContent = card.table_caption;
+  $('tour-head').replaceChildren(...card.columns.map((text) => {
+    const th = document.createElement('th');
+    th.scope = 'col';
+    th.textContent = text;
+    return th;
+  }));
 }
 
 /** The figure's own picture (the core draws it: `smoothlab render --figure NAME`), in the
@@ -66,6 +79,7 @@ export async function drawFigurePicture() {
   const card = state.figure;
   if (!card) return;
   const canvas = $('tour-picture');
+  if (canvas.hidden) return; // a table figure on the page: the table is its picture
   const [w0, h0] = await engine.call('tourPictureSize', card.name);
   if (state.figure !== card) return;
   const tour = $('tour');
@@ -91,30 +105,31 @@ export async function drawFigurePicture() {
   paint(canvas, r.pixels, r.w, r.h);
 }
 
-/** Freitag's Table 1: each row smoothed now in the worker (3 passes on seed 1), then shown. */
+/** The pace of a live table, milliseconds a row: slow enough to follow each row as it
+ * comes (a row whose smoothing takes longer comes when it is done). */
+export const ROW_MS = 800;
+
+/** Freitag's Tables 1 and 2: each row smoothed now in the worker (3 passes on seed 1),
+ * then shown, one row at most every ROW_MS. An embed shows the picture instead. */
 export async function fillTourTable(card) {
+  if (EMBED) return;
   const body = $('tour-rows');
+  let shown = -Infinity;
   for (let i = 0; i < card.rows; i++) {
-    const r = await engine.call('tourRow', i);
+    const r = await engine.call('tourTableRow', card.name, i);
+    if (state.figure !== card) return;
+    const wait = shown + ROW_MS - now();
+    if (wait > 0) await new Promise((done) => setTimeout(done, wait));
     if (state.figure !== card) return;
     const tr = document.createElement('tr');
-    const cells = [
-      r.method.replaceAll('`', ''),
-      `${r.min_angle_deg.toFixed(2)}°`,
-      `${r.max_angle_deg.toFixed(1)}°`,
-      String(r.laplacian_moves),
-      String(r.optimization_calls),
-      r.reproduction_min,
-      r.reproduction_max,
-      r.paper,
-    ];
-    for (const [k, text] of cells.entries()) {
+    for (const [k, text] of r.cells.entries()) {
       const td = document.createElement(k === 0 ? 'th' : 'td');
       if (k === 0) td.scope = 'row';
       td.textContent = text;
       tr.append(td);
     }
     body.append(tr);
+    shown = now();
     document.body.dataset.figureRows = String(i + 1);
   }
 }
