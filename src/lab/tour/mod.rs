@@ -117,14 +117,14 @@ pub struct Card {
     /// That table's column headings and caption.
     pub columns: &'static [&'static str],
     pub table_caption: &'static str,
-    /// The gallery sample the page opens for the figure, where the hash cannot name it (a
-    /// surface or tetrahedra: [`gallery_sample`]); `None`: the hash's sample.
+    /// The gallery sample the page opens for the figure, a surface or tetrahedra
+    /// ([`gallery_sample`]), whose state is not a planar playground; `None`: the hash's sample.
     pub gallery: Option<Sample>,
 }
 
-/// The gallery sample a figure opens when a permalink cannot name it: a surface in 3D or
-/// a tetrahedral mesh ([`Sample::SURFACES`], [`Sample::Rand3d`]); its hash then holds the
-/// settings only, and [`Figure::playground`] (planar) does not apply.
+/// The gallery sample a figure opens itself: a surface in 3D or a tetrahedral mesh
+/// ([`Sample::SURFACES`], [`Sample::Rand3d`]); its hash holds the settings only, and
+/// [`Figure::playground`] (planar) does not apply.
 pub fn gallery_sample(name: &str) -> Option<Sample> {
     match name {
         "chen-18" => Some(Sample::TorusQuadraticTangled),
@@ -315,10 +315,11 @@ mod tests {
     fn every_state_opens_and_its_node_is_free() {
         for f in &FIGURES {
             if let Some(sample) = gallery_sample(f.name) {
-                // a surface or tetrahedra: the hash holds the settings, the gallery the mesh
+                // a surface or tetrahedra: the hash holds the settings, the card the gallery's
+                // mesh (which the page opens; the figure's playground is planar only)
                 let st = f.state().unwrap_or_else(|e| panic!("{}: {e}", f.name));
                 assert!(st.sample.is_none() && st.node.is_none() && f.view == "compare", "{}", f.name);
-                assert!(!sample.linkable() && !matches!(sample.model().unwrap(), crate::surface::Model::Planar(_)), "{}", f.name);
+                assert!(!matches!(sample.model().unwrap(), crate::surface::Model::Planar(_)), "{}", f.name);
                 assert!(f.playground().is_err(), "{}", f.name);
                 continue;
             }
