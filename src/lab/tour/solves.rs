@@ -388,7 +388,7 @@ fn history_chart(pm: &mut Pixmap, r: &SolveResult, title: &str, frame: Frame, c:
 
 /// The title of a solve's chart: what ran and how many iterations it took.
 fn history_title(what: &str, r: &SolveResult) -> String {
-    format!("{what}: {} iterations, their steps", r.iterations)
+    format!("{what}: {} iterations", r.iterations)
 }
 
 pub(super) fn chen_11(c: Canvas, t: &Theme) -> Result<Vec<Pixmap>> {
