@@ -192,10 +192,8 @@ pub(crate) fn legend_row(pixmap: &mut Pixmap, entries: &[LegendEntry<'_>], cx: f
 }
 
 /// The rows of a legend laid out in `width` device pixels: as many entries on a row as
-/// fit (at least one), rows top to bottom; the box [`legend_band`] draws round them (6
-/// pixels of the style's scale beyond the widest row on each side) stays in the width.
+/// fit (at least one), rows top to bottom.
 pub(crate) fn legend_rows(entries: &[LegendEntry<'_>], width: f32, st: &LegendStyle<'_>) -> Vec<std::ops::Range<usize>> {
-    let width = width - 12.0 * st.s;
     let gap = 18.0 * st.s;
     let mut rows = Vec::new();
     let (mut start, mut used) = (0, 0.0f32);
@@ -239,7 +237,9 @@ pub(crate) fn legend_band(pixmap: &mut Pixmap, entries: &[LegendEntry<'_>], x: f
         .map(|r| entries[r.clone()].iter().map(|e| st.entry_w(e)).sum::<f32>() + gap * (r.len().saturating_sub(1)) as f32)
         .fold(0.0f32, f32::max);
     let h = legend_band_height(entries, width, st);
-    if let Some(r) = Rect::from_xywh(x + 0.5 * (width - widest) - 6.0 * st.s, y, widest + 12.0 * st.s, h) {
+    // the box: 6 pixels of the style's scale round the widest row, within the band
+    let (left, right) = ((x + 0.5 * (width - widest) - 6.0 * st.s).max(x), (x + 0.5 * (width + widest) + 6.0 * st.s).min(x + width));
+    if let Some(r) = Rect::from_ltrb(left, y, right, y + h) {
         super::layout::note(pixmap, super::layout::RegionKind::Legend, r.x(), r.y(), r.width(), r.height());
         let pb = PathBuilder::from_rect(r);
         pixmap.fill_path(&pb, &solid(st.theme.legend_fill), FillRule::Winding, Transform::identity(), None);
