@@ -89,6 +89,26 @@ pub fn tour_picture(name: &str, w: u32, h: u32, dpr: f32, dark: bool, label_px: 
     object(&[("pixels", pixels(pm)), ("w", JsValue::from(pw)), ("h", JsValue::from(ph))])
 }
 
+/// Where a figure's picture, drawn as [`tour_picture`] draws it, put its plots, legends
+/// and marks: `{ w, h, regions: [{ kind: "plot" | "legend" | "mark", x, y, w, h, rgb }] }`,
+/// device pixels ([`crate::render::layout`]) — for the page's tests, which check that no
+/// legend lies over the data and that the marks a figure's text promises are drawn.
+#[wasm_bindgen(js_name = tourPictureLayout)]
+pub fn tour_picture_layout(name: &str, w: u32, h: u32, dpr: f32, dark: bool, label_px: f32) -> Result<JsValue, JsError> {
+    if !(dpr.is_finite() && dpr > 0.0 && dpr <= 4.0) {
+        return Err(JsError::new(&format!("a pixel ratio of {dpr}: give one above 0 and at most 4")));
+    }
+    let c = Canvas { w: ((w as f32) * dpr).round() as u32, h: ((h as f32) * dpr).round() as u32, dpr };
+    let (pm, regions) = crate::lab::tour::pictures::render_with_layout(name, c, &Theme::for_page(dark, label_px))?;
+    #[derive(serde::Serialize)]
+    struct Layout {
+        w: u32,
+        h: u32,
+        regions: Vec<crate::render::layout::Region>,
+    }
+    to_js(&Layout { w: pm.width(), h: pm.height(), regions })
+}
+
 /// Row `i` of Freitag's Table 1, smoothed now: `{ method, min_angle_deg, max_angle_deg,
 /// laplacian_moves, optimization_calls, reproduction_min, reproduction_max, paper }`.
 #[wasm_bindgen(js_name = tourRow)]

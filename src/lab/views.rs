@@ -116,7 +116,7 @@ pub fn stop_words(s: StopReason) -> &'static str {
     }
 }
 
-fn path_kind(d: DirectionKind) -> PathKind {
+pub(crate) fn path_kind(d: DirectionKind) -> PathKind {
     match d {
         DirectionKind::Gradient => PathKind::Gradient,
         DirectionKind::Conjugate => PathKind::Conjugate,

@@ -49,7 +49,7 @@ pub use new::{
     adjusted_angle, regularised_determinant, AnglePenalty, ChenTristanoKwok, Penalty, PenaltyLength,
     RegularisedBarrier, BARRIER_EPSILON, BARRIER_WEIGHT, EQUILATERAL_PENALTY,
 };
-pub use old::MaxMinShape;
+pub use old::{CornerTerm, MaxMinShape};
 pub use point::{NodeStar, Point};
 pub use sine::MaxMinSine;
 pub use tet::{describe_tet, tet_objective, RegularisedMeanRatio, StarTet, TetObjective, TetStar};

@@ -55,6 +55,38 @@ impl MaxMinShape {
     }
 }
 
+/// One corner's α of a star element with the free node at `x`, and its gradient in the
+/// free node ([`MaxMinShape::corner_terms`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct CornerTerm {
+    pub elem: u32,
+    /// The corner's index in the element (0 is the element's first node).
+    pub corner: u32,
+    /// Lo's α at the corner (with edge tangents on a curved edge), over α90 for a quad.
+    pub value: f64,
+    pub grad: DVec2,
+}
+
+impl MaxMinShape {
+    /// Every corner of every star element as a term of its own: what the per-element
+    /// terms of [`MaxMinShape::visit`] take the smallest of. Where two corners of one
+    /// element tie for its smallest α the element's term is not differentiable and its
+    /// gradient is that of the first alone — Freitag's ascent (1997, Fig. 1) then sees one
+    /// of the two; these terms show both (Chen et al. 2003, Fig. 9's max-min panel).
+    pub fn corner_terms(&self, star: &Star, x: DVec2) -> Vec<CornerTerm> {
+        let mut out = Vec::new();
+        for (i, el) in star.elems.iter().enumerate() {
+            let j = ElementJets::new(el, x);
+            let scale = if el.kind.is_triangle() { 1.0 } else { 1.0 / ALPHA_90 };
+            for (k, c) in j.corner_jets().iter().enumerate() {
+                let (a, g1, g2) = lo_alpha_corner_gradient(c.e1, c.e2);
+                out.push(CornerTerm { elem: i as u32, corner: k as u32, value: a * scale, grad: c.chain(g1, g2) * scale });
+            }
+        }
+        out
+    }
+}
+
 /// The smallest corner α of an element (the first, in corner order, of the smallest) with
 /// its gradient in the free node, and the number of negative corner αs. The gradient is
 /// taken at that corner alone: [`lo_alpha_corner`] gives the α that
@@ -86,6 +118,22 @@ mod tests {
     use crate::objective::testing::*;
     use crate::objective::{Goal, Objective};
     use crate::quality::element_quality;
+
+    #[test]
+    fn corner_terms_are_what_each_element_term_takes_the_least_of() {
+        let star = fan_star(&regular_ring(5, 1.0));
+        for x in [DVec2::ZERO, DVec2::new(0.3, -0.2), DVec2::new(1.5, 0.1)] {
+            let corners = MaxMinShape.corner_terms(&star, x);
+            assert_eq!(corners.len(), 3 * star.elems.len());
+            let mut terms = Vec::new();
+            MaxMinShape.terms(&star, x, &mut terms);
+            for t in &terms {
+                let least = corners.iter().filter(|c| c.elem == t.elem).min_by(|a, b| a.value.total_cmp(&b.value)).unwrap();
+                assert_eq!(least.value, t.value, "element {} at {x}", t.elem);
+                assert!((least.grad - t.grad).length() < 1e-12, "element {} at {x}: {} vs {}", t.elem, least.grad, t.grad);
+            }
+        }
+    }
 
     #[test]
     fn equilateral_star_centre_is_one() {

@@ -136,7 +136,7 @@ pub fn render_chart(pixmap: &mut Pixmap, series: &[Series<'_>], chart: &Chart<'_
     let left = if chart.y_label.is_empty() { 48.0 } else { 66.0 } * theme.grow(11.0);
     let bottom = if chart.x_label.is_empty() { 28.0 } else { 46.0 } * theme.grow(11.0);
     // the legend's band under the axes: never over the curves
-    let ls = LegendStyle { theme, s, dpr: s };
+    let ls = LegendStyle::new(theme, s, s);
     let entries: Vec<LegendEntry<'_>> = if chart.legend {
         series
             .iter()
@@ -149,6 +149,7 @@ pub fn render_chart(pixmap: &mut Pixmap, series: &[Series<'_>], chart: &Chart<'_
     };
     let legend_h = legend_band_height(&entries, (frame.w - 16.0) * s, &ls) / s;
     let plot = frame.inset(left, top, 14.0, bottom + legend_h);
+    super::layout::note(pixmap, super::layout::RegionKind::Plot, plot.x * s, plot.y * s, plot.w * s, plot.h * s);
     let (xr, mut yr) = data_range(series, chart.log_y);
     // the values below a break, if the axis is broken: the range is of the others
     let below = match (chart.y_break, chart.log_y) {
@@ -241,6 +242,7 @@ pub fn render_chart(pixmap: &mut Pixmap, series: &[Series<'_>], chart: &Chart<'_
                     }
                     if let Some(m) = ser.marker {
                         push_marker(&mut marks, m, x, y, 3.0 * s);
+                        super::layout::note_mark(pixmap, x, y, color);
                     }
                     drawn = true;
                 }
@@ -307,7 +309,7 @@ pub fn render_pass_histories(pixmap: &mut Pixmap, runs: &[PassHistory<'_>], char
     }
     let run_key = |i: usize| Key::Line { dashed: i % 2 == 1, marker: Some(if i % 2 == 0 { Marker::Circle } else { Marker::Triangle }) };
     let entries: Vec<LegendEntry<'_>> = runs.iter().enumerate().map(|(i, r)| LegendEntry { label: r.label, color: r.color.unwrap_or(theme.series(i + 1)), key: run_key(i) }).collect();
-    let ls = LegendStyle { theme, s, dpr: s };
+    let ls = LegendStyle::new(theme, s, s);
     let entries = if chart.legend { entries } else { Vec::new() };
     let legend_h = legend_band_height(&entries, (frame.w - 16.0) * s, &ls) / s;
     legend_band(pixmap, &entries, (frame.x + 8.0) * s, (frame.y + title_h) * s, (frame.w - 16.0) * s, &ls);

@@ -82,7 +82,7 @@ pub fn render_angle_histogram(pixmap: &mut Pixmap, series: &[HistogramSeries<'_>
     let (g_tick, g_title) = (theme.grow(11.0), theme.grow(14.0));
     let top = if opts.title.is_empty() { 12.0 } else { 32.0 * g_title };
     // the legend's band under the axes: never over the bars
-    let ls = LegendStyle { theme, s, dpr: s };
+    let ls = LegendStyle::new(theme, s, s);
     let entries: Vec<LegendEntry<'_>> = if opts.legend {
         series
             .iter()
@@ -94,6 +94,7 @@ pub fn render_angle_histogram(pixmap: &mut Pixmap, series: &[HistogramSeries<'_>
     };
     let legend_h = legend_band_height(&entries, (frame.w - 16.0) * s, &ls) / s;
     let plot = frame.inset(62.0 * g_tick, top, 14.0, 46.0 * g_tick + legend_h);
+    super::layout::note(pixmap, super::layout::RegionKind::Plot, plot.x * s, plot.y * s, plot.w * s, plot.h * s);
     let pct: Vec<Vec<f64>> = series.iter().map(|x| percentages(x.counts)).collect();
     let own = pct.iter().flatten().copied().fold(0.0f64, f64::max);
     let top = match opts.y_top {

@@ -207,6 +207,52 @@ pub fn choose_levels(field: &Field, levels: Levels) -> Vec<f64> {
     out
 }
 
+/// `n` levels at evenly spaced quantiles of the finite samples *inside the feasible
+/// region* (validity > 0): a figure about the level sets in the feasible region (Chen et
+/// al. 2003, Fig. 10: "the level sets in the feasible region") spends every line there,
+/// rather than on the infeasible walls around it. [`choose_levels`]`(Quantiles(n))` when
+/// fewer than two feasible samples are finite.
+pub fn feasible_levels(field: &Field, n: usize) -> Vec<f64> {
+    let inside: Vec<f64> =
+        field.values.iter().zip(&field.validity).filter(|(v, ok)| v.is_finite() && **ok > 0.0).map(|(v, _)| *v).collect();
+    if inside.len() < 2 {
+        return choose_levels(field, Levels::Quantiles(n));
+    }
+    choose_levels(&Field { values: inside, validity: Vec::new(), ..field.clone() }, Levels::Quantiles(n))
+}
+
+/// A figure's own mark on a level-set panel, in world coordinates, listed in the legend
+/// under its label (none when the label is empty): Chen et al. (2003), Fig. 9's dashed
+/// end tangents, an optimum found by search, a direction a solver tried.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Overlay<'a> {
+    /// A polyline.
+    Line { points: &'a [DVec2], color: Color, dashed: bool, label: &'a str },
+    /// An arrow from `from` to `to`.
+    Arrow { from: DVec2, to: DVec2, color: Color, label: &'a str },
+    /// A point marker.
+    Point { at: DVec2, marker: Marker, color: Color, label: &'a str },
+}
+
+impl Overlay<'_> {
+    fn legend(&self) -> Option<LegendEntry<'_>> {
+        let (label, color, key) = match *self {
+            Overlay::Line { color, dashed, label, .. } => (label, color, Key::Line { dashed, marker: None }),
+            Overlay::Arrow { color, label, .. } => (label, color, Key::Line { dashed: false, marker: None }),
+            Overlay::Point { marker, color, label, .. } => (label, color, Key::Marker(marker)),
+        };
+        (!label.is_empty()).then_some(LegendEntry { label, color, key })
+    }
+}
+
+/// What [`render_level_set_with`] adds to a panel: marks of its own and, instead of
+/// [`LevelSetView::levels`], levels chosen by the caller (e.g. [`feasible_levels`]).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct LevelSetExtras<'a> {
+    pub overlays: &'a [Overlay<'a>],
+    pub levels: Option<&'a [f64]>,
+}
+
 /// The solver's path on a level-set panel: a magenta no band of the colour map and no
 /// star edge (black) has.
 pub const PATH_RGB: (u8, u8, u8) = (204, 0, 153);
@@ -234,7 +280,7 @@ pub enum PathKind {
 impl PathKind {
     const ALL: [PathKind; 6] =
         [PathKind::Start, PathKind::Gradient, PathKind::Conjugate, PathKind::ActiveSet, PathKind::Newton, PathKind::Laplacian];
-    fn marker(self) -> Marker {
+    pub fn marker(self) -> Marker {
         match self {
             PathKind::Start => Marker::Circle,
             PathKind::Gradient => Marker::Circle,
@@ -244,7 +290,7 @@ impl PathKind {
             PathKind::Laplacian => Marker::Diamond,
         }
     }
-    fn color(self) -> Color {
+    pub fn color(self) -> Color {
         match self {
             PathKind::Start => Color::WHITE,
             PathKind::Gradient => rgba(86, 180, 233, 255),
@@ -254,7 +300,7 @@ impl PathKind {
             PathKind::Laplacian => rgba(0, 158, 115, 255),
         }
     }
-    fn label(self) -> &'static str {
+    pub fn label(self) -> &'static str {
         match self {
             PathKind::Start => "start",
             PathKind::Gradient => "gradient step",
@@ -329,8 +375,8 @@ fn plot_frame(frame: Frame, theme: &Theme, legend_h: f32) -> Frame {
     frame.inset(0.0, title_band(theme).2, 0.0, legend_h.max(0.0))
 }
 
-/// What a level-set panel's legend lists for `data`.
-fn legend_entries<'a>(data: &LevelSet<'a>) -> Vec<LegendEntry<'a>> {
+/// What a level-set panel's legend lists for `data` and `extras`.
+fn legend_entries<'a>(data: &LevelSet<'a>, extras: &LevelSetExtras<'a>) -> Vec<LegendEntry<'a>> {
     let field = data.field;
     let mut entries = vec![
         LegendEntry { label: "current position", color: Color::WHITE, key: Key::Marker(Marker::Circle) },
@@ -355,6 +401,7 @@ fn legend_entries<'a>(data: &LevelSet<'a>) -> Vec<LegendEntry<'a>> {
     if data.optimum.is_some() {
         entries.push(LegendEntry { label: "optimum", color: rgba(240, 228, 66, 255), key: Key::Marker(Marker::Star) });
     }
+    entries.extend(extras.overlays.iter().filter_map(Overlay::legend));
     entries
 }
 
@@ -362,27 +409,38 @@ fn legend_entries<'a>(data: &LevelSet<'a>) -> Vec<LegendEntry<'a>> {
 /// pixels wide drawn with `opts` (0 without a legend): what [`level_set_view`] needs to
 /// map pointer positions as [`render_level_set`] drew them.
 pub fn level_set_legend_height(data: &LevelSet<'_>, opts: &LevelSetView, frame_w: f32) -> f32 {
+    level_set_legend_height_with(data, opts, &LevelSetExtras::default(), frame_w)
+}
+
+/// [`level_set_legend_height`] of a panel drawn by [`render_level_set_with`].
+pub fn level_set_legend_height_with(data: &LevelSet<'_>, opts: &LevelSetView, extras: &LevelSetExtras<'_>, frame_w: f32) -> f32 {
     if !opts.legend {
         return 0.0;
     }
     let s = sane_dpr(opts.dpr);
-    let ls = LegendStyle { theme: &opts.theme, s: s * 0.9, dpr: s };
-    legend_band_height(&legend_entries(data), (frame_w - 8.0) * s, &ls) / s
+    let ls = LegendStyle::new(&opts.theme, s * 0.9, s);
+    legend_band_height(&legend_entries(data, extras), (frame_w - 8.0) * s, &ls) / s
 }
 
 /// Draws one level-set panel and returns its view (world ↔ pixels).
 pub fn render_level_set(pixmap: &mut Pixmap, data: &LevelSet<'_>, opts: &LevelSetView) -> View {
+    render_level_set_with(pixmap, data, opts, &LevelSetExtras::default())
+}
+
+/// [`render_level_set`] with a figure's own marks and levels ([`LevelSetExtras`]).
+pub fn render_level_set_with(pixmap: &mut Pixmap, data: &LevelSet<'_>, opts: &LevelSetView, extras: &LevelSetExtras<'_>) -> View {
     let s = sane_dpr(opts.dpr);
     let frame = opts.frame.unwrap_or(Frame::of_pixmap(pixmap, s));
     let theme = &opts.theme;
     fill_rect(pixmap, frame.x * s, frame.y * s, frame.w * s, frame.h * s, theme.paper);
     let (title_y, note_y, _) = title_band(theme);
-    let legend_h = level_set_legend_height(data, opts, frame.w);
+    let legend_h = level_set_legend_height_with(data, opts, extras, frame.w);
     let plot = plot_frame(frame, theme, legend_h);
+    super::layout::note(pixmap, super::layout::RegionKind::Plot, plot.x * s, plot.y * s, plot.w * s, plot.h * s);
     let field = data.field;
     let grid = field.grid;
     let view = level_set_view(frame, grid.lo, grid.hi, s, theme, legend_h);
-    let levels = choose_levels(field, opts.levels);
+    let levels = extras.levels.map_or_else(|| choose_levels(field, opts.levels), <[f64]>::to_vec);
 
     draw_bands(pixmap, field, &levels, &view, plot, opts.colormap, s);
 
@@ -434,6 +492,7 @@ pub fn render_level_set(pixmap: &mut Pixmap, data: &LevelSet<'_>, opts: &LevelSe
     iso_segments(&grid, &field.validity, 0.0, &mut segs);
     let border = to_path(&segs);
     stroke(pixmap, border, rgba(228, 26, 28, 255), 2.4 * s, Some([6.0 * s, 4.0 * s]));
+    draw_overlay_lines(pixmap, extras.overlays, &view, s);
 
     // the path, then its iterates
     if data.path.len() > 1 {
@@ -481,6 +540,14 @@ pub fn render_level_set(pixmap: &mut Pixmap, data: &LevelSet<'_>, opts: &LevelSe
     if let Some(o) = data.optimum {
         let (x, y) = view.device_xy(o);
         draw_marker(pixmap, Marker::Star, x, y, MarkerStyle { r: 6.5 * s, fill: rgba(240, 228, 66, 255), edge: Color::BLACK, width: 1.2 * s });
+        super::layout::note_mark(pixmap, x, y, rgba(240, 228, 66, 255));
+    }
+    for o in extras.overlays {
+        if let Overlay::Point { at, marker, color, .. } = *o {
+            let (x, y) = view.device_xy(at);
+            draw_marker(pixmap, marker, x, y, MarkerStyle { r: 6.5 * s, fill: color, edge: Color::BLACK, width: 1.2 * s });
+            super::layout::note_mark(pixmap, x, y, color);
+        }
     }
 
     if opts.clip {
@@ -507,10 +574,48 @@ pub fn render_level_set(pixmap: &mut Pixmap, data: &LevelSet<'_>, opts: &LevelSe
     draw_text(pixmap, &note, (frame.x + 0.5 * frame.w) * s, (frame.y + note_y) * s, sub);
 
     if opts.legend {
-        let ls = LegendStyle { theme, s: s * 0.9, dpr: s };
-        legend_band(pixmap, &legend_entries(data), (frame.x + 4.0) * s, (frame.bottom() - legend_h) * s, (frame.w - 8.0) * s, &ls);
+        let ls = LegendStyle::new(theme, s * 0.9, s);
+        legend_band(pixmap, &legend_entries(data, extras), (frame.x + 4.0) * s, (frame.bottom() - legend_h) * s, (frame.w - 8.0) * s, &ls);
     }
     view
+}
+
+/// The lines and arrows of `overlays`, each over a white halo so it reads on any band.
+fn draw_overlay_lines(pixmap: &mut Pixmap, overlays: &[Overlay<'_>], view: &View, s: f32) {
+    for o in overlays {
+        let (pts, color, dashed, arrow) = match *o {
+            Overlay::Line { points, color, dashed, .. } => (points.to_vec(), color, dashed, false),
+            Overlay::Arrow { from, to, color, .. } => (vec![from, to], color, false, true),
+            Overlay::Point { .. } => continue,
+        };
+        let dev: Vec<(f32, f32)> = pts.iter().map(|p| view.device_xy(*p)).collect();
+        let mut pb = PathBuilder::new();
+        for (i, &(x, y)) in dev.iter().enumerate() {
+            if i == 0 {
+                pb.move_to(x, y);
+            } else {
+                pb.line_to(x, y);
+            }
+        }
+        let dash = dashed.then_some([9.0 * s, 6.0 * s]);
+        stroke(pixmap, pb.clone(), rgba(255, 255, 255, 230), 4.6 * s, dash);
+        stroke(pixmap, pb, color, 2.4 * s, dash);
+        if let (true, [.., a, b]) = (arrow, dev.as_slice()) {
+            let (dx, dy) = (b.0 - a.0, b.1 - a.1);
+            let len = (dx * dx + dy * dy).sqrt();
+            if len > 1.0 {
+                let (ux, uy) = (dx / len, dy / len);
+                let mut head = PathBuilder::new();
+                head.move_to(b.0, b.1);
+                head.line_to(b.0 - ux * 12.0 * s - uy * 6.0 * s, b.1 - uy * 12.0 * s + ux * 6.0 * s);
+                head.line_to(b.0 - ux * 12.0 * s + uy * 6.0 * s, b.1 - uy * 12.0 * s - ux * 6.0 * s);
+                head.close();
+                let halo = head.clone();
+                stroke(pixmap, halo, rgba(255, 255, 255, 230), 2.0 * s, None);
+                super::paint::fill(pixmap, head, color, true);
+            }
+        }
+    }
 }
 
 /// Per-pixel bands of the bilinear interpolant; masked samples in hatched grey, the

@@ -338,6 +338,7 @@ pub fn render_mesh(pixmap: &mut Pixmap, mesh: &Mesh, opts: &MeshView) -> View {
     if opts.background {
         fill_rect(pixmap, frame.x * s, frame.y * s, frame.w * s, frame.h * s, theme.paper);
     }
+    note_mesh_area(pixmap, mesh, &view, frame, s);
     let clip = frame_mask(pixmap, frame, s);
     let clip = clip.as_ref();
     let (w, h) = (pixmap.width() as f32, pixmap.height() as f32);
@@ -460,6 +461,20 @@ pub fn render_mesh(pixmap: &mut Pixmap, mesh: &Mesh, opts: &MeshView) -> View {
         draw_colour_bar(pixmap, bar, opts.colormap, (d0, d1), opts.metric.label(mesh), n_inverted, s, theme);
     }
     view
+}
+
+/// Notes ([`super::layout`]) where the mesh lies in `frame`: its bounding box as `view`
+/// draws it, within the frame.
+fn note_mesh_area(pixmap: &Pixmap, mesh: &Mesh, view: &View, frame: Frame, s: f32) {
+    let (lo, hi) = mesh.bounds();
+    let (a, b) = (view.device_xy(lo), view.device_xy(hi));
+    let x0 = a.0.min(b.0).max(frame.x * s);
+    let x1 = a.0.max(b.0).min(frame.right() * s);
+    let y0 = a.1.min(b.1).max(frame.y * s);
+    let y1 = a.1.max(b.1).min(frame.bottom() * s);
+    if x1 > x0 && y1 > y0 {
+        super::layout::note(pixmap, super::layout::RegionKind::Plot, x0, y0, x1 - x0, y1 - y0);
+    }
 }
 
 /// Whether [`render_mesh`] draws the colour bar for `mesh` with `opts` on a pixmap of
@@ -599,6 +614,7 @@ pub(crate) fn draw_colour_bar(
     s: f32,
     theme: &Theme,
 ) {
+    super::layout::note(pixmap, super::layout::RegionKind::Legend, area.x * s, area.y * s, area.w * s, area.h * s);
     let l = bar_label(theme);
     let label = TextStyle::new(l * s).with_color(theme.caption).with_align(Align::Left, Valign::Middle);
     let tw = |t: &str| super::text::text_width(t, l);

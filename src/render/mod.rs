@@ -28,6 +28,7 @@ mod colormap;
 mod compare;
 mod contour;
 mod histogram;
+pub mod layout;
 mod levelset;
 mod mesh;
 mod paint;
@@ -50,6 +51,7 @@ pub use levelset::{PATH_RGB,
     choose_levels, feasible_bounds, level_set_legend_height, level_set_view, render_level_set, render_level_sets_side_by_side, sample_field, star_bounds, Field, LevelSet,
     LevelSetView, Levels, PathKind,
 };
+pub use levelset::{feasible_levels, level_set_legend_height_with, render_level_set_with, LevelSetExtras, Overlay};
 pub use mesh::{
     bezier_control, colour_bar_band, mesh_colour_bar_shown, mesh_view, pick_node, pick_node_within, render_mesh, MeshView, Metric,
     Show, COLOUR_BAR_SHARE, INVERTED, PICK_RADIUS,

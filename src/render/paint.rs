@@ -139,12 +139,31 @@ pub(crate) struct LegendStyle<'a> {
     pub theme: &'a Theme,
     pub s: f32,
     pub dpr: f32,
+    /// The largest label size, device pixels ([`LegendStyle::fitted`]); infinite: none.
+    pub cap: f32,
 }
 
-impl LegendStyle<'_> {
+impl<'a> LegendStyle<'a> {
+    pub fn new(theme: &'a Theme, s: f32, dpr: f32) -> Self {
+        LegendStyle { theme, s, dpr, cap: f32::INFINITY }
+    }
+
+    /// This style with its labels made small enough for the widest of `entries` to fit
+    /// `width` device pixels: below the theme's smallest label if it must, for a legend
+    /// that runs out of its band runs over the data beside it (a narrow panel of a figure
+    /// in a small embed). Unchanged when every entry fits.
+    pub fn fitted(&self, entries: &[LegendEntry<'_>], width: f32) -> Self {
+        let widest = entries.iter().map(|e| text_width(e.label, self.text())).fold(0.0f32, f32::max);
+        let room = width - 30.0 * self.s - 12.0 * self.s;
+        if widest <= room || widest <= 0.0 {
+            return *self;
+        }
+        LegendStyle { cap: (self.text() * room / widest).max(1.0), ..*self }
+    }
+
     /// The label size, device pixels.
     pub fn text(&self) -> f32 {
-        self.theme.text_px(11.0 * self.s, self.dpr)
+        self.theme.text_px(11.0 * self.s, self.dpr).min(self.cap)
     }
     /// How much the labels grew over their own size (1 when they did not).
     pub fn grow(&self) -> f32 {
@@ -197,6 +216,7 @@ pub(crate) fn legend_rows(entries: &[LegendEntry<'_>], width: f32, st: &LegendSt
 /// The height in device pixels of the band [`legend_band`] draws `entries` in, `width`
 /// device pixels wide (0 with no entries).
 pub(crate) fn legend_band_height(entries: &[LegendEntry<'_>], width: f32, st: &LegendStyle<'_>) -> f32 {
+    let st = &st.fitted(entries, width);
     let rows = legend_rows(entries, width, st).len();
     if rows == 0 {
         0.0
@@ -208,6 +228,7 @@ pub(crate) fn legend_band_height(entries: &[LegendEntry<'_>], width: f32, st: &L
 /// A legend outside the data: rows of entries, each row centred, in a band of `width`
 /// device pixels whose top-left corner is `(x, y)`, without a box. Returns its height.
 pub(crate) fn legend_band(pixmap: &mut Pixmap, entries: &[LegendEntry<'_>], x: f32, y: f32, width: f32, st: &LegendStyle<'_>) -> f32 {
+    let st = &st.fitted(entries, width);
     let rows = legend_rows(entries, width, st);
     let line_h = st.line_h();
     let gap = 18.0 * st.s;
@@ -216,7 +237,10 @@ pub(crate) fn legend_band(pixmap: &mut Pixmap, entries: &[LegendEntry<'_>], x: f
         .map(|r| entries[r.clone()].iter().map(|e| st.entry_w(e)).sum::<f32>() + gap * (r.len().saturating_sub(1)) as f32)
         .fold(0.0f32, f32::max);
     let h = legend_band_height(entries, width, st);
-    if let Some(r) = Rect::from_xywh(x + 0.5 * (width - widest) - 6.0 * st.s, y, widest + 12.0 * st.s, h) {
+    // the box: 6 pixels of the style's scale round the widest row, within the band
+    let (left, right) = ((x + 0.5 * (width - widest) - 6.0 * st.s).max(x), (x + 0.5 * (width + widest) + 6.0 * st.s).min(x + width));
+    if let Some(r) = Rect::from_ltrb(left, y, right, y + h) {
+        super::layout::note(pixmap, super::layout::RegionKind::Legend, r.x(), r.y(), r.width(), r.height());
         let pb = PathBuilder::from_rect(r);
         pixmap.fill_path(&pb, &solid(st.theme.legend_fill), FillRule::Winding, Transform::identity(), None);
         pixmap.stroke_path(&pb, &solid(st.theme.legend_border), &Stroke { width: st.s, ..Default::default() }, Transform::identity(), None);

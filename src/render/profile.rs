@@ -58,6 +58,7 @@ pub fn render_sketch(pixmap: &mut Pixmap, sketch: &Sketch<'_>, frame: Frame, dpr
         hi = hi.max(p);
     }
     let view = View::fit(lo, hi, inner, 24.0, ZoomPan::default(), s);
+    super::layout::note(pixmap, super::layout::RegionKind::Plot, inner.x * s, inner.y * s, inner.w * s, inner.h * s);
     let xy = |p: DVec2| view.device_xy(p);
     for &(a, b) in sketch.dashed {
         let mut pb = PathBuilder::new();
@@ -106,6 +107,7 @@ pub fn render_titled(parts: &[Pixmap], cols: usize, title: &str, dpr: f32, theme
     let ch = parts.iter().map(|p| p.height()).max()?;
     let head = (title_band(theme) * s).round() as u32;
     let mut out = Pixmap::new(cw * cols as u32, head + ch * rows as u32)?;
+    super::layout::forget(&out);
     out.fill(theme.paper);
     let size = size_to_fit(title, 15.0, out.width() as f32 / s - 16.0);
     let mid = out.width() as f32 / 2.0;
@@ -114,6 +116,7 @@ pub fn render_titled(parts: &[Pixmap], cols: usize, title: &str, dpr: f32, theme
     for (i, p) in parts.iter().enumerate() {
         let (x, y) = ((i % cols) as u32 * cw, head + (i / cols) as u32 * ch);
         out.draw_pixmap(x as i32, y as i32, p.as_ref(), &PixmapPaint::default(), Transform::identity(), None);
+        super::layout::adopt(p, &out, x as f32, y as f32);
     }
     Some(out)
 }

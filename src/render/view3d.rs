@@ -351,6 +351,8 @@ pub fn render_surface(pixmap: &mut Pixmap, faces: &Faces, opts: &SurfaceView) ->
     if frame.w * s < 1.0 || frame.h * s < 1.0 {
         return proj;
     }
+    // the surface is drawn within `plot`, above the colour bar ([`super::layout`])
+    super::layout::note(pixmap, super::layout::RegionKind::Plot, plot.x * s, plot.y * s, plot.w * s, plot.h * s);
     let clip = frame_mask(pixmap, frame, s);
     let clip = clip.as_ref();
 

@@ -8,6 +8,7 @@
 
 pub mod measured;
 pub mod pictures;
+pub mod solves;
 
 use serde::Serialize;
 
@@ -175,9 +176,9 @@ pub static FIGURES: [Figure; 13] = [
         hash: "sample=star-pushed&strategy=opt&a=old&b=new&maxiter=20&node=6",
         view: "levelset",
         run: false,
-        look: "The top edge of the hexagon is quadratic, its mid node pushed down towards the free node; its end tangents (the paper's dashed lines) meet on the y axis. Look at where each objective's optimum (the end of the solver's path) lies.",
+        look: "The top edge of the hexagon is quadratic, its mid node pushed down towards the free node; its end tangents (the paper's dashed lines, in blue) meet on the y axis. On each side the star is the objective's optimum, found by searching the feasible region, and the path is its solver's from the ringed start.",
         claim: "Chen et al.: \"when the top edge is pushed toward the center node, the best location for the center node is below the intersection of the two dash lines\".",
-        measured: p::chen_9_measured,
+        measured: solves::chen_9_measured,
     },
     Figure {
         name: "chen-10",
@@ -186,9 +187,9 @@ pub static FIGURES: [Figure; 13] = [
         hash: "sample=star-chen&strategy=opt&a=old&b=new&maxiter=20&node=8",
         view: "levelset",
         run: false,
-        look: "A star-shaped, non-convex ring (our reading of the lost picture). Compare the level sets: the max-min objective's are kinked polygons, the new objective's are smooth and, inside the feasible region (unhatched), nearly convex; follow each solver's path.",
+        look: "A star-shaped, non-convex ring (our reading of the lost picture), each side framed on the feasible region (unhatched) with every level line inside it. Compare the level sets: the max-min objective's are kinked polygons, the new objective's are smooth and nearly convex; follow each solver's path.",
         claim: "Chen et al.: even though the level sets outside the valid region are non-convex, their near convexity inside it lets the optimization converge faster.",
-        measured: p::chen_10_measured,
+        measured: solves::chen_10_measured,
     },
     Figure {
         name: "chen-11",
@@ -197,9 +198,9 @@ pub static FIGURES: [Figure; 13] = [
         hash: "sample=rand2d&strategy=opt&a=old&b=new&maxiter=10&node=169",
         view: "levelset",
         run: false,
-        look: "One node of rand2D solved by Fletcher–Reeves for up to 10 iterations: how far the objective is above its final value after each iteration, each step marked g (gradient direction), c (conjugate direction) or n (Newton's step, which our solver tries first by default); the path on the level sets uses the same marks.",
+        look: "One node of rand2D solved twice for up to 10 iterations: by Chen's Fletcher–Reeves search alone (its path on the level sets) and with Newton's step tried first (our default). The charts show the length of each solve's steps, every step marked g (gradient direction), c (conjugate direction) or n (Newton's step), as on the path.",
         claim: "Chen et al.: the first (gradient) step is short, the conjugate step after it much longer, then progress slows and a gradient step restarts the process; the first few iterations do most of the work, so three per call suffice.",
-        measured: p::chen_11_measured,
+        measured: solves::chen_11_measured,
     },
     Figure {
         name: "chen-13",
@@ -219,7 +220,7 @@ pub static FIGURES: [Figure; 13] = [
         hash: "sample=star-curved&strategy=opt&a=old&b=new&passes=1&maxiter=20&node=6",
         view: "compare",
         run: true,
-        look: "A free node joined to a curved quadratic boundary (our reading of the lost picture). The picture shows it as loaded, after a Laplacian step and after one optimization call of the new objective; the meshes show one pass of each objective.",
+        look: "A free node joined to a curved quadratic boundary (our reading of the lost picture). The picture shows it as loaded, after a Laplacian step, a constrained Laplacian step and one optimization call of each objective, new and old; the meshes below show the same two optimizations.",
         claim: "Chen et al.: a difficult case for smoothers made for linear elements; constrained Laplacian smoothing does poorly, their optimization gives the higher quality.",
         measured: p::chen_16_measured,
     },

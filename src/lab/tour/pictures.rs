@@ -17,12 +17,13 @@ use crate::lab::{Side, SMALL_ANGLE_DEG};
 use crate::mesh::{ElementKind, Mesh, MeshBuilder};
 use crate::objective::{adjusted_angle, objective_with, AnglePenalty, Objective, ObjectiveKind, Penalty, Star, BARRIER_WEIGHT};
 use crate::objective::regularised_determinant;
-use crate::optimize::{DirectionKind, SolveResult};
+use crate::optimize::SolveResult;
 use crate::quality::{lo_alpha, mesh_stats, signed_angle, MeshStats};
 use crate::render::{
     percentages, render_angle_histogram, render_chart, render_mesh, render_sketch, render_titled, series_color, AngleHistogram,
     Chart, Frame, HistogramSeries, Marker, MeshView, Series, Sketch, SketchLine, Theme,
 };
+use crate::render::layout::{record, Region};
 use crate::render::{draw_text, text_width, title_band, Align, TextStyle, Valign};
 use crate::smooth::{Measure, Order, SmoothOptions, Smoother, Strategy};
 
@@ -48,10 +49,12 @@ pub fn render(name: &str, c: Canvas, theme: &Theme) -> Result<Pixmap> {
     let parts = match fig.name {
         "chen-2" => chen_2(part(c, 3, 1, t), t)?,
         "chen-6" => chen_6(part(c, 3, 1, t), t)?,
-        "chen-9" | "chen-10" | "chen-20" => level_sets(fig, part(c, 2, 1, t), t)?,
-        "chen-11" => chen_11(fig, part(c, 2, 1, t), t)?,
+        "chen-9" => super::solves::chen_9(part(c, 2, 1, t), t)?,
+        "chen-10" => super::solves::chen_10(part(c, 2, 1, t), t)?,
+        "chen-20" => level_sets(fig, part(c, 2, 1, t), t)?,
+        "chen-11" => super::solves::chen_11(part(c, 2, 1, t), t)?,
         "chen-13" => chen_13(part(c, 4, 2, t), t)?,
-        "chen-16" => chen_16(part(c, 4, 1, t), t)?,
+        "chen-16" => chen_16(part(c, CHEN_16_PANELS, 1, t), t)?,
         "freitag-t1" => vec![table_picture("freitag-t1", part(c, 1, 1, t), t)?],
         "freitag-t2" => vec![freitag_t2(part(c, 1, 1, t), t)?],
         "chen-18" => chen_18(part(c, 3, 1, t), t)?,
@@ -64,6 +67,16 @@ pub fn render(name: &str, c: Canvas, theme: &Theme) -> Result<Pixmap> {
         _ => parts.len(),
     };
     render_titled(&parts, cols, &title, c.dpr, t).ok_or_else(|| Error::invalid("cannot allocate the figure"))
+}
+
+/// The figure `name`'s picture ([`render`]) and where its plots, legends and chart marks
+/// lie in it, device pixels, as they were drawn ([`crate::render::layout`]): for the tests
+/// that keep legends off the data and find the marks a text promises.
+pub fn render_with_layout(name: &str, c: Canvas, theme: &Theme) -> Result<(Pixmap, Vec<Region>)> {
+    let (pm, notes) = record(|| render(name, c, theme));
+    let pm = pm?;
+    let regions = notes.of(&pm);
+    Ok((pm, regions))
 }
 
 /// The canvas of one of `cols × rows` panels under the title band.
@@ -307,35 +320,6 @@ fn solves(name: &str) -> Result<(SolveResult, SolveResult)> {
     Ok((pg.solve_node(Side::Old, node)?, pg.solve_node(Side::New, node)?))
 }
 
-pub(super) fn chen_9_measured() -> Result<String> {
-    let (old, new) = solves("chen-9")?;
-    let meet = 2.0 * crate::generate::PUSHED_MID_HEIGHT - 3f64.sqrt() / 2.0;
-    let side = |y: f64| if y < meet { "below" } else { "above" };
-    Ok(format!(
-        "Measured: the dashed lines meet at y = {meet:.3}; the new objective's optimum lies at y = {:.3}, {} it, the \
-         max-min α's at y = {:.3}, {} it.",
-        new.x.y,
-        side(new.x.y),
-        old.x.y,
-        side(old.x.y)
-    ))
-}
-
-pub(super) fn chen_10_measured() -> Result<String> {
-    let (old, new) = solves("chen-10")?;
-    Ok(format!(
-        "Measured at this node (20 iterations at most): the max-min objective takes {} iterations ({}), the new one {} \
-         ({}); on Mesquite's equil_tri the new objective needs {} solver iterations where max-min α needs {} \
-         (docs/reproduction.md §5).",
-        old.iterations,
-        crate::lab::views::stop_words(old.stop),
-        new.iterations,
-        crate::lab::views::stop_words(new.stop),
-        repro(5, &["equil_tri.vtk", "`new`"], "solver iterations")?,
-        repro(5, &["equil_tri.vtk", "`old`"], "solver iterations")?,
-    ))
-}
-
 pub(super) fn chen_20_measured() -> Result<String> {
     let (old, new) = solves("chen-20")?;
     Ok(format!(
@@ -349,94 +333,6 @@ pub(super) fn chen_20_measured() -> Result<String> {
         new.value,
         new.iterations,
         crate::lab::views::stop_words(new.stop),
-    ))
-}
-
-// ---- Figs. 11–12: one solve's history --------------------------------------------------
-
-fn letter(d: DirectionKind) -> &'static str {
-    match d {
-        DirectionKind::Gradient => "g",
-        DirectionKind::Conjugate => "c",
-        DirectionKind::ActiveSet => "a",
-        DirectionKind::Newton => "n",
-    }
-}
-
-fn chen_11(fig: &Figure, c: Canvas, t: &Theme) -> Result<Vec<Pixmap>> {
-    let (mut pg, st) = fig.playground()?;
-    pg.set_theme(*t);
-    let node = st.node.ok_or_else(|| Error::invalid("chen-11 names no node"))? as usize;
-    let (level, r) = pg.render_level_set(Side::New, node, c)?;
-    // the excess over the final value, on a log axis (the final point, 0, is left out)
-    let excess = |v: f64| v - r.value;
-    let line: Vec<DVec2> = std::iter::once(DVec2::new(0.0, excess(r.value0)))
-        .chain(r.history.iter().enumerate().map(|(i, it)| DVec2::new(i as f64 + 1.0, excess(it.value))))
-        .collect();
-    let pick = |k: DirectionKind| -> Vec<DVec2> {
-        r.history.iter().enumerate().filter(|(_, it)| it.direction == k).map(|(i, it)| DVec2::new(i as f64 + 1.0, excess(it.value))).collect()
-    };
-    let (g, cj, n) = (pick(DirectionKind::Gradient), pick(DirectionKind::Conjugate), pick(DirectionKind::Newton));
-    // each marked point its own one-point series, so no line joins the marks
-    let mut series = vec![Series::new("objective", &line).with_color(t.side(Side::New as usize))];
-    for p in &g {
-        series.push(Series::new("g: gradient step", std::slice::from_ref(p)).with_color(series_color(1)).with_marker(Marker::Circle));
-    }
-    for p in &cj {
-        series.push(Series::new("c: conjugate step", std::slice::from_ref(p)).with_color(series_color(3)).with_marker(Marker::Square));
-    }
-    for p in &n {
-        series.push(Series::new("n: Newton step", std::slice::from_ref(p)).with_color(series_color(4)).with_marker(Marker::Triangle));
-    }
-    let mut chart = pixmap(c.w, c.h)?;
-    render_chart(
-        &mut chart,
-        &series,
-        &Chart {
-            title: "new objective above its final value: ● g (gradient), ■ c (conjugate), triangles n",
-            x_label: "iteration",
-            y_label: "f − f(final)",
-            log_y: true,
-            legend: false,
-            dpr: c.dpr,
-            theme: *t, ..Chart::default()
-        },
-    );
-    Ok(vec![level, chart])
-}
-
-pub(super) fn chen_11_measured() -> Result<String> {
-    let (_, fig) = find("chen-11")?;
-    let (pg, st) = fig.playground()?;
-    let node = st.node.ok_or_else(|| Error::invalid("chen-11 names no node"))? as usize;
-    // the default (Newton's step first), then Chen's search alone: the paper's iteration
-    let r = pg.solve_node(Side::New, node)?;
-    let options = pg.settings().smooth_options()?.with_newton(false);
-    let chen = crate::smooth::solve_node(&pg.panel(Side::New).mesh, node, pg.panel(Side::New).objective.as_ref(), &options)?;
-    let steps = |r: &SolveResult| -> String {
-        r.history.iter().map(|it| format!("{} {:.4}", letter(it.direction), it.step)).collect::<Vec<_>>().join(", ")
-    };
-    let share = |r: &SolveResult| {
-        let total = r.value0 - r.value;
-        let after3 = r.history.get(2).map_or(r.value, |it| it.value);
-        if total > 0.0 { 100.0 * (r.value0 - after3) / total } else { 100.0 }
-    };
-    let ratio = match chen.history.as_slice() {
-        [a, b, ..] if a.step > 0.0 => b.step / a.step,
-        _ => f64::NAN,
-    };
-    Ok(format!(
-        "Measured: Chen's search alone (no Newton step) takes {} iterations, the steps (direction, length) {}: the \
-         first conjugate step is {ratio:.1} times the gradient step before it, and our solver restarts with the \
-         gradient every second iteration (Chen et al. restart when progress slows); the first three iterations make \
-         {:.1}% of the decrease. With Newton's step tried first (the default, drawn here): {} iterations, {}; the \
-         first three make {:.1}% of the decrease.",
-        chen.iterations,
-        steps(&chen),
-        share(&chen),
-        r.iterations,
-        steps(&r),
-        share(&r),
     ))
 }
 
@@ -586,25 +482,56 @@ pub(super) fn chen_13_measured() -> Result<String> {
 
 // ---- Figs. 16–17: a node by a curved boundary ------------------------------------------
 
+/// The panels of Figs. 16–17's picture: as loaded and four runs.
+const CHEN_16_PANELS: u32 = 5;
+/// The titles of Figs. 16–17's optimization panels, which its text compares.
+const CHEN_16_NEW: &str = "optimization, new objective";
+const CHEN_16_OLD: &str = "optimization, old (max-min α)";
+
 /// The curved-boundary star as loaded and after one pass of: the plain Laplacian, the
-/// smart (constrained) Laplacian, and optimization of the new objective.
+/// smart (constrained) Laplacian, optimization of the new objective, and of the old
+/// max-min α — the compare view's two meshes (Chen et al. 2003, Figs. 16–17).
 fn curved_runs() -> Result<Vec<(String, Mesh)>> {
     let (_, fig) = find("chen-16")?;
     let (pg, st) = fig.playground()?;
     let m0 = pg.panel(Side::New).mesh.clone();
     let new = objective_with(ObjectiveKind::New, Penalty::Barrier);
+    let old = objective_with(ObjectiveKind::Old, Penalty::Barrier);
     let mut out = vec![("as loaded".to_string(), m0.clone())];
-    for (strategy, title) in [
-        (Strategy::Laplace, "Laplacian"),
-        (Strategy::Smart, "constrained (smart) Laplacian"),
-        (Strategy::Opt, "optimization, new objective"),
+    for (strategy, title, obj) in [
+        (Strategy::Laplace, "Laplacian", &new),
+        (Strategy::Smart, "constrained (smart) Laplacian", &new),
+        (Strategy::Opt, CHEN_16_NEW, &new),
+        (Strategy::Opt, CHEN_16_OLD, &old),
     ] {
         let mut m = m0.clone();
         let mut s = Smoother::new(st.settings.smooth_options()?.with_strategy(strategy))?;
-        s.pass(&mut m, new.as_ref(), &|| 0.0);
+        s.pass(&mut m, obj.as_ref(), &|| 0.0);
         out.push((title.to_string(), m));
     }
     Ok(out)
+}
+
+/// Where one of two meshes is better on the rows the tables judge by (min angle, min
+/// quality, worst κ): the rows each wins, in words, e.g. `(["min angle 9.00° vs 7.01°"], [])`.
+fn wins(a: &MeshStats, b: &MeshStats) -> (Vec<String>, Vec<String>) {
+    let kappa = |k: f64| if k.is_finite() { format!("{k:.3}") } else { "∞".to_string() };
+    let rows: [(String, std::cmp::Ordering); 3] = [
+        (format!("min angle ({:.2}° vs {:.2}°)", a.min_angle_deg, b.min_angle_deg), a.min_angle_deg.total_cmp(&b.min_angle_deg)),
+        (format!("min quality ({:.3} vs {:.3})", a.min_quality, b.min_quality), a.min_quality.total_cmp(&b.min_quality)),
+        (format!("worst κ ({} vs {})", kappa(a.max_condition), kappa(b.max_condition)), b.max_condition.total_cmp(&a.max_condition)),
+    ];
+    let pick = |o: std::cmp::Ordering| rows.iter().filter(|(_, w)| *w == o).map(|(t, _)| t.clone()).collect();
+    (pick(std::cmp::Ordering::Greater), pick(std::cmp::Ordering::Less))
+}
+
+/// `a`, `a and b`, `a, b and c`.
+fn and_list(items: &[String]) -> String {
+    match items {
+        [] => String::new(),
+        [one] => one.clone(),
+        [init @ .., last] => format!("{} and {last}", init.join(", ")),
+    }
 }
 
 fn chen_16(c: Canvas, theme: &Theme) -> Result<Vec<Pixmap>> {
@@ -620,7 +547,23 @@ pub(super) fn chen_16_measured() -> Result<String> {
             format!("{t}: min angle {:.1}°, {} inverted", s.min_angle_deg, s.inverted)
         })
         .collect();
-    Ok(format!("Measured (angles at curved corners by their end tangents): {}.", words.join("; ")))
+    let stats = |title: &str| runs.iter().find(|(t, _)| t == title).map(|(_, m)| mesh_stats(m));
+    let (Some(old), Some(new)) = (stats(CHEN_16_OLD), stats(CHEN_16_NEW)) else {
+        return Err(Error::invalid("chen-16: an optimization panel is missing"));
+    };
+    // one pass of each objective, as the meshes below show: say which wins where
+    let (old_wins, new_wins) = wins(&old, &new);
+    let verdict = match (old_wins.is_empty(), new_wins.is_empty()) {
+        (true, true) => "After one pass the two objectives tie on min angle, min quality and worst κ.".to_string(),
+        (false, true) => format!("After one pass the old objective wins here on {} (old vs new).", and_list(&old_wins)),
+        (true, false) => format!("After one pass the new objective wins here on {} (new vs old).", and_list(&wins(&new, &old).0)),
+        (false, false) => format!(
+            "After one pass the old objective wins here on {} (old vs new), the new one on {} (new vs old).",
+            and_list(&old_wins),
+            and_list(&wins(&new, &old).0)
+        ),
+    };
+    Ok(format!("Measured (angles at curved corners by their end tangents): {}. {verdict}", words.join("; ")))
 }
 
 // ---- Freitag Table 1 and Fig. 3 ------------------------------------------------------
