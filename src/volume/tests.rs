@@ -177,3 +177,20 @@ mod smoothing {
         assert!(m.nodes() != start.nodes());
     }
 }
+
+/// Issue 29: `untangle` and `untangle-mindet` moved the nodes of valid tetrahedral meshes
+/// (a tetrahedron of 10.18° ended at 0.99°); they now leave a valid mesh where it is.
+#[test]
+fn untangling_objectives_leave_a_valid_tetrahedral_mesh_where_it_is() {
+    use crate::objective::{tet_objective, ObjectiveKind};
+    use crate::smooth::{SmoothOptions, Strategy};
+    let valid = crate::generate::rand3d(200, 5).unwrap();
+    assert_eq!(volume_stats(&valid).inverted, 0);
+    for kind in [ObjectiveKind::Untangle, ObjectiveKind::UntangleMinDet] {
+        let mut m = valid.clone();
+        let opts = SmoothOptions::default().with_strategy(Strategy::Opt);
+        let r = smooth_volume(&mut m, &*tet_objective(kind), opts, 2, &|| 0.0).unwrap();
+        assert_eq!(m.nodes(), valid.nodes(), "{kind}");
+        assert_eq!(r[0].counts.optimization_calls, 0, "{kind}");
+    }
+}
