@@ -394,9 +394,10 @@ pub trait Objective<S: NodeStar = Star> {
         false
     }
     /// Whether the objective only untangles (Knupp 1999 §2.7's untangling functions): its
-    /// value is flat on valid stars (`untangle`: zero once every corner is valid) or blind
-    /// to their shape (`untangle-mindet`: the smallest determinant, an area), so the
-    /// drivers leave a valid star where it is. Default false.
+    /// value is flat on valid stars (`untangle`: zero once every corner is valid, up to
+    /// its shift) or blind to their shape (`untangle-mindet`: the smallest determinant, an
+    /// area), so the drivers leave a valid mesh where it is (`docs/formulas.md` §4).
+    /// Default false.
     fn only_untangles(&self) -> bool {
         false
     }

@@ -114,7 +114,7 @@ impl StarView for Planar<'_> {
 }
 
 /// A planar mesh seen read-only, for planning (which never places a node).
-struct Reading<'a>(&'a Mesh);
+pub(crate) struct Reading<'a>(pub(crate) &'a Mesh);
 
 impl StarView for Reading<'_> {
     type Mesh = Mesh;
@@ -167,6 +167,9 @@ pub struct Smoother<S: DriverStar = Star> {
     curved: bool,
     /// `sin θ_t` of the combined schemes, computed once (not per visit).
     sine_threshold: f64,
+    /// Whether the mesh had an inverted element when the pass was planned
+    /// ([`note_tangled`](Self::note_tangled)): the untangling objectives optimise only then.
+    tangled: bool,
 }
 
 impl<S: DriverStar> Smoother<S> {
@@ -190,6 +193,7 @@ impl<S: DriverStar> Smoother<S> {
             quadratic: false,
             curved: false,
             sine_threshold: options.threshold_deg.to_radians().sin(),
+            tangled: true,
         })
     }
 
@@ -458,10 +462,11 @@ impl<S: DriverStar> Smoother<S> {
     /// [`KeepValid`].
     ///
     /// An objective that only untangles ([`Objective::only_untangles`]: flat, or blind to
-    /// shape, on valid stars) leaves a valid star where it is, as Mesquite's untangler
-    /// stops on a valid mesh.
+    /// shape, on valid stars) leaves a valid mesh where it is, as Mesquite's untangler
+    /// stops at once on a valid mesh: it optimises only while the mesh was tangled when the
+    /// pass was planned ([`note_tangled`](Self::note_tangled)).
     fn optimize(&mut self, objective: &dyn Objective<S>, out: &mut NodeOutcome) {
-        if objective.only_untangles() && self.star.inverted_now() == 0 {
+        if objective.only_untangles() && !self.tangled {
             return;
         }
         let x0 = self.star.x0();
@@ -602,6 +607,9 @@ impl Smoother<Star> {
     /// Smooths one node by the strategy (fixed nodes and mid-side nodes are left alone).
     pub fn smooth_node(&mut self, mesh: &mut Mesh, node: usize, objective: &dyn Objective) -> NodeOutcome {
         self.refresh_mesh_facts(mesh);
+        if objective.only_untangles() {
+            self.note_tangled(&Reading(mesh));
+        }
         self.visit(&mut Planar(mesh), node, objective)
     }
 }
