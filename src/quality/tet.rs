@@ -80,10 +80,8 @@ pub fn in_unit_scale(p: &[DVec3; 4]) -> [DVec3; 4] {
     if super::SAFE_SCALE.contains(&m) || m == 0.0 || !m.is_finite() {
         return *p;
     }
-    // 2^-k with 2^k ≈ m, in two factors that are each finite (k reaches −1074)
-    let k = m.log2().floor() as i32;
-    let (f1, f2) = (2f64.powi(-k / 2), 2f64.powi(-k - (-k / 2)));
-    [DVec3::ZERO, e[0] * f1 * f2, e[1] * f1 * f2, e[2] * f1 * f2]
+    let [a, b, c] = super::in_unit_scale_3d(e);
+    [DVec3::ZERO, a, b, c]
 }
 
 /// The corners with corner `i` first, by an even permutation (so the signed volume is

@@ -245,9 +245,16 @@ impl Surface {
         let k = self.flat.kind(e).corners();
         let corner = |i: usize| self.points[ids[i] as usize];
         let centre = (0..k).map(corner).sum::<DVec3>() / k as f64;
-        let own = (0..k).map(|i| (corner(i) - centre).cross(corner((i + 1) % k) - centre)).sum::<DVec3>();
+        // the corners about the centre in units of their size where it is beyond 2^±200
+        // (the cross products' squares would leave the doubles; `docs/formulas.md` §1)
+        let mut d = [DVec3::ZERO; 4];
+        for (i, v) in d[..k].iter_mut().enumerate() {
+            *v = corner(i) - centre;
+        }
+        let d = crate::quality::in_unit_scale_3d(d);
+        let own = (0..k).map(|i| d[i].cross(d[(i + 1) % k])).sum::<DVec3>();
         let towards = self.reference_normal(e);
-        let normal = match own.try_normalize() {
+        let normal = match Some(crate::quality::direction(own)).filter(|n| *n != DVec3::ZERO) {
             Some(n) if n.dot(towards) < 0.0 => -n,
             Some(n) => n,
             None => towards,

@@ -238,21 +238,40 @@ impl Facets {
             }
         }
         let grid = Grid::new(&pts, &triangles);
+        // the facets' area vectors, in units of the largest edge where the edges are
+        // beyond 2^±200 (one power of two for all, so the area weights stay; as given
+        // inside it): a sphere of 1e80 has cross products whose squares leave the doubles
+        let reach = triangles.iter().fold(0.0f64, |m, t| {
+            let [a, b, c] = t.map(|v| pts[v as usize]);
+            m.max((b - a).abs().max_element()).max((c - a).abs().max_element())
+        });
+        let unit = if crate::quality::SAFE_SCALE.contains(&reach) || reach == 0.0 || !reach.is_finite() {
+            1.0
+        } else {
+            let (f1, f2) = crate::quality::unit_factors(reach);
+            f1 * f2
+        };
+        let area = |t: &[u32; 3]| {
+            let [a, b, c] = t.map(|v| pts[v as usize]);
+            if unit == 1.0 {
+                (b - a).cross(c - a)
+            } else {
+                ((b - a) * unit).cross((c - a) * unit)
+            }
+        };
         let mut vertex_normal = vec![DVec3::ZERO; pts.len()];
         for t in &triangles {
-            let [a, b, c] = t.map(|v| pts[v as usize]);
-            let n = (b - a).cross(c - a);
+            let n = area(t);
             for &v in t {
                 vertex_normal[v as usize] += n;
             }
         }
         for n in &mut vertex_normal {
-            *n = n.normalize_or_zero();
+            *n = crate::quality::direction(*n);
         }
         // a folded element: a flat triangle whose normal disagrees with a vertex's
         let folded = triangles.iter().any(|tri| {
-            let [a, b, c] = tri.map(|v| pts[v as usize]);
-            let n = (b - a).cross(c - a);
+            let n = area(tri);
             tri.iter().any(|&v| n.dot(vertex_normal[v as usize]) <= 0.0)
         });
         if folded {
@@ -281,7 +300,8 @@ impl Facets {
     /// The unit normal of triangle `t` (zero for a degenerate one).
     fn normal(&self, t: u32) -> DVec3 {
         let [a, b, c] = self.corners(t);
-        (b - a).cross(c - a).normalize_or_zero()
+        let [u, v] = crate::quality::in_unit_scale_3d([b - a, c - a]);
+        crate::quality::direction(u.cross(v))
     }
 
     /// The nearest point of the facets to `p`: a walk from `hint` over neighbouring
@@ -311,7 +331,7 @@ impl Facets {
         let (point, bary) = closest_on_triangle(p, self.corners(t));
         let tri = self.triangles[t as usize];
         let blended: DVec3 = (0..3).map(|i| bary[i] * self.vertex_normal[tri[i] as usize]).sum();
-        let normal = blended.try_normalize().unwrap_or_else(|| self.normal(t));
+        let normal = Some(crate::quality::direction(blended)).filter(|n| *n != DVec3::ZERO).unwrap_or_else(|| self.normal(t));
         Projected { point, normal, face: t }
     }
 
