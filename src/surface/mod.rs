@@ -227,12 +227,19 @@ impl Surface {
         self.reference.project(p, self.hint[n])
     }
 
-    /// The reference surface's unit normal at the centre of element `e`.
+    /// The reference surface's unit normal at the centre of element `e`, on the element's
+    /// own smooth part: searched from the element's own facet where the reference is the
+    /// loaded mesh (from its first corner's last facet, a corner on a feature curve may
+    /// start on the other part: a cylinder cap's element next to the rim read the side's
+    /// normal and counted as inverted), else from its first corner.
     pub fn reference_normal(&self, e: usize) -> DVec3 {
         let ids = self.flat.element(e);
         let k = self.flat.kind(e).corners();
         let centre = ids[..k].iter().map(|&i| self.points[i as usize]).sum::<DVec3>() / k as f64;
-        self.project_near(centre, ids[0] as usize).normal
+        match self.reference.element_hint(e) {
+            Some(hint) => self.reference.project(centre, hint).normal,
+            None => self.project_near(centre, ids[0] as usize).normal,
+        }
     }
 
     /// Element `e`'s nodes in its own plane (2D), oriented so that the element reads as

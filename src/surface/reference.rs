@@ -35,6 +35,15 @@ impl Reference {
             Reference::Analytic(a) => a.project(p, hint),
         }
     }
+    /// A hint ([`project`](Self::project)) on element `e`'s own smooth part, where the
+    /// reference knows the elements: the first facet of `e` for a loaded mesh; `None` for
+    /// an analytic surface (its parts are found from the point).
+    pub fn element_hint(&self, e: usize) -> Option<u32> {
+        match self {
+            Reference::Facets(f) => f.first_triangle.get(e).copied(),
+            Reference::Analytic(_) => None,
+        }
+    }
     /// What the reference is, in words (for `stats`).
     pub fn describe(&self) -> String {
         match self {
@@ -156,6 +165,9 @@ pub struct Facets {
     /// not used: linear elements, or a folded one in the file).
     patch: Vec<Option<(u32, [[f64; 2]; 3])>>,
     patches: Vec<Patch>,
+    /// Per element of the loaded mesh, its first triangle (an element's triangles are
+    /// consecutive).
+    first_triangle: Vec<u32>,
     /// Vertex → triangles (CSR), for the walk.
     vert_start: Vec<u32>,
     vert_tris: Vec<u32>,
@@ -178,8 +190,10 @@ impl Facets {
         let mut triangles = Vec::with_capacity(kinds.len() * 2);
         let mut parts = Vec::with_capacity(kinds.len() * 2);
         let (mut patch, mut patches) = (Vec::with_capacity(kinds.len() * 2), Vec::new());
+        let mut first_triangle = Vec::with_capacity(kinds.len());
         for (e, &kind) in kinds.iter().enumerate() {
             let ids = element(e);
+            first_triangle.push(triangles.len() as u32);
             match kind {
                 ElementKind::Tri3 => triangles.push([ids[0], ids[1], ids[2]]),
                 ElementKind::Quad4 => {
@@ -277,7 +291,18 @@ impl Facets {
         if folded {
             patch.iter_mut().for_each(|p| *p = None);
         }
-        Facets { points: pts, triangles, part: parts, vertex_normal, patch, patches, vert_start, vert_tris, grid }
+        Facets {
+            points: pts,
+            triangles,
+            part: parts,
+            vertex_normal,
+            patch,
+            patches,
+            first_triangle,
+            vert_start,
+            vert_tris,
+            grid,
+        }
     }
 
     /// A triangle with vertex `v`, to start the walk from a node where it was loaded
