@@ -5,7 +5,8 @@
 //! 1. Fixed nodes (the cylinder's rims) never move, bit for bit.
 //! 2. Every node stays on the surface: within 1e-9 of the surface's size.
 //! 3. No NaN or infinity leaves a smoother.
-//! 4. Same input, same options → the same output, bit for bit.
+//! 4. Same input, same options → the same output, bit for bit; what is written (`.msh`,
+//!    `.vtk`) reads back, the same to the bit (issue 29).
 //! 5. On a valid surface, no strategy but the plain Laplacian folds an element or lowers
 //!    the worst element's quality (issue 29's acceptance rule, measured after the
 //!    projection back onto the surface, mid-side nodes following).
@@ -14,7 +15,8 @@ use proptest::prelude::*;
 use smoothlab::generate::{surface, SurfaceKind, SurfaceShape};
 use smoothlab::objective::{objective, ObjectiveKind};
 use smoothlab::smooth::{SmoothOptions, Strategy};
-use smoothlab::surface::{perturb_surface, smooth_surface, Surface};
+use smoothlab::io::{read_model_str, write_string, Format, WriteOptions};
+use smoothlab::surface::{perturb_surface, smooth_surface, Model, Surface};
 
 fn sample(shape: usize, kind: usize, order: u8, amount: f64, seed: u64) -> Surface {
     let s = surface(SurfaceShape::ALL[shape], SurfaceKind::ALL[kind], order, 2).unwrap();
@@ -54,6 +56,18 @@ proptest! {
         prop_assert!(d <= 1e-9 * t.size(), "{} from the surface", d);
         let again = smoothed(&s, strategy, objective_kind);
         prop_assert_eq!(again.points(), t.points());
+        // what smoothlab writes, smoothlab reads (issue 29)
+        for f in [Format::Msh, Format::Vtk] {
+            let text = write_string(&t, f, &WriteOptions::default()).unwrap();
+            match read_model_str(&text, f) {
+                Ok(Model::Surface(back)) => {
+                    prop_assert_eq!(back.points(), t.points(), "{:?}", f);
+                    prop_assert_eq!(back.element_count(), t.element_count(), "{:?}", f);
+                }
+                Ok(_) => prop_assert!(false, "{:?}: read back as another kind of mesh", f),
+                Err(e) => prop_assert!(false, "{:?}: {}", f, e),
+            }
+        }
     }
 
     #[test]
