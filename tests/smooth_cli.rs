@@ -273,3 +273,29 @@ fn smooth_names_the_elements_it_cannot_untangle_and_why() {
     assert_eq!(v["final"]["inverted"], 0);
     assert_eq!(v["untangling_impossible"], serde_json::json!([]));
 }
+
+/// Issue 29 (cosmetic): `smooth --help` gave `--slide-curves` the text of `--json` and
+/// `--json` none; `stats` said "1 tetrahedra".
+#[test]
+fn help_texts_are_their_own_and_counts_agree_with_their_nouns() {
+    let help = ok(&["smooth", "--help"]);
+    let text_of = |flag: &str| {
+        let at = help.find(&format!("--{flag}\n")).unwrap_or_else(|| panic!("no --{flag} in:\n{help}"));
+        help[at..].lines().nth(1).unwrap_or_default().trim().to_string()
+    };
+    assert!(text_of("json").starts_with("Print one JSON object"), "{}", text_of("json"));
+    assert!(text_of("slide-curves").starts_with("A surface's feature curves"), "{}", text_of("slide-curves"));
+    let d = dir("plurals");
+    let one = d.join("one.vtk");
+    std::fs::write(
+        &one,
+        "# vtk DataFile Version 2.0\none\nASCII\nDATASET UNSTRUCTURED_GRID\nPOINTS 4 double\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n\
+         CELLS 1 5\n4 0 1 2 3\nCELL_TYPES 1\n10\n",
+    )
+    .unwrap();
+    let stats = ok(&["stats", p(&one)]);
+    assert!(stats.contains("elements         1 tetrahedron (0 quadratic)"), "{stats}");
+    let cube = d.join("cube.vtk");
+    ok(&["generate", "cube", "--cells", "1", "-o", p(&cube)]);
+    assert!(ok(&["stats", p(&cube)]).contains("6 tetrahedra"));
+}

@@ -12,6 +12,11 @@
 //! 4. No NaN or infinity ever leaves a smoother — every objective × every strategy, on
 //!    inputs with zero-area elements and coincident nodes.
 //! 5. Same input, same options → the same output, bit for bit.
+//! 7. *The acceptance rule* (issue 29, `docs/formulas.md` §4): for every strategy but the
+//!    plain Laplacian and every objective, on linear and quadratic meshes, a visit leaves a
+//!    valid star valid, its smallest α/β not lower and every element at least
+//!    [`MIN_SIZE_RATIO`] of its smallest corner determinant; an inverted star gains no
+//!    inverted element unless its inversion `Σ max(0, −det)` falls.
 //! 6. `new` + `rules` on tangled meshes: the inverted count never rises from one pass to
 //!    the next ([`SmoothOptions::keep_valid`], the default). Without that check it can:
 //!    a counter-example is kept below. C3's first step is Freitag's plain Laplacian, which
@@ -21,8 +26,8 @@ use proptest::prelude::*;
 use smoothlab::generate::{grid, perturb, plate, rand2d, GridKind, PlateKind};
 use smoothlab::mesh::{ElementKind, MeshBuilder};
 use smoothlab::objective::{objective, ChenTristanoKwok, Objective, ObjectiveKind, Penalty, Star};
-use smoothlab::quality::{element_quality, mesh_stats};
-use smoothlab::smooth::{Order, SmoothOptions, Smoother, Strategy};
+use smoothlab::quality::{corner_edge_vectors, element_quality, mesh_stats};
+use smoothlab::smooth::{Order, SmoothOptions, Smoother, Strategy, MIN_SIZE_RATIO};
 use smoothlab::Mesh;
 
 const NO_CLOCK: &dyn Fn() -> f64 = &|| 0.0;
@@ -88,6 +93,77 @@ fn check_visits(mesh: &mut Mesh, strategy: Strategy, kind: ObjectiveKind) -> Res
     Ok(())
 }
 
+/// A small mesh for the acceptance rule: [`small_mesh`]'s, or a perturbed quadratic plate
+/// (6-node triangles, 8-node quads or both; the mid-side nodes of straight edges follow).
+fn rule_mesh(shape: u8, size: usize, seed: u64, amount: f64) -> Mesh {
+    match shape % 6 {
+        s @ 3..=5 => {
+            let kind = [PlateKind::Tri, PlateKind::Quad, PlateKind::Mixed][s as usize - 3];
+            perturb(&plate(kind, 2, 1).unwrap(), amount, seed).unwrap()
+        }
+        s => small_mesh(s, size, seed, amount),
+    }
+}
+
+/// Per element of the star of `n`: its smallest corner determinant, with tangents for
+/// quadratic elements (`docs/formulas.md` §1), and its negative parts' sum.
+fn star_dets(mesh: &Mesh, n: usize) -> Vec<(f64, f64)> {
+    mesh.node_elements(n)
+        .iter()
+        .map(|&e| {
+            let k = mesh.kind(e as usize);
+            let p = mesh.element_points_array(e as usize);
+            corner_edge_vectors(k, &p[..k.node_count()])[..k.corners()]
+                .iter()
+                .map(|(a, b)| a.perp_dot(*b))
+                .fold((f64::INFINITY, 0.0), |(m, neg), d| (m.min(d), neg + (-d).max(0.0)))
+        })
+        .collect()
+}
+
+/// Property 7 at every visit of one pass.
+fn check_rule(mesh: &mut Mesh, strategy: Strategy, kind: ObjectiveKind) -> Result<(), TestCaseError> {
+    let obj = objective(kind);
+    let mut s = Smoother::new(options(strategy)).unwrap();
+    let order: Vec<u32> = s.plan(mesh).to_vec();
+    for n in order {
+        let n = n as usize;
+        let ((q0, inv0), d0) = (star_state(mesh, n), star_dets(mesh, n));
+        s.smooth_node(mesh, n, &*obj);
+        let ((q1, inv1), d1) = (star_state(mesh, n), star_dets(mesh, n));
+        let what = format!("{strategy:?}/{kind}: node {n}");
+        if inv0 == 0 {
+            prop_assert_eq!(inv1, 0, "{} folded a valid star", what);
+            prop_assert!(q1 >= q0, "{} lowered its star's worst α/β {} → {}", what, q0, q1);
+            for ((b, _), (a, _)) in d0.iter().zip(&d1) {
+                prop_assert!(*a >= MIN_SIZE_RATIO * b, "{} flattened an element: det {} → {}", what, b, a);
+            }
+        } else {
+            let total = |d: &[(f64, f64)]| d.iter().map(|x| x.1).sum::<f64>();
+            prop_assert!(
+                inv1 <= inv0 || total(&d1) < total(&d0),
+                "{} gained inverted elements {} → {} and its inversion did not fall {} → {}",
+                what, inv0, inv1, total(&d0), total(&d1)
+            );
+        }
+    }
+    Ok(())
+}
+
+/// What smoothlab writes, smoothlab reads (issue 29): the mesh written as `.msh` and as
+/// `.vtk` reads back with the same elements and, to the last bit, the same positions.
+fn reads_back(m: &Mesh, what: &str) -> Result<(), TestCaseError> {
+    use smoothlab::io::{read_model_str, write_string, Format, WriteOptions};
+    for f in [Format::Msh, Format::Vtk] {
+        let text = write_string(m, f, &WriteOptions::default()).map_err(|e| TestCaseError::fail(format!("{what}: {e}")))?;
+        let back = read_model_str(&text, f).map_err(|e| TestCaseError::fail(format!("{what}, {f:?} read back: {e}")))?;
+        let back = back.planar("the test").map_err(|e| TestCaseError::fail(format!("{what}, {f:?}: {e}")))?;
+        prop_assert_eq!(back.nodes(), m.nodes(), "{}, {:?}", what, f);
+        prop_assert_eq!(back.element_count(), m.element_count(), "{}, {:?}", what, f);
+    }
+    Ok(())
+}
+
 /// Collapses a perturbed mesh: the first free node onto the second (coincident nodes)
 /// and the third onto the midpoint of two of its neighbours (a zero-area element, unless
 /// they are themselves coincident).
@@ -99,6 +175,24 @@ fn degenerate(mut m: Mesh) -> Mesh {
         m.nodes_mut()[free[2]] = 0.5 * (m.nodes()[nb[0] as usize] + m.nodes()[nb[1] as usize]);
     }
     m
+}
+
+proptest! {
+    // every strategy × objective × mesh kind: more cases (a pass of a small mesh is cheap)
+    #![proptest_config(ProptestConfig::with_cases(128))]
+
+    #[test]
+    fn no_strategy_but_the_laplacian_leaves_a_star_worse(
+        shape in 0u8..6, size in 0usize..100, seed in 1u64..10_000, amount in 0.1f64..1.2,
+        strategy in 1..Strategy::ALL.len(), kind in 0..ObjectiveKind::ALL.len(),
+    ) {
+        let (strategy, kind) = (STRATEGIES[strategy], ObjectiveKind::ALL[kind]);
+        prop_assert_ne!(strategy, Strategy::Laplace);
+        let mut m = rule_mesh(shape, size, seed, amount);
+        for _ in 0..2 {
+            check_rule(&mut m, strategy, kind)?;
+        }
+    }
 }
 
 proptest! {
@@ -171,6 +265,7 @@ proptest! {
                     }
                 }
                 prop_assert!(m.sanity_check().is_ok());
+                reads_back(&m, &format!("{kind}/{strategy:?}"))?;
             }
         }
     }

@@ -117,6 +117,12 @@ impl ObjectiveKind {
         matches!(self, ObjectiveKind::New | ObjectiveKind::Untangle)
     }
 
+    /// Whether objectives of this kind only untangle (see [`Objective::only_untangles`]):
+    /// `untangle` and `untangle-mindet`.
+    pub fn only_untangles(self) -> bool {
+        matches!(self, ObjectiveKind::Untangle | ObjectiveKind::UntangleMinDet)
+    }
+
     /// How this kind's terms combine (which solver fits it).
     pub fn goal(self) -> Goal {
         match self {
@@ -387,6 +393,14 @@ pub trait Objective<S: NodeStar = Star> {
     fn untangles(&self) -> bool {
         false
     }
+    /// Whether the objective only untangles (Knupp 1999 §2.7's untangling functions): its
+    /// value is flat on valid stars (`untangle`: zero once every corner is valid, up to
+    /// its shift) or blind to their shape (`untangle-mindet`: the smallest determinant, an
+    /// area), so the drivers leave a valid mesh where it is (`docs/formulas.md` §4).
+    /// Default false.
+    fn only_untangles(&self) -> bool {
+        false
+    }
     /// Appends the terms at position `x` (values and gradients) to `out`.
     fn terms(&self, star: &S, x: S::Point, out: &mut Vec<Term<S::Point>>);
     /// The objective value at `x`: the sum or the minimum of the terms.
@@ -447,6 +461,9 @@ macro_rules! impl_objective_by_visit {
             }
             fn untangles(&self) -> bool {
                 self.kind().untangles()
+            }
+            fn only_untangles(&self) -> bool {
+                self.kind().only_untangles()
             }
             fn terms(&self, star: &$crate::objective::Star, x: glam::DVec2, out: &mut Vec<$crate::objective::Term>) {
                 self.visit(star, x, |t| out.push(t));
@@ -524,6 +541,9 @@ macro_rules! forward_objective {
             }
             fn untangles(&self) -> bool {
                 (**self).untangles()
+            }
+            fn only_untangles(&self) -> bool {
+                (**self).only_untangles()
             }
             fn terms(&self, star: &S, x: S::Point, out: &mut Vec<Term<S::Point>>) {
                 (**self).terms(star, x, out)

@@ -281,6 +281,9 @@ impl Objective<TetStar> for TetObjective {
     fn untangles(&self) -> bool {
         self.kind().untangles()
     }
+    fn only_untangles(&self) -> bool {
+        self.kind().only_untangles()
+    }
     fn terms(&self, star: &TetStar, x: DVec3, out: &mut Vec<Term<DVec3>>) {
         self.visit(star, x, |t| out.push(t));
     }

@@ -312,6 +312,42 @@ fn pow2(e: i32) -> f64 {
     f64::from_bits(((e + 1023) as u64) << 52)
 }
 
+/// Two finite powers of two whose product brings a positive finite `m` to about 1 (the
+/// product itself may be beyond the doubles: 2^1074 for the smallest subnormal).
+pub(crate) fn unit_factors(m: f64) -> (f64, f64) {
+    let k = m.log2().floor() as i32;
+    (2f64.powi(-k / 2), 2f64.powi(-k - (-k / 2)))
+}
+
+/// The unit vector along `v`, zero when `v` is zero or not finite: `normalize_or_zero`
+/// at every magnitude. Where `v`'s squared length would leave the doubles (a normal of
+/// elements of size 1e±80 is a cross product of size 1e±160) `v` is first multiplied by a
+/// power of two (exact), which changes neither its direction nor, where it was not
+/// needed, the bits of the result.
+pub fn direction(v: glam::DVec3) -> glam::DVec3 {
+    let m = v.abs().max_element();
+    if !(m > 0.0 && m.is_finite()) {
+        return glam::DVec3::ZERO;
+    }
+    if (pow2(-500)..=pow2(500)).contains(&m) {
+        return v.normalize_or_zero();
+    }
+    let (f1, f2) = unit_factors(m);
+    (v * f1 * f2).normalize_or_zero()
+}
+
+/// Vectors of size beyond [`SAFE_SCALE`] multiplied by one power of two (exact) that
+/// brings their largest component to about 1, so that their cross products and squares
+/// are normal doubles; as they are inside it.
+pub(crate) fn in_unit_scale_3d<const N: usize>(v: [glam::DVec3; N]) -> [glam::DVec3; N] {
+    let m = v.iter().fold(0.0f64, |m, x| m.max(x.abs().max_element()));
+    if SAFE_SCALE.contains(&m) || m == 0.0 || !m.is_finite() {
+        return v;
+    }
+    let (f1, f2) = unit_factors(m);
+    v.map(|x| x * f1 * f2)
+}
+
 /// Corner edge vectors brought to unit scale when their size is beyond 2^±200, where the
 /// metrics' squares and products of squares would over- or underflow: `(e1, e2, f)` with
 /// the factors `f` (as [`to_unit_scale`] returns them), `None` when they are fine as they

@@ -58,10 +58,30 @@ pub fn signed_volume(p: &[DVec3; 4]) -> f64 {
 }
 
 /// Whether the tetrahedron is inverted: `V ≤ 0` (zero volume included), or its volume is
-/// not a number.
+/// not a number. Measured in the tetrahedron's own scale ([`in_unit_scale`]), so a valid
+/// tetrahedron whose volume over- or underflows the doubles is not called inverted.
 #[inline]
 pub fn is_inverted(p: &[DVec3; 4]) -> bool {
-    signed_volume(p).is_nan() || signed_volume(p) <= 0.0
+    let v = signed_volume(&in_unit_scale(p));
+    v.is_nan() || v <= 0.0
+}
+
+/// The corners in the tetrahedron's own scale, for the measures that are ratios of
+/// lengths (angles, sines, the mean ratio, κ, the sign of the volume): as they are when
+/// the edges' largest component lies within [`SAFE_SCALE`](super::SAFE_SCALE) (2^±200, where
+/// every product those measures take is a normal double, so their bits are unchanged);
+/// beyond it, corner 0 moved to the origin and the edges multiplied by a power of two
+/// (exact) that brings that component to about 1 — the planar metrics' rule
+/// (`docs/formulas.md` §1), so a cube of tetrahedra has the same angles at 1e±150 as at 1.
+#[inline]
+pub fn in_unit_scale(p: &[DVec3; 4]) -> [DVec3; 4] {
+    let e = [p[1] - p[0], p[2] - p[0], p[3] - p[0]];
+    let m = e.iter().fold(0.0f64, |m, v| m.max(v.abs().max_element()));
+    if super::SAFE_SCALE.contains(&m) || m == 0.0 || !m.is_finite() {
+        return *p;
+    }
+    let [a, b, c] = super::in_unit_scale_3d(e);
+    [DVec3::ZERO, a, b, c]
 }
 
 /// The corners with corner `i` first, by an even permutation (so the signed volume is
@@ -95,6 +115,7 @@ fn face_area_vector(p: &[DVec3; 4], k: usize) -> DVec3 {
 /// are those of its mirror image, in [0, π] (whether it is inverted is [`is_inverted`]'s
 /// to say). NaN where a face has no area.
 pub fn dihedral_angles(p: &[DVec3; 4]) -> [f64; 6] {
+    let p = &in_unit_scale(p);
     let n = [0, 1, 2, 3].map(|k| face_area_vector(p, k));
     OFF_EDGE.map(|[k, l]| {
         let c = -n[k].dot(n[l]) / (n[k].length() * n[l].length());
@@ -108,6 +129,7 @@ pub fn dihedral_angles(p: &[DVec3; 4]) -> [f64; 6] {
 /// tetrahedron is inverted — Freitag's max-min dihedral measure, carried on through
 /// inversion. NaN where a face has no area.
 pub fn dihedral_sines(p: &[DVec3; 4]) -> [f64; 6] {
+    let p = &in_unit_scale(p);
     let v = signed_volume(p);
     let a = [0, 1, 2, 3].map(|k| face_area_vector(p, k).length());
     let mut s = [0.0; 6];
@@ -227,7 +249,7 @@ impl WeightedJacobian {
 /// for zero volume. An inverted tetrahedron has the κ of its mirror image: the objectives
 /// put their barrier on the sign of the volume.
 pub fn condition_number(p: &[DVec3; 4]) -> f64 {
-    let t = weighted_jacobian(p);
+    let t = weighted_jacobian(&in_unit_scale(p));
     let det = t.determinant();
     if det == 0.0 || !det.is_finite() {
         return if det.is_nan() { f64::NAN } else { f64::INFINITY };
@@ -264,7 +286,7 @@ pub fn condition_number_grad0(p: &[DVec3; 4]) -> (f64, DVec3) {
 /// negative for an inverted one (`σ^{2/3}` taken as `sign(σ)·|σ|^{2/3}`), so it falls on
 /// continuously through inversion. 0 when the four corners coincide.
 pub fn mean_ratio(p: &[DVec3; 4]) -> f64 {
-    let t = weighted_jacobian(p);
+    let t = weighted_jacobian(&in_unit_scale(p));
     let f = frobenius2(&t);
     if f == 0.0 {
         return 0.0;
@@ -313,12 +335,12 @@ pub fn tet_measures(p: &[DVec3; 4]) -> TetMeasures {
     let volume = signed_volume(p);
     TetMeasures {
         volume,
+        inverted: is_inverted(p),
         min_dihedral_deg: dihedral_deg.iter().copied().fold(f64::INFINITY, f64::min),
         max_dihedral_deg: dihedral_deg.iter().copied().fold(f64::NEG_INFINITY, f64::max),
         min_sine: dihedral_sines(p).into_iter().fold(f64::INFINITY, f64::min),
         condition: condition_number(p),
         mean_ratio: mean_ratio(p),
-        inverted: volume.is_nan() || volume <= 0.0,
         dihedral_deg,
     }
 }

@@ -32,6 +32,9 @@ impl<S: DriverStar> Objective<S> for KeepValid<'_, S> {
     fn untangles(&self) -> bool {
         self.inner.untangles()
     }
+    fn only_untangles(&self) -> bool {
+        self.inner.only_untangles()
+    }
     fn terms(&self, star: &S, x: S::Point, out: &mut Vec<Term<S::Point>>) {
         self.inner.terms(star, x, out);
         if self.refuses(star, x) {

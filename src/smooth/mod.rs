@@ -22,6 +22,7 @@ use crate::objective::{Objective, Point, Star, Term};
 use crate::optimize::{evaluate, SolveResult, Solvers};
 use crate::quality::mesh_stats;
 
+mod accept;
 mod guard;
 mod measure;
 mod obstacles;
@@ -37,6 +38,7 @@ use guard::KeepValid;
 pub(crate) use measure::is_inverted;
 pub(crate) use measure::triangle_shape_at;
 use measure::triangle_shape_at_both;
+pub use accept::{ElementScore, Verdict, MIN_SIZE_RATIO};
 pub use measure::StarQuality;
 #[cfg(test)]
 pub(crate) use measure::{element_measures, element_shape_at, star_quality, star_shape};
@@ -73,6 +75,17 @@ pub(crate) trait StarView {
     fn place(&mut self, n: usize, x: <Self::Mesh as SmoothMesh>::Point);
     /// Whether element `e` is inverted now.
     fn is_inverted(&self, e: usize) -> bool;
+    /// Whether the view applies the acceptance rule itself, after placing a node
+    /// ([`place_if_no_worse`](Self::place_if_no_worse)), rather than the drivers on the
+    /// star they gathered: a surface, whose node is projected back onto the reference.
+    const CHECKS_ON_PLACING: bool = false;
+    /// [`place`](Self::place), kept only when the star gets no worse by `measure` (the
+    /// acceptance rule, [`accept`]); returns whether the node moved. Called only where
+    /// [`CHECKS_ON_PLACING`](Self::CHECKS_ON_PLACING).
+    fn place_if_no_worse(&mut self, n: usize, x: <Self::Mesh as SmoothMesh>::Point, _measure: Measure) -> bool {
+        self.place(n, x);
+        true
+    }
 }
 
 /// A planar mesh as its own [`StarView`].
@@ -101,7 +114,7 @@ impl StarView for Planar<'_> {
 }
 
 /// A planar mesh seen read-only, for planning (which never places a node).
-struct Reading<'a>(&'a Mesh);
+pub(crate) struct Reading<'a>(pub(crate) &'a Mesh);
 
 impl StarView for Reading<'_> {
     type Mesh = Mesh;
@@ -154,6 +167,9 @@ pub struct Smoother<S: DriverStar = Star> {
     curved: bool,
     /// `sin θ_t` of the combined schemes, computed once (not per visit).
     sine_threshold: f64,
+    /// Whether the mesh had an inverted element when the pass was planned
+    /// ([`note_tangled`](Self::note_tangled)): the untangling objectives optimise only then.
+    tangled: bool,
 }
 
 impl<S: DriverStar> Smoother<S> {
@@ -177,6 +193,7 @@ impl<S: DriverStar> Smoother<S> {
             quadratic: false,
             curved: false,
             sine_threshold: options.threshold_deg.to_radians().sin(),
+            tangled: true,
         })
     }
 
@@ -257,11 +274,25 @@ impl<S: DriverStar> Smoother<S> {
         if n >= view.mesh().node_count() || !view.mesh().is_free(n) {
             return NodeOutcome::default();
         }
+        if V::CHECKS_ON_PLACING && self.accepts_only_no_worse() {
+            let (x, mut out) = self.decide_move(view.star_mesh(n), n, objective);
+            if out.moved {
+                out.moved = view.place_if_no_worse(n, x, self.options.smart_measure);
+            }
+            return out;
+        }
         let (x, out) = self.decide(view.star_mesh(n), n, objective);
         if out.moved {
             view.place(n, x);
         }
         out
+    }
+
+    /// Whether moves are kept only by the acceptance rule ([`accept`], by
+    /// [`SmoothOptions::smart_measure`]): every strategy but the plain Laplacian, with the
+    /// validity guard on.
+    fn accepts_only_no_worse(&self) -> bool {
+        self.options.keep_valid && self.options.strategy != Strategy::Laplace
     }
 
     /// Where the strategy moves node `n`, without writing to the mesh: the new position
@@ -270,7 +301,25 @@ impl<S: DriverStar> Smoother<S> {
     /// that follow it are moved in the star only, so a node reads nothing but its star and
     /// its neighbours. Nodes that share no element can therefore be decided in any order,
     /// or at once ([`crate::smooth::parallel`]), with the same results.
+    ///
+    /// A move is kept only when the star gets no worse (the acceptance rule, [`accept`],
+    /// `docs/formulas.md` §4), measured on the star as it is in `mesh` and with the node
+    /// moved; otherwise the node stays.
     pub(crate) fn decide(&mut self, mesh: &S::Mesh, n: usize, objective: &dyn Objective<S>) -> (S::Point, NodeOutcome) {
+        let (x, mut out) = self.decide_move(mesh, n, objective);
+        if out.moved && self.accepts_only_no_worse() {
+            self.star.gather(mesh, n);
+            if !self.star.verdict(x, self.options.smart_measure).keeps() {
+                out.moved = false;
+                return (mesh.position(n), out);
+            }
+        }
+        (x, out)
+    }
+
+    /// [`decide`](Self::decide) without the acceptance rule (a surface's view applies it
+    /// after projecting the node back onto the surface).
+    fn decide_move(&mut self, mesh: &S::Mesh, n: usize, objective: &dyn Objective<S>) -> (S::Point, NodeOutcome) {
         let mut out = NodeOutcome::default();
         if n >= mesh.node_count() || !mesh.is_free(n) {
             return (S::Point::ZERO, out);
@@ -411,7 +460,15 @@ impl<S: DriverStar> Smoother<S> {
     /// Optimization with the chosen solver on the gathered star, from the star's position.
     /// With [`SmoothOptions::keep_valid`] the solver sees the objective through
     /// [`KeepValid`].
+    ///
+    /// An objective that only untangles ([`Objective::only_untangles`]: flat, or blind to
+    /// shape, on valid stars) leaves a valid mesh where it is, as Mesquite's untangler
+    /// stops at once on a valid mesh: it optimises only while the mesh was tangled when the
+    /// pass was planned ([`note_tangled`](Self::note_tangled)).
     fn optimize(&mut self, objective: &dyn Objective<S>, out: &mut NodeOutcome) {
+        if objective.only_untangles() && !self.tangled {
+            return;
+        }
         let x0 = self.star.x0();
         let guarded;
         let objective: &dyn Objective<S> = if self.options.keep_valid {
@@ -550,6 +607,9 @@ impl Smoother<Star> {
     /// Smooths one node by the strategy (fixed nodes and mid-side nodes are left alone).
     pub fn smooth_node(&mut self, mesh: &mut Mesh, node: usize, objective: &dyn Objective) -> NodeOutcome {
         self.refresh_mesh_facts(mesh);
+        if objective.only_untangles() {
+            self.note_tangled(&Reading(mesh));
+        }
         self.visit(&mut Planar(mesh), node, objective)
     }
 }

@@ -175,6 +175,11 @@ pub struct SmoothOptions {
     /// one. With the check no optimization step raises the number of inverted elements.
     /// Laplacian steps are not affected: the smart Laplacian has its own check, the plain
     /// Laplacian (`Laplace`, and the first step of `C3`) is the unchecked method itself.
+    ///
+    /// With the check, every strategy but `Laplace` also keeps a node's move only when
+    /// its star gets no worse (the acceptance rule, `docs/formulas.md` §4, by
+    /// [`SmoothOptions::smart_measure`]): a valid star's worst element not worse and none
+    /// flattened, an inverted star no more deeply inverted.
     pub keep_valid: bool,
     /// With [`SmoothOptions::keep_valid`]: a star that is already inverted when the call
     /// begins may fold one more element when that lowers its total inversion

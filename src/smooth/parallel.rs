@@ -182,6 +182,7 @@ impl ColouredSmoother {
             self.colouring = Colouring::greedy(mesh);
         }
         self.main.refresh_mesh_facts(mesh);
+        self.main.note_tangled(&super::Reading(mesh));
         let mut counts = SweepCounts::default();
         for c in 0..self.colouring.colour_count() {
             let nodes = self.colouring.colour(c);

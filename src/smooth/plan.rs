@@ -62,6 +62,23 @@ impl<S: DriverStar> Smoother<S> {
 
     /// [`plan_some`](Smoother::plan_some) over any [`StarView`].
     pub(crate) fn plan_some_in<V: StarView<Mesh = S::Mesh>>(&mut self, view: &mut V, max_stars: usize) -> bool {
+        let done = self.plan_some_stars(view, max_stars);
+        if done {
+            self.note_tangled(view);
+        }
+        done
+    }
+
+    /// Notes whether the mesh has an inverted element now, for the untangling objectives
+    /// ([`Objective::only_untangles`](crate::objective::Objective::only_untangles)), which
+    /// leave a valid mesh where it is (Mesquite's untangler stops at once on a valid mesh);
+    /// read only by the strategies that optimise.
+    pub(crate) fn note_tangled<V: StarView<Mesh = S::Mesh>>(&mut self, view: &V) {
+        self.tangled = !matches!(self.options.strategy, Strategy::Laplace | Strategy::Smart)
+            && (0..view.mesh().element_count()).any(|e| view.is_inverted(e));
+    }
+
+    fn plan_some_stars<V: StarView<Mesh = S::Mesh>>(&mut self, view: &mut V, max_stars: usize) -> bool {
         let n = view.mesh().node_count();
         if self.plan_next >= n {
             return true;

@@ -7,6 +7,7 @@ use crate::mesh::Mesh;
 use crate::objective::{NodeStar, Point, Star};
 
 use super::measure::{element_measures, element_shape_at, is_inverted, is_inverted_at, star_quality, star_shape};
+use super::accept::{ElementScore, Verdict};
 use super::{Measure, StarQuality};
 
 /// A mesh as the drivers read it: free nodes, their positions and neighbours, and the
@@ -63,6 +64,10 @@ pub trait DriverStar: NodeStar + Default {
     /// parts of its corner Jacobian determinants (0 for a valid star), compared only
     /// within one star.
     fn inversion(&self, x: Self::Point) -> f64;
+    /// The acceptance rule ([`Verdict`], `docs/formulas.md` §4) by `measure` over the star
+    /// as gathered and with its free node at `x` (the mid-side nodes that follow it
+    /// following).
+    fn verdict(&self, x: Self::Point, measure: Measure) -> Verdict;
     /// The smart Laplacian's test read straight from the mesh, where a kind of star has
     /// such a shortcut (the planar star of linear triangles); `None` otherwise (the
     /// default), and the gathered star decides.
@@ -188,6 +193,13 @@ impl DriverStar for Star {
             }
         }
         t
+    }
+    fn verdict(&self, x: glam::DVec2, m: Measure) -> Verdict {
+        let mut v = Verdict::default();
+        for e in &self.elems {
+            v.add(&ElementScore::planar(e.kind, &e.pts, m), &ElementScore::planar(e.kind, &e.at(x), m));
+        }
+        v
     }
     fn smart_from_mesh(mesh: &Mesh, n: usize, measure: Measure) -> Option<FastSmart<glam::DVec2>> {
         super::smart_on_triangles(mesh, n, measure)

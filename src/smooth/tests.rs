@@ -560,14 +560,27 @@ fn keep_valid_stops_the_new_objective_folding_a_valid_star() {
         assert!(o.optimized && o.moved, "barrier, keep_valid {keep}: {o:?}");
         assert_eq!(mesh_stats(&m).inverted, 0, "barrier, keep_valid {keep}");
     }
-    for (keep, inverted) in [(false, 2), (true, 0)] {
-        let mut m = mesh.clone();
-        let opts = SmoothOptions::default().with_strategy(Strategy::Opt).with_keep_valid(keep);
-        let o = Smoother::new(opts).unwrap().smooth_node(&mut m, 0, &new);
-        assert!(o.optimized && o.moved, "keep_valid {keep}: {o:?}");
-        assert_eq!(mesh_stats(&m).inverted, inverted, "keep_valid {keep}");
-        assert!(new.value(&star, m.nodes()[0]) < f0, "keep_valid {keep}: the objective must fall");
-    }
+    // unguarded, the first design folds two elements
+    let mut m = mesh.clone();
+    let opts = SmoothOptions::default().with_strategy(Strategy::Opt).with_keep_valid(false);
+    let o = Smoother::new(opts).unwrap().smooth_node(&mut m, 0, &new);
+    assert!(o.optimized && o.moved, "{o:?}");
+    assert_eq!(mesh_stats(&m).inverted, 2);
+    assert!(new.value(&star, m.nodes()[0]) < f0, "the objective must fall");
+    // guarded, the solver finds a lower objective among valid positions, but a lower worst
+    // β too: the acceptance rule (issue 29) keeps the node where it was
+    let guarded = KeepValid { inner: &new, limit: 0, pass_through_folds: false, inversion0: Default::default() };
+    let r = Solvers::new(SmoothOptions::default().solve_options()).get(SolverKind::FletcherReeves, Goal::MinimizeSum).solve(
+        &guarded,
+        &star,
+        d,
+    );
+    assert!(new.value(&star, r.x) < f0 && star.inverted_at(r.x) == 0);
+    assert!(star.shape_at(r.x).0 < star.shape_at(d).0, "the guarded solve lowers the worst β");
+    let mut m = mesh.clone();
+    let o = Smoother::new(SmoothOptions::default().with_strategy(Strategy::Opt)).unwrap().smooth_node(&mut m, 0, &new);
+    assert!(o.optimized && !o.moved, "{o:?}");
+    assert_eq!(m.nodes(), mesh.nodes());
 }
 
 /// A 6 × 6 grid (quads or triangles) of the unit square, boundary fixed, every interior
@@ -751,4 +764,31 @@ fn smart_from_the_mesh_decides_as_the_gathered_star() {
         Measure::Shape
     )
     .is_none()));
+}
+
+/// Issue 29: Knupp's untangling objectives are flat (`untangle`) or blind to shape
+/// (`untangle-mindet`) on a valid star, and moved the nodes of valid meshes, lowering
+/// their quality; like Mesquite's untangler they now leave a valid mesh where it is.
+#[test]
+fn untangling_objectives_leave_a_valid_mesh_where_it_is() {
+    use crate::generate::rand2d;
+    use crate::objective::{objective, ObjectiveKind};
+    let valid = rand2d(60, 6, 3).unwrap();
+    assert_eq!(mesh_stats(&valid).inverted, 0);
+    for kind in [ObjectiveKind::Untangle, ObjectiveKind::UntangleMinDet] {
+        assert!(kind.only_untangles());
+        let obj = objective(kind);
+        let mut m = valid.clone();
+        let r = smooth(&mut m, &*obj, SmoothOptions::default().with_strategy(Strategy::Opt), 2, &|| 0.0).unwrap();
+        assert_eq!(m.nodes(), valid.nodes(), "{kind}");
+        assert_eq!(r[0].counts.optimization_calls, 0, "{kind}");
+    }
+    // and they still untangle
+    let tangled = crate::generate::perturb(&rand2d(60, 6, 3).unwrap(), 1.5, 3).unwrap();
+    assert!(mesh_stats(&tangled).inverted > 0);
+    let mut m = tangled.clone();
+    let obj = objective(ObjectiveKind::Untangle);
+    smooth(&mut m, &*obj, SmoothOptions::default().with_strategy(Strategy::Opt), 3, &|| 0.0).unwrap();
+    assert!(mesh_stats(&m).inverted < mesh_stats(&tangled).inverted);
+    assert!(ObjectiveKind::ALL.iter().filter(|k| k.only_untangles()).count() == 2);
 }

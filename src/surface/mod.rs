@@ -227,12 +227,19 @@ impl Surface {
         self.reference.project(p, self.hint[n])
     }
 
-    /// The reference surface's unit normal at the centre of element `e`.
+    /// The reference surface's unit normal at the centre of element `e`, on the element's
+    /// own smooth part: searched from the element's own facet where the reference is the
+    /// loaded mesh (from its first corner's last facet, a corner on a feature curve may
+    /// start on the other part: a cylinder cap's element next to the rim read the side's
+    /// normal and counted as inverted), else from its first corner.
     pub fn reference_normal(&self, e: usize) -> DVec3 {
         let ids = self.flat.element(e);
         let k = self.flat.kind(e).corners();
         let centre = ids[..k].iter().map(|&i| self.points[i as usize]).sum::<DVec3>() / k as f64;
-        self.project_near(centre, ids[0] as usize).normal
+        match self.reference.element_hint(e) {
+            Some(hint) => self.reference.project(centre, hint).normal,
+            None => self.project_near(centre, ids[0] as usize).normal,
+        }
     }
 
     /// Element `e`'s nodes in its own plane (2D), oriented so that the element reads as
@@ -245,9 +252,16 @@ impl Surface {
         let k = self.flat.kind(e).corners();
         let corner = |i: usize| self.points[ids[i] as usize];
         let centre = (0..k).map(corner).sum::<DVec3>() / k as f64;
-        let own = (0..k).map(|i| (corner(i) - centre).cross(corner((i + 1) % k) - centre)).sum::<DVec3>();
+        // the corners about the centre in units of their size where it is beyond 2^±200
+        // (the cross products' squares would leave the doubles; `docs/formulas.md` §1)
+        let mut d = [DVec3::ZERO; 4];
+        for (i, v) in d[..k].iter_mut().enumerate() {
+            *v = corner(i) - centre;
+        }
+        let d = crate::quality::in_unit_scale_3d(d);
+        let own = (0..k).map(|i| d[i].cross(d[(i + 1) % k])).sum::<DVec3>();
         let towards = self.reference_normal(e);
-        let normal = match own.try_normalize() {
+        let normal = match Some(crate::quality::direction(own)).filter(|n| *n != DVec3::ZERO) {
             Some(n) if n.dot(towards) < 0.0 => -n,
             Some(n) => n,
             None => towards,

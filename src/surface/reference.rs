@@ -35,6 +35,15 @@ impl Reference {
             Reference::Analytic(a) => a.project(p, hint),
         }
     }
+    /// A hint ([`project`](Self::project)) on element `e`'s own smooth part, where the
+    /// reference knows the elements: the first facet of `e` for a loaded mesh; `None` for
+    /// an analytic surface (its parts are found from the point).
+    pub fn element_hint(&self, e: usize) -> Option<u32> {
+        match self {
+            Reference::Facets(f) => f.first_triangle.get(e).copied(),
+            Reference::Analytic(_) => None,
+        }
+    }
     /// What the reference is, in words (for `stats`).
     pub fn describe(&self) -> String {
         match self {
@@ -156,6 +165,9 @@ pub struct Facets {
     /// not used: linear elements, or a folded one in the file).
     patch: Vec<Option<(u32, [[f64; 2]; 3])>>,
     patches: Vec<Patch>,
+    /// Per element of the loaded mesh, its first triangle (an element's triangles are
+    /// consecutive).
+    first_triangle: Vec<u32>,
     /// Vertex → triangles (CSR), for the walk.
     vert_start: Vec<u32>,
     vert_tris: Vec<u32>,
@@ -178,8 +190,10 @@ impl Facets {
         let mut triangles = Vec::with_capacity(kinds.len() * 2);
         let mut parts = Vec::with_capacity(kinds.len() * 2);
         let (mut patch, mut patches) = (Vec::with_capacity(kinds.len() * 2), Vec::new());
+        let mut first_triangle = Vec::with_capacity(kinds.len());
         for (e, &kind) in kinds.iter().enumerate() {
             let ids = element(e);
+            first_triangle.push(triangles.len() as u32);
             match kind {
                 ElementKind::Tri3 => triangles.push([ids[0], ids[1], ids[2]]),
                 ElementKind::Quad4 => {
@@ -238,27 +252,57 @@ impl Facets {
             }
         }
         let grid = Grid::new(&pts, &triangles);
+        // the facets' area vectors, in units of the largest edge where the edges are
+        // beyond 2^±200 (one power of two for all, so the area weights stay; as given
+        // inside it): a sphere of 1e80 has cross products whose squares leave the doubles
+        let reach = triangles.iter().fold(0.0f64, |m, t| {
+            let [a, b, c] = t.map(|v| pts[v as usize]);
+            m.max((b - a).abs().max_element()).max((c - a).abs().max_element())
+        });
+        let unit = if crate::quality::SAFE_SCALE.contains(&reach) || reach == 0.0 || !reach.is_finite() {
+            1.0
+        } else {
+            let (f1, f2) = crate::quality::unit_factors(reach);
+            f1 * f2
+        };
+        let area = |t: &[u32; 3]| {
+            let [a, b, c] = t.map(|v| pts[v as usize]);
+            if unit == 1.0 {
+                (b - a).cross(c - a)
+            } else {
+                ((b - a) * unit).cross((c - a) * unit)
+            }
+        };
         let mut vertex_normal = vec![DVec3::ZERO; pts.len()];
         for t in &triangles {
-            let [a, b, c] = t.map(|v| pts[v as usize]);
-            let n = (b - a).cross(c - a);
+            let n = area(t);
             for &v in t {
                 vertex_normal[v as usize] += n;
             }
         }
         for n in &mut vertex_normal {
-            *n = n.normalize_or_zero();
+            *n = crate::quality::direction(*n);
         }
         // a folded element: a flat triangle whose normal disagrees with a vertex's
         let folded = triangles.iter().any(|tri| {
-            let [a, b, c] = tri.map(|v| pts[v as usize]);
-            let n = (b - a).cross(c - a);
+            let n = area(tri);
             tri.iter().any(|&v| n.dot(vertex_normal[v as usize]) <= 0.0)
         });
         if folded {
             patch.iter_mut().for_each(|p| *p = None);
         }
-        Facets { points: pts, triangles, part: parts, vertex_normal, patch, patches, vert_start, vert_tris, grid }
+        Facets {
+            points: pts,
+            triangles,
+            part: parts,
+            vertex_normal,
+            patch,
+            patches,
+            first_triangle,
+            vert_start,
+            vert_tris,
+            grid,
+        }
     }
 
     /// A triangle with vertex `v`, to start the walk from a node where it was loaded
@@ -281,7 +325,8 @@ impl Facets {
     /// The unit normal of triangle `t` (zero for a degenerate one).
     fn normal(&self, t: u32) -> DVec3 {
         let [a, b, c] = self.corners(t);
-        (b - a).cross(c - a).normalize_or_zero()
+        let [u, v] = crate::quality::in_unit_scale_3d([b - a, c - a]);
+        crate::quality::direction(u.cross(v))
     }
 
     /// The nearest point of the facets to `p`: a walk from `hint` over neighbouring
@@ -311,7 +356,7 @@ impl Facets {
         let (point, bary) = closest_on_triangle(p, self.corners(t));
         let tri = self.triangles[t as usize];
         let blended: DVec3 = (0..3).map(|i| bary[i] * self.vertex_normal[tri[i] as usize]).sum();
-        let normal = blended.try_normalize().unwrap_or_else(|| self.normal(t));
+        let normal = Some(crate::quality::direction(blended)).filter(|n| *n != DVec3::ZERO).unwrap_or_else(|| self.normal(t));
         Projected { point, normal, face: t }
     }
 

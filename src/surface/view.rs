@@ -9,7 +9,7 @@ use crate::error::{Error, Result};
 use crate::generate::SplitMix64;
 use crate::mesh::{Follower, Mesh, Plane};
 use crate::objective::Objective;
-use crate::smooth::{is_inverted, PassRecord, SmoothOptions, Smoother, StarView};
+use crate::smooth::{is_inverted, ElementScore, Measure, PassRecord, SmoothOptions, Smoother, StarView, Verdict};
 
 /// A surface seen by a driver: each star flattened into the tangent plane at its node.
 pub(crate) struct SurfaceView<'a> {
@@ -73,14 +73,45 @@ impl Surface {
 
     /// [`place`](Self::place), undone when it folds a valid star (measured in 3D, each
     /// element in its own plane), the planar drivers' promise: the planar guard keeps the
-    /// flattened star valid, but the
-    /// projection back onto the surface, of the node and of the mid-side nodes following
-    /// it, can still fold an element where the reference curves or is itself folded (a
-    /// tangled file). Returns whether the node moved.
+    /// flattened star valid, but the projection back onto the surface, of the node and of
+    /// the mid-side nodes following it, can still fold an element where the reference
+    /// curves or is itself folded (a tangled file). The plain Laplacian's placing. Returns
+    /// whether the node moved.
     pub(crate) fn place_keeping_valid(&mut self, n: usize, p: DVec3) -> bool {
+        self.place_kept_if(n, p, Measure::Shape, |before, after| {
+            before.iter().any(|b| b.inverted) || after.iter().all(|a| !a.inverted)
+        })
+    }
+
+    /// [`place`](Self::place), undone unless the star gets no worse by the drivers'
+    /// acceptance rule ([`Verdict`], `docs/formulas.md` §4 and §7), measured after the
+    /// projection back onto the surface (the node's and its following mid-side nodes'),
+    /// each element in its own plane: every strategy's placing but the plain Laplacian's.
+    /// Returns whether the node moved.
+    pub(crate) fn place_if_no_worse(&mut self, n: usize, p: DVec3, measure: Measure) -> bool {
+        self.place_kept_if(n, p, measure, |before, after| {
+            let mut v = Verdict::default();
+            for (b, a) in before.iter().zip(after) {
+                v.add(b, a);
+            }
+            v.keeps()
+        })
+    }
+
+    /// [`place`](Self::place), kept when `keep` says so of the star's elements' scores by
+    /// `measure` before and after (in the order of the node's elements), else undone.
+    fn place_kept_if(
+        &mut self,
+        n: usize,
+        p: DVec3,
+        measure: Measure,
+        keep: impl Fn(&[ElementScore], &[ElementScore]) -> bool,
+    ) -> bool {
         let star: Vec<usize> = self.flat.node_elements(n).iter().map(|&e| e as usize).collect();
-        let inverted = |s: &Surface, e: usize| is_inverted(s.flat.kind(e), &s.element_points_2d(e));
-        let before: Vec<bool> = star.iter().map(|&e| inverted(self, e)).collect();
+        let scores = |s: &Surface| -> Vec<ElementScore> {
+            star.iter().map(|&e| ElementScore::planar(s.flat.kind(e), &s.element_points_2d(e), measure)).collect()
+        };
+        let before = scores(self);
         let mut moved = vec![n];
         self.flat.for_each_follower(n, |f| {
             moved.push(match f {
@@ -91,8 +122,7 @@ impl Surface {
         let saved: Vec<(DVec3, u32)> = moved.iter().map(|&m| (self.points[m], self.hint[m])).collect();
         let curve_hint = self.curve_hint.get(n).copied();
         self.place(n, p);
-        let after: Vec<bool> = star.iter().map(|&e| inverted(self, e)).collect();
-        if before.iter().all(|&b| !b) && after.iter().any(|&a| a) {
+        if !keep(&before, &scores(self)) {
             for (&m, &(q, h)) in moved.iter().zip(&saved) {
                 self.points[m] = q;
                 self.hint[m] = h;
@@ -131,6 +161,13 @@ impl StarView for SurfaceView<'_> {
     fn place(&mut self, n: usize, x: DVec2) {
         let p = self.plane.to_3d(x);
         self.surface.place_keeping_valid(n, p);
+    }
+
+    const CHECKS_ON_PLACING: bool = true;
+
+    fn place_if_no_worse(&mut self, n: usize, x: DVec2, measure: Measure) -> bool {
+        let p = self.plane.to_3d(x);
+        self.surface.place_if_no_worse(n, p, measure)
     }
 
     fn is_inverted(&self, e: usize) -> bool {

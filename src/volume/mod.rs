@@ -172,7 +172,8 @@ impl TetMesh {
         let corners = |els: &[u32], e: usize| [0, 1, 2, 3].map(|j| nodes[els[e * k + j] as usize]);
         let mut total = 0.0;
         for e in 0..count {
-            let p = corners(&elements, e);
+            // in the tetrahedron's own scale: a cube of 1e150 has volumes beyond the doubles
+            let p = q3::in_unit_scale(&corners(&elements, e));
             let v = q3::signed_volume(&p);
             let size = q3::TET_EDGES.iter().map(|&[a, b]| p[a].distance(p[b])).sum::<f64>() / 6.0;
             if v.abs() <= 1e-12 * size * size * size || v.is_nan() {

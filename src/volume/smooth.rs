@@ -21,7 +21,7 @@ use crate::error::Result;
 use crate::objective::{Objective, StarTet, TetStar};
 use crate::quality::tet as q3;
 use crate::smooth::{
-    DriverStar, Measure, PassRecord, SmoothMesh, SmoothOptions, Smoother, StarQuality, StarView, SweepCounts,
+    DriverStar, ElementScore, Verdict, Measure, PassRecord, SmoothMesh, SmoothOptions, Smoother, StarQuality, StarView, SweepCounts,
 };
 
 impl SmoothMesh for TetMesh {
@@ -122,6 +122,13 @@ impl DriverStar for TetStar {
     }
     fn inversion(&self, x: DVec3) -> f64 {
         self.tets.iter().map(|t| (-6.0 * q3::signed_volume(&t.at(x))).max(0.0)).sum()
+    }
+    fn verdict(&self, x: DVec3, m: Measure) -> Verdict {
+        let mut v = Verdict::default();
+        for t in &self.tets {
+            v.add(&ElementScore::tet(&t.pts, m), &ElementScore::tet(&t.at(x), m));
+        }
+        v
     }
 }
 

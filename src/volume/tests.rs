@@ -177,3 +177,45 @@ mod smoothing {
         assert!(m.nodes() != start.nodes());
     }
 }
+
+/// Issue 29: `untangle` and `untangle-mindet` moved the nodes of valid tetrahedral meshes
+/// (a tetrahedron of 10.18° ended at 0.99°); they now leave a valid mesh where it is.
+#[test]
+fn untangling_objectives_leave_a_valid_tetrahedral_mesh_where_it_is() {
+    use crate::objective::{tet_objective, ObjectiveKind};
+    use crate::smooth::{SmoothOptions, Strategy};
+    let valid = crate::generate::rand3d(200, 5).unwrap();
+    assert_eq!(volume_stats(&valid).inverted, 0);
+    for kind in [ObjectiveKind::Untangle, ObjectiveKind::UntangleMinDet] {
+        let mut m = valid.clone();
+        let opts = SmoothOptions::default().with_strategy(Strategy::Opt);
+        let r = smooth_volume(&mut m, &*tet_objective(kind), opts, 2, &|| 0.0).unwrap();
+        assert_eq!(m.nodes(), valid.nodes(), "{kind}");
+        assert_eq!(r[0].counts.optimization_calls, 0, "{kind}");
+    }
+}
+
+/// Issue 29: a cube of tetrahedra scaled by 1e100 reported dihedral angles 90°/90°, by
+/// 1e-100 "min inf° max −inf°", by 1e-80 45.19°, and by 1e150 was refused as flat. Every
+/// statistic is now the same at every scale, as the planar ones are (2^±200 measured as
+/// given, beyond it in the tetrahedron's own scale).
+#[test]
+fn statistics_are_the_same_at_every_scale() {
+    let base = tet_cube(2).unwrap();
+    let tets: Vec<[u32; 4]> = (0..base.element_count()).map(|e| base.element(e)[..4].try_into().unwrap()).collect();
+    let unit = volume_stats(&base);
+    assert!((unit.min_angle_deg - 45.0).abs() < 1e-9 && (unit.max_angle_deg - 90.0).abs() < 1e-9, "{unit:?}");
+    for s in [1e-300, 1e-150, 1e-100, 1e-80, 2f64.powi(-201), 1e-20, 1e20, 2f64.powi(201), 1e80, 1e100, 1e150, 1e300] {
+        let m = TetMesh::from_tets(base.nodes().iter().map(|&p| p * s).collect(), &tets).unwrap();
+        let st = volume_stats(&m);
+        let near = |a: f64, b: f64| (a - b).abs() <= 1e-9 * b.abs().max(1.0);
+        assert_eq!(st.inverted, 0, "scale {s:e}");
+        assert!(near(st.min_angle_deg, unit.min_angle_deg) && near(st.max_angle_deg, unit.max_angle_deg), "scale {s:e}: {st:?}");
+        assert!(near(st.min_quality, unit.min_quality) && near(st.mean_quality, unit.mean_quality), "scale {s:e}: {st:?}");
+        assert!(near(st.max_condition, unit.max_condition), "scale {s:e}: {st:?}");
+        assert_eq!(st.angle_histogram_6deg, unit.angle_histogram_6deg, "scale {s:e}");
+    }
+    // exact powers of two give the same bits
+    let m = TetMesh::from_tets(base.nodes().iter().map(|&p| p * 2f64.powi(-300)).collect(), &tets).unwrap();
+    assert_eq!(volume_stats(&m).min_quality.to_bits(), unit.min_quality.to_bits());
+}

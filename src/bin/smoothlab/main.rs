@@ -31,6 +31,11 @@ enum Command {
     Render(render::RenderArgs),
 }
 
+/// `n` and the noun in its number: "1 tetrahedron", "6 tetrahedra", "0 quads".
+pub(crate) fn count(n: usize, one: &str, many: &str) -> String {
+    format!("{n} {}", if n == 1 { one } else { many })
+}
+
 fn main() {
     let cli = Cli::parse();
     let result = match cli.command {

@@ -71,11 +71,11 @@ pub struct SmoothArgs {
     /// Never let an optimization call raise a star's inverted count
     #[arg(long, overrides_with = "pass_through_folds")]
     pub no_pass_through_folds: bool,
-    /// Print one JSON object instead of a summary
     /// A surface's feature curves and open boundaries: their nodes slide along them
     /// instead of staying fixed (corners of the curves stay; a file's own fixed flags decide)
     #[arg(long)]
     pub slide_curves: bool,
+    /// Print one JSON object instead of a summary
     #[arg(long)]
     pub json: bool,
     /// Version of .msh files written
@@ -287,8 +287,9 @@ fn summary(
         ));
     }
     t.push_str(&format!(
-        "final: {} elements, {} inverted, angles {:.2}°–{:.2}°, quality min {:.4} mean {:.4}; {:.1} ms\n",
-        s.elements, s.inverted, s.min_angle_deg, s.max_angle_deg, s.min_quality, s.mean_quality, ms
+        "final: {}, {} inverted, angles {:.2}°–{:.2}°, quality min {:.4} mean {:.4}; {:.1} ms\n",
+        crate::count(s.elements, "element", "elements"),
+        s.inverted, s.min_angle_deg, s.max_angle_deg, s.min_quality, s.mean_quality, ms
     ));
     if let Some(d) = s.max_distance_from_surface {
         t.push_str(&format!("surface: every node within {d:.3e} of the surface as it was loaded\n"));

@@ -39,11 +39,17 @@ pub fn table(s: &MeshStats) -> String {
     row("nodes", format!("{} ({} free, {} fixed{following})", s.nodes, s.free_nodes, s.fixed_nodes));
     let solid = s.tetrahedra > 0;
     if solid {
-        row("elements", format!("{} tetrahedra ({} quadratic)", s.tetrahedra, s.quadratic));
+        row("elements", format!("{} ({} quadratic)", crate::count(s.tetrahedra, "tetrahedron", "tetrahedra"), s.quadratic));
     } else {
         row(
             "elements",
-            format!("{} ({} triangles, {} quads, {} quadratic)", s.elements, s.triangles, s.quads, s.quadratic),
+            format!(
+                "{} ({}, {}, {} quadratic)",
+                s.elements,
+                crate::count(s.triangles, "triangle", "triangles"),
+                crate::count(s.quads, "quad", "quads"),
+                s.quadratic
+            ),
         );
     }
     row("inverted", s.inverted.to_string());

@@ -1,0 +1,251 @@
+//! The acceptance rule (`docs/formulas.md` §4, "Acceptance"): a move the drivers made is
+//! kept only if the node's star gets no worse. Written once here; each kind of mesh only
+//! measures its elements ([`ElementScore`]: a planar element, a surface element in its own
+//! plane, a tetrahedron) before and after the move, and [`Verdict`] decides.
+//!
+//! - A star valid before the move stays valid, its worst element's quality does not fall —
+//!   by the drivers' measure ([`Measure`], the smart Laplacian's: by default the shape,
+//!   α/β or a tetrahedron's mean ratio; Freitag's smallest sine where asked) — and no
+//!   element shrinks below
+//!   [`MIN_SIZE_RATIO`] of its size before the move (its smallest corner Jacobian
+//!   determinant: twice a triangle's area, six times a tetrahedron's volume), so no
+//!   element is flattened however its shape is read.
+//! - A star inverted before the move may not gain an inverted element unless its
+//!   inversion `Σ max(0, −det)` over the corners (`Σ max(0, −6V)` for tetrahedra) falls
+//!   (the validity guard's measure of a tangled star, by which an untangling star may pass
+//!   through a fold, [`SmoothOptions::pass_through_folds`](super::SmoothOptions::pass_through_folds)).
+//!   Not more: refusing every move that deepens the inversion by that sum refuses the
+//!   moves of Knupp's shifted untangling objective (Mesquite's β) that untangle his random
+//!   grids (`docs/reproduction.md` §4: 6 of 10 grids instead of 10). Its elements that
+//!   stay valid may not be flattened either (below [`MIN_SIZE_RATIO`] of their size):
+//!   `old` + `opt` untangling a perturbed rand3D left valid tetrahedra of `V ≈ 10⁻¹⁵`,
+//!   which no reader takes back.
+//!
+//! It holds for every strategy but the plain Laplacian (which moves unconditionally, as
+//! Freitag's and Chen's Laplacian does), with the validity guard on
+//! ([`SmoothOptions::keep_valid`](super::SmoothOptions::keep_valid)).
+
+use glam::{DVec2, DVec3};
+
+use super::Measure;
+use crate::mesh::ElementKind;
+use crate::quality::{corner_edge_vectors, measure_element, tet as q3};
+
+/// The smallest size an element of a valid star may keep, as a fraction of its size
+/// before the move: a thousandth. A move that keeps the star's worst shape cannot shrink
+/// an element so far unless the star's worst shape is below about 0.03 (an element's size
+/// after such a move is at least about the worst shape squared of its size before), so
+/// the bound only refuses moves that flatten an element.
+pub const MIN_SIZE_RATIO: f64 = 1e-3;
+
+/// What the acceptance rule reads of one element.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ElementScore {
+    /// The element's quality by the drivers' [`Measure`]: its shape (α/β, the worst
+    /// corner α of a quadratic element; a tetrahedron's mean ratio) or its smallest sine
+    /// (of a corner angle; of a dihedral angle).
+    pub quality: f64,
+    pub inverted: bool,
+    /// `Σ max(0, −det)` over the corners (0 for a valid element).
+    pub inversion: f64,
+    /// The natural logarithm of the element's size, its smallest corner determinant
+    /// (scale-free to compute: the edges are divided by their largest component first);
+    /// not a number or −∞ for a degenerate or inverted element.
+    pub ln_size: f64,
+}
+
+impl ElementScore {
+    /// A planar element (or a surface element in its own plane) with nodes `p`.
+    pub fn planar(kind: ElementKind, p: &[DVec2; 9], measure: Measure) -> Self {
+        let (quality, inverted) = match measure {
+            Measure::Shape => {
+                let q = measure_element::<false, false, false>(kind, p, |_, _, _| {});
+                (q.shape, q.inverted)
+            }
+            Measure::MinSine => {
+                let q = measure_element::<false, false, true>(kind, p, |_, _, _| {});
+                (q.min_sine, q.inverted)
+            }
+        };
+        let k = kind.corners();
+        let edges = corner_edge_vectors(kind, p);
+        let m = edges[..k].iter().fold(0.0f64, |m, (a, b)| m.max(a.abs().max_element()).max(b.abs().max_element()));
+        let (mut inversion, mut smallest) = (0.0, f64::INFINITY);
+        for (e1, e2) in &edges[..k] {
+            inversion += (-e1.perp_dot(*e2)).max(0.0);
+            smallest = smallest.min((*e1 / m).perp_dot(*e2 / m));
+        }
+        ElementScore { quality, inverted, inversion, ln_size: smallest.ln() + 2.0 * m.ln() }
+    }
+
+    /// A tetrahedron with corners `p` (a quadratic one by its corners).
+    pub fn tet(p: &[DVec3; 4], measure: Measure) -> Self {
+        let e = [p[1] - p[0], p[2] - p[0], p[3] - p[0]];
+        let m = e.iter().fold(0.0f64, |m, v| m.max(v.abs().max_element()));
+        let det = e[0].dot(e[1].cross(e[2]));
+        let unit = (e[0] / m).dot((e[1] / m).cross(e[2] / m));
+        let quality = match measure {
+            Measure::Shape => q3::mean_ratio(p),
+            Measure::MinSine => q3::dihedral_sines(p).into_iter().fold(f64::INFINITY, f64::min),
+        };
+        ElementScore { quality, inverted: q3::is_inverted(p), inversion: (-det).max(0.0), ln_size: unit.ln() + 3.0 * m.ln() }
+    }
+}
+
+/// The acceptance rule over a star: fed each element before and after a move
+/// ([`add`](Self::add)), it says whether the move is kept ([`keeps`](Self::keeps)).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Verdict {
+    /// Elements inverted before and after the move.
+    inverted_before: u32,
+    inverted_after: u32,
+    quality_before: f64,
+    quality_after: f64,
+    inversion_before: f64,
+    inversion_after: f64,
+    /// Some element valid before the move ends below [`MIN_SIZE_RATIO`] of its size.
+    flattened: bool,
+    /// Some element valid before and after the move ends below [`MIN_SIZE_RATIO`] of its
+    /// size (a flattening the inverted star's own rule would not see).
+    shrunk: bool,
+}
+
+impl Default for Verdict {
+    fn default() -> Self {
+        Verdict {
+            inverted_before: 0,
+            inverted_after: 0,
+            quality_before: f64::INFINITY,
+            quality_after: f64::INFINITY,
+            inversion_before: 0.0,
+            inversion_after: 0.0,
+            flattened: false,
+            shrunk: false,
+        }
+    }
+}
+
+impl Verdict {
+    /// One element of the star, before and after the move.
+    pub fn add(&mut self, before: &ElementScore, after: &ElementScore) {
+        self.inverted_before += before.inverted as u32;
+        self.inverted_after += after.inverted as u32;
+        self.quality_before = self.quality_before.min(before.quality);
+        // a quality that is not a number is the worst there is
+        self.quality_after = if after.quality.is_nan() { f64::NEG_INFINITY } else { self.quality_after.min(after.quality) };
+        self.inversion_before += before.inversion;
+        self.inversion_after += after.inversion;
+        // a size that is not a number (a degenerate element) is below the floor
+        let kept = after.ln_size.partial_cmp(&(before.ln_size + MIN_SIZE_RATIO.ln()));
+        if !before.inverted && !matches!(kept, Some(std::cmp::Ordering::Greater | std::cmp::Ordering::Equal)) {
+            self.flattened = true;
+            self.shrunk |= !after.inverted;
+        }
+    }
+
+    /// Whether the move is kept: a valid star stays valid, no worse in its worst quality and
+    /// with no element flattened; an inverted star gains no inverted element unless its
+    /// inversion falls, and flattens none of its valid elements.
+    pub fn keeps(&self) -> bool {
+        if self.inverted_before > 0 {
+            (self.inverted_after <= self.inverted_before || self.inversion_after < self.inversion_before) && !self.shrunk
+        } else {
+            self.inverted_after == 0 && self.quality_after >= self.quality_before && !self.flattened
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn tri(a: [f64; 2], b: [f64; 2], c: [f64; 2]) -> [DVec2; 9] {
+        let mut p = [DVec2::ZERO; 9];
+        p[0] = DVec2::from(a);
+        p[1] = DVec2::from(b);
+        p[2] = DVec2::from(c);
+        p
+    }
+
+    fn verdict(pairs: &[([DVec2; 9], [DVec2; 9])]) -> Verdict {
+        let mut v = Verdict::default();
+        for (b, a) in pairs {
+            let score = |p| ElementScore::planar(ElementKind::Tri3, p, Measure::Shape);
+            v.add(&score(b), &score(a));
+        }
+        v
+    }
+
+    #[test]
+    fn a_valid_star_keeps_a_move_that_raises_its_worst_shape_and_refuses_one_that_lowers_it() {
+        let h = 3f64.sqrt() / 2.0;
+        let good = tri([0.0, 0.0], [1.0, 0.0], [0.5, h]);
+        let poorer = tri([0.0, 0.0], [1.0, 0.0], [0.5, 0.3]);
+        assert!(verdict(&[(poorer, good)]).keeps());
+        assert!(!verdict(&[(good, poorer)]).keeps());
+        // the same element: no worse
+        assert!(verdict(&[(good, good)]).keeps());
+        // folding a valid element is refused
+        let folded = tri([0.0, 0.0], [1.0, 0.0], [0.5, -0.3]);
+        assert!(!verdict(&[(good, folded)]).keeps());
+    }
+
+    /// A triangle of apex height `h`·`s` shrunk to an equilateral one `f` times its base:
+    /// a better shape, at `f²` of the area (about).
+    fn shrunk(s: f64, h: f64, f: f64) -> ([DVec2; 9], [DVec2; 9]) {
+        let e = 3f64.sqrt() / 2.0;
+        (tri([0.0, 0.0], [s, 0.0], [0.5 * s, h * s]), tri([0.0, 0.0], [s * f, 0.0], [0.5 * s * f, e * s * f]))
+    }
+
+    #[test]
+    fn a_valid_star_refuses_a_move_that_shrinks_an_element_below_the_floor() {
+        // a better shape at a two-thousandth of the area (edges ÷ √2000 ≈ 44.7): refused
+        // for its size alone; at a five-hundredth it is kept
+        assert!(!verdict(&[shrunk(1.0, 0.7, 1.0 / 2000f64.sqrt())]).keeps());
+        assert!(verdict(&[shrunk(1.0, 0.7, 1.0 / 500f64.sqrt())]).keeps());
+    }
+
+    #[test]
+    fn the_size_floor_is_the_same_at_every_scale() {
+        for s in [1e-150, 1e-100, 1e-20, 1.0, 1e20, 1e100, 1e150] {
+            assert!(!verdict(&[shrunk(s, 0.7, 1.0 / 2000f64.sqrt())]).keeps(), "scale {s:e}");
+            assert!(verdict(&[shrunk(s, 0.7, 1.0 / 500f64.sqrt())]).keeps(), "scale {s:e}");
+        }
+    }
+
+    #[test]
+    fn an_inverted_star_keeps_its_count_of_inverted_elements_or_its_inversion_falls() {
+        let shallow = tri([0.0, 0.0], [1.0, 0.0], [0.5, -0.1]);
+        let deep = tri([0.0, 0.0], [1.0, 0.0], [0.5, -0.5]);
+        let valid = tri([0.0, 0.0], [1.0, 0.0], [0.5, 0.1]);
+        let good = tri([0.0, 0.0], [1.0, 0.0], [0.5, 0.8]);
+        let slightly = tri([0.0, 0.0], [1.0, 0.0], [0.5, -0.05]);
+        assert!(verdict(&[(deep, shallow)]).keeps());
+        assert!(verdict(&[(deep, valid)]).keeps());
+        // the same count, deeper: kept (an untangling objective's way through)
+        assert!(verdict(&[(shallow, deep)]).keeps());
+        // one element more where the total falls: kept; where it rises: refused
+        assert!(verdict(&[(deep, shallow), (good, slightly)]).keeps());
+        assert!(!verdict(&[(shallow, deep), (good, slightly)]).keeps());
+        assert!(!verdict(&[(shallow, shallow), (good, slightly)]).keeps());
+        // nor may it flatten one of its valid elements, whatever its inversion does
+        let flat = tri([0.0, 0.0], [1.0, 0.0], [0.5, 1e-5]);
+        assert!(!verdict(&[(deep, shallow), (good, flat)]).keeps());
+    }
+
+    #[test]
+    fn a_flattened_tetrahedron_is_refused() {
+        // the reproducer in miniature: the free node moved into the plane of its
+        // three neighbours keeps a positive volume of ~1e-19 and is not inverted
+        let p = [DVec3::new(0.2, 0.3, 0.9), DVec3::ZERO, DVec3::Y, DVec3::X];
+        let flat = [DVec3::new(0.2, 0.3, 1e-18), DVec3::ZERO, DVec3::Y, DVec3::X];
+        let (b, a) = (ElementScore::tet(&p, Measure::Shape), ElementScore::tet(&flat, Measure::Shape));
+        assert!(!a.inverted && a.quality > 0.0);
+        let mut v = Verdict::default();
+        v.add(&b, &a);
+        assert!(!v.keeps());
+        let mut v = Verdict::default();
+        v.add(&a, &b);
+        assert!(v.keeps());
+    }
+}
