@@ -1,10 +1,8 @@
 // What every browser suite shares: the tiny test runner, the console and request watch,
 // and the page helpers (open, idle, statistics, canvas hashes, screenshots, clicks).
-import { mkdirSync, readFileSync, readdirSync, existsSync } from 'node:fs';
-import { spawnSync } from 'node:child_process';
+import { mkdirSync, existsSync } from 'node:fs';
 import path from 'node:path';
-import { chromium } from 'playwright-core';
-import { ROOT, WWW, CHROMIUM, CHROMIUM_ARGS as ARGS, startServer } from './serve.mjs';
+import { ROOT, WWW } from './serve.mjs';
 
 export const OUT = path.join(ROOT, 'test-output', 'browser');
 export const BAD = path.join(ROOT, 'tests', 'data', 'bad');
@@ -134,4 +132,43 @@ export function ringPoints() {
     for (const r of [0.36, 0.3]) pts.push([0.5 + r * Math.cos(a), 0.5 + r * Math.sin(a)]);
   }
   return pts;
+}
+
+/** A new page of `context` at width × height, watched (console errors, requests) as `label`. */
+export async function freshPage(context, width, height, label) {
+  const p = await context.newPage();
+  await p.setViewportSize({ width, height });
+  p.setDefaultTimeout(TIMEOUT);
+  watch(p, label);
+  return p;
+}
+
+/** Puts `src` (an http URL of the site) in page `p` as an iframe of w × h, as a course page,
+ * a sidebar or a slide holds it, optionally under `transform: scale(scale)`; returns the
+ * frame once the page inside is ready (and has opened its figure, when `figure`). */
+export async function hostFrame(p, src, w, h, { scale = 1, figure = false, timeout = TIMEOUT } = {}) {
+  await p.setContent(`<!doctype html><body style="margin:0">
+    <div id="wrap" style="transform: scale(${scale}); transform-origin: 0 0; width: ${w}px">
+    <iframe id="f" src="${src}" style="width:${w}px;height:${h}px;border:0"></iframe></div></body>`);
+  const frame = await (await p.$('#f')).contentFrame();
+  await frame.waitForFunction((figure) => document.body.dataset.ready === '1' && document.body.dataset.busy === '0' && (!figure || Boolean(document.body.dataset.figure)), figure, { timeout });
+  return frame;
+}
+
+/** How far the visible content of `where` (a page or a frame) reaches right (`r`) and down
+ * (`b`), its window's size (`vw`, `vh`) and its document's scroll size (`sw`, `sh`). */
+export function reach(where) {
+  return where.evaluate(() => {
+    let r = 0;
+    let b = 0;
+    for (const el of document.body.querySelectorAll('*')) {
+      if (el.getClientRects().length === 0) continue;
+      const q = el.getBoundingClientRect();
+      if (q.width === 0 || q.height === 0) continue;
+      r = Math.max(r, q.right);
+      b = Math.max(b, q.bottom);
+    }
+    const d = document.documentElement;
+    return { r, b, vw: window.innerWidth, vh: window.innerHeight, sw: d.scrollWidth, sh: d.scrollHeight };
+  });
 }

@@ -9,7 +9,7 @@ import path from 'node:path';
 import { chromium } from 'playwright-core';
 import { ROOT, WWW, CHROMIUM, CHROMIUM_ARGS as ARGS, startServer } from './serve.mjs';
 import {
-  OUT, BAD, DATA, HARDENING, TIMEOUT, MESQUITE, CI, results, ONLY, test, check, unfold, externalRequests, consoleErrors, allowErrors, watch, idle, open, stats, canvasInfo, shot, chooseSample, clickSomeNode, ringPoints,
+  OUT, BAD, DATA, HARDENING, TIMEOUT, MESQUITE, CI, results, test, check, unfold, externalRequests, consoleErrors, allowErrors, watch, idle, open, stats, canvasInfo, shot, chooseSample, clickSomeNode, ringPoints,
 } from './lib.mjs';
 
 // ---- the tests ------------------------------------------------------------------------

@@ -5,7 +5,7 @@
 // the core (tourPictureLayout: recorded as the picture is drawn), and is checked against
 // the canvas's own pixels before it is believed.
 import path from 'node:path';
-import { OUT, TIMEOUT, test, check, watch, idle, open, stats } from '../lib.mjs';
+import { OUT, TIMEOUT, test, check, idle, open, stats, freshPage, hostFrame, reach } from '../lib.mjs';
 
 /** The figures of the tour when this suite was written: each must still be there. */
 const FIGURES = ['chen-2', 'chen-6', 'chen-9', 'chen-10', 'chen-11', 'chen-13', 'chen-16', 'chen-20', 'freitag-t1', 'freitag-3', 'knupp-1'];
@@ -18,14 +18,6 @@ const STEP_RGB = { g: [86, 180, 233], c: [230, 159, 0], n: [213, 94, 0] };
 /** Fig. 9's end tangents and the optimum found by search (lab::tour::solves). */
 const TANGENT_RGB = [0, 114, 178];
 const OPTIMUM_RGB = [240, 228, 66];
-
-async function freshPage(context, width, height, label) {
-  const p = await context.newPage();
-  await p.setViewportSize({ width, height });
-  p.setDefaultTimeout(TIMEOUT);
-  watch(p, label);
-  return p;
-}
 
 /** Calls the core's wasm export `fn` with `args` in the page (the page's own module). */
 function core(p, fn, ...args) {
@@ -183,14 +175,6 @@ function countColour(pic, rgb, x0, x1, tol = 0) {
   return n;
 }
 
-/** A page holding one iframe of `src` at w × h, as a course page or a slide holds it. */
-async function host(p, src, w, h) {
-  await p.setContent(`<!doctype html><body style="margin:0"><iframe id="f" src="${src}" style="width:${w}px;height:${h}px;border:0"></iframe></body>`);
-  const frame = await (await p.$('#f')).contentFrame();
-  await frame.waitForFunction(() => document.body.dataset.ready === '1' && document.body.dataset.busy === '0' && document.body.dataset.figure, null, { timeout: TIMEOUT });
-  return frame;
-}
-
 export default async function ({ server, context }) {
   const p = await freshPage(context, 1366, 900, 'figures');
   try {
@@ -225,21 +209,9 @@ export default async function ({ server, context }) {
       try {
         for (const name of names) {
           for (const [w, hh] of [[800, 450], [520, 520]]) {
-            const frame = await host(h, `${server.base}?embed=1#figure=${name}`, w, hh);
-            const r = await frame.evaluate(() => {
-              const d = document.documentElement;
-              let right = 0;
-              let bottom = 0;
-              for (const el of document.body.querySelectorAll('*')) {
-                if (el.getClientRects().length === 0) continue;
-                const q = el.getBoundingClientRect();
-                if (q.width === 0 || q.height === 0) continue;
-                right = Math.max(right, q.right);
-                bottom = Math.max(bottom, q.bottom);
-              }
-              return { right, bottom, sw: d.scrollWidth, sh: d.scrollHeight, sx: window.scrollX, sy: window.scrollY };
-            });
-            check(r.sw <= w && r.sh <= hh && r.right <= w + 0.5 && r.bottom <= hh + 0.5, `${name} at ${w}×${hh}: content reaches ${Math.round(r.right)}×${Math.round(r.bottom)} (scroll ${r.sw}×${r.sh})`);
+            const frame = await hostFrame(h, `${server.base}?embed=1#figure=${name}`, w, hh, { figure: true });
+            const r = await reach(frame);
+            check(r.sw <= w && r.sh <= hh && r.r <= w + 0.5 && r.b <= hh + 0.5, `${name} at ${w}×${hh}: content reaches ${Math.round(r.r)}×${Math.round(r.b)} (scroll ${r.sw}×${r.sh})`);
             const pic = await picture(frame);
             check(pic.box.x >= -0.5 && pic.box.y >= -0.5 && pic.box.r <= w + 0.5 && pic.box.b <= hh + 0.5, `${name} at ${w}×${hh}: the picture is not whole: ${JSON.stringify(pic.box)}`);
             checkLayout(`${name} at ${w}×${hh}`, pic, await layoutOf(frame, name, pic));

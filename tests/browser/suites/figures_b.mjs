@@ -5,7 +5,7 @@
 // of 800×450 and 520×520 without scrolling. The numbers checked are the core's: the card's
 // text is computed by the same functions as the picture (src/lab/tour/pictures.rs).
 import path from 'node:path';
-import { OUT, TIMEOUT, test, check, watch, idle, canvasInfo, stats } from '../lib.mjs';
+import { OUT, TIMEOUT, test, check, idle, canvasInfo, stats, freshPage, hostFrame } from '../lib.mjs';
 
 /** Opens `#figure=NAME` in a fresh load and waits until it is open (passes run, table filled). */
 async function openFigure(p, base, name, query = '') {
@@ -15,25 +15,9 @@ async function openFigure(p, base, name, query = '') {
   return p.evaluate(() => window.smoothlab.figure());
 }
 
-async function freshPage(context, width, height, label) {
-  const p = await context.newPage();
-  await p.setViewportSize({ width, height });
-  p.setDefaultTimeout(TIMEOUT);
-  watch(p, label);
-  return p;
-}
-
 /** The numbers of "a → b → c" lists in a text, each list as an array. */
 function arrowLists(text) {
   return [...text.matchAll(/\d+(?: → \d+)+/g)].map((m) => m[0].split(' → ').map(Number));
-}
-
-/** A page holding one iframe of `src` at w × h; returns the frame once the page inside is ready. */
-async function host(p, src, w, h) {
-  await p.setContent(`<!doctype html><body style="margin:0"><iframe id="f" src="${src}" style="width:${w}px;height:${h}px;border:0"></iframe></body>`);
-  const frame = await (await p.$('#f')).contentFrame();
-  await frame.waitForFunction(() => document.body.dataset.ready === '1' && document.body.dataset.busy === '0' && document.body.dataset.figure, null, { timeout: 4 * TIMEOUT });
-  return frame;
 }
 
 const MINE = ['chen-13', 'chen-18', 'freitag-t1', 'freitag-t2'];
@@ -155,7 +139,7 @@ export default async function ({ server, context }) {
     try {
       for (const name of MINE) {
         for (const [w, h] of [[800, 450], [520, 520]]) {
-          const frame = await host(p, `${base}?embed=1#figure=${name}`, w, h);
+          const frame = await hostFrame(p, `${base}?embed=1#figure=${name}`, w, h, { figure: true, timeout: 4 * TIMEOUT });
           check((await frame.evaluate(() => document.body.dataset.figure)) === name, `${name} did not open`);
           const r = await frame.evaluate(() => ({ sw: document.documentElement.scrollWidth, sh: document.documentElement.scrollHeight, vw: innerWidth, vh: innerHeight }));
           check(r.sw <= w && r.sh <= h, `${name} at ${w}×${h}: scrolls (${r.sw}×${r.sh})`);

@@ -3,7 +3,7 @@
 // fill every frame (also under a CSS transform), the presenter's keys, fullscreen and the
 // dark theme the pictures follow. Screenshots go to test-output/browser/ (the README's).
 import path from 'node:path';
-import { OUT, TIMEOUT, test, check, watch, idle, open, canvasInfo, clickSomeNode, ringPoints } from '../lib.mjs';
+import { OUT, TIMEOUT, test, check, watch, idle, open, canvasInfo, clickSomeNode, ringPoints, freshPage, hostFrame, reach } from '../lib.mjs';
 
 /** The CSS-pixel box of an element of `where` (a page or a frame), or null if not shown. */
 function box(where, selector) {
@@ -20,42 +20,6 @@ function inView(b, vw, vh) {
 }
 const say = (b) => (b ? `${Math.round(b.x)},${Math.round(b.y)} ${Math.round(b.w)}×${Math.round(b.h)}` : 'not shown');
 
-/** How far the page's visible content reaches right and down, and the frame's size. */
-function reach(where) {
-  return where.evaluate(() => {
-    let r = 0;
-    let b = 0;
-    for (const el of document.body.querySelectorAll('*')) {
-      if (el.getClientRects().length === 0) continue;
-      const q = el.getBoundingClientRect();
-      if (q.width === 0 || q.height === 0) continue;
-      r = Math.max(r, q.right);
-      b = Math.max(b, q.bottom);
-    }
-    const d = document.documentElement;
-    return { r, b, vw: window.innerWidth, vh: window.innerHeight, sw: d.scrollWidth, sh: d.scrollHeight };
-  });
-}
-
-async function freshPage(context, width, height, label) {
-  const p = await context.newPage();
-  await p.setViewportSize({ width, height });
-  p.setDefaultTimeout(TIMEOUT);
-  watch(p, label);
-  return p;
-}
-
-/** A page holding one iframe of `src` (an http URL of the site) at w × h, optionally under
- * a CSS transform, as a course page, a sidebar or a slide holds it. Returns the frame. */
-async function host(p, src, w, h, scale = 1) {
-  await p.setContent(`<!doctype html><body style="margin:0">
-    <div id="wrap" style="transform: scale(${scale}); transform-origin: 0 0; width: ${w}px">
-    <iframe id="f" src="${src}" style="width:${w}px;height:${h}px;border:0"></iframe></div></body>`);
-  const handle = await p.$('#f');
-  const frame = await handle.contentFrame();
-  await frame.waitForFunction(() => document.body.dataset.ready === '1' && document.body.dataset.busy === '0', null, { timeout: TIMEOUT });
-  return frame;
-}
 /** Resizes the host's iframe and waits until the page inside has fitted itself again. */
 async function resizeFrame(p, frame, w, h) {
   await p.evaluate(([w, h]) => {
@@ -166,7 +130,7 @@ export default async function ({ server, context }) {
     try {
       for (const [name, query, pictures] of EMBEDS) {
         const [w0, h0] = FRAMES[0];
-        const frame = await host(p, `${server.base}${query}`, w0, h0);
+        const frame = await hostFrame(p, `${server.base}${query}`, w0, h0);
         for (const [w, h] of FRAMES) {
           await resizeFrame(p, frame, w, h);
           const r = await reach(frame);
@@ -191,10 +155,10 @@ export default async function ({ server, context }) {
   await test('an embed without its caption (&caption=0) gives the picture the room; the meshes never shrink to a dot', async () => {
     const p = await freshPage(context, 1400, 900, 'caption=0');
     try {
-      let frame = await host(p, `${server.base}?embed=1&view=mesh#sample=plate-tri-tangled`, 800, 450);
+      let frame = await hostFrame(p, `${server.base}?embed=1&view=mesh#sample=plate-tri-tangled`, 800, 450);
       const withCaption = await box(frame, '#mesh-old');
       check((await box(frame, '#title-old')) !== null, 'the caption is shown by default');
-      frame = await host(p, `${server.base}?embed=1&view=mesh&caption=0#sample=plate-tri-tangled`, 800, 450);
+      frame = await hostFrame(p, `${server.base}?embed=1&view=mesh&caption=0#sample=plate-tri-tangled`, 800, 450);
       const without = await box(frame, '#mesh-old');
       check((await box(frame, '#title-old')) === null, 'caption=0 still shows the titles');
       check(without.h > withCaption.h, `no room given back: ${say(withCaption)} → ${say(without)}`);
@@ -208,7 +172,7 @@ export default async function ({ server, context }) {
     const p = await freshPage(context, 1400, 900, 'transform');
     try {
       for (const scale of [0.75, 1.5]) {
-        const frame = await host(p, `${server.base}?embed=1#sample=plate-tri-tangled`, 800, 450, scale);
+        const frame = await hostFrame(p, `${server.base}?embed=1#sample=plate-tri-tangled`, 800, 450, { scale });
         const r = await reach(frame);
         check(r.r <= 800.5 && r.b <= 450.5, `scale ${scale}: content reaches ${r.r}×${r.b}`);
         // a click where the user sees the mesh: the iframe's transformed box on the screen,
