@@ -46,18 +46,16 @@ pub fn panic_for_test() {
     panic!("deliberate panic requested by the page's self-test");
 }
 
-/// The gallery of generated samples: `[{ name, title, linkable }]` in gallery order
-/// (`linkable`: a permalink can name it).
+/// The gallery of generated samples: `[{ name, title }]` in gallery order (a permalink
+/// names every one, `permalink::SAMPLES`).
 #[wasm_bindgen]
 pub fn samples() -> Result<JsValue, JsError> {
     #[derive(serde::Serialize)]
     struct Entry {
         name: Sample,
         title: &'static str,
-        linkable: bool,
     }
-    let list: Vec<Entry> =
-        Sample::GALLERY.iter().map(|&s| Entry { name: s, title: s.title(), linkable: s.linkable() }).collect();
+    let list: Vec<Entry> = Sample::GALLERY.iter().map(|&s| Entry { name: s, title: s.title() }).collect();
     to_js(&list)
 }
 
