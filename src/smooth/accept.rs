@@ -29,6 +29,7 @@ use glam::{DVec2, DVec3};
 
 use super::Measure;
 use crate::mesh::ElementKind;
+use super::measure::triangle_shape_at;
 use crate::quality::{corner_edge_vectors, measure_element, tet as q3};
 
 /// The smallest size an element of a valid star may keep, as a fraction of its size
@@ -48,15 +49,40 @@ pub struct ElementScore {
     pub inverted: bool,
     /// `Σ max(0, −det)` over the corners (0 for a valid element).
     pub inversion: f64,
-    /// The natural logarithm of the element's size, its smallest corner determinant
-    /// (scale-free to compute: the edges are divided by their largest component first);
-    /// not a number or −∞ for a degenerate or inverted element.
-    pub ln_size: f64,
+    /// The element's size, its smallest corner determinant, as `unit · scaleᵈ` (`d` 2 for
+    /// a planar element, 3 for a tetrahedron): `unit` is the determinant of the edges
+    /// divided by `scale`, their largest component, so it is a double at every scale
+    /// (not a number for a degenerate element, negative for an inverted one).
+    pub size: Size,
+}
+
+/// An element's size as [`ElementScore::size`] holds it: `unit · scaleᵈ`, compared with
+/// another's without forming either product (which leaves the doubles at extreme scales).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Size {
+    pub unit: f64,
+    pub scale: f64,
+    pub dim: i32,
+}
+
+impl Size {
+    /// Whether this size is at least `ratio` times `before` (false where either is not a
+    /// number): `unit · (scale / before.scale)ᵈ ≥ ratio · before.unit`. The quotient of the
+    /// scales is a double for any two elements of one star before and after a move; where
+    /// it leaves them the element grew or shrank by more than 2^±1000, and the answer
+    /// (infinity or zero) is still the right one.
+    #[inline]
+    pub fn at_least(&self, ratio: f64, before: &Size) -> bool {
+        self.unit * (self.scale / before.scale).powi(self.dim) >= ratio * before.unit
+    }
 }
 
 impl ElementScore {
     /// A planar element (or a surface element in its own plane) with nodes `p`.
     pub fn planar(kind: ElementKind, p: &[DVec2; 9], measure: Measure) -> Self {
+        if let Some(score) = Self::valid_triangle(kind, p, measure) {
+            return score;
+        }
         let (quality, inverted) = match measure {
             Measure::Shape => {
                 let q = measure_element::<false, false, false>(kind, p, |_, _, _| {});
@@ -75,7 +101,28 @@ impl ElementScore {
             inversion += (-e1.perp_dot(*e2)).max(0.0);
             smallest = smallest.min((*e1 / m).perp_dot(*e2 / m));
         }
-        ElementScore { quality, inverted, inversion, ln_size: smallest.ln() + 2.0 * m.ln() }
+        ElementScore { quality, inverted, inversion, size: Size { unit: smallest, scale: m, dim: 2 } }
+    }
+
+    /// [`planar`](Self::planar)'s score of a valid linear triangle by [`Measure::Shape`],
+    /// the drivers' common case, from its three points directly ([`triangle_shape_at`]:
+    /// one cross product, which its three corners share; the general measure's α but for
+    /// a few ulps, as it is taken from another corner); `None` for any other element or
+    /// measure, or an inverted
+    /// triangle. A valid star's elements are all scored here before and after a move that
+    /// keeps them valid, so the rule compares like with like.
+    #[inline]
+    fn valid_triangle(kind: ElementKind, p: &[DVec2; 9], measure: Measure) -> Option<Self> {
+        if kind != ElementKind::Tri3 || measure != Measure::Shape {
+            return None;
+        }
+        let (quality, inverted) = triangle_shape_at(p[1], p[2], p[0])?;
+        if inverted {
+            return None;
+        }
+        let (u, v, w) = (p[1] - p[0], p[2] - p[0], p[2] - p[1]);
+        let m = u.abs().max_element().max(v.abs().max_element()).max(w.abs().max_element());
+        Some(ElementScore { quality, inverted, inversion: 0.0, size: Size { unit: (u / m).perp_dot(v / m), scale: m, dim: 2 } })
     }
 
     /// A tetrahedron with corners `p` (a quadratic one by its corners).
@@ -88,7 +135,7 @@ impl ElementScore {
             Measure::Shape => q3::mean_ratio(p),
             Measure::MinSine => q3::dihedral_sines(p).into_iter().fold(f64::INFINITY, f64::min),
         };
-        ElementScore { quality, inverted: q3::is_inverted(p), inversion: (-det).max(0.0), ln_size: unit.ln() + 3.0 * m.ln() }
+        ElementScore { quality, inverted: q3::is_inverted(p), inversion: (-det).max(0.0), size: Size { unit, scale: m, dim: 3 } }
     }
 }
 
@@ -136,8 +183,7 @@ impl Verdict {
         self.inversion_before += before.inversion;
         self.inversion_after += after.inversion;
         // a size that is not a number (a degenerate element) is below the floor
-        let kept = after.ln_size.partial_cmp(&(before.ln_size + MIN_SIZE_RATIO.ln()));
-        if !before.inverted && !matches!(kept, Some(std::cmp::Ordering::Greater | std::cmp::Ordering::Equal)) {
+        if !before.inverted && !after.size.at_least(MIN_SIZE_RATIO, &before.size) {
             self.flattened = true;
             self.shrunk |= !after.inverted;
         }
@@ -231,6 +277,29 @@ mod tests {
         // nor may it flatten one of its valid elements, whatever its inversion does
         let flat = tri([0.0, 0.0], [1.0, 0.0], [0.5, 1e-5]);
         assert!(!verdict(&[(deep, shallow), (good, flat)]).keeps());
+    }
+
+    #[test]
+    fn a_valid_triangle_scores_as_the_general_measure_scores_it() {
+        let mut rng = crate::generate::SplitMix64::new(29);
+        for s in [1e-200, 1e-30, 1.0, 1e30, 1e200] {
+            for _ in 0..2000 {
+                let mut r = || s * (rng.next_f64() * 2.0 - 1.0);
+                let p = tri([r(), r()], [r(), r()], [r(), r()]);
+                let Some(fast) = ElementScore::valid_triangle(ElementKind::Tri3, &p, Measure::Shape) else { continue };
+                let q = measure_element::<false, false, false>(ElementKind::Tri3, &p, |_, _, _| {});
+                assert_eq!(fast.inverted, q.inverted, "{p:?}");
+                // measured from another corner (and scaled otherwise at extreme sizes): the
+                // cross product a rounding of the squared edges apart, α (≤ 1) a few ulps
+                assert!((fast.quality - q.shape).abs() <= 16.0 * f64::EPSILON, "{p:?} {} {}", fast.quality, q.shape);
+                let edges = corner_edge_vectors(ElementKind::Tri3, &p);
+                let m = edges[..3].iter().fold(0.0f64, |m, (a, b)| m.max(a.abs().max_element()).max(b.abs().max_element()));
+                assert_eq!(fast.size.scale, m);
+                let general = edges[..3].iter().map(|(a, b)| (*a / m).perp_dot(*b / m)).fold(f64::INFINITY, f64::min);
+                // the three corners share one determinant, but for a rounding each
+                assert!((fast.size.unit - general).abs() <= 16.0 * f64::EPSILON, "{p:?}");
+            }
+        }
     }
 
     #[test]

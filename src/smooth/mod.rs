@@ -275,7 +275,7 @@ impl<S: DriverStar> Smoother<S> {
             return NodeOutcome::default();
         }
         if V::CHECKS_ON_PLACING && self.accepts_only_no_worse() {
-            let (x, mut out) = self.decide_move(view.star_mesh(n), n, objective);
+            let (x, mut out, _) = self.decide_move(view.star_mesh(n), n, objective);
             if out.moved {
                 out.moved = view.place_if_no_worse(n, x, self.options.smart_measure);
             }
@@ -306,8 +306,8 @@ impl<S: DriverStar> Smoother<S> {
     /// `docs/formulas.md` §4), measured on the star as it is in `mesh` and with the node
     /// moved; otherwise the node stays.
     pub(crate) fn decide(&mut self, mesh: &S::Mesh, n: usize, objective: &dyn Objective<S>) -> (S::Point, NodeOutcome) {
-        let (x, mut out) = self.decide_move(mesh, n, objective);
-        if out.moved && self.accepts_only_no_worse() {
+        let (x, mut out, kept) = self.decide_move(mesh, n, objective);
+        if out.moved && !kept && self.accepts_only_no_worse() {
             self.star.gather(mesh, n);
             if !self.star.verdict(x, self.options.smart_measure).keeps() {
                 out.moved = false;
@@ -318,11 +318,15 @@ impl<S: DriverStar> Smoother<S> {
     }
 
     /// [`decide`](Self::decide) without the acceptance rule (a surface's view applies it
-    /// after projecting the node back onto the surface).
-    fn decide_move(&mut self, mesh: &S::Mesh, n: usize, objective: &dyn Objective<S>) -> (S::Point, NodeOutcome) {
+    /// after projecting the node back onto the surface), and whether the move is already
+    /// known to pass it (the smart Laplacian's test read from the mesh found the star
+    /// valid, its worst shape raised and no element shrunk below the rule's floor:
+    /// [`FastSmart::kept`]).
+    fn decide_move(&mut self, mesh: &S::Mesh, n: usize, objective: &dyn Objective<S>) -> (S::Point, NodeOutcome, bool) {
         let mut out = NodeOutcome::default();
+        let mut kept = false;
         if n >= mesh.node_count() || !mesh.is_free(n) {
-            return (S::Point::ZERO, out);
+            return (S::Point::ZERO, out, kept);
         }
         let x0 = mesh.position(n);
         let mut x = x0;
@@ -338,6 +342,7 @@ impl<S: DriverStar> Smoother<S> {
                     if let Some(c) = t.to {
                         out.laplacian = true;
                         x = c;
+                        kept = t.kept;
                     }
                 }
                 None => {
@@ -399,9 +404,10 @@ impl<S: DriverStar> Smoother<S> {
                 // when the node is optimised (rule 2: an inverted element; rule 3: the smart
                 // Laplacian did not move it)
                 match (!forced).then(|| S::smart_from_mesh(mesh, n, self.options.smart_measure)).flatten() {
-                    Some(FastSmart { inverted: 0, to: Some(c) }) => {
+                    Some(FastSmart { inverted: 0, to: Some(c), kept: k }) => {
                         out.laplacian = true;
                         x = c;
+                        kept = k;
                     }
                     Some(_) => {
                         self.star.gather(mesh, n);
@@ -420,7 +426,7 @@ impl<S: DriverStar> Smoother<S> {
             }
         }
         out.moved = x != x0;
-        (x, out)
+        (x, out, kept)
     }
 
     /// Moves the gathered star's free node to `x` (after a move), keeping the star valid.
@@ -510,7 +516,8 @@ fn smart_on_triangles(mesh: &Mesh, n: usize, measure: Measure) -> Option<FastSma
     let x0 = mesh.nodes()[n];
     let c = centroid(mesh, n).filter(|c| c.is_finite() && *c != x0);
     let t = triangles_at(mesh, n, c)?;
-    Some(FastSmart { inverted: t.inverted, to: c.filter(|_| !t.folds && t.after > t.before) })
+    let to = c.filter(|_| !t.folds && t.after > t.before);
+    Some(FastSmart { inverted: t.inverted, to, kept: to.is_some() && t.inverted == 0 && !t.shrinks })
 }
 
 /// The smallest shape measure (α) of a planar star of linear triangles at the node's
@@ -523,18 +530,21 @@ pub(crate) fn shape_on_triangles(mesh: &Mesh, n: usize) -> Option<f64> {
 
 /// What the smart Laplacian's test reads of a star of linear triangles (see
 /// [`smart_on_triangles`]): the smallest α now and with the node at `c`, the elements
-/// inverted now, and whether the move folds one.
+/// inverted now, whether the move folds one, and whether it may shrink one valid now below
+/// the acceptance rule's floor ([`MIN_SIZE_RATIO`] of its area; also where the areas are
+/// not plain doubles, and the rule measures).
 struct TrianglesAt {
     before: f64,
     after: f64,
     inverted: u32,
     folds: bool,
+    shrinks: bool,
 }
 
 #[inline]
 fn triangles_at(mesh: &Mesh, n: usize, c: Option<DVec2>) -> Option<TrianglesAt> {
     let x0 = mesh.nodes()[n];
-    let mut t = TrianglesAt { before: f64::INFINITY, after: f64::INFINITY, inverted: 0, folds: false };
+    let mut t = TrianglesAt { before: f64::INFINITY, after: f64::INFINITY, inverted: 0, folds: false, shrinks: false };
     for &e in mesh.node_elements(n) {
         let e = e as usize;
         if mesh.kind(e) != crate::mesh::ElementKind::Tri3 {
@@ -554,6 +564,10 @@ fn triangles_at(mesh: &Mesh, n: usize, c: Option<DVec2>) -> Option<TrianglesAt> 
         t.before = t.before.min(q0);
         t.folds |= !inv0 && inv1;
         t.after = t.after.min(q1);
+        let (n0, n1) = ((a - x0).perp_dot(b - x0), (a - c).perp_dot(b - c));
+        let floor = MIN_SIZE_RATIO * n0;
+        let kept = floor.is_normal() && n0.is_finite() && n1 >= floor;
+        t.shrinks |= !inv0 && !kept;
     }
     Some(t)
 }

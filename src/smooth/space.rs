@@ -88,6 +88,10 @@ pub trait DriverStar: NodeStar + Default {
 pub struct FastSmart<P> {
     pub inverted: u32,
     pub to: Option<P>,
+    /// The move to [`to`](Self::to) passes the acceptance rule ([`Verdict`]) as measured
+    /// here: the star is valid, the move folds none of it, raises its worst shape and
+    /// shrinks no element below the rule's floor.
+    pub kept: bool,
 }
 
 impl SmoothMesh for Mesh {
