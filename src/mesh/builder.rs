@@ -296,6 +296,7 @@ impl MeshBuilder {
         };
         let flags_given = !matches!(self.fixed, FixedSpec::Boundary);
         let mesh = finish(mesh, &self.elem_lines, self.fixed)?;
+        super::topology::check_fans(&mesh, &self.elem_lines)?;
         crate::surface::Surface::from_parts(points, mesh, analytic, flags_given)
     }
 

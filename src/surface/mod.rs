@@ -139,11 +139,11 @@ impl Surface {
             off > 1e-6 * chord.length()
         });
         let given = flags_given.then(|| flat.fixed().to_vec());
-        let features = Features { mesh: &flat, points: &points, angle_deg: FEATURE_ANGLE_DEG, fixed: given.as_deref() };
+        let features = Features::new(&flat, &points, given.as_deref());
         // an exact surface knows its feature curves (the cylinder's rims); else the angles say
-        let (feature, part): (Vec<bool>, Vec<u32>) = match analytic {
-            Some(a) => (points.iter().map(|&p| a.on_feature(p)).collect(), Vec::new()),
-            None => (features.nodes(), features.parts()),
+        let (feature, part, side): (Vec<bool>, Vec<u32>, Vec<u32>) = match analytic {
+            Some(a) => (points.iter().map(|&p| a.on_feature(p)).collect(), Vec::new(), Vec::new()),
+            None => (features.nodes(), features.parts(), features.sides()),
         };
         // the curves: open boundaries, and feature edges (each interior edge once)
         let mut curve_edges = Vec::new();
@@ -171,7 +171,7 @@ impl Surface {
         }
         let reference = match analytic {
             Some(a) => Reference::Analytic(a),
-            None => Reference::Facets(Box::new(Facets::new(&points, flat.kinds(), |e| flat.element(e), |e| part[e]))),
+            None => Reference::Facets(Box::new(Facets::new(&points, flat.kinds(), |e| flat.element(e), |e| part[e], |e| side[e]))),
         };
         let hint = match &reference {
             Reference::Facets(f) => (0..points.len()).map(|n| f.triangle_at_vertex(n)).collect(),
@@ -410,32 +410,84 @@ fn orient(mesh: &mut Mesh, points: &[DVec3]) -> Result<()> {
     Ok(())
 }
 
-/// Turn of the normal across an edge above which the edge is read as a fold (a tangle,
-/// two elements lying over each other), not a feature curve, degrees.
+/// Turn of the normal across an edge above which the edge is a fold, degrees: one
+/// element lying (nearly) over the other. A fold is a tangle unless it parts two sheets of
+/// at least [`FOLD_SHEET_ELEMENTS`] elements each, which no path across edges that are not
+/// folds joins (then the surface turns back on itself there, a feature curve; a tangled
+/// patch turns back to its surroundings through creases, or is small).
 pub const FOLD_ANGLE_DEG: f64 = 150.0;
+
+/// The fewest elements each side of a fold must hold, in a sheet joined across edges that
+/// are not folds, for the fold to be a feature curve: twice a node's star in a regular
+/// mesh, so a flipped element or a flipped star (the tangles perturbation makes) is not a
+/// sheet, and a strip folded back on itself is.
+pub const FOLD_SHEET_ELEMENTS: u32 = 12;
 
 /// Finds a surface's feature curves and the smooth parts between them.
 struct Features<'a> {
     mesh: &'a Mesh,
     points: &'a [DVec3],
-    angle_deg: f64,
     /// The file's fixed flags, when it gave them: only edges between fixed nodes qualify.
     fixed: Option<&'a [bool]>,
+    /// Per element, its sheet (the elements joined to it across edges that are not
+    /// folds) and the number of elements in it.
+    sheet: Vec<u32>,
+    sheet_elements: Vec<u32>,
 }
 
-impl Features<'_> {
+/// How the normals of two elements across an edge turn.
+#[derive(Clone, Copy, PartialEq)]
+enum Turn {
+    Smooth,
+    Crease,
+    Fold,
+}
+
+impl<'a> Features<'a> {
+    fn new(mesh: &'a Mesh, points: &'a [DVec3], fixed: Option<&'a [bool]>) -> Self {
+        let mut f = Features { mesh, points, fixed, sheet: Vec::new(), sheet_elements: Vec::new() };
+        let sheet = f.components(|f, e, g, _, _| f.turn(e, g) != Turn::Fold);
+        let mut count = vec![0u32; mesh.element_count()];
+        for &s in &sheet {
+            count[s as usize] += 1;
+        }
+        f.sheet_elements = sheet.iter().map(|&s| count[s as usize]).collect();
+        f.sheet = sheet;
+        f
+    }
+
+    /// The turn of the normals of elements `e` and `f`: smooth up to
+    /// [`FEATURE_ANGLE_DEG`], a fold beyond [`FOLD_ANGLE_DEG`], a crease between (and
+    /// smooth where either has no normal).
+    fn turn(&self, e: usize, f: usize) -> Turn {
+        let (cos, fold) = (FEATURE_ANGLE_DEG.to_radians().cos(), FOLD_ANGLE_DEG.to_radians().cos());
+        let (n1, n2) = (element_normal(self.mesh, self.points, e), element_normal(self.mesh, self.points, f));
+        let (Some(n1), Some(n2)) = (n1.try_normalize(), n2.try_normalize()) else { return Turn::Smooth };
+        let c = n1.dot(n2);
+        if c >= cos {
+            Turn::Smooth
+        } else if c > fold {
+            Turn::Crease
+        } else {
+            Turn::Fold
+        }
+    }
+
     /// Whether the edge `a`–`b` between elements `e` and `f` is on a feature curve: their
-    /// normals differ by more than the angle and less than [`FOLD_ANGLE_DEG`] (a greater
-    /// turn is a fold, one element lying over the other), and, when the file fixed nodes,
-    /// it fixed both ends.
+    /// normals turn by more than [`FEATURE_ANGLE_DEG`], and a turn beyond
+    /// [`FOLD_ANGLE_DEG`] parts two sheets ([`FOLD_SHEET_ELEMENTS`]); when the file fixed
+    /// nodes, it fixed both ends.
     fn is_edge(&self, e: usize, f: usize, a: u32, b: u32) -> bool {
         if self.fixed.is_some_and(|fixed| !(fixed[a as usize] && fixed[b as usize])) {
             return false;
         }
-        let (cos, fold) = (self.angle_deg.to_radians().cos(), FOLD_ANGLE_DEG.to_radians().cos());
-        let (n1, n2) = (element_normal(self.mesh, self.points, e), element_normal(self.mesh, self.points, f));
-        let (Some(n1), Some(n2)) = (n1.try_normalize(), n2.try_normalize()) else { return false };
-        n1.dot(n2) < cos && n1.dot(n2) > fold
+        match self.turn(e, f) {
+            Turn::Smooth => false,
+            Turn::Crease => true,
+            Turn::Fold => {
+                self.sheet[e] != self.sheet[f] && self.sheet_elements[e].min(self.sheet_elements[f]) >= FOLD_SHEET_ELEMENTS
+            }
+        }
     }
 
     /// Nodes on feature curves: the ends (and mid-side node) of every feature edge.
@@ -467,6 +519,18 @@ impl Features<'_> {
     /// The smooth parts: elements joined by edges that are not feature edges, numbered
     /// from 0 (per element, its part).
     fn parts(&self) -> Vec<u32> {
+        self.components(|f, e, g, a, b| !f.is_edge(e, g, a, b))
+    }
+
+    /// The sides of the folds that are feature curves: elements joined across every other
+    /// edge, numbered from 0 (per element, its side).
+    fn sides(&self) -> Vec<u32> {
+        self.components(|f, e, g, a, b| f.turn(e, g) != Turn::Fold || !f.is_edge(e, g, a, b))
+    }
+
+    /// The elements joined across the edges `a`–`b` between elements `e` and `f` where
+    /// `join(self, e, f, a, b)`, numbered from 0 (per element, its component).
+    fn components(&self, join: impl Fn(&Self, usize, usize, u32, u32) -> bool) -> Vec<u32> {
         let mesh = self.mesh;
         let mut part = vec![u32::MAX; mesh.element_count()];
         let mut parts = 0;
@@ -483,7 +547,7 @@ impl Features<'_> {
                 for i in 0..k {
                     let (a, b) = (ids[i], ids[(i + 1) % k]);
                     if let Some((f, _)) = across(mesh, e, a, b) {
-                        if part[f] == u32::MAX && !self.is_edge(e, f, a, b) {
+                        if part[f] == u32::MAX && join(self, e, f, a, b) {
                             part[f] = parts;
                             queue.push(f);
                         }

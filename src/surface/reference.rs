@@ -160,6 +160,13 @@ pub struct Facets {
     /// by its area), interpolated across a triangle for the normal at a point: smooth
     /// over the facets, and right where one facet of a tangled file is turned over.
     vertex_normal: Vec<DVec3>,
+    /// The same for a vertex on a fold that is a feature curve (the surface turned back on
+    /// itself), per side: keyed by (vertex, side), sorted; so a strip folded back on itself
+    /// does not average its two sheets' normals to nothing. A crease (a cylinder's rim)
+    /// keeps one normal at a vertex, between its parts', which faces the way of both.
+    side_normal: Vec<((u32, u32), DVec3)>,
+    /// Per triangle, its side of the folds that are feature curves (its element's).
+    side: Vec<u32>,
     /// Per triangle of a quadratic element, its element's curved patch and where the
     /// triangle's vertices are in the patch's parameters (all `None` when the patches are
     /// not used: linear elements, or a folded one in the file).
@@ -185,10 +192,12 @@ impl Facets {
         kinds: &[ElementKind],
         element: impl Fn(usize) -> &'a [u32],
         part: impl Fn(usize) -> u32,
+        side: impl Fn(usize) -> u32,
     ) -> Facets {
         let mut pts = points.to_vec();
         let mut triangles = Vec::with_capacity(kinds.len() * 2);
         let mut parts = Vec::with_capacity(kinds.len() * 2);
+        let mut sides = Vec::with_capacity(kinds.len() * 2);
         let (mut patch, mut patches) = (Vec::with_capacity(kinds.len() * 2), Vec::new());
         let mut first_triangle = Vec::with_capacity(kinds.len());
         for (e, &kind) in kinds.iter().enumerate() {
@@ -233,6 +242,7 @@ impl Facets {
             }
             debug_assert_eq!(patch.len(), triangles.len());
             parts.resize(triangles.len(), part(e));
+            sides.resize(triangles.len(), side(e));
         }
         let mut vert_start = vec![0u32; pts.len() + 1];
         for t in &triangles {
@@ -283,10 +293,39 @@ impl Facets {
         for n in &mut vertex_normal {
             *n = crate::quality::direction(*n);
         }
-        // a folded element: a flat triangle whose normal disagrees with a vertex's
-        let folded = triangles.iter().any(|tri| {
+        let mut first_side = vec![u32::MAX; pts.len()];
+        let mut mixed = vec![false; pts.len()];
+        for (tri, &k) in triangles.iter().zip(&sides) {
+            for &v in tri {
+                let f = &mut first_side[v as usize];
+                mixed[v as usize] |= *f != u32::MAX && *f != k;
+                *f = k;
+            }
+        }
+        let mut side_normal: Vec<((u32, u32), DVec3)> = Vec::new();
+        for (tri, &k) in triangles.iter().zip(&sides) {
             let n = area(tri);
-            tri.iter().any(|&v| n.dot(vertex_normal[v as usize]) <= 0.0)
+            side_normal.extend(tri.iter().filter(|&&v| mixed[v as usize]).map(|&v| ((v, k), n)));
+        }
+        side_normal.sort_by_key(|&(key, _)| key);
+        side_normal.dedup_by(|(k1, n1), (k0, n0)| {
+            let same = k1 == k0;
+            if same {
+                *n0 += *n1;
+            }
+            same
+        });
+        for (_, n) in &mut side_normal {
+            *n = crate::quality::direction(*n);
+        }
+        let normal_of = |v: u32, k: u32| match side_normal.binary_search_by_key(&(v, k), |&(key, _)| key) {
+            Ok(i) => side_normal[i].1,
+            Err(_) => vertex_normal[v as usize],
+        };
+        // a folded element: a flat triangle whose normal disagrees with a vertex's
+        let folded = triangles.iter().zip(&sides).any(|(tri, &k)| {
+            let n = area(tri);
+            tri.iter().any(|&v| n.dot(normal_of(v, k)) <= 0.0)
         });
         if folded {
             patch.iter_mut().for_each(|p| *p = None);
@@ -296,12 +335,26 @@ impl Facets {
             triangles,
             part: parts,
             vertex_normal,
+            side_normal,
+            side: sides,
             patch,
             patches,
             first_triangle,
             vert_start,
             vert_tris,
             grid,
+        }
+    }
+
+    /// The unit normal at vertex `v` of its triangles on side `k` ([`Facets::side_normal`]
+    /// where it lies on a fold that is a feature curve, else [`Facets::vertex_normal`]).
+    fn vertex_normal_in(&self, v: u32, k: u32) -> DVec3 {
+        if self.side_normal.is_empty() {
+            return self.vertex_normal[v as usize];
+        }
+        match self.side_normal.binary_search_by_key(&(v, k), |&(key, _)| key) {
+            Ok(i) => self.side_normal[i].1,
+            Err(_) => self.vertex_normal[v as usize],
         }
     }
 
@@ -355,7 +408,7 @@ impl Facets {
         }
         let (point, bary) = closest_on_triangle(p, self.corners(t));
         let tri = self.triangles[t as usize];
-        let blended: DVec3 = (0..3).map(|i| bary[i] * self.vertex_normal[tri[i] as usize]).sum();
+        let blended: DVec3 = (0..3).map(|i| bary[i] * self.vertex_normal_in(tri[i], self.side[t as usize])).sum();
         let normal = Some(crate::quality::direction(blended)).filter(|n| *n != DVec3::ZERO).unwrap_or_else(|| self.normal(t));
         Projected { point, normal, face: t }
     }
@@ -753,7 +806,7 @@ mod tests {
         let p = [DVec3::X, DVec3::Y, -DVec3::X, -DVec3::Y, DVec3::Z, -DVec3::Z];
         let tris: Vec<[u32; 3]> = (0..4u32).flat_map(|i| [[i, (i + 1) % 4, 4], [(i + 1) % 4, i, 5]]).collect();
         let flat: Vec<u32> = tris.iter().flatten().copied().collect();
-        Facets::new(&p, &[ElementKind::Tri3; 8], |e| &flat[3 * e..3 * e + 3], |_| 0)
+        Facets::new(&p, &[ElementKind::Tri3; 8], |e| &flat[3 * e..3 * e + 3], |_| 0, |_| 0)
     }
 
     #[test]
@@ -796,7 +849,7 @@ mod tests {
         for kind in SurfaceKind::ALL {
             let s = surface(SurfaceShape::Sphere, kind, 2, 8).unwrap();
             let mesh = s.flat();
-            let facets = Facets::new(s.points(), mesh.kinds(), |e| mesh.element(e), |_| 0);
+            let facets = Facets::new(s.points(), mesh.kinds(), |e| mesh.element(e), |_| 0, |_| 0);
             assert!(facets.patch.iter().all(|p| p.is_some()), "an untangled file: its patches");
             let mut flat = facets.clone();
             flat.patch.iter_mut().for_each(|p| *p = None);
@@ -824,7 +877,7 @@ mod tests {
             crate::surface::perturb_surface(&surface(SurfaceShape::Sphere, SurfaceKind::Tri, 2, 4).unwrap(), 0.8, 1)
                 .unwrap();
         let mesh = s.flat();
-        let facets = Facets::new(s.points(), mesh.kinds(), |e| mesh.element(e), |_| 0);
+        let facets = Facets::new(s.points(), mesh.kinds(), |e| mesh.element(e), |_| 0, |_| 0);
         assert!(s.stats().inverted > 0 && facets.patch.iter().all(|p| p.is_none()));
     }
 

@@ -321,3 +321,94 @@ fn a_loaded_cylinder_reads_as_generated_next_to_its_rims() {
         assert!((a.min_quality - b.min_quality).abs() < 1e-12, "{kind:?} order {order}");
     }
 }
+
+/// A strip of triangles folded back on itself (a 180° turn, the sheets 10⁻³ apart; issue
+/// 29): the fold parts two sheets, so it is a feature curve and its nodes are fixed, each
+/// element is measured against its own sheet (none inverted), and no strategy leaves it
+/// inverted or, but the plain Laplacian, with a worse worst element.
+#[test]
+fn a_strip_folded_back_on_itself_is_a_feature_and_stays_valid() {
+    use crate::mesh::{ElementKind, MeshBuilder};
+    let (xs, ys) = ([0.0, 0.5, 1.0, 1.5, 2.0], [0.0, 0.35, 1.0]);
+    let path: Vec<(f64, f64)> = xs.iter().map(|&x| (x, 0.0)).chain(xs[..4].iter().rev().map(|&x| (x, 1e-3))).collect();
+    let mut b = MeshBuilder::new();
+    for (i, &(x, z)) in path.iter().enumerate() {
+        for (j, &y) in ys.iter().enumerate() {
+            // the middle row off the middle, the fold's node too: the smoothers have work
+            let dx = if j == 1 && i > 0 && i + 1 < path.len() { 0.1 } else { 0.0 };
+            b.add_node([x + dx, y, z], 0);
+        }
+    }
+    let id = |i: usize, j: usize| (3 * i + j) as u32;
+    for i in 0..path.len() - 1 {
+        for j in 0..2 {
+            b.add_element(ElementKind::Tri3, &[id(i, j), id(i + 1, j), id(i + 1, j + 1)], 0);
+            b.add_element(ElementKind::Tri3, &[id(i, j), id(i + 1, j + 1), id(i, j + 1)], 0);
+        }
+    }
+    let Ok(Model::Surface(base)) = b.build_model() else { panic!("a surface") };
+    let fold = id(4, 1) as usize;
+    assert!(base.is_feature(fold) && base.flat().is_fixed(fold), "the fold is a feature curve");
+    let before = base.stats();
+    assert_eq!(before.inverted, 0, "{before:?}");
+    for strategy in Strategy::ALL {
+        for kind in ObjectiveKind::ALL {
+            let mut s = base.clone();
+            let opts = SmoothOptions::default().with_strategy(strategy);
+            smooth_surface(&mut s, objective(kind).as_ref(), opts, 2, &|| 0.0).unwrap();
+            let (name, st) = (format!("{} {}", strategy.name(), kind.name()), s.stats());
+            assert_eq!(s.points()[fold], base.points()[fold], "{name}");
+            assert_eq!(st.inverted, 0, "{name}: {st:?}");
+            if strategy != Strategy::Laplace {
+                assert!(st.min_quality >= before.min_quality, "{name}: {} < {}", st.min_quality, before.min_quality);
+            }
+        }
+    }
+}
+
+/// A flipped element is not a fold that parts two sheets (it turns back to its
+/// neighbours alone): in a file, where the mesh is its own reference, it still reads as
+/// inverted — its normal is not measured against its own side of a fold.
+#[test]
+fn a_flipped_element_in_a_file_still_reads_as_inverted() {
+    let mut sphere = surface(SurfaceShape::Sphere, SurfaceKind::Tri, 1, 3).unwrap();
+    let ids = sphere.flat().element(0).to_vec();
+    let [a, b, c] = [0, 1, 2].map(|i| sphere.points()[ids[i] as usize]);
+    sphere.points[ids[0] as usize] = b + c - a;
+    // read as a file is: the flipped mesh its own reference
+    let mut builder = crate::mesh::MeshBuilder::new();
+    for p in sphere.points() {
+        builder.add_node(p.to_array(), 0);
+    }
+    for e in 0..sphere.element_count() {
+        builder.add_element(sphere.flat().kind(e), sphere.flat().element(e), 0);
+    }
+    let Ok(Model::Surface(loaded)) = builder.build_model() else { panic!("a surface") };
+    assert!(loaded.stats().inverted > 0, "the flipped element is inverted");
+}
+
+/// Two closed surfaces touching at one vertex (issue 29: two spheres counted 4 inverted):
+/// refused, as an edge shared by three elements is, naming the node.
+#[test]
+fn surfaces_meeting_at_a_vertex_alone_are_refused() {
+    use crate::mesh::{ElementKind, MeshBuilder};
+    let mut b = MeshBuilder::new();
+    let octahedron = [[1.0, 0.0, 0.0], [-1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, -1.0, 0.0], [0.0, 0.0, 1.0], [0.0, 0.0, -1.0]];
+    let faces = [[0, 2, 4], [2, 1, 4], [1, 3, 4], [3, 0, 4], [2, 0, 5], [1, 2, 5], [3, 1, 5], [0, 3, 5]];
+    for p in octahedron {
+        b.add_node(p, 0);
+    }
+    // the second octahedron, 2 along x: its vertex (−1, 0, 0) is the first's (1, 0, 0)
+    let second: Vec<u32> = octahedron
+        .iter()
+        .enumerate()
+        .map(|(i, p)| if i == 1 { 0 } else { b.add_node([p[0] + 2.0, p[1], p[2]], 0) as u32 })
+        .collect();
+    for f in faces {
+        b.add_element(ElementKind::Tri3, &f, 0);
+        b.add_element(ElementKind::Tri3, &f.map(|i| second[i as usize]), 0);
+    }
+    let Err(err) = b.build_model().map(|_| ()) else { panic!("two octahedra touching at a vertex were read") };
+    let err = err.to_string();
+    assert!(err.contains("only at node 1") && err.contains("non-manifold vertex"), "{err}");
+}
