@@ -220,7 +220,7 @@ impl<S: DriverStar> Smoother<S> {
 /// number. The shape measures are scale-free; their roundings are not, and ranked by the
 /// last bits a mesh and its copy scaled by 3 were smoothed in different orders (issue
 /// 29: a smallest dihedral angle of 13.30° or 15.98° after one pass).
-fn tie_scale(q: f64) -> f64 {
+pub(crate) fn tie_scale(q: f64) -> f64 {
     const STEP: f64 = (1u64 << 40) as f64;
     if q.is_finite() && q.abs() < 1e6 {
         (q * STEP).round() / STEP
