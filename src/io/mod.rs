@@ -208,12 +208,18 @@ impl<'a> From<&'a crate::surface::Surface> for Writable<'a> {
 }
 
 impl Writable<'_> {
-    /// Node `i` in 3D: a surface's point, a planar mesh's in its plane ([`Mesh::to_3d`]).
+    /// Node `i` in 3D: a surface's point, a planar mesh's in its plane ([`Mesh::node_3d`]:
+    /// as the file gave it while it has not moved).
     pub(crate) fn xyz(&self, i: usize) -> glam::DVec3 {
         match self.points {
             Some(p) => p[i],
-            None => self.mesh.to_3d(self.mesh.nodes()[i]),
+            None => self.mesh.node_3d(i),
         }
+    }
+    /// Element `e`'s nodes as the writers write them: in the order its file gave them
+    /// ([`Mesh::element_as_given`]).
+    pub(crate) fn element(&self, e: usize) -> crate::mesh::GivenNodes {
+        self.mesh.element_as_given(e)
     }
     /// Whether every node is at z = 0 (a 2D mesh): the writers write `x y 0`.
     pub(crate) fn in_xy_plane(&self) -> bool {

@@ -674,7 +674,7 @@ pub(crate) fn write(w: super::Writable, version: MshVersion, s: &mut Out) {
             let _ = writeln!(s, "$EndNodes\n$Elements\n{}", mesh.element_count());
             for e in 0..mesh.element_count() {
                 let _ = write!(s, "{} {} 2 0 1", e + 1, type_of(mesh.kind(e)));
-                for &i in mesh.element(e) {
+                for &i in w.element(e).iter() {
                     let _ = write!(s, " {}", i + 1);
                 }
                 s.push('\n');
@@ -716,7 +716,7 @@ pub(crate) fn write(w: super::Writable, version: MshVersion, s: &mut Out) {
                 let _ = writeln!(s, "2 1 {} {}", type_of(kinds[a]), b - a);
                 for e in a..b {
                     let _ = write!(s, "{}", e + 1);
-                    for &i in mesh.element(e) {
+                    for &i in w.element(e).iter() {
                         let _ = write!(s, " {}", i + 1);
                     }
                     s.push('\n');
@@ -750,7 +750,7 @@ fn runs(kinds: &[ElementKind]) -> Vec<(usize, usize)> {
     out
 }
 
-fn type_of(kind: ElementKind) -> u32 {
+pub(crate) fn type_of(kind: ElementKind) -> u32 {
     match kind {
         ElementKind::Tri3 => 2,
         ElementKind::Quad4 => 3,

@@ -223,7 +223,7 @@ pub(crate) fn write_obj(w: super::Writable, s: &mut Out) -> Result<()> {
     }
     for e in 0..mesh.element_count() {
         s.push('f');
-        for &i in mesh.element(e) {
+        for &i in w.element(e).iter() {
             let _ = write!(s, " {}", i + 1);
         }
         s.push('\n');
@@ -241,9 +241,9 @@ pub(crate) fn write_off(w: super::Writable, s: &mut Out) -> Result<()> {
         s.push('\n');
     }
     for e in 0..mesh.element_count() {
-        let ids = mesh.element(e);
+        let ids = w.element(e);
         let _ = write!(s, "{}", ids.len());
-        for &i in ids {
+        for &i in ids.iter() {
             let _ = write!(s, " {i}");
         }
         s.push('\n');

@@ -342,7 +342,7 @@ pub(crate) fn write(w: super::Writable, node: &mut Out, ele: &mut Out) -> Result
     let _ = writeln!(ele, "{} {per} 0", mesh.element_count());
     let mut theirs = [0u32; 6];
     for e in 0..mesh.element_count() {
-        let ids = mesh.element(e);
+        let ids = w.element(e);
         for (ours, &t) in TRIANGLE_ORDER[..per].iter().enumerate() {
             theirs[t] = ids[ours];
         }

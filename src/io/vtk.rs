@@ -650,7 +650,7 @@ impl Reader<'_> {
     }
 }
 
-fn type_of(kind: ElementKind) -> u32 {
+pub(crate) fn type_of(kind: ElementKind) -> u32 {
     match kind {
         ElementKind::Tri3 => 5,
         ElementKind::Quad4 => 9,
@@ -674,9 +674,9 @@ pub(crate) fn write(w: super::Writable, s: &mut Out) {
     }
     let _ = writeln!(s, "CELLS {m} {size}");
     for e in 0..m {
-        let ids = mesh.element(e);
+        let ids = w.element(e);
         let _ = write!(s, "{}", ids.len());
-        for &i in ids {
+        for &i in ids.iter() {
             let _ = write!(s, " {i}");
         }
         s.push('\n');

@@ -147,6 +147,14 @@ impl MeshBuilder {
     /// are.
     fn volume(self) -> Result<crate::volume::TetMesh> {
         let n = self.points.len();
+        let mut faces = Vec::with_capacity(self.kinds.len());
+        for (e, &kind) in self.kinds.iter().enumerate() {
+            let ids = &self.elem_nodes[self.elem_start[e] as usize..self.elem_start[e + 1] as usize];
+            if let Some(&i) = ids.iter().find(|&&i| i as usize >= n) {
+                return Err(Error::element(e, self.line_of_elem(e), format!("node {} does not exist (the file has {n} nodes)", i + 1)));
+            }
+            faces.push(crate::volume::GivenFace::new(kind, ids, self.elem_lines.get(e).copied().unwrap_or(0)));
+        }
         let mut marks = vec![false; n];
         for &i in &self.elem_nodes {
             if let Some(m) = marks.get_mut(i as usize) {
@@ -162,6 +170,7 @@ impl MeshBuilder {
             FixedSpec::Boundary => FixedSpec::Boundary,
         };
         crate::volume::TetMesh::build(crate::volume::TetParts {
+            faces,
             nodes: self.points.iter().map(|&p| glam::DVec3::from(p)).collect(),
             node_lines: self.point_lines,
             order: self.tet_order.unwrap_or(crate::volume::TetOrder::Linear),
@@ -205,9 +214,13 @@ impl MeshBuilder {
     /// plane from [`to_plane`](Self::to_plane).
     fn planar(mut self, (nodes, plane): (Vec<DVec2>, Option<Plane>)) -> Result<Mesh> {
         let n = self.points.len();
-        // the 3D points are not needed past the plane: let them go before the topology is
-        // built (24 bytes a node), and give back what the readers' growing left unused
-        self.points = Vec::new();
+        // the 3D points are not needed past the plane, unless it is tilted (then they are
+        // written back as given while their nodes stay): let them go before the topology
+        // is built (24 bytes a node), and give back what the readers' growing left unused
+        let tilted = plane.is_some_and(|p| p.u != glam::DVec3::X || p.w != glam::DVec3::Y);
+        let points = std::mem::take(&mut self.points);
+        let loaded_3d = tilted.then(|| points.iter().map(|&p| glam::DVec3::from(p)).collect::<Vec<_>>());
+        drop(points);
         let (mut kinds, mut elem_start, mut elem_nodes) = (self.kinds, self.elem_start, self.elem_nodes);
         kinds.shrink_to_fit();
         elem_start.shrink_to_fit();
@@ -216,8 +229,12 @@ impl MeshBuilder {
             plane,
             nodes,
             fixed: vec![false; n],
-            conn: Arc::new(Connectivity { kinds, elem_start, elem_nodes, topo: Topology::default() }),
+            conn: Arc::new(Connectivity { kinds, elem_start, elem_nodes, topo: Topology::default(), reversed: Vec::new() }),
+            loaded_3d: None,
         };
+        if let Some(points) = loaded_3d {
+            mesh.keep_loaded_3d(points);
+        }
         // Orientation of the whole mesh by its total signed area, decided by the sign of
         // total − (total of the reversed mesh), each summed as its own corner order gives:
         // reversing negates that difference exactly, so a mesh reversed here is never
@@ -285,6 +302,7 @@ impl MeshBuilder {
         let n = points.len();
         let mesh = Mesh {
             plane: None,
+            loaded_3d: None,
             nodes: vec![DVec2::ZERO; n],
             fixed: vec![false; n],
             conn: Arc::new(Connectivity {
@@ -292,6 +310,7 @@ impl MeshBuilder {
                 elem_start: self.elem_start,
                 elem_nodes: self.elem_nodes,
                 topo: Topology::default(),
+                reversed: Vec::new(),
             }),
         };
         let flags_given = !matches!(self.fixed, FixedSpec::Boundary);

@@ -91,6 +91,24 @@ struct Connectivity {
     elem_start: Vec<u32>,
     elem_nodes: Vec<u32>,
     topo: Topology,
+    /// Per element, whether it was reversed when read (a clockwise planar mesh, a surface
+    /// element against its neighbours); empty when none was. The writers give the nodes
+    /// back in the file's order ([`Mesh::element_as_given`]).
+    reversed: Vec<bool>,
+}
+
+/// An element's nodes in the order its file gave them ([`Mesh::element_as_given`]).
+#[derive(Clone, Copy, Debug)]
+pub struct GivenNodes {
+    ids: [u32; 9],
+    len: usize,
+}
+
+impl std::ops::Deref for GivenNodes {
+    type Target = [u32];
+    fn deref(&self) -> &[u32] {
+        &self.ids[..self.len]
+    }
 }
 
 /// Which element families a mesh holds.
@@ -116,6 +134,18 @@ pub struct Mesh {
     /// The 3D plane the file's points lay in, when they were not in the xy plane at z = 0
     /// (see [`Mesh::to_3d`]); `None` for a 2D mesh.
     pub plane: Option<Plane>,
+    /// The file's 3D points and their 2D coordinates in [`plane`](Self::plane), where
+    /// the plane is not the xy plane shifted (whose coordinates come back exactly): a node
+    /// still at its 2D coordinates is written back as the file gave it, to the bit
+    /// ([`node_3d`](Self::node_3d)), which the plane's rotation cannot promise.
+    loaded_3d: Option<Arc<Loaded3d>>,
+}
+
+/// What [`Mesh::node_3d`] writes back unchanged: the file's points and their images.
+#[derive(Debug)]
+struct Loaded3d {
+    points: Vec<glam::DVec3>,
+    flat: Vec<DVec2>,
 }
 
 /// A plane in 3D: the point that 2D coordinates `(0, 0)` stand for and two orthonormal
@@ -158,6 +188,26 @@ impl Mesh {
             Some(plane) => plane.to_3d(p),
             None => glam::DVec3::new(p.x, p.y, 0.0),
         }
+    }
+
+    /// Node `i` in 3D: as the file gave it while the node is where it was read (a fixed
+    /// node, or a mesh converted without smoothing: bit for bit), else its position in
+    /// the plane ([`to_3d`](Self::to_3d)).
+    pub fn node_3d(&self, i: usize) -> glam::DVec3 {
+        let p = self.nodes[i];
+        if let Some(l) = &self.loaded_3d {
+            if l.flat.get(i) == Some(&p) {
+                return l.points[i];
+            }
+        }
+        self.to_3d(p)
+    }
+
+    /// Remembers the file's 3D points `points` of the nodes as they are now (see
+    /// [`node_3d`](Self::node_3d)).
+    pub(crate) fn keep_loaded_3d(&mut self, points: Vec<glam::DVec3>) {
+        debug_assert_eq!(points.len(), self.nodes.len());
+        self.loaded_3d = Some(Arc::new(Loaded3d { points, flat: self.nodes.clone() }));
     }
 
     pub fn node_count(&self) -> usize {
@@ -407,6 +457,26 @@ impl Mesh {
         for (i, &j) in k.reversed_order().iter().enumerate() {
             c.elem_nodes[s + i] = old[j];
         }
+        if c.reversed.is_empty() {
+            c.reversed = vec![false; c.kinds.len()];
+        }
+        c.reversed[e] = !c.reversed[e];
+    }
+
+    /// Element `e`'s nodes in the order its file gave them: [`element`](Self::element),
+    /// put back where the element was reversed when read (each kind's reversal is its own
+    /// inverse), so that what smoothlab writes keeps its input's orientation.
+    pub fn element_as_given(&self, e: usize) -> GivenNodes {
+        let ids = self.element(e);
+        let mut given = GivenNodes { ids: [0; 9], len: ids.len() };
+        if self.conn.reversed.get(e).copied().unwrap_or(false) {
+            for (i, &j) in self.kind(e).reversed_order().iter().enumerate() {
+                given.ids[i] = ids[j];
+            }
+        } else {
+            given.ids[..ids.len()].copy_from_slice(ids);
+        }
+        given
     }
 
     /// Bytes held by the mesh: the capacities of all its arrays (positions, flags,

@@ -51,8 +51,10 @@ impl Mesh {
         let mut mesh = Mesh {
             nodes: perm.iter().map(|&i| self.nodes[i as usize]).collect(),
             fixed: perm.iter().map(|&i| self.fixed[i as usize]).collect(),
-            conn: Arc::new(Connectivity { kinds, elem_start, elem_nodes, topo: Topology::default() }),
+            conn: Arc::new(Connectivity { kinds, elem_start, elem_nodes, topo: Topology::default(), reversed: Vec::new() }),
             plane: self.plane,
+            // a working copy: its nodes go back to `self`, which writes them
+            loaded_3d: None,
         };
         // The same elements under other numbers: every check that passed for `self`
         // passes here, so building the topology cannot fail.
