@@ -789,6 +789,13 @@ impl VolumeLab {
         to_js(&self.inner.step(&now_ms))
     }
 
+    /// What the file's triangles and quads fixed that is not on the boundary, or
+    /// `undefined`.
+    #[wasm_bindgen(js_name = fileNote)]
+    pub fn file_note(&self) -> Option<String> {
+        self.inner.file_note()
+    }
+
     /// Both sides back to the mesh as loaded.
     pub fn reset(&mut self) {
         self.inner.reset();

@@ -193,3 +193,61 @@ fn the_command_line_generates_perturbs_measures_smooths_and_converts_tetrahedra(
     assert!(refused(&["render", p(&grid), "--cut", "z=0.5", "-o", p(&png)]).contains("not made of tetrahedra"));
     assert!(refused(&["convert", p(&tangled), p(&d.join("x.obj"))]).contains("not tetrahedra"));
 }
+
+/// Issue 29: a tetrahedral file's triangles (the boundary faces Gmsh writes) were read
+/// for the nodes they fix and then dropped from every output; one inside the volume fixed
+/// its nodes without a word. They are written back (`.msh` 2.2 and 4.1, `.vtk`), and a
+/// triangle off the boundary that fixes a node inside is named in a note.
+#[test]
+fn a_tetrahedral_files_triangles_are_kept_and_one_inside_is_named() {
+    // the unit cube of 2³ cells in tetrahedra, its boundary faces and one inner face as
+    // triangles, no fixed flags of its own (the triangles fix)
+    let cube = smoothlab::generate::tet_cube(2).unwrap();
+    let mut faces: std::collections::HashMap<[u32; 3], (u32, [u32; 3])> = std::collections::HashMap::new();
+    for e in 0..cube.element_count() {
+        let t = cube.element(e);
+        for f in [[t[1], t[2], t[3]], [t[0], t[3], t[2]], [t[0], t[1], t[3]], [t[0], t[2], t[1]]] {
+            let mut key = f;
+            key.sort_unstable();
+            faces.entry(key).or_insert((0, f)).0 += 1;
+        }
+    }
+    let mut tris: Vec<[u32; 3]> = faces.values().filter(|(c, _)| *c == 1).map(|(_, f)| *f).collect();
+    tris.sort_unstable();
+    let inner = faces.values().filter(|(c, _)| *c == 2).map(|(_, f)| *f).find(|f| f.iter().any(|&i| cube.is_free(i as usize))).unwrap();
+    tris.push(inner);
+    let mut text = format!("$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n{}\n", cube.node_count());
+    for (i, p) in cube.nodes().iter().enumerate() {
+        text += &format!("{} {:?} {:?} {:?}\n", i + 1, p.x, p.y, p.z);
+    }
+    text += &format!("$EndNodes\n$Elements\n{}\n", cube.element_count() + tris.len());
+    for e in 0..cube.element_count() {
+        let t = cube.element(e);
+        text += &format!("{} 4 2 0 1 {} {} {} {}\n", e + 1, t[0] + 1, t[1] + 1, t[2] + 1, t[3] + 1);
+    }
+    for (j, f) in tris.iter().enumerate() {
+        text += &format!("{} 2 2 7 1 {} {} {}\n", cube.element_count() + j + 1, f[0] + 1, f[1] + 1, f[2] + 1);
+    }
+    text += "$EndElements\n";
+    let m = volume(io::read_model_str(&text, Format::Msh).unwrap());
+    let given: Vec<Vec<u32>> = tris.iter().map(|f| f.to_vec()).collect();
+    let kept = |m: &TetMesh| -> Vec<Vec<u32>> { m.faces().iter().map(|f| f.nodes().to_vec()).collect() };
+    assert_eq!(kept(&m), given);
+    let note = m.stray_faces_note().expect("the inner triangle is named");
+    let free = inner.iter().find(|&&i| cube.is_free(i as usize)).unwrap();
+    assert!(note.starts_with("1 of the file's triangles") && note.contains(&format!("fixes node {}", free + 1)), "{note}");
+    for (format, opts) in [
+        (Format::Msh, WriteOptions { msh_version: MshVersion::V22 }),
+        (Format::Msh, WriteOptions { msh_version: MshVersion::V41 }),
+        (Format::Vtk, WriteOptions::default()),
+    ] {
+        let written = io::write_model_string(&Model::Volume(m.clone()), format, &opts).unwrap();
+        let back = volume(io::read_model_str(&written, format).unwrap());
+        assert_eq!(kept(&back), given, "{format:?} {opts:?}");
+        same(&m, &back);
+    }
+    // without the inner triangle: the boundary's triangles fix nothing inside, no note
+    let boundary_only = text.lines().filter(|l| !l.starts_with(&format!("{} 2 ", cube.element_count() + tris.len()))).collect::<Vec<_>>().join("\n");
+    let boundary_only = boundary_only.replacen(&format!("$Elements\n{}\n", cube.element_count() + tris.len()), &format!("$Elements\n{}\n", cube.element_count() + tris.len() - 1), 1);
+    assert!(volume(io::read_model_str(&boundary_only, Format::Msh).unwrap()).stray_faces_note().is_none());
+}

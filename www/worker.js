@@ -58,7 +58,8 @@ function replace(next) {
   return {
     surface: isSurface(),
     volume: isVolume(),
-    notPlanar: isSurface() ? pg.notPlanar() ?? null : null,
+    notPlanar: isSurface() && !isVolume() ? pg.notPlanar() ?? null : null,
+    fileNote: isVolume() ? pg.fileNote() ?? null : null,
     nodes: isSurface() ? null : pg.nodeCount(),
   };
 }

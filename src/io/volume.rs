@@ -19,9 +19,19 @@ fn write_point(s: &mut Out, p: glam::DVec3) {
 }
 
 /// A `.msh` text of the tetrahedra (one volume entity in 4.1).
+///
+/// The file's triangles and quads ([`TetMesh::faces`]) follow the tetrahedra (in 4.1 on
+/// one surface entity per kind), numbered after them.
 pub(crate) fn write_msh(mesh: &TetMesh, version: MshVersion, s: &mut Out) {
     let n = mesh.node_count();
     let m = mesh.element_count();
+    let faces = mesh.faces();
+    let face = |s: &mut Out, f: &crate::volume::GivenFace| {
+        for &i in f.nodes() {
+            let _ = write!(s, " {}", i + 1);
+        }
+        s.push('\n');
+    };
     let (ty, k) = if mesh.is_quadratic() { (11, 10) } else { (4, 4) };
     let element = |s: &mut Out, e: usize| {
         let ids = mesh.element(e);
@@ -43,10 +53,14 @@ pub(crate) fn write_msh(mesh: &TetMesh, version: MshVersion, s: &mut Out) {
                 write_point(s, *p);
                 s.push('\n');
             }
-            let _ = writeln!(s, "$EndNodes\n$Elements\n{m}");
+            let _ = writeln!(s, "$EndNodes\n$Elements\n{}", m + faces.len());
             for e in 0..m {
                 let _ = write!(s, "{} {ty} 2 0 1", e + 1);
                 element(s, e);
+            }
+            for (j, f) in faces.iter().enumerate() {
+                let _ = write!(s, "{} {} 2 0 1", m + j + 1, super::msh::type_of(f.kind));
+                face(s, f);
             }
         }
         MshVersion::V41 => {
@@ -56,7 +70,20 @@ pub(crate) fn write_msh(mesh: &TetMesh, version: MshVersion, s: &mut Out) {
                 .fold((glam::DVec3::splat(f64::INFINITY), glam::DVec3::splat(f64::NEG_INFINITY)), |(lo, hi), q| {
                     (lo.min(*q), hi.max(*q))
                 });
-            let _ = write!(s, "$Entities\n0 0 0 1\n1 ");
+            // the faces' kinds, each a block on the one surface entity
+            let mut kinds: Vec<crate::mesh::ElementKind> = faces.iter().map(|f| f.kind).collect();
+            kinds.sort_by_key(|&k| super::msh::type_of(k));
+            kinds.dedup();
+            let surfaces = usize::from(!faces.is_empty());
+            let _ = write!(s, "$Entities\n0 0 {surfaces} 1\n");
+            if surfaces == 1 {
+                s.push_str("1 ");
+                write_point(s, lo);
+                s.push(' ');
+                write_point(s, hi);
+                s.push_str(" 0 0\n");
+            }
+            s.push_str("1 ");
             write_point(s, lo);
             s.push(' ');
             write_point(s, hi);
@@ -68,10 +95,21 @@ pub(crate) fn write_msh(mesh: &TetMesh, version: MshVersion, s: &mut Out) {
                 write_point(s, *p);
                 s.push('\n');
             }
-            let _ = writeln!(s, "$EndNodes\n$Elements\n1 {m} 1 {m}\n3 1 {ty} {m}");
+            let total = m + faces.len();
+            let _ = writeln!(s, "$EndNodes\n$Elements\n{} {total} 1 {total}\n3 1 {ty} {m}", 1 + kinds.len());
             for e in 0..m {
                 let _ = write!(s, "{}", e + 1);
                 element(s, e);
+            }
+            let mut next = m;
+            for &kind in &kinds {
+                let of_kind = faces.iter().filter(|f| f.kind == kind);
+                let _ = writeln!(s, "2 1 {} {}", super::msh::type_of(kind), of_kind.clone().count());
+                for f in of_kind {
+                    next += 1;
+                    let _ = write!(s, "{next}");
+                    face(s, f);
+                }
             }
         }
     }
@@ -79,10 +117,13 @@ pub(crate) fn write_msh(mesh: &TetMesh, version: MshVersion, s: &mut Out) {
     super::msh::write_fixed_view(mesh.fixed(), s);
 }
 
-/// A legacy VTK `UNSTRUCTURED_GRID` of the tetrahedra (cell type 10 or 24).
+/// A legacy VTK `UNSTRUCTURED_GRID` of the tetrahedra (cell type 10 or 24), then the
+/// file's triangles and quads ([`TetMesh::faces`]).
 pub(crate) fn write_vtk(mesh: &TetMesh, s: &mut Out) {
     let n = mesh.node_count();
     let m = mesh.element_count();
+    let faces = mesh.faces();
+    let face_size: usize = faces.iter().map(|f| f.nodes().len() + 1).sum();
     let (ty, k) = if mesh.is_quadratic() { (24, 10) } else { (10, 4) };
     let _ =
         write!(s, "# vtk DataFile Version 3.0\nsmoothlab mesh\nASCII\nDATASET UNSTRUCTURED_GRID\nPOINTS {n} double\n");
@@ -90,7 +131,7 @@ pub(crate) fn write_vtk(mesh: &TetMesh, s: &mut Out) {
         write_point(s, *p);
         s.push('\n');
     }
-    let _ = writeln!(s, "CELLS {m} {}", m * (k + 1));
+    let _ = writeln!(s, "CELLS {} {}", m + faces.len(), m * (k + 1) + face_size);
     for e in 0..m {
         let _ = write!(s, "{k}");
         for &i in mesh.element(e) {
@@ -98,9 +139,19 @@ pub(crate) fn write_vtk(mesh: &TetMesh, s: &mut Out) {
         }
         s.push('\n');
     }
-    let _ = writeln!(s, "CELL_TYPES {m}");
+    for f in faces {
+        let _ = write!(s, "{}", f.nodes().len());
+        for &i in f.nodes() {
+            let _ = write!(s, " {i}");
+        }
+        s.push('\n');
+    }
+    let _ = writeln!(s, "CELL_TYPES {}", m + faces.len());
     for _ in 0..m {
         let _ = writeln!(s, "{ty}");
+    }
+    for f in faces {
+        let _ = writeln!(s, "{}", super::vtk::type_of(f.kind));
     }
     super::vtk::write_fixed(mesh.fixed(), s);
 }

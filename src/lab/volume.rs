@@ -56,6 +56,12 @@ pub struct VolumeLab {
 }
 
 impl VolumeLab {
+    /// What the file's triangles and quads fixed off the boundary
+    /// ([`TetMesh::stray_faces_note`]), for the page to say.
+    pub fn file_note(&self) -> Option<String> {
+        self.original.stray_faces_note()
+    }
+
     /// A lab on `mesh`: both sides start from it, seen by the default camera, cut half
     /// way up z.
     pub fn new(mesh: TetMesh) -> Result<Self> {

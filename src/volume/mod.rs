@@ -62,6 +62,32 @@ pub struct TetParts {
     pub elements: Vec<u32>,
     pub element_lines: Vec<u32>,
     pub fixed: FixedSpec,
+    /// The file's triangles and quads (the boundary faces Gmsh writes), kept to be
+    /// written back.
+    pub faces: Vec<GivenFace>,
+}
+
+/// A triangle or quad a tetrahedral mesh's file gave beside its tetrahedra (Gmsh writes
+/// the boundary faces, often with their physical groups): its nodes fix those nodes, and
+/// the writers write it back after the tetrahedra.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct GivenFace {
+    pub kind: crate::mesh::ElementKind,
+    nodes: [u32; 9],
+    /// Its line in the file (0: not from a file).
+    pub line: u32,
+}
+
+impl GivenFace {
+    pub fn new(kind: crate::mesh::ElementKind, nodes: &[u32], line: u32) -> Self {
+        let mut f = GivenFace { kind, nodes: [0; 9], line };
+        f.nodes[..nodes.len()].copy_from_slice(nodes);
+        f
+    }
+    /// Its nodes, in the file's order.
+    pub fn nodes(&self) -> &[u32] {
+        &self.nodes[..self.kind.node_count()]
+    }
 }
 
 /// A mesh of tetrahedra (see the module docs).
@@ -83,6 +109,8 @@ pub struct TetMesh {
     follow: Vec<[u32; 2]>,
     /// Faces of one tetrahedron, outward (right-handed seen from outside).
     boundary: Vec<[u32; 3]>,
+    /// The file's triangles and quads ([`GivenFace`]).
+    faces: Vec<GivenFace>,
 }
 
 /// Faces of a tetrahedron by local corners, each ordered so that its normal points away
@@ -111,7 +139,7 @@ impl TetMesh {
     /// left-handed (negative total volume) is turned over, every tetrahedron with it;
     /// single inverted tetrahedra stay (a tangled mesh is the smoothers' input).
     pub fn build(parts: TetParts) -> Result<TetMesh> {
-        let TetParts { nodes, node_lines, order, mut elements, element_lines, fixed } = parts;
+        let TetParts { nodes, node_lines, order, mut elements, element_lines, fixed, faces: given_faces } = parts;
         let k = order.nodes();
         let line = |lines: &[u32], i: usize| lines.get(i).copied().filter(|&l| l > 0).map(|l| l as usize);
         if elements.is_empty() {
@@ -314,7 +342,51 @@ impl TetMesh {
             follow_start,
             follow,
             boundary,
+            faces: given_faces,
         })
+    }
+
+    /// The file's triangles and quads, written back after the tetrahedra.
+    pub fn faces(&self) -> &[GivenFace] {
+        &self.faces
+    }
+
+    /// What the file's triangles and quads fixed inside the volume: those that are not a
+    /// boundary face of the tetrahedra fix their nodes as the file asks (where the file
+    /// gave no fixed flags of its own), and this says which nodes off the boundary that
+    /// fixed (`None` when none).
+    pub fn stray_faces_note(&self) -> Option<String> {
+        let mut on_boundary: Vec<[u32; 3]> = self.boundary.iter().map(|f| sorted3(*f)).collect();
+        on_boundary.sort_unstable();
+        let mut boundary_node = vec![false; self.nodes.len()];
+        for f in &self.boundary {
+            for &i in f {
+                boundary_node[i as usize] = true;
+            }
+        }
+        let inner_fixed = |f: &GivenFace| -> Vec<u32> {
+            f.nodes().iter().copied().filter(|&i| self.fixed[i as usize] && !boundary_node[i as usize]).collect()
+        };
+        let stray: Vec<(&GivenFace, Vec<u32>)> = self
+            .faces
+            .iter()
+            .filter(|f| {
+                let c = &f.nodes[..f.kind.corners()];
+                c.len() != 3 || on_boundary.binary_search(&sorted3([c[0], c[1], c[2]])).is_err()
+            })
+            .map(|f| (f, inner_fixed(f)))
+            .filter(|(_, inner)| !inner.is_empty())
+            .collect();
+        let (first, inner) = stray.first()?;
+        let at = if first.line > 0 { format!(" (line {})", first.line) } else { String::new() };
+        let nodes: Vec<String> = inner.iter().map(|i| (i + 1).to_string()).collect();
+        Some(format!(
+            "{} of the file's triangles and quads {} not on the boundary of the tetrahedra and {} nodes inside the volume, as the file asks: the first{at} fixes node {}",
+            stray.len(),
+            if stray.len() == 1 { "is" } else { "are" },
+            if stray.len() == 1 { "fixes" } else { "fix" },
+            nodes.join(", "),
+        ))
     }
 
     /// A linear mesh from points and tetrahedra (generators), boundary nodes fixed.
@@ -326,6 +398,7 @@ impl TetMesh {
             elements: tets.iter().flatten().copied().collect(),
             element_lines: Vec::new(),
             fixed: FixedSpec::Boundary,
+            faces: Vec::new(),
         })
     }
 
@@ -360,6 +433,7 @@ impl TetMesh {
             elements,
             element_lines: Vec::new(),
             fixed: FixedSpec::BoundaryAnd(fixed),
+            faces: self.faces.clone(),
         })
     }
 
@@ -452,4 +526,9 @@ impl TetMesh {
             lo.distance(hi)
         }
     }
+}
+
+fn sorted3(mut f: [u32; 3]) -> [u32; 3] {
+    f.sort_unstable();
+    f
 }

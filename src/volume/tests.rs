@@ -51,6 +51,7 @@ fn parts(nodes: Vec<DVec3>, elements: Vec<u32>) -> TetParts {
         order: TetOrder::Linear,
         elements,
         fixed: FixedSpec::Boundary,
+        faces: Vec::new(),
     }
 }
 

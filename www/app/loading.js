@@ -16,11 +16,12 @@ export async function loadSource(src, call = (...a) => engine.call(...a)) {
   state.node = null;
   state.perturbed = null;
   $('node').value = '';
-  showSurfaceMode(loaded.surface, loaded.notPlanar, Boolean(loaded.volume));
+  const why = loaded.notPlanar ? `Read as a surface in 3D: ${loaded.notPlanar}.` : loaded.fileNote ? `${loaded.fileNote}.` : null;
+  showSurfaceMode(loaded.surface, why, Boolean(loaded.volume));
   return loaded;
 }
 
-/** Has a worker load a source; says what it loaded (`{ surface, volume, notPlanar, nodes }`). */
+/** Has a worker load a source; says what it loaded (`{ surface, volume, notPlanar, fileNote, nodes }`). */
 export async function sendSource(src, call) {
   let loaded = { surface: false };
   switch (src.kind) {
@@ -100,7 +101,7 @@ export function showSurfaceMode(on, why = null, volume = false) {
     $('cut-at-out').textContent = '0.50';
   }
   $('surface-why').hidden = !(on && why);
-  $('surface-why').textContent = on && why ? `Read as a surface in 3D: ${why}.` : '';
+  $('surface-why').textContent = on && why ? why : '';
   for (const id of Object.keys(PLANAR_ONLY)) {
     const el = $(id);
     const waits = planarOnlyWhy(id);

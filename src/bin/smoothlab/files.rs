@@ -21,7 +21,11 @@ pub fn read_model(path: &Path) -> Result<Model, String> {
                 eprintln!("smoothlab: note: {}: read as a surface in 3D: {why}", path.display());
             }
         }
-        Model::Volume(_) => {}
+        Model::Volume(v) => {
+            if let Some(note) = v.stray_faces_note() {
+                eprintln!("smoothlab: note: {}: {note}", path.display());
+            }
+        }
     }
     Ok(model)
 }
