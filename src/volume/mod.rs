@@ -461,6 +461,17 @@ impl TetMesh {
         let k = self.order.nodes();
         &self.elements[e * k..(e + 1) * k]
     }
+    /// The measures of tetrahedron `e` as the statistics take them: by its corners, a
+    /// 10-node one with its mid-edge nodes ([`q3::tet10_measures`]).
+    pub fn measures(&self, e: usize) -> q3::TetMeasures {
+        if self.is_quadratic() {
+            let ids = self.element(e);
+            q3::tet10_measures(&std::array::from_fn(|j| self.nodes[ids[j] as usize]))
+        } else {
+            q3::tet_measures(&self.corners(e))
+        }
+    }
+
     /// The corners of tetrahedron `e`.
     pub fn corners(&self, e: usize) -> [DVec3; 4] {
         let ids = self.element(e);

@@ -120,7 +120,8 @@ impl TetMesh {
             out.kept += 1;
             let t = self.element(e);
             let p = self.corners(e);
-            let q = mean_ratio(&p);
+            // as the statistics measure it (a 10-node tetrahedron with its mid-edge nodes)
+            let q = if self.is_quadratic() { self.measures(e).mean_ratio } else { mean_ratio(&p) };
             for loc in FACES {
                 let ring = loc.map(|j| t[j]);
                 let mut key = ring;

@@ -2,13 +2,13 @@
 //! for every kind of mesh: the CLI's tables, the pass records and the page read it alike).
 
 use super::TetMesh;
-use crate::quality::tet::tet_measures;
 use crate::quality::{angle_bin, MeshStats};
 
 /// The statistics of `mesh`: `min_angle_deg`/`max_angle_deg` and the 6° histogram
 /// (Freitag 1997, Fig. 3) are over the dihedral angles, `min_quality`/`mean_quality` over
 /// the mean ratio, `max_condition` is Knupp's κ (∞ when a tetrahedron is inverted, as for
-/// planar meshes), `inverted` counts tetrahedra of volume ≤ 0, `tetrahedra` the
+/// planar meshes), `inverted` counts tetrahedra of volume ≤ 0 (a 10-node one measured
+/// with its mid-edge nodes, [`TetMesh::measures`]), `tetrahedra` the
 /// elements; `triangles` and `quads` are 0.
 pub fn volume_stats(mesh: &TetMesh) -> MeshStats {
     let nodes = mesh.node_count();
@@ -37,7 +37,7 @@ pub fn volume_stats(mesh: &TetMesh) -> MeshStats {
     };
     let mut sum = 0.0;
     for e in 0..elements {
-        let m = tet_measures(&mesh.corners(e));
+        let m = mesh.measures(e);
         s.inverted += m.inverted as usize;
         s.min_angle_deg = s.min_angle_deg.min(m.min_dihedral_deg);
         s.max_angle_deg = s.max_angle_deg.max(m.max_dihedral_deg);

@@ -220,3 +220,42 @@ fn statistics_are_the_same_at_every_scale() {
     let m = TetMesh::from_tets(base.nodes().iter().map(|&p| p * 2f64.powi(-300)).collect(), &tets).unwrap();
     assert_eq!(volume_stats(&m).min_quality.to_bits(), unit.min_quality.to_bits());
 }
+
+/// Issue 29: a 10-node tetrahedron whose mid-edge node sits far off its edge measured as
+/// the straight one. Measured with its mid-edge nodes (the corner Jacobians), a straight
+/// one measures as its corners (but for rounding), a bent one worse, and one whose
+/// mid-edge node crosses its far corner's plane as inverted.
+#[test]
+fn a_ten_node_tetrahedron_is_measured_with_its_mid_edge_nodes() {
+    use crate::quality::tet::{tet10_measures, tet_measures};
+    let c = [DVec3::ZERO, DVec3::X, DVec3::Y, DVec3::Z];
+    let mut p = [DVec3::ZERO; 10];
+    p[..4].copy_from_slice(&c);
+    for (m, [a, b]) in TET10_EDGES.iter().enumerate() {
+        p[4 + m] = 0.5 * (c[*a] + c[*b]);
+    }
+    let (straight, linear) = (tet10_measures(&p), tet_measures(&c));
+    assert!(!straight.inverted);
+    assert!((straight.mean_ratio - linear.mean_ratio).abs() < 1e-15, "{straight:?} {linear:?}");
+    assert!((straight.min_dihedral_deg - linear.min_dihedral_deg).abs() < 1e-12);
+    // the mid-edge node of edge 0–1 pushed off its edge towards corner 2
+    let mut bent = p;
+    bent[4] += 0.2 * DVec3::Y;
+    let b = tet10_measures(&bent);
+    assert!(!b.inverted && b.mean_ratio < linear.mean_ratio - 0.05, "{b:?}");
+    // slid along its edge past the quarter point: the Jacobian at corner 0 turns over
+    bent[4] = DVec3::new(0.1, 0.0, 0.0);
+    assert!(tet10_measures(&bent).inverted);
+    // and the mesh's statistics say so
+    let mesh = TetMesh::build(TetParts {
+        nodes: bent.to_vec(),
+        node_lines: Vec::new(),
+        order: TetOrder::Quadratic,
+        elements: (0..10).collect(),
+        element_lines: Vec::new(),
+        fixed: FixedSpec::Boundary,
+        faces: Vec::new(),
+    })
+    .unwrap();
+    assert_eq!(crate::volume::volume_stats(&mesh).inverted, 1);
+}
