@@ -345,6 +345,20 @@ pub fn tet_measures(p: &[DVec3; 4]) -> TetMeasures {
     }
 }
 
+/// The tetrahedra of a 10-node tetrahedron's Jacobian at its four corners (see
+/// [`tet10_measures`]): corner `i` first (an even permutation, as [`with_first`]), then
+/// `x_i` plus the tangents `4·m_ik − 3·x_i − x_k` of its three edges.
+pub fn tet10_corner_tets(p: &[DVec3; 10]) -> [[DVec3; 4]; 4] {
+    // the mid-edge node of edge (i, k)
+    const MID: [[usize; 4]; 4] = [[0, 4, 6, 7], [4, 0, 5, 8], [6, 5, 0, 9], [7, 8, 9, 0]];
+    const EVEN: [[usize; 4]; 4] = [[0, 1, 2, 3], [1, 0, 3, 2], [2, 3, 0, 1], [3, 2, 1, 0]];
+    EVEN.map(|order| {
+        let i = order[0];
+        let x = p[i];
+        order.map(|k| if k == i { x } else { x + (4.0 * p[MID[i][k]] - 3.0 * x - p[k]) })
+    })
+}
+
 /// [`TetMeasures`] of a 10-node tetrahedron `p` (corners 0–3, then the mid-edge nodes
 /// of edges 01, 12, 02, 03, 13, 23, VTK's order), measured with its mid-edge nodes: at
 /// each corner the tetrahedron of the element's Jacobian there — the corner and its three
@@ -353,14 +367,8 @@ pub fn tet_measures(p: &[DVec3; 4]) -> TetMeasures {
 /// inverted one first). A straight 10-node tetrahedron measures as its corners do (but
 /// for rounding); one whose mid-edge node sits far off its edge measures as bent.
 pub fn tet10_measures(p: &[DVec3; 10]) -> TetMeasures {
-    // the mid-edge node of edge (i, k)
-    const MID: [[usize; 4]; 4] = [[0, 4, 6, 7], [4, 0, 5, 8], [6, 5, 0, 9], [7, 8, 9, 0]];
-    const EVEN: [[usize; 4]; 4] = [[0, 1, 2, 3], [1, 0, 3, 2], [2, 3, 0, 1], [3, 2, 1, 0]];
     let mut worst: Option<TetMeasures> = None;
-    for order in EVEN {
-        let i = order[0];
-        let x = p[i];
-        let corner = order.map(|k| if k == i { x } else { x + (4.0 * p[MID[i][k]] - 3.0 * x - p[k]) });
+    for corner in tet10_corner_tets(p) {
         let m = tet_measures(&corner);
         let worse = match &worst {
             None => true,

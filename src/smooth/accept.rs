@@ -139,6 +139,28 @@ impl ElementScore {
     }
 }
 
+impl ElementScore {
+    /// A 10-node tetrahedron `p` (VTK's node order) with its mid-edge nodes: its four
+    /// corner Jacobians' tetrahedra ([`q3::tet10_corner_tets`]) — the worst quality, any
+    /// inverted, their inversions summed, the smallest size.
+    pub fn tet10(p: &[DVec3; 10], measure: Measure) -> Self {
+        let mut score: Option<ElementScore> = None;
+        for corner in q3::tet10_corner_tets(p) {
+            let c = ElementScore::tet(&corner, measure);
+            score = Some(match score {
+                None => c,
+                Some(s) => ElementScore {
+                    quality: if c.quality.is_nan() || c.quality < s.quality { c.quality } else { s.quality },
+                    inverted: s.inverted || c.inverted,
+                    inversion: s.inversion + c.inversion,
+                    size: if s.size.at_least(1.0, &c.size) { c.size } else { s.size },
+                },
+            });
+        }
+        score.expect("four corners")
+    }
+}
+
 /// The acceptance rule over a star: fed each element before and after a move
 /// ([`add`](Self::add)), it says whether the move is kept ([`keeps`](Self::keeps)).
 #[derive(Clone, Copy, Debug, PartialEq)]

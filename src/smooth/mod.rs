@@ -309,7 +309,7 @@ impl<S: DriverStar> Smoother<S> {
         let (x, mut out, kept) = self.decide_move(mesh, n, objective);
         if out.moved && !kept && self.accepts_only_no_worse() {
             self.star.gather(mesh, n);
-            if !self.star.verdict(x, self.options.smart_measure).keeps() {
+            if !self.star.verdict_in(mesh, x, self.options.smart_measure).keeps() {
                 out.moved = false;
                 return (mesh.position(n), out);
             }

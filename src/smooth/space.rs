@@ -68,6 +68,12 @@ pub trait DriverStar: NodeStar + Default {
     /// as gathered and with its free node at `x` (the mid-side nodes that follow it
     /// following).
     fn verdict(&self, x: Self::Point, measure: Measure) -> Verdict;
+    /// [`verdict`](Self::verdict) where the star's elements are measured in `mesh` with
+    /// nodes the star does not hold (a 10-node tetrahedron's mid-edge nodes); the default
+    /// is `verdict`.
+    fn verdict_in(&self, _mesh: &Self::Mesh, x: Self::Point, measure: Measure) -> Verdict {
+        self.verdict(x, measure)
+    }
     /// The smart Laplacian's test read straight from the mesh, where a kind of star has
     /// such a shortcut (the planar star of linear triangles); `None` otherwise (the
     /// default), and the gathered star decides.

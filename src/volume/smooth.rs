@@ -130,6 +130,33 @@ impl DriverStar for TetStar {
         }
         v
     }
+    /// A 10-node mesh's tetrahedra with their mid-edge nodes (those of the node's edges
+    /// following it to their middles, as [`TetMesh::follow_mid_nodes`] moves them), so the
+    /// rule reads what the statistics read.
+    fn verdict_in(&self, mesh: &TetMesh, x: DVec3, m: Measure) -> Verdict {
+        if !mesh.is_quadratic() {
+            return self.verdict(x, m);
+        }
+        let n = self.node;
+        let mut v = Verdict::default();
+        for t in &self.tets {
+            let ids = mesh.element(t.element as usize);
+            let before: [DVec3; 10] = std::array::from_fn(|j| mesh.nodes()[ids[j] as usize]);
+            let mut after = before;
+            for (j, &i) in ids[..4].iter().enumerate() {
+                if i == n {
+                    after[j] = x;
+                }
+            }
+            for (k, &[a, b]) in super::TET10_EDGES.iter().enumerate() {
+                if (ids[a] == n || ids[b] == n) && !mesh.fixed()[ids[4 + k] as usize] {
+                    after[4 + k] = 0.5 * (after[a] + after[b]);
+                }
+            }
+            v.add(&ElementScore::tet10(&before, m), &ElementScore::tet10(&after, m));
+        }
+        v
+    }
 }
 
 /// A tetrahedral mesh as its own [`StarView`].
