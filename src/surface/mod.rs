@@ -429,6 +429,9 @@ struct Features<'a> {
     points: &'a [DVec3],
     /// The file's fixed flags, when it gave them: only edges between fixed nodes qualify.
     fixed: Option<&'a [bool]>,
+    /// Per element, its unit normal (`None` for an element without area), worked out
+    /// once: every edge is asked about several times.
+    normal: Vec<Option<DVec3>>,
     /// Per element, its sheet (the elements joined to it across edges that are not
     /// folds) and the number of elements in it.
     sheet: Vec<u32>,
@@ -445,7 +448,8 @@ enum Turn {
 
 impl<'a> Features<'a> {
     fn new(mesh: &'a Mesh, points: &'a [DVec3], fixed: Option<&'a [bool]>) -> Self {
-        let mut f = Features { mesh, points, fixed, sheet: Vec::new(), sheet_elements: Vec::new() };
+        let normal = (0..mesh.element_count()).map(|e| element_normal(mesh, points, e).try_normalize()).collect();
+        let mut f = Features { mesh, points, fixed, normal, sheet: Vec::new(), sheet_elements: Vec::new() };
         let sheet = f.components(|f, e, g, _, _| f.turn(e, g) != Turn::Fold);
         let mut count = vec![0u32; mesh.element_count()];
         for &s in &sheet {
@@ -461,8 +465,7 @@ impl<'a> Features<'a> {
     /// smooth where either has no normal).
     fn turn(&self, e: usize, f: usize) -> Turn {
         let (cos, fold) = (FEATURE_ANGLE_DEG.to_radians().cos(), FOLD_ANGLE_DEG.to_radians().cos());
-        let (n1, n2) = (element_normal(self.mesh, self.points, e), element_normal(self.mesh, self.points, f));
-        let (Some(n1), Some(n2)) = (n1.try_normalize(), n2.try_normalize()) else { return Turn::Smooth };
+        let (Some(n1), Some(n2)) = (self.normal[e], self.normal[f]) else { return Turn::Smooth };
         let c = n1.dot(n2);
         if c >= cos {
             Turn::Smooth

@@ -181,6 +181,18 @@ pub struct Facets {
     grid: Grid,
 }
 
+/// The area vector of triangle `t` of `pts` (twice its area, along its normal), of its
+/// edges multiplied by `unit` (a power of two bringing extreme scales to unit size; 1
+/// inside 2^±200).
+fn area_vector(pts: &[DVec3], t: &[u32; 3], unit: f64) -> DVec3 {
+    let [a, b, c] = t.map(|v| pts[v as usize]);
+    if unit == 1.0 {
+        (b - a).cross(c - a)
+    } else {
+        ((b - a) * unit).cross((c - a) * unit)
+    }
+}
+
 /// Steps the walk takes before the spatial index is asked instead.
 const MAX_WALK: usize = 256;
 
@@ -275,14 +287,7 @@ impl Facets {
             let (f1, f2) = crate::quality::unit_factors(reach);
             f1 * f2
         };
-        let area = |t: &[u32; 3]| {
-            let [a, b, c] = t.map(|v| pts[v as usize]);
-            if unit == 1.0 {
-                (b - a).cross(c - a)
-            } else {
-                ((b - a) * unit).cross((c - a) * unit)
-            }
-        };
+        let area = |t: &[u32; 3]| area_vector(&pts, t, unit);
         let mut vertex_normal = vec![DVec3::ZERO; pts.len()];
         for t in &triangles {
             let n = area(t);
@@ -318,19 +323,7 @@ impl Facets {
         for (_, n) in &mut side_normal {
             *n = crate::quality::direction(*n);
         }
-        let normal_of = |v: u32, k: u32| match side_normal.binary_search_by_key(&(v, k), |&(key, _)| key) {
-            Ok(i) => side_normal[i].1,
-            Err(_) => vertex_normal[v as usize],
-        };
-        // a folded element: a flat triangle whose normal disagrees with a vertex's
-        let folded = triangles.iter().zip(&sides).any(|(tri, &k)| {
-            let n = area(tri);
-            tri.iter().any(|&v| n.dot(normal_of(v, k)) <= 0.0)
-        });
-        if folded {
-            patch.iter_mut().for_each(|p| *p = None);
-        }
-        Facets {
+        let mut facets = Facets {
             points: pts,
             triangles,
             part: parts,
@@ -343,7 +336,16 @@ impl Facets {
             vert_start,
             vert_tris,
             grid,
+        };
+        // a folded element: a flat triangle whose normal disagrees with a vertex's
+        let folded = facets.triangles.iter().zip(&facets.side).any(|(tri, &k)| {
+            let n = area_vector(&facets.points, tri, unit);
+            tri.iter().any(|&v| n.dot(facets.vertex_normal_in(v, k)) <= 0.0)
+        });
+        if folded {
+            facets.patch.iter_mut().for_each(|p| *p = None);
         }
+        facets
     }
 
     /// The unit normal at vertex `v` of its triangles on side `k` ([`Facets::side_normal`]
