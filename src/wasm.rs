@@ -13,7 +13,7 @@ use crate::lab::surface as surface_lab;
 use crate::lab::views::Canvas;
 use crate::lab::volume as volume_lab;
 use crate::lab::{self as playground, Settings, Side, SideSweep};
-use crate::permalink;
+use crate::lab::permalink;
 use crate::render::Theme;
 use crate::surface::Model;
 use glam::DVec2;
@@ -128,8 +128,8 @@ pub fn tour_picture_size(name: &str) -> Result<JsValue, JsError> {
     to_js(&crate::lab::tour::pictures::default_size(fig.name))
 }
 
-/// Reads a permalink hash (`#sample=…&passes=…`) with [`crate::permalink::decode`]: the
-/// [`PageState`](crate::permalink::PageState) as it is, `sample`/`node` null when absent,
+/// Reads a permalink hash (`#sample=…&passes=…`) with [`crate::lab::permalink::decode`]: the
+/// [`PageState`](crate::lab::permalink::PageState) as it is, `sample`/`node` null when absent,
 /// `seed` a number (a BigInt beyond 2^53 − 1). A malformed value is an error naming its key.
 #[wasm_bindgen(js_name = decodePermalink)]
 pub fn decode_permalink(hash: &str) -> Result<JsValue, JsError> {
@@ -142,7 +142,7 @@ pub fn decode_permalink(hash: &str) -> Result<JsValue, JsError> {
 }
 
 /// Writes the hash (with its `#`) of an object shaped as [`decode_permalink`] returns
-/// (fields left out take their defaults), with [`crate::permalink::encode`] after checking
+/// (fields left out take their defaults), with [`crate::lab::permalink::encode`] after checking
 /// every value as the decoder would.
 #[wasm_bindgen(js_name = encodePermalink)]
 pub fn encode_permalink(state: JsValue) -> Result<String, JsError> {
@@ -153,10 +153,10 @@ pub fn encode_permalink(state: JsValue) -> Result<String, JsError> {
 }
 
 /// The page's controls: their ranges, defaults and labels, and which strategy uses which
-/// control (see [`crate::limits::page_controls`]): the page builds its inputs from this.
+/// control (see [`crate::lab::controls::page_controls`]): the page builds its inputs from this.
 #[wasm_bindgen]
 pub fn controls() -> Result<JsValue, JsError> {
-    to_js(&crate::limits::page_controls())
+    to_js(&crate::lab::controls::page_controls())
 }
 
 /// Checks the text of one control (by its permalink key) as the permalink would read it:

@@ -10,8 +10,10 @@
 //! table shows ([`stats::QuickStats`]) and each element's colour bucket up to date, a
 //! version naming its positions, and its last picture ([`raster`] draws fine meshes).
 
+pub mod controls;
 pub mod interact;
 pub mod pass;
+pub mod permalink;
 pub mod pick;
 pub mod raster;
 pub mod sample;
@@ -179,7 +181,7 @@ impl Settings {
         for c in self.compare {
             c.validate()?;
         }
-        let range = crate::limits::BATCH_MAX_ITER;
+        let range = crate::smooth::limits::BATCH_MAX_ITER;
         if !range.contains(self.max_iter.into()) {
             return Err(Error::invalid(format!("{} solver iterations: give {}", self.max_iter, range.words())));
         }

@@ -121,7 +121,7 @@ impl Sample {
     pub const DEFAULT: Sample = Sample::ALL[0];
 
     /// The planar samples of the gallery but the 1M-node one, in gallery order (a
-    /// permalink names every sample of [`Sample::GALLERY`]: [`crate::permalink::SAMPLES`]).
+    /// permalink names every sample of [`Sample::GALLERY`]: [`permalink::SAMPLES`](super::permalink::SAMPLES)).
     pub const ALL: [Sample; 16] = [
         Sample::PlateQuadTangled,
         Sample::PlateTriTangled,
@@ -198,9 +198,10 @@ impl Sample {
         }
     }
 
-    /// Whether a permalink can name the sample ([`crate::permalink::linkable`]: all can).
+    /// Whether a permalink can name the sample (it is one of
+    /// [`permalink::SAMPLES`](super::permalink::SAMPLES): all are).
     pub fn linkable(self) -> bool {
-        crate::permalink::linkable(self)
+        super::permalink::SAMPLES.contains(&self.name())
     }
 
     /// Makes the mesh: a planar one, or a surface in 3D ([`Sample::SURFACES`]).

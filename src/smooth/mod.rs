@@ -24,6 +24,7 @@ use crate::quality::mesh_stats;
 
 mod accept;
 mod guard;
+pub mod limits;
 mod measure;
 mod obstacles;
 mod options;

@@ -82,6 +82,43 @@ impl Strategy {
             }
         }
     }
+    /// As people name it in a sentence ("the smart Laplacian", "Freitag's C1").
+    pub fn words(self) -> &'static str {
+        match self {
+            Strategy::Laplace => "the Laplacian",
+            Strategy::Smart => "the smart Laplacian",
+            Strategy::Opt => "optimization only",
+            Strategy::C1 => "Freitag's C1",
+            Strategy::C2 => "Freitag's C2",
+            Strategy::C3 => "Freitag's C3",
+            Strategy::Rules => "Chen's rules",
+        }
+    }
+    /// Why the threshold angle ([`SmoothOptions::threshold_deg`]) does nothing for this
+    /// strategy, if it does nothing (only Freitag's combined strategies C1–C3 compare a
+    /// star's minimum angle with it).
+    pub fn threshold_unused(self) -> Option<String> {
+        match self {
+            Strategy::C1 | Strategy::C2 | Strategy::C3 => None,
+            Strategy::Rules => Some(
+                "Chen's rules decide by their own tests (curved boundary, invalid element, Laplacian failed), not by an angle"
+                    .into(),
+            ),
+            Strategy::Laplace | Strategy::Smart | Strategy::Opt => {
+                Some(format!("only Freitag's C1, C2 and C3 use a threshold angle, not {}", self.words()))
+            }
+        }
+    }
+    /// Why the solver's iteration limit ([`SmoothOptions::max_iter`]) does nothing for
+    /// this strategy, if it does nothing (the Laplacian strategies never call the solver).
+    pub fn max_iter_unused(self) -> Option<String> {
+        match self {
+            Strategy::Laplace | Strategy::Smart => {
+                Some(format!("{} never calls the solver, so it has no iterations to limit", self.words()))
+            }
+            Strategy::Opt | Strategy::C1 | Strategy::C2 | Strategy::C3 | Strategy::Rules => None,
+        }
+    }
     /// The strategy called `name` (exact, lowercase).
     pub fn parse(name: &str) -> Option<Strategy> {
         Self::ALL.into_iter().find(|s| s.name() == name)
@@ -279,7 +316,7 @@ impl SmoothOptions {
     }
     /// Checks the settings, naming the first unusable one.
     pub fn validate(&self) -> Result<()> {
-        if !(self.threshold_deg.is_finite() && self.threshold_deg > 0.0 && self.threshold_deg <= 90.0) {
+        if !super::limits::threshold_in_range(self.threshold_deg) {
             return Err(Error::invalid(format!(
                 "threshold angle {}° is out of range: give an angle above 0° and at most 90°",
                 self.threshold_deg

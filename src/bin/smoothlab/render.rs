@@ -17,6 +17,7 @@ use smoothlab::render::{
     encode_png, render_angle_histogram, render_mesh, AngleHistogram, HistogramSeries, MeshView, Metric,
 };
 use smoothlab::render::{Camera, SurfaceView, Theme};
+use smoothlab::smooth::limits::RENDER_PASSES;
 use smoothlab::smooth::{smooth, SmoothOptions, Strategy};
 use smoothlab::surface::{Model, Surface, SurfaceSmoother};
 use smoothlab::volume::{smooth_volume, volume_stats, Cut, TetMesh};
@@ -188,8 +189,8 @@ pub fn run(a: RenderArgs) -> Result<(), String> {
         ViewArg::Mesh | ViewArg::Levelset => 0,
         _ => smoothlab::smooth::DEFAULT_PASSES,
     });
-    if passes > 1000 {
-        return Err(format!("--passes {passes}: give at most 1000"));
+    if !RENDER_PASSES.contains(passes.into()) {
+        return Err(format!("--passes {passes}: give at most {}", RENDER_PASSES.max));
     }
     let camera = a.camera.as_deref().map(Camera::parse).transpose().map_err(|e| format!("--camera: {e}"))?;
     let mesh = match crate::files::read_model(&input)? {

@@ -32,7 +32,7 @@ use smoothlab::volume::VolumeSmoother;
 use crate::files::{msh_version_parser, read_model, write_model};
 use smoothlab::io::MshVersion;
 
-use smoothlab::limits::{self, BATCH_MAX_ITER, BATCH_PASSES};
+use smoothlab::smooth::limits::{threshold_in_range, BATCH_MAX_ITER, BATCH_PASSES};
 
 #[derive(Args)]
 pub struct SmoothArgs {
@@ -113,7 +113,7 @@ pub fn order_parser() -> impl clap::builder::TypedValueParser<Value = Order> {
 
 /// Strategies that never call the solver.
 fn is_laplacian_only(strategy: Strategy) -> bool {
-    limits::max_iter_unused(strategy).is_some()
+    strategy.max_iter_unused().is_some()
 }
 
 /// What `--json` prints: one object.
@@ -137,13 +137,13 @@ fn options(a: &SmoothArgs) -> Result<SmoothOptions, String> {
         return Err(format!("--passes {}: give 1 to {}", a.passes, BATCH_PASSES.max));
     }
     if let Some(t) = a.threshold {
-        if limits::threshold_unused(strategy).is_some() {
+        if strategy.threshold_unused().is_some() {
             return Err(format!(
                 "--threshold applies to the combined strategies c1, c2 and c3 only, not to {}",
                 strategy.name()
             ));
         }
-        if !(t.is_finite() && t > 0.0 && t <= 90.0) {
+        if !threshold_in_range(t) {
             return Err(format!("--threshold {t}: give an angle in degrees above 0 and at most 90"));
         }
     }

@@ -13,8 +13,8 @@ pub mod solves;
 use serde::Serialize;
 
 use crate::error::{Error, Result};
-use crate::permalink::{self, PageState};
 
+use super::permalink::{self, PageState};
 use super::sample::Sample;
 use super::Playground;
 

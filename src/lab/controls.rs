@@ -1,112 +1,18 @@
-//! The range of every setting, written once: the page's controls (their `min`, `max` and
-//! `step` come from [`page_controls`]), the permalink's decoder, the playground's
-//! [`Settings`](crate::lab::Settings) and the command-line tool all read them here. The
-//! defaults are [`PageState::default`](crate::permalink::PageState) (itself built on
-//! [`SmoothOptions::default`](crate::smooth::SmoothOptions)).
-//!
-//! The page and its links allow fewer passes and iterations than the command-line tool:
-//! a link opens in a browser tab and runs at once, so it must not run for hours; a batch
-//! run is the user's own choice.
+//! The page's control sheet: every control's label, range, step and default, and every
+//! menu's entries, built from the core's enums and ranges
+//! ([`smooth::limits`](crate::smooth::limits)) and the permalink's defaults
+//! ([`PageState::default`]). The page builds its inputs from [`page_controls`] and checks
+//! what the user types with [`permalink::check_control`](super::permalink::check_control),
+//! so a control, a link and the command-line tool are held to the same rules.
 
 use serde::Serialize;
 
-use crate::permalink::PageState;
+use super::permalink::{control_label, PageState};
+use crate::smooth::limits::{amount_words, IntRange, AMOUNT_STEP, MAX_AMOUNT, MAX_ITER, PASSES, SEED, THRESHOLDS};
 use crate::smooth::Strategy;
 
-/// A whole-number setting: `min ..= max`.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
-pub struct IntRange {
-    pub min: u64,
-    pub max: u64,
-}
-
-impl IntRange {
-    pub fn contains(&self, v: u64) -> bool {
-        (self.min..=self.max).contains(&v)
-    }
-    /// The range in words, as messages say it.
-    pub fn words(&self) -> String {
-        format!("a whole number from {} to {}", self.min, self.max)
-    }
-}
-
-/// Smoothing passes of one Run on the page (and in a permalink).
-pub const PASSES: IntRange = IntRange { min: 1, max: 100 };
-/// Solver iterations per optimization call on the page (and in a permalink).
-pub const MAX_ITER: IntRange = IntRange { min: 1, max: 50 };
-/// The perturbation's seed.
-pub const SEED: IntRange = IntRange { min: 0, max: u64::MAX };
-/// Largest perturbation amount, in mean edge lengths (the smallest is 0).
-pub const MAX_AMOUNT: f64 = 2.0;
-/// The page's slider step for the perturbation amount.
-pub const AMOUNT_STEP: f64 = 0.05;
-/// The threshold angles the page offers, degrees (any angle in `(0, 90]` is valid).
-pub const THRESHOLDS: [f64; 4] = [5.0, 10.0, 15.0, 30.0];
-
-/// Passes of one command-line run (`smooth --passes`, `render --passes`): far beyond any
-/// use, small enough that a typing slip does not run for hours.
-pub const BATCH_PASSES: IntRange = IntRange { min: 1, max: 10_000 };
-/// Solver iterations per call in a command-line run (`--max-iter`) and in the lab.
-pub const BATCH_MAX_ITER: IntRange = IntRange { min: 1, max: 10_000 };
-
-/// Why the threshold angle does nothing for `s`, if it does nothing (only Freitag's
-/// combined strategies C1–C3 compare a star's minimum angle with it).
-pub fn threshold_unused(s: Strategy) -> Option<String> {
-    match s {
-        Strategy::C1 | Strategy::C2 | Strategy::C3 => None,
-        Strategy::Rules => {
-            Some("Chen's rules decide by their own tests (curved boundary, invalid element, Laplacian failed), not by an angle".into())
-        }
-        Strategy::Laplace | Strategy::Smart | Strategy::Opt => {
-            Some(format!("only Freitag's C1, C2 and C3 use a threshold angle, not {}", strategy_words(s)))
-        }
-    }
-}
-
-/// Why the solver's iteration limit does nothing for `s`, if it does nothing (the
-/// Laplacian strategies never call the solver).
-pub fn max_iter_unused(s: Strategy) -> Option<String> {
-    match s {
-        Strategy::Laplace | Strategy::Smart => {
-            Some(format!("{} never calls the solver, so it has no iterations to limit", strategy_words(s)))
-        }
-        Strategy::Opt | Strategy::C1 | Strategy::C2 | Strategy::C3 | Strategy::Rules => None,
-    }
-}
-
-// a link may ask for no more than a batch run allows
-const _: () = assert!(BATCH_PASSES.max >= PASSES.max && BATCH_MAX_ITER.max >= MAX_ITER.max);
-
-/// A strategy as people name it.
-pub fn strategy_words(s: Strategy) -> &'static str {
-    match s {
-        Strategy::Laplace => "the Laplacian",
-        Strategy::Smart => "the smart Laplacian",
-        Strategy::Opt => "optimization only",
-        Strategy::C1 => "Freitag's C1",
-        Strategy::C2 => "Freitag's C2",
-        Strategy::C3 => "Freitag's C3",
-        Strategy::Rules => "Chen's rules",
-    }
-}
-
-/// The label of each control the user types into, by its permalink key: in the page's
-/// tooltips and in every message about the control.
-const CONTROL_LABELS: [(&str, &str); 5] = [
-    ("passes", "Passes"),
-    ("maxiter", "Max iterations"),
-    ("seed", "Seed"),
-    ("tangle", "Perturb amount"),
-    ("threshold", "Threshold angle"),
-];
-
-/// The label of the control behind a permalink key, if the user types it.
-pub fn control_label(key: &str) -> Option<&'static str> {
-    CONTROL_LABELS.iter().find(|(k, _)| *k == key).map(|(_, l)| *l)
-}
-
 fn label(key: &str) -> &'static str {
-    control_label(key).expect("a key of CONTROL_LABELS")
+    control_label(key).expect("a key the user types into")
 }
 
 /// A whole-number control of the page.
@@ -144,7 +50,9 @@ pub struct ThresholdControl {
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct StrategyInfo {
     pub name: &'static str,
-    /// The menu's text and tooltip ([`Strategy::label`], [`Strategy::describe`]).
+    /// The menu's text and tooltip ([`Strategy::label`], [`Strategy::describe`]), and the
+    /// strategy in words ([`Strategy::words`]); why it ignores the threshold angle
+    /// ([`Strategy::threshold_unused`]) and the iteration limit ([`Strategy::max_iter_unused`]).
     pub label: &'static str,
     pub title: &'static str,
     pub words: &'static str,
@@ -171,7 +79,7 @@ pub struct MenuEntry {
 /// compares by default (`objective`, `penalty`).
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct PanelInfo {
-    pub side: crate::lab::Side,
+    pub side: super::Side,
     pub letter: &'static str,
     /// The side's colour in the light theme, and in the dark one (`render::Theme`).
     pub rgb: [u8; 3],
@@ -186,7 +94,7 @@ pub struct PanelInfo {
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct PageControls {
     /// The default settings (strategy, order, …), which the menus start on.
-    pub settings: crate::lab::Settings,
+    pub settings: super::Settings,
     pub passes: IntControl,
     pub maxiter: IntControl,
     pub seed: IntControl,
@@ -241,9 +149,9 @@ pub fn page_controls() -> PageControls {
                 name: s.name(),
                 label: s.label(),
                 title: s.describe(),
-                words: strategy_words(s),
-                threshold_unused: threshold_unused(s),
-                max_iter_unused: max_iter_unused(s),
+                words: s.words(),
+                threshold_unused: s.threshold_unused(),
+                max_iter_unused: s.max_iter_unused(),
             })
             .collect(),
         orders: crate::smooth::Order::ALL
@@ -252,7 +160,7 @@ pub fn page_controls() -> PageControls {
             .collect(),
         objectives: crate::objective::ObjectiveKind::ALL.iter().map(|k| Named { name: k.name(), words: k.describe() }).collect(),
         penalties: crate::objective::Penalty::ALL.iter().map(|p| Named { name: p.name(), words: p.describe() }).collect(),
-        panels: crate::lab::Side::BOTH
+        panels: super::Side::BOTH
             .iter()
             .zip(d.settings.compare)
             .map(|(&side, c)| PanelInfo {
@@ -271,11 +179,6 @@ pub fn page_controls() -> PageControls {
         file_extensions_words: crate::io::extensions_in_words(),
         quality_ramp: crate::render::VIRIDIS,
     }
-}
-
-/// The perturbation amount's range in words.
-pub fn amount_words() -> String {
-    format!("a number from 0 to {MAX_AMOUNT} (mean edge lengths)")
 }
 
 #[cfg(test)]

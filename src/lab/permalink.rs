@@ -4,8 +4,8 @@
 //! One struct, [`PageState`], is the state: the page sends and receives it as it is
 //! (serde), [`decode`] reads it from a hash and [`encode`] writes it. Each key is read
 //! and written in one place ([`read`] and [`write`]), with the ranges of
-//! [`limits`](crate::limits), so a link, a typed control ([`check_control`]) and the
-//! page's object are held to the same rules.
+//! [`smooth::limits`](crate::smooth::limits), so a link, a typed control
+//! ([`check_control`]) and the page's object are held to the same rules.
 //!
 //! `a` and `b` are the objectives of the left and the right panel (`objective` is read as
 //! `b`, and `amount` as `tangle`, as older links name them); `a-penalty` and `b-penalty`
@@ -25,15 +25,15 @@
 
 use serde::{Deserialize, Serialize};
 
+use super::Settings;
 use crate::error::{Error, Result};
-use crate::lab::Settings;
-use crate::limits::{self, amount_words, IntRange, MAX_AMOUNT};
 use crate::objective::{ObjectiveKind, Penalty};
+use crate::smooth::limits::{self, amount_in_range, amount_words, threshold_in_range, IntRange, THRESHOLD_WORDS};
 use crate::smooth::{Order, Strategy};
 
 /// The sample names a permalink may carry: every sample of the page's gallery (its sample
-/// menu: [`Sample::GALLERY`](crate::lab::sample::Sample::GALLERY), planar, surfaces,
-/// tetrahedra and the large ones alike) by its name ([`Sample::name`](crate::lab::sample::Sample::name),
+/// menu: [`Sample::GALLERY`](super::sample::Sample::GALLERY), planar, surfaces,
+/// tetrahedra and the large ones alike) by its name ([`Sample::name`](super::sample::Sample::name),
 /// kebab-case), then one name per Gmsh file the page ships (see [`GMSH_FILES`] and
 /// [`gmsh_sample_name`]). This is the one rule for which samples a link names: the page's
 /// Copy link, `#sample=NAME` and the tour's figures (the command-line tool's `--figure`)
@@ -65,11 +65,6 @@ pub const SAMPLES: &[&str] = &[
     "gmsh-bracket-quad",
     "gmsh-disk-tri6",
 ];
-
-/// Whether a permalink can name a sample of the gallery (every one can: see [`SAMPLES`]).
-pub fn linkable(sample: crate::lab::sample::Sample) -> bool {
-    SAMPLES.contains(&sample.name())
-}
 
 /// The Gmsh files the page ships (its `GMSH_SAMPLES`), each named in [`SAMPLES`] by
 /// [`gmsh_sample_name`].
@@ -210,9 +205,6 @@ fn flag(v: &str) -> std::result::Result<bool, String> {
     }
 }
 
-const THRESHOLD_WORDS: &str = "an angle in degrees, more than 0 and at most 90";
-const NODE: IntRange = IntRange { min: 0, max: u32::MAX as u64 };
-
 /// Sets the field of `key` (one of [`KEYS`]) from its text, or says why the text is refused.
 fn read(s: &mut PageState, key: &'static str, v: &str) -> std::result::Result<(), Refusal> {
     let side = usize::from(key.starts_with('b'));
@@ -223,17 +215,17 @@ fn read(s: &mut PageState, key: &'static str, v: &str) -> std::result::Result<()
             .find(|&&x| x == v)
             .map(|x| s.sample = Some(x.to_string()))
             .ok_or_else(|| format!("the name of a sample of the gallery, one of {}", SAMPLES.join(", "))),
-        "tangle" => number(v, |a| (0.0..=MAX_AMOUNT).contains(&a), amount_words).map(|a| s.amount = a),
+        "tangle" => number(v, amount_in_range, amount_words).map(|a| s.amount = a),
         "seed" => whole(v, limits::SEED).map(|n| s.seed = n),
         "perturbed" => flag(v).map(|f| s.perturbed = f),
         "strategy" => one_of(&Strategy::ALL, Strategy::name, v).map(|t| c.strategy = t),
         "a" | "b" => one_of(&ObjectiveKind::ALL, ObjectiveKind::name, v).map(|k| c.compare[side].objective = k),
         "a-penalty" | "b-penalty" => one_of(&Penalty::ALL, Penalty::name, v).map(|p| c.compare[side].penalty = p),
-        "threshold" => number(v, |t| t > 0.0 && t <= 90.0, || THRESHOLD_WORDS.into()).map(|t| c.threshold_deg = t),
+        "threshold" => number(v, threshold_in_range, || THRESHOLD_WORDS.into()).map(|t| c.threshold_deg = t),
         "passes" => whole(v, limits::PASSES).map(|n| s.passes = n as u32),
         "order" => one_of(&Order::ALL, Order::name, v).map(|o| c.order = o),
         "maxiter" => whole(v, limits::MAX_ITER).map(|n| c.max_iter = n as u32),
-        "node" => whole(v, NODE).map(|n| s.node = Some(n as u32)),
+        "node" => whole(v, limits::NODE).map(|n| s.node = Some(n as u32)),
         "embed" => flag(v).map(|f| s.embed = f),
         _ => Ok(()), // not a key of KEYS: nothing reads it
     };
@@ -324,12 +316,27 @@ fn shortest(v: f64) -> String {
     }
 }
 
+/// The label of each control the user types into, by its permalink key: in the page's
+/// tooltips ([`controls`](super::controls)) and in every message about the control.
+const CONTROL_LABELS: [(&str, &str); 5] = [
+    ("passes", "Passes"),
+    ("maxiter", "Max iterations"),
+    ("seed", "Seed"),
+    ("tangle", "Perturb amount"),
+    ("threshold", "Threshold angle"),
+];
+
+/// The label of the control behind a permalink key, if the user types it.
+pub fn control_label(key: &str) -> Option<&'static str> {
+    CONTROL_LABELS.iter().find(|(k, _)| *k == key).map(|(_, l)| *l)
+}
+
 /// Checks one control's text as the page's user typed it, by the permalink's own rules
 /// for its key (`passes`, `maxiter`, `seed`, `tangle`, `threshold`, …): `Ok` or a message
 /// for people, naming the control by its label and saying the allowed range.
 pub fn check_control(key: &str, text: &str) -> std::result::Result<(), String> {
     let Some(key) = key_of(key) else { return Err(format!("there is no setting called '{key}'")) };
-    let label = limits::control_label(key).unwrap_or(key);
+    let label = control_label(key).unwrap_or(key);
     let text = text.trim();
     if text.is_empty() {
         return Err(format!("{label}: enter a value"));
@@ -342,6 +349,7 @@ pub fn check_control(key: &str, text: &str) -> std::result::Result<(), String> {
 mod tests {
     use super::*;
     use crate::lab::Choice;
+    use crate::smooth::limits::MAX_AMOUNT;
     use crate::smooth::Strategy;
     use proptest::prelude::*;
     use proptest::strategy::Strategy as Generator;
@@ -516,7 +524,7 @@ mod tests {
             .collect();
         for (s, name) in Sample::GALLERY.iter().zip(&want) {
             assert_eq!(s.name(), name);
-            assert!(linkable(*s), "the gallery's {name} is not a permalink sample");
+            assert!(s.linkable(), "the gallery's {name} is not a permalink sample");
         }
         want.extend(GMSH_FILES.iter().map(|f| gmsh_sample_name(f)));
         assert_eq!(SAMPLES, want.iter().map(String::as_str).collect::<Vec<_>>().as_slice());
