@@ -350,7 +350,7 @@ fn a_written_large_msh_reads_back() {
 
 /// The largest mesh the page holds, with the longest coordinates, exported in every
 /// format, fits under the page's own file limit (so the page reads what it exports), and
-/// the page checks that same limit.
+/// the page is handed that same limit.
 #[test]
 fn the_page_reads_what_it_exports() {
     let side = (smoothlab::lab::MAX_NODES as f64).sqrt() as usize - 1;
@@ -368,11 +368,9 @@ fn the_page_reads_what_it_exports() {
     }
     let (node, ele) = io::write_triangle(&m).unwrap();
     assert!(((node.len() + ele.len()) as u64) < io::PAGE_MAX_FILE_BYTES);
-    let app = std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("www/app/state.js")).unwrap();
-    assert!(
-        app.contains(&format!("const MAX_FILE_BYTES = {} * 1024 * 1024;", io::PAGE_MAX_FILE_BYTES >> 20)),
-        "www/app/state.js checks io::PAGE_MAX_FILE_BYTES"
-    );
+    // the page refuses larger files by the limit its control sheet hands it (the browser
+    // tests refuse a file one byte over it)
+    assert_eq!(smoothlab::lab::controls::page_controls().max_file_bytes, io::PAGE_MAX_FILE_BYTES);
 }
 
 // ---- 7. names and messages ---------------------------------------------------------------

@@ -46,8 +46,8 @@ mod vtk;
 /// about 340 MB there).
 pub const MAX_FILE_BYTES: u64 = 1 << 30;
 
-/// The page's own limit on the files it reads (`www/app/state.js` checks it before reading,
-/// holding the file and the mesh in the browser's memory). Every file of a mesh the page
+/// The page's own limit on the files it reads (the page checks it before reading, holding
+/// the file and the mesh in the browser's memory; its control sheet hands it over). Every file of a mesh the page
 /// holds (at most [`crate::lab::MAX_NODES`] nodes) is smaller, so what the page exports,
 /// it reads back.
 pub const PAGE_MAX_FILE_BYTES: u64 = 256 << 20;

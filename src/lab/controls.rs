@@ -7,7 +7,7 @@
 
 use serde::Serialize;
 
-use super::permalink::{control_label, PageState};
+use super::permalink::{control_label, gmsh_sample_name, PageState, GMSH_FILES};
 use crate::smooth::limits::{amount_words, IntRange, AMOUNT_STEP, MAX_AMOUNT, MAX_ITER, PASSES, SEED, THRESHOLDS};
 use crate::smooth::Strategy;
 
@@ -88,9 +88,19 @@ pub struct PanelInfo {
     pub penalty: &'static str,
 }
 
+/// A Gmsh file of the page's sample menu: the file (in the site's `samples/`), its name
+/// in a permalink ([`gmsh_sample_name`]) and its menu entry.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct GmshSample {
+    pub file: &'static str,
+    pub name: String,
+    pub title: &'static str,
+}
+
 /// Everything the page needs to build and check its controls, keyed by the permalink's
 /// keys: `{ settings, passes, maxiter, seed, amount, threshold, strategies, orders,
-/// objectives, penalties, panels }`.
+/// objectives, penalties, panels, file_extensions, file_extensions_words, max_file_bytes,
+/// gmsh_samples, quality_ramp }`.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct PageControls {
     /// The default settings (strategy, order, …), which the menus start on.
@@ -113,6 +123,11 @@ pub struct PageControls {
     /// the same in words.
     pub file_extensions: Vec<String>,
     pub file_extensions_words: String,
+    /// The largest file the page reads, in bytes ([`PAGE_MAX_FILE_BYTES`](crate::io::PAGE_MAX_FILE_BYTES)):
+    /// a larger one is refused by its size before it is read.
+    pub max_file_bytes: u64,
+    /// The Gmsh files of the sample menu ([`GMSH_FILES`]), in its order.
+    pub gmsh_samples: Vec<GmshSample>,
     /// The quality colour map's anchors (viridis, 0 to 1), for the page's own colour key
     /// where a canvas is too small for the drawn colour bar.
     pub quality_ramp: [[u8; 3]; 9],
@@ -177,6 +192,11 @@ pub fn page_controls() -> PageControls {
             .flat_map(|f| f.extensions().iter().map(|e| format!(".{e}")))
             .collect(),
         file_extensions_words: crate::io::extensions_in_words(),
+        max_file_bytes: crate::io::PAGE_MAX_FILE_BYTES,
+        gmsh_samples: GMSH_FILES
+            .iter()
+            .map(|g| GmshSample { file: g.file, name: gmsh_sample_name(g.file), title: g.title })
+            .collect(),
         quality_ramp: crate::render::VIRIDIS,
     }
 }
@@ -207,5 +227,27 @@ mod tests {
         assert_eq!(c.passes.words, "a whole number from 1 to 100");
         assert_eq!((c.maxiter.min.as_str(), c.maxiter.max.as_str(), c.maxiter.default.as_str()), ("1", "50", "3"));
         assert_eq!(c.seed.max, u64::MAX.to_string());
+    }
+
+    #[test]
+    fn the_sheet_hands_the_page_its_gmsh_samples_and_file_limit() {
+        let c = page_controls();
+        let files: Vec<&str> = c.gmsh_samples.iter().map(|g| g.file).collect();
+        assert_eq!(files, ["plate_hole_tri.msh", "bracket_quad.msh", "disk_tri6.msh"]);
+        let names: Vec<&str> = c.gmsh_samples.iter().map(|g| g.name.as_str()).collect();
+        assert_eq!(names, ["gmsh-plate-hole-tri", "gmsh-bracket-quad", "gmsh-disk-tri6"]);
+        for g in &c.gmsh_samples {
+            // the name a link carries opens this very file
+            assert_eq!(super::super::permalink::gmsh_file(&g.name), Some(g.file));
+            assert!(super::super::permalink::SAMPLES.contains(&g.name.as_str()));
+        }
+        assert_eq!(c.gmsh_samples[2].title, "Gmsh: disk, 6-node triangles (curved)");
+        assert_eq!(c.max_file_bytes, 256 << 20);
+        // as the page receives it: a plain number (exact in a JS number), the lists by field
+        let json = serde_json::to_value(&c).unwrap();
+        assert_eq!(json["max_file_bytes"].as_u64(), Some(268_435_456));
+        assert!(json["max_file_bytes"].as_u64().unwrap() < 1 << 53);
+        assert_eq!(json["gmsh_samples"][1]["name"], "gmsh-bracket-quad");
+        assert_eq!(json["gmsh_samples"][1]["file"], "bracket_quad.msh");
     }
 }

@@ -66,9 +66,24 @@ pub const SAMPLES: &[&str] = &[
     "gmsh-disk-tri6",
 ];
 
-/// The Gmsh files the page ships (its `GMSH_SAMPLES`), each named in [`SAMPLES`] by
-/// [`gmsh_sample_name`].
-pub const GMSH_FILES: &[&str] = &["plate_hole_tri.msh", "bracket_quad.msh", "disk_tri6.msh"];
+/// A Gmsh file the page ships (in its `samples/` folder, fetched from the site itself),
+/// with its entry in the page's sample menu.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+pub struct GmshFile {
+    /// The file's name.
+    pub file: &'static str,
+    /// Its entry in the sample menu.
+    pub title: &'static str,
+}
+
+/// The Gmsh files the page ships, in the order of its sample menu, each named in
+/// [`SAMPLES`] by [`gmsh_sample_name`]. The page takes this list from the core
+/// ([`controls::page_controls`](super::controls::page_controls)).
+pub const GMSH_FILES: &[GmshFile] = &[
+    GmshFile { file: "plate_hole_tri.msh", title: "Gmsh: plate with a hole, triangles" },
+    GmshFile { file: "bracket_quad.msh", title: "Gmsh: L-bracket, quads" },
+    GmshFile { file: "disk_tri6.msh", title: "Gmsh: disk, 6-node triangles (curved)" },
+];
 
 /// The permalink name of a Gmsh file: `gmsh-`, then the file name without `.msh` and with
 /// every `_` written `-` (`plate_hole_tri.msh` → `gmsh-plate-hole-tri`).
@@ -78,7 +93,7 @@ pub fn gmsh_sample_name(file: &str) -> String {
 
 /// The Gmsh file a permalink sample name stands for, if it names one of [`GMSH_FILES`].
 pub fn gmsh_file(sample: &str) -> Option<&'static str> {
-    GMSH_FILES.iter().copied().find(|f| gmsh_sample_name(f) == sample)
+    GMSH_FILES.iter().map(|g| g.file).find(|f| gmsh_sample_name(f) == sample)
 }
 
 /// Longest hash [`decode`] reads, in bytes (a full canonical hash is under 300).
@@ -526,11 +541,11 @@ mod tests {
             assert_eq!(s.name(), name);
             assert!(s.linkable(), "the gallery's {name} is not a permalink sample");
         }
-        want.extend(GMSH_FILES.iter().map(|f| gmsh_sample_name(f)));
+        want.extend(GMSH_FILES.iter().map(|g| gmsh_sample_name(g.file)));
         assert_eq!(SAMPLES, want.iter().map(String::as_str).collect::<Vec<_>>().as_slice());
         assert_eq!(gmsh_sample_name("plate_hole_tri.msh"), "gmsh-plate-hole-tri");
-        for f in GMSH_FILES {
-            assert_eq!(gmsh_file(&gmsh_sample_name(f)), Some(*f));
+        for g in GMSH_FILES {
+            assert_eq!(gmsh_file(&gmsh_sample_name(g.file)), Some(g.file));
         }
         assert_eq!(gmsh_file("plate-tri"), None);
         assert_eq!(gmsh_file("gmsh-"), None);
@@ -566,20 +581,23 @@ mod tests {
     }
 
     #[test]
-    fn gmsh_files_are_the_pages_and_are_shipped() {
-        let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
-        let app = std::fs::read_to_string(root.join("www/app/state.js")).unwrap();
-        let start = app.find("const GMSH_SAMPLES = [").expect("www/app/state.js declares GMSH_SAMPLES");
-        let list = &app[start..start + app[start..].find("];").unwrap()];
-        let in_app: Vec<&str> = list
-            .split("['")
-            .skip(1)
-            .map(|item| &item[..item.find('\'').unwrap()])
+    fn gmsh_files_are_exactly_the_shipped_ones_each_once() {
+        // the page offers GMSH_FILES (from the control sheet); the site ships www/samples/
+        let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("www/samples");
+        let mut shipped: Vec<String> = std::fs::read_dir(&dir)
+            .unwrap()
+            .map(|e| e.unwrap().file_name().into_string().unwrap())
+            .filter(|f| f.ends_with(".msh"))
             .collect();
-        assert_eq!(in_app, GMSH_FILES);
-        for f in GMSH_FILES {
-            assert!(root.join("www/samples").join(f).is_file(), "www/samples/{f} is missing");
-        }
+        shipped.sort();
+        let mut offered: Vec<&str> = GMSH_FILES.iter().map(|g| g.file).collect();
+        offered.sort();
+        assert_eq!(offered, shipped);
+        let mut titles: Vec<&str> = GMSH_FILES.iter().map(|g| g.title).collect();
+        titles.sort();
+        titles.dedup();
+        assert_eq!(titles.len(), GMSH_FILES.len(), "two Gmsh files share a menu entry");
+        assert!(GMSH_FILES.iter().all(|g| g.title.starts_with("Gmsh: ")));
     }
 
     #[test]

@@ -199,6 +199,45 @@ try {
     await idle(page);
   });
 
+  await test('the sample menu offers exactly the Gmsh files the site ships, and a link opens one by its name', async () => {
+    const shipped = readdirSync(path.join(WWW, 'samples')).filter((f) => f.endsWith('.msh')).sort();
+    const offered = await page.evaluate(() => [...document.querySelectorAll('#sample option')]
+      .filter((o) => o.value.startsWith('gmsh:')).map((o) => o.value.slice('gmsh:'.length)));
+    check(JSON.stringify([...offered].sort()) === JSON.stringify(shipped), `the menu offers ${offered}, the site ships ${shipped}`);
+    check(shipped.length >= 3, `only ${shipped.length} Gmsh files`);
+    // the core's name for a file (gmsh-, no .msh, _ as -) opens that file
+    const p3 = await context.newPage();
+    watch(p3, 'gmsh link');
+    await p3.goto(`${server.base}#sample=gmsh-disk-tri6&passes=2`);
+    await idle(p3);
+    check((await p3.inputValue('#sample')) === 'gmsh:disk_tri6.msh', `the link opened ${await p3.inputValue('#sample')}`);
+    const s = await stats(p3, 'new');
+    check(Number(s.nodes) > 0, `disk nodes ${s.nodes}`);
+    await p3.close();
+  });
+
+  await test('a file over the page\'s limit (256 MB, the core\'s) is refused by its size, before it is read', async () => {
+    const before = { s: await stats(page, 'new'), c: await canvasInfo(page, 'mesh-new') };
+    await page.evaluate(() => { const m = document.getElementById('message'); m.textContent = ''; m.hidden = true; });
+    // a real file one byte over the limit, dropped on the page: its parts are one small
+    // blob over and over, so the browser need not hold 256 MB to make it
+    const size = await page.evaluate(() => {
+      const mib = new Blob([new Uint8Array(1 << 20)]);
+      const file = new File([...Array(256).fill(mib), new Blob([new Uint8Array(1)])], 'huge.msh');
+      const dt = new DataTransfer();
+      dt.items.add(file);
+      document.dispatchEvent(new DragEvent('drop', { dataTransfer: dt, bubbles: true, cancelable: true }));
+      return file.size;
+    });
+    check(size === 256 * 1048576 + 1, `the file is ${size} bytes`);
+    await page.waitForFunction(() => !document.getElementById('message').hidden, null, { timeout: TIMEOUT });
+    await idle(page);
+    const msg = await page.textContent('#message');
+    check(msg === 'huge.msh is too large (256 MB); the page reads files up to 256 MB.', `message: ${msg}`);
+    const after = { s: await stats(page, 'new'), c: await canvasInfo(page, 'mesh-new') };
+    check(JSON.stringify(after.s) === JSON.stringify(before.s) && after.c.hash === before.c.hash, 'the mesh on screen changed');
+  });
+
   await test('dragging a node moves it on both meshes', async () => {
     await chooseSample(page, 'sample:plate-quad');
     const before = [await canvasInfo(page, 'mesh-old'), await canvasInfo(page, 'mesh-new')];

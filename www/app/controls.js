@@ -1,5 +1,6 @@
-// The controls: the settings they make, their ranges and defaults from the core (limits.rs,
-// written once), the compare menus, what a strategy does not use, typed values checked.
+// The controls: the settings they make, their ranges and defaults from the core
+// (src/lab/controls.rs, written once), the compare menus, what a strategy does not use,
+// typed values checked.
 import { $, COMPARE, clearError, engine, report, serial, setStatus, state } from './state.js';
 import { writePermalink } from './permalink.js';
 import { endRun } from './loading.js';

@@ -1,6 +1,6 @@
 // Loading: a sample, a Gmsh file of the site or the user's file into the engine; the page's
 // planar, surface or volume mode; the previous mesh kept when a load fails.
-import { $, COMPARE, MAX_FILE_BYTES, clearError, engine, metrics, now, report, serial, setStatus, showError, state } from './state.js';
+import { $, COMPARE, clearError, engine, metrics, now, report, serial, setStatus, showError, state } from './state.js';
 import { readChoice, readSettings } from './controls.js';
 import { writePermalink } from './permalink.js';
 import { startHelper } from './workers.js';
@@ -197,9 +197,12 @@ export function endRun() {
 export async function readFiles(files) {
   const list = [...files];
   if (list.length === 0) return;
+  // the page's own limit, from the core's control sheet (asked for here if a file comes
+  // before the page has built its controls)
+  const limit = (state.controls ?? (await engine.call('controls'))).max_file_bytes;
   for (const f of list) {
-    if (f.size > MAX_FILE_BYTES) {
-      const why = `${f.name} is too large (${(f.size / 1048576).toFixed(0)} MB); the page reads files up to ${MAX_FILE_BYTES / 1048576} MB.`;
+    if (f.size > limit) {
+      const why = `${f.name} is too large (${(f.size / 1048576).toFixed(0)} MB); the page reads files up to ${limit / 1048576} MB.`;
       showError(why);
       refuseLoad(f.name, why);
       return;

@@ -1,5 +1,5 @@
 // The playground page's entry: wires the controls, fills the menus and opens the address.
-import { $, COMPARE, EMBED, PARAMS, FIGURE_HASH, GMSH_SAMPLES, SETTINGS, VIEWS, engine, gallery, metrics, now, report, serial, showError, state, view } from './state.js';
+import { $, COMPARE, EMBED, PARAMS, FIGURE_HASH, SETTINGS, VIEWS, engine, gallery, metrics, now, report, serial, showError, state, view } from './state.js';
 import { CHECKED, buildControls, changeCompare, checkControl, showStrategyReasons } from './controls.js';
 import { applyHash, copyLink, markAddressHandled, onAddressChange, openHash, openView, updatePermalink } from './permalink.js';
 import { closeTour, drawFigurePicture, fillTourMenu, goFigure, openFigure } from './tour.js';
@@ -26,9 +26,10 @@ export async function fillGallery() {
   }
   const files = document.createElement('optgroup');
   files.label = 'Meshed by Gmsh (files)';
-  for (const [f, title] of GMSH_SAMPLES) {
+  // the Gmsh files the site ships (www/samples/), as the core lists them
+  for (const { file, title } of state.controls.gmsh_samples) {
     const o = document.createElement('option');
-    o.value = `gmsh:${f}`;
+    o.value = `gmsh:${file}`;
     o.textContent = title;
     files.append(o);
   }

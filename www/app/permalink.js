@@ -1,24 +1,20 @@
-// The address: the permalink written and read by the core's encoder (src/permalink.rs),
+// The address: the permalink written and read by the core's encoder (src/lab/permalink.rs),
 // what a hash opens, the embedded views, Back and Forward.
-import { $, COMPARE, EMBED, FIGURE_HASH, GMSH_SAMPLES, SETTINGS, engine, gallery, report, serial, setStatus, showError, state, view } from './state.js';
+import { $, COMPARE, EMBED, FIGURE_HASH, SETTINGS, engine, gallery, report, serial, setStatus, showError, state, view } from './state.js';
 import { CHECKED, changeCompare, invalidMessage, readChoice, readSettings, showPenaltyReasons, showStrategyReasons } from './controls.js';
 import { openFigure } from './tour.js';
 import { labelOf, load, selectValueOf } from './loading.js';
 import { perturbWith, smooth } from './run.js';
 import { selectNode } from './pointer.js';
 
-/** The permalink name of a Gmsh file: `gmsh-`, the name without `.msh`, `_` as `-`
- * (the rule of `gmsh_sample_name` in src/permalink.rs, which tests this list). */
-export function gmshSampleName(file) {
-  return `gmsh-${file.replace(/\.msh$/, '').replaceAll('_', '-')}`;
-}
 /** The permalink sample name of what is loaded, or null (a user's file has none). Every
- * sample of the gallery has one (src/permalink.rs, SAMPLES), surfaces and tetrahedra too. */
+ * sample of the gallery has one (src/lab/permalink.rs, SAMPLES), surfaces and tetrahedra
+ * too; a Gmsh file the name the core gives it in the control sheet. */
 export function sourceSample() {
   const s = state.lastGood;
   if (!s) return null;
   if (s.kind === 'sample') return s.name;
-  if (s.kind === 'gmsh') return gmshSampleName(s.name);
+  if (s.kind === 'gmsh') return state.controls.gmsh_samples.find((g) => g.file === s.name)?.name ?? null;
   return null;
 }
 /** The hash of the loaded sample and the controls, written by the Rust encoder. */
@@ -120,8 +116,8 @@ export async function applyHash(hash = location.hash) {
   showPenaltyReasons();
   const extra = { perturbed: p.perturbed ? { amount: p.amount, seed: String(p.seed) } : null, node: p.node };
   if (p.sample === null) return { src: fallback, ...extra };
-  const gmsh = GMSH_SAMPLES.find(([f]) => gmshSampleName(f) === p.sample);
-  if (gmsh) return { src: { kind: 'gmsh', name: gmsh[0] }, ...extra };
+  const gmsh = state.controls.gmsh_samples.find((g) => g.name === p.sample);
+  if (gmsh) return { src: { kind: 'gmsh', name: gmsh.file }, ...extra };
   if ([...$('sample').options].some((o) => o.value === `sample:${p.sample}`)) return { src: { kind: 'sample', name: p.sample }, ...extra };
   return { src: fallback, ...extra };
 }

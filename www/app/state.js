@@ -9,15 +9,8 @@ import { redrawAll } from './draw.js';
 
 export const $ = (id) => document.getElementById(id);
 
-/** Gmsh meshes shipped with the site (www/samples/), fetched from the site itself. */
-export const GMSH_SAMPLES = [
-  ['plate_hole_tri.msh', 'Gmsh: plate with a hole, triangles'],
-  ['bracket_quad.msh', 'Gmsh: L-bracket, quads'],
-  ['disk_tri6.msh', 'Gmsh: disk, 6-node triangles (curved)'],
-];
 /** The sample the page opens on: the first of the engine's gallery (`Sample::DEFAULT`). */
 export const gallery = { defaultSample: null };
-export const MAX_FILE_BYTES = 256 * 1024 * 1024;
 export const SETTINGS = ['strategy', 'threshold', 'order', 'passes', 'maxiter', 'amount', 'seed', 'objective-a', 'penalty-a', 'objective-b', 'penalty-b'];
 /** The compare menus of the left (A) and right (B) panel. */
 export const COMPARE = [['objective-a', 'penalty-a'], ['objective-b', 'penalty-b']];
@@ -51,7 +44,7 @@ export const nextFrame = () => new Promise((r) => requestAnimationFrame(() => r(
 export const metrics = { lastLoad: null, lastStep: null, run: null, startup: null };
 
 export const state = {
-  controls: null, // ranges, defaults and per-strategy reasons, from the core (limits.rs)
+  controls: null, // the core's control sheet (src/lab/controls.rs): ranges, defaults, per-strategy reasons, menus, the Gmsh samples, the file limit
   invalid: new Map(), // control id → its message, while what is typed there is not valid
   perturbed: null, // {amount, seed} when the mesh on screen is the loaded one perturbed
   generation: 0, // counts what replaces the meshes (load, Perturb, Reset): a run's last words are for its own
