@@ -328,7 +328,7 @@ impl PassRun {
         PassProgress {
             done: true,
             fraction: 1.0,
-            side: Side::New,
+            side: Side::B,
             stage: PassStage::Done,
             visits: self.counts.visits as usize,
             planned: self.schedule.len(),
@@ -542,17 +542,17 @@ mod tests {
     fn an_abandoned_pass_leaves_no_trace() {
         let mut pg = Playground::new(Sample::Rand2dTangled.generate().unwrap()).unwrap();
         pg.step(&no_clock);
-        let before = [pg.panel(Side::Old).mesh.nodes().to_vec(), pg.panel(Side::New).mesh.nodes().to_vec()];
-        let versions = [pg.version(Side::Old), pg.version(Side::New)];
-        let tables = [pg.table(Side::Old), pg.table(Side::New)];
+        let before = [pg.panel(Side::A).mesh.nodes().to_vec(), pg.panel(Side::B).mesh.nodes().to_vec()];
+        let versions = [pg.version(Side::A), pg.version(Side::B)];
+        let tables = [pg.table(Side::A), pg.table(Side::B)];
         let clock = ticking();
         pg.begin_pass();
         let mut p = pg.continue_pass(&clock, 2.0).unwrap();
-        while p.side == Side::Old {
+        while p.side == Side::A {
             p = pg.continue_pass(&clock, 2.0).unwrap();
         }
         assert!(!p.done && p.fraction >= 0.5);
-        assert_ne!(pg.panel(Side::Old).mesh.nodes(), before[0], "the old panel was smoothed");
+        assert_ne!(pg.panel(Side::A).mesh.nodes(), before[0], "the old panel was smoothed");
         pg.abort_pass();
         assert!(!pg.pass_in_progress());
         for side in Side::BOTH {
@@ -566,7 +566,7 @@ mod tests {
         pg.continue_pass(&clock, 2.0).unwrap();
         pg.set_settings(Settings::default()).unwrap();
         assert!(!pg.pass_in_progress());
-        assert_eq!(pg.panel(Side::Old).mesh.nodes(), before[0]);
+        assert_eq!(pg.panel(Side::A).mesh.nodes(), before[0]);
     }
 
     #[test]
@@ -587,8 +587,8 @@ mod tests {
                     let what = format!("{sample:?} {strategy:?} {order:?} pass {pass}");
                     let expected = whole.step(&clock);
                     primary.begin_split_pass();
-                    let helper_before = helper.panel(Side::Old).mesh.nodes().to_vec();
-                    helper.begin_sweep(Side::Old, &primary.panel_positions(Side::Old)).unwrap();
+                    let helper_before = helper.panel(Side::A).mesh.nodes().to_vec();
+                    helper.begin_sweep(Side::A, &primary.panel_positions(Side::A)).unwrap();
                     // the first pass hands the sweep over while the new panel is smoothed,
                     // the second once the split pass waits for it
                     if pass == 2 {
@@ -598,7 +598,7 @@ mod tests {
                     }
                     assert!(helper.take_sweep().is_none(), "not before it is done");
                     while !helper.continue_pass(&clock, 3.0).unwrap().done {}
-                    assert_eq!(helper.panel(Side::Old).mesh.nodes(), helper_before, "{what}: the helper is put back");
+                    assert_eq!(helper.panel(Side::A).mesh.nodes(), helper_before, "{what}: the helper is put back");
                     let (nodes, sweep) = helper.take_sweep().unwrap();
                     assert!(helper.take_sweep().is_none());
                     primary.adopt_sweep(&nodes, sweep).unwrap();
@@ -635,14 +635,14 @@ mod tests {
     fn an_abandoned_split_pass_leaves_no_trace_and_bad_sweeps_are_refused() {
         let mesh = Sample::Rand2dTangled.generate().unwrap();
         let (mut primary, mut helper) = (Playground::new(mesh.clone()).unwrap(), Playground::new(mesh).unwrap());
-        let before = [primary.panel(Side::Old).mesh.nodes().to_vec(), primary.panel(Side::New).mesh.nodes().to_vec()];
-        let tables = [primary.table(Side::Old), primary.table(Side::New)];
+        let before = [primary.panel(Side::A).mesh.nodes().to_vec(), primary.panel(Side::B).mesh.nodes().to_vec()];
+        let tables = [primary.table(Side::A), primary.table(Side::B)];
         let n = before[0].len();
         let clock = ticking();
-        helper.begin_sweep(Side::Old, &primary.panel_positions(Side::Old)).unwrap();
+        helper.begin_sweep(Side::A, &primary.panel_positions(Side::A)).unwrap();
         while !helper.continue_pass(&clock, 2.0).unwrap().done {}
         let (nodes, sweep) = helper.take_sweep().unwrap();
-        assert!(sweep.counts.visits > 0 && nodes != primary.panel_positions(Side::Old));
+        assert!(sweep.counts.visits > 0 && nodes != primary.panel_positions(Side::A));
         assert!(primary.adopt_sweep(&nodes, sweep).is_err(), "no split pass in progress");
         primary.begin_pass();
         assert!(primary.adopt_sweep(&nodes, sweep).is_err(), "a whole pass adopts nothing");
@@ -652,7 +652,7 @@ mod tests {
         nan[7] = f64::NAN;
         let e = primary.adopt_sweep(&nan, sweep).unwrap_err().to_string();
         assert!(e.contains("node 3"), "{e}");
-        assert!(helper.begin_sweep(Side::Old, &vec![0.0; 2 * n + 2]).is_err());
+        assert!(helper.begin_sweep(Side::A, &vec![0.0; 2 * n + 2]).is_err());
         primary.continue_pass(&clock, 2.0).unwrap();
         primary.adopt_sweep(&nodes, sweep).unwrap();
         primary.continue_pass(&clock, 2.0).unwrap();
@@ -663,10 +663,10 @@ mod tests {
             assert_eq!(primary.table(side), tables[side as usize]);
         }
         // an abandoned sweep puts the helper back too
-        helper.begin_sweep(Side::Old, &nodes).unwrap();
+        helper.begin_sweep(Side::A, &nodes).unwrap();
         helper.continue_pass(&clock, 1.0).unwrap();
         helper.abort_pass();
-        assert_eq!(helper.panel(Side::Old).mesh.nodes(), before[0]);
+        assert_eq!(helper.panel(Side::A).mesh.nodes(), before[0]);
         assert!(helper.take_sweep().is_none());
     }
 }
