@@ -3,8 +3,8 @@
 //!
 //! One struct, [`PageState`], is the state: the page sends and receives it as it is
 //! (serde), [`decode`] reads it from a hash and [`encode`] writes it. Each key is read
-//! and written in one place ([`read`] and [`write`]), with the ranges of
-//! [`limits`](crate::limits), so a link, a typed control ([`check_control`]) and the
+//! and written in one place (`read` and `write`), with the ranges of
+//! [`crate::limits`], so a link, a typed control ([`check_control`]) and the
 //! page's object are held to the same rules.
 //!
 //! `a` and `b` are the objectives of the left and the right panel (`objective` is read as
