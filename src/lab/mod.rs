@@ -243,8 +243,8 @@ impl Playground {
 
     /// Starts a pass to be run in slices by [`continue_pass`](Self::continue_pass)
     /// (a pass already in progress is abandoned first). The result is the same as
-    /// [`step`](Self::step)'s, bit for bit: the old panel is swept in the order the
-    /// smoother plans, then measured, then the new panel ([`pass`] runs it).
+    /// [`step`](Self::step)'s, bit for bit: panel A is swept in the order the
+    /// smoother plans, then measured, then panel B ([`pass`] runs it).
     pub fn begin_pass(&mut self) {
         self.abort_pass();
         self.undo.clear(); // a move before a pass is not undone over the pass's work
@@ -252,8 +252,8 @@ impl Playground {
     }
 
     /// Starts a pass split between two engines (the page's two workers): this playground
-    /// runs the new panel's pass as [`begin_pass`](Self::begin_pass) does, while another
-    /// one, on the same mesh with the same settings, sweeps the old panel
+    /// runs panel B's pass as [`begin_pass`](Self::begin_pass) does, while another
+    /// one, on the same mesh with the same settings, sweeps panel A
     /// ([`begin_sweep`](Self::begin_sweep)); its result is handed over with
     /// [`adopt_sweep`](Self::adopt_sweep), then measured here. Until then
     /// [`continue_pass`](Self::continue_pass) says [`PassStage::Wait`]. The records and
@@ -288,7 +288,7 @@ impl Playground {
         self.swept.take().map(|(nodes, sweep)| (interleaved(&nodes), sweep))
     }
 
-    /// Hands the old panel's sweep, made by another engine, to the split pass in progress
+    /// Hands panel A's sweep, made by another engine, to the split pass in progress
     /// ([`begin_split_pass`](Self::begin_split_pass)): its positions (x, y interleaved)
     /// and what it did.
     pub fn adopt_sweep(&mut self, nodes: &[f64], sweep: SideSweep) -> Result<()> {

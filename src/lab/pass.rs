@@ -6,10 +6,10 @@
 //! `abort_pass`) only holds the run.
 //!
 //! The two panels' sweeps are independent, so a pass can also be *split* between two
-//! engines (the page's two workers, on two cores): one playground sweeps the old panel
+//! engines (the page's two workers, on two cores): one playground sweeps panel A
 //! alone ([`super::Playground::begin_sweep`], no statistics, the panel put back after),
 //! while the other runs a split pass ([`super::Playground::begin_split_pass`]): the new
-//! panel as usual, then the old panel's sweep adopted from the first
+//! panel as usual, then panel A's sweep adopted from the first
 //! ([`super::Playground::adopt_sweep`]) and measured. The records and positions are the
 //! whole pass's, bit for bit.
 
@@ -54,7 +54,7 @@ pub enum PassStage {
     Smooth,
     /// Measuring the smoothed mesh's statistics.
     Measure,
-    /// A split pass waits for the other engine's sweep of the old panel
+    /// A split pass waits for the other engine's sweep of panel A
     /// ([`super::Playground::adopt_sweep`]).
     Wait,
     /// The pass is complete.
@@ -75,7 +75,7 @@ pub struct SideSweep {
 pub(super) enum RunKind {
     /// Both panels: the old one, then the new one.
     Whole,
-    /// The new panel, then the old one's sweep adopted from another engine and measured.
+    /// Panel B, then A's sweep adopted from another engine and measured.
     Split,
     /// The sweep of one panel alone, without statistics, for another engine.
     Sweep(usize),
@@ -119,14 +119,14 @@ impl PassProgress {
     }
 }
 
-/// A pass in progress: the old panel's sweep and statistics, then the new panel's (in
+/// A pass in progress: panel A's sweep and statistics, then panel B's (in
 /// the order of [`RunKind`]).
 pub(super) struct PassRun {
     kind: RunKind,
     /// The panels in the order the run takes them, and how many of them it has done.
     order: [usize; 2],
     k: usize,
-    /// The old panel's sweep by another engine, once a split run adopted it; a sweep run's
+    /// Panel A's sweep by another engine, once a split run adopted it; a sweep run's
     /// own, once made.
     sweep: Option<SideSweep>,
     stage: Stage,
@@ -160,7 +160,7 @@ fn adapt_slice(size: usize, dt: f64, budget_ms: f64) -> usize {
 }
 
 impl PassRun {
-    /// A pass about to begin on the old panel.
+    /// A pass about to begin on panel A.
     pub(super) fn new() -> PassRun {
         PassRun::of(RunKind::Whole)
     }
@@ -208,7 +208,7 @@ impl PassRun {
             let p = &mut panels[side];
             match self.stage {
                 Stage::Plan if self.kind == RunKind::Split && side == 0 => {
-                    // the old panel was swept by another engine: measure it once adopted
+                    // panel A was swept by another engine: measure it once adopted
                     let Some(sweep) = self.sweep else { return false };
                     self.counts = sweep.counts;
                     self.sweep_ms = sweep.sweep_ms;
@@ -336,9 +336,9 @@ impl PassRun {
         }
     }
 
-    /// A split run adopts the old panel's sweep made by another engine: its positions
+    /// A split run adopts panel A's sweep made by another engine: its positions
     /// `nodes` and what it did. The panel is saved first, so an abandoned pass puts it
-    /// back; it is measured when the new panel is done.
+    /// back; it is measured when panel B is done.
     pub(super) fn adopt(
         &mut self,
         panels: &mut [Panel; 2],
@@ -552,7 +552,7 @@ mod tests {
             p = pg.continue_pass(&clock, 2.0).unwrap();
         }
         assert!(!p.done && p.fraction >= 0.5);
-        assert_ne!(pg.panel(Side::A).mesh.nodes(), before[0], "the old panel was smoothed");
+        assert_ne!(pg.panel(Side::A).mesh.nodes(), before[0], "panel A was smoothed");
         pg.abort_pass();
         assert!(!pg.pass_in_progress());
         for side in Side::BOTH {
@@ -589,7 +589,7 @@ mod tests {
                     primary.begin_split_pass();
                     let helper_before = helper.panel(Side::A).mesh.nodes().to_vec();
                     helper.begin_sweep(Side::A, &primary.panel_positions(Side::A)).unwrap();
-                    // the first pass hands the sweep over while the new panel is smoothed,
+                    // the first pass hands the sweep over while panel B is smoothed,
                     // the second once the split pass waits for it
                     if pass == 2 {
                         while primary.continue_pass(&clock, 3.0).unwrap().stage != PassStage::Wait {}
