@@ -17,7 +17,7 @@
 pub mod surface;
 pub mod volume;
 
-use glam::DVec2;
+use glam::{DVec2, DVec3};
 use tiny_skia::Pixmap;
 
 use super::views::{pixmap, Canvas};
@@ -76,9 +76,9 @@ pub trait Mesh3d: Clone + Sized {
     /// The mesh drawn by the 3D view (cut by `cut` where the kind has one); the projection
     /// it used.
     fn draw(&self, pm: &mut Pixmap, cut: Self::Cut, view: &SurfaceView) -> Projection;
-    /// The node under the CSS pixel `at` of a picture drawn with `proj`, within `radius`
-    /// CSS pixels, where the kind's view shows its nodes.
-    fn pick(&self, proj: &Projection, at: DVec2, radius: f64) -> Option<usize>;
+    /// The points a pick chooses among, where the kind's view shows its nodes (`None`
+    /// where it does not: a cut volume's faces hide the nodes behind).
+    fn pickable_points(&self) -> Option<&[DVec3]>;
     /// The mesh as the text of a file (one of [`EXPORTS`](Self::EXPORTS)).
     fn write(&self, format: Format) -> Result<String>;
     /// Why a file's points were read as this kind, where that needs saying.
@@ -370,8 +370,9 @@ impl<M: Mesh3d> Lab3d<M> {
     /// `c`, within `radius` CSS pixels, the near side winning ([`Projection::pick`]);
     /// always `None` for a kind whose view does not show its nodes (a cut volume).
     pub fn pick(&self, side: Side, c: Canvas, at: DVec2, radius: f64) -> Result<Option<usize>> {
+        let Some(points) = self.mesh(side).pickable_points() else { return Ok(None) };
         let (_, proj) = self.render(side, c)?;
-        Ok(self.mesh(side).pick(&proj, at, radius))
+        Ok(proj.pick(points, at.x, at.y, radius))
     }
 
     /// As [`pick`](Self::pick) on the canvas of the last [`frame`](Self::frame); a

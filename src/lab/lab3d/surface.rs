@@ -4,7 +4,7 @@
 //! the planar shape measure, perturbed in its tangent planes ([`perturb_surface`]); a node
 //! is picked where it is drawn, the near side winning.
 
-use glam::DVec2;
+use glam::DVec3;
 use tiny_skia::Pixmap;
 
 use super::Mesh3d;
@@ -72,8 +72,8 @@ impl Mesh3d for Surface {
     fn draw(&self, pm: &mut Pixmap, _cut: (), view: &SurfaceView) -> Projection {
         self.render(pm, Metric::Shape, view)
     }
-    fn pick(&self, proj: &Projection, at: DVec2, radius: f64) -> Option<usize> {
-        proj.pick(self.points(), at.x, at.y, radius)
+    fn pickable_points(&self) -> Option<&[DVec3]> {
+        Some(self.points())
     }
     fn write(&self, format: Format) -> Result<String> {
         write_string(self, format, &WriteOptions::default())
@@ -86,6 +86,7 @@ impl Mesh3d for Surface {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use glam::DVec2;
     use crate::lab::views::Canvas;
     use crate::lab::Lab3d;
     use crate::render::Camera;
@@ -209,5 +210,24 @@ mod tests {
         let kept = l.original().points().to_vec();
         assert!(l.perturb(f64::NAN, 1).is_err());
         assert_eq!(l.original().points(), &kept[..], "a refused perturbation changes nothing");
+    }
+
+    #[test]
+    fn a_frame_draws_both_sides_and_picks_map_through_its_canvas() {
+        let mut l = lab(Sample::SphereTangled);
+        assert_eq!(l.kind(), "surface");
+        assert!(l.pick_in_frame(Side::A, DVec2::ZERO, 3.0).is_err(), "nothing drawn yet");
+        let c = Canvas { w: 240, h: 200, dpr: 1.0 };
+        let f = l.frame(c, &no_clock).unwrap();
+        assert_eq!(f.pictures[0].data(), l.render(Side::A, c).unwrap().0.data());
+        assert_eq!(f.colour_bar, l.colour_bar_shown(c));
+        let (_, proj) = l.render(Side::B, c).unwrap();
+        let pts = l.mesh(Side::B).points();
+        let front = (0..pts.len()).min_by(|&i, &j| proj.depth(pts[i]).total_cmp(&proj.depth(pts[j]))).unwrap();
+        // a radius that is not positive and finite is the page's default
+        assert_eq!(l.pick_in_frame(Side::B, proj.to_css(pts[front]), f64::NAN).unwrap(), Some(front));
+        assert!(l.export_named(Side::A, "obj").unwrap().contains("\nf "));
+        let e = l.export_named(Side::A, "node").unwrap_err().to_string();
+        assert!(e.contains("cannot export a surface as 'node': use msh, vtk, obj or off"), "{e}");
     }
 }

@@ -5,7 +5,7 @@
 //! plane ([`Cut`]); and the two sides' dihedral angles in Freitag's 6° bins. No node is
 //! picked in the cut view: its faces hide the nodes behind.
 
-use glam::DVec2;
+use glam::DVec3;
 use tiny_skia::Pixmap;
 
 use super::{Lab3d, Mesh3d};
@@ -71,7 +71,7 @@ impl Mesh3d for TetMesh {
     fn draw(&self, pm: &mut Pixmap, cut: Cut, view: &SurfaceView) -> Projection {
         self.render_cut(pm, cut, view)
     }
-    fn pick(&self, _proj: &Projection, _at: DVec2, _radius: f64) -> Option<usize> {
+    fn pickable_points(&self) -> Option<&[DVec3]> {
         None
     }
     fn write(&self, format: Format) -> Result<String> {
@@ -124,6 +124,7 @@ impl Lab3d<TetMesh> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use glam::DVec2;
     use crate::lab::sample::Sample;
 
     fn lab() -> Lab3d<TetMesh> {
@@ -175,5 +176,19 @@ mod tests {
         assert!(l.export(Side::B, Format::Obj).is_err());
         l.perturb(0.8, 3).unwrap();
         assert!(l.stats(Side::A).mesh.inverted > 0);
+    }
+
+    #[test]
+    fn the_cut_view_picks_no_node_and_exports_tetrahedral_formats_only() {
+        let mut l = lab();
+        assert_eq!(l.kind(), "volume");
+        let c = Canvas { w: 200, h: 160, dpr: 1.0 };
+        let f = l.frame(c, &no_clock).unwrap();
+        assert_eq!(f.pictures[1].data(), l.render(Side::B, c).unwrap().0.data());
+        assert_eq!(l.pick_in_frame(Side::A, DVec2::new(100.0, 80.0), 64.0).unwrap(), None);
+        assert!(l.export_named(Side::B, "msh").unwrap().starts_with("$MeshFormat"));
+        let e = l.export_named(Side::B, "obj").unwrap_err().to_string();
+        assert!(e.contains("cannot export tetrahedra as 'obj': use msh or vtk"), "{e}");
+        assert_eq!(l.not_planar(), None);
     }
 }
