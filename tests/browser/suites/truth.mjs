@@ -52,7 +52,7 @@ const linkName = (value) => (value.startsWith('gmsh:')
 
 /** The title and the value of a table row, for each side. */
 async function row(p, key) {
-  return p.evaluate((key) => ['old', 'new'].map((side) => {
+  return p.evaluate((key) => ['a', 'b'].map((side) => {
     const tr = document.querySelector(`#stats-${side} tr[data-stat="${key}"]`);
     return tr && { title: tr.querySelector('th').title, label: tr.querySelector('th').textContent, text: tr.querySelector('td').textContent, better: tr.querySelector('td').classList.contains('better') };
   }), key);
@@ -108,7 +108,7 @@ export default async function ({ server, context }) {
     const marks = await p.evaluate(async () => {
       const { fillTables } = await import(new URL('app/tables.js', location.href).href);
       const side = (title, v) => ({ title, label: title, nodes: 10, elements: 8, inverted: 0, min_angle_deg: v.min, max_angle_deg: v.max, min_quality: v.q, passes: 1, detail: { mean_quality: 0.9, small_angle_share: v.small, max_condition: v.k } });
-      fillTables({ old: side('A', { min: 30, max: 90.000001, q: 0.81234, small: 0.0021, k: 2.0004 }), new: side('B', { min: 31, max: 90, q: 0.81236, small: 0.0024, k: 2.0003 }) });
+      fillTables({ a: side('A', { min: 30, max: 90.000001, q: 0.81234, small: 0.0021, k: 2.0004 }), b: side('B', { min: 31, max: 90, q: 0.81236, small: 0.0024, k: 2.0003 }) });
       const out = {};
       for (const tr of document.querySelectorAll('#stats-a tr')) {
         const o = tr.querySelector('td');
