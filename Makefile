@@ -1,6 +1,6 @@
 # smoothlab — the two commands of the quick start are `make serve` and `make test`.
 #   make serve   build the page (wasm + www/) and serve it on http://127.0.0.1:8000
-#   make test    every test: clippy, native unit/integration tests, wasm build, browser tests
+#   make test    every test: clippy (host and wasm32) and the docs, native unit/integration tests, wasm build, browser tests
 #   make site    build the complete static site into www/ (www/pkg is generated)
 #   make figures        the README's pictures and the papers' figures (docs/figures.md)
 #   make reproduction   rerun the papers' experiments into docs/reproduction.md (a few minutes)
@@ -18,8 +18,12 @@ serve: site
 
 test: lint unit site browser
 
-lint:
+# clippy for the host (every target: lib, CLI, tests, examples, benches) and for the page's
+# wasm32 build (the wasm layer compiles only there), then the docs with broken links denied
+lint: tools
 	$(CARGO) clippy --all-targets -- -D warnings
+	$(CARGO) clippy --lib --target wasm32-unknown-unknown -- -D warnings
+	RUSTDOCFLAGS="-D warnings" $(CARGO) doc --no-deps
 
 unit:
 	$(CARGO) test

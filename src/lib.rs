@@ -99,8 +99,6 @@ pub mod surface;
 pub mod volume;
 #[cfg(target_arch = "wasm32")]
 mod wasm;
-#[cfg(target_arch = "wasm32")]
-mod wasm_bench;
 
 pub use error::{Error, Result};
 pub use mesh::{ElementKind, Mesh, MeshBuilder};

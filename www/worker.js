@@ -17,10 +17,11 @@ function need() {
   return pg;
 }
 
-// The handle is a Playground (a planar mesh), a SurfaceLab (a surface in 3D) or a
-// VolumeLab (tetrahedra, drawn cut by a plane): the last two share the 3D view's methods.
-const isVolume = () => pg instanceof wasm.VolumeLab;
-const isSurface = () => pg instanceof wasm.SurfaceLab || isVolume();
+// The handle is a Playground (a planar mesh) or a Lab3d (a mesh in 3D: a surface, or
+// tetrahedra drawn cut by a plane; its kind() says which).
+let kind = null;
+const isVolume = () => kind === 'volume';
+const isSurface = () => kind !== null;
 
 /** The handle of a planar mesh: what only a planar mesh has (level sets, dragging, charts). */
 function planar() {
@@ -54,12 +55,13 @@ function applyTheme() {
 function replace(next) {
   if (pg) pg.free();
   pg = next;
+  kind = pg instanceof wasm.Lab3d ? pg.kind() : null;
   applyTheme();
   return {
     surface: isSurface(),
     volume: isVolume(),
-    notPlanar: isSurface() && !isVolume() ? pg.notPlanar() ?? null : null,
-    fileNote: isVolume() ? pg.fileNote() ?? null : null,
+    notPlanar: isSurface() ? pg.notPlanar() ?? null : null,
+    fileNote: isSurface() ? pg.fileNote() ?? null : null,
     nodes: isSurface() ? null : pg.nodeCount(),
   };
 }
@@ -91,8 +93,8 @@ const handlers = {
     return p.continuePass(budgetMs);
   },
   continuePass: (budgetMs) => planar().continuePass(budgetMs),
-  // a pass split between two workers (lab::pass): this one smooths the new side and measures
-  // both, the other sweeps the old side from this one's positions and hands them back
+  // a pass split between two workers (lab::pass): this one smooths side B and measures
+  // both, the other sweeps side A from this one's positions and hands them back
   splitPass: (settings, budgetMs) => {
     const p = planar();
     p.setSettings(settings);
@@ -101,7 +103,7 @@ const handlers = {
   },
   positions: (side) => planar().panelPositions(side),
   adoptSweep: (nodes, sweep) => planar().adoptSweep(nodes, sweep),
-  // the other worker's part: the old side's sweep, its result taken with the last slice
+  // the other worker's part: side A's sweep, its result taken with the last slice
   sweep: (settings, side, nodes, budgetMs) => {
     const p = planar();
     p.setSettings(settings);
@@ -115,7 +117,7 @@ const handlers = {
   frame: (w, h, dpr, force) => {
     const p = need();
     const f = isSurface() ? p.frame(w, h, dpr) : p.frame(w, h, dpr, Boolean(force));
-    f.stats = { old: p.stats('old'), new: p.stats('new') };
+    f.stats = { a: p.stats('a'), b: p.stats('b') };
     return f;
   },
   forgetFrames: () => (isSurface() ? null : need().forgetFrames()),
@@ -140,7 +142,7 @@ const handlers = {
   rememberBeforeMove: (node) => planar().rememberBeforeMove(node),
   undo: () => planar().undo(),
   nudge: (panel, dx, dy) => planar().nudgeNode(panel, dx, dy),
-  undoState: () => planar().undoState(),
+  undoSummary: () => planar().undoSummary(),
   smoothNode: (w, h, cw, ch, dpr) => planar().smoothNode(w, h, cw, ch, dpr),
   figure: (w, h, dpr) => planar().figure(w, h, dpr),
   panicForTest: () => wasm.panicForTest(),

@@ -1,7 +1,7 @@
 //! Mesh file formats: Gmsh `.msh` (2.2 and 4.1 ASCII), legacy VTK ASCII
 //! `UNSTRUCTURED_GRID`, Triangle `.node`/`.ele`, OBJ and OFF.
 //!
-//! Readers parse text into a [`MeshBuilder`](crate::mesh::MeshBuilder), recording the
+//! Readers parse text into a [`MeshBuilder`], recording the
 //! file line of every node and element, so every error names a line or an element.
 //! Nothing here panics on any input, and no header count is trusted for an allocation
 //! before it is checked against the bytes left to read.
@@ -426,7 +426,7 @@ const LINE_BOUND: u64 = 256;
 
 /// Writes a mesh file in the format of the path's extension (`.node`/`.ele`: both files).
 /// The text goes to the file in chunks, never whole in memory. A mesh whose text could
-/// pass [`MAX_FILE_BYTES`] (by [`LINE_BOUND`]) is measured first, so that a text too large
+/// pass [`MAX_FILE_BYTES`] (by `LINE_BOUND`) is measured first, so that a text too large
 /// is refused before anything is written, as it always was.
 #[cfg(not(target_arch = "wasm32"))]
 pub fn write_path<'a>(mesh: impl Into<Writable<'a>>, path: &std::path::Path, opts: &WriteOptions) -> Result<()> {

@@ -182,7 +182,7 @@ impl Playground {
     /// (the level-set view's solve), the node then moved to what it found. Undoable.
     pub fn smooth_one_node(&mut self, node: usize) -> Result<[SolveResult; 2]> {
         self.check_movable(node)?;
-        let results = [self.solve_node(Side::Old, node)?, self.solve_node(Side::New, node)?];
+        let results = [self.solve_node(Side::A, node)?, self.solve_node(Side::B, node)?];
         if let Some(r) = results.iter().find(|r| !r.x.is_finite()) {
             return Err(Error::node(node, None, format!("the solver found no finite position ({})", r.x)));
         }
@@ -207,7 +207,7 @@ mod tests {
     }
 
     fn worst(pg: &Playground) -> usize {
-        crate::lab::pick::worst_free_node(&pg.panel(Side::New).mesh).unwrap()
+        crate::lab::pick::worst_free_node(&pg.panel(Side::B).mesh).unwrap()
     }
 
     #[test]
@@ -216,9 +216,9 @@ mod tests {
         let before = Side::BOTH.map(|s| pg.panel(s).mesh.nodes().to_vec());
         let n = worst(&pg);
         pg.remember_before_move(n).unwrap();
-        pg.move_node(n, pg.panel(Side::Old).mesh.nodes()[n] + DVec2::new(0.01, -0.02)).unwrap();
-        pg.move_node(n, pg.panel(Side::Old).mesh.nodes()[n] + DVec2::new(0.01, 0.0)).unwrap();
-        assert_ne!(pg.panel(Side::Old).mesh.nodes(), before[0]);
+        pg.move_node(n, pg.panel(Side::A).mesh.nodes()[n] + DVec2::new(0.01, -0.02)).unwrap();
+        pg.move_node(n, pg.panel(Side::A).mesh.nodes()[n] + DVec2::new(0.01, 0.0)).unwrap();
+        assert_ne!(pg.panel(Side::A).mesh.nodes(), before[0]);
         assert_eq!((pg.undo_depth(), pg.undo_node()), (1, Some(n)));
         assert_eq!(pg.undo(), Some(n));
         for s in Side::BOTH {
@@ -238,7 +238,7 @@ mod tests {
     fn smoothing_one_node_moves_it_to_the_solvers_answer_on_each_side() {
         let mut pg = perturbed_plate();
         let n = worst(&pg);
-        let solved = [pg.solve_node(Side::Old, n).unwrap(), pg.solve_node(Side::New, n).unwrap()];
+        let solved = [pg.solve_node(Side::A, n).unwrap(), pg.solve_node(Side::B, n).unwrap()];
         let results = pg.smooth_one_node(n).unwrap();
         for s in Side::BOTH {
             let r = &results[s.index()];
@@ -247,7 +247,7 @@ mod tests {
             assert_eq!(pg.panel(s).mesh.nodes()[n], r.x);
         }
         // the new objective is a sum to minimise: it did not get worse
-        let r = &results[Side::New.index()];
+        let r = &results[Side::B.index()];
         assert!(r.value <= r.value0, "{} → {}", r.value0, r.value);
         assert_eq!(pg.undo(), Some(n));
     }
@@ -268,12 +268,12 @@ mod tests {
         assert_eq!(pg.zoom().pan, pan + DVec2::new(10.0, -4.0));
         // the level sets: the fraction under the pointer stays
         let n = worst(&pg);
-        let (whole, view) = pg.level_view(Side::Old, n, c);
+        let (whole, view) = pg.level_view(Side::A, n, c);
         let p = view.css_to_world(at);
-        pg.zoom_level_sets_at(Side::Old, n, c, at, 2.0);
-        let (_, shown) = pg.level_bounds(Side::Old, n);
+        pg.zoom_level_sets_at(Side::A, n, c, at, 2.0);
+        let (_, shown) = pg.level_bounds(Side::A, n);
         assert!(((shown.1 - shown.0) - 0.5 * (whole.1 - whole.0)).length() < 1e-12);
-        let (_, view2) = pg.level_view(Side::Old, n, c);
+        let (_, view2) = pg.level_view(Side::A, n, c);
         assert!((view2.css_to_world(at) - p).length() < 1e-9 * (whole.1 - whole.0).length());
         pg.reset_zoom();
         assert_eq!((pg.zoom(), pg.level_window()), (ZoomPan::default(), LevelWindow::default()));

@@ -1,8 +1,10 @@
-//! The laboratory: old versus new, side by side. The playground page's state in plain
+//! The laboratory: A versus B, side by side. The playground page's state in plain
 //! Rust (no web types; the wasm layer and the CLI's `render` both call it): the
-//! original mesh, and one copy per side — the OLD max-min objective (Freitag 1997, left)
-//! and the NEW smooth objective (Chen, Tristano & Kwok 2003, right) — that the page
-//! smooths, perturbs and drags side by side.
+//! original mesh, and one copy per side, each smoothed with its own objective — by
+//! default the old max-min objective (Freitag 1997) on the left (A) and the new smooth
+//! objective (Chen, Tristano & Kwok 2003) on the right (B) — that the page smooths,
+//! perturbs and drags side by side ([`settings`]: the sides and what they run). A mesh in
+//! space has its own lab, [`Lab3d`], written once for surfaces and tetrahedra.
 //!
 //! At scale (up to [`MAX_NODES`]): a pass can run in slices of a time budget
 //! ([`Playground::begin_pass`], [`Playground::continue_pass`], [`Playground::abort_pass`];
@@ -12,32 +14,36 @@
 
 pub mod controls;
 pub mod interact;
+pub mod lab3d;
 pub mod pass;
 pub mod permalink;
 pub mod pick;
 pub mod raster;
 pub mod sample;
+pub mod screen;
+pub mod settings;
 pub mod stats;
-pub mod surface;
+pub mod table;
 pub mod tour;
 pub mod views;
-pub mod volume;
 
 use std::cell::{OnceCell, RefCell};
 
 use glam::DVec2;
-use serde::{Deserialize, Serialize};
 use tiny_skia::Pixmap;
 
 use crate::error::{Error, Result};
 use crate::generate::perturb;
 use crate::io::{write_string, Format, WriteOptions};
 use crate::mesh::Mesh;
-use crate::objective::{objective_with, Objective, ObjectiveKind, Penalty};
+use crate::objective::Objective;
 use crate::optimize::SolveResult;
 use crate::quality::MeshStats;
-use crate::smooth::{solve_node, Order, SmoothOptions, Smoother, Strategy};
+use crate::smooth::{solve_node, Smoother};
+pub use lab3d::{Frame3d, Lab3d, Mesh3d};
 pub use pass::{PassProgress, PassStage, SideSweep};
+pub use settings::{Choice, Settings, Side};
+pub use table::{PanelStats, PanelTable, TableDetail, WorkDone, DETAIL_MAX_ELEMENTS, SMALL_ANGLE_DEG};
 use pass::{PassRun, RunKind};
 use stats::{quick_stats_and_buckets, QuickStats};
 use views::Canvas;
@@ -46,169 +52,6 @@ use views::Canvas;
 /// the positions as loaded) and draws every element each frame.
 pub const MAX_NODES: usize = 1_000_000;
 
-/// The two panels of the page: the left one (A) and the right one (B). Each smooths
-/// with its own [`Choice`] of objective; by default the left runs Chen et al.'s
-/// "previous method" (the old max-min objective, Freitag 1997) and the right their new
-/// smooth one, so the panels keep the names `old` and `new`.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(rename_all = "lowercase")]
-pub enum Side {
-    /// The left panel (A), by default Freitag's max-min objective.
-    Old,
-    /// The right panel (B), by default Chen, Tristano & Kwok's smooth objective.
-    New,
-}
-
-impl Side {
-    pub const BOTH: [Side; 2] = [Side::Old, Side::New];
-    fn index(self) -> usize {
-        self as usize
-    }
-    /// `A` or `B`, as the page heads its panels.
-    pub fn letter(self) -> &'static str {
-        match self {
-            Side::Old => "A",
-            Side::New => "B",
-        }
-    }
-    /// The colour of this side wherever it is drawn (meshes' titles, charts, histograms,
-    /// legends; the page takes it from here): the Okabe–Ito orange for the left side and
-    /// blue for the right, told apart by people with any colour vision.
-    pub fn rgb(self) -> [u8; 3] {
-        match self {
-            Side::Old => crate::render::SERIES[1],
-            Side::New => crate::render::SERIES[2],
-        }
-    }
-    /// [`rgb`](Self::rgb) as a tiny-skia colour.
-    pub fn color(self) -> tiny_skia::Color {
-        let [r, g, b] = self.rgb();
-        tiny_skia::Color::from_rgba8(r, g, b, 255)
-    }
-}
-
-/// What a panel smooths with: an objective and, for `new`, the design of its penalty.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
-pub struct Choice {
-    /// By its command-line name (`old`, `sine`, `new`, `condition`, …).
-    pub objective: ObjectiveKind,
-    /// The penalty of `new` (`barrier`, `angle`); absent means the default. Other
-    /// objectives have no penalty: it is then the default.
-    #[serde(default)]
-    pub penalty: Penalty,
-}
-
-impl Choice {
-    /// The left panel's default: the old max-min objective.
-    pub const OLD: Choice = Choice { objective: ObjectiveKind::Old, penalty: Penalty::Barrier };
-    /// The right panel's default: the new objective with its default penalty.
-    pub const NEW: Choice = Choice { objective: ObjectiveKind::New, penalty: Penalty::Barrier };
-
-    /// The objective it names.
-    pub fn build(self) -> Box<dyn Objective> {
-        objective_with(self.objective, self.penalty)
-    }
-
-    /// A short label for legends: `old (max-min α/β …)`, `new (…, angle penalty)`.
-    pub fn label(self) -> String {
-        match self.objective {
-            ObjectiveKind::New => format!("new, {} penalty", self.penalty.name()),
-            k => format!("{} ({})", k.name(), k.describe().split(" (").next().unwrap_or("")),
-        }
-    }
-
-    /// A title for a picture or a panel: the label and who it is from.
-    pub fn title(self) -> String {
-        match self.objective {
-            ObjectiveKind::New => format!("new: {}, {} penalty", self.objective.describe(), self.penalty.name()),
-            k => format!("{}: {}", k.name(), k.describe()),
-        }
-    }
-
-    /// Checks that a penalty is given only to `new` (as the command line refuses it).
-    fn validate(self) -> Result<()> {
-        if self.objective != ObjectiveKind::New && self.penalty != Penalty::default() {
-            return Err(Error::invalid(format!(
-                "the {} penalty is a design of the new objective; {} has no penalty",
-                self.penalty.name(),
-                self.objective.name()
-            )));
-        }
-        Ok(())
-    }
-}
-
-/// The shared controls of the page (both sides smooth with the same settings), and what
-/// each side smooths with.
-#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
-pub struct Settings {
-    /// By its name (`rules`, `c2`, …), as the page's menus give it.
-    pub strategy: Strategy,
-    /// Freitag's threshold angle θ_t, degrees.
-    pub threshold_deg: f64,
-    /// `input` or `priority`.
-    pub order: Order,
-    /// Solver iterations per optimization call.
-    pub max_iter: u32,
-    /// What the left (A) and the right (B) panel smooth with; absent means old against
-    /// new (with the barrier penalty).
-    #[serde(default = "default_compare")]
-    pub compare: [Choice; 2],
-}
-
-fn default_compare() -> [Choice; 2] {
-    [Choice::OLD, Choice::NEW]
-}
-
-impl Default for Settings {
-    /// The core's defaults ([`SmoothOptions::default`]: Chen's algorithm, rules in priority
-    /// order, 3 iterations per call; θ_t = 30°); old against new with the barrier penalty.
-    fn default() -> Self {
-        let d = SmoothOptions::default();
-        Settings {
-            strategy: d.strategy,
-            threshold_deg: d.threshold_deg,
-            order: d.order,
-            max_iter: d.max_iter,
-            compare: default_compare(),
-        }
-    }
-}
-
-impl Settings {
-    /// The drivers' options (checked), after checking each side's choice.
-    pub fn smooth_options(&self) -> Result<SmoothOptions> {
-        for c in self.compare {
-            c.validate()?;
-        }
-        let range = crate::smooth::limits::BATCH_MAX_ITER;
-        if !range.contains(self.max_iter.into()) {
-            return Err(Error::invalid(format!("{} solver iterations: give {}", self.max_iter, range.words())));
-        }
-        let o = SmoothOptions::default()
-            .with_strategy(self.strategy)
-            .with_order(self.order)
-            .with_threshold_deg(self.threshold_deg)
-            .with_max_iter(self.max_iter);
-        o.validate()?;
-        Ok(o)
-    }
-
-    /// What `side` smooths with.
-    pub fn choice(&self, side: Side) -> Choice {
-        self.compare[side.index()]
-    }
-
-    /// A side's heading: its letter and what it smooths with ([`Choice::title`]).
-    pub fn side_title(&self, side: Side) -> String {
-        format!("{}: {}", side.letter(), self.choice(side).title())
-    }
-
-    /// The same, short ([`Choice::label`]), for a compact page.
-    pub fn side_label(&self, side: Side) -> String {
-        format!("{}: {}", side.letter(), self.choice(side).label())
-    }
-}
 
 /// What one pass did on one panel and where its mesh stands after it: the core's record,
 /// without the objective total (the page never shows it, and it costs more than a
@@ -264,96 +107,6 @@ impl Panel {
     }
 }
 
-/// The work a panel's passes did since the last reset: its records, summed.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize)]
-pub struct WorkDone {
-    pub passes: usize,
-    pub laplacian_moves: u64,
-    pub optimization_calls: u64,
-    pub solver_iterations: u64,
-    /// Smoothing time summed over the passes, milliseconds by the caller's clock.
-    pub time_ms: f64,
-}
-
-impl WorkDone {
-    /// The sums of `records`.
-    pub fn of(records: &[PassSummary]) -> WorkDone {
-        let sum = |f: fn(&PassSummary) -> u32| records.iter().map(|r| f(r) as u64).sum();
-        WorkDone {
-            passes: records.len(),
-            laplacian_moves: sum(|r| r.counts.laplacian_moves),
-            optimization_calls: sum(|r| r.counts.optimization_calls),
-            solver_iterations: sum(|r| r.counts.solver_iterations),
-            time_ms: records.iter().map(|r| r.elapsed_ms).sum(),
-        }
-    }
-}
-
-/// What a panel's statistics table shows: the mesh now and the work done since the last reset.
-#[derive(Clone, Debug, PartialEq, Serialize)]
-pub struct PanelStats {
-    pub side: Side,
-    #[serde(flatten)]
-    pub mesh: MeshStats,
-    #[serde(flatten)]
-    pub work: WorkDone,
-}
-
-/// The page's statistics table: [`PanelStats`] with the cheap statistics of
-/// [`QuickStats`] in place of the full ones.
-#[derive(Clone, Debug, PartialEq, Serialize)]
-pub struct PanelTable {
-    pub side: Side,
-    /// The panel's heading: its letter and what it smooths with ([`Choice::title`]).
-    pub title: String,
-    /// The same, short ([`Choice::label`]), for a compact page.
-    pub label: String,
-    pub nodes: usize,
-    pub elements: usize,
-    #[serde(flatten)]
-    pub mesh: QuickStats,
-    /// The rows that need every corner measured, when they were (see [`TableDetail`]).
-    pub detail: Option<TableDetail>,
-    /// A surface's largest distance of a node from its reference surface; `None` for a
-    /// planar mesh.
-    pub max_distance_from_surface: Option<f64>,
-    #[serde(flatten)]
-    pub work: WorkDone,
-}
-
-/// Corners under this angle, degrees, count as poor in the table: Freitag (1997) judges
-/// meshes by their angle distribution (Fig. 3), and 18° is three of its 6° bins.
-pub const SMALL_ANGLE_DEG: f64 = 18.0;
-
-/// Meshes with at most this many elements have their table's [`TableDetail`] measured
-/// after every change; larger ones when their charts are drawn (after a run).
-pub const DETAIL_MAX_ELEMENTS: usize = 250_000;
-
-/// The rows of the table that come from the full statistics ([`MeshStats`]), which
-/// measure every corner's angle and every element's condition number.
-#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
-pub struct TableDetail {
-    /// Mean element quality α/β.
-    pub mean_quality: f64,
-    /// Share of corner angles under [`SMALL_ANGLE_DEG`], 0 to 1 (inverted corners count).
-    pub small_angle_share: f64,
-    /// Worst condition number κ; `None` when an element is inverted (κ = ∞).
-    pub max_condition: Option<f64>,
-}
-
-impl TableDetail {
-    /// The detail rows of full statistics.
-    pub fn of(s: &MeshStats) -> TableDetail {
-        let bins = (SMALL_ANGLE_DEG / 6.0) as usize;
-        let total: u64 = s.angle_histogram_6deg.iter().sum();
-        let small: u64 = s.angle_histogram_6deg.iter().take(bins).sum();
-        TableDetail {
-            mean_quality: s.mean_quality,
-            small_angle_share: if total == 0 { 0.0 } else { small as f64 / total as f64 },
-            max_condition: s.max_condition.is_finite().then_some(s.max_condition),
-        }
-    }
-}
 
 /// Hands out the numbers that name a panel's positions: each call a new one.
 #[derive(Debug)]
@@ -394,6 +147,8 @@ pub struct Playground {
     /// The CSS pixels each side's level-set legend took when it was last drawn, so a
     /// pointer on it maps as it was drawn.
     level_legend: std::cell::Cell<[f32; 2]>,
+    /// What the page's screen shows of it: the canvases, the chosen node, the frames sent.
+    screen: screen::Screen,
 }
 
 /// Positions as x, y interleaved, the form in which they travel between two engines.
@@ -417,8 +172,8 @@ impl Playground {
         let original = mesh.nodes().to_vec();
         let bounds = mesh.bounds();
         let mean_edge = mesh.mean_edge_length();
-        let old = Panel::new(Side::Old, mesh.clone(), &settings, 1, &full, buckets.clone())?;
-        let new = Panel::new(Side::New, mesh, &settings, 1, &full, buckets.clone())?;
+        let old = Panel::new(Side::A, mesh.clone(), &settings, 1, &full, buckets.clone())?;
+        let new = Panel::new(Side::B, mesh, &settings, 1, &full, buckets.clone())?;
         Ok(Playground {
             original,
             original_version: 1,
@@ -436,6 +191,7 @@ impl Playground {
             undo: Vec::new(),
             theme: crate::render::Theme::light(),
             level_legend: std::cell::Cell::new([0.0; 2]),
+            screen: screen::Screen::default(),
         })
     }
 
@@ -489,8 +245,8 @@ impl Playground {
 
     /// Starts a pass to be run in slices by [`continue_pass`](Self::continue_pass)
     /// (a pass already in progress is abandoned first). The result is the same as
-    /// [`step`](Self::step)'s, bit for bit: the old panel is swept in the order the
-    /// smoother plans, then measured, then the new panel ([`pass`] runs it).
+    /// [`step`](Self::step)'s, bit for bit: panel A is swept in the order the
+    /// smoother plans, then measured, then panel B ([`pass`] runs it).
     pub fn begin_pass(&mut self) {
         self.abort_pass();
         self.undo.clear(); // a move before a pass is not undone over the pass's work
@@ -498,8 +254,8 @@ impl Playground {
     }
 
     /// Starts a pass split between two engines (the page's two workers): this playground
-    /// runs the new panel's pass as [`begin_pass`](Self::begin_pass) does, while another
-    /// one, on the same mesh with the same settings, sweeps the old panel
+    /// runs panel B's pass as [`begin_pass`](Self::begin_pass) does, while another
+    /// one, on the same mesh with the same settings, sweeps panel A
     /// ([`begin_sweep`](Self::begin_sweep)); its result is handed over with
     /// [`adopt_sweep`](Self::adopt_sweep), then measured here. Until then
     /// [`continue_pass`](Self::continue_pass) says [`PassStage::Wait`]. The records and
@@ -534,7 +290,7 @@ impl Playground {
         self.swept.take().map(|(nodes, sweep)| (interleaved(&nodes), sweep))
     }
 
-    /// Hands the old panel's sweep, made by another engine, to the split pass in progress
+    /// Hands panel A's sweep, made by another engine, to the split pass in progress
     /// ([`begin_split_pass`](Self::begin_split_pass)): its positions (x, y interleaved)
     /// and what it did.
     pub fn adopt_sweep(&mut self, nodes: &[f64], sweep: SideSweep) -> Result<()> {
@@ -753,12 +509,13 @@ impl Playground {
 mod tests {
     use super::*;
     use crate::lab::sample::Sample;
+    use crate::smooth::Strategy;
 
     #[test]
     fn panels_start_equal_and_reset_restores_them() {
         let mut pg = Playground::new(Sample::PlateTriTangled.generate().unwrap()).unwrap();
-        let before = pg.stats(Side::Old);
-        assert_eq!(before.mesh, pg.stats(Side::New).mesh);
+        let before = pg.stats(Side::A);
+        assert_eq!(before.mesh, pg.stats(Side::B).mesh);
         assert!(before.mesh.inverted > 0);
         let free = (0..pg.topology().node_count()).find(|&n| pg.topology().is_free(n)).unwrap();
         pg.move_node(free, DVec2::new(0.9, 0.9)).unwrap();
@@ -766,8 +523,8 @@ mod tests {
             assert_eq!(pg.panel(s).mesh.nodes()[free], DVec2::new(0.9, 0.9));
         }
         pg.reset();
-        assert_eq!(pg.stats(Side::Old), before);
-        assert_eq!(pg.panel(Side::New).mesh.nodes(), pg.original_nodes());
+        assert_eq!(pg.stats(Side::A), before);
+        assert_eq!(pg.panel(Side::B).mesh.nodes(), pg.original_nodes());
     }
 
     fn no_clock() -> f64 {
@@ -777,7 +534,7 @@ mod tests {
     #[test]
     fn three_passes_untangle_the_tangled_plate_on_the_new_side() {
         let mut pg = Playground::new(Sample::DEFAULT.generate().unwrap()).unwrap();
-        let start = pg.stats(Side::New).mesh.inverted;
+        let start = pg.stats(Side::B).mesh.inverted;
         assert!(start > 0);
         let mut last = None;
         for _ in 0..3 {
@@ -788,19 +545,19 @@ mod tests {
         assert_eq!(new.after.inverted, 0, "Chen et al. untangle the perturbed plate in 3 passes");
         // the page's default sample (issue 11): the new side beats the max-min objective on
         // what both sides are judged by: smallest and largest angle, worst and mean quality
-        let (o, n) = (pg.full_stats(Side::Old).clone(), pg.full_stats(Side::New).clone());
+        let (o, n) = (pg.full_stats(Side::A).clone(), pg.full_stats(Side::B).clone());
         assert!(n.min_angle_deg > o.min_angle_deg, "min angle: new {} old {}", n.min_angle_deg, o.min_angle_deg);
         assert!(n.min_quality > o.min_quality, "min quality: new {} old {}", n.min_quality, o.min_quality);
         assert!(n.mean_quality > o.mean_quality + 0.01, "mean quality: new {} old {}", n.mean_quality, o.mean_quality);
         assert!(n.max_angle_deg < o.max_angle_deg - 1.0, "max angle: new {} old {}", n.max_angle_deg, o.max_angle_deg);
-        let s = pg.stats(Side::New);
+        let s = pg.stats(Side::B);
         assert_eq!(s.mesh.inverted, 0);
         assert_eq!(s.work.passes, 3);
         assert!(s.work.optimization_calls > 0);
-        assert_eq!(pg.stats(Side::Old).work.passes, 3);
+        assert_eq!(pg.stats(Side::A).work.passes, 3);
         pg.reset();
-        assert_eq!(pg.stats(Side::New).work.passes, 0);
-        assert_eq!(pg.stats(Side::New).mesh.inverted, start);
+        assert_eq!(pg.stats(Side::B).work.passes, 0);
+        assert_eq!(pg.stats(Side::B).mesh.inverted, start);
     }
 
     #[test]
@@ -824,13 +581,13 @@ mod tests {
     fn node_solve_moves_towards_better_and_leaves_the_mesh() {
         let pg = Playground::new(Sample::StarRegular.generate().unwrap()).unwrap();
         let free = pg.topology().node_count() - 1;
-        let before = pg.panel(Side::New).mesh.nodes().to_vec();
-        let new = pg.solve_node(Side::New, free).unwrap();
+        let before = pg.panel(Side::B).mesh.nodes().to_vec();
+        let new = pg.solve_node(Side::B, free).unwrap();
         assert!(new.value <= new.value0 && !new.history.is_empty());
-        let old = pg.solve_node(Side::Old, free).unwrap();
+        let old = pg.solve_node(Side::A, free).unwrap();
         assert!(old.value >= old.value0, "max-min: the minimum never drops");
-        assert_eq!(pg.panel(Side::New).mesh.nodes(), before);
-        assert!(pg.solve_node(Side::New, 0).is_err(), "a fixed node has no solve");
+        assert_eq!(pg.panel(Side::B).mesh.nodes(), before);
+        assert!(pg.solve_node(Side::B, 0).is_err(), "a fixed node has no solve");
     }
 
     #[test]
@@ -838,9 +595,9 @@ mod tests {
         let mut pg = Playground::new(Sample::PlateQuad.generate().unwrap()).unwrap();
         pg.step(&no_clock);
         pg.perturb(1.0, 7).unwrap();
-        assert!(pg.stats(Side::Old).mesh.inverted > 0);
-        assert_eq!(pg.stats(Side::Old).work.passes, 0);
-        assert_eq!(pg.panel(Side::New).mesh.nodes(), pg.original_nodes());
+        assert!(pg.stats(Side::A).mesh.inverted > 0);
+        assert_eq!(pg.stats(Side::A).work.passes, 0);
+        assert_eq!(pg.panel(Side::B).mesh.nodes(), pg.original_nodes());
         assert!(pg.perturb(f64::NAN, 1).is_err());
     }
 
@@ -849,11 +606,11 @@ mod tests {
         let mut pg = Playground::new(Sample::PlateMixedTangled.generate().unwrap()).unwrap();
         pg.step(&no_clock);
         for format in [Format::Msh, Format::Vtk] {
-            let text = pg.export(Side::New, format).unwrap();
+            let text = pg.export(Side::B, format).unwrap();
             let back = crate::io::read_str(&text, format).unwrap();
-            assert_eq!(back.node_count(), pg.panel(Side::New).mesh.node_count());
-            assert_eq!(back.nodes(), pg.panel(Side::New).mesh.nodes(), "{format:?} keeps the smoothed positions");
-            assert_ne!(back.nodes(), pg.panel(Side::Old).mesh.nodes());
+            assert_eq!(back.node_count(), pg.panel(Side::B).mesh.node_count());
+            assert_eq!(back.nodes(), pg.panel(Side::B).mesh.nodes(), "{format:?} keeps the smoothed positions");
+            assert_ne!(back.nodes(), pg.panel(Side::A).mesh.nodes());
         }
     }
 
@@ -866,7 +623,7 @@ mod tests {
         let e = pg.move_node(n, DVec2::ZERO).unwrap_err().to_string();
         assert!(e.contains("no such node"), "{e}");
         assert!(pg.move_node(n - 1, DVec2::new(f64::NAN, 0.0)).is_err());
-        assert_eq!(pg.panel(Side::Old).mesh.nodes(), pg.original_nodes(), "a refused move changes nothing");
+        assert_eq!(pg.panel(Side::A).mesh.nodes(), pg.original_nodes(), "a refused move changes nothing");
     }
 
     #[test]
@@ -876,7 +633,7 @@ mod tests {
         let free = (0..m.node_count()).find(|&n| m.is_free(n)).unwrap();
         let to = m.nodes()[free] + DVec2::new(0.01, -0.02);
         pg.move_node(free, to).unwrap();
-        let moved = &pg.panel(Side::New).mesh;
+        let moved = &pg.panel(Side::B).mesh;
         for e in m.edges() {
             if e.mid != crate::mesh::NONE && (e.a as usize == free || e.b as usize == free) && !e.curved {
                 let mid = 0.5 * (moved.nodes()[e.a as usize] + moved.nodes()[e.b as usize]);
@@ -888,18 +645,18 @@ mod tests {
     #[test]
     fn versions_name_positions_and_reset_returns_to_the_first() {
         let mut pg = Playground::new(Sample::PlateTri.generate().unwrap()).unwrap();
-        let v0 = pg.version(Side::Old);
-        assert_eq!(v0, pg.version(Side::New));
+        let v0 = pg.version(Side::A);
+        assert_eq!(v0, pg.version(Side::B));
         pg.step(&no_clock);
-        let v1 = pg.version(Side::Old);
+        let v1 = pg.version(Side::A);
         assert_ne!(v1, v0);
-        assert_ne!(pg.version(Side::New), v1, "each panel's positions have their own version");
+        assert_ne!(pg.version(Side::B), v1, "each panel's positions have their own version");
         let free = (0..pg.topology().node_count()).find(|&n| pg.topology().is_free(n)).unwrap();
         pg.move_node(free, DVec2::new(0.2, 0.3)).unwrap();
-        assert_ne!(pg.version(Side::Old), v1);
-        assert_eq!(pg.table(Side::Old).mesh, stats::quick_stats(&pg.panel(Side::Old).mesh));
+        assert_ne!(pg.version(Side::A), v1);
+        assert_eq!(pg.table(Side::A).mesh, stats::quick_stats(&pg.panel(Side::A).mesh));
         pg.reset();
-        assert_eq!((pg.version(Side::Old), pg.version(Side::New)), (v0, v0));
-        assert_eq!(pg.full_stats(Side::New), pg.original_stats());
+        assert_eq!((pg.version(Side::A), pg.version(Side::B)), (v0, v0));
+        assert_eq!(pg.full_stats(Side::B), pg.original_stats());
     }
 }

@@ -6,10 +6,10 @@
 //! `abort_pass`) only holds the run.
 //!
 //! The two panels' sweeps are independent, so a pass can also be *split* between two
-//! engines (the page's two workers, on two cores): one playground sweeps the old panel
+//! engines (the page's two workers, on two cores): one playground sweeps panel A
 //! alone ([`super::Playground::begin_sweep`], no statistics, the panel put back after),
 //! while the other runs a split pass ([`super::Playground::begin_split_pass`]): the new
-//! panel as usual, then the old panel's sweep adopted from the first
+//! panel as usual, then panel A's sweep adopted from the first
 //! ([`super::Playground::adopt_sweep`]) and measured. The records and positions are the
 //! whole pass's, bit for bit.
 
@@ -54,7 +54,7 @@ pub enum PassStage {
     Smooth,
     /// Measuring the smoothed mesh's statistics.
     Measure,
-    /// A split pass waits for the other engine's sweep of the old panel
+    /// A split pass waits for the other engine's sweep of panel A
     /// ([`super::Playground::adopt_sweep`]).
     Wait,
     /// The pass is complete.
@@ -75,7 +75,7 @@ pub struct SideSweep {
 pub(super) enum RunKind {
     /// Both panels: the old one, then the new one.
     Whole,
-    /// The new panel, then the old one's sweep adopted from another engine and measured.
+    /// Panel B, then A's sweep adopted from another engine and measured.
     Split,
     /// The sweep of one panel alone, without statistics, for another engine.
     Sweep(usize),
@@ -119,14 +119,14 @@ impl PassProgress {
     }
 }
 
-/// A pass in progress: the old panel's sweep and statistics, then the new panel's (in
+/// A pass in progress: panel A's sweep and statistics, then panel B's (in
 /// the order of [`RunKind`]).
 pub(super) struct PassRun {
     kind: RunKind,
     /// The panels in the order the run takes them, and how many of them it has done.
     order: [usize; 2],
     k: usize,
-    /// The old panel's sweep by another engine, once a split run adopted it; a sweep run's
+    /// Panel A's sweep by another engine, once a split run adopted it; a sweep run's
     /// own, once made.
     sweep: Option<SideSweep>,
     stage: Stage,
@@ -160,7 +160,7 @@ fn adapt_slice(size: usize, dt: f64, budget_ms: f64) -> usize {
 }
 
 impl PassRun {
-    /// A pass about to begin on the old panel.
+    /// A pass about to begin on panel A.
     pub(super) fn new() -> PassRun {
         PassRun::of(RunKind::Whole)
     }
@@ -208,7 +208,7 @@ impl PassRun {
             let p = &mut panels[side];
             match self.stage {
                 Stage::Plan if self.kind == RunKind::Split && side == 0 => {
-                    // the old panel was swept by another engine: measure it once adopted
+                    // panel A was swept by another engine: measure it once adopted
                     let Some(sweep) = self.sweep else { return false };
                     self.counts = sweep.counts;
                     self.sweep_ms = sweep.sweep_ms;
@@ -328,7 +328,7 @@ impl PassRun {
         PassProgress {
             done: true,
             fraction: 1.0,
-            side: Side::New,
+            side: Side::B,
             stage: PassStage::Done,
             visits: self.counts.visits as usize,
             planned: self.schedule.len(),
@@ -336,9 +336,9 @@ impl PassRun {
         }
     }
 
-    /// A split run adopts the old panel's sweep made by another engine: its positions
+    /// A split run adopts panel A's sweep made by another engine: its positions
     /// `nodes` and what it did. The panel is saved first, so an abandoned pass puts it
-    /// back; it is measured when the new panel is done.
+    /// back; it is measured when panel B is done.
     pub(super) fn adopt(
         &mut self,
         panels: &mut [Panel; 2],
@@ -542,17 +542,17 @@ mod tests {
     fn an_abandoned_pass_leaves_no_trace() {
         let mut pg = Playground::new(Sample::Rand2dTangled.generate().unwrap()).unwrap();
         pg.step(&no_clock);
-        let before = [pg.panel(Side::Old).mesh.nodes().to_vec(), pg.panel(Side::New).mesh.nodes().to_vec()];
-        let versions = [pg.version(Side::Old), pg.version(Side::New)];
-        let tables = [pg.table(Side::Old), pg.table(Side::New)];
+        let before = [pg.panel(Side::A).mesh.nodes().to_vec(), pg.panel(Side::B).mesh.nodes().to_vec()];
+        let versions = [pg.version(Side::A), pg.version(Side::B)];
+        let tables = [pg.table(Side::A), pg.table(Side::B)];
         let clock = ticking();
         pg.begin_pass();
         let mut p = pg.continue_pass(&clock, 2.0).unwrap();
-        while p.side == Side::Old {
+        while p.side == Side::A {
             p = pg.continue_pass(&clock, 2.0).unwrap();
         }
         assert!(!p.done && p.fraction >= 0.5);
-        assert_ne!(pg.panel(Side::Old).mesh.nodes(), before[0], "the old panel was smoothed");
+        assert_ne!(pg.panel(Side::A).mesh.nodes(), before[0], "panel A was smoothed");
         pg.abort_pass();
         assert!(!pg.pass_in_progress());
         for side in Side::BOTH {
@@ -566,7 +566,7 @@ mod tests {
         pg.continue_pass(&clock, 2.0).unwrap();
         pg.set_settings(Settings::default()).unwrap();
         assert!(!pg.pass_in_progress());
-        assert_eq!(pg.panel(Side::Old).mesh.nodes(), before[0]);
+        assert_eq!(pg.panel(Side::A).mesh.nodes(), before[0]);
     }
 
     #[test]
@@ -587,9 +587,9 @@ mod tests {
                     let what = format!("{sample:?} {strategy:?} {order:?} pass {pass}");
                     let expected = whole.step(&clock);
                     primary.begin_split_pass();
-                    let helper_before = helper.panel(Side::Old).mesh.nodes().to_vec();
-                    helper.begin_sweep(Side::Old, &primary.panel_positions(Side::Old)).unwrap();
-                    // the first pass hands the sweep over while the new panel is smoothed,
+                    let helper_before = helper.panel(Side::A).mesh.nodes().to_vec();
+                    helper.begin_sweep(Side::A, &primary.panel_positions(Side::A)).unwrap();
+                    // the first pass hands the sweep over while panel B is smoothed,
                     // the second once the split pass waits for it
                     if pass == 2 {
                         while primary.continue_pass(&clock, 3.0).unwrap().stage != PassStage::Wait {}
@@ -598,7 +598,7 @@ mod tests {
                     }
                     assert!(helper.take_sweep().is_none(), "not before it is done");
                     while !helper.continue_pass(&clock, 3.0).unwrap().done {}
-                    assert_eq!(helper.panel(Side::Old).mesh.nodes(), helper_before, "{what}: the helper is put back");
+                    assert_eq!(helper.panel(Side::A).mesh.nodes(), helper_before, "{what}: the helper is put back");
                     let (nodes, sweep) = helper.take_sweep().unwrap();
                     assert!(helper.take_sweep().is_none());
                     primary.adopt_sweep(&nodes, sweep).unwrap();
@@ -635,14 +635,14 @@ mod tests {
     fn an_abandoned_split_pass_leaves_no_trace_and_bad_sweeps_are_refused() {
         let mesh = Sample::Rand2dTangled.generate().unwrap();
         let (mut primary, mut helper) = (Playground::new(mesh.clone()).unwrap(), Playground::new(mesh).unwrap());
-        let before = [primary.panel(Side::Old).mesh.nodes().to_vec(), primary.panel(Side::New).mesh.nodes().to_vec()];
-        let tables = [primary.table(Side::Old), primary.table(Side::New)];
+        let before = [primary.panel(Side::A).mesh.nodes().to_vec(), primary.panel(Side::B).mesh.nodes().to_vec()];
+        let tables = [primary.table(Side::A), primary.table(Side::B)];
         let n = before[0].len();
         let clock = ticking();
-        helper.begin_sweep(Side::Old, &primary.panel_positions(Side::Old)).unwrap();
+        helper.begin_sweep(Side::A, &primary.panel_positions(Side::A)).unwrap();
         while !helper.continue_pass(&clock, 2.0).unwrap().done {}
         let (nodes, sweep) = helper.take_sweep().unwrap();
-        assert!(sweep.counts.visits > 0 && nodes != primary.panel_positions(Side::Old));
+        assert!(sweep.counts.visits > 0 && nodes != primary.panel_positions(Side::A));
         assert!(primary.adopt_sweep(&nodes, sweep).is_err(), "no split pass in progress");
         primary.begin_pass();
         assert!(primary.adopt_sweep(&nodes, sweep).is_err(), "a whole pass adopts nothing");
@@ -652,7 +652,7 @@ mod tests {
         nan[7] = f64::NAN;
         let e = primary.adopt_sweep(&nan, sweep).unwrap_err().to_string();
         assert!(e.contains("node 3"), "{e}");
-        assert!(helper.begin_sweep(Side::Old, &vec![0.0; 2 * n + 2]).is_err());
+        assert!(helper.begin_sweep(Side::A, &vec![0.0; 2 * n + 2]).is_err());
         primary.continue_pass(&clock, 2.0).unwrap();
         primary.adopt_sweep(&nodes, sweep).unwrap();
         primary.continue_pass(&clock, 2.0).unwrap();
@@ -663,10 +663,10 @@ mod tests {
             assert_eq!(primary.table(side), tables[side as usize]);
         }
         // an abandoned sweep puts the helper back too
-        helper.begin_sweep(Side::Old, &nodes).unwrap();
+        helper.begin_sweep(Side::A, &nodes).unwrap();
         helper.continue_pass(&clock, 1.0).unwrap();
         helper.abort_pass();
-        assert_eq!(helper.panel(Side::Old).mesh.nodes(), before[0]);
+        assert_eq!(helper.panel(Side::A).mesh.nodes(), before[0]);
         assert!(helper.take_sweep().is_none());
     }
 }

@@ -3,7 +3,7 @@
 //!
 //! One struct, [`PageState`], is the state: the page sends and receives it as it is
 //! (serde), [`decode`] reads it from a hash and [`encode`] writes it. Each key is read
-//! and written in one place ([`read`] and [`write`]), with the ranges of
+//! and written in one place (`read` and `write`), with the ranges of
 //! [`smooth::limits`](crate::smooth::limits), so a link, a typed control
 //! ([`check_control`]) and the page's object are held to the same rules.
 //!

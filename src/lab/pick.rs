@@ -113,12 +113,12 @@ mod tests {
         let view = pg.panel_view(C);
         let free = pg.topology().node_count() - 1;
         let at = view.to_css(pg.original_nodes()[free]);
-        let p = pg.pick(Side::Old, &view, at + DVec2::new(10.0, 5.0), 16.0);
+        let p = pg.pick(Side::A, &view, at + DVec2::new(10.0, 5.0), 16.0);
         assert_eq!((p.node, p.message), (Some(free), None));
-        let p = pg.pick(Side::Old, &view, view.to_css(pg.original_nodes()[0]), 16.0);
+        let p = pg.pick(Side::A, &view, view.to_css(pg.original_nodes()[0]), 16.0);
         assert_eq!((p.node, p.nearest), (None, Some(0)));
         assert_eq!(p.message.unwrap(), "Node 0 is fixed: it is on the boundary, and smoothing keeps the boundary in place.");
-        let far = pg.pick(Side::Old, &view, DVec2::new(-500.0, -500.0), 16.0);
+        let far = pg.pick(Side::A, &view, DVec2::new(-500.0, -500.0), 16.0);
         assert!(far.node.is_none() && far.message.unwrap().starts_with("No node within 16 pixels"));
     }
 
@@ -130,7 +130,7 @@ mod tests {
         let why = why_not_free(m, mid).unwrap();
         assert!(why.contains("mid-side node") && why.contains(&format!("node {mid}")), "{why}");
         let view = pg.panel_view(C);
-        let p = pg.pick(Side::New, &view, view.to_css(pg.original_nodes()[mid]), 2.0);
+        let p = pg.pick(Side::B, &view, view.to_css(pg.original_nodes()[mid]), 2.0);
         assert_eq!(p.nearest, Some(mid));
         assert!(p.message.unwrap().contains("mid-side"));
         assert!(why_not_free(m, m.node_count()).unwrap().contains("no node"));

@@ -82,7 +82,7 @@ impl SolveSummary {
 impl NodeSummary {
     /// One line for the page.
     pub fn text(&self) -> String {
-        format!("Node {}: {}; {}.", self.node, self.old.text(Side::Old), self.new.text(Side::New))
+        format!("Node {}: {}; {}.", self.node, self.old.text(Side::A), self.new.text(Side::B))
     }
 }
 
@@ -168,12 +168,12 @@ impl Playground {
     /// Whether the panels on canvas `c` carry the colour bar (a small canvas leaves it
     /// out, and the page shows the scale beside it).
     pub fn panel_colour_bar(&self, c: Canvas) -> bool {
-        crate::render::mesh_colour_bar_shown(c.w, c.h, &self.panel(Side::Old).mesh, &self.mesh_options(c, None))
+        crate::render::mesh_colour_bar_shown(c.w, c.h, &self.panel(Side::A).mesh, &self.mesh_options(c, None))
     }
 
     /// The view the panels are drawn with on canvas `c` (the same for both).
     pub fn panel_view(&self, c: Canvas) -> View {
-        mesh_view(c.w, c.h, &self.panel(Side::Old).mesh, &self.mesh_options(c, None))
+        mesh_view(c.w, c.h, &self.panel(Side::A).mesh, &self.mesh_options(c, None))
     }
 
     /// Level sets of one side's objective round `node` (on that side's current mesh),
@@ -203,8 +203,8 @@ impl Playground {
 
     /// Both sides' level sets at `node` and a chart of their solve histories.
     pub fn render_node_view(&self, node: usize, level: Canvas, chart: Canvas) -> Result<([Pixmap; 3], NodeSummary)> {
-        let (old_pm, old) = self.render_level_set(Side::Old, node, level)?;
-        let (new_pm, new) = self.render_level_set(Side::New, node, level)?;
+        let (old_pm, old) = self.render_level_set(Side::A, node, level)?;
+        let (new_pm, new) = self.render_level_set(Side::B, node, level)?;
         let mut pm = pixmap(chart.w, chart.h)?;
         let full = Frame::of_pixmap(&pm, chart.dpr);
         let series = |r: &SolveResult| -> Vec<DVec2> {
@@ -213,7 +213,7 @@ impl Playground {
                 .collect()
         };
         let (so, sn) = (series(&old), series(&new));
-        for (i, (side, points)) in [(Side::Old, &so), (Side::New, &sn)].into_iter().enumerate() {
+        for (i, (side, points)) in [(Side::A, &so), (Side::B, &sn)].into_iter().enumerate() {
             let choice = self.settings.choice(side);
             let label = format!("{}: {}", side.letter(), choice.label());
             let title = format!("{label}, per iteration ({} is better)", better_words(choice.objective.goal()));
@@ -240,7 +240,7 @@ impl Playground {
             iterations: r.iterations,
             stop: stop_words(r.stop).to_string(),
         };
-        Ok(([old_pm, new_pm, pm], NodeSummary { node, old: summary(Side::Old, &old), new: summary(Side::New, &new) }))
+        Ok(([old_pm, new_pm, pm], NodeSummary { node, old: summary(Side::A, &old), new: summary(Side::B, &new) }))
     }
 
     /// Per-pass curves of both sides (min/max angle, min quality, inverted elements;
@@ -259,7 +259,7 @@ impl Playground {
                 col(start.inverted as f64, &|r| r.after.inverted as f64),
             ]
         };
-        let cols = [hist(Side::Old), hist(Side::New)];
+        let cols = [hist(Side::A), hist(Side::B)];
         let labels = Side::BOTH.map(|side| self.side_label(side));
         let runs: Vec<PassHistory<'_>> = Side::BOTH
             .iter()
@@ -297,13 +297,13 @@ impl Playground {
             let n = self.panel(side).records.len();
             format!("{}, {n} pass{}", self.side_label(side), if n == 1 { "" } else { "es" })
         };
-        let (lo, ln) = (lines(Side::Old), lines(Side::New));
-        let (to, tn) = (title(Side::Old), title(Side::New));
+        let (lo, ln) = (lines(Side::A), lines(Side::B));
+        let (to, tn) = (title(Side::A), title(Side::B));
         let mut pm = pixmap(c.w, c.h)?;
         render_compare(
             &mut pm,
-            &ComparePanel { mesh: &self.panel(Side::Old).mesh, title: &to, lines: &lo },
-            &ComparePanel { mesh: &self.panel(Side::New).mesh, title: &tn, lines: &ln },
+            &ComparePanel { mesh: &self.panel(Side::A).mesh, title: &to, lines: &lo },
+            &ComparePanel { mesh: &self.panel(Side::B).mesh, title: &tn, lines: &ln },
             &MeshView { theme: self.theme(), ..MeshView::default().with_dpr(c.dpr) },
         );
         Ok(pm)
@@ -377,13 +377,13 @@ mod tests {
         let view = pg.panel_view(C);
         let free = pg.topology().node_count() - 1;
         let at = view.to_css(pg.original_nodes()[free]);
-        assert_eq!(pg.pick(Side::New, &view, at + DVec2::new(3.0, -2.0), PICK_RADIUS).node, Some(free));
+        assert_eq!(pg.pick(Side::B, &view, at + DVec2::new(3.0, -2.0), PICK_RADIUS).node, Some(free));
         assert_eq!(
-            pg.pick(Side::New, &view, view.to_css(pg.original_nodes()[0]), PICK_RADIUS).node,
+            pg.pick(Side::B, &view, view.to_css(pg.original_nodes()[0]), PICK_RADIUS).node,
             None,
             "fixed nodes are not picked"
         );
-        assert_eq!(pg.pick(Side::New, &view, DVec2::new(f64::NAN, 0.0), PICK_RADIUS).node, None);
+        assert_eq!(pg.pick(Side::B, &view, DVec2::new(f64::NAN, 0.0), PICK_RADIUS).node, None);
     }
 
     #[test]
@@ -408,7 +408,7 @@ mod tests {
         pg.step(&|| 0.0);
         let after = pg.render_pass_chart(C).unwrap();
         assert_ne!(before.data(), after.data());
-        let h = pg.render_histogram(Side::New, C, false).unwrap();
+        let h = pg.render_histogram(Side::B, C, false).unwrap();
         assert!(opaque(&h) && colours(&h) > 8);
     }
 
@@ -417,11 +417,11 @@ mod tests {
         // a tangled plate with dozens of inverted elements: "inverted" and its count must
         // end inside the picture at every width and pixel ratio
         let pg = Playground::new(Sample::PlateTriTangled.generate().unwrap()).unwrap();
-        assert!(pg.table(Side::Old).mesh.inverted >= 10);
+        assert!(pg.table(Side::A).mesh.inverted >= 10);
         for dpr in [1.0f32, 1.5, 2.0, 3.0] {
             for css in [240u32, 300, 390, 520, 640] {
                 let side = (css as f32 * dpr) as u32;
-                let pm = pg.render_panel(Side::Old, Canvas { w: side, h: side, dpr }, None).unwrap();
+                let pm = pg.render_panel(Side::A, Canvas { w: side, h: side, dpr }, None).unwrap();
                 let edge = (2.0 * dpr).ceil() as u32;
                 for y in 0..side {
                     for x in side - edge..side {
@@ -443,7 +443,7 @@ mod tests {
         let pg = Playground::new(Sample::PlateTriTangled.generate().unwrap()).unwrap();
         let (r, g, b) = crate::render::PATH_RGB;
         for node in [200, 320] {
-            let (pm, res) = pg.render_level_set(Side::Old, node, Canvas { w: 400, h: 400, dpr: 1.0 }).unwrap();
+            let (pm, res) = pg.render_level_set(Side::A, node, Canvas { w: 400, h: 400, dpr: 1.0 }).unwrap();
             assert!(res.x.distance(res.x0) > 1e-3, "node {node} moved");
             let ink = pm.pixels().iter().filter(|p| (p.red(), p.green(), p.blue()) == (r, g, b)).count();
             assert!(ink > 40, "node {node}: {ink} pixels of the path");
@@ -454,9 +454,9 @@ mod tests {
     fn bad_sizes_are_errors_not_panics() {
         let pg = Playground::new(Sample::StarQuad.generate().unwrap()).unwrap();
         for (w, h) in [(0, 10), (10, 0), (MAX_SIDE + 1, 10)] {
-            assert!(pg.render_panel(Side::Old, Canvas { w, h, dpr: 1.0 }, None).is_err());
+            assert!(pg.render_panel(Side::A, Canvas { w, h, dpr: 1.0 }, None).is_err());
         }
-        assert!(pg.render_panel(Side::Old, Canvas { w: 50, h: 50, dpr: f32::NAN }, None).is_ok());
+        assert!(pg.render_panel(Side::A, Canvas { w: 50, h: 50, dpr: f32::NAN }, None).is_ok());
     }
 
     #[test]
@@ -471,13 +471,13 @@ mod tests {
         };
         pg.begin_pass();
         let mut p = pg.continue_pass(&clock, 2.0).unwrap();
-        while p.stage != PassStage::Measure || p.side != Side::Old {
+        while p.stage != PassStage::Measure || p.side != Side::A {
             p = pg.continue_pass(&clock, 2.0).unwrap();
         }
-        let during = pg.render_panel(Side::Old, c, None).unwrap();
+        let during = pg.render_panel(Side::A, c, None).unwrap();
         while !pg.continue_pass(&clock, 50.0).unwrap().done {}
-        let after = pg.render_panel(Side::Old, c, None).unwrap();
-        let panel = pg.panel(Side::Old);
+        let after = pg.render_panel(Side::A, c, None).unwrap();
+        let panel = pg.panel(Side::A);
         let opts = pg.mesh_options(c, None);
         let mut fresh = pixmap(c.w, c.h).unwrap();
         let view = raster::view_of(&fresh, &panel.mesh, &opts);

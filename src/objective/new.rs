@@ -139,7 +139,7 @@ impl ChenTristanoKwok {
     /// Value, gradient and Hessian (2×2) of the objective at `x`, for the barrier design
     /// (`None` for the angle design, which has no analytic Hessian here). Every vector of a
     /// sub-triangle is affine in the free node with a scalar weight, so N is linear and D
-    /// quadratic in it, at every element kind (`barrier.rs`, [`RegularisedBarrier::of`]).
+    /// quadratic in it, at every element kind (`barrier.rs`, `RegularisedBarrier::of`).
     /// The value and gradient are those of [`visit`](Self::visit), bit for bit.
     pub fn with_hessian(&self, star: &Star, x: DVec2) -> Option<(f64, DVec2, DMat2)> {
         if !matches!(self, ChenTristanoKwok::Barrier(_)) {

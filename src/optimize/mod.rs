@@ -368,7 +368,7 @@ pub trait Solver<S: NodeStar = Star> {
     }
     /// Evaluates the objective at the start `st.x` into `st` (value, merit, and what the
     /// solver keeps), stopping it when that is not finite. Called by
-    /// [`start_at_scale`](Self::start_at_scale) unless [`SolveState::begin`] stopped it.
+    /// [`start_at_scale`](Self::start_at_scale) unless `SolveState::begin` stopped it.
     fn evaluate_start(&mut self, objective: &dyn Objective<S>, star: &S, st: &mut SolveState<S::Point>);
     /// One iteration. Returns false once the solve has stopped (see [`SolveState::stop`]).
     fn step(&mut self, objective: &dyn Objective<S>, star: &S, state: &mut SolveState<S::Point>) -> bool;

@@ -114,7 +114,7 @@ fn atan_unit(t: f64) -> f64 {
 }
 
 /// `atan2(y, x)`, the angle of the vector `(x, y)` in `(−π, π]`: the ratio of the smaller
-/// to the larger of `|x|`, `|y|` through [`atan_unit`], then placed in its octant.
+/// to the larger of `|x|`, `|y|` through `atan_unit`, then placed in its octant.
 #[inline(always)]
 pub fn atan2_inline(y: f64, x: f64) -> f64 {
     let (ax, ay) = (x.abs(), y.abs());

@@ -68,7 +68,7 @@ pub fn is_inverted(p: &[DVec3; 4]) -> bool {
 
 /// The corners in the tetrahedron's own scale, for the measures that are ratios of
 /// lengths (angles, sines, the mean ratio, κ, the sign of the volume): as they are when
-/// the edges' largest component lies within [`SAFE_SCALE`](super::SAFE_SCALE) (2^±200, where
+/// the edges' largest component lies within `SAFE_SCALE` (2^±200, where
 /// every product those measures take is a normal double, so their bits are unchanged);
 /// beyond it, corner 0 moved to the origin and the edges multiplied by a power of two
 /// (exact) that brings that component to about 1 — the planar metrics' rule

@@ -35,7 +35,7 @@ pub struct AngleHistogram<'a> {
     /// The largest percentage the y axis must show (several pictures on one scale);
     /// `None`: this picture's own largest. Default `None`.
     pub y_top: Option<f64>,
-    /// A logarithmic percentage axis (down to [`LOG_FLOOR_PCT`]; empty bins sit on the
+    /// A logarithmic percentage axis (down to `LOG_FLOOR_PCT`; empty bins sit on the
     /// axis), which shows the few very poor angles beside the many good ones. Default false.
     pub log_y: bool,
     /// Colours and label sizes. Default [`Theme::light`].

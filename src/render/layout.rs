@@ -4,7 +4,7 @@
 //! drawn, not from a second computation of the layout.
 //!
 //! Recording is off unless a caller asks for it with [`record`]; the renderers then
-//! [`note`] each plot rectangle, legend band and chart marker in device pixels of the
+//! `note` each plot rectangle, legend band and chart marker in device pixels of the
 //! pixmap they draw into. A note carries the address of that pixmap's pixels, so a
 //! picture made of several pixmaps ([`render_titled`](super::render_titled)) can tell
 //! which part each note belongs to ([`Notes::of`]).

@@ -1,7 +1,7 @@
 //! Smoothing drivers: Laplacian, smart (constrained) Laplacian, optimization, Freitag's
 //! combined schemes C1/C2/C3 and Chen's rules, visiting nodes in input or priority order.
 //!
-//! The drivers work with any [`Objective`] and either solver ([`SolverKind`]): a new
+//! The drivers work with any [`Objective`] and either solver ([`SolverKind`](crate::optimize::SolverKind)): a new
 //! objective never touches this module. A [`Smoother`] owns its scratch buffers (the star,
 //! the solvers' term vectors, the visit schedule) and runs one [`pass`](Smoother::pass)
 //! at a time, so the page can step pass by pass; [`solve_node`] solves one node with its

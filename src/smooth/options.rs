@@ -132,7 +132,7 @@ enum_with_all! {
     pub enum Order {
         /// Node number order, each free node once ("first come first serve").
         Input,
-        /// Chen et al. (2003) §4.2, "worst one first": see [`Smoother::plan`].
+        /// Chen et al. (2003) §4.2, "worst one first": see [`Smoother::plan`](crate::smooth::Smoother::plan).
         Priority,
     }
 }
@@ -221,7 +221,7 @@ pub struct SmoothOptions {
     /// With [`SmoothOptions::keep_valid`]: a star that is already inverted when the call
     /// begins may fold one more element when that lowers its total inversion
     /// `Σ max(0, −det)` over all its corners. A valid star is still never folded. `None`
-    /// (the default): on for objectives built to untangle ([`Objective::untangles`]:
+    /// (the default): on for objectives built to untangle ([`Objective::untangles`](crate::objective::Objective::untangles):
     /// `new` and `untangle`), off for the others; `Some` forces it.
     ///
     /// Untangling often has to pass through such an intermediate state — the free node

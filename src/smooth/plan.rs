@@ -34,7 +34,7 @@ impl Smoother<Star> {
     }
 
     /// Plans the next untangling sweep of a pass whose visits so far `counts` holds (see
-    /// [`plan_untangle_sweep_in`](Self::plan_untangle_sweep_in)). The one place that
+    /// `plan_untangle_sweep_in`). The one place that
     /// decides, for [`sweep`](Self::sweep) and for the page's sliced pass.
     pub fn plan_untangle_sweep(&mut self, mesh: &Mesh, counts: &mut SweepCounts) -> bool {
         self.plan_untangle_sweep_in(&mut Reading(mesh), counts)

@@ -43,7 +43,7 @@ pub struct SweepCounts {
     pub solver_iterations: u32,
     /// Visits that moved their node.
     pub moves: u32,
-    /// Untangling sweeps ([`SmoothOptions::untangle_sweeps`]).
+    /// Untangling sweeps ([`SmoothOptions::untangle_sweeps`](crate::smooth::SmoothOptions::untangle_sweeps)).
     pub untangle_sweeps: u32,
 }
 

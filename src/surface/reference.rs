@@ -146,7 +146,7 @@ impl Analytic {
 /// node, or for the 8-node quad the serendipity centre), through the mid-side nodes.
 /// Vertices are the mesh's node numbers, plus one added point per 8-node quad. The flat
 /// triangles find where a point is; on a surface of quadratic elements, their curved
-/// patches (their shape functions through their nodes, [`Patch`]) then give the point —
+/// patches (their shape functions through their nodes, `Patch`) then give the point —
 /// unless an element of the file is folded (a tangled file), whose patches fold over
 /// themselves: then the flat triangles through every node are the reference.
 #[derive(Clone, Debug)]

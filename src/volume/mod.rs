@@ -7,7 +7,7 @@
 //! follow each corner. Fixed nodes are those of the boundary faces (faces of one
 //! tetrahedron), or as the file says.
 //!
-//! The smoothers are the planar ones: [`smooth`] implements their two traits for a
+//! The smoothers are the planar ones: `smooth.rs` implements their two traits for a
 //! tetrahedral mesh and its star, so every strategy, order and objective runs unchanged.
 
 use glam::DVec3;

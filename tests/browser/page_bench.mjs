@@ -163,7 +163,7 @@ try {
   await choose(page, 'sample:rand2d-large');
   const load100k = await page.evaluate(() => window.smoothlab.metrics.lastLoad);
   const main100k = await stopWatching(page);
-  const table = await page.evaluate(() => Object.fromEntries([...document.querySelectorAll('#stats-new tr')].map((tr) => [tr.dataset.stat, tr.querySelector('td').textContent])));
+  const table = await page.evaluate(() => Object.fromEntries([...document.querySelectorAll('#stats-b tr')].map((tr) => [tr.dataset.stat, tr.querySelector('td').textContent])));
   result.hundred_k = { nodes: Number(table.nodes), elements: Number(table.elements), load: { ...load100k, ...main100k }, steps: [] };
   // the page splits each pass of a mesh this size between two workers once the second one
   // has loaded it (in the background, after the load): the Steps are timed from then
@@ -199,7 +199,7 @@ try {
     await choose(page, 'sample:rand2d-million');
     const load = await page.evaluate(() => window.smoothlab.metrics.lastLoad);
     const mainLoad = await stopWatching(page);
-    const tableM = await page.evaluate(() => Object.fromEntries([...document.querySelectorAll('#stats-new tr')].map((tr) => [tr.dataset.stat, tr.querySelector('td').textContent])));
+    const tableM = await page.evaluate(() => Object.fromEntries([...document.querySelectorAll('#stats-b tr')].map((tr) => [tr.dataset.stat, tr.querySelector('td').textContent])));
     await page.screenshot({ path: path.join(process.cwd(), 'target', 'perf', 'page-1m-loaded.png') }).catch(() => {});
     const million = { nodes: Number(tableM.nodes), elements: Number(tableM.elements), strategy: `${millionStrategy} (input order)`, load: { ...load, ...mainLoad } };
 

@@ -38,7 +38,7 @@ try {
   await page.selectOption('#sample', 'sample:rand2d-million');
   await page.waitForFunction(() => document.getElementById('sample').value === 'sample:rand2d-million', null, { timeout: HOUR });
   await idle(page);
-  const table = await page.evaluate(() => Object.fromEntries([...document.querySelectorAll('#stats-new tr')].map((tr) => [tr.dataset.stat, tr.querySelector('td').textContent])));
+  const table = await page.evaluate(() => Object.fromEntries([...document.querySelectorAll('#stats-b tr')].map((tr) => [tr.dataset.stat, tr.querySelector('td').textContent])));
   result.nodes = Number(table.nodes);
   result.elements = Number(table.elements);
   result.loaded = await memory(page);

@@ -25,9 +25,9 @@ try {
     await page.goto(server.base);
     await idle(page);
     check((await page.title()).includes('smoothlab'), 'title');
-    const s = await stats(page, 'new');
+    const s = await stats(page, 'b');
     check(Number(s.nodes) > 0, `nodes: ${JSON.stringify(s)}`);
-    for (const id of ['mesh-old', 'mesh-new']) {
+    for (const id of ['mesh-a', 'mesh-b']) {
       const c = await canvasInfo(page, id);
       check(c.colours > 8, `${id} looks blank (${c.colours} colours)`);
     }
@@ -36,13 +36,13 @@ try {
 
   await test('Run 3 passes on the default sample (the tangled quad plate): the new side has no inverted element and beats the old', async () => {
     await chooseSample(page, 'sample:plate-quad-tangled');
-    const before = [await stats(page, 'old'), await stats(page, 'new')];
+    const before = [await stats(page, 'a'), await stats(page, 'b')];
     check(Number(before[0].inverted) > 0 && Number(before[1].inverted) > 0, `the sample is not tangled: ${before[1].inverted}`);
     await page.fill('#passes', '3');
     await page.click('#run');
     await page.waitForFunction(() => document.getElementById('run').textContent === 'Run' && document.getElementById('progress').value === 3, null, { timeout: TIMEOUT });
     await idle(page);
-    const after = [await stats(page, 'old'), await stats(page, 'new')];
+    const after = [await stats(page, 'a'), await stats(page, 'b')];
     check(after[1].inverted === '0', `new side still has ${after[1].inverted} inverted elements`);
     check(after[0].passes === '3' && after[1].passes === '3', `passes: ${after[0].passes}/${after[1].passes}`);
     // the page's default sample (issue 11): the new objective ends with the larger smallest
@@ -66,7 +66,7 @@ try {
     await page.click('#run'); // now labelled Stop
     await page.waitForFunction(() => document.getElementById('run').textContent === 'Run', null, { timeout: TIMEOUT });
     await idle(page);
-    const s = await stats(page, 'new');
+    const s = await stats(page, 'b');
     check(Number(s.passes) >= 1 && Number(s.passes) < 40, `passes after Stop: ${s.passes}`);
     check(/Stopped after/.test(await page.textContent('#status')), await page.textContent('#status'));
     await page.fill('#passes', '3');
@@ -77,12 +77,12 @@ try {
   });
 
   await test('clicking a node draws both level sets, the path and the solve history', async () => {
-    const blank = await canvasInfo(page, 'level-new');
-    const before = [await stats(page, 'old'), await stats(page, 'new')];
-    const hit = await clickSomeNode(page, 'mesh-new', ringPoints());
-    const after = [await stats(page, 'old'), await stats(page, 'new')];
+    const blank = await canvasInfo(page, 'level-b');
+    const before = [await stats(page, 'a'), await stats(page, 'b')];
+    const hit = await clickSomeNode(page, 'mesh-b', ringPoints());
+    const after = [await stats(page, 'a'), await stats(page, 'b')];
     check(JSON.stringify(after) === JSON.stringify(before), 'clicking (not dragging) moved a node');
-    for (const id of ['level-old', 'level-new', 'solve-chart']) {
+    for (const id of ['level-a', 'level-b', 'solve-chart']) {
       const c = await canvasInfo(page, id);
       check(c.colours > 100 && c.hash !== blank.hash, `${id} looks blank (${c.colours} colours)`);
       console.log(`     ${id}: ${c.colours} colours`);
@@ -92,7 +92,7 @@ try {
   });
 
   await test('charts per pass and angle histograms are drawn', async () => {
-    for (const id of ['pass-chart', 'hist-old', 'hist-new']) {
+    for (const id of ['pass-chart', 'hist-a', 'hist-b']) {
       const c = await canvasInfo(page, id);
       check(c.colours > 8, `${id} looks blank (${c.colours} colours)`);
     }
@@ -110,7 +110,7 @@ try {
     const files = [...singles, ...pairs];
     check(files.length >= 40, `the corpus has only ${files.length} cases`);
     for (const set of files) for (const f of set) check(existsSync(f), `missing test file ${f}`);
-    const before = { s: await stats(page, 'new'), c: await canvasInfo(page, 'mesh-new') };
+    const before = { s: await stats(page, 'b'), c: await canvasInfo(page, 'mesh-b') };
     check(Number(before.s.nodes) > 0 && before.c.colours > 8, 'a mesh is shown before');
     for (const set of files) {
       const f = set[0];
@@ -122,7 +122,7 @@ try {
       const msg = await page.textContent('#message');
       check(msg.length > 10, `empty message for ${path.basename(f)}`);
       console.log(`     ${set.map((x) => path.basename(x)).join(' + ')}: ${msg}`);
-      const after = { s: await stats(page, 'new'), c: await canvasInfo(page, 'mesh-new') };
+      const after = { s: await stats(page, 'b'), c: await canvasInfo(page, 'mesh-b') };
       check(JSON.stringify(after.s) === JSON.stringify(before.s), 'the statistics changed');
       check(after.c.hash === before.c.hash, 'the mesh canvas changed');
     }
@@ -133,7 +133,7 @@ try {
   await test('a Triangle .node + .ele pair loads when selected together', async () => {
     await page.setInputFiles('#file', [path.join(DATA, 'square_o2.node'), path.join(DATA, 'square_o2.ele')]);
     await page.waitForFunction(() => document.getElementById('message').hidden && document.body.dataset.busy === '0', null, { timeout: TIMEOUT });
-    const s = await stats(page, 'old');
+    const s = await stats(page, 'a');
     check(Number(s.nodes) > 0, `nodes ${s.nodes}`);
   });
 
@@ -167,7 +167,7 @@ try {
       await page.waitForFunction((n) => document.getElementById('status').textContent.includes(`Loaded ${n}`), name, { timeout: TIMEOUT });
       await idle(page);
       check(await page.evaluate(() => document.body.classList.contains('surface')), `${name}: the page reads a surface`);
-      const s = await stats(page, 'old');
+      const s = await stats(page, 'a');
       check(Number(s.nodes) === said.nodes && Number(s.elements) === said.elements, `${name}: the page has ${JSON.stringify(s)}, the command-line tool ${r.stdout}`);
       // and both say why: the node farthest off the plane, and how far
       const note = r.stderr.trim().split('\n').find((l) => l.includes('read as a surface in 3D: ')) ?? '';
@@ -184,18 +184,18 @@ try {
       await page.setInputFiles('#file', files);
       await page.waitForFunction(() => document.getElementById('message').hidden && document.body.dataset.busy === '0', null, { timeout: TIMEOUT });
       await idle(page);
-      const s = await stats(page, 'old');
+      const s = await stats(page, 'a');
       check(Number(s.nodes) === nodes, `${set.join(' + ')}: the page has ${s.nodes} nodes, the command-line tool ${nodes}`);
     }
   });
 
   await test('a Gmsh sample file is fetched from the site and smoothed by Step', async () => {
     await chooseSample(page, 'gmsh:bracket_quad.msh');
-    const s0 = await stats(page, 'new');
+    const s0 = await stats(page, 'b');
     check(s0.nodes === '347', `bracket nodes ${s0.nodes}`);
     await page.focus('#step');
     await page.keyboard.press('Enter'); // keyboard works
-    await page.waitForFunction(() => document.querySelector('#stats-new tr[data-stat="passes"] td')?.textContent === '1', null, { timeout: TIMEOUT });
+    await page.waitForFunction(() => document.querySelector('#stats-b tr[data-stat="passes"] td')?.textContent === '1', null, { timeout: TIMEOUT });
     await idle(page);
   });
 
@@ -240,21 +240,21 @@ try {
 
   await test('dragging a node moves it on both meshes', async () => {
     await chooseSample(page, 'sample:plate-quad');
-    const before = [await canvasInfo(page, 'mesh-old'), await canvasInfo(page, 'mesh-new')];
-    const hit = await clickSomeNode(page, 'mesh-old', ringPoints());
+    const before = [await canvasInfo(page, 'mesh-a'), await canvasInfo(page, 'mesh-b')];
+    const hit = await clickSomeNode(page, 'mesh-a', ringPoints());
     await page.mouse.move(hit.x, hit.y);
     await page.mouse.down();
     await page.mouse.move(hit.x + 15, hit.y + 10, { steps: 5 });
     await page.mouse.up();
     await idle(page);
-    const after = [await canvasInfo(page, 'mesh-old'), await canvasInfo(page, 'mesh-new')];
+    const after = [await canvasInfo(page, 'mesh-a'), await canvasInfo(page, 'mesh-b')];
     check(after[0].hash !== before[0].hash && after[1].hash !== before[1].hash, 'a mesh did not change');
-    const s = [await stats(page, 'old'), await stats(page, 'new')];
+    const s = [await stats(page, 'a'), await stats(page, 'b')];
     check(s[0].min_angle === s[1].min_angle, `both sides moved alike: ${s[0].min_angle} vs ${s[1].min_angle}`);
   });
 
   await test('Perturb tangles the mesh and Reset restores it', async () => {
-    const s0 = await stats(page, 'new');
+    const s0 = await stats(page, 'b');
     await unfold(page);
     await page.fill('#seed', '7');
     await unfold(page);
@@ -262,11 +262,11 @@ try {
     await unfold(page);
     await page.click('#perturb');
     await idle(page);
-    const s1 = await stats(page, 'new');
+    const s1 = await stats(page, 'b');
     check(Number(s1.inverted) > 0, `perturb by 1 gave ${s1.inverted} inverted elements`);
     await page.click('#reset');
     await idle(page);
-    const s2 = await stats(page, 'new');
+    const s2 = await stats(page, 'b');
     check(s2.min_angle === s1.min_angle, 'reset goes back to the perturbed mesh as the new original');
     check(s0.nodes === s2.nodes, 'node count');
   });
@@ -276,21 +276,21 @@ try {
       const [dl] = await Promise.all([page.waitForEvent('download'), page.click(sel)]);
       return { name: dl.suggestedFilename(), bytes: readFileSync(await dl.path()) };
     };
-    const msh = await get('button[data-export="msh"][data-side="new"]');
-    check(msh.name.endsWith('_new.msh') && msh.bytes.toString().startsWith('$MeshFormat'), `msh: ${msh.name}`);
-    const vtk = await get('button[data-export="vtk"][data-side="old"]');
+    const msh = await get('button[data-export="msh"][data-side="b"]');
+    check(msh.name.endsWith('_b.msh') && msh.bytes.toString().startsWith('$MeshFormat'), `msh: ${msh.name}`);
+    const vtk = await get('button[data-export="vtk"][data-side="a"]');
     check(vtk.bytes.toString().startsWith('# vtk DataFile'), `vtk: ${vtk.bytes.toString().slice(0, 30)}`);
-    const png = await get('button[data-png="mesh-new"]');
+    const png = await get('button[data-png="mesh-b"]');
     check(png.bytes.subarray(1, 4).toString() === 'PNG', 'png magic');
   });
 
   await test('a mesh saved from a panel reads back with the same statistics (drop a file)', async () => {
     await chooseSample(page, 'sample:plate-tri-tangled');
     await page.click('#step');
-    await page.waitForFunction(() => document.querySelector('#stats-new tr[data-stat="passes"] td')?.textContent === '1', null, { timeout: TIMEOUT });
+    await page.waitForFunction(() => document.querySelector('#stats-b tr[data-stat="passes"] td')?.textContent === '1', null, { timeout: TIMEOUT });
     await idle(page);
-    const smoothed = await stats(page, 'new');
-    const [dl] = await Promise.all([page.waitForEvent('download'), page.click('button[data-export="msh"][data-side="new"]')]);
+    const smoothed = await stats(page, 'b');
+    const [dl] = await Promise.all([page.waitForEvent('download'), page.click('button[data-export="msh"][data-side="b"]')]);
     const text = readFileSync(await dl.path(), 'utf8');
     // drop it on the page as a user drags a file from the desktop
     await page.evaluate(([name, body]) => {
@@ -298,9 +298,9 @@ try {
       dt.items.add(new File([body], name));
       document.body.dispatchEvent(new DragEvent('drop', { dataTransfer: dt, bubbles: true, cancelable: true }));
     }, [dl.suggestedFilename(), text]);
-    await page.waitForFunction(() => /Loaded .*_new\.msh/.test(document.getElementById('status').textContent), null, { timeout: TIMEOUT });
+    await page.waitForFunction(() => /Loaded .*_b\.msh/.test(document.getElementById('status').textContent), null, { timeout: TIMEOUT });
     await idle(page);
-    const back = await stats(page, 'old');
+    const back = await stats(page, 'a');
     for (const k of ['nodes', 'elements', 'inverted', 'min_angle', 'max_angle', 'min_quality']) {
       check(back[k] === smoothed[k], `${k}: ${back[k]} read back, ${smoothed[k]} saved`);
     }
@@ -317,7 +317,7 @@ try {
     await page.press('#node', 'Tab');
     await page.waitForFunction(() => document.getElementById('message').hidden, null, { timeout: TIMEOUT });
     await idle(page);
-    const c = await canvasInfo(page, 'level-new');
+    const c = await canvasInfo(page, 'level-b');
     check(c.colours > 100, `level sets of node 6: ${c.colours} colours`);
     check((await page.textContent('#node-hint')).startsWith('Node 6:'), 'summary');
   });
@@ -334,7 +334,7 @@ try {
     await chooseSample(page, 'sample:rand2d-large');
     const ms = Date.now() - t0;
     const gap = await page.evaluate(() => { window.keep = false; return Math.max(...window.gaps); });
-    const s = await stats(page, 'new');
+    const s = await stats(page, 'b');
     check(Number(s.nodes) >= 100000, `nodes ${s.nodes}`);
     check(gap < 250, `the main thread stalled for ${gap.toFixed(0)} ms`);
     console.log(`     ${s.nodes} nodes, ${s.elements} elements loaded and drawn in ${ms} ms; longest frame gap ${gap.toFixed(0)} ms`);
@@ -351,12 +351,12 @@ try {
       await p.waitForFunction(() => /One pass done/.test(document.getElementById('status').textContent), null, { timeout: TIMEOUT });
       await idle(p);
       const meshes = [];
-      for (const side of ['old', 'new']) {
+      for (const side of ['a', 'b']) {
         const [dl] = await Promise.all([p.waitForEvent('download'), p.click(`button[data-export="msh"][data-side="${side}"]`)]);
         meshes.push(readFileSync(await dl.path()).toString());
       }
       const step = await p.evaluate(() => window.smoothlab.metrics.lastStep);
-      return { meshes, step, old: await stats(p, 'old'), new: await stats(p, 'new') };
+      return { meshes, step, a: await stats(p, 'a'), b: await stats(p, 'b') };
     };
     const two = await onePass(page);
     check(two.step.workers === 2, `the pass ran in ${two.step.workers} worker(s)`);
@@ -369,7 +369,7 @@ try {
       await chooseSample(other, 'sample:rand2d-large');
       const one = await onePass(other);
       check(one.step.workers === 1, `?workers=1 ran the pass in ${one.step.workers} workers`);
-      for (const [i, side] of ['old', 'new'].entries()) {
+      for (const [i, side] of ['a', 'b'].entries()) {
         check(two.meshes[i] === one.meshes[i], `the ${side} side differs between two workers and one`);
         for (const row of ['inverted', 'min_angle', 'max_angle', 'min_quality', 'laplacian_moves', 'optimization_calls', 'passes']) {
           check(two[side][row] === one[side][row], `${side} ${row}: ${two[side][row]} with two workers, ${one[side][row]} with one`);
@@ -386,7 +386,7 @@ try {
   await test('the 1M sample is listed; a pass on 100k nodes shows progress as it goes, and Stop undoes it within a second', async () => {
     const title = await page.$eval('#sample option[value="sample:rand2d-million"]', (o) => o.textContent);
     check(/1M/.test(title) && /slow/i.test(title), `the 1M sample's title: ${title}`);
-    check((await stats(page, 'new')).nodes === '100000', 'the 100k sample is loaded');
+    check((await stats(page, 'b')).nodes === '100000', 'the 100k sample is loaded');
     await page.selectOption('#strategy', 'smart');
     await page.selectOption('#order', 'input');
     await idle(page);
@@ -410,7 +410,7 @@ try {
     await page.selectOption('#strategy', 'rules');
     await page.selectOption('#order', 'priority');
     await idle(page);
-    const before = { s: await stats(page, 'new'), c: await canvasInfo(page, 'mesh-new') };
+    const before = { s: await stats(page, 'b'), c: await canvasInfo(page, 'mesh-b') };
     await page.evaluate(() => { window.seen = []; window.watcher.observe(document.getElementById('progress'), { attributes: true, attributeFilter: ['value'] }); });
     await page.click('#run');
     await page.waitForFunction(() => window.seen.filter((v) => v % 1 > 0).length >= 3, null, { timeout: TIMEOUT, polling: 10 });
@@ -421,7 +421,7 @@ try {
     await idle(page);
     check(stopMs < 1500, `Stop took ${stopMs} ms`);
     const done = Number(/Stopped after (\d+) of/.exec(await page.textContent('#status'))[1]);
-    const after = { s: await stats(page, 'new'), c: await canvasInfo(page, 'mesh-new') };
+    const after = { s: await stats(page, 'b'), c: await canvasInfo(page, 'mesh-b') };
     check(Number(after.s.passes) === Number(before.s.passes) + done, `passes ${before.s.passes} + ${done} whole ones, but ${after.s.passes}`);
     if (done === 0) {
       // (a faster smoother may finish a pass before the click: then whole passes are kept)
@@ -435,15 +435,15 @@ try {
 
   await test('a panic in the engine is reported and the page keeps working', async () => {
     allowErrors(['deliberate panic']);
-    const before = await stats(page, 'new');
+    const before = await stats(page, 'b');
     await page.evaluate(() => window.smoothlab.panicForTest());
     await page.waitForFunction(() => /Internal error/.test(document.getElementById('message').textContent), null, { timeout: TIMEOUT });
     await idle(page);
-    await page.waitForFunction(() => document.querySelector('#stats-new tr[data-stat="nodes"]') !== null, null, { timeout: TIMEOUT });
-    const after = await stats(page, 'new');
+    await page.waitForFunction(() => document.querySelector('#stats-b tr[data-stat="nodes"]') !== null, null, { timeout: TIMEOUT });
+    const after = await stats(page, 'b');
     check(after.nodes === before.nodes, 'the mesh was reloaded');
     await page.click('#step');
-    await page.waitForFunction(() => document.querySelector('#stats-new tr[data-stat="passes"] td')?.textContent === '1', null, { timeout: TIMEOUT });
+    await page.waitForFunction(() => document.querySelector('#stats-b tr[data-stat="passes"] td')?.textContent === '1', null, { timeout: TIMEOUT });
     await shot(page, '06-after-panic', false);
     allowErrors([]);
   });
@@ -485,7 +485,7 @@ try {
     check((await p4.getAttribute('#message', 'role')) === 'alert', 'the message is an alert');
     check((await p4.inputValue('#sample')) === 'sample:plate-quad-tangled', `the default sample, not ${await p4.inputValue('#sample')}`);
     check((await p4.inputValue('#passes')) === '3' && (await p4.inputValue('#strategy')) === 'rules', 'defaults kept');
-    check((await stats(p4, 'new')).nodes !== undefined, 'the default mesh is loaded');
+    check((await stats(p4, 'b')).nodes !== undefined, 'the default mesh is loaded');
     await p4.close();
   });
 
@@ -526,10 +526,10 @@ try {
     await p3.goto(`${server.base}?embed=1#sample=plate-mixed-tangled`);
     await idle(p3);
     check(!(await p3.isVisible('.node-view')) && !(await p3.isVisible('.pass-view')), 'embed hides the extra views');
-    check(await p3.isVisible('#mesh-old') && await p3.isVisible('#mesh-new'), 'both meshes shown');
+    check(await p3.isVisible('#mesh-a') && await p3.isVisible('#mesh-b'), 'both meshes shown');
     check(await p3.isVisible('#open-full'), 'link to the full page');
     const overflow = () => p3.evaluate(() => document.documentElement.scrollWidth - window.innerWidth);
-    const boxes = async () => [await p3.locator('#panel-old').boundingBox(), await p3.locator('#panel-new').boundingBox()];
+    const boxes = async () => [await p3.locator('#panel-a').boundingBox(), await p3.locator('#panel-b').boundingBox()];
     check((await overflow()) <= 0, `horizontal overflow ${await overflow()}px`);
     const fits = () => p3.evaluate(() => document.documentElement.scrollHeight <= window.innerHeight);
     check(await fits(), 'at 480 × 800 the embed scrolls');
@@ -544,7 +544,7 @@ try {
     // the full page on a phone-sized screen shows one panel at a time, with its A/B switch
     await p3.goto(`${server.base}#sample=star-quad`);
     await idle(p3);
-    check(await p3.isVisible('#mesh-old') && !(await p3.isVisible('#mesh-new')) && (await p3.isVisible('#show-b')), 'the full page at 360 px: A, and a switch to B');
+    check(await p3.isVisible('#mesh-a') && !(await p3.isVisible('#mesh-b')) && (await p3.isVisible('#show-b')), 'the full page at 360 px: A, and a switch to B');
     check((await overflow()) <= 0, 'the full page scrolls sideways at 360 px');
     await shot(p3, '08-full-360');
     await p3.close();
@@ -561,9 +561,9 @@ try {
     await unfold(page);
     await page.click('#perturb');
     await idle(page);
-    const hit = await clickSomeNode(page, 'mesh-new', ringPoints());
+    const hit = await clickSomeNode(page, 'mesh-b', ringPoints());
     await idle(page);
-    const want = [await stats(page, 'old'), await stats(page, 'new')];
+    const want = [await stats(page, 'a'), await stats(page, 'b')];
     check(Number(want[0].inverted) > 0, `the perturbed plate has ${want[0].inverted} inverted elements`);
     const href = await page.getAttribute('#permalink', 'href');
     for (const part of ['sample=plate-tri&', 'tangle=0.8', 'seed=5', 'perturbed=1', `node=${hit.node}`]) {
@@ -581,10 +581,10 @@ try {
     watch(p6, 'perturbed permalink');
     await p6.goto(copied);
     await idle(p6);
-    const got = [await stats(p6, 'old'), await stats(p6, 'new')];
+    const got = [await stats(p6, 'a'), await stats(p6, 'b')];
     check(JSON.stringify(got) === JSON.stringify(want), `reopened ${JSON.stringify(got)} != ${JSON.stringify(want)}`);
     check((await p6.inputValue('#node')) === String(hit.node), `node ${await p6.inputValue('#node')}`);
-    check((await canvasInfo(p6, 'level-new')).colours > 100, 'the level sets of the node are drawn');
+    check((await canvasInfo(p6, 'level-b')).colours > 100, 'the level sets of the node are drawn');
     check((await p6.getAttribute('#permalink', 'href')) === href, 'the reopened page writes the same link');
     await p6.close();
   });
@@ -623,7 +623,7 @@ try {
     check(!/id="(passes|maxiter|seed|amount)"[^>]*\b(min|max|value)=/.test(html), 'the HTML writes no range of its own');
     const attrs = await page.evaluate(() => ['passes', 'maxiter'].map((id) => [document.getElementById(id).min, document.getElementById(id).max]));
     check(JSON.stringify(attrs) === '[["1","100"],["1","50"]]', `ranges from the core: ${JSON.stringify(attrs)}`);
-    const before = await stats(page, 'new');
+    const before = await stats(page, 'b');
     await page.fill('#passes', '2.5');
     await page.waitForFunction(() => document.getElementById('passes-error').textContent !== '', null, { timeout: TIMEOUT });
     check((await page.textContent('#passes-error')) === "Passes must be a whole number from 1 to 100; '2.5' is not.", await page.textContent('#passes-error'));
@@ -632,7 +632,7 @@ try {
     await idle(page);
     const msg = await page.textContent('#message');
     check(/Passes must be .* Correct it first\./.test(msg) && !/invalid type|u32|Error:/.test(msg), `message: ${msg}`);
-    check(JSON.stringify(await stats(page, 'new')) === JSON.stringify(before), 'nothing ran');
+    check(JSON.stringify(await stats(page, 'b')) === JSON.stringify(before), 'nothing ran');
     await page.fill('#passes', '500');
     await page.waitForFunction(() => /'500' is not/.test(document.getElementById('passes-error').textContent), null, { timeout: TIMEOUT });
     await page.fill('#passes', '2');
@@ -685,7 +685,7 @@ try {
       await idle(page);
       const status = await page.textContent('#status');
       check(want.test(status), `${action}: status ${status}`);
-      const s = await stats(page, 'new');
+      const s = await stats(page, 'b');
       check(s.passes === '0', `${action}: ${s.passes} passes shown after it`);
     }
     await page.fill('#passes', '3');
@@ -714,7 +714,7 @@ try {
 
   await test('a press near a node: chosen within reach, else a note says why; hover shows the node number', async () => {
     await chooseSample(page, 'sample:plate-quadratic');
-    const box = await page.locator('#mesh-new').boundingBox();
+    const box = await page.locator('#mesh-b').boundingBox();
     // the hover label names nodes as the mouse passes over them
     const seen = { free: null, fixed: null, mid: null };
     for (let i = 0; i < 60 && !(seen.free && seen.fixed && seen.mid); i++) {
@@ -726,7 +726,7 @@ try {
         await page.waitForFunction(() => true);
         await page.waitForTimeout(5);
         const hovered = await page.evaluate(() => {
-          const l = document.querySelector('#panel-new .hover-label');
+          const l = document.querySelector('#panel-b .hover-label');
           return l.hidden ? null : { label: l.textContent, left: parseFloat(l.style.left), top: parseFloat(l.style.top) };
         });
         if (!hovered) continue;
@@ -759,7 +759,7 @@ try {
     await page.waitForFunction(() => !document.getElementById('message').hidden, null, { timeout: TIMEOUT });
     check(/mid-side node/.test(await page.textContent('#message')), await page.textContent('#message'));
     // a tap reaches farther than a mouse click: every tap within 20 px of a free node takes it
-    const hit = await clickSomeNode(page, 'mesh-new', ringPoints());
+    const hit = await clickSomeNode(page, 'mesh-b', ringPoints());
     const radius = await page.evaluate(() => window.smoothlab.pickRadius({ pointerType: 'touch' }));
     check(radius >= 20, `touch radius ${radius}`);
     console.log(`     hover: ${seen.free.label}, ${seen.fixed.label}, ${seen.mid.label}; chose node ${hit.node}`);
@@ -773,7 +773,7 @@ try {
       await page.waitForFunction((n) => document.getElementById('node-hint').textContent.startsWith(`Node ${n}:`), node, { timeout: TIMEOUT });
       await idle(page);
       const ink = await page.evaluate(() => {
-        const c = document.getElementById('level-old');
+        const c = document.getElementById('level-a');
         const d = c.getContext('2d').getImageData(0, 0, c.width, c.height).data;
         let n = 0;
         for (let i = 0; i < d.length; i += 4) if (d[i] === 204 && d[i + 1] === 0 && d[i + 2] === 153) n++;
@@ -783,7 +783,7 @@ try {
       // 2 px wide, in a picture whose plot shares its room with the legend's band
       check(ink.n >= 15, `node ${node}: ${ink.n} pixels of the old solver's path in a ${ink.w}-px picture`);
     }
-    await page.locator('#level-old').screenshot({ path: path.join(OUT, '09-old-path-node-320.png') });
+    await page.locator('#level-a').screenshot({ path: path.join(OUT, '09-old-path-node-320.png') });
   });
 
   await test('on a phone (390×844) the first screen shows a mesh, the charts have height, the legend is whole', async () => {
@@ -792,20 +792,20 @@ try {
     watch(p8, 'phone');
     await p8.goto(`${server.base}#sample=plate-tri-tangled&passes=2`);
     await idle(p8);
-    const box = await p8.locator('#mesh-old').boundingBox();
+    const box = await p8.locator('#mesh-a').boundingBox();
     check(box.y + box.height / 2 < 844, `the old mesh starts at ${box.y} px, below the first screen`);
     check(!/left|right/.test(await p8.textContent('.lede')), 'the intro says left/right');
     await shot(p8, '10-phone-first-screen', false);
     await p8.click('#run');
     await p8.waitForFunction(() => /2 passes done/.test(document.getElementById('status').textContent), null, { timeout: TIMEOUT });
     await idle(p8);
-    for (const id of ['pass-chart', 'hist-old', 'hist-new']) {
+    for (const id of ['pass-chart', 'hist-a', 'hist-b']) {
       const b = await p8.locator(`#${id}`).boundingBox();
       check(b.height >= 250, `${id} is ${b.height} px high`);
     }
     // nothing inked in the canvas's last pixel columns: the legend ends inside it
     const edge = await p8.evaluate(() => {
-      const c = document.getElementById('mesh-old');
+      const c = document.getElementById('mesh-a');
       const d = c.getContext('2d').getImageData(c.width - 4, 0, 4, c.height).data;
       let dark = 0;
       for (let i = 0; i < d.length; i += 4) if (d[i] < 200 || d[i + 1] < 200 || d[i + 2] < 200) dark++;
@@ -829,7 +829,7 @@ try {
     await frame.waitForFunction(() => document.body.dataset.ready === '1' && document.body.dataset.busy === '0', null, { timeout: TIMEOUT });
     const fit = await frame.evaluate(() => ({ h: document.documentElement.scrollHeight, inner: window.innerHeight, w: document.documentElement.scrollWidth, iw: window.innerWidth }));
     check(fit.h <= fit.inner && fit.w <= fit.iw, `the embed is ${fit.w}×${fit.h} in a ${fit.iw}×${fit.inner} frame`);
-    check((await frame.locator('#mesh-new').boundingBox()).height > 150, 'the meshes are still of a useful size');
+    check((await frame.locator('#mesh-b').boundingBox()).height > 150, 'the meshes are still of a useful size');
     await host.locator('#f').screenshot({ path: path.join(OUT, '12-embed-iframe-520.png') });
     await host.close();
   });
@@ -845,7 +845,7 @@ try {
     const cells = await page.evaluate((rows) => {
       const out = {};
       for (const key of rows) {
-        out[key] = ['old', 'new'].map((side) => {
+        out[key] = ['a', 'b'].map((side) => {
           const td = document.querySelector(`#stats-${side} tr[data-stat="${key}"] td`);
           return td && { text: td.textContent, value: td.dataset.value, better: td.classList.contains('better') };
         });
@@ -866,7 +866,7 @@ try {
     check(cells.inverted[1].value === '0', `B inverted ${cells.inverted[1].value}`);
     check(cells.mean_quality[1].better, 'B has the better mean quality');
     check(/%$/.test(cells.small_angles[0].text), cells.small_angles[0].text);
-    check(/better/.test(await page.getAttribute('#stats-new tr[data-stat="mean_quality"] td', 'aria-label')), 'the mark is said to screen readers');
+    check(/better/.test(await page.getAttribute('#stats-b tr[data-stat="mean_quality"] td', 'aria-label')), 'the mark is said to screen readers');
     await page.locator('main.panels').screenshot({ path: path.join(OUT, '13-tables-compared.png') });
   });
 
@@ -882,14 +882,14 @@ try {
       }
       return n;
     }, { id, rgb: sideRgb });
-    const sideRgb = await page.evaluate(() => ['--side-old', '--side-new'].map((v) => getComputedStyle(document.documentElement).getPropertyValue(v).match(/\d+/g).map(Number)));
+    const sideRgb = await page.evaluate(() => ['--side-a', '--side-b'].map((v) => getComputedStyle(document.documentElement).getPropertyValue(v).match(/\d+/g).map(Number)));
     check(JSON.stringify(sideRgb[0]) !== JSON.stringify(sideRgb[1]), `the sides share a colour ${JSON.stringify(sideRgb)}`);
-    const [ho, hn, pc] = [await ink('hist-old'), await ink('hist-new'), await ink('pass-chart')];
+    const [ho, hn, pc] = [await ink('hist-a'), await ink('hist-b'), await ink('pass-chart')];
     check(ho[0] > 50 && ho[1] === 0, `A's histogram in A's colour only: ${ho}`);
     check(hn[1] > 50 && hn[0] === 0, `B's histogram in B's colour only: ${hn}`);
     check(pc[0] > 50 && pc[1] > 50, `the pass chart shows both colours: ${pc}`);
     // the panel headings carry the same colours
-    const border = await page.evaluate(() => ['title-old', 'title-new'].map((id) => getComputedStyle(document.getElementById(id)).borderLeftColor));
+    const border = await page.evaluate(() => ['title-a', 'title-b'].map((id) => getComputedStyle(document.getElementById(id)).borderLeftColor));
     check(border[0] === `rgb(${sideRgb[0].join(', ')})` && border[1] === `rgb(${sideRgb[1].join(', ')})`, `headings ${border}`);
     // both histograms are drawn on one scale: the same y-axis labels, so the same pixels
     // left of the plot; the log option redraws both
@@ -898,12 +898,12 @@ try {
       const k = c.width / c.clientWidth;
       return Array.from(c.getContext('2d').getImageData(0, 0, Math.round(56 * k), c.height).data).join(',');
     }, id);
-    check((await axis('hist-old')) === (await axis('hist-new')), 'the two histograms have different y axes');
-    const before = await canvasInfo(page, 'hist-old');
+    check((await axis('hist-a')) === (await axis('hist-b')), 'the two histograms have different y axes');
+    const before = await canvasInfo(page, 'hist-a');
     await page.check('#hist-log');
     await idle(page);
-    check((await canvasInfo(page, 'hist-old')).hash !== before.hash, 'the log scale changed nothing');
-    check((await axis('hist-old')) === (await axis('hist-new')), 'on the log scale the axes differ');
+    check((await canvasInfo(page, 'hist-a')).hash !== before.hash, 'the log scale changed nothing');
+    check((await axis('hist-a')) === (await axis('hist-b')), 'on the log scale the axes differ');
     await page.locator('.pass-view').screenshot({ path: path.join(OUT, '14-charts-log-broken-axis.png') });
     await page.uncheck('#hist-log');
     await idle(page);
@@ -922,26 +922,26 @@ try {
     await unfold(page);
     await page.selectOption('#penalty-b', 'angle');
     await idle(page);
-    check(/^A: sine/.test(await page.textContent('#title-old')), await page.textContent('#title-old'));
-    check(/angle penalty/.test(await page.textContent('#title-new')), await page.textContent('#title-new'));
+    check(/^A: sine/.test(await page.textContent('#title-a')), await page.textContent('#title-a'));
+    check(/angle penalty/.test(await page.textContent('#title-b')), await page.textContent('#title-b'));
     const hash = await page.evaluate(() => location.hash);
     check(hash.includes('a=sine') && hash.includes('b=new&b-penalty=angle') && !hash.includes('a-penalty'), hash);
     await page.click('#step');
     await page.waitForFunction(() => /One pass done/.test(document.getElementById('status').textContent), null, { timeout: TIMEOUT });
     await idle(page);
     // the panels smoothed differently from old vs new-barrier: compare with that run
-    const sineAngle = [await stats(page, 'old'), await stats(page, 'new')];
+    const sineAngle = [await stats(page, 'a'), await stats(page, 'b')];
     await open(page, `${server.base}#sample=plate-tri-tangled&passes=1`);
     await page.click('#step');
     await page.waitForFunction(() => /One pass done/.test(document.getElementById('status').textContent), null, { timeout: TIMEOUT });
     await idle(page);
-    const oldNew = [await stats(page, 'old'), await stats(page, 'new')];
+    const oldNew = [await stats(page, 'a'), await stats(page, 'b')];
     check(sineAngle[0].min_angle !== oldNew[0].min_angle || sineAngle[0].min_quality !== oldNew[0].min_quality, 'A ran the same objective');
     check(sineAngle[1].min_angle !== oldNew[1].min_angle || sineAngle[1].mean_quality !== oldNew[1].mean_quality, 'B ran the same penalty');
     // the link reopens the comparison
     await open(page, `${server.base}${hash}`);
     check((await page.inputValue('#objective-a')) === 'sine' && (await page.inputValue('#penalty-b')) === 'angle', 'the link lost the comparison');
-    check(/^A: sine/.test(await page.textContent('#title-old')), 'the heading after the link');
+    check(/^A: sine/.test(await page.textContent('#title-a')), 'the heading after the link');
     // an old link naming 'objective' still opens, as B's
     await open(page, `${server.base}#sample=plate-tri&objective=condition`);
     check((await page.inputValue('#objective-b')) === 'condition', 'objective= is read as B');
@@ -973,7 +973,7 @@ try {
     await page.click('#step');
     await page.waitForFunction(() => /One pass done/.test(document.getElementById('status').textContent), null, { timeout: TIMEOUT });
     await idle(page);
-    const [dl] = await Promise.all([page.waitForEvent('download'), page.click('button[data-export="vtk"][data-side="new"]')]);
+    const [dl] = await Promise.all([page.waitForEvent('download'), page.click('button[data-export="vtk"][data-side="b"]')]);
     const lines = readFileSync(await dl.path(), 'utf8').split('\n');
     const at = lines.findIndex((l) => l.startsWith('POINTS'));
     const pts = lines.slice(at + 1, at + 17).map((l) => l.trim().split(/\s+/).map(Number));
@@ -1001,11 +1001,11 @@ try {
   }
   /** The README's embedded views: each in a 520-px iframe of the height the README gives. */
   const EMBED_VIEWS = [
-    ['mesh', 300, ['mesh-old', 'mesh-new']],
-    ['levelset', 380, ['level-old', 'level-new']],
-    ['compare', 540, ['mesh-old', 'mesh-new']],
+    ['mesh', 300, ['mesh-a', 'mesh-b']],
+    ['levelset', 380, ['level-a', 'level-b']],
+    ['compare', 540, ['mesh-a', 'mesh-b']],
     ['history', 420, ['pass-chart']],
-    ['histogram', 280, ['hist-old', 'hist-new']],
+    ['histogram', 280, ['hist-a', 'hist-b']],
   ];
 
   await test('embed=1&view=…: each view alone fills its 520-px frame, with the settings of the hash', async () => {
@@ -1021,14 +1021,14 @@ try {
         check((await canvasInfo(frame, id)).colours > 8, `${view}: #${id} looks blank`);
       }
       for (const sel of ['.controls', '.load', '.foot']) check(!(await frame.isVisible(sel)), `${view}: ${sel} is shown`);
-      const others = ['mesh-new', 'level-new', 'pass-chart', 'hist-new', 'solve-chart'].filter((id) => !canvases.includes(id));
+      const others = ['mesh-b', 'level-b', 'pass-chart', 'hist-b', 'solve-chart'].filter((id) => !canvases.includes(id));
       for (const id of others) check(!(await frame.isVisible(`#${id}`)), `${view}: #${id} is shown too`);
       const run = await frame.evaluate(() => window.smoothlab.metrics.run);
       if (['compare', 'history', 'histogram'].includes(view)) check(run && run.done === 3, `${view}: ran ${JSON.stringify(run && run.done)} of the hash's 3 passes`);
       else check(run === null, `${view}: ran passes the view does not show`);
       if (view === 'levelset') check(/^\d+$/.test(await frame.inputValue('#node')), 'the level sets of a node (the worst one when the hash names none)');
       if (view === 'compare') {
-        const t = await frame.locator('#stats-new').boundingBox();
+        const t = await frame.locator('#stats-b').boundingBox();
         check(t && t.y + t.height >= h - 40, `the compare view keeps its tables, down to the frame's foot: ${JSON.stringify(t)}`);
       }
       await host.locator('#f').screenshot({ path: path.join(OUT, `20-embed-${view}-520.png`) });
@@ -1046,15 +1046,15 @@ try {
   await test('zoom and pan: wheel, drag on empty space and a pinch on the meshes and the level sets; double-click fits again', async () => {
     await page.goto(`${server.base}#sample=plate-tri`);
     await idle(page);
-    await page.locator('#mesh-new').scrollIntoViewIfNeeded();
-    const fitted = await canvasInfo(page, 'mesh-new');
-    const box = await page.locator('#mesh-new').boundingBox();
+    await page.locator('#mesh-b').scrollIntoViewIfNeeded();
+    const fitted = await canvasInfo(page, 'mesh-b');
+    const box = await page.locator('#mesh-b').boundingBox();
     await page.mouse.move(box.x + box.width * 0.3, box.y + box.height * 0.3);
     await page.mouse.wheel(0, -600);
     await idle(page);
-    const zoomed = await canvasInfo(page, 'mesh-new');
+    const zoomed = await canvasInfo(page, 'mesh-b');
     check(zoomed.hash !== fitted.hash, 'the wheel changed nothing');
-    check((await canvasInfo(page, 'mesh-old')).hash !== fitted.hash, 'both meshes zoom');
+    check((await canvasInfo(page, 'mesh-a')).hash !== fitted.hash, 'both meshes zoom');
     // a drag from the hole (no node there) pans, choosing no node
     const hole = { x: box.x + box.width * 0.5, y: box.y + box.height * 0.5 };
     // the hole's centre, (0.5, 0.5) fitted, is at 0.3 + 0.2 × the zoom after the wheel
@@ -1065,42 +1065,42 @@ try {
     await page.mouse.move(inHole.x - 60, inHole.y - 40, { steps: 6 });
     await page.mouse.up();
     await idle(page);
-    check((await canvasInfo(page, 'mesh-new')).hash !== zoomed.hash, 'a drag on empty space did not pan');
+    check((await canvasInfo(page, 'mesh-b')).hash !== zoomed.hash, 'a drag on empty space did not pan');
     check((await page.inputValue('#node')) === '', 'a pan chose a node');
     check(await page.isHidden('#pick-note'), 'a pan is not a missed press');
     // nodes are still chosen and dragged through the zoomed view
-    const hit = await clickSomeNode(page, 'mesh-new', ringPoints());
+    const hit = await clickSomeNode(page, 'mesh-b', ringPoints());
     check(hit.node >= 0, 'a node chosen on the zoomed mesh');
     await page.mouse.dblclick(hole.x, hole.y);
     await idle(page);
-    const refit = await canvasInfo(page, 'mesh-new');
+    const refit = await canvasInfo(page, 'mesh-b');
     // the chosen node is highlighted now: compare with that picture fitted
     await page.fill('#node', '');
     await page.dispatchEvent('#node', 'change');
     await idle(page);
-    check((await canvasInfo(page, 'mesh-new')).hash === fitted.hash, 'a double-click fits the meshes again exactly');
+    check((await canvasInfo(page, 'mesh-b')).hash === fitted.hash, 'a double-click fits the meshes again exactly');
     check(refit.hash !== zoomed.hash, 'double-click');
     // the level sets
     await page.fill('#node', String(hit.node));
     await page.dispatchEvent('#node', 'change');
     await idle(page);
-    await page.locator('#level-new').scrollIntoViewIfNeeded();
-    const lv = [await canvasInfo(page, 'level-old'), await canvasInfo(page, 'level-new')];
-    const lb = await page.locator('#level-new').boundingBox();
+    await page.locator('#level-b').scrollIntoViewIfNeeded();
+    const lv = [await canvasInfo(page, 'level-a'), await canvasInfo(page, 'level-b')];
+    const lb = await page.locator('#level-b').boundingBox();
     await page.mouse.move(lb.x + lb.width / 2, lb.y + lb.height * 0.6);
     await page.mouse.wheel(0, -500);
     await idle(page);
-    const lz = [await canvasInfo(page, 'level-old'), await canvasInfo(page, 'level-new')];
+    const lz = [await canvasInfo(page, 'level-a'), await canvasInfo(page, 'level-b')];
     check(lz[0].hash !== lv[0].hash && lz[1].hash !== lv[1].hash, 'both level sets zoom');
     await page.mouse.move(lb.x + lb.width / 2, lb.y + lb.height * 0.6);
     await page.mouse.down();
     await page.mouse.move(lb.x + lb.width / 2 + 40, lb.y + lb.height * 0.6 + 20, { steps: 4 });
     await page.mouse.up();
     await idle(page);
-    check((await canvasInfo(page, 'level-new')).hash !== lz[1].hash, 'a drag pans the level sets');
+    check((await canvasInfo(page, 'level-b')).hash !== lz[1].hash, 'a drag pans the level sets');
     await page.mouse.dblclick(lb.x + lb.width / 2, lb.y + lb.height / 2);
     await idle(page);
-    check((await canvasInfo(page, 'level-new')).hash === lv[1].hash, 'a double-click fits the level sets again');
+    check((await canvasInfo(page, 'level-b')).hash === lv[1].hash, 'a double-click fits the level sets again');
     await shot(page, '21-zoom-level-sets');
     // a pinch of two fingers on a touch screen zooms the meshes
     const phone = await browser.newContext({ viewport: { width: 390, height: 844 }, deviceScaleFactor: 2, isMobile: true, hasTouch: true });
@@ -1108,8 +1108,8 @@ try {
     watch(p, 'pinch');
     await p.goto(`${server.base}#sample=plate-tri`);
     await idle(p);
-    const before = await canvasInfo(p, 'mesh-old');
-    const b = await p.locator('#mesh-old').boundingBox();
+    const before = await canvasInfo(p, 'mesh-a');
+    const b = await p.locator('#mesh-a').boundingBox();
     const cdp = await phone.newCDPSession(p);
     const cx = b.x + b.width / 2;
     const cy = b.y + b.height / 2;
@@ -1118,7 +1118,7 @@ try {
     for (const d of [30, 45, 60, 80]) await cdp.send('Input.dispatchTouchEvent', { type: 'touchMove', touchPoints: fingers(d) });
     await cdp.send('Input.dispatchTouchEvent', { type: 'touchEnd', touchPoints: [] });
     await idle(p);
-    check((await canvasInfo(p, 'mesh-old')).hash !== before.hash, 'a pinch did not zoom');
+    check((await canvasInfo(p, 'mesh-a')).hash !== before.hash, 'a pinch did not zoom');
     check((await p.inputValue('#node')) === '', 'a pinch chose a node');
     await shot(p, '24-phone-pinched-390', false);
     await phone.close();
@@ -1128,9 +1128,9 @@ try {
     await page.goto(`${server.base}#sample=plate-quad`);
     await idle(page);
     check(await page.isDisabled('#undo'), 'nothing to undo at first');
-    const hit = await clickSomeNode(page, 'mesh-old', ringPoints());
+    const hit = await clickSomeNode(page, 'mesh-a', ringPoints());
     await idle(page);
-    const before = [await canvasInfo(page, 'mesh-old'), await canvasInfo(page, 'mesh-new'), await stats(page, 'new')];
+    const before = [await canvasInfo(page, 'mesh-a'), await canvasInfo(page, 'mesh-b'), await stats(page, 'b')];
     let at = { x: hit.x, y: hit.y };
     const drag = async (dx, dy) => {
       await page.mouse.move(at.x, at.y);
@@ -1141,23 +1141,23 @@ try {
       at = { x: at.x + dx, y: at.y + dy };
     };
     await drag(18, 12);
-    check((await canvasInfo(page, 'mesh-new')).hash !== before[1].hash, 'the drag moved nothing');
+    check((await canvasInfo(page, 'mesh-b')).hash !== before[1].hash, 'the drag moved nothing');
     check(!(await page.isDisabled('#undo')), 'Undo is offered');
     check(new RegExp(`node ${hit.node}`).test(await page.textContent('#undo')), await page.textContent('#undo'));
     await page.click('#undo');
     await idle(page);
-    check((await canvasInfo(page, 'mesh-old')).hash === before[0].hash && (await canvasInfo(page, 'mesh-new')).hash === before[1].hash, 'the button put the node back exactly');
-    check(JSON.stringify(await stats(page, 'new')) === JSON.stringify(before[2]), 'the table as before');
+    check((await canvasInfo(page, 'mesh-a')).hash === before[0].hash && (await canvasInfo(page, 'mesh-b')).hash === before[1].hash, 'the button put the node back exactly');
+    check(JSON.stringify(await stats(page, 'b')) === JSON.stringify(before[2]), 'the table as before');
     check(await page.isDisabled('#undo'), 'nothing left to undo');
     at = { x: hit.x, y: hit.y };
     await drag(-14, 9);
     await drag(10, -16);
-    await page.locator('#mesh-new').focus();
+    await page.locator('#mesh-b').focus();
     await page.keyboard.press('Control+z');
     await idle(page);
     await page.keyboard.press('Control+z');
     await idle(page);
-    check((await canvasInfo(page, 'mesh-new')).hash === before[1].hash, 'Ctrl+Z twice took back both drags');
+    check((await canvasInfo(page, 'mesh-b')).hash === before[1].hash, 'Ctrl+Z twice took back both drags');
     await drag(12, 12);
     await page.click('#step');
     await idle(page);
@@ -1168,16 +1168,16 @@ try {
     await page.goto(`${server.base}#sample=plate-tri&perturbed=1&tangle=0.4&seed=3`);
     await idle(page);
     check(await page.isDisabled('#smooth-node'), 'no node, nothing to smooth');
-    const hit = await clickSomeNode(page, 'mesh-new', ringPoints());
+    const hit = await clickSomeNode(page, 'mesh-b', ringPoints());
     await idle(page);
-    const before = await canvasInfo(page, 'mesh-new');
+    const before = await canvasInfo(page, 'mesh-b');
     const summary = await page.textContent('#node-hint');
     await page.click('#smooth-node');
     await idle(page);
     const hint = await page.textContent('#node-hint');
     check(new RegExp(`One solver call on each side moved node ${hit.node}`).test(hint), hint);
     check(hint.includes(summary), `the history shown is the call's: ${hint} vs ${summary}`);
-    check((await canvasInfo(page, 'mesh-new')).hash !== before.hash, 'the node did not move');
+    check((await canvasInfo(page, 'mesh-b')).hash !== before.hash, 'the node did not move');
     // from where it is now, the solve has little left to do
     const m = /B, .* \(\w+ is better\): (-?[\d.]+) → (-?[\d.]+)/.exec(hint);
     check(m, hint);
@@ -1188,7 +1188,7 @@ try {
     check(Math.abs(Number(again[1]) - Number(m[2])) < 1e-3, `B starts where the call ended: ${again[1]} vs ${m[2]}`);
     await page.click('#undo');
     await idle(page);
-    check((await canvasInfo(page, 'mesh-new')).hash === before.hash, 'undo puts the node back');
+    check((await canvasInfo(page, 'mesh-b')).hash === before.hash, 'undo puts the node back');
     await shot(page, '22-smooth-this-node');
     await page.locator('.node-view').scrollIntoViewIfNeeded();
     await shot(page, '22-smooth-this-node-1280', false);
@@ -1250,7 +1250,7 @@ try {
     await page.locator('#help').screenshot({ path: path.join(OUT, '23-help.png') });
     await page.click('#help summary');
     // tooltips on the terms where they are used
-    for (const sel of ['#stats-new tr[data-stat="inverted"] th', '#stats-new tr[data-stat="max_condition"] th', '#stats-new tr[data-stat="min_quality"] th', '#strategy option[value="c1"]', '#strategy option[value="rules"]', '#order option[value="priority"]']) {
+    for (const sel of ['#stats-b tr[data-stat="inverted"] th', '#stats-b tr[data-stat="max_condition"] th', '#stats-b tr[data-stat="min_quality"] th', '#strategy option[value="c1"]', '#strategy option[value="rules"]', '#order option[value="priority"]']) {
       const title = await page.getAttribute(sel, 'title');
       check(title && title.length > 20, `${sel} has no tooltip`);
     }
@@ -1260,27 +1260,27 @@ try {
     // the buttons that save something each have a name of their own
     const names = await page.$$eval('button[data-png], button[data-export]', (bs) => bs.map((b) => b.getAttribute('aria-label') || b.textContent));
     check(new Set(names).size === names.length && names.every((n) => /Save/.test(n)), `names: ${names.join(' | ')}`);
-    check((await page.locator('button[data-png="hist-new"]').getAttribute('aria-label')) === "Save PNG of B's angle histogram", 'the histogram B button');
+    check((await page.locator('button[data-png="hist-b"]').getAttribute('aria-label')) === "Save PNG of B's angle histogram", 'the histogram B button');
     // arrow keys: nothing chosen says so; a chosen node moves, and Ctrl+Z takes it back
-    await page.locator('#mesh-new').focus();
+    await page.locator('#mesh-b').focus();
     await page.keyboard.press('ArrowRight');
     check(/arrow keys move the chosen node/.test(await page.textContent('#pick-note')), await page.textContent('#pick-note'));
-    const hit = await clickSomeNode(page, 'mesh-new', ringPoints());
-    const before = await canvasInfo(page, 'mesh-new');
-    await page.locator('#mesh-new').focus();
+    const hit = await clickSomeNode(page, 'mesh-b', ringPoints());
+    const before = await canvasInfo(page, 'mesh-b');
+    await page.locator('#mesh-b').focus();
     const scroll = await page.evaluate(() => window.scrollY);
     await page.keyboard.press('Shift+ArrowUp');
     await idle(page);
     await page.keyboard.press('ArrowLeft');
     await idle(page);
-    check((await canvasInfo(page, 'mesh-new')).hash !== before.hash, 'the arrow keys moved nothing');
+    check((await canvasInfo(page, 'mesh-b')).hash !== before.hash, 'the arrow keys moved nothing');
     check(await page.evaluate(() => window.scrollY) === scroll, 'the page scrolled under the arrow keys');
     check(new RegExp(`Node ${hit.node} moved 1 px left`).test(await page.textContent('#status')), await page.textContent('#status'));
     await page.keyboard.press('Control+z');
     await idle(page);
     await page.keyboard.press('Control+z');
     await idle(page);
-    check((await canvasInfo(page, 'mesh-new')).hash === before.hash, 'Ctrl+Z took back the two key moves');
+    check((await canvasInfo(page, 'mesh-b')).hash === before.hash, 'Ctrl+Z took back the two key moves');
   });
 
   // the figures tour (issue 13): every figure opens by its link, in its state, with its views drawn
@@ -1315,15 +1315,15 @@ try {
       }
       if (hash.has('node')) {
         check((await page.inputValue('#node')) === hash.get('node'), `node selected: '${await page.inputValue('#node')}'`);
-        for (const id of ['level-old', 'level-new', 'solve-chart']) {
+        for (const id of ['level-a', 'level-b', 'solve-chart']) {
           const c = await canvasInfo(page, id);
           check(c.colours > 100, `${id} looks blank (${c.colours} colours)`);
         }
       }
-      const s = [await stats(page, 'old'), await stats(page, 'new')];
+      const s = [await stats(page, 'a'), await stats(page, 'b')];
       const passes = card.run ? hash.get('passes') || '3' : '0';
       check(s[0].passes === passes && s[1].passes === passes, `passes run: ${s[0].passes}/${s[1].passes}, want ${passes}`);
-      for (const id of ['mesh-old', 'mesh-new', 'pass-chart', 'hist-old', 'hist-new']) {
+      for (const id of ['mesh-a', 'mesh-b', 'pass-chart', 'hist-a', 'hist-b']) {
         const c = await canvasInfo(page, id);
         check(c.colours > 8, `${id} looks blank (${c.colours} colours)`);
       }
@@ -1359,7 +1359,7 @@ try {
     await page.goto(`${server.base}?open=none#figure=chen-99`);
     await idle(page);
     check(/no figure named 'chen-99'.*chen-2/.test(await page.textContent('#message')), await page.textContent('#message'));
-    check((await canvasInfo(page, 'mesh-new')).colours > 8, 'the default mesh is drawn');
+    check((await canvasInfo(page, 'mesh-b')).colours > 8, 'the default mesh is drawn');
     await openFigure(page, 'chen-2');
     await page.click('#tour-close');
     await idle(page);
@@ -1371,7 +1371,7 @@ try {
     const frame = await context.newPage();
     watch(frame, 'embed-figure');
     await frame.setViewportSize({ width: 520, height: 760 });
-    for (const [name, canvases] of [['chen-10', ['level-old', 'level-new']], ['freitag-3', ['hist-old', 'hist-new']], ['knupp-1', ['mesh-old', 'mesh-new']]]) {
+    for (const [name, canvases] of [['chen-10', ['level-a', 'level-b']], ['freitag-3', ['hist-a', 'hist-b']], ['knupp-1', ['mesh-a', 'mesh-b']]]) {
       await openFigure(frame, name, '?embed=1');
       check(await frame.evaluate(() => document.body.classList.contains('embed') && document.body.classList.contains('view')), 'an embedded view');
       check(await frame.locator('#tour').isVisible(), 'the figure is shown');
@@ -1417,9 +1417,9 @@ try {
       await page.click('#step');
       await page.waitForFunction(() => /One pass done/.test(document.getElementById('status').textContent), null, { timeout: TIMEOUT });
       await idle(page);
-      if ((await stats(page, 'new')).inverted === '0') return i;
+      if ((await stats(page, 'b')).inverted === '0') return i;
     }
-    throw new Error(`B is still tangled after ${max} passes: ${JSON.stringify(await stats(page, 'new'))}`);
+    throw new Error(`B is still tangled after ${max} passes: ${JSON.stringify(await stats(page, 'b'))}`);
   }
 
   await test('a tangled surface sample: 3D views turned by a drag and zoomed by the wheel, Step untangles, the export reads back as a surface', async () => {
@@ -1427,7 +1427,7 @@ try {
     await chooseSample(page, 'sample:sphere-tangled');
     check(await page.evaluate(() => document.body.classList.contains('surface')), 'the page is in its surface mode');
     check(await page.locator('#surface-note').isVisible(), 'the surface note is shown');
-    const s0 = await stats(page, 'new');
+    const s0 = await stats(page, 'b');
     check(Number(s0.inverted) > 0, `the sample is tangled: ${JSON.stringify(s0)}`);
     check(Number(s0.surface_distance) < 1e-9, `its nodes are on the sphere: ${s0.surface_distance}`);
     check(/^\d\.\d\de[-+]\d+$/.test(s0.surface_distance), `the distance row: ${s0.surface_distance}`);
@@ -1437,21 +1437,21 @@ try {
     }
     check(/planar/.test(await page.textContent('#node-hint')), 'the node view says why it waits');
     check((await page.textContent('#permalink-note')) === '' && (await page.getAttribute('#permalink', 'href')).includes('#sample=sphere-tangled&'), 'the link carries the surface sample');
-    const a0 = await canvasInfo(page, 'mesh-old');
-    const b0 = await canvasInfo(page, 'mesh-new');
+    const a0 = await canvasInfo(page, 'mesh-a');
+    const b0 = await canvasInfo(page, 'mesh-b');
     check(a0.colours > 50 && b0.colours > 50, 'both sides are drawn shaded');
     await panelsShot(page, 'surface-sphere-loaded');
 
     // a drag on B turns both views (one camera), and chooses no node
-    await page.locator('#mesh-new').scrollIntoViewIfNeeded();
-    const box = await page.locator('#mesh-new').boundingBox();
+    await page.locator('#mesh-b').scrollIntoViewIfNeeded();
+    const box = await page.locator('#mesh-b').boundingBox();
     const [cx, cy] = [box.x + box.width / 2, box.y + box.height / 2];
     await page.mouse.move(cx, cy);
     await page.mouse.down();
     for (let k = 1; k <= 8; k++) await page.mouse.move(cx + 12 * k, cy + 4 * k);
     await page.mouse.up();
-    const b1 = await changed(page, 'mesh-new', b0);
-    const a1 = await changed(page, 'mesh-old', a0);
+    const b1 = await changed(page, 'mesh-b', b0);
+    const a1 = await changed(page, 'mesh-a', a0);
     check(await page.inputValue('#node') === '', 'a drag on a surface moves no node');
     // the wheel zooms in: the surface covers more of the canvas
     const ink = (id) => page.evaluate((id) => {
@@ -1461,29 +1461,29 @@ try {
       for (let i = 0; i < d.length; i += 4) if (d[i] < 250 || d[i + 1] < 250 || d[i + 2] < 250) n++;
       return n;
     }, id);
-    const before = await ink('mesh-old');
+    const before = await ink('mesh-a');
     await page.mouse.move(cx, cy);
     await page.mouse.wheel(0, -300);
-    await changed(page, 'mesh-old', a1);
-    await changed(page, 'mesh-new', b1);
-    const after = await ink('mesh-old');
+    await changed(page, 'mesh-a', a1);
+    await changed(page, 'mesh-b', b1);
+    const after = await ink('mesh-a');
     check(after > 1.3 * before, `the wheel zooms in: ${before} → ${after} inked pixels`);
     // a double-click fits again: the first view's picture comes back exactly
-    await page.dblclick('#mesh-old');
+    await page.dblclick('#mesh-a');
     await idle(page);
     await page.waitForTimeout(100);
     await idle(page);
-    check((await canvasInfo(page, 'mesh-new')).hash === b0.hash, 'a double-click shows the starting view again');
+    check((await canvasInfo(page, 'mesh-b')).hash === b0.hash, 'a double-click shows the starting view again');
 
     const passes = await stepUntilUntangled(page, 3);
-    const s1 = await stats(page, 'new');
+    const s1 = await stats(page, 'b');
     check(s1.passes === String(passes) && Number(s1.surface_distance) < 1e-9, `after ${passes} passes: ${JSON.stringify(s1)}`);
     check(Number.parseFloat(s1.min_angle) > Number.parseFloat(s0.min_angle), `the smallest angle grows: ${s0.min_angle} → ${s1.min_angle}`);
     await panelsShot(page, 'surface-sphere-smoothed');
     await shot(page, 'surface-sphere-page');
 
     // the export is B's surface, in 3D, and the page reads it back as a surface
-    const [dl] = await Promise.all([page.waitForEvent('download'), page.click('button[data-export="vtk"][data-side="new"]')]);
+    const [dl] = await Promise.all([page.waitForEvent('download'), page.click('button[data-export="vtk"][data-side="b"]')]);
     const text = readFileSync(await dl.path(), 'utf8');
     const lines = text.split('\n');
     const at = lines.findIndex((l) => l.startsWith('POINTS'));
@@ -1495,15 +1495,15 @@ try {
     await page.setInputFiles('#file', { name: 'sphere_b.vtk', mimeType: 'text/plain', buffer: Buffer.from(text) });
     await page.waitForFunction(() => /Loaded sphere_b\.vtk/.test(document.getElementById('status').textContent), null, { timeout: TIMEOUT });
     await idle(page);
-    const back = await stats(page, 'old');
+    const back = await stats(page, 'a');
     check(await page.evaluate(() => document.body.classList.contains('surface')), 'the export reads back as a surface');
     check(back.nodes === s1.nodes && back.inverted === '0' && back.min_angle === s1.min_angle, `read back: ${JSON.stringify(back)} vs ${JSON.stringify(s1)}`);
 
     // the other surface samples draw; a planar sample brings the planar page back
     for (const name of ['torus-tangled', 'cylinder-capped']) {
       await chooseSample(page, `sample:${name}`);
-      check((await canvasInfo(page, 'mesh-old')).colours > 50, `${name} is drawn`);
-      check(Number((await stats(page, 'old')).inverted) > 0, `${name} is tangled`);
+      check((await canvasInfo(page, 'mesh-a')).colours > 50, `${name} is drawn`);
+      check(Number((await stats(page, 'a')).inverted) > 0, `${name} is tangled`);
       await panelsShot(page, `surface-${name}`);
     }
     await stepUntilUntangled(page, 3);
@@ -1511,7 +1511,7 @@ try {
     check(!(await page.evaluate(() => document.body.classList.contains('surface'))), 'a planar sample leaves the surface mode');
     check(await page.locator('#surface-note').isHidden(), 'the surface note is hidden');
     check(!(await page.locator('#node').isDisabled()) && !(await page.locator('#save-figure').isDisabled()), 'the planar controls are back');
-    check(!('surface_distance' in (await stats(page, 'old'))), 'a planar table has no distance from a surface');
+    check(!('surface_distance' in (await stats(page, 'a'))), 'a planar table has no distance from a surface');
   });
 
   await test("a Mesquite surface file (quads on a sphere) loads, turns, smooths and exports", async () => {
@@ -1525,82 +1525,82 @@ try {
     await page.waitForFunction(() => /Loaded quads_on_sphere_529\.vtk/.test(document.getElementById('status').textContent), null, { timeout: TIMEOUT });
     await idle(page);
     check(await page.evaluate(() => document.body.classList.contains('surface')), 'the file is a surface');
-    const s0 = await stats(page, 'old');
+    const s0 = await stats(page, 'a');
     check(s0.elements === '529' && s0.inverted === '0', `529 quads, none inverted: ${JSON.stringify(s0)}`);
-    const a0 = await canvasInfo(page, 'mesh-old');
+    const a0 = await canvasInfo(page, 'mesh-a');
     check(a0.colours > 50, 'the surface is drawn');
-    await page.locator('#mesh-old').scrollIntoViewIfNeeded();
-    const box = await page.locator('#mesh-old').boundingBox();
+    await page.locator('#mesh-a').scrollIntoViewIfNeeded();
+    const box = await page.locator('#mesh-a').boundingBox();
     await page.mouse.move(box.x + box.width / 2, box.y + box.height / 2);
     await page.mouse.down();
     for (let k = 1; k <= 6; k++) await page.mouse.move(box.x + box.width / 2 - 10 * k, box.y + box.height / 2 - 6 * k);
     await page.mouse.up();
-    await changed(page, 'mesh-old', a0);
+    await changed(page, 'mesh-a', a0);
     await page.click('#step');
     await page.waitForFunction(() => /One pass done/.test(document.getElementById('status').textContent), null, { timeout: TIMEOUT });
     await idle(page);
-    const s1 = await stats(page, 'new');
+    const s1 = await stats(page, 'b');
     check(s1.passes === '1' && s1.inverted === '0', `a pass: ${JSON.stringify(s1)}`);
     check(Number(s1.surface_distance) < 1e-6, `the nodes stay on the surface: ${s1.surface_distance}`);
     await panelsShot(page, 'surface-mesquite-quads-on-sphere');
-    const [dl] = await Promise.all([page.waitForEvent('download'), page.click('button[data-export="msh"][data-side="new"]')]);
+    const [dl] = await Promise.all([page.waitForEvent('download'), page.click('button[data-export="msh"][data-side="b"]')]);
     const text = readFileSync(await dl.path(), 'utf8');
     check(/\$Nodes/.test(text) && /\$Elements/.test(text), 'a .msh file');
     const nodes = text.split('$Nodes')[1].split('$EndNodes')[0].trim().split('\n').slice(1).map((l) => l.trim().split(/\s+/).map(Number));
     check(nodes.length === Number(s0.nodes) && nodes.some((p) => Math.abs(p[3]) > 0.1), 'the nodes keep their z');
     // Perturb moves the nodes in their tangent planes, on the surface, and starts both sides again
-    const b1 = await canvasInfo(page, 'mesh-new');
+    const b1 = await canvasInfo(page, 'mesh-b');
     await unfold(page);
     await page.click('#perturb');
     await page.waitForFunction(() => /^Perturbed/.test(document.getElementById('status').textContent), null, { timeout: TIMEOUT });
     await idle(page);
-    const s2 = await stats(page, 'new');
+    const s2 = await stats(page, 'b');
     check(s2.passes === '0' && s2.min_angle !== s1.min_angle, `perturbed: ${JSON.stringify(s2)}`);
     check(Number(s2.surface_distance) < 1e-6, `the perturbed nodes are on the surface: ${s2.surface_distance}`);
-    check((await canvasInfo(page, 'mesh-new')).hash !== b1.hash, 'the perturbed surface is drawn');
+    check((await canvasInfo(page, 'mesh-b')).hash !== b1.hash, 'the perturbed surface is drawn');
   });
 
   await test("Freitag's rand3D: tetrahedra cut by a plane, smoothed old vs new, their dihedral histograms, exported and read back", async () => {
     await chooseSample(page, 'sample:rand3d');
     check(await page.evaluate(() => document.body.classList.contains('surface')), 'tetrahedra use the 3D view');
     check(await page.locator('#volume-note').isVisible() && await page.locator('#surface-note').isHidden(), 'the tetrahedra note, not the surface one');
-    const s0 = await stats(page, 'new');
+    const s0 = await stats(page, 'b');
     check(s0.nodes === '1086' && Number(s0.elements) > 5000 && s0.inverted === '0', `rand3D: ${JSON.stringify(s0)}`);
-    check(await page.evaluate(() => [...document.querySelectorAll('#stats-new th')].some((th) => th.textContent === 'Min dihedral angle')), 'the table names dihedral angles');
+    check(await page.evaluate(() => [...document.querySelectorAll('#stats-b th')].some((th) => th.textContent === 'Min dihedral angle')), 'the table names dihedral angles');
     for (const id of ['node', 'smooth-node', 'save-figure']) {
       check(/^Not for tetrahedra: /.test(await page.getAttribute(`#${id}`, 'title')), `#${id} says why it waits`);
     }
-    const a0 = await canvasInfo(page, 'mesh-old');
+    const a0 = await canvasInfo(page, 'mesh-a');
     check(a0.colours > 50, 'the cut is drawn coloured');
-    const h0 = await canvasInfo(page, 'hist-new');
+    const h0 = await canvasInfo(page, 'hist-b');
     check(h0.colours > 3, 'the dihedral histogram is drawn');
     await panelsShot(page, 'volume-rand3d-loaded');
     // the cut plane moves: across x at 0.3, both views change
     await page.selectOption('#cut-axis', '0');
     await page.locator('#cut-at').fill('0.3');
-    const a1 = await changed(page, 'mesh-old', a0);
+    const a1 = await changed(page, 'mesh-a', a0);
     check(await page.textContent('#cut-at-out') === '0.30', 'the slider shows where the plane is');
     // one pass: the smallest dihedral angle grows on both sides, nothing is inverted
     await page.click('#step');
     await page.waitForFunction(() => /One pass done/.test(document.getElementById('status').textContent), null, { timeout: TIMEOUT });
     await idle(page);
-    const [o1, n1] = [await stats(page, 'old'), await stats(page, 'new')];
+    const [o1, n1] = [await stats(page, 'a'), await stats(page, 'b')];
     for (const s of [o1, n1]) {
       check(s.passes === '1' && s.inverted === '0', `a pass: ${JSON.stringify(s)}`);
       check(Number.parseFloat(s.min_angle) > Number.parseFloat(s0.min_angle), `the smallest dihedral angle grows: ${s0.min_angle} → ${s.min_angle}`);
     }
-    await changed(page, 'mesh-old', a1);
-    await changed(page, 'hist-new', h0);
+    await changed(page, 'mesh-a', a1);
+    await changed(page, 'hist-b', h0);
     await panelsShot(page, 'volume-rand3d-smoothed');
     await shot(page, 'volume-rand3d-page');
     // B's mesh exported as .vtk (cell type 10) reads back as tetrahedra
-    const [dl] = await Promise.all([page.waitForEvent('download'), page.click('button[data-export="vtk"][data-side="new"]')]);
+    const [dl] = await Promise.all([page.waitForEvent('download'), page.click('button[data-export="vtk"][data-side="b"]')]);
     const text = readFileSync(await dl.path(), 'utf8');
     check(/CELL_TYPES/.test(text) && text.split('CELL_TYPES')[1].trim().split(/\s+/)[1] === '10', 'a .vtk of tetrahedra');
     await page.setInputFiles('#file', { name: 'rand3d_b.vtk', mimeType: 'text/plain', buffer: Buffer.from(text) });
     await page.waitForFunction(() => /Loaded rand3d_b\.vtk/.test(document.getElementById('status').textContent), null, { timeout: TIMEOUT });
     await idle(page);
-    const back = await stats(page, 'old');
+    const back = await stats(page, 'a');
     check(back.nodes === '1086' && back.min_angle === n1.min_angle, `read back: ${JSON.stringify(back)} vs ${JSON.stringify(n1)}`);
     // a planar sample brings the planar page back
     await chooseSample(page, 'sample:plate-tri');

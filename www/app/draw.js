@@ -27,7 +27,7 @@ function embedTarget() {
   if (state.figure && !document.body.classList.contains('live')) return null; // the tour's picture: tour.js
   if (view.spec && view.spec.draws === 'charts') return { box: document.querySelector('.pass-view'), canvases: view.spec.canvases.map($) };
   if (view.spec) return { box: document.querySelector('.stage'), canvases: view.spec.canvases.map($) };
-  return { box: document.querySelector('.stage'), canvases: [$('mesh-old'), $('mesh-new')] };
+  return { box: document.querySelector('.stage'), canvases: [$('mesh-a'), $('mesh-b')] };
 }
 
 /** Sizes the canvases to the layout; returns whether a size changed. On the full page the
@@ -48,10 +48,10 @@ function capMeshes() {
     root.style.removeProperty('--mesh-max');
     return;
   }
-  const wrap = $('mesh-old').parentElement;
+  const wrap = $('mesh-a').parentElement;
   // with the tour open the meshes are below it: as large as the window under the run bar
   const top = state.figure
-    ? document.querySelector('.runbar').offsetHeight + $('title-old').offsetHeight + 24
+    ? document.querySelector('.runbar').offsetHeight + $('title-a').offsetHeight + 24
     : wrap.getBoundingClientRect().top + window.scrollY;
   const cap = Math.max(300, Math.floor(window.innerHeight - top - 12));
   root.style.setProperty('--mesh-max', `${cap}px`);
@@ -135,13 +135,13 @@ export async function redrawMeshes(refits = 2) {
   fitEmbed();
   const t0 = now();
   // a phone shows one panel at a time: the size is the shown one's (both are drawn alike)
-  const shown = $('mesh-old').clientWidth ? $('mesh-old') : $('mesh-new');
+  const shown = $('mesh-a').clientWidth ? $('mesh-a') : $('mesh-b');
   const { w, h, dpr } = canvasPixels(shown);
   const { result: f, timing } = await engine.timed('frame', w, h, dpr, false);
   const paint_ms = [0, 0];
-  if (f.old) paint_ms[0] = paint($('mesh-old'), f.old, w, h);
-  if (f.new) paint_ms[1] = paint($('mesh-new'), f.new, w, h);
-  if (metrics.startup && !metrics.startup.first_mesh_ms && (f.old || f.new)) {
+  if (f.a) paint_ms[0] = paint($('mesh-a'), f.a, w, h);
+  if (f.b) paint_ms[1] = paint($('mesh-b'), f.b, w, h);
+  if (metrics.startup && !metrics.startup.first_mesh_ms && (f.a || f.b)) {
     Object.assign(metrics.startup, { first_mesh_ms: now(), first_frame_ms: now() - t0, first_render_ms: f.render_ms });
   }
   state.frame = { w, h, dpr };
@@ -157,7 +157,7 @@ export async function redrawMeshes(refits = 2) {
     copy_ms: f.copy_ms,
     transfer_ms: timing.received - timing.worker.end,
     paint_ms,
-    sent: [Boolean(f.old), Boolean(f.new)],
+    sent: [Boolean(f.a), Boolean(f.b)],
     canvas: [w, h],
     table_ms: now() - t1,
   };
@@ -168,22 +168,22 @@ export async function redrawCharts() {
   fitEmbed();
   if (state.volume) {
     placeholder($('pass-chart'), 'Drawn for planar meshes; the tables follow the tetrahedra pass by pass');
-    const hc = canvasPixels($('hist-old'));
+    const hc = canvasPixels($('hist-a'));
     const r = await engine.call('volumeHistograms', hc.w, hc.h, hc.dpr, $('hist-log').checked);
-    paint($('hist-old'), r.old, hc.w, hc.h);
-    paint($('hist-new'), r.new, hc.w, hc.h);
+    paint($('hist-a'), r.a, hc.w, hc.h);
+    paint($('hist-b'), r.b, hc.w, hc.h);
     return;
   }
   if (state.surface) {
-    for (const id of ['pass-chart', 'hist-old', 'hist-new']) placeholder($(id), 'Drawn for planar meshes; this is a surface in 3D');
+    for (const id of ['pass-chart', 'hist-a', 'hist-b']) placeholder($(id), 'Drawn for planar meshes; this is a surface in 3D');
     return;
   }
   const c = canvasPixels($('pass-chart'));
-  const hc = canvasPixels($('hist-old'));
+  const hc = canvasPixels($('hist-a'));
   const r = await engine.call('charts', c.w, c.h, hc.w, hc.h, c.dpr, $('hist-log').checked);
   paint($('pass-chart'), r.pass, c.w, c.h);
-  paint($('hist-old'), r.hist_old, hc.w, hc.h);
-  paint($('hist-new'), r.hist_new, hc.w, hc.h);
+  paint($('hist-a'), r.hist_a, hc.w, hc.h);
+  paint($('hist-b'), r.hist_b, hc.w, hc.h);
   fillTables(r.stats); // the detail rows of a large mesh are measured by now
 }
 
@@ -207,24 +207,24 @@ export function placeholder(canvas, text) {
 export async function redrawNode() {
   if (EMBED && !(view.spec && view.spec.draws === 'node')) return;
   fitEmbed();
-  const lv = canvasPixels($('level-old'));
+  const lv = canvasPixels($('level-a'));
   const ch = canvasPixels($('solve-chart'));
   $('smooth-node').disabled = state.node === null || state.running || state.surface;
   if (state.surface) {
     const what = state.volume ? 'these are tetrahedra' : 'this is a surface in 3D';
-    for (const id of ['level-old', 'level-new', 'solve-chart']) placeholder($(id), `Drawn for planar meshes; ${what}`);
+    for (const id of ['level-a', 'level-b', 'solve-chart']) placeholder($(id), `Drawn for planar meshes; ${what}`);
     $('node-hint').textContent = planarOnlyWhy('node');
     return;
   }
   if (state.node === null) {
-    for (const id of ['level-old', 'level-new', 'solve-chart']) placeholder($(id), 'Click a free node on a mesh');
+    for (const id of ['level-a', 'level-b', 'solve-chart']) placeholder($(id), 'Click a free node on a mesh');
     $('node-hint').textContent = NODE_HINT;
     return;
   }
   const r = await engine.call('nodeView', lv.w, lv.h, ch.w, ch.h, lv.dpr);
   state.level = lv;
-  paint($('level-old'), r.level_old, lv.w, lv.h);
-  paint($('level-new'), r.level_new, lv.w, lv.h);
+  paint($('level-a'), r.level_a, lv.w, lv.h);
+  paint($('level-b'), r.level_b, lv.w, lv.h);
   paint($('solve-chart'), r.chart, ch.w, ch.h);
   $('node-hint').textContent = r.summary;
 }

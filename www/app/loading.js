@@ -113,8 +113,8 @@ export function showSurfaceMode(on, why = null, volume = false) {
       el.title = id === 'hist-log' ? HIST_LOG_HELP[state.volume ? 'volume' : 'planar'] : el.dataset.help || '';
     }
   }
-  for (const id of ['mesh-old', 'mesh-new']) {
-    const letter = id === 'mesh-old' ? 'A' : 'B';
+  for (const id of ['mesh-a', 'mesh-b']) {
+    const letter = id === 'mesh-a' ? 'A' : 'B';
     $(id).setAttribute('aria-label', on
       ? (state.volume
         ? `Tetrahedra of panel ${letter}, cut by a plane, coloured by mean ratio; drag to turn, wheel to zoom`

@@ -113,10 +113,10 @@ export function wire() {
   }
   window.addEventListener('hashchange', () => onAddressChange().catch(report));
   window.addEventListener('popstate', () => onAddressChange().catch(report));
-  attachPointer($('mesh-old'));
-  attachPointer($('mesh-new'));
-  attachLevelZoom($('level-old'), 'old');
-  attachLevelZoom($('level-new'), 'new');
+  attachPointer($('mesh-a'));
+  attachPointer($('mesh-b'));
+  attachLevelZoom($('level-a'), 'a');
+  attachLevelZoom($('level-b'), 'b');
   $('undo').addEventListener('click', undo);
   document.addEventListener('keydown', (ev) => {
     const typing = ev.target instanceof HTMLElement && ev.target.matches('input, select, textarea');

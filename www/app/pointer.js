@@ -279,7 +279,7 @@ export function panner(call, redraw) {
 }
 export const pumpPan = panner((dx, dy) => engine.call('panMeshes', dx, dy), redrawMeshes);
 
-/** Zoom and pan on a level-set canvas (`panel` old or new); both level sets follow. */
+/** Zoom and pan on a level-set canvas (`panel` a or b); both level sets follow. */
 export function attachLevelZoom(canvas, panel) {
   const point = () => (ev) => {
     const r = canvas.getBoundingClientRect();

@@ -6,7 +6,7 @@ import { endRun } from './loading.js';
 import { readyHelper, stopHelper } from './workers.js';
 import { redrawAll, redrawCharts, redrawMeshes, redrawNode } from './draw.js';
 
-export const SIDE_NAME = { old: 'A', new: 'B' };
+export const SIDE_NAME = { a: 'A', b: 'B' };
 export const STAGE_NAME = { plan: 'ordering the nodes', smooth: 'smoothing', measure: 'measuring', wait: 'waiting for the other worker' };
 
 /**
@@ -32,7 +32,7 @@ export async function smoothPass(i, n) {
   }
   let slices = 0;
   if ($('order').value === 'priority') {
-    setStatus(`Pass ${i + 1} of ${n}: ordering the nodes of the old side, worst first…`);
+    setStatus(`Pass ${i + 1} of ${n}: ordering the nodes of side A, worst first…`);
   }
   for (;;) {
     if (state.cancel) {
@@ -50,29 +50,29 @@ export async function smoothPass(i, n) {
 }
 
 /**
- * One pass split between the two workers (see SPLIT_MIN_NODES): the second sweeps the old
- * side from this worker's positions while this one smooths the new side, then takes the
- * old side's sweep over and measures it. As smoothPass; `undefined` when the second worker
+ * One pass split between the two workers (see SPLIT_MIN_NODES): the second sweeps side
+ * A from this worker's positions while this one smooths side B, then takes
+ * side A's sweep over and measures it. As smoothPass; `undefined` when the second worker
  * failed (it is dropped, the pass undone, and the caller runs it in one worker).
  */
 export async function splitPass(i, n, call, cost, second) {
   const settings = readSettings();
-  const nodes = await call('positions', 'old');
+  const nodes = await call('positions', 'a');
   let swept = null; // the second worker's result, once it has it
   let failed = null;
-  let oldFraction = 0;
+  let aFraction = 0;
   // settles when the second worker is done, stopped or failed (never rejects)
   const sweeping = (async () => {
-    let p = await second.call('sweep', settings, 'old', nodes, SLICE_MS);
+    let p = await second.call('sweep', settings, 'a', nodes, SLICE_MS);
     while (!p.done) {
-      oldFraction = p.fraction;
+      aFraction = p.fraction;
       if (state.cancel) {
         await second.call('abortPass');
         return;
       }
       p = await second.call('continueSweep', SLICE_MS);
     }
-    oldFraction = 1;
+    aFraction = 1;
     swept = p.result;
   })().catch((e) => {
     failed = e;
@@ -95,15 +95,15 @@ export async function splitPass(i, n, call, cost, second) {
       await call('adoptSweep', swept.nodes, swept.sweep);
       adopted = true;
     }
-    // the new side is the first half of this worker's pass, the old side's statistics the
-    // last twentieth of its second half; the old side's sweep is the second worker's
-    const newPart = Math.min(1, 2 * p.fraction);
-    const oldPart = 0.9 * oldFraction + Math.max(0, 2 * p.fraction - 1.9);
-    $('progress').value = i + (p.done ? 1 : Math.min(1, (newPart + oldPart) / 2));
+    // side B is the first half of this worker's pass, side A's statistics the
+    // last twentieth of its second half; side A's sweep is the second worker's
+    const bPart = Math.min(1, 2 * p.fraction);
+    const aPart = 0.9 * aFraction + Math.max(0, 2 * p.fraction - 1.9);
+    $('progress').value = i + (p.done ? 1 : Math.min(1, (bPart + aPart) / 2));
     if (p.done) return { records: p.records, slices, workers: 2, ...cost };
-    setStatus(`Pass ${i + 1} of ${n}, in two workers: A side ${Math.floor(100 * oldFraction)}%, B side ${Math.floor(100 * newPart)}%… (Stop undoes this pass)`);
+    setStatus(`Pass ${i + 1} of ${n}, in two workers: A side ${Math.floor(100 * aFraction)}%, B side ${Math.floor(100 * bPart)}%… (Stop undoes this pass)`);
     if (p.stage === 'wait' && !adopted) {
-      // this worker is done with the new side: wait for the old side's sweep, a slice at a time
+      // this worker is done with side B: wait for side A's sweep, a slice at a time
       await Promise.race([sweeping, new Promise((r) => setTimeout(r, SLICE_MS))]);
       continue;
     }

@@ -20,11 +20,11 @@ export const EMBED = PARAMS.get('embed') === '1';
  * which drawing fills them, and whether the embed first runs the hash's passes (as
  * `smoothlab render` does for the same views). */
 export const VIEWS = {
-  mesh: { canvases: ['mesh-old', 'mesh-new'], draws: 'meshes', passes: false },
-  levelset: { canvases: ['level-old', 'level-new'], draws: 'node', passes: false },
-  compare: { canvases: ['mesh-old', 'mesh-new'], draws: 'meshes', passes: true },
+  mesh: { canvases: ['mesh-a', 'mesh-b'], draws: 'meshes', passes: false },
+  levelset: { canvases: ['level-a', 'level-b'], draws: 'node', passes: false },
+  compare: { canvases: ['mesh-a', 'mesh-b'], draws: 'meshes', passes: true },
   history: { canvases: ['pass-chart'], draws: 'charts', passes: true },
-  histogram: { canvases: ['hist-old', 'hist-new'], draws: 'charts', passes: true },
+  histogram: { canvases: ['hist-a', 'hist-b'], draws: 'charts', passes: true },
 };
 /** The embedded view (`?embed=1&view=NAME`): its name, and its entry of VIEWS when it names one;
  * a figure's own view replaces them (tour). */

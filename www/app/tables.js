@@ -74,8 +74,8 @@ export function betterSide(dir, a, b) {
  * values as shown differ (90.00° beside 90.00° is a tie to the reader, whatever the
  * digits not shown). */
 export function fillTables(stats) {
-  const pair = [stats.old, stats.new];
-  for (const [i, side] of ['old', 'new'].entries()) {
+  const pair = [stats.a, stats.b];
+  for (const [i, side] of ['a', 'b'].entries()) {
     const s = pair[i];
     $(`title-${side}`).textContent = EMBED ? s.label : s.title;
     const body = $(`stats-${side}`).tBodies[0];

@@ -6,7 +6,7 @@ import { baseName, download } from './export.js';
 /** The Undo button says what it would take back, or why it cannot. */
 export async function refreshUndo() {
   if (state.surface) return; // disabled, saying why (showSurfaceMode)
-  const u = await engine.call('undoState');
+  const u = await engine.call('undoSummary');
   const b = $('undo');
   b.disabled = u.depth === 0 || state.running;
   b.textContent = u.depth ? `Undo move of node ${u.next}` : 'Undo move';
@@ -35,12 +35,12 @@ export function smoothThisNode() {
   if (state.running || state.node === null) return;
   return serial(async () => {
     const node = state.node;
-    const lv = canvasPixels($('level-old'));
+    const lv = canvasPixels($('level-a'));
     const ch = canvasPixels($('solve-chart'));
     const r = await engine.call('smoothNode', lv.w, lv.h, ch.w, ch.h, lv.dpr);
     state.level = lv;
-    paint($('level-old'), r.level_old, lv.w, lv.h);
-    paint($('level-new'), r.level_new, lv.w, lv.h);
+    paint($('level-a'), r.level_a, lv.w, lv.h);
+    paint($('level-b'), r.level_b, lv.w, lv.h);
     paint($('solve-chart'), r.chart, ch.w, ch.h);
     $('node-hint').textContent = `One solver call on each side moved node ${node} to its optimum; the pictures show that call. ${r.summary}`;
     await redrawMeshes();

@@ -4,8 +4,8 @@ import { PARAMS, state } from './state.js';
 import { sendSource } from './loading.js';
 
 /** A planar mesh of SPLIT_MIN_NODES to SPLIT_MAX_NODES nodes is also loaded into a second
- * worker, which sweeps the old side (A) of each pass while the first worker smooths the
- * new side (B): the two sides are independent, so on two cores a pass takes about the
+ * worker, which sweeps side A of each pass while the first worker smooths side B:
+ * the two sides are independent, so on two cores a pass takes about the
  * longer side's time rather than both sides' (the same result, bit for bit: the core's
  * split pass, lab::pass). A smaller mesh is not worth a second copy of it; a larger one
  * would take the two workers' memory together past the page's 400 MiB

@@ -125,8 +125,8 @@ fn sides(spec: &str) -> Result<Vec<Side>, String> {
     let mut out = Vec::new();
     for part in spec.split(',').map(str::trim) {
         let side = match part {
-            "old" => Side::Old,
-            "new" => Side::New,
+            "old" => Side::A,
+            "new" => Side::B,
             other => {
                 return Err(format!(
                     "--objective {other}: the pictures compare the old max-min objective and the new smooth one; \
@@ -288,15 +288,15 @@ pub fn run(a: RenderArgs) -> Result<(), String> {
             let objective = smoothlab::objective::objective_with(smoothlab::objective::ObjectiveKind::New, a.penalty);
             smooth(&mut laplace, objective.as_ref(), opts, passes, &|| 0.0).map_err(|e| e.to_string())?;
             let lap = mesh_stats(&laplace).angle_histogram_6deg;
-            let old = lab.stats(Side::Old).mesh.angle_histogram_6deg;
-            let new = lab.stats(Side::New).mesh.angle_histogram_6deg;
+            let old = lab.stats(Side::A).mesh.angle_histogram_6deg;
+            let new = lab.stats(Side::B).mesh.angle_histogram_6deg;
             let mut series = vec![HistogramSeries { label: "as loaded", counts: &as_loaded, color: None }];
             for &side in &shown {
                 series.push(match side {
-                    Side::Old => {
+                    Side::A => {
                         HistogramSeries { label: "old (max-min)", counts: &old, color: Some(theme.side(0)) }
                     }
-                    Side::New => {
+                    Side::B => {
                         HistogramSeries { label: "new (Chen et al.)", counts: &new, color: Some(theme.side(1)) }
                     }
                 });

@@ -9,6 +9,7 @@
 pub mod measured;
 pub mod pictures;
 pub mod solves;
+pub mod tables;
 
 use serde::Serialize;
 

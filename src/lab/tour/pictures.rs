@@ -2,7 +2,7 @@
 //! `docs/figures/`) and the numbers its captions compute. Each picture is drawn from
 //! the figure's own state ([`Figure::playground`]) or, for the 1-D views the playground
 //! has no panel for (Chen's Figs. 2 and 6), from the same metrics the objectives use.
-//! Freitag's live tables, and the pictures made of them, are in `pictures/tables.rs`.
+//! Freitag's live tables, and the pictures made of them, are in `tables.rs`.
 
 use std::f64::consts::PI;
 
@@ -26,14 +26,12 @@ use crate::render::{
 use crate::render::layout::{record, Region};
 use crate::render::{draw_text, title_band, Align, TextStyle, Valign};
 use crate::smooth::{Order, SmoothOptions, Smoother, Strategy};
-
-mod tables;
-pub(super) use tables::{freitag_3_measured, freitag_t1_measured, freitag_t2_measured};
-use tables::{freitag_histogram, freitag_t2, table_picture};
-pub use tables::{
+pub use super::tables::{
     freitag3d_row, freitag_row, table_caption, table_columns, table_row, table_rows, Freitag3dMethod, Freitag3dRow,
     FreitagMethod, FreitagRow, TableRow, FREITAG3D_METHODS, FREITAG_METHODS,
 };
+pub(super) use super::tables::{freitag_3_measured, freitag_t1_measured, freitag_t2_measured};
+use super::tables::{freitag_histogram, freitag_t2, table_picture};
 
 /// The size a figure's picture is drawn at by default, CSS pixels.
 pub fn default_size(name: &str) -> (u32, u32) {
@@ -88,13 +86,13 @@ pub fn render_with_layout(name: &str, c: Canvas, theme: &Theme) -> Result<(Pixma
 }
 
 /// The canvas of one of `cols × rows` panels under the title band.
-fn part(c: Canvas, cols: u32, rows: u32, t: &Theme) -> Canvas {
+pub(super) fn part(c: Canvas, cols: u32, rows: u32, t: &Theme) -> Canvas {
     let head = (title_band(t) * c.dpr.max(0.1)).round() as u32;
     Canvas { w: (c.w / cols).max(1), h: (c.h.saturating_sub(head) / rows).max(1), dpr: c.dpr }
 }
 
 /// A mesh on its own panel with a title and a line of statistics under it.
-fn mesh_panel(mesh: &Mesh, title: &str, c: Canvas, t: &Theme) -> Result<Pixmap> {
+pub(super) fn mesh_panel(mesh: &Mesh, title: &str, c: Canvas, t: &Theme) -> Result<Pixmap> {
     let mut pm = pixmap(c.w, c.h)?;
     let s = c.dpr;
     let full = Frame::of_pixmap(&pm, s);
@@ -305,7 +303,7 @@ pub(super) fn chen_6_measured() -> Result<String> {
 }
 
 /// The mean of a "mean [min–max]" cell.
-fn first(cell: &str) -> &str {
+pub(super) fn first(cell: &str) -> &str {
     cell.split_whitespace().next().unwrap_or(cell)
 }
 
@@ -315,8 +313,8 @@ fn level_sets(fig: &Figure, c: Canvas, t: &Theme) -> Result<Vec<Pixmap>> {
     let (mut pg, st) = fig.playground()?;
     pg.set_theme(*t);
     let node = st.node.ok_or_else(|| Error::invalid(format!("figure {} names no node", fig.name)))? as usize;
-    let (old, _) = pg.render_level_set(Side::Old, node, c)?;
-    let (new, _) = pg.render_level_set(Side::New, node, c)?;
+    let (old, _) = pg.render_level_set(Side::A, node, c)?;
+    let (new, _) = pg.render_level_set(Side::B, node, c)?;
     Ok(vec![old, new])
 }
 
@@ -325,7 +323,7 @@ fn solves(name: &str) -> Result<(SolveResult, SolveResult)> {
     let (_, fig) = find(name)?;
     let (pg, st) = fig.playground()?;
     let node = st.node.ok_or_else(|| Error::invalid(format!("figure {name} names no node")))? as usize;
-    Ok((pg.solve_node(Side::Old, node)?, pg.solve_node(Side::New, node)?))
+    Ok((pg.solve_node(Side::A, node)?, pg.solve_node(Side::B, node)?))
 }
 
 pub(super) fn chen_20_measured() -> Result<String> {
@@ -370,7 +368,7 @@ fn chen13_plate(seed: u64) -> Result<Mesh> {
     let st = fig.state()?;
     let (pg, _) = fig.playground()?;
     if seed == st.seed {
-        return Ok(pg.panel(Side::New).mesh.clone());
+        return Ok(pg.panel(Side::B).mesh.clone());
     }
     let name = st.sample.clone().unwrap_or_default();
     let sample: crate::lab::sample::Sample = serde_json::from_value(serde_json::Value::String(name))
@@ -502,7 +500,7 @@ const CHEN_16_OLD: &str = "optimization, old (max-min α)";
 fn curved_runs() -> Result<Vec<(String, Mesh)>> {
     let (_, fig) = find("chen-16")?;
     let (pg, st) = fig.playground()?;
-    let m0 = pg.panel(Side::New).mesh.clone();
+    let m0 = pg.panel(Side::B).mesh.clone();
     let new = objective_with(ObjectiveKind::New, Penalty::Barrier);
     let old = objective_with(ObjectiveKind::Old, Penalty::Barrier);
     let mut out = vec![("as loaded".to_string(), m0.clone())];
@@ -579,14 +577,14 @@ pub(super) fn chen_16_measured() -> Result<String> {
 /// The surface lab of `chen-18`: its gallery sample (a quadratic mixed torus, tangled in
 /// its tangent planes) with the figure's settings, and the inverted elements of each side
 /// after each of the figure's passes (the first count: as loaded).
-fn chen18_run() -> Result<(crate::lab::surface::SurfaceLab, [Vec<usize>; 2])> {
+fn chen18_run() -> Result<(crate::lab::Lab3d<crate::surface::Surface>, [Vec<usize>; 2])> {
     let (_, fig) = find("chen-18")?;
     let st = fig.state()?;
     let sample = super::gallery_sample(fig.name).ok_or_else(|| Error::invalid("chen-18 names no gallery sample"))?;
     let crate::surface::Model::Surface(s) = sample.model()? else {
         return Err(Error::invalid("chen-18: its sample is not a surface"));
     };
-    let mut lab = crate::lab::surface::SurfaceLab::new(s)?;
+    let mut lab = crate::lab::Lab3d::new(s)?;
     lab.set_settings(st.settings)?;
     let start = lab.original().stats().inverted;
     let mut counts = [vec![start], vec![start]];
@@ -618,8 +616,8 @@ fn chen_18(c: Canvas, t: &Theme) -> Result<Vec<Pixmap>> {
     };
     Ok(vec![
         draw(lab.original(), format!("as loaded: {} inverted", counts[0][0]))?,
-        draw(lab.surface(Side::Old), after(Side::Old))?,
-        draw(lab.surface(Side::New), after(Side::New))?,
+        draw(lab.mesh(Side::A), after(Side::A))?,
+        draw(lab.mesh(Side::B), after(Side::B))?,
     ])
 }
 
@@ -629,7 +627,7 @@ pub(super) fn chen_18_measured() -> Result<String> {
     let words = |v: &[usize]| v.iter().map(usize::to_string).collect::<Vec<_>>().join(" → ");
     let s = lab.original();
     let row = ["torus mixed order 2"];
-    let (a, b) = (lab.full_stats(Side::Old), lab.full_stats(Side::New));
+    let (a, b) = (lab.full_stats(Side::A), lab.full_stats(Side::B));
     Ok(format!(
         "Measured on this torus ({} nodes, {} elements), inverted elements pass by pass: {} with the old max-min \
          objective, {} with the new one; after the last pass the smallest angle is {:.1}° (old) and {:.1}° (new), \
@@ -657,7 +655,7 @@ pub(super) fn chen_18_measured() -> Result<String> {
 fn knupp_runs() -> Result<Vec<(String, Mesh)>> {
     let (_, fig) = find("knupp-1")?;
     let (pg, _) = fig.playground()?;
-    let m0 = pg.panel(Side::New).mesh.clone();
+    let m0 = pg.panel(Side::B).mesh.clone();
     let opt = SmoothOptions::default().with_strategy(Strategy::Opt).with_order(Order::Input);
     let mut m = m0.clone();
     let mut s = Smoother::new(opt.with_pass_through_folds(true))?;

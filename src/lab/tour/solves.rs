@@ -158,15 +158,15 @@ pub(crate) struct Chen9 {
 pub(crate) fn chen_9_numbers() -> Result<Chen9> {
     let (pg, node) = figure_state("chen-9", &Theme::light())?;
     let mut star = Star::new();
-    star.gather(&pg.panel(Side::Old).mesh, node);
+    star.gather(&pg.panel(Side::A).mesh, node);
     let (a, m, b) = curved_edge(&star).ok_or_else(|| Error::invalid("chen-9: the star has no curved edge"))?;
     let meet = tangent_meet(a, m, b).ok_or_else(|| Error::invalid("chen-9: the end tangents are parallel"))?;
-    let (old, new) = (pg.solve_node(Side::Old, node)?, pg.solve_node(Side::New, node)?);
+    let (old, new) = (pg.solve_node(Side::A, node)?, pg.solve_node(Side::B, node)?);
     let best = |side: Side| {
         let (_, shown) = pg.level_bounds(side, node);
         search_optimum(pg.panel(side).objective.as_ref(), &star, shown)
     };
-    let (old_best, new_best) = (best(Side::Old), best(Side::New));
+    let (old_best, new_best) = (best(Side::A), best(Side::B));
     let mut corners = MaxMinShape.corner_terms(&star, star.x0);
     corners.sort_by(|p, q| p.value.total_cmp(&q.value));
     let lowest = match corners.as_slice() {
@@ -179,7 +179,7 @@ pub(crate) fn chen_9_numbers() -> Result<Chen9> {
     let is_end = |p: DVec2| (p - a).length() < 1e-12 || (p - b).length() < 1e-12;
     let on_curve = tie && is_end(at(&lowest[0])) && is_end(at(&lowest[1]));
     // the ascent's direction at the start, as the solver finds it
-    let obj = pg.panel(Side::Old).objective.as_ref();
+    let obj = pg.panel(Side::A).objective.as_ref();
     let mut terms = Vec::new();
     obj.terms(&star, star.x0, &mut terms);
     let phi = terms.iter().map(|t| t.value).fold(f64::INFINITY, f64::min);
@@ -208,7 +208,7 @@ pub(super) fn chen_9(c: Canvas, t: &Theme) -> Result<Vec<Pixmap>> {
         ]
     };
     // the arrows a fifth of the shown box long
-    let (_, shown) = pg.level_bounds(Side::Old, node);
+    let (_, shown) = pg.level_bounds(Side::A, node);
     let len = 0.2 * (shown.1 - shown.0).x;
     let x0 = n.old.x0;
     let mut old_marks = tangents("end tangents (the paper's dashed lines)").to_vec();
@@ -219,8 +219,8 @@ pub(super) fn chen_9(c: Canvas, t: &Theme) -> Result<Vec<Pixmap>> {
     }
     let mut new_marks = tangents("end tangents (the paper's dashed lines)").to_vec();
     new_marks.push(Overlay::Point { at: n.new_best.0, marker: Marker::Star, color: rgb(OPTIMUM), label: "optimum, found by search" });
-    let old = side_panel(&pg, node, c, &SidePanel { side: Side::Old, solve: &n.old, optimum: None, overlays: &old_marks, feasible_levels: None })?;
-    let new = side_panel(&pg, node, c, &SidePanel { side: Side::New, solve: &n.new, optimum: None, overlays: &new_marks, feasible_levels: None })?;
+    let old = side_panel(&pg, node, c, &SidePanel { side: Side::A, solve: &n.old, optimum: None, overlays: &old_marks, feasible_levels: None })?;
+    let new = side_panel(&pg, node, c, &SidePanel { side: Side::B, solve: &n.new, optimum: None, overlays: &new_marks, feasible_levels: None })?;
     Ok(vec![old, new])
 }
 
@@ -274,7 +274,7 @@ pub const CHEN_10_LEVELS: usize = 24;
 
 pub(super) fn chen_10(c: Canvas, t: &Theme) -> Result<Vec<Pixmap>> {
     let (pg, node) = figure_state("chen-10", t)?;
-    [Side::Old, Side::New]
+    [Side::A, Side::B]
         .iter()
         .map(|&side| {
             let r = pg.solve_node(side, node)?;
@@ -285,7 +285,7 @@ pub(super) fn chen_10(c: Canvas, t: &Theme) -> Result<Vec<Pixmap>> {
 
 pub(crate) fn chen_10_measured() -> Result<String> {
     let (pg, node) = figure_state("chen-10", &Theme::light())?;
-    let (old, new) = (pg.solve_node(Side::Old, node)?, pg.solve_node(Side::New, node)?);
+    let (old, new) = (pg.solve_node(Side::A, node)?, pg.solve_node(Side::B, node)?);
     Ok(format!(
         "Measured at this node (20 iterations at most): the max-min objective takes {} iterations ({}), the new one {} \
          ({}); on Mesquite's equil_tri the new objective needs {} solver iterations where max-min α needs {} \
@@ -331,9 +331,9 @@ pub(crate) struct Chen11 {
 
 fn chen_11_solves(pg: &Playground, node: usize) -> Result<Chen11> {
     let options = pg.settings().smooth_options()?.with_newton(false);
-    let p = pg.panel(Side::New);
+    let p = pg.panel(Side::B);
     let chen = crate::smooth::solve_node(&p.mesh, node, p.objective.as_ref(), &options)?;
-    Ok(Chen11 { chen, newton: pg.solve_node(Side::New, node)? })
+    Ok(Chen11 { chen, newton: pg.solve_node(Side::B, node)? })
 }
 
 pub(crate) fn chen_11_numbers() -> Result<Chen11> {
@@ -365,7 +365,7 @@ fn history_chart(pm: &mut Pixmap, r: &SolveResult, title: &str, frame: Frame, c:
         })
         .filter(|(_, p): &(DirectionKind, Vec<DVec2>)| !p.is_empty())
         .collect();
-    let mut series = vec![Series::new("", &line).with_color(t.side(Side::New as usize))];
+    let mut series = vec![Series::new("", &line).with_color(t.side(Side::B as usize))];
     for (k, pts) in &marks {
         let kind = path_kind(*k);
         series.push(Series::new(mark_label(*k), pts).with_color(kind.color()).with_marker(kind.marker()));
@@ -394,7 +394,7 @@ fn history_title(what: &str, r: &SolveResult) -> String {
 pub(super) fn chen_11(c: Canvas, t: &Theme) -> Result<Vec<Pixmap>> {
     let (pg, node) = figure_state("chen-11", t)?;
     let s = chen_11_solves(&pg, node)?;
-    let level = side_panel(&pg, node, c, &SidePanel { side: Side::New, solve: &s.chen, optimum: Some(s.chen.x), overlays: &[], feasible_levels: None })?;
+    let level = side_panel(&pg, node, c, &SidePanel { side: Side::B, solve: &s.chen, optimum: Some(s.chen.x), overlays: &[], feasible_levels: None })?;
     let mut chart = pixmap(c.w, c.h)?;
     let full = Frame::of_pixmap(&chart, c.dpr);
     history_chart(&mut chart, &s.chen, &history_title(CHEN_SEARCH, &s.chen), full.row(0, 2, 6.0), c, t);
@@ -492,7 +492,7 @@ mod tests {
     #[test]
     fn chen_10_frames_the_feasible_region_and_spends_its_levels_there() {
         let (pg, node) = figure_state("chen-10", &Theme::light()).unwrap();
-        for side in [Side::Old, Side::New] {
+        for side in [Side::A, Side::B] {
             let mut star = Star::new();
             star.gather(&pg.panel(side).mesh, node);
             let (_, b) = pg.level_bounds(side, node);

@@ -155,7 +155,7 @@ const OWN = {
   },
   'chen-16': async (p, card) => {
     // the text's optimization numbers are the compare view's tables (one pass each)
-    const [a, b] = [await stats(p, 'old'), await stats(p, 'new')];
+    const [a, b] = [await stats(p, 'a'), await stats(p, 'b')];
     const m = card.measured.match(/min angle \(([0-9.]+)° vs ([0-9.]+)°\)/);
     check(m, `chen-16: the text compares no min angles: ${card.measured}`);
     const [oldA, newA] = [parseFloat(a.min_angle), parseFloat(b.min_angle)];

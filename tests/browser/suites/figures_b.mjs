@@ -98,9 +98,9 @@ export default async function ({ server, context }) {
       check(rows.some((r) => r[0] === 'opt, sine' && /^7\.88 \//.test(r[7])), 'Freitag\'s optimization row beside ours');
       check(/only/.test(await p.textContent('#tour-table-caption')), 'the caption says which rows are read, not run');
       check(/dihedral/.test((await p.$$eval('#tour-head th', (t) => t.map((x) => x.textContent))).join(' ')), 'dihedral headings');
-      const s = [await stats(p, 'old'), await stats(p, 'new')];
+      const s = [await stats(p, 'a'), await stats(p, 'b')];
       check(s[0].passes === '3' && s[1].passes === '3', `passes run: ${s[0].passes}/${s[1].passes}`);
-      for (const id of ['mesh-old', 'mesh-new']) {
+      for (const id of ['mesh-a', 'mesh-b']) {
         const c = await canvasInfo(p, id);
         check(c.colours > 50, `${id}, the cut view, looks blank (${c.colours} colours)`);
       }
@@ -123,10 +123,10 @@ export default async function ({ server, context }) {
       check(old && nw && old[0] === nw[0] && old[0] > 0, `counts: ${text}`);
       check(nw[nw.length - 1] === 0 && old[old.length - 1] > 0, `the new side untangles, the old does not: ${old} / ${nw}`);
       // the live panels ran the same passes from the same mesh: their counts are the text's
-      const s = [await stats(p, 'old'), await stats(p, 'new')];
+      const s = [await stats(p, 'a'), await stats(p, 'b')];
       check(s[0].passes === String(old.length - 1), `passes: ${s[0].passes}`);
       check(s[0].inverted === String(old[old.length - 1]) && s[1].inverted === String(nw[nw.length - 1]), `live counts ${s[0].inverted}/${s[1].inverted} against ${old} / ${nw}`);
-      for (const id of ['mesh-old', 'mesh-new']) check((await canvasInfo(p, id)).colours > 50, `${id} looks blank`);
+      for (const id of ['mesh-a', 'mesh-b']) check((await canvasInfo(p, id)).colours > 50, `${id} looks blank`);
       check(/§9/.test(text), 'the text cites the reproduction\'s §9');
       await p.locator('#tour').screenshot({ path: path.join(OUT, 'figure-b-chen-18.png') });
     } finally {

@@ -36,12 +36,12 @@ async function resizeFrame(p, frame, w, h) {
 const FRAMES = [[520, 520], [520, 760], [800, 450], [1280, 720], [390, 844]];
 /** Each embed, and the canvases that are its picture. */
 const EMBEDS = [
-  ['compact', '?embed=1#sample=plate-tri-tangled&passes=3', ['#mesh-old', '#mesh-new']],
-  ['mesh', '?embed=1&view=mesh#sample=plate-tri-tangled', ['#mesh-old', '#mesh-new']],
-  ['compare', '?embed=1&view=compare#sample=plate-tri-tangled&passes=1', ['#mesh-old', '#mesh-new']],
-  ['levelset', '?embed=1&view=levelset#sample=plate-tri-tangled&node=200', ['#level-old', '#level-new']],
+  ['compact', '?embed=1#sample=plate-tri-tangled&passes=3', ['#mesh-a', '#mesh-b']],
+  ['mesh', '?embed=1&view=mesh#sample=plate-tri-tangled', ['#mesh-a', '#mesh-b']],
+  ['compare', '?embed=1&view=compare#sample=plate-tri-tangled&passes=1', ['#mesh-a', '#mesh-b']],
+  ['levelset', '?embed=1&view=levelset#sample=plate-tri-tangled&node=200', ['#level-a', '#level-b']],
   ['history', '?embed=1&view=history#sample=plate-tri-tangled&passes=2', ['#pass-chart']],
-  ['histogram', '?embed=1&view=histogram#sample=plate-tri-tangled&passes=2', ['#hist-old', '#hist-new']],
+  ['histogram', '?embed=1&view=histogram#sample=plate-tri-tangled&passes=2', ['#hist-a', '#hist-b']],
   ['chen-10', '?embed=1#figure=chen-10', ['#tour-picture']],
   ['freitag-t1', '?embed=1#figure=freitag-t1', ['#tour-picture']],
 ];
@@ -52,24 +52,24 @@ export default async function ({ server, context }) {
       const p = await freshPage(context, w, h, `first-screen ${w}`);
       try {
         await open(p, `${server.base}#sample=plate-tri-tangled`);
-        const a = await box(p, '#mesh-old');
-        const b = await box(p, '#mesh-new');
+        const a = await box(p, '#mesh-a');
+        const b = await box(p, '#mesh-b');
         check(inView(a, w, h) && inView(b, w, h), `${w}×${h}: meshes not whole on the first screen: A ${say(a)}, B ${say(b)}`);
         check(a.w >= 300 && a.h >= 300 && Math.abs(a.w - b.w) < 1 && Math.abs(a.h - b.h) < 1, `${w}×${h}: sizes A ${say(a)}, B ${say(b)}`);
         check(Math.abs(a.y - b.y) < 1 && b.x >= a.r, `${w}×${h}: A and B not side by side at one height: A ${say(a)}, B ${say(b)}`);
-        const pa = await box(p, '#panel-old');
-        const pb = await box(p, '#panel-new');
+        const pa = await box(p, '#panel-a');
+        const pb = await box(p, '#panel-b');
         check(Math.abs(pa.h - pb.h) < 1, `${w}×${h}: panel heights ${pa.h} and ${pb.h}`);
         for (const id of ['#step', '#run', '#reset', '#status', '#progress', '#sample']) {
           check(inView(await box(p, id), w, h), `${w}×${h}: ${id} is not in view: ${say(await box(p, id))}`);
         }
         // Run becomes Stop while running: the same button, in view
         await p.screenshot({ path: path.join(OUT, `first-screen-${w}x${h}.png`) });
-        const before = await canvasInfo(p, 'mesh-new');
+        const before = await canvasInfo(p, 'mesh-b');
         await p.click('#step');
         await p.waitForFunction(() => /One pass done/.test(document.getElementById('status').textContent), null, { timeout: TIMEOUT });
         await idle(p);
-        check((await canvasInfo(p, 'mesh-new')).hash !== before.hash, 'Step changed nothing in view');
+        check((await canvasInfo(p, 'mesh-b')).hash !== before.hash, 'Step changed nothing in view');
         check((await p.evaluate(() => window.scrollY)) === 0, 'the page scrolled');
       } finally {
         await p.close();
@@ -81,15 +81,15 @@ export default async function ({ server, context }) {
     const p = await freshPage(context, 1366, 768, 'node beside');
     try {
       await open(p, `${server.base}#sample=plate-tri-tangled`);
-      const { node } = await clickSomeNode(p, 'mesh-old', ringPoints());
+      const { node } = await clickSomeNode(p, 'mesh-a', ringPoints());
       await idle(p);
       check((await p.textContent('#node-badge')) === String(node), 'the Node button shows the node');
       await p.waitForTimeout(100);
-      const lv = await box(p, '#level-old');
+      const lv = await box(p, '#level-a');
       check(inView(lv, 1366, 768), `A's level sets are not in view: ${say(lv)}`);
-      check(lv.x >= (await box(p, '#mesh-new')).r, 'the level sets are not beside the meshes');
-      check(inView(await box(p, '#mesh-old'), 1366, 768) && inView(await box(p, '#mesh-new'), 1366, 768), 'the meshes left the screen');
-      check((await canvasInfo(p, 'level-old')).colours > 20, 'the level sets are not drawn');
+      check(lv.x >= (await box(p, '#mesh-b')).r, 'the level sets are not beside the meshes');
+      check(inView(await box(p, '#mesh-a'), 1366, 768) && inView(await box(p, '#mesh-b'), 1366, 768), 'the meshes left the screen');
+      check((await canvasInfo(p, 'level-a')).colours > 20, 'the level sets are not drawn');
       check((await p.getAttribute('#tabbtn-node', 'aria-current')) === 'true', 'the Node button is not marked');
       await p.screenshot({ path: path.join(OUT, 'first-screen-node-1366x768.png') });
       await p.click('#tabbtn-settings');
@@ -103,18 +103,18 @@ export default async function ({ server, context }) {
     const p = await freshPage(context, 390, 844, 'phone');
     try {
       await open(p, `${server.base}#sample=plate-tri-tangled`);
-      const a = await box(p, '#mesh-old');
+      const a = await box(p, '#mesh-a');
       check(inView(a, 390, 844) && a.w >= 340, `A: ${say(a)}`);
-      check((await box(p, '#mesh-new')) === null, 'B shows beside A on a phone');
+      check((await box(p, '#mesh-b')) === null, 'B shows beside A on a phone');
       for (const id of ['#step', '#run', '#reset', '#show-b']) check(inView(await box(p, id), 390, 844), `${id} is not on A's screen: ${say(await box(p, id))}`);
       const r = await reach(p);
       check(r.sw <= 390, `the page scrolls sideways: ${r.sw} px wide`);
       await p.screenshot({ path: path.join(OUT, 'phone-390x844-a.png') });
       await p.click('#show-b');
       await idle(p);
-      const b = await box(p, '#mesh-new');
-      check(inView(b, 390, 844) && (await box(p, '#mesh-old')) === null, `B: ${say(b)}`);
-      check((await canvasInfo(p, 'mesh-new')).colours > 20, 'B is not drawn');
+      const b = await box(p, '#mesh-b');
+      check(inView(b, 390, 844) && (await box(p, '#mesh-a')) === null, `B: ${say(b)}`);
+      check((await canvasInfo(p, 'mesh-b')).colours > 20, 'B is not drawn');
       check(inView(await box(p, '#step'), 390, 844), 'Step is not on B\'s screen');
       await p.click('#step');
       await p.waitForFunction(() => /One pass done/.test(document.getElementById('status').textContent), null, { timeout: TIMEOUT });
@@ -156,13 +156,13 @@ export default async function ({ server, context }) {
     const p = await freshPage(context, 1400, 900, 'caption=0');
     try {
       let frame = await hostFrame(p, `${server.base}?embed=1&view=mesh#sample=plate-tri-tangled`, 800, 450);
-      const withCaption = await box(frame, '#mesh-old');
-      check((await box(frame, '#title-old')) !== null, 'the caption is shown by default');
+      const withCaption = await box(frame, '#mesh-a');
+      check((await box(frame, '#title-a')) !== null, 'the caption is shown by default');
       frame = await hostFrame(p, `${server.base}?embed=1&view=mesh&caption=0#sample=plate-tri-tangled`, 800, 450);
-      const without = await box(frame, '#mesh-old');
-      check((await box(frame, '#title-old')) === null, 'caption=0 still shows the titles');
+      const without = await box(frame, '#mesh-a');
+      check((await box(frame, '#title-a')) === null, 'caption=0 still shows the titles');
       check(without.h > withCaption.h, `no room given back: ${say(withCaption)} → ${say(without)}`);
-      check((await canvasInfo(frame, 'mesh-old')).colours > 20, 'the mesh is not drawn');
+      check((await canvasInfo(frame, 'mesh-a')).colours > 20, 'the mesh is not drawn');
     } finally {
       await p.close();
     }
@@ -181,7 +181,7 @@ export default async function ({ server, context }) {
           const r = document.getElementById('f').getBoundingClientRect();
           return { x: r.left, y: r.top };
         });
-        const b = await box(frame, '#mesh-old');
+        const b = await box(frame, '#mesh-a');
         let chosen = '';
         for (const [fx, fy] of ringPoints()) {
           await p.mouse.click(fb.x + (b.x + fx * b.w) * scale, fb.y + (b.y + fy * b.h) * scale);
@@ -246,11 +246,11 @@ export default async function ({ server, context }) {
     try {
       await open(p, `${server.base}#sample=plate-tri-tangled`);
       check((await p.evaluate(() => document.documentElement.dataset.theme)) === 'light', 'light by default');
-      check(lum(await corner('mesh-old')) > 200, `a light picture: ${await corner('mesh-old')}`);
+      check(lum(await corner('mesh-a')) > 200, `a light picture: ${await corner('mesh-a')}`);
       await p.click('#theme-toggle');
       await idle(p);
       check((await p.evaluate(() => document.documentElement.dataset.theme)) === 'dark', 'the toggle chose dark');
-      check(lum(await corner('mesh-old')) < 60 && lum(await corner('mesh-new')) < 60, `the pictures did not follow: ${await corner('mesh-old')}`);
+      check(lum(await corner('mesh-a')) < 60 && lum(await corner('mesh-b')) < 60, `the pictures did not follow: ${await corner('mesh-a')}`);
       const bg = await p.evaluate(() => getComputedStyle(document.documentElement).backgroundColor);
       check(/rgb\((\d+), (\d+), (\d+)\)/.test(bg) && lum(bg.match(/\d+/g).map(Number)) < 60, `the page is not dark: ${bg}`);
       await p.screenshot({ path: path.join(OUT, 'dark-1366x768.png') });
@@ -260,7 +260,7 @@ export default async function ({ server, context }) {
       check((await p.evaluate(() => document.documentElement.dataset.theme)) === 'dark', 'the choice was not kept');
       await p.evaluate(() => localStorage.clear());
       await open(p, `${server.base}?theme=light#sample=plate-tri`);
-      check(lum(await corner('mesh-old')) > 200, '?theme=light is not light');
+      check(lum(await corner('mesh-a')) > 200, '?theme=light is not light');
     } finally {
       await p.close();
     }

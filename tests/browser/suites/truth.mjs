@@ -52,7 +52,7 @@ const linkName = (value) => (value.startsWith('gmsh:')
 
 /** The title and the value of a table row, for each side. */
 async function row(p, key) {
-  return p.evaluate((key) => ['old', 'new'].map((side) => {
+  return p.evaluate((key) => ['a', 'b'].map((side) => {
     const tr = document.querySelector(`#stats-${side} tr[data-stat="${key}"]`);
     return tr && { title: tr.querySelector('th').title, label: tr.querySelector('th').textContent, text: tr.querySelector('td').textContent, better: tr.querySelector('td').classList.contains('better') };
   }), key);
@@ -93,8 +93,8 @@ export default async function ({ server, context }) {
     await p.goto(`${server.base}#figure=chen-16`);
     await p.waitForFunction(() => document.body.dataset.figure === 'chen-16', null, { timeout: TIMEOUT });
     await idle(p);
-    const rows = await p.evaluate(() => [...document.querySelectorAll('#stats-old tr')].map((tr) => {
-      const other = document.querySelector(`#stats-new tr[data-stat="${tr.dataset.stat}"] td`);
+    const rows = await p.evaluate(() => [...document.querySelectorAll('#stats-a tr')].map((tr) => {
+      const other = document.querySelector(`#stats-b tr[data-stat="${tr.dataset.stat}"] td`);
       const td = tr.querySelector('td');
       return { key: tr.dataset.stat, a: td.textContent, b: other.textContent, marks: [td.classList.contains('better'), other.classList.contains('better')] };
     }));
@@ -108,11 +108,11 @@ export default async function ({ server, context }) {
     const marks = await p.evaluate(async () => {
       const { fillTables } = await import(new URL('app/tables.js', location.href).href);
       const side = (title, v) => ({ title, label: title, nodes: 10, elements: 8, inverted: 0, min_angle_deg: v.min, max_angle_deg: v.max, min_quality: v.q, passes: 1, detail: { mean_quality: 0.9, small_angle_share: v.small, max_condition: v.k } });
-      fillTables({ old: side('A', { min: 30, max: 90.000001, q: 0.81234, small: 0.0021, k: 2.0004 }), new: side('B', { min: 31, max: 90, q: 0.81236, small: 0.0024, k: 2.0003 }) });
+      fillTables({ a: side('A', { min: 30, max: 90.000001, q: 0.81234, small: 0.0021, k: 2.0004 }), b: side('B', { min: 31, max: 90, q: 0.81236, small: 0.0024, k: 2.0003 }) });
       const out = {};
-      for (const tr of document.querySelectorAll('#stats-old tr')) {
+      for (const tr of document.querySelectorAll('#stats-a tr')) {
         const o = tr.querySelector('td');
-        const n = document.querySelector(`#stats-new tr[data-stat="${tr.dataset.stat}"] td`);
+        const n = document.querySelector(`#stats-b tr[data-stat="${tr.dataset.stat}"] td`);
         out[tr.dataset.stat] = [o.textContent, n.textContent, o.classList.contains('better'), n.classList.contains('better')];
       }
       return out;
@@ -138,7 +138,7 @@ export default async function ({ server, context }) {
     }
     const hint = await p.textContent('#node-hint');
     check(/^Not for tetrahedra: /.test(hint) && !/surface|tangent/.test(hint), `node hint: ${hint}`);
-    const drawn = await drawnOn(p, ['level-old', 'level-new', 'solve-chart', 'pass-chart']);
+    const drawn = await drawnOn(p, ['level-a', 'level-b', 'solve-chart', 'pass-chart']);
     check(drawn.some((t) => /tetrahedra/.test(t)), `the empty boxes say why: ${JSON.stringify(drawn)}`);
     check(!drawn.some((t) => /surface/.test(t)), `the empty boxes call tetrahedra a surface: ${JSON.stringify(drawn)}`);
     const note = await p.textContent('#permalink-note');
@@ -148,23 +148,23 @@ export default async function ({ server, context }) {
       check(!/tangent|surface|corner angle/.test(r.title), `${key} tooltip: ${r.title}`);
     }
     // a click on the cut view picks no node, and says so in the tetrahedra's words
-    await p.locator('#mesh-old').scrollIntoViewIfNeeded();
-    await p.click('#mesh-old');
+    await p.locator('#mesh-a').scrollIntoViewIfNeeded();
+    await p.click('#mesh-a');
     await idle(p);
     const pick = await p.textContent('#pick-note');
     check(/tetrahedra/.test(pick) && !/surface/.test(pick), `pick note: ${pick}`);
     // the log box works: the dihedral histograms are redrawn on a log scale, and back
     check(await p.locator('#hist-log').isEnabled(), 'the log box is enabled beside the dihedral histograms');
     check(/dihedral/.test(await p.getAttribute('#hist-log', 'title')), 'its tooltip says what it scales');
-    const h0 = await canvasInfo(p, 'hist-new');
-    const o0 = await canvasInfo(p, 'hist-old');
+    const h0 = await canvasInfo(p, 'hist-b');
+    const o0 = await canvasInfo(p, 'hist-a');
     await p.check('#hist-log');
-    const h1 = await changed(p, 'hist-new', h0);
-    await changed(p, 'hist-old', o0);
+    const h1 = await changed(p, 'hist-b', h0);
+    await changed(p, 'hist-a', o0);
     await shot(p, 'truth-rand3d-log-histograms');
     await p.uncheck('#hist-log');
-    await changed(p, 'hist-new', h1);
-    check((await canvasInfo(p, 'hist-new')).hash === h0.hash, 'unchecked, the linear histogram comes back');
+    await changed(p, 'hist-b', h1);
+    check((await canvasInfo(p, 'hist-b')).hash === h0.hash, 'unchecked, the linear histogram comes back');
     // a surface in a surface's words; its charts are not drawn, so the log box waits
     await drawnOn(p, []);
     await chooseSample(p, 'sample:torus-tangled');
@@ -173,7 +173,7 @@ export default async function ({ server, context }) {
       check(/^Not for a surface: /.test(await p.getAttribute(`#${id}`, 'title')), `#${id} on a surface: ${await p.getAttribute(`#${id}`, 'title')}`);
     }
     check(/^Not for a surface: .*tangent plane/.test(await p.textContent('#node-hint')), await p.textContent('#node-hint'));
-    const sdrawn = await drawnOn(p, ['level-old', 'level-new', 'solve-chart']);
+    const sdrawn = await drawnOn(p, ['level-a', 'level-b', 'solve-chart']);
     check(sdrawn.length > 0 && sdrawn.every((t) => /surface/.test(t)), `the surface's empty boxes: ${JSON.stringify(sdrawn)}`);
     // back to a plane: the box is for the corner angles again
     await chooseSample(p, 'sample:plate-tri');
@@ -184,7 +184,7 @@ export default async function ({ server, context }) {
   await test('a hexahedral file is refused in words in the status line and the message; the previous mesh stays, named', async () => {
     const p = await recordingPage(context, 'hexahedra');
     await open(p, `${server.base}#sample=plate-tri`);
-    const before = { s: await stats(p, 'new'), c: await canvasInfo(p, 'mesh-new') };
+    const before = { s: await stats(p, 'b'), c: await canvasInfo(p, 'mesh-b') };
     const label = await p.evaluate(() => document.getElementById('sample').selectedOptions[0].textContent);
     await p.setInputFiles('#file', path.join(BAD, 'hexa_cell.vtk'));
     await p.waitForFunction(() => /^Could not open/.test(document.getElementById('status').textContent), null, { timeout: TIMEOUT });
@@ -195,14 +195,14 @@ export default async function ({ server, context }) {
     const msg = await p.textContent('#message');
     check(await p.isVisible('#message') && msg.startsWith('hexahedra are not supported yet: line 17'), `message: ${msg}`);
     check((await p.inputValue('#sample')) === 'sample:plate-tri', `the menu shows the mesh on screen: ${await p.inputValue('#sample')}`);
-    check(JSON.stringify(await stats(p, 'new')) === JSON.stringify(before.s), 'the statistics changed');
-    check((await canvasInfo(p, 'mesh-new')).hash === before.c.hash, 'the mesh changed');
+    check(JSON.stringify(await stats(p, 'b')) === JSON.stringify(before.s), 'the statistics changed');
+    check((await canvasInfo(p, 'mesh-b')).hash === before.c.hash, 'the mesh changed');
     await shot(p, 'truth-hexahedra-refused', false);
     // with a user's file on screen: the menu and the status name it, a Gmsh hexahedron is refused alike
     await p.setInputFiles('#file', path.join(DATA, 'three_tris.off'));
     await p.waitForFunction(() => /Loaded three_tris\.off/.test(document.getElementById('status').textContent), null, { timeout: TIMEOUT });
     await idle(p);
-    const mine = { s: await stats(p, 'old'), c: await canvasInfo(p, 'mesh-old') };
+    const mine = { s: await stats(p, 'a'), c: await canvasInfo(p, 'mesh-a') };
     check(await p.evaluate(() => document.getElementById('sample').selectedOptions[0].textContent) === '(your file: three_tris.off)', 'the menu names the user\'s file');
     await p.setInputFiles('#file', path.join(BAD, 'hexahedron.msh'));
     await p.waitForFunction(() => /^Could not open hexahedron\.msh/.test(document.getElementById('status').textContent), null, { timeout: TIMEOUT });
@@ -212,7 +212,7 @@ export default async function ({ server, context }) {
     check((await p.textContent('#message')).startsWith('hexahedra are not supported yet'), await p.textContent('#message'));
     const shown = await p.evaluate(() => [document.getElementById('sample').value, document.getElementById('sample').selectedOptions[0].textContent]);
     check(shown[0] === '' && shown[1] === '(your file: three_tris.off)', `the menu: ${shown}`);
-    check(JSON.stringify(await stats(p, 'old')) === JSON.stringify(mine.s) && (await canvasInfo(p, 'mesh-old')).hash === mine.c.hash, 'the user\'s mesh stays');
+    check(JSON.stringify(await stats(p, 'a')) === JSON.stringify(mine.s) && (await canvasInfo(p, 'mesh-a')).hash === mine.c.hash, 'the user\'s mesh stays');
     // a sample again: the menu's file entry forgets the name
     await chooseSample(p, 'sample:star-quad');
     check(await p.evaluate(() => [...document.querySelectorAll('#sample option')].find((o) => o.value === '').textContent) === '(your file)', 'the file entry is plain again');
@@ -248,8 +248,8 @@ export default async function ({ server, context }) {
       check(await p.isHidden('#message'), `${n}: ${await p.textContent('#message')}`);
       check(await p.locator(`#${mode}`).isVisible(), `${n}: #${mode} is shown`);
       check((await p.inputValue('#strategy')) === 'c2', `${n}: the link's settings apply`);
-      for (const id of ['mesh-old', 'mesh-new']) check((await canvasInfo(p, id)).colours > 50, `${n}: ${id} is drawn`);
-      check(Number((await stats(p, 'new')).nodes) > 0, `${n}: the table is filled`);
+      for (const id of ['mesh-a', 'mesh-b']) check((await canvasInfo(p, id)).colours > 50, `${n}: ${id} is drawn`);
+      check(Number((await stats(p, 'b')).nodes) > 0, `${n}: the table is filled`);
       check((await p.getAttribute('#permalink', 'href')).includes(`#sample=${n}&`), `${n}: the page's link names it`);
     }
     // an unknown name: the message lists every valid one, and the default sample is shown
@@ -279,15 +279,15 @@ export default async function ({ server, context }) {
     await p.waitForFunction(() => document.getElementById('copy-link').dataset.copied, null, { timeout: TIMEOUT });
     const url = await p.getAttribute('#copy-link', 'data-copied');
     for (const part of ['#sample=sphere-tangled&', 'seed=7', 'perturbed=1', 'strategy=c3', 'passes=2']) check(url.includes(part), `${part} in ${url}`);
-    const want = { s: [await stats(p, 'old'), await stats(p, 'new')], c: await canvasInfo(p, 'mesh-new') };
+    const want = { s: [await stats(p, 'a'), await stats(p, 'b')], c: await canvasInfo(p, 'mesh-b') };
     const q = await recordingPage(context, 'surface link reopened');
     await open(q, url);
     check((await q.inputValue('#sample')) === 'sample:sphere-tangled', `sample: ${await q.inputValue('#sample')}`);
     check((await q.inputValue('#strategy')) === 'c3' && (await q.inputValue('#passes')) === '2', 'the settings');
     check(await q.evaluate(() => document.body.classList.contains('surface')), 'a surface');
-    const got = [await stats(q, 'old'), await stats(q, 'new')];
+    const got = [await stats(q, 'a'), await stats(q, 'b')];
     check(JSON.stringify(got) === JSON.stringify(want.s), `the same perturbed sphere:\n       ${JSON.stringify(got)}\n       ${JSON.stringify(want.s)}`);
-    check((await canvasInfo(q, 'mesh-new')).hash === want.c.hash, 'the same picture');
+    check((await canvasInfo(q, 'mesh-b')).hash === want.c.hash, 'the same picture');
     check(await q.isHidden('#message'), await q.textContent('#message'));
     await q.close();
     await p.close();

@@ -1,12 +1,12 @@
-//! Freitag's tables, live: Table 1 (rand2D; Fig. 3's histogram from its rows) and Table 2
-//! (rand3D, cut in 3D above the table), smoothed now on seed 1 beside the reproduction's
-//! five seeds and her published numbers (`docs/reproduction.md` §1 and §10), for the page's
-//! table (row by row) and drawn whole as a picture.
+//! The papers' tables as the tour shows them, smoothed now: Freitag's Table 1 (rand2D,
+//! the live table and Fig. 3's histograms) and Table 2 (rand3D, the tetrahedral table and
+//! its cut pictures). [`super::pictures`] draws them among the other figures.
 
 use serde::Serialize;
 use tiny_skia::{Color, Pixmap};
 
-use super::{first, repro};
+use super::pictures::first;
+use super::repro;
 use crate::error::{Error, Result};
 use crate::generate::rand2d;
 use crate::lab::views::{pixmap, Canvas};
@@ -15,8 +15,8 @@ use crate::mesh::Mesh;
 use crate::objective::{objective_with, ObjectiveKind, Penalty};
 use crate::quality::{mesh_stats, MeshStats};
 use crate::render::{
-    draw_text, percentages, render_angle_histogram, series_color, text_width, Align, AngleHistogram, HistogramSeries, TextStyle,
-    Theme, Valign,
+    draw_text, percentages, render_angle_histogram, series_color, text_width, Align, AngleHistogram, HistogramSeries,
+    TextStyle, Theme, Valign,
 };
 use crate::smooth::{Measure, Order, SmoothOptions, Smoother, Strategy};
 
@@ -105,7 +105,7 @@ pub fn freitag_row(i: usize) -> Result<FreitagRow> {
     })
 }
 
-pub(in crate::lab::tour) fn freitag_t1_measured() -> Result<String> {
+pub(super) fn freitag_t1_measured() -> Result<String> {
     let cellm = |row: &str| -> Result<String> { Ok(first(&repro(1, &[row], "min angle")?).to_string()) };
     Ok(format!(
         "Measured over five rand2D meshes (docs/reproduction.md §1): optimization of the smallest sine reaches a min \
@@ -150,7 +150,7 @@ fn small_share(s: &MeshStats) -> f64 {
     p.iter().take(bins).sum()
 }
 
-pub(in crate::lab::tour) fn freitag_3_measured() -> Result<String> {
+pub(super) fn freitag_3_measured() -> Result<String> {
     let (orig, lap) = (freitag_row(0)?, freitag_row(1)?);
     let cellp = |row: &str| repro(1, &[row], "angles < 18° (%)").map(|c| first(&c).to_string());
     Ok(format!(
@@ -408,7 +408,7 @@ pub(super) fn freitag_t2(c: Canvas, t: &Theme) -> Result<Pixmap> {
     Ok(out)
 }
 
-pub(in crate::lab::tour) fn freitag_t2_measured() -> Result<String> {
+pub(super) fn freitag_t2_measured() -> Result<String> {
     let cellm = |row: &str| -> Result<String> { Ok(first(&repro(10, &[row], "min dihedral")?).to_string()) };
     let paper_min = |row: &str| -> Result<String> {
         Ok(repro(10, &[row], "paper: min / max (lap / opt)")?.split(" / ").next().unwrap_or("—").to_string())
@@ -429,48 +429,4 @@ pub(in crate::lab::tour) fn freitag_t2_measured() -> Result<String> {
         cellm("opt, `condition`")?,
         repro(10, &["opt, `sine`"], "ratio")?,
     ))
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    /// "13.14 [7.42–18.22]" → (7.42, 18.22).
-    fn range(cell: &str) -> (f64, f64) {
-        let inner = cell.split('[').nth(1).unwrap().trim_end_matches(']');
-        let (a, b) = inner.split_once('–').unwrap();
-        (a.parse().unwrap(), b.parse().unwrap())
-    }
-
-    #[test]
-    fn the_live_table_smooths_as_the_reproduction_did() {
-        // seed 1 is one of the reproduction's five seeds: its value lies in each row's range
-        for i in 1..FREITAG_METHODS.len() {
-            let r = freitag_row(i).unwrap();
-            let (lo, hi) = range(&r.reproduction_min);
-            assert!((lo - 0.005..=hi + 0.005).contains(&r.min_angle_deg), "{}: {} not in {lo}–{hi}", r.method, r.min_angle_deg);
-            let (lo, hi) = range(&r.reproduction_max);
-            assert!((lo - 0.05..=hi + 0.05).contains(&r.max_angle_deg), "{}: {} not in {lo}–{hi}", r.method, r.max_angle_deg);
-        }
-        assert!(freitag_row(FREITAG_METHODS.len()).is_err());
-    }
-
-    #[test]
-    fn the_live_table_2_smooths_as_the_reproduction_did() {
-        // seed 1 is one of §10's five seeds: its value lies in each row's range
-        for i in 1..FREITAG3D_METHODS.len() {
-            let r = freitag3d_row(i).unwrap();
-            let (lo, hi) = range(&r.reproduction_min);
-            assert!((lo - 0.005..=hi + 0.005).contains(&r.min_dihedral_deg), "{}: {} not in {lo}–{hi}", r.method, r.min_dihedral_deg);
-            let (lo, hi) = range(&r.reproduction_max);
-            assert!((lo - 0.05..=hi + 0.05).contains(&r.max_dihedral_deg), "{}: {} not in {lo}–{hi}", r.method, r.max_dihedral_deg);
-        }
-        assert!(freitag3d_row(FREITAG3D_METHODS.len()).is_err());
-        for name in ["freitag-t1", "freitag-t2"] {
-            let r = table_row(name, 3).unwrap();
-            assert_eq!(r.cells.len(), table_columns(name).len(), "{name}");
-            assert_eq!(r.cells[0], "opt, sine", "{name}");
-        }
-        assert!(table_row("chen-2", 0).is_err() && table_rows("chen-2") == 0);
-    }
 }
