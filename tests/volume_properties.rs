@@ -12,7 +12,8 @@
 
 use proptest::prelude::*;
 use glam::DVec3;
-use smoothlab::generate::{delaunay_tetrahedra, perturb_volume, rand3d, tet_cube, SplitMix64};
+use smoothlab::generate::{delaunay_tetrahedra, perturb_volume, rand3d, tet_cube};
+use smoothlab::numeric::SplitMix64;
 use smoothlab::io::{read_model_str, write_model_string, Format, WriteOptions};
 use smoothlab::quality::tet::signed_volume;
 use smoothlab::surface::Model;

@@ -1,6 +1,6 @@
 //! Random perturbation of the free nodes: how the tangled test meshes are made.
 
-use super::SplitMix64;
+use crate::numeric::SplitMix64;
 use crate::error::{Error, Result};
 use crate::mesh::Mesh;
 

@@ -245,7 +245,7 @@ impl MeshBuilder {
         let unit = {
             let m = mesh.nodes.iter().fold(0.0f64, |m, p| m.max(p.x.abs()).max(p.y.abs()));
             let mut v = [DVec2::new(m, 0.0)];
-            let f = crate::quality::to_unit_scale(&mut v);
+            let f = crate::numeric::to_unit_scale(&mut v);
             f[0] * f[1]
         };
         let area_in = |e: usize, order: &[usize]| {

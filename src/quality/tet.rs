@@ -68,7 +68,7 @@ pub fn is_inverted(p: &[DVec3; 4]) -> bool {
 
 /// The corners in the tetrahedron's own scale, for the measures that are ratios of
 /// lengths (angles, sines, the mean ratio, κ, the sign of the volume): as they are when
-/// the edges' largest component lies within [`SAFE_SCALE`](super::SAFE_SCALE) (2^±200, where
+/// the edges' largest component lies within [`SAFE_SCALE`](crate::numeric::SAFE_SCALE) (2^±200, where
 /// every product those measures take is a normal double, so their bits are unchanged);
 /// beyond it, corner 0 moved to the origin and the edges multiplied by a power of two
 /// (exact) that brings that component to about 1 — the planar metrics' rule
@@ -77,10 +77,10 @@ pub fn is_inverted(p: &[DVec3; 4]) -> bool {
 pub fn in_unit_scale(p: &[DVec3; 4]) -> [DVec3; 4] {
     let e = [p[1] - p[0], p[2] - p[0], p[3] - p[0]];
     let m = e.iter().fold(0.0f64, |m, v| m.max(v.abs().max_element()));
-    if super::SAFE_SCALE.contains(&m) || m == 0.0 || !m.is_finite() {
+    let Some((f1, f2)) = crate::numeric::factors_beyond_safe_scale(m) else {
         return *p;
-    }
-    let [a, b, c] = super::in_unit_scale_3d(e);
+    };
+    let [a, b, c] = e.map(|x| x * f1 * f2);
     [DVec3::ZERO, a, b, c]
 }
 

@@ -589,7 +589,7 @@ fn keep_valid_stops_the_new_objective_folding_a_valid_star() {
 /// node placed uniformly at random in the square (Knupp 1999, Fig. 1, smaller).
 fn random_grid(kind: crate::generate::GridKind, seed: u64) -> Mesh {
     let mut m = crate::generate::grid(6, 6, kind).unwrap();
-    let mut rng = crate::generate::SplitMix64::new(seed);
+    let mut rng = crate::numeric::SplitMix64::new(seed);
     for n in 0..m.node_count() {
         if m.is_free(n) {
             m.nodes_mut()[n] = DVec2::new(rng.next_f64(), rng.next_f64());

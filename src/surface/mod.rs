@@ -258,10 +258,10 @@ impl Surface {
         for (i, v) in d[..k].iter_mut().enumerate() {
             *v = corner(i) - centre;
         }
-        let d = crate::quality::in_unit_scale_3d(d);
+        let d = crate::numeric::in_unit_scale_3d(d);
         let own = (0..k).map(|i| d[i].cross(d[(i + 1) % k])).sum::<DVec3>();
         let towards = self.reference_normal(e);
-        let normal = match Some(crate::quality::direction(own)).filter(|n| *n != DVec3::ZERO) {
+        let normal = match Some(crate::numeric::direction(own)).filter(|n| *n != DVec3::ZERO) {
             Some(n) if n.dot(towards) < 0.0 => -n,
             Some(n) => n,
             None => towards,

@@ -281,11 +281,9 @@ impl Facets {
             let [a, b, c] = t.map(|v| pts[v as usize]);
             m.max((b - a).abs().max_element()).max((c - a).abs().max_element())
         });
-        let unit = if crate::quality::SAFE_SCALE.contains(&reach) || reach == 0.0 || !reach.is_finite() {
-            1.0
-        } else {
-            let (f1, f2) = crate::quality::unit_factors(reach);
-            f1 * f2
+        let unit = match crate::numeric::factors_beyond_safe_scale(reach) {
+            None => 1.0,
+            Some((f1, f2)) => f1 * f2,
         };
         let area = |t: &[u32; 3]| area_vector(&pts, t, unit);
         let mut vertex_normal = vec![DVec3::ZERO; pts.len()];
@@ -296,7 +294,7 @@ impl Facets {
             }
         }
         for n in &mut vertex_normal {
-            *n = crate::quality::direction(*n);
+            *n = crate::numeric::direction(*n);
         }
         let mut first_side = vec![u32::MAX; pts.len()];
         let mut mixed = vec![false; pts.len()];
@@ -321,7 +319,7 @@ impl Facets {
             same
         });
         for (_, n) in &mut side_normal {
-            *n = crate::quality::direction(*n);
+            *n = crate::numeric::direction(*n);
         }
         let mut facets = Facets {
             points: pts,
@@ -380,8 +378,8 @@ impl Facets {
     /// The unit normal of triangle `t` (zero for a degenerate one).
     fn normal(&self, t: u32) -> DVec3 {
         let [a, b, c] = self.corners(t);
-        let [u, v] = crate::quality::in_unit_scale_3d([b - a, c - a]);
-        crate::quality::direction(u.cross(v))
+        let [u, v] = crate::numeric::in_unit_scale_3d([b - a, c - a]);
+        crate::numeric::direction(u.cross(v))
     }
 
     /// The nearest point of the facets to `p`: a walk from `hint` over neighbouring
@@ -411,7 +409,7 @@ impl Facets {
         let (point, bary) = closest_on_triangle(p, self.corners(t));
         let tri = self.triangles[t as usize];
         let blended: DVec3 = (0..3).map(|i| bary[i] * self.vertex_normal_in(tri[i], self.side[t as usize])).sum();
-        let normal = Some(crate::quality::direction(blended)).filter(|n| *n != DVec3::ZERO).unwrap_or_else(|| self.normal(t));
+        let normal = Some(crate::numeric::direction(blended)).filter(|n| *n != DVec3::ZERO).unwrap_or_else(|| self.normal(t));
         Projected { point, normal, face: t }
     }
 
@@ -814,7 +812,7 @@ mod tests {
     #[test]
     fn the_walk_and_the_grid_find_the_same_nearest_point() {
         let f = octahedron();
-        let mut rng = crate::generate::SplitMix64::new(7);
+        let mut rng = crate::numeric::SplitMix64::new(7);
         let mut coordinate = || 4.0 * rng.next_f64() - 2.0;
         for i in 0..1000 {
             // half the points anywhere, half near the surface (a node moved in its star)
@@ -860,7 +858,7 @@ mod tests {
                 assert!((q.point - p).length() < 1e-14, "node {n} moved {}", (q.point - p).length());
             }
             let (mut curved, mut straight) = (0.0f64, 0.0f64);
-            let mut rng = crate::generate::SplitMix64::new(3);
+            let mut rng = crate::numeric::SplitMix64::new(3);
             for _ in 0..300 {
                 let d = DVec3::new(rng.next_f64() - 0.5, rng.next_f64() - 0.5, rng.next_f64() - 0.5).normalize();
                 let on = facets.project(d, NONE);

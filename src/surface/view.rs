@@ -6,7 +6,7 @@ use glam::{DVec2, DVec3};
 
 use super::Surface;
 use crate::error::{Error, Result};
-use crate::generate::SplitMix64;
+use crate::numeric::SplitMix64;
 use crate::mesh::{Follower, Mesh, Plane};
 use crate::objective::Objective;
 use crate::smooth::{is_inverted, ElementScore, Measure, PassRecord, SmoothOptions, Smoother, StarView, Verdict};
