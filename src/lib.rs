@@ -91,6 +91,7 @@ pub mod io;
 pub mod lab;
 pub mod limits;
 pub mod mesh;
+pub mod model;
 pub mod numeric;
 pub mod objective;
 pub mod optimize;

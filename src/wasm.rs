@@ -15,7 +15,7 @@ use crate::lab::volume as volume_lab;
 use crate::lab::{self as playground, Settings, Side, SideSweep};
 use crate::permalink;
 use crate::render::Theme;
-use crate::surface::Model;
+use crate::model::Model;
 use glam::DVec2;
 
 /// The message of the last panic, kept by the hook for [`take_panic_message`].

@@ -20,8 +20,7 @@ mod trig;
 
 pub use cube::tet_cube;
 pub use grid::{grid, random_grid, GridKind};
-pub(crate) use perturb::perturbation_radius;
-pub use perturb::{perturb, perturb_volume};
+pub use perturb::{perturb, perturb_surface, perturb_volume};
 pub use plate::{plate, PlateKind, PLATE_HALF_WIDTH, PLATE_HOLE_RADIUS};
 pub use rand2d::{rand2d, rand2d_spatial};
 pub use rand3d::{delaunay_tetrahedra, rand3d, RAND3D_POINTS};

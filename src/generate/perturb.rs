@@ -45,6 +45,24 @@ pub fn perturb_volume(mesh: &crate::volume::TetMesh, amount: f64, seed: u64) -> 
     Ok(out)
 }
 
+/// A copy of `surface` with every free node moved in its tangent plane by a seeded random
+/// offset in the disk of radius `amount × mean edge length`, then projected back onto the
+/// reference (the planar [`perturb`] on a surface); the nodes
+/// that follow move with them. Node by node in node order, from [`SplitMix64`].
+pub fn perturb_surface(surface: &crate::surface::Surface, amount: f64, seed: u64) -> Result<crate::surface::Surface> {
+    let radius = perturbation_radius(amount, surface.mean_edge_length())?;
+    let mut out = surface.clone();
+    let mut rng = SplitMix64::new(seed);
+    for n in 0..out.node_count() {
+        if out.flat().is_free(n) {
+            let plane = out.tangent_plane(n);
+            let p = plane.to_3d(radius * rng.in_unit_disk());
+            out.place(n, p);
+        }
+    }
+    Ok(out)
+}
+
 /// The largest move of a perturbation of `amount` mean edge lengths (the one check of the
 /// amount, for planar meshes and surfaces).
 pub(crate) fn perturbation_radius(amount: f64, mean_edge_length: f64) -> Result<f64> {

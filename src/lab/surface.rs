@@ -18,7 +18,8 @@ use crate::io::{write_string, Format, WriteOptions};
 use crate::objective::Objective;
 use crate::quality::MeshStats;
 use crate::render::{Camera, Metric, Projection, SurfaceView};
-use crate::surface::{perturb_surface, Surface, SurfaceSmoother};
+use crate::generate::perturb_surface;
+use crate::surface::{Surface, SurfaceSmoother};
 
 /// One side: its surface now, its objective and smoother, its passes since the last reset.
 struct SurfaceSide {
@@ -240,7 +241,7 @@ mod tests {
     use crate::lab::sample::Sample;
     use crate::lab::Choice;
     use crate::objective::ObjectiveKind;
-    use crate::surface::Model;
+    use crate::model::Model;
 
     fn lab(sample: Sample) -> SurfaceLab {
         let Model::Surface(s) = sample.model().unwrap() else { panic!("{sample:?} is not a surface") };

@@ -18,7 +18,7 @@ use crate::io::{write_model_string, Format, WriteOptions};
 use crate::objective::{describe_tet, tet_objective, Objective, TetStar};
 use crate::quality::MeshStats;
 use crate::render::{render_angle_histogram, AngleHistogram, Camera, HistogramSeries, Projection, SurfaceView};
-use crate::surface::Model;
+use crate::model::Model;
 use crate::volume::{volume_stats, Cut, TetMesh, VolumeSmoother};
 
 /// One side: its mesh now, its objective and smoother, its passes since the last reset.

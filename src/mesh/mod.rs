@@ -21,6 +21,7 @@ pub(crate) use renumber::HilbertGrid;
 mod tests;
 mod topology;
 
+pub(crate) use builder::{Flat, SurfaceParts};
 pub use builder::{polygon_area, FixedSpec, MeshBuilder, MAX_COORDINATE, PLANAR_TOLERANCE};
 pub use kind::{ElementKind, NodeRole};
 use topology::build_topology;

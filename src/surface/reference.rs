@@ -874,7 +874,7 @@ mod tests {
         }
         // a tangled file: a folded element, so the flat triangles alone
         let s =
-            crate::surface::perturb_surface(&surface(SurfaceShape::Sphere, SurfaceKind::Tri, 2, 4).unwrap(), 0.8, 1)
+            crate::generate::perturb_surface(&surface(SurfaceShape::Sphere, SurfaceKind::Tri, 2, 4).unwrap(), 0.8, 1)
                 .unwrap();
         let mesh = s.flat();
         let facets = Facets::new(s.points(), mesh.kinds(), |e| mesh.element(e), |_| 0, |_| 0);

@@ -5,7 +5,7 @@ use std::path::{Path, PathBuf};
 use clap::Args;
 use smoothlab::io::{self, MshVersion, WriteOptions};
 use smoothlab::quality::element_quality;
-use smoothlab::surface::Model;
+use smoothlab::model::Model;
 use smoothlab::Mesh;
 
 /// Reads a planar mesh or a surface, naming the file in any error, and warns (stderr)

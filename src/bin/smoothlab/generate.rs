@@ -6,7 +6,8 @@ use clap::{Args, Subcommand};
 
 use crate::smooth::named;
 use smoothlab::generate::{self, GridKind, PlateKind, StarKind, SurfaceKind, SurfaceShape};
-use smoothlab::surface::{perturb_surface, Model};
+use smoothlab::generate::perturb_surface;
+use smoothlab::model::Model;
 use smoothlab::Mesh;
 
 use crate::files::{msh_version_parser, read_model, write_mesh, write_model};

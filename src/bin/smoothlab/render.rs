@@ -18,7 +18,8 @@ use smoothlab::render::{
 };
 use smoothlab::render::{Camera, SurfaceView, Theme};
 use smoothlab::smooth::{smooth, SmoothOptions, Strategy};
-use smoothlab::surface::{Model, Surface, SurfaceSmoother};
+use smoothlab::model::Model;
+use smoothlab::surface::{Surface, SurfaceSmoother};
 use smoothlab::volume::{smooth_volume, volume_stats, Cut, TetMesh};
 use smoothlab::Mesh;
 use tiny_skia::{Pixmap, PixmapPaint, Transform};

@@ -26,7 +26,8 @@ use serde::Serialize;
 use smoothlab::objective::{objective_with, tet_objective, ObjectiveKind, Penalty};
 use smoothlab::quality::MeshStats;
 use smoothlab::smooth::{untangling_obstacles, Obstacle, Order, PassRecord, SmoothOptions, Smoother, Strategy};
-use smoothlab::surface::{Model, SurfaceSmoother};
+use smoothlab::model::Model;
+use smoothlab::surface::SurfaceSmoother;
 use smoothlab::volume::VolumeSmoother;
 
 use crate::files::{msh_version_parser, read_model, write_model};
