@@ -243,11 +243,6 @@ impl Mesh {
     pub fn element(&self, e: usize) -> &[u32] {
         &self.conn.elem_nodes[self.conn.elem_start[e] as usize..self.conn.elem_start[e + 1] as usize]
     }
-    /// Positions of the nodes of element `e`, copied into `out` (cleared first).
-    pub fn element_points(&self, e: usize, out: &mut Vec<DVec2>) {
-        out.clear();
-        out.extend(self.element(e).iter().map(|&n| self.nodes[n as usize]));
-    }
     /// Positions of the nodes of element `e` in a fixed-size array (unused slots are zero).
     pub fn element_points_array(&self, e: usize) -> [DVec2; 9] {
         let mut p = [DVec2::ZERO; 9];

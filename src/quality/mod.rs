@@ -402,12 +402,6 @@ pub fn measure_element<const ANGLES: bool, const CONDITION: bool, const SINES: b
     q
 }
 
-/// Shape quality used throughout (α for triangles, β for quads) of element `e` of `mesh`.
-pub fn element_shape(mesh: &Mesh, e: usize) -> f64 {
-    let p = mesh.element_points_array(e);
-    element_quality(mesh.kind(e), &p[..mesh.kind(e).node_count()]).shape
-}
-
 /// The statistics `smoothlab stats` prints (and `--json` writes, field for field).
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct MeshStats {

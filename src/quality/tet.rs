@@ -172,39 +172,6 @@ pub fn dihedral_sines_grad0(p: &[DVec3; 4]) -> [(f64, DVec3); 6] {
     out
 }
 
-/// [`dihedral_angles`] with the gradient of each with respect to corner 0: with the
-/// dihedral's cosine `c = −N_k·N_l/(A_k A_l)` (area vectors `N`, areas `A`) and its sine
-/// `s` ([`dihedral_sines_grad0`], taken unsigned), `θ = atan2(s, c)` and
-/// `∇θ = (c∇s − s∇c)/(s² + c²)`, where `∇(N_k·N_l) = ½(b_k − c_k)×N_l + ½(b_l − c_l)×N_k`
-/// over the faces `(p₀, b, c)` at corner 0 (`dN = ½ δ×(b − c)`).
-pub fn dihedral_angles_grad0(p: &[DVec3; 4]) -> [(f64, DVec3); 6] {
-    const FACES: [[usize; 3]; 4] = [[1, 2, 3], [0, 3, 2], [0, 1, 3], [0, 2, 1]];
-    let n = [0, 1, 2, 3].map(|k| face_area_vector(p, k));
-    let area = n.map(|v| v.length());
-    // ∇N·M for a face at corner 0: ½(b − c)×M; zero for the face opposite corner 0
-    let dot_grad = |k: usize, m: DVec3| {
-        if k == 0 {
-            DVec3::ZERO
-        } else {
-            let [_, b, c] = FACES[k];
-            0.5 * (p[b] - p[c]).cross(m)
-        }
-    };
-    let area_grad = |k: usize| if area[k] > 0.0 { dot_grad(k, n[k] / area[k]) } else { DVec3::ZERO };
-    let sines = dihedral_sines_grad0(p);
-    let mut out = [(0.0, DVec3::ZERO); 6];
-    for (e, [k, l]) in OFF_EDGE.iter().copied().enumerate() {
-        let (al, ak) = (area[l], area[k]);
-        let c = -n[k].dot(n[l]) / (ak * al);
-        let grad_c = -(dot_grad(k, n[l]) + dot_grad(l, n[k])) / (ak * al) - c * (area_grad(k) / ak + area_grad(l) / al);
-        let (s, gs) = sines[e];
-        let (s, gs) = if s < 0.0 { (-s, -gs) } else { (s, gs) };
-        let r2 = s * s + c * c;
-        out[e] = (s.atan2(c), (c * gs - s * grad_c) / r2);
-    }
-    out
-}
-
 /// The weighted corner Jacobian `T = A·W⁻¹` at corner 0, `A = [p1 − p0, p2 − p0, p3 − p0]`.
 #[inline]
 fn weighted_jacobian(p: &[DVec3; 4]) -> DMat3 {
@@ -255,11 +222,6 @@ pub fn condition_number(p: &[DVec3; 4]) -> f64 {
         return if det.is_nan() { f64::NAN } else { f64::INFINITY };
     }
     (frobenius2(&t) * frobenius2(&t.inverse())).sqrt()
-}
-
-/// `3/κ`, in [0, 1]: 1 for the regular tetrahedron, 0 for a flat one (Knupp's theorem).
-pub fn condition_shape(p: &[DVec3; 4]) -> f64 {
-    3.0 / condition_number(p)
 }
 
 /// [`condition_number`] with its gradient with respect to corner 0. With `F = ‖T‖²`,
@@ -429,7 +391,7 @@ mod tests {
         }
         // T = W·W⁻¹ = I: κ = ‖I‖‖I‖ = 3, mean ratio 3·1/3 = 1
         assert!((condition_number(&p) - 3.0).abs() < 1e-14);
-        assert!((condition_shape(&p) - 1.0).abs() < 1e-14);
+        assert!((3.0 / condition_number(&p) - 1.0).abs() < 1e-14);
         assert!((mean_ratio(&p) - 1.0).abs() < 1e-14);
     }
 
@@ -542,10 +504,6 @@ mod tests {
             for (e, (s, g)) in dihedral_sines_grad0(&p).into_iter().enumerate() {
                 assert!((s - dihedral_sines(&p)[e]).abs() < 1e-14);
                 check(|q| dihedral_sines(q)[e], g, &p, "sine");
-            }
-            for (e, (a, g)) in dihedral_angles_grad0(&p).into_iter().enumerate() {
-                assert!((a - dihedral_angles(&p)[e]).abs() < 1e-12, "angle {e}: {a}");
-                check(|q| dihedral_angles(q)[e], g, &p, "dihedral angle");
             }
             let (k, g) = condition_number_grad0(&p);
             assert!((k - condition_number(&p)).abs() <= 1e-12 * k);
