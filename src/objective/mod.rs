@@ -627,7 +627,7 @@ mod tests {
 
     #[test]
     fn value_and_gradient_agree_with_combine_over_terms() {
-        let mut rng = Lcg::new(41);
+        let mut rng = SplitMix64::new(41);
         let mut t = Vec::new();
         for star in sample_stars() {
             for _ in 0..10 {
@@ -679,7 +679,7 @@ mod tests {
         assert_eq!(gathered.len(), 6);
         assert!(gathered.elems.iter().all(|e| e.follow_next && e.follow_prev && e.kind == ElementKind::Tri6));
         let explicit = quadratic(&fan_star(&regular_ring(6, 1.0)));
-        let mut rng = Lcg::new(43);
+        let mut rng = SplitMix64::new(43);
         for _ in 0..20 {
             let x = rng.point(1.2);
             let (from_mesh, built) = (Star { x0: x, ..gathered.clone() }, Star { x0: x, ..explicit.clone() });

@@ -355,15 +355,12 @@ mod tests {
         [DVec3::ZERO, DVec3::X, DVec3::Y, DVec3::Z]
     }
 
-    struct Lcg(u64);
-    impl Lcg {
-        fn next(&mut self) -> f64 {
-            self.0 = self.0.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
-            (self.0 >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
-        }
-        fn point(&mut self) -> DVec3 {
-            DVec3::new(self.next(), self.next(), self.next())
-        }
+    use crate::numeric::SplitMix64;
+
+    /// A point uniform in the cube [−1, 1)³.
+    fn point(rng: &mut SplitMix64) -> DVec3 {
+        let (x, y) = (rng.uniform(-1.0, 1.0), rng.uniform(-1.0, 1.0));
+        DVec3::new(x, y, rng.uniform(-1.0, 1.0))
     }
 
     #[test]
@@ -450,11 +447,11 @@ mod tests {
 
     #[test]
     fn measures_are_invariant_to_motion_scale_and_the_even_permutations() {
-        let mut rng = Lcg(7);
+        let mut rng = SplitMix64::new(7);
         for _ in 0..50 {
-            let p = [rng.point(), rng.point(), rng.point(), rng.point()];
-            let rot = glam::DQuat::from_axis_angle(rng.point().normalize(), rng.next() * 3.0);
-            let shift = rng.point() * 10.0;
+            let p = [point(&mut rng), point(&mut rng), point(&mut rng), point(&mut rng)];
+            let rot = glam::DQuat::from_axis_angle(point(&mut rng).normalize(), rng.uniform(-1.0, 1.0) * 3.0);
+            let shift = point(&mut rng) * 10.0;
             let moved = p.map(|x| rot * x * 3.5 + shift);
             let rel = |a: f64, b: f64| (a - b).abs() <= 1e-10 * a.abs().max(1.0);
             assert!(rel(condition_number(&p), condition_number(&moved)));
@@ -490,10 +487,10 @@ mod tests {
 
     #[test]
     fn gradients_agree_with_central_differences() {
-        let mut rng = Lcg(11);
+        let mut rng = SplitMix64::new(11);
         let mut inverted = 0;
         for _ in 0..200 {
-            let p = [rng.point(), rng.point(), rng.point(), rng.point()];
+            let p = [point(&mut rng), point(&mut rng), point(&mut rng), point(&mut rng)];
             let v = signed_volume(&p);
             // away from the flat configurations, where the measures are steep
             if v.abs() < 0.02 {

@@ -719,8 +719,8 @@ fn untangling_sweeps_terminate() {
 /// same, bit for bit, at every scale (the squares are taken in the triangle's own scale).
 #[test]
 fn linear_triangle_shape_is_the_same_at_every_scale() {
-    use crate::objective::testing::{elem, Lcg};
-    let mut rng = Lcg::new(17);
+    use crate::objective::testing::{elem, SplitMix64, SquarePoint};
+    let mut rng = SplitMix64::new(17);
     for _ in 0..200 {
         let pts = [rng.point(1.0), rng.point(1.0), rng.point(1.0)];
         let x = rng.point(1.0);
