@@ -66,15 +66,19 @@ pub(crate) fn unit_factors(m: f64) -> (f64, f64) {
     (2f64.powi(-k / 2), 2f64.powi(-k - (-k / 2)))
 }
 
-/// [`unit_factors`] of a size `m` (a largest component) that lies beyond [`SAFE_SCALE`];
-/// `None` inside it, and for a zero or non-finite `m`, which no factor helps: such
-/// vectors are taken as they are.
+/// Whether vectors whose largest component is `m` need bringing to unit scale: `m` lies
+/// beyond [`SAFE_SCALE`], and is neither zero nor non-finite (which no factor helps:
+/// such vectors are taken as they are).
+#[inline]
+pub(crate) fn is_beyond_safe_scale(m: f64) -> bool {
+    !(SAFE_SCALE.contains(&m) || m == 0.0 || !m.is_finite())
+}
+
+/// [`unit_factors`] of a size `m` (a largest component) when it
+/// [`is_beyond_safe_scale`]; `None` otherwise.
 #[inline]
 pub(crate) fn factors_beyond_safe_scale(m: f64) -> Option<(f64, f64)> {
-    if SAFE_SCALE.contains(&m) || m == 0.0 || !m.is_finite() {
-        return None;
-    }
-    Some(unit_factors(m))
+    is_beyond_safe_scale(m).then(|| unit_factors(m))
 }
 
 /// Vectors of size beyond [`SAFE_SCALE`] multiplied by one power of two (exact) that

@@ -16,7 +16,7 @@ use glam::DVec2;
 use serde::Serialize;
 
 use crate::mesh::{ElementKind, Mesh};
-use crate::numeric::{to_unit_scale, SAFE_SCALE};
+use crate::numeric::{is_beyond_safe_scale, to_unit_scale, SAFE_SCALE};
 
 pub mod elementary;
 pub mod tet;
@@ -276,7 +276,7 @@ pub fn corner_edges(kind: ElementKind, p: &[DVec2]) -> [(DVec2, DVec2); 4] {
 #[inline]
 fn beyond_safe_scale(e1: DVec2, e2: DVec2) -> Option<(DVec2, DVec2, [f64; 2])> {
     let m = e1.x.abs().max(e1.y.abs()).max(e2.x.abs()).max(e2.y.abs());
-    if SAFE_SCALE.contains(&m) || m == 0.0 || !m.is_finite() {
+    if !is_beyond_safe_scale(m) {
         return None;
     }
     let mut v = [e1, e2];

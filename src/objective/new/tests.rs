@@ -555,9 +555,10 @@ fn eta_is_the_cotangent_sum_and_the_inverse_of_alpha() {
     for _ in 0..500 {
         let (c, a, b) = (rng.point(2.0), rng.point(2.0), rng.point(2.0));
         let (c, a, b) = if (a - c).perp_dot(b - c) > 0.0 { (c, a, b) } else { (c, b, a) };
-        let angle = |p: DVec2, q: DVec2, r: DVec2| (q - p).angle_to(r - p).abs();
-        let cot = |t: f64| t.cos() / t.sin();
-        let eta = (cot(angle(c, a, b)) + cot(angle(a, b, c)) + cot(angle(b, c, a))) / 3f64.sqrt();
+        // the cotangent of the angle at p, as the ratio of the dot and cross products of
+        // its sides (by way of the angle, cos/sin loses digits on needle-like triangles)
+        let cot = |p: DVec2, q: DVec2, r: DVec2| (q - p).dot(r - p) / (q - p).perp_dot(r - p).abs();
+        let eta = (cot(c, a, b) + cot(a, b, c) + cot(b, c, a)) / 3f64.sqrt();
         let got = eta2_of(c, a, b, 0.0).sqrt();
         assert!((got - eta).abs() <= 1e-9 * eta, "{got} {eta}");
         let q = element_quality(ElementKind::Tri3, &[c, a, b]);
