@@ -14,9 +14,9 @@ mod prng;
 pub use prng::SplitMix64;
 
 /// Edge vectors whose largest component lies in 2^±200 are measured as they are: every
-/// product the metrics take of them is a normal double (see
-/// [`corner_edges`](crate::quality::corner_edges)); beyond it they are brought to unit
-/// scale first. One range for every metric and objective.
+/// product the metrics take of them is a normal double (see `quality::corner_edges`);
+/// beyond it they are brought to unit scale first. One range for every metric and
+/// objective.
 pub(crate) const SAFE_SCALE: std::ops::RangeInclusive<f64> = 6.223_015_277_861_142e-61..=1.606_938_044_258_990_3e60;
 
 /// Multiplies the vectors by a power of two (exact) that brings their largest component
