@@ -108,7 +108,8 @@ fn smoothing(c: &mut Criterion) {
 /// the sphere. Throughput in node visits, to read beside the planar passes.
 fn surfaces(c: &mut Criterion) {
     use smoothlab::generate::{surface, SurfaceKind, SurfaceShape};
-    use smoothlab::surface::{perturb_surface, SurfaceSmoother};
+    use smoothlab::generate::perturb_surface;
+    use smoothlab::surface::SurfaceSmoother;
     let sample = surface(SurfaceShape::Sphere, SurfaceKind::Mixed, 1, 32).expect("a sample");
     let tangled = perturb_surface(&sample, 0.5, 1).expect("perturbed");
     let mut g = c.benchmark_group("surface pass/sphere 6k");

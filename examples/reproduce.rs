@@ -31,7 +31,9 @@ use smoothlab::objective::{
 };
 use smoothlab::quality::{corner_edges, element_quality, lo_alpha_corner, mesh_stats, MeshStats};
 use smoothlab::smooth::{Measure, Order, PassRecord, SmoothOptions, Smoother, Strategy};
-use smoothlab::surface::{perturb_surface, Model, Surface, SurfaceSmoother};
+use smoothlab::generate::perturb_surface;
+use smoothlab::model::Model;
+use smoothlab::surface::{Surface, SurfaceSmoother};
 use smoothlab::volume::{smooth_volume, volume_stats, TetMesh};
 use smoothlab::{io, Mesh};
 

@@ -1,11 +1,14 @@
 //! smoothlab: a mesh-smoothing laboratory.
 //!
-//! The core is pure Rust with no web types. Modules follow the mathematics:
-//! [`mesh`] (model and topology) → [`quality`] (element metrics) → [`objective`]
-//! (a node's objective over its star) → [`optimize`] (solvers) → [`smooth`]
-//! (drivers: Laplacian, smart, combined, rules with priority). [`io`] reads and writes
-//! mesh files, [`generate`] makes sample meshes, [`render`] draws with tiny-skia.
-//! The wasm layer (`wasm`, only on `wasm32`) converts types and calls the core.
+//! The core is pure Rust with no web types. Modules follow the mathematics, each using
+//! only those before it (the order is the table in `ARCHITECTURE.md`, checked by a test):
+//! [`numeric`] (scale and robust numerics, the one random generator) → [`mesh`] (model
+//! and topology) → [`quality`] (element metrics) → [`objective`] (a node's objective over
+//! its star) → [`optimize`] (solvers) → [`smooth`] (drivers: Laplacian, smart, combined,
+//! rules with priority) → [`render`] (tiny-skia) → [`surface`] and [`volume`] (3D) →
+//! [`model`] (what a file holds) → [`generate`] (sample meshes) → [`io`] (mesh files) →
+//! [`lab`] (the page's state). The wasm layer (`wasm`, only on `wasm32`) converts types
+//! and calls the core.
 //!
 //! # Read, smooth, measure
 //! A mesh from text (here a legacy VTK file: four triangles round one free node, pulled
@@ -90,6 +93,8 @@ pub mod generate;
 pub mod io;
 pub mod lab;
 pub mod mesh;
+pub mod model;
+pub mod numeric;
 pub mod objective;
 pub mod optimize;
 pub mod quality;

@@ -9,7 +9,7 @@ mod common;
 use std::path::{Path, PathBuf};
 
 use smoothlab::io::{read_model_path, read_path};
-use smoothlab::surface::Model;
+use smoothlab::model::Model;
 use smoothlab::mesh::NodeRole;
 use smoothlab::Error;
 

@@ -16,7 +16,9 @@ use smoothlab::generate::{surface, SurfaceKind, SurfaceShape};
 use smoothlab::objective::{objective, ObjectiveKind};
 use smoothlab::smooth::{SmoothOptions, Strategy};
 use smoothlab::io::{read_model_str, write_string, Format, WriteOptions};
-use smoothlab::surface::{perturb_surface, smooth_surface, Model, Surface};
+use smoothlab::generate::perturb_surface;
+use smoothlab::model::Model;
+use smoothlab::surface::{smooth_surface, Surface};
 
 fn sample(shape: usize, kind: usize, order: u8, amount: f64, seed: u64) -> Surface {
     let s = surface(SurfaceShape::ALL[shape], SurfaceKind::ALL[kind], order, 2).unwrap();

@@ -9,7 +9,7 @@ use std::process::{Command, Output};
 
 use serde_json::Value;
 use smoothlab::io::{self, Format, MshVersion, WriteOptions};
-use smoothlab::surface::Model;
+use smoothlab::model::Model;
 use smoothlab::volume::TetMesh;
 
 fn run(args: &[&str]) -> Output {

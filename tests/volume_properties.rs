@@ -12,10 +12,11 @@
 
 use proptest::prelude::*;
 use glam::DVec3;
-use smoothlab::generate::{delaunay_tetrahedra, perturb_volume, rand3d, tet_cube, SplitMix64};
+use smoothlab::generate::{delaunay_tetrahedra, perturb_volume, rand3d, tet_cube};
+use smoothlab::numeric::SplitMix64;
 use smoothlab::io::{read_model_str, write_model_string, Format, WriteOptions};
 use smoothlab::quality::tet::signed_volume;
-use smoothlab::surface::Model;
+use smoothlab::model::Model;
 use smoothlab::objective::{tet_objective, ObjectiveKind};
 use smoothlab::smooth::{SmoothOptions, Strategy};
 use smoothlab::volume::{smooth_volume, volume_stats, TetMesh};

@@ -56,7 +56,7 @@ pub fn grid(nx: usize, ny: usize, kind: GridKind) -> Result<Mesh> {
 /// unlike the other generators' (the reproduction's §4 uses `n = 10`, seeds 1–5).
 pub fn random_grid(n: usize, kind: GridKind, seed: u64) -> Result<Mesh> {
     let mut m = grid(n, n, kind)?;
-    let mut rng = super::SplitMix64::new(seed);
+    let mut rng = crate::numeric::SplitMix64::new(seed);
     for i in 0..m.node_count() {
         if m.is_free(i) {
             m.nodes_mut()[i] = DVec2::new(rng.next_f64(), rng.next_f64());

@@ -2,7 +2,7 @@
 //! or quadratic with a curved hole), single-node star configurations, and the random
 //! perturbation that tangles a mesh.
 //!
-//! Everything here is deterministic: the seeded generators draw from [`SplitMix64`],
+//! Everything here is deterministic: the seeded generators draw from [`SplitMix64`](crate::numeric::SplitMix64),
 //! whose stream is fixed by this crate, so a seed names the same mesh on every platform.
 //! Every generated mesh is counter-clockwise with no inverted element (but those of
 //! [`perturb`] and [`random_grid`], made to be tangled), and its boundary nodes are fixed
@@ -12,7 +12,6 @@ mod cube;
 mod grid;
 mod perturb;
 mod plate;
-mod prng;
 mod rand2d;
 mod rand3d;
 mod star;
@@ -21,10 +20,8 @@ mod trig;
 
 pub use cube::tet_cube;
 pub use grid::{grid, random_grid, GridKind};
-pub(crate) use perturb::perturbation_radius;
-pub use perturb::{perturb, perturb_volume};
+pub use perturb::{perturb, perturb_surface, perturb_volume};
 pub use plate::{plate, PlateKind, PLATE_HALF_WIDTH, PLATE_HOLE_RADIUS};
-pub use prng::SplitMix64;
 pub use rand2d::{rand2d, rand2d_spatial};
 pub use rand3d::{delaunay_tetrahedra, rand3d, RAND3D_POINTS};
 pub use star::{quadratic_star, star, QuadraticStar, StarKind, CURVED_BULGE, PUSHED_MID_HEIGHT};

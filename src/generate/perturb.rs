@@ -1,6 +1,6 @@
 //! Random perturbation of the free nodes: how the tangled test meshes are made.
 
-use super::SplitMix64;
+use crate::numeric::SplitMix64;
 use crate::error::{Error, Result};
 use crate::mesh::Mesh;
 
@@ -40,6 +40,24 @@ pub fn perturb_volume(mesh: &crate::volume::TetMesh, amount: f64, seed: u64) -> 
         if out.is_free(n) {
             out.nodes_mut()[n] += radius * rng.in_unit_ball();
             out.follow_mid_nodes(n);
+        }
+    }
+    Ok(out)
+}
+
+/// A copy of `surface` with every free node moved in its tangent plane by a seeded random
+/// offset in the disk of radius `amount × mean edge length`, then projected back onto the
+/// reference (the planar [`perturb`] on a surface); the nodes
+/// that follow move with them. Node by node in node order, from [`SplitMix64`].
+pub fn perturb_surface(surface: &crate::surface::Surface, amount: f64, seed: u64) -> Result<crate::surface::Surface> {
+    let radius = perturbation_radius(amount, surface.mean_edge_length())?;
+    let mut out = surface.clone();
+    let mut rng = SplitMix64::new(seed);
+    for n in 0..out.node_count() {
+        if out.flat().is_free(n) {
+            let plane = out.tangent_plane(n);
+            let p = plane.to_3d(radius * rng.in_unit_disk());
+            out.place(n, p);
         }
     }
     Ok(out)

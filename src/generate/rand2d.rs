@@ -3,7 +3,8 @@
 use glam::DVec2;
 use spade::{DelaunayTriangulation, Point2, Triangulation};
 
-use super::{check_size, Assembly, SplitMix64};
+use super::{check_size, Assembly};
+use crate::numeric::SplitMix64;
 use crate::error::{Error, Result};
 use crate::mesh::{ElementKind, Mesh};
 

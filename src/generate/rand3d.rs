@@ -28,7 +28,7 @@
 
 use glam::DVec3;
 
-use super::SplitMix64;
+use crate::numeric::SplitMix64;
 use crate::error::{Error, Result};
 use crate::volume::TetMesh;
 

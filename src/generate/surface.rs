@@ -112,7 +112,7 @@ pub fn surface(shape: SurfaceShape, kind: SurfaceKind, order: u8, resolution: us
             Analytic::Torus { major, minor }
         }
     };
-    s.b.build_surface(Some(analytic))
+    crate::surface::Surface::build(s.b, Some(analytic))
 }
 
 /// The capped cylinder of radius 1 from z = −1 to 1: the side a grid of `4n` cells round

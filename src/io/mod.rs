@@ -27,7 +27,7 @@
 
 use crate::error::{Error, Result};
 use crate::mesh::{Mesh, MeshBuilder};
-use crate::surface::Model;
+use crate::model::Model;
 
 mod lex;
 mod msh;
@@ -152,9 +152,9 @@ pub fn read_bytes(bytes: &[u8], name: &str) -> Result<Mesh> {
 }
 
 /// Reads what a text holds: a planar mesh ([`read_str`]'s), or a surface in 3D when its
-/// points are not in a plane ([`MeshBuilder::build_model`]).
+/// points are not in a plane ([`Model::build`]).
 pub fn read_model_str(text: &str, format: Format) -> Result<Model> {
-    parse_str(text, format)?.build_model()
+    Model::build(parse_str(text, format)?)
 }
 
 /// [`read_bytes`] for a planar mesh or a surface (see [`read_model_str`]).
@@ -298,7 +298,7 @@ pub fn read_path(path: &std::path::Path) -> Result<Mesh> {
 /// is planar.
 #[cfg(not(target_arch = "wasm32"))]
 pub fn read_model_path(path: &std::path::Path) -> Result<Model> {
-    read_path_as(path, MeshBuilder::build_model)
+    read_path_as(path, Model::build)
 }
 
 #[cfg(not(target_arch = "wasm32"))]

@@ -86,10 +86,10 @@ pub(crate) fn parse(node: &str, ele: &str) -> Result<MeshBuilder> {
     Ok(b)
 }
 
-/// [`parse`] then built as a model ([`MeshBuilder::build_model`]): a planar mesh, or
+/// [`parse`] then built as a model ([`Model::build`](crate::model::Model::build)): a planar mesh, or
 /// TetGen's tetrahedra; errors say which file.
-pub(crate) fn read_model(node: &str, ele: &str) -> Result<crate::surface::Model> {
-    parse(node, ele)?.build_model().map_err(|e| in_file(e, ".ele"))
+pub(crate) fn read_model(node: &str, ele: &str) -> Result<crate::model::Model> {
+    crate::model::Model::build(parse(node, ele)?).map_err(|e| in_file(e, ".ele"))
 }
 
 /// Reads the nodes; returns the first node number, the boundary marks, if any, and the

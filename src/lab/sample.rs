@@ -10,7 +10,8 @@ use crate::generate::{
     QuadraticStar, StarKind, SurfaceKind, SurfaceShape,
 };
 use crate::mesh::Mesh;
-use crate::surface::{perturb_surface, Model};
+use crate::generate::perturb_surface;
+use crate::model::Model;
 
 /// Seed of every generated sample (the page's perturb button takes its own seed).
 pub const SAMPLE_SEED: u64 = 1;

@@ -68,12 +68,50 @@ pub struct MeshBuilder {
     elem_start: Vec<u32>,
     elem_nodes: Vec<u32>,
     elem_lines: Vec<u32>,
-    /// Tetrahedra ([`crate::volume`]): node ids, 4 or 10 each in VTK's order, with their
-    /// lines; a file with any is a tetrahedral mesh.
+    /// Tetrahedra (built into a tetrahedral mesh above this module): node ids, 4 or 10
+    /// each in VTK's order, with their lines; a file with any is a tetrahedral mesh.
     tets: Vec<u32>,
     tet_lines: Vec<u32>,
-    tet_order: Option<crate::volume::TetOrder>,
+    /// The nodes per tetrahedron, 4 or 10, once the first is added.
+    tet_nodes: Option<usize>,
     /// How fixed flags are decided.
+    pub fixed: FixedSpec,
+}
+
+/// A planar mesh, or the parts of a surface in 3D
+/// ([`MeshBuilder::build_planar_or_surface`]).
+#[allow(clippy::large_enum_variant)]
+pub(crate) enum Flat {
+    Planar(Mesh),
+    Surface(SurfaceParts),
+}
+
+/// What a surface in 3D is built from (by the surface module): its points as given, and a
+/// planar [`Mesh`] with its elements, topology and fixed flags whose 2D positions are
+/// scratch (zero).
+pub(crate) struct SurfaceParts {
+    pub points: Vec<glam::DVec3>,
+    pub mesh: Mesh,
+    /// Whether the file gave the fixed flags.
+    pub flags_given: bool,
+    /// Why the points were not read as a planar mesh (see `Surface::not_planar`).
+    pub not_planar: Option<String>,
+}
+
+/// What a tetrahedral mesh is built from (by the volume module): the nodes, the
+/// tetrahedra, the file's triangles and quads (CSR, with their lines: the boundary faces
+/// Gmsh writes) and the fixed flags' rule with those faces' nodes marked.
+pub(crate) struct VolumeParts {
+    pub points: Vec<[f64; 3]>,
+    pub point_lines: Vec<u32>,
+    pub face_kinds: Vec<ElementKind>,
+    pub face_start: Vec<u32>,
+    pub face_nodes: Vec<u32>,
+    pub face_lines: Vec<u32>,
+    /// Node ids, 4 per tetrahedron, or 10 when `quadratic`.
+    pub tets: Vec<u32>,
+    pub tet_lines: Vec<u32>,
+    pub quadratic: bool,
     pub fixed: FixedSpec,
 }
 
@@ -120,14 +158,14 @@ impl MeshBuilder {
     pub(crate) fn node_lines(&self) -> &[u32] {
         &self.point_lines
     }
-    /// Adds a tetrahedron with 0-based node indices, 4 or 10 in VTK's order
-    /// ([`crate::volume::TET10_EDGES`]), checked in [`build_model`](Self::build_model); a
-    /// file that mixes 4- and 10-node tetrahedra is refused here, naming the line.
+    /// Adds a tetrahedron with 0-based node indices, 4 or 10 in VTK's order (the mid-edge
+    /// nodes on the edges of `volume::TET10_EDGES`), checked when the tetrahedral mesh is
+    /// built (`Model::build`); a file that mixes 4- and 10-node tetrahedra is refused
+    /// here, naming the line.
     pub fn add_tet(&mut self, nodes: &[u32], line: usize) -> Result<()> {
-        use crate::volume::TetOrder;
-        let order = if nodes.len() == 10 { TetOrder::Quadratic } else { TetOrder::Linear };
-        debug_assert!(nodes.len() == 4 || nodes.len() == 10);
-        match self.tet_order {
+        let order = nodes.len();
+        debug_assert!(order == 4 || order == 10);
+        match self.tet_nodes {
             Some(o) if o != order => {
                 return Err(Error::element(
                     self.tet_lines.len(),
@@ -135,25 +173,30 @@ impl MeshBuilder {
                     "the file mixes 4-node and 10-node tetrahedra: smoothlab takes one kind per mesh",
                 ))
             }
-            _ => self.tet_order = Some(order),
+            _ => self.tet_nodes = Some(order),
         }
         self.tets.extend_from_slice(nodes);
         self.tet_lines.push(line as u32);
         Ok(())
     }
 
-    /// The tetrahedral mesh of the tetrahedra added; the nodes of any triangles or quads
-    /// in the file (the boundary faces Gmsh writes) are marked fixed, as lines and points
-    /// are.
-    fn volume(self) -> Result<crate::volume::TetMesh> {
+    /// Whether tetrahedra were added: then the file is a tetrahedral mesh
+    /// ([`build_volume_parts`](Self::build_volume_parts)).
+    pub fn has_tets(&self) -> bool {
+        !self.tets.is_empty()
+    }
+
+    /// The parts of the tetrahedral mesh of the tetrahedra added, for the volume module
+    /// to build; the nodes of any triangles or quads in the file (the boundary faces Gmsh
+    /// writes) are marked fixed, as lines and points are. Refuses a face naming a node
+    /// the file does not have.
+    pub(crate) fn build_volume_parts(self) -> Result<VolumeParts> {
         let n = self.points.len();
-        let mut faces = Vec::with_capacity(self.kinds.len());
-        for (e, &kind) in self.kinds.iter().enumerate() {
+        for e in 0..self.kinds.len() {
             let ids = &self.elem_nodes[self.elem_start[e] as usize..self.elem_start[e + 1] as usize];
             if let Some(&i) = ids.iter().find(|&&i| i as usize >= n) {
                 return Err(Error::element(e, self.line_of_elem(e), format!("node {} does not exist (the file has {n} nodes)", i + 1)));
             }
-            faces.push(crate::volume::GivenFace::new(kind, ids, self.elem_lines.get(e).copied().unwrap_or(0)));
         }
         let mut marks = vec![false; n];
         for &i in &self.elem_nodes {
@@ -169,13 +212,16 @@ impl MeshBuilder {
             FixedSpec::Boundary if marks.iter().any(|&m| m) => FixedSpec::BoundaryAnd(marks),
             FixedSpec::Boundary => FixedSpec::Boundary,
         };
-        crate::volume::TetMesh::build(crate::volume::TetParts {
-            faces,
-            nodes: self.points.iter().map(|&p| glam::DVec3::from(p)).collect(),
-            node_lines: self.point_lines,
-            order: self.tet_order.unwrap_or(crate::volume::TetOrder::Linear),
-            elements: self.tets,
-            element_lines: self.tet_lines,
+        Ok(VolumeParts {
+            points: self.points,
+            point_lines: self.point_lines,
+            face_kinds: self.kinds,
+            face_start: self.elem_start,
+            face_nodes: self.elem_nodes,
+            face_lines: self.elem_lines,
+            quadratic: self.tet_nodes == Some(10),
+            tets: self.tets,
+            tet_lines: self.tet_lines,
             fixed,
         })
     }
@@ -199,7 +245,7 @@ impl MeshBuilder {
     /// at least one element, planarity), maps 3D points to the mesh's plane, orients
     /// the mesh counter-clockwise as a whole, builds the topology and the fixed flags.
     pub fn build(self) -> Result<Mesh> {
-        if !self.tets.is_empty() {
+        if self.has_tets() {
             return Err(Error::unsupported(
                 self.tet_lines.first().map(|&l| l as usize).filter(|&l| l > 0),
                 "the file holds tetrahedra, not a planar mesh (smoothlab's stats and smooth take tetrahedral meshes)",
@@ -245,7 +291,7 @@ impl MeshBuilder {
         let unit = {
             let m = mesh.nodes.iter().fold(0.0f64, |m, p| m.max(p.x.abs()).max(p.y.abs()));
             let mut v = [DVec2::new(m, 0.0)];
-            let f = crate::quality::to_unit_scale(&mut v);
+            let f = crate::numeric::to_unit_scale(&mut v);
             f[0] * f[1]
         };
         let area_in = |e: usize, order: &[usize]| {
@@ -265,14 +311,11 @@ impl MeshBuilder {
         finish(mesh, &self.elem_lines, self.fixed)
     }
 
-    /// Builds what the file holds: a planar [`Mesh`] when its points lie in a plane (as
-    /// [`build`](Self::build)), else a surface in 3D — the checks of a planar mesh, the
-    /// elements oriented consistently (see [`Surface`](crate::surface::Surface)), with its
-    /// points as given.
-    pub fn build_model(self) -> Result<crate::surface::Model> {
-        if !self.tets.is_empty() {
-            return self.volume().map(crate::surface::Model::Volume);
-        }
+    /// Builds what the file's triangles and quads make: a planar [`Mesh`] when its points
+    /// lie in a plane (as [`build`](Self::build)), else the parts of a surface in 3D (the
+    /// checks of a planar mesh, with its points as given, and why they are not planar).
+    /// The tetrahedra are not looked at: see [`has_tets`](Self::has_tets).
+    pub(crate) fn build_planar_or_surface(self) -> Result<Flat> {
         self.check()?;
         let why = match self.to_plane() {
             Err(Error::NotPlanar { node, line, max_distance, relative, .. }) => {
@@ -283,21 +326,21 @@ impl MeshBuilder {
                     crate::error::shown_number(relative)
                 )
             }
-            flat => return self.planar(flat?).map(crate::surface::Model::Planar),
+            flat => return self.planar(flat?).map(Flat::Planar),
         };
-        let mut s = self.surface(None)?;
-        s.set_not_planar(why);
-        Ok(crate::surface::Model::Surface(s))
+        let mut s = self.surface_parts()?;
+        s.not_planar = Some(why);
+        Ok(Flat::Surface(s))
     }
 
-    /// Builds a surface in 3D whatever its points (a generator's, on `analytic`'s exact
-    /// surface when given; see [`Surface`](crate::surface::Surface)).
-    pub fn build_surface(self, analytic: Option<crate::surface::Analytic>) -> Result<crate::surface::Surface> {
+    /// The parts of a surface in 3D whatever its points (a generator's), checked as a
+    /// planar mesh's are.
+    pub(crate) fn build_surface_parts(self) -> Result<SurfaceParts> {
         self.check()?;
-        self.surface(analytic)
+        self.surface_parts()
     }
 
-    fn surface(mut self, analytic: Option<crate::surface::Analytic>) -> Result<crate::surface::Surface> {
+    fn surface_parts(mut self) -> Result<SurfaceParts> {
         let points: Vec<glam::DVec3> = std::mem::take(&mut self.points).into_iter().map(glam::DVec3::from).collect();
         let n = points.len();
         let mesh = Mesh {
@@ -316,7 +359,7 @@ impl MeshBuilder {
         let flags_given = !matches!(self.fixed, FixedSpec::Boundary);
         let mesh = finish(mesh, &self.elem_lines, self.fixed)?;
         super::topology::check_fans(&mesh, &self.elem_lines)?;
-        crate::surface::Surface::from_parts(points, mesh, analytic, flags_given)
+        Ok(SurfaceParts { points, mesh, flags_given, not_planar: None })
     }
 
     /// The checks every mesh passes, planar or surface: at least one element, finite

@@ -21,6 +21,7 @@ pub(crate) use renumber::HilbertGrid;
 mod tests;
 mod topology;
 
+pub(crate) use builder::{Flat, SurfaceParts};
 pub use builder::{polygon_area, FixedSpec, MeshBuilder, MAX_COORDINATE, PLANAR_TOLERANCE};
 pub use kind::{ElementKind, NodeRole};
 use topology::build_topology;
@@ -241,11 +242,6 @@ impl Mesh {
     /// The node indices of element `e`, in the order documented at the top of this module.
     pub fn element(&self, e: usize) -> &[u32] {
         &self.conn.elem_nodes[self.conn.elem_start[e] as usize..self.conn.elem_start[e + 1] as usize]
-    }
-    /// Positions of the nodes of element `e`, copied into `out` (cleared first).
-    pub fn element_points(&self, e: usize, out: &mut Vec<DVec2>) {
-        out.clear();
-        out.extend(self.element(e).iter().map(|&n| self.nodes[n as usize]));
     }
     /// Positions of the nodes of element `e` in a fixed-size array (unused slots are zero).
     pub fn element_points_array(&self, e: usize) -> [DVec2; 9] {

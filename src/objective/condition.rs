@@ -145,7 +145,7 @@ mod tests {
 
     #[test]
     fn gradients_match_central_differences() {
-        let mut rng = Lcg::new(13);
+        let mut rng = SplitMix64::new(13);
         let mut smooth_checks = 0;
         let (mut checked, mut total) = (0, 0);
         for star in sample_stars() {

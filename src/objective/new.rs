@@ -126,7 +126,7 @@ impl ChenTristanoKwok {
     pub fn visit(&self, star: &Star, x: DVec2, mut emit: impl FnMut(Term)) {
         match extreme_scale_factor(star) {
             Some(f) => {
-                let unit = crate::optimize::scaled_star(star, f);
+                let unit = super::scaled_star(star, f);
                 self.visit_at_unit_scale::<false>(&unit, f * x, |i, value, grad, _| {
                     emit(Term { elem: i as u32, value, grad: f * grad })
                 });
@@ -153,7 +153,7 @@ impl ChenTristanoKwok {
         };
         match extreme_scale_factor(star) {
             Some(f) => {
-                let unit = crate::optimize::scaled_star(star, f);
+                let unit = super::scaled_star(star, f);
                 self.visit_at_unit_scale::<true>(&unit, f * x, |i, v, g, h| add(i, v, f * g, h * (f * f)));
             }
             None => self.visit_at_unit_scale::<true>(star, x, add),
@@ -227,10 +227,10 @@ impl ChenTristanoKwok {
 #[inline]
 fn extreme_scale_factor(star: &Star) -> Option<f64> {
     let m = StarAtRest::of(star).extent;
-    if m == 0.0 || crate::quality::SAFE_SCALE.contains(&m) {
+    if m == 0.0 || crate::numeric::SAFE_SCALE.contains(&m) {
         None
     } else {
-        crate::optimize::unit_factor(m)
+        crate::numeric::unit_factor(m)
     }
 }
 

@@ -149,7 +149,7 @@ mod tests {
 
     #[test]
     fn terms_are_the_element_shapes() {
-        let mut rng = Lcg::new(7);
+        let mut rng = SplitMix64::new(7);
         for star in sample_stars() {
             for _ in 0..20 {
                 let x = rng.point(1.6);
@@ -167,7 +167,7 @@ mod tests {
 
     #[test]
     fn term_gradients_match_central_differences() {
-        let mut rng = Lcg::new(11);
+        let mut rng = SplitMix64::new(11);
         let mut checked = 0;
         let mut total = 0;
         for star in sample_stars() {

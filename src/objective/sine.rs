@@ -69,7 +69,7 @@ mod tests {
 
     #[test]
     fn term_gradients_match_central_differences() {
-        let mut rng = Lcg::new(5);
+        let mut rng = SplitMix64::new(5);
         let (mut checked, mut total) = (0, 0);
         for star in sample_stars() {
             for _ in 0..30 {

@@ -10,24 +10,19 @@ pub fn d(x: f64, y: f64) -> DVec2 {
     DVec2::new(x, y)
 }
 
-/// A tiny deterministic generator (64-bit LCG, high bits), so failures reproduce.
-pub struct Lcg(u64);
+/// The tests draw from the crate's one generator, seeded, so failures reproduce.
+pub use crate::numeric::SplitMix64;
 
-impl Lcg {
-    pub fn new(seed: u64) -> Self {
-        Lcg(seed.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407))
-    }
-    /// Uniform in [0, 1).
-    pub fn f64(&mut self) -> f64 {
-        self.0 = self.0.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
-        (self.0 >> 11) as f64 / (1u64 << 53) as f64
-    }
-    pub fn range(&mut self, a: f64, b: f64) -> f64 {
-        a + (b - a) * self.f64()
-    }
-    /// Uniform in the square [−r, r]².
-    pub fn point(&mut self, r: f64) -> DVec2 {
-        d(self.range(-r, r), self.range(-r, r))
+/// The random points the objectives' tests take.
+pub trait SquarePoint {
+    /// Uniform in the square [−r, r]² (x drawn first).
+    fn point(&mut self, r: f64) -> DVec2;
+}
+
+impl SquarePoint for SplitMix64 {
+    fn point(&mut self, r: f64) -> DVec2 {
+        let x = self.uniform(-r, r);
+        d(x, self.uniform(-r, r))
     }
 }
 
@@ -165,7 +160,7 @@ pub fn star_polygon() -> Vec<DVec2> {
 /// A varied set of stars for gradient checks: perturbed triangle fans, quads, mixed,
 /// quadratic (straight and curved).
 pub fn sample_stars() -> Vec<Star> {
-    let mut rng = Lcg::new(3);
+    let mut rng = SplitMix64::new(3);
     let mut out = Vec::new();
     for k in [3, 5, 6, 7] {
         let ring: Vec<DVec2> = regular_ring(k, 1.0).into_iter().map(|p| p + rng.point(0.2)).collect();

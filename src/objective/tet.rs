@@ -299,21 +299,18 @@ mod tests {
     use super::*;
     use crate::quality::tet::EQUILATERAL_W;
 
-    struct Lcg(u64);
-    impl Lcg {
-        fn next(&mut self) -> f64 {
-            self.0 = self.0.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
-            (self.0 >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
-        }
-        fn point(&mut self) -> DVec3 {
-            DVec3::new(self.next(), self.next(), self.next())
-        }
+    use crate::numeric::SplitMix64;
+
+    /// A point uniform in the cube [−1, 1)³.
+    fn point(rng: &mut SplitMix64) -> DVec3 {
+        let (x, y) = (rng.uniform(-1.0, 1.0), rng.uniform(-1.0, 1.0));
+        DVec3::new(x, y, rng.uniform(-1.0, 1.0))
     }
 
     /// A star of `n` random tetrahedra around `x0` (each with the free node first).
-    fn random_star(rng: &mut Lcg, n: usize, x0: DVec3) -> TetStar {
+    fn random_star(rng: &mut SplitMix64, n: usize, x0: DVec3) -> TetStar {
         let tets = (0..n)
-            .map(|e| StarTet { element: e as u32, pts: [x0, x0 + rng.point(), x0 + rng.point(), x0 + rng.point()] })
+            .map(|e| StarTet { element: e as u32, pts: [x0, x0 + point(rng), x0 + point(rng), x0 + point(rng)] })
             .collect();
         TetStar { node: 0, x0, tets }
     }
@@ -348,18 +345,18 @@ mod tests {
 
     #[test]
     fn gradients_agree_with_central_differences() {
-        let mut rng = Lcg(3);
+        let mut rng = SplitMix64::new(3);
         let h = 1e-6;
         let mut checked = 0;
         for round in 0..80 {
-            let x0 = rng.point();
+            let x0 = point(&mut rng);
             let star = random_star(&mut rng, 2 + round % 5, x0);
             let tangled = star.tets.iter().any(|t| q3::signed_volume(&t.pts) <= 0.0);
             // steep near a flat tetrahedron: away from those
             if star.tets.iter().any(|t| q3::signed_volume(&t.pts).abs() < 0.02) {
                 continue;
             }
-            let x = x0 + rng.point() * 0.01;
+            let x = x0 + point(&mut rng) * 0.01;
             for k in ObjectiveKind::ALL {
                 let obj = tet_objective(k);
                 let mut terms = Vec::new();
@@ -394,11 +391,11 @@ mod tests {
 
     #[test]
     fn new_is_finite_on_a_tangled_star_and_a_barrier_on_a_valid_one() {
-        let mut rng = Lcg(9);
+        let mut rng = SplitMix64::new(9);
         let obj = tet_objective(ObjectiveKind::New);
         let mut tangled_seen = 0;
         for _ in 0..50 {
-            let x0 = rng.point();
+            let x0 = point(&mut rng);
             let star = random_star(&mut rng, 4, x0);
             let inverted = star.tets.iter().filter(|t| q3::signed_volume(&t.pts) <= 0.0).count();
             let (v, g) = obj.value_and_gradient(&star, x0);
@@ -418,7 +415,7 @@ mod tests {
 
     #[test]
     fn scaled_star_keeps_shape_values() {
-        let mut rng = Lcg(5);
+        let mut rng = SplitMix64::new(5);
         let star = random_star(&mut rng, 5, DVec3::new(0.1, 0.2, 0.3));
         let f = 2f64.powi(40);
         let big = star.scaled(f);

@@ -15,7 +15,7 @@
 //! maximises the minimum of the terms, or the negated sum as a single term.
 //!
 //! Every length (initial step, smallest step, largest move) is a fraction of the star's
-//! size ([`star_scale`]), so the solvers are scale-free; and a star far from unit size
+//! size ([`star_scale`](crate::objective::star_scale)), so the solvers are scale-free; and a star far from unit size
 //! (beyond 2^±64) is solved in its own frame, multiplied by a power of two to unit size
 //! and the result multiplied back ([`Solver::solve`]). Powers of two are exact, so a
 //! solve at any scale moves the node exactly as at unit scale: without this the squared
@@ -27,6 +27,7 @@
 use glam::DVec2;
 use serde::Serialize;
 
+use crate::numeric::unit_factor;
 use crate::objective::{Goal, NodeStar, Objective, Point, Star, Term};
 
 mod fletcher_reeves;
@@ -108,7 +109,7 @@ pub struct SolveResult<V = DVec2> {
     pub history: Vec<Iterate<V>>,
 }
 
-/// Solver settings. Lengths are fractions of the star size ([`star_scale`]).
+/// Solver settings. Lengths are fractions of the star size ([`star_scale`](crate::objective::star_scale)).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct SolveOptions {
     /// Iterations per call. Default 3 (Chen §3.1: "a constant number of three is used as
@@ -276,7 +277,7 @@ pub struct SolveState<V: Point = DVec2> {
 }
 
 impl<V: Point> SolveState<V> {
-    /// A solve of `star` (of size `scale`, its [`star_scale`]) from `x0`, already stopped ([`StopReason::DegenerateStar`]) when
+    /// A solve of `star` (of size `scale`, its [`star_scale`](crate::objective::star_scale)) from `x0`, already stopped ([`StopReason::DegenerateStar`]) when
     /// the star is empty or has no finite positive size: what every solver's `start`
     /// checks first.
     fn begin<S: NodeStar<Point = V>>(star: &S, x0: V, scale: f64, options: &SolveOptions) -> Self {
@@ -396,60 +397,6 @@ pub trait Solver<S: NodeStar = Star> {
         let mut state = self.start_at_scale(objective, star, x0, scale);
         while self.step(objective, star, &mut state) {}
         state.into_result()
-    }
-}
-
-/// The power of two that brings a star of size `scale` to [1, 2), when the size is
-/// beyond 2^±64 (and the factor and its inverse are finite); `None` otherwise.
-pub fn unit_factor(scale: f64) -> Option<f64> {
-    const WINDOW: f64 = 18_446_744_073_709_551_616.0; // 2^64
-    if !scale.is_normal() || (1.0 / WINDOW..=WINDOW).contains(&scale) {
-        return None;
-    }
-    let e = ((scale.to_bits() >> 52) & 0x7ff) as i32 - 1023;
-    // 2^-e and 2^e are both finite normal numbers for |e| ≤ 1022
-    (e.abs() <= 1022).then(|| 2f64.powi(-e))
-}
-
-/// A copy of the star with every coordinate multiplied by `f` (a power of two: exact).
-pub(crate) fn scaled_star(star: &Star, f: f64) -> Star {
-    let mut s = star.clone();
-    s.x0 *= f;
-    for e in &mut s.elems {
-        for p in &mut e.pts {
-            *p *= f;
-        }
-    }
-    s
-}
-
-/// `|v|` without overflow or underflow of the squares.
-fn robust_length(v: DVec2) -> f64 {
-    let m = v.x.abs().max(v.y.abs());
-    if m == 0.0 || !m.is_finite() {
-        return m;
-    }
-    m * (v / m).length()
-}
-
-/// The size of a star: the mean length of the corner edges at the free node (the edges
-/// to the next and previous corner of every star element), measured at [`Star::x0`].
-/// 0 for an empty star.
-pub fn star_scale(star: &Star) -> f64 {
-    let mut sum = 0.0;
-    let mut n = 0usize;
-    for e in &star.elems {
-        let k = e.kind.corners();
-        let s = e.slot as usize;
-        // halved before summing, so that sizes near the largest double do not overflow
-        sum +=
-            0.5 * robust_length(e.pts[(s + 1) % k] - star.x0) + 0.5 * robust_length(e.pts[(s + k - 1) % k] - star.x0);
-        n += 2;
-    }
-    if n == 0 {
-        0.0
-    } else {
-        sum / (n / 2) as f64
     }
 }
 

@@ -189,7 +189,7 @@ impl Objective for ShapeMaxMin {
         Goal::MaximizeMin
     }
     fn terms(&self, star: &Star, x: DVec2, out: &mut Vec<Term>) {
-        let h = 1e-7 * super::star_scale(star).max(f64::MIN_POSITIVE);
+        let h = 1e-7 * crate::objective::star_scale(star).max(f64::MIN_POSITIVE);
         for i in 0..star.len() {
             let f = |p: DVec2| element_shape_at(star, i, p);
             out.push(Term { elem: i as u32, value: f(x), grad: fd_grad(f, x, h) });
@@ -208,7 +208,7 @@ impl Objective for ShapeSum {
         Goal::MinimizeSum
     }
     fn terms(&self, star: &Star, x: DVec2, out: &mut Vec<Term>) {
-        let h = 1e-7 * super::star_scale(star).max(f64::MIN_POSITIVE);
+        let h = 1e-7 * crate::objective::star_scale(star).max(f64::MIN_POSITIVE);
         for i in 0..star.len() {
             let f = |p: DVec2| (1.0 - element_shape_at(star, i, p)).powi(2);
             out.push(Term { elem: i as u32, value: f(x), grad: fd_grad(f, x, h) });

@@ -373,10 +373,10 @@ fn newton_steps_never_leave_a_barrier_star_worse() {
     // the new objective on stars of every kind, from positions around their nodes: every
     // solve with Newton's first trial ends finite and no higher than it started, and
     // Newton's steps are taken
-    use crate::objective::testing::{sample_stars, Lcg};
+    use crate::objective::testing::{sample_stars, SplitMix64, SquarePoint};
     use crate::objective::ChenTristanoKwok;
     let obj = ChenTristanoKwok::default();
-    let mut rng = Lcg::new(5);
+    let mut rng = SplitMix64::new(5);
     let mut newton_steps = 0;
     for star in sample_stars() {
         for _ in 0..20 {

@@ -146,11 +146,8 @@ mod tests {
 
     /// A deterministic stream of doubles in `[lo, hi)`.
     fn uniform(seed: u64, lo: f64, hi: f64) -> impl Iterator<Item = f64> {
-        let mut s = seed;
-        std::iter::repeat_with(move || {
-            s = s.wrapping_mul(6_364_136_223_846_793_005).wrapping_add(1_442_695_040_888_963_407);
-            lo + (hi - lo) * ((s >> 11) as f64 / (1u64 << 53) as f64)
-        })
+        let mut g = crate::numeric::SplitMix64::new(seed);
+        std::iter::repeat_with(move || g.uniform(lo, hi))
     }
 
     #[test]

@@ -16,6 +16,7 @@ use glam::DVec2;
 use serde::Serialize;
 
 use crate::mesh::{ElementKind, Mesh};
+use crate::numeric::{is_beyond_safe_scale, to_unit_scale, SAFE_SCALE};
 
 pub mod elementary;
 pub mod tet;
@@ -23,10 +24,6 @@ pub mod tet;
 /// `2√3`, Lo's normalisation so an equilateral triangle has α = 1.
 pub(crate) const TWO_SQRT3: f64 = 3.464_101_615_137_754_6;
 
-/// Edge vectors whose largest component lies in 2^±200 are measured as they are: every
-/// product the metrics take of them is a normal double (see [`corner_edges`]); beyond it
-/// they are brought to unit scale first. One range for every metric and objective.
-pub(crate) const SAFE_SCALE: std::ops::RangeInclusive<f64> = 6.223_015_277_861_142e-61..=1.606_938_044_258_990_3e60;
 /// α of the right isosceles triangle, `√3/2`: Canann's normalisation so a square has β = 1.
 pub const ALPHA_90: f64 = 0.866_025_403_784_438_6;
 
@@ -272,82 +269,6 @@ pub fn corner_edges(kind: ElementKind, p: &[DVec2]) -> [(DVec2, DVec2); 4] {
     out
 }
 
-/// Multiplies the vectors by a power of two (exact) that brings their largest component
-/// into [1, 2), and returns it as two finite factors whose product it is (it may itself
-/// be beyond the doubles, 2^1074 for the smallest subnormal); leaves the vectors as they
-/// are, returning `[1, 1]`, when they are all zero (or not finite).
-pub fn to_unit_scale(v: &mut [DVec2]) -> [f64; 2] {
-    let largest = |v: &[DVec2]| v.iter().fold(0.0f64, |m, p| m.max(p.x.abs()).max(p.y.abs()));
-    let m = largest(v);
-    if m == 0.0 || !m.is_finite() {
-        return [1.0, 1.0];
-    }
-    // from far outside [2^-598, 2^598] in one step first, so the final factor (the inverse
-    // of m's power of two) is itself a finite double
-    let pre = if m < pow2(-598) {
-        pow2(598)
-    } else if m > pow2(598) {
-        pow2(-598)
-    } else {
-        1.0
-    };
-    if pre != 1.0 {
-        for p in v.iter_mut() {
-            *p *= pre;
-        }
-    }
-    let unit = f64::from_bits((m * pre).to_bits() & 0x7ff0_0000_0000_0000);
-    let inv = 1.0 / unit;
-    if inv != 1.0 {
-        for p in v.iter_mut() {
-            *p *= inv;
-        }
-    }
-    [pre, inv]
-}
-
-/// `2^e` for a normal exponent (|e| ≤ 1022).
-#[inline]
-fn pow2(e: i32) -> f64 {
-    f64::from_bits(((e + 1023) as u64) << 52)
-}
-
-/// Two finite powers of two whose product brings a positive finite `m` to about 1 (the
-/// product itself may be beyond the doubles: 2^1074 for the smallest subnormal).
-pub(crate) fn unit_factors(m: f64) -> (f64, f64) {
-    let k = m.log2().floor() as i32;
-    (2f64.powi(-k / 2), 2f64.powi(-k - (-k / 2)))
-}
-
-/// The unit vector along `v`, zero when `v` is zero or not finite: `normalize_or_zero`
-/// at every magnitude. Where `v`'s squared length would leave the doubles (a normal of
-/// elements of size 1e±80 is a cross product of size 1e±160) `v` is first multiplied by a
-/// power of two (exact), which changes neither its direction nor, where it was not
-/// needed, the bits of the result.
-pub fn direction(v: glam::DVec3) -> glam::DVec3 {
-    let m = v.abs().max_element();
-    if !(m > 0.0 && m.is_finite()) {
-        return glam::DVec3::ZERO;
-    }
-    if (pow2(-500)..=pow2(500)).contains(&m) {
-        return v.normalize_or_zero();
-    }
-    let (f1, f2) = unit_factors(m);
-    (v * f1 * f2).normalize_or_zero()
-}
-
-/// Vectors of size beyond [`SAFE_SCALE`] multiplied by one power of two (exact) that
-/// brings their largest component to about 1, so that their cross products and squares
-/// are normal doubles; as they are inside it.
-pub(crate) fn in_unit_scale_3d<const N: usize>(v: [glam::DVec3; N]) -> [glam::DVec3; N] {
-    let m = v.iter().fold(0.0f64, |m, x| m.max(x.abs().max_element()));
-    if SAFE_SCALE.contains(&m) || m == 0.0 || !m.is_finite() {
-        return v;
-    }
-    let (f1, f2) = unit_factors(m);
-    v.map(|x| x * f1 * f2)
-}
-
 /// Corner edge vectors brought to unit scale when their size is beyond 2^±200, where the
 /// metrics' squares and products of squares would over- or underflow: `(e1, e2, f)` with
 /// the factors `f` (as [`to_unit_scale`] returns them), `None` when they are fine as they
@@ -355,7 +276,7 @@ pub(crate) fn in_unit_scale_3d<const N: usize>(v: [glam::DVec3; N]) -> [glam::DV
 #[inline]
 fn beyond_safe_scale(e1: DVec2, e2: DVec2) -> Option<(DVec2, DVec2, [f64; 2])> {
     let m = e1.x.abs().max(e1.y.abs()).max(e2.x.abs()).max(e2.y.abs());
-    if SAFE_SCALE.contains(&m) || m == 0.0 || !m.is_finite() {
+    if !is_beyond_safe_scale(m) {
         return None;
     }
     let mut v = [e1, e2];
@@ -479,12 +400,6 @@ pub fn measure_element<const ANGLES: bool, const CONDITION: bool, const SINES: b
         q.shape = canann_beta_from_corners(&ce);
     }
     q
-}
-
-/// Shape quality used throughout (α for triangles, β for quads) of element `e` of `mesh`.
-pub fn element_shape(mesh: &Mesh, e: usize) -> f64 {
-    let p = mesh.element_points_array(e);
-    element_quality(mesh.kind(e), &p[..mesh.kind(e).node_count()]).shape
 }
 
 /// The statistics `smoothlab stats` prints (and `--json` writes, field for field).
@@ -644,11 +559,6 @@ pub fn mesh_stats_with(mesh: &Mesh, points: impl Fn(usize) -> [DVec2; 9]) -> Mes
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn the_safe_scale_is_two_to_the_plus_minus_200() {
-        assert_eq!((*SAFE_SCALE.start(), *SAFE_SCALE.end()), (pow2(-200), pow2(200)));
-    }
 
     /// `mesh_stats` by folding [`element_quality`] element by element: what
     /// `mesh_stats` must equal bit for bit.

@@ -68,7 +68,7 @@ pub fn is_inverted(p: &[DVec3; 4]) -> bool {
 
 /// The corners in the tetrahedron's own scale, for the measures that are ratios of
 /// lengths (angles, sines, the mean ratio, κ, the sign of the volume): as they are when
-/// the edges' largest component lies within `SAFE_SCALE` (2^±200, where
+/// the edges' largest component lies within [`SAFE_SCALE`](crate::numeric::SAFE_SCALE) (2^±200, where
 /// every product those measures take is a normal double, so their bits are unchanged);
 /// beyond it, corner 0 moved to the origin and the edges multiplied by a power of two
 /// (exact) that brings that component to about 1 — the planar metrics' rule
@@ -77,10 +77,10 @@ pub fn is_inverted(p: &[DVec3; 4]) -> bool {
 pub fn in_unit_scale(p: &[DVec3; 4]) -> [DVec3; 4] {
     let e = [p[1] - p[0], p[2] - p[0], p[3] - p[0]];
     let m = e.iter().fold(0.0f64, |m, v| m.max(v.abs().max_element()));
-    if super::SAFE_SCALE.contains(&m) || m == 0.0 || !m.is_finite() {
+    let Some((f1, f2)) = crate::numeric::factors_beyond_safe_scale(m) else {
         return *p;
-    }
-    let [a, b, c] = super::in_unit_scale_3d(e);
+    };
+    let [a, b, c] = e.map(|x| x * f1 * f2);
     [DVec3::ZERO, a, b, c]
 }
 
@@ -172,39 +172,6 @@ pub fn dihedral_sines_grad0(p: &[DVec3; 4]) -> [(f64, DVec3); 6] {
     out
 }
 
-/// [`dihedral_angles`] with the gradient of each with respect to corner 0: with the
-/// dihedral's cosine `c = −N_k·N_l/(A_k A_l)` (area vectors `N`, areas `A`) and its sine
-/// `s` ([`dihedral_sines_grad0`], taken unsigned), `θ = atan2(s, c)` and
-/// `∇θ = (c∇s − s∇c)/(s² + c²)`, where `∇(N_k·N_l) = ½(b_k − c_k)×N_l + ½(b_l − c_l)×N_k`
-/// over the faces `(p₀, b, c)` at corner 0 (`dN = ½ δ×(b − c)`).
-pub fn dihedral_angles_grad0(p: &[DVec3; 4]) -> [(f64, DVec3); 6] {
-    const FACES: [[usize; 3]; 4] = [[1, 2, 3], [0, 3, 2], [0, 1, 3], [0, 2, 1]];
-    let n = [0, 1, 2, 3].map(|k| face_area_vector(p, k));
-    let area = n.map(|v| v.length());
-    // ∇N·M for a face at corner 0: ½(b − c)×M; zero for the face opposite corner 0
-    let dot_grad = |k: usize, m: DVec3| {
-        if k == 0 {
-            DVec3::ZERO
-        } else {
-            let [_, b, c] = FACES[k];
-            0.5 * (p[b] - p[c]).cross(m)
-        }
-    };
-    let area_grad = |k: usize| if area[k] > 0.0 { dot_grad(k, n[k] / area[k]) } else { DVec3::ZERO };
-    let sines = dihedral_sines_grad0(p);
-    let mut out = [(0.0, DVec3::ZERO); 6];
-    for (e, [k, l]) in OFF_EDGE.iter().copied().enumerate() {
-        let (al, ak) = (area[l], area[k]);
-        let c = -n[k].dot(n[l]) / (ak * al);
-        let grad_c = -(dot_grad(k, n[l]) + dot_grad(l, n[k])) / (ak * al) - c * (area_grad(k) / ak + area_grad(l) / al);
-        let (s, gs) = sines[e];
-        let (s, gs) = if s < 0.0 { (-s, -gs) } else { (s, gs) };
-        let r2 = s * s + c * c;
-        out[e] = (s.atan2(c), (c * gs - s * grad_c) / r2);
-    }
-    out
-}
-
 /// The weighted corner Jacobian `T = A·W⁻¹` at corner 0, `A = [p1 − p0, p2 − p0, p3 − p0]`.
 #[inline]
 fn weighted_jacobian(p: &[DVec3; 4]) -> DMat3 {
@@ -255,11 +222,6 @@ pub fn condition_number(p: &[DVec3; 4]) -> f64 {
         return if det.is_nan() { f64::NAN } else { f64::INFINITY };
     }
     (frobenius2(&t) * frobenius2(&t.inverse())).sqrt()
-}
-
-/// `3/κ`, in [0, 1]: 1 for the regular tetrahedron, 0 for a flat one (Knupp's theorem).
-pub fn condition_shape(p: &[DVec3; 4]) -> f64 {
-    3.0 / condition_number(p)
 }
 
 /// [`condition_number`] with its gradient with respect to corner 0. With `F = ‖T‖²`,
@@ -393,15 +355,12 @@ mod tests {
         [DVec3::ZERO, DVec3::X, DVec3::Y, DVec3::Z]
     }
 
-    struct Lcg(u64);
-    impl Lcg {
-        fn next(&mut self) -> f64 {
-            self.0 = self.0.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
-            (self.0 >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
-        }
-        fn point(&mut self) -> DVec3 {
-            DVec3::new(self.next(), self.next(), self.next())
-        }
+    use crate::numeric::SplitMix64;
+
+    /// A point uniform in the cube [−1, 1)³.
+    fn point(rng: &mut SplitMix64) -> DVec3 {
+        let (x, y) = (rng.uniform(-1.0, 1.0), rng.uniform(-1.0, 1.0));
+        DVec3::new(x, y, rng.uniform(-1.0, 1.0))
     }
 
     #[test]
@@ -429,7 +388,7 @@ mod tests {
         }
         // T = W·W⁻¹ = I: κ = ‖I‖‖I‖ = 3, mean ratio 3·1/3 = 1
         assert!((condition_number(&p) - 3.0).abs() < 1e-14);
-        assert!((condition_shape(&p) - 1.0).abs() < 1e-14);
+        assert!((3.0 / condition_number(&p) - 1.0).abs() < 1e-14);
         assert!((mean_ratio(&p) - 1.0).abs() < 1e-14);
     }
 
@@ -488,11 +447,11 @@ mod tests {
 
     #[test]
     fn measures_are_invariant_to_motion_scale_and_the_even_permutations() {
-        let mut rng = Lcg(7);
+        let mut rng = SplitMix64::new(7);
         for _ in 0..50 {
-            let p = [rng.point(), rng.point(), rng.point(), rng.point()];
-            let rot = glam::DQuat::from_axis_angle(rng.point().normalize(), rng.next() * 3.0);
-            let shift = rng.point() * 10.0;
+            let p = [point(&mut rng), point(&mut rng), point(&mut rng), point(&mut rng)];
+            let rot = glam::DQuat::from_axis_angle(point(&mut rng).normalize(), rng.uniform(-1.0, 1.0) * 3.0);
+            let shift = point(&mut rng) * 10.0;
             let moved = p.map(|x| rot * x * 3.5 + shift);
             let rel = |a: f64, b: f64| (a - b).abs() <= 1e-10 * a.abs().max(1.0);
             assert!(rel(condition_number(&p), condition_number(&moved)));
@@ -528,10 +487,10 @@ mod tests {
 
     #[test]
     fn gradients_agree_with_central_differences() {
-        let mut rng = Lcg(11);
+        let mut rng = SplitMix64::new(11);
         let mut inverted = 0;
         for _ in 0..200 {
-            let p = [rng.point(), rng.point(), rng.point(), rng.point()];
+            let p = [point(&mut rng), point(&mut rng), point(&mut rng), point(&mut rng)];
             let v = signed_volume(&p);
             // away from the flat configurations, where the measures are steep
             if v.abs() < 0.02 {
@@ -542,10 +501,6 @@ mod tests {
             for (e, (s, g)) in dihedral_sines_grad0(&p).into_iter().enumerate() {
                 assert!((s - dihedral_sines(&p)[e]).abs() < 1e-14);
                 check(|q| dihedral_sines(q)[e], g, &p, "sine");
-            }
-            for (e, (a, g)) in dihedral_angles_grad0(&p).into_iter().enumerate() {
-                assert!((a - dihedral_angles(&p)[e]).abs() < 1e-12, "angle {e}: {a}");
-                check(|q| dihedral_angles(q)[e], g, &p, "dihedral angle");
             }
             let (k, g) = condition_number_grad0(&p);
             assert!((k - condition_number(&p)).abs() <= 1e-12 * k);

@@ -303,7 +303,7 @@ mod tests {
 
     #[test]
     fn a_valid_triangle_scores_as_the_general_measure_scores_it() {
-        let mut rng = crate::generate::SplitMix64::new(29);
+        let mut rng = crate::numeric::SplitMix64::new(29);
         for s in [1e-200, 1e-30, 1.0, 1e30, 1e200] {
             for _ in 0..2000 {
                 let mut r = || s * (rng.next_f64() * 2.0 - 1.0);

@@ -86,7 +86,7 @@ pub(crate) fn triangle_shape_at(a: DVec2, b: DVec2, x: DVec2) -> Option<(f64, bo
         // power of two (exact, and before subtracting: differences of tiny coordinates
         // can be subnormal), so α is the same, bit for bit, at every scale
         let m = u.abs().max_element().max(v.abs().max_element()).max(w.abs().max_element());
-        if let Some(f) = crate::optimize::unit_factor(m) {
+        if let Some(f) = crate::numeric::unit_factor(m) {
             let (a, b, x) = (f * a, f * b, f * x);
             (u, v, w) = (a - x, b - x, b - a);
             d = squares(u, v, w);
@@ -155,7 +155,7 @@ pub(crate) fn is_inverted(kind: crate::mesh::ElementKind, p: &[DVec2; 9]) -> boo
         let (a, b, c) = (p[0], p[1], p[2]);
         let e = [(b - a, c - a), (c - b, a - b), (a - c, b - c)];
         let m = e.iter().fold(0.0f64, |m, (u, v)| m.max(u.abs().max_element()).max(v.abs().max_element()));
-        if crate::quality::SAFE_SCALE.contains(&m) {
+        if crate::numeric::SAFE_SCALE.contains(&m) {
             return e.iter().any(|(u, v)| u.perp_dot(*v) <= 0.0);
         }
     }

@@ -589,7 +589,7 @@ fn keep_valid_stops_the_new_objective_folding_a_valid_star() {
 /// node placed uniformly at random in the square (Knupp 1999, Fig. 1, smaller).
 fn random_grid(kind: crate::generate::GridKind, seed: u64) -> Mesh {
     let mut m = crate::generate::grid(6, 6, kind).unwrap();
-    let mut rng = crate::generate::SplitMix64::new(seed);
+    let mut rng = crate::numeric::SplitMix64::new(seed);
     for n in 0..m.node_count() {
         if m.is_free(n) {
             m.nodes_mut()[n] = DVec2::new(rng.next_f64(), rng.next_f64());
@@ -719,8 +719,8 @@ fn untangling_sweeps_terminate() {
 /// same, bit for bit, at every scale (the squares are taken in the triangle's own scale).
 #[test]
 fn linear_triangle_shape_is_the_same_at_every_scale() {
-    use crate::objective::testing::{elem, Lcg};
-    let mut rng = Lcg::new(17);
+    use crate::objective::testing::{elem, SplitMix64, SquarePoint};
+    let mut rng = SplitMix64::new(17);
     for _ in 0..200 {
         let pts = [rng.point(1.0), rng.point(1.0), rng.point(1.0)];
         let x = rng.point(1.0);

@@ -20,7 +20,7 @@ use std::sync::Arc;
 use glam::{DVec2, DVec3};
 
 use crate::error::{Error, Result};
-use crate::mesh::{Mesh, NodeRole, Plane};
+use crate::mesh::{Mesh, MeshBuilder, NodeRole, Plane, SurfaceParts};
 use crate::quality::{mesh_stats_with, MeshStats};
 
 mod curves;
@@ -30,55 +30,7 @@ mod view;
 
 pub use picture::SurfaceFaces;
 pub use reference::{closest_on_triangle, Analytic, Facets, Projected, Reference};
-pub use view::{perturb_surface, smooth_surface, SurfaceSmoother};
-
-/// What a mesh file holds: a planar mesh (the 2D core), a surface in 3D, or a mesh of
-/// tetrahedra ([`crate::volume`]).
-#[derive(Clone, Debug)]
-#[allow(clippy::large_enum_variant)]
-pub enum Model {
-    Planar(Mesh),
-    Surface(Surface),
-    Volume(crate::volume::TetMesh),
-}
-
-impl From<Mesh> for Model {
-    fn from(m: Mesh) -> Model {
-        Model::Planar(m)
-    }
-}
-
-impl Model {
-    /// The elements, topology and fixed flags of a planar mesh or a surface (for a
-    /// surface, with scratch positions: see [`Surface::flat`]); `None` for tetrahedra.
-    pub fn mesh(&self) -> Option<&Mesh> {
-        match self {
-            Model::Planar(m) => Some(m),
-            Model::Surface(s) => Some(&s.flat),
-            Model::Volume(_) => None,
-        }
-    }
-    /// The statistics `stats` prints.
-    pub fn stats(&self) -> MeshStats {
-        match self {
-            Model::Planar(m) => crate::quality::mesh_stats(m),
-            Model::Surface(s) => s.stats(),
-            Model::Volume(v) => crate::volume::volume_stats(v),
-        }
-    }
-    /// The planar mesh, or an error saying that `what` takes planar meshes only.
-    pub fn planar(self, what: &str) -> Result<Mesh> {
-        match self {
-            Model::Planar(m) => Ok(m),
-            Model::Surface(_) => {
-                Err(Error::invalid(format!("{what} takes planar meshes only; this mesh is a surface in 3D")))
-            }
-            Model::Volume(_) => {
-                Err(Error::invalid(format!("{what} takes planar meshes only; this mesh is made of tetrahedra")))
-            }
-        }
-    }
-}
+pub use view::{smooth_surface, SurfaceSmoother};
 
 /// Dihedral angle over which an edge between two elements is a feature curve (its nodes
 /// stay fixed), degrees.
@@ -191,13 +143,26 @@ impl Surface {
         })
     }
 
+    /// Builds a surface in 3D from a builder's triangles and quads whatever their points
+    /// (a generator's, on `analytic`'s exact surface when given): the checks of a planar
+    /// mesh, then [`from_parts`](Self::from_parts). A file's mesh, planar or not, is built
+    /// by `Model::build` (in `model`, above this module).
+    pub fn build(builder: MeshBuilder, analytic: Option<Analytic>) -> Result<Surface> {
+        Self::from_surface_parts(builder.build_surface_parts()?, analytic)
+    }
+
+    /// The surface of the parts a builder made, with why its points were not planar.
+    pub(crate) fn from_surface_parts(parts: SurfaceParts, analytic: Option<Analytic>) -> Result<Surface> {
+        let SurfaceParts { points, mesh, flags_given, not_planar } = parts;
+        let mut s = Self::from_parts(points, mesh, analytic, flags_given)?;
+        s.not_planar = not_planar;
+        Ok(s)
+    }
+
     /// Why a file's points were read as a surface, when they were: the node farthest off
     /// the plane the mesh would lie in, how far, and how that compares with its elements.
     pub fn not_planar(&self) -> Option<&str> {
         self.not_planar.as_deref()
-    }
-    pub(crate) fn set_not_planar(&mut self, why: String) {
-        self.not_planar = Some(why);
     }
     /// Node positions in 3D.
     pub fn points(&self) -> &[DVec3] {
@@ -258,10 +223,10 @@ impl Surface {
         for (i, v) in d[..k].iter_mut().enumerate() {
             *v = corner(i) - centre;
         }
-        let d = crate::quality::in_unit_scale_3d(d);
+        let d = crate::numeric::in_unit_scale_3d(d);
         let own = (0..k).map(|i| d[i].cross(d[(i + 1) % k])).sum::<DVec3>();
         let towards = self.reference_normal(e);
-        let normal = match Some(crate::quality::direction(own)).filter(|n| *n != DVec3::ZERO) {
+        let normal = match Some(crate::numeric::direction(own)).filter(|n| *n != DVec3::ZERO) {
             Some(n) if n.dot(towards) < 0.0 => -n,
             Some(n) => n,
             None => towards,

@@ -1,4 +1,6 @@
 use super::*;
+use crate::generate::perturb_surface;
+use crate::model::Model;
 use crate::generate::{surface, SurfaceKind, SurfaceShape};
 use crate::objective::{objective, ObjectiveKind};
 use crate::smooth::{SmoothOptions, Strategy};
@@ -147,7 +149,7 @@ fn elements_are_measured_in_their_own_plane_and_inverted_against_the_surface() {
     b.add_node((plane.to_3d(DVec2::new(0.3, -0.5)) - 0.6 * plane.normal()).to_array(), 0);
     b.add_element(ElementKind::Quad4, &[0, 1, 2, 3], 0);
     b.add_element(ElementKind::Tri3, &[1, 0, 4], 0);
-    let Ok(Model::Surface(s)) = b.build_model() else { panic!("a surface") };
+    let Ok(Model::Surface(s)) = Model::build(b) else { panic!("a surface") };
     let q = element_quality(ElementKind::Quad4, &s.element_points_2d(0)[..4]);
     assert!((q.shape - 1.0).abs() < 1e-12 && !q.inverted, "the square's β is 1: {q:?}");
     // the triangle's α is Lo's 2√3·|AB × AC| / Σ|edge|², all measured in 3D
@@ -185,7 +187,7 @@ fn a_surface_given_with_mixed_orientations_is_oriented_and_a_mobius_band_refused
         }
         b.add_element(ElementKind::Tri3, &ids, 0);
     }
-    let Ok(Model::Surface(s)) = b.build_model() else { panic!("a surface") };
+    let Ok(Model::Surface(s)) = Model::build(b) else { panic!("a surface") };
     for e in 0..s.element_count() {
         // the same triangle, in the sample's (outward) order up to rotation
         let (got, want) = (s.flat().element(e), sphere.flat().element(e));
@@ -207,7 +209,7 @@ fn a_surface_given_with_mixed_orientations_is_oriented_and_a_mobius_band_refused
         let (b0, b1) = if i + 1 < n { (a0 + 2, a1 + 2) } else { (1, 0) };
         b.add_element(ElementKind::Quad4, &[a0, b0, b1, a1], 0);
     }
-    let Err(e) = b.build_model() else { panic!("a Möbius band must be refused") };
+    let Err(e) = Model::build(b) else { panic!("a Möbius band must be refused") };
     assert!(e.to_string().contains("not orientable"), "{e}");
 }
 
@@ -346,7 +348,7 @@ fn a_strip_folded_back_on_itself_is_a_feature_and_stays_valid() {
             b.add_element(ElementKind::Tri3, &[id(i, j), id(i + 1, j + 1), id(i, j + 1)], 0);
         }
     }
-    let Ok(Model::Surface(base)) = b.build_model() else { panic!("a surface") };
+    let Ok(Model::Surface(base)) = Model::build(b) else { panic!("a surface") };
     let fold = id(4, 1) as usize;
     assert!(base.is_feature(fold) && base.flat().is_fixed(fold), "the fold is a feature curve");
     let before = base.stats();
@@ -383,7 +385,7 @@ fn a_flipped_element_in_a_file_still_reads_as_inverted() {
     for e in 0..sphere.element_count() {
         builder.add_element(sphere.flat().kind(e), sphere.flat().element(e), 0);
     }
-    let Ok(Model::Surface(loaded)) = builder.build_model() else { panic!("a surface") };
+    let Ok(Model::Surface(loaded)) = Model::build(builder) else { panic!("a surface") };
     assert!(loaded.stats().inverted > 0, "the flipped element is inverted");
 }
 
@@ -408,7 +410,7 @@ fn surfaces_meeting_at_a_vertex_alone_are_refused() {
         b.add_element(ElementKind::Tri3, &f, 0);
         b.add_element(ElementKind::Tri3, &f.map(|i| second[i as usize]), 0);
     }
-    let Err(err) = b.build_model().map(|_| ()) else { panic!("two octahedra touching at a vertex were read") };
+    let Err(err) = Model::build(b).map(|_| ()) else { panic!("two octahedra touching at a vertex were read") };
     let err = err.to_string();
     assert!(err.contains("only at node 1") && err.contains("non-manifold vertex"), "{err}");
 }

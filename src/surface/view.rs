@@ -6,7 +6,6 @@ use glam::{DVec2, DVec3};
 
 use super::Surface;
 use crate::error::{Error, Result};
-use crate::generate::SplitMix64;
 use crate::mesh::{Follower, Mesh, Plane};
 use crate::objective::Objective;
 use crate::smooth::{is_inverted, ElementScore, Measure, PassRecord, SmoothOptions, Smoother, StarView, Verdict};
@@ -211,24 +210,6 @@ pub fn smooth_surface(
 ) -> Result<Vec<PassRecord>> {
     let mut s = SurfaceSmoother::new(options)?;
     Ok((0..passes).map(|_| s.pass(surface, objective, clock)).collect())
-}
-
-/// A copy of `surface` with every free node moved in its tangent plane by a seeded random
-/// offset in the disk of radius `amount × mean edge length`, then projected back onto the
-/// reference (the planar [`perturb`](crate::generate::perturb) on a surface); the nodes
-/// that follow move with them. Node by node in node order, from [`SplitMix64`].
-pub fn perturb_surface(surface: &Surface, amount: f64, seed: u64) -> Result<Surface> {
-    let radius = crate::generate::perturbation_radius(amount, surface.mean_edge_length())?;
-    let mut out = surface.clone();
-    let mut rng = SplitMix64::new(seed);
-    for n in 0..out.node_count() {
-        if out.flat.is_free(n) {
-            let plane = out.tangent_plane(n);
-            let p = plane.to_3d(radius * rng.in_unit_disk());
-            out.place(n, p);
-        }
-    }
-    Ok(out)
 }
 
 impl Surface {

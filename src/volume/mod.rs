@@ -13,7 +13,7 @@
 use glam::DVec3;
 
 use crate::error::{Error, Result};
-use crate::mesh::{FixedSpec, NodeRole};
+use crate::mesh::{FixedSpec, MeshBuilder, NodeRole};
 use crate::quality::tet as q3;
 
 mod picture;
@@ -131,6 +131,28 @@ fn csr(n: usize, pairs: &mut [(u32, u32)]) -> (Vec<u32>, Vec<u32>) {
 }
 
 impl TetMesh {
+    /// The tetrahedral mesh of a builder's tetrahedra (a file's: see
+    /// [`MeshBuilder::has_tets`]), its triangles and quads kept as the given faces whose
+    /// nodes are fixed; checked as [`build`](Self::build) checks.
+    pub fn from_builder(builder: MeshBuilder) -> Result<TetMesh> {
+        let p = builder.build_volume_parts()?;
+        let faces = (0..p.face_kinds.len())
+            .map(|e| {
+                let ids = &p.face_nodes[p.face_start[e] as usize..p.face_start[e + 1] as usize];
+                GivenFace::new(p.face_kinds[e], ids, p.face_lines.get(e).copied().unwrap_or(0))
+            })
+            .collect();
+        TetMesh::build(TetParts {
+            faces,
+            nodes: p.points.iter().map(|&x| DVec3::from(x)).collect(),
+            node_lines: p.point_lines,
+            order: if p.quadratic { TetOrder::Quadratic } else { TetOrder::Linear },
+            elements: p.tets,
+            element_lines: p.tet_lines,
+            fixed: p.fixed,
+        })
+    }
+
     /// Checks what a reader found and builds the mesh. Errors name the node or element
     /// and its file line: no tetrahedra, a coordinate that is not a finite number (or too
     /// large to compute with), a node id out of range, a node repeated in a tetrahedron,

@@ -23,7 +23,7 @@ use crate::io;
 use crate::lab::sample::Sample;
 use crate::lab::views::Canvas;
 use crate::lab::Side;
-use crate::surface::Model;
+use crate::model::Model;
 
 /// The message of the last panic, kept by the hook for [`take_panic_message`].
 static LAST_PANIC: Mutex<Option<String>> = Mutex::new(None);

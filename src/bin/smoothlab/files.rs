@@ -3,9 +3,11 @@
 use std::path::{Path, PathBuf};
 
 use clap::Args;
+
+use crate::args::msh_version_parser;
 use smoothlab::io::{self, MshVersion, WriteOptions};
 use smoothlab::quality::element_quality;
-use smoothlab::surface::Model;
+use smoothlab::model::Model;
 use smoothlab::Mesh;
 
 /// Reads a planar mesh or a surface, naming the file in any error, and warns (stderr)
@@ -51,11 +53,6 @@ fn warn_zero_area(mesh: &Mesh, path: &Path) {
             if flat.len() > 5 { ", …" } else { "" }
         );
     }
-}
-
-/// `--msh-version`'s values.
-pub fn msh_version_parser() -> impl clap::builder::TypedValueParser<Value = MshVersion> {
-    crate::smooth::named(&MshVersion::ALL, MshVersion::name, MshVersion::describe)
 }
 
 /// Writes a mesh (planar or a surface) in the format of the file's extension.

@@ -4,12 +4,13 @@ use std::path::PathBuf;
 
 use clap::{Args, Subcommand};
 
-use crate::smooth::named;
+use crate::args::{msh_version_parser, named};
 use smoothlab::generate::{self, GridKind, PlateKind, StarKind, SurfaceKind, SurfaceShape};
-use smoothlab::surface::{perturb_surface, Model};
+use smoothlab::generate::perturb_surface;
+use smoothlab::model::Model;
 use smoothlab::Mesh;
 
-use crate::files::{msh_version_parser, read_model, write_mesh, write_model};
+use crate::files::{read_model, write_mesh, write_model};
 use smoothlab::io::MshVersion;
 
 #[derive(Args)]

@@ -4,6 +4,7 @@
 
 use clap::{Parser, Subcommand};
 
+mod args;
 mod files;
 mod generate;
 mod render;
@@ -29,11 +30,6 @@ enum Command {
     Smooth(smooth::SmoothArgs),
     /// Draw a mesh, level sets, convergence histories or angle histograms to PNG.
     Render(render::RenderArgs),
-}
-
-/// `n` and the noun in its number: "1 tetrahedron", "6 tetrahedra", "0 quads".
-pub(crate) fn count(n: usize, one: &str, many: &str) -> String {
-    format!("{n} {}", if n == 1 { one } else { many })
 }
 
 fn main() {

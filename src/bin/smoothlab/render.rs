@@ -19,12 +19,13 @@ use smoothlab::render::{
 use smoothlab::render::{Camera, SurfaceView, Theme};
 use smoothlab::smooth::limits::RENDER_PASSES;
 use smoothlab::smooth::{smooth, SmoothOptions, Strategy};
-use smoothlab::surface::{Model, Surface, SurfaceSmoother};
+use smoothlab::model::Model;
+use smoothlab::surface::{Surface, SurfaceSmoother};
 use smoothlab::volume::{smooth_volume, volume_stats, Cut, TetMesh};
 use smoothlab::Mesh;
 use tiny_skia::{Pixmap, PixmapPaint, Transform};
 
-use crate::smooth::{order_parser, strategy_parser};
+use crate::args::{named, order_parser, penalty_parser, strategy_parser};
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
 pub enum ViewArg {
@@ -81,7 +82,7 @@ pub struct RenderArgs {
     #[arg(long, default_value = "old,new")]
     pub objective: String,
     /// Metric that colours the elements
-    #[arg(long, value_parser = crate::smooth::named(&Metric::ALL, Metric::name, Metric::describe), default_value = Metric::default().name())]
+    #[arg(long, value_parser = named(&Metric::ALL, Metric::name, Metric::describe), default_value = Metric::default().name())]
     pub metric: Metric,
     /// Picture size in pixels, WxH (default by view)
     #[arg(long)]
@@ -105,7 +106,7 @@ pub struct RenderArgs {
     #[arg(long, default_value_t = smoothlab::smooth::DEFAULT_MAX_ITER)]
     pub max_iter: u32,
     /// Design of the new objective's penalty: barrier (the default) or angle (the first design)
-    #[arg(long, value_parser = crate::smooth::penalty_parser(), default_value = "barrier")]
+    #[arg(long, value_parser = penalty_parser(), default_value = "barrier")]
     pub penalty: smoothlab::objective::Penalty,
     /// A surface's 3D view: yaw and pitch in degrees and a zoom factor, YAW,PITCH[,ZOOM]
     /// (default 30,25,1); --view mesh and compare draw surfaces

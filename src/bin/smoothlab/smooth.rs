@@ -26,10 +26,12 @@ use serde::Serialize;
 use smoothlab::objective::{objective_with, tet_objective, ObjectiveKind, Penalty};
 use smoothlab::quality::MeshStats;
 use smoothlab::smooth::{untangling_obstacles, Obstacle, Order, PassRecord, SmoothOptions, Smoother, Strategy};
-use smoothlab::surface::{Model, SurfaceSmoother};
+use smoothlab::model::Model;
+use smoothlab::surface::SurfaceSmoother;
 use smoothlab::volume::VolumeSmoother;
 
-use crate::files::{msh_version_parser, read_model, write_model};
+use crate::args::{msh_version_parser, named, order_parser, penalty_parser, strategy_parser};
+use crate::files::{read_model, write_model};
 use smoothlab::io::MshVersion;
 
 use smoothlab::smooth::limits::{threshold_in_range, BATCH_MAX_ITER, BATCH_PASSES};
@@ -81,34 +83,6 @@ pub struct SmoothArgs {
     /// Version of .msh files written
     #[arg(long, value_parser = msh_version_parser(), default_value = MshVersion::default().name())]
     pub msh_version: MshVersion,
-}
-
-/// A value parser for one of the core's named choices: the possible values are `all`'s
-/// names with their descriptions, in the core's order, so the CLI lists exactly what the
-/// core offers (no mirror enum to keep in step with it).
-pub fn named<T: Copy + Send + Sync + 'static>(
-    all: &'static [T],
-    name: fn(T) -> &'static str,
-    describe: fn(T) -> &'static str,
-) -> impl clap::builder::TypedValueParser<Value = T> {
-    use clap::builder::{PossibleValue, TypedValueParser};
-    clap::builder::PossibleValuesParser::new(all.iter().map(|&t| PossibleValue::new(name(t)).help(describe(t))))
-        .map(move |s: String| *all.iter().find(|&&t| name(t) == s).expect("one of the possible values"))
-}
-
-/// `--penalty`'s values.
-pub fn penalty_parser() -> impl clap::builder::TypedValueParser<Value = Penalty> {
-    named(&Penalty::ALL, Penalty::name, Penalty::describe)
-}
-
-/// `--strategy`'s values.
-pub fn strategy_parser() -> impl clap::builder::TypedValueParser<Value = Strategy> {
-    named(&Strategy::ALL, Strategy::name, Strategy::describe)
-}
-
-/// `--order`'s values.
-pub fn order_parser() -> impl clap::builder::TypedValueParser<Value = Order> {
-    named(&Order::ALL, Order::name, Order::describe)
 }
 
 /// Strategies that never call the solver.
@@ -288,7 +262,7 @@ fn summary(
     }
     t.push_str(&format!(
         "final: {}, {} inverted, angles {:.2}°–{:.2}°, quality min {:.4} mean {:.4}; {:.1} ms\n",
-        crate::count(s.elements, "element", "elements"),
+        crate::args::count(s.elements, "element", "elements"),
         s.inverted, s.min_angle_deg, s.max_angle_deg, s.min_quality, s.mean_quality, ms
     ));
     if let Some(d) = s.max_distance_from_surface {

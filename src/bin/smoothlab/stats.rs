@@ -39,15 +39,15 @@ pub fn table(s: &MeshStats) -> String {
     row("nodes", format!("{} ({} free, {} fixed{following})", s.nodes, s.free_nodes, s.fixed_nodes));
     let solid = s.tetrahedra > 0;
     if solid {
-        row("elements", format!("{} ({} quadratic)", crate::count(s.tetrahedra, "tetrahedron", "tetrahedra"), s.quadratic));
+        row("elements", format!("{} ({} quadratic)", crate::args::count(s.tetrahedra, "tetrahedron", "tetrahedra"), s.quadratic));
     } else {
         row(
             "elements",
             format!(
                 "{} ({}, {}, {} quadratic)",
                 s.elements,
-                crate::count(s.triangles, "triangle", "triangles"),
-                crate::count(s.quads, "quad", "quads"),
+                crate::args::count(s.triangles, "triangle", "triangles"),
+                crate::args::count(s.quads, "quad", "quads"),
                 s.quadratic
             ),
         );

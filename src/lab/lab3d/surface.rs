@@ -15,7 +15,8 @@ use crate::objective::Objective;
 use crate::quality::MeshStats;
 use crate::render::{Metric, Projection, SurfaceView};
 use crate::smooth::SmoothOptions;
-use crate::surface::{perturb_surface, Surface, SurfaceSmoother};
+use crate::generate::perturb_surface;
+use crate::surface::{Surface, SurfaceSmoother};
 
 impl Mesh3d for Surface {
     const KIND: &'static str = "surface";
@@ -93,7 +94,7 @@ mod tests {
     use crate::lab::sample::Sample;
     use crate::lab::Choice;
     use crate::objective::ObjectiveKind;
-    use crate::surface::Model;
+    use crate::model::Model;
 
     fn lab(sample: Sample) -> Lab3d<Surface> {
         let Model::Surface(s) = sample.model().unwrap() else { panic!("{sample:?} is not a surface") };

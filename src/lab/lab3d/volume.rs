@@ -18,7 +18,7 @@ use crate::objective::{describe_tet, tet_objective, Objective, TetStar};
 use crate::quality::MeshStats;
 use crate::render::{render_angle_histogram, AngleHistogram, HistogramSeries, Projection, SurfaceView};
 use crate::smooth::SmoothOptions;
-use crate::surface::Model;
+use crate::model::Model;
 use crate::volume::{volume_stats, Cut, TetMesh, VolumeSmoother};
 
 impl Mesh3d for TetMesh {

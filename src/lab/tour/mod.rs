@@ -321,7 +321,7 @@ mod tests {
                 // mesh (which the page opens; the figure's playground is planar only)
                 let st = f.state().unwrap_or_else(|e| panic!("{}: {e}", f.name));
                 assert!(st.sample.is_none() && st.node.is_none() && f.view == "compare", "{}", f.name);
-                assert!(!matches!(sample.model().unwrap(), crate::surface::Model::Planar(_)), "{}", f.name);
+                assert!(!matches!(sample.model().unwrap(), crate::model::Model::Planar(_)), "{}", f.name);
                 assert!(f.playground().is_err(), "{}", f.name);
                 continue;
             }

@@ -581,7 +581,7 @@ fn chen18_run() -> Result<(crate::lab::Lab3d<crate::surface::Surface>, [Vec<usiz
     let (_, fig) = find("chen-18")?;
     let st = fig.state()?;
     let sample = super::gallery_sample(fig.name).ok_or_else(|| Error::invalid("chen-18 names no gallery sample"))?;
-    let crate::surface::Model::Surface(s) = sample.model()? else {
+    let crate::model::Model::Surface(s) = sample.model()? else {
         return Err(Error::invalid("chen-18: its sample is not a surface"));
     };
     let mut lab = crate::lab::Lab3d::new(s)?;

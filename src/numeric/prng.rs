@@ -1,4 +1,5 @@
-//! SplitMix64, the tiny deterministic generator behind every seeded sample mesh.
+//! SplitMix64, the tiny deterministic generator behind every seeded sample mesh and every
+//! randomised test.
 //!
 //! SplitMix64 (Steele, Lea & Flood, "Fast splittable pseudorandom number generators",
 //! OOPSLA 2014; the constants of Vigna's public-domain C version) is a 64-bit counter
@@ -34,6 +35,12 @@ impl SplitMix64 {
     /// A uniform number in `[0, 1)`: the top 53 bits scaled by `2⁻⁵³` (exact).
     pub fn next_f64(&mut self) -> f64 {
         (self.next_u64() >> 11) as f64 * (1.0 / (1u64 << 53) as f64)
+    }
+
+    /// A uniform number in `[lo, hi)` (rounding aside): `lo + (hi − lo)·u` with `u` from
+    /// [`next_f64`](Self::next_f64).
+    pub fn uniform(&mut self, lo: f64, hi: f64) -> f64 {
+        lo + (hi - lo) * self.next_f64()
     }
 
     /// A point uniformly distributed in the open unit disk, by rejection from the

@@ -6,6 +6,12 @@ use glam::DVec3;
 
 use crate::mesh::{ElementKind, NONE};
 
+mod grid;
+mod patch;
+
+use grid::Grid;
+use patch::Patch;
+
 /// Where a point projects onto the reference: the nearest point found, the reference's
 /// unit normal there (oriented as the mesh's elements), and the facet it lies on (for an
 /// analytic surface, the smooth part), which starts the next search for the same node.
@@ -281,11 +287,9 @@ impl Facets {
             let [a, b, c] = t.map(|v| pts[v as usize]);
             m.max((b - a).abs().max_element()).max((c - a).abs().max_element())
         });
-        let unit = if crate::quality::SAFE_SCALE.contains(&reach) || reach == 0.0 || !reach.is_finite() {
-            1.0
-        } else {
-            let (f1, f2) = crate::quality::unit_factors(reach);
-            f1 * f2
+        let unit = match crate::numeric::factors_beyond_safe_scale(reach) {
+            None => 1.0,
+            Some((f1, f2)) => f1 * f2,
         };
         let area = |t: &[u32; 3]| area_vector(&pts, t, unit);
         let mut vertex_normal = vec![DVec3::ZERO; pts.len()];
@@ -296,7 +300,7 @@ impl Facets {
             }
         }
         for n in &mut vertex_normal {
-            *n = crate::quality::direction(*n);
+            *n = crate::numeric::direction(*n);
         }
         let mut first_side = vec![u32::MAX; pts.len()];
         let mut mixed = vec![false; pts.len()];
@@ -321,7 +325,7 @@ impl Facets {
             same
         });
         for (_, n) in &mut side_normal {
-            *n = crate::quality::direction(*n);
+            *n = crate::numeric::direction(*n);
         }
         let mut facets = Facets {
             points: pts,
@@ -380,8 +384,8 @@ impl Facets {
     /// The unit normal of triangle `t` (zero for a degenerate one).
     fn normal(&self, t: u32) -> DVec3 {
         let [a, b, c] = self.corners(t);
-        let [u, v] = crate::quality::in_unit_scale_3d([b - a, c - a]);
-        crate::quality::direction(u.cross(v))
+        let [u, v] = crate::numeric::in_unit_scale_3d([b - a, c - a]);
+        crate::numeric::direction(u.cross(v))
     }
 
     /// The nearest point of the facets to `p`: a walk from `hint` over neighbouring
@@ -411,7 +415,7 @@ impl Facets {
         let (point, bary) = closest_on_triangle(p, self.corners(t));
         let tri = self.triangles[t as usize];
         let blended: DVec3 = (0..3).map(|i| bary[i] * self.vertex_normal_in(tri[i], self.side[t as usize])).sum();
-        let normal = Some(crate::quality::direction(blended)).filter(|n| *n != DVec3::ZERO).unwrap_or_else(|| self.normal(t));
+        let normal = Some(crate::numeric::direction(blended)).filter(|n| *n != DVec3::ZERO).unwrap_or_else(|| self.normal(t));
         Projected { point, normal, face: t }
     }
 
@@ -471,160 +475,6 @@ impl Facets {
     }
 }
 
-/// A quadratic element's curved patch: `x(u, v) = Σ Nᵢ(u, v) xᵢ` with its shape functions
-/// — the 6-node triangle's on the unit triangle (corners (0,0), (1,0), (0,1)), the 8-node
-/// (serendipity) and 9-node (Lagrange) quads' on [−1, 1]².
-#[derive(Clone, Copy, Debug)]
-struct Patch {
-    kind: ElementKind,
-    nodes: [u32; 9],
-}
-
-/// Gauss–Newton steps of a projection onto a patch.
-const PATCH_ITERATIONS: usize = 12;
-
-impl Patch {
-    /// Node `i`'s parameters (the element's node order: corners, then mid-sides, centre).
-    fn node_parameter(&self, i: usize) -> [f64; 2] {
-        match self.kind {
-            ElementKind::Tri6 => [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [0.5, 0.0], [0.5, 0.5], [0.0, 0.5]][i],
-            _ => [
-                [-1.0, -1.0],
-                [1.0, -1.0],
-                [1.0, 1.0],
-                [-1.0, 1.0],
-                [0.0, -1.0],
-                [1.0, 0.0],
-                [0.0, 1.0],
-                [-1.0, 0.0],
-                [0.0, 0.0],
-            ][i],
-        }
-    }
-
-    /// The parameters of the vertices of the element's flat triangles, in the order
-    /// [`Facets::new`] makes them.
-    fn triangle_parameters(&self) -> Vec<[[f64; 2]; 3]> {
-        let q = |i: usize| self.node_parameter(i);
-        match self.kind {
-            ElementKind::Tri6 => vec![[q(0), q(3), q(5)], [q(3), q(1), q(4)], [q(5), q(4), q(2)], [q(3), q(4), q(5)]],
-            _ => (0..4).flat_map(|i| [[q(i), q(4 + i), [0.0, 0.0]], [q(4 + i), q((i + 1) % 4), [0.0, 0.0]]]).collect(),
-        }
-    }
-
-    /// The shape functions at `(u, v)`.
-    fn shape(&self, [u, v]: [f64; 2]) -> [f64; 9] {
-        let mut n = [0.0; 9];
-        match self.kind {
-            ElementKind::Tri6 => {
-                let (l1, l2, l3) = (1.0 - u - v, u, v);
-                n[..6].copy_from_slice(&[
-                    l1 * (2.0 * l1 - 1.0),
-                    l2 * (2.0 * l2 - 1.0),
-                    l3 * (2.0 * l3 - 1.0),
-                    4.0 * l1 * l2,
-                    4.0 * l2 * l3,
-                    4.0 * l3 * l1,
-                ]);
-            }
-            ElementKind::Quad8 => {
-                for (i, slot) in n.iter_mut().enumerate().take(8) {
-                    let [a, b] = self.node_parameter(i);
-                    *slot = if i < 4 {
-                        0.25 * (1.0 + a * u) * (1.0 + b * v) * (a * u + b * v - 1.0)
-                    } else if a == 0.0 {
-                        0.5 * (1.0 - u * u) * (1.0 + b * v)
-                    } else {
-                        0.5 * (1.0 + a * u) * (1.0 - v * v)
-                    };
-                }
-            }
-            _ => {
-                // Lagrange on {−1, 0, 1} in each direction
-                let l = |s: f64, at: f64| match at {
-                    a if a < 0.0 => 0.5 * s * (s - 1.0),
-                    a if a > 0.0 => 0.5 * s * (s + 1.0),
-                    _ => 1.0 - s * s,
-                };
-                for (i, slot) in n.iter_mut().enumerate() {
-                    let [a, b] = self.node_parameter(i);
-                    *slot = l(u, a) * l(v, b);
-                }
-            }
-        }
-        n
-    }
-
-    fn at(&self, points: &[DVec3], uv: [f64; 2]) -> DVec3 {
-        let n = self.shape(uv);
-        (0..self.kind.node_count()).map(|i| n[i] * points[self.nodes[i] as usize]).sum()
-    }
-
-    /// `uv` moved into the parameter domain.
-    fn clamp(&self, [u, v]: [f64; 2]) -> [f64; 2] {
-        match self.kind {
-            ElementKind::Tri6 => {
-                let (u, v) = (u.max(0.0), v.max(0.0));
-                let s = u + v;
-                if s > 1.0 {
-                    [u / s, v / s]
-                } else {
-                    [u, v]
-                }
-            }
-            _ => [u.clamp(-1.0, 1.0), v.clamp(-1.0, 1.0)],
-        }
-    }
-
-    /// The point of the patch nearest to `p`, from the parameters `start`, by Gauss–Newton
-    /// on `|x(u, v) − p|²` kept in the domain (derivatives by central differences; a step
-    /// is taken only where it brings the point nearer, halved until it does), and the
-    /// patch's unit normal there (`∂x/∂u × ∂x/∂v`: the element's orientation).
-    fn nearest(&self, points: &[DVec3], p: DVec3, start: [f64; 2]) -> (DVec3, DVec3) {
-        let h = 1e-6;
-        let mut uv = self.clamp(start);
-        let derivatives = |uv: [f64; 2]| {
-            let d = |j: usize| {
-                let (mut a, mut b) = (uv, uv);
-                a[j] -= h;
-                b[j] += h;
-                (self.at(points, b) - self.at(points, a)) / (2.0 * h)
-            };
-            (d(0), d(1))
-        };
-        let mut d = (self.at(points, uv) - p).length_squared();
-        'iterations: for _ in 0..PATCH_ITERATIONS {
-            let x = self.at(points, uv);
-            let (xu, xv) = derivatives(uv);
-            let r = p - x;
-            let (a, b, c) = (xu.dot(xu), xu.dot(xv), xv.dot(xv));
-            let det = a * c - b * b;
-            if !(det.is_finite() && det > 0.0) {
-                break;
-            }
-            let (gu, gv) = (xu.dot(r), xv.dot(r));
-            let mut step = [(c * gu - b * gv) / det, (a * gv - b * gu) / det];
-            for _ in 0..20 {
-                let next = self.clamp([uv[0] + step[0], uv[1] + step[1]]);
-                let dn = (self.at(points, next) - p).length_squared();
-                if dn <= d {
-                    let moved = (next[0] - uv[0]).abs().max((next[1] - uv[1]).abs());
-                    (uv, d) = (next, dn);
-                    if moved < 1e-15 {
-                        break 'iterations;
-                    }
-                    continue 'iterations;
-                }
-                step = [0.5 * step[0], 0.5 * step[1]];
-            }
-            break;
-        }
-        let (xu, xv) = derivatives(uv);
-        let normal = xu.cross(xv).try_normalize().unwrap_or(DVec3::Z);
-        (self.at(points, uv), normal)
-    }
-}
-
 /// The nearest point of triangle `[a, b, c]` to `p` and its barycentric weights (Ericson,
 /// *Real-Time Collision Detection*, §5.1.5): a weight is exactly 0 where the point lies on
 /// the opposite edge.
@@ -672,115 +522,6 @@ pub fn closest_on_triangle(p: DVec3, [a, b, c]: [DVec3; 3]) -> (DVec3, [f64; 3])
     (a + ab * v + ac * w, [1.0 - v - w, v, w])
 }
 
-/// A uniform grid of cells over the facets' bounding box, each cell listing the triangles
-/// whose bounding boxes meet it: the global nearest-triangle search.
-#[derive(Clone, Debug)]
-struct Grid {
-    lo: DVec3,
-    cell: f64,
-    dims: [usize; 3],
-    start: Vec<u32>,
-    tris: Vec<u32>,
-}
-
-impl Grid {
-    fn new(points: &[DVec3], triangles: &[[u32; 3]]) -> Grid {
-        let (mut lo, mut hi) = (DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY));
-        for t in triangles {
-            for &v in t {
-                lo = lo.min(points[v as usize]);
-                hi = hi.max(points[v as usize]);
-            }
-        }
-        if triangles.is_empty() || !(lo.is_finite() && hi.is_finite()) {
-            return Grid { lo: DVec3::ZERO, cell: 1.0, dims: [1; 3], start: vec![0, 0], tris: Vec::new() };
-        }
-        let size = (hi - lo).max_element().max(f64::MIN_POSITIVE);
-        // about two triangles a cell on a surface: cells ~ √(triangles) along the longest side
-        let along = ((triangles.len() as f64).sqrt().ceil() as usize).clamp(1, 256);
-        let cell = size / along as f64;
-        let dims = [0, 1, 2].map(|i| (((hi[i] - lo[i]) / cell).floor() as usize + 1).min(257));
-        let index = |c: [usize; 3]| (c[2] * dims[1] + c[1]) * dims[0] + c[0];
-        let cell_of =
-            |p: DVec3| [0, 1, 2].map(|i| (((p[i] - lo[i]) / cell).floor().max(0.0) as usize).min(dims[i] - 1));
-        let mut count = vec![0u32; dims[0] * dims[1] * dims[2] + 1];
-        let cells = |t: &[u32; 3], f: &mut dyn FnMut(usize)| {
-            let (mut a, mut b) = (DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY));
-            for &v in t {
-                a = a.min(points[v as usize]);
-                b = b.max(points[v as usize]);
-            }
-            let (ca, cb) = (cell_of(a), cell_of(b));
-            for z in ca[2]..=cb[2] {
-                for y in ca[1]..=cb[1] {
-                    for x in ca[0]..=cb[0] {
-                        f(index([x, y, z]));
-                    }
-                }
-            }
-        };
-        for t in triangles {
-            cells(t, &mut |c| count[c + 1] += 1);
-        }
-        for i in 1..count.len() {
-            count[i] += count[i - 1];
-        }
-        let mut fill = count.clone();
-        let mut tris = vec![0u32; *count.last().expect("one cell at least") as usize];
-        for (i, t) in triangles.iter().enumerate() {
-            cells(t, &mut |c| {
-                tris[fill[c] as usize] = i as u32;
-                fill[c] += 1;
-            });
-        }
-        Grid { lo, cell, dims, start: count, tris }
-    }
-
-    /// The triangle nearest to `p` by `nearest_point` (`None`: not a candidate), searching shells of cells outward
-    /// from `p`'s cell until the next shell is farther than the best found.
-    fn nearest(&self, p: DVec3, nearest_point: impl Fn(u32) -> Option<DVec3>) -> u32 {
-        let dims = self.dims;
-        let rel = (p - self.lo) / self.cell;
-        let centre = [0, 1, 2].map(|i| (rel[i].floor().max(0.0) as usize).min(dims[i] - 1));
-        let reach = dims.into_iter().max().unwrap_or(1);
-        let (mut best, mut best_d) = (NONE, f64::INFINITY);
-        // the distance from p to its cell's outside, so a shell r away is at least this far
-        let inside = [0, 1, 2]
-            .map(|i| {
-                let f = rel[i] - centre[i] as f64;
-                f.min(1.0 - f).max(0.0)
-            })
-            .into_iter()
-            .fold(f64::INFINITY, f64::min)
-            * self.cell;
-        for r in 0..=reach {
-            if best != NONE && inside + (r as f64 - 1.0).max(0.0) * self.cell > best_d {
-                break;
-            }
-            let range = |i: usize| centre[i].saturating_sub(r)..=(centre[i] + r).min(dims[i] - 1);
-            for z in range(2) {
-                for y in range(1) {
-                    for x in range(0) {
-                        let shell = [x, y, z].iter().zip(centre).any(|(&c, m)| c.abs_diff(m) == r);
-                        if !shell {
-                            continue;
-                        }
-                        let c = (z * dims[1] + y) * dims[0] + x;
-                        for &t in &self.tris[self.start[c] as usize..self.start[c + 1] as usize] {
-                            let Some(q) = nearest_point(t) else { continue };
-                            let d = (q - p).length();
-                            if d < best_d || (d == best_d && t < best) {
-                                (best, best_d) = (t, d);
-                            }
-                        }
-                    }
-                }
-            }
-        }
-        best
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -814,7 +555,7 @@ mod tests {
     #[test]
     fn the_walk_and_the_grid_find_the_same_nearest_point() {
         let f = octahedron();
-        let mut rng = crate::generate::SplitMix64::new(7);
+        let mut rng = crate::numeric::SplitMix64::new(7);
         let mut coordinate = || 4.0 * rng.next_f64() - 2.0;
         for i in 0..1000 {
             // half the points anywhere, half near the surface (a node moved in its star)
@@ -860,7 +601,7 @@ mod tests {
                 assert!((q.point - p).length() < 1e-14, "node {n} moved {}", (q.point - p).length());
             }
             let (mut curved, mut straight) = (0.0f64, 0.0f64);
-            let mut rng = crate::generate::SplitMix64::new(3);
+            let mut rng = crate::numeric::SplitMix64::new(3);
             for _ in 0..300 {
                 let d = DVec3::new(rng.next_f64() - 0.5, rng.next_f64() - 0.5, rng.next_f64() - 0.5).normalize();
                 let on = facets.project(d, NONE);
@@ -876,7 +617,7 @@ mod tests {
         }
         // a tangled file: a folded element, so the flat triangles alone
         let s =
-            crate::surface::perturb_surface(&surface(SurfaceShape::Sphere, SurfaceKind::Tri, 2, 4).unwrap(), 0.8, 1)
+            crate::generate::perturb_surface(&surface(SurfaceShape::Sphere, SurfaceKind::Tri, 2, 4).unwrap(), 0.8, 1)
                 .unwrap();
         let mesh = s.flat();
         let facets = Facets::new(s.points(), mesh.kinds(), |e| mesh.element(e), |_| 0, |_| 0);

@@ -1,0 +1,72 @@
+//! What a mesh file holds, above the planar core, the surfaces and the volumes: a
+//! [`Model`] is a planar [`Mesh`], a [`Surface`] in 3D or a [`TetMesh`], and
+//! [`Model::build`] decides which from what a reader put in a [`MeshBuilder`].
+
+use crate::error::{Error, Result};
+use crate::mesh::{Flat, Mesh, MeshBuilder};
+use crate::quality::{mesh_stats, MeshStats};
+use crate::surface::Surface;
+use crate::volume::{volume_stats, TetMesh};
+
+/// What a mesh file holds: a planar mesh (the 2D core), a surface in 3D, or a mesh of
+/// tetrahedra ([`crate::volume`]).
+#[derive(Clone, Debug)]
+#[allow(clippy::large_enum_variant)]
+pub enum Model {
+    Planar(Mesh),
+    Surface(Surface),
+    Volume(TetMesh),
+}
+
+impl From<Mesh> for Model {
+    fn from(m: Mesh) -> Model {
+        Model::Planar(m)
+    }
+}
+
+impl Model {
+    /// Builds what a reader found: a mesh of tetrahedra when the file has any (its
+    /// triangles and quads then the boundary faces, [`TetMesh::from_builder`]), else a
+    /// planar [`Mesh`] when its points lie in a plane (as [`MeshBuilder::build`]), else a
+    /// surface in 3D — the checks of a planar mesh, the elements oriented consistently
+    /// (see [`Surface`]), its points as given, and why they are not planar
+    /// ([`Surface::not_planar`]).
+    pub fn build(builder: MeshBuilder) -> Result<Model> {
+        if builder.has_tets() {
+            return TetMesh::from_builder(builder).map(Model::Volume);
+        }
+        match builder.build_planar_or_surface()? {
+            Flat::Planar(m) => Ok(Model::Planar(m)),
+            Flat::Surface(parts) => Surface::from_surface_parts(parts, None).map(Model::Surface),
+        }
+    }
+    /// The elements, topology and fixed flags of a planar mesh or a surface (for a
+    /// surface, with scratch positions: see [`Surface::flat`]); `None` for tetrahedra.
+    pub fn mesh(&self) -> Option<&Mesh> {
+        match self {
+            Model::Planar(m) => Some(m),
+            Model::Surface(s) => Some(s.flat()),
+            Model::Volume(_) => None,
+        }
+    }
+    /// The statistics `stats` prints.
+    pub fn stats(&self) -> MeshStats {
+        match self {
+            Model::Planar(m) => mesh_stats(m),
+            Model::Surface(s) => s.stats(),
+            Model::Volume(v) => volume_stats(v),
+        }
+    }
+    /// The planar mesh, or an error saying that `what` takes planar meshes only.
+    pub fn planar(self, what: &str) -> Result<Mesh> {
+        match self {
+            Model::Planar(m) => Ok(m),
+            Model::Surface(_) => {
+                Err(Error::invalid(format!("{what} takes planar meshes only; this mesh is a surface in 3D")))
+            }
+            Model::Volume(_) => {
+                Err(Error::invalid(format!("{what} takes planar meshes only; this mesh is made of tetrahedra")))
+            }
+        }
+    }
+}

@@ -1,0 +1,169 @@
+//! Scale and robust numerics at the bottom of the core, and its one random generator.
+//!
+//! Every metric, objective and solver is a ratio of lengths, so it may be evaluated in
+//! any scale; these are the helpers that pick that scale by a power of two (exact, so the
+//! bits of an ordinary mesh's results do not change) where squares and cross products
+//! would leave the doubles, and measure lengths without over- or underflow.
+//! [`SplitMix64`] is the deterministic generator behind every seeded sample and every
+//! randomised test.
+
+use glam::{DVec2, DVec3};
+
+mod prng;
+
+pub use prng::SplitMix64;
+
+/// Edge vectors whose largest component lies in 2^±200 are measured as they are: every
+/// product the metrics take of them is a normal double (see `quality::corner_edges`);
+/// beyond it they are brought to unit scale first. One range for every metric and
+/// objective.
+pub(crate) const SAFE_SCALE: std::ops::RangeInclusive<f64> = 6.223_015_277_861_142e-61..=1.606_938_044_258_990_3e60;
+
+/// Multiplies the vectors by a power of two (exact) that brings their largest component
+/// into [1, 2), and returns it as two finite factors whose product it is (it may itself
+/// be beyond the doubles, 2^1074 for the smallest subnormal); leaves the vectors as they
+/// are, returning `[1, 1]`, when they are all zero (or not finite).
+pub fn to_unit_scale(v: &mut [DVec2]) -> [f64; 2] {
+    let largest = |v: &[DVec2]| v.iter().fold(0.0f64, |m, p| m.max(p.x.abs()).max(p.y.abs()));
+    let m = largest(v);
+    if m == 0.0 || !m.is_finite() {
+        return [1.0, 1.0];
+    }
+    // from far outside [2^-598, 2^598] in one step first, so the final factor (the inverse
+    // of m's power of two) is itself a finite double
+    let pre = if m < pow2(-598) {
+        pow2(598)
+    } else if m > pow2(598) {
+        pow2(-598)
+    } else {
+        1.0
+    };
+    if pre != 1.0 {
+        for p in v.iter_mut() {
+            *p *= pre;
+        }
+    }
+    let unit = f64::from_bits((m * pre).to_bits() & 0x7ff0_0000_0000_0000);
+    let inv = 1.0 / unit;
+    if inv != 1.0 {
+        for p in v.iter_mut() {
+            *p *= inv;
+        }
+    }
+    [pre, inv]
+}
+
+/// `2^e` for a normal exponent (|e| ≤ 1022).
+#[inline]
+pub(crate) fn pow2(e: i32) -> f64 {
+    f64::from_bits(((e + 1023) as u64) << 52)
+}
+
+/// Two finite powers of two whose product brings a positive finite `m` to about 1 (the
+/// product itself may be beyond the doubles: 2^1074 for the smallest subnormal).
+pub(crate) fn unit_factors(m: f64) -> (f64, f64) {
+    let k = m.log2().floor() as i32;
+    (2f64.powi(-k / 2), 2f64.powi(-k - (-k / 2)))
+}
+
+/// Whether vectors whose largest component is `m` need bringing to unit scale: `m` lies
+/// beyond [`SAFE_SCALE`], and is neither zero nor non-finite (which no factor helps:
+/// such vectors are taken as they are).
+#[inline]
+pub(crate) fn is_beyond_safe_scale(m: f64) -> bool {
+    !(SAFE_SCALE.contains(&m) || m == 0.0 || !m.is_finite())
+}
+
+/// [`unit_factors`] of a size `m` (a largest component) when it
+/// [`is_beyond_safe_scale`]; `None` otherwise.
+#[inline]
+pub(crate) fn factors_beyond_safe_scale(m: f64) -> Option<(f64, f64)> {
+    is_beyond_safe_scale(m).then(|| unit_factors(m))
+}
+
+/// Vectors of size beyond [`SAFE_SCALE`] multiplied by one power of two (exact) that
+/// brings their largest component to about 1, so that their cross products and squares
+/// are normal doubles; as they are inside it.
+pub(crate) fn in_unit_scale_3d<const N: usize>(v: [DVec3; N]) -> [DVec3; N] {
+    let m = v.iter().fold(0.0f64, |m, x| m.max(x.abs().max_element()));
+    match factors_beyond_safe_scale(m) {
+        None => v,
+        Some((f1, f2)) => v.map(|x| x * f1 * f2),
+    }
+}
+
+/// The unit vector along `v`, zero when `v` is zero or not finite: `normalize_or_zero`
+/// at every magnitude. Where `v`'s squared length would leave the doubles (a normal of
+/// elements of size 1e±80 is a cross product of size 1e±160) `v` is first multiplied by a
+/// power of two (exact), which changes neither its direction nor, where it was not
+/// needed, the bits of the result.
+pub fn direction(v: DVec3) -> DVec3 {
+    let m = v.abs().max_element();
+    if !(m > 0.0 && m.is_finite()) {
+        return DVec3::ZERO;
+    }
+    if (pow2(-500)..=pow2(500)).contains(&m) {
+        return v.normalize_or_zero();
+    }
+    let (f1, f2) = unit_factors(m);
+    (v * f1 * f2).normalize_or_zero()
+}
+
+/// The power of two that brings a star of size `scale` to [1, 2), when the size is
+/// beyond 2^±64 (and the factor and its inverse are finite); `None` otherwise.
+pub fn unit_factor(scale: f64) -> Option<f64> {
+    const WINDOW: f64 = 18_446_744_073_709_551_616.0; // 2^64
+    if !scale.is_normal() || (1.0 / WINDOW..=WINDOW).contains(&scale) {
+        return None;
+    }
+    let e = ((scale.to_bits() >> 52) & 0x7ff) as i32 - 1023;
+    // 2^-e and 2^e are both finite normal numbers for |e| ≤ 1022
+    (e.abs() <= 1022).then(|| 2f64.powi(-e))
+}
+
+/// `|v|` without overflow or underflow of the squares.
+pub(crate) fn robust_length(v: DVec2) -> f64 {
+    let m = v.x.abs().max(v.y.abs());
+    if m == 0.0 || !m.is_finite() {
+        return m;
+    }
+    m * (v / m).length()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_safe_scale_is_two_to_the_plus_minus_200() {
+        assert_eq!((*SAFE_SCALE.start(), *SAFE_SCALE.end()), (pow2(-200), pow2(200)));
+    }
+
+    #[test]
+    fn beyond_the_safe_scale_the_factors_bring_the_size_to_about_one() {
+        for m in [1.0, pow2(-200), pow2(200), 0.0, f64::INFINITY, f64::NAN] {
+            assert_eq!(factors_beyond_safe_scale(m), None, "{m}");
+        }
+        for m in [pow2(201) * 1.5, 1e300, pow2(-201), 1e-300, 5e-324] {
+            let (f1, f2) = factors_beyond_safe_scale(m).unwrap();
+            let unit = m * f1 * f2;
+            assert!((0.5..=2.0).contains(&unit), "{m}: {unit}");
+        }
+    }
+
+    #[test]
+    fn lengths_and_directions_at_every_scale() {
+        for s in [1.0, 1e-300, 1e300, 5e-324] {
+            let v = DVec2::new(3.0, 4.0) * s;
+            let l = robust_length(v);
+            assert!((l / s - 5.0).abs() < 1e-12 || s == 5e-324, "{s}: {l}");
+            let d = direction(DVec3::new(3.0, 0.0, 4.0) * s);
+            assert!((d - DVec3::new(0.6, 0.0, 0.8)).length() < 1e-15, "{s}: {d}");
+        }
+        assert_eq!(robust_length(DVec2::ZERO), 0.0);
+        assert_eq!(direction(DVec3::ZERO), DVec3::ZERO);
+        assert_eq!(unit_factor(1.0), None);
+        assert_eq!(unit_factor(1e30), Some(pow2(-99)));
+        assert_eq!(1e-30 * unit_factor(1e-30).unwrap(), 1e-30 * pow2(100));
+    }
+}
