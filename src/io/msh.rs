@@ -19,13 +19,13 @@ use crate::error::{Error, Result};
 use crate::io::lex::{prealloc, repeated, shown, Lexer};
 use crate::io::out::Out;
 use crate::io::MshVersion;
-use crate::mesh::{ElementKind, FixedSpec, MeshBuilder, NONE};
+use crate::mesh::{ElementKind, FixedSpec, MeshBuilder, VolumeKind, NONE};
 
 /// What a Gmsh element type is to us.
 enum GmshType {
     Surface(ElementKind),
-    /// A tetrahedron of 4 or 10 nodes ([`crate::volume`]).
-    Solid(usize),
+    /// A volume element ([`crate::volume`]), of the kind whose Gmsh type it is.
+    Solid(VolumeKind),
     /// Lines and points: their nodes are marked fixed.
     Marker(usize),
     /// The element's name in Gmsh's terms and, for a kind a reader of the mesh knows by
@@ -35,6 +35,9 @@ enum GmshType {
 
 fn gmsh_type(t: u64) -> GmshType {
     use GmshType::*;
+    if let Some(kind) = VolumeKind::from_gmsh_type(t) {
+        return Solid(kind);
+    }
     match t {
         2 => Surface(ElementKind::Tri3),
         3 => Surface(ElementKind::Quad4),
@@ -44,11 +47,9 @@ fn gmsh_type(t: u64) -> GmshType {
         1 => Marker(2),
         8 => Marker(3),
         15 => Marker(1),
-        4 => Solid(4),
         5 => Unsupported("8-node hexahedron", Some("hexahedra")),
         6 => Unsupported("6-node prism", Some("prisms (wedges)")),
         7 => Unsupported("5-node pyramid", Some("pyramids")),
-        11 => Solid(10),
         12 => Unsupported("27-node hexahedron", Some("quadratic hexahedra")),
         13 => Unsupported("18-node prism", Some("quadratic prisms (wedges)")),
         14 => Unsupported("14-node pyramid", Some("quadratic pyramids")),
@@ -163,7 +164,7 @@ struct Reader {
     /// Tetrahedra as read (node tags, 4 or 10 each, in Gmsh's order) with their lines:
     /// resolved when the whole file has been read.
     tet_tags: Vec<u64>,
-    tet_lines: Vec<(u32, u8)>,
+    tet_lines: Vec<(u32, VolumeKind)>,
     /// The `fixed` view: (node tag, fixed, line).
     fixed_view: Option<Vec<(u64, bool, u32)>>,
     /// Line of the `$NodeData` section of the `fixed` view.
@@ -419,12 +420,12 @@ impl Reader {
                 }
                 self.elements.push(RawElement { kind, line: line as u32, start });
             }
-            GmshType::Solid(k) => {
-                for j in 0..k {
-                    let (tag, _) = lex.u64(|| format!("node {} of {} (a {k}-node tetrahedron)", j + 1, number()))?;
+            GmshType::Solid(kind) => {
+                for j in 0..kind.nodes() {
+                    let (tag, _) = lex.u64(|| format!("node {} of {} (a {})", j + 1, number(), kind.name()))?;
                     self.tet_tags.push(tag);
                 }
-                self.tet_lines.push((line as u32, k as u8));
+                self.tet_lines.push((line as u32, kind));
             }
             GmshType::Marker(k) => {
                 for j in 0..k {
@@ -598,15 +599,16 @@ impl Reader {
             }
         }
         let mut at = 0;
-        for (t, &(line, k)) in self.tet_lines.iter().enumerate() {
-            let k = k as usize;
-            let mut ids = self.resolve_nodes(t, &self.tet_tags[at..at + k], line as usize, "tetrahedron")?;
-            if k == 10 {
-                // Gmsh's mid-edge order (0,1) (1,2) (2,0) (3,0) (3,2) (3,1) → VTK's (…, (1,3), (2,3))
-                ids.swap(8, 9);
+        for (t, &(line, kind)) in self.tet_lines.iter().enumerate() {
+            let k = kind.nodes();
+            let given = self.resolve_nodes(t, &self.tet_tags[at..at + k], line as usize, "tetrahedron")?;
+            // Gmsh's node order to ours (VTK's), by the kind's row
+            let mut ids = [0u32; 10];
+            for (&g, &ours) in given.iter().zip(kind.row().gmsh_order) {
+                ids[ours] = g;
             }
             at += k;
-            self.builder.add_tet(&ids[..k], line as usize)?;
+            self.builder.add_volume_element(kind, &ids[..k], line as usize)?;
         }
         let range = self.tag_range();
         let Reader { mut builder, node_tags, map, marks, fixed_view, .. } = self;

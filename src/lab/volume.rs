@@ -34,7 +34,7 @@ impl VolumeSide {
     fn new(side: Side, mesh: TetMesh, stats: MeshStats, settings: &Settings) -> Result<Self> {
         Ok(VolumeSide {
             mesh,
-            objective: tet_objective(settings.choice(side).objective),
+            objective: tet_objective(settings.choice(side).objective)?,
             smoother: VolumeSmoother::new(settings.smooth_options()?)?,
             records: Vec::new(),
             stats,
@@ -96,7 +96,8 @@ impl VolumeLab {
     /// ([`describe_tet`]; the planar penalty designs do not apply).
     pub fn side_title(&self, side: Side) -> String {
         let kind = self.settings.choice(side).objective;
-        format!("{}: {kind}: {}", side.letter(), describe_tet(kind))
+        // a planar-only kind never gets here: set_settings refuses it
+        format!("{}: {kind}: {}", side.letter(), describe_tet(kind).unwrap_or("planar only"))
     }
 
     /// The same, short: the letter and the objective's name.
@@ -110,12 +111,13 @@ impl VolumeLab {
     }
 
     /// New settings for the next passes (the meshes stay as they are); refused settings
-    /// change nothing.
+    /// (an objective without a form on tetrahedra among them) change nothing.
     pub fn set_settings(&mut self, settings: Settings) -> Result<()> {
         let o = settings.smooth_options()?;
-        for (s, side) in self.sides.iter_mut().zip(Side::BOTH) {
+        let objectives = [tet_objective(settings.choice(Side::Old).objective)?, tet_objective(settings.choice(Side::New).objective)?];
+        for (s, objective) in self.sides.iter_mut().zip(objectives) {
             s.smoother = VolumeSmoother::new(o)?;
-            s.objective = tet_objective(settings.choice(side).objective);
+            s.objective = objective;
         }
         self.settings = settings;
         Ok(())

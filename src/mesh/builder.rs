@@ -72,7 +72,7 @@ pub struct MeshBuilder {
     /// lines; a file with any is a tetrahedral mesh.
     tets: Vec<u32>,
     tet_lines: Vec<u32>,
-    tet_order: Option<crate::volume::TetOrder>,
+    volume_kind: Option<super::VolumeKind>,
     /// How fixed flags are decided.
     pub fixed: FixedSpec,
 }
@@ -120,22 +120,20 @@ impl MeshBuilder {
     pub(crate) fn node_lines(&self) -> &[u32] {
         &self.point_lines
     }
-    /// Adds a tetrahedron with 0-based node indices, 4 or 10 in VTK's order
-    /// ([`crate::volume::TET10_EDGES`]), checked in [`build_model`](Self::build_model); a
-    /// file that mixes 4- and 10-node tetrahedra is refused here, naming the line.
-    pub fn add_tet(&mut self, nodes: &[u32], line: usize) -> Result<()> {
-        use crate::volume::TetOrder;
-        let order = if nodes.len() == 10 { TetOrder::Quadratic } else { TetOrder::Linear };
-        debug_assert!(nodes.len() == 4 || nodes.len() == 10);
-        match self.tet_order {
-            Some(o) if o != order => {
+    /// Adds a volume element of `kind` with 0-based node indices in VTK's order
+    /// ([`super::TET10_EDGES`]), checked in [`build_model`](Self::build_model); a file
+    /// that mixes kinds (4- and 10-node tetrahedra) is refused here, naming the line.
+    pub fn add_volume_element(&mut self, kind: super::VolumeKind, nodes: &[u32], line: usize) -> Result<()> {
+        debug_assert_eq!(nodes.len(), kind.nodes());
+        match self.volume_kind {
+            Some(k) if k != kind => {
                 return Err(Error::element(
                     self.tet_lines.len(),
                     Some(line).filter(|&l| l > 0),
-                    "the file mixes 4-node and 10-node tetrahedra: smoothlab takes one kind per mesh",
+                    format!("the file mixes {}: smoothlab takes one kind per mesh", super::VolumeKind::mix_words(k, kind)),
                 ))
             }
-            _ => self.tet_order = Some(order),
+            _ => self.volume_kind = Some(kind),
         }
         self.tets.extend_from_slice(nodes);
         self.tet_lines.push(line as u32);
@@ -173,7 +171,7 @@ impl MeshBuilder {
             faces,
             nodes: self.points.iter().map(|&p| glam::DVec3::from(p)).collect(),
             node_lines: self.point_lines,
-            order: self.tet_order.unwrap_or(crate::volume::TetOrder::Linear),
+            kind: self.volume_kind.unwrap_or(super::VolumeKind::Tet4),
             elements: self.tets,
             element_lines: self.tet_lines,
             fixed,
