@@ -12,14 +12,19 @@
 //! that view is present it decides the fixed flags exactly, so nodes, elements, kinds and
 //! fixed flags all round-trip; files from Gmsh itself (no such view) get boundary nodes
 //! plus the nodes of line and point elements.
-
-use std::fmt::Write as _;
+//!
+//! One writer per format version ([`write`]): each takes any mesh through [`MshSource`]
+//! (a planar mesh or surface, a volume with its file's faces), the elements' Gmsh types
+//! from their kinds.
 
 use crate::error::{Error, Result};
 use crate::io::lex::{prealloc, repeated, shown, Lexer};
-use crate::io::out::Out;
-use crate::io::MshVersion;
 use crate::mesh::{ElementKind, FixedSpec, MeshBuilder, VolumeKind, NONE};
+
+mod write;
+pub(crate) use write::{type_of, write, MshBlock, MshSource};
+#[cfg(test)]
+use write::runs;
 
 /// What a Gmsh element type is to us.
 enum GmshType {
@@ -652,113 +657,6 @@ impl Reader {
             FixedSpec::BoundaryAnd(f)
         };
         Ok(builder)
-    }
-}
-
-/// Writes a `.msh` file (ASCII) in the given version; see the module notes for what round-trips.
-pub(crate) fn write(w: super::Writable, version: MshVersion, s: &mut Out) {
-    let mesh = w.mesh;
-    let n = mesh.node_count();
-    let v = match version {
-        MshVersion::V22 => "2.2",
-        MshVersion::V41 => "4.1",
-    };
-    // Writing to an `Out` cannot fail (a file's error is kept for `Out::finish`).
-    let _ = write!(s, "$MeshFormat\n{v} 0 8\n$EndMeshFormat\n");
-    match version {
-        MshVersion::V22 => {
-            let _ = writeln!(s, "$Nodes\n{n}");
-            for i in 0..n {
-                let _ = write!(s, "{} ", i + 1);
-                w.write_xyz(s, i);
-                s.push('\n');
-            }
-            let _ = writeln!(s, "$EndNodes\n$Elements\n{}", mesh.element_count());
-            for e in 0..mesh.element_count() {
-                let _ = write!(s, "{} {} 2 0 1", e + 1, type_of(mesh.kind(e)));
-                for &i in w.element(e).iter() {
-                    let _ = write!(s, " {}", i + 1);
-                }
-                s.push('\n');
-            }
-            s.push_str("$EndElements\n");
-        }
-        MshVersion::V41 => {
-            // the surface's bounding box, in 3D
-            let (lo, hi) = (0..n)
-                .map(|i| w.xyz(i))
-                .fold((glam::DVec3::splat(f64::INFINITY), glam::DVec3::splat(f64::NEG_INFINITY)), |(lo, hi), q| {
-                    (lo.min(q), hi.max(q))
-                });
-            let z = |v: f64| if w.in_xy_plane() { "0".to_string() } else { format!("{v:?}") };
-            let _ = writeln!(
-                s,
-                "$Entities\n0 0 1 0\n1 {:?} {:?} {} {:?} {:?} {} 0 0\n$EndEntities",
-                lo.x,
-                lo.y,
-                z(lo.z),
-                hi.x,
-                hi.y,
-                z(hi.z)
-            );
-            let _ = writeln!(s, "$Nodes\n1 {n} 1 {n}\n2 1 0 {n}");
-            for i in 0..n {
-                let _ = writeln!(s, "{}", i + 1);
-            }
-            for i in 0..n {
-                w.write_xyz(s, i);
-                s.push('\n');
-            }
-            // One block per run of equal kinds, so the element order is kept.
-            let kinds = mesh.kinds();
-            let runs: Vec<(usize, usize)> = runs(kinds);
-            let m = mesh.element_count();
-            let _ = writeln!(s, "$EndNodes\n$Elements\n{} {m} 1 {m}", runs.len());
-            for (a, b) in runs {
-                let _ = writeln!(s, "2 1 {} {}", type_of(kinds[a]), b - a);
-                for e in a..b {
-                    let _ = write!(s, "{}", e + 1);
-                    for &i in w.element(e).iter() {
-                        let _ = write!(s, " {}", i + 1);
-                    }
-                    s.push('\n');
-                }
-            }
-            s.push_str("$EndElements\n");
-        }
-    }
-    write_fixed_view(mesh.fixed(), s);
-}
-
-/// The fixed flags as a one-component `$NodeData` view named `"fixed"` (1 = fixed).
-pub(crate) fn write_fixed_view(fixed: &[bool], s: &mut Out) {
-    let _ = writeln!(s, "$NodeData\n1\n\"fixed\"\n1\n0\n3\n0\n1\n{}", fixed.len());
-    for (i, &f) in fixed.iter().enumerate() {
-        let _ = writeln!(s, "{} {}", i + 1, u8::from(f));
-    }
-    s.push_str("$EndNodeData\n");
-}
-
-/// Maximal runs `[a, b)` of equal kinds.
-fn runs(kinds: &[ElementKind]) -> Vec<(usize, usize)> {
-    let mut out = Vec::new();
-    let mut a = 0;
-    for i in 1..=kinds.len() {
-        if i == kinds.len() || kinds[i] != kinds[a] {
-            out.push((a, i));
-            a = i;
-        }
-    }
-    out
-}
-
-pub(crate) fn type_of(kind: ElementKind) -> u32 {
-    match kind {
-        ElementKind::Tri3 => 2,
-        ElementKind::Quad4 => 3,
-        ElementKind::Tri6 => 9,
-        ElementKind::Quad8 => 16,
-        ElementKind::Quad9 => 10,
     }
 }
 
