@@ -73,8 +73,11 @@ pub const EQUILATERAL_W_INVERSE: DMat3 = DMat3::from_cols_array(&[
 ]);
 
 /// The equilateral tetrahedron's corner ([`EQUILATERAL_W`]): the reference of every corner
-/// of a tetrahedron, linear or quadratic.
-pub const EQUILATERAL_TET: CornerReference = CornerReference {
+/// of a tetrahedron, linear or quadratic. A `static`, so every kind that points at it
+/// points at one address: where a measure's kind is known only at run time but every kind
+/// has this reference, the compiler still sees a constant and folds it into the
+/// arithmetic (the measures cost what they did with W built in).
+pub static EQUILATERAL_TET: CornerReference = CornerReference {
     w: EQUILATERAL_W,
     w_inv: EQUILATERAL_W_INVERSE,
     det_w_inv: determinant(EQUILATERAL_W_INVERSE),
@@ -102,7 +105,7 @@ pub struct VolumeKindRow {
     /// corners of a tetrahedron.
     pub corner_edges: &'static [[usize; 3]],
     /// The reference matrix of every corner.
-    pub reference: CornerReference,
+    pub reference: &'static CornerReference,
     /// The edges by local corners; with mid-edge nodes, node `corners + m` is the middle
     /// of edge `m`.
     pub edges: &'static [[usize; 2]],
@@ -136,7 +139,7 @@ const TET4: VolumeKindRow = VolumeKindRow {
     nodes: 4,
     corners: 4,
     corner_edges: &TET_CORNER_EDGES,
-    reference: EQUILATERAL_TET,
+    reference: &EQUILATERAL_TET,
     edges: &TET10_EDGES,
     mid_edge_nodes: false,
     faces: &TET_FACES,
@@ -152,7 +155,7 @@ const TET10: VolumeKindRow = VolumeKindRow {
     nodes: 10,
     corners: 4,
     corner_edges: &TET_CORNER_EDGES,
-    reference: EQUILATERAL_TET,
+    reference: &EQUILATERAL_TET,
     edges: &TET10_EDGES,
     mid_edge_nodes: true,
     faces: &TET_FACES,
@@ -200,7 +203,7 @@ impl VolumeKind {
     }
     #[inline]
     pub const fn reference(self) -> &'static CornerReference {
-        &self.row().reference
+        self.row().reference
     }
     pub fn name(self) -> &'static str {
         self.row().name

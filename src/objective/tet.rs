@@ -26,6 +26,7 @@ use glam::DVec3;
 
 use super::{Goal, NodeStar, Objective, ObjectiveKind, Term, BARRIER_EPSILON, BARRIER_WEIGHT, CONDITION_BARRIER};
 use crate::error::{Error, Result};
+use crate::mesh::VolumeKind;
 use crate::quality::tet::{self as q3, CornerReference};
 
 /// One tetrahedron of a star: its corners with the free node first.
@@ -57,15 +58,25 @@ pub struct TetStar {
     /// Its position (when gathered, then as the driver moves it).
     pub x0: DVec3,
     pub tets: Vec<StarTet>,
-    /// The reference W of the elements' corners (their kind's,
-    /// [`VolumeKind::reference`](crate::mesh::VolumeKind::reference)), set when gathered.
-    pub reference: &'static CornerReference,
+    /// The elements' kind (set when gathered): its corners' reference W is
+    /// [`reference`](Self::reference).
+    pub kind: VolumeKind,
 }
 
 impl Default for TetStar {
-    /// An empty star; its reference the equilateral tetrahedron's until one is gathered.
+    /// An empty star of linear tetrahedra, until one is gathered.
     fn default() -> Self {
-        TetStar { node: 0, x0: DVec3::ZERO, tets: Vec::new(), reference: &q3::EQUILATERAL_TET }
+        TetStar { node: 0, x0: DVec3::ZERO, tets: Vec::new(), kind: VolumeKind::Tet4 }
+    }
+}
+
+impl TetStar {
+    /// The reference W of the elements' corners: their kind's
+    /// ([`VolumeKind::reference`]). Asked of the kind at each use rather than kept, so that
+    /// where every kind has the same reference the measures see it as a constant.
+    #[inline]
+    pub fn reference(&self) -> &'static CornerReference {
+        self.kind.reference()
     }
 }
 
@@ -182,7 +193,7 @@ impl RegularisedMeanRatio {
         }
         let (mut sum, mut min) = (0.0, f64::INFINITY);
         for t in &star.tets {
-            let s = q3::WeightedJacobian::of(&t.pts, star.reference).sigma;
+            let s = q3::WeightedJacobian::of(&t.pts, star.reference()).sigma;
             sum += s.abs();
             min = min.min(s);
         }
@@ -248,13 +259,13 @@ impl TetObjective {
             TetObjective::Regularised(r) => {
                 let delta = r.delta(star);
                 for (i, t) in star.tets.iter().enumerate() {
-                    let (value, grad) = r.term(&t.at(x), star.reference, delta);
+                    let (value, grad) = r.term(&t.at(x), star.reference(), delta);
                     emit(Term { elem: i as u32, value, grad });
                 }
             }
             TetObjective::MeanRatio => {
                 for (i, t) in star.tets.iter().enumerate() {
-                    let (value, grad) = q3::mean_ratio_grad0(&t.at(x), star.reference);
+                    let (value, grad) = q3::mean_ratio_grad0(&t.at(x), star.reference());
                     emit(Term { elem: i as u32, value, grad });
                 }
             }
@@ -269,7 +280,7 @@ impl TetObjective {
                 let max = matches!(self, TetObjective::ConditionMax);
                 for (i, t) in star.tets.iter().enumerate() {
                     let p = t.at(x);
-                    let (kappa, g) = q3::condition_number_grad0(&p, star.reference);
+                    let (kappa, g) = q3::condition_number_grad0(&p, star.reference());
                     // behind the barrier (σ ≤ 0, or κ² beyond it): a huge finite value with
                     // zero gradient, as in the plane ([`CONDITION_BARRIER`])
                     let valid = q3::signed_volume(&p) > 0.0 && kappa.is_finite() && kappa * kappa < CONDITION_BARRIER;
@@ -356,13 +367,13 @@ mod tests {
         let tets = (0..n)
             .map(|e| StarTet { element: e as u32, pts: [x0, x0 + rng.point(), x0 + rng.point(), x0 + rng.point()] })
             .collect();
-        TetStar { node: 0, x0, tets, reference: &q3::EQUILATERAL_TET }
+        TetStar { node: 0, x0, tets, kind: VolumeKind::Tet4 }
     }
 
     /// The regular tetrahedron's star of one element: every objective at its best.
     fn regular_star() -> TetStar {
         let pts = [DVec3::ZERO, EQUILATERAL_W.x_axis, EQUILATERAL_W.y_axis, EQUILATERAL_W.z_axis];
-        TetStar { node: 0, x0: DVec3::ZERO, tets: vec![StarTet { element: 0, pts }], reference: &q3::EQUILATERAL_TET }
+        TetStar { node: 0, x0: DVec3::ZERO, tets: vec![StarTet { element: 0, pts }], kind: VolumeKind::Tet4 }
     }
 
     #[test]

@@ -174,7 +174,10 @@ impl TetMesh {
             }
         }
         // volume, in units of each tetrahedron's own size, and the whole mesh's handedness
-        let corner_points = |els: &[u32], e: usize| [0, 1, 2, 3].map(|j| nodes[els[e * k + j] as usize]);
+        // (a kind that is not a tetrahedron needs its own measure of validity here)
+        let corner_points = |els: &[u32], e: usize| match kind {
+            VolumeKind::Tet4 | VolumeKind::Tet10 => [0, 1, 2, 3].map(|j| nodes[els[e * k + j] as usize]),
+        };
         let mut total = 0.0;
         for e in 0..count {
             // in the tetrahedron's own scale: a cube of 1e150 has volumes beyond the doubles
@@ -456,7 +459,10 @@ impl TetMesh {
     /// The corners of tetrahedron `e`.
     pub fn corners(&self, e: usize) -> [DVec3; 4] {
         let ids = self.element(e);
-        [0, 1, 2, 3].map(|j| self.nodes[ids[j] as usize])
+        match self.kind {
+            // a tetrahedron's corners are its first four nodes
+            VolumeKind::Tet4 | VolumeKind::Tet10 => [0, 1, 2, 3].map(|j| self.nodes[ids[j] as usize]),
+        }
     }
     pub fn fixed(&self) -> &[bool] {
         &self.fixed

@@ -64,7 +64,7 @@ impl DriverStar for TetStar {
     fn gather(&mut self, mesh: &TetMesh, node: usize) {
         self.node = node as u32;
         self.x0 = mesh.nodes()[node];
-        self.reference = mesh.kind().reference();
+        self.kind = mesh.kind();
         self.tets.clear();
         let row = mesh.kind().row();
         for &e in mesh.node_tets(node) {
@@ -89,7 +89,7 @@ impl DriverStar for TetStar {
         let (mut min, mut inverted) = (f64::INFINITY, 0);
         for t in &self.tets {
             let p = t.at(x);
-            min = min.min(q3::mean_ratio(&p, self.reference));
+            min = min.min(q3::mean_ratio(&p, self.reference()));
             inverted += q3::is_inverted(&p) as u32;
         }
         (min, inverted)
@@ -98,7 +98,7 @@ impl DriverStar for TetStar {
         let mut q = StarQuality::BEST;
         for t in &self.tets {
             let p = x.map_or(t.pts, |x| t.at(x));
-            q.min_shape = q.min_shape.min(q3::mean_ratio(&p, self.reference));
+            q.min_shape = q.min_shape.min(q3::mean_ratio(&p, self.reference()));
             q.min_sine = q.min_sine.min(q3::dihedral_sines(&p).into_iter().fold(f64::INFINITY, f64::min));
             q.inverted += q3::is_inverted(&p) as u32;
         }
@@ -106,7 +106,7 @@ impl DriverStar for TetStar {
     }
     fn smart_accepts(&self, c: DVec3, m: Measure) -> bool {
         let measure = |p: &[DVec3; 4]| match m {
-            Measure::Shape => q3::mean_ratio(p, self.reference),
+            Measure::Shape => q3::mean_ratio(p, self.reference()),
             Measure::MinSine => q3::dihedral_sines(p).into_iter().fold(f64::INFINITY, f64::min),
         };
         let (mut before, mut after) = (f64::INFINITY, f64::INFINITY);
@@ -132,7 +132,7 @@ impl DriverStar for TetStar {
     fn verdict(&self, x: DVec3, m: Measure) -> Verdict {
         let mut v = Verdict::default();
         for t in &self.tets {
-            v.add(&ElementScore::tet(&t.pts, self.reference, m), &ElementScore::tet(&t.at(x), self.reference, m));
+            v.add(&ElementScore::tet(&t.pts, self.reference(), m), &ElementScore::tet(&t.at(x), self.reference(), m));
         }
         v
     }
@@ -162,7 +162,7 @@ impl DriverStar for TetStar {
                     after[mid] = 0.5 * (after[a] + after[b]);
                 }
             }
-            let r = self.reference;
+            let r = self.reference();
             v.add(&ElementScore::tet10(&before, r, m), &ElementScore::tet10(&after, r, m));
         }
         v
