@@ -91,7 +91,7 @@ impl MeshStats {
     }
 }
 
-/// Computes [`MeshStats`] for a mesh: per element the metrics of [`element_quality`]
+/// Computes [`MeshStats`] for a mesh: per element the metrics of [`element_quality`](super::element_quality)
 /// (the same values to the last bit — a test folds `element_quality` to check), with each
 /// corner's signed angle computed once for the extreme angles and the histogram alike,
 /// and without the scaled Jacobians no statistic shows.
