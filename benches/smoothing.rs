@@ -143,7 +143,7 @@ fn tetrahedra(c: &mut Criterion) {
         ("opt+new", Strategy::Opt, ObjectiveKind::New),
         ("rules+new", Strategy::Rules, ObjectiveKind::New),
     ] {
-        let obj = tet_objective(kind);
+        let obj = tet_objective(kind).expect("a form on tetrahedra");
         // Freitag's strategies in node order, as her table ran them; Chen's rules worst first
         let order = if strategy == Strategy::Rules { Order::Priority } else { Order::Input };
         let mut s =

@@ -1353,7 +1353,7 @@ fn paper_row_2(name: &str) -> String {
 fn run_volume(mesh: &TetMesh, kind: ObjectiveKind, o: SmoothOptions, passes: u32) -> (TetMesh, Vec<PassRecord>) {
     let mut m = mesh.clone();
     let clock = clock();
-    let records = smooth_volume(&mut m, &*tet_objective(kind), o, passes, &clock).expect("valid options");
+    let records = smooth_volume(&mut m, &*tet_objective(kind).expect("every objective of the reproduction has a form on tetrahedra"), o, passes, &clock).expect("valid options");
     (m, records)
 }
 

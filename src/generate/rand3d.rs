@@ -473,7 +473,7 @@ mod tests {
             };
             assert_eq!(sorted(&m), sorted(&delaunay));
             let smallest = |m: &TetMesh| {
-                (0..m.element_count()).map(|e| tet_measures(&m.corners(e)).min_dihedral_deg).fold(180.0, f64::min)
+                (0..m.element_count()).map(|e| tet_measures(&m.corners(e), m.kind().reference()).min_dihedral_deg).fold(180.0, f64::min)
             };
             assert!(smallest(&m) >= smallest(&delaunay), "n {n}");
         }
@@ -504,7 +504,7 @@ mod tests {
     fn freitags_sample_size() {
         let m = rand3d(RAND3D_POINTS, 1).unwrap();
         let (lo, hi) = (0..m.element_count())
-            .map(|e| tet_measures(&m.corners(e)))
+            .map(|e| tet_measures(&m.corners(e), m.kind().reference()))
             .fold((180.0f64, 0.0f64), |(lo, hi), q| (lo.min(q.min_dihedral_deg), hi.max(q.max_dihedral_deg)));
         // random points leave poor tetrahedra even after the swaps, as Freitag's had
         // (0.471° / 179.21° after hers): work for the smoothers

@@ -382,7 +382,7 @@ pub fn write_string<'a>(mesh: impl Into<Writable<'a>>, format: Format, opts: &Wr
 fn write_to(mesh: Writable, format: Format, opts: &WriteOptions, out: &mut Out) -> Result<()> {
     let ext = match format {
         Format::Msh => {
-            msh::write(mesh, opts.msh_version, out);
+            msh::write(&mesh, opts.msh_version, out);
             ".msh"
         }
         Format::Vtk => {
@@ -476,7 +476,7 @@ pub fn write_model_string(model: &Model, format: Format, opts: &WriteOptions) ->
             let mut out = Out::string(80 * v.node_count() + 48 * v.element_count() + 256);
             let ext = match format {
                 Format::Msh => {
-                    volume::write_msh(v, opts.msh_version, &mut out);
+                    msh::write(v, opts.msh_version, &mut out);
                     ".msh"
                 }
                 Format::Vtk => {

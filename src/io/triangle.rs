@@ -246,6 +246,7 @@ fn read_tetrahedra(text: &str, base: i64, b: &mut MeshBuilder) -> Result<()> {
     let attrs = check_count(attrs as u64, text.len() as u64, 2, "attributes per tetrahedron", hl)?;
     let np = b.node_count() as i64;
     let per = per as usize;
+    let kind = crate::mesh::VolumeKind::with_nodes(per).expect("4 or 10 nodes, checked above");
     let fields = 1 + per + attrs;
     let mut ids = [0u32; 10];
     for i in 0..m {
@@ -282,7 +283,7 @@ fn read_tetrahedra(text: &str, base: i64, b: &mut MeshBuilder) -> Result<()> {
                 format!("node {} appears twice in the tetrahedron", v as i64 + base),
             ));
         }
-        b.add_tet(&ids[..per], line)?;
+        b.add_volume_element(kind, &ids[..per], line)?;
     }
     if let Some((line, text)) = lines.next() {
         return Err(Error::parse(

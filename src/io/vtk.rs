@@ -25,7 +25,7 @@ use std::fmt::Write as _;
 use crate::error::{Error, Result};
 use crate::io::lex::{prealloc, repeated, shown, split_line, Lexer};
 use crate::io::out::Out;
-use crate::mesh::{ElementKind, FixedSpec, MeshBuilder};
+use crate::mesh::{ElementKind, FixedSpec, MeshBuilder, VolumeKind};
 
 #[derive(Clone, Copy, PartialEq)]
 enum Dataset {
@@ -56,8 +56,8 @@ impl Cells {
 /// What a VTK cell type is to us.
 enum VtkType {
     Element(ElementKind),
-    /// A tetrahedron of 4 or 10 nodes ([`crate::volume`]).
-    Solid(usize),
+    /// A volume element ([`crate::volume`]), of the kind whose cell type it is.
+    Solid(VolumeKind),
     Pixel,
     Polygon,
     Marker,
@@ -68,6 +68,9 @@ enum VtkType {
 
 fn vtk_type(t: u64) -> VtkType {
     use VtkType::*;
+    if let Some(kind) = VolumeKind::from_vtk_type(t) {
+        return Solid(kind);
+    }
     match t {
         5 => Element(ElementKind::Tri3),
         9 => Element(ElementKind::Quad4),
@@ -78,12 +81,10 @@ fn vtk_type(t: u64) -> VtkType {
         7 => Polygon,
         1 | 2 | 3 | 4 | 21 => Marker,
         6 => Unsupported("triangle strip", Some("triangle strips")),
-        10 => Solid(4),
         11 => Unsupported("voxel", Some("hexahedra (voxels)")),
         12 => Unsupported("hexahedron", Some("hexahedra")),
         13 => Unsupported("wedge", Some("wedges (prisms)")),
         14 => Unsupported("pyramid", Some("pyramids")),
-        24 => Solid(10),
         25 => Unsupported("quadratic hexahedron", Some("quadratic hexahedra")),
         26 => Unsupported("quadratic wedge", Some("quadratic wedges (prisms)")),
         27 => Unsupported("quadratic pyramid", Some("quadratic pyramids")),
@@ -546,20 +547,18 @@ impl Reader<'_> {
                     check(conn, &mut ids)?;
                     kind
                 }
-                VtkType::Solid(k) => {
+                VtkType::Solid(kind) => {
+                    let k = kind.nodes();
                     if conn.len() != k {
                         return Err(Error::element(
                             i,
                             Some(line),
-                            format!(
-                                "cell type {ty} (a {k}-node tetrahedron) needs {k} points, but the cell lists {}",
-                                conn.len()
-                            ),
+                            format!("cell type {ty} (a {}) needs {k} points, but the cell lists {}", kind.name(), conn.len()),
                         ));
                     }
                     let mut tet = [0u32; 10];
-                    check(conn, &mut tet)?;
-                    builder.add_tet(&tet[..k], line)?;
+                    check(conn, &mut tet[..k])?;
+                    builder.add_volume_element(kind, &tet[..k], line)?;
                     continue;
                 }
                 VtkType::Pixel => {

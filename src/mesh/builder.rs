@@ -72,8 +72,8 @@ pub struct MeshBuilder {
     /// each in VTK's order, with their lines; a file with any is a tetrahedral mesh.
     tets: Vec<u32>,
     tet_lines: Vec<u32>,
-    /// The nodes per tetrahedron, 4 or 10, once the first is added.
-    tet_nodes: Option<usize>,
+    /// The kind of the volume elements, once the first is added.
+    volume_kind: Option<super::VolumeKind>,
     /// How fixed flags are decided.
     pub fixed: FixedSpec,
 }
@@ -108,10 +108,11 @@ pub(crate) struct VolumeParts {
     pub face_start: Vec<u32>,
     pub face_nodes: Vec<u32>,
     pub face_lines: Vec<u32>,
-    /// Node ids, 4 per tetrahedron, or 10 when `quadratic`.
+    /// Node ids, `kind.nodes()` per element, in VTK's order.
     pub tets: Vec<u32>,
     pub tet_lines: Vec<u32>,
-    pub quadratic: bool,
+    /// The kind of every volume element (one kind per mesh).
+    pub kind: super::VolumeKind,
     pub fixed: FixedSpec,
 }
 
@@ -158,22 +159,21 @@ impl MeshBuilder {
     pub(crate) fn node_lines(&self) -> &[u32] {
         &self.point_lines
     }
-    /// Adds a tetrahedron with 0-based node indices, 4 or 10 in VTK's order (the mid-edge
-    /// nodes on the edges of `volume::TET10_EDGES`), checked when the tetrahedral mesh is
-    /// built (`Model::build`); a file that mixes 4- and 10-node tetrahedra is refused
-    /// here, naming the line.
-    pub fn add_tet(&mut self, nodes: &[u32], line: usize) -> Result<()> {
-        let order = nodes.len();
-        debug_assert!(order == 4 || order == 10);
-        match self.tet_nodes {
-            Some(o) if o != order => {
+    /// Adds a volume element of `kind` with 0-based node indices in VTK's order (a 10-node
+    /// tetrahedron's mid-edge nodes on the edges of `TET10_EDGES`), checked when the volume
+    /// mesh is built (`Model::build`); a file that mixes kinds (4- and 10-node tetrahedra)
+    /// is refused here, naming the line.
+    pub fn add_volume_element(&mut self, kind: super::VolumeKind, nodes: &[u32], line: usize) -> Result<()> {
+        debug_assert_eq!(nodes.len(), kind.nodes());
+        match self.volume_kind {
+            Some(k) if k != kind => {
                 return Err(Error::element(
                     self.tet_lines.len(),
                     Some(line).filter(|&l| l > 0),
-                    "the file mixes 4-node and 10-node tetrahedra: smoothlab takes one kind per mesh",
+                    format!("the file mixes {}: smoothlab takes one kind per mesh", super::VolumeKind::mix_words(k, kind)),
                 ))
             }
-            _ => self.tet_nodes = Some(order),
+            _ => self.volume_kind = Some(kind),
         }
         self.tets.extend_from_slice(nodes);
         self.tet_lines.push(line as u32);
@@ -181,7 +181,7 @@ impl MeshBuilder {
     }
 
     /// Whether tetrahedra were added: then the file is a tetrahedral mesh
-    /// ([`build_volume_parts`](Self::build_volume_parts)).
+    /// (`build_volume_parts`).
     pub fn has_tets(&self) -> bool {
         !self.tets.is_empty()
     }
@@ -219,7 +219,7 @@ impl MeshBuilder {
             face_start: self.elem_start,
             face_nodes: self.elem_nodes,
             face_lines: self.elem_lines,
-            quadratic: self.tet_nodes == Some(10),
+            kind: self.volume_kind.unwrap_or(super::VolumeKind::Tet4),
             tets: self.tets,
             tet_lines: self.tet_lines,
             fixed,

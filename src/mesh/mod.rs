@@ -20,10 +20,14 @@ pub(crate) use renumber::HilbertGrid;
 #[cfg(test)]
 mod tests;
 mod topology;
+mod volume_kind;
 
 pub(crate) use builder::{Flat, SurfaceParts};
 pub use builder::{polygon_area, FixedSpec, MeshBuilder, MAX_COORDINATE, PLANAR_TOLERANCE};
 pub use kind::{ElementKind, NodeRole};
+pub use volume_kind::{
+    CornerReference, VolumeKind, VolumeKindRow, EQUILATERAL_TET, EQUILATERAL_W, EQUILATERAL_W_INVERSE, TET10_EDGES,
+};
 use topology::build_topology;
 
 /// A node that follows a moved corner ([`Mesh::for_each_follower`]).

@@ -1,27 +1,33 @@
 //! The objectives of one free node of a tetrahedral mesh, over its star of tetrahedra:
 //! the planar objectives carried to solids, by the same command-line names
 //! ([`ObjectiveKind`]), behind the same [`Objective`] trait, so the same solvers and
-//! drivers run them ([`tet_objective`]).
+//! drivers run them ([`tet_objective`]). This is the 3D registry: [`tet_form`] gives a
+//! kind's form on tetrahedra, `None` for a kind that is planar only (the command line and
+//! the page then refuse it on a volume, [`tet_objective`]'s message).
 //!
 //! | kind | goal | terms, per tetrahedron of the star |
 //! |---|---|---|
 //! | `old` | max-min | the mean ratio `q` (the 3D shape measure Chen's α generalises) |
 //! | `sine` | max-min | the signed sine of each of the six dihedral angles — Freitag 1997 |
 //! | `new` | sum | `(1 − q_δ)² + k1·η_δ²`, the mean ratio with Escobar et al.'s regularised determinant — Chen's form carried to solids |
-//! | `condition` | sum | κ², Knupp's condition number with the equilateral-tetrahedron weight |
+//! | `condition` | sum | κ², Knupp's condition number against the corner's reference W (the equilateral tetrahedron) |
 //! | `condition-max` | max-min | −κ |
 //! | `untangle` | sum | Knupp's `(|6V − β| − (6V − β))²`, with the planar shift β |
 //! | `untangle-mindet` | max-min | 6V, the Jacobian determinant |
 //!
 //! Every term is a function of the tetrahedron's four corners with the free node first
 //! (the star keeps each tetrahedron in an even permutation of its corners, so its volume
-//! keeps its sign: [`crate::quality::tet::with_first`]), and its gradient is analytic.
+//! keeps its sign: [`crate::quality::tet::with_first`]), and its gradient is analytic. The
+//! measures that weigh a corner by its ideal shape take the star's reference
+//! ([`TetStar::reference`]: the mesh's element kind's W, computed once per kind).
 //! The formulas, in one notation: `docs/formulas.md` §8.
 
 use glam::DVec3;
 
 use super::{Goal, NodeStar, Objective, ObjectiveKind, Term, BARRIER_EPSILON, BARRIER_WEIGHT, CONDITION_BARRIER};
-use crate::quality::tet as q3;
+use crate::error::{Error, Result};
+use crate::mesh::VolumeKind;
+use crate::quality::tet::{self as q3, CornerReference};
 
 /// One tetrahedron of a star: its corners with the free node first.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -45,13 +51,33 @@ impl StarTet {
 /// The star of a free node of a tetrahedral mesh: the tetrahedra that have it as a
 /// corner, gathered once per visit (a reusable scratch buffer, as the planar
 /// [`Star`](super::Star)).
-#[derive(Clone, Debug, Default)]
+#[derive(Clone, Debug)]
 pub struct TetStar {
     /// The free node.
     pub node: u32,
     /// Its position (when gathered, then as the driver moves it).
     pub x0: DVec3,
     pub tets: Vec<StarTet>,
+    /// The elements' kind (set when gathered): its corners' reference W is
+    /// [`reference`](Self::reference).
+    pub kind: VolumeKind,
+}
+
+impl Default for TetStar {
+    /// An empty star of linear tetrahedra, until one is gathered.
+    fn default() -> Self {
+        TetStar { node: 0, x0: DVec3::ZERO, tets: Vec::new(), kind: VolumeKind::Tet4 }
+    }
+}
+
+impl TetStar {
+    /// The reference W of the elements' corners: their kind's
+    /// ([`VolumeKind::reference`]). Asked of the kind at each use rather than kept, so that
+    /// where every kind has the same reference the measures see it as a constant.
+    #[inline]
+    pub fn reference(&self) -> &'static CornerReference {
+        self.kind.reference()
+    }
 }
 
 impl NodeStar for TetStar {
@@ -80,31 +106,44 @@ impl NodeStar for TetStar {
     }
 }
 
-/// The objective of `kind` for tetrahedral meshes, with its default parameters.
-pub fn tet_objective(kind: ObjectiveKind) -> Box<dyn Objective<TetStar> + Send + Sync> {
-    match kind {
-        ObjectiveKind::Old => Box::new(TetObjective::MeanRatio),
-        ObjectiveKind::Sine => Box::new(TetObjective::DihedralSine),
-        ObjectiveKind::New => Box::new(TetObjective::Regularised(RegularisedMeanRatio::default())),
-        ObjectiveKind::Condition => Box::new(TetObjective::Condition),
-        ObjectiveKind::ConditionMax => Box::new(TetObjective::ConditionMax),
-        ObjectiveKind::Untangle => Box::new(TetObjective::Untangle { beta: super::UNTANGLE_BETA }),
-        ObjectiveKind::UntangleMinDet => Box::new(TetObjective::MinDet),
+/// The 3D registry: the form of objective `kind` on tetrahedral meshes, with its default
+/// parameters, or `None` when `kind` is planar only (a kind added to [`ObjectiveKind`]
+/// gets its arm here, `None` until it has a tetrahedral form).
+pub fn tet_form(kind: ObjectiveKind) -> Option<TetObjective> {
+    Some(match kind {
+        ObjectiveKind::Old => TetObjective::MeanRatio,
+        ObjectiveKind::Sine => TetObjective::DihedralSine,
+        ObjectiveKind::New => TetObjective::Regularised(RegularisedMeanRatio::default()),
+        ObjectiveKind::Condition => TetObjective::Condition,
+        ObjectiveKind::ConditionMax => TetObjective::ConditionMax,
+        ObjectiveKind::Untangle => TetObjective::Untangle { beta: super::UNTANGLE_BETA },
+        ObjectiveKind::UntangleMinDet => TetObjective::MinDet,
+    })
+}
+
+/// The objective kinds that have a form on tetrahedra ([`tet_form`]), in
+/// [`ObjectiveKind::ALL`]'s order: the choices on a volume.
+pub fn tet_kinds() -> impl Iterator<Item = ObjectiveKind> {
+    ObjectiveKind::ALL.into_iter().filter(|&k| tet_form(k).is_some())
+}
+
+/// The objective of `kind` for tetrahedral meshes ([`tet_form`]), boxed for the drivers;
+/// refused, naming the kinds that have a tetrahedral form, when `kind` is planar only.
+pub fn tet_objective(kind: ObjectiveKind) -> Result<Box<dyn Objective<TetStar> + Send + Sync>> {
+    match tet_form(kind) {
+        Some(o) => Ok(Box::new(o)),
+        None => Err(Error::Invalid(format!(
+            "the objective {kind} is planar only: on tetrahedra choose {}",
+            tet_kinds().map(|k| k.name()).collect::<Vec<_>>().join(", ")
+        ))),
     }
 }
 
 /// What the objective of `kind` is on tetrahedra, in a few words for people (the page's
-/// headings of a tetrahedral mesh; the planar words are [`ObjectiveKind::describe`]).
-pub fn describe_tet(kind: ObjectiveKind) -> &'static str {
-    match kind {
-        ObjectiveKind::Old => "max-min mean ratio (Freitag's ascent)",
-        ObjectiveKind::Sine => "max-min dihedral sine (Freitag)",
-        ObjectiveKind::New => "Chen, Tristano & Kwok in 3D (Fletcher–Reeves)",
-        ObjectiveKind::Condition => "condition number κ, 2-norm (Knupp)",
-        ObjectiveKind::ConditionMax => "condition number κ, worst tetrahedron (Knupp)",
-        ObjectiveKind::Untangle => "untangling Σ(|6V| − 6V) (Knupp)",
-        ObjectiveKind::UntangleMinDet => "max-min 6V (Knupp & Freitag)",
-    }
+/// headings of a tetrahedral mesh; the planar words are [`ObjectiveKind::describe`]);
+/// `None` when `kind` is planar only.
+pub fn describe_tet(kind: ObjectiveKind) -> Option<&'static str> {
+    tet_form(kind).map(|o| o.describe())
 }
 
 /// Chen, Tristano & Kwok's objective carried to solids: per tetrahedron
@@ -154,7 +193,7 @@ impl RegularisedMeanRatio {
         }
         let (mut sum, mut min) = (0.0, f64::INFINITY);
         for t in &star.tets {
-            let s = q3::WeightedJacobian::of(&t.pts).sigma;
+            let s = q3::WeightedJacobian::of(&t.pts, star.reference()).sigma;
             sum += s.abs();
             min = min.min(s);
         }
@@ -166,9 +205,9 @@ impl RegularisedMeanRatio {
         }
     }
 
-    /// The term of one tetrahedron with its gradient.
-    fn term(&self, p: &[DVec3; 4], delta: f64) -> (f64, DVec3) {
-        let j = q3::WeightedJacobian::of(p);
+    /// The term of one tetrahedron with its gradient, its corner against reference `r`.
+    fn term(&self, p: &[DVec3; 4], r: &CornerReference, delta: f64) -> (f64, DVec3) {
+        let j = q3::WeightedJacobian::of(p, r);
         if j.frob2 <= 0.0 {
             return (0.0, DVec3::ZERO); // four coincident corners: no shape to penalise
         }
@@ -189,6 +228,19 @@ impl RegularisedMeanRatio {
 }
 
 impl TetObjective {
+    /// What it is, in a few words for people ([`describe_tet`]).
+    pub fn describe(&self) -> &'static str {
+        match self {
+            TetObjective::MeanRatio => "max-min mean ratio (Freitag's ascent)",
+            TetObjective::DihedralSine => "max-min dihedral sine (Freitag)",
+            TetObjective::Regularised(_) => "Chen, Tristano & Kwok in 3D (Fletcher–Reeves)",
+            TetObjective::Condition => "condition number κ, 2-norm (Knupp)",
+            TetObjective::ConditionMax => "condition number κ, worst tetrahedron (Knupp)",
+            TetObjective::Untangle { .. } => "untangling Σ(|6V| − 6V) (Knupp)",
+            TetObjective::MinDet => "max-min 6V (Knupp & Freitag)",
+        }
+    }
+
     fn kind(&self) -> ObjectiveKind {
         match self {
             TetObjective::MeanRatio => ObjectiveKind::Old,
@@ -207,13 +259,13 @@ impl TetObjective {
             TetObjective::Regularised(r) => {
                 let delta = r.delta(star);
                 for (i, t) in star.tets.iter().enumerate() {
-                    let (value, grad) = r.term(&t.at(x), delta);
+                    let (value, grad) = r.term(&t.at(x), star.reference(), delta);
                     emit(Term { elem: i as u32, value, grad });
                 }
             }
             TetObjective::MeanRatio => {
                 for (i, t) in star.tets.iter().enumerate() {
-                    let (value, grad) = q3::mean_ratio_grad0(&t.at(x));
+                    let (value, grad) = q3::mean_ratio_grad0(&t.at(x), star.reference());
                     emit(Term { elem: i as u32, value, grad });
                 }
             }
@@ -228,7 +280,7 @@ impl TetObjective {
                 let max = matches!(self, TetObjective::ConditionMax);
                 for (i, t) in star.tets.iter().enumerate() {
                     let p = t.at(x);
-                    let (kappa, g) = q3::condition_number_grad0(&p);
+                    let (kappa, g) = q3::condition_number_grad0(&p, star.reference());
                     // behind the barrier (σ ≤ 0, or κ² beyond it): a huge finite value with
                     // zero gradient, as in the plane ([`CONDITION_BARRIER`])
                     let valid = q3::signed_volume(&p) > 0.0 && kappa.is_finite() && kappa * kappa < CONDITION_BARRIER;
@@ -312,19 +364,19 @@ mod tests {
         let tets = (0..n)
             .map(|e| StarTet { element: e as u32, pts: [x0, x0 + point(rng), x0 + point(rng), x0 + point(rng)] })
             .collect();
-        TetStar { node: 0, x0, tets }
+        TetStar { node: 0, x0, tets, kind: VolumeKind::Tet4 }
     }
 
     /// The regular tetrahedron's star of one element: every objective at its best.
     fn regular_star() -> TetStar {
         let pts = [DVec3::ZERO, EQUILATERAL_W.x_axis, EQUILATERAL_W.y_axis, EQUILATERAL_W.z_axis];
-        TetStar { node: 0, x0: DVec3::ZERO, tets: vec![StarTet { element: 0, pts }] }
+        TetStar { node: 0, x0: DVec3::ZERO, tets: vec![StarTet { element: 0, pts }], kind: VolumeKind::Tet4 }
     }
 
     #[test]
     fn values_on_the_regular_tetrahedron_by_hand() {
         let s = regular_star();
-        let v = |k| tet_objective(k).value(&s, DVec3::ZERO);
+        let v = |k| tet_objective(k).unwrap().value(&s, DVec3::ZERO);
         // q = η = 1: (1 − 1)² + k1·1²
         assert!((v(ObjectiveKind::New) - BARRIER_WEIGHT).abs() < 1e-13);
         assert!((v(ObjectiveKind::Old) - 1.0).abs() < 1e-14);
@@ -336,7 +388,7 @@ mod tests {
         assert!((v(ObjectiveKind::UntangleMinDet) - 1.0 / 2f64.sqrt()).abs() < 1e-14);
         // the regular apex is a stationary point of the smooth objectives
         for k in [ObjectiveKind::New, ObjectiveKind::Condition] {
-            let (_, g) = tet_objective(k).value_and_gradient(&s, DVec3::ZERO);
+            let (_, g) = tet_objective(k).unwrap().value_and_gradient(&s, DVec3::ZERO);
             // a single tetrahedron: moving the apex changes the shape, and the regular
             // one is the best, so the gradient vanishes
             assert!(g.length() < 1e-12, "{k}: {g}");
@@ -357,8 +409,8 @@ mod tests {
                 continue;
             }
             let x = x0 + point(&mut rng) * 0.01;
-            for k in ObjectiveKind::ALL {
-                let obj = tet_objective(k);
+            for k in tet_kinds() {
+                let obj = tet_objective(k).unwrap();
                 let mut terms = Vec::new();
                 obj.terms(&star, x, &mut terms);
                 for (i, t) in terms.iter().enumerate() {
@@ -392,7 +444,7 @@ mod tests {
     #[test]
     fn new_is_finite_on_a_tangled_star_and_a_barrier_on_a_valid_one() {
         let mut rng = SplitMix64::new(9);
-        let obj = tet_objective(ObjectiveKind::New);
+        let obj = tet_objective(ObjectiveKind::New).unwrap();
         let mut tangled_seen = 0;
         for _ in 0..50 {
             let x0 = point(&mut rng);
@@ -421,7 +473,7 @@ mod tests {
         let big = star.scaled(f);
         assert_eq!(big.size(), star.size() * f);
         for k in [ObjectiveKind::New, ObjectiveKind::Old, ObjectiveKind::Sine, ObjectiveKind::Condition] {
-            let (a, b) = (tet_objective(k).value(&star, star.x0), tet_objective(k).value(&big, big.x0));
+            let (a, b) = (tet_objective(k).unwrap().value(&star, star.x0), tet_objective(k).unwrap().value(&big, big.x0));
             assert!((a - b).abs() <= 1e-12 * a.abs().max(1.0), "{k}: {a} {b}");
         }
     }

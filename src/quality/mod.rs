@@ -15,11 +15,16 @@
 use glam::DVec2;
 use serde::Serialize;
 
-use crate::mesh::{ElementKind, Mesh};
+use crate::mesh::ElementKind;
 use crate::numeric::{is_beyond_safe_scale, to_unit_scale, SAFE_SCALE};
 
 pub mod elementary;
+mod stats;
 pub mod tet;
+
+pub use stats::{
+    angle_bin, mesh_stats, mesh_stats_with, ElementStats, MeshCounts, MeshStats, MeshStatsBuilder, QuickStats,
+};
 
 /// `2√3`, Lo's normalisation so an equilateral triangle has α = 1.
 pub(crate) const TWO_SQRT3: f64 = 3.464_101_615_137_754_6;
@@ -402,199 +407,10 @@ pub fn measure_element<const ANGLES: bool, const CONDITION: bool, const SINES: b
     q
 }
 
-/// The statistics `smoothlab stats` prints (and `--json` writes, field for field).
-#[derive(Clone, Debug, PartialEq, Serialize)]
-pub struct MeshStats {
-    pub nodes: usize,
-    pub elements: usize,
-    pub triangles: usize,
-    pub quads: usize,
-    /// Elements with mid-side nodes.
-    pub quadratic: usize,
-    /// Corner nodes the smoothers may move.
-    pub free_nodes: usize,
-    /// Nodes flagged fixed (boundary, or as the file says; unused nodes too).
-    pub fixed_nodes: usize,
-    /// Mid-side and centre nodes of quadratic elements that are not fixed: they follow
-    /// their corners. `free_nodes + fixed_nodes + following_nodes == nodes`.
-    pub following_nodes: usize,
-    /// Elements with a corner of `det ≤ 0` (zero-area ones included).
-    pub inverted: usize,
-    /// Smallest and largest signed corner angle over all elements, degrees.
-    pub min_angle_deg: f64,
-    pub max_angle_deg: f64,
-    /// Smallest and mean α (triangles) / β (quads).
-    pub min_quality: f64,
-    pub mean_quality: f64,
-    /// Largest κ over all elements; `null` in JSON (∞) when any element is inverted.
-    pub max_condition: f64,
-    /// Counts (not percentages) of corner angles in 30 bins of 6° over [0°, 180°];
-    /// negative angles count in the first bin (Freitag 1997, Figure 3).
-    pub angle_histogram_6deg: Vec<u64>,
-    /// Whether the mesh is a surface in 3D ([`crate::surface`]), its elements measured each
-    /// in its own plane.
-    pub surface: bool,
-    /// For a surface, the largest distance of a node from the reference surface.
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub max_distance_from_surface: Option<f64>,
-    /// For a tetrahedral mesh ([`crate::volume`]), the number of tetrahedra (then the
-    /// angles are dihedral angles, the quality the mean ratio); absent from JSON for a
-    /// planar mesh or a surface.
-    #[serde(skip_serializing_if = "is_zero")]
-    pub tetrahedra: usize,
-}
-
-fn is_zero(n: &usize) -> bool {
-    *n == 0
-}
-
-/// Where a mesh stands, in the numbers a pass record carries (and the page's table and
-/// per-pass chart show): [`MeshStats`]'s extremes, which the page measures cheaply
-/// (`lab::stats`) and the CLI takes from [`mesh_stats`] ([`MeshStats::quick`]).
-#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
-pub struct QuickStats {
-    /// Elements with a corner of `det ≤ 0`.
-    pub inverted: usize,
-    /// Smallest and largest signed corner angle, degrees.
-    pub min_angle_deg: f64,
-    pub max_angle_deg: f64,
-    /// Smallest α (triangles) / β (quads).
-    pub min_quality: f64,
-}
-
-/// Bin of a signed corner angle (radians) in the 6° histogram: bin i holds
-/// [6i°, 6i+6°); 180° goes in the last bin, zero and negative angles in the first.
-pub fn angle_bin(angle: f64) -> usize {
-    let deg = angle.to_degrees();
-    if deg.is_nan() || deg <= 0.0 {
-        return 0;
-    }
-    // an angle on a bin edge (60° of an equilateral triangle, computed as 59.99999…)
-    // goes to the bin above, whatever the last bit of atan2
-    ((deg / 6.0 + 1e-9) as usize).min(29)
-}
-
-impl MeshStats {
-    /// The extremes a pass record carries.
-    pub fn quick(&self) -> QuickStats {
-        QuickStats {
-            inverted: self.inverted,
-            min_angle_deg: self.min_angle_deg,
-            max_angle_deg: self.max_angle_deg,
-            min_quality: self.min_quality,
-        }
-    }
-
-    /// The node and element counts of `mesh` (by kind too: they do not depend on the
-    /// positions), with every statistic the elements' positions add up at its starting
-    /// value (no elements measured yet).
-    pub fn empty(mesh: &Mesh) -> MeshStats {
-        let nodes = mesh.node_count();
-        let free_nodes = mesh.free_count();
-        let fixed_nodes = mesh.fixed().iter().filter(|&&f| f).count();
-        let triangles = mesh.kinds().iter().filter(|k| k.is_triangle()).count();
-        MeshStats {
-            nodes,
-            elements: mesh.element_count(),
-            triangles,
-            quads: mesh.element_count() - triangles,
-            quadratic: mesh.kinds().iter().filter(|k| k.is_quadratic()).count(),
-            free_nodes,
-            fixed_nodes,
-            following_nodes: nodes - free_nodes - fixed_nodes,
-            inverted: 0,
-            min_angle_deg: f64::INFINITY,
-            max_angle_deg: f64::NEG_INFINITY,
-            min_quality: f64::INFINITY,
-            mean_quality: 0.0,
-            max_condition: 0.0,
-            angle_histogram_6deg: vec![0; 30],
-            surface: false,
-            max_distance_from_surface: None,
-            tetrahedra: 0,
-        }
-    }
-}
-
-impl MeshStats {
-    /// Folds one element's measures in (its angles' histogram aside); returns its shape
-    /// quality, for the mean.
-    fn add(&mut self, q: &ElementQuality) -> f64 {
-        self.inverted += q.inverted as usize;
-        self.min_angle_deg = self.min_angle_deg.min(q.min_angle.to_degrees());
-        self.max_angle_deg = self.max_angle_deg.max(q.max_angle.to_degrees());
-        self.min_quality = self.min_quality.min(q.shape);
-        self.max_condition = self.max_condition.max(q.condition);
-        q.shape
-    }
-}
-
-/// Computes [`MeshStats`] for a mesh: per element the metrics of [`element_quality`]
-/// (the same values to the last bit — a test folds `element_quality` to check), with each
-/// corner's signed angle computed once for the extreme angles and the histogram alike,
-/// and without the scaled Jacobians no statistic shows.
-pub fn mesh_stats(mesh: &Mesh) -> MeshStats {
-    mesh_stats_with(mesh, |e| mesh.element_points_array(e))
-}
-
-/// [`mesh_stats`] of `mesh`'s elements with element `e`'s nodes at `points(e)` (a
-/// surface's elements, each in its own plane).
-pub fn mesh_stats_with(mesh: &Mesh, points: impl Fn(usize) -> [DVec2; 9]) -> MeshStats {
-    let mut s = MeshStats::empty(mesh);
-    let mut sum = 0.0;
-    for e in 0..mesh.element_count() {
-        let kind = mesh.kind(e);
-        let p = points(e);
-        let hist = &mut s.angle_histogram_6deg;
-        let q =
-            measure_element::<true, true, false>(kind, &p[..kind.node_count()], |_, _, ang| hist[angle_bin(ang)] += 1);
-        sum += s.add(&q);
-    }
-    if s.elements > 0 {
-        s.mean_quality = sum / s.elements as f64;
-    }
-    s
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
 
-    /// `mesh_stats` by folding [`element_quality`] element by element: what
-    /// `mesh_stats` must equal bit for bit.
-    fn mesh_stats_by_element_quality(mesh: &Mesh) -> MeshStats {
-        let mut s = MeshStats::empty(mesh);
-        let mut sum = 0.0;
-        for e in 0..mesh.element_count() {
-            let kind = mesh.kind(e);
-            let p = mesh.element_points_array(e);
-            let p = &p[..kind.node_count()];
-            let q = element_quality(kind, p);
-            sum += s.add(&q);
-            for (e1, e2) in &corner_edges(kind, p)[..kind.corners()] {
-                s.angle_histogram_6deg[angle_bin(signed_angle(*e1, *e2))] += 1;
-            }
-        }
-        if s.elements > 0 {
-            s.mean_quality = sum / s.elements as f64;
-        }
-        s
-    }
-
-    #[test]
-    fn mesh_stats_equals_element_quality_folded() {
-        use crate::generate::{grid, perturb, plate, rand2d, GridKind, PlateKind};
-        let mut meshes = vec![rand2d(300, 12, 4).unwrap(), grid(6, 5, GridKind::Quad).unwrap()];
-        for k in [PlateKind::Tri, PlateKind::Quad, PlateKind::Mixed] {
-            meshes.push(plate(k, 1, 3).unwrap());
-            meshes.push(plate(k, 2, 3).unwrap());
-        }
-        let tangled: Vec<Mesh> = meshes.iter().map(|m| perturb(m, 0.6, 5).unwrap()).collect();
-        meshes.extend(tangled);
-        for m in &meshes {
-            assert_eq!(mesh_stats(m), mesh_stats_by_element_quality(m));
-        }
-    }
     use std::f64::consts::PI;
 
     fn d(x: f64, y: f64) -> DVec2 {
@@ -755,15 +571,5 @@ mod tests {
         // the ideal corners are stationary points of κ (Knupp 1999, §2.6)
         let (k, g1, g2) = condition_number_gradient(d(1.0, 0.0), d(0.5, 3f64.sqrt() / 2.0), Ideal::Triangle);
         assert!((k - 2.0).abs() < EPS && g1.length() + g2.length() < 1e-12);
-    }
-
-    #[test]
-    fn histogram_bins() {
-        assert_eq!(angle_bin(-0.1), 0);
-        assert_eq!(angle_bin(0.0), 0);
-        assert_eq!(angle_bin(PI / 3.0), 10);
-        assert_eq!(angle_bin(PI), 29);
-        assert_eq!(angle_bin(5.99f64.to_radians()), 0);
-        assert_eq!(angle_bin(6.01f64.to_radians()), 1);
     }
 }

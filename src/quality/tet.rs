@@ -1,7 +1,8 @@
 //! Quality of a linear tetrahedron, from its four corners: signed volume, the six
-//! dihedral angles and their sines (Freitag 1997), Knupp's condition number with the
-//! equilateral-tetrahedron weight (Knupp 1999, §3) and the mean ratio; each a pure
-//! function of the corners, with its gradient with respect to corner 0 (the free node:
+//! dihedral angles and their sines (Freitag 1997), Knupp's condition number and the mean
+//! ratio of a corner against its reference matrix W (Knupp 1999, §3: a parameter,
+//! [`CornerReference`], the equilateral tetrahedron's [`EQUILATERAL_TET`] for both kinds
+//! of tetrahedra, computed once per kind); each a pure function of the corners, with its gradient with respect to corner 0 (the free node:
 //! callers put it first by an even permutation, [`with_first`], which keeps the volume's
 //! sign).
 //!
@@ -20,35 +21,7 @@ pub const TET_EDGES: [[usize; 2]; 6] = [[0, 1], [0, 2], [0, 3], [1, 2], [1, 3], 
 /// angle between the faces opposite `k` and `l`.
 const OFF_EDGE: [[usize; 2]; 6] = [[2, 3], [1, 3], [1, 2], [0, 3], [0, 2], [0, 1]];
 
-/// Knupp's ideal weight for tetrahedra (Knupp 1999, §3): the columns are the edge
-/// vectors from one corner of the regular tetrahedron of unit edge, `(1, 0, 0)`,
-/// `(1/2, √3/2, 0)`, `(1/2, √3/6, √(2/3))`, so `A·W⁻¹` takes the ideal element to the
-/// physical one.
-pub const EQUILATERAL_W: DMat3 = DMat3::from_cols_array(&[
-    1.0,
-    0.0,
-    0.0,
-    0.5,
-    0.866_025_403_784_438_6, // √3/2
-    0.0,
-    0.5,
-    0.288_675_134_594_812_9, // √3/6
-    0.816_496_580_927_726,   // √(2/3)
-]);
-
-/// `W⁻¹` of [`EQUILATERAL_W`], by hand (W is upper triangular): columns `(1, 0, 0)`,
-/// `(−1/√3, 2/√3, 0)`, `(−1/√6, −1/√6, √(3/2))`.
-pub const EQUILATERAL_W_INVERSE: DMat3 = DMat3::from_cols_array(&[
-    1.0,
-    0.0,
-    0.0,
-    -0.577_350_269_189_625_8, // −1/√3
-    1.154_700_538_379_251_5,  // 2/√3
-    0.0,
-    -0.408_248_290_463_863, // −1/√6
-    -0.408_248_290_463_863, // −1/√6
-    1.224_744_871_391_589,  // √(3/2)
-]);
+pub use crate::mesh::{CornerReference, EQUILATERAL_TET, EQUILATERAL_W, EQUILATERAL_W_INVERSE};
 
 /// Signed volume `(p1 − p0)·((p2 − p0)×(p3 − p0))/6`: positive for a valid (right-handed)
 /// tetrahedron.
@@ -68,7 +41,7 @@ pub fn is_inverted(p: &[DVec3; 4]) -> bool {
 
 /// The corners in the tetrahedron's own scale, for the measures that are ratios of
 /// lengths (angles, sines, the mean ratio, κ, the sign of the volume): as they are when
-/// the edges' largest component lies within [`SAFE_SCALE`](crate::numeric::SAFE_SCALE) (2^±200, where
+/// the edges' largest component lies within `numeric::SAFE_SCALE` (2^±200, where
 /// every product those measures take is a normal double, so their bits are unchanged);
 /// beyond it, corner 0 moved to the origin and the edges multiplied by a power of two
 /// (exact) that brings that component to about 1 — the planar metrics' rule
@@ -172,10 +145,11 @@ pub fn dihedral_sines_grad0(p: &[DVec3; 4]) -> [(f64, DVec3); 6] {
     out
 }
 
-/// The weighted corner Jacobian `T = A·W⁻¹` at corner 0, `A = [p1 − p0, p2 − p0, p3 − p0]`.
+/// The weighted corner Jacobian `T = A·W⁻¹` at corner 0, `A = [p1 − p0, p2 − p0, p3 − p0]`,
+/// `W` the corner's reference ([`CornerReference`]).
 #[inline]
-fn weighted_jacobian(p: &[DVec3; 4]) -> DMat3 {
-    DMat3::from_cols(p[1] - p[0], p[2] - p[0], p[3] - p[0]) * EQUILATERAL_W_INVERSE
+fn weighted_jacobian(p: &[DVec3; 4], r: &CornerReference) -> DMat3 {
+    DMat3::from_cols(p[1] - p[0], p[2] - p[0], p[3] - p[0]) * r.w_inv
 }
 
 #[inline]
@@ -196,27 +170,29 @@ pub struct WeightedJacobian {
 }
 
 impl WeightedJacobian {
-    pub fn of(p: &[DVec3; 4]) -> Self {
-        let t = weighted_jacobian(p);
-        let det_w_inv = EQUILATERAL_W_INVERSE.determinant();
+    /// Of the corner `p` (corner 0 and its three edge neighbours) against reference `r`.
+    #[inline]
+    pub fn of(p: &[DVec3; 4], r: &CornerReference) -> Self {
+        let t = weighted_jacobian(p, r);
+        let det_w_inv = r.det_w_inv;
         let (v, gv) = signed_volume_grad0(p);
         WeightedJacobian {
             t,
             frob2: frobenius2(&t),
-            grad_frob2: -2.0 * (t * (EQUILATERAL_W_INVERSE.transpose() * DVec3::ONE)),
+            grad_frob2: -2.0 * (t * r.w_inv_t_one),
             sigma: 6.0 * v * det_w_inv,
             grad_sigma: 6.0 * gv * det_w_inv,
         }
     }
 }
 
-/// Knupp's condition number of the tetrahedron, `κ = ‖T‖_F·‖T⁻¹‖_F` with `T = A·W⁻¹`
-/// (Knupp 1999, §3: with the weight, the same at every corner, and `3/κ` is a shape
-/// measure): 3 for the regular tetrahedron, growing without bound as it degenerates; +∞
-/// for zero volume. An inverted tetrahedron has the κ of its mirror image: the objectives
-/// put their barrier on the sign of the volume.
-pub fn condition_number(p: &[DVec3; 4]) -> f64 {
-    let t = weighted_jacobian(&in_unit_scale(p));
+/// Knupp's condition number of the corner, `κ = ‖T‖_F·‖T⁻¹‖_F` with `T = A·W⁻¹`
+/// (Knupp 1999, §3: with the equilateral weight [`EQUILATERAL_TET`], the same at every
+/// corner of a tetrahedron, and `3/κ` is a shape measure): 3 for the ideal corner,
+/// growing without bound as it degenerates; +∞ for zero volume. An inverted corner has
+/// the κ of its mirror image: the objectives put their barrier on the sign of the volume.
+pub fn condition_number(p: &[DVec3; 4], r: &CornerReference) -> f64 {
+    let t = weighted_jacobian(&in_unit_scale(p), r);
     let det = t.determinant();
     if det == 0.0 || !det.is_finite() {
         return if det.is_nan() { f64::NAN } else { f64::INFINITY };
@@ -228,27 +204,28 @@ pub fn condition_number(p: &[DVec3; 4]) -> f64 {
 /// `G = ‖T⁻¹‖²`, `κ = √(FG)`: every column of `A` moves by `−dp0`, so
 /// `∇F = −2·T·W⁻ᵀ𝟙` and, with `B = A⁻¹` and `S = W·B = T⁻¹`, `∇G = 2·Bᵀ·Wᵀ·S·Bᵀ·𝟙`;
 /// `∇κ = (G∇F + F∇G)/(2κ)`. (+∞, 0) for zero volume.
-pub fn condition_number_grad0(p: &[DVec3; 4]) -> (f64, DVec3) {
+pub fn condition_number_grad0(p: &[DVec3; 4], r: &CornerReference) -> (f64, DVec3) {
     let a = DMat3::from_cols(p[1] - p[0], p[2] - p[0], p[3] - p[0]);
     let det = a.determinant();
     if det == 0.0 || !det.is_finite() {
         return (if det.is_nan() { f64::NAN } else { f64::INFINITY }, DVec3::ZERO);
     }
-    let j = WeightedJacobian::of(p);
+    let j = WeightedJacobian::of(p, r);
     let b = a.inverse();
-    let s = EQUILATERAL_W * b;
+    let s = r.w * b;
     let (f, g, grad_f) = (j.frob2, frobenius2(&s), j.grad_frob2);
     let kappa = (f * g).sqrt();
-    let grad_g = 2.0 * (b.transpose() * EQUILATERAL_W.transpose() * s * b.transpose() * DVec3::ONE);
+    let grad_g = 2.0 * (b.transpose() * r.w.transpose() * s * b.transpose() * DVec3::ONE);
     (kappa, (g * grad_f + f * grad_g) / (2.0 * kappa))
 }
 
 /// The mean ratio `q = 3·σ^{2/3}/‖T‖²_F` with `σ = det T`, `T = A·W⁻¹` (Liu & Joe; the
-/// inverse of Escobar et al.'s η): 1 for the regular tetrahedron, 0 for a flat one, and
-/// negative for an inverted one (`σ^{2/3}` taken as `sign(σ)·|σ|^{2/3}`), so it falls on
-/// continuously through inversion. 0 when the four corners coincide.
-pub fn mean_ratio(p: &[DVec3; 4]) -> f64 {
-    let t = weighted_jacobian(&in_unit_scale(p));
+/// inverse of Escobar et al.'s η), `W` the corner's reference: 1 for the ideal corner (the
+/// regular tetrahedron against [`EQUILATERAL_TET`]), 0 for a flat one, and negative for
+/// an inverted one (`σ^{2/3}` taken as `sign(σ)·|σ|^{2/3}`), so it falls on continuously
+/// through inversion. 0 when the four corners coincide.
+pub fn mean_ratio(p: &[DVec3; 4], r: &CornerReference) -> f64 {
+    let t = weighted_jacobian(&in_unit_scale(p), r);
     let f = frobenius2(&t);
     if f == 0.0 {
         return 0.0;
@@ -261,8 +238,8 @@ pub fn mean_ratio(p: &[DVec3; 4]) -> f64 {
 /// `∇q = q·((2/3)·∇σ/σ − ∇F/F)`, `∇σ = −cof(A)𝟙·det W⁻¹` (from [`signed_volume_grad0`]:
 /// `σ = 6V·det W⁻¹`), `∇F = −2·T·W⁻ᵀ𝟙`. At σ = 0 the gradient is not finite (the
 /// measure has a vertical tangent there) and is returned as 0.
-pub fn mean_ratio_grad0(p: &[DVec3; 4]) -> (f64, DVec3) {
-    let j = WeightedJacobian::of(p);
+pub fn mean_ratio_grad0(p: &[DVec3; 4], r: &CornerReference) -> (f64, DVec3) {
+    let j = WeightedJacobian::of(p, r);
     if j.frob2 == 0.0 {
         return (0.0, DVec3::ZERO);
     }
@@ -291,8 +268,9 @@ pub struct TetMeasures {
     pub dihedral_deg: [f64; 6],
 }
 
-/// [`TetMeasures`] of one tetrahedron.
-pub fn tet_measures(p: &[DVec3; 4]) -> TetMeasures {
+/// [`TetMeasures`] of one tetrahedron, κ and the mean ratio against reference `r` (a
+/// linear tetrahedron's: [`EQUILATERAL_TET`]).
+pub fn tet_measures(p: &[DVec3; 4], r: &CornerReference) -> TetMeasures {
     let dihedral_deg = dihedral_angles(p).map(f64::to_degrees);
     let volume = signed_volume(p);
     TetMeasures {
@@ -301,8 +279,8 @@ pub fn tet_measures(p: &[DVec3; 4]) -> TetMeasures {
         min_dihedral_deg: dihedral_deg.iter().copied().fold(f64::INFINITY, f64::min),
         max_dihedral_deg: dihedral_deg.iter().copied().fold(f64::NEG_INFINITY, f64::max),
         min_sine: dihedral_sines(p).into_iter().fold(f64::INFINITY, f64::min),
-        condition: condition_number(p),
-        mean_ratio: mean_ratio(p),
+        condition: condition_number(p, r),
+        mean_ratio: mean_ratio(p, r),
         dihedral_deg,
     }
 }
@@ -327,11 +305,12 @@ pub fn tet10_corner_tets(p: &[DVec3; 10]) -> [[DVec3; 4]; 4] {
 /// edges' tangents `4·m − 3·x_i − x_k` (Knupp's corner view; the edge itself when its
 /// mid-edge node is at its middle) — and the worst of the four by the mean ratio (an
 /// inverted one first). A straight 10-node tetrahedron measures as its corners do (but
-/// for rounding); one whose mid-edge node sits far off its edge measures as bent.
-pub fn tet10_measures(p: &[DVec3; 10]) -> TetMeasures {
+/// for rounding); one whose mid-edge node sits far off its edge measures as bent. κ and
+/// the mean ratio against reference `r` ([`EQUILATERAL_TET`]).
+pub fn tet10_measures(p: &[DVec3; 10], r: &CornerReference) -> TetMeasures {
     let mut worst: Option<TetMeasures> = None;
     for corner in tet10_corner_tets(p) {
-        let m = tet_measures(&corner);
+        let m = tet_measures(&corner, r);
         let worse = match &worst {
             None => true,
             Some(w) => (m.inverted && !w.inverted) || (m.inverted == w.inverted && m.mean_ratio < w.mean_ratio),
@@ -346,6 +325,24 @@ pub fn tet10_measures(p: &[DVec3; 10]) -> TetMeasures {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    // the measures against the equilateral tetrahedron, the reference of both kinds today
+    const R: &CornerReference = &EQUILATERAL_TET;
+    fn condition_number(p: &[DVec3; 4]) -> f64 {
+        super::condition_number(p, R)
+    }
+    fn condition_number_grad0(p: &[DVec3; 4]) -> (f64, DVec3) {
+        super::condition_number_grad0(p, R)
+    }
+    fn mean_ratio(p: &[DVec3; 4]) -> f64 {
+        super::mean_ratio(p, R)
+    }
+    fn mean_ratio_grad0(p: &[DVec3; 4]) -> (f64, DVec3) {
+        super::mean_ratio_grad0(p, R)
+    }
+    fn tet_measures(p: &[DVec3; 4]) -> TetMeasures {
+        super::tet_measures(p, R)
+    }
 
     fn regular() -> [DVec3; 4] {
         // the regular tetrahedron of unit edge, W's columns from the origin: right-handed

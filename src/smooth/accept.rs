@@ -125,14 +125,15 @@ impl ElementScore {
         Some(ElementScore { quality, inverted, inversion: 0.0, size: Size { unit: (u / m).perp_dot(v / m), scale: m, dim: 2 } })
     }
 
-    /// A tetrahedron with corners `p` (a quadratic one by its corners).
-    pub fn tet(p: &[DVec3; 4], measure: Measure) -> Self {
+    /// A tetrahedron with corners `p` (a quadratic one by its corners), its shape against
+    /// reference `r` (its kind's W).
+    pub fn tet(p: &[DVec3; 4], r: &q3::CornerReference, measure: Measure) -> Self {
         let e = [p[1] - p[0], p[2] - p[0], p[3] - p[0]];
         let m = e.iter().fold(0.0f64, |m, v| m.max(v.abs().max_element()));
         let det = e[0].dot(e[1].cross(e[2]));
         let unit = (e[0] / m).dot((e[1] / m).cross(e[2] / m));
         let quality = match measure {
-            Measure::Shape => q3::mean_ratio(p),
+            Measure::Shape => q3::mean_ratio(p, r),
             Measure::MinSine => q3::dihedral_sines(p).into_iter().fold(f64::INFINITY, f64::min),
         };
         ElementScore { quality, inverted: q3::is_inverted(p), inversion: (-det).max(0.0), size: Size { unit, scale: m, dim: 3 } }
@@ -143,10 +144,10 @@ impl ElementScore {
     /// A 10-node tetrahedron `p` (VTK's node order) with its mid-edge nodes: its four
     /// corner Jacobians' tetrahedra ([`q3::tet10_corner_tets`]) — the worst quality, any
     /// inverted, their inversions summed, the smallest size.
-    pub fn tet10(p: &[DVec3; 10], measure: Measure) -> Self {
+    pub fn tet10(p: &[DVec3; 10], r: &q3::CornerReference, measure: Measure) -> Self {
         let mut score: Option<ElementScore> = None;
         for corner in q3::tet10_corner_tets(p) {
-            let c = ElementScore::tet(&corner, measure);
+            let c = ElementScore::tet(&corner, r, measure);
             score = Some(match score {
                 None => c,
                 Some(s) => ElementScore {
@@ -330,7 +331,7 @@ mod tests {
         // three neighbours keeps a positive volume of ~1e-19 and is not inverted
         let p = [DVec3::new(0.2, 0.3, 0.9), DVec3::ZERO, DVec3::Y, DVec3::X];
         let flat = [DVec3::new(0.2, 0.3, 1e-18), DVec3::ZERO, DVec3::Y, DVec3::X];
-        let (b, a) = (ElementScore::tet(&p, Measure::Shape), ElementScore::tet(&flat, Measure::Shape));
+        let (b, a) = (ElementScore::tet(&p, &q3::EQUILATERAL_TET, Measure::Shape), ElementScore::tet(&flat, &q3::EQUILATERAL_TET, Measure::Shape));
         assert!(!a.inverted && a.quality > 0.0);
         let mut v = Verdict::default();
         v.add(&b, &a);

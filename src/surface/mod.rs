@@ -145,7 +145,7 @@ impl Surface {
 
     /// Builds a surface in 3D from a builder's triangles and quads whatever their points
     /// (a generator's, on `analytic`'s exact surface when given): the checks of a planar
-    /// mesh, then [`from_parts`](Self::from_parts). A file's mesh, planar or not, is built
+    /// mesh, then `from_parts`. A file's mesh, planar or not, is built
     /// by `Model::build` (in `model`, above this module).
     pub fn build(builder: MeshBuilder, analytic: Option<Analytic>) -> Result<Surface> {
         Self::from_surface_parts(builder.build_surface_parts()?, analytic)

@@ -1,7 +1,9 @@
 //! Tetrahedral meshes: the model, its statistics, and smoothing by the planar drivers
 //! (Freitag 1997's rand3D experiments, Knupp 1999's condition number in 3D).
 //!
-//! A [`TetMesh`] holds linear (4-node) or quadratic (10-node) tetrahedra, with the
+//! A [`TetMesh`] holds elements of one [`VolumeKind`] — linear (4-node) or quadratic
+//! (10-node) tetrahedra, each kind a row of data (node and corner counts, each corner's
+//! edge neighbours and reference W, edges, faces, file type codes) — with the
 //! adjacency the drivers read built once, flat (CSR): the tetrahedra at each corner node,
 //! each corner node's edge neighbours and, for quadratic meshes, the mid-edge nodes that
 //! follow each corner. Fixed nodes are those of the boundary faces (faces of one
@@ -13,6 +15,7 @@
 use glam::DVec3;
 
 use crate::error::{Error, Result};
+pub use crate::mesh::{VolumeKind, TET10_EDGES};
 use crate::mesh::{FixedSpec, MeshBuilder, NodeRole};
 use crate::quality::tet as q3;
 
@@ -28,37 +31,14 @@ pub use smooth::{smooth_volume, VolumeSmoother};
 pub use stats::volume_stats;
 pub use swap::swap_max_min_dihedral;
 
-/// The node order of a 10-node tetrahedron (VTK's `QUADRATIC_TETRA`): corners 0–3, then
-/// the middle nodes of the edges (0,1), (1,2), (0,2), (0,3), (1,3), (2,3).
-pub const TET10_EDGES: [[usize; 2]; 6] = [[0, 1], [1, 2], [0, 2], [0, 3], [1, 3], [2, 3]];
-
-/// Linear or quadratic tetrahedra (one kind per mesh).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize)]
-pub enum TetOrder {
-    /// 4 corner nodes.
-    Linear,
-    /// 4 corners and 6 mid-edge nodes ([`TET10_EDGES`]).
-    Quadratic,
-}
-
-impl TetOrder {
-    /// Nodes per tetrahedron: 4 or 10.
-    pub fn nodes(self) -> usize {
-        match self {
-            TetOrder::Linear => 4,
-            TetOrder::Quadratic => 10,
-        }
-    }
-}
-
 /// What a reader found, before it is checked: nodes and tetrahedra with their file lines
 /// (0 where none), and how the fixed flags are decided.
 #[derive(Clone, Debug)]
 pub struct TetParts {
     pub nodes: Vec<DVec3>,
     pub node_lines: Vec<u32>,
-    pub order: TetOrder,
-    /// Node ids, [`TetOrder::nodes`] per tetrahedron.
+    pub kind: VolumeKind,
+    /// Node ids, [`VolumeKind::nodes`] per element.
     pub elements: Vec<u32>,
     pub element_lines: Vec<u32>,
     pub fixed: FixedSpec,
@@ -94,7 +74,7 @@ impl GivenFace {
 #[derive(Clone, Debug)]
 pub struct TetMesh {
     nodes: Vec<DVec3>,
-    order: TetOrder,
+    kind: VolumeKind,
     elements: Vec<u32>,
     fixed: Vec<bool>,
     role: Vec<NodeRole>,
@@ -112,10 +92,6 @@ pub struct TetMesh {
     /// The file's triangles and quads ([`GivenFace`]).
     faces: Vec<GivenFace>,
 }
-
-/// Faces of a tetrahedron by local corners, each ordered so that its normal points away
-/// from the opposite corner of a valid tetrahedron.
-const FACES: [[usize; 3]; 4] = [[1, 2, 3], [0, 3, 2], [0, 1, 3], [0, 2, 1]];
 
 /// Builds CSR arrays from (key, value) pairs over `n` keys.
 fn csr(n: usize, pairs: &mut [(u32, u32)]) -> (Vec<u32>, Vec<u32>) {
@@ -146,7 +122,7 @@ impl TetMesh {
             faces,
             nodes: p.points.iter().map(|&x| DVec3::from(x)).collect(),
             node_lines: p.point_lines,
-            order: if p.quadratic { TetOrder::Quadratic } else { TetOrder::Linear },
+            kind: p.kind,
             elements: p.tets,
             element_lines: p.tet_lines,
             fixed: p.fixed,
@@ -161,8 +137,9 @@ impl TetMesh {
     /// left-handed (negative total volume) is turned over, every tetrahedron with it;
     /// single inverted tetrahedra stay (a tangled mesh is the smoothers' input).
     pub fn build(parts: TetParts) -> Result<TetMesh> {
-        let TetParts { nodes, node_lines, order, mut elements, element_lines, fixed, faces: given_faces } = parts;
-        let k = order.nodes();
+        let TetParts { nodes, node_lines, kind, mut elements, element_lines, fixed, faces: given_faces } = parts;
+        let row = kind.row();
+        let (k, corners) = (row.nodes, row.corners);
         let line = |lines: &[u32], i: usize| lines.get(i).copied().filter(|&l| l > 0).map(|l| l as usize);
         if elements.is_empty() {
             return Err(Error::Empty("the mesh has no tetrahedra".into()));
@@ -204,7 +181,7 @@ impl TetMesh {
         }
         for e in 0..count {
             for (j, &id) in elements[e * k..(e + 1) * k].iter().enumerate() {
-                let r = if j < 4 { NodeRole::Corner } else { NodeRole::Mid };
+                let r = if j < corners { NodeRole::Corner } else { NodeRole::Mid };
                 match (role[id as usize], r) {
                     (NodeRole::Unused, r) => role[id as usize] = r,
                     (a, b) if a != b => {
@@ -219,11 +196,14 @@ impl TetMesh {
             }
         }
         // volume, in units of each tetrahedron's own size, and the whole mesh's handedness
-        let corners = |els: &[u32], e: usize| [0, 1, 2, 3].map(|j| nodes[els[e * k + j] as usize]);
+        // (a kind that is not a tetrahedron needs its own measure of validity here)
+        let corner_points = |els: &[u32], e: usize| match kind {
+            VolumeKind::Tet4 | VolumeKind::Tet10 => [0, 1, 2, 3].map(|j| nodes[els[e * k + j] as usize]),
+        };
         let mut total = 0.0;
         for e in 0..count {
             // in the tetrahedron's own scale: a cube of 1e150 has volumes beyond the doubles
-            let p = q3::in_unit_scale(&corners(&elements, e));
+            let p = q3::in_unit_scale(&corner_points(&elements, e));
             let v = q3::signed_volume(&p);
             let size = q3::TET_EDGES.iter().map(|&[a, b]| p[a].distance(p[b])).sum::<f64>() / 6.0;
             if v.abs() <= 1e-12 * size * size * size || v.is_nan() {
@@ -236,20 +216,19 @@ impl TetMesh {
             total += v / (size * size * size);
         }
         if total < 0.0 {
+            let mut old = [0u32; 32];
             for e in 0..count {
                 let t = &mut elements[e * k..(e + 1) * k];
-                t.swap(1, 2);
-                if k == 10 {
-                    // edges (0,1)↔(0,2) and (1,3)↔(2,3); (1,2) and (0,3) stay
-                    t.swap(4, 6);
-                    t.swap(8, 9);
+                old[..k].copy_from_slice(t);
+                for (to, &from) in t.iter_mut().zip(row.mirror) {
+                    *to = old[from];
                 }
             }
         }
         // faces: boundary (one tetrahedron) or shared (two); more is not a manifold
-        let mut faces: Vec<([u32; 3], u32, u8)> = Vec::with_capacity(4 * count);
+        let mut faces: Vec<([u32; 3], u32, u8)> = Vec::with_capacity(row.faces.len() * count);
         for e in 0..count {
-            for (f, loc) in FACES.iter().enumerate() {
+            for (f, loc) in row.faces.iter().enumerate() {
                 let mut key = loc.map(|j| elements[e * k + j]);
                 key.sort_unstable();
                 faces.push((key, e as u32, f as u8));
@@ -273,7 +252,7 @@ impl TetMesh {
             }
             if j - i == 1 {
                 let (_, e, f) = faces[i];
-                boundary.push(FACES[f as usize].map(|c| elements[e as usize * k + c]));
+                boundary.push(row.faces[f as usize].map(|c| elements[e as usize * k + c]));
             }
             i = j;
         }
@@ -284,7 +263,7 @@ impl TetMesh {
                 on_boundary[c as usize] = true;
             }
         }
-        if k == 10 {
+        if row.mid_edge_nodes {
             // a mid-edge node is on the boundary when both ends of its edge are on a
             // boundary face together
             let mut edge_on_boundary = std::collections::HashSet::new();
@@ -295,10 +274,10 @@ impl TetMesh {
             }
             for e in 0..count {
                 let t = &elements[e * k..(e + 1) * k];
-                for (m, &[a, b]) in TET10_EDGES.iter().enumerate() {
+                for (m, &[a, b]) in row.edges.iter().enumerate() {
                     let (a, b) = (t[a], t[b]);
                     if edge_on_boundary.contains(&(a.min(b), a.max(b))) {
-                        on_boundary[t[4 + m] as usize] = true;
+                        on_boundary[t[corners + m] as usize] = true;
                     }
                 }
             }
@@ -313,16 +292,16 @@ impl TetMesh {
             *f |= *r == NodeRole::Unused;
         }
         // adjacency, flat
-        let mut pairs: Vec<(u32, u32)> = Vec::with_capacity(4 * count);
+        let mut pairs: Vec<(u32, u32)> = Vec::with_capacity(corners * count);
         for e in 0..count {
-            for j in 0..4 {
+            for j in 0..corners {
                 pairs.push((elements[e * k + j], e as u32));
             }
         }
         let (tet_start, tets) = csr(n, &mut pairs);
         pairs.clear();
         for e in 0..count {
-            for &[a, b] in &q3::TET_EDGES {
+            for &[a, b] in row.edges {
                 let (a, b) = (elements[e * k + a], elements[e * k + b]);
                 pairs.push((a, b));
                 pairs.push((b, a));
@@ -332,13 +311,13 @@ impl TetMesh {
         pairs.dedup();
         let (nb_start, nb) = csr(n, &mut pairs);
         let (mut follow_start, mut follow) = (vec![0u32; n + 1], Vec::new());
-        if k == 10 {
-            let mut triples: Vec<(u32, u32, u32)> = Vec::with_capacity(12 * count);
+        if row.mid_edge_nodes {
+            let mut triples: Vec<(u32, u32, u32)> = Vec::with_capacity(2 * row.edges.len() * count);
             for e in 0..count {
                 let t = &elements[e * k..(e + 1) * k];
-                for (m, &[a, b]) in TET10_EDGES.iter().enumerate() {
-                    triples.push((t[a], t[4 + m], t[b]));
-                    triples.push((t[b], t[4 + m], t[a]));
+                for (m, &[a, b]) in row.edges.iter().enumerate() {
+                    triples.push((t[a], t[corners + m], t[b]));
+                    triples.push((t[b], t[corners + m], t[a]));
                 }
             }
             triples.sort_unstable();
@@ -353,7 +332,7 @@ impl TetMesh {
         }
         Ok(TetMesh {
             nodes,
-            order,
+            kind,
             elements,
             fixed,
             role,
@@ -416,7 +395,7 @@ impl TetMesh {
         TetMesh::build(TetParts {
             node_lines: Vec::new(),
             nodes,
-            order: TetOrder::Linear,
+            kind: VolumeKind::Tet4,
             elements: tets.iter().flatten().copied().collect(),
             element_lines: Vec::new(),
             fixed: FixedSpec::Boundary,
@@ -451,7 +430,7 @@ impl TetMesh {
         TetMesh::build(TetParts {
             nodes,
             node_lines: Vec::new(),
-            order: TetOrder::Quadratic,
+            kind: VolumeKind::Tet10,
             elements,
             element_lines: Vec::new(),
             fixed: FixedSpec::BoundaryAnd(fixed),
@@ -463,13 +442,15 @@ impl TetMesh {
         self.nodes.len()
     }
     pub fn element_count(&self) -> usize {
-        self.elements.len() / self.order.nodes()
+        self.elements.len() / self.kind.nodes()
     }
-    pub fn order(&self) -> TetOrder {
-        self.order
+    /// The kind of every element.
+    pub fn kind(&self) -> VolumeKind {
+        self.kind
     }
+    /// Whether the elements have mid-edge nodes (they follow their corners).
     pub fn is_quadratic(&self) -> bool {
-        self.order == TetOrder::Quadratic
+        self.kind.is_quadratic()
     }
     pub fn nodes(&self) -> &[DVec3] {
         &self.nodes
@@ -480,24 +461,30 @@ impl TetMesh {
     }
     /// The node ids of tetrahedron `e`: 4, or 10 in [`TET10_EDGES`]' order.
     pub fn element(&self, e: usize) -> &[u32] {
-        let k = self.order.nodes();
+        let k = self.kind.nodes();
         &self.elements[e * k..(e + 1) * k]
     }
     /// The measures of tetrahedron `e` as the statistics take them: by its corners, a
-    /// 10-node one with its mid-edge nodes ([`q3::tet10_measures`]).
+    /// 10-node one with its mid-edge nodes ([`q3::tet10_measures`]), against its kind's
+    /// reference W.
     pub fn measures(&self, e: usize) -> q3::TetMeasures {
-        if self.is_quadratic() {
-            let ids = self.element(e);
-            q3::tet10_measures(&std::array::from_fn(|j| self.nodes[ids[j] as usize]))
-        } else {
-            q3::tet_measures(&self.corners(e))
+        let r = self.kind.reference();
+        match self.kind {
+            VolumeKind::Tet4 => q3::tet_measures(&self.corners(e), r),
+            VolumeKind::Tet10 => {
+                let ids = self.element(e);
+                q3::tet10_measures(&std::array::from_fn(|j| self.nodes[ids[j] as usize]), r)
+            }
         }
     }
 
     /// The corners of tetrahedron `e`.
     pub fn corners(&self, e: usize) -> [DVec3; 4] {
         let ids = self.element(e);
-        [0, 1, 2, 3].map(|j| self.nodes[ids[j] as usize])
+        match self.kind {
+            // a tetrahedron's corners are its first four nodes
+            VolumeKind::Tet4 | VolumeKind::Tet10 => [0, 1, 2, 3].map(|j| self.nodes[ids[j] as usize]),
+        }
     }
     pub fn fixed(&self) -> &[bool] {
         &self.fixed

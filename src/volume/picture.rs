@@ -9,7 +9,7 @@ use glam::DVec3;
 use serde::{Deserialize, Serialize};
 use tiny_skia::Pixmap;
 
-use super::TetMesh;
+use super::{TetMesh, VolumeKind};
 use crate::error::{Error, Result};
 use crate::quality::tet::mean_ratio;
 use crate::render::{render_surface, Faces, Projection, SurfaceView};
@@ -76,9 +76,6 @@ impl CutFaces {
     }
 }
 
-/// Faces by local corners, outward for a valid tetrahedron.
-const FACES: [[usize; 3]; 4] = [[1, 2, 3], [0, 3, 2], [0, 1, 3], [0, 2, 1]];
-
 impl TetMesh {
     /// The faces of the mesh cut by `cut`, seen looking along `forward` (into the scene): a
     /// tetrahedron is left when its centroid is on the far side of the plane or on it (at or
@@ -109,7 +106,7 @@ impl TetMesh {
         let mut count: std::collections::HashMap<[u32; 3], u8> = std::collections::HashMap::new();
         for e in (0..self.element_count()).filter(|&e| kept[e]) {
             let t = self.element(e);
-            for loc in FACES {
+            for &loc in self.kind().row().faces {
                 let mut f = loc.map(|j| t[j]);
                 f.sort_unstable();
                 *count.entry(f).or_default() += 1;
@@ -121,8 +118,11 @@ impl TetMesh {
             let t = self.element(e);
             let p = self.corners(e);
             // as the statistics measure it (a 10-node tetrahedron with its mid-edge nodes)
-            let q = if self.is_quadratic() { self.measures(e).mean_ratio } else { mean_ratio(&p) };
-            for loc in FACES {
+            let q = match self.kind() {
+                VolumeKind::Tet4 => mean_ratio(&p, self.kind().reference()),
+                VolumeKind::Tet10 => self.measures(e).mean_ratio,
+            };
+            for &loc in self.kind().row().faces {
                 let ring = loc.map(|j| t[j]);
                 let mut key = ring;
                 key.sort_unstable();

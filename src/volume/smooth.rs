@@ -16,7 +16,7 @@
 
 use glam::DVec3;
 
-use super::TetMesh;
+use super::{TetMesh, VolumeKind};
 use crate::error::Result;
 use crate::objective::{Objective, StarTet, TetStar};
 use crate::quality::tet as q3;
@@ -58,15 +58,21 @@ impl SmoothMesh for TetMesh {
 
 impl DriverStar for TetStar {
     type Mesh = TetMesh;
+    /// The node's corner of each element: the node first, then its three edge neighbours
+    /// in the kind's order ([`VolumeKindRow::corner_edges`](crate::mesh::VolumeKindRow)),
+    /// an even permutation of a tetrahedron's corners, so the volume keeps its sign.
     fn gather(&mut self, mesh: &TetMesh, node: usize) {
         self.node = node as u32;
         self.x0 = mesh.nodes()[node];
+        self.kind = mesh.kind();
         self.tets.clear();
+        let row = mesh.kind().row();
         for &e in mesh.node_tets(node) {
-            let ids = &mesh.element(e as usize)[..4];
+            let ids = &mesh.element(e as usize)[..row.corners];
             let Some(slot) = ids.iter().position(|&i| i as usize == node) else { continue };
-            let pts = [0, 1, 2, 3].map(|k| mesh.nodes()[ids[k] as usize]);
-            self.tets.push(StarTet { element: e, pts: q3::with_first(&pts, slot) });
+            let [a, b, c] = row.corner_edges[slot];
+            let pts = [slot, a, b, c].map(|k| mesh.nodes()[ids[k] as usize]);
+            self.tets.push(StarTet { element: e, pts });
         }
     }
     #[inline]
@@ -83,7 +89,7 @@ impl DriverStar for TetStar {
         let (mut min, mut inverted) = (f64::INFINITY, 0);
         for t in &self.tets {
             let p = t.at(x);
-            min = min.min(q3::mean_ratio(&p));
+            min = min.min(q3::mean_ratio(&p, self.reference()));
             inverted += q3::is_inverted(&p) as u32;
         }
         (min, inverted)
@@ -92,7 +98,7 @@ impl DriverStar for TetStar {
         let mut q = StarQuality::BEST;
         for t in &self.tets {
             let p = x.map_or(t.pts, |x| t.at(x));
-            q.min_shape = q.min_shape.min(q3::mean_ratio(&p));
+            q.min_shape = q.min_shape.min(q3::mean_ratio(&p, self.reference()));
             q.min_sine = q.min_sine.min(q3::dihedral_sines(&p).into_iter().fold(f64::INFINITY, f64::min));
             q.inverted += q3::is_inverted(&p) as u32;
         }
@@ -100,7 +106,7 @@ impl DriverStar for TetStar {
     }
     fn smart_accepts(&self, c: DVec3, m: Measure) -> bool {
         let measure = |p: &[DVec3; 4]| match m {
-            Measure::Shape => q3::mean_ratio(p),
+            Measure::Shape => q3::mean_ratio(p, self.reference()),
             Measure::MinSine => q3::dihedral_sines(p).into_iter().fold(f64::INFINITY, f64::min),
         };
         let (mut before, mut after) = (f64::INFINITY, f64::INFINITY);
@@ -126,7 +132,7 @@ impl DriverStar for TetStar {
     fn verdict(&self, x: DVec3, m: Measure) -> Verdict {
         let mut v = Verdict::default();
         for t in &self.tets {
-            v.add(&ElementScore::tet(&t.pts, m), &ElementScore::tet(&t.at(x), m));
+            v.add(&ElementScore::tet(&t.pts, self.reference(), m), &ElementScore::tet(&t.at(x), self.reference(), m));
         }
         v
     }
@@ -134,26 +140,30 @@ impl DriverStar for TetStar {
     /// following it to their middles, as [`TetMesh::follow_mid_nodes`] moves them), so the
     /// rule reads what the statistics read.
     fn verdict_in(&self, mesh: &TetMesh, x: DVec3, m: Measure) -> Verdict {
-        if !mesh.is_quadratic() {
-            return self.verdict(x, m);
+        match mesh.kind() {
+            VolumeKind::Tet4 => return self.verdict(x, m),
+            VolumeKind::Tet10 => {}
         }
+        let row = mesh.kind().row();
         let n = self.node;
         let mut v = Verdict::default();
         for t in &self.tets {
             let ids = mesh.element(t.element as usize);
             let before: [DVec3; 10] = std::array::from_fn(|j| mesh.nodes()[ids[j] as usize]);
             let mut after = before;
-            for (j, &i) in ids[..4].iter().enumerate() {
+            for (j, &i) in ids[..row.corners].iter().enumerate() {
                 if i == n {
                     after[j] = x;
                 }
             }
-            for (k, &[a, b]) in super::TET10_EDGES.iter().enumerate() {
-                if (ids[a] == n || ids[b] == n) && !mesh.fixed()[ids[4 + k] as usize] {
-                    after[4 + k] = 0.5 * (after[a] + after[b]);
+            for (k, &[a, b]) in row.edges.iter().enumerate() {
+                let mid = row.corners + k;
+                if (ids[a] == n || ids[b] == n) && !mesh.fixed()[ids[mid] as usize] {
+                    after[mid] = 0.5 * (after[a] + after[b]);
                 }
             }
-            v.add(&ElementScore::tet10(&before, m), &ElementScore::tet10(&after, m));
+            let r = self.reference();
+            v.add(&ElementScore::tet10(&before, r, m), &ElementScore::tet10(&after, r, m));
         }
         v
     }

@@ -48,7 +48,7 @@ fn parts(nodes: Vec<DVec3>, elements: Vec<u32>) -> TetParts {
         node_lines: (0..nodes.len() as u32).map(|i| i + 2).collect(),
         element_lines: (0..(elements.len() / 4) as u32).map(|i| i + 100).collect(),
         nodes,
-        order: TetOrder::Linear,
+        kind: VolumeKind::Tet4,
         elements,
         fixed: FixedSpec::Boundary,
         faces: Vec::new(),
@@ -118,14 +118,14 @@ mod smoothing {
 
     fn passes(mesh: &mut TetMesh, kind: ObjectiveKind, strategy: Strategy, n: u32) -> Vec<crate::smooth::PassRecord> {
         let o = SmoothOptions::default().with_strategy(strategy);
-        smooth_volume(mesh, &*tet_objective(kind), o, n, &no_clock).unwrap()
+        smooth_volume(mesh, &*tet_objective(kind).unwrap(), o, n, &no_clock).unwrap()
     }
 
     #[test]
     fn every_strategy_and_objective_keeps_fixed_nodes_and_repeats_exactly() {
         let start = perturb_volume(&tet_cube(3).unwrap(), 0.6, 4).unwrap();
         for strategy in Strategy::ALL {
-            for kind in ObjectiveKind::ALL {
+            for kind in crate::objective::tet_kinds() {
                 let mut a = start.clone();
                 let mut b = start.clone();
                 passes(&mut a, kind, strategy, 2);
@@ -146,7 +146,7 @@ mod smoothing {
         let start = perturb_volume(&tet_cube(4).unwrap(), 0.25, 2).unwrap();
         assert_eq!(volume_stats(&start).inverted, 0, "the start must be valid");
         for strategy in [Strategy::Smart, Strategy::Opt, Strategy::C1, Strategy::C2, Strategy::C3, Strategy::Rules] {
-            for kind in ObjectiveKind::ALL {
+            for kind in crate::objective::tet_kinds() {
                 let mut m = start.clone();
                 passes(&mut m, kind, strategy, 2);
                 assert_eq!(volume_stats(&m).inverted, 0, "{strategy:?} {kind}");
@@ -173,7 +173,7 @@ mod smoothing {
         let mut m = start.clone();
         let o = SmoothOptions::default().with_strategy(Strategy::Smart);
         let mut s = VolumeSmoother::new(o).unwrap();
-        s.sweep(&mut m, &*tet_objective(ObjectiveKind::New));
+        s.sweep(&mut m, &*tet_objective(ObjectiveKind::New).unwrap());
         assert!(volume_stats(&m).min_quality >= volume_stats(&start).min_quality);
         assert!(m.nodes() != start.nodes());
     }
@@ -190,7 +190,7 @@ fn untangling_objectives_leave_a_valid_tetrahedral_mesh_where_it_is() {
     for kind in [ObjectiveKind::Untangle, ObjectiveKind::UntangleMinDet] {
         let mut m = valid.clone();
         let opts = SmoothOptions::default().with_strategy(Strategy::Opt);
-        let r = smooth_volume(&mut m, &*tet_objective(kind), opts, 2, &|| 0.0).unwrap();
+        let r = smooth_volume(&mut m, &*tet_objective(kind).unwrap(), opts, 2, &|| 0.0).unwrap();
         assert_eq!(m.nodes(), valid.nodes(), "{kind}");
         assert_eq!(r[0].counts.optimization_calls, 0, "{kind}");
     }
@@ -227,30 +227,31 @@ fn statistics_are_the_same_at_every_scale() {
 /// mid-edge node crosses its far corner's plane as inverted.
 #[test]
 fn a_ten_node_tetrahedron_is_measured_with_its_mid_edge_nodes() {
-    use crate::quality::tet::{tet10_measures, tet_measures};
+    use crate::quality::tet::{tet10_measures, tet_measures, CornerReference, EQUILATERAL_TET};
+    const R: &CornerReference = &EQUILATERAL_TET;
     let c = [DVec3::ZERO, DVec3::X, DVec3::Y, DVec3::Z];
     let mut p = [DVec3::ZERO; 10];
     p[..4].copy_from_slice(&c);
     for (m, [a, b]) in TET10_EDGES.iter().enumerate() {
         p[4 + m] = 0.5 * (c[*a] + c[*b]);
     }
-    let (straight, linear) = (tet10_measures(&p), tet_measures(&c));
+    let (straight, linear) = (tet10_measures(&p, R), tet_measures(&c, R));
     assert!(!straight.inverted);
     assert!((straight.mean_ratio - linear.mean_ratio).abs() < 1e-15, "{straight:?} {linear:?}");
     assert!((straight.min_dihedral_deg - linear.min_dihedral_deg).abs() < 1e-12);
     // the mid-edge node of edge 0–1 pushed off its edge towards corner 2
     let mut bent = p;
     bent[4] += 0.2 * DVec3::Y;
-    let b = tet10_measures(&bent);
+    let b = tet10_measures(&bent, R);
     assert!(!b.inverted && b.mean_ratio < linear.mean_ratio - 0.05, "{b:?}");
     // slid along its edge past the quarter point: the Jacobian at corner 0 turns over
     bent[4] = DVec3::new(0.1, 0.0, 0.0);
-    assert!(tet10_measures(&bent).inverted);
+    assert!(tet10_measures(&bent, R).inverted);
     // and the mesh's statistics say so
     let mesh = TetMesh::build(TetParts {
         nodes: bent.to_vec(),
         node_lines: Vec::new(),
-        order: TetOrder::Quadratic,
+        kind: VolumeKind::Tet10,
         elements: (0..10).collect(),
         element_lines: Vec::new(),
         fixed: FixedSpec::Boundary,

@@ -435,7 +435,7 @@ fn volume(
     for &side in &sides {
         let mut t = v.clone();
         let kind = settings.compare[side as usize].objective;
-        smooth_volume(&mut t, &*tet_objective(kind), opts, passes, &|| 0.0).map_err(|e| e.to_string())?;
+        smooth_volume(&mut t, &*tet_objective(kind).map_err(|e| e.to_string())?, opts, passes, &|| 0.0).map_err(|e| e.to_string())?;
         smoothed.push((side, kind, t));
     }
     let picture = if a.view == ViewArg::Histogram {

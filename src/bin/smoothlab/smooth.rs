@@ -193,7 +193,7 @@ pub fn run(a: SmoothArgs) -> Result<(), String> {
             (0..a.passes).map(|_| smoother.pass(surface, &*obj, &clock)).collect()
         }
         Model::Volume(mesh) => {
-            let obj = tet_objective(kind);
+            let obj = tet_objective(kind).map_err(|e| e.to_string())?;
             let mut smoother = VolumeSmoother::new(opts).map_err(|e| e.to_string())?;
             (1..=a.passes).map(|p| smoother.pass(mesh, &*obj, p, &clock)).collect()
         }

@@ -54,7 +54,9 @@ pub trait Mesh3d: Clone + Sized {
     /// A driver with the options `o` (checked by [`Settings::smooth_options`]).
     fn smoother(o: SmoothOptions) -> Result<Self::Smoother>;
     /// The objective a side's choice names, for this kind.
-    fn objective(settings: &Settings, side: Side) -> Box<Self::Objective>;
+    /// A side's objective, or why the kind has none for the side's choice (an objective
+    /// without a form on this kind).
+    fn objective(settings: &Settings, side: Side) -> Result<Box<Self::Objective>>;
     /// One pass numbered `pass`, with its record; `clock` gives milliseconds.
     fn pass(
         &mut self,
@@ -104,7 +106,7 @@ impl<M: Mesh3d> Side3d<M> {
     fn new(side: Side, mesh: M, stats: MeshStats, settings: &Settings) -> Result<Self> {
         Ok(Side3d {
             mesh,
-            objective: M::objective(settings, side),
+            objective: M::objective(settings, side)?,
             smoother: M::smoother(settings.smooth_options()?)?,
             records: Vec::new(),
             stats,
@@ -190,12 +192,13 @@ impl<M: Mesh3d> Lab3d<M> {
     }
 
     /// New settings for the next passes (the meshes stay as they are); refused settings
-    /// change nothing.
+    /// (an objective without a form on this kind among them) change nothing.
     pub fn set_settings(&mut self, settings: Settings) -> Result<()> {
         let o = settings.smooth_options()?;
-        for (s, side) in self.sides.iter_mut().zip(Side::BOTH) {
+        let objectives = [M::objective(&settings, Side::A)?, M::objective(&settings, Side::B)?];
+        for (s, objective) in self.sides.iter_mut().zip(objectives) {
             s.smoother = M::smoother(o)?;
-            s.objective = M::objective(&settings, side);
+            s.objective = objective;
         }
         self.settings = settings;
         Ok(())

@@ -41,8 +41,8 @@ impl Mesh3d for Surface {
     fn smoother(o: SmoothOptions) -> Result<SurfaceSmoother> {
         SurfaceSmoother::new(o)
     }
-    fn objective(settings: &Settings, side: Side) -> Box<dyn Objective> {
-        settings.choice(side).build()
+    fn objective(settings: &Settings, side: Side) -> Result<Box<dyn Objective>> {
+        Ok(settings.choice(side).build())
     }
     fn pass(
         &mut self,

@@ -38,7 +38,7 @@ impl Mesh3d for TetMesh {
     fn smoother(o: SmoothOptions) -> Result<VolumeSmoother> {
         VolumeSmoother::new(o)
     }
-    fn objective(settings: &Settings, side: Side) -> Box<dyn Objective<TetStar> + Send + Sync> {
+    fn objective(settings: &Settings, side: Side) -> Result<Box<dyn Objective<TetStar> + Send + Sync>> {
         tet_objective(settings.choice(side).objective)
     }
     fn pass(
@@ -60,7 +60,8 @@ impl Mesh3d for TetMesh {
     /// planar penalty designs do not apply).
     fn side_title(settings: &Settings, side: Side) -> String {
         let kind = settings.choice(side).objective;
-        format!("{}: {kind}: {}", side.letter(), describe_tet(kind))
+        // a planar-only kind never gets here: set_settings refuses it
+        format!("{}: {kind}: {}", side.letter(), describe_tet(kind).unwrap_or("planar only"))
     }
     fn side_label(settings: &Settings, side: Side) -> String {
         format!("{}: {}", side.letter(), settings.choice(side).objective)

@@ -357,7 +357,7 @@ pub fn freitag3d_row(i: usize) -> Result<Freitag3dRow> {
         if her_measure {
             o = o.with_smart_measure(Measure::MinSine);
         }
-        let obj = crate::objective::tet_objective(kind);
+        let obj = crate::objective::tet_objective(kind)?;
         for r in crate::volume::smooth_volume(&mut mesh, obj.as_ref(), o, 3, &|| 0.0)? {
             lap += r.counts.laplacian_moves;
             opt += r.counts.optimization_calls;
@@ -395,7 +395,7 @@ pub(super) fn freitag_t2(c: Canvas, t: &Theme) -> Result<Pixmap> {
     for (kind, title) in [(ObjectiveKind::Sine, "A: opt, sine, 3 passes"), (ObjectiveKind::New, "B: opt, new, 3 passes")] {
         let mut m = m0.clone();
         let o = SmoothOptions::default().with_strategy(Strategy::Opt).with_order(Order::Input).with_smart_measure(Measure::MinSine);
-        crate::volume::smooth_volume(&mut m, crate::objective::tet_objective(kind).as_ref(), o, 3, &|| 0.0)?;
+        crate::volume::smooth_volume(&mut m, crate::objective::tet_objective(kind)?.as_ref(), o, 3, &|| 0.0)?;
         parts.push(cut_panel(&m, title, top, t)?);
     }
     let table = table_picture("freitag-t2", Canvas { w: c.w, h: c.h.saturating_sub(top.h).max(1), dpr: c.dpr }, t)?;

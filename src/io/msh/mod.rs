@@ -12,20 +12,25 @@
 //! that view is present it decides the fixed flags exactly, so nodes, elements, kinds and
 //! fixed flags all round-trip; files from Gmsh itself (no such view) get boundary nodes
 //! plus the nodes of line and point elements.
-
-use std::fmt::Write as _;
+//!
+//! One writer per format version ([`write`]): each takes any mesh through [`MshSource`]
+//! (a planar mesh or surface, a volume with its file's faces), the elements' Gmsh types
+//! from their kinds.
 
 use crate::error::{Error, Result};
 use crate::io::lex::{prealloc, repeated, shown, Lexer};
-use crate::io::out::Out;
-use crate::io::MshVersion;
-use crate::mesh::{ElementKind, FixedSpec, MeshBuilder, NONE};
+use crate::mesh::{ElementKind, FixedSpec, MeshBuilder, VolumeKind, NONE};
+
+mod write;
+pub(crate) use write::{type_of, write, MshBlock, MshSource};
+#[cfg(test)]
+use write::runs;
 
 /// What a Gmsh element type is to us.
 enum GmshType {
     Surface(ElementKind),
-    /// A tetrahedron of 4 or 10 nodes ([`crate::volume`]).
-    Solid(usize),
+    /// A volume element ([`crate::volume`]), of the kind whose Gmsh type it is.
+    Solid(VolumeKind),
     /// Lines and points: their nodes are marked fixed.
     Marker(usize),
     /// The element's name in Gmsh's terms and, for a kind a reader of the mesh knows by
@@ -35,6 +40,9 @@ enum GmshType {
 
 fn gmsh_type(t: u64) -> GmshType {
     use GmshType::*;
+    if let Some(kind) = VolumeKind::from_gmsh_type(t) {
+        return Solid(kind);
+    }
     match t {
         2 => Surface(ElementKind::Tri3),
         3 => Surface(ElementKind::Quad4),
@@ -44,11 +52,9 @@ fn gmsh_type(t: u64) -> GmshType {
         1 => Marker(2),
         8 => Marker(3),
         15 => Marker(1),
-        4 => Solid(4),
         5 => Unsupported("8-node hexahedron", Some("hexahedra")),
         6 => Unsupported("6-node prism", Some("prisms (wedges)")),
         7 => Unsupported("5-node pyramid", Some("pyramids")),
-        11 => Solid(10),
         12 => Unsupported("27-node hexahedron", Some("quadratic hexahedra")),
         13 => Unsupported("18-node prism", Some("quadratic prisms (wedges)")),
         14 => Unsupported("14-node pyramid", Some("quadratic pyramids")),
@@ -163,7 +169,7 @@ struct Reader {
     /// Tetrahedra as read (node tags, 4 or 10 each, in Gmsh's order) with their lines:
     /// resolved when the whole file has been read.
     tet_tags: Vec<u64>,
-    tet_lines: Vec<(u32, u8)>,
+    tet_lines: Vec<(u32, VolumeKind)>,
     /// The `fixed` view: (node tag, fixed, line).
     fixed_view: Option<Vec<(u64, bool, u32)>>,
     /// Line of the `$NodeData` section of the `fixed` view.
@@ -419,12 +425,12 @@ impl Reader {
                 }
                 self.elements.push(RawElement { kind, line: line as u32, start });
             }
-            GmshType::Solid(k) => {
-                for j in 0..k {
-                    let (tag, _) = lex.u64(|| format!("node {} of {} (a {k}-node tetrahedron)", j + 1, number()))?;
+            GmshType::Solid(kind) => {
+                for j in 0..kind.nodes() {
+                    let (tag, _) = lex.u64(|| format!("node {} of {} (a {})", j + 1, number(), kind.name()))?;
                     self.tet_tags.push(tag);
                 }
-                self.tet_lines.push((line as u32, k as u8));
+                self.tet_lines.push((line as u32, kind));
             }
             GmshType::Marker(k) => {
                 for j in 0..k {
@@ -598,15 +604,16 @@ impl Reader {
             }
         }
         let mut at = 0;
-        for (t, &(line, k)) in self.tet_lines.iter().enumerate() {
-            let k = k as usize;
-            let mut ids = self.resolve_nodes(t, &self.tet_tags[at..at + k], line as usize, "tetrahedron")?;
-            if k == 10 {
-                // Gmsh's mid-edge order (0,1) (1,2) (2,0) (3,0) (3,2) (3,1) → VTK's (…, (1,3), (2,3))
-                ids.swap(8, 9);
+        for (t, &(line, kind)) in self.tet_lines.iter().enumerate() {
+            let k = kind.nodes();
+            let given = self.resolve_nodes(t, &self.tet_tags[at..at + k], line as usize, "tetrahedron")?;
+            // Gmsh's node order to ours (VTK's), by the kind's row
+            let mut ids = [0u32; 10];
+            for (&g, &ours) in given.iter().zip(kind.row().gmsh_order) {
+                ids[ours] = g;
             }
             at += k;
-            self.builder.add_tet(&ids[..k], line as usize)?;
+            self.builder.add_volume_element(kind, &ids[..k], line as usize)?;
         }
         let range = self.tag_range();
         let Reader { mut builder, node_tags, map, marks, fixed_view, .. } = self;
@@ -650,113 +657,6 @@ impl Reader {
             FixedSpec::BoundaryAnd(f)
         };
         Ok(builder)
-    }
-}
-
-/// Writes a `.msh` file (ASCII) in the given version; see the module notes for what round-trips.
-pub(crate) fn write(w: super::Writable, version: MshVersion, s: &mut Out) {
-    let mesh = w.mesh;
-    let n = mesh.node_count();
-    let v = match version {
-        MshVersion::V22 => "2.2",
-        MshVersion::V41 => "4.1",
-    };
-    // Writing to an `Out` cannot fail (a file's error is kept for `Out::finish`).
-    let _ = write!(s, "$MeshFormat\n{v} 0 8\n$EndMeshFormat\n");
-    match version {
-        MshVersion::V22 => {
-            let _ = writeln!(s, "$Nodes\n{n}");
-            for i in 0..n {
-                let _ = write!(s, "{} ", i + 1);
-                w.write_xyz(s, i);
-                s.push('\n');
-            }
-            let _ = writeln!(s, "$EndNodes\n$Elements\n{}", mesh.element_count());
-            for e in 0..mesh.element_count() {
-                let _ = write!(s, "{} {} 2 0 1", e + 1, type_of(mesh.kind(e)));
-                for &i in w.element(e).iter() {
-                    let _ = write!(s, " {}", i + 1);
-                }
-                s.push('\n');
-            }
-            s.push_str("$EndElements\n");
-        }
-        MshVersion::V41 => {
-            // the surface's bounding box, in 3D
-            let (lo, hi) = (0..n)
-                .map(|i| w.xyz(i))
-                .fold((glam::DVec3::splat(f64::INFINITY), glam::DVec3::splat(f64::NEG_INFINITY)), |(lo, hi), q| {
-                    (lo.min(q), hi.max(q))
-                });
-            let z = |v: f64| if w.in_xy_plane() { "0".to_string() } else { format!("{v:?}") };
-            let _ = writeln!(
-                s,
-                "$Entities\n0 0 1 0\n1 {:?} {:?} {} {:?} {:?} {} 0 0\n$EndEntities",
-                lo.x,
-                lo.y,
-                z(lo.z),
-                hi.x,
-                hi.y,
-                z(hi.z)
-            );
-            let _ = writeln!(s, "$Nodes\n1 {n} 1 {n}\n2 1 0 {n}");
-            for i in 0..n {
-                let _ = writeln!(s, "{}", i + 1);
-            }
-            for i in 0..n {
-                w.write_xyz(s, i);
-                s.push('\n');
-            }
-            // One block per run of equal kinds, so the element order is kept.
-            let kinds = mesh.kinds();
-            let runs: Vec<(usize, usize)> = runs(kinds);
-            let m = mesh.element_count();
-            let _ = writeln!(s, "$EndNodes\n$Elements\n{} {m} 1 {m}", runs.len());
-            for (a, b) in runs {
-                let _ = writeln!(s, "2 1 {} {}", type_of(kinds[a]), b - a);
-                for e in a..b {
-                    let _ = write!(s, "{}", e + 1);
-                    for &i in w.element(e).iter() {
-                        let _ = write!(s, " {}", i + 1);
-                    }
-                    s.push('\n');
-                }
-            }
-            s.push_str("$EndElements\n");
-        }
-    }
-    write_fixed_view(mesh.fixed(), s);
-}
-
-/// The fixed flags as a one-component `$NodeData` view named `"fixed"` (1 = fixed).
-pub(crate) fn write_fixed_view(fixed: &[bool], s: &mut Out) {
-    let _ = writeln!(s, "$NodeData\n1\n\"fixed\"\n1\n0\n3\n0\n1\n{}", fixed.len());
-    for (i, &f) in fixed.iter().enumerate() {
-        let _ = writeln!(s, "{} {}", i + 1, u8::from(f));
-    }
-    s.push_str("$EndNodeData\n");
-}
-
-/// Maximal runs `[a, b)` of equal kinds.
-fn runs(kinds: &[ElementKind]) -> Vec<(usize, usize)> {
-    let mut out = Vec::new();
-    let mut a = 0;
-    for i in 1..=kinds.len() {
-        if i == kinds.len() || kinds[i] != kinds[a] {
-            out.push((a, i));
-            a = i;
-        }
-    }
-    out
-}
-
-pub(crate) fn type_of(kind: ElementKind) -> u32 {
-    match kind {
-        ElementKind::Tri3 => 2,
-        ElementKind::Quad4 => 3,
-        ElementKind::Tri6 => 9,
-        ElementKind::Quad8 => 16,
-        ElementKind::Quad9 => 10,
     }
 }
 

@@ -1,0 +1,295 @@
+//! The statistics of a mesh ([`MeshStats`]), of every kind — planar, surface, volume —
+//! folded from its elements' measures by one builder ([`MeshStatsBuilder`]).
+
+use glam::DVec2;
+use serde::Serialize;
+
+use super::{measure_element, ElementQuality};
+use crate::mesh::Mesh;
+
+/// The statistics `smoothlab stats` prints (and `--json` writes, field for field).
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct MeshStats {
+    pub nodes: usize,
+    pub elements: usize,
+    pub triangles: usize,
+    pub quads: usize,
+    /// Elements with mid-side nodes.
+    pub quadratic: usize,
+    /// Corner nodes the smoothers may move.
+    pub free_nodes: usize,
+    /// Nodes flagged fixed (boundary, or as the file says; unused nodes too).
+    pub fixed_nodes: usize,
+    /// Mid-side and centre nodes of quadratic elements that are not fixed: they follow
+    /// their corners. `free_nodes + fixed_nodes + following_nodes == nodes`.
+    pub following_nodes: usize,
+    /// Elements with a corner of `det ≤ 0` (zero-area ones included).
+    pub inverted: usize,
+    /// Smallest and largest signed corner angle over all elements, degrees.
+    pub min_angle_deg: f64,
+    pub max_angle_deg: f64,
+    /// Smallest and mean α (triangles) / β (quads).
+    pub min_quality: f64,
+    pub mean_quality: f64,
+    /// Largest κ over all elements; `null` in JSON (∞) when any element is inverted.
+    pub max_condition: f64,
+    /// Counts (not percentages) of corner angles in 30 bins of 6° over [0°, 180°];
+    /// negative angles count in the first bin (Freitag 1997, Figure 3).
+    pub angle_histogram_6deg: Vec<u64>,
+    /// Whether the mesh is a surface in 3D ([`crate::surface`]), its elements measured each
+    /// in its own plane.
+    pub surface: bool,
+    /// For a surface, the largest distance of a node from the reference surface.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub max_distance_from_surface: Option<f64>,
+    /// For a tetrahedral mesh ([`crate::volume`]), the number of tetrahedra (then the
+    /// angles are dihedral angles, the quality the mean ratio); absent from JSON for a
+    /// planar mesh or a surface.
+    #[serde(skip_serializing_if = "is_zero")]
+    pub tetrahedra: usize,
+}
+
+fn is_zero(n: &usize) -> bool {
+    *n == 0
+}
+
+/// Where a mesh stands, in the numbers a pass record carries (and the page's table and
+/// per-pass chart show): [`MeshStats`]'s extremes, which the page measures cheaply
+/// (`lab::stats`) and the CLI takes from [`mesh_stats`] ([`MeshStats::quick`]).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct QuickStats {
+    /// Elements with a corner of `det ≤ 0`.
+    pub inverted: usize,
+    /// Smallest and largest signed corner angle, degrees.
+    pub min_angle_deg: f64,
+    pub max_angle_deg: f64,
+    /// Smallest α (triangles) / β (quads).
+    pub min_quality: f64,
+}
+
+/// Bin of a signed corner angle (radians) in the 6° histogram: bin i holds
+/// [6i°, 6i+6°); 180° goes in the last bin, zero and negative angles in the first.
+pub fn angle_bin(angle: f64) -> usize {
+    let deg = angle.to_degrees();
+    if deg.is_nan() || deg <= 0.0 {
+        return 0;
+    }
+    // an angle on a bin edge (60° of an equilateral triangle, computed as 59.99999…)
+    // goes to the bin above, whatever the last bit of atan2
+    ((deg / 6.0 + 1e-9) as usize).min(29)
+}
+
+impl MeshStats {
+    /// The extremes a pass record carries.
+    pub fn quick(&self) -> QuickStats {
+        QuickStats {
+            inverted: self.inverted,
+            min_angle_deg: self.min_angle_deg,
+            max_angle_deg: self.max_angle_deg,
+            min_quality: self.min_quality,
+        }
+    }
+}
+
+/// Computes [`MeshStats`] for a mesh: per element the metrics of [`element_quality`](super::element_quality)
+/// (the same values to the last bit — a test folds `element_quality` to check), with each
+/// corner's signed angle computed once for the extreme angles and the histogram alike,
+/// and without the scaled Jacobians no statistic shows.
+pub fn mesh_stats(mesh: &Mesh) -> MeshStats {
+    mesh_stats_with(mesh, |e| mesh.element_points_array(e))
+}
+
+/// [`mesh_stats`] of `mesh`'s elements with element `e`'s nodes at `points(e)` (a
+/// surface's elements, each in its own plane).
+pub fn mesh_stats_with(mesh: &Mesh, points: impl Fn(usize) -> [DVec2; 9]) -> MeshStats {
+    let mut s = MeshStatsBuilder::new(MeshCounts::planar(mesh));
+    for e in 0..mesh.element_count() {
+        let kind = mesh.kind(e);
+        let p = points(e);
+        let q = measure_element::<true, true, false>(kind, &p[..kind.node_count()], |_, _, ang| s.angle(ang));
+        s.element(ElementStats::planar(&q));
+    }
+    s.finish()
+}
+
+/// The counts of a mesh that do not depend on its positions: where [`MeshStatsBuilder`]
+/// starts.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct MeshCounts {
+    pub nodes: usize,
+    pub free_nodes: usize,
+    pub fixed_nodes: usize,
+    pub elements: usize,
+    pub triangles: usize,
+    pub quads: usize,
+    /// Elements with mid-side (mid-edge) nodes.
+    pub quadratic: usize,
+    /// Tetrahedra (0 for a planar mesh or a surface).
+    pub tetrahedra: usize,
+}
+
+impl MeshCounts {
+    /// The counts of a planar mesh (or a surface's flat mesh), by kind too.
+    pub fn planar(mesh: &Mesh) -> MeshCounts {
+        let triangles = mesh.kinds().iter().filter(|k| k.is_triangle()).count();
+        MeshCounts {
+            nodes: mesh.node_count(),
+            free_nodes: mesh.free_count(),
+            fixed_nodes: mesh.fixed().iter().filter(|&&f| f).count(),
+            elements: mesh.element_count(),
+            triangles,
+            quads: mesh.element_count() - triangles,
+            quadratic: mesh.kinds().iter().filter(|k| k.is_quadratic()).count(),
+            tetrahedra: 0,
+        }
+    }
+}
+
+/// One element's measures as the statistics fold them.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ElementStats {
+    pub inverted: bool,
+    /// Its smallest and largest angle, degrees (corner angles; dihedral for a solid).
+    pub min_angle_deg: f64,
+    pub max_angle_deg: f64,
+    /// Its shape quality (α, β; the mean ratio of a solid).
+    pub quality: f64,
+    /// Its κ (∞ for an inverted element).
+    pub condition: f64,
+}
+
+impl ElementStats {
+    /// Of a planar element's [`ElementQuality`].
+    #[inline]
+    pub fn planar(q: &ElementQuality) -> ElementStats {
+        ElementStats {
+            inverted: q.inverted,
+            min_angle_deg: q.min_angle.to_degrees(),
+            max_angle_deg: q.max_angle.to_degrees(),
+            quality: q.shape,
+            condition: q.condition,
+        }
+    }
+}
+
+/// Builds [`MeshStats`] by folding element measures in, whatever the mesh: the planar
+/// and surface statistics ([`mesh_stats_with`]) and the volume ones
+/// (`volume::volume_stats`) are this fold, so every kind of mesh is counted alike.
+#[derive(Clone, Debug)]
+pub struct MeshStatsBuilder {
+    stats: MeshStats,
+    quality_sum: f64,
+}
+
+impl MeshStatsBuilder {
+    /// No element measured yet: the extremes at their starting values.
+    pub fn new(c: MeshCounts) -> MeshStatsBuilder {
+        MeshStatsBuilder {
+            stats: MeshStats {
+                nodes: c.nodes,
+                elements: c.elements,
+                triangles: c.triangles,
+                quads: c.quads,
+                quadratic: c.quadratic,
+                free_nodes: c.free_nodes,
+                fixed_nodes: c.fixed_nodes,
+                following_nodes: c.nodes - c.free_nodes - c.fixed_nodes,
+                inverted: 0,
+                min_angle_deg: f64::INFINITY,
+                max_angle_deg: f64::NEG_INFINITY,
+                min_quality: f64::INFINITY,
+                mean_quality: 0.0,
+                max_condition: 0.0,
+                angle_histogram_6deg: vec![0; 30],
+                surface: false,
+                max_distance_from_surface: None,
+                tetrahedra: c.tetrahedra,
+            },
+            quality_sum: 0.0,
+        }
+    }
+    /// Counts one angle (radians) in the 6° histogram ([`angle_bin`]).
+    #[inline]
+    pub fn angle(&mut self, radians: f64) {
+        self.stats.angle_histogram_6deg[angle_bin(radians)] += 1;
+    }
+    /// Folds one element's measures in (its angles go to [`angle`](Self::angle)).
+    #[inline]
+    pub fn element(&mut self, m: ElementStats) {
+        let s = &mut self.stats;
+        s.inverted += m.inverted as usize;
+        s.min_angle_deg = s.min_angle_deg.min(m.min_angle_deg);
+        s.max_angle_deg = s.max_angle_deg.max(m.max_angle_deg);
+        s.min_quality = s.min_quality.min(m.quality);
+        s.max_condition = s.max_condition.max(m.condition);
+        self.quality_sum += m.quality;
+    }
+    /// The statistics, the mean quality over the elements counted.
+    pub fn finish(mut self) -> MeshStats {
+        if self.stats.elements > 0 {
+            self.stats.mean_quality = self.quality_sum / self.stats.elements as f64;
+        }
+        self.stats
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::quality::{corner_edges, element_quality, signed_angle};
+    use std::f64::consts::PI;
+
+    /// `mesh_stats` by folding [`element_quality`] element by element: what
+    /// `mesh_stats` must equal bit for bit.
+    fn mesh_stats_by_element_quality(mesh: &Mesh) -> MeshStats {
+        let mut s = MeshStats {
+            angle_histogram_6deg: vec![0; 30],
+            ..MeshStatsBuilder::new(MeshCounts::planar(mesh)).finish()
+        };
+        let mut sum = 0.0;
+        for e in 0..mesh.element_count() {
+            let kind = mesh.kind(e);
+            let p = mesh.element_points_array(e);
+            let p = &p[..kind.node_count()];
+            let q = element_quality(kind, p);
+            s.inverted += q.inverted as usize;
+            s.min_angle_deg = s.min_angle_deg.min(q.min_angle.to_degrees());
+            s.max_angle_deg = s.max_angle_deg.max(q.max_angle.to_degrees());
+            s.min_quality = s.min_quality.min(q.shape);
+            s.max_condition = s.max_condition.max(q.condition);
+            sum += q.shape;
+            for (e1, e2) in &corner_edges(kind, p)[..kind.corners()] {
+                s.angle_histogram_6deg[angle_bin(signed_angle(*e1, *e2))] += 1;
+            }
+        }
+        if s.elements > 0 {
+            s.mean_quality = sum / s.elements as f64;
+        }
+        s
+    }
+
+    #[test]
+    fn mesh_stats_equals_element_quality_folded() {
+        use crate::generate::{grid, perturb, plate, rand2d, GridKind, PlateKind};
+        let mut meshes = vec![rand2d(300, 12, 4).unwrap(), grid(6, 5, GridKind::Quad).unwrap()];
+        for k in [PlateKind::Tri, PlateKind::Quad, PlateKind::Mixed] {
+            meshes.push(plate(k, 1, 3).unwrap());
+            meshes.push(plate(k, 2, 3).unwrap());
+        }
+        let tangled: Vec<Mesh> = meshes.iter().map(|m| perturb(m, 0.6, 5).unwrap()).collect();
+        meshes.extend(tangled);
+        for m in &meshes {
+            assert_eq!(mesh_stats(m), mesh_stats_by_element_quality(m));
+        }
+    }
+
+    #[test]
+    fn histogram_bins() {
+        assert_eq!(angle_bin(-0.1), 0);
+        assert_eq!(angle_bin(0.0), 0);
+        assert_eq!(angle_bin(PI / 3.0), 10);
+        assert_eq!(angle_bin(PI), 29);
+        assert_eq!(angle_bin(5.99f64.to_radians()), 0);
+        assert_eq!(angle_bin(6.01f64.to_radians()), 1);
+    }
+}
