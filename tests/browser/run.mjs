@@ -211,13 +211,13 @@ try {
     await p3.goto(`${server.base}#sample=gmsh-disk-tri6&passes=2`);
     await idle(p3);
     check((await p3.inputValue('#sample')) === 'gmsh:disk_tri6.msh', `the link opened ${await p3.inputValue('#sample')}`);
-    const s = await stats(p3, 'new');
+    const s = await stats(p3, 'b');
     check(Number(s.nodes) > 0, `disk nodes ${s.nodes}`);
     await p3.close();
   });
 
   await test('a file over the page\'s limit (256 MB, the core\'s) is refused by its size, before it is read', async () => {
-    const before = { s: await stats(page, 'new'), c: await canvasInfo(page, 'mesh-new') };
+    const before = { s: await stats(page, 'b'), c: await canvasInfo(page, 'mesh-b') };
     await page.evaluate(() => { const m = document.getElementById('message'); m.textContent = ''; m.hidden = true; });
     // a real file one byte over the limit, dropped on the page: its parts are one small
     // blob over and over, so the browser need not hold 256 MB to make it
@@ -234,7 +234,7 @@ try {
     await idle(page);
     const msg = await page.textContent('#message');
     check(msg === 'huge.msh is too large (256 MB); the page reads files up to 256 MB.', `message: ${msg}`);
-    const after = { s: await stats(page, 'new'), c: await canvasInfo(page, 'mesh-new') };
+    const after = { s: await stats(page, 'b'), c: await canvasInfo(page, 'mesh-b') };
     check(JSON.stringify(after.s) === JSON.stringify(before.s) && after.c.hash === before.c.hash, 'the mesh on screen changed');
   });
 
