@@ -30,10 +30,6 @@ impl Default for LevelWindow {
 }
 
 impl LevelWindow {
-    /// Whether the window is the whole box.
-    pub fn is_whole(&self) -> bool {
-        *self == LevelWindow::default()
-    }
     /// The window inside the world box `b`.
     pub fn within(&self, b: (DVec2, DVec2)) -> (DVec2, DVec2) {
         let size = b.1 - b.0;

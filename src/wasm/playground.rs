@@ -5,7 +5,7 @@
 use glam::DVec2;
 use wasm_bindgen::prelude::*;
 
-use super::{css_canvas, frame_object, now_ms, object, perturb_seed, pixels, sample, side, to_js};
+use super::{css_canvas, frame_object, now_ms, object, perturb_seed, pixels, side, to_js};
 use crate::io::{self, Format};
 use crate::lab::views::Canvas;
 use crate::lab::{self, Side, SideSweep};
@@ -43,18 +43,6 @@ impl Playground {
 
 #[wasm_bindgen]
 impl Playground {
-    /// A playground on a generated sample, by its gallery name (`plate-tri-tangled`, …).
-    #[wasm_bindgen(js_name = fromSample)]
-    pub fn from_sample(name: &str) -> Result<Playground, JsError> {
-        Ok(Playground::open(sample(name)?.generate()?)?)
-    }
-
-    /// A playground on the bytes of a mesh file called `name` (.msh, .vtk, .obj, .off).
-    #[wasm_bindgen(js_name = fromBytes)]
-    pub fn from_bytes(bytes: &[u8], name: &str) -> Result<Playground, JsError> {
-        Ok(Playground::open(io::read_bytes(bytes, name)?)?)
-    }
-
     /// A playground on a Triangle mesh: the texts of its `.node` and `.ele` files.
     #[wasm_bindgen(js_name = fromTriangle)]
     pub fn from_triangle(node: &str, ele: &str) -> Result<Playground, JsError> {
