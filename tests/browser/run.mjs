@@ -835,8 +835,7 @@ try {
   });
 
   await test('the tables compare what the papers judge by, the better side marked', async () => {
-    await page.goto(`${server.base}#sample=plate-tri-tangled&passes=3`);
-    await idle(page);
+    await open(page, `${server.base}#sample=plate-tri-tangled&passes=3`);
     await page.click('#run');
     await page.waitForFunction(() => /3 passes done/.test(document.getElementById('status').textContent), null, { timeout: TIMEOUT });
     await idle(page);
@@ -1044,8 +1043,7 @@ try {
   });
 
   await test('zoom and pan: wheel, drag on empty space and a pinch on the meshes and the level sets; double-click fits again', async () => {
-    await page.goto(`${server.base}#sample=plate-tri`);
-    await idle(page);
+    await open(page, `${server.base}#sample=plate-tri`);
     await page.locator('#mesh-b').scrollIntoViewIfNeeded();
     const fitted = await canvasInfo(page, 'mesh-b');
     const box = await page.locator('#mesh-b').boundingBox();
@@ -1125,8 +1123,7 @@ try {
   });
 
   await test('undo takes back a drag, by the button and by Ctrl+Z', async () => {
-    await page.goto(`${server.base}#sample=plate-quad`);
-    await idle(page);
+    await open(page, `${server.base}#sample=plate-quad`);
     check(await page.isDisabled('#undo'), 'nothing to undo at first');
     const hit = await clickSomeNode(page, 'mesh-a', ringPoints());
     await idle(page);
@@ -1165,8 +1162,7 @@ try {
   });
 
   await test('Smooth this node: one solver call on the chosen node, its history shown, undoable', async () => {
-    await page.goto(`${server.base}#sample=plate-tri&perturbed=1&tangle=0.4&seed=3`);
-    await idle(page);
+    await open(page, `${server.base}#sample=plate-tri&perturbed=1&tangle=0.4&seed=3`);
     check(await page.isDisabled('#smooth-node'), 'no node, nothing to smooth');
     const hit = await clickSomeNode(page, 'mesh-b', ringPoints());
     await idle(page);
@@ -1195,8 +1191,7 @@ try {
   });
 
   await test('Save figure: A | B with titles, colour bar and statistics at the chosen size and pixel ratio', async () => {
-    await page.goto(`${server.base}#sample=plate-tri-tangled&passes=2`);
-    await idle(page);
+    await open(page, `${server.base}#sample=plate-tri-tangled&passes=2`);
     await page.click('#run');
     await page.waitForFunction(() => /2 passes done/.test(document.getElementById('status').textContent), null, { timeout: TIMEOUT });
     await idle(page);
@@ -1240,8 +1235,7 @@ try {
   });
 
   await test('help panel and tooltips; canvases focusable; arrow keys move the chosen node; every Save PNG has its own name', async () => {
-    await page.goto(`${server.base}#sample=plate-tri`);
-    await idle(page);
+    await open(page, `${server.base}#sample=plate-tri`);
     await page.click('#help summary');
     const help = await page.textContent('#help');
     for (const term of ['α', 'β', 'κ', 'Inverted element', 'C1, C2, C3', "Chen's rules", 'Priority order', 'Level set']) check(help.includes(term), `the help says nothing of ${term}`);
