@@ -34,7 +34,7 @@ use smoothlab::smooth::{Measure, Order, PassRecord, SmoothOptions, Smoother, Str
 use smoothlab::generate::perturb_surface;
 use smoothlab::model::Model;
 use smoothlab::surface::{Surface, SurfaceSmoother};
-use smoothlab::volume::{smooth_volume, volume_stats, TetMesh};
+use smoothlab::volume::{smooth_volume, volume_stats, VolumeMesh};
 use smoothlab::{io, Mesh};
 
 /// Milliseconds since the clock was made: the core takes time from its caller.
@@ -1350,7 +1350,7 @@ fn paper_row_2(name: &str) -> String {
 }
 
 /// `passes` passes of a volume smoother over a copy of `mesh`: the mesh and the records.
-fn run_volume(mesh: &TetMesh, kind: ObjectiveKind, o: SmoothOptions, passes: u32) -> (TetMesh, Vec<PassRecord>) {
+fn run_volume(mesh: &VolumeMesh, kind: ObjectiveKind, o: SmoothOptions, passes: u32) -> (VolumeMesh, Vec<PassRecord>) {
     let mut m = mesh.clone();
     let clock = clock();
     let records = smooth_volume(&mut m, &*tet_objective(kind).expect("every objective of the reproduction has a form on tetrahedra"), o, passes, &clock).expect("valid options");
@@ -1359,7 +1359,7 @@ fn run_volume(mesh: &TetMesh, kind: ObjectiveKind, o: SmoothOptions, passes: u32
 
 fn freitag_table_2(out: &mut String) {
     const SEEDS: [u64; 5] = [1, 2, 3, 4, 5];
-    let meshes: Vec<TetMesh> = SEEDS.iter().map(|&s| rand3d(RAND3D_POINTS, s).expect("rand3d")).collect();
+    let meshes: Vec<VolumeMesh> = SEEDS.iter().map(|&s| rand3d(RAND3D_POINTS, s).expect("rand3d")).collect();
     let tets: Vec<f64> = meshes.iter().map(|m| m.element_count() as f64).collect();
     let free = meshes[0].free_count();
     let freitag = |s: Strategy| opts(s, Order::Input).with_smart_measure(Measure::MinSine);

@@ -1,12 +1,12 @@
 //! What a mesh file holds, above the planar core, the surfaces and the volumes: a
-//! [`Model`] is a planar [`Mesh`], a [`Surface`] in 3D or a [`TetMesh`], and
+//! [`Model`] is a planar [`Mesh`], a [`Surface`] in 3D or a [`VolumeMesh`], and
 //! [`Model::build`] decides which from what a reader put in a [`MeshBuilder`].
 
 use crate::error::{Error, Result};
 use crate::mesh::{Flat, Mesh, MeshBuilder};
 use crate::quality::{mesh_stats, MeshStats};
 use crate::surface::Surface;
-use crate::volume::{volume_stats, TetMesh};
+use crate::volume::{volume_stats, VolumeMesh};
 
 /// What a mesh file holds: a planar mesh (the 2D core), a surface in 3D, or a mesh of
 /// tetrahedra ([`crate::volume`]).
@@ -15,7 +15,7 @@ use crate::volume::{volume_stats, TetMesh};
 pub enum Model {
     Planar(Mesh),
     Surface(Surface),
-    Volume(TetMesh),
+    Volume(VolumeMesh),
 }
 
 impl From<Mesh> for Model {
@@ -26,14 +26,14 @@ impl From<Mesh> for Model {
 
 impl Model {
     /// Builds what a reader found: a mesh of tetrahedra when the file has any (its
-    /// triangles and quads then the boundary faces, [`TetMesh::from_builder`]), else a
+    /// triangles and quads then the boundary faces, [`VolumeMesh::from_builder`]), else a
     /// planar [`Mesh`] when its points lie in a plane (as [`MeshBuilder::build`]), else a
     /// surface in 3D — the checks of a planar mesh, the elements oriented consistently
     /// (see [`Surface`]), its points as given, and why they are not planar
     /// ([`Surface::not_planar`]).
     pub fn build(builder: MeshBuilder) -> Result<Model> {
         if builder.has_tets() {
-            return TetMesh::from_builder(builder).map(Model::Volume);
+            return VolumeMesh::from_builder(builder).map(Model::Volume);
         }
         match builder.build_planar_or_surface()? {
             Flat::Planar(m) => Ok(Model::Planar(m)),

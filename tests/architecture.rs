@@ -497,7 +497,7 @@ use crate::{error::Error, quality::mean};
 const S: &str = "crate::surface in a string";
 const R: &str = r#"crate::volume in a raw string"#;
 fn f() -> crate::quality::Stats { crate::mesh::g() }
-fn h() { let _ = crate::volume::TetMesh::new(); }
+fn h() { let _ = crate::volume::VolumeMesh::new(); }
 #[cfg(test)]
 mod tests {
     use crate::surface::Surface;
@@ -511,7 +511,7 @@ mod testing;
     assert_eq!(found, vec!["quality/mod.rs:9: `quality` (level 2) uses `volume` (level 3), which is not below it".to_string()]);
 
     // siblings at one level do not use each other; a module missing from the table fails
-    let sib = vec![(PathBuf::from("surface/view.rs"), "use crate::volume::TetMesh;\n".to_string()), (PathBuf::from("volume.rs"), String::new()), (PathBuf::from("extra.rs"), String::new())];
+    let sib = vec![(PathBuf::from("surface/view.rs"), "use crate::volume::VolumeMesh;\n".to_string()), (PathBuf::from("volume.rs"), String::new()), (PathBuf::from("extra.rs"), String::new())];
     let found = check_crate(&sib, &levels);
     assert_eq!(
         found,

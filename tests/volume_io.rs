@@ -10,7 +10,7 @@ use std::process::{Command, Output};
 use serde_json::Value;
 use smoothlab::io::{self, Format, MshVersion, WriteOptions};
 use smoothlab::model::Model;
-use smoothlab::volume::TetMesh;
+use smoothlab::volume::VolumeMesh;
 
 fn run(args: &[&str]) -> Output {
     Command::new(env!("CARGO_BIN_EXE_smoothlab")).args(args).output().unwrap()
@@ -38,14 +38,14 @@ fn p(path: &Path) -> &str {
     path.to_str().unwrap()
 }
 
-fn volume(model: Model) -> TetMesh {
+fn volume(model: Model) -> VolumeMesh {
     match model {
         Model::Volume(v) => v,
         other => panic!("not read as tetrahedra: {other:?}"),
     }
 }
 
-fn same(a: &TetMesh, b: &TetMesh) {
+fn same(a: &VolumeMesh, b: &VolumeMesh) {
     assert_eq!(a.nodes(), b.nodes());
     assert_eq!(a.element_count(), b.element_count());
     for e in 0..a.element_count() {
@@ -54,7 +54,7 @@ fn same(a: &TetMesh, b: &TetMesh) {
     assert_eq!(a.fixed(), b.fixed());
 }
 
-fn samples() -> Vec<TetMesh> {
+fn samples() -> Vec<VolumeMesh> {
     let cube = smoothlab::generate::tet_cube(3).unwrap();
     let tangled = smoothlab::generate::perturb_volume(&cube, 0.7, 5).unwrap();
     let quadratic = tangled.to_quadratic().unwrap();
@@ -231,7 +231,7 @@ fn a_tetrahedral_files_triangles_are_kept_and_one_inside_is_named() {
     text += "$EndElements\n";
     let m = volume(io::read_model_str(&text, Format::Msh).unwrap());
     let given: Vec<Vec<u32>> = tris.iter().map(|f| f.to_vec()).collect();
-    let kept = |m: &TetMesh| -> Vec<Vec<u32>> { m.faces().iter().map(|f| f.nodes().to_vec()).collect() };
+    let kept = |m: &VolumeMesh| -> Vec<Vec<u32>> { m.faces().iter().map(|f| f.nodes().to_vec()).collect() };
     assert_eq!(kept(&m), given);
     let note = m.stray_faces_note().expect("the inner triangle is named");
     let free = inner.iter().find(|&&i| cube.is_free(i as usize)).unwrap();

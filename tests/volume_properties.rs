@@ -19,9 +19,9 @@ use smoothlab::quality::tet::signed_volume;
 use smoothlab::model::Model;
 use smoothlab::objective::{tet_kinds, tet_objective, ObjectiveKind};
 use smoothlab::smooth::{SmoothOptions, Strategy};
-use smoothlab::volume::{smooth_volume, volume_stats, TetMesh};
+use smoothlab::volume::{smooth_volume, volume_stats, VolumeMesh};
 
-fn sample(which: usize, cells: usize, amount: f64, seed: u64) -> TetMesh {
+fn sample(which: usize, cells: usize, amount: f64, seed: u64) -> VolumeMesh {
     let base = match which {
         0 => tet_cube(cells).unwrap(),
         1 => rand3d(60 + 40 * cells, seed).unwrap(),
@@ -30,7 +30,7 @@ fn sample(which: usize, cells: usize, amount: f64, seed: u64) -> TetMesh {
     perturb_volume(&base, amount, seed).unwrap()
 }
 
-fn smoothed(m: &TetMesh, strategy: Strategy, kind: ObjectiveKind) -> TetMesh {
+fn smoothed(m: &VolumeMesh, strategy: Strategy, kind: ObjectiveKind) -> VolumeMesh {
     let mut t = m.clone();
     smooth_volume(&mut t, &*tet_objective(kind).unwrap(), SmoothOptions::default().with_strategy(strategy), 2, &|| 0.0).unwrap();
     t
@@ -99,7 +99,7 @@ proptest! {
 /// cube's eight corners, `n / 3` points uniform on its faces and the rest uniform inside
 /// (rand3D's boundary is a jittered lattice; here a boundary node can sit almost in the
 /// plane of three others, where `new`'s regularised barrier is finite).
-fn random_boundary(n: usize, seed: u64) -> TetMesh {
+fn random_boundary(n: usize, seed: u64) -> VolumeMesh {
     let mut rng = SplitMix64::new(seed);
     let mut p: Vec<DVec3> = [0, 1, 2, 4, 3, 5, 6, 7]
         .iter()
@@ -118,11 +118,11 @@ fn random_boundary(n: usize, seed: u64) -> TetMesh {
     while p.len() < n {
         p.push(DVec3::new(rng.next_f64(), rng.next_f64(), rng.next_f64()));
     }
-    TetMesh::from_tets(p.clone(), &delaunay_tetrahedra(&p).unwrap()).unwrap()
+    VolumeMesh::from_tets(p.clone(), &delaunay_tetrahedra(&p).unwrap()).unwrap()
 }
 
 /// The smallest size of a tetrahedron (6V) relative to the largest.
-fn smallest_relative_volume(m: &TetMesh) -> f64 {
+fn smallest_relative_volume(m: &VolumeMesh) -> f64 {
     let v: Vec<f64> = (0..m.element_count()).map(|e| signed_volume(&m.corners(e))).collect();
     v.iter().copied().fold(f64::INFINITY, f64::min) / v.iter().copied().fold(0.0, f64::max)
 }
@@ -164,7 +164,7 @@ fn the_priority_order_is_the_same_at_every_scale() {
     for seed in 0..12 {
         let m = perturb_volume(&rand3d(300, seed).unwrap(), 0.3, seed).unwrap();
         let tets: Vec<[u32; 4]> = (0..m.element_count()).map(|e| m.element(e)[..4].try_into().unwrap()).collect();
-        let scaled = TetMesh::from_tets(m.nodes().iter().map(|&p| 3.0 * p).collect(), &tets).unwrap();
+        let scaled = VolumeMesh::from_tets(m.nodes().iter().map(|&p| 3.0 * p).collect(), &tets).unwrap();
         let opts = SmoothOptions::default().with_strategy(Strategy::Rules);
         let objective = tet_objective(ObjectiveKind::New).unwrap();
         let (mut a, mut b) = (m.clone(), scaled);

@@ -6,7 +6,7 @@
 use glam::DVec3;
 
 use crate::error::{Error, Result};
-use crate::volume::TetMesh;
+use crate::volume::VolumeMesh;
 
 /// Kuhn's six tetrahedra of a cube with corners numbered by bits (x = 1, y = 2, z = 4):
 /// the paths from corner 0 to corner 7 along the axes in each order.
@@ -14,7 +14,7 @@ const KUHN: [[usize; 4]; 6] = [[0, 1, 3, 7], [0, 1, 5, 7], [0, 2, 3, 7], [0, 2, 
 
 /// The unit cube cut into `n` cubes a side, each into Kuhn's six tetrahedra, every
 /// tetrahedron right-handed; boundary nodes fixed. `n` from 1 to 100.
-pub fn tet_cube(n: usize) -> Result<TetMesh> {
+pub fn tet_cube(n: usize) -> Result<VolumeMesh> {
     if !(1..=100).contains(&n) {
         return Err(Error::invalid(format!("a cube of {n} cells a side: give 1 to 100")));
     }
@@ -45,5 +45,5 @@ pub fn tet_cube(n: usize) -> Result<TetMesh> {
             }
         }
     }
-    TetMesh::from_tets(nodes, &tets)
+    VolumeMesh::from_tets(nodes, &tets)
 }

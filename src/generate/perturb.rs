@@ -32,7 +32,7 @@ pub fn perturb(mesh: &Mesh, amount: f64, seed: u64) -> Result<Mesh> {
 /// follow their corners); fixed nodes never move. A structured cube perturbed by 0.5–1
 /// is Knupp's kind of tangled test mesh (Knupp 1999, §4: "randomly perturbed interior
 /// nodes"). Seeded as [`perturb`]: the free nodes draw in node order from [`SplitMix64`].
-pub fn perturb_volume(mesh: &crate::volume::TetMesh, amount: f64, seed: u64) -> Result<crate::volume::TetMesh> {
+pub fn perturb_volume(mesh: &crate::volume::VolumeMesh, amount: f64, seed: u64) -> Result<crate::volume::VolumeMesh> {
     let radius = perturbation_radius(amount, mesh.mean_edge_length())?;
     let mut out = mesh.clone();
     let mut rng = SplitMix64::new(seed);

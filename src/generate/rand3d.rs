@@ -30,7 +30,7 @@ use glam::DVec3;
 
 use crate::numeric::SplitMix64;
 use crate::error::{Error, Result};
-use crate::volume::TetMesh;
+use crate::volume::VolumeMesh;
 
 /// The points of Freitag's rand3D.
 pub const RAND3D_POINTS: usize = 1086;
@@ -371,14 +371,14 @@ pub fn delaunay_tetrahedra(p: &[DVec3]) -> Result<Vec<[u32; 4]>> {
 /// tetrahedralization of points equally distributed in the unit cube, then swapped by
 /// the max-min dihedral angle criterion; boundary nodes fixed (see the module docs). `n`
 /// from 9 to 200 000.
-pub fn rand3d(n: usize, seed: u64) -> Result<TetMesh> {
+pub fn rand3d(n: usize, seed: u64) -> Result<VolumeMesh> {
     if !(9..=200_000).contains(&n) {
         return Err(Error::invalid(format!("rand3d with {n} points: give 9 to 200000")));
     }
     let p = points(n, seed);
     let mut tets = Delaunay::build(&p)?;
     crate::volume::swap_max_min_dihedral(&p, &mut tets, 50);
-    TetMesh::from_tets(p, &tets)
+    VolumeMesh::from_tets(p, &tets)
 }
 
 #[cfg(test)]
@@ -399,7 +399,7 @@ mod tests {
     fn the_tetrahedralization_is_delaunay_and_fills_the_cube() {
         for (n, seed) in [(9, 1), (60, 2), (400, 3), (RAND3D_POINTS, 1)] {
             let p = points(n, seed);
-            let m = TetMesh::from_tets(p.clone(), &delaunay_tetrahedra(&p).unwrap()).unwrap();
+            let m = VolumeMesh::from_tets(p.clone(), &delaunay_tetrahedra(&p).unwrap()).unwrap();
             assert_eq!(m.node_count(), n);
             let mut volume = 0.0;
             for e in 0..m.element_count() {
@@ -451,14 +451,14 @@ mod tests {
     fn swapping_keeps_the_cube_filled_and_raises_the_smallest_angle() {
         for (n, seed) in [(60, 2), (400, 3), (RAND3D_POINTS, 1)] {
             let p = points(n, seed);
-            let delaunay = TetMesh::from_tets(p.clone(), &delaunay_tetrahedra(&p).unwrap()).unwrap();
+            let delaunay = VolumeMesh::from_tets(p.clone(), &delaunay_tetrahedra(&p).unwrap()).unwrap();
             let m = rand3d(n, seed).unwrap();
             assert_eq!(m.nodes(), delaunay.nodes());
             let volume: f64 = (0..m.element_count()).map(|e| signed_volume(&m.corners(e))).sum();
             assert!((volume - 1.0).abs() < 1e-12, "n {n}: volume {volume}");
             assert!((0..m.element_count()).all(|e| signed_volume(&m.corners(e)) > 0.0));
             // the same boundary faces: only interior faces and edges are swapped
-            let sorted = |m: &TetMesh| {
+            let sorted = |m: &VolumeMesh| {
                 let mut f: Vec<[u32; 3]> = m
                     .boundary_faces()
                     .iter()
@@ -472,7 +472,7 @@ mod tests {
                 f
             };
             assert_eq!(sorted(&m), sorted(&delaunay));
-            let smallest = |m: &TetMesh| {
+            let smallest = |m: &VolumeMesh| {
                 (0..m.element_count()).map(|e| tet_measures(&m.corners(e), m.kind().reference()).min_dihedral_deg).fold(180.0, f64::min)
             };
             assert!(smallest(&m) >= smallest(&delaunay), "n {n}");

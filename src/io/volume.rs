@@ -1,5 +1,5 @@
 //! Writing tetrahedral meshes ([`crate::volume`]): Gmsh `.msh` 2.2 and 4.1 by the one
-//! writer per version (a [`TetMesh`] is an [`MshSource`]), legacy VTK and TetGen's
+//! writer per version (a [`VolumeMesh`] is an [`MshSource`]), legacy VTK and TetGen's
 //! `.node`/`.ele` pair, the type codes and node orders from the element kind's row
 //! ([`crate::mesh::VolumeKindRow`]), with the fixed flags as the planar writers keep them (`.msh` and `.vtk`: a `fixed` view; TetGen:
 //! boundary markers). The readers are the planar formats' own, which take tetrahedra.
@@ -9,19 +9,19 @@ use std::fmt::Write as _;
 
 use crate::io::msh::{self, MshBlock, MshSource};
 use crate::io::out::Out;
-use crate::volume::TetMesh;
+use crate::volume::VolumeMesh;
 
 fn write_point(s: &mut Out, p: glam::DVec3) {
     let _ = write!(s, "{:?} {:?} {:?}", p.x, p.y, p.z);
 }
 
 /// A volume for the `.msh` writers: its elements (their Gmsh type and node order from
-/// their kind's row), then the file's triangles and quads ([`TetMesh::faces`]), numbered
+/// their kind's row), then the file's triangles and quads ([`VolumeMesh::faces`]), numbered
 /// after them; in 4.1 the elements on one volume entity, the faces on one surface entity,
 /// a block per face kind.
-impl MshSource for TetMesh {
+impl MshSource for VolumeMesh {
     fn node_count(&self) -> usize {
-        TetMesh::node_count(self)
+        VolumeMesh::node_count(self)
     }
     fn write_node(&self, s: &mut Out, i: usize) {
         write_point(s, self.nodes()[i]);
@@ -38,16 +38,16 @@ impl MshSource for TetMesh {
         write_point(s, hi);
     }
     fn element_count(&self) -> usize {
-        TetMesh::element_count(self) + self.faces().len()
+        VolumeMesh::element_count(self) + self.faces().len()
     }
     fn element_type(&self, e: usize) -> u32 {
-        match e.checked_sub(TetMesh::element_count(self)) {
+        match e.checked_sub(VolumeMesh::element_count(self)) {
             None => self.kind().row().gmsh_type,
             Some(f) => msh::type_of(self.faces()[f].kind),
         }
     }
     fn write_element_nodes(&self, s: &mut Out, e: usize) {
-        let ids = match e.checked_sub(TetMesh::element_count(self)) {
+        let ids = match e.checked_sub(VolumeMesh::element_count(self)) {
             None => {
                 let ids = self.element(e);
                 for &j in self.kind().row().gmsh_order {
@@ -62,7 +62,7 @@ impl MshSource for TetMesh {
         }
     }
     fn blocks(&self) -> Vec<MshBlock> {
-        let m = TetMesh::element_count(self);
+        let m = VolumeMesh::element_count(self);
         let mut types: Vec<u32> = self.faces().iter().map(|f| msh::type_of(f.kind)).collect();
         types.sort_unstable();
         types.dedup();
@@ -71,13 +71,13 @@ impl MshSource for TetMesh {
         blocks
     }
     fn fixed(&self) -> &[bool] {
-        TetMesh::fixed(self)
+        VolumeMesh::fixed(self)
     }
 }
 
 /// A legacy VTK `UNSTRUCTURED_GRID` of the tetrahedra (cell type 10 or 24), then the
-/// file's triangles and quads ([`TetMesh::faces`]).
-pub(crate) fn write_vtk(mesh: &TetMesh, s: &mut Out) {
+/// file's triangles and quads ([`VolumeMesh::faces`]).
+pub(crate) fn write_vtk(mesh: &VolumeMesh, s: &mut Out) {
     let n = mesh.node_count();
     let m = mesh.element_count();
     let faces = mesh.faces();
@@ -115,7 +115,7 @@ pub(crate) fn write_vtk(mesh: &TetMesh, s: &mut Out) {
 }
 
 /// TetGen's `.node` (1-based, dimension 3, marker 1 on fixed nodes) and `.ele` texts.
-pub(crate) fn write_tetgen(mesh: &TetMesh, node: &mut Out, ele: &mut Out) {
+pub(crate) fn write_tetgen(mesh: &VolumeMesh, node: &mut Out, ele: &mut Out) {
     let _ = writeln!(node, "{} 3 0 1", mesh.node_count());
     for (i, p) in mesh.nodes().iter().enumerate() {
         let _ = write!(node, "{} ", i + 1);

@@ -1,7 +1,7 @@
 //! What the solvers need of a free node's position and of its star, in any dimension: the
 //! planar core (and the surfaces it serves) moves a node in the plane ([`DVec2`], a
 //! [`Star`](super::Star) of triangles and quads), a tetrahedral mesh moves it in space
-//! ([`DVec3`], a [`TetStar`](super::TetStar)). Objectives, solvers and their
+//! ([`DVec3`], a [`CornerStar`](super::CornerStar)). Objectives, solvers and their
 //! results are generic over [`NodeStar`] with the planar star as the default, so the
 //! planar code reads as before and is compiled as before (monomorphised: no indirection).
 

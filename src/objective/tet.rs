@@ -19,7 +19,7 @@
 //! (the star keeps each tetrahedron in an even permutation of its corners, so its volume
 //! keeps its sign: [`crate::quality::tet::with_first`]), and its gradient is analytic. The
 //! measures that weigh a corner by its ideal shape take the star's reference
-//! ([`TetStar::reference`]: the mesh's element kind's W, computed once per kind).
+//! ([`CornerStar::reference`]: the mesh's element kind's W, computed once per kind).
 //! The formulas, in one notation: `docs/formulas.md` §8.
 
 use glam::DVec3;
@@ -31,14 +31,14 @@ use crate::quality::tet::{self as q3, CornerReference};
 
 /// One tetrahedron of a star: its corners with the free node first.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct StarTet {
+pub struct StarCorner {
     /// Element index in the mesh.
     pub element: u32,
     /// The corners, the free node's first, in an even permutation of the element's order.
     pub pts: [DVec3; 4],
 }
 
-impl StarTet {
+impl StarCorner {
     /// The corners with the free node at `x`.
     #[inline]
     pub fn at(&self, x: DVec3) -> [DVec3; 4] {
@@ -52,25 +52,25 @@ impl StarTet {
 /// corner, gathered once per visit (a reusable scratch buffer, as the planar
 /// [`Star`](super::Star)).
 #[derive(Clone, Debug)]
-pub struct TetStar {
+pub struct CornerStar {
     /// The free node.
     pub node: u32,
     /// Its position (when gathered, then as the driver moves it).
     pub x0: DVec3,
-    pub tets: Vec<StarTet>,
+    pub tets: Vec<StarCorner>,
     /// The elements' kind (set when gathered): its corners' reference W is
     /// [`reference`](Self::reference).
     pub kind: VolumeKind,
 }
 
-impl Default for TetStar {
+impl Default for CornerStar {
     /// An empty star of linear tetrahedra, until one is gathered.
     fn default() -> Self {
-        TetStar { node: 0, x0: DVec3::ZERO, tets: Vec::new(), kind: VolumeKind::Tet4 }
+        CornerStar { node: 0, x0: DVec3::ZERO, tets: Vec::new(), kind: VolumeKind::Tet4 }
     }
 }
 
-impl TetStar {
+impl CornerStar {
     /// The reference W of the elements' corners: their kind's
     /// ([`VolumeKind::reference`]). Asked of the kind at each use rather than kept, so that
     /// where every kind has the same reference the measures see it as a constant.
@@ -80,7 +80,7 @@ impl TetStar {
     }
 }
 
-impl NodeStar for TetStar {
+impl NodeStar for CornerStar {
     type Point = DVec3;
     #[inline]
     fn len(&self) -> usize {
@@ -129,7 +129,7 @@ pub fn tet_kinds() -> impl Iterator<Item = ObjectiveKind> {
 
 /// The objective of `kind` for tetrahedral meshes ([`tet_form`]), boxed for the drivers;
 /// refused, naming the kinds that have a tetrahedral form, when `kind` is planar only.
-pub fn tet_objective(kind: ObjectiveKind) -> Result<Box<dyn Objective<TetStar> + Send + Sync>> {
+pub fn tet_objective(kind: ObjectiveKind) -> Result<Box<dyn Objective<CornerStar> + Send + Sync>> {
     match tet_form(kind) {
         Some(o) => Ok(Box::new(o)),
         None => Err(Error::Invalid(format!(
@@ -187,7 +187,7 @@ pub enum TetObjective {
 
 impl RegularisedMeanRatio {
     /// δ of a star (see the type docs).
-    pub fn delta(&self, star: &TetStar) -> f64 {
+    pub fn delta(&self, star: &CornerStar) -> f64 {
         if star.tets.is_empty() || self.epsilon == 0.0 {
             return 0.0;
         }
@@ -254,7 +254,7 @@ impl TetObjective {
     }
 
     /// Calls `emit` with every term at `x`.
-    fn visit(&self, star: &TetStar, x: DVec3, mut emit: impl FnMut(Term<DVec3>)) {
+    fn visit(&self, star: &CornerStar, x: DVec3, mut emit: impl FnMut(Term<DVec3>)) {
         match *self {
             TetObjective::Regularised(r) => {
                 let delta = r.delta(star);
@@ -323,7 +323,7 @@ impl TetObjective {
     }
 }
 
-impl Objective<TetStar> for TetObjective {
+impl Objective<CornerStar> for TetObjective {
     fn name(&self) -> &'static str {
         self.kind().name()
     }
@@ -336,10 +336,10 @@ impl Objective<TetStar> for TetObjective {
     fn only_untangles(&self) -> bool {
         self.kind().only_untangles()
     }
-    fn terms(&self, star: &TetStar, x: DVec3, out: &mut Vec<Term<DVec3>>) {
+    fn terms(&self, star: &CornerStar, x: DVec3, out: &mut Vec<Term<DVec3>>) {
         self.visit(star, x, |t| out.push(t));
     }
-    fn value_and_gradient(&self, star: &TetStar, x: DVec3) -> (f64, DVec3) {
+    fn value_and_gradient(&self, star: &CornerStar, x: DVec3) -> (f64, DVec3) {
         let mut fold = super::Fold::new(self.goal());
         self.visit(star, x, |t| fold.add(t));
         fold.finish()
@@ -360,17 +360,17 @@ mod tests {
     }
 
     /// A star of `n` random tetrahedra around `x0` (each with the free node first).
-    fn random_star(rng: &mut SplitMix64, n: usize, x0: DVec3) -> TetStar {
+    fn random_star(rng: &mut SplitMix64, n: usize, x0: DVec3) -> CornerStar {
         let tets = (0..n)
-            .map(|e| StarTet { element: e as u32, pts: [x0, x0 + point(rng), x0 + point(rng), x0 + point(rng)] })
+            .map(|e| StarCorner { element: e as u32, pts: [x0, x0 + point(rng), x0 + point(rng), x0 + point(rng)] })
             .collect();
-        TetStar { node: 0, x0, tets, kind: VolumeKind::Tet4 }
+        CornerStar { node: 0, x0, tets, kind: VolumeKind::Tet4 }
     }
 
     /// The regular tetrahedron's star of one element: every objective at its best.
-    fn regular_star() -> TetStar {
+    fn regular_star() -> CornerStar {
         let pts = [DVec3::ZERO, EQUILATERAL_W.x_axis, EQUILATERAL_W.y_axis, EQUILATERAL_W.z_axis];
-        TetStar { node: 0, x0: DVec3::ZERO, tets: vec![StarTet { element: 0, pts }], kind: VolumeKind::Tet4 }
+        CornerStar { node: 0, x0: DVec3::ZERO, tets: vec![StarCorner { element: 0, pts }], kind: VolumeKind::Tet4 }
     }
 
     #[test]

@@ -1,7 +1,7 @@
 //! Tetrahedral meshes: the model, its statistics, and smoothing by the planar drivers
 //! (Freitag 1997's rand3D experiments, Knupp 1999's condition number in 3D).
 //!
-//! A [`TetMesh`] holds elements of one [`VolumeKind`] — linear (4-node) or quadratic
+//! A [`VolumeMesh`] holds elements of one [`VolumeKind`] — linear (4-node) or quadratic
 //! (10-node) tetrahedra, each kind a row of data (node and corner counts, each corner's
 //! edge neighbours and reference W, edges, faces, file type codes) — with the
 //! adjacency the drivers read built once, flat (CSR): the tetrahedra at each corner node,
@@ -72,7 +72,7 @@ impl GivenFace {
 
 /// A mesh of tetrahedra (see the module docs).
 #[derive(Clone, Debug)]
-pub struct TetMesh {
+pub struct VolumeMesh {
     nodes: Vec<DVec3>,
     kind: VolumeKind,
     elements: Vec<u32>,
@@ -106,11 +106,11 @@ fn csr(n: usize, pairs: &mut [(u32, u32)]) -> (Vec<u32>, Vec<u32>) {
     (start, pairs.iter().map(|&(_, v)| v).collect())
 }
 
-impl TetMesh {
+impl VolumeMesh {
     /// The tetrahedral mesh of a builder's tetrahedra (a file's: see
     /// [`MeshBuilder::has_tets`]), its triangles and quads kept as the given faces whose
     /// nodes are fixed; checked as [`build`](Self::build) checks.
-    pub fn from_builder(builder: MeshBuilder) -> Result<TetMesh> {
+    pub fn from_builder(builder: MeshBuilder) -> Result<VolumeMesh> {
         let p = builder.build_volume_parts()?;
         let faces = (0..p.face_kinds.len())
             .map(|e| {
@@ -118,7 +118,7 @@ impl TetMesh {
                 GivenFace::new(p.face_kinds[e], ids, p.face_lines.get(e).copied().unwrap_or(0))
             })
             .collect();
-        TetMesh::build(TetParts {
+        VolumeMesh::build(TetParts {
             faces,
             nodes: p.points.iter().map(|&x| DVec3::from(x)).collect(),
             node_lines: p.point_lines,
@@ -136,7 +136,7 @@ impl TetMesh {
     /// tetrahedron without volume, a face of more than two tetrahedra. A mesh given
     /// left-handed (negative total volume) is turned over, every tetrahedron with it;
     /// single inverted tetrahedra stay (a tangled mesh is the smoothers' input).
-    pub fn build(parts: TetParts) -> Result<TetMesh> {
+    pub fn build(parts: TetParts) -> Result<VolumeMesh> {
         let TetParts { nodes, node_lines, kind, mut elements, element_lines, fixed, faces: given_faces } = parts;
         let row = kind.row();
         let (k, corners) = (row.nodes, row.corners);
@@ -330,7 +330,7 @@ impl TetMesh {
             }
             follow = triples.iter().map(|&(_, m, o)| [m, o]).collect();
         }
-        Ok(TetMesh {
+        Ok(VolumeMesh {
             nodes,
             kind,
             elements,
@@ -391,8 +391,8 @@ impl TetMesh {
     }
 
     /// A linear mesh from points and tetrahedra (generators), boundary nodes fixed.
-    pub fn from_tets(nodes: Vec<DVec3>, tets: &[[u32; 4]]) -> Result<TetMesh> {
-        TetMesh::build(TetParts {
+    pub fn from_tets(nodes: Vec<DVec3>, tets: &[[u32; 4]]) -> Result<VolumeMesh> {
+        VolumeMesh::build(TetParts {
             node_lines: Vec::new(),
             nodes,
             kind: VolumeKind::Tet4,
@@ -406,7 +406,7 @@ impl TetMesh {
     /// The 10-node mesh of a linear one: a node at the middle of every edge (shared by
     /// the tetrahedra around it, fixed when the edge lies on the boundary); a quadratic
     /// mesh comes back as it is.
-    pub fn to_quadratic(&self) -> Result<TetMesh> {
+    pub fn to_quadratic(&self) -> Result<VolumeMesh> {
         if self.is_quadratic() {
             return Ok(self.clone());
         }
@@ -427,7 +427,7 @@ impl TetMesh {
         }
         let mut fixed = self.fixed.clone();
         fixed.resize(nodes.len(), false);
-        TetMesh::build(TetParts {
+        VolumeMesh::build(TetParts {
             nodes,
             node_lines: Vec::new(),
             kind: VolumeKind::Tet10,

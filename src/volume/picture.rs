@@ -9,7 +9,7 @@ use glam::DVec3;
 use serde::{Deserialize, Serialize};
 use tiny_skia::Pixmap;
 
-use super::{TetMesh, VolumeKind};
+use super::{VolumeMesh, VolumeKind};
 use crate::error::{Error, Result};
 use crate::quality::tet::mean_ratio;
 use crate::render::{render_surface, Faces, Projection, SurfaceView};
@@ -76,7 +76,7 @@ impl CutFaces {
     }
 }
 
-impl TetMesh {
+impl VolumeMesh {
     /// The faces of the mesh cut by `cut`, seen looking along `forward` (into the scene): a
     /// tetrahedron is left when its centroid is on the far side of the plane or on it (at or
     /// above it along the axis when the view looks up the axis, at or below otherwise).

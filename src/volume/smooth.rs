@@ -16,23 +16,23 @@
 
 use glam::DVec3;
 
-use super::{TetMesh, VolumeKind};
+use super::{VolumeMesh, VolumeKind};
 use crate::error::Result;
-use crate::objective::{Objective, StarTet, TetStar};
+use crate::objective::{Objective, StarCorner, CornerStar};
 use crate::quality::tet as q3;
 use crate::smooth::{
     DriverStar, ElementScore, Verdict, Measure, PassRecord, SmoothMesh, SmoothOptions, Smoother, StarQuality, StarView, SweepCounts,
 };
 
-impl SmoothMesh for TetMesh {
+impl SmoothMesh for VolumeMesh {
     type Point = DVec3;
     #[inline]
     fn node_count(&self) -> usize {
-        TetMesh::node_count(self)
+        VolumeMesh::node_count(self)
     }
     #[inline]
     fn is_free(&self, n: usize) -> bool {
-        TetMesh::is_free(self, n)
+        VolumeMesh::is_free(self, n)
     }
     #[inline]
     fn position(&self, n: usize) -> DVec3 {
@@ -40,11 +40,11 @@ impl SmoothMesh for TetMesh {
     }
     #[inline]
     fn neighbours(&self, n: usize) -> &[u32] {
-        TetMesh::neighbours(self, n)
+        VolumeMesh::neighbours(self, n)
     }
     #[inline]
     fn element_count(&self) -> usize {
-        TetMesh::element_count(self)
+        VolumeMesh::element_count(self)
     }
     #[inline]
     fn element_corners(&self, e: usize) -> &[u32] {
@@ -56,12 +56,12 @@ impl SmoothMesh for TetMesh {
     }
 }
 
-impl DriverStar for TetStar {
-    type Mesh = TetMesh;
+impl DriverStar for CornerStar {
+    type Mesh = VolumeMesh;
     /// The node's corner of each element: the node first, then its three edge neighbours
     /// in the kind's order ([`VolumeKindRow::corner_edges`](crate::mesh::VolumeKindRow)),
     /// an even permutation of a tetrahedron's corners, so the volume keeps its sign.
-    fn gather(&mut self, mesh: &TetMesh, node: usize) {
+    fn gather(&mut self, mesh: &VolumeMesh, node: usize) {
         self.node = node as u32;
         self.x0 = mesh.nodes()[node];
         self.kind = mesh.kind();
@@ -72,7 +72,7 @@ impl DriverStar for TetStar {
             let Some(slot) = ids.iter().position(|&i| i as usize == node) else { continue };
             let [a, b, c] = row.corner_edges[slot];
             let pts = [slot, a, b, c].map(|k| mesh.nodes()[ids[k] as usize]);
-            self.tets.push(StarTet { element: e, pts });
+            self.tets.push(StarCorner { element: e, pts });
         }
     }
     #[inline]
@@ -137,9 +137,9 @@ impl DriverStar for TetStar {
         v
     }
     /// A 10-node mesh's tetrahedra with their mid-edge nodes (those of the node's edges
-    /// following it to their middles, as [`TetMesh::follow_mid_nodes`] moves them), so the
+    /// following it to their middles, as [`VolumeMesh::follow_mid_nodes`] moves them), so the
     /// rule reads what the statistics read.
-    fn verdict_in(&self, mesh: &TetMesh, x: DVec3, m: Measure) -> Verdict {
+    fn verdict_in(&self, mesh: &VolumeMesh, x: DVec3, m: Measure) -> Verdict {
         match mesh.kind() {
             VolumeKind::Tet4 => return self.verdict(x, m),
             VolumeKind::Tet10 => {}
@@ -170,16 +170,16 @@ impl DriverStar for TetStar {
 }
 
 /// A tetrahedral mesh as its own [`StarView`].
-pub(crate) struct Solid<'a>(pub &'a mut TetMesh);
+pub(crate) struct Solid<'a>(pub &'a mut VolumeMesh);
 
 impl StarView for Solid<'_> {
-    type Mesh = TetMesh;
+    type Mesh = VolumeMesh;
     #[inline]
-    fn mesh(&self) -> &TetMesh {
+    fn mesh(&self) -> &VolumeMesh {
         self.0
     }
     #[inline]
-    fn star_mesh(&mut self, _: usize) -> &TetMesh {
+    fn star_mesh(&mut self, _: usize) -> &VolumeMesh {
         self.0
     }
     fn place(&mut self, n: usize, x: DVec3) {
@@ -197,7 +197,7 @@ impl StarView for Solid<'_> {
 /// stars, with the same options, pass by pass.
 #[derive(Clone, Debug)]
 pub struct VolumeSmoother {
-    smoother: Smoother<TetStar>,
+    smoother: Smoother<CornerStar>,
 }
 
 impl VolumeSmoother {
@@ -209,7 +209,7 @@ impl VolumeSmoother {
         self.smoother.options()
     }
     /// The node loop of a pass (the planned order, then the untangling sweeps).
-    pub fn sweep(&mut self, mesh: &mut TetMesh, objective: &dyn Objective<TetStar>) -> SweepCounts {
+    pub fn sweep(&mut self, mesh: &mut VolumeMesh, objective: &dyn Objective<CornerStar>) -> SweepCounts {
         self.smoother.sweep_in(&mut Solid(mesh), objective)
     }
     /// One pass with its record: counts and time, and the mesh's statistics after it
@@ -217,8 +217,8 @@ impl VolumeSmoother {
     /// ratio). `clock` returns milliseconds.
     pub fn pass(
         &mut self,
-        mesh: &mut TetMesh,
-        objective: &dyn Objective<TetStar>,
+        mesh: &mut VolumeMesh,
+        objective: &dyn Objective<CornerStar>,
         pass: u32,
         clock: &dyn Fn() -> f64,
     ) -> PassRecord {
@@ -234,8 +234,8 @@ impl VolumeSmoother {
 
 /// Runs `passes` passes of a new [`VolumeSmoother`] over `mesh`, returning their records.
 pub fn smooth_volume(
-    mesh: &mut TetMesh,
-    objective: &dyn Objective<TetStar>,
+    mesh: &mut VolumeMesh,
+    objective: &dyn Objective<CornerStar>,
     options: SmoothOptions,
     passes: u32,
     clock: &dyn Fn() -> f64,

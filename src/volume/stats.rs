@@ -2,16 +2,16 @@
 //! for every kind of mesh: the CLI's tables, the pass records and the page read it alike),
 //! folded by the one [`MeshStatsBuilder`].
 
-use super::TetMesh;
+use super::VolumeMesh;
 use crate::quality::{ElementStats, MeshCounts, MeshStats, MeshStatsBuilder};
 
 /// The statistics of `mesh`: `min_angle_deg`/`max_angle_deg` and the 6° histogram
 /// (Freitag 1997, Fig. 3) are over the dihedral angles, `min_quality`/`mean_quality` over
 /// the mean ratio, `max_condition` is Knupp's κ (∞ when a tetrahedron is inverted, as for
 /// planar meshes), `inverted` counts tetrahedra of volume ≤ 0 (a 10-node one measured
-/// with its mid-edge nodes, [`TetMesh::measures`]), `tetrahedra` the
+/// with its mid-edge nodes, [`VolumeMesh::measures`]), `tetrahedra` the
 /// elements; `triangles` and `quads` are 0.
-pub fn volume_stats(mesh: &TetMesh) -> MeshStats {
+pub fn volume_stats(mesh: &VolumeMesh) -> MeshStats {
     let elements = mesh.element_count();
     let mut s = MeshStatsBuilder::new(MeshCounts {
         nodes: mesh.node_count(),

@@ -61,7 +61,7 @@ fn unit() -> Vec<DVec3> {
 
 #[test]
 fn bad_input_gives_errors_naming_the_node_or_element_and_line() {
-    let err = |p: TetParts| TetMesh::build(p).unwrap_err().to_string();
+    let err = |p: TetParts| VolumeMesh::build(p).unwrap_err().to_string();
     assert_eq!(err(parts(unit(), vec![])), Error::Empty("the mesh has no tetrahedra".into()).to_string());
     let mut nan = unit();
     nan[2].y = f64::NAN;
@@ -96,13 +96,13 @@ fn a_left_handed_mesh_is_turned_over() {
             [t[0], t[2], t[1], t[3]]
         })
         .collect();
-    let turned = TetMesh::build(parts(m.nodes().to_vec(), mirrored)).unwrap();
+    let turned = VolumeMesh::build(parts(m.nodes().to_vec(), mirrored)).unwrap();
     assert!((0..turned.element_count()).all(|e| q3::signed_volume(&turned.corners(e)) > 0.0));
     // a single inverted tetrahedron in a right-handed mesh stays inverted (tangled)
     let mut tangled = m.nodes().to_vec();
     tangled[13] = DVec3::new(1.2, 0.5, 0.5);
     let t =
-        TetMesh::build(parts(tangled, (0..m.element_count()).flat_map(|e| m.element(e).to_vec()).collect())).unwrap();
+        VolumeMesh::build(parts(tangled, (0..m.element_count()).flat_map(|e| m.element(e).to_vec()).collect())).unwrap();
     assert!((0..t.element_count()).any(|e| q3::signed_volume(&t.corners(e)) < 0.0));
 }
 
@@ -116,7 +116,7 @@ mod smoothing {
         0.0
     }
 
-    fn passes(mesh: &mut TetMesh, kind: ObjectiveKind, strategy: Strategy, n: u32) -> Vec<crate::smooth::PassRecord> {
+    fn passes(mesh: &mut VolumeMesh, kind: ObjectiveKind, strategy: Strategy, n: u32) -> Vec<crate::smooth::PassRecord> {
         let o = SmoothOptions::default().with_strategy(strategy);
         smooth_volume(mesh, &*tet_objective(kind).unwrap(), o, n, &no_clock).unwrap()
     }
@@ -207,7 +207,7 @@ fn statistics_are_the_same_at_every_scale() {
     let unit = volume_stats(&base);
     assert!((unit.min_angle_deg - 45.0).abs() < 1e-9 && (unit.max_angle_deg - 90.0).abs() < 1e-9, "{unit:?}");
     for s in [1e-300, 1e-150, 1e-100, 1e-80, 2f64.powi(-201), 1e-20, 1e20, 2f64.powi(201), 1e80, 1e100, 1e150, 1e300] {
-        let m = TetMesh::from_tets(base.nodes().iter().map(|&p| p * s).collect(), &tets).unwrap();
+        let m = VolumeMesh::from_tets(base.nodes().iter().map(|&p| p * s).collect(), &tets).unwrap();
         let st = volume_stats(&m);
         let near = |a: f64, b: f64| (a - b).abs() <= 1e-9 * b.abs().max(1.0);
         assert_eq!(st.inverted, 0, "scale {s:e}");
@@ -217,7 +217,7 @@ fn statistics_are_the_same_at_every_scale() {
         assert_eq!(st.angle_histogram_6deg, unit.angle_histogram_6deg, "scale {s:e}");
     }
     // exact powers of two give the same bits
-    let m = TetMesh::from_tets(base.nodes().iter().map(|&p| p * 2f64.powi(-300)).collect(), &tets).unwrap();
+    let m = VolumeMesh::from_tets(base.nodes().iter().map(|&p| p * 2f64.powi(-300)).collect(), &tets).unwrap();
     assert_eq!(volume_stats(&m).min_quality.to_bits(), unit.min_quality.to_bits());
 }
 
@@ -248,7 +248,7 @@ fn a_ten_node_tetrahedron_is_measured_with_its_mid_edge_nodes() {
     bent[4] = DVec3::new(0.1, 0.0, 0.0);
     assert!(tet10_measures(&bent, R).inverted);
     // and the mesh's statistics say so
-    let mesh = TetMesh::build(TetParts {
+    let mesh = VolumeMesh::build(TetParts {
         nodes: bent.to_vec(),
         node_lines: Vec::new(),
         kind: VolumeKind::Tet10,

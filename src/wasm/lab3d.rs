@@ -11,12 +11,12 @@ use crate::lab::views::Canvas;
 use crate::lab::{self, Side};
 use crate::render::Theme;
 use crate::surface::Surface;
-use crate::volume::TetMesh;
+use crate::volume::VolumeMesh;
 
 /// The lab of either kind (boxed: one handle, its size that of a pointer).
 enum Kind {
     Surface(Box<lab::Lab3d<Surface>>),
-    Volume(Box<lab::Lab3d<TetMesh>>),
+    Volume(Box<lab::Lab3d<VolumeMesh>>),
 }
 
 /// Calls the same method on the lab, whichever its kind.
@@ -43,11 +43,11 @@ impl Lab3d {
     }
 
     /// The handle of a lab on tetrahedra.
-    pub(super) fn volume(m: TetMesh) -> crate::Result<Lab3d> {
+    pub(super) fn volume(m: VolumeMesh) -> crate::Result<Lab3d> {
         Ok(Lab3d { inner: Kind::Volume(Box::new(lab::Lab3d::new(m)?)) })
     }
 
-    fn tetrahedra(&self) -> Result<&lab::Lab3d<TetMesh>, JsError> {
+    fn tetrahedra(&self) -> Result<&lab::Lab3d<VolumeMesh>, JsError> {
         match &self.inner {
             Kind::Volume(l) => Ok(l),
             Kind::Surface(_) => Err(JsError::new("the cut plane and the dihedral angles take tetrahedral meshes only")),

@@ -21,7 +21,7 @@ use smoothlab::smooth::limits::RENDER_PASSES;
 use smoothlab::smooth::{smooth, SmoothOptions, Strategy};
 use smoothlab::model::Model;
 use smoothlab::surface::{Surface, SurfaceSmoother};
-use smoothlab::volume::{smooth_volume, volume_stats, Cut, TetMesh};
+use smoothlab::volume::{smooth_volume, volume_stats, Cut, VolumeMesh};
 use smoothlab::Mesh;
 use tiny_skia::{Pixmap, PixmapPaint, Transform};
 
@@ -403,7 +403,7 @@ fn surface(
 fn volume(
     a: &RenderArgs,
     input: &std::path::Path,
-    v: TetMesh,
+    v: VolumeMesh,
     camera: Camera,
     passes: u32,
     shown: &[Side],

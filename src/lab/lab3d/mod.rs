@@ -5,7 +5,7 @@
 //! - [`surface`]: a [`Surface`](crate::surface::Surface), smoothed by the
 //!   [`SurfaceSmoother`](crate::surface::SurfaceSmoother) (Chen, Tristano & Kwok 2003 smooth
 //!   surface meshes star by star in the tangent plane); a node can be picked on it.
-//! - [`volume`]: a [`TetMesh`](crate::volume::TetMesh), smoothed by the
+//! - [`volume`]: a [`VolumeMesh`](crate::volume::VolumeMesh), smoothed by the
 //!   [`VolumeSmoother`](crate::volume::VolumeSmoother) (the planar drivers over stars of
 //!   tetrahedra) and drawn cut by a plane ([`Cut`](crate::volume::Cut)); the two sides'
 //!   dihedral angles in Freitag's 6° bins.

@@ -14,37 +14,37 @@ use crate::generate::perturb_volume;
 use crate::io::{write_model_string, Format, WriteOptions};
 use crate::lab::views::{pixmap, Canvas};
 use crate::lab::{PassSummary, Settings, Side};
-use crate::objective::{describe_tet, tet_objective, Objective, TetStar};
+use crate::objective::{describe_tet, tet_objective, Objective, CornerStar};
 use crate::quality::MeshStats;
 use crate::render::{render_angle_histogram, AngleHistogram, HistogramSeries, Projection, SurfaceView};
 use crate::smooth::SmoothOptions;
 use crate::model::Model;
-use crate::volume::{volume_stats, Cut, TetMesh, VolumeSmoother};
+use crate::volume::{volume_stats, Cut, VolumeMesh, VolumeSmoother};
 
-impl Mesh3d for TetMesh {
+impl Mesh3d for VolumeMesh {
     const KIND: &'static str = "volume";
     const WHAT: &'static str = "tetrahedra";
     const EXPORTS: &'static [Format] = &[Format::Msh, Format::Vtk];
     type Smoother = VolumeSmoother;
-    type Objective = dyn Objective<TetStar> + Send + Sync;
+    type Objective = dyn Objective<CornerStar> + Send + Sync;
     type Cut = Cut;
 
     fn node_count(&self) -> usize {
-        TetMesh::node_count(self)
+        VolumeMesh::node_count(self)
     }
     fn element_count(&self) -> usize {
-        TetMesh::element_count(self)
+        VolumeMesh::element_count(self)
     }
     fn smoother(o: SmoothOptions) -> Result<VolumeSmoother> {
         VolumeSmoother::new(o)
     }
-    fn objective(settings: &Settings, side: Side) -> Result<Box<dyn Objective<TetStar> + Send + Sync>> {
+    fn objective(settings: &Settings, side: Side) -> Result<Box<dyn Objective<CornerStar> + Send + Sync>> {
         tet_objective(settings.choice(side).objective)
     }
     fn pass(
         &mut self,
         smoother: &mut VolumeSmoother,
-        objective: &(dyn Objective<TetStar> + Send + Sync),
+        objective: &(dyn Objective<CornerStar> + Send + Sync),
         pass: u32,
         clock: &dyn Fn() -> f64,
     ) -> PassSummary {
@@ -53,7 +53,7 @@ impl Mesh3d for TetMesh {
     fn stats(&self) -> MeshStats {
         volume_stats(self)
     }
-    fn perturbed(&self, amount: f64, seed: u64) -> Result<TetMesh> {
+    fn perturbed(&self, amount: f64, seed: u64) -> Result<VolumeMesh> {
         perturb_volume(self, amount, seed)
     }
     /// The letter and what the side smooths with, in 3D's words ([`describe_tet`]; the
@@ -79,14 +79,14 @@ impl Mesh3d for TetMesh {
         write_model_string(&Model::Volume(self.clone()), format, &WriteOptions::default())
     }
     /// What the file's triangles and quads fixed off the boundary
-    /// ([`TetMesh::stray_faces_note`]).
+    /// ([`VolumeMesh::stray_faces_note`]).
     fn file_note(&self) -> Option<String> {
         self.stray_faces_note()
     }
 }
 
 /// What only tetrahedra have: the cut plane and the dihedral angles' histograms.
-impl Lab3d<TetMesh> {
+impl Lab3d<VolumeMesh> {
     /// Cuts both sides across `axis` (0, 1, 2: x, y, z) at the fraction `at` of the mesh's
     /// extent; anything else is refused, saying why.
     pub fn set_cut(&mut self, axis: usize, at: f64) -> Result<()> {
@@ -128,7 +128,7 @@ mod tests {
     use glam::DVec2;
     use crate::lab::sample::Sample;
 
-    fn lab() -> Lab3d<TetMesh> {
+    fn lab() -> Lab3d<VolumeMesh> {
         let Model::Volume(m) = Sample::Rand3d.model().unwrap() else { panic!("rand3d is tetrahedral") };
         Lab3d::new(m).unwrap()
     }

@@ -321,8 +321,8 @@ pub const FREITAG3D_METHODS: [Freitag3dMethod; 10] = {
 
 /// rand3D as the page's sample (seed 1), made once: its Delaunay tetrahedralization and
 /// face swaps cost more than a row's smoothing.
-fn rand3d_seed1() -> Result<crate::volume::TetMesh> {
-    static MESH: std::sync::OnceLock<crate::volume::TetMesh> = std::sync::OnceLock::new();
+fn rand3d_seed1() -> Result<crate::volume::VolumeMesh> {
+    static MESH: std::sync::OnceLock<crate::volume::VolumeMesh> = std::sync::OnceLock::new();
     if let Some(m) = MESH.get() {
         return Ok(m.clone());
     }
@@ -378,7 +378,7 @@ pub fn freitag3d_row(i: usize) -> Result<Freitag3dRow> {
 }
 
 /// A tetrahedral mesh cut half way up z, drawn by the 3D view with its title.
-fn cut_panel(mesh: &crate::volume::TetMesh, title: &str, c: Canvas, t: &Theme) -> Result<Pixmap> {
+fn cut_panel(mesh: &crate::volume::VolumeMesh, title: &str, c: Canvas, t: &Theme) -> Result<Pixmap> {
     let mut pm = pixmap(c.w, c.h)?;
     let view = crate::render::SurfaceView { dpr: c.dpr, title: Some(title.to_string()), theme: *t, ..crate::render::SurfaceView::default() };
     mesh.render_cut(&mut pm, crate::volume::Cut::default(), &view);
