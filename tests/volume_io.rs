@@ -57,7 +57,7 @@ fn same(a: &VolumeMesh, b: &VolumeMesh) {
 fn samples() -> Vec<VolumeMesh> {
     let cube = smoothlab::generate::tet_cube(3).unwrap();
     let tangled = smoothlab::generate::perturb_volume(&cube, 0.7, 5).unwrap();
-    let quadratic = tangled.to_quadratic().unwrap();
+    let quadratic = tangled.to_quadratic(false).unwrap();
     vec![cube, tangled, quadratic]
 }
 
@@ -134,7 +134,7 @@ fn bad_tetrahedral_files_are_refused_naming_the_line_or_element() {
     assert!(e.contains("mixes 4-node and 10-node tetrahedra"), "{e}");
     // read as a planar mesh: said so
     let e = io::read_str(GMSH_TET10, Format::Msh).unwrap_err().to_string();
-    assert!(e.contains("holds tetrahedra, not a planar mesh"), "{e}");
+    assert!(e.contains("holds volume elements, not a planar mesh"), "{e}");
 }
 
 #[test]

@@ -123,7 +123,7 @@ fn random_boundary(n: usize, seed: u64) -> VolumeMesh {
 
 /// The smallest size of a tetrahedron (6V) relative to the largest.
 fn smallest_relative_volume(m: &VolumeMesh) -> f64 {
-    let v: Vec<f64> = (0..m.element_count()).map(|e| signed_volume(&m.corners(e))).collect();
+    let v: Vec<f64> = (0..m.element_count()).map(|e| signed_volume(&m.tet_corners(e))).collect();
     v.iter().copied().fold(f64::INFINITY, f64::min) / v.iter().copied().fold(0.0, f64::max)
 }
 
@@ -182,7 +182,7 @@ fn the_priority_order_is_the_same_at_every_scale() {
 fn curved_ten_node_tetrahedra_are_left_no_worse() {
     let mut tried = 0;
     for seed in 0..6u64 {
-        let mut m = perturb_volume(&tet_cube(3).unwrap(), 0.2, seed).unwrap().to_quadratic().unwrap();
+        let mut m = perturb_volume(&tet_cube(3).unwrap(), 0.2, seed).unwrap().to_quadratic(false).unwrap();
         let mut rng = SplitMix64::new(seed);
         let h = m.mean_edge_length();
         for n in 0..m.node_count() {

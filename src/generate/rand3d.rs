@@ -403,7 +403,7 @@ mod tests {
             assert_eq!(m.node_count(), n);
             let mut volume = 0.0;
             for e in 0..m.element_count() {
-                let t = m.corners(e);
+                let t = m.tet_corners(e);
                 let v = signed_volume(&t);
                 assert!(v > 0.0, "n {n}: tetrahedron {e} has volume {v}");
                 volume += v;
@@ -420,7 +420,7 @@ mod tests {
             // the boundary is the cube's six faces: area 6, every face on x, y or z = 0 or 1
             let mut area = 0.0;
             for f in m.boundary_faces() {
-                let [a, b, c] = f.map(|i| m.nodes()[i as usize]);
+                let [a, b, c] = f.as_triangle().unwrap().map(|i| m.nodes()[i as usize]);
                 area += 0.5 * (b - a).cross(c - a).length();
                 let on_side = (0..3).any(|k| {
                     [a[k], b[k], c[k]].iter().all(|&x| x == 0.0) || [a[k], b[k], c[k]].iter().all(|&x| x == 1.0)
@@ -454,16 +454,16 @@ mod tests {
             let delaunay = VolumeMesh::from_tets(p.clone(), &delaunay_tetrahedra(&p).unwrap()).unwrap();
             let m = rand3d(n, seed).unwrap();
             assert_eq!(m.nodes(), delaunay.nodes());
-            let volume: f64 = (0..m.element_count()).map(|e| signed_volume(&m.corners(e))).sum();
+            let volume: f64 = (0..m.element_count()).map(|e| signed_volume(&m.tet_corners(e))).sum();
             assert!((volume - 1.0).abs() < 1e-12, "n {n}: volume {volume}");
-            assert!((0..m.element_count()).all(|e| signed_volume(&m.corners(e)) > 0.0));
+            assert!((0..m.element_count()).all(|e| signed_volume(&m.tet_corners(e)) > 0.0));
             // the same boundary faces: only interior faces and edges are swapped
             let sorted = |m: &VolumeMesh| {
                 let mut f: Vec<[u32; 3]> = m
                     .boundary_faces()
                     .iter()
                     .map(|f| {
-                        let mut f = *f;
+                        let mut f = f.as_triangle().unwrap();
                         f.sort_unstable();
                         f
                     })
@@ -473,7 +473,7 @@ mod tests {
             };
             assert_eq!(sorted(&m), sorted(&delaunay));
             let smallest = |m: &VolumeMesh| {
-                (0..m.element_count()).map(|e| tet_measures(&m.corners(e), m.kind().reference()).min_dihedral_deg).fold(180.0, f64::min)
+                (0..m.element_count()).map(|e| tet_measures(&m.tet_corners(e), &crate::quality::tet::EQUILATERAL_TET).min_dihedral_deg).fold(180.0, f64::min)
             };
             assert!(smallest(&m) >= smallest(&delaunay), "n {n}");
         }
@@ -504,7 +504,7 @@ mod tests {
     fn freitags_sample_size() {
         let m = rand3d(RAND3D_POINTS, 1).unwrap();
         let (lo, hi) = (0..m.element_count())
-            .map(|e| tet_measures(&m.corners(e), m.kind().reference()))
+            .map(|e| tet_measures(&m.tet_corners(e), &crate::quality::tet::EQUILATERAL_TET))
             .fold((180.0f64, 0.0f64), |(lo, hi), q| (lo.min(q.min_dihedral_deg), hi.max(q.max_dihedral_deg)));
         // random points leave poor tetrahedra even after the swaps, as Freitag's had
         // (0.471° / 179.21° after hers): work for the smoothers

@@ -494,6 +494,12 @@ pub fn write_model_string(model: &Model, format: Format, opts: &WriteOptions) ->
 /// Writes a tetrahedral mesh as the texts of a TetGen `.node` (1-based, dimension 3,
 /// marker 1 on fixed nodes) and `.ele` file.
 pub fn write_tetgen(mesh: &crate::volume::VolumeMesh) -> Result<(String, String)> {
+    if !mesh.is_tets() {
+        return Err(Error::invalid(format!(
+            "TetGen's .ele holds tetrahedra, and this mesh has {}: write .msh or .vtk",
+            mesh.family_words()
+        )));
+    }
     let (mut node, mut ele) = (Out::string(80 * mesh.node_count() + 64), Out::string(48 * mesh.element_count() + 64));
     volume::write_tetgen(mesh, &mut node, &mut ele);
     check_written(node.len(), ".node")?;

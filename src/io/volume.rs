@@ -42,7 +42,7 @@ impl MshSource for VolumeMesh {
     }
     fn element_type(&self, e: usize) -> u32 {
         match e.checked_sub(VolumeMesh::element_count(self)) {
-            None => self.kind().row().gmsh_type,
+            None => self.element_kind(e).row().gmsh_type,
             Some(f) => msh::type_of(self.faces()[f].kind),
         }
     }
@@ -50,7 +50,7 @@ impl MshSource for VolumeMesh {
         let ids = match e.checked_sub(VolumeMesh::element_count(self)) {
             None => {
                 let ids = self.element(e);
-                for &j in self.kind().row().gmsh_order {
+                for &j in self.element_kind(e).row().gmsh_order {
                     let _ = write!(s, " {}", ids[j] + 1);
                 }
                 return;
@@ -66,7 +66,15 @@ impl MshSource for VolumeMesh {
         let mut types: Vec<u32> = self.faces().iter().map(|f| msh::type_of(f.kind)).collect();
         types.sort_unstable();
         types.dedup();
-        let mut blocks = vec![MshBlock { dim: 3, ty: self.kind().row().gmsh_type, range: 0..m }];
+        // a block per run of one kind, so a mixed mesh's elements keep their order
+        let mut blocks: Vec<MshBlock> = Vec::new();
+        for e in 0..m {
+            let ty = self.element_kind(e).row().gmsh_type;
+            match blocks.last_mut() {
+                Some(b) if b.ty == ty => b.range.end = e + 1,
+                _ => blocks.push(MshBlock { dim: 3, ty, range: e..e + 1 }),
+            }
+        }
         blocks.extend(types.into_iter().map(|ty| MshBlock { dim: 2, ty, range: m..m + self.faces().len() }));
         blocks
     }
@@ -75,23 +83,23 @@ impl MshSource for VolumeMesh {
     }
 }
 
-/// A legacy VTK `UNSTRUCTURED_GRID` of the tetrahedra (cell type 10 or 24), then the
-/// file's triangles and quads ([`VolumeMesh::faces`]).
+/// A legacy VTK `UNSTRUCTURED_GRID` of the elements (each its kind's cell type, our node
+/// order being VTK's), then the file's triangles and quads ([`VolumeMesh::faces`]).
 pub(crate) fn write_vtk(mesh: &VolumeMesh, s: &mut Out) {
     let n = mesh.node_count();
     let m = mesh.element_count();
     let faces = mesh.faces();
     let face_size: usize = faces.iter().map(|f| f.nodes().len() + 1).sum();
-    let (ty, k) = (mesh.kind().row().vtk_type, mesh.kind().nodes());
+    let size: usize = (0..m).map(|e| mesh.element(e).len() + 1).sum();
     let _ =
         write!(s, "# vtk DataFile Version 3.0\nsmoothlab mesh\nASCII\nDATASET UNSTRUCTURED_GRID\nPOINTS {n} double\n");
     for p in mesh.nodes() {
         write_point(s, *p);
         s.push('\n');
     }
-    let _ = writeln!(s, "CELLS {} {}", m + faces.len(), m * (k + 1) + face_size);
+    let _ = writeln!(s, "CELLS {} {}", m + faces.len(), size + face_size);
     for e in 0..m {
-        let _ = write!(s, "{k}");
+        let _ = write!(s, "{}", mesh.element(e).len());
         for &i in mesh.element(e) {
             let _ = write!(s, " {i}");
         }
@@ -105,8 +113,8 @@ pub(crate) fn write_vtk(mesh: &VolumeMesh, s: &mut Out) {
         s.push('\n');
     }
     let _ = writeln!(s, "CELL_TYPES {}", m + faces.len());
-    for _ in 0..m {
-        let _ = writeln!(s, "{ty}");
+    for e in 0..m {
+        let _ = writeln!(s, "{}", mesh.element_kind(e).row().vtk_type);
     }
     for f in faces {
         let _ = writeln!(s, "{}", super::vtk::type_of(f.kind));
@@ -114,7 +122,8 @@ pub(crate) fn write_vtk(mesh: &VolumeMesh, s: &mut Out) {
     super::vtk::write_fixed(mesh.fixed(), s);
 }
 
-/// TetGen's `.node` (1-based, dimension 3, marker 1 on fixed nodes) and `.ele` texts.
+/// TetGen's `.node` (1-based, dimension 3, marker 1 on fixed nodes) and `.ele` texts (a
+/// mesh of tetrahedra: [`super::write_tetgen`] refuses the other kinds).
 pub(crate) fn write_tetgen(mesh: &VolumeMesh, node: &mut Out, ele: &mut Out) {
     let _ = writeln!(node, "{} 3 0 1", mesh.node_count());
     for (i, p) in mesh.nodes().iter().enumerate() {
@@ -122,7 +131,7 @@ pub(crate) fn write_tetgen(mesh: &VolumeMesh, node: &mut Out, ele: &mut Out) {
         write_point(node, *p);
         let _ = writeln!(node, " {}", u8::from(mesh.fixed()[i]));
     }
-    let k = mesh.kind().nodes();
+    let k = mesh.element(0).len();
     let _ = writeln!(ele, "{} {k} 0", mesh.element_count());
     for e in 0..mesh.element_count() {
         let _ = write!(ele, "{}", e + 1);

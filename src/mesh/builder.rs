@@ -68,12 +68,11 @@ pub struct MeshBuilder {
     elem_start: Vec<u32>,
     elem_nodes: Vec<u32>,
     elem_lines: Vec<u32>,
-    /// Tetrahedra (built into a tetrahedral mesh above this module): node ids, 4 or 10
-    /// each in VTK's order, with their lines; a file with any is a tetrahedral mesh.
+    /// Volume elements (built into a volume mesh above this module): node ids in VTK's
+    /// order, with their lines and kinds; a file with any is a volume mesh.
     tets: Vec<u32>,
     tet_lines: Vec<u32>,
-    /// The kind of the volume elements, once the first is added.
-    volume_kind: Option<super::VolumeKind>,
+    volume_kinds: Vec<super::VolumeKind>,
     /// How fixed flags are decided.
     pub fixed: FixedSpec,
 }
@@ -108,11 +107,11 @@ pub(crate) struct VolumeParts {
     pub face_start: Vec<u32>,
     pub face_nodes: Vec<u32>,
     pub face_lines: Vec<u32>,
-    /// Node ids, `kind.nodes()` per element, in VTK's order.
+    /// Node ids, `kinds[e].nodes()` for element `e`, in VTK's order.
     pub tets: Vec<u32>,
     pub tet_lines: Vec<u32>,
-    /// The kind of every volume element (one kind per mesh).
-    pub kind: super::VolumeKind,
+    /// The kind of every volume element.
+    pub kinds: Vec<super::VolumeKind>,
     pub fixed: FixedSpec,
 }
 
@@ -161,20 +160,25 @@ impl MeshBuilder {
     }
     /// Adds a volume element of `kind` with 0-based node indices in VTK's order (a 10-node
     /// tetrahedron's mid-edge nodes on the edges of `TET10_EDGES`), checked when the volume
-    /// mesh is built (`Model::build`); a file that mixes kinds (4- and 10-node tetrahedra)
-    /// is refused here, naming the line.
+    /// mesh is built (`Model::build`). Linear kinds mix freely; a file that mixes a
+    /// quadratic kind with another ([`VolumeKind::mixes_with`]) is refused here, naming
+    /// the line.
+    ///
+    /// [`VolumeKind::mixes_with`]: super::VolumeKind::mixes_with
     pub fn add_volume_element(&mut self, kind: super::VolumeKind, nodes: &[u32], line: usize) -> Result<()> {
         debug_assert_eq!(nodes.len(), kind.nodes());
-        match self.volume_kind {
-            Some(k) if k != kind => {
-                return Err(Error::element(
-                    self.tet_lines.len(),
-                    Some(line).filter(|&l| l > 0),
-                    format!("the file mixes {}: smoothlab takes one kind per mesh", super::VolumeKind::mix_words(k, kind)),
-                ))
-            }
-            _ => self.volume_kind = Some(kind),
+        // against the first kind: all linear, or all the first's quadratic kind
+        if let Some(&k) = self.volume_kinds.first().filter(|&&k| !super::VolumeKind::mixes_with(k, kind)) {
+            return Err(Error::element(
+                self.tet_lines.len(),
+                Some(line).filter(|&l| l > 0),
+                format!(
+                    "the file mixes {}: smoothlab mixes linear kinds, but a quadratic mesh is of one kind",
+                    super::VolumeKind::mix_words(k, kind)
+                ),
+            ));
         }
+        self.volume_kinds.push(kind);
         self.tets.extend_from_slice(nodes);
         self.tet_lines.push(line as u32);
         Ok(())
@@ -219,7 +223,7 @@ impl MeshBuilder {
             face_start: self.elem_start,
             face_nodes: self.elem_nodes,
             face_lines: self.elem_lines,
-            kind: self.volume_kind.unwrap_or(super::VolumeKind::Tet4),
+            kinds: self.volume_kinds,
             tets: self.tets,
             tet_lines: self.tet_lines,
             fixed,
@@ -248,7 +252,7 @@ impl MeshBuilder {
         if self.has_tets() {
             return Err(Error::unsupported(
                 self.tet_lines.first().map(|&l| l as usize).filter(|&l| l > 0),
-                "the file holds tetrahedra, not a planar mesh (smoothlab's stats and smooth take tetrahedral meshes)",
+                "the file holds volume elements, not a planar mesh (smoothlab's stats and smooth take volume meshes)",
             ));
         }
         self.check()?;

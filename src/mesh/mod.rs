@@ -26,7 +26,8 @@ pub(crate) use builder::{Flat, SurfaceParts};
 pub use builder::{polygon_area, FixedSpec, MeshBuilder, MAX_COORDINATE, PLANAR_TOLERANCE};
 pub use kind::{ElementKind, NodeRole};
 pub use volume_kind::{
-    CornerReference, VolumeKind, VolumeKindRow, EQUILATERAL_TET, EQUILATERAL_W, EQUILATERAL_W_INVERSE, TET10_EDGES,
+    CornerReference, VolumeKind, VolumeKindRow, CUBE_CORNER, EQUILATERAL_TET, EQUILATERAL_W, EQUILATERAL_W_INVERSE,
+    PYRAMID_CORNER, TET10_EDGES, WEDGE_CORNER, WITH_FIRST,
 };
 use topology::build_topology;
 

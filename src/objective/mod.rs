@@ -52,7 +52,7 @@ pub use new::{
 pub use old::{CornerTerm, MaxMinShape};
 pub use point::{NodeStar, Point};
 pub use sine::MaxMinSine;
-pub use tet::{describe_tet, tet_form, tet_kinds, tet_objective, RegularisedMeanRatio, StarCorner, TetObjective, CornerStar};
+pub use tet::{describe_tet, tet_form, tet_kinds, tet_objective, CornerStar, RegularisedMeanRatio, StarCorner, StarSolid, TetObjective};
 pub use untangle::{MaxMinDet, Untangle, UNTANGLE_BETA};
 
 enum_with_all! {

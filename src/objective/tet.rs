@@ -27,18 +27,34 @@ use glam::DVec3;
 use super::{Goal, NodeStar, Objective, ObjectiveKind, Term, BARRIER_EPSILON, BARRIER_WEIGHT, CONDITION_BARRIER};
 use crate::error::{Error, Result};
 use crate::mesh::VolumeKind;
-use crate::quality::tet::{self as q3, CornerReference};
+use crate::quality::solid::scaled_jacobian_grad0;
+use crate::quality::tet::{self as q3, CornerReference, EQUILATERAL_TET};
 
-/// One tetrahedron of a star: its corners with the free node first.
+/// One corner of an element of a star, as the tetrahedron of its Jacobian (Knupp 1999):
+/// the corner and its three edge neighbours, reordered so that the free node comes first.
+/// A tetrahedron is one such corner, the free node's own; a hexahedron, wedge or pyramid
+/// gives every measured corner whose tetrahedron holds the free node (its own and those of
+/// its edge neighbours), each measured against the reference of its slot
+/// ([`crate::mesh::VolumeKindRow::slot_references`]) so that it reads the same `T = A·W⁻¹`.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct StarCorner {
     /// Element index in the mesh.
     pub element: u32,
-    /// The corners, the free node's first, in an even permutation of the element's order.
+    /// The corner's tetrahedron, the free node's position first, in an even permutation.
     pub pts: [DVec3; 4],
+    /// The reference its Jacobian is measured against.
+    pub reference: &'static CornerReference,
+    /// Whether the tetrahedron is the whole element (a tetrahedron): its measures are the
+    /// element's (the dihedral sines), not a corner's (the scaled Jacobian).
+    pub simplex: bool,
 }
 
 impl StarCorner {
+    /// A tetrahedron of a star (the free node first), measured against the equilateral
+    /// tetrahedron.
+    pub fn tet(element: u32, pts: [DVec3; 4]) -> Self {
+        StarCorner { element, pts, reference: &EQUILATERAL_TET, simplex: true }
+    }
     /// The corners with the free node at `x`.
     #[inline]
     pub fn at(&self, x: DVec3) -> [DVec3; 4] {
@@ -48,8 +64,34 @@ impl StarCorner {
     }
 }
 
-/// The star of a free node of a tetrahedral mesh: the tetrahedra that have it as a
-/// corner, gathered once per visit (a reusable scratch buffer, as the planar
+/// An element of a star that is not a tetrahedron, whole, for the validity guard: its
+/// corners (the free node's at `slot`) and kind.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct StarSolid {
+    pub element: u32,
+    pub kind: VolumeKind,
+    pub slot: u8,
+    pub pts: [DVec3; 8],
+}
+
+impl StarSolid {
+    /// Its corners with the free node at `x`.
+    #[inline]
+    pub fn at(&self, x: DVec3) -> [DVec3; 8] {
+        let mut p = self.pts;
+        p[self.slot as usize] = x;
+        p
+    }
+    /// Its first [`VolumeKind::corners`] corners of `p`.
+    #[inline]
+    pub fn corners<'a>(&self, p: &'a [DVec3; 8]) -> &'a [DVec3] {
+        &p[..self.kind.corners()]
+    }
+}
+
+/// The star of a free node of a volume mesh: the corners of its elements that it moves
+/// ([`StarCorner`]), and the elements other than tetrahedra whole ([`StarSolid`]),
+/// gathered once per visit (reusable scratch buffers, as the planar
 /// [`Star`](super::Star)).
 #[derive(Clone, Debug)]
 pub struct CornerStar {
@@ -58,25 +100,33 @@ pub struct CornerStar {
     /// Its position (when gathered, then as the driver moves it).
     pub x0: DVec3,
     pub tets: Vec<StarCorner>,
-    /// The elements' kind (set when gathered): its corners' reference W is
-    /// [`reference`](Self::reference).
-    pub kind: VolumeKind,
+    /// The elements that are not tetrahedra (empty in a mesh of tetrahedra).
+    pub elements: Vec<StarSolid>,
 }
 
 impl Default for CornerStar {
-    /// An empty star of linear tetrahedra, until one is gathered.
+    /// An empty star, until one is gathered.
     fn default() -> Self {
-        CornerStar { node: 0, x0: DVec3::ZERO, tets: Vec::new(), kind: VolumeKind::Tet4 }
+        CornerStar { node: 0, x0: DVec3::ZERO, tets: Vec::new(), elements: Vec::new() }
     }
 }
 
 impl CornerStar {
-    /// The reference W of the elements' corners: their kind's
-    /// ([`VolumeKind::reference`]). Asked of the kind at each use rather than kept, so that
-    /// where every kind has the same reference the measures see it as a constant.
+    /// A star of tetrahedra (each with the free node first).
+    pub fn of_tets(x0: DVec3, tets: Vec<StarCorner>) -> Self {
+        CornerStar { node: 0, x0, tets, elements: Vec::new() }
+    }
+    /// The reference W of a tetrahedron's corners, the equilateral tetrahedron's (every
+    /// kind of tetrahedron's).
     #[inline]
     pub fn reference(&self) -> &'static CornerReference {
-        self.kind.reference()
+        &EQUILATERAL_TET
+    }
+    /// Whether every element is a tetrahedron: then every corner is measured against
+    /// [`reference`](Self::reference), which the measures see as a constant.
+    #[inline]
+    pub fn only_tets(&self) -> bool {
+        self.elements.is_empty()
     }
 }
 
@@ -99,6 +149,11 @@ impl NodeStar for CornerStar {
         s.x0 *= f;
         for t in &mut s.tets {
             for p in &mut t.pts {
+                *p *= f;
+            }
+        }
+        for e in &mut s.elements {
+            for p in &mut e.pts {
                 *p *= f;
             }
         }
@@ -193,7 +248,7 @@ impl RegularisedMeanRatio {
         }
         let (mut sum, mut min) = (0.0, f64::INFINITY);
         for t in &star.tets {
-            let s = q3::WeightedJacobian::of(&t.pts, star.reference()).sigma;
+            let s = q3::WeightedJacobian::of(&t.pts, t.reference).sigma;
             sum += s.abs();
             min = min.min(s);
         }
@@ -254,24 +309,49 @@ impl TetObjective {
     }
 
     /// Calls `emit` with every term at `x`.
-    fn visit(&self, star: &CornerStar, x: DVec3, mut emit: impl FnMut(Term<DVec3>)) {
+    fn visit(&self, star: &CornerStar, x: DVec3, emit: impl FnMut(Term<DVec3>)) {
+        if star.only_tets() {
+            // every corner against the one static reference, a constant the measures fold
+            self.visit_with(star, x, emit, |_| &EQUILATERAL_TET, |_| true)
+        } else {
+            self.visit_with(star, x, emit, |t| t.reference, |t| t.simplex)
+        }
+    }
+
+    /// [`visit`](Self::visit) with each corner's reference and whether it is a whole
+    /// tetrahedron.
+    #[inline(always)]
+    fn visit_with(
+        &self,
+        star: &CornerStar,
+        x: DVec3,
+        mut emit: impl FnMut(Term<DVec3>),
+        reference: impl Fn(&StarCorner) -> &'static CornerReference,
+        simplex: impl Fn(&StarCorner) -> bool,
+    ) {
         match *self {
             TetObjective::Regularised(r) => {
                 let delta = r.delta(star);
                 for (i, t) in star.tets.iter().enumerate() {
-                    let (value, grad) = r.term(&t.at(x), star.reference(), delta);
+                    let (value, grad) = r.term(&t.at(x), reference(t), delta);
                     emit(Term { elem: i as u32, value, grad });
                 }
             }
             TetObjective::MeanRatio => {
                 for (i, t) in star.tets.iter().enumerate() {
-                    let (value, grad) = q3::mean_ratio_grad0(&t.at(x), star.reference());
+                    let (value, grad) = q3::mean_ratio_grad0(&t.at(x), reference(t));
                     emit(Term { elem: i as u32, value, grad });
                 }
             }
             TetObjective::DihedralSine => {
                 for (i, t) in star.tets.iter().enumerate() {
-                    for (value, grad) in q3::dihedral_sines_grad0(&t.at(x)) {
+                    if simplex(t) {
+                        for (value, grad) in q3::dihedral_sines_grad0(&t.at(x)) {
+                            emit(Term { elem: i as u32, value, grad });
+                        }
+                    } else {
+                        // a corner of another kind: its scaled Jacobian, the 3D sine of a corner
+                        let (value, grad) = scaled_jacobian_grad0(&t.at(x), reference(t));
                         emit(Term { elem: i as u32, value, grad });
                     }
                 }
@@ -280,7 +360,7 @@ impl TetObjective {
                 let max = matches!(self, TetObjective::ConditionMax);
                 for (i, t) in star.tets.iter().enumerate() {
                     let p = t.at(x);
-                    let (kappa, g) = q3::condition_number_grad0(&p, star.reference());
+                    let (kappa, g) = q3::condition_number_grad0(&p, reference(t));
                     // behind the barrier (σ ≤ 0, or κ² beyond it): a huge finite value with
                     // zero gradient, as in the plane ([`CONDITION_BARRIER`])
                     let valid = q3::signed_volume(&p) > 0.0 && kappa.is_finite() && kappa * kappa < CONDITION_BARRIER;
@@ -362,15 +442,15 @@ mod tests {
     /// A star of `n` random tetrahedra around `x0` (each with the free node first).
     fn random_star(rng: &mut SplitMix64, n: usize, x0: DVec3) -> CornerStar {
         let tets = (0..n)
-            .map(|e| StarCorner { element: e as u32, pts: [x0, x0 + point(rng), x0 + point(rng), x0 + point(rng)] })
+            .map(|e| StarCorner::tet(e as u32, [x0, x0 + point(rng), x0 + point(rng), x0 + point(rng)]))
             .collect();
-        CornerStar { node: 0, x0, tets, kind: VolumeKind::Tet4 }
+        CornerStar::of_tets(x0, tets)
     }
 
     /// The regular tetrahedron's star of one element: every objective at its best.
     fn regular_star() -> CornerStar {
         let pts = [DVec3::ZERO, EQUILATERAL_W.x_axis, EQUILATERAL_W.y_axis, EQUILATERAL_W.z_axis];
-        CornerStar { node: 0, x0: DVec3::ZERO, tets: vec![StarCorner { element: 0, pts }], kind: VolumeKind::Tet4 }
+        CornerStar::of_tets(DVec3::ZERO, vec![StarCorner::tet(0, pts)])
     }
 
     #[test]

@@ -19,6 +19,7 @@ use crate::mesh::ElementKind;
 use crate::numeric::{is_beyond_safe_scale, to_unit_scale, SAFE_SCALE};
 
 pub mod elementary;
+pub mod solid;
 mod stats;
 pub mod tet;
 

@@ -30,7 +30,8 @@ use glam::{DVec2, DVec3};
 use super::Measure;
 use crate::mesh::ElementKind;
 use super::measure::triangle_shape_at;
-use crate::quality::{corner_edge_vectors, measure_element, tet as q3};
+use crate::mesh::VolumeKind;
+use crate::quality::{corner_edge_vectors, measure_element, solid, tet as q3};
 
 /// The smallest size an element of a valid star may keep, as a fraction of its size
 /// before the move: a thousandth. A move that keeps the star's worst shape cannot shrink
@@ -141,6 +142,37 @@ impl ElementScore {
 }
 
 impl ElementScore {
+    /// An element of another kind than a tetrahedron, by its corners `p` (in its kind's
+    /// order): the mean of its corners' mean ratios or its smallest corner scaled Jacobian
+    /// ([`solid`]), inverted unless certainly valid ([`solid::validity`]: a fold inside
+    /// counts, not its corners only), its inversion [`solid::solid_inversion`], its size
+    /// its smallest corner determinant.
+    pub fn solid(kind: VolumeKind, p: &[DVec3], measure: Measure) -> Self {
+        let validity = solid::validity(kind, p);
+        let quality = match measure {
+            Measure::Shape => solid::solid_shape(kind, p),
+            Measure::MinSine => solid::solid_min_sine(kind, p),
+        };
+        let mut size: Option<Size> = None;
+        for c in 0..kind.row().corner_edges.len() {
+            let t = solid::corner_tet(kind, p, c);
+            let e = [t[1] - t[0], t[2] - t[0], t[3] - t[0]];
+            let m = e.iter().fold(0.0f64, |m, v| m.max(v.abs().max_element()));
+            let unit = (e[0] / m).dot((e[1] / m).cross(e[2] / m));
+            let s = Size { unit, scale: m, dim: 3 };
+            size = Some(match size {
+                Some(old) if !old.at_least(1.0, &s) => old,
+                _ => s,
+            });
+        }
+        ElementScore {
+            quality,
+            inverted: validity != solid::Validity::Valid,
+            inversion: solid::solid_inversion(kind, p, validity),
+            size: size.expect("every kind measures a corner"),
+        }
+    }
+
     /// A 10-node tetrahedron `p` (VTK's node order) with its mid-edge nodes: its four
     /// corner Jacobians' tetrahedra ([`q3::tet10_corner_tets`]) — the worst quality, any
     /// inverted, their inversions summed, the smallest size.

@@ -17,6 +17,7 @@ use glam::DVec3;
 use crate::error::{Error, Result};
 pub use crate::mesh::{VolumeKind, TET10_EDGES};
 use crate::mesh::{FixedSpec, MeshBuilder, NodeRole};
+use crate::quality::solid::{solid_measures, validity, SolidMeasures, Validity};
 use crate::quality::tet as q3;
 
 mod picture;
@@ -31,14 +32,15 @@ pub use smooth::{smooth_volume, VolumeSmoother};
 pub use stats::volume_stats;
 pub use swap::swap_max_min_dihedral;
 
-/// What a reader found, before it is checked: nodes and tetrahedra with their file lines
+/// What a reader found, before it is checked: nodes and elements with their file lines
 /// (0 where none), and how the fixed flags are decided.
 #[derive(Clone, Debug)]
-pub struct TetParts {
+pub struct SolidParts {
     pub nodes: Vec<DVec3>,
     pub node_lines: Vec<u32>,
-    pub kind: VolumeKind,
-    /// Node ids, [`VolumeKind::nodes`] per element.
+    /// The kind of every element.
+    pub kinds: Vec<VolumeKind>,
+    /// Node ids, [`VolumeKind::nodes`] per element, one element after another.
     pub elements: Vec<u32>,
     pub element_lines: Vec<u32>,
     pub fixed: FixedSpec,
@@ -47,9 +49,9 @@ pub struct TetParts {
     pub faces: Vec<GivenFace>,
 }
 
-/// A triangle or quad a tetrahedral mesh's file gave beside its tetrahedra (Gmsh writes
+/// A triangle or quad a volume mesh's file gave beside its elements (Gmsh writes
 /// the boundary faces, often with their physical groups): its nodes fix those nodes, and
-/// the writers write it back after the tetrahedra.
+/// the writers write it back after the elements.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct GivenFace {
     pub kind: crate::mesh::ElementKind,
@@ -70,25 +72,72 @@ impl GivenFace {
     }
 }
 
-/// A mesh of tetrahedra (see the module docs).
+/// A face of an element by its corner nodes: a triangle or a quadrilateral, ordered so
+/// that its normal points out of the element.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub struct Face {
+    nodes: [u32; 4],
+    len: u8,
+}
+
+impl Face {
+    fn of(ids: &[u32], local: &[usize]) -> Face {
+        let mut nodes = [u32::MAX; 4];
+        for (n, &j) in nodes.iter_mut().zip(local) {
+            *n = ids[j];
+        }
+        Face { nodes, len: local.len() as u8 }
+    }
+    /// Its corner nodes, 3 or 4.
+    #[inline]
+    pub fn nodes(&self) -> &[u32] {
+        &self.nodes[..self.len as usize]
+    }
+    /// Its nodes sorted: the same for the two elements that share it.
+    fn key(&self) -> [u32; 4] {
+        let mut k = self.nodes;
+        k.sort_unstable();
+        k
+    }
+    /// Its corners when it is a triangle.
+    pub fn as_triangle(&self) -> Option<[u32; 3]> {
+        (self.len == 3).then(|| [self.nodes[0], self.nodes[1], self.nodes[2]])
+    }
+    /// The triangles that cover it: itself, or a quad's two halves.
+    pub fn triangles(&self) -> impl Iterator<Item = [u32; 3]> + '_ {
+        let n = self.nodes;
+        let quad = self.len == 4;
+        std::iter::once([n[0], n[1], n[2]]).chain(quad.then_some([n[0], n[2], n[3]]))
+    }
+}
+
+/// A mesh of volume elements (see the module docs).
 #[derive(Clone, Debug)]
 pub struct VolumeMesh {
     nodes: Vec<DVec3>,
-    kind: VolumeKind,
+    kinds: Vec<VolumeKind>,
+    /// The kinds present, in [`VolumeKind`]'s order.
+    present: Vec<VolumeKind>,
+    /// CSR: element `e`'s nodes are `elements[start[e]..start[e + 1]]`.
+    start: Vec<u32>,
     elements: Vec<u32>,
     fixed: Vec<bool>,
     role: Vec<NodeRole>,
-    /// CSR: the tetrahedra with node n as a corner.
+    /// CSR: the elements with node n as a corner.
     tet_start: Vec<u32>,
     tets: Vec<u32>,
     /// CSR: the corner nodes sharing an edge with corner n.
     nb_start: Vec<u32>,
     nb: Vec<u32>,
-    /// CSR (quadratic meshes): the (mid node, other end) of every edge at corner n.
+    /// CSR (quadratic meshes): the nodes that follow corner n (mid-edge, face and centre
+    /// nodes of its elements that have it among their corners).
     follow_start: Vec<u32>,
-    follow: Vec<[u32; 2]>,
-    /// Faces of one tetrahedron, outward (right-handed seen from outside).
-    boundary: Vec<[u32; 3]>,
+    follow: Vec<u32>,
+    /// CSR (quadratic meshes): the corners each follower sits at the mean of.
+    parent_start: Vec<u32>,
+    parents: Vec<u32>,
+    /// Faces of one element, outward (right-handed seen from outside).
+    boundary: Vec<Face>,
     /// The file's triangles and quads ([`GivenFace`]).
     faces: Vec<GivenFace>,
 }
@@ -106,8 +155,32 @@ fn csr(n: usize, pairs: &mut [(u32, u32)]) -> (Vec<u32>, Vec<u32>) {
     (start, pairs.iter().map(|&(_, v)| v).collect())
 }
 
+/// An element's corner determinants' sum, in units of its own size, and whether it has
+/// no volume: a tetrahedron's 6V (its four corners in a plane); another kind's measured
+/// corners' determinants, all within rounding of 0.
+fn signed_size(kind: VolumeKind, p: &[DVec3]) -> (f64, bool) {
+    let r = kind.row();
+    if kind.is_tet() {
+        // in the tetrahedron's own scale: a cube of 1e150 has volumes beyond the doubles
+        let p = q3::in_unit_scale(&[p[0], p[1], p[2], p[3]]);
+        let v = q3::signed_volume(&p);
+        let size = q3::TET_EDGES.iter().map(|&[a, b]| p[a].distance(p[b])).sum::<f64>() / 6.0;
+        return (v / (size * size * size), v.abs() <= 1e-12 * size * size * size || v.is_nan());
+    }
+    let (mut total, mut flat) = (0.0, true);
+    for c in 0..r.corner_edges.len() {
+        let t = q3::in_unit_scale(&crate::quality::solid::corner_tet(kind, p, c));
+        let det = 6.0 * q3::signed_volume(&t);
+        let size = (1..4).map(|j| t[j].distance(t[0])).sum::<f64>() / 3.0;
+        let cube = size * size * size;
+        flat &= det.abs() <= 1e-12 * cube || det.is_nan();
+        total += det / cube;
+    }
+    (total, flat)
+}
+
 impl VolumeMesh {
-    /// The tetrahedral mesh of a builder's tetrahedra (a file's: see
+    /// The volume mesh of a builder's volume elements (a file's: see
     /// [`MeshBuilder::has_tets`]), its triangles and quads kept as the given faces whose
     /// nodes are fixed; checked as [`build`](Self::build) checks.
     pub fn from_builder(builder: MeshBuilder) -> Result<VolumeMesh> {
@@ -118,11 +191,11 @@ impl VolumeMesh {
                 GivenFace::new(p.face_kinds[e], ids, p.face_lines.get(e).copied().unwrap_or(0))
             })
             .collect();
-        VolumeMesh::build(TetParts {
+        VolumeMesh::build(SolidParts {
             faces,
             nodes: p.points.iter().map(|&x| DVec3::from(x)).collect(),
             node_lines: p.point_lines,
-            kind: p.kind,
+            kinds: p.kinds,
             elements: p.tets,
             element_lines: p.tet_lines,
             fixed: p.fixed,
@@ -130,21 +203,28 @@ impl VolumeMesh {
     }
 
     /// Checks what a reader found and builds the mesh. Errors name the node or element
-    /// and its file line: no tetrahedra, a coordinate that is not a finite number (or too
-    /// large to compute with), a node id out of range, a node repeated in a tetrahedron,
-    /// a node that is a corner of one tetrahedron and a mid-edge node of another, a
-    /// tetrahedron without volume, a face of more than two tetrahedra. A mesh given
-    /// left-handed (negative total volume) is turned over, every tetrahedron with it;
-    /// single inverted tetrahedra stay (a tangled mesh is the smoothers' input).
-    pub fn build(parts: TetParts) -> Result<VolumeMesh> {
-        let TetParts { nodes, node_lines, kind, mut elements, element_lines, fixed, faces: given_faces } = parts;
-        let row = kind.row();
-        let (k, corners) = (row.nodes, row.corners);
+    /// and its file line: no elements, a coordinate that is not a finite number (or too
+    /// large to compute with), a node id out of range, a node repeated in an element, a
+    /// node that is a corner of one element and a mid-edge node of another, an element
+    /// without volume, a face of more than two elements. A mesh given left-handed
+    /// (negative total volume) is turned over, every element with it; single inverted
+    /// elements stay (a tangled mesh is the smoothers' input).
+    pub fn build(parts: SolidParts) -> Result<VolumeMesh> {
+        let SolidParts { nodes, node_lines, kinds, mut elements, element_lines, fixed, faces: given_faces } = parts;
         let line = |lines: &[u32], i: usize| lines.get(i).copied().filter(|&l| l > 0).map(|l| l as usize);
-        if elements.is_empty() {
-            return Err(Error::Empty("the mesh has no tetrahedra".into()));
+        if kinds.is_empty() {
+            return Err(Error::Empty("the mesh has no volume elements".into()));
         }
-        debug_assert_eq!(elements.len() % k, 0);
+        let mut start = Vec::with_capacity(kinds.len() + 1);
+        start.push(0u32);
+        for k in &kinds {
+            start.push(start.last().copied().unwrap_or(0) + k.nodes() as u32);
+        }
+        debug_assert_eq!(*start.last().unwrap_or(&0) as usize, elements.len());
+        let mut present: Vec<VolumeKind> = kinds.clone();
+        present.sort_unstable();
+        present.dedup();
+        let family = |e: usize| kinds[e].row().name;
         for (i, p) in nodes.iter().enumerate() {
             if !p.is_finite() {
                 return Err(Error::node(i, line(&node_lines, i), format!("coordinate {p} is not a finite number")));
@@ -158,10 +238,11 @@ impl VolumeMesh {
             }
         }
         let n = nodes.len();
-        let count = elements.len() / k;
+        let count = kinds.len();
+        let range = |e: usize| start[e] as usize..start[e + 1] as usize;
         let mut role = vec![NodeRole::Unused; n];
         for e in 0..count {
-            let ids = &elements[e * k..(e + 1) * k];
+            let ids = &elements[range(e)];
             for (j, &id) in ids.iter().enumerate() {
                 if id as usize >= n {
                     return Err(Error::element(
@@ -174,13 +255,14 @@ impl VolumeMesh {
                     return Err(Error::element(
                         e,
                         line(&element_lines, e),
-                        format!("node {id} appears twice in the tetrahedron"),
+                        format!("node {id} appears twice in the {}", family(e)),
                     ));
                 }
             }
         }
         for e in 0..count {
-            for (j, &id) in elements[e * k..(e + 1) * k].iter().enumerate() {
+            let corners = kinds[e].corners();
+            for (j, &id) in elements[range(e)].iter().enumerate() {
                 let r = if j < corners { NodeRole::Corner } else { NodeRole::Mid };
                 match (role[id as usize], r) {
                     (NodeRole::Unused, r) => role[id as usize] = r,
@@ -188,50 +270,50 @@ impl VolumeMesh {
                         return Err(Error::element(
                             e,
                             line(&element_lines, e),
-                            format!("node {id} is a corner of one tetrahedron and a mid-edge node of another"),
+                            format!("node {id} is a corner of one element and a mid-edge node of another"),
                         ))
                     }
                     _ => {}
                 }
             }
         }
-        // volume, in units of each tetrahedron's own size, and the whole mesh's handedness
-        // (a kind that is not a tetrahedron needs its own measure of validity here)
-        let corner_points = |els: &[u32], e: usize| match kind {
-            VolumeKind::Tet4 | VolumeKind::Tet10 => [0, 1, 2, 3].map(|j| nodes[els[e * k + j] as usize]),
-        };
+        // volume, in units of each element's own size, and the whole mesh's handedness
         let mut total = 0.0;
+        let mut scratch = [DVec3::ZERO; 8];
         for e in 0..count {
-            // in the tetrahedron's own scale: a cube of 1e150 has volumes beyond the doubles
-            let p = q3::in_unit_scale(&corner_points(&elements, e));
-            let v = q3::signed_volume(&p);
-            let size = q3::TET_EDGES.iter().map(|&[a, b]| p[a].distance(p[b])).sum::<f64>() / 6.0;
-            if v.abs() <= 1e-12 * size * size * size || v.is_nan() {
-                return Err(Error::element(
-                    e,
-                    line(&element_lines, e),
-                    "the tetrahedron has no volume: its four corners lie in a plane",
-                ));
+            let k = kinds[e];
+            let ids = &elements[range(e)];
+            for (s, &i) in scratch.iter_mut().zip(&ids[..k.corners()]) {
+                *s = nodes[i as usize];
             }
-            total += v / (size * size * size);
+            let (v, flat) = signed_size(k, &scratch[..k.corners()]);
+            if flat {
+                let what = if k.is_tet() {
+                    "the tetrahedron has no volume: its four corners lie in a plane".to_string()
+                } else {
+                    format!("the {} has no volume: every corner's three edges lie in a plane", family(e))
+                };
+                return Err(Error::element(e, line(&element_lines, e), what));
+            }
+            total += v;
         }
         if total < 0.0 {
             let mut old = [0u32; 32];
             for e in 0..count {
-                let t = &mut elements[e * k..(e + 1) * k];
-                old[..k].copy_from_slice(t);
+                let row = kinds[e].row();
+                let t = &mut elements[range(e)];
+                old[..t.len()].copy_from_slice(t);
                 for (to, &from) in t.iter_mut().zip(row.mirror) {
                     *to = old[from];
                 }
             }
         }
-        // faces: boundary (one tetrahedron) or shared (two); more is not a manifold
-        let mut faces: Vec<([u32; 3], u32, u8)> = Vec::with_capacity(row.faces.len() * count);
+        // faces: boundary (one element) or shared (two); more is not a manifold
+        let mut faces: Vec<([u32; 4], u32, u8)> = Vec::with_capacity(6 * count);
         for e in 0..count {
-            for (f, loc) in row.faces.iter().enumerate() {
-                let mut key = loc.map(|j| elements[e * k + j]);
-                key.sort_unstable();
-                faces.push((key, e as u32, f as u8));
+            let ids = &elements[range(e)];
+            for (f, loc) in kinds[e].row().faces.iter().enumerate() {
+                faces.push((Face::of(ids, loc).key(), e as u32, f as u8));
             }
         }
         faces.sort_unstable();
@@ -244,40 +326,50 @@ impl VolumeMesh {
             }
             if j - i > 2 {
                 let e = faces[i + 2].1 as usize;
+                let nodes: Vec<u32> = faces[i].0.iter().copied().filter(|&x| x != u32::MAX).collect();
                 return Err(Error::element(
                     e,
                     line(&element_lines, e),
-                    format!("its face {:?} is a face of {} tetrahedra (at most two share a face)", faces[i].0, j - i),
+                    format!("its face {nodes:?} is a face of {} elements (at most two share a face)", j - i),
                 ));
             }
             if j - i == 1 {
                 let (_, e, f) = faces[i];
-                boundary.push(row.faces[f as usize].map(|c| elements[e as usize * k + c]));
+                let e = e as usize;
+                boundary.push(Face::of(&elements[range(e)], kinds[e].row().faces[f as usize]));
             }
             i = j;
         }
         // fixed flags
         let mut on_boundary = vec![false; n];
         for f in &boundary {
-            for &c in f {
+            for &c in f.nodes() {
                 on_boundary[c as usize] = true;
             }
         }
-        if row.mid_edge_nodes {
-            // a mid-edge node is on the boundary when both ends of its edge are on a
+        let quadratic = present.iter().any(|k| k.is_quadratic());
+        if quadratic {
+            // a follower is on the boundary when all the corners it follows are on one
             // boundary face together
-            let mut edge_on_boundary = std::collections::HashSet::new();
+            let mut face_keys = std::collections::HashSet::new();
             for f in &boundary {
-                for (a, b) in [(f[0], f[1]), (f[1], f[2]), (f[2], f[0])] {
-                    edge_on_boundary.insert((a.min(b), a.max(b)));
+                let c = f.nodes();
+                for a in 0..c.len() {
+                    let b = (a + 1) % c.len();
+                    face_keys.insert(vec![c[a].min(c[b]), c[a].max(c[b])]);
                 }
+                let mut all = c.to_vec();
+                all.sort_unstable();
+                face_keys.insert(all);
             }
             for e in 0..count {
-                let t = &elements[e * k..(e + 1) * k];
-                for (m, &[a, b]) in row.edges.iter().enumerate() {
-                    let (a, b) = (t[a], t[b]);
-                    if edge_on_boundary.contains(&(a.min(b), a.max(b))) {
-                        on_boundary[t[corners + m] as usize] = true;
+                let row = kinds[e].row();
+                let t = &elements[range(e)];
+                for (m, parents) in row.followers.iter().enumerate() {
+                    let mut key: Vec<u32> = parents.iter().map(|&c| t[c]).collect();
+                    key.sort_unstable();
+                    if face_keys.contains(&key) {
+                        on_boundary[t[row.corners + m] as usize] = true;
                     }
                 }
             }
@@ -292,17 +384,19 @@ impl VolumeMesh {
             *f |= *r == NodeRole::Unused;
         }
         // adjacency, flat
-        let mut pairs: Vec<(u32, u32)> = Vec::with_capacity(corners * count);
+        let mut pairs: Vec<(u32, u32)> = Vec::with_capacity(8 * count);
         for e in 0..count {
-            for j in 0..corners {
-                pairs.push((elements[e * k + j], e as u32));
+            let c = kinds[e].corners();
+            for &id in &elements[range(e)][..c] {
+                pairs.push((id, e as u32));
             }
         }
         let (tet_start, tets) = csr(n, &mut pairs);
         pairs.clear();
         for e in 0..count {
-            for &[a, b] in row.edges {
-                let (a, b) = (elements[e * k + a], elements[e * k + b]);
+            let ids = &elements[range(e)];
+            for &[a, b] in kinds[e].row().edges {
+                let (a, b) = (ids[a], ids[b]);
                 pairs.push((a, b));
                 pairs.push((b, a));
             }
@@ -311,28 +405,63 @@ impl VolumeMesh {
         pairs.dedup();
         let (nb_start, nb) = csr(n, &mut pairs);
         let (mut follow_start, mut follow) = (vec![0u32; n + 1], Vec::new());
-        if row.mid_edge_nodes {
-            let mut triples: Vec<(u32, u32, u32)> = Vec::with_capacity(2 * row.edges.len() * count);
+        let (mut parent_start, mut parents) = (vec![0u32; n + 1], Vec::new());
+        if quadratic {
+            pairs.clear();
+            let mut of: Vec<(u32, u32, u32)> = Vec::new();
             for e in 0..count {
-                let t = &elements[e * k..(e + 1) * k];
-                for (m, &[a, b]) in row.edges.iter().enumerate() {
-                    triples.push((t[a], t[corners + m], t[b]));
-                    triples.push((t[b], t[corners + m], t[a]));
+                let row = kinds[e].row();
+                let t = &elements[range(e)];
+                for (m, ps) in row.followers.iter().enumerate() {
+                    let follower = t[row.corners + m];
+                    for (slot, &c) in ps.iter().enumerate() {
+                        pairs.push((t[c], follower));
+                        of.push((follower, slot as u32, t[c]));
+                    }
                 }
             }
-            triples.sort_unstable();
-            triples.dedup();
-            for &(c, _, _) in &triples {
-                follow_start[c as usize + 1] += 1;
+            pairs.sort_unstable();
+            pairs.dedup();
+            (follow_start, follow) = csr(n, &mut pairs);
+            // each follower's corners, as the first element that has it lists them
+            of.sort_by_key(|&(f, _, _)| f);
+            let mut seen = vec![false; n];
+            let mut list: Vec<(u32, u32)> = Vec::new();
+            let mut i = 0;
+            while i < of.len() {
+                let f = of[i].0;
+                let mut j = i;
+                while j < of.len() && of[j].0 == f {
+                    j += 1;
+                }
+                if !seen[f as usize] {
+                    seen[f as usize] = true;
+                    // the first element's entries are the first `len` with slots 0, 1, …
+                    let mut k = i;
+                    let mut slot = 0;
+                    while k < j && of[k].1 == slot {
+                        list.push((f, of[k].2));
+                        slot += 1;
+                        k += 1;
+                    }
+                }
+                i = j;
+            }
+            // a stable sort keeps each follower's corners in their order
+            list.sort_by_key(|&(f, _)| f);
+            for &(f, _) in &list {
+                parent_start[f as usize + 1] += 1;
             }
             for i in 0..n {
-                follow_start[i + 1] += follow_start[i];
+                parent_start[i + 1] += parent_start[i];
             }
-            follow = triples.iter().map(|&(_, m, o)| [m, o]).collect();
+            parents = list.iter().map(|&(_, c)| c).collect();
         }
         Ok(VolumeMesh {
             nodes,
-            kind,
+            kinds,
+            present,
+            start,
             elements,
             fixed,
             role,
@@ -342,6 +471,8 @@ impl VolumeMesh {
             nb,
             follow_start,
             follow,
+            parent_start,
+            parents,
             boundary,
             faces: given_faces,
         })
@@ -353,15 +484,15 @@ impl VolumeMesh {
     }
 
     /// What the file's triangles and quads fixed inside the volume: those that are not a
-    /// boundary face of the tetrahedra fix their nodes as the file asks (where the file
+    /// boundary face of the elements fix their nodes as the file asks (where the file
     /// gave no fixed flags of its own), and this says which nodes off the boundary that
     /// fixed (`None` when none).
     pub fn stray_faces_note(&self) -> Option<String> {
-        let mut on_boundary: Vec<[u32; 3]> = self.boundary.iter().map(|f| sorted3(*f)).collect();
+        let mut on_boundary: Vec<[u32; 4]> = self.boundary.iter().map(Face::key).collect();
         on_boundary.sort_unstable();
         let mut boundary_node = vec![false; self.nodes.len()];
         for f in &self.boundary {
-            for &i in f {
+            for &i in f.nodes() {
                 boundary_node[i as usize] = true;
             }
         }
@@ -373,7 +504,8 @@ impl VolumeMesh {
             .iter()
             .filter(|f| {
                 let c = &f.nodes[..f.kind.corners()];
-                c.len() != 3 || on_boundary.binary_search(&sorted3([c[0], c[1], c[2]])).is_err()
+                let local: Vec<usize> = (0..c.len()).collect();
+                on_boundary.binary_search(&Face::of(c, &local).key()).is_err()
             })
             .map(|f| (f, inner_fixed(f)))
             .filter(|(_, inner)| !inner.is_empty())
@@ -382,44 +514,76 @@ impl VolumeMesh {
         let at = if first.line > 0 { format!(" (line {})", first.line) } else { String::new() };
         let nodes: Vec<String> = inner.iter().map(|i| (i + 1).to_string()).collect();
         Some(format!(
-            "{} of the file's triangles and quads {} not on the boundary of the tetrahedra and {} nodes inside the volume, as the file asks: the first{at} fixes node {}",
+            "{} of the file's triangles and quads {} not on the boundary of the {} and {} nodes inside the volume, as the file asks: the first{at} fixes node {}",
             stray.len(),
             if stray.len() == 1 { "is" } else { "are" },
+            self.family_words(),
             if stray.len() == 1 { "fixes" } else { "fix" },
             nodes.join(", "),
         ))
     }
 
+    /// The families of its elements in words: "tetrahedra", "hexahedra and pyramids".
+    pub fn family_words(&self) -> String {
+        let mut fams: Vec<&str> = self.present.iter().map(|k| k.row().family).collect();
+        fams.dedup();
+        match fams.as_slice() {
+            [one] => one.to_string(),
+            [rest @ .., last] => format!("{} and {last}", rest.join(", ")),
+            [] => String::new(),
+        }
+    }
+
     /// A linear mesh from points and tetrahedra (generators), boundary nodes fixed.
     pub fn from_tets(nodes: Vec<DVec3>, tets: &[[u32; 4]]) -> Result<VolumeMesh> {
-        VolumeMesh::build(TetParts {
+        VolumeMesh::from_elements(nodes, tets.iter().map(|t| (VolumeKind::Tet4, &t[..])))
+    }
+
+    /// A mesh from points and elements of any kinds (generators), boundary nodes fixed.
+    pub fn from_elements<'a>(nodes: Vec<DVec3>, elements: impl IntoIterator<Item = (VolumeKind, &'a [u32])>) -> Result<VolumeMesh> {
+        let (mut kinds, mut ids) = (Vec::new(), Vec::new());
+        for (k, e) in elements {
+            kinds.push(k);
+            ids.extend_from_slice(e);
+        }
+        VolumeMesh::build(SolidParts {
             node_lines: Vec::new(),
             nodes,
-            kind: VolumeKind::Tet4,
-            elements: tets.iter().flatten().copied().collect(),
+            kinds,
+            elements: ids,
             element_lines: Vec::new(),
             fixed: FixedSpec::Boundary,
             faces: Vec::new(),
         })
     }
 
-    /// The 10-node mesh of a linear one: a node at the middle of every edge (shared by
-    /// the tetrahedra around it, fixed when the edge lies on the boundary); a quadratic
-    /// mesh comes back as it is.
-    pub fn to_quadratic(&self) -> Result<VolumeMesh> {
+    /// The quadratic mesh of a linear one — 10-node tetrahedra, 27-node hexahedra (with
+    /// `serendipity`, 20-node ones): a node at the middle of every edge (and of every face
+    /// and element of a 27-node hexahedron), shared by the elements around it, fixed on the
+    /// boundary; a quadratic mesh comes back as it is. Wedges and pyramids have no
+    /// quadratic kind here: refused.
+    pub fn to_quadratic(&self, serendipity: bool) -> Result<VolumeMesh> {
         if self.is_quadratic() {
             return Ok(self.clone());
         }
         let mut nodes = self.nodes.clone();
-        let mut mid = std::collections::HashMap::new();
-        let mut elements = Vec::with_capacity(10 * self.element_count());
+        let mut shared = std::collections::HashMap::new();
+        let (mut kinds, mut elements) = (Vec::with_capacity(self.element_count()), Vec::new());
         for e in 0..self.element_count() {
-            let t: [u32; 4] = self.element(e).try_into().expect("a linear mesh has 4 nodes a tetrahedron");
-            elements.extend_from_slice(&t);
-            for [a, b] in TET10_EDGES {
-                let key = (t[a].min(t[b]), t[a].max(t[b]));
-                let id = *mid.entry(key).or_insert_with(|| {
-                    nodes.push(0.5 * (self.nodes[t[a] as usize] + self.nodes[t[b] as usize]));
+            let to = match self.kinds[e] {
+                VolumeKind::Tet4 => VolumeKind::Tet10,
+                VolumeKind::Hex8 if serendipity => VolumeKind::Hex20,
+                VolumeKind::Hex8 => VolumeKind::Hex27,
+                k => return Err(Error::invalid(format!("{} have no quadratic kind in smoothlab", k.row().family))),
+            };
+            let t = self.element(e);
+            kinds.push(to);
+            elements.extend_from_slice(t);
+            for ps in to.row().followers {
+                let mut key: Vec<u32> = ps.iter().map(|&c| t[c]).collect();
+                key.sort_unstable();
+                let id = *shared.entry(key).or_insert_with(|| {
+                    nodes.push(mean(ps.iter().map(|&c| self.nodes[t[c] as usize])));
                     (nodes.len() - 1) as u32
                 });
                 elements.push(id);
@@ -427,10 +591,10 @@ impl VolumeMesh {
         }
         let mut fixed = self.fixed.clone();
         fixed.resize(nodes.len(), false);
-        VolumeMesh::build(TetParts {
+        VolumeMesh::build(SolidParts {
             nodes,
             node_lines: Vec::new(),
-            kind: VolumeKind::Tet10,
+            kinds,
             elements,
             element_lines: Vec::new(),
             fixed: FixedSpec::BoundaryAnd(fixed),
@@ -442,15 +606,25 @@ impl VolumeMesh {
         self.nodes.len()
     }
     pub fn element_count(&self) -> usize {
-        self.elements.len() / self.kind.nodes()
+        self.kinds.len()
     }
-    /// The kind of every element.
-    pub fn kind(&self) -> VolumeKind {
-        self.kind
+    /// The kinds its elements are of, in [`VolumeKind`]'s order.
+    pub fn kinds(&self) -> &[VolumeKind] {
+        &self.present
     }
-    /// Whether the elements have mid-edge nodes (they follow their corners).
+    /// The kind of element `e`.
+    #[inline]
+    pub fn element_kind(&self, e: usize) -> VolumeKind {
+        self.kinds[e]
+    }
+    /// Whether every element is a tetrahedron (of one kind: a mesh does not mix orders).
+    #[inline]
+    pub fn is_tets(&self) -> bool {
+        self.present.iter().all(|k| k.is_tet())
+    }
+    /// Whether the elements have nodes that follow their corners.
     pub fn is_quadratic(&self) -> bool {
-        self.kind.is_quadratic()
+        self.present.iter().any(|k| k.is_quadratic())
     }
     pub fn nodes(&self) -> &[DVec3] {
         &self.nodes
@@ -459,32 +633,55 @@ impl VolumeMesh {
     pub fn nodes_mut(&mut self) -> &mut [DVec3] {
         &mut self.nodes
     }
-    /// The node ids of tetrahedron `e`: 4, or 10 in [`TET10_EDGES`]' order.
+    /// The node ids of element `e`, in its kind's order.
+    #[inline]
     pub fn element(&self, e: usize) -> &[u32] {
-        let k = self.kind.nodes();
-        &self.elements[e * k..(e + 1) * k]
+        &self.elements[self.start[e] as usize..self.start[e + 1] as usize]
     }
-    /// The measures of tetrahedron `e` as the statistics take them: by its corners, a
-    /// 10-node one with its mid-edge nodes ([`q3::tet10_measures`]), against its kind's
-    /// reference W.
-    pub fn measures(&self, e: usize) -> q3::TetMeasures {
-        let r = self.kind.reference();
-        match self.kind {
-            VolumeKind::Tet4 => q3::tet_measures(&self.corners(e), r),
-            VolumeKind::Tet10 => {
-                let ids = self.element(e);
-                q3::tet10_measures(&std::array::from_fn(|j| self.nodes[ids[j] as usize]), r)
-            }
+    /// The positions of element `e`'s nodes (up to 27).
+    pub fn element_points(&self, e: usize) -> ([DVec3; 27], usize) {
+        let ids = self.element(e);
+        let mut p = [DVec3::ZERO; 27];
+        for (q, &i) in p.iter_mut().zip(ids) {
+            *q = self.nodes[i as usize];
+        }
+        (p, ids.len())
+    }
+    /// The measures of element `e` as the statistics take them
+    /// ([`crate::quality::solid::solid_measures`]: a 10-node tetrahedron with its
+    /// mid-edge nodes, the others by their corners, validity certain).
+    pub fn measures(&self, e: usize) -> SolidMeasures {
+        let (p, n) = self.element_points(e);
+        solid_measures(self.kinds[e], &p[..n])
+    }
+    /// Whether element `e` is inverted: not certainly valid (a tetrahedron's volume ≤ 0; a
+    /// hexahedron's, wedge's or pyramid's Jacobian determinant ≤ 0 somewhere or not
+    /// decided, [`crate::quality::solid::validity`]).
+    pub fn is_inverted(&self, e: usize) -> bool {
+        let k = self.kinds[e];
+        let c = self.corners(e);
+        if k.is_tet() {
+            q3::is_inverted(&[c[0], c[1], c[2], c[3]])
+        } else {
+            validity(k, &c[..k.corners()]) != Validity::Valid
         }
     }
 
-    /// The corners of tetrahedron `e`.
-    pub fn corners(&self, e: usize) -> [DVec3; 4] {
+    /// The corners of element `e` (the first [`VolumeKind::corners`] entries).
+    #[inline]
+    pub fn corners(&self, e: usize) -> [DVec3; 8] {
         let ids = self.element(e);
-        match self.kind {
-            // a tetrahedron's corners are its first four nodes
-            VolumeKind::Tet4 | VolumeKind::Tet10 => [0, 1, 2, 3].map(|j| self.nodes[ids[j] as usize]),
+        let mut p = [DVec3::ZERO; 8];
+        for (q, &i) in p.iter_mut().zip(&ids[..self.kinds[e].corners()]) {
+            *q = self.nodes[i as usize];
         }
+        p
+    }
+    /// The corners of tetrahedron `e` (of a mesh of tetrahedra).
+    #[inline]
+    pub fn tet_corners(&self, e: usize) -> [DVec3; 4] {
+        let ids = self.element(e);
+        [0, 1, 2, 3].map(|j| self.nodes[ids[j] as usize])
     }
     pub fn fixed(&self) -> &[bool] {
         &self.fixed
@@ -499,7 +696,7 @@ impl VolumeMesh {
     pub fn free_count(&self) -> usize {
         (0..self.node_count()).filter(|&n| self.is_free(n)).count()
     }
-    /// The tetrahedra with corner `n`.
+    /// The elements with corner `n`.
     pub fn node_tets(&self, n: usize) -> &[u32] {
         &self.tets[self.tet_start[n] as usize..self.tet_start[n + 1] as usize]
     }
@@ -507,34 +704,45 @@ impl VolumeMesh {
     pub fn neighbours(&self, n: usize) -> &[u32] {
         &self.nb[self.nb_start[n] as usize..self.nb_start[n + 1] as usize]
     }
-    /// The boundary faces (faces of one tetrahedron), outward.
-    pub fn boundary_faces(&self) -> &[[u32; 3]] {
+    /// The boundary faces (faces of one element), outward.
+    pub fn boundary_faces(&self) -> &[Face] {
         &self.boundary
     }
-    /// Puts the mid-edge nodes of corner `n`'s edges that are not fixed at their edges'
-    /// middles (after `n` moved). Nothing for a linear mesh.
+    /// The nodes that follow corner `n` (nothing for a linear mesh).
+    pub fn followers(&self, n: usize) -> &[u32] {
+        &self.follow[self.follow_start[n] as usize..self.follow_start[n + 1] as usize]
+    }
+    /// The corners follower `m` sits at the mean of.
+    pub fn parents(&self, m: usize) -> &[u32] {
+        &self.parents[self.parent_start[m] as usize..self.parent_start[m + 1] as usize]
+    }
+    /// Puts the nodes that follow corner `n` and are not fixed at the means of their
+    /// corners (after `n` moved). Nothing for a linear mesh.
     pub fn follow_mid_nodes(&mut self, n: usize) {
         for i in self.follow_start[n] as usize..self.follow_start[n + 1] as usize {
-            let [m, o] = self.follow[i];
-            if !self.fixed[m as usize] {
-                self.nodes[m as usize] = 0.5 * (self.nodes[n] + self.nodes[o as usize]);
+            let m = self.follow[i] as usize;
+            if !self.fixed[m] {
+                let ps = &self.parents[self.parent_start[m] as usize..self.parent_start[m + 1] as usize];
+                self.nodes[m] = mean(ps.iter().map(|&c| self.nodes[c as usize]));
             }
         }
     }
-    /// The mean length of the tetrahedra's edges (each edge counted once per tetrahedron
-    /// it belongs to); 0 for an empty mesh.
+    /// The mean length of the elements' edges (each edge counted once per element it
+    /// belongs to); 0 for an empty mesh.
     pub fn mean_edge_length(&self) -> f64 {
-        let count = self.element_count();
-        if count == 0 {
-            return 0.0;
+        let (mut sum, mut edges) = (0.0, 0usize);
+        for e in 0..self.element_count() {
+            let k = self.kinds[e];
+            let p = self.corners(e);
+            let list: &[[usize; 2]] = if k.is_tet() { &q3::TET_EDGES } else { k.row().edges };
+            sum += list.iter().map(|&[a, b]| p[a].distance(p[b])).sum::<f64>();
+            edges += list.len();
         }
-        let sum: f64 = (0..count)
-            .map(|e| {
-                let p = self.corners(e);
-                q3::TET_EDGES.iter().map(|&[a, b]| p[a].distance(p[b])).sum::<f64>()
-            })
-            .sum();
-        sum / (6 * count) as f64
+        if edges == 0 {
+            0.0
+        } else {
+            sum / edges as f64
+        }
     }
     /// The length of the bounding box's diagonal.
     pub fn size(&self) -> f64 {
@@ -548,7 +756,10 @@ impl VolumeMesh {
     }
 }
 
-fn sorted3(mut f: [u32; 3]) -> [u32; 3] {
-    f.sort_unstable();
-    f
+/// The mean of 2, 4 or 8 points (a follower's corners): their sum, first to last, times
+/// the power of two (exact), so an edge's middle is `0.5·(a + b)` to the bit.
+fn mean(mut points: impl Iterator<Item = DVec3>) -> DVec3 {
+    let first = points.next().unwrap_or(DVec3::ZERO);
+    let (sum, n) = points.fold((first, 1usize), |(s, n), p| (s + p, n + 1));
+    sum * (1.0 / n as f64)
 }

@@ -88,7 +88,8 @@ impl VolumeMesh {
         let up_the_axis = forward[axis] > 0.0;
         let kept: Vec<bool> = (0..self.element_count())
             .map(|e| {
-                let c = self.corners(e).iter().map(|p| p[axis]).sum::<f64>() / 4.0;
+                let k = self.element_kind(e).corners();
+                let c = self.corners(e)[..k].iter().map(|p| p[axis]).sum::<f64>() / k as f64;
                 if up_the_axis {
                     c >= level
                 } else {
@@ -98,16 +99,16 @@ impl VolumeMesh {
             .collect();
         let mut boundary = std::collections::HashSet::with_capacity(self.boundary_faces().len());
         for f in self.boundary_faces() {
-            let mut f = *f;
+            let mut f = f.nodes().to_vec();
             f.sort_unstable();
             boundary.insert(f);
         }
         // faces of the tetrahedra left, with how many of them hold each
-        let mut count: std::collections::HashMap<[u32; 3], u8> = std::collections::HashMap::new();
+        let mut count: std::collections::HashMap<Vec<u32>, u8> = std::collections::HashMap::new();
         for e in (0..self.element_count()).filter(|&e| kept[e]) {
             let t = self.element(e);
-            for &loc in self.kind().row().faces {
-                let mut f = loc.map(|j| t[j]);
+            for &loc in self.element_kind(e).row().faces {
+                let mut f: Vec<u32> = loc.iter().map(|&j| t[j]).collect();
                 f.sort_unstable();
                 *count.entry(f).or_default() += 1;
             }
@@ -116,15 +117,22 @@ impl VolumeMesh {
         for e in (0..self.element_count()).filter(|&e| kept[e]) {
             out.kept += 1;
             let t = self.element(e);
-            let p = self.corners(e);
-            // as the statistics measure it (a 10-node tetrahedron with its mid-edge nodes)
-            let q = match self.kind() {
-                VolumeKind::Tet4 => mean_ratio(&p, self.kind().reference()),
-                VolumeKind::Tet10 => self.measures(e).mean_ratio,
+            let kind = self.element_kind(e);
+            // as the statistics measure it (a 10-node tetrahedron with its mid-edge nodes,
+            // the other kinds by their corners, inverted when not certainly valid)
+            let (q, inverted) = match kind {
+                VolumeKind::Tet4 => {
+                    let q = mean_ratio(&self.tet_corners(e), kind.reference());
+                    (q, q <= 0.0)
+                }
+                _ => {
+                    let m = self.measures(e);
+                    (m.mean_ratio, m.inverted)
+                }
             };
-            for &loc in self.kind().row().faces {
-                let ring = loc.map(|j| t[j]);
-                let mut key = ring;
+            for &loc in kind.row().faces {
+                let ring: Vec<u32> = loc.iter().map(|&j| t[j]).collect();
+                let mut key = ring.clone();
                 key.sort_unstable();
                 if count[&key] > 1 {
                     continue; // between two tetrahedra left: hidden
@@ -132,7 +140,7 @@ impl VolumeMesh {
                 out.rings.extend_from_slice(&ring);
                 out.ring_start.push(out.rings.len() as u32);
                 out.values.push(q.clamp(0.0, 1.0));
-                out.inverted.push(q <= 0.0);
+                out.inverted.push(inverted);
                 out.faded.push(boundary.contains(&key));
             }
         }

@@ -18,7 +18,9 @@ use glam::DVec3;
 
 use super::{VolumeMesh, VolumeKind};
 use crate::error::Result;
-use crate::objective::{Objective, StarCorner, CornerStar};
+use crate::mesh::WITH_FIRST;
+use crate::objective::{CornerStar, Objective, StarCorner, StarSolid};
+use crate::quality::solid::{self, Validity};
 use crate::quality::tet as q3;
 use crate::smooth::{
     DriverStar, ElementScore, Verdict, Measure, PassRecord, SmoothMesh, SmoothOptions, Smoother, StarQuality, StarView, SweepCounts,
@@ -48,7 +50,7 @@ impl SmoothMesh for VolumeMesh {
     }
     #[inline]
     fn element_corners(&self, e: usize) -> &[u32] {
-        &self.element(e)[..4]
+        &self.element(e)[..self.element_kind(e).corners()]
     }
     #[inline]
     fn has_quadratic(&self) -> bool {
@@ -58,21 +60,40 @@ impl SmoothMesh for VolumeMesh {
 
 impl DriverStar for CornerStar {
     type Mesh = VolumeMesh;
-    /// The node's corner of each element: the node first, then its three edge neighbours
-    /// in the kind's order ([`VolumeKindRow::corner_edges`](crate::mesh::VolumeKindRow)),
-    /// an even permutation of a tetrahedron's corners, so the volume keeps its sign.
+    /// The node's corners of each element ([`StarCorner`]): a tetrahedron's own corner —
+    /// the node first, then its three edge neighbours in the kind's order
+    /// ([`VolumeKindRow::corner_edges`](crate::mesh::VolumeKindRow)), an even permutation
+    /// of a tetrahedron's corners, so the volume keeps its sign; another kind's every
+    /// measured corner whose tetrahedron holds the node, reordered to put it first
+    /// ([`WITH_FIRST`]), with the element whole for the guard ([`StarSolid`]).
     fn gather(&mut self, mesh: &VolumeMesh, node: usize) {
         self.node = node as u32;
         self.x0 = mesh.nodes()[node];
-        self.kind = mesh.kind();
         self.tets.clear();
-        let row = mesh.kind().row();
+        self.elements.clear();
+        let nodes = mesh.nodes();
         for &e in mesh.node_tets(node) {
+            let kind = mesh.element_kind(e as usize);
+            let row = kind.row();
             let ids = &mesh.element(e as usize)[..row.corners];
             let Some(slot) = ids.iter().position(|&i| i as usize == node) else { continue };
-            let [a, b, c] = row.corner_edges[slot];
-            let pts = [slot, a, b, c].map(|k| mesh.nodes()[ids[k] as usize]);
-            self.tets.push(StarCorner { element: e, pts });
+            if kind.is_tet() {
+                let [a, b, c] = row.corner_edges[slot];
+                let pts = [slot, a, b, c].map(|k| nodes[ids[k] as usize]);
+                self.tets.push(StarCorner::tet(e, pts));
+                continue;
+            }
+            let mut all = [DVec3::ZERO; 8];
+            for (p, &i) in all.iter_mut().zip(ids) {
+                *p = nodes[i as usize];
+            }
+            for (c, &[a, b, d]) in row.corner_edges.iter().enumerate() {
+                let tuple = [c, a, b, d];
+                let Some(s) = tuple.iter().position(|&j| j == slot) else { continue };
+                let pts = WITH_FIRST[s].map(|j| all[tuple[j]]);
+                self.tets.push(StarCorner { element: e, pts, reference: &row.slot_references[s], simplex: false });
+            }
+            self.elements.push(StarSolid { element: e, kind, slot: slot as u8, pts: all });
         }
     }
     #[inline]
@@ -84,23 +105,39 @@ impl DriverStar for CornerStar {
         for t in &mut self.tets {
             t.pts[0] = x;
         }
+        for e in &mut self.elements {
+            e.pts[e.slot as usize] = x;
+        }
     }
     fn shape_at(&self, x: DVec3) -> (f64, u32) {
         let (mut min, mut inverted) = (f64::INFINITY, 0);
-        for t in &self.tets {
+        for t in self.tets.iter().filter(|t| t.simplex) {
             let p = t.at(x);
             min = min.min(q3::mean_ratio(&p, self.reference()));
             inverted += q3::is_inverted(&p) as u32;
+        }
+        for e in &self.elements {
+            let p = e.at(x);
+            let p = e.corners(&p);
+            min = min.min(solid::solid_shape(e.kind, p));
+            inverted += (solid::validity(e.kind, p) != Validity::Valid) as u32;
         }
         (min, inverted)
     }
     fn quality(&self, x: Option<DVec3>) -> StarQuality {
         let mut q = StarQuality::BEST;
-        for t in &self.tets {
+        for t in self.tets.iter().filter(|t| t.simplex) {
             let p = x.map_or(t.pts, |x| t.at(x));
             q.min_shape = q.min_shape.min(q3::mean_ratio(&p, self.reference()));
             q.min_sine = q.min_sine.min(q3::dihedral_sines(&p).into_iter().fold(f64::INFINITY, f64::min));
             q.inverted += q3::is_inverted(&p) as u32;
+        }
+        for e in &self.elements {
+            let p = x.map_or(e.pts, |x| e.at(x));
+            let p = e.corners(&p);
+            q.min_shape = q.min_shape.min(solid::solid_shape(e.kind, p));
+            q.min_sine = q.min_sine.min(solid::solid_min_sine(e.kind, p));
+            q.inverted += (solid::validity(e.kind, p) != Validity::Valid) as u32;
         }
         q
     }
@@ -110,7 +147,7 @@ impl DriverStar for CornerStar {
             Measure::MinSine => q3::dihedral_sines(p).into_iter().fold(f64::INFINITY, f64::min),
         };
         let (mut before, mut after) = (f64::INFINITY, f64::INFINITY);
-        for t in &self.tets {
+        for t in self.tets.iter().filter(|t| t.simplex) {
             let p1 = t.at(c);
             if !q3::is_inverted(&t.pts) && q3::is_inverted(&p1) {
                 return false;
@@ -118,37 +155,61 @@ impl DriverStar for CornerStar {
             before = before.min(measure(&t.pts));
             after = after.min(measure(&p1));
         }
+        for e in &self.elements {
+            let (s0, s1) = (ElementScore::solid(e.kind, e.corners(&e.pts), m), ElementScore::solid(e.kind, e.corners(&e.at(c)), m));
+            if !s0.inverted && s1.inverted {
+                return false;
+            }
+            before = before.min(s0.quality);
+            after = after.min(s1.quality);
+        }
         after > before
     }
     fn inverted_now(&self) -> usize {
-        self.tets.iter().filter(|t| q3::is_inverted(&t.pts)).count()
+        self.tets.iter().filter(|t| t.simplex && q3::is_inverted(&t.pts)).count()
+            + self.elements.iter().filter(|e| solid::validity(e.kind, e.corners(&e.pts)) != Validity::Valid).count()
     }
     fn inverted_at(&self, x: DVec3) -> usize {
-        self.tets.iter().filter(|t| q3::is_inverted(&t.at(x))).count()
+        self.tets.iter().filter(|t| t.simplex && q3::is_inverted(&t.at(x))).count()
+            + self.elements.iter().filter(|e| solid::validity(e.kind, e.corners(&e.at(x))) != Validity::Valid).count()
     }
     fn inversion(&self, x: DVec3) -> f64 {
-        self.tets.iter().map(|t| (-6.0 * q3::signed_volume(&t.at(x))).max(0.0)).sum()
+        let tets: f64 = self.tets.iter().filter(|t| t.simplex).map(|t| (-6.0 * q3::signed_volume(&t.at(x))).max(0.0)).sum();
+        if self.elements.is_empty() {
+            return tets;
+        }
+        tets + self
+            .elements
+            .iter()
+            .map(|e| {
+                let p = e.at(x);
+                let p = e.corners(&p);
+                solid::solid_inversion(e.kind, p, solid::validity(e.kind, p))
+            })
+            .sum::<f64>()
     }
     fn verdict(&self, x: DVec3, m: Measure) -> Verdict {
         let mut v = Verdict::default();
-        for t in &self.tets {
+        for t in self.tets.iter().filter(|t| t.simplex) {
             v.add(&ElementScore::tet(&t.pts, self.reference(), m), &ElementScore::tet(&t.at(x), self.reference(), m));
+        }
+        for e in &self.elements {
+            v.add(&ElementScore::solid(e.kind, e.corners(&e.pts), m), &ElementScore::solid(e.kind, e.corners(&e.at(x)), m));
         }
         v
     }
     /// A 10-node mesh's tetrahedra with their mid-edge nodes (those of the node's edges
     /// following it to their middles, as [`VolumeMesh::follow_mid_nodes`] moves them), so the
-    /// rule reads what the statistics read.
+    /// rule reads what the statistics read; the other kinds are measured by their corners.
     fn verdict_in(&self, mesh: &VolumeMesh, x: DVec3, m: Measure) -> Verdict {
-        match mesh.kind() {
-            VolumeKind::Tet4 => return self.verdict(x, m),
-            VolumeKind::Tet10 => {}
+        if !mesh.kinds().contains(&VolumeKind::Tet10) {
+            return self.verdict(x, m);
         }
-        let row = mesh.kind().row();
         let n = self.node;
         let mut v = Verdict::default();
         for t in &self.tets {
             let ids = mesh.element(t.element as usize);
+            let row = mesh.element_kind(t.element as usize).row();
             let before: [DVec3; 10] = std::array::from_fn(|j| mesh.nodes()[ids[j] as usize]);
             let mut after = before;
             for (j, &i) in ids[..row.corners].iter().enumerate() {
@@ -189,7 +250,7 @@ impl StarView for Solid<'_> {
         }
     }
     fn is_inverted(&self, e: usize) -> bool {
-        q3::is_inverted(&self.0.corners(e))
+        self.0.is_inverted(e)
     }
 }
 

@@ -12,9 +12,9 @@ fn a_cube_of_six_tetrahedra_by_hand() {
     assert_eq!(m.free_count(), 0);
     // 12 boundary triangles (2 per cube face), total volume 1, all positive
     assert_eq!(m.boundary_faces().len(), 12);
-    let v: f64 = (0..6).map(|e| q3::signed_volume(&m.corners(e))).sum();
+    let v: f64 = (0..6).map(|e| q3::signed_volume(&m.tet_corners(e))).sum();
     assert!((v - 1.0).abs() < 1e-15);
-    assert!((0..6).all(|e| q3::signed_volume(&m.corners(e)) > 0.0));
+    assert!((0..6).all(|e| q3::signed_volume(&m.tet_corners(e)) > 0.0));
     // Kuhn's six share the main diagonal 0–7: those two nodes are in every tetrahedron
     // and are neighbours of all others
     assert_eq!(m.node_tets(0).len(), 6);
@@ -37,18 +37,18 @@ fn a_grid_of_two_cubes_a_side_has_one_free_node() {
     // the boundary faces point outward: their area vectors sum to zero, and each one's
     // normal points away from the centre
     for f in m.boundary_faces() {
-        let [a, b, c] = f.map(|i| m.nodes()[i as usize]);
+        let [a, b, c] = f.as_triangle().unwrap().map(|i| m.nodes()[i as usize]);
         let n = (b - a).cross(c - a);
         assert!(n.dot((a + b + c) / 3.0 - DVec3::splat(0.5)) > 0.0);
     }
 }
 
-fn parts(nodes: Vec<DVec3>, elements: Vec<u32>) -> TetParts {
-    TetParts {
+fn parts(nodes: Vec<DVec3>, elements: Vec<u32>) -> SolidParts {
+    SolidParts {
         node_lines: (0..nodes.len() as u32).map(|i| i + 2).collect(),
         element_lines: (0..(elements.len() / 4) as u32).map(|i| i + 100).collect(),
         nodes,
-        kind: VolumeKind::Tet4,
+        kinds: vec![VolumeKind::Tet4; elements.len() / 4],
         elements,
         fixed: FixedSpec::Boundary,
         faces: Vec::new(),
@@ -61,8 +61,8 @@ fn unit() -> Vec<DVec3> {
 
 #[test]
 fn bad_input_gives_errors_naming_the_node_or_element_and_line() {
-    let err = |p: TetParts| VolumeMesh::build(p).unwrap_err().to_string();
-    assert_eq!(err(parts(unit(), vec![])), Error::Empty("the mesh has no tetrahedra".into()).to_string());
+    let err = |p: SolidParts| VolumeMesh::build(p).unwrap_err().to_string();
+    assert_eq!(err(parts(unit(), vec![])), Error::Empty("the mesh has no volume elements".into()).to_string());
     let mut nan = unit();
     nan[2].y = f64::NAN;
     assert!(
@@ -97,13 +97,13 @@ fn a_left_handed_mesh_is_turned_over() {
         })
         .collect();
     let turned = VolumeMesh::build(parts(m.nodes().to_vec(), mirrored)).unwrap();
-    assert!((0..turned.element_count()).all(|e| q3::signed_volume(&turned.corners(e)) > 0.0));
+    assert!((0..turned.element_count()).all(|e| q3::signed_volume(&turned.tet_corners(e)) > 0.0));
     // a single inverted tetrahedron in a right-handed mesh stays inverted (tangled)
     let mut tangled = m.nodes().to_vec();
     tangled[13] = DVec3::new(1.2, 0.5, 0.5);
     let t =
         VolumeMesh::build(parts(tangled, (0..m.element_count()).flat_map(|e| m.element(e).to_vec()).collect())).unwrap();
-    assert!((0..t.element_count()).any(|e| q3::signed_volume(&t.corners(e)) < 0.0));
+    assert!((0..t.element_count()).any(|e| q3::signed_volume(&t.tet_corners(e)) < 0.0));
 }
 
 mod smoothing {
@@ -248,10 +248,10 @@ fn a_ten_node_tetrahedron_is_measured_with_its_mid_edge_nodes() {
     bent[4] = DVec3::new(0.1, 0.0, 0.0);
     assert!(tet10_measures(&bent, R).inverted);
     // and the mesh's statistics say so
-    let mesh = VolumeMesh::build(TetParts {
+    let mesh = VolumeMesh::build(SolidParts {
         nodes: bent.to_vec(),
         node_lines: Vec::new(),
-        kind: VolumeKind::Tet10,
+        kinds: vec![VolumeKind::Tet10],
         elements: (0..10).collect(),
         element_lines: Vec::new(),
         fixed: FixedSpec::Boundary,

@@ -188,7 +188,7 @@ pub fn run(a: GenerateArgs) -> Result<(), String> {
             let cube = generate::tet_cube(cells).map_err(|e| e.to_string())?;
             let cube = match order {
                 1 => cube,
-                2 => cube.to_quadratic().map_err(|e| e.to_string())?,
+                2 => cube.to_quadratic(false).map_err(|e| e.to_string())?,
                 o => return Err(format!("--order {o}: give 1 (4-node tetrahedra) or 2 (10-node)")),
             };
             return write_model(&Model::Volume(cube), &out.output, out.msh_version);

@@ -1,0 +1,476 @@
+//! Every volume element kind measured by its corners (Knupp 1999, §2–3): at each measured
+//! corner `c` with edge neighbours `a`, `b`, `d` ([`VolumeKindRow::corner_edges`]) the
+//! tetrahedron `(c, a, b, d)`, its Jacobian `A` (the three edge vectors) weighted by the
+//! kind's reference, `T = A·W⁻¹`; and the element's validity decided for certain, not at
+//! its corners only: a trilinear hexahedron can be inverted inside with all eight corner
+//! determinants positive (Marschner, Palmer, Zhang & Solomon, SGP 2020).
+//!
+//! **Validity** ([`validity`]) is decided on the Jacobian determinant `det J` of the
+//! element's map from its reference element, written in the Bernstein (Bézier) basis:
+//! - a tetrahedron: `det J` is constant, six times its volume;
+//! - a wedge: `det J` is affine in the triangle's barycentric coordinates and quadratic
+//!   along its height, so its minimum is at a triangle corner, on one of three quadratics
+//!   whose minimum is exact from their Bernstein coefficients (`c0, c2 > 0` and
+//!   `c1 > −√(c0·c2)`): decided exactly;
+//! - a hexahedron: `det J = X_u·(X_v × X_w)` with each column bilinear in the other two
+//!   parameters, a polynomial of degree 2 in each of u, v, w with 27 Bernstein
+//!   coefficients. All positive: valid (a Bernstein polynomial lies within the hull of its
+//!   coefficients); a value ≤ 0 at a corner of the box (a corner coefficient is a value):
+//!   inverted; else the box is split in half (de Casteljau, exact halving) and each half
+//!   decided, up to [`MAX_BOXES`] boxes; where that is not enough (an element within
+//!   rounding of flat) the element is [`Validity::Undecided`], which the guard and the
+//!   statistics count as inverted;
+//! - a pyramid, by its collapsed-hexahedron map `x = (1 − t)·B(u, v) + t·apex` with `B` the
+//!   bilinear base: `det J = (1 − t)²·g(u, v)`, `g = B_u·(B_v × (apex − B))` of degree 2 in
+//!   u and v, decided as the hexahedron's (the factor vanishes only at the apex).
+//!
+//! What is not certain: the quadratic kinds' mid-edge, face and centre nodes are taken
+//! where they follow their corners to; a 10-node tetrahedron is judged at its four corners'
+//! Jacobians (`tet::tet10_measures`), a 20- or 27-node hexahedron by its corners' trilinear
+//! hexahedron (exact when its edges are straight).
+
+use glam::DVec3;
+
+use super::tet::{self as q3, CornerReference};
+use crate::mesh::VolumeKind;
+
+/// How many boxes (the whole element, then halves) a hexahedron's or pyramid's validity
+/// may examine before it is called [`Validity::Undecided`].
+pub const MAX_BOXES: usize = 4096;
+
+/// Whether an element's Jacobian determinant is positive everywhere in it.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Validity {
+    /// Positive everywhere: certain.
+    Valid,
+    /// Zero or negative somewhere: certain (at a point of the element).
+    Inverted,
+    /// Not decided within [`MAX_BOXES`] boxes: the determinant's smallest value is within
+    /// rounding of 0. Counted as inverted.
+    Undecided,
+}
+
+/// The tetrahedron `(c, a, b, d)` of measured corner `c` of an element of `kind` (its
+/// corners `p`, in the kind's order).
+#[inline]
+pub fn corner_tet(kind: VolumeKind, p: &[DVec3], c: usize) -> [DVec3; 4] {
+    let [a, b, d] = kind.row().corner_edges[c];
+    [p[c], p[a], p[b], p[d]]
+}
+
+/// The determinant of the corner's Jacobian `A` (six times its tetrahedron's volume).
+#[inline]
+fn corner_det(t: &[DVec3; 4]) -> f64 {
+    (t[1] - t[0]).dot((t[2] - t[0]).cross(t[3] - t[0]))
+}
+
+/// The corners in their own scale, as [`q3::in_unit_scale`] does for a tetrahedron: as
+/// they are when the edges' largest component lies within the safe scale, else moved to
+/// the first corner and multiplied by a power of two (exact), so signs and ratios are the
+/// same at every scale.
+fn in_unit_scale(p: &[DVec3]) -> ([DVec3; 8], usize) {
+    let mut q = [DVec3::ZERO; 8];
+    let n = p.len().min(8);
+    let m = p[1..n].iter().fold(0.0f64, |m, x| m.max((*x - p[0]).abs().max_element()));
+    match crate::numeric::factors_beyond_safe_scale(m) {
+        None => q[..n].copy_from_slice(&p[..n]),
+        Some((f1, f2)) => {
+            for i in 0..n {
+                q[i] = (p[i] - p[0]) * f1 * f2;
+            }
+        }
+    }
+    (q, n)
+}
+
+/// A polynomial of degree ≤ 2 in each of three parameters on a box, by its 3×3×3
+/// Bernstein coefficients (`deg[k]` 0 where it does not depend on parameter `k`).
+#[derive(Clone, Copy)]
+struct Bezier {
+    c: [[[f64; 3]; 3]; 3],
+    deg: [usize; 3],
+}
+
+impl Bezier {
+    fn min_coefficient(&self) -> f64 {
+        let mut m = f64::INFINITY;
+        for i in 0..=self.deg[0] {
+            for j in 0..=self.deg[1] {
+                for k in 0..=self.deg[2] {
+                    m = m.min(self.c[i][j][k]);
+                }
+            }
+        }
+        m
+    }
+    /// The smallest of its values at the box's corners (its corner coefficients).
+    fn min_corner(&self) -> f64 {
+        let mut m = f64::INFINITY;
+        for i in [0, self.deg[0]] {
+            for j in [0, self.deg[1]] {
+                for k in [0, self.deg[2]] {
+                    m = m.min(self.c[i][j][k]);
+                }
+            }
+        }
+        m
+    }
+    /// The two halves along parameter `axis` (de Casteljau at ½).
+    fn split(&self, axis: usize) -> (Bezier, Bezier) {
+        let (mut lo, mut hi) = (*self, *self);
+        let at = |c: &[[[f64; 3]; 3]; 3], t: usize, a: usize, b: usize| match axis {
+            0 => c[t][a][b],
+            1 => c[a][t][b],
+            _ => c[a][b][t],
+        };
+        let (na, nb) = match axis {
+            0 => (self.deg[1], self.deg[2]),
+            1 => (self.deg[0], self.deg[2]),
+            _ => (self.deg[0], self.deg[1]),
+        };
+        for a in 0..=na {
+            for b in 0..=nb {
+                let (b0, b1, b2) = (at(&self.c, 0, a, b), at(&self.c, 1, a, b), at(&self.c, 2, a, b));
+                let (l1, r1) = (0.5 * (b0 + b1), 0.5 * (b1 + b2));
+                let m = 0.5 * (l1 + r1);
+                let set = |c: &mut [[[f64; 3]; 3]; 3], t: usize, v: f64| match axis {
+                    0 => c[t][a][b] = v,
+                    1 => c[a][t][b] = v,
+                    _ => c[a][b][t] = v,
+                };
+                set(&mut lo.c, 1, l1);
+                set(&mut lo.c, 2, m);
+                set(&mut hi.c, 0, m);
+                set(&mut hi.c, 1, r1);
+            }
+        }
+        (lo, hi)
+    }
+
+    /// Decides the sign of the polynomial on the box: positive everywhere, ≤ 0 somewhere,
+    /// or not decided within [`MAX_BOXES`] boxes.
+    fn validity(&self) -> Validity {
+        let axes: Vec<usize> = (0..3).filter(|&k| self.deg[k] == 2).collect();
+        let mut stack = vec![(*self, 0usize)];
+        let mut boxes = 0;
+        while let Some((b, depth)) = stack.pop() {
+            boxes += 1;
+            if b.min_corner() <= 0.0 || b.min_corner().is_nan() {
+                return Validity::Inverted;
+            }
+            if b.min_coefficient() > 0.0 {
+                continue;
+            }
+            if boxes >= MAX_BOXES || axes.is_empty() {
+                return Validity::Undecided;
+            }
+            let (lo, hi) = b.split(axes[depth % axes.len()]);
+            stack.push((hi, depth + 1));
+            stack.push((lo, depth + 1));
+        }
+        Validity::Valid
+    }
+}
+
+/// The weight of splitting index `i` of a product of degree `n` into indices of degrees
+/// `m1 + m2 = n`, with the first `i1`: `C(m1, i1)·C(m2, i − i1)/C(n, i)` (all degrees ≤ 2).
+fn weight(m: [usize; 3], i: [usize; 3]) -> f64 {
+    const C: [[f64; 3]; 3] = [[1.0, 0.0, 0.0], [1.0, 1.0, 0.0], [1.0, 2.0, 1.0]];
+    let n: usize = m.iter().sum();
+    let s: usize = i.iter().sum();
+    let num = C[m[0]][i[0]] * C[m[1]][i[1]] * C[m[2]][i[2]];
+    // C(n, s) with n ≤ 2
+    num / C[n.min(2)][s.min(2)]
+}
+
+/// The Bernstein coefficients of `f·(g × h)` over a box, `f`, `g`, `h` vector polynomials
+/// by their coefficients of degrees `df`, `dg`, `dh` ≤ 1 in each parameter (the products'
+/// degrees ≤ 2).
+fn triple_product(f: &[[[DVec3; 2]; 2]; 2], df: [usize; 3], g: &[[[DVec3; 2]; 2]; 2], dg: [usize; 3], h: &[[[DVec3; 2]; 2]; 2], dh: [usize; 3]) -> Bezier {
+    let deg = [0, 1, 2].map(|k| df[k] + dg[k] + dh[k]);
+    let mut c = [[[0.0; 3]; 3]; 3];
+    for (fi, fj, fk) in indices(df) {
+        for (gi, gj, gk) in indices(dg) {
+            for (hi, hj, hk) in indices(dh) {
+                let (i, j, k) = (fi + gi + hi, fj + gj + hj, fk + gk + hk);
+                let w = weight([df[0], dg[0], dh[0]], [fi, gi, hi])
+                    * weight([df[1], dg[1], dh[1]], [fj, gj, hj])
+                    * weight([df[2], dg[2], dh[2]], [fk, gk, hk]);
+                c[i][j][k] += w * f[fi][fj][fk].dot(g[gi][gj][gk].cross(h[hi][hj][hk]));
+            }
+        }
+    }
+    Bezier { c, deg }
+}
+
+fn indices(d: [usize; 3]) -> impl Iterator<Item = (usize, usize, usize)> {
+    (0..=d[0]).flat_map(move |i| (0..=d[1]).flat_map(move |j| (0..=d[2]).map(move |k| (i, j, k))))
+}
+
+/// A trilinear hexahedron's `det J` (corners in VTK's order, parameters u, v, w along
+/// edges 0→1, 0→3, 0→4) in the Bernstein basis.
+fn hex_det(p: &[DVec3]) -> Bezier {
+    // the corner at (i, j, k) ∈ {0, 1}³
+    let at = |i: usize, j: usize, k: usize| p[4 * k + [[0, 3], [1, 2]][i][j]];
+    let z = [[[DVec3::ZERO; 2]; 2]; 2];
+    let (mut xu, mut xv, mut xw) = (z, z, z);
+    for a in 0..2 {
+        for b in 0..2 {
+            xu[0][a][b] = at(1, a, b) - at(0, a, b);
+            xv[a][0][b] = at(a, 1, b) - at(a, 0, b);
+            xw[a][b][0] = at(a, b, 1) - at(a, b, 0);
+        }
+    }
+    triple_product(&xu, [0, 1, 1], &xv, [1, 0, 1], &xw, [1, 1, 0])
+}
+
+/// A pyramid's `g(u, v) = B_u·(B_v × (apex − B))` (see the module docs) in the Bernstein
+/// basis.
+fn pyramid_det(p: &[DVec3]) -> Bezier {
+    let base = |i: usize, j: usize| p[[[0, 3], [1, 2]][i][j]];
+    let z = [[[DVec3::ZERO; 2]; 2]; 2];
+    let (mut bu, mut bv, mut to_apex) = (z, z, z);
+    for a in 0..2 {
+        bu[0][a][0] = base(1, a) - base(0, a);
+        bv[a][0][0] = base(a, 1) - base(a, 0);
+        for b in 0..2 {
+            to_apex[a][b][0] = p[4] - base(a, b);
+        }
+    }
+    triple_product(&bu, [0, 1, 0], &bv, [1, 0, 0], &to_apex, [1, 1, 0])
+}
+
+/// A wedge's validity, exact (see the module docs).
+fn wedge_validity(p: &[DVec3]) -> Validity {
+    // VTK's wedge: the triangle 0 1 2 turns clockwise seen from 3 4 5 above it, so
+    // det J = −(∂ξ × ∂η)·∂ζ
+    let e1 = [p[1] - p[0], p[4] - p[3]];
+    let e2 = [p[2] - p[0], p[5] - p[3]];
+    let c = [e1[0].cross(e2[0]), 0.5 * (e1[0].cross(e2[1]) + e1[1].cross(e2[0])), e1[1].cross(e2[1])];
+    let mut undecided = false;
+    for i in 0..3 {
+        let up = p[i + 3] - p[i];
+        let [c0, c1, c2] = c.map(|ck| -ck.dot(up));
+        if c0 <= 0.0 || c2 <= 0.0 || c0.is_nan() || c1.is_nan() || c2.is_nan() {
+            return Validity::Inverted;
+        }
+        if c1 <= 0.0 {
+            // the quadratic's minimum is inside: positive iff c1² < c0·c2
+            let (sq, prod) = (c1 * c1, c0 * c2);
+            if sq >= prod {
+                return Validity::Inverted;
+            }
+            undecided |= !sq.is_finite() || !prod.is_finite();
+        }
+    }
+    if undecided {
+        Validity::Undecided
+    } else {
+        Validity::Valid
+    }
+}
+
+/// Whether the element of `kind` with corners `p` (its first [`VolumeKind::corners`]
+/// nodes) is valid everywhere, for certain (see the module docs).
+pub fn validity(kind: VolumeKind, p: &[DVec3]) -> Validity {
+    let (q, _) = in_unit_scale(&p[..kind.corners()]);
+    match kind.linear() {
+        VolumeKind::Tet4 => {
+            if q3::is_inverted(&[q[0], q[1], q[2], q[3]]) {
+                Validity::Inverted
+            } else {
+                Validity::Valid
+            }
+        }
+        VolumeKind::Wedge6 => wedge_validity(&q),
+        VolumeKind::Hex8 => hex_det(&q).validity(),
+        VolumeKind::Pyramid5 => pyramid_det(&q).validity(),
+        VolumeKind::Tet10 | VolumeKind::Hex20 | VolumeKind::Hex27 => unreachable!("linear() is linear"),
+    }
+}
+
+/// The smallest Bernstein coefficient of the element's `det J` (its corners' determinants
+/// for a tetrahedron or a wedge's three quadratics), in the element's units³: ≤ 0 when the
+/// element is not certified by its first box; the validity guard's measure of how far an
+/// element is folded.
+pub fn min_det_coefficient(kind: VolumeKind, p: &[DVec3]) -> f64 {
+    match kind.linear() {
+        VolumeKind::Hex8 => hex_det(p).min_coefficient(),
+        VolumeKind::Pyramid5 => pyramid_det(p).min_coefficient(),
+        _ => (0..kind.row().corner_edges.len()).map(|c| corner_det(&corner_tet(kind, p, c))).fold(f64::INFINITY, f64::min),
+    }
+}
+
+/// The scaled Jacobian of a corner, `det T/(‖t₁‖·‖t₂‖·‖t₃‖)` with `T = A·W⁻¹`: 1 at the
+/// ideal corner, in [−1, 1], negative when inverted (the 3D sine of a corner: the volume of
+/// the parallelepiped of its unit weighted edges). 0 for a degenerate corner.
+pub fn scaled_jacobian(p: &[DVec3; 4], r: &CornerReference) -> f64 {
+    let t = q3::WeightedJacobian::of(&q3::in_unit_scale(p), r).t;
+    let n = t.x_axis.length() * t.y_axis.length() * t.z_axis.length();
+    if n == 0.0 || !n.is_finite() {
+        return 0.0;
+    }
+    t.determinant() / n
+}
+
+/// [`scaled_jacobian`] with its gradient with respect to corner 0: with `s = W⁻ᵀ𝟙`, every
+/// column `t_i` moves by `−s_i·dp0`, so `∇ln SJ = ∇σ/σ + Σ s_i·t_i/‖t_i‖²`.
+pub fn scaled_jacobian_grad0(p: &[DVec3; 4], r: &CornerReference) -> (f64, DVec3) {
+    let j = q3::WeightedJacobian::of(p, r);
+    let cols = [j.t.x_axis, j.t.y_axis, j.t.z_axis];
+    let l2 = cols.map(|c| c.length_squared());
+    let n = (l2[0] * l2[1] * l2[2]).sqrt();
+    if n == 0.0 || !n.is_finite() {
+        return (0.0, DVec3::ZERO);
+    }
+    let sj = j.sigma / n;
+    let s = r.w_inv_t_one;
+    // ∇(σ/n) = ∇σ/n − σ/n·∇ln n, ∇ln n = Σ −s_i t_i/‖t_i‖²
+    let grad_ln_n = -(s.x * cols[0] / l2[0] + s.y * cols[1] / l2[1] + s.z * cols[2] / l2[2]);
+    (sj, j.grad_sigma / n - sj * grad_ln_n)
+}
+
+/// Every measure of one volume element, for statistics and the page.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SolidMeasures {
+    /// Not certainly valid ([`validity`]; a 10-node tetrahedron by its corners).
+    pub inverted: bool,
+    /// Valid at every measured corner, yet not valid inside (the case corner checks miss).
+    pub inverted_inside: bool,
+    pub min_dihedral_deg: f64,
+    pub max_dihedral_deg: f64,
+    /// The smallest sine of a dihedral angle (a tetrahedron, Freitag 1997) or scaled
+    /// Jacobian of a corner (the other kinds: the 3D sine of a corner).
+    pub min_sine: f64,
+    /// Knupp's κ, the worst corner's.
+    pub condition: f64,
+    /// The mean ratio: a tetrahedron's; the other kinds' mean over their measured corners.
+    pub mean_ratio: f64,
+    /// The smallest scaled Jacobian of a measured corner ([`scaled_jacobian`]).
+    pub scaled_jacobian: f64,
+    /// The dihedral angles, degrees (the first [`dihedral_count`](Self::dihedral_count)):
+    /// a tetrahedron's six; for the other kinds, at each measured corner, the angles of its
+    /// tetrahedron at the corner's three edges (the element's dihedral angles there when
+    /// its faces are flat).
+    pub dihedral_deg: [f64; 24],
+    pub dihedral_count: usize,
+}
+
+impl SolidMeasures {
+    pub fn dihedral(&self) -> &[f64] {
+        &self.dihedral_deg[..self.dihedral_count]
+    }
+}
+
+/// The indices, in [`q3::dihedral_angles`]' order, of the dihedral angles at the edges
+/// from corner 0 of a tetrahedron: (0,1), (0,2), (0,3).
+const EDGES_AT_CORNER_0: [usize; 3] = {
+    let mut out = [0; 3];
+    let mut n = 0;
+    let mut i = 0;
+    while i < 6 {
+        if q3::TET_EDGES[i][0] == 0 {
+            out[n] = i;
+            n += 1;
+        }
+        i += 1;
+    }
+    out
+};
+
+/// [`SolidMeasures`] of an element of `kind` with nodes `p` (all its nodes, in the kind's
+/// order).
+pub fn solid_measures(kind: VolumeKind, p: &[DVec3]) -> SolidMeasures {
+    let r = kind.reference();
+    let sj_min = |ts: &mut dyn Iterator<Item = [DVec3; 4]>, r: &CornerReference| ts.map(|t| scaled_jacobian(&t, r)).fold(f64::INFINITY, f64::min);
+    match kind {
+        VolumeKind::Tet4 | VolumeKind::Tet10 => {
+            let m = match kind {
+                VolumeKind::Tet4 => q3::tet_measures(&[p[0], p[1], p[2], p[3]], r),
+                _ => q3::tet10_measures(&std::array::from_fn(|j| p[j]), r),
+            };
+            let corners = [p[0], p[1], p[2], p[3]];
+            let sj = sj_min(&mut (0..4).map(|c| q3::with_first(&corners, c)), r);
+            let mut dihedral_deg = [0.0; 24];
+            dihedral_deg[..6].copy_from_slice(&m.dihedral_deg);
+            SolidMeasures {
+                inverted: m.inverted,
+                inverted_inside: false,
+                min_dihedral_deg: m.min_dihedral_deg,
+                max_dihedral_deg: m.max_dihedral_deg,
+                min_sine: m.min_sine,
+                condition: m.condition,
+                mean_ratio: m.mean_ratio,
+                scaled_jacobian: sj,
+                dihedral_deg,
+                dihedral_count: 6,
+            }
+        }
+        _ => {
+            let (q, _) = in_unit_scale(&p[..kind.corners()]);
+            let count = kind.row().corner_edges.len();
+            let mut out = SolidMeasures {
+                inverted: false,
+                inverted_inside: false,
+                min_dihedral_deg: f64::INFINITY,
+                max_dihedral_deg: f64::NEG_INFINITY,
+                min_sine: f64::INFINITY,
+                condition: 0.0,
+                mean_ratio: 0.0,
+                scaled_jacobian: f64::INFINITY,
+                dihedral_deg: [0.0; 24],
+                dihedral_count: 3 * count,
+            };
+            let mut corner_inverted = false;
+            for c in 0..count {
+                let t = corner_tet(kind, &q, c);
+                corner_inverted |= q3::is_inverted(&t);
+                out.mean_ratio += q3::mean_ratio(&t, r) / count as f64;
+                out.condition = out.condition.max(q3::condition_number(&t, r));
+                out.scaled_jacobian = out.scaled_jacobian.min(scaled_jacobian(&t, r));
+                let angles = q3::dihedral_angles(&t);
+                for (k, &i) in EDGES_AT_CORNER_0.iter().enumerate() {
+                    let a = angles[i].to_degrees();
+                    out.dihedral_deg[3 * c + k] = a;
+                    out.min_dihedral_deg = out.min_dihedral_deg.min(a);
+                    out.max_dihedral_deg = out.max_dihedral_deg.max(a);
+                }
+            }
+            out.min_sine = out.scaled_jacobian;
+            out.inverted = corner_inverted || validity(kind, &q) != Validity::Valid;
+            out.inverted_inside = out.inverted && !corner_inverted;
+            out
+        }
+    }
+}
+
+/// The shape of an element that is not a tetrahedron, as the drivers read it (the smart
+/// Laplacian, the priority order, the acceptance rule): the mean of its measured corners'
+/// mean ratios (1 for the ideal element, falling through 0 as corners invert).
+pub fn solid_shape(kind: VolumeKind, p: &[DVec3]) -> f64 {
+    let (q, _) = in_unit_scale(p);
+    let (r, count) = (kind.reference(), kind.row().corner_edges.len());
+    (0..count).map(|c| q3::mean_ratio(&corner_tet(kind, &q, c), r)).sum::<f64>() / count as f64
+}
+
+/// The smallest scaled Jacobian of the element's measured corners (its "sine").
+pub fn solid_min_sine(kind: VolumeKind, p: &[DVec3]) -> f64 {
+    let r = kind.reference();
+    (0..kind.row().corner_edges.len()).map(|c| scaled_jacobian(&corner_tet(kind, p, c), r)).fold(f64::INFINITY, f64::min)
+}
+
+/// How far an element that is not certainly valid is folded, for the validity guard: 0
+/// when [`Validity::Valid`], else `Σ max(0, −det)` over its measured corners plus
+/// `max(0, −c_min)`, the smallest Bernstein coefficient of its Jacobian determinant (in
+/// the element's units³), so a fold inside the element that its corners do not see
+/// counts too.
+pub fn solid_inversion(kind: VolumeKind, p: &[DVec3], validity: Validity) -> f64 {
+    if validity == Validity::Valid {
+        return 0.0;
+    }
+    let corners: f64 = (0..kind.row().corner_edges.len()).map(|c| (-corner_det(&corner_tet(kind, p, c))).max(0.0)).sum();
+    corners + (-min_det_coefficient(kind, p)).max(0.0)
+}
+
+#[cfg(test)]
+mod tests;

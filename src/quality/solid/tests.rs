@@ -1,0 +1,215 @@
+use super::*;
+use crate::numeric::SplitMix64;
+
+fn ideal(kind: VolumeKind) -> Vec<DVec3> {
+    let r = kind.row();
+    let mut p: Vec<DVec3> = r.ideal.iter().map(|&c| DVec3::from(c)).collect();
+    for f in r.followers {
+        p.push(f.iter().map(|&c| p[c]).sum::<DVec3>() / f.len() as f64);
+    }
+    p
+}
+
+fn pts(a: &[[f64; 3]]) -> Vec<DVec3> {
+    a.iter().map(|&c| DVec3::from(c)).collect()
+}
+
+#[test]
+fn the_ideal_element_of_every_kind_measures_as_ideal() {
+    for k in VolumeKind::ALL {
+        let m = solid_measures(k, &ideal(k));
+        assert!(!m.inverted, "{k:?}");
+        assert_eq!(validity(k, &ideal(k)), Validity::Valid, "{k:?}");
+        assert!((m.mean_ratio - 1.0).abs() < 1e-12, "{k:?}: {}", m.mean_ratio);
+        // κ of an ideal corner is 3 (T a rotation: ‖T‖_F = ‖T⁻¹‖_F = √3)
+        assert!((m.condition - 3.0).abs() < 1e-12, "{k:?}: {}", m.condition);
+        if !k.is_tet() {
+            assert!((m.scaled_jacobian - 1.0).abs() < 1e-12, "{k:?}: {}", m.scaled_jacobian);
+        }
+    }
+    // a cube's dihedral angles are right angles; a right wedge's 90° and 60°
+    let cube = solid_measures(VolumeKind::Hex8, &ideal(VolumeKind::Hex8));
+    assert_eq!(cube.dihedral_count, 24);
+    assert!(cube.dihedral().iter().all(|a| (a - 90.0).abs() < 1e-12));
+    let wedge = solid_measures(VolumeKind::Wedge6, &ideal(VolumeKind::Wedge6));
+    assert!(wedge.dihedral().iter().all(|a| (a - 90.0).abs() < 1e-12 || (a - 60.0).abs() < 1e-12));
+    assert!((wedge.min_dihedral_deg - 60.0).abs() < 1e-12);
+}
+
+/// `det J` of a trilinear hexahedron at (u, v, w), by the derivatives of its map.
+fn hex_det_at(p: &[DVec3], u: f64, v: f64, w: f64) -> f64 {
+    let at = |i: usize, j: usize, k: usize| p[4 * k + [[0, 3], [1, 2]][i][j]];
+    let l = |t: f64, i: usize| if i == 1 { t } else { 1.0 - t };
+    let mut x = [DVec3::ZERO; 3];
+    for a in 0..2 {
+        for b in 0..2 {
+            x[0] += (at(1, a, b) - at(0, a, b)) * l(v, a) * l(w, b);
+            x[1] += (at(a, 1, b) - at(a, 0, b)) * l(u, a) * l(w, b);
+            x[2] += (at(a, b, 1) - at(a, b, 0)) * l(u, a) * l(v, b);
+        }
+    }
+    x[0].dot(x[1].cross(x[2]))
+}
+
+/// A Bernstein polynomial of degree 2 in each parameter at (u, v, w).
+fn eval(b: &Bezier, t: [f64; 3]) -> f64 {
+    let basis = |d: usize, t: f64| -> [f64; 3] {
+        match d {
+            0 => [1.0, 0.0, 0.0],
+            _ => [(1.0 - t) * (1.0 - t), 2.0 * t * (1.0 - t), t * t],
+        }
+    };
+    let (bu, bv, bw) = (basis(b.deg[0], t[0]), basis(b.deg[1], t[1]), basis(b.deg[2], t[2]));
+    let mut s = 0.0;
+    for i in 0..3 {
+        for j in 0..3 {
+            for k in 0..3 {
+                s += b.c[i][j][k] * bu[i] * bv[j] * bw[k];
+            }
+        }
+    }
+    s
+}
+
+#[test]
+fn the_bernstein_coefficients_are_the_hexahedron_jacobian_determinant() {
+    let mut rng = SplitMix64::new(11);
+    for _ in 0..50 {
+        let p: Vec<DVec3> = ideal(VolumeKind::Hex8)
+            .iter()
+            .map(|c| *c + DVec3::new(rng.uniform(-0.4, 0.4), rng.uniform(-0.4, 0.4), rng.uniform(-0.4, 0.4)))
+            .collect();
+        let b = hex_det(&p);
+        for _ in 0..20 {
+            let t = [rng.uniform(0.0, 1.0), rng.uniform(0.0, 1.0), rng.uniform(0.0, 1.0)];
+            let (a, e) = (eval(&b, t), hex_det_at(&p, t[0], t[1], t[2]));
+            assert!((a - e).abs() < 1e-12 * e.abs().max(1.0), "{a} vs {e}");
+        }
+        // the halves of a split are the polynomial on the halves
+        let (lo, hi) = b.split(1);
+        let t = [rng.uniform(0.0, 1.0), rng.uniform(0.0, 1.0), rng.uniform(0.0, 1.0)];
+        assert!((eval(&lo, t) - hex_det_at(&p, t[0], 0.5 * t[1], t[2])).abs() < 1e-12);
+        assert!((eval(&hi, t) - hex_det_at(&p, t[0], 0.5 + 0.5 * t[1], t[2])).abs() < 1e-12);
+    }
+}
+
+/// Found by searching perturbed cubes: all eight corner determinants ≥ 0.08, yet
+/// `det J ≈ −0.18` inside.
+const INSIDE_OUT_HEX: [[f64; 3]; 8] = [
+    [-0.7, 0.8, 0.2],
+    [1.7, -0.2, -0.2],
+    [1.6, 1.8, 0.5],
+    [0.7, 1.6, 0.5],
+    [0.7, 0.5, 0.1],
+    [0.4, -0.3, 0.5],
+    [1.8, 1.7, 1.1],
+    [-0.5, 0.3, 0.2],
+];
+
+#[test]
+fn a_hexahedron_inverted_inside_with_every_corner_positive_is_found() {
+    let p = pts(&INSIDE_OUT_HEX);
+    for c in 0..8 {
+        assert!(corner_det(&corner_tet(VolumeKind::Hex8, &p, c)) > 0.07, "corner {c}");
+    }
+    assert!(hex_det_at(&p, 0.5, 0.5, 0.5).min(hex_det_at(&p, 0.3, 0.6, 0.4)) < 0.0 || {
+        // somewhere on a grid
+        (0..10).any(|i| (0..10).any(|j| (0..10).any(|k| hex_det_at(&p, i as f64 / 9.0, j as f64 / 9.0, k as f64 / 9.0) < 0.0)))
+    });
+    assert_eq!(validity(VolumeKind::Hex8, &p), Validity::Inverted);
+    let m = solid_measures(VolumeKind::Hex8, &p);
+    assert!(m.inverted && m.inverted_inside);
+    // at every scale alike
+    for s in [1e-150, 1e150] {
+        let q: Vec<DVec3> = p.iter().map(|x| *x * s).collect();
+        assert_eq!(validity(VolumeKind::Hex8, &q), Validity::Inverted, "{s:e}");
+        let ok: Vec<DVec3> = ideal(VolumeKind::Hex8).iter().map(|x| *x * s).collect();
+        assert_eq!(validity(VolumeKind::Hex8, &ok), Validity::Valid, "{s:e}");
+    }
+}
+
+/// Found by searching perturbed wedges: all six corner determinants ≥ 0.27, yet
+/// `det J ≈ −0.14` inside.
+const INSIDE_OUT_WEDGE: [[f64; 3]; 6] =
+    [[0.5, 0.6, 0.5], [1.2, 0.4, -0.6], [0.4, 0.5, -0.5], [-0.3, -0.6, 1.7], [0.0, 0.4, 1.2], [1.3, -0.7, 1.1]];
+
+#[test]
+fn a_wedge_inverted_inside_with_every_corner_positive_is_found() {
+    let p = pts(&INSIDE_OUT_WEDGE);
+    for c in 0..6 {
+        assert!(corner_det(&corner_tet(VolumeKind::Wedge6, &p, c)) > 0.26, "corner {c}");
+    }
+    assert_eq!(validity(VolumeKind::Wedge6, &p), Validity::Inverted);
+    assert!(solid_measures(VolumeKind::Wedge6, &p).inverted_inside);
+}
+
+#[test]
+fn validity_agrees_with_dense_sampling_on_random_elements() {
+    // where the certain answer is Valid, no sample is ≤ 0; where Inverted, some point is
+    // (the sampling may miss a thin one: only the first direction is checked)
+    let mut rng = SplitMix64::new(21);
+    let (mut valid, mut inverted) = (0, 0);
+    for _ in 0..400 {
+        let p: Vec<DVec3> = ideal(VolumeKind::Hex8)
+            .iter()
+            .map(|c| *c + DVec3::new(rng.uniform(-0.6, 0.6), rng.uniform(-0.6, 0.6), rng.uniform(-0.6, 0.6)))
+            .collect();
+        let n = 12;
+        let sampled_min = (0..=n)
+            .flat_map(|i| (0..=n).flat_map(move |j| (0..=n).map(move |k| (i, j, k))))
+            .map(|(i, j, k)| hex_det_at(&p, i as f64 / n as f64, j as f64 / n as f64, k as f64 / n as f64))
+            .fold(f64::INFINITY, f64::min);
+        match validity(VolumeKind::Hex8, &p) {
+            Validity::Valid => {
+                valid += 1;
+                assert!(sampled_min > 0.0, "{p:?}");
+            }
+            Validity::Inverted => {
+                inverted += 1;
+            }
+            Validity::Undecided => {}
+        }
+        if sampled_min <= 0.0 {
+            assert_ne!(validity(VolumeKind::Hex8, &p), Validity::Valid);
+        }
+    }
+    assert!(valid > 50 && inverted > 50, "{valid} {inverted}");
+}
+
+#[test]
+fn a_pyramid_is_decided_by_its_base_map() {
+    let p = ideal(VolumeKind::Pyramid5);
+    assert_eq!(validity(VolumeKind::Pyramid5, &p), Validity::Valid);
+    // the apex pushed through the base: inverted
+    let mut q = p.clone();
+    q[4].z = -0.3;
+    assert_eq!(validity(VolumeKind::Pyramid5, &q), Validity::Inverted);
+    // a base folded into a bow tie: inverted, though the apex is high above
+    let mut r = p.clone();
+    r.swap(1, 2);
+    assert_eq!(validity(VolumeKind::Pyramid5, &r), Validity::Inverted);
+}
+
+#[test]
+fn the_scaled_jacobian_gradient_agrees_with_central_differences() {
+    let mut rng = SplitMix64::new(7);
+    let h = 1e-6;
+    for k in [VolumeKind::Tet4, VolumeKind::Hex8, VolumeKind::Wedge6, VolumeKind::Pyramid5] {
+        let r = k.reference();
+        for _ in 0..40 {
+            let p: [DVec3; 4] = std::array::from_fn(|_| DVec3::new(rng.uniform(-1.0, 1.0), rng.uniform(-1.0, 1.0), rng.uniform(-1.0, 1.0)));
+            let (v, g) = scaled_jacobian_grad0(&p, r);
+            assert!((v - scaled_jacobian(&p, r)).abs() < 1e-12);
+            let mut fd = DVec3::ZERO;
+            for c in 0..3 {
+                let mut e = DVec3::ZERO;
+                e[c] = h;
+                let (mut a, mut b) = (p, p);
+                a[0] += e;
+                b[0] -= e;
+                fd[c] = (scaled_jacobian(&a, r) - scaled_jacobian(&b, r)) / (2.0 * h);
+            }
+            assert!((fd - g).length() <= 1e-6 * g.length().max(1.0), "{k:?}: {g} vs {fd}");
+        }
+    }
+}
