@@ -24,7 +24,7 @@ mod stats;
 pub mod tet;
 
 pub use stats::{
-    angle_bin, mesh_stats, mesh_stats_with, ElementStats, MeshCounts, MeshStats, MeshStatsBuilder, QuickStats,
+    angle_bin, mesh_stats, mesh_stats_with, ElementStats, MeshCounts, MeshStats, MeshStatsBuilder, SolidStats, scaled_jacobian_bin, QuickStats,
 };
 
 /// `2√3`, Lo's normalisation so an equilateral triangle has α = 1.

@@ -233,8 +233,8 @@ fn pyramid_det(p: &[DVec3]) -> Bezier {
     for a in 0..2 {
         bu[0][a][0] = base(1, a) - base(0, a);
         bv[a][0][0] = base(a, 1) - base(a, 0);
-        for b in 0..2 {
-            to_apex[a][b][0] = p[4] - base(a, b);
+        for (b, t) in to_apex[a].iter_mut().enumerate() {
+            t[0] = p[4] - base(a, b);
         }
     }
     triple_product(&bu, [0, 1, 0], &bv, [1, 0, 0], &to_apex, [1, 1, 0])

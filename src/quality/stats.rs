@@ -47,6 +47,36 @@ pub struct MeshStats {
     /// planar mesh or a surface.
     #[serde(skip_serializing_if = "is_zero")]
     pub tetrahedra: usize,
+    /// For a volume mesh, what only volumes have (absent from JSON otherwise).
+    #[serde(flatten, skip_serializing_if = "Option::is_none")]
+    pub solid: Option<SolidStats>,
+}
+
+/// The statistics only a volume mesh has: its elements by kind, the scaled Jacobian, and
+/// the elements inverted inside though every corner is positive.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct SolidStats {
+    pub hexahedra: usize,
+    pub wedges: usize,
+    pub pyramids: usize,
+    /// Elements not certainly valid though every measured corner's determinant is
+    /// positive ([`super::solid::validity`]): what a check of the corners alone misses.
+    /// Counted in [`MeshStats::inverted`] too.
+    pub inverted_inside: usize,
+    /// The smallest scaled Jacobian of a measured corner ([`super::solid::scaled_jacobian`]).
+    pub min_scaled_jacobian: f64,
+    /// Counts of the elements' smallest corner scaled Jacobians in 20 bins of 0.1 over
+    /// [−1, 1] ([`scaled_jacobian_bin`]).
+    pub scaled_jacobian_histogram: Vec<u64>,
+}
+
+/// The bin of a scaled Jacobian in [`SolidStats::scaled_jacobian_histogram`]: 20 bins of
+/// 0.1 from −1 (values below −1 or not a number in the first, 1 in the last).
+pub fn scaled_jacobian_bin(sj: f64) -> usize {
+    if sj.is_nan() || sj <= -1.0 {
+        return 0;
+    }
+    (((sj + 1.0) * 10.0 + 1e-9) as usize).min(19)
 }
 
 fn is_zero(n: &usize) -> bool {
@@ -126,6 +156,9 @@ pub struct MeshCounts {
     pub quadratic: usize,
     /// Tetrahedra (0 for a planar mesh or a surface).
     pub tetrahedra: usize,
+    /// A volume mesh's hexahedra, wedges and pyramids (`None` for a planar mesh or a
+    /// surface): then the statistics carry [`SolidStats`].
+    pub solids: Option<[usize; 3]>,
 }
 
 impl MeshCounts {
@@ -141,6 +174,7 @@ impl MeshCounts {
             quads: mesh.element_count() - triangles,
             quadratic: mesh.kinds().iter().filter(|k| k.is_quadratic()).count(),
             tetrahedra: 0,
+            solids: None,
         }
     }
 }
@@ -204,6 +238,14 @@ impl MeshStatsBuilder {
                 surface: false,
                 max_distance_from_surface: None,
                 tetrahedra: c.tetrahedra,
+                solid: c.solids.map(|[hexahedra, wedges, pyramids]| SolidStats {
+                    hexahedra,
+                    wedges,
+                    pyramids,
+                    inverted_inside: 0,
+                    min_scaled_jacobian: f64::INFINITY,
+                    scaled_jacobian_histogram: vec![0; 20],
+                }),
             },
             quality_sum: 0.0,
         }
@@ -223,6 +265,15 @@ impl MeshStatsBuilder {
         s.min_quality = s.min_quality.min(m.quality);
         s.max_condition = s.max_condition.max(m.condition);
         self.quality_sum += m.quality;
+    }
+    /// Folds one volume element's scaled Jacobian and inside inversion in (a volume mesh's
+    /// statistics only: [`MeshCounts::solids`]).
+    pub fn solid(&mut self, m: &super::solid::SolidMeasures) {
+        if let Some(s) = &mut self.stats.solid {
+            s.inverted_inside += m.inverted_inside as usize;
+            s.min_scaled_jacobian = s.min_scaled_jacobian.min(m.scaled_jacobian);
+            s.scaled_jacobian_histogram[scaled_jacobian_bin(m.scaled_jacobian)] += 1;
+        }
     }
     /// The statistics, the mean quality over the elements counted.
     pub fn finish(mut self) -> MeshStats {

@@ -115,7 +115,8 @@ impl Face {
 #[derive(Clone, Debug)]
 pub struct VolumeMesh {
     nodes: Vec<DVec3>,
-    kinds: Vec<VolumeKind>,
+    /// The kind of every element.
+    element_kinds: Vec<VolumeKind>,
     /// The kinds present, in [`VolumeKind`]'s order.
     present: Vec<VolumeKind>,
     /// CSR: element `e`'s nodes are `elements[start[e]..start[e + 1]]`.
@@ -459,7 +460,7 @@ impl VolumeMesh {
         }
         Ok(VolumeMesh {
             nodes,
-            kinds,
+            element_kinds: kinds,
             present,
             start,
             elements,
@@ -570,7 +571,7 @@ impl VolumeMesh {
         let mut shared = std::collections::HashMap::new();
         let (mut kinds, mut elements) = (Vec::with_capacity(self.element_count()), Vec::new());
         for e in 0..self.element_count() {
-            let to = match self.kinds[e] {
+            let to = match self.element_kinds[e] {
                 VolumeKind::Tet4 => VolumeKind::Tet10,
                 VolumeKind::Hex8 if serendipity => VolumeKind::Hex20,
                 VolumeKind::Hex8 => VolumeKind::Hex27,
@@ -606,16 +607,16 @@ impl VolumeMesh {
         self.nodes.len()
     }
     pub fn element_count(&self) -> usize {
-        self.kinds.len()
+        self.element_kinds.len()
     }
-    /// The kinds its elements are of, in [`VolumeKind`]'s order.
+    /// The kinds its elements are of, in [`VolumeKind`]'s order (each once).
     pub fn kinds(&self) -> &[VolumeKind] {
         &self.present
     }
     /// The kind of element `e`.
     #[inline]
     pub fn element_kind(&self, e: usize) -> VolumeKind {
-        self.kinds[e]
+        self.element_kinds[e]
     }
     /// Whether every element is a tetrahedron (of one kind: a mesh does not mix orders).
     #[inline]
@@ -652,13 +653,13 @@ impl VolumeMesh {
     /// mid-edge nodes, the others by their corners, validity certain).
     pub fn measures(&self, e: usize) -> SolidMeasures {
         let (p, n) = self.element_points(e);
-        solid_measures(self.kinds[e], &p[..n])
+        solid_measures(self.element_kinds[e], &p[..n])
     }
     /// Whether element `e` is inverted: not certainly valid (a tetrahedron's volume ≤ 0; a
     /// hexahedron's, wedge's or pyramid's Jacobian determinant ≤ 0 somewhere or not
     /// decided, [`crate::quality::solid::validity`]).
     pub fn is_inverted(&self, e: usize) -> bool {
-        let k = self.kinds[e];
+        let k = self.element_kinds[e];
         let c = self.corners(e);
         if k.is_tet() {
             q3::is_inverted(&[c[0], c[1], c[2], c[3]])
@@ -672,7 +673,7 @@ impl VolumeMesh {
     pub fn corners(&self, e: usize) -> [DVec3; 8] {
         let ids = self.element(e);
         let mut p = [DVec3::ZERO; 8];
-        for (q, &i) in p.iter_mut().zip(&ids[..self.kinds[e].corners()]) {
+        for (q, &i) in p.iter_mut().zip(&ids[..self.element_kinds[e].corners()]) {
             *q = self.nodes[i as usize];
         }
         p
@@ -732,7 +733,7 @@ impl VolumeMesh {
     pub fn mean_edge_length(&self) -> f64 {
         let (mut sum, mut edges) = (0.0, 0usize);
         for e in 0..self.element_count() {
-            let k = self.kinds[e];
+            let k = self.element_kinds[e];
             let p = self.corners(e);
             let list: &[[usize; 2]] = if k.is_tet() { &q3::TET_EDGES } else { k.row().edges };
             sum += list.iter().map(|&[a, b]| p[a].distance(p[b])).sum::<f64>();

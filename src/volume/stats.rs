@@ -2,17 +2,23 @@
 //! for every kind of mesh: the CLI's tables, the pass records and the page read it alike),
 //! folded by the one [`MeshStatsBuilder`].
 
-use super::VolumeMesh;
+use super::{VolumeKind, VolumeMesh};
 use crate::quality::{ElementStats, MeshCounts, MeshStats, MeshStatsBuilder};
 
 /// The statistics of `mesh`: `min_angle_deg`/`max_angle_deg` and the 6° histogram
 /// (Freitag 1997, Fig. 3) are over the dihedral angles, `min_quality`/`mean_quality` over
 /// the mean ratio, `max_condition` is Knupp's κ (∞ when a tetrahedron is inverted, as for
-/// planar meshes), `inverted` counts tetrahedra of volume ≤ 0 (a 10-node one measured
-/// with its mid-edge nodes, [`VolumeMesh::measures`]), `tetrahedra` the
-/// elements; `triangles` and `quads` are 0.
+/// planar meshes), `inverted` counts the elements not certainly valid (a tetrahedron of
+/// volume ≤ 0, a 10-node one measured with its mid-edge nodes; another kind whose
+/// Jacobian determinant is ≤ 0 somewhere in it, [`VolumeMesh::measures`]), `tetrahedra`
+/// the tetrahedra, [`SolidStats`](crate::quality::SolidStats) the other kinds, the
+/// scaled Jacobian and the elements inverted inside; `triangles` and `quads` are 0. The
+/// dihedral angles of a kind other than the tetrahedron are those at its corners' edges
+/// ([`crate::quality::solid::SolidMeasures::dihedral_deg`]), the mean ratio the mean of
+/// its corners'.
 pub fn volume_stats(mesh: &VolumeMesh) -> MeshStats {
     let elements = mesh.element_count();
+    let count = |f: &dyn Fn(VolumeKind) -> bool| (0..elements).filter(|&e| f(mesh.element_kind(e))).count();
     let mut s = MeshStatsBuilder::new(MeshCounts {
         nodes: mesh.node_count(),
         free_nodes: mesh.free_count(),
@@ -21,7 +27,12 @@ pub fn volume_stats(mesh: &VolumeMesh) -> MeshStats {
         triangles: 0,
         quads: 0,
         quadratic: if mesh.is_quadratic() { elements } else { 0 },
-        tetrahedra: elements,
+        tetrahedra: count(&|k| k.is_tet()),
+        solids: Some([
+            count(&|k| k.linear() == VolumeKind::Hex8),
+            count(&|k| k == VolumeKind::Wedge6),
+            count(&|k| k == VolumeKind::Pyramid5),
+        ]),
     });
     for e in 0..elements {
         let m = mesh.measures(e);
@@ -32,9 +43,10 @@ pub fn volume_stats(mesh: &VolumeMesh) -> MeshStats {
             quality: m.mean_ratio,
             condition: if m.inverted { f64::INFINITY } else { m.condition },
         });
-        for a in m.dihedral_deg {
+        for &a in m.dihedral() {
             s.angle(a.to_radians());
         }
+        s.solid(&m);
     }
     s.finish()
 }

@@ -37,9 +37,19 @@ pub fn table(s: &MeshStats) -> String {
     let following =
         if s.following_nodes > 0 { format!(", {} mid-side following", s.following_nodes) } else { String::new() };
     row("nodes", format!("{} ({} free, {} fixed{following})", s.nodes, s.free_nodes, s.fixed_nodes));
-    let solid = s.tetrahedra > 0;
-    if solid {
-        row("elements", format!("{} ({} quadratic)", crate::args::count(s.tetrahedra, "tetrahedron", "tetrahedra"), s.quadratic));
+    let solid = s.solid.is_some();
+    if let Some(v) = &s.solid {
+        let kinds: Vec<String> = [
+            (s.tetrahedra, "tetrahedron", "tetrahedra"),
+            (v.hexahedra, "hexahedron", "hexahedra"),
+            (v.wedges, "wedge", "wedges"),
+            (v.pyramids, "pyramid", "pyramids"),
+        ]
+        .into_iter()
+        .filter(|&(n, _, _)| n > 0)
+        .map(|(n, one, many)| crate::args::count(n, one, many))
+        .collect();
+        row("elements", format!("{} ({}; {} quadratic)", s.elements, kinds.join(", "), s.quadratic));
     } else {
         row(
             "elements",
@@ -52,7 +62,13 @@ pub fn table(s: &MeshStats) -> String {
             ),
         );
     }
-    row("inverted", s.inverted.to_string());
+    match &s.solid {
+        Some(v) if v.hexahedra + v.wedges + v.pyramids > 0 => row(
+            "inverted",
+            format!("{} ({} inside, every corner positive; certain, by the Bernstein coefficients of det J)", s.inverted, v.inverted_inside),
+        ),
+        _ => row("inverted", s.inverted.to_string()),
+    }
     row(
         if solid { "dihedral angles" } else { "angles" },
         format!("min {:.2}°  max {:.2}°", s.min_angle_deg, s.max_angle_deg),
@@ -69,6 +85,9 @@ pub fn table(s: &MeshStats) -> String {
             "max ∞ (inverted elements)".into()
         },
     );
+    if let Some(v) = &s.solid {
+        row("scaled Jacobian", format!("min {:.4}", v.min_scaled_jacobian));
+    }
     let total: u64 = s.angle_histogram_6deg.iter().sum();
     t.push_str(if solid {
         "dihedral angle histogram (6° bins, % of dihedral angles):\n"

@@ -61,10 +61,10 @@ fn eval(b: &Bezier, t: [f64; 3]) -> f64 {
     };
     let (bu, bv, bw) = (basis(b.deg[0], t[0]), basis(b.deg[1], t[1]), basis(b.deg[2], t[2]));
     let mut s = 0.0;
-    for i in 0..3 {
-        for j in 0..3 {
-            for k in 0..3 {
-                s += b.c[i][j][k] * bu[i] * bv[j] * bw[k];
+    for (ci, u) in b.c.iter().zip(bu) {
+        for (cij, v) in ci.iter().zip(bv) {
+            for (c, w) in cij.iter().zip(bw) {
+                s += c * u * v * w;
             }
         }
     }
