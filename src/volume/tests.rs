@@ -83,7 +83,7 @@ fn bad_input_gives_errors_naming_the_node_or_element_and_line() {
     three.push(DVec3::new(0.2, 0.2, -1.0));
     three.push(DVec3::new(0.2, 0.2, 2.0));
     let e = err(parts(three, vec![0, 1, 2, 3, 0, 2, 1, 5, 0, 1, 2, 6]));
-    assert!(e.contains("is a face of 3 tetrahedra"), "{e}");
+    assert!(e.contains("its face [0, 1, 2] is a face of 3 elements"), "{e}");
 }
 
 #[test]
