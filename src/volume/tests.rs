@@ -260,3 +260,86 @@ fn a_ten_node_tetrahedron_is_measured_with_its_mid_edge_nodes() {
     .unwrap();
     assert_eq!(crate::volume::volume_stats(&mesh).inverted, 1);
 }
+
+/// A block of `n³` unit hexahedra, its nodes moved by `jitter` (seeded) inside.
+fn hex_block(n: usize, jitter: f64, seed: u64) -> VolumeMesh {
+    let m = n + 1;
+    let id = |i: usize, j: usize, k: usize| (i + m * (j + m * k)) as u32;
+    let mut rng = crate::numeric::SplitMix64::new(seed);
+    let mut nodes = Vec::new();
+    for k in 0..m {
+        for j in 0..m {
+            for i in 0..m {
+                let inside = [i, j, k].iter().all(|&c| c > 0 && c < n);
+                let d = if inside { jitter * rng.in_unit_ball() } else { DVec3::ZERO };
+                nodes.push(DVec3::new(i as f64, j as f64, k as f64) + d);
+            }
+        }
+    }
+    let mut hexes = Vec::new();
+    for k in 0..n {
+        for j in 0..n {
+            for i in 0..n {
+                hexes.push([
+                    id(i, j, k),
+                    id(i + 1, j, k),
+                    id(i + 1, j + 1, k),
+                    id(i, j + 1, k),
+                    id(i, j, k + 1),
+                    id(i + 1, j, k + 1),
+                    id(i + 1, j + 1, k + 1),
+                    id(i, j + 1, k + 1),
+                ]);
+            }
+        }
+    }
+    VolumeMesh::from_elements(nodes, hexes.iter().map(|h| (VolumeKind::Hex8, &h[..]))).unwrap()
+}
+
+#[test]
+fn quadratic_hexahedra_follow_their_corners() {
+    let linear = hex_block(3, 0.2, 5);
+    for (serendipity, kind, nodes) in [(true, VolumeKind::Hex20, 20), (false, VolumeKind::Hex27, 27)] {
+        let mut q = linear.to_quadratic(serendipity).unwrap();
+        assert_eq!(q.kinds(), &[kind]);
+        assert_eq!(q.element(0).len(), nodes);
+        // shared: 4³ corners, 3·3·4² edges' middles (and 3·3·4 faces', 27 centres)
+        let (edges, faces, centres) = (3 * 3 * 16, 3 * 4 * 9, 27);
+        let expect = 64 + edges + if serendipity { 0 } else { faces + centres };
+        assert_eq!(q.node_count(), expect, "{kind:?}");
+        assert_eq!(q.free_count(), linear.free_count());
+        let before = crate::volume::volume_stats(&q);
+        assert_eq!((before.inverted, before.quadratic), (0, 27));
+        crate::volume::smooth_volume(&mut q, &*crate::objective::tet_objective(crate::objective::ObjectiveKind::New).unwrap(), Default::default(), 2, &|| 0.0).unwrap();
+        // every follower at the mean of its corners, boundary ones where they were
+        for e in 0..q.element_count() {
+            let ids = q.element(e);
+            for (m, ps) in kind.row().followers.iter().enumerate() {
+                let at = ps.iter().map(|&c| q.nodes()[ids[c] as usize]).sum::<DVec3>() / ps.len() as f64;
+                assert!(at.distance(q.nodes()[ids[8 + m] as usize]) < 1e-12, "{kind:?} element {e} follower {m}");
+            }
+        }
+        let after = crate::volume::volume_stats(&q);
+        assert!(after.inverted == 0 && after.min_quality >= before.min_quality);
+    }
+    // wedges have no quadratic kind here: refused in words
+    let wedge = VolumeMesh::from_elements(
+        vec![DVec3::ZERO, DVec3::new(0.5, 0.8, 0.0), DVec3::X, DVec3::Z, DVec3::new(0.5, 0.8, 1.0), DVec3::new(1.0, 0.0, 1.0)],
+        [(VolumeKind::Wedge6, &[0u32, 1, 2, 3, 4, 5][..])],
+    )
+    .unwrap();
+    assert!(wedge.to_quadratic(false).unwrap_err().to_string().contains("wedges have no quadratic kind"));
+}
+
+#[test]
+fn a_mixed_mesh_of_a_quadratic_kind_and_another_is_refused_naming_the_line() {
+    let mut b = crate::mesh::MeshBuilder::new();
+    for p in [DVec3::ZERO, DVec3::X, DVec3::Y, DVec3::Z] {
+        b.add_node([p.x, p.y, p.z], 0);
+    }
+    b.add_volume_element(VolumeKind::Tet4, &[0, 1, 2, 3], 7).unwrap();
+    let e = b.add_volume_element(VolumeKind::Hex20, &[0; 20], 8).unwrap_err().to_string();
+    assert!(e.contains("line 8") && e.contains("a quadratic mesh is of one kind"), "{e}");
+    // linear kinds mix
+    assert!(b.add_volume_element(VolumeKind::Hex8, &[0; 8], 9).is_ok());
+}
