@@ -120,7 +120,7 @@ impl Surface {
         true
     }
 
-    /// What a move of node `n` changes ([`place`](Self::place): the node and the nodes
+    /// What a move of node `n` changes (placing it: the node and the nodes
     /// that follow it, their positions and where their projections start), as it is now:
     /// [`put_back`](Self::put_back) restores it exactly.
     pub fn keep_around(&self, n: usize) -> KeptNodes {
@@ -240,7 +240,7 @@ impl Surface {
     /// (the nodes that follow `n` where they will follow), gathered as a planar [`Star`],
     /// and that plane (its origin the node, so the node is at 2D `0`): the star's objective
     /// over the plane is the one a pass minimises or maximises at `n`, and
-    /// [`Plane::to_3d`] lifts a 2D answer back into space (then [`place`](Self::place)
+    /// [`Plane::to_3d`] lifts a 2D answer back into space (then placing it
     /// projects it onto the surface, as the drivers do).
     pub fn tangent_star(&self, n: usize) -> Result<(Star, Plane)> {
         if n >= self.node_count() {
