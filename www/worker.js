@@ -18,28 +18,30 @@ function need() {
 }
 
 // The handle is a Playground (a planar mesh) or a Lab3d (a mesh in 3D: a surface, or
-// tetrahedra drawn cut by a plane; its kind() says which).
+// tetrahedra drawn cut by a plane; its kind() says which). Both answer the page's views of
+// one node, the charts, undo and the figure by the same names.
 let kind = null;
 const isVolume = () => kind === 'volume';
-const isSurface = () => kind !== null;
+const isSpace = () => kind !== null;
 
-/** The handle of a planar mesh: what only a planar mesh has (level sets, dragging, charts). */
+/** The handle of a planar mesh: what only a planar mesh has (passes in slices, two
+ * workers, dragging a node, panning). */
 function planar() {
-  if (need() && isSurface()) {
-    throw new Error(`this view takes planar meshes only; this mesh is ${isVolume() ? 'made of tetrahedra' : 'a surface in 3D'}`);
+  if (need() && isSpace()) {
+    throw new Error(`this takes planar meshes only; this mesh is ${isVolume() ? 'made of tetrahedra' : 'a surface in 3D'}`);
   }
   return pg;
 }
 
-/** The handle of tetrahedra: what only they have (the cut plane, dihedral histograms). */
+/** The handle of tetrahedra: what only they have (the cut plane). */
 function volume() {
   if (!(need() && isVolume())) throw new Error('the cut plane takes tetrahedral meshes only');
   return pg;
 }
 
-/** The handle of a surface: what only a surface has (its camera). */
-function surface() {
-  if (!(need() && isSurface())) throw new Error('the 3D view takes surfaces only; this mesh is planar');
+/** The handle of a mesh in 3D: what only the 3D view has (its camera). */
+function space() {
+  if (!(need() && isSpace())) throw new Error('the 3D view takes surfaces and tetrahedra only; this mesh is planar');
   return pg;
 }
 
@@ -58,11 +60,11 @@ function replace(next) {
   kind = pg instanceof wasm.Lab3d ? pg.kind() : null;
   applyTheme();
   return {
-    surface: isSurface(),
+    surface: isSpace(),
     volume: isVolume(),
-    notPlanar: isSurface() ? pg.notPlanar() ?? null : null,
-    fileNote: isSurface() ? pg.fileNote() ?? null : null,
-    nodes: isSurface() ? null : pg.nodeCount(),
+    notPlanar: isSpace() ? pg.notPlanar() ?? null : null,
+    fileNote: isSpace() ? pg.fileNote() ?? null : null,
+    nodes: isSpace() ? null : pg.nodeCount(),
   };
 }
 
@@ -84,11 +86,11 @@ const handlers = {
   step: () => need().step(),
   beginPass: () => planar().beginPass(),
   // settings, beginPass and the first slice in one message (a short pass is one round trip);
-  // a surface's pass runs whole
+  // a pass in 3D runs whole
   pass: (settings, budgetMs) => {
     const p = need();
     p.setSettings(settings);
-    if (isSurface()) return { done: true, fraction: 1, records: p.step() };
+    if (isSpace()) return { done: true, fraction: 1, records: p.step() };
     p.beginPass();
     return p.continuePass(budgetMs);
   },
@@ -111,40 +113,43 @@ const handlers = {
     return sweepSlice(p, budgetMs);
   },
   continueSweep: (budgetMs) => sweepSlice(planar(), budgetMs),
-  abortPass: () => (isSurface() ? null : need().abortPass()),
+  abortPass: () => (isSpace() ? null : need().abortPass()),
   perturb: (amount, seed) => need().perturb(amount, seed),
   // the pictures of both meshes and their statistics tables, in one message
   frame: (w, h, dpr, force) => {
     const p = need();
-    const f = isSurface() ? p.frame(w, h, dpr) : p.frame(w, h, dpr, Boolean(force));
+    const f = isSpace() ? p.frame(w, h, dpr) : p.frame(w, h, dpr, Boolean(force));
     f.stats = { a: p.stats('a'), b: p.stats('b') };
     return f;
   },
-  forgetFrames: () => (isSurface() ? null : need().forgetFrames()),
-  pick: (panel, x, y, radius) => planar().pickNode(panel, x, y, radius),
-  pickSurface: (panel, x, y, radius) => surface().pickNode(panel, x, y, radius) ?? null,
+  forgetFrames: () => (isSpace() ? null : need().forgetFrames()),
+  // a planar mesh: the nearest node; in 3D: the nearest node of the face drawn there
+  pick: (panel, x, y, radius) => need().pickNode(panel, x, y, radius),
   drag: (node, x, y) => planar().dragNode(node, x, y),
-  select: (node) => planar().selectNode(node === null ? undefined : node),
-  nodeView: (w, h, cw, ch, dpr) => planar().nodeView(w, h, cw, ch, dpr),
-  charts: (w, h, hw, hh, dpr, logY) => planar().charts(w, h, hw, hh, dpr, Boolean(logY)),
+  select: (node) => need().selectNode(node === null ? undefined : node),
+  nodeView: (w, h, cw, ch, dpr) => need().nodeView(w, h, cw, ch, dpr),
+  charts: (w, h, hw, hh, dpr, logY) => need().charts(w, h, hw, hh, dpr, Boolean(logY)),
   exportMesh: (side, format) => need().exportMesh(side, format),
-  worstNode: () => planar().worstFreeNode() ?? null,
-  // the wheel: a surface's camera zooms about the centre of its view
-  zoomMeshes: (x, y, factor) => (isSurface() ? need().zoom(factor) : need().zoomMeshes(x, y, factor)),
+  worstNode: () => need().worstFreeNode() ?? null,
+  // the wheel: the 3D camera zooms about the centre of its view
+  zoomMeshes: (x, y, factor) => (isSpace() ? need().zoom(factor) : need().zoomMeshes(x, y, factor)),
   panMeshes: (dx, dy) => planar().panMeshes(dx, dy),
-  orbit: (dx, dy) => surface().orbit(dx, dy),
-  camera: () => surface().camera(),
+  orbit: (dx, dy) => space().orbit(dx, dy),
+  camera: () => space().camera(),
+  setCamera: (yaw, pitch, zoom) => space().setCamera(yaw, pitch, zoom),
   setCut: (axis, at) => volume().setCut(axis, at),
-  volumeHistograms: (w, h, dpr, logY) => volume().histograms(w, h, dpr, Boolean(logY)),
-  zoomLevelSets: (panel, x, y, factor) => planar().zoomLevelSets(panel, x, y, factor),
-  panLevelSets: (panel, dx, dy) => planar().panLevelSets(panel, dx, dy),
+  // where a node is drawn in 3D, and where it is: for the browser tests
+  nodeOnScreen: (panel, node) => space().nodeOnScreen(panel, node) ?? null,
+  nodePoint: (panel, node) => space().nodePoint(panel, node) ?? null,
+  zoomLevelSets: (panel, x, y, factor) => need().zoomLevelSets(panel, x, y, factor),
+  panLevelSets: (panel, dx, dy) => need().panLevelSets(panel, dx, dy),
   resetZoom: () => need().resetZoom(),
   rememberBeforeMove: (node) => planar().rememberBeforeMove(node),
-  undo: () => planar().undo(),
+  undo: () => need().undo(),
   nudge: (panel, dx, dy) => planar().nudgeNode(panel, dx, dy),
-  undoSummary: () => planar().undoSummary(),
-  smoothNode: (w, h, cw, ch, dpr) => planar().smoothNode(w, h, cw, ch, dpr),
-  figure: (w, h, dpr) => planar().figure(w, h, dpr),
+  undoSummary: () => need().undoSummary(),
+  smoothNode: (w, h, cw, ch, dpr) => need().smoothNode(w, h, cw, ch, dpr),
+  figure: (w, h, dpr) => need().figure(w, h, dpr),
   panicForTest: () => wasm.panicForTest(),
   tourFigures: () => wasm.tourFigures(),
   tourCard: (name) => wasm.tourCard(name),
@@ -164,11 +169,12 @@ function sweepSlice(p, budgetMs) {
   return progress;
 }
 
-// Buffers of typed arrays in a result, moved (not copied) to the main thread.
+// Buffers of typed arrays in a result, moved (not copied) to the main thread, each once
+// (a picture may be named twice: the 3D charts' first histogram is also hist_a, hist_b).
 // (never the wasm memory itself: results are copies out of it)
 function transferables(value, out = []) {
   if (ArrayBuffer.isView(value)) {
-    if (!(exports && value.buffer === exports.memory.buffer)) out.push(value.buffer);
+    if (!(exports && value.buffer === exports.memory.buffer) && !out.includes(value.buffer)) out.push(value.buffer);
   }
   else if (value && typeof value === 'object') for (const v of Object.values(value)) transferables(v, out);
   return out;

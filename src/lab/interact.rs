@@ -52,6 +52,17 @@ impl LevelWindow {
         }
         LevelWindow { lo: self.lo + delta, hi: self.hi + delta }
     }
+    /// Magnified `factor` times about the CSS pixel `at` of a level set of the world box
+    /// `whole` drawn with `view` (the point under it stays there).
+    pub fn zoomed_in_view(self, whole: (DVec2, DVec2), view: &View, at: DVec2, factor: f64) -> Self {
+        let f = (view.css_to_world(at) - whole.0) / (whole.1 - whole.0);
+        self.zoomed_at(f, factor)
+    }
+    /// Moved by `delta` CSS pixels of a level set of the world box `whole` drawn with `view`.
+    pub fn panned_in_view(self, whole: (DVec2, DVec2), view: &View, delta: DVec2) -> Self {
+        let world = DVec2::new(delta.x, -delta.y) / view.scale();
+        self.shifted(-world / (whole.1 - whole.0))
+    }
 }
 
 /// What undo puts back: positions of one panel's nodes before a move.
@@ -115,15 +126,13 @@ impl Playground {
     /// level set of `node` on canvas `c`.
     pub fn zoom_level_sets_at(&mut self, side: Side, node: usize, c: Canvas, at: DVec2, factor: f64) {
         let (whole, view) = self.level_view(side, node, c);
-        let f = (view.css_to_world(at) - whole.0) / (whole.1 - whole.0);
-        self.level_window = self.level_window.zoomed_at(f, factor);
+        self.level_window = self.level_window.zoomed_in_view(whole, &view, at, factor);
     }
 
     /// Moves the level-set views by `delta` CSS pixels of `side`'s level set of `node`.
     pub fn pan_level_sets(&mut self, side: Side, node: usize, c: Canvas, delta: DVec2) {
         let (whole, view) = self.level_view(side, node, c);
-        let world = DVec2::new(delta.x, -delta.y) / view.scale();
-        self.level_window = self.level_window.shifted(-world / (whole.1 - whole.0));
+        self.level_window = self.level_window.panned_in_view(whole, &view, delta);
     }
 
     /// Both views as fitted again (a double-click).

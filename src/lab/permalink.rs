@@ -10,6 +10,10 @@
 //! `a` and `b` are the objectives of the left and the right panel (`objective` is read as
 //! `b`, and `amount` as `tangle`, as older links name them); `a-penalty` and `b-penalty`
 //! are the penalty designs of a side running `new`, written for such a side only.
+//! A mesh in 3D adds its camera (`yaw`, `pitch`, `zoom`) and tetrahedra their cut plane
+//! (`cut`, the axis, and `cut-at`, where along it), e.g.
+//! `#sample=rand3d&…&node=431&yaw=52.5&pitch=31&zoom=1.5&cut=x&cut-at=0.4`; a link
+//! without them (every older link) opens the 3D view as it starts.
 //!
 //! [`decode`] is strict about what it knows and lenient about what it does not: keys it
 //! does not know are ignored (links from a newer page still open); a known key with a
@@ -27,6 +31,8 @@ use serde::{Deserialize, Serialize};
 
 use super::Settings;
 use crate::error::{Error, Result};
+use crate::render::{Camera, ZOOM_RANGE};
+use crate::volume::Cut;
 use crate::objective::{ObjectiveKind, Penalty};
 use crate::smooth::limits::{self, amount_in_range, amount_words, threshold_in_range, IntRange, THRESHOLD_WORDS};
 use crate::smooth::{Order, Strategy};
@@ -123,8 +129,37 @@ pub struct PageState {
     pub passes: u32,
     /// The node whose level sets are shown. Key `node`; default none.
     pub node: Option<u32>,
+    /// The 3D view's camera (a surface or tetrahedra): keys `yaw` (degrees, `0 ≤ yaw <
+    /// 360`), `pitch` (degrees, `-90 ..= 90`) and `zoom` (`0.01 ..= 100`), all three written
+    /// when present, a key left out taking the starting camera's value; default none (the
+    /// camera as it starts).
+    pub camera: Option<CameraState>,
+    /// The cut plane of tetrahedra: keys `cut` (`x`, `y` or `z`) and `cut-at` (`0 ..= 1`
+    /// of the extent), both written when present; default none (half way up z).
+    pub cut: Option<Cut>,
     /// The page is embedded (no controls). Key `embed`; default false.
     pub embed: bool,
+}
+
+/// A permalink's camera: [`Camera`]'s yaw, pitch and zoom, as the page sends them.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct CameraState {
+    pub yaw: f64,
+    pub pitch: f64,
+    pub zoom: f64,
+}
+
+impl From<CameraState> for Camera {
+    fn from(c: CameraState) -> Camera {
+        Camera { yaw: c.yaw, pitch: c.pitch, zoom: c.zoom }
+    }
+}
+
+impl From<Camera> for CameraState {
+    fn from(c: Camera) -> CameraState {
+        CameraState { yaw: c.yaw, pitch: c.pitch, zoom: c.zoom }
+    }
 }
 
 impl Default for PageState {
@@ -137,6 +172,8 @@ impl Default for PageState {
             settings: Settings::default(),
             passes: crate::smooth::DEFAULT_PASSES,
             node: None,
+            camera: None,
+            cut: None,
             embed: false,
         }
     }
@@ -156,10 +193,13 @@ impl PageState {
 }
 
 /// The keys, in the order [`encode`] writes them.
-const KEYS: [&str; 15] = [
+const KEYS: [&str; 20] = [
     "sample", "tangle", "seed", "perturbed", "strategy", "a", "a-penalty", "b", "b-penalty", "threshold", "passes",
-    "order", "maxiter", "node", "embed",
+    "order", "maxiter", "node", "yaw", "pitch", "zoom", "cut", "cut-at", "embed",
 ];
+
+/// The axes a cut is across, by [`Cut::axis`].
+const AXES: [&str; 3] = ["x", "y", "z"];
 
 /// The key a name in a link stands for (older links' names read as today's keys).
 fn key_of(name: &str) -> Option<&'static str> {
@@ -241,10 +281,28 @@ fn read(s: &mut PageState, key: &'static str, v: &str) -> std::result::Result<()
         "order" => one_of(&Order::ALL, Order::name, v).map(|o| c.order = o),
         "maxiter" => whole(v, limits::MAX_ITER).map(|n| c.max_iter = n as u32),
         "node" => whole(v, limits::NODE).map(|n| s.node = Some(n as u32)),
+        "yaw" => number(v, |x| (0.0..360.0).contains(&x), || "a number of degrees from 0 to less than 360".into())
+            .map(|x| camera(s).yaw = x),
+        "pitch" => number(v, |x| (-90.0..=90.0).contains(&x), || "a number of degrees from -90 to 90".into())
+            .map(|x| camera(s).pitch = x),
+        "zoom" => number(v, |x| (ZOOM_RANGE.0..=ZOOM_RANGE.1).contains(&x), || format!("a number from {} to {}", ZOOM_RANGE.0, ZOOM_RANGE.1))
+            .map(|x| camera(s).zoom = x),
+        "cut" => AXES.iter().position(|&a| a == v).map(|axis| cut(s).axis = axis).ok_or_else(|| "x, y or z".into()),
+        "cut-at" => number(v, |x| (0.0..=1.0).contains(&x), || "a number from 0 to 1".into()).map(|x| cut(s).at = x),
         "embed" => flag(v).map(|f| s.embed = f),
         _ => Ok(()), // not a key of KEYS: nothing reads it
     };
     set.map_err(|allowed| Refusal { key, found: v.to_string(), allowed })
+}
+
+/// The state's camera, the starting one until a key sets it.
+fn camera(s: &mut PageState) -> &mut CameraState {
+    s.camera.get_or_insert_with(|| Camera::default().into())
+}
+
+/// The state's cut, the starting one until a key sets it.
+fn cut(s: &mut PageState) -> &mut Cut {
+    s.cut.get_or_insert_with(Cut::default)
 }
 
 /// The text of `key` (one of [`KEYS`]) for a state, or `None` when the link leaves it out.
@@ -265,6 +323,11 @@ fn write(s: &PageState, key: &str) -> Option<String> {
         "order" => name(c.order.name()),
         "maxiter" => Some(c.max_iter.to_string()),
         "node" => s.node.map(|n| n.to_string()),
+        "yaw" => s.camera.map(|c| shortest(c.yaw)),
+        "pitch" => s.camera.map(|c| shortest(c.pitch)),
+        "zoom" => s.camera.map(|c| shortest(c.zoom)),
+        "cut" => s.cut.map(|c| AXES.get(c.axis).copied().unwrap_or("?").to_string()),
+        "cut-at" => s.cut.map(|c| shortest(c.at)),
         "embed" => s.embed.then(|| "1".into()),
         _ => None,
     }
@@ -415,6 +478,8 @@ mod tests {
                 },
                 passes: 3,
                 node: Some(17),
+                camera: None,
+                cut: None,
                 embed: false,
             }
         );
@@ -627,6 +692,37 @@ mod tests {
     }
 
     #[test]
+    fn the_3d_view_keeps_its_camera_and_cut_and_older_links_open_without_them() {
+        let h = "#sample=rand3d&node=431&yaw=52.5&pitch=-31&zoom=1.5&cut=x&cut-at=0.4";
+        let s = decode(h).unwrap();
+        assert_eq!(s.camera, Some(CameraState { yaw: 52.5, pitch: -31.0, zoom: 1.5 }));
+        assert_eq!(s.cut, Some(Cut { axis: 0, at: 0.4 }));
+        assert_eq!(Camera::from(s.camera.unwrap()), Camera { yaw: 52.5, pitch: -31.0, zoom: 1.5 });
+        let back = encode(&s);
+        assert!(back.ends_with("&node=431&yaw=52.5&pitch=-31&zoom=1.5&cut=x&cut-at=0.4"), "{back}");
+        assert_eq!(decode(&back).unwrap(), s);
+        // one key alone: the others as the view starts
+        let s = decode("#yaw=10&cut-at=0.25").unwrap();
+        assert_eq!(s.camera, Some(CameraState { yaw: 10.0, ..Camera::default().into() }));
+        assert_eq!(s.cut, Some(Cut { at: 0.25, ..Cut::default() }));
+        // a link written before the 3D keys: none of them, and none written back
+        let old = decode("#sample=sphere-tangled&node=12").unwrap();
+        assert_eq!((old.camera, old.cut), (None, None));
+        assert!(!encode(&old).contains("yaw") && !encode(&old).contains("cut"));
+        for (bad, want) in [
+            ("yaw=360", "'yaw' must be a number of degrees from 0 to less than 360"),
+            ("pitch=91", "'pitch'"),
+            ("zoom=0", "'zoom' must be a number from 0.01 to 100"),
+            ("cut=w", "'cut' must be x, y or z"),
+            ("cut-at=1.5", "'cut-at'"),
+            ("yaw=nan", "'yaw'"),
+        ] {
+            let e = decode(bad).unwrap_err().to_string();
+            assert!(e.contains(want), "{bad}: {e}");
+        }
+    }
+
+    #[test]
     fn long_input_is_refused_by_its_length() {
         let long = format!("#seed=1&{}", "x".repeat(MAX_HASH_BYTES));
         let e = decode(&long).unwrap_err();
@@ -700,6 +796,8 @@ mod tests {
             order in proptest::sample::select(Order::ALL.to_vec()),
             max_iter in 1..=limits::MAX_ITER.max as u32,
             node in proptest::option::of(any::<u32>()),
+            camera in proptest::option::of((0.0..360.0f64, -90.0..=90.0f64, ZOOM_RANGE.0..=ZOOM_RANGE.1)),
+            cut in proptest::option::of((0..3usize, 0.0..=1.0f64)),
             embed in any::<bool>(),
             perturbed in any::<bool>(),
         ) -> PageState {
@@ -707,7 +805,9 @@ mod tests {
             let choice = |objective, penalty| Choice { objective, penalty: if objective == ObjectiveKind::New { penalty } else { Penalty::default() } };
             let compare = [choice(a, penalties[0]), choice(b, penalties[1])];
             let settings = Settings { strategy, threshold_deg, order, max_iter, compare };
-            PageState { sample: sample.map(String::from), seed, amount, perturbed, settings, passes, node, embed }
+            let camera = camera.map(|(yaw, pitch, zoom)| CameraState { yaw, pitch, zoom });
+            let cut = cut.map(|(axis, at)| Cut { axis, at });
+            PageState { sample: sample.map(String::from), seed, amount, perturbed, settings, passes, node, camera, cut, embed }
         }
     }
 
@@ -735,7 +835,7 @@ mod tests {
         fn decode_never_panics_on_pairs_of_known_keys(
             pairs in proptest::collection::vec(
                 (proptest::sample::select(vec!["sample", "tangle", "amount", "seed", "perturbed", "strategy", "objective", "a", "b", "a-penalty", "b-penalty",
-                    "threshold", "passes", "order", "maxiter", "node", "embed", "x"]),
+                    "threshold", "passes", "order", "maxiter", "node", "yaw", "pitch", "zoom", "cut", "cut-at", "embed", "x"]),
                  "[-+.%0-9a-fA-Fe]{0,12}"), 0..8)
         ) {
             let h: Vec<String> = pairs.iter().map(|(k, v)| format!("{k}={v}")).collect();

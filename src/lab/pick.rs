@@ -73,14 +73,17 @@ impl Playground {
             },
             Some(n) => match why_not_free(mesh, n) {
                 None => Pick { node: Some(n), nearest: Some(n), message: None },
-                Some(why) => {
-                    let mut chars = why.chars();
-                    let first: String = chars.next().map(|c| c.to_uppercase().collect()).unwrap_or_default();
-                    Pick { node: None, nearest: Some(n), message: Some(format!("{first}{}.", chars.as_str())) }
-                }
+                Some(why) => Pick { node: None, nearest: Some(n), message: Some(sentence(&why)) },
             },
         }
     }
+}
+
+/// A reason as a sentence: its first letter a capital, a full stop at the end.
+pub(crate) fn sentence(why: &str) -> String {
+    let mut chars = why.chars();
+    let first: String = chars.next().map(|c| c.to_uppercase().collect()).unwrap_or_default();
+    format!("{first}{}.", chars.as_str())
 }
 
 /// The free node whose star has the smallest element quality (α/β), if any node is free:

@@ -7,14 +7,15 @@
 use glam::DVec2;
 use tiny_skia::Pixmap;
 
-use super::{raster, Playground, Side};
+use super::{raster, PassSummary, Playground, Side, WorkDone};
 use crate::error::{Error, Result};
 use crate::objective::{Goal, Star};
 use crate::optimize::{DirectionKind, SolveResult, StopReason};
+use crate::quality::MeshStats;
 use crate::render::{
-    level_set_legend_height, mesh_view, render_angle_histogram, render_compare, ComparePanel, render_chart, render_level_set, render_mesh, render_pass_histories,
-    sample_field, AngleHistogram, Chart, Frame, HistogramSeries, LevelSet, LevelSetView, MeshView,
-    percentages, PassHistory, PathKind, Series, View,
+    level_set_legend_height, mesh_view, percentages, render_angle_histogram, render_chart, render_compare, render_level_set, render_mesh,
+    render_pass_histories_titled, sample_plane, AngleHistogram, Chart, ComparePanel, Frame, HistogramSeries, LevelSet, LevelSetView,
+    MeshView, PassHistory, PathKind, PlaneFunction, Series, StarFunction, Theme, View, PASS_TITLES,
 };
 
 /// Largest side of a picture, device pixels.
@@ -184,20 +185,12 @@ impl Playground {
         let mut star = Star::new();
         star.gather(&panel.mesh, node);
         let (_, bounds) = self.level_bounds(side, node);
-        let field = sample_field(panel.objective.as_ref(), &star, bounds, LEVEL_SET_SAMPLES, LEVEL_SET_SAMPLES)?;
-        let mut path = Vec::with_capacity(result.history.len() + 1);
-        path.push((result.x0, PathKind::Start));
-        path.extend(result.history.iter().map(|it| (it.x, path_kind(it.direction))));
         let title = self.settings.side_title(side);
-        let data = LevelSet { field: &field, star: &star, path: &path, optimum: Some(result.x), title: &title };
-        let mut pm = pixmap(c.w, c.h)?;
-        // the window frames the feasible region, not the whole star: what lies outside it
-        // is not drawn
-        let opts = LevelSetView { dpr: c.dpr, clip: true, theme: self.theme(), ..LevelSetView::default() };
+        let function = StarFunction { objective: panel.objective.as_ref(), star: &star };
+        let (pm, legend_h) = level_set_picture(&function, &star, &result, bounds, &title, c, self.theme())?;
         let mut legend = self.level_legend.get();
-        legend[side as usize] = level_set_legend_height(&data, &opts, c.w as f32 / crate::render::view::sane_dpr(c.dpr));
+        legend[side as usize] = legend_h;
         self.level_legend.set(legend);
-        render_level_set(&mut pm, &data, &opts);
         Ok((pm, result))
     }
 
@@ -205,98 +198,27 @@ impl Playground {
     pub fn render_node_view(&self, node: usize, level: Canvas, chart: Canvas) -> Result<([Pixmap; 3], NodeSummary)> {
         let (old_pm, old) = self.render_level_set(Side::A, node, level)?;
         let (new_pm, new) = self.render_level_set(Side::B, node, level)?;
-        let mut pm = pixmap(chart.w, chart.h)?;
-        let full = Frame::of_pixmap(&pm, chart.dpr);
-        let series = |r: &SolveResult| -> Vec<DVec2> {
-            std::iter::once(DVec2::new(0.0, r.value0))
-                .chain(r.history.iter().enumerate().map(|(i, it)| DVec2::new(i as f64 + 1.0, it.value)))
-                .collect()
-        };
-        let (so, sn) = (series(&old), series(&new));
-        for (i, (side, points)) in [(Side::A, &so), (Side::B, &sn)].into_iter().enumerate() {
-            let choice = self.settings.choice(side);
-            let label = format!("{}: {}", side.letter(), choice.label());
-            let title = format!("{label}, per iteration ({} is better)", better_words(choice.objective.goal()));
-            render_chart(
-                &mut pm,
-                &[Series::new(&label, points).with_color(self.theme().side(side as usize))],
-                &Chart {
-                    title: &title,
-                    x_label: "iteration",
-                    y_label: "objective",
-                    dpr: chart.dpr,
-                    frame: Some(full.row(i, 2, 4.0)),
-                    legend: false,
-                    theme: self.theme(),
-                    ..Chart::default()
-                },
-            );
-        }
-        let summary = |side: Side, r: &SolveResult| SolveSummary {
-            label: self.settings.choice(side).label(),
-            better: better_words(self.settings.choice(side).objective.goal()),
-            value0: r.value0,
-            value: r.value,
-            iterations: r.iterations,
-            stop: stop_words(r.stop).to_string(),
-        };
+        let labels = Side::BOTH.map(|side| self.settings.choice(side).label());
+        let goals = Side::BOTH.map(|side| self.settings.choice(side).objective.goal());
+        let pm = solve_chart([&old, &new], [&labels[0], &labels[1]], goals, chart, self.theme())?;
+        let summary = |side: Side, r: &SolveResult| SolveSummary::of(&labels[side.index()], goals[side.index()], r);
         Ok(([old_pm, new_pm, pm], NodeSummary { node, old: summary(Side::A, &old), new: summary(Side::B, &new) }))
     }
 
     /// Per-pass curves of both sides (min/max angle, min quality, inverted elements;
     /// pass 0 is the mesh as loaded).
     pub fn render_pass_chart(&self, c: Canvas) -> Result<Pixmap> {
-        let start = self.original_stats();
-        let hist = |side: Side| {
-            let r = &self.panel(side).records;
-            let col = |f0: f64, f: &dyn Fn(&super::PassSummary) -> f64| -> Vec<f64> {
-                std::iter::once(f0).chain(r.iter().map(f)).collect()
-            };
-            [
-                col(start.min_angle_deg, &|r| r.after.min_angle_deg),
-                col(start.max_angle_deg, &|r| r.after.max_angle_deg),
-                col(start.min_quality, &|r| r.after.min_quality),
-                col(start.inverted as f64, &|r| r.after.inverted as f64),
-            ]
-        };
-        let cols = [hist(Side::A), hist(Side::B)];
+        let records = Side::BOTH.map(|side| &self.panel(side).records[..]);
         let labels = Side::BOTH.map(|side| self.side_label(side));
-        let runs: Vec<PassHistory<'_>> = Side::BOTH
-            .iter()
-            .map(|&side| {
-                let c = &cols[side as usize];
-                PassHistory {
-                    label: &labels[side as usize],
-                    min_angle_deg: &c[0],
-                    max_angle_deg: &c[1],
-                    min_quality: &c[2],
-                    inverted: &c[3],
-                    color: Some(self.theme().side(side as usize)),
-                }
-            })
-            .collect();
-        let mut pm = pixmap(c.w, c.h)?;
-        render_pass_histories(&mut pm, &runs, &Chart { title: "Per pass (0 = as loaded)", dpr: c.dpr, theme: self.theme(), ..Chart::default() });
-        Ok(pm)
+        pass_chart(self.original_stats(), records, &labels, &PASS_TITLES, c, self.theme())
     }
 
     /// The figure for slides: A's mesh on the left and B's on the right, on one scale,
     /// each titled with what it runs and how many passes, with its statistics under it and
     /// the quality colour bar ([`render_compare`]; `smoothlab render --view compare`).
     pub fn render_figure(&self, c: Canvas) -> Result<Pixmap> {
-        let lines = |side: Side| {
-            let t = self.table(side);
-            let s = self.full_stats(side);
-            vec![
-                format!("inverted {}   min quality {:.3}   mean quality {:.3}", s.inverted, s.min_quality, s.mean_quality),
-                format!("angles {:.1}° – {:.1}°   worst κ {}", s.min_angle_deg, s.max_angle_deg, kappa_words(s.max_condition)),
-                format!("Laplacian moves {}   optimization calls {}", t.work.laplacian_moves, t.work.optimization_calls),
-            ]
-        };
-        let title = |side: Side| {
-            let n = self.panel(side).records.len();
-            format!("{}, {n} pass{}", self.side_label(side), if n == 1 { "" } else { "es" })
-        };
+        let lines = |side: Side| figure_lines(self.full_stats(side), &self.table(side).work, FigureWords::PLANAR);
+        let title = |side: Side| figure_title(&self.side_label(side), self.panel(side).records.len());
         let (lo, ln) = (lines(Side::A), lines(Side::B));
         let (to, tn) = (title(Side::A), title(Side::B));
         let mut pm = pixmap(c.w, c.h)?;
@@ -317,11 +239,8 @@ impl Playground {
     /// The y scale both angle histograms share: the largest percentage in any bin of
     /// either side or of the mesh as loaded, so the two pictures compare at a glance.
     pub fn histogram_top(&self) -> f64 {
-        let top = |c: &[u64]| percentages(c).into_iter().fold(0.0, f64::max);
-        Side::BOTH
-            .iter()
-            .map(|&s| top(&self.full_stats(s).angle_histogram_6deg))
-            .fold(top(&self.original_stats().angle_histogram_6deg), f64::max)
+        let counts = Side::BOTH.map(|s| &self.full_stats(s).angle_histogram_6deg[..]);
+        histogram_top(&self.original_stats().angle_histogram_6deg, counts)
     }
 
     /// The angle histogram of a side's mesh over that of the mesh as loaded, on the
@@ -331,24 +250,175 @@ impl Playground {
         let start = &self.original_stats().angle_histogram_6deg;
         let now = &self.full_stats(side).angle_histogram_6deg;
         let label = self.side_label(side);
-        let mut pm = pixmap(c.w, c.h)?;
-        render_angle_histogram(
-            &mut pm,
-            &[
-                HistogramSeries { label: "as loaded", counts: start, color: None },
-                HistogramSeries { label: &label, counts: now, color: Some(self.theme().side(side as usize)) },
-            ],
-            &AngleHistogram {
-                title: "Corner angles (6° bins)",
-                dpr: c.dpr,
-                y_top: Some(self.histogram_top()),
-                log_y,
-                theme: self.theme(),
-                ..AngleHistogram::default()
-            },
-        )?;
-        Ok(pm)
+        let theme = self.theme();
+        let series = HistogramSeries { label: &label, counts: now, color: Some(theme.side(side as usize)) };
+        let opts = AngleHistogram { title: "Corner angles (6° bins)", y_top: Some(self.histogram_top()), log_y, ..AngleHistogram::default() };
+        histogram_picture(start, series, opts, c, theme)
     }
+}
+
+/// A level set of a node's objective over `bounds` of the plane it moves in, its star
+/// drawn (`outline`, the node at its position), the path of the solve `result` and its
+/// optimum, titled `title`, on canvas `c`; and the CSS pixels its legend took (pointer
+/// positions on the picture map through it). The planar view's and the 3D lab's.
+pub(crate) fn level_set_picture(
+    function: &dyn PlaneFunction,
+    outline: &Star,
+    result: &SolveResult,
+    bounds: (DVec2, DVec2),
+    title: &str,
+    c: Canvas,
+    theme: Theme,
+) -> Result<(Pixmap, f32)> {
+    if outline.is_empty() {
+        return Err(Error::node(outline.node as usize, None, "has no elements around it to draw level sets over"));
+    }
+    let field = sample_plane(function, bounds, LEVEL_SET_SAMPLES, LEVEL_SET_SAMPLES)?;
+    let mut path = Vec::with_capacity(result.history.len() + 1);
+    path.push((result.x0, PathKind::Start));
+    path.extend(result.history.iter().map(|it| (it.x, path_kind(it.direction))));
+    let data = LevelSet { field: &field, star: outline, path: &path, optimum: Some(result.x), title };
+    let mut pm = pixmap(c.w, c.h)?;
+    // the window frames the feasible region, not the whole star: what lies outside it
+    // is not drawn
+    let opts = LevelSetView { dpr: c.dpr, clip: true, theme, ..LevelSetView::default() };
+    let legend = level_set_legend_height(&data, &opts, c.w as f32 / crate::render::view::sane_dpr(c.dpr));
+    render_level_set(&mut pm, &data, &opts);
+    Ok((pm, legend))
+}
+
+/// The objective per iteration of each side's solve at one node, one chart a side, in
+/// the side's colour: `labels` say what each side smooths with, `goals` which way is better.
+pub(crate) fn solve_chart(results: [&SolveResult; 2], labels: [&str; 2], goals: [Goal; 2], chart: Canvas, theme: Theme) -> Result<Pixmap> {
+    let mut pm = pixmap(chart.w, chart.h)?;
+    let full = Frame::of_pixmap(&pm, chart.dpr);
+    let series = |r: &SolveResult| -> Vec<DVec2> {
+        std::iter::once(DVec2::new(0.0, r.value0))
+            .chain(r.history.iter().enumerate().map(|(i, it)| DVec2::new(i as f64 + 1.0, it.value)))
+            .collect()
+    };
+    for (i, side) in Side::BOTH.into_iter().enumerate() {
+        let points = series(results[i]);
+        let label = format!("{}: {}", side.letter(), labels[i]);
+        let title = format!("{label}, per iteration ({} is better)", better_words(goals[i]));
+        render_chart(
+            &mut pm,
+            &[Series::new(&label, &points).with_color(theme.side(side as usize))],
+            &Chart {
+                title: &title,
+                x_label: "iteration",
+                y_label: "objective",
+                dpr: chart.dpr,
+                frame: Some(full.row(i, 2, 4.0)),
+                legend: false,
+                theme,
+                ..Chart::default()
+            },
+        );
+    }
+    Ok(pm)
+}
+
+impl SolveSummary {
+    /// A side's solve in numbers: `label` what it smooths with, `goal` which way is better.
+    pub fn of(label: &str, goal: Goal, r: &SolveResult) -> SolveSummary {
+        SolveSummary {
+            label: label.to_string(),
+            better: better_words(goal),
+            value0: r.value0,
+            value: r.value,
+            iterations: r.iterations,
+            stop: stop_words(r.stop).to_string(),
+        }
+    }
+}
+
+/// Per-pass curves of both sides from the statistics as loaded (`start`, pass 0) and each
+/// side's pass records, in the sides' colours, the four charts titled `titles` (the
+/// planar words, [`PASS_TITLES`], or another kind's).
+pub(crate) fn pass_chart(
+    start: &MeshStats,
+    records: [&[PassSummary]; 2],
+    labels: &[String; 2],
+    titles: &[&str; 4],
+    c: Canvas,
+    theme: Theme,
+) -> Result<Pixmap> {
+    let hist = |side: Side| {
+        let r = records[side.index()];
+        let col = |f0: f64, f: &dyn Fn(&PassSummary) -> f64| -> Vec<f64> { std::iter::once(f0).chain(r.iter().map(f)).collect() };
+        [
+            col(start.min_angle_deg, &|r| r.after.min_angle_deg),
+            col(start.max_angle_deg, &|r| r.after.max_angle_deg),
+            col(start.min_quality, &|r| r.after.min_quality),
+            col(start.inverted as f64, &|r| r.after.inverted as f64),
+        ]
+    };
+    let cols = [hist(Side::A), hist(Side::B)];
+    let runs: Vec<PassHistory<'_>> = Side::BOTH
+        .iter()
+        .map(|&side| {
+            let c = &cols[side as usize];
+            PassHistory {
+                label: &labels[side as usize],
+                min_angle_deg: &c[0],
+                max_angle_deg: &c[1],
+                min_quality: &c[2],
+                inverted: &c[3],
+                color: Some(theme.side(side as usize)),
+            }
+        })
+        .collect();
+    let mut pm = pixmap(c.w, c.h)?;
+    render_pass_histories_titled(&mut pm, &runs, &Chart { title: "Per pass (0 = as loaded)", dpr: c.dpr, theme, ..Chart::default() }, titles);
+    Ok(pm)
+}
+
+/// The largest percentage in any bin of the counts as loaded (`start`) or of either side's
+/// (`now`): the y scale both sides' histograms share.
+pub(crate) fn histogram_top(start: &[u64], now: [&[u64]; 2]) -> f64 {
+    let top = |c: &[u64]| percentages(c).into_iter().fold(0.0, f64::max);
+    now.iter().map(|c| top(c)).fold(top(start), f64::max)
+}
+
+/// A side's histogram (`series`) over the counts as loaded (`start`, "as loaded"), with
+/// `opts` (its title, scale and axis; drawn at `c`'s ratio in `theme`).
+pub(crate) fn histogram_picture(start: &[u64], series: HistogramSeries<'_>, opts: AngleHistogram<'_>, c: Canvas, theme: Theme) -> Result<Pixmap> {
+    let mut pm = pixmap(c.w, c.h)?;
+    render_angle_histogram(
+        &mut pm,
+        &[HistogramSeries { label: "as loaded", counts: start, color: None }, series],
+        &AngleHistogram { dpr: c.dpr, theme, ..opts },
+    )?;
+    Ok(pm)
+}
+
+/// The words a figure's statistics lines name a kind's measures by.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct FigureWords {
+    pub angles: &'static str,
+    pub min_quality: &'static str,
+    pub mean_quality: &'static str,
+}
+
+impl FigureWords {
+    /// A planar mesh's (and a surface's): corner angles, α/β.
+    pub const PLANAR: FigureWords = FigureWords { angles: "angles", min_quality: "min quality", mean_quality: "mean quality" };
+}
+
+/// A panel's statistics under it in the figure for slides.
+pub(crate) fn figure_lines(s: &MeshStats, work: &WorkDone, words: FigureWords) -> Vec<String> {
+    let FigureWords { angles, min_quality, mean_quality } = words;
+    vec![
+        format!("inverted {}   {min_quality} {:.3}   {mean_quality} {:.3}", s.inverted, s.min_quality, s.mean_quality),
+        format!("{angles} {:.1}° – {:.1}°   worst κ {}", s.min_angle_deg, s.max_angle_deg, kappa_words(s.max_condition)),
+        format!("Laplacian moves {}   optimization calls {}", work.laplacian_moves, work.optimization_calls),
+    ]
+}
+
+/// A panel's title in the figure for slides: the side's label and its passes.
+pub(crate) fn figure_title(label: &str, passes: usize) -> String {
+    format!("{label}, {passes} pass{}", if passes == 1 { "" } else { "es" })
 }
 #[cfg(test)]
 mod tests {

@@ -294,10 +294,19 @@ pub struct PassHistory<'a> {
     pub color: Option<Color>,
 }
 
+/// The titles of [`render_pass_histories`]' four charts: the planar (and surface) words.
+pub const PASS_TITLES: [&str; 4] = ["min angle (\u{b0})", "max angle (\u{b0})", "min quality (\u{3b1} / \u{3b2})", "inverted elements"];
+
 /// Four small charts (min angle, max angle, min quality, inverted elements against
 /// the pass) with one curve per run, under `chart.title` and one shared legend row.
 /// `chart`'s axis labels, `log_y` and `y_range` are not used.
 pub fn render_pass_histories(pixmap: &mut Pixmap, runs: &[PassHistory<'_>], chart: &Chart<'_>) {
+    render_pass_histories_titled(pixmap, runs, chart, &PASS_TITLES);
+}
+
+/// [`render_pass_histories`] with the four charts' titles in the words of another kind
+/// of mesh (for tetrahedra: dihedral angles, the mean ratio, inverted tetrahedra).
+pub fn render_pass_histories_titled(pixmap: &mut Pixmap, runs: &[PassHistory<'_>], chart: &Chart<'_>, titles: &[&str; 4]) {
     let s = sane_dpr(chart.dpr);
     let frame = chart.frame.unwrap_or(Frame::of_pixmap(pixmap, s));
     let theme = &chart.theme;
@@ -318,10 +327,10 @@ pub fn render_pass_histories(pixmap: &mut Pixmap, runs: &[PassHistory<'_>], char
     // the angle charts break their axis at 0°: an inverted corner as loaded (−176°) sits
     // in a band below, and the passes after it keep the whole height
     let panels: [(&str, Column, Option<f64>); 4] = [
-        ("min angle (\u{b0})", |r| r.min_angle_deg, Some(0.0)),
-        ("max angle (\u{b0})", |r| r.max_angle_deg, Some(0.0)),
-        ("min quality (\u{3b1} / \u{3b2})", |r| r.min_quality, None),
-        ("inverted elements", |r| r.inverted, None),
+        (titles[0], |r| r.min_angle_deg, Some(0.0)),
+        (titles[1], |r| r.max_angle_deg, Some(0.0)),
+        (titles[2], |r| r.min_quality, None),
+        (titles[3], |r| r.inverted, None),
     ];
     let points: Vec<Vec<Vec<DVec2>>> = panels
         .iter()

@@ -1,6 +1,7 @@
 //! Angle histograms as in Freitag (1997), Figure 3: the percentage of element angles
 //! in each 6° bin over [0°, 180°], several meshes (original, Laplacian, old, new)
-//! overlaid as step outlines.
+//! overlaid as step outlines. The bins may span another measure's range
+//! ([`HistogramAxis`]): the same picture of any per-element measure.
 
 use tiny_skia::{Color, PathBuilder, Pixmap};
 
@@ -15,10 +16,34 @@ use crate::error::{Error, Result};
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct HistogramSeries<'a> {
     pub label: &'a str,
-    /// Counts (not percentages) of equal bins spanning [0°, 180°].
+    /// Counts (not percentages) of equal bins spanning the axis ([`HistogramAxis`]:
+    /// [0°, 180°] for angles).
     pub counts: &'a [u64],
     /// Its colour; `None`: the theme's series palette, by position.
     pub color: Option<Color>,
+}
+
+/// What the bins of a histogram span: the measure's range, its ticks, the words under
+/// the axes and the dashed reference lines (the ideal values).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct HistogramAxis<'a> {
+    /// The range the bins divide equally.
+    pub lo: f64,
+    pub hi: f64,
+    /// The distance between ticks, from `lo`.
+    pub step: f64,
+    /// Under the x axis, and beside the y axis.
+    pub x_label: &'a str,
+    pub y_label: &'a str,
+    /// Values marked by dashed lines.
+    pub marks: &'a [f64],
+}
+
+impl HistogramAxis<'_> {
+    /// Angles in degrees, 0° to 180° (ticks every 30°, the equilateral triangle's 60° and
+    /// the square's 90° marked): Freitag's Fig. 3.
+    pub const ANGLES: HistogramAxis<'static> =
+        HistogramAxis { lo: 0.0, hi: 180.0, step: 30.0, x_label: "angle (\u{b0})", y_label: "angles (%)", marks: &[60.0, 90.0] };
 }
 
 /// Options of [`render_angle_histogram`].
@@ -40,11 +65,22 @@ pub struct AngleHistogram<'a> {
     pub log_y: bool,
     /// Colours and label sizes. Default [`Theme::light`].
     pub theme: Theme,
+    /// What the bins span. Default [`HistogramAxis::ANGLES`].
+    pub axis: HistogramAxis<'a>,
 }
 
 impl Default for AngleHistogram<'_> {
     fn default() -> Self {
-        AngleHistogram { title: "Angle distribution", dpr: 1.0, frame: None, legend: true, y_top: None, log_y: false, theme: Theme::light() }
+        AngleHistogram {
+            title: "Angle distribution",
+            dpr: 1.0,
+            frame: None,
+            legend: true,
+            y_top: None,
+            log_y: false,
+            theme: Theme::light(),
+            axis: HistogramAxis::ANGLES,
+        }
     }
 }
 
@@ -101,7 +137,11 @@ pub fn render_angle_histogram(pixmap: &mut Pixmap, series: &[HistogramSeries<'_>
         Some(t) if t.is_finite() => own.max(t),
         _ => own,
     };
-    let xa = Axis { lo: 0.0, hi: 180.0, scale: Scale::Linear, p0: plot.x * s, p1: plot.right() * s };
+    let ax = &opts.axis;
+    if !(ax.lo.is_finite() && ax.hi.is_finite() && ax.hi > ax.lo && ax.step > 0.0 && (ax.hi - ax.lo) / ax.step <= 100.0) {
+        return Err(Error::invalid(format!("a histogram axis from {} to {} in steps of {}", ax.lo, ax.hi, ax.step)));
+    }
+    let xa = Axis { lo: ax.lo, hi: ax.hi, scale: Scale::Linear, p0: plot.x * s, p1: plot.right() * s };
     let ya = if opts.log_y {
         let hi = 10f64.powf(top.max(LOG_FLOOR_PCT * 10.0).log10().ceil());
         Axis { lo: LOG_FLOOR_PCT, hi, scale: Scale::Log, p0: plot.bottom() * s, p1: plot.y * s }
@@ -109,12 +149,13 @@ pub fn render_angle_histogram(pixmap: &mut Pixmap, series: &[HistogramSeries<'_>
         let (_, ymax) = nice_range(0.0, top.max(1.0), 5);
         Axis { lo: 0.0, hi: ymax, scale: Scale::Linear, p0: plot.bottom() * s, p1: plot.y * s }
     };
-    let xt = Ticks { step: 30.0, values: (0..=6).map(|k| 30.0 * k as f64).collect() };
-    draw_axes(pixmap, &xa, &ya, AxisLabels { title: opts.title, x: "angle (\u{b0})", y: "angles (%)" }, &xt, s, theme);
+    let ticks = ((ax.hi - ax.lo) / ax.step + 1e-9).floor() as usize;
+    let xt = Ticks { step: ax.step, values: (0..=ticks).map(|k| ax.lo + ax.step * k as f64).collect() };
+    draw_axes(pixmap, &xa, &ya, AxisLabels { title: opts.title, x: ax.x_label, y: ax.y_label }, &xt, s, theme);
 
-    // reference lines at the ideal angles 60° and 90°
+    // reference lines at the ideal values (the angles 60° and 90°)
     let mut refs = PathBuilder::new();
-    for a in [60.0, 90.0] {
+    for &a in ax.marks {
         if let Some(x) = xa.map(a) {
             refs.move_to(x, plot.y * s);
             refs.line_to(x, plot.bottom() * s);
@@ -122,20 +163,20 @@ pub fn render_angle_histogram(pixmap: &mut Pixmap, series: &[HistogramSeries<'_>
     }
     stroke(pixmap, refs, theme.reference, 1.0 * s, Some([3.0 * s, 3.0 * s]));
 
-    let width = 180.0 / bins as f64;
+    let width = (ax.hi - ax.lo) / bins as f64;
     for (i, (ser, p)) in series.iter().zip(&pct).enumerate() {
         let color = ser.color.unwrap_or(theme.series(i));
         let mut pb = PathBuilder::new();
         // the axis line: 0 on a linear axis, the floor on a log one (empty bins sit there)
-        let (bx, by) = (xa.map(0.0).unwrap_or(0.0), plot.bottom() * s);
+        let (bx, by) = (xa.map(ax.lo).unwrap_or(0.0), plot.bottom() * s);
         pb.move_to(bx, by);
         for (b, v) in p.iter().enumerate() {
-            let (xl, xr) = (xa.map(b as f64 * width).unwrap_or(bx), xa.map((b + 1) as f64 * width).unwrap_or(bx));
+            let (xl, xr) = (xa.map(ax.lo + b as f64 * width).unwrap_or(bx), xa.map(ax.lo + (b + 1) as f64 * width).unwrap_or(bx));
             let y = ya.map(v.max(ya.lo)).unwrap_or(by).min(by);
             pb.line_to(xl, y);
             pb.line_to(xr, y);
         }
-        pb.line_to(xa.map(180.0).unwrap_or(bx), by);
+        pb.line_to(xa.map(ax.hi).unwrap_or(bx), by);
         let dashed = i % 2 == 0 && i > 0;
         if i == 0 {
             let mut area = pb.clone();

@@ -58,6 +58,40 @@ pub fn star_bounds(star: &Star, margin: f64) -> (DVec2, DVec2) {
     (c - DVec2::splat(half), c + DVec2::splat(half))
 }
 
+/// A node's objective as a function of where the node is in a plane: what a level-set
+/// picture draws. The planar view's is a planar star's objective ([`StarFunction`]);
+/// a node of a surface or of a volume moves in a plane through it (its tangent plane, a
+/// cut plane) and the same picture draws its objective there.
+pub trait PlaneFunction {
+    /// Which way the objective is better.
+    fn goal(&self) -> Goal;
+    /// The objective with the node at `x` (may be +∞ or NaN).
+    fn value(&self, x: DVec2) -> f64;
+    /// Positive exactly where no element of the node's star is inverted with the node at
+    /// `x`, continuous through zero: its zero level set is the feasible region's border.
+    fn validity(&self, x: DVec2) -> f64;
+}
+
+/// A planar star's objective: the node of `star` moved to each point, its validity the
+/// smallest corner sine (scaled Jacobian) over the star's elements.
+#[derive(Clone, Copy)]
+pub struct StarFunction<'a> {
+    pub objective: &'a dyn Objective,
+    pub star: &'a Star,
+}
+
+impl PlaneFunction for StarFunction<'_> {
+    fn goal(&self) -> Goal {
+        self.objective.goal()
+    }
+    fn value(&self, x: DVec2) -> f64 {
+        self.objective.value(self.star, x)
+    }
+    fn validity(&self, x: DVec2) -> f64 {
+        star_validity(self.star, x)
+    }
+}
+
 /// A square box framing where the node of `star` can go without inverting an element of
 /// it (its feasible region, found on a grid over the star's box) together with the points
 /// of `keep` (the start, the optimum found), widened by `margin` (a fraction of its size)
@@ -65,18 +99,24 @@ pub fn star_bounds(star: &Star, margin: f64) -> (DVec2, DVec2) {
 /// speck of the star's extent. A star with no feasible point (a tangled one) gets
 /// [`star_bounds`]; the box is never smaller than 2% of the star's.
 pub fn feasible_bounds(star: &Star, keep: &[DVec2], margin: f64) -> (DVec2, DVec2) {
+    feasible_bounds_of(&|p| star_validity(star, p), star, keep, margin)
+}
+
+/// [`feasible_bounds`] of a node whose star `outline` is drawn in a plane and whose
+/// feasible region is where `validity` is positive ([`PlaneFunction::validity`]).
+pub fn feasible_bounds_of(validity: &dyn Fn(DVec2) -> f64, outline: &Star, keep: &[DVec2], margin: f64) -> (DVec2, DVec2) {
     const N: usize = 97;
-    let whole = star_bounds(star, margin);
-    if star.is_empty() {
+    let whole = star_bounds(outline, margin);
+    if outline.is_empty() {
         return whole;
     }
-    let (b0, b1) = star_bounds(star, 0.05);
+    let (b0, b1) = star_bounds(outline, 0.05);
     let step = (b1 - b0) / (N - 1) as f64;
     let (mut lo, mut hi) = (DVec2::splat(f64::INFINITY), DVec2::splat(f64::NEG_INFINITY));
     for j in 0..N {
         for i in 0..N {
             let p = b0 + step * DVec2::new(i as f64, j as f64);
-            if star_validity(star, p) > 0.0 {
+            if validity(p) > 0.0 {
                 lo = lo.min(p);
                 hi = hi.max(p);
             }
@@ -102,6 +142,21 @@ pub fn feasible_bounds(star: &Star, keep: &[DVec2], margin: f64) -> (DVec2, DVec
 /// Samples `objective` (the node of `star` moved to each grid point) and the star's
 /// validity on an `nx × ny` grid over `bounds`.
 pub fn sample_field(objective: &dyn Objective, star: &Star, bounds: (DVec2, DVec2), nx: usize, ny: usize) -> Result<Field> {
+    let grid = level_grid(bounds, nx, ny)?;
+    if star.is_empty() {
+        return Err(Error::node(star.node as usize, None, "has no elements around it to draw level sets over"));
+    }
+    Ok(sample_on(&StarFunction { objective, star }, grid))
+}
+
+/// Samples a [`PlaneFunction`] and its validity on an `nx × ny` grid over `bounds`.
+pub fn sample_plane(function: &dyn PlaneFunction, bounds: (DVec2, DVec2), nx: usize, ny: usize) -> Result<Field> {
+    Ok(sample_on(function, level_grid(bounds, nx, ny)?))
+}
+
+/// The grid of a level-set field: at least 2 × 2 and at most [`MAX_SAMPLES`] samples over
+/// a finite box with area.
+fn level_grid(bounds: (DVec2, DVec2), nx: usize, ny: usize) -> Result<Grid> {
     if nx < 2 || ny < 2 {
         return Err(Error::invalid(format!("a level-set grid needs at least 2 × 2 samples, not {nx} × {ny}")));
     }
@@ -112,20 +167,21 @@ pub fn sample_field(objective: &dyn Objective, star: &Star, bounds: (DVec2, DVec
     if !lo.is_finite() || !hi.is_finite() || hi.x - lo.x <= 0.0 || hi.y - lo.y <= 0.0 {
         return Err(Error::invalid(format!("level-set bounds {lo:?}..{hi:?} are not a finite box with area")));
     }
-    if star.is_empty() {
-        return Err(Error::node(star.node as usize, None, "has no elements around it to draw level sets over"));
-    }
-    let grid = Grid { nx, ny, lo, hi };
+    Ok(Grid { nx, ny, lo, hi })
+}
+
+/// The function and its validity at every point of `grid`.
+fn sample_on(function: &dyn PlaneFunction, grid: Grid) -> Field {
     let mut values = Vec::with_capacity(grid.len());
     let mut validity = Vec::with_capacity(grid.len());
-    for j in 0..ny {
-        for i in 0..nx {
+    for j in 0..grid.ny {
+        for i in 0..grid.nx {
             let x = grid.point(i, j);
-            values.push(objective.value(star, x));
-            validity.push(star_validity(star, x));
+            values.push(function.value(x));
+            validity.push(function.validity(x));
         }
     }
-    Ok(Field { grid, values, validity, goal: objective.goal() })
+    Field { grid, values, validity, goal: function.goal() }
 }
 
 /// Smallest corner sine over the star's elements with the node at `x`.

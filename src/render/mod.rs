@@ -42,13 +42,14 @@ mod view3d;
 mod tests;
 
 pub use axes::{format_power_of_ten, format_tick, log_ticks, nice_range, nice_step, nice_ticks, Axis, Scale, Ticks};
-pub use chart::{render_chart, render_pass_histories, Chart, PassHistory, Series};
+pub use chart::{render_chart, render_pass_histories, render_pass_histories_titled, Chart, PassHistory, Series, PASS_TITLES};
 pub use colormap::{bucket, bucket_color, lightness, series_color, Colormap, BUCKETS, SERIES, VIRIDIS};
-pub use compare::{render_compare, ComparePanel};
+pub use compare::{render_compare, render_compare_with, CompareBar, ComparePanel, CompareText};
 pub use contour::{iso_segments, Grid};
-pub use histogram::{percentages, render_angle_histogram, AngleHistogram, HistogramSeries};
+pub use histogram::{percentages, render_angle_histogram, AngleHistogram, HistogramAxis, HistogramSeries};
 pub use levelset::{PATH_RGB, 
-    choose_levels, feasible_bounds, level_set_legend_height, level_set_view, render_level_set, render_level_sets_side_by_side, sample_field, star_bounds, Field, LevelSet,
+    choose_levels, feasible_bounds, feasible_bounds_of, level_set_legend_height, level_set_view, render_level_set, render_level_sets_side_by_side, sample_field,
+    sample_plane, star_bounds, Field, LevelSet, PlaneFunction, StarFunction,
     LevelSetView, Levels, PathKind,
 };
 pub use levelset::{feasible_levels, level_set_legend_height_with, render_level_set_with, LevelSetExtras, Overlay};
@@ -64,7 +65,7 @@ pub use text::{draw_text, draw_text_rotated, text_width, Align, TextStyle, Valig
 pub use theme::Theme;
 pub use view::{Frame, View, ZoomPan};
 pub use view3d::{
-    newell_normal, render_surface, shade, Camera, Faces, Projection, SurfaceView, AMBIENT, BACK_FACE, DEGREES_PER_PIXEL, MAX_DRAG_PITCH,
+    draw_node_mark, newell_normal, render_surface, shade, Camera, Faces, Projection, SurfaceView, AMBIENT, BACK_FACE, DEGREES_PER_PIXEL, MAX_DRAG_PITCH,
     ZOOM_RANGE,
 };
 

@@ -335,6 +335,107 @@ impl Projection {
     }
 }
 
+impl Projection {
+    /// The face of `faces` drawn over the CSS pixel `(px, py)` by [`render_surface`] with
+    /// this projection: of the faces whose outline (its ring's nodes joined by straight
+    /// lines) holds the point, the one painted last (the nearest by the depth of its
+    /// centroid; at equal depth the later face). `None` when no face is there.
+    pub fn face_at(&self, faces: &Faces, px: f64, py: f64) -> Option<usize> {
+        let c = DVec2::new(px, py);
+        if !c.is_finite() {
+            return None;
+        }
+        let mut best: Option<(f64, usize)> = None;
+        for f in 0..faces.count() {
+            let Some(ring) = faces.ring(f) else { continue };
+            let poly: Vec<DVec2> = ring.iter().map(|&n| self.to_css(faces.points[n as usize])).collect();
+            if !polygon_holds(&poly, c) {
+                continue;
+            }
+            let z = ring.iter().map(|&n| self.depth(faces.points[n as usize])).sum::<f64>() / ring.len() as f64;
+            if best.map_or(true, |(bz, _)| z <= bz) {
+                best = Some((z, f));
+            }
+        }
+        best.map(|(_, f)| f)
+    }
+
+    /// The node of the face drawn over the CSS pixel `(px, py)` ([`face_at`](Self::face_at))
+    /// nearest to it on screen (ties: the first in the ring), or `None` when no face is there.
+    pub fn pick_on_faces(&self, faces: &Faces, px: f64, py: f64) -> Option<usize> {
+        let f = self.face_at(faces, px, py)?;
+        let c = DVec2::new(px, py);
+        let ring = faces.ring(f)?;
+        ring.iter()
+            .map(|&n| (n as usize, self.to_css(faces.points[n as usize]).distance_squared(c)))
+            .min_by(|a, b| a.1.total_cmp(&b.1))
+            .map(|(n, _)| n)
+    }
+}
+
+/// Whether the closed polygon `poly` holds `p` (even–odd rule), a point on its outline
+/// (within a millionth of a pixel) included: a click on a node is on each face round it.
+fn polygon_holds(poly: &[DVec2], p: DVec2) -> bool {
+    let on_edge = (0..poly.len()).any(|i| {
+        let (a, b) = (poly[i], poly[(i + 1) % poly.len()]);
+        let ab = b - a;
+        let t = if ab.length_squared() > 0.0 { ((p - a).dot(ab) / ab.length_squared()).clamp(0.0, 1.0) } else { 0.0 };
+        (a + t * ab).distance_squared(p) <= 1e-12
+    });
+    if on_edge {
+        return true;
+    }
+    let mut inside = false;
+    for i in 0..poly.len() {
+        let (a, b) = (poly[i], poly[(i + 1) % poly.len()]);
+        if (a.y > p.y) != (b.y > p.y) {
+            let x = a.x + (p.y - a.y) / (b.y - a.y) * (b.x - a.x);
+            if p.x < x {
+                inside = !inside;
+            }
+        }
+    }
+    inside
+}
+
+/// Marks a chosen node on a picture drawn with `proj`, as the planar mesh view marks
+/// it: its star's edges (`star`, polylines in space) and a ring round the node, in the
+/// highlight's orange over a dark halo, on top of everything (a node behind the surface
+/// shows where it is).
+pub fn draw_node_mark(pixmap: &mut Pixmap, proj: &Projection, node: DVec3, star: &[Vec<DVec3>], dpr: f32) {
+    let s = sane_dpr(dpr);
+    let orange = rgba(230, 159, 0, 255);
+    let mut edges = PathBuilder::new();
+    for line in star {
+        for (i, p) in line.iter().enumerate() {
+            let d = proj.to_device(*p);
+            if !d.is_finite() || d.x.abs() > FAR_PX as f64 || d.y.abs() > FAR_PX as f64 {
+                break;
+            }
+            if i == 0 {
+                edges.move_to(d.x as f32, d.y as f32);
+            } else {
+                edges.line_to(d.x as f32, d.y as f32);
+            }
+        }
+    }
+    let line = |pm: &mut Pixmap, pb: PathBuilder, c: Color, w: f32| {
+        if let Some(path) = pb.finish() {
+            let st = Stroke { width: w, line_join: tiny_skia::LineJoin::Round, line_cap: tiny_skia::LineCap::Round, ..Default::default() };
+            pm.stroke_path(&path, &solid(c), &st, Transform::identity(), None);
+        }
+    };
+    line(pixmap, edges.clone(), rgba(0, 0, 0, 160), 4.5 * s);
+    line(pixmap, edges, orange, 2.5 * s);
+    let d = proj.to_device(node);
+    if d.is_finite() && d.x.abs() < FAR_PX as f64 && d.y.abs() < FAR_PX as f64 {
+        let mut ring = PathBuilder::new();
+        ring.push_circle(d.x as f32, d.y as f32, 7.0 * s);
+        line(pixmap, ring.clone(), rgba(0, 0, 0, 255), 3.5 * s);
+        line(pixmap, ring, orange, 2.0 * s);
+    }
+}
+
 /// Draws `faces` into `pixmap` as `opts` says (see the module's notes on the projection,
 /// the depth sort and the light) and returns the projection it used, for picking.
 pub fn render_surface(pixmap: &mut Pixmap, faces: &Faces, opts: &SurfaceView) -> Projection {

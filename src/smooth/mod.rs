@@ -18,7 +18,7 @@ use glam::DVec2;
 
 use crate::error::{Error, Result};
 use crate::mesh::Mesh;
-use crate::objective::{Objective, Point, Star, Term};
+use crate::objective::{NodeStar, Objective, Point, Star, Term};
 use crate::optimize::{evaluate, SolveResult, Solvers};
 use crate::quality::mesh_stats;
 
@@ -653,7 +653,18 @@ pub fn solve_node(mesh: &Mesh, node: usize, objective: &dyn Objective, options: 
     }
     let mut star = Star::new();
     star.gather(mesh, node);
+    solve_star(objective, &star, mesh.nodes()[node], options)
+}
+
+/// [`solve_node`] on a star already gathered (of any kind: a surface's star flattened into
+/// its tangent plane, a star of tetrahedra), from `x0`, with the solver's history.
+pub fn solve_star<S: NodeStar>(
+    objective: &dyn Objective<S>,
+    star: &S,
+    x0: S::Point,
+    options: &SmoothOptions,
+) -> Result<SolveResult<S::Point>> {
     let solve = options.solve_options().with_history(true);
     solve.validate()?;
-    Ok(Solvers::new(solve).get(options.solver, objective.goal()).solve(objective, &star, mesh.nodes()[node]))
+    Ok(Solvers::<S>::new(solve).get(options.solver, objective.goal()).solve(objective, star, x0))
 }

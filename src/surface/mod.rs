@@ -30,7 +30,7 @@ mod view;
 
 pub use picture::SurfaceFaces;
 pub use reference::{closest_on_triangle, Analytic, Facets, Projected, Reference};
-pub use view::{smooth_surface, SurfaceSmoother};
+pub use view::{smooth_surface, KeptNodes, SurfaceSmoother};
 
 /// Dihedral angle over which an edge between two elements is a feature curve (its nodes
 /// stay fixed), degrees.

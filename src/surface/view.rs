@@ -7,7 +7,7 @@ use glam::{DVec2, DVec3};
 use super::Surface;
 use crate::error::{Error, Result};
 use crate::mesh::{Follower, Mesh, Plane};
-use crate::objective::Objective;
+use crate::objective::{Objective, Star};
 use crate::smooth::{is_inverted, ElementScore, Measure, PassRecord, SmoothOptions, Smoother, StarView, Verdict};
 
 /// A surface seen by a driver: each star flattened into the tangent plane at its node.
@@ -111,6 +111,19 @@ impl Surface {
             star.iter().map(|&e| ElementScore::planar(s.flat.kind(e), &s.element_points_2d(e), measure)).collect()
         };
         let before = scores(self);
+        let saved = self.keep_around(n);
+        self.place(n, p);
+        if !keep(&before, &scores(self)) {
+            self.put_back(saved);
+            return false;
+        }
+        true
+    }
+
+    /// What a move of node `n` changes (placing it: the node and the nodes
+    /// that follow it, their positions and where their projections start), as it is now:
+    /// [`put_back`](Self::put_back) restores it exactly.
+    pub fn keep_around(&self, n: usize) -> KeptNodes {
         let mut moved = vec![n];
         self.flat.for_each_follower(n, |f| {
             moved.push(match f {
@@ -118,20 +131,22 @@ impl Surface {
                 Follower::Centre { centre, .. } => centre,
             })
         });
-        let saved: Vec<(DVec3, u32)> = moved.iter().map(|&m| (self.points[m], self.hint[m])).collect();
-        let curve_hint = self.curve_hint.get(n).copied();
-        self.place(n, p);
-        if !keep(&before, &scores(self)) {
-            for (&m, &(q, h)) in moved.iter().zip(&saved) {
+        let nodes = moved.iter().map(|&m| (m, self.points[m], self.hint[m])).collect();
+        KeptNodes { node: n, nodes, curve_hint: self.curve_hint.get(n).copied() }
+    }
+
+    /// Puts back what [`keep_around`](Self::keep_around) kept (of this surface: the
+    /// positions of another surface's nodes are refused by their numbers, not checked).
+    pub fn put_back(&mut self, kept: KeptNodes) {
+        for (m, q, h) in kept.nodes {
+            if m < self.points.len() {
                 self.points[m] = q;
                 self.hint[m] = h;
             }
-            if let Some(c) = curve_hint {
-                self.curve_hint[n] = c;
-            }
-            return false;
         }
-        true
+        if let (Some(c), Some(slot)) = (kept.curve_hint, self.curve_hint.get_mut(kept.node)) {
+            *slot = c;
+        }
     }
 
     fn move_to(&mut self, n: usize, p: DVec3) {
@@ -212,7 +227,36 @@ pub fn smooth_surface(
     Ok((0..passes).map(|_| s.pass(surface, objective, clock)).collect())
 }
 
+/// A node's move as it can be taken back: see [`Surface::keep_around`].
+#[derive(Clone, Debug, PartialEq)]
+pub struct KeptNodes {
+    node: usize,
+    nodes: Vec<(usize, DVec3, u32)>,
+    curve_hint: Option<[u32; 2]>,
+}
+
 impl Surface {
+    /// Free node `n`'s star as the drivers see it: flattened into its tangent plane at `n`
+    /// (the nodes that follow `n` where they will follow), gathered as a planar [`Star`],
+    /// and that plane (its origin the node, so the node is at 2D `0`): the star's objective
+    /// over the plane is the one a pass minimises or maximises at `n`, and
+    /// [`Plane::to_3d`] lifts a 2D answer back into space (then placing it
+    /// projects it onto the surface, as the drivers do).
+    pub fn tangent_star(&self, n: usize) -> Result<(Star, Plane)> {
+        if n >= self.node_count() {
+            return Err(Error::node(n, None, format!("no such node: the mesh has {} nodes", self.node_count())));
+        }
+        if !self.flat.is_free(n) {
+            return Err(Error::node(n, None, "is fixed or not an element corner, so it is never smoothed"));
+        }
+        let plane = self.tangent_plane(n);
+        let mut flat = self.flat.clone();
+        flat.set_star(n, |m| plane.to_2d(self.points[m]));
+        let mut star = Star::new();
+        star.gather(&flat, n);
+        Ok((star, plane))
+    }
+
     /// Free node `n`'s star flattened into its tangent plane, as a planar mesh of its own
     /// with every node fixed but `n` (its number in that mesh comes second): what the drivers
     /// see of the node, for the planar views of one node (the level sets of its objective,

@@ -1,15 +1,17 @@
 //! The 3D lab's handle: one [`Lab3d`] for a surface or tetrahedra, wrapping
 //! [`lab::Lab3d`] of either kind; each method converts and calls it. [`kind`](Lab3d::kind)
-//! tells the page which it is; what only tetrahedra have (the cut plane, the dihedral
-//! histograms) is refused on a surface, saying so.
+//! tells the page which it is; what only tetrahedra have (the cut plane) is refused on a
+//! surface, saying so. The node views, the charts and the figure are the playground's
+//! methods by the same names, taking and giving the same shapes.
 
 use glam::DVec2;
 use wasm_bindgen::prelude::*;
 
-use super::{frame_object, now_ms, object, perturb_seed, pixels, side, to_js};
+use super::{css_canvas, frame_object, now_ms, object, perturb_seed, pixels, side, to_js};
+use crate::lab::lab3d::{Mesh3d, NodeSummary3d};
 use crate::lab::views::Canvas;
 use crate::lab::{self, Side};
-use crate::render::Theme;
+use crate::render::{Camera, Theme};
 use crate::surface::Surface;
 use crate::volume::VolumeMesh;
 
@@ -47,11 +49,31 @@ impl Lab3d {
         Ok(Lab3d { inner: Kind::Volume(Box::new(lab::Lab3d::new(m)?)) })
     }
 
-    fn tetrahedra(&self) -> Result<&lab::Lab3d<VolumeMesh>, JsError> {
-        match &self.inner {
-            Kind::Volume(l) => Ok(l),
-            Kind::Surface(_) => Err(JsError::new("the cut plane and the dihedral angles take tetrahedral meshes only")),
+    /// The node views' pictures and summary as the page takes them (as the playground's).
+    fn node_view_object(view: ([tiny_skia::Pixmap; 3], NodeSummary3d)) -> Result<JsValue, JsError> {
+        let ([la, lb, chart], summary) = view;
+        object(&[
+            ("level_a", pixels(la)),
+            ("level_b", pixels(lb)),
+            ("chart", pixels(chart)),
+            ("summary", JsValue::from_str(&summary.text())),
+            ("solve", to_js(&summary)?),
+        ])
+    }
+
+    /// The per-pass chart and every histogram of the kind, both sides, with both tables.
+    fn charts_of<M: Mesh3d>(l: &lab::Lab3d<M>, chart: Canvas, hist: Canvas, log_y: bool) -> Result<JsValue, JsError> {
+        let pass = pixels(l.render_pass_chart(chart)?);
+        let list = js_sys::Array::new();
+        for (i, h) in M::HISTOGRAMS.iter().enumerate() {
+            let a = pixels(l.render_histogram(i, Side::A, hist, log_y)?);
+            let b = pixels(l.render_histogram(i, Side::B, hist, log_y)?);
+            list.push(&object(&[("title", JsValue::from_str(h.title)), ("a", a), ("b", b)])?);
         }
+        let first = list.get(0);
+        let get = |k: &str| js_sys::Reflect::get(&first, &JsValue::from_str(k)).unwrap_or(JsValue::UNDEFINED);
+        let stats = object(&[("a", to_js(&l.table(Side::A))?), ("b", to_js(&l.table(Side::B))?)])?;
+        object(&[("pass", pass), ("hist_a", get("a")), ("hist_b", get("b")), ("histograms", list.into()), ("stats", stats)])
     }
 }
 
@@ -155,33 +177,125 @@ impl Lab3d {
         object(&[("yaw", c.yaw.into()), ("pitch", c.pitch.into()), ("zoom", c.zoom.into())])
     }
 
-    /// The node of a side under the CSS pixel `(x, y)` of the last frame within `radius`
-    /// CSS pixels (the near side of a surface winning), or `undefined` (always, in the cut
-    /// view of tetrahedra: its faces hide the nodes behind).
+    /// The node of a side under the CSS pixel `(x, y)` of the last frame: the nearest
+    /// node of the face drawn there, `{ node, nearest, message }` as the playground's
+    /// (see [`crate::lab::pick::Pick`]; `radius` CSS pixels reach a surface's nodes beside
+    /// its faces).
     #[wasm_bindgen(js_name = pickNode)]
-    pub fn pick_node(&self, panel: &str, x: f64, y: f64, radius: f64) -> Result<Option<u32>, JsError> {
+    pub fn pick_node(&self, panel: &str, x: f64, y: f64, radius: f64) -> Result<JsValue, JsError> {
         let s = side(panel)?;
         let at = DVec2::new(x, y);
-        Ok(each!(&self.inner, l => l.pick_in_frame(s, at, radius))?.map(|n| n as u32))
+        to_js(&each!(&self.inner, l => l.pick_in_frame(s, at, radius))?)
     }
 
-    /// Both sides' dihedral angle histograms beside the mesh as loaded, on canvases of
-    /// `w × h` device pixels, the percentages on a logarithmic scale when `log_y`:
-    /// `{ a, b }` (RGBA pixels). Tetrahedra only.
-    pub fn histograms(&self, w: u32, h: u32, dpr: f32, log_y: bool) -> Result<JsValue, JsError> {
-        let l = self.tetrahedra()?;
-        let c = Canvas { w, h, dpr };
-        let a = pixels(l.render_histogram(Side::A, c, log_y)?);
-        let b = pixels(l.render_histogram(Side::B, c, log_y)?);
-        object(&[("a", a), ("b", b)])
+    /// Chooses the node marked on both sides whose level sets are shown (`undefined`: none).
+    #[wasm_bindgen(js_name = selectNode)]
+    pub fn select_node(&mut self, node: Option<u32>) -> Result<(), JsError> {
+        let n = node.map(|n| n as usize);
+        Ok(each!(&mut self.inner, l => l.choose_node(n))?)
+    }
+
+    /// The chosen node's level sets (A, B: `w × h`) over its plane, its solve history
+    /// chart (`cw × ch`) and a summary: `{ level_a, level_b, chart, summary, solve }`.
+    #[wasm_bindgen(js_name = nodeView)]
+    pub fn node_view(&mut self, w: u32, h: u32, cw: u32, ch: u32, dpr: f32) -> Result<JsValue, JsError> {
+        let (level, chart) = (Canvas { w, h, dpr }, Canvas { w: cw, h: ch, dpr });
+        Self::node_view_object(each!(&mut self.inner, l => l.chosen_node_view(level, chart))?)
+    }
+
+    /// One solver call on the chosen node on each side, which then moves to what it found
+    /// (a surface's back onto the surface): the node view of that call, as `nodeView`.
+    #[wasm_bindgen(js_name = smoothNode)]
+    pub fn smooth_node(&mut self, w: u32, h: u32, cw: u32, ch: u32, dpr: f32) -> Result<JsValue, JsError> {
+        let (level, chart) = (Canvas { w, h, dpr }, Canvas { w: cw, h: ch, dpr });
+        Self::node_view_object(each!(&mut self.inner, l => l.smooth_chosen_node(level, chart))?)
+    }
+
+    /// Takes back the latest move: `{ node, next, depth }` as the playground's.
+    pub fn undo(&mut self) -> Result<JsValue, JsError> {
+        each!(&mut self.inner, l => {
+            let node = l.undo();
+            to_js(&l.undo_summary(node))
+        })
+    }
+
+    /// `{ next, depth }`: the node the next undo moves back, and how many moves it can take back.
+    #[wasm_bindgen(js_name = undoSummary)]
+    pub fn undo_summary(&self) -> Result<JsValue, JsError> {
+        each!(&self.inner, l => to_js(&l.undo_summary(None)))
+    }
+
+    /// Magnifies both level sets `factor` times about the CSS pixel `(x, y)` of `panel`'s
+    /// level set as last drawn.
+    #[wasm_bindgen(js_name = zoomLevelSets)]
+    pub fn zoom_level_sets(&mut self, panel: &str, x: f64, y: f64, factor: f64) -> Result<(), JsError> {
+        let s = side(panel)?;
+        Ok(each!(&mut self.inner, l => l.zoom_level_sets_in_frame(s, DVec2::new(x, y), factor))?)
+    }
+
+    /// Moves both level sets by `(dx, dy)` CSS pixels of `panel`'s level set as last drawn.
+    #[wasm_bindgen(js_name = panLevelSets)]
+    pub fn pan_level_sets(&mut self, panel: &str, dx: f64, dy: f64) -> Result<(), JsError> {
+        let s = side(panel)?;
+        Ok(each!(&mut self.inner, l => l.pan_level_sets_in_frame(s, DVec2::new(dx, dy)))?)
+    }
+
+    /// The free node with the worst star (on B's mesh), or `undefined`.
+    #[wasm_bindgen(js_name = worstFreeNode)]
+    pub fn worst_free_node(&self) -> Option<u32> {
+        each!(&self.inner, l => l.worst_free_node()).map(|n| n as u32)
+    }
+
+    /// The per-pass chart (`w × h`) and each histogram of the kind's (`hw × hh`, both
+    /// sides on one scale, logarithmic when `log_y`), with both statistics tables:
+    /// `{ pass, hist_a, hist_b, histograms: [{ title, a, b }], stats: { a, b } }` (`hist_a`
+    /// and `hist_b` the first histogram's, as the playground's).
+    pub fn charts(&self, w: u32, h: u32, hw: u32, hh: u32, dpr: f32, log_y: bool) -> Result<JsValue, JsError> {
+        let (chart, hist) = (Canvas { w, h, dpr }, Canvas { w: hw, h: hh, dpr });
+        each!(&self.inner, l => Self::charts_of(l, chart, hist, log_y))
+    }
+
+    /// The figure for slides: A | B in 3D with titles, statistics and the colour bar,
+    /// `w × h` CSS pixels at ratio `dpr`: `{ pixels, w, h }` (device pixels).
+    pub fn figure(&self, w: u32, h: u32, dpr: f32) -> Result<JsValue, JsError> {
+        let c = css_canvas(w, h, dpr)?;
+        let pm = each!(&self.inner, l => l.render_figure(c))?;
+        object(&[("pixels", pixels(pm)), ("w", JsValue::from(c.w)), ("h", JsValue::from(c.h))])
+    }
+
+    /// Sees both sides by the camera `yaw`, `pitch` (degrees) and `zoom` (a permalink's).
+    #[wasm_bindgen(js_name = setCamera)]
+    pub fn set_camera(&mut self, yaw: f64, pitch: f64, zoom: f64) -> Result<(), JsError> {
+        Ok(each!(&mut self.inner, l => l.set_camera(Camera { yaw, pitch, zoom }))?)
+    }
+
+    /// Where node `node` of `panel` is drawn in the last frame: `{ x, y, behind }` (CSS
+    /// pixels; how far behind the side's front-most node, CSS pixels), or `undefined` when
+    /// there is no such node. For the browser tests, which click on a node.
+    #[wasm_bindgen(js_name = nodeOnScreen)]
+    pub fn node_on_screen(&self, panel: &str, node: u32) -> Result<JsValue, JsError> {
+        let s = side(panel)?;
+        match each!(&self.inner, l => l.node_on_screen(s, node as usize))? {
+            Some((p, behind)) => object(&[("x", p.x.into()), ("y", p.y.into()), ("behind", behind.into())]),
+            None => Ok(JsValue::UNDEFINED),
+        }
+    }
+
+    /// Node `node`'s position on `panel`'s mesh, `[x, y, z]` (for the tests), or `undefined`.
+    #[wasm_bindgen(js_name = nodePoint)]
+    pub fn node_point(&self, panel: &str, node: u32) -> Result<Option<Vec<f64>>, JsError> {
+        let s = side(panel)?;
+        let n = node as usize;
+        Ok(each!(&self.inner, l => (n < l.mesh(s).node_count()).then(|| l.mesh(s).point(n).to_array().to_vec())))
     }
 
     /// Cuts both sides across `axis` (0, 1, 2: x, y, z) at the fraction `at` of the
     /// extent. Tetrahedra only.
     #[wasm_bindgen(js_name = setCut)]
     pub fn set_cut(&mut self, axis: u32, at: f64) -> Result<(), JsError> {
-        self.tetrahedra()?;
-        let Kind::Volume(l) = &mut self.inner else { unreachable!("checked: tetrahedra") };
+        let Kind::Volume(l) = &mut self.inner else {
+            return Err(JsError::new("the cut plane takes tetrahedral meshes only"));
+        };
         Ok(l.set_cut(axis as usize, at)?)
     }
 }

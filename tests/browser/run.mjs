@@ -1425,11 +1425,12 @@ try {
     check(Number(s0.inverted) > 0, `the sample is tangled: ${JSON.stringify(s0)}`);
     check(Number(s0.surface_distance) < 1e-9, `its nodes are on the sphere: ${s0.surface_distance}`);
     check(/^\d\.\d\de[-+]\d+$/.test(s0.surface_distance), `the distance row: ${s0.surface_distance}`);
-    for (const id of ['node', 'smooth-node', 'undo', 'save-figure', 'hist-log']) {
-      check(await page.locator(`#${id}`).isDisabled(), `#${id} is planar-only`);
-      check(/^Not for a surface: /.test(await page.getAttribute(`#${id}`, 'title')), `#${id} says why`);
+    for (const id of ['node', 'save-figure', 'hist-log']) {
+      check(await page.locator(`#${id}`).isEnabled(), `#${id} works for a surface`);
+      check(!/^Not for/.test(await page.getAttribute(`#${id}`, 'title') ?? ''), `#${id} says it waits`);
     }
-    check(/planar/.test(await page.textContent('#node-hint')), 'the node view says why it waits');
+    check(await page.locator('#smooth-node').isDisabled() && await page.locator('#undo').isDisabled(), 'Smooth this node waits for a node, Undo for a move');
+    check(/tangent plane/.test(await page.textContent('#node-hint')), 'the node view says where the level sets are drawn');
     check((await page.textContent('#permalink-note')) === '' && (await page.getAttribute('#permalink', 'href')).includes('#sample=sphere-tangled&'), 'the link carries the surface sample');
     const a0 = await canvasInfo(page, 'mesh-a');
     const b0 = await canvasInfo(page, 'mesh-b');
@@ -1561,8 +1562,8 @@ try {
     const s0 = await stats(page, 'b');
     check(s0.nodes === '1086' && Number(s0.elements) > 5000 && s0.inverted === '0', `rand3D: ${JSON.stringify(s0)}`);
     check(await page.evaluate(() => [...document.querySelectorAll('#stats-b th')].some((th) => th.textContent === 'Min dihedral angle')), 'the table names dihedral angles');
-    for (const id of ['node', 'smooth-node', 'save-figure']) {
-      check(/^Not for tetrahedra: /.test(await page.getAttribute(`#${id}`, 'title')), `#${id} says why it waits`);
+    for (const id of ['node', 'save-figure']) {
+      check(await page.locator(`#${id}`).isEnabled(), `#${id} works for tetrahedra`);
     }
     const a0 = await canvasInfo(page, 'mesh-a');
     check(a0.colours > 50, 'the cut is drawn coloured');

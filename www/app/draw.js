@@ -1,6 +1,6 @@
 // Drawing: the engine's pixels on the canvases, sized to the layout (and to an embed's frame).
 import { $, EMBED, engine, metrics, now, state, view } from './state.js';
-import { planarOnlyWhy } from './loading.js';
+import { nodeHint } from './loading.js';
 import { fillTables } from './tables.js';
 import { refreshUndo } from './undo.js';
 
@@ -166,25 +166,42 @@ export async function redrawMeshes(refits = 2) {
 export async function redrawCharts() {
   if (EMBED && !(view.spec && view.spec.draws === 'charts')) return;
   fitEmbed();
-  if (state.volume) {
-    placeholder($('pass-chart'), 'Drawn for planar meshes; the tables follow the tetrahedra pass by pass');
-    const hc = canvasPixels($('hist-a'));
-    const r = await engine.call('volumeHistograms', hc.w, hc.h, hc.dpr, $('hist-log').checked);
-    paint($('hist-a'), r.a, hc.w, hc.h);
-    paint($('hist-b'), r.b, hc.w, hc.h);
-    return;
-  }
-  if (state.surface) {
-    for (const id of ['pass-chart', 'hist-a', 'hist-b']) placeholder($(id), 'Drawn for planar meshes; this is a surface in 3D');
-    return;
-  }
   const c = canvasPixels($('pass-chart'));
   const hc = canvasPixels($('hist-a'));
   const r = await engine.call('charts', c.w, c.h, hc.w, hc.h, c.dpr, $('hist-log').checked);
   paint($('pass-chart'), r.pass, c.w, c.h);
   paint($('hist-a'), r.hist_a, hc.w, hc.h);
   paint($('hist-b'), r.hist_b, hc.w, hc.h);
+  showHistograms(r.histograms, hc);
   fillTables(r.stats); // the detail rows of a large mesh are measured by now
+}
+
+/** The histograms' captions in the words of the mesh on screen, and the histograms after
+ * the first (a kind of mesh in 3D lists one entry a measure: `{ title, a, b }`), each pair
+ * in figures of its own after the first pair. */
+function showHistograms(list, hc) {
+  const what = list && list.length ? list[0].title.replace(/ \(6° bins\)$/, '') : 'Angles';
+  for (const [id, letter] of [['hist-a', 'A'], ['hist-b', 'B']]) {
+    $(id).parentElement.querySelector('figcaption').textContent = `${what}, ${letter} (both histograms on one scale)`;
+  }
+  const pair = $('hist-b').closest('.pair');
+  for (const old of pair.querySelectorAll('figure.more-histogram')) old.remove();
+  for (const [i, h] of (list || []).entries()) {
+    if (i === 0) continue;
+    for (const [side, letter] of [['a', 'A'], ['b', 'B']]) {
+      const fig = document.createElement('figure');
+      fig.className = 'more-histogram';
+      const canvas = document.createElement('canvas');
+      canvas.id = `hist-${side}-${i}`;
+      canvas.tabIndex = 0;
+      canvas.setAttribute('aria-label', `${h.title}, panel ${letter}`);
+      const cap = document.createElement('figcaption');
+      cap.textContent = `${h.title}, ${letter}`;
+      fig.append(canvas, cap);
+      pair.append(fig);
+      paint(canvas, h[side], hc.w, hc.h);
+    }
+  }
 }
 
 export const NODE_HINT = 'Click a free (interior) node on either mesh, or type its number. Drag a node to move it on both meshes.';
@@ -209,16 +226,11 @@ export async function redrawNode() {
   fitEmbed();
   const lv = canvasPixels($('level-a'));
   const ch = canvasPixels($('solve-chart'));
-  $('smooth-node').disabled = state.node === null || state.running || state.surface;
-  if (state.surface) {
-    const what = state.volume ? 'these are tetrahedra' : 'this is a surface in 3D';
-    for (const id of ['level-a', 'level-b', 'solve-chart']) placeholder($(id), `Drawn for planar meshes; ${what}`);
-    $('node-hint').textContent = planarOnlyWhy('node');
-    return;
-  }
+  $('smooth-node').disabled = state.node === null || state.running;
   if (state.node === null) {
-    for (const id of ['level-a', 'level-b', 'solve-chart']) placeholder($(id), 'Click a free node on a mesh');
-    $('node-hint').textContent = NODE_HINT;
+    const ask = state.surface ? 'Click a node on either view' : 'Click a free node on a mesh';
+    for (const id of ['level-a', 'level-b', 'solve-chart']) placeholder($(id), ask);
+    $('node-hint').textContent = nodeHint();
     return;
   }
   const r = await engine.call('nodeView', lv.w, lv.h, ch.w, ch.h, lv.dpr);

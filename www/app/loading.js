@@ -4,7 +4,7 @@ import { $, COMPARE, clearError, engine, metrics, now, report, serial, setStatus
 import { readChoice, readSettings } from './controls.js';
 import { writePermalink } from './permalink.js';
 import { startHelper } from './workers.js';
-import { redrawAll } from './draw.js';
+import { NODE_HINT, redrawAll } from './draw.js';
 import { showPickNote } from './pointer.js';
 
 
@@ -47,47 +47,17 @@ export async function sendSource(src, call) {
   return loaded;
 }
 
-/** What a surface or tetrahedra do not have (yet) on the page, and why, in the words of
- * each: these controls wait, saying so, while such a mesh is loaded (as a strategy's
- * unused controls do). A `volume` of null: the control works for tetrahedra too. */
-export const PLANAR_ONLY = {
-  node: {
-    surface: 'a node of a surface moves in its tangent plane: the level sets are drawn for planar meshes',
-    volume: 'the cut view of tetrahedra picks no node (its faces hide the nodes behind them), and the level sets are drawn for planar meshes',
-  },
-  'smooth-node': {
-    surface: 'the level sets and one-node smoothing are for planar meshes',
-    volume: 'the level sets and one-node smoothing are for planar meshes',
-  },
-  undo: {
-    surface: 'nodes of a surface are not dragged (a drag turns the view)',
-    volume: 'nodes of tetrahedra are not dragged (a drag turns the view)',
-  },
-  'hist-log': {
-    surface: 'the per-pass chart and the angle histograms are drawn for planar meshes',
-    volume: null, // the dihedral-angle histograms take the log scale too
-  },
-  'save-figure': {
-    surface: 'the figure for slides is drawn for planar meshes; save each 3D view as a PNG',
-    volume: 'the figure for slides is drawn for planar meshes; save each cut view as a PNG',
-  },
-};
-/** Why a control waits for the mesh on screen (`Not for a surface: …` or `Not for
- * tetrahedra: …`), or null when it works for it. */
-export function planarOnlyWhy(id) {
-  if (!state.surface) return null;
-  const why = PLANAR_ONLY[id][state.volume ? 'volume' : 'surface'];
-  return why ? `${state.volume ? 'Not for tetrahedra' : 'Not for a surface'}: ${why}.` : null;
-}
-/** What the log-scale box scales for the mesh on screen, as its tooltip when it works. */
+/** What the log-scale box scales for the mesh on screen, as its tooltip. */
 export const HIST_LOG_HELP = {
   planar: 'The corner-angle histograms of both sides on a logarithmic scale: the few very poor angles show.',
   volume: 'The dihedral-angle histograms of both sides on a logarithmic scale: the few very poor angles show.',
 };
 
-/** Puts the page in the surface mode (or back in the planar one); `why` says why a file
- * read as a surface (the node farthest off the plane it would lie in: a mistyped
- * coordinate shows here, as the command-line tool says it). */
+/** Puts the page in the 3D mode (a surface, or tetrahedra when `volume`) or back in the
+ * planar one; `why` says why a file read as a surface (the node farthest off the plane
+ * it would lie in: a mistyped coordinate shows here, as the command-line tool says it).
+ * Every view works in 3D; what differs is said in the notes: a drag turns the view
+ * (nodes are not dragged), and tetrahedra are cut by a plane. */
 export function showSurfaceMode(on, why = null, volume = false) {
   state.surface = on;
   state.volume = on && volume;
@@ -102,25 +72,28 @@ export function showSurfaceMode(on, why = null, volume = false) {
   }
   $('surface-why').hidden = !(on && why);
   $('surface-why').textContent = on && why ? why : '';
-  for (const id of Object.keys(PLANAR_ONLY)) {
-    const el = $(id);
-    const waits = planarOnlyWhy(id);
-    if (waits) {
-      el.disabled = true;
-      el.title = waits;
-    } else {
-      el.disabled = id === 'smooth-node' ? state.node === null : id === 'undo' ? el.disabled : false;
-      el.title = id === 'hist-log' ? HIST_LOG_HELP[state.volume ? 'volume' : 'planar'] : el.dataset.help || '';
-    }
-  }
+  $('hist-log').title = HIST_LOG_HELP[state.volume ? 'volume' : 'planar'];
+  $('smooth-node').disabled = state.node === null;
+  $('node-hint').textContent = nodeHint();
   for (const id of ['mesh-a', 'mesh-b']) {
     const letter = id === 'mesh-a' ? 'A' : 'B';
     $(id).setAttribute('aria-label', on
       ? (state.volume
-        ? `Tetrahedra of panel ${letter}, cut by a plane, coloured by mean ratio; drag to turn, wheel to zoom`
-        : `Surface of panel ${letter} in 3D, coloured by quality; drag to turn, wheel to zoom`)
+        ? `Tetrahedra of panel ${letter}, cut by a plane, coloured by mean ratio; click a face to choose its nearest node, drag to turn, wheel to zoom`
+        : `Surface of panel ${letter} in 3D, coloured by quality; click to choose a node, drag to turn, wheel to zoom`)
       : `Mesh of panel ${letter}, coloured by quality; arrow keys move the chosen node`);
   }
+}
+
+/** What the node view asks for, in the words of the mesh on screen. */
+export function nodeHint() {
+  if (state.volume) {
+    return 'Click a face of the cut (or of the boundary) to choose its nearest node, or type its number: its level sets are drawn over the cut plane moved to pass through it.';
+  }
+  if (state.surface) {
+    return 'Click the surface to choose the nearest node of the face there, or type its number: its level sets are drawn in its tangent plane.';
+  }
+  return NODE_HINT;
 }
 
 export function selectValueOf(src) {

@@ -1,11 +1,11 @@
 // The playground page's entry: wires the controls, fills the menus and opens the address.
 import { $, COMPARE, EMBED, PARAMS, FIGURE_HASH, SETTINGS, VIEWS, engine, gallery, metrics, now, report, serial, showError, state, view } from './state.js';
 import { CHECKED, buildControls, changeCompare, checkControl, showStrategyReasons } from './controls.js';
-import { applyHash, copyLink, markAddressHandled, onAddressChange, openHash, openView, updatePermalink } from './permalink.js';
+import { applyHash, copyLink, markAddressHandled, onAddressChange, openHash, openView, updatePermalink, writePermalink } from './permalink.js';
 import { closeTour, drawFigurePicture, fillTourMenu, goFigure, openFigure } from './tour.js';
 import { load, readFiles } from './loading.js';
 import { readyHelper } from './workers.js';
-import { redrawAll, redrawCharts, redrawMeshes } from './draw.js';
+import { redrawAll, redrawCharts, redrawMeshes, redrawNode } from './draw.js';
 import { perturb, reset, run, step } from './run.js';
 import { attachLevelZoom, attachPointer, pickRadius, selectNode } from './pointer.js';
 import { saveFigure, smoothThisNode, undo } from './undo.js';
@@ -82,7 +82,8 @@ export function wire() {
     $(pen).addEventListener('change', changeCompare);
   }
   $('hist-log').addEventListener('change', () => serial(redrawCharts).catch(report));
-  // the cut plane of tetrahedra: both views follow as the slider moves
+  // the cut plane of tetrahedra: both views follow as the slider moves, the chosen node's
+  // level sets (over the cut plane moved to it) follow its axis, and the link keeps it
   const cut = () => {
     const at = Number($('cut-at').value);
     $('cut-at-out').textContent = at.toFixed(2);
@@ -90,6 +91,8 @@ export function wire() {
     serial(async () => {
       await engine.call('setCut', Number($('cut-axis').value), at);
       await redrawMeshes();
+      await redrawNode();
+      await writePermalink();
     }).catch(report);
   };
   $('cut-at').addEventListener('input', cut);
@@ -226,6 +229,11 @@ window.smoothlab = {
   // whether passes are split between two workers now (see SPLIT_MIN_NODES)
   twoWorkers: () => readyHelper() !== null,
   figure: () => state.figure,
+  // in 3D: where node `node` of side `side` is drawn on its canvas (CSS pixels of the
+  // canvas, and how far behind the front of the mesh it is), and where it is in space
+  nodeOnScreen: (side, node) => serial(() => engine.call('nodeOnScreen', side, node)),
+  nodePoint: (side, node) => serial(() => engine.call('nodePoint', side, node)),
+  camera: () => serial(() => engine.call('camera')),
 };
 
 main();

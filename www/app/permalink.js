@@ -6,6 +6,7 @@ import { openFigure } from './tour.js';
 import { labelOf, load, selectValueOf } from './loading.js';
 import { perturbWith, smooth } from './run.js';
 import { selectNode } from './pointer.js';
+import { redrawMeshes } from './draw.js';
 
 /** The permalink sample name of what is loaded, or null (a user's file has none). Every
  * sample of the gallery has one (src/lab/permalink.rs, SAMPLES), surfaces and tetrahedra
@@ -18,7 +19,7 @@ export function sourceSample() {
   return null;
 }
 /** The hash of the loaded sample and the controls, written by the Rust encoder. */
-export function permalinkHash() {
+export async function permalinkHash() {
   return engine.call('encodePermalink', {
     sample: sourceSample(),
     seed: state.perturbed ? BigInt(state.perturbed.seed) : BigInt($('seed').value.trim()),
@@ -27,7 +28,14 @@ export function permalinkHash() {
     node: state.node,
     settings: readSettings(),
     passes: Number($('passes').value),
+    // a mesh in 3D: the camera, and the cut of tetrahedra
+    camera: state.surface ? await engine.call('camera') : null,
+    cut: state.volume ? readCut() : null,
   });
+}
+/** The cut plane the controls hold: `{ axis, at }`. */
+export function readCut() {
+  return { axis: Number($('cut-axis').value), at: Number($('cut-at').value) };
 }
 /** Keeps the URL and the permalink link current; a setting the link cannot carry is said
  * in the message box (the link then keeps its last good value). */
@@ -114,7 +122,7 @@ export async function applyHash(hash = location.hash) {
   $('amount-out').textContent = $('amount').value;
   showStrategyReasons();
   showPenaltyReasons();
-  const extra = { perturbed: p.perturbed ? { amount: p.amount, seed: String(p.seed) } : null, node: p.node };
+  const extra = { perturbed: p.perturbed ? { amount: p.amount, seed: String(p.seed) } : null, node: p.node, camera: p.camera, cut: p.cut };
   if (p.sample === null) return { src: fallback, ...extra };
   const gmsh = state.controls.gmsh_samples.find((g) => g.name === p.sample);
   if (gmsh) return { src: { kind: 'gmsh', name: gmsh.file }, ...extra };
@@ -123,17 +131,36 @@ export async function applyHash(hash = location.hash) {
 }
 
 /** Opens what a hash names: its sample (unless it is already loaded and unperturbed),
- * its perturbation and its node. The controls were set by applyHash. */
-export async function openHash({ src, error, perturbed, node }, { keepLink = false } = {}) {
+ * its perturbation, a 3D view's camera and cut, and its node. The controls were set by
+ * applyHash. */
+export async function openHash({ src, error, perturbed, node, camera, cut }, { keepLink = false } = {}) {
   const same = state.lastGood && selectValueOf(state.lastGood) === selectValueOf(src) && selectValueOf(src) !== '';
   if (!same || state.perturbed || perturbed) await load(src, labelOf(src), { keepHash: true });
   else if (!sameCompare()) await changeCompare();
   if (perturbed) await perturbWith(perturbed.amount, perturbed.seed, { keepHash: true });
-  // a node is chosen on a planar mesh only (a 3D view picks none: see PLANAR_ONLY)
-  if (node !== null && node !== undefined && !state.surface) await selectNode(node, { keepHash: true });
+  if (state.surface) await openView3d(camera, cut);
+  if (node !== null && node !== undefined) await selectNode(node, { keepHash: true });
   else if (state.node !== null) await selectNode(null, { keepHash: true });
   if (error) showError(`This link's settings could not be read, so the defaults are shown: ${error.replace(/^permalink: /, '')}`);
   if (!keepLink) await serial(writePermalink).catch(report);
+}
+
+/** A 3D view as a link names it: its camera (or the camera as it starts) and, for
+ * tetrahedra, its cut (or half way up z). */
+export function openView3d(camera, cut) {
+  return serial(async () => {
+    if (camera) await engine.call('setCamera', camera.yaw, camera.pitch, camera.zoom);
+    else await engine.call('resetZoom');
+    if (state.volume) {
+      const c = cut ?? { axis: 2, at: 0.5 };
+      $('cut-axis').value = String(c.axis);
+      $('cut-at').value = String(c.at);
+      const at = Number($('cut-at').value); // as the slider holds it (its steps)
+      $('cut-at-out').textContent = at.toFixed(2);
+      await engine.call('setCut', c.axis, at);
+    }
+    await redrawMeshes();
+  }).catch(report);
 }
 
 /** An embedded view shows what `smoothlab render` shows for it: the level sets of the

@@ -1,5 +1,5 @@
 // The pointer on the canvases: picking, dragging and nudging a node, zoom and pan, turning
-// a 3D view, the hover label.
+// a 3D view (a click there picks a node, a drag turns it), the hover label.
 import { $, EMBED, clearError, engine, queued, report, serial, setStatus, state } from './state.js';
 import { writePermalink } from './permalink.js';
 import { showNodeBadge, showTab } from './present.js';
@@ -60,7 +60,7 @@ export function attachPointer(canvas) {
     if (g.moved) pumpDrag(g, true);
     else selectNode(g.node);
   };
-  const zoom = zoomer((at, f) => engine.call('zoomMeshes', at.x, at.y, f), redrawMeshes);
+  const zoom = zoomer((at, f) => engine.call('zoomMeshes', at.x, at.y, f), redrawMeshesAndView);
   const touches = attachZoom(canvas, () => toFrame.bind(null, canvas), zoom, () => {
     if (gesture) gesture.cancelled = true; // a second finger: the press becomes a pinch
     gesture = null;
@@ -68,7 +68,10 @@ export function attachPointer(canvas) {
   canvas.addEventListener('pointerdown', (ev) => {
     if (state.running || ev.button !== 0 || !state.frame.w || touches.size > 1) return;
     if (state.surface) {
-      gesture = { orbit: true, start: { x: ev.clientX, y: ev.clientY }, last: { x: ev.clientX, y: ev.clientY }, moved: false };
+      // a press soon after a click makes a double-click (fit the view), not two picks
+      const second = clickPending.token !== null;
+      clickPending.token = null;
+      gesture = { orbit: true, second, start: { x: ev.clientX, y: ev.clientY }, last: { x: ev.clientX, y: ev.clientY }, moved: false };
       canvas.setPointerCapture(ev.pointerId);
       return;
     }
@@ -115,7 +118,8 @@ export function attachPointer(canvas) {
     g.up = true;
     if (canvas.hasPointerCapture(ev.pointerId)) canvas.releasePointerCapture(ev.pointerId);
     if (g.orbit) {
-      if (!g.moved && ev.type === 'pointerup') sayNode(canvas, ev);
+      // a press and release without motion is a click: it picks a node, as on a planar mesh
+      if (!g.moved && !g.second && ev.type === 'pointerup') pickIn3d(canvas, ev);
       return;
     }
     if (g.moved) g.latest = toFrame(canvas, ev);
@@ -146,8 +150,8 @@ export function attachPointer(canvas) {
   canvas.addEventListener('pointercancel', end);
 }
 
-/** Turns both surface views by a drag of `(dx, dy)` CSS pixels; turns that arrive while
- * the engine draws are added up and sent as one. */
+/** Turns both 3D views by a drag of `(dx, dy)` CSS pixels; turns that arrive while
+ * the engine draws are added up and sent as one. The link keeps the camera. */
 export const orbitPump = { dx: 0, dy: 0, busy: false };
 export function orbitBy(dx, dy) {
   orbitPump.dx += dx;
@@ -159,7 +163,7 @@ export function orbitBy(dx, dy) {
   orbitPump.busy = true;
   serial(async () => {
     await engine.call('orbit', x, y);
-    await redrawMeshes();
+    await redrawMeshesAndView();
   })
     .catch(report)
     .finally(() => {
@@ -168,16 +172,34 @@ export function orbitBy(dx, dy) {
     });
 }
 
-/** A click on a surface view says which node is there (the near side of the surface); the
- * cut view of tetrahedra picks none (its faces hide the nodes behind them). */
-export function sayNode(canvas, ev) {
-  if (state.volume) {
-    showPickNote('The cut view of tetrahedra picks no node: drag to turn it, wheel to zoom, move the cut plane to look inside.');
-    return;
-  }
+/** The meshes drawn again after the view changed; in 3D the link keeps the camera. */
+async function redrawMeshesAndView() {
+  await redrawMeshes();
+  if (state.surface) await writePermalink();
+}
+
+/** A click on a 3D view waiting to be picked: it waits out a double-click's interval
+ * (a second press, a double-click, fits the view instead). */
+const clickPending = { token: null };
+const DOUBLE_CLICK_MS = 250;
+
+/** A click on a 3D view chooses the nearest node of the face drawn there (a surface's,
+ * or a face of the cut or of the boundary of tetrahedra), or says why it chose none. */
+export function pickIn3d(canvas, ev) {
   const p = toFrame(canvas, ev);
-  serial(() => engine.call('pickSurface', canvas.dataset.side, p.x, p.y, pickRadius(ev)))
-    .then((node) => showPickNote(node === null ? 'No node there: drag to turn the surface, wheel to zoom.' : `Node ${node} of the surface.`))
+  const token = {};
+  clickPending.token = token;
+  serial(async () => {
+    await new Promise((r) => setTimeout(r, DOUBLE_CLICK_MS));
+    if (clickPending.token !== token) return null; // a double-click
+    clickPending.token = null;
+    return engine.call('pick', canvas.dataset.side, p.x, p.y, pickRadius(ev));
+  })
+    .then((pick) => {
+      if (!pick) return;
+      if (pick.node === null || pick.node === undefined) showPickNote(pick.message);
+      else selectNode(pick.node);
+    })
     .catch(report);
 }
 
@@ -227,6 +249,7 @@ export function attachZoom(canvas, point, zoom, onPinch = () => {}) {
       await engine.call('resetZoom');
       await redrawMeshes();
       await redrawNode();
+      if (state.surface) await writePermalink();
     }).catch(report);
   });
   return down;

@@ -117,7 +117,7 @@ export function setRunning(on) {
   $('run').textContent = on ? 'Stop' : 'Run';
   $('run').setAttribute('aria-pressed', on ? 'true' : 'false');
   $('step').disabled = on;
-  $('smooth-node').disabled = on || state.node === null || state.surface;
+  $('smooth-node').disabled = on || state.node === null;
   if (on) $('undo').disabled = true;
 }
 

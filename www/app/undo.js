@@ -5,18 +5,19 @@ import { baseName, download } from './export.js';
 
 /** The Undo button says what it would take back, or why it cannot. */
 export async function refreshUndo() {
-  if (state.surface) return; // disabled, saying why (showSurfaceMode)
   const u = await engine.call('undoSummary');
   const b = $('undo');
   b.disabled = u.depth === 0 || state.running;
   b.textContent = u.depth ? `Undo move of node ${u.next}` : 'Undo move';
   b.title = u.depth
     ? `Put node ${u.next} back where it was before its last move, on both sides (Ctrl+Z); ${u.depth} move${u.depth === 1 ? '' : 's'} can be undone.`
-    : 'Nothing to undo: a move (a drag or Smooth this node) can be taken back until the next pass, Reset or Perturb.';
+    : state.surface
+      ? 'Nothing to undo: a move (Smooth this node) can be taken back until the next pass, Reset or Perturb.'
+      : 'Nothing to undo: a move (a drag or Smooth this node) can be taken back until the next pass, Reset or Perturb.';
 }
 
 export function undo() {
-  if (state.running || state.surface) return;
+  if (state.running) return;
   return serial(async () => {
     const u = await engine.call('undo');
     if (u.node === undefined) {
@@ -42,7 +43,8 @@ export function smoothThisNode() {
     paint($('level-a'), r.level_a, lv.w, lv.h);
     paint($('level-b'), r.level_b, lv.w, lv.h);
     paint($('solve-chart'), r.chart, ch.w, ch.h);
-    $('node-hint').textContent = `One solver call on each side moved node ${node} to its optimum; the pictures show that call. ${r.summary}`;
+    const placed = state.volume ? '' : state.surface ? ' (put back on the surface)' : '';
+    $('node-hint').textContent = `One solver call on each side moved node ${node} to its optimum${placed}; the pictures show that call. ${r.summary}`;
     await redrawMeshes();
     await redrawCharts();
     setStatus(`Node ${node} smoothed by one solver call on each side (Undo takes it back).`);

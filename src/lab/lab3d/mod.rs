@@ -4,28 +4,46 @@
 //! once over the kind of mesh ([`Mesh3d`]); each kind's specifics are in its own file:
 //! - [`surface`]: a [`Surface`](crate::surface::Surface), smoothed by the
 //!   [`SurfaceSmoother`](crate::surface::SurfaceSmoother) (Chen, Tristano & Kwok 2003 smooth
-//!   surface meshes star by star in the tangent plane); a node can be picked on it.
+//!   surface meshes star by star in the tangent plane).
 //! - [`volume`]: a [`VolumeMesh`](crate::volume::VolumeMesh), smoothed by the
 //!   [`VolumeSmoother`](crate::volume::VolumeSmoother) (the planar drivers over stars of
-//!   tetrahedra) and drawn cut by a plane ([`Cut`](crate::volume::Cut)); the two sides'
-//!   dihedral angles in Freitag's 6° bins.
+//!   tetrahedra) and drawn cut by a plane ([`Cut`](crate::volume::Cut)).
 //!
-//! Smaller than the planar [`Playground`](super::Playground): a pass runs whole (no
-//! slices), there is no node dragging and no level-set view (a node moves in a tangent
-//! plane or in space, which the planar views do not draw).
+//! A node is chosen by pointing at it (the nearest node of the face drawn there), and the
+//! planar page's views of one node work here too, by the same code ([`super::views`]):
+//! the level sets of each side's objective over a plane through the node ([`NodeSlice`]:
+//! a surface's tangent plane, where its drivers solve; a volume's cut plane moved to pass
+//! through the node), the solve's path and history, one solver call on the node (undoable),
+//! the per-pass chart, the histograms of each side's elements ([`Histogram3d`]) and the
+//! figure for slides. Smaller than the planar [`Playground`](super::Playground): a pass
+//! runs whole (no slices) and a node is not dragged (a drag turns the view).
 
 pub mod surface;
 pub mod volume;
 
+use std::cell::Cell;
+
 use glam::{DVec2, DVec3};
+use serde::Serialize;
 use tiny_skia::Pixmap;
 
-use super::views::{pixmap, Canvas};
+use super::interact::LevelWindow;
+use super::pick::{sentence, Pick};
+use super::screen::UndoSummary;
+use super::views::{
+    figure_lines, figure_title, histogram_picture, histogram_top, level_set_picture, pass_chart, pixmap, solve_chart, Canvas, FigureWords,
+    NodeSummary, SolveSummary, LEVEL_SET_MARGIN,
+};
 use super::{PanelStats, PanelTable, PassSummary, Settings, Side, TableDetail, WorkDone, MAX_NODES};
 use crate::error::{Error, Result};
 use crate::io::Format;
+use crate::objective::Star;
+use crate::optimize::SolveResult;
 use crate::quality::MeshStats;
-use crate::render::{Camera, Projection, SurfaceView, Theme};
+use crate::render::{
+    draw_node_mark, feasible_bounds_of, level_set_view, render_compare_with, AngleHistogram, Camera, Colormap, CompareBar, CompareText, Frame,
+    HistogramAxis, HistogramSeries, PlaneFunction, Projection, SurfaceView, Theme, View,
+};
 use crate::smooth::SmoothOptions;
 
 /// A kind of mesh in space that the 3D lab holds: how it is smoothed a pass at a time,
@@ -75,12 +93,45 @@ pub trait Mesh3d: Clone + Sized {
     fn side_label(settings: &Settings, side: Side) -> String;
     /// The colour bar's label (the quality the pictures are coloured by).
     fn quality_label(&self) -> &'static str;
+    /// The values the colour bar's ends stand for.
+    fn quality_domain(&self) -> (f64, f64) {
+        (0.0, 1.0)
+    }
     /// The mesh drawn by the 3D view (cut by `cut` where the kind has one); the projection
     /// it used.
     fn draw(&self, pm: &mut Pixmap, cut: Self::Cut, view: &SurfaceView) -> Projection;
-    /// The points a pick chooses among, where the kind's view shows its nodes (`None`
-    /// where it does not: a cut volume's faces hide the nodes behind).
-    fn pickable_points(&self) -> Option<&[DVec3]>;
+    /// The node under the CSS pixel `at` of a picture drawn with `proj` (and `cut`): the
+    /// nearest node of the face drawn there ([`Projection::pick_on_faces`]), or, where the
+    /// kind's view shows nodes beside its faces, the nearest within `radius`.
+    fn pick(&self, cut: Self::Cut, proj: &Projection, at: DVec2, radius: f64) -> Option<usize>;
+    /// Node `n`'s position.
+    fn point(&self, n: usize) -> DVec3;
+    /// Why node `n` cannot be chosen or moved (no such node, fixed, following its
+    /// element's corners), in words; `None` when it is free.
+    fn why_not_free(&self, n: usize) -> Option<String>;
+    /// The free node with the worst star, as the planar views choose by default.
+    fn worst_free_node(&self) -> Option<usize>;
+    /// Node `n`'s star as lines in space, to mark a chosen node on the 3D view.
+    fn star_lines(&self, n: usize) -> Vec<Vec<DVec3>>;
+    /// A free node's objective over a plane through it (the kind's: see [`NodeSlice`]),
+    /// with the solve of `objective` from where the node is.
+    fn slice<'a>(&self, objective: &'a Self::Objective, node: usize, cut: Self::Cut, options: &SmoothOptions) -> Result<NodeSlice<'a>>;
+    /// What the side smooths with, as a summary names it (`old (max-min …)`).
+    fn objective_label(settings: &Settings, side: Side) -> String;
+    /// Moves free node `node` to `to` as the kind's smoother puts a node (a surface's onto
+    /// the surface), the nodes that follow it following.
+    fn place_node(&mut self, node: usize, to: DVec3);
+    /// What a move of `node` changes, as it is now ([`put_back`](Self::put_back) restores it).
+    type Kept;
+    fn keep_around(&self, node: usize) -> Self::Kept;
+    fn put_back(&mut self, kept: Self::Kept);
+    /// The titles of the per-pass chart's four charts (min angle, max angle, min quality,
+    /// inverted elements) in the kind's words.
+    const PASS_TITLES: [&'static str; 4];
+    /// The words of the figure's statistics lines.
+    const FIGURE_WORDS: FigureWords;
+    /// The histograms of each side's elements the page draws, one entry a measure.
+    const HISTOGRAMS: &'static [Histogram3d];
     /// The mesh as the text of a file (one of [`EXPORTS`](Self::EXPORTS)).
     fn write(&self, format: Format) -> Result<String>;
     /// Why a file's points were read as this kind, where that needs saying.
@@ -91,6 +142,58 @@ pub trait Mesh3d: Clone + Sized {
     fn file_note(&self) -> Option<String> {
         None
     }
+}
+
+/// A node's objective on one side over a plane through the node, where the page draws
+/// its level sets (the planar level-set picture, of a function of the plane): a surface's
+/// tangent plane, where its drivers flatten the star and solve; a volume's cut plane moved
+/// to pass through the node, the 3D objective as the node moves in that plane.
+pub struct NodeSlice<'a> {
+    /// The star as drawn in the plane (its node at `outline.x0`).
+    pub outline: Star,
+    /// The side's objective with the node moved in the plane, and the star's validity.
+    pub function: Box<dyn PlaneFunction + 'a>,
+    /// The side's solve from where the node is, in the plane's coordinates (a volume's
+    /// solve moves the node in space: its path and optimum are projected onto the plane).
+    pub solve: SolveResult,
+    /// Where the solve puts the node, in space.
+    pub target: DVec3,
+    /// The plane in words, for the summary ("its tangent plane").
+    pub plane: String,
+}
+
+/// One histogram of the elements of each side the page draws beside the mesh as loaded
+/// (both sides on one scale): its title, the counts of the statistics it draws and the
+/// range of its bins. Another per-element measure is one more entry of
+/// [`Mesh3d::HISTOGRAMS`].
+#[derive(Clone, Copy, Debug)]
+pub struct Histogram3d {
+    pub title: &'static str,
+    pub counts: fn(&MeshStats) -> &[u64],
+    pub axis: HistogramAxis<'static>,
+}
+
+/// What the page's node view says of a chosen node: the planar summary, and the plane
+/// the pictures are in.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct NodeSummary3d {
+    #[serde(flatten)]
+    pub solves: NodeSummary,
+    pub plane: String,
+}
+
+impl NodeSummary3d {
+    /// One line for the page.
+    pub fn text(&self) -> String {
+        format!("{} Level sets over {}.", self.solves.text(), self.plane)
+    }
+}
+
+/// What undo puts back: the move of one node, on both sides.
+struct Undo3d<K> {
+    node: usize,
+    kept: [K; 2],
+    stats: [MeshStats; 2],
 }
 
 /// One side: its mesh now, its objective and smoother, its passes since the last reset.
@@ -136,6 +239,15 @@ pub struct Lab3d<M: Mesh3d> {
     theme: Theme,
     /// The canvas of the last [`frame`](Self::frame) (pointer positions map through it).
     canvas: Option<Canvas>,
+    /// The chosen node (marked on both sides, its level sets shown).
+    node: Option<usize>,
+    /// The part of the level sets' box shown (both sides share it).
+    level_window: LevelWindow,
+    /// The canvas the level sets were last drawn on, and each side's legend's height there.
+    level_canvas: Option<Canvas>,
+    level_legend: Cell<[f32; 2]>,
+    /// What undo puts back: the latest move last.
+    undo: Vec<Undo3d<M::Kept>>,
 }
 
 impl<M: Mesh3d> Lab3d<M> {
@@ -164,6 +276,11 @@ impl<M: Mesh3d> Lab3d<M> {
             cut: M::Cut::default(),
             theme: Theme::light(),
             canvas: None,
+            node: None,
+            level_window: LevelWindow::default(),
+            level_canvas: None,
+            level_legend: Cell::new([0.0; 2]),
+            undo: Vec::new(),
         })
     }
 
@@ -206,6 +323,7 @@ impl<M: Mesh3d> Lab3d<M> {
 
     /// One smoothing pass on both sides; `clock` gives milliseconds (the core reads no time).
     pub fn step(&mut self, clock: &dyn Fn() -> f64) -> [PassSummary; 2] {
+        self.undo.clear(); // a pass ends what can be undone, as on the planar page
         Side::BOTH.map(|side| {
             let s = &mut self.sides[side.index()];
             // numbered since the last reset, whatever settings came between (as the planar lab)
@@ -220,6 +338,7 @@ impl<M: Mesh3d> Lab3d<M> {
 
     /// Both sides back to the mesh as loaded (or as last perturbed), their records cleared.
     pub fn reset(&mut self) {
+        self.undo.clear();
         let o = self.settings.smooth_options().expect("the settings were checked when set");
         for s in &mut self.sides {
             s.mesh.clone_from(&self.original);
@@ -305,9 +424,25 @@ impl<M: Mesh3d> Lab3d<M> {
         self.camera = self.camera.zoomed(factor);
     }
 
-    /// The camera as it starts.
+    /// The camera as it starts, and the level sets fitted again (a double-click).
     pub fn reset_camera(&mut self) {
         self.camera = Camera::default();
+        self.level_window = LevelWindow::default();
+    }
+
+    /// Sees both sides by `camera` (a permalink's): its pitch within ±90° and its zoom
+    /// within [`ZOOM_RANGE`](crate::render::ZOOM_RANGE); a camera that is not finite is
+    /// refused, changing nothing.
+    pub fn set_camera(&mut self, camera: Camera) -> Result<()> {
+        let Camera { yaw, pitch, zoom } = camera;
+        if !(yaw.is_finite() && (-90.0..=90.0).contains(&pitch) && zoom.is_finite() && zoom > 0.0) {
+            return Err(Error::invalid(format!(
+                "a camera at yaw {yaw}°, pitch {pitch}°, zoom {zoom}: give a finite yaw, a pitch from -90 to 90 and a zoom above 0"
+            )));
+        }
+        let (lo, hi) = crate::render::ZOOM_RANGE;
+        self.camera = Camera { yaw, pitch, zoom: zoom.clamp(lo, hi) };
+        Ok(())
     }
 
     /// The plane both sides are cut by (`()` for a kind without one).
@@ -347,11 +482,15 @@ impl<M: Mesh3d> Lab3d<M> {
     }
 
     /// A side's mesh drawn by the 3D view (cut, where the kind has a cut) on a canvas of
-    /// `c.w × c.h` device pixels, coloured by element quality, with its title; and the
-    /// projection it used.
+    /// `c.w × c.h` device pixels, coloured by element quality, with its title, the chosen
+    /// node marked with its star; and the projection it used.
     pub fn render(&self, side: Side, c: Canvas) -> Result<(Pixmap, Projection)> {
         let mut pm = pixmap(c.w, c.h)?;
-        let proj = self.mesh(side).draw(&mut pm, self.cut, &self.view(side, c));
+        let mesh = self.mesh(side);
+        let proj = mesh.draw(&mut pm, self.cut, &self.view(side, c));
+        if let Some(n) = self.node {
+            draw_node_mark(&mut pm, &proj, mesh.point(n), &mesh.star_lines(n), c.dpr);
+        }
         Ok((pm, proj))
     }
 
@@ -370,20 +509,238 @@ impl<M: Mesh3d> Lab3d<M> {
     }
 
     /// The node of a side's mesh under the CSS pixel `at` of a picture drawn on canvas
-    /// `c`, within `radius` CSS pixels, the near side winning ([`Projection::pick`]);
-    /// always `None` for a kind whose view does not show its nodes (a cut volume).
-    pub fn pick(&self, side: Side, c: Canvas, at: DVec2, radius: f64) -> Result<Option<usize>> {
-        let Some(points) = self.mesh(side).pickable_points() else { return Ok(None) };
+    /// `c` ([`Mesh3d::pick`]: the nearest node of the face drawn there): chosen when it is
+    /// free, otherwise said why not, as the planar page's [`Pick`].
+    pub fn pick(&self, side: Side, c: Canvas, at: DVec2, radius: f64) -> Result<Pick> {
         let (_, proj) = self.render(side, c)?;
-        Ok(proj.pick(points, at.x, at.y, radius))
+        let mesh = self.mesh(side);
+        Ok(match mesh.pick(self.cut, &proj, at, radius) {
+            None => Pick {
+                node: None,
+                nearest: None,
+                message: Some(format!("No face of {} there: click on the mesh (a drag turns it, the wheel zooms).", M::WHAT)),
+            },
+            Some(n) => match mesh.why_not_free(n) {
+                None => Pick { node: Some(n), nearest: Some(n), message: None },
+                Some(why) => Pick { node: None, nearest: Some(n), message: Some(sentence(&why)) },
+            },
+        })
     }
 
     /// As [`pick`](Self::pick) on the canvas of the last [`frame`](Self::frame); a
     /// radius that is not positive and finite is the page's default, and at most 64.
-    pub fn pick_in_frame(&self, side: Side, at: DVec2, radius: f64) -> Result<Option<usize>> {
+    pub fn pick_in_frame(&self, side: Side, at: DVec2, radius: f64) -> Result<Pick> {
         let c = self.canvas.ok_or_else(|| Error::invalid("the mesh has not been drawn yet"))?;
         let radius = if radius.is_finite() && radius > 0.0 { radius.min(64.0) } else { crate::render::PICK_RADIUS };
         self.pick(side, c, at, radius)
+    }
+
+    /// Where node `n` of a side is drawn on the canvas of the last frame, CSS pixels
+    /// (`None` for no such node), and how far it is behind the nearest point of that
+    /// side's mesh, CSS pixels (0 for the nearest).
+    pub fn node_on_screen(&self, side: Side, n: usize) -> Result<Option<(DVec2, f64)>> {
+        let c = self.canvas.ok_or_else(|| Error::invalid("the mesh has not been drawn yet"))?;
+        let mesh = self.mesh(side);
+        if n >= mesh.node_count() {
+            return Ok(None);
+        }
+        let (_, proj) = self.render(side, c)?;
+        let front = (0..mesh.node_count()).map(|m| proj.depth(mesh.point(m))).fold(f64::INFINITY, f64::min);
+        Ok(Some((proj.to_css(mesh.point(n)), (proj.depth(mesh.point(n)) - front) * proj.scale())))
+    }
+
+    /// The node chosen (marked on both sides, its level sets shown).
+    pub fn chosen_node(&self) -> Option<usize> {
+        self.node
+    }
+
+    /// Chooses the node whose level sets are shown (`None`: none); a node that is not
+    /// free is refused, saying why, and changes nothing.
+    pub fn choose_node(&mut self, node: Option<usize>) -> Result<()> {
+        if let Some(n) = node {
+            if let Some(why) = self.original.why_not_free(n) {
+                return Err(Error::invalid(format!("Node {n} cannot be chosen: {why}.")));
+            }
+        }
+        self.node = node;
+        Ok(())
+    }
+
+    /// The free node with the worst star on B's mesh, if any (an embedded level-set view
+    /// opens on it).
+    pub fn worst_free_node(&self) -> Option<usize> {
+        self.mesh(Side::B).worst_free_node()
+    }
+
+    fn chosen(&self) -> Result<usize> {
+        self.node.ok_or_else(|| Error::invalid("no node is chosen: click a node first"))
+    }
+
+    /// A side's [`NodeSlice`] at `node`: its objective over the plane through the node
+    /// and its solve from where the node is.
+    pub fn node_slice(&self, side: Side, node: usize) -> Result<NodeSlice<'_>> {
+        let s = self.side(side);
+        let options = self.settings.smooth_options()?;
+        s.mesh.slice(s.objective.as_ref(), node, self.cut, &options)
+    }
+
+    /// The box a level set of `slice` starts from (the feasible region round the node, its
+    /// position and the optimum found), and the part of it shown.
+    fn level_bounds(&self, slice: &NodeSlice<'_>) -> ((DVec2, DVec2), (DVec2, DVec2)) {
+        let keep = [slice.outline.x0, slice.solve.x];
+        let whole = feasible_bounds_of(&|p| slice.function.validity(p), &slice.outline, &keep, LEVEL_SET_MARGIN);
+        (whole, self.level_window.within(whole))
+    }
+
+    /// Level sets of one side's objective at `node` over its plane ([`NodeSlice`]), with
+    /// the path of its solve, on canvas `c` (the planar view's picture); and the slice.
+    pub fn render_level_set(&self, side: Side, node: usize, c: Canvas) -> Result<(Pixmap, NodeSlice<'_>)> {
+        let slice = self.node_slice(side, node)?;
+        let (_, bounds) = self.level_bounds(&slice);
+        let title = self.side_title(side);
+        let (pm, legend_h) = level_set_picture(slice.function.as_ref(), &slice.outline, &slice.solve, bounds, &title, c, self.theme)?;
+        let mut legend = self.level_legend.get();
+        legend[side.index()] = legend_h;
+        self.level_legend.set(legend);
+        Ok((pm, slice))
+    }
+
+    /// Both sides' level sets at `node` (on canvas `level`) and a chart of their solves'
+    /// histories (on `chart`), with a summary; the solves' targets in space.
+    pub fn render_node_view(&self, node: usize, level: Canvas, chart: Canvas) -> Result<([Pixmap; 3], NodeSummary3d, [DVec3; 2])> {
+        let (la, a) = self.render_level_set(Side::A, node, level)?;
+        let (lb, b) = self.render_level_set(Side::B, node, level)?;
+        let labels = Side::BOTH.map(|side| M::objective_label(&self.settings, side));
+        let goals = [a.function.goal(), b.function.goal()];
+        let pm = solve_chart([&a.solve, &b.solve], [&labels[0], &labels[1]], goals, chart, self.theme)?;
+        let solves = NodeSummary {
+            node,
+            old: SolveSummary::of(&labels[0], goals[0], &a.solve),
+            new: SolveSummary::of(&labels[1], goals[1], &b.solve),
+        };
+        Ok(([la, lb, pm], NodeSummary3d { solves, plane: a.plane.clone() }, [a.target, b.target]))
+    }
+
+    /// The chosen node's level sets (A, B: on canvas `level`), its solve history chart (on
+    /// `chart`) and a summary; pointer positions on the level sets map through `level`.
+    pub fn chosen_node_view(&mut self, level: Canvas, chart: Canvas) -> Result<([Pixmap; 3], NodeSummary3d)> {
+        let node = self.chosen()?;
+        self.level_canvas = Some(level);
+        let (pictures, summary, _) = self.render_node_view(node, level, chart)?;
+        Ok((pictures, summary))
+    }
+
+    /// One solver call on the chosen node on each side (each side's objective and
+    /// solver, from where the node is), which then moves there as the kind's smoother
+    /// puts a node (the nodes that follow it following; on a surface, put back on the
+    /// surface): the node view of that call, drawn before the move. Undoable.
+    pub fn smooth_chosen_node(&mut self, level: Canvas, chart: Canvas) -> Result<([Pixmap; 3], NodeSummary3d)> {
+        let node = self.chosen()?;
+        self.level_canvas = Some(level);
+        let (pictures, summary, targets) = self.render_node_view(node, level, chart)?;
+        if let Some(t) = targets.iter().find(|t| !t.is_finite()) {
+            return Err(Error::node(node, None, format!("the solver found no finite position ({t})")));
+        }
+        self.remember_before_move(node);
+        for (side, to) in Side::BOTH.into_iter().zip(targets) {
+            let s = &mut self.sides[side.index()];
+            s.mesh.place_node(node, to);
+            s.stats = s.mesh.stats();
+        }
+        Ok((pictures, summary))
+    }
+
+    /// Keeps what a move of `node` changes on both sides, for [`undo`](Self::undo).
+    fn remember_before_move(&mut self, node: usize) {
+        let kept = Side::BOTH.map(|side| self.mesh(side).keep_around(node));
+        let stats = Side::BOTH.map(|side| self.side(side).stats.clone());
+        self.undo.push(Undo3d { node, kept, stats });
+    }
+
+    /// Takes back the latest move: both sides as they were before it. Returns the node it
+    /// moved, or `None` when there is nothing to undo.
+    pub fn undo(&mut self) -> Option<usize> {
+        let u = self.undo.pop()?;
+        for ((s, kept), stats) in self.sides.iter_mut().zip(u.kept).zip(u.stats) {
+            s.mesh.put_back(kept);
+            s.stats = stats;
+        }
+        Some(u.node)
+    }
+
+    /// Where undo stands, `node` the node a move just took back ([`undo`](Self::undo)'s
+    /// answer; `None` to only ask).
+    pub fn undo_summary(&self, node: Option<usize>) -> UndoSummary {
+        UndoSummary { node, next: self.undo.last().map(|u| u.node), depth: self.undo.len() }
+    }
+
+    /// The chosen node and the canvas its level sets were last drawn on, with the view
+    /// `side`'s level set was drawn in and its box.
+    fn level_drawn(&self, side: Side) -> Result<((DVec2, DVec2), View)> {
+        let node = self.chosen()?;
+        let c = self.level_canvas.ok_or_else(|| Error::invalid("the level sets have not been drawn yet"))?;
+        let slice = self.node_slice(side, node)?;
+        let (whole, shown) = self.level_bounds(&slice);
+        let frame = Frame::new(0.0, 0.0, c.w as f32 / c.dpr, c.h as f32 / c.dpr);
+        Ok((whole, level_set_view(frame, shown.0, shown.1, c.dpr, &self.theme, self.level_legend.get()[side.index()])))
+    }
+
+    /// Magnifies both level sets `factor` times about the CSS pixel `at` of `side`'s
+    /// level set as last drawn.
+    pub fn zoom_level_sets_in_frame(&mut self, side: Side, at: DVec2, factor: f64) -> Result<()> {
+        let (whole, view) = self.level_drawn(side)?;
+        self.level_window = self.level_window.zoomed_in_view(whole, &view, at, factor);
+        Ok(())
+    }
+
+    /// Moves both level sets by `delta` CSS pixels of `side`'s level set as last drawn.
+    pub fn pan_level_sets_in_frame(&mut self, side: Side, delta: DVec2) -> Result<()> {
+        let (whole, view) = self.level_drawn(side)?;
+        self.level_window = self.level_window.panned_in_view(whole, &view, delta);
+        Ok(())
+    }
+
+    /// Per-pass curves of both sides (pass 0 the mesh as loaded), in the kind's words.
+    pub fn render_pass_chart(&self, c: Canvas) -> Result<Pixmap> {
+        let records = Side::BOTH.map(|side| &self.side(side).records[..]);
+        let labels = Side::BOTH.map(|side| self.side_label(side));
+        pass_chart(&self.original_stats, records, &labels, &M::PASS_TITLES, c, self.theme)
+    }
+
+    /// A side's histogram `which` of [`Mesh3d::HISTOGRAMS`] over the mesh as loaded, both
+    /// sides on one scale, linear or logarithmic (`log_y`).
+    pub fn render_histogram(&self, which: usize, side: Side, c: Canvas, log_y: bool) -> Result<Pixmap> {
+        let h = M::HISTOGRAMS.get(which).ok_or_else(|| Error::invalid(format!("no histogram {which}: there are {}", M::HISTOGRAMS.len())))?;
+        let start = (h.counts)(&self.original_stats);
+        let top = histogram_top(start, Side::BOTH.map(|s| (h.counts)(self.full_stats(s))));
+        let label = self.side_label(side);
+        let series = HistogramSeries { label: &label, counts: (h.counts)(self.full_stats(side)), color: Some(self.theme.side(side.index())) };
+        let opts = AngleHistogram { title: h.title, y_top: Some(top), log_y, axis: h.axis, ..AngleHistogram::default() };
+        histogram_picture(start, series, opts, c, self.theme)
+    }
+
+    /// The figure for slides: A's 3D view on the left and B's on the right (the shared
+    /// camera and cut), each titled with what it runs and how many passes, with its
+    /// statistics under it and the colour bar, as the planar figure lays them out.
+    pub fn render_figure(&self, c: Canvas) -> Result<Pixmap> {
+        let mut pm = pixmap(c.w, c.h)?;
+        let s = crate::render::view::sane_dpr(c.dpr);
+        let lines = Side::BOTH.map(|side| figure_lines(&self.side(side).stats, &WorkDone::of(&self.side(side).records), M::FIGURE_WORDS));
+        let titles = Side::BOTH.map(|side| figure_title(&self.side_label(side), self.side(side).records.len()));
+        let text = [CompareText { title: &titles[0], lines: &lines[0] }, CompareText { title: &titles[1], lines: &lines[1] }];
+        let inverted = || self.side(Side::B).stats.inverted;
+        let bar = CompareBar {
+            label: self.original.quality_label(),
+            domain: self.original.quality_domain(),
+            colormap: Colormap::Viridis,
+            inverted: &inverted,
+        };
+        let frame = Frame::of_pixmap(&pm, s);
+        render_compare_with(&mut pm, &text, frame, s, &self.theme, Some(bar), |pm, k, f| {
+            let view = SurfaceView { camera: self.camera, dpr: s, frame: Some(f), colour_bar: false, theme: self.theme, ..SurfaceView::default() };
+            self.mesh(Side::BOTH[k]).draw(pm, self.cut, &view);
+        });
+        Ok(pm)
     }
 
     /// A side's mesh as the text of a mesh file.
@@ -407,3 +764,4 @@ impl<M: Mesh3d> Lab3d<M> {
         }
     }
 }
+

@@ -2,24 +2,117 @@
 //! planar drivers over stars of tetrahedra), a side's objective its
 //! [`Choice`](crate::lab::Choice)'s kind carried to tetrahedra ([`tet_objective`]; the
 //! planar penalty designs do not apply), coloured by the mean ratio and drawn cut by a
-//! plane ([`Cut`]); and the two sides' dihedral angles in Freitag's 6° bins. No node is
-//! picked in the cut view: its faces hide the nodes behind.
+//! plane ([`Cut`]); the two sides' dihedral angles in Freitag's 6° bins. A node is picked
+//! on the face drawn where the pointer is (the cut or the boundary), and its level sets
+//! are drawn over the cut plane moved to pass through it: the node's 3D objective as the
+//! node moves in that plane.
 
-use glam::DVec3;
+use glam::{DVec2, DVec3};
 use tiny_skia::Pixmap;
 
-use super::{Lab3d, Mesh3d};
+use super::{Histogram3d, Lab3d, Mesh3d, NodeSlice};
 use crate::error::{Error, Result};
 use crate::generate::perturb_volume;
 use crate::io::{write_model_string, Format, WriteOptions};
-use crate::lab::views::{pixmap, Canvas};
+use crate::lab::pick::sentence;
+use crate::lab::views::FigureWords;
 use crate::lab::{PassSummary, Settings, Side};
-use crate::objective::{describe_tet, tet_objective, Objective, CornerStar};
-use crate::quality::MeshStats;
-use crate::render::{render_angle_histogram, AngleHistogram, HistogramSeries, Projection, SurfaceView};
-use crate::smooth::SmoothOptions;
+use crate::mesh::{ElementKind, NodeRole, Plane};
 use crate::model::Model;
+use crate::objective::{describe_tet, tet_objective, CornerStar, Goal, Objective, Star, StarElement};
+use crate::optimize::{Iterate, SolveResult};
+use crate::quality::MeshStats;
+use crate::render::{HistogramAxis, PlaneFunction, Projection, SurfaceView};
+use crate::smooth::{solve_star, DriverStar, SmoothOptions};
 use crate::volume::{volume_stats, Cut, VolumeMesh, VolumeSmoother};
+
+/// The objective of the tetrahedra's kind, as a side smooths with it.
+type TetObjective = dyn Objective<CornerStar> + Send + Sync;
+
+/// The regular tetrahedron's dihedral angle, arccos(1/3), degrees: the ideal the
+/// dihedral histograms mark.
+const REGULAR_DIHEDRAL_DEG: f64 = 70.528_779_365_509_31;
+
+/// A node's 3D objective over a plane through it (`plane`, its origin the node): the
+/// node of `star` moved to each point of the plane; its validity the star's smallest
+/// mean ratio there (signed: negative where a tetrahedron is inverted).
+struct CutFunction<'a> {
+    objective: &'a TetObjective,
+    star: CornerStar,
+    plane: Plane,
+}
+
+impl PlaneFunction for CutFunction<'_> {
+    fn goal(&self) -> Goal {
+        self.objective.goal()
+    }
+    fn value(&self, x: DVec2) -> f64 {
+        self.objective.value(&self.star, self.plane.to_3d(x))
+    }
+    fn validity(&self, x: DVec2) -> f64 {
+        self.star.shape_at(self.plane.to_3d(x)).0
+    }
+}
+
+/// The plane through `origin` across axis `axis` (0, 1, 2: x, y, z), its 2D axes the
+/// other two in turn (y, z across x; z, x across y; x, y across z).
+fn axis_plane(origin: DVec3, axis: usize) -> Plane {
+    let (u, w) = match axis {
+        0 => (DVec3::Y, DVec3::Z),
+        1 => (DVec3::Z, DVec3::X),
+        _ => (DVec3::X, DVec3::Y),
+    };
+    Plane { origin, u, w }
+}
+
+/// The section of the star's tetrahedra by `plane` (through the free node): each
+/// tetrahedron the plane passes through inside cuts it in a triangle with a corner at
+/// the node, drawn as a star of triangles in the plane's coordinates (the node at 0).
+fn section(star: &CornerStar, plane: &Plane) -> Star {
+    let normal = plane.normal();
+    let size = star.tets.iter().flat_map(|t| t.pts[1..].iter().map(|p| p.distance(star.x0))).fold(0.0, f64::max);
+    let eps = 1e-12 * size.max(f64::MIN_POSITIVE);
+    let mut out = Star::new();
+    out.node = star.node;
+    out.x0 = plane.to_2d(star.x0);
+    for t in &star.tets {
+        let p = [t.pts[1], t.pts[2], t.pts[3]];
+        let d = p.map(|q| (q - star.x0).dot(normal));
+        let mut hits: Vec<DVec3> = Vec::with_capacity(3);
+        for i in 0..3 {
+            if d[i].abs() <= eps {
+                hits.push(p[i]);
+            }
+            let j = (i + 1) % 3;
+            if (d[i] > eps && d[j] < -eps) || (d[i] < -eps && d[j] > eps) {
+                hits.push(p[i] + (p[j] - p[i]) * (d[i] / (d[i] - d[j])));
+            }
+        }
+        if hits.len() != 2 {
+            continue; // the plane touches the tetrahedron at the node (or along an edge) only
+        }
+        let mut pts = [DVec2::ZERO; 9];
+        pts[0] = out.x0;
+        pts[1] = plane.to_2d(hits[0]);
+        pts[2] = plane.to_2d(hits[1]);
+        out.elems.push(StarElement { kind: ElementKind::Tri3, element: t.element, pts, slot: 0, follow_next: false, follow_prev: false });
+    }
+    out
+}
+
+/// A solve in space seen in `plane`: its positions projected onto it (the values and
+/// step lengths as they were).
+fn projected(r: SolveResult<DVec3>, plane: &Plane) -> SolveResult {
+    SolveResult {
+        x: plane.to_2d(r.x),
+        value: r.value,
+        x0: plane.to_2d(r.x0),
+        value0: r.value0,
+        iterations: r.iterations,
+        stop: r.stop,
+        history: r.history.iter().map(|it| Iterate { x: plane.to_2d(it.x), value: it.value, direction: it.direction, step: it.step }).collect(),
+    }
+}
 
 impl Mesh3d for VolumeMesh {
     const KIND: &'static str = "volume";
@@ -72,9 +165,118 @@ impl Mesh3d for VolumeMesh {
     fn draw(&self, pm: &mut Pixmap, cut: Cut, view: &SurfaceView) -> Projection {
         self.render_cut(pm, cut, view)
     }
-    fn pickable_points(&self) -> Option<&[DVec3]> {
-        None
+    /// The nearest node of the face drawn there: a face the cut opens, or the boundary.
+    fn pick(&self, cut: Cut, proj: &Projection, at: DVec2, _radius: f64) -> Option<usize> {
+        let faces = self.cut_faces(cut, proj.forward());
+        proj.pick_on_faces(&faces.faces(self.nodes()), at.x, at.y)
     }
+    fn point(&self, n: usize) -> DVec3 {
+        self.nodes()[n]
+    }
+    fn why_not_free(&self, n: usize) -> Option<String> {
+        if n >= self.node_count() {
+            return Some(format!("there is no node {n}: the nodes are numbered 0 to {}", self.node_count().saturating_sub(1)));
+        }
+        if self.is_free(n) {
+            return None;
+        }
+        Some(match self.role(n) {
+            NodeRole::Corner => format!(
+                "node {n} is fixed: it is on the boundary of the volume (or the file fixes it), and smoothing keeps it in place"
+            ),
+            NodeRole::Unused => format!("node {n} belongs to no tetrahedron"),
+            _ => format!("node {n} is a mid-edge node of a quadratic tetrahedron: it follows the two corners of its edge, so choose a corner"),
+        })
+    }
+    /// The free node whose star has the smallest mean ratio.
+    fn worst_free_node(&self) -> Option<usize> {
+        let mut star = CornerStar::default();
+        (0..self.node_count())
+            .filter(|&n| self.is_free(n))
+            .map(|n| {
+                star.gather(self, n);
+                (n, star.shape_at(star.x0).0)
+            })
+            .min_by(|a, b| a.1.total_cmp(&b.1))
+            .map(|(n, _)| n)
+    }
+    /// The edges from the node to the other corners of its tetrahedra.
+    fn star_lines(&self, n: usize) -> Vec<Vec<DVec3>> {
+        if n >= self.node_count() {
+            return Vec::new();
+        }
+        let mut star = CornerStar::default();
+        star.gather(self, n);
+        star.tets.iter().flat_map(|t| t.pts[1..].iter().map(|&p| vec![t.pts[0], p])).collect()
+    }
+    /// The cut plane moved to pass through the node: the node's objective as it moves in
+    /// that plane, the section of its tetrahedra by it, and the solve in space (its path
+    /// and optimum projected onto the plane).
+    fn slice<'a>(&self, objective: &'a TetObjective, node: usize, cut: Cut, options: &SmoothOptions) -> Result<NodeSlice<'a>> {
+        if let Some(why) = self.why_not_free(node) {
+            return Err(Error::invalid(sentence(&why)));
+        }
+        let mut star = CornerStar::default();
+        star.gather(self, node);
+        let axis = cut.axis.min(2);
+        let plane = axis_plane(star.x0, axis);
+        let solve = solve_star(objective as &dyn Objective<CornerStar>, &star, star.x0, options)?;
+        let target = solve.x;
+        let outline = section(&star, &plane);
+        let name = ["x", "y", "z"][axis];
+        Ok(NodeSlice {
+            outline,
+            solve: projected(solve, &plane),
+            target,
+            function: Box::new(CutFunction { objective, star, plane }),
+            plane: format!(
+                "the plane across {name} through the node (the cut's axis), its tetrahedra's section drawn; the solve moves the node in space, its path projected onto the plane"
+            ),
+        })
+    }
+    /// The kind's name and what it is, in 3D's words.
+    fn objective_label(settings: &Settings, side: Side) -> String {
+        let kind = settings.choice(side).objective;
+        format!("{kind} ({})", describe_tet(kind).unwrap_or("planar only").split(" (").next().unwrap_or(""))
+    }
+    /// The node at `to`, its mid-edge nodes at their edges' middles.
+    fn place_node(&mut self, node: usize, to: DVec3) {
+        self.nodes_mut()[node] = to;
+        self.follow_mid_nodes(node);
+    }
+    /// The positions of the node and of every node of its tetrahedra.
+    type Kept = Vec<(usize, DVec3)>;
+    fn keep_around(&self, node: usize) -> Vec<(usize, DVec3)> {
+        let mut star = CornerStar::default();
+        star.gather(self, node);
+        let mut ids: Vec<usize> = std::iter::once(node)
+            .chain(star.tets.iter().flat_map(|t| self.element(t.element as usize).iter().map(|&m| m as usize)))
+            .collect();
+        ids.sort_unstable();
+        ids.dedup();
+        ids.into_iter().map(|m| (m, self.nodes()[m])).collect()
+    }
+    fn put_back(&mut self, kept: Vec<(usize, DVec3)>) {
+        let nodes = self.nodes_mut();
+        for (m, p) in kept {
+            if let Some(slot) = nodes.get_mut(m) {
+                *slot = p;
+            }
+        }
+    }
+    const PASS_TITLES: [&'static str; 4] = ["min dihedral angle (°)", "max dihedral angle (°)", "min mean ratio", "inverted tetrahedra"];
+    const FIGURE_WORDS: FigureWords =
+        FigureWords { angles: "dihedral angles", min_quality: "min mean ratio", mean_quality: "average mean ratio" };
+    const HISTOGRAMS: &'static [Histogram3d] = &[Histogram3d {
+        title: "Dihedral angles (6° bins)",
+        counts: |s| &s.angle_histogram_6deg,
+        axis: HistogramAxis {
+            x_label: "dihedral angle (°)",
+            y_label: "dihedral angles (%)",
+            marks: &[REGULAR_DIHEDRAL_DEG],
+            ..HistogramAxis::ANGLES
+        },
+    }];
     fn write(&self, format: Format) -> Result<String> {
         write_model_string(&Model::Volume(self.clone()), format, &WriteOptions::default())
     }
@@ -85,7 +287,7 @@ impl Mesh3d for VolumeMesh {
     }
 }
 
-/// What only tetrahedra have: the cut plane and the dihedral angles' histograms.
+/// What only tetrahedra have: the cut plane.
 impl Lab3d<VolumeMesh> {
     /// Cuts both sides across `axis` (0, 1, 2: x, y, z) at the fraction `at` of the mesh's
     /// extent; anything else is refused, saying why.
@@ -97,36 +299,14 @@ impl Lab3d<VolumeMesh> {
         Ok(())
     }
 
-    /// A side's dihedral angles (6° bins, Freitag's Fig. 3) beside the mesh as loaded, on
-    /// a canvas of `c.w × c.h` device pixels; both sides on one percentage scale, linear or
-    /// logarithmic (`log_y`, as the planar angle histograms).
-    pub fn render_histogram(&self, side: Side, c: Canvas, log_y: bool) -> Result<Pixmap> {
-        let mut pm = pixmap(c.w, c.h)?;
-        let pct = |h: &[u64]| {
-            let total: u64 = h.iter().sum();
-            h.iter().map(|&n| 100.0 * n as f64 / total.max(1) as f64).fold(0.0, f64::max)
-        };
-        let top = Side::BOTH
-            .iter()
-            .map(|&s| pct(&self.full_stats(s).angle_histogram_6deg))
-            .fold(pct(&self.original_stats.angle_histogram_6deg), f64::max);
-        let label = self.side_label(side);
-        let series = [
-            HistogramSeries { label: "as loaded", counts: &self.original_stats.angle_histogram_6deg, color: None },
-            HistogramSeries { label: &label, counts: &self.full_stats(side).angle_histogram_6deg, color: None },
-        ];
-        let title = format!("Dihedral angles, {}", self.side_title(side));
-        let opts = AngleHistogram { title: &title, dpr: c.dpr, y_top: Some(top), log_y, theme: self.theme, ..AngleHistogram::default() };
-        render_angle_histogram(&mut pm, &series, &opts)?;
-        Ok(pm)
-    }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use glam::DVec2;
     use crate::lab::sample::Sample;
+    use crate::lab::views::Canvas;
+    use crate::render::Metric;
 
     fn lab() -> Lab3d<VolumeMesh> {
         let Model::Volume(m) = Sample::Rand3d.model().unwrap() else { panic!("rand3d is tetrahedral") };
@@ -163,10 +343,10 @@ mod tests {
         let (pm, _) = l.render(Side::A, c).unwrap();
         // not blank: the cut is coloured
         assert!(pm.pixels().iter().any(|p| p.red() != p.green() || p.green() != p.blue()));
-        let h = l.render_histogram(Side::B, c, false).unwrap();
+        let h = l.render_histogram(0, Side::B, c, false).unwrap();
         assert_eq!((h.width(), h.height()), (300, 240));
         // the log scale draws the same counts differently (the small bins stand taller)
-        let log = l.render_histogram(Side::B, c, true).unwrap();
+        let log = l.render_histogram(0, Side::B, c, true).unwrap();
         assert_eq!((log.width(), log.height()), (300, 240));
         assert_ne!(h.data(), log.data(), "the log scale changes the picture");
         let text = l.export(Side::B, Format::Vtk).unwrap();
@@ -180,16 +360,112 @@ mod tests {
     }
 
     #[test]
-    fn the_cut_view_picks_no_node_and_exports_tetrahedral_formats_only() {
+    fn a_frame_draws_both_sides_and_exports_tetrahedral_formats_only() {
         let mut l = lab();
         assert_eq!(l.kind(), "volume");
         let c = Canvas { w: 200, h: 160, dpr: 1.0 };
         let f = l.frame(c, &no_clock).unwrap();
         assert_eq!(f.pictures[1].data(), l.render(Side::B, c).unwrap().0.data());
-        assert_eq!(l.pick_in_frame(Side::A, DVec2::new(100.0, 80.0), 64.0).unwrap(), None);
+        let outside = l.pick_in_frame(Side::A, DVec2::new(2.0, 80.0), 64.0).unwrap();
+        assert_eq!((outside.node, outside.nearest), (None, None), "beside the mesh: no face, no node");
         assert!(l.export_named(Side::B, "msh").unwrap().starts_with("$MeshFormat"));
         let e = l.export_named(Side::B, "obj").unwrap_err().to_string();
         assert!(e.contains("cannot export tetrahedra as 'obj': use msh or vtk"), "{e}");
         assert_eq!(l.not_planar(), None);
+    }
+
+    /// rand3D drawn on a canvas, cut half way up z, and a node picked on a face of the cut
+    /// (its middle, as the test finds it).
+    fn picked_on_the_cut() -> (Lab3d<VolumeMesh>, usize, DVec2) {
+        let mut l = lab();
+        let c = Canvas { w: 320, h: 320, dpr: 1.0 };
+        l.frame(c, &no_clock).unwrap();
+        let (_, proj) = l.render(Side::A, c).unwrap();
+        let m = l.mesh(Side::A);
+        let faces = m.cut_faces(l.cut(), proj.forward());
+        // a face the cut opens (not the faded boundary) near the middle of the picture
+        let mid = DVec2::new(160.0, 170.0);
+        let centroid = |f: usize| {
+            let ring = &faces.rings[faces.ring_start[f] as usize..faces.ring_start[f + 1] as usize];
+            ring.iter().map(|&n| proj.to_css(m.nodes()[n as usize])).sum::<DVec2>() / ring.len() as f64
+        };
+        let f = (0..faces.values.len()).filter(|&f| !faces.faded[f]).min_by(|&a, &b| centroid(a).distance(mid).total_cmp(&centroid(b).distance(mid))).unwrap();
+        let at = centroid(f);
+        let p = l.pick_in_frame(Side::A, at, 14.0).unwrap();
+        let ring = &faces.rings[faces.ring_start[f] as usize..faces.ring_start[f + 1] as usize];
+        let n = p.node.expect("a node of the cut is inside the cube: free");
+        assert!(ring.contains(&(n as u32)), "node {n} is a node of the face clicked {ring:?}");
+        (l, n, at)
+    }
+
+    #[test]
+    fn a_click_on_the_cut_picks_a_node_of_the_face_and_its_level_sets_are_drawn_in_the_moved_cut_plane() {
+        let (mut l, n, _) = picked_on_the_cut();
+        let level = Canvas { w: 260, h: 260, dpr: 1.0 };
+        let chart = Canvas { w: 260, h: 200, dpr: 1.0 };
+        let before = l.render(Side::B, level).unwrap().0;
+        l.choose_node(Some(n)).unwrap();
+        assert_ne!(l.render(Side::B, level).unwrap().0.data(), before.data(), "the node is marked");
+        let ([la, lb, ch], summary) = l.chosen_node_view(level, chart).unwrap();
+        for pm in [&la, &lb, &ch] {
+            let colours = pm.pixels().iter().map(|p| (p.red(), p.green(), p.blue())).collect::<std::collections::HashSet<_>>().len();
+            assert!(colours > 20, "a picture is blank ({colours} colours)");
+        }
+        assert!(summary.text().contains("plane across z through the node"), "{}", summary.text());
+        // the plane passes through the node across the cut's axis: the section of its star
+        // has the node at 0, and the function there is the 3D objective at the node
+        let slice = l.node_slice(Side::B, n).unwrap();
+        assert_eq!(slice.outline.x0, DVec2::ZERO);
+        assert!(!slice.outline.elems.is_empty(), "the plane cuts the node's tetrahedra");
+        let mut star = CornerStar::default();
+        star.gather(l.mesh(Side::B), n);
+        let objective = tet_objective(l.settings().compare[1].objective).unwrap();
+        assert_eq!(slice.function.value(DVec2::ZERO), objective.value(&star, star.x0));
+        assert!(slice.function.validity(DVec2::ZERO) > 0.0, "rand3D is valid");
+        drop(slice);
+        // across x the plane's axes are y and z: a move along the plane's first axis is along y
+        l.set_cut(0, 0.5).unwrap();
+        let across_x = l.node_slice(Side::B, n).unwrap();
+        assert!(across_x.plane.contains("across x"));
+        let x0 = star.x0;
+        assert_eq!(across_x.function.value(DVec2::new(1e-3, 0.0)), objective.value(&star, x0 + DVec3::new(0.0, 1e-3, 0.0)));
+        drop(across_x);
+        // a boundary node is refused, saying why
+        let fixed = (0..l.mesh(Side::A).node_count()).find(|&m| !l.mesh(Side::A).is_free(m)).unwrap();
+        let e = l.choose_node(Some(fixed)).unwrap_err().to_string();
+        assert!(e.contains("on the boundary of the volume"), "{e}");
+    }
+
+    #[test]
+    fn smoothing_the_node_moves_it_in_space_and_undo_puts_it_back() {
+        let (mut l, n, _) = picked_on_the_cut();
+        l.perturb(0.4, 2).unwrap();
+        l.choose_node(Some(n)).unwrap();
+        let before = Side::BOTH.map(|s| l.mesh(s).nodes().to_vec());
+        let c = Canvas { w: 200, h: 200, dpr: 1.0 };
+        let (_, summary) = l.smooth_chosen_node(c, c).unwrap();
+        assert_ne!(l.mesh(Side::B).nodes()[n], before[1][n], "B moved the node");
+        assert!(summary.solves.new.value <= summary.solves.new.value0);
+        assert!(summary.solves.old.value >= summary.solves.old.value0, "old is a max-min");
+        // only the node moved
+        let moved = (0..before[1].len()).filter(|&m| l.mesh(Side::B).nodes()[m] != before[1][m]).count();
+        assert_eq!(moved, 1);
+        assert_eq!(l.undo(), Some(n));
+        for s in Side::BOTH {
+            assert_eq!(l.mesh(s).nodes(), &before[s.index()][..], "bit for bit");
+        }
+    }
+
+    #[test]
+    fn the_volume_charts_and_figure_are_in_its_words() {
+        let mut l = lab();
+        let c = Canvas { w: 320, h: 240, dpr: 1.0 };
+        let chart0 = l.render_pass_chart(c).unwrap();
+        l.step(&no_clock);
+        assert_ne!(l.render_pass_chart(c).unwrap().data(), chart0.data());
+        let fig = l.render_figure(Canvas { w: 640, h: 360, dpr: 1.0 }).unwrap();
+        assert_eq!((fig.width(), fig.height()), (640, 360));
+        assert!(l.worst_free_node().is_some_and(|n| l.mesh(Side::B).is_free(n)));
+        let _ = Metric::Shape;
     }
 }

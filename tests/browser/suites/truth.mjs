@@ -130,26 +130,25 @@ export default async function ({ server, context }) {
     await open(p, `${server.base}#sample=plate-tri`);
     await drawnOn(p, []);
     await chooseSample(p, 'sample:rand3d');
-    // what waits says why, in the tetrahedra's words
-    for (const id of ['node', 'smooth-node', 'undo', 'save-figure']) {
-      check(await p.locator(`#${id}`).isDisabled(), `#${id} waits for tetrahedra`);
-      const t = await p.getAttribute(`#${id}`, 'title');
-      check(/^Not for tetrahedra: /.test(t) && !/surface|tangent/.test(t), `#${id}: ${t}`);
+    // every view works for tetrahedra, and nothing says it waits for a planar mesh
+    for (const id of ['node', 'save-figure', 'hist-log']) {
+      check(await p.locator(`#${id}`).isEnabled(), `#${id} works for tetrahedra`);
+      const t = (await p.getAttribute(`#${id}`, 'title')) ?? '';
+      check(!/^Not for|planar meshes/.test(t) && !/surface|tangent/.test(t), `#${id}: ${t}`);
     }
     const hint = await p.textContent('#node-hint');
-    check(/^Not for tetrahedra: /.test(hint) && !/surface|tangent/.test(hint), `node hint: ${hint}`);
-    const drawn = await drawnOn(p, ['level-a', 'level-b', 'solve-chart', 'pass-chart']);
-    check(drawn.some((t) => /tetrahedra/.test(t)), `the empty boxes say why: ${JSON.stringify(drawn)}`);
-    check(!drawn.some((t) => /surface/.test(t)), `the empty boxes call tetrahedra a surface: ${JSON.stringify(drawn)}`);
+    check(/cut plane/.test(hint) && !/surface|tangent|planar/.test(hint), `node hint: ${hint}`);
+    const drawn = await drawnOn(p, ['level-a', 'level-b', 'solve-chart', 'pass-chart', 'hist-a', 'hist-b']);
+    check(!drawn.some((t) => /surface|planar/.test(t)), `the empty boxes call tetrahedra a surface or wait for a planar mesh: ${JSON.stringify(drawn)}`);
     const note = await p.textContent('#permalink-note');
     check(!/surface/.test(note), `the permalink note: ${note}`);
     for (const key of ['max_condition', 'min_angle', 'inverted']) {
       const [r] = await row(p, key);
       check(!/tangent|surface|corner angle/.test(r.title), `${key} tooltip: ${r.title}`);
     }
-    // a click on the cut view picks no node, and says so in the tetrahedra's words
+    // a click beside the cut view picks no node, and says so in the tetrahedra's words
     await p.locator('#mesh-a').scrollIntoViewIfNeeded();
-    await p.click('#mesh-a');
+    await p.click('#mesh-a', { position: { x: 3, y: 40 } });
     await idle(p);
     const pick = await p.textContent('#pick-note');
     check(/tetrahedra/.test(pick) && !/surface/.test(pick), `pick note: ${pick}`);
@@ -165,16 +164,16 @@ export default async function ({ server, context }) {
     await p.uncheck('#hist-log');
     await changed(p, 'hist-b', h1);
     check((await canvasInfo(p, 'hist-b')).hash === h0.hash, 'unchecked, the linear histogram comes back');
-    // a surface in a surface's words; its charts are not drawn, so the log box waits
+    // a surface in a surface's words: the level sets in the tangent plane, corner angles
     await drawnOn(p, []);
     await chooseSample(p, 'sample:torus-tangled');
-    for (const id of ['node', 'smooth-node', 'undo', 'save-figure', 'hist-log']) {
-      check(await p.locator(`#${id}`).isDisabled(), `#${id} waits for a surface`);
-      check(/^Not for a surface: /.test(await p.getAttribute(`#${id}`, 'title')), `#${id} on a surface: ${await p.getAttribute(`#${id}`, 'title')}`);
+    for (const id of ['node', 'save-figure', 'hist-log']) {
+      check(await p.locator(`#${id}`).isEnabled(), `#${id} works for a surface`);
     }
-    check(/^Not for a surface: .*tangent plane/.test(await p.textContent('#node-hint')), await p.textContent('#node-hint'));
-    const sdrawn = await drawnOn(p, ['level-a', 'level-b', 'solve-chart']);
-    check(sdrawn.length > 0 && sdrawn.every((t) => /surface/.test(t)), `the surface's empty boxes: ${JSON.stringify(sdrawn)}`);
+    check(/corner-angle/.test(await p.getAttribute('#hist-log', 'title')), 'the log box scales the corner angles of a surface');
+    check(/tangent plane/.test(await p.textContent('#node-hint')) && !/tetrahedra/.test(await p.textContent('#node-hint')), await p.textContent('#node-hint'));
+    const sdrawn = await drawnOn(p, ['level-a', 'level-b', 'solve-chart', 'pass-chart', 'hist-a', 'hist-b']);
+    check(!sdrawn.some((t) => /tetrahedra|planar/.test(t)), `the surface's empty boxes: ${JSON.stringify(sdrawn)}`);
     // back to a plane: the box is for the corner angles again
     await chooseSample(p, 'sample:plate-tri');
     check(await p.locator('#hist-log').isEnabled() && /corner-angle/.test(await p.getAttribute('#hist-log', 'title')), 'the planar log box');
