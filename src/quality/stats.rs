@@ -5,7 +5,7 @@ use glam::DVec2;
 use serde::Serialize;
 
 use super::{measure_element, ElementQuality};
-use crate::mesh::Mesh;
+use crate::mesh::{Mesh, VolumeKindCounts};
 
 /// The statistics `smoothlab stats` prints (and `--json` writes, field for field).
 #[derive(Clone, Debug, PartialEq, Serialize)]
@@ -42,15 +42,22 @@ pub struct MeshStats {
     /// For a surface, the largest distance of a node from the reference surface.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub max_distance_from_surface: Option<f64>,
-    /// For a tetrahedral mesh ([`crate::volume`]), the number of tetrahedra (then the
-    /// angles are dihedral angles, the quality the mean ratio); absent from JSON for a
-    /// planar mesh or a surface.
-    #[serde(skip_serializing_if = "is_zero")]
-    pub tetrahedra: usize,
+    /// For a volume mesh ([`crate::volume`]), its elements by kind (then the angles are
+    /// dihedral angles, the quality the mean ratio); absent from JSON for a planar mesh or
+    /// a surface.
+    #[serde(skip_serializing_if = "no_volume")]
+    pub volume_kinds: VolumeKindCounts,
 }
 
-fn is_zero(n: &usize) -> bool {
-    *n == 0
+fn no_volume(c: &VolumeKindCounts) -> bool {
+    c.total() == 0
+}
+
+impl MeshStats {
+    /// Whether these are a volume mesh's statistics (dihedral angles, the mean ratio).
+    pub fn is_volume(&self) -> bool {
+        !no_volume(&self.volume_kinds)
+    }
 }
 
 /// Where a mesh stands, in the numbers a pass record carries (and the page's table and
@@ -124,8 +131,8 @@ pub struct MeshCounts {
     pub quads: usize,
     /// Elements with mid-side (mid-edge) nodes.
     pub quadratic: usize,
-    /// Tetrahedra (0 for a planar mesh or a surface).
-    pub tetrahedra: usize,
+    /// A volume mesh's elements by kind (none for a planar mesh or a surface).
+    pub volume_kinds: VolumeKindCounts,
 }
 
 impl MeshCounts {
@@ -140,7 +147,7 @@ impl MeshCounts {
             triangles,
             quads: mesh.element_count() - triangles,
             quadratic: mesh.kinds().iter().filter(|k| k.is_quadratic()).count(),
-            tetrahedra: 0,
+            volume_kinds: VolumeKindCounts::default(),
         }
     }
 }
@@ -203,7 +210,7 @@ impl MeshStatsBuilder {
                 angle_histogram_6deg: vec![0; 30],
                 surface: false,
                 max_distance_from_surface: None,
-                tetrahedra: c.tetrahedra,
+                volume_kinds: c.volume_kinds,
             },
             quality_sum: 0.0,
         }

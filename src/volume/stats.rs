@@ -1,4 +1,4 @@
-//! The statistics of a tetrahedral mesh, in the planar [`MeshStats`]' fields (one record
+//! The statistics of a volume mesh, in the planar [`MeshStats`]' fields (one record
 //! for every kind of mesh: the CLI's tables, the pass records and the page read it alike),
 //! folded by the one [`MeshStatsBuilder`].
 
@@ -9,8 +9,8 @@ use crate::quality::{ElementStats, MeshCounts, MeshStats, MeshStatsBuilder};
 /// (Freitag 1997, Fig. 3) are over the dihedral angles, `min_quality`/`mean_quality` over
 /// the mean ratio, `max_condition` is Knupp's κ (∞ when a tetrahedron is inverted, as for
 /// planar meshes), `inverted` counts tetrahedra of volume ≤ 0 (a 10-node one measured
-/// with its mid-edge nodes, [`VolumeMesh::measures`]), `tetrahedra` the
-/// elements; `triangles` and `quads` are 0.
+/// with its mid-edge nodes, [`VolumeMesh::measures`]), `volume_kinds` the elements by
+/// kind; `triangles` and `quads` are 0.
 pub fn volume_stats(mesh: &VolumeMesh) -> MeshStats {
     let elements = mesh.element_count();
     let mut s = MeshStatsBuilder::new(MeshCounts {
@@ -21,7 +21,7 @@ pub fn volume_stats(mesh: &VolumeMesh) -> MeshStats {
         triangles: 0,
         quads: 0,
         quadratic: if mesh.is_quadratic() { elements } else { 0 },
-        tetrahedra: elements,
+        volume_kinds: crate::mesh::VolumeKindCounts::of((0..elements).map(|e| mesh.element_kind(e))),
     });
     for e in 0..elements {
         let m = mesh.measures(e);

@@ -37,9 +37,12 @@ pub fn table(s: &MeshStats) -> String {
     let following =
         if s.following_nodes > 0 { format!(", {} mid-side following", s.following_nodes) } else { String::new() };
     row("nodes", format!("{} ({} free, {} fixed{following})", s.nodes, s.free_nodes, s.fixed_nodes));
-    let solid = s.tetrahedra > 0;
+    let solid = s.is_volume();
     if solid {
-        row("elements", format!("{} ({} quadratic)", crate::args::count(s.tetrahedra, "tetrahedron", "tetrahedra"), s.quadratic));
+        // each kind with its count, its name saying its nodes: "384 4-node tetrahedra";
+        // "940 (445 4-node tetrahedra, 305 8-node hexahedra, 190 5-node pyramids)"
+        let words = s.volume_kinds.words();
+        row("elements", if s.volume_kinds.present().count() == 1 { words } else { format!("{} ({words})", s.elements) });
     } else {
         row(
             "elements",
