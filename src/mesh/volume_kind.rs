@@ -172,13 +172,13 @@ const CUBE_W: [[f64; 3]; 3] = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]
 const WEDGE_W: [[f64; 3]; 3] = [[1.0, 0.0, 0.0], [0.5, 0.866_025_403_784_438_6, 0.0], [0.0, 0.0, 1.0]];
 /// A pyramid's base corner, the pyramid of unit edges (a unit square base, the apex at
 /// height `1/√2`): its two base edges, then the edge to the apex.
-const PYRAMID_W: [[f64; 3]; 3] = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.5, 0.5, 0.707_106_781_186_547_6]];
+const PYRAMID_W: [[f64; 3]; 3] = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.5, 0.5, std::f64::consts::FRAC_1_SQRT_2]];
 
-/// The unit cube's corner ([`CUBE_W`]).
+/// The unit cube's corner (`CUBE_W`: W = I).
 pub static CUBE_CORNER: CornerReference = reference_of(CUBE_W);
-/// The right wedge's corner ([`WEDGE_W`]).
+/// The right wedge's corner (`WEDGE_W`).
 pub static WEDGE_CORNER: CornerReference = reference_of(WEDGE_W);
-/// The unit pyramid's base corner ([`PYRAMID_W`]).
+/// The unit pyramid's base corner (`PYRAMID_W`).
 pub static PYRAMID_CORNER: CornerReference = reference_of(PYRAMID_W);
 static TET_SLOTS: [CornerReference; 4] = slot_references(from_mat(EQUILATERAL_W));
 static CUBE_SLOTS: [CornerReference; 4] = slot_references(CUBE_W);
@@ -428,7 +428,7 @@ const PYRAMID5: VolumeKindRow = VolumeKindRow {
     vtk_type: 14,
     gmsh_type: 7,
     gmsh_order: &[0, 1, 2, 3, 4],
-    ideal: &[[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [1.0, 1.0, 0.0], [0.0, 1.0, 0.0], [0.5, 0.5, 0.707_106_781_186_547_6]],
+    ideal: &[[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [1.0, 1.0, 0.0], [0.0, 1.0, 0.0], [0.5, 0.5, std::f64::consts::FRAC_1_SQRT_2]],
 };
 
 /// The element kinds of a volume mesh. A mesh may mix the linear kinds (a hexahedral
