@@ -1613,16 +1613,7 @@ fn hexahedra(out: &mut String) {
         };
         let s0 = volume_stats(&mesh);
         let v0 = s0.solid.clone().expect("a volume's statistics");
-        let kinds: Vec<String> = [
-            (s0.tetrahedra, "tetrahedra"),
-            (v0.hexahedra, "hexahedra"),
-            (v0.wedges, "wedges"),
-            (v0.pyramids, "pyramids"),
-        ]
-        .iter()
-        .filter(|(n, _)| *n > 0)
-        .map(|(n, w)| format!("{n} {w}"))
-        .collect();
+        let kinds = s0.volume_kinds.words();
         let (passes, ms, m) = to_valid(&mesh, ObjectiveKind::New, SmoothOptions::default(), 10);
         let s = volume_stats(&m);
         let (ten, _) = run_volume(&mesh, ObjectiveKind::New, SmoothOptions::default(), 10);
@@ -1633,7 +1624,7 @@ fn hexahedra(out: &mut String) {
         let _ = writeln!(
             out,
             "| `{file}` | {} | {} | {} ({}) | {} | {:.3}, {:.3} / {:.3} | {:.3} | {}, {:.3} | {mesquite} |",
-            kinds.join(", "),
+            kinds,
             mesh.free_count(),
             s0.inverted,
             v0.inverted_inside,

@@ -8,8 +8,8 @@ use crate::quality::{mesh_stats, MeshStats};
 use crate::surface::Surface;
 use crate::volume::{volume_stats, VolumeMesh};
 
-/// What a mesh file holds: a planar mesh (the 2D core), a surface in 3D, or a mesh of
-/// tetrahedra ([`crate::volume`]).
+/// What a mesh file holds: a planar mesh (the 2D core), a surface in 3D, or a volume mesh
+/// of tetrahedra, hexahedra, wedges and pyramids ([`crate::volume`]).
 #[derive(Clone, Debug)]
 #[allow(clippy::large_enum_variant)]
 pub enum Model {
@@ -25,7 +25,7 @@ impl From<Mesh> for Model {
 }
 
 impl Model {
-    /// Builds what a reader found: a mesh of tetrahedra when the file has any (its
+    /// Builds what a reader found: a volume mesh when the file has volume elements (its
     /// triangles and quads then the boundary faces, [`VolumeMesh::from_builder`]), else a
     /// planar [`Mesh`] when its points lie in a plane (as [`MeshBuilder::build`]), else a
     /// surface in 3D — the checks of a planar mesh, the elements oriented consistently
@@ -41,7 +41,7 @@ impl Model {
         }
     }
     /// The elements, topology and fixed flags of a planar mesh or a surface (for a
-    /// surface, with scratch positions: see [`Surface::flat`]); `None` for tetrahedra.
+    /// surface, with scratch positions: see [`Surface::flat`]); `None` for a volume mesh.
     pub fn mesh(&self) -> Option<&Mesh> {
         match self {
             Model::Planar(m) => Some(m),
@@ -64,9 +64,10 @@ impl Model {
             Model::Surface(_) => {
                 Err(Error::invalid(format!("{what} takes planar meshes only; this mesh is a surface in 3D")))
             }
-            Model::Volume(_) => {
-                Err(Error::invalid(format!("{what} takes planar meshes only; this mesh is made of tetrahedra")))
-            }
+            Model::Volume(v) => Err(Error::invalid(format!(
+                "{what} takes planar meshes only; this mesh is made of {}",
+                v.family_words()
+            ))),
         }
     }
 }

@@ -18,7 +18,7 @@ const EXPECTED: &[(&str, &[&str])] = &[
     // Gmsh
     ("truncated_nodes.msh", &["line 7", "ends here", "node 3 of the 3"]),
     ("huge_count.msh", &["line 5", "1000000000 nodes"]),
-    ("hexahedron.msh", &["hexahedra are not supported yet: line 17: Gmsh element type 5 (8-node hexahedron); smoothlab reads"]),
+    ("quadratic_prism.msh", &["quadratic prisms (wedges) are not supported yet: line 24: Gmsh element type 18 (15-node prism); smoothlab reads"]),
     ("missing_elements.msh", &["line 9", "without an $Elements section"]),
     ("wrong_count.msh", &["line 8", "expected '$EndNodes'", "opened at line 4"]),
     ("undefined_node_tag.msh", &["element 0 (line 12)", "node tag 99 is not defined", "tags 1 to 3"]),
@@ -40,7 +40,7 @@ const EXPECTED: &[(&str, &[&str])] = &[
     ("missing_cell_types.vtk", &["line 11", "without the CELL_TYPES section", "line 10"]),
     ("cell_types_count.vtk", &["line 13", "CELL_TYPES announces 1 types", "has 2 cells"]),
     ("wrong_node_count_for_type.vtk", &["element 0 (line 11)", "needs 4 points", "lists 3"]),
-    ("hexa_cell.vtk", &["hexahedra are not supported yet: line 17: VTK cell type 12 (hexahedron) of element 0; smoothlab reads"]),
+    ("voxel_cell.vtk", &["voxels (hexahedra numbered as a grid) are not supported yet: line 17: VTK cell type 11 (voxel) of element 0; smoothlab reads"]),
     ("truncated_points.vtk", &["line 8", "ends here", "z coordinate of point 2"]),
     ("bad_header.vtk", &["line 1", "# vtk DataFile Version"]),
     ("binary.vtk", &["line 3", "binary VTK files are not supported"]),

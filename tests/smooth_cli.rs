@@ -294,8 +294,8 @@ fn help_texts_are_their_own_and_counts_agree_with_their_nouns() {
     )
     .unwrap();
     let stats = ok(&["stats", p(&one)]);
-    assert!(stats.contains("elements         1 tetrahedron (0 quadratic)"), "{stats}");
+    assert!(stats.contains("elements         1 4-node tetrahedron\n"), "{stats}");
     let cube = d.join("cube.vtk");
     ok(&["generate", "cube", "--cells", "1", "-o", p(&cube)]);
-    assert!(ok(&["stats", p(&cube)]).contains("6 tetrahedra"));
+    assert!(ok(&["stats", p(&cube)]).contains("6 4-node tetrahedra"));
 }

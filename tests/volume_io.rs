@@ -82,7 +82,7 @@ fn every_format_round_trips_exactly() {
     }
     // OBJ and OFF hold no tetrahedra
     let e = io::write_model_string(&Model::Volume(samples().remove(0)), Format::Obj, &WriteOptions::default());
-    assert!(e.unwrap_err().to_string().contains("hold surfaces, not tetrahedra"));
+    assert!(e.unwrap_err().to_string().contains("hold surfaces, not volume elements"));
 }
 
 /// One 10-node tetrahedron as Gmsh writes it: mid-edge nodes on (0,1) (1,2) (2,0) (3,0)
@@ -146,11 +146,11 @@ fn the_command_line_generates_perturbs_measures_smooths_and_converts_tetrahedra(
     ok(&["generate", "cube", "--cells", "4", "-o", p(&cube)]);
     ok(&["generate", "perturb", p(&cube), "--amount", "0.8", "--seed", "2", "-o", p(&tangled)]);
     let before: Value = serde_json::from_str(&ok(&["stats", "--json", p(&tangled)])).unwrap();
-    assert_eq!(before["tetrahedra"], 384);
+    assert_eq!(before["volume_kinds"], serde_json::json!({"Tet4": 384}));
     assert_eq!(before["free_nodes"], 27);
     assert!(before["inverted"].as_u64().unwrap() > 0);
     let table = ok(&["stats", p(&tangled)]);
-    assert!(table.contains("384 tetrahedra") && table.contains("dihedral angles"), "{table}");
+    assert!(table.contains("elements         384 4-node tetrahedra\n") && table.contains("dihedral angles"), "{table}");
     let report: Value = serde_json::from_str(&ok(&[
         "smooth",
         p(&tangled),
@@ -177,7 +177,7 @@ fn the_command_line_generates_perturbs_measures_smooths_and_converts_tetrahedra(
     let pair = d.join("smoothed.node");
     ok(&["convert", p(&smoothed), p(&pair)]);
     assert!(d.join("smoothed.ele").exists());
-    assert_eq!(serde_json::from_str::<Value>(&ok(&["stats", "--json", p(&pair)])).unwrap()["tetrahedra"], 384);
+    assert_eq!(serde_json::from_str::<Value>(&ok(&["stats", "--json", p(&pair)])).unwrap()["volume_kinds"]["Tet4"], 384);
     // what does not apply to tetrahedra is refused, saying why
     assert!(refused(&["smooth", p(&tangled), "--slide-curves", "-o", p(&smoothed)])
         .contains("this mesh is made of tetrahedra"));
@@ -186,12 +186,12 @@ fn the_command_line_generates_perturbs_measures_smooths_and_converts_tetrahedra(
     ok(&["render", p(&tangled), "--view", "compare", "--passes", "1", "--cut", "y=0.5", "-o", p(&png)]);
     assert!(std::fs::read(&png).unwrap().starts_with(b"\x89PNG"));
     ok(&["render", p(&tangled), "--view", "histogram", "-o", p(&d.join("h.png"))]);
-    assert!(refused(&["render", p(&tangled), "--view", "levelset", "-o", p(&png)]).contains("tetrahedral"));
+    assert!(refused(&["render", p(&tangled), "--view", "levelset", "-o", p(&png)]).contains("a volume mesh is drawn by"));
     assert!(refused(&["render", p(&tangled), "--cut", "w=2", "-o", p(&png)]).contains("--cut"));
     let grid = d.join("grid.vtk");
     ok(&["generate", "grid", "-o", p(&grid)]);
-    assert!(refused(&["render", p(&grid), "--cut", "z=0.5", "-o", p(&png)]).contains("not made of tetrahedra"));
-    assert!(refused(&["convert", p(&tangled), p(&d.join("x.obj"))]).contains("not tetrahedra"));
+    assert!(refused(&["render", p(&grid), "--cut", "z=0.5", "-o", p(&png)]).contains("--cut cuts a volume mesh; this mesh is planar"));
+    assert!(refused(&["convert", p(&tangled), p(&d.join("x.obj"))]).contains("not volume elements"));
 }
 
 /// Issue 29: a tetrahedral file's triangles (the boundary faces Gmsh writes) were read

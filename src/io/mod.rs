@@ -16,10 +16,13 @@
 //! | `.node`/`.ele` | all `Tri3` or all `Tri6` | boundary ∪ fixed (markers) |
 //! | `.obj`, `.off` | `Tri3`, `Quad4` | none: the boundary |
 //!
-//! Tetrahedral meshes ([`crate::volume`]) are read from `.msh` (types 4, 11), `.vtk`
-//! (cell types 10, 24) and TetGen's `.node`/`.ele` pair (dimension 3, 4 or 10 nodes), and
-//! written to the same formats ([`write_model_string`], [`write_model_path`]) with the
-//! fixed flags kept as for planar meshes; OBJ and OFF hold surfaces only.
+//! Volume meshes ([`crate::volume`]) — tetrahedra, hexahedra, wedges, pyramids, mixed, and
+//! 10-, 20- and 27-node kinds alone — are read from `.msh` (types 4, 5, 6, 7, 11, 17, 12)
+//! and `.vtk` (cell types 10, 12, 13, 14, 24, 25, 29), tetrahedra also from TetGen's
+//! `.node`/`.ele` pair (dimension 3, 4 or 10 nodes), and written to the same formats
+//! ([`write_model_string`], [`write_model_path`]; TetGen refuses the other kinds) with the
+//! fixed flags kept as for planar meshes and the elements in their order (4.1: a block per
+//! run of one kind); OBJ and OFF hold surfaces only.
 //!
 //! Files from elsewhere: `.msh` without that view gets the boundary plus the nodes of line
 //! and point elements; VTK without `fixed` the boundary plus the points of vertex and line
@@ -466,7 +469,7 @@ pub fn write_path<'a>(mesh: impl Into<Writable<'a>>, path: &std::path::Path, opt
 }
 
 /// Writes what a model holds as text in `format`: a planar mesh or a surface as
-/// [`write_string`] does, a tetrahedral mesh as `.msh` or `.vtk` (TetGen's pair: see
+/// [`write_string`] does, a volume mesh as `.msh` or `.vtk` (TetGen's pair: see
 /// [`write_model_path`]; OBJ and OFF hold no volumes).
 pub fn write_model_string(model: &Model, format: Format, opts: &WriteOptions) -> Result<String> {
     match model {
@@ -507,19 +510,20 @@ pub fn write_tetgen(mesh: &crate::volume::VolumeMesh) -> Result<(String, String)
     Ok((node.into_string(), ele.into_string()))
 }
 
-/// Why `format` cannot hold a tetrahedral mesh (as text).
+/// Why `format` cannot hold a volume mesh (as text).
 fn volume_refused(format: Format) -> Error {
     Error::invalid(match format {
         Format::Triangle => "TetGen's output is a .node/.ele pair: write it to a path ending in .node or .ele".into(),
         f => format!(
-            "{f:?} files hold surfaces, not tetrahedra: write a tetrahedral mesh as .msh, .vtk or a TetGen .node/.ele pair"
+            "{f:?} files hold surfaces, not volume elements: write a volume mesh as .msh or .vtk (tetrahedra also as a \
+             TetGen .node/.ele pair)"
         ),
     })
 }
 
 /// Writes what a model holds to a file in the format of the path's extension: a planar
-/// mesh or a surface as [`write_path`] does; a tetrahedral mesh as `.msh`, `.vtk` or a
-/// TetGen `.node`/`.ele` pair.
+/// mesh or a surface as [`write_path`] does; a volume mesh as `.msh` or `.vtk`, tetrahedra
+/// also as a TetGen `.node`/`.ele` pair.
 #[cfg(not(target_arch = "wasm32"))]
 pub fn write_model_path(model: &Model, path: &std::path::Path, opts: &WriteOptions) -> Result<()> {
     let v = match model {

@@ -1,15 +1,40 @@
-//! Writing tetrahedral meshes ([`crate::volume`]): Gmsh `.msh` 2.2 and 4.1 by the one
-//! writer per version (a [`VolumeMesh`] is an [`MshSource`]), legacy VTK and TetGen's
-//! `.node`/`.ele` pair, the type codes and node orders from the element kind's row
-//! ([`crate::mesh::VolumeKindRow`]), with the fixed flags as the planar writers keep them (`.msh` and `.vtk`: a `fixed` view; TetGen:
-//! boundary markers). The readers are the planar formats' own, which take tetrahedra.
+//! Writing volume meshes ([`crate::volume`]), element by element whatever their kinds:
+//! Gmsh `.msh` 2.2 and 4.1 by the one writer per version (a [`VolumeMesh`] is an
+//! [`MshSource`]), legacy VTK and TetGen's `.node`/`.ele` pair (tetrahedra only), the type
+//! codes and node orders from the element kind's row ([`crate::mesh::VolumeKindRow`]), with
+//! the fixed flags as the planar writers keep them (`.msh` and `.vtk`: a `fixed` view;
+//! TetGen: boundary markers). The readers are the planar formats' own, which take volume
+//! elements through the same rows ([`volume_codes`] lists them for their messages).
 //! Node coordinates are written at full precision, so everything round-trips exactly.
 
 use std::fmt::Write as _;
 
 use crate::io::msh::{self, MshBlock, MshSource};
 use crate::io::out::Out;
+use crate::mesh::{VolumeKind, VolumeKindRow};
 use crate::volume::VolumeMesh;
+
+/// The most nodes a volume element of any kind has (the 27-node hexahedron's): the size
+/// of the readers' buffer for one element's nodes.
+pub(crate) const MAX_VOLUME_NODES: usize = {
+    let mut most = 0;
+    let mut i = 0;
+    while i < VolumeKind::ALL.len() {
+        if VolumeKind::ALL[i].nodes() > most {
+            most = VolumeKind::ALL[i].nodes();
+        }
+        i += 1;
+    }
+    most
+};
+
+/// The type codes of every volume element kind in a format (`code` picks it from the
+/// row), ascending, for the readers' messages: "10, 12, 13, 14, 24, 25, 29".
+pub(crate) fn volume_codes(code: fn(&VolumeKindRow) -> u32) -> String {
+    let mut codes: Vec<u32> = VolumeKind::ALL.iter().map(|k| code(k.row())).collect();
+    codes.sort_unstable();
+    codes.iter().map(u32::to_string).collect::<Vec<_>>().join(", ")
+}
 
 fn write_point(s: &mut Out, p: glam::DVec3) {
     let _ = write!(s, "{:?} {:?} {:?}", p.x, p.y, p.z);
@@ -139,5 +164,17 @@ pub(crate) fn write_tetgen(mesh: &VolumeMesh, node: &mut Out, ele: &mut Out) {
             let _ = write!(ele, " {}", i + 1);
         }
         ele.push('\n');
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_readers_lists_of_codes_and_buffer_fit_every_kind() {
+        assert_eq!(volume_codes(|r| r.vtk_type), "10, 12, 13, 14, 24, 25, 29");
+        assert_eq!(volume_codes(|r| r.gmsh_type), "4, 5, 6, 7, 11, 12, 17");
+        assert_eq!(MAX_VOLUME_NODES, 27);
     }
 }

@@ -5,6 +5,10 @@
 //! `CELL_TYPES` 5 (triangle), 9 (quad), 8 (pixel, reordered to a quad), 22 (6-node
 //! triangle), 23 (8-node quad), 28 (9-node biquadratic quad), 7 (polygon: read when it
 //! has 3 or 4 vertices, refused naming the element and its vertex count otherwise);
+//! the volume elements of [`VolumeKind`] by their rows' `vtk_type` — 10 (tetrahedron),
+//! 12 (hexahedron), 13 (wedge), 14 (pyramid), 24 (10-node tetrahedron), 25 (20-node
+//! hexahedron), 29 (27-node hexahedron), in VTK's node order, which is ours — linear
+//! kinds mixed freely, a quadratic kind alone (the builder refuses a mix, naming the line);
 //! vertex and line cells (1, 2, 3, 4, 21) mark their points as fixed. `POINT_DATA` with
 //! `SCALARS fixed …` gives the fixed flags exactly (nonzero = fixed, as Mesquite writes
 //! them); every other attribute, `CELL_DATA`, `FIELD` and `METADATA` block is skipped.
@@ -25,6 +29,7 @@ use std::fmt::Write as _;
 use crate::error::{Error, Result};
 use crate::io::lex::{prealloc, repeated, shown, split_line, Lexer};
 use crate::io::out::Out;
+use crate::io::volume::{volume_codes, MAX_VOLUME_NODES};
 use crate::mesh::{ElementKind, FixedSpec, MeshBuilder, VolumeKind};
 
 #[derive(Clone, Copy, PartialEq)]
@@ -81,14 +86,12 @@ fn vtk_type(t: u64) -> VtkType {
         7 => Polygon,
         1 | 2 | 3 | 4 | 21 => Marker,
         6 => Unsupported("triangle strip", Some("triangle strips")),
-        11 => Unsupported("voxel", Some("hexahedra (voxels)")),
-        12 => Unsupported("hexahedron", Some("hexahedra")),
-        13 => Unsupported("wedge", Some("wedges (prisms)")),
-        14 => Unsupported("pyramid", Some("pyramids")),
-        25 => Unsupported("quadratic hexahedron", Some("quadratic hexahedra")),
+        11 => Unsupported("voxel", Some("voxels (hexahedra numbered as a grid)")),
         26 => Unsupported("quadratic wedge", Some("quadratic wedges (prisms)")),
         27 => Unsupported("quadratic pyramid", Some("quadratic pyramids")),
-        _ => Unsupported("not a 2D cell smoothlab knows", None),
+        32 => Unsupported("biquadratic-quadratic wedge", Some("quadratic wedges (prisms)")),
+        42 => Unsupported("polyhedron", Some("polyhedra")),
+        _ => Unsupported("not a cell smoothlab knows", None),
     }
 }
 
@@ -556,9 +559,9 @@ impl Reader<'_> {
                             format!("cell type {ty} (a {}) needs {k} points, but the cell lists {}", kind.name(), conn.len()),
                         ));
                     }
-                    let mut tet = [0u32; 10];
-                    check(conn, &mut tet[..k])?;
-                    builder.add_volume_element(kind, &tet[..k], line)?;
+                    let mut solid = [0u32; MAX_VOLUME_NODES];
+                    check(conn, &mut solid[..k])?;
+                    builder.add_volume_element(kind, &solid[..k], line)?;
                     continue;
                 }
                 VtkType::Pixel => {
@@ -609,17 +612,20 @@ impl Reader<'_> {
                     continue;
                 }
                 VtkType::Unsupported(name, words) => {
-                    const READS: &str = "smoothlab reads types 5, 9, 22, 23, 28 (and 7 with 3 or 4 vertices) \
-                                         and tetrahedra (10, 24)";
+                    let reads = format!(
+                        "smoothlab reads types 5, 9, 22, 23, 28 (and 7 with 3 or 4 vertices) and the volume \
+                         elements {}",
+                        volume_codes(|r| r.vtk_type)
+                    );
                     return Err(match words {
                         Some(words) => Error::unsupported_kind(
                             format!("{words} are not supported yet"),
                             type_line,
-                            format!("VTK cell type {ty} ({name}) of element {i}; {READS}"),
+                            format!("VTK cell type {ty} ({name}) of element {i}; {reads}"),
                         ),
                         None => Error::unsupported(
                             Some(type_line),
-                            format!("VTK cell type {ty} ({name}) of element {i} is not supported: {READS}"),
+                            format!("VTK cell type {ty} ({name}) of element {i} is not supported: {reads}"),
                         ),
                     });
                 }
@@ -699,34 +705,90 @@ pub(crate) fn write_fixed(fixed: &[bool], s: &mut Out) {
 mod tests {
     use super::*;
 
+    /// One cell of each listed type on the 27 points of a cube's 3×3×3 lattice (spacing
+    /// 1/2, x fastest), the cells at line 34 on: what every kind is read from.
+    fn lattice_file(cells: &[(u64, &[u32])]) -> String {
+        let mut t = String::from("# vtk DataFile Version 3.0\nt\nASCII\nDATASET UNSTRUCTURED_GRID\nPOINTS 27 double\n");
+        for k in 0..27 {
+            t.push_str(&format!("{} {} {}\n", (k % 3) as f64 / 2.0, (k / 3 % 3) as f64 / 2.0, (k / 9) as f64 / 2.0));
+        }
+        let size: usize = cells.iter().map(|(_, c)| c.len() + 1).sum();
+        t.push_str(&format!("CELLS {} {size}\n", cells.len()));
+        for (_, c) in cells {
+            t.push_str(&format!("{}{}\n", c.len(), c.iter().map(|i| format!(" {i}")).collect::<String>()));
+        }
+        t.push_str(&format!("CELL_TYPES {}\n", cells.len()));
+        for (ty, _) in cells {
+            t.push_str(&format!("{ty}\n"));
+        }
+        t
+    }
+
+    /// The lattice points of a hexahedron's corners, edge middles, face centres and
+    /// centre in VTK's order (those of `QUADRATIC_HEXAHEDRON`, `TRIQUADRATIC_HEXAHEDRON`):
+    /// lattice point `x + 3y + 9z` for `x, y, z` in half-units.
+    const HEX27: [u32; 27] = [0, 2, 8, 6, 18, 20, 26, 24, 1, 5, 7, 3, 19, 23, 25, 21, 9, 11, 17, 15, 12, 14, 10, 16, 4, 22, 13];
+
     #[test]
-    fn solid_kinds_other_than_tetrahedra_are_refused_in_plain_words_first() {
-        // one cell of each type (eight points, one cell), the type at line 17
-        let file = |t: u64| {
-            format!(
-                "# vtk DataFile Version 3.0\nt\nASCII\nDATASET UNSTRUCTURED_GRID\nPOINTS 8 float\n\
-                 0 0 0\n1 0 0\n1 1 0\n0 1 0\n0 0 1\n1 0 1\n1 1 1\n0 1 1\n\
-                 CELLS 1 9\n8 0 1 2 3 4 5 6 7\nCELL_TYPES 1\n{t}\n"
-            )
-        };
-        let cases = [
-            (12, "hexahedra are not supported yet: line 17: VTK cell type 12 (hexahedron) of element 0; smoothlab reads"),
-            (11, "hexahedra (voxels) are not supported yet: line 17: VTK cell type 11 (voxel) of element 0; "),
-            (13, "wedges (prisms) are not supported yet: line 17: VTK cell type 13 (wedge) of element 0; "),
-            (14, "pyramids are not supported yet: line 17: VTK cell type 14 (pyramid) of element 0; "),
-            (25, "quadratic hexahedra are not supported yet: line 17: VTK cell type 25 (quadratic hexahedron)"),
-            (26, "quadratic wedges (prisms) are not supported yet: line 17: VTK cell type 26 (quadratic wedge)"),
-            (27, "quadratic pyramids are not supported yet: line 17: VTK cell type 27 (quadratic pyramid)"),
+    fn every_volume_kind_is_read_by_its_cell_type_and_the_rest_are_refused_in_plain_words_first() {
+        // every kind of the rows, one cell of its type: read, of that kind, nodes as given
+        let wedge: &[u32] = &[0, 6, 2, 18, 24, 20]; // (0 1 2) turns away from (3 4 5)
+        let pyramid: &[u32] = &[0, 2, 8, 6, 22]; // the base turns towards the apex
+        let tet: &[u32] = &[0, 2, 6, 18];
+        let tet10: &[u32] = &[0, 2, 6, 18, 1, 4, 3, 9, 10, 12];
+        let cases: [(u64, &[u32], VolumeKind); 7] = [
+            (10, tet, VolumeKind::Tet4),
+            (24, tet10, VolumeKind::Tet10),
+            (12, &HEX27[..8], VolumeKind::Hex8),
+            (25, &HEX27[..20], VolumeKind::Hex20),
+            (29, &HEX27, VolumeKind::Hex27),
+            (13, wedge, VolumeKind::Wedge6),
+            (14, pyramid, VolumeKind::Pyramid5),
         ];
-        for (t, want) in cases {
-            let e = parse(&file(t)).unwrap_err();
-            assert!(matches!(e, Error::Unsupported { line: Some(17), .. }), "{e:?}");
+        for (ty, cell, kind) in cases {
+            let model = crate::model::Model::build(parse(&lattice_file(&[(ty, cell)])).unwrap());
+            let Ok(crate::model::Model::Volume(m)) = model else { panic!("type {ty}: {model:?}") };
+            assert_eq!((m.element_count(), m.element_kind(0)), (1, kind), "type {ty}");
+            assert_eq!(m.element(0), cell, "type {ty}: read as given (not turned over)");
+            assert!(!m.is_inverted(0), "type {ty}");
+        }
+        // a voxel, quadratic wedges and pyramids, a polyhedron: refused, in words first
+        let refused = [
+            (11, 8, "voxels (hexahedra numbered as a grid) are not supported yet: line 36: VTK cell type 11 (voxel) of element 0; "),
+            (26, 15, "quadratic wedges (prisms) are not supported yet: line 36: VTK cell type 26 (quadratic wedge) of element 0; "),
+            (27, 13, "quadratic pyramids are not supported yet: line 36: VTK cell type 27 (quadratic pyramid) of element 0; "),
+            (32, 18, "quadratic wedges (prisms) are not supported yet: line 36: VTK cell type 32 (biquadratic-quadratic wedge)"),
+            (42, 8, "polyhedra are not supported yet: line 36: VTK cell type 42 (polyhedron) of element 0; "),
+        ];
+        for (ty, n, want) in refused {
+            let e = parse(&lattice_file(&[(ty, &HEX27[..n])])).unwrap_err();
+            assert!(matches!(e, Error::Unsupported { line: Some(36), .. }), "{e:?}");
             let e = e.to_string();
-            assert!(e.starts_with(want), "type {t}: {e}");
-            assert!(e.ends_with("and tetrahedra (10, 24)"), "{e}");
+            assert!(e.starts_with(want), "type {ty}: {e}");
+            assert!(e.ends_with("and the volume elements 10, 12, 13, 14, 24, 25, 29"), "{e}");
         }
         // a type with no name people know keeps the file's terms alone, line first
-        let e = parse(&file(42)).unwrap_err().to_string();
-        assert!(e.starts_with("line 17: VTK cell type 42 (not a 2D cell smoothlab knows) of element 0 is not supported"), "{e}");
+        let e = parse(&lattice_file(&[(99, &HEX27[..8])])).unwrap_err().to_string();
+        assert!(e.starts_with("line 36: VTK cell type 99 (not a cell smoothlab knows) of element 0 is not supported"), "{e}");
+    }
+
+    #[test]
+    fn linear_kinds_mix_and_a_quadratic_kind_mixed_with_another_is_refused_naming_the_line() {
+        // a hexahedron, a wedge (sharing its face x = 1/2) and a pyramid on its face y = 1/2:
+        // one mesh, none of them inverted
+        let mixed = [(12, &[0u32, 1, 4, 3, 9, 10, 13, 12][..]), (13, &[1, 4, 2, 10, 13, 11]), (14, &[3, 4, 7, 6, 12])];
+        let b = parse(&lattice_file(&mixed)).unwrap();
+        let Ok(crate::model::Model::Volume(m)) = crate::model::Model::build(b) else { panic!("not a volume") };
+        assert_eq!(m.kinds(), &[VolumeKind::Hex8, VolumeKind::Wedge6, VolumeKind::Pyramid5]);
+        assert_eq!((0..3).filter(|&e| m.is_inverted(e)).count(), 0);
+        // a 20-node hexahedron and then a linear one: refused at the second cell's line
+        let e = parse(&lattice_file(&[(25, &HEX27[..20]), (12, &HEX27[..8])])).unwrap_err();
+        assert_eq!(
+            e.to_string(),
+            "element 1 (line 35): the file mixes 8-node and 20-node hexahedra: smoothlab mixes linear kinds, \
+             but a quadratic mesh is of one kind"
+        );
+        let e = parse(&lattice_file(&[(10, &[0, 2, 6, 18]), (29, &HEX27)])).unwrap_err().to_string();
+        assert!(e.starts_with("element 1 (line 35): the file mixes 4-node tetrahedra and 27-node hexahedra"), "{e}");
     }
 }

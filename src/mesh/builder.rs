@@ -97,8 +97,8 @@ pub(crate) struct SurfaceParts {
     pub not_planar: Option<String>,
 }
 
-/// What a tetrahedral mesh is built from (by the volume module): the nodes, the
-/// tetrahedra, the file's triangles and quads (CSR, with their lines: the boundary faces
+/// What a volume mesh is built from (by the volume module): the nodes, the volume
+/// elements, the file's triangles and quads (CSR, with their lines: the boundary faces
 /// Gmsh writes) and the fixed flags' rule with those faces' nodes marked.
 pub(crate) struct VolumeParts {
     pub points: Vec<[f64; 3]>,
@@ -158,11 +158,12 @@ impl MeshBuilder {
     pub(crate) fn node_lines(&self) -> &[u32] {
         &self.point_lines
     }
-    /// Adds a volume element of `kind` with 0-based node indices in VTK's order (a 10-node
-    /// tetrahedron's mid-edge nodes on the edges of `TET10_EDGES`), checked when the volume
-    /// mesh is built (`Model::build`). Linear kinds mix freely; a file that mixes a
-    /// quadratic kind with another ([`VolumeKind::mixes_with`]) is refused here, naming
-    /// the line.
+    /// Adds a volume element of `kind` with 0-based node indices in VTK's order (its row's
+    /// order: a 10-node tetrahedron's mid-edge nodes on the edges of `TET10_EDGES`, a
+    /// wedge's first triangle turning away from its second), checked when the volume mesh is
+    /// built (`Model::build`). Linear kinds mix freely; a file that mixes a quadratic kind
+    /// with another ([`VolumeKind::mixes_with`]) is refused here, naming the element (its
+    /// number among the file's volume elements) and the line.
     ///
     /// [`VolumeKind::mixes_with`]: super::VolumeKind::mixes_with
     pub fn add_volume_element(&mut self, kind: super::VolumeKind, nodes: &[u32], line: usize) -> Result<()> {
@@ -184,13 +185,13 @@ impl MeshBuilder {
         Ok(())
     }
 
-    /// Whether tetrahedra were added: then the file is a tetrahedral mesh
+    /// Whether volume elements were added (of any kind): then the file is a volume mesh
     /// (`build_volume_parts`).
     pub fn has_tets(&self) -> bool {
         !self.tets.is_empty()
     }
 
-    /// The parts of the tetrahedral mesh of the tetrahedra added, for the volume module
+    /// The parts of the volume mesh of the volume elements added, for the volume module
     /// to build; the nodes of any triangles or quads in the file (the boundary faces Gmsh
     /// writes) are marked fixed, as lines and points are. Refuses a face naming a node
     /// the file does not have.

@@ -26,7 +26,7 @@ pub(crate) use builder::{Flat, SurfaceParts};
 pub use builder::{polygon_area, FixedSpec, MeshBuilder, MAX_COORDINATE, PLANAR_TOLERANCE};
 pub use kind::{ElementKind, NodeRole};
 pub use volume_kind::{
-    CornerReference, VolumeKind, VolumeKindRow, CUBE_CORNER, EQUILATERAL_TET, EQUILATERAL_W, EQUILATERAL_W_INVERSE,
+    CornerReference, VolumeKind, VolumeKindCounts, VolumeKindRow, CUBE_CORNER, EQUILATERAL_TET, EQUILATERAL_W, EQUILATERAL_W_INVERSE,
     PYRAMID_CORNER, TET10_EDGES, WEDGE_CORNER, WITH_FIRST,
 };
 use topology::build_topology;

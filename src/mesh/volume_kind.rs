@@ -174,11 +174,11 @@ const WEDGE_W: [[f64; 3]; 3] = [[1.0, 0.0, 0.0], [0.5, 0.866_025_403_784_438_6, 
 /// height `1/√2`): its two base edges, then the edge to the apex.
 const PYRAMID_W: [[f64; 3]; 3] = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.5, 0.5, std::f64::consts::FRAC_1_SQRT_2]];
 
-/// The unit cube's corner ([`CUBE_W`]).
+/// The unit cube's corner (`CUBE_W`: W = I).
 pub static CUBE_CORNER: CornerReference = reference_of(CUBE_W);
-/// The right wedge's corner ([`WEDGE_W`]).
+/// The right wedge's corner (`WEDGE_W`).
 pub static WEDGE_CORNER: CornerReference = reference_of(WEDGE_W);
-/// The unit pyramid's base corner ([`PYRAMID_W`]).
+/// The unit pyramid's base corner (`PYRAMID_W`).
 pub static PYRAMID_CORNER: CornerReference = reference_of(PYRAMID_W);
 static TET_SLOTS: [CornerReference; 4] = slot_references(from_mat(EQUILATERAL_W));
 static CUBE_SLOTS: [CornerReference; 4] = slot_references(CUBE_W);
@@ -539,6 +539,61 @@ impl VolumeKind {
     }
 }
 
+/// How many elements of each [`VolumeKind`] a mesh has (the statistics' count by kind).
+/// In JSON a map from the kind's name to its count, kinds without elements left out.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct VolumeKindCounts([usize; VolumeKind::ALL.len()]);
+
+impl VolumeKindCounts {
+    /// The counts of the kinds `kinds` lists, one element each.
+    pub fn of(kinds: impl IntoIterator<Item = VolumeKind>) -> VolumeKindCounts {
+        let mut c = VolumeKindCounts::default();
+        for k in kinds {
+            c.0[k as usize] += 1;
+        }
+        c
+    }
+    /// The number of elements of kind `k`.
+    pub fn get(&self, k: VolumeKind) -> usize {
+        self.0[k as usize]
+    }
+    /// Every element counted.
+    pub fn total(&self) -> usize {
+        self.0.iter().sum()
+    }
+    /// The kinds with elements and their counts, in [`VolumeKind`]'s order.
+    pub fn present(&self) -> impl Iterator<Item = (VolumeKind, usize)> + '_ {
+        VolumeKind::ALL.into_iter().map(|k| (k, self.get(k))).filter(|&(_, n)| n > 0)
+    }
+    /// The counts in words, kinds in [`VolumeKind`]'s order: "305 8-node hexahedra,
+    /// 1 5-node pyramid".
+    pub fn words(&self) -> String {
+        let each: Vec<String> = self
+            .present()
+            .map(|(k, n)| {
+                let r = k.row();
+                if n == 1 {
+                    format!("1 {}", r.name)
+                } else {
+                    format!("{n} {}-node {}", r.nodes, r.family)
+                }
+            })
+            .collect();
+        each.join(", ")
+    }
+}
+
+impl Serialize for VolumeKindCounts {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        use serde::ser::SerializeMap;
+        let mut m = s.serialize_map(Some(self.present().count()))?;
+        for (k, n) in self.present() {
+            m.serialize_entry(&k, &n)?;
+        }
+        m.end()
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -599,6 +654,16 @@ mod tests {
                 }
             }
         }
+    }
+
+    #[test]
+    fn kind_counts_say_each_kind_once_in_its_order() {
+        use VolumeKind::*;
+        let c = VolumeKindCounts::of([Pyramid5, Hex8, Tet4, Hex8, Tet4, Tet4]);
+        assert_eq!((c.get(Tet4), c.get(Hex8), c.get(Pyramid5), c.get(Wedge6), c.total()), (3, 2, 1, 0, 6));
+        assert_eq!(c.words(), "3 4-node tetrahedra, 2 8-node hexahedra, 1 5-node pyramid");
+        assert_eq!(serde_json::to_string(&c).unwrap(), r#"{"Tet4":3,"Hex8":2,"Pyramid5":1}"#);
+        assert_eq!(VolumeKindCounts::default().words(), "");
     }
 
     #[test]

@@ -5,7 +5,7 @@ use glam::DVec2;
 use serde::Serialize;
 
 use super::{measure_element, ElementQuality};
-use crate::mesh::Mesh;
+use crate::mesh::{Mesh, VolumeKindCounts};
 
 /// The statistics `smoothlab stats` prints (and `--json` writes, field for field).
 #[derive(Clone, Debug, PartialEq, Serialize)]
@@ -42,23 +42,20 @@ pub struct MeshStats {
     /// For a surface, the largest distance of a node from the reference surface.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub max_distance_from_surface: Option<f64>,
-    /// For a tetrahedral mesh ([`crate::volume`]), the number of tetrahedra (then the
-    /// angles are dihedral angles, the quality the mean ratio); absent from JSON for a
-    /// planar mesh or a surface.
-    #[serde(skip_serializing_if = "is_zero")]
-    pub tetrahedra: usize,
+    /// For a volume mesh ([`crate::volume`]), its elements by kind (then the angles are
+    /// dihedral angles, the quality the mean ratio); absent from JSON for a planar mesh or
+    /// a surface.
+    #[serde(skip_serializing_if = "no_volume")]
+    pub volume_kinds: VolumeKindCounts,
     /// For a volume mesh, what only volumes have (absent from JSON otherwise).
     #[serde(flatten, skip_serializing_if = "Option::is_none")]
     pub solid: Option<SolidStats>,
 }
 
-/// The statistics only a volume mesh has: its elements by kind, the scaled Jacobian, and
-/// the elements inverted inside though every corner is positive.
+/// The statistics only a volume mesh has: the scaled Jacobian, and the elements inverted
+/// inside though every corner is positive.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct SolidStats {
-    pub hexahedra: usize,
-    pub wedges: usize,
-    pub pyramids: usize,
     /// Elements not certainly valid though every measured corner's determinant is
     /// positive ([`super::solid::validity`]): what a check of the corners alone misses.
     /// Counted in [`MeshStats::inverted`] too.
@@ -79,8 +76,15 @@ pub fn scaled_jacobian_bin(sj: f64) -> usize {
     (((sj + 1.0) * 10.0 + 1e-9) as usize).min(19)
 }
 
-fn is_zero(n: &usize) -> bool {
-    *n == 0
+fn no_volume(c: &VolumeKindCounts) -> bool {
+    c.total() == 0
+}
+
+impl MeshStats {
+    /// Whether these are a volume mesh's statistics (dihedral angles, the mean ratio).
+    pub fn is_volume(&self) -> bool {
+        !no_volume(&self.volume_kinds)
+    }
 }
 
 /// Where a mesh stands, in the numbers a pass record carries (and the page's table and
@@ -154,11 +158,8 @@ pub struct MeshCounts {
     pub quads: usize,
     /// Elements with mid-side (mid-edge) nodes.
     pub quadratic: usize,
-    /// Tetrahedra (0 for a planar mesh or a surface).
-    pub tetrahedra: usize,
-    /// A volume mesh's hexahedra, wedges and pyramids (`None` for a planar mesh or a
-    /// surface): then the statistics carry [`SolidStats`].
-    pub solids: Option<[usize; 3]>,
+    /// A volume mesh's elements by kind (none for a planar mesh or a surface).
+    pub volume_kinds: VolumeKindCounts,
 }
 
 impl MeshCounts {
@@ -173,8 +174,7 @@ impl MeshCounts {
             triangles,
             quads: mesh.element_count() - triangles,
             quadratic: mesh.kinds().iter().filter(|k| k.is_quadratic()).count(),
-            tetrahedra: 0,
-            solids: None,
+            volume_kinds: VolumeKindCounts::default(),
         }
     }
 }
@@ -237,11 +237,8 @@ impl MeshStatsBuilder {
                 angle_histogram_6deg: vec![0; 30],
                 surface: false,
                 max_distance_from_surface: None,
-                tetrahedra: c.tetrahedra,
-                solid: c.solids.map(|[hexahedra, wedges, pyramids]| SolidStats {
-                    hexahedra,
-                    wedges,
-                    pyramids,
+                volume_kinds: c.volume_kinds,
+                solid: (c.volume_kinds.total() > 0).then(|| SolidStats {
                     inverted_inside: 0,
                     min_scaled_jacobian: f64::INFINITY,
                     scaled_jacobian_histogram: vec![0; 20],

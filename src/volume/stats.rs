@@ -1,8 +1,8 @@
-//! The statistics of a tetrahedral mesh, in the planar [`MeshStats`]' fields (one record
+//! The statistics of a volume mesh, in the planar [`MeshStats`]' fields (one record
 //! for every kind of mesh: the CLI's tables, the pass records and the page read it alike),
 //! folded by the one [`MeshStatsBuilder`].
 
-use super::{VolumeKind, VolumeMesh};
+use super::VolumeMesh;
 use crate::quality::{ElementStats, MeshCounts, MeshStats, MeshStatsBuilder};
 
 /// The statistics of `mesh`: `min_angle_deg`/`max_angle_deg` and the 6° histogram
@@ -10,15 +10,14 @@ use crate::quality::{ElementStats, MeshCounts, MeshStats, MeshStatsBuilder};
 /// the mean ratio, `max_condition` is Knupp's κ (∞ when a tetrahedron is inverted, as for
 /// planar meshes), `inverted` counts the elements not certainly valid (a tetrahedron of
 /// volume ≤ 0, a 10-node one measured with its mid-edge nodes; another kind whose
-/// Jacobian determinant is ≤ 0 somewhere in it, [`VolumeMesh::measures`]), `tetrahedra`
-/// the tetrahedra, [`SolidStats`](crate::quality::SolidStats) the other kinds, the
+/// Jacobian determinant is ≤ 0 somewhere in it, [`VolumeMesh::measures`]),
+/// `volume_kinds` the elements by kind, [`SolidStats`](crate::quality::SolidStats) the
 /// scaled Jacobian and the elements inverted inside; `triangles` and `quads` are 0. The
 /// dihedral angles of a kind other than the tetrahedron are those at its corners' edges
 /// ([`crate::quality::solid::SolidMeasures::dihedral_deg`]), the mean ratio the mean of
 /// its corners'.
 pub fn volume_stats(mesh: &VolumeMesh) -> MeshStats {
     let elements = mesh.element_count();
-    let count = |f: &dyn Fn(VolumeKind) -> bool| (0..elements).filter(|&e| f(mesh.element_kind(e))).count();
     let mut s = MeshStatsBuilder::new(MeshCounts {
         nodes: mesh.node_count(),
         free_nodes: mesh.free_count(),
@@ -27,12 +26,7 @@ pub fn volume_stats(mesh: &VolumeMesh) -> MeshStats {
         triangles: 0,
         quads: 0,
         quadratic: if mesh.is_quadratic() { elements } else { 0 },
-        tetrahedra: count(&|k| k.is_tet()),
-        solids: Some([
-            count(&|k| k.linear() == VolumeKind::Hex8),
-            count(&|k| k == VolumeKind::Wedge6),
-            count(&|k| k == VolumeKind::Pyramid5),
-        ]),
+        volume_kinds: crate::mesh::VolumeKindCounts::of((0..elements).map(|e| mesh.element_kind(e))),
     });
     for e in 0..elements {
         let m = mesh.measures(e);

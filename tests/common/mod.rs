@@ -6,13 +6,24 @@ use std::path::{Path, PathBuf};
 /// crate (they are not copied into the repository). Absent on a developer's machine,
 /// the caller's test says so and returns; absent under `CI=true`, the test fails, so a
 /// CI run without the folder cannot pass by skipping what it was meant to check.
+#[allow(dead_code)]
 pub fn mesquite_meshes() -> Option<PathBuf> {
-    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/meshes/mesquite");
+    shared_meshes("mesquite")
+}
+
+/// Mesquite's 3D test meshes, from `../shared/meshes/mesquite3d`, as [`mesquite_meshes`].
+#[allow(dead_code)]
+pub fn mesquite3d_meshes() -> Option<PathBuf> {
+    shared_meshes("mesquite3d")
+}
+
+fn shared_meshes(name: &str) -> Option<PathBuf> {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/meshes").join(name);
     if dir.is_dir() {
         return Some(dir);
     }
     let ci = std::env::var("CI").is_ok_and(|v| !v.is_empty() && v != "false" && v != "0");
-    assert!(!ci, "CI is set but the external Mesquite meshes (../shared/meshes/mesquite) are missing");
-    println!("external Mesquite meshes (../shared/meshes/mesquite) not found: skipped");
+    assert!(!ci, "CI is set but the external Mesquite meshes (../shared/meshes/{name}) are missing");
+    println!("external Mesquite meshes (../shared/meshes/{name}) not found: skipped");
     None
 }

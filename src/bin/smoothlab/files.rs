@@ -69,7 +69,7 @@ pub fn write_mesh<'a>(mesh: impl Into<io::Writable<'a>>, path: &Path, msh_versio
     Ok(())
 }
 
-/// Writes what a model holds (planar, surface or tetrahedra) in the format of the file's
+/// Writes what a model holds (planar, surface or volume) in the format of the file's
 /// extension.
 pub fn write_model(model: &Model, path: &Path, msh_version: MshVersion) -> Result<(), String> {
     match model {
@@ -82,7 +82,7 @@ pub fn write_model(model: &Model, path: &Path, msh_version: MshVersion) -> Resul
 
 #[derive(Args)]
 pub struct ConvertArgs {
-    /// Input mesh (.msh, .vtk, .node/.ele, .obj, .off; tetrahedra in .msh, .vtk, TetGen .node/.ele)
+    /// Input mesh (.msh, .vtk, .node/.ele, .obj, .off; volume meshes in .msh, .vtk, tetrahedra also TetGen .node/.ele)
     pub input: PathBuf,
     /// Output mesh; the format follows the extension
     pub output: PathBuf,

@@ -112,8 +112,8 @@ pub struct RenderArgs {
     /// (default 30,25,1); --view mesh and compare draw surfaces
     #[arg(long, allow_hyphen_values = true)]
     pub camera: Option<String>,
-    /// A tetrahedral mesh's cut plane, AXIS=FRACTION of its extent (default z=0.5): the
-    /// tetrahedra beyond it are taken away, the faces it opens coloured by mean ratio
+    /// A volume mesh's cut plane, AXIS=FRACTION of its extent (default z=0.5): the
+    /// elements beyond it are taken away, the faces it opens coloured by mean ratio
     #[arg(long)]
     pub cut: Option<String>,
     /// Colours: light (black on white) or dark (for projectors, with larger labels)
@@ -205,7 +205,7 @@ pub fn run(a: RenderArgs) -> Result<(), String> {
         Model::Volume(v) => return volume(&a, &input, v, camera.unwrap_or_default(), passes, &shown),
     };
     if a.cut.is_some() {
-        return Err("--cut cuts a tetrahedral mesh; this mesh is not made of tetrahedra".into());
+        return Err("--cut cuts a volume mesh; this mesh is planar".into());
     }
     // The pictures are drawn by the page's code, which holds at most MAX_NODES nodes: say
     // so in this tool's words, with the file's name (the page's own message pointed to
@@ -396,7 +396,7 @@ fn surface(
     std::fs::write(&a.output, png).map_err(|e| format!("{}: {e}", a.output.display()))
 }
 
-/// A tetrahedral mesh, cut (`--cut`) and drawn in the 3D view: `--view mesh` (as loaded,
+/// A volume mesh, cut (`--cut`) and drawn in the 3D view: `--view mesh` (as loaded,
 /// or after the passes of the first objective asked for), `compare` (old and new side by
 /// side after the passes) or `histogram` (the dihedral angles, 6° bins: as loaded, old,
 /// new), with the lab's strategy, order and iterations.
@@ -424,7 +424,7 @@ fn volume(
         }
         other => {
             return Err(format!(
-                "--view {}: a tetrahedral mesh is drawn by --view mesh, compare or histogram",
+                "--view {}: a volume mesh is drawn by --view mesh, compare or histogram",
                 format!("{other:?}").to_lowercase()
             ))
         }

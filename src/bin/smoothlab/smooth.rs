@@ -163,14 +163,17 @@ pub fn run(a: SmoothArgs) -> Result<(), String> {
     let kind = a.objective.unwrap_or(ObjectiveKind::New);
     let mut model = read_model(&a.input)?;
     if a.slide_curves && !matches!(model, Model::Surface(_)) {
-        let what = if matches!(model, Model::Planar(_)) { "planar" } else { "made of tetrahedra" };
+        let what = match &model {
+            Model::Volume(v) => format!("made of {}", v.family_words()),
+            _ => "planar".to_string(),
+        };
         return Err(format!(
             "--slide-curves: the nodes of a surface's feature curves slide along them; this mesh is {what}"
         ));
     }
     if a.penalty.is_some() && matches!(model, Model::Volume(_)) {
         return Err(
-            "--penalty: the angle penalty's designs are planar; tetrahedra take new's regularised barrier".into()
+            "--penalty: the angle penalty's designs are planar; volume elements take new's regularised barrier".into()
         );
     }
     if let Model::Planar(mesh) = &model {

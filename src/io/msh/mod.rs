@@ -3,9 +3,13 @@
 //! Read: `$MeshFormat`, `$Nodes`, `$Elements` in both layouts (4.1: entity blocks with
 //! sparse, non-contiguous tags), and a `$NodeData` view named `fixed`; every other section
 //! (`$PhysicalNames`, `$Entities`, `$Periodic`, other views, …) is skipped. Element types
-//! 2 (tri3), 3 (quad4), 9 (tri6), 16 (quad8), 10 (quad9) become elements; lines (1, 8) and
-//! points (15) mark their nodes as fixed (on top of the boundary); anything else is
-//! refused naming the line and the type.
+//! 2 (tri3), 3 (quad4), 9 (tri6), 16 (quad8), 10 (quad9) become elements; the volume
+//! elements of [`VolumeKind`] by their rows' `gmsh_type` — 4 (tetrahedron), 5 (hexahedron),
+//! 6 (prism), 7 (pyramid), 11 (10-node tetrahedron), 17 (20-node hexahedron), 12 (27-node
+//! hexahedron) — are put from Gmsh's node order into ours by the row's `gmsh_order` (a
+//! volume file's triangles and quads are then its given faces); lines (1, 8) and points
+//! (15) mark their nodes as fixed (on top of the boundary); anything else is refused naming
+//! the line and the type.
 //!
 //! Written: nodes with tags `1..=n` at full `f64` precision, the elements in order, and
 //! the fixed flags as a one-component `$NodeData` view named `"fixed"` (1 = fixed). When
@@ -19,6 +23,7 @@
 
 use crate::error::{Error, Result};
 use crate::io::lex::{prealloc, repeated, shown, Lexer};
+use crate::io::volume::{volume_codes, MAX_VOLUME_NODES};
 use crate::mesh::{ElementKind, FixedSpec, MeshBuilder, VolumeKind, NONE};
 
 mod write;
@@ -52,13 +57,8 @@ fn gmsh_type(t: u64) -> GmshType {
         1 => Marker(2),
         8 => Marker(3),
         15 => Marker(1),
-        5 => Unsupported("8-node hexahedron", Some("hexahedra")),
-        6 => Unsupported("6-node prism", Some("prisms (wedges)")),
-        7 => Unsupported("5-node pyramid", Some("pyramids")),
-        12 => Unsupported("27-node hexahedron", Some("quadratic hexahedra")),
         13 => Unsupported("18-node prism", Some("quadratic prisms (wedges)")),
         14 => Unsupported("14-node pyramid", Some("quadratic pyramids")),
-        17 => Unsupported("20-node hexahedron", Some("quadratic hexahedra")),
         18 => Unsupported("15-node prism", Some("quadratic prisms (wedges)")),
         19 => Unsupported("13-node pyramid", Some("quadratic pyramids")),
         20 => Unsupported("9-node incomplete cubic triangle", Some("cubic triangles")),
@@ -70,8 +70,13 @@ fn gmsh_type(t: u64) -> GmshType {
 }
 
 /// What smoothlab reads of a `.msh` file, said after a refused element type.
-const GMSH_READS: &str = "smoothlab reads triangles (types 2, 9), quads (3, 16, 10) and tetrahedra (4, 11), \
-                          and takes lines (1, 8) and points (15) as fixed nodes";
+fn gmsh_reads() -> String {
+    format!(
+        "smoothlab reads triangles (types 2, 9), quads (3, 16, 10) and the volume elements {}, and takes \
+         lines (1, 8) and points (15) as fixed nodes",
+        volume_codes(|r| r.gmsh_type)
+    )
+}
 
 /// The refusal of element type `t` (given at `line`): in plain words first when the kind
 /// has a name people know (`hexahedra are not supported yet: line 17: Gmsh element type 5
@@ -82,9 +87,11 @@ fn unsupported_type(t: u64, line: usize) -> Error {
         Some(words) => Error::unsupported_kind(
             format!("{words} are not supported yet"),
             line,
-            format!("Gmsh element type {t} ({name}); {GMSH_READS}"),
+            format!("Gmsh element type {t} ({name}); {}", gmsh_reads()),
         ),
-        None => Error::unsupported(Some(line), format!("Gmsh element type {t} ({name}) is not supported: {GMSH_READS}")),
+        None => {
+            Error::unsupported(Some(line), format!("Gmsh element type {t} ({name}) is not supported: {}", gmsh_reads()))
+        }
     }
 }
 
@@ -166,10 +173,10 @@ struct Reader {
     elem_tags: Vec<u64>,
     /// Node tags of line and point elements, with their lines.
     marks: Vec<(u64, u32)>,
-    /// Tetrahedra as read (node tags, 4 or 10 each, in Gmsh's order) with their lines:
-    /// resolved when the whole file has been read.
-    tet_tags: Vec<u64>,
-    tet_lines: Vec<(u32, VolumeKind)>,
+    /// Volume elements as read (node tags, their kind's count each, in Gmsh's order) with
+    /// their lines and kinds: resolved when the whole file has been read.
+    solid_tags: Vec<u64>,
+    solid_lines: Vec<(u32, VolumeKind)>,
     /// The `fixed` view: (node tag, fixed, line).
     fixed_view: Option<Vec<(u64, bool, u32)>>,
     /// Line of the `$NodeData` section of the `fixed` view.
@@ -239,8 +246,8 @@ pub(crate) fn parse(text: &str) -> Result<MeshBuilder> {
         elements: Vec::new(),
         elem_tags: Vec::new(),
         marks: Vec::new(),
-        tet_tags: Vec::new(),
-        tet_lines: Vec::new(),
+        solid_tags: Vec::new(),
+        solid_lines: Vec::new(),
         fixed_view: None,
         fixed_view_line: None,
         nodes_line: None,
@@ -428,9 +435,9 @@ impl Reader {
             GmshType::Solid(kind) => {
                 for j in 0..kind.nodes() {
                     let (tag, _) = lex.u64(|| format!("node {} of {} (a {})", j + 1, number(), kind.name()))?;
-                    self.tet_tags.push(tag);
+                    self.solid_tags.push(tag);
                 }
-                self.tet_lines.push((line as u32, kind));
+                self.solid_lines.push((line as u32, kind));
             }
             GmshType::Marker(k) => {
                 for j in 0..k {
@@ -574,14 +581,15 @@ impl Reader {
         Ok(std::array::from_fn(|j| ids[j]))
     }
 
-    /// The node indices of `tags` (at most 10), for an element or tetrahedron `e` (`what`)
-    /// on file line `line`, or the error naming it: a tag given twice, or not defined.
-    fn resolve_nodes(&self, e: usize, tags: &[u64], line: usize, what: &str) -> Result<[u32; 10]> {
+    /// The node indices of `tags` (at most [`MAX_VOLUME_NODES`]), for a surface or volume
+    /// element `e` (`what`) on file line `line`, or the error naming it: a tag given twice,
+    /// or not defined.
+    fn resolve_nodes(&self, e: usize, tags: &[u64], line: usize, what: &str) -> Result<[u32; MAX_VOLUME_NODES]> {
         let map = self.map.as_ref().expect("resolve after the map is made");
         if let Some(t) = repeated(tags) {
             return Err(Error::element(e, Some(line), format!("node tag {t} appears twice in the {what}")));
         }
-        let mut ids = [0u32; 10];
+        let mut ids = [0u32; MAX_VOLUME_NODES];
         for (j, &tag) in tags.iter().enumerate() {
             ids[j] = map.get(tag).ok_or_else(|| {
                 Error::element(e, Some(line), format!("node tag {tag} is not defined ({})", self.tag_range()))
@@ -604,11 +612,11 @@ impl Reader {
             }
         }
         let mut at = 0;
-        for (t, &(line, kind)) in self.tet_lines.iter().enumerate() {
+        for (t, &(line, kind)) in self.solid_lines.iter().enumerate() {
             let k = kind.nodes();
-            let given = self.resolve_nodes(t, &self.tet_tags[at..at + k], line as usize, "tetrahedron")?;
+            let given = self.resolve_nodes(t, &self.solid_tags[at..at + k], line as usize, kind.name())?;
             // Gmsh's node order to ours (VTK's), by the kind's row
-            let mut ids = [0u32; 10];
+            let mut ids = [0u32; MAX_VOLUME_NODES];
             for (&g, &ours) in given.iter().zip(kind.row().gmsh_order) {
                 ids[ours] = g;
             }
@@ -701,31 +709,86 @@ mod tests {
         assert!(late.contains("line 17") && late.contains("EndBad"), "{late}");
     }
 
+    /// A 2.2 file of the 27 points of a cube's 3×3×3 lattice (spacing 1/2, x fastest; tag
+    /// `k + 1` for point `x + 3y + 9z` in half-units) and one element per `(type, points)`,
+    /// in Gmsh's node order, from line 36 on.
+    fn lattice_msh(elements: &[(u64, &[u32])]) -> String {
+        let mut t = String::from("$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n27\n");
+        for k in 0..27 {
+            t.push_str(&format!("{} {} {} {}\n", k + 1, (k % 3) as f64 / 2.0, (k / 3 % 3) as f64 / 2.0, (k / 9) as f64 / 2.0));
+        }
+        t.push_str(&format!("$EndNodes\n$Elements\n{}\n", elements.len()));
+        for (e, (ty, ids)) in elements.iter().enumerate() {
+            let tags: String = ids.iter().map(|i| format!(" {}", i + 1)).collect();
+            t.push_str(&format!("{} {ty} 2 0 1{tags}\n", e + 1));
+        }
+        t.push_str("$EndElements\n");
+        t
+    }
+
+    /// The lattice points of a hexahedron's 27 nodes in VTK's order (ours).
+    const HEX27_VTK: [u32; 27] = [0, 2, 8, 6, 18, 20, 26, 24, 1, 5, 7, 3, 19, 23, 25, 21, 9, 11, 17, 15, 12, 14, 10, 16, 4, 22, 13];
+
     #[test]
-    fn solid_kinds_other_than_tetrahedra_are_refused_in_plain_words_first() {
-        // one element of each type (its node list is never read), in 2.2 and 4.1
+    fn every_volume_kind_is_read_from_gmsh_order_and_the_rest_are_refused_in_plain_words_first() {
+        // each kind as Gmsh's documentation numbers it, and the nodes it must have in ours:
+        // the prism's first triangle turns anticlockwise seen from its second (VTK's the
+        // other way); the 20-node hexahedron's edges (0,1) (0,3) (0,4) (1,2) (1,5) (2,3)
+        // (2,6) (3,7) (4,5) (4,7) (5,6) (6,7); the 27-node one's face centres z=0, y=0,
+        // x=0, x=1, y=1, z=1, then its centre
+        let hex20_gmsh = [0, 2, 8, 6, 18, 20, 26, 24, 1, 3, 9, 5, 11, 7, 17, 15, 19, 21, 23, 25];
+        let hex27_gmsh: Vec<u32> = hex20_gmsh.iter().copied().chain([4, 10, 12, 14, 16, 22, 13]).collect();
+        let cases: [(u64, &[u32], &[u32], VolumeKind); 5] = [
+            (5, &HEX27_VTK[..8], &HEX27_VTK[..8], VolumeKind::Hex8),
+            (6, &[0, 2, 6, 18, 20, 24], &[0, 6, 2, 18, 24, 20], VolumeKind::Wedge6),
+            (7, &[0, 2, 8, 6, 22], &[0, 2, 8, 6, 22], VolumeKind::Pyramid5),
+            (17, &hex20_gmsh, &HEX27_VTK[..20], VolumeKind::Hex20),
+            (12, &hex27_gmsh, &HEX27_VTK, VolumeKind::Hex27),
+        ];
+        for (ty, gmsh, ours, kind) in cases {
+            let model = crate::model::Model::build(parse(&lattice_msh(&[(ty, gmsh)])).unwrap());
+            let Ok(crate::model::Model::Volume(m)) = model else { panic!("type {ty}: {model:?}") };
+            assert_eq!((m.element_count(), m.element_kind(0)), (1, kind), "type {ty}");
+            assert_eq!(m.element(0), ours, "type {ty}: in our (VTK's) order, not turned over");
+            assert!(!m.is_inverted(0), "type {ty}");
+        }
+        // quadratic prisms and pyramids: refused in words first, in 2.2 and 4.1 (the
+        // element's node list is never read)
         let v22 = |t: u64| format!("$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Elements\n1\n1 {t} 2 0 1 1 2 3 4\n$EndElements\n");
         let v41 = |t: u64| format!("$MeshFormat\n4.1 0 8\n$EndMeshFormat\n$Elements\n1 1 1 1\n3 1 {t} 1\n1 1 2 3 4\n$EndElements\n");
-        let cases = [
-            (5, "hexahedra are not supported yet: line 6: Gmsh element type 5 (8-node hexahedron); smoothlab reads triangles"),
-            (6, "prisms (wedges) are not supported yet: line 6: Gmsh element type 6 (6-node prism); "),
-            (7, "pyramids are not supported yet: line 6: Gmsh element type 7 (5-node pyramid); "),
-            (12, "quadratic hexahedra are not supported yet: line 6: Gmsh element type 12 (27-node hexahedron)"),
-            (17, "quadratic hexahedra are not supported yet: line 6: Gmsh element type 17 (20-node hexahedron)"),
-            (18, "quadratic prisms (wedges) are not supported yet: line 6: Gmsh element type 18 (15-node prism)"),
-            (19, "quadratic pyramids are not supported yet: line 6: Gmsh element type 19 (13-node pyramid)"),
+        let refused = [
+            (13, "quadratic prisms (wedges) are not supported yet: line 6: Gmsh element type 13 (18-node prism); smoothlab reads"),
+            (14, "quadratic pyramids are not supported yet: line 6: Gmsh element type 14 (14-node pyramid); "),
+            (18, "quadratic prisms (wedges) are not supported yet: line 6: Gmsh element type 18 (15-node prism); "),
+            (19, "quadratic pyramids are not supported yet: line 6: Gmsh element type 19 (13-node pyramid); "),
         ];
-        for (t, want) in cases {
+        for (t, want) in refused {
             let e = parse(&v22(t)).unwrap_err();
             assert!(matches!(e, Error::Unsupported { line: Some(6), .. }), "{e:?}");
             assert!(e.to_string().starts_with(want), "type {t}: {e}");
-            assert!(e.to_string().contains("tetrahedra (4, 11)"), "{e}");
+            assert!(e.to_string().contains("the volume elements 4, 5, 6, 7, 11, 12, 17, and takes lines"), "{e}");
             let e = parse(&v41(t)).unwrap_err().to_string();
             assert!(e.starts_with(want), "type {t} in 4.1: {e}");
         }
         // a type with no name people know keeps the file's terms alone, line first
         let e = parse(&v22(99)).unwrap_err().to_string();
         assert!(e.starts_with("line 6: Gmsh element type 99 (unknown type) is not supported: smoothlab reads"), "{e}");
+    }
+
+    #[test]
+    fn a_quadratic_kind_mixed_with_another_is_refused_naming_the_line() {
+        // a hexahedron and a prism beside it: one mesh
+        let b = parse(&lattice_msh(&[(5, &[0, 1, 4, 3, 9, 10, 13, 12]), (6, &[1, 2, 4, 10, 11, 13])])).unwrap();
+        let Ok(crate::model::Model::Volume(m)) = crate::model::Model::build(b) else { panic!("not a volume") };
+        assert_eq!(m.kinds(), &[VolumeKind::Hex8, VolumeKind::Wedge6]);
+        assert!(!m.is_inverted(0) && !m.is_inverted(1));
+        // a 27-node hexahedron, then a linear one at line 37
+        let text = lattice_msh(&[(12, &[0, 2, 8, 6, 18, 20, 26, 24, 1, 3, 9, 5, 11, 7, 17, 15, 19, 21, 23, 25, 4, 10, 12, 14, 16, 22, 13]), (5, &HEX27_VTK[..8])]);
+        assert_eq!(
+            parse(&text).unwrap_err().to_string(),
+            "element 1 (line 37): the file mixes 8-node and 27-node hexahedra: smoothlab mixes linear kinds, \
+             but a quadratic mesh is of one kind"
+        );
     }
 
     #[test]

@@ -180,35 +180,35 @@ export default async function ({ server, context }) {
     await p.close();
   });
 
-  await test('a hexahedral file is refused in words in the status line and the message; the previous mesh stays, named', async () => {
-    const p = await recordingPage(context, 'hexahedra');
+  await test('a file of voxels is refused in words in the status line and the message; the previous mesh stays, named', async () => {
+    const p = await recordingPage(context, 'voxels');
     await open(p, `${server.base}#sample=plate-tri`);
     const before = { s: await stats(p, 'b'), c: await canvasInfo(p, 'mesh-b') };
     const label = await p.evaluate(() => document.getElementById('sample').selectedOptions[0].textContent);
-    await p.setInputFiles('#file', path.join(BAD, 'hexa_cell.vtk'));
+    await p.setInputFiles('#file', path.join(BAD, 'voxel_cell.vtk'));
     await p.waitForFunction(() => /^Could not open/.test(document.getElementById('status').textContent), null, { timeout: TIMEOUT });
     await idle(p);
     const status = await p.textContent('#status');
-    check(status.startsWith('Could not open hexa_cell.vtk: hexahedra are not supported yet: line 17: VTK cell type 12 (hexahedron)'), `status: ${status}`);
+    check(status.startsWith('Could not open voxel_cell.vtk: voxels (hexahedra numbered as a grid) are not supported yet: line 17: VTK cell type 11 (voxel)'), `status: ${status}`);
     check(status.endsWith(` Still showing ${label}.`), `status names the mesh on screen (${label}): ${status}`);
     const msg = await p.textContent('#message');
-    check(await p.isVisible('#message') && msg.startsWith('hexahedra are not supported yet: line 17'), `message: ${msg}`);
+    check(await p.isVisible('#message') && msg.startsWith('voxels (hexahedra numbered as a grid) are not supported yet: line 17'), `message: ${msg}`);
     check((await p.inputValue('#sample')) === 'sample:plate-tri', `the menu shows the mesh on screen: ${await p.inputValue('#sample')}`);
     check(JSON.stringify(await stats(p, 'b')) === JSON.stringify(before.s), 'the statistics changed');
     check((await canvasInfo(p, 'mesh-b')).hash === before.c.hash, 'the mesh changed');
-    await shot(p, 'truth-hexahedra-refused', false);
-    // with a user's file on screen: the menu and the status name it, a Gmsh hexahedron is refused alike
+    await shot(p, 'truth-voxels-refused', false);
+    // with a user's file on screen: the menu and the status name it, a Gmsh 15-node prism is refused alike
     await p.setInputFiles('#file', path.join(DATA, 'three_tris.off'));
     await p.waitForFunction(() => /Loaded three_tris\.off/.test(document.getElementById('status').textContent), null, { timeout: TIMEOUT });
     await idle(p);
     const mine = { s: await stats(p, 'a'), c: await canvasInfo(p, 'mesh-a') };
     check(await p.evaluate(() => document.getElementById('sample').selectedOptions[0].textContent) === '(your file: three_tris.off)', 'the menu names the user\'s file');
-    await p.setInputFiles('#file', path.join(BAD, 'hexahedron.msh'));
-    await p.waitForFunction(() => /^Could not open hexahedron\.msh/.test(document.getElementById('status').textContent), null, { timeout: TIMEOUT });
+    await p.setInputFiles('#file', path.join(BAD, 'quadratic_prism.msh'));
+    await p.waitForFunction(() => /^Could not open quadratic_prism\.msh/.test(document.getElementById('status').textContent), null, { timeout: TIMEOUT });
     await idle(p);
     const s2 = await p.textContent('#status');
-    check(/^Could not open hexahedron\.msh: hexahedra are not supported yet: line 17: Gmsh element type 5 \(8-node hexahedron\).* Still showing your file three_tris\.off\.$/.test(s2), `status: ${s2}`);
-    check((await p.textContent('#message')).startsWith('hexahedra are not supported yet'), await p.textContent('#message'));
+    check(/^Could not open quadratic_prism\.msh: quadratic prisms \(wedges\) are not supported yet: line 24: Gmsh element type 18 \(15-node prism\).* Still showing your file three_tris\.off\.$/.test(s2), `status: ${s2}`);
+    check((await p.textContent('#message')).startsWith('quadratic prisms (wedges) are not supported yet'), await p.textContent('#message'));
     const shown = await p.evaluate(() => [document.getElementById('sample').value, document.getElementById('sample').selectedOptions[0].textContent]);
     check(shown[0] === '' && shown[1] === '(your file: three_tris.off)', `the menu: ${shown}`);
     check(JSON.stringify(await stats(p, 'a')) === JSON.stringify(mine.s) && (await canvasInfo(p, 'mesh-a')).hash === mine.c.hash, 'the user\'s mesh stays');
