@@ -116,7 +116,7 @@ fn projected(r: SolveResult<DVec3>, plane: &Plane) -> SolveResult {
 
 impl Mesh3d for VolumeMesh {
     const KIND: &'static str = "volume";
-    const WHAT: &'static str = "tetrahedra";
+    const WHAT: &'static str = "a volume mesh";
     const EXPORTS: &'static [Format] = &[Format::Msh, Format::Vtk];
     type Smoother = VolumeSmoother;
     type Objective = dyn Objective<CornerStar> + Send + Sync;
@@ -264,7 +264,7 @@ impl Mesh3d for VolumeMesh {
             }
         }
     }
-    const PASS_TITLES: [&'static str; 4] = ["min dihedral angle (°)", "max dihedral angle (°)", "min mean ratio", "inverted tetrahedra"];
+    const PASS_TITLES: [&'static str; 4] = ["min dihedral angle (°)", "max dihedral angle (°)", "min mean ratio", "inverted elements"];
     const FIGURE_WORDS: FigureWords =
         FigureWords { angles: "dihedral angles", min_quality: "min mean ratio", mean_quality: "average mean ratio" };
     const HISTOGRAMS: &'static [Histogram3d] = &[Histogram3d {
@@ -275,6 +275,19 @@ impl Mesh3d for VolumeMesh {
             y_label: "dihedral angles (%)",
             marks: &[REGULAR_DIHEDRAL_DEG],
             ..HistogramAxis::ANGLES
+        },
+    }, Histogram3d {
+        // each element's worst corner (`SolidStats::scaled_jacobian_histogram`): 1 for a
+        // cube's, a right wedge's or the regular tetrahedron's best corner; ≤ 0 inverted
+        title: "Scaled Jacobian, worst corner (0.1 bins)",
+        counts: |s| s.solid.as_ref().map_or(&[], |v| &v.scaled_jacobian_histogram),
+        axis: HistogramAxis {
+            lo: -1.0,
+            hi: 1.0,
+            step: 0.5,
+            x_label: "scaled Jacobian",
+            y_label: "elements (%)",
+            marks: &[0.0, 1.0],
         },
     }];
     fn write(&self, format: Format) -> Result<String> {
@@ -349,6 +362,12 @@ mod tests {
         let log = l.render_histogram(0, Side::B, c, true).unwrap();
         assert_eq!((log.width(), log.height()), (300, 240));
         assert_ne!(h.data(), log.data(), "the log scale changes the picture");
+        // the second histogram, each element's worst corner scaled Jacobian: every element
+        // counted once, a picture of its own
+        let sj = (VolumeMesh::HISTOGRAMS[1].counts)(l.full_stats(Side::B));
+        assert_eq!((sj.len(), sj.iter().sum::<u64>()), (20, l.mesh(Side::B).element_count() as u64));
+        assert_ne!(l.render_histogram(1, Side::B, c, false).unwrap().data(), h.data());
+        assert!(l.render_histogram(2, Side::B, c, false).is_err());
         let text = l.export(Side::B, Format::Vtk).unwrap();
         let Model::Volume(back) = crate::io::read_model_str(&text, Format::Vtk).unwrap() else {
             panic!("not tetrahedra")
@@ -370,7 +389,7 @@ mod tests {
         assert_eq!((outside.node, outside.nearest), (None, None), "beside the mesh: no face, no node");
         assert!(l.export_named(Side::B, "msh").unwrap().starts_with("$MeshFormat"));
         let e = l.export_named(Side::B, "obj").unwrap_err().to_string();
-        assert!(e.contains("cannot export tetrahedra as 'obj': use msh or vtk"), "{e}");
+        assert!(e.contains("cannot export a volume mesh as 'obj': use msh or vtk"), "{e}");
         assert_eq!(l.not_planar(), None);
     }
 

@@ -245,7 +245,7 @@ export default async function ({ server, context }) {
       // beside the mesh: no face, said in the tetrahedra's words
       const box = await p.locator('#mesh-a').boundingBox();
       await clickAt(p, box.x + 4, box.y + box.height / 2);
-      check((await p.inputValue('#node')) === '' && /No face of tetrahedra there/.test(await p.textContent('#pick-note')), `beside the mesh: ${await p.textContent('#pick-note')}`);
+      check((await p.inputValue('#node')) === '' && /No face of a volume mesh there/.test(await p.textContent('#pick-note')), `beside the mesh: ${await p.textContent('#pick-note')}`);
       const { node, x, y } = await pickNear(p, 'a');
       const at = await screenOf(p, 'a', node);
       check(distance(at, { x, y }) < 40, `node ${node} is drawn at ${Math.round(at.x)},${Math.round(at.y)}, the click was at ${Math.round(x)},${Math.round(y)}`);
