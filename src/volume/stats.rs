@@ -32,9 +32,27 @@ pub fn volume_stats(mesh: &VolumeMesh) -> MeshStats {
             quality: m.mean_ratio,
             condition: if m.inverted { f64::INFINITY } else { m.condition },
         });
-        for a in m.dihedral_deg {
+        for &a in m.dihedral() {
             s.angle(a.to_radians());
         }
     }
     s.finish()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_histogram_counts_each_elements_own_dihedral_angles_only() {
+        // Kuhn's tetrahedra of a cube: dihedral angles of 45°, 60° and 90° only, six each
+        let cube = crate::generate::tet_cube(2).unwrap();
+        let h = volume_stats(&cube).angle_histogram_6deg;
+        assert_eq!(h.iter().sum::<u64>(), 6 * 48);
+        assert_eq!(h[0], 0, "no angle of 0°: {h:?}");
+        // a hexahedron's 8 corners, 3 angles each: 90° everywhere on the unit cube
+        let hex = crate::generate::hex_grid(&crate::generate::HexBlock::cube(2)).unwrap();
+        let h = volume_stats(&hex).angle_histogram_6deg;
+        assert_eq!((h.iter().sum::<u64>(), h[15]), (24 * 8, 24 * 8), "{h:?}");
+    }
 }
