@@ -71,22 +71,11 @@ pub(super) fn hex_run() -> Result<&'static HexRun> {
     Ok(RUN.get_or_init(|| HexRun { stages, objective }))
 }
 
-/// The cut across z through `z` on `m`: the cut view places its plane at a fraction of
-/// the mesh's own extent, and the old objective pushes nodes out of the block (below its
-/// bottom), so each stage gets the fraction that puts the plane at the same height.
-fn cut_through(m: &VolumeMesh, z: f64) -> Cut {
-    let (lo, hi) = m.nodes().iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), p| (l.min(p.z), h.max(p.z)));
-    let at = if hi > lo { ((z - lo) / (hi - lo)).clamp(0.0, 1.0) } else { 0.5 };
-    Cut { axis: 2, at }
-}
-
 /// The picture: one row a side, the block as loaded and after each pass, cut half way up
-/// the block as loaded, each panel titled with its inverted count.
+/// z (the plane placed by the fixed boundary, so the same in every panel), each panel
+/// titled with its inverted count.
 pub(super) fn knupp_hex(c: Canvas, t: &Theme) -> Result<Vec<Pixmap>> {
     let run = hex_run()?;
-    let m0 = &run.stages[0][0];
-    let (lo, hi) = m0.nodes().iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), p| (l.min(p.z), h.max(p.z)));
-    let middle = 0.5 * (lo + hi);
     let mut out = Vec::new();
     for side in Side::BOTH {
         let counts = run.inverted(side);
@@ -94,7 +83,7 @@ pub(super) fn knupp_hex(c: Canvas, t: &Theme) -> Result<Vec<Pixmap>> {
         for (p, m) in run.stages[side.index()].iter().enumerate() {
             let when = if p == 0 { "as loaded".to_string() } else { format!("pass {p}") };
             let title = format!("{}: {name}, {when}: {} inverted", side.letter(), counts[p]);
-            out.push(cut_panel(m, cut_through(m, middle), &title, c, t)?);
+            out.push(cut_panel(m, Cut::default(), &title, c, t)?);
         }
     }
     Ok(out)
