@@ -140,7 +140,7 @@ pub enum Kind {
         out: Output,
     },
     /// Move every free node of a mesh at random (to tangle it); a surface's nodes move in
-    /// their tangent planes and back onto the surface, a tetrahedral mesh's in a ball
+    /// their tangent planes and back onto the surface, a volume mesh's in a ball
     Perturb {
         /// The mesh to perturb
         input: PathBuf,
