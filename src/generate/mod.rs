@@ -1,6 +1,7 @@
 //! Sample meshes: Freitag's `rand2d`, structured grids, Chen's plate with a hole (linear
-//! or quadratic with a curved hole), single-node star configurations, and the random
-//! perturbation that tangles a mesh.
+//! or quadratic with a curved hole), single-node star configurations, surfaces, Freitag's
+//! rand3D, a cube of tetrahedra, a block of hexahedra (straight or bent) and a mixed block
+//! of every linear volume kind, and the random perturbation that tangles a mesh.
 //!
 //! Everything here is deterministic: the seeded generators draw from [`SplitMix64`](crate::numeric::SplitMix64),
 //! whose stream is fixed by this crate, so a seed names the same mesh on every platform.
@@ -10,6 +11,8 @@
 
 mod cube;
 mod grid;
+mod hexgrid;
+mod mixed;
 mod perturb;
 mod plate;
 mod rand2d;
@@ -20,6 +23,8 @@ mod trig;
 
 pub use cube::tet_cube;
 pub use grid::{grid, random_grid, GridKind};
+pub use hexgrid::{hex_grid, HexBlock, MAX_BEND_DEG, MAX_BLOCK_CELLS};
+pub use mixed::mixed_block;
 pub use perturb::{perturb, perturb_surface, perturb_volume};
 pub use plate::{plate, PlateKind, PLATE_HALF_WIDTH, PLATE_HOLE_RADIUS};
 pub use rand2d::{rand2d, rand2d_spatial};
@@ -85,5 +90,19 @@ pub(crate) mod test_util {
                 assert!(m.fixed()[n], "boundary node {n} is free");
             }
         }
+    }
+
+    /// The invariants of a generated volume mesh: no inverted element (certain validity),
+    /// and the fixed nodes exactly those of the boundary faces.
+    pub fn assert_volume_valid(m: &crate::volume::VolumeMesh) {
+        let inverted: Vec<usize> = (0..m.element_count()).filter(|&e| m.is_inverted(e)).collect();
+        assert!(inverted.is_empty(), "inverted elements {inverted:?}");
+        let mut on_boundary = vec![false; m.node_count()];
+        for f in m.boundary_faces() {
+            for &n in f.nodes() {
+                on_boundary[n as usize] = true;
+            }
+        }
+        assert_eq!(on_boundary.as_slice(), m.fixed(), "fixed nodes are the boundary's");
     }
 }

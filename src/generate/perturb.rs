@@ -27,11 +27,15 @@ pub fn perturb(mesh: &Mesh, amount: f64, seed: u64) -> Result<Mesh> {
     Ok(out)
 }
 
-/// A copy of a tetrahedral mesh with every free node moved by a seeded random offset
-/// uniformly distributed in the ball of radius `amount × mean edge length` (mid-edge nodes
-/// follow their corners); fixed nodes never move. A structured cube perturbed by 0.5–1
-/// is Knupp's kind of tangled test mesh (Knupp 1999, §4: "randomly perturbed interior
-/// nodes"). Seeded as [`perturb`]: the free nodes draw in node order from [`SplitMix64`].
+/// A copy of a volume mesh (any kinds: tetrahedra, hexahedra, wedges, pyramids, mixed,
+/// linear or quadratic) with every free node moved by a seeded random offset uniformly
+/// distributed in the ball of radius `amount × mean edge length` (the mean over the
+/// elements' edges, [`VolumeMesh::mean_edge_length`](crate::volume::VolumeMesh::mean_edge_length));
+/// the nodes that follow corners (mid-edge, face and centre nodes) follow them, and fixed
+/// nodes never move. A structured cube of tetrahedra or block of hexahedra perturbed by
+/// 0.5–1 is Knupp's kind of tangled test mesh (Knupp 1999, §4: "randomly perturbed
+/// interior nodes"). Seeded as [`perturb`]: the free nodes draw in node order from
+/// [`SplitMix64`].
 pub fn perturb_volume(mesh: &crate::volume::VolumeMesh, amount: f64, seed: u64) -> Result<crate::volume::VolumeMesh> {
     let radius = perturbation_radius(amount, mesh.mean_edge_length())?;
     let mut out = mesh.clone();
@@ -75,7 +79,8 @@ pub(crate) fn perturbation_radius(amount: f64, mean_edge_length: f64) -> Result<
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::generate::{grid, plate, rand2d, GridKind, PlateKind};
+    use crate::generate::{grid, hex_grid, mixed_block, plate, rand2d, GridKind, HexBlock, PlateKind};
+    use crate::volume::VolumeMesh;
     use crate::mesh::{NodeRole, NONE};
     use crate::quality::mesh_stats;
     use proptest::prelude::*;
@@ -154,6 +159,58 @@ mod tests {
         let m = grid(2, 2, GridKind::Tri).unwrap();
         for a in [-0.1, f64::NAN, f64::INFINITY] {
             assert!(matches!(perturb(&m, a, 1), Err(Error::Invalid(_))), "{a}");
+        }
+    }
+
+    /// Fixed nodes of a volume mesh stay bit for bit, free ones move at most
+    /// `amount × mean edge`, followers sit at the mean of their corners.
+    fn check_volume_moves(before: &VolumeMesh, after: &VolumeMesh, amount: f64) {
+        let r = amount * before.mean_edge_length();
+        for n in 0..before.node_count() {
+            let (p, q) = (before.nodes()[n], after.nodes()[n]);
+            if before.fixed()[n] {
+                assert_eq!(p, q, "fixed node {n} moved");
+            } else if before.is_free(n) {
+                assert!(p.distance(q) <= r * (1.0 + 1e-12), "node {n} moved {} > {r}", p.distance(q));
+            } else {
+                let ps = after.parents(n);
+                let mean = ps.iter().map(|&c| after.nodes()[c as usize]).sum::<glam::DVec3>() / ps.len() as f64;
+                assert!(q.distance(mean) < 1e-12, "follower {n} is off its corners' mean");
+            }
+        }
+    }
+
+    #[test]
+    fn a_hex_grid_perturbed_by_0_6_edge_lengths_tangles_and_keeps_its_boundary() {
+        let m = hex_grid(&HexBlock::cube(6)).unwrap();
+        let p = perturb_volume(&m, 0.6, 1).unwrap();
+        check_volume_moves(&m, &p, 0.6);
+        let moved = (0..m.node_count()).filter(|&n| m.nodes()[n] != p.nodes()[n]).count();
+        assert_eq!(moved, m.free_count());
+        assert_eq!(m.free_count(), 125);
+        let inverted = (0..p.element_count()).filter(|&e| p.is_inverted(e)).count();
+        assert!(inverted > 0, "0.6 edge lengths inverts hexahedra");
+        let small = perturb_volume(&m, 0.05, 1).unwrap();
+        assert_eq!((0..small.element_count()).filter(|&e| small.is_inverted(e)).count(), 0);
+        // seeded: the same seed, the same mesh; another seed moves every free node elsewhere
+        assert_eq!(perturb_volume(&m, 0.6, 1).unwrap().nodes(), p.nodes());
+        let q = perturb_volume(&m, 0.6, 2).unwrap();
+        assert_eq!((0..m.node_count()).filter(|&n| q.nodes()[n] != p.nodes()[n]).count(), m.free_count());
+        assert_eq!(perturb_volume(&m, 0.0, 5).unwrap().nodes(), m.nodes());
+        for a in [-0.1, f64::NAN, f64::INFINITY] {
+            assert!(matches!(perturb_volume(&m, a, 1), Err(Error::Invalid(_))), "{a}");
+        }
+    }
+
+    #[test]
+    fn every_kind_is_perturbed_its_followers_following() {
+        let hex27 = hex_grid(&HexBlock::cube(3)).unwrap().to_quadratic(false).unwrap();
+        let hex20 = hex_grid(&HexBlock::cube(3).bent(60.0)).unwrap().to_quadratic(true).unwrap();
+        let mixed = mixed_block(&HexBlock::cube(3)).unwrap();
+        for m in [hex27, hex20, mixed] {
+            let p = perturb_volume(&m, 0.4, 7).unwrap();
+            check_volume_moves(&m, &p, 0.4);
+            assert!((0..m.node_count()).filter(|&n| m.is_free(n)).all(|n| m.nodes()[n] != p.nodes()[n]));
         }
     }
 

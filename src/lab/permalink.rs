@@ -39,7 +39,7 @@ use crate::smooth::{Order, Strategy};
 
 /// The sample names a permalink may carry: every sample of the page's gallery (its sample
 /// menu: [`Sample::GALLERY`](super::sample::Sample::GALLERY), planar, surfaces,
-/// tetrahedra and the large ones alike) by its name ([`Sample::name`](super::sample::Sample::name),
+/// volumes and the large ones alike) by its name ([`Sample::name`](super::sample::Sample::name),
 /// kebab-case), then one name per Gmsh file the page ships (see [`GMSH_FILES`] and
 /// [`gmsh_sample_name`]). This is the one rule for which samples a link names: the page's
 /// Copy link, `#sample=NAME` and the tour's figures (the command-line tool's `--figure`)
@@ -66,6 +66,8 @@ pub const SAMPLES: &[&str] = &[
     "cylinder-capped",
     "torus-quadratic-tangled",
     "rand3d",
+    "hex-tangled",
+    "mixed-tangled",
     "rand2d-million",
     "gmsh-plate-hole-tri",
     "gmsh-bracket-quad",
@@ -628,7 +630,7 @@ mod tests {
             assert_eq!(decode(&back).unwrap(), st);
         }
         // the surfaces and the tetrahedra by name (they once were left out of links)
-        for name in ["sphere-tangled", "torus-tangled", "cylinder-capped", "torus-quadratic-tangled", "rand3d", "rand2d-large", "rand2d-million"] {
+        for name in ["sphere-tangled", "torus-tangled", "cylinder-capped", "torus-quadratic-tangled", "rand3d", "hex-tangled", "mixed-tangled", "rand2d-large", "rand2d-million"] {
             assert_eq!(decode(&format!("sample={name}")).unwrap().sample.as_deref(), Some(name));
         }
     }

@@ -10,7 +10,7 @@ use crate::generate::{
     QuadraticStar, StarKind, SurfaceKind, SurfaceShape,
 };
 use crate::mesh::Mesh;
-use crate::generate::perturb_surface;
+use crate::generate::{hex_grid, mixed_block, perturb_surface, perturb_volume, HexBlock};
 use crate::model::Model;
 
 /// Seed of every generated sample (the page's perturb button takes its own seed).
@@ -38,6 +38,20 @@ pub const TORUS_RESOLUTION: usize = 2;
 /// max-min objective with Chen's rules leave 10 of them inverted where the new objective
 /// untangles all in the first pass (the tour's `chen-18`); at 0.8 both untangle it.
 pub const QUADRATIC_TANGLE_AMOUNT: f64 = 1.0;
+/// Cells a side of the tangled block of hexahedra ([`Sample::HexTangled`]): 6³ = 216
+/// hexahedra, 125 free nodes.
+pub const HEX_CELLS: usize = 6;
+/// Perturbation of the block of hexahedra, in mean edge lengths (Knupp 1999's test grids
+/// are perturbed by 0.5–1): at 1.0 (seed 1) 128 of its 216 hexahedra are inverted, and 3
+/// passes of the old max-min objective with Chen's rules leave 40 inverted where the new
+/// one untangles every one in the first pass (the tour's `knupp-hex`).
+pub const HEX_TANGLE_AMOUNT: f64 = 1.0;
+/// Cells a side of the mixed block ([`Sample::MixedTangled`]): 4³ cells as 98 elements of
+/// the four linear kinds.
+pub const MIXED_CELLS: usize = 4;
+/// Perturbation of the mixed block, in mean edge lengths: a little, so that a few
+/// elements (5 of 98 at seed 1) are inverted and one pass untangles them.
+pub const MIXED_TANGLE_AMOUNT: f64 = 0.6;
 
 /// A sample mesh made in the browser by the core's generators.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
@@ -89,15 +103,23 @@ pub enum Sample {
     /// Freitag (1997) Table 2: rand3D, 1086 points in the unit cube in about 5900
     /// tetrahedra ([`crate::generate::rand3d`]).
     Rand3d,
+    /// Knupp (1999)'s kind of tangled test grid in 3D: a block of [`HEX_CELLS`]³
+    /// hexahedra, every free node moved by up to [`HEX_TANGLE_AMOUNT`] mean edge lengths
+    /// ([`crate::generate::hex_grid`], [`perturb_volume`]).
+    HexTangled,
+    /// Every linear volume kind in one conforming mesh — hexahedra, a column of wedges, a
+    /// row of pyramids and tetrahedra ([`crate::generate::mixed_block`], [`MIXED_CELLS`]³
+    /// cells) — tangled a little ([`MIXED_TANGLE_AMOUNT`]).
+    MixedTangled,
     /// rand2d with 1 000 000 nodes (about 2 million triangles): the page at its limit
     /// (last in the gallery, its title says it is slow).
     Rand2dMillion,
 }
 
 impl Sample {
-    /// The gallery: [`Sample::ALL`], the surfaces, the tetrahedra, then the 1M-node sample.
-    pub const GALLERY: [Sample; 22] = {
-        let mut g = [Sample::Rand2dMillion; 22];
+    /// The gallery: [`Sample::ALL`], the surfaces, the volumes, then the 1M-node sample.
+    pub const GALLERY: [Sample; 24] = {
+        let mut g = [Sample::Rand2dMillion; 24];
         let mut i = 0;
         while i < Sample::ALL.len() {
             g[i] = Sample::ALL[i];
@@ -108,9 +130,16 @@ impl Sample {
             g[i + j] = Sample::SURFACES[j];
             j += 1;
         }
-        g[i + j] = Sample::Rand3d;
+        let mut k = 0;
+        while k < Sample::VOLUMES.len() {
+            g[i + j + k] = Sample::VOLUMES[k];
+            k += 1;
+        }
         g
     };
+
+    /// The volume samples, in gallery order: tetrahedra, hexahedra, every kind mixed.
+    pub const VOLUMES: [Sample; 3] = [Sample::Rand3d, Sample::HexTangled, Sample::MixedTangled];
 
     /// The surface samples, in gallery order.
     pub const SURFACES: [Sample; 4] = [Sample::SphereTangled, Sample::TorusTangled, Sample::CylinderCapped, Sample::TorusQuadraticTangled];
@@ -166,6 +195,8 @@ impl Sample {
             Sample::CylinderCapped => "Surface: capped cylinder, perturbed quads",
             Sample::TorusQuadraticTangled => "Surface: tangled torus, quadratic mixed",
             Sample::Rand3d => "Tetrahedra: rand3D (Freitag), 1086 nodes",
+            Sample::HexTangled => "Hexahedra: tangled block (Knupp), 6³ cells",
+            Sample::MixedTangled => "Mixed solids: hexahedra, wedges, pyramids, tetrahedra, tangled",
             Sample::Rand2dMillion => "rand2D, 1M nodes (large: slow, ~350 MB of memory)",
         }
     }
@@ -195,6 +226,8 @@ impl Sample {
             Sample::CylinderCapped => "cylinder-capped",
             Sample::TorusQuadraticTangled => "torus-quadratic-tangled",
             Sample::Rand3d => "rand3d",
+            Sample::HexTangled => "hex-tangled",
+            Sample::MixedTangled => "mixed-tangled",
             Sample::Rand2dMillion => "rand2d-million",
         }
     }
@@ -205,7 +238,8 @@ impl Sample {
         super::permalink::SAMPLES.contains(&self.name())
     }
 
-    /// Makes the mesh: a planar one, or a surface in 3D ([`Sample::SURFACES`]).
+    /// Makes the mesh: a planar one, a surface in 3D ([`Sample::SURFACES`]) or a volume
+    /// mesh ([`Sample::VOLUMES`]).
     pub fn model(self) -> Result<Model> {
         let tangled = |s| perturb_surface(&s, TANGLE_AMOUNT, SAMPLE_SEED);
         let r = SURFACE_RESOLUTION;
@@ -223,6 +257,16 @@ impl Sample {
                 SAMPLE_SEED,
             )?),
             Sample::Rand3d => Model::Volume(crate::generate::rand3d(crate::generate::RAND3D_POINTS, SAMPLE_SEED)?),
+            Sample::HexTangled => Model::Volume(perturb_volume(
+                &hex_grid(&HexBlock::cube(HEX_CELLS))?,
+                HEX_TANGLE_AMOUNT,
+                SAMPLE_SEED,
+            )?),
+            Sample::MixedTangled => Model::Volume(perturb_volume(
+                &mixed_block(&HexBlock::cube(MIXED_CELLS))?,
+                MIXED_TANGLE_AMOUNT,
+                SAMPLE_SEED,
+            )?),
             planar => Model::Planar(planar.generate()?),
         })
     }
@@ -252,8 +296,8 @@ impl Sample {
             Sample::SphereTangled | Sample::TorusTangled | Sample::CylinderCapped | Sample::TorusQuadraticTangled => {
                 Err(Error::invalid(format!("the sample '{}' is a surface in 3D, not a planar mesh", self.title())))
             }
-            Sample::Rand3d => {
-                Err(Error::invalid(format!("the sample '{}' is made of tetrahedra, not a planar mesh", self.title())))
+            Sample::Rand3d | Sample::HexTangled | Sample::MixedTangled => {
+                Err(Error::invalid(format!("the sample '{}' is a volume mesh, not a planar mesh", self.title())))
             }
         }
     }
@@ -296,6 +340,37 @@ mod tests {
         assert!(matches!(Sample::PlateTri.model().unwrap(), Model::Planar(_)));
     }
 
+    /// The volume sample's mesh and its inverted elements.
+    fn volume(s: Sample) -> (crate::volume::VolumeMesh, usize) {
+        let Model::Volume(m) = s.model().unwrap() else { panic!("{s:?} is not a volume mesh") };
+        let inverted = (0..m.element_count()).filter(|&e| m.is_inverted(e)).count();
+        (m, inverted)
+    }
+
+    #[test]
+    fn the_tangled_hexahedra_are_knupps_block_as_their_words_say() {
+        let (m, inverted) = volume(Sample::HexTangled);
+        assert_eq!(m.kinds(), &[crate::mesh::VolumeKind::Hex8]);
+        assert_eq!((m.element_count(), m.node_count(), m.free_count()), (216, 343, 125));
+        assert!(Sample::HexTangled.title().contains("6³") && HEX_CELLS == 6);
+        assert_eq!(inverted, 128, "HEX_TANGLE_AMOUNT's words");
+        let e = Sample::HexTangled.generate().unwrap_err().to_string();
+        assert!(e.contains("a volume mesh"), "{e}");
+    }
+
+    #[test]
+    fn the_mixed_sample_has_every_linear_kind_a_few_inverted() {
+        use crate::mesh::VolumeKind;
+        let (m, inverted) = volume(Sample::MixedTangled);
+        assert_eq!(m.kinds(), &[VolumeKind::Tet4, VolumeKind::Hex8, VolumeKind::Wedge6, VolumeKind::Pyramid5]);
+        assert_eq!(m.element_count(), 98);
+        assert_eq!(inverted, 5, "MIXED_TANGLE_AMOUNT's words");
+        let title = Sample::MixedTangled.title();
+        for family in ["hexahedra", "wedges", "pyramids", "tetrahedra"] {
+            assert!(title.contains(family), "{title}");
+        }
+    }
+
     #[test]
     fn titles_are_distinct() {
         let titles: std::collections::HashSet<_> = Sample::GALLERY.iter().map(|s| s.title()).collect();
@@ -303,16 +378,16 @@ mod tests {
     }
 
     #[test]
-    fn the_gallery_is_every_linkable_sample_the_surfaces_the_tetrahedra_then_the_million() {
+    fn the_gallery_is_every_linkable_sample_the_surfaces_the_volumes_then_the_million() {
         let n = Sample::ALL.len();
         assert_eq!(&Sample::GALLERY[..n], &Sample::ALL);
         let k = Sample::SURFACES.len();
         assert_eq!(&Sample::GALLERY[n..n + k], &Sample::SURFACES);
-        assert_eq!(Sample::GALLERY[n + k..], [Sample::Rand3d, Sample::Rand2dMillion]);
+        assert_eq!(Sample::GALLERY[n + k..], [Sample::Rand3d, Sample::HexTangled, Sample::MixedTangled, Sample::Rand2dMillion]);
         assert!(Sample::GALLERY.iter().all(|s| s.linkable()), "a link names every sample of the gallery");
         let Model::Volume(v) = Sample::Rand3d.model().unwrap() else { panic!("rand3d is tetrahedral") };
         assert_eq!(v.node_count(), crate::generate::RAND3D_POINTS);
-        assert!(Sample::Rand3d.generate().unwrap_err().to_string().contains("tetrahedra"));
+        assert!(Sample::Rand3d.generate().unwrap_err().to_string().contains("a volume mesh"));
         assert!(Sample::Rand2dMillion.title().contains("1M") && Sample::Rand2dMillion.title().contains("slow"));
         assert_eq!(serde_json::to_string(&Sample::Rand2dMillion).unwrap(), "\"rand2d-million\"");
         assert_eq!(MILLION_INTERIOR + 4 * MILLION_PER_SIDE, super::super::MAX_NODES);

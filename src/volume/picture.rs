@@ -15,7 +15,9 @@ use crate::quality::tet::mean_ratio;
 use crate::render::{render_surface, Faces, Projection, SurfaceView};
 
 /// Which plane cuts the mesh: normal to `axis` (0 = x, 1 = y, 2 = z), at the fraction
-/// `at` of the mesh's extent along it.
+/// `at` of the extent along it of the mesh's fixed nodes (its boundary, which smoothing
+/// does not move: a free node thrown out of the mesh does not move the plane; every node
+/// when none is fixed).
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 pub struct Cut {
     pub axis: usize,
@@ -82,8 +84,13 @@ impl VolumeMesh {
     /// above it along the axis when the view looks up the axis, at or below otherwise).
     pub fn cut_faces(&self, cut: Cut, forward: DVec3) -> CutFaces {
         let axis = cut.axis.min(2);
-        let (lo, hi) =
-            self.nodes().iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), p| (l.min(p[axis]), h.max(p[axis])));
+        let any_fixed = self.fixed().contains(&true);
+        let (lo, hi) = self
+            .nodes()
+            .iter()
+            .zip(self.fixed())
+            .filter(|&(_, &f)| f || !any_fixed)
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), (p, _)| (l.min(p[axis]), h.max(p[axis])));
         let level = lo + cut.at.clamp(0.0, 1.0) * (hi - lo);
         let up_the_axis = forward[axis] > 0.0;
         let kept: Vec<bool> = (0..self.element_count())
@@ -199,5 +206,17 @@ mod tests {
         let t = perturb_volume(&m, 0.9, 3).unwrap();
         let cut = t.cut_faces(Cut { axis: 1, at: 0.5 }, DOWN);
         assert!(cut.inverted.iter().zip(&cut.faded).any(|(&i, &f)| i && !f));
+    }
+
+    #[test]
+    fn the_plane_stays_where_the_boundary_puts_it_when_a_free_node_leaves_the_mesh() {
+        let m = tet_cube(4).unwrap();
+        let half = m.cut_faces(Cut { axis: 2, at: 0.5 }, DOWN).kept;
+        let mut far = m.clone();
+        let n = (0..m.node_count()).find(|&n| m.is_free(n) && m.nodes()[n].z == 0.25).unwrap();
+        far.nodes_mut()[n].z = -20.0;
+        // the plane is still at z = ½: only the tetrahedra at the thrown node change sides
+        let kept = far.cut_faces(Cut { axis: 2, at: 0.5 }, DOWN).kept;
+        assert!(kept >= half && kept <= half + far.node_tets(n).len(), "{kept} of {half}");
     }
 }

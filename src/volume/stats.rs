@@ -44,3 +44,21 @@ pub fn volume_stats(mesh: &VolumeMesh) -> MeshStats {
     }
     s.finish()
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_histogram_counts_each_elements_own_dihedral_angles_only() {
+        // Kuhn's tetrahedra of a cube: dihedral angles of 45°, 60° and 90° only, six each
+        let cube = crate::generate::tet_cube(2).unwrap();
+        let h = volume_stats(&cube).angle_histogram_6deg;
+        assert_eq!(h.iter().sum::<u64>(), 6 * 48);
+        assert_eq!(h[0], 0, "no angle of 0°: {h:?}");
+        // a hexahedron's 8 corners, 3 angles each: 90° everywhere on the unit cube
+        let hex = crate::generate::hex_grid(&crate::generate::HexBlock::cube(2)).unwrap();
+        let h = volume_stats(&hex).angle_histogram_6deg;
+        assert_eq!((h.iter().sum::<u64>(), h[15]), (24 * 8, 24 * 8), "{h:?}");
+    }
+}

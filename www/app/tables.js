@@ -20,20 +20,19 @@ export const STAT_ROWS = [
   ['passes', 'Passes', (s) => s.passes],
   ['time', 'Smoothing time', (s) => s.time_ms, null, (v) => `${num(v, 1)} ms`],
 ];
-/** A tetrahedral mesh's tooltips for the rows whose meaning changes in 3D. */
+/** A volume mesh's tooltips for the rows whose meaning changes in 3D (tetrahedra,
+ * hexahedra, wedges and pyramids alike: each measured at its corners, Knupp's view). */
 export const VOLUME_HELP = {
-  inverted: 'Tetrahedra of negative volume (their corners in the wrong order): a tangled mesh. Fewer is better.',
-  min_angle: 'The smallest dihedral angle (the angle between two faces) of any tetrahedron. Larger is better.',
-  max_angle: 'The largest dihedral angle of any tetrahedron. Smaller is better.',
-  min_quality: 'The worst mean ratio of a tetrahedron (1 for the regular tetrahedron, below 0 inverted). Larger is better.',
-  mean_quality: 'The mean of the mean ratio over the tetrahedra.',
+  inverted: 'Elements inverted somewhere: a tetrahedron of negative volume; a hexahedron, wedge or pyramid whose Jacobian determinant is zero or negative anywhere inside, decided for certain (a hexahedron can be inverted inside with its eight corners positive). A tangled mesh. Fewer is better.',
+  min_angle: 'The smallest dihedral angle (the angle between two faces) of any tetrahedron, or at the edges of any corner of the other kinds. Larger is better.',
+  max_angle: 'The largest dihedral angle, as the smallest. Smaller is better.',
+  min_quality: "The worst mean ratio of an element (a tetrahedron's, the mean over the corners of the other kinds; 1 for the regular tetrahedron or the cube, below 0 inverted). Larger is better.",
+  mean_quality: 'The mean of the mean ratio over the elements.',
   small_angles: "The share of dihedral angles under 18° (Freitag's Fig. 3 view).",
-  max_condition: "The worst condition number κ = ‖T‖‖T⁻¹‖ (Frobenius norms) of a tetrahedron's Jacobian T, weighted by the regular tetrahedron (Knupp): 3 at best (the regular tetrahedron), growing without bound as it degenerates, ∞ when it is inverted. Smaller is better.",
+  max_condition: "The worst condition number κ = ‖T‖‖T⁻¹‖ (Frobenius norms) of an element's corner Jacobian T, weighted by its kind's ideal corner (Knupp; the regular tetrahedron's, the cube's): 3 at best, growing without bound as the element degenerates, ∞ when it is inverted. Smaller is better.",
 };
-/** A tetrahedral mesh's names for the rows whose meaning changes in 3D. */
+/** A volume mesh's names for the rows whose meaning changes in 3D. */
 export const VOLUME_LABELS = {
-  elements: 'Tetrahedra',
-  inverted: 'Inverted tetrahedra',
   min_angle: 'Min dihedral angle',
   max_angle: 'Max dihedral angle',
   min_quality: 'Min mean ratio',

@@ -39,6 +39,18 @@ pub fn msh_version_parser() -> impl clap::builder::TypedValueParser<Value = MshV
     named(&MshVersion::ALL, MshVersion::name, MshVersion::describe)
 }
 
+/// A value per axis, `V` (the same on x, y and z) or `VX,VY,VZ`: `--cells 8`,
+/// `--cells 8,4,2`, `--size 2,1,1`.
+pub fn per_axis<T: std::str::FromStr + Copy>(s: &str) -> Result<[T; 3], String> {
+    let parts: Vec<&str> = s.split(',').map(str::trim).collect();
+    let parse = |p: &str| p.parse::<T>().map_err(|_| format!("'{p}' is not a number of the kind wanted"));
+    match parts.as_slice() {
+        [one] => Ok([parse(one)?; 3]),
+        [x, y, z] => Ok([parse(x)?, parse(y)?, parse(z)?]),
+        _ => Err(format!("'{s}': give one value for every axis, or three separated by commas (x,y,z)")),
+    }
+}
+
 /// `n` and the noun in its number: "1 tetrahedron", "6 tetrahedra", "0 quads".
 pub fn count(n: usize, one: &str, many: &str) -> String {
     format!("{n} {}", if n == 1 { one } else { many })

@@ -4,8 +4,8 @@ use std::path::PathBuf;
 
 use clap::{Args, Subcommand};
 
-use crate::args::{msh_version_parser, named};
-use smoothlab::generate::{self, GridKind, PlateKind, StarKind, SurfaceKind, SurfaceShape};
+use crate::args::{msh_version_parser, named, per_axis};
+use smoothlab::generate::{self, GridKind, HexBlock, PlateKind, StarKind, SurfaceKind, SurfaceShape};
 use smoothlab::generate::perturb_surface;
 use smoothlab::model::Model;
 use smoothlab::Mesh;
@@ -114,8 +114,33 @@ pub enum Kind {
         #[command(flatten)]
         out: Output,
     },
+    /// A block of hexahedra, straight or bent about an axis parallel to y like a curved
+    /// beam (the bottom face keeps its length on an arc of the bend's angle; every element
+    /// stays valid); perturb it to tangle it (Knupp 1999's test grids)
+    Hexgrid {
+        #[command(flatten)]
+        block: BlockArgs,
+        /// 1 for 8-node hexahedra, 2 for 27-node ones (a node at the middle of every edge,
+        /// face and cell)
+        #[arg(long, default_value_t = 1)]
+        order: u8,
+        /// With --order 2: 20-node hexahedra (mid-edge nodes only)
+        #[arg(long)]
+        serendipity: bool,
+        #[command(flatten)]
+        out: Output,
+    },
+    /// A block of hexahedra with one column of cells cut into wedges and the row of cells
+    /// along its bottom front edge cut into pyramids round each cell's centre, those on the
+    /// boundary into two tetrahedra: every linear kind in one conforming mesh
+    Mixed {
+        #[command(flatten)]
+        block: BlockArgs,
+        #[command(flatten)]
+        out: Output,
+    },
     /// Move every free node of a mesh at random (to tangle it); a surface's nodes move in
-    /// their tangent planes and back onto the surface, a tetrahedral mesh's in a ball
+    /// their tangent planes and back onto the surface, a volume mesh's in a ball
     Perturb {
         /// The mesh to perturb
         input: PathBuf,
@@ -128,6 +153,27 @@ pub enum Kind {
         #[command(flatten)]
         out: Output,
     },
+}
+
+/// The options of the blocks of hexahedra (and of the mixed block cut from one).
+#[derive(Args)]
+pub struct BlockArgs {
+    /// Cells along each axis: N, or NX,NY,NZ
+    #[arg(long, value_parser = per_axis::<usize>, default_value = "8")]
+    cells: [usize; 3],
+    /// The straight block's size: L (a cube), or LX,LY,LZ
+    #[arg(long, value_parser = per_axis::<f64>, default_value = "1")]
+    size: [f64; 3],
+    /// Bend the block by this angle, degrees (0 to 270): about the axis parallel to y
+    /// through (0, ·, −R), R = LX/angle
+    #[arg(long, default_value_t = 0.0)]
+    bend: f64,
+}
+
+impl BlockArgs {
+    fn block(&self) -> HexBlock {
+        HexBlock { cells: self.cells, size: self.size.into(), bend: self.bend }
+    }
 }
 
 /// The options of the surface samples.
@@ -182,6 +228,20 @@ pub fn run(a: GenerateArgs) -> Result<(), String> {
         },
         Kind::Rand3d { points, seed, out } => {
             let mesh = generate::rand3d(points, seed).map_err(|e| e.to_string())?;
+            return write_model(&Model::Volume(mesh), &out.output, out.msh_version);
+        }
+        Kind::Hexgrid { block, order, serendipity, out } => {
+            let grid = generate::hex_grid(&block.block()).map_err(|e| e.to_string())?;
+            let grid = match (order, serendipity) {
+                (1, false) => grid,
+                (1, true) => return Err("--serendipity makes 20-node hexahedra: give it with --order 2".into()),
+                (2, s) => grid.to_quadratic(s).map_err(|e| e.to_string())?,
+                (o, _) => return Err(format!("--order {o}: give 1 (8-node hexahedra) or 2 (27-node; 20-node with --serendipity)")),
+            };
+            return write_model(&Model::Volume(grid), &out.output, out.msh_version);
+        }
+        Kind::Mixed { block, out } => {
+            let mesh = generate::mixed_block(&block.block()).map_err(|e| e.to_string())?;
             return write_model(&Model::Volume(mesh), &out.output, out.msh_version);
         }
         Kind::Cube { cells, order, out } => {

@@ -20,7 +20,7 @@ struct Cli {
 
 #[derive(Subcommand)]
 enum Command {
-    /// Write a sample mesh (rand2d, grid, plate, star) or perturb one.
+    /// Write a sample mesh (planar, surface or volume) or perturb one.
     Generate(generate::GenerateArgs),
     /// Print the quality statistics of a mesh.
     Stats(stats::StatsArgs),

@@ -65,8 +65,8 @@ pub struct RenderArgs {
     #[arg(required_unless_present = "figure", conflicts_with = "figure")]
     pub input: Option<PathBuf>,
     /// A figure of the papers, as the page's tour shows it: chen-2, chen-6, chen-9, chen-10,
-    /// chen-11, chen-13, chen-16, chen-20, freitag-t1, freitag-3, knupp-1 (draws its own
-    /// state; --size and --dpr apply)
+    /// chen-11, chen-13, chen-16, chen-18, chen-20, freitag-t1, freitag-t2, freitag-3, knupp-1,
+    /// knupp-hex (draws its own state; --size and --dpr apply)
     #[arg(long)]
     pub figure: Option<String>,
     /// Output PNG

@@ -36,7 +36,7 @@ use super::tables::{freitag_histogram, freitag_t2, table_picture};
 /// The size a figure's picture is drawn at by default, CSS pixels.
 pub fn default_size(name: &str) -> (u32, u32) {
     match name {
-        "chen-13" => (1400, 760),
+        "chen-13" | "knupp-hex" => (1400, 760),
         "chen-9" | "chen-10" | "chen-11" | "chen-20" => (1100, 560),
         "freitag-t1" => (1100, 360),
         "freitag-t2" => (1200, 760),
@@ -66,10 +66,15 @@ pub fn render(name: &str, c: Canvas, theme: &Theme) -> Result<Pixmap> {
         "chen-18" => chen_18(part(c, 3, 1, t), t)?,
         "freitag-3" => vec![freitag_histogram(part(c, 1, 1, t), t)?],
         "knupp-1" => knupp_1(part(c, 4, 1, t), t)?,
+        "knupp-hex" => {
+            let cols = super::knupp_hex::columns()? as u32;
+            super::knupp_hex::knupp_hex(part(c, cols, 2, t), t)?
+        }
         _ => return Err(Error::invalid(format!("figure {name} has no picture"))),
     };
     let cols = match fig.name {
         "chen-13" => 4,
+        "knupp-hex" => parts.len() / 2,
         _ => parts.len(),
     };
     render_titled(&parts, cols, &title, c.dpr, t).ok_or_else(|| Error::invalid("cannot allocate the figure"))

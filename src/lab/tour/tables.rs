@@ -377,11 +377,11 @@ pub fn freitag3d_row(i: usize) -> Result<Freitag3dRow> {
     })
 }
 
-/// A tetrahedral mesh cut half way up z, drawn by the 3D view with its title.
-fn cut_panel(mesh: &crate::volume::VolumeMesh, title: &str, c: Canvas, t: &Theme) -> Result<Pixmap> {
+/// A volume mesh cut by `cut`, drawn by the 3D view with its title.
+pub(super) fn cut_panel(mesh: &crate::volume::VolumeMesh, cut: crate::volume::Cut, title: &str, c: Canvas, t: &Theme) -> Result<Pixmap> {
     let mut pm = pixmap(c.w, c.h)?;
     let view = crate::render::SurfaceView { dpr: c.dpr, title: Some(title.to_string()), theme: *t, ..crate::render::SurfaceView::default() };
-    mesh.render_cut(&mut pm, crate::volume::Cut::default(), &view);
+    mesh.render_cut(&mut pm, cut, &view);
     Ok(pm)
 }
 
@@ -391,12 +391,12 @@ fn cut_panel(mesh: &crate::volume::VolumeMesh, title: &str, c: Canvas, t: &Theme
 pub(super) fn freitag_t2(c: Canvas, t: &Theme) -> Result<Pixmap> {
     let m0 = rand3d_seed1()?;
     let top = Canvas { w: c.w / 3, h: (c.h as f32 * 0.52) as u32, dpr: c.dpr };
-    let mut parts = vec![cut_panel(&m0, "rand3D as generated, cut at z = 0.5", top, t)?];
+    let mut parts = vec![cut_panel(&m0, crate::volume::Cut::default(), "rand3D as generated, cut at z = 0.5", top, t)?];
     for (kind, title) in [(ObjectiveKind::Sine, "A: opt, sine, 3 passes"), (ObjectiveKind::New, "B: opt, new, 3 passes")] {
         let mut m = m0.clone();
         let o = SmoothOptions::default().with_strategy(Strategy::Opt).with_order(Order::Input).with_smart_measure(Measure::MinSine);
         crate::volume::smooth_volume(&mut m, crate::objective::tet_objective(kind)?.as_ref(), o, 3, &|| 0.0)?;
-        parts.push(cut_panel(&m, title, top, t)?);
+        parts.push(cut_panel(&m, crate::volume::Cut::default(), title, top, t)?);
     }
     let table = table_picture("freitag-t2", Canvas { w: c.w, h: c.h.saturating_sub(top.h).max(1), dpr: c.dpr }, t)?;
     let mut out = pixmap(c.w, c.h)?;

@@ -1,7 +1,8 @@
 // The tour's figures of issue 28, part B: chen-13 (priority against input order, pass by
 // pass), freitag-t1 (Table 1 shown once, filling row by row at a pace one can follow),
 // freitag-t2 (Table 2 on rand3D, filling live, with the cut view) and chen-18 (a tangled
-// quadratic surface, old against new, in 3D). Each opens by its link and embeds in frames
+// quadratic surface, old against new, in 3D) and knupp-hex (Knupp's tangled block of
+// hexahedra pass by pass, old against new, cut). Each opens by its link and embeds in frames
 // of 800×450 and 520×520 without scrolling. The numbers checked are the core's: the card's
 // text is computed by the same functions as the picture (src/lab/tour/pictures.rs).
 import path from 'node:path';
@@ -20,7 +21,7 @@ function arrowLists(text) {
   return [...text.matchAll(/\d+(?: → \d+)+/g)].map((m) => m[0].split(' → ').map(Number));
 }
 
-const MINE = ['chen-13', 'chen-18', 'freitag-t1', 'freitag-t2'];
+const MINE = ['chen-13', 'chen-18', 'freitag-t1', 'freitag-t2', 'knupp-hex'];
 
 export default async function ({ server, context }) {
   const base = server.base;
@@ -134,7 +135,34 @@ export default async function ({ server, context }) {
     }
   });
 
-  await test('chen-13, chen-18, freitag-t1, freitag-t2 embed (?embed=1) in frames of 800×450 and 520×520 without scrolling, the picture whole', async () => {
+  await test('knupp-hex: the tangled hexahedra pass by pass, old and new cut on both sides, the text\'s counts the computed ones and the live tables', async () => {
+    const p = await freshPage(context, 1366, 900, 'knupp-hex');
+    try {
+      const card = await openFigure(p, base, 'knupp-hex');
+      check(card.gallery === 'hex-tangled' && (await p.inputValue('#sample')) === `sample:${card.gallery}`, `sample: ${await p.inputValue('#sample')}`);
+      check(await p.evaluate(() => document.body.classList.contains('surface')), 'the 3D view is not on');
+      const pic = await canvasInfo(p, 'tour-picture');
+      check(pic.colours > 50 && pic.w > 400, `the picture looks blank (${pic.colours} colours)`);
+      const text = await p.textContent('#tour-measured');
+      check(text === card.measured, 'the page shows the core\'s text');
+      const [old, nw] = arrowLists(text);
+      check(old && nw && old[0] === nw[0] && old[0] > 0 && old.length === 4, `counts: ${text}`);
+      check(nw[1] === 0 && old[old.length - 1] > 0, `the new side untangles in a pass, the old does not: ${old} / ${nw}`);
+      check(/inverted inside only, all eight corner Jacobians positive/.test(text), `the text says what a corner check misses: ${text}`);
+      check(/Bernstein/.test(await p.textContent('#tour-text')), 'the words say how validity is decided');
+      // the live panels ran the same passes from the same mesh: their counts are the text's
+      const s = [await stats(p, 'a'), await stats(p, 'b')];
+      check(s[0].passes === String(old.length - 1) && s[1].passes === s[0].passes, `passes: ${s[0].passes}/${s[1].passes}`);
+      check(s[0].elements === '216' && s[0].inverted === String(old[old.length - 1]) && s[1].inverted === String(nw[nw.length - 1]), `live ${JSON.stringify(s)} against ${old} / ${nw}`);
+      for (const id of ['mesh-a', 'mesh-b']) check((await canvasInfo(p, id)).colours > 50, `${id} looks blank`);
+      await p.locator('#tour').screenshot({ path: path.join(OUT, 'figure-b-knupp-hex.png') });
+      await p.locator('.panels').screenshot({ path: path.join(OUT, 'figure-b-knupp-hex-view.png') });
+    } finally {
+      await p.close();
+    }
+  });
+
+  await test('chen-13, chen-18, freitag-t1, freitag-t2, knupp-hex embed (?embed=1) in frames of 800×450 and 520×520 without scrolling, the picture whole', async () => {
     const p = await freshPage(context, 1400, 900, 'embeds-b');
     try {
       for (const name of MINE) {
