@@ -1,5 +1,5 @@
 //! Every volume element kind measured by its corners (Knupp 1999, §2–3): at each measured
-//! corner `c` with edge neighbours `a`, `b`, `d` ([`VolumeKindRow::corner_edges`]) the
+//! corner `c` with edge neighbours `a`, `b`, `d` ([`crate::mesh::VolumeKindRow::corner_edges`]) the
 //! tetrahedron `(c, a, b, d)`, its Jacobian `A` (the three edge vectors) weighted by the
 //! kind's reference, `T = A·W⁻¹`; and the element's validity decided for certain, not at
 //! its corners only: a trilinear hexahedron can be inverted inside with all eight corner

@@ -264,7 +264,7 @@ impl MeshStatsBuilder {
         self.quality_sum += m.quality;
     }
     /// Folds one volume element's scaled Jacobian and inside inversion in (a volume mesh's
-    /// statistics only: [`MeshCounts::solids`]).
+    /// statistics only: [`MeshCounts::volume_kinds`]).
     pub fn solid(&mut self, m: &super::solid::SolidMeasures) {
         if let Some(s) = &mut self.stats.solid {
             s.inverted_inside += m.inverted_inside as usize;
