@@ -65,9 +65,11 @@ fn axis_plane(origin: DVec3, axis: usize) -> Plane {
     Plane { origin, u, w }
 }
 
-/// The section of the star's tetrahedra by `plane` (through the free node): each
+/// The section of the star's elements by `plane` (through the free node): each
 /// tetrahedron the plane passes through inside cuts it in a triangle with a corner at
-/// the node, drawn as a star of triangles in the plane's coordinates (the node at 0).
+/// the node; another kind's element in the polygon through the points where the plane
+/// meets its edges (a triangle or a quad with the node first, a larger polygon as a fan
+/// from the node), drawn as a star in the plane's coordinates (the node at 0).
 fn section(star: &CornerStar, plane: &Plane) -> Star {
     let normal = plane.normal();
     let size = star.tets.iter().flat_map(|t| t.pts[1..].iter().map(|p| p.distance(star.x0))).fold(0.0, f64::max);
@@ -75,7 +77,14 @@ fn section(star: &CornerStar, plane: &Plane) -> Star {
     let mut out = Star::new();
     out.node = star.node;
     out.x0 = plane.to_2d(star.x0);
-    for t in &star.tets {
+    let push = |out: &mut Star, element: u32, ring: &[DVec2]| {
+        let kind = if ring.len() == 3 { ElementKind::Quad4 } else { ElementKind::Tri3 };
+        let mut pts = [DVec2::ZERO; 9];
+        pts[0] = out.x0;
+        pts[1..ring.len() + 1].copy_from_slice(ring);
+        out.elems.push(StarElement { kind, element, pts, slot: 0, follow_next: false, follow_prev: false });
+    };
+    for t in star.tets.iter().filter(|t| t.simplex) {
         let p = [t.pts[1], t.pts[2], t.pts[3]];
         let d = p.map(|q| (q - star.x0).dot(normal));
         let mut hits: Vec<DVec3> = Vec::with_capacity(3);
@@ -91,11 +100,38 @@ fn section(star: &CornerStar, plane: &Plane) -> Star {
         if hits.len() != 2 {
             continue; // the plane touches the tetrahedron at the node (or along an edge) only
         }
-        let mut pts = [DVec2::ZERO; 9];
-        pts[0] = out.x0;
-        pts[1] = plane.to_2d(hits[0]);
-        pts[2] = plane.to_2d(hits[1]);
-        out.elems.push(StarElement { kind: ElementKind::Tri3, element: t.element, pts, slot: 0, follow_next: false, follow_prev: false });
+        push(&mut out, t.element, &[plane.to_2d(hits[0]), plane.to_2d(hits[1])]);
+    }
+    for e in &star.elements {
+        let p = e.corners(&e.pts);
+        let d: Vec<f64> = p.iter().map(|q| (*q - star.x0).dot(normal)).collect();
+        let mut hits: Vec<DVec2> = Vec::new();
+        for (i, di) in d.iter().enumerate() {
+            if i != e.slot as usize && di.abs() <= eps {
+                hits.push(plane.to_2d(p[i]));
+            }
+        }
+        for &[i, j] in e.kind.row().edges {
+            if (d[i] > eps && d[j] < -eps) || (d[i] < -eps && d[j] > eps) {
+                hits.push(plane.to_2d(p[i] + (p[j] - p[i]) * (d[i] / (d[i] - d[j]))));
+            }
+        }
+        if hits.len() < 2 {
+            continue;
+        }
+        // the polygon's points in turn around it, from the node
+        let centre = (hits.iter().sum::<DVec2>() + out.x0) / (hits.len() + 1) as f64;
+        let angle = |q: DVec2| (q - centre).y.atan2((q - centre).x);
+        let a0 = angle(out.x0);
+        let turn = |q: DVec2| (angle(q) - a0).rem_euclid(std::f64::consts::TAU);
+        hits.sort_by(|a, b| turn(*a).total_cmp(&turn(*b)));
+        if hits.len() <= 3 {
+            push(&mut out, e.element, &hits);
+        } else {
+            for w in hits.windows(2) {
+                push(&mut out, e.element, w);
+            }
+        }
     }
     out
 }
@@ -230,7 +266,7 @@ impl Mesh3d for VolumeMesh {
             target,
             function: Box::new(CutFunction { objective, star, plane }),
             plane: format!(
-                "the plane across {name} through the node (the cut's axis), its tetrahedra's section drawn; the solve moves the node in space, its path projected onto the plane"
+                "the plane across {name} through the node (the cut's axis), its elements' section drawn; the solve moves the node in space, its path projected onto the plane"
             ),
         })
     }
@@ -415,6 +451,25 @@ mod tests {
         let n = p.node.expect("a node of the cut is inside the cube: free");
         assert!(ring.contains(&(n as u32)), "node {n} is a node of the face clicked {ring:?}");
         (l, n, at)
+    }
+
+    #[test]
+    fn a_hexahedral_node_s_section_is_its_elements_faces_in_the_plane() {
+        // a z-plane through a node of a straight block holds a face of each of its eight
+        // hexahedra: the section is those quads, the node first, its edge neighbours next
+        let m = crate::generate::hex_grid(&crate::generate::HexBlock::cube(2)).unwrap();
+        let n = (0..m.node_count()).find(|&n| m.is_free(n)).unwrap();
+        let l = Lab3d::new(m).unwrap();
+        let slice = l.node_slice(Side::B, n).unwrap();
+        assert_eq!(slice.outline.elems.len(), 8, "{:?}", slice.outline.elems.iter().map(|e| (e.kind, e.pts[..4].to_vec())).collect::<Vec<_>>());
+        for e in &slice.outline.elems {
+            assert_eq!(e.kind, ElementKind::Quad4, "{:?}", &e.pts[..4]);
+            let p = &e.pts[..4];
+            // a unit square's quarter: the node, two edge neighbours and the diagonal
+            let side = 0.5;
+            assert!((p[1].length() - side).abs() < 1e-12 && (p[3].length() - side).abs() < 1e-12, "{p:?}");
+            assert!((p[2].length() - side * 2f64.sqrt()).abs() < 1e-12, "{p:?}");
+        }
     }
 
     #[test]
