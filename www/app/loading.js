@@ -79,7 +79,7 @@ export function showSurfaceMode(on, why = null, volume = false) {
     const letter = id === 'mesh-a' ? 'A' : 'B';
     $(id).setAttribute('aria-label', on
       ? (state.volume
-        ? `Tetrahedra of panel ${letter}, cut by a plane, coloured by mean ratio; click a face to choose its nearest node, drag to turn, wheel to zoom`
+        ? `Volume mesh of panel ${letter}, cut by a plane, coloured by mean ratio; click a face to choose its nearest node, drag to turn, wheel to zoom`
         : `Surface of panel ${letter} in 3D, coloured by quality; click to choose a node, drag to turn, wheel to zoom`)
       : `Mesh of panel ${letter}, coloured by quality; arrow keys move the chosen node`);
   }
