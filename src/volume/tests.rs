@@ -261,39 +261,11 @@ fn a_ten_node_tetrahedron_is_measured_with_its_mid_edge_nodes() {
     assert_eq!(crate::volume::volume_stats(&mesh).inverted, 1);
 }
 
-/// A block of `n³` unit hexahedra, its nodes moved by `jitter` (seeded) inside.
+/// A block of `n³` hexahedra (`generate hexgrid`), its free nodes moved by `jitter` mean
+/// edge lengths (seeded).
 fn hex_block(n: usize, jitter: f64, seed: u64) -> VolumeMesh {
-    let m = n + 1;
-    let id = |i: usize, j: usize, k: usize| (i + m * (j + m * k)) as u32;
-    let mut rng = crate::numeric::SplitMix64::new(seed);
-    let mut nodes = Vec::new();
-    for k in 0..m {
-        for j in 0..m {
-            for i in 0..m {
-                let inside = [i, j, k].iter().all(|&c| c > 0 && c < n);
-                let d = if inside { jitter * rng.in_unit_ball() } else { DVec3::ZERO };
-                nodes.push(DVec3::new(i as f64, j as f64, k as f64) + d);
-            }
-        }
-    }
-    let mut hexes = Vec::new();
-    for k in 0..n {
-        for j in 0..n {
-            for i in 0..n {
-                hexes.push([
-                    id(i, j, k),
-                    id(i + 1, j, k),
-                    id(i + 1, j + 1, k),
-                    id(i, j + 1, k),
-                    id(i, j, k + 1),
-                    id(i + 1, j, k + 1),
-                    id(i + 1, j + 1, k + 1),
-                    id(i, j + 1, k + 1),
-                ]);
-            }
-        }
-    }
-    VolumeMesh::from_elements(nodes, hexes.iter().map(|h| (VolumeKind::Hex8, &h[..]))).unwrap()
+    let block = crate::generate::hex_grid(&crate::generate::HexBlock::cube(n)).unwrap();
+    crate::generate::perturb_volume(&block, jitter, seed).unwrap()
 }
 
 #[test]
