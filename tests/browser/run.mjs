@@ -1341,8 +1341,8 @@ try {
     check(page.url().endsWith('#figure=chen-11'), page.url());
     await page.click('#tour-prev');
     await page.waitForFunction(() => document.body.dataset.figure === 'chen-10', null, { timeout: 2 * TIMEOUT });
-    await page.selectOption('#tour-menu', 'knupp-1');
-    await page.waitForFunction(() => document.body.dataset.figure === 'knupp-1', null, { timeout: 4 * TIMEOUT });
+    await page.selectOption('#tour-menu', 'knupp-hex');
+    await page.waitForFunction(() => document.body.dataset.figure === 'knupp-hex', null, { timeout: 4 * TIMEOUT });
     await idle(page);
     check((await page.getAttribute('#tour-next', 'data-figure')) === 'chen-2', 'the tour wraps round');
     await page.goBack();

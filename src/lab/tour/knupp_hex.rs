@@ -79,10 +79,11 @@ pub(super) fn knupp_hex(c: Canvas, t: &Theme) -> Result<Vec<Pixmap>> {
     let mut out = Vec::new();
     for side in Side::BOTH {
         let counts = run.inverted(side);
-        let name = &run.objective[side.index()];
         for (p, m) in run.stages[side.index()].iter().enumerate() {
-            let when = if p == 0 { "as loaded".to_string() } else { format!("pass {p}") };
-            let title = format!("{}: {name}, {when}: {} inverted", side.letter(), counts[p]);
+            // short: four panels share a row, a few hundred pixels in an embed (the rows'
+            // objectives are the sides', named in the words)
+            let when = if p == 0 { "start".to_string() } else { format!("pass {p}") };
+            let title = format!("{}, {when}: {} inverted", side.letter(), counts[p]);
             out.push(cut_panel(m, Cut::default(), &title, c, t)?);
         }
     }
@@ -102,12 +103,12 @@ fn farthest_outside(m0: &VolumeMesh, m: &VolumeMesh) -> f64 {
     far / m0.mean_edge_length()
 }
 
-/// Where the old side's nodes went, in words: outside the block (its panels zoom out to
-/// hold them) or not.
-fn outside_words(m0: &VolumeMesh, m: &VolumeMesh) -> String {
+/// Where side A's nodes went (`objective` its objective's name), in words: outside the
+/// block (its panels zoom out to hold them) or not.
+fn outside_words(m0: &VolumeMesh, m: &VolumeMesh, objective: &str) -> String {
     let d = farthest_outside(m0, m);
     if d > 0.0 {
-        format!("; the old objective has moved a node {d:.1} mean edge lengths out of the block, which its panels zoom out to hold")
+        format!("; {objective} threw a node {d:.1} edge lengths out of the block (its panels zoom out)")
     } else {
         String::new()
     }
@@ -120,12 +121,12 @@ pub(super) fn knupp_hex_measured() -> Result<String> {
     let m0 = &run.stages[0][0];
     let last = |side: Side| run.stages[side.index()].last().unwrap_or(m0);
     let (a, b) = (last(Side::A), last(Side::B));
+    let [oa, ob] = &run.objective;
     Ok(format!(
-        "Measured on this block ({} nodes, {} hexahedra, every free node moved by up to {HEX_TANGLE_AMOUNT} mean edge \
-         length{}, seed {SAMPLE_SEED}), inverted hexahedra pass by pass: {} with the old max-min objective, {} with the \
-         new one. As loaded {} of them are inverted inside only, all eight corner Jacobians positive; after the last \
-         pass {} (old) and {} (new), and the worst corner's scaled Jacobian is {:.3} (old) and {:.3} (new){}.",
-        m0.node_count(),
+        "Measured ({} hexahedra, free nodes moved by up to {HEX_TANGLE_AMOUNT} mean edge length{}, seed {SAMPLE_SEED}), \
+         inverted pass by pass: {} with {oa}, {} with {ob}. As loaded {} are inverted inside only, all eight corner \
+         Jacobians positive; after the last pass {} ({oa}), {} ({ob}); worst corner's scaled Jacobian {:.3} ({oa}), \
+         {:.3} ({ob}){}.",
         m0.element_count(),
         if HEX_TANGLE_AMOUNT == 1.0 { "" } else { "s" },
         words(&run.inverted(Side::A)),
@@ -135,7 +136,7 @@ pub(super) fn knupp_hex_measured() -> Result<String> {
         inverted_inside(b),
         worst_scaled_jacobian(a),
         worst_scaled_jacobian(b),
-        outside_words(m0, a),
+        outside_words(m0, a, oa),
     ))
 }
 
@@ -158,7 +159,7 @@ mod tests {
         assert!(text.contains("216 hexahedra"), "{text}");
         // the old side's shrinking panels: a node pushed out of the block, said in the text
         let far = farthest_outside(&run.stages[0][0], run.stages[0].last().unwrap());
-        assert!(far > 1.0 && text.contains(&format!("{far:.1} mean edge lengths out of the block")), "{far}: {text}");
+        assert!(far > 1.0 && text.contains(&format!("a node {far:.1} edge lengths out of the block")), "{far}: {text}");
         assert_eq!(farthest_outside(&run.stages[1][0], run.stages[1].last().unwrap()), 0.0, "the new side stays inside");
     }
 

@@ -296,12 +296,12 @@ pub static FIGURES: [Figure; 14] = [
     Figure {
         name: "knupp-hex",
         source: "Knupp (1999), hexahedra",
-        caption: "None: the paper has no figure of hexahedra; it measures them in its text, by the Jacobian at each corner. This figure is ours.",
+        caption: "None: the paper measures hexahedra in its text, by the Jacobian at each corner; this figure is ours.",
         hash: "strategy=rules&a=old&b=new&passes=3&order=priority",
         view: "compare",
         run: true,
-        look: "A block of hexahedra whose interior nodes were moved at random (Knupp's kind of tangled test grid), cut half way up z, inverted hexahedra hatched: the top row is the old max-min objective (A) pass by pass with Chen's rules, the bottom row the new one (B); the meshes below run the same passes live. Inside a hexahedron det J is a polynomial of degree 2 in each of its three parameters whose values at the eight corners are the corner determinants, so it can dip below 0 between positive corners: smoothlab decides validity from all 27 Bernstein coefficients of det J, and such a hexahedron, inverted inside, is hatched too. The max-min side can rise by throwing a node far out of the block, because an inverted element's (negative) mean ratio tends to 0 as one of its corners moves away: Chen's Fig. 2 argument against α, in 3D.",
-        claim: "Knupp: a hexahedron is measured by the Jacobian at each of its eight corners, its three edges there as the columns of A, against the unit cube's corner (T = A·W⁻¹, W = I), and his untangling objective asks every corner's determinant to be positive.",
+        look: "Knupp's kind of tangled test grid: a block of hexahedra whose interior nodes were moved at random, cut half way up z; top row the old max-min objective (A) pass by pass with Chen's rules, bottom row the new one (B). Inside a hexahedron det J is of degree 2 in each parameter and equals the corner determinants at the corners, so it can dip below 0 between positive corners; smoothlab decides validity from its 27 Bernstein coefficients. An inverted element's negative mean ratio tends to 0 as a corner moves away, so max-min can rise by throwing a node out (Chen's Fig. 2 argument, in 3D).",
+        claim: "Knupp: a hexahedron is measured by the Jacobian at each of its eight corners (its three edges there, against the unit cube's corner), and his untangling objective asks every corner's determinant to be positive.",
         measured: knupp_hex::knupp_hex_measured,
     },
 ];
