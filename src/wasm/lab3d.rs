@@ -65,15 +65,17 @@ impl Lab3d {
     fn charts_of<M: Mesh3d>(l: &lab::Lab3d<M>, chart: Canvas, hist: Canvas, log_y: bool) -> Result<JsValue, JsError> {
         let pass = pixels(l.render_pass_chart(chart)?);
         let list = js_sys::Array::new();
+        let mut first = (JsValue::UNDEFINED, JsValue::UNDEFINED);
         for (i, h) in M::HISTOGRAMS.iter().enumerate() {
             let a = pixels(l.render_histogram(i, Side::A, hist, log_y)?);
             let b = pixels(l.render_histogram(i, Side::B, hist, log_y)?);
+            if i == 0 {
+                first = (a.clone(), b.clone());
+            }
             list.push(&object(&[("title", JsValue::from_str(h.title)), ("a", a), ("b", b)])?);
         }
-        let first = list.get(0);
-        let get = |k: &str| js_sys::Reflect::get(&first, &JsValue::from_str(k)).unwrap_or(JsValue::UNDEFINED);
         let stats = object(&[("a", to_js(&l.table(Side::A))?), ("b", to_js(&l.table(Side::B))?)])?;
-        object(&[("pass", pass), ("hist_a", get("a")), ("hist_b", get("b")), ("histograms", list.into()), ("stats", stats)])
+        object(&[("pass", pass), ("hist_a", first.0), ("hist_b", first.1), ("histograms", list.into()), ("stats", stats)])
     }
 }
 

@@ -342,7 +342,7 @@ export default async function ({ server, context }) {
     }
   });
 
-  await test('an embedded level-set view of tetrahedra without a node opens on the worst node; a figure\'s 3D card still opens', async () => {
+  await test('an embedded level-set view of tetrahedra without a node opens on the worst node', async () => {
     const host = await freshPage(context, 840, 500, 'space embed worst');
     try {
       const frame = await hostFrame(host, `${base}?embed=1&view=levelset#sample=rand3d`, 800, 450);
