@@ -125,7 +125,7 @@ export default async function ({ server, context }) {
     await p.close();
   });
 
-  await test('tetrahedra are called tetrahedra (no tangent plane), a surface a surface; the log box scales the dihedral histograms', async () => {
+  await test('a volume mesh is called a volume mesh (no tangent plane), a surface a surface; the log box scales the dihedral histograms', async () => {
     const p = await recordingPage(context, 'words');
     await open(p, `${server.base}#sample=plate-tri`);
     await drawnOn(p, []);
@@ -146,12 +146,12 @@ export default async function ({ server, context }) {
       const [r] = await row(p, key);
       check(!/tangent|surface|corner angle/.test(r.title), `${key} tooltip: ${r.title}`);
     }
-    // a click beside the cut view picks no node, and says so in the tetrahedra's words
+    // a click beside the cut view picks no node, and says so in a volume mesh's words
     await p.locator('#mesh-a').scrollIntoViewIfNeeded();
     await p.click('#mesh-a', { position: { x: 3, y: 40 } });
     await idle(p);
     const pick = await p.textContent('#pick-note');
-    check(/tetrahedra/.test(pick) && !/surface/.test(pick), `pick note: ${pick}`);
+    check(/volume mesh/.test(pick) && !/surface/.test(pick), `pick note: ${pick}`);
     // the log box works: the dihedral histograms are redrawn on a log scale, and back
     check(await p.locator('#hist-log').isEnabled(), 'the log box is enabled beside the dihedral histograms');
     check(/dihedral/.test(await p.getAttribute('#hist-log', 'title')), 'its tooltip says what it scales');
