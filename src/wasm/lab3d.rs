@@ -49,16 +49,9 @@ impl Lab3d {
         Ok(Lab3d { inner: Kind::Volume(Box::new(lab::Lab3d::new(m)?)) })
     }
 
-    /// The node views' pictures and summary as the page takes them (as the playground's).
     fn node_view_object(view: ([tiny_skia::Pixmap; 3], NodeSummary3d)) -> Result<JsValue, JsError> {
-        let ([la, lb, chart], summary) = view;
-        object(&[
-            ("level_a", pixels(la)),
-            ("level_b", pixels(lb)),
-            ("chart", pixels(chart)),
-            ("summary", JsValue::from_str(&summary.text())),
-            ("solve", to_js(&summary)?),
-        ])
+        let (pictures, summary) = view;
+        super::node_view_object(pictures, summary.text(), &summary)
     }
 
     /// The per-pass chart and every histogram of the kind, both sides, with both tables.

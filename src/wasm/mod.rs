@@ -124,6 +124,19 @@ fn object(entries: &[(&str, JsValue)]) -> Result<JsValue, JsError> {
 
 /// Pixels for a canvas `ImageData` (opaque, so straight RGBA): one copy out of the wasm
 /// memory into a buffer of its own, which the worker then moves (not copies) to the page.
+/// A node view's pictures and summary as the page takes them (the playground's and the
+/// 3D lab's alike): both level sets, the solve chart, the summary in words and whole.
+fn node_view_object<S: Serialize>(pictures: [tiny_skia::Pixmap; 3], text: String, summary: &S) -> Result<JsValue, JsError> {
+    let [la, lb, chart] = pictures;
+    object(&[
+        ("level_a", pixels(la)),
+        ("level_b", pixels(lb)),
+        ("chart", pixels(chart)),
+        ("summary", JsValue::from_str(&text)),
+        ("solve", to_js(summary)?),
+    ])
+}
+
 fn pixels(pm: tiny_skia::Pixmap) -> JsValue {
     js_sys::Uint8Array::from(pm.data()).into()
 }

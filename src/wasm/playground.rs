@@ -28,16 +28,9 @@ impl Playground {
         Ok(Playground { inner: lab::Playground::new(mesh)? })
     }
 
-    /// The node views' pictures and summary as the page takes them.
     fn node_view_object(view: ([tiny_skia::Pixmap; 3], lab::views::NodeSummary)) -> Result<JsValue, JsError> {
-        let ([la, lb, chart], summary) = view;
-        object(&[
-            ("level_a", pixels(la)),
-            ("level_b", pixels(lb)),
-            ("chart", pixels(chart)),
-            ("summary", JsValue::from_str(&summary.text())),
-            ("solve", to_js(&summary)?),
-        ])
+        let (pictures, summary) = view;
+        super::node_view_object(pictures, summary.text(), &summary)
     }
 }
 
