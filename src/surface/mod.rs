@@ -29,7 +29,7 @@ mod reference;
 mod view;
 
 pub use picture::SurfaceFaces;
-pub use reference::{closest_on_triangle, Analytic, Facets, Projected, Reference};
+pub use reference::{closest_on_triangle, Analytic, Facets, Fitted, Projected, Reference};
 pub use view::{smooth_surface, KeptNodes, SurfaceSmoother};
 
 /// Dihedral angle over which an edge between two elements is a feature curve (its nodes
@@ -91,11 +91,26 @@ impl Surface {
             off > 1e-6 * chord.length()
         });
         let given = flags_given.then(|| flat.fixed().to_vec());
-        let features = Features::new(&flat, &points, given.as_deref());
+        let mut features = Features::new(&flat, &points, given.as_deref(), Judge::Angles);
+        // the reference: the exact surface when known; else the elements as loaded, unless
+        // one is folded (a tangled file), whose angles are the tangle's: then the surface
+        // fitted through the nodes, its feature curves the edges between two nodes the file
+        // fixed ([`Judge::Tangled`])
+        let mut reference = analytic.map(Reference::Analytic);
+        if analytic.is_none() {
+            let facets = Facets::new(&points, flat.kinds(), |e| flat.element(e), |e| features.part[e], |e| features.side[e]);
+            if facets.is_folded() {
+                features = Features::new(&flat, &points, given.as_deref(), Judge::Tangled);
+                reference = Some(Reference::Fitted(Box::new(Fitted::new(&points, &flat, |e| features.part[e]))));
+            } else {
+                reference = Some(Reference::Facets(Box::new(facets)));
+            }
+        }
+        let reference = reference.expect("a reference of one kind");
         // an exact surface knows its feature curves (the cylinder's rims); else the angles say
-        let (feature, part, side): (Vec<bool>, Vec<u32>, Vec<u32>) = match analytic {
-            Some(a) => (points.iter().map(|&p| a.on_feature(p)).collect(), Vec::new(), Vec::new()),
-            None => (features.nodes(), features.parts(), features.sides()),
+        let feature: Vec<bool> = match analytic {
+            Some(a) => points.iter().map(|&p| a.on_feature(p)).collect(),
+            None => features.nodes(),
         };
         // the curves: open boundaries, and feature edges (each interior edge once)
         let mut curve_edges = Vec::new();
@@ -121,12 +136,9 @@ impl Surface {
         if !flags_given {
             flat.fix_also(|n| feature[n]);
         }
-        let reference = match analytic {
-            Some(a) => Reference::Analytic(a),
-            None => Reference::Facets(Box::new(Facets::new(&points, flat.kinds(), |e| flat.element(e), |e| part[e], |e| side[e]))),
-        };
         let hint = match &reference {
             Reference::Facets(f) => (0..points.len()).map(|n| f.triangle_at_vertex(n)).collect(),
+            Reference::Fitted(f) => (0..points.len()).map(|n| f.fit_at_node(n)).collect(),
             Reference::Analytic(a) => points.iter().map(|&p| a.part_of(p)).collect(),
         };
         Ok(Surface {
@@ -401,6 +413,24 @@ struct Features<'a> {
     /// folds) and the number of elements in it.
     sheet: Vec<u32>,
     sheet_elements: Vec<u32>,
+    judge: Judge,
+    /// Per element, its smooth part ([`Features::parts`]) and its side of the folds that
+    /// are feature curves ([`Features::sides`]).
+    part: Vec<u32>,
+    side: Vec<u32>,
+}
+
+/// What tells a feature curve.
+#[derive(Clone, Copy, PartialEq)]
+enum Judge {
+    /// The turn of the elements' normals across the edge (and the file's fixed flags,
+    /// when it gave them).
+    Angles,
+    /// A file whose elements are folded (a tangled file): their angles are the tangle's
+    /// (folds, slivers, twisted quads turn as much as a crease does), so they tell nothing.
+    /// An edge between two nodes the file fixed is a feature curve; a file without fixed
+    /// flags has none (the surface fitted through its nodes is one smooth surface).
+    Tangled,
 }
 
 /// How the normals of two elements across an edge turn.
@@ -412,9 +442,19 @@ enum Turn {
 }
 
 impl<'a> Features<'a> {
-    fn new(mesh: &'a Mesh, points: &'a [DVec3], fixed: Option<&'a [bool]>) -> Self {
+    fn new(mesh: &'a Mesh, points: &'a [DVec3], fixed: Option<&'a [bool]>, judge: Judge) -> Self {
         let normal = (0..mesh.element_count()).map(|e| element_normal(mesh, points, e).try_normalize()).collect();
-        let mut f = Features { mesh, points, fixed, normal, sheet: Vec::new(), sheet_elements: Vec::new() };
+        let mut f = Features {
+            mesh,
+            points,
+            fixed,
+            normal,
+            sheet: Vec::new(),
+            sheet_elements: Vec::new(),
+            judge,
+            part: Vec::new(),
+            side: Vec::new(),
+        };
         let sheet = f.components(|f, e, g, _, _| f.turn(e, g) != Turn::Fold);
         let mut count = vec![0u32; mesh.element_count()];
         for &s in &sheet {
@@ -422,6 +462,8 @@ impl<'a> Features<'a> {
         }
         f.sheet_elements = sheet.iter().map(|&s| count[s as usize]).collect();
         f.sheet = sheet;
+        f.part = f.parts();
+        f.side = f.sides();
         f
     }
 
@@ -441,21 +483,27 @@ impl<'a> Features<'a> {
         }
     }
 
-    /// Whether the edge `a`–`b` between elements `e` and `f` is on a feature curve: their
-    /// normals turn by more than [`FEATURE_ANGLE_DEG`], and a turn beyond
-    /// [`FOLD_ANGLE_DEG`] parts two sheets ([`FOLD_SHEET_ELEMENTS`]); when the file fixed
-    /// nodes, it fixed both ends.
+    /// Whether the edge `a`–`b` between elements `e` and `f` is on a feature curve. Judged
+    /// by [`Judge::Angles`]: their normals turn by more than [`FEATURE_ANGLE_DEG`], and a
+    /// turn beyond [`FOLD_ANGLE_DEG`] parts two sheets ([`FOLD_SHEET_ELEMENTS`]); when the
+    /// file fixed nodes, it fixed both ends. By [`Judge::Tangled`]: both ends fixed by the
+    /// file.
     fn is_edge(&self, e: usize, f: usize, a: u32, b: u32) -> bool {
-        if self.fixed.is_some_and(|fixed| !(fixed[a as usize] && fixed[b as usize])) {
-            return false;
+        match (self.judge, self.fixed) {
+            (Judge::Tangled, fixed) => fixed.is_some_and(|fixed| fixed[a as usize] && fixed[b as usize]),
+            (Judge::Angles, Some(fixed)) if !(fixed[a as usize] && fixed[b as usize]) => false,
+            (Judge::Angles, _) => match self.turn(e, f) {
+                Turn::Smooth => false,
+                Turn::Crease => true,
+                Turn::Fold => self.parts_sheets(e, f),
+            },
         }
-        match self.turn(e, f) {
-            Turn::Smooth => false,
-            Turn::Crease => true,
-            Turn::Fold => {
-                self.sheet[e] != self.sheet[f] && self.sheet_elements[e].min(self.sheet_elements[f]) >= FOLD_SHEET_ELEMENTS
-            }
-        }
+    }
+
+    /// Whether elements `e` and `f` lie in different sheets of at least
+    /// [`FOLD_SHEET_ELEMENTS`] elements each.
+    fn parts_sheets(&self, e: usize, f: usize) -> bool {
+        self.sheet[e] != self.sheet[f] && self.sheet_elements[e].min(self.sheet_elements[f]) >= FOLD_SHEET_ELEMENTS
     }
 
     /// Nodes on feature curves: the ends (and mid-side node) of every feature edge.

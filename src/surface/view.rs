@@ -39,6 +39,9 @@ impl Surface {
             .sum();
         let reference = self.project_near(x, n).normal;
         let normal = match star.try_normalize() {
+            // a reference fitted through the nodes is there because the elements fold:
+            // their normals are not the surface's
+            _ if matches!(*self.reference, super::Reference::Fitted(_)) => reference,
             Some(s) if s.dot(reference) > 0.0 => s,
             _ => reference,
         };

@@ -6,8 +6,11 @@ use glam::DVec3;
 
 use crate::mesh::{ElementKind, NONE};
 
+mod fitted;
 mod grid;
 mod patch;
+
+pub use fitted::Fitted;
 
 use grid::Grid;
 use patch::Patch;
@@ -27,6 +30,9 @@ pub struct Projected {
 pub enum Reference {
     /// The loaded mesh's elements as flat triangles (see [`Facets`]).
     Facets(Box<Facets>),
+    /// A surface fitted through the loaded mesh's nodes, where its elements are folded (a
+    /// tangled file; see [`Fitted`]).
+    Fitted(Box<Fitted>),
     /// An exact surface (generated samples).
     Analytic(Analytic),
 }
@@ -38,6 +44,7 @@ impl Reference {
     pub fn project(&self, p: DVec3, hint: u32) -> Projected {
         match self {
             Reference::Facets(f) => f.project(p, hint),
+            Reference::Fitted(f) => f.project(p, hint),
             Reference::Analytic(a) => a.project(p, hint),
         }
     }
@@ -47,6 +54,7 @@ impl Reference {
     pub fn element_hint(&self, e: usize) -> Option<u32> {
         match self {
             Reference::Facets(f) => f.first_triangle.get(e).copied(),
+            Reference::Fitted(f) => f.element_fit(e),
             Reference::Analytic(_) => None,
         }
     }
@@ -54,6 +62,9 @@ impl Reference {
     pub fn describe(&self) -> String {
         match self {
             Reference::Facets(f) => format!("the loaded mesh, {} flat triangles", f.triangles.len()),
+            Reference::Fitted(f) => {
+                format!("fitted through the loaded mesh's nodes (its elements are folded), {} quadrics", f.fit_count())
+            }
             Reference::Analytic(a) => a.describe(),
         }
     }
@@ -181,6 +192,10 @@ pub struct Facets {
     /// Per element of the loaded mesh, its first triangle (an element's triangles are
     /// consecutive).
     first_triangle: Vec<u32>,
+    /// Whether an element of the file is folded: a flat triangle whose normal disagrees
+    /// with one of its vertices' (then the patches are not used, and a surface is fitted
+    /// through the nodes instead, [`Fitted`]).
+    folded: bool,
     /// Vertex → triangles (CSR), for the walk.
     vert_start: Vec<u32>,
     vert_tris: Vec<u32>,
@@ -337,6 +352,7 @@ impl Facets {
             patch,
             patches,
             first_triangle,
+            folded: false,
             vert_start,
             vert_tris,
             grid,
@@ -349,7 +365,13 @@ impl Facets {
         if folded {
             facets.patch.iter_mut().for_each(|p| *p = None);
         }
+        facets.folded = folded;
         facets
+    }
+
+    /// Whether an element of the file is folded (see [`Facets::folded`]).
+    pub fn is_folded(&self) -> bool {
+        self.folded
     }
 
     /// The unit normal at vertex `v` of its triangles on side `k` ([`Facets::side_normal`]
