@@ -172,7 +172,7 @@ impl Fitted {
                 fits.push(fit(points[n], near.iter().map(|&m| points[m as usize]), k, spacing));
             }
         }
-        orient_fits(&mut fits, &ring_start, &ring, points, mesh, &part, |n, k| fit_of(n, k));
+        orient_fits(&mut fits, &ring_start, &ring, points, mesh, &part, fit_of);
         let element_fit = (0..mesh.element_count()).map(|e| fit_of(mesh.element(e)[0] as usize, part(e))).collect();
         let origins: Vec<DVec3> = fits.iter().map(|f| f.plane.origin).collect();
         let dots: Vec<[u32; 3]> = (0..origins.len() as u32).map(|i| [i; 3]).collect();
@@ -229,11 +229,19 @@ impl Fitted {
         let reach = self.distance(cur, p) + self.fits[cur as usize].spacing;
         let (mut sum, mut normal, mut total) = (DVec3::ZERO, DVec3::ZERO, 0.0);
         for &f in &near {
-            let t = self.distance(f, p) / reach;
-            if !(t < 1.0) {
+            let d = self.distance(f, p);
+            if d == 0.0 {
+                // at a node, its own fit alone: the fitted surface passes through the nodes
+                let (point, normal) = self.fits[f as usize].nearest(p);
+                return Projected { point, normal, face: f };
+            }
+            let t = d / reach;
+            if t.is_nan() || t >= 1.0 {
                 continue;
             }
-            let w = (1.0 - t * t) * (1.0 - t * t);
+            // Shepard's factor 1/d² makes the blend interpolate the nodes; (1 − t²)² ends
+            // each fit's say smoothly at the reach
+            let w = (1.0 - t * t) * (1.0 - t * t) / (d / reach).powi(2);
             let (q, n) = self.fits[f as usize].nearest(p);
             sum += w * q;
             normal += w * n;
@@ -355,14 +363,15 @@ fn least_squares(rows: &[(Vec<f64>, f64)]) -> Option<Vec<f64>> {
     let big = (0..m).map(|i| a[i][i]).fold(0.0, f64::max);
     for col in 0..m {
         let pivot = (col..m).max_by(|&x, &y| a[x][col].abs().total_cmp(&a[y][col].abs()))?;
-        if !(a[pivot][col].abs() > 1e-10 * big) {
+        if a[pivot][col].is_nan() || a[pivot][col].abs() <= 1e-10 * big {
             return None;
         }
         a.swap(col, pivot);
         for row in col + 1..m {
             let f = a[row][col] / a[col][col];
-            for k in col..=m {
-                a[row][k] -= f * a[col][k];
+            let pivot_row = a[col].clone();
+            for (x, p) in a[row][col..].iter_mut().zip(&pivot_row[col..]) {
+                *x -= f * p;
             }
         }
     }
@@ -381,7 +390,7 @@ fn eigenvectors(mut c: [[f64; 3]; 3]) -> [DVec3; 3] {
     for _ in 0..32 {
         let off = c[0][1].abs() + c[0][2].abs() + c[1][2].abs();
         let diag = c[0][0].abs() + c[1][1].abs() + c[2][2].abs();
-        if !(off > 1e-15 * diag) {
+        if off.is_nan() || off <= 1e-15 * diag {
             break;
         }
         for (p, q) in [(0, 1), (0, 2), (1, 2)] {
@@ -393,16 +402,14 @@ fn eigenvectors(mut c: [[f64; 3]; 3]) -> [DVec3; 3] {
             let t = if theta == 0.0 { 1.0 } else { t };
             let (cs, sn) = (1.0 / (t * t + 1.0).sqrt(), t / (t * t + 1.0).sqrt());
             // c ← Jᵀ c J, v ← v J, J the rotation in the (p, q) plane
-            for k in 0..3 {
-                let (ckp, ckq) = (c[k][p], c[k][q]);
-                c[k][p] = cs * ckp - sn * ckq;
-                c[k][q] = sn * ckp + cs * ckq;
+            for row in &mut c {
+                let (ckp, ckq) = (row[p], row[q]);
+                row[p] = cs * ckp - sn * ckq;
+                row[q] = sn * ckp + cs * ckq;
             }
-            for k in 0..3 {
-                let (cpk, cqk) = (c[p][k], c[q][k]);
-                c[p][k] = cs * cpk - sn * cqk;
-                c[q][k] = sn * cpk + cs * cqk;
-            }
+            let (rp, rq) = (c[p], c[q]);
+            c[p] = [0, 1, 2].map(|k| cs * rp[k] - sn * rq[k]);
+            c[q] = [0, 1, 2].map(|k| sn * rp[k] + cs * rq[k]);
             for row in &mut v {
                 let (vp, vq) = (row[p], row[q]);
                 row[p] = cs * vp - sn * vq;
@@ -522,7 +529,7 @@ mod tests {
     fn a_flipped_fit_is_the_same_surface() {
         let near: Vec<DVec3> = (0..12)
             .map(|i| {
-                let a = i as f64 * 0.5236;
+                let a = i as f64 * std::f64::consts::FRAC_PI_6;
                 let r = 0.1 + 0.02 * i as f64;
                 DVec3::new(r * a.cos(), r * a.sin(), (1.0 - r * r).sqrt() - 1.0)
             })

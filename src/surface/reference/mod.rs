@@ -369,7 +369,8 @@ impl Facets {
         facets
     }
 
-    /// Whether an element of the file is folded (see [`Facets::folded`]).
+    /// Whether an element of the file is folded: a flat triangle whose normal disagrees
+    /// with one of its vertices' (then a surface is fitted through the nodes, [`Fitted`]).
     pub fn is_folded(&self) -> bool {
         self.folded
     }
