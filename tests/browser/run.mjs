@@ -3,7 +3,7 @@
 // open the permalink and the embed view. Serves www/ itself on a free 127.0.0.1 port.
 // Screenshots go to test-output/browser/. Prints "N passed, M failed"; exits 1 on failure.
 // The suites in suites/ (one file a part of the page) run after these, on the same browser.
-import { readFileSync, readdirSync, existsSync } from 'node:fs';
+import { readFileSync, readdirSync, existsSync, mkdirSync } from 'node:fs';
 import { spawnSync } from 'node:child_process';
 import path from 'node:path';
 import { chromium } from 'playwright-core';
@@ -1507,6 +1507,41 @@ try {
     check(await page.locator('#surface-note').isHidden(), 'the surface note is hidden');
     check(!(await page.locator('#node').isDisabled()) && !(await page.locator('#save-figure').isDisabled()), 'the planar controls are back');
     check(!('surface_distance' in (await stats(page, 'a'))), 'a planar table has no distance from a surface');
+  });
+
+  await test('issue 32: a tangled surface file (a sphere tangled by 1.5 edges) untangles on the page as in the command-line tool', async () => {
+    // the file as a user has it: generated, tangled and smoothed by the command-line tool
+    const cli = (args) => spawnSync('cargo', ['run', '--quiet', '--bin', 'smoothlab', '--', ...args], { cwd: ROOT, encoding: 'utf8' });
+    const dir = path.join(OUT, 'tangled-sphere');
+    mkdirSync(dir, { recursive: true });
+    const [sphere, tangled, smoothed] = ['sphere.vtk', 'sphere-tangled.vtk', 'sphere-smoothed.vtk'].map((f) => path.join(dir, f));
+    for (const args of [['generate', 'sphere', '--kind', 'tri', '--resolution', '8', '-o', sphere],
+      ['generate', 'perturb', sphere, '--amount', '1.5', '--seed', '2', '-o', tangled]]) {
+      const r = cli(args);
+      check(r.status === 0, `${args.join(' ')}: ${r.stderr}`);
+    }
+    const before = JSON.parse(cli(['stats', '--json', tangled]).stdout);
+    const r = cli(['smooth', tangled, '-o', smoothed, '--passes', '3', '--json']);
+    check(r.status === 0, r.stderr);
+    const report = JSON.parse(r.stdout);
+    check(before.inverted > 100 && report.final.inverted === 0, `the command-line tool: ${before.inverted} → ${report.final.inverted}`);
+    // the page reads the same file with the same fitted reference and the same counts
+    await open(page, server.base);
+    await page.setInputFiles('#file', tangled);
+    await page.waitForFunction(() => /Loaded sphere-tangled\.vtk/.test(document.getElementById('status').textContent), null, { timeout: TIMEOUT });
+    await idle(page);
+    const s0 = await stats(page, 'b');
+    check(Number(s0.inverted) === before.inverted, `inverted as loaded: the page ${s0.inverted}, the command-line tool ${before.inverted}`);
+    // B is the command-line tool's defaults (new + rules, priority order): pass for pass the same
+    for (const pass of report.passes) {
+      await page.click('#step');
+      await page.waitForFunction(() => /One pass done/.test(document.getElementById('status').textContent), null, { timeout: TIMEOUT });
+      await idle(page);
+      const s = await stats(page, 'b');
+      const want = { inverted: String(pass.inverted), min_angle: `${pass.min_angle_deg.toFixed(2)}°`, max_angle: `${pass.max_angle_deg.toFixed(2)}°` };
+      for (const key of Object.keys(want)) check(s[key] === want[key], `pass ${pass.pass}, ${key}: the page ${s[key]}, the command-line tool ${want[key]}`);
+    }
+    await panelsShot(page, 'surface-tangled-file-untangled');
   });
 
   await test("a Mesquite surface file (quads on a sphere) loads, turns, smooths and exports", async () => {

@@ -15,8 +15,8 @@ use crate::mesh::{Mesh, NodeRole, Plane, NONE};
 /// leave one point over the quadric's five coefficients).
 const MIN_FIT_POINTS: usize = 12;
 
-/// Steps of the walk from a node's last fit towards the nearest before the grid is asked.
-const MAX_WALK: usize = 256;
+/// Steps of a projection's foot from fit to fit before the blend ([`Fitted::project`]).
+const MAX_SETTLE: usize = 8;
 
 /// Gauss–Newton steps of the nearest point on one fit.
 const FIT_ITERATIONS: usize = 3;
@@ -102,9 +102,6 @@ pub struct Fitted {
     /// Node → its fits, one per smooth part it lies on (CSR).
     node_start: Vec<u32>,
     node_fits: Vec<u32>,
-    /// Fit → the fits of its ring's nodes on its part (CSR): the walk and the blend.
-    ring_start: Vec<u32>,
-    ring: Vec<u32>,
     /// Per element, the fit of its first corner on its part.
     element_fit: Vec<u32>,
     grid: Grid,
@@ -177,7 +174,7 @@ impl Fitted {
         let origins: Vec<DVec3> = fits.iter().map(|f| f.plane.origin).collect();
         let dots: Vec<[u32; 3]> = (0..origins.len() as u32).map(|i| [i; 3]).collect();
         let grid = Grid::new(&origins, &dots);
-        Fitted { fits, node_start, node_fits, ring_start, ring, element_fit, grid }
+        Fitted { fits, node_start, node_fits, element_fit, grid }
     }
 
     /// A node's first fit (its hint before it has moved); [`NONE`] for an unused node.
@@ -197,82 +194,80 @@ impl Fitted {
         self.fits.len()
     }
 
-    fn ring(&self, f: u32) -> &[u32] {
-        &self.ring[self.ring_start[f as usize] as usize..self.ring_start[f as usize + 1] as usize]
-    }
-
     fn distance(&self, f: u32, p: DVec3) -> f64 {
         (self.fits[f as usize].plane.origin - p).length()
     }
 
     /// The nearest point of the blended fits to `p`, on the part of fit `hint` (anywhere
-    /// for [`NONE`]): the walk to the fit whose node is nearest, then the fits of its two
-    /// rings blended by their distances.
+    /// for [`NONE`]): the foot of `p` on the fit whose node is nearest (moved on to the fit
+    /// whose node is nearest the foot, while that changes), then at that foot (on the
+    /// surface, near its nodes) the fits within reach blended by their distances.
+    /// Blending at `p` itself would average feet far apart when `p` is far off the surface
+    /// (a max-min step through a fold): their mean lies inside a curved surface, and
+    /// projecting it again would move it. Every search is by position (the grid): a
+    /// tangled file's neighbours in the mesh are not neighbours in space.
     pub fn project(&self, p: DVec3, hint: u32) -> Projected {
         if self.fits.is_empty() {
             return Projected { point: p, normal: DVec3::Z, face: NONE };
         }
-        let start = if (hint as usize) < self.fits.len() { hint } else { self.grid.nearest(p, |f| Some(self.fits[f as usize].plane.origin)) };
-        let part = self.fits[start as usize].part;
-        let cur = self.walk(p, start).unwrap_or_else(|| {
-            self.grid.nearest(p, |f| (self.fits[f as usize].part == part).then(|| self.fits[f as usize].plane.origin))
-        });
-        // the candidates: the nearest fit and its two rings
-        let mut near: Vec<u32> = Vec::with_capacity(48);
-        near.push(cur);
-        for &f in self.ring(cur) {
-            near.push(f);
-            near.extend_from_slice(self.ring(f));
+        let part = self.fits.get(hint as usize).map(|f| f.part);
+        let mut cur = self.nearest_fit(p, part);
+        let (mut foot, _) = self.fits[cur as usize].nearest(p);
+        // a foot far from its fit's node (clamped at its reach, where the quadric is
+        // extrapolated) settles on the fit whose node is nearest it
+        for _ in 0..MAX_SETTLE {
+            let next = self.nearest_fit(foot, part);
+            if next == cur {
+                break;
+            }
+            cur = next;
+            foot = self.fits[cur as usize].nearest(foot).0;
         }
-        near.sort_unstable();
-        near.dedup();
-        let reach = self.distance(cur, p) + self.fits[cur as usize].spacing;
+        self.blend(foot, cur)
+    }
+
+    /// The fit on `part` (on any part for `None`) whose node is nearest `p`.
+    fn nearest_fit(&self, p: DVec3, part: Option<u32>) -> u32 {
+        self.grid.nearest(p, |f| {
+            let fit = &self.fits[f as usize];
+            (part.is_none() || part == Some(fit.part)).then_some(fit.plane.origin)
+        })
+    }
+
+    /// The fits on the part of fit `cur` (whose node is the nearest to `x`) within reach
+    /// of `x` blended there: each fit's nearest point and normal, weighted by its distance.
+    fn blend(&self, x: DVec3, cur: u32) -> Projected {
+        let part = self.fits[cur as usize].part;
+        let reach = self.distance(cur, x) + self.fits[cur as usize].spacing;
         let (mut sum, mut normal, mut total) = (DVec3::ZERO, DVec3::ZERO, 0.0);
-        for &f in &near {
-            let d = self.distance(f, p);
+        let mut at_node = None;
+        self.grid.near(x, reach, |f| {
+            let fit = &self.fits[f as usize];
+            let d = self.distance(f, x);
+            if fit.part != part || d >= reach || d.is_nan() {
+                return;
+            }
             if d == 0.0 {
                 // at a node, its own fit alone: the fitted surface passes through the nodes
-                let (point, normal) = self.fits[f as usize].nearest(p);
-                return Projected { point, normal, face: f };
-            }
-            let t = d / reach;
-            if t.is_nan() || t >= 1.0 {
-                continue;
+                at_node = Some(f);
+                return;
             }
             // Shepard's factor 1/d² makes the blend interpolate the nodes; (1 − t²)² ends
             // each fit's say smoothly at the reach
-            let w = (1.0 - t * t) * (1.0 - t * t) / (d / reach).powi(2);
-            let (q, n) = self.fits[f as usize].nearest(p);
+            let t = d / reach;
+            let w = (1.0 - t * t) * (1.0 - t * t) / (t * t);
+            let (q, n) = fit.nearest(x);
             sum += w * q;
             normal += w * n;
             total += w;
-        }
+        });
         let (point, normal) = (sum / total, crate::numeric::direction(normal));
-        if !(total > 0.0 && point.is_finite() && normal != DVec3::ZERO) {
-            let (point, normal) = self.fits[cur as usize].nearest(p);
-            return Projected { point, normal, face: cur };
+        let alone = at_node.unwrap_or(cur);
+        if at_node.is_some() || !(total > 0.0 && point.is_finite() && normal != DVec3::ZERO) {
+            let (point, normal) = self.fits[alone as usize].nearest(x);
+            return Projected { point, normal, face: alone };
         }
         Projected { point, normal, face: cur }
-    }
-
-    /// From fit `f`, to the fit of its ring whose node is nearest `p` while that one is
-    /// strictly nearer; `None` when it has not settled within [`MAX_WALK`] steps.
-    fn walk(&self, p: DVec3, mut f: u32) -> Option<u32> {
-        let mut d = self.distance(f, p);
-        for _ in 0..MAX_WALK {
-            let mut best = (d, f);
-            for &g in self.ring(f) {
-                let dg = self.distance(g, p);
-                if dg < best.0 {
-                    best = (dg, g);
-                }
-            }
-            if best.1 == f {
-                return Some(f);
-            }
-            (d, f) = best;
-        }
-        None
     }
 }
 
@@ -546,3 +541,4 @@ mod tests {
         assert!((a - on).length() < 1e-3, "{a} vs {on}");
     }
 }
+

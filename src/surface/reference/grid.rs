@@ -112,4 +112,23 @@ impl Grid {
         }
         best
     }
+
+    /// Calls `visit` with every item listed in the cells the ball of `radius` about `p`
+    /// meets (each cell's items once; an item in several cells comes once a cell).
+    pub(super) fn near(&self, p: DVec3, radius: f64, mut visit: impl FnMut(u32)) {
+        let dims = self.dims;
+        let cell_of = |q: DVec3, i: usize| (((q[i] - self.lo[i]) / self.cell).floor().max(0.0) as usize).min(dims[i] - 1);
+        let (a, b) = (p - DVec3::splat(radius), p + DVec3::splat(radius));
+        if !(a.is_finite() && b.is_finite()) {
+            return;
+        }
+        for z in cell_of(a, 2)..=cell_of(b, 2) {
+            for y in cell_of(a, 1)..=cell_of(b, 1) {
+                for x in cell_of(a, 0)..=cell_of(b, 0) {
+                    let c = (z * dims[1] + y) * dims[0] + x;
+                    self.tris[self.start[c] as usize..self.start[c + 1] as usize].iter().for_each(|&t| visit(t));
+                }
+            }
+        }
+    }
 }
