@@ -134,6 +134,7 @@ const handlers = {
   exportMesh: (side, format) => need().exportMesh(side, format),
   // a side's mesh as arrays, for the page's host (app/host.js)
   meshArrays: (side) => need().meshArrays(side),
+  stats: (side) => need().stats(side),
   worstNode: () => need().worstFreeNode() ?? null,
   // the wheel: the 3D camera zooms about the centre of its view
   zoomMeshes: (x, y, factor) => (isSpace() ? need().zoom(factor) : need().zoomMeshes(x, y, factor)),

@@ -1,5 +1,5 @@
 // The playground page's entry: wires the controls, fills the menus and opens the address.
-import { $, COMPARE, EMBED, PARAMS, FIGURE_HASH, SETTINGS, VIEWS, engine, gallery, metrics, now, report, serial, showError, state, view } from './state.js';
+import { $, COMPARE, EMBED, HOSTED, PARAMS, FIGURE_HASH, SETTINGS, VIEWS, engine, gallery, metrics, now, report, serial, showError, state, view } from './state.js';
 import { CHECKED, buildControls, changeCompare, checkControl, showStrategyReasons } from './controls.js';
 import { applyHash, copyLink, markAddressHandled, onAddressChange, openHash, openView, updatePermalink, writePermalink } from './permalink.js';
 import { closeTour, drawFigurePicture, fillTourMenu, goFigure, openFigure } from './tour.js';
@@ -11,6 +11,7 @@ import { attachLevelZoom, attachPointer, pickRadius, selectNode } from './pointe
 import { saveFigure, smoothThisNode, undo } from './undo.js';
 import { exportMesh, exportPng } from './export.js';
 import { sendTheme, startTheme, wirePresentation } from './present.js';
+import { connect, openFromHost } from './host.js';
 
 export async function fillGallery() {
   const list = await engine.call('samples');
@@ -202,6 +203,12 @@ export async function main() {
     return;
   }
   state.lastHash = location.hash;
+  // in a notebook's widget: the host's settings, and its mesh instead of the address's
+  if (HOSTED && !(await openFromHost(await connect()))) {
+    markAddressHandled();
+    document.body.dataset.ready = '1';
+    return;
+  }
   const fig = FIGURE_HASH.exec(location.hash);
   if (fig) {
     await openFigure(fig[1]);
