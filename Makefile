@@ -54,6 +54,7 @@ site: tools
 	cp target/wasm-opt/output.wasm www/pkg/smoothlab_bg.wasm
 	@ls -l www/pkg/smoothlab_bg.wasm | awk '{print "wasm size: " $$5 " bytes"}'
 	@gzip -9c www/pkg/smoothlab_bg.wasm | wc -c | awk '{print "wasm size gzipped: " $$1 " bytes"}'
+	node scripts/site-manifest.mjs
 
 # The page as one self-contained file (scripts/single.mjs): opens from file://, offline.
 single: site
@@ -75,7 +76,7 @@ python-test: python
 	$(VENV)/bin/pip install -q --disable-pip-version-check --no-deps --force-reinstall ./python
 	cd python && ../$(VENV)/bin/python -m pytest -q tests
 
-browser: python browser-tools
+browser: python single browser-tools
 	node tests/browser/run.mjs
 
 reproduction:

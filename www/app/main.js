@@ -225,6 +225,17 @@ export async function main() {
   document.body.dataset.ready = '1';
 }
 
+/** Offline after the first visit: the site's service worker (sw.js) keeps its files, on a
+ * page served over HTTP (not opened from a file, nor in a notebook's widget, which
+ * carries the page itself). Registered once the page has opened, so it costs the first
+ * screen nothing. */
+function keepOffline() {
+  if (HOSTED || !/^https?:$/.test(location.protocol) || !('serviceWorker' in navigator)) return;
+  navigator.serviceWorker.register(new URL('sw.js', location.href), { updateViaCache: 'none' }).catch((e) => {
+    console.warn(`the page will not work offline: ${e.message}`);
+  });
+}
+
 // A hook for the browser tests (and the curious): make the engine panic on purpose.
 // The page's own measurements: the last load and the last Step (where the time of "one
 // pass + redraw" went), the last run (per pass), and the wasm memory.
@@ -243,4 +254,4 @@ window.smoothlab = {
   camera: () => serial(() => engine.call('camera')),
 };
 
-main();
+main().then(keepOffline);
