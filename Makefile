@@ -18,7 +18,8 @@ serve: site
 	@echo "smoothlab playground: http://127.0.0.1:$(PORT)/"
 	python3 -m http.server $(PORT) --bind 127.0.0.1 --directory www
 
-test: lint unit site browser python-test
+test: lint unit site browser
+	@$(MAKE) --no-print-directory python-test NEED_PAGE_STATE=1
 
 # clippy for the host (every target: lib, CLI, tests, examples, benches) and for the page's
 # wasm32 build (the wasm layer compiles only there), then the docs with broken links denied
@@ -67,14 +68,16 @@ python: site
 
 # pytest in a virtual environment of its own (target/venv, made once), with the package
 # installed from python/ as a user would (pip install ./python); the widget's module is the
-# one the browser tests loaded. pytest's own exit code is the target's (5: no test ran).
+# one the browser tests loaded, and the model's state they left (test-output/widget/: make
+# test runs the browser first and needs it). pytest's own exit code is the target's (5: no
+# test ran).
 VENV := target/venv
 python-test: python
 	@test -x $(VENV)/bin/python || python3 -m venv $(VENV)
 	@$(VENV)/bin/python -c 'import anywidget, numpy, meshio, pytest' 2>/dev/null || \
 	  $(VENV)/bin/pip install -q --disable-pip-version-check anywidget numpy meshio pytest
 	$(VENV)/bin/pip install -q --disable-pip-version-check --no-deps --force-reinstall ./python
-	cd python && ../$(VENV)/bin/python -m pytest -q tests
+	SMOOTHLAB_NEED_PAGE_STATE=$(NEED_PAGE_STATE) $(VENV)/bin/pytest -q python/tests
 
 browser: python single browser-tools
 	node tests/browser/run.mjs

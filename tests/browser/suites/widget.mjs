@@ -182,7 +182,7 @@ async function widgetTests(server, context) {
     }
   });
 
-  await test('the notebook widget: figure=chen-10 opens the tour\'s figure, and a sample by its name', async () => {
+  await test('the notebook widget: figure=chen-10 opens the tour\'s figure, and samples by their names (planar, volume)', async () => {
     const p = await freshPage(context, 940, 640, 'widget-figure');
     try {
       const frame = await renderWidget(p, server, { ...EMPTY, figure: 'chen-10' });
@@ -193,6 +193,12 @@ async function widgetTests(server, context) {
       const f2 = await renderWidget(p, server, { ...EMPTY, sample: 'plate-tri-tangled' });
       check((await f2.inputValue('#sample')) === 'sample:plate-tri-tangled', `the sample menu: ${await f2.inputValue('#sample')}`);
       await p.waitForFunction(() => window.cellModel.state._mesh_a.dim === 2, null, { timeout: TIMEOUT });
+      await p.evaluate(() => window.cellCleanup());
+      // a volume sample: its hexahedra come back with three coordinates a point
+      await renderWidget(p, server, { ...EMPTY, sample: 'hex-tangled' });
+      await p.waitForFunction(() => window.cellModel.state._mesh_b.dim === 3, null, { timeout: TIMEOUT });
+      const hex = await modelSide(p, '_mesh_b');
+      check(hex.points.length === 343 * 3 && hex.cells[0].vtk_type === 12 && hex.cells[0].count === 216, `the hexahedra: ${JSON.stringify(hex.cells)}`);
     } finally {
       await p.close();
     }
