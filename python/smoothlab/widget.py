@@ -167,7 +167,12 @@ class Playground(anywidget.AnyWidget):
     def _side(self, trait: str, letter: str) -> Mesh:
         state = getattr(self, trait)
         if state:
-            return Mesh.from_page(state)
+            mesh = Mesh.from_page(state)
+            # the page gives a mesh in the xy plane two coordinates; points given with three
+            # (meshio's, z = 0) come back with three
+            if self._given is not None and self._given.points.shape[1] == 3 and mesh.points.shape[1] == 2:
+                mesh.points = np.column_stack([mesh.points, np.zeros(len(mesh.points))])
+            return mesh
         if self._given is not None:
             return self._given
         raise RuntimeError(

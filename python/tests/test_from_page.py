@@ -45,3 +45,16 @@ def test_the_smoothed_meshes_come_back_as_arrays():
     assert np.array_equal(b.points[b.fixed], points[b.fixed])  # the boundary stayed
     assert raw["stats"]["b"]["passes"] == 1
     assert "32 fixed" not in repr(b) and repr(b) == "Mesh(81 points in 2D; 64 quad)"
+
+
+def test_points_given_in_3d_come_back_in_3d():
+    _, state = page_state()
+    points = np.array([[i, j, 0.0] for j in range(9) for i in range(9)])
+    cells = np.array([[j * 9 + i, j * 9 + i + 1, j * 9 + i + 10, j * 9 + i + 9] for j in range(8) for i in range(8)])
+    w = smoothlab.Playground(points, cells)
+    w.set_state(state)
+    got = w.mesh_b.points
+    assert got.shape == (81, 3) and np.all(got[:, 2] == 0)
+    flat = smoothlab.Playground(points[:, :2], cells)
+    flat.set_state(state)
+    assert np.array_equal(flat.mesh_b.points, got[:, :2])
