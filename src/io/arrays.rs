@@ -37,7 +37,7 @@ impl MeshArrays {
     }
 }
 
-/// A planar mesh or a surface as arrays: what [`super::vtk::write`] writes of it.
+/// A planar mesh or a surface as arrays: what the `.vtk` writer (`io::vtk::write`) writes of it.
 pub fn mesh_arrays<'a>(w: impl Into<Writable<'a>>) -> MeshArrays {
     let w = w.into();
     let mesh = w.mesh;
@@ -61,7 +61,7 @@ pub fn mesh_arrays<'a>(w: impl Into<Writable<'a>>) -> MeshArrays {
     out
 }
 
-/// A volume mesh as arrays: what [`super::volume::write_vtk`] writes of it (the elements,
+/// A volume mesh as arrays: what the `.vtk` writer (`io::volume::write_vtk`) writes of it (the elements,
 /// then the file's boundary faces).
 pub fn volume_arrays(mesh: &VolumeMesh) -> MeshArrays {
     let points = mesh.nodes().iter().flat_map(|p| [p.x, p.y, p.z]).collect();
