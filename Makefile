@@ -2,6 +2,8 @@
 #   make serve   build the page (wasm + www/) and serve it on http://127.0.0.1:8000
 #   make test    every test: clippy (host and wasm32) and the docs, native unit/integration tests, wasm build, browser tests
 #   make site    build the complete static site into www/ (www/pkg is generated)
+#   make single  the page as one file that opens from file:// (target/smoothlab.html)
+#   make python  the notebook widget's module into python/smoothlab/static/ (then: pip install ./python)
 #   make figures        the README's pictures and the papers' figures (docs/figures.md)
 #   make reproduction   rerun the papers' experiments into docs/reproduction.md (a few minutes)
 #   make performance    rerun the benchmarks (native, in Chromium, in the page) into docs/performance.md (~15 minutes)
@@ -10,13 +12,14 @@ WASM := target/wasm32-unknown-unknown/release/smoothlab.wasm
 PORT ?= 8000
 CARGO ?= cargo
 
-.PHONY: serve test site lint unit wasm browser tools browser-tools figures reproduction performance
+.PHONY: serve test site single python python-test lint unit wasm browser tools browser-tools figures reproduction performance
 
 serve: site
 	@echo "smoothlab playground: http://127.0.0.1:$(PORT)/"
 	python3 -m http.server $(PORT) --bind 127.0.0.1 --directory www
 
 test: lint unit site browser
+	@$(MAKE) --no-print-directory python-test NEED_PAGE_STATE=1
 
 # clippy for the host (every target: lib, CLI, tests, examples, benches) and for the page's
 # wasm32 build (the wasm layer compiles only there), then the docs with broken links denied
@@ -52,8 +55,31 @@ site: tools
 	cp target/wasm-opt/output.wasm www/pkg/smoothlab_bg.wasm
 	@ls -l www/pkg/smoothlab_bg.wasm | awk '{print "wasm size: " $$5 " bytes"}'
 	@gzip -9c www/pkg/smoothlab_bg.wasm | wc -c | awk '{print "wasm size gzipped: " $$1 " bytes"}'
+	node scripts/site-manifest.mjs
 
-browser: site browser-tools
+# The page as one self-contained file (scripts/single.mjs): opens from file://, offline.
+single: site
+	node scripts/single.mjs --html target/smoothlab.html
+
+# The notebook widget (python/): its ES module (the one-file page and python/widget/widget.js)
+# and the sheet its arguments are checked against, both read from the site just built.
+python: site
+	node scripts/single.mjs --widget python/smoothlab/static/widget.js --sheet python/smoothlab/static/sheet.json
+
+# pytest in a virtual environment of its own (target/venv, made once), with the package
+# installed from python/ as a user would (pip install ./python); the widget's module is the
+# one the browser tests loaded, and the model's state they left (test-output/widget/: make
+# test runs the browser first and needs it). pytest's own exit code is the target's (5: no
+# test ran).
+VENV := target/venv
+python-test: python
+	@test -x $(VENV)/bin/python || python3 -m venv $(VENV)
+	@$(VENV)/bin/python -c 'import anywidget, numpy, meshio, pytest' 2>/dev/null || \
+	  $(VENV)/bin/pip install -q --disable-pip-version-check anywidget numpy meshio pytest
+	$(VENV)/bin/pip install -q --disable-pip-version-check --no-deps --force-reinstall ./python
+	SMOOTHLAB_NEED_PAGE_STATE=$(NEED_PAGE_STATE) $(VENV)/bin/pytest -q python/tests
+
+browser: python single browser-tools
 	node tests/browser/run.mjs
 
 reproduction:

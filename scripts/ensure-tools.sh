@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Installs what the wasm build and the browser tests need, when it is missing:
 # the wasm32 target, the wasm-bindgen CLI at the exact version of the crate, npm's
-# binaryen (wasm-opt, which shrinks the page's module), Debian's Chromium, and
+# binaryen (wasm-opt, which shrinks the page's module), esbuild (the one-file page), Debian's Chromium, and
 # playwright-core (no browser download). Fast when all is there.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -21,9 +21,10 @@ if [ "$have" != "$want" ]; then
   cargo install wasm-bindgen-cli --version "$want"
 fi
 
-# npm's binaryen, not Debian's: Debian's older wasm-opt writes a module that fails to load
-if [ ! -x tools/node_modules/.bin/wasm-opt ]; then
-  echo "ensure-tools: installing binaryen's wasm-opt from npm"
+# npm's binaryen, not Debian's: Debian's older wasm-opt writes a module that fails to load;
+# esbuild puts the page in one file (make single, make python)
+if [ ! -x tools/node_modules/.bin/wasm-opt ] || [ ! -x tools/node_modules/.bin/esbuild ]; then
+  echo "ensure-tools: installing binaryen's wasm-opt and esbuild from npm"
   (cd tools && npm ci --no-audit --no-fund --silent 2>/dev/null || npm install --no-audit --no-fund --silent)
 fi
 

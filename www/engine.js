@@ -1,6 +1,18 @@
 // The main thread's handle on the worker (worker.js): promise-based calls, and recovery
 // from a panic in the Rust code by replacing the worker and reloading the last good mesh.
 
+/** The worker: worker.js beside this module, or, in the one-file page (`make single`,
+ * scripts/single.mjs), the worker inlined in the page (a script element of type
+ * text/plain, which does not run) started from a blob of its text, as a classic worker
+ * (bundled: a module worker does not start from a blob in a page opened from file://). */
+let inlinedWorker = null;
+function startWorker() {
+  const inlined = document.getElementById('worker-source');
+  if (!inlined) return new Worker(new URL('./worker.js', import.meta.url), { type: 'module' });
+  inlinedWorker ??= URL.createObjectURL(new Blob([inlined.textContent], { type: 'text/javascript' }));
+  return new Worker(inlinedWorker);
+}
+
 export class Engine {
   constructor(onPanic) {
     this.onPanic = onPanic;
@@ -13,7 +25,7 @@ export class Engine {
   }
 
   spawn() {
-    this.worker = new Worker(new URL('./worker.js', import.meta.url), { type: 'module' });
+    this.worker = startWorker();
     this.worker.onmessage = (ev) => {
       const received = performance.timeOrigin + performance.now();
       const { id, ok, result, error, panic, t, memory } = ev.data;

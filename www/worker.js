@@ -8,7 +8,9 @@
 // wasm memory in bytes.
 import init, * as wasm from './pkg/smoothlab.js';
 
-const ready = init();
+// the one-file page's worker carries the module's bytes (scripts/single.mjs puts them in
+// `self.SMOOTHLAB_WASM` before this runs); the site's fetches pkg/smoothlab_bg.wasm
+const ready = self.SMOOTHLAB_WASM ? init({ module_or_path: self.SMOOTHLAB_WASM }) : init();
 let exports = null;
 let pg = null;
 
@@ -130,6 +132,9 @@ const handlers = {
   nodeView: (w, h, cw, ch, dpr) => need().nodeView(w, h, cw, ch, dpr),
   charts: (w, h, hw, hh, dpr, logY) => need().charts(w, h, hw, hh, dpr, Boolean(logY)),
   exportMesh: (side, format) => need().exportMesh(side, format),
+  // a side's mesh as arrays, for the page's host (app/host.js)
+  meshArrays: (side) => need().meshArrays(side),
+  stats: (side) => need().stats(side),
   worstNode: () => need().worstFreeNode() ?? null,
   // the wheel: the 3D camera zooms about the centre of its view
   zoomMeshes: (x, y, factor) => (isSpace() ? need().zoom(factor) : need().zoomMeshes(x, y, factor)),

@@ -32,6 +32,8 @@ use crate::error::{Error, Result};
 use crate::mesh::{Mesh, MeshBuilder};
 use crate::model::Model;
 
+mod arrays;
+pub use arrays::{mesh_arrays, volume_arrays, CellBlock, MeshArrays};
 mod lex;
 mod msh;
 mod objoff;

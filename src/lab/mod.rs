@@ -370,6 +370,11 @@ impl Playground {
         Ok(())
     }
 
+    /// A panel's current mesh as arrays ([`crate::io::MeshArrays`]: what its `.vtk` text holds).
+    pub fn arrays(&self, side: Side) -> crate::io::MeshArrays {
+        crate::io::mesh_arrays(&self.panel(side).mesh)
+    }
+
     /// A panel's current mesh as the text of a `.msh` (2.2) or `.vtk` file.
     pub fn export(&self, side: Side, format: Format) -> Result<String> {
         write_string(&self.panel(side).mesh, format, &WriteOptions::default())

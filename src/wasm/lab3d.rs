@@ -111,6 +111,13 @@ impl Lab3d {
         Ok(each!(&self.inner, l => l.export_named(s, format))?)
     }
 
+    /// A side's mesh as arrays, as the playground's `meshArrays`.
+    #[wasm_bindgen(js_name = meshArrays)]
+    pub fn mesh_arrays(&self, panel: &str) -> Result<JsValue, JsError> {
+        let s = side(panel)?;
+        super::arrays_object(each!(&self.inner, l => l.arrays(s)))
+    }
+
     /// The statistics table of one side (`a` or `b`), as the playground's `stats` (for a
     /// surface with `max_distance_from_surface`; for tetrahedra the dihedral angles and the
     /// mean ratio).

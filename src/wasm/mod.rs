@@ -137,6 +137,26 @@ fn node_view_object<S: Serialize>(pictures: [tiny_skia::Pixmap; 3], text: String
     ])
 }
 
+/// A mesh as arrays for the page's host (a notebook's widget): `{ dim, points:
+/// Float64Array, cells: [{ vtk_type, per_cell, nodes: Uint32Array }], fixed: Uint8Array }`.
+fn arrays_object(a: crate::io::MeshArrays) -> Result<JsValue, JsError> {
+    let cells = js_sys::Array::new();
+    for b in &a.cells {
+        cells.push(&object(&[
+            ("vtk_type", JsValue::from(b.vtk_type)),
+            ("per_cell", JsValue::from(b.per_cell as u32)),
+            ("nodes", js_sys::Uint32Array::from(&b.nodes[..]).into()),
+        ])?);
+    }
+    let fixed: Vec<u8> = a.fixed.iter().map(|&f| u8::from(f)).collect();
+    object(&[
+        ("dim", JsValue::from(a.dim as u32)),
+        ("points", js_sys::Float64Array::from(&a.points[..]).into()),
+        ("cells", cells.into()),
+        ("fixed", js_sys::Uint8Array::from(&fixed[..]).into()),
+    ])
+}
+
 fn pixels(pm: tiny_skia::Pixmap) -> JsValue {
     js_sys::Uint8Array::from(pm.data()).into()
 }

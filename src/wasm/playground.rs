@@ -144,6 +144,13 @@ impl Playground {
         Ok(self.inner.export(side(panel)?, format)?)
     }
 
+    /// A panel's current mesh as arrays: `{ dim, points, cells, fixed }` (what its `.vtk`
+    /// text holds, [`crate::io::MeshArrays`]).
+    #[wasm_bindgen(js_name = meshArrays)]
+    pub fn mesh_arrays(&self, panel: &str) -> Result<JsValue, JsError> {
+        super::arrays_object(self.inner.arrays(side(panel)?))
+    }
+
     /// The statistics table of one panel (`a` or `b`): nodes, elements, inverted,
     /// min/max angle, min quality and the work of the passes.
     pub fn stats(&self, panel: &str) -> Result<JsValue, JsError> {

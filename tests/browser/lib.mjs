@@ -52,7 +52,7 @@ export function allowErrors(list) {
 export function watch(page, label) {
   page.on('request', (req) => {
     const u = new URL(req.url());
-    if (!['data:', 'blob:'].includes(u.protocol) && u.hostname !== '127.0.0.1') externalRequests.push(req.url());
+    if (!['data:', 'blob:', 'file:'].includes(u.protocol) && u.hostname !== '127.0.0.1') externalRequests.push(req.url());
   });
   page.on('console', (msg) => {
     if (msg.type() === 'error' && !allowedErrors.some((a) => msg.text().includes(a))) consoleErrors.push(`${label}: ${msg.text()}`);

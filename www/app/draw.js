@@ -1,5 +1,5 @@
 // Drawing: the engine's pixels on the canvases, sized to the layout (and to an embed's frame).
-import { $, EMBED, engine, metrics, now, state, view } from './state.js';
+import { $, EMBED, engine, metrics, now, pageEvents, state, view } from './state.js';
 import { nodeHint } from './loading.js';
 import { fillTables } from './tables.js';
 import { refreshUndo } from './undo.js';
@@ -141,6 +141,7 @@ export async function redrawMeshes(refits = 2) {
   const paint_ms = [0, 0];
   if (f.a) paint_ms[0] = paint($('mesh-a'), f.a, w, h);
   if (f.b) paint_ms[1] = paint($('mesh-b'), f.b, w, h);
+  if (f.a || f.b) pageEvents.dispatchEvent(new Event('meshes'));
   if (metrics.startup && !metrics.startup.first_mesh_ms && (f.a || f.b)) {
     Object.assign(metrics.startup, { first_mesh_ms: now(), first_frame_ms: now() - t0, first_render_ms: f.render_ms });
   }

@@ -28,13 +28,9 @@ export async function sendSource(src, call) {
     case 'sample':
       loaded = await call('loadSample', src.name);
       break;
-    case 'gmsh': {
-      const res = await fetch(`samples/${encodeURIComponent(src.name)}`);
-      if (!res.ok) throw new Error(`could not fetch the sample ${src.name} (HTTP ${res.status})`);
-      const bytes = await res.arrayBuffer();
-      loaded = await call('loadFile', src.name, bytes);
+    case 'gmsh':
+      loaded = await call('loadFile', src.name, await gmshSample(src.name));
       break;
-    }
     case 'file':
       loaded = await call('loadFile', src.name, src.bytes.slice(0));
       break;
@@ -45,6 +41,18 @@ export async function sendSource(src, call) {
       throw new Error('unknown mesh source');
   }
   return loaded;
+}
+
+/** The bytes of a Gmsh file the site ships (www/samples/): fetched, or, in the one-file
+ * page (`make single`), read from the page, where it is inlined as a script element of
+ * type text/plain named by `data-sample`. */
+async function gmshSample(name) {
+  for (const el of document.querySelectorAll('script[data-sample]')) {
+    if (el.dataset.sample === name) return new TextEncoder().encode(el.textContent).buffer;
+  }
+  const res = await fetch(`samples/${encodeURIComponent(name)}`);
+  if (!res.ok) throw new Error(`could not fetch the sample ${name} (HTTP ${res.status})`);
+  return res.arrayBuffer();
 }
 
 /** What the log-scale box scales for the mesh on screen, as its tooltip. */

@@ -1,5 +1,5 @@
 // The playground page's entry: wires the controls, fills the menus and opens the address.
-import { $, COMPARE, EMBED, PARAMS, FIGURE_HASH, SETTINGS, VIEWS, engine, gallery, metrics, now, report, serial, showError, state, view } from './state.js';
+import { $, COMPARE, EMBED, HOSTED, PARAMS, FIGURE_HASH, SETTINGS, VIEWS, engine, gallery, metrics, now, report, serial, showError, state, view } from './state.js';
 import { CHECKED, buildControls, changeCompare, checkControl, showStrategyReasons } from './controls.js';
 import { applyHash, copyLink, markAddressHandled, onAddressChange, openHash, openView, updatePermalink, writePermalink } from './permalink.js';
 import { closeTour, drawFigurePicture, fillTourMenu, goFigure, openFigure } from './tour.js';
@@ -11,6 +11,7 @@ import { attachLevelZoom, attachPointer, pickRadius, selectNode } from './pointe
 import { saveFigure, smoothThisNode, undo } from './undo.js';
 import { exportMesh, exportPng } from './export.js';
 import { sendTheme, startTheme, wirePresentation } from './present.js';
+import { connect, openFromHost } from './host.js';
 
 export async function fillGallery() {
   const list = await engine.call('samples');
@@ -202,6 +203,12 @@ export async function main() {
     return;
   }
   state.lastHash = location.hash;
+  // in a notebook's widget: the host's settings, and its mesh instead of the address's
+  if (HOSTED && !(await openFromHost(await connect()))) {
+    markAddressHandled();
+    document.body.dataset.ready = '1';
+    return;
+  }
   const fig = FIGURE_HASH.exec(location.hash);
   if (fig) {
     await openFigure(fig[1]);
@@ -216,6 +223,17 @@ export async function main() {
   await openView();
   markAddressHandled();
   document.body.dataset.ready = '1';
+}
+
+/** Offline after the first visit: the site's service worker (sw.js) keeps its files, on a
+ * page served over HTTP (not opened from a file, nor in a notebook's widget, which
+ * carries the page itself). Registered once the page has opened, so it costs the first
+ * screen nothing. */
+function keepOffline() {
+  if (HOSTED || !/^https?:$/.test(location.protocol) || !('serviceWorker' in navigator)) return;
+  navigator.serviceWorker.register(new URL('sw.js', location.href), { updateViaCache: 'none' }).catch((e) => {
+    console.warn(`the page will not work offline: ${e.message}`);
+  });
 }
 
 // A hook for the browser tests (and the curious): make the engine panic on purpose.
@@ -236,4 +254,4 @@ window.smoothlab = {
   camera: () => serial(() => engine.call('camera')),
 };
 
-main();
+main().then(keepOffline);

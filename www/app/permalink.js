@@ -54,7 +54,8 @@ export async function writePermalink() {
   }
   if (seq !== permalinkSeq) return; // a later change wrote it
   state.lastHash = hash;
-  history.replaceState(null, '', `${location.pathname}${location.search}${hash}`);
+  // the hash alone: a page without a path of its own (a blob, in a notebook) takes it too
+  history.replaceState(null, '', hash);
   $('permalink').href = `${location.pathname}${hash}`;
   const s = state.lastGood;
   let note = '';

@@ -15,7 +15,11 @@ export const SETTINGS = ['strategy', 'threshold', 'order', 'passes', 'maxiter', 
 /** The compare menus of the left (A) and right (B) panel. */
 export const COMPARE = [['objective-a', 'penalty-a'], ['objective-b', 'penalty-b']];
 export const PARAMS = new URLSearchParams(location.search);
-export const EMBED = PARAMS.get('embed') === '1';
+/** The page inside a host that drives it (a notebook's widget, python/): the host writes
+ * `data-host` on the page's <html>, where a document without an address of its own (a
+ * blob) has no query to say it; the host's bridge is app/host.js. */
+export const HOSTED = document.documentElement.dataset.host === 'widget';
+export const EMBED = PARAMS.get('embed') === '1' || HOSTED;
 /** The views `?embed=1&view=…` embeds alone, filling the frame: the canvases each shows,
  * which drawing fills them, and whether the embed first runs the hash's passes (as
  * `smoothlab render` does for the same views). */
@@ -35,6 +39,10 @@ export const FIGURE_HASH = /^#figure=([a-z0-9-]{1,40})$/;
 /** Milliseconds of smoothing per call to the worker during a pass: the progress bar
  * moves and Stop is heard at least this often. */
 export const SLICE_MS = 50;
+
+/** What the page tells its parts that may listen (app/host.js): `meshes`, a mesh picture
+ * changed (a load, a pass, a move, a reset). */
+export const pageEvents = new EventTarget();
 
 export const now = () => performance.now();
 export const nextFrame = () => new Promise((r) => requestAnimationFrame(() => r()));

@@ -36,7 +36,7 @@ export async function openFigure(name) {
   await openHash(opened, { keepLink: true });
   const link = `#figure=${card.name}`;
   state.lastHash = link;
-  history.replaceState(null, '', `${location.pathname}${location.search}${link}`);
+  history.replaceState(null, '', link);
   $('permalink').href = `${location.pathname}${link}`;
   if (EMBED) $('open-full').href = `${location.pathname}${link}`;
   await drawFigurePicture();

@@ -134,6 +134,8 @@ pub trait Mesh3d: Clone + Sized {
     const HISTOGRAMS: &'static [Histogram3d];
     /// The mesh as the text of a file (one of [`EXPORTS`](Self::EXPORTS)).
     fn write(&self, format: Format) -> Result<String>;
+    /// The mesh as arrays: what its `.vtk` text holds ([`crate::io::MeshArrays`]).
+    fn arrays(&self) -> crate::io::MeshArrays;
     /// Why a file's points were read as this kind, where that needs saying.
     fn not_planar(&self) -> Option<String> {
         None
@@ -746,6 +748,11 @@ impl<M: Mesh3d> Lab3d<M> {
     /// A side's mesh as the text of a mesh file.
     pub fn export(&self, side: Side, format: Format) -> Result<String> {
         self.mesh(side).write(format)
+    }
+
+    /// A side's mesh as arrays ([`crate::io::MeshArrays`]).
+    pub fn arrays(&self, side: Side) -> crate::io::MeshArrays {
+        self.mesh(side).arrays()
     }
 
     /// A side's mesh as the text of a file named by its extension (`msh`, `vtk`, …), one

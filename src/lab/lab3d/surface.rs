@@ -173,6 +173,9 @@ impl Mesh3d for Surface {
     fn write(&self, format: Format) -> Result<String> {
         write_string(self, format, &WriteOptions::default())
     }
+    fn arrays(&self) -> crate::io::MeshArrays {
+        crate::io::mesh_arrays(self)
+    }
     fn not_planar(&self) -> Option<String> {
         Surface::not_planar(self).map(str::to_string)
     }

@@ -329,6 +329,9 @@ impl Mesh3d for VolumeMesh {
     fn write(&self, format: Format) -> Result<String> {
         write_model_string(&Model::Volume(self.clone()), format, &WriteOptions::default())
     }
+    fn arrays(&self) -> crate::io::MeshArrays {
+        crate::io::volume_arrays(self)
+    }
     /// What the file's triangles and quads fixed off the boundary
     /// ([`VolumeMesh::stray_faces_note`]).
     fn file_note(&self) -> Option<String> {

@@ -1,0 +1,191 @@
+"""The widget: the playground page in a notebook cell (anywidget).
+
+Its ES module (``static/widget.js``) is the one-file page and the bridge to this model
+(python/widget/widget.js), built by ``make python``; ``static/sheet.json`` is what the
+arguments are checked against: the page's control sheet, samples and tour figures, read
+from the same wasm module by the same build, so nothing here repeats them.
+"""
+
+from __future__ import annotations
+
+import json
+import pathlib
+from typing import Any, Dict, List, Optional
+
+import anywidget
+import numpy as np
+import traitlets
+
+from .mesh import Mesh, check_cells, check_fixed, check_points, vtk_text
+
+STATIC = pathlib.Path(__file__).parent / "static"
+MODULE = STATIC / "widget.js"
+SHEET_FILE = STATIC / "sheet.json"
+if not (MODULE.is_file() and SHEET_FILE.is_file()):
+    raise ImportError(
+        "smoothlab's widget module is not built: run `make python` in the smoothlab repository, "
+        "then `pip install ./python` again"
+    )
+SHEET = json.loads(SHEET_FILE.read_text(encoding="utf-8"))
+
+
+def samples() -> List[str]:
+    """The names of the gallery's samples, for ``Playground(sample=NAME)``."""
+    return [s["name"] for s in SHEET["samples"]]
+
+
+def figures() -> List[str]:
+    """The names of the tour's figures, for ``Playground(figure=NAME)``."""
+    return [f["name"] for f in SHEET["figures"]]
+
+
+def _menu(name: str) -> List[Any]:
+    """What the page's menu for a setting offers (its values as the page holds them)."""
+    c = SHEET["controls"]
+    return {
+        "strategy": [s["name"] for s in c["strategies"]],
+        "order": [o["name"] for o in c["orders"]],
+        "threshold": c["threshold"]["options"],
+        "objective_a": [o["name"] for o in c["objectives"]],
+        "objective_b": [o["name"] for o in c["objectives"]],
+        "penalty_a": [p["name"] for p in c["penalties"]],
+        "penalty_b": [p["name"] for p in c["penalties"]],
+    }[name]
+
+
+def _range(name: str) -> Dict[str, Any]:
+    """A typed setting's control: its label, limits and the limits in words."""
+    return SHEET["controls"]["maxiter" if name == "max_iter" else name]
+
+
+class Playground(anywidget.AnyWidget):
+    """Two smoothers side by side on one mesh, the playground page in a notebook cell.
+
+    ``Playground(points, cells, fixed=None)``: a mesh as arrays (see :mod:`smoothlab.mesh`);
+    ``Playground(sample=NAME)``: a sample of the gallery (:func:`samples`);
+    ``Playground(figure=NAME)``: one figure of the papers' tour (:func:`figures`);
+    :meth:`from_meshio`: a meshio mesh. Settings are keyword arguments and traits
+    (``strategy``, ``threshold``, ``order``, ``passes``, ``max_iter``, ``objective_a``,
+    ``penalty_a``, ``objective_b``, ``penalty_b``; None: the page's default, filled in
+    once the widget is shown). ``mesh_a`` and ``mesh_b`` are the sides' meshes as the page
+    last reported them, ``stats`` their tables, ``error`` what the page refused.
+    """
+
+    _esm = MODULE
+
+    _file = traitlets.Bytes(b"").tag(sync=True)
+    _file_name = traitlets.Unicode("").tag(sync=True)
+    sample = traitlets.Unicode(None, allow_none=True).tag(sync=True)
+    figure = traitlets.Unicode(None, allow_none=True).tag(sync=True)
+    height = traitlets.Int(540).tag(sync=True)
+
+    strategy = traitlets.Unicode(None, allow_none=True).tag(sync=True)
+    threshold = traitlets.Float(None, allow_none=True).tag(sync=True)
+    order = traitlets.Unicode(None, allow_none=True).tag(sync=True)
+    passes = traitlets.Int(None, allow_none=True).tag(sync=True)
+    max_iter = traitlets.Int(None, allow_none=True).tag(sync=True)
+    objective_a = traitlets.Unicode(None, allow_none=True).tag(sync=True)
+    penalty_a = traitlets.Unicode(None, allow_none=True).tag(sync=True)
+    objective_b = traitlets.Unicode(None, allow_none=True).tag(sync=True)
+    penalty_b = traitlets.Unicode(None, allow_none=True).tag(sync=True)
+
+    _mesh_a = traitlets.Dict({}).tag(sync=True)
+    _mesh_b = traitlets.Dict({}).tag(sync=True)
+    stats = traitlets.Dict({}).tag(sync=True)
+    error = traitlets.Unicode(None, allow_none=True).tag(sync=True)
+
+    SETTINGS = ("strategy", "threshold", "order", "passes", "max_iter", "objective_a", "penalty_a", "objective_b", "penalty_b")
+
+    def __init__(
+        self,
+        points: Any = None,
+        cells: Any = None,
+        fixed: Any = None,
+        *,
+        sample: Optional[str] = None,
+        figure: Optional[str] = None,
+        height: int = 540,
+        **settings: Any,
+    ):
+        given = [what for what, v in (("points and cells", points if points is not None else cells), ("sample", sample), ("figure", figure)) if v is not None]
+        if len(given) > 1:
+            raise ValueError(f"give one of points and cells, sample or figure, not {' and '.join(given)}")
+        unknown = sorted(set(settings) - set(self.SETTINGS))
+        if unknown:
+            raise TypeError(f"no setting named {', '.join(map(repr, unknown))}: the settings are {', '.join(self.SETTINGS)}")
+        init: Dict[str, Any] = {"height": height}
+        self._given: Optional[Mesh] = None
+        if points is not None or cells is not None:
+            if points is None or cells is None:
+                raise ValueError("give both points and cells (or a sample or a figure)")
+            p = check_points(points)
+            c = check_cells(cells, len(p))
+            f = check_fixed(fixed, len(p))
+            init["_file"] = vtk_text(p, c, f).encode("utf-8")
+            init["_file_name"] = "notebook.vtk"
+            self._given = Mesh(p, c, f)
+        elif fixed is not None:
+            raise ValueError("fixed goes with points and cells: a sample or a figure fixes its own nodes")
+        elif sample is not None:
+            if sample not in samples():
+                raise ValueError(f"no sample named {sample!r}; the samples are {', '.join(samples())}")
+            init["sample"] = sample
+        elif figure is not None:
+            if figure not in figures():
+                raise ValueError(f"no figure named {figure!r}; the figures are {', '.join(figures())}")
+            init["figure"] = figure
+        else:
+            raise ValueError("give a mesh (points and cells), a sample or a figure")
+        super().__init__(**init, **settings)
+
+    @classmethod
+    def from_meshio(cls, mesh: Any, fixed: Any = None, **kwargs: Any) -> "Playground":
+        """A playground on a meshio mesh: its points and cell blocks; its point data
+        ``fixed`` (as smoothlab writes it) fixes nodes when ``fixed`` is not given."""
+        if not (hasattr(mesh, "points") and hasattr(mesh, "cells")):
+            raise TypeError(f"from_meshio takes a meshio.Mesh, not {type(mesh).__name__}")
+        if fixed is None and "fixed" in getattr(mesh, "point_data", {}):
+            fixed = np.asarray(mesh.point_data["fixed"]).reshape(-1) != 0
+        return cls(mesh.points, list(mesh.cells), fixed, **kwargs)
+
+    @traitlets.validate("strategy", "order", "threshold", "objective_a", "penalty_a", "objective_b", "penalty_b")
+    def _check_menu(self, proposal: Any) -> Any:
+        v, name = proposal["value"], proposal["trait"].name
+        offered = _menu(name)
+        if v is not None and v not in offered:
+            raise traitlets.TraitError(f"{name}: {v!r} is not offered; choose one of {', '.join(map(str, offered))}")
+        return v
+
+    @traitlets.validate("passes", "max_iter")
+    def _check_range(self, proposal: Any) -> Any:
+        v, name = proposal["value"], proposal["trait"].name
+        r = _range(name)
+        if v is not None and not int(r["min"]) <= v <= int(r["max"]):
+            raise traitlets.TraitError(f"{name}: {v} is out of range; {r['label']}: {r['words']}")
+        return v
+
+    def _side(self, trait: str, letter: str) -> Mesh:
+        state = getattr(self, trait)
+        if state:
+            mesh = Mesh.from_page(state)
+            # the page gives a mesh in the xy plane two coordinates; points given with three
+            # (meshio's, z = 0) come back with three
+            if self._given is not None and self._given.points.shape[1] == 3 and mesh.points.shape[1] == 2:
+                mesh.points = np.column_stack([mesh.points, np.zeros(len(mesh.points))])
+            return mesh
+        if self._given is not None:
+            return self._given
+        raise RuntimeError(
+            f"side {letter}'s mesh is made by the page: show the widget (its cell's output) first, then read mesh_{letter.lower()}"
+        )
+
+    @property
+    def mesh_a(self) -> Mesh:
+        """Side A's mesh as the page last reported it (after a Step, a Run, a drag, a
+        Reset); the mesh as given before the page has reported one."""
+        return self._side("_mesh_a", "A")
+
+    @property
+    def mesh_b(self) -> Mesh:
+        """Side B's mesh, as :attr:`mesh_a`."""
+        return self._side("_mesh_b", "B")

@@ -1,0 +1,54 @@
+"""The widget's arguments and traits, checked against the page's own sheet (the wasm
+module's control sheet, samples and figures, written by make python)."""
+
+import json
+
+import numpy as np
+import pytest
+import traitlets
+
+import smoothlab
+import smoothlab.widget
+from smoothlab.widget import SHEET
+
+
+def test_samples_and_figures_are_the_pages():
+    assert "plate-tri-tangled" in smoothlab.samples() and "rand3d" in smoothlab.samples()
+    assert "chen-10" in smoothlab.figures() and len(smoothlab.figures()) >= 14
+    assert smoothlab.Playground(sample="plate-tri-tangled").sample == "plate-tri-tangled"
+    assert smoothlab.Playground(figure="chen-10").figure == "chen-10"
+
+
+def test_an_unknown_sample_or_figure_lists_the_names():
+    with pytest.raises(ValueError, match=r"no sample named 'plate'; the samples are plate-quad-tangled, plate-tri-tangled, .*rand3d"):
+        smoothlab.Playground(sample="plate")
+    with pytest.raises(ValueError, match=r"no figure named 'chen-99'; the figures are chen-2, "):
+        smoothlab.Playground(figure="chen-99")
+
+
+def test_a_sample_has_no_arrays_until_the_page_reports():
+    w = smoothlab.Playground(sample="rand2d")
+    with pytest.raises(RuntimeError, match="side A's mesh is made by the page: show the widget"):
+        w.mesh_a
+
+
+def test_settings_are_checked_against_the_control_sheet(square):
+    points, cells = square
+    w = smoothlab.Playground(points, cells, strategy="c1", passes=5, objective_a="condition", threshold=15)
+    assert (w.strategy, w.passes, w.objective_a, w.threshold) == ("c1", 5, "condition", 15)
+    assert w.order is None  # the page's default, filled in once shown
+    with pytest.raises(traitlets.TraitError, match=r"strategy: 'best' is not offered; choose one of laplace, smart, opt"):
+        w.strategy = "best"
+    with pytest.raises(traitlets.TraitError, match=r"objective_b: 'newest' is not offered"):
+        w.objective_b = "newest"
+    top = int(SHEET["controls"]["passes"]["max"])
+    with pytest.raises(traitlets.TraitError, match=rf"passes: {top + 1} is out of range; Passes: "):
+        w.passes = top + 1
+    with pytest.raises(TypeError, match="no setting named 'speed'"):
+        smoothlab.Playground(points, cells, speed=3)
+
+
+def test_the_widget_module_is_the_page():
+    module = smoothlab.widget.MODULE.read_text(encoding="utf-8")
+    assert module.startswith("// written by scripts/single.mjs")
+    assert "export default { render }" in module and "data-host" in module

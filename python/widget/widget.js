@@ -1,0 +1,102 @@
+// The notebook widget's view (anywidget: `render({ model, el })`): the playground page
+// itself, the same engine and controls, in a frame sized for a notebook cell, and the
+// bridge between the page (www/app/host.js) and the widget's model. `make python`
+// (scripts/single.mjs) puts the one-file page before this as `PAGE`.
+//
+// The model's traits (python/smoothlab/widget.py): `_file` and `_file_name`, the mesh the
+// page opens (a .vtk text the Python side wrote); `sample` or `figure`, what it opens
+// instead; the settings (`strategy`, `threshold`, `order`, `passes`, `max_iter`,
+// `objective_a`, `penalty_a`, `objective_b`, `penalty_b`; null: the page's default),
+// which flow both ways; `_mesh_a`, `_mesh_b` (each side's mesh as arrays, set here after
+// every change), `stats` and `error`, set here; `height`, the frame's height in pixels.
+
+/** The traits the page's settings are synced with (app/host.js's SETTING_CONTROLS). */
+const SETTINGS = ['strategy', 'threshold', 'order', 'passes', 'max_iter', 'objective_a', 'penalty_a', 'objective_b', 'penalty_b'];
+
+/** The page's document: the one-file page marked as hosted (app/state.js, HOSTED). */
+function pageURL(model) {
+  const html = PAGE.replace('<html lang="en">', '<html lang="en" data-host="widget">');
+  const url = URL.createObjectURL(new Blob([html], { type: 'text/html' }));
+  const figure = model.get('figure');
+  const sample = model.get('sample');
+  const hash = figure ? `#figure=${encodeURIComponent(figure)}` : sample ? `#sample=${encodeURIComponent(sample)}` : '';
+  return { url, address: url + hash };
+}
+
+/** The bytes a binary trait holds (a DataView, an ArrayBuffer or a typed array), copied. */
+function bytesOf(value) {
+  if (!value) return null;
+  if (value instanceof ArrayBuffer) return value.slice(0);
+  if (ArrayBuffer.isView(value)) return value.buffer.slice(value.byteOffset, value.byteOffset + value.byteLength);
+  return null;
+}
+
+/** A side's mesh for the model: its arrays as DataViews (sent to the kernel as binary
+ * buffers, not as lists of numbers). */
+function meshTrait(arrays) {
+  const view = (a) => new DataView(a.buffer, a.byteOffset, a.byteLength);
+  return {
+    dim: arrays.dim,
+    points: view(arrays.points),
+    cells: arrays.cells.map((c) => ({ vtk_type: c.vtk_type, per_cell: c.per_cell, nodes: view(c.nodes) })),
+    fixed: view(arrays.fixed),
+  };
+}
+
+function settingsOf(model) {
+  const out = {};
+  for (const name of SETTINGS) out[name] = model.get(name);
+  return out;
+}
+
+function render({ model, el }) {
+  const frame = document.createElement('iframe');
+  frame.title = 'smoothlab: two smoothing objectives side by side';
+  frame.style.cssText = 'width: 100%; border: 0; display: block;';
+  const size = () => {
+    frame.style.height = `${model.get('height')}px`;
+  };
+  size();
+  let applying = false; // the page's own state going into the model: not sent back
+  const onMessage = (ev) => {
+    const m = ev.data;
+    if (ev.source !== frame.contentWindow || !m || typeof m.smoothlab !== 'string') return;
+    if (m.smoothlab === 'hello') {
+      const bytes = bytesOf(model.get('_file'));
+      const file = bytes && bytes.byteLength ? { name: model.get('_file_name') || 'mesh.vtk', bytes } : null;
+      frame.contentWindow.postMessage({ smoothlab: 'open', file, settings: settingsOf(model) }, '*', file ? [file.bytes] : []);
+    } else if (m.smoothlab === 'state') {
+      applying = true;
+      try {
+        for (const name of SETTINGS) {
+          if (m.settings && m.settings[name] !== undefined && model.get(name) !== m.settings[name]) model.set(name, m.settings[name]);
+        }
+        if (m.meshes && m.meshes.a) model.set('_mesh_a', meshTrait(m.meshes.a));
+        if (m.meshes && m.meshes.b) model.set('_mesh_b', meshTrait(m.meshes.b));
+        if (m.stats) model.set('stats', m.stats);
+        model.set('error', m.error ?? null);
+        model.save_changes();
+      } finally {
+        applying = false;
+      }
+    }
+  };
+  window.addEventListener('message', onMessage);
+  const onSettings = () => {
+    if (applying || !frame.contentWindow) return;
+    frame.contentWindow.postMessage({ smoothlab: 'settings', settings: settingsOf(model) }, '*');
+  };
+  for (const name of SETTINGS) model.on(`change:${name}`, onSettings);
+  model.on('change:height', size);
+  const { url, address } = pageURL(model);
+  frame.src = address;
+  el.append(frame);
+  return () => {
+    window.removeEventListener('message', onMessage);
+    for (const name of SETTINGS) model.off(`change:${name}`, onSettings);
+    model.off('change:height', size);
+    URL.revokeObjectURL(url);
+  };
+}
+
+export default { render };

@@ -1,0 +1,158 @@
+// The bridge to a host that drives the page: a notebook's widget (python/smoothlab, whose
+// module puts the one-file page in a frame with `data-host="widget"` on its <html>). They
+// talk by messages `{ smoothlab: KIND, … }`: the page says `hello` once its controls are
+// built; the host answers `open` (the mesh file it brings, if any, and the settings it
+// sets); the page then sends `state` (its settings, both sides' meshes as arrays, their
+// tables, and what went wrong, if anything) after every change of a mesh or a setting,
+// and takes `settings` from the host at any time. The page's own controls do the work:
+// a setting is put in its control and the control's own change handler runs, a file is
+// loaded by the page's loader, so the host sees the page's checks and messages.
+import { $, engine, pageEvents, serial, state } from './state.js';
+import { CHECKED, checkControl } from './controls.js';
+import { load } from './loading.js';
+
+/** The host's names of the settings (the Python widget's traits) and the controls they set. */
+export const SETTING_CONTROLS = {
+  strategy: 'strategy',
+  threshold: 'threshold',
+  order: 'order',
+  passes: 'passes',
+  max_iter: 'maxiter',
+  objective_a: 'objective-a',
+  penalty_a: 'penalty-a',
+  objective_b: 'objective-b',
+  penalty_b: 'penalty-b',
+};
+const NUMERIC = new Set(['threshold', 'passes', 'max_iter']);
+
+const host = { window: null, error: null, sent: { a: null, b: null }, timer: 0 };
+
+function post(message) {
+  host.window.postMessage({ smoothlab: message.kind, ...message }, '*');
+}
+
+/** The settings as the controls hold them, by the host's names. */
+function readSettings() {
+  const out = {};
+  for (const [name, id] of Object.entries(SETTING_CONTROLS)) {
+    const v = $(id).value;
+    out[name] = NUMERIC.has(name) ? Number(v) : v;
+  }
+  return out;
+}
+
+/** Puts the host's settings in the controls and runs their handlers; returns the first
+ * refusal in words (a value a menu does not offer, a typed value out of its range). */
+async function applySettings(settings) {
+  const refusals = [];
+  for (const [name, value] of Object.entries(settings || {})) {
+    if (value === null || value === undefined) continue;
+    const id = SETTING_CONTROLS[name];
+    if (!id) {
+      refusals.push(`no setting named '${name}': the settings are ${Object.keys(SETTING_CONTROLS).join(', ')}`);
+      continue;
+    }
+    const el = $(id);
+    const text = String(value);
+    if (el.tagName === 'SELECT') {
+      const offered = [...el.options].map((o) => o.value);
+      if (!offered.includes(text)) {
+        refusals.push(`${name}: '${text}' is not offered; choose one of ${offered.join(', ')}`);
+        continue;
+      }
+      if (el.value === text) continue;
+      el.value = text;
+      el.dispatchEvent(new Event('change'));
+    } else {
+      if (el.value === text) continue;
+      el.value = text;
+      if (Object.hasOwn(CHECKED, id)) {
+        await checkControl(id);
+        if (state.invalid.has(id)) {
+          refusals.push(`${name}: ${state.invalid.get(id)}`);
+          continue;
+        }
+      }
+      el.dispatchEvent(new Event('change'));
+    }
+  }
+  return refusals.length ? refusals.join('; ') : null;
+}
+
+/** A hash of a typed array's bytes: a side is sent again only when its mesh changed. */
+function digest(arrays) {
+  let h = 2166136261;
+  const mix = (view) => {
+    const bytes = new Uint8Array(view.buffer, view.byteOffset, view.byteLength);
+    for (let i = 0; i < bytes.length; i += 1) h = Math.imul(h ^ bytes[i], 16777619);
+  };
+  mix(arrays.points);
+  mix(arrays.fixed);
+  for (const c of arrays.cells) mix(c.nodes);
+  return `${h >>> 0}:${arrays.points.length}:${arrays.cells.length}`;
+}
+
+/** Sends the page's state: the settings always, a side's mesh when it changed since sent. */
+async function sendState() {
+  const meshes = {};
+  if (state.lastGood) {
+    for (const side of ['a', 'b']) {
+      const arrays = await engine.call('meshArrays', side);
+      const d = digest(arrays);
+      if (d !== host.sent[side]) {
+        meshes[side] = arrays;
+        host.sent[side] = d;
+      }
+    }
+  }
+  const stats = state.lastGood ? { a: await engine.call('stats', 'a'), b: await engine.call('stats', 'b') } : null;
+  post({ kind: 'state', settings: readSettings(), meshes, stats, error: host.error });
+}
+
+/** Sends the state once the page is idle (a run's passes are not each sent). */
+function scheduleState() {
+  if (!host.window) return;
+  clearTimeout(host.timer);
+  host.timer = setTimeout(() => {
+    if (state.running) {
+      scheduleState();
+      return;
+    }
+    serial(sendState).catch((e) => post({ kind: 'state', settings: readSettings(), meshes: {}, stats: null, error: e.message }));
+  }, 60);
+}
+
+/** Waits for the host's `open`, after saying `hello`; returns what it brings: `{ file,
+ * settings }`, `file` `{ name, bytes }` or null (then the page opens its address). */
+export function connect() {
+  return new Promise((resolve) => {
+    window.addEventListener('message', (ev) => {
+      const m = ev.data;
+      if (ev.source !== window.parent || !m || typeof m.smoothlab !== 'string') return;
+      if (m.smoothlab === 'open' && !host.window) {
+        host.window = ev.source;
+        resolve({ file: m.file || null, settings: m.settings || {} });
+      } else if (m.smoothlab === 'settings' && host.window) {
+        applySettings(m.settings).then((why) => {
+          host.error = why;
+          scheduleState();
+        });
+      }
+    });
+    pageEvents.addEventListener('meshes', scheduleState);
+    window.parent.postMessage({ smoothlab: 'hello' }, '*');
+  });
+}
+
+/** Opens what the host brought: its settings, then its file (a load the core refuses
+ * leaves its message for the host). Resolves whether the page should go on to open its
+ * address (no file was brought). */
+export async function openFromHost({ file, settings }) {
+  host.error = await applySettings(settings);
+  if (!file) return true;
+  const src = { kind: 'file', name: file.name, bytes: file.bytes };
+  await load(src, file.name, { keepHash: true });
+  if (state.lastGood !== src) host.error = $('message').textContent || `${file.name} could not be opened`;
+  scheduleState();
+  return false;
+}
