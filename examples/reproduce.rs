@@ -1435,9 +1435,9 @@ fn tangled_from_files(out: &mut String) {
         out,
         "\nThe same from `.off`, which keeps no fixed flags (linear elements, 1.0 and 1.5 edge lengths): a \
          tangled file's angles are the tangle's, so without flags it has no feature curves and is fitted as one \
-         smooth surface (`docs/formulas.md` §7). The sphere and the torus have none to lose; the cylinder \
-         untangles, but its rims are smoothed over (their nodes free, the fits beside a rim spanning the cap and \
-         the side: the distance below). Keep the flags (`.vtk`, `.msh`) for a tangled surface with creases.\n\n\
+         smooth surface (`docs/formulas.md` §7). The sphere and the torus have none to lose; the cylinder's \
+         rims are smoothed over (their nodes free, the fits beside a rim spanning the cap and the side: the \
+         distance below), and an element by a rim may stay inverted. Keep the flags (`.vtk`, `.msh`) for a tangled surface with creases.\n\n\
          | mesh | amount | nodes | inverted: before → pass 1 → 2 → 3 | untangled | distance | min angle | max angle |\n\
          |---|---|---|---|---|---|---|---|"
     );
