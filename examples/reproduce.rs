@@ -588,6 +588,16 @@ fn freitag_why_new(out: &mut String, meshes: &[Mesh]) {
 // ---------------------------------------------------------------------------------------
 // 2. Chen Figs 13–15
 
+/// The plates of §2 (and §9's comparison): their names, kinds and orders.
+const PLATES: [(&str, PlateKind, u8); 6] = [
+    ("tri", PlateKind::Tri, 1),
+    ("quad", PlateKind::Quad, 1),
+    ("mixed", PlateKind::Mixed, 1),
+    ("tri, order 2", PlateKind::Tri, 2),
+    ("quad, order 2", PlateKind::Quad, 2),
+    ("mixed, order 2", PlateKind::Mixed, 2),
+];
+
 fn chen_plate(out: &mut String) {
     const SEEDS: [u64; 5] = [1, 2, 3, 4, 5];
     const AMOUNTS: [f64; 5] = [0.6, 0.8, 1.0, 1.25, 1.5];
@@ -619,14 +629,7 @@ fn chen_plate(out: &mut String) {
     let mut tally = [[(0usize, 0usize, 0usize, 0usize); 2]; 2];
     let mut runs = 0usize;
     let mut example: Option<(String, Vec<usize>, Vec<usize>)> = None;
-    for (label, kind, order) in [
-        ("tri", PlateKind::Tri, 1u8),
-        ("quad", PlateKind::Quad, 1),
-        ("mixed", PlateKind::Mixed, 1),
-        ("tri, order 2", PlateKind::Tri, 2),
-        ("quad, order 2", PlateKind::Quad, 2),
-        ("mixed, order 2", PlateKind::Mixed, 2),
-    ] {
+    for (label, kind, order) in PLATES {
         let base = plate(kind, order, 4).expect("plate");
         for amount in AMOUNTS {
             let mut start = vec![];
@@ -1408,14 +1411,7 @@ fn tangled_from_files(out: &mut String) {
         }
     };
     from_file(out, io::Format::Vtk, &[1, 2], &AMOUNTS);
-    for (label, kind, order) in [
-        ("plate tri order 1", PlateKind::Tri, 1u8),
-        ("plate quad order 1", PlateKind::Quad, 1),
-        ("plate mixed order 1", PlateKind::Mixed, 1),
-        ("plate tri order 2", PlateKind::Tri, 2),
-        ("plate quad order 2", PlateKind::Quad, 2),
-        ("plate mixed order 2", PlateKind::Mixed, 2),
-    ] {
+    for (label, kind, order) in PLATES {
         let base = plate(kind, order, 4).expect("plate");
         for amount in AMOUNTS {
             let runs: Vec<_> = SEEDS
@@ -1428,7 +1424,7 @@ fn tangled_from_files(out: &mut String) {
                     (inverted, None, last.after.min_angle_deg, last.after.max_angle_deg)
                 })
                 .collect();
-            let _ = writeln!(out, "{}", row(label, amount, base.node_count(), &runs));
+            let _ = writeln!(out, "{}", row(&format!("plate {label}"), amount, base.node_count(), &runs));
         }
     }
     let _ = writeln!(
