@@ -23,10 +23,10 @@ function freePort() {
   });
 }
 
-/** Serves www/ and resolves once it answers: `{ proc, base, log() }`. */
-export async function startServer() {
+/** Serves `dir` (www/ unless told) and resolves once it answers: `{ proc, base, log() }`. */
+export async function startServer(dir = WWW) {
   const port = await freePort();
-  const proc = spawn('python3', ['-m', 'http.server', String(port), '--bind', '127.0.0.1', '--directory', WWW], {
+  const proc = spawn('python3', ['-m', 'http.server', String(port), '--bind', '127.0.0.1', '--directory', dir], {
     stdio: ['ignore', 'ignore', 'pipe'],
   });
   let log = '';
