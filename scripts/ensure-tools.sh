@@ -35,8 +35,8 @@ if [ "${1:-}" = "--browser" ]; then
     $SUDO apt-get update -qq
     DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq chromium >/dev/null
   fi
-  if [ ! -d tests/browser/node_modules/playwright-core ]; then
-    echo "ensure-tools: installing playwright-core (no browser download)"
+  if [ ! -d tests/browser/node_modules/playwright-core ] || [ ! -d tests/browser/node_modules/reveal.js ]; then
+    echo "ensure-tools: installing playwright-core (no browser download) and reveal.js (the slides suite's deck)"
     (cd tests/browser && npm ci --no-audit --no-fund --silent 2>/dev/null || npm install --no-audit --no-fund --silent)
   fi
 fi
