@@ -622,12 +622,15 @@ pub fn render_level_set_with(pixmap: &mut Pixmap, data: &LevelSet<'_>, opts: &Le
     let room = (frame.w - 8.0) * s;
     // (never below the theme's smallest label)
     let fit = |text: &str, size: f32| theme.text_px(super::text::size_to_fit(text, size, room), s);
+    // (and, where even that is too wide, its leading words and "…")
     let title = TextStyle::new(fit(data.title, 14.0 * s)).with_color(theme.ink).with_align(Align::Centre, Valign::Baseline);
-    draw_text(pixmap, data.title, (frame.x + 0.5 * frame.w) * s, (frame.y + title_y) * s, title);
+    let shown = super::text::fit_words(data.title, title.size, room);
+    draw_text(pixmap, &shown, (frame.x + 0.5 * frame.w) * s, (frame.y + title_y) * s, title);
     let better = if field.goal == Goal::MaximizeMin { "maximised" } else { "minimised" };
     let note = format!("{better}: the brighter the band, the better");
     let sub = TextStyle::new(fit(&note, 10.5 * s)).with_color(theme.muted).with_align(Align::Centre, Valign::Baseline);
-    draw_text(pixmap, &note, (frame.x + 0.5 * frame.w) * s, (frame.y + note_y) * s, sub);
+    let shown = super::text::fit_words(&note, sub.size, room);
+    draw_text(pixmap, &shown, (frame.x + 0.5 * frame.w) * s, (frame.y + note_y) * s, sub);
 
     if opts.legend {
         let ls = LegendStyle::new(theme, s * 0.9, s);

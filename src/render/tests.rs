@@ -455,6 +455,20 @@ fn text_shrinks_to_fit_its_width() {
     assert_eq!(size_to_fit("A: old", 14.0, 200.0), 14.0);
 }
 
+/// A title too wide even at the smallest size keeps its leading words and "…" (centred
+/// and clipped, the figure's B title lost its first and last words); one that fits is whole.
+#[test]
+fn a_title_too_wide_at_the_smallest_size_keeps_its_leading_words() {
+    use super::text::{fit_words, text_width};
+    let title = "B: new: Chen, Tristano & Kwok (Fletcher–Reeves), barrier penalty";
+    let width = 0.7 * text_width(title, 10.0);
+    let shown = fit_words(title, 10.0, width);
+    assert!(shown.starts_with("B: new: Chen") && shown.ends_with('…'), "{shown}");
+    assert!(text_width(&shown, 10.0) <= width, "{shown}");
+    assert_eq!(fit_words(title, 10.0, 2.0 * width), title);
+    assert_eq!(fit_words("A: old", 10.0, 1.0), "…");
+}
+
 #[test]
 fn an_inverted_element_flung_far_away_is_hatched_only_where_it_shows() {
     // the max-min objective can fling a node of a tangled mesh a billion units away: the

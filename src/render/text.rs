@@ -84,6 +84,24 @@ pub fn size_to_fit(text: &str, size: f32, width: f32) -> f32 {
     }
 }
 
+/// `text` as it fits `width` device pixels at `size`: whole when it fits, else as many of
+/// its leading words as fit and "…" (a title already drawn at the smallest legible size
+/// that would still run past its frame, which clipped it at both ends when centred).
+pub fn fit_words(text: &str, size: f32, width: f32) -> std::borrow::Cow<'_, str> {
+    if text_width(text, size) <= width {
+        return text.into();
+    }
+    let mut cut = text.len();
+    while let Some(space) = text[..cut].rfind(' ') {
+        cut = space;
+        let shown = format!("{}…", text[..cut].trim_end_matches([',', ':', ';', ' ']));
+        if text_width(&shown, size) <= width {
+            return shown.into();
+        }
+    }
+    "…".into()
+}
+
 /// Width in device pixels of `text` at `size`.
 pub fn text_width(text: &str, size: f32) -> f32 {
     let f = font().as_scaled(PxScale::from(size.max(0.0)));
