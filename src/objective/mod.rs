@@ -448,7 +448,7 @@ pub trait Objective<S: NodeStar = Star> {
         combine(self.goal(), &t)
     }
     /// Value, gradient and Hessian (symmetric) at `x`, for a smooth objective that has
-    /// an analytic Hessian (`new` with its barrier); `None` otherwise (the default). The
+    /// an analytic Hessian (`new` with its barrier, `condition`); `None` otherwise (the default). The
     /// value and gradient are [`value_and_gradient`](Self::value_and_gradient)'s. Newton's
     /// first trial in Fletcher–Reeves ([`crate::optimize::SolveOptions::newton`]) uses it.
     #[allow(clippy::type_complexity)]
