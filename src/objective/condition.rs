@@ -170,12 +170,7 @@ const INV_SQRT3: f64 = 0.577_350_269_189_625_8;
 /// `new`'s check for the same stars).
 #[inline]
 fn far_from_unit_size(star: &Star) -> bool {
-    let mut m = 0.0f64;
-    for e in &star.elems {
-        let (k, s) = (e.kind.corners(), e.slot as usize);
-        m = m.max((e.pts[(s + 1) % k] - star.x0).abs().max_element());
-        m = m.max((e.pts[(s + k - 1) % k] - star.x0).abs().max_element());
-    }
+    let m = super::free_node_extent(star);
     !(m == 0.0 || crate::numeric::SAFE_SCALE.contains(&m)) && crate::numeric::unit_factor(m).is_some()
 }
 
@@ -327,8 +322,8 @@ mod tests {
             for _ in 0..30 {
                 let x = star.x0 + rng.point(0.15);
                 if TWO.value(&star, x) < CONDITION_BARRIER {
-                    // relative to the Hessian's size: κ² grows like 1/det², so near a
-                    // barrier the entries are large and their differences round at 1e-6
+                    // the tolerance is relative to each column's size: κ² grows like
+                    // 1/det², so near a barrier the entries are large
                     check_hessian(&TWO, &star, x, 1e-5);
                     checks += 1;
                 }
