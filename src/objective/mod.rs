@@ -413,6 +413,20 @@ pub fn star_scale(star: &Star) -> f64 {
     }
 }
 
+/// The largest edge component at the free node of `star` at [`Star::x0`] (to the next and
+/// previous corner of every element): how far the objectives' products of two edge
+/// components are from leaving the doubles (beyond 2^±200, [`crate::numeric::SAFE_SCALE`]).
+#[inline]
+pub(crate) fn free_node_extent(star: &Star) -> f64 {
+    let mut extent = 0.0f64;
+    for e in &star.elems {
+        let (k, s) = (e.kind.corners(), e.slot as usize);
+        extent = extent.max((e.pts[(s + 1) % k] - star.x0).abs().max_element());
+        extent = extent.max((e.pts[(s + k - 1) % k] - star.x0).abs().max_element());
+    }
+    extent
+}
+
 /// An objective of a free node's position over its star (see the module docs).
 pub trait Objective<S: NodeStar = Star> {
     /// A short name, as on the command line (`new`, `old`, …).
@@ -448,7 +462,7 @@ pub trait Objective<S: NodeStar = Star> {
         combine(self.goal(), &t)
     }
     /// Value, gradient and Hessian (symmetric) at `x`, for a smooth objective that has
-    /// an analytic Hessian (`new` with its barrier); `None` otherwise (the default). The
+    /// an analytic Hessian (`new` with its barrier, `condition`); `None` otherwise (the default). The
     /// value and gradient are [`value_and_gradient`](Self::value_and_gradient)'s. Newton's
     /// first trial in Fletcher–Reeves ([`crate::optimize::SolveOptions::newton`]) uses it.
     #[allow(clippy::type_complexity)]

@@ -263,12 +263,7 @@ impl StarAtRest {
     }
 
     fn work_out(star: &Star) -> StarAtRest {
-        let mut extent = 0.0f64;
-        for e in &star.elems {
-            let (k, s) = (e.kind.corners(), e.slot as usize);
-            extent = extent.max((e.pts[(s + 1) % k] - star.x0).abs().max_element());
-            extent = extent.max((e.pts[(s + k - 1) % k] - star.x0).abs().max_element());
-        }
+        let extent = super::free_node_extent(star);
         let (mut sum, mut count, mut min) = (0.0, 0usize, f64::INFINITY);
         for el in &star.elems {
             if el.kind == ElementKind::Tri3 {
