@@ -96,17 +96,20 @@ impl Surface {
         // one is folded (a tangled file), whose angles are the tangle's: then the surface
         // fitted through the nodes, its feature curves the edges between two nodes the file
         // fixed ([`Judge::Tangled`])
-        let mut reference = analytic.map(Reference::Analytic);
-        if analytic.is_none() {
-            let facets = Facets::new(&points, flat.kinds(), |e| flat.element(e), |e| features.part[e], |e| features.side[e]);
-            if facets.is_folded() {
-                features = Features::new(&flat, &points, given.as_deref(), Judge::Tangled);
-                reference = Some(Reference::Fitted(Box::new(Fitted::new(&points, &flat, |e| features.part[e]))));
-            } else {
-                reference = Some(Reference::Facets(Box::new(facets)));
+        let reference = match analytic {
+            Some(a) => Reference::Analytic(a),
+            None => {
+                let (part, side) = (features.parts(), features.sides());
+                let facets = Facets::new(&points, flat.kinds(), |e| flat.element(e), |e| part[e], |e| side[e]);
+                if facets.is_folded() {
+                    features = Features::new(&flat, &points, given.as_deref(), Judge::Tangled);
+                    let part = features.parts();
+                    Reference::Fitted(Box::new(Fitted::new(&points, &flat, |e| part[e])))
+                } else {
+                    Reference::Facets(Box::new(facets))
+                }
             }
-        }
-        let reference = reference.expect("a reference of one kind");
+        };
         // an exact surface knows its feature curves (the cylinder's rims); else the angles say
         let feature: Vec<bool> = match analytic {
             Some(a) => points.iter().map(|&p| a.on_feature(p)).collect(),
@@ -414,10 +417,6 @@ struct Features<'a> {
     sheet: Vec<u32>,
     sheet_elements: Vec<u32>,
     judge: Judge,
-    /// Per element, its smooth part ([`Features::parts`]) and its side of the folds that
-    /// are feature curves ([`Features::sides`]).
-    part: Vec<u32>,
-    side: Vec<u32>,
 }
 
 /// What tells a feature curve.
@@ -452,8 +451,6 @@ impl<'a> Features<'a> {
             sheet: Vec::new(),
             sheet_elements: Vec::new(),
             judge,
-            part: Vec::new(),
-            side: Vec::new(),
         };
         let sheet = f.components(|f, e, g, _, _| f.turn(e, g) != Turn::Fold);
         let mut count = vec![0u32; mesh.element_count()];
@@ -462,8 +459,6 @@ impl<'a> Features<'a> {
         }
         f.sheet_elements = sheet.iter().map(|&s| count[s as usize]).collect();
         f.sheet = sheet;
-        f.part = f.parts();
-        f.side = f.sides();
         f
     }
 

@@ -31,17 +31,19 @@ impl Surface {
     /// away from the reference.
     pub(crate) fn tangent_plane(&self, n: usize) -> Plane {
         let x = self.points[n];
+        let reference = self.project_near(x, n).normal;
+        // a reference fitted through the nodes is there because the elements fold: their
+        // normals are not the surface's
+        if matches!(*self.reference, super::Reference::Fitted(_)) {
+            return Plane::with_normal(x, reference);
+        }
         let star: DVec3 = self
             .flat
             .node_elements(n)
             .iter()
             .map(|&e| super::element_normal(&self.flat, &self.points, e as usize))
             .sum();
-        let reference = self.project_near(x, n).normal;
         let normal = match star.try_normalize() {
-            // a reference fitted through the nodes is there because the elements fold:
-            // their normals are not the surface's
-            _ if matches!(*self.reference, super::Reference::Fitted(_)) => reference,
             Some(s) if s.dot(reference) > 0.0 => s,
             _ => reference,
         };

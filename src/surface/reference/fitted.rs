@@ -99,9 +99,9 @@ impl Fit {
 #[derive(Clone, Debug)]
 pub struct Fitted {
     fits: Vec<Fit>,
-    /// Node → its fits, one per smooth part it lies on (CSR).
+    /// Node → its fits, one per smooth part it lies on (CSR: node `n`'s are
+    /// `node_start[n]..node_start[n + 1]`, numbered node by node).
     node_start: Vec<u32>,
-    node_fits: Vec<u32>,
     /// Per element, the fit of its first corner on its part.
     element_fit: Vec<u32>,
     grid: Grid,
@@ -125,7 +125,6 @@ impl Fitted {
         for n in 0..nn {
             node_start[n + 1] = node_start[n] + node_parts[n].len() as u32;
         }
-        let node_fits: Vec<u32> = (0..node_start[nn]).collect();
         let fit_of = |n: usize, k: u32| -> u32 {
             let i = node_parts[n].iter().position(|&x| x == k).expect("a node's part");
             node_start[n] + i as u32
@@ -174,13 +173,13 @@ impl Fitted {
         let origins: Vec<DVec3> = fits.iter().map(|f| f.plane.origin).collect();
         let dots: Vec<[u32; 3]> = (0..origins.len() as u32).map(|i| [i; 3]).collect();
         let grid = Grid::new(&origins, &dots);
-        Fitted { fits, node_start, node_fits, element_fit, grid }
+        Fitted { fits, node_start, element_fit, grid }
     }
 
     /// A node's first fit (its hint before it has moved); [`NONE`] for an unused node.
     pub fn fit_at_node(&self, n: usize) -> u32 {
         match (self.node_start.get(n), self.node_start.get(n + 1)) {
-            (Some(&a), Some(&b)) if a < b => self.node_fits[a as usize],
+            (Some(&a), Some(&b)) if a < b => a,
             _ => NONE,
         }
     }
@@ -436,13 +435,8 @@ fn orient_fits(
     let mut star = vec![DVec3::ZERO; nf];
     let mut area = vec![0.0; nf];
     for e in 0..mesh.element_count() {
-        let ids = mesh.element(e);
-        let k = mesh.kind(e).corners();
-        let o = ids[..k].iter().map(|&i| points[i as usize]).sum::<DVec3>() / k as f64;
-        let n: DVec3 = (0..k)
-            .map(|i| (points[ids[i] as usize] - o).cross(points[ids[(i + 1) % k] as usize] - o))
-            .sum();
-        for &v in ids {
+        let n = crate::surface::element_normal(mesh, points, e);
+        for &v in mesh.element(e) {
             let f = fit_of(v as usize, part(e)) as usize;
             star[f] += n;
             area[f] += n.length();
