@@ -22,13 +22,13 @@
 //! ([`CornerStar::reference`]: the mesh's element kind's W, computed once per kind).
 //! The formulas, in one notation: `docs/formulas.md` §8.
 
-use glam::DVec3;
+use glam::{DMat3, DVec3};
 
 use super::{Goal, NodeStar, Objective, ObjectiveKind, Term, BARRIER_EPSILON, BARRIER_WEIGHT, CONDITION_BARRIER};
 use crate::error::{Error, Result};
 use crate::mesh::VolumeKind;
-use crate::quality::solid::scaled_jacobian_grad0;
-use crate::quality::tet::{self as q3, CornerReference, EQUILATERAL_TET};
+use crate::quality::solid::{scaled_jacobian_grad0, validity, DetForm, Validity};
+use crate::quality::tet::{self as q3, outer, CornerForm, CornerReference, WeightedJacobian, EQUILATERAL_TET};
 
 /// One corner of an element of a star, as the tetrahedron of its Jacobian (Knupp 1999):
 /// the corner and its three edge neighbours, reordered so that the free node comes first.
@@ -47,13 +47,20 @@ pub struct StarCorner {
     /// Whether the tetrahedron is the whole element (a tetrahedron): its measures are the
     /// element's (the dihedral sines), not a corner's (the scaled Jacobian).
     pub simplex: bool,
+    /// Its weighted Jacobian as a function of the free node's position, worked out from
+    /// `pts` and `reference` when made: what the smooth objectives read at a trial position.
+    pub form: CornerForm,
 }
 
 impl StarCorner {
+    /// The corner `pts` (the free node first) of `element`, against `reference`.
+    pub fn new(element: u32, pts: [DVec3; 4], reference: &'static CornerReference, simplex: bool) -> Self {
+        StarCorner { element, pts, reference, simplex, form: CornerForm::of(&pts, reference) }
+    }
     /// A tetrahedron of a star (the free node first), measured against the equilateral
     /// tetrahedron.
     pub fn tet(element: u32, pts: [DVec3; 4]) -> Self {
-        StarCorner { element, pts, reference: &EQUILATERAL_TET, simplex: true }
+        StarCorner::new(element, pts, &EQUILATERAL_TET, true)
     }
     /// The corners with the free node at `x`.
     #[inline]
@@ -62,19 +69,42 @@ impl StarCorner {
         p[0] = x;
         p
     }
+    /// [`q3::is_inverted`] with the free node at `x`, from the form where it decides.
+    #[inline]
+    pub fn inverted_at(&self, x: DVec3) -> bool {
+        self.form.inverted_at(x, self.reference).unwrap_or_else(|| q3::is_inverted(&self.at(x)))
+    }
 }
 
 /// An element of a star that is not a tetrahedron, whole, for the validity guard: its
 /// corners (the free node's at `slot`) and kind.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq)]
 pub struct StarSolid {
     pub element: u32,
     pub kind: VolumeKind,
     pub slot: u8,
     pub pts: [DVec3; 8],
+    /// Its `det J` as a function of the free node's position ([`DetForm`]), worked out at
+    /// the first trial that asks (a visit of the smart Laplacian asks none); it holds
+    /// wherever the free node goes, as the other corners stay.
+    det: std::sync::OnceLock<Option<DetForm>>,
 }
 
 impl StarSolid {
+    /// The element `element` of `kind`, its corners `pts` with the free node at `slot`.
+    pub fn new(element: u32, kind: VolumeKind, slot: u8, pts: [DVec3; 8]) -> Self {
+        StarSolid { element, kind, slot, pts, det: std::sync::OnceLock::new() }
+    }
+    /// [`validity`](crate::quality::solid::validity) with the free node at `x`, from the
+    /// element's [`DetForm`] where it decides.
+    #[inline]
+    pub fn validity_at(&self, x: DVec3) -> Validity {
+        let form = self.det.get_or_init(|| DetForm::of(self.kind, &self.pts, self.slot as usize));
+        form.and_then(|d| d.validity_at(x)).unwrap_or_else(|| {
+            let p = self.at(x);
+            validity(self.kind, self.corners(&p))
+        })
+    }
     /// Its corners with the free node at `x`.
     #[inline]
     pub fn at(&self, x: DVec3) -> [DVec3; 8] {
@@ -151,11 +181,13 @@ impl NodeStar for CornerStar {
             for p in &mut t.pts {
                 *p *= f;
             }
+            t.form = CornerForm::of(&t.pts, t.reference);
         }
         for e in &mut s.elements {
             for p in &mut e.pts {
                 *p *= f;
             }
+            e.det = std::sync::OnceLock::new();
         }
         s
     }
@@ -241,14 +273,14 @@ pub enum TetObjective {
 }
 
 impl RegularisedMeanRatio {
-    /// δ of a star (see the type docs).
+    /// δ of a star at its position `x0` (see the type docs).
     pub fn delta(&self, star: &CornerStar) -> f64 {
         if star.tets.is_empty() || self.epsilon == 0.0 {
             return 0.0;
         }
         let (mut sum, mut min) = (0.0, f64::INFINITY);
         for t in &star.tets {
-            let s = q3::WeightedJacobian::of(&t.pts, t.reference).sigma;
+            let s = t.form.sigma_at(star.x0);
             sum += s.abs();
             min = min.min(s);
         }
@@ -260,25 +292,57 @@ impl RegularisedMeanRatio {
         }
     }
 
-    /// The term of one tetrahedron with its gradient, its corner against reference `r`.
-    fn term(&self, p: &[DVec3; 4], r: &CornerReference, delta: f64) -> (f64, DVec3) {
-        let j = q3::WeightedJacobian::of(p, r);
+    /// The term of one corner with its gradient, and its Hessian when `HESSIAN` (the zero
+    /// matrix otherwise; the value and gradient are the same arithmetic either way), from
+    /// the corner's weighted Jacobian `j` and `∇²F = hf·I` ([`CornerForm`]). With
+    /// `L = ln η = ln F − ln 3 − (2/3) ln h` and `dh/dσ = h/s`:
+    /// `∇L = ∇F/F − (2/3)·∇σ/s`, and, `∇σ` being constant and `ds/dσ = σ/s`,
+    /// `∇²L = (hf/F)·I − ∇F∇Fᵀ/F² + (2/3)(σ/s³)·∇σ∇σᵀ`; the term `g(L) = (1 − e^{−L})² +
+    /// k1·e^{2L}` has `g′ = 2(1 − q)q + 2k1η²` and `g″ = −2q + 4q² + 4k1η²`, so its Hessian
+    /// is `g″·∇L∇Lᵀ + g′·∇²L` (`docs/formulas.md` §8).
+    #[inline(always)]
+    fn term<const HESSIAN: bool>(&self, j: &WeightedJacobian, hf: f64, delta: f64) -> (f64, DVec3, DMat3) {
         if j.frob2 <= 0.0 {
-            return (0.0, DVec3::ZERO); // four coincident corners: no shape to penalise
+            return (0.0, DVec3::ZERO, DMat3::ZERO); // four coincident corners: no shape to penalise
         }
         let (h, s) =
             if delta == 0.0 { (j.sigma.max(0.0), j.sigma) } else { super::regularised_determinant(j.sigma, delta) };
         if h <= 0.0 || h.is_nan() {
-            return (f64::INFINITY, DVec3::ZERO);
+            return (f64::INFINITY, DVec3::ZERO, DMat3::ZERO);
         }
-        // η = F / (3 h^{2/3}); ∇ln η = ∇F/F − (2/3)·∇σ/s (dh/dσ = h/s)
-        let eta = j.frob2 / (3.0 * h.cbrt() * h.cbrt());
-        let grad_ln = j.grad_frob2 / j.frob2 - j.grad_sigma * (2.0 / (3.0 * s));
+        // η = F / (3 h^{2/3})
+        let c = h.cbrt();
+        let eta = j.frob2 / (3.0 * c * c);
+        let grad_f = j.grad_frob2 / j.frob2;
+        let grad_ln = grad_f - j.grad_sigma * (2.0 / (3.0 * s));
         let q = 1.0 / eta;
         // (1 − q)², ∇q = −q ∇ln η
         let value = (1.0 - q) * (1.0 - q) + self.k1 * eta * eta;
-        let grad = 2.0 * (1.0 - q) * q * grad_ln + self.k1 * 2.0 * eta * eta * grad_ln;
-        (value, grad)
+        let d1 = 2.0 * (1.0 - q) * q + 2.0 * self.k1 * eta * eta;
+        if !HESSIAN {
+            return (value, d1 * grad_ln, DMat3::ZERO);
+        }
+        let d2 = -2.0 * q + 4.0 * q * q + 4.0 * self.k1 * eta * eta;
+        let hess_ln = DMat3::from_diagonal(DVec3::splat(hf / j.frob2)) - outer(grad_f, grad_f)
+            + outer(j.grad_sigma, j.grad_sigma * (2.0 * j.sigma / (3.0 * s * s * s)));
+        (value, d1 * grad_ln, outer(grad_ln, grad_ln * d2) + hess_ln * d1)
+    }
+
+    /// The objective over `star` at `x` with its gradient and, when `HESSIAN`, its Hessian:
+    /// the sum of [`term`](Self::term) over the star's corners, each read from its form.
+    #[inline(always)]
+    fn sum<const HESSIAN: bool>(&self, star: &CornerStar, x: DVec3) -> (f64, DVec3, DMat3) {
+        let delta = self.delta(star);
+        let (mut value, mut grad, mut hess) = (0.0, DVec3::ZERO, DMat3::ZERO);
+        for t in &star.tets {
+            let (v, g, h) = self.term::<HESSIAN>(&t.form.at(x), t.form.frob2_hessian_diagonal(), delta);
+            value += v;
+            grad += g;
+            if HESSIAN {
+                hess += h;
+            }
+        }
+        (value, grad, hess)
     }
 }
 
@@ -333,11 +397,13 @@ impl TetObjective {
             TetObjective::Regularised(r) => {
                 let delta = r.delta(star);
                 for (i, t) in star.tets.iter().enumerate() {
-                    let (value, grad) = r.term(&t.at(x), reference(t), delta);
+                    let (value, grad, _) = r.term::<false>(&t.form.at(x), t.form.frob2_hessian_diagonal(), delta);
                     emit(Term { elem: i as u32, value, grad });
                 }
             }
             TetObjective::MeanRatio => {
+                // of the corners themselves, not the form: the max-min ascent follows its
+                // active set, which rounding can change (on a tangled mesh, the whole path)
                 for (i, t) in star.tets.iter().enumerate() {
                     let (value, grad) = q3::mean_ratio_grad0(&t.at(x), reference(t));
                     emit(Term { elem: i as u32, value, grad });
@@ -378,12 +444,11 @@ impl TetObjective {
                 let shift = if star.tets.is_empty() {
                     0.0
                 } else {
-                    beta * star.tets.iter().map(|t| (6.0 * q3::signed_volume(&t.pts)).abs()).sum::<f64>()
+                    beta * star.tets.iter().map(|t| t.form.volume6_at(star.x0, t.reference).0.abs()).sum::<f64>()
                         / star.tets.len() as f64
                 };
                 for (i, t) in star.tets.iter().enumerate() {
-                    let (v, g) = q3::signed_volume_grad0(&t.at(x));
-                    let (det, gdet) = (6.0 * v, 6.0 * g);
+                    let (det, gdet) = t.form.volume6_at(x, t.reference);
                     let (value, grad) = if det < shift {
                         let d = 2.0 * (shift - det);
                         (d * d, -4.0 * d * gdet)
@@ -395,8 +460,8 @@ impl TetObjective {
             }
             TetObjective::MinDet => {
                 for (i, t) in star.tets.iter().enumerate() {
-                    let (v, g) = q3::signed_volume_grad0(&t.at(x));
-                    emit(Term { elem: i as u32, value: 6.0 * v, grad: 6.0 * g });
+                    let (value, grad) = t.form.volume6_at(x, t.reference);
+                    emit(Term { elem: i as u32, value, grad });
                 }
             }
         }
@@ -420,9 +485,21 @@ impl Objective<CornerStar> for TetObjective {
         self.visit(star, x, |t| out.push(t));
     }
     fn value_and_gradient(&self, star: &CornerStar, x: DVec3) -> (f64, DVec3) {
+        if let TetObjective::Regularised(r) = self {
+            let (v, g, _) = r.sum::<false>(star, x);
+            return (v, g);
+        }
         let mut fold = super::Fold::new(self.goal());
         self.visit(star, x, |t| fold.add(t));
         fold.finish()
+    }
+    /// The regularised mean ratio's Hessian ([`RegularisedMeanRatio::term`]), for Newton's
+    /// first trial; `None` for the others.
+    fn value_gradient_hessian(&self, star: &CornerStar, x: DVec3) -> Option<(f64, DVec3, DMat3)> {
+        match self {
+            TetObjective::Regularised(r) => Some(r.sum::<true>(star, x)),
+            _ => None,
+        }
     }
 }
 
@@ -519,6 +596,109 @@ mod tests {
             }
         }
         assert!(checked > 500, "{checked}");
+    }
+
+    /// A star of `n` random corners around `x0`: tetrahedra, and corners of hexahedra
+    /// measured against their slots' references (the free node in every slot).
+    fn random_mixed_star(rng: &mut SplitMix64, n: usize, x0: DVec3) -> CornerStar {
+        let hex = VolumeKind::Hex8.row();
+        let tets = (0..n)
+            .map(|e| {
+                let pts = [x0, x0 + point(rng), x0 + point(rng), x0 + point(rng)];
+                match e % 3 {
+                    0 => StarCorner::tet(e as u32, pts),
+                    k => StarCorner::new(e as u32, pts, &hex.slot_references[(e + k) % 4], false),
+                }
+            })
+            .collect();
+        CornerStar::of_tets(x0, tets)
+    }
+
+    #[test]
+    fn forms_give_the_corners_weighted_jacobian_anywhere() {
+        let mut rng = SplitMix64::new(21);
+        for _ in 0..50 {
+            let x0 = point(&mut rng);
+            let star = random_mixed_star(&mut rng, 6, x0);
+            let x = x0 + point(&mut rng) * 0.3;
+            for t in &star.tets {
+                let (a, b) = (t.form.at(x), WeightedJacobian::of(&t.at(x), t.reference));
+                let close = |u: f64, v: f64| (u - v).abs() <= 1e-13 * (1.0 + v.abs());
+                assert!(close(a.frob2, b.frob2) && close(a.sigma, b.sigma), "{a:?} {b:?}");
+                assert!((a.grad_frob2 - b.grad_frob2).length() <= 1e-13 * (1.0 + b.grad_frob2.length()));
+                assert!((a.grad_sigma - b.grad_sigma).length() <= 1e-13 * (1.0 + b.grad_sigma.length()));
+                assert!((a.t - b.t).to_cols_array().iter().all(|d| d.abs() <= 1e-13), "{a:?} {b:?}");
+                let v6 = t.form.volume6_at(x, t.reference).0;
+                assert!(close(v6, 6.0 * q3::signed_volume(&t.at(x))), "{v6}");
+            }
+        }
+    }
+
+    #[test]
+    fn corners_decide_inversion_as_their_tetrahedra_do() {
+        // every answer a form gives is is_inverted's, at every scale, and it gives one
+        // for most positions
+        let mut rng = SplitMix64::new(4);
+        let (mut asked, mut decided, mut inverted) = (0, 0, 0);
+        for round in 0..300 {
+            let scale = [1.0, 1e-4, 1e5][round % 3];
+            let x0 = point(&mut rng) * scale;
+            for t in random_mixed_star(&mut rng, 3, DVec3::ZERO).tets {
+                let t = StarCorner::new(t.element, t.pts.map(|p| x0 + p * scale), t.reference, t.simplex);
+                for _ in 0..5 {
+                    let x = x0 + point(&mut rng) * scale * rng.uniform(0.0, 2.0);
+                    let exact = q3::is_inverted(&t.at(x));
+                    if let Some(v) = t.form.inverted_at(x, t.reference) {
+                        assert_eq!(v, exact, "{:?} at {x}", t.pts);
+                        decided += 1;
+                    }
+                    asked += 1;
+                    inverted += exact as u32;
+                }
+            }
+        }
+        assert!(decided * 100 > asked * 99 && inverted * 5 > asked && inverted * 5 < 4 * asked, "{decided} {inverted} of {asked}");
+        // beyond the safe scale: left to is_inverted
+        let t = StarCorner::tet(0, [DVec3::ZERO, DVec3::X * 1e200, DVec3::Y * 1e200, DVec3::Z * 1e200]);
+        assert_eq!(t.form.inverted_at(DVec3::ZERO, t.reference), None);
+        assert!(!t.inverted_at(DVec3::ZERO));
+    }
+
+    #[test]
+    fn hessian_of_new_agrees_with_central_differences() {
+        let obj = tet_objective(ObjectiveKind::New).unwrap();
+        let mut rng = SplitMix64::new(13);
+        let (h, mut checked, mut tangled) = (1e-6, 0, 0);
+        for round in 0..120 {
+            let x0 = point(&mut rng);
+            let star = random_mixed_star(&mut rng, 2 + round % 6, x0);
+            if star.tets.iter().any(|t| t.form.sigma_at(x0).abs() < 0.05) {
+                continue; // steep near a flat corner: away from those
+            }
+            tangled += star.tets.iter().any(|t| t.form.sigma_at(x0) < 0.0) as u32;
+            let x = x0 + point(&mut rng) * 0.01;
+            let (v, g, hess) = obj.value_gradient_hessian(&star, x).expect("a Hessian");
+            assert_eq!((v, g), obj.value_and_gradient(&star, x));
+            // the fold is the sum of the terms, in their order
+            let mut terms = Vec::new();
+            obj.terms(&star, x, &mut terms);
+            assert_eq!(v, terms.iter().fold(0.0, |s, t| s + t.value));
+            if !v.is_finite() {
+                continue;
+            }
+            assert!((hess - hess.transpose()).to_cols_array().iter().all(|d| d.abs() <= 1e-9 * (1.0 + hess.abs().to_cols_array().iter().fold(0.0f64, |a, &b| a.max(b)))));
+            for c in 0..3 {
+                let mut e = DVec3::ZERO;
+                e[c] = h;
+                let fd = (obj.value_and_gradient(&star, x + e).1 - obj.value_and_gradient(&star, x - e).1) / (2.0 * h);
+                let col = hess.col(c);
+                assert!((col - fd).length() <= 1e-5 * (1.0 + fd.length()), "column {c}: {col} vs {fd}");
+            }
+            checked += 1;
+        }
+        assert!(checked > 60 && tangled > 10, "{checked} {tangled}");
+        // the max-min objectives have no Hessian
+        assert!(tet_objective(ObjectiveKind::Old).unwrap().value_gradient_hessian(&regular_star(), DVec3::ZERO).is_none());
     }
 
     #[test]

@@ -85,7 +85,7 @@ fn in_unit_scale(p: &[DVec3]) -> ([DVec3; 8], usize) {
 
 /// A polynomial of degree ≤ 2 in each of three parameters on a box, by its 3×3×3
 /// Bernstein coefficients (`deg[k]` 0 where it does not depend on parameter `k`).
-#[derive(Clone, Copy)]
+#[derive(Clone, Copy, Debug, PartialEq)]
 struct Bezier {
     c: [[[f64; 3]; 3]; 3],
     deg: [usize; 3],
@@ -172,35 +172,59 @@ impl Bezier {
     }
 }
 
-/// The weight of splitting index `i` of a product of degree `n` into indices of degrees
-/// `m1 + m2 = n`, with the first `i1`: `C(m1, i1)·C(m2, i − i1)/C(n, i)` (all degrees ≤ 2).
-fn weight(m: [usize; 3], i: [usize; 3]) -> f64 {
-    const C: [[f64; 3]; 3] = [[1.0, 0.0, 0.0], [1.0, 1.0, 0.0], [1.0, 2.0, 1.0]];
-    let n: usize = m.iter().sum();
-    let s: usize = i.iter().sum();
-    let num = C[m[0]][i[0]] * C[m[1]][i[1]] * C[m[2]][i[2]];
-    // C(n, s) with n ≤ 2
-    num / C[n.min(2)][s.min(2)]
-}
-
 /// The Bernstein coefficients of `f·(g × h)` over a box, `f`, `g`, `h` vector polynomials
 /// by their coefficients of degrees `df`, `dg`, `dh` ≤ 1 in each parameter (the products'
-/// degrees ≤ 2).
+/// degrees ≤ 2). The product of Bernstein polynomials of degrees `m₁ + m₂ + m₃ = n` along a
+/// parameter has the weight `C(m₁, i₁)·C(m₂, i₂)·C(m₃, i₃)/C(n, i)` at index `i = i₁ + i₂ +
+/// i₃`: with every `m ≤ 1` the numerator is 1, so the weight is ½ at the middle index of
+/// degree 2 and 1 elsewhere (powers of two: exact). The cross products `g × h` are taken
+/// once each and the coefficients summed in the order of `f`, `g`, `h`.
+#[inline(always)]
 fn triple_product(f: &[[[DVec3; 2]; 2]; 2], df: [usize; 3], g: &[[[DVec3; 2]; 2]; 2], dg: [usize; 3], h: &[[[DVec3; 2]; 2]; 2], dh: [usize; 3]) -> Bezier {
     let deg = [0, 1, 2].map(|k| df[k] + dg[k] + dh[k]);
-    let mut c = [[[0.0; 3]; 3]; 3];
-    for (fi, fj, fk) in indices(df) {
-        for (gi, gj, gk) in indices(dg) {
-            for (hi, hj, hk) in indices(dh) {
-                let (i, j, k) = (fi + gi + hi, fj + gj + hj, fk + gk + hk);
-                let w = weight([df[0], dg[0], dh[0]], [fi, gi, hi])
-                    * weight([df[1], dg[1], dh[1]], [fj, gj, hj])
-                    * weight([df[2], dg[2], dh[2]], [fk, gk, hk]);
-                c[i][j][k] += w * f[fi][fj][fk].dot(g[gi][gj][gk].cross(h[hi][hj][hk]));
+    // the weight at each index (i, j, k), flat at 9i + 3j + k
+    let mut weight = [1.0; 27];
+    for (n, w) in weight.iter_mut().enumerate() {
+        let s = [n / 9, n / 3 % 3, n % 3];
+        let axis = |k: usize| if deg[k] == 2 && s[k] == 1 { 0.5 } else { 1.0 };
+        *w = axis(0) * axis(1) * axis(2);
+    }
+    let (f, g, h) = (terms(f, df), terms(g, dg), terms(h, dh));
+    let (fs, gs, hs) = (&f.0[..f.1], &g.0[..g.1], &h.0[..h.1]);
+    let mut cross = [[DVec3::ZERO; 8]; 8];
+    for (a, &(_, gv)) in gs.iter().enumerate() {
+        for (b, &(_, hv)) in hs.iter().enumerate() {
+            cross[a][b] = gv.cross(hv);
+        }
+    }
+    let mut c = [0.0; 27];
+    for &(fi, fv) in fs {
+        for (a, &(gi, _)) in gs.iter().enumerate() {
+            for (b, &(hi, _)) in hs.iter().enumerate() {
+                let n = fi + gi + hi;
+                c[n] += weight[n] * fv.dot(cross[a][b]);
             }
         }
     }
-    Bezier { c, deg }
+    let mut out = Bezier { c: [[[0.0; 3]; 3]; 3], deg };
+    for (n, v) in c.into_iter().enumerate() {
+        out.c[n / 9][n / 3 % 3][n % 3] = v;
+    }
+    out
+}
+
+/// The coefficients of a vector polynomial of degrees `d` ≤ 1 with their flat indices
+/// `9i + 3j + k`, in [`indices`]' order: the first `n` of the array.
+type Terms = ([(usize, DVec3); 8], usize);
+
+#[inline(always)]
+fn terms(v: &[[[DVec3; 2]; 2]; 2], d: [usize; 3]) -> Terms {
+    let mut out = ([(0, DVec3::ZERO); 8], 0);
+    for (i, j, k) in indices(d) {
+        out.0[out.1] = (9 * i + 3 * j + k, v[i][j][k]);
+        out.1 += 1;
+    }
+    out
 }
 
 fn indices(d: [usize; 3]) -> impl Iterator<Item = (usize, usize, usize)> {
@@ -267,6 +291,88 @@ fn wedge_validity(p: &[DVec3]) -> Validity {
         Validity::Undecided
     } else {
         Validity::Valid
+    }
+}
+
+/// A hexahedron's or pyramid's `det J` in the Bernstein basis as a function of one
+/// corner's position `x`, the others fixed, for the validity guard's trials: every
+/// coefficient is a sum of triple products of vectors affine in `x`, and a triple product
+/// is affine in a vector that two of its factors share (`x·(x×h) = 0`), so each
+/// coefficient is `c₀ + g·(x − o)`. The slopes `g` are read off the coefficients one edge
+/// length `m` along each axis (exact but for rounding, an affine function's differences).
+/// [`validity_at`](Self::validity_at) decides only where every coefficient it reads is
+/// beyond rounding of 0, and leaves the rest to [`validity`], so its answers are
+/// [`validity`]'s.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct DetForm {
+    origin: DVec3,
+    /// The largest component of an edge from corner 0 when formed: the unit of rounding.
+    reach: f64,
+    c: Bezier,
+    g: [[[DVec3; 3]; 3]; 3],
+}
+
+impl DetForm {
+    /// The form of the element of `kind` with corners `p`, its corner `slot` free; `None`
+    /// for kinds decided without Bernstein coefficients (tetrahedra, wedges) and for an
+    /// element beyond the safe scale, which [`validity`] measures in its own scale.
+    pub fn of(kind: VolumeKind, p: &[DVec3], slot: usize) -> Option<DetForm> {
+        let det: fn(&[DVec3]) -> Bezier = match kind.linear() {
+            VolumeKind::Hex8 => hex_det,
+            VolumeKind::Pyramid5 => pyramid_det,
+            _ => return None,
+        };
+        let n = kind.corners();
+        let reach = p[1..n].iter().fold(0.0f64, |m, x| m.max((*x - p[0]).abs().max_element()));
+        if reach == 0.0 || !reach.is_finite() || crate::numeric::factors_beyond_safe_scale(reach).is_some() {
+            return None;
+        }
+        let mut q = [DVec3::ZERO; 8];
+        q[..n].copy_from_slice(&p[..n]);
+        let c = det(&q);
+        let mut g = [[[DVec3::ZERO; 3]; 3]; 3];
+        for axis in 0..3 {
+            let mut moved = q;
+            moved[slot][axis] += reach;
+            let ci = det(&moved);
+            for (i, j, k) in indices(c.deg) {
+                g[i][j][k][axis] = (ci.c[i][j][k] - c.c[i][j][k]) / reach;
+            }
+        }
+        Some(DetForm { origin: p[slot], reach, c, g })
+    }
+
+    /// [`validity`] of the element with the free corner at `x` where its coefficients
+    /// there decide it beyond rounding; `None` where [`validity`] must.
+    #[inline]
+    pub fn validity_at(&self, x: DVec3) -> Option<Validity> {
+        let u = x - self.origin;
+        let r = self.reach + u.abs().max_element();
+        // every coefficient is a sum of a few triple products of edges within 2r: its
+        // rounding is some 10⁻¹² r³, so 10⁻⁹ r³ is beyond any
+        let margin = 1e-9 * r * r * r;
+        if !(margin > 0.0 && margin.is_finite()) {
+            return None;
+        }
+        let deg = self.c.deg;
+        let (mut min, mut min_corner) = (f64::INFINITY, f64::INFINITY);
+        for (i, j, k) in indices(deg) {
+            let v = self.c.c[i][j][k] + self.g[i][j][k].dot(u);
+            if v.is_nan() {
+                return None;
+            }
+            min = min.min(v);
+            if (i == 0 || i == deg[0]) && (j == 0 || j == deg[1]) && (k == 0 || k == deg[2]) {
+                min_corner = min_corner.min(v);
+            }
+        }
+        if min_corner < -margin {
+            Some(Validity::Inverted)
+        } else if min > margin {
+            Some(Validity::Valid)
+        } else {
+            None
+        }
     }
 }
 

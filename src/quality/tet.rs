@@ -186,6 +186,109 @@ impl WeightedJacobian {
     }
 }
 
+/// A corner's [`WeightedJacobian`] as a function of corner 0's position `x`, the other
+/// three corners fixed: worked out once when a star is gathered, so that an objective's
+/// evaluation at a trial position reads no corners (no gather per evaluation). With
+/// `u = x − o` (`o` corner 0 when formed) and `v = W⁻ᵀ𝟙`, every column of `A` moves by
+/// `−u`, so `T(x) = T₀ − u·vᵀ`,
+/// `F = ‖T‖²_F = F₀ − 2u·(T₀v) + |u|²|v|²` is quadratic in `x` (`∇F = −2·T·v`,
+/// `∇²F = 2|v|²·I`), and `σ = det T = σ₀ + u·∇σ` is linear: `det(A₀ − u𝟙ᵀ) = det A₀ −
+/// u·((a₂ − a₁)×(a₃ − a₁))`, the terms of higher degree cancelling (`docs/formulas.md` §8).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct CornerForm {
+    /// Corner 0 when formed.
+    origin: DVec3,
+    /// The largest component of an edge from corner 0 when formed: the unit of rounding.
+    reach: f64,
+    t0: DMat3,
+    /// `T₀·v`.
+    t0v: DVec3,
+    /// `‖T₀‖²_F`.
+    frob2: f64,
+    /// `|v|²`.
+    vv: f64,
+    v: DVec3,
+    sigma: f64,
+    /// `∇σ`, constant.
+    grad_sigma: DVec3,
+}
+
+impl CornerForm {
+    /// The form of the corner `p` (corner 0 and its three edge neighbours) against `r`.
+    #[inline]
+    pub fn of(p: &[DVec3; 4], r: &CornerReference) -> Self {
+        let j = WeightedJacobian::of(p, r);
+        let v = r.w_inv_t_one;
+        CornerForm {
+            origin: p[0],
+            reach: p[1..].iter().fold(0.0f64, |m, x| m.max((*x - p[0]).abs().max_element())),
+            t0: j.t,
+            t0v: j.t * v,
+            frob2: j.frob2,
+            vv: v.length_squared(),
+            v,
+            sigma: j.sigma,
+            grad_sigma: j.grad_sigma,
+        }
+    }
+    /// The weighted Jacobian with corner 0 at `x`.
+    #[inline(always)]
+    pub fn at(&self, x: DVec3) -> WeightedJacobian {
+        let u = x - self.origin;
+        let tv = self.t0v - u * self.vv;
+        WeightedJacobian {
+            t: self.t0 - outer(u, self.v),
+            frob2: self.frob2 - 2.0 * u.dot(self.t0v) + u.length_squared() * self.vv,
+            grad_frob2: -2.0 * tv,
+            sigma: self.sigma + u.dot(self.grad_sigma),
+            grad_sigma: self.grad_sigma,
+        }
+    }
+    /// `σ = det T` with corner 0 at `x` ([`at`](Self::at)'s, alone).
+    #[inline(always)]
+    pub fn sigma_at(&self, x: DVec3) -> f64 {
+        self.sigma + (x - self.origin).dot(self.grad_sigma)
+    }
+    /// [`is_inverted`] of the corner's tetrahedron with corner 0 at `x` where `σ` there
+    /// decides it beyond rounding; `None` where [`is_inverted`] must (near 0, beyond the
+    /// safe scale, not a number), so its answers are [`is_inverted`]'s.
+    #[inline]
+    pub fn inverted_at(&self, x: DVec3, r: &CornerReference) -> Option<bool> {
+        let u = x - self.origin;
+        let reach = self.reach + u.abs().max_element();
+        // σ is a sum of a few products of three edge components within 2·reach, times
+        // det W⁻¹: its rounding is some 10⁻¹⁴ of that, so 10⁻⁹ is beyond any
+        let margin = 1e-9 * reach * reach * reach * r.det_w_inv.abs();
+        if !(margin > 0.0 && margin.is_finite()) {
+            return None;
+        }
+        let sigma = self.sigma_at(x);
+        if sigma > margin {
+            Some(false)
+        } else if sigma < -margin {
+            Some(true)
+        } else {
+            None
+        }
+    }
+    /// The Hessian of `F` in corner 0: `2|v|²` times the identity.
+    #[inline(always)]
+    pub fn frob2_hessian_diagonal(&self) -> f64 {
+        2.0 * self.vv
+    }
+    /// `det W⁻¹`'s share of `σ`: `σ = 6V·det W⁻¹`, so `6V = σ / det W⁻¹` ([`signed_volume`]).
+    #[inline(always)]
+    pub fn volume6_at(&self, x: DVec3, r: &CornerReference) -> (f64, DVec3) {
+        (self.sigma_at(x) / r.det_w_inv, self.grad_sigma / r.det_w_inv)
+    }
+}
+
+/// The outer product `a·bᵀ`.
+#[inline(always)]
+pub fn outer(a: DVec3, b: DVec3) -> DMat3 {
+    DMat3::from_cols(a * b.x, a * b.y, a * b.z)
+}
+
 /// Knupp's condition number of the corner, `κ = ‖T‖_F·‖T⁻¹‖_F` with `T = A·W⁻¹`
 /// (Knupp 1999, §3: with the equilateral weight [`EQUILATERAL_TET`], the same at every
 /// corner of a tetrahedron, and `3/κ` is a shape measure): 3 for the ideal corner,
@@ -239,7 +342,13 @@ pub fn mean_ratio(p: &[DVec3; 4], r: &CornerReference) -> f64 {
 /// `σ = 6V·det W⁻¹`), `∇F = −2·T·W⁻ᵀ𝟙`. At σ = 0 the gradient is not finite (the
 /// measure has a vertical tangent there) and is returned as 0.
 pub fn mean_ratio_grad0(p: &[DVec3; 4], r: &CornerReference) -> (f64, DVec3) {
-    let j = WeightedJacobian::of(p, r);
+    mean_ratio_grad(&WeightedJacobian::of(p, r))
+}
+
+/// [`mean_ratio_grad0`] of a corner's weighted Jacobian `j` (of its corners, or of its
+/// [`CornerForm`] at a trial position).
+#[inline]
+pub fn mean_ratio_grad(j: &WeightedJacobian) -> (f64, DVec3) {
     if j.frob2 == 0.0 {
         return (0.0, DVec3::ZERO);
     }

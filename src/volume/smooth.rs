@@ -91,9 +91,9 @@ impl DriverStar for CornerStar {
                 let tuple = [c, a, b, d];
                 let Some(s) = tuple.iter().position(|&j| j == slot) else { continue };
                 let pts = WITH_FIRST[s].map(|j| all[tuple[j]]);
-                self.tets.push(StarCorner { element: e, pts, reference: &row.slot_references[s], simplex: false });
+                self.tets.push(StarCorner::new(e, pts, &row.slot_references[s], false));
             }
-            self.elements.push(StarSolid { element: e, kind, slot: slot as u8, pts: all });
+            self.elements.push(StarSolid::new(e, kind, slot as u8, all));
         }
     }
     #[inline]
@@ -170,8 +170,8 @@ impl DriverStar for CornerStar {
             + self.elements.iter().filter(|e| solid::validity(e.kind, e.corners(&e.pts)) != Validity::Valid).count()
     }
     fn inverted_at(&self, x: DVec3) -> usize {
-        self.tets.iter().filter(|t| t.simplex && q3::is_inverted(&t.at(x))).count()
-            + self.elements.iter().filter(|e| solid::validity(e.kind, e.corners(&e.at(x))) != Validity::Valid).count()
+        self.tets.iter().filter(|t| t.simplex && t.inverted_at(x)).count()
+            + self.elements.iter().filter(|e| e.validity_at(x) != Validity::Valid).count()
     }
     fn inversion(&self, x: DVec3) -> f64 {
         let tets: f64 = self.tets.iter().filter(|t| t.simplex).map(|t| (-6.0 * q3::signed_volume(&t.at(x))).max(0.0)).sum();
