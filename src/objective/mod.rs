@@ -272,8 +272,8 @@ pub struct Star {
     pub elems: Vec<StarElement>,
     /// True when the mesh has both triangles and quads (Chen's ×3 triangle weight applies).
     pub mixed: bool,
-    /// What `new` reads of the star at `x0` at every evaluation of a solve, worked out at
-    /// the first ([`StarMemo`]).
+    /// What `new` and `untangle` read of the star at `x0` at every evaluation of a solve,
+    /// worked out at the first ([`StarMemo`]).
     pub(crate) memo: StarMemo,
 }
 
@@ -284,9 +284,15 @@ pub struct Star {
 /// clone (a clone is made to be changed); they are kept with the `x0` they were worked out
 /// at, and a star whose `x0` was set since gets them worked out again at every evaluation,
 /// so they are never read for another position. The same bits come out as without it.
-/// A `OnceLock`, so a star can be shared between threads (the coloured passes).
+/// `OnceLock`s, so a star can be shared between threads (the coloured passes). One fact
+/// a field, each worked out by the objective that reads it: `new`'s
+/// ([`new::StarAtRest`]), and `untangle`'s sum of the moving corners' |det| with their
+/// number (its shift β, [`Untangle::shift`]).
 #[derive(Debug, Default)]
-pub(crate) struct StarMemo(std::sync::OnceLock<(DVec2, new::StarAtRest)>);
+pub(crate) struct StarMemo {
+    new: std::sync::OnceLock<(DVec2, new::StarAtRest)>,
+    dets: std::sync::OnceLock<(DVec2, (f64, usize))>,
+}
 
 impl Clone for StarMemo {
     fn clone(&self) -> Self {
@@ -295,16 +301,28 @@ impl Clone for StarMemo {
 }
 
 impl StarMemo {
-    /// The facts of `star` at `star.x0`, from `work` unless kept for that position.
+    /// The facts `new` reads of `star` at `star.x0`, from `work` unless kept for that position.
     #[inline]
     pub(crate) fn get(star: &Star, work: impl Fn(&Star) -> new::StarAtRest) -> new::StarAtRest {
+        Self::kept(&star.memo.new, star, work)
+    }
+
+    /// The sum of the |det| of `star`'s moving corners at `star.x0` and their number, from
+    /// `work` unless kept for that position.
+    #[inline]
+    pub(crate) fn dets(star: &Star, work: impl Fn(&Star) -> (f64, usize)) -> (f64, usize) {
+        Self::kept(&star.memo.dets, star, work)
+    }
+
+    #[inline]
+    fn kept<T: Copy>(cell: &std::sync::OnceLock<(DVec2, T)>, star: &Star, work: impl Fn(&Star) -> T) -> T {
         let same = |at: &DVec2| at.x.to_bits() == star.x0.x.to_bits() && at.y.to_bits() == star.x0.y.to_bits();
-        match star.memo.0.get() {
+        match cell.get() {
             Some((at, facts)) if same(at) => *facts,
             Some(_) => work(star),
             None => {
                 let facts = work(star);
-                let _ = star.memo.0.set((star.x0, facts));
+                let _ = cell.set((star.x0, facts));
                 facts
             }
         }
@@ -313,7 +331,8 @@ impl StarMemo {
     /// Forgets the facts (the star is about to move or be refilled).
     #[inline]
     pub(crate) fn forget(&mut self) {
-        self.0.take();
+        self.new.take();
+        self.dets.take();
     }
 }
 
