@@ -272,8 +272,8 @@ pub struct Star {
     pub elems: Vec<StarElement>,
     /// True when the mesh has both triangles and quads (Chen's ×3 triangle weight applies).
     pub mixed: bool,
-    /// What `new` reads of the star at `x0` at every evaluation of a solve, worked out at
-    /// the first ([`StarMemo`]).
+    /// What `new` and `untangle` read of the star at `x0` at every evaluation of a solve,
+    /// worked out at the first ([`StarMemo`]).
     pub(crate) memo: StarMemo,
 }
 
@@ -284,9 +284,15 @@ pub struct Star {
 /// clone (a clone is made to be changed); they are kept with the `x0` they were worked out
 /// at, and a star whose `x0` was set since gets them worked out again at every evaluation,
 /// so they are never read for another position. The same bits come out as without it.
-/// A `OnceLock`, so a star can be shared between threads (the coloured passes).
+/// `OnceLock`s, so a star can be shared between threads (the coloured passes). One fact
+/// a field, each worked out by the objective that reads it: `new`'s
+/// ([`new::StarAtRest`]), and `untangle`'s sum of the moving corners' |det| with their
+/// number (its shift β, [`Untangle::shift`]).
 #[derive(Debug, Default)]
-pub(crate) struct StarMemo(std::sync::OnceLock<(DVec2, new::StarAtRest)>);
+pub(crate) struct StarMemo {
+    new: std::sync::OnceLock<(DVec2, new::StarAtRest)>,
+    dets: std::sync::OnceLock<(DVec2, (f64, usize))>,
+}
 
 impl Clone for StarMemo {
     fn clone(&self) -> Self {
@@ -295,16 +301,28 @@ impl Clone for StarMemo {
 }
 
 impl StarMemo {
-    /// The facts of `star` at `star.x0`, from `work` unless kept for that position.
+    /// The facts `new` reads of `star` at `star.x0`, from `work` unless kept for that position.
     #[inline]
     pub(crate) fn get(star: &Star, work: impl Fn(&Star) -> new::StarAtRest) -> new::StarAtRest {
+        Self::kept(&star.memo.new, star, work)
+    }
+
+    /// The sum of the |det| of `star`'s moving corners at `star.x0` and their number, from
+    /// `work` unless kept for that position.
+    #[inline]
+    pub(crate) fn dets(star: &Star, work: impl Fn(&Star) -> (f64, usize)) -> (f64, usize) {
+        Self::kept(&star.memo.dets, star, work)
+    }
+
+    #[inline]
+    fn kept<T: Copy>(cell: &std::sync::OnceLock<(DVec2, T)>, star: &Star, work: impl Fn(&Star) -> T) -> T {
         let same = |at: &DVec2| at.x.to_bits() == star.x0.x.to_bits() && at.y.to_bits() == star.x0.y.to_bits();
-        match star.memo.0.get() {
+        match cell.get() {
             Some((at, facts)) if same(at) => *facts,
             Some(_) => work(star),
             None => {
                 let facts = work(star);
-                let _ = star.memo.0.set((star.x0, facts));
+                let _ = cell.set((star.x0, facts));
                 facts
             }
         }
@@ -313,7 +331,8 @@ impl StarMemo {
     /// Forgets the facts (the star is about to move or be refilled).
     #[inline]
     pub(crate) fn forget(&mut self) {
-        self.0.take();
+        self.new.take();
+        self.dets.take();
     }
 }
 
@@ -469,6 +488,21 @@ pub trait Objective<S: NodeStar = Star> {
     fn value_gradient_hessian(&self, _star: &S, _x: S::Point) -> Option<(f64, S::Point, <S::Point as Point>::Hessian)> {
         None
     }
+    /// Whether every term at `x` is above `floor` (at least one term, none NaN): for a
+    /// max-min objective, whether `x` is better than a point of value `floor`. When it is,
+    /// `out` holds the terms at `x` as [`terms`](Self::terms) appends them to an empty
+    /// vector; when not, `out` holds anything. Freitag's ascent (1997, Fig. 1) halves its
+    /// step until a trial point is better, and most trial points are not: an objective may
+    /// stop at the first term not above `floor`, trying the terms of star element `lead`
+    /// (an index into the star's elements, as [`Term::elem`]) first — the ascent passes
+    /// the element of the worst term where it stands. The answer is the same either way.
+    /// Default: every term, then the test.
+    fn terms_above(&self, star: &S, x: S::Point, floor: f64, lead: u32, out: &mut Vec<Term<S::Point>>) -> bool {
+        let _ = lead;
+        out.clear();
+        self.terms(star, x, out);
+        !out.is_empty() && out.iter().all(|t| t.value > floor)
+    }
 }
 
 /// Combines terms by the goal: sum (with summed gradient) or minimum (with the gradient
@@ -496,7 +530,8 @@ pub fn combine<V: Point>(goal: Goal, terms: &[Term<V>]) -> (f64, V) {
 /// `visit(&self, &Star, DVec2, impl FnMut(Term))`: `terms` collects the visited terms,
 /// `value_and_gradient` folds them without allocating. A second argument names an inherent
 /// `fn(&self, &Star, DVec2) -> Option<(f64, DVec2, DMat2)>` that gives
-/// `value_gradient_hessian`.
+/// `value_gradient_hessian`; or, as `terms_above = name`, an inherent
+/// `fn(&self, &Star, DVec2, f64, u32, &mut Vec<Term>) -> bool` that gives `terms_above`.
 macro_rules! impl_objective_by_visit {
     (@impl $t:ty, $($hessian_fn:item)?) => {
         impl $crate::objective::Objective for $t {
@@ -522,6 +557,18 @@ macro_rules! impl_objective_by_visit {
             }
             $($hessian_fn)?
         }
+    };
+    ($t:ty, terms_above = $above:ident) => {
+        impl_objective_by_visit!(@impl $t, fn terms_above(
+            &self,
+            star: &$crate::objective::Star,
+            x: glam::DVec2,
+            floor: f64,
+            lead: u32,
+            out: &mut Vec<$crate::objective::Term>,
+        ) -> bool {
+            self.$above(star, x, floor, lead, out)
+        });
     };
     ($t:ty, $hessian:ident) => {
         impl_objective_by_visit!(@impl $t, fn value_gradient_hessian(
@@ -608,6 +655,9 @@ macro_rules! forward_objective {
             ) -> Option<(f64, S::Point, <S::Point as Point>::Hessian)> {
                 (**self).value_gradient_hessian(star, x)
             }
+            fn terms_above(&self, star: &S, x: S::Point, floor: f64, lead: u32, out: &mut Vec<Term<S::Point>>) -> bool {
+                (**self).terms_above(star, x, floor, lead, out)
+            }
         }
     )+};
 }
@@ -667,6 +717,44 @@ mod tests {
         for k in ObjectiveKind::ALL {
             assert_eq!(objective(k).value_and_gradient(&empty, DVec2::ZERO), (0.0, DVec2::ZERO));
         }
+    }
+
+    #[test]
+    fn terms_above_answers_as_the_terms_do() {
+        // every kind (the max-min ones stop early, the others take the default): the same
+        // answer as the terms' minimum against the floor, and the same terms when above
+        let mut rng = SplitMix64::new(47);
+        let (mut t, mut above) = (Vec::new(), Vec::new());
+        let (mut yes, mut no) = (0, 0);
+        for star in sample_stars() {
+            for _ in 0..10 {
+                let x = star.x0 + rng.point(1.5);
+                let star = Star { x0: x, ..star.clone() };
+                let y = x + rng.point(0.3);
+                for k in ObjectiveKind::ALL {
+                    let obj = objective(k);
+                    t.clear();
+                    obj.terms(&star, y, &mut t);
+                    let min = t.iter().fold(f64::INFINITY, |m, t| if t.value.is_nan() { f64::NEG_INFINITY } else { m.min(t.value) });
+                    for floor in [min - 1e-3, min, min + 1e-3, f64::NEG_INFINITY] {
+                        for lead in 0..star.len() as u32 {
+                            let is = obj.terms_above(&star, y, floor, lead, &mut above);
+                            assert_eq!(is, !t.is_empty() && min > floor, "{k} at {y}, floor {floor}, lead {lead}");
+                            if is {
+                                assert_eq!(above, t, "{k} at {y}");
+                                yes += 1;
+                            } else {
+                                no += 1;
+                            }
+                        }
+                    }
+                }
+            }
+        }
+        assert!(yes > 100 && no > 100, "{yes} {no}");
+        // an empty star is never above
+        assert!(!MaxMinShape.terms_above(&Star::new(), DVec2::ZERO, f64::NEG_INFINITY, 0, &mut above));
+        assert!(!MaxMinSine.terms_above(&Star::new(), DVec2::ZERO, f64::NEG_INFINITY, 0, &mut above));
     }
 
     /// A hexagon of six 6-node triangles around node 0, built as a mesh.

@@ -7,7 +7,7 @@
 use glam::DVec2;
 
 use super::corners::{CornerJet, ElementJets};
-use super::{impl_objective_by_visit, ObjectiveKind, Star, Term};
+use super::{impl_objective_by_visit, ObjectiveKind, Star, StarElement, Term};
 use crate::mesh::ElementKind;
 use crate::quality::{lo_alpha_corner, lo_alpha_corner_gradient, ALPHA_90};
 
@@ -31,28 +31,76 @@ impl MaxMinShape {
     /// Calls `emit` with one term per star element.
     pub fn visit(&self, star: &Star, x: DVec2, mut emit: impl FnMut(Term)) {
         for (i, el) in star.elems.iter().enumerate() {
-            if el.kind == ElementKind::Tri3 {
-                // the common case without the element jets (a 420-byte copy per element):
-                // the same corner edge vectors and weights, corner by corner
-                let s = el.slot as usize;
-                let mut p = [el.pts[0], el.pts[1], el.pts[2]];
-                p[s] = x;
-                let w = |j: usize| if j == s { 1.0 } else { 0.0 };
-                let corners = [0, 1, 2].map(|j| {
-                    let (next, prev) = ((j + 1) % 3, (j + 2) % 3);
-                    CornerJet { e1: p[next] - p[j], e2: p[prev] - p[j], c1: w(next) - w(j), c2: w(prev) - w(j) }
-                });
-                let (min, grad, _) = worst_corner(&corners);
-                emit(Term { elem: i as u32, value: min, grad });
-                continue;
-            }
-            let j = ElementJets::new(el, x);
-            let (min, grad, neg) = worst_corner(j.corner_jets());
-            let (value, grad) =
-                if el.kind.is_triangle() { (min, grad) } else { (min / ALPHA_90 - neg as f64, grad / ALPHA_90) };
-            emit(Term { elem: i as u32, value, grad });
+            emit(element_term(el, i, x, f64::NAN));
         }
     }
+
+    /// [`Objective::terms_above`](crate::objective::Objective::terms_above): the element
+    /// `lead` first, then the others in order, stopping at the first term not above
+    /// `floor`; the terms are [`visit`](Self::visit)'s, bit for bit.
+    pub fn terms_above(&self, star: &Star, x: DVec2, floor: f64, lead: u32, out: &mut Vec<Term>) -> bool {
+        out.clear();
+        let lead = lead as usize;
+        let first = match star.elems.get(lead) {
+            Some(el) => element_term(el, lead, x, floor),
+            None => return self.visit_while(star, x, floor, None, out),
+        };
+        // not `<=`: a NaN term is not above
+        let above = first.value > floor;
+        if !above {
+            return false;
+        }
+        self.visit_while(star, x, floor, Some(first), out)
+    }
+
+    /// Appends the terms to `out` while they are above `floor` (the term of element
+    /// `known.elem` taken from `known`); whether all were and there was one.
+    #[inline(always)]
+    fn visit_while(&self, star: &Star, x: DVec2, floor: f64, known: Option<Term>, out: &mut Vec<Term>) -> bool {
+        for (i, el) in star.elems.iter().enumerate() {
+            let t = match known {
+                Some(k) if k.elem as usize == i => k,
+                _ => element_term(el, i, x, floor),
+            };
+            let above = t.value > floor;
+            if !above {
+                return false;
+            }
+            out.push(t);
+        }
+        !out.is_empty()
+    }
+}
+
+/// The term of star element `el` (index `i` in the star) with the free node at `x`; the
+/// gradient of a linear triangle's term is left zero when its value is at most `floor`
+/// (the term is then not above it, and [`MaxMinShape::terms_above`] stops; no floor is
+/// NaN).
+#[inline(always)]
+fn element_term(el: &StarElement, i: usize, x: DVec2, floor: f64) -> Term {
+    if el.kind == ElementKind::Tri3 {
+        // the common case without the element jets (a 420-byte copy per element): the
+        // same corner edge vectors and weights (1 at the free node, else 0), corner by
+        // corner, written out
+        let s = el.slot as usize;
+        let mut p = [el.pts[0], el.pts[1], el.pts[2]];
+        p[s] = x;
+        let w = |j: usize| if j == s { 1.0 } else { 0.0 };
+        let corner = |j: usize| {
+            let (next, prev) = ((j + 1) % 3, (j + 2) % 3);
+            CornerJet { e1: p[next] - p[j], e2: p[prev] - p[j], c1: w(next) - w(j), c2: w(prev) - w(j) }
+        };
+        let corners = [corner(0), corner(1), corner(2)];
+        let (min, worst, _) = worst_corner(&corners);
+        let grad = if min <= floor { DVec2::ZERO } else { worst_gradient(&corners, worst) };
+        return Term { elem: i as u32, value: min, grad };
+    }
+    let j = ElementJets::new(el, x);
+    let corners = j.corner_jets();
+    let (min, worst, neg) = worst_corner(corners);
+    let grad = worst_gradient(corners, worst);
+    let (value, grad) = if el.kind.is_triangle() { (min, grad) } else { (min / ALPHA_90 - neg as f64, grad / ALPHA_90) };
+    Term { elem: i as u32, value, grad }
 }
 
 /// One corner's α of a star element with the free node at `x`, and its gradient in the
@@ -87,29 +135,36 @@ impl MaxMinShape {
     }
 }
 
-/// The smallest corner α of an element (the first, in corner order, of the smallest) with
-/// its gradient in the free node, and the number of negative corner αs. The gradient is
-/// taken at that corner alone: [`lo_alpha_corner`] gives the α that
-/// [`lo_alpha_corner_gradient`] gives, bit for bit.
+/// The smallest corner α of an element (the first, in corner order, of the smallest), that
+/// corner's index (`None` when no α is below +∞: a NaN everywhere), and the number of
+/// negative corner αs.
 #[inline(always)]
-fn worst_corner(corners: &[CornerJet]) -> (f64, DVec2, u32) {
+fn worst_corner(corners: &[CornerJet]) -> (f64, Option<usize>, u32) {
     let (mut min, mut worst, mut neg) = (f64::INFINITY, None, 0);
-    for c in corners {
+    for (k, c) in corners.iter().enumerate() {
         let a = lo_alpha_corner(c.e1, c.e2);
         if a < min {
             min = a;
-            worst = Some(c);
+            worst = Some(k);
         }
         neg += (a < 0.0) as u32;
     }
-    let grad = worst.map_or(DVec2::ZERO, |c| {
-        let (_, g1, g2) = lo_alpha_corner_gradient(c.e1, c.e2);
-        c.chain(g1, g2)
-    });
-    (min, grad, neg)
+    (min, worst, neg)
 }
 
-impl_objective_by_visit!(MaxMinShape);
+/// The gradient in the free node of the α of corner `worst` ([`worst_corner`]'s), taken
+/// at that corner alone: [`lo_alpha_corner`] gives the α that [`lo_alpha_corner_gradient`]
+/// gives, bit for bit.
+#[inline(always)]
+fn worst_gradient(corners: &[CornerJet], worst: Option<usize>) -> DVec2 {
+    worst.map_or(DVec2::ZERO, |k| {
+        let c = &corners[k];
+        let (_, g1, g2) = lo_alpha_corner_gradient(c.e1, c.e2);
+        c.chain(g1, g2)
+    })
+}
+
+impl_objective_by_visit!(MaxMinShape, terms_above = terms_above);
 
 #[cfg(test)]
 mod tests {

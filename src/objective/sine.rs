@@ -6,8 +6,9 @@
 
 use glam::DVec2;
 
-use super::corners::ElementJets;
-use super::{impl_objective_by_visit, ObjectiveKind, Star, Term};
+use super::corners::{CornerJet, ElementJets};
+use super::{impl_objective_by_visit, ObjectiveKind, Star, StarElement, Term};
+use crate::mesh::ElementKind;
 use crate::quality::scaled_jacobian_gradient;
 
 /// Max-min of the sines of every corner angle of every star element — not only the free
@@ -25,16 +26,76 @@ impl MaxMinSine {
     /// Calls `emit` with one term per corner of every star element.
     pub fn visit(&self, star: &Star, x: DVec2, mut emit: impl FnMut(Term)) {
         for (i, el) in star.elems.iter().enumerate() {
-            let j = ElementJets::new(el, x);
-            for c in j.corner_jets() {
-                let (s, g1, g2) = scaled_jacobian_gradient(c.e1, c.e2);
-                emit(Term { elem: i as u32, value: s, grad: c.chain(g1, g2) });
+            element_terms(el, i, x, &mut emit);
+        }
+    }
+
+    /// [`Objective::terms_above`](crate::objective::Objective::terms_above): the corners of
+    /// element `lead` first, then the others in order, stopping at the first term not
+    /// above `floor`; the terms are [`visit`](Self::visit)'s, bit for bit.
+    pub fn terms_above(&self, star: &Star, x: DVec2, floor: f64, lead: u32, out: &mut Vec<Term>) -> bool {
+        out.clear();
+        let lead = lead as usize;
+        let mut first = [Term { elem: 0, value: 0.0, grad: DVec2::ZERO }; 4];
+        let mut n = 0;
+        if let Some(el) = star.elems.get(lead) {
+            let mut above = true;
+            element_terms(el, lead, x, |t| {
+                // not `<=`: a NaN term is not above
+                above &= t.value > floor;
+                first[n] = t;
+                n += 1;
+            });
+            if !above {
+                return false;
             }
         }
+        for (i, el) in star.elems.iter().enumerate() {
+            if i == lead {
+                out.extend_from_slice(&first[..n]);
+                continue;
+            }
+            let mut above = true;
+            element_terms(el, i, x, |t| {
+                above &= t.value > floor;
+                out.push(t);
+            });
+            if !above {
+                return false;
+            }
+        }
+        !out.is_empty()
     }
 }
 
-impl_objective_by_visit!(MaxMinSine);
+/// Calls `emit` with the term of each corner of star element `el` (index `i` in the star)
+/// with the free node at `x`.
+#[inline(always)]
+fn element_terms(el: &StarElement, i: usize, x: DVec2, mut emit: impl FnMut(Term)) {
+    let corner = |c: &CornerJet| {
+        let (s, g1, g2) = scaled_jacobian_gradient(c.e1, c.e2);
+        Term { elem: i as u32, value: s, grad: c.chain(g1, g2) }
+    };
+    if el.kind == ElementKind::Tri3 {
+        // the common case without the element jets (a 420-byte copy per element): the
+        // same corner edge vectors and weights, corner by corner
+        let s = el.slot as usize;
+        let mut p = [el.pts[0], el.pts[1], el.pts[2]];
+        p[s] = x;
+        let w = |j: usize| if j == s { 1.0 } else { 0.0 };
+        for j in 0..3 {
+            let (next, prev) = ((j + 1) % 3, (j + 2) % 3);
+            emit(corner(&CornerJet { e1: p[next] - p[j], e2: p[prev] - p[j], c1: w(next) - w(j), c2: w(prev) - w(j) }));
+        }
+        return;
+    }
+    let j = ElementJets::new(el, x);
+    for c in j.corner_jets() {
+        emit(corner(c));
+    }
+}
+
+impl_objective_by_visit!(MaxMinSine, terms_above = terms_above);
 
 #[cfg(test)]
 mod tests {

@@ -236,17 +236,32 @@ impl<S: NodeStar> Solver<S> for NonSmoothAscent<S::Point> {
                 }
             }
         }
-        // halve until φ improves
+        // halve until φ improves; a max-min objective tells whether a trial point is better
+        // without its every term (`terms_above`), trying first the element of the worst
+        // term here
         let min_move = o.min_step * st.scale;
         let x = st.x;
+        let max_min = objective.goal() == Goal::MaximizeMin;
+        let lead = self.terms.iter().fold(None, |w: Option<&Term<S::Point>>, t| match w {
+            Some(w) if w.value <= t.value => Some(w),
+            _ => Some(t),
+        });
+        let lead = lead.map_or(0, |t| t.elem);
         let phi_new = loop {
             if alpha * sl < min_move {
                 st.stop = Some(StopReason::SmallStep);
                 return false;
             }
-            let p = max_min_terms(objective, star, x + s * alpha, &mut self.trial);
-            if p > phi {
-                break p;
+            let xt = x + s * alpha;
+            if max_min {
+                if objective.terms_above(star, xt, phi, lead, &mut self.trial) {
+                    break self.trial.iter().fold(f64::INFINITY, |m, t| m.min(t.value));
+                }
+            } else {
+                let p = max_min_terms(objective, star, xt, &mut self.trial);
+                if p > phi {
+                    break p;
+                }
             }
             alpha *= 0.5;
         };

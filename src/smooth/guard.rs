@@ -41,6 +41,11 @@ impl<S: DriverStar> Objective<S> for KeepValid<'_, S> {
             out.push(Term { elem: 0, value: f64::NAN, grad: S::Point::ZERO });
         }
     }
+    fn terms_above(&self, star: &S, x: S::Point, floor: f64, lead: u32, out: &mut Vec<Term<S::Point>>) -> bool {
+        // a refused position has a NaN term, which is not above any floor; the objective's
+        // own test first, as most trial points fail it
+        self.inner.terms_above(star, x, floor, lead, out) && !self.refuses(star, x)
+    }
     fn value_and_gradient(&self, star: &S, x: S::Point) -> (f64, S::Point) {
         // a refused position is NaN whatever the objective says there: skip evaluating it
         // (the solvers never use the gradient of a NaN point)

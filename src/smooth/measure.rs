@@ -149,22 +149,33 @@ pub(super) fn at(e: &StarElement, x: Option<DVec2>) -> [DVec2; 9] {
 /// Whether an element has a corner with `det ≤ 0` (the definition of
 /// [`crate::quality::ElementQuality::inverted`]).
 pub(crate) fn is_inverted(kind: crate::mesh::ElementKind, p: &[DVec2; 9]) -> bool {
-    if kind == crate::mesh::ElementKind::Tri3 {
-        // the common case: corner_edges' raw vectors and range test written out for three
-        // corners (the same vectors, so the same answer), the general path beyond the range
-        let (a, b, c) = (p[0], p[1], p[2]);
-        let e = [(b - a, c - a), (c - b, a - b), (a - c, b - c)];
-        let m = e.iter().fold(0.0f64, |m, (u, v)| m.max(u.abs().max_element()).max(v.abs().max_element()));
-        if crate::numeric::SAFE_SCALE.contains(&m) {
-            return e.iter().any(|(u, v)| u.perp_dot(*v) <= 0.0);
-        }
-    }
-    corner_edges(kind, p)[..kind.corners()].iter().any(|(e1, e2)| e1.perp_dot(*e2) <= 0.0)
+    let linear = match kind {
+        crate::mesh::ElementKind::Tri3 => linear_is_inverted::<3>(p),
+        crate::mesh::ElementKind::Quad4 => linear_is_inverted::<4>(p),
+        _ => None,
+    };
+    linear.unwrap_or_else(|| corner_edges(kind, p)[..kind.corners()].iter().any(|(e1, e2)| e1.perp_dot(*e2) <= 0.0))
+}
+
+/// [`is_inverted`] of a linear element of `K` corners (the first `K` of `p`): corner_edges'
+/// raw vectors and range test written out (the same vectors, so the same answer); `None`
+/// beyond the range, where the general path decides.
+#[inline(always)]
+fn linear_is_inverted<const K: usize>(p: &[DVec2]) -> Option<bool> {
+    let e: [(DVec2, DVec2); K] = std::array::from_fn(|i| (p[(i + 1) % K] - p[i], p[(i + K - 1) % K] - p[i]));
+    let m = e.iter().fold(0.0f64, |m, (u, v)| m.max(u.abs().max_element()).max(v.abs().max_element()));
+    crate::numeric::SAFE_SCALE.contains(&m).then(|| e.iter().any(|(u, v)| u.perp_dot(*v) <= 0.0))
 }
 
 /// [`is_inverted`] of a star element with its free node at `x`; a linear triangle without
 /// the general element machinery (the same corner edge vectors, so the same answer).
 pub(super) fn is_inverted_at(el: &crate::objective::StarElement, x: DVec2) -> bool {
+    if el.kind == crate::mesh::ElementKind::Quad4 {
+        // without copying the element's 9 points
+        let mut p = [el.pts[0], el.pts[1], el.pts[2], el.pts[3]];
+        p[el.slot as usize] = x;
+        return linear_is_inverted::<4>(&p).unwrap_or_else(|| is_inverted(el.kind, &el.at(x)));
+    }
     if el.kind != crate::mesh::ElementKind::Tri3 {
         return is_inverted(el.kind, &el.at(x));
     }
