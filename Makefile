@@ -92,6 +92,7 @@ performance: site browser-tools
 	node tests/browser/bench.mjs --nodes 100000 --reps 3 > target/perf/wasm.json
 	node tests/browser/page_bench.mjs --reps 3 > target/perf/page.json
 	node tests/browser/page_memory.mjs > target/perf/page-memory.json
+	$(CARGO) build --release --features parallel --bin smoothlab
 	$(CARGO) run --release --features parallel --example perf -- --wasm target/perf/wasm.json --page target/perf/page.json --page-memory target/perf/page-memory.json --out docs/performance.md
 
 # the README's pictures (docs/images/), drawn by the CLI from generated meshes, then the

@@ -3,7 +3,8 @@
 //! visits: Laplacian, smart Laplacian, `opt` with each objective, `rules` with `new`, the
 //! bandwidth bound (a sweep that only streams the arrays a Laplacian pass reads), the
 //! level-set sampling of one node (100 × 100 objective values), a coloured pass, a pass
-//! over a tangled surface mesh, and drawing the mesh (`render::render_mesh`, 1024 × 1024).
+//! over a tangled surface mesh, the 3D passes on rand3D and on a block of hexahedra, and
+//! drawing the mesh (`render::render_mesh`, 1024 × 1024).
 //!
 //! `cargo bench` runs them all (several minutes); `cargo bench -- 10k` only the small mesh.
 //! At 1M nodes only the cheap passes (stream, Laplacian, smart) and `opt`/`rules` with
@@ -127,30 +128,44 @@ fn surfaces(c: &mut Criterion) {
 }
 
 /// One pass over Freitag's rand3D (1086 points, about 5900 tetrahedra) with each of her
-/// strategies and the new objective with Chen's rules: the planar drivers on tetrahedra.
+/// strategies and the new objective with Chen's rules: the planar drivers on tetrahedra;
+/// then issue 33's 3D passes (`old` capped at 20 iterations, `condition`, `untangle`) and
+/// the same kernels on a valid block of hexahedra (`hexahedra`), as `examples/perf.rs`'s
+/// 3D section measures them.
 fn tetrahedra(c: &mut Criterion) {
-    use smoothlab::generate::{rand3d, RAND3D_POINTS};
+    use smoothlab::generate::{hex_grid, perturb_volume, rand3d, HexBlock, RAND3D_POINTS};
     use smoothlab::objective::tet_objective;
-    use smoothlab::volume::VolumeSmoother;
-    let mesh = rand3d(RAND3D_POINTS, 1).expect("rand3d");
-    let mut g = c.benchmark_group("volume pass/rand3d");
-    g.sample_size(10).throughput(Throughput::Elements(mesh.free_count() as u64));
-    g.measurement_time(Duration::from_secs(5));
-    for (name, strategy, kind) in [
-        ("laplace", Strategy::Laplace, ObjectiveKind::Sine),
-        ("smart", Strategy::Smart, ObjectiveKind::Sine),
-        ("opt+sine", Strategy::Opt, ObjectiveKind::Sine),
-        ("opt+new", Strategy::Opt, ObjectiveKind::New),
-        ("rules+new", Strategy::Rules, ObjectiveKind::New),
-    ] {
-        let obj = tet_objective(kind).expect("a form on tetrahedra");
-        // Freitag's strategies in node order, as her table ran them; Chen's rules worst first
-        let order = if strategy == Strategy::Rules { Order::Priority } else { Order::Input };
-        let mut s =
-            VolumeSmoother::new(SmoothOptions::default().with_strategy(strategy).with_order(order)).expect("options");
-        g.bench_function(name, |b| b.iter_batched_ref(|| mesh.clone(), |m| s.sweep(m, &*obj), BatchSize::LargeInput));
+    use smoothlab::volume::{VolumeMesh, VolumeSmoother};
+    // name, strategy, objective, solver iterations per call
+    let passes = [
+        ("laplace", Strategy::Laplace, ObjectiveKind::Sine, 3),
+        ("smart", Strategy::Smart, ObjectiveKind::Sine, 3),
+        ("opt+sine", Strategy::Opt, ObjectiveKind::Sine, 3),
+        ("opt+new", Strategy::Opt, ObjectiveKind::New, 3),
+        ("rules+new", Strategy::Rules, ObjectiveKind::New, 3),
+        ("opt+old, 20 it", Strategy::Opt, ObjectiveKind::Old, 20),
+        ("opt+condition", Strategy::Opt, ObjectiveKind::Condition, 3),
+        ("opt+untangle", Strategy::Opt, ObjectiveKind::Untangle, 3),
+    ];
+    // a 10 × 10 × 10 block (1331 nodes, about rand3D's), free nodes moved by 0.2 mean edge
+    // lengths: every hexahedron valid
+    let block = perturb_volume(&hex_grid(&HexBlock::cube(10)).expect("hex grid"), 0.2, 1).expect("perturbed");
+    let meshes: [(&str, VolumeMesh); 2] =
+        [("volume pass/rand3d", rand3d(RAND3D_POINTS, 1).expect("rand3d")), ("volume pass/hexahedra", block)];
+    for (group, mesh) in meshes {
+        let mut g = c.benchmark_group(group);
+        g.sample_size(10).throughput(Throughput::Elements(mesh.free_count() as u64));
+        g.measurement_time(Duration::from_secs(5));
+        for (name, strategy, kind, max_iter) in passes {
+            let obj = tet_objective(kind).expect("a form on tetrahedra");
+            // Freitag's strategies in node order, as her table ran them; Chen's rules worst first
+            let order = if strategy == Strategy::Rules { Order::Priority } else { Order::Input };
+            let options = SmoothOptions::default().with_strategy(strategy).with_order(order).with_max_iter(max_iter);
+            let mut s = VolumeSmoother::new(options).expect("options");
+            g.bench_function(name, |b| b.iter_batched_ref(|| mesh.clone(), |m| s.sweep(m, &*obj), BatchSize::LargeInput));
+        }
+        g.finish();
     }
-    g.finish();
 }
 
 /// The level-set view of one node: its objective sampled on a 100 × 100 grid over its star.
