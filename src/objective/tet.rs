@@ -401,42 +401,13 @@ impl TetObjective {
                     emit(Term { elem: i as u32, value, grad });
                 }
             }
-            TetObjective::MeanRatio => {
-                // of the corners themselves, not the form: the max-min ascent follows its
-                // active set, which rounding can change (on a tangled mesh, the whole path)
+            TetObjective::MeanRatio
+            | TetObjective::DihedralSine
+            | TetObjective::Condition
+            | TetObjective::ConditionMax
+            | TetObjective::MinDet => {
                 for (i, t) in star.tets.iter().enumerate() {
-                    let (value, grad) = q3::mean_ratio_grad0(&t.at(x), reference(t));
-                    emit(Term { elem: i as u32, value, grad });
-                }
-            }
-            TetObjective::DihedralSine => {
-                for (i, t) in star.tets.iter().enumerate() {
-                    if simplex(t) {
-                        for (value, grad) in q3::dihedral_sines_grad0(&t.at(x)) {
-                            emit(Term { elem: i as u32, value, grad });
-                        }
-                    } else {
-                        // a corner of another kind: its scaled Jacobian, the 3D sine of a corner
-                        let (value, grad) = scaled_jacobian_grad0(&t.at(x), reference(t));
-                        emit(Term { elem: i as u32, value, grad });
-                    }
-                }
-            }
-            TetObjective::Condition | TetObjective::ConditionMax => {
-                let max = matches!(self, TetObjective::ConditionMax);
-                for (i, t) in star.tets.iter().enumerate() {
-                    let p = t.at(x);
-                    let (kappa, g) = q3::condition_number_grad0(&p, reference(t));
-                    // behind the barrier (σ ≤ 0, or κ² beyond it): a huge finite value with
-                    // zero gradient, as in the plane ([`CONDITION_BARRIER`])
-                    let valid = q3::signed_volume(&p) > 0.0 && kappa.is_finite() && kappa * kappa < CONDITION_BARRIER;
-                    let (value, grad) = match (max, valid) {
-                        (false, true) => (kappa * kappa, 2.0 * kappa * g),
-                        (false, false) => (CONDITION_BARRIER, DVec3::ZERO),
-                        (true, true) => (-kappa, -g),
-                        (true, false) => (-CONDITION_BARRIER, DVec3::ZERO),
-                    };
-                    emit(Term { elem: i as u32, value, grad });
+                    self.corner_terms(t, i as u32, x, reference(t), simplex(t), &mut emit);
                 }
             }
             TetObjective::Untangle { beta } => {
@@ -458,13 +429,94 @@ impl TetObjective {
                     emit(Term { elem: i as u32, value, grad });
                 }
             }
-            TetObjective::MinDet => {
-                for (i, t) in star.tets.iter().enumerate() {
-                    let (value, grad) = t.form.volume6_at(x, t.reference);
-                    emit(Term { elem: i as u32, value, grad });
+        }
+    }
+}
+
+impl TetObjective {
+    /// The terms of one corner (index `i` in the star) at `x`, for the objectives whose
+    /// terms are the corners' own (every kind but `new` and `untangle`, which read the
+    /// whole star for δ and β), against reference `r`, `simplex` when it is a whole
+    /// tetrahedron.
+    #[inline(always)]
+    fn corner_terms(&self, t: &StarCorner, i: u32, x: DVec3, r: &CornerReference, simplex: bool, emit: &mut impl FnMut(Term<DVec3>)) {
+        match *self {
+            TetObjective::MeanRatio => {
+                // of the corners themselves, not the form: the max-min ascent follows its
+                // active set, which rounding can change (on a tangled mesh, the whole path)
+                let (value, grad) = q3::mean_ratio_grad0(&t.at(x), r);
+                emit(Term { elem: i, value, grad });
+            }
+            TetObjective::DihedralSine => {
+                if simplex {
+                    for (value, grad) in q3::dihedral_sines_grad0(&t.at(x)) {
+                        emit(Term { elem: i, value, grad });
+                    }
+                } else {
+                    // a corner of another kind: its scaled Jacobian, the 3D sine of a corner
+                    let (value, grad) = scaled_jacobian_grad0(&t.at(x), r);
+                    emit(Term { elem: i, value, grad });
                 }
             }
+            TetObjective::Condition | TetObjective::ConditionMax => {
+                let max = matches!(self, TetObjective::ConditionMax);
+                let p = t.at(x);
+                let (kappa, g) = q3::condition_number_grad0(&p, r);
+                // behind the barrier (σ ≤ 0, or κ² beyond it): a huge finite value with
+                // zero gradient, as in the plane ([`CONDITION_BARRIER`])
+                let valid = q3::signed_volume(&p) > 0.0 && kappa.is_finite() && kappa * kappa < CONDITION_BARRIER;
+                let (value, grad) = match (max, valid) {
+                    (false, true) => (kappa * kappa, 2.0 * kappa * g),
+                    (false, false) => (CONDITION_BARRIER, DVec3::ZERO),
+                    (true, true) => (-kappa, -g),
+                    (true, false) => (-CONDITION_BARRIER, DVec3::ZERO),
+                };
+                emit(Term { elem: i, value, grad });
+            }
+            TetObjective::MinDet => {
+                let (value, grad) = t.form.volume6_at(x, t.reference);
+                emit(Term { elem: i, value, grad });
+            }
+            TetObjective::Regularised(_) | TetObjective::Untangle { .. } => unreachable!("read the whole star"),
         }
+    }
+
+    /// [`Objective::terms_above`] of a max-min objective: the terms of corner `lead` first,
+    /// then the others in the star's order (the lead's as already taken), stopping at the
+    /// first that is not above `floor`; the terms pushed are [`Objective::terms`]' own.
+    fn max_min_terms_above(&self, star: &CornerStar, x: DVec3, floor: f64, lead: u32, out: &mut Vec<Term<DVec3>>) -> bool {
+        out.clear();
+        let only_tets = star.only_tets();
+        let r = |t: &StarCorner| if only_tets { &EQUILATERAL_TET } else { t.reference };
+        let simplex = |t: &StarCorner| only_tets || t.simplex;
+        let mut above = true;
+        // a corner has at most six terms (a tetrahedron's dihedral sines)
+        let (mut lead_terms, mut n) = ([Term { elem: lead, value: 0.0, grad: DVec3::ZERO }; 6], 0);
+        if let Some(t) = star.tets.get(lead as usize) {
+            // not `<=`: a NaN term is not above
+            self.corner_terms(t, lead, x, r(t), simplex(t), &mut |term| {
+                above &= term.value > floor;
+                lead_terms[n] = term;
+                n += 1;
+            });
+            if !above {
+                return false;
+            }
+        }
+        for (i, t) in star.tets.iter().enumerate() {
+            if i == lead as usize {
+                out.extend_from_slice(&lead_terms[..n]);
+                continue;
+            }
+            self.corner_terms(t, i as u32, x, r(t), simplex(t), &mut |term| {
+                above &= term.value > floor;
+                out.push(term);
+            });
+            if !above {
+                return false;
+            }
+        }
+        !out.is_empty()
     }
 }
 
@@ -492,6 +544,14 @@ impl Objective<CornerStar> for TetObjective {
         let mut fold = super::Fold::new(self.goal());
         self.visit(star, x, |t| fold.add(t));
         fold.finish()
+    }
+    fn terms_above(&self, star: &CornerStar, x: DVec3, floor: f64, lead: u32, out: &mut Vec<Term<DVec3>>) -> bool {
+        if self.goal() != Goal::MaximizeMin {
+            out.clear();
+            self.terms(star, x, out);
+            return !out.is_empty() && out.iter().all(|t| t.value > floor);
+        }
+        self.max_min_terms_above(star, x, floor, lead, out)
     }
     /// The regularised mean ratio's Hessian ([`RegularisedMeanRatio::term`]), for Newton's
     /// first trial; `None` for the others.
@@ -662,6 +722,36 @@ mod tests {
         let t = StarCorner::tet(0, [DVec3::ZERO, DVec3::X * 1e200, DVec3::Y * 1e200, DVec3::Z * 1e200]);
         assert_eq!(t.form.inverted_at(DVec3::ZERO, t.reference), None);
         assert!(!t.inverted_at(DVec3::ZERO));
+    }
+
+    #[test]
+    fn terms_above_answers_as_the_terms_do() {
+        let mut rng = SplitMix64::new(30);
+        let mut stopped = 0;
+        for round in 0..60 {
+            let x0 = point(&mut rng);
+            let star = if round % 2 == 0 { random_star(&mut rng, 5, x0) } else { random_mixed_star(&mut rng, 5, x0) };
+            let x = x0 + point(&mut rng) * 0.2;
+            for k in tet_kinds() {
+                let obj = tet_objective(k).unwrap();
+                let mut all = Vec::new();
+                obj.terms(&star, x, &mut all);
+                let min = all.iter().fold(f64::INFINITY, |m, t| m.min(t.value));
+                for floor in [min - 1.0, min, min + 1e-3, f64::NEG_INFINITY] {
+                    for lead in [0, 3, 4, 9] {
+                        let mut out = Vec::new();
+                        let above = obj.terms_above(&star, x, floor, lead, &mut out);
+                        assert_eq!(above, all.iter().all(|t| t.value > floor), "{k} floor {floor} lead {lead}");
+                        if above {
+                            assert_eq!(out, all, "{k}");
+                        } else {
+                            stopped += 1;
+                        }
+                    }
+                }
+            }
+        }
+        assert!(stopped > 100, "{stopped}");
     }
 
     #[test]

@@ -46,7 +46,7 @@ pub fn is_inverted(p: &[DVec3; 4]) -> bool {
 /// beyond it, corner 0 moved to the origin and the edges multiplied by a power of two
 /// (exact) that brings that component to about 1 — the planar metrics' rule
 /// (`docs/formulas.md` §1), so a cube of tetrahedra has the same angles at 1e±150 as at 1.
-#[inline]
+#[inline(always)]
 pub fn in_unit_scale(p: &[DVec3; 4]) -> [DVec3; 4] {
     let e = [p[1] - p[0], p[2] - p[0], p[3] - p[0]];
     let m = e.iter().fold(0.0f64, |m, v| m.max(v.abs().max_element()));
