@@ -86,14 +86,17 @@ reproduction:
 	$(CARGO) run --release --example reproduce > docs/reproduction.md
 
 # The browser benches first (the wasm bench's JSON feeds the wasm/native table, the page
-# bench's the "In the page" section, the page's memory the memory section), then the native figures.
+# bench's the "In the page" section, the page's memory the memory section), then issue 33's
+# speed-ups before and after in one run (the CLI of the issue's day built beside this tree's),
+# then the native figures.
 performance: site browser-tools
 	@mkdir -p target/perf
 	node tests/browser/bench.mjs --nodes 100000 --reps 3 > target/perf/wasm.json
 	node tests/browser/page_bench.mjs --reps 3 > target/perf/page.json
 	node tests/browser/page_memory.mjs > target/perf/page-memory.json
 	$(CARGO) build --release --features parallel --bin smoothlab
-	$(CARGO) run --release --features parallel --example perf -- --wasm target/perf/wasm.json --page target/perf/page.json --page-memory target/perf/page-memory.json --out docs/performance.md
+	python3 scripts/before_after.py > target/perf/before_after.json
+	$(CARGO) run --release --features parallel --example perf -- --wasm target/perf/wasm.json --page target/perf/page.json --page-memory target/perf/page-memory.json --before-after target/perf/before_after.json --out docs/performance.md
 
 # the README's pictures (docs/images/), drawn by the CLI from generated meshes, then the
 # papers' figures of the page's tour (docs/figures/*.png and docs/figures.md)

@@ -4,9 +4,11 @@
 //! ```text
 //! cargo run --release --features parallel --example perf -- \
 //!     [--sizes 10000,100000,1000000] [--wasm wasm.json] [--page page.json]
-//!     [--page-memory page-memory.json] [--out docs/performance.md] [--json native.json]
+//!     [--page-memory page-memory.json] [--before-after before_after.json]
+//!     [--out docs/performance.md] [--json native.json]
 //! cargo run --release --example perf -- --memory-only [--page-memory page-memory.json]
 //! cargo run --release --features parallel --example perf -- --issue33 [--quick] [--wasm wasm.json] [--page page.json]
+//!     [--before-after before_after.json]
 //! ```
 //!
 //! Every figure is the median of a few timed passes, each over a fresh copy of the same
@@ -17,7 +19,9 @@
 //! Issue 33's sections (alone, printed, with `--issue33`: about 2 minutes; `--quick` fewer
 //! repetitions): the 3D passes on rand3D and on hexahedra, the time to quality of the
 //! release binary `smoothlab` (built beside this program: `make performance` builds it),
-//! versus Mesquite, and the issue's targets.
+//! versus Mesquite, and the issue's targets, whose speed-ups are read from
+//! `scripts/before_after.py`'s JSON (`--before-after`: the CLI of the issue's day and this
+//! tree's timed in one run).
 
 use std::fmt::Write as _;
 use std::time::Instant;
@@ -286,6 +290,10 @@ const TRIED: &str = "What was tried for the figures not met (each measured on th
 - *opt+old* (issue 33: at least 2× faster per node visit in 2D with 20 iterations, with equal or better meshes): Freitag's ascent halves its step until a trial point is better, and most trial points are not (on the rand2D below, 558k of 775k trials); it now asks a max-min objective whether a point is better (`Objective::terms_above`) instead of for its every term, and `old` answers from the element of the worst term where the ascent stands first, then the others in order, stopping at the first term not above φ (most failing trials are told by that one element); the validity guard's cross products are taken only after the objective's own test passes, and a linear triangle's gradient only when its α is above φ. Measured in instructions (callgrind): `valgrind --tool=callgrind smoothlab smooth r.vtk -o o.vtk --objective old --strategy opt --passes 1 --max-iter 20` on a rand2d of 20000 points (seed 7), the node loop (`Smoother::sweep`, inclusive) from 180606 to 80793 instructions a visit, 2.24× fewer. The same meshes bit for bit (the written files compared, and 2 passes on tangled plates of triangles, quads and mixed, 3 seeds each, and 3 rand2D seeds with opt, rules and c2). What is left: the 3 corner αs of each linear triangle (one α mathematically, but which corner is the least is decided by rounding, so working it out once would change the meshes; not made), the successful trials' whole evaluation with the guard, and the ascent's step (the active set, the hull's minimum-norm point).
 - *opt+sine* (issue 33: at least 2× with 20 iterations): the same test of a trial point (`terms_above`, the worst term's element first), and linear triangles evaluated in the element loop without the element jets (a 420-byte copy and `corner_edge_vectors` per element). `valgrind --tool=callgrind smoothlab smooth r.vtk -o o.vtk --objective sine --strategy opt --passes 1 --max-iter 20`, the same rand2d: 183000 → 70102 instructions a visit, 2.61× fewer; the same meshes bit for bit.
 - *opt+untangle* (issue 33: at least 2×): on a valid mesh `untangle` leaves every star where it is (the untangling objectives optimise only while the mesh is tangled), so rand2D's visits cost the visit alone (1664 → 1668 instructions a visit on the rand2d above) and the target was measured on a tangled mesh: `generate plate --kind mixed --resolution 12`, `perturb --amount 0.6` (2208 free nodes, 637 inverted elements), `valgrind --tool=callgrind smoothlab smooth tp.vtk -o o.vtk --objective untangle --strategy opt --passes 1`: 47729 → 21692 instructions a visit, 2.20× fewer, the same meshes bit for bit. Made: the shift β's mean corner |det|, which depends on the star at x0 alone, kept in the star (`StarMemo`) instead of worked out at every evaluation (half the element jets built); linear triangles and quads evaluated in the element loop; p = 2 squared without `powi`'s call (the same bits); the validity guard's `is_inverted` written out for linear quads as it was for triangles (the raw corner edges within 2^±200, which `corner_edges` returns unchanged). Not made: Newton's first trial from an analytic Hessian (each term is piecewise quadratic in the node, with a Hessian of 8∇det∇detᵀ where det < β): it would change the meshes and needs their comparison over many seeds; the evaluations per visit (about 46 on that plate, Chen's search on a piecewise quadratic) are what is left.
+- *3D opt+new and rules+new* (issue 33: at least 3× faster, Newton's first trial from the analytic 3 × 3 Hessian, no gather per evaluation): each corner of a tetrahedral star is kept, when gathered, as the coefficients of its weighted Jacobian in the free node's position (`quality::tet::CornerForm`: ‖T‖² quadratic, det T linear, the terms of higher degree cancelling; `docs/formulas.md` §8), so an evaluation of `new` reads no corners and δ comes from the forms; `new` has the Hessian of its terms, so Fletcher–Reeves tries Newton's step first as in 2D; the validity guard decides a trial from the forms where they decide beyond rounding (a tetrahedron's det T; a hexahedron's or pyramid's 27 Bernstein coefficients of det J, each affine in one corner: `quality::solid::DetForm`, made at the first trial that asks), else as before; and a hexahedron's Bernstein coefficients are taken 9× cheaper (each cross product once, the weights from a table: the same coefficients bit for bit). Measured in instructions (callgrind) before (the issue's commit 0e0ec36) and after in one session, the node loop (`Smoother::visit_all_in`, inclusive) of one pass, `valgrind --tool=callgrind smoothlab smooth X.vtk -o o.vtk --strategy opt|rules --objective new --passes 1`: on rand3D (`generate rand3d --seed 1`, 934 free nodes) opt+new 270.0M → 112.6M (2.40× fewer), rules+new 666.7M → 364.4M (1.83×); on a 10³ block of hexahedra (`generate hexgrid --cells 10`, `perturb --amount 0.3`, 729 free nodes, all valid) opt+new 2293M → 383M (5.98×), rules+new 3039M → 1183M (2.57×). In wall time (the CLI's pass time, 3 runs each, one session, a rand3D of 20000 points): opt+new 1.15 s → 0.49–0.60 s (about 2.1×), rules+new 2.5–3.1 s → 1.85–2.19 s (about 1.4×): **not met** (3×). The meshes differ, as Newton's trial ends each solve nearer the objective's minimum: after the defaults' 3 passes (rules+new) the smallest mean ratio on rand3D seeds 1–3 0.4387 → 0.4431, 0.3982 → 0.4008, 0.4109 → 0.4162, tangled by 0.4: 0.4564 → 0.4476, 0.3865 → 0.3890, 0.3826 → 0.3831, 6³ hexahedra tangled by 1.0: 0.9987 → 0.9986, 0.9990 → 0.9982, 0.9998 → 0.9997; every run 0 inverted. What is left: in `rules`, the drivers' exact measures (the smart Laplacian's test, the acceptance rule's before and after, the priority order: the mean ratio of every tetrahedron, whose correctly rounded cube root alone is a quarter of the loop); in `opt`, the cube root of each term (η = F/(3h^{2/3})), the acceptance rule's mean ratios and the forms' making at every gather. Not made: a faster cube root (the statistics' mean ratio must keep its bits, and the objective's share alone cannot make 3×).
+- *3D opt+old with 20 iterations* (issue 33: at least 2×): the tetrahedral max-min objectives answer Freitag's ascent's test of a trial point corner by corner, the worst corner first (`terms_above`, as the planar ones), and the guard's forms and the hexahedra's coefficients above serve it too: `valgrind --tool=callgrind smoothlab smooth X.vtk -o o.vtk --strategy opt --objective old --passes 1 --max-iter 20`, rand3D 623.1M → 303.1M (2.06× fewer), the hexahedra 5100M → 687M (7.4×); the written meshes byte for byte the same. Tried and not kept: `old` read from the corners' forms (a further 1.45×), which changed its max-min path by rounding (the knupp-hex tour's old side then ends at 128 → 60 → 55 → 53 inverted instead of 128 → 63 → 50 → 40).
+- *hexahedra per corner* (issue 33: not slower than tetrahedra): the same kernels serve both (the corners' forms, the guard's forms); by the instructions above per free node and corner (22.5 corners a free node on rand3D, 32 on the hexahedra, the 3D table below) opt+new takes about 5.4k instructions a tetrahedron's corner and 16.4k a hexahedron's (before: 12.8k and 98.3k): 3.1× (before 7.6×), **not met**. What is left is the element's: a hexahedron's validity is certified over the whole element (27 Bernstein coefficients, made once per optimized visit from four evaluations of det J, and the acceptance rule's exact `validity` before and after) where a tetrahedron's is the sign of one determinant.
+- *wasm ≤ 1.3× native, the module ≤ 649 KB, one default Step on the 1M sample ≤ 5 s* (issue 33): not worked on in this round beyond the kernels above, which the wasm build shares (the same code); the figures are this run's, in the sections below. What was tried for them before is in the wasm and page sections.
 - *file order / Hilbert order at 100k and 1M*: the worst pass is a memory-bound one (each visit reads the node's elements and neighbours, scattered over the whole mesh in file order). The page's own 100k and 1M samples are now numbered along a Hilbert curve when generated (`generate::rand2d_spatial`: the same points sorted before the Delaunay triangulation, so no second build), which took one default Step on the 1M sample from 14.9 to 10.9 s (page bench, one run each). Renumbering inside the smoother was not made: it rebuilds the mesh's topology, about 1.2 µs a node at 1M (measured once, some 30 Laplacian passes), so it cannot bring one pass within 1.5× of the Hilbert-ordered pass; renumbering once before the passes (`Mesh::renumbered_spatially`, above) is the way for large meshes.
 ";
 
@@ -448,6 +456,7 @@ fn main() {
     let mut json_out: Option<String> = None;
     let mut quick = false;
     let mut issue33_only = false;
+    let mut before_after: Option<String> = None;
     let mut args = std::env::args().skip(1);
     while let Some(a) = args.next() {
         match a.as_str() {
@@ -465,6 +474,7 @@ fn main() {
             "--json" => json_out = args.next(),
             "--quick" => quick = true,
             "--issue33" => issue33_only = true,
+            "--before-after" => before_after = args.next(),
             other => {
                 eprintln!("perf: unknown argument {other}");
                 std::process::exit(2);
@@ -492,7 +502,7 @@ fn main() {
             println!("| {name} | {} | {} |", fmt_ns(*a), fmt_ns(*b));
         }
         println!();
-        print!("{}", issue33_sections(&reports, quick, wasm.as_deref(), page.as_deref()));
+        print!("{}", issue33_sections(&reports, quick, wasm.as_deref(), page.as_deref(), before_after.as_deref()));
         return;
     }
     let machine = machine();
@@ -512,8 +522,8 @@ fn main() {
         measure_rows(PLANAR_NODES, &ISSUE33_PLANAR, quick)
     });
     let issue33 = match extra {
-        Some(r) => issue33_sections(&[r], quick, wasm.as_deref(), page.as_deref()),
-        None => issue33_sections(&reports, quick, wasm.as_deref(), page.as_deref()),
+        Some(r) => issue33_sections(&[r], quick, wasm.as_deref(), page.as_deref(), before_after.as_deref()),
+        None => issue33_sections(&reports, quick, wasm.as_deref(), page.as_deref(), before_after.as_deref()),
     };
     let doc = render(&machine, &reports, &quality, &memory, wasm.as_deref()) + &issue33 + &page_section(page.as_deref());
     match out {
@@ -559,7 +569,7 @@ fn render(
     let _ = writeln!(w, "- Native: `cargo run --release --features parallel --example perf -- --out docs/performance.md --wasm target/perf/wasm.json`");
     let _ = writeln!(w, "- Browser: `node tests/browser/bench.mjs > target/perf/wasm.json` (headless Chromium, the release wasm of `make site`)");
     let _ = writeln!(w, "- CLI: `cargo build --release --features parallel --bin smoothlab` first: the time to quality runs the release binary as the user does");
-    let _ = writeln!(w, "- Issue 33's sections alone: `cargo run --release --features parallel --example perf -- --issue33 [--quick]` (about 2 minutes)");
+    let _ = writeln!(w, "- Issue 33's sections alone: `cargo run --release --features parallel --example perf -- --issue33 [--quick] [--before-after target/perf/before_after.json]` (about 2 minutes); its speed-ups before and after in one run: `python3 scripts/before_after.py > target/perf/before_after.json` (builds the CLI of the issue's day beside this tree's)");
     let _ = writeln!(w, "- Criterion benches of the same passes: `cargo bench` (`benches/smoothing.rs`).\n");
     let _ = writeln!(w, "Meshes: Freitag's `rand2d` (Delaunay of uniform random points in the unit square, √n points per side, seed {SEED}), untangled. ");
     let _ = writeln!(w, "A pass is one input-order sweep over the free nodes (`Smoother::sweep`, no statistics); each figure is the median of a few passes, each on a fresh copy of the mesh, in **nanoseconds per node visit**. ");
@@ -1707,27 +1717,57 @@ fn measure_rows(n: usize, names: &[&str], quick: bool) -> SizeReport {
     SizeReport { nodes: mesh.node_count(), rows, ..SizeReport::default() }
 }
 
-/// smoothlab's figures of issue 33's day, ns per free node and pass, which the current code
-/// cannot measure: (2D or 3D, pass, ns, where the figure comes from). 2D: rand2d 100k,
-/// Hilbert order; 3D: rand3D (seed 1). The passes capped at 20 iterations had no recorded
-/// figure: each is a recorded figure of that day times the ratio of the two passes measured
-/// in one run at commit 0e0ec36 (the code of the issue's day), the median of 3 runs of
-/// `perf --issue33` on 2026-11-27 — a ratio, because the shared cores slowed every figure of
-/// those runs 2–7× (load average about 3 on 2 cores) while two passes of one run slowed alike.
-const BEFORE: [(&str, &str, f64, &str); 9] = [
-    ("2D", "opt+condition", 7459.0, "`docs/performance.md` of 2026-11-24"),
-    ("2D", "opt+old", 1773.0, "`docs/performance.md` of 2026-11-24"),
-    ("2D", "opt+sine", 2383.0, "`docs/performance.md` of 2026-11-24"),
-    ("2D", "opt+untangle", 934.0, "`docs/performance.md` of 2026-11-24"),
-    ("3D", "opt+new", 21_800.0, "issue 33's text"),
-    ("3D", "rules+new, priority order", 51_700.0, "issue 33's text"),
-    ("2D", "opt+old, 20 it", 1773.0 * 6.255, "opt+old's 1773 of 2026-11-24 × 6.255, 20 it / 3 it at 0e0ec36"),
-    ("2D", "opt+sine, 20 it", 2383.0 * 4.866, "opt+sine's 2383 of 2026-11-24 × 4.866, 20 it / 3 it at 0e0ec36"),
-    ("3D", "opt+old, 20 it", 21_800.0 * 2.507, "opt+new's 21.8 µs of issue 33 × 2.507, old 20 it / new at 0e0ec36"),
-];
+/// Issue 33's speed-ups measured before and after in one run by `scripts/before_after.py`
+/// (`make performance`): the CLI of the issue's day (a base commit) and this tree's, one pass
+/// of each target on the same file, alternating, the median of a few runs of the pass's own
+/// time; rows by target, `"{2D|3D|hexahedra} {pass}"`.
+struct BeforeAfter {
+    base: String,
+    reps: u64,
+    /// (target, mesh, options, before ms, after ms)
+    rows: Vec<(String, String, String, f64, f64)>,
+}
 
-fn before(dim: &str, pass: &str) -> Option<(f64, &'static str)> {
-    BEFORE.iter().find(|b| b.0 == dim && b.1 == pass).map(|b| (b.2, b.3))
+impl BeforeAfter {
+    fn read(path: Option<&str>) -> Self {
+        let v = read_json(path).unwrap_or(serde_json::Value::Null);
+        let text = |r: &serde_json::Value, k: &str| r[k].as_str().unwrap_or("?").to_string();
+        let rows = v["rows"]
+            .as_array()
+            .into_iter()
+            .flatten()
+            .filter_map(|r| Some((text(r, "target"), text(r, "mesh"), text(r, "options"), r["before_ms"].as_f64()?, r["after_ms"].as_f64()?)))
+            .collect();
+        BeforeAfter { base: v["base"].as_str().unwrap_or("?").to_string(), reps: v["reps"].as_u64().unwrap_or(0), rows }
+    }
+    /// Before / after of `pass` in `dim` (2D, 3D, hexahedra), when measured.
+    fn speedup(&self, dim: &str, pass: &str) -> Option<f64> {
+        let name = format!("{dim} {pass}");
+        self.rows.iter().find(|r| r.0 == name).map(|r| r.3 / r.4)
+    }
+    /// The table of every measured target.
+    fn table(&self) -> String {
+        let mut w = String::new();
+        if self.rows.is_empty() {
+            let _ = writeln!(w, "Before and after in one run: not measured (no `--before-after` file: `scripts/before_after.py` writes it).\n");
+            return w;
+        }
+        let _ = writeln!(
+            w,
+            "Before and after in one run (`scripts/before_after.py`, which `make performance` runs first): the `smoothlab` CLI of the issue's day \
+             (commit {}, built beside this tree) and this tree's, `smoothlab smooth MESH --passes 1 --json OPTIONS`, one pass of each target on the \
+             same file, the two binaries alternating, the median of {} runs each of the pass's own time (`elapsed_ms`: the node loop, without \
+             reading, writing or statistics):\n",
+            self.base, self.reps
+        );
+        let _ = writeln!(w, "| target | mesh | options | before | after | speed-up |");
+        let _ = writeln!(w, "|---|---|---|---:|---:|---:|");
+        for (t, mesh, options, b, a) in &self.rows {
+            let _ = writeln!(w, "| {t} | {mesh} | `{options}` | {} | {} | {:.2}× |", fmt_ms(*b), fmt_ms(*a), b / a);
+        }
+        w.push('\n');
+        w
+    }
 }
 
 /// smoothlab's figure of `pass` in this run: 2D on rand2d 100k Hilbert, 3D on rand3D.
@@ -1739,7 +1779,7 @@ fn this_run(planar: Option<&SizeReport>, volume: &VolumeReport, dim: &str, pass:
     }
 }
 
-fn versus_mesquite(planar: Option<&SizeReport>, volume: &VolumeReport) -> String {
+fn versus_mesquite(planar: Option<&SizeReport>, volume: &VolumeReport, before_after: &BeforeAfter) -> String {
     let mut w = String::new();
     let _ = writeln!(w, "## Versus Mesquite (issue 33)\n");
     let _ = writeln!(
@@ -1748,16 +1788,15 @@ fn versus_mesquite(planar: Option<&SizeReport>, volume: &VolumeReport) -> String
          machine, one process at a time (> 1: smoothlab faster). Mesquite is not built by this project (its code is not committed), so \
          `make performance` does not re-measure Mesquite's half: the ratios below are issue 33's, measured before this work (Mesquite \
          built -O3, on its own meshes and smoothlab's), and smoothlab's half is this run's: 2D on rand2d of {PLANAR_NODES} nodes in Hilbert \
-         order (the planar table above), 3D on rand3D (the 3D section). Where smoothlab's figure of that day is recorded (the targets \
-         table below), *estimate now* is the issue's ratio times smoothlab's speed-up since (its figure then / this run's): an estimate \
-         across runs, not a measurement.\n"
+         order (the planar table above), 3D on rand3D (the 3D section). Where smoothlab's speed-up since that day was measured (before and \
+         after in one run, the targets section below), *estimate now* is the issue's ratio times that speed-up: an estimate (Mesquite's \
+         half not re-measured, smoothlab's speed-up measured on its own meshes), not a measurement.\n"
     );
     let _ = writeln!(w, "| pair | smoothlab 2D | issue's ratio 2D | estimate now 2D | smoothlab 3D | issue's ratio 3D | estimate now 3D |");
     let _ = writeln!(w, "|---|---:|---:|---:|---:|---:|---:|");
-    let scaled = |ratio: &str, dim: &str, pass: &str, now: Option<f64>| -> String {
-        let (Some((then, _)), Some(now)) = (before(dim, pass), now) else { return "—".into() };
+    let scaled = |ratio: &str, dim: &str, pass: &str| -> String {
+        let Some(s) = before_after.speedup(dim, pass) else { return "—".into() };
         let parts: Vec<f64> = ratio.trim_end_matches('×').split('–').filter_map(|x| x.parse().ok()).collect();
-        let s = then / now;
         match parts.as_slice() {
             [a, b] => format!("{}–{}×", fmt_ratio(a * s), fmt_ratio(b * s)),
             [a] => format!("{}×", fmt_ratio(a * s)),
@@ -1772,9 +1811,9 @@ fn versus_mesquite(planar: Option<&SizeReport>, volume: &VolumeReport) -> String
             w,
             "| {pair} | {} | {r2} | {} | {} | {r3} | {} |",
             ns(n2),
-            scaled(r2, "2D", p2, n2),
+            scaled(r2, "2D", p2),
             if p3.is_some() { ns(n3) } else { "—".into() },
-            p3.map_or("—".into(), |p| scaled(r3, "3D", p, n3))
+            p3.map_or("—".into(), |p| scaled(r3, "3D", p))
         );
     }
     let _ = writeln!(
@@ -1812,23 +1851,21 @@ fn issue33_targets(
     reports: &[SizeReport],
     volume: &VolumeReport,
     quality: &QualityReport,
+    before_after: &BeforeAfter,
     wasm: Option<&str>,
     page: Option<&str>,
     load: &str,
 ) -> String {
-    let planar = reports.iter().find(|r| r.nodes == PLANAR_NODES);
     let mut w = String::new();
     let _ = writeln!(w, "## Against the targets of issue 33 (performance versus Mesquite)\n");
+    w += &before_after.table();
     let _ = writeln!(
         w,
-        "Each row: the figure, then ✓ where it meets the target and ✗ where it does not, with how far. The speed-ups are against smoothlab's \
-         figure of the day the issue was measured (*before*, with where it comes from: the current code cannot measure it; no figure was recorded for the passes capped at 20 iterations, so theirs is \
-         a recorded figure times the ratio of the two passes measured in one run on the issue's code, commit 0e0ec36, `BEFORE` in `examples/perf.rs`), so they are \
-         **across runs** (other work on the shared cores slows a figure: the load average was {load} when the 3D passes began); the issue asks for before and after in one run: \
-         those are the instruction counts by callgrind in the *What was tried* bullets above. 2D: rand2d of {PLANAR_NODES} nodes, Hilbert \
-         order; 3D: rand3D; ns per free node and pass.\n"
+        "Each row below: the figure, then ✓ where it meets the target and ✗ where it does not, with how far. The speed-ups are the table \
+         above's (before and after in one run, on this machine: the load average was {load} when this section's 3D passes began); the \
+         instructions of the same passes by callgrind are in the *What was tried* bullets.\n"
     );
-    let _ = writeln!(w, "| target | before | this run | figure | met |");
+    let _ = writeln!(w, "| target | before | after | figure | met |");
     let _ = writeln!(w, "|---|---:|---:|---:|---|");
     let speedups: [(&str, &str, &str, f64); 7] = [
         ("3D: `opt`+`new` ≥ 3× faster", "3D", "opt+new", 3.0),
@@ -1840,20 +1877,16 @@ fn issue33_targets(
         ("2D: `untangle` ≥ 2× faster", "2D", "opt+untangle", 2.0),
     ];
     for (what, dim, pass, target) in speedups {
-        let now = this_run(planar, volume, dim, pass);
-        let (then, cells) = match (before(dim, pass), now) {
-            (Some((then, src)), Some(now)) => {
-                let s = then / now;
-                let met = if s >= target { "✓".to_string() } else { format!("✗ (a further {:.2}× needed)", target / s) };
-                (format!("{} ({src})", fmt_ns(then)), format!("{} | {s:.2}× | {met}", fmt_ns(now)))
+        let name = format!("{dim} {pass}");
+        let cells = match before_after.rows.iter().find(|r| r.0 == name) {
+            Some((_, _, _, b, a)) => {
+                let s = b / a;
+                let met = if s >= target { "✓".to_string() } else { format!("✗ ({:.2}× of the {target}×)", s) };
+                format!("{} | {} | {s:.2}× | {met}", fmt_ms(*b), fmt_ms(*a))
             }
-            (None, Some(now)) => (
-                "not recorded".to_string(),
-                format!("{} | — | not measurable: no figure of that day was recorded for this pass", fmt_ns(now)),
-            ),
-            (_, None) => ("—".to_string(), "not measured | — | not measured in this run".to_string()),
+            None => "not measured | not measured | — | not measured (no `--before-after` file)".to_string(),
         };
-        let _ = writeln!(w, "| {what} | {then} | {cells} |");
+        let _ = writeln!(w, "| {what} | {cells} |");
     }
     // hexahedra per corner, the worst of the passes the target names
     let worst = ["opt+new", "rules+new, priority order", "opt+old, 20 it"]
@@ -1920,7 +1953,8 @@ fn issue33_targets(
 
 /// Issue 33's sections: the 3D passes, the time to quality, versus Mesquite and the targets
 /// (the planar figures from `reports`, the 100k one).
-fn issue33_sections(reports: &[SizeReport], quick: bool, wasm: Option<&str>, page: Option<&str>) -> String {
+fn issue33_sections(reports: &[SizeReport], quick: bool, wasm: Option<&str>, page: Option<&str>, before_after: Option<&str>) -> String {
+    let before_after = BeforeAfter::read(before_after);
     let load = std::fs::read_to_string("/proc/loadavg").unwrap_or_default();
     let load = load.split_whitespace().take(3).collect::<Vec<_>>().join(" ");
     eprintln!("perf: tetrahedra and hexahedra …");
@@ -1930,6 +1964,6 @@ fn issue33_sections(reports: &[SizeReport], quick: bool, wasm: Option<&str>, pag
     let planar = reports.iter().find(|r| r.nodes == PLANAR_NODES);
     volume_section(&volume)
         + &quality.text
-        + &versus_mesquite(planar, &volume)
-        + &issue33_targets(reports, &volume, &quality, wasm, page, &load)
+        + &versus_mesquite(planar, &volume, &before_after)
+        + &issue33_targets(reports, &volume, &quality, &before_after, wasm, page, &load)
 }
