@@ -553,7 +553,7 @@ impl Objective<CornerStar> for TetObjective {
         }
         self.max_min_terms_above(star, x, floor, lead, out)
     }
-    /// The regularised mean ratio's Hessian ([`RegularisedMeanRatio::term`]), for Newton's
+    /// The regularised mean ratio's Hessian (the sum of its corners' terms' Hessians), for Newton's
     /// first trial; `None` for the others.
     fn value_gradient_hessian(&self, star: &CornerStar, x: DVec3) -> Option<(f64, DVec3, DMat3)> {
         match self {
