@@ -158,7 +158,9 @@ fn new_never_flattens_a_random_boundary_tetrahedron() {
 /// Issue 29: the priority order ranked stars by the last bits of their shape, which
 /// scaling the mesh by 3 changes, so a mesh and its copy scaled by 3 were smoothed in
 /// different orders. Ties within rounding go to the lower node number: one pass of the
-/// rules with the priority order gives the same mesh, scaled, to rounding.
+/// rules with the priority order gives the same mesh, scaled, to rounding — to within the
+/// solver's stopping: Newton's trial (issue 33) may end one copy's solve an iteration
+/// before the other's, a step of some 10⁻⁹ of the unit cube (2.1·10⁻⁹ measured, seed 7).
 #[test]
 fn the_priority_order_is_the_same_at_every_scale() {
     for seed in 0..12 {
@@ -171,7 +173,7 @@ fn the_priority_order_is_the_same_at_every_scale() {
         smooth_volume(&mut a, &*objective, opts, 1, &|| 0.0).unwrap();
         smooth_volume(&mut b, &*objective, opts, 1, &|| 0.0).unwrap();
         let far = (0..a.node_count()).map(|n| (b.nodes()[n] / 3.0 - a.nodes()[n]).length()).fold(0.0, f64::max);
-        assert!(far < 1e-9, "seed {seed}: a node ends {far} from where the mesh scaled by 3 puts it");
+        assert!(far < 1e-7, "seed {seed}: a node ends {far} from where the mesh scaled by 3 puts it");
     }
 }
 
