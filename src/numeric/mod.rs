@@ -130,8 +130,88 @@ pub(crate) fn robust_length(v: DVec2) -> f64 {
     m * (v / m).length()
 }
 
+/// The cube root to within one unit in the last place, for the smooth objectives' terms,
+/// where it is about five times cheaper than [`f64::cbrt`] (correctly rounded: what the
+/// statistics and the max-min objectives keep using, so their bits never depend on this).
+///
+/// Bruce Evans' method (FreeBSD's `s_cbrt.c`, also musl's): a first guess from the
+/// exponent's bits divided by 3, a polynomial that takes it to 23 bits, rounded to 21 bits
+/// so the next step's products are exact, then one Halley step (error below 0.667 ulp).
+/// Zero, infinities and NaN are returned as `f64::cbrt` returns them; subnormals are scaled
+/// by 2^54 first.
+#[inline]
+pub fn cbrt_fast(x: f64) -> f64 {
+    // the exponent's bits over 3, biased so the guess is within 4 % of the root
+    const B1: u32 = 715_094_163; // (1023 − 1023/3 − 0.03306235651)·2^20
+    const B2: u32 = 696_219_795; // (1023 − 1023/3 − 54/3 − 0.03306235651)·2^20
+    // |1/cbrt(r) − p(r)| < 2^−23.5 on the guess's range
+    const P0: f64 = 1.875_951_824_271_77;
+    const P1: f64 = -1.884_979_795_433_771_7;
+    const P2: f64 = 1.621_429_720_105_354_5;
+    const P3: f64 = -0.758_397_934_778_766;
+    const P4: f64 = 0.145_996_192_886_612_45;
+    let bits = x.to_bits();
+    let mut hx = (bits >> 32) as u32 & 0x7fff_ffff;
+    if hx >= 0x7ff0_0000 {
+        return x + x; // infinity or NaN
+    }
+    if hx < 0x0010_0000 {
+        // zero or subnormal
+        let scaled = (x * f64::from_bits(0x4350_0000_0000_0000)).to_bits(); // 2^54
+        hx = (scaled >> 32) as u32 & 0x7fff_ffff;
+        if hx == 0 {
+            return x;
+        }
+        hx = hx / 3 + B2;
+    } else {
+        hx = hx / 3 + B1;
+    }
+    let mut t = f64::from_bits((bits & (1 << 63)) | (u64::from(hx) << 32));
+    // to 23 bits: t·p(t³/x)
+    let r = (t * t) * (t / x);
+    t *= (P0 + r * (P1 + r * P2)) + ((r * r) * r) * (P3 + r * P4);
+    // round t away from zero to 21 bits, so t·t is exact and |t| > |cbrt(x)| slightly
+    t = f64::from_bits((t.to_bits().wrapping_add(0x8000_0000)) & 0xffff_ffff_c000_0000);
+    // one Halley step: t + t·(x/t² − t)/(2t + x/t²)
+    let s = t * t;
+    let r = x / s;
+    let w = t + t;
+    let r = (r - t) / (w + r);
+    t + t * r
+}
+
 #[cfg(test)]
 mod tests {
+    /// Within one unit in the last place of the correctly rounded root, over every scale
+    /// (subnormals included) and both signs; special values as `f64::cbrt`.
+    #[test]
+    fn cbrt_fast_is_within_one_ulp() {
+        let ulps = |a: f64, b: f64| (a.to_bits() as i64 - b.to_bits() as i64).abs();
+        let mut rng = SplitMix64::new(33);
+        let mut worst = 0;
+        for _ in 0..200_000 {
+            let bits = rng.next_u64() & !(1 << 63);
+            let x = f64::from_bits(bits);
+            if !x.is_finite() {
+                continue;
+            }
+            for x in [x, -x] {
+                worst = worst.max(ulps(cbrt_fast(x), x.cbrt()));
+            }
+        }
+        for k in 1..=1000 {
+            let x = k as f64 * 0.37;
+            worst = worst.max(ulps(cbrt_fast(x), x.cbrt()));
+            let cube = (k * k * k) as f64;
+            assert_eq!(cbrt_fast(cube), k as f64, "the cube of {k}");
+        }
+        assert!(worst <= 1, "{worst} ulps");
+        for x in [0.0, -0.0, f64::INFINITY, f64::NEG_INFINITY, f64::MIN_POSITIVE / 8.0, 5e-324] {
+            assert_eq!(cbrt_fast(x).to_bits(), x.cbrt().to_bits(), "{x}");
+        }
+        assert!(cbrt_fast(f64::NAN).is_nan());
+    }
+
     use super::*;
 
     #[test]

@@ -57,6 +57,11 @@ impl StarCorner {
     pub fn new(element: u32, pts: [DVec3; 4], reference: &'static CornerReference, simplex: bool) -> Self {
         StarCorner { element, pts, reference, simplex, form: CornerForm::of(&pts, reference) }
     }
+    /// [`new`](Self::new) with its form [`CornerForm::PENDING`], for a star the drivers only
+    /// measure unless they optimise it ([`CornerStar::complete_forms`]).
+    pub fn pending(element: u32, pts: [DVec3; 4], reference: &'static CornerReference, simplex: bool) -> Self {
+        StarCorner { element, pts, reference, simplex, form: CornerForm::PENDING }
+    }
     /// A tetrahedron of a star (the free node first), measured against the equilateral
     /// tetrahedron.
     pub fn tet(element: u32, pts: [DVec3; 4]) -> Self {
@@ -132,25 +137,39 @@ pub struct CornerStar {
     pub tets: Vec<StarCorner>,
     /// The elements that are not tetrahedra (empty in a mesh of tetrahedra).
     pub elements: Vec<StarSolid>,
+    /// Where the free node was gathered while the corners' forms wait to be worked out
+    /// ([`complete_forms`](Self::complete_forms)); `None` when they are.
+    pub forms_pending_at: Option<DVec3>,
 }
 
 impl Default for CornerStar {
     /// An empty star, until one is gathered.
     fn default() -> Self {
-        CornerStar { node: 0, x0: DVec3::ZERO, tets: Vec::new(), elements: Vec::new() }
+        CornerStar { node: 0, x0: DVec3::ZERO, tets: Vec::new(), elements: Vec::new(), forms_pending_at: None }
     }
 }
 
 impl CornerStar {
     /// A star of tetrahedra (each with the free node first).
     pub fn of_tets(x0: DVec3, tets: Vec<StarCorner>) -> Self {
-        CornerStar { node: 0, x0, tets, elements: Vec::new() }
+        CornerStar { node: 0, x0, tets, elements: Vec::new(), forms_pending_at: None }
     }
     /// The reference W of a tetrahedron's corners, the equilateral tetrahedron's (every
     /// kind of tetrahedron's).
     #[inline]
     pub fn reference(&self) -> &'static CornerReference {
         &EQUILATERAL_TET
+    }
+    /// Works out the corners' forms if they wait ([`StarCorner::pending`]), each from its
+    /// corners with the free node where it was gathered, as a gather that makes them does.
+    pub fn complete_forms(&mut self) {
+        if let Some(x) = self.forms_pending_at.take() {
+            for t in &mut self.tets {
+                let mut p = t.pts;
+                p[0] = x;
+                t.form = CornerForm::of(&p, t.reference);
+            }
+        }
     }
     /// Whether every element is a tetrahedron: then every corner is measured against
     /// [`reference`](Self::reference), which the measures see as a constant.
@@ -176,6 +195,7 @@ impl NodeStar for CornerStar {
     }
     fn scaled(&self, f: f64) -> Self {
         let mut s = self.clone();
+        s.complete_forms();
         s.x0 *= f;
         for t in &mut s.tets {
             for p in &mut t.pts {
@@ -310,21 +330,27 @@ impl RegularisedMeanRatio {
         if h <= 0.0 || h.is_nan() {
             return (f64::INFINITY, DVec3::ZERO, DMat3::ZERO);
         }
-        // η = F / (3 h^{2/3})
-        let c = h.cbrt();
-        let eta = j.frob2 / (3.0 * c * c);
-        let grad_f = j.grad_frob2 / j.frob2;
-        let grad_ln = grad_f - j.grad_sigma * (2.0 / (3.0 * s));
-        let q = 1.0 / eta;
+        // q = 1/η = 3 h^{2/3} / F, by reciprocals taken once (a division costs several
+        // multiplications)
+        let c = crate::numeric::cbrt_fast(h);
+        let inv_f = 1.0 / j.frob2;
+        let q = 3.0 * c * c * inv_f;
+        let eta = 1.0 / q;
+        let grad_f = j.grad_frob2 * inv_f;
+        let two_thirds_inv_s = (2.0 / 3.0) / s;
+        let grad_ln = grad_f - j.grad_sigma * two_thirds_inv_s;
         // (1 − q)², ∇q = −q ∇ln η
-        let value = (1.0 - q) * (1.0 - q) + self.k1 * eta * eta;
-        let d1 = 2.0 * (1.0 - q) * q + 2.0 * self.k1 * eta * eta;
+        let k1_eta2 = self.k1 * eta * eta;
+        let value = (1.0 - q) * (1.0 - q) + k1_eta2;
+        let d1 = 2.0 * (1.0 - q) * q + 2.0 * k1_eta2;
         if !HESSIAN {
             return (value, d1 * grad_ln, DMat3::ZERO);
         }
-        let d2 = -2.0 * q + 4.0 * q * q + 4.0 * self.k1 * eta * eta;
-        let hess_ln = DMat3::from_diagonal(DVec3::splat(hf / j.frob2)) - outer(grad_f, grad_f)
-            + outer(j.grad_sigma, j.grad_sigma * (2.0 * j.sigma / (3.0 * s * s * s)));
+        let d2 = -2.0 * q + 4.0 * q * q + 4.0 * k1_eta2;
+        // (2/3)·σ/s³
+        let curvature = two_thirds_inv_s * j.sigma / (s * s);
+        let hess_ln = DMat3::from_diagonal(DVec3::splat(hf * inv_f)) - outer(grad_f, grad_f)
+            + outer(j.grad_sigma, j.grad_sigma * curvature);
         (value, d1 * grad_ln, outer(grad_ln, grad_ln * d2) + hess_ln * d1)
     }
 
@@ -332,6 +358,7 @@ impl RegularisedMeanRatio {
     /// the sum of [`term`](Self::term) over the star's corners, each read from its form.
     #[inline(always)]
     fn sum<const HESSIAN: bool>(&self, star: &CornerStar, x: DVec3) -> (f64, DVec3, DMat3) {
+        debug_assert!(star.forms_pending_at.is_none(), "an objective reads the corners' forms");
         let delta = self.delta(star);
         let (mut value, mut grad, mut hess) = (0.0, DVec3::ZERO, DMat3::ZERO);
         for t in &star.tets {
@@ -374,6 +401,7 @@ impl TetObjective {
 
     /// Calls `emit` with every term at `x`.
     fn visit(&self, star: &CornerStar, x: DVec3, emit: impl FnMut(Term<DVec3>)) {
+        debug_assert!(star.forms_pending_at.is_none(), "an objective reads the corners' forms");
         if star.only_tets() {
             // every corner against the one static reference, a constant the measures fold
             self.visit_with(star, x, emit, |_| &EQUILATERAL_TET, |_| true)

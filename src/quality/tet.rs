@@ -214,6 +214,20 @@ pub struct CornerForm {
 }
 
 impl CornerForm {
+    /// A form not worked out yet: every field not a number, so a reading of it before
+    /// [`of`](Self::of) fills it is not a number too (a star gathered for the drivers'
+    /// measures only, `DriverStar::gather_for_measures`).
+    pub const PENDING: CornerForm = CornerForm {
+        origin: DVec3::NAN,
+        reach: f64::NAN,
+        t0: DMat3::NAN,
+        t0v: DVec3::NAN,
+        frob2: f64::NAN,
+        vv: f64::NAN,
+        v: DVec3::NAN,
+        sigma: f64::NAN,
+        grad_sigma: DVec3::NAN,
+    };
     /// The form of the corner `p` (corner 0 and its three edge neighbours) against `r`.
     #[inline]
     pub fn of(p: &[DVec3; 4], r: &CornerReference) -> Self {
@@ -335,6 +349,23 @@ pub fn mean_ratio(p: &[DVec3; 4], r: &CornerReference) -> f64 {
     }
     let c = t.determinant().cbrt();
     3.0 * c * c.abs() / f
+}
+
+/// A number in the order of [`mean_ratio`] without its cube root: `q³/27 = σ·|σ|/F³`
+/// (`q³` rises with `q` through 0), taken as `(σ/F)·|σ/F|/F` so it stays a double at every
+/// scale the tetrahedron's own measures take. Where two tetrahedra's mean ratios differ by
+/// more than a few rounding errors their keys are in the same order; for a test that only
+/// asks which is larger and is followed by the exact rule (the smart Laplacian's, before
+/// the acceptance rule, `docs/formulas.md` §4). 0 when the four corners coincide.
+#[inline]
+pub fn mean_ratio_order(p: &[DVec3; 4], r: &CornerReference) -> f64 {
+    let t = weighted_jacobian(&in_unit_scale(p), r);
+    let f = frobenius2(&t);
+    if f == 0.0 {
+        return 0.0;
+    }
+    let a = t.determinant() / f;
+    a * a.abs() / f
 }
 
 /// [`mean_ratio`] with its gradient with respect to corner 0:
@@ -467,6 +498,34 @@ mod tests {
     fn point(rng: &mut SplitMix64) -> DVec3 {
         let (x, y) = (rng.uniform(-1.0, 1.0), rng.uniform(-1.0, 1.0));
         DVec3::new(x, y, rng.uniform(-1.0, 1.0))
+    }
+
+    /// The mean ratio's order key is `q³/27` and sorts tetrahedra as their mean ratios do,
+    /// inverted ones and flat ones included, at every scale.
+    #[test]
+    fn mean_ratio_order_is_the_mean_ratios_order() {
+        let mut rng = SplitMix64::new(29);
+        let tets: Vec<[DVec3; 4]> = (0..400).map(|_| [point(&mut rng), point(&mut rng), point(&mut rng), point(&mut rng)]).collect();
+        let r = &EQUILATERAL_TET;
+        for p in &tets {
+            let (q, k) = (mean_ratio(p), mean_ratio_order(p, r));
+            assert!((k - q * q * q / 27.0).abs() <= 1e-13 * (1.0 + k.abs()), "{k} against q³/27 = {}", q * q * q / 27.0);
+            for s in [1e-120, 1e120] {
+                let scaled = p.map(|x| x * s);
+                assert!((mean_ratio_order(&scaled, r) - k).abs() <= 1e-13 * (1.0 + k.abs()), "at scale {s}");
+            }
+        }
+        for a in &tets {
+            for b in &tets {
+                let (qa, qb) = (mean_ratio(a), mean_ratio(b));
+                if (qa - qb).abs() > 1e-12 {
+                    assert_eq!(qa < qb, mean_ratio_order(a, r) < mean_ratio_order(b, r), "{qa} and {qb}");
+                }
+            }
+        }
+        let flat = [DVec3::ZERO, DVec3::X, DVec3::Y, DVec3::new(1.0, 1.0, 0.0)];
+        assert_eq!(mean_ratio_order(&flat, r), 0.0);
+        assert_eq!(mean_ratio_order(&[DVec3::ONE; 4], r), 0.0);
     }
 
     #[test]

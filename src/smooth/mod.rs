@@ -309,7 +309,7 @@ impl<S: DriverStar> Smoother<S> {
     pub(crate) fn decide(&mut self, mesh: &S::Mesh, n: usize, objective: &dyn Objective<S>) -> (S::Point, NodeOutcome) {
         let (x, mut out, kept) = self.decide_move(mesh, n, objective);
         if out.moved && !kept && self.accepts_only_no_worse() {
-            self.star.gather(mesh, n);
+            self.star.regather(mesh, n);
             if !self.star.verdict_in(mesh, x, self.options.smart_measure).keeps() {
                 out.moved = false;
                 return (mesh.position(n), out);
@@ -416,8 +416,8 @@ impl<S: DriverStar> Smoother<S> {
                         x = self.star.x0();
                     }
                     None => {
-                        self.star.gather(mesh, n);
-                        let optimise = forced || self.star.shape_at(self.star.x0()).1 > 0;
+                        self.star.gather_for_measures(mesh, n);
+                        let optimise = forced || self.star.any_inverted_now();
                         if optimise || !self.smart(mesh, n, &mut out) {
                             self.optimize(objective, &mut out);
                         }
@@ -476,6 +476,7 @@ impl<S: DriverStar> Smoother<S> {
         if objective.only_untangles() && !self.tangled {
             return;
         }
+        self.star.complete();
         let x0 = self.star.x0();
         let guarded;
         let objective: &dyn Objective<S> = if self.options.keep_valid {

@@ -99,7 +99,7 @@ impl<S: DriverStar> Smoother<S> {
                         self.quality[i] = match S::shape_from_mesh(mesh, i) {
                             Some(q) => q,
                             None => {
-                                self.star.gather(mesh, i);
+                                self.star.gather_for_measures(mesh, i);
                                 self.star.shape_at(self.star.x0()).0
                             }
                         };
@@ -194,7 +194,7 @@ impl<S: DriverStar> Smoother<S> {
         let mut ranked: Vec<(f64, u32)> = Vec::with_capacity(self.revisits.len());
         for &n in &self.revisits {
             self.marked[n as usize] = false;
-            self.star.gather(view.star_mesh(n as usize), n as usize);
+            self.star.gather_for_measures(view.star_mesh(n as usize), n as usize);
             ranked.push((tie_scale(self.star.shape_at(self.star.x0()).0), n));
         }
         ranked.sort_unstable_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));

@@ -44,6 +44,16 @@ pub trait DriverStar: NodeStar + Default {
     type Mesh: SmoothMesh<Point = Self::Point>;
     /// Fills the star of `node` from `mesh`.
     fn gather(&mut self, mesh: &Self::Mesh, node: usize);
+    /// Fills the star of `node` for the drivers' measures ([`shape_at`](Self::shape_at),
+    /// [`quality`](Self::quality), the smart Laplacian's test, the acceptance rule), leaving
+    /// out what only an objective reads until [`complete`](Self::complete) works it out (a
+    /// tetrahedral star's corner forms); the default gathers all of it.
+    fn gather_for_measures(&mut self, mesh: &Self::Mesh, node: usize) {
+        self.gather(mesh, node)
+    }
+    /// Works out what [`gather_for_measures`](Self::gather_for_measures) left out, before
+    /// an objective reads the star; the default has nothing to do.
+    fn complete(&mut self) {}
     /// The free node's position now (gathered, or moved by [`restar`](Self::restar)).
     fn x0(&self) -> Self::Point;
     /// Moves the free node to `x` (mid-side nodes following).
@@ -58,6 +68,19 @@ pub trait DriverStar: NodeStar + Default {
     fn smart_accepts(&self, c: Self::Point, measure: Measure) -> bool;
     /// The number of elements inverted as gathered (the validity guard's limit).
     fn inverted_now(&self) -> usize;
+    /// Whether [`shape_at`](Self::shape_at) at the free node's position counts an inverted
+    /// element (Chen's rule 2), where a kind of star can tell without measuring the
+    /// shapes; the default reads `shape_at`.
+    fn any_inverted_now(&self) -> bool {
+        self.shape_at(self.x0()).1 > 0
+    }
+    /// The star of `node` as [`gather`](Self::gather) would fill it from `mesh`, when it
+    /// was last gathered from that mesh at that node and the mesh has not changed since
+    /// (only [`restar`](Self::restar) moved it): a kind of star whose `restar` is exactly
+    /// undone by moving the node back does that; the default gathers again.
+    fn regather(&mut self, mesh: &Self::Mesh, node: usize) {
+        self.gather(mesh, node)
+    }
     /// The number of elements inverted with the free node at `x`.
     fn inverted_at(&self, x: Self::Point) -> usize;
     /// How deeply the star is inverted with the free node at `x`: the sum of the negative

@@ -127,6 +127,11 @@ pub struct VolumeMesh {
     /// CSR: the elements with node n as a corner.
     tet_start: Vec<u32>,
     tets: Vec<u32>,
+    /// Beside `tets`, where the element is a tetrahedron: its other three corners in the
+    /// order of the corner's edges ([`VolumeKindRow::corner_edges`](crate::mesh::VolumeKindRow)),
+    /// so a star is read in one stream rather than element by element from
+    /// `elements` (`u32::MAX` for another kind; empty when there is no tetrahedron).
+    tet_corners: Vec<[u32; 3]>,
     /// CSR: the corner nodes sharing an edge with corner n.
     nb_start: Vec<u32>,
     nb: Vec<u32>,
@@ -393,6 +398,20 @@ impl VolumeMesh {
             }
         }
         let (tet_start, tets) = csr(n, &mut pairs);
+        let mut tet_corners = Vec::new();
+        if present.iter().any(|k| k.is_tet()) {
+            tet_corners.reserve_exact(tets.len());
+            for node in 0..n {
+                for &e in &tets[tet_start[node] as usize..tet_start[node + 1] as usize] {
+                    let (kind, ids) = (kinds[e as usize], &elements[range(e as usize)]);
+                    let slot = ids[..kind.corners()].iter().position(|&i| i as usize == node);
+                    tet_corners.push(match slot {
+                        Some(slot) if kind.is_tet() => kind.row().corner_edges[slot].map(|k| ids[k]),
+                        _ => [u32::MAX; 3],
+                    });
+                }
+            }
+        }
         pairs.clear();
         for e in 0..count {
             let ids = &elements[range(e)];
@@ -468,6 +487,7 @@ impl VolumeMesh {
             role,
             tet_start,
             tets,
+            tet_corners,
             nb_start,
             nb,
             follow_start,
@@ -700,6 +720,15 @@ impl VolumeMesh {
     /// The elements with corner `n`.
     pub fn node_tets(&self, n: usize) -> &[u32] {
         &self.tets[self.tet_start[n] as usize..self.tet_start[n + 1] as usize]
+    }
+    /// Beside [`node_tets`](Self::node_tets)`(n)`: for each tetrahedron, its corners other
+    /// than `n` in the order of `n`'s edges (an even permutation after `n`); `u32::MAX`
+    /// for an element of another kind. Empty when the mesh has no tetrahedron.
+    pub fn node_tet_corners(&self, n: usize) -> &[[u32; 3]] {
+        if self.tet_corners.is_empty() {
+            return &[];
+        }
+        &self.tet_corners[self.tet_start[n] as usize..self.tet_start[n + 1] as usize]
     }
     /// The corner nodes sharing an edge with corner `n`.
     pub fn neighbours(&self, n: usize) -> &[u32] {

@@ -67,22 +67,30 @@ impl DriverStar for CornerStar {
     /// measured corner whose tetrahedron holds the node, reordered to put it first
     /// ([`WITH_FIRST`]), with the element whole for the guard ([`StarSolid`]).
     fn gather(&mut self, mesh: &VolumeMesh, node: usize) {
+        self.gather_for_measures(mesh, node);
+        self.complete_forms();
+    }
+    /// The corners with their forms [`CornerForm::PENDING`](crate::quality::tet::CornerForm::PENDING)
+    /// until [`complete`](DriverStar::complete) (a smart Laplacian's visit reads none).
+    fn gather_for_measures(&mut self, mesh: &VolumeMesh, node: usize) {
         self.node = node as u32;
+        self.forms_pending_at = Some(mesh.nodes()[node]);
         self.x0 = mesh.nodes()[node];
         self.tets.clear();
         self.elements.clear();
         let nodes = mesh.nodes();
-        for &e in mesh.node_tets(node) {
+        let (x, corners) = (nodes[node], mesh.node_tet_corners(node));
+        for (i, &e) in mesh.node_tets(node).iter().enumerate() {
+            // a tetrahedron from the star's own stream of corners (`VolumeMesh::node_tet_corners`)
+            if let Some(&[a, b, c]) = corners.get(i).filter(|o| o[0] != u32::MAX) {
+                let pts = [x, nodes[a as usize], nodes[b as usize], nodes[c as usize]];
+                self.tets.push(StarCorner::pending(e, pts, &q3::EQUILATERAL_TET, true));
+                continue;
+            }
             let kind = mesh.element_kind(e as usize);
             let row = kind.row();
             let ids = &mesh.element(e as usize)[..row.corners];
             let Some(slot) = ids.iter().position(|&i| i as usize == node) else { continue };
-            if kind.is_tet() {
-                let [a, b, c] = row.corner_edges[slot];
-                let pts = [slot, a, b, c].map(|k| nodes[ids[k] as usize]);
-                self.tets.push(StarCorner::tet(e, pts));
-                continue;
-            }
             let mut all = [DVec3::ZERO; 8];
             for (p, &i) in all.iter_mut().zip(ids) {
                 *p = nodes[i as usize];
@@ -91,10 +99,13 @@ impl DriverStar for CornerStar {
                 let tuple = [c, a, b, d];
                 let Some(s) = tuple.iter().position(|&j| j == slot) else { continue };
                 let pts = WITH_FIRST[s].map(|j| all[tuple[j]]);
-                self.tets.push(StarCorner::new(e, pts, &row.slot_references[s], false));
+                self.tets.push(StarCorner::pending(e, pts, &row.slot_references[s], false));
             }
             self.elements.push(StarSolid::new(e, kind, slot as u8, all));
         }
+    }
+    fn complete(&mut self) {
+        self.complete_forms();
     }
     #[inline]
     fn x0(&self) -> DVec3 {
@@ -141,9 +152,11 @@ impl DriverStar for CornerStar {
         }
         q
     }
+    /// The tetrahedra by [`q3::mean_ratio_order`] (the mean ratio's order without its cube
+    /// root; the acceptance rule then measures the move exactly).
     fn smart_accepts(&self, c: DVec3, m: Measure) -> bool {
         let measure = |p: &[DVec3; 4]| match m {
-            Measure::Shape => q3::mean_ratio(p, self.reference()),
+            Measure::Shape => q3::mean_ratio_order(p, self.reference()),
             Measure::MinSine => q3::dihedral_sines(p).into_iter().fold(f64::INFINITY, f64::min),
         };
         let (mut before, mut after) = (f64::INFINITY, f64::INFINITY);
@@ -160,8 +173,10 @@ impl DriverStar for CornerStar {
             if !s0.inverted && s1.inverted {
                 return false;
             }
-            before = before.min(s0.quality);
-            after = after.min(s1.quality);
+            // the other kinds' mean ratios in the tetrahedra's order: q³/27
+            let order = |q: f64| if m == Measure::Shape { q * q * q / 27.0 } else { q };
+            before = before.min(order(s0.quality));
+            after = after.min(order(s1.quality));
         }
         after > before
     }
@@ -169,7 +184,24 @@ impl DriverStar for CornerStar {
         self.tets.iter().filter(|t| t.simplex && q3::is_inverted(&t.pts)).count()
             + self.elements.iter().filter(|e| solid::validity(e.kind, e.corners(&e.pts)) != Validity::Valid).count()
     }
+    /// [`shape_at`](DriverStar::shape_at)'s count at the gathered position, without the
+    /// mean ratios: the same tests of the same corners.
+    fn any_inverted_now(&self) -> bool {
+        self.tets.iter().any(|t| t.simplex && q3::is_inverted(&t.pts))
+            || self.elements.iter().any(|e| solid::validity(e.kind, e.corners(&e.pts)) != Validity::Valid)
+    }
+    /// The other corners are as gathered and the forms depend on them only: moving the
+    /// node back to its place in `mesh` is the gather. (This star has no
+    /// [`smart_from_mesh`](DriverStar::smart_from_mesh), so a driver that decides a node
+    /// has gathered it.)
+    fn regather(&mut self, mesh: &VolumeMesh, node: usize) {
+        if self.node as usize != node {
+            return self.gather(mesh, node);
+        }
+        self.restar(mesh.nodes()[node]);
+    }
     fn inverted_at(&self, x: DVec3) -> usize {
+        debug_assert!(self.forms_pending_at.is_none(), "the guard reads the forms");
         self.tets.iter().filter(|t| t.simplex && t.inverted_at(x)).count()
             + self.elements.iter().filter(|e| e.validity_at(x) != Validity::Valid).count()
     }

@@ -315,3 +315,27 @@ fn a_mixed_mesh_of_a_quadratic_kind_and_another_is_refused_naming_the_line() {
     // linear kinds mix
     assert!(b.add_volume_element(VolumeKind::Hex8, &[0; 8], 9).is_ok());
 }
+
+/// The stream of each node's tetrahedra's other corners is the elements' own, in the order
+/// of the node's edges, in a mesh of every kind; empty without tetrahedra.
+#[test]
+fn the_tetrahedra_corner_stream_is_the_elements() {
+    let mesh = crate::generate::mixed_block(&crate::generate::HexBlock::cube(3)).unwrap();
+    let mut tets = 0;
+    for n in 0..mesh.node_count() {
+        let corners = mesh.node_tet_corners(n);
+        assert_eq!(corners.len(), mesh.node_tets(n).len());
+        for (&e, others) in mesh.node_tets(n).iter().zip(corners) {
+            let (kind, ids) = (mesh.element_kind(e as usize), mesh.element(e as usize));
+            if !kind.is_tet() {
+                assert_eq!(*others, [u32::MAX; 3]);
+                continue;
+            }
+            tets += 1;
+            let slot = ids[..4].iter().position(|&i| i as usize == n).unwrap();
+            assert_eq!(*others, kind.row().corner_edges[slot].map(|k| ids[k]));
+        }
+    }
+    assert!(tets > 0, "the mixed block has tetrahedra");
+    assert!(hex_block(2, 0.0, 1).node_tet_corners(13).is_empty());
+}
