@@ -342,30 +342,55 @@ pub fn condition_number_grad0(p: &[DVec3; 4], r: &CornerReference) -> (f64, DVec
 /// an inverted one (`σ^{2/3}` taken as `sign(σ)·|σ|^{2/3}`), so it falls on continuously
 /// through inversion. 0 when the four corners coincide.
 pub fn mean_ratio(p: &[DVec3; 4], r: &CornerReference) -> f64 {
-    let t = weighted_jacobian(&in_unit_scale(p), r);
-    let f = frobenius2(&t);
-    if f == 0.0 {
-        return 0.0;
+    MeanRatioParts::of(p, r).mean_ratio()
+}
+
+/// What [`mean_ratio`] and [`mean_ratio_order`] are made of: `F = ‖T‖²_F` and `σ = det T`
+/// of the weighted Jacobian in the tetrahedron's own scale, so a caller that orders many
+/// tetrahedra by the key takes the exact mean ratio of the few it needs from the same
+/// Jacobian.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct MeanRatioParts {
+    pub frob2: f64,
+    pub sigma: f64,
+}
+
+impl MeanRatioParts {
+    #[inline]
+    pub fn of(p: &[DVec3; 4], r: &CornerReference) -> Self {
+        let t = weighted_jacobian(&in_unit_scale(p), r);
+        MeanRatioParts { frob2: frobenius2(&t), sigma: t.determinant() }
     }
-    let c = t.determinant().cbrt();
-    3.0 * c * c.abs() / f
+    /// [`mean_ratio`].
+    #[inline]
+    pub fn mean_ratio(&self) -> f64 {
+        if self.frob2 == 0.0 {
+            return 0.0;
+        }
+        let c = self.sigma.cbrt();
+        3.0 * c * c.abs() / self.frob2
+    }
+    /// [`mean_ratio_order`].
+    #[inline]
+    pub fn order(&self) -> f64 {
+        if self.frob2 == 0.0 {
+            return 0.0;
+        }
+        let a = self.sigma / self.frob2;
+        a * a.abs() / self.frob2
+    }
 }
 
 /// A number in the order of [`mean_ratio`] without its cube root: `q³/27 = σ·|σ|/F³`
 /// (`q³` rises with `q` through 0), taken as `(σ/F)·|σ/F|/F` so it stays a double at every
 /// scale the tetrahedron's own measures take. Where two tetrahedra's mean ratios differ by
-/// more than a few rounding errors their keys are in the same order; for a test that only
+/// more than a few rounding errors their keys are in the same order (`|key| ≤ 1/27`; it
+/// underflows only where `q` is below about 10⁻¹⁰²); for a test that only
 /// asks which is larger and is followed by the exact rule (the smart Laplacian's, before
 /// the acceptance rule, `docs/formulas.md` §4). 0 when the four corners coincide.
 #[inline]
 pub fn mean_ratio_order(p: &[DVec3; 4], r: &CornerReference) -> f64 {
-    let t = weighted_jacobian(&in_unit_scale(p), r);
-    let f = frobenius2(&t);
-    if f == 0.0 {
-        return 0.0;
-    }
-    let a = t.determinant() / f;
-    a * a.abs() / f
+    MeanRatioParts::of(p, r).order()
 }
 
 /// [`mean_ratio`] with its gradient with respect to corner 0:

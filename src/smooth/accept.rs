@@ -129,15 +129,27 @@ impl ElementScore {
     /// A tetrahedron with corners `p` (a quadratic one by its corners), its shape against
     /// reference `r` (its kind's W).
     pub fn tet(p: &[DVec3; 4], r: &q3::CornerReference, measure: Measure) -> Self {
-        let e = [p[1] - p[0], p[2] - p[0], p[3] - p[0]];
-        let m = e.iter().fold(0.0f64, |m, v| m.max(v.abs().max_element()));
-        let det = e[0].dot(e[1].cross(e[2]));
-        let unit = (e[0] / m).dot((e[1] / m).cross(e[2] / m));
         let quality = match measure {
             Measure::Shape => q3::mean_ratio(p, r),
             Measure::MinSine => q3::dihedral_sines(p).into_iter().fold(f64::INFINITY, f64::min),
         };
-        ElementScore { quality, inverted: q3::is_inverted(p), inversion: (-det).max(0.0), size: Size { unit, scale: m, dim: 3 } }
+        ElementScore { quality, ..Self::tet_unmeasured(p) }
+    }
+
+    /// [`tet`](Self::tet) but for its quality, +∞ (no minimum sees it; the caller gives it
+    /// to [`Verdict::add_qualities`] where it may be the worst).
+    #[inline]
+    pub fn tet_unmeasured(p: &[DVec3; 4]) -> Self {
+        let e = [p[1] - p[0], p[2] - p[0], p[3] - p[0]];
+        let m = e.iter().fold(0.0f64, |m, v| m.max(v.abs().max_element()));
+        let det = e[0].dot(e[1].cross(e[2]));
+        let unit = (e[0] / m).dot((e[1] / m).cross(e[2] / m));
+        ElementScore {
+            quality: f64::INFINITY,
+            inverted: q3::is_inverted(p),
+            inversion: (-det).max(0.0),
+            size: Size { unit, scale: m, dim: 3 },
+        }
     }
 }
 
@@ -232,9 +244,7 @@ impl Verdict {
     pub fn add(&mut self, before: &ElementScore, after: &ElementScore) {
         self.inverted_before += before.inverted as u32;
         self.inverted_after += after.inverted as u32;
-        self.quality_before = self.quality_before.min(before.quality);
-        // a quality that is not a number is the worst there is
-        self.quality_after = if after.quality.is_nan() { f64::NEG_INFINITY } else { self.quality_after.min(after.quality) };
+        self.add_qualities(before.quality, after.quality);
         self.inversion_before += before.inversion;
         self.inversion_after += after.inversion;
         // a size that is not a number (a degenerate element) is below the floor
@@ -242,6 +252,16 @@ impl Verdict {
             self.flattened = true;
             self.shrunk |= !after.inverted;
         }
+    }
+
+    /// One element's qualities before and after the move, where they are not in its
+    /// [`ElementScore`] (given as +∞ there, which no minimum sees): a caller that measures
+    /// exactly only the elements that may be the worst.
+    #[inline]
+    pub fn add_qualities(&mut self, before: f64, after: f64) {
+        self.quality_before = self.quality_before.min(before);
+        // a quality that is not a number is the worst there is
+        self.quality_after = if after.is_nan() { f64::NEG_INFINITY } else { self.quality_after.min(after) };
     }
 
     /// Whether the move is kept: a valid star stays valid, no worse in its worst quality and
