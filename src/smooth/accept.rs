@@ -160,7 +160,12 @@ impl ElementScore {
     /// counts, not its corners only), its inversion [`solid::solid_inversion`], its size
     /// its smallest corner determinant.
     pub fn solid(kind: VolumeKind, p: &[DVec3], measure: Measure) -> Self {
-        let validity = solid::validity(kind, p);
+        Self::solid_of_validity(kind, p, measure, solid::validity(kind, p))
+    }
+
+    /// [`solid`](Self::solid) where the element's [`solid::validity`] is known (a star's
+    /// element answers it from its `det J` form where that decides: the same answer).
+    pub fn solid_of_validity(kind: VolumeKind, p: &[DVec3], measure: Measure, validity: solid::Validity) -> Self {
         let quality = match measure {
             Measure::Shape => solid::solid_shape(kind, p),
             Measure::MinSine => solid::solid_min_sine(kind, p),

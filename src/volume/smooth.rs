@@ -169,7 +169,7 @@ impl DriverStar for CornerStar {
             after = after.min(measure(&p1));
         }
         for e in &self.elements {
-            let (s0, s1) = (ElementScore::solid(e.kind, e.corners(&e.pts), m), ElementScore::solid(e.kind, e.corners(&e.at(c)), m));
+            let (s0, s1) = (e.score(e.x(), m), e.score(c, m));
             if !s0.inverted && s1.inverted {
                 return false;
             }
@@ -182,13 +182,13 @@ impl DriverStar for CornerStar {
     }
     fn inverted_now(&self) -> usize {
         self.tets.iter().filter(|t| t.simplex && q3::is_inverted(&t.pts)).count()
-            + self.elements.iter().filter(|e| solid::validity(e.kind, e.corners(&e.pts)) != Validity::Valid).count()
+            + self.elements.iter().filter(|e| e.validity_at(e.x()) != Validity::Valid).count()
     }
     /// [`shape_at`](DriverStar::shape_at)'s count at the gathered position, without the
     /// mean ratios: the same tests of the same corners.
     fn any_inverted_now(&self) -> bool {
         self.tets.iter().any(|t| t.simplex && q3::is_inverted(&t.pts))
-            || self.elements.iter().any(|e| solid::validity(e.kind, e.corners(&e.pts)) != Validity::Valid)
+            || self.elements.iter().any(|e| e.validity_at(e.x()) != Validity::Valid)
     }
     /// The other corners are as gathered and the forms depend on them only: moving the
     /// node back to its place in `mesh` is the gather. (This star has no
@@ -237,7 +237,7 @@ impl DriverStar for CornerStar {
             }
         }
         for e in &self.elements {
-            v.add(&ElementScore::solid(e.kind, e.corners(&e.pts), m), &ElementScore::solid(e.kind, e.corners(&e.at(x)), m));
+            v.add(&e.score(e.x(), m), &e.score(x, m));
         }
         v
     }
@@ -300,6 +300,27 @@ impl LeastMeanRatio {
         }
         self.key = self.key.min(key);
         parts.mean_ratio()
+    }
+}
+
+/// A star's element other than a tetrahedron as the acceptance rule scores it.
+trait SolidScore {
+    /// Its free node's position now.
+    fn x(&self) -> DVec3;
+    /// [`ElementScore::solid`] with the free node at `x`, its validity from the element's
+    /// `det J` form where that decides ([`StarSolid::validity_at`]: the same answer as
+    /// [`solid::validity`], without its 27 coefficients once the form is made).
+    fn score(&self, x: DVec3, m: Measure) -> ElementScore;
+}
+
+impl SolidScore for StarSolid {
+    #[inline]
+    fn x(&self) -> DVec3 {
+        self.pts[self.slot as usize]
+    }
+    fn score(&self, x: DVec3, m: Measure) -> ElementScore {
+        let p = self.at(x);
+        ElementScore::solid_of_validity(self.kind, self.corners(&p), m, self.validity_at(x))
     }
 }
 
