@@ -93,12 +93,75 @@ pub struct StarSolid {
     /// the first trial that asks (a visit of the smart Laplacian asks none); it holds
     /// wherever the free node goes, as the other corners stay.
     det: std::sync::OnceLock<Option<DetForm>>,
+    /// The validity and the shape at the last two positions the drivers asked of
+    /// [`validity_measured`](Self::validity_measured) and
+    /// [`shape_measured`](Self::shape_measured) (the gathered one and a move's).
+    measured: PositionMemo<Validity>,
+    shaped: PositionMemo<f64>,
+}
+
+/// A measure of a star's element kept for the last two positions of the free node asked:
+/// the drivers ask the same two (as gathered, and the move's) in the smart Laplacian's test
+/// and again in the acceptance rule.
+#[derive(Clone, Debug, PartialEq)]
+pub struct PositionMemo<T: Copy>([std::cell::Cell<Option<(DVec3, T)>>; 2]);
+
+impl<T: Copy> Default for PositionMemo<T> {
+    fn default() -> Self {
+        PositionMemo([std::cell::Cell::new(None), std::cell::Cell::new(None)])
+    }
+}
+
+impl<T: Copy> PositionMemo<T> {
+    /// The value kept for `x`, else `measure()`, kept (in the first place while it is
+    /// empty, then in the second).
+    #[inline]
+    pub fn get_or(&self, x: DVec3, measure: impl FnOnce() -> T) -> T {
+        for m in &self.0 {
+            if let Some((at, v)) = m.get() {
+                if at == x {
+                    return v;
+                }
+            }
+        }
+        let v = measure();
+        let slot = if self.0[0].get().is_none() { 0 } else { 1 };
+        self.0[slot].set(Some((x, v)));
+        v
+    }
 }
 
 impl StarSolid {
     /// The element `element` of `kind`, its corners `pts` with the free node at `slot`.
     pub fn new(element: u32, kind: VolumeKind, slot: u8, pts: [DVec3; 8]) -> Self {
-        StarSolid { element, kind, slot, pts, det: std::sync::OnceLock::new() }
+        StarSolid {
+            element,
+            kind,
+            slot,
+            pts,
+            det: std::sync::OnceLock::new(),
+            measured: PositionMemo::default(),
+            shaped: PositionMemo::default(),
+        }
+    }
+    /// [`validity`](crate::quality::solid::validity) with the free node at `x` as the
+    /// drivers' measures ask it (the star as gathered, a move's position): from the
+    /// [`DetForm`] where the guard has made it and it decides, else exactly; each answer kept
+    /// for the next question at the same position (the smart Laplacian's test and the
+    /// acceptance rule ask the same positions). Without making the form, whose four
+    /// determinants cost more than the exact test of a visit that optimises nothing.
+    pub fn validity_measured(&self, x: DVec3) -> Validity {
+        self.measured.get_or(x, || {
+            self.det.get().and_then(|f| f.as_ref()).and_then(|d| d.validity_at(x)).unwrap_or_else(|| {
+                let p = self.at(x);
+                validity(self.kind, self.corners(&p))
+            })
+        })
+    }
+    /// [`solid_shape`](crate::quality::solid::solid_shape) with the free node at `x`, kept
+    /// for the position as [`validity_measured`](Self::validity_measured) keeps its answer.
+    pub fn shape_measured(&self, x: DVec3) -> f64 {
+        self.shaped.get_or(x, || crate::quality::solid::solid_shape(self.kind, self.corners(&self.at(x))))
     }
     /// [`validity`](crate::quality::solid::validity) with the free node at `x`, from the
     /// element's [`DetForm`] where it decides.
@@ -208,6 +271,8 @@ impl NodeStar for CornerStar {
                 *p *= f;
             }
             e.det = std::sync::OnceLock::new();
+            e.measured = PositionMemo::default();
+            e.shaped = PositionMemo::default();
         }
         s
     }

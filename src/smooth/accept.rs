@@ -170,6 +170,12 @@ impl ElementScore {
             Measure::Shape => solid::solid_shape(kind, p),
             Measure::MinSine => solid::solid_min_sine(kind, p),
         };
+        ElementScore { quality, ..Self::solid_sized(kind, p, validity) }
+    }
+
+    /// [`solid_of_validity`](Self::solid_of_validity) but for its quality, +∞ (the caller
+    /// sets it, where it knows it).
+    pub fn solid_sized(kind: VolumeKind, p: &[DVec3], validity: solid::Validity) -> Self {
         let mut size: Option<Size> = None;
         for c in 0..kind.row().corner_edges.len() {
             let t = solid::corner_tet(kind, p, c);
@@ -183,7 +189,7 @@ impl ElementScore {
             });
         }
         ElementScore {
-            quality,
+            quality: f64::INFINITY,
             inverted: validity != solid::Validity::Valid,
             inversion: solid::solid_inversion(kind, p, validity),
             size: size.expect("every kind measures a corner"),

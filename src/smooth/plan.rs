@@ -100,7 +100,7 @@ impl<S: DriverStar> Smoother<S> {
                             Some(q) => q,
                             None => {
                                 self.star.gather_for_measures(mesh, i);
-                                self.star.shape_at(self.star.x0()).0
+                                self.star.min_shape_at(self.star.x0())
                             }
                         };
                         self.ranked.push(i as u32);
@@ -195,7 +195,7 @@ impl<S: DriverStar> Smoother<S> {
         for &n in &self.revisits {
             self.marked[n as usize] = false;
             self.star.gather_for_measures(view.star_mesh(n as usize), n as usize);
-            ranked.push((tie_scale(self.star.shape_at(self.star.x0()).0), n));
+            ranked.push((tie_scale(self.star.min_shape_at(self.star.x0())), n));
         }
         ranked.sort_unstable_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
         self.revisits.clear();

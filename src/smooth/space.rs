@@ -61,6 +61,11 @@ pub trait DriverStar: NodeStar + Default {
     /// The smallest shape measure of the star with its free node at `x`, and its number
     /// of inverted elements (the priority order, Chen's rule 2).
     fn shape_at(&self, x: Self::Point) -> (f64, u32);
+    /// [`shape_at`](Self::shape_at)`(x).0` alone (the priority order's key), where a kind of
+    /// star can take it without counting inverted elements; the default reads `shape_at`.
+    fn min_shape_at(&self, x: Self::Point) -> f64 {
+        self.shape_at(x).0
+    }
     /// The star's worst measures with the free node where it is (`None`) or at `x`.
     fn quality(&self, x: Option<Self::Point>) -> StarQuality;
     /// The smart Laplacian's test (Freitag 1997): moving the free node to `c` folds no

@@ -135,6 +135,19 @@ impl DriverStar for CornerStar {
         }
         (min, inverted)
     }
+    /// The shapes alone: no element's validity (a hexahedron's 27 coefficients) is taken,
+    /// and the tetrahedra's least mean ratio exact from those that may be the least
+    /// ([`LeastMeanRatio`]).
+    fn min_shape_at(&self, x: DVec3) -> f64 {
+        let (mut min, mut least) = (f64::INFINITY, LeastMeanRatio::default());
+        for t in self.tets.iter().filter(|t| t.simplex) {
+            min = min.min(least.add(&t.at(x), self.reference()));
+        }
+        for e in &self.elements {
+            min = min.min(solid::solid_shape(e.kind, e.corners(&e.at(x))));
+        }
+        min
+    }
     fn quality(&self, x: Option<DVec3>) -> StarQuality {
         let mut q = StarQuality::BEST;
         for t in self.tets.iter().filter(|t| t.simplex) {
@@ -169,17 +182,23 @@ impl DriverStar for CornerStar {
             after = after.min(measure(&p1));
         }
         for e in &self.elements {
-            let (s0, s1) = (e.score(e.x(), m), e.score(c, m));
-            if !s0.inverted && s1.inverted {
+            // the acceptance rule's score but for the sizes: validity and quality
+            if e.validity_measured(e.x()) == Validity::Valid && e.validity_measured(c) != Validity::Valid {
                 return false;
             }
+            let quality = |x: DVec3| match m {
+                Measure::Shape => e.shape_measured(x),
+                Measure::MinSine => solid::solid_min_sine(e.kind, e.corners(&e.at(x))),
+            };
             // the other kinds' mean ratios in the tetrahedra's order: q³/27
             let order = |q: f64| if m == Measure::Shape { q * q * q / 27.0 } else { q };
-            before = before.min(order(s0.quality));
-            after = after.min(order(s1.quality));
+            before = before.min(order(quality(e.x())));
+            after = after.min(order(quality(c)));
         }
         after > before
     }
+    /// The guard's limit, asked as an optimisation starts: the elements' `det J` forms are
+    /// made here, as the solve's trials read them.
     fn inverted_now(&self) -> usize {
         self.tets.iter().filter(|t| t.simplex && q3::is_inverted(&t.pts)).count()
             + self.elements.iter().filter(|e| e.validity_at(e.x()) != Validity::Valid).count()
@@ -188,7 +207,7 @@ impl DriverStar for CornerStar {
     /// mean ratios: the same tests of the same corners.
     fn any_inverted_now(&self) -> bool {
         self.tets.iter().any(|t| t.simplex && q3::is_inverted(&t.pts))
-            || self.elements.iter().any(|e| e.validity_at(e.x()) != Validity::Valid)
+            || self.elements.iter().any(|e| e.validity_measured(e.x()) != Validity::Valid)
     }
     /// The other corners are as gathered and the forms depend on them only: moving the
     /// node back to its place in `mesh` is the gather. (This star has no
@@ -307,9 +326,9 @@ impl LeastMeanRatio {
 trait SolidScore {
     /// Its free node's position now.
     fn x(&self) -> DVec3;
-    /// [`ElementScore::solid`] with the free node at `x`, its validity from the element's
-    /// `det J` form where that decides ([`StarSolid::validity_at`]: the same answer as
-    /// [`solid::validity`], without its 27 coefficients once the form is made).
+    /// [`ElementScore::solid`] with the free node at `x`, its validity as the drivers measure
+    /// it ([`StarSolid::validity_measured`]: the same answer as [`solid::validity`], kept for
+    /// the position, from the `det J` form once the guard has made it).
     fn score(&self, x: DVec3, m: Measure) -> ElementScore;
 }
 
@@ -320,7 +339,12 @@ impl SolidScore for StarSolid {
     }
     fn score(&self, x: DVec3, m: Measure) -> ElementScore {
         let p = self.at(x);
-        ElementScore::solid_of_validity(self.kind, self.corners(&p), m, self.validity_at(x))
+        let score = ElementScore::solid_sized(self.kind, self.corners(&p), self.validity_measured(x));
+        let quality = match m {
+            Measure::Shape => self.shape_measured(x),
+            Measure::MinSine => solid::solid_min_sine(self.kind, self.corners(&p)),
+        };
+        ElementScore { quality, ..score }
     }
 }
 
