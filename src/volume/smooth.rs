@@ -137,7 +137,7 @@ impl DriverStar for CornerStar {
     }
     /// The shapes alone: no element's validity (a hexahedron's 27 coefficients) is taken,
     /// and the tetrahedra's least mean ratio exact from those that may be the least
-    /// ([`LeastMeanRatio`]).
+    /// (`LeastMeanRatio`, this module's).
     fn min_shape_at(&self, x: DVec3) -> f64 {
         let (mut min, mut least) = (f64::INFINITY, LeastMeanRatio::default());
         for t in self.tets.iter().filter(|t| t.simplex) {
@@ -240,7 +240,7 @@ impl DriverStar for CornerStar {
             .sum::<f64>()
     }
     /// The tetrahedra's worst mean ratios exact, each taken only where it may be the worst
-    /// ([`LeastMeanRatio`]).
+    /// (`LeastMeanRatio`, this module's).
     fn verdict(&self, x: DVec3, m: Measure) -> Verdict {
         let mut v = Verdict::default();
         if m == Measure::Shape {
