@@ -151,12 +151,12 @@ impl StarSolid {
     /// acceptance rule ask the same positions). Without making the form, whose four
     /// determinants cost more than the exact test of a visit that optimises nothing.
     pub fn validity_measured(&self, x: DVec3) -> Validity {
-        self.measured.get_or(x, || {
-            self.det.get().and_then(|f| f.as_ref()).and_then(|d| d.validity_at(x)).unwrap_or_else(|| {
-                let p = self.at(x);
-                validity(self.kind, self.corners(&p))
-            })
-        })
+        self.measured.get_or(x, || self.validity_by(self.det.get().and_then(|f| f.as_ref()), x))
+    }
+    /// The validity at `x` from `form` where it decides, else exactly.
+    #[inline]
+    fn validity_by(&self, form: Option<&DetForm>, x: DVec3) -> Validity {
+        form.and_then(|d| d.validity_at(x)).unwrap_or_else(|| validity(self.kind, self.corners(&self.at(x))))
     }
     /// [`solid_shape`](crate::quality::solid::solid_shape) with the free node at `x`, kept
     /// for the position as [`validity_measured`](Self::validity_measured) keeps its answer.
@@ -168,10 +168,7 @@ impl StarSolid {
     #[inline]
     pub fn validity_at(&self, x: DVec3) -> Validity {
         let form = self.det.get_or_init(|| DetForm::of(self.kind, &self.pts, self.slot as usize));
-        form.and_then(|d| d.validity_at(x)).unwrap_or_else(|| {
-            let p = self.at(x);
-            validity(self.kind, self.corners(&p))
-        })
+        self.validity_by(form.as_ref(), x)
     }
     /// Its corners with the free node at `x`.
     #[inline]

@@ -160,21 +160,16 @@ impl ElementScore {
     /// counts, not its corners only), its inversion [`solid::solid_inversion`], its size
     /// its smallest corner determinant.
     pub fn solid(kind: VolumeKind, p: &[DVec3], measure: Measure) -> Self {
-        Self::solid_of_validity(kind, p, measure, solid::validity(kind, p))
-    }
-
-    /// [`solid`](Self::solid) where the element's [`solid::validity`] is known (a star's
-    /// element answers it from its `det J` form where that decides: the same answer).
-    pub fn solid_of_validity(kind: VolumeKind, p: &[DVec3], measure: Measure, validity: solid::Validity) -> Self {
         let quality = match measure {
             Measure::Shape => solid::solid_shape(kind, p),
             Measure::MinSine => solid::solid_min_sine(kind, p),
         };
-        ElementScore { quality, ..Self::solid_sized(kind, p, validity) }
+        ElementScore { quality, ..Self::solid_sized(kind, p, solid::validity(kind, p)) }
     }
 
-    /// [`solid_of_validity`](Self::solid_of_validity) but for its quality, +∞ (the caller
-    /// sets it, where it knows it).
+    /// [`solid`](Self::solid) where the element's [`solid::validity`] is known (a star's
+    /// element answers it from its `det J` form where that decides: the same answer), but
+    /// for its quality, +∞ (the caller sets it, where it knows it).
     pub fn solid_sized(kind: VolumeKind, p: &[DVec3], validity: solid::Validity) -> Self {
         let mut size: Option<Size> = None;
         for c in 0..kind.row().corner_edges.len() {
