@@ -280,32 +280,6 @@ impl Mesh {
     pub fn is_on_curved_boundary(&self, n: usize) -> bool {
         self.conn.topo.on_curved[n]
     }
-    /// Reads part of what a smoother's visit of node `n` reads (the smoothers' read-ahead in
-    /// a scattered visit order: `smooth::space::READ_AHEAD`). Stage 0: the node's flags,
-    /// position and list starts; 1: its element and neighbour lists; 2: its elements'
-    /// kinds and node-list starts; 3: their node lists; 4 and on: their nodes' positions
-    /// (the neighbours' among them). Returns a value made of what it read; 0 for a node
-    /// past the end.
-    #[inline]
-    pub fn read_ahead(&self, n: usize, stage: usize) -> u32 {
-        let c = &self.conn;
-        let t = &c.topo;
-        if n >= self.nodes.len() {
-            return 0;
-        }
-        let start = t.node_elem_start[n];
-        let elems = || t.node_elems[start as usize..t.node_elem_start[n + 1] as usize].iter().map(|&e| e as usize);
-        match stage {
-            0 => start ^ t.node_nbr_start[n] ^ self.fixed[n] as u32 ^ t.role[n] as u32 ^ self.nodes[n].x.to_bits() as u32,
-            1 => t.node_elems.get(start as usize).copied().unwrap_or(0) ^ t.node_nbrs.get(t.node_nbr_start[n] as usize).copied().unwrap_or(0),
-            2 => elems().fold(0, |a, e| a ^ c.kinds[e] as u32 ^ c.elem_start[e]),
-            3 => elems().fold(0, |a, e| a ^ c.elem_nodes[c.elem_start[e] as usize]),
-            _ => {
-                let nodes = elems().flat_map(|e| c.elem_nodes[c.elem_start[e] as usize..c.elem_start[e + 1] as usize].iter());
-                nodes.fold(0, |a, &m| a ^ self.nodes[m as usize].x.to_bits() as u32)
-            }
-        }
-    }
     /// A node the smoothers may move: a corner that is not fixed.
     pub fn is_free(&self, n: usize) -> bool {
         !self.fixed[n] && self.conn.topo.role[n] == NodeRole::Corner

@@ -247,12 +247,13 @@ fn quadratic_edges_know_mid_nodes_and_curvature() {
     assert_eq!(m.neighbours(0).len(), 2, "mid nodes are not neighbours");
 }
 
-/// The smoothers' read-ahead (`Mesh::read_ahead`) stays within the mesh's arrays: it
+/// The smoothers' read-ahead (`SmoothMesh::read_ahead`) stays within the mesh's arrays: it
 /// answers for every node of quadratic and mixed meshes (mid-side, boundary and fixed
 /// nodes included) at every stage and beyond, and reads nothing for a node past the end.
 #[test]
 fn read_ahead_reads_every_node_at_every_stage() {
     use crate::generate::{plate, PlateKind};
+    use crate::smooth::SmoothMesh;
     for m in [square_two_tris().build().unwrap(), plate(PlateKind::Mixed, 2, 2).unwrap(), plate(PlateKind::Tri, 1, 2).unwrap()] {
         let read = (0..m.node_count()).flat_map(|n| (0..8).map(move |stage| (n, stage)));
         let all = read.fold(0, |a, (n, stage)| a ^ m.read_ahead(n, stage));

@@ -177,9 +177,26 @@ impl SmoothMesh for Mesh {
     fn has_curved_edges(&self) -> bool {
         self.edges().iter().any(|e| e.curved)
     }
+    /// Stage 0: the node's flags, position and list starts; 1: its element and neighbour
+    /// lists; 2: its elements' kinds and node-list starts; 3: their node lists; 4 and on:
+    /// their nodes' positions (the neighbours' among them). 0 for a node past the end.
     #[inline]
     fn read_ahead(&self, n: usize, stage: usize) -> u32 {
-        Mesh::read_ahead(self, n, stage)
+        if n >= Mesh::node_count(self) {
+            return 0;
+        }
+        let elems = || self.node_elements(n).iter().map(|&e| e as usize);
+        let first = |v: &[u32]| v.first().copied().unwrap_or(0);
+        match stage {
+            0 => {
+                let lists = self.node_elements(n).len() ^ Mesh::neighbours(self, n).len();
+                lists as u32 ^ self.fixed()[n] as u32 ^ self.role(n) as u32 ^ self.nodes()[n].x.to_bits() as u32
+            }
+            1 => first(self.node_elements(n)) ^ first(Mesh::neighbours(self, n)),
+            2 => elems().fold(0, |a, e| a ^ self.kind(e) as u32 ^ self.element(e).len() as u32),
+            3 => elems().fold(0, |a, e| a ^ first(self.element(e))),
+            _ => elems().flat_map(|e| self.element(e)).fold(0, |a, &m| a ^ self.nodes()[m as usize].x.to_bits() as u32),
+        }
     }
     fn touches_curved_boundary(&self, n: usize) -> bool {
         self.is_on_curved_boundary(n)
