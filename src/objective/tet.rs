@@ -129,6 +129,109 @@ impl<T: Copy> PositionMemo<T> {
         self.0[slot].set(Some((x, v)));
         v
     }
+    /// The value kept for `x`, if any.
+    #[inline]
+    pub fn kept(&self, x: DVec3) -> Option<T> {
+        self.0.iter().find_map(|m| m.get().filter(|&(at, _)| at == x).map(|(_, v)| v))
+    }
+    /// Keeps `v` for `x` in the first place (a memo just made, before any question).
+    #[inline]
+    fn start_with(&self, x: DVec3, v: T) {
+        self.0[0].set(Some((x, v)));
+    }
+}
+
+/// The validity and shape of the stars' elements other than tetrahedra, kept from visit to
+/// visit: each as the element's last star left it, with the corners it was measured at.
+/// A star gathered later starts its element's [`PositionMemo`]s with them where the corners
+/// are still those, bit for bit (a neighbour's visit that moved nothing of the element, or
+/// the visit that moved it: its measures at the new position), so an element is not
+/// measured again at a position it was measured at. Both measures are functions of the
+/// kind and the corners alone, so an answer kept is the answer measuring would give.
+///
+/// Direct-mapped by element number, at most [`KnownSolids::MAX_SLOTS`] slots (some 14 MB
+/// of a mesh of many elements other than tetrahedra), none for a mesh of tetrahedra. A
+/// copy starts empty: it is a cache.
+#[derive(Default)]
+pub(crate) struct KnownSolids {
+    slots: Vec<KnownSolid>,
+}
+
+#[derive(Clone, Copy)]
+struct KnownSolid {
+    element: u32,
+    kind: VolumeKind,
+    corners: [DVec3; 8],
+    validity: Option<Validity>,
+    shape: Option<f64>,
+}
+
+impl KnownSolid {
+    const EMPTY: KnownSolid =
+        KnownSolid { element: u32::MAX, kind: VolumeKind::Tet4, corners: [DVec3::ZERO; 8], validity: None, shape: None };
+    /// Whether this slot holds `element` of `kind` at `corners`, bit for bit.
+    fn holds(&self, element: u32, kind: VolumeKind, corners: &[DVec3]) -> bool {
+        let bits = |p: &DVec3| [p.x.to_bits(), p.y.to_bits(), p.z.to_bits()];
+        self.element == element && self.kind == kind && self.corners.iter().zip(corners).all(|(a, b)| bits(a) == bits(b))
+    }
+}
+
+impl Clone for KnownSolids {
+    fn clone(&self) -> Self {
+        KnownSolids::default()
+    }
+}
+
+impl std::fmt::Debug for KnownSolids {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "KnownSolids({} slots)", self.slots.len())
+    }
+}
+
+impl KnownSolids {
+    /// The most slots kept.
+    pub const MAX_SLOTS: usize = 1 << 16;
+
+    /// Starts `e`'s memos with what is known of it at its corners now.
+    fn recall(&self, e: &StarSolid) {
+        let Some(k) = self.slots.get(e.element as usize & (self.slots.len().wrapping_sub(1))) else { return };
+        if k.holds(e.element, e.kind, e.corners(&e.pts)) {
+            let x = e.x();
+            if let Some(v) = k.validity {
+                e.measured.start_with(x, v);
+            }
+            if let Some(q) = k.shape {
+                e.shaped.start_with(x, q);
+            }
+        }
+    }
+
+    /// Keeps what `e`'s memos know of it with its free node at `x`, in a mesh of
+    /// `elements` elements.
+    fn keep(&mut self, e: &StarSolid, x: DVec3, elements: usize) {
+        let (validity, shape) = (e.measured.kept(x), e.shaped.kept(x));
+        if validity.is_none() && shape.is_none() {
+            return;
+        }
+        let want = elements.next_power_of_two().min(Self::MAX_SLOTS);
+        if self.slots.len() < want {
+            // the slots move with the length: start again (once a mesh)
+            self.slots.clear();
+            self.slots.resize(want, KnownSolid::EMPTY);
+        }
+        let at = e.at(x);
+        let corners = e.corners(&at);
+        let mask = self.slots.len() - 1;
+        let k = &mut self.slots[e.element as usize & mask];
+        if k.holds(e.element, e.kind, corners) {
+            k.validity = validity.or(k.validity);
+            k.shape = shape.or(k.shape);
+        } else {
+            let mut c = [DVec3::ZERO; 8];
+            c[..corners.len()].copy_from_slice(corners);
+            *k = KnownSolid { element: e.element, kind: e.kind, corners: c, validity, shape };
+        }
+    }
 }
 
 impl StarSolid {
@@ -170,6 +273,11 @@ impl StarSolid {
         let form = self.det.get_or_init(|| DetForm::of(self.kind, &self.pts, self.slot as usize));
         self.validity_by(form.as_ref(), x)
     }
+    /// Its free node's position as gathered (then as the driver moves it).
+    #[inline]
+    pub fn x(&self) -> DVec3 {
+        self.pts[self.slot as usize]
+    }
     /// Its corners with the free node at `x`.
     #[inline]
     pub fn at(&self, x: DVec3) -> [DVec3; 8] {
@@ -200,19 +308,21 @@ pub struct CornerStar {
     /// Where the free node was gathered while the corners' forms wait to be worked out
     /// ([`complete_forms`](Self::complete_forms)); `None` when they are.
     pub forms_pending_at: Option<DVec3>,
+    /// What the stars gathered before measured of their elements other than tetrahedra.
+    pub(crate) known: KnownSolids,
 }
 
 impl Default for CornerStar {
     /// An empty star, until one is gathered.
     fn default() -> Self {
-        CornerStar { node: 0, x0: DVec3::ZERO, tets: Vec::new(), elements: Vec::new(), forms_pending_at: None }
+        CornerStar { node: 0, x0: DVec3::ZERO, tets: Vec::new(), elements: Vec::new(), forms_pending_at: None, known: KnownSolids::default() }
     }
 }
 
 impl CornerStar {
     /// A star of tetrahedra (each with the free node first).
     pub fn of_tets(x0: DVec3, tets: Vec<StarCorner>) -> Self {
-        CornerStar { node: 0, x0, tets, elements: Vec::new(), forms_pending_at: None }
+        CornerStar { node: 0, x0, tets, elements: Vec::new(), forms_pending_at: None, known: KnownSolids::default() }
     }
     /// The reference W of a tetrahedron's corners, the equilateral tetrahedron's (every
     /// kind of tetrahedron's).
@@ -230,6 +340,20 @@ impl CornerStar {
                 t.form = CornerForm::of(&p, t.reference);
             }
         }
+    }
+    /// Keeps what this star's elements other than tetrahedra measured with the free node at
+    /// `x` (where the node now is in the mesh, of `elements` elements) for the stars
+    /// gathered next ([`KnownSolids`]).
+    pub(crate) fn keep_known(&mut self, x: DVec3, elements: usize) {
+        for e in &self.elements {
+            self.known.keep(e, x, elements);
+        }
+    }
+    /// Adds an element other than a tetrahedron, its measures started with what is known of
+    /// it at its corners now ([`KnownSolids`]).
+    pub(crate) fn push_solid(&mut self, e: StarSolid) {
+        self.known.recall(&e);
+        self.elements.push(e);
     }
     /// Whether every element is a tetrahedron: then every corner is measured against
     /// [`reference`](Self::reference), which the measures see as a constant.
@@ -916,5 +1040,47 @@ mod tests {
             let (a, b) = (tet_objective(k).unwrap().value(&star, star.x0), tet_objective(k).unwrap().value(&big, big.x0));
             assert!((a - b).abs() <= 1e-12 * a.abs().max(1.0), "{k}: {a} {b}");
         }
+    }
+
+    /// A star's elements other than tetrahedra start with what an earlier star measured of
+    /// them ([`KnownSolids`]) exactly where their corners are still those: a neighbour's
+    /// star recalls the shared hexahedra, the same numbers as measuring; after a corner
+    /// moved, nothing is recalled.
+    #[test]
+    fn known_solids_are_recalled_only_at_the_corners_measured() {
+        use crate::quality::solid::solid_shape;
+        use crate::smooth::DriverStar;
+        let block = crate::generate::hex_grid(&crate::generate::HexBlock::cube(3)).unwrap();
+        let mut mesh = crate::generate::perturb_volume(&block, 0.2, 5).unwrap();
+        let free: Vec<usize> = (0..mesh.node_count()).filter(|&n| mesh.is_free(n)).collect();
+        let (n, m) = (free[0], *mesh.neighbours(free[0]).iter().find(|&&m| mesh.is_free(m as usize)).unwrap() as usize);
+        let exact = |e: &StarSolid| (validity(e.kind, e.corners(&e.pts)), solid_shape(e.kind, e.corners(&e.pts)));
+        let mut star = CornerStar::default();
+        star.gather_for_measures(&mesh, n);
+        let measured: Vec<u32> = star.elements.iter().map(|e| e.element).collect();
+        for e in &star.elements {
+            assert_eq!(e.shaped.kept(e.x()), None, "a first star knows nothing");
+            e.validity_measured(e.x());
+            e.shape_measured(e.x());
+        }
+        // the neighbour's star: the shared elements recalled, the others measured afresh
+        star.gather_for_measures(&mesh, m);
+        let mut recalled = 0;
+        for e in &star.elements {
+            let known = (e.measured.kept(e.x()), e.shaped.kept(e.x()));
+            if measured.contains(&e.element) {
+                let (v, q) = exact(e);
+                assert_eq!(known, (Some(v), Some(q)), "element {}", e.element);
+                recalled += 1;
+            } else {
+                assert_eq!(known, (None, None), "element {}", e.element);
+            }
+        }
+        assert!(recalled >= 2, "{recalled}");
+        // node n moves (a little): none of its elements is recalled
+        let x = mesh.nodes()[n];
+        mesh.nodes_mut()[n] = DVec3::new(x.x + 1e-9, x.y, x.z);
+        star.gather_for_measures(&mesh, n);
+        assert!(star.elements.iter().all(|e| e.measured.kept(e.x()).is_none() && e.shaped.kept(e.x()).is_none()));
     }
 }

@@ -73,6 +73,10 @@ impl DriverStar for CornerStar {
     /// The corners with their forms [`CornerForm::PENDING`](crate::quality::tet::CornerForm::PENDING)
     /// until [`complete`](DriverStar::complete) (a smart Laplacian's visit reads none).
     fn gather_for_measures(&mut self, mesh: &VolumeMesh, node: usize) {
+        // the last star's elements as the mesh now has them, for this star and the next
+        if let Some(&x) = mesh.nodes().get(self.node as usize).filter(|_| !self.elements.is_empty()) {
+            self.keep_known(x, mesh.element_count());
+        }
         self.node = node as u32;
         self.forms_pending_at = Some(mesh.nodes()[node]);
         self.x0 = mesh.nodes()[node];
@@ -101,7 +105,7 @@ impl DriverStar for CornerStar {
                 let pts = WITH_FIRST[s].map(|j| all[tuple[j]]);
                 self.tets.push(StarCorner::pending(e, pts, &row.slot_references[s], false));
             }
-            self.elements.push(StarSolid::new(e, kind, slot as u8, all));
+            self.push_solid(StarSolid::new(e, kind, slot as u8, all));
         }
     }
     fn complete(&mut self) {
@@ -144,7 +148,7 @@ impl DriverStar for CornerStar {
             min = min.min(least.add(&t.at(x), self.reference()));
         }
         for e in &self.elements {
-            min = min.min(solid::solid_shape(e.kind, e.corners(&e.at(x))));
+            min = min.min(e.shape_measured(x));
         }
         min
     }
@@ -181,11 +185,10 @@ impl DriverStar for CornerStar {
             before = before.min(measure(&t.pts));
             after = after.min(measure(&p1));
         }
+        // the acceptance rule's score but for the sizes: quality, then validity (a move
+        // that does not raise the worst quality is refused whatever the validity, and a
+        // hexahedron's validity costs more than its shape)
         for e in &self.elements {
-            // the acceptance rule's score but for the sizes: validity and quality
-            if e.validity_measured(e.x()) == Validity::Valid && e.validity_measured(c) != Validity::Valid {
-                return false;
-            }
             let quality = |x: DVec3| match m {
                 Measure::Shape => e.shape_measured(x),
                 Measure::MinSine => solid::solid_min_sine(e.kind, e.corners(&e.at(x))),
@@ -196,6 +199,7 @@ impl DriverStar for CornerStar {
             after = after.min(order(quality(c)));
         }
         after > before
+            && !self.elements.iter().any(|e| e.validity_measured(e.x()) == Validity::Valid && e.validity_measured(c) != Validity::Valid)
     }
     /// The guard's limit, asked as an optimisation starts: the elements' `det J` forms are
     /// made here, as the solve's trials read them.
@@ -324,8 +328,6 @@ impl LeastMeanRatio {
 
 /// A star's element other than a tetrahedron as the acceptance rule scores it.
 trait SolidScore {
-    /// Its free node's position now.
-    fn x(&self) -> DVec3;
     /// [`ElementScore::solid`] with the free node at `x`, its validity as the drivers measure
     /// it ([`StarSolid::validity_measured`]: the same answer as [`solid::validity`], kept for
     /// the position, from the `det J` form once the guard has made it).
@@ -333,10 +335,6 @@ trait SolidScore {
 }
 
 impl SolidScore for StarSolid {
-    #[inline]
-    fn x(&self) -> DVec3 {
-        self.pts[self.slot as usize]
-    }
     fn score(&self, x: DVec3, m: Measure) -> ElementScore {
         let p = self.at(x);
         let score = ElementScore::solid_sized(self.kind, self.corners(&p), self.validity_measured(x));
