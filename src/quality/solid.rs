@@ -177,54 +177,90 @@ impl Bezier {
 /// degrees ≤ 2). The product of Bernstein polynomials of degrees `m₁ + m₂ + m₃ = n` along a
 /// parameter has the weight `C(m₁, i₁)·C(m₂, i₂)·C(m₃, i₃)/C(n, i)` at index `i = i₁ + i₂ +
 /// i₃`: with every `m ≤ 1` the numerator is 1, so the weight is ½ at the middle index of
-/// degree 2 and 1 elsewhere (powers of two: exact). The cross products `g × h` are taken
-/// once each and the coefficients summed in the order of `f`, `g`, `h`.
-#[inline(always)]
-fn triple_product(f: &[[[DVec3; 2]; 2]; 2], df: [usize; 3], g: &[[[DVec3; 2]; 2]; 2], dg: [usize; 3], h: &[[[DVec3; 2]; 2]; 2], dh: [usize; 3]) -> Bezier {
-    let deg = [0, 1, 2].map(|k| df[k] + dg[k] + dh[k]);
-    // the weight at each index (i, j, k), flat at 9i + 3j + k
-    let mut weight = [1.0; 27];
-    for (n, w) in weight.iter_mut().enumerate() {
-        let s = [n / 9, n / 3 % 3, n % 3];
-        let axis = |k: usize| if deg[k] == 2 && s[k] == 1 { 0.5 } else { 1.0 };
-        *w = axis(0) * axis(1) * axis(2);
-    }
-    let (f, g, h) = (terms(f, df), terms(g, dg), terms(h, dh));
-    let (fs, gs, hs) = (&f.0[..f.1], &g.0[..g.1], &h.0[..h.1]);
-    let mut cross = [[DVec3::ZERO; 8]; 8];
-    for (a, &(_, gv)) in gs.iter().enumerate() {
-        for (b, &(_, hv)) in hs.iter().enumerate() {
-            cross[a][b] = gv.cross(hv);
-        }
-    }
-    let mut c = [0.0; 27];
-    for &(fi, fv) in fs {
-        for (a, &(gi, _)) in gs.iter().enumerate() {
-            for (b, &(hi, _)) in hs.iter().enumerate() {
-                let n = fi + gi + hi;
-                c[n] += weight[n] * fv.dot(cross[a][b]);
-            }
-        }
-    }
-    let mut out = Bezier { c: [[[0.0; 3]; 3]; 3], deg };
-    for (n, v) in c.into_iter().enumerate() {
-        out.c[n / 9][n / 3 % 3][n % 3] = v;
-    }
-    out
+/// degree 2 and 1 elsewhere (powers of two: exact). Which coefficients take part, where
+/// each product lands and its weight depend on the degrees alone: a [`TripleProduct`]
+/// worked out when compiling, so the loops here have known lengths and indices.
+struct TripleProduct {
+    deg: [usize; 3],
+    /// Each factor's coefficients `(i, j, k)` in [`indices`]' order (the first `n`), with
+    /// their flat indices `9i + 3j + k`.
+    f: Terms,
+    g: Terms,
+    h: Terms,
+    /// The weight at each flat index of the product.
+    weight: [f64; 27],
 }
 
-/// The coefficients of a vector polynomial of degrees `d` ≤ 1 with their flat indices
-/// `9i + 3j + k`, in [`indices`]' order: the first `n` of the array.
-type Terms = ([(usize, DVec3); 8], usize);
+/// A factor's coefficients of degrees `d` ≤ 1: `(i, j, k)` and `9i + 3j + k` each, and how
+/// many.
+type Terms = ([([usize; 3], usize); 8], usize);
 
-#[inline(always)]
-fn terms(v: &[[[DVec3; 2]; 2]; 2], d: [usize; 3]) -> Terms {
-    let mut out = ([(0, DVec3::ZERO); 8], 0);
-    for (i, j, k) in indices(d) {
-        out.0[out.1] = (9 * i + 3 * j + k, v[i][j][k]);
-        out.1 += 1;
+impl TripleProduct {
+    const fn new(df: [usize; 3], dg: [usize; 3], dh: [usize; 3]) -> Self {
+        let deg = [df[0] + dg[0] + dh[0], df[1] + dg[1] + dh[1], df[2] + dg[2] + dh[2]];
+        let mut weight = [1.0; 27];
+        let mut n = 0;
+        while n < 27 {
+            let (s, mut halves, mut k) = ([n / 9, n / 3 % 3, n % 3], 0, 0);
+            while k < 3 {
+                halves += (deg[k] == 2 && s[k] == 1) as usize;
+                k += 1;
+            }
+            weight[n] = [1.0, 0.5, 0.25, 0.125][halves];
+            n += 1;
+        }
+        TripleProduct { deg, f: Self::terms(df), g: Self::terms(dg), h: Self::terms(dh), weight }
     }
-    out
+
+    const fn terms(d: [usize; 3]) -> Terms {
+        let mut out = ([([0; 3], 0); 8], 0);
+        let mut i = 0;
+        while i <= d[0] {
+            let mut j = 0;
+            while j <= d[1] {
+                let mut k = 0;
+                while k <= d[2] {
+                    out.0[out.1] = ([i, j, k], 9 * i + 3 * j + k);
+                    out.1 += 1;
+                    k += 1;
+                }
+                j += 1;
+            }
+            i += 1;
+        }
+        out
+    }
+
+    /// The coefficients of `f·(g × h)`: the cross products `g × h` taken once each and the
+    /// coefficients summed in the order of `f`, `g`, `h`.
+    #[inline(always)]
+    fn of(&self, f: &[[[DVec3; 2]; 2]; 2], g: &[[[DVec3; 2]; 2]; 2], h: &[[[DVec3; 2]; 2]; 2]) -> Bezier {
+        let value = |v: &[[[DVec3; 2]; 2]; 2], t: &Terms, a: usize| {
+            let [i, j, k] = t.0[a].0;
+            v[i][j][k]
+        };
+        let mut cross = [[DVec3::ZERO; 8]; 8];
+        for (a, row) in cross.iter_mut().enumerate().take(self.g.1) {
+            for (b, x) in row.iter_mut().enumerate().take(self.h.1) {
+                *x = value(g, &self.g, a).cross(value(h, &self.h, b));
+            }
+        }
+        let mut c = [0.0; 27];
+        for a in 0..self.f.1 {
+            let fv = value(f, &self.f, a);
+            for (b, row) in cross.iter().enumerate().take(self.g.1) {
+                for (d, x) in row.iter().enumerate().take(self.h.1) {
+                    let n = self.f.0[a].1 + self.g.0[b].1 + self.h.0[d].1;
+                    c[n] += self.weight[n] * fv.dot(*x);
+                }
+            }
+        }
+        let mut out = Bezier { c: [[[0.0; 3]; 3]; 3], deg: self.deg };
+        for (n, v) in c.into_iter().enumerate() {
+            out.c[n / 9][n / 3 % 3][n % 3] = v;
+        }
+        out
+    }
 }
 
 fn indices(d: [usize; 3]) -> impl Iterator<Item = (usize, usize, usize)> {
@@ -245,7 +281,8 @@ fn hex_det(p: &[DVec3]) -> Bezier {
             xw[a][b][0] = at(a, b, 1) - at(a, b, 0);
         }
     }
-    triple_product(&xu, [0, 1, 1], &xv, [1, 0, 1], &xw, [1, 1, 0])
+    const HEX: TripleProduct = TripleProduct::new([0, 1, 1], [1, 0, 1], [1, 1, 0]);
+    HEX.of(&xu, &xv, &xw)
 }
 
 /// A pyramid's `g(u, v) = B_u·(B_v × (apex − B))` (see the module docs) in the Bernstein
@@ -261,7 +298,8 @@ fn pyramid_det(p: &[DVec3]) -> Bezier {
             t[0] = p[4] - base(a, b);
         }
     }
-    triple_product(&bu, [0, 1, 0], &bv, [1, 0, 0], &to_apex, [1, 1, 0])
+    const PYRAMID: TripleProduct = TripleProduct::new([0, 1, 0], [1, 0, 0], [1, 1, 0]);
+    PYRAMID.of(&bu, &bv, &to_apex)
 }
 
 /// A wedge's validity, exact (see the module docs).
@@ -308,8 +346,13 @@ pub struct DetForm {
     origin: DVec3,
     /// The largest component of an edge from corner 0 when formed: the unit of rounding.
     reach: f64,
-    c: Bezier,
-    g: [[[DVec3; 3]; 3]; 3],
+    /// The coefficients of the polynomial's degrees, in [`indices`]' order: the first
+    /// `len` of `c` and `g`.
+    c: [f64; 27],
+    g: [DVec3; 27],
+    len: usize,
+    /// Which of them are the box's corners (bit `t` for the `t`-th).
+    corners: u32,
 }
 
 impl DetForm {
@@ -330,16 +373,22 @@ impl DetForm {
         let mut q = [DVec3::ZERO; 8];
         q[..n].copy_from_slice(&p[..n]);
         let c = det(&q);
-        let mut g = [[[DVec3::ZERO; 3]; 3]; 3];
-        for axis in 0..3 {
-            let mut moved = q;
-            moved[slot][axis] += reach;
-            let ci = det(&moved);
-            for (i, j, k) in indices(c.deg) {
-                g[i][j][k][axis] = (ci.c[i][j][k] - c.c[i][j][k]) / reach;
-            }
+        let moved = [0, 1, 2].map(|axis| {
+            let mut m = q;
+            m[slot][axis] += reach;
+            det(&m)
+        });
+        let deg = c.deg;
+        let mut form = DetForm { origin: p[slot], reach, c: [0.0; 27], g: [DVec3::ZERO; 27], len: 0, corners: 0 };
+        for (t, (i, j, k)) in indices(deg).enumerate() {
+            form.c[t] = c.c[i][j][k];
+            let slope = |axis: usize| (moved[axis].c[i][j][k] - c.c[i][j][k]) / reach;
+            form.g[t] = DVec3::new(slope(0), slope(1), slope(2));
+            let corner = (i == 0 || i == deg[0]) && (j == 0 || j == deg[1]) && (k == 0 || k == deg[2]);
+            form.corners |= (corner as u32) << t;
+            form.len = t + 1;
         }
-        Some(DetForm { origin: p[slot], reach, c, g })
+        Some(form)
     }
 
     /// [`validity`] of the element with the free corner at `x` where its coefficients
@@ -354,15 +403,14 @@ impl DetForm {
         if !(margin > 0.0 && margin.is_finite()) {
             return None;
         }
-        let deg = self.c.deg;
         let (mut min, mut min_corner) = (f64::INFINITY, f64::INFINITY);
-        for (i, j, k) in indices(deg) {
-            let v = self.c.c[i][j][k] + self.g[i][j][k].dot(u);
+        for (t, (&c, g)) in self.c[..self.len].iter().zip(&self.g[..self.len]).enumerate() {
+            let v = c + g.dot(u);
             if v.is_nan() {
                 return None;
             }
             min = min.min(v);
-            if (i == 0 || i == deg[0]) && (j == 0 || j == deg[1]) && (k == 0 || k == deg[2]) {
+            if self.corners >> t & 1 == 1 {
                 min_corner = min_corner.min(v);
             }
         }
