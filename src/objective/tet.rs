@@ -192,9 +192,15 @@ impl KnownSolids {
     /// The most slots kept.
     pub const MAX_SLOTS: usize = 1 << 16;
 
+    /// The slot of `element` (direct-mapped: its number modulo the power of two of slots).
+    #[inline]
+    fn slot(&self, element: u32) -> usize {
+        element as usize & self.slots.len().wrapping_sub(1)
+    }
+
     /// Starts `e`'s memos with what is known of it at its corners now.
     fn recall(&self, e: &StarSolid) {
-        let Some(k) = self.slots.get(e.element as usize & (self.slots.len().wrapping_sub(1))) else { return };
+        let Some(k) = self.slots.get(self.slot(e.element)) else { return };
         if k.holds(e.element, e.kind, e.corners(&e.pts)) {
             let x = e.x();
             if let Some(v) = k.validity {
@@ -221,8 +227,8 @@ impl KnownSolids {
         }
         let at = e.at(x);
         let corners = e.corners(&at);
-        let mask = self.slots.len() - 1;
-        let k = &mut self.slots[e.element as usize & mask];
+        let i = self.slot(e.element);
+        let k = &mut self.slots[i];
         if k.holds(e.element, e.kind, corners) {
             k.validity = validity.or(k.validity);
             k.shape = shape.or(k.shape);
