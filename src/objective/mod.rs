@@ -495,7 +495,8 @@ pub trait Objective<S: NodeStar = Star> {
     /// step until a trial point is better, and most trial points are not: an objective may
     /// stop at the first term not above `floor`, trying the terms of star element `lead`
     /// (an index into the star's elements, as [`Term::elem`]) first — the ascent passes
-    /// the element of the worst term where it stands. The answer is the same either way.
+    /// the element of the worst term where it stands, then that of a term not above its
+    /// floor at the last trial, when `out` ended with one. The answer is the same either way.
     /// Default: every term, then the test.
     fn terms_above(&self, star: &S, x: S::Point, floor: f64, lead: u32, out: &mut Vec<Term<S::Point>>) -> bool {
         let _ = lead;

@@ -9,7 +9,7 @@ use glam::DVec2;
 use super::corners::{CornerJet, ElementJets};
 use super::{impl_objective_by_visit, ObjectiveKind, Star, StarElement, Term};
 use crate::mesh::ElementKind;
-use crate::quality::{lo_alpha_corner, lo_alpha_corner_gradient, ALPHA_90};
+use crate::quality::{lo_alpha_corner, lo_alpha_corner_gradient, lo_alpha_triangle_corners, ALPHA_90};
 
 /// Max-min of the element shapes, one term per star element:
 /// - a triangle's term is Lo's α, eq. (1) — for a quadratic triangle the smallest
@@ -37,7 +37,8 @@ impl MaxMinShape {
 
     /// [`Objective::terms_above`](crate::objective::Objective::terms_above): the element
     /// `lead` first, then the others in order, stopping at the first term not above
-    /// `floor`; the terms are [`visit`](Self::visit)'s, bit for bit.
+    /// `floor` (which then ends `out`, unless it was `lead`'s); the terms are
+    /// [`visit`](Self::visit)'s, bit for bit.
     pub fn terms_above(&self, star: &Star, x: DVec2, floor: f64, lead: u32, out: &mut Vec<Term>) -> bool {
         out.clear();
         let lead = lead as usize;
@@ -62,11 +63,11 @@ impl MaxMinShape {
                 Some(k) if k.elem as usize == i => k,
                 _ => element_term(el, i, x, floor),
             };
+            out.push(t);
             let above = t.value > floor;
             if !above {
                 return false;
             }
-            out.push(t);
         }
         !out.is_empty()
     }
@@ -80,8 +81,8 @@ impl MaxMinShape {
 fn element_term(el: &StarElement, i: usize, x: DVec2, floor: f64) -> Term {
     if el.kind == ElementKind::Tri3 {
         // the common case without the element jets (a 420-byte copy per element): the
-        // same corner edge vectors and weights (1 at the free node, else 0), corner by
-        // corner, written out
+        // same corner edge vectors and weights (1 at the free node, else 0), the three
+        // αs taken together and the gradient of the worst alone
         let s = el.slot as usize;
         let mut p = [el.pts[0], el.pts[1], el.pts[2]];
         p[s] = x;
@@ -90,9 +91,25 @@ fn element_term(el: &StarElement, i: usize, x: DVec2, floor: f64) -> Term {
             let (next, prev) = ((j + 1) % 3, (j + 2) % 3);
             CornerJet { e1: p[next] - p[j], e2: p[prev] - p[j], c1: w(next) - w(j), c2: w(prev) - w(j) }
         };
-        let corners = [corner(0), corner(1), corner(2)];
-        let (min, worst, _) = worst_corner(&corners);
-        let grad = if min <= floor { DVec2::ZERO } else { worst_gradient(&corners, worst) };
+        let Some(alpha) = lo_alpha_triangle_corners(&p) else {
+            let corners = [corner(0), corner(1), corner(2)];
+            let (min, worst, _) = worst_corner(&corners);
+            let grad = if min <= floor { DVec2::ZERO } else { worst_gradient(&corners, worst) };
+            return Term { elem: i as u32, value: min, grad };
+        };
+        // worst_corner's choice: the first of the smallest
+        let (mut min, mut worst) = (f64::INFINITY, None);
+        for (k, &a) in alpha.iter().enumerate() {
+            if a < min {
+                (min, worst) = (a, Some(k));
+            }
+        }
+        // a NaN floor (every term wanted) takes every gradient
+        let grad = match worst {
+            _ if min <= floor => DVec2::ZERO,
+            Some(k) => worst_gradient(&[corner(k)], Some(0)),
+            None => DVec2::ZERO,
+        };
         return Term { elem: i as u32, value: min, grad };
     }
     let j = ElementJets::new(el, x);

@@ -9,7 +9,7 @@ use glam::DVec2;
 use super::corners::{CornerJet, ElementJets};
 use super::{impl_objective_by_visit, ObjectiveKind, Star, StarElement, Term};
 use crate::mesh::ElementKind;
-use crate::quality::scaled_jacobian_gradient;
+use crate::quality::{scaled_jacobian_gradient, TriangleCorners};
 
 /// Max-min of the sines of every corner angle of every star element — not only the free
 /// node's corners: a quad's far corner and a triangle's other corners count too (their
@@ -26,7 +26,7 @@ impl MaxMinSine {
     /// Calls `emit` with one term per corner of every star element.
     pub fn visit(&self, star: &Star, x: DVec2, mut emit: impl FnMut(Term)) {
         for (i, el) in star.elems.iter().enumerate() {
-            element_terms(el, i, x, &mut emit);
+            element_terms(el, i, x, f64::NAN, &mut emit);
         }
     }
 
@@ -40,7 +40,7 @@ impl MaxMinSine {
         let mut n = 0;
         if let Some(el) = star.elems.get(lead) {
             let mut above = true;
-            element_terms(el, lead, x, |t| {
+            element_terms(el, lead, x, floor, |t| {
                 // not `<=`: a NaN term is not above
                 above &= t.value > floor;
                 first[n] = t;
@@ -56,7 +56,7 @@ impl MaxMinSine {
                 continue;
             }
             let mut above = true;
-            element_terms(el, i, x, |t| {
+            element_terms(el, i, x, floor, |t| {
                 above &= t.value > floor;
                 out.push(t);
             });
@@ -69,9 +69,11 @@ impl MaxMinSine {
 }
 
 /// Calls `emit` with the term of each corner of star element `el` (index `i` in the star)
-/// with the free node at `x`.
+/// with the free node at `x`; a linear triangle's terms come without their gradients
+/// when one of them is at most `floor` (the element's terms are then not all above it, and
+/// [`MaxMinSine::terms_above`] stops; no floor is NaN).
 #[inline(always)]
-fn element_terms(el: &StarElement, i: usize, x: DVec2, mut emit: impl FnMut(Term)) {
+fn element_terms(el: &StarElement, i: usize, x: DVec2, floor: f64, mut emit: impl FnMut(Term)) {
     let corner = |c: &CornerJet| {
         let (s, g1, g2) = scaled_jacobian_gradient(c.e1, c.e2);
         Term { elem: i as u32, value: s, grad: c.chain(g1, g2) }
@@ -83,9 +85,31 @@ fn element_terms(el: &StarElement, i: usize, x: DVec2, mut emit: impl FnMut(Term
         let mut p = [el.pts[0], el.pts[1], el.pts[2]];
         p[s] = x;
         let w = |j: usize| if j == s { 1.0 } else { 0.0 };
-        for j in 0..3 {
+        let jet = |j: usize| {
             let (next, prev) = ((j + 1) % 3, (j + 2) % 3);
-            emit(corner(&CornerJet { e1: p[next] - p[j], e2: p[prev] - p[j], c1: w(next) - w(j), c2: w(prev) - w(j) }));
+            CornerJet { e1: p[next] - p[j], e2: p[prev] - p[j], c1: w(next) - w(j), c2: w(prev) - w(j) }
+        };
+        let t = TriangleCorners::of(&p);
+        let mut values = [0.0; 3];
+        for (j, v) in values.iter_mut().enumerate() {
+            let Some((value, ..)) = t.scaled_jacobian::<false>(j) else {
+                // beyond 2^±200: corner by corner, brought to unit scale
+                for j in 0..3 {
+                    emit(corner(&jet(j)));
+                }
+                return;
+            };
+            *v = value;
+        }
+        if values.iter().any(|&v| v <= floor) {
+            for value in values {
+                emit(Term { elem: i as u32, value, grad: DVec2::ZERO });
+            }
+            return;
+        }
+        for j in 0..3 {
+            let (value, g1, g2) = t.scaled_jacobian::<true>(j).unwrap_or_default();
+            emit(Term { elem: i as u32, value, grad: jet(j).chain(g1, g2) });
         }
         return;
     }

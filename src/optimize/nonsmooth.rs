@@ -246,7 +246,7 @@ impl<S: NodeStar> Solver<S> for NonSmoothAscent<S::Point> {
             Some(w) if w.value <= t.value => Some(w),
             _ => Some(t),
         });
-        let lead = lead.map_or(0, |t| t.elem);
+        let mut lead = lead.map_or(0, |t| t.elem);
         let phi_new = loop {
             if alpha * sl < min_move {
                 st.stop = Some(StopReason::SmallStep);
@@ -256,6 +256,10 @@ impl<S: NodeStar> Solver<S> for NonSmoothAscent<S::Point> {
             if max_min {
                 if objective.terms_above(star, xt, phi, lead, &mut self.trial) {
                     break self.trial.iter().fold(f64::INFINITY, |m, t| m.min(t.value));
+                }
+                // the element that was not above is tried first at the next trial
+                if let Some(t) = self.trial.last().filter(|t| t.value <= phi) {
+                    lead = t.elem;
                 }
             } else {
                 let p = max_min_terms(objective, star, xt, &mut self.trial);

@@ -56,6 +56,76 @@ pub fn lo_alpha_corner(e1: DVec2, e2: DVec2) -> f64 {
     TWO_SQRT3 * e1.perp_dot(e2) / den
 }
 
+/// A linear triangle's three corners' edge vectors (`(p[1] − p[0], p[2] − p[0])` at
+/// corner 0, then round) with each side's squared length once, for the two corners it
+/// bounds (the squares of a difference and of its negation are the same bits): the corner
+/// metrics of a triangle taken together, each bit for bit the metric of that corner's
+/// edges ([`lo_alpha_corner`], [`scaled_jacobian_gradient`]). A corner whose edges are
+/// beyond 2^±200, which those bring to unit scale first, gives `None`: the caller then
+/// takes the metric of that corner's edges.
+#[derive(Clone, Copy, Debug)]
+pub struct TriangleCorners {
+    /// Corner j's edge towards the next corner, and towards the previous one.
+    pub e1: [DVec2; 3],
+    pub e2: [DVec2; 3],
+    /// The largest component of `e1[j]`, and `|e1[j]|²` (which is also `|e2[j + 1]|²`).
+    size: [f64; 3],
+    side: [f64; 3],
+}
+
+impl TriangleCorners {
+    #[inline(always)]
+    pub fn of(p: &[DVec2; 3]) -> Self {
+        let e1 = [p[1] - p[0], p[2] - p[1], p[0] - p[2]];
+        let e2 = [p[2] - p[0], p[0] - p[1], p[1] - p[2]];
+        TriangleCorners { e1, e2, size: e1.map(|e| e.x.abs().max(e.y.abs())), side: e1.map(|e| e.length_squared()) }
+    }
+
+    /// The corner before `j`, whose `e1` is corner j's `e2` negated.
+    #[inline(always)]
+    fn prev(j: usize) -> usize {
+        (j + 2) % 3
+    }
+
+    /// Whether corner `j`'s edges are within 2^±200 (where the metrics take them as they are).
+    #[inline(always)]
+    fn safe(&self, j: usize) -> bool {
+        !is_beyond_safe_scale(self.size[j].max(self.size[Self::prev(j)]))
+    }
+
+    /// [`lo_alpha_corner`] of corner `j`.
+    #[inline(always)]
+    pub fn lo_alpha(&self, j: usize) -> Option<f64> {
+        if !self.safe(j) {
+            return None;
+        }
+        let (e1, e2) = (self.e1[j], self.e2[j]);
+        let den = self.side[j] + self.side[Self::prev(j)] + (e2 - e1).length_squared();
+        Some(if den <= 0.0 { 0.0 } else { TWO_SQRT3 * e1.perp_dot(e2) / den })
+    }
+
+    /// [`scaled_jacobian_gradient`] of corner `j`, its value first (without its gradient
+    /// when `GRADIENT` is false).
+    #[inline(always)]
+    pub fn scaled_jacobian<const GRADIENT: bool>(&self, j: usize) -> Option<(f64, DVec2, DVec2)> {
+        if !self.safe(j) {
+            return None;
+        }
+        Some(sine_and_gradient::<GRADIENT>(self.e1[j], self.e2[j], self.side[j], self.side[Self::prev(j)]))
+    }
+}
+
+/// The three corner αs of linear triangle `p` ([`TriangleCorners`]).
+#[inline(always)]
+pub fn lo_alpha_triangle_corners(p: &[DVec2; 3]) -> Option<[f64; 3]> {
+    let t = TriangleCorners::of(p);
+    let mut alpha = [0.0; 3];
+    for (j, a) in alpha.iter_mut().enumerate() {
+        *a = t.lo_alpha(j)?;
+    }
+    Some(alpha)
+}
+
 /// Lo's corner α with its partial gradients with respect to the two edge vectors:
 /// `(α, ∂α/∂e1, ∂α/∂e2)`. With `N = cross(e1,e2)` and `D = |e1|² + |e2|² + |e2−e1|²`,
 /// `∂α/∂e = 2√3 (D ∂N/∂e − N ∂D/∂e) / D²`, `∂N/∂e1 = −perp(e2)`, `∂N/∂e2 = perp(e1)`,
@@ -205,12 +275,21 @@ pub fn scaled_jacobian_gradient(e1: DVec2, e2: DVec2) -> (f64, DVec2, DVec2) {
         let (v, g1, g2) = scaled_jacobian_gradient(e1, e2);
         return (v, gradient_back(g1, f), gradient_back(g2, f));
     }
-    let (l1, l2) = (e1.length_squared(), e2.length_squared());
+    sine_and_gradient::<true>(e1, e2, e1.length_squared(), e2.length_squared())
+}
+
+/// [`scaled_jacobian_gradient`] at unit scale from the edges' squared lengths `l1`, `l2`
+/// (its gradient left zero when `GRADIENT` is false).
+#[inline(always)]
+fn sine_and_gradient<const GRADIENT: bool>(e1: DVec2, e2: DVec2, l1: f64, l2: f64) -> (f64, DVec2, DVec2) {
     let l = (l1 * l2).sqrt();
     if l <= 0.0 {
         return (0.0, DVec2::ZERO, DVec2::ZERO);
     }
     let s = e1.perp_dot(e2) / l;
+    if !GRADIENT {
+        return (s, DVec2::ZERO, DVec2::ZERO);
+    }
     (s, -e2.perp() / l - s * e1 / l1, e1.perp() / l - s * e2 / l2)
 }
 
@@ -418,6 +497,45 @@ mod tests {
         DVec2::new(x, y)
     }
     const EPS: f64 = 1e-12;
+
+    #[test]
+    fn a_triangles_corner_metrics_together_are_each_corners_bit_for_bit() {
+        let mut rng = crate::numeric::SplitMix64::new(33);
+        let mut taken = 0;
+        for n in 0..20000 {
+            // random, near-degenerate, repeated points, huge and tiny scales, NaN
+            let scale = [1.0, 1e-3, 1e40, 1e-40, 1e100, 1e-100][n % 6];
+            let mut p = [0; 3].map(|_| d(rng.uniform(-1.0, 1.0), rng.uniform(-1.0, 1.0)) * scale);
+            match n % 7 {
+                1 => p[2] = p[0],
+                2 => p[2] = (p[0] + p[1]) * 0.5,
+                3 => p[1].x = f64::NAN,
+                4 => p[0] = d(0.0, 0.0),
+                _ => {}
+            }
+            let edges = |j: usize| (p[(j + 1) % 3] - p[j], p[(j + 2) % 3] - p[j]);
+            let each = [0, 1, 2].map(|j| lo_alpha_corner(edges(j).0, edges(j).1));
+            let bits = |(s, g1, g2): (f64, DVec2, DVec2)| [s, g1.x, g1.y, g2.x, g2.y].map(f64::to_bits);
+            let t = TriangleCorners::of(&p);
+            match lo_alpha_triangle_corners(&p) {
+                Some(together) => {
+                    taken += 1;
+                    assert_eq!(together.map(f64::to_bits), each.map(f64::to_bits), "{p:?}");
+                    for j in 0..3 {
+                        let sine = scaled_jacobian_gradient(edges(j).0, edges(j).1);
+                        assert_eq!(t.scaled_jacobian::<true>(j).map(bits), Some(bits(sine)), "{p:?}");
+                        assert_eq!(t.scaled_jacobian::<false>(j).map(|s| s.0.to_bits()), Some(sine.0.to_bits()));
+                    }
+                }
+                // beyond 2^±200 (about 1.6e±60)
+                None => {
+                    assert!(!(1e-60..=1e60).contains(&scale), "refused at scale {scale}: {p:?}");
+                    assert!((0..3).any(|j| t.scaled_jacobian::<false>(j).is_none()));
+                }
+            }
+        }
+        assert!(taken > 13000, "{taken}");
+    }
 
     fn equilateral() -> [DVec2; 3] {
         [d(0.0, 0.0), d(1.0, 0.0), d(0.5, 3f64.sqrt() / 2.0)]
