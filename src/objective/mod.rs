@@ -314,11 +314,27 @@ impl StarMemo {
         Self::kept(&star.memo.dets, star, work)
     }
 
+    /// The sum and number of [`dets`](Self::dets) where they are kept for `star.x0`.
+    #[inline]
+    pub(crate) fn dets_kept(star: &Star) -> Option<(f64, usize)> {
+        star.memo.dets.get().filter(|(at, _)| Self::same(at, star)).map(|&(_, facts)| facts)
+    }
+
+    /// Keeps `facts` as [`dets`](Self::dets) of `star` at `star.x0` where nothing is kept.
+    #[inline]
+    pub(crate) fn keep_dets(star: &Star, facts: (f64, usize)) {
+        let _ = star.memo.dets.set((star.x0, facts));
+    }
+
+    #[inline]
+    fn same(at: &DVec2, star: &Star) -> bool {
+        at.x.to_bits() == star.x0.x.to_bits() && at.y.to_bits() == star.x0.y.to_bits()
+    }
+
     #[inline]
     fn kept<T: Copy>(cell: &std::sync::OnceLock<(DVec2, T)>, star: &Star, work: impl Fn(&Star) -> T) -> T {
-        let same = |at: &DVec2| at.x.to_bits() == star.x0.x.to_bits() && at.y.to_bits() == star.x0.y.to_bits();
         match cell.get() {
-            Some((at, facts)) if same(at) => *facts,
+            Some((at, facts)) if Self::same(at, star) => *facts,
             Some(_) => work(star),
             None => {
                 let facts = work(star);

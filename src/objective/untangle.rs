@@ -9,35 +9,50 @@ use super::corners::{CornerJet, ElementJets};
 use super::{impl_objective_by_visit, ObjectiveKind, Star, Term};
 use crate::mesh::ElementKind;
 
-/// The corner determinants of the moving corners, with their gradients:
-/// `det = cross(e1, e2)` (±∞, never NaN, where it overflows: [`crate::quality::corner_det`]), `∂det/∂e1 = −perp(e2)`, `∂det/∂e2 = perp(e1)`.
+/// The corner determinant of corner jet `c`, with its gradient: `det = cross(e1, e2)` (±∞,
+/// never NaN, where it overflows: [`crate::quality::corner_det`]), `∂det/∂e1 = −perp(e2)`,
+/// `∂det/∂e2 = perp(e1)`.
 #[inline(always)]
-fn visit_dets(star: &Star, x: DVec2, mut emit: impl FnMut(u32, f64, DVec2)) {
-    #[inline(always)]
-    fn det(c: &CornerJet) -> (f64, DVec2) {
-        (crate::quality::corner_det(c.e1, c.e2), c.chain(-c.e2.perp(), c.e1.perp()))
-    }
-    for (i, el) in star.elems.iter().enumerate() {
-        if matches!(el.kind, ElementKind::Tri3 | ElementKind::Quad4) {
-            // the linear elements without the element jets (a 420-byte copy per element):
-            // the same corner edge vectors (chords) and weights (1 at the free node, else
-            // 0), corner by corner; every corner of a triangle moves, all but the opposite
-            // one of a quad
-            let (k, s) = (el.kind.corners(), el.slot as usize);
-            let mut p = [el.pts[0], el.pts[1], el.pts[2], el.pts[3]];
-            p[s] = x;
-            let w = |j: usize| if j == s { 1.0 } else { 0.0 };
-            for j in (0..k).filter(|&j| k == 3 || j != (s + 2) % 4) {
-                let (next, prev) = ((j + 1) % k, (j + k - 1) % k);
-                let (d, g) = det(&CornerJet { e1: p[next] - p[j], e2: p[prev] - p[j], c1: w(next) - w(j), c2: w(prev) - w(j) });
-                emit(i as u32, d, g);
-            }
+fn det(c: &CornerJet) -> (f64, DVec2) {
+    (crate::quality::corner_det(c.e1, c.e2), c.chain(-c.e2.perp(), c.e1.perp()))
+}
+
+/// The moving corners' determinants of a linear element of `K` corners (3 or 4) with corners
+/// `pts`, its free node at `slot` moved to `x`, without the element jets (a 420-byte copy per
+/// element): the same corner edge vectors (chords) and weights (1 at the free node, else 0),
+/// corner by corner; every corner of a triangle moves, all but the opposite one of a quad.
+/// `K` constant, so the corners' indices are known when compiling.
+#[inline(always)]
+fn linear_dets<const K: usize>(pts: &[DVec2], slot: usize, x: DVec2, mut emit: impl FnMut(f64, DVec2)) {
+    let mut p = [DVec2::ZERO; K];
+    p.copy_from_slice(&pts[..K]);
+    p[slot] = x;
+    let w = |j: usize| if j == slot { 1.0 } else { 0.0 };
+    for j in 0..K {
+        if K == 4 && j == (slot + 2) % 4 {
             continue;
         }
-        let j = ElementJets::new(el, x);
-        for c in j.corner_jets().iter().filter(|c| c.moves()) {
-            let (d, g) = det(c);
-            emit(i as u32, d, g);
+        let (next, prev) = ((j + 1) % K, (j + K - 1) % K);
+        let (d, g) = det(&CornerJet { e1: p[next] - p[j], e2: p[prev] - p[j], c1: w(next) - w(j), c2: w(prev) - w(j) });
+        emit(d, g);
+    }
+}
+
+/// The corner determinants of the moving corners, with their gradients ([`det`]).
+#[inline(always)]
+fn visit_dets(star: &Star, x: DVec2, mut emit: impl FnMut(u32, f64, DVec2)) {
+    for (i, el) in star.elems.iter().enumerate() {
+        let slot = el.slot as usize;
+        match el.kind {
+            ElementKind::Tri3 => linear_dets::<3>(&el.pts, slot, x, |d, g| emit(i as u32, d, g)),
+            ElementKind::Quad4 => linear_dets::<4>(&el.pts, slot, x, |d, g| emit(i as u32, d, g)),
+            _ => {
+                let j = ElementJets::new(el, x);
+                for c in j.corner_jets().iter().filter(|c| c.moves()) {
+                    let (d, g) = det(c);
+                    emit(i as u32, d, g);
+                }
+            }
         }
     }
 }
@@ -94,14 +109,18 @@ impl Untangle {
             return 0.0;
         }
         // the same at every evaluation of a solve: kept in the star
-        let (sum, n) = super::StarMemo::dets(star, |star| {
+        self.shift_of(super::StarMemo::dets(star, |star| {
             let (mut sum, mut n) = (0.0, 0usize);
             visit_dets(star, star.x0, |_, det, _| {
                 sum += det.abs();
                 n += 1;
             });
             (sum, n)
-        });
+        }))
+    }
+
+    /// β from the sum of the moving corners' |det| and their number.
+    fn shift_of(&self, (sum, n): (f64, usize)) -> f64 {
         if n == 0 {
             0.0
         } else {
@@ -111,8 +130,7 @@ impl Untangle {
 
     /// Calls `emit` with one term per moving corner.
     pub fn visit(&self, star: &Star, x: DVec2, mut emit: impl FnMut(Term)) {
-        let beta = self.shift(star);
-        visit_dets(star, x, |elem, det, grad| {
+        let term = |beta: f64, elem: u32, det: f64, grad: DVec2| {
             let (value, grad) = if det < beta {
                 let t = 2.0 * (beta - det);
                 match self.power {
@@ -125,8 +143,33 @@ impl Untangle {
             } else {
                 (0.0, DVec2::ZERO)
             };
-            emit(Term { elem, value, grad });
-        });
+            Term { elem, value, grad }
+        };
+        let at_rest = x.x.to_bits() == star.x0.x.to_bits() && x.y.to_bits() == star.x0.y.to_bits();
+        if self.beta != 0.0 && at_rest && super::StarMemo::dets_kept(star).is_none() {
+            // a solve's first evaluation: the shift's corners are the terms' corners, so
+            // one sweep of them gives both (the same dets, summed in the same order)
+            const HELD: usize = 48;
+            let mut held = [(0u32, 0.0, DVec2::ZERO); HELD];
+            let (mut sum, mut n) = (0.0, 0usize);
+            visit_dets(star, x, |elem, det, grad| {
+                sum += det.abs();
+                if let Some(h) = held.get_mut(n) {
+                    *h = (elem, det, grad);
+                }
+                n += 1;
+            });
+            super::StarMemo::keep_dets(star, (sum, n));
+            if n <= HELD {
+                let beta = self.shift_of((sum, n));
+                for &(elem, det, grad) in &held[..n] {
+                    emit(term(beta, elem, det, grad));
+                }
+                return;
+            }
+        }
+        let beta = self.shift(star);
+        visit_dets(star, x, |elem, det, grad| emit(term(beta, elem, det, grad)));
     }
 }
 
@@ -209,6 +252,33 @@ mod tests {
             assert_eq!(u.shift(&moved).to_bits(), fresh.to_bits());
             assert_ne!(fresh.to_bits(), first.to_bits());
         }
+    }
+
+    #[test]
+    fn a_solves_first_evaluation_has_the_terms_of_the_kept_shift() {
+        // the first evaluation where the star is takes the shift and the terms in one sweep
+        // (up to 48 corners); every evaluation after it, the shift kept: the same bits
+        let mut stars = sample_stars();
+        stars.push(fan_star(&regular_ring(60, 1.0)));
+        let bits = |ts: &[Term]| ts.iter().map(|t| (t.elem, t.value.to_bits(), t.grad.x.to_bits(), t.grad.y.to_bits())).collect::<Vec<_>>();
+        let (mut compared, mut positive) = (0, 0);
+        for star in stars {
+            for star in [star.clone(), Star { x0: star.x0 + d(0.9, 0.4), ..star }] {
+                for u in [Untangle::default(), Untangle { beta: 0.3, power: 1 }, Untangle { beta: 0.05, power: 3 }] {
+                    let (fresh, kept) = (star.clone(), star.clone());
+                    let mut first = Vec::new();
+                    u.visit(&fresh, fresh.x0, |t| first.push(t));
+                    let _ = u.shift(&kept);
+                    let mut again = Vec::new();
+                    u.visit(&kept, kept.x0, |t| again.push(t));
+                    assert_eq!(bits(&first), bits(&again));
+                    assert_eq!(u.shift(&fresh).to_bits(), u.shift(&kept).to_bits());
+                    compared += first.len();
+                    positive += first.iter().filter(|t| t.value > 0.0).count();
+                }
+            }
+        }
+        assert!(compared > 1000 && positive > 100, "{positive} of {compared} terms positive");
     }
 
     #[test]

@@ -20,6 +20,10 @@ pub(super) struct KeepValid<'a, S: DriverStar> {
     /// The star's [`DriverStar::inversion`] at its start, taken once, from the star the solver passes
     /// (a solve passes one star throughout: the gathered one or one rescaled copy).
     pub(super) inversion0: std::cell::OnceCell<f64>,
+    /// The last position [`refuses`](Self::refuses) answered, with its answer: Fletcher–Reeves
+    /// asks for a Hessian at each trial point and, from an objective without one, then for the
+    /// value and gradient at the same point, and each asks the guard.
+    refused: std::cell::Cell<Option<(S::Point, bool)>>,
 }
 
 impl<S: DriverStar> Objective<S> for KeepValid<'_, S> {
@@ -62,11 +66,26 @@ impl<S: DriverStar> Objective<S> for KeepValid<'_, S> {
     }
 }
 
-impl<S: DriverStar> KeepValid<'_, S> {
+impl<'a, S: DriverStar> KeepValid<'a, S> {
+    /// `inner` guarded for a solve from a star with `limit` inverted elements.
+    pub(super) fn new(inner: &'a dyn Objective<S>, limit: usize, pass_through_folds: bool) -> Self {
+        KeepValid { inner, limit, pass_through_folds, inversion0: std::cell::OnceCell::new(), refused: std::cell::Cell::new(None) }
+    }
+
     /// Whether a trial position is refused: a valid star must stay valid; an inverted one
     /// may fold another element on the way out, provided its total inversion falls (see
     /// [`SmoothOptions::keep_valid`]).
     fn refuses(&self, star: &S, x: S::Point) -> bool {
+        if let Some((at, refused)) = self.refused.get() {
+            if at == x {
+                return refused;
+            }
+        }
+        let refused = self.refuses_now(star, x);
+        self.refused.set(Some((x, refused)));
+        refused
+    }
+    fn refuses_now(&self, star: &S, x: S::Point) -> bool {
         let inverted = star.inverted_at(x);
         // the inversion at the start is taken from the star the solver passes, so that it
         // is in the same frame as at `x` (a solver may pass a rescaled copy: optimize)

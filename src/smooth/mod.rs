@@ -496,7 +496,7 @@ impl<S: DriverStar> Smoother<S> {
             // where a triangle's own cross products can underflow)
             let limit = self.star.inverted_now();
             let pass_through_folds = self.options.pass_through_folds.unwrap_or_else(|| objective.untangles());
-            guarded = KeepValid { inner: objective, limit, pass_through_folds, inversion0: std::cell::OnceCell::new() };
+            guarded = KeepValid::new(objective, limit, pass_through_folds);
             &guarded
         } else {
             objective

@@ -571,7 +571,7 @@ fn keep_valid_stops_the_new_objective_folding_a_valid_star() {
     assert!(new.value(&star, m.nodes()[0]) < f0, "the objective must fall");
     // guarded, the solver finds a lower objective among valid positions, but a lower worst
     // β too: the acceptance rule (issue 29) keeps the node where it was
-    let guarded = KeepValid { inner: &new, limit: 0, pass_through_folds: false, inversion0: Default::default() };
+    let guarded = KeepValid::new(&new, 0, false);
     let r = Solvers::new(SmoothOptions::default().solve_options()).get(SolverKind::FletcherReeves, Goal::MinimizeSum).solve(
         &guarded,
         &star,
