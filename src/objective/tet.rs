@@ -27,7 +27,7 @@ use glam::{DMat3, DVec3};
 use super::{Goal, NodeStar, Objective, ObjectiveKind, Term, BARRIER_EPSILON, BARRIER_WEIGHT, CONDITION_BARRIER};
 use crate::error::{Error, Result};
 use crate::mesh::VolumeKind;
-use crate::quality::solid::{scaled_jacobian_grad0, validity, DetForm, Validity};
+use crate::quality::solid::{scaled_jacobian_grad0, validity, DetForm, ValidBall, Validity};
 use crate::quality::tet::{self as q3, outer, CornerForm, CornerReference, WeightedJacobian, EQUILATERAL_TET};
 
 /// One corner of an element of a star, as the tetrahedron of its Jacobian (Knupp 1999):
@@ -93,6 +93,8 @@ pub struct StarSolid {
     /// the first trial that asks (a visit of the smart Laplacian asks none); it holds
     /// wherever the free node goes, as the other corners stay.
     det: std::sync::OnceLock<Option<DetForm>>,
+    /// Where a hexahedron is valid for certain by its `det J` as gathered (made at the guard's first question).
+    ball: std::sync::OnceLock<Option<ValidBall>>,
     /// The validity and the shape at the last two positions the drivers asked of
     /// [`validity_measured`](Self::validity_measured) and
     /// [`shape_measured`](Self::shape_measured) (the gathered one and a move's).
@@ -249,18 +251,24 @@ impl StarSolid {
             slot,
             pts,
             det: std::sync::OnceLock::new(),
+            ball: std::sync::OnceLock::new(),
             measured: PositionMemo::default(),
             shaped: PositionMemo::default(),
         }
     }
     /// [`validity`](crate::quality::solid::validity) with the free node at `x` as the
     /// drivers' measures ask it (the star as gathered, a move's position): from the
-    /// [`DetForm`] where the guard has made it and it decides, else exactly; each answer kept
-    /// for the next question at the same position (the smart Laplacian's test and the
-    /// acceptance rule ask the same positions). Without making the form, whose four
-    /// determinants cost more than the exact test of a visit that optimises nothing.
+    /// [`ValidBall`] or the [`DetForm`] where the guard has made them and they decide, else
+    /// exactly; each answer kept for the next question at the same position (the smart
+    /// Laplacian's test and the acceptance rule ask the same positions). Without making them,
+    /// which cost more than the exact test of a visit that optimises nothing.
     pub fn validity_measured(&self, x: DVec3) -> Validity {
-        self.measured.get_or(x, || self.validity_by(self.det.get().and_then(|f| f.as_ref()), x))
+        self.measured.get_or(x, || {
+            if self.ball.get().and_then(|b| b.as_ref()).is_some_and(|b| b.holds(x)) {
+                return Validity::Valid;
+            }
+            self.validity_by(self.det.get().and_then(|f| f.as_ref()), x)
+        })
     }
     /// The validity at `x` from `form` where it decides, else exactly.
     #[inline]
@@ -272,10 +280,15 @@ impl StarSolid {
     pub fn shape_measured(&self, x: DVec3) -> f64 {
         self.shaped.get_or(x, || crate::quality::solid::solid_shape(self.kind, self.corners(&self.at(x))))
     }
-    /// [`validity`](crate::quality::solid::validity) with the free node at `x`, from the
-    /// element's [`DetForm`] where it decides.
+    /// [`validity`](crate::quality::solid::validity) with the free node at `x`: valid where
+    /// the element's [`ValidBall`] holds `x`, else from its [`DetForm`] where it decides
+    /// (each made at the first question).
     #[inline]
     pub fn validity_at(&self, x: DVec3) -> Validity {
+        let ball = self.ball.get_or_init(|| ValidBall::of(self.kind, &self.pts, self.slot as usize));
+        if ball.is_some_and(|b| b.holds(x)) {
+            return Validity::Valid;
+        }
         let form = self.det.get_or_init(|| DetForm::of(self.kind, &self.pts, self.slot as usize));
         self.validity_by(form.as_ref(), x)
     }
@@ -398,6 +411,7 @@ impl NodeStar for CornerStar {
                 *p *= f;
             }
             e.det = std::sync::OnceLock::new();
+            e.ball = std::sync::OnceLock::new();
             e.measured = PositionMemo::default();
             e.shaped = PositionMemo::default();
         }

@@ -195,6 +195,10 @@ struct TripleProduct {
 /// many.
 type Terms = ([([usize; 3], usize); 8], usize);
 
+/// A factor of a [`TripleProduct`]: a vector polynomial by its coefficients of degree ≤ 1
+/// in each parameter.
+type Factor = [[[DVec3; 2]; 2]; 2];
+
 impl TripleProduct {
     const fn new(df: [usize; 3], dg: [usize; 3], dh: [usize; 3]) -> Self {
         let deg = [df[0] + dg[0] + dh[0], df[1] + dg[1] + dh[1], df[2] + dg[2] + dh[2]];
@@ -234,8 +238,8 @@ impl TripleProduct {
     /// The coefficients of `f·(g × h)`: the cross products `g × h` taken once each and the
     /// coefficients summed in the order of `f`, `g`, `h`.
     #[inline(always)]
-    fn of(&self, f: &[[[DVec3; 2]; 2]; 2], g: &[[[DVec3; 2]; 2]; 2], h: &[[[DVec3; 2]; 2]; 2]) -> Bezier {
-        let value = |v: &[[[DVec3; 2]; 2]; 2], t: &Terms, a: usize| {
+    fn of(&self, f: &Factor, g: &Factor, h: &Factor) -> Bezier {
+        let value = |v: &Factor, t: &Terms, a: usize| {
             let [i, j, k] = t.0[a].0;
             v[i][j][k]
         };
@@ -261,6 +265,42 @@ impl TripleProduct {
         }
         out
     }
+
+    /// The gradients of the coefficients of `f·(g × h)` (at flat indices) in a point that
+    /// moves one coefficient of each factor, `moved[0]` of `f` and so on: its index in
+    /// the factor's [`Terms`] and its sign (the point is an edge's head, +1, or its tail,
+    /// −1). A product of three terms is affine in the point (`x·(x × v) = 0`), with the
+    /// gradient `σ_f (g × h) + σ_g (h × f) + σ_h (f × g)`.
+    #[inline(always)]
+    fn slopes(&self, f: &Factor, g: &Factor, h: &Factor, moved: [(usize, f64); 3]) -> [DVec3; 27] {
+        let value = |v: &Factor, t: &Terms, a: usize| {
+            let [i, j, k] = t.0[a].0;
+            v[i][j][k]
+        };
+        let mut s = [DVec3::ZERO; 27];
+        let (a, sign) = moved[0];
+        for b in 0..self.g.1 {
+            for d in 0..self.h.1 {
+                let n = self.f.0[a].1 + self.g.0[b].1 + self.h.0[d].1;
+                s[n] += value(g, &self.g, b).cross(value(h, &self.h, d)) * (sign * self.weight[n]);
+            }
+        }
+        let (b, sign) = moved[1];
+        for a in 0..self.f.1 {
+            for d in 0..self.h.1 {
+                let n = self.f.0[a].1 + self.g.0[b].1 + self.h.0[d].1;
+                s[n] += value(h, &self.h, d).cross(value(f, &self.f, a)) * (sign * self.weight[n]);
+            }
+        }
+        let (d, sign) = moved[2];
+        for a in 0..self.f.1 {
+            for b in 0..self.g.1 {
+                let n = self.f.0[a].1 + self.g.0[b].1 + self.h.0[d].1;
+                s[n] += value(f, &self.f, a).cross(value(g, &self.g, b)) * (sign * self.weight[n]);
+            }
+        }
+        s
+    }
 }
 
 fn indices(d: [usize; 3]) -> impl Iterator<Item = (usize, usize, usize)> {
@@ -270,8 +310,19 @@ fn indices(d: [usize; 3]) -> impl Iterator<Item = (usize, usize, usize)> {
 /// A trilinear hexahedron's `det J` (corners in VTK's order, parameters u, v, w along
 /// edges 0→1, 0→3, 0→4) in the Bernstein basis.
 fn hex_det(p: &[DVec3]) -> Bezier {
+    let (xu, xv, xw) = hex_columns(p);
+    HEX.of(&xu, &xv, &xw)
+}
+
+/// [`hex_det`]'s plan: `X_u·(X_v × X_w)`, each column constant along its own parameter.
+const HEX: TripleProduct = TripleProduct::new([0, 1, 1], [1, 0, 1], [1, 1, 0]);
+
+/// A trilinear hexahedron's columns `X_u`, `X_v`, `X_w`, each by its coefficients: the
+/// element's edges along u, v and w.
+#[inline(always)]
+fn hex_columns(p: &[DVec3]) -> (Factor, Factor, Factor) {
     // the corner at (i, j, k) ∈ {0, 1}³
-    let at = |i: usize, j: usize, k: usize| p[4 * k + [[0, 3], [1, 2]][i][j]];
+    let at = |i: usize, j: usize, k: usize| p[4 * k + HEX_CORNER[i][j]];
     let z = [[[DVec3::ZERO; 2]; 2]; 2];
     let (mut xu, mut xv, mut xw) = (z, z, z);
     for a in 0..2 {
@@ -281,14 +332,27 @@ fn hex_det(p: &[DVec3]) -> Bezier {
             xw[a][b][0] = at(a, b, 1) - at(a, b, 0);
         }
     }
-    const HEX: TripleProduct = TripleProduct::new([0, 1, 1], [1, 0, 1], [1, 1, 0]);
-    HEX.of(&xu, &xv, &xw)
+    (xu, xv, xw)
+}
+
+/// The hexahedron's corner at `(i, j, k)` ∈ {0, 1}³ is corner `4k + HEX_CORNER[i][j]`.
+const HEX_CORNER: [[usize; 2]; 2] = [[0, 3], [1, 2]];
+
+/// [`hex_det`] with its coefficients' gradients in corner `slot` (at flat indices).
+fn hex_det_and_slopes(p: &[DVec3], slot: usize) -> (Bezier, [DVec3; 27]) {
+    let (xu, xv, xw) = hex_columns(p);
+    let (i, j, k) = ((slot % 4 == 1 || slot % 4 == 2) as usize, (slot % 4 >= 2) as usize, slot / 4);
+    let sign = |end: usize| if end == 1 { 1.0 } else { -1.0 };
+    // each column's moving edge: its index in the plan's terms (flat 9i + 3j + k order
+    // over the column's own degrees: the two parameters it varies along)
+    let moved = [(2 * j + k, sign(i)), (2 * i + k, sign(j)), (2 * i + j, sign(k))];
+    (HEX.of(&xu, &xv, &xw), HEX.slopes(&xu, &xv, &xw, moved))
 }
 
 /// A pyramid's `g(u, v) = B_u·(B_v × (apex − B))` (see the module docs) in the Bernstein
 /// basis.
 fn pyramid_det(p: &[DVec3]) -> Bezier {
-    let base = |i: usize, j: usize| p[[[0, 3], [1, 2]][i][j]];
+    let base = |i: usize, j: usize| p[HEX_CORNER[i][j]];
     let z = [[[DVec3::ZERO; 2]; 2]; 2];
     let (mut bu, mut bv, mut to_apex) = (z, z, z);
     for a in 0..2 {
@@ -336,8 +400,10 @@ fn wedge_validity(p: &[DVec3]) -> Validity {
 /// corner's position `x`, the others fixed, for the validity guard's trials: every
 /// coefficient is a sum of triple products of vectors affine in `x`, and a triple product
 /// is affine in a vector that two of its factors share (`x·(x×h) = 0`), so each
-/// coefficient is `c₀ + g·(x − o)`. The slopes `g` are read off the coefficients one edge
-/// length `m` along each axis (exact but for rounding, an affine function's differences).
+/// coefficient is `c₀ + g·(x − o)`. A hexahedron's slopes `g` are the triple products'
+/// gradients (`TripleProduct::slopes`); a pyramid's are read off the coefficients one
+/// edge length `m` along each axis (exact but for rounding, an affine function's
+/// differences).
 /// [`validity_at`](Self::validity_at) decides only where every coefficient it reads is
 /// beyond rounding of 0, and leaves the rest to [`validity`], so its answers are
 /// [`validity`]'s.
@@ -372,18 +438,30 @@ impl DetForm {
         }
         let mut q = [DVec3::ZERO; 8];
         q[..n].copy_from_slice(&p[..n]);
-        let c = det(&q);
-        let moved = [0, 1, 2].map(|axis| {
-            let mut m = q;
-            m[slot][axis] += reach;
-            det(&m)
-        });
+        // a hexahedron's slopes analytic; a pyramid's (whose apex is in four of its
+        // factor's coefficients) by differences, exact for an affine function up to rounding
+        let (c, slopes) = if kind.linear() == VolumeKind::Hex8 {
+            hex_det_and_slopes(&q, slot)
+        } else {
+            let c = det(&q);
+            let moved = [0, 1, 2].map(|axis| {
+                let mut m = q;
+                m[slot][axis] += reach;
+                det(&m)
+            });
+            let mut slopes = [DVec3::ZERO; 27];
+            for (n, s) in slopes.iter_mut().enumerate() {
+                let (i, j, k) = (n / 9, n / 3 % 3, n % 3);
+                let slope = |axis: usize| (moved[axis].c[i][j][k] - c.c[i][j][k]) / reach;
+                *s = DVec3::new(slope(0), slope(1), slope(2));
+            }
+            (c, slopes)
+        };
         let deg = c.deg;
         let mut form = DetForm { origin: p[slot], reach, c: [0.0; 27], g: [DVec3::ZERO; 27], len: 0, corners: 0 };
         for (t, (i, j, k)) in indices(deg).enumerate() {
             form.c[t] = c.c[i][j][k];
-            let slope = |axis: usize| (moved[axis].c[i][j][k] - c.c[i][j][k]) / reach;
-            form.g[t] = DVec3::new(slope(0), slope(1), slope(2));
+            form.g[t] = slopes[9 * i + 3 * j + k];
             let corner = (i == 0 || i == deg[0]) && (j == 0 || j == deg[1]) && (k == 0 || k == deg[2]);
             form.corners |= (corner as u32) << t;
             form.len = t + 1;
@@ -421,6 +499,54 @@ impl DetForm {
         } else {
             None
         }
+    }
+}
+
+/// A ball of positions of a hexahedron's free corner in which the element is valid for
+/// certain, from its `det J` where the corner is, without the coefficients at the
+/// position asked: each Bernstein coefficient `c_t` is affine in the corner ([`DetForm`]),
+/// a sum of triple products of the element's edges whose weights add up to 1 (those of the
+/// product of Bernstein polynomials), and a triple product's gradient in one corner is at
+/// most the sum of the products of its factors' lengths two by two, so `|∇c_t| ≤ 3E²`
+/// with `E` the longest edge. Within `ρ` of the corner every coefficient is at least
+/// `m − 3E²ρ`, `m` the smallest there; the radius is half of where that bound reaches 0,
+/// kept only where the bound stays beyond twice the form's rounding margin, so a position
+/// it holds is one the form or the exact test would call valid too.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ValidBall {
+    centre: DVec3,
+    radius_squared: f64,
+}
+
+impl ValidBall {
+    /// The ball of the hexahedron (8, 20 or 27 nodes: its corners' trilinear map) with
+    /// corners `p`, its corner `slot` free; `None` for other kinds, an element not valid
+    /// beyond rounding where it is, and an element beyond the safe scale.
+    pub fn of(kind: VolumeKind, p: &[DVec3], slot: usize) -> Option<ValidBall> {
+        if kind.linear() != VolumeKind::Hex8 {
+            return None;
+        }
+        let p = &p[..8];
+        let reach = p[1..].iter().fold(0.0f64, |m, x| m.max((*x - p[0]).abs().max_element()));
+        if reach == 0.0 || !reach.is_finite() || crate::numeric::factors_beyond_safe_scale(reach).is_some() {
+            return None;
+        }
+        let m = hex_det(p).min_coefficient();
+        let longest = (0..4)
+            .flat_map(|i| [(i, (i + 1) % 4), (i + 4, (i + 1) % 4 + 4), (i, i + 4)])
+            .fold(0.0f64, |l, (a, b)| l.max(p[a].distance_squared(p[b])));
+        // the gradients' bound, rounded up beyond its own rounding
+        let slope = 3.0 * longest * (1.0 + 1e-9);
+        let radius = 0.99 * m / slope;
+        let margin = 1e-9 * (reach + radius).powi(3);
+        (radius > 0.0 && radius.is_finite() && m - slope * radius > 2.0 * margin)
+            .then(|| ValidBall { centre: p[slot], radius_squared: radius * radius })
+    }
+
+    /// Whether the element is valid with its free corner at `x` by the ball alone.
+    #[inline]
+    pub fn holds(&self, x: DVec3) -> bool {
+        (x - self.centre).length_squared() < self.radius_squared
     }
 }
 

@@ -251,3 +251,68 @@ fn a_det_form_decides_as_validity_does_wherever_the_free_corner_goes() {
     let huge: Vec<DVec3> = ideal(VolumeKind::Hex8).iter().map(|c| *c * 1e200).collect();
     assert!(DetForm::of(VolumeKind::Hex8, &huge, 0).is_none());
 }
+
+#[test]
+fn a_hexahedrons_slopes_are_its_coefficients_differences() {
+    // each Bernstein coefficient is affine in a corner: the analytic slopes of the form
+    // against the coefficients' differences at a moved corner, every corner in turn
+    let mut rng = SplitMix64::new(12);
+    for round in 0..400 {
+        let scale = [1.0, 1e-3, 250.0][round % 3];
+        let p: Vec<DVec3> = ideal(VolumeKind::Hex8)
+            .iter()
+            .map(|c| (*c + DVec3::new(rng.uniform(-0.6, 0.6), rng.uniform(-0.6, 0.6), rng.uniform(-0.6, 0.6))) * scale)
+            .collect();
+        let slot = round % 8;
+        let (c, slopes) = hex_det_and_slopes(&p, slot);
+        assert_eq!(c, hex_det(&p));
+        let step = DVec3::new(rng.uniform(-1.0, 1.0), rng.uniform(-1.0, 1.0), rng.uniform(-1.0, 1.0)) * scale;
+        let mut q = p.clone();
+        q[slot] += step;
+        let moved = hex_det(&q);
+        let unit = scale * scale * scale;
+        for (n, slope) in slopes.iter().enumerate() {
+            let (i, j, k) = (n / 9, n / 3 % 3, n % 3);
+            let by_slope = c.c[i][j][k] + slope.dot(step);
+            assert!((by_slope - moved.c[i][j][k]).abs() <= 1e-12 * unit, "slot {slot} coefficient {n}: {by_slope} vs {}", moved.c[i][j][k]);
+        }
+    }
+}
+
+#[test]
+fn a_valid_ball_holds_only_positions_where_the_hexahedron_is_valid() {
+    // the positions a ball holds are valid by the exact test and by the form; the ball of a
+    // hexahedron near the ideal holds some of the positions tried, an inverted one has none
+    let mut rng = SplitMix64::new(13);
+    let (mut held, mut asked) = (0, 0);
+    for round in 0..300 {
+        let scale = [1.0, 1e-3, 250.0][round % 3];
+        let p: Vec<DVec3> = ideal(VolumeKind::Hex8)
+            .iter()
+            .map(|c| (*c + DVec3::new(rng.uniform(-0.25, 0.25), rng.uniform(-0.25, 0.25), rng.uniform(-0.25, 0.25))) * scale)
+            .collect();
+        let slot = round % 8;
+        let Some(ball) = ValidBall::of(VolumeKind::Hex8, &p, slot) else {
+            assert_ne!(validity(VolumeKind::Hex8, &p), Validity::Valid, "a valid hexahedron has a ball");
+            continue;
+        };
+        let form = DetForm::of(VolumeKind::Hex8, &p, slot).expect("a form");
+        for _ in 0..40 {
+            let x = p[slot] + DVec3::new(rng.uniform(-1.0, 1.0), rng.uniform(-1.0, 1.0), rng.uniform(-1.0, 1.0)) * rng.uniform(0.0, 0.5) * scale;
+            asked += 1;
+            if ball.holds(x) {
+                let mut q = p.clone();
+                q[slot] = x;
+                assert_eq!(validity(VolumeKind::Hex8, &q), Validity::Valid, "slot {slot} at {x} of {p:?}");
+                assert_eq!(form.validity_at(x), Some(Validity::Valid));
+                held += 1;
+            }
+        }
+    }
+    assert!(held * 10 > asked, "{held} of {asked} held");
+    let mut flat = ideal(VolumeKind::Hex8);
+    flat[6].z = 0.0;
+    flat[2].z = 1.0;
+    assert!(ValidBall::of(VolumeKind::Hex8, &flat, 0).is_none());
+    assert!(ValidBall::of(VolumeKind::Pyramid5, &ideal(VolumeKind::Pyramid5), 0).is_none());
+}
