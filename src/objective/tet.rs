@@ -27,7 +27,7 @@ use glam::{DMat3, DVec3};
 use super::{Goal, NodeStar, Objective, ObjectiveKind, Term, BARRIER_EPSILON, BARRIER_WEIGHT, CONDITION_BARRIER};
 use crate::error::{Error, Result};
 use crate::mesh::VolumeKind;
-use crate::quality::solid::{scaled_jacobian_grad0, validity, DetForm, ValidBall, Validity};
+use crate::quality::solid::{scaled_jacobian_grad0, validity, CornerShapes, DetForm, ValidBall, Validity};
 use crate::quality::tet::{self as q3, outer, CornerForm, CornerReference, WeightedJacobian, EQUILATERAL_TET};
 
 /// One corner of an element of a star, as the tetrahedron of its Jacobian (Knupp 1999):
@@ -93,13 +93,17 @@ pub struct StarSolid {
     /// the first trial that asks (a visit of the smart Laplacian asks none); it holds
     /// wherever the free node goes, as the other corners stay.
     det: std::sync::OnceLock<Option<DetForm>>,
-    /// Where a hexahedron is valid for certain by its `det J` as gathered (made at the guard's first question).
+    /// Where a hexahedron is valid for certain by its `det J` as gathered (made at the
+    /// guard's first question).
     ball: std::sync::OnceLock<Option<ValidBall>>,
     /// The validity and the shape at the last two positions the drivers asked of
     /// [`validity_measured`](Self::validity_measured) and
     /// [`shape_measured`](Self::shape_measured) (the gathered one and a move's).
     measured: PositionMemo<Validity>,
     shaped: PositionMemo<f64>,
+    /// The shape's terms at the last position it was measured at: a corner whose
+    /// tetrahedron does not hold the free node keeps its term wherever the node goes.
+    terms: std::cell::Cell<Option<(DVec3, CornerShapes)>>,
 }
 
 /// A measure of a star's element kept for the last two positions of the free node asked:
@@ -166,11 +170,12 @@ struct KnownSolid {
     corners: [DVec3; 8],
     validity: Option<Validity>,
     shape: Option<f64>,
+    terms: Option<CornerShapes>,
 }
 
 impl KnownSolid {
     const EMPTY: KnownSolid =
-        KnownSolid { element: u32::MAX, kind: VolumeKind::Tet4, corners: [DVec3::ZERO; 8], validity: None, shape: None };
+        KnownSolid { element: u32::MAX, kind: VolumeKind::Tet4, corners: [DVec3::ZERO; 8], validity: None, shape: None, terms: None };
     /// Whether this slot holds `element` of `kind` at `corners`, bit for bit.
     fn holds(&self, element: u32, kind: VolumeKind, corners: &[DVec3]) -> bool {
         let bits = |p: &DVec3| [p.x.to_bits(), p.y.to_bits(), p.z.to_bits()];
@@ -211,6 +216,7 @@ impl KnownSolids {
             if let Some(q) = k.shape {
                 e.shaped.start_with(x, q);
             }
+            e.terms.set(k.terms.map(|t| (x, t)));
         }
     }
 
@@ -218,6 +224,7 @@ impl KnownSolids {
     /// `elements` elements.
     fn keep(&mut self, e: &StarSolid, x: DVec3, elements: usize) {
         let (validity, shape) = (e.measured.kept(x), e.shaped.kept(x));
+        let terms = e.terms.get().filter(|&(at, _)| at == x).map(|(_, t)| t);
         if validity.is_none() && shape.is_none() {
             return;
         }
@@ -234,10 +241,11 @@ impl KnownSolids {
         if k.holds(e.element, e.kind, corners) {
             k.validity = validity.or(k.validity);
             k.shape = shape.or(k.shape);
+            k.terms = terms.or(k.terms);
         } else {
             let mut c = [DVec3::ZERO; 8];
             c[..corners.len()].copy_from_slice(corners);
-            *k = KnownSolid { element: e.element, kind: e.kind, corners: c, validity, shape };
+            *k = KnownSolid { element: e.element, kind: e.kind, corners: c, validity, shape, terms };
         }
     }
 }
@@ -254,6 +262,7 @@ impl StarSolid {
             ball: std::sync::OnceLock::new(),
             measured: PositionMemo::default(),
             shaped: PositionMemo::default(),
+            terms: std::cell::Cell::new(None),
         }
     }
     /// [`validity`](crate::quality::solid::validity) with the free node at `x` as the
@@ -276,9 +285,26 @@ impl StarSolid {
         form.and_then(|d| d.validity_at(x)).unwrap_or_else(|| validity(self.kind, self.corners(&self.at(x))))
     }
     /// [`solid_shape`](crate::quality::solid::solid_shape) with the free node at `x`, kept
-    /// for the position as [`validity_measured`](Self::validity_measured) keeps its answer.
+    /// for the position as [`validity_measured`](Self::validity_measured) keeps its answer;
+    /// the terms of the corners whose tetrahedra do not hold the free node taken from the
+    /// last position measured (the same bits: [`CornerShapes`]).
     pub fn shape_measured(&self, x: DVec3) -> f64 {
-        self.shaped.get_or(x, || crate::quality::solid::solid_shape(self.kind, self.corners(&self.at(x))))
+        self.shaped.get_or(x, || {
+            let p = self.at(x);
+            let corners = self.corners(&p);
+            let (kept, slot, edges) = (self.terms.get(), self.slot as usize, &self.kind.row().corner_edges);
+            let terms = CornerShapes::of(self.kind, corners, |c| {
+                let moves = c == slot || edges[c].contains(&slot);
+                kept.filter(|_| !moves).map(|(_, t)| t.term(c))
+            });
+            match terms {
+                Some(t) => {
+                    self.terms.set(Some((x, t)));
+                    t.shape(self.kind)
+                }
+                None => crate::quality::solid::solid_shape(self.kind, corners),
+            }
+        })
     }
     /// [`validity`](crate::quality::solid::validity) with the free node at `x`: valid where
     /// the element's [`ValidBall`] holds `x`, else from its [`DetForm`] where it decides
@@ -414,6 +440,7 @@ impl NodeStar for CornerStar {
             e.ball = std::sync::OnceLock::new();
             e.measured = PositionMemo::default();
             e.shaped = PositionMemo::default();
+            e.terms = std::cell::Cell::new(None);
         }
         s
     }
@@ -906,6 +933,31 @@ mod tests {
             })
             .collect();
         CornerStar::of_tets(x0, tets)
+    }
+
+    #[test]
+    fn a_solids_shape_keeps_the_terms_of_the_corners_that_did_not_move() {
+        // an element of every kind other than the tetrahedron with each corner free in
+        // turn, its shape asked at a walk of positions: solid_shape's bits at each, the
+        // terms of the corners whose tetrahedra do not hold the free node kept
+        let mut rng = SplitMix64::new(24);
+        for kind in [VolumeKind::Hex8, VolumeKind::Wedge6, VolumeKind::Pyramid5] {
+            let ideal = kind.row().ideal;
+            for slot in 0..kind.corners() {
+                let mut pts = [DVec3::ZERO; 8];
+                for (p, c) in pts.iter_mut().zip(ideal) {
+                    *p = DVec3::from(*c) + point(&mut rng) * 0.1;
+                }
+                let e = StarSolid::new(0, kind, slot as u8, pts);
+                for step in 0..12 {
+                    let x = pts[slot] + point(&mut rng) * [0.05, 0.5][step % 2];
+                    let mut p = pts;
+                    p[slot] = x;
+                    let exact = crate::quality::solid::solid_shape(kind, &p[..kind.corners()]);
+                    assert_eq!(e.shape_measured(x).to_bits(), exact.to_bits(), "{kind:?} slot {slot} at {x}");
+                }
+            }
+        }
     }
 
     #[test]

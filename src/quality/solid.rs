@@ -71,8 +71,7 @@ fn corner_det(t: &[DVec3; 4]) -> f64 {
 fn in_unit_scale(p: &[DVec3]) -> ([DVec3; 8], usize) {
     let mut q = [DVec3::ZERO; 8];
     let n = p.len().min(8);
-    let m = p[1..n].iter().fold(0.0f64, |m, x| m.max((*x - p[0]).abs().max_element()));
-    match crate::numeric::factors_beyond_safe_scale(m) {
+    match crate::numeric::factors_beyond_safe_scale(reach(&p[..n])) {
         None => q[..n].copy_from_slice(&p[..n]),
         Some((f1, f2)) => {
             for i in 0..n {
@@ -81,6 +80,13 @@ fn in_unit_scale(p: &[DVec3]) -> ([DVec3; 8], usize) {
         }
     }
     (q, n)
+}
+
+/// The largest component of an edge from the first corner: the element's extent, which
+/// decides whether it is within the safe scale.
+#[inline]
+fn reach(p: &[DVec3]) -> f64 {
+    p[1..].iter().fold(0.0f64, |m, x| m.max((*x - p[0]).abs().max_element()))
 }
 
 /// A polynomial of degree ≤ 2 in each of three parameters on a box, by its 3×3×3
@@ -432,7 +438,7 @@ impl DetForm {
             _ => return None,
         };
         let n = kind.corners();
-        let reach = p[1..n].iter().fold(0.0f64, |m, x| m.max((*x - p[0]).abs().max_element()));
+        let reach = reach(&p[..n]);
         if reach == 0.0 || !reach.is_finite() || crate::numeric::factors_beyond_safe_scale(reach).is_some() {
             return None;
         }
@@ -527,7 +533,7 @@ impl ValidBall {
             return None;
         }
         let p = &p[..8];
-        let reach = p[1..].iter().fold(0.0f64, |m, x| m.max((*x - p[0]).abs().max_element()));
+        let reach = reach(p);
         if reach == 0.0 || !reach.is_finite() || crate::numeric::factors_beyond_safe_scale(reach).is_some() {
             return None;
         }
@@ -731,6 +737,42 @@ pub fn solid_shape(kind: VolumeKind, p: &[DVec3]) -> f64 {
     let (q, _) = in_unit_scale(p);
     let (r, count) = (kind.reference(), kind.row().corner_edges.len());
     (0..count).map(|c| q3::mean_ratio(&corner_tet(kind, &q, c), r)).sum::<f64>() / count as f64
+}
+
+/// [`solid_shape`]'s terms, its measured corners' mean ratios in corner order, for an
+/// element within the safe scale as it is (where each is a function of its own corner's
+/// tetrahedron alone, so a corner that did not move keeps its term).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct CornerShapes([f64; 8]);
+
+impl CornerShapes {
+    /// The terms of the element of `kind` with corners `p`, each corner's from `kept(c)`
+    /// where it gives one (the term of a corner whose tetrahedron is as it was), else
+    /// measured; `None` for an element beyond the safe scale, which [`solid_shape`]
+    /// measures in its own scale.
+    pub fn of(kind: VolumeKind, p: &[DVec3], kept: impl Fn(usize) -> Option<f64>) -> Option<CornerShapes> {
+        let p = &p[..kind.corners()];
+        if crate::numeric::factors_beyond_safe_scale(reach(p)).is_some() {
+            return None;
+        }
+        let r = kind.reference();
+        let mut t = [0.0; 8];
+        for (c, t) in t.iter_mut().enumerate().take(kind.row().corner_edges.len()) {
+            *t = kept(c).unwrap_or_else(|| q3::mean_ratio(&corner_tet(kind, p, c), r));
+        }
+        Some(CornerShapes(t))
+    }
+    /// Corner `c`'s term.
+    #[inline]
+    pub fn term(&self, c: usize) -> f64 {
+        self.0[c]
+    }
+    /// [`solid_shape`] of the element of `kind` from its terms: the same sum in the same
+    /// order, so the same bits.
+    pub fn shape(&self, kind: VolumeKind) -> f64 {
+        let count = kind.row().corner_edges.len();
+        self.0[..count].iter().copied().sum::<f64>() / count as f64
+    }
 }
 
 /// The smallest scaled Jacobian of the element's measured corners (its "sine").

@@ -316,3 +316,26 @@ fn a_valid_ball_holds_only_positions_where_the_hexahedron_is_valid() {
     assert!(ValidBall::of(VolumeKind::Hex8, &flat, 0).is_none());
     assert!(ValidBall::of(VolumeKind::Pyramid5, &ideal(VolumeKind::Pyramid5), 0).is_none());
 }
+
+#[test]
+fn corner_shapes_are_the_terms_of_the_solid_shape_bit_for_bit() {
+    // every kind but the tetrahedron, near the ideal and folded, at three scales: the
+    // terms' mean is solid_shape's bits, measured or kept; beyond the safe scale, none
+    let mut rng = SplitMix64::new(14);
+    for kind in [VolumeKind::Hex8, VolumeKind::Wedge6, VolumeKind::Pyramid5] {
+        for round in 0..300 {
+            let (scale, amount) = ([1.0, 1e-3, 250.0][round % 3], [0.1, 0.6][round % 2]);
+            let p: Vec<DVec3> = ideal(kind)
+                .iter()
+                .take(kind.corners())
+                .map(|c| (*c + DVec3::new(rng.uniform(-1.0, 1.0), rng.uniform(-1.0, 1.0), rng.uniform(-1.0, 1.0)) * amount) * scale)
+                .collect();
+            let t = CornerShapes::of(kind, &p, |_| None).expect("within the safe scale");
+            assert_eq!(t.shape(kind).to_bits(), solid_shape(kind, &p).to_bits(), "{kind:?} {p:?}");
+            let again = CornerShapes::of(kind, &p, |c| (c % 2 == 0).then(|| t.term(c))).unwrap();
+            assert_eq!(again, t);
+        }
+        let huge: Vec<DVec3> = ideal(kind).iter().take(kind.corners()).map(|c| *c * 1e200).collect();
+        assert!(CornerShapes::of(kind, &huge, |_| None).is_none());
+    }
+}
