@@ -147,21 +147,25 @@ impl<T: Copy> PositionMemo<T> {
     }
 }
 
-/// The validity and shape of the stars' elements other than tetrahedra, kept from visit to
-/// visit: each as the element's last star left it, with the corners it was measured at.
+/// The validity and shape (with the shape's terms, [`CornerShapes`]) of the stars' elements
+/// other than tetrahedra, kept from visit to visit: each as the element's last star left
+/// it, with the corners it was measured at.
 /// A star gathered later starts its element's [`PositionMemo`]s with them where the corners
 /// are still those, bit for bit (a neighbour's visit that moved nothing of the element, or
 /// the visit that moved it: its measures at the new position), so an element is not
 /// measured again at a position it was measured at. Both measures are functions of the
 /// kind and the corners alone, so an answer kept is the answer measuring would give.
 ///
-/// Direct-mapped by element number, at most [`KnownSolids::MAX_SLOTS`] slots (some 14 MB
-/// of a mesh of many elements other than tetrahedra), none for a mesh of tetrahedra. A
-/// copy starts empty: it is a cache.
+/// Direct-mapped by element number, at most [`KnownSolids::MAX_SLOTS`] slots of 288 bytes
+/// (some 19 MB of a mesh of many elements other than tetrahedra), none for a mesh of
+/// tetrahedra. A copy starts empty: it is a cache.
 #[derive(Default)]
 pub(crate) struct KnownSolids {
     slots: Vec<KnownSolid>,
 }
+
+// the slot's size that `KnownSolids` states
+const _: () = assert!(std::mem::size_of::<KnownSolid>() == 288);
 
 #[derive(Clone, Copy)]
 struct KnownSolid {
