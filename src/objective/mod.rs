@@ -326,8 +326,9 @@ impl StarMemo {
         let _ = star.memo.dets.set((star.x0, facts));
     }
 
+    /// Whether `at` is `star.x0`, bit for bit.
     #[inline]
-    fn same(at: &DVec2, star: &Star) -> bool {
+    pub(crate) fn same(at: &DVec2, star: &Star) -> bool {
         at.x.to_bits() == star.x0.x.to_bits() && at.y.to_bits() == star.x0.y.to_bits()
     }
 

@@ -276,16 +276,15 @@ impl StarSolid {
     /// Laplacian's test and the acceptance rule ask the same positions). Without making them,
     /// which cost more than the exact test of a visit that optimises nothing.
     pub fn validity_measured(&self, x: DVec3) -> Validity {
-        self.measured.get_or(x, || {
-            if self.ball.get().and_then(|b| b.as_ref()).is_some_and(|b| b.holds(x)) {
-                return Validity::Valid;
-            }
-            self.validity_by(self.det.get().and_then(|f| f.as_ref()), x)
-        })
+        self.measured.get_or(x, || self.validity_by(self.ball.get().and_then(|b| b.as_ref()), self.det.get().and_then(|f| f.as_ref()), x))
     }
-    /// The validity at `x` from `form` where it decides, else exactly.
+    /// The validity at `x`: valid where `ball` holds it, else from `form` where it decides,
+    /// else exactly.
     #[inline]
-    fn validity_by(&self, form: Option<&DetForm>, x: DVec3) -> Validity {
+    fn validity_by(&self, ball: Option<&ValidBall>, form: Option<&DetForm>, x: DVec3) -> Validity {
+        if ball.is_some_and(|b| b.holds(x)) {
+            return Validity::Valid;
+        }
         form.and_then(|d| d.validity_at(x)).unwrap_or_else(|| validity(self.kind, self.corners(&self.at(x))))
     }
     /// [`solid_shape`](crate::quality::solid::solid_shape) with the free node at `x`, kept
@@ -317,10 +316,11 @@ impl StarSolid {
     pub fn validity_at(&self, x: DVec3) -> Validity {
         let ball = self.ball.get_or_init(|| ValidBall::of(self.kind, &self.pts, self.slot as usize));
         if ball.is_some_and(|b| b.holds(x)) {
+            // the form is made only where the ball does not decide
             return Validity::Valid;
         }
         let form = self.det.get_or_init(|| DetForm::of(self.kind, &self.pts, self.slot as usize));
-        self.validity_by(form.as_ref(), x)
+        self.validity_by(None, form.as_ref(), x)
     }
     /// Its free node's position as gathered (then as the driver moves it).
     #[inline]

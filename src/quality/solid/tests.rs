@@ -10,6 +10,15 @@ fn ideal(kind: VolumeKind) -> Vec<DVec3> {
     p
 }
 
+/// The ideal element of `kind`, each node moved by up to `amount` along each axis, times
+/// `scale`.
+fn perturbed(kind: VolumeKind, rng: &mut SplitMix64, amount: f64, scale: f64) -> Vec<DVec3> {
+    ideal(kind)
+        .iter()
+        .map(|c| (*c + DVec3::new(rng.uniform(-amount, amount), rng.uniform(-amount, amount), rng.uniform(-amount, amount))) * scale)
+        .collect()
+}
+
 fn pts(a: &[[f64; 3]]) -> Vec<DVec3> {
     a.iter().map(|&c| DVec3::from(c)).collect()
 }
@@ -75,10 +84,7 @@ fn eval(b: &Bezier, t: [f64; 3]) -> f64 {
 fn the_bernstein_coefficients_are_the_hexahedron_jacobian_determinant() {
     let mut rng = SplitMix64::new(11);
     for _ in 0..50 {
-        let p: Vec<DVec3> = ideal(VolumeKind::Hex8)
-            .iter()
-            .map(|c| *c + DVec3::new(rng.uniform(-0.4, 0.4), rng.uniform(-0.4, 0.4), rng.uniform(-0.4, 0.4)))
-            .collect();
+        let p: Vec<DVec3> = perturbed(VolumeKind::Hex8, &mut rng, 0.4, 1.0);
         let b = hex_det(&p);
         for _ in 0..20 {
             let t = [rng.uniform(0.0, 1.0), rng.uniform(0.0, 1.0), rng.uniform(0.0, 1.0)];
@@ -150,10 +156,7 @@ fn validity_agrees_with_dense_sampling_on_random_elements() {
     let mut rng = SplitMix64::new(21);
     let (mut valid, mut inverted) = (0, 0);
     for _ in 0..400 {
-        let p: Vec<DVec3> = ideal(VolumeKind::Hex8)
-            .iter()
-            .map(|c| *c + DVec3::new(rng.uniform(-0.6, 0.6), rng.uniform(-0.6, 0.6), rng.uniform(-0.6, 0.6)))
-            .collect();
+        let p: Vec<DVec3> = perturbed(VolumeKind::Hex8, &mut rng, 0.6, 1.0);
         let n = 12;
         let sampled_min = (0..=n)
             .flat_map(|i| (0..=n).flat_map(move |j| (0..=n).map(move |k| (i, j, k))))
@@ -223,10 +226,7 @@ fn a_det_form_decides_as_validity_does_wherever_the_free_corner_goes() {
     for kind in [VolumeKind::Hex8, VolumeKind::Pyramid5] {
         for round in 0..200 {
             let scale = [1.0, 1e-3, 250.0][round % 3];
-            let p: Vec<DVec3> = ideal(kind)
-                .iter()
-                .map(|c| (*c + DVec3::new(rng.uniform(-0.3, 0.3), rng.uniform(-0.3, 0.3), rng.uniform(-0.3, 0.3))) * scale)
-                .collect();
+            let p: Vec<DVec3> = perturbed(kind, &mut rng, 0.3, scale);
             let slot = round % kind.corners();
             let form = DetForm::of(kind, &p, slot).expect("a Bernstein form");
             for _ in 0..20 {
@@ -259,10 +259,7 @@ fn a_hexahedrons_slopes_are_its_coefficients_differences() {
     let mut rng = SplitMix64::new(12);
     for round in 0..400 {
         let scale = [1.0, 1e-3, 250.0][round % 3];
-        let p: Vec<DVec3> = ideal(VolumeKind::Hex8)
-            .iter()
-            .map(|c| (*c + DVec3::new(rng.uniform(-0.6, 0.6), rng.uniform(-0.6, 0.6), rng.uniform(-0.6, 0.6))) * scale)
-            .collect();
+        let p: Vec<DVec3> = perturbed(VolumeKind::Hex8, &mut rng, 0.6, scale);
         let slot = round % 8;
         let (c, slopes) = hex_det_and_slopes(&p, slot);
         assert_eq!(c, hex_det(&p));
@@ -287,10 +284,7 @@ fn a_valid_ball_holds_only_positions_where_the_hexahedron_is_valid() {
     let (mut held, mut asked) = (0, 0);
     for round in 0..300 {
         let scale = [1.0, 1e-3, 250.0][round % 3];
-        let p: Vec<DVec3> = ideal(VolumeKind::Hex8)
-            .iter()
-            .map(|c| (*c + DVec3::new(rng.uniform(-0.25, 0.25), rng.uniform(-0.25, 0.25), rng.uniform(-0.25, 0.25))) * scale)
-            .collect();
+        let p: Vec<DVec3> = perturbed(VolumeKind::Hex8, &mut rng, 0.25, scale);
         let slot = round % 8;
         let Some(ball) = ValidBall::of(VolumeKind::Hex8, &p, slot) else {
             assert_ne!(validity(VolumeKind::Hex8, &p), Validity::Valid, "a valid hexahedron has a ball");
