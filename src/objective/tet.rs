@@ -27,7 +27,7 @@ use glam::{DMat3, DVec3};
 use super::{Goal, NodeStar, Objective, ObjectiveKind, Term, BARRIER_EPSILON, BARRIER_WEIGHT, CONDITION_BARRIER};
 use crate::error::{Error, Result};
 use crate::mesh::VolumeKind;
-use crate::quality::solid::{scaled_jacobian_grad0, validity, CornerShapes, DetForm, ValidBall, Validity};
+use crate::quality::solid::{scaled_jacobian_grad0, validity, CornerShapes, CornerSizes, DetForm, ValidBall, Validity};
 use crate::quality::tet::{self as q3, outer, CornerForm, CornerReference, WeightedJacobian, EQUILATERAL_TET};
 
 /// One corner of an element of a star, as the tetrahedron of its Jacobian (Knupp 1999):
@@ -96,6 +96,9 @@ pub struct StarSolid {
     /// Where a hexahedron is valid for certain by its `det J` as gathered (made at the
     /// guard's first question).
     ball: std::sync::OnceLock<Option<ValidBall>>,
+    /// Whether the guard has asked a position outside the ball: the form is made at the
+    /// second such question (the first is answered exactly, which costs less than the form).
+    asked_beyond_ball: std::cell::Cell<bool>,
     /// The validity and the shape at the last two positions the drivers asked of
     /// [`validity_measured`](Self::validity_measured) and
     /// [`shape_measured`](Self::shape_measured) (the gathered one and a move's).
@@ -104,6 +107,8 @@ pub struct StarSolid {
     /// The shape's terms at the last position it was measured at: a corner whose
     /// tetrahedron does not hold the free node keeps its term wherever the node goes.
     terms: std::cell::Cell<Option<(DVec3, CornerShapes)>>,
+    /// The corners' sizes at the last position they were measured at, as `terms`.
+    sizes: std::cell::Cell<Option<(DVec3, CornerSizes)>>,
 }
 
 /// A measure of a star's element kept for the last two positions of the free node asked:
@@ -147,7 +152,8 @@ impl<T: Copy> PositionMemo<T> {
     }
 }
 
-/// The validity and shape (with the shape's terms, [`CornerShapes`]) of the stars' elements
+/// The validity and shape (with the shape's terms, [`CornerShapes`], and the corners'
+/// sizes, [`CornerSizes`]) of the stars' elements
 /// other than tetrahedra, kept from visit to visit: each as the element's last star left
 /// it, with the corners it was measured at.
 /// A star gathered later starts its element's [`PositionMemo`]s with them where the corners
@@ -156,8 +162,8 @@ impl<T: Copy> PositionMemo<T> {
 /// measured again at a position it was measured at. Both measures are functions of the
 /// kind and the corners alone, so an answer kept is the answer measuring would give.
 ///
-/// Direct-mapped by element number, at most [`KnownSolids::MAX_SLOTS`] slots of 288 bytes
-/// (some 19 MB of a mesh of many elements other than tetrahedra), none for a mesh of
+/// Direct-mapped by element number, at most [`KnownSolids::MAX_SLOTS`] slots of 424 bytes
+/// (some 28 MB of a mesh of many elements other than tetrahedra), none for a mesh of
 /// tetrahedra. A copy starts empty: it is a cache.
 #[derive(Default)]
 pub(crate) struct KnownSolids {
@@ -165,7 +171,7 @@ pub(crate) struct KnownSolids {
 }
 
 // the slot's size that `KnownSolids` states
-const _: () = assert!(std::mem::size_of::<KnownSolid>() == 288);
+const _: () = assert!(std::mem::size_of::<KnownSolid>() == 424);
 
 #[derive(Clone, Copy)]
 struct KnownSolid {
@@ -175,11 +181,12 @@ struct KnownSolid {
     validity: Option<Validity>,
     shape: Option<f64>,
     terms: Option<CornerShapes>,
+    sizes: Option<CornerSizes>,
 }
 
 impl KnownSolid {
     const EMPTY: KnownSolid =
-        KnownSolid { element: u32::MAX, kind: VolumeKind::Tet4, corners: [DVec3::ZERO; 8], validity: None, shape: None, terms: None };
+        KnownSolid { element: u32::MAX, kind: VolumeKind::Tet4, corners: [DVec3::ZERO; 8], validity: None, shape: None, terms: None, sizes: None };
     /// Whether this slot holds `element` of `kind` at `corners`, bit for bit.
     fn holds(&self, element: u32, kind: VolumeKind, corners: &[DVec3]) -> bool {
         let bits = |p: &DVec3| [p.x.to_bits(), p.y.to_bits(), p.z.to_bits()];
@@ -221,6 +228,7 @@ impl KnownSolids {
                 e.shaped.start_with(x, q);
             }
             e.terms.set(k.terms.map(|t| (x, t)));
+            e.sizes.set(k.sizes.map(|t| (x, t)));
         }
     }
 
@@ -229,6 +237,7 @@ impl KnownSolids {
     fn keep(&mut self, e: &StarSolid, x: DVec3, elements: usize) {
         let (validity, shape) = (e.measured.kept(x), e.shaped.kept(x));
         let terms = e.terms.get().filter(|&(at, _)| at == x).map(|(_, t)| t);
+        let sizes = e.sizes.get().filter(|&(at, _)| at == x).map(|(_, t)| t);
         if validity.is_none() && shape.is_none() {
             return;
         }
@@ -246,10 +255,11 @@ impl KnownSolids {
             k.validity = validity.or(k.validity);
             k.shape = shape.or(k.shape);
             k.terms = terms.or(k.terms);
+            k.sizes = sizes.or(k.sizes);
         } else {
             let mut c = [DVec3::ZERO; 8];
             c[..corners.len()].copy_from_slice(corners);
-            *k = KnownSolid { element: e.element, kind: e.kind, corners: c, validity, shape, terms };
+            *k = KnownSolid { element: e.element, kind: e.kind, corners: c, validity, shape, terms, sizes };
         }
     }
 }
@@ -264,10 +274,23 @@ impl StarSolid {
             pts,
             det: std::sync::OnceLock::new(),
             ball: std::sync::OnceLock::new(),
+            asked_beyond_ball: std::cell::Cell::new(false),
             measured: PositionMemo::default(),
             shaped: PositionMemo::default(),
             terms: std::cell::Cell::new(None),
+            sizes: std::cell::Cell::new(None),
         }
+    }
+    /// This element made [`new`](Self::new) in place: the lazy forms' room is not written.
+    fn reset(&mut self, element: u32, kind: VolumeKind, slot: u8, pts: [DVec3; 8]) {
+        (self.element, self.kind, self.slot, self.pts) = (element, kind, slot, pts);
+        self.det = std::sync::OnceLock::new();
+        self.ball = std::sync::OnceLock::new();
+        self.asked_beyond_ball = std::cell::Cell::new(false);
+        self.measured = PositionMemo::default();
+        self.shaped = PositionMemo::default();
+        self.terms = std::cell::Cell::new(None);
+        self.sizes = std::cell::Cell::new(None);
     }
     /// [`validity`](crate::quality::solid::validity) with the free node at `x` as the
     /// drivers' measures ask it (the star as gathered, a move's position): from the
@@ -295,11 +318,8 @@ impl StarSolid {
         self.shaped.get_or(x, || {
             let p = self.at(x);
             let corners = self.corners(&p);
-            let (kept, slot, edges) = (self.terms.get(), self.slot as usize, &self.kind.row().corner_edges);
-            let terms = CornerShapes::of(self.kind, corners, |c| {
-                let moves = c == slot || edges[c].contains(&slot);
-                kept.filter(|_| !moves).map(|(_, t)| t.term(c))
-            });
+            let kept = self.terms.get();
+            let terms = CornerShapes::of(self.kind, corners, |c| kept.filter(|_| !self.moves(c)).map(|(_, t)| t.term(c)));
             match terms {
                 Some(t) => {
                     self.terms.set(Some((x, t)));
@@ -308,6 +328,26 @@ impl StarSolid {
                 None => crate::quality::solid::solid_shape(self.kind, corners),
             }
         })
+    }
+    /// Its corners' sizes with the free node at `x` (for the acceptance rule's size of the
+    /// element), those of the corners whose tetrahedra do not hold the free node taken from
+    /// the last position measured (the same bits: [`CornerSizes`]).
+    pub fn sizes_measured(&self, x: DVec3) -> CornerSizes {
+        let kept = self.sizes.get();
+        if let Some((_, s)) = kept.filter(|&(at, _)| at == x) {
+            return s;
+        }
+        let p = self.at(x);
+        let s = CornerSizes::of(self.kind, self.corners(&p), |c| kept.filter(|_| !self.moves(c)).map(|(_, s)| s.of_kind(self.kind)[c]));
+        self.sizes.set(Some((x, s)));
+        s
+    }
+    /// Whether its measured corner `c`'s tetrahedron holds the free node (the corner or one
+    /// of its edge neighbours is the free node's slot).
+    #[inline]
+    fn moves(&self, c: usize) -> bool {
+        let slot = self.slot as usize;
+        c == slot || self.kind.row().corner_edges[c].contains(&slot)
     }
     /// [`validity`](crate::quality::solid::validity) with the free node at `x`: valid where
     /// the element's [`ValidBall`] holds `x`, else from its [`DetForm`] where it decides
@@ -318,6 +358,10 @@ impl StarSolid {
         if ball.is_some_and(|b| b.holds(x)) {
             // the form is made only where the ball does not decide
             return Validity::Valid;
+        }
+        if self.det.get().is_none() && !self.asked_beyond_ball.replace(true) {
+            // the first position beyond the ball: exactly (a form pays from the second)
+            return validity(self.kind, self.corners(&self.at(x)));
         }
         let form = self.det.get_or_init(|| DetForm::of(self.kind, &self.pts, self.slot as usize));
         self.validity_by(None, form.as_ref(), x)
@@ -398,11 +442,17 @@ impl CornerStar {
             self.known.keep(e, x, elements);
         }
     }
-    /// Adds an element other than a tetrahedron, its measures started with what is known of
-    /// it at its corners now ([`KnownSolids`]).
-    pub(crate) fn push_solid(&mut self, e: StarSolid) {
-        self.known.recall(&e);
-        self.elements.push(e);
+    /// Makes `StarSolid::new(element, kind, slot, pts)` the `n`-th element other than a
+    /// tetrahedron (`n` at most their number), its measures started with what is known of it
+    /// at its corners now ([`KnownSolids`]). An element already there is overwritten in
+    /// place: a gather keeps the last star's elements and truncates them after, as a solid
+    /// (some 1.4 kB with its lazy forms) is costly to move.
+    pub(crate) fn put_solid(&mut self, n: usize, element: u32, kind: VolumeKind, slot: u8, pts: [DVec3; 8]) {
+        match self.elements.get_mut(n) {
+            Some(e) => e.reset(element, kind, slot, pts),
+            None => self.elements.push(StarSolid::new(element, kind, slot, pts)),
+        }
+        self.known.recall(&self.elements[n]);
     }
     /// Whether every element is a tetrahedron: then every corner is measured against
     /// [`reference`](Self::reference), which the measures see as a constant.
@@ -940,10 +990,12 @@ mod tests {
     }
 
     #[test]
-    fn a_solids_shape_keeps_the_terms_of_the_corners_that_did_not_move() {
+    fn a_solids_shape_and_sizes_keep_the_terms_of_the_corners_that_did_not_move() {
         // an element of every kind other than the tetrahedron with each corner free in
-        // turn, its shape asked at a walk of positions: solid_shape's bits at each, the
-        // terms of the corners whose tetrahedra do not hold the free node kept
+        // turn, its shape, corner sizes and validity asked at a walk of positions:
+        // solid_shape's bits and the sizes measured afresh at each, the terms of the corners
+        // whose tetrahedra do not hold the free node kept; the guard's validity (the ball,
+        // the first question beyond it exactly, then the form) the exact test's
         let mut rng = SplitMix64::new(24);
         for kind in [VolumeKind::Hex8, VolumeKind::Wedge6, VolumeKind::Pyramid5] {
             let ideal = kind.row().ideal;
@@ -959,6 +1011,9 @@ mod tests {
                     p[slot] = x;
                     let exact = crate::quality::solid::solid_shape(kind, &p[..kind.corners()]);
                     assert_eq!(e.shape_measured(x).to_bits(), exact.to_bits(), "{kind:?} slot {slot} at {x}");
+                    let sizes = CornerSizes::of(kind, &p[..kind.corners()], |_| None);
+                    assert_eq!(e.sizes_measured(x), sizes, "{kind:?} slot {slot} at {x}");
+                    assert_eq!(e.validity_at(x), validity(kind, &p[..kind.corners()]), "{kind:?} slot {slot} at {x}");
                 }
             }
         }

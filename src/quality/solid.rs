@@ -775,6 +775,39 @@ impl CornerShapes {
     }
 }
 
+/// A corner's size as the acceptance rule reads it: `(unit, scale)`, its Jacobian
+/// determinant `unit · scale³` with `scale` the largest component of its edges and `unit`
+/// the determinant of the edges divided by it (so no product leaves the doubles).
+#[inline]
+pub fn corner_size(t: &[DVec3; 4]) -> (f64, f64) {
+    let e = [t[1] - t[0], t[2] - t[0], t[3] - t[0]];
+    let m = e.iter().fold(0.0f64, |m, v| m.max(v.abs().max_element()));
+    ((e[0] / m).dot((e[1] / m).cross(e[2] / m)), m)
+}
+
+/// The sizes ([`corner_size`]) of an element's measured corners in corner order, as
+/// [`CornerShapes`] holds the shape's terms: each a function of its own corner's
+/// tetrahedron alone, so a corner that did not move keeps its size.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct CornerSizes([(f64, f64); 8]);
+
+impl CornerSizes {
+    /// The sizes of the element of `kind` with corners `p`, each corner's from `kept(c)`
+    /// where it gives one, else measured.
+    pub fn of(kind: VolumeKind, p: &[DVec3], kept: impl Fn(usize) -> Option<(f64, f64)>) -> CornerSizes {
+        let mut s = [(0.0, 0.0); 8];
+        for (c, s) in s.iter_mut().enumerate().take(kind.row().corner_edges.len()) {
+            *s = kept(c).unwrap_or_else(|| corner_size(&corner_tet(kind, p, c)));
+        }
+        CornerSizes(s)
+    }
+    /// The measured corners' sizes of an element of `kind`, in corner order.
+    #[inline]
+    pub fn of_kind(&self, kind: VolumeKind) -> &[(f64, f64)] {
+        &self.0[..kind.row().corner_edges.len()]
+    }
+}
+
 /// The smallest scaled Jacobian of the element's measured corners (its "sine").
 pub fn solid_min_sine(kind: VolumeKind, p: &[DVec3]) -> f64 {
     let r = kind.reference();

@@ -39,7 +39,7 @@ use guard::KeepValid;
 pub(crate) use measure::is_inverted;
 pub(crate) use measure::triangle_shape_at;
 use measure::triangle_shape_at_both;
-pub use accept::{ElementScore, Verdict, MIN_SIZE_RATIO};
+pub use accept::{ElementScore, Size, Verdict, MIN_SIZE_RATIO};
 pub use measure::StarQuality;
 #[cfg(test)]
 pub(crate) use measure::{element_measures, element_shape_at, star_quality, star_shape};

@@ -23,7 +23,7 @@ use crate::objective::{CornerStar, Objective, StarCorner, StarSolid};
 use crate::quality::solid::{self, Validity};
 use crate::quality::tet as q3;
 use crate::smooth::{
-    DriverStar, ElementScore, Verdict, Measure, PassRecord, SmoothMesh, SmoothOptions, Smoother, StarQuality, StarView, SweepCounts,
+    DriverStar, ElementScore, Size, Verdict, Measure, PassRecord, SmoothMesh, SmoothOptions, Smoother, StarQuality, StarView, SweepCounts,
 };
 
 impl SmoothMesh for VolumeMesh {
@@ -81,7 +81,8 @@ impl DriverStar for CornerStar {
         self.forms_pending_at = Some(mesh.nodes()[node]);
         self.x0 = mesh.nodes()[node];
         self.tets.clear();
-        self.elements.clear();
+        // the elements other than tetrahedra overwritten in place, then truncated
+        let mut solids = 0;
         let nodes = mesh.nodes();
         let (x, corners) = (nodes[node], mesh.node_tet_corners(node));
         for (i, &e) in mesh.node_tets(node).iter().enumerate() {
@@ -105,8 +106,10 @@ impl DriverStar for CornerStar {
                 let pts = WITH_FIRST[s].map(|j| all[tuple[j]]);
                 self.tets.push(StarCorner::pending(e, pts, &row.slot_references[s], false));
             }
-            self.push_solid(StarSolid::new(e, kind, slot as u8, all));
+            self.put_solid(solids, e, kind, slot as u8, all);
+            solids += 1;
         }
+        self.elements.truncate(solids);
     }
     fn complete(&mut self) {
         self.complete_forms();
@@ -337,7 +340,8 @@ trait SolidScore {
 impl SolidScore for StarSolid {
     fn score(&self, x: DVec3, m: Measure) -> ElementScore {
         let p = self.at(x);
-        let score = ElementScore::solid_sized(self.kind, self.corners(&p), self.validity_measured(x));
+        let size = Size::least_corner(self.kind, &self.sizes_measured(x));
+        let score = ElementScore::solid_sized(self.kind, self.corners(&p), self.validity_measured(x), size);
         let quality = match m {
             Measure::Shape => self.shape_measured(x),
             Measure::MinSine => solid::solid_min_sine(self.kind, self.corners(&p)),

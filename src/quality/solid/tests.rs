@@ -312,6 +312,33 @@ fn a_valid_ball_holds_only_positions_where_the_hexahedron_is_valid() {
 }
 
 #[test]
+fn corner_sizes_are_each_corners_and_kept_ones_the_same() {
+    // every kind but the tetrahedron, near the ideal and folded, at three scales: each size
+    // is its corner tetrahedron's (unit · scale³ its determinant), measured or kept
+    let mut rng = SplitMix64::new(15);
+    for kind in [VolumeKind::Hex8, VolumeKind::Wedge6, VolumeKind::Pyramid5] {
+        for round in 0..300 {
+            let (scale, amount) = ([1.0, 1e-3, 250.0][round % 3], [0.1, 0.6][round % 2]);
+            let p: Vec<DVec3> = ideal(kind)
+                .iter()
+                .take(kind.corners())
+                .map(|c| (*c + DVec3::new(rng.uniform(-1.0, 1.0), rng.uniform(-1.0, 1.0), rng.uniform(-1.0, 1.0)) * amount) * scale)
+                .collect();
+            let s = CornerSizes::of(kind, &p, |_| None);
+            assert_eq!(s.of_kind(kind).len(), kind.row().corner_edges.len());
+            for (c, &(unit, m)) in s.of_kind(kind).iter().enumerate() {
+                let t = corner_tet(kind, &p, c);
+                let det = corner_det(&t);
+                assert!((unit * m * m * m - det).abs() <= 1e-12 * m * m * m, "{kind:?} corner {c}: {unit} {m} {det}");
+                assert_eq!((unit, m), corner_size(&t));
+            }
+            let again = CornerSizes::of(kind, &p, |c| (c % 2 == 0).then(|| s.of_kind(kind)[c]));
+            assert_eq!(again, s);
+        }
+    }
+}
+
+#[test]
 fn corner_shapes_are_the_terms_of_the_solid_shape_bit_for_bit() {
     // every kind but the tetrahedron, near the ideal and folded, at three scales: the
     // terms' mean is solid_shape's bits, measured or kept; beyond the safe scale, none
