@@ -99,6 +99,10 @@ struct Bezier {
 
 impl Bezier {
     fn min_coefficient(&self) -> f64 {
+        if self.deg == [2, 2, 2] {
+            // a hexahedron's: all 27, in the loop's order
+            return self.c.as_flattened().as_flattened().iter().fold(f64::INFINITY, |m, &v| m.min(v));
+        }
         let mut m = f64::INFINITY;
         for i in 0..=self.deg[0] {
             for j in 0..=self.deg[1] {
@@ -156,6 +160,14 @@ impl Bezier {
     /// Decides the sign of the polynomial on the box: positive everywhere, ≤ 0 somewhere,
     /// or not decided within [`MAX_BOXES`] boxes.
     fn validity(&self) -> Validity {
+        // the first box decides most elements: without the subdivision's stack
+        let (corner, least) = (self.min_corner(), self.min_coefficient());
+        if corner <= 0.0 || corner.is_nan() {
+            return Validity::Inverted;
+        }
+        if least > 0.0 {
+            return Validity::Valid;
+        }
         let axes: Vec<usize> = (0..3).filter(|&k| self.deg[k] == 2).collect();
         let mut stack = vec![(*self, 0usize)];
         let mut boxes = 0;
