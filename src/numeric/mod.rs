@@ -5,10 +5,12 @@
 //! bits of an ordinary mesh's results do not change) where squares and cross products
 //! would leave the doubles, and measure lengths without over- or underflow.
 //! [`SplitMix64`] is the deterministic generator behind every seeded sample and every
-//! randomised test.
+//! randomised test; [`order`] holds the one sort the orderings by a float and the stable
+//! sorts by a key share.
 
 use glam::{DVec2, DVec3};
 
+pub mod order;
 mod prng;
 
 pub use prng::SplitMix64;

@@ -19,6 +19,7 @@ use super::theme::Theme;
 use super::text::{draw_text, Align, TextStyle, Valign};
 use super::view::{sane_dpr, Frame, View, ZoomPan};
 use crate::error::{Error, Result};
+use crate::numeric::order::sort_total;
 use crate::objective::{Goal, Objective, Star};
 use crate::quality::{corner_edges, scaled_jacobian};
 
@@ -222,7 +223,7 @@ pub fn choose_levels(field: &Field, levels: Levels) -> Vec<f64> {
     if v.len() < 2 {
         return Vec::new();
     }
-    v.sort_by(f64::total_cmp);
+    sort_total(&mut v);
     let (min, max) = (v[0], v[v.len() - 1]);
     let mut out: Vec<f64> = match levels {
         Levels::Quantiles(n) => (1..=n)
@@ -238,7 +239,7 @@ pub fn choose_levels(field: &Field, levels: Levels) -> Vec<f64> {
             // of the positive distances to the largest
             let best = if field.goal == Goal::MaximizeMin { max } else { min };
             let mut d: Vec<f64> = v.iter().map(|x| (x - best).abs()).filter(|d| *d > 0.0).collect();
-            d.sort_by(f64::total_cmp);
+            sort_total(&mut d);
             if d.is_empty() {
                 return Vec::new();
             }
@@ -258,7 +259,7 @@ pub fn choose_levels(field: &Field, levels: Levels) -> Vec<f64> {
         }
     };
     out.retain(|x| x.is_finite());
-    out.sort_by(f64::total_cmp);
+    sort_total(&mut out);
     out.dedup_by(|a, b| (*a - *b).abs() <= 1e-12 * (1.0 + b.abs()));
     out
 }

@@ -29,6 +29,7 @@ use super::theme::Theme;
 use super::paint::{fill_rect, rect_mask, rgba, solid};
 use super::text::{draw_text, size_to_fit, Align, TextStyle, Valign};
 use super::view::{sane_dpr, Frame};
+use crate::numeric::order::{sort_stable_by_key, total_order_key};
 use crate::{Error, Result};
 
 /// An orbit camera: it turns about the vertical (z) axis by `yaw` and rises above the
@@ -465,7 +466,7 @@ pub fn render_surface(pixmap: &mut Pixmap, faces: &Faces, opts: &SurfaceView) ->
             Some((z, f))
         })
         .collect();
-    order.sort_by(|a, b| b.0.total_cmp(&a.0).then(a.1.cmp(&b.1)));
+    sort_stable_by_key(&mut order, |&(z, _)| !total_order_key(z)); // ties in face order
 
     let light = {
         let l = light_in_camera();

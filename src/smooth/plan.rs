@@ -1,6 +1,7 @@
 //! Planning a pass: the visit order (input or Chen's priority) and the untangling sweeps.
 
 use crate::mesh::Mesh;
+use crate::numeric::order::total_order_key;
 
 use super::*;
 
@@ -123,11 +124,7 @@ impl<S: DriverStar> Smoother<S> {
         let q = |i: usize| tie_scale(quality[i]);
         // sorted as (key, node) pairs, not through a comparator that looks the qualities up
         // (random reads over the whole array); the key orders as `f64::total_cmp` does
-        let key = |v: f64| {
-            let b = v.to_bits() as i64;
-            b ^ ((((b >> 63) as u64) >> 1) as i64)
-        };
-        let mut keyed: Vec<(i64, u32)> = self.ranked.iter().map(|&i| (key(q(i as usize)), i)).collect();
+        let mut keyed: Vec<(u64, u32)> = self.ranked.iter().map(|&i| (total_order_key(q(i as usize)), i)).collect();
         keyed.sort_unstable();
         self.ranked.clear();
         self.ranked.extend(keyed.iter().map(|&(_, i)| i));
@@ -191,13 +188,14 @@ impl<S: DriverStar> Smoother<S> {
                 }
             }
         }
-        let mut ranked: Vec<(f64, u32)> = Vec::with_capacity(self.revisits.len());
+        // by quality (as `f64::total_cmp` orders it), ties to the lower node: (key, node) pairs
+        let mut ranked: Vec<(u64, u32)> = Vec::with_capacity(self.revisits.len());
         for &n in &self.revisits {
             self.marked[n as usize] = false;
             self.star.gather_for_measures(view.star_mesh(n as usize), n as usize);
-            ranked.push((tie_scale(self.star.min_shape_at(self.star.x0())), n));
+            ranked.push((total_order_key(tie_scale(self.star.min_shape_at(self.star.x0()))), n));
         }
-        ranked.sort_unstable_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
+        ranked.sort_unstable();
         self.revisits.clear();
         self.revisits.extend(ranked.iter().map(|&(_, n)| n));
         if self.revisits.is_empty() {

@@ -17,6 +17,7 @@ use glam::DVec3;
 use crate::error::{Error, Result};
 pub use crate::mesh::{VolumeKind, TET10_EDGES};
 use crate::mesh::{FixedSpec, MeshBuilder, NodeRole};
+use crate::numeric::order::sort_stable_by_key;
 use crate::quality::solid::{solid_measures, validity, SolidMeasures, Validity};
 use crate::quality::tet as q3;
 
@@ -227,9 +228,12 @@ impl VolumeMesh {
             start.push(start.last().copied().unwrap_or(0) + k.nodes() as u32);
         }
         debug_assert_eq!(*start.last().unwrap_or(&0) as usize, elements.len());
-        let mut present: Vec<VolumeKind> = kinds.clone();
-        present.sort_unstable();
-        present.dedup();
+        // in `VolumeKind`'s order, which is `ALL`'s
+        let mut seen = [false; VolumeKind::ALL.len()];
+        for &k in &kinds {
+            seen[k as usize] = true;
+        }
+        let present: Vec<VolumeKind> = VolumeKind::ALL.into_iter().filter(|&k| seen[k as usize]).collect();
         let family = |e: usize| kinds[e].row().name;
         for (i, p) in nodes.iter().enumerate() {
             if !p.is_finite() {
@@ -444,7 +448,7 @@ impl VolumeMesh {
             pairs.dedup();
             (follow_start, follow) = csr(n, &mut pairs);
             // each follower's corners, as the first element that has it lists them
-            of.sort_by_key(|&(f, _, _)| f);
+            sort_stable_by_key(&mut of, |&(f, _, _)| f as u64);
             let mut seen = vec![false; n];
             let mut list: Vec<(u32, u32)> = Vec::new();
             let mut i = 0;
@@ -467,8 +471,9 @@ impl VolumeMesh {
                 }
                 i = j;
             }
-            // a stable sort keeps each follower's corners in their order
-            list.sort_by_key(|&(f, _)| f);
+            // in followers' order already (made from `of`, sorted by follower), each
+            // follower's corners in their order
+            debug_assert!(list.windows(2).all(|w| w[0].0 <= w[1].0));
             for &(f, _) in &list {
                 parent_start[f as usize + 1] += 1;
             }

@@ -10,6 +10,7 @@ use std::collections::HashMap;
 
 use glam::DVec3;
 
+use crate::numeric::order::{pair_key, stable_order};
 use crate::quality::tet::{dihedral_angles, signed_volume};
 
 /// The smallest dihedral angle (radians) of a tetrahedron.
@@ -99,9 +100,10 @@ pub fn swap_max_min_dihedral(p: &[DVec3], tets: &mut Vec<[u32; 4]>, max_passes: 
             }
         }
         let mut dead = Vec::new();
-        let mut ring: Vec<_> = edges.into_iter().filter(|(_, around)| around.len() == 3).collect();
-        ring.sort_unstable();
-        for ([d, e], around) in ring {
+        // in the order of the edges (each is once in the map)
+        let ring: Vec<_> = edges.into_iter().filter(|(_, around)| around.len() == 3).collect();
+        for r in stable_order(ring.len(), |r| pair_key(ring[r].0[0], ring[r].0[1])) {
+            let ([d, e], ref around) = ring[r as usize];
             if around.iter().any(|&i| touched[i]) {
                 continue;
             }
@@ -125,7 +127,7 @@ pub fn swap_max_min_dihedral(p: &[DVec3], tets: &mut Vec<[u32; 4]>, max_passes: 
                 tets[around[0]] = new[0];
                 tets[around[1]] = new[1];
                 dead.push(around[2]);
-                for &i in &around {
+                for &i in around {
                     touched[i] = true;
                 }
                 made += 1;

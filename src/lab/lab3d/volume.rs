@@ -19,6 +19,7 @@ use crate::lab::views::FigureWords;
 use crate::lab::{PassSummary, Settings, Side};
 use crate::mesh::{ElementKind, NodeRole, Plane};
 use crate::model::Model;
+use crate::numeric::order::{sort_stable_by_key, total_order_key};
 use crate::objective::{describe_tet, tet_objective, CornerStar, Goal, Objective, Star, StarElement};
 use crate::optimize::{Iterate, SolveResult};
 use crate::quality::MeshStats;
@@ -124,7 +125,7 @@ fn section(star: &CornerStar, plane: &Plane) -> Star {
         let angle = |q: DVec2| (q - centre).y.atan2((q - centre).x);
         let a0 = angle(out.x0);
         let turn = |q: DVec2| (angle(q) - a0).rem_euclid(std::f64::consts::TAU);
-        hits.sort_by(|a, b| turn(*a).total_cmp(&turn(*b)));
+        sort_stable_by_key(&mut hits, |&q| total_order_key(turn(q)));
         if hits.len() <= 3 {
             push(&mut out, e.element, &hits);
         } else {

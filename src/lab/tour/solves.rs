@@ -16,6 +16,7 @@ use super::{find, repro};
 use crate::error::{Error, Result};
 use crate::lab::views::{path_kind, pixmap, stop_words, Canvas, LEVEL_SET_SAMPLES};
 use crate::lab::{Playground, Side};
+use crate::numeric::order::{sort_stable_by_key, total_order_key};
 use crate::objective::{CornerTerm, Goal, MaxMinShape, Objective, Star};
 use crate::optimize::{min_norm_point, DirectionKind, SolveResult};
 use crate::render::{
@@ -168,7 +169,7 @@ pub(crate) fn chen_9_numbers() -> Result<Chen9> {
     };
     let (old_best, new_best) = (best(Side::A), best(Side::B));
     let mut corners = MaxMinShape.corner_terms(&star, star.x0);
-    corners.sort_by(|p, q| p.value.total_cmp(&q.value));
+    sort_stable_by_key(&mut corners, |p| total_order_key(p.value));
     let lowest = match corners.as_slice() {
         [p, q, ..] => [*p, *q],
         _ => return Err(Error::invalid("chen-9: the star has fewer than two corners")),

@@ -9,6 +9,7 @@ use glam::DVec3;
 use super::grid::Grid;
 use super::Projected;
 use crate::mesh::{Mesh, NodeRole, Plane, NONE};
+use crate::numeric::order::{sort_stable_by_key, stable_order, total_order_key};
 
 /// The fewest neighbours a node's fit is made of: its ring of elements' nodes, topped up
 /// with the nearest nodes of the next ring (a linear triangle's six neighbours alone would
@@ -157,7 +158,7 @@ impl Fitted {
                     two.sort_unstable();
                     two.dedup();
                     let d = |m: u32| (points[m as usize] - points[n]).length();
-                    two.sort_by(|&a, &b| d(a).total_cmp(&d(b)).then(a.cmp(&b)));
+                    sort_stable_by_key(&mut two, |&m| total_order_key(d(m))); // ties ascending, as they are
                     near.extend(two.iter().take(MIN_FIT_POINTS - near.len()));
                 }
                 let spacing = if one.is_empty() {
@@ -444,15 +445,15 @@ fn orient_fits(
     }
     let agreement: Vec<f64> =
         (0..nf).map(|f| if area[f] > 0.0 { star[f].dot(fits[f].normal) / area[f] } else { 0.0 }).collect();
-    let mut order: Vec<usize> = (0..nf).collect();
-    order.sort_by(|&a, &b| agreement[b].abs().total_cmp(&agreement[a].abs()).then(a.cmp(&b)));
+    // by |agreement|, largest first, ties to the lower fit
+    let order = stable_order(nf, |f| !total_order_key(agreement[f].abs()));
     // Hoppe et al.'s orientation (1992): across the rings along a minimum spanning tree of
     // the cost 1 − |nᵢ·nⱼ|, so a sign passes between near-parallel normals first and one
     // poor fit does not turn the fits beyond it
     let mut done = vec![false; nf];
     let mut heap = std::collections::BinaryHeap::new();
     let cost = |a: &Fit, b: &Fit| std::cmp::Reverse((1.0 - a.normal.dot(b.normal).abs()).max(0.0).to_bits());
-    for seed in order {
+    for seed in order.into_iter().map(|f| f as usize) {
         if done[seed] {
             continue;
         }

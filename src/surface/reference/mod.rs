@@ -5,6 +5,7 @@
 use glam::DVec3;
 
 use crate::mesh::{ElementKind, NONE};
+use crate::numeric::order::{pair_key, sort_stable_by_key};
 
 mod fitted;
 mod grid;
@@ -331,7 +332,7 @@ impl Facets {
             let n = area(tri);
             side_normal.extend(tri.iter().filter(|&&v| mixed[v as usize]).map(|&v| ((v, k), n)));
         }
-        side_normal.sort_by_key(|&(key, _)| key);
+        sort_stable_by_key(&mut side_normal, |&((v, k), _)| pair_key(v, k));
         side_normal.dedup_by(|(k1, n1), (k0, n0)| {
             let same = k1 == k0;
             if same {
