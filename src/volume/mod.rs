@@ -143,7 +143,8 @@ pub struct VolumeMesh {
     /// CSR (quadratic meshes): the corners each follower sits at the mean of.
     parent_start: Vec<u32>,
     parents: Vec<u32>,
-    /// Faces of one element, outward (right-handed seen from outside).
+    /// Faces of one element, outward (right-handed seen from outside), in the order of
+    /// their keys ([`Face::key`]): the build finds them among the faces sorted by key.
     boundary: Vec<Face>,
     /// The file's triangles and quads ([`GivenFace`]).
     faces: Vec<GivenFace>,
@@ -514,8 +515,8 @@ impl VolumeMesh {
     /// gave no fixed flags of its own), and this says which nodes off the boundary that
     /// fixed (`None` when none).
     pub fn stray_faces_note(&self) -> Option<String> {
-        let mut on_boundary: Vec<[u32; 4]> = self.boundary.iter().map(Face::key).collect();
-        on_boundary.sort_unstable();
+        let on_boundary: Vec<[u32; 4]> = self.boundary.iter().map(Face::key).collect();
+        debug_assert!(on_boundary.windows(2).all(|w| w[0] < w[1]), "the boundary in its keys' order");
         let mut boundary_node = vec![false; self.nodes.len()];
         for f in &self.boundary {
             for &i in f.nodes() {
