@@ -154,8 +154,15 @@ impl<'a> Lexer<'a> {
     }
 
     /// A non-negative integer.
+    #[inline]
     pub fn u64(&mut self, what: impl Fn() -> String) -> Result<(u64, usize)> {
-        let t = self.expect(&what)?;
+        self.u64_of(&what)
+    }
+
+    /// [`u64`](Self::u64)'s body, one copy for every `what` its callers pass (the readers
+    /// read some ten kinds of count and id with it; `what` is called for a message only).
+    fn u64_of(&mut self, what: &dyn Fn() -> String) -> Result<(u64, usize)> {
+        let t = self.expect(what)?;
         match t.text.parse::<u64>() {
             Ok(v) => Ok((v, t.line)),
             Err(_) => Err(Error::parse(
