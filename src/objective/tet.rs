@@ -90,7 +90,8 @@ pub struct StarSolid {
     pub slot: u8,
     pub pts: [DVec3; 8],
     /// Its `det J` as a function of the free node's position ([`DetForm`]), worked out at
-    /// the first trial that asks (a visit of the smart Laplacian asks none); it holds
+    /// the guard's second question beyond the valid ball (a visit of the smart Laplacian
+    /// asks none); it holds
     /// wherever the free node goes, as the other corners stay.
     det: std::sync::OnceLock<Option<DetForm>>,
     /// Where a hexahedron is valid for certain by its `det J` as gathered (made at the
@@ -350,8 +351,9 @@ impl StarSolid {
         c == slot || self.kind.row().corner_edges[c].contains(&slot)
     }
     /// [`validity`](crate::quality::solid::validity) with the free node at `x`: valid where
-    /// the element's [`ValidBall`] holds `x`, else from its [`DetForm`] where it decides
-    /// (each made at the first question).
+    /// the element's [`ValidBall`] holds `x` (made at the first question), else exactly at
+    /// the first position beyond it, then from its [`DetForm`] (made at the second) where it
+    /// decides.
     #[inline]
     pub fn validity_at(&self, x: DVec3) -> Validity {
         let ball = self.ball.get_or_init(|| ValidBall::of(self.kind, &self.pts, self.slot as usize));

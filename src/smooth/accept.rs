@@ -76,11 +76,8 @@ impl Size {
     pub fn at_least(&self, ratio: f64, before: &Size) -> bool {
         self.unit * (self.scale / before.scale).powi(self.dim) >= ratio * before.unit
     }
-}
-
-impl Size {
     /// The size of a solid of `kind`: its smallest measured corner's ([`solid::CornerSizes`]),
-    /// the first of equals in corner order.
+    /// the last of equals in corner order.
     pub fn least_corner(kind: VolumeKind, sizes: &solid::CornerSizes) -> Size {
         let mut size: Option<Size> = None;
         for &(unit, scale) in sizes.of_kind(kind) {
