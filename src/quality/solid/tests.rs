@@ -319,11 +319,7 @@ fn corner_sizes_are_each_corners_and_kept_ones_the_same() {
     for kind in [VolumeKind::Hex8, VolumeKind::Wedge6, VolumeKind::Pyramid5] {
         for round in 0..300 {
             let (scale, amount) = ([1.0, 1e-3, 250.0][round % 3], [0.1, 0.6][round % 2]);
-            let p: Vec<DVec3> = ideal(kind)
-                .iter()
-                .take(kind.corners())
-                .map(|c| (*c + DVec3::new(rng.uniform(-1.0, 1.0), rng.uniform(-1.0, 1.0), rng.uniform(-1.0, 1.0)) * amount) * scale)
-                .collect();
+            let p = perturbed(kind, &mut rng, amount, scale);
             let s = CornerSizes::of(kind, &p, |_| None);
             assert_eq!(s.of_kind(kind).len(), kind.row().corner_edges.len());
             for (c, &(unit, m)) in s.of_kind(kind).iter().enumerate() {
@@ -346,11 +342,7 @@ fn corner_shapes_are_the_terms_of_the_solid_shape_bit_for_bit() {
     for kind in [VolumeKind::Hex8, VolumeKind::Wedge6, VolumeKind::Pyramid5] {
         for round in 0..300 {
             let (scale, amount) = ([1.0, 1e-3, 250.0][round % 3], [0.1, 0.6][round % 2]);
-            let p: Vec<DVec3> = ideal(kind)
-                .iter()
-                .take(kind.corners())
-                .map(|c| (*c + DVec3::new(rng.uniform(-1.0, 1.0), rng.uniform(-1.0, 1.0), rng.uniform(-1.0, 1.0)) * amount) * scale)
-                .collect();
+            let p = perturbed(kind, &mut rng, amount, scale);
             let t = CornerShapes::of(kind, &p, |_| None).expect("within the safe scale");
             assert_eq!(t.shape(kind).to_bits(), solid_shape(kind, &p).to_bits(), "{kind:?} {p:?}");
             let again = CornerShapes::of(kind, &p, |c| (c % 2 == 0).then(|| t.term(c))).unwrap();
