@@ -39,6 +39,30 @@ pub fn is_inverted(p: &[DVec3; 4]) -> bool {
     v.is_nan() || v <= 0.0
 }
 
+/// What the acceptance rule reads of a tetrahedron besides its quality (the drivers'
+/// element score): whether it is inverted ([`is_inverted`]), its inversion
+/// `max(0, −det)` and its size, the determinant of its edges as `unit · scale³`
+/// (`quality::solid::corner_size`'s, written out with the determinant: through the
+/// function this hot path compiled some 7% longer).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct TetRuleMeasures {
+    pub inverted: bool,
+    pub inversion: f64,
+    pub unit: f64,
+    pub scale: f64,
+}
+
+impl TetRuleMeasures {
+    #[inline]
+    pub fn of(p: &[DVec3; 4]) -> Self {
+        let e = [p[1] - p[0], p[2] - p[0], p[3] - p[0]];
+        let m = e.iter().fold(0.0f64, |m, v| m.max(v.abs().max_element()));
+        let det = e[0].dot(e[1].cross(e[2]));
+        let unit = (e[0] / m).dot((e[1] / m).cross(e[2] / m));
+        TetRuleMeasures { inverted: is_inverted(p), inversion: (-det).max(0.0), unit, scale: m }
+    }
+}
+
 /// The corners in the tetrahedron's own scale, for the measures that are ratios of
 /// lengths (angles, sines, the mean ratio, κ, the sign of the volume): as they are when
 /// the edges' largest component lies within `numeric::SAFE_SCALE` (2^±200, where

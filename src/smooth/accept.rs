@@ -153,18 +153,12 @@ impl ElementScore {
     /// to [`Verdict::add_qualities`] where it may be the worst).
     #[inline]
     pub fn tet_unmeasured(p: &[DVec3; 4]) -> Self {
-        let e = [p[1] - p[0], p[2] - p[0], p[3] - p[0]];
-        let m = e.iter().fold(0.0f64, |m, v| m.max(v.abs().max_element()));
-        let det = e[0].dot(e[1].cross(e[2]));
-        // solid::corner_size, written out with the determinant: through the function this
-        // hot path compiled some 7% longer
-        let unit = (e[0] / m).dot((e[1] / m).cross(e[2] / m));
-        ElementScore {
-            quality: f64::INFINITY,
-            inverted: q3::is_inverted(p),
-            inversion: (-det).max(0.0),
-            size: Size { unit, scale: m, dim: 3 },
-        }
+        Self::tet_of(&q3::TetRuleMeasures::of(p))
+    }
+    /// [`tet_unmeasured`](Self::tet_unmeasured) of a tetrahedron's measures taken before.
+    #[inline]
+    pub fn tet_of(t: &q3::TetRuleMeasures) -> Self {
+        ElementScore { quality: f64::INFINITY, inverted: t.inverted, inversion: t.inversion, size: Size { unit: t.unit, scale: t.scale, dim: 3 } }
     }
 }
 

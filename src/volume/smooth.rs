@@ -81,6 +81,7 @@ impl DriverStar for CornerStar {
         self.forms_pending_at = Some(mesh.nodes()[node]);
         self.x0 = mesh.nodes()[node];
         self.tets.clear();
+        self.tet_measures.get_mut().clear();
         // the elements other than tetrahedra overwritten in place, then truncated
         let mut solids = 0;
         let nodes = mesh.nodes();
@@ -175,18 +176,28 @@ impl DriverStar for CornerStar {
     /// The tetrahedra by [`q3::mean_ratio_order`] (the mean ratio's order without its cube
     /// root; the acceptance rule then measures the move exactly).
     fn smart_accepts(&self, c: DVec3, m: Measure) -> bool {
-        let measure = |p: &[DVec3; 4]| match m {
-            Measure::Shape => q3::mean_ratio_order(p, self.reference()),
-            Measure::MinSine => q3::dihedral_sines(p).into_iter().fold(f64::INFINITY, f64::min),
-        };
+        let min_sine = |p: &[DVec3; 4]| q3::dihedral_sines(p).into_iter().fold(f64::INFINITY, f64::min);
         let (mut before, mut after) = (f64::INFINITY, f64::INFINITY);
-        for t in self.tets.iter().filter(|t| t.simplex) {
-            let p1 = t.at(c);
-            if !q3::is_inverted(&t.pts) && q3::is_inverted(&p1) {
-                return false;
+        if m == Measure::Shape {
+            // kept for the acceptance rule, which asks the same two positions
+            let mut memo = self.tet_measures.borrow_mut();
+            let (b, a) = (memo.slot(&self.tets, self.x0, self.reference()), memo.slot(&self.tets, c, self.reference()));
+            for ((p0, t0), (p1, t1)) in memo.measures(b).iter().zip(memo.measures(a)) {
+                if !t0.inverted && t1.inverted {
+                    return false;
+                }
+                before = before.min(p0.order());
+                after = after.min(p1.order());
             }
-            before = before.min(measure(&t.pts));
-            after = after.min(measure(&p1));
+        } else {
+            for t in self.tets.iter().filter(|t| t.simplex) {
+                let p1 = t.at(c);
+                if !q3::is_inverted(&t.pts) && q3::is_inverted(&p1) {
+                    return false;
+                }
+                before = before.min(min_sine(&t.pts));
+                after = after.min(min_sine(&p1));
+            }
         }
         // the acceptance rule's score but for the sizes: quality, then validity (a move
         // that does not raise the worst quality is refused whatever the validity, and a
@@ -252,10 +263,12 @@ impl DriverStar for CornerStar {
         let mut v = Verdict::default();
         if m == Measure::Shape {
             let (mut before, mut after) = (LeastMeanRatio::default(), LeastMeanRatio::default());
-            for t in self.tets.iter().filter(|t| t.simplex) {
-                let p1 = t.at(x);
-                v.add(&ElementScore::tet_unmeasured(&t.pts), &ElementScore::tet_unmeasured(&p1));
-                v.add_qualities(before.add(&t.pts, self.reference()), after.add(&p1, self.reference()));
+            // the measures the smart Laplacian's test took at these positions, or taken here
+            let mut memo = self.tet_measures.borrow_mut();
+            let (b, a) = (memo.slot(&self.tets, self.x0, self.reference()), memo.slot(&self.tets, x, self.reference()));
+            for ((p0, t0), (p1, t1)) in memo.measures(b).iter().zip(memo.measures(a)) {
+                v.add(&ElementScore::tet_of(t0), &ElementScore::tet_of(t1));
+                v.add_qualities(before.add_parts(p0), after.add_parts(p1));
             }
         } else {
             for t in self.tets.iter().filter(|t| t.simplex) {
@@ -319,7 +332,11 @@ impl LeastMeanRatio {
     /// The mean ratio of `p` where it may be the smallest so far, +∞ where it cannot.
     #[inline]
     fn add(&mut self, p: &[DVec3; 4], r: &q3::CornerReference) -> f64 {
-        let parts = q3::MeanRatioParts::of(p, r);
+        self.add_parts(&q3::MeanRatioParts::of(p, r))
+    }
+    /// [`add`](Self::add) of a tetrahedron's parts taken before.
+    #[inline]
+    fn add_parts(&mut self, parts: &q3::MeanRatioParts) -> f64 {
         let key = parts.order();
         if key > self.key + 1e-9 * self.key.abs() + 1e-290 {
             return f64::INFINITY;
