@@ -1724,8 +1724,8 @@ fn measure_rows(n: usize, names: &[&str], quick: bool) -> SizeReport {
 struct BeforeAfter {
     base: String,
     reps: u64,
-    /// (target, mesh, options, before ms, after ms)
-    rows: Vec<(String, String, String, f64, f64)>,
+    /// (target, mesh, options, before ms, after ms, runs of each binary)
+    rows: Vec<(String, String, String, f64, f64, u64)>,
 }
 
 impl BeforeAfter {
@@ -1736,7 +1736,10 @@ impl BeforeAfter {
             .as_array()
             .into_iter()
             .flatten()
-            .filter_map(|r| Some((text(r, "target"), text(r, "mesh"), text(r, "options"), r["before_ms"].as_f64()?, r["after_ms"].as_f64()?)))
+            .filter_map(|r| {
+                let runs = r["runs"].as_u64().unwrap_or(v["reps"].as_u64().unwrap_or(0));
+                Some((text(r, "target"), text(r, "mesh"), text(r, "options"), r["before_ms"].as_f64()?, r["after_ms"].as_f64()?, runs))
+            })
             .collect();
         BeforeAfter { base: v["base"].as_str().unwrap_or("?").to_string(), reps: v["reps"].as_u64().unwrap_or(0), rows }
     }
@@ -1756,14 +1759,15 @@ impl BeforeAfter {
             w,
             "Before and after in one run (`scripts/before_after.py`, which `make performance` runs first): the `smoothlab` CLI of the issue's day \
              (commit {}, built beside this tree) and this tree's, `smoothlab smooth MESH --passes 1 --json OPTIONS`, one pass of each target on the \
-             same file, the two binaries alternating, the median of {} runs each of the pass's own time (`elapsed_ms`: the node loop, without \
-             reading, writing or statistics):\n",
+             same file, the two binaries alternating, the median of the runs of each (at least {}, and for a short pass about a second of \
+             this tree's time in all, at most 25: a few runs of a pass of some milliseconds on a shared machine are mostly noise) of the \
+             pass's own time (`elapsed_ms`: the node loop, without reading, writing or statistics):\n",
             self.base, self.reps
         );
-        let _ = writeln!(w, "| target | mesh | options | before | after | speed-up |");
-        let _ = writeln!(w, "|---|---|---|---:|---:|---:|");
-        for (t, mesh, options, b, a) in &self.rows {
-            let _ = writeln!(w, "| {t} | {mesh} | `{options}` | {} | {} | {:.2}× |", fmt_ms(*b), fmt_ms(*a), b / a);
+        let _ = writeln!(w, "| target | mesh | options | runs | before | after | speed-up |");
+        let _ = writeln!(w, "|---|---|---|---:|---:|---:|---:|");
+        for (t, mesh, options, b, a, runs) in &self.rows {
+            let _ = writeln!(w, "| {t} | {mesh} | `{options}` | {runs} | {} | {} | {:.2}× |", fmt_ms(*b), fmt_ms(*a), b / a);
         }
         w.push('\n');
         w
@@ -1879,7 +1883,7 @@ fn issue33_targets(
     for (what, dim, pass, target) in speedups {
         let name = format!("{dim} {pass}");
         let cells = match before_after.rows.iter().find(|r| r.0 == name) {
-            Some((_, _, _, b, a)) => {
+            Some((_, _, _, b, a, _)) => {
                 let s = b / a;
                 let met = if s >= target { "✓".to_string() } else { format!("✗ ({:.2}× of the {target}×)", s) };
                 format!("{} | {} | {s:.2}× | {met}", fmt_ms(*b), fmt_ms(*a))

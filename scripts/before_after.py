@@ -5,7 +5,9 @@ Builds the `smoothlab` CLI of a base commit (default: the code of the day issue 
 measured) beside this tree's release CLI, makes the meshes with this tree's CLI, then
 times one pass of each target with both binaries, alternating, each several times on the
 same file: the pass's own time (`--json`: `elapsed_ms` of the node loop, no reading,
-writing or statistics). Writes JSON for `examples/perf.rs --before-after`.
+writing or statistics). A short pass is run more often (about a second of its time, at
+most MAX_RUNS), as a few runs of a pass of some milliseconds on a shared machine are
+mostly noise. Writes JSON for `examples/perf.rs --before-after`.
 
     scripts/before_after.py [--base COMMIT] [--reps N] > target/perf/before_after.json
 
@@ -14,11 +16,17 @@ writing or statistics). Writes JSON for `examples/perf.rs --before-after`.
 
 import argparse
 import json
+import math
 import os
 import statistics
 import subprocess
 import sys
 import tempfile
+
+# a pass is timed at least --reps times by each binary, and more when short: about
+# SECOND_MS of this tree's pass time in all, at most MAX_RUNS
+SECOND_MS = 1000.0
+MAX_RUNS = 25
 
 BASE = "0e644a2"  # the code of issue 33's day: main before its first change (the merge of 2D condition's Newton trial, b54eb09)
 
@@ -98,7 +106,12 @@ def main():
             print(f"before_after: {target} …", file=sys.stderr)
             times = {"before": [], "after": []}
             visits = {}
-            for _ in range(a.reps):
+            # one untimed run of each first (the file cached, the binaries loaded) tells
+            # how short the pass is
+            for binary in (before, after):
+                first, _ = pass_ms(binary, paths[mesh], options, tmp)
+            runs = max(a.reps, min(MAX_RUNS, math.ceil(SECOND_MS / max(first, 1e-3))))
+            for _ in range(runs):
                 for side, binary in (("before", before), ("after", after)):
                     ms, v = pass_ms(binary, paths[mesh], options, tmp)
                     times[side].append(ms)
@@ -107,6 +120,7 @@ def main():
                 "target": target,
                 "mesh": MESHES[mesh][0],
                 "options": " ".join(options),
+                "runs": runs,
                 "before_ms": statistics.median(times["before"]),
                 "after_ms": statistics.median(times["after"]),
                 "before_visits": visits["before"],
