@@ -91,7 +91,9 @@ reproduction:
 # then the native figures.
 performance: site browser-tools
 	@mkdir -p target/perf
+	$(CARGO) build --release --features parallel --example perf
 	node tests/browser/bench.mjs --nodes 100000 --reps 3 > target/perf/wasm.json
+	$(CARGO) run --release --features parallel --example perf -- --native-peers target/perf/wasm.json
 	node tests/browser/page_bench.mjs --reps 3 > target/perf/page.json
 	node tests/browser/page_memory.mjs > target/perf/page-memory.json
 	$(CARGO) build --release --features parallel --bin smoothlab

@@ -474,6 +474,10 @@ fn main() {
             "--json" => json_out = args.next(),
             "--quick" => quick = true,
             "--issue33" => issue33_only = true,
+            "--native-peers" => {
+                native_peers(&args.next().unwrap_or_else(|| panic!("--native-peers needs the bench page's JSON file")));
+                return;
+            }
             "--before-after" => before_after = args.next(),
             other => {
                 eprintln!("perf: unknown argument {other}");
@@ -567,7 +571,7 @@ fn render(
     let _ = writeln!(w, "- Date: {}", today());
     let _ = writeln!(w, "- Machine: {machine}");
     let _ = writeln!(w, "- Native: `cargo run --release --features parallel --example perf -- --out docs/performance.md --wasm target/perf/wasm.json`");
-    let _ = writeln!(w, "- Browser: `node tests/browser/bench.mjs > target/perf/wasm.json` (headless Chromium, the release wasm of `make site`)");
+    let _ = writeln!(w, "- Browser: `node tests/browser/bench.mjs > target/perf/wasm.json` (headless Chromium, the release wasm of `make site`), then straight after it the same passes natively into that file: `cargo run --release --features parallel --example perf -- --native-peers target/perf/wasm.json`");
     let _ = writeln!(w, "- CLI: `cargo build --release --features parallel --bin smoothlab` first: the time to quality runs the release binary as the user does");
     let _ = writeln!(w, "- Issue 33's sections alone: `cargo run --release --features parallel --example perf -- --issue33 [--quick] [--before-after target/perf/before_after.json]` (about 2 minutes); its speed-ups before and after in one run: `python3 scripts/before_after.py > target/perf/before_after.json` (builds the CLI of the issue's day beside this tree's)");
     let _ = writeln!(w, "- Criterion benches of the same passes: `cargo bench` (`benches/smoothing.rs`).\n");
@@ -727,11 +731,17 @@ fn wasm_table(w: &mut String, v: &serde_json::Value, reports: &[SizeReport]) {
     let nodes = v["nodes"].as_u64().unwrap_or(0) as usize;
     let _ = writeln!(
         w,
-        "The bench page (`www/bench.html`) generates the same rand2d mesh ({} nodes, seed {}) in wasm and times one pass with `performance.now()`, median of {} passes on fresh copies. {}\n",
+        "The bench page (`www/bench.html`) generates the same rand2d mesh ({} nodes, seed {}) in wasm and times one pass with `performance.now()`, median of {} passes on fresh copies. {} {}\n",
         nodes,
         v["seed"],
         v["reps"],
-        v["browser"].as_str().map(|b| format!("Browser: {b}.")).unwrap_or_default()
+        v["browser"].as_str().map(|b| format!("Browser: {b}.")).unwrap_or_default(),
+        if v["passes"].as_array().into_iter().flatten().any(|r| r["native_ns_per_visit"].is_f64()) {
+            "The native figures were measured straight after the page (`perf --native-peers`: the same passes on the same mesh and numbering, \
+             the median of a few passes each), so each ratio compares two figures of the same minute on this shared machine."
+        } else {
+            "The native figures are this run's planar table's, measured some minutes after the page."
+        }
     );
     let _ = writeln!(w, "| pass | order | wasm ns/visit | native ns/visit | wasm / native (target ≤ 1.3) |");
     let _ = writeln!(w, "|---|---|---:|---:|---:|");
@@ -1831,6 +1841,40 @@ fn versus_mesquite(planar: Option<&SizeReport>, volume: &VolumeReport, before_af
 
 /// The wasm bench's passes: (name, Hilbert order, wasm ns per visit, native ns per visit of
 /// the same pass and numbering in this run, when measured).
+/// Measures natively the passes of the bench page's JSON at `path` (`tests/browser/bench.mjs`'s
+/// output) on the same mesh and numbering, and writes each pass's figure into that JSON
+/// (`native_ns_per_visit`, read by [`wasm_rows`]). `make performance` runs it straight
+/// after the bench page, so a wasm / native ratio compares two figures of the same minute
+/// on a shared machine rather than of minutes apart (the same binaries' ratios moved by
+/// some 0.5 between runs when the native half came from the planar table).
+fn native_peers(path: &str) {
+    let mut v = read_json(Some(path)).unwrap_or_else(|| panic!("cannot read the bench page's JSON {path}"));
+    let nodes = v["nodes"].as_u64().unwrap_or(0) as usize;
+    let mut names: Vec<String> = Vec::new();
+    for row in v["passes"].as_array().into_iter().flatten() {
+        let name = row["name"].as_str().unwrap_or("?").to_string();
+        if !names.contains(&name) {
+            names.push(name);
+        }
+    }
+    let refs: Vec<&str> = names.iter().map(String::as_str).collect();
+    eprintln!("perf: the bench page's passes natively, {nodes} nodes …");
+    let report = measure_rows(nodes, &refs, false);
+    assert_eq!(report.nodes, nodes, "the native mesh is the bench page's");
+    for row in v["passes"].as_array_mut().into_iter().flatten() {
+        let name = row["name"].as_str().unwrap_or("?").to_string();
+        let hilbert = row["hilbert"].as_bool().unwrap_or(false);
+        if let Some((a, b)) = native(std::slice::from_ref(&report), nodes, &name) {
+            row["native_ns_per_visit"] = serde_json::json!(if hilbert { b } else { a });
+        }
+    }
+    let text = serde_json::to_string_pretty(&v).expect("json");
+    std::fs::write(path, text).unwrap_or_else(|e| panic!("cannot write {path}: {e}"));
+}
+
+/// The bench page's rows: (pass, Hilbert order, wasm ns/visit, native ns/visit): the
+/// native figure measured beside the page ([`native_peers`]) when there is one, else this
+/// run's planar table's.
 fn wasm_rows(v: &serde_json::Value, reports: &[SizeReport]) -> Vec<(String, bool, f64, Option<f64>)> {
     let nodes = v["nodes"].as_u64().unwrap_or(0) as usize;
     v["passes"]
@@ -1840,7 +1884,8 @@ fn wasm_rows(v: &serde_json::Value, reports: &[SizeReport]) -> Vec<(String, bool
         .map(|row| {
             let name = row["name"].as_str().unwrap_or("?").to_string();
             let hilbert = row["hilbert"].as_bool().unwrap_or(false);
-            let nat = native(reports, nodes, &name).map(|(a, b)| if hilbert { b } else { a });
+            let beside = row["native_ns_per_visit"].as_f64();
+            let nat = beside.or_else(|| native(reports, nodes, &name).map(|(a, b)| if hilbert { b } else { a }));
             (name, hilbert, row["ns_per_visit"].as_f64().unwrap_or(f64::NAN), nat)
         })
         .collect()
