@@ -280,14 +280,39 @@ pub(crate) fn draw_axes(pixmap: &mut Pixmap, x: &Axis, y: &Axis, labels: AxisLab
         draw_text_rotated(pixmap, labels.y, lx, 0.5 * (t + b), label.with_align(Align::Centre, Valign::Bottom), -90.0);
     }
     if !labels.title.is_empty() {
-        let title = TextStyle::new(theme.text_px(14.0 * s, s)).with_color(theme.ink).with_align(Align::Centre, Valign::Bottom);
-        draw_text(pixmap, labels.title, 0.5 * (l + r), t - 8.0 * s, title);
+        let cx = 0.5 * (l + r);
+        let (shown, size) = theme.fit_label(labels.title, 14.0 * s, title_room(cx, pixmap.width() as f32, s), s);
+        let title = TextStyle::new(size).with_color(theme.ink).with_align(Align::Centre, Valign::Bottom);
+        draw_text(pixmap, &shown, cx, t - 8.0 * s, title);
     }
+}
+
+/// The room, device pixels, for a plot's title centred at `cx` in a picture `width` device
+/// pixels wide: as far as the nearer edge allows, on both sides (a panel of a figure drawn
+/// in a narrow frame on the page had its title cut off by the edge).
+fn title_room(cx: f32, width: f32, s: f32) -> f32 {
+    (2.0 * cx.min(width - cx) - 8.0 * s).max(0.0)
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_title_stays_inside_the_picture() {
+        let theme = Theme::light();
+        let title = "the new objective along them (smaller is better)";
+        // room enough: the whole title at 14 px, as before
+        let (shown, size) = theme.fit_label(title, 14.0, title_room(600.0, 1200.0, 1.0), 1.0);
+        assert_eq!((shown.as_ref(), size), (title, theme.text_px(14.0, 1.0)));
+        // near the right edge: within the picture, smaller or cut, never below the smallest label
+        for (cx, width, s) in [(1117.0, 1170.0, 1.0), (700.0, 800.0, 2.0), (60.0, 900.0, 1.0)] {
+            let (shown, size) = theme.fit_label(title, 14.0 * s, title_room(cx, width, s), s);
+            let half = 0.5 * super::super::text::text_width(&shown, size);
+            assert!(cx - half >= 0.0 && cx + half <= width, "{shown:?} at {size} px about {cx} of {width}");
+            assert!(size >= theme.text_px(0.0, s) && size <= 14.0 * s);
+        }
+    }
 
     fn close(a: &[f64], b: &[f64]) -> bool {
         a.len() == b.len() && a.iter().zip(b).all(|(x, y)| (x - y).abs() <= 1e-12 * (1.0 + y.abs()))

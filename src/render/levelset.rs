@@ -621,16 +621,13 @@ pub fn render_level_set_with(pixmap: &mut Pixmap, data: &LevelSet<'_>, opts: &Le
     // title and a one-line key to the bands
     // both shrink to fit a narrow frame (an embedded view) rather than be clipped
     let room = (frame.w - 8.0) * s;
-    // (never below the theme's smallest label)
-    let fit = |text: &str, size: f32| theme.text_px(super::text::size_to_fit(text, size, room), s);
-    // (and, where even that is too wide, its leading words and "…")
-    let title = TextStyle::new(fit(data.title, 14.0 * s)).with_color(theme.ink).with_align(Align::Centre, Valign::Baseline);
-    let shown = super::text::fit_words(data.title, title.size, room);
+    let (shown, size) = theme.fit_label(data.title, 14.0 * s, room, s);
+    let title = TextStyle::new(size).with_color(theme.ink).with_align(Align::Centre, Valign::Baseline);
     draw_text(pixmap, &shown, (frame.x + 0.5 * frame.w) * s, (frame.y + title_y) * s, title);
     let better = if field.goal == Goal::MaximizeMin { "maximised" } else { "minimised" };
     let note = format!("{better}: the brighter the band, the better");
-    let sub = TextStyle::new(fit(&note, 10.5 * s)).with_color(theme.muted).with_align(Align::Centre, Valign::Baseline);
-    let shown = super::text::fit_words(&note, sub.size, room);
+    let (shown, size) = theme.fit_label(&note, 10.5 * s, room, s);
+    let sub = TextStyle::new(size).with_color(theme.muted).with_align(Align::Centre, Valign::Baseline);
     draw_text(pixmap, &shown, (frame.x + 0.5 * frame.w) * s, (frame.y + note_y) * s, sub);
 
     if opts.legend {

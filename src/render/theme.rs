@@ -7,9 +7,12 @@
 //! the data keeps its colours in every theme: the quality colour map, the inverted
 //! elements' red and hatching, the solver's path and markers, the highlighted star.
 
+use std::borrow::Cow;
+
 use tiny_skia::Color;
 
 use super::colormap::SERIES;
+use super::text::{fit_words, size_to_fit};
 
 /// The colours and label sizes of every picture. [`Theme::light`] (the default) is the
 /// picture as the CLI has always drawn it; [`Theme::dark`] is for projectors.
@@ -129,6 +132,15 @@ impl Theme {
     /// pixel ratio `dpr` when that is larger.
     pub fn text_px(&self, size: f32, dpr: f32) -> f32 {
         size.max(self.min_label_px * dpr)
+    }
+
+    /// A label of `size` device pixels fitted to `room` device pixels, and the size to draw
+    /// it at: smaller where it is wider, never below this theme's smallest label
+    /// ([`text_px`](Self::text_px)), and where even that is too wide, its leading words and
+    /// "…": shrunk or cut in a narrow frame, never clipped.
+    pub fn fit_label<'a>(&self, text: &'a str, size: f32, room: f32, dpr: f32) -> (Cow<'a, str>, f32) {
+        let size = self.text_px(size_to_fit(text, size, room), dpr);
+        (fit_words(text, size, room), size)
     }
 
     /// How much a label meant to be `css` CSS pixels grows under this theme: 1 when it is

@@ -107,9 +107,13 @@ pub(super) fn mesh_panel(mesh: &Mesh, title: &str, c: Canvas, t: &Theme) -> Resu
     let (g13, g11) = (t.grow(13.0), t.grow(11.0));
     let head = 22.0 * g13 + 18.0 * g11;
     render_mesh(&mut pm, mesh, &MeshView { theme: *t, ..MeshView::default().with_dpr(s).with_frame(full.inset(0.0, head, 0.0, 0.0)) });
-    let style = |size: f32| TextStyle::new(t.text_px(size * s, s)).with_color(t.ink).with_align(Align::Centre, Valign::Top);
-    draw_text(&mut pm, title, full.w / 2.0 * s, 4.0 * s, style(13.0));
-    draw_text(&mut pm, &line, full.w / 2.0 * s, (4.0 + 18.0 * g13) * s, style(11.0));
+    // each shrunk or cut to the panel's width (four panels side by side in a narrow frame)
+    let room = (full.w - 8.0).max(0.0) * s;
+    let style = |size: f32| TextStyle::new(size).with_color(t.ink).with_align(Align::Centre, Valign::Top);
+    let (shown, size) = t.fit_label(title, 13.0 * s, room, s);
+    draw_text(&mut pm, &shown, full.w / 2.0 * s, 4.0 * s, style(size));
+    let (shown, size) = t.fit_label(&line, 11.0 * s, room, s);
+    draw_text(&mut pm, &shown, full.w / 2.0 * s, (4.0 + 18.0 * g13) * s, style(size));
     Ok(pm)
 }
 
