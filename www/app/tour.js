@@ -71,10 +71,16 @@ export function showCard(card) {
   }));
 }
 
+/** The narrowest a figure's picture is drawn on the page, CSS pixels (or its own width
+ * where that is less): its panels' words stay legible, and a card narrower than this
+ * scrolls the picture sideways (`.tour-figure`). An embed fits its frame instead. */
+export const MIN_PAGE_PICTURE_W = 600;
+
 /** The figure's own picture (the core draws it: `smoothlab render --figure NAME`), in the
- * picture's proportions: on the page as wide as the tour's card (at most its own width)
- * and whole in the window under the bars; in an embed, as large as the frame leaves
- * under the figure's words (its view shows instead once "Live view" is pressed). */
+ * picture's proportions: on the page as wide as the tour's card (at most its own width,
+ * at least MIN_PAGE_PICTURE_W) and whole in the window under the bars; in an embed, as
+ * large as the frame leaves under the figure's words (its view shows instead once "Live
+ * view" is pressed). */
 export async function drawFigurePicture() {
   const card = state.figure;
   if (!card) return;
@@ -94,7 +100,10 @@ export async function drawFigurePicture() {
   const availH = inEmbed
     ? Math.max(80, tour.clientHeight - (contentHeight(tour) - probe) - 2)
     : Math.max(240, window.innerHeight - Math.min(top, 200) - 16);
-  const scale = Math.min(availW / w0, availH / h0, inEmbed ? 2 : 1);
+  // on the page, the card's width is not taken below MIN_PAGE_PICTURE_W: a narrow card (a
+  // phone) scrolls the picture sideways rather than shrink its panels past reading
+  const minW = inEmbed ? 0 : Math.min(w0, MIN_PAGE_PICTURE_W);
+  const scale = Math.min(Math.max(availW, minW) / w0, availH / h0, inEmbed ? 2 : 1);
   const w = Math.max(120, Math.round(w0 * scale));
   const h = Math.max(60, Math.round(h0 * scale));
   canvas.style.width = `${w}px`;

@@ -125,6 +125,28 @@ export default async function ({ server, context }) {
     }
   });
 
+  await test('on a phone (390×844): a figure\'s picture is drawn at least 600 px wide and scrolls sideways in its card, not the page', async () => {
+    const p = await freshPage(context, 390, 844, 'phone-figure');
+    try {
+      await open(p, `${server.base}#figure=chen-2`);
+      await p.waitForFunction(() => document.getElementById('tour-picture').width >= 600, null, { timeout: TIMEOUT });
+      await idle(p);
+      const pic = await box(p, '#tour-picture');
+      check(pic !== null && pic.w >= 599.5, `the picture: ${say(pic)}`);
+      check((await canvasInfo(p, 'tour-picture')).colours > 5, 'the picture is not drawn');
+      const fig = await p.evaluate(() => {
+        const f = document.querySelector('.tour-figure');
+        return { sw: f.scrollWidth, cw: f.clientWidth };
+      });
+      check(fig.sw > fig.cw && fig.cw <= 390, `the figure does not scroll in its card: ${fig.sw} in ${fig.cw}`);
+      const r = await reach(p);
+      check(r.sw <= 390, `the page scrolls sideways: ${r.sw} px wide`);
+      await p.screenshot({ path: path.join(OUT, 'phone-390x844-figure.png') });
+    } finally {
+      await p.close();
+    }
+  });
+
   await test('every embed fills frames of 520×520, 520×760, 800×450, 1280×720 and 390×844 without scrolling, its picture ≥ 40 % of the short side', async () => {
     const p = await freshPage(context, 1400, 900, 'embeds');
     try {
