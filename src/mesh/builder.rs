@@ -294,7 +294,7 @@ impl MeshBuilder {
         // The areas are taken in units of the largest coordinate (a power of two, exact):
         // near 1e-200 they underflowed to 0 and a clockwise mesh stayed clockwise.
         let unit = {
-            let m = mesh.nodes.iter().fold(0.0f64, |m, p| m.max(p.x.abs()).max(p.y.abs()));
+            let m = crate::numeric::largest_component(mesh.nodes.iter().flat_map(|p| [p.x, p.y]));
             let mut v = [DVec2::new(m, 0.0)];
             let f = crate::numeric::to_unit_scale(&mut v);
             f[0] * f[1]
@@ -437,7 +437,7 @@ impl MeshBuilder {
         // and distances below neither overflow (coordinates near 1e200 once gave NaN
         // coordinates) nor underflow (near 1e-160, "no area") for any finite input.
         // The z values differ, so some coordinate is nonzero and the scale is positive.
-        let scale = self.points.iter().flatten().fold(0.0f64, |m, c| m.max(c.abs()));
+        let scale = crate::numeric::largest_component(self.points.iter().flatten());
         let v = |p: &[f64; 3]| glam::DVec3::new(p[0] / scale, p[1] / scale, p[2] / scale);
         let elem = |e: usize| &self.elem_nodes[self.elem_start[e] as usize..self.elem_start[e + 1] as usize];
         // Each element's unit normal (Newell's method on its corner polygon, in units of
@@ -447,8 +447,7 @@ impl MeshBuilder {
             let ids = elem(e);
             let k = self.kinds[e].corners();
             let o = v(&self.points[ids[0] as usize]);
-            let extent =
-                ids[..k].iter().fold(0.0f64, |m, &i| m.max((v(&self.points[i as usize]) - o).abs().max_element()));
+            let extent = crate::numeric::largest_component(ids[..k].iter().map(|&i| v(&self.points[i as usize]) - o));
             if extent == 0.0 {
                 continue;
             }

@@ -202,7 +202,7 @@ impl<S: NodeStar> Solver<S> for NonSmoothAscent<S::Point> {
         let o = self.options;
         let phi = -st.merit;
         // active set and direction
-        let q_scale = self.terms.iter().filter(|t| t.value.is_finite()).fold(0.0f64, |m, t| m.max(t.value.abs()));
+        let q_scale = crate::numeric::largest_component(self.terms.iter().map(|t| t.value).filter(|v| v.is_finite()));
         let tol = o.active_tolerance * q_scale;
         self.active.clear();
         let mut g_scale = 0.0f64;

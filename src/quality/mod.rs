@@ -332,7 +332,7 @@ pub fn corner_edges(kind: ElementKind, p: &[DVec2]) -> [(DVec2, DVec2); 4] {
     // ratio, an angle, a sign) has exactly the bits it has at unit scale.
     let k = kind.corners();
     let raw = corner_edge_vectors(kind, p);
-    let m = raw[..k].iter().fold(0.0f64, |m, (a, b)| m.max(a.abs().max_element()).max(b.abs().max_element()));
+    let m = crate::numeric::largest_component(raw[..k].iter().flat_map(|(a, b)| [*a, *b]));
     if SAFE_SCALE.contains(&m) {
         return raw;
     }

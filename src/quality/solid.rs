@@ -86,7 +86,7 @@ fn in_unit_scale(p: &[DVec3]) -> ([DVec3; 8], usize) {
 /// decides whether it is within the safe scale.
 #[inline]
 fn reach(p: &[DVec3]) -> f64 {
-    p[1..].iter().fold(0.0f64, |m, x| m.max((*x - p[0]).abs().max_element()))
+    crate::numeric::largest_component(p[1..].iter().map(|x| *x - p[0]))
 }
 
 /// A polynomial of degree ≤ 2 in each of three parameters on a box, by its 3×3×3
@@ -793,7 +793,7 @@ impl CornerShapes {
 #[inline]
 pub fn corner_size(t: &[DVec3; 4]) -> (f64, f64) {
     let e = [t[1] - t[0], t[2] - t[0], t[3] - t[0]];
-    let m = e.iter().fold(0.0f64, |m, v| m.max(v.abs().max_element()));
+    let m = crate::numeric::largest_component(e);
     ((e[0] / m).dot((e[1] / m).cross(e[2] / m)), m)
 }
 

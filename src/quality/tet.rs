@@ -56,7 +56,7 @@ impl TetRuleMeasures {
     #[inline]
     pub fn of(p: &[DVec3; 4]) -> Self {
         let e = [p[1] - p[0], p[2] - p[0], p[3] - p[0]];
-        let m = e.iter().fold(0.0f64, |m, v| m.max(v.abs().max_element()));
+        let m = crate::numeric::largest_component(e);
         let det = e[0].dot(e[1].cross(e[2]));
         let unit = (e[0] / m).dot((e[1] / m).cross(e[2] / m));
         TetRuleMeasures { inverted: is_inverted(p), inversion: (-det).max(0.0), unit, scale: m }
@@ -73,7 +73,7 @@ impl TetRuleMeasures {
 #[inline(always)]
 pub fn in_unit_scale(p: &[DVec3; 4]) -> [DVec3; 4] {
     let e = [p[1] - p[0], p[2] - p[0], p[3] - p[0]];
-    let m = e.iter().fold(0.0f64, |m, v| m.max(v.abs().max_element()));
+    let m = crate::numeric::largest_component(e);
     let Some((f1, f2)) = crate::numeric::factors_beyond_safe_scale(m) else {
         return *p;
     };
@@ -259,7 +259,7 @@ impl CornerForm {
         let v = r.w_inv_t_one;
         CornerForm {
             origin: p[0],
-            reach: p[1..].iter().fold(0.0f64, |m, x| m.max((*x - p[0]).abs().max_element())),
+            reach: crate::numeric::largest_component(p[1..].iter().map(|x| *x - p[0])),
             t0: j.t,
             t0v: j.t * v,
             frob2: j.frob2,

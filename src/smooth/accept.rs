@@ -109,7 +109,7 @@ impl ElementScore {
         };
         let k = kind.corners();
         let edges = corner_edge_vectors(kind, p);
-        let m = edges[..k].iter().fold(0.0f64, |m, (a, b)| m.max(a.abs().max_element()).max(b.abs().max_element()));
+        let m = crate::numeric::largest_component(edges[..k].iter().flat_map(|(a, b)| [*a, *b]));
         let (mut inversion, mut smallest) = (0.0, f64::INFINITY);
         for (e1, e2) in &edges[..k] {
             inversion += (-e1.perp_dot(*e2)).max(0.0);

@@ -163,7 +163,7 @@ pub(crate) fn is_inverted(kind: crate::mesh::ElementKind, p: &[DVec2; 9]) -> boo
 #[inline(always)]
 fn linear_is_inverted<const K: usize>(p: &[DVec2]) -> Option<bool> {
     let e: [(DVec2, DVec2); K] = std::array::from_fn(|i| (p[(i + 1) % K] - p[i], p[(i + K - 1) % K] - p[i]));
-    let m = e.iter().fold(0.0f64, |m, (u, v)| m.max(u.abs().max_element()).max(v.abs().max_element()));
+    let m = crate::numeric::largest_component(e.iter().flat_map(|(u, v)| [*u, *v]));
     crate::numeric::SAFE_SCALE.contains(&m).then(|| e.iter().any(|(u, v)| u.perp_dot(*v) <= 0.0))
 }
 
