@@ -157,6 +157,21 @@ pub(crate) fn is_inverted(kind: crate::mesh::ElementKind, p: &[DVec2; 9]) -> boo
     linear.unwrap_or_else(|| corner_edges(kind, p)[..kind.corners()].iter().any(|(e1, e2)| e1.perp_dot(*e2) <= 0.0))
 }
 
+/// [`is_inverted`] of element `e` of `mesh`: a linear triangle or quadrilateral from its
+/// corners read straight from the mesh, where the general path copies the element's nine
+/// points (the same vectors, so the same answer). The whole-mesh scans for inverted
+/// elements (the untangling objectives' test, the untangling sweeps) ask it of every
+/// element.
+pub(crate) fn mesh_element_is_inverted(mesh: &crate::mesh::Mesh, e: usize) -> bool {
+    let (kind, ids, nodes) = (mesh.kind(e), mesh.element(e), mesh.nodes());
+    let linear = match kind {
+        crate::mesh::ElementKind::Tri3 => linear_is_inverted::<3>(&std::array::from_fn::<_, 3, _>(|i| nodes[ids[i] as usize])),
+        crate::mesh::ElementKind::Quad4 => linear_is_inverted::<4>(&std::array::from_fn::<_, 4, _>(|i| nodes[ids[i] as usize])),
+        _ => None,
+    };
+    linear.unwrap_or_else(|| is_inverted(kind, &mesh.element_points_array(e)))
+}
+
 /// [`is_inverted`] of a linear element of `K` corners (the first `K` of `p`): corner_edges'
 /// raw vectors and range test written out (the same vectors, so the same answer); `None`
 /// beyond the range, where the general path decides.

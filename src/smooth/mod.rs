@@ -110,7 +110,7 @@ impl StarView for Planar<'_> {
         }
     }
     fn is_inverted(&self, e: usize) -> bool {
-        is_inverted(self.0.kind(e), &self.0.element_points_array(e))
+        measure::mesh_element_is_inverted(self.0, e)
     }
 }
 
@@ -131,7 +131,7 @@ impl StarView for Reading<'_> {
         unreachable!("planning does not move nodes")
     }
     fn is_inverted(&self, e: usize) -> bool {
-        is_inverted(self.0.kind(e), &self.0.element_points_array(e))
+        measure::mesh_element_is_inverted(self.0, e)
     }
 }
 

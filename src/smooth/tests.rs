@@ -794,3 +794,32 @@ fn untangling_objectives_leave_a_valid_mesh_where_it_is() {
     assert!(mesh_stats(&m).inverted < mesh_stats(&tangled).inverted);
     assert!(ObjectiveKind::ALL.iter().filter(|k| k.only_untangles()).count() == 2);
 }
+
+/// The whole-mesh scans' inverted test, which reads a linear element's corners straight
+/// from the mesh, answers as the general test on the element's nine points, element by
+/// element: triangles, quads, mixed and quadratic plates, valid and tangled, and a
+/// triangle far below the safe scale (where the general path measures at unit scale).
+#[test]
+fn the_mesh_scan_finds_the_inverted_elements_the_general_test_finds() {
+    use crate::generate::{perturb, plate, PlateKind};
+    let mut checked = [0usize; 2];
+    for kind in [PlateKind::Tri, PlateKind::Quad, PlateKind::Mixed] {
+        for order in [1, 2] {
+            let valid = plate(kind, order, 6).unwrap();
+            for amount in [0.0, 0.6, 1.5] {
+                let mut mesh = if amount == 0.0 { valid.clone() } else { perturb(&valid, amount, 4).unwrap() };
+                for scale in [1.0, 1e-250] {
+                    for p in mesh.nodes_mut() {
+                        *p *= scale;
+                    }
+                    for e in 0..mesh.element_count() {
+                        let general = measure::is_inverted(mesh.kind(e), &mesh.element_points_array(e));
+                        assert_eq!(measure::mesh_element_is_inverted(&mesh, e), general, "{kind:?} order {order} element {e}");
+                        checked[general as usize] += 1;
+                    }
+                }
+            }
+        }
+    }
+    assert!(checked[0] > 1000 && checked[1] > 100, "valid and inverted elements both checked: {checked:?}");
+}
