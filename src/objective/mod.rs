@@ -454,13 +454,10 @@ pub fn star_scale(star: &Star) -> f64 {
 /// components are from leaving the doubles (beyond 2^±200, [`crate::numeric::SAFE_SCALE`]).
 #[inline]
 pub(crate) fn free_node_extent(star: &Star) -> f64 {
-    let mut extent = 0.0f64;
-    for e in &star.elems {
+    crate::numeric::largest_component(star.elems.iter().flat_map(|e| {
         let (k, s) = (e.kind.corners(), e.slot as usize);
-        extent = extent.max((e.pts[(s + 1) % k] - star.x0).abs().max_element());
-        extent = extent.max((e.pts[(s + k - 1) % k] - star.x0).abs().max_element());
-    }
-    extent
+        [e.pts[(s + 1) % k] - star.x0, e.pts[(s + k - 1) % k] - star.x0]
+    }))
 }
 
 /// An objective of a free node's position over its star (see the module docs).

@@ -299,10 +299,10 @@ impl Facets {
         // the facets' area vectors, in units of the largest edge where the edges are
         // beyond 2^±200 (one power of two for all, so the area weights stay; as given
         // inside it): a sphere of 1e80 has cross products whose squares leave the doubles
-        let reach = triangles.iter().fold(0.0f64, |m, t| {
+        let reach = crate::numeric::largest_component(triangles.iter().flat_map(|t| {
             let [a, b, c] = t.map(|v| pts[v as usize]);
-            m.max((b - a).abs().max_element()).max((c - a).abs().max_element())
-        });
+            [b - a, c - a]
+        }));
         let unit = match crate::numeric::factors_beyond_safe_scale(reach) {
             None => 1.0,
             Some((f1, f2)) => f1 * f2,
