@@ -40,9 +40,10 @@ use crate::quality::{corner_edge_vectors, measure_element, solid, tet as q3};
 /// the bound only refuses moves that flatten an element.
 pub const MIN_SIZE_RATIO: f64 = 1e-3;
 
-/// What the acceptance rule reads of one element.
+/// What the acceptance rule reads of one element (its size `S` a [`Size`], or `()` where the
+/// caller decides the size floor itself: [`Verdict::add_deciding_size`]).
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct ElementScore {
+pub struct ElementScore<S = Size> {
     /// The element's quality by the drivers' [`Measure`]: its shape (α/β, the worst
     /// corner α of a quadratic element; a tetrahedron's mean ratio) or its smallest sine
     /// (of a corner angle; of a dihedral angle).
@@ -54,7 +55,7 @@ pub struct ElementScore {
     /// a planar element, 3 for a tetrahedron): `unit` is the determinant of the edges
     /// divided by `scale`, their largest component, so it is a double at every scale
     /// (not a number for a degenerate element, negative for an inverted one).
-    pub size: Size,
+    pub size: S,
 }
 
 /// An element's size as [`ElementScore::size`] holds it: `unit · scaleᵈ`, compared with
@@ -88,6 +89,25 @@ impl Size {
             });
         }
         size.expect("every kind measures a corner")
+    }
+    /// Whether a solid of `kind`, valid with corners `before`, keeps at least
+    /// [`MIN_SIZE_RATIO`] of its size ([`least_corner`](Self::least_corner)) with corners
+    /// `after`, for certain: `true` where its corners' determinants taken directly
+    /// ([`solid::least_corner_det`]) decide that the rule's comparison of the two sizes
+    /// finds it so; `false` where they do not decide (the caller measures the sizes).
+    ///
+    /// Why it is the rule's answer: each corner's `unit · scale³` lies within the tolerance
+    /// `t` of its determinant taken directly, so the size after is at least `a − t` (`a` the
+    /// least determinant after) and the size before, the least corner up to the rounding of
+    /// `least_corner`'s comparisons among near ties, at most `b + 2t`; the comparison in
+    /// [`at_least`](Self::at_least) rounds some six ulps, and with `a − t ≥ t` the quotient
+    /// of the scales it cubes stays far from underflow.
+    pub fn solid_floor_kept_for_certain(kind: VolumeKind, before: &[DVec3], after: &[DVec3]) -> bool {
+        let (Some((b, tb)), Some((a, ta))) = (solid::least_corner_det(kind, before), solid::least_corner_det(kind, after)) else {
+            return false;
+        };
+        let t = tb.max(ta);
+        b > 0.0 && a - t >= t && (a - t) * (1.0 - 1e-9) > MIN_SIZE_RATIO * (b + 2.0 * t) * (1.0 + 1e-9)
     }
 }
 
@@ -178,10 +198,10 @@ impl ElementScore {
     }
 
     /// [`solid`](Self::solid) where the element's [`solid::validity`] and size
-    /// ([`Size::least_corner`]) are known (a star's element answers the validity from its
-    /// `det J` form where that decides and keeps the sizes of corners that did not move:
+    /// ([`Size::least_corner`], or `()` where the caller decides the floor itself) are known
+    /// (a star's element answers the validity from its `det J` form where that decides:
     /// the same answers), but for its quality, +∞ (the caller sets it, where it knows it).
-    pub fn solid_sized(kind: VolumeKind, p: &[DVec3], validity: solid::Validity, size: Size) -> Self {
+    pub fn solid_sized<S>(kind: VolumeKind, p: &[DVec3], validity: solid::Validity, size: S) -> ElementScore<S> {
         ElementScore {
             quality: f64::INFINITY,
             inverted: validity != solid::Validity::Valid,
@@ -247,13 +267,20 @@ impl Default for Verdict {
 impl Verdict {
     /// One element of the star, before and after the move.
     pub fn add(&mut self, before: &ElementScore, after: &ElementScore) {
+        // a size that is not a number (a degenerate element) is below the floor
+        self.add_deciding_size(before, after, || after.size.at_least(MIN_SIZE_RATIO, &before.size));
+    }
+
+    /// [`add`](Self::add) with the size floor decided by `keeps_size` (asked only of an
+    /// element valid before the move: whether it keeps at least [`MIN_SIZE_RATIO`] of its
+    /// size, as [`Size::at_least`] answers it) rather than from the scores' sizes.
+    pub fn add_deciding_size<S>(&mut self, before: &ElementScore<S>, after: &ElementScore<S>, keeps_size: impl FnOnce() -> bool) {
         self.inverted_before += before.inverted as u32;
         self.inverted_after += after.inverted as u32;
         self.add_qualities(before.quality, after.quality);
         self.inversion_before += before.inversion;
         self.inversion_after += after.inversion;
-        // a size that is not a number (a degenerate element) is below the floor
-        if !before.inverted && !after.size.at_least(MIN_SIZE_RATIO, &before.size) {
+        if !before.inverted && !keeps_size() {
             self.flattened = true;
             self.shrunk |= !after.inverted;
         }
@@ -396,6 +423,61 @@ mod tests {
         let mut v = Verdict::default();
         v.add(&a, &b);
         assert!(v.keeps());
+    }
+
+    /// The rule's own answer for a solid's size floor: its least corners' sizes compared.
+    fn floor_kept(kind: VolumeKind, before: &[DVec3], after: &[DVec3]) -> bool {
+        let size = |p: &[DVec3]| Size::least_corner(kind, &solid::CornerSizes::of(kind, p, |_| None));
+        size(after).at_least(MIN_SIZE_RATIO, &size(before))
+    }
+
+    #[test]
+    fn a_solids_floor_kept_for_certain_is_the_rules_answer() {
+        let mut rng = crate::numeric::SplitMix64::new(41);
+        for kind in [VolumeKind::Hex8, VolumeKind::Wedge6, VolumeKind::Pyramid5, VolumeKind::Hex20] {
+            let ideal: Vec<DVec3> = kind.row().ideal.iter().map(|c| DVec3::from(*c)).collect();
+            let (mut decided, mut moves) = (0, 0);
+            for scale in [1e-70, 1e-20, 1e-3, 1.0, 7.5, 1e20, 1e70] {
+                let mut r = || rng.next_f64() * 2.0 - 1.0;
+                let before: Vec<DVec3> = ideal.iter().map(|c| (*c + 0.15 * DVec3::new(r(), r(), r())) * scale).collect();
+                // a corner moved, as the drivers move one: ordinary steps and long ones that
+                // press the element flat or through itself
+                for corner in 0..kind.corners() {
+                    for step in [0.05, 0.2, 0.5, 1.0, 2.0] {
+                        let mut after = before.clone();
+                        after[corner] += step * scale * DVec3::new(r(), r(), r());
+                        let certain = Size::solid_floor_kept_for_certain(kind, &before, &after);
+                        assert!(!certain || floor_kept(kind, &before, &after), "{kind:?} {before:?} -> {after:?}");
+                        moves += 1;
+                        decided += certain as usize;
+                    }
+                }
+                // the whole element shrunk about its first corner to near the floor: the
+                // rule's answer turns within a few ulps of s³ = 10⁻³
+                for k in -64..=64 {
+                    let s = (MIN_SIZE_RATIO * (1.0 + k as f64 * f64::EPSILON)).cbrt();
+                    let after: Vec<DVec3> = before.iter().map(|p| before[0] + s * (*p - before[0])).collect();
+                    let certain = Size::solid_floor_kept_for_certain(kind, &before, &after);
+                    assert!(!certain || floor_kept(kind, &before, &after), "{kind:?} shrunk {k} ulps: {before:?}");
+                }
+                for f in [0.99, 1.01] {
+                    let s = (f * MIN_SIZE_RATIO).cbrt();
+                    let after: Vec<DVec3> = before.iter().map(|p| before[0] + s * (*p - before[0])).collect();
+                    // decided where the two answers are a percent apart, as the rule's
+                    assert_eq!(Size::solid_floor_kept_for_certain(kind, &before, &after), f > 1.0, "{kind:?} shrunk to {f}·floor");
+                    assert_eq!(floor_kept(kind, &before, &after), f > 1.0);
+                }
+            }
+            // the screen is worth its work: it decides most moves of a valid element
+            assert!(decided * 10 > moves * 6, "{kind:?}: {decided} of {moves}");
+        }
+        // beyond the scales it takes, it decides nothing
+        let p: Vec<DVec3> = VolumeKind::Hex8.row().ideal.iter().map(|c| DVec3::from(*c) * 1e-90).collect();
+        assert!(!Size::solid_floor_kept_for_certain(VolumeKind::Hex8, &p, &p));
+        let mut nan: Vec<DVec3> = p.iter().map(|c| *c * 1e90).collect();
+        assert!(Size::solid_floor_kept_for_certain(VolumeKind::Hex8, &nan, &nan));
+        nan[3].y = f64::NAN;
+        assert!(!Size::solid_floor_kept_for_certain(VolumeKind::Hex8, &nan, &nan));
     }
 
     #[test]

@@ -23,7 +23,7 @@ use crate::objective::{CornerStar, Objective, StarCorner, StarSolid};
 use crate::quality::solid::{self, Validity};
 use crate::quality::tet as q3;
 use crate::smooth::{
-    DriverStar, ElementScore, Size, Verdict, Measure, PassRecord, SmoothMesh, SmoothOptions, Smoother, StarQuality, StarView, SweepCounts,
+    DriverStar, ElementScore, Size, Verdict, Measure, MIN_SIZE_RATIO, PassRecord, SmoothMesh, SmoothOptions, Smoother, StarQuality, StarView, SweepCounts,
 };
 
 impl SmoothMesh for VolumeMesh {
@@ -276,7 +276,7 @@ impl DriverStar for CornerStar {
             }
         }
         for e in &self.elements {
-            v.add(&e.score(e.x(), m), &e.score(x, m));
+            v.add_deciding_size(&e.score(e.x(), m), &e.score(x, m), || e.keeps_size(x));
         }
         v
     }
@@ -348,22 +348,34 @@ impl LeastMeanRatio {
 
 /// A star's element other than a tetrahedron as the acceptance rule scores it.
 trait SolidScore {
-    /// [`ElementScore::solid`] with the free node at `x`, its validity as the drivers measure
-    /// it ([`StarSolid::validity_measured`]: the same answer as [`solid::validity`], kept for
-    /// the position, from the `det J` form once the guard has made it).
-    fn score(&self, x: DVec3, m: Measure) -> ElementScore;
+    /// [`ElementScore::solid`] with the free node at `x` but for its size, its validity as
+    /// the drivers measure it ([`StarSolid::validity_measured`]: the same answer as
+    /// [`solid::validity`], kept for the position, from the `det J` form once the guard has
+    /// made it).
+    fn score(&self, x: DVec3, m: Measure) -> ElementScore<()>;
+    /// Whether the element, valid as gathered, keeps at least [`MIN_SIZE_RATIO`] of its size
+    /// ([`Size::least_corner`]) with the free node at `x`: from its corners' determinants
+    /// where they decide ([`Size::solid_floor_kept_for_certain`]), else from the sizes
+    /// measured ([`StarSolid::sizes_measured`]), the same answer.
+    fn keeps_size(&self, x: DVec3) -> bool;
 }
 
 impl SolidScore for StarSolid {
-    fn score(&self, x: DVec3, m: Measure) -> ElementScore {
+    fn score(&self, x: DVec3, m: Measure) -> ElementScore<()> {
         let p = self.at(x);
-        let size = Size::least_corner(self.kind, &self.sizes_measured(x));
-        let score = ElementScore::solid_sized(self.kind, self.corners(&p), self.validity_measured(x), size);
+        let score = ElementScore::solid_sized(self.kind, self.corners(&p), self.validity_measured(x), ());
         let quality = match m {
             Measure::Shape => self.shape_measured(x),
             Measure::MinSine => solid::solid_min_sine(self.kind, self.corners(&p)),
         };
         ElementScore { quality, ..score }
+    }
+    fn keeps_size(&self, x: DVec3) -> bool {
+        let (before, after) = (self.at(self.x()), self.at(x));
+        Size::solid_floor_kept_for_certain(self.kind, self.corners(&before), self.corners(&after)) || {
+            let before = Size::least_corner(self.kind, &self.sizes_measured(self.x()));
+            Size::least_corner(self.kind, &self.sizes_measured(x)).at_least(MIN_SIZE_RATIO, &before)
+        }
     }
 }
 
