@@ -41,14 +41,15 @@ pub fn is_inverted(p: &[DVec3; 4]) -> bool {
 
 /// What the acceptance rule reads of a tetrahedron besides its quality (the drivers'
 /// element score): whether it is inverted ([`is_inverted`]), its inversion
-/// `max(0, −det)` and its size, the determinant of its edges as `unit · scale³`
-/// (`quality::solid::corner_size`'s, written out with the determinant: through the
-/// function this hot path compiled some 7% longer).
+/// `max(0, −det)`, and the determinant of its edges `det` taken directly with their largest
+/// component `scale`, from which the rule decides its size floor where they decide beyond
+/// their rounding ([`det_within`](Self::det_within)); its size as the rule compares it
+/// otherwise is `quality::solid::corner_size`'s, taken then.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct TetRuleMeasures {
     pub inverted: bool,
     pub inversion: f64,
-    pub unit: f64,
+    pub det: f64,
     pub scale: f64,
 }
 
@@ -56,10 +57,18 @@ impl TetRuleMeasures {
     #[inline]
     pub fn of(p: &[DVec3; 4]) -> Self {
         let e = [p[1] - p[0], p[2] - p[0], p[3] - p[0]];
-        let m = crate::numeric::largest_component(e);
         let det = e[0].dot(e[1].cross(e[2]));
-        let unit = (e[0] / m).dot((e[1] / m).cross(e[2] / m));
-        TetRuleMeasures { inverted: is_inverted(p), inversion: (-det).max(0.0), unit, scale: m }
+        TetRuleMeasures { inverted: is_inverted(p), inversion: (-det).max(0.0), det, scale: crate::numeric::largest_component(e) }
+    }
+    /// `(det, tolerance)`: its determinant and how far the size the rule compares
+    /// (`unit · scale³`, `quality::solid::corner_size`) may lie from it, 10⁻¹² scale³ (both
+    /// within some 50 ulps of scale³ of the determinant of the edges as rounded); `None`
+    /// where the determinant is not a number or the scale lies outside [10⁻⁸⁰, 10⁸⁰], where
+    /// the products could leave the doubles' normal range. As
+    /// `quality::solid::least_corner_det` gives a solid's.
+    #[inline]
+    pub fn det_within(&self) -> Option<(f64, f64)> {
+        ((1e-80..=1e80).contains(&self.scale) && !self.det.is_nan()).then_some((self.det, 1e-12 * self.scale * self.scale * self.scale))
     }
 }
 

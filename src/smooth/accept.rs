@@ -90,11 +90,19 @@ impl Size {
         }
         size.expect("every kind measures a corner")
     }
-    /// Whether a solid of `kind`, valid with corners `before`, keeps at least
-    /// [`MIN_SIZE_RATIO`] of its size ([`least_corner`](Self::least_corner)) with corners
-    /// `after`, for certain: `true` where its corners' determinants taken directly
-    /// ([`solid::least_corner_det`]) decide that the rule's comparison of the two sizes
-    /// finds it so; `false` where they do not decide (the caller measures the sizes).
+    /// A tetrahedron's size, `quality::solid::corner_size` of its corners.
+    #[inline]
+    pub fn tet(p: &[DVec3; 4]) -> Size {
+        let (unit, scale) = solid::corner_size(p);
+        Size { unit, scale, dim: 3 }
+    }
+    /// Whether an element of a volume mesh, valid before a move, keeps at least
+    /// [`MIN_SIZE_RATIO`] of its size for certain, from its least corner determinant taken
+    /// directly before and after the move, each with its tolerance
+    /// ([`solid::least_corner_det`]; a tetrahedron's [`q3::TetRuleMeasures::det_within`]):
+    /// `true` where they decide that the rule's comparison of the two sizes
+    /// ([`least_corner`](Self::least_corner) of a solid, [`tet`](Self::tet)) finds it so;
+    /// `false` where they do not decide (the caller measures the sizes).
     ///
     /// Why it is the rule's answer: each corner's `unit · scale³` lies within the tolerance
     /// `t` of its determinant taken directly, so the size after is at least `a − t` (`a` the
@@ -102,8 +110,9 @@ impl Size {
     /// `least_corner`'s comparisons among near ties, at most `b + 2t`; the comparison in
     /// [`at_least`](Self::at_least) rounds some six ulps, and with `a − t ≥ t` the quotient
     /// of the scales it cubes stays far from underflow.
-    pub fn solid_floor_kept_for_certain(kind: VolumeKind, before: &[DVec3], after: &[DVec3]) -> bool {
-        let (Some((b, tb)), Some((a, ta))) = (solid::least_corner_det(kind, before), solid::least_corner_det(kind, after)) else {
+    #[inline]
+    pub fn floor_kept_for_certain(before: Option<(f64, f64)>, after: Option<(f64, f64)>) -> bool {
+        let (Some((b, tb)), Some((a, ta))) = (before, after) else {
             return false;
         };
         let t = tb.max(ta);
@@ -173,12 +182,15 @@ impl ElementScore {
     /// to [`Verdict::add_qualities`] where it may be the worst).
     #[inline]
     pub fn tet_unmeasured(p: &[DVec3; 4]) -> Self {
-        Self::tet_of(&q3::TetRuleMeasures::of(p))
+        let t = ElementScore::tet_of(&q3::TetRuleMeasures::of(p));
+        ElementScore { quality: t.quality, inverted: t.inverted, inversion: t.inversion, size: Size::tet(p) }
     }
-    /// [`tet_unmeasured`](Self::tet_unmeasured) of a tetrahedron's measures taken before.
+    /// [`tet_unmeasured`](Self::tet_unmeasured) of a tetrahedron's measures taken before,
+    /// but for its size (for [`Verdict::add_deciding_size`], with
+    /// [`Size::floor_kept_for_certain`]).
     #[inline]
-    pub fn tet_of(t: &q3::TetRuleMeasures) -> Self {
-        ElementScore { quality: f64::INFINITY, inverted: t.inverted, inversion: t.inversion, size: Size { unit: t.unit, scale: t.scale, dim: 3 } }
+    pub fn tet_of(t: &q3::TetRuleMeasures) -> ElementScore<()> {
+        ElementScore { quality: f64::INFINITY, inverted: t.inverted, inversion: t.inversion, size: () }
     }
 }
 
@@ -425,16 +437,29 @@ mod tests {
         assert!(v.keeps());
     }
 
-    /// The rule's own answer for a solid's size floor: its least corners' sizes compared.
+    /// The rule's own answer for the size floor of an element of a volume mesh, and the
+    /// screen's: a tetrahedron by its measures ([`q3::TetRuleMeasures`], [`Size::tet`]),
+    /// another kind by its least corners' sizes.
     fn floor_kept(kind: VolumeKind, before: &[DVec3], after: &[DVec3]) -> bool {
+        if kind == VolumeKind::Tet4 {
+            let tet = |p: &[DVec3]| Size::tet(&[p[0], p[1], p[2], p[3]]);
+            return tet(after).at_least(MIN_SIZE_RATIO, &tet(before));
+        }
         let size = |p: &[DVec3]| Size::least_corner(kind, &solid::CornerSizes::of(kind, p, |_| None));
         size(after).at_least(MIN_SIZE_RATIO, &size(before))
     }
+    fn certain(kind: VolumeKind, before: &[DVec3], after: &[DVec3]) -> bool {
+        let within = |p: &[DVec3]| match kind {
+            VolumeKind::Tet4 => q3::TetRuleMeasures::of(&[p[0], p[1], p[2], p[3]]).det_within(),
+            _ => solid::least_corner_det(kind, p),
+        };
+        Size::floor_kept_for_certain(within(before), within(after))
+    }
 
     #[test]
-    fn a_solids_floor_kept_for_certain_is_the_rules_answer() {
+    fn the_size_floor_kept_for_certain_is_the_rules_answer() {
         let mut rng = crate::numeric::SplitMix64::new(41);
-        for kind in [VolumeKind::Hex8, VolumeKind::Wedge6, VolumeKind::Pyramid5, VolumeKind::Hex20] {
+        for kind in [VolumeKind::Tet4, VolumeKind::Hex8, VolumeKind::Wedge6, VolumeKind::Pyramid5, VolumeKind::Hex20] {
             let ideal: Vec<DVec3> = kind.row().ideal.iter().map(|c| DVec3::from(*c)).collect();
             let (mut decided, mut moves) = (0, 0);
             for scale in [1e-70, 1e-20, 1e-3, 1.0, 7.5, 1e20, 1e70] {
@@ -446,10 +471,10 @@ mod tests {
                     for step in [0.05, 0.2, 0.5, 1.0, 2.0] {
                         let mut after = before.clone();
                         after[corner] += step * scale * DVec3::new(r(), r(), r());
-                        let certain = Size::solid_floor_kept_for_certain(kind, &before, &after);
-                        assert!(!certain || floor_kept(kind, &before, &after), "{kind:?} {before:?} -> {after:?}");
+                        let sure = certain(kind, &before, &after);
+                        assert!(!sure || floor_kept(kind, &before, &after), "{kind:?} {before:?} -> {after:?}");
                         moves += 1;
-                        decided += certain as usize;
+                        decided += sure as usize;
                     }
                 }
                 // the whole element shrunk about its first corner to near the floor: the
@@ -457,14 +482,14 @@ mod tests {
                 for k in -64..=64 {
                     let s = (MIN_SIZE_RATIO * (1.0 + k as f64 * f64::EPSILON)).cbrt();
                     let after: Vec<DVec3> = before.iter().map(|p| before[0] + s * (*p - before[0])).collect();
-                    let certain = Size::solid_floor_kept_for_certain(kind, &before, &after);
-                    assert!(!certain || floor_kept(kind, &before, &after), "{kind:?} shrunk {k} ulps: {before:?}");
+                    let sure = certain(kind, &before, &after);
+                    assert!(!sure || floor_kept(kind, &before, &after), "{kind:?} shrunk {k} ulps: {before:?}");
                 }
                 for f in [0.99, 1.01] {
                     let s = (f * MIN_SIZE_RATIO).cbrt();
                     let after: Vec<DVec3> = before.iter().map(|p| before[0] + s * (*p - before[0])).collect();
                     // decided where the two answers are a percent apart, as the rule's
-                    assert_eq!(Size::solid_floor_kept_for_certain(kind, &before, &after), f > 1.0, "{kind:?} shrunk to {f}·floor");
+                    assert_eq!(certain(kind, &before, &after), f > 1.0, "{kind:?} shrunk to {f}·floor");
                     assert_eq!(floor_kept(kind, &before, &after), f > 1.0);
                 }
             }
@@ -472,12 +497,14 @@ mod tests {
             assert!(decided * 10 > moves * 6, "{kind:?}: {decided} of {moves}");
         }
         // beyond the scales it takes, it decides nothing
-        let p: Vec<DVec3> = VolumeKind::Hex8.row().ideal.iter().map(|c| DVec3::from(*c) * 1e-90).collect();
-        assert!(!Size::solid_floor_kept_for_certain(VolumeKind::Hex8, &p, &p));
-        let mut nan: Vec<DVec3> = p.iter().map(|c| *c * 1e90).collect();
-        assert!(Size::solid_floor_kept_for_certain(VolumeKind::Hex8, &nan, &nan));
-        nan[3].y = f64::NAN;
-        assert!(!Size::solid_floor_kept_for_certain(VolumeKind::Hex8, &nan, &nan));
+        for kind in [VolumeKind::Tet4, VolumeKind::Hex8] {
+            let p: Vec<DVec3> = kind.row().ideal.iter().map(|c| DVec3::from(*c) * 1e-90).collect();
+            assert!(!certain(kind, &p, &p));
+            let mut nan: Vec<DVec3> = p.iter().map(|c| *c * 1e90).collect();
+            assert!(certain(kind, &nan, &nan));
+            nan[3].y = f64::NAN;
+            assert!(!certain(kind, &nan, &nan));
+        }
     }
 
     #[test]

@@ -266,8 +266,12 @@ impl DriverStar for CornerStar {
             // the measures the smart Laplacian's test took at these positions, or taken here
             let mut memo = self.tet_measures.borrow_mut();
             let (b, a) = (memo.slot(&self.tets, self.x0, self.reference()), memo.slot(&self.tets, x, self.reference()));
-            for ((p0, t0), (p1, t1)) in memo.measures(b).iter().zip(memo.measures(a)) {
-                v.add(&ElementScore::tet_of(t0), &ElementScore::tet_of(t1));
+            let tets = self.tets.iter().filter(|t| t.simplex);
+            for (t, ((p0, t0), (p1, t1))) in tets.zip(memo.measures(b).iter().zip(memo.measures(a))) {
+                v.add_deciding_size(&ElementScore::tet_of(t0), &ElementScore::tet_of(t1), || {
+                    Size::floor_kept_for_certain(t0.det_within(), t1.det_within())
+                        || Size::tet(&t.at(x)).at_least(MIN_SIZE_RATIO, &Size::tet(&t.at(self.x0)))
+                });
                 v.add_qualities(before.add_parts(p0), after.add_parts(p1));
             }
         } else {
@@ -355,7 +359,7 @@ trait SolidScore {
     fn score(&self, x: DVec3, m: Measure) -> ElementScore<()>;
     /// Whether the element, valid as gathered, keeps at least [`MIN_SIZE_RATIO`] of its size
     /// ([`Size::least_corner`]) with the free node at `x`: from its corners' determinants
-    /// where they decide ([`Size::solid_floor_kept_for_certain`]), else from the sizes
+    /// where they decide ([`Size::floor_kept_for_certain`]), else from the sizes
     /// measured ([`StarSolid::sizes_measured`]), the same answer.
     fn keeps_size(&self, x: DVec3) -> bool;
 }
@@ -372,7 +376,7 @@ impl SolidScore for StarSolid {
     }
     fn keeps_size(&self, x: DVec3) -> bool {
         let (before, after) = (self.at(self.x()), self.at(x));
-        Size::solid_floor_kept_for_certain(self.kind, self.corners(&before), self.corners(&after)) || {
+        Size::floor_kept_for_certain(solid::least_corner_det(self.kind, self.corners(&before)), solid::least_corner_det(self.kind, self.corners(&after))) || {
             let before = Size::least_corner(self.kind, &self.sizes_measured(self.x()));
             Size::least_corner(self.kind, &self.sizes_measured(x)).at_least(MIN_SIZE_RATIO, &before)
         }
