@@ -96,20 +96,19 @@ impl Size {
         let (unit, scale) = solid::corner_size(p);
         Size { unit, scale, dim: 3 }
     }
-    /// Whether an element of a volume mesh, valid before a move, keeps at least
-    /// [`MIN_SIZE_RATIO`] of its size for certain, from its least corner determinant taken
-    /// directly before and after the move, each with its tolerance
-    /// ([`solid::least_corner_det`]; a tetrahedron's [`q3::TetRuleMeasures::det_within`]):
-    /// `true` where they decide that the rule's comparison of the two sizes
-    /// ([`least_corner`](Self::least_corner) of a solid, [`tet`](Self::tet)) finds it so;
+    /// Whether an element, valid before a move, keeps at least [`MIN_SIZE_RATIO`] of its
+    /// size for certain, from its least corner determinant taken directly before and after
+    /// the move, each with its tolerance ([`ElementScore::planar_unsized`]'s; a solid's
+    /// [`solid::least_corner_det`]; a tetrahedron's [`q3::TetRuleMeasures::det_within`]):
+    /// `true` where they decide that the rule's comparison of the two sizes finds it so;
     /// `false` where they do not decide (the caller measures the sizes).
     ///
-    /// Why it is the rule's answer: each corner's `unit · scale³` lies within the tolerance
+    /// Why it is the rule's answer: each corner's `unit · scaleᵈ` lies within the tolerance
     /// `t` of its determinant taken directly, so the size after is at least `a − t` (`a` the
     /// least determinant after) and the size before, the least corner up to the rounding of
-    /// `least_corner`'s comparisons among near ties, at most `b + 2t`; the comparison in
-    /// [`at_least`](Self::at_least) rounds some six ulps, and with `a − t ≥ t` the quotient
-    /// of the scales it cubes stays far from underflow.
+    /// the comparisons that chose it among near ties, at most `b + 2t`; the comparison in
+    /// [`at_least`](Self::at_least) rounds some six ulps, and with `a − t ≥ t` the power of
+    /// the scales' quotient it takes stays far from underflow.
     #[inline]
     pub fn floor_kept_for_certain(before: Option<(f64, f64)>, after: Option<(f64, f64)>) -> bool {
         let (Some((b, tb)), Some((a, ta))) = (before, after) else {
@@ -120,10 +119,37 @@ impl Size {
     }
 }
 
+/// A planar element's least corner determinant `det` taken directly, with its tolerance
+/// `10⁻¹² scale²`, for [`Size::floor_kept_for_certain`]; `None` where it is not a number
+/// or `scale` lies outside [10⁻⁸⁰, 10⁸⁰].
+#[inline]
+fn planar_det_within(det: f64, scale: f64) -> Option<(f64, f64)> {
+    ((1e-80..=1e80).contains(&scale) && !det.is_nan()).then_some((det, 1e-12 * scale * scale))
+}
+
 impl ElementScore {
     /// A planar element (or a surface element in its own plane) with nodes `p`.
     pub fn planar(kind: ElementKind, p: &[DVec2; 9], measure: Measure) -> Self {
-        if let Some(score) = Self::valid_triangle(kind, p, measure) {
+        Self::planar_parts::<true>(kind, p, measure).0
+    }
+
+    /// [`planar`](Self::planar) but for its size, with its least corner determinant taken
+    /// directly and its tolerance, for [`Size::floor_kept_for_certain`] (`None` where not a
+    /// number or beyond the scales it takes): the size's divisions are left to the caller
+    /// that needs them (where the screen does not decide).
+    #[inline]
+    pub fn planar_unsized(kind: ElementKind, p: &[DVec2; 9], measure: Measure) -> (ElementScore<()>, Option<(f64, f64)>) {
+        let (s, det) = Self::planar_parts::<false>(kind, p, measure);
+        (ElementScore { quality: s.quality, inverted: s.inverted, inversion: s.inversion, size: () }, det)
+    }
+
+    /// The planar score (its size's `unit` taken where `SIZED`, else not a number, which
+    /// [`planar_unsized`](Self::planar_unsized) drops) and the least corner determinant
+    /// taken directly with its tolerance, `10⁻¹² scale²` (it and `unit · scale²` both within
+    /// some ten ulps of scale² of the determinant of the edges as rounded).
+    #[inline(always)]
+    fn planar_parts<const SIZED: bool>(kind: ElementKind, p: &[DVec2; 9], measure: Measure) -> (Self, Option<(f64, f64)>) {
+        if let Some(score) = Self::valid_triangle::<SIZED>(kind, p, measure) {
             return score;
         }
         let (quality, inverted) = match measure {
@@ -139,12 +165,18 @@ impl ElementScore {
         let k = kind.corners();
         let edges = corner_edge_vectors(kind, p);
         let m = crate::numeric::largest_component(edges[..k].iter().flat_map(|(a, b)| [*a, *b]));
-        let (mut inversion, mut smallest) = (0.0, f64::INFINITY);
+        let (mut inversion, mut smallest, mut least) = (0.0, f64::INFINITY, f64::INFINITY);
         for (e1, e2) in &edges[..k] {
-            inversion += (-e1.perp_dot(*e2)).max(0.0);
-            smallest = smallest.min((*e1 / m).perp_dot(*e2 / m));
+            let det = e1.perp_dot(*e2);
+            inversion += (-det).max(0.0);
+            // a determinant that is not a number leaves the least one so
+            least = if det.is_nan() { det } else { least.min(det) };
+            if SIZED {
+                smallest = smallest.min((*e1 / m).perp_dot(*e2 / m));
+            }
         }
-        ElementScore { quality, inverted, inversion, size: Size { unit: smallest, scale: m, dim: 2 } }
+        let unit = if SIZED { smallest } else { f64::NAN };
+        (ElementScore { quality, inverted, inversion, size: Size { unit, scale: m, dim: 2 } }, planar_det_within(least, m))
     }
 
     /// [`planar`](Self::planar)'s score of a valid linear triangle by [`Measure::Shape`],
@@ -153,9 +185,10 @@ impl ElementScore {
     /// a few ulps, as it is taken from another corner); `None` for any other element or
     /// measure, or an inverted
     /// triangle. A valid star's elements are all scored here before and after a move that
-    /// keeps them valid, so the rule compares like with like.
+    /// keeps them valid, so the rule compares like with like. With `planar_parts`' second
+    /// part, and its size's `unit` as there.
     #[inline]
-    fn valid_triangle(kind: ElementKind, p: &[DVec2; 9], measure: Measure) -> Option<Self> {
+    fn valid_triangle<const SIZED: bool>(kind: ElementKind, p: &[DVec2; 9], measure: Measure) -> Option<(Self, Option<(f64, f64)>)> {
         if kind != ElementKind::Tri3 || measure != Measure::Shape {
             return None;
         }
@@ -165,7 +198,9 @@ impl ElementScore {
         }
         let (u, v, w) = (p[1] - p[0], p[2] - p[0], p[2] - p[1]);
         let m = u.abs().max_element().max(v.abs().max_element()).max(w.abs().max_element());
-        Some(ElementScore { quality, inverted, inversion: 0.0, size: Size { unit: (u / m).perp_dot(v / m), scale: m, dim: 2 } })
+        let unit = if SIZED { (u / m).perp_dot(v / m) } else { f64::NAN };
+        let score = ElementScore { quality, inverted, inversion: 0.0, size: Size { unit, scale: m, dim: 2 } };
+        Some((score, planar_det_within(u.perp_dot(v), m)))
     }
 
     /// A tetrahedron with corners `p` (a quadratic one by its corners), its shape against
@@ -405,7 +440,7 @@ mod tests {
             for _ in 0..2000 {
                 let mut r = || s * (rng.next_f64() * 2.0 - 1.0);
                 let p = tri([r(), r()], [r(), r()], [r(), r()]);
-                let Some(fast) = ElementScore::valid_triangle(ElementKind::Tri3, &p, Measure::Shape) else { continue };
+                let Some((fast, _)) = ElementScore::valid_triangle::<true>(ElementKind::Tri3, &p, Measure::Shape) else { continue };
                 let q = measure_element::<false, false, false>(ElementKind::Tri3, &p, |_, _, _| {});
                 assert_eq!(fast.inverted, q.inverted, "{p:?}");
                 // measured from another corner (and scaled otherwise at extreme sizes): the
@@ -505,6 +540,79 @@ mod tests {
             nan[3].y = f64::NAN;
             assert!(!certain(kind, &nan, &nan));
         }
+    }
+
+    /// The planar screen as the drivers' verdict uses it, against the rule's own answer:
+    /// triangles (valid, which take the fast path, and inverted), quadrilaterals and
+    /// quadratic triangles, at every scale the screen takes and beyond.
+    #[test]
+    fn the_planar_size_floor_kept_for_certain_is_the_rules_answer() {
+        let mut rng = crate::numeric::SplitMix64::new(43);
+        let floor_kept = |kind, b: &[DVec2; 9], a: &[DVec2; 9], m| ElementScore::planar(kind, a, m).size.at_least(MIN_SIZE_RATIO, &ElementScore::planar(kind, b, m).size);
+        let certain = |kind, b: &[DVec2; 9], a: &[DVec2; 9], m| Size::floor_kept_for_certain(ElementScore::planar_unsized(kind, b, m).1, ElementScore::planar_unsized(kind, a, m).1);
+        let ideal = |kind| -> [DVec2; 9] {
+            let mut p = [DVec2::ZERO; 9];
+            let corners: &[[f64; 2]] = match kind {
+                ElementKind::Quad4 => &[[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]],
+                _ => &[[0.0, 0.0], [1.0, 0.0], [0.5, 0.8660254037844386]],
+            };
+            for (q, c) in p.iter_mut().zip(corners) {
+                *q = DVec2::from(*c);
+            }
+            if kind == ElementKind::Tri6 {
+                for (k, (i, j)) in [(0, 1), (1, 2), (2, 0)].into_iter().enumerate() {
+                    p[3 + k] = 0.5 * (p[i] + p[j]);
+                }
+            }
+            p
+        };
+        let (mut decided, mut moves) = (0, 0);
+        for kind in [ElementKind::Tri3, ElementKind::Quad4, ElementKind::Tri6] {
+            for measure in [Measure::Shape, Measure::MinSine] {
+                for scale in [1e-70, 1e-20, 1e-3, 1.0, 7.5, 1e20, 1e70] {
+                    let mut r = || rng.next_f64() * 2.0 - 1.0;
+                    let mut before = ideal(kind);
+                    for q in &mut before[..kind.node_count()] {
+                        *q = (*q + 0.15 * DVec2::new(r(), r())) * scale;
+                    }
+                    for corner in 0..kind.corners() {
+                        for step in [0.05, 0.2, 0.5, 1.0, 2.0] {
+                            let mut after = before;
+                            after[corner] += step * scale * DVec2::new(r(), r());
+                            let sure = certain(kind, &before, &after, measure);
+                            assert!(!sure || floor_kept(kind, &before, &after, measure), "{kind:?} {before:?} -> {after:?}");
+                            moves += 1;
+                            decided += sure as usize;
+                        }
+                    }
+                    for k in -64..=64 {
+                        let s = (MIN_SIZE_RATIO * (1.0 + k as f64 * f64::EPSILON)).sqrt();
+                        let after = before.map(|p| before[0] + s * (p - before[0]));
+                        let sure = certain(kind, &before, &after, measure);
+                        assert!(!sure || floor_kept(kind, &before, &after, measure), "{kind:?} shrunk {k} ulps: {before:?}");
+                    }
+                    for f in [0.99, 1.01] {
+                        let s = (f * MIN_SIZE_RATIO).sqrt();
+                        let after = before.map(|p| before[0] + s * (p - before[0]));
+                        let sure = certain(kind, &before, &after, measure);
+                        assert!(!sure || floor_kept(kind, &before, &after, measure));
+                        // a valid element (the rule's floor is for those): decided where the
+                        // two answers are a percent apart, as the rule's
+                        if !ElementScore::planar(kind, &before, measure).inverted {
+                            assert_eq!(sure, f > 1.0, "{kind:?} shrunk to {f}·floor");
+                            assert_eq!(floor_kept(kind, &before, &after, measure), f > 1.0);
+                        }
+                    }
+                }
+            }
+        }
+        assert!(decided * 10 > moves * 6, "{decided} of {moves}");
+        let tiny = ideal(ElementKind::Tri3).map(|p| p * 1e-90);
+        assert!(!certain(ElementKind::Tri3, &tiny, &tiny, Measure::Shape));
+        let mut nan = ideal(ElementKind::Quad4);
+        assert!(certain(ElementKind::Quad4, &nan, &nan, Measure::Shape));
+        nan[2].y = f64::NAN;
+        assert!(!certain(ElementKind::Quad4, &nan, &nan, Measure::Shape));
     }
 
     #[test]

@@ -7,7 +7,7 @@ use crate::mesh::Mesh;
 use crate::objective::{NodeStar, Point, Star};
 
 use super::measure::{element_measures, element_shape_at, is_inverted, is_inverted_at, star_quality, star_shape};
-use super::accept::{ElementScore, Verdict};
+use super::accept::{ElementScore, Size, Verdict, MIN_SIZE_RATIO};
 use super::{Measure, StarQuality};
 
 /// A mesh as the drivers read it: free nodes, their positions and neighbours, and the
@@ -272,7 +272,13 @@ impl DriverStar for Star {
     fn verdict(&self, x: glam::DVec2, m: Measure) -> Verdict {
         let mut v = Verdict::default();
         for e in &self.elems {
-            v.add(&ElementScore::planar(e.kind, &e.pts, m), &ElementScore::planar(e.kind, &e.at(x), m));
+            let at = e.at(x);
+            let (before, b) = ElementScore::planar_unsized(e.kind, &e.pts, m);
+            let (after, a) = ElementScore::planar_unsized(e.kind, &at, m);
+            // the sizes measured only where their determinants do not decide
+            v.add_deciding_size(&before, &after, || {
+                Size::floor_kept_for_certain(b, a) || ElementScore::planar(e.kind, &at, m).size.at_least(MIN_SIZE_RATIO, &ElementScore::planar(e.kind, &e.pts, m).size)
+            });
         }
         v
     }
