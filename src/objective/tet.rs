@@ -97,6 +97,9 @@ pub struct StarSolid {
     /// Where a hexahedron is valid for certain by its `det J` as gathered (made at the
     /// guard's first question).
     ball: std::sync::OnceLock<Option<ValidBall>>,
+    /// A second such ball, about the first position the guard asked beyond the first (its
+    /// exact test takes the coefficients there), where the solve's later trials gather.
+    second_ball: std::cell::Cell<Option<ValidBall>>,
     /// Whether the guard has asked a position outside the ball: the form is made at the
     /// second such question (the first is answered exactly, which costs less than the form).
     asked_beyond_ball: std::cell::Cell<bool>,
@@ -326,6 +329,7 @@ impl StarSolid {
             pts,
             det: std::sync::OnceLock::new(),
             ball: std::sync::OnceLock::new(),
+            second_ball: std::cell::Cell::new(None),
             asked_beyond_ball: std::cell::Cell::new(false),
             measured: PositionMemo::default(),
             shaped: PositionMemo::default(),
@@ -338,6 +342,7 @@ impl StarSolid {
         (self.element, self.kind, self.slot, self.pts) = (element, kind, slot, pts);
         self.det = std::sync::OnceLock::new();
         self.ball = std::sync::OnceLock::new();
+        self.second_ball = std::cell::Cell::new(None);
         self.asked_beyond_ball = std::cell::Cell::new(false);
         self.measured = PositionMemo::default();
         self.shaped = PositionMemo::default();
@@ -357,7 +362,7 @@ impl StarSolid {
     /// else exactly.
     #[inline]
     fn validity_by(&self, ball: Option<&ValidBall>, form: Option<&DetForm>, x: DVec3) -> Validity {
-        if ball.is_some_and(|b| b.holds(x)) {
+        if ball.is_some_and(|b| b.holds(x)) || self.second_ball.get().is_some_and(|b| b.holds(x)) {
             return Validity::Valid;
         }
         form.and_then(|d| d.validity_at(x)).unwrap_or_else(|| validity(self.kind, self.corners(&self.at(x))))
@@ -402,19 +407,22 @@ impl StarSolid {
         c == slot || self.kind.row().corner_edges[c].contains(&slot)
     }
     /// [`validity`](crate::quality::solid::validity) with the free node at `x`: valid where
-    /// the element's [`ValidBall`] holds `x` (made at the first question), else exactly at
-    /// the first position beyond it, then from its [`DetForm`] (made at the second) where it
-    /// decides.
+    /// the element's [`ValidBall`] holds `x` (made at the first question) or its second ball
+    /// does, else exactly at the first position beyond the first ball (whose coefficients
+    /// make the second), then from its [`DetForm`] (made at the second) where it decides.
     #[inline]
     pub fn validity_at(&self, x: DVec3) -> Validity {
         let ball = self.ball.get_or_init(|| ValidBall::of(self.kind, &self.pts, self.slot as usize));
-        if ball.is_some_and(|b| b.holds(x)) {
-            // the form is made only where the ball does not decide
+        if ball.is_some_and(|b| b.holds(x)) || self.second_ball.get().is_some_and(|b| b.holds(x)) {
+            // the form is made only where the balls do not decide
             return Validity::Valid;
         }
         if self.det.get().is_none() && !self.asked_beyond_ball.replace(true) {
-            // the first position beyond the ball: exactly (a form pays from the second)
-            return validity(self.kind, self.corners(&self.at(x)));
+            // the first position beyond the ball: exactly (a form pays from the second), and
+            // the coefficients taken there make the second ball
+            let (v, second) = ValidBall::validity_and_ball(self.kind, &self.at(x), self.slot as usize);
+            self.second_ball.set(second);
+            return v;
         }
         let form = self.det.get_or_init(|| DetForm::of(self.kind, &self.pts, self.slot as usize));
         self.validity_by(None, form.as_ref(), x)
@@ -548,6 +556,7 @@ impl NodeStar for CornerStar {
             }
             e.det = std::sync::OnceLock::new();
             e.ball = std::sync::OnceLock::new();
+            e.second_ball = std::cell::Cell::new(None);
             e.measured = PositionMemo::default();
             e.shaped = PositionMemo::default();
             e.terms = std::cell::Cell::new(None);

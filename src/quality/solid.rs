@@ -549,7 +549,29 @@ impl ValidBall {
         if reach == 0.0 || !reach.is_finite() || crate::numeric::factors_beyond_safe_scale(reach).is_some() {
             return None;
         }
-        let m = hex_det(p).min_coefficient();
+        Self::of_coefficients(p, slot, reach, &hex_det(p))
+    }
+
+    /// [`validity`] of the hexahedron with corners `p` and its ball with free corner
+    /// `slot` (as [`of`](Self::of)), from one taking of its coefficients: for the guard's
+    /// first question beyond an element's first ball, whose answer makes a second ball about
+    /// the position asked (where the solve's later trials gather). The same validity as
+    /// [`validity`]'s, which takes the same coefficients where the element is within the
+    /// safe scale, as a ball asks.
+    pub fn validity_and_ball(kind: VolumeKind, p: &[DVec3], slot: usize) -> (Validity, Option<ValidBall>) {
+        let corners = &p[..kind.corners()];
+        let reach = reach(corners);
+        if kind.linear() != VolumeKind::Hex8 || reach == 0.0 || !reach.is_finite() || crate::numeric::factors_beyond_safe_scale(reach).is_some() {
+            return (validity(kind, p), None);
+        }
+        let det = hex_det(corners);
+        (det.validity(), Self::of_coefficients(corners, slot, reach, &det))
+    }
+
+    /// The ball from the coefficients `det` of the hexahedron with corners `p` (within the
+    /// safe scale, its reach `reach`).
+    fn of_coefficients(p: &[DVec3], slot: usize, reach: f64, det: &Bezier) -> Option<ValidBall> {
+        let m = det.min_coefficient();
         let longest = (0..4)
             .flat_map(|i| [(i, (i + 1) % 4), (i + 4, (i + 1) % 4 + 4), (i, i + 4)])
             .fold(0.0f64, |l, (a, b)| l.max(p[a].distance_squared(p[b])));

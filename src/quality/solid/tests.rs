@@ -308,6 +308,7 @@ fn a_valid_ball_holds_only_positions_where_the_hexahedron_is_valid() {
     flat[6].z = 0.0;
     flat[2].z = 1.0;
     assert!(ValidBall::of(VolumeKind::Hex8, &flat, 0).is_none());
+    assert_eq!(ValidBall::validity_and_ball(VolumeKind::Hex8, &flat, 0), (validity(VolumeKind::Hex8, &flat), None));
     assert!(ValidBall::of(VolumeKind::Pyramid5, &ideal(VolumeKind::Pyramid5), 0).is_none());
 }
 
@@ -351,4 +352,36 @@ fn corner_shapes_are_the_terms_of_the_solid_shape_bit_for_bit() {
         let huge: Vec<DVec3> = ideal(kind).iter().take(kind.corners()).map(|c| *c * 1e200).collect();
         assert!(CornerShapes::of(kind, &huge, |_| None).is_none());
     }
+}
+
+#[test]
+fn the_second_ball_comes_with_the_exact_validity_and_holds_only_valid_positions() {
+    // the guard's first question beyond the first ball: the same validity as the exact
+    // test, and a ball about the position asked that holds only valid positions, at every
+    // scale (beyond the safe scale, no ball: the exact test's own scaling answers)
+    let mut rng = SplitMix64::new(17);
+    let (mut balls, mut held) = (0, 0);
+    for round in 0..300 {
+        let kind = [VolumeKind::Hex8, VolumeKind::Hex20, VolumeKind::Wedge6][round % 3];
+        let scale = [1.0, 1e-3, 250.0, 1e-70, 1e70][round % 5];
+        let p: Vec<DVec3> = perturbed(kind, &mut rng, 0.35, scale);
+        let slot = round % 6;
+        let (v, ball) = ValidBall::validity_and_ball(kind, &p, slot);
+        assert_eq!(v, validity(kind, &p), "{kind:?} {p:?}");
+        let Some(ball) = ball else { continue };
+        assert_eq!(kind.linear(), VolumeKind::Hex8);
+        assert_eq!(v, Validity::Valid, "a ball only about a valid position");
+        assert_eq!(Some(ball), ValidBall::of(kind, &p, slot), "the ball `of` makes");
+        balls += 1;
+        for _ in 0..20 {
+            let x = p[slot] + DVec3::new(rng.uniform(-1.0, 1.0), rng.uniform(-1.0, 1.0), rng.uniform(-1.0, 1.0)) * rng.uniform(0.0, 0.5) * scale;
+            if ball.holds(x) {
+                let mut q = p.clone();
+                q[slot] = x;
+                assert_eq!(validity(kind, &q), Validity::Valid);
+                held += 1;
+            }
+        }
+    }
+    assert!(balls > 20 && held > 100, "{balls} balls, {held} held");
 }
