@@ -169,8 +169,9 @@ impl ElementScore {
         for (e1, e2) in &edges[..k] {
             let det = e1.perp_dot(*e2);
             inversion += (-det).max(0.0);
-            // a determinant that is not a number leaves the least one so
-            least = if det.is_nan() { det } else { least.min(det) };
+            // a determinant that is not a number leaves the least one so (and the screen
+            // to the sizes)
+            least = if det.is_nan() || least.is_nan() { f64::NAN } else { least.min(det) };
             if SIZED {
                 smallest = smallest.min((*e1 / m).perp_dot(*e2 / m));
             }
@@ -611,6 +612,12 @@ mod tests {
         assert!(!certain(ElementKind::Tri3, &tiny, &tiny, Measure::Shape));
         let mut nan = ideal(ElementKind::Quad4);
         assert!(certain(ElementKind::Quad4, &nan, &nan, Measure::Shape));
+        // corners whose determinants are not numbers, before or after the others
+        for k in 0..4 {
+            let mut q = nan;
+            q[k].y = f64::NAN;
+            assert!(!certain(ElementKind::Quad4, &q, &q, Measure::Shape), "node {k}");
+        }
         nan[2].y = f64::NAN;
         assert!(!certain(ElementKind::Quad4, &nan, &nan, Measure::Shape));
     }
