@@ -541,14 +541,7 @@ impl ValidBall {
     /// corners `p`, its corner `slot` free; `None` for other kinds, an element not valid
     /// beyond rounding where it is, and an element beyond the safe scale.
     pub fn of(kind: VolumeKind, p: &[DVec3], slot: usize) -> Option<ValidBall> {
-        if kind.linear() != VolumeKind::Hex8 {
-            return None;
-        }
-        let p = &p[..8];
-        let reach = reach(p);
-        if reach == 0.0 || !reach.is_finite() || crate::numeric::factors_beyond_safe_scale(reach).is_some() {
-            return None;
-        }
+        let (p, reach) = Self::corners_and_reach(kind, p)?;
         Self::of_coefficients(p, slot, reach, &hex_det(p))
     }
 
@@ -559,13 +552,23 @@ impl ValidBall {
     /// [`validity`]'s, which takes the same coefficients where the element is within the
     /// safe scale, as a ball asks.
     pub fn validity_and_ball(kind: VolumeKind, p: &[DVec3], slot: usize) -> (Validity, Option<ValidBall>) {
-        let corners = &p[..kind.corners()];
-        let reach = reach(corners);
-        if kind.linear() != VolumeKind::Hex8 || reach == 0.0 || !reach.is_finite() || crate::numeric::factors_beyond_safe_scale(reach).is_some() {
+        let Some((corners, reach)) = Self::corners_and_reach(kind, p) else {
             return (validity(kind, p), None);
-        }
+        };
         let det = hex_det(corners);
         (det.validity(), Self::of_coefficients(corners, slot, reach, &det))
+    }
+
+    /// The corners and reach of an element a ball may be made for: a hexahedron (of any
+    /// order, by its corners) of positive reach within the safe scale.
+    #[inline]
+    fn corners_and_reach(kind: VolumeKind, p: &[DVec3]) -> Option<(&[DVec3], f64)> {
+        if kind.linear() != VolumeKind::Hex8 {
+            return None;
+        }
+        let p = &p[..8];
+        let reach = reach(p);
+        (reach != 0.0 && reach.is_finite() && crate::numeric::factors_beyond_safe_scale(reach).is_none()).then_some((p, reach))
     }
 
     /// The ball from the coefficients `det` of the hexahedron with corners `p` (within the
