@@ -376,6 +376,17 @@ fn gradient_back(g: DVec2, f: [f64; 2]) -> DVec2 {
     g * f[0] * f[1]
 }
 
+/// An element's least corner determinant `det`, taken directly from edges whose largest
+/// component is at most `scale`, with how far the acceptance rule's size (`unit · scaleᵈ`,
+/// `unit` from the edges divided by their largest component) may lie from it: `10⁻¹²
+/// scaleᵈ`, some hundred times the rounding of either. `None` where `det` is not a number
+/// or `scale` lies outside [10⁻⁸⁰, 10⁸⁰], where the products could leave the doubles'
+/// normal range. For the rule's screen of its size floor (`smooth::Size::floor_kept_for_certain`).
+#[inline]
+pub fn det_within(det: f64, scale: f64, dim: i32) -> Option<(f64, f64)> {
+    ((1e-80..=1e80).contains(&scale) && !det.is_nan()).then_some((det, 1e-12 * scale.powi(dim)))
+}
+
 /// The corner edge vectors of [`corner_edges`] in the mesh's own units (the objectives'
 /// derivatives need the true lengths): chords, or for quadratic elements the end tangents
 /// `4M − 3P0 − P2`.

@@ -824,20 +824,14 @@ pub fn corner_size(t: &[DVec3; 4]) -> (f64, f64) {
 
 /// The smallest of an element's measured corners' Jacobian determinants taken directly
 /// (`(t₁ − t₀)·((t₂ − t₀) × (t₃ − t₀))` of each corner's tetrahedron, where [`corner_size`]
-/// divides the edges by their largest component first), and how far it may lie from the
-/// smallest of the corners' `unit · scale³` (both a few ulps of the extent³ from the
-/// determinants of the edges as rounded; the bound is some hundred times that): `(least,
-/// tolerance)`. `None` where a corner's determinant is not a number or the element's extent
-/// lies outside [10⁻⁸⁰, 10⁸⁰], where the products could leave the doubles' normal range.
+/// divides the edges by their largest component first), with its tolerance
+/// ([`super::det_within`], the element's extent for the scale); `None` where a corner's
+/// determinant is not a number or the extent is beyond the scales it takes.
 pub fn least_corner_det(kind: VolumeKind, p: &[DVec3]) -> Option<(f64, f64)> {
     let p = &p[..kind.corners()];
-    let reach = reach(p);
-    if !(1e-80..=1e80).contains(&reach) {
-        return None;
-    }
     // every component of an edge between two corners is at most twice the reach from the
     // first corner (rounded up beyond the reach's own rounding)
-    let extent = 2.0 * reach * (1.0 + 1e-9);
+    let extent = 2.0 * reach(p) * (1.0 + 1e-9);
     let mut least = f64::INFINITY;
     for c in 0..kind.row().corner_edges.len() {
         let d = corner_det(&corner_tet(kind, p, c));
@@ -846,7 +840,7 @@ pub fn least_corner_det(kind: VolumeKind, p: &[DVec3]) -> Option<(f64, f64)> {
         }
         least = least.min(d);
     }
-    Some((least, 1e-12 * extent * extent * extent))
+    super::det_within(least, extent, 3)
 }
 
 /// The sizes ([`corner_size`]) of an element's measured corners in corner order, as

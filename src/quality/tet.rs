@@ -60,15 +60,11 @@ impl TetRuleMeasures {
         let det = e[0].dot(e[1].cross(e[2]));
         TetRuleMeasures { inverted: is_inverted(p), inversion: (-det).max(0.0), det, scale: crate::numeric::largest_component(e) }
     }
-    /// `(det, tolerance)`: its determinant and how far the size the rule compares
-    /// (`unit · scale³`, `quality::solid::corner_size`) may lie from it, 10⁻¹² scale³ (both
-    /// within some 50 ulps of scale³ of the determinant of the edges as rounded); `None`
-    /// where the determinant is not a number or the scale lies outside [10⁻⁸⁰, 10⁸⁰], where
-    /// the products could leave the doubles' normal range. As
+    /// Its determinant and scale for the rule's screen ([`super::det_within`]), as
     /// `quality::solid::least_corner_det` gives a solid's.
     #[inline]
     pub fn det_within(&self) -> Option<(f64, f64)> {
-        ((1e-80..=1e80).contains(&self.scale) && !self.det.is_nan()).then_some((self.det, 1e-12 * self.scale * self.scale * self.scale))
+        super::det_within(self.det, self.scale, 3)
     }
 }
 

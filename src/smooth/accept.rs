@@ -119,14 +119,6 @@ impl Size {
     }
 }
 
-/// A planar element's least corner determinant `det` taken directly, with its tolerance
-/// `10⁻¹² scale²`, for [`Size::floor_kept_for_certain`]; `None` where it is not a number
-/// or `scale` lies outside [10⁻⁸⁰, 10⁸⁰].
-#[inline]
-fn planar_det_within(det: f64, scale: f64) -> Option<(f64, f64)> {
-    ((1e-80..=1e80).contains(&scale) && !det.is_nan()).then_some((det, 1e-12 * scale * scale))
-}
-
 impl ElementScore {
     /// A planar element (or a surface element in its own plane) with nodes `p`.
     pub fn planar(kind: ElementKind, p: &[DVec2; 9], measure: Measure) -> Self {
@@ -145,8 +137,7 @@ impl ElementScore {
 
     /// The planar score (its size's `unit` taken where `SIZED`, else not a number, which
     /// [`planar_unsized`](Self::planar_unsized) drops) and the least corner determinant
-    /// taken directly with its tolerance, `10⁻¹² scale²` (it and `unit · scale²` both within
-    /// some ten ulps of scale² of the determinant of the edges as rounded).
+    /// taken directly with its tolerance ([`crate::quality::det_within`]).
     #[inline(always)]
     fn planar_parts<const SIZED: bool>(kind: ElementKind, p: &[DVec2; 9], measure: Measure) -> (Self, Option<(f64, f64)>) {
         if let Some(score) = Self::valid_triangle::<SIZED>(kind, p, measure) {
@@ -177,7 +168,7 @@ impl ElementScore {
             }
         }
         let unit = if SIZED { smallest } else { f64::NAN };
-        (ElementScore { quality, inverted, inversion, size: Size { unit, scale: m, dim: 2 } }, planar_det_within(least, m))
+        (ElementScore { quality, inverted, inversion, size: Size { unit, scale: m, dim: 2 } }, crate::quality::det_within(least, m, 2))
     }
 
     /// [`planar`](Self::planar)'s score of a valid linear triangle by [`Measure::Shape`],
@@ -201,7 +192,7 @@ impl ElementScore {
         let m = u.abs().max_element().max(v.abs().max_element()).max(w.abs().max_element());
         let unit = if SIZED { (u / m).perp_dot(v / m) } else { f64::NAN };
         let score = ElementScore { quality, inverted, inversion: 0.0, size: Size { unit, scale: m, dim: 2 } };
-        Some((score, planar_det_within(u.perp_dot(v), m)))
+        Some((score, crate::quality::det_within(u.perp_dot(v), m, 2)))
     }
 
     /// A tetrahedron with corners `p` (a quadratic one by its corners), its shape against
