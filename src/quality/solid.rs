@@ -113,6 +113,25 @@ impl Bezier {
         }
         m
     }
+    /// [`min_coefficient`](Self::min_coefficient) of a hexahedron's 27 in four running
+    /// minima rather than one chain of 27 (their latency, where the validity guard makes a
+    /// ball at every visit): the same least value, not-a-number coefficients skipped as the
+    /// fold skips them, but for the sign of a zero, which a comparison with zero and the
+    /// ball's radius do not see.
+    #[inline]
+    fn min_coefficient_unsigned(&self) -> f64 {
+        if self.deg != [2, 2, 2] {
+            return self.min_coefficient();
+        }
+        let c = self.c.as_flattened().as_flattened();
+        let mut m = [f64::INFINITY; 4];
+        for run in c.chunks(4) {
+            for (m, &v) in m.iter_mut().zip(run) {
+                *m = m.min(v);
+            }
+        }
+        m[0].min(m[1]).min(m[2].min(m[3]))
+    }
     /// The smallest of its values at the box's corners (its corner coefficients).
     fn min_corner(&self) -> f64 {
         let mut m = f64::INFINITY;
@@ -161,7 +180,7 @@ impl Bezier {
     /// or not decided within [`MAX_BOXES`] boxes.
     fn validity(&self) -> Validity {
         // the first box decides most elements: without the subdivision's stack
-        let (corner, least) = (self.min_corner(), self.min_coefficient());
+        let (corner, least) = (self.min_corner(), self.min_coefficient_unsigned());
         if corner <= 0.0 || corner.is_nan() {
             return Validity::Inverted;
         }
@@ -574,10 +593,15 @@ impl ValidBall {
     /// The ball from the coefficients `det` of the hexahedron with corners `p` (within the
     /// safe scale, its reach `reach`).
     fn of_coefficients(p: &[DVec3], slot: usize, reach: f64, det: &Bezier) -> Option<ValidBall> {
-        let m = det.min_coefficient();
-        let longest = (0..4)
-            .flat_map(|i| [(i, (i + 1) % 4), (i + 4, (i + 1) % 4 + 4), (i, i + 4)])
-            .fold(0.0f64, |l, (a, b)| l.max(p[a].distance_squared(p[b])));
+        let m = det.min_coefficient_unsigned();
+        // the twelve edges' squares in three running maxima (a maximum is exact)
+        let mut longest = [0.0f64; 3];
+        for i in 0..4 {
+            for (l, (a, b)) in longest.iter_mut().zip([(i, (i + 1) % 4), (i + 4, (i + 1) % 4 + 4), (i, i + 4)]) {
+                *l = l.max(p[a].distance_squared(p[b]));
+            }
+        }
+        let longest = longest[0].max(longest[1]).max(longest[2]);
         // the gradients' bound, rounded up beyond its own rounding
         let slope = 3.0 * longest * (1.0 + 1e-9);
         let radius = 0.99 * m / slope;
@@ -794,8 +818,20 @@ impl CornerShapes {
         }
         let r = kind.reference();
         let mut t = [0.0; 8];
-        for (c, t) in t.iter_mut().enumerate().take(kind.row().corner_edges.len()) {
-            *t = kept(c).unwrap_or_else(|| q3::mean_ratio(&corner_tet(kind, p, c), r));
+        // each measured corner's `q3::mean_ratio`, its Jacobians first and then their cube
+        // roots: the same operations on each corner, but no corner waits on the last one's
+        // cube root and division
+        let mut parts = [None; 8];
+        for (c, (t, parts)) in t.iter_mut().zip(&mut parts).enumerate().take(kind.row().corner_edges.len()) {
+            match kept(c) {
+                Some(v) => *t = v,
+                None => *parts = Some(q3::MeanRatioParts::of(&corner_tet(kind, p, c), r)),
+            }
+        }
+        for (t, parts) in t.iter_mut().zip(&parts) {
+            if let Some(parts) = parts {
+                *t = parts.mean_ratio();
+            }
         }
         Some(CornerShapes(t))
     }

@@ -89,8 +89,11 @@ impl DriverStar for CornerStar {
         for (i, &e) in mesh.node_tets(node).iter().enumerate() {
             // a tetrahedron from the star's own stream of corners (`VolumeMesh::node_tet_corners`)
             if let Some(&[a, b, c]) = corners.get(i).filter(|o| o[0] != u32::MAX) {
-                let pts = [x, nodes[a as usize], nodes[b as usize], nodes[c as usize]];
-                self.tets.push(StarCorner::pending(e, pts, &q3::EQUILATERAL_TET, true));
+                // the corners written in place (below)
+                self.tets.push(StarCorner::pending(e, [DVec3::ZERO; 4], &q3::EQUILATERAL_TET, true));
+                if let Some(t) = self.tets.last_mut() {
+                    t.pts = [x, nodes[a as usize], nodes[b as usize], nodes[c as usize]];
+                }
                 continue;
             }
             let kind = mesh.element_kind(e as usize);
@@ -104,8 +107,14 @@ impl DriverStar for CornerStar {
             for (c, &[a, b, d]) in row.corner_edges.iter().enumerate() {
                 let tuple = [c, a, b, d];
                 let Some(s) = tuple.iter().position(|&j| j == slot) else { continue };
-                let pts = WITH_FIRST[s].map(|j| all[tuple[j]]);
-                self.tets.push(StarCorner::pending(e, pts, &row.slot_references[s], false));
+                // the corners written in place: put together on the stack and moved whole,
+                // their 24-byte points were read back in 16-byte pieces, which stalled
+                self.tets.push(StarCorner::pending(e, [DVec3::ZERO; 4], &row.slot_references[s], false));
+                if let Some(t) = self.tets.last_mut() {
+                    for (p, &j) in t.pts.iter_mut().zip(&WITH_FIRST[s]) {
+                        *p = all[tuple[j]];
+                    }
+                }
             }
             self.put_solid(solids, e, kind, slot as u8, all);
             solids += 1;
