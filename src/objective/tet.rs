@@ -93,10 +93,10 @@ pub struct StarSolid {
     /// the guard's second question beyond the valid ball (a visit of the smart Laplacian
     /// asks none); it holds
     /// wherever the free node goes, as the other corners stay.
-    det: std::sync::OnceLock<Option<DetForm>>,
+    det: std::cell::OnceCell<Option<DetForm>>,
     /// Where a hexahedron is valid for certain by its `det J` as gathered (made at the
     /// guard's first question).
-    ball: std::sync::OnceLock<Option<ValidBall>>,
+    ball: std::cell::OnceCell<Option<ValidBall>>,
     /// A second such ball, about the first position the guard asked beyond the first (its
     /// exact test takes the coefficients there), where the solve's later trials gather.
     second_ball: std::cell::Cell<Option<ValidBall>>,
@@ -113,6 +113,10 @@ pub struct StarSolid {
     terms: std::cell::Cell<Option<(DVec3, CornerShapes)>>,
     /// The corners' sizes at the last position they were measured at, as `terms`.
     sizes: std::cell::Cell<Option<(DVec3, CornerSizes)>>,
+    /// The least corner determinant with its tolerance (the acceptance rule's size screen,
+    /// [`least_corner_det`](crate::quality::solid::least_corner_det)) at the last two
+    /// positions asked, as `measured`.
+    least_det: PositionMemo<Option<(f64, f64)>>,
 }
 
 /// A measure of a star's element kept for the last two positions of the free node asked:
@@ -156,8 +160,9 @@ impl<T: Copy> PositionMemo<T> {
     }
 }
 
-/// The validity and shape (with the shape's terms, [`CornerShapes`], and the corners'
-/// sizes, [`CornerSizes`]) of the stars' elements
+/// The validity and shape (with the shape's terms, [`CornerShapes`], the corners'
+/// sizes, [`CornerSizes`], and the least corner determinant the acceptance rule screens
+/// the size with) of the stars' elements
 /// other than tetrahedra, kept from visit to visit: each as the element's last star left
 /// it, with the corners it was measured at.
 /// A star gathered later starts its element's [`PositionMemo`]s with them where the corners
@@ -166,8 +171,8 @@ impl<T: Copy> PositionMemo<T> {
 /// measured again at a position it was measured at. Both measures are functions of the
 /// kind and the corners alone, so an answer kept is the answer measuring would give.
 ///
-/// Direct-mapped by element number, at most [`KnownSolids::MAX_SLOTS`] slots of 424 bytes
-/// (some 28 MB of a mesh of many elements other than tetrahedra), none for a mesh of
+/// Direct-mapped by element number, at most [`KnownSolids::MAX_SLOTS`] slots of 448 bytes
+/// (some 29 MB of a mesh of many elements other than tetrahedra), none for a mesh of
 /// tetrahedra. A copy starts empty: it is a cache.
 #[derive(Default)]
 pub(crate) struct KnownSolids {
@@ -175,7 +180,7 @@ pub(crate) struct KnownSolids {
 }
 
 // the slot's size that `KnownSolids` states
-const _: () = assert!(std::mem::size_of::<KnownSolid>() == 424);
+const _: () = assert!(std::mem::size_of::<KnownSolid>() == 448);
 
 #[derive(Clone, Copy)]
 struct KnownSolid {
@@ -186,11 +191,20 @@ struct KnownSolid {
     shape: Option<f64>,
     terms: Option<CornerShapes>,
     sizes: Option<CornerSizes>,
+    least_det: Option<Option<(f64, f64)>>,
 }
 
 impl KnownSolid {
-    const EMPTY: KnownSolid =
-        KnownSolid { element: u32::MAX, kind: VolumeKind::Tet4, corners: [DVec3::ZERO; 8], validity: None, shape: None, terms: None, sizes: None };
+    const EMPTY: KnownSolid = KnownSolid {
+        element: u32::MAX,
+        kind: VolumeKind::Tet4,
+        corners: [DVec3::ZERO; 8],
+        validity: None,
+        shape: None,
+        terms: None,
+        sizes: None,
+        least_det: None,
+    };
     /// Whether this slot holds `element` of `kind` at `corners`, bit for bit.
     fn holds(&self, element: u32, kind: VolumeKind, corners: &[DVec3]) -> bool {
         let bits = |p: &DVec3| [p.x.to_bits(), p.y.to_bits(), p.z.to_bits()];
@@ -233,7 +247,15 @@ impl KnownSolids {
             }
             e.terms.set(k.terms.map(|t| (x, t)));
             e.sizes.set(k.sizes.map(|t| (x, t)));
+            if let Some(d) = k.least_det {
+                e.least_det.start_with(x, d);
+            }
         }
+    }
+
+    /// Whether `element` of `kind` was measured valid at `corners`, bit for bit.
+    fn valid_at(&self, element: u32, kind: VolumeKind, corners: &[DVec3]) -> bool {
+        self.slots.get(self.slot(element)).is_some_and(|k| k.validity == Some(Validity::Valid) && k.holds(element, kind, corners))
     }
 
     /// Keeps what `e`'s memos know of it with its free node at `x`, in a mesh of
@@ -242,6 +264,7 @@ impl KnownSolids {
         let (validity, shape) = (e.measured.kept(x), e.shaped.kept(x));
         let terms = e.terms.get().filter(|&(at, _)| at == x).map(|(_, t)| t);
         let sizes = e.sizes.get().filter(|&(at, _)| at == x).map(|(_, t)| t);
+        let least_det = e.least_det.kept(x);
         if validity.is_none() && shape.is_none() {
             return;
         }
@@ -260,10 +283,11 @@ impl KnownSolids {
             k.shape = shape.or(k.shape);
             k.terms = terms.or(k.terms);
             k.sizes = sizes.or(k.sizes);
+            k.least_det = least_det.or(k.least_det);
         } else {
             let mut c = [DVec3::ZERO; 8];
             c[..corners.len()].copy_from_slice(corners);
-            *k = KnownSolid { element: e.element, kind: e.kind, corners: c, validity, shape, terms, sizes };
+            *k = KnownSolid { element: e.element, kind: e.kind, corners: c, validity, shape, terms, sizes, least_det };
         }
     }
 }
@@ -327,27 +351,29 @@ impl StarSolid {
             kind,
             slot,
             pts,
-            det: std::sync::OnceLock::new(),
-            ball: std::sync::OnceLock::new(),
+            det: std::cell::OnceCell::new(),
+            ball: std::cell::OnceCell::new(),
             second_ball: std::cell::Cell::new(None),
             asked_beyond_ball: std::cell::Cell::new(false),
             measured: PositionMemo::default(),
             shaped: PositionMemo::default(),
             terms: std::cell::Cell::new(None),
             sizes: std::cell::Cell::new(None),
+            least_det: PositionMemo::default(),
         }
     }
     /// This element made [`new`](Self::new) in place: the lazy forms' room is not written.
     fn reset(&mut self, element: u32, kind: VolumeKind, slot: u8, pts: [DVec3; 8]) {
         (self.element, self.kind, self.slot, self.pts) = (element, kind, slot, pts);
-        self.det = std::sync::OnceLock::new();
-        self.ball = std::sync::OnceLock::new();
+        self.det = std::cell::OnceCell::new();
+        self.ball = std::cell::OnceCell::new();
         self.second_ball = std::cell::Cell::new(None);
         self.asked_beyond_ball = std::cell::Cell::new(false);
         self.measured = PositionMemo::default();
         self.shaped = PositionMemo::default();
         self.terms = std::cell::Cell::new(None);
         self.sizes = std::cell::Cell::new(None);
+        self.least_det = PositionMemo::default();
     }
     /// [`validity`](crate::quality::solid::validity) with the free node at `x` as the
     /// drivers' measures ask it (the star as gathered, a move's position): from the
@@ -398,6 +424,13 @@ impl StarSolid {
         let s = CornerSizes::of(self.kind, self.corners(&p), |c| kept.filter(|_| !self.moves(c)).map(|(_, s)| s.of_kind(self.kind)[c]));
         self.sizes.set(Some((x, s)));
         s
+    }
+    /// [`least_corner_det`](crate::quality::solid::least_corner_det) with the free node at
+    /// `x`, kept for the position as [`validity_measured`](Self::validity_measured) keeps
+    /// its answer (the rule asks it where the node is at every visit: kept from the visit
+    /// that moved the node there, [`KnownSolids`]).
+    pub fn least_corner_det_measured(&self, x: DVec3) -> Option<(f64, f64)> {
+        self.least_det.get_or(x, || crate::quality::solid::least_corner_det(self.kind, self.corners(&self.at(x))))
     }
     /// Whether its measured corner `c`'s tetrahedron holds the free node (the corner or one
     /// of its edge neighbours is the free node's slot).
@@ -505,6 +538,11 @@ impl CornerStar {
             self.known.keep(e, x, elements);
         }
     }
+    /// Whether `element` of `kind` (other than a tetrahedron) is known valid at `corners`,
+    /// bit for bit ([`KnownSolids`]).
+    pub(crate) fn known_valid_solid(&self, element: u32, kind: VolumeKind, corners: &[DVec3]) -> bool {
+        self.known.valid_at(element, kind, corners)
+    }
     /// Makes `StarSolid::new(element, kind, slot, pts)` the `n`-th element other than a
     /// tetrahedron (`n` at most their number), its measures started with what is known of it
     /// at its corners now ([`KnownSolids`]). An element already there is overwritten in
@@ -554,12 +592,13 @@ impl NodeStar for CornerStar {
             for p in &mut e.pts {
                 *p *= f;
             }
-            e.det = std::sync::OnceLock::new();
-            e.ball = std::sync::OnceLock::new();
+            e.det = std::cell::OnceCell::new();
+            e.ball = std::cell::OnceCell::new();
             e.second_ball = std::cell::Cell::new(None);
             e.measured = PositionMemo::default();
             e.shaped = PositionMemo::default();
             e.terms = std::cell::Cell::new(None);
+            e.least_det = PositionMemo::default();
         }
         s
     }
@@ -1327,5 +1366,56 @@ mod tests {
         mesh.nodes_mut()[n] = DVec3::new(x.x + 1e-9, x.y, x.z);
         star.gather_for_measures(&mesh, n);
         assert!(star.elements.iter().all(|e| e.measured.kept(e.x()).is_none() && e.shaped.kept(e.x()).is_none()));
+    }
+
+    /// What the stars keep of their elements from visit to visit answers as measuring does:
+    /// after visits that measure each star where its node is and where it moves, as the
+    /// acceptance rule does, an element known valid at its corners now is valid by the exact
+    /// test (the untangling sweeps' planning reads it, `DriverStar::known_valid`), one
+    /// measured folded is not known valid, and the least corner determinant a star recalls
+    /// is the one taken now.
+    #[test]
+    fn what_is_known_after_visits_is_what_measuring_gives() {
+        use crate::quality::solid::least_corner_det;
+        use crate::smooth::DriverStar;
+        let block = crate::generate::hex_grid(&crate::generate::HexBlock::cube(4)).unwrap();
+        // moved by 0.9 mean edge lengths: some hexahedra folded
+        let mut mesh = crate::generate::perturb_volume(&block, 0.9, 2).unwrap();
+        let mut star = CornerStar::default();
+        let free: Vec<usize> = (0..mesh.node_count()).filter(|&n| mesh.is_free(n)).collect();
+        for (i, &n) in free.iter().enumerate() {
+            star.gather_for_measures(&mesh, n);
+            let x = star.x0() + DVec3::new(1e-3, -2e-3, 1.5e-3) * (i % 3) as f64;
+            for e in &star.elements {
+                for at in [e.x(), x] {
+                    e.validity_measured(at);
+                    e.least_corner_det_measured(at);
+                }
+            }
+            mesh.nodes_mut()[n] = x;
+        }
+        // the last star's elements are kept at the next gather
+        star.gather_for_measures(&mesh, free[0]);
+        let (mut known, mut folded) = (0, 0);
+        for e in 0..mesh.element_count() {
+            let inverted = mesh.is_inverted(e);
+            folded += inverted as usize;
+            if star.known_valid(&mesh, e) {
+                assert!(!inverted, "element {e} known valid");
+                known += 1;
+            }
+        }
+        assert!(known > mesh.element_count() / 2 && folded > 0, "{known} known valid, {folded} folded");
+        let mut recalled = 0;
+        for &n in &free {
+            star.gather_for_measures(&mesh, n);
+            for e in &star.elements {
+                if let Some(d) = e.least_det.kept(e.x()) {
+                    assert_eq!(d, least_corner_det(e.kind, e.corners(&e.pts)), "element {}", e.element);
+                    recalled += 1;
+                }
+            }
+        }
+        assert!(recalled > 0);
     }
 }

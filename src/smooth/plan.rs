@@ -175,7 +175,7 @@ impl<S: DriverStar> Smoother<S> {
         self.marked.clear();
         self.marked.resize(mesh.node_count(), false);
         for e in 0..mesh.element_count() {
-            if !view.is_inverted(e) {
+            if self.star.known_valid(mesh, e) || !view.is_inverted(e) {
                 continue;
             }
             for &c in mesh.element_corners(e) {

@@ -118,6 +118,13 @@ pub trait DriverStar: NodeStar + Default {
     fn verdict_in(&self, _mesh: &Self::Mesh, x: Self::Point, measure: Measure) -> Verdict {
         self.verdict(x, measure)
     }
+    /// Whether element `e` of `mesh` is known to be valid with its corners where they are
+    /// now, from what earlier stars measured of it (a kind of star that keeps its
+    /// elements' measures from visit to visit); `false` where nothing is known (the
+    /// default), and the caller measures it.
+    fn known_valid(&self, _mesh: &Self::Mesh, _e: usize) -> bool {
+        false
+    }
     /// The smart Laplacian's test read straight from the mesh, where a kind of star has
     /// such a shortcut (the planar star of linear triangles); `None` otherwise (the
     /// default), and the gathered star decides.

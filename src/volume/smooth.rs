@@ -296,6 +296,13 @@ impl DriverStar for CornerStar {
     /// A 10-node mesh's tetrahedra with their mid-edge nodes (those of the node's edges
     /// following it to their middles, as [`VolumeMesh::follow_mid_nodes`] moves them), so the
     /// rule reads what the statistics read; the other kinds are measured by their corners.
+    /// From [`KnownSolids`](crate::objective::tet): an element other than a tetrahedron
+    /// (whose validity is one determinant's sign) measured valid at its corners as they
+    /// are now, bit for bit. The last star's elements are kept there at the next gather.
+    fn known_valid(&self, mesh: &VolumeMesh, e: usize) -> bool {
+        let kind = mesh.element_kind(e);
+        !kind.is_tet() && self.known_valid_solid(e as u32, kind, &mesh.corners(e)[..kind.corners()])
+    }
     fn verdict_in(&self, mesh: &VolumeMesh, x: DVec3, m: Measure) -> Verdict {
         if !mesh.kinds().contains(&VolumeKind::Tet10) {
             return self.verdict(x, m);
@@ -384,8 +391,7 @@ impl SolidScore for StarSolid {
         ElementScore { quality, ..score }
     }
     fn keeps_size(&self, x: DVec3) -> bool {
-        let (before, after) = (self.at(self.x()), self.at(x));
-        Size::floor_kept_for_certain(solid::least_corner_det(self.kind, self.corners(&before)), solid::least_corner_det(self.kind, self.corners(&after))) || {
+        Size::floor_kept_for_certain(self.least_corner_det_measured(self.x()), self.least_corner_det_measured(x)) || {
             let before = Size::least_corner(self.kind, &self.sizes_measured(self.x()));
             Size::least_corner(self.kind, &self.sizes_measured(x)).at_least(MIN_SIZE_RATIO, &before)
         }
