@@ -94,8 +94,8 @@ pub struct StarSolid {
     /// asks none); it holds
     /// wherever the free node goes, as the other corners stay.
     det: std::cell::OnceCell<Option<DetForm>>,
-    /// Where a hexahedron is valid for certain by its `det J` as gathered (made at the
-    /// guard's first question).
+    /// Where a hexahedron is valid for certain by its `det J` with its free node about the
+    /// first position the guard asked that the memo did not answer (made there).
     ball: std::cell::OnceCell<Option<ValidBall>>,
     /// A second such ball, about the first position the guard asked beyond the first (its
     /// exact test takes the coefficients there), where the solve's later trials gather.
@@ -439,13 +439,30 @@ impl StarSolid {
         let slot = self.slot as usize;
         c == slot || self.kind.row().corner_edges[c].contains(&slot)
     }
-    /// [`validity`](crate::quality::solid::validity) with the free node at `x`: valid where
-    /// the element's [`ValidBall`] holds `x` (made at the first question) or its second ball
-    /// does, else exactly at the first position beyond the first ball (whose coefficients
-    /// make the second), then from its [`DetForm`] (made at the second) where it decides.
+    /// [`validity`](crate::quality::solid::validity) with the free node at `x`: the answer
+    /// kept for `x` where the drivers measured it there (as gathered, mostly: kept from the
+    /// visit that moved the node there, [`KnownSolids`]); else for a hexahedron exactly at
+    /// the first position asked, whose coefficients make its [`ValidBall`]; valid where that
+    /// ball holds `x` or its second ball does, else exactly at the first position beyond the
+    /// first ball (whose coefficients make the second), then from its [`DetForm`] (made at
+    /// the second) where it decides. Every way gives the exact test's answer.
     #[inline]
     pub fn validity_at(&self, x: DVec3) -> Validity {
-        let ball = self.ball.get_or_init(|| ValidBall::of(self.kind, &self.pts, self.slot as usize));
+        if let Some(v) = self.measured.kept(x) {
+            return v;
+        }
+        if self.ball.get().is_none() && self.kind.linear() == VolumeKind::Hex8 {
+            // the ball about the first position asked rather than where the node was
+            // gathered, which the memo mostly answers: the solve's trials gather there
+            let (v, first) = ValidBall::validity_and_ball(self.kind, &self.at(x), self.slot as usize);
+            if first.is_none() {
+                // no ball (not valid there, or beyond the safe scale): the form next
+                self.asked_beyond_ball.set(true);
+            }
+            let _ = self.ball.set(first);
+            return v;
+        }
+        let ball = self.ball.get().copied().flatten();
         if ball.is_some_and(|b| b.holds(x)) || self.second_ball.get().is_some_and(|b| b.holds(x)) {
             // the form is made only where the balls do not decide
             return Validity::Valid;
@@ -1098,8 +1115,9 @@ mod tests {
         // an element of every kind other than the tetrahedron with each corner free in
         // turn, its shape, corner sizes and validity asked at a walk of positions:
         // solid_shape's bits and the sizes measured afresh at each, the terms of the corners
-        // whose tetrahedra do not hold the free node kept; the guard's validity (the ball,
-        // the first question beyond it exactly, then the form) the exact test's
+        // whose tetrahedra do not hold the free node kept; the guard's validity (kept where
+        // the drivers measured it, the ball about the first position asked, the first
+        // question beyond it exactly, then the form) the exact test's
         let mut rng = SplitMix64::new(24);
         for kind in [VolumeKind::Hex8, VolumeKind::Wedge6, VolumeKind::Pyramid5] {
             let ideal = kind.row().ideal;
@@ -1117,6 +1135,10 @@ mod tests {
                     assert_eq!(e.shape_measured(x).to_bits(), exact.to_bits(), "{kind:?} slot {slot} at {x}");
                     let sizes = CornerSizes::of(kind, &p[..kind.corners()], |_| None);
                     assert_eq!(e.sizes_measured(x), sizes, "{kind:?} slot {slot} at {x}");
+                    if step % 3 == 2 {
+                        // measured by the drivers first: the guard reads it from the memo
+                        e.validity_measured(x);
+                    }
                     assert_eq!(e.validity_at(x), validity(kind, &p[..kind.corners()]), "{kind:?} slot {slot} at {x}");
                 }
             }

@@ -566,8 +566,9 @@ impl ValidBall {
 
     /// [`validity`] of the hexahedron with corners `p` and its ball with free corner
     /// `slot` (as [`of`](Self::of)), from one taking of its coefficients: for the guard's
-    /// first question beyond an element's first ball, whose answer makes a second ball about
-    /// the position asked (where the solve's later trials gather). The same validity as
+    /// first question that its memo does not answer, whose answer makes the element's first
+    /// ball about the position asked, and its first beyond that ball, which makes a second
+    /// (where the solve's later trials gather). The same validity as
     /// [`validity`]'s, which takes the same coefficients where the element is within the
     /// safe scale, as a ball asks.
     pub fn validity_and_ball(kind: VolumeKind, p: &[DVec3], slot: usize) -> (Validity, Option<ValidBall>) {
