@@ -385,7 +385,7 @@ pub struct MeanRatioParts {
 }
 
 impl MeanRatioParts {
-    #[inline]
+    #[inline(always)]
     pub fn of(p: &[DVec3; 4], r: &CornerReference) -> Self {
         let t = weighted_jacobian(&in_unit_scale(p), r);
         MeanRatioParts { frob2: frobenius2(&t), sigma: t.determinant() }
