@@ -160,9 +160,8 @@ impl<T: Copy> PositionMemo<T> {
     }
 }
 
-/// The validity and shape (with the shape's terms, [`CornerShapes`], the corners'
-/// sizes, [`CornerSizes`], and the least corner determinant the acceptance rule screens
-/// the size with) of the stars' elements
+/// The validity and shape (with the shape's terms, [`CornerShapes`], and the least corner
+/// determinant the acceptance rule screens the size with) of the stars' elements
 /// other than tetrahedra, kept from visit to visit: each as the element's last star left
 /// it, with the corners it was measured at.
 /// A star gathered later starts its element's [`PositionMemo`]s with them where the corners
@@ -171,8 +170,8 @@ impl<T: Copy> PositionMemo<T> {
 /// measured again at a position it was measured at. Both measures are functions of the
 /// kind and the corners alone, so an answer kept is the answer measuring would give.
 ///
-/// Direct-mapped by element number, at most [`KnownSolids::MAX_SLOTS`] slots of 448 bytes
-/// (some 29 MB of a mesh of many elements other than tetrahedra), none for a mesh of
+/// Direct-mapped by element number, at most [`KnownSolids::MAX_SLOTS`] slots of 312 bytes
+/// (some 20 MB of a mesh of many elements other than tetrahedra), none for a mesh of
 /// tetrahedra. A copy starts empty: it is a cache.
 #[derive(Default)]
 pub(crate) struct KnownSolids {
@@ -180,7 +179,7 @@ pub(crate) struct KnownSolids {
 }
 
 // the slot's size that `KnownSolids` states
-const _: () = assert!(std::mem::size_of::<KnownSolid>() == 448);
+const _: () = assert!(std::mem::size_of::<KnownSolid>() == 312);
 
 #[derive(Clone, Copy)]
 struct KnownSolid {
@@ -190,7 +189,6 @@ struct KnownSolid {
     validity: Option<Validity>,
     shape: Option<f64>,
     terms: Option<CornerShapes>,
-    sizes: Option<CornerSizes>,
     least_det: Option<Option<(f64, f64)>>,
 }
 
@@ -202,7 +200,6 @@ impl KnownSolid {
         validity: None,
         shape: None,
         terms: None,
-        sizes: None,
         least_det: None,
     };
     /// Whether this slot holds `element` of `kind` at `corners`, bit for bit.
@@ -246,7 +243,6 @@ impl KnownSolids {
                 e.shaped.start_with(x, q);
             }
             e.terms.set(k.terms.map(|t| (x, t)));
-            e.sizes.set(k.sizes.map(|t| (x, t)));
             if let Some(d) = k.least_det {
                 e.least_det.start_with(x, d);
             }
@@ -263,7 +259,6 @@ impl KnownSolids {
     fn keep(&mut self, e: &StarSolid, x: DVec3, elements: usize) {
         let (validity, shape) = (e.measured.kept(x), e.shaped.kept(x));
         let terms = e.terms.get().filter(|&(at, _)| at == x).map(|(_, t)| t);
-        let sizes = e.sizes.get().filter(|&(at, _)| at == x).map(|(_, t)| t);
         let least_det = e.least_det.kept(x);
         if validity.is_none() && shape.is_none() {
             return;
@@ -282,12 +277,11 @@ impl KnownSolids {
             k.validity = validity.or(k.validity);
             k.shape = shape.or(k.shape);
             k.terms = terms.or(k.terms);
-            k.sizes = sizes.or(k.sizes);
             k.least_det = least_det.or(k.least_det);
         } else {
             let mut c = [DVec3::ZERO; 8];
             c[..corners.len()].copy_from_slice(corners);
-            *k = KnownSolid { element: e.element, kind: e.kind, corners: c, validity, shape, terms, sizes, least_det };
+            *k = KnownSolid { element: e.element, kind: e.kind, corners: c, validity, shape, terms, least_det };
         }
     }
 }
