@@ -422,7 +422,7 @@ impl StarSolid {
     /// [`least_corner_det`](crate::quality::solid::least_corner_det) with the free node at
     /// `x`, kept for the position as [`validity_measured`](Self::validity_measured) keeps
     /// its answer (the rule asks it where the node is at every visit: kept from the visit
-    /// that moved the node there, [`KnownSolids`]).
+    /// that moved the node there, `KnownSolids`).
     pub fn least_corner_det_measured(&self, x: DVec3) -> Option<(f64, f64)> {
         self.least_det.get_or(x, || crate::quality::solid::least_corner_det(self.kind, self.corners(&self.at(x))))
     }
@@ -435,7 +435,7 @@ impl StarSolid {
     }
     /// [`validity`](crate::quality::solid::validity) with the free node at `x`: the answer
     /// kept for `x` where the drivers measured it there (as gathered, mostly: kept from the
-    /// visit that moved the node there, [`KnownSolids`]); else for a hexahedron exactly at
+    /// visit that moved the node there, `KnownSolids`); else for a hexahedron exactly at
     /// the first position asked, whose coefficients make its [`ValidBall`]; valid where that
     /// ball holds `x` or its second ball does, else exactly at the first position beyond the
     /// first ball (whose coefficients make the second), then from its [`DetForm`] (made at

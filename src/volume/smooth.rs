@@ -296,9 +296,9 @@ impl DriverStar for CornerStar {
     /// A 10-node mesh's tetrahedra with their mid-edge nodes (those of the node's edges
     /// following it to their middles, as [`VolumeMesh::follow_mid_nodes`] moves them), so the
     /// rule reads what the statistics read; the other kinds are measured by their corners.
-    /// From [`KnownSolids`](crate::objective::tet): an element other than a tetrahedron
-    /// (whose validity is one determinant's sign) measured valid at its corners as they
-    /// are now, bit for bit. The last star's elements are kept there at the next gather.
+    /// From what the stars kept of their elements (`KnownSolids`): an element other than a
+    /// tetrahedron (whose validity is one determinant's sign) measured valid at its corners
+    /// as they are now, bit for bit. The last star's elements are kept at the next gather.
     fn known_valid(&self, mesh: &VolumeMesh, e: usize) -> bool {
         let kind = mesh.element_kind(e);
         !kind.is_tet() && self.known_valid_solid(e as u32, kind, &mesh.corners(e)[..kind.corners()])
