@@ -541,6 +541,22 @@ impl CornerStar {
             }
         }
     }
+    /// Makes the `n`-th corner (`n` at most their number) one of `element` against
+    /// `reference`, its form not worked out ([`StarCorner::pending`]), and returns its
+    /// corners to fill. A corner already there is overwritten in place, its form marked
+    /// ([`CornerForm::mark_pending`]) rather than written whole: a gather keeps the last
+    /// star's corners and truncates them after.
+    #[inline]
+    pub(crate) fn put_corner(&mut self, n: usize, element: u32, reference: &'static CornerReference, simplex: bool) -> &mut [DVec3; 4] {
+        if n == self.tets.len() {
+            self.tets.push(StarCorner::pending(element, [DVec3::ZERO; 4], reference, simplex));
+        } else {
+            let t = &mut self.tets[n];
+            (t.element, t.reference, t.simplex) = (element, reference, simplex);
+            t.form.mark_pending();
+        }
+        &mut self.tets[n].pts
+    }
     /// Keeps what this star's elements other than tetrahedra measured with the free node at
     /// `x` (where the node now is in the mesh, of `elements` elements) for the stars
     /// gathered next ([`KnownSolids`]).

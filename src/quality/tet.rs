@@ -257,6 +257,14 @@ impl CornerForm {
         sigma: f64::NAN,
         grad_sigma: DVec3::NAN,
     };
+    /// Marks a form worked out for other corners as not worked out, where it is overwritten
+    /// in place: its origin not a number, which every reading at a position takes first
+    /// (`x − origin`), so such a reading is not a number, or not decided by the form, as
+    /// [`PENDING`](Self::PENDING)'s is ([`of`](Self::of) fills it again).
+    #[inline]
+    pub fn mark_pending(&mut self) {
+        self.origin = DVec3::NAN;
+    }
     /// The form of the corner `p` (corner 0 and its three edge neighbours) against `r`.
     #[inline]
     pub fn of(p: &[DVec3; 4], r: &CornerReference) -> Self {

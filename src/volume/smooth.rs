@@ -19,7 +19,7 @@ use glam::DVec3;
 use super::{VolumeMesh, VolumeKind};
 use crate::error::Result;
 use crate::mesh::WITH_FIRST;
-use crate::objective::{CornerStar, Objective, StarCorner, StarSolid};
+use crate::objective::{CornerStar, Objective, StarSolid};
 use crate::quality::solid::{self, Validity};
 use crate::quality::tet as q3;
 use crate::smooth::{
@@ -60,8 +60,9 @@ impl SmoothMesh for VolumeMesh {
 
 impl DriverStar for CornerStar {
     type Mesh = VolumeMesh;
-    /// The node's corners of each element ([`StarCorner`]): a tetrahedron's own corner —
-    /// the node first, then its three edge neighbours in the kind's order
+    /// The node's corners of each element ([`StarCorner`](crate::objective::StarCorner)): a
+    /// tetrahedron's own corner — the node first, then its three edge neighbours in the
+    /// kind's order
     /// ([`VolumeKindRow::corner_edges`](crate::mesh::VolumeKindRow)), an even permutation
     /// of a tetrahedron's corners, so the volume keeps its sign; another kind's every
     /// measured corner whose tetrahedron holds the node, reordered to put it first
@@ -80,7 +81,8 @@ impl DriverStar for CornerStar {
         self.node = node as u32;
         self.forms_pending_at = Some(mesh.nodes()[node]);
         self.x0 = mesh.nodes()[node];
-        self.tets.clear();
+        // the corners overwritten in place, then truncated
+        let mut n_corners = 0;
         self.tet_measures.get_mut().clear();
         // the elements other than tetrahedra overwritten in place, then truncated
         let mut solids = 0;
@@ -90,10 +92,8 @@ impl DriverStar for CornerStar {
             // a tetrahedron from the star's own stream of corners (`VolumeMesh::node_tet_corners`)
             if let Some(&[a, b, c]) = corners.get(i).filter(|o| o[0] != u32::MAX) {
                 // the corners written in place (below)
-                self.tets.push(StarCorner::pending(e, [DVec3::ZERO; 4], &q3::EQUILATERAL_TET, true));
-                if let Some(t) = self.tets.last_mut() {
-                    t.pts = [x, nodes[a as usize], nodes[b as usize], nodes[c as usize]];
-                }
+                *self.put_corner(n_corners, e, &q3::EQUILATERAL_TET, true) = [x, nodes[a as usize], nodes[b as usize], nodes[c as usize]];
+                n_corners += 1;
                 continue;
             }
             let kind = mesh.element_kind(e as usize);
@@ -109,16 +109,16 @@ impl DriverStar for CornerStar {
                 let Some(s) = tuple.iter().position(|&j| j == slot) else { continue };
                 // the corners written in place: put together on the stack and moved whole,
                 // their 24-byte points were read back in 16-byte pieces, which stalled
-                self.tets.push(StarCorner::pending(e, [DVec3::ZERO; 4], &row.slot_references[s], false));
-                if let Some(t) = self.tets.last_mut() {
-                    for (p, &j) in t.pts.iter_mut().zip(&WITH_FIRST[s]) {
-                        *p = all[tuple[j]];
-                    }
+                let pts = self.put_corner(n_corners, e, &row.slot_references[s], false);
+                for (p, &j) in pts.iter_mut().zip(&WITH_FIRST[s]) {
+                    *p = all[tuple[j]];
                 }
+                n_corners += 1;
             }
             self.put_solid(solids, e, kind, slot as u8, all);
             solids += 1;
         }
+        self.tets.truncate(n_corners);
         self.elements.truncate(solids);
     }
     fn complete(&mut self) {
