@@ -258,12 +258,13 @@ impl CornerForm {
         grad_sigma: DVec3::NAN,
     };
     /// Marks a form worked out for other corners as not worked out, where it is overwritten
-    /// in place: its origin not a number, which every reading at a position takes first
-    /// (`x − origin`), so such a reading is not a number, or not decided by the form, as
-    /// [`PENDING`](Self::PENDING)'s is ([`of`](Self::of) fills it again).
+    /// in place: its origin, which every reading at a position takes first (`x − origin`),
+    /// and its constant `∇σ` not a number, so such a reading is not a number, or not decided
+    /// by the form, as [`PENDING`](Self::PENDING)'s is ([`of`](Self::of) fills it again).
     #[inline]
     pub fn mark_pending(&mut self) {
         self.origin = DVec3::NAN;
+        self.grad_sigma = DVec3::NAN;
     }
     /// The form of the corner `p` (corner 0 and its three edge neighbours) against `r`.
     #[inline]
@@ -746,5 +747,26 @@ mod tests {
         assert!((m.max_dihedral_deg - 90.0).abs() < 1e-12);
         assert!(!m.inverted && (m.volume - 1.0 / 6.0).abs() < 1e-16);
         assert!((m.min_sine - (2.0f64 / 3.0).sqrt()).abs() < 1e-14);
+    }
+
+    /// A form marked not worked out (a gather's overwritten corner) reads as the all-NaN
+    /// pending form does at any position: not a number, and the inversion test left to the
+    /// exact one; worked out again, it reads the corners' own.
+    #[test]
+    fn a_form_marked_pending_reads_as_pending() {
+        let p = [DVec3::ZERO, DVec3::X, DVec3::Y, DVec3::Z];
+        let mut f = CornerForm::of(&p, R);
+        f.mark_pending();
+        for x in [DVec3::ZERO, DVec3::new(0.1, -0.2, 0.3), DVec3::splat(1e6)] {
+            for form in [f, CornerForm::PENDING] {
+                let j = form.at(x);
+                assert!(j.sigma.is_nan() && j.frob2.is_nan() && j.grad_sigma.is_nan() && j.grad_frob2.is_nan(), "{x}");
+                let (v6, g6) = form.volume6_at(x, R);
+                assert!(form.sigma_at(x).is_nan() && v6.is_nan() && g6.is_nan());
+                assert_eq!(form.inverted_at(x, R), None);
+            }
+        }
+        let (a, b) = (CornerForm::of(&p, R).at(DVec3::ZERO), WeightedJacobian::of(&p, R));
+        assert!(a.sigma.is_finite() && (a.sigma, a.frob2) == (b.sigma, b.frob2));
     }
 }
