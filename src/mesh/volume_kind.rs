@@ -24,6 +24,10 @@ pub struct CornerReference {
     /// `W⁻ᵀ𝟙` (the column sums of `W⁻¹`), as `w_inv.transpose() * DVec3::ONE` computes it:
     /// the gradient of `‖A·W⁻¹‖²_F` with respect to the corner is `−2·T·W⁻ᵀ𝟙`.
     pub w_inv_t_one: DVec3,
+    /// Whether `W` is the identity (the cube's corner, and its slot 0), so that `A·W⁻¹` is
+    /// `A` itself: the product's sums `a·1 + b·0 + c·0` are `a`, bit for bit but for the
+    /// sign of a zero, which no measure of `T` reads.
+    pub identity: bool,
 }
 
 /// `det m` as [`DMat3::determinant`] computes it (`x·(y×z)`, the same operations in the
@@ -82,6 +86,7 @@ pub static EQUILATERAL_TET: CornerReference = CornerReference {
     w_inv: EQUILATERAL_W_INVERSE,
     det_w_inv: determinant(EQUILATERAL_W_INVERSE),
     w_inv_t_one: transpose_times_one(EQUILATERAL_W_INVERSE),
+    identity: false,
 };
 
 /// The edges of a tetrahedron by local corners, in the order of a 10-node tetrahedron's
@@ -123,10 +128,26 @@ const fn from_mat(m: DMat3) -> [[f64; 3]; 3] {
     [[m.x_axis.x, m.x_axis.y, m.x_axis.z], [m.y_axis.x, m.y_axis.y, m.y_axis.z], [m.z_axis.x, m.z_axis.y, m.z_axis.z]]
 }
 
+/// Whether `w` is the identity, entry by entry.
+const fn is_identity(w: [[f64; 3]; 3]) -> bool {
+    let mut j = 0;
+    while j < 3 {
+        let mut i = 0;
+        while i < 3 {
+            if w[j][i] != if i == j { 1.0 } else { 0.0 } {
+                return false;
+            }
+            i += 1;
+        }
+        j += 1;
+    }
+    true
+}
+
 /// The reference of a corner whose ideal edge vectors are the columns of `w`.
 const fn reference_of(w: [[f64; 3]; 3]) -> CornerReference {
     let w_inv = to_mat(mat_inverse(w));
-    CornerReference { w: to_mat(w), w_inv, det_w_inv: determinant(w_inv), w_inv_t_one: transpose_times_one(w_inv) }
+    CornerReference { w: to_mat(w), w_inv, det_w_inv: determinant(w_inv), w_inv_t_one: transpose_times_one(w_inv), identity: is_identity(w) }
 }
 
 /// The even permutations that put corner `s` of a corner's tetrahedron first

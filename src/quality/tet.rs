@@ -175,10 +175,16 @@ pub fn dihedral_sines_grad0(p: &[DVec3; 4]) -> [(f64, DVec3); 6] {
 }
 
 /// The weighted corner Jacobian `T = A·W⁻¹` at corner 0, `A = [p1 − p0, p2 − p0, p3 − p0]`,
-/// `W` the corner's reference ([`CornerReference`]).
+/// `W` the corner's reference ([`CornerReference`]); `A` itself where `W` is the identity
+/// (the cube's corner, a hexahedron's measured corners).
 #[inline]
 fn weighted_jacobian(p: &[DVec3; 4], r: &CornerReference) -> DMat3 {
-    DMat3::from_cols(p[1] - p[0], p[2] - p[0], p[3] - p[0]) * r.w_inv
+    let a = DMat3::from_cols(p[1] - p[0], p[2] - p[0], p[3] - p[0]);
+    if r.identity {
+        a
+    } else {
+        a * r.w_inv
+    }
 }
 
 #[inline]
@@ -561,6 +567,27 @@ mod tests {
     fn point(rng: &mut SplitMix64) -> DVec3 {
         let (x, y) = (rng.uniform(-1.0, 1.0), rng.uniform(-1.0, 1.0));
         DVec3::new(x, y, rng.uniform(-1.0, 1.0))
+    }
+
+    /// Only the cube's corner and its slot 0 have `W = I`; where one does, the weighted
+    /// Jacobian is the edges themselves, the matrix product's bits (the corners here have
+    /// no zero edge component, whose sign alone could differ).
+    #[test]
+    fn an_identity_reference_takes_the_edges_as_the_product_would() {
+        use crate::mesh::VolumeKind;
+        let identities: Vec<(VolumeKind, usize)> =
+            VolumeKind::ALL.iter().flat_map(|&k| (0..4).filter(move |&s| k.row().slot_references[s].identity).map(move |s| (k, s))).collect();
+        assert_eq!(identities, [(VolumeKind::Hex8, 0), (VolumeKind::Hex20, 0), (VolumeKind::Hex27, 0)]);
+        assert!(crate::mesh::CUBE_CORNER.identity && !EQUILATERAL_TET.identity);
+        let mut rng = SplitMix64::new(41);
+        for _ in 0..2000 {
+            let p = [point(&mut rng), point(&mut rng), point(&mut rng), point(&mut rng)];
+            let a = DMat3::from_cols(p[1] - p[0], p[2] - p[0], p[3] - p[0]);
+            let product = a * crate::mesh::CUBE_CORNER.w_inv;
+            let t = weighted_jacobian(&p, &crate::mesh::CUBE_CORNER);
+            assert_eq!(t.to_cols_array().map(f64::to_bits), product.to_cols_array().map(f64::to_bits));
+            assert_eq!(t, a);
+        }
     }
 
     /// The mean ratio's order key is `q³/27` and sorts tetrahedra as their mean ratios do,
