@@ -179,8 +179,14 @@ impl Bezier {
     /// Decides the sign of the polynomial on the box: positive everywhere, ≤ 0 somewhere,
     /// or not decided within [`MAX_BOXES`] boxes.
     fn validity(&self) -> Validity {
+        self.validity_with_least(self.min_coefficient_unsigned())
+    }
+    /// [`validity`](Self::validity) with its least coefficient `least` taken
+    /// ([`min_coefficient_unsigned`](Self::min_coefficient_unsigned)), for a caller that
+    /// reads it too.
+    fn validity_with_least(&self, least: f64) -> Validity {
         // the first box decides most elements: without the subdivision's stack
-        let (corner, least) = (self.min_corner(), self.min_coefficient_unsigned());
+        let corner = self.min_corner();
         if corner <= 0.0 || corner.is_nan() {
             return Validity::Inverted;
         }
@@ -561,7 +567,7 @@ impl ValidBall {
     /// beyond rounding where it is, and an element beyond the safe scale.
     pub fn of(kind: VolumeKind, p: &[DVec3], slot: usize) -> Option<ValidBall> {
         let (p, reach) = Self::corners_and_reach(kind, p)?;
-        Self::of_coefficients(p, slot, reach, &hex_det(p))
+        Self::of_least_coefficient(p, slot, reach, hex_det(p).min_coefficient_unsigned())
     }
 
     /// [`validity`] of the hexahedron with corners `p` and its ball with free corner
@@ -576,7 +582,8 @@ impl ValidBall {
             return (validity(kind, p), None);
         };
         let det = hex_det(corners);
-        (det.validity(), Self::of_coefficients(corners, slot, reach, &det))
+        let least = det.min_coefficient_unsigned();
+        (det.validity_with_least(least), Self::of_least_coefficient(corners, slot, reach, least))
     }
 
     /// The corners and reach of an element a ball may be made for: a hexahedron (of any
@@ -591,10 +598,9 @@ impl ValidBall {
         (reach != 0.0 && reach.is_finite() && crate::numeric::factors_beyond_safe_scale(reach).is_none()).then_some((p, reach))
     }
 
-    /// The ball from the coefficients `det` of the hexahedron with corners `p` (within the
-    /// safe scale, its reach `reach`).
-    fn of_coefficients(p: &[DVec3], slot: usize, reach: f64, det: &Bezier) -> Option<ValidBall> {
-        let m = det.min_coefficient_unsigned();
+    /// The ball from the least coefficient `m` of the hexahedron with corners `p` (within
+    /// the safe scale, its reach `reach`).
+    fn of_least_coefficient(p: &[DVec3], slot: usize, reach: f64, m: f64) -> Option<ValidBall> {
         // the twelve edges' squares in three running maxima (a maximum is exact)
         let mut longest = [0.0f64; 3];
         for i in 0..4 {
