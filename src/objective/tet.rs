@@ -204,9 +204,23 @@ impl KnownSolid {
     };
     /// Whether this slot holds `element` of `kind` at `corners`, bit for bit.
     fn holds(&self, element: u32, kind: VolumeKind, corners: &[DVec3]) -> bool {
-        let bits = |p: &DVec3| [p.x.to_bits(), p.y.to_bits(), p.z.to_bits()];
-        self.element == element && self.kind == kind && self.corners.iter().zip(corners).all(|(a, b)| bits(a) == bits(b))
+        self.element == element && self.kind == kind && self.corners.iter().zip(corners).all(|(a, b)| same_bits(a, b))
     }
+    /// [`holds`](Self::holds) of `e` with its free node at `x` (its corners compared where
+    /// they are, not copied).
+    fn holds_moved(&self, e: &StarSolid, x: DVec3) -> bool {
+        let slot = e.slot as usize;
+        self.element == e.element
+            && self.kind == e.kind
+            && self.corners.iter().zip(e.corners(&e.pts)).enumerate().all(|(j, (a, b))| same_bits(a, if j == slot { &x } else { b }))
+    }
+}
+
+/// Whether `a` and `b` are the same bits.
+#[inline]
+fn same_bits(a: &DVec3, b: &DVec3) -> bool {
+    let bits = |p: &DVec3| [p.x.to_bits(), p.y.to_bits(), p.z.to_bits()];
+    bits(a) == bits(b)
 }
 
 impl Clone for KnownSolids {
@@ -269,19 +283,20 @@ impl KnownSolids {
             self.slots.clear();
             self.slots.resize(want, KnownSolid::EMPTY);
         }
-        let at = e.at(x);
-        let corners = e.corners(&at);
         let i = self.slot(e.element);
         let k = &mut self.slots[i];
-        if k.holds(e.element, e.kind, corners) {
+        if k.holds_moved(e, x) {
             k.validity = validity.or(k.validity);
             k.shape = shape.or(k.shape);
             k.terms = terms.or(k.terms);
             k.least_det = least_det.or(k.least_det);
         } else {
-            let mut c = [DVec3::ZERO; 8];
-            c[..corners.len()].copy_from_slice(corners);
-            *k = KnownSolid { element: e.element, kind: e.kind, corners: c, validity, shape, terms, least_det };
+            // field by field in place (a whole slot put together first is one more copy);
+            // the corners past the kind's are not read
+            (k.element, k.kind) = (e.element, e.kind);
+            k.corners = e.pts;
+            k.corners[e.slot as usize] = x;
+            (k.validity, k.shape, k.terms, k.least_det) = (validity, shape, terms, least_det);
         }
     }
 }
@@ -356,9 +371,10 @@ impl StarSolid {
             least_det: PositionMemo::default(),
         }
     }
-    /// This element made [`new`](Self::new) in place: the lazy forms' room is not written.
-    fn reset(&mut self, element: u32, kind: VolumeKind, slot: u8, pts: [DVec3; 8]) {
-        (self.element, self.kind, self.slot, self.pts) = (element, kind, slot, pts);
+    /// This element made [`new`](Self::new) in place, but for its corners, which the caller
+    /// writes: the lazy forms' room is not written.
+    fn reset(&mut self, element: u32, kind: VolumeKind, slot: u8) {
+        (self.element, self.kind, self.slot) = (element, kind, slot);
         self.det = std::cell::OnceCell::new();
         self.ball = std::cell::OnceCell::new();
         self.second_ball = std::cell::Cell::new(None);
@@ -548,14 +564,31 @@ impl CornerStar {
     /// star's corners and truncates them after.
     #[inline]
     pub(crate) fn put_corner(&mut self, n: usize, element: u32, reference: &'static CornerReference, simplex: bool) -> &mut [DVec3; 4] {
-        if n == self.tets.len() {
-            self.tets.push(StarCorner::pending(element, [DVec3::ZERO; 4], reference, simplex));
+        Self::corner_in(&mut self.tets, n, element, reference, simplex)
+    }
+    /// [`put_corner`](Self::put_corner) of `tets`.
+    #[inline]
+    fn corner_in<'a>(tets: &'a mut Vec<StarCorner>, n: usize, element: u32, reference: &'static CornerReference, simplex: bool) -> &'a mut [DVec3; 4] {
+        if n == tets.len() {
+            tets.push(StarCorner::pending(element, [DVec3::ZERO; 4], reference, simplex));
         } else {
-            let t = &mut self.tets[n];
+            let t = &mut tets[n];
             (t.element, t.reference, t.simplex) = (element, reference, simplex);
             t.form.mark_pending();
         }
-        &mut self.tets[n].pts
+        &mut tets[n].pts
+    }
+    /// Makes the `n`-th corner ([`put_corner`](Self::put_corner)) the tetrahedron `tuple`,
+    /// `(c, a, b, d)` by local corners, of the `solid`-th element other than a tetrahedron
+    /// ([`put_solid`](Self::put_solid), its corners filled), reordered to put the free
+    /// node's place `s` in it first ([`WITH_FIRST`](crate::mesh::WITH_FIRST)), against `reference`.
+    #[inline]
+    pub(crate) fn put_corner_of_solid(&mut self, n: usize, solid: usize, reference: &'static CornerReference, tuple: [usize; 4], s: usize) {
+        let e = &self.elements[solid];
+        let pts = Self::corner_in(&mut self.tets, n, e.element, reference, false);
+        for (p, &j) in pts.iter_mut().zip(&crate::mesh::WITH_FIRST[s]) {
+            *p = e.pts[tuple[j]];
+        }
     }
     /// Keeps what this star's elements other than tetrahedra measured with the free node at
     /// `x` (where the node now is in the mesh, of `elements` elements) for the stars
@@ -570,16 +603,25 @@ impl CornerStar {
     pub(crate) fn known_valid_solid(&self, element: u32, kind: VolumeKind, corners: &[DVec3]) -> bool {
         self.known.valid_at(element, kind, corners)
     }
-    /// Makes `StarSolid::new(element, kind, slot, pts)` the `n`-th element other than a
-    /// tetrahedron (`n` at most their number), its measures started with what is known of it
-    /// at its corners now ([`KnownSolids`]). An element already there is overwritten in
-    /// place: a gather keeps the last star's elements and truncates them after, as a solid
-    /// (some 1.4 kB with its lazy forms) is costly to move.
-    pub(crate) fn put_solid(&mut self, n: usize, element: u32, kind: VolumeKind, slot: u8, pts: [DVec3; 8]) {
+    /// Makes `StarSolid::new(element, kind, slot, ·)` the `n`-th element other than a
+    /// tetrahedron (`n` at most their number), and returns its corners to fill: its memos
+    /// start with what is known of it once they are filled ([`recall_solid`](Self::recall_solid)).
+    /// An element already there is overwritten in place: a gather keeps the last star's
+    /// elements and truncates them after, as a solid (some 1.4 kB with its lazy forms) is
+    /// costly to move, and its corners are written where they stay (put together on the
+    /// stack and copied, they were read back in other widths than written, which stalls).
+    #[inline]
+    pub(crate) fn put_solid(&mut self, n: usize, element: u32, kind: VolumeKind, slot: u8) -> &mut [DVec3; 8] {
         match self.elements.get_mut(n) {
-            Some(e) => e.reset(element, kind, slot, pts),
-            None => self.elements.push(StarSolid::new(element, kind, slot, pts)),
+            Some(e) => e.reset(element, kind, slot),
+            None => self.elements.push(StarSolid::new(element, kind, slot, [DVec3::ZERO; 8])),
         }
+        &mut self.elements[n].pts
+    }
+    /// Starts the `n`-th element's memos with what is known of it at its corners now
+    /// ([`KnownSolids`]).
+    #[inline]
+    pub(crate) fn recall_solid(&self, n: usize) {
         self.known.recall(&self.elements[n]);
     }
     /// Whether every element is a tetrahedron: then every corner is measured against

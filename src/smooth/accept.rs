@@ -233,20 +233,19 @@ impl ElementScore {
             Measure::MinSine => solid::solid_min_sine(kind, p),
         };
         let size = Size::least_corner(kind, &solid::CornerSizes::of(kind, p, |_| None));
-        ElementScore { quality, ..Self::solid_sized(kind, p, solid::validity(kind, p), size) }
+        ElementScore { quality, ..Self::solid_sized(kind, solid::validity(kind, p), size, || p) }
     }
 
     /// [`solid`](Self::solid) where the element's [`solid::validity`] and size
     /// ([`Size::least_corner`], or `()` where the caller decides the floor itself) are known
     /// (a star's element answers the validity from its `det J` form where that decides:
     /// the same answers), but for its quality, +∞ (the caller sets it, where it knows it).
-    pub fn solid_sized<S>(kind: VolumeKind, p: &[DVec3], validity: solid::Validity, size: S) -> ElementScore<S> {
-        ElementScore {
-            quality: f64::INFINITY,
-            inverted: validity != solid::Validity::Valid,
-            inversion: solid::solid_inversion(kind, p, validity),
-            size,
-        }
+    /// Its corners `p()` are asked only for the inversion of an element not valid (a valid
+    /// one's is 0), so a caller that would copy them for it does not copy them for every
+    /// valid element.
+    pub fn solid_sized<'a, S>(kind: VolumeKind, validity: solid::Validity, size: S, p: impl FnOnce() -> &'a [DVec3]) -> ElementScore<S> {
+        let valid = validity == solid::Validity::Valid;
+        ElementScore { quality: f64::INFINITY, inverted: !valid, inversion: if valid { 0.0 } else { solid::solid_inversion(kind, p(), validity) }, size }
     }
 
     /// A 10-node tetrahedron `p` (VTK's node order) with its mid-edge nodes: its four

@@ -18,7 +18,6 @@ use glam::DVec3;
 
 use super::{VolumeMesh, VolumeKind};
 use crate::error::Result;
-use crate::mesh::WITH_FIRST;
 use crate::objective::{CornerStar, Objective, StarSolid};
 use crate::quality::solid::{self, Validity};
 use crate::quality::tet as q3;
@@ -100,22 +99,23 @@ impl DriverStar for CornerStar {
             let row = kind.row();
             let ids = &mesh.element(e as usize)[..row.corners];
             let Some(slot) = ids.iter().position(|&i| i as usize == node) else { continue };
-            let mut all = [DVec3::ZERO; 8];
+            // the element's corners written where they stay, and its corners' tetrahedra
+            // from them, in place too: put together on the stack and moved whole, their
+            // 24-byte points were read back in 16-byte pieces, which stalled
+            let all = self.put_solid(solids, e, kind, slot as u8);
             for (p, &i) in all.iter_mut().zip(ids) {
                 *p = nodes[i as usize];
+            }
+            for p in &mut all[ids.len()..] {
+                *p = DVec3::ZERO;
             }
             for (c, &[a, b, d]) in row.corner_edges.iter().enumerate() {
                 let tuple = [c, a, b, d];
                 let Some(s) = tuple.iter().position(|&j| j == slot) else { continue };
-                // the corners written in place: put together on the stack and moved whole,
-                // their 24-byte points were read back in 16-byte pieces, which stalled
-                let pts = self.put_corner(n_corners, e, &row.slot_references[s], false);
-                for (p, &j) in pts.iter_mut().zip(&WITH_FIRST[s]) {
-                    *p = all[tuple[j]];
-                }
+                self.put_corner_of_solid(n_corners, solids, &row.slot_references[s], tuple, s);
                 n_corners += 1;
             }
-            self.put_solid(solids, e, kind, slot as u8, all);
+            self.recall_solid(solids);
             solids += 1;
         }
         self.tets.truncate(n_corners);
@@ -382,11 +382,13 @@ trait SolidScore {
 
 impl SolidScore for StarSolid {
     fn score(&self, x: DVec3, m: Measure) -> ElementScore<()> {
-        let p = self.at(x);
-        let score = ElementScore::solid_sized(self.kind, self.corners(&p), self.validity_measured(x), ());
+        // the corners with the free node at `x`, copied only where a measure reads them
+        let p = std::cell::OnceCell::new();
+        let corners = || self.corners(p.get_or_init(|| self.at(x)));
+        let score = ElementScore::solid_sized(self.kind, self.validity_measured(x), (), corners);
         let quality = match m {
             Measure::Shape => self.shape_measured(x),
-            Measure::MinSine => solid::solid_min_sine(self.kind, self.corners(&p)),
+            Measure::MinSine => solid::solid_min_sine(self.kind, corners()),
         };
         ElementScore { quality, ..score }
     }
