@@ -170,8 +170,8 @@ impl<T: Copy> PositionMemo<T> {
 /// measured again at a position it was measured at. Both measures are functions of the
 /// kind and the corners alone, so an answer kept is the answer measuring would give.
 ///
-/// Direct-mapped by element number, at most [`KnownSolids::MAX_SLOTS`] slots of 312 bytes
-/// (some 20 MB of a mesh of many elements other than tetrahedra), none for a mesh of
+/// Direct-mapped by element number, at most [`KnownSolids::MAX_SLOTS`] slots of 384 bytes
+/// (some 25 MB of a mesh of many elements other than tetrahedra), none for a mesh of
 /// tetrahedra. A copy starts empty: it is a cache.
 #[derive(Default)]
 pub(crate) struct KnownSolids {
@@ -179,7 +179,7 @@ pub(crate) struct KnownSolids {
 }
 
 // the slot's size that `KnownSolids` states
-const _: () = assert!(std::mem::size_of::<KnownSolid>() == 312);
+const _: () = assert!(std::mem::size_of::<KnownSolid>() == 384);
 
 #[derive(Clone, Copy)]
 struct KnownSolid {
@@ -412,7 +412,7 @@ impl StarSolid {
             let p = self.at(x);
             let corners = self.corners(&p);
             let kept = self.terms.get();
-            let terms = CornerShapes::of(self.kind, corners, |c| kept.filter(|_| !self.moves(c)).map(|(_, t)| t.term(c)));
+            let terms = CornerShapes::of(self.kind, corners, |c| kept.filter(|_| !self.moves(c)).map(|(_, t)| t.corner(c)));
             match terms {
                 Some(t) => {
                     self.terms.set(Some((x, t)));
@@ -438,9 +438,14 @@ impl StarSolid {
     /// [`least_corner_det`](crate::quality::solid::least_corner_det) with the free node at
     /// `x`, kept for the position as [`validity_measured`](Self::validity_measured) keeps
     /// its answer (the rule asks it where the node is at every visit: kept from the visit
-    /// that moved the node there, `KnownSolids`).
+    /// that moved the node there, `KnownSolids`); from the shape's corners where the shape
+    /// was measured at `x` (the rule asks the shape first: [`CornerShapes::least_corner_det`],
+    /// within the same tolerance).
     pub fn least_corner_det_measured(&self, x: DVec3) -> Option<(f64, f64)> {
-        self.least_det.get_or(x, || crate::quality::solid::least_corner_det(self.kind, self.corners(&self.at(x))))
+        self.least_det.get_or(x, || match self.terms.get() {
+            Some((at, t)) if at == x => t.least_corner_det(self.kind),
+            _ => crate::quality::solid::least_corner_det(self.kind, self.corners(&self.at(x))),
+        })
     }
     /// Whether its measured corner `c`'s tetrahedron holds the free node (the corner or one
     /// of its edge neighbours is the free node's slot).

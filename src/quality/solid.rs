@@ -809,49 +809,82 @@ pub fn solid_shape(kind: VolumeKind, p: &[DVec3]) -> f64 {
 
 /// [`solid_shape`]'s terms, its measured corners' mean ratios in corner order, for an
 /// element within the safe scale as it is (where each is a function of its own corner's
-/// tetrahedron alone, so a corner that did not move keeps its term).
+/// tetrahedron alone, so a corner that did not move keeps its term); with each corner's
+/// Jacobian determinant from the same Jacobian, for the size screen
+/// ([`least_corner_det`](Self::least_corner_det)).
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct CornerShapes([f64; 8]);
+pub struct CornerShapes {
+    terms: [f64; 8],
+    /// `det A` of each measured corner: its weighted Jacobian's `σ = det T` over `det W⁻¹`
+    /// (`σ` itself where `W = I`, a hexahedron's), within rounding of [`least_corner_det`]'s
+    /// determinant taken directly.
+    dets: [f64; 8],
+    /// The element's [`reach`].
+    reach: f64,
+}
 
 impl CornerShapes {
-    /// The terms of the element of `kind` with corners `p`, each corner's from `kept(c)`
-    /// where it gives one (the term of a corner whose tetrahedron is as it was), else
-    /// measured; `None` for an element beyond the safe scale, which [`solid_shape`]
-    /// measures in its own scale.
-    pub fn of(kind: VolumeKind, p: &[DVec3], kept: impl Fn(usize) -> Option<f64>) -> Option<CornerShapes> {
+    /// The terms of the element of `kind` with corners `p`, each corner's (term,
+    /// determinant) from `kept(c)` where it gives them (a corner whose tetrahedron is as it
+    /// was), else measured; `None` for an element beyond the safe scale, which
+    /// [`solid_shape`] measures in its own scale.
+    pub fn of(kind: VolumeKind, p: &[DVec3], kept: impl Fn(usize) -> Option<(f64, f64)>) -> Option<CornerShapes> {
         let p = &p[..kind.corners()];
-        if crate::numeric::factors_beyond_safe_scale(reach(p)).is_some() {
+        let reach = reach(p);
+        if crate::numeric::factors_beyond_safe_scale(reach).is_some() {
             return None;
         }
         let r = kind.reference();
-        let mut t = [0.0; 8];
+        let (mut terms, mut dets) = ([0.0; 8], [0.0; 8]);
         // each measured corner's `q3::mean_ratio`, its Jacobians first and then their cube
         // roots: the same operations on each corner, but no corner waits on the last one's
         // cube root and division
         let mut parts = [None; 8];
-        for (c, (t, parts)) in t.iter_mut().zip(&mut parts).enumerate().take(kind.row().corner_edges.len()) {
+        for (c, parts) in parts.iter_mut().enumerate().take(kind.row().corner_edges.len()) {
             match kept(c) {
-                Some(v) => *t = v,
+                Some((t, d)) => (terms[c], dets[c]) = (t, d),
                 None => *parts = Some(q3::MeanRatioParts::of(&corner_tet(kind, p, c), r)),
             }
         }
-        for (t, parts) in t.iter_mut().zip(&parts) {
+        for (c, parts) in parts.iter().enumerate() {
             if let Some(parts) = parts {
-                *t = parts.mean_ratio();
+                terms[c] = parts.mean_ratio();
+                dets[c] = if r.identity { parts.sigma } else { parts.sigma / r.det_w_inv };
             }
         }
-        Some(CornerShapes(t))
+        Some(CornerShapes { terms, dets, reach })
     }
     /// Corner `c`'s term.
     #[inline]
     pub fn term(&self, c: usize) -> f64 {
-        self.0[c]
+        self.terms[c]
+    }
+    /// Corner `c`'s term and determinant, as [`of`](Self::of) keeps them.
+    #[inline]
+    pub fn corner(&self, c: usize) -> (f64, f64) {
+        (self.terms[c], self.dets[c])
     }
     /// [`solid_shape`] of the element of `kind` from its terms: the same sum in the same
     /// order, so the same bits.
     pub fn shape(&self, kind: VolumeKind) -> f64 {
         let count = kind.row().corner_edges.len();
-        self.0[..count].iter().copied().sum::<f64>() / count as f64
+        self.terms[..count].iter().copied().sum::<f64>() / count as f64
+    }
+    /// [`least_corner_det`] of the element of `kind` from the corners' determinants here:
+    /// not the same bits (each `det A` by another formula, rounding some 10⁻¹⁶ of the
+    /// extent³), but within the same tolerance of each corner's size, some ten thousand
+    /// times that rounding, which is all the size screen reads
+    /// (`Size::floor_kept_for_certain`: where it decides, the rule's comparison of the
+    /// sizes finds the same).
+    pub fn least_corner_det(&self, kind: VolumeKind) -> Option<(f64, f64)> {
+        let mut least = f64::INFINITY;
+        for &d in &self.dets[..kind.row().corner_edges.len()] {
+            if d.is_nan() {
+                return None;
+            }
+            least = least.min(d);
+        }
+        least_det_within(least, self.reach)
     }
 }
 
@@ -872,9 +905,7 @@ pub fn corner_size(t: &[DVec3; 4]) -> (f64, f64) {
 /// determinant is not a number or the extent is beyond the scales it takes.
 pub fn least_corner_det(kind: VolumeKind, p: &[DVec3]) -> Option<(f64, f64)> {
     let p = &p[..kind.corners()];
-    // every component of an edge between two corners is at most twice the reach from the
-    // first corner (rounded up beyond the reach's own rounding)
-    let extent = 2.0 * reach(p) * (1.0 + 1e-9);
+    let reach = reach(p);
     let mut least = f64::INFINITY;
     for c in 0..kind.row().corner_edges.len() {
         let d = corner_det(&corner_tet(kind, p, c));
@@ -883,6 +914,16 @@ pub fn least_corner_det(kind: VolumeKind, p: &[DVec3]) -> Option<(f64, f64)> {
         }
         least = least.min(d);
     }
+    least_det_within(least, reach)
+}
+
+/// The least corner determinant `least` of an element of reach `reach` with its tolerance
+/// ([`super::det_within`], the element's extent for the scale).
+#[inline]
+fn least_det_within(least: f64, reach: f64) -> Option<(f64, f64)> {
+    // every component of an edge between two corners is at most twice the reach from the
+    // first corner (rounded up beyond the reach's own rounding)
+    let extent = 2.0 * reach * (1.0 + 1e-9);
     super::det_within(least, extent, 3)
 }
 

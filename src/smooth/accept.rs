@@ -474,9 +474,12 @@ mod tests {
         let size = |p: &[DVec3]| Size::least_corner(kind, &solid::CornerSizes::of(kind, p, |_| None));
         size(after).at_least(MIN_SIZE_RATIO, &size(before))
     }
-    fn certain(kind: VolumeKind, before: &[DVec3], after: &[DVec3]) -> bool {
+    /// The screen from the least corner determinant taken directly, or (`from_shapes`) from
+    /// the shape's corners where it has them ([`solid::CornerShapes::least_corner_det`]).
+    fn certain(kind: VolumeKind, before: &[DVec3], after: &[DVec3], from_shapes: bool) -> bool {
         let within = |p: &[DVec3]| match kind {
             VolumeKind::Tet4 => q3::TetRuleMeasures::of(&[p[0], p[1], p[2], p[3]]).det_within(),
+            _ if from_shapes => solid::CornerShapes::of(kind, p, |_| None).map_or_else(|| solid::least_corner_det(kind, p), |t| t.least_corner_det(kind)),
             _ => solid::least_corner_det(kind, p),
         };
         Size::floor_kept_for_certain(within(before), within(after))
@@ -485,7 +488,8 @@ mod tests {
     #[test]
     fn the_size_floor_kept_for_certain_is_the_rules_answer() {
         let mut rng = crate::numeric::SplitMix64::new(41);
-        for kind in [VolumeKind::Tet4, VolumeKind::Hex8, VolumeKind::Wedge6, VolumeKind::Pyramid5, VolumeKind::Hex20] {
+        let kinds = [VolumeKind::Tet4, VolumeKind::Hex8, VolumeKind::Wedge6, VolumeKind::Pyramid5, VolumeKind::Hex20];
+        for (kind, from_shapes) in kinds.into_iter().flat_map(|k| [(k, false), (k, true)]) {
             let ideal: Vec<DVec3> = kind.row().ideal.iter().map(|c| DVec3::from(*c)).collect();
             let (mut decided, mut moves) = (0, 0);
             for scale in [1e-70, 1e-20, 1e-3, 1.0, 7.5, 1e20, 1e70] {
@@ -497,7 +501,7 @@ mod tests {
                     for step in [0.05, 0.2, 0.5, 1.0, 2.0] {
                         let mut after = before.clone();
                         after[corner] += step * scale * DVec3::new(r(), r(), r());
-                        let sure = certain(kind, &before, &after);
+                        let sure = certain(kind, &before, &after, from_shapes);
                         assert!(!sure || floor_kept(kind, &before, &after), "{kind:?} {before:?} -> {after:?}");
                         moves += 1;
                         decided += sure as usize;
@@ -508,14 +512,14 @@ mod tests {
                 for k in -64..=64 {
                     let s = (MIN_SIZE_RATIO * (1.0 + k as f64 * f64::EPSILON)).cbrt();
                     let after: Vec<DVec3> = before.iter().map(|p| before[0] + s * (*p - before[0])).collect();
-                    let sure = certain(kind, &before, &after);
+                    let sure = certain(kind, &before, &after, from_shapes);
                     assert!(!sure || floor_kept(kind, &before, &after), "{kind:?} shrunk {k} ulps: {before:?}");
                 }
                 for f in [0.99, 1.01] {
                     let s = (f * MIN_SIZE_RATIO).cbrt();
                     let after: Vec<DVec3> = before.iter().map(|p| before[0] + s * (*p - before[0])).collect();
                     // decided where the two answers are a percent apart, as the rule's
-                    assert_eq!(certain(kind, &before, &after), f > 1.0, "{kind:?} shrunk to {f}·floor");
+                    assert_eq!(certain(kind, &before, &after, from_shapes), f > 1.0, "{kind:?} shrunk to {f}·floor");
                     assert_eq!(floor_kept(kind, &before, &after), f > 1.0);
                 }
             }
@@ -523,13 +527,13 @@ mod tests {
             assert!(decided * 10 > moves * 6, "{kind:?}: {decided} of {moves}");
         }
         // beyond the scales it takes, it decides nothing
-        for kind in [VolumeKind::Tet4, VolumeKind::Hex8] {
+        for (kind, from_shapes) in [VolumeKind::Tet4, VolumeKind::Hex8].into_iter().flat_map(|k| [(k, false), (k, true)]) {
             let p: Vec<DVec3> = kind.row().ideal.iter().map(|c| DVec3::from(*c) * 1e-90).collect();
-            assert!(!certain(kind, &p, &p));
+            assert!(!certain(kind, &p, &p, from_shapes));
             let mut nan: Vec<DVec3> = p.iter().map(|c| *c * 1e90).collect();
-            assert!(certain(kind, &nan, &nan));
+            assert!(certain(kind, &nan, &nan, from_shapes));
             nan[3].y = f64::NAN;
-            assert!(!certain(kind, &nan, &nan));
+            assert!(!certain(kind, &nan, &nan, from_shapes));
         }
     }
 

@@ -346,8 +346,13 @@ fn corner_shapes_are_the_terms_of_the_solid_shape_bit_for_bit() {
             let p = perturbed(kind, &mut rng, amount, scale);
             let t = CornerShapes::of(kind, &p, |_| None).expect("within the safe scale");
             assert_eq!(t.shape(kind).to_bits(), solid_shape(kind, &p).to_bits(), "{kind:?} {p:?}");
-            let again = CornerShapes::of(kind, &p, |c| (c % 2 == 0).then(|| t.term(c))).unwrap();
+            let again = CornerShapes::of(kind, &p, |c| (c % 2 == 0).then(|| t.corner(c))).unwrap();
             assert_eq!(again, t);
+            // the least corner determinant from the shape's Jacobians: the direct one's
+            // tolerance, and within rounding of its value, far inside that tolerance
+            let ((d, tol), (direct, direct_tol)) = (t.least_corner_det(kind).unwrap(), least_corner_det(kind, &p).unwrap());
+            assert_eq!(tol.to_bits(), direct_tol.to_bits());
+            assert!((d - direct).abs() <= 1e-3 * tol, "{kind:?}: {d} against {direct} (tolerance {tol})");
         }
         let huge: Vec<DVec3> = ideal(kind).iter().take(kind.corners()).map(|c| *c * 1e200).collect();
         assert!(CornerShapes::of(kind, &huge, |_| None).is_none());
