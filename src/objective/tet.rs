@@ -110,7 +110,10 @@ pub struct StarSolid {
     shaped: PositionMemo<f64>,
     /// The shape's terms at the last position it was measured at: a corner whose
     /// tetrahedron does not hold the free node keeps its term wherever the node goes.
-    terms: std::cell::Cell<Option<(DVec3, CornerShapes)>>,
+    /// The position (`None` before any) and the terms there, borrowed and copied field by
+    /// field ([`CornerShapes::copy_from`]) rather than copied whole: some 140 bytes, read
+    /// at every shape, kept and recalled at every gather.
+    terms: std::cell::RefCell<(Option<DVec3>, CornerShapes)>,
     /// The corners' sizes at the last position they were measured at, as `terms`.
     sizes: std::cell::Cell<Option<(DVec3, CornerSizes)>>,
     /// The least corner determinant with its tolerance (the acceptance rule's size screen,
@@ -170,7 +173,7 @@ impl<T: Copy> PositionMemo<T> {
 /// measured again at a position it was measured at. Both measures are functions of the
 /// kind and the corners alone, so an answer kept is the answer measuring would give.
 ///
-/// Direct-mapped by element number, at most [`KnownSolids::MAX_SLOTS`] slots of 384 bytes
+/// Direct-mapped by element number, at most [`KnownSolids::MAX_SLOTS`] slots of 376 bytes
 /// (some 25 MB of a mesh of many elements other than tetrahedra), none for a mesh of
 /// tetrahedra. A copy starts empty: it is a cache.
 #[derive(Default)]
@@ -179,7 +182,7 @@ pub(crate) struct KnownSolids {
 }
 
 // the slot's size that `KnownSolids` states
-const _: () = assert!(std::mem::size_of::<KnownSolid>() == 384);
+const _: () = assert!(std::mem::size_of::<KnownSolid>() == 376);
 
 #[derive(Clone, Copy)]
 struct KnownSolid {
@@ -188,7 +191,10 @@ struct KnownSolid {
     corners: [DVec3; 8],
     validity: Option<Validity>,
     shape: Option<f64>,
-    terms: Option<CornerShapes>,
+    /// The shape's terms, where `has_terms` (a flag beside them rather than an `Option`, so
+    /// that they are copied in place: [`CornerShapes::copy_from`]).
+    has_terms: bool,
+    terms: CornerShapes,
     least_det: Option<Option<(f64, f64)>>,
 }
 
@@ -199,7 +205,8 @@ impl KnownSolid {
         corners: [DVec3::ZERO; 8],
         validity: None,
         shape: None,
-        terms: None,
+        has_terms: false,
+        terms: CornerShapes::NONE,
         least_det: None,
     };
     /// Whether this slot holds `element` of `kind` at `corners`, bit for bit.
@@ -256,7 +263,11 @@ impl KnownSolids {
             if let Some(q) = k.shape {
                 e.shaped.start_with(x, q);
             }
-            e.terms.set(k.terms.map(|t| (x, t)));
+            let mut terms = e.terms.borrow_mut();
+            terms.0 = k.has_terms.then_some(x);
+            if k.has_terms {
+                terms.1.copy_from(&k.terms);
+            }
             if let Some(d) = k.least_det {
                 e.least_det.start_with(x, d);
             }
@@ -272,7 +283,8 @@ impl KnownSolids {
     /// `elements` elements.
     fn keep(&mut self, e: &StarSolid, x: DVec3, elements: usize) {
         let (validity, shape) = (e.measured.kept(x), e.shaped.kept(x));
-        let terms = e.terms.get().filter(|&(at, _)| at == x).map(|(_, t)| t);
+        let terms = e.terms.borrow();
+        let terms = (terms.0 == Some(x)).then_some(&terms.1);
         let least_det = e.least_det.kept(x);
         if validity.is_none() && shape.is_none() {
             return;
@@ -288,7 +300,10 @@ impl KnownSolids {
         if k.holds_moved(e, x) {
             k.validity = validity.or(k.validity);
             k.shape = shape.or(k.shape);
-            k.terms = terms.or(k.terms);
+            if let Some(t) = terms {
+                k.has_terms = true;
+                k.terms.copy_from(t);
+            }
             k.least_det = least_det.or(k.least_det);
         } else {
             // field by field in place (a whole slot put together first is one more copy);
@@ -296,7 +311,10 @@ impl KnownSolids {
             (k.element, k.kind) = (e.element, e.kind);
             k.corners = e.pts;
             k.corners[e.slot as usize] = x;
-            (k.validity, k.shape, k.terms, k.least_det) = (validity, shape, terms, least_det);
+            (k.validity, k.shape, k.has_terms, k.least_det) = (validity, shape, terms.is_some(), least_det);
+            if let Some(t) = terms {
+                k.terms.copy_from(t);
+            }
         }
     }
 }
@@ -366,7 +384,7 @@ impl StarSolid {
             asked_beyond_ball: std::cell::Cell::new(false),
             measured: PositionMemo::default(),
             shaped: PositionMemo::default(),
-            terms: std::cell::Cell::new(None),
+            terms: std::cell::RefCell::new((None, CornerShapes::NONE)),
             sizes: std::cell::Cell::new(None),
             least_det: PositionMemo::default(),
         }
@@ -381,7 +399,7 @@ impl StarSolid {
         self.asked_beyond_ball = std::cell::Cell::new(false);
         self.measured = PositionMemo::default();
         self.shaped = PositionMemo::default();
-        self.terms = std::cell::Cell::new(None);
+        self.terms.get_mut().0 = None;
         self.sizes = std::cell::Cell::new(None);
         self.least_det = PositionMemo::default();
     }
@@ -411,11 +429,15 @@ impl StarSolid {
         self.shaped.get_or(x, || {
             let p = self.at(x);
             let corners = self.corners(&p);
-            let kept = self.terms.get();
-            let terms = CornerShapes::of(self.kind, corners, |c| kept.filter(|_| !self.moves(c)).map(|(_, t)| t.corner(c)));
+            let terms = {
+                let kept = self.terms.borrow();
+                CornerShapes::of(self.kind, corners, |c| (kept.0.is_some() && !self.moves(c)).then(|| kept.1.corner(c)))
+            };
             match terms {
                 Some(t) => {
-                    self.terms.set(Some((x, t)));
+                    let mut kept = self.terms.borrow_mut();
+                    kept.0 = Some(x);
+                    kept.1.copy_from(&t);
                     t.shape(self.kind)
                 }
                 None => crate::quality::solid::solid_shape(self.kind, corners),
@@ -442,9 +464,13 @@ impl StarSolid {
     /// was measured at `x` (the rule asks the shape first: [`CornerShapes::least_corner_det`],
     /// within the same tolerance).
     pub fn least_corner_det_measured(&self, x: DVec3) -> Option<(f64, f64)> {
-        self.least_det.get_or(x, || match self.terms.get() {
-            Some((at, t)) if at == x => t.least_corner_det(self.kind),
-            _ => crate::quality::solid::least_corner_det(self.kind, self.corners(&self.at(x))),
+        self.least_det.get_or(x, || {
+            let terms = self.terms.borrow();
+            if terms.0 == Some(x) {
+                terms.1.least_corner_det(self.kind)
+            } else {
+                crate::quality::solid::least_corner_det(self.kind, self.corners(&self.at(x)))
+            }
         })
     }
     /// Whether its measured corner `c`'s tetrahedron holds the free node (the corner or one
@@ -671,7 +697,7 @@ impl NodeStar for CornerStar {
             e.second_ball = std::cell::Cell::new(None);
             e.measured = PositionMemo::default();
             e.shaped = PositionMemo::default();
-            e.terms = std::cell::Cell::new(None);
+            e.terms.get_mut().0 = None;
             e.least_det = PositionMemo::default();
         }
         s

@@ -824,6 +824,17 @@ pub struct CornerShapes {
 }
 
 impl CornerShapes {
+    /// No terms, for room that holds none yet.
+    pub const NONE: CornerShapes = CornerShapes { terms: [f64::NAN; 8], dets: [f64::NAN; 8], reach: f64::NAN };
+    /// Overwrites these terms with `other`'s, field by field: a whole copy (some 140
+    /// bytes) is put together on the stack and moved with calls to `memcpy`, where these
+    /// are moves in place.
+    #[inline(always)]
+    pub fn copy_from(&mut self, other: &CornerShapes) {
+        self.terms = other.terms;
+        self.dets = other.dets;
+        self.reach = other.reach;
+    }
     /// The terms of the element of `kind` with corners `p`, each corner's (term,
     /// determinant) from `kept(c)` where it gives them (a corner whose tetrahedron is as it
     /// was), else measured; `None` for an element beyond the safe scale, which
