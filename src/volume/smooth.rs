@@ -65,7 +65,7 @@ impl DriverStar for CornerStar {
     /// ([`VolumeKindRow::corner_edges`](crate::mesh::VolumeKindRow)), an even permutation
     /// of a tetrahedron's corners, so the volume keeps its sign; another kind's every
     /// measured corner whose tetrahedron holds the node, reordered to put it first
-    /// ([`WITH_FIRST`]), with the element whole for the guard ([`StarSolid`]).
+    /// ([`WITH_FIRST`](crate::mesh::WITH_FIRST)), with the element whole for the guard ([`StarSolid`]).
     fn gather(&mut self, mesh: &VolumeMesh, node: usize) {
         self.gather_for_measures(mesh, node);
         self.complete_forms();
