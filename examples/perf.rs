@@ -1297,7 +1297,7 @@ fn measure_volume(quick: bool) -> VolumeReport {
         .map(|&(name, strategy, kind, order, max_iter)| {
             let obj = tet_objective(kind).expect("a form on tetrahedra");
             let o = SmoothOptions::default().with_strategy(strategy).with_order(order).with_max_iter(max_iter);
-            let mut smoothers = [0, 1].map(|_| VolumeSmoother::new(o.clone()).expect("options"));
+            let mut smoothers = [0, 1].map(|_| VolumeSmoother::new(o).expect("options"));
             // the two meshes' passes alternate, so that both see the machine as it is (the
             // ratio of their medians is what the target reads); per free node, the visits
             // kept apart
