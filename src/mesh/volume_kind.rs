@@ -26,7 +26,8 @@ pub struct CornerReference {
     pub w_inv_t_one: DVec3,
     /// Whether `W` is the identity (the cube's corner, and its slot 0), so that `A·W⁻¹` is
     /// `A` itself: the product's sums `a·1 + b·0 + c·0` are `a`, bit for bit but for the
-    /// sign of a zero, which no measure of `T` reads.
+    /// sign of a zero entry, which changes a measure of `T` only where the measure is a zero
+    /// too (and no comparison tells the two zeros apart).
     pub identity: bool,
 }
 
