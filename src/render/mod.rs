@@ -27,6 +27,7 @@ mod chart;
 mod colormap;
 mod compare;
 mod contour;
+mod font;
 mod histogram;
 pub mod layout;
 mod levelset;

@@ -2,21 +2,13 @@
 //! into the pixmap with a colour. tiny-skia has no text of its own.
 //!
 //! The font is a subset of DejaVu Sans (Latin, Greek, arrows and a few mathematical
-//! signs; see `assets/fonts/README.md`), small enough for the wasm build.
+//! signs; see `assets/fonts/README.md`), built in as tables (`super::font`).
 //! Characters outside the subset draw as the font's missing-glyph box.
 
-use std::sync::OnceLock;
-
-use ab_glyph::{point, Font, FontRef, PxScale, ScaleFont};
+use ab_glyph::point;
 use tiny_skia::{Color, Pixmap, PixmapPaint, PremultipliedColorU8, Transform};
 
-static FONT_BYTES: &[u8] = include_bytes!("../../assets/fonts/DejaVuSans-subset.ttf");
-
-fn font() -> &'static FontRef<'static> {
-    static FONT: OnceLock<FontRef<'static>> = OnceLock::new();
-    // The font is part of the binary and checked by a unit test, not user input.
-    FONT.get_or_init(|| FontRef::try_from_slice(FONT_BYTES).expect("the embedded font parses"))
-}
+use super::font::{self, glyph_id, Scaled};
 
 /// Horizontal placement of a label relative to its anchor point.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -104,11 +96,11 @@ pub fn fit_words(text: &str, size: f32, width: f32) -> std::borrow::Cow<'_, str>
 
 /// Width in device pixels of `text` at `size`.
 pub fn text_width(text: &str, size: f32) -> f32 {
-    let f = font().as_scaled(PxScale::from(size.max(0.0)));
+    let f = Scaled::new(size.max(0.0));
     let mut w = 0.0;
     let mut prev = None;
     for c in text.chars() {
-        let id = f.glyph_id(c);
+        let id = glyph_id(c);
         if let Some(p) = prev {
             w += f.kern(p, id);
         }
@@ -120,7 +112,7 @@ pub fn text_width(text: &str, size: f32) -> f32 {
 
 /// Offset from the anchor to the pen origin (left end of the baseline).
 fn origin(text: &str, x: f32, y: f32, style: &TextStyle) -> (f32, f32) {
-    let f = font().as_scaled(PxScale::from(style.size));
+    let f = Scaled::new(style.size);
     let w = text_width(text, style.size);
     let x0 = match style.align {
         Align::Left => x,
@@ -153,21 +145,21 @@ pub fn draw_text(pixmap: &mut Pixmap, text: &str, x: f32, y: f32, style: TextSty
         SMALLEST.with(|c| c.set(c.get().min(style.size)));
     }
     let (mut caret, base) = origin(text, x, y, &style);
-    let f = font().as_scaled(PxScale::from(style.size));
+    let f = Scaled::new(style.size);
     let (w, h) = (pixmap.width() as i64, pixmap.height() as i64);
     let c = style.color;
     let (r, g, b, a) = (c.red(), c.green(), c.blue(), c.alpha());
     let pixels = pixmap.pixels_mut();
     let mut prev = None;
     for ch in text.chars() {
-        let id = f.glyph_id(ch);
+        let id = glyph_id(ch);
         if let Some(p) = prev {
             caret += f.kern(p, id);
         }
         let glyph = id.with_scale_and_position(style.size, point(caret, base));
         caret += f.h_advance(id);
         prev = Some(id);
-        let Some(outlined) = font().outline_glyph(glyph) else { continue };
+        let Some(outlined) = font::outline_glyph(glyph) else { continue };
         let bb = outlined.px_bounds();
         let (bx, by) = (bb.min.x as i64, bb.min.y as i64);
         outlined.draw(|gx, gy, cov| {
@@ -211,7 +203,7 @@ pub fn draw_text_rotated(pixmap: &mut Pixmap, text: &str, x: f32, y: f32, style:
     if !drawable(&style, x, y) || !angle_deg.is_finite() {
         return;
     }
-    let f = font().as_scaled(PxScale::from(style.size));
+    let f = Scaled::new(style.size);
     let tw = text_width(text, style.size).ceil() + 4.0;
     let th = (f.ascent() - f.descent()).ceil() + 4.0;
     let Some(mut tmp) = Pixmap::new(tw.max(1.0) as u32, th.max(1.0) as u32) else { return };
@@ -233,9 +225,8 @@ mod tests {
 
     #[test]
     fn embedded_font_has_the_glyphs_we_label_with() {
-        let f = font();
         for c in "αβκθω°−0123456789.,()/%ABCxyz≤∞→".chars() {
-            assert_ne!(f.glyph_id(c).0, 0, "missing glyph for {c:?}");
+            assert_ne!(glyph_id(c).0, 0, "missing glyph for {c:?}");
         }
     }
 
