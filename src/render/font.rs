@@ -72,18 +72,15 @@ fn outline(id: GlyphId) -> Option<Outline> {
     let bounds = Rect { min: point(x_min.into(), y_max.into()), max: point(x_max.into(), y_min.into()) };
     let mut read = Reader { bytes: &CURVES[CURVE_STARTS[g] as usize..CURVE_STARTS[g + 1] as usize], last: [0; 2] };
     let mut curves = Vec::new();
-    let mut end = point(0.0, 0.0);
     while let Some(tag) = read.byte() {
-        let start = if tag & 4 != 0 { read.point() } else { end };
-        let curve = match tag & 3 {
+        // a curve not written from its start begins where the last one ended: the last
+        // point read
+        let start = if tag & 4 != 0 { read.point() } else { read.last_point() };
+        curves.push(match tag & 3 {
             0 => OutlineCurve::Line(start, read.point()),
             1 => OutlineCurve::Quad(start, read.point(), read.point()),
             _ => OutlineCurve::Cubic(start, read.point(), read.point(), read.point()),
-        };
-        end = match curve {
-            OutlineCurve::Line(_, e) | OutlineCurve::Quad(_, _, e) | OutlineCurve::Cubic(_, _, _, e) => e,
-        };
-        curves.push(curve);
+        });
     }
     Some(Outline { bounds, curves })
 }
@@ -116,11 +113,13 @@ impl Reader {
     }
 
     fn point(&mut self) -> Point {
-        let mut half = |axis: usize| {
-            self.last[axis] += self.number();
-            self.last[axis] as f32 * 0.5
-        };
-        point(half(0), half(1))
+        self.last[0] += self.number();
+        self.last[1] += self.number();
+        self.last_point()
+    }
+
+    fn last_point(&self) -> Point {
+        point(self.last[0] as f32 * 0.5, self.last[1] as f32 * 0.5)
     }
 }
 
