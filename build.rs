@@ -85,7 +85,8 @@ fn font_tables(bytes: &[u8]) -> String {
                 let (x_min, y_max, x_max, y_min) = (whole(b.min.x), whole(b.min.y), whole(b.max.x), whole(b.max.y));
                 assert!(x_min < x_max && y_min < y_max, "glyph {} has an outline in empty bounds", id.0);
                 bounds.push([x_min, y_min, x_max, y_max]);
-                let mut end: Option<Point> = None;
+                // the last point written, as the reader keeps it (it starts at 0, 0); half
+                // units are exact, so a curve that starts there need not write its start
                 let mut last = [0i32; 2];
                 for curve in &o.curves {
                     let (kind, points): (u8, &[Point]) = match curve {
@@ -93,17 +94,15 @@ fn font_tables(bytes: &[u8]) -> String {
                         OutlineCurve::Quad(a, b, c) => (1, &[*a, *b, *c][..]),
                         OutlineCurve::Cubic(a, b, c, d) => (2, &[*a, *b, *c, *d][..]),
                     };
-                    let same = |p: Point, q: Point| p.x.to_bits() == q.x.to_bits() && p.y.to_bits() == q.y.to_bits();
-                    let from_end = end.is_some_and(|e| same(e, points[0]));
-                    curves.push(if from_end { kind } else { kind | 4 });
-                    for p in &points[usize::from(from_end)..] {
+                    let from_last = [half_units(points[0].x), half_units(points[0].y)] == last;
+                    curves.push(if from_last { kind } else { kind | 4 });
+                    for p in &points[usize::from(from_last)..] {
                         for (axis, v) in [p.x, p.y].into_iter().enumerate() {
                             let h = half_units(v);
                             push_number(&mut curves, h - last[axis]);
                             last[axis] = h;
                         }
                     }
-                    end = points.last().copied();
                 }
             }
         }

@@ -15,8 +15,8 @@
 //! - `BOUNDS[g]`: x min, y min, x max, y max of glyph `g`'s outline, all 0 where it has none;
 //! - `CURVES[CURVE_STARTS[g]..CURVE_STARTS[g + 1]]`: the outline's curves in `ab_glyph`'s
 //!   order, each a tag byte (0 a line, 1 a quadratic, 2 a cubic; plus 4 where its first
-//!   point is written, as it does not start where the curve before it ended) and its points
-//!   (`Reader`).
+//!   point is written, as it does not start at the last point written, 0, 0 before the
+//!   glyph's first) and its points (`Reader`).
 
 use ab_glyph::{point, Glyph, GlyphId, Outline, OutlineCurve, OutlinedGlyph, Point, PxScaleFactor, Rect};
 
@@ -73,8 +73,8 @@ fn outline(id: GlyphId) -> Option<Outline> {
     let mut read = Reader { bytes: &CURVES[CURVE_STARTS[g] as usize..CURVE_STARTS[g + 1] as usize], last: [0; 2] };
     let mut curves = Vec::new();
     while let Some(tag) = read.byte() {
-        // a curve not written from its start begins where the last one ended: the last
-        // point read
+        // a curve not written from its start begins at the last point read (0, 0 before the
+        // first)
         let start = if tag & 4 != 0 { read.point() } else { read.last_point() };
         curves.push(match tag & 3 {
             0 => OutlineCurve::Line(start, read.point()),
