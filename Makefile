@@ -8,7 +8,7 @@
 #   make reproduction   rerun the papers' experiments into docs/reproduction.md (a few minutes)
 #   make performance    rerun the benchmarks (native, in Chromium, in the page) into docs/performance.md (~15 minutes)
 
-WASM := target/wasm32-unknown-unknown/release/smoothlab.wasm
+WASM := target/wasm32-unknown-unknown/release/smoothlab_page.wasm
 PORT ?= 8000
 CARGO ?= cargo
 
@@ -21,15 +21,16 @@ serve: site
 test: lint unit site browser
 	@$(MAKE) --no-print-directory python-test NEED_PAGE_STATE=1
 
-# clippy for the host (every target: lib, CLI, tests, examples, benches) and for the page's
-# wasm32 build (the wasm layer compiles only there), then the docs with broken links denied
+# clippy for the host (every crate and target: libs, CLI, tests, programs, benches) and for
+# the page's wasm32 build (the wasm layer compiles only there), then the docs with broken
+# links denied
 lint: tools
-	$(CARGO) clippy --all-targets -- -D warnings
-	$(CARGO) clippy --lib --target wasm32-unknown-unknown -- -D warnings
-	RUSTDOCFLAGS="-D warnings" $(CARGO) doc --no-deps
+	$(CARGO) clippy --workspace --all-targets -- -D warnings
+	$(CARGO) clippy -p smoothlab-page --lib --target wasm32-unknown-unknown -- -D warnings
+	RUSTDOCFLAGS="-D warnings" $(CARGO) doc --workspace --no-deps
 
 unit:
-	$(CARGO) test
+	$(CARGO) test --workspace
 
 tools:
 	@scripts/ensure-tools.sh
@@ -47,8 +48,8 @@ WASM_OPT := tools/node_modules/.bin/wasm-opt
 WASM_OPT_FLAGS := -O3 --low-memory-unused
 
 site: tools
-	$(CARGO) build --lib --release --target wasm32-unknown-unknown
-	wasm-bindgen --target web --no-typescript --out-dir target/wasm-bindgen $(WASM)
+	$(CARGO) build -p smoothlab-page --lib --release --target wasm32-unknown-unknown
+	wasm-bindgen --target web --no-typescript --out-name smoothlab --out-dir target/wasm-bindgen $(WASM)
 	@mkdir -p target/wasm-opt www/pkg
 	@if ! cmp -s target/wasm-bindgen/smoothlab_bg.wasm target/wasm-opt/input.wasm || \
 	    [ "$$(cat target/wasm-opt/flags 2>/dev/null)" != "$(WASM_OPT_FLAGS)" ]; then \
@@ -89,7 +90,7 @@ browser: python single browser-tools
 	node tests/browser/run.mjs
 
 reproduction:
-	$(CARGO) run --release --example reproduce > docs/reproduction.md
+	$(CARGO) run --release -p smoothlab-programs --bin reproduce > docs/reproduction.md
 
 # The browser benches first (the wasm bench's JSON feeds the wasm/native table, the page
 # bench's the "In the page" section, the page's memory the memory section), then issue 33's
@@ -97,17 +98,17 @@ reproduction:
 # then the native figures.
 performance: site browser-tools
 	@mkdir -p target/perf
-	$(CARGO) build --release --features parallel --example perf
+	$(CARGO) build --release -p smoothlab-programs --features parallel --bin perf
 	node tests/browser/bench.mjs --nodes 100000 --reps 3 > target/perf/wasm.json
-	$(CARGO) run --release --features parallel --example perf -- --native-peers target/perf/wasm.json
+	$(CARGO) run --release -p smoothlab-programs --features parallel --bin perf -- --native-peers target/perf/wasm.json
 	node tests/browser/page_bench.mjs --reps 3 > target/perf/page.json
 	node tests/browser/page_memory.mjs > target/perf/page-memory.json
-	$(CARGO) build --release --features parallel --bin smoothlab
+	$(CARGO) build --release -p smoothlab-cli --features parallel --bin smoothlab
 	python3 scripts/before_after.py > target/perf/before_after.json
-	$(CARGO) run --release --features parallel --example perf -- --wasm target/perf/wasm.json --page target/perf/page.json --page-memory target/perf/page-memory.json --before-after target/perf/before_after.json --out docs/performance.md
+	$(CARGO) run --release -p smoothlab-programs --features parallel --bin perf -- --wasm target/perf/wasm.json --page target/perf/page.json --page-memory target/perf/page-memory.json --before-after target/perf/before_after.json --out docs/performance.md
 
 # the README's pictures (docs/images/), drawn by the CLI from generated meshes, then the
 # papers' figures of the page's tour (docs/figures/*.png and docs/figures.md)
 figures:
 	scripts/figures.sh
-	$(CARGO) run --release --example figures
+	$(CARGO) run --release -p smoothlab-programs --bin figures

@@ -6,8 +6,8 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
-want=$(sed -n 's/^wasm-bindgen = "=\([0-9.]*\)".*/\1/p' Cargo.toml)
-[ -n "$want" ] || { echo "ensure-tools: cannot read the wasm-bindgen version pin from Cargo.toml" >&2; exit 1; }
+want=$(sed -n 's/^wasm-bindgen = "=\([0-9.]*\)".*/\1/p' crates/smoothlab-page/Cargo.toml)
+[ -n "$want" ] || { echo "ensure-tools: cannot read the wasm-bindgen version pin from crates/smoothlab-page/Cargo.toml" >&2; exit 1; }
 
 if ! rustup target list --installed 2>/dev/null | grep -qx wasm32-unknown-unknown; then
   echo "ensure-tools: adding the wasm32-unknown-unknown target"

@@ -1,0 +1,672 @@
+//! A pass in slices: the state machine that runs one smoothing pass on both panels a
+//! time budget at a time (plan the visit order, visit the nodes, run any untangling
+//! sweeps, measure), so the page can show progress and answer Stop during a pass on a
+//! large mesh. The result is [`Smoother::pass`](smoothlab::smooth::Smoother::pass)'s, bit
+//! for bit; the playground ([`super::Playground::begin_pass`], `continue_pass`,
+//! `abort_pass`) only holds the run.
+//!
+//! The two panels' sweeps are independent, so a pass can also be *split* between two
+//! engines (the page's two workers, on two cores): one playground sweeps panel A
+//! alone ([`super::Playground::begin_sweep`], no statistics, the panel put back after),
+//! while the other runs a split pass ([`super::Playground::begin_split_pass`]): the new
+//! panel as usual, then panel A's sweep adopted from the first
+//! ([`super::Playground::adopt_sweep`]) and measured. The records and positions are the
+//! whole pass's, bit for bit.
+
+use std::cell::OnceCell;
+
+use glam::DVec2;
+use serde::{Deserialize, Serialize};
+
+use super::stats::{QuickAcc, QuickStats};
+use super::{Panel, PassSummary, Side, Versions};
+use smoothlab::quality::MeshStats;
+use smoothlab::smooth::SweepCounts;
+
+/// Elements measured per slice of a pass's statistics.
+const STATS_SLICE: usize = 32 * 1024;
+
+/// Where a pass in slices stands (see [`super::Playground::continue_pass`]).
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct PassProgress {
+    /// The pass is complete (`records` holds its two records) and the meshes are final.
+    pub done: bool,
+    /// Of the whole pass (both panels), 0 to 1.
+    pub fraction: f64,
+    /// The panel being smoothed or measured.
+    pub side: Side,
+    /// What the pass is doing on that panel.
+    pub stage: PassStage,
+    /// Node visits done on this panel and planned for it.
+    pub visits: usize,
+    pub planned: usize,
+    /// `[old, new]` when done.
+    pub records: Option<[PassSummary; 2]>,
+}
+
+/// What a pass in slices is doing, as the page is told ([`PassProgress::stage`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum PassStage {
+    /// Planning the visit order (the priority order measures every star).
+    Plan,
+    /// Visiting the nodes (the planned visits, then any untangling sweeps).
+    Smooth,
+    /// Measuring the smoothed mesh's statistics.
+    Measure,
+    /// A split pass waits for the other engine's sweep of panel A
+    /// ([`super::Playground::adopt_sweep`]).
+    Wait,
+    /// The pass is complete.
+    Done,
+}
+
+/// The sweep of one panel by another engine, for [`super::Playground::adopt_sweep`]: what
+/// its node loop did and how long it took (the positions travel beside it).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct SideSweep {
+    pub counts: SweepCounts,
+    /// The node loop's time (planning included), milliseconds.
+    pub sweep_ms: f64,
+}
+
+/// Which part of a pass a run does.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(super) enum RunKind {
+    /// Both panels: the old one, then the new one.
+    Whole,
+    /// Panel B, then A's sweep adopted from another engine and measured.
+    Split,
+    /// The sweep of one panel alone, without statistics, for another engine.
+    Sweep(usize),
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Stage {
+    /// Save the panel and begin planning its visit order.
+    Plan,
+    /// Plan in slices (the priority order measures every star).
+    Planning,
+    Smooth,
+    Measure,
+}
+
+/// A panel as it was when a pass began on it, to put back if the pass is abandoned.
+struct Saved {
+    nodes: Vec<DVec2>,
+    version: u64,
+    quick: QuickStats,
+    buckets: Vec<u8>,
+    full: OnceCell<MeshStats>,
+}
+
+impl Saved {
+    fn of(p: &Panel) -> Saved {
+        Saved {
+            nodes: p.mesh.nodes().to_vec(),
+            version: p.version,
+            quick: p.quick,
+            buckets: p.buckets.clone(),
+            full: p.full.clone(),
+        }
+    }
+}
+
+impl PassProgress {
+    /// A sweep for another engine, complete (its result is taken apart from this).
+    pub(super) fn swept(side: Side) -> PassProgress {
+        PassProgress { done: true, fraction: 1.0, side, stage: PassStage::Done, visits: 0, planned: 0, records: None }
+    }
+}
+
+/// A pass in progress: panel A's sweep and statistics, then panel B's (in
+/// the order of [`RunKind`]).
+pub(super) struct PassRun {
+    kind: RunKind,
+    /// The panels in the order the run takes them, and how many of them it has done.
+    order: [usize; 2],
+    k: usize,
+    /// Panel A's sweep by another engine, once a split run adopted it; a sweep run's
+    /// own, once made.
+    sweep: Option<SideSweep>,
+    stage: Stage,
+    schedule: Vec<u32>,
+    pos: usize,
+    counts: SweepCounts,
+    sweep_ms: f64,
+    acc: QuickAcc,
+    stats_ms: f64,
+    /// Node visits per slice, adapted to the time they take.
+    slice: usize,
+    /// Stars measured per planning slice, adapted likewise.
+    plan_slice: usize,
+    /// The schedule is an untangling sweep's (after the planned visits).
+    untangling: bool,
+    saved: [Option<Saved>; 2],
+    done: [Option<(PassSummary, QuickStats)>; 2],
+}
+
+/// The next slice size after a slice of `size` took `dt` ms: slices of about a tenth of
+/// the budget (at most 20 ms), so the budget is kept to within a slice.
+fn adapt_slice(size: usize, dt: f64, budget_ms: f64) -> usize {
+    let target = (budget_ms / 10.0).clamp(1.0, 20.0);
+    if dt < target / 2.0 {
+        (size * 2).min(1 << 20)
+    } else if dt > target * 2.0 {
+        (size / 2).max(1)
+    } else {
+        size
+    }
+}
+
+impl PassRun {
+    /// A pass about to begin on panel A.
+    pub(super) fn new() -> PassRun {
+        PassRun::of(RunKind::Whole)
+    }
+
+    /// A run of the given kind about to begin on its first panel.
+    pub(super) fn of(kind: RunKind) -> PassRun {
+        let order = match kind {
+            RunKind::Whole => [0, 1],
+            RunKind::Split => [1, 0],
+            RunKind::Sweep(side) => [side, side],
+        };
+        PassRun {
+            kind,
+            order,
+            k: 0,
+            sweep: None,
+            stage: Stage::Plan,
+            schedule: Vec::new(),
+            pos: 0,
+            counts: SweepCounts::default(),
+            sweep_ms: 0.0,
+            acc: QuickAcc::default(),
+            stats_ms: 0.0,
+            slice: 64,
+            plan_slice: 1024,
+            untangling: false,
+            saved: [None, None],
+            done: [None, None],
+        }
+    }
+
+    /// Runs the pass for about `budget_ms` milliseconds of `clock` (at least one slice:
+    /// a planning, a few node visits or a slice of the statistics). Returns whether both
+    /// panels are done: then [`finish`](Self::finish) keeps the records.
+    pub(super) fn advance(
+        &mut self,
+        panels: &mut [Panel; 2],
+        versions: &mut Versions,
+        clock: &dyn Fn() -> f64,
+        budget_ms: f64,
+    ) -> bool {
+        let start = clock();
+        loop {
+            let side = self.panel();
+            let p = &mut panels[side];
+            match self.stage {
+                Stage::Plan if self.kind == RunKind::Split && side == 0 => {
+                    // panel A was swept by another engine: measure it once adopted
+                    let Some(sweep) = self.sweep else { return false };
+                    self.counts = sweep.counts;
+                    self.sweep_ms = sweep.sweep_ms;
+                    self.stage = Stage::Measure;
+                    self.acc = QuickAcc::default();
+                    self.stats_ms = 0.0;
+                }
+                Stage::Plan => {
+                    let t0 = clock();
+                    if self.saved[side].is_none() {
+                        self.saved[side] = Some(Saved::of(p));
+                    }
+                    p.smoother.begin_plan(&p.mesh);
+                    self.sweep_ms = clock() - t0;
+                    self.stage = Stage::Planning;
+                }
+                Stage::Planning => {
+                    let t0 = clock();
+                    let done = p.smoother.plan_some(&p.mesh, self.plan_slice);
+                    let dt = clock() - t0;
+                    self.sweep_ms += dt;
+                    self.plan_slice = adapt_slice(self.plan_slice, dt, budget_ms);
+                    if done {
+                        self.schedule.clear();
+                        self.schedule.extend_from_slice(p.smoother.schedule());
+                        self.pos = 0;
+                        self.counts = SweepCounts::default();
+                        self.untangling = false;
+                        self.stage = Stage::Smooth;
+                    }
+                }
+                Stage::Smooth if self.pos < self.schedule.len() => {
+                    if self.pos == 0 && !self.untangling {
+                        p.version = versions.fresh();
+                    }
+                    let t0 = clock();
+                    let end = (self.pos + self.slice).min(self.schedule.len());
+                    let c = p.smoother.visit_all(&mut p.mesh, &self.schedule[self.pos..end], p.objective.as_ref());
+                    self.counts.merge(c);
+                    self.pos = end;
+                    let dt = clock() - t0;
+                    self.sweep_ms += dt;
+                    self.slice = adapt_slice(self.slice, dt, budget_ms);
+                }
+                Stage::Smooth => {
+                    // the planned visits (or an untangling sweep) are done: another
+                    // untangling sweep, as `Smoother::sweep` runs them, or the statistics
+                    let t0 = clock();
+                    let again = p.smoother.plan_untangle_sweep(&p.mesh, &mut self.counts);
+                    self.sweep_ms += clock() - t0;
+                    if again {
+                        self.untangling = true;
+                        self.schedule.clear();
+                        self.schedule.extend_from_slice(p.smoother.revisits());
+                        self.pos = 0;
+                    } else if let RunKind::Sweep(_) = self.kind {
+                        // a sweep for another engine ends here: that engine measures
+                        self.sweep = Some(SideSweep { counts: self.counts, sweep_ms: self.sweep_ms });
+                        return true;
+                    } else {
+                        self.stage = Stage::Measure;
+                        self.acc = QuickAcc::default();
+                        self.stats_ms = 0.0;
+                    }
+                }
+                Stage::Measure => {
+                    let t0 = clock();
+                    let n = p.mesh.element_count();
+                    let from = self.acc.done;
+                    self.acc.add(&p.mesh, from..(from + STATS_SLICE).min(n), Some(&mut p.buckets));
+                    self.stats_ms += clock() - t0;
+                    if self.acc.done >= n {
+                        let q = self.acc.finish();
+                        let summary = PassSummary {
+                            pass: p.records.len() as u32 + 1,
+                            counts: self.counts,
+                            after: q,
+                            objective_total: None,
+                            elapsed_ms: self.sweep_ms,
+                            stats_ms: self.stats_ms,
+                        };
+                        self.done[side] = Some((summary, q));
+                        self.k += 1;
+                        if self.k == 2 {
+                            return true;
+                        }
+                        self.stage = Stage::Plan;
+                        // the slice ends here, so the page can say that the other side's
+                        // turn has come before its planning begins
+                        return false;
+                    }
+                }
+            }
+            if clock() - start >= budget_ms {
+                return false;
+            }
+        }
+    }
+
+    /// Keeps the records and statistics of a completed pass in the panels.
+    pub(super) fn finish(mut self, panels: &mut [Panel; 2], versions: &mut Versions) -> PassProgress {
+        for (side, p) in panels.iter_mut().enumerate() {
+            // a version of its own for the final positions and buckets: nothing drawn
+            // during the pass (part-smoothed) can be taken for them
+            if self.saved[side].as_ref().is_some_and(|s| s.version != p.version) {
+                p.version = versions.fresh();
+            }
+        }
+        let records = [0, 1].map(|side| {
+            let (summary, q) = self.done[side].take().expect("both panels were measured");
+            let p = &mut panels[side];
+            p.quick = q;
+            p.full = OnceCell::new();
+            p.records.push(summary.clone());
+            summary
+        });
+        PassProgress {
+            done: true,
+            fraction: 1.0,
+            side: Side::B,
+            stage: PassStage::Done,
+            visits: self.counts.visits as usize,
+            planned: self.schedule.len(),
+            records: Some(records),
+        }
+    }
+
+    /// A split run adopts panel A's sweep made by another engine: its positions
+    /// `nodes` and what it did. The panel is saved first, so an abandoned pass puts it
+    /// back; it is measured when panel B is done.
+    pub(super) fn adopt(
+        &mut self,
+        panels: &mut [Panel; 2],
+        versions: &mut Versions,
+        nodes: &[DVec2],
+        sweep: SideSweep,
+    ) -> Result<(), &'static str> {
+        if self.kind != RunKind::Split {
+            return Err("the pass in progress is not split between two engines");
+        }
+        if self.sweep.is_some() {
+            return Err("the old side's sweep was adopted already");
+        }
+        let p = &mut panels[0];
+        self.saved[0] = Some(Saved::of(p));
+        p.mesh.nodes_mut().copy_from_slice(nodes);
+        p.version = versions.fresh();
+        self.sweep = Some(sweep);
+        Ok(())
+    }
+
+    /// The result of a completed [`RunKind::Sweep`]: the panel's swept positions and what
+    /// the sweep did; the panel itself is put back as it was.
+    pub(super) fn finish_sweep(self, panels: &mut [Panel; 2]) -> (Vec<DVec2>, SideSweep) {
+        let nodes = panels[self.panel()].mesh.nodes().to_vec();
+        let sweep = self.sweep.unwrap_or_default();
+        self.undo(panels);
+        (nodes, sweep)
+    }
+
+    /// Saves the panel of a sweep run as it is before the run (it gets the other engine's
+    /// positions after this).
+    pub(super) fn save(&mut self, panels: &[Panel; 2]) {
+        let side = self.panel();
+        self.saved[side] = Some(Saved::of(&panels[side]));
+    }
+
+    /// The index of the panel the run is on.
+    fn panel(&self) -> usize {
+        self.order[self.k.min(1)]
+    }
+
+    /// The panel the run is on.
+    pub(super) fn side(&self) -> Side {
+        Side::BOTH[self.panel()]
+    }
+
+    /// Whether this run sweeps one panel for another engine.
+    pub(super) fn is_sweep(&self) -> bool {
+        matches!(self.kind, RunKind::Sweep(_))
+    }
+
+    /// Puts both panels back where they were before the pass (positions, statistics and
+    /// version), so an abandoned pass leaves no trace.
+    pub(super) fn undo(self, panels: &mut [Panel; 2]) {
+        for (p, saved) in panels.iter_mut().zip(self.saved) {
+            if let Some(s) = saved {
+                p.mesh.nodes_mut().copy_from_slice(&s.nodes);
+                p.version = s.version;
+                p.quick = s.quick;
+                p.buckets = s.buckets;
+                p.full = s.full;
+            }
+        }
+    }
+
+    /// How far the run is: each panel is an equal share, its sweep nine tenths of that and
+    /// its statistics the rest (a panel not yet planned counts as not begun; a sweep for
+    /// another engine is its whole share).
+    pub(super) fn progress(&self, panels: &[Panel; 2]) -> PassProgress {
+        let side = self.panel();
+        let waiting = self.kind == RunKind::Split && side == 0 && self.sweep.is_none();
+        let sweep = match self.stage {
+            _ if waiting => 0.0,
+            Stage::Plan | Stage::Planning => 0.0,
+            _ if self.schedule.is_empty() || self.untangling => 1.0,
+            _ => self.pos as f64 / self.schedule.len() as f64,
+        };
+        let elements = panels[side].mesh.element_count().max(1);
+        let measure = if self.stage == Stage::Measure { self.acc.done as f64 / elements as f64 } else { 0.0 };
+        let (within, shares) = if self.is_sweep() { (sweep, 1.0) } else { (0.9 * sweep + 0.1 * measure, 2.0) };
+        PassProgress {
+            done: false,
+            fraction: ((self.k as f64 + within) / shares).clamp(0.0, 1.0),
+            side: Side::BOTH[side],
+            stage: match self.stage {
+                _ if waiting => PassStage::Wait,
+                Stage::Plan | Stage::Planning => PassStage::Plan,
+                Stage::Smooth => PassStage::Smooth,
+                Stage::Measure => PassStage::Measure,
+            },
+            visits: self.pos,
+            planned: self.schedule.len(),
+            records: None,
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+
+    use super::super::sample::Sample;
+    use super::super::{stats, Playground, Settings};
+    use super::*;
+    use smoothlab::smooth::{Order, Strategy};
+
+    fn no_clock() -> f64 {
+        0.0
+    }
+
+    /// A clock that advances 1 ms per reading, so budgets end passes in many slices.
+    fn ticking() -> impl Fn() -> f64 {
+        let t = std::cell::Cell::new(0.0);
+        move || {
+            t.set(t.get() + 1.0);
+            t.get()
+        }
+    }
+
+    #[test]
+    fn a_pass_in_slices_is_the_smoothers_pass_bit_for_bit() {
+        use smoothlab::smooth::Smoother;
+        let samples = [Sample::PlateMixedTangled, Sample::PlateQuadratic, Sample::Rand2dTangled];
+        let strategies = Strategy::ALL;
+        for sample in samples {
+            let mesh = sample.generate().unwrap();
+            for strategy in strategies {
+                for order in [Order::Input, Order::Priority] {
+                    let settings = Settings { strategy, order, ..Settings::default() };
+                    let mut pg = Playground::new(mesh.clone()).unwrap();
+                    pg.set_settings(settings).unwrap();
+                    let clock = ticking();
+                    for pass in 1..=2u32 {
+                        pg.begin_pass();
+                        let mut slices = 0;
+                        let records = loop {
+                            slices += 1;
+                            let p = pg.continue_pass(&clock, 3.0).unwrap();
+                            assert!((0.0..=1.0).contains(&p.fraction));
+                            if let Some(r) = p.records {
+                                break r;
+                            }
+                        };
+                        assert!(slices > 2, "{sample:?} {strategy:?}: {slices} slices");
+                        assert!(!pg.pass_in_progress());
+                        for side in Side::BOTH {
+                            let mut m = mesh.clone();
+                            let mut s = Smoother::new(settings.smooth_options().unwrap()).unwrap();
+                            let obj = settings.choice(side).build();
+                            let mut rec = None;
+                            for _ in 0..pass {
+                                rec = Some(s.pass(&mut m, obj.as_ref(), &|| 0.0));
+                            }
+                            let rec = rec.unwrap();
+                            let what = format!("{sample:?} {strategy:?} {order:?} pass {pass} {side:?}");
+                            assert_eq!(pg.panel(side).mesh.nodes(), m.nodes(), "{what}");
+                            let got = &records[side as usize];
+                            assert_eq!(
+                                (
+                                    got.pass,
+                                    got.counts.visits,
+                                    got.counts.laplacian_moves,
+                                    got.counts.optimization_calls,
+                                    got.counts.solver_iterations
+                                ),
+                                (
+                                    pass,
+                                    rec.counts.visits,
+                                    rec.counts.laplacian_moves,
+                                    rec.counts.optimization_calls,
+                                    rec.counts.solver_iterations
+                                ),
+                                "{what}"
+                            );
+                            assert_eq!(
+                                (
+                                    got.after.inverted,
+                                    got.after.min_angle_deg,
+                                    got.after.max_angle_deg,
+                                    got.after.min_quality
+                                ),
+                                (
+                                    rec.after.inverted,
+                                    rec.after.min_angle_deg,
+                                    rec.after.max_angle_deg,
+                                    rec.after.min_quality
+                                ),
+                                "{what}"
+                            );
+                            let mut buckets = Vec::new();
+                            assert_eq!(pg.table(side).mesh, stats::quick_stats_and_buckets(&m, &mut buckets), "{what}");
+                            assert_eq!(pg.panel(side).buckets, buckets, "{what}");
+                        }
+                    }
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn an_abandoned_pass_leaves_no_trace() {
+        let mut pg = Playground::new(Sample::Rand2dTangled.generate().unwrap()).unwrap();
+        pg.step(&no_clock);
+        let before = [pg.panel(Side::A).mesh.nodes().to_vec(), pg.panel(Side::B).mesh.nodes().to_vec()];
+        let versions = [pg.version(Side::A), pg.version(Side::B)];
+        let tables = [pg.table(Side::A), pg.table(Side::B)];
+        let clock = ticking();
+        pg.begin_pass();
+        let mut p = pg.continue_pass(&clock, 2.0).unwrap();
+        while p.side == Side::A {
+            p = pg.continue_pass(&clock, 2.0).unwrap();
+        }
+        assert!(!p.done && p.fraction >= 0.5);
+        assert_ne!(pg.panel(Side::A).mesh.nodes(), before[0], "panel A was smoothed");
+        pg.abort_pass();
+        assert!(!pg.pass_in_progress());
+        for side in Side::BOTH {
+            assert_eq!(pg.panel(side).mesh.nodes(), before[side as usize]);
+            assert_eq!(pg.version(side), versions[side as usize]);
+            assert_eq!(pg.table(side), tables[side as usize]);
+        }
+        assert!(pg.continue_pass(&clock, 1.0).is_err(), "nothing to continue");
+        // a drag, a reset or new settings abandon a pass in progress too
+        pg.begin_pass();
+        pg.continue_pass(&clock, 2.0).unwrap();
+        pg.set_settings(Settings::default()).unwrap();
+        assert!(!pg.pass_in_progress());
+        assert_eq!(pg.panel(Side::A).mesh.nodes(), before[0]);
+    }
+
+    #[test]
+    fn a_pass_split_between_two_engines_is_the_whole_pass_bit_for_bit() {
+        let samples = [Sample::PlateMixedTangled, Sample::Rand2dTangled, Sample::PlateQuadratic];
+        for sample in samples {
+            let mesh = sample.generate().unwrap();
+            for (strategy, order) in
+                [(Strategy::Rules, Order::Priority), (Strategy::Opt, Order::Input), (Strategy::C2, Order::Input)]
+            {
+                let settings = Settings { strategy, order, ..Settings::default() };
+                let [mut whole, mut primary, mut helper] = [(); 3].map(|_| Playground::new(mesh.clone()).unwrap());
+                for pg in [&mut whole, &mut primary, &mut helper] {
+                    pg.set_settings(settings).unwrap();
+                }
+                let clock = ticking();
+                for pass in 1..=2u32 {
+                    let what = format!("{sample:?} {strategy:?} {order:?} pass {pass}");
+                    let expected = whole.step(&clock);
+                    primary.begin_split_pass();
+                    let helper_before = helper.panel(Side::A).mesh.nodes().to_vec();
+                    helper.begin_sweep(Side::A, &primary.panel_positions(Side::A)).unwrap();
+                    // the first pass hands the sweep over while panel B is smoothed,
+                    // the second once the split pass waits for it
+                    if pass == 2 {
+                        while primary.continue_pass(&clock, 3.0).unwrap().stage != PassStage::Wait {}
+                        let p = primary.continue_pass(&clock, 3.0).unwrap();
+                        assert_eq!((p.stage, p.done, p.fraction), (PassStage::Wait, false, 0.5), "{what}");
+                    }
+                    assert!(helper.take_sweep().is_none(), "not before it is done");
+                    while !helper.continue_pass(&clock, 3.0).unwrap().done {}
+                    assert_eq!(helper.panel(Side::A).mesh.nodes(), helper_before, "{what}: the helper is put back");
+                    let (nodes, sweep) = helper.take_sweep().unwrap();
+                    assert!(helper.take_sweep().is_none());
+                    primary.adopt_sweep(&nodes, sweep).unwrap();
+                    assert!(primary.adopt_sweep(&nodes, sweep).is_err(), "adopted once");
+                    let records = loop {
+                        let p = primary.continue_pass(&clock, 3.0).unwrap();
+                        assert!((0.0..=1.0).contains(&p.fraction));
+                        if let Some(r) = p.records {
+                            break r;
+                        }
+                    };
+                    for side in Side::BOTH {
+                        let (got, want) = (&records[side as usize], &expected[side as usize]);
+                        assert_eq!(primary.panel(side).mesh.nodes(), whole.panel(side).mesh.nodes(), "{what} {side:?}");
+                        assert_eq!(
+                            (got.pass, got.counts, got.after),
+                            (want.pass, want.counts, want.after),
+                            "{what} {side:?}"
+                        );
+                        // the same but for the times the ticking clock gave
+                        let untimed = |mut t: super::super::PanelTable| {
+                            t.work.time_ms = 0.0;
+                            t
+                        };
+                        assert_eq!(untimed(primary.table(side)), untimed(whole.table(side)), "{what} {side:?}");
+                        assert_eq!(primary.panel(side).buckets, whole.panel(side).buckets, "{what} {side:?}");
+                    }
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn an_abandoned_split_pass_leaves_no_trace_and_bad_sweeps_are_refused() {
+        let mesh = Sample::Rand2dTangled.generate().unwrap();
+        let (mut primary, mut helper) = (Playground::new(mesh.clone()).unwrap(), Playground::new(mesh).unwrap());
+        let before = [primary.panel(Side::A).mesh.nodes().to_vec(), primary.panel(Side::B).mesh.nodes().to_vec()];
+        let tables = [primary.table(Side::A), primary.table(Side::B)];
+        let n = before[0].len();
+        let clock = ticking();
+        helper.begin_sweep(Side::A, &primary.panel_positions(Side::A)).unwrap();
+        while !helper.continue_pass(&clock, 2.0).unwrap().done {}
+        let (nodes, sweep) = helper.take_sweep().unwrap();
+        assert!(sweep.counts.visits > 0 && nodes != primary.panel_positions(Side::A));
+        assert!(primary.adopt_sweep(&nodes, sweep).is_err(), "no split pass in progress");
+        primary.begin_pass();
+        assert!(primary.adopt_sweep(&nodes, sweep).is_err(), "a whole pass adopts nothing");
+        primary.begin_split_pass();
+        assert!(primary.adopt_sweep(&nodes[1..], sweep).is_err(), "one coordinate short");
+        let mut nan = nodes.clone();
+        nan[7] = f64::NAN;
+        let e = primary.adopt_sweep(&nan, sweep).unwrap_err().to_string();
+        assert!(e.contains("node 3"), "{e}");
+        assert!(helper.begin_sweep(Side::A, &vec![0.0; 2 * n + 2]).is_err());
+        primary.continue_pass(&clock, 2.0).unwrap();
+        primary.adopt_sweep(&nodes, sweep).unwrap();
+        primary.continue_pass(&clock, 2.0).unwrap();
+        primary.abort_pass();
+        assert!(!primary.pass_in_progress());
+        for side in Side::BOTH {
+            assert_eq!(primary.panel(side).mesh.nodes(), before[side as usize]);
+            assert_eq!(primary.table(side), tables[side as usize]);
+        }
+        // an abandoned sweep puts the helper back too
+        helper.begin_sweep(Side::A, &nodes).unwrap();
+        helper.continue_pass(&clock, 1.0).unwrap();
+        helper.abort_pass();
+        assert_eq!(helper.panel(Side::A).mesh.nodes(), before[0]);
+        assert!(helper.take_sweep().is_none());
+    }
+}

@@ -1,0 +1,173 @@
+//! What the page's two sides are and what they smooth with: [`Side`] (A and B),
+//! [`Choice`] (an objective and its penalty design) and [`Settings`] (the shared controls
+//! and each side's choice).
+
+use serde::{Deserialize, Serialize};
+
+use smoothlab::error::{Error, Result};
+use smoothlab::objective::{objective_with, Objective, ObjectiveKind, Penalty};
+use smoothlab::smooth::{Order, SmoothOptions, Strategy};
+
+/// The two panels of the page: the left one (A) and the right one (B), `a` and `b` to the
+/// page. Either smooths with its own [`Choice`] of any objective; by default the left runs
+/// Chen et al.'s "previous method" (the old max-min objective, Freitag 1997) and the right
+/// their new smooth one.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Side {
+    /// The left panel, by default Freitag's max-min objective.
+    A,
+    /// The right panel, by default Chen, Tristano & Kwok's smooth objective.
+    B,
+}
+
+impl Side {
+    pub const BOTH: [Side; 2] = [Side::A, Side::B];
+    pub(crate) fn index(self) -> usize {
+        self as usize
+    }
+    /// `A` or `B`, as the page heads its panels.
+    pub fn letter(self) -> &'static str {
+        match self {
+            Side::A => "A",
+            Side::B => "B",
+        }
+    }
+    /// The colour of this side wherever it is drawn (meshes' titles, charts, histograms,
+    /// legends; the page takes it from here): the Okabe–Ito orange for the left side and
+    /// blue for the right, told apart by people with any colour vision.
+    pub fn rgb(self) -> [u8; 3] {
+        match self {
+            Side::A => smoothlab_render::SERIES[1],
+            Side::B => smoothlab_render::SERIES[2],
+        }
+    }
+    /// [`rgb`](Self::rgb) as a tiny-skia colour.
+    pub fn color(self) -> tiny_skia::Color {
+        let [r, g, b] = self.rgb();
+        tiny_skia::Color::from_rgba8(r, g, b, 255)
+    }
+}
+
+/// What a panel smooths with: an objective and, for `new`, the design of its penalty.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+pub struct Choice {
+    /// By its command-line name (`old`, `sine`, `new`, `condition`, …).
+    pub objective: ObjectiveKind,
+    /// The penalty of `new` (`barrier`, `angle`); absent means the default. Other
+    /// objectives have no penalty: it is then the default.
+    #[serde(default)]
+    pub penalty: Penalty,
+}
+
+impl Choice {
+    /// The left panel's default: the old max-min objective.
+    pub const OLD: Choice = Choice { objective: ObjectiveKind::Old, penalty: Penalty::Barrier };
+    /// The right panel's default: the new objective with its default penalty.
+    pub const NEW: Choice = Choice { objective: ObjectiveKind::New, penalty: Penalty::Barrier };
+
+    /// The objective it names.
+    pub fn build(self) -> Box<dyn Objective> {
+        objective_with(self.objective, self.penalty)
+    }
+
+    /// A short label for legends: `old (max-min α/β …)`, `new (…, angle penalty)`.
+    pub fn label(self) -> String {
+        match self.objective {
+            ObjectiveKind::New => format!("new, {} penalty", self.penalty.name()),
+            k => format!("{} ({})", k.name(), k.describe().split(" (").next().unwrap_or("")),
+        }
+    }
+
+    /// A title for a picture or a panel: the label and who it is from.
+    pub fn title(self) -> String {
+        match self.objective {
+            ObjectiveKind::New => format!("new: {}, {} penalty", self.objective.describe(), self.penalty.name()),
+            k => format!("{}: {}", k.name(), k.describe()),
+        }
+    }
+
+    /// Checks that a penalty is given only to `new` (as the command line refuses it).
+    fn validate(self) -> Result<()> {
+        if self.objective != ObjectiveKind::New && self.penalty != Penalty::default() {
+            return Err(Error::invalid(format!(
+                "the {} penalty is a design of the new objective; {} has no penalty",
+                self.penalty.name(),
+                self.objective.name()
+            )));
+        }
+        Ok(())
+    }
+}
+
+/// The shared controls of the page (both sides smooth with the same settings), and what
+/// each side smooths with.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Settings {
+    /// By its name (`rules`, `c2`, …), as the page's menus give it.
+    pub strategy: Strategy,
+    /// Freitag's threshold angle θ_t, degrees.
+    pub threshold_deg: f64,
+    /// `input` or `priority`.
+    pub order: Order,
+    /// Solver iterations per optimization call.
+    pub max_iter: u32,
+    /// What the left (A) and the right (B) panel smooth with; absent means old against
+    /// new (with the barrier penalty).
+    #[serde(default = "default_compare")]
+    pub compare: [Choice; 2],
+}
+
+fn default_compare() -> [Choice; 2] {
+    [Choice::OLD, Choice::NEW]
+}
+
+impl Default for Settings {
+    /// The core's defaults ([`SmoothOptions::default`]: Chen's algorithm, rules in priority
+    /// order, 3 iterations per call; θ_t = 30°); old against new with the barrier penalty.
+    fn default() -> Self {
+        let d = SmoothOptions::default();
+        Settings {
+            strategy: d.strategy,
+            threshold_deg: d.threshold_deg,
+            order: d.order,
+            max_iter: d.max_iter,
+            compare: default_compare(),
+        }
+    }
+}
+
+impl Settings {
+    /// The drivers' options (checked), after checking each side's choice.
+    pub fn smooth_options(&self) -> Result<SmoothOptions> {
+        for c in self.compare {
+            c.validate()?;
+        }
+        let range = smoothlab::smooth::limits::BATCH_MAX_ITER;
+        if !range.contains(self.max_iter.into()) {
+            return Err(Error::invalid(format!("{} solver iterations: give {}", self.max_iter, range.words())));
+        }
+        let o = SmoothOptions::default()
+            .with_strategy(self.strategy)
+            .with_order(self.order)
+            .with_threshold_deg(self.threshold_deg)
+            .with_max_iter(self.max_iter);
+        o.validate()?;
+        Ok(o)
+    }
+
+    /// What `side` smooths with.
+    pub fn choice(&self, side: Side) -> Choice {
+        self.compare[side.index()]
+    }
+
+    /// A side's heading: its letter and what it smooths with ([`Choice::title`]).
+    pub fn side_title(&self, side: Side) -> String {
+        format!("{}: {}", side.letter(), self.choice(side).title())
+    }
+
+    /// The same, short ([`Choice::label`]), for a compact page.
+    pub fn side_label(&self, side: Side) -> String {
+        format!("{}: {}", side.letter(), self.choice(side).label())
+    }
+}

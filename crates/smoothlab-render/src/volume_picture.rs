@@ -1,0 +1,230 @@
+//! The picture of a tetrahedral mesh: the 3D view ([`crate::view3d`]) of the mesh
+//! cut by a plane across one axis. The tetrahedra on the camera's side of the plane are
+//! taken away (their centroids decide); the
+//! faces the cut opens — faces of tetrahedra the plane left, whose neighbour it took —
+//! are coloured by their tetrahedron's quality (inverted ones hatched red), and the
+//! mesh's own boundary around them is drawn faded.
+
+use glam::DVec3;
+use serde::{Deserialize, Serialize};
+use tiny_skia::Pixmap;
+
+use smoothlab::volume::{VolumeKind, VolumeMesh};
+use smoothlab::error::{Error, Result};
+use smoothlab::quality::tet::mean_ratio;
+use crate::{render_surface, Faces, Projection, SurfaceView};
+
+/// Which plane cuts the mesh: normal to `axis` (0 = x, 1 = y, 2 = z), at the fraction
+/// `at` of the extent along it of the mesh's fixed nodes (its boundary, which smoothing
+/// does not move: a free node thrown out of the mesh does not move the plane; every node
+/// when none is fixed).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Cut {
+    pub axis: usize,
+    pub at: f64,
+}
+
+impl Default for Cut {
+    /// Half way up z.
+    fn default() -> Self {
+        Cut { axis: 2, at: 0.5 }
+    }
+}
+
+impl Cut {
+    /// Reads `x=0.5` (or `y=…`, `z=…`), the fraction in [0, 1].
+    pub fn parse(text: &str) -> Result<Cut> {
+        let bad = || Error::invalid(format!("'{text}': give the cut as AXIS=FRACTION, e.g. z=0.5 (x, y or z; 0 to 1)"));
+        let (axis, at) = text.split_once('=').ok_or_else(bad)?;
+        let axis = match axis.trim() {
+            "x" | "X" => 0,
+            "y" | "Y" => 1,
+            "z" | "Z" => 2,
+            _ => return Err(bad()),
+        };
+        let at: f64 = at.trim().parse().map_err(|_| bad())?;
+        if !(0.0..=1.0).contains(&at) {
+            return Err(bad());
+        }
+        Ok(Cut { axis, at })
+    }
+}
+
+/// The faces of a cut view (see the module docs), in [`Faces`]' layout.
+#[derive(Clone, Debug, Default)]
+pub struct CutFaces {
+    pub ring_start: Vec<u32>,
+    pub rings: Vec<u32>,
+    /// The mean ratio of each face's tetrahedron, in [0, 1].
+    pub values: Vec<f64>,
+    pub inverted: Vec<bool>,
+    /// The mesh's boundary faces.
+    pub faded: Vec<bool>,
+    /// Tetrahedra left by the cut.
+    pub kept: usize,
+}
+
+impl CutFaces {
+    /// The faces over `points`, for [`render_surface`].
+    pub fn faces<'a>(&'a self, points: &'a [DVec3]) -> Faces<'a> {
+        Faces {
+            points,
+            ring_start: &self.ring_start,
+            rings: &self.rings,
+            values: &self.values,
+            inverted: &self.inverted,
+            faded: &self.faded,
+        }
+    }
+}
+
+/// What the 3D view draws of a volume mesh: the faces a cut opens, and the picture.
+pub trait VolumePicture {
+    /// The faces of the mesh cut by `cut`, seen looking along `forward`.
+    fn cut_faces(&self, cut: Cut, forward: DVec3) -> CutFaces;
+    /// Draws the mesh cut by `cut` with the view's camera, frame and title.
+    fn render_cut(&self, pixmap: &mut Pixmap, cut: Cut, view: &SurfaceView) -> Projection;
+}
+
+impl VolumePicture for VolumeMesh {
+    /// The faces of the mesh cut by `cut`, seen looking along `forward` (into the scene): a
+    /// tetrahedron is left when its centroid is on the far side of the plane or on it (at or
+    /// above it along the axis when the view looks up the axis, at or below otherwise).
+    fn cut_faces(&self, cut: Cut, forward: DVec3) -> CutFaces {
+        let axis = cut.axis.min(2);
+        let any_fixed = self.fixed().contains(&true);
+        let (lo, hi) = self
+            .nodes()
+            .iter()
+            .zip(self.fixed())
+            .filter(|&(_, &f)| f || !any_fixed)
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), (p, _)| (l.min(p[axis]), h.max(p[axis])));
+        let level = lo + cut.at.clamp(0.0, 1.0) * (hi - lo);
+        let up_the_axis = forward[axis] > 0.0;
+        let kept: Vec<bool> = (0..self.element_count())
+            .map(|e| {
+                let k = self.element_kind(e).corners();
+                let c = self.corners(e)[..k].iter().map(|p| p[axis]).sum::<f64>() / k as f64;
+                if up_the_axis {
+                    c >= level
+                } else {
+                    c <= level
+                }
+            })
+            .collect();
+        let mut boundary = std::collections::HashSet::with_capacity(self.boundary_faces().len());
+        for f in self.boundary_faces() {
+            let mut f = f.nodes().to_vec();
+            f.sort_unstable();
+            boundary.insert(f);
+        }
+        // faces of the tetrahedra left, with how many of them hold each
+        let mut count: std::collections::HashMap<Vec<u32>, u8> = std::collections::HashMap::new();
+        for e in (0..self.element_count()).filter(|&e| kept[e]) {
+            let t = self.element(e);
+            for &loc in self.element_kind(e).row().faces {
+                let mut f: Vec<u32> = loc.iter().map(|&j| t[j]).collect();
+                f.sort_unstable();
+                *count.entry(f).or_default() += 1;
+            }
+        }
+        let mut out = CutFaces { ring_start: vec![0], ..Default::default() };
+        for e in (0..self.element_count()).filter(|&e| kept[e]) {
+            out.kept += 1;
+            let t = self.element(e);
+            let kind = self.element_kind(e);
+            // as the statistics measure it (a 10-node tetrahedron with its mid-edge nodes,
+            // the other kinds by their corners, inverted when not certainly valid)
+            let (q, inverted) = match kind {
+                VolumeKind::Tet4 => {
+                    let q = mean_ratio(&self.tet_corners(e), kind.reference());
+                    (q, q <= 0.0)
+                }
+                _ => {
+                    let m = self.measures(e);
+                    (m.mean_ratio, m.inverted)
+                }
+            };
+            for &loc in kind.row().faces {
+                let ring: Vec<u32> = loc.iter().map(|&j| t[j]).collect();
+                let mut key = ring.clone();
+                key.sort_unstable();
+                if count[&key] > 1 {
+                    continue; // between two tetrahedra left: hidden
+                }
+                out.rings.extend_from_slice(&ring);
+                out.ring_start.push(out.rings.len() as u32);
+                out.values.push(q.clamp(0.0, 1.0));
+                out.inverted.push(inverted);
+                out.faded.push(boundary.contains(&key));
+            }
+        }
+        out
+    }
+
+    /// Draws the mesh cut by `cut` with the view's camera, frame and title, coloured by the
+    /// mean ratio (its colour bar so titled, on [0, 1]).
+    fn render_cut(&self, pixmap: &mut Pixmap, cut: Cut, view: &SurfaceView) -> Projection {
+        let faces = self.cut_faces(cut, view.camera.basis().2);
+        let opts = SurfaceView { bar_title: "mean ratio".into(), domain: (0.0, 1.0), ..view.clone() };
+        render_surface(pixmap, &faces.faces(self.nodes()), &opts)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use smoothlab::generate::{perturb_volume, tet_cube};
+
+    const DOWN: DVec3 = DVec3::NEG_Z;
+
+    #[test]
+    fn cuts_parse_and_refuse() {
+        assert_eq!(Cut::parse("x=0.25").unwrap(), Cut { axis: 0, at: 0.25 });
+        assert_eq!(Cut::parse("Z = 1").unwrap(), Cut { axis: 2, at: 1.0 });
+        for bad in ["", "w=0.5", "x", "x=2", "y=-0.1", "z=nan"] {
+            assert!(Cut::parse(bad).is_err(), "{bad}");
+        }
+    }
+
+    #[test]
+    fn a_cube_cut_in_half_shows_its_cut_and_its_faded_boundary() {
+        let m = tet_cube(4).unwrap();
+        // the whole cube: its boundary only, all faded (6 sides × 16 squares × 2 triangles)
+        let all = m.cut_faces(Cut { axis: 2, at: 1.0 }, DOWN);
+        assert_eq!(all.kept, m.element_count());
+        assert_eq!(all.values.len(), 192);
+        assert!(all.faded.iter().all(|&f| f));
+        // cut at z = ½ on the lattice: the lower half (its centroids below ½), whose cut face
+        // z = ½ has 32 triangles (4 × 4 squares × 2), coloured, not faded
+        let half = m.cut_faces(Cut { axis: 2, at: 0.5 }, DOWN);
+        assert_eq!(half.kept, m.element_count() / 2);
+        assert_eq!(half.faded.iter().filter(|&&f| !f).count(), 32);
+        for (f, faded) in half.faded.iter().enumerate() {
+            let ring = &half.rings[half.ring_start[f] as usize..half.ring_start[f + 1] as usize];
+            if !faded {
+                assert!(ring.iter().all(|&n| m.nodes()[n as usize].z == 0.5));
+            }
+        }
+        // nothing left
+        assert_eq!(m.cut_faces(Cut { axis: 0, at: 0.0 }, DOWN).kept, 0);
+        // looking up the x axis the far side is kept: all of it at x = 0
+        assert_eq!(m.cut_faces(Cut { axis: 0, at: 0.0 }, DVec3::X).kept, m.element_count());
+        // a tangled cube: the inverted tetrahedra on the cut are marked
+        let t = perturb_volume(&m, 0.9, 3).unwrap();
+        let cut = t.cut_faces(Cut { axis: 1, at: 0.5 }, DOWN);
+        assert!(cut.inverted.iter().zip(&cut.faded).any(|(&i, &f)| i && !f));
+    }
+
+    #[test]
+    fn the_plane_stays_where_the_boundary_puts_it_when_a_free_node_leaves_the_mesh() {
+        let m = tet_cube(4).unwrap();
+        let half = m.cut_faces(Cut { axis: 2, at: 0.5 }, DOWN).kept;
+        let mut far = m.clone();
+        let n = (0..m.node_count()).find(|&n| m.is_free(n) && m.nodes()[n].z == 0.25).unwrap();
+        far.nodes_mut()[n].z = -20.0;
+        // the plane is still at z = ½: only the tetrahedra at the thrown node change sides
+        let kept = far.cut_faces(Cut { axis: 2, at: 0.5 }, DOWN).kept;
+        assert!(kept >= half && kept <= half + far.node_tets(n).len(), "{kept} of {half}");
+    }
+}

@@ -1,0 +1,683 @@
+//! Smoothing drivers: Laplacian, smart (constrained) Laplacian, optimization, Freitag's
+//! combined schemes C1/C2/C3 and Chen's rules, visiting nodes in input or priority order.
+//!
+//! The drivers work with any [`Objective`] and either solver ([`SolverKind`](crate::optimize::SolverKind)): a new
+//! objective never touches this module. A [`Smoother`] owns its scratch buffers (the star,
+//! the solvers' term vectors, the visit schedule) and runs one [`pass`](Smoother::pass)
+//! at a time, so the page can step pass by pass; [`solve_node`] solves one node with its
+//! history for the page's level-set view.
+//!
+//! Nodes move one at a time in place (Gauss–Seidel): a node sees the new positions of the
+//! nodes visited before it. Fixed nodes and mid-side nodes are never smoothed; after a
+//! corner node moves, the mid-side nodes of its straight edges follow it
+//! ([`Mesh::follow_mid_nodes`]); curved boundary edges keep their mid node.
+//!
+//! The formulas, in one notation: `docs/formulas.md` §4.
+
+use glam::DVec2;
+
+use crate::error::{Error, Result};
+use crate::mesh::Mesh;
+use crate::objective::{NodeStar, Objective, Point, Star, Term};
+use crate::optimize::{evaluate, SolveResult, Solvers};
+use crate::quality::mesh_stats;
+
+mod accept;
+mod guard;
+pub mod limits;
+mod measure;
+mod obstacles;
+mod options;
+pub mod parallel;
+mod plan;
+mod records;
+mod space;
+#[cfg(test)]
+mod tests;
+
+use guard::KeepValid;
+pub(crate) use measure::is_inverted;
+pub(crate) use measure::triangle_shape_at;
+use measure::triangle_shape_at_both;
+pub use accept::{ElementScore, Size, Verdict, MIN_SIZE_RATIO};
+pub use measure::StarQuality;
+#[cfg(test)]
+pub(crate) use measure::{element_measures, element_shape_at, star_quality, star_shape};
+pub use obstacles::{untangling_obstacles, Obstacle};
+pub use options::{
+    Measure, Order, SmoothOptions, Strategy, DEFAULT_MAX_ITER, DEFAULT_PASSES, DEFAULT_THRESHOLD_DEG, UNTANGLE_SWEEPS,
+};
+pub use records::{NodeOutcome, PassRecord, SweepCounts};
+pub use space::{DriverStar, FastSmart, SmoothMesh};
+
+/// Centroid of the neighbouring corner nodes of `n` (Laplacian smoothing).
+fn centroid<M: SmoothMesh + ?Sized>(mesh: &M, n: usize) -> Option<M::Point> {
+    let nb = mesh.neighbours(n);
+    if nb.is_empty() {
+        return None;
+    }
+    let s = nb.iter().fold(M::Point::ZERO, |s, &m| s + mesh.position(m as usize));
+    Some(s / nb.len() as f64)
+}
+
+/// Where a driver reads a node's star and puts the node it moved. A planar mesh is its own
+/// view ([`Planar`]); a surface flattens each star into its tangent plane first
+/// ([`crate::surface`]). The drivers are generic over it, so the planar path pays nothing.
+pub(crate) trait StarView {
+    /// The mesh the drivers read (planar for a planar mesh and a surface).
+    type Mesh: SmoothMesh;
+    /// The elements, topology and fixed flags.
+    fn mesh(&self) -> &Self::Mesh;
+    /// A mesh in which free node `n`'s star — its elements' nodes — has its positions
+    /// now (a planar or tetrahedral mesh: itself).
+    fn star_mesh(&mut self, n: usize) -> &Self::Mesh;
+    /// Moves free node `n` to `x`, a position in the coordinates of the last
+    /// [`star_mesh(n)`](Self::star_mesh); the mid-side nodes that follow it follow.
+    fn place(&mut self, n: usize, x: <Self::Mesh as SmoothMesh>::Point);
+    /// Whether element `e` is inverted now.
+    fn is_inverted(&self, e: usize) -> bool;
+    /// Whether the view applies the acceptance rule itself, after placing a node
+    /// ([`place_if_no_worse`](Self::place_if_no_worse)), rather than the drivers on the
+    /// star they gathered: a surface, whose node is projected back onto the reference.
+    const CHECKS_ON_PLACING: bool = false;
+    /// [`place`](Self::place), kept only when the star gets no worse by `measure` (the
+    /// acceptance rule, [`accept`]); returns whether the node moved. Called only where
+    /// [`CHECKS_ON_PLACING`](Self::CHECKS_ON_PLACING).
+    fn place_if_no_worse(&mut self, n: usize, x: <Self::Mesh as SmoothMesh>::Point, _measure: Measure) -> bool {
+        self.place(n, x);
+        true
+    }
+}
+
+/// A planar mesh as its own [`StarView`].
+pub(crate) struct Planar<'a>(pub &'a mut Mesh);
+
+impl StarView for Planar<'_> {
+    type Mesh = Mesh;
+    #[inline]
+    fn mesh(&self) -> &Mesh {
+        self.0
+    }
+    #[inline]
+    fn star_mesh(&mut self, _: usize) -> &Mesh {
+        self.0
+    }
+    #[inline]
+    fn place(&mut self, n: usize, x: DVec2) {
+        self.0.nodes_mut()[n] = x;
+        if self.0.has_quadratic() {
+            self.0.follow_mid_nodes(n);
+        }
+    }
+    fn is_inverted(&self, e: usize) -> bool {
+        measure::mesh_element_is_inverted(self.0, e)
+    }
+}
+
+/// A planar mesh seen read-only, for planning (which never places a node).
+pub(crate) struct Reading<'a>(pub(crate) &'a Mesh);
+
+impl StarView for Reading<'_> {
+    type Mesh = Mesh;
+    #[inline]
+    fn mesh(&self) -> &Mesh {
+        self.0
+    }
+    #[inline]
+    fn star_mesh(&mut self, _: usize) -> &Mesh {
+        self.0
+    }
+    fn place(&mut self, _: usize, _: DVec2) {
+        unreachable!("planning does not move nodes")
+    }
+    fn is_inverted(&self, e: usize) -> bool {
+        measure::mesh_element_is_inverted(self.0, e)
+    }
+}
+
+/// A smoothing driver with its scratch buffers. One `Smoother` serves any number of passes
+/// over one mesh (or several meshes in turn); nothing is allocated per node.
+///
+/// The smoother is generic over the star it gathers ([`DriverStar`]): a planar mesh's
+/// [`Star`] (the default) or a tetrahedral mesh's ([`crate::volume`]); every strategy,
+/// order and sweep below is written once for both.
+#[derive(Clone, Debug)]
+pub struct Smoother<S: DriverStar = Star> {
+    options: SmoothOptions,
+    star: S,
+    solvers: Solvers<S>,
+    terms: Vec<Term<S::Point>>,
+    /// Star quality of each node when the schedule was planned (priority order).
+    quality: Vec<f64>,
+    /// Free nodes, worst first.
+    ranked: Vec<u32>,
+    /// Visit sequence of the current (or last) pass.
+    schedule: Vec<u32>,
+    /// Next node to measure while planning in steps ([`Smoother::plan_some`]).
+    plan_next: usize,
+    /// Visit sequence of the current (or last) untangling sweep.
+    revisits: Vec<u32>,
+    /// Per node: whether it is already in `revisits` (scratch, all false between uses).
+    marked: Vec<bool>,
+    /// The pass's move count when its last untangling sweep was planned (`None` before the
+    /// first sweep of a pass): a sweep that added no move ends the sweeps.
+    sweep_moves_from: Option<u32>,
+    passes: u32,
+    /// Per-mesh facts, refreshed each pass.
+    quadratic: bool,
+    curved: bool,
+    /// `sin θ_t` of the combined schemes, computed once (not per visit).
+    sine_threshold: f64,
+    /// Whether the mesh had an inverted element when the pass was planned
+    /// ([`note_tangled`](Self::note_tangled)): the untangling objectives optimise only then.
+    tangled: bool,
+}
+
+impl<S: DriverStar> Smoother<S> {
+    /// A smoother with checked options.
+    pub fn new(options: SmoothOptions) -> Result<Self> {
+        options.validate()?;
+        let solve = options.solve_options();
+        Ok(Smoother {
+            options,
+            star: S::default(),
+            solvers: Solvers::new(solve),
+            terms: Vec::new(),
+            quality: Vec::new(),
+            ranked: Vec::new(),
+            schedule: Vec::new(),
+            plan_next: 0,
+            revisits: Vec::new(),
+            marked: Vec::new(),
+            sweep_moves_from: None,
+            passes: 0,
+            quadratic: false,
+            curved: false,
+            sine_threshold: options.threshold_deg.to_radians().sin(),
+            tangled: true,
+        })
+    }
+
+    pub fn options(&self) -> &SmoothOptions {
+        &self.options
+    }
+
+    /// Passes run so far.
+    pub fn passes(&self) -> u32 {
+        self.passes
+    }
+
+    /// The visit sequence planned by the last [`plan`](Self::plan) (or pass).
+    pub fn schedule(&self) -> &[u32] {
+        &self.schedule
+    }
+
+    fn refresh_mesh_facts(&mut self, mesh: &S::Mesh) {
+        self.quadratic = mesh.has_quadratic();
+        self.curved = self.quadratic && mesh.has_curved_edges();
+    }
+
+    /// [`sweep`](Smoother::sweep) over any [`StarView`].
+    pub(crate) fn sweep_in<V: StarView<Mesh = S::Mesh>>(
+        &mut self,
+        view: &mut V,
+        objective: &dyn Objective<S>,
+    ) -> SweepCounts {
+        self.begin_plan(view.mesh());
+        while !self.plan_some_in(view, usize::MAX) {}
+        let schedule = std::mem::take(&mut self.schedule);
+        let mut counts = self.visit_all_in(view, &schedule, objective);
+        self.schedule = schedule;
+        while self.plan_untangle_sweep_in(view, &mut counts) {
+            let revisits = std::mem::take(&mut self.revisits);
+            let c = self.visit_all_in(view, &revisits, objective);
+            self.revisits = revisits;
+            counts.merge(c);
+        }
+        counts
+    }
+
+    pub(crate) fn visit_all_in<V: StarView<Mesh = S::Mesh>>(
+        &mut self,
+        view: &mut V,
+        order: &[u32],
+        objective: &dyn Objective<S>,
+    ) -> SweepCounts {
+        let mut c = SweepCounts::default();
+        // node order reads the mesh front to back, as the hardware's prefetchers expect; a
+        // worst-first order (the priority order, the untangling sweeps) jumps about it
+        let scattered = order.windows(2).any(|w| w[0] > w[1]);
+        let mut read = 0u32;
+        for (k, &n) in order.iter().enumerate() {
+            if scattered {
+                for (stage, &ahead) in space::READ_AHEAD.iter().enumerate() {
+                    if let Some(&m) = order.get(k + ahead) {
+                        read ^= view.mesh().read_ahead(m as usize, stage);
+                    }
+                }
+            }
+            c.add(self.visit(view, n as usize, objective));
+        }
+        std::hint::black_box(read);
+        c
+    }
+
+    pub(crate) fn objective_total_in<V: StarView<Mesh = S::Mesh>>(
+        &mut self,
+        view: &mut V,
+        objective: &dyn Objective<S>,
+    ) -> f64 {
+        let mut total = 0.0;
+        for n in 0..view.mesh().node_count() {
+            if view.mesh().is_free(n) {
+                let mesh = view.star_mesh(n);
+                self.star.gather(mesh, n);
+                total += evaluate(objective, &self.star, mesh.position(n), &mut self.terms).0;
+            }
+        }
+        total
+    }
+
+    fn visit<V: StarView<Mesh = S::Mesh>>(
+        &mut self,
+        view: &mut V,
+        n: usize,
+        objective: &dyn Objective<S>,
+    ) -> NodeOutcome {
+        if n >= view.mesh().node_count() || !view.mesh().is_free(n) {
+            return NodeOutcome::default();
+        }
+        if V::CHECKS_ON_PLACING && self.accepts_only_no_worse() {
+            let (x, mut out, _) = self.decide_move(view.star_mesh(n), n, objective);
+            if out.moved {
+                out.moved = view.place_if_no_worse(n, x, self.options.smart_measure);
+            }
+            return out;
+        }
+        let (x, out) = self.decide(view.star_mesh(n), n, objective);
+        if out.moved {
+            view.place(n, x);
+        }
+        out
+    }
+
+    /// Whether moves are kept only by the acceptance rule ([`accept`], by
+    /// [`SmoothOptions::smart_measure`]): every strategy but the plain Laplacian, with the
+    /// validity guard on.
+    fn accepts_only_no_worse(&self) -> bool {
+        self.options.keep_valid && self.options.strategy != Strategy::Laplace
+    }
+
+    /// Where the strategy moves node `n`, without writing to the mesh: the new position
+    /// (the old one when it stays) and what happened. The node's own position is tracked
+    /// in the gathered star ([`Star::x0`], kept current by `restar`) and mid-side nodes
+    /// that follow it are moved in the star only, so a node reads nothing but its star and
+    /// its neighbours. Nodes that share no element can therefore be decided in any order,
+    /// or at once ([`crate::smooth::parallel`]), with the same results.
+    ///
+    /// A move is kept only when the star gets no worse (the acceptance rule, [`accept`],
+    /// `docs/formulas.md` §4), measured on the star as it is in `mesh` and with the node
+    /// moved; otherwise the node stays.
+    pub(crate) fn decide(&mut self, mesh: &S::Mesh, n: usize, objective: &dyn Objective<S>) -> (S::Point, NodeOutcome) {
+        let (x, mut out, kept) = self.decide_move(mesh, n, objective);
+        if out.moved && !kept && self.accepts_only_no_worse() {
+            self.star.regather(mesh, n);
+            if !self.star.verdict_in(mesh, x, self.options.smart_measure).keeps() {
+                out.moved = false;
+                return (mesh.position(n), out);
+            }
+        }
+        (x, out)
+    }
+
+    /// [`decide`](Self::decide) without the acceptance rule (a surface's view applies it
+    /// after projecting the node back onto the surface), and whether the move is already
+    /// known to pass it (the smart Laplacian's test read from the mesh found the star
+    /// valid, its worst shape raised and no element shrunk below the rule's floor:
+    /// [`FastSmart::kept`]).
+    fn decide_move(&mut self, mesh: &S::Mesh, n: usize, objective: &dyn Objective<S>) -> (S::Point, NodeOutcome, bool) {
+        let mut out = NodeOutcome::default();
+        let mut kept = false;
+        if n >= mesh.node_count() || !mesh.is_free(n) {
+            return (S::Point::ZERO, out, kept);
+        }
+        let x0 = mesh.position(n);
+        let mut x = x0;
+        let sine_t = self.sine_threshold;
+        match self.options.strategy {
+            Strategy::Laplace => {
+                if let Some(c) = self.laplace(mesh, n, &mut out) {
+                    x = c;
+                }
+            }
+            Strategy::Smart => match S::smart_from_mesh(mesh, n, self.options.smart_measure) {
+                Some(t) => {
+                    if let Some(c) = t.to {
+                        out.laplacian = true;
+                        x = c;
+                        kept = t.kept;
+                    }
+                }
+                None => {
+                    self.star.gather(mesh, n);
+                    self.smart(mesh, n, &mut out);
+                    x = self.star.x0();
+                }
+            },
+            Strategy::Opt => {
+                self.star.gather(mesh, n);
+                self.optimize(objective, &mut out);
+                x = self.star.x0();
+            }
+            Strategy::C1 => {
+                self.star.gather(mesh, n);
+                if self.star.quality(None).min_sine > sine_t {
+                    self.smart(mesh, n, &mut out);
+                } else {
+                    self.optimize(objective, &mut out);
+                }
+                x = self.star.x0();
+            }
+            Strategy::C2 => {
+                self.star.gather(mesh, n);
+                self.smart(mesh, n, &mut out);
+                if self.star.quality(None).min_sine <= sine_t {
+                    self.optimize(objective, &mut out);
+                }
+                x = self.star.x0();
+            }
+            Strategy::C3 => {
+                self.star.gather(mesh, n);
+                let before = self.star.quality(None);
+                if before.min_sine <= sine_t {
+                    if let Some(c) = self.laplace(mesh, n, &mut out) {
+                        self.restar(c);
+                    }
+                    if self.star.quality(None).min_sine <= sine_t {
+                        self.optimize(objective, &mut out);
+                    }
+                    // Freitag's C3 starts with the plain Laplacian, which may fold an element
+                    // or lower the star's quality (the smart Laplacian's measure), and the
+                    // optimization from there may not win it back. Like the other combined
+                    // schemes, C3 never leaves a star worse than it found it: then the node
+                    // stays where it was.
+                    let after = self.star.quality(None);
+                    let m = self.options.smart_measure;
+                    if after.inverted > before.inverted || after.measure(m) < before.measure(m) {
+                        self.restar(x0);
+                    }
+                }
+                x = self.star.x0();
+            }
+            Strategy::Rules => {
+                // rule 1 (a curved boundary node next to it) or the caller's force:
+                // optimised without trying the Laplacian
+                let forced = self.options.force_optimization || self.touches_curved_boundary(mesh, n);
+                // the smart Laplacian from the mesh where it can; the star is gathered only
+                // when the node is optimised (rule 2: an inverted element; rule 3: the smart
+                // Laplacian did not move it)
+                match (!forced).then(|| S::smart_from_mesh(mesh, n, self.options.smart_measure)).flatten() {
+                    Some(FastSmart { inverted: 0, to: Some(c), kept: k }) => {
+                        out.laplacian = true;
+                        x = c;
+                        kept = k;
+                    }
+                    Some(_) => {
+                        self.star.gather(mesh, n);
+                        self.optimize(objective, &mut out);
+                        x = self.star.x0();
+                    }
+                    None => {
+                        self.star.gather_for_measures(mesh, n);
+                        let optimise = forced || self.star.any_inverted_now();
+                        if optimise || !self.smart(mesh, n, &mut out) {
+                            self.optimize(objective, &mut out);
+                        }
+                        x = self.star.x0();
+                    }
+                }
+            }
+        }
+        out.moved = x != x0;
+        (x, out, kept)
+    }
+
+    /// Moves the gathered star's free node to `x` (after a move), keeping the star valid.
+    fn restar(&mut self, x: S::Point) {
+        self.star.restar(x);
+    }
+
+    /// Plain Laplacian: the centroid when the node moves there, `None` when it stays.
+    fn laplace(&mut self, mesh: &S::Mesh, n: usize, out: &mut NodeOutcome) -> Option<S::Point> {
+        match centroid(mesh, n) {
+            Some(c) if c.is_finite() && c != mesh.position(n) => {
+                out.laplacian = true;
+                Some(c)
+            }
+            _ => None,
+        }
+    }
+
+    /// Smart Laplacian on the gathered star; returns whether the node moved (the star is
+    /// moved with it). The star's quality now is measured at the star's position; at the
+    /// centroid with the mid-side nodes of straight edges following
+    /// ([`DriverStar::smart_accepts`]).
+    fn smart(&mut self, mesh: &S::Mesh, n: usize, out: &mut NodeOutcome) -> bool {
+        let Some(c) = centroid(mesh, n) else { return false };
+        if !c.is_finite() || c == self.star.x0() {
+            return false;
+        }
+        if self.star.smart_accepts(c, self.options.smart_measure) {
+            self.restar(c);
+            out.laplacian = true;
+            true
+        } else {
+            false
+        }
+    }
+
+    /// Optimization with the chosen solver on the gathered star, from the star's position.
+    /// With [`SmoothOptions::keep_valid`] the solver sees the objective through
+    /// [`KeepValid`].
+    ///
+    /// An objective that only untangles ([`Objective::only_untangles`]: flat, or blind to
+    /// shape, on valid stars) leaves a valid mesh where it is, as Mesquite's untangler
+    /// stops at once on a valid mesh: it optimises only while the mesh was tangled when the
+    /// pass was planned ([`note_tangled`](Self::note_tangled)).
+    fn optimize(&mut self, objective: &dyn Objective<S>, out: &mut NodeOutcome) {
+        if objective.only_untangles() && !self.tangled {
+            return;
+        }
+        self.star.complete();
+        let x0 = self.star.x0();
+        let guarded;
+        let objective: &dyn Objective<S> = if self.options.keep_valid {
+            // by the corner edges scaled to unit size (the gathered star is in mesh units,
+            // where a triangle's own cross products can underflow)
+            let limit = self.star.inverted_now();
+            let pass_through_folds = self.options.pass_through_folds.unwrap_or_else(|| objective.untangles());
+            guarded = KeepValid::new(objective, limit, pass_through_folds);
+            &guarded
+        } else {
+            objective
+        };
+        let r = self.solvers.get(self.options.solver, objective.goal()).solve(objective, &self.star, x0);
+        out.optimized = true;
+        out.iterations += r.iterations;
+        if r.x.is_finite() && r.x != x0 {
+            self.restar(r.x);
+        }
+    }
+
+    /// Chen's rule 1: the node, a neighbour, or a node of a star element lies on a curved
+    /// boundary edge.
+    fn touches_curved_boundary(&self, mesh: &S::Mesh, n: usize) -> bool {
+        self.curved && mesh.touches_curved_boundary(n)
+    }
+}
+
+/// The smart Laplacian's test ([`DriverStar::smart_accepts`]) on a planar star of linear
+/// triangles, read from the mesh without gathering the star: per element the two other
+/// corners, where a gathered star copies 160 bytes. The same arithmetic in the same order
+/// ([`triangle_shape_at`], what [`element_shape_at`] computes for a linear triangle), so
+/// the same answer. `None` when an element of the star is not a linear triangle, a
+/// triangle needs the general measure (squares beyond the doubles even when scaled), or
+/// the measure is not [`Measure::Shape`]: the gathered star decides then.
+fn smart_on_triangles(mesh: &Mesh, n: usize, measure: Measure) -> Option<FastSmart<DVec2>> {
+    if measure != Measure::Shape {
+        return None;
+    }
+    let x0 = mesh.nodes()[n];
+    let c = centroid(mesh, n).filter(|c| c.is_finite() && *c != x0);
+    let t = triangles_at(mesh, n, c)?;
+    let to = c.filter(|_| !t.folds && t.after > t.before);
+    Some(FastSmart { inverted: t.inverted, to, kept: to.is_some() && t.inverted == 0 && !t.shrinks })
+}
+
+/// The smallest shape measure (α) of a planar star of linear triangles at the node's
+/// position, read from the mesh as [`smart_on_triangles`] reads it: what
+/// [`DriverStar::shape_at`] of the gathered star gives, bit for bit (the priority order
+/// measures every star so). `None` where [`smart_on_triangles`] is.
+pub(crate) fn shape_on_triangles(mesh: &Mesh, n: usize) -> Option<f64> {
+    triangles_at(mesh, n, None).map(|t| t.before)
+}
+
+/// What the smart Laplacian's test reads of a star of linear triangles (see
+/// [`smart_on_triangles`]): the smallest α now and with the node at `c`, the elements
+/// inverted now, whether the move folds one, and whether it may shrink one valid now below
+/// the acceptance rule's floor ([`MIN_SIZE_RATIO`] of its area; also where the areas are
+/// not plain doubles, and the rule measures).
+struct TrianglesAt {
+    before: f64,
+    after: f64,
+    inverted: u32,
+    folds: bool,
+    shrinks: bool,
+}
+
+#[inline]
+fn triangles_at(mesh: &Mesh, n: usize, c: Option<DVec2>) -> Option<TrianglesAt> {
+    let x0 = mesh.nodes()[n];
+    let mut t = TrianglesAt { before: f64::INFINITY, after: f64::INFINITY, inverted: 0, folds: false, shrinks: false };
+    for &e in mesh.node_elements(n) {
+        let e = e as usize;
+        if mesh.kind(e) != crate::mesh::ElementKind::Tri3 {
+            return None;
+        }
+        let ids = mesh.element(e);
+        let s = ids.iter().position(|&i| i as usize == n)?;
+        let (a, b) = (mesh.nodes()[ids[(s + 1) % 3] as usize], mesh.nodes()[ids[(s + 2) % 3] as usize]);
+        let Some(c) = c else {
+            let (q0, inv0) = triangle_shape_at(a, b, x0)?;
+            t.inverted += inv0 as u32;
+            t.before = t.before.min(q0);
+            continue;
+        };
+        let ((q0, inv0), (q1, inv1)) = triangle_shape_at_both(a, b, x0, c)?;
+        t.inverted += inv0 as u32;
+        t.before = t.before.min(q0);
+        t.folds |= !inv0 && inv1;
+        t.after = t.after.min(q1);
+        let (n0, n1) = ((a - x0).perp_dot(b - x0), (a - c).perp_dot(b - c));
+        let floor = MIN_SIZE_RATIO * n0;
+        let kept = floor.is_normal() && n0.is_finite() && n1 >= floor;
+        t.shrinks |= !inv0 && !kept;
+    }
+    Some(t)
+}
+
+/// The planar mesh's entry points: a pass with its record, a sweep, one node.
+impl Smoother<Star> {
+    /// One pass over the mesh: plan the visit order, smooth each visit, then measure.
+    /// `clock` returns milliseconds (any origin); the core never reads system time.
+    pub fn pass(&mut self, mesh: &mut Mesh, objective: &dyn Objective, clock: &dyn Fn() -> f64) -> PassRecord {
+        self.passes += 1;
+        let t0 = clock();
+        let counts = self.sweep(mesh, objective);
+        let elapsed = clock() - t0;
+        self.record(mesh, objective, self.passes, counts, elapsed, clock)
+    }
+
+    /// The record of a pass: its counts and time, and the mesh's statistics now.
+    pub(crate) fn record(
+        &mut self,
+        mesh: &Mesh,
+        objective: &dyn Objective,
+        pass: u32,
+        counts: SweepCounts,
+        elapsed_ms: f64,
+        clock: &dyn Fn() -> f64,
+    ) -> PassRecord {
+        let t0 = clock();
+        let after = mesh_stats(mesh).quick();
+        let objective_total = Some(self.objective_total(mesh, objective));
+        PassRecord { pass, counts, after, objective_total, elapsed_ms, stats_ms: clock() - t0 }
+    }
+
+    /// The node loop of a pass alone: plans the visit order and smooths each visit, without
+    /// the statistics [`pass`](Self::pass) adds (a whole-mesh [`mesh_stats`] and
+    /// [`objective_total`](Self::objective_total), which cost more than a Laplacian sweep).
+    /// Counts as [`pass`](Self::pass) does; does not count as a pass.
+    pub fn sweep(&mut self, mesh: &mut Mesh, objective: &dyn Objective) -> SweepCounts {
+        self.sweep_in(&mut Planar(mesh), objective)
+    }
+
+    /// Visits the nodes of `order` in turn (the mesh facts must be fresh).
+    pub fn visit_all(&mut self, mesh: &mut Mesh, order: &[u32], objective: &dyn Objective) -> SweepCounts {
+        self.visit_all_in(&mut Planar(mesh), order, objective)
+    }
+
+    /// The sum over free nodes of the node objective value (see [`PassRecord::objective_total`]).
+    pub fn objective_total(&mut self, mesh: &Mesh, objective: &dyn Objective) -> f64 {
+        self.objective_total_in(&mut Reading(mesh), objective)
+    }
+
+    /// Smooths one node by the strategy (fixed nodes and mid-side nodes are left alone).
+    pub fn smooth_node(&mut self, mesh: &mut Mesh, node: usize, objective: &dyn Objective) -> NodeOutcome {
+        self.refresh_mesh_facts(mesh);
+        if objective.only_untangles() {
+            self.note_tangled(&Reading(mesh));
+        }
+        self.visit(&mut Planar(mesh), node, objective)
+    }
+}
+
+/// Runs `passes` passes of a new [`Smoother`] over `mesh`, returning their records.
+pub fn smooth(
+    mesh: &mut Mesh,
+    objective: &dyn Objective,
+    options: SmoothOptions,
+    passes: u32,
+    clock: &dyn Fn() -> f64,
+) -> Result<Vec<PassRecord>> {
+    let mut s = Smoother::new(options)?;
+    Ok((0..passes).map(|_| s.pass(mesh, objective, clock)).collect())
+}
+
+/// Solves the objective at one free node with its history recorded, without moving it
+/// (for the page's level-set view and convergence chart). The solver is chosen by
+/// [`SmoothOptions::solver`]; [`SmoothOptions::max_iter`] limits the iterations.
+pub fn solve_node(mesh: &Mesh, node: usize, objective: &dyn Objective, options: &SmoothOptions) -> Result<SolveResult> {
+    if node >= mesh.node_count() {
+        return Err(Error::node(node, None, format!("no such node: the mesh has {} nodes", mesh.node_count())));
+    }
+    if !mesh.is_free(node) {
+        return Err(Error::node(node, None, "is fixed or not an element corner, so it is never smoothed"));
+    }
+    let mut star = Star::new();
+    star.gather(mesh, node);
+    solve_star(objective, &star, mesh.nodes()[node], options)
+}
+
+/// [`solve_node`] on a star already gathered (of any kind: a surface's star flattened into
+/// its tangent plane, a star of tetrahedra), from `x0`, with the solver's history.
+pub fn solve_star<S: NodeStar>(
+    objective: &dyn Objective<S>,
+    star: &S,
+    x0: S::Point,
+    options: &SmoothOptions,
+) -> Result<SolveResult<S::Point>> {
+    let solve = options.solve_options().with_history(true);
+    solve.validate()?;
+    Ok(Solvers::<S>::new(solve).get(options.solver, objective.goal()).solve(objective, star, x0))
+}
