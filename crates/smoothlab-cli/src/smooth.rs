@@ -19,16 +19,12 @@
 //! slide along them instead of staying fixed.
 
 use std::path::PathBuf;
-use std::time::Instant;
 
 use clap::Args;
-use serde::Serialize;
-use smoothlab::objective::{objective_with, tet_objective, ObjectiveKind, Penalty};
-use smoothlab::quality::MeshStats;
-use smoothlab::smooth::{untangling_obstacles, Obstacle, Order, PassRecord, SmoothOptions, Smoother, Strategy};
 use smoothlab::model::Model;
-use smoothlab::surface::SurfaceSmoother;
-use smoothlab::volume::VolumeSmoother;
+use smoothlab::objective::{ObjectiveKind, Penalty};
+use smoothlab::smooth::{Obstacle, Order, SmoothOptions, Strategy};
+use smoothlab::{Report, Smoothing};
 
 use crate::args::{msh_version_parser, named, order_parser, penalty_parser, strategy_parser};
 use crate::files::{read_model, write_model};
@@ -90,22 +86,9 @@ fn is_laplacian_only(strategy: Strategy) -> bool {
     strategy.max_iter_unused().is_some()
 }
 
-/// What `--json` prints: one object.
-#[derive(Serialize)]
-struct Report<'a> {
-    objective: &'static str,
-    strategy: &'static str,
-    passes: &'a [PassRecord],
-    /// The same object as `smoothlab stats --json` of the written mesh.
-    #[serde(rename = "final")]
-    final_stats: &'a MeshStats,
-    /// Inverted elements no smoother can make valid, and why (empty when there are none).
-    untangling_impossible: &'a [Obstacle],
-    time_ms: f64,
-}
-
-/// The smoothing options the arguments ask for, or why they cannot be used together.
-fn options(a: &SmoothArgs) -> Result<SmoothOptions, String> {
+/// The smoothing the arguments ask for, or why they cannot be used together (in the words
+/// of the flags; the core checks the same settings in its own words).
+fn smoothing(a: &SmoothArgs) -> Result<Smoothing, String> {
     let strategy = a.strategy;
     if !BATCH_PASSES.contains(a.passes.into()) {
         return Err(format!("--passes {}: give 1 to {}", a.passes, BATCH_PASSES.max));
@@ -132,34 +115,39 @@ fn options(a: &SmoothArgs) -> Result<SmoothOptions, String> {
             return Err(format!("--max-iter {k}: give 1 to {} solver iterations per call", BATCH_MAX_ITER.max));
         }
     }
-    let order = match a.order {
-        Some(o) => o,
-        None if strategy == Strategy::Rules => Order::Priority,
-        None => Order::Input,
-    };
-    let mut o = SmoothOptions::default().with_strategy(strategy).with_order(order);
-    if let Some(t) = a.threshold {
-        o = o.with_threshold_deg(t);
-    }
-    if let Some(k) = a.max_iter {
-        o = o.with_max_iter(k);
-    }
-    if a.pass_through_folds || a.no_pass_through_folds {
+    if (a.pass_through_folds || a.no_pass_through_folds) && is_laplacian_only(strategy) {
         let flag = if a.pass_through_folds { "--pass-through-folds" } else { "--no-pass-through-folds" };
-        if is_laplacian_only(strategy) {
-            return Err(format!("{flag}: {} never calls the solver", strategy.name()));
-        }
-        o = o.with_pass_through_folds(a.pass_through_folds);
+        return Err(format!("{flag}: {} never calls the solver", strategy.name()));
     }
     if a.penalty.is_some() && a.objective.is_some_and(|k| k != ObjectiveKind::New) {
         return Err("--penalty chooses the design of the new objective's penalty: use it with --objective new".into());
     }
-    o.validate().map_err(|e| e.to_string())?;
-    Ok(o)
+    let mut s = Smoothing::default()
+        .strategy(strategy)
+        .objective(a.objective.unwrap_or(ObjectiveKind::New))
+        .passes(a.passes)
+        .slide_curves(a.slide_curves);
+    if let Some(o) = a.order {
+        s = s.order(o);
+    }
+    if let Some(t) = a.threshold {
+        s = s.threshold(t);
+    }
+    if let Some(k) = a.max_iter {
+        s = s.max_iter(k);
+    }
+    if let Some(p) = a.penalty {
+        s = s.penalty(p);
+    }
+    if a.pass_through_folds || a.no_pass_through_folds {
+        s = s.pass_through_folds(a.pass_through_folds);
+    }
+    s.options().map_err(|e| e.to_string())?;
+    Ok(s)
 }
 
 pub fn run(a: SmoothArgs) -> Result<(), String> {
-    let opts = options(&a)?;
+    let smoothing = smoothing(&a)?;
     let kind = a.objective.unwrap_or(ObjectiveKind::New);
     let mut model = read_model(&a.input)?;
     if a.slide_curves && !matches!(model, Model::Surface(_)) {
@@ -179,62 +167,21 @@ pub fn run(a: SmoothArgs) -> Result<(), String> {
     if let Model::Planar(mesh) = &model {
         smoothlab::objective::check_scale(kind, mesh).map_err(|e| format!("{}: {e}", a.input.display()))?;
     }
-    let obj = objective_with(kind, a.penalty.unwrap_or_default());
-    let t0 = Instant::now();
-    let clock = move || t0.elapsed().as_secs_f64() * 1e3;
-    let start = clock();
-    let passes: Vec<PassRecord> = match &mut model {
-        Model::Planar(mesh) => {
-            let mut smoother = Smoother::new(opts).map_err(|e| e.to_string())?;
-            (0..a.passes).map(|_| smoother.pass(mesh, &*obj, &clock)).collect()
-        }
-        Model::Surface(surface) => {
-            if a.slide_curves {
-                surface.slide_along_curves();
-            }
-            let mut smoother = SurfaceSmoother::new(opts).map_err(|e| e.to_string())?;
-            (0..a.passes).map(|_| smoother.pass(surface, &*obj, &clock)).collect()
-        }
-        Model::Volume(mesh) => {
-            let obj = tet_objective(kind).map_err(|e| e.to_string())?;
-            let mut smoother = VolumeSmoother::new(opts).map_err(|e| e.to_string())?;
-            (1..=a.passes).map(|p| smoother.pass(mesh, &*obj, p, &clock)).collect()
-        }
-    };
-    let time_ms = clock() - start;
+    let report = model.smooth(&smoothing).map_err(|e| e.to_string())?;
     write_model(&model, &a.output, a.msh_version)?;
-    let final_stats = model.stats();
-    // the obstacles are found in the plane (a surface's fixed nodes have no common one)
-    let obstacles = match &model {
-        Model::Planar(mesh) if final_stats.inverted > 0 => untangling_obstacles(mesh),
-        _ => Vec::new(),
-    };
     if a.json {
-        let report = Report {
-            objective: kind.name(),
-            strategy: a.strategy.name(),
-            passes: &passes,
-            final_stats: &final_stats,
-            untangling_impossible: &obstacles,
-            time_ms,
-        };
         println!("{}", serde_json::to_string(&report).map_err(|e| e.to_string())?);
     } else {
-        print!("{}", summary(kind, a.strategy, opts.order, &passes, &final_stats, time_ms));
-        print!("{}", obstacle_summary(&obstacles, final_stats.inverted));
+        print!("{}", summary(&report));
+        print!("{}", obstacle_summary(report.untangling_impossible(), report.inverted()));
     }
     Ok(())
 }
 
 /// The human-readable summary: one line per pass, then the final state.
-fn summary(
-    kind: ObjectiveKind,
-    strategy: Strategy,
-    order: Order,
-    passes: &[PassRecord],
-    s: &MeshStats,
-    ms: f64,
-) -> String {
+fn summary(report: &Report) -> String {
+    let (kind, strategy, order) = report.settings();
+    let (passes, s, ms) = (report.passes(), report.stats(), report.time_ms());
     let mut t = format!(
         "smoothing: strategy {}, objective {kind}{}, {} order\n",
         strategy.name(),

@@ -1,60 +1,64 @@
-//! smoothlab: a mesh-smoothing laboratory.
+//! smoothlab: mesh smoothing for planar, surface and volume meshes.
 //!
-//! The core is pure Rust with no web types. Modules follow the mathematics, each using
-//! only those before it (the order is the table in `ARCHITECTURE.md`, checked by a test):
-//! [`numeric`] (scale and robust numerics, the one random generator) → [`mesh`] (model
-//! and topology) → [`quality`] (element metrics) → [`objective`] (a node's objective over
-//! its star) → [`optimize`] (solvers) → [`smooth`] (drivers: Laplacian, smart, combined,
-//! rules with priority) → [`render`] (tiny-skia) → [`surface`] and [`volume`] (3D) →
-//! [`model`] (what a file holds) → [`generate`] (sample meshes) → [`io`] (mesh files) →
-//! [`lab`] (the page's state). The wasm layer (`wasm`, only on `wasm32`) converts types
-//! and calls the core.
+//! It holds the smoothers of three papers. Chen, Tristano & Kwok (2003): a smooth objective
+//! solved by Fletcher–Reeves, with rules for when to optimize and a worst-first order.
+//! Freitag (1997): the max-min objective, the smart Laplacian and the combined schemes.
+//! Knupp (1999): the condition number and untangling at element corners.
 //!
-//! # Read, smooth, measure
-//! A mesh from text (here a legacy VTK file: four triangles round one free node, pulled
-//! off-centre), three passes of Chen, Tristano & Kwok's algorithm (the new objective,
-//! their rules, priority order), and the statistics the papers judge by:
+//! # One call for every mesh
+//! [`read`] a file, [`Model::smooth`] it with a [`Smoothing`], [`write`] it back. The
+//! same program smooths a planar mesh, a surface in 3D and a volume mesh, and writes what
+//! `smoothlab smooth IN -o OUT` writes, byte for byte:
 //! ```
-//! use smoothlab::io::{read_str, write_string, Format, WriteOptions};
-//! use smoothlab::objective::{objective, ObjectiveKind};
-//! use smoothlab::quality::mesh_stats;
-//! use smoothlab::smooth::{smooth, SmoothOptions};
+//! # // a folder of its own, holding in.vtk: four triangles round one free node
+//! # fn in_vtk() {
+//! #     let dir = std::env::temp_dir().join(format!("smoothlab-doc-{}", std::process::id()));
+//! #     std::fs::create_dir_all(&dir).unwrap();
+//! #     std::env::set_current_dir(&dir).unwrap();
+//! #     std::fs::write("in.vtk", "# vtk DataFile Version 3.0\nstar\nASCII\nDATASET UNSTRUCTURED_GRID\n\
+//! #         POINTS 5 double\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n0.8 0.7 0\n\
+//! #         CELLS 4 16\n3 0 1 4\n3 1 2 4\n3 2 3 4\n3 3 0 4\nCELL_TYPES 4\n5\n5\n5\n5\n").unwrap();
+//! # }
+//! fn main() -> smoothlab::Result<()> {
+//! #   in_vtk();
+//!     let mut mesh = smoothlab::read("in.vtk")?;
+//!     let report = mesh.smooth(&smoothlab::Smoothing::default())?;
+//!     println!("{} inverted after {} passes", report.inverted(), report.passes().len());
+//!     smoothlab::write(&mesh, "out.vtk")
+//! }
+//! ```
+//!
+//! # Settings, statistics and a mesh from text
+//! A legacy VTK file (four triangles round one free node, pulled off-centre), three passes
+//! of Knupp's condition number, and the statistics `smoothlab stats` prints:
+//! ```
+//! use smoothlab::{io, ObjectiveKind, Smoothing, Strategy};
 //!
 //! let vtk = "# vtk DataFile Version 3.0\nstar\nASCII\nDATASET UNSTRUCTURED_GRID\n\
 //!            POINTS 5 double\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n0.8 0.7 0\n\
 //!            CELLS 4 16\n3 0 1 4\n3 1 2 4\n3 2 3 4\n3 3 0 4\nCELL_TYPES 4\n5\n5\n5\n5\n";
-//! let mut mesh = read_str(vtk, Format::Vtk)?;
-//! assert_eq!((mesh.node_count(), mesh.element_count()), (5, 4));
-//! let before = mesh_stats(&mesh);
+//! let mut model = io::read_model_str(vtk, io::Format::Vtk)?;
+//! let before = model.stats();
 //!
-//! let new = objective(ObjectiveKind::New);
-//! let records = smooth(&mut mesh, new.as_ref(), SmoothOptions::default(), 3, &|| 0.0)?;
-//! assert_eq!(records.len(), 3);
+//! let smoothing = Smoothing::default().strategy(Strategy::Opt).objective(ObjectiveKind::Condition);
+//! let report = model.smooth(&smoothing)?;
+//! assert_eq!(report.passes().len(), 3);
+//! assert_eq!(report.inverted(), 0);
 //!
 //! // the boundary is fixed; the free node goes to the centre, where every angle is 45° or 90°
-//! let after = mesh_stats(&mesh);
-//! assert!(after.min_angle_deg > before.min_angle_deg);
-//! assert!((mesh.nodes()[4] - glam::DVec2::splat(0.5)).length() < 1e-3);
-//! assert!((after.min_angle_deg - 45.0).abs() < 0.1);
-//!
-//! let text = write_string(&mesh, Format::Vtk, &WriteOptions::default())?;
-//! assert!(text.starts_with("# vtk DataFile"));
+//! assert!(report.stats().min_angle_deg > before.min_angle_deg);
+//! assert!((report.stats().min_angle_deg - 45.0).abs() < 0.1);
 //! # Ok::<(), smoothlab::Error>(())
 //! ```
 //!
-//! # Draw a mesh
-//! [`render::render_mesh`] draws a mesh coloured by quality into a tiny-skia pixmap (the
-//! CLI saves it as PNG, the page copies it into a canvas):
-//! ```
-//! use smoothlab::render::{render_mesh, MeshView};
-//!
-//! let mesh = smoothlab::generate::rand2d(60, 6, 1)?;
-//! let mut pixmap = tiny_skia::Pixmap::new(320, 240).unwrap();
-//! render_mesh(&mut pixmap, &mesh, &MeshView::default());
-//! let colours: std::collections::HashSet<&[u8]> = pixmap.data().chunks_exact(4).collect();
-//! assert!(colours.len() > 10, "a coloured picture, not a blank one");
-//! # Ok::<(), smoothlab::Error>(())
-//! ```
+//! # The layers
+//! Modules follow the mathematics, each using only those before it: [`numeric`] (scale and
+//! robust numerics, the one random generator) → [`mesh`] (model and topology) →
+//! [`quality`] (element metrics) → [`objective`] (a node's objective over its star) →
+//! [`optimize`] (solvers) → [`smooth`] (drivers: Laplacian, smart, combined, rules with
+//! priority) → [`surface`] and [`volume`] (3D) → [`model`] (what a file holds) →
+//! [`generate`] (sample meshes) → [`io`] (mesh files). Pictures, the page and the CLI are
+//! crates of their own above this one.
 
 /// Declares a fieldless enum together with `ALL`, every variant in declaration order, so
 /// a variant added to the enum is in `ALL` (and so in every menu, CLI list and test built
@@ -105,5 +109,22 @@ pub mod smooth;
 pub mod surface;
 pub mod volume;
 
+mod smoothing;
+
 pub use error::{Error, Result};
-pub use mesh::{ElementKind, Mesh, MeshBuilder};
+#[cfg(not(target_arch = "wasm32"))]
+pub use io::{read, write};
+pub use io::{Format, WriteOptions};
+pub use mesh::{ElementKind, Mesh, MeshBuilder, VolumeKind};
+pub use model::Model;
+pub use objective::{ObjectiveKind, Penalty};
+pub use quality::MeshStats;
+pub use smooth::{Obstacle, Order, PassRecord, Strategy};
+pub use smoothing::{Report, Smoothing};
+pub use surface::Surface;
+pub use volume::VolumeMesh;
+
+/// The README's Rust examples, compiled as doctests.
+#[cfg(doctest)]
+#[doc = include_str!("../../../README.md")]
+pub struct ReadmeDoctests;

@@ -2,6 +2,7 @@
 
 mod common;
 mod cli_stats;
+mod front_door;
 mod generate;
 mod hardening;
 mod io_plane;

@@ -429,6 +429,20 @@ pub fn write_triangle<'a>(mesh: impl Into<Writable<'a>>) -> Result<(String, Stri
 #[cfg(not(target_arch = "wasm32"))]
 const LINE_BOUND: u64 = 256;
 
+/// Reads the mesh file at `path`, whatever it holds: a planar mesh, a surface in 3D or a
+/// volume mesh (the format by the extension, as [`read_model_path`]).
+#[cfg(not(target_arch = "wasm32"))]
+pub fn read(path: impl AsRef<std::path::Path>) -> Result<Model> {
+    read_model_path(path.as_ref())
+}
+
+/// Writes `model` to `path` in the format of its extension, with the default options:
+/// what `smoothlab smooth IN -o OUT` writes (as [`write_model_path`]).
+#[cfg(not(target_arch = "wasm32"))]
+pub fn write(model: &Model, path: impl AsRef<std::path::Path>) -> Result<()> {
+    write_model_path(model, path.as_ref(), &WriteOptions::default())
+}
+
 /// Writes a mesh file in the format of the path's extension (`.node`/`.ele`: both files).
 /// The text goes to the file in chunks, never whole in memory. A mesh whose text could
 /// pass [`MAX_FILE_BYTES`] (by `LINE_BOUND`) is measured first, so that a text too large

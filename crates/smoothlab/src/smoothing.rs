@@ -1,0 +1,282 @@
+//! One call smooths any mesh: [`Model::smooth`] with a [`Smoothing`].
+//!
+//! A [`Smoothing`] names the settings of a run: strategy, objective, passes and the rest.
+//! Each setting left unset takes the default the command-line tool takes.
+//! [`Model::smooth`] picks the driver for the mesh kind (planar, surface or volume).
+//! It returns a [`Report`]: one record a pass, the final statistics, and the inverted
+//! elements that no move can repair.
+
+use serde::Serialize;
+
+use crate::error::{Error, Result};
+use crate::model::Model;
+use crate::objective::{check_scale, objective_with, tet_objective, ObjectiveKind, Penalty};
+use crate::quality::MeshStats;
+use crate::smooth::limits::{threshold_in_range, BATCH_MAX_ITER, BATCH_PASSES};
+use crate::smooth::{untangling_obstacles, Obstacle, Order, PassRecord, SmoothOptions, Smoother, Strategy, DEFAULT_PASSES};
+use crate::surface::SurfaceSmoother;
+use crate::volume::VolumeSmoother;
+
+/// The settings of a smoothing run, built by chained calls.
+///
+/// `Smoothing::default()` is the command-line tool's default run: Chen et al.'s rules with
+/// the new objective, in priority order, three passes.
+///
+/// ```
+/// use smoothlab::{ObjectiveKind, Smoothing, Strategy};
+///
+/// let s = Smoothing::default().strategy(Strategy::Opt).objective(ObjectiveKind::Condition).passes(5);
+/// assert_eq!(s.passes_asked(), 5);
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Smoothing {
+    strategy: Strategy,
+    objective: ObjectiveKind,
+    passes: u32,
+    threshold_deg: Option<f64>,
+    order: Option<Order>,
+    max_iter: Option<u32>,
+    penalty: Option<Penalty>,
+    pass_through_folds: Option<bool>,
+    slide_curves: bool,
+}
+
+impl Default for Smoothing {
+    fn default() -> Self {
+        Smoothing {
+            strategy: SmoothOptions::default().strategy,
+            objective: ObjectiveKind::New,
+            passes: DEFAULT_PASSES,
+            threshold_deg: None,
+            order: None,
+            max_iter: None,
+            penalty: None,
+            pass_through_folds: None,
+            slide_curves: false,
+        }
+    }
+}
+
+impl Smoothing {
+    /// How each node is smoothed.
+    pub fn strategy(mut self, strategy: Strategy) -> Self {
+        self.strategy = strategy;
+        self
+    }
+    /// The objective of the optimization steps (`laplace` and `smart` only report its total).
+    pub fn objective(mut self, objective: ObjectiveKind) -> Self {
+        self.objective = objective;
+        self
+    }
+    /// The number of passes over the mesh.
+    pub fn passes(mut self, passes: u32) -> Self {
+        self.passes = passes;
+        self
+    }
+    /// The threshold angle of `c1`, `c2` and `c3`, in degrees.
+    pub fn threshold(mut self, degrees: f64) -> Self {
+        self.threshold_deg = Some(degrees);
+        self
+    }
+    /// The node order (default: priority for `rules`, input order otherwise).
+    pub fn order(mut self, order: Order) -> Self {
+        self.order = Some(order);
+        self
+    }
+    /// The solver iterations per optimization call.
+    pub fn max_iter(mut self, iterations: u32) -> Self {
+        self.max_iter = Some(iterations);
+        self
+    }
+    /// The design of the new objective's penalty (planar meshes and surfaces).
+    pub fn penalty(mut self, penalty: Penalty) -> Self {
+        self.penalty = Some(penalty);
+        self
+    }
+    /// Whether an inverted star may fold one more element when that lowers its inversion.
+    pub fn pass_through_folds(mut self, on: bool) -> Self {
+        self.pass_through_folds = Some(on);
+        self
+    }
+    /// Whether a surface's feature curves and open boundaries slide (surfaces only).
+    pub fn slide_curves(mut self, on: bool) -> Self {
+        self.slide_curves = on;
+        self
+    }
+
+    /// The number of passes asked for.
+    pub fn passes_asked(&self) -> u32 {
+        self.passes
+    }
+    /// The node order the run takes.
+    pub fn order_taken(&self) -> Order {
+        match self.order {
+            Some(o) => o,
+            None if self.strategy == Strategy::Rules => Order::Priority,
+            None => Order::Input,
+        }
+    }
+
+    /// The drivers' options, or why the settings do not go together.
+    pub fn options(&self) -> Result<SmoothOptions> {
+        let strategy = self.strategy;
+        let refuse = |name: &str, why: String| Err(Error::invalid(format!("{name}: {why}")));
+        if !BATCH_PASSES.contains(self.passes.into()) {
+            return refuse("passes", format!("{} asked: give 1 to {}", self.passes, BATCH_PASSES.max));
+        }
+        let mut o = SmoothOptions::default().with_strategy(strategy).with_order(self.order_taken());
+        if let Some(t) = self.threshold_deg {
+            if strategy.threshold_unused().is_some() {
+                return refuse("threshold", format!("c1, c2 and c3 have one, not {}", strategy.name()));
+            }
+            if !threshold_in_range(t) {
+                return refuse("threshold", format!("{t} asked: give degrees above 0 and at most 90"));
+            }
+            o = o.with_threshold_deg(t);
+        }
+        let solver_free = strategy.max_iter_unused().is_some();
+        if let Some(k) = self.max_iter {
+            if solver_free {
+                return refuse("max_iter", format!("{} never calls the solver", strategy.name()));
+            }
+            if !BATCH_MAX_ITER.contains(k.into()) {
+                return refuse("max_iter", format!("{k} asked: give 1 to {}", BATCH_MAX_ITER.max));
+            }
+            o = o.with_max_iter(k);
+        }
+        if let Some(on) = self.pass_through_folds {
+            if solver_free {
+                return refuse("pass_through_folds", format!("{} never calls the solver", strategy.name()));
+            }
+            o = o.with_pass_through_folds(on);
+        }
+        if self.penalty.is_some() && self.objective != ObjectiveKind::New {
+            return refuse("penalty", "it is a design of the new objective".into());
+        }
+        o.validate()?;
+        Ok(o)
+    }
+
+    /// Why these settings cannot smooth `model`, if they cannot.
+    fn check(&self, model: &Model) -> Result<()> {
+        let refuse = |name: &str, why: String| Err(Error::invalid(format!("{name}: {why}")));
+        match model {
+            Model::Surface(_) => Ok(()),
+            Model::Planar(mesh) if !self.slide_curves => check_scale(self.objective, mesh),
+            Model::Volume(v) if self.slide_curves => {
+                refuse("slide_curves", format!("a surface's curves slide; this mesh is made of {}", v.family_words()))
+            }
+            Model::Volume(_) if self.penalty.is_some() => {
+                refuse("penalty", "its designs are planar; volume elements take new's barrier".into())
+            }
+            Model::Volume(_) => Ok(()),
+            Model::Planar(_) => refuse("slide_curves", "a surface's curves slide; this mesh is planar".into()),
+        }
+    }
+}
+
+/// What a smoothing run did: a record a pass, and where the mesh stands.
+///
+/// In JSON (`smoothlab smooth --json`) it is one object: `objective`, `strategy`, `passes`,
+/// `final`, `untangling_impossible` and `time_ms`.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Report {
+    objective: ObjectiveKind,
+    strategy: Strategy,
+    #[serde(skip)]
+    order: Order,
+    passes: Vec<PassRecord>,
+    /// The same object as `smoothlab stats --json` of the smoothed mesh.
+    #[serde(rename = "final")]
+    final_stats: MeshStats,
+    /// Inverted elements no smoother can make valid, and why (empty when there are none).
+    untangling_impossible: Vec<Obstacle>,
+    time_ms: f64,
+}
+
+impl Report {
+    /// Inverted elements after the run.
+    pub fn inverted(&self) -> usize {
+        self.final_stats.inverted
+    }
+    /// One record a pass.
+    pub fn passes(&self) -> &[PassRecord] {
+        &self.passes
+    }
+    /// The statistics of the smoothed mesh (what `smoothlab stats` prints).
+    pub fn stats(&self) -> &MeshStats {
+        &self.final_stats
+    }
+    /// The inverted elements no move allowed by the fixed nodes can repair, and why.
+    pub fn untangling_impossible(&self) -> &[Obstacle] {
+        &self.untangling_impossible
+    }
+    /// The objective, strategy and node order of the run.
+    pub fn settings(&self) -> (ObjectiveKind, Strategy, Order) {
+        (self.objective, self.strategy, self.order)
+    }
+    /// The time of the passes, milliseconds by the run's clock.
+    pub fn time_ms(&self) -> f64 {
+        self.time_ms
+    }
+}
+
+impl Model {
+    /// Smooths the mesh, whatever its kind, as `smoothlab smooth` does.
+    ///
+    /// Natively the passes are timed by the system's clock; in WebAssembly they read 0
+    /// ([`smooth_with_clock`](Self::smooth_with_clock) takes a clock).
+    pub fn smooth(&mut self, smoothing: &Smoothing) -> Result<Report> {
+        #[cfg(not(target_arch = "wasm32"))]
+        {
+            let t0 = std::time::Instant::now();
+            self.smooth_with_clock(smoothing, &move || t0.elapsed().as_secs_f64() * 1e3)
+        }
+        #[cfg(target_arch = "wasm32")]
+        self.smooth_with_clock(smoothing, &|| 0.0)
+    }
+
+    /// Smooths the mesh as [`smooth`](Self::smooth), timed by `clock` (milliseconds).
+    pub fn smooth_with_clock(&mut self, smoothing: &Smoothing, clock: &dyn Fn() -> f64) -> Result<Report> {
+        let opts = smoothing.options()?;
+        smoothing.check(self)?;
+        let kind = smoothing.objective;
+        let start = clock();
+        let passes: Vec<PassRecord> = match self {
+            Model::Planar(mesh) => {
+                let objective = objective_with(kind, smoothing.penalty.unwrap_or_default());
+                let mut smoother = Smoother::new(opts)?;
+                (0..smoothing.passes).map(|_| smoother.pass(mesh, &*objective, clock)).collect()
+            }
+            Model::Surface(surface) => {
+                if smoothing.slide_curves {
+                    surface.slide_along_curves();
+                }
+                let objective = objective_with(kind, smoothing.penalty.unwrap_or_default());
+                let mut smoother = SurfaceSmoother::new(opts)?;
+                (0..smoothing.passes).map(|_| smoother.pass(surface, &*objective, clock)).collect()
+            }
+            Model::Volume(mesh) => {
+                let objective = tet_objective(kind)?;
+                let mut smoother = VolumeSmoother::new(opts)?;
+                (1..=smoothing.passes).map(|p| smoother.pass(mesh, &*objective, p, clock)).collect()
+            }
+        };
+        let time_ms = clock() - start;
+        let final_stats = self.stats();
+        // the obstacles are found in the plane (a surface's fixed nodes have no common one)
+        let untangling_impossible = match &*self {
+            Model::Planar(mesh) if final_stats.inverted > 0 => untangling_obstacles(mesh),
+            _ => Vec::new(),
+        };
+        Ok(Report {
+            objective: kind,
+            strategy: smoothing.strategy,
+            order: opts.order,
+            passes,
+            final_stats,
+            untangling_impossible,
+            time_ms,
+        })
+    }
+}
