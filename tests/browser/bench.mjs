@@ -1,5 +1,5 @@
 // Runs the wasm benchmark page (www/bench.html) in headless Chromium (Debian's) and prints
-// its result as JSON on stdout, for examples/perf.rs (`make performance`).
+// its result as JSON on stdout, for the perf program (`make performance`).
 //   node tests/browser/bench.mjs [--nodes 100000] [--reps 3]
 // Needs www/pkg from `make site` and playwright-core in tests/browser/node_modules.
 import { existsSync } from 'node:fs';

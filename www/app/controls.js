@@ -1,5 +1,5 @@
 // The controls: the settings they make, their ranges and defaults from the core
-// (src/lab/controls.rs, written once), the compare menus, what a strategy does not use,
+// (crates/smoothlab-page/src/lab/controls.rs, written once), the compare menus, what a strategy does not use,
 // typed values checked.
 import { $, COMPARE, clearError, engine, report, serial, setStatus, state } from './state.js';
 import { writePermalink } from './permalink.js';

@@ -1,4 +1,4 @@
-// The address: the permalink written and read by the core's encoder (src/lab/permalink.rs),
+// The address: the permalink written and read by the core's encoder (crates/smoothlab-page/src/lab/permalink.rs),
 // what a hash opens, the embedded views, Back and Forward.
 import { $, COMPARE, EMBED, FIGURE_HASH, SETTINGS, engine, gallery, report, serial, setStatus, showError, state, view } from './state.js';
 import { CHECKED, changeCompare, invalidMessage, readChoice, readSettings, showPenaltyReasons, showStrategyReasons } from './controls.js';
@@ -9,7 +9,7 @@ import { selectNode } from './pointer.js';
 import { redrawMeshes } from './draw.js';
 
 /** The permalink sample name of what is loaded, or null (a user's file has none). Every
- * sample of the gallery has one (src/lab/permalink.rs, SAMPLES), surfaces and tetrahedra
+ * sample of the gallery has one (crates/smoothlab-page/src/lab/permalink.rs, SAMPLES), surfaces and tetrahedra
  * too; a Gmsh file the name the core gives it in the control sheet. */
 export function sourceSample() {
   const s = state.lastGood;

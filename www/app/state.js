@@ -34,7 +34,7 @@ export const VIEWS = {
  * a figure's own view replaces them (tour). */
 export const view = { name: EMBED ? PARAMS.get('view') : null, spec: null };
 view.spec = view.name !== null && Object.hasOwn(VIEWS, view.name) ? VIEWS[view.name] : null;
-/** `#figure=NAME`: a figure of the papers' tour (src/lab/tour), opened in its state. */
+/** `#figure=NAME`: a figure of the papers' tour (crates/smoothlab-page/src/lab/tour), opened in its state. */
 export const FIGURE_HASH = /^#figure=([a-z0-9-]{1,40})$/;
 /** Milliseconds of smoothing per call to the worker during a pass: the progress bar
  * moves and Stop is heard at least this often. */
@@ -52,7 +52,7 @@ export const nextFrame = () => new Promise((r) => requestAnimationFrame(() => r(
 export const metrics = { lastLoad: null, lastStep: null, run: null, startup: null };
 
 export const state = {
-  controls: null, // the core's control sheet (src/lab/controls.rs): ranges, defaults, per-strategy reasons, menus, the Gmsh samples, the file limit
+  controls: null, // the core's control sheet (crates/smoothlab-page/src/lab/controls.rs): ranges, defaults, per-strategy reasons, menus, the Gmsh samples, the file limit
   invalid: new Map(), // control id → its message, while what is typed there is not valid
   perturbed: null, // {amount, seed} when the mesh on screen is the loaded one perturbed
   generation: 0, // counts what replaces the meshes (load, Perturb, Reset): a run's last words are for its own

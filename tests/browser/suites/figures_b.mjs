@@ -4,7 +4,7 @@
 // quadratic surface, old against new, in 3D) and knupp-hex (Knupp's tangled block of
 // hexahedra pass by pass, old against new, cut). Each opens by its link and embeds in frames
 // of 800×450 and 520×520 without scrolling. The numbers checked are the core's: the card's
-// text is computed by the same functions as the picture (src/lab/tour/pictures.rs).
+// text is computed by the same functions as the picture (crates/smoothlab-page/src/lab/tour/pictures.rs).
 import path from 'node:path';
 import { OUT, TIMEOUT, test, check, idle, canvasInfo, stats, freshPage, hostFrame } from '../lib.mjs';
 

@@ -3,7 +3,7 @@
 //! plate with a hole in fewer passes than "first come first serve" (input order)?
 //!
 //! ```text
-//! cargo run --release --example chen13_search > /tmp/chen13.txt
+//! cargo run --release -p smoothlab-programs --bin chen13_search > chen13.txt
 //! ```
 //!
 //! With the defaults (`new` + `rules`, the regularised barrier, Newton's step first and
