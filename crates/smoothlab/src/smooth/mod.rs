@@ -669,6 +669,29 @@ pub fn solve_node(mesh: &Mesh, node: usize, objective: &dyn Objective, options: 
     solve_star(objective, &star, mesh.nodes()[node], options)
 }
 
+/// [`solve_star`] on a planar star (a planar mesh's, or a surface's flattened into its
+/// tangent plane). It is compiled in this crate, so a caller in another crate shares the
+/// solvers' code with the drivers instead of compiling a copy of its own.
+pub fn solve_planar_star(
+    objective: &dyn Objective,
+    star: &Star,
+    x0: DVec2,
+    options: &SmoothOptions,
+) -> Result<SolveResult> {
+    solve_star(objective, star, x0, options)
+}
+
+/// [`solve_star`] on a volume mesh's star of element corners, compiled in this crate (see
+/// [`solve_planar_star`]).
+pub fn solve_corner_star(
+    objective: &dyn Objective<crate::objective::CornerStar>,
+    star: &crate::objective::CornerStar,
+    x0: glam::DVec3,
+    options: &SmoothOptions,
+) -> Result<SolveResult<glam::DVec3>> {
+    solve_star(objective, star, x0, options)
+}
+
 /// [`solve_node`] on a star already gathered (of any kind: a surface's star flattened into
 /// its tangent plane, a star of tetrahedra), from `x0`, with the solver's history.
 pub fn solve_star<S: NodeStar>(

@@ -21,7 +21,7 @@ use smoothlab::mesh::NodeRole;
 use smoothlab::objective::{Goal, Objective, Star};
 use smoothlab::quality::MeshStats;
 use smoothlab_render::{HistogramAxis, Metric, PlaneFunction, Projection, StarFunction, SurfaceView, PASS_TITLES};
-use smoothlab::smooth::{solve_star, SmoothOptions};
+use smoothlab::smooth::{solve_planar_star, SmoothOptions};
 use smoothlab::surface::{KeptNodes, Surface, SurfaceSmoother};
 
 /// A surface node's objective over its tangent plane: the planar objective of its star
@@ -142,7 +142,7 @@ impl Mesh3d for Surface {
     /// solve is the one a pass makes there.
     fn slice<'a>(&self, objective: &'a dyn Objective, node: usize, _cut: (), options: &SmoothOptions) -> Result<NodeSlice<'a>> {
         let (star, plane) = self.tangent_star(node)?;
-        let solve = solve_star(objective, &star, star.x0, options)?;
+        let solve = solve_planar_star(objective, &star, star.x0, options)?;
         let target = plane.to_3d(solve.x);
         Ok(NodeSlice {
             outline: star.clone(),

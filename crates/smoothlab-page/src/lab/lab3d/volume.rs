@@ -25,7 +25,7 @@ use smoothlab::objective::{describe_tet, tet_objective, CornerStar, Goal, Object
 use smoothlab::optimize::{Iterate, SolveResult};
 use smoothlab::quality::MeshStats;
 use smoothlab_render::{HistogramAxis, PlaneFunction, Projection, SurfaceView};
-use smoothlab::smooth::{solve_star, DriverStar, SmoothOptions};
+use smoothlab::smooth::{solve_corner_star, DriverStar, SmoothOptions};
 use smoothlab::volume::{volume_stats, VolumeMesh, VolumeSmoother};
 use smoothlab_render::{Cut};
 
@@ -259,7 +259,7 @@ impl Mesh3d for VolumeMesh {
         star.gather(self, node);
         let axis = cut.axis.min(2);
         let plane = axis_plane(star.x0, axis);
-        let solve = solve_star(objective as &dyn Objective<CornerStar>, &star, star.x0, options)?;
+        let solve = solve_corner_star(objective, &star, star.x0, options)?;
         let target = solve.x;
         let outline = section(&star, &plane);
         let name = ["x", "y", "z"][axis];
