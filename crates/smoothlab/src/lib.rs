@@ -6,7 +6,7 @@
 //! Knupp (1999): the condition number and untangling at element corners.
 //!
 //! # One call for every mesh
-//! [`read`] a file, [`Model::smooth`] it with a [`Smoothing`], [`write`] it back. The
+//! [`read`] a file, [`Model::smooth`] it with a [`Smoothing`], [`write`](fn@write) it back. The
 //! same program smooths a planar mesh, a surface in 3D and a volume mesh, and writes what
 //! `smoothlab smooth IN -o OUT` writes, byte for byte:
 //! ```

@@ -2,8 +2,7 @@
 //! bad requests are refused with a message.
 
 use std::path::{Path, PathBuf};
-use std::process::Command;
-use crate::common::{bin, run};
+use crate::common::run;
 
 /// A folder of the test's own: the tests run in parallel and write files of the same names.
 fn dir(test: &str) -> PathBuf {

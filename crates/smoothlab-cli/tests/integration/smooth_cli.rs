@@ -2,10 +2,9 @@
 //! `smoothlab stats --json` of the written file, the human summary, and the refusals.
 
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
 
 use serde_json::Value;
-use crate::common::{bin, run, ok, p};
+use crate::common::{run, ok, p};
 
 fn dir(name: &str) -> PathBuf {
     let d = std::env::temp_dir().join(format!("smoothlab-smooth-cli-{}-{name}", std::process::id()));

@@ -3,7 +3,6 @@
 //! `render` (the 3D view and `--camera`), and their refusals.
 
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
 
 use serde_json::Value;
 use smoothlab::generate::{surface, SurfaceKind, SurfaceShape};

@@ -2,14 +2,13 @@
 //! perturbed into Knupp's tangled test grid and smoothed; bad requests refused in words.
 
 use std::path::{Path, PathBuf};
-use std::process::Command;
 
 use serde_json::Value;
 use smoothlab::io::read_model_path;
 use smoothlab::mesh::VolumeKind;
 use smoothlab::model::Model;
 use smoothlab::volume::VolumeMesh;
-use crate::common::{run, ok, refused, p};
+use crate::common::{ok, refused, p};
 
 fn out(name: &str) -> PathBuf {
     let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("volume_generate");

@@ -4,14 +4,13 @@
 //! naming the line or element, and `generate cube`, `perturb`, `stats`, `smooth`,
 //! `convert` and `render` work on tetrahedra.
 
-use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+use std::path::PathBuf;
 
 use serde_json::Value;
 use smoothlab::io::{self, Format, MshVersion, WriteOptions};
 use smoothlab::model::Model;
 use smoothlab::volume::VolumeMesh;
-use crate::common::{run, ok, refused, p};
+use crate::common::{ok, refused, p};
 
 fn dir(name: &str) -> PathBuf {
     let d = std::env::temp_dir().join(format!("smoothlab-volume-{}-{name}", std::process::id()));

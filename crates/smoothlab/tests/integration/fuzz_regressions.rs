@@ -4,7 +4,7 @@
 //! outcome pinned below, and for a mesh the full round trip through every writer.
 //! The seed corpora of the fuzz targets (`fuzz/seeds/`) are replayed too.
 
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
 #[allow(dead_code)]
 #[path = "../../../../fuzz/src/harness.rs"]

@@ -4,7 +4,7 @@
 //! random truncations and corruptions of the good fixtures go through theirs.
 
 use std::collections::BTreeSet;
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
 use proptest::prelude::*;
 use smoothlab::io::{self, Format};

@@ -2,7 +2,7 @@
 //! counts, coordinates and connectivity; 3D input in planes; and the API's choices of
 //! format by name.
 
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
 use glam::DVec2;
 use smoothlab::io::{self, Format};
