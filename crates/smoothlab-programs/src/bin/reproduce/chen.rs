@@ -5,8 +5,10 @@ use std::fmt::Write as _;
 use smoothlab::generate::{perturb, plate, PlateKind};
 use smoothlab::quality::mesh_stats;
 use smoothlab::smooth::{Order, Strategy};
+use smoothlab_page::lab::tour::measured::Table;
 
 use crate::common::{mean, mean_range, opts, run, untangled, NEW_DESIGNS};
+use crate::report::Report;
 
 /// The plates of §2 (and §9's comparison): their names, kinds and orders.
 pub(crate) const PLATES: [(&str, PlateKind, u8); 6] = [
@@ -18,14 +20,14 @@ pub(crate) const PLATES: [(&str, PlateKind, u8); 6] = [
     ("mixed, order 2", PlateKind::Mixed, 2),
 ];
 
-pub(crate) fn chen_plate(out: &mut String) {
+pub(crate) fn chen_plate(out: &mut Report) {
     const SEEDS: [u64; 5] = [1, 2, 3, 4, 5];
     const AMOUNTS: [f64; 5] = [0.6, 0.8, 1.0, 1.25, 1.5];
     const MAX_PASSES: u32 = 10;
+    out.section(2, "Chen, Tristano & Kwok (2003), Figs 13–15: the perturbed plate with a hole");
     let _ = writeln!(
         out,
-        "## 2. Chen, Tristano & Kwok (2003), Figs 13–15: the perturbed plate with a hole\n\n\
-         `plate(kind, order, 4)`: the square [−1,1]² with a hole of radius 0.4, an O-grid of 32 nodes round the hole \
+        "`plate(kind, order, 4)`: the square [−1,1]² with a hole of radius 0.4, an O-grid of 32 nodes round the hole \
          and the square and 8 rings (order 2: 6-node triangles / 8-node quads with the mid-side nodes of the hole on \
          the circle, so those edges are curved). Every interior node is moved by `perturb(mesh, amount, seed)`, a \
          uniform random offset in a disk of radius amount × the mean edge length — Chen's \"perturbing the nodal \
@@ -40,11 +42,16 @@ pub(crate) fn chen_plate(out: &mut String) {
         SEEDS.map(|a| a.to_string()).join(", "),
         6 * AMOUNTS.len() * SEEDS.len()
     );
-    let _ = writeln!(
-        out,
-        "| plate | amount | inverted at start | barrier: priority | barrier: input order | barrier: min angle after (priority) | angle design: priority | angle design: input order |"
-    );
-    let _ = writeln!(out, "|---|---|---|---|---|---|---|---|");
+    let mut table = Table::new(&[
+        "plate",
+        "amount",
+        "inverted at start",
+        "barrier: priority",
+        "barrier: input order",
+        "barrier: min angle after (priority)",
+        "angle design: priority",
+        "angle design: input order",
+    ]);
     // per design and order: (untangled within 3, in the first pass, within MAX_PASSES, passes summed)
     let mut tally = [[(0usize, 0usize, 0usize, 0usize); 2]; 2];
     let mut runs = 0usize;
@@ -105,18 +112,19 @@ pub(crate) fn chen_plate(out: &mut String) {
                 }
                 s
             };
-            let _ = writeln!(
-                out,
-                "| {label} | {amount} | {} | {} | {} | {} | {} | {} |",
+            table.row(vec![
+                label.to_string(),
+                amount.to_string(),
                 mean_range(&start, 0),
                 passes(&cells[0][0]),
                 passes(&cells[0][1]),
                 mean_range(&ang, 1),
                 passes(&cells[1][0]),
                 passes(&cells[1][1]),
-            );
+            ]);
         }
     }
+    out.table(table);
     let _ = writeln!(out);
     for (d, (_, design)) in NEW_DESIGNS.iter().enumerate() {
         for (o, name) in ["priority", "input"].iter().enumerate() {

@@ -2,19 +2,21 @@
 
 use std::fmt::Write as _;
 
-use smoothlab::objective::{objective_with, ObjectiveKind, Penalty};
 use smoothlab::io;
+use smoothlab::objective::{objective_with, ObjectiveKind, Penalty};
 use smoothlab::smooth::{Order, Smoother, Strategy};
+use smoothlab_page::lab::tour::measured::Table;
 
 use crate::common::{clock, meshes_dir, opts, worst_alpha_error};
+use crate::report::Report;
 
-pub(crate) fn equilateral(out: &mut String) {
+pub(crate) fn equilateral(out: &mut Report) {
     const MAX_PASSES: u32 = 50;
     const MAX_ITER: u32 = 20;
+    out.section(5, "Mesquite's `equil_tri.vtk` and `equil_tri2.vtk`");
     let _ = writeln!(
         out,
-        "## 5. Mesquite's `equil_tri.vtk` and `equil_tri2.vtk`\n\n\
-         One free node inside a regular hexagon (`equil_tri`: six triangles; `equil_tri2`: its own file). \
+        "One free node inside a regular hexagon (`equil_tri`: six triangles; `equil_tri2`: its own file). \
          Optimization (`opt`) with `new`, `old` and `condition`, {MAX_ITER} solver iterations per call, passes until \
          every corner α is within 10⁻⁶ of 1 (at most {MAX_PASSES}). Mesquite: \"become exactly equilateral\". The file \
          stores √3 to 9 digits, which bounds how equilateral the triangles can be.\n"
@@ -24,13 +26,15 @@ pub(crate) fn equilateral(out: &mut String) {
         let _ = writeln!(out, "*Skipped: the external Mesquite meshes (`../shared/meshes`) were not found.*\n");
         return;
     }
-    let _ = writeln!(out, "| mesh | objective | worst \\|α − 1\\| at start | after | passes | solver iterations |");
-    let _ = writeln!(out, "|---|---|---|---|---|---|");
+    let mut table =
+        Table::new(&["mesh", "objective", "worst |α − 1| at start", "after", "passes", "solver iterations"]);
     for file in ["equil_tri.vtk", "equil_tri2.vtk"] {
         let mesh = match io::read_path(&dir.join(file)) {
             Ok(m) => m,
             Err(e) => {
-                let _ = writeln!(out, "| {file} | cannot be read: {e} | | | | |");
+                let mut cells = vec![file.to_string(), format!("cannot be read: {e}")];
+                cells.resize(6, String::new());
+                table.row(cells);
                 continue;
             }
         };
@@ -45,13 +49,16 @@ pub(crate) fn equilateral(out: &mut String) {
                 passes += 1;
                 iters += r.counts.solver_iterations;
             }
-            let _ = writeln!(
-                out,
-                "| {file} | `{kind}` | {:.3e} | {:.3e} | {passes} | {iters} |",
-                worst_alpha_error(&mesh),
-                worst_alpha_error(&m)
-            );
+            table.row(vec![
+                file.to_string(),
+                format!("`{kind}`"),
+                format!("{:.3e}", worst_alpha_error(&mesh)),
+                format!("{:.3e}", worst_alpha_error(&m)),
+                passes.to_string(),
+                iters.to_string(),
+            ]);
         }
     }
+    out.table(table);
     let _ = writeln!(out);
 }

@@ -8,7 +8,10 @@ use smoothlab::quality::{element_quality, mesh_stats};
 use smoothlab::smooth::{Measure, Order, PassRecord, SmoothOptions, Strategy};
 use smoothlab::Mesh;
 
+use smoothlab_page::lab::tour::measured::Table;
+
 use crate::common::{mean, mean_range, never, opts, run, Choice, NEW_ANGLE, NEW_DESIGNS};
+use crate::report::Report;
 
 /// Table 1's row of `new` + `rules` in priority order with Newton's first trial off.
 const CHEN_ALONE: &str = "rules, `new`, priority, Chen's search alone (no Newton step)";
@@ -50,7 +53,7 @@ pub(crate) struct Row {
     pub(crate) ms: Vec<f64>,
 }
 
-pub(crate) fn freitag_table_1(out: &mut String) {
+pub(crate) fn freitag_table_1(out: &mut Report) {
     const SEEDS: [u64; 5] = [1, 2, 3, 4, 5];
     let meshes: Vec<Mesh> = SEEDS.iter().map(|&s| rand2d(500, 20, s).expect("rand2d")).collect();
     let nodes = meshes[0].node_count();
@@ -136,10 +139,10 @@ pub(crate) fn freitag_table_1(out: &mut String) {
         }
         rows.push(row);
     }
+    out.section(1, "Freitag (1997), Table 1: rand2D");
     let _ = writeln!(
         out,
-        "## 1. Freitag (1997), Table 1: rand2D\n\n\
-         `rand2d(500, 20, seed)` for seeds 1–5: the Delaunay triangulation of 500 uniform random points in the unit \
+        "`rand2d(500, 20, seed)` for seeds 1–5: the Delaunay triangulation of 500 uniform random points in the unit \
          square plus 20 equally spaced points per side ({nodes} nodes, {tris} triangles, as Freitag's), boundary fixed, \
          3 passes. Each cell is the mean over the five seeds with the range in brackets. Freitag's rows use her \
          measure: the smart Laplacian must raise the star's smallest sine, the thresholds of C1/C2/C3 are on the \
@@ -149,23 +152,29 @@ pub(crate) fn freitag_table_1(out: &mut String) {
          The paper column gives Freitag's min / max angle (Laplacian / optimization counts); our copy of the \
          paper has the counts of the Lap and Opt rows run together, and we read them as 1500/0 and 0/1500.\n"
     );
-    let _ = writeln!(out, "| method | min angle | max angle | Laplacian moves | opt. calls | time ms (3 passes) | paper: min / max (lap / opt) |");
-    let _ = writeln!(out, "|---|---|---|---|---|---|---|");
+    let mut table = Table::new(&[
+        "method",
+        "min angle",
+        "max angle",
+        "Laplacian moves",
+        "opt. calls",
+        "time ms (3 passes)",
+        "paper: min / max (lap / opt)",
+    ]);
     for r in &rows {
         let cell = |v: &Vec<f64>, d: usize| if v.is_empty() { "—".to_string() } else { mean_range(v, d) };
         let count = |v: &Vec<f64>| if v.is_empty() { "—".to_string() } else { format!("{:.0}", mean(v)) };
-        let _ = writeln!(
-            out,
-            "| {} | {} | {} | {} | {} | {} | {} |",
-            r.name,
+        table.row(vec![
+            r.name.clone(),
             cell(&r.min, 2),
             cell(&r.max, 1),
             count(&r.lap),
             count(&r.opt),
             if r.ms.is_empty() { "—".into() } else { format!("{:.1}", mean(&r.ms)) },
-            r.paper
-        );
+            r.paper.clone(),
+        ]);
     }
+    out.table(table);
     let find = |n: &str| rows.iter().find(|r| r.name == n).expect("row");
     let smart_ms = mean(&find("smart (min sine)").ms);
     let opt_ms = mean(&find("opt, `sine`").ms);
@@ -241,7 +250,7 @@ pub(crate) fn freitag_table_1(out: &mut String) {
 
 /// Where `sine` + `opt` stops: per seed, the worst element after 3 passes and after 10
 /// passes of 20 iterations per call, with how many of its nodes are fixed.
-fn freitag_boundary(out: &mut String, meshes: &[Mesh]) {
+fn freitag_boundary(out: &mut Report, meshes: &[Mesh]) {
     let o = opts(Strategy::Opt, Order::Input).with_smart_measure(Measure::MinSine);
     let worst = |m: &Mesh| {
         let mut w = (f64::INFINITY, 0usize);
@@ -259,8 +268,10 @@ fn freitag_boundary(out: &mut String, meshes: &[Mesh]) {
         out,
         "Where `sine` + `opt` stops, per seed: the min angle after 3 passes (3 iterations per call, as above) and \
          after 10 passes of 20 iterations per call, with the number of fixed (boundary) nodes of the element that \
-         has it.\n\n| seed | original | 3 passes: min angle (fixed nodes of its element) | 10 passes × 20 iterations |\n|---|---|---|---|"
+         has it.\n"
     );
+    let mut table =
+        Table::new(&["seed", "original", "3 passes: min angle (fixed nodes of its element)", "10 passes × 20 iterations"]);
     let (mut at_boundary, mut longer) = (0, Vec::new());
     for (i, m) in meshes.iter().enumerate() {
         let a = run(m, ObjectiveKind::Sine, o, 3, never);
@@ -269,8 +280,14 @@ fn freitag_boundary(out: &mut String, meshes: &[Mesh]) {
         let (wb, fb) = worst(&b.mesh);
         at_boundary += (fa >= 2) as usize;
         longer.push(wb);
-        let _ = writeln!(out, "| {} | {:.2} | {wa:.2} ({fa}) | {wb:.2} ({fb}) |", i + 1, mesh_stats(m).min_angle_deg);
+        table.row(vec![
+            (i + 1).to_string(),
+            format!("{:.2}", mesh_stats(m).min_angle_deg),
+            format!("{wa:.2} ({fa})"),
+            format!("{wb:.2} ({fb})"),
+        ]);
     }
+    out.table(table);
     let _ = writeln!(
         out,
         "\nOur rand2D meshes differ from Freitag's one mesh (her original min angle 0.714°; ours 0.13°–0.84°), and \
@@ -287,8 +304,8 @@ fn freitag_boundary(out: &mut String, meshes: &[Mesh]) {
 
 /// Why the new objective does (not) beat the max-min angle rows: it minimises Σ(1−α)²
 /// plus a penalty, an average, and α is not the min angle.
-fn freitag_why_new(out: &mut String, meshes: &[Mesh]) {
-    let mut lines = Vec::new();
+fn freitag_why_new(out: &mut Report, meshes: &[Mesh]) {
+    let mut table = Table::new(&["method", "min α", "mean α", "min angle", "angles < 18° (%)"]);
     for (label, kind, o) in [
         (
             "opt, `sine`",
@@ -312,19 +329,19 @@ fn freitag_why_new(out: &mut String, meshes: &[Mesh]) {
             let total: u64 = s.angle_histogram_6deg.iter().sum();
             small.push(100.0 * below as f64 / total as f64);
         }
-        lines.push(format!(
-            "| {label} | {} | {} | {} | {} |",
+        table.row(vec![
+            label.to_string(),
             mean_range(&minq, 3),
             mean_range(&meanq, 4),
             mean_range(&mina, 2),
-            mean_range(&small, 2)
-        ));
+            mean_range(&small, 2),
+        ]);
     }
     let _ = writeln!(
         out,
         "What each objective optimises, after 3 passes (same meshes): the smallest and mean α, the min angle, and \
-         the share of corner angles below 18°.\n\n\
-         | method | min α | mean α | min angle | angles < 18° (%) |\n|---|---|---|---|---|\n{}\n",
-        lines.join("\n")
+         the share of corner angles below 18°.\n"
     );
+    out.table(table);
+    let _ = writeln!(out);
 }

@@ -9,8 +9,10 @@ use smoothlab::objective::{tet_objective, ObjectiveKind};
 use smoothlab::quality::MeshStats;
 use smoothlab::smooth::{Order, SmoothOptions, Strategy};
 use smoothlab::volume::{volume_stats, VolumeMesh};
+use smoothlab_page::lab::tour::measured::Table;
 
 use crate::common::{clock, meshes_dir, opts, untangle_opts};
+use crate::report::Report;
 use crate::tetrahedra::run_volume;
 
 /// Mesquite's figures on its tangled 3D files (`../shared/meshes/README.md`: Mesquite
@@ -43,11 +45,11 @@ fn to_valid(mesh: &VolumeMesh, kind: ObjectiveKind, o: SmoothOptions, max: u32) 
     (None, ms, m)
 }
 
-pub(crate) fn hexahedra(out: &mut String) {
+pub(crate) fn hexahedra(out: &mut Report) {
+    out.section(11, "Hexahedra, wedges and pyramids (Knupp 1999; Mesquite's 3D files)");
     let _ = writeln!(
         out,
-        "## 11. Hexahedra, wedges and pyramids (Knupp 1999; Mesquite's 3D files)\n\n\
-         Every element measured by its corners' Jacobians against its kind's ideal (`docs/formulas.md` §9); an element \
+        "Every element measured by its corners' Jacobians against its kind's ideal (`docs/formulas.md` §9); an element \
          is inverted unless its Jacobian determinant is positive *everywhere* in it, decided for certain by its \
          Bernstein coefficients (\"inside\": inverted though every corner is positive). `new` + `rules` are the \
          defaults (passes until 0 inverted, at most 10; the time is the smoothing passes' wall clock); `old` + `opt` \
@@ -59,21 +61,34 @@ pub(crate) fn hexahedra(out: &mut String) {
         let _ = writeln!(out, "*Skipped: the external Mesquite meshes (`../shared/meshes/mesquite3d`) were not found.*\n");
         return;
     }
-    let _ = writeln!(
-        out,
-        "| mesh | elements | free nodes | inverted at start (inside) | `new`+`rules`: passes to 0, time | min SJ, mean ratio min / mean | then 10 passes: min SJ | `old`+`opt` 10 passes: inverted, min SJ | Mesquite |"
-    );
-    let _ = writeln!(out, "|---|---|---|---|---|---|---|---|---|");
+    let mut table = Table::new(&[
+        "mesh",
+        "elements",
+        "free nodes",
+        "inverted at start (inside)",
+        "`new`+`rules`: passes to 0, time",
+        "min SJ, mean ratio min / mean",
+        "then 10 passes: min SJ",
+        "`old`+`opt` 10 passes: inverted, min SJ",
+        "Mesquite",
+    ]);
     let (mut reached, mut worst_passes, mut pave1_ms, mut old_left) = (0, 0, None, Vec::new());
     for (file, mesquite) in MESQUITE_3D {
+        // a file that cannot be smoothed: its name, why, and Mesquite's figures
+        let unread = |why: String| {
+            let mut cells = vec![format!("`{file}`"), why];
+            cells.resize(8, String::new());
+            cells.push(mesquite.to_string());
+            cells
+        };
         let mesh = match io::read_model_path(&root.join(file)) {
             Ok(Model::Volume(v)) => v,
             Ok(_) => {
-                let _ = writeln!(out, "| `{file}` | not read as a volume | | | | | | | {mesquite} |");
+                table.row(unread("not read as a volume".into()));
                 continue;
             }
             Err(e) => {
-                let _ = writeln!(out, "| `{file}` | cannot be read: {e} | | | | | | | {mesquite} |");
+                table.row(unread(format!("cannot be read: {e}")));
                 continue;
             }
         };
@@ -97,22 +112,19 @@ pub(crate) fn hexahedra(out: &mut String) {
             old_left.push(format!("`{}`", file.rsplit('/').next().unwrap_or(file)));
         }
         let sj = |s: &MeshStats| s.solid.as_ref().map_or(f64::NAN, |v| v.min_scaled_jacobian);
-        let _ = writeln!(
-            out,
-            "| `{file}` | {} | {} | {} ({}) | {} | {:.3}, {:.3} / {:.3} | {:.3} | {}, {:.3} | {mesquite} |",
+        table.row(vec![
+            format!("`{file}`"),
             kinds,
-            mesh.free_count(),
-            s0.inverted,
-            v0.inverted_inside,
+            mesh.free_count().to_string(),
+            format!("{} ({})", s0.inverted, v0.inverted_inside),
             passes.map_or(format!("not in 10 ({} left), {ms:.0} ms", s.inverted), |p| format!("{p}, {ms:.0} ms")),
-            sj(&s),
-            s.min_quality,
-            s.mean_quality,
-            sj(&s10),
-            so.inverted,
-            sj(&so),
-        );
+            format!("{:.3}, {:.3} / {:.3}", sj(&s), s.min_quality, s.mean_quality),
+            format!("{:.3}", sj(&s10)),
+            format!("{}, {:.3}", so.inverted, sj(&so)),
+            mesquite.to_string(),
+        ]);
     }
+    out.table(table);
     let _ = writeln!(
         out,
         "\nWith the defaults {reached} of the {} files end with 0 inverted (certain: no element folded anywhere inside), \
@@ -132,12 +144,12 @@ pub(crate) fn hexahedra(out: &mut String) {
 }
 
 /// Knupp's random grids in hexahedra: a block's free nodes moved at random.
-fn knupp_hex_grids(out: &mut String) {
+fn knupp_hex_grids(out: &mut Report) {
     let block = hex_grid(&HexBlock::cube(8)).expect("hex grid");
+    out.subsection("Knupp's random hexahedral grids");
     let _ = writeln!(
         out,
-        "### Knupp's random hexahedral grids\n\n\
-         `generate hexgrid --cells 8` ({} nodes, {} hexahedra, {} free) with every free node moved at random within a \
+        "`generate hexgrid --cells 8` ({} nodes, {} hexahedra, {} free) with every free node moved at random within a \
          ball of 0.6 mean edge lengths (`perturb`, seeds 1–5), as Knupp tangles his grids. `new` + `rules` (the \
          defaults, 3 passes) against Knupp's procedure: `untangle` by optimization until no element is inverted (at \
          most 10 passes), then 3 passes of `condition`. \"min SJ\" is the smallest corner scaled Jacobian at the end.\n",
@@ -145,8 +157,12 @@ fn knupp_hex_grids(out: &mut String) {
         block.element_count(),
         block.free_count()
     );
-    let _ = writeln!(out, "| seed | inverted at start (inside) | `new`+`rules`: inverted after 1/2/3 passes, min SJ, time | `untangle`→`condition`: passes to 0, min SJ |");
-    let _ = writeln!(out, "|---|---|---|---|");
+    let mut table = Table::new(&[
+        "seed",
+        "inverted at start (inside)",
+        "`new`+`rules`: inverted after 1/2/3 passes, min SJ, time",
+        "`untangle`→`condition`: passes to 0, min SJ",
+    ]);
     let sj = |s: &MeshStats| s.solid.as_ref().map_or(f64::NAN, |v| v.min_scaled_jacobian);
     for seed in 1..=5 {
         let tangled = perturb_volume(&block, 0.6, seed).expect("perturb");
@@ -156,16 +172,13 @@ fn knupp_hex_grids(out: &mut String) {
         let ms: f64 = rec.iter().map(|r| r.elapsed_ms).sum();
         let (valid, _, m) = to_valid(&tangled, ObjectiveKind::Untangle, untangle_opts(), 10);
         let (knupp, _) = run_volume(&m, ObjectiveKind::Condition, opts(Strategy::Opt, Order::Input), 3);
-        let _ = writeln!(
-            out,
-            "| {seed} | {} ({}) | {}, {:.3}, {ms:.0} ms | {}, {:.3} |",
-            s0.inverted,
-            s0.solid.as_ref().map_or(0, |v| v.inverted_inside),
-            per.join("/"),
-            sj(&volume_stats(&new)),
-            valid.map_or("not in 10".to_string(), |p| p.to_string()),
-            sj(&volume_stats(&knupp)),
-        );
+        table.row(vec![
+            seed.to_string(),
+            format!("{} ({})", s0.inverted, s0.solid.as_ref().map_or(0, |v| v.inverted_inside)),
+            format!("{}, {:.3}, {ms:.0} ms", per.join("/"), sj(&volume_stats(&new))),
+            format!("{}, {:.3}", valid.map_or("not in 10".to_string(), |p| p.to_string()), sj(&volume_stats(&knupp))),
+        ]);
     }
+    out.table(table);
     let _ = writeln!(out);
 }

@@ -7,8 +7,10 @@ use smoothlab::objective::ObjectiveKind;
 use smoothlab::quality::{corner_edges, mesh_stats};
 use smoothlab::smooth::{Order, Smoother, Strategy};
 use smoothlab::Mesh;
+use smoothlab_page::lab::tour::measured::Table;
 
 use crate::common::{clock, fmt_kappa, kappa, never, opts, run, untangle_opts, untangled, NEW_ANGLE};
+use crate::report::Report;
 
 /// A 10 × 10 grid with every interior node placed uniformly at random in the unit square
 /// (the page's `grid-random-tangled` sample is seed 1 of the quads).
@@ -45,23 +47,28 @@ fn flat_count(m: &Mesh) -> usize {
     worst.iter().filter(|&&w| w <= 0.0 && w >= -1e-6 * scale).count()
 }
 
-pub(crate) fn knupp_figure_1(out: &mut String) {
+pub(crate) fn knupp_figure_1(out: &mut Report) {
     const MAX_UNTANGLE: u32 = 100;
+    out.section(4, "Knupp (1999), Fig. 1: random node positions, untangled, then optimised");
     let _ = writeln!(
         out,
-        "## 4. Knupp (1999), Fig. 1: random node positions, untangled, then optimised\n\n\
-         A 10 × 10 grid of the unit square (quads, or triangles), boundary fixed, every one of the 81 interior nodes \
+        "A 10 × 10 grid of the unit square (quads, or triangles), boundary fixed, every one of the 81 interior nodes \
          placed uniformly at random in the square (seeds 1–5). Stage 1: `untangle`, Knupp's Σ(|det| − det) in \
          Mesquite's form Σ(|det − β| − (det − β))² (β = 5% of the star's mean corner |det|), by optimization, input order, pass after pass until no element is inverted (at most {MAX_UNTANGLE}). Stage 2: \
          10 optimization passes of `condition` (Knupp's κ, 2-norm). For comparison, `new` + `rules` from the same \
          start. κ: worst and mean over the elements (∞ while any element is inverted). Knupp shows the picture only: \
          untangled, \"the overall quality still leaves much to be desired\", then much improved by κ.\n"
     );
-    let _ = writeln!(
-        out,
-        "| grid | seed | inverted at start | `untangle`: passes, inverted after (of which flat) | worst / mean κ after untangle | after `condition`: inverted, worst / mean κ | `new`+`rules`: passes to 0, worst / mean κ after 10 passes | `new` (angle design) + `rules`: passes to 0 |"
-    );
-    let _ = writeln!(out, "|---|---|---|---|---|---|---|---|");
+    let mut table = Table::new(&[
+        "grid",
+        "seed",
+        "inverted at start",
+        "`untangle`: passes, inverted after (of which flat)",
+        "worst / mean κ after untangle",
+        "after `condition`: inverted, worst / mean κ",
+        "`new`+`rules`: passes to 0, worst / mean κ after 10 passes",
+        "`new` (angle design) + `rules`: passes to 0",
+    ]);
     let (mut cases, mut unt_ok, mut new_ok, mut left, mut flat) = (0, 0, 0, 0, 0);
     let (mut knupp_ok, mut count_left) = (0, 0);
     let (mut new_max, mut angle_ok) = (0, 0);
@@ -92,23 +99,19 @@ pub(crate) fn knupp_figure_1(out: &mut String) {
             new_ok += new.passes_to_valid().is_some() as usize;
             left += unt.last_inverted(s0.inverted);
             flat += flat_count(&unt.mesh);
-            let _ = writeln!(
-                out,
-                "| {label} | {seed} | {} | {}, {} ({}) | {} / {} | {}, {} / {} | {new_valid}, {} / {} | {angle_valid} |",
-                s0.inverted,
-                unt.passes.len(),
-                unt.last_inverted(s0.inverted),
-                flat_count(&unt.mesh),
-                fmt_kappa(kw),
-                fmt_kappa(km),
-                mesh_stats(&cond.mesh).inverted,
-                fmt_kappa(cw),
-                fmt_kappa(cm),
-                fmt_kappa(nw),
-                fmt_kappa(nm),
-            );
+            table.row(vec![
+                label.to_string(),
+                seed.to_string(),
+                s0.inverted.to_string(),
+                format!("{}, {} ({})", unt.passes.len(), unt.last_inverted(s0.inverted), flat_count(&unt.mesh)),
+                format!("{} / {}", fmt_kappa(kw), fmt_kappa(km)),
+                format!("{}, {} / {}", mesh_stats(&cond.mesh).inverted, fmt_kappa(cw), fmt_kappa(cm)),
+                format!("{new_valid}, {} / {}", fmt_kappa(nw), fmt_kappa(nm)),
+                angle_valid,
+            ]);
         }
     }
+    out.table(table);
     let _ = writeln!(
         out,
         "\n`untangle` by node-by-node optimization untangled {unt_ok} of {cases} random grids within {MAX_UNTANGLE} \

@@ -7,8 +7,10 @@ use smoothlab::io;
 use smoothlab::objective::ObjectiveKind;
 use smoothlab::quality::mesh_stats;
 use smoothlab::smooth::{Order, Strategy};
+use smoothlab_page::lab::tour::measured::Table;
 
 use crate::common::{fmt_kappa, kappa, meshes_dir, never, opts, run, untangle_opts, untangled, Choice, NEW_ANGLE};
+use crate::report::Report;
 
 fn mesquite_files() -> Option<Vec<(String, PathBuf)>> {
     let root = meshes_dir().join("mesquite");
@@ -34,11 +36,11 @@ fn mesquite_files() -> Option<Vec<(String, PathBuf)>> {
     Some(files)
 }
 
-pub(crate) fn mesquite_tangled(out: &mut String) {
+pub(crate) fn mesquite_tangled(out: &mut Report) {
+    out.section(3, "Mesquite's tangled meshes");
     let _ = writeln!(
         out,
-        "## 3. Mesquite's tangled meshes\n\n\
-         Every file of Mesquite's `tris/tangled`, `quads/tangled` and `mixed/tangled` folders, plus \
+        "Every file of Mesquite's `tris/tangled`, `quads/tangled` and `mixed/tangled` folders, plus \
          `quads/untangled/shest_grid32.vtk` (which Mesquite's untangling test uses), with the files' `fixed` flags. \
          Three pipelines: `new` + `rules` with the defaults (the barrier penalty, priority order; passes until no \
          element is inverted, at most 10; the aim is ≤ 3), and the same with the first, angle design of the penalty; `untangle` (Knupp's objective in Mesquite's form, see §4) by optimization pass after pass until no element is inverted (at most 10), \
@@ -49,11 +51,16 @@ pub(crate) fn mesquite_tangled(out: &mut String) {
         let _ = writeln!(out, "*Skipped: the external Mesquite meshes (`../shared/meshes`) were not found.*\n");
         return;
     };
-    let _ = writeln!(
-        out,
-        "| mesh | elements | free nodes | inverted at start | `new`+`rules`: inverted after 1/2/3 passes, passes to 0 | the same with the angle design | `untangle`→`condition`: passes to 0, inverted after, max κ | `old`+`opt`: inverted after 3 / 10 passes |"
-    );
-    let _ = writeln!(out, "|---|---|---|---|---|---|---|---|");
+    let mut table = Table::new(&[
+        "mesh",
+        "elements",
+        "free nodes",
+        "inverted at start",
+        "`new`+`rules`: inverted after 1/2/3 passes, passes to 0",
+        "the same with the angle design",
+        "`untangle`→`condition`: passes to 0, inverted after, max κ",
+        "`old`+`opt`: inverted after 3 / 10 passes",
+    ]);
     let (mut tangled, mut done3, mut done3_angle) = (0, 0, 0);
     let mut unt_hybrid = None;
     let (mut unt_ok, mut unt_max) = (0, 0);
@@ -62,7 +69,9 @@ pub(crate) fn mesquite_tangled(out: &mut String) {
         let mesh = match io::read_path(&path) {
             Ok(m) => m,
             Err(e) => {
-                let _ = writeln!(out, "| {name} | cannot be read: {e} | | | | | | |");
+                let mut cells = vec![name.clone(), format!("cannot be read: {e}")];
+                cells.resize(8, String::new());
+                table.row(cells);
                 continue;
             }
         };
@@ -108,12 +117,18 @@ pub(crate) fn mesquite_tangled(out: &mut String) {
         };
         let old = run(&mesh, ObjectiveKind::Old, opts(Strategy::Opt, Order::Input), 10, never);
         let old_cell = format!("{} / {}", old.passes[2].after.inverted, old.passes[9].after.inverted);
-        let _ = writeln!(
-            out,
-            "| {name} | {} | {} | {} | {new_cell} | {angle_cell} | {unt_cell} | {old_cell} |",
-            s0.elements, s0.free_nodes, s0.inverted
-        );
+        table.row(vec![
+            name.clone(),
+            s0.elements.to_string(),
+            s0.free_nodes.to_string(),
+            s0.inverted.to_string(),
+            new_cell,
+            angle_cell,
+            unt_cell,
+            old_cell,
+        ]);
     }
+    out.table(table);
     let _ = writeln!(
         out,
         "\nOf the {tangled} files that start with inverted elements, `new` + `rules` with the defaults leaves none \

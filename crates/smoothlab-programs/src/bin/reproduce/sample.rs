@@ -6,26 +6,37 @@ use smoothlab::generate::{perturb, plate, PlateKind};
 use smoothlab::objective::ObjectiveKind;
 use smoothlab::quality::mesh_stats;
 use smoothlab::smooth::{Order, Strategy};
+use smoothlab_page::lab::tour::measured::Table;
 
 use crate::common::{never, opts, run};
+use crate::report::Report;
 
 /// Old against new on the page's tangled plates (its resolution and perturbation), many
 /// seeds: the sample the page opens on is chosen by this table, not by one lucky seed.
-pub(crate) fn default_sample(out: &mut String) {
+pub(crate) fn default_sample(out: &mut Report) {
     use smoothlab_page::lab::sample::{Sample, PLATE_RESOLUTION, TANGLE_AMOUNT};
     const SEEDS: u64 = 20;
+    out.section(8, "The page's default sample");
     let _ = writeln!(
         out,
-        "## 8. The page's default sample\n\n\
-         The page compares the old objective (max-min α/β) with the new one, both with `rules` in priority order, \
+        "The page compares the old objective (max-min α/β) with the new one, both with `rules` in priority order, \
          3 passes. Its tangled plates (resolution {PLATE_RESOLUTION}, every free node moved by up to \
          {TANGLE_AMOUNT} mean edge lengths) over seeds 1–{SEEDS}: in how many seeds each side ends with no inverted \
          element, in how many the new side has the larger smallest angle and the better mean quality, and the \
          new side's lead in smallest angle (new − old, degrees; over the seeds where both untangle). The page \
-         opens on `{}`, seed 1.\n\n\
-         | plate | untangled: old | new | new has the larger min angle | new has the better mean quality | lead in min angle: median | smallest | largest |\n|---|---|---|---|---|---|---|---|",
+         opens on `{}`, seed 1.\n",
         serde_json::to_value(Sample::DEFAULT).expect("name").as_str().expect("a name")
     );
+    let mut table = Table::new(&[
+        "plate",
+        "untangled: old",
+        "new",
+        "new has the larger min angle",
+        "new has the better mean quality",
+        "lead in min angle: median",
+        "smallest",
+        "largest",
+    ]);
     for (name, kind) in [("tri", PlateKind::Tri), ("quad", PlateKind::Quad), ("mixed", PlateKind::Mixed)] {
         let base = plate(kind, 1, PLATE_RESOLUTION).expect("plate");
         let (mut untangled, mut ahead, mut better_mean, mut lead) = ([0; 2], 0, 0, vec![]);
@@ -43,15 +54,18 @@ pub(crate) fn default_sample(out: &mut String) {
         }
         lead.sort_by(f64::total_cmp);
         let median = if lead.is_empty() { f64::NAN } else { 0.5 * (lead[(lead.len() - 1) / 2] + lead[lead.len() / 2]) };
-        let _ = writeln!(
-            out,
-            "| {name} | {} of {SEEDS} | {} of {SEEDS} | {ahead} of {SEEDS} | {better_mean} of {SEEDS} | {median:+.2} | {:+.2} | {:+.2} |",
-            untangled[0],
-            untangled[1],
-            lead.first().copied().unwrap_or(f64::NAN),
-            lead.last().copied().unwrap_or(f64::NAN),
-        );
+        table.row(vec![
+            name.to_string(),
+            format!("{} of {SEEDS}", untangled[0]),
+            format!("{} of {SEEDS}", untangled[1]),
+            format!("{ahead} of {SEEDS}"),
+            format!("{better_mean} of {SEEDS}"),
+            format!("{median:+.2}"),
+            format!("{:+.2}", lead.first().copied().unwrap_or(f64::NAN)),
+            format!("{:+.2}", lead.last().copied().unwrap_or(f64::NAN)),
+        ]);
     }
+    out.table(table);
     let _ = writeln!(
         out,
         "\nOn triangles the two objectives end level in the smallest angle (the worst triangles of these plates have \

@@ -9,9 +9,11 @@ use smoothlab::objective::{objective_with, ObjectiveKind, Penalty};
 use smoothlab::quality::{mesh_stats, MeshStats};
 use smoothlab::smooth::{Order, PassRecord, SmoothOptions, Strategy};
 use smoothlab::surface::{Surface, SurfaceSmoother};
+use smoothlab_page::lab::tour::measured::Table;
 
 use crate::chen::PLATES;
 use crate::common::{clock, meshes_dir, opts, run};
+use crate::report::Report;
 
 /// `passes` passes of `kind` with `opts` over a copy of `s`, stopping after the first pass
 /// that leaves no element inverted when `stop_untangled`.
@@ -38,37 +40,38 @@ fn run_surface(
     (t, records)
 }
 
-fn surface_row(name: &str, s: &MeshStats, ms: Option<f64>) -> String {
-    format!(
-        "| {name} | {} | {:.2} | {:.2} | {:.4} | {:.4} | {:.1e} | {} |",
-        s.inverted,
-        s.min_angle_deg,
-        s.max_angle_deg,
-        s.min_quality,
-        s.mean_quality,
-        s.max_distance_from_surface.unwrap_or(f64::NAN),
-        ms.map_or("".into(), |m| format!("{m:.0}"))
-    )
+fn surface_row(name: &str, s: &MeshStats, ms: Option<f64>) -> Vec<String> {
+    vec![
+        name.to_string(),
+        s.inverted.to_string(),
+        format!("{:.2}", s.min_angle_deg),
+        format!("{:.2}", s.max_angle_deg),
+        format!("{:.4}", s.min_quality),
+        format!("{:.4}", s.mean_quality),
+        format!("{:.1e}", s.max_distance_from_surface.unwrap_or(f64::NAN)),
+        ms.map_or("".into(), |m| format!("{m:.0}")),
+    ]
 }
 
-pub(crate) fn surfaces(out: &mut String) {
+pub(crate) fn surfaces(out: &mut Report) {
+    out.section(9, "Surface meshes (Chen, Tristano & Kwok 2003, §5, Figs. 18–19)");
     let _ = writeln!(
         out,
-        "## 9. Surface meshes (Chen, Tristano & Kwok 2003, §5, Figs. 18–19)\n\n\
-         A surface's free node is smoothed in its tangent plane: its star is flattened there, every strategy and \
+        "A surface's free node is smoothed in its tangent plane: its star is flattened there, every strategy and \
          objective runs on it as on a planar star, and the new position is projected back onto the surface as it was \
          loaded (the file's elements: flat triangles, or a quadratic element's curved patch; a tangled file's: the \
          surface fitted through its nodes, `docs/formulas.md` §7), or onto the exact surface of a generated sample. Every element \
          is measured in its own plane; an element facing against the surface counts as inverted. \
          \"distance\" is the largest distance of a node from that surface after smoothing.\n"
     );
+    out.subsection("Mesquite's surface meshes");
     let _ = writeln!(
         out,
-        "### Mesquite's surface meshes\n\n\
-         3 passes of `new` + `rules` (priority order) and of `old` + `opt`, with the files' `fixed` flags (and \
-         their feature curves fixed: none of these has one).\n\n\
-         | mesh | inverted | min angle | max angle | min α/β | mean α/β | distance | ms |\n|---|---|---|---|---|---|---|---|"
+        "3 passes of `new` + `rules` (priority order) and of `old` + `opt`, with the files' `fixed` flags (and \
+         their feature curves fixed: none of these has one).\n"
     );
+    let mut table =
+        Table::new(&["mesh", "inverted", "min angle", "max angle", "min α/β", "mean α/β", "distance", "ms"]);
     let root = meshes_dir().join("mesquite");
     let files = [
         "quads/untangled/quads_on_sphere_529.vtk",
@@ -77,44 +80,55 @@ pub(crate) fn surfaces(out: &mut String) {
         "tris/untangled/Mesquite_geo_10242.vtk",
     ];
     if !root.is_dir() {
+        out.table(table);
         let _ = writeln!(out, "\n*Skipped: the external Mesquite meshes (`../shared/meshes`) were not found.*\n");
     } else {
         for f in files {
             let model = match io::read_model_path(&root.join(f)) {
                 Ok(m) => m,
                 Err(e) => {
-                    let _ = writeln!(out, "| {f} | could not be read: {e} | | | | | | |");
+                    let mut cells = vec![f.to_string(), format!("could not be read: {e}")];
+                    cells.resize(8, String::new());
+                    table.row(cells);
                     continue;
                 }
             };
             let Model::Surface(s) = model else {
-                let _ = writeln!(out, "| {f} | read as planar | | | | | | |");
+                let mut cells = vec![f.to_string(), "read as planar".to_string()];
+                cells.resize(8, String::new());
+                table.row(cells);
                 continue;
             };
-            let _ = writeln!(out, "{}", surface_row(&format!("`{f}` as loaded"), &s.stats(), None));
+            table.row(surface_row(&format!("`{f}` as loaded"), &s.stats(), None));
             for (kind, strategy) in [(ObjectiveKind::New, Strategy::Rules), (ObjectiveKind::Old, Strategy::Opt)] {
                 let order = if strategy == Strategy::Rules { Order::Priority } else { Order::Input };
                 let (t, r) = run_surface(&s, kind, opts(strategy, order), 3, false);
                 let ms: f64 = r.iter().map(|p| p.elapsed_ms).sum();
-                let _ = writeln!(
-                    out,
-                    "{}",
-                    surface_row(&format!("{} + {}", kind.name(), strategy.name()), &t.stats(), Some(ms))
-                );
+                table.row(surface_row(&format!("{} + {}", kind.name(), strategy.name()), &t.stats(), Some(ms)));
             }
         }
+        out.table(table);
         let _ = writeln!(out);
     }
+    out.subsection("Tangled surface samples");
     let _ = writeln!(
         out,
-        "### Tangled surface samples\n\n\
-         Each sample (`smoothlab generate sphere|cylinder|torus --kind K --order O`, resolution 6: the torus 24 × 72 \
+        "Each sample (`smoothlab generate sphere|cylinder|torus --kind K --order O`, resolution 6: the torus 24 × 72 \
          cells) perturbed in its tangent planes by 0.6 and by 1.0 mean edge lengths (seeds 1–3), then `new` + `rules` \
          (priority order) pass after pass until no element is inverted, at most 10. The cylinder's rims are feature \
-         curves (fixed). Means over the 6 runs of each row; \"passes\" is the largest number any run needed.\n\n\
-         | sample | nodes | inverted before | untangled | passes | min angle | max angle | mean α/β | distance |\n\
-         |---|---|---|---|---|---|---|---|---|"
+         curves (fixed). Means over the 6 runs of each row; \"passes\" is the largest number any run needed.\n"
     );
+    let mut table = Table::new(&[
+        "sample",
+        "nodes",
+        "inverted before",
+        "untangled",
+        "passes",
+        "min angle",
+        "max angle",
+        "mean α/β",
+        "distance",
+    ]);
     for shape in SurfaceShape::ALL {
         for kind in SurfaceKind::ALL {
             for order in [1u8, 2] {
@@ -138,21 +152,21 @@ pub(crate) fn surfaces(out: &mut String) {
                     }
                 }
                 let k = runs as f64;
-                let _ = writeln!(
-                    out,
-                    "| {} {} order {order} | {} | {:.1} | {done} of {runs} | {most} | {:.2} | {:.2} | {:.4} | {:.1e} |",
-                    shape.name(),
-                    kind.name(),
-                    base.node_count(),
-                    inverted as f64 / k,
-                    lo / k,
-                    hi / k,
-                    q / k,
-                    far
-                );
+                table.row(vec![
+                    format!("{} {} order {order}", shape.name(), kind.name()),
+                    base.node_count().to_string(),
+                    format!("{:.1}", inverted as f64 / k),
+                    format!("{done} of {runs}"),
+                    most.to_string(),
+                    format!("{:.2}", lo / k),
+                    format!("{:.2}", hi / k),
+                    format!("{:.4}", q / k),
+                    format!("{far:.1e}"),
+                ]);
             }
         }
     }
+    out.table(table);
     tangled_from_files(out);
     let _ = writeln!(
         out,
@@ -168,14 +182,24 @@ pub(crate) fn surfaces(out: &mut String) {
 /// Tangled surfaces as a user has them: written to a file and read back, so the
 /// reference is fitted through the nodes (`docs/formulas.md` §7), not the generator's
 /// exact surface; beside the planar plates tangled by the same amounts.
-fn tangled_from_files(out: &mut String) {
+fn tangled_from_files(out: &mut Report) {
     const SEEDS: [u64; 3] = [1, 2, 3];
     const AMOUNTS: [f64; 3] = [0.5, 1.0, 1.5];
     const PASSES: u32 = 3;
+    const COLUMNS: [&str; 8] = [
+        "mesh",
+        "amount",
+        "nodes",
+        "inverted: before → pass 1 → 2 → 3",
+        "untangled",
+        "distance",
+        "min angle",
+        "max angle",
+    ];
+    out.subsection("Tangled surfaces read from a file");
     let _ = writeln!(
         out,
-        "### Tangled surfaces read from a file\n\n\
-         A tangled file's elements fold, so it is not its own reference: smoothlab fits a surface through its nodes \
+        "A tangled file's elements fold, so it is not its own reference: smoothlab fits a surface through its nodes \
          (`docs/formulas.md` §7). Each sample (`smoothlab generate sphere|torus|cylinder --kind K --order O`, \
          resolution 6; the sphere and the cylinder of radius 1, the torus of radii 1 and 0.3) perturbed in its \
          tangent planes by {} mean edge lengths (seeds {}), written as `.vtk` (its fixed flags with it: the \
@@ -184,9 +208,7 @@ fn tangled_from_files(out: &mut String) {
          comparison. \"inverted\": the mean over the seeds before smoothing and after each pass; \"untangled\": the \
          seeds with none inverted after pass {PASSES}; \"distance\": the largest distance of a node from the exact \
          surface after the last pass (the generator's sphere, torus or capped cylinder; the reference the smoother \
-         saw was the fitted one); angles over the seeds after the last pass.\n\n\
-         | mesh | amount | nodes | inverted: before → pass 1 → 2 → 3 | untangled | distance | min angle | max angle |\n\
-         |---|---|---|---|---|---|---|---|",
+         saw was the fitted one); angles over the seeds after the last pass.\n",
         AMOUNTS.map(|a| a.to_string()).join(", "),
         SEEDS.map(|a| a.to_string()).join(", ")
     );
@@ -205,10 +227,19 @@ fn tangled_from_files(out: &mut String) {
         };
         let lo = runs.iter().map(|r| r.2).fold(f64::INFINITY, f64::min);
         let hi = runs.iter().map(|r| r.3).fold(0.0, f64::max);
-        format!("| {name} | {amount} | {nodes} | {per_pass} | {untangled} of {} | {far} | {lo:.2} | {hi:.2} |", runs.len())
+        vec![
+            name.to_string(),
+            amount.to_string(),
+            nodes.to_string(),
+            per_pass,
+            format!("{untangled} of {}", runs.len()),
+            far,
+            format!("{lo:.2}"),
+            format!("{hi:.2}"),
+        ]
     };
     // a tangled sample written in `format` and read back, smoothed: one row per amount
-    let from_file = |out: &mut String, format: io::Format, orders: &[u8], amounts: &[f64]| {
+    let from_file = |table: &mut Table, format: io::Format, orders: &[u8], amounts: &[f64]| {
         for shape in SurfaceShape::ALL {
             for kind in SurfaceKind::ALL {
                 for &order in orders {
@@ -245,13 +276,14 @@ fn tangled_from_files(out: &mut String) {
                             })
                             .collect();
                         let name = format!("{} {} order {order}", shape.name(), kind.name());
-                        let _ = writeln!(out, "{}", row(&name, amount, base.node_count(), &runs));
+                        table.row(row(&name, amount, base.node_count(), &runs));
                     }
                 }
             }
         }
     };
-    from_file(out, io::Format::Vtk, &[1, 2], &AMOUNTS);
+    let mut table = Table::new(&COLUMNS);
+    from_file(&mut table, io::Format::Vtk, &[1, 2], &AMOUNTS);
     for (label, kind, order) in PLATES {
         let base = plate(kind, order, 4).expect("plate");
         for amount in AMOUNTS {
@@ -265,19 +297,20 @@ fn tangled_from_files(out: &mut String) {
                     (inverted, None, last.after.min_angle_deg, last.after.max_angle_deg)
                 })
                 .collect();
-            let _ = writeln!(out, "{}", row(&format!("plate {label}"), amount, base.node_count(), &runs));
+            table.row(row(&format!("plate {label}"), amount, base.node_count(), &runs));
         }
     }
+    out.table(table);
     let _ = writeln!(
         out,
         "\nThe same from `.off`, which keeps no fixed flags (linear elements, 1.0 and 1.5 edge lengths): a \
          tangled file's angles are the tangle's, so without flags it has no feature curves and is fitted as one \
          smooth surface (`docs/formulas.md` §7). The sphere and the torus have none to lose; the cylinder's \
          rims are smoothed over (their nodes free, the fits beside a rim spanning the cap and the side: the \
-         distance below), and an element by a rim may stay inverted. Keep the flags (`.vtk`, `.msh`) for a tangled surface with creases.\n\n\
-         | mesh | amount | nodes | inverted: before → pass 1 → 2 → 3 | untangled | distance | min angle | max angle |\n\
-         |---|---|---|---|---|---|---|---|"
+         distance below), and an element by a rim may stay inverted. Keep the flags (`.vtk`, `.msh`) for a tangled surface with creases.\n"
     );
-    from_file(out, io::Format::Off, &[1], &AMOUNTS[1..]);
+    let mut table = Table::new(&COLUMNS);
+    from_file(&mut table, io::Format::Off, &[1], &AMOUNTS[1..]);
+    out.table(table);
     let _ = writeln!(out);
 }

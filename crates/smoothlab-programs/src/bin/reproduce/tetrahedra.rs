@@ -6,9 +6,11 @@ use smoothlab::generate::{perturb_volume, rand3d, tet_cube, RAND3D_POINTS};
 use smoothlab::objective::{tet_objective, ObjectiveKind};
 use smoothlab::smooth::{Measure, Order, PassRecord, SmoothOptions, Strategy};
 use smoothlab::volume::{smooth_volume, volume_stats, VolumeMesh};
+use smoothlab_page::lab::tour::measured::Table;
 
 use crate::common::{clock, mean, mean_range, opts, untangle_opts};
 use crate::freitag::Row;
+use crate::report::Report;
 
 /// Freitag's Table 2 (rand3D) as our copy of the paper prints it: (row, min dihedral,
 /// max dihedral, Laplacian, optimization). The original mesh's row is lost (its max
@@ -46,7 +48,7 @@ pub(crate) fn run_volume(mesh: &VolumeMesh, kind: ObjectiveKind, o: SmoothOption
     (m, records)
 }
 
-pub(crate) fn freitag_table_2(out: &mut String) {
+pub(crate) fn freitag_table_2(out: &mut Report) {
     const SEEDS: [u64; 5] = [1, 2, 3, 4, 5];
     let meshes: Vec<VolumeMesh> = SEEDS.iter().map(|&s| rand3d(RAND3D_POINTS, s).expect("rand3d")).collect();
     let tets: Vec<f64> = meshes.iter().map(|m| m.element_count() as f64).collect();
@@ -117,10 +119,10 @@ pub(crate) fn freitag_table_2(out: &mut String) {
         rows.push(row);
     }
     let smart_ms = mean(&rows.iter().find(|r| r.name == "smart (min sine)").expect("row").ms);
+    out.section(10, "Freitag (1997), Table 2: rand3D");
     let _ = writeln!(
         out,
-        "## 10. Freitag (1997), Table 2: rand3D\n\n\
-         `smoothlab generate rand3d` for seeds 1–5: {RAND3D_POINTS} points in the unit cube — the corners, a jittered \
+        "`smoothlab generate rand3d` for seeds 1–5: {RAND3D_POINTS} points in the unit cube — the corners, a jittered \
          lattice of 5 cells a side on the edges and faces (152 points) and {free} random interior points, which \
          matches Freitag's count of 2808 Laplacian visits in 3 passes (936 a pass) — joined by their Delaunay \
          tetrahedralization and swapped by the max-min dihedral angle criterion, as she did ({:.0} tetrahedra on \
@@ -135,8 +137,16 @@ pub(crate) fn freitag_table_2(out: &mut String) {
         tets.iter().copied().fold(f64::INFINITY, f64::min),
         tets.iter().copied().fold(0.0, f64::max),
     );
-    let _ = writeln!(out, "| method | min dihedral | max dihedral | Laplacian moves | opt. calls | time ms (3 passes) | ratio | paper: min / max (lap / opt) |");
-    let _ = writeln!(out, "|---|---|---|---|---|---|---|---|");
+    let mut table = Table::new(&[
+        "method",
+        "min dihedral",
+        "max dihedral",
+        "Laplacian moves",
+        "opt. calls",
+        "time ms (3 passes)",
+        "ratio",
+        "paper: min / max (lap / opt)",
+    ]);
     for r in &rows {
         let cell = |v: &Vec<f64>, d: usize| if v.is_empty() { "—".to_string() } else { mean_range(v, d) };
         let count = |v: &Vec<f64>| if v.is_empty() { "—".to_string() } else { format!("{:.0}", mean(v)) };
@@ -145,17 +155,18 @@ pub(crate) fn freitag_table_2(out: &mut String) {
         } else {
             (format!("{:.1}", mean(&r.ms)), format!("{:.1}", mean(&r.ms) / smart_ms))
         };
-        let _ = writeln!(
-            out,
-            "| {} | {} | {} | {} | {} | {ms} | {ratio} | {} |",
-            r.name,
+        table.row(vec![
+            r.name.clone(),
             cell(&r.min, 2),
             cell(&r.max, 1),
             count(&r.lap),
             count(&r.opt),
-            r.paper
-        );
+            ms,
+            ratio,
+            r.paper.clone(),
+        ]);
     }
+    out.table(table);
     let left: usize = inverted.iter().map(|(_, n)| n).sum();
     let plain: usize = inverted.iter().filter(|(n, _)| n == "laplace (plain)").map(|(_, n)| n).sum();
     let find = |n: &str| rows.iter().find(|r| r.name == n).expect("row");
@@ -178,12 +189,12 @@ pub(crate) fn freitag_table_2(out: &mut String) {
 
 /// Knupp (1999), §4 in 3D: a structured cube of tetrahedra with its interior nodes moved at
 /// random, untangled then improved by the condition number; and Chen's one process.
-fn knupp_tetrahedra(out: &mut String) {
+fn knupp_tetrahedra(out: &mut Report) {
     let cube = tet_cube(8).expect("cube");
+    out.subsection("Knupp's random tetrahedral meshes");
     let _ = writeln!(
         out,
-        "### Knupp's random tetrahedral meshes\n\n\
-         `generate cube --cells 8` ({} nodes, {} tetrahedra, {} interior) with every interior node moved at random \
+        "`generate cube --cells 8` ({} nodes, {} tetrahedra, {} interior) with every interior node moved at random \
          within a ball of 0.8 mean edge lengths (`perturb`, seeds 1–3), as Knupp tangles his meshes. Knupp's \
          procedure: `untangle` with `opt` until no tetrahedron is inverted (at most 10 passes), then 3 passes of \
          `condition` (Σκ², κ with the equilateral-tetrahedron weight); against Chen's one process carried to \
@@ -193,11 +204,15 @@ fn knupp_tetrahedra(out: &mut String) {
         cube.element_count(),
         cube.free_count()
     );
-    let _ = writeln!(
-        out,
-        "| seed | inverted at start | method | passes to valid | min / max dihedral | max κ | mean ratio (mean) |"
-    );
-    let _ = writeln!(out, "|---|---|---|---|---|---|---|");
+    let mut table = Table::new(&[
+        "seed",
+        "inverted at start",
+        "method",
+        "passes to valid",
+        "min / max dihedral",
+        "max κ",
+        "mean ratio (mean)",
+    ]);
     for seed in 1..=3 {
         let tangled = perturb_volume(&cube, 0.8, seed).expect("perturb");
         let start = volume_stats(&tangled).inverted;
@@ -220,15 +235,17 @@ fn knupp_tetrahedra(out: &mut String) {
             let s = volume_stats(mesh);
             let kappa =
                 if s.max_condition.is_finite() { format!("{:.2}", s.max_condition) } else { "∞ (inverted)".into() };
-            let _ = writeln!(
-                out,
-                "| {seed} | {start} | {name} | {} | {:.2}° / {:.1}° | {kappa} | {:.3} |",
+            table.row(vec![
+                seed.to_string(),
+                start.to_string(),
+                name.to_string(),
                 valid.map_or("not within the passes".to_string(), |p| p.to_string()),
-                s.min_angle_deg,
-                s.max_angle_deg,
-                s.mean_quality
-            );
+                format!("{:.2}° / {:.1}°", s.min_angle_deg, s.max_angle_deg),
+                kappa,
+                format!("{:.3}", s.mean_quality),
+            ]);
         }
     }
+    out.table(table);
     let _ = writeln!(out);
 }
