@@ -5,7 +5,8 @@
 #   make single  the page as one file that opens from file:// (target/smoothlab.html)
 #   make python  the notebook widget's module into python/smoothlab/static/ (then: pip install ./python)
 #   make figures        the README's pictures and the papers' figures (docs/figures.md)
-#   make reproduction   rerun the papers' experiments into docs/reproduction.md (a few minutes)
+#   make reproduction   rerun the papers' experiments into docs/reproduction.md, and its tables into
+#                       docs/reproduction.json for the page's tour (a few minutes)
 #   make performance    rerun the benchmarks (native, in Chromium, in the page) into docs/performance.md (~15 minutes)
 
 WASM := target/wasm32-unknown-unknown/release/smoothlab_page.wasm
@@ -89,8 +90,10 @@ python-test: python
 browser: python single browser-tools
 	node tests/browser/run.mjs
 
+# the document, and its tables as data for the page's tour: both written from the same numbers
+# once every section has run, so a run that fails leaves them as they were
 reproduction:
-	$(CARGO) run --release -p smoothlab-programs --bin reproduce > docs/reproduction.md
+	$(CARGO) run --release -p smoothlab-programs --bin reproduce -- --out docs/reproduction.md --data docs/reproduction.json
 
 # The browser benches first (the wasm bench's JSON feeds the wasm/native table, the page
 # bench's the "In the page" section, the page's memory the memory section), then issue 33's

@@ -4,7 +4,7 @@
 //! claims, what our reproduction measured. Written once, here: the page (through the wasm
 //! layer), `smoothlab render --figure NAME` and `docs/figures.md` (`make figures`) all
 //! read this table, and every number it quotes is either computed when asked
-//! ([`Figure::measured`]) or read from `docs/reproduction.md` ([`measured::cell`]).
+//! ([`Figure::measured`]) or read from the reproduction's tables ([`measured::cell`]).
 
 pub mod knupp_hex;
 pub mod measured;
@@ -62,7 +62,7 @@ pub const VIEWS: [&str; 4] = ["levelset", "compare", "history", "histogram"];
 
 impl Figure {
     /// What our reproduction measured, in words with its numbers (computed now, or read
-    /// from `docs/reproduction.md`).
+    /// from the reproduction's tables, `docs/reproduction.json`).
     pub fn measured(&self) -> Result<String> {
         (self.measured)()
     }
@@ -306,7 +306,7 @@ pub static FIGURES: [Figure; 14] = [
     },
 ];
 
-/// The cells of `docs/reproduction.md` a figure quotes, with `cell`'s errors.
+/// The cells of the reproduction's tables a figure quotes, with `cell`'s errors.
 pub(crate) fn repro(section: u32, row: &[&str], column: &str) -> Result<String> {
     cell(section, row, column)
 }
