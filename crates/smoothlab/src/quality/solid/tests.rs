@@ -1,3 +1,4 @@
+use super::bernstein::{hex_det_and_slopes, Bezier};
 use super::*;
 use crate::numeric::SplitMix64;
 

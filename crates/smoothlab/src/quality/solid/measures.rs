@@ -1,0 +1,164 @@
+//! The measures of a volume element: its corners' scaled Jacobians, shape and statistics.
+
+use glam::DVec3;
+
+use super::{corner_tet, in_unit_scale, validity, Validity};
+use crate::mesh::VolumeKind;
+use crate::quality::tet::{self as q3, CornerReference};
+
+/// The scaled Jacobian of a corner, `det T/(‖t₁‖·‖t₂‖·‖t₃‖)` with `T = A·W⁻¹`: 1 at the
+/// ideal corner, in [−1, 1], negative when inverted (the 3D sine of a corner: the volume of
+/// the parallelepiped of its unit weighted edges). 0 for a degenerate corner.
+pub fn scaled_jacobian(p: &[DVec3; 4], r: &CornerReference) -> f64 {
+    let t = q3::WeightedJacobian::of(&q3::in_unit_scale(p), r).t;
+    let n = t.x_axis.length() * t.y_axis.length() * t.z_axis.length();
+    if n == 0.0 || !n.is_finite() {
+        return 0.0;
+    }
+    t.determinant() / n
+}
+
+/// [`scaled_jacobian`] with its gradient with respect to corner 0: with `s = W⁻ᵀ𝟙`, every
+/// column `t_i` moves by `−s_i·dp0`, so `∇ln SJ = ∇σ/σ + Σ s_i·t_i/‖t_i‖²`.
+pub fn scaled_jacobian_grad0(p: &[DVec3; 4], r: &CornerReference) -> (f64, DVec3) {
+    let j = q3::WeightedJacobian::of(p, r);
+    let cols = [j.t.x_axis, j.t.y_axis, j.t.z_axis];
+    let l2 = cols.map(|c| c.length_squared());
+    let n = (l2[0] * l2[1] * l2[2]).sqrt();
+    if n == 0.0 || !n.is_finite() {
+        return (0.0, DVec3::ZERO);
+    }
+    let sj = j.sigma / n;
+    let s = r.w_inv_t_one;
+    // ∇(σ/n) = ∇σ/n − σ/n·∇ln n, ∇ln n = Σ −s_i t_i/‖t_i‖²
+    let grad_ln_n = -(s.x * cols[0] / l2[0] + s.y * cols[1] / l2[1] + s.z * cols[2] / l2[2]);
+    (sj, j.grad_sigma / n - sj * grad_ln_n)
+}
+
+/// Every measure of one volume element, for statistics and the page.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SolidMeasures {
+    /// Not certainly valid ([`validity`]; a 10-node tetrahedron by its corners).
+    pub inverted: bool,
+    /// Valid at every measured corner, yet not valid inside (the case corner checks miss).
+    pub inverted_inside: bool,
+    pub min_dihedral_deg: f64,
+    pub max_dihedral_deg: f64,
+    /// The smallest sine of a dihedral angle (a tetrahedron, Freitag 1997) or scaled
+    /// Jacobian of a corner (the other kinds: the 3D sine of a corner).
+    pub min_sine: f64,
+    /// Knupp's κ, the worst corner's.
+    pub condition: f64,
+    /// The mean ratio: a tetrahedron's; the other kinds' mean over their measured corners.
+    pub mean_ratio: f64,
+    /// The smallest scaled Jacobian of a measured corner ([`scaled_jacobian`]).
+    pub scaled_jacobian: f64,
+    /// The dihedral angles, degrees (the first [`dihedral_count`](Self::dihedral_count)):
+    /// a tetrahedron's six; for the other kinds, at each measured corner, the angles of its
+    /// tetrahedron at the corner's three edges (the element's dihedral angles there when
+    /// its faces are flat).
+    pub dihedral_deg: [f64; 24],
+    pub dihedral_count: usize,
+}
+
+impl SolidMeasures {
+    pub fn dihedral(&self) -> &[f64] {
+        &self.dihedral_deg[..self.dihedral_count]
+    }
+}
+
+/// The indices, in [`q3::dihedral_angles`]' order, of the dihedral angles at the edges
+/// from corner 0 of a tetrahedron: (0,1), (0,2), (0,3).
+const EDGES_AT_CORNER_0: [usize; 3] = {
+    let mut out = [0; 3];
+    let mut n = 0;
+    let mut i = 0;
+    while i < 6 {
+        if q3::TET_EDGES[i][0] == 0 {
+            out[n] = i;
+            n += 1;
+        }
+        i += 1;
+    }
+    out
+};
+
+/// [`SolidMeasures`] of an element of `kind` with nodes `p` (all its nodes, in the kind's
+/// order).
+pub fn solid_measures(kind: VolumeKind, p: &[DVec3]) -> SolidMeasures {
+    let r = kind.reference();
+    let sj_min = |ts: &mut dyn Iterator<Item = [DVec3; 4]>, r: &CornerReference| ts.map(|t| scaled_jacobian(&t, r)).fold(f64::INFINITY, f64::min);
+    match kind {
+        VolumeKind::Tet4 | VolumeKind::Tet10 => {
+            let m = match kind {
+                VolumeKind::Tet4 => q3::tet_measures(&[p[0], p[1], p[2], p[3]], r),
+                _ => q3::tet10_measures(&std::array::from_fn(|j| p[j]), r),
+            };
+            let corners = [p[0], p[1], p[2], p[3]];
+            let sj = sj_min(&mut (0..4).map(|c| q3::with_first(&corners, c)), r);
+            let mut dihedral_deg = [0.0; 24];
+            dihedral_deg[..6].copy_from_slice(&m.dihedral_deg);
+            SolidMeasures {
+                inverted: m.inverted,
+                inverted_inside: false,
+                min_dihedral_deg: m.min_dihedral_deg,
+                max_dihedral_deg: m.max_dihedral_deg,
+                min_sine: m.min_sine,
+                condition: m.condition,
+                mean_ratio: m.mean_ratio,
+                scaled_jacobian: sj,
+                dihedral_deg,
+                dihedral_count: 6,
+            }
+        }
+        _ => {
+            let (q, _) = in_unit_scale(&p[..kind.corners()]);
+            let count = kind.row().corner_edges.len();
+            let mut out = SolidMeasures {
+                inverted: false,
+                inverted_inside: false,
+                min_dihedral_deg: f64::INFINITY,
+                max_dihedral_deg: f64::NEG_INFINITY,
+                min_sine: f64::INFINITY,
+                condition: 0.0,
+                mean_ratio: 0.0,
+                scaled_jacobian: f64::INFINITY,
+                dihedral_deg: [0.0; 24],
+                dihedral_count: 3 * count,
+            };
+            let mut corner_inverted = false;
+            for c in 0..count {
+                let t = corner_tet(kind, &q, c);
+                corner_inverted |= q3::is_inverted(&t);
+                out.mean_ratio += q3::mean_ratio(&t, r) / count as f64;
+                out.condition = out.condition.max(q3::condition_number(&t, r));
+                out.scaled_jacobian = out.scaled_jacobian.min(scaled_jacobian(&t, r));
+                let angles = q3::dihedral_angles(&t);
+                for (k, &i) in EDGES_AT_CORNER_0.iter().enumerate() {
+                    let a = angles[i].to_degrees();
+                    out.dihedral_deg[3 * c + k] = a;
+                    out.min_dihedral_deg = out.min_dihedral_deg.min(a);
+                    out.max_dihedral_deg = out.max_dihedral_deg.max(a);
+                }
+            }
+            out.min_sine = out.scaled_jacobian;
+            out.inverted = corner_inverted || validity(kind, &q) != Validity::Valid;
+            out.inverted_inside = out.inverted && !corner_inverted;
+            out
+        }
+    }
+}
+
+/// The shape of an element that is not a tetrahedron, as the drivers read it (the smart
+/// Laplacian, the priority order, the acceptance rule): the mean of its measured corners'
+/// mean ratios (1 for the ideal element, falling through 0 as corners invert).
+pub fn solid_shape(kind: VolumeKind, p: &[DVec3]) -> f64 {
+    let (q, _) = in_unit_scale(p);
+    let (r, count) = (kind.reference(), kind.row().corner_edges.len());
+    (0..count).map(|c| q3::mean_ratio(&corner_tet(kind, &q, c), r)).sum::<f64>() / count as f64
+}
+/// The smallest scaled Jacobian of the element's measured corners (its "sine").
+pub fn solid_min_sine(kind: VolumeKind, p: &[DVec3]) -> f64 {
+    let r = kind.reference();
+    (0..kind.row().corner_edges.len()).map(|c| scaled_jacobian(&corner_tet(kind, p, c), r)).fold(f64::INFINITY, f64::min)
+}

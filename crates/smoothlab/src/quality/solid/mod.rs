@@ -1,0 +1,178 @@
+//! Every volume element kind measured by its corners (Knupp 1999, §2–3): at each measured
+//! corner `c` with edge neighbours `a`, `b`, `d` ([`crate::mesh::VolumeKindRow::corner_edges`]) the
+//! tetrahedron `(c, a, b, d)`, its Jacobian `A` (the three edge vectors) weighted by the
+//! kind's reference, `T = A·W⁻¹`; and the element's validity decided for certain, not at
+//! its corners only: a trilinear hexahedron can be inverted inside with all eight corner
+//! determinants positive (Marschner, Palmer, Zhang & Solomon, SGP 2020).
+//!
+//! **Validity** ([`validity`]) is decided on the Jacobian determinant `det J` of the
+//! element's map from its reference element, written in the Bernstein (Bézier) basis:
+//! - a tetrahedron: `det J` is constant, six times its volume;
+//! - a wedge: `det J` is affine in the triangle's barycentric coordinates and quadratic
+//!   along its height, so its minimum is at a triangle corner, on one of three quadratics
+//!   whose minimum is exact from their Bernstein coefficients (`c0, c2 > 0` and
+//!   `c1 > −√(c0·c2)`): decided exactly;
+//! - a hexahedron: `det J = X_u·(X_v × X_w)` with each column bilinear in the other two
+//!   parameters, a polynomial of degree 2 in each of u, v, w with 27 Bernstein
+//!   coefficients. All positive: valid (a Bernstein polynomial lies within the hull of its
+//!   coefficients); a value ≤ 0 at a corner of the box (a corner coefficient is a value):
+//!   inverted; else the box is split in half (de Casteljau, exact halving) and each half
+//!   decided, up to [`MAX_BOXES`] boxes; where that is not enough (an element within
+//!   rounding of flat) the element is [`Validity::Undecided`], which the guard and the
+//!   statistics count as inverted;
+//! - a pyramid, by its collapsed-hexahedron map `x = (1 − t)·B(u, v) + t·apex` with `B` the
+//!   bilinear base: `det J = (1 − t)²·g(u, v)`, `g = B_u·(B_v × (apex − B))` of degree 2 in
+//!   u and v, decided as the hexahedron's (the factor vanishes only at the apex).
+//!
+//! What is not certain: the quadratic kinds' mid-edge, face and centre nodes are taken
+//! where they follow their corners to; a 10-node tetrahedron is judged at its four corners'
+//! Jacobians (`tet::tet10_measures`), a 20- or 27-node hexahedron by its corners' trilinear
+//! hexahedron (exact when its edges are straight).
+//!
+//! `bernstein.rs` holds `det J` in the Bernstein basis. `free_corner.rs` holds its forms
+//! as one corner moves ([`DetForm`], [`ValidBall`]). `measures.rs` holds the element's
+//! measures ([`solid_measures`]). `corner_terms.rs` holds its terms corner by corner
+//! ([`CornerShapes`], [`CornerSizes`]).
+
+use glam::DVec3;
+
+use super::tet as q3;
+use crate::mesh::VolumeKind;
+
+mod bernstein;
+mod corner_terms;
+mod free_corner;
+mod measures;
+#[cfg(test)]
+mod tests;
+
+use bernstein::{hex_det, pyramid_det};
+pub use corner_terms::{corner_size, least_corner_det, CornerShapes, CornerSizes};
+pub use free_corner::{DetForm, ValidBall};
+pub use measures::{scaled_jacobian, scaled_jacobian_grad0, solid_measures, solid_min_sine, solid_shape, SolidMeasures};
+
+/// How many boxes (the whole element, then halves) a hexahedron's or pyramid's validity
+/// may examine before it is called [`Validity::Undecided`].
+pub const MAX_BOXES: usize = 4096;
+
+/// Whether an element's Jacobian determinant is positive everywhere in it.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Validity {
+    /// Positive everywhere: certain.
+    Valid,
+    /// Zero or negative somewhere: certain (at a point of the element).
+    Inverted,
+    /// Not decided within [`MAX_BOXES`] boxes: the determinant's smallest value is within
+    /// rounding of 0. Counted as inverted.
+    Undecided,
+}
+
+/// The tetrahedron `(c, a, b, d)` of measured corner `c` of an element of `kind` (its
+/// corners `p`, in the kind's order).
+#[inline(always)]
+pub fn corner_tet(kind: VolumeKind, p: &[DVec3], c: usize) -> [DVec3; 4] {
+    let [a, b, d] = kind.row().corner_edges[c];
+    [p[c], p[a], p[b], p[d]]
+}
+
+/// The determinant of the corner's Jacobian `A` (six times its tetrahedron's volume).
+#[inline]
+fn corner_det(t: &[DVec3; 4]) -> f64 {
+    (t[1] - t[0]).dot((t[2] - t[0]).cross(t[3] - t[0]))
+}
+
+/// The corners in their own scale, as [`q3::in_unit_scale`] does for a tetrahedron: as
+/// they are when the edges' largest component lies within the safe scale, else moved to
+/// the first corner and multiplied by a power of two (exact), so signs and ratios are the
+/// same at every scale.
+fn in_unit_scale(p: &[DVec3]) -> ([DVec3; 8], usize) {
+    let mut q = [DVec3::ZERO; 8];
+    let n = p.len().min(8);
+    match crate::numeric::factors_beyond_safe_scale(reach(&p[..n])) {
+        None => q[..n].copy_from_slice(&p[..n]),
+        Some((f1, f2)) => {
+            for i in 0..n {
+                q[i] = (p[i] - p[0]) * f1 * f2;
+            }
+        }
+    }
+    (q, n)
+}
+
+/// The largest component of an edge from the first corner: the element's extent, which
+/// decides whether it is within the safe scale.
+#[inline]
+fn reach(p: &[DVec3]) -> f64 {
+    crate::numeric::largest_component(p[1..].iter().map(|x| *x - p[0]))
+}
+/// A wedge's validity, exact (see the module docs).
+fn wedge_validity(p: &[DVec3]) -> Validity {
+    // VTK's wedge: the triangle 0 1 2 turns clockwise seen from 3 4 5 above it, so
+    // det J = −(∂ξ × ∂η)·∂ζ
+    let e1 = [p[1] - p[0], p[4] - p[3]];
+    let e2 = [p[2] - p[0], p[5] - p[3]];
+    let c = [e1[0].cross(e2[0]), 0.5 * (e1[0].cross(e2[1]) + e1[1].cross(e2[0])), e1[1].cross(e2[1])];
+    let mut undecided = false;
+    for i in 0..3 {
+        let up = p[i + 3] - p[i];
+        let [c0, c1, c2] = c.map(|ck| -ck.dot(up));
+        if c0 <= 0.0 || c2 <= 0.0 || c0.is_nan() || c1.is_nan() || c2.is_nan() {
+            return Validity::Inverted;
+        }
+        if c1 <= 0.0 {
+            // the quadratic's minimum is inside: positive iff c1² < c0·c2
+            let (sq, prod) = (c1 * c1, c0 * c2);
+            if sq >= prod {
+                return Validity::Inverted;
+            }
+            undecided |= !sq.is_finite() || !prod.is_finite();
+        }
+    }
+    if undecided {
+        Validity::Undecided
+    } else {
+        Validity::Valid
+    }
+}
+/// Whether the element of `kind` with corners `p` (its first [`VolumeKind::corners`]
+/// nodes) is valid everywhere, for certain (see the module docs).
+pub fn validity(kind: VolumeKind, p: &[DVec3]) -> Validity {
+    let (q, _) = in_unit_scale(&p[..kind.corners()]);
+    match kind.linear() {
+        VolumeKind::Tet4 => {
+            if q3::is_inverted(&[q[0], q[1], q[2], q[3]]) {
+                Validity::Inverted
+            } else {
+                Validity::Valid
+            }
+        }
+        VolumeKind::Wedge6 => wedge_validity(&q),
+        VolumeKind::Hex8 => hex_det(&q).validity(),
+        VolumeKind::Pyramid5 => pyramid_det(&q).validity(),
+        VolumeKind::Tet10 | VolumeKind::Hex20 | VolumeKind::Hex27 => unreachable!("linear() is linear"),
+    }
+}
+
+/// The smallest Bernstein coefficient of the element's `det J` (its corners' determinants
+/// for a tetrahedron or a wedge's three quadratics), in the element's units³: ≤ 0 when the
+/// element is not certified by its first box; the validity guard's measure of how far an
+/// element is folded.
+pub fn min_det_coefficient(kind: VolumeKind, p: &[DVec3]) -> f64 {
+    match kind.linear() {
+        VolumeKind::Hex8 => hex_det(p).min_coefficient(),
+        VolumeKind::Pyramid5 => pyramid_det(p).min_coefficient(),
+        _ => (0..kind.row().corner_edges.len()).map(|c| corner_det(&corner_tet(kind, p, c))).fold(f64::INFINITY, f64::min),
+    }
+}
+/// How far an element that is not certainly valid is folded, for the validity guard: 0
+/// when [`Validity::Valid`], else `Σ max(0, −det)` over its measured corners plus
+/// `max(0, −c_min)`, the smallest Bernstein coefficient of its Jacobian determinant (in
+/// the element's units³), so a fold inside the element that its corners do not see
+/// counts too.
+pub fn solid_inversion(kind: VolumeKind, p: &[DVec3], validity: Validity) -> f64 {
+    if validity == Validity::Valid {
+        return 0.0;
+    }
+    let corners: f64 = (0..kind.row().corner_edges.len()).map(|c| (-corner_det(&corner_tet(kind, p, c))).max(0.0)).sum();
+    corners + (-min_det_coefficient(kind, p)).max(0.0)
+}
