@@ -768,9 +768,6 @@ fn wasm_table(w: &mut String, v: &serde_json::Value, reports: &[SizeReport]) {
     let _ = writeln!(w);
 }
 
-/// The "In the page" section from the JSON of `node tests/browser/page_bench.mjs`
-/// (`--page FILE`; `--page-only` prints this section alone, without a native run): the
-/// playground page itself at 100k and 1M nodes.
 /// The mesh of the memory figures: the 1M-node rand2D of the memory issue (Freitag's
 /// rand2d with 999 576 points inside and 1000 per side, seed 2003: 1 003 576 nodes).
 const MEMORY_MESH: (usize, usize, u64) = (999_576, 1000, SEED);
@@ -950,6 +947,9 @@ fn memory_section(page_memory: Option<&str>) -> String {
     w
 }
 
+/// The "In the page" section from the JSON of `node tests/browser/page_bench.mjs`
+/// (`--page FILE`; `--page-only` prints this section alone, without a native run): the
+/// playground page itself at 100k and 1M nodes.
 fn page_section(path: Option<&str>) -> String {
     let mut w = String::new();
     let _ = writeln!(w, "## In the page
@@ -1201,13 +1201,13 @@ fn page_section(path: Option<&str>) -> String {
 // Issue 33: performance versus Mesquite. The 3D passes (tetrahedra and hexahedra), the
 // time to quality of the CLI's defaults, the "versus Mesquite" table and the targets.
 
-/// The seed of rand3D, as `benches/smoothing.rs` (`tetrahedra`) and Freitag's Table 2's first.
 /// Issue 33's targets for the browser: the wasm / native ratio of every pass, the module's
 /// gzipped bytes (its size on the issue's day) and one default Step on the 1M sample.
 const WASM_NATIVE_TARGET: f64 = 1.3;
 const MODULE_GZIP_TARGET: f64 = 649_479.0;
 const STEP_1M_TARGET_S: f64 = 5.0;
 
+/// The seed of rand3D, as `benches/smoothing.rs` (`tetrahedra`) and Freitag's Table 2's first.
 const RAND3D_SEED: u64 = 1;
 /// The block of hexahedra: `HEX_CELLS³` cells of the unit cube (about rand3D's node count),
 /// every free node moved by up to `HEX_AMOUNT` mean edge lengths (`perturb_volume`,
@@ -1851,8 +1851,6 @@ fn versus_mesquite(planar: Option<&SizeReport>, volume: &VolumeReport, before_af
     w
 }
 
-/// The wasm bench's passes: (name, Hilbert order, wasm ns per visit, native ns per visit of
-/// the same pass and numbering in this run, when measured).
 /// Measures natively the passes of the bench page's JSON at `path` (`tests/browser/bench.mjs`'s
 /// output) on the same mesh and numbering, and writes each pass's figure into that JSON
 /// (`native_ns_per_visit`, read by [`wasm_rows`]). `make performance` runs it straight
