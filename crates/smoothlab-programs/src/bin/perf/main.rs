@@ -2,12 +2,12 @@
 //! `make performance`; see that file for what is measured and how).
 //!
 //! ```text
-//! cargo run --release --features parallel --example perf -- \
+//! cargo run --release -p smoothlab-programs --features parallel --bin perf -- \
 //!     [--sizes 10000,100000,1000000] [--wasm wasm.json] [--page page.json]
 //!     [--page-memory page-memory.json] [--before-after before_after.json]
 //!     [--out docs/performance.md] [--json native.json]
-//! cargo run --release --example perf -- --memory-only [--page-memory page-memory.json]
-//! cargo run --release --features parallel --example perf -- --issue33 [--quick] [--wasm wasm.json] [--page page.json]
+//! cargo run --release -p smoothlab-programs --bin perf -- --memory-only [--page-memory page-memory.json]
+//! cargo run --release -p smoothlab-programs --features parallel --bin perf -- --issue33 [--quick] [--wasm wasm.json] [--page page.json]
 //!     [--before-after before_after.json]
 //! ```
 //!

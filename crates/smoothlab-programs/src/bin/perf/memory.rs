@@ -138,7 +138,7 @@ pub(crate) fn memory_section(page_memory: Option<&str>) -> String {
     let size = std::fs::metadata(&file).map(|m| m.len()).unwrap_or(0);
     let _ = writeln!(
         w,
-        "Peak resident memory of each command on that mesh ({:.0} MB as .msh 2.2), the whole process: the library calls of `smoothlab`'s commands run in a child process of `examples/perf.rs`, whose `VmHWM` (what `/usr/bin/time -v` reports as maximum resident set size) is read at its end. \
+        "Peak resident memory of each command on that mesh ({:.0} MB as .msh 2.2), the whole process: the library calls of `smoothlab`'s commands run in a child process of the `perf` program, whose `VmHWM` (what `/usr/bin/time -v` reports as maximum resident set size) is read at its end. \
          Target of the memory issue: read, 3 passes and written in ≤ 250 MB.\n",
         size as f64 / 1e6
     );

@@ -10,10 +10,10 @@ use smoothlab::quality::mesh_stats;
 use crate::common::{fmt_ms, median, target_mark};
 
 /// The release binary `smoothlab` beside this program (`target/release/smoothlab` for
-/// `target/release/examples/perf`), which `make performance` builds first.
+/// `target/release/perf`), which `make performance` builds first.
 fn smoothlab_binary() -> Option<std::path::PathBuf> {
     let exe = std::env::current_exe().ok()?;
-    let bin = exe.parent()?.parent()?.join(format!("smoothlab{}", std::env::consts::EXE_SUFFIX));
+    let bin = exe.parent()?.join(format!("smoothlab{}", std::env::consts::EXE_SUFFIX));
     bin.is_file().then_some(bin)
 }
 
@@ -116,7 +116,7 @@ const TANGLED_PLATES: [(&str, PlateKind, u8); 6] = [
 const PLATE_AMOUNTS: [f64; 5] = [0.6, 0.8, 1.0, 1.25, 1.5];
 const PLATE_SEEDS: [u64; 5] = [1, 2, 3, 4, 5];
 
-/// Mesquite's meshes, read in place beside the crate (as `examples/reproduce.rs` and the tests).
+/// Mesquite's meshes, read in place beside the crate (as the `reproduce` program and the tests).
 fn mesquite_dir(name: &str) -> std::path::PathBuf {
     std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../../shared/meshes").join(name)
 }
@@ -157,7 +157,7 @@ pub(crate) fn time_to_quality(quick: bool) -> QualityReport {
     let Some(bin) = smoothlab_binary() else {
         let _ = writeln!(
             w,
-            "Not measured in this run: the release binary `smoothlab` was not found beside this program (`make performance` builds it first: `cargo build --release --features parallel --bin smoothlab`).\n"
+            "Not measured in this run: the release binary `smoothlab` was not found beside this program (`make performance` builds it first: `cargo build --release -p smoothlab-cli --features parallel --bin smoothlab`).\n"
         );
         return QualityReport { text: w, pave1_ms, reached };
     };
