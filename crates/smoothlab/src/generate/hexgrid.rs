@@ -21,7 +21,7 @@
 use glam::DVec3;
 
 use super::check_size;
-use super::trig::sin_cos;
+use crate::numeric::trig::sin_cos;
 use crate::error::{Error, Result};
 use crate::mesh::VolumeKind;
 use crate::volume::VolumeMesh;

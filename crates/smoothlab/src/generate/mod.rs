@@ -19,7 +19,6 @@ mod rand2d;
 mod rand3d;
 mod star;
 mod surface;
-mod trig;
 
 pub use cube::tet_cube;
 pub use grid::{grid, random_grid, GridKind};

@@ -107,7 +107,7 @@ fn node_bound(order: u8, resolution: usize) -> Option<usize> {
 fn ring_point(i: usize, j: usize, n: usize) -> DVec2 {
     let (m, rings) = (8 * n, 2 * n);
     let theta = std::f64::consts::TAU * j as f64 / m as f64;
-    let (sin, cos) = super::trig::sin_cos(theta);
+    let (sin, cos) = crate::numeric::trig::sin_cos(theta);
     let hole = PLATE_HOLE_RADIUS * DVec2::new(cos, sin);
     if i == 0 {
         hole

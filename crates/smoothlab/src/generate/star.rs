@@ -65,7 +65,7 @@ pub fn star(kind: StarKind, k: usize) -> Result<Mesh> {
     }
     let step = std::f64::consts::TAU / k as f64;
     let polar = |r: f64, a: f64| {
-        let (sin, cos) = super::trig::sin_cos(a);
+        let (sin, cos) = crate::numeric::trig::sin_cos(a);
         r * DVec2::new(cos, sin)
     };
     let (ring, centre, quads) = match kind {
@@ -73,7 +73,7 @@ pub fn star(kind: StarKind, k: usize) -> Result<Mesh> {
             let ring: Vec<DVec2> = (0..k).map(|i| polar(2.0, std::f64::consts::FRAC_PI_2 + step * i as f64)).collect();
             // Mesquite's displacement for k = 6, scaled with the inradius for other k
             let centre = DVec2::new(-0.8, -0.8)
-                * (super::trig::cos(std::f64::consts::PI / k as f64) / super::trig::cos(std::f64::consts::PI / 6.0));
+                * (crate::numeric::trig::cos(std::f64::consts::PI / k as f64) / crate::numeric::trig::cos(std::f64::consts::PI / 6.0));
             (ring, centre, false)
         }
         StarKind::Chen => {
@@ -91,7 +91,7 @@ pub fn star(kind: StarKind, k: usize) -> Result<Mesh> {
         }
         StarKind::Quad => {
             let mut ring = Vec::with_capacity(2 * k);
-            let scale = 1.0 / (1.0 + super::trig::cos(step));
+            let scale = 1.0 / (1.0 + crate::numeric::trig::cos(step));
             for i in 0..k {
                 let (e0, e1) = (polar(1.0, step * i as f64), polar(1.0, step * (i + 1) as f64));
                 ring.push(e0);

@@ -6,12 +6,15 @@
 //! would leave the doubles, and measure lengths without over- or underflow.
 //! [`SplitMix64`] is the deterministic generator behind every seeded sample and every
 //! randomised test; [`order`] holds the one sort the orderings by a float and the stable
-//! sorts by a key share.
+//! sorts by a key share. [`elementary`] holds `exp` and `atan2` for the metrics' inner
+//! loops, and `trig` the generators' `sin` and `cos`, the same bits on every platform.
 
 use glam::{DVec2, DVec3};
 
+pub mod elementary;
 pub mod order;
 mod prng;
+pub(crate) mod trig;
 
 pub use prng::SplitMix64;
 

@@ -18,7 +18,6 @@ use serde::Serialize;
 use crate::mesh::ElementKind;
 use crate::numeric::{is_beyond_safe_scale, to_unit_scale, SAFE_SCALE};
 
-pub mod elementary;
 pub mod solid;
 mod stats;
 pub mod tet;
@@ -177,7 +176,7 @@ pub fn signed_angle(e1: DVec2, e2: DVec2) -> f64 {
     if let Some((e1, e2, _)) = beyond_safe_scale(e1, e2) {
         return signed_angle(e1, e2);
     }
-    elementary::atan2(e1.perp_dot(e2), e1.dot(e2))
+    crate::numeric::elementary::atan2(e1.perp_dot(e2), e1.dot(e2))
 }
 
 /// The signed corner angle with its partial gradients: `(θ, ∂θ/∂e1, ∂θ/∂e2)`.

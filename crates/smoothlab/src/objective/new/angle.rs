@@ -10,7 +10,7 @@ use std::f64::consts::PI;
 use glam::DVec2;
 
 use super::SubTriangle;
-use crate::quality::elementary::exp;
+use crate::numeric::elementary::exp;
 use crate::quality::signed_angle_gradient;
 
 /// √3.
