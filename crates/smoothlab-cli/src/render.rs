@@ -288,7 +288,7 @@ pub fn run(a: RenderArgs) -> Result<(), String> {
             let as_loaded = mesh_stats(&original).angle_histogram_6deg;
             let mut laplace = original.clone();
             let opts = SmoothOptions::default().with_strategy(Strategy::Laplace);
-            let objective = smoothlab::objective::objective_with(smoothlab::objective::ObjectiveKind::New, a.penalty);
+            let objective = smoothlab::objective::objective_with(smoothlab::objective::ObjectiveKind::SmoothShape, a.penalty);
             smooth(&mut laplace, objective.as_ref(), opts, passes, &|| 0.0).map_err(|e| e.to_string())?;
             let lap = mesh_stats(&laplace).angle_histogram_6deg;
             let old = lab.stats(Side::A).mesh.angle_histogram_6deg;

@@ -119,12 +119,12 @@ fn smoothing(a: &SmoothArgs) -> Result<Smoothing, String> {
         let flag = if a.pass_through_folds { "--pass-through-folds" } else { "--no-pass-through-folds" };
         return Err(format!("{flag}: {} never calls the solver", strategy.name()));
     }
-    if a.penalty.is_some() && a.objective.is_some_and(|k| k != ObjectiveKind::New) {
+    if a.penalty.is_some() && a.objective.is_some_and(|k| k != ObjectiveKind::SmoothShape) {
         return Err("--penalty chooses the design of the new objective's penalty: use it with --objective new".into());
     }
     let mut s = Smoothing::default()
         .strategy(strategy)
-        .objective(a.objective.unwrap_or(ObjectiveKind::New))
+        .objective(a.objective.unwrap_or(ObjectiveKind::SmoothShape))
         .passes(a.passes)
         .slide_curves(a.slide_curves);
     if let Some(o) = a.order {
@@ -148,7 +148,7 @@ fn smoothing(a: &SmoothArgs) -> Result<Smoothing, String> {
 
 pub fn run(a: SmoothArgs) -> Result<(), String> {
     let smoothing = smoothing(&a)?;
-    let kind = a.objective.unwrap_or(ObjectiveKind::New);
+    let kind = a.objective.unwrap_or(ObjectiveKind::SmoothShape);
     let mut model = read_model(&a.input)?;
     if a.slide_curves && !matches!(model, Model::Surface(_)) {
         let what = match &model {

@@ -50,7 +50,7 @@ fn stream_bound(mesh: &mut Mesh) -> u32 {
 type Pass = (&'static str, Strategy, ObjectiveKind, Penalty, Order);
 
 fn passes(large: bool) -> Vec<Pass> {
-    let new = |name, strategy, order| (name, strategy, ObjectiveKind::New, Penalty::Barrier, order);
+    let new = |name, strategy, order| (name, strategy, ObjectiveKind::SmoothShape, Penalty::Barrier, order);
     let mut v = vec![new("laplace", Strategy::Laplace, Order::Input), new("smart", Strategy::Smart, Order::Input)];
     if large {
         v.push(new("opt+new", Strategy::Opt, Order::Input));
@@ -59,7 +59,7 @@ fn passes(large: bool) -> Vec<Pass> {
             v.push((Box::leak(format!("opt+{k}").into_boxed_str()), Strategy::Opt, k, Penalty::Barrier, Order::Input));
         }
         // the first design of the new objective's penalty, for the comparison of the two
-        v.push(("opt+new (angle penalty)", Strategy::Opt, ObjectiveKind::New, Penalty::Angle, Order::Input));
+        v.push(("opt+new (angle penalty)", Strategy::Opt, ObjectiveKind::SmoothShape, Penalty::Angle, Order::Input));
         // Freitag's combined schemes, with her objective
         for (name, strategy) in [("c1+sine", Strategy::C1), ("c2+sine", Strategy::C2), ("c3+sine", Strategy::C3)] {
             v.push((name, strategy, ObjectiveKind::Sine, Penalty::Barrier, Order::Input));
@@ -88,7 +88,7 @@ fn smoothing(c: &mut Criterion) {
             });
         }
         if n <= 100_000 {
-            let obj = objective(ObjectiveKind::New);
+            let obj = objective(ObjectiveKind::SmoothShape);
             let options = SmoothOptions::default().with_strategy(Strategy::Opt);
             let mut s = ColouredSmoother::new(&mesh, options).expect("options");
             g.bench_function(
@@ -117,7 +117,7 @@ fn surfaces(c: &mut Criterion) {
     g.sample_size(10).throughput(Throughput::Elements(tangled.flat().free_count() as u64));
     g.measurement_time(Duration::from_secs(5));
     for (name, strategy) in [("laplace", Strategy::Laplace), ("rules+new", Strategy::Rules)] {
-        let obj = objective(ObjectiveKind::New);
+        let obj = objective(ObjectiveKind::SmoothShape);
         let options = SmoothOptions::default().with_strategy(strategy).with_order(Order::Priority);
         let mut s = SurfaceSmoother::new(options).expect("options");
         g.bench_function(name, |b| {
@@ -141,9 +141,9 @@ fn tetrahedra(c: &mut Criterion) {
         ("laplace", Strategy::Laplace, ObjectiveKind::Sine, 3),
         ("smart", Strategy::Smart, ObjectiveKind::Sine, 3),
         ("opt+sine", Strategy::Opt, ObjectiveKind::Sine, 3),
-        ("opt+new", Strategy::Opt, ObjectiveKind::New, 3),
-        ("rules+new", Strategy::Rules, ObjectiveKind::New, 3),
-        ("opt+old, 20 it", Strategy::Opt, ObjectiveKind::Old, 20),
+        ("opt+new", Strategy::Opt, ObjectiveKind::SmoothShape, 3),
+        ("rules+new", Strategy::Rules, ObjectiveKind::SmoothShape, 3),
+        ("opt+old, 20 it", Strategy::Opt, ObjectiveKind::MaxMinShape, 20),
         ("opt+condition", Strategy::Opt, ObjectiveKind::Condition, 3),
         ("opt+untangle", Strategy::Opt, ObjectiveKind::Untangle, 3),
     ];
@@ -183,7 +183,7 @@ fn level_sets(c: &mut Criterion) {
     }
     let mut g = c.benchmark_group("level set 100x100");
     g.sample_size(10).throughput(Throughput::Elements(10_000));
-    for kind in [ObjectiveKind::New, ObjectiveKind::Old] {
+    for kind in [ObjectiveKind::SmoothShape, ObjectiveKind::MaxMinShape] {
         let obj = objective(kind);
         g.bench_function(kind.name(), |b| {
             b.iter(|| {

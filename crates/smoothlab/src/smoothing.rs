@@ -45,7 +45,7 @@ impl Default for Smoothing {
     fn default() -> Self {
         Smoothing {
             strategy: SmoothOptions::default().strategy,
-            objective: ObjectiveKind::New,
+            objective: ObjectiveKind::SmoothShape,
             passes: DEFAULT_PASSES,
             threshold_deg: None,
             order: None,
@@ -150,7 +150,7 @@ impl Smoothing {
             }
             o = o.with_pass_through_folds(on);
         }
-        if self.penalty.is_some() && self.objective != ObjectiveKind::New {
+        if self.penalty.is_some() && self.objective != ObjectiveKind::SmoothShape {
             return refuse("penalty", "it is a design of the new objective".into());
         }
         o.validate()?;

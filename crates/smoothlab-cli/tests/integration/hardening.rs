@@ -258,7 +258,7 @@ fn solvers_are_scale_invariant_and_records_hold_no_nan() {
             }
             if matches!(
                 k,
-                ObjectiveKind::Old | ObjectiveKind::Sine | ObjectiveKind::New | ObjectiveKind::Condition | ObjectiveKind::ConditionMax
+                ObjectiveKind::MaxMinShape | ObjectiveKind::Sine | ObjectiveKind::SmoothShape | ObjectiveKind::Condition | ObjectiveKind::ConditionMax
             ) {
                 let t0 = r0[0].objective_total.expect("the core measures it");
                 assert!((t - t0).abs() <= 1e-9 * t0.abs(), "{k} at 2^{e}: total {t}, at unit scale {t0}");

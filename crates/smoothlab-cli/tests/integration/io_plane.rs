@@ -134,7 +134,7 @@ fn nodes_that_did_not_move_are_written_back_to_the_bit_in_a_tilted_plane() {
     let (obj, pts) = tilted_obj(o, a, b);
     let mesh = io::read_str(&obj, Format::Obj).unwrap();
     let mut smoothed = mesh.clone();
-    let objective = smoothlab::objective::objective(smoothlab::objective::ObjectiveKind::New);
+    let objective = smoothlab::objective::objective(smoothlab::objective::ObjectiveKind::SmoothShape);
     let opts = smoothlab::smooth::SmoothOptions::default().with_strategy(smoothlab::smooth::Strategy::Smart);
     smoothlab::smooth::smooth(&mut smoothed, objective.as_ref(), opts, 2, &|| 0.0).unwrap();
     let moved = (0..mesh.node_count()).filter(|&i| smoothed.nodes()[i] != mesh.nodes()[i]).count();

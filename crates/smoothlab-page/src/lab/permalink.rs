@@ -319,7 +319,7 @@ fn write(s: &PageState, key: &str) -> Option<String> {
         "perturbed" => s.perturbed.then(|| "1".into()),
         "strategy" => name(c.strategy.name()),
         "a" | "b" => name(choice.objective.name()),
-        "a-penalty" | "b-penalty" => (choice.objective == ObjectiveKind::New).then(|| choice.penalty.name().into()),
+        "a-penalty" | "b-penalty" => (choice.objective == ObjectiveKind::SmoothShape).then(|| choice.penalty.name().into()),
         "threshold" => Some(shortest(c.threshold_deg)),
         "passes" => Some(s.passes.to_string()),
         "order" => name(c.order.name()),
@@ -339,7 +339,7 @@ fn write(s: &PageState, key: &str) -> Option<String> {
 /// (which the link leaves out).
 fn check_penalties(s: &PageState) -> std::result::Result<(), Refusal> {
     for (c, key, side) in [(s.settings.compare[0], "a-penalty", "a"), (s.settings.compare[1], "b-penalty", "b")] {
-        if c.objective != ObjectiveKind::New && c.penalty != Penalty::default() {
+        if c.objective != ObjectiveKind::SmoothShape && c.penalty != Penalty::default() {
             let allowed = format!("given only when '{side}' is new (it is {})", c.objective.name());
             return Err(Refusal { key, found: c.penalty.name().into(), allowed });
         }
@@ -497,7 +497,7 @@ mod tests {
         let s = decode("#a=new&a-penalty=angle&b=condition").unwrap();
         assert_eq!(
             s.settings.compare,
-            [Choice { objective: ObjectiveKind::New, penalty: Penalty::Angle }, Choice { objective: ObjectiveKind::Condition, penalty: Penalty::Barrier }]
+            [Choice { objective: ObjectiveKind::SmoothShape, penalty: Penalty::Angle }, Choice { objective: ObjectiveKind::Condition, penalty: Penalty::Barrier }]
         );
         let h = encode(&s);
         assert!(h.contains("&a=new&a-penalty=angle&b=condition&threshold"), "{h}");
@@ -804,7 +804,7 @@ mod tests {
             perturbed in any::<bool>(),
         ) -> PageState {
             // a penalty only for a side running new
-            let choice = |objective, penalty| Choice { objective, penalty: if objective == ObjectiveKind::New { penalty } else { Penalty::default() } };
+            let choice = |objective, penalty| Choice { objective, penalty: if objective == ObjectiveKind::SmoothShape { penalty } else { Penalty::default() } };
             let compare = [choice(a, penalties[0]), choice(b, penalties[1])];
             let settings = Settings { strategy, threshold_deg, order, max_iter, compare };
             let camera = camera.map(|(yaw, pitch, zoom)| CameraState { yaw, pitch, zoom });

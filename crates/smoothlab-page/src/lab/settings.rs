@@ -62,9 +62,9 @@ pub struct Choice {
 
 impl Choice {
     /// The left panel's default: the old max-min objective.
-    pub const OLD: Choice = Choice { objective: ObjectiveKind::Old, penalty: Penalty::Barrier };
+    pub const OLD: Choice = Choice { objective: ObjectiveKind::MaxMinShape, penalty: Penalty::Barrier };
     /// The right panel's default: the new objective with its default penalty.
-    pub const NEW: Choice = Choice { objective: ObjectiveKind::New, penalty: Penalty::Barrier };
+    pub const NEW: Choice = Choice { objective: ObjectiveKind::SmoothShape, penalty: Penalty::Barrier };
 
     /// The objective it names.
     pub fn build(self) -> Box<dyn Objective> {
@@ -74,7 +74,7 @@ impl Choice {
     /// A short label for legends: `old (max-min α/β …)`, `new (…, angle penalty)`.
     pub fn label(self) -> String {
         match self.objective {
-            ObjectiveKind::New => format!("new, {} penalty", self.penalty.name()),
+            ObjectiveKind::SmoothShape => format!("new, {} penalty", self.penalty.name()),
             k => format!("{} ({})", k.name(), k.describe().split(" (").next().unwrap_or("")),
         }
     }
@@ -82,14 +82,14 @@ impl Choice {
     /// A title for a picture or a panel: the label and who it is from.
     pub fn title(self) -> String {
         match self.objective {
-            ObjectiveKind::New => format!("new: {}, {} penalty", self.objective.describe(), self.penalty.name()),
+            ObjectiveKind::SmoothShape => format!("new: {}, {} penalty", self.objective.describe(), self.penalty.name()),
             k => format!("{}: {}", k.name(), k.describe()),
         }
     }
 
     /// Checks that a penalty is given only to `new` (as the command line refuses it).
     fn validate(self) -> Result<()> {
-        if self.objective != ObjectiveKind::New && self.penalty != Penalty::default() {
+        if self.objective != ObjectiveKind::SmoothShape && self.penalty != Penalty::default() {
             return Err(Error::invalid(format!(
                 "the {} penalty is a design of the new objective; {} has no penalty",
                 self.penalty.name(),

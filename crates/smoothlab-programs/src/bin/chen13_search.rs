@@ -29,7 +29,7 @@ const MAX_PASSES: usize = 15;
 /// Inverted elements before and after each pass, until 0 or [`MAX_PASSES`].
 fn counts(m0: &Mesh, o: SmoothOptions) -> Vec<u32> {
     let mut m = m0.clone();
-    let obj = objective_with(ObjectiveKind::New, Penalty::Barrier);
+    let obj = objective_with(ObjectiveKind::SmoothShape, Penalty::Barrier);
     let mut s = Smoother::new(o).expect("options");
     let mut out = vec![mesh_stats(&m).inverted as u32];
     while out.len() <= MAX_PASSES && *out.last().unwrap() > 0 {

@@ -61,11 +61,13 @@ enum_with_all! {
     #[serde(rename_all = "kebab-case")]
     pub enum ObjectiveKind {
         /// `old`: maximise the minimum α/β of the star (Chen et al.'s previous method).
-        Old,
+        #[serde(rename = "old")]
+        MaxMinShape,
         /// `sine`: maximise the minimum sine of the star's angles (Freitag 1997).
         Sine,
         /// `new`: Chen, Tristano & Kwok's smooth objective (α plus an angle penalty).
-        New,
+        #[serde(rename = "new")]
+        SmoothShape,
         /// `condition`: Knupp's condition number, 2-norm (sum of κ² — the average element).
         Condition,
         /// `condition-max`: Knupp's condition number, ∞-norm (the worst corner).
@@ -82,9 +84,9 @@ impl ObjectiveKind {
     /// The command-line name.
     pub fn name(self) -> &'static str {
         match self {
-            ObjectiveKind::Old => "old",
+            ObjectiveKind::MaxMinShape => "old",
             ObjectiveKind::Sine => "sine",
-            ObjectiveKind::New => "new",
+            ObjectiveKind::SmoothShape => "new",
             ObjectiveKind::Condition => "condition",
             ObjectiveKind::ConditionMax => "condition-max",
             ObjectiveKind::Untangle => "untangle",
@@ -95,9 +97,9 @@ impl ObjectiveKind {
     /// What it is, in a few words for people (the page's menus and picture titles).
     pub fn describe(self) -> &'static str {
         match self {
-            ObjectiveKind::Old => "max-min α/β (Freitag's ascent)",
+            ObjectiveKind::MaxMinShape => "max-min α/β (Freitag's ascent)",
             ObjectiveKind::Sine => "max-min sine (Freitag)",
-            ObjectiveKind::New => "Chen, Tristano & Kwok (Fletcher–Reeves)",
+            ObjectiveKind::SmoothShape => "Chen, Tristano & Kwok (Fletcher–Reeves)",
             ObjectiveKind::Condition => "condition number κ, 2-norm (Knupp)",
             ObjectiveKind::ConditionMax => "condition number κ, worst corner (Knupp)",
             ObjectiveKind::Untangle => "untangling Σ(|det| − det) (Knupp)",
@@ -114,7 +116,7 @@ impl ObjectiveKind {
     /// [`Objective::untangles`]): `new` (its penalty is finite on inverted stars and falls
     /// as a fold gets shallower) and `untangle`.
     pub fn untangles(self) -> bool {
-        matches!(self, ObjectiveKind::New | ObjectiveKind::Untangle)
+        matches!(self, ObjectiveKind::SmoothShape | ObjectiveKind::Untangle)
     }
 
     /// Whether objectives of this kind only untangle (see [`Objective::only_untangles`]):
@@ -126,8 +128,8 @@ impl ObjectiveKind {
     /// How this kind's terms combine (which solver fits it).
     pub fn goal(self) -> Goal {
         match self {
-            ObjectiveKind::New | ObjectiveKind::Condition | ObjectiveKind::Untangle => Goal::MinimizeSum,
-            ObjectiveKind::Old | ObjectiveKind::Sine | ObjectiveKind::ConditionMax | ObjectiveKind::UntangleMinDet => {
+            ObjectiveKind::SmoothShape | ObjectiveKind::Condition | ObjectiveKind::Untangle => Goal::MinimizeSum,
+            ObjectiveKind::MaxMinShape | ObjectiveKind::Sine | ObjectiveKind::ConditionMax | ObjectiveKind::UntangleMinDet => {
                 Goal::MaximizeMin
             }
         }
@@ -150,9 +152,9 @@ pub fn objective(kind: ObjectiveKind) -> Box<dyn Objective + Send + Sync> {
 /// have none and ignore it).
 pub fn objective_with(kind: ObjectiveKind, penalty: Penalty) -> Box<dyn Objective + Send + Sync> {
     match kind {
-        ObjectiveKind::Old => Box::new(MaxMinShape),
+        ObjectiveKind::MaxMinShape => Box::new(MaxMinShape),
         ObjectiveKind::Sine => Box::new(MaxMinSine),
-        ObjectiveKind::New => Box::new(ChenTristanoKwok::with_penalty(penalty)),
+        ObjectiveKind::SmoothShape => Box::new(ChenTristanoKwok::with_penalty(penalty)),
         ObjectiveKind::Condition => Box::new(ConditionNumber { norm: Norm::Two }),
         ObjectiveKind::ConditionMax => Box::new(ConditionNumber { norm: Norm::Infinity }),
         ObjectiveKind::Untangle => Box::new(Untangle::default()),
@@ -824,7 +826,7 @@ mod tests {
         let star = fan_star(&regular_ring(5, 1.0));
         let x = d(0.1, 0.2);
         let direct = MaxMinShape.value_and_gradient(&star, x);
-        let boxed: Box<dyn Objective> = objective(ObjectiveKind::Old);
+        let boxed: Box<dyn Objective> = objective(ObjectiveKind::MaxMinShape);
         fn generic<O: Objective>(o: O, s: &Star, x: DVec2) -> (f64, DVec2) {
             o.value_and_gradient(s, x)
         }

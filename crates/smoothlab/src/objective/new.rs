@@ -99,7 +99,7 @@ impl ChenTristanoKwok {
     }
 
     pub fn kind(&self) -> ObjectiveKind {
-        ObjectiveKind::New
+        ObjectiveKind::SmoothShape
     }
 
     /// Which design of eq. (8) this is.

@@ -25,7 +25,7 @@ pub struct MaxMinShape;
 
 impl MaxMinShape {
     pub fn kind(&self) -> ObjectiveKind {
-        ObjectiveKind::Old
+        ObjectiveKind::MaxMinShape
     }
 
     /// Calls `emit` with one term per star element.

@@ -292,11 +292,11 @@ mod tests {
     #[test]
     fn deferred_pass_equals_in_place_pass_bit_for_bit() {
         let strategies = [
-            (Strategy::Laplace, ObjectiveKind::New),
-            (Strategy::Smart, ObjectiveKind::New),
-            (Strategy::Opt, ObjectiveKind::New),
-            (Strategy::Opt, ObjectiveKind::Old),
-            (Strategy::Rules, ObjectiveKind::New),
+            (Strategy::Laplace, ObjectiveKind::SmoothShape),
+            (Strategy::Smart, ObjectiveKind::SmoothShape),
+            (Strategy::Opt, ObjectiveKind::SmoothShape),
+            (Strategy::Opt, ObjectiveKind::MaxMinShape),
+            (Strategy::Rules, ObjectiveKind::SmoothShape),
             (Strategy::C2, ObjectiveKind::Sine),
         ];
         for (name, mesh) in meshes() {
@@ -344,7 +344,7 @@ mod tests {
         let free: Vec<u32> =
             (0..mesh.node_count() as u32).map(|n| if mesh.is_free(n as usize) { 0 } else { NONE }).collect();
         let one = Colouring::from_colours(&mesh, &free, 1);
-        let obj = objective(ObjectiveKind::New);
+        let obj = objective(ObjectiveKind::SmoothShape);
         let opts = SmoothOptions::default().with_strategy(Strategy::Laplace);
         let run = |execution| {
             let mut m = mesh.clone();
@@ -359,7 +359,7 @@ mod tests {
     #[test]
     fn coloured_pass_records_and_recolours_another_mesh() {
         let mut small = rand2d(200, 8, 1).unwrap();
-        let obj = objective(ObjectiveKind::New);
+        let obj = objective(ObjectiveKind::SmoothShape);
         let mut s = ColouredSmoother::new(&small, SmoothOptions::default()).unwrap();
         let r = s.pass(&mut small, &*obj, &|| 0.0);
         assert_eq!(r.pass, 1);

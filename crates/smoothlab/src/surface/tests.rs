@@ -40,7 +40,7 @@ fn smoothing_a_perturbed_sample_untangles_and_stays_on_the_surface() {
         for (name, s) in every_sample(order) {
             let mut p = perturb_surface(&s, 0.6, 3).unwrap();
             let before = p.stats();
-            let new = objective(ObjectiveKind::New);
+            let new = objective(ObjectiveKind::SmoothShape);
             let records = smooth_surface(&mut p, new.as_ref(), SmoothOptions::default(), 3, &|| 0.0).unwrap();
             let after = p.stats();
             eprintln!(
@@ -92,7 +92,7 @@ fn smoothing_is_deterministic() {
     let s = perturb_surface(&surface(SurfaceShape::Torus, SurfaceKind::Tri, 1, 4).unwrap(), 0.5, 9).unwrap();
     let run = || {
         let mut t = s.clone();
-        smooth_surface(&mut t, objective(ObjectiveKind::New).as_ref(), SmoothOptions::default(), 2, &|| 0.0).unwrap();
+        smooth_surface(&mut t, objective(ObjectiveKind::SmoothShape).as_ref(), SmoothOptions::default(), 2, &|| 0.0).unwrap();
         t.points().to_vec()
     };
     assert_eq!(run(), run());
@@ -253,7 +253,7 @@ fn nodes_slide_along_feature_curves_when_asked() {
         t.slide_along_curves();
         assert!(rim.iter().all(|&n| t.slides(n) && t.flat().is_free(n)), "{name}: every rim node slides");
         let before = t.clone();
-        smooth_surface(&mut t, objective(ObjectiveKind::New).as_ref(), SmoothOptions::default(), 3, &|| 0.0).unwrap();
+        smooth_surface(&mut t, objective(ObjectiveKind::SmoothShape).as_ref(), SmoothOptions::default(), 3, &|| 0.0).unwrap();
         let moved = rim.iter().filter(|&&n| t.points()[n] != before.points()[n]).count();
         assert!(moved > rim.len() / 2, "{name}: {moved} rim nodes moved");
         for &n in &rim {

@@ -160,7 +160,7 @@ mod smoothing {
             let mut m = perturb_volume(&tet_cube(4).unwrap(), 0.8, seed).unwrap();
             let before = volume_stats(&m);
             assert!(before.inverted > 0, "seed {seed}: not tangled");
-            let records = passes(&mut m, ObjectiveKind::New, Strategy::Rules, 3);
+            let records = passes(&mut m, ObjectiveKind::SmoothShape, Strategy::Rules, 3);
             let after = volume_stats(&m);
             assert_eq!(after.inverted, 0, "seed {seed}: {} inverted after 3 passes ({records:?})", after.inverted);
             assert!(after.min_angle_deg > 5.0, "seed {seed}: {}", after.min_angle_deg);
@@ -173,7 +173,7 @@ mod smoothing {
         let mut m = start.clone();
         let o = SmoothOptions::default().with_strategy(Strategy::Smart);
         let mut s = VolumeSmoother::new(o).unwrap();
-        s.sweep(&mut m, &*tet_objective(ObjectiveKind::New).unwrap());
+        s.sweep(&mut m, &*tet_objective(ObjectiveKind::SmoothShape).unwrap());
         assert!(volume_stats(&m).min_quality >= volume_stats(&start).min_quality);
         assert!(m.nodes() != start.nodes());
     }
@@ -282,7 +282,7 @@ fn quadratic_hexahedra_follow_their_corners() {
         assert_eq!(q.free_count(), linear.free_count());
         let before = crate::volume::volume_stats(&q);
         assert_eq!((before.inverted, before.quadratic), (0, 27));
-        crate::volume::smooth_volume(&mut q, &*crate::objective::tet_objective(crate::objective::ObjectiveKind::New).unwrap(), Default::default(), 2, &|| 0.0).unwrap();
+        crate::volume::smooth_volume(&mut q, &*crate::objective::tet_objective(crate::objective::ObjectiveKind::SmoothShape).unwrap(), Default::default(), 2, &|| 0.0).unwrap();
         // every follower at the mean of its corners, boundary ones where they were
         for e in 0..q.element_count() {
             let ids = q.element(e);

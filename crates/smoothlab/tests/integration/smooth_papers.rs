@@ -50,7 +50,7 @@ fn make_equilateral(mesh: &Mesh, kind: ObjectiveKind) -> f64 {
 fn the_regular_star_becomes_equilateral_under_every_objective() {
     let m = star(StarKind::Regular, 6).unwrap();
     assert!(worst_alpha_error(&m) > 0.1);
-    for kind in [ObjectiveKind::New, ObjectiveKind::Old, ObjectiveKind::Condition] {
+    for kind in [ObjectiveKind::SmoothShape, ObjectiveKind::MaxMinShape, ObjectiveKind::Condition] {
         let e = make_equilateral(&m, kind);
         assert!(e <= 1e-6, "{kind}: worst |α − 1| = {e}");
     }
@@ -61,7 +61,7 @@ fn mesquite_equil_tri_meshes_become_equilateral() {
     let Some(dir) = crate::common::mesquite_meshes() else { return };
     for file in ["equil_tri.vtk", "equil_tri2.vtk"] {
         let m = io::read_path(&dir.join("tris/untangled").join(file)).unwrap();
-        for kind in [ObjectiveKind::New, ObjectiveKind::Old, ObjectiveKind::Condition] {
+        for kind in [ObjectiveKind::SmoothShape, ObjectiveKind::MaxMinShape, ObjectiveKind::Condition] {
             let e = make_equilateral(&m, kind);
             assert!(e <= 1e-6, "{file}, {kind}: worst |α − 1| = {e}");
         }
@@ -72,7 +72,7 @@ fn mesquite_equil_tri_meshes_become_equilateral() {
 /// `max`; checks on the way that the inverted count never rises.
 fn passes_to_untangle(mesh: &Mesh, max: u32) -> Option<u32> {
     let mut m = mesh.clone();
-    let obj = objective(ObjectiveKind::New);
+    let obj = objective(ObjectiveKind::SmoothShape);
     let mut s = Smoother::new(SmoothOptions::default()).unwrap();
     let mut last = mesh_stats(&m).inverted;
     for p in 1..=max {
@@ -151,7 +151,7 @@ fn on_rand2d_the_new_objective_has_the_best_mean_alpha_and_every_method_opens_th
         };
         let sine = run(ObjectiveKind::Sine, freitag(Strategy::Opt));
         let c2 = run(ObjectiveKind::Sine, freitag(Strategy::C2));
-        let new = run(ObjectiveKind::New, SmoothOptions::default());
+        let new = run(ObjectiveKind::SmoothShape, SmoothOptions::default());
         for (name, s) in [("opt sine", &sine), ("c2 30° sine", &c2), ("rules new", &new)] {
             assert!(s.inverted == 0 && s.min_angle_deg > 5.0, "seed {seed}, {name}: {}", s.min_angle_deg);
             assert!(s.max_angle_deg < s0.max_angle_deg, "seed {seed}, {name}");

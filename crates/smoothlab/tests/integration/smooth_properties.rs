@@ -204,11 +204,11 @@ proptest! {
     ) {
         let base = small_mesh(shape, size, seed, amount);
         for (strategy, kind) in [
-            (Strategy::Smart, ObjectiveKind::Old),
-            (Strategy::C1, ObjectiveKind::Old),
-            (Strategy::C2, ObjectiveKind::Old),
-            (Strategy::C3, ObjectiveKind::Old),
-            (Strategy::Opt, ObjectiveKind::Old),
+            (Strategy::Smart, ObjectiveKind::MaxMinShape),
+            (Strategy::C1, ObjectiveKind::MaxMinShape),
+            (Strategy::C2, ObjectiveKind::MaxMinShape),
+            (Strategy::C3, ObjectiveKind::MaxMinShape),
+            (Strategy::Opt, ObjectiveKind::MaxMinShape),
             (Strategy::Opt, ObjectiveKind::Condition),
         ] {
             let mut m = base.clone();
@@ -371,7 +371,7 @@ fn c3_leaves_a_star_no_worse_even_when_its_plain_laplacian_would() {
     }
     let mesh = b.build().unwrap();
     let (q0, inv0) = star_state(&mesh, 0);
-    let obj = objective(ObjectiveKind::Old);
+    let obj = objective(ObjectiveKind::MaxMinShape);
     let mut m = mesh.clone();
     let o = Smoother::new(options(Strategy::C3).with_threshold_deg(30.0)).unwrap().smooth_node(&mut m, 0, &*obj);
     let (q1, inv1) = star_state(&m, 0);

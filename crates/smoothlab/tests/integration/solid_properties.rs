@@ -96,7 +96,7 @@ fn knupp_random_hex_grids_tangled_by_0_6_edges_untangle_in_three_passes() {
         assert!(before > 0, "seed {seed}: not tangled");
         let mut t = m.clone();
         let options = SmoothOptions::default();
-        let records = smooth_volume(&mut t, &*tet_objective(ObjectiveKind::New).unwrap(), options, 3, &|| 0.0).unwrap();
+        let records = smooth_volume(&mut t, &*tet_objective(ObjectiveKind::SmoothShape).unwrap(), options, 3, &|| 0.0).unwrap();
         let s = volume_stats(&t);
         let sj = s.solid.as_ref().unwrap().min_scaled_jacobian;
         report.push(format!("seed {seed}: {before} → {:?}, min scaled Jacobian {sj:.3}", records.iter().map(|r| r.after.inverted).collect::<Vec<_>>()));

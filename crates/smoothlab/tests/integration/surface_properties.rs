@@ -107,7 +107,7 @@ fn the_default_smoother_keeps_the_quadratic_torus_as_good() {
         let s = surface(SurfaceShape::Torus, kind, 2, 1).unwrap();
         let before = s.stats();
         let mut t = s.clone();
-        smooth_surface(&mut t, objective(ObjectiveKind::New).as_ref(), SmoothOptions::default(), 3, &|| 0.0).unwrap();
+        smooth_surface(&mut t, objective(ObjectiveKind::SmoothShape).as_ref(), SmoothOptions::default(), 3, &|| 0.0).unwrap();
         let after = t.stats();
         assert_eq!(after.inverted, 0, "{kind:?}");
         assert!(after.min_quality >= before.min_quality, "{kind:?}: quality {} → {}", before.min_quality, after.min_quality);

@@ -42,7 +42,7 @@ fn through(s: &Surface, format: Format) -> Surface {
 fn untangle(s: &mut Surface) -> Vec<usize> {
     let mut inverted = vec![s.stats().inverted];
     for _ in 0..3 {
-        smooth_surface(s, objective(ObjectiveKind::New).as_ref(), SmoothOptions::default(), 1, &|| 0.0).unwrap();
+        smooth_surface(s, objective(ObjectiveKind::SmoothShape).as_ref(), SmoothOptions::default(), 1, &|| 0.0).unwrap();
         inverted.push(s.stats().inverted);
     }
     inverted
@@ -126,7 +126,7 @@ fn a_valid_surface_file_stays_on_its_facets() {
         let mut s = through(&p, Format::Vtk);
         assert_eq!(s.stats().inverted, 0);
         assert!(matches!(s.reference(), Reference::Facets(_)), "{}", s.reference().describe());
-        smooth_surface(&mut s, objective(ObjectiveKind::New).as_ref(), SmoothOptions::default(), 3, &|| 0.0).unwrap();
+        smooth_surface(&mut s, objective(ObjectiveKind::SmoothShape).as_ref(), SmoothOptions::default(), 3, &|| 0.0).unwrap();
         let far = s.max_distance_from_reference();
         assert!(far <= 1e-9 * s.size(), "{shape:?}: {far}");
     }
@@ -176,7 +176,7 @@ fn the_old_objective_keeps_a_tangled_sphere_on_its_fitted_surface() {
         let (p, exact) = tangled(SurfaceShape::Sphere, SurfaceKind::Tri, 1, 8, 1.5, seed);
         let mut s = through(&p, Format::Vtk);
         let opts = SmoothOptions::default().with_strategy(Strategy::Opt);
-        smooth_surface(&mut s, objective(ObjectiveKind::Old).as_ref(), opts, 3, &|| 0.0).unwrap();
+        smooth_surface(&mut s, objective(ObjectiveKind::MaxMinShape).as_ref(), opts, 3, &|| 0.0).unwrap();
         let off = s.max_distance_from_reference();
         assert!(off < 1e-3, "seed {seed}: a node {off} off the fitted surface it was put on");
         let far = farthest(&s, &exact);

@@ -140,7 +140,7 @@ fn new_never_flattens_a_random_boundary_tetrahedron() {
         let before = volume_stats(&m);
         assert_eq!(before.inverted, 0);
         for strategy in [Strategy::Rules, Strategy::Opt, Strategy::C1, Strategy::C2] {
-            let t = smoothed(&m, strategy, ObjectiveKind::New);
+            let t = smoothed(&m, strategy, ObjectiveKind::SmoothShape);
             let after = volume_stats(&t);
             assert_eq!(after.inverted, 0, "seed {seed} {strategy:?}");
             assert!(
@@ -168,7 +168,7 @@ fn the_priority_order_is_the_same_at_every_scale() {
         let tets: Vec<[u32; 4]> = (0..m.element_count()).map(|e| m.element(e)[..4].try_into().unwrap()).collect();
         let scaled = VolumeMesh::from_tets(m.nodes().iter().map(|&p| 3.0 * p).collect(), &tets).unwrap();
         let opts = SmoothOptions::default().with_strategy(Strategy::Rules);
-        let objective = tet_objective(ObjectiveKind::New).unwrap();
+        let objective = tet_objective(ObjectiveKind::SmoothShape).unwrap();
         let (mut a, mut b) = (m.clone(), scaled);
         smooth_volume(&mut a, &*objective, opts, 1, &|| 0.0).unwrap();
         smooth_volume(&mut b, &*objective, opts, 1, &|| 0.0).unwrap();

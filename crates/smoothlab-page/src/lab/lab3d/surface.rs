@@ -243,7 +243,7 @@ mod tests {
         assert_eq!(l.table(Side::A).title.replacen('A', "B", 1), l.table(Side::B).title);
         let bad = Settings { max_iter: 0, ..Settings::default() };
         assert!(l.set_settings(bad).is_err());
-        assert_eq!(l.settings().compare[0].objective, ObjectiveKind::New, "a refused setting changes nothing");
+        assert_eq!(l.settings().compare[0].objective, ObjectiveKind::SmoothShape, "a refused setting changes nothing");
     }
 
     #[test]

@@ -175,7 +175,7 @@ fn chen_2(c: Canvas, t: &Theme) -> Result<Vec<Pixmap>> {
         t,
     );
     let alpha: Vec<Vec<DVec2>> = LINES2.iter().map(|&y| xs(X2.0, X2.1).map(|x| DVec2::new(x, alpha2(DVec2::new(x, y)))).collect()).collect();
-    let new = objective_with(ObjectiveKind::New, Penalty::Barrier);
+    let new = objective_with(ObjectiveKind::SmoothShape, Penalty::Barrier);
     let mut f = Vec::new();
     for &y in &LINES2 {
         let star = triangle_star(DVec2::new(-0.5, y))?;
@@ -200,7 +200,7 @@ fn chen_2(c: Canvas, t: &Theme) -> Result<Vec<Pixmap>> {
 pub(super) fn chen_2_measured() -> Result<String> {
     let p = DVec2::new(-0.5, 0.0);
     let (a0, a1, a2) = (alpha2(DVec2::new(0.0, 0.0)), alpha2(p), alpha2(DVec2::new(-3.0, 0.0)));
-    let new = objective_with(ObjectiveKind::New, Penalty::Barrier);
+    let new = objective_with(ObjectiveKind::SmoothShape, Penalty::Barrier);
     let star = triangle_star(p)?;
     let (_, g) = new.value_and_gradient(&star, p);
     let d = -g.normalize_or_zero();
@@ -394,7 +394,7 @@ fn plate_passes_from(m0: &Mesh, order: Order) -> Result<Vec<Mesh>> {
     let st = fig.state()?;
     let mut m = m0.clone();
     let mut s = Smoother::new(chen13_options(&st.settings, order)?)?;
-    let obj = objective_with(ObjectiveKind::New, Penalty::Barrier);
+    let obj = objective_with(ObjectiveKind::SmoothShape, Penalty::Barrier);
     let mut out = vec![m.clone()];
     while out.len() <= CHEN13_MAX_PASSES && (out.len() <= 3 || mesh_stats(&m).inverted > 0) {
         s.pass(&mut m, obj.as_ref(), &|| 0.0);
@@ -511,8 +511,8 @@ fn curved_runs() -> Result<Vec<(String, Mesh)>> {
     let (_, fig) = find("chen-16")?;
     let (pg, st) = fig.playground()?;
     let m0 = pg.panel(Side::B).mesh.clone();
-    let new = objective_with(ObjectiveKind::New, Penalty::Barrier);
-    let old = objective_with(ObjectiveKind::Old, Penalty::Barrier);
+    let new = objective_with(ObjectiveKind::SmoothShape, Penalty::Barrier);
+    let old = objective_with(ObjectiveKind::MaxMinShape, Penalty::Barrier);
     let mut out = vec![("as loaded".to_string(), m0.clone())];
     for (strategy, title, obj) in [
         (Strategy::Laplace, "Laplacian", &new),
@@ -685,7 +685,7 @@ fn knupp_runs() -> Result<Vec<(String, Mesh)>> {
     }
     let mut n = m0.clone();
     let mut s = Smoother::new(SmoothOptions::default())?;
-    let new = objective_with(ObjectiveKind::New, Penalty::Barrier);
+    let new = objective_with(ObjectiveKind::SmoothShape, Penalty::Barrier);
     for _ in 0..10 {
         s.pass(&mut n, new.as_ref(), &|| 0.0);
     }
@@ -724,7 +724,7 @@ mod tests {
     fn chen_2_alpha_leads_an_inverted_apex_away_and_the_new_objective_back() {
         let (near, far) = (alpha2(DVec2::new(-0.5, 0.0)), alpha2(DVec2::new(-3.0, 0.0)));
         assert!(near < far && far < 0.0, "α rises towards 0 away from AB: {near} {far}");
-        let new = objective_with(ObjectiveKind::New, Penalty::Barrier);
+        let new = objective_with(ObjectiveKind::SmoothShape, Penalty::Barrier);
         let p = DVec2::new(-0.5, 0.0);
         let (_, g) = new.value_and_gradient(&triangle_star(p).unwrap(), p);
         assert!(-g.y > 0.0, "the new objective descends towards AB: {g}");

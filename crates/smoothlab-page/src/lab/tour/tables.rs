@@ -36,7 +36,7 @@ pub struct FreitagMethod {
 /// measure (the smallest sine, for the smart Laplacian and the thresholds too), input
 /// order; then the new objective.
 pub const FREITAG_METHODS: [FreitagMethod; 9] = {
-    use ObjectiveKind::{New, Sine};
+    use ObjectiveKind::{Sine, SmoothShape};
     use Order::{Input, Priority};
     [
         FreitagMethod { method: "original", run: None },
@@ -46,8 +46,8 @@ pub const FREITAG_METHODS: [FreitagMethod; 9] = {
         FreitagMethod { method: "C1 30°, `sine`", run: Some((Strategy::C1, Sine, 30.0, Input, true)) },
         FreitagMethod { method: "C2 30°, `sine`", run: Some((Strategy::C2, Sine, 30.0, Input, true)) },
         FreitagMethod { method: "C3 30°, `sine`", run: Some((Strategy::C3, Sine, 30.0, Input, true)) },
-        FreitagMethod { method: "opt, `new`", run: Some((Strategy::Opt, New, 30.0, Input, false)) },
-        FreitagMethod { method: "rules, `new`, priority", run: Some((Strategy::Rules, New, 30.0, Priority, false)) },
+        FreitagMethod { method: "opt, `new`", run: Some((Strategy::Opt, SmoothShape, 30.0, Input, false)) },
+        FreitagMethod { method: "rules, `new`, priority", run: Some((Strategy::Rules, SmoothShape, 30.0, Priority, false)) },
     ]
 };
 
@@ -304,7 +304,7 @@ pub struct Freitag3dMethod {
 /// 10° and 15° (read from §10 only), which keeps the browser's part to about ten 3-pass
 /// runs on 1086 nodes.
 pub const FREITAG3D_METHODS: [Freitag3dMethod; 10] = {
-    use ObjectiveKind::{Condition, New, Sine};
+    use ObjectiveKind::{Condition, Sine, SmoothShape};
     use Order::{Input, Priority};
     [
         Freitag3dMethod { method: "original", run: None },
@@ -314,8 +314,8 @@ pub const FREITAG3D_METHODS: [Freitag3dMethod; 10] = {
         Freitag3dMethod { method: "C1 30°, `sine`", run: Some((Strategy::C1, Sine, 30.0, Input, true)) },
         Freitag3dMethod { method: "C2 30°, `sine`", run: Some((Strategy::C2, Sine, 30.0, Input, true)) },
         Freitag3dMethod { method: "C3 30°, `sine`", run: Some((Strategy::C3, Sine, 30.0, Input, true)) },
-        Freitag3dMethod { method: "opt, `new`", run: Some((Strategy::Opt, New, 30.0, Input, false)) },
-        Freitag3dMethod { method: "rules, `new`, priority", run: Some((Strategy::Rules, New, 30.0, Priority, false)) },
+        Freitag3dMethod { method: "opt, `new`", run: Some((Strategy::Opt, SmoothShape, 30.0, Input, false)) },
+        Freitag3dMethod { method: "rules, `new`, priority", run: Some((Strategy::Rules, SmoothShape, 30.0, Priority, false)) },
         Freitag3dMethod { method: "opt, `condition`", run: Some((Strategy::Opt, Condition, 30.0, Input, false)) },
     ]
 };
@@ -393,7 +393,7 @@ pub(super) fn freitag_t2(c: Canvas, t: &Theme) -> Result<Pixmap> {
     let m0 = rand3d_seed1()?;
     let top = Canvas { w: c.w / 3, h: (c.h as f32 * 0.52) as u32, dpr: c.dpr };
     let mut parts = vec![cut_panel(&m0, smoothlab_render::Cut::default(), "rand3D as generated, cut at z = 0.5", top, t)?];
-    for (kind, title) in [(ObjectiveKind::Sine, "A: opt, sine, 3 passes"), (ObjectiveKind::New, "B: opt, new, 3 passes")] {
+    for (kind, title) in [(ObjectiveKind::Sine, "A: opt, sine, 3 passes"), (ObjectiveKind::SmoothShape, "B: opt, new, 3 passes")] {
         let mut m = m0.clone();
         let o = SmoothOptions::default().with_strategy(Strategy::Opt).with_order(Order::Input).with_smart_measure(Measure::MinSine);
         smoothlab::volume::smooth_volume(&mut m, smoothlab::objective::tet_objective(kind)?.as_ref(), o, 3, &|| 0.0)?;

@@ -59,7 +59,7 @@ pub(crate) fn memory_child(words: &[String]) {
                 "smart" => (Strategy::Smart, Order::Input),
                 other => panic!("perf: no strategy {other}"),
             };
-            let obj = objective(ObjectiveKind::New);
+            let obj = objective(ObjectiveKind::SmoothShape);
             let mut smoother =
                 Smoother::new(SmoothOptions::default().with_strategy(strategy).with_order(order)).expect("options");
             let t0 = Instant::now();

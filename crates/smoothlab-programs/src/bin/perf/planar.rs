@@ -100,21 +100,21 @@ fn sweep(mesh: &mut Mesh, strategy: Strategy, kind: ObjectiveKind, variant: Vari
 /// The passes measured, by name: strategy, objective and how the options depart from the
 /// input-order defaults.
 const PASSES: [(&str, Strategy, ObjectiveKind, Variant); 15] = [
-    ("laplace", Strategy::Laplace, ObjectiveKind::New, Variant::Default),
-    ("smart", Strategy::Smart, ObjectiveKind::New, Variant::Default),
-    ("opt+new", Strategy::Opt, ObjectiveKind::New, Variant::Default),
-    ("opt+old", Strategy::Opt, ObjectiveKind::Old, Variant::Default),
-    ("opt+old, 20 it", Strategy::Opt, ObjectiveKind::Old, Variant::MaxIter(20)),
+    ("laplace", Strategy::Laplace, ObjectiveKind::SmoothShape, Variant::Default),
+    ("smart", Strategy::Smart, ObjectiveKind::SmoothShape, Variant::Default),
+    ("opt+new", Strategy::Opt, ObjectiveKind::SmoothShape, Variant::Default),
+    ("opt+old", Strategy::Opt, ObjectiveKind::MaxMinShape, Variant::Default),
+    ("opt+old, 20 it", Strategy::Opt, ObjectiveKind::MaxMinShape, Variant::MaxIter(20)),
     ("opt+sine", Strategy::Opt, ObjectiveKind::Sine, Variant::Default),
     ("opt+sine, 20 it", Strategy::Opt, ObjectiveKind::Sine, Variant::MaxIter(20)),
     ("opt+condition", Strategy::Opt, ObjectiveKind::Condition, Variant::Default),
     ("opt+condition-max", Strategy::Opt, ObjectiveKind::ConditionMax, Variant::Default),
     ("opt+untangle", Strategy::Opt, ObjectiveKind::Untangle, Variant::Default),
     ("opt+untangle-mindet", Strategy::Opt, ObjectiveKind::UntangleMinDet, Variant::Default),
-    ("rules+new", Strategy::Rules, ObjectiveKind::New, Variant::Default),
-    (RULES_PRIORITY, Strategy::Rules, ObjectiveKind::New, Variant::Priority),
-    ("opt+new, Chen's search", Strategy::Opt, ObjectiveKind::New, Variant::ChenAlone),
-    ("rules+new, Chen's search", Strategy::Rules, ObjectiveKind::New, Variant::ChenAlone),
+    ("rules+new", Strategy::Rules, ObjectiveKind::SmoothShape, Variant::Default),
+    (RULES_PRIORITY, Strategy::Rules, ObjectiveKind::SmoothShape, Variant::Priority),
+    ("opt+new, Chen's search", Strategy::Opt, ObjectiveKind::SmoothShape, Variant::ChenAlone),
+    ("rules+new, Chen's search", Strategy::Rules, ObjectiveKind::SmoothShape, Variant::ChenAlone),
 ];
 
 /// The row of `rules` + `new` in priority order, the default smoother (per free node).
@@ -185,7 +185,7 @@ pub(crate) fn newton_quality() -> Vec<(String, [f64; 4], [f64; 4])> {
     families.push(("rand2D, 2000 + 4 × 40 points (seeds 1–5)".into(), (1..=5).map(|seed| rand2d(2000, 40, seed).expect("rand2d")).collect()));
     // Freitag's size (`docs/reproduction.md` §1 runs seeds 1–5 of it)
     families.push(("rand2D, 500 + 4 × 20 points (seeds 1–40)".into(), (1..=40).map(|seed| rand2d(500, 20, seed).expect("rand2d")).collect()));
-    let obj = objective(ObjectiveKind::New);
+    let obj = objective(ObjectiveKind::SmoothShape);
     let run = |m: &Mesh, newton: bool| {
         let mut m = m.clone();
         let mut s = Smoother::new(SmoothOptions::default().with_newton(newton)).expect("options");
@@ -252,7 +252,7 @@ pub(crate) fn measure(n: usize, quick: bool) -> SizeReport {
         rows.push((name.to_string(), a, b));
     }
     // the statistics a full pass adds (mesh_stats + objective total), per free node
-    let obj = objective(ObjectiveKind::New);
+    let obj = objective(ObjectiveKind::SmoothShape);
     let t = Instant::now();
     let _ = mesh_stats(&spatial);
     let _ = Smoother::new(options(Strategy::Laplace)).expect("options").objective_total(&spatial, &*obj);
@@ -269,7 +269,7 @@ pub(crate) fn measure(n: usize, quick: bool) -> SizeReport {
             hi = hi.max(*p);
         }
     }
-    for kind in [ObjectiveKind::New, ObjectiveKind::Old] {
+    for kind in [ObjectiveKind::SmoothShape, ObjectiveKind::MaxMinShape] {
         let o = objective(kind);
         let t = Instant::now();
         let mut acc = 0.0;
@@ -302,11 +302,11 @@ pub(crate) fn measure(n: usize, quick: bool) -> SizeReport {
             parallel.push((name.to_string(), one, all));
         }
     }
-    let evaluations = [(ObjectiveKind::New, false), (ObjectiveKind::Old, false), (ObjectiveKind::New, true)]
+    let evaluations = [(ObjectiveKind::SmoothShape, false), (ObjectiveKind::MaxMinShape, false), (ObjectiveKind::SmoothShape, true)]
         .into_iter()
         .map(|(k, chen_alone)| {
             let (e, s) = evaluations_per_visit(&spatial, k, chen_alone);
-            let how = if chen_alone { " with Chen's search alone" } else if k == ObjectiveKind::New { " (Newton's first trial)" } else { "" };
+            let how = if chen_alone { " with Chen's search alone" } else if k == ObjectiveKind::SmoothShape { " (Newton's first trial)" } else { "" };
             (format!("`{}`{how}", k.name()), e, s)
         })
         .collect();

@@ -19,11 +19,11 @@ const HEX_AMOUNT: f64 = 0.2;
 
 /// The 3D passes: name, strategy, objective, order and solver iterations per call.
 const VOLUME_PASSES: [(&str, Strategy, ObjectiveKind, Order, u32); 8] = [
-    ("laplace", Strategy::Laplace, ObjectiveKind::New, Order::Input, DEFAULT_MAX_ITER),
-    ("smart", Strategy::Smart, ObjectiveKind::New, Order::Input, DEFAULT_MAX_ITER),
-    ("opt+new", Strategy::Opt, ObjectiveKind::New, Order::Input, DEFAULT_MAX_ITER),
-    ("rules+new, priority order", Strategy::Rules, ObjectiveKind::New, Order::Priority, DEFAULT_MAX_ITER),
-    ("opt+old, 20 it", Strategy::Opt, ObjectiveKind::Old, Order::Input, 20),
+    ("laplace", Strategy::Laplace, ObjectiveKind::SmoothShape, Order::Input, DEFAULT_MAX_ITER),
+    ("smart", Strategy::Smart, ObjectiveKind::SmoothShape, Order::Input, DEFAULT_MAX_ITER),
+    ("opt+new", Strategy::Opt, ObjectiveKind::SmoothShape, Order::Input, DEFAULT_MAX_ITER),
+    ("rules+new, priority order", Strategy::Rules, ObjectiveKind::SmoothShape, Order::Priority, DEFAULT_MAX_ITER),
+    ("opt+old, 20 it", Strategy::Opt, ObjectiveKind::MaxMinShape, Order::Input, 20),
     ("opt+sine", Strategy::Opt, ObjectiveKind::Sine, Order::Input, DEFAULT_MAX_ITER),
     ("opt+condition", Strategy::Opt, ObjectiveKind::Condition, Order::Input, DEFAULT_MAX_ITER),
     ("opt+untangle", Strategy::Opt, ObjectiveKind::Untangle, Order::Input, DEFAULT_MAX_ITER),

@@ -53,11 +53,11 @@ impl From<ObjectiveKind> for Choice {
 }
 
 /// `new` with the first design of its penalty (the adjusted angle).
-pub(crate) const NEW_ANGLE: Choice = Choice { kind: ObjectiveKind::New, penalty: Penalty::Angle };
+pub(crate) const NEW_ANGLE: Choice = Choice { kind: ObjectiveKind::SmoothShape, penalty: Penalty::Angle };
 
 /// Both designs of `new`, the default first, with the words the tables use.
 pub(crate) const NEW_DESIGNS: [(Choice, &str); 2] =
-    [(Choice { kind: ObjectiveKind::New, penalty: Penalty::Barrier }, "barrier"), (NEW_ANGLE, "angle (first design)")];
+    [(Choice { kind: ObjectiveKind::SmoothShape, penalty: Penalty::Barrier }, "barrier"), (NEW_ANGLE, "angle (first design)")];
 
 /// Runs passes of `strategy` with objective `choice` until `max_passes` or until `stop`
 /// says so after a pass.

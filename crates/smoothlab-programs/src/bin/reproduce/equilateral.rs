@@ -38,7 +38,7 @@ pub(crate) fn equilateral(out: &mut Report) {
                 continue;
             }
         };
-        for kind in [ObjectiveKind::New, ObjectiveKind::Old, ObjectiveKind::Condition] {
+        for kind in [ObjectiveKind::SmoothShape, ObjectiveKind::MaxMinShape, ObjectiveKind::Condition] {
             let mut m = mesh.clone();
             let obj = objective_with(kind, Penalty::default());
             let mut s = Smoother::new(opts(Strategy::Opt, Order::Input).with_max_iter(MAX_ITER)).expect("options");

@@ -65,7 +65,7 @@ pub(crate) fn freitag_table_1(out: &mut Report) {
         ("laplace (plain)".into(), paper_row("Lap"), ObjectiveKind::Sine.into(), freitag(Strategy::Laplace)),
         ("smart (min sine)".into(), "—".into(), ObjectiveKind::Sine.into(), freitag(Strategy::Smart)),
         ("opt, `sine`".into(), paper_row("Opt"), ObjectiveKind::Sine.into(), freitag(Strategy::Opt)),
-        ("opt, `old` (α)".into(), "—".into(), ObjectiveKind::Old.into(), freitag(Strategy::Opt)),
+        ("opt, `old` (α)".into(), "—".into(), ObjectiveKind::MaxMinShape.into(), freitag(Strategy::Opt)),
     ];
     for (s, n) in [(Strategy::C1, "C1"), (Strategy::C2, "C2"), (Strategy::C3, "C3")] {
         for t in [5.0, 10.0, 15.0, 30.0] {
@@ -312,9 +312,9 @@ fn freitag_why_new(out: &mut Report, meshes: &[Mesh]) {
             Choice::from(ObjectiveKind::Sine),
             opts(Strategy::Opt, Order::Input).with_smart_measure(Measure::MinSine),
         ),
-        ("opt, `old` (α)", ObjectiveKind::Old.into(), opts(Strategy::Opt, Order::Input)),
-        ("opt, `new`", ObjectiveKind::New.into(), opts(Strategy::Opt, Order::Input)),
-        ("rules, `new`, priority", ObjectiveKind::New.into(), opts(Strategy::Rules, Order::Priority)),
+        ("opt, `old` (α)", ObjectiveKind::MaxMinShape.into(), opts(Strategy::Opt, Order::Input)),
+        ("opt, `new`", ObjectiveKind::SmoothShape.into(), opts(Strategy::Opt, Order::Input)),
+        ("rules, `new`, priority", ObjectiveKind::SmoothShape.into(), opts(Strategy::Rules, Order::Priority)),
         ("rules, `new` (angle design), priority", NEW_ANGLE, opts(Strategy::Rules, Order::Priority)),
     ] {
         let (mut minq, mut meanq, mut mina, mut small) = (vec![], vec![], vec![], vec![]);

@@ -95,7 +95,7 @@ pub(crate) fn hexahedra(out: &mut Report) {
         let s0 = volume_stats(&mesh);
         let v0 = s0.solid.clone().expect("a volume's statistics");
         let kinds = s0.volume_kinds.words();
-        let (passes, ms, m) = to_valid(&mesh, ObjectiveKind::New, SmoothOptions::default(), 10);
+        let (passes, ms, m) = to_valid(&mesh, ObjectiveKind::SmoothShape, SmoothOptions::default(), 10);
         if let Some(p) = passes {
             reached += 1;
             worst_passes = worst_passes.max(p);
@@ -104,9 +104,9 @@ pub(crate) fn hexahedra(out: &mut Report) {
             }
         }
         let s = volume_stats(&m);
-        let (ten, _) = run_volume(&mesh, ObjectiveKind::New, SmoothOptions::default(), 10);
+        let (ten, _) = run_volume(&mesh, ObjectiveKind::SmoothShape, SmoothOptions::default(), 10);
         let s10 = volume_stats(&ten);
-        let (old, _) = run_volume(&mesh, ObjectiveKind::Old, opts(Strategy::Opt, Order::Input), 10);
+        let (old, _) = run_volume(&mesh, ObjectiveKind::MaxMinShape, opts(Strategy::Opt, Order::Input), 10);
         let so = volume_stats(&old);
         if so.inverted > 0 {
             old_left.push(format!("`{}`", file.rsplit('/').next().unwrap_or(file)));
@@ -167,7 +167,7 @@ fn knupp_hex_grids(out: &mut Report) {
     for seed in 1..=5 {
         let tangled = perturb_volume(&block, 0.6, seed).expect("perturb");
         let s0 = volume_stats(&tangled);
-        let (new, rec) = run_volume(&tangled, ObjectiveKind::New, SmoothOptions::default(), 3);
+        let (new, rec) = run_volume(&tangled, ObjectiveKind::SmoothShape, SmoothOptions::default(), 3);
         let per: Vec<String> = rec.iter().map(|r| r.after.inverted.to_string()).collect();
         let ms: f64 = rec.iter().map(|r| r.elapsed_ms).sum();
         let (valid, _, m) = to_valid(&tangled, ObjectiveKind::Untangle, untangle_opts(), 10);

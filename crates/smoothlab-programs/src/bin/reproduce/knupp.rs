@@ -86,7 +86,7 @@ pub(crate) fn knupp_figure_1(out: &mut Report) {
             let (kw, km) = kappa(&unt.mesh);
             let cond = run(&unt.mesh, ObjectiveKind::Condition, opts(Strategy::Opt, Order::Input), 10, never);
             let (cw, cm) = kappa(&cond.mesh);
-            let new = run(&m, ObjectiveKind::New, opts(Strategy::Rules, Order::Priority), 10, never);
+            let new = run(&m, ObjectiveKind::SmoothShape, opts(Strategy::Rules, Order::Priority), 10, never);
             let (nw, nm) = kappa(&new.mesh);
             let new_valid = new.passes_to_valid().map_or("not in 10".to_string(), |n| n.to_string());
             new_max = new_max.max(new.passes_to_valid().unwrap_or(0));

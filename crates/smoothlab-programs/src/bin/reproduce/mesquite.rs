@@ -87,7 +87,7 @@ pub(crate) fn mesquite_tangled(out: &mut Report) {
                     .map_or(format!("not in 10 ({} left)", new.last_inverted(s0.inverted)), |n| n.to_string())
             )
         };
-        let (new_cell, angle_cell) = (cell(ObjectiveKind::New.into()), cell(NEW_ANGLE));
+        let (new_cell, angle_cell) = (cell(ObjectiveKind::SmoothShape.into()), cell(NEW_ANGLE));
         if s0.inverted > 0 {
             tangled += 1;
             let within3 = |c: &str| c.rsplit("— ").next().and_then(|n| n.parse::<u32>().ok()).is_some_and(|n| n <= 3);
@@ -115,7 +115,7 @@ pub(crate) fn mesquite_tangled(out: &mut Report) {
             }
             None => format!("not in 10, {} left, —", unt.last_inverted(s0.inverted)),
         };
-        let old = run(&mesh, ObjectiveKind::Old, opts(Strategy::Opt, Order::Input), 10, never);
+        let old = run(&mesh, ObjectiveKind::MaxMinShape, opts(Strategy::Opt, Order::Input), 10, never);
         let old_cell = format!("{} / {}", old.passes[2].after.inverted, old.passes[9].after.inverted);
         table.row(vec![
             name.clone(),

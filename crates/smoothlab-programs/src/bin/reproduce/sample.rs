@@ -42,7 +42,7 @@ pub(crate) fn default_sample(out: &mut Report) {
         let (mut untangled, mut ahead, mut better_mean, mut lead) = ([0; 2], 0, 0, vec![]);
         for seed in 1..=SEEDS {
             let m = perturb(&base, TANGLE_AMOUNT, seed).expect("perturb");
-            let [o, n] = [ObjectiveKind::Old, ObjectiveKind::New]
+            let [o, n] = [ObjectiveKind::MaxMinShape, ObjectiveKind::SmoothShape]
                 .map(|k| mesh_stats(&run(&m, k, opts(Strategy::Rules, Order::Priority), 3, never).mesh));
             untangled[0] += (o.inverted == 0) as u32;
             untangled[1] += (n.inverted == 0) as u32;

@@ -100,7 +100,7 @@ pub(crate) fn surfaces(out: &mut Report) {
                 continue;
             };
             table.row(surface_row(&format!("`{f}` as loaded"), &s.stats(), None));
-            for (kind, strategy) in [(ObjectiveKind::New, Strategy::Rules), (ObjectiveKind::Old, Strategy::Opt)] {
+            for (kind, strategy) in [(ObjectiveKind::SmoothShape, Strategy::Rules), (ObjectiveKind::MaxMinShape, Strategy::Opt)] {
                 let order = if strategy == Strategy::Rules { Order::Priority } else { Order::Input };
                 let (t, r) = run_surface(&s, kind, opts(strategy, order), 3, false);
                 let ms: f64 = r.iter().map(|p| p.elapsed_ms).sum();
@@ -140,7 +140,7 @@ pub(crate) fn surfaces(out: &mut Report) {
                         let p = perturb_surface(&base, amount, seed).expect("perturbed");
                         inverted += p.stats().inverted;
                         let (t, r) =
-                            run_surface(&p, ObjectiveKind::New, opts(Strategy::Rules, Order::Priority), 10, true);
+                            run_surface(&p, ObjectiveKind::SmoothShape, opts(Strategy::Rules, Order::Priority), 10, true);
                         let st = t.stats();
                         done += (st.inverted == 0) as usize;
                         most = most.max(r.len());
@@ -260,7 +260,7 @@ fn tangled_from_files(out: &mut Report) {
                                 let before = loaded.stats().inverted;
                                 let (t, r) = run_surface(
                                     &loaded,
-                                    ObjectiveKind::New,
+                                    ObjectiveKind::SmoothShape,
                                     opts(Strategy::Rules, Order::Priority),
                                     PASSES,
                                     false,
@@ -291,7 +291,7 @@ fn tangled_from_files(out: &mut Report) {
                 .iter()
                 .map(|&seed| {
                     let m = perturb(&base, amount, seed).expect("perturb");
-                    let r = run(&m, ObjectiveKind::New, opts(Strategy::Rules, Order::Priority), PASSES, |_| false);
+                    let r = run(&m, ObjectiveKind::SmoothShape, opts(Strategy::Rules, Order::Priority), PASSES, |_| false);
                     let inverted = std::iter::once(mesh_stats(&m).inverted).chain(r.passes.iter().map(|p| p.after.inverted)).collect();
                     let last = r.passes.last().expect("a pass");
                     (inverted, None, last.after.min_angle_deg, last.after.max_angle_deg)

@@ -70,11 +70,11 @@ pub(crate) fn freitag_table_2(out: &mut Report) {
             ));
         }
     }
-    configs.push(("opt, `new`".into(), "—".into(), ObjectiveKind::New, opts(Strategy::Opt, Order::Input)));
+    configs.push(("opt, `new`".into(), "—".into(), ObjectiveKind::SmoothShape, opts(Strategy::Opt, Order::Input)));
     configs.push((
         "rules, `new`, priority".into(),
         "—".into(),
-        ObjectiveKind::New,
+        ObjectiveKind::SmoothShape,
         opts(Strategy::Rules, Order::Priority),
     ));
     configs.push(("opt, `condition`".into(), "—".into(), ObjectiveKind::Condition, opts(Strategy::Opt, Order::Input)));
@@ -228,7 +228,7 @@ fn knupp_tetrahedra(out: &mut Report) {
             }
         }
         let (knupp, _) = run_volume(&m, ObjectiveKind::Condition, opts(Strategy::Opt, Order::Input), 3);
-        let (chen, rec) = run_volume(&tangled, ObjectiveKind::New, opts(Strategy::Rules, Order::Priority), 3);
+        let (chen, rec) = run_volume(&tangled, ObjectiveKind::SmoothShape, opts(Strategy::Rules, Order::Priority), 3);
         let chen_valid = rec.iter().position(|p| p.after.inverted == 0).map(|i| i as u32 + 1);
         for (name, mesh, valid) in [("untangle, then condition", &knupp, to_valid), ("new + rules", &chen, chen_valid)]
         {

@@ -25,7 +25,7 @@ pub(crate) fn barrier_weight(out: &mut Report) {
         let s = mesh_stats(&r.mesh);
         (s.min_angle_deg, s.mean_quality, s.inverted)
     };
-    let old_page = page_stats(run(&page, ObjectiveKind::Old, opts(Strategy::Rules, Order::Priority), 3, never));
+    let old_page = page_stats(run(&page, ObjectiveKind::MaxMinShape, opts(Strategy::Rules, Order::Priority), 3, never));
     out.section(7, "Choosing the barrier's weight k1");
     let _ = writeln!(
         out,

@@ -44,9 +44,9 @@ pub use star::{CornerStar, StarCorner, StarSolid};
 /// gets its arm here, `None` until it has a tetrahedral form).
 pub fn tet_form(kind: ObjectiveKind) -> Option<TetObjective> {
     Some(match kind {
-        ObjectiveKind::Old => TetObjective::MeanRatio,
+        ObjectiveKind::MaxMinShape => TetObjective::MeanRatio,
         ObjectiveKind::Sine => TetObjective::DihedralSine,
-        ObjectiveKind::New => TetObjective::Regularised(RegularisedMeanRatio::default()),
+        ObjectiveKind::SmoothShape => TetObjective::Regularised(RegularisedMeanRatio::default()),
         ObjectiveKind::Condition => TetObjective::Condition,
         ObjectiveKind::ConditionMax => TetObjective::ConditionMax,
         ObjectiveKind::Untangle => TetObjective::Untangle { beta: super::UNTANGLE_BETA },

@@ -144,9 +144,9 @@ impl TetObjective {
 
     fn kind(&self) -> ObjectiveKind {
         match self {
-            TetObjective::MeanRatio => ObjectiveKind::Old,
+            TetObjective::MeanRatio => ObjectiveKind::MaxMinShape,
             TetObjective::DihedralSine => ObjectiveKind::Sine,
-            TetObjective::Regularised(_) => ObjectiveKind::New,
+            TetObjective::Regularised(_) => ObjectiveKind::SmoothShape,
             TetObjective::Condition => ObjectiveKind::Condition,
             TetObjective::ConditionMax => ObjectiveKind::ConditionMax,
             TetObjective::Untangle { .. } => ObjectiveKind::Untangle,

@@ -32,8 +32,8 @@ fn values_on_the_regular_tetrahedron_by_hand() {
     let s = regular_star();
     let v = |k| tet_objective(k).unwrap().value(&s, DVec3::ZERO);
     // q = η = 1: (1 − 1)² + k1·1²
-    assert!((v(ObjectiveKind::New) - BARRIER_WEIGHT).abs() < 1e-13);
-    assert!((v(ObjectiveKind::Old) - 1.0).abs() < 1e-14);
+    assert!((v(ObjectiveKind::SmoothShape) - BARRIER_WEIGHT).abs() < 1e-13);
+    assert!((v(ObjectiveKind::MaxMinShape) - 1.0).abs() < 1e-14);
     assert!((v(ObjectiveKind::Sine) - 2.0 * 2f64.sqrt() / 3.0).abs() < 1e-14);
     assert!((v(ObjectiveKind::Condition) - 9.0).abs() < 1e-12);
     assert!((v(ObjectiveKind::ConditionMax) + 3.0).abs() < 1e-13);
@@ -41,7 +41,7 @@ fn values_on_the_regular_tetrahedron_by_hand() {
     // 6V = 6/(6√2)
     assert!((v(ObjectiveKind::UntangleMinDet) - 1.0 / 2f64.sqrt()).abs() < 1e-14);
     // the regular apex is a stationary point of the smooth objectives
-    for k in [ObjectiveKind::New, ObjectiveKind::Condition] {
+    for k in [ObjectiveKind::SmoothShape, ObjectiveKind::Condition] {
         let (_, g) = tet_objective(k).unwrap().value_and_gradient(&s, DVec3::ZERO);
         // a single tetrahedron: moving the apex changes the shape, and the regular
         // one is the best, so the gradient vanishes
@@ -228,7 +228,7 @@ fn terms_above_answers_as_the_terms_do() {
 
 #[test]
 fn hessian_of_new_agrees_with_central_differences() {
-    let obj = tet_objective(ObjectiveKind::New).unwrap();
+    let obj = tet_objective(ObjectiveKind::SmoothShape).unwrap();
     let mut rng = SplitMix64::new(13);
     let (h, mut checked, mut tangled) = (1e-6, 0, 0);
     for round in 0..120 {
@@ -260,13 +260,13 @@ fn hessian_of_new_agrees_with_central_differences() {
     }
     assert!(checked > 60 && tangled > 10, "{checked} {tangled}");
     // the max-min objectives have no Hessian
-    assert!(tet_objective(ObjectiveKind::Old).unwrap().value_gradient_hessian(&regular_star(), DVec3::ZERO).is_none());
+    assert!(tet_objective(ObjectiveKind::MaxMinShape).unwrap().value_gradient_hessian(&regular_star(), DVec3::ZERO).is_none());
 }
 
 #[test]
 fn new_is_finite_on_a_tangled_star_and_a_barrier_on_a_valid_one() {
     let mut rng = SplitMix64::new(9);
-    let obj = tet_objective(ObjectiveKind::New).unwrap();
+    let obj = tet_objective(ObjectiveKind::SmoothShape).unwrap();
     let mut tangled_seen = 0;
     for _ in 0..50 {
         let x0 = point(&mut rng);
@@ -294,7 +294,7 @@ fn scaled_star_keeps_shape_values() {
     let f = 2f64.powi(40);
     let big = star.scaled(f);
     assert_eq!(big.size(), star.size() * f);
-    for k in [ObjectiveKind::New, ObjectiveKind::Old, ObjectiveKind::Sine, ObjectiveKind::Condition] {
+    for k in [ObjectiveKind::SmoothShape, ObjectiveKind::MaxMinShape, ObjectiveKind::Sine, ObjectiveKind::Condition] {
         let (a, b) = (tet_objective(k).unwrap().value(&star, star.x0), tet_objective(k).unwrap().value(&big, big.x0));
         assert!((a - b).abs() <= 1e-12 * a.abs().max(1.0), "{k}: {a} {b}");
     }
