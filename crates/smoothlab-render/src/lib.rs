@@ -21,6 +21,17 @@
 //! Sizes in options are CSS pixels; a device-pixel ratio scales them (see [`view`]).
 //! tiny-skia pixels are premultiplied RGBA; every view paints an opaque background, so
 //! the bytes can go to a canvas `ImageData` as they are.
+//!
+//! ```
+//! use smoothlab_render::{render_mesh, MeshView};
+//!
+//! let mesh = smoothlab::generate::rand2d(60, 6, 1)?;
+//! let mut pixmap = tiny_skia::Pixmap::new(320, 240).unwrap();
+//! render_mesh(&mut pixmap, &mesh, &MeshView::default());
+//! let colours: std::collections::HashSet<&[u8]> = pixmap.data().chunks_exact(4).collect();
+//! assert!(colours.len() > 10, "a coloured picture, not a blank one");
+//! # Ok::<(), smoothlab::Error>(())
+//! ```
 
 mod axes;
 mod chart;

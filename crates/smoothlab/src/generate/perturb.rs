@@ -14,6 +14,17 @@ use crate::mesh::Mesh;
 ///
 /// The free nodes draw their offsets in node order from [`SplitMix64`] seeded with
 /// `seed`, so the result is the same on every platform. `amount` must be finite and ≥ 0.
+///
+/// ```
+/// use smoothlab::generate::{perturb, rand2d};
+/// use smoothlab::quality::mesh_stats;
+///
+/// let mesh = rand2d(200, 10, 1)?;
+/// let tangled = perturb(&mesh, 0.8, 7)?;
+/// assert!(mesh_stats(&tangled).inverted > 0, "a large amount tangles the mesh");
+/// assert_eq!(tangled.nodes()[0], mesh.nodes()[0], "boundary nodes are fixed");
+/// # Ok::<(), smoothlab::Error>(())
+/// ```
 pub fn perturb(mesh: &Mesh, amount: f64, seed: u64) -> Result<Mesh> {
     let radius = perturbation_radius(amount, mesh.mean_edge_length())?;
     let mut out = mesh.clone();

@@ -24,6 +24,12 @@ const MIN_SEPARATION: f64 = 1e-3;
 /// Nodes are numbered boundary first (counter-clockwise from the origin), then the
 /// interior points in the order drawn. The triangulation is spade's, with exact
 /// predicates; the points come from [`SplitMix64`] seeded with `seed`.
+///
+/// ```
+/// let mesh = smoothlab::generate::rand2d(500, 20, 1)?;
+/// assert_eq!((mesh.node_count(), mesh.element_count()), (580, 1078));
+/// # Ok::<(), smoothlab::Error>(())
+/// ```
 pub fn rand2d(interior: usize, per_side: usize, seed: u64) -> Result<Mesh> {
     rand2d_numbered(interior, per_side, seed, false)
 }

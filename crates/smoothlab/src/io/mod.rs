@@ -158,6 +158,19 @@ pub fn read_bytes(bytes: &[u8], name: &str) -> Result<Mesh> {
 
 /// Reads what a text holds: a planar mesh ([`read_str`]'s), or a surface in 3D when its
 /// points are not in a plane ([`Model::build`]).
+///
+/// ```
+/// use smoothlab::io::{read_model_str, write_model_string, Format, WriteOptions};
+/// use smoothlab::Model;
+///
+/// // a triangle in the plane z = 1 is a planar mesh, written back in its own plane
+/// let obj = "v 0 0 1\nv 1 0 1\nv 0 1 1\nf 1 2 3\n";
+/// let model = read_model_str(obj, Format::Obj)?;
+/// assert!(matches!(model, Model::Planar(_)));
+/// let text = write_model_string(&model, Format::Obj, &WriteOptions::default())?;
+/// assert!(text.contains("v 0.0 0.0 1.0"));
+/// # Ok::<(), smoothlab::Error>(())
+/// ```
 pub fn read_model_str(text: &str, format: Format) -> Result<Model> {
     Model::build(parse_str(text, format)?)
 }

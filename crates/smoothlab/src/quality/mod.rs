@@ -438,6 +438,19 @@ impl ElementQuality {
 }
 
 /// All metrics of an element of `kind` with node coordinates `p` (element node order).
+///
+/// ```
+/// use glam::DVec2;
+/// use smoothlab::quality::element_quality;
+/// use smoothlab::ElementKind;
+///
+/// // the equilateral triangle: every angle 60°, Lo's α = 1, Knupp's κ = 2
+/// let p = [DVec2::ZERO, DVec2::X, DVec2::new(0.5, 3f64.sqrt() / 2.0)];
+/// let q = element_quality(ElementKind::Tri3, &p);
+/// assert!((q.min_angle.to_degrees() - 60.0).abs() < 1e-9);
+/// assert!((q.shape - 1.0).abs() < 1e-12 && (q.condition - 2.0).abs() < 1e-12);
+/// assert!(!q.inverted);
+/// ```
 pub fn element_quality(kind: ElementKind, p: &[DVec2]) -> ElementQuality {
     measure_element::<true, true, true>(kind, p, |_, _, _| {})
 }
