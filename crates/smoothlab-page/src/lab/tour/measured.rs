@@ -1,6 +1,6 @@
 //! The reproduction's numbers as the tour quotes them.
 //!
-//! They are read from `docs/reproduction.json`, built into the crate. `make reproduction`
+//! They are read from `docs/reproduction.json`, built into the crate by `build.rs`. `make reproduction`
 //! writes that file and `docs/reproduction.md` from the same numbers. So a caption on the
 //! page and the document cannot disagree.
 //!
@@ -67,15 +67,36 @@ impl Reproduction {
     }
 }
 
-/// The text of `docs/reproduction.json` as this build was made with.
-pub const REPRODUCTION_JSON: &str = include_str!("../../../../../docs/reproduction.json");
+/// A table as built in: its `###` heading, its columns' headings, its rows.
+type TableData = (Option<&'static str>, &'static [&'static str], &'static [&'static [&'static str]]);
+/// A section as built in: its number, its title, its tables.
+type SectionData = (u32, &'static str, &'static [TableData]);
 
-/// [`REPRODUCTION_JSON`], read once.
+// `DATA`: the tables of `docs/reproduction.json` as this build was made with.
+include!(concat!(env!("OUT_DIR"), "/reproduction-data.rs"));
+
+/// The reproduction's tables, built into the crate (`build.rs` reads
+/// `docs/reproduction.json`), made once.
 pub fn reproduction() -> Result<&'static Reproduction> {
-    static READ: OnceLock<std::result::Result<Reproduction, String>> = OnceLock::new();
-    READ.get_or_init(|| serde_json::from_str(REPRODUCTION_JSON).map_err(|e| e.to_string()))
-        .as_ref()
-        .map_err(|e| Error::invalid(format!("docs/reproduction.json cannot be read: {e}")))
+    static MADE: OnceLock<Reproduction> = OnceLock::new();
+    let texts = |t: &[&str]| t.iter().map(|s| s.to_string()).collect::<Vec<_>>();
+    Ok(MADE.get_or_init(|| Reproduction {
+        sections: DATA
+            .iter()
+            .map(|&(number, title, tables)| Section {
+                number,
+                title: title.to_string(),
+                tables: tables
+                    .iter()
+                    .map(|&(heading, header, rows)| Table {
+                        heading: heading.map(str::to_string),
+                        header: texts(header),
+                        rows: rows.iter().map(|r| texts(r)).collect(),
+                    })
+                    .collect(),
+            })
+            .collect(),
+    }))
 }
 
 /// The cell of section `section_no` whose row begins with the cells `row` and whose column
