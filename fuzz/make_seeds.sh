@@ -31,9 +31,14 @@ $sl convert "$gen/star-regular-2.2.msh" "$gen/star-regular.node"
 $sl generate rand2d --points 60 --per-side 5 --seed 7 -o "$gen/rand2d.obj"
 awk '/^v /{n++; if (n==10) {$4="3e6"}} {print}' "$gen/rand2d.obj" > "$gen/rand2d-outlier.obj"
 $sl convert "$gen/plate-tri6-2.2.msh" "$gen/plate-tri6.node"
+# Medit: the linear meshes, and small volumes of every linear kind.
+for m in star-regular star-quad grid-tri grid-quad plate-mixed; do $sl convert "$gen/$m-2.2.msh" "$gen/$m.mesh"; done
+$sl generate mixed --cells 2 -o "$gen/mixed.mesh"
+$sl generate hexgrid --cells 2 -o "$gen/hexgrid.mesh"
+$sl generate cube --cells 1 -o "$gen/cube.mesh"
 
 rm -rf "$seeds"
-mkdir -p "$seeds"/{msh22,msh41,vtk,triangle,obj,off,read_bytes}
+mkdir -p "$seeds"/{msh22,msh41,vtk,triangle,obj,off,medit,read_bytes}
 # .msh bodies: the targets supply the $MeshFormat header themselves.
 body() { awk 'NR>3' "$1"; }
 for f in "$gen"/*-2.2.msh; do body "$f" > "$seeds/msh22/$(basename "$f" .msh)"; done
@@ -51,6 +56,8 @@ for ext in vtk obj off; do
   for f in "$root"/tests/data/hardening/*."$ext"; do cp "$f" "$seeds/$ext/hardening-$(basename "$f")"; done
 done
 cp "$gen/rand2d-outlier.obj" "$seeds/obj/rand2d-outlier.obj"
+cp "$gen"/*.mesh "$seeds/medit/"
+for f in "$root"/tests/data/*.mesh "$root"/tests/data/bad/*.mesh; do cp "$f" "$seeds/medit/fixture-$(basename "$f")"; done
 # Triangle: .node, a NUL byte, .ele.
 pair() { { cat "$1.node"; printf '\0'; cat "$1.ele"; } > "$2"; }
 pair "$gen/star-regular" "$seeds/triangle/star-regular"
@@ -59,7 +66,7 @@ for f in "$root"/tests/data/*.node "$root"/tests/data/bad/*.node; do
   pair "${f%.node}" "$seeds/triangle/fixture-$(basename "$f" .node)"
 done
 pair "$root/tests/data/hardening/bom" "$seeds/triangle/hardening-bom"
-# read_bytes: the first byte picks the name (0 .msh, 1 .vtk, 2 .obj, 3 .off, 4 .node).
+# read_bytes: the first byte picks the name (0 .msh, 1 .vtk, 2 .obj, 3 .off, 4 .node, 7 .mesh).
 tag() { { printf "\\x0$1"; cat "$2"; } > "$3"; }
 tag 0 "$gen/grid-tri-2.2.msh" "$seeds/read_bytes/msh-grid-tri"
 tag 0 "$gen/plate-tri6-4.1.msh" "$seeds/read_bytes/msh-plate-tri6"
@@ -74,4 +81,5 @@ tag 1 "$root/tests/data/hardening/triangles_1e300.vtk" "$seeds/read_bytes/vtk-1e
 tag 2 "$root/tests/data/hardening/bom.obj" "$seeds/read_bytes/obj-bom"
 tag 2 "$gen/rand2d-outlier.obj" "$seeds/read_bytes/obj-rand2d-outlier"
 tag 4 "$root/tests/data/hardening/bom.node" "$seeds/read_bytes/node-bom"
+tag 7 "$gen/mixed.mesh" "$seeds/read_bytes/mesh-mixed"
 echo "seeds written to $seeds: $(find "$seeds" -type f | wc -l) files, $(du -sh "$seeds" | cut -f1)"

@@ -5,8 +5,10 @@
 //! Every reader target parses the bytes; when a mesh comes back it also computes
 //! `quality::mesh_stats` and writes the mesh in every format, reads each text back and
 //! checks that the round trip keeps what the io module documents (nodes to the last bit,
-//! elements and kinds; fixed flags for `.msh` and `.vtk`). A broken promise panics, which
-//! the fuzzer reports as a crash.
+//! elements and kinds; fixed flags for `.msh` and `.vtk`; Medit's `.mesh` groups the
+//! elements by kind). A broken promise panics, which the fuzzer reports as a crash. The
+//! Medit target also reads volume meshes: written as `.mesh` and read back, a volume
+//! writes the same text again.
 //!
 //! Since issue 16 also: a leading byte-order mark changes nothing (the text targets read
 //! every input twice, with and without one); no statistic is NaN, nor any message of an
@@ -30,18 +32,21 @@ pub enum Target {
     Triangle,
     Obj,
     Off,
+    /// A Medit `.mesh` file, read as a planar mesh and as a model (volumes too).
+    Medit,
     /// `io::read_bytes` with the file name chosen by the first byte ([`READ_BYTES_NAMES`]).
     ReadBytes,
 }
 
 impl Target {
-    pub const ALL: [Target; 7] = [
+    pub const ALL: [Target; 8] = [
         Target::Msh22,
         Target::Msh41,
         Target::Vtk,
         Target::Triangle,
         Target::Obj,
         Target::Off,
+        Target::Medit,
         Target::ReadBytes,
     ];
 
@@ -53,6 +58,7 @@ impl Target {
             Target::Triangle => "triangle",
             Target::Obj => "obj",
             Target::Off => "off",
+            Target::Medit => "medit",
             Target::ReadBytes => "read_bytes",
         }
     }
@@ -66,7 +72,9 @@ impl Target {
 pub const TRIANGLE_SEPARATOR: u8 = 0;
 
 /// File names `read_bytes` is called with, indexed by the first input byte (modulo the length).
-pub const READ_BYTES_NAMES: [&str; 7] = ["fuzz.msh", "fuzz.vtk", "fuzz.obj", "fuzz.off", "fuzz.node", "fuzz.ele", "fuzz.txt"];
+/// (`.mesh` came last, so the bytes that picked the others still do.)
+pub const READ_BYTES_NAMES: [&str; 8] =
+    ["fuzz.msh", "fuzz.vtk", "fuzz.obj", "fuzz.off", "fuzz.node", "fuzz.ele", "fuzz.txt", "fuzz.mesh"];
 
 const MSH22_HEADER: &str = "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n";
 const MSH41_HEADER: &str = "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n";
@@ -101,6 +109,13 @@ pub fn run(t: Target, data: &[u8]) -> Outcome {
             Some(s) => io::read_str(s, Format::Off),
             None => return Outcome::NotText,
         },
+        Target::Medit => match text() {
+            Some(s) => {
+                check_medit_model(s);
+                io::read_str(s, Format::Medit)
+            }
+            None => return Outcome::NotText,
+        },
         Target::Triangle => {
             let (node, ele) = match data.iter().position(|&b| b == TRIANGLE_SEPARATOR) {
                 Some(i) => (&data[..i], &data[i + 1..]),
@@ -127,6 +142,7 @@ pub fn run(t: Target, data: &[u8]) -> Outcome {
         Target::Vtk => text().map(|s| io::read_str(&bom(s), Format::Vtk)),
         Target::Obj => text().map(|s| io::read_str(&bom(s), Format::Obj)),
         Target::Off => text().map(|s| io::read_str(&bom(s), Format::Off)),
+        Target::Medit => text().map(|s| io::read_str(&bom(s), Format::Medit)),
         _ => None,
     };
     match (&read, with_bom) {
@@ -210,6 +226,19 @@ pub fn check_mesh(mesh: &Mesh) {
             .unwrap_or_else(|e| panic!("{format:?} {version:?} does not read back what it wrote: {e}\n{text}"));
         same(mesh, &back, matches!(format, Format::Msh | Format::Vtk), &format!("{format:?} {version:?}"));
     }
+    // Medit: linear kinds only, a section per kind (triangles first)
+    match io::write_string(mesh, Format::Medit, &WriteOptions::default()) {
+        Ok(text) => {
+            let back = io::read_str(&text, Format::Medit)
+                .unwrap_or_else(|e| panic!("Medit does not read back what it wrote: {e}\n{text}"));
+            let order: Vec<usize> = [smoothlab::ElementKind::Tri3, smoothlab::ElementKind::Quad4]
+                .iter()
+                .flat_map(|&k| (0..mesh.element_count()).filter(|&e| mesh.kind(e) == k).collect::<Vec<_>>())
+                .collect();
+            same_in_order(mesh, &back, &order, false, "Medit");
+        }
+        Err(_) => assert!(mesh.has_quadratic(), "Medit refused a linear mesh"),
+    }
     match io::write_triangle(mesh) {
         Ok((node, ele)) => {
             let back = io::read_triangle(&node, &ele)
@@ -223,10 +252,39 @@ pub fn check_mesh(mesh: &Mesh) {
     }
 }
 
+/// What a Medit text holds, read as a model: a volume written as `.mesh` reads back with
+/// its nodes to the bit, and writes the same text again.
+fn check_medit_model(text: &str) {
+    let Ok(smoothlab::Model::Volume(v)) = io::read_model_str(text, Format::Medit) else { return };
+    let model = smoothlab::Model::Volume(v);
+    let Ok(written) = io::write_model_string(&model, Format::Medit, &WriteOptions::default()) else {
+        panic!("Medit refused a volume it read (linear kinds only)")
+    };
+    let back = match io::read_model_str(&written, Format::Medit) {
+        Ok(smoothlab::Model::Volume(b)) => b,
+        other => panic!("Medit does not read back the volume it wrote: {:?}\n{written}", other.map(|_| ())),
+    };
+    let smoothlab::Model::Volume(v) = &model else { unreachable!() };
+    let bits = |m: &smoothlab::volume::VolumeMesh| m.nodes().iter().map(|q| q.to_array().map(f64::to_bits)).collect::<Vec<_>>();
+    assert_eq!(bits(v), bits(&back), "Medit volume: nodes");
+    assert_eq!(v.fixed(), back.fixed(), "Medit volume: fixed flags");
+    let again = io::write_model_string(&smoothlab::Model::Volume(back), Format::Medit, &WriteOptions::default()).unwrap();
+    assert_eq!(written, again, "Medit volume: written, read back and written again");
+}
+
 fn same(a: &Mesh, b: &Mesh, fixed: bool, what: &str) {
+    let order: Vec<usize> = (0..a.element_count()).collect();
+    same_in_order(a, b, &order, fixed, what);
+}
+
+/// `b` is `a` with its elements in `order` (element `k` of `b` is `a`'s `order[k]`).
+fn same_in_order(a: &Mesh, b: &Mesh, order: &[usize], fixed: bool, what: &str) {
     assert_eq!(a.node_count(), b.node_count(), "{what}: node count");
     assert_eq!(a.element_count(), b.element_count(), "{what}: element count");
-    assert_eq!(a.kinds(), b.kinds(), "{what}: element kinds");
+    assert_eq!(order.len(), b.element_count(), "{what}: element count");
+    for (k, &e) in order.iter().enumerate() {
+        assert_eq!(a.kind(e), b.kind(k), "{what}: kind of element {e}");
+    }
     if what != "Triangle" && (a.plane.is_some() || b.plane.is_some()) {
         // written in its own 3D plane and read back (Triangle writes 2D coordinates): the plane is fitted again, so the
         // 2D coordinates may differ by a rigid motion; the 3D points agree to rounding
@@ -243,8 +301,8 @@ fn same(a: &Mesh, b: &Mesh, fixed: bool, what: &str) {
             );
         }
     }
-    for e in 0..a.element_count() {
-        assert_eq!(a.element(e), b.element(e), "{what}: nodes of element {e}");
+    for (k, &e) in order.iter().enumerate() {
+        assert_eq!(a.element(e), b.element(k), "{what}: nodes of element {e}");
     }
     if fixed {
         assert_eq!(a.fixed(), b.fixed(), "{what}: fixed flags");

@@ -82,7 +82,7 @@ pub fn write_model(model: &Model, path: &Path, msh_version: MshVersion) -> Resul
 
 #[derive(Args)]
 pub struct ConvertArgs {
-    /// Input mesh (.msh, .vtk, .node/.ele, .obj, .off; volume meshes in .msh, .vtk, tetrahedra also TetGen .node/.ele)
+    /// Input mesh (.msh, .vtk, .node/.ele, .obj, .off, .mesh; volume meshes in .msh, .vtk, .mesh, tetrahedra also TetGen .node/.ele)
     pub input: PathBuf,
     /// Output mesh; the format follows the extension
     pub output: PathBuf,

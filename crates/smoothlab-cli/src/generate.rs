@@ -22,7 +22,7 @@ pub struct GenerateArgs {
 /// Where to write, shared by every kind.
 #[derive(Args)]
 pub struct Output {
-    /// Output mesh; the format follows the extension (.msh, .vtk, .node, .obj, .off)
+    /// Output mesh; the format follows the extension (.msh, .vtk, .node, .obj, .off, .mesh)
     #[arg(short, long)]
     pub output: PathBuf,
     /// Version of .msh files written

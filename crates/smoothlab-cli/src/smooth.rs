@@ -34,7 +34,7 @@ use smoothlab::smooth::limits::{threshold_in_range, BATCH_MAX_ITER, BATCH_PASSES
 
 #[derive(Args)]
 pub struct SmoothArgs {
-    /// Input mesh (.msh, .vtk, .node/.ele, .obj, .off)
+    /// Input mesh (.msh, .vtk, .node/.ele, .obj, .off, .mesh)
     pub input: PathBuf,
     /// Output mesh; the format follows the extension
     #[arg(short, long)]

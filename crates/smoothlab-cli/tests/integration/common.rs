@@ -6,7 +6,7 @@ use std::path::{Path, PathBuf};
 #[path = "../../../smoothlab/tests/integration/common.rs"]
 mod meshes;
 #[allow(unused_imports)]
-pub use meshes::{mesquite3d_meshes, mesquite_meshes, repo};
+pub use meshes::{livesu_meshes, mesquite3d_meshes, mesquite_meshes, repo};
 
 /// The command-line tool built by this crate.
 pub fn bin() -> &'static str {

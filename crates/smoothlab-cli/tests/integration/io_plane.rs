@@ -29,7 +29,7 @@ fn tilted_obj(o: DVec3, a: DVec3, b: DVec3) -> (String, Vec<DVec3>) {
 }
 
 /// The 3D points a written file holds, in node order (the formats here all write `x y z`
-/// per node line; the test reads them the simple way: through the reader's own lines).
+/// per node line, Medit with a reference after it; the test reads them the simple way).
 fn points_of(text: &str, format: Format) -> Vec<DVec3> {
     let lines: Vec<&str> = text.lines().collect();
     let xyz = |l: &str| {
@@ -46,6 +46,11 @@ fn points_of(text: &str, format: Format) -> Vec<DVec3> {
         Format::Msh => {
             let at = lines.iter().position(|l| *l == "$Nodes").unwrap();
             lines[at + 2..at + 18].iter().map(|l| xyz(l)).collect()
+        }
+        Format::Medit => {
+            // `x y z ref`: the reference last
+            let at = lines.iter().position(|l| *l == "Vertices").unwrap();
+            lines[at + 2..at + 18].iter().map(|l| xyz(l.rsplit_once(' ').unwrap().0)).collect()
         }
         Format::Triangle => unreachable!(),
     }
@@ -64,7 +69,7 @@ fn every_3d_format_writes_the_mesh_back_in_its_own_plane() {
         assert!(mesh.to_3d(mesh.nodes()[i]).distance(*p) < TOL, "node {i}");
     }
     let normal = a.cross(b).normalize();
-    for format in [Format::Obj, Format::Off, Format::Vtk, Format::Msh] {
+    for format in [Format::Obj, Format::Off, Format::Vtk, Format::Msh, Format::Medit] {
         let text = io::write_string(&mesh, format, &WriteOptions::default()).unwrap();
         let back = points_of(&text, format);
         assert_eq!(back.len(), pts.len(), "{format:?}");

@@ -231,3 +231,25 @@ fn a_tetrahedral_files_triangles_are_kept_and_one_inside_is_named() {
     let boundary_only = boundary_only.replacen(&format!("$Elements\n{}\n", cube.element_count() + tris.len()), &format!("$Elements\n{}\n", cube.element_count() + tris.len() - 1), 1);
     assert!(volume(io::read_model_str(&boundary_only, Format::Msh).unwrap()).stray_faces_note().is_none());
 }
+
+#[test]
+fn medit_files_convert_both_ways_and_give_their_stats() {
+    let d = dir("medit");
+    let (vtk, mesh, back) = (d.join("h.vtk"), d.join("h.mesh"), d.join("back.vtk"));
+    ok(&["generate", "hexgrid", "--cells", "2", "-o", p(&vtk)]);
+    ok(&["convert", p(&vtk), p(&mesh)]);
+    ok(&["convert", p(&mesh), p(&back)]);
+    let (a, b) = (volume(io::read_model_path(&vtk).unwrap()), volume(io::read_model_path(&back).unwrap()));
+    same(&a, &b);
+    assert_eq!(ok(&["stats", p(&vtk)]), ok(&["stats", p(&mesh)]), "the same statistics from .vtk and .mesh");
+    // a quadratic mesh is refused by name
+    let q = d.join("q.vtk");
+    ok(&["generate", "cube", "--cells", "1", "--order", "2", "-o", p(&q)]);
+    let e = refused(&["convert", p(&q), p(&d.join("q.mesh"))]);
+    assert!(e.contains("Medit's volume sections hold linear elements, but element 0 is a 10-node tetrahedron"), "{e}");
+    // HexaLab's block (Livesu et al. 2015) as the CLI sees it
+    let Some(livesu) = crate::common::livesu_meshes() else { return };
+    let stats = ok(&["stats", p(&livesu.join("block_in.mesh"))]);
+    assert!(stats.starts_with("nodes            3180 (1984 free, 1196 fixed)\nelements         2520 8-node hexahedra\n"), "{stats}");
+    assert!(stats.contains("inverted         31 (0 inside, every corner positive)\n"), "{stats}");
+}

@@ -69,7 +69,7 @@ pub fn open_sample(name: &str) -> Result<JsValue, JsError> {
     open(sample(name)?.model()?)
 }
 
-/// The bytes of a mesh file called `name` (.msh, .vtk, .obj, .off): a `Playground` for a
+/// The bytes of a mesh file called `name` (.msh, .vtk, .obj, .off, .mesh): a `Playground` for a
 /// planar mesh, a `Lab3d` for a surface in 3D or tetrahedra.
 #[wasm_bindgen(js_name = openBytes)]
 pub fn open_bytes(bytes: &[u8], name: &str) -> Result<JsValue, JsError> {

@@ -104,6 +104,12 @@ impl<'a> Lexer<'a> {
         Some(Token { text: line.trim(), line: self.line })
     }
 
+    /// Skips the rest of the current line (a comment after its `#` token).
+    pub fn skip_rest_of_line(&mut self) {
+        let (line, _) = split_line(&self.text[self.pos..]);
+        self.pos += line.len();
+    }
+
     /// Skips the rest of the current line and then whole lines up to and including the
     /// first blank one (the end of a VTK `METADATA` block).
     pub fn skip_to_blank_line(&mut self) {

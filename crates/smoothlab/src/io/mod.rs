@@ -1,5 +1,5 @@
 //! Mesh file formats: Gmsh `.msh` (2.2 and 4.1 ASCII), legacy VTK ASCII
-//! `UNSTRUCTURED_GRID`, Triangle `.node`/`.ele`, OBJ and OFF.
+//! `UNSTRUCTURED_GRID`, Triangle `.node`/`.ele`, OBJ, OFF and Medit `.mesh` (ASCII).
 //!
 //! Readers parse text into a [`MeshBuilder`], recording the
 //! file line of every node and element, so every error names a line or an element.
@@ -15,6 +15,7 @@
 //! | `.vtk` | all five | exactly (`POINT_DATA` `SCALARS fixed`) |
 //! | `.node`/`.ele` | all `Tri3` or all `Tri6` | boundary ∪ fixed (markers) |
 //! | `.obj`, `.off` | `Tri3`, `Quad4` | none: the boundary |
+//! | `.mesh` | `Tri3`, `Quad4` (grouped by kind) | boundary ∪ fixed (`RequiredVertices`) |
 //!
 //! Volume meshes ([`crate::volume`]) — tetrahedra, hexahedra, wedges, pyramids, mixed, and
 //! 10-, 20- and 27-node kinds alone — are read from `.msh` (types 4, 5, 6, 7, 11, 17, 12)
@@ -22,7 +23,8 @@
 //! `.node`/`.ele` pair (dimension 3, 4 or 10 nodes), and written to the same formats
 //! ([`write_model_string`], [`write_model_path`]; TetGen refuses the other kinds) with the
 //! fixed flags kept as for planar meshes and the elements in their order (4.1: a block per
-//! run of one kind); OBJ and OFF hold surfaces only.
+//! run of one kind); OBJ and OFF hold surfaces only. Medit's `.mesh` holds the linear kinds
+//! in VTK's node orders, read and written a section per kind.
 //!
 //! Files from elsewhere: `.msh` without that view gets the boundary plus the nodes of line
 //! and point elements; VTK without `fixed` the boundary plus the points of vertex and line
@@ -35,6 +37,7 @@ use crate::model::Model;
 mod arrays;
 pub use arrays::{mesh_arrays, volume_arrays, CellBlock, MeshArrays};
 mod lex;
+mod medit;
 mod msh;
 mod objoff;
 mod out;
@@ -67,6 +70,8 @@ enum_with_all! {
         Triangle,
         Obj,
         Off,
+        /// Medit's `.mesh` (ASCII): MMG, CGAL, geogram, HexaLab.
+        Medit,
     }
 }
 
@@ -97,6 +102,7 @@ impl Format {
             Format::Triangle => &["node", "ele"],
             Format::Obj => &["obj"],
             Format::Off => &["off"],
+            Format::Medit => &["mesh"],
         }
     }
 
@@ -107,7 +113,7 @@ impl Format {
     }
 }
 
-/// Every format's extensions in words: `.msh, .vtk, .node/.ele, .obj or .off`.
+/// Every format's extensions in words: `.msh, .vtk, .node/.ele, .obj, .off or .mesh`.
 pub fn extensions_in_words() -> String {
     let each: Vec<String> = Format::ALL
         .iter()
@@ -141,6 +147,7 @@ fn parse_str(text: &str, format: Format) -> Result<MeshBuilder> {
         Format::Vtk => vtk::parse(text),
         Format::Obj => objoff::parse_obj(text),
         Format::Off => objoff::parse_off(text),
+        Format::Medit => medit::parse(text),
         Format::Triangle => {
             Err(Error::invalid("a Triangle mesh is a .node/.ele pair: read both files together (read_triangle)"))
         }
@@ -415,6 +422,10 @@ fn write_to(mesh: Writable, format: Format, opts: &WriteOptions, out: &mut Out) 
             objoff::write_off(mesh, out)?;
             ".off"
         }
+        Format::Medit => {
+            medit::write(mesh, out)?;
+            ".mesh"
+        }
         Format::Triangle => {
             return Err(Error::invalid(
                 "Triangle output is a .node/.ele pair: use write_triangle, or write_path with a .node or .ele name",
@@ -486,6 +497,7 @@ pub fn write_path<'a>(mesh: impl Into<Writable<'a>>, path: &std::path::Path, opt
     match format {
         Format::Obj => objoff::linear_only(mesh.mesh, "OBJ")?,
         Format::Off => objoff::linear_only(mesh.mesh, "OFF")?,
+        Format::Medit => objoff::linear_only(mesh.mesh, "Medit")?,
         _ => {}
     }
     if bound > MAX_FILE_BYTES {
@@ -498,8 +510,8 @@ pub fn write_path<'a>(mesh: impl Into<Writable<'a>>, path: &std::path::Path, opt
 }
 
 /// Writes what a model holds as text in `format`: a planar mesh or a surface as
-/// [`write_string`] does, a volume mesh as `.msh` or `.vtk` (TetGen's pair: see
-/// [`write_model_path`]; OBJ and OFF hold no volumes).
+/// [`write_string`] does, a volume mesh as `.msh`, `.vtk` or `.mesh` (linear kinds;
+/// TetGen's pair: see [`write_model_path`]; OBJ and OFF hold no volumes).
 pub fn write_model_string(model: &Model, format: Format, opts: &WriteOptions) -> Result<String> {
     match model {
         Model::Planar(m) => write_string(m, format, opts),
@@ -514,6 +526,10 @@ pub fn write_model_string(model: &Model, format: Format, opts: &WriteOptions) ->
                 Format::Vtk => {
                     volume::write_vtk(v, &mut out);
                     ".vtk"
+                }
+                Format::Medit => {
+                    medit::write_volume(v, &mut out)?;
+                    ".mesh"
                 }
                 other => return Err(volume_refused(other)),
             };
@@ -544,15 +560,15 @@ fn volume_refused(format: Format) -> Error {
     Error::invalid(match format {
         Format::Triangle => "TetGen's output is a .node/.ele pair: write it to a path ending in .node or .ele".into(),
         f => format!(
-            "{f:?} files hold surfaces, not volume elements: write a volume mesh as .msh or .vtk (tetrahedra also as a \
-             TetGen .node/.ele pair)"
+            "{f:?} files hold surfaces, not volume elements: write a volume mesh as .msh, .vtk or .mesh (tetrahedra \
+             also as a TetGen .node/.ele pair)"
         ),
     })
 }
 
 /// Writes what a model holds to a file in the format of the path's extension: a planar
-/// mesh or a surface as [`write_path`] does; a volume mesh as `.msh` or `.vtk`, tetrahedra
-/// also as a TetGen `.node`/`.ele` pair.
+/// mesh or a surface as [`write_path`] does; a volume mesh as `.msh`, `.vtk` or `.mesh`,
+/// tetrahedra also as a TetGen `.node`/`.ele` pair.
 #[cfg(not(target_arch = "wasm32"))]
 pub fn write_model_path(model: &Model, path: &std::path::Path, opts: &WriteOptions) -> Result<()> {
     let v = match model {
@@ -587,10 +603,10 @@ mod tests {
         }
         assert_eq!(Format::from_name("mesh.txt"), None);
         assert_eq!(Format::from_name("msh"), None, "no extension");
-        assert_eq!(extensions_in_words(), ".msh, .vtk, .node/.ele, .obj or .off");
+        assert_eq!(extensions_in_words(), ".msh, .vtk, .node/.ele, .obj, .off or .mesh");
         assert_eq!(
             unknown_format("a.stl").to_string(),
-            "cannot tell the mesh format of 'a.stl': use .msh, .vtk, .node/.ele, .obj or .off"
+            "cannot tell the mesh format of 'a.stl': use .msh, .vtk, .node/.ele, .obj, .off or .mesh"
         );
     }
 }

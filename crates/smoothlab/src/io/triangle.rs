@@ -301,7 +301,7 @@ pub fn flat_note(mesh: &Mesh) -> Option<String> {
     let p = mesh.plane?;
     Some(format!(
         "the mesh lay in a 3D plane (through {:?} along {:?} and {:?}); Triangle's .node holds 2D points, \
-         so these are its coordinates in that plane (write .msh, .vtk, .obj or .off to keep the plane)",
+         so these are its coordinates in that plane (write .msh, .vtk, .obj, .off or .mesh to keep the plane)",
         p.origin.to_array(),
         p.u.to_array(),
         p.w.to_array()
@@ -312,7 +312,7 @@ pub fn flat_note(mesh: &Mesh) -> Option<String> {
 pub(crate) fn writable(w: super::Writable) -> Result<ElementKind> {
     if w.points.is_some() {
         return Err(Error::invalid(
-            "Triangle's .node holds 2D points and this mesh is a surface in 3D; write .msh, .vtk, .obj or .off instead",
+            "Triangle's .node holds 2D points and this mesh is a surface in 3D; write .msh, .vtk, .obj, .off or .mesh instead",
         ));
     }
     let mesh = w.mesh;

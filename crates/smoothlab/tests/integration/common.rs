@@ -23,13 +23,20 @@ pub fn mesquite3d_meshes() -> Option<PathBuf> {
     shared_meshes("mesquite3d")
 }
 
+/// Livesu et al.'s hexahedral meshes (2015, `*_in.mesh`, Medit, as HexaLab serves them),
+/// from `../shared/meshes/livesu2015`, as [`mesquite_meshes`].
+#[allow(dead_code)]
+pub fn livesu_meshes() -> Option<PathBuf> {
+    shared_meshes("livesu2015")
+}
+
 fn shared_meshes(name: &str) -> Option<PathBuf> {
     let dir = repo().join("../shared/meshes").join(name);
     if dir.is_dir() {
         return Some(dir);
     }
     let ci = std::env::var("CI").is_ok_and(|v| !v.is_empty() && v != "false" && v != "0");
-    assert!(!ci, "CI is set but the external Mesquite meshes (../shared/meshes/{name}) are missing");
-    println!("external Mesquite meshes (../shared/meshes/{name}) not found: skipped");
+    assert!(!ci, "CI is set but the external meshes ../shared/meshes/{name} are missing");
+    println!("external meshes ../shared/meshes/{name} not found: skipped");
     None
 }

@@ -73,6 +73,15 @@ const EXPECTED: &[(&str, &[&str])] = &[
     ("huge_count.off", &["line 2", "2000000000 vertices"]),
     ("not_off.off", &["line 1", "expected 'OFF'", "'PLY'"]),
     ("extra_face.off", &["line 7", "after the 3 vertices and 1 faces"]),
+    // Medit
+    ("index_zero.mesh", &["line 10", "triangle 1: vertex index 0 is invalid: Medit counts from 1"]),
+    ("index_out_of_range.mesh", &["line 10", "triangle 1: vertex index 9 is out of range", "1 to 3"]),
+    ("repeated_node.mesh", &["line 10", "triangle 1: vertex 3 appears twice"]),
+    ("huge_count.mesh", &["line 4", "1000000000 vertices"]),
+    ("unknown_section.mesh", &["line 8", "Medit section 'Identifier' is not known", "cannot be skipped"]),
+    ("quadratic_triangles.mesh", &["quadratic triangles (Medit's TrianglesP2) are not supported yet: line 11"]),
+    ("truncated_vertices.mesh", &["line 6", "ends here", "x coordinate of vertex 3"]),
+    ("wrong_count.mesh", &["line 13", "the reference of triangle 2", "'Quadrilaterals'"]),
     // Triangle pairs
     ("triangle_out_of_range", &["element 1 (line 3)", "node 5 is out of range", "1 to 4", ".ele"]),
     ("triangle_not_consecutive", &["line 4", "consecutive: expected 3, found 4", ".node file"]),
@@ -127,7 +136,7 @@ fn every_bad_file_is_refused_naming_where_and_what() {
     }
 }
 
-const FORMATS: [Format; 4] = [Format::Msh, Format::Vtk, Format::Obj, Format::Off];
+const FORMATS: [Format; 5] = [Format::Msh, Format::Vtk, Format::Obj, Format::Off, Format::Medit];
 
 #[test]
 fn every_file_through_every_reader_never_panics() {
@@ -149,7 +158,16 @@ fn every_file_through_every_reader_never_panics() {
 }
 
 fn good_fixtures() -> Vec<(String, Format)> {
-    ["grid_lines.msh", "sparse_blocks.msh", "wrapped.vtk", "offsets_tri6.vtk", "polydata.vtk", "relative.obj", "three_tris.off"]
+    [
+        "grid_lines.msh",
+        "sparse_blocks.msh",
+        "wrapped.vtk",
+        "offsets_tri6.vtk",
+        "polydata.vtk",
+        "relative.obj",
+        "three_tris.off",
+        "two_quads_one_triangle.mesh",
+    ]
         .iter()
         .map(|n| (std::fs::read_to_string(dir("").join(n)).unwrap(), Format::from_name(n).unwrap()))
         .collect()
@@ -160,7 +178,7 @@ proptest! {
 
     /// Cut anywhere: refused with a message naming a line, or (cut between sections) read.
     #[test]
-    fn truncated_fixtures_fail_cleanly(which in 0usize..7, cut in 0.0f64..1.0) {
+    fn truncated_fixtures_fail_cleanly(which in 0usize..8, cut in 0.0f64..1.0) {
         let (text, format) = &good_fixtures()[which];
         let mut at = (cut * text.len() as f64) as usize;
         while !text.is_char_boundary(at) {
@@ -175,7 +193,7 @@ proptest! {
     /// One token replaced by something else: never a panic.
     #[test]
     fn corrupted_tokens_never_panic(
-        which in 0usize..7,
+        which in 0usize..8,
         pick in 0.0f64..1.0,
         with in prop::sample::select(vec!["-1", "0", "4294967295", "18446744073709551615", "1e308", "nan", "-inf", "x", "$Nodes", "CELLS", "7", "99999999999", ""]),
     ) {

@@ -270,3 +270,13 @@ fn files_stream_the_same_bytes_and_refusals_make_no_file() {
     assert!(!dir.join("q.node").exists() && !dir.join("q.ele").exists());
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+#[test]
+fn medit_fixture_reads_its_sections_in_their_order() {
+    // comments, a count on the next line, quads before triangles, Corners fixing a node
+    let m = read("two_quads_one_triangle.mesh");
+    assert_eq!((m.node_count(), m.kinds()), (7, &[ElementKind::Quad4, ElementKind::Quad4, ElementKind::Tri3][..]));
+    assert_eq!(m.element_as_given(2).to_vec(), vec![2, 6, 5]);
+    assert!(m.nodes().iter().all(|p| p.x.fract() == 0.0 || p.x == 3.0), "the references are not coordinates");
+    assert_eq!(m.fixed().iter().filter(|&&f| f).count(), 7, "every node is on the boundary");
+}

@@ -1,7 +1,8 @@
 //! Write, read back, compare: nodes to the last bit, elements, kinds, and the fixed flags
 //! as far as each format holds them (msh and VTK: exactly; OBJ and OFF: none, so the
-//! boundary; Triangle: boundary ∪ written markers). Property-tested over random meshes
-//! of every element kind at scales from 1e-100 to 1e100.
+//! boundary; Triangle: boundary ∪ written markers; Medit: boundary ∪ required vertices,
+//! the elements grouped by kind). Property-tested over random meshes of every element
+//! kind at scales from 1e-100 to 1e100.
 
 use glam::DVec2;
 use proptest::prelude::*;
@@ -86,7 +87,7 @@ fn grid(nx: usize, ny: usize, family: Family, jitter: &[(f64, f64)], scale: f64,
     b.build().unwrap()
 }
 
-fn same_geometry(a: &Mesh, b: &Mesh, what: &str) {
+fn same_nodes(a: &Mesh, b: &Mesh, what: &str) {
     assert_eq!(a.node_count(), b.node_count(), "{what}: node count");
     for (i, (p, q)) in a.nodes().iter().zip(b.nodes()).enumerate() {
         assert!(
@@ -94,6 +95,10 @@ fn same_geometry(a: &Mesh, b: &Mesh, what: &str) {
             "{what}: node {i}: {p:?} became {q:?}"
         );
     }
+}
+
+fn same_geometry(a: &Mesh, b: &Mesh, what: &str) {
+    same_nodes(a, b, what);
     assert_eq!(a.kinds(), b.kinds(), "{what}: kinds");
     for e in 0..a.element_count() {
         assert_eq!(a.element(e), b.element(e), "{what}: element {e}");
@@ -103,6 +108,11 @@ fn same_geometry(a: &Mesh, b: &Mesh, what: &str) {
 /// Boundary and unused nodes: the fixed flags of a format that stores none.
 fn boundary_fixed(m: &Mesh) -> Vec<bool> {
     (0..m.node_count()).map(|i| m.is_boundary(i) || m.role(i) == NodeRole::Unused).collect()
+}
+
+/// The fixed flags of a format that marks fixed nodes on top of the boundary.
+fn boundary_or_fixed(m: &Mesh) -> Vec<bool> {
+    boundary_fixed(m).iter().zip(m.fixed()).map(|(a, b)| *a || *b).collect()
 }
 
 fn check_all_formats(m: &Mesh) {
@@ -124,13 +134,29 @@ fn check_all_formats(m: &Mesh) {
             assert_eq!(back.fixed(), boundary_fixed(m), "{f:?}: fixed = boundary");
         }
     }
+    // Medit: linear kinds, a section per kind (triangles first), fixed nodes required
+    match io::write_string(m, Format::Medit, &WriteOptions::default()) {
+        Ok(text) => {
+            let back = io::read_str(&text, Format::Medit).unwrap();
+            let grouped: Vec<usize> = [ElementKind::Tri3, ElementKind::Quad4]
+                .iter()
+                .flat_map(|&k| (0..m.element_count()).filter(move |&e| m.kind(e) == k))
+                .collect();
+            same_nodes(m, &back, "Medit");
+            assert_eq!(back.element_count(), grouped.len(), "Medit: element count");
+            for (b, &e) in grouped.iter().enumerate() {
+                assert_eq!((back.kind(b), back.element(b)), (m.kind(e), m.element(e)), "Medit: element {e}, read as {b}");
+            }
+            assert_eq!(back.fixed(), boundary_or_fixed(m), "Medit: fixed = boundary ∪ required");
+        }
+        Err(e) => assert!(m.has_quadratic(), "Medit refused a linear mesh: {e}"),
+    }
     let one_kind = m.kinds().iter().all(|&k| k == m.kind(0));
     if m.kind(0).is_triangle() && one_kind {
         let (node, ele) = io::write_triangle(m).unwrap();
         let back = io::read_triangle(&node, &ele).unwrap();
         same_geometry(m, &back, "triangle");
-        let want: Vec<bool> = boundary_fixed(m).iter().zip(m.fixed()).map(|(a, b)| *a || *b).collect();
-        assert_eq!(back.fixed(), want, "triangle: fixed = boundary ∪ markers");
+        assert_eq!(back.fixed(), boundary_or_fixed(m), "triangle: fixed = boundary ∪ markers");
     } else {
         assert!(io::write_triangle(m).is_err());
     }

@@ -4,6 +4,7 @@ mod common;
 mod fuzz_regressions;
 mod io_bad;
 mod io_formats;
+mod io_livesu;
 mod io_mesquite;
 mod io_roundtrip;
 mod limits;

@@ -3,6 +3,8 @@
 //! and 4.1; TetGen's `.node`/`.ele` for tetrahedra only, which refuses the rest saying
 //! so — gives back the nodes to the bit, the kinds, each element's node list in order
 //! and the fixed flags (drawn at random, so they are the file's and not the skin again).
+//! Medit's `.mesh` holds the linear kinds, a section per kind: it gives them back grouped
+//! by kind, with fixed = the skin ∪ the required vertices.
 //! The meshes are small blocks of the unit lattice, jittered.
 
 use glam::DVec3;
@@ -201,6 +203,31 @@ proptest! {
         for (format, msh_version, name) in WRITTEN {
             let text = io::write_model_string(&model, format, &WriteOptions { msh_version }).unwrap();
             identical(&m, &volume(io::read_model_str(&text, format).unwrap()), &format!("{s:?} as {name}"));
+        }
+        // Medit: the linear kinds, grouped (tetrahedra, hexahedra, prisms, pyramids)
+        match io::write_model_string(&model, Format::Medit, &WriteOptions::default()) {
+            Ok(text) => {
+                prop_assert!(!m.is_quadratic(), "{s:?}");
+                let order = [VolumeKind::Tet4, VolumeKind::Hex8, VolumeKind::Wedge6, VolumeKind::Pyramid5];
+                let grouped: Vec<usize> =
+                    order.iter().flat_map(|&k| (0..m.element_count()).filter(|&e| m.element_kind(e) == k).collect::<Vec<_>>()).collect();
+                let want = VolumeMesh::build(SolidParts {
+                    nodes: m.nodes().to_vec(),
+                    node_lines: Vec::new(),
+                    kinds: grouped.iter().map(|&e| m.element_kind(e)).collect(),
+                    elements: grouped.iter().flat_map(|&e| m.element(e).to_vec()).collect(),
+                    element_lines: Vec::new(),
+                    fixed: FixedSpec::BoundaryAnd(m.fixed().to_vec()),
+                    faces: Vec::new(),
+                })
+                .unwrap();
+                identical(&want, &volume(io::read_model_str(&text, Format::Medit).unwrap()), &format!("{s:?} as .mesh"));
+            }
+            Err(e) => {
+                prop_assert!(m.is_quadratic(), "{s:?}: {e}");
+                let e = e.to_string();
+                prop_assert!(e.starts_with("Medit's volume sections hold linear elements, but element 0 is a "), "{e}");
+            }
         }
         // TetGen's pair holds tetrahedra (fixed = the skin and the markers: every flag
         // here is a marker), and refuses every other kind saying what the mesh has
