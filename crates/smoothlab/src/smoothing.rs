@@ -120,7 +120,6 @@ impl Smoothing {
     /// The drivers' options, or why the settings do not go together.
     pub fn options(&self) -> Result<SmoothOptions> {
         let strategy = self.strategy;
-        let refuse = |name: &str, why: String| Err(Error::invalid(format!("{name}: {why}")));
         if !BATCH_PASSES.contains(self.passes.into()) {
             return refuse("passes", format!("{} asked: give 1 to {}", self.passes, BATCH_PASSES.max));
         }
@@ -159,7 +158,6 @@ impl Smoothing {
 
     /// Why these settings cannot smooth `model`, if they cannot.
     fn check(&self, model: &Model) -> Result<()> {
-        let refuse = |name: &str, why: String| Err(Error::invalid(format!("{name}: {why}")));
         match model {
             Model::Surface(_) => Ok(()),
             Model::Planar(mesh) if !self.slide_curves => check_scale(self.objective, mesh),
@@ -173,6 +171,11 @@ impl Smoothing {
             Model::Planar(_) => refuse("slide_curves", "a surface's curves slide; this mesh is planar".into()),
         }
     }
+}
+
+/// Why setting `name` cannot be used: `name: why`.
+fn refuse<T>(name: &str, why: String) -> Result<T> {
+    Err(Error::invalid(format!("{name}: {why}")))
 }
 
 /// What a smoothing run did: a record a pass, and where the mesh stands.
