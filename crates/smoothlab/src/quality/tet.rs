@@ -117,11 +117,17 @@ fn face_area_vector(p: &[DVec3; 4], k: usize) -> DVec3 {
 /// are those of its mirror image, in [0, π] (whether it is inverted is [`is_inverted`]'s
 /// to say). NaN where a face has no area.
 pub fn dihedral_angles(p: &[DVec3; 4]) -> [f64; 6] {
+    dihedral_cosines(p).map(f64::acos)
+}
+
+/// The cosines of [`dihedral_angles`], clamped to [−1, 1]: its angles are their inverse
+/// cosines, bit for bit. NaN where a face has no area.
+pub fn dihedral_cosines(p: &[DVec3; 4]) -> [f64; 6] {
     let p = &in_unit_scale(p);
     let n = [0, 1, 2, 3].map(|k| face_area_vector(p, k));
     OFF_EDGE.map(|[k, l]| {
         let c = -n[k].dot(n[l]) / (n[k].length() * n[l].length());
-        c.clamp(-1.0, 1.0).acos()
+        c.clamp(-1.0, 1.0)
     })
 }
 

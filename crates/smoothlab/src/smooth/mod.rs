@@ -39,7 +39,7 @@ use guard::KeepValid;
 pub(crate) use measure::is_inverted;
 pub(crate) use measure::triangle_shape_at;
 use measure::triangle_shape_at_both;
-pub use accept::{ElementScore, Size, Verdict, MIN_SIZE_RATIO};
+pub use accept::{ElementScore, Reading, Size, Verdict, MIN_SIZE_RATIO};
 pub use measure::StarQuality;
 #[cfg(test)]
 pub(crate) use measure::{element_measures, element_shape_at, star_quality, star_shape};
@@ -115,9 +115,9 @@ impl StarView for Planar<'_> {
 }
 
 /// A planar mesh seen read-only, for planning (which never places a node).
-pub(crate) struct Reading<'a>(pub(crate) &'a Mesh);
+pub(crate) struct ReadOnly<'a>(pub(crate) &'a Mesh);
 
-impl StarView for Reading<'_> {
+impl StarView for ReadOnly<'_> {
     type Mesh = Mesh;
     #[inline]
     fn mesh(&self) -> &Mesh {
@@ -144,6 +144,10 @@ impl StarView for Reading<'_> {
 #[derive(Clone, Debug)]
 pub struct Smoother<S: DriverStar = Star> {
     options: SmoothOptions,
+    /// What the statistics read of the mesh at the start of the pass ([`Reading`]), `None`
+    /// for a tangled mesh: a move on a valid star keeps its star within it. Taken at the
+    /// pass's first such move; forgotten when a pass is planned.
+    bounds: std::cell::OnceCell<Option<Reading>>,
     star: S,
     solvers: Solvers<S>,
     terms: Vec<Term<S::Point>>,
@@ -180,6 +184,7 @@ impl<S: DriverStar> Smoother<S> {
         let solve = options.solve_options();
         Ok(Smoother {
             options,
+            bounds: std::cell::OnceCell::new(),
             star: S::default(),
             solvers: Solvers::new(solve),
             terms: Vec::new(),
@@ -320,9 +325,29 @@ impl<S: DriverStar> Smoother<S> {
     /// moved; otherwise the node stays.
     pub(crate) fn decide(&mut self, mesh: &S::Mesh, n: usize, objective: &dyn Objective<S>) -> (S::Point, NodeOutcome) {
         let (x, mut out, kept) = self.decide_move(mesh, n, objective);
-        if out.moved && !kept && self.accepts_only_no_worse() {
-            self.star.regather(mesh, n);
-            if !self.star.verdict_in(mesh, x, self.options.smart_measure).keeps() {
+        if out.moved && self.accepts_only_no_worse() {
+            // a move the smart Laplacian's test kept was on a valid star
+            let (keeps, valid) = if kept {
+                (true, true)
+            } else {
+                self.star.regather(mesh, n);
+                let v = self.star.verdict_in(mesh, x, self.options.smart_measure);
+                (v.keeps(), v.was_valid())
+            };
+            let within_bounds = |s: &mut Self| match *s.bounds.get_or_init(|| mesh.valid_reading()) {
+                Some(bounds) => {
+                    if kept {
+                        // the smart Laplacian's test read the mesh, not the star
+                        if let Some(within) = S::reads_within_from_mesh(mesh, n, x, &bounds) {
+                            return within;
+                        }
+                        s.star.regather(mesh, n);
+                    }
+                    s.star.reads_within(mesh, x, &bounds)
+                }
+                None => true,
+            };
+            if !keeps || (valid && !within_bounds(self)) {
                 out.moved = false;
                 return (mesh.position(n), out);
             }
@@ -629,14 +654,14 @@ impl Smoother<Star> {
 
     /// The sum over free nodes of the node objective value (see [`PassRecord::objective_total`]).
     pub fn objective_total(&mut self, mesh: &Mesh, objective: &dyn Objective) -> f64 {
-        self.objective_total_in(&mut Reading(mesh), objective)
+        self.objective_total_in(&mut ReadOnly(mesh), objective)
     }
 
     /// Smooths one node by the strategy (fixed nodes and mid-side nodes are left alone).
     pub fn smooth_node(&mut self, mesh: &mut Mesh, node: usize, objective: &dyn Objective) -> NodeOutcome {
         self.refresh_mesh_facts(mesh);
         if objective.only_untangles() {
-            self.note_tangled(&Reading(mesh));
+            self.note_tangled(&ReadOnly(mesh));
         }
         self.visit(&mut Planar(mesh), node, objective)
     }

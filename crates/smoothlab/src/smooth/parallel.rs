@@ -182,7 +182,9 @@ impl ColouredSmoother {
             self.colouring = Colouring::greedy(mesh);
         }
         self.main.refresh_mesh_facts(mesh);
-        self.main.note_tangled(&super::Reading(mesh));
+        self.main.note_tangled(&super::ReadOnly(mesh));
+        // the pass's bounds, taken once for every unit of work (which copy the driver)
+        self.main.bounds = std::cell::OnceCell::from(super::SmoothMesh::valid_reading(&*mesh));
         let mut counts = SweepCounts::default();
         for c in 0..self.colouring.colour_count() {
             let nodes = self.colouring.colour(c);

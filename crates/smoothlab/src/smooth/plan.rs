@@ -31,14 +31,14 @@ impl Smoother<Star> {
     /// measuring at most `max_stars` more stars (at least one) for the priority order.
     /// Returns true when the schedule is complete.
     pub fn plan_some(&mut self, mesh: &Mesh, max_stars: usize) -> bool {
-        self.plan_some_in(&mut Reading(mesh), max_stars)
+        self.plan_some_in(&mut ReadOnly(mesh), max_stars)
     }
 
     /// Plans the next untangling sweep of a pass whose visits so far `counts` holds (see
     /// `plan_untangle_sweep_in`). The one place that
     /// decides, for [`sweep`](Self::sweep) and for the page's sliced pass.
     pub fn plan_untangle_sweep(&mut self, mesh: &Mesh, counts: &mut SweepCounts) -> bool {
-        self.plan_untangle_sweep_in(&mut Reading(mesh), counts)
+        self.plan_untangle_sweep_in(&mut ReadOnly(mesh), counts)
     }
 }
 
@@ -51,6 +51,7 @@ impl<S: DriverStar> Smoother<S> {
     /// (quadratic elements, curved edges) now.
     pub fn begin_plan(&mut self, mesh: &S::Mesh) {
         self.refresh_mesh_facts(mesh);
+        self.bounds = std::cell::OnceCell::new();
         self.schedule.clear();
         self.sweep_moves_from = None;
         self.ranked.clear();

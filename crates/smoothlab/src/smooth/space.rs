@@ -7,7 +7,7 @@ use crate::mesh::Mesh;
 use crate::objective::{NodeStar, Point, Star};
 
 use super::measure::{element_measures, element_shape_at, is_inverted, is_inverted_at, star_quality, star_shape};
-use super::accept::{ElementScore, Size, Verdict, MIN_SIZE_RATIO};
+use super::accept::{ElementScore, Reading, Size, Verdict, MIN_SIZE_RATIO};
 use super::{Measure, StarQuality};
 
 /// A mesh as the drivers read it: free nodes, their positions and neighbours, and the
@@ -35,6 +35,10 @@ pub trait SmoothMesh {
     fn touches_curved_boundary(&self, _n: usize) -> bool {
         false
     }
+    /// What the statistics read of the mesh ([`Reading`]): the bounds a move on a valid
+    /// star keeps within; `None` for a tangled mesh, whose rule is its count of inverted
+    /// elements.
+    fn valid_reading(&self) -> Option<Reading>;
     /// Reads part of what a visit of free node `n` will read, so that it is in the cache
     /// when the visit comes: stage 0 the node's own entries, each later stage what the
     /// stage before it brought in (the drivers read a few visits ahead in a scattered
@@ -118,6 +122,15 @@ pub trait DriverStar: NodeStar + Default {
     fn verdict_in(&self, _mesh: &Self::Mesh, x: Self::Point, measure: Measure) -> Verdict {
         self.verdict(x, measure)
     }
+    /// Whether what the statistics read of the star ([`Reading`]) with its free node at `x`
+    /// (the nodes that follow it following, the rest as in `mesh`) lies within `bounds`.
+    fn reads_within(&self, mesh: &Self::Mesh, x: Self::Point, bounds: &Reading) -> bool;
+    /// [`reads_within`](Self::reads_within) of node `n`'s star read straight from the
+    /// mesh, where a kind of star has such a shortcut (a planar star of linear elements:
+    /// no node follows `n`); `None` otherwise (the default), and the gathered star decides.
+    fn reads_within_from_mesh(_mesh: &Self::Mesh, _n: usize, _x: Self::Point, _bounds: &Reading) -> Option<bool> {
+        None
+    }
     /// Whether element `e` of `mesh` is known to be valid with its corners where they are
     /// now, from what earlier stars measured of it (a kind of star that keeps its
     /// elements' measures from visit to visit); `false` where nothing is known (the
@@ -153,6 +166,9 @@ pub struct FastSmart<P> {
 
 impl SmoothMesh for Mesh {
     type Point = glam::DVec2;
+    fn valid_reading(&self) -> Option<Reading> {
+        Reading::planar_valid(self, |e| self.element_points_array(e))
+    }
     #[inline]
     fn node_count(&self) -> usize {
         Mesh::node_count(self)
@@ -288,6 +304,25 @@ impl DriverStar for Star {
             });
         }
         v
+    }
+    fn reads_within(&self, _mesh: &Mesh, x: glam::DVec2, bounds: &Reading) -> bool {
+        self.elems.iter().all(|e| Reading::planar(e.kind, &e.at(x)).within(bounds))
+    }
+    fn reads_within_from_mesh(mesh: &Mesh, n: usize, x: glam::DVec2, bounds: &Reading) -> Option<bool> {
+        let elems = mesh.node_elements(n);
+        if elems.iter().any(|&e| mesh.kind(e as usize).node_count() > mesh.kind(e as usize).corners()) {
+            return None;
+        }
+        Some(elems.iter().all(|&e| {
+            let e = e as usize;
+            let mut p = mesh.element_points_array(e);
+            for (q, &i) in p.iter_mut().zip(mesh.element(e)) {
+                if i as usize == n {
+                    *q = x;
+                }
+            }
+            Reading::planar(mesh.kind(e), &p).within(bounds)
+        }))
     }
     fn smart_from_mesh(mesh: &Mesh, n: usize, measure: Measure) -> Option<FastSmart<glam::DVec2>> {
         super::smart_on_triangles(mesh, n, measure)

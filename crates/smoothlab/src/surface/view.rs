@@ -8,18 +8,21 @@ use super::Surface;
 use crate::error::{Error, Result};
 use crate::mesh::{Follower, Mesh, Plane};
 use crate::objective::{Objective, Star};
-use crate::smooth::{is_inverted, ElementScore, Measure, PassRecord, SmoothOptions, Smoother, StarView, Verdict};
+use crate::smooth::{is_inverted, ElementScore, Measure, PassRecord, Reading, SmoothOptions, Smoother, StarView, Verdict};
 
 /// A surface seen by a driver: each star flattened into the tangent plane at its node.
 pub(crate) struct SurfaceView<'a> {
     surface: &'a mut Surface,
     /// The tangent plane of the star flattened last.
     plane: Plane,
+    /// What the statistics read of the surface's valid elements when first asked: the
+    /// bounds a move on a valid star keeps within ([`Reading`]).
+    bounds: Option<Option<Reading>>,
 }
 
 impl<'a> SurfaceView<'a> {
     pub(crate) fn new(surface: &'a mut Surface) -> Self {
-        SurfaceView { surface, plane: Plane { origin: DVec3::ZERO, u: DVec3::X, w: DVec3::Y } }
+        SurfaceView { surface, plane: Plane { origin: DVec3::ZERO, u: DVec3::X, w: DVec3::Y }, bounds: None }
     }
 }
 
@@ -82,7 +85,7 @@ impl Surface {
     /// curves or is itself folded (a tangled file). The plain Laplacian's placing. Returns
     /// whether the node moved.
     pub(crate) fn place_keeping_valid(&mut self, n: usize, p: DVec3) -> bool {
-        self.place_kept_if(n, p, Measure::Shape, |before, after| {
+        self.place_kept_if(n, p, Measure::Shape, |(before, _), (after, _)| {
             before.iter().any(|b| b.inverted) || after.iter().all(|a| !a.inverted)
         })
     }
@@ -92,13 +95,13 @@ impl Surface {
     /// projection back onto the surface (the node's and its following mid-side nodes'),
     /// each element in its own plane: every strategy's placing but the plain Laplacian's.
     /// Returns whether the node moved.
-    pub(crate) fn place_if_no_worse(&mut self, n: usize, p: DVec3, measure: Measure) -> bool {
-        self.place_kept_if(n, p, measure, |before, after| {
+    pub(crate) fn place_if_no_worse(&mut self, n: usize, p: DVec3, measure: Measure, bounds: Option<&Reading>) -> bool {
+        self.place_kept_if(n, p, measure, |(before, _), (after, read_after)| {
             let mut v = Verdict::default();
             for (b, a) in before.iter().zip(after) {
                 v.add(b, a);
             }
-            v.keeps()
+            v.keeps() && (!v.was_valid() || bounds.map_or(true, |b| read_after.within(b)))
         })
     }
 
@@ -109,11 +112,20 @@ impl Surface {
         n: usize,
         p: DVec3,
         measure: Measure,
-        keep: impl Fn(&[ElementScore], &[ElementScore]) -> bool,
+        keep: impl Fn(&(Vec<ElementScore>, Reading), &(Vec<ElementScore>, Reading)) -> bool,
     ) -> bool {
         let star: Vec<usize> = self.flat.node_elements(n).iter().map(|&e| e as usize).collect();
-        let scores = |s: &Surface| -> Vec<ElementScore> {
-            star.iter().map(|&e| ElementScore::planar(s.flat.kind(e), &s.element_points_2d(e), measure)).collect()
+        let scores = |s: &Surface| -> (Vec<ElementScore>, Reading) {
+            let mut reading = Reading::default();
+            let scores = star
+                .iter()
+                .map(|&e| {
+                    let (kind, q) = (s.flat.kind(e), s.element_points_2d(e));
+                    reading = reading.and(Reading::planar(kind, &q));
+                    ElementScore::planar(kind, &q, measure)
+                })
+                .collect();
+            (scores, reading)
         };
         let before = scores(self);
         let saved = self.keep_around(n);
@@ -186,7 +198,9 @@ impl StarView for SurfaceView<'_> {
 
     fn place_if_no_worse(&mut self, n: usize, x: DVec2, measure: Measure) -> bool {
         let p = self.plane.to_3d(x);
-        self.surface.place_if_no_worse(n, p, measure)
+        let surface = &*self.surface;
+        let bounds = *self.bounds.get_or_insert_with(|| Reading::planar_valid(&surface.flat, |e| surface.element_points_2d(e)));
+        self.surface.place_if_no_worse(n, p, measure, bounds.as_ref())
     }
 
     fn is_inverted(&self, e: usize) -> bool {

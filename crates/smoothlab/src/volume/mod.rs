@@ -679,6 +679,19 @@ impl VolumeMesh {
         let (p, n) = self.element_points(e);
         solid_measures(self.element_kinds[e], &p[..n])
     }
+    /// [`element_points`](Self::element_points) with corner `n` at `x` and the nodes that
+    /// follow `n` and are not fixed at the means of their corners, as
+    /// [`follow_mid_nodes`](Self::follow_mid_nodes) would put them.
+    pub fn element_points_with_node_at(&self, e: usize, n: usize, x: DVec3) -> ([DVec3; 27], usize) {
+        let at = |i: u32| if i as usize == n { x } else { self.nodes[i as usize] };
+        let ids = self.element(e);
+        let mut p = [DVec3::ZERO; 27];
+        let follows = self.followers(n);
+        for (q, &i) in p.iter_mut().zip(ids) {
+            *q = if follows.contains(&i) && !self.fixed[i as usize] { mean(self.parents(i as usize).iter().map(|&c| at(c))) } else { at(i) };
+        }
+        (p, ids.len())
+    }
     /// Whether element `e` is inverted: not certainly valid (a tetrahedron's volume ≤ 0; a
     /// hexahedron's, wedge's or pyramid's Jacobian determinant ≤ 0 somewhere or not
     /// decided, [`crate::quality::solid::validity`]).

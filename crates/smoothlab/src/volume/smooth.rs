@@ -22,11 +22,17 @@ use crate::objective::{CornerStar, Objective, StarSolid};
 use crate::quality::solid::{self, Validity};
 use crate::quality::tet as q3;
 use crate::smooth::{
-    DriverStar, ElementScore, Size, Verdict, Measure, MIN_SIZE_RATIO, PassRecord, SmoothMesh, SmoothOptions, Smoother, StarQuality, StarView, SweepCounts,
+    DriverStar, ElementScore, Reading, Size, Verdict, Measure, MIN_SIZE_RATIO, PassRecord, SmoothMesh, SmoothOptions, Smoother, StarQuality, StarView, SweepCounts,
 };
 
 impl SmoothMesh for VolumeMesh {
     type Point = DVec3;
+    fn valid_reading(&self) -> Option<Reading> {
+        (0..self.element_count()).try_fold(Reading::default(), |r, e| {
+            let (p, count) = self.element_points(e);
+            (!self.is_inverted(e)).then(|| r.and(Reading::solid(self.element_kind(e), &p[..count])))
+        })
+    }
     #[inline]
     fn node_count(&self) -> usize {
         VolumeMesh::node_count(self)
@@ -302,6 +308,18 @@ impl DriverStar for CornerStar {
     fn known_valid(&self, mesh: &VolumeMesh, e: usize) -> bool {
         let kind = mesh.element_kind(e);
         !kind.is_tet() && self.known_valid_solid(e as u32, kind, &mesh.corners(e)[..kind.corners()])
+    }
+    /// Every element of the node in `mesh`, the node at `x`
+    /// ([`VolumeMesh::element_points_with_node_at`]), as the statistics measure it
+    /// ([`solid::solid_within`]).
+    fn reads_within(&self, mesh: &VolumeMesh, x: DVec3, bounds: &Reading) -> bool {
+        let n = self.node as usize;
+        let bounds = bounds.as_solid_bounds();
+        mesh.node_tets(n).iter().all(|&e| {
+            let e = e as usize;
+            let (p, count) = mesh.element_points_with_node_at(e, n, x);
+            solid::solid_within(mesh.element_kind(e), &p[..count], &bounds)
+        })
     }
     fn verdict_in(&self, mesh: &VolumeMesh, x: DVec3, m: Measure) -> Verdict {
         if !mesh.kinds().contains(&VolumeKind::Tet10) {

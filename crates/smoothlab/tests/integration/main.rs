@@ -8,6 +8,7 @@ mod io_livesu;
 mod io_mesquite;
 mod io_roundtrip;
 mod limits;
+mod never_worse;
 mod smooth_papers;
 mod smooth_properties;
 mod solid_properties;

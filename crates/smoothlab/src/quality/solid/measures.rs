@@ -133,10 +133,9 @@ pub fn solid_measures(kind: VolumeKind, p: &[DVec3]) -> SolidMeasures {
                 out.mean_ratio += q3::mean_ratio(&t, r) / count as f64;
                 out.condition = out.condition.max(q3::condition_number(&t, r));
                 out.scaled_jacobian = out.scaled_jacobian.min(scaled_jacobian(&t, r));
-                let angles = q3::dihedral_angles(&t);
-                for (k, &i) in EDGES_AT_CORNER_0.iter().enumerate() {
-                    let a = angles[i].to_degrees();
-                    out.dihedral_deg[3 * c + k] = a;
+                let angles = corner_dihedral_deg(&t);
+                out.dihedral_deg[3 * c..3 * c + 3].copy_from_slice(&angles);
+                for a in angles {
                     out.min_dihedral_deg = out.min_dihedral_deg.min(a);
                     out.max_dihedral_deg = out.max_dihedral_deg.max(a);
                 }
@@ -145,6 +144,99 @@ pub fn solid_measures(kind: VolumeKind, p: &[DVec3]) -> SolidMeasures {
             out.inverted = corner_inverted || validity(kind, &q) != Validity::Valid;
             out.inverted_inside = out.inverted && !corner_inverted;
             out
+        }
+    }
+}
+
+/// The dihedral angles, degrees, of a corner's tetrahedron `t` at the corner's three edges.
+#[inline]
+fn corner_dihedral_deg(t: &[DVec3; 4]) -> [f64; 3] {
+    let angles = q3::dihedral_angles(t);
+    EDGES_AT_CORNER_0.map(|i| angles[i].to_degrees())
+}
+
+/// What the statistics print of one element and a move on a valid star may not worsen,
+/// taken as [`solid_measures`] takes it (the same functions, bit for bit): its smallest and
+/// largest dihedral angle, degrees, and its smallest corner scaled Jacobian. It leaves out
+/// what the rule does not read (validity, mean ratio, κ).
+pub fn solid_extremes(kind: VolumeKind, p: &[DVec3]) -> (f64, f64, f64) {
+    let fold = |(lo, hi, sj): (f64, f64, f64), angles: &[f64], s: f64| {
+        let (lo, hi) = angles.iter().fold((lo, hi), |(l, h), &a| (l.min(a), h.max(a)));
+        (lo, hi, sj.min(s))
+    };
+    let start = (f64::INFINITY, f64::NEG_INFINITY, f64::INFINITY);
+    match kind {
+        VolumeKind::Tet4 => {
+            let corners = [p[0], p[1], p[2], p[3]];
+            let r = kind.reference();
+            let angles = q3::dihedral_angles(&corners).map(f64::to_degrees);
+            let sj = (0..4).map(|c| scaled_jacobian(&q3::with_first(&corners, c), r)).fold(f64::INFINITY, f64::min);
+            fold(start, &angles, sj)
+        }
+        VolumeKind::Tet10 => {
+            let m = solid_measures(kind, p);
+            (m.min_dihedral_deg, m.max_dihedral_deg, m.scaled_jacobian)
+        }
+        _ => {
+            let (q, _) = in_unit_scale(&p[..kind.corners()]);
+            let r = kind.reference();
+            (0..kind.row().corner_edges.len()).fold(start, |acc, c| {
+                let t = corner_tet(kind, &q, c);
+                fold(acc, &corner_dihedral_deg(&t), scaled_jacobian(&t, r))
+            })
+        }
+    }
+}
+
+/// Bounds on what [`solid_extremes`] reads of an element: its dihedral angles within
+/// `[min_angle_deg, max_angle_deg]`, its corners' scaled Jacobians at least
+/// `min_scaled_jacobian`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ExtremeBounds {
+    pub min_angle_deg: f64,
+    pub max_angle_deg: f64,
+    pub min_scaled_jacobian: f64,
+}
+
+impl ExtremeBounds {
+    /// Whether the dihedral angle of cosine `c` (clamped, as [`q3::dihedral_cosines`]) is
+    /// within the bounds, as its angle in degrees compares: the inverse cosine is taken
+    /// only within 10⁻⁹ of a bound's cosine, far beyond the few ulps by which the two
+    /// comparisons could differ (the inverse cosine's slope is at least 1).
+    #[inline]
+    fn angle_within(&self, c: f64, cos_lo: f64, cos_hi: f64) -> bool {
+        if c < cos_lo - 1e-9 && c > cos_hi + 1e-9 {
+            return true;
+        }
+        let a = c.acos().to_degrees();
+        a >= self.min_angle_deg && a <= self.max_angle_deg
+    }
+}
+
+/// Whether an element reads within `bounds` ([`ExtremeBounds`]): the answer of
+/// comparing its [`solid_extremes`] with them, bit for bit, without the inverse cosines
+/// of the angles far from a bound. It stops at the first corner beyond them.
+pub fn solid_within(kind: VolumeKind, p: &[DVec3], bounds: &ExtremeBounds) -> bool {
+    let (cos_lo, cos_hi) = (bounds.min_angle_deg.to_radians().cos(), bounds.max_angle_deg.to_radians().cos());
+    let r = kind.reference();
+    match kind {
+        VolumeKind::Tet4 => {
+            let corners = [p[0], p[1], p[2], p[3]];
+            q3::dihedral_cosines(&corners).iter().all(|&c| bounds.angle_within(c, cos_lo, cos_hi))
+                && (0..4).all(|c| scaled_jacobian(&q3::with_first(&corners, c), r) >= bounds.min_scaled_jacobian)
+        }
+        VolumeKind::Tet10 => {
+            let (lo, hi, sj) = solid_extremes(kind, p);
+            lo >= bounds.min_angle_deg && hi <= bounds.max_angle_deg && sj >= bounds.min_scaled_jacobian
+        }
+        _ => {
+            let (q, _) = in_unit_scale(&p[..kind.corners()]);
+            (0..kind.row().corner_edges.len()).all(|c| {
+                let t = corner_tet(kind, &q, c);
+                let cosines = q3::dihedral_cosines(&t);
+                EDGES_AT_CORNER_0.iter().all(|&i| bounds.angle_within(cosines[i], cos_lo, cos_hi))
+                    && scaled_jacobian(&t, r) >= bounds.min_scaled_jacobian
+            })
         }
     }
 }
