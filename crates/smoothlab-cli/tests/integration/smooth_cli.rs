@@ -59,10 +59,14 @@ fn json_report_has_its_shape_and_final_equals_stats_of_the_output() {
         let keys: Vec<&str> = v.as_object().unwrap().keys().map(|k| k.as_str()).collect();
         let mut sorted = keys.clone();
         sorted.sort_unstable();
-        assert_eq!(sorted, ["final", "objective", "passes", "strategy", "time_ms", "untangling_impossible"], "{out_name}");
+        assert_eq!(sorted, ["final", "finish", "objective", "passes", "strategy", "time_ms", "untangling_impossible"], "{out_name}");
         let passes = v["passes"].as_array().unwrap();
         let want = extra.iter().position(|a| *a == "--passes").map_or(3, |i| extra[i + 1].parse::<usize>().unwrap());
-        assert_eq!(passes.len(), want, "{out_name}");
+        // the finish's passes follow where the passes asked for left the mesh valid
+        let finish = v["finish"].as_u64().unwrap() as usize;
+        let valid = passes[want - 1]["inverted"] == 0;
+        assert_eq!(finish, if valid { 3 } else { 0 }, "{out_name}");
+        assert_eq!(passes.len(), want + finish, "{out_name}");
         for (i, rec) in passes.iter().enumerate() {
             let o = rec.as_object().unwrap();
             assert_eq!(o.len(), PASS_FIELDS.len(), "{out_name}: {rec}");
@@ -93,7 +97,9 @@ fn defaults_are_new_rules_priority_three_passes_and_untangle_the_plate() {
     assert_eq!(v["objective"], "new");
     assert_eq!(v["strategy"], "rules");
     let passes = v["passes"].as_array().unwrap();
-    assert_eq!(passes.len(), 3);
+    // three passes, then the finish's three on the valid mesh they leave
+    assert_eq!(passes.len(), 6);
+    assert_eq!(v["finish"], 3);
     // priority order visits poor nodes more than once a pass
     let free = v["final"]["free_nodes"].as_u64().unwrap();
     assert!(passes[0]["visits"].as_u64().unwrap() > free, "{}", passes[0]);
@@ -170,7 +176,8 @@ fn pass_through_folds_is_an_option_of_the_solver_strategies_only() {
     let out = d.join("out.vtk");
     let json = ok(&["smooth", p(&mesh), "-o", p(&out), "--objective", "untangle", "--strategy", "opt", "--passes", "2", "--pass-through-folds", "--json"]);
     let v: serde_json::Value = serde_json::from_str(&json).unwrap();
-    assert_eq!(v["passes"].as_array().unwrap().len(), 2);
+    let finish = v["finish"].as_u64().unwrap() as usize;
+    assert_eq!(v["passes"].as_array().unwrap().len(), 2 + finish);
     let r = run(&["smooth", p(&mesh), "-o", p(&out), "--strategy", "laplace", "--pass-through-folds"]);
     assert!(!r.status.success());
     assert!(String::from_utf8_lossy(&r.stderr).contains("--pass-through-folds"));

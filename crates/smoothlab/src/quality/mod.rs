@@ -18,10 +18,12 @@ use serde::Serialize;
 use crate::mesh::ElementKind;
 use crate::numeric::{is_beyond_safe_scale, to_unit_scale, SAFE_SCALE};
 
+mod reading;
 pub mod solid;
 mod stats;
 pub mod tet;
 
+pub use reading::Reading;
 pub use stats::{
     angle_bin, mesh_stats, mesh_stats_with, ElementStats, MeshCounts, MeshStats, MeshStatsBuilder, SolidStats, scaled_jacobian_bin, QuickStats,
 };

@@ -334,8 +334,8 @@ impl Verdict {
         self.quality_after = if after.is_nan() { f64::NEG_INFINITY } else { self.quality_after.min(after) };
     }
 
-    /// Whether the star was valid before the move (the statistics' [`Reading`] then decides
-    /// too).
+    /// Whether the star was valid before the move (the statistics' reading then decides
+    /// too, [`crate::quality::Reading`]).
     #[inline]
     pub fn was_valid(&self) -> bool {
         self.inverted_before == 0
@@ -350,82 +350,6 @@ impl Verdict {
         } else {
             self.inverted_after == 0 && self.quality_after >= self.quality_before && !self.flattened
         }
-    }
-}
-
-/// What `smoothlab stats` prints of a set of elements: the extremes a user reads. A move
-/// of a node whose star is valid is kept only if its star, after the move, reads within
-/// the extremes of the mesh's valid elements at the start of the pass
-/// ([`within`](Self::within)): the rule that keeps every strategy but the plain Laplacian
-/// from leaving a valid mesh worse in its statistics, whatever the objective's own measure
-/// says (`docs/formulas.md` §4).
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Reading {
-    /// The smallest and largest angle, degrees: a planar element's corner angles, a
-    /// volume element's dihedral angles.
-    pub min_angle_deg: f64,
-    pub max_angle_deg: f64,
-    /// The smallest corner scaled Jacobian.
-    pub min_scaled_jacobian: f64,
-}
-
-impl Default for Reading {
-    /// The reading of no element.
-    fn default() -> Self {
-        Reading { min_angle_deg: f64::INFINITY, max_angle_deg: f64::NEG_INFINITY, min_scaled_jacobian: f64::INFINITY }
-    }
-}
-
-impl Reading {
-    /// A planar element (or a surface element in its own plane) with nodes `p`, as the
-    /// statistics read it ([`crate::quality::element_quality`]).
-    pub fn planar(kind: ElementKind, p: &[DVec2]) -> Self {
-        let q = measure_element::<true, false, true>(kind, &p[..kind.node_count()], |_, _, _| {});
-        Reading { min_angle_deg: q.min_angle.to_degrees(), max_angle_deg: q.max_angle.to_degrees(), min_scaled_jacobian: q.scaled_jacobian }
-    }
-
-    /// The reading of a planar `mesh` (or a surface's), element `e` with nodes `points(e)`;
-    /// `None` where an element is inverted.
-    pub fn planar_valid(mesh: &crate::mesh::Mesh, points: impl Fn(usize) -> [DVec2; 9]) -> Option<Self> {
-        (0..mesh.element_count()).try_fold(Reading::default(), |r, e| {
-            let kind = mesh.kind(e);
-            let q = measure_element::<true, false, true>(kind, &points(e)[..kind.node_count()], |_, _, _| {});
-            (!q.inverted).then(|| {
-                r.and(Reading { min_angle_deg: q.min_angle.to_degrees(), max_angle_deg: q.max_angle.to_degrees(), min_scaled_jacobian: q.scaled_jacobian })
-            })
-        })
-    }
-
-    /// A volume element of `kind` with nodes `p` (all of them), as the statistics read it
-    /// ([`solid::solid_extremes`]).
-    pub fn solid(kind: VolumeKind, p: &[DVec3]) -> Self {
-        let (min_angle_deg, max_angle_deg, min_scaled_jacobian) = solid::solid_extremes(kind, p);
-        Reading { min_angle_deg, max_angle_deg, min_scaled_jacobian }
-    }
-
-    /// These extremes as bounds on a volume element ([`solid::solid_within`]).
-    pub fn as_solid_bounds(&self) -> solid::ExtremeBounds {
-        solid::ExtremeBounds { min_angle_deg: self.min_angle_deg, max_angle_deg: self.max_angle_deg, min_scaled_jacobian: self.min_scaled_jacobian }
-    }
-
-    /// This reading and another element's together.
-    pub fn and(self, other: Reading) -> Self {
-        // a measure that is not a number is the worst there is
-        let least = |a: f64, b: f64| if a.is_nan() || b.is_nan() { f64::NEG_INFINITY } else { a.min(b) };
-        let most = |a: f64, b: f64| if a.is_nan() || b.is_nan() { f64::INFINITY } else { a.max(b) };
-        Reading {
-            min_angle_deg: least(self.min_angle_deg, other.min_angle_deg),
-            max_angle_deg: most(self.max_angle_deg, other.max_angle_deg),
-            min_scaled_jacobian: least(self.min_scaled_jacobian, other.min_scaled_jacobian),
-        }
-    }
-
-    /// Whether this reading lies within `bounds`: its smallest angle and scaled Jacobian
-    /// not lower, its largest angle not higher.
-    pub fn within(&self, bounds: &Reading) -> bool {
-        self.min_angle_deg >= bounds.min_angle_deg
-            && self.max_angle_deg <= bounds.max_angle_deg
-            && self.min_scaled_jacobian >= bounds.min_scaled_jacobian
     }
 }
 

@@ -20,7 +20,7 @@ use crate::error::{Error, Result};
 use crate::mesh::Mesh;
 use crate::objective::{NodeStar, Objective, Point, Star, Term};
 use crate::optimize::{evaluate, SolveResult, Solvers};
-use crate::quality::mesh_stats;
+use crate::quality::{mesh_stats, Reading};
 
 mod accept;
 mod guard;
@@ -39,7 +39,7 @@ use guard::KeepValid;
 pub(crate) use measure::is_inverted;
 pub(crate) use measure::triangle_shape_at;
 use measure::triangle_shape_at_both;
-pub use accept::{ElementScore, Reading, Size, Verdict, MIN_SIZE_RATIO};
+pub use accept::{ElementScore, Size, Verdict, MIN_SIZE_RATIO};
 pub use measure::StarQuality;
 #[cfg(test)]
 pub(crate) use measure::{element_measures, element_shape_at, star_quality, star_shape};
@@ -336,6 +336,8 @@ impl<S: DriverStar> Smoother<S> {
             };
             let within_bounds = |s: &mut Self| match *s.bounds.get_or_init(|| mesh.valid_reading()) {
                 Some(bounds) => {
+                    // the acceptance rule by the shape keeps each star's worst shape already
+                    let bounds = if s.options.smart_measure == Measure::Shape { bounds.without_quality() } else { bounds };
                     if kept {
                         // the smart Laplacian's test read the mesh, not the star
                         if let Some(within) = S::reads_within_from_mesh(mesh, n, x, &bounds) {

@@ -7,7 +7,8 @@ use crate::mesh::Mesh;
 use crate::objective::{NodeStar, Point, Star};
 
 use super::measure::{element_measures, element_shape_at, is_inverted, is_inverted_at, star_quality, star_shape};
-use super::accept::{ElementScore, Reading, Size, Verdict, MIN_SIZE_RATIO};
+use super::accept::{ElementScore, Size, Verdict, MIN_SIZE_RATIO};
+use crate::quality::Reading;
 use super::{Measure, StarQuality};
 
 /// A mesh as the drivers read it: free nodes, their positions and neighbours, and the
@@ -167,7 +168,7 @@ pub struct FastSmart<P> {
 impl SmoothMesh for Mesh {
     type Point = glam::DVec2;
     fn valid_reading(&self) -> Option<Reading> {
-        Reading::planar_valid(self, |e| self.element_points_array(e))
+        Reading::planar_mesh(self, |e| self.element_points_array(e))
     }
     #[inline]
     fn node_count(&self) -> usize {
@@ -306,7 +307,7 @@ impl DriverStar for Star {
         v
     }
     fn reads_within(&self, _mesh: &Mesh, x: glam::DVec2, bounds: &Reading) -> bool {
-        self.elems.iter().all(|e| Reading::planar(e.kind, &e.at(x)).within(bounds))
+        self.elems.iter().all(|e| Reading::planar(e.kind, &e.at(x)).0.within(bounds))
     }
     fn reads_within_from_mesh(mesh: &Mesh, n: usize, x: glam::DVec2, bounds: &Reading) -> Option<bool> {
         let elems = mesh.node_elements(n);
@@ -321,7 +322,7 @@ impl DriverStar for Star {
                     *q = x;
                 }
             }
-            Reading::planar(mesh.kind(e), &p).within(bounds)
+            Reading::planar(mesh.kind(e), &p).0.within(bounds)
         }))
     }
     fn smart_from_mesh(mesh: &Mesh, n: usize, measure: Measure) -> Option<FastSmart<glam::DVec2>> {

@@ -8,7 +8,8 @@ use super::Surface;
 use crate::error::{Error, Result};
 use crate::mesh::{Follower, Mesh, Plane};
 use crate::objective::{Objective, Star};
-use crate::smooth::{is_inverted, ElementScore, Measure, PassRecord, Reading, SmoothOptions, Smoother, StarView, Verdict};
+use crate::quality::Reading;
+use crate::smooth::{is_inverted, ElementScore, Measure, PassRecord, SmoothOptions, Smoother, StarView, Verdict};
 
 /// A surface seen by a driver: each star flattened into the tangent plane at its node.
 pub(crate) struct SurfaceView<'a> {
@@ -121,7 +122,7 @@ impl Surface {
                 .iter()
                 .map(|&e| {
                     let (kind, q) = (s.flat.kind(e), s.element_points_2d(e));
-                    reading = reading.and(Reading::planar(kind, &q));
+                    reading = reading.and(Reading::planar(kind, &q).0);
                     ElementScore::planar(kind, &q, measure)
                 })
                 .collect();
@@ -199,7 +200,8 @@ impl StarView for SurfaceView<'_> {
     fn place_if_no_worse(&mut self, n: usize, x: DVec2, measure: Measure) -> bool {
         let p = self.plane.to_3d(x);
         let surface = &*self.surface;
-        let bounds = *self.bounds.get_or_insert_with(|| Reading::planar_valid(&surface.flat, |e| surface.element_points_2d(e)));
+        let bounds = *self.bounds.get_or_insert_with(|| Reading::planar_mesh(&surface.flat, |e| surface.element_points_2d(e)));
+        let bounds = bounds.map(|b| if measure == Measure::Shape { b.without_quality() } else { b });
         self.surface.place_if_no_worse(n, p, measure, bounds.as_ref())
     }
 

@@ -20,9 +20,10 @@ use super::{VolumeMesh, VolumeKind};
 use crate::error::Result;
 use crate::objective::{CornerStar, Objective, StarSolid};
 use crate::quality::solid::{self, Validity};
+use crate::quality::Reading;
 use crate::quality::tet as q3;
 use crate::smooth::{
-    DriverStar, ElementScore, Reading, Size, Verdict, Measure, MIN_SIZE_RATIO, PassRecord, SmoothMesh, SmoothOptions, Smoother, StarQuality, StarView, SweepCounts,
+    DriverStar, ElementScore, Size, Verdict, Measure, MIN_SIZE_RATIO, PassRecord, SmoothMesh, SmoothOptions, Smoother, StarQuality, StarView, SweepCounts,
 };
 
 impl SmoothMesh for VolumeMesh {
@@ -314,11 +315,10 @@ impl DriverStar for CornerStar {
     /// ([`solid::solid_within`]).
     fn reads_within(&self, mesh: &VolumeMesh, x: DVec3, bounds: &Reading) -> bool {
         let n = self.node as usize;
-        let bounds = bounds.as_solid_bounds();
         mesh.node_tets(n).iter().all(|&e| {
             let e = e as usize;
             let (p, count) = mesh.element_points_with_node_at(e, n, x);
-            solid::solid_within(mesh.element_kind(e), &p[..count], &bounds)
+            solid::solid_within(mesh.element_kind(e), &p[..count], bounds)
         })
     }
     fn verdict_in(&self, mesh: &VolumeMesh, x: DVec3, m: Measure) -> Verdict {

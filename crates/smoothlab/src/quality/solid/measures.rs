@@ -5,6 +5,7 @@ use glam::DVec3;
 use super::{corner_tet, in_unit_scale, validity, Validity};
 use crate::mesh::VolumeKind;
 use crate::quality::tet::{self as q3, CornerReference};
+use crate::quality::Reading;
 
 /// The scaled Jacobian of a corner, `det T/(‖t₁‖·‖t₂‖·‖t₃‖)` with `T = A·W⁻¹`: 1 at the
 /// ideal corner, in [−1, 1], negative when inverted (the 3D sine of a corner: the volume of
@@ -155,68 +156,52 @@ fn corner_dihedral_deg(t: &[DVec3; 4]) -> [f64; 3] {
     EDGES_AT_CORNER_0.map(|i| angles[i].to_degrees())
 }
 
-/// What the statistics print of one element and a move on a valid star may not worsen,
-/// taken as [`solid_measures`] takes it (the same functions, bit for bit): its smallest and
-/// largest dihedral angle, degrees, and its smallest corner scaled Jacobian. It leaves out
-/// what the rule does not read (validity, mean ratio, κ).
-pub fn solid_extremes(kind: VolumeKind, p: &[DVec3]) -> (f64, f64, f64) {
-    let fold = |(lo, hi, sj): (f64, f64, f64), angles: &[f64], s: f64| {
-        let (lo, hi) = angles.iter().fold((lo, hi), |(l, h), &a| (l.min(a), h.max(a)));
-        (lo, hi, sj.min(s))
-    };
-    let start = (f64::INFINITY, f64::NEG_INFINITY, f64::INFINITY);
+/// What the statistics read of one element ([`Reading`]), taken as [`solid_measures`]
+/// takes it (the same functions, bit for bit), without what a reading leaves out
+/// (validity, κ). The mean ratio is taken only where `with_quality`.
+pub fn solid_reading(kind: VolumeKind, p: &[DVec3], with_quality: bool) -> Reading {
+    let r = kind.reference();
     match kind {
         VolumeKind::Tet4 => {
             let corners = [p[0], p[1], p[2], p[3]];
-            let r = kind.reference();
             let angles = q3::dihedral_angles(&corners).map(f64::to_degrees);
-            let sj = (0..4).map(|c| scaled_jacobian(&q3::with_first(&corners, c), r)).fold(f64::INFINITY, f64::min);
-            fold(start, &angles, sj)
+            Reading {
+                min_angle_deg: angles.iter().copied().fold(f64::INFINITY, f64::min),
+                max_angle_deg: angles.iter().copied().fold(f64::NEG_INFINITY, f64::max),
+                min_scaled_jacobian: (0..4).map(|c| scaled_jacobian(&q3::with_first(&corners, c), r)).fold(f64::INFINITY, f64::min),
+                min_quality: if with_quality { q3::mean_ratio(&corners, r) } else { f64::INFINITY },
+            }
         }
         VolumeKind::Tet10 => {
             let m = solid_measures(kind, p);
-            (m.min_dihedral_deg, m.max_dihedral_deg, m.scaled_jacobian)
+            Reading { min_angle_deg: m.min_dihedral_deg, max_angle_deg: m.max_dihedral_deg, min_scaled_jacobian: m.scaled_jacobian, min_quality: m.mean_ratio }
         }
         _ => {
             let (q, _) = in_unit_scale(&p[..kind.corners()]);
-            let r = kind.reference();
-            (0..kind.row().corner_edges.len()).fold(start, |acc, c| {
+            let count = kind.row().corner_edges.len();
+            let mut out = Reading { min_quality: if with_quality { 0.0 } else { f64::INFINITY }, ..Reading::default() };
+            for c in 0..count {
                 let t = corner_tet(kind, &q, c);
-                fold(acc, &corner_dihedral_deg(&t), scaled_jacobian(&t, r))
-            })
+                if with_quality {
+                    out.min_quality += q3::mean_ratio(&t, r) / count as f64;
+                }
+                out.min_scaled_jacobian = out.min_scaled_jacobian.min(scaled_jacobian(&t, r));
+                for a in corner_dihedral_deg(&t) {
+                    out.min_angle_deg = out.min_angle_deg.min(a);
+                    out.max_angle_deg = out.max_angle_deg.max(a);
+                }
+            }
+            out
         }
     }
 }
 
-/// Bounds on what [`solid_extremes`] reads of an element: its dihedral angles within
-/// `[min_angle_deg, max_angle_deg]`, its corners' scaled Jacobians at least
-/// `min_scaled_jacobian`.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct ExtremeBounds {
-    pub min_angle_deg: f64,
-    pub max_angle_deg: f64,
-    pub min_scaled_jacobian: f64,
-}
-
-impl ExtremeBounds {
-    /// Whether the dihedral angle of cosine `c` (clamped, as [`q3::dihedral_cosines`]) is
-    /// within the bounds, as its angle in degrees compares: the inverse cosine is taken
-    /// only within 10⁻⁹ of a bound's cosine, far beyond the few ulps by which the two
-    /// comparisons could differ (the inverse cosine's slope is at least 1).
-    #[inline]
-    fn angle_within(&self, c: f64, cos_lo: f64, cos_hi: f64) -> bool {
-        if c < cos_lo - 1e-9 && c > cos_hi + 1e-9 {
-            return true;
-        }
-        let a = c.acos().to_degrees();
-        a >= self.min_angle_deg && a <= self.max_angle_deg
-    }
-}
-
-/// Whether an element reads within `bounds` ([`ExtremeBounds`]): the answer of
-/// comparing its [`solid_extremes`] with them, bit for bit, without the inverse cosines
-/// of the angles far from a bound. It stops at the first corner beyond them.
-pub fn solid_within(kind: VolumeKind, p: &[DVec3], bounds: &ExtremeBounds) -> bool {
+/// Whether an element reads within `bounds` ([`Reading::within`]): the answer of comparing
+/// its [`solid_reading`] with them, bit for bit, without the inverse cosines of the
+/// angles far from a bound, and with the mean ratio only where the bound has one (above
+/// −∞). It stops at the first corner beyond them.
+pub fn solid_within(kind: VolumeKind, p: &[DVec3], bounds: &Reading) -> bool {
+    let with_quality = bounds.min_quality > f64::NEG_INFINITY;
     let (cos_lo, cos_hi) = (bounds.min_angle_deg.to_radians().cos(), bounds.max_angle_deg.to_radians().cos());
     let r = kind.reference();
     match kind {
@@ -224,19 +209,22 @@ pub fn solid_within(kind: VolumeKind, p: &[DVec3], bounds: &ExtremeBounds) -> bo
             let corners = [p[0], p[1], p[2], p[3]];
             q3::dihedral_cosines(&corners).iter().all(|&c| bounds.angle_within(c, cos_lo, cos_hi))
                 && (0..4).all(|c| scaled_jacobian(&q3::with_first(&corners, c), r) >= bounds.min_scaled_jacobian)
+                && (!with_quality || q3::mean_ratio(&corners, r) >= bounds.min_quality)
         }
-        VolumeKind::Tet10 => {
-            let (lo, hi, sj) = solid_extremes(kind, p);
-            lo >= bounds.min_angle_deg && hi <= bounds.max_angle_deg && sj >= bounds.min_scaled_jacobian
-        }
+        VolumeKind::Tet10 => solid_reading(kind, p, with_quality).within(bounds),
         _ => {
             let (q, _) = in_unit_scale(&p[..kind.corners()]);
-            (0..kind.row().corner_edges.len()).all(|c| {
+            let count = kind.row().corner_edges.len();
+            let mut mean_ratio = 0.0;
+            (0..count).all(|c| {
                 let t = corner_tet(kind, &q, c);
+                if with_quality {
+                    mean_ratio += q3::mean_ratio(&t, r) / count as f64;
+                }
                 let cosines = q3::dihedral_cosines(&t);
                 EDGES_AT_CORNER_0.iter().all(|&i| bounds.angle_within(cosines[i], cos_lo, cos_hi))
                     && scaled_jacobian(&t, r) >= bounds.min_scaled_jacobian
-            })
+            }) && (!with_quality || mean_ratio >= bounds.min_quality)
         }
     }
 }

@@ -49,7 +49,7 @@ mod tests;
 use bernstein::{hex_det, pyramid_det};
 pub use corner_terms::{corner_size, least_corner_det, CornerShapes, CornerSizes};
 pub use free_corner::{DetForm, ValidBall};
-pub use measures::{scaled_jacobian, scaled_jacobian_grad0, solid_extremes, solid_within, ExtremeBounds, solid_measures, solid_min_sine, solid_shape, SolidMeasures};
+pub use measures::{scaled_jacobian, scaled_jacobian_grad0, solid_reading, solid_within, solid_measures, solid_min_sine, solid_shape, SolidMeasures};
 
 /// How many boxes (the whole element, then halves) a hexahedron's or pyramid's validity
 /// may examine before it is called [`Validity::Undecided`].
