@@ -1,6 +1,6 @@
 //! Writes every figure of the page's tour (`lab::tour`) as a PNG into `docs/figures/`
 //! and `docs/figures.md`, which shows them beside the papers' captions with the tour's
-//! words (run by `make figures`, after the README's pictures):
+//! words (run by `make figures`, after the docs' pictures):
 //!
 //! ```text
 //! cargo run --release -p smoothlab-programs --bin figures
