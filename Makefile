@@ -39,8 +39,8 @@ tools:
 browser-tools:
 	@scripts/ensure-tools.sh --browser
 
-# wasm-bindgen's module, then binaryen's wasm-opt -O3 (about 7% smaller gzipped, as fast:
-# docs/performance.md), told that the lowest 1 KB of memory is never addressed (Rust's
+# wasm-bindgen's module, then binaryen's wasm-opt -O3 (601 → 560 KB gzipped when it was added,
+# as fast), told that the lowest 1 KB of memory is never addressed (Rust's
 # pointers never wrap round to it: the stack lies first and ends at 1 MB, the data after it),
 # so a constant added to an address becomes the load's offset (5 KB smaller gzipped, as
 # fast). wasm-opt runs only when wasm-bindgen's output or these flags changed (it takes a
