@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Regenerates the README's pictures in docs/images/ with the smoothlab CLI
+# Regenerates the docs' pictures in docs/images/ with the smoothlab CLI
 # (run by `make figures`). Every input is made by smoothlab's own generators.
 set -euo pipefail
 cd "$(dirname "$0")/.."

@@ -1,4 +1,4 @@
-// Slides: the page in a reveal.js deck, as the README shows it (`<iframe data-src=...>`).
+// Slides: the page in a reveal.js deck, as docs/teaching.md shows it (`<iframe data-src=...>`).
 // A deck of three slides (a title, the figure chen-10, the tangled plate set for 3 passes),
 // loading reveal.js from this folder's node_modules (a dev dependency, no CDN), is served
 // from a second 127.0.0.1 port (the course page's host; the page's is another) and shown at

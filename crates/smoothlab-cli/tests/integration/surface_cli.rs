@@ -36,7 +36,7 @@ fn samples_are_surfaces_and_a_tangled_one_untangles_in_three_passes() {
             assert_eq!(s["max_distance_from_surface"].as_f64(), Some(0.0), "the nodes are the reference's vertices");
             // a tangled file is fitted through its nodes (docs/formulas.md §7): linear or
             // quadratic, it untangles; an OBJ keeps no fixed flags, so a tangled cylinder
-            // from one has no rims to keep (README: Surface meshes)
+            // from one has no rims to keep (docs/meshes.md: Surfaces in 3D)
             if ext == "obj" && shape == "cylinder" {
                 continue;
             }

@@ -1,13 +1,17 @@
 //! Writes every figure of the page's tour (`lab::tour`) as a PNG into `docs/figures/`
 //! and `docs/figures.md`, which shows them beside the papers' captions with the tour's
-//! words (run by `make figures`, after the README's pictures):
+//! words (run by `make figures`, after the docs' pictures):
 //!
 //! ```text
 //! cargo run --release -p smoothlab-programs --bin figures
 //! ```
 //!
 //! The pictures are those of `smoothlab render --figure NAME` at their default size; the
-//! words and numbers are the page's (computed, or read from `docs/reproduction.md`).
+//! words and numbers are the page's (computed, or read from `docs/reproduction.json`). The
+//! document's prose is wrapped at 100 characters (`markdown.rs`).
+
+#[path = "../markdown.rs"]
+mod markdown;
 
 use std::fmt::Write as _;
 use std::path::Path;
@@ -60,6 +64,6 @@ fn main() {
         );
         eprintln!("wrote docs/figures/{}.png", f.name);
     }
-    std::fs::write(root.join("docs/figures.md"), md).expect("docs/figures.md");
+    std::fs::write(root.join("docs/figures.md"), markdown::wrap(&md)).expect("docs/figures.md");
     eprintln!("wrote docs/figures.md");
 }

@@ -26,9 +26,12 @@
 //! The sections, one module each: `planar.rs` times the planar passes and `report.rs`
 //! writes their sections; `wasm.rs`, `memory.rs` and `page.rs` write theirs; issue 33's
 //! are `volume.rs`, `quality.rs` and `issue33.rs`. `common.rs` holds what several read.
+//! The document's prose is wrapped at 100 characters (`markdown.rs`).
 
 mod common;
 mod issue33;
+#[path = "../../markdown.rs"]
+mod markdown;
 mod memory;
 mod page;
 mod planar;
@@ -145,6 +148,7 @@ fn main() {
         None => issue33_sections(&reports, quick, wasm.as_deref(), page.as_deref(), before_after.as_deref()),
     };
     let doc = render(&machine, &reports, &quality, &memory, wasm.as_deref()) + &issue33 + &page_section(page.as_deref());
+    let doc = markdown::wrap(&doc);
     match out {
         Some(p) => std::fs::write(&p, &doc).unwrap_or_else(|e| panic!("cannot write {p}: {e}")),
         None => print!("{doc}"),

@@ -99,8 +99,8 @@ pub(crate) fn memory_section(page_memory: Option<&str>) -> String {
     let _ = writeln!(
         w,
         "The 1M-node rand2D of the memory issue (rand2d with {inside} points inside and {per_side} per side, seed {seed}: {n} nodes, {e} triangles, {} edges). \
-         Each array of the mesh (`Mesh::memory_parts`, capacities) in bytes per node and per element; *shared* arrays are shared by the mesh's clones \
-         (`Mesh` keeps the elements and the topology behind one `Arc`: a clone copies positions and fixed flags only, so the page's two sides hold them once).\n",
+         Each array of the mesh (`Mesh::memory_parts`, capacities) in bytes per node and per element. \
+         *Shared* arrays are shared by the mesh's clones, so the page's two sides hold them once.\n",
         mesh.edges().len()
     );
     let _ = writeln!(w, "| array | MB | bytes per node | bytes per element | shared |\n|---|---:|---:|---:|---|");
@@ -138,7 +138,7 @@ pub(crate) fn memory_section(page_memory: Option<&str>) -> String {
     let size = std::fs::metadata(&file).map(|m| m.len()).unwrap_or(0);
     let _ = writeln!(
         w,
-        "Peak resident memory of each command on that mesh ({:.0} MB as .msh 2.2), the whole process: the library calls of `smoothlab`'s commands run in a child process of the `perf` program, whose `VmHWM` (what `/usr/bin/time -v` reports as maximum resident set size) is read at its end. \
+        "Peak resident memory of each command on that mesh ({:.0} MB as .msh 2.2), the whole process: each command runs in a child process, whose `VmHWM` is read at its end. \
          Target of the memory issue: read, 3 passes and written in ≤ 250 MB.\n",
         size as f64 / 1e6
     );
@@ -165,15 +165,9 @@ pub(crate) fn memory_section(page_memory: Option<&str>) -> String {
         let _ = writeln!(w, "| {what} | {shown} | {met} |");
     }
     let _ = std::fs::remove_dir_all(&dir);
-    let _ = writeln!(
-        w,
-        "\nWhere the bytes of a command go (by heaptrack): the peak of every command that reads a file is in reading, where the file's text is held whole \
-         with what has been read (the nodes with their lines and tags, the elements as node indices); the text is let go before the mesh is built. \
-         Building the topology holds the mesh being built and the edge uses filed by node (8 bytes a use, 24 bytes a triangle); a pass adds the smoother's \
-         visit order and the statistics' arrays; writing adds a 64 KiB buffer (the text goes to the file in chunks).\n"
-    );
+    let _ = writeln!(w);
     // the page
-    let _ = writeln!(w, "The page (`node tests/browser/page_memory.mjs`): the worker's wasm memory (`memory.buffer.byteLength`, which never shrinks) with the 1M-node sample (generated in wasm), both sides, in one worker (the page splits a pass between two workers from 20k to 500k nodes only, and each of the two then holds its own copy of the mesh). Target: ≤ 400 MiB.\n");
+    let _ = writeln!(w, "The page (`node tests/browser/page_memory.mjs`): the worker's wasm memory (`memory.buffer.byteLength`, which never shrinks) with the 1M-node sample, both sides in one worker. Target: ≤ 400 MiB.\n");
     let v: Option<serde_json::Value> =
         page_memory.and_then(|p| std::fs::read_to_string(p).ok()).and_then(|t| serde_json::from_str(&t).ok());
     match v {

@@ -37,10 +37,9 @@ pub(crate) fn page_section(path: Option<&str>) -> String {
     let _ = writeln!(
         w,
         "The playground page itself (`www/index.html`), driven as a user drives it by `node tests/browser/page_bench.mjs` \
-         ({}, viewport {}×{}, mesh canvases {}×{} device pixels); the figures are the page's own measurements \
+         ({}, viewport {}×{}, mesh canvases {}×{} device pixels). The figures are the page's own measurements \
          (`window.smoothlab.metrics`). A pass runs in the worker in slices of {} ms, so the progress bar moves and Stop is \
-         heard during a pass; the statistics after a pass are the table's (inverted elements, extreme angles, smallest quality, \
-         one pass over the elements), the angle histograms are computed when the charts are drawn.\n",
+         heard during a pass.\n",
         v["browser"].as_str().unwrap_or("Chromium"),
         v["viewport"][0],
         v["viewport"][1],
@@ -93,22 +92,17 @@ pub(crate) fn page_section(path: Option<&str>) -> String {
     }
     let _ = writeln!(
         w,
-        "\nBoth sides smooth with the same settings: the default is Chen's rules in priority order, with the max-min objective on the \
-         old side and the new objective on the new side. *Smoothing* is the node loop of each side (planning the order included): the \
-         strategies' own cost per node visit, measured natively and in wasm in the sections above. *All but smoothing* is the rest of the \
-         click's time: statistics, drawing both meshes, copying and moving the pixels, the worker's messages, painting and the tables \
-         (in two workers, the click's time less the longer side's smoothing)."
+        "\nBoth sides use the default settings (Chen's rules in priority order), old objective on one side and new on the other. \
+         *Smoothing* is each side's node loop; *all but smoothing* is the rest of the click: statistics, drawing, copies, \
+         messages, painting and the tables."
     );
     let ready = &h["second_worker_ready_ms"];
     let workers = steps.first().map(|s| f(&s["median"]["workers"])).unwrap_or(f64::NAN);
     let _ = writeln!(
         w,
-        "\nA planar mesh of 20k to 500k nodes is smoothed in two workers (`www/app/workers.js`, `SPLIT_MIN_NODES`): after a load a second \
-         worker loads the same mesh in the background{}; each pass then sends it the old side's positions, it sweeps them while \
-         the first worker smooths the new side, and the first adopts its sweep and measures it (`lab::pass`, the same records and \
-         meshes as one worker, bit for bit: a unit test and a browser test compare them). The default Step above ran in {} worker(s); \
-         its *smoothing* of the old side is the second worker's, at the same time as the new side's.",
-        if ready.is_null() { String::new() } else { format!(" (here ready {} ms after the load, before the first Step was timed)", ms(ready)) },
+        "\nA planar mesh of 20k to 500k nodes is smoothed in two workers, one side each (`www/app/workers.js`; \
+         the same meshes as one worker, bit for bit{}). The default Step above ran in {} worker(s).",
+        if ready.is_null() { String::new() } else { format!("; here the second was ready {} ms after the load", ms(ready)) },
         if workers.is_nan() { "?".to_string() } else { format!("{workers:.0}") }
     );
     let st = &v["startup"]["median"];
@@ -149,24 +143,6 @@ pub(crate) fn page_section(path: Option<&str>) -> String {
         targets(million_step, 10.0, "s"),
         targets(f(&st["first_mesh_ms"]), 500.0, "ms"),
         targets(f(&v["wasm"]["gzip_bytes"]) / 1000.0, 400.0, "KB")
-    );
-    let _ = writeln!(
-        w,
-        "\nWhat was tried for these targets (issue 15), each measured on its own: the site build runs binaryen's `wasm-opt -O3` (npm's; \
-         601 → 560 KB gzipped; `-Oz` 4 KB smaller and no faster; `opt-level = \"s\"` for the crate 21 KB smaller after wasm-opt, \
-         its speed not measured, not kept); the module is built with 128-bit SIMD, which tiny-skia's `simd` feature uses (560 → 513 KB \
-         gzipped, node visits and drawing faster); after a load or Reset the two panels show the same positions and the mesh is drawn once for both. \
-         What is left of the module is code the page uses: the core's file readers and writers, tiny-skia's pipelines (lowp and \
-         highp, ~350 KB before gzip) and glyph outlines for the labels, the charts, the tour's pictures. The crate built for size \
-         (`opt-level = \"z\"`, after wasm-opt -O3) makes the module 531 KB gzipped (from 637 at the time), but every pass in Chromium 1.2–1.6× \
-         slower (opt+old 1.54×, rules+new 1.26×, Hilbert order, one run each), not kept; the dependencies alone at `\"z\"` or \
-         `\"s\"`: 629 and 660 KB, not kept. Sweeping the two sides of a pass in two workers was first measured on this machine \
-         with other builds running (no gain then); on an idle machine the two sweeps take the two cores (two 100k sweeps of opt, \
-         old and new: 460 ms one after the other, 270 ms at once), so it is kept, from 20k to 500k nodes (above). The 1M mesh \
-         stays in one worker: two copies of it would take the page past its 400 MiB (the memory section). For the 1M Step in one worker: the sample \
-         is numbered along a Hilbert curve (the file-order row above), and Chen's priority order, which measures every star \
-         before a pass, reads a planar star of linear triangles straight from the mesh and sorts the ranking by key (planning \
-         1M nodes natively: 200 → 152 ms, the same order)."
     );
     let load = &h["load"];
     let _ = writeln!(
@@ -227,8 +203,7 @@ pub(crate) fn page_section(path: Option<&str>) -> String {
     if let Some(ms_) = m["stop_while_ordering"]["to_status_ms"].as_f64() {
         let _ = writeln!(
             w,
-            "- Stop right after a click with the default settings (rules, priority order), while the smoother orders the nodes worst first \
-             (`Smoother::begin_plan`/`plan_some`, in slices like the sweep): {ms_:.0} ms."
+            "- Stop while the default settings order the nodes worst first (`Smoother::plan_some`, in slices): {ms_:.0} ms."
         );
     }
     let d = &m["default_step"];
@@ -247,7 +222,7 @@ pub(crate) fn page_section(path: Option<&str>) -> String {
     }
     let _ = writeln!(
         w,
-        "- wasm memory (`memory.buffer.byteLength`, which never shrinks): {} at the end, {} at most. The two sides share the mesh's elements and topology (clones of a `Mesh` share them) and each holds its own positions; the mesh as loaded is kept as positions only.\n",
+        "- wasm memory (`memory.buffer.byteLength`, which never shrinks): {} at the end, {} at most.\n",
         mib(&m["memory"]["bytes"]),
         mib(&m["memory"]["peak_bytes"])
     );

@@ -139,11 +139,9 @@ pub(crate) fn volume_section(v: &VolumeReport) -> String {
     let _ = writeln!(
         w,
         "The 3D passes on {} ({} free nodes, {:.1} measured corners per free node), and on {} ({} free nodes, {:.1} measured corners per free node). \
-         A pass is one sweep over the free nodes (`VolumeSmoother::sweep`, no statistics), the median of {} passes each on a fresh copy of the mesh, the two meshes' passes alternating (so that both see the machine in the same state: their ratio is what the target reads), \
-         per **free node** (the visits per free node beside it: `rules` in priority order visits a poor node up to once per bin). \
-         *Per corner* divides by the measured corners of the node's star (`CornerStar::tets`, what the kernels evaluate): a tetrahedron is one corner, its free node's; \
-         a hexahedron gives every corner whose corner tetrahedron (the corner and its three edge neighbours) holds the free node, its own and its three \
-         edge neighbours', so 4. Issue 33's target: the same kernels serve the hexahedra, which must not be slower per corner than tetrahedra (hex / tet ≤ 1).\n",
+         A pass is one sweep over the free nodes (`VolumeSmoother::sweep`, no statistics), the median of {} passes each on a fresh copy of the mesh, the two meshes alternating. \
+         Figures are per free node, and per measured corner of its star (`CornerStar::tets`: a tetrahedron gives one corner, a hexahedron 4). \
+         Issue 33's target: hexahedra no slower per corner than tetrahedra (hex / tet ≤ 1).\n",
         tet.what,
         tet.free,
         tet.corners_per_node(),
@@ -168,6 +166,6 @@ pub(crate) fn volume_section(v: &VolumeReport) -> String {
             if ratio <= 1.0 { "✓" } else { "✗" }
         );
     }
-    let _ = writeln!(w, "\nFigures in ns unless marked µs. The criterion benches of the same passes: `cargo bench -- volume` (`benches/smoothing.rs`).\n");
+    let _ = writeln!(w, "\nFigures in ns unless marked µs.\n");
     w
 }

@@ -126,17 +126,32 @@ pub(crate) fn chen_plate(out: &mut Report) {
     }
     out.table(table);
     let _ = writeln!(out);
+    // the plates untangled, per design and order, summed over every row above
+    let within = format!("untangled within {MAX_PASSES}");
+    let mut summary = Table::new(&[
+        "penalty design",
+        "order",
+        "plates",
+        "untangled within 3 passes",
+        "in the first pass",
+        &within,
+        "passes on average",
+    ]);
     for (d, (_, design)) in NEW_DESIGNS.iter().enumerate() {
         for (o, name) in ["priority", "input"].iter().enumerate() {
             let (w3, first, ok, sum) = tally[d][o];
-            let _ = writeln!(
-                out,
-                "- {design}, {name} order: {w3} of {runs} plates untangled within 3 passes ({first} in the first), \
-                 {ok} within {MAX_PASSES}{}.",
-                if ok > 0 { format!(", {:.2} passes on average", sum as f64 / ok as f64) } else { String::new() }
-            );
+            summary.row(vec![
+                design.to_string(),
+                name.to_string(),
+                runs.to_string(),
+                w3.to_string(),
+                first.to_string(),
+                ok.to_string(),
+                if ok > 0 { format!("{:.2}", sum as f64 / ok as f64) } else { "—".into() },
+            ]);
         }
     }
+    out.table(summary);
     let _ = writeln!(out);
     if let Some((name, p, i)) = example {
         let list = |v: &Vec<usize>| v.iter().map(|n| n.to_string()).collect::<Vec<_>>().join(" → ");

@@ -26,8 +26,11 @@
 //! Each section is a module named as on the command line (`freitag` … `hexahedra`).
 //! `common` holds what they share: runs of passes, the objectives' names, statistics.
 //! `report` writes the document. Each table passes through it once, for both files.
+//! Its prose is wrapped at 100 characters as it is written (`markdown.rs`).
 
 mod common;
+#[path = "../../markdown.rs"]
+mod markdown;
 mod report;
 mod freitag;
 mod chen;
@@ -134,9 +137,10 @@ fn main() {
             std::process::exit(1);
         }
     };
+    let text = markdown::wrap(&out.text);
     match &out_path {
-        Some(path) => write(path, &out.text),
-        None => print!("{}", out.text),
+        Some(path) => write(path, &text),
+        None => print!("{text}"),
     }
     if let Some(path) = &data_path {
         write(path, &report::json(&out.data));

@@ -137,6 +137,11 @@ mod tests {
     }
 
     #[test]
+    fn the_document_is_wrapped_as_the_program_writes_it() {
+        assert_eq!(crate::markdown::wrap(DOCUMENT), DOCUMENT);
+    }
+
+    #[test]
     fn the_document_holds_the_data_files_tables() {
         let data: Reproduction = serde_json::from_str(DATA).unwrap();
         let mut tables = 0;
