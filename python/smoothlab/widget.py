@@ -12,7 +12,10 @@ import json
 import pathlib
 from typing import Any, Dict, List, Optional
 
-import anywidget
+try:
+    import anywidget
+except ImportError:
+    raise ImportError("smoothlab's notebook widget needs anywidget: pip install anywidget") from None
 import numpy as np
 import traitlets
 
@@ -23,8 +26,8 @@ MODULE = STATIC / "widget.js"
 SHEET_FILE = STATIC / "sheet.json"
 if not (MODULE.is_file() and SHEET_FILE.is_file()):
     raise ImportError(
-        "smoothlab's widget module is not built: run `make python` in the smoothlab repository, "
-        "then `pip install ./python` again"
+        "smoothlab's widget module is not in this install: build the wheel with `make wheel` in the "
+        "smoothlab repository, then pip install target/wheels/smoothlab-*.whl again"
     )
 SHEET = json.loads(SHEET_FILE.read_text(encoding="utf-8"))
 
@@ -119,7 +122,7 @@ class Playground(anywidget.AnyWidget):
             if points is None or cells is None:
                 raise ValueError("give both points and cells (or a sample or a figure)")
             p = check_points(points)
-            c = check_cells(cells, len(p))
+            c = check_cells(cells, len(p), p)
             f = check_fixed(fixed, len(p))
             init["_file"] = vtk_text(p, c, f).encode("utf-8")
             init["_file_name"] = "notebook.vtk"
@@ -167,12 +170,10 @@ class Playground(anywidget.AnyWidget):
     def _side(self, trait: str, letter: str) -> Mesh:
         state = getattr(self, trait)
         if state:
-            mesh = Mesh.from_page(state)
             # the page gives a mesh in the xy plane two coordinates; points given with three
             # (meshio's, z = 0) come back with three
-            if self._given is not None and self._given.points.shape[1] == 3 and mesh.points.shape[1] == 2:
-                mesh.points = np.column_stack([mesh.points, np.zeros(len(mesh.points))])
-            return mesh
+            given_3d = self._given is not None and self._given.points.shape[1] == 3
+            return Mesh.from_page(state, dim=3 if given_3d else None)
         if self._given is not None:
             return self._given
         raise RuntimeError(
