@@ -13,8 +13,8 @@ Out: a mesh's arrays as the ``.vtk`` writer holds them (points, cells in meshio'
 fixed flags), and what the page sends of a side, as a :class:`Mesh`.
 
 >>> import smoothlab
->>> smoothlab.Mesh([[0, 0], [1, 0], [0, 1]], [[0, 1, 2]], fixed=[0]).fixed.tolist()
-[True, False, False]
+>>> bool(smoothlab.Mesh([[0, 0], [1, 0], [0, 1]], [[0, 1, 2]], fixed=[]).fixed.any())
+False
 """
 
 from __future__ import annotations
@@ -85,15 +85,22 @@ def check_points(points: Any) -> np.ndarray:
 
 def check_cells(cells: Any, n_points: int, points: Optional[np.ndarray] = None) -> Cells:
     """The cells as meshio's ``[(type, (M, k) int array)]``, or a ValueError naming the
-    block, the cell and what is wrong (an unknown type, a wrong shape, a point number out
-    of range)."""
+    block, the cell and what is wrong (an unknown type, a wrong shape, rows of different
+    lengths, a point number out of range). With ``points`` (checked), one (M, 4) array
+    whose points are not all in the plane z = constant is refused: it could be quads of a
+    surface or tetrahedra, and the list of ``(type, array)`` says which."""
     if isinstance(cells, np.ndarray) or (isinstance(cells, (list, tuple)) and cells and not _is_block(cells[0])):
-        c = np.asarray(cells)
+        c = _array(cells, "cells", "a row of one (M, k) array")
         if c.ndim != 2 or c.shape[1] not in BY_NODE_COUNT:
             raise ValueError(
                 f"cells: one array must be (M, k) with k = 3 (triangles), 4 (quads), 6 (6-node triangles), "
                 f"8 or 9 (8- or 9-node quads), not of shape {c.shape}; give volume elements as meshio's "
                 f"list of (type, array), e.g. [('tetra', array)]"
+            )
+        if c.shape[1] == 4 and points is not None and points.shape[1] == 3 and np.ptp(points[:, 2]) != 0:
+            raise ValueError(
+                "cells: one (M, 4) array with points in 3D (not all at one z) could be quads of a surface or "
+                "tetrahedra; say which as meshio does: [('quad', cells)] or [('tetra', cells)]"
             )
         blocks = [(BY_NODE_COUNT[c.shape[1]], c)]
     else:
@@ -113,7 +120,7 @@ def check_cells(cells: Any, n_points: int, points: Optional[np.ndarray] = None) 
                 f"(and {_words(list(MARKERS))} cells, which fix their points)"
             )
         k = CELL_TYPES[kind][1]
-        a = np.asarray(data)
+        a = _array(data, where, f"a {kind}")
         if a.size == 0:
             continue
         if not np.issubdtype(a.dtype, np.integer):
@@ -134,6 +141,21 @@ def check_cells(cells: Any, n_points: int, points: Optional[np.ndarray] = None) 
     return out
 
 
+def _array(data: Any, where: str, row: str) -> np.ndarray:
+    """``data`` as an array, or a ValueError naming ``where`` when its rows differ in
+    length (NumPy's own words name no argument)."""
+    try:
+        a = np.asarray(data)
+    except ValueError:
+        a = None
+    if a is None or (a.dtype == object and a.ndim >= 1):
+        raise ValueError(
+            f"{where}: the rows have different lengths; each {row} lists the same number of points "
+            f"(give mixed kinds as meshio's list of (type, array) pairs, one pair a kind)"
+        ) from None
+    return a
+
+
 def _is_block(b: Any) -> bool:
     return hasattr(b, "type") and hasattr(b, "data") or (isinstance(b, (tuple, list)) and len(b) == 2 and isinstance(b[0], str))
 
@@ -148,17 +170,26 @@ def _block(b: Any) -> Tuple[str, Any]:
 
 
 def check_fixed(fixed: Any, n_points: int) -> Optional[np.ndarray]:
-    """The fixed flags as a boolean mask of the points (None: the page decides, fixing the
-    boundary and the points of vertex and line cells), from a mask or point numbers."""
+    """The fixed flags as a boolean mask of the points (None: smoothlab decides, fixing the
+    boundary and the points of vertex and line cells), from a boolean mask or a list of
+    point numbers (``[]``: no point is fixed, the boundary moves too). An integer array
+    of 0s and 1s, one a point, reads both ways and is refused: give it as booleans."""
     if fixed is None:
         return None
     f = np.asarray(fixed)
+    if f.ndim == 1 and f.size == 0:
+        return np.zeros(n_points, dtype=bool)
     if f.dtype == bool:
         if f.shape != (n_points,):
             raise ValueError(f"fixed: a boolean mask needs one flag a point, shape ({n_points},), not {f.shape}")
         return f
     if not np.issubdtype(f.dtype, np.integer) or f.ndim != 1:
         raise ValueError(f"fixed: give a boolean mask of the points or a list of point numbers, not a {f.dtype} array of shape {f.shape}")
+    if f.shape == (n_points,) and np.all((f == 0) | (f == 1)):
+        raise ValueError(
+            f"fixed: {n_points} integers, all 0 or 1, one a point, read both as a mask and as point numbers; "
+            f"give a mask as booleans (np.asarray(fixed, dtype=bool)) or the numbers of the fixed points"
+        )
     bad = np.flatnonzero((f < 0) | (f >= n_points))
     if len(bad):
         raise ValueError(f"fixed[{bad[0]}] is point {f[bad[0]]}, but there are {n_points} points (numbered 0 to {n_points - 1})")
