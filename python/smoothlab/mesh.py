@@ -103,7 +103,9 @@ def check_cells(cells: Any, n_points: int, points: Optional[np.ndarray] = None) 
                 "tetrahedra; say which as meshio does: [('quad', cells)] or [('tetra', cells)]"
             )
         blocks = [(BY_NODE_COUNT[c.shape[1]], c)]
+        single = True
     else:
+        single = False
         try:
             blocks = [_block(b) for b in cells]
         except (TypeError, ValueError):
@@ -112,7 +114,7 @@ def check_cells(cells: Any, n_points: int, points: Optional[np.ndarray] = None) 
             ) from None
     out: Cells = []
     for b, (kind, data) in enumerate(blocks):
-        where = f"cells[{b}] ({kind!r})" if len(blocks) > 1 or not isinstance(cells, np.ndarray) else "cells"
+        where = "cells" if single else f"cells[{b}] ({kind!r})"
         if kind not in CELL_TYPES:
             raise ValueError(
                 f"{where}: smoothlab does not read {kind!r} cells; it reads "
