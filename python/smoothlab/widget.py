@@ -72,6 +72,14 @@ class Playground(anywidget.AnyWidget):
     ``penalty_a``, ``objective_b``, ``penalty_b``; None: the page's default, filled in
     once the widget is shown). ``mesh_a`` and ``mesh_b`` are the sides' meshes as the page
     last reported them, ``stats`` their tables, ``error`` what the page refused.
+    ``sample`` and ``figure`` may be assigned after the widget is shown, and
+    :meth:`set_mesh` gives it another mesh: the view opens it anew.
+
+    >>> import smoothlab
+    >>> w = smoothlab.Playground(sample="plate-tri-tangled", passes=3)
+    >>> w.figure = "chen-10"
+    >>> w.sample is None, w.figure
+    (True, 'chen-10')
     """
 
     _esm = MODULE
@@ -150,6 +158,50 @@ class Playground(anywidget.AnyWidget):
         if fixed is None and "fixed" in getattr(mesh, "point_data", {}):
             fixed = np.asarray(mesh.point_data["fixed"]).reshape(-1) != 0
         return cls(mesh.points, list(mesh.cells), fixed, **kwargs)
+
+    def set_mesh(self, points: Any, cells: Any, fixed: Any = None) -> None:
+        """Shows another mesh, given as :class:`Playground` takes one (a shown widget
+        opens it anew); the sample or figure it showed is let go."""
+        p = check_points(points)
+        c = check_cells(cells, len(p), p)
+        f = check_fixed(fixed, len(p))
+        given = Mesh(p, c, f)
+        with self.hold_sync():
+            self.sample = None
+            self.figure = None
+            self._file_name = "notebook.vtk"
+            self._file = vtk_text(p, c, f).encode("utf-8")
+            self._mesh_a = {}
+            self._mesh_b = {}
+            self.stats = {}
+            self.error = None
+        self._given = given
+
+    @traitlets.validate("sample", "figure")
+    def _check_name(self, proposal: Any) -> Any:
+        v, name = proposal["value"], proposal["trait"].name
+        names = samples() if name == "sample" else figures()
+        if v is not None and v not in names:
+            raise traitlets.TraitError(f"{name}: no {name} named {v!r}; the {name}s are {', '.join(names)}")
+        return v
+
+    @traitlets.observe("sample", "figure")
+    def _open_by_name(self, change: Any) -> None:
+        """A sample or a figure assigned after the widget is made (shown or not) replaces
+        what it showed: the other name, the mesh given as arrays and the sides' meshes
+        and tables as last reported are let go, and the view opens it anew."""
+        if change["new"] is None:
+            return
+        other = "figure" if change["name"] == "sample" else "sample"
+        self._given = None
+        with self.hold_sync():
+            setattr(self, other, None)
+            self._file = b""
+            self._file_name = ""
+            self._mesh_a = {}
+            self._mesh_b = {}
+            self.stats = {}
+            self.error = None
 
     @traitlets.validate("strategy", "order", "threshold", "objective_a", "penalty_a", "objective_b", "penalty_b")
     def _check_menu(self, proposal: Any) -> Any:
