@@ -9,8 +9,8 @@
 //!
 //! The settings of a run are the core's [`Smoothing`]: each name (the command line's flag,
 //! `_` for `-`) calls its builder method, and [`Smoothing::options`] checks them together,
-//! so the messages are the core's. A new setting is one arm of [`smoothing`] and one name
-//! in [`SETTINGS`].
+//! so the messages are the core's. A new setting is one arm of `smoothing` and one name
+//! in `SETTINGS`.
 
 use std::path::PathBuf;
 
