@@ -87,6 +87,11 @@ def test_stats_are_the_tools_json(files, kind):
     assert smoothlab.read(files[kind]).stats() == json.loads(cli("stats", files[kind], "--json"))
 
 
+def test_numpy_numbers_are_settings(files):
+    report = smoothlab.read(files["planar"]).smooth(passes=np.int64(2), strategy="c1", threshold=np.float64(20))
+    assert len(report.passes) == 2
+
+
 def test_settings_reach_the_core_as_the_tools_flags(files, tmp_path):
     flags = ["--strategy", "c2", "--threshold", "15", "--passes", "2", "--order", "priority", "--max-iter", "5",
              "--objective", "condition", "--no-pass-through-folds"]
@@ -186,6 +191,7 @@ BAD_SETTINGS = [
     ({"passes": -2}, r"^passes: -2 asked: give a positive whole number$"),
     ({"passes": True}, r"^passes: give a whole number, not True$"),
     ({"passes": 2.5}, r"^passes: give a whole number, not 2.5$"),
+    ({"passes": 2.0}, r"^passes: give a whole number, not 2.0$"),
     ({"strategy": "best"}, r"^strategy: \"best\" is not one of laplace, smart, opt, c1, c2, c3, rules$"),
     ({"objective": 3}, r"^objective: give a name \(old, sine, new, .*\), not 3$"),
     ({"threshold": 20}, r"^threshold: c1, c2 and c3 have one, not rules$"),

@@ -17,7 +17,7 @@ use std::path::PathBuf;
 use numpy::{PyArray1, PyReadonlyArray1};
 use pyo3::exceptions::{PyOSError, PyValueError};
 use pyo3::prelude::*;
-use pyo3::types::{PyBool, PyDict, PyList, PyTuple};
+use pyo3::types::{PyBool, PyDict, PyFloat, PyList, PyTuple};
 
 use smoothlab::io::{self, CellBlock, MeshArrays, MshVersion, WriteOptions};
 use smoothlab::smooth::{Order, Strategy};
@@ -58,9 +58,10 @@ fn named<T: Copy>(value: &Bound<'_, PyAny>, setting: &str, all: &[T], name: fn(T
     })
 }
 
-/// A whole-number setting (not a bool, which Python counts as a number).
+/// A whole-number setting.
 fn whole(value: &Bound<'_, PyAny>, setting: &str) -> PyResult<u32> {
-    if value.is_instance_of::<PyBool>() {
+    // not a bool (which Python counts as a number) nor a float (which 3.9 would truncate)
+    if value.is_instance_of::<PyBool>() || value.is_instance_of::<PyFloat>() {
         return Err(value_error(format!("{setting}: give a whole number, not {}", shown(value))));
     }
     let n: i128 = value.extract().map_err(|_| value_error(format!("{setting}: give a whole number, not {}", shown(value))))?;
