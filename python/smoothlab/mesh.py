@@ -500,7 +500,7 @@ def write(mesh: Mesh, path: Union[str, "os.PathLike[str]"], msh_version: Optiona
     mesh._model.write(os.fspath(path), msh_version)
 
 
-VIEWS = ("mesh",)
+VIEWS: Tuple[str, ...] = tuple(_native.VIEWS)
 
 
 def render(
@@ -509,54 +509,62 @@ def render(
     view: str = "mesh",
     *,
     size: Optional[Tuple[int, int]] = None,
-    dpr: float = 1.0,
+    dpr: Optional[float] = None,
     metric: Optional[str] = None,
-    theme: str = "light",
+    theme: Optional[str] = None,
     camera: Union[None, str, Sequence[float]] = None,
     cut: Union[None, str, Tuple[str, float]] = None,
     node: Optional[int] = None,
+    objective: Union[None, str, Sequence[str]] = None,
+    passes: Optional[int] = None,
+    strategy: Optional[str] = None,
+    threshold: Optional[float] = None,
+    order: Optional[str] = None,
+    max_iter: Optional[int] = None,
+    penalty: Optional[str] = None,
 ) -> None:
-    """Draws the mesh as it is now to a PNG file, by the pictures' code of
-    ``smoothlab render --view mesh``: a planar mesh coloured by ``metric`` (``"alpha"``,
-    ``"angle"`` or ``"condition"``; ``node`` marks a node and its star), a surface in the
-    3D view (``camera``: yaw and pitch in degrees and a zoom, ``(30, 25, 1)`` by default),
-    a volume mesh cut by a plane (``cut``: ``("z", 0.5)``, an axis and a fraction of the
-    extent). ``size`` is (width, height) in pixels (900 × 800 by default), ``dpr`` the
-    pixel ratio, ``theme`` ``"light"`` or ``"dark"``.
+    """Draws the mesh to a PNG file as ``smoothlab render IN -o OUT --view VIEW`` does,
+    by the same code, from the mesh as it is now (the tool's bytes for the same options).
 
-    >>> import pathlib, tempfile, smoothlab
-    >>> out = pathlib.Path(tempfile.mkdtemp()) / "tri.png"
-    >>> smoothlab.render(smoothlab.Mesh([[0, 0], [1, 0], [0, 1]], [[0, 1, 2]]), out, size=(200, 150))
+    ``view``: ``"mesh"`` (coloured by ``metric``: ``"alpha"``, ``"angle"`` or
+    ``"condition"``; ``node`` marks a node's star), ``"compare"`` (the old max-min
+    objective beside the new smooth one after ``passes``, 3 by default, with their
+    statistics), ``"levelset"`` (a node's level sets), ``"history"`` (per-pass curves, or
+    a node's solve) or ``"histogram"`` (angles). A surface is drawn in the 3D view
+    (``camera``: yaw and pitch in degrees and a zoom, ``(30, 25, 1)`` by default), a volume
+    mesh cut by a plane (``cut``: ``("z", 0.5)``, an axis and a fraction of its extent).
+    ``objective`` ``"old"``, ``"new"`` or both; ``strategy``, ``threshold``, ``order``,
+    ``max_iter`` and ``penalty`` as for ``render``'s passes; ``size`` (width, height) in
+    pixels, ``dpr`` the pixel ratio, ``theme`` ``"light"`` or ``"dark"``. Left out, each
+    takes the tool's default.
+
+    >>> import pathlib, tempfile, numpy as np, smoothlab
+    >>> out = pathlib.Path(tempfile.mkdtemp()) / "star.png"
+    >>> mesh = smoothlab.Mesh(np.array([[0, 0], [1, 0], [1, 1], [0, 1], [0.8, 0.7]]), np.array([[0, 1, 4], [1, 2, 4], [2, 3, 4], [3, 0, 4]]))
+    >>> smoothlab.render(mesh, out, "compare", passes=1, size=(600, 300))
     >>> out.read_bytes()[:4]
     b'\\x89PNG'
     """
     if not isinstance(mesh, Mesh):
         raise ValueError(f"mesh: give a smoothlab.Mesh (smoothlab.read, smoothlab.Mesh), not {type(mesh).__name__}")
-    if view not in VIEWS:
-        raise ValueError(
-            f"view: {view!r} is not one of {', '.join(VIEWS)}; the views that smooth two objectives side by side "
-            f"(compare, levelset, history, histogram) are drawn by `smoothlab render IN --view VIEW`"
-        )
-    w, h = (900, 800) if size is None else _size(size)
     if camera is not None and not isinstance(camera, str):
-        camera = ",".join(str(float(c)) for c in camera)
+        try:
+            camera = ",".join(repr(float(c)) for c in camera)
+        except (TypeError, ValueError):
+            raise ValueError(f"camera: give (yaw, pitch) or (yaw, pitch, zoom) in numbers, not {camera!r}") from None
     if cut is not None and not isinstance(cut, str):
         try:
             axis, at = cut
         except (TypeError, ValueError):
             raise ValueError(f"cut: give (axis, fraction) such as ('z', 0.5), or 'z=0.5', not {cut!r}") from None
         cut = f"{axis}={at}"
-    mesh._model.render(os.fspath(path), w, h, float(dpr), metric, theme, camera, cut, node)
-
-
-def _size(size: Any) -> Tuple[int, int]:
-    try:
-        w, h = size
-        if isinstance(w, bool) or isinstance(h, bool) or int(w) != w or int(h) != h:
-            raise ValueError
-        return int(w), int(h)
-    except (TypeError, ValueError):
-        raise ValueError(f"size: give (width, height) in whole pixels, such as (900, 800), not {size!r}") from None
+    if objective is not None and not isinstance(objective, str):
+        objective = ",".join(map(str, objective))
+    mesh._model.render(
+        os.fspath(path), view=view, size=size, dpr=dpr, metric=metric, theme=theme, camera=camera, cut=cut,
+        node=node, objective=objective, passes=passes, strategy=strategy, threshold=threshold, order=order,
+        max_iter=max_iter, penalty=penalty,
+    )
 
 
 def settings() -> Dict[str, Optional[List[str]]]:

@@ -153,19 +153,40 @@ def test_a_mesh_given_in_3d_at_z_0_comes_back_in_3d():
     assert np.all(mesh.points[:, 2] == 0) and np.allclose(mesh.points[4, :2], [0.5, 0.5], atol=1e-3)
 
 
-def test_render_draws_the_tools_picture_of_a_planar_mesh(files, tmp_path):
-    cli("render", files["planar"], "-o", tmp_path / "cli.png", "--view", "mesh")
-    smoothlab.render(smoothlab.read(files["planar"]), tmp_path / "py.png")
-    assert (tmp_path / "py.png").read_bytes() == (tmp_path / "cli.png").read_bytes()
+RENDERS = [
+    # (kind, the tool's options, the same as Python's arguments)
+    ("planar", [], {}),
+    ("planar", ["--view", "mesh", "--metric", "angle", "--node", "40", "--theme", "dark"], {"metric": "angle", "node": 40, "theme": "dark"}),
+    ("planar", ["--view", "compare", "--passes", "1", "--size", "700x400"], {"view": "compare", "passes": 1, "size": (700, 400)}),
+    ("planar", ["--view", "levelset", "--objective", "new", "--strategy", "opt"], {"view": "levelset", "objective": "new", "strategy": "opt"}),
+    ("planar", ["--view", "history", "--passes", "2", "--order", "input", "--max-iter", "4"], {"view": "history", "passes": 2, "order": "input", "max_iter": 4}),
+    ("planar", ["--view", "histogram", "--passes", "1", "--strategy", "c1", "--threshold", "15"], {"view": "histogram", "passes": 1, "strategy": "c1", "threshold": 15}),
+    ("surface", ["--view", "mesh", "--camera", "40,20,1.2", "--dpr", "2", "--size", "300x200"], {"camera": (40, 20, 1.2), "dpr": 2, "size": (300, 200)}),
+    ("surface", ["--view", "compare", "--passes", "1", "--penalty", "angle"], {"view": "compare", "passes": 1, "penalty": "angle"}),
+    ("surface", ["--view", "levelset"], {"view": "levelset"}),
+    ("volume", ["--view", "mesh", "--cut", "x=0.4"], {"cut": ("x", 0.4)}),
+    ("volume", ["--view", "compare", "--passes", "1", "--cut", "y=0.5"], {"view": "compare", "passes": 1, "cut": "y=0.5"}),
+    ("volume", ["--view", "histogram", "--passes", "1"], {"view": "histogram", "passes": 1}),
+]
 
 
-@pytest.mark.parametrize("kind, extra", [("surface", {"camera": (40, 20, 1.2)}), ("volume", {"cut": ("x", 0.4)})])
-def test_render_draws_surfaces_and_cut_volumes(files, kind, extra, tmp_path):
-    out = tmp_path / "p.png"
-    smoothlab.render(smoothlab.read(files[kind]), out, size=(300, 200), dpr=2, **extra)
-    png = out.read_bytes()
-    assert png[:8] == b"\x89PNG\r\n\x1a\n"
+@pytest.mark.parametrize("kind, flags, kwargs", RENDERS)
+def test_render_draws_the_tools_pictures(files, kind, flags, kwargs, tmp_path):
+    args = flags if "--view" in flags else ["--view", "mesh", *flags]
+    cli("render", files[kind], "-o", tmp_path / "cli.png", *args)
+    smoothlab.render(smoothlab.read(files[kind]), tmp_path / "py.png", **kwargs)
+    png = (tmp_path / "py.png").read_bytes()
+    assert png[:8] == b"\x89PNG\r\n\x1a\n" and png == (tmp_path / "cli.png").read_bytes()
+
+
+def test_render_draws_the_mesh_as_it_is_now(files, tmp_path):
+    mesh = smoothlab.read(files["surface"])
+    smoothlab.render(mesh, tmp_path / "before.png", size=(300, 200), dpr=2)
+    png = (tmp_path / "before.png").read_bytes()
     assert int.from_bytes(png[16:20], "big") == 600 and int.from_bytes(png[20:24], "big") == 400
+    mesh.smooth(passes=1)
+    smoothlab.render(mesh, tmp_path / "after.png", size=(300, 200), dpr=2)
+    assert (tmp_path / "after.png").read_bytes() != png
 
 
 def test_smoothing_lets_other_threads_run(tmp_path):
@@ -232,20 +253,28 @@ def test_bad_files_name_the_file_and_the_line(tmp_path):
 
 
 def test_bad_pictures_are_refused_naming_the_argument(files, tmp_path):
-    planar, volume = smoothlab.read(files["planar"]), smoothlab.read(files["volume"])
+    planar, surface, volume = (smoothlab.read(files[k]) for k in KINDS)
     out = tmp_path / "p.png"
     cases = [
-        (planar, {"view": "compare"}, r"view: 'compare' is not one of mesh; .*smoothlab render IN --view VIEW"),
-        (planar, {"size": (0, 10)}, r"size: 0x10 asked: give 1 to 16384 pixels each way"),
-        (planar, {"size": 300}, r"size: give \(width, height\) in whole pixels"),
-        (planar, {"dpr": 0}, r"dpr: 0 asked: give a ratio above 0 and at most 4"),
-        (planar, {"camera": (1, 2)}, r"camera: it turns the 3D view of a surface or a volume mesh; this mesh is planar"),
-        (planar, {"metric": "beauty"}, r"metric: \"beauty\" is not one of alpha, angle, condition"),
-        (planar, {"node": 100000}, r"node: 100000 asked: the mesh has nodes 0 to 589"),
-        (planar, {"theme": "blue"}, r"theme: give \"light\" or \"dark\", not 'blue'"),
+        (planar, {"view": "sketch"}, r"^view: \"sketch\" is not one of mesh, levelset, history, histogram, compare$"),
+        (planar, {"size": (0, 10)}, r"a picture of 0 × 10 pixels"),
+        (planar, {"size": 300}, r"^size: give \(width, height\) in pixels, not 300$"),
+        (planar, {"dpr": 0}, r"^dpr 0: give a ratio above 0 and at most 4$"),
+        (planar, {"camera": (1, 2)}, r"^camera turns the 3D view of a surface; this mesh is planar$"),
+        (planar, {"camera": ("a", 2)}, r"^camera: give \(yaw, pitch\) or \(yaw, pitch, zoom\) in numbers"),
+        (planar, {"cut": "z=0.5"}, r"^cut cuts a volume mesh; this mesh is planar$"),
+        (planar, {"metric": "beauty"}, r"^metric: \"beauty\" is not one of alpha, angle, condition$"),
+        (planar, {"node": 100000}, r"^node 100000: the mesh has nodes 0 to 589$"),
+        (planar, {"passes": 5000}, r"^passes 5000: give at most 1000$"),
+        (planar, {"objective": "best"}, r"^objective best: the pictures compare the old max-min objective and the new"),
+        (planar, {"view": "compare", "objective": "new"}, r"^view compare shows both objectives: use objective old,new$"),
+        (planar, {"theme": "blue"}, r"^theme: give \"light\" or \"dark\", not \"blue\"$"),
+        (surface, {"cut": ("z", 0.5)}, r"^cut: it cuts a volume mesh; this mesh is a surface$"),
+        (surface, {"view": "histogram"}, r"^view histogram: a surface is drawn by view mesh, compare or levelset$"),
         (volume, {"cut": ("w", 0.5)}, r"^cut: "),
         (volume, {"cut": "z"}, r"^cut: "),
-        (volume, {"metric": "angle"}, r"metric: a volume mesh's cut is coloured by the mean ratio"),
+        (volume, {"metric": "angle"}, r"^metric: a volume mesh's cut is coloured by the mean ratio$"),
+        (volume, {"view": "levelset"}, r"^view levelset: a volume mesh is drawn by view mesh, compare or histogram$"),
     ]
     for mesh, kwargs, words in cases:
         with pytest.raises(ValueError, match=words):

@@ -22,7 +22,8 @@ use pyo3::types::{PyBool, PyDict, PyFloat, PyList, PyTuple};
 use smoothlab::io::{self, CellBlock, MeshArrays, MshVersion, WriteOptions};
 use smoothlab::smooth::{Order, Strategy};
 use smoothlab::{Error, Model, ObjectiveKind, Penalty, Smoothing};
-use smoothlab_render::{encode_png, render_mesh, Camera, Cut, MeshView, Metric, SurfacePicture, SurfaceView, Theme, VolumePicture};
+use smoothlab_page::lab::picture::{self, Request, View};
+use smoothlab_render::{encode_png, Camera, Cut, Metric, Theme};
 
 /// The settings of [`smoothing`] by name, in the command line's order (`smooth --help`).
 const SETTINGS: [&str; 9] =
@@ -242,93 +243,32 @@ impl PyModel {
             .map_err(|e| py_error(e, Some(&path.display().to_string())))
     }
 
-    /// Draws the mesh as it is to a PNG: a planar mesh coloured by `metric`, a surface in
-    /// the 3D view (`camera`), a volume mesh cut by a plane (`cut`).
-    #[pyo3(signature = (path, width, height, dpr, metric=None, theme=None, camera=None, cut=None, node=None))]
-    #[allow(clippy::too_many_arguments)]
-    fn render(
-        &self,
-        py: Python<'_>,
-        path: PathBuf,
-        width: u32,
-        height: u32,
-        dpr: f32,
-        metric: Option<&Bound<'_, PyAny>>,
-        theme: Option<&Bound<'_, PyAny>>,
-        camera: Option<String>,
-        cut: Option<String>,
-        node: Option<usize>,
-    ) -> PyResult<()> {
-        if !(dpr.is_finite() && dpr > 0.0 && dpr <= 4.0) {
-            return Err(value_error(format!("dpr: {dpr} asked: give a ratio above 0 and at most 4")));
-        }
-        if !(1..=16384).contains(&width) || !(1..=16384).contains(&height) {
-            return Err(value_error(format!("size: {width}x{height} asked: give 1 to 16384 pixels each way")));
-        }
-        if metric.is_some() && self.kind() == "volume" {
-            return Err(value_error("metric: a volume mesh's cut is coloured by the mean ratio"));
-        }
-        let metric = match metric {
-            Some(m) => named(m, "metric", &Metric::ALL, Metric::name)?,
-            None => Metric::default(),
-        };
-        let theme = match theme {
-            Some(t) => match t.extract::<String>().ok().as_deref() {
-                Some("light") => Theme::light(),
-                Some("dark") => Theme::dark(),
-                _ => return Err(value_error(format!("theme: give \"light\" or \"dark\", not {}", shown(t)))),
-            },
-            None => Theme::light(),
-        };
-        let kind = self.kind();
-        if camera.is_some() && kind == "planar" {
-            return Err(value_error("camera: it turns the 3D view of a surface or a volume mesh; this mesh is planar"));
-        }
-        if cut.is_some() && kind != "volume" {
-            return Err(value_error(format!("cut: it cuts a volume mesh; this mesh is {kind}")));
-        }
-        if node.is_some() && kind != "planar" {
-            return Err(value_error(format!("node: the planar view marks a node; this mesh is {kind}")));
-        }
-        let camera = camera.as_deref().map(Camera::parse).transpose().map_err(|e| value_error(format!("camera: {e}")))?;
-        let cut = cut.as_deref().map(Cut::parse).transpose().map_err(|e| value_error(format!("cut: {e}")))?;
-        let model = &self.model;
-        let png = py.detach(|| -> Result<Vec<u8>, String> {
-            let (w, h) = (((width as f32) * dpr) as u32, ((height as f32) * dpr) as u32);
-            let mut pm = tiny_skia::Pixmap::new(w.max(1), h.max(1)).ok_or("size: the picture is too large to draw")?;
-            let view3d = |title: String| SurfaceView {
-                camera: camera.unwrap_or_default(),
-                dpr,
-                title: Some(title),
-                theme,
-                ..SurfaceView::default()
-            };
-            match model {
-                Model::Planar(mesh) => {
-                    if let Some(n) = node.filter(|&n| n >= mesh.node_count()) {
-                        return Err(format!("node: {n} asked: the mesh has nodes 0 to {}", mesh.node_count() - 1));
-                    }
-                    let mut view = MeshView::default().with_dpr(dpr).with_highlight(node);
-                    view.metric = metric;
-                    view.theme = theme;
-                    render_mesh(&mut pm, mesh, &view);
-                }
-                Model::Surface(s) => {
-                    let st = s.stats();
-                    let title = format!("{} inverted, angles {:.1}°–{:.1}°", st.inverted, st.min_angle_deg, st.max_angle_deg);
-                    s.render(&mut pm, metric, &view3d(title));
-                }
-                Model::Volume(v) => {
-                    let st = model.stats();
-                    let title =
-                        format!("{} inverted, dihedral {:.1}°–{:.1}°", st.inverted, st.min_angle_deg, st.max_angle_deg);
-                    v.render_cut(&mut pm, cut.unwrap_or_default(), &view3d(title));
-                }
+    /// Draws the mesh to a PNG as `smoothlab render IN -o OUT --view VIEW` does (the same
+    /// code, `lab::picture`): `options` are its options by their names (`view`, `node`,
+    /// `objective`, `metric`, `size`, `dpr`, `strategy`, `threshold`, `passes`, `order`,
+    /// `max_iter`, `penalty`, `camera`, `cut`, `theme`), each None for the tool's default.
+    #[pyo3(signature = (path, **options))]
+    fn render(&self, py: Python<'_>, path: PathBuf, options: Option<&Bound<'_, PyDict>>) -> PyResult<()> {
+        let r = request(options)?;
+        // what the tool leaves unused on these meshes is refused here, never ignored
+        let given = |k: &str| options.and_then(|o| o.get_item(k).ok().flatten()).is_some_and(|v| !v.is_none());
+        match &self.model {
+            Model::Volume(_) if given("metric") => {
+                return Err(value_error("metric: a volume mesh's cut is coloured by the mean ratio"))
             }
-            encode_png(&pm).map_err(|e| e.to_string())
+            Model::Surface(_) if given("cut") => return Err(value_error("cut: it cuts a volume mesh; this mesh is a surface")),
+            _ => {}
+        }
+        let model = self.model.clone();
+        let name = path.display().to_string();
+        let png = py.detach(|| -> Result<Vec<u8>, String> {
+            let start = std::time::Instant::now();
+            let clock = move || start.elapsed().as_secs_f64() * 1e3;
+            let picture = picture::draw(model, "the mesh", &r, &clock, &|n: &str| n.to_string())?;
+            encode_png(&picture).map_err(|e| e.to_string())
         });
         let png = png.map_err(value_error)?;
-        std::fs::write(&path, png).map_err(|e| PyOSError::new_err(format!("cannot write {}: {e}", path.display())))
+        std::fs::write(&path, png).map_err(|e| PyOSError::new_err(format!("cannot write {name}: {e}")))
     }
 
     /// A copy of the mesh (smoothing the copy leaves this one as it is).
@@ -337,10 +277,63 @@ impl PyModel {
     }
 }
 
+/// The picture `render`'s options ask for (None or left out: `smoothlab render`'s default).
+fn request(options: Option<&Bound<'_, PyDict>>) -> PyResult<Request> {
+    let mut r = Request { view: View::Mesh, ..Request::default() };
+    let Some(options) = options else { return Ok(r) };
+    for (key, value) in options.iter() {
+        let name: String = key.extract()?;
+        if value.is_none() {
+            continue;
+        }
+        let text = |what: &str| -> PyResult<String> {
+            value.extract().map_err(|_| value_error(format!("{name}: give {what}, not {}", shown(&value))))
+        };
+        match name.as_str() {
+            "view" => r.view = named(&value, "view", &View::ALL, View::name)?,
+            "node" => r.node = Some(whole(&value, "node")? as usize),
+            "objective" => r.sides = picture::sides(&text("old, new or old,new")?, &|n: &str| n.to_string()).map_err(value_error)?,
+            "metric" => r.metric = named(&value, "metric", &Metric::ALL, Metric::name)?,
+            "size" => {
+                let (w, h): (Bound<'_, PyAny>, Bound<'_, PyAny>) = value
+                    .extract()
+                    .map_err(|_| value_error(format!("size: give (width, height) in pixels, not {}", shown(&value))))?;
+                r.size = Some((whole(&w, "size")?, whole(&h, "size")?));
+            }
+            "dpr" => r.dpr = number(&value, "dpr")? as f32,
+            "strategy" => r.strategy = named(&value, "strategy", &Strategy::ALL, Strategy::name)?,
+            "threshold" => r.threshold_deg = number(&value, "threshold")?,
+            "passes" => r.passes = Some(whole(&value, "passes")?),
+            "order" => r.order = named(&value, "order", &Order::ALL, Order::name)?,
+            "max_iter" => r.max_iter = whole(&value, "max_iter")?,
+            "penalty" => r.penalty = named(&value, "penalty", &Penalty::ALL, Penalty::name)?,
+            "camera" => {
+                r.camera = Some(Camera::parse(&text("YAW,PITCH[,ZOOM]")?).map_err(|e| value_error(format!("camera: {e}")))?)
+            }
+            "cut" => r.cut = Some(Cut::parse(&text("AXIS=FRACTION")?).map_err(|e| value_error(format!("cut: {e}")))?),
+            "theme" => {
+                r.theme = match text("\"light\" or \"dark\"")?.as_str() {
+                    "light" => Theme::light(),
+                    "dark" => Theme::dark(),
+                    other => return Err(value_error(format!("theme: give \"light\" or \"dark\", not {other:?}"))),
+                }
+            }
+            other => {
+                return Err(value_error(format!(
+                    "render has no option {other:?}: its options are view, node, objective, metric, size, dpr, \
+                     strategy, threshold, passes, order, max_iter, penalty, camera, cut, theme"
+                )))
+            }
+        }
+    }
+    Ok(r)
+}
+
 #[pymodule]
 fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     m.add_class::<PyModel>()?;
     m.add_function(wrap_pyfunction!(settings, m)?)?;
+    m.add("VIEWS", View::ALL.map(View::name).to_vec())?;
     Ok(())
 }
