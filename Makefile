@@ -90,15 +90,17 @@ wheel: python
 # python/ so that the source tree is not what is imported; the widget's module is the one
 # the browser tests loaded, and the model's state they left (test-output/widget/: make
 # test runs the browser first and needs it). The byte-for-byte tests run the command-line
-# tool built from the same tree. pytest's own exit code is the target's (5: no test ran).
+# tool built from the same tree: its debug build, which make test's unit tests have built
+# (Rust computes the same bits at every optimisation level: no fast-math, no contraction).
+# pytest's own exit code is the target's (5: no test ran).
 VENV := target/venv
 python-test: wheel
-	$(CARGO) build --release -p smoothlab-cli
+	$(CARGO) build -p smoothlab-cli
 	@test -x $(VENV)/bin/python || python3 -m venv $(VENV)
 	@$(VENV)/bin/python -c 'import anywidget, numpy, meshio, pytest' 2>/dev/null || \
 	  $(VENV)/bin/pip install -q --disable-pip-version-check anywidget numpy meshio pytest
 	$(VENV)/bin/pip install -q --disable-pip-version-check --no-deps --force-reinstall target/wheels/smoothlab-*.whl
-	cd target && SMOOTHLAB_NEED_PAGE_STATE=$(NEED_PAGE_STATE) SMOOTHLAB_CLI=$(CURDIR)/target/release/smoothlab \
+	cd target && SMOOTHLAB_NEED_PAGE_STATE=$(NEED_PAGE_STATE) SMOOTHLAB_CLI=$(CURDIR)/target/debug/smoothlab \
 	  venv/bin/pytest -q -p no:cacheprovider --rootdir=$(CURDIR)/python --doctest-modules \
 	  $(CURDIR)/python/tests venv/lib/python3*/site-packages/smoothlab
 

@@ -18,12 +18,12 @@ import pytest
 import smoothlab
 from conftest import ROOT
 
-CLI = pathlib.Path(os.environ.get("SMOOTHLAB_CLI", ROOT / "target" / "release" / "smoothlab"))
+CLI = pathlib.Path(os.environ.get("SMOOTHLAB_CLI", ROOT / "target" / "debug" / "smoothlab"))
 
 
 def cli(*args, cwd=None):
     if not os.access(CLI, os.X_OK):
-        pytest.fail(f"the command-line tool is not built at {CLI} (cargo build --release -p smoothlab-cli)")
+        pytest.fail(f"the command-line tool is not built at {CLI} (cargo build -p smoothlab-cli)")
     done = subprocess.run([str(CLI), *map(str, args)], capture_output=True, text=True, cwd=cwd)
     assert done.returncode == 0, done.stderr
     return done.stdout
