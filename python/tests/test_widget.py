@@ -73,3 +73,25 @@ def test_sample_figure_and_mesh_assigned_later_replace_what_was_shown(square):
     with pytest.raises(ValueError, match=r"cells\[0\] refers to point 9"):
         w.set_mesh(points, [[0, 1, 9]])
     assert w.mesh_b.fixed.tolist() == [True, True, False, False, False]  # a refused mesh leaves it
+
+
+def test_a_side_as_the_page_sends_it_reads_back_through_the_core(square):
+    """The page's arrays (www/app/host.js: little-endian f64 points, u32 nodes, u8 flags, as
+    memoryviews from the kernel) become the side's Mesh, the same mesh again."""
+    points, cells = square
+    sent = smoothlab.Mesh(points + 0.125, cells, fixed=[0, 1, 2, 3])
+    state = {
+        "dim": 2,
+        "points": memoryview(sent.points.astype("<f8").tobytes()),
+        "cells": [{"vtk_type": 5, "per_cell": 3, "nodes": memoryview(sent.cells[0][1].astype("<u4").tobytes())}],
+        "fixed": memoryview(sent.fixed.astype(np.uint8).tobytes()),
+    }
+    w = smoothlab.Playground(points, cells)
+    w.set_state({"_mesh_b": state})
+    b = w.mesh_b
+    assert np.array_equal(b.points, sent.points) and np.array_equal(b.cells[0][1], cells)
+    assert b.fixed.tolist() == [True, True, True, True, False] and b.stats() == sent.stats()
+    # points given in 3D come back in 3D
+    w3 = smoothlab.Playground(np.column_stack([points, np.zeros(5)]), cells)
+    w3.set_state({"_mesh_b": state})
+    assert w3.mesh_b.points.shape == (5, 3)
