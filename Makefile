@@ -3,7 +3,8 @@
 #   make test    every test: the docs' sizes, clippy (host and wasm32) and the docs, native unit/integration tests, wasm build, browser tests
 #   make site    build the complete static site into www/ (www/pkg is generated)
 #   make single  the page as one file that opens from file:// (target/smoothlab.html)
-#   make python  the notebook widget's module into python/smoothlab/static/ (then: pip install ./python)
+#   make python  the notebook widget's module into python/smoothlab/static/
+#   make wheel   the Python package as one wheel, target/wheels/smoothlab-*.whl (then: pip install it)
 #   make figures        the docs' pictures and the papers' figures (docs/figures.md)
 #   make reproduction   rerun the papers' experiments into docs/reproduction.md, and its tables into
 #                       docs/reproduction.json for the page's tour (a few minutes)
@@ -13,7 +14,7 @@ WASM := target/wasm32-unknown-unknown/release/smoothlab_page.wasm
 PORT ?= 8000
 CARGO ?= cargo
 
-.PHONY: serve test check-docs site single python python-test lint unit wasm browser tools browser-tools figures reproduction performance
+.PHONY: serve test check-docs site single python wheel python-test lint unit wasm browser tools browser-tools figures reproduction performance
 
 serve: site
 	@echo "smoothlab playground: http://127.0.0.1:$(PORT)/"
@@ -79,18 +80,34 @@ single: site
 python: site
 	node scripts/single.mjs --widget python/smoothlab/static/widget.js --sheet python/smoothlab/static/sheet.json
 
-# pytest in a virtual environment of its own (target/venv, made once), with the package
-# installed from python/ as a user would (pip install ./python); the widget's module is the
-# one the browser tests loaded, and the model's state they left (test-output/widget/: make
-# test runs the browser first and needs it). pytest's own exit code is the target's (5: no
-# test ran).
+# The Python package as one wheel for CPython 3.9 and later (abi3): the native module
+# (crates/smoothlab-python, the core compiled for this machine), python/smoothlab and the
+# widget's module and sheet (make python). maturin builds it, installed by pip into
+# tools/venv (scripts/ensure-tools.sh --wheel) at the version python/pyproject.toml names.
+wheel: python
+	@scripts/ensure-tools.sh --wheel
+	@rm -f target/wheels/smoothlab-*.whl
+	cd python && ../tools/venv/bin/maturin build --release --out ../target/wheels
+	@ls -l target/wheels/smoothlab-*.whl | awk '{print "wheel size: " $$5 " bytes"}'
+
+# pytest in a virtual environment of its own (target/venv, made once) against the wheel
+# as a user installs it (pip install target/wheels/smoothlab-*.whl), run from outside
+# python/ so that the source tree is not what is imported; the widget's module is the one
+# the browser tests loaded, and the model's state they left (test-output/widget/: make
+# test runs the browser first and needs it). The byte-for-byte tests run the command-line
+# tool built from the same tree: its debug build, which make test's unit tests have built
+# (Rust computes the same bits at every optimisation level: no fast-math, no contraction).
+# pytest's own exit code is the target's (5: no test ran).
 VENV := target/venv
-python-test: python
+python-test: wheel
+	$(CARGO) build -p smoothlab-cli
 	@test -x $(VENV)/bin/python || python3 -m venv $(VENV)
 	@$(VENV)/bin/python -c 'import anywidget, numpy, meshio, pytest' 2>/dev/null || \
 	  $(VENV)/bin/pip install -q --disable-pip-version-check anywidget numpy meshio pytest
-	$(VENV)/bin/pip install -q --disable-pip-version-check --no-deps --force-reinstall ./python
-	SMOOTHLAB_NEED_PAGE_STATE=$(NEED_PAGE_STATE) $(VENV)/bin/pytest -q python/tests
+	$(VENV)/bin/pip install -q --disable-pip-version-check --no-deps --force-reinstall target/wheels/smoothlab-*.whl
+	cd target && SMOOTHLAB_NEED_PAGE_STATE=$(NEED_PAGE_STATE) SMOOTHLAB_CLI=$(CURDIR)/target/debug/smoothlab \
+	  venv/bin/pytest -q -p no:cacheprovider --rootdir=$(CURDIR)/python --doctest-modules \
+	  $(CURDIR)/python/tests venv/lib/python3*/site-packages/smoothlab
 
 browser: python single browser-tools
 	node tests/browser/run.mjs

@@ -2,7 +2,9 @@
 # Installs what the wasm build and the browser tests need, when it is missing:
 # the wasm32 target, the wasm-bindgen CLI at the exact version of the crate, npm's
 # binaryen (wasm-opt, which shrinks the page's module), esbuild (the one-file page), Debian's Chromium, and
-# playwright-core (no browser download). Fast when all is there.
+# playwright-core (no browser download); with --wheel, maturin (the Python wheel's builder)
+# from pip into a virtual environment of its own, tools/venv, at the version
+# python/pyproject.toml names first. Fast when all is there.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -26,6 +28,17 @@ fi
 if [ ! -x tools/node_modules/.bin/wasm-opt ] || [ ! -x tools/node_modules/.bin/esbuild ]; then
   echo "ensure-tools: installing binaryen's wasm-opt and esbuild from npm"
   (cd tools && npm ci --no-audit --no-fund --silent 2>/dev/null || npm install --no-audit --no-fund --silent)
+fi
+
+if [ "${1:-}" = "--wheel" ]; then
+  maturin_want=$(sed -n 's/^requires = \["maturin>=\([0-9.]*\).*/\1/p' python/pyproject.toml)
+  [ -n "$maturin_want" ] || { echo "ensure-tools: cannot read maturin's version from python/pyproject.toml" >&2; exit 1; }
+  maturin_have=$(tools/venv/bin/maturin --version 2>/dev/null | awk '{print $2}' || true)
+  if [ "$maturin_have" != "$maturin_want" ]; then
+    echo "ensure-tools: installing maturin $maturin_want into tools/venv (found '${maturin_have:-none}')"
+    [ -x tools/venv/bin/python ] || python3 -m venv tools/venv
+    tools/venv/bin/pip install -q --disable-pip-version-check "maturin==$maturin_want"
+  fi
 fi
 
 if [ "${1:-}" = "--browser" ]; then

@@ -12,7 +12,10 @@ import json
 import pathlib
 from typing import Any, Dict, List, Optional
 
-import anywidget
+try:
+    import anywidget
+except ImportError:
+    raise ImportError("smoothlab's notebook widget needs anywidget: pip install anywidget") from None
 import numpy as np
 import traitlets
 
@@ -23,8 +26,8 @@ MODULE = STATIC / "widget.js"
 SHEET_FILE = STATIC / "sheet.json"
 if not (MODULE.is_file() and SHEET_FILE.is_file()):
     raise ImportError(
-        "smoothlab's widget module is not built: run `make python` in the smoothlab repository, "
-        "then `pip install ./python` again"
+        "smoothlab's widget module is not in this install: build the wheel with `make wheel` in the "
+        "smoothlab repository, then pip install target/wheels/smoothlab-*.whl again"
     )
 SHEET = json.loads(SHEET_FILE.read_text(encoding="utf-8"))
 
@@ -69,6 +72,14 @@ class Playground(anywidget.AnyWidget):
     ``penalty_a``, ``objective_b``, ``penalty_b``; None: the page's default, filled in
     once the widget is shown). ``mesh_a`` and ``mesh_b`` are the sides' meshes as the page
     last reported them, ``stats`` their tables, ``error`` what the page refused.
+    ``sample`` and ``figure`` may be assigned after the widget is shown, and
+    :meth:`set_mesh` gives it another mesh: the view opens it anew.
+
+    >>> import smoothlab
+    >>> w = smoothlab.Playground(sample="plate-tri-tangled", passes=3)
+    >>> w.figure = "chen-10"
+    >>> w.sample is None, w.figure
+    (True, 'chen-10')
     """
 
     _esm = MODULE
@@ -119,7 +130,7 @@ class Playground(anywidget.AnyWidget):
             if points is None or cells is None:
                 raise ValueError("give both points and cells (or a sample or a figure)")
             p = check_points(points)
-            c = check_cells(cells, len(p))
+            c = check_cells(cells, len(p), p)
             f = check_fixed(fixed, len(p))
             init["_file"] = vtk_text(p, c, f).encode("utf-8")
             init["_file_name"] = "notebook.vtk"
@@ -148,6 +159,50 @@ class Playground(anywidget.AnyWidget):
             fixed = np.asarray(mesh.point_data["fixed"]).reshape(-1) != 0
         return cls(mesh.points, list(mesh.cells), fixed, **kwargs)
 
+    def set_mesh(self, points: Any, cells: Any, fixed: Any = None) -> None:
+        """Shows another mesh, given as :class:`Playground` takes one (a shown widget
+        opens it anew); the sample or figure it showed is let go."""
+        p = check_points(points)
+        c = check_cells(cells, len(p), p)
+        f = check_fixed(fixed, len(p))
+        given = Mesh(p, c, f)
+        with self.hold_sync():
+            self.sample = None
+            self.figure = None
+            self._file_name = "notebook.vtk"
+            self._file = vtk_text(p, c, f).encode("utf-8")
+            self._mesh_a = {}
+            self._mesh_b = {}
+            self.stats = {}
+            self.error = None
+        self._given = given
+
+    @traitlets.validate("sample", "figure")
+    def _check_name(self, proposal: Any) -> Any:
+        v, name = proposal["value"], proposal["trait"].name
+        names = samples() if name == "sample" else figures()
+        if v is not None and v not in names:
+            raise traitlets.TraitError(f"{name}: no {name} named {v!r}; the {name}s are {', '.join(names)}")
+        return v
+
+    @traitlets.observe("sample", "figure")
+    def _open_by_name(self, change: Any) -> None:
+        """A sample or a figure assigned after the widget is made (shown or not) replaces
+        what it showed: the other name, the mesh given as arrays and the sides' meshes
+        and tables as last reported are let go, and the view opens it anew."""
+        if change["new"] is None:
+            return
+        other = "figure" if change["name"] == "sample" else "sample"
+        self._given = None
+        with self.hold_sync():
+            setattr(self, other, None)
+            self._file = b""
+            self._file_name = ""
+            self._mesh_a = {}
+            self._mesh_b = {}
+            self.stats = {}
+            self.error = None
+
     @traitlets.validate("strategy", "order", "threshold", "objective_a", "penalty_a", "objective_b", "penalty_b")
     def _check_menu(self, proposal: Any) -> Any:
         v, name = proposal["value"], proposal["trait"].name
@@ -167,12 +222,10 @@ class Playground(anywidget.AnyWidget):
     def _side(self, trait: str, letter: str) -> Mesh:
         state = getattr(self, trait)
         if state:
-            mesh = Mesh.from_page(state)
             # the page gives a mesh in the xy plane two coordinates; points given with three
             # (meshio's, z = 0) come back with three
-            if self._given is not None and self._given.points.shape[1] == 3 and mesh.points.shape[1] == 2:
-                mesh.points = np.column_stack([mesh.points, np.zeros(len(mesh.points))])
-            return mesh
+            given_3d = self._given is not None and self._given.points.shape[1] == 3
+            return Mesh.from_page(state, dim=3 if given_3d else None)
         if self._given is not None:
             return self._given
         raise RuntimeError(

@@ -82,3 +82,53 @@ def test_bad_fixed_and_arguments_are_refused_in_words(square):
         smoothlab.Playground(points)
     with pytest.raises(ValueError, match="give a mesh"):
         smoothlab.Playground()
+
+
+def test_one_m_by_4_array_in_3d_is_named_not_guessed():
+    """Tetrahedra given as one (M, 4) array were read as quads of a surface without a word."""
+    points = np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1], [1, 1, 1]], dtype=float)
+    tets = np.array([[0, 1, 2, 3], [1, 2, 3, 4]])
+    for make in (smoothlab.Mesh, smoothlab.Playground):
+        with pytest.raises(ValueError, match=r"cells: one \(M, 4\) array with points in 3D .* \[\('quad', cells\)\] or \[\('tetra', cells\)\]"):
+            make(points, tets)
+    assert smoothlab.Mesh(points, [("tetra", tets)]).kind == "volume"
+    # quads with meshio's z = 0 are quads
+    flat = np.array([[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0]], dtype=float)
+    assert smoothlab.Mesh(flat, np.array([[0, 1, 2, 3]])).cells[0][0] == "quad"
+
+
+@pytest.mark.parametrize(
+    "cells, words",
+    [
+        ([[0, 1, 2], [0, 2]], r"^cells: the rows have different lengths; each a row of one \(M, k\) array lists the same number"),
+        ([("triangle", [[0, 1, 2], [0, 2]])], r"^cells\[0\] \('triangle'\): the rows have different lengths; each a triangle"),
+    ],
+)
+def test_ragged_cells_are_named(square, cells, words):
+    points, _ = square
+    for make in (smoothlab.Mesh, smoothlab.Playground):
+        with pytest.raises(ValueError, match=words):
+            make(points, cells)
+
+
+def test_fixed_empty_fixes_nothing_and_a_0_1_integer_mask_is_refused(square):
+    points, cells = square
+    assert not smoothlab.Mesh(points, cells, fixed=[]).fixed.any()
+    assert sections(smoothlab.Playground(points, cells, fixed=[])._file.decode())[3] == [0] * 5
+    for make in (smoothlab.Mesh, smoothlab.Playground):
+        with pytest.raises(ValueError, match=r"fixed: 5 integers, all 0 or 1, one a point, read both as a mask and as point numbers"):
+            make(points, cells, fixed=[1, 0, 0, 0, 1])
+    # booleans or point numbers say it without doubt
+    mask = smoothlab.Mesh(points, cells, fixed=np.array([1, 0, 0, 0, 1], dtype=bool)).fixed
+    assert mask.tolist() == [True, False, False, False, True]
+    assert smoothlab.Mesh(points, cells, fixed=[1, 0]).fixed.tolist() == [True, True, False, False, False]
+
+
+def test_the_cores_refusals_name_the_arguments():
+    points = np.array([[0, 0], [1, 0], [0, 1], [1, 1]], dtype=float)
+    with pytest.raises(ValueError, match=r"^cells\[1\] \('triangle'\)\[0\]: .*(twice|repeated)"):
+        smoothlab.Mesh(points, [("quad", np.array([[0, 1, 3, 2]])), ("triangle", np.array([[1, 3, 3]]))])
+    with pytest.raises(ValueError, match=r"^cells\[1\]: .*(twice|repeated)"):
+        smoothlab.Mesh(points, np.array([[0, 1, 2], [1, 1, 3]]))
+    with pytest.raises(ValueError, match=r"^points\[2\]: coordinate .* too large"):
+        smoothlab.Mesh(np.array([[0, 0], [1, 0], [0, 1e308]]), np.array([[0, 1, 2]]))

@@ -52,3 +52,46 @@ def test_the_widget_module_is_the_page():
     module = smoothlab.widget.MODULE.read_text(encoding="utf-8")
     assert module.startswith("// written by scripts/single.mjs")
     assert "export default { render }" in module and "data-host" in module
+
+
+def test_sample_figure_and_mesh_assigned_later_replace_what_was_shown(square):
+    points, cells = square
+    w = smoothlab.Playground(points, cells)
+    w.set_state({"_mesh_b": {"dim": 2, "points": b"", "fixed": b"", "cells": []}, "stats": {"b": {"passes": 1}}})
+    w.sample = "rand2d"
+    assert (w.sample, w.figure, w._file, w._mesh_a, w._mesh_b, w.stats) == ("rand2d", None, b"", {}, {}, {})
+    with pytest.raises(RuntimeError, match="side A's mesh is made by the page"):
+        w.mesh_a  # the mesh given as arrays is no longer what is shown
+    w.figure = "chen-10"
+    assert (w.sample, w.figure) == (None, "chen-10")
+    with pytest.raises(traitlets.TraitError, match=r"sample: no sample named 'plate'; the samples are plate-quad-tangled"):
+        w.sample = "plate"
+    assert w.figure == "chen-10"
+    w.set_mesh(points, cells, fixed=[0, 1])
+    assert (w.sample, w.figure) == (None, None) and w._file.startswith(b"# vtk")
+    assert np.array_equal(w.mesh_b.points, points) and w.mesh_b.fixed.tolist() == [True, True, False, False, False]
+    with pytest.raises(ValueError, match=r"cells\[0\] refers to point 9"):
+        w.set_mesh(points, [[0, 1, 9]])
+    assert w.mesh_b.fixed.tolist() == [True, True, False, False, False]  # a refused mesh leaves it
+
+
+def test_a_side_as_the_page_sends_it_reads_back_through_the_core(square):
+    """The page's arrays (www/app/host.js: little-endian f64 points, u32 nodes, u8 flags, as
+    memoryviews from the kernel) become the side's Mesh, the same mesh again."""
+    points, cells = square
+    sent = smoothlab.Mesh(points + 0.125, cells, fixed=[0, 1, 2, 3])
+    state = {
+        "dim": 2,
+        "points": memoryview(sent.points.astype("<f8").tobytes()),
+        "cells": [{"vtk_type": 5, "per_cell": 3, "nodes": memoryview(sent.cells[0][1].astype("<u4").tobytes())}],
+        "fixed": memoryview(sent.fixed.astype(np.uint8).tobytes()),
+    }
+    w = smoothlab.Playground(points, cells)
+    w.set_state({"_mesh_b": state})
+    b = w.mesh_b
+    assert np.array_equal(b.points, sent.points) and np.array_equal(b.cells[0][1], cells)
+    assert b.fixed.tolist() == [True, True, True, True, False] and b.stats() == sent.stats()
+    # points given in 3D come back in 3D
+    w3 = smoothlab.Playground(np.column_stack([points, np.zeros(5)]), cells)
+    w3.set_state({"_mesh_b": state})
+    assert w3.mesh_b.points.shape == (5, 3)

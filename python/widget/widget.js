@@ -88,14 +88,30 @@ function render({ model, el }) {
   };
   for (const name of SETTINGS) model.on(`change:${name}`, onSettings);
   model.on('change:height', size);
-  const { url, address } = pageURL(model);
-  frame.src = address;
+  let page = pageURL(model);
+  frame.src = page.address;
+  // `sample`, `figure` or the mesh assigned after display: the page opens it anew (one
+  // reload for the traits the kernel changes together)
+  let reloading = false;
+  const reopen = () => {
+    if (reloading) return;
+    reloading = true;
+    setTimeout(() => {
+      reloading = false;
+      URL.revokeObjectURL(page.url);
+      page = pageURL(model);
+      frame.src = page.address;
+    }, 0);
+  };
+  const OPENERS = ['sample', 'figure', '_file'];
+  for (const name of OPENERS) model.on(`change:${name}`, reopen);
   el.append(frame);
   return () => {
     window.removeEventListener('message', onMessage);
     for (const name of SETTINGS) model.off(`change:${name}`, onSettings);
+    for (const name of OPENERS) model.off(`change:${name}`, reopen);
     model.off('change:height', size);
-    URL.revokeObjectURL(url);
+    URL.revokeObjectURL(page.url);
   };
 }
 

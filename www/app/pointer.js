@@ -1,6 +1,6 @@
 // The pointer on the canvases: picking, dragging and nudging a node, zoom and pan, turning
 // a 3D view (a click there picks a node, a drag turns it), the hover label.
-import { $, EMBED, clearError, engine, queued, report, serial, setStatus, state } from './state.js';
+import { $, EMBED, HOSTED, clearError, engine, queued, report, serial, setStatus, state } from './state.js';
 import { writePermalink } from './permalink.js';
 import { showNodeBadge, showTab } from './present.js';
 import { redrawCharts, redrawMeshes, redrawNode } from './draw.js';
@@ -204,11 +204,29 @@ export function pickIn3d(canvas, ev) {
 }
 
 /**
+ * Whether the wheel zooms. In a notebook (the widget) a wheel over a mesh scrolls the
+ * notebook, as every cell's output does, until the widget is clicked (armed till the
+ * pointer leaves it or the frame loses focus); with Ctrl or ⌘ held (a trackpad's pinch
+ * sends Ctrl) it zooms at once. On the page it always zooms.
+ */
+let wheelArmed = null;
+function armWheel() {
+  if (wheelArmed !== null) return; // wired once, when the first view is wired (not as this
+  wheelArmed = !HOSTED; //           module loads: state.js has not finished then)
+  if (HOSTED) {
+    document.addEventListener('pointerdown', () => { wheelArmed = true; }, true);
+    document.documentElement.addEventListener('pointerleave', () => { wheelArmed = false; });
+    window.addEventListener('blur', () => { wheelArmed = false; });
+  }
+}
+
+/**
  * Zooms by the mouse wheel, by a pinch of two fingers, and fits again on a double-click,
  * on `canvas` whose pointer positions `point()(ev)` gives in the engine's CSS pixels.
  * `onPinch` is told when a second finger lands. Returns the map of pointers down.
  */
 export function attachZoom(canvas, point, zoom, onPinch = () => {}) {
+  armWheel();
   const down = new Map();
   let pinch = 0;
   const spread = () => {
@@ -216,6 +234,7 @@ export function attachZoom(canvas, point, zoom, onPinch = () => {}) {
     return { d: Math.hypot(a.x - b.x, a.y - b.y), mid: { x: (a.x + b.x) / 2, y: (a.y + b.y) / 2 } };
   };
   canvas.addEventListener('wheel', (ev) => {
+    if (!wheelArmed && !ev.ctrlKey && !ev.metaKey) return; // the notebook scrolls
     if (state.running) return;
     ev.preventDefault();
     zoom(point()(ev), Math.exp(-ev.deltaY * (ev.deltaMode === 1 ? 0.05 : 0.0015)));

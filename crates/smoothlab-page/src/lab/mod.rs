@@ -18,6 +18,7 @@ pub mod lab3d;
 pub mod pass;
 pub mod permalink;
 pub mod pick;
+pub mod picture;
 pub mod raster;
 pub mod sample;
 pub mod screen;

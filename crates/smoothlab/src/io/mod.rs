@@ -35,7 +35,7 @@ use crate::mesh::{Mesh, MeshBuilder};
 use crate::model::Model;
 
 mod arrays;
-pub use arrays::{mesh_arrays, volume_arrays, CellBlock, MeshArrays};
+pub use arrays::{mesh_arrays, model_from_arrays, volume_arrays, CellBlock, MeshArrays};
 mod lex;
 mod medit;
 mod msh;

@@ -95,6 +95,21 @@ fn vtk_type(t: u64) -> VtkType {
     }
 }
 
+/// The planar element kind of VTK cell type `t`, as the reader takes it (not pixels and
+/// polygons, whose nodes it reorders or counts).
+pub(crate) fn planar_kind(t: u64) -> Option<ElementKind> {
+    match vtk_type(t) {
+        VtkType::Element(kind) => Some(kind),
+        _ => None,
+    }
+}
+
+/// Whether VTK cell type `t` marks its points fixed (vertex and line cells), as the reader
+/// takes it.
+pub(crate) fn is_marker(t: u64) -> bool {
+    matches!(vtk_type(t), VtkType::Marker)
+}
+
 struct Reader<'a> {
     lex: Lexer<'a>,
     dataset: Dataset,
