@@ -30,7 +30,7 @@
 //!
 //! # Settings, statistics and a mesh from text
 //! A legacy VTK file (four triangles round one free node, pulled off-centre), three passes
-//! of Knupp's condition number, and the statistics `smoothlab stats` prints:
+//! of Knupp's condition number and the finish, and the statistics `smoothlab stats` prints:
 //! ```
 //! use smoothlab::{io, ObjectiveKind, Smoothing, Strategy};
 //!
@@ -42,7 +42,8 @@
 //!
 //! let smoothing = Smoothing::default().strategy(Strategy::Opt).objective(ObjectiveKind::Condition);
 //! let report = model.smooth(&smoothing)?;
-//! assert_eq!(report.passes().len(), 3);
+//! // three passes, then the finish's three on the valid mesh (`Smoothing::finish`)
+//! assert_eq!((report.passes().len(), report.finish_passes()), (6, 3));
 //! assert_eq!(report.inverted(), 0);
 //!
 //! // the boundary is fixed; the free node goes to the centre, where every angle is 45° or 90°

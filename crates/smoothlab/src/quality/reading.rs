@@ -37,16 +37,37 @@ impl Default for Reading {
 
 impl Reading {
     /// A planar element (or a surface element in its own plane) with nodes `p`, as the
-    /// statistics read it ([`super::element_quality`]), and whether it is inverted.
+    /// statistics read it ([`super::element_quality`]), and whether it is inverted. The
+    /// planar statistics print no scaled Jacobian (a corner's is the sine of its angle,
+    /// which the angles bound), so it reads −∞.
     pub fn planar(kind: ElementKind, p: &[DVec2]) -> (Self, bool) {
-        let q = measure_element::<true, false, true>(kind, &p[..kind.node_count()], |_, _, _| {});
+        let q = measure_element::<true, false, false>(kind, &p[..kind.node_count()], |_, _, _| {});
         let r = Reading {
             min_angle_deg: q.min_angle.to_degrees(),
             max_angle_deg: q.max_angle.to_degrees(),
-            min_scaled_jacobian: q.scaled_jacobian,
+            min_scaled_jacobian: f64::NEG_INFINITY,
             min_quality: q.shape,
         };
         (r, q.inverted)
+    }
+
+    /// Whether a planar element reads within `bounds`: [`planar`](Self::planar)'s answer,
+    /// bit for bit. A linear triangle's angles are compared by their cosines, and measured
+    /// only within 10⁻⁹ of a bound's cosine (as [`angle_within`](Self::angle_within)), where
+    /// the bounds leave the quality out.
+    pub fn planar_within(kind: ElementKind, p: &[DVec2], bounds: &Reading) -> bool {
+        if kind == ElementKind::Tri3 && bounds.min_quality == f64::NEG_INFINITY {
+            let (cos_lo, cos_hi) = (bounds.min_angle_deg.to_radians().cos(), bounds.max_angle_deg.to_radians().cos());
+            let clear = (0..3).all(|i| {
+                let (a, b) = (p[(i + 1) % 3] - p[i], p[(i + 2) % 3] - p[i]);
+                let c = a.dot(b) / (a.length() * b.length());
+                a.perp_dot(b) > 0.0 && c < cos_lo - 1e-9 && c > cos_hi + 1e-9
+            });
+            if clear {
+                return true;
+            }
+        }
+        Reading::planar(kind, p).0.within(bounds)
     }
 
     /// The reading of a planar `mesh` (or a surface's), element `e` with nodes `points(e)`;

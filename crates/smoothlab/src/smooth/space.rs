@@ -307,7 +307,7 @@ impl DriverStar for Star {
         v
     }
     fn reads_within(&self, _mesh: &Mesh, x: glam::DVec2, bounds: &Reading) -> bool {
-        self.elems.iter().all(|e| Reading::planar(e.kind, &e.at(x)).0.within(bounds))
+        self.elems.iter().all(|e| Reading::planar_within(e.kind, &e.at(x), bounds))
     }
     fn reads_within_from_mesh(mesh: &Mesh, n: usize, x: glam::DVec2, bounds: &Reading) -> Option<bool> {
         let elems = mesh.node_elements(n);
@@ -322,7 +322,7 @@ impl DriverStar for Star {
                     *q = x;
                 }
             }
-            Reading::planar(mesh.kind(e), &p).0.within(bounds)
+            Reading::planar_within(mesh.kind(e), &p, bounds)
         }))
     }
     fn smart_from_mesh(mesh: &Mesh, n: usize, measure: Measure) -> Option<FastSmart<glam::DVec2>> {
