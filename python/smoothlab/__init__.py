@@ -9,7 +9,7 @@ fixed=None)`` and ``Mesh.from_meshio`` take arrays, ``.points``, ``.cells`` and
 >>> import numpy as np, smoothlab
 >>> mesh = smoothlab.Mesh(np.array([[0, 0], [1, 0], [1, 1], [0, 1], [0.8, 0.7]]),
 ...                       np.array([[0, 1, 4], [1, 2, 4], [2, 3, 4], [3, 0, 4]]))
->>> mesh.smooth(passes=2)
+>>> mesh.smooth(passes=2, finish=0)
 Report(new, rules, 2 passes, 0 inverted)
 
 In a notebook (with ``anywidget``): ``Playground(points, cells, fixed=None)`` shows a

@@ -332,15 +332,16 @@ class Mesh:
         """Smooths the mesh in place as ``smoothlab smooth`` does, and says what each pass
         did. The settings are the command line's (``smoothlab.settings()`` lists them):
         ``objective``, ``strategy``, ``threshold``, ``passes``, ``order``, ``max_iter``,
-        ``penalty``, ``pass_through_folds``, ``slide_curves``; those left out take its
-        defaults. A setting out of range, or one the strategy would not use, is a
+        ``penalty``, ``pass_through_folds``, ``finish``, ``slide_curves``; those left out
+        take its defaults. Once the passes leave the mesh valid, ``finish`` more (3 by
+        default) lift its worst element; ``report.finish`` says how many ran. A setting out of range, or one the strategy would not use, is a
         ``ValueError`` naming it. Other Python threads run meanwhile.
 
         >>> import numpy as np, smoothlab
         >>> mesh = smoothlab.Mesh(np.array([[0, 0], [1, 0], [1, 1], [0, 1], [0.8, 0.7]]), np.array([[0, 1, 4], [1, 2, 4], [2, 3, 4], [3, 0, 4]]))
         >>> report = mesh.smooth(strategy="opt", objective="condition", passes=2)
-        >>> len(report.passes), report.strategy
-        (2, 'opt')
+        >>> len(report.passes), report.finish, report.strategy
+        (5, 3, 'opt')
         >>> mesh.smooth(passes=0)
         Traceback (most recent call last):
         ...
@@ -429,15 +430,16 @@ class Mesh:
 
 class Report:
     """What :meth:`Mesh.smooth` did, as ``smoothlab smooth --json`` prints it:
-    ``objective``, ``strategy``, ``passes`` (a dict a pass), ``final`` (the statistics of
+    ``objective``, ``strategy``, ``passes`` (a dict a pass), ``finish`` (how many of
+    them, the last, are the finish), ``final`` (the statistics of
     :meth:`Mesh.stats`), ``untangling_impossible`` (inverted elements no move can repair,
     and why) and ``time_ms``; ``json`` is the text itself.
 
     >>> import numpy as np, smoothlab
     >>> mesh = smoothlab.Mesh(np.array([[0, 0], [1, 0], [1, 1], [0, 1], [0.8, 0.7]]), np.array([[0, 1, 4], [1, 2, 4], [2, 3, 4], [3, 0, 4]]))
     >>> report = mesh.smooth()
-    >>> report.objective, len(report.passes), report.passes[0]["pass"], report.inverted
-    ('new', 3, 1, 0)
+    >>> report.objective, len(report.passes), report.finish, report.passes[0]["pass"], report.inverted
+    ('new', 6, 3, 1, 0)
     """
 
     def __init__(self, text: str):
@@ -446,6 +448,7 @@ class Report:
         self.objective: str = d["objective"]
         self.strategy: str = d["strategy"]
         self.passes: List[Dict[str, Any]] = d["passes"]
+        self.finish: int = d["finish"]
         self.final: Dict[str, Any] = d["final"]
         self.untangling_impossible: List[Dict[str, Any]] = d["untangling_impossible"]
         self.time_ms: float = d["time_ms"]

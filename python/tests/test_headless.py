@@ -79,7 +79,7 @@ def test_read_smooth_write_gives_the_tools_bytes(files, kind, ext, tmp_path):
     smoothlab.write(mesh, out_py)
     assert out_py.read_bytes() == out_cli.read_bytes()
     assert untimed(report.as_dict()) == untimed(printed)
-    assert report.passes and len(report.passes) == 3 and report.inverted == printed["final"]["inverted"]
+    assert report.passes and len(report.passes) == 3 + report.finish and report.inverted == printed["final"]["inverted"]
 
 
 @pytest.mark.parametrize("kind", KINDS)
@@ -88,20 +88,20 @@ def test_stats_are_the_tools_json(files, kind):
 
 
 def test_numpy_numbers_are_settings(files):
-    report = smoothlab.read(files["planar"]).smooth(passes=np.int64(2), strategy="c1", threshold=np.float64(20))
+    report = smoothlab.read(files["planar"]).smooth(passes=np.int64(2), strategy="c1", threshold=np.float64(20), finish=np.int64(0))
     assert len(report.passes) == 2
 
 
 def test_settings_reach_the_core_as_the_tools_flags(files, tmp_path):
     flags = ["--strategy", "c2", "--threshold", "15", "--passes", "2", "--order", "priority", "--max-iter", "5",
-             "--objective", "condition", "--no-pass-through-folds"]
+             "--objective", "condition", "--no-pass-through-folds", "--finish", "1"]
     cli("smooth", files["planar"], "-o", tmp_path / "cli.vtk", *flags)
     mesh = smoothlab.read(files["planar"])
     report = mesh.smooth(strategy="c2", threshold=15, passes=2, order="priority", max_iter=5, objective="condition",
-                         pass_through_folds=False)
+                         pass_through_folds=False, finish=1)
     smoothlab.write(mesh, tmp_path / "py.vtk")
     assert (tmp_path / "py.vtk").read_bytes() == (tmp_path / "cli.vtk").read_bytes()
-    assert (report.objective, report.strategy, len(report.passes)) == ("condition", "c2", 2)
+    assert (report.objective, report.strategy, len(report.passes) - report.finish) == ("condition", "c2", 2)
     cli("smooth", files["surface"], "-o", tmp_path / "cli-s.msh", "--slide-curves", "--msh-version", "4.1")
     surface = smoothlab.read(files["surface"])
     surface.smooth(slide_curves=True)

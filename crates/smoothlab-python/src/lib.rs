@@ -26,8 +26,8 @@ use smoothlab_page::lab::picture::{self, Request, View};
 use smoothlab_render::{encode_png, Camera, Cut, Metric, Theme};
 
 /// The settings of [`smoothing`] by name, in the command line's order (`smooth --help`).
-const SETTINGS: [&str; 9] =
-    ["objective", "strategy", "threshold", "passes", "order", "max_iter", "penalty", "pass_through_folds", "slide_curves"];
+const SETTINGS: [&str; 10] =
+    ["objective", "strategy", "threshold", "passes", "order", "max_iter", "penalty", "pass_through_folds", "finish", "slide_curves"];
 
 /// An error of the core as Python's: `OSError` for a file that cannot be read or written,
 /// `ValueError` for everything else (a bad file, bad arrays, a setting out of range), with
@@ -108,6 +108,7 @@ fn smoothing(settings: Option<&Bound<'_, PyDict>>) -> PyResult<Smoothing> {
             "max_iter" => s.max_iter(whole(&value, "max_iter")?),
             "penalty" => s.penalty(named(&value, "penalty", &Penalty::ALL, Penalty::name)?),
             "pass_through_folds" => s.pass_through_folds(flag(&value, "pass_through_folds")?),
+            "finish" => s.finish(whole(&value, "finish")?),
             "slide_curves" => s.slide_curves(flag(&value, "slide_curves")?),
             other => {
                 return Err(value_error(format!("no setting named {other:?}: the settings are {}", SETTINGS.join(", "))))
