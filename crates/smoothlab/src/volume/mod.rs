@@ -774,6 +774,35 @@ impl VolumeMesh {
             }
         }
     }
+    /// The largest smallest corner scaled Jacobian of its hexahedra that any smoother can
+    /// reach with the fixed nodes where they are: a corner whose node and two of its edge
+    /// neighbours are fixed has a scaled Jacobian of at most the sine of the angle between
+    /// those two edges (`det[a b c] ≤ |a × b|·|c|`), and one whose four nodes are fixed
+    /// keeps its own. +∞ where no hexahedron's corner is so held. (Hexahedra only: their
+    /// corners' reference is the cube's, so the edges are the corner matrix's columns.)
+    pub fn scaled_jacobian_cap(&self) -> f64 {
+        let mut cap = f64::INFINITY;
+        for e in 0..self.element_count() {
+            if !matches!(self.element_kinds[e], VolumeKind::Hex8 | VolumeKind::Hex20 | VolumeKind::Hex27) {
+                continue;
+            }
+            let (ids, row) = (self.element(e), self.element_kinds[e].row());
+            for (c, nb) in row.corner_edges.iter().enumerate() {
+                if !self.fixed[ids[c] as usize] {
+                    continue;
+                }
+                let at = |k: usize| self.nodes[ids[k] as usize] - self.nodes[ids[c] as usize];
+                let mut held = nb.iter().copied().filter(|&k| self.fixed[ids[k] as usize]);
+                let bound = match (held.next(), held.next(), held.next()) {
+                    (Some(a), Some(b), Some(d)) => at(a).cross(at(b)).dot(at(d)) / (at(a).length() * at(b).length() * at(d).length()),
+                    (Some(a), Some(b), None) => at(a).cross(at(b)).length() / (at(a).length() * at(b).length()),
+                    _ => continue,
+                };
+                cap = cap.min(bound);
+            }
+        }
+        cap
+    }
     /// The mean length of the elements' edges (each edge counted once per element it
     /// belongs to); 0 for an empty mesh.
     pub fn mean_edge_length(&self) -> f64 {

@@ -48,32 +48,6 @@ fn livesu_meshes_read_with_their_counts_as_given() {
     }
 }
 
-/// The largest smallest scaled Jacobian a mesh can reach with its fixed nodes where they
-/// are: a corner whose node and two of its edge neighbours are fixed has a scaled Jacobian
-/// of at most the sine of the angle between those two edges (`|det[a b c]| ≤ |a × b|·|c|`),
-/// and one whose four nodes are fixed keeps its own.
-fn fixed_boundary_cap(m: &smoothlab::VolumeMesh) -> f64 {
-    let fixed = m.fixed();
-    let mut cap = f64::INFINITY;
-    for e in 0..m.element_count() {
-        let (ids, row) = (m.element(e), m.element_kind(e).row());
-        for (c, nb) in row.corner_edges.iter().enumerate() {
-            if !fixed[ids[c] as usize] {
-                continue;
-            }
-            let at = |k: usize| m.nodes()[ids[k] as usize] - m.nodes()[ids[c] as usize];
-            let held: Vec<usize> = nb.iter().copied().filter(|&k| fixed[ids[k] as usize]).collect();
-            let bound = match held[..] {
-                [a, b, d] => at(a).cross(at(b)).dot(at(d)) / (at(a).length() * at(b).length() * at(d).length()),
-                [a, b] => at(a).cross(at(b)).length() / (at(a).length() * at(b).length()),
-                _ => continue,
-            };
-            cap = cap.min(bound);
-        }
-    }
-    cap
-}
-
 /// What `docs/formulas.md` §4 says of the published outputs (Livesu et al. 2015, the
 /// meshes' README): with the boundary fixed, five of the six that smoothlab untangles so
 /// cannot reach the published smallest scaled Jacobian; dancing children can.
@@ -90,7 +64,7 @@ fn five_published_scaled_jacobians_lie_beyond_what_a_fixed_boundary_allows() {
         ("hanger_stresstest_in.mesh", 0.666, 0.716),
     ] {
         let Ok(Model::Volume(m)) = read_model_path(&dir.join(name)) else { panic!("{name}") };
-        let got = fixed_boundary_cap(&m);
+        let got = m.scaled_jacobian_cap();
         assert!((got - cap).abs() < 5e-4, "{name}: cap {got}");
         assert_eq!(got < published, name != "dancingchildren_in.mesh", "{name}");
     }

@@ -43,6 +43,7 @@ mod sample;
 mod surfaces;
 mod tetrahedra;
 mod hexahedra;
+mod livesu;
 
 use std::fmt::Write as _;
 
@@ -113,7 +114,7 @@ fn main() {
     );
     // the sections by name: `reproduce surfaces` runs that one alone (to work on it); no
     // name runs them all
-    let sections: [Section; 11] = [
+    let sections: [Section; 12] = [
         ("freitag", freitag::freitag_table_1),
         ("chen", chen::chen_plate),
         ("mesquite", mesquite::mesquite_tangled),
@@ -125,6 +126,7 @@ fn main() {
         ("surfaces", surfaces::surfaces),
         ("tetrahedra", tetrahedra::freitag_table_2),
         ("hexahedra", hexahedra::hexahedra),
+        ("livesu", livesu::livesu),
     ];
     for (name, section) in sections {
         if only.is_empty() || only.iter().any(|o| o == name) {
