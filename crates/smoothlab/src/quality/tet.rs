@@ -120,6 +120,18 @@ pub fn dihedral_angles(p: &[DVec3; 4]) -> [f64; 6] {
     dihedral_cosines(p).map(f64::acos)
 }
 
+/// The first three of [`dihedral_cosines`], at the edges from corner 0, bit for bit: the
+/// three faces that hold corner 0, without the fourth.
+pub fn dihedral_cosines_at_corner0(p: &[DVec3; 4]) -> [f64; 3] {
+    let p = &in_unit_scale(p);
+    let n = [1, 2, 3].map(|k| face_area_vector(p, k));
+    // OFF_EDGE's first three entries, faces 1–3 stored at 0–2
+    [[1, 2], [0, 2], [0, 1]].map(|[k, l]: [usize; 2]| {
+        let c = -n[k].dot(n[l]) / (n[k].length() * n[l].length());
+        c.clamp(-1.0, 1.0)
+    })
+}
+
 /// The cosines of [`dihedral_angles`], clamped to [−1, 1]: its angles are their inverse
 /// cosines, bit for bit. NaN where a face has no area.
 pub fn dihedral_cosines(p: &[DVec3; 4]) -> [f64; 6] {
@@ -184,7 +196,7 @@ pub fn dihedral_sines_grad0(p: &[DVec3; 4]) -> [(f64, DVec3); 6] {
 /// `W` the corner's reference ([`CornerReference`]); `A` itself where `W` is the identity
 /// (the cube's corner, a hexahedron's measured corners).
 #[inline]
-fn weighted_jacobian(p: &[DVec3; 4], r: &CornerReference) -> DMat3 {
+pub(crate) fn weighted_jacobian(p: &[DVec3; 4], r: &CornerReference) -> DMat3 {
     let a = DMat3::from_cols(p[1] - p[0], p[2] - p[0], p[3] - p[0]);
     if r.identity {
         a

@@ -11,7 +11,7 @@ use crate::quality::Reading;
 /// ideal corner, in [−1, 1], negative when inverted (the 3D sine of a corner: the volume of
 /// the parallelepiped of its unit weighted edges). 0 for a degenerate corner.
 pub fn scaled_jacobian(p: &[DVec3; 4], r: &CornerReference) -> f64 {
-    let t = q3::WeightedJacobian::of(&q3::in_unit_scale(p), r).t;
+    let t = q3::weighted_jacobian(&q3::in_unit_scale(p), r);
     let n = t.x_axis.length() * t.y_axis.length() * t.z_axis.length();
     if n == 0.0 || !n.is_finite() {
         return 0.0;
@@ -221,8 +221,7 @@ pub fn solid_within(kind: VolumeKind, p: &[DVec3], bounds: &Reading) -> bool {
                 if with_quality {
                     mean_ratio += q3::mean_ratio(&t, r) / count as f64;
                 }
-                let cosines = q3::dihedral_cosines(&t);
-                EDGES_AT_CORNER_0.iter().all(|&i| bounds.angle_within(cosines[i], cos_lo, cos_hi))
+                q3::dihedral_cosines_at_corner0(&t).iter().all(|&c| bounds.angle_within(c, cos_lo, cos_hi))
                     && scaled_jacobian(&t, r) >= bounds.min_scaled_jacobian
             }) && (!with_quality || mean_ratio >= bounds.min_quality)
         }
