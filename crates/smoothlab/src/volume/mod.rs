@@ -165,24 +165,31 @@ fn csr(n: usize, pairs: &mut [(u32, u32)]) -> (Vec<u32>, Vec<u32>) {
 }
 
 /// An element's corner determinants' sum, in units of its own size, and whether it has
-/// no volume: a tetrahedron's 6V (its four corners in a plane); another kind's measured
-/// corners' determinants, all within rounding of 0.
+/// no volume: a tetrahedron's 6V exactly 0 (its four corners in a plane), another kind's
+/// measured corners' determinants all exactly 0 — decided on the doubles as given
+/// ([`orient3d`](crate::numeric::exact::orient3d)), not against a tolerance: a tangled
+/// element of small volume beside large ones is a smoother's input, not a flat one
+/// (issue 61: a tetrahedron of volume 0.017 next to a node at x = 1e4 was refused).
 fn signed_size(kind: VolumeKind, p: &[DVec3]) -> (f64, bool) {
+    use crate::numeric::exact::orient3d;
+    use std::cmp::Ordering;
     let r = kind.row();
     if kind.is_tet() {
         // in the tetrahedron's own scale: a cube of 1e150 has volumes beyond the doubles
+        let flat = orient3d(p[0], p[1], p[2], p[3]) == Ordering::Equal;
         let p = q3::in_unit_scale(&[p[0], p[1], p[2], p[3]]);
         let v = q3::signed_volume(&p);
         let size = q3::TET_EDGES.iter().map(|&[a, b]| p[a].distance(p[b])).sum::<f64>() / 6.0;
-        return (v / (size * size * size), v.abs() <= 1e-12 * size * size * size || v.is_nan());
+        return (v / (size * size * size), flat);
     }
     let (mut total, mut flat) = (0.0, true);
     for c in 0..r.corner_edges.len() {
-        let t = q3::in_unit_scale(&crate::quality::solid::corner_tet(kind, p, c));
+        let given = crate::quality::solid::corner_tet(kind, p, c);
+        flat &= orient3d(given[0], given[1], given[2], given[3]) == Ordering::Equal;
+        let t = q3::in_unit_scale(&given);
         let det = 6.0 * q3::signed_volume(&t);
         let size = (1..4).map(|j| t[j].distance(t[0])).sum::<f64>() / 3.0;
         let cube = size * size * size;
-        flat &= det.abs() <= 1e-12 * cube || det.is_nan();
         total += det / cube;
     }
     (total, flat)
