@@ -113,15 +113,23 @@ fn face_area_vector(p: &[DVec3; 4], k: usize) -> DVec3 {
 
 /// The six interior dihedral angles, radians, at the edges of [`TET_EDGES`]: at edge `ij`,
 /// `π` minus the angle between the outward normals of the faces opposite the other two
-/// corners. For an inverted tetrahedron both normals turn inward together, so the angles
-/// are those of its mirror image, in [0, π] (whether it is inverted is [`is_inverted`]'s
-/// to say). NaN where a face has no area.
+/// corners, signed as [`dihedral_sines`] are: `atan2(sin θ, cos θ)` with the signed sine,
+/// so in (0, π) for a valid tetrahedron and in (−π, 0) for an inverted one (whose
+/// normals turn inward together: unsigned, its angles would be its mirror image's, and
+/// an inverted regular tetrahedron would read the ideal 70.53°), as a planar element's
+/// corner angles are negative when it is inverted. NaN where a face has no area.
 pub fn dihedral_angles(p: &[DVec3; 4]) -> [f64; 6] {
     let p = &in_unit_scale(p);
     let n = [0, 1, 2, 3].map(|k| face_area_vector(p, k));
+    let inverted = signed_volume(p) < 0.0;
     OFF_EDGE.map(|[k, l]| {
         let c = -n[k].dot(n[l]) / (n[k].length() * n[l].length());
-        c.clamp(-1.0, 1.0).acos()
+        let a = c.clamp(-1.0, 1.0).acos();
+        if inverted {
+            -a
+        } else {
+            a
+        }
     })
 }
 
@@ -682,8 +690,9 @@ mod tests {
         assert_eq!(condition_number(&flat), f64::INFINITY);
         assert_eq!(mean_ratio(&flat), 0.0);
         assert!(dihedral_sines(&flat).iter().all(|s| *s == 0.0));
-        // swapping two corners mirrors it: volume, sines and mean ratio change sign; the
-        // angles and κ are those of the mirror image
+        // swapping two corners mirrors it: volume, sines, mean ratio and angles change
+        // sign (the angles are the mirror image's, negated: issue 61); κ is the mirror
+        // image's
         let p = regular();
         let m = [p[1], p[0], p[2], p[3]];
         assert!(signed_volume(&m) < 0.0 && is_inverted(&m));
@@ -691,7 +700,7 @@ mod tests {
         assert!((mean_ratio(&m) + 1.0).abs() < 1e-14);
         assert!((condition_number(&m) - 3.0).abs() < 1e-13);
         for a in dihedral_angles(&m) {
-            assert!((a - (1.0f64 / 3.0).acos()).abs() < 1e-14);
+            assert!((a + (1.0f64 / 3.0).acos()).abs() < 1e-14, "{a}");
         }
         // NaN in, NaN out: no panic
         let nan = [DVec3::NAN, DVec3::X, DVec3::Y, DVec3::Z];

@@ -155,3 +155,62 @@ fn every_objective_gradient_agrees_with_central_differences_on_corner_stars() {
     }
     assert!(checked > 1000, "{checked}");
 }
+
+/// The regular 10-node tetrahedron of unit edge (VTK's order: corners, then the middles of
+/// edges 01, 12, 02, 03, 13, 23).
+fn regular_tet10() -> [DVec3; 10] {
+    let c = [DVec3::ZERO, DVec3::X, DVec3::new(0.5, 3f64.sqrt() / 2.0, 0.0), DVec3::new(0.5, 3f64.sqrt() / 6.0, (2.0f64 / 3.0).sqrt())];
+    let mut p = [DVec3::ZERO; 10];
+    p[..4].copy_from_slice(&c);
+    for (m, [a, b]) in [[0, 1], [1, 2], [0, 2], [0, 3], [1, 3], [2, 3]].into_iter().enumerate() {
+        p[4 + m] = (c[a] + c[b]) * 0.5;
+    }
+    p
+}
+
+/// Issue 61, finding 4: a 10-node tetrahedron turned inside out by a mid-edge node read
+/// inverted 1 and mean ratio < 0, but scaled Jacobian 1.0000 and the ideal 70.53° dihedral
+/// angles. Every statistic is now taken over the same four tetrahedra of its Jacobian at
+/// the corners, signed alike.
+#[test]
+fn a_ten_node_tetrahedron_inverted_by_a_mid_edge_node_reads_inverted_in_every_statistic() {
+    let mut p = regular_tet10();
+    // the middle of edge 01 moved to a tenth of the way: the tangent at corner 0 turns back
+    p[4] = p[0] + (p[1] - p[0]) * 0.1;
+    let m = VolumeMesh::from_elements(p.to_vec(), [(VolumeKind::Tet10, &(0..10).collect::<Vec<u32>>()[..])]).unwrap();
+    let s = volume_stats(&m);
+    assert_eq!(s.inverted, 1);
+    assert!(s.min_quality < 0.0, "mean ratio {}", s.min_quality);
+    let solid = s.solid.expect("a volume mesh has solid statistics");
+    assert!(solid.min_scaled_jacobian <= 0.0, "scaled Jacobian {}", solid.min_scaled_jacobian);
+    assert!(s.min_angle_deg < 0.0, "dihedral angles {}–{}", s.min_angle_deg, s.max_angle_deg);
+    // and a straight one reads as the regular tetrahedron
+    let s = volume_stats(&VolumeMesh::from_elements(regular_tet10().to_vec(), [(VolumeKind::Tet10, &(0..10).collect::<Vec<u32>>()[..])]).unwrap());
+    assert_eq!(s.inverted, 0);
+    assert!((s.solid.unwrap().min_scaled_jacobian - 1.0).abs() < 1e-12 && (s.min_angle_deg - 70.528_779_365_509_3).abs() < 1e-9);
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(256))]
+
+    /// The class: for a tetrahedron of 4 or 10 nodes, however its nodes lie, inverted ⇔
+    /// scaled Jacobian ≤ 0 ⇔ mean ratio ≤ 0 ⇔ smallest dihedral angle ≤ 0: no statistic
+    /// reads an inverted element as valid or a valid one as inverted.
+    #[test]
+    fn every_statistic_of_a_tetrahedron_agrees_on_inversion(
+        quadratic in any::<bool>(),
+        moves in prop::collection::vec((-1.0f64..1.0, -1.0f64..1.0, -1.0f64..1.0), 10),
+        amount in 0.0f64..1.2,
+    ) {
+        let mut p = regular_tet10();
+        for (q, (x, y, z)) in p.iter_mut().zip(&moves) {
+            *q += DVec3::new(*x, *y, *z) * amount;
+        }
+        let (kind, n) = if quadratic { (VolumeKind::Tet10, 10) } else { (VolumeKind::Tet4, 4) };
+        let m = smoothlab::quality::solid::solid_measures(kind, &p[..n]);
+        prop_assume!(m.mean_ratio.is_finite() && m.min_dihedral_deg.is_finite());
+        prop_assert_eq!(m.inverted, m.scaled_jacobian <= 0.0, "{:?}", m);
+        prop_assert_eq!(m.inverted, m.mean_ratio <= 0.0, "{:?}", m);
+        prop_assert_eq!(m.inverted, m.min_dihedral_deg <= 0.0, "{:?}", m);
+    }
+}

@@ -90,12 +90,21 @@ pub fn solid_measures(kind: VolumeKind, p: &[DVec3]) -> SolidMeasures {
     let sj_min = |ts: &mut dyn Iterator<Item = [DVec3; 4]>, r: &CornerReference| ts.map(|t| scaled_jacobian(&t, r)).fold(f64::INFINITY, f64::min);
     match kind {
         VolumeKind::Tet4 | VolumeKind::Tet10 => {
-            let m = match kind {
-                VolumeKind::Tet4 => q3::tet_measures(&[p[0], p[1], p[2], p[3]], r),
-                _ => q3::tet10_measures(&std::array::from_fn(|j| p[j]), r),
+            // a 10-node tetrahedron's every measure over the same four tetrahedra, its
+            // Jacobian's at the corners (mid-edge nodes included): one inverted by a
+            // mid-edge node has a scaled Jacobian ≤ 0 as its mean ratio is
+            let (m, sj) = match kind {
+                VolumeKind::Tet4 => {
+                    let corners = [p[0], p[1], p[2], p[3]];
+                    let sj = sj_min(&mut (0..4).map(|c| q3::with_first(&corners, c)), r);
+                    (q3::tet_measures(&corners, r), sj)
+                }
+                _ => {
+                    let p10: [DVec3; 10] = std::array::from_fn(|j| p[j]);
+                    let sj = sj_min(&mut q3::tet10_corner_tets(&p10).into_iter(), r);
+                    (q3::tet10_measures(&p10, r), sj)
+                }
             };
-            let corners = [p[0], p[1], p[2], p[3]];
-            let sj = sj_min(&mut (0..4).map(|c| q3::with_first(&corners, c)), r);
             let mut dihedral_deg = [0.0; 24];
             dihedral_deg[..6].copy_from_slice(&m.dihedral_deg);
             SolidMeasures {
