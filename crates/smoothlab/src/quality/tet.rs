@@ -72,18 +72,18 @@ impl TetRuleMeasures {
 /// lengths (angles, sines, the mean ratio, κ, the sign of the volume): as they are when
 /// the edges' largest component lies within `numeric::SAFE_SCALE` (2^±200, where
 /// every product those measures take is a normal double, so their bits are unchanged);
-/// beyond it, corner 0 moved to the origin and the edges multiplied by a power of two
-/// (exact) that brings that component to about 1 — the planar metrics' rule
-/// (`docs/formulas.md` §1), so a cube of tetrahedra has the same angles at 1e±150 as at 1.
+/// beyond it, the corners multiplied by a power of two (exact) that brings that component
+/// to about 1 — the planar metrics' rule (`docs/formulas.md` §1), so a cube of tetrahedra
+/// has the same angles at 1e±150 as at 1, to the bit. (Not moved to corner 0 first: the
+/// measures' differences of other corners would then round twice, otherwise than at unit
+/// scale; issue 61.)
 #[inline(always)]
 pub fn in_unit_scale(p: &[DVec3; 4]) -> [DVec3; 4] {
-    let e = [p[1] - p[0], p[2] - p[0], p[3] - p[0]];
-    let m = crate::numeric::largest_component(e);
+    let m = crate::numeric::largest_component([p[1] - p[0], p[2] - p[0], p[3] - p[0]]);
     let Some((f1, f2)) = crate::numeric::factors_beyond_safe_scale(m) else {
         return *p;
     };
-    let [a, b, c] = e.map(|x| x * f1 * f2);
-    [DVec3::ZERO, a, b, c]
+    p.map(|x| x * f1 * f2)
 }
 
 /// The corners with corner `i` first, by an even permutation (so the signed volume is

@@ -251,8 +251,14 @@ impl DriverStar for CornerStar {
         self.tets.iter().filter(|t| t.simplex && t.inverted_at(x)).count()
             + self.elements.iter().filter(|e| e.validity_at(x) != Validity::Valid).count()
     }
+    /// In the star's own frame where it is far from unit size (its points multiplied by
+    /// the power of two its solves take, [`crate::numeric::unit_factor`]): the sum is
+    /// compared only within the star, and its determinants of coordinates near 2^±520
+    /// left the doubles (issue 61).
     fn inversion(&self, x: DVec3) -> f64 {
-        let tets: f64 = self.tets.iter().filter(|t| t.simplex).map(|t| (-6.0 * q3::signed_volume(&t.at(x))).max(0.0)).sum();
+        let f = crate::numeric::unit_factor(crate::objective::NodeStar::size(self)).unwrap_or(1.0);
+        let at = |p: [DVec3; 4]| if f == 1.0 { p } else { p.map(|q| q * f) };
+        let tets: f64 = self.tets.iter().filter(|t| t.simplex).map(|t| (-6.0 * q3::signed_volume(&at(t.at(x)))).max(0.0)).sum();
         if self.elements.is_empty() {
             return tets;
         }
@@ -260,7 +266,10 @@ impl DriverStar for CornerStar {
             .elements
             .iter()
             .map(|e| {
-                let p = e.at(x);
+                let mut p = e.at(x);
+                if f != 1.0 {
+                    p.iter_mut().for_each(|q| *q *= f);
+                }
                 let p = e.corners(&p);
                 solid::solid_inversion(e.kind, p, solid::validity(e.kind, p))
             })

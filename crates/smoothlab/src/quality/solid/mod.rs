@@ -82,9 +82,11 @@ fn corner_det(t: &[DVec3; 4]) -> f64 {
 }
 
 /// The corners in their own scale, as [`q3::in_unit_scale`] does for a tetrahedron: as
-/// they are when the edges' largest component lies within the safe scale, else moved to
-/// the first corner and multiplied by a power of two (exact), so signs and ratios are the
-/// same at every scale.
+/// they are when the edges' largest component lies within the safe scale, else multiplied
+/// by a power of two (exact), so signs and ratios are the same at every scale, to the bit.
+/// Not moved to the first corner: a difference of differences rounds twice, which lost a
+/// whole element's corners next to a node at 1e61 (issue 61), and rounds otherwise than
+/// the unit-scale mesh's one difference.
 fn in_unit_scale(p: &[DVec3]) -> ([DVec3; 8], usize) {
     let mut q = [DVec3::ZERO; 8];
     let n = p.len().min(8);
@@ -92,7 +94,7 @@ fn in_unit_scale(p: &[DVec3]) -> ([DVec3; 8], usize) {
         None => q[..n].copy_from_slice(&p[..n]),
         Some((f1, f2)) => {
             for i in 0..n {
-                q[i] = (p[i] - p[0]) * f1 * f2;
+                q[i] = p[i] * f1 * f2;
             }
         }
     }
