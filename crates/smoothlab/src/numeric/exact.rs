@@ -73,6 +73,20 @@ impl Expansion {
         }
         out
     }
+    /// `s·self` for a power of two `s`, exactly (unless a component underflows).
+    pub fn scaled(mut self, s: f64) -> Expansion {
+        for x in &mut self.0 {
+            *x *= s;
+        }
+        self.0.retain(|&x| x != 0.0);
+        self
+    }
+    /// `(self + other)/2`, exactly (unless a component underflows).
+    pub fn midpoint(&self, other: &Expansion) -> Expansion {
+        let mut s = self.clone();
+        s.add(other);
+        s.scaled(0.5)
+    }
     /// `−self`.
     pub fn negated(mut self) -> Expansion {
         for x in &mut self.0 {

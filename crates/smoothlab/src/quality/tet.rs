@@ -32,11 +32,24 @@ pub fn signed_volume(p: &[DVec3; 4]) -> f64 {
 
 /// Whether the tetrahedron is inverted: `V ≤ 0` (zero volume included), or its volume is
 /// not a number. Measured in the tetrahedron's own scale ([`in_unit_scale`]), so a valid
-/// tetrahedron whose volume over- or underflows the doubles is not called inverted.
+/// tetrahedron whose volume over- or underflows the doubles is not called inverted; and
+/// where the rounded volume lies within its rounding of 0, by the exact sign of the
+/// doubles as given ([`orient3d`](crate::numeric::exact::orient3d), issue 61).
 #[inline]
 pub fn is_inverted(p: &[DVec3; 4]) -> bool {
-    let v = signed_volume(&in_unit_scale(p));
-    v.is_nan() || v <= 0.0
+    let q = in_unit_scale(p);
+    let v = signed_volume(&q);
+    if v.is_nan() {
+        return true;
+    }
+    // 6V is a sum of products of edges, the edges differences of coordinates: its
+    // rounding is some 10⁻¹⁴ r²(r + M); beyond 2⁻⁴⁰ r²(r + M) the rounded sign is exact
+    let r = crate::numeric::largest_component([q[1] - q[0], q[2] - q[0], q[3] - q[0]]);
+    let m = crate::numeric::largest_component(q);
+    if (6.0 * v).abs() > 2f64.powi(-40) * r * r * (r + m) {
+        return v <= 0.0;
+    }
+    crate::numeric::exact::orient3d(p[0], p[1], p[2], p[3]) != std::cmp::Ordering::Greater
 }
 
 /// What the acceptance rule reads of a tetrahedron besides its quality (the drivers'

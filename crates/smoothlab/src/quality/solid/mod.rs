@@ -149,10 +149,20 @@ pub fn validity(kind: VolumeKind, p: &[DVec3]) -> Validity {
             }
         }
         VolumeKind::Wedge6 => wedge_validity(&q),
-        VolumeKind::Hex8 => hex_det(&q).validity(),
-        VolumeKind::Pyramid5 => pyramid_det(&q).validity(),
+        VolumeKind::Hex8 | VolumeKind::Pyramid5 => {
+            let det = if kind.linear() == VolumeKind::Hex8 { hex_det(&q[..8]) } else { pyramid_det(&q[..5]) };
+            decided(kind, &q[..kind.corners()], &det, det.min_coefficient_unsigned())
+        }
         VolumeKind::Tet10 | VolumeKind::Hex20 | VolumeKind::Hex27 => unreachable!("linear() is linear"),
     }
+}
+
+/// The validity of a hexahedron or pyramid with corners `p` from its `det J`'s rounded
+/// Bernstein form `det` (least coefficient `least`) where that decides beyond rounding, else
+/// from the exact one (issue 61: two hexahedra of smoothlab's outputs had `det J < 0`
+/// exactly, −1.2e−17 on a scale of 1, yet counted as valid).
+fn decided(kind: VolumeKind, p: &[DVec3], det: &bernstein::Bezier, least: f64) -> Validity {
+    det.validity_beyond(least, bernstein::rounding_margin(p)).unwrap_or_else(|| bernstein::exact_validity(kind, p))
 }
 
 /// The smallest Bernstein coefficient of the element's `det J` (its corners' determinants
