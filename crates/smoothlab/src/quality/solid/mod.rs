@@ -114,17 +114,26 @@ fn wedge_validity(p: &[DVec3]) -> Validity {
     let e1 = [p[1] - p[0], p[4] - p[3]];
     let e2 = [p[2] - p[0], p[5] - p[3]];
     let c = [e1[0].cross(e2[0]), 0.5 * (e1[0].cross(e2[1]) + e1[1].cross(e2[0])), e1[1].cross(e2[1])];
+    // signs read beyond their rounding, else the exact ones decide (issue 61)
+    let margin = bernstein::rounding_margin(p);
     let mut undecided = false;
     for i in 0..3 {
         let up = p[i + 3] - p[i];
         let [c0, c1, c2] = c.map(|ck| -ck.dot(up));
-        if c0 <= 0.0 || c2 <= 0.0 || c0.is_nan() || c1.is_nan() || c2.is_nan() {
+        if c0 < -margin || c2 < -margin || c0.is_nan() || c1.is_nan() || c2.is_nan() {
             return Validity::Inverted;
         }
-        if c1 <= 0.0 {
-            // the quadratic's minimum is inside: positive iff c1² < c0·c2
+        if c0 <= margin || c2 <= margin {
+            return wedge_validity_exact(p);
+        }
+        if c1 <= margin {
+            // the quadratic's minimum may be inside: positive iff c1² < c0·c2
             let (sq, prod) = (c1 * c1, c0 * c2);
-            if sq >= prod {
+            let big = c0.abs().max(c1.abs()).max(c2.abs());
+            if (sq - prod).abs() <= 4.0 * margin * big + 1e-14 * big * big {
+                return wedge_validity_exact(p);
+            }
+            if c1 <= 0.0 && sq >= prod {
                 return Validity::Inverted;
             }
             undecided |= !sq.is_finite() || !prod.is_finite();
@@ -136,6 +145,39 @@ fn wedge_validity(p: &[DVec3]) -> Validity {
         Validity::Valid
     }
 }
+
+/// [`wedge_validity`] on the exact values of the doubles as given: on each vertical edge
+/// `det J` is the quadratic of Bernstein coefficients `c₀ = −(a₀ × b₀)·u`,
+/// `c₁ = −½(a₀ × b₁ + a₁ × b₀)·u`, `c₂ = −(a₁ × b₁)·u` (`a`, `b` the triangles' edges, `u`
+/// the vertical edge), positive on [0, 1] iff `c₀ > 0`, `c₂ > 0` and `c₁ > 0` or
+/// `c₁² < c₀c₂`.
+fn wedge_validity_exact(p: &[DVec3]) -> Validity {
+    use crate::numeric::exact::{det3_exact, Expansion};
+    use std::cmp::Ordering;
+    let edge = |b: DVec3, a: DVec3| [Expansion::difference(b.x, a.x), Expansion::difference(b.y, a.y), Expansion::difference(b.z, a.z)];
+    let (a0, a1, b0, b1) = (edge(p[1], p[0]), edge(p[4], p[3]), edge(p[2], p[0]), edge(p[5], p[3]));
+    for i in 0..3 {
+        let up = || edge(p[i + 3], p[i]);
+        // −(a × b)·u = −u·(a × b) = u·(b × a)
+        let c0 = det3_exact(up(), b0.clone(), a0.clone());
+        let c2 = det3_exact(up(), b1.clone(), a1.clone());
+        let mut c1 = det3_exact(up(), b1.clone(), a0.clone());
+        c1.add(&det3_exact(up(), b0.clone(), a1.clone()));
+        let c1 = c1.scaled(0.5);
+        if c0.sign() != Ordering::Greater || c2.sign() != Ordering::Greater {
+            return Validity::Inverted;
+        }
+        if c1.sign() != Ordering::Greater {
+            let mut d = c0.times(&c2);
+            d.add(&c1.times(&c1).negated());
+            if d.sign() != Ordering::Greater {
+                return Validity::Inverted;
+            }
+        }
+    }
+    Validity::Valid
+}
+
 /// Whether the element of `kind` with corners `p` (its first [`VolumeKind::corners`]
 /// nodes) is valid everywhere, for certain (see the module docs).
 pub fn validity(kind: VolumeKind, p: &[DVec3]) -> Validity {

@@ -446,3 +446,37 @@ fn the_exact_bernstein_test_agrees_where_rounding_decides() {
     }
     assert!(valid > 100 && inverted > 100, "{valid} valid, {inverted} inverted");
 }
+
+/// The wedge's exact test (issue 61): a corner of the top triangle put on the plane of the
+/// bottom one's corner edges in doubles reads not valid wherever the exact determinant
+/// there is not positive, whatever its rounding says; and it agrees with the rounded test
+/// wherever that decides beyond rounding.
+#[test]
+fn a_wedge_is_decided_exactly_at_the_margin() {
+    use crate::numeric::exact::orient3d;
+    use std::cmp::Ordering;
+    let mut rng = SplitMix64::new(13);
+    let mut rounded_wrong = 0;
+    for _ in 0..20_000 {
+        let mut p = perturbed(VolumeKind::Wedge6, &mut rng, 0.1, 1.0);
+        let (s, t) = (rng.uniform(0.1, 0.4), rng.uniform(0.1, 0.4));
+        p[3] = p[0] + (p[1] - p[0]) * s + (p[2] - p[0]) * t;
+        // det J at corner 0 is −((p₁ − p₀) × (p₂ − p₀))·(p₃ − p₀): the orientation of (p₀, p₂, p₁, p₃)
+        let exact = orient3d(p[0], p[2], p[1], p[3]);
+        if exact == Ordering::Greater {
+            continue;
+        }
+        assert_ne!(validity(VolumeKind::Wedge6, &p), Validity::Valid, "exact {exact:?}");
+        rounded_wrong += (-(p[1] - p[0]).cross(p[2] - p[0]).dot(p[3] - p[0]) > 0.0) as usize;
+    }
+    assert!(rounded_wrong > 100, "{rounded_wrong}");
+    let (mut valid, mut inverted) = (0, 0);
+    for i in 0..3000 {
+        let p = perturbed(VolumeKind::Wedge6, &mut rng, [0.2, 0.5, 0.8][i % 3], 1.0);
+        let v = validity(VolumeKind::Wedge6, &p);
+        assert_eq!(super::wedge_validity_exact(&p), v, "{p:?}");
+        valid += (v == Validity::Valid) as usize;
+        inverted += (v == Validity::Inverted) as usize;
+    }
+    assert!(valid > 100 && inverted > 100, "{valid} valid, {inverted} inverted");
+}
