@@ -232,8 +232,13 @@ fn summary(report: &Report) -> String {
     t
 }
 
-/// The elements no smoother can make valid, one line each, after a line that says how many
-/// of the inverted elements they are (nothing when there are none).
+/// How many of the elements no smoother can make valid the summary names, one line each.
+const OBSTACLES_SHOWN: usize = 10;
+
+/// The elements no smoother can make valid, one line each (the first
+/// [`OBSTACLES_SHOWN`], then how many more: the summary's length does not grow with the
+/// mesh; `--json` lists them all), after a line that says how many of the inverted
+/// elements they are (nothing when there are none).
 fn obstacle_summary(obstacles: &[Obstacle], inverted: usize) -> String {
     if obstacles.is_empty() {
         return String::new();
@@ -242,8 +247,30 @@ fn obstacle_summary(obstacles: &[Obstacle], inverted: usize) -> String {
         "untangling is impossible for {} of the {inverted} inverted elements (fixed nodes decide them):\n",
         obstacles.len()
     );
-    for o in obstacles {
+    for o in obstacles.iter().take(OBSTACLES_SHOWN) {
         t.push_str(&format!("  element {}: {}\n", o.element, o.reason));
     }
+    if obstacles.len() > OBSTACLES_SHOWN {
+        t.push_str(&format!("  … and {} more (--json lists them all)\n", obstacles.len() - OBSTACLES_SHOWN));
+    }
     t
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Issue 61, finding 5: what the CLI prints does not grow with the mesh either.
+    #[test]
+    fn the_obstacle_summary_names_the_first_few_and_counts_the_rest() {
+        let many: Vec<Obstacle> =
+            (0..5000).map(|e| Obstacle { element: e, reason: "its corner is set by fixed nodes alone".into() }).collect();
+        let t = obstacle_summary(&many, 6000);
+        assert_eq!(t.lines().count(), 2 + OBSTACLES_SHOWN, "{t}");
+        assert!(t.starts_with("untangling is impossible for 5000 of the 6000 inverted elements"), "{t}");
+        assert!(t.contains("  element 9: ") && !t.contains("element 10:"), "{t}");
+        assert!(t.ends_with("  … and 4990 more (--json lists them all)\n"), "{t}");
+        let few = obstacle_summary(&many[..3], 3);
+        assert_eq!(few.lines().count(), 4, "{few}");
+    }
 }

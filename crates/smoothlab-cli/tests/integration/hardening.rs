@@ -31,8 +31,8 @@ fn same_mesh(a: &Mesh, b: &Mesh, what: &str) {
 
 // ---- 1. non-planar meshes -----------------------------------------------------------------
 
-/// The node a non-planar refusal names, and the message.
-fn not_planar(text: &str, format: Format) -> (usize, String) {
+/// The node a non-planar refusal names (as the file numbers it), and the message.
+fn not_planar(text: &str, format: Format) -> (u64, String) {
     match io::read_str(text, format) {
         Err(e @ Error::NotPlanar { node, .. }) => (node, e.to_string()),
         other => panic!("expected NotPlanar, got {:?}", other.map(|m| m.node_count())),
@@ -72,14 +72,14 @@ fn an_outlier_node_is_refused_by_name() {
     // the 2 x 2 quad grid with a corner at z = 1e6 (tests/data/bad/non_planar_outlier.obj)
     let text = std::fs::read_to_string(crate::common::repo().join("tests/data/bad/non_planar_outlier.obj")).unwrap();
     let (node, msg) = not_planar(&text, Format::Obj);
-    assert_eq!(node, 8, "{msg}");
+    assert_eq!(node, 9, "OBJ counts from 1: {msg}");
     // a 580-node rand2D with one interior node at z = 3e6, and at heights down to a
     // thousandth of an element
     for z in [3e6, 1.0, 1e-3] {
         for lifted in [0, 100, 579] {
             let (node, msg) = not_planar(&rand2d_obj(lifted, z), Format::Obj);
-            assert_eq!(node, lifted, "z = {z}: {msg}");
-            assert!(msg.contains(&format!("node {lifted} (line ")), "{msg}");
+            assert_eq!(node, lifted as u64 + 1, "z = {z}: {msg}");
+            assert!(msg.contains(&format!("node {} (line ", lifted + 1)), "{msg}");
         }
     }
 }

@@ -175,7 +175,7 @@ fn a_mistyped_coordinate_is_named_when_a_mesh_reads_as_a_surface() {
     assert!(out.status.success());
     let err = String::from_utf8(out.stderr).unwrap();
     assert!(
-        err.contains("read as a surface in 3D: node 8 (line 10) lies 1.000e6 off the plane of the mesh, 7.071e5 times the size of its elements"),
+        err.contains("read as a surface in 3D: node 9 (line 10) lies 1.000e6 off the plane of the mesh, 7.071e5 times the size of its elements"),
         "{err}"
     );
     let s: Value = serde_json::from_slice(&out.stdout).unwrap();

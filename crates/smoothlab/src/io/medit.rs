@@ -38,7 +38,7 @@
 
 use std::fmt::Write as _;
 
-use crate::error::{Error, Result};
+use crate::error::{Error, Numbering, Result};
 use crate::io::lex::{repeated, shown, Lexer, Token};
 use crate::io::out::Out;
 use crate::mesh::{ElementKind, FixedSpec, MeshBuilder, VolumeKind};
@@ -209,19 +209,21 @@ impl<'a> Reader<'a> {
             match section {
                 Section::End => return Ok(()),
                 Section::Vertices => self.vertices(t.line)?,
-                Section::Faces(kind, one) => self.elements(name, one, kind.node_count(), t.line, |b, ids, l| {
-                    b.add_element(kind, ids, l);
+                Section::Faces(kind, one) => self.elements(name, one, kind.node_count(), t.line, |b, ids, l, e| {
+                    b.add_element_numbered(kind, ids, l, e);
                     Ok(())
                 })?,
                 Section::Solids(kind, one) => {
                     if self.dim == 2 {
                         return Err(Error::parse(t.line, format!("{name} in a file of Dimension 2: they need Dimension 3")));
                     }
-                    self.elements(name, one, kind.nodes(), t.line, |b, ids, l| b.add_volume_element(kind, ids, l))?
+                    self.elements(name, one, kind.nodes(), t.line, |b, ids, l, e| {
+                        b.add_volume_element_numbered(kind, ids, l, e)
+                    })?
                 }
                 Section::Edges => {
                     let mut marked = std::mem::take(&mut self.marked);
-                    self.elements(name, "edge", 2, t.line, |_, ids, _| {
+                    self.elements(name, "edge", 2, t.line, |_, ids, _, _| {
                         marked.extend_from_slice(ids);
                         Ok(())
                     })?;
@@ -296,14 +298,15 @@ impl<'a> Reader<'a> {
         Ok((v - 1) as u32)
     }
 
-    /// A section of elements of `k` vertices and a reference each, given to `add`.
+    /// A section of elements of `k` vertices and a reference each, given to `add` with
+    /// their line and their number in the section (from 1, as Medit counts).
     fn elements(
         &mut self,
         name: &str,
         one: &str,
         k: usize,
         line: usize,
-        mut add: impl FnMut(&mut MeshBuilder, &[u32], usize) -> Result<()>,
+        mut add: impl FnMut(&mut MeshBuilder, &[u32], usize, u64) -> Result<()>,
     ) -> Result<()> {
         let n = self.count(name, k as u64 + 1, &format!("{name} (line {line})"))?;
         let mut ids = [0u32; 8];
@@ -320,7 +323,7 @@ impl<'a> Reader<'a> {
             if let Some(v) = repeated(&ids[..k]) {
                 return Err(Error::parse(at, format!("{one} {e}: vertex {} appears twice", v + 1)));
             }
-            add(&mut self.b, &ids[..k], at)?;
+            add(&mut self.b, &ids[..k], at, e as u64)?;
         }
         Ok(())
     }
@@ -344,6 +347,8 @@ impl<'a> Reader<'a> {
 
     fn finish(self) -> Result<MeshBuilder> {
         let Reader { mut b, marked, pending, .. } = self;
+        // Medit numbers its vertices from 1: messages name them so
+        b.number_nodes(Numbering::From(1));
         let n = b.node_count();
         if let Some((v, line, what)) = pending {
             if v > n as u64 {

@@ -12,7 +12,7 @@
 
 use std::fmt::Write as _;
 
-use crate::error::{Error, Result};
+use crate::error::{Error, Numbering, Result};
 use crate::io::lex::{check_count, content_lines, parse_f64, repeated, shown};
 use crate::io::out::Out;
 use crate::mesh::{ElementKind, Mesh, MeshBuilder};
@@ -86,12 +86,15 @@ pub(crate) fn parse_obj(text: &str) -> Result<MeshBuilder> {
         }
     }
     let nv = b.node_count() as i64;
+    // OBJ counts its vertices from 1, and its faces so in these messages
+    b.number_nodes(Numbering::From(1));
     let mut ids = [0u32; 4];
     for (e, (kind, f, line)) in faces.iter().enumerate() {
+        let number = e as u64 + 1;
         for j in 0..kind.node_count() {
             if f[j] >= nv {
                 return Err(Error::element(
-                    e,
+                    number,
                     Some(*line),
                     format!("vertex index {} is out of range: the file has {nv} vertices (1 to {nv})", f[j] + 1),
                 ));
@@ -99,9 +102,9 @@ pub(crate) fn parse_obj(text: &str) -> Result<MeshBuilder> {
             ids[j] = f[j] as u32;
         }
         if let Some(v) = repeated(&ids[..kind.node_count()]) {
-            return Err(Error::element(e, Some(*line), format!("vertex {} appears twice in the face", v + 1)));
+            return Err(Error::element(number, Some(*line), format!("vertex {} appears twice in the face", v + 1)));
         }
-        b.add_element(*kind, &ids[..kind.node_count()], *line);
+        b.add_element_numbered(*kind, &ids[..kind.node_count()], *line, number);
     }
     Ok(b)
 }

@@ -78,6 +78,8 @@ pub(crate) fn read(node: &str, ele: &str) -> Result<Mesh> {
 pub(crate) fn parse(node: &str, ele: &str) -> Result<MeshBuilder> {
     let mut b = MeshBuilder::new();
     let (base, marks, dim) = read_nodes(node, &mut b).map_err(|e| in_file(e, ".node"))?;
+    // the file's own node numbers, from its first: messages name the nodes so
+    b.number_nodes(crate::error::Numbering::From(base.max(0) as u64));
     read_elements(ele, base, dim, &mut b).map_err(|e| in_file(e, ".ele"))?;
     b.fixed = match marks {
         Some(m) => FixedSpec::BoundaryAnd(m),
@@ -200,12 +202,13 @@ fn read_elements(text: &str, base: i64, dim: i64, b: &mut MeshBuilder) -> Result
                 ),
             ));
         }
-        int(f[0], line, || "the triangle number".into())?;
+        // its number as the file writes it, for messages
+        let number = u64::try_from(int(f[0], line, || "the triangle number".into())?).unwrap_or(i as u64);
         for (ours, &theirs) in TRIANGLE_ORDER[..per as usize].iter().enumerate() {
             let v = int(f[1 + theirs], line, || format!("node {} of triangle {i}", theirs + 1))?;
             if v < base || v >= base + np {
                 return Err(Error::element(
-                    i,
+                    number,
                     Some(line),
                     format!("node {v} is out of range: the .node file numbers its nodes {base} to {}", base + np - 1),
                 ));
@@ -214,12 +217,12 @@ fn read_elements(text: &str, base: i64, dim: i64, b: &mut MeshBuilder) -> Result
         }
         if let Some(v) = repeated(&ids[..per as usize]) {
             return Err(Error::element(
-                i,
+                number,
                 Some(line),
                 format!("node {} appears twice in the triangle", v as i64 + base),
             ));
         }
-        b.add_element(kind, &ids[..per as usize], line);
+        b.add_element_numbered(kind, &ids[..per as usize], line, number);
     }
     if let Some((line, text)) = lines.next() {
         return Err(Error::parse(
@@ -264,12 +267,12 @@ fn read_tetrahedra(text: &str, base: i64, b: &mut MeshBuilder) -> Result<()> {
                 ),
             ));
         }
-        int(f[0], line, || "the tetrahedron number".into())?;
+        let number = u64::try_from(int(f[0], line, || "the tetrahedron number".into())?).unwrap_or(i as u64);
         for (j, id) in ids[..per].iter_mut().enumerate() {
             let v = int(f[1 + j], line, || format!("node {} of tetrahedron {i}", j + 1))?;
             if v < base || v >= base + np {
                 return Err(Error::element(
-                    i,
+                    number,
                     Some(line),
                     format!("node {v} is out of range: the .node file numbers its nodes {base} to {}", base + np - 1),
                 ));
@@ -278,12 +281,12 @@ fn read_tetrahedra(text: &str, base: i64, b: &mut MeshBuilder) -> Result<()> {
         }
         if let Some(v) = repeated(&ids[..per]) {
             return Err(Error::element(
-                i,
+                number,
                 Some(line),
                 format!("node {} appears twice in the tetrahedron", v as i64 + base),
             ));
         }
-        b.add_volume_element(kind, &ids[..per], line)?;
+        b.add_volume_element_numbered(kind, &ids[..per], line, number)?;
     }
     if let Some((line, text)) = lines.next() {
         return Err(Error::parse(

@@ -576,7 +576,7 @@ impl Reader<'_> {
                     }
                     let mut solid = [0u32; MAX_VOLUME_NODES];
                     check(conn, &mut solid[..k])?;
-                    builder.add_volume_element(kind, &solid[..k], line)?;
+                    builder.add_volume_element_numbered(kind, &solid[..k], line, i as u64)?;
                     continue;
                 }
                 VtkType::Pixel => {
@@ -645,7 +645,7 @@ impl Reader<'_> {
                     });
                 }
             };
-            builder.add_element(kind, &ids[..kind.node_count()], line);
+            builder.add_element_numbered(kind, &ids[..kind.node_count()], line, i as u64);
         }
         builder.fixed = if let Some(f) = fixed {
             FixedSpec::Exact(f)

@@ -5,7 +5,7 @@ use std::sync::Arc;
 
 use glam::DVec2;
 
-use crate::error::{Error, Result};
+use crate::error::{Error, Numbering, Result};
 
 use super::*;
 
@@ -73,8 +73,39 @@ pub struct MeshBuilder {
     tets: Vec<u32>,
     tet_lines: Vec<u32>,
     volume_kinds: Vec<super::VolumeKind>,
+    /// How the file numbers its nodes, its triangles and quads, and its volume elements,
+    /// so that every message names them as the file does.
+    node_numbers: Numbering,
+    element_numbers: Numbering,
+    volume_numbers: Numbering,
     /// How fixed flags are decided.
     pub fixed: FixedSpec,
+}
+
+/// What a message about a file's mesh names its nodes and elements by: the file's lines
+/// and numbers (`Numbering`). Built meshes have none: then 0-based indices, no line.
+#[derive(Clone, Copy)]
+pub(crate) struct FileNames<'a> {
+    pub lines: &'a [u32],
+    pub nodes: &'a Numbering,
+    pub elements: &'a Numbering,
+}
+
+impl FileNames<'_> {
+    /// No lines, 0-based numbers.
+    pub const NONE: FileNames<'static> = FileNames { lines: &[], nodes: &Numbering::From(0), elements: &Numbering::From(0) };
+    /// The file line of element `e`, when known.
+    pub fn line(&self, e: usize) -> Option<usize> {
+        self.lines.get(e).copied().filter(|&l| l > 0).map(|l| l as usize)
+    }
+    /// The file's number of node `i`.
+    pub fn node(&self, i: usize) -> u64 {
+        self.nodes.of(i)
+    }
+    /// The file's number of element `e`.
+    pub fn element(&self, e: usize) -> u64 {
+        self.elements.of(e)
+    }
 }
 
 /// A planar mesh, or the parts of a surface in 3D
@@ -91,6 +122,8 @@ pub(crate) enum Flat {
 pub(crate) struct SurfaceParts {
     pub points: Vec<glam::DVec3>,
     pub mesh: Mesh,
+    /// How the file numbers the elements (for messages).
+    pub element_numbers: Numbering,
     /// Whether the file gave the fixed flags.
     pub flags_given: bool,
     /// Why the points were not read as a planar mesh (see `Surface::not_planar`).
@@ -112,6 +145,9 @@ pub(crate) struct VolumeParts {
     pub tet_lines: Vec<u32>,
     /// The kind of every volume element.
     pub kinds: Vec<super::VolumeKind>,
+    /// How the file numbers its nodes and its volume elements (for messages).
+    pub node_numbers: Numbering,
+    pub volume_numbers: Numbering,
     pub fixed: FixedSpec,
 }
 
@@ -142,6 +178,15 @@ impl MeshBuilder {
         self.elem_lines.reserve_exact(elements);
         self.elem_nodes.reserve_exact(element_nodes);
     }
+    /// How the file numbers its nodes (0-based in file order unless a reader says): every
+    /// message then names a node by its number in the file.
+    pub fn number_nodes(&mut self, numbering: Numbering) {
+        self.node_numbers = numbering;
+    }
+    /// The file's number of node `i` (0-based in file order).
+    pub(crate) fn node_number(&self, i: usize) -> u64 {
+        self.node_numbers.of(i)
+    }
     /// Adds a node given in 3D (`z = 0` for 2D formats); `line` is its file line (0 if none).
     pub fn add_node(&mut self, p: [f64; 3], line: usize) -> usize {
         self.points.push(p);
@@ -167,11 +212,23 @@ impl MeshBuilder {
     ///
     /// [`VolumeKind::mixes_with`]: super::VolumeKind::mixes_with
     pub fn add_volume_element(&mut self, kind: super::VolumeKind, nodes: &[u32], line: usize) -> Result<()> {
+        let number = self.volume_numbers.next(self.volume_kinds.len());
+        self.add_volume_element_numbered(kind, nodes, line, number)
+    }
+    /// [`add_volume_element`](Self::add_volume_element) for an element the file numbers
+    /// `number` (a Gmsh tag, a VTK cell index, a Medit number in its section).
+    pub fn add_volume_element_numbered(
+        &mut self,
+        kind: super::VolumeKind,
+        nodes: &[u32],
+        line: usize,
+        number: u64,
+    ) -> Result<()> {
         debug_assert_eq!(nodes.len(), kind.nodes());
         // against the first kind: all linear, or all the first's quadratic kind
         if let Some(&k) = self.volume_kinds.first().filter(|&&k| !super::VolumeKind::mixes_with(k, kind)) {
             return Err(Error::element(
-                self.tet_lines.len(),
+                number,
                 Some(line).filter(|&l| l > 0),
                 format!(
                     "the file mixes {}: smoothlab mixes linear kinds, but a quadratic mesh is of one kind",
@@ -179,6 +236,7 @@ impl MeshBuilder {
                 ),
             ));
         }
+        self.volume_numbers.push(self.volume_kinds.len(), number);
         self.volume_kinds.push(kind);
         self.tets.extend_from_slice(nodes);
         self.tet_lines.push(line as u32);
@@ -200,7 +258,11 @@ impl MeshBuilder {
         for e in 0..self.kinds.len() {
             let ids = &self.elem_nodes[self.elem_start[e] as usize..self.elem_start[e + 1] as usize];
             if let Some(&i) = ids.iter().find(|&&i| i as usize >= n) {
-                return Err(Error::element(e, self.line_of_elem(e), format!("node {} does not exist (the file has {n} nodes)", i + 1)));
+                return Err(Error::element(
+                    self.element_numbers.of(e),
+                    self.line_of_elem(e),
+                    format!("node {} does not exist (the file has {n} nodes)", self.node_number(i as usize)),
+                ));
             }
         }
         let mut marks = vec![false; n];
@@ -227,13 +289,22 @@ impl MeshBuilder {
             kinds: self.volume_kinds,
             tets: self.tets,
             tet_lines: self.tet_lines,
+            node_numbers: self.node_numbers,
+            volume_numbers: self.volume_numbers,
             fixed,
         })
     }
 
     /// Adds an element with 0-based node indices (checked in [`build`](Self::build)).
     pub fn add_element(&mut self, kind: ElementKind, nodes: &[u32], line: usize) {
+        let number = self.element_numbers.next(self.kinds.len());
+        self.add_element_numbered(kind, nodes, line, number)
+    }
+    /// [`add_element`](Self::add_element) for an element the file numbers `number` (a
+    /// Gmsh tag, a VTK cell index, a Medit number in its section).
+    pub fn add_element_numbered(&mut self, kind: ElementKind, nodes: &[u32], line: usize, number: u64) {
         debug_assert_eq!(nodes.len(), kind.node_count());
+        self.element_numbers.push(self.kinds.len(), number);
         self.kinds.push(kind);
         self.elem_nodes.extend_from_slice(nodes);
         self.elem_start.push(self.elem_nodes.len() as u32);
@@ -313,7 +384,8 @@ impl MeshBuilder {
                 mesh.reverse_element(e);
             }
         }
-        finish(mesh, &self.elem_lines, self.fixed)
+        let names = FileNames { lines: &self.elem_lines, nodes: &self.node_numbers, elements: &self.element_numbers };
+        finish(mesh, names, self.fixed)
     }
 
     /// Builds what the file's triangles and quads make: a planar [`Mesh`] when its points
@@ -324,6 +396,7 @@ impl MeshBuilder {
         self.check()?;
         let why = match self.to_plane() {
             Err(Error::NotPlanar { node, line, max_distance, relative, .. }) => {
+                // `node` is the file's number already
                 let at = line.map_or(String::new(), |l| format!(" (line {l})"));
                 format!(
                     "node {node}{at} lies {} off the plane of the mesh, {} times the size of its elements",
@@ -362,9 +435,10 @@ impl MeshBuilder {
             }),
         };
         let flags_given = !matches!(self.fixed, FixedSpec::Boundary);
-        let mesh = finish(mesh, &self.elem_lines, self.fixed)?;
-        super::topology::check_fans(&mesh, &self.elem_lines)?;
-        Ok(SurfaceParts { points, mesh, flags_given, not_planar: None })
+        let names = FileNames { lines: &self.elem_lines, nodes: &self.node_numbers, elements: &self.element_numbers };
+        let mesh = finish(mesh, names, self.fixed)?;
+        super::topology::check_fans(&mesh, names)?;
+        Ok(SurfaceParts { points, mesh, element_numbers: self.element_numbers, flags_given, not_planar: None })
     }
 
     /// The checks every mesh passes, planar or surface: at least one element, finite
@@ -379,10 +453,14 @@ impl MeshBuilder {
         }
         for (i, p) in self.points.iter().enumerate() {
             if !p.iter().all(|c| c.is_finite()) {
-                return Err(Error::node(i, self.line_of_node(i), format!("coordinate is not a finite number: {p:?}")));
+                return Err(Error::node(
+                    self.node_number(i),
+                    self.line_of_node(i),
+                    format!("coordinate is not a finite number: {p:?}"),
+                ));
             }
             if let Some(why) = p.iter().find_map(|&c| beyond_arithmetic(c)) {
-                return Err(Error::node(i, self.line_of_node(i), why));
+                return Err(Error::node(self.node_number(i), self.line_of_node(i), why));
             }
         }
         let n = self.points.len();
@@ -391,18 +469,18 @@ impl MeshBuilder {
             for &i in ids {
                 if i as usize >= n {
                     return Err(Error::element(
-                        e,
+                        self.element_numbers.of(e),
                         self.line_of_elem(e),
-                        format!("refers to node {} but the mesh has {} nodes", i as u64 + 1, n),
+                        format!("refers to node {} but the mesh has {} nodes", self.node_number(i as usize), n),
                     ));
                 }
             }
             for a in 0..ids.len() {
                 if ids[a + 1..].contains(&ids[a]) {
                     return Err(Error::element(
-                        e,
+                        self.element_numbers.of(e),
                         self.line_of_elem(e),
-                        format!("{} uses node {} twice", self.kinds[e].name(), ids[a] as u64 + 1),
+                        format!("{} uses node {} twice", self.kinds[e].name(), self.node_number(ids[a] as usize)),
                     ));
                 }
             }
@@ -527,7 +605,7 @@ impl MeshBuilder {
         }
         if let Some((node, distance, own)) = worst {
             return Err(Error::NotPlanar {
-                node,
+                node: self.node_number(node),
                 line: self.line_of_node(node),
                 max_distance: distance * scale,
                 relative: if own > 0.0 { distance / own } else { f64::INFINITY },
@@ -539,7 +617,7 @@ impl MeshBuilder {
             let q = *q * scale;
             if !q.is_finite() {
                 return Err(Error::node(
-                    i,
+                    self.node_number(i),
                     self.line_of_node(i),
                     format!(
                         "its coordinates in the plane of the mesh are too large for a 64-bit float: {:?}",
@@ -554,11 +632,11 @@ impl MeshBuilder {
 }
 
 /// The last step of building any mesh: the topology from the elements (with the lines
-/// of the file for its errors) and the fixed flags as `fixed` says; nodes no element
+/// and numbers of the file for its errors) and the fixed flags as `fixed` says; nodes no element
 /// uses never move.
-pub(super) fn finish(mut mesh: Mesh, elem_lines: &[u32], fixed: FixedSpec) -> Result<Mesh> {
+pub(super) fn finish(mut mesh: Mesh, names: FileNames<'_>, fixed: FixedSpec) -> Result<Mesh> {
     let n = mesh.nodes.len();
-    let topo = build_topology(&mesh, elem_lines)?;
+    let topo = build_topology(&mesh, names)?;
     mesh.connectivity_mut().topo = topo;
     let boundary = mesh.conn.topo.boundary.clone();
     mesh.fixed = match fixed {

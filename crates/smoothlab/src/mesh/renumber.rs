@@ -58,7 +58,7 @@ impl Mesh {
         };
         // The same elements under other numbers: every check that passed for `self`
         // passes here, so building the topology cannot fail.
-        let topo = build_topology(&mesh, &[]).expect("renumbering keeps a valid topology");
+        let topo = build_topology(&mesh, super::builder::FileNames::NONE).expect("renumbering keeps a valid topology");
         mesh.connectivity_mut().topo = topo;
         (mesh, perm)
     }

@@ -1,10 +1,13 @@
 //! The flat (CSR-style) topology, built once: node → elements, node → neighbours, edges.
 
-use crate::error::{Error, Result};
+use crate::error::{listed, Error, Result};
 
+use super::builder::FileNames;
 use super::*;
 
-pub(super) fn build_topology(mesh: &Mesh, elem_lines: &[u32]) -> Result<Topology> {
+/// The topology of the mesh's elements; an edge of more than two elements, or two that
+/// disagree on its mid-side node, is refused naming them as the file does (`names`).
+pub(super) fn build_topology(mesh: &Mesh, names: FileNames<'_>) -> Result<Topology> {
     let n = mesh.nodes.len();
     let ne = mesh.conn.kinds.len();
     // node -> elements (counting sort)
@@ -88,7 +91,9 @@ pub(super) fn build_topology(mesh: &Mesh, elem_lines: &[u32]) -> Result<Topology
         let e = (r >> 2) as usize;
         mesh.conn.kinds[e].mid((r & 3) as usize).map(|m| mesh.element(e)[m]).unwrap_or(NONE)
     };
-    let line = |e: u32| elem_lines.get(e as usize).copied().filter(|&l| l > 0).map(|l| l as usize);
+    let line = |e: u32| names.line(e as usize);
+    let number = |e: u32| names.element(e as usize);
+    let node = |i: u32| names.node(i as usize);
     let mut edges = Vec::with_capacity(edge_count);
     for a in 0..n {
         let recs = &uses[use_start[a] as usize..use_start[a + 1] as usize];
@@ -100,31 +105,30 @@ pub(super) fn build_topology(mesh: &Mesh, elem_lines: &[u32]) -> Result<Topology
             }
             let (a, b, e0, m0) = (a as u32, recs[i].0, recs[i].1 >> 2, mid_of(recs[i].1));
             if j - i > 2 {
-                let es: Vec<String> = recs[i..j].iter().map(|r| (r.1 >> 2).to_string()).collect();
                 let third = recs[i + 2].1 >> 2;
                 return Err(Error::element(
-                    third as usize,
+                    number(third),
                     line(third),
                     format!(
                         "edge between nodes {} and {} is shared by {} elements ({}); a 2D mesh edge belongs to one or two",
-                        a + 1,
-                        b + 1,
+                        node(a),
+                        node(b),
                         j - i,
-                        es.join(", ")
+                        listed(recs[i..j].iter().map(|r| number(r.1 >> 2)), j - i)
                     ),
                 ));
             }
             if j - i == 2 && mid_of(recs[i + 1].1) != m0 {
                 let (m1, other) = (mid_of(recs[i + 1].1), recs[i + 1].1 >> 2);
-                let desc = |m: u32| if m == NONE { "none".to_string() } else { (m + 1).to_string() };
+                let desc = |m: u32| if m == NONE { "none".to_string() } else { node(m).to_string() };
                 return Err(Error::element(
-                    other as usize,
+                    number(other),
                     line(other),
                     format!(
                         "shares the edge between nodes {} and {} with element {} but they disagree on its mid-side node ({} vs {})",
-                        a + 1,
-                        b + 1,
-                        e0,
+                        node(a),
+                        node(b),
+                        number(e0),
                         desc(m1),
                         desc(m0)
                     ),
@@ -200,19 +204,19 @@ pub(super) fn build_topology(mesh: &Mesh, elem_lines: &[u32]) -> Result<Topology
 /// boundary such a node is fixed, and harmless. Asked of surfaces: in a plane two fans
 /// round an inner node overlap, and checking every node of a large planar mesh costs a
 /// third of its loading (its elements' corners read in the nodes' order).
-pub(super) fn check_fans(mesh: &Mesh, elem_lines: &[u32]) -> Result<()> {
-    let line = |e: u32| elem_lines.get(e as usize).copied().filter(|&l| l > 0).map(|l| l as usize);
+pub(super) fn check_fans(mesh: &Mesh, names: FileNames<'_>) -> Result<()> {
     for v in 0..mesh.node_count() {
         if mesh.is_boundary(v) || mesh.role(v) != NodeRole::Corner {
             continue;
         }
         if let Some((e0, e1)) = second_fan(mesh, v as u32, mesh.node_elements(v)) {
             return Err(Error::element(
-                e1 as usize,
-                line(e1),
+                names.element(e1 as usize),
+                names.line(e1 as usize),
                 format!(
-                    "meets element {e0} only at node {}: the elements round the node form separate fans that share no edge (a non-manifold vertex); the elements round an inner node of a surface form one",
-                    v + 1
+                    "meets element {} only at node {}: the elements round the node form separate fans that share no edge (a non-manifold vertex); the elements round an inner node of a surface form one",
+                    names.element(e0 as usize),
+                    names.node(v)
                 ),
             ));
         }

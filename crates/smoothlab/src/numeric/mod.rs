@@ -12,6 +12,7 @@
 use glam::{DVec2, DVec3};
 
 pub mod elementary;
+pub mod exact;
 pub mod order;
 mod prng;
 pub(crate) mod trig;

@@ -32,11 +32,24 @@ pub fn signed_volume(p: &[DVec3; 4]) -> f64 {
 
 /// Whether the tetrahedron is inverted: `V ≤ 0` (zero volume included), or its volume is
 /// not a number. Measured in the tetrahedron's own scale ([`in_unit_scale`]), so a valid
-/// tetrahedron whose volume over- or underflows the doubles is not called inverted.
+/// tetrahedron whose volume over- or underflows the doubles is not called inverted; and
+/// where the rounded volume lies within its rounding of 0, by the exact sign of the
+/// doubles as given ([`orient3d`](crate::numeric::exact::orient3d), issue 61).
 #[inline]
 pub fn is_inverted(p: &[DVec3; 4]) -> bool {
-    let v = signed_volume(&in_unit_scale(p));
-    v.is_nan() || v <= 0.0
+    let q = in_unit_scale(p);
+    let v = signed_volume(&q);
+    if v.is_nan() {
+        return true;
+    }
+    // 6V is a sum of products of edges, the edges differences of coordinates: its
+    // rounding is some 10⁻¹⁴ r²(r + M); beyond 2⁻⁴⁰ r²(r + M) the rounded sign is exact
+    let r = crate::numeric::largest_component([q[1] - q[0], q[2] - q[0], q[3] - q[0]]);
+    let m = crate::numeric::largest_component(q);
+    if (6.0 * v).abs() > 2f64.powi(-40) * r * r * (r + m) {
+        return v <= 0.0;
+    }
+    crate::numeric::exact::orient3d(p[0], p[1], p[2], p[3]) != std::cmp::Ordering::Greater
 }
 
 /// What the acceptance rule reads of a tetrahedron besides its quality (the drivers'
@@ -72,18 +85,18 @@ impl TetRuleMeasures {
 /// lengths (angles, sines, the mean ratio, κ, the sign of the volume): as they are when
 /// the edges' largest component lies within `numeric::SAFE_SCALE` (2^±200, where
 /// every product those measures take is a normal double, so their bits are unchanged);
-/// beyond it, corner 0 moved to the origin and the edges multiplied by a power of two
-/// (exact) that brings that component to about 1 — the planar metrics' rule
-/// (`docs/formulas.md` §1), so a cube of tetrahedra has the same angles at 1e±150 as at 1.
+/// beyond it, the corners multiplied by a power of two (exact) that brings that component
+/// to about 1 — the planar metrics' rule (`docs/formulas.md` §1), so a cube of tetrahedra
+/// has the same angles at 1e±150 as at 1, to the bit. (Not moved to corner 0 first: the
+/// measures' differences of other corners would then round twice, otherwise than at unit
+/// scale; issue 61.)
 #[inline(always)]
 pub fn in_unit_scale(p: &[DVec3; 4]) -> [DVec3; 4] {
-    let e = [p[1] - p[0], p[2] - p[0], p[3] - p[0]];
-    let m = crate::numeric::largest_component(e);
+    let m = crate::numeric::largest_component([p[1] - p[0], p[2] - p[0], p[3] - p[0]]);
     let Some((f1, f2)) = crate::numeric::factors_beyond_safe_scale(m) else {
         return *p;
     };
-    let [a, b, c] = e.map(|x| x * f1 * f2);
-    [DVec3::ZERO, a, b, c]
+    p.map(|x| x * f1 * f2)
 }
 
 /// The corners with corner `i` first, by an even permutation (so the signed volume is
@@ -113,11 +126,14 @@ fn face_area_vector(p: &[DVec3; 4], k: usize) -> DVec3 {
 
 /// The six interior dihedral angles, radians, at the edges of [`TET_EDGES`]: at edge `ij`,
 /// `π` minus the angle between the outward normals of the faces opposite the other two
-/// corners. For an inverted tetrahedron both normals turn inward together, so the angles
-/// are those of its mirror image, in [0, π] (whether it is inverted is [`is_inverted`]'s
-/// to say). NaN where a face has no area.
+/// corners, signed as [`dihedral_sines`] are: `atan2(sin θ, cos θ)` with the signed sine,
+/// so in (0, π) for a valid tetrahedron and in (−π, 0) for an inverted one (whose
+/// normals turn inward together: unsigned, its angles would be its mirror image's, and
+/// an inverted regular tetrahedron would read the ideal 70.53°), as a planar element's
+/// corner angles are negative when it is inverted. NaN where a face has no area.
 pub fn dihedral_angles(p: &[DVec3; 4]) -> [f64; 6] {
-    dihedral_cosines(p).map(f64::acos)
+    let inverted = signed_volume(&in_unit_scale(p)) < 0.0;
+    dihedral_cosines(p).map(|c| if inverted { -c.acos() } else { c.acos() })
 }
 
 /// The first three of [`dihedral_cosines`], at the edges from corner 0, bit for bit: the
@@ -133,7 +149,7 @@ pub fn dihedral_cosines_at_corner0(p: &[DVec3; 4]) -> [f64; 3] {
 }
 
 /// The cosines of [`dihedral_angles`], clamped to [−1, 1]: its angles are their inverse
-/// cosines, bit for bit. NaN where a face has no area.
+/// cosines, bit for bit, negated for an inverted tetrahedron. NaN where a face has no area.
 pub fn dihedral_cosines(p: &[DVec3; 4]) -> [f64; 6] {
     let p = &in_unit_scale(p);
     let n = [0, 1, 2, 3].map(|k| face_area_vector(p, k));
@@ -700,8 +716,9 @@ mod tests {
         assert_eq!(condition_number(&flat), f64::INFINITY);
         assert_eq!(mean_ratio(&flat), 0.0);
         assert!(dihedral_sines(&flat).iter().all(|s| *s == 0.0));
-        // swapping two corners mirrors it: volume, sines and mean ratio change sign; the
-        // angles and κ are those of the mirror image
+        // swapping two corners mirrors it: volume, sines, mean ratio and angles change
+        // sign (the angles are the mirror image's, negated: issue 61); κ is the mirror
+        // image's
         let p = regular();
         let m = [p[1], p[0], p[2], p[3]];
         assert!(signed_volume(&m) < 0.0 && is_inverted(&m));
@@ -709,7 +726,7 @@ mod tests {
         assert!((mean_ratio(&m) + 1.0).abs() < 1e-14);
         assert!((condition_number(&m) - 3.0).abs() < 1e-13);
         for a in dihedral_angles(&m) {
-            assert!((a - (1.0f64 / 3.0).acos()).abs() < 1e-14);
+            assert!((a + (1.0f64 / 3.0).acos()).abs() < 1e-14, "{a}");
         }
         // NaN in, NaN out: no panic
         let nan = [DVec3::NAN, DVec3::X, DVec3::Y, DVec3::Z];

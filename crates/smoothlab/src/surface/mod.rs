@@ -80,8 +80,9 @@ impl Surface {
         mut flat: Mesh,
         analytic: Option<Analytic>,
         flags_given: bool,
+        numbers: &crate::error::Numbering,
     ) -> Result<Surface> {
-        orient(&mut flat, &points)?;
+        orient(&mut flat, &points, numbers)?;
         flat.mark_curved_boundary(|e| {
             let (a, b, m) = (points[e.a as usize], points[e.b as usize], points[e.mid as usize]);
             let chord = b - a;
@@ -166,8 +167,8 @@ impl Surface {
 
     /// The surface of the parts a builder made, with why its points were not planar.
     pub(crate) fn from_surface_parts(parts: SurfaceParts, analytic: Option<Analytic>) -> Result<Surface> {
-        let SurfaceParts { points, mesh, flags_given, not_planar } = parts;
-        let mut s = Self::from_parts(points, mesh, analytic, flags_given)?;
+        let SurfaceParts { points, mesh, element_numbers, flags_given, not_planar } = parts;
+        let mut s = Self::from_parts(points, mesh, analytic, flags_given, &element_numbers)?;
         s.not_planar = not_planar;
         Ok(s)
     }
@@ -323,8 +324,9 @@ fn across(mesh: &Mesh, e: usize, a: u32, b: u32) -> Option<(usize, bool)> {
     None
 }
 
-/// Orients the elements consistently (see [`Surface::from_parts`]).
-fn orient(mesh: &mut Mesh, points: &[DVec3]) -> Result<()> {
+/// Orients the elements consistently (see [`Surface::from_parts`]); a surface that cannot
+/// be is refused naming two elements as the file numbers them (`numbers`).
+fn orient(mesh: &mut Mesh, points: &[DVec3], numbers: &crate::error::Numbering) -> Result<()> {
     let ne = mesh.element_count();
     // per element: its part (connected by edges) and whether it is reversed
     let (mut part, mut flip) = (vec![u32::MAX; ne], vec![false; ne]);
@@ -356,9 +358,12 @@ fn orient(mesh: &mut Mesh, points: &[DVec3]) -> Result<()> {
                     queue.push(f);
                 } else if flip[f] != want {
                     return Err(Error::element(
-                        f,
+                        numbers.of(f),
                         None,
-                        format!("cannot be oriented with element {e}: the surface is not orientable (a Möbius band?)"),
+                        format!(
+                            "cannot be oriented with element {}: the surface is not orientable (a Möbius band?)",
+                            numbers.of(e)
+                        ),
                     ));
                 }
             }

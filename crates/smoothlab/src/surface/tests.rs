@@ -412,5 +412,5 @@ fn surfaces_meeting_at_a_vertex_alone_are_refused() {
     }
     let Err(err) = Model::build(b).map(|_| ()) else { panic!("two octahedra touching at a vertex were read") };
     let err = err.to_string();
-    assert!(err.contains("only at node 1") && err.contains("non-manifold vertex"), "{err}");
+    assert!(err.contains("only at node 0:") && err.contains("non-manifold vertex"), "{err}");
 }

@@ -14,7 +14,7 @@
 
 use glam::DVec3;
 
-use crate::error::{Error, Result};
+use crate::error::{listed, Error, Numbering, Result};
 pub use crate::mesh::{VolumeKind, TET10_EDGES};
 use crate::mesh::{FixedSpec, MeshBuilder, NodeRole};
 use crate::numeric::order::sort_stable_by_key;
@@ -146,6 +146,9 @@ pub struct VolumeMesh {
     boundary: Vec<Face>,
     /// The file's triangles and quads ([`GivenFace`]).
     faces: Vec<GivenFace>,
+    /// How the file numbered the nodes, for the notes about it
+    /// ([`stray_faces_note`](Self::stray_faces_note)).
+    node_numbers: Numbering,
 }
 
 /// Builds CSR arrays from (key, value) pairs over `n` keys.
@@ -162,24 +165,31 @@ fn csr(n: usize, pairs: &mut [(u32, u32)]) -> (Vec<u32>, Vec<u32>) {
 }
 
 /// An element's corner determinants' sum, in units of its own size, and whether it has
-/// no volume: a tetrahedron's 6V (its four corners in a plane); another kind's measured
-/// corners' determinants, all within rounding of 0.
+/// no volume: a tetrahedron's 6V exactly 0 (its four corners in a plane), another kind's
+/// measured corners' determinants all exactly 0 — decided on the doubles as given
+/// ([`orient3d`](crate::numeric::exact::orient3d)), not against a tolerance: a tangled
+/// element of small volume beside large ones is a smoother's input, not a flat one
+/// (issue 61: a tetrahedron of volume 0.017 next to a node at x = 1e4 was refused).
 fn signed_size(kind: VolumeKind, p: &[DVec3]) -> (f64, bool) {
+    use crate::numeric::exact::orient3d;
+    use std::cmp::Ordering;
     let r = kind.row();
     if kind.is_tet() {
         // in the tetrahedron's own scale: a cube of 1e150 has volumes beyond the doubles
+        let flat = orient3d(p[0], p[1], p[2], p[3]) == Ordering::Equal;
         let p = q3::in_unit_scale(&[p[0], p[1], p[2], p[3]]);
         let v = q3::signed_volume(&p);
         let size = q3::TET_EDGES.iter().map(|&[a, b]| p[a].distance(p[b])).sum::<f64>() / 6.0;
-        return (v / (size * size * size), v.abs() <= 1e-12 * size * size * size || v.is_nan());
+        return (v / (size * size * size), flat);
     }
     let (mut total, mut flat) = (0.0, true);
     for c in 0..r.corner_edges.len() {
-        let t = q3::in_unit_scale(&crate::quality::solid::corner_tet(kind, p, c));
+        let given = crate::quality::solid::corner_tet(kind, p, c);
+        flat &= orient3d(given[0], given[1], given[2], given[3]) == Ordering::Equal;
+        let t = q3::in_unit_scale(&given);
         let det = 6.0 * q3::signed_volume(&t);
         let size = (1..4).map(|j| t[j].distance(t[0])).sum::<f64>() / 3.0;
         let cube = size * size * size;
-        flat &= det.abs() <= 1e-12 * cube || det.is_nan();
         total += det / cube;
     }
     (total, flat)
@@ -197,7 +207,7 @@ impl VolumeMesh {
                 GivenFace::new(p.face_kinds[e], ids, p.face_lines.get(e).copied().unwrap_or(0))
             })
             .collect();
-        VolumeMesh::build(SolidParts {
+        let parts = SolidParts {
             faces,
             nodes: p.points.iter().map(|&x| DVec3::from(x)).collect(),
             node_lines: p.point_lines,
@@ -205,7 +215,8 @@ impl VolumeMesh {
             elements: p.tets,
             element_lines: p.tet_lines,
             fixed: p.fixed,
-        })
+        };
+        VolumeMesh::build_numbered(parts, &p.node_numbers, &p.volume_numbers)
     }
 
     /// Checks what a reader found and builds the mesh. Errors name the node or element
@@ -216,8 +227,19 @@ impl VolumeMesh {
     /// (negative total volume) is turned over, every element with it; single inverted
     /// elements stay (a tangled mesh is the smoothers' input).
     pub fn build(parts: SolidParts) -> Result<VolumeMesh> {
+        Self::build_numbered(parts, &Numbering::default(), &Numbering::default())
+    }
+
+    /// [`build`](Self::build), its messages naming nodes and elements as the file numbers
+    /// them (`node_numbers`, `element_numbers`).
+    pub(crate) fn build_numbered(
+        parts: SolidParts,
+        node_numbers: &Numbering,
+        element_numbers: &Numbering,
+    ) -> Result<VolumeMesh> {
         let SolidParts { nodes, node_lines, kinds, mut elements, element_lines, fixed, faces: given_faces } = parts;
         let line = |lines: &[u32], i: usize| lines.get(i).copied().filter(|&l| l > 0).map(|l| l as usize);
+        let (node, number) = (|i: u32| node_numbers.of(i as usize), |e: usize| element_numbers.of(e));
         if kinds.is_empty() {
             return Err(Error::Empty("the mesh has no volume elements".into()));
         }
@@ -236,11 +258,15 @@ impl VolumeMesh {
         let family = |e: usize| kinds[e].row().name;
         for (i, p) in nodes.iter().enumerate() {
             if !p.is_finite() {
-                return Err(Error::node(i, line(&node_lines, i), format!("coordinate {p} is not a finite number")));
+                return Err(Error::node(
+                    node(i as u32),
+                    line(&node_lines, i),
+                    format!("coordinate {p} is not a finite number"),
+                ));
             }
             if p.abs().max_element() > crate::mesh::MAX_COORDINATE {
                 return Err(Error::node(
-                    i,
+                    node(i as u32),
                     line(&node_lines, i),
                     format!("coordinate {p} is too large to compute with"),
                 ));
@@ -255,16 +281,21 @@ impl VolumeMesh {
             for (j, &id) in ids.iter().enumerate() {
                 if id as usize >= n {
                     return Err(Error::element(
-                        e,
+                        number(e),
                         line(&element_lines, e),
-                        format!("node {id} does not exist: the mesh has {n} nodes (0 to {})", n.saturating_sub(1)),
+                        format!(
+                            "node {} does not exist: the mesh has {n} nodes ({} to {})",
+                            node(id),
+                            node(0),
+                            node(n.saturating_sub(1) as u32)
+                        ),
                     ));
                 }
                 if ids[..j].contains(&id) {
                     return Err(Error::element(
-                        e,
+                        number(e),
                         line(&element_lines, e),
-                        format!("node {id} appears twice in the {}", family(e)),
+                        format!("node {} appears twice in the {}", node(id), family(e)),
                     ));
                 }
             }
@@ -277,9 +308,9 @@ impl VolumeMesh {
                     (NodeRole::Unused, r) => role[id as usize] = r,
                     (a, b) if a != b => {
                         return Err(Error::element(
-                            e,
+                            number(e),
                             line(&element_lines, e),
-                            format!("node {id} is a corner of one element and a mid-edge node of another"),
+                            format!("node {} is a corner of one element and a mid-edge node of another", node(id)),
                         ))
                     }
                     _ => {}
@@ -302,7 +333,7 @@ impl VolumeMesh {
                 } else {
                     format!("the {} has no volume: every corner's three edges lie in a plane", family(e))
                 };
-                return Err(Error::element(e, line(&element_lines, e), what));
+                return Err(Error::element(number(e), line(&element_lines, e), what));
             }
             total += v;
         }
@@ -335,11 +366,15 @@ impl VolumeMesh {
             }
             if j - i > 2 {
                 let e = faces[i + 2].1 as usize;
-                let nodes: Vec<u32> = faces[i].0.iter().copied().filter(|&x| x != u32::MAX).collect();
+                let nodes: Vec<u64> = faces[i].0.iter().copied().filter(|&x| x != u32::MAX).map(node).collect();
                 return Err(Error::element(
-                    e,
+                    number(e),
                     line(&element_lines, e),
-                    format!("its face {nodes:?} is a face of {} elements (at most two share a face)", j - i),
+                    format!(
+                        "its face {nodes:?} is a face of {} elements ({}; at most two share a face)",
+                        j - i,
+                        listed(faces[i..j].iter().map(|f| number(f.1 as usize)), j - i)
+                    ),
                 ));
             }
             if j - i == 1 {
@@ -500,6 +535,7 @@ impl VolumeMesh {
             parents,
             boundary,
             faces: given_faces,
+            node_numbers: node_numbers.clone(),
         })
     }
 
@@ -537,7 +573,7 @@ impl VolumeMesh {
             .collect();
         let (first, inner) = stray.first()?;
         let at = if first.line > 0 { format!(" (line {})", first.line) } else { String::new() };
-        let nodes: Vec<String> = inner.iter().map(|i| (i + 1).to_string()).collect();
+        let nodes: Vec<String> = inner.iter().map(|&i| self.node_numbers.of(i as usize).to_string()).collect();
         Some(format!(
             "{} of the file's triangles and quads {} not on the boundary of the {} and {} nodes inside the volume, as the file asks: the first{at} fixes node {}",
             stray.len(),

@@ -258,8 +258,14 @@ impl DriverStar for CornerStar {
         self.tets.iter().filter(|t| t.simplex && t.inverted_at(x)).count()
             + self.elements.iter().filter(|e| e.validity_at(x) != Validity::Valid).count()
     }
+    /// In the star's own frame where it is far from unit size (its points multiplied by
+    /// the power of two its solves take, [`crate::numeric::unit_factor`]): the sum is
+    /// compared only within the star, and its determinants of coordinates near 2^±520
+    /// left the doubles (issue 61).
     fn inversion(&self, x: DVec3) -> f64 {
-        let tets: f64 = self.tets.iter().filter(|t| t.simplex).map(|t| (-6.0 * q3::signed_volume(&t.at(x))).max(0.0)).sum();
+        let f = crate::numeric::unit_factor(crate::objective::NodeStar::size(self)).unwrap_or(1.0);
+        let at = |p: [DVec3; 4]| if f == 1.0 { p } else { p.map(|q| q * f) };
+        let tets: f64 = self.tets.iter().filter(|t| t.simplex).map(|t| (-6.0 * q3::signed_volume(&at(t.at(x)))).max(0.0)).sum();
         if self.elements.is_empty() {
             return tets;
         }
@@ -267,7 +273,10 @@ impl DriverStar for CornerStar {
             .elements
             .iter()
             .map(|e| {
-                let p = e.at(x);
+                let mut p = e.at(x);
+                if f != 1.0 {
+                    p.iter_mut().for_each(|q| *q *= f);
+                }
                 let p = e.corners(&p);
                 solid::solid_inversion(e.kind, p, solid::validity(e.kind, p))
             })
@@ -457,9 +466,36 @@ impl VolumeSmoother {
     pub fn options(&self) -> &SmoothOptions {
         self.smoother.options()
     }
-    /// The node loop of a pass (the planned order, then the untangling sweeps).
+    /// The node loop of a pass (the planned order, then the untangling sweeps). With the
+    /// acceptance rule on (every strategy but the plain Laplacian, the guard on), a pass
+    /// never ends with more inverted elements than it began with: each move keeps its
+    /// star no worse, but an inverted star may fold a valid element where its inversion
+    /// falls, and later moves need not mend it (issue 61: bust went from 1 inverted to 2
+    /// at pass 4). Then the elements inverted by the pass go back to where the pass found
+    /// their nodes, until the count is no larger (at worst, the whole pass is undone).
     pub fn sweep(&mut self, mesh: &mut VolumeMesh, objective: &dyn Objective<CornerStar>) -> SweepCounts {
-        self.smoother.sweep_in(&mut Solid(mesh), objective)
+        let o = self.smoother.options();
+        if !(o.keep_valid && o.strategy != crate::smooth::Strategy::Laplace) {
+            return self.smoother.sweep_in(&mut Solid(mesh), objective);
+        }
+        let (start, was) = (mesh.nodes().to_vec(), inverted_elements(mesh));
+        let counts = self.smoother.sweep_in(&mut Solid(mesh), objective);
+        let before = was.iter().filter(|&&i| i).count();
+        for round in 0..4 {
+            let now = inverted_elements(mesh);
+            if now.iter().filter(|&&i| i).count() <= before {
+                return counts;
+            }
+            for e in (0..mesh.element_count()).filter(|&e| now[e] && (!was[e] || round == 3)) {
+                for &i in mesh.element(e).to_vec().iter() {
+                    mesh.nodes_mut()[i as usize] = start[i as usize];
+                }
+            }
+        }
+        if inverted_elements(mesh).iter().filter(|&&i| i).count() > before {
+            mesh.nodes_mut().copy_from_slice(&start);
+        }
+        counts
     }
     /// One pass with its record: counts and time, and the mesh's statistics after it
     /// ([`super::volume_stats`]: the angles are dihedral angles, the quality the mean
@@ -479,6 +515,11 @@ impl VolumeSmoother {
         let objective_total = Some(self.smoother.objective_total_in(&mut Solid(mesh), objective));
         PassRecord { pass, counts, after, objective_total, elapsed_ms, stats_ms: clock() - t1 }
     }
+}
+
+/// Which elements of `mesh` are inverted, as its statistics count them.
+fn inverted_elements(mesh: &VolumeMesh) -> Vec<bool> {
+    (0..mesh.element_count()).map(|e| if mesh.is_quadratic() { mesh.measures(e).inverted } else { mesh.is_inverted(e) }).collect()
 }
 
 /// Runs `passes` passes of a new [`VolumeSmoother`] over `mesh`, returning their records.

@@ -13,7 +13,9 @@ fn dir(sub: &str) -> PathBuf {
     crate::common::repo().join("tests/data").join(sub)
 }
 
-/// File (a Triangle pair by its stem) → the pieces its message must contain.
+/// File (a Triangle pair by its stem) → the pieces its message must contain. Nodes and
+/// elements are named as the file numbers them: VTK and OFF from 0, OBJ and Medit from 1,
+/// Gmsh by tag, Triangle by the numbers it writes.
 const EXPECTED: &[(&str, &[&str])] = &[
     // Gmsh
     ("truncated_nodes.msh", &["line 7", "ends here", "node 3 of the 3"]),
@@ -21,13 +23,13 @@ const EXPECTED: &[(&str, &[&str])] = &[
     ("quadratic_prism.msh", &["quadratic prisms (wedges) are not supported yet: line 24: Gmsh element type 18 (15-node prism); smoothlab reads"]),
     ("missing_elements.msh", &["line 9", "without an $Elements section"]),
     ("wrong_count.msh", &["line 8", "expected '$EndNodes'", "opened at line 4"]),
-    ("undefined_node_tag.msh", &["element 0 (line 12)", "node tag 99 is not defined", "tags 1 to 3"]),
+    ("undefined_node_tag.msh", &["element 1 (line 12)", "node tag 99 is not defined", "tags 1 to 3"]),
     ("duplicate_node_tag.msh", &["line 8", "node tag 2 is defined twice (first at line 7)"]),
     ("bad_number.msh", &["line 7", "y coordinate of node tag 2", "'0.0.0'"]),
     ("binary.msh", &["line 2", "binary .msh files are not supported"]),
     ("version1.msh", &["line 1", "version 1"]),
     ("block_count_mismatch.msh", &["line 18", "element 2 of the block at line 16", "'$EndElements'"]),
-    ("repeated_node.msh", &["element 0 (line 12)", "node tag 2 appears twice"]),
+    ("repeated_node.msh", &["element 1 (line 12)", "node tag 2 appears twice"]),
     // issue 16: lines end at a lone CR too; a fixed set says nothing twice
     ("cr_only_bad_number.msh", &["line 7", "y coordinate of node tag 2", "'0.0.0'"]),
     ("fixed_node_twice.msh", &["line 24", "'fixed' view lists node tag 1 twice (first at line 22)"]),
@@ -56,15 +58,15 @@ const EXPECTED: &[(&str, &[&str])] = &[
     // OBJ
     ("nan_coordinate.obj", &["line 3", "vertex 2", "finite", "'nan'"]),
     ("polygon_face.obj", &["line 6", "5 vertices", "polygons are not supported"]),
-    ("index_out_of_range.obj", &["element 0 (line 4)", "vertex index 9 is out of range", "1 to 3"]),
+    ("index_out_of_range.obj", &["element 1 (line 4)", "vertex index 9 is out of range", "1 to 3"]),
     ("relative_index_before_first.obj", &["line 4", "-4", "-1 to -3"]),
     ("index_zero.obj", &["line 3", "vertex index 0 is invalid"]),
-    ("edge_in_three_faces.obj", &["element 2 (line 8)", "shared by 3 elements"]),
+    ("edge_in_three_faces.obj", &["element 3 (line 8)", "nodes 1 and 2 is shared by 3 elements (1, 2, 3)"]),
     ("no_elements.obj", &["empty mesh"]),
     ("not_utf8.obj", &["line 3", "not UTF-8", "byte 29 (0xe9)"]),
-    ("repeated_node.obj", &["element 0 (line 4)", "vertex 3 appears twice"]),
+    ("repeated_node.obj", &["element 1 (line 4)", "vertex 3 appears twice"]),
     ("cr_only_nan_coordinate.obj", &["line 3", "vertex 2", "'nan'"]),
-    ("non_planar_outlier.obj", &["not planar: node 8 (line 10) lies 1.000e6 off the plane", "7.071e5 times the size"]),
+    ("non_planar_outlier.obj", &["not planar: node 9 (line 10) lies 1.000e6 off the plane", "7.071e5 times the size"]),
     // OFF
     ("repeated_node.off", &["element 0 (line 6)", "vertex 1 appears twice"]),
     ("cr_only_index_out_of_range.off", &["element 0 (line 6)", "vertex index 3 is out of range"]),
@@ -83,10 +85,10 @@ const EXPECTED: &[(&str, &[&str])] = &[
     ("truncated_vertices.mesh", &["line 6", "ends here", "x coordinate of vertex 3"]),
     ("wrong_count.mesh", &["line 13", "the reference of triangle 2", "'Quadrilaterals'"]),
     // Triangle pairs
-    ("triangle_out_of_range", &["element 1 (line 3)", "node 5 is out of range", "1 to 4", ".ele"]),
+    ("triangle_out_of_range", &["element 2 (line 3)", "node 5 is out of range", "1 to 4", ".ele"]),
     ("triangle_not_consecutive", &["line 4", "consecutive: expected 3, found 4", ".node file"]),
     ("triangle_quads", &["line 1", "4 nodes are not supported", ".ele file"]),
-    ("triangle_repeated_node", &["element 0 (line 2)", "node 3 appears twice", ".ele"]),
+    ("triangle_repeated_node", &["element 1 (line 2)", "node 3 appears twice", ".ele"]),
 ];
 
 /// Errors that are about the whole mesh rather than a place in the file.
@@ -213,4 +215,94 @@ proptest! {
         }
         let _ = io::read_str(&out, *format);
     }
+}
+
+/// Issue 61, finding 5: one triangle listed 200,000 times once gave a message of 1.49 MB,
+/// every element sharing the edge listed. A message lists the first few and a count.
+#[test]
+fn a_message_lists_the_first_few_and_a_count_whatever_the_file() {
+    let n = 200_000;
+    let mut vtk = String::from("# vtk DataFile Version 3.0\nt\nASCII\nDATASET UNSTRUCTURED_GRID\nPOINTS 3 double\n");
+    vtk += "0 0 0\n1 0 0\n0 1 0\n";
+    vtk += &format!("CELLS {n} {}\n", 4 * n);
+    vtk += &"3 0 1 2\n".repeat(n);
+    vtk += &format!("CELL_TYPES {n}\n");
+    vtk += &"5\n".repeat(n);
+    let msg = io::read_model_str(&vtk, Format::Vtk).unwrap_err().to_string();
+    assert!(msg.len() < 300, "{} bytes: {}", msg.len(), &msg[..msg.len().min(600)]);
+    assert!(msg.contains(&format!("shared by {n} elements (0, 1, 2, 3, 4 and {} more)", n - 5)), "{msg}");
+    // the same in volumes: a tetrahedron listed 1,000 times
+    let k = 1000;
+    let mut vtk = String::from("# vtk DataFile Version 3.0\nt\nASCII\nDATASET UNSTRUCTURED_GRID\nPOINTS 4 double\n");
+    vtk += "0 0 0\n1 0 0\n0 1 0\n0 0 1\n";
+    vtk += &format!("CELLS {k} {}\n", 5 * k);
+    vtk += &"4 0 1 2 3\n".repeat(k);
+    vtk += &format!("CELL_TYPES {k}\n");
+    vtk += &"10\n".repeat(k);
+    let msg = io::read_model_str(&vtk, Format::Vtk).unwrap_err().to_string();
+    assert!(msg.len() < 300, "{} bytes: {msg}", msg.len());
+    assert!(msg.contains(&format!("is a face of {k} elements (0, 1, 2, 3, 4 and {} more", k - 5)), "{msg}");
+}
+
+/// Issue 61, finding 6: an edge shared by three triangles was reported as "nodes 4 and 5"
+/// for a VTK file whose indices are 3 and 4 and a Gmsh file whose tags are 40 and 50.
+/// Every message names nodes and elements as the file numbers them.
+#[test]
+fn messages_name_nodes_and_elements_as_the_file_numbers_them() {
+    let points = ["0.5 1 0", "0.5 -1 0", "0.5 2 0", "0 0 0", "1 0 0", "3 3 0"];
+    let tris = [[3, 4, 0], [3, 4, 1], [4, 3, 2]];
+    let mut vtk = String::from("# vtk DataFile Version 3.0\nt\nASCII\nDATASET UNSTRUCTURED_GRID\nPOINTS 6 double\n");
+    for p in points {
+        vtk += &format!("{p}\n");
+    }
+    vtk += "CELLS 3 12\n";
+    for t in tris {
+        vtk += &format!("3 {} {} {}\n", t[0], t[1], t[2]);
+    }
+    vtk += "CELL_TYPES 3\n5\n5\n5\n";
+    let msg = io::read_model_str(&vtk, Format::Vtk).unwrap_err().to_string();
+    assert!(msg.starts_with("element 2 (line 15): edge between nodes 3 and 4 is shared by 3 elements (0, 1, 2)"), "{msg}");
+
+    let tag = |i: usize| 10 * (i + 1);
+    let mut msh = String::from("$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n6\n");
+    for (i, p) in points.iter().enumerate() {
+        msh += &format!("{} {p}\n", tag(i));
+    }
+    msh += "$EndNodes\n$Elements\n3\n";
+    for (e, t) in tris.iter().enumerate() {
+        msh += &format!("{} 2 0 {} {} {}\n", 7 + e, tag(t[0]), tag(t[1]), tag(t[2]));
+    }
+    msh += "$EndElements\n";
+    let msg = io::read_model_str(&msh, Format::Msh).unwrap_err().to_string();
+    assert!(msg.starts_with("element 9 (line 17): edge between nodes 40 and 50 is shared by 3 elements (7, 8, 9)"), "{msg}");
+
+    let mut medit = String::from("MeshVersionFormatted 2\nDimension 3\nVertices\n6\n");
+    for p in points {
+        medit += &format!("{p} 0\n");
+    }
+    medit += "Triangles\n3\n";
+    for t in tris {
+        medit += &format!("{} {} {} 0\n", t[0] + 1, t[1] + 1, t[2] + 1);
+    }
+    medit += "End\n";
+    let msg = io::read_model_str(&medit, Format::Medit).unwrap_err().to_string();
+    assert!(msg.starts_with("element 3 (line 15): edge between nodes 4 and 5 is shared by 3 elements (1, 2, 3)"), "{msg}");
+
+    // volumes too: node and element tags of a Gmsh file, a face of three tetrahedra
+    let mut msh = String::from("$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n6\n");
+    for (i, p) in ["0 0 0", "1 0 0", "0 1 0", "0 0 1", "0 0 -1", "1 1 1"].iter().enumerate() {
+        msh += &format!("{} {p}\n", tag(i));
+    }
+    msh += "$EndNodes\n$Elements\n3\n";
+    for (e, t) in [[0, 1, 2, 3], [0, 2, 1, 4], [0, 1, 2, 5]].iter().enumerate() {
+        msh += &format!("{} 4 0 {} {} {} {}\n", 101 + e, tag(t[0]), tag(t[1]), tag(t[2]), tag(t[3]));
+    }
+    msh += "$EndElements\n";
+    let msg = io::read_model_str(&msh, Format::Msh).unwrap_err().to_string();
+    assert!(msg.contains("its face [10, 20, 30] is a face of 3 elements (101, 102, 103"), "{msg}");
+    assert!(msg.starts_with("element 103 (line 17)"), "{msg}");
+    // a node whose coordinate cannot be computed with, by its tag
+    let huge = msh.replacen("60 1 1 1", "60 1e308 1 1", 1);
+    let msg = io::read_model_str(&huge, Format::Msh).unwrap_err().to_string();
+    assert!(msg.starts_with("node 60 (line 11)"), "{msg}");
 }

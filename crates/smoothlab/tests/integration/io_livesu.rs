@@ -69,3 +69,23 @@ fn five_published_scaled_jacobians_lie_beyond_what_a_fixed_boundary_allows() {
         assert_eq!(got < published, name != "dancingchildren_in.mesh", "{name}");
     }
 }
+
+/// Issue 61, finding 9: with the defaults, bust went from 1 inverted to 2 at pass 4 (min
+/// scaled Jacobian −0.042 → −0.490 after 10 passes): an inverted star may fold a valid
+/// element where its inversion falls, and later moves need not mend it. No pass with the
+/// acceptance rule ends with more inverted elements than it began with.
+#[test]
+fn no_default_pass_on_bust_ends_with_more_inverted_elements() {
+    let Some(dir) = crate::common::livesu_meshes() else { return };
+    let Ok(mut model) = read_model_path(&dir.join("bust_in.mesh")) else { panic!("bust: not read") };
+    let mut last = model.stats().inverted;
+    assert_eq!(last, 30, "bust as loaded");
+    let report = model.smooth(&smoothlab::Smoothing::default().passes(10)).unwrap();
+    for r in report.passes() {
+        assert!(r.after.inverted <= last, "pass {}: {} inverted after {last}", r.pass, r.after.inverted);
+        last = r.after.inverted;
+    }
+    assert_eq!(report.inverted(), 1);
+    let sj = report.stats().solid.as_ref().unwrap().min_scaled_jacobian;
+    assert!(sj > -0.1, "min scaled Jacobian {sj}");
+}

@@ -213,3 +213,41 @@ fn curved_ten_node_tetrahedra_are_left_no_worse() {
     }
     assert!(tried >= 3, "only {tried} of the curved meshes were valid");
 }
+
+/// Issue 61, finding 7: a 2×2×2 cube of tetrahedra with its one free node dragged to
+/// x = 1e4 was refused as flat ("its four corners lie in a plane", a test relative to
+/// the size³ of the element) though its element 0 has volume 0.017 with its apex 0.41
+/// above its base. "No volume" is decided on the exact determinant: the file loads as the
+/// tangled mesh it is, and untangles.
+#[test]
+fn a_tangled_tetrahedron_of_small_relative_volume_loads_and_untangles() {
+    let mut m = tet_cube(2).unwrap();
+    let free: Vec<usize> = (0..m.node_count()).filter(|&n| m.is_free(n)).collect();
+    assert_eq!(free.len(), 1);
+    m.nodes_mut()[free[0]].x = 1e4;
+    let smallest = (0..m.element_count())
+        .map(|e| {
+            let t = m.element(e);
+            signed_volume(&[0, 1, 2, 3].map(|j| m.nodes()[t[j] as usize])).abs()
+        })
+        .fold(f64::INFINITY, f64::min);
+    assert!(smallest > 1e-3, "every tetrahedron has a volume: {smallest}");
+    for format in [Format::Vtk, Format::Msh, Format::Medit] {
+        let text = write_model_string(&Model::Volume(m.clone()), format, &WriteOptions::default()).unwrap();
+        let mut model = read_model_str(&text, format).unwrap_or_else(|e| panic!("{format:?}: {e}"));
+        let before = model.stats().inverted;
+        assert!(before > 0, "{format:?}: the mesh is tangled");
+        let report = model.smooth(&smoothlab::Smoothing::default()).unwrap();
+        assert_eq!(report.inverted(), 0, "{format:?}: {before} inverted, {} after", report.inverted());
+    }
+    // exactly flat is still refused: the free node in the plane of a face of its star
+    let mut flat = tet_cube(2).unwrap();
+    let t = flat.element(0).to_vec();
+    let corners: Vec<DVec3> = t.iter().map(|&i| flat.nodes()[i as usize]).collect();
+    let k = t.iter().position(|&i| i as usize == free[0]).expect("the free node is in element 0");
+    let others: Vec<DVec3> = (0..4).filter(|&j| j != k).map(|j| corners[j]).collect();
+    flat.nodes_mut()[free[0]] = (others[0] + others[1]) * 0.5;
+    let text = write_model_string(&Model::Volume(flat), Format::Vtk, &WriteOptions::default()).unwrap();
+    let e = read_model_str(&text, Format::Vtk).unwrap_err().to_string();
+    assert!(e.contains("has no volume"), "{e}");
+}

@@ -21,7 +21,7 @@
 //! (a planar mesh or surface, a volume with its file's faces), the elements' Gmsh types
 //! from their kinds.
 
-use crate::error::{Error, Result};
+use crate::error::{Error, Numbering, Result};
 use crate::io::lex::{prealloc, repeated, shown, Lexer};
 use crate::io::volume::{volume_codes, MAX_VOLUME_NODES};
 use crate::mesh::{ElementKind, FixedSpec, MeshBuilder, VolumeKind, NONE};
@@ -112,7 +112,7 @@ impl TagMap {
         };
         let dup = |first: u32, second: u32, tag: u64| {
             Error::node(
-                second as usize,
+                tag,
                 Some(lines[second as usize] as usize),
                 format!("node tag {tag} is defined twice (first at line {})", lines[first as usize]),
             )
@@ -153,6 +153,8 @@ struct RawElement {
     kind: ElementKind,
     line: u32,
     start: u32,
+    /// Its tag in the file.
+    tag: u64,
 }
 
 struct Reader {
@@ -174,9 +176,9 @@ struct Reader {
     /// Node tags of line and point elements, with their lines.
     marks: Vec<(u64, u32)>,
     /// Volume elements as read (node tags, their kind's count each, in Gmsh's order) with
-    /// their lines and kinds: resolved when the whole file has been read.
+    /// their lines, kinds and tags: resolved when the whole file has been read.
     solid_tags: Vec<u64>,
-    solid_lines: Vec<(u32, VolumeKind)>,
+    solid_lines: Vec<(u32, VolumeKind, u64)>,
     /// The `fixed` view: (node tag, fixed, line).
     fixed_view: Option<Vec<(u64, bool, u32)>>,
     /// Line of the `$NodeData` section of the `fixed` view.
@@ -408,18 +410,23 @@ impl Reader {
     }
 
     /// Reads one element's node tags (the kind's count, or the marker's).
-    fn element_nodes(&mut self, lex: &mut Lexer, ty: GmshType, line: usize, number: impl Fn() -> String) -> Result<()> {
+    fn element_nodes(
+        &mut self,
+        lex: &mut Lexer,
+        ty: GmshType,
+        (tag, line): (u64, usize),
+        number: impl Fn() -> String,
+    ) -> Result<()> {
         match ty {
             GmshType::Surface(kind) if self.map.is_some() => {
                 let mut tags = [0u64; 9];
                 for (j, tag) in tags[..kind.node_count()].iter_mut().enumerate() {
                     *tag = lex.u64(|| format!("node {} of {} ({})", j + 1, number(), kind.name()))?.0;
                 }
-                let e = self.surface_elements;
                 self.surface_elements += 1;
                 if self.element_error.is_none() {
-                    match self.resolve(e, &tags[..kind.node_count()], line) {
-                        Ok(ids) => self.builder.add_element(kind, &ids[..kind.node_count()], line),
+                    match self.resolve(tag, &tags[..kind.node_count()], line) {
+                        Ok(ids) => self.builder.add_element_numbered(kind, &ids[..kind.node_count()], line, tag),
                         Err(err) => self.element_error = Some(err),
                     }
                 }
@@ -430,14 +437,14 @@ impl Reader {
                     let (tag, _) = lex.u64(|| format!("node {} of {} ({})", j + 1, number(), kind.name()))?;
                     self.elem_tags.push(tag);
                 }
-                self.elements.push(RawElement { kind, line: line as u32, start });
+                self.elements.push(RawElement { kind, line: line as u32, start, tag });
             }
             GmshType::Solid(kind) => {
                 for j in 0..kind.nodes() {
                     let (tag, _) = lex.u64(|| format!("node {} of {} (a {})", j + 1, number(), kind.name()))?;
                     self.solid_tags.push(tag);
                 }
-                self.solid_lines.push((line as u32, kind));
+                self.solid_lines.push((line as u32, kind, tag));
             }
             GmshType::Marker(k) => {
                 for j in 0..k {
@@ -456,7 +463,7 @@ impl Reader {
         self.elements.reserve(prealloc(n));
         for i in 0..n {
             let number = || format!("element {} of the {n} announced at line {line}", i + 1);
-            let (_, el) = lex.u64(|| format!("the tag of {}", number()))?;
+            let (tag, el) = lex.u64(|| format!("the tag of {}", number()))?;
             let (t, tl) = lex.u64(|| format!("the type of {}", number()))?;
             let ty = gmsh_type(t);
             if let GmshType::Unsupported(..) = ty {
@@ -464,7 +471,7 @@ impl Reader {
             }
             let (ntags, _) = lex.u64(|| format!("the number of tags of {}", number()))?;
             lex.skip(ntags, || format!("the {ntags} tags of {}", number()))?;
-            self.element_nodes(lex, ty, el, number)?;
+            self.element_nodes(lex, ty, (tag, el), number)?;
         }
         Ok(())
     }
@@ -499,9 +506,9 @@ impl Reader {
             }
             for i in 0..count {
                 let number = || format!("element {} of the block at line {tl}", i + 1);
-                let (_, el) = lex.u64(|| format!("the tag of {}", number()))?;
+                let (tag, el) = lex.u64(|| format!("the tag of {}", number()))?;
                 let ty = gmsh_type(t);
-                self.element_nodes(lex, ty, el, number)?;
+                self.element_nodes(lex, ty, (tag, el), number)?;
             }
             seen += count as usize;
         }
@@ -574,17 +581,17 @@ impl Reader {
         }
     }
 
-    /// The node indices of surface element `e` (on file line `line`) from its node tags,
-    /// or the error naming the element: a tag given twice, or not defined.
-    fn resolve(&self, e: usize, tags: &[u64], line: usize) -> Result<[u32; 9]> {
+    /// The node indices of the surface element tagged `e` (on file line `line`) from its
+    /// node tags, or the error naming the element: a tag given twice, or not defined.
+    fn resolve(&self, e: u64, tags: &[u64], line: usize) -> Result<[u32; 9]> {
         let ids = self.resolve_nodes(e, tags, line, "element")?;
         Ok(std::array::from_fn(|j| ids[j]))
     }
 
     /// The node indices of `tags` (at most [`MAX_VOLUME_NODES`]), for a surface or volume
-    /// element `e` (`what`) on file line `line`, or the error naming it: a tag given twice,
-    /// or not defined.
-    fn resolve_nodes(&self, e: usize, tags: &[u64], line: usize, what: &str) -> Result<[u32; MAX_VOLUME_NODES]> {
+    /// element tagged `e` (`what`) on file line `line`, or the error naming it: a tag given
+    /// twice, or not defined.
+    fn resolve_nodes(&self, e: u64, tags: &[u64], line: usize, what: &str) -> Result<[u32; MAX_VOLUME_NODES]> {
         let map = self.map.as_ref().expect("resolve after the map is made");
         if let Some(t) = repeated(tags) {
             return Err(Error::element(e, Some(line), format!("node tag {t} appears twice in the {what}")));
@@ -605,24 +612,30 @@ impl Reader {
         if self.map.is_none() {
             self.map = Some(TagMap::new(&self.node_tags, self.builder.node_lines())?);
             let (elements, elem_tags) = (std::mem::take(&mut self.elements), std::mem::take(&mut self.elem_tags));
-            for (e, raw) in elements.iter().enumerate() {
+            for raw in &elements {
                 let k = raw.kind.node_count();
-                let ids = self.resolve(e, &elem_tags[raw.start as usize..raw.start as usize + k], raw.line as usize)?;
-                self.builder.add_element(raw.kind, &ids[..k], raw.line as usize);
+                let ids = self.resolve(raw.tag, &elem_tags[raw.start as usize..raw.start as usize + k], raw.line as usize)?;
+                self.builder.add_element_numbered(raw.kind, &ids[..k], raw.line as usize, raw.tag);
             }
         }
         let mut at = 0;
-        for (t, &(line, kind)) in self.solid_lines.iter().enumerate() {
+        for &(line, kind, tag) in &self.solid_lines {
             let k = kind.nodes();
-            let given = self.resolve_nodes(t, &self.solid_tags[at..at + k], line as usize, kind.name())?;
+            let given = self.resolve_nodes(tag, &self.solid_tags[at..at + k], line as usize, kind.name())?;
             // Gmsh's node order to ours (VTK's), by the kind's row
             let mut ids = [0u32; MAX_VOLUME_NODES];
             for (&g, &ours) in given.iter().zip(kind.row().gmsh_order) {
                 ids[ours] = g;
             }
             at += k;
-            self.builder.add_volume_element(kind, &ids[..k], line as usize)?;
+            self.builder.add_volume_element_numbered(kind, &ids[..k], line as usize, tag)?;
         }
+        // messages name the nodes by their tags
+        let mut numbers = Numbering::From(self.node_tags.first().copied().unwrap_or(1));
+        for (i, &tag) in self.node_tags.iter().enumerate() {
+            numbers.push(i, tag);
+        }
+        self.builder.number_nodes(numbers);
         let range = self.tag_range();
         let Reader { mut builder, node_tags, map, marks, fixed_view, .. } = self;
         let map = map.expect("made above");
@@ -703,7 +716,7 @@ mod tests {
         // syntax error has had its say
         let ea = build(format!("{head}{nodes}{}", elements(41))).unwrap_err().to_string();
         let eb = build(format!("{head}{}{nodes}", elements(41))).unwrap_err().to_string();
-        assert!(ea.contains("element 1") && ea.contains("tag 41") && ea.contains("tags 10 to 40"), "{ea}");
+        assert!(ea.starts_with("element 3 (line 15)") && ea.contains("tag 41") && ea.contains("tags 10 to 40"), "{ea}");
         assert_eq!(ea.replace("line 15", "line 8"), eb, "the lines differ by the node section's 7 lines");
         let late = build(format!("{head}{nodes}{}$Bad\n", elements(41))).unwrap_err().to_string();
         assert!(late.contains("line 17") && late.contains("EndBad"), "{late}");
@@ -786,7 +799,7 @@ mod tests {
         let text = lattice_msh(&[(12, &[0, 2, 8, 6, 18, 20, 26, 24, 1, 3, 9, 5, 11, 7, 17, 15, 19, 21, 23, 25, 4, 10, 12, 14, 16, 22, 13]), (5, &HEX27_VTK[..8])]);
         assert_eq!(
             parse(&text).unwrap_err().to_string(),
-            "element 1 (line 37): the file mixes 8-node and 27-node hexahedra: smoothlab mixes linear kinds, \
+            "element 2 (line 37): the file mixes 8-node and 27-node hexahedra: smoothlab mixes linear kinds, \
              but a quadratic mesh is of one kind"
         );
     }

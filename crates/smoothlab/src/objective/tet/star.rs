@@ -401,13 +401,29 @@ impl NodeStar for CornerStar {
     fn len(&self) -> usize {
         self.tets.len()
     }
-    /// The mean length of the edges from the free node to the other corners, at `x0`.
+    /// The mean length of the edges from the free node to the other corners, at `x0`;
+    /// where their squares leave the doubles (beyond 2^±400), each taken without them
+    /// (halved before summing), so a star at 2^±600 still has its size and is solved in
+    /// its own frame, as a planar star is (issue 61).
     fn size(&self) -> f64 {
         if self.tets.is_empty() {
             return 0.0;
         }
         let sum: f64 = self.tets.iter().map(|t| t.pts[1..].iter().map(|p| p.distance(self.x0)).sum::<f64>()).sum();
-        sum / (3 * self.tets.len()) as f64
+        let plain = sum / (3 * self.tets.len()) as f64;
+        if plain.is_finite() && (2f64.powi(-400)..=2f64.powi(400)).contains(&plain) {
+            return plain;
+        }
+        let robust = |v: DVec3| {
+            let m = v.abs().max_element();
+            if m == 0.0 || !m.is_finite() {
+                m
+            } else {
+                m * (v / m).length()
+            }
+        };
+        let half: f64 = self.tets.iter().map(|t| t.pts[1..].iter().map(|p| 0.5 * robust(*p - self.x0)).sum::<f64>()).sum();
+        half / (1.5 * self.tets.len() as f64)
     }
     fn scaled(&self, f: f64) -> Self {
         let mut s = self.clone();

@@ -1,9 +1,12 @@
 //! An element's Jacobian determinant `det J` in the Bernstein basis, and its sign decided.
 //! The coefficients bound the polynomial on a box; halving a box tightens the bound.
 
+use std::cmp::Ordering;
+
 use glam::DVec3;
 
 use super::{Validity, MAX_BOXES};
+use crate::numeric::exact::{det3_exact, Expansion};
 
 /// A polynomial of degree ≤ 2 in each of three parameters on a box, by its 3×3×3
 /// Bernstein coefficients (`deg[k]` 0 where it does not depend on parameter `k`).
@@ -90,44 +93,6 @@ impl Bezier {
             }
         }
         (lo, hi)
-    }
-
-    /// Decides the sign of the polynomial on the box: positive everywhere, ≤ 0 somewhere,
-    /// or not decided within [`MAX_BOXES`] boxes.
-    pub(super) fn validity(&self) -> Validity {
-        self.validity_with_least(self.min_coefficient_unsigned())
-    }
-    /// [`validity`](Self::validity) with its least coefficient `least` taken
-    /// ([`min_coefficient_unsigned`](Self::min_coefficient_unsigned)), for a caller that
-    /// reads it too.
-    pub(super) fn validity_with_least(&self, least: f64) -> Validity {
-        // the first box decides most elements: without the subdivision's stack
-        let corner = self.min_corner();
-        if corner <= 0.0 || corner.is_nan() {
-            return Validity::Inverted;
-        }
-        if least > 0.0 {
-            return Validity::Valid;
-        }
-        let axes: Vec<usize> = (0..3).filter(|&k| self.deg[k] == 2).collect();
-        let mut stack = vec![(*self, 0usize)];
-        let mut boxes = 0;
-        while let Some((b, depth)) = stack.pop() {
-            boxes += 1;
-            if b.min_corner() <= 0.0 || b.min_corner().is_nan() {
-                return Validity::Inverted;
-            }
-            if b.min_coefficient() > 0.0 {
-                continue;
-            }
-            if boxes >= MAX_BOXES || axes.is_empty() {
-                return Validity::Undecided;
-            }
-            let (lo, hi) = b.split(axes[depth % axes.len()]);
-            stack.push((hi, depth + 1));
-            stack.push((lo, depth + 1));
-        }
-        Validity::Valid
     }
 }
 
@@ -321,6 +286,204 @@ pub(super) fn pyramid_det(p: &[DVec3]) -> Bezier {
             t[0] = p[4] - base(a, b);
         }
     }
-    const PYRAMID: TripleProduct = TripleProduct::new([0, 1, 0], [1, 0, 0], [1, 1, 0]);
     PYRAMID.of(&bu, &bv, &to_apex)
+}
+
+/// [`pyramid_det`]'s plan: `B_u·(B_v × (apex − B))`.
+const PYRAMID: TripleProduct = TripleProduct::new([0, 1, 0], [1, 0, 0], [1, 1, 0]);
+
+/// How far from 0 a coefficient of the Bernstein form of a hexahedron's or pyramid's
+/// `det J` with corners `p` may lie by rounding: each is a sum of a few weighted triple
+/// products of edges, the edges differences of coordinates, so its rounding is some
+/// `10⁻¹⁴ r²(r + M)` (`r` the element's reach from its first corner, `M` its largest
+/// coordinate); `2⁻⁴⁰ r²(r + M)` is beyond it. Beyond it the coefficients' signs are the
+/// exact ones; within, [`exact_validity`] decides.
+pub(super) fn rounding_margin(p: &[DVec3]) -> f64 {
+    let r = super::reach(p);
+    let m = crate::numeric::largest_component(p.iter().copied());
+    2f64.powi(-40) * r * r * (r + m)
+}
+
+impl Bezier {
+    /// Decides the sign of the polynomial on the box from its rounded coefficients (least
+    /// `least`) where the signs it reads are beyond `margin`: a box's corner (a value) below
+    /// `−margin` is inverted for certain, a box whose least coefficient is above `margin`
+    /// valid for certain, else halved, up to [`MAX_BOXES`] boxes (then not decided); `None`
+    /// where a sign it needs lies within `margin` and the exact coefficients must decide
+    /// (`docs/formulas.md` §9: the doubles as written).
+    pub(super) fn validity_beyond(&self, least: f64, margin: f64) -> Option<Validity> {
+        if !(margin >= 0.0 && margin.is_finite()) {
+            return None;
+        }
+        let corner = self.min_corner();
+        if corner < -margin {
+            return Some(Validity::Inverted);
+        }
+        if corner.is_nan() || corner <= margin {
+            return None;
+        }
+        if least > margin {
+            return Some(Validity::Valid);
+        }
+        let axes: Vec<usize> = (0..3).filter(|&k| self.deg[k] == 2).collect();
+        let mut stack = vec![(*self, 0usize)];
+        let mut boxes = 0;
+        while let Some((b, depth)) = stack.pop() {
+            boxes += 1;
+            let corner = b.min_corner();
+            if corner < -margin {
+                return Some(Validity::Inverted);
+            }
+            if corner.is_nan() || corner <= margin {
+                return None;
+            }
+            if b.min_coefficient() > margin {
+                continue;
+            }
+            if boxes >= MAX_BOXES || axes.is_empty() {
+                return Some(Validity::Undecided);
+            }
+            let (lo, hi) = b.split(axes[depth % axes.len()]);
+            stack.push((hi, depth + 1));
+            stack.push((lo, depth + 1));
+        }
+        Some(Validity::Valid)
+    }
+}
+
+/// A vector of exact sums.
+type ExactVec = [Expansion; 3];
+
+/// `b − a`, exactly.
+fn exact_edge(b: DVec3, a: DVec3) -> ExactVec {
+    [Expansion::difference(b.x, a.x), Expansion::difference(b.y, a.y), Expansion::difference(b.z, a.z)]
+}
+
+/// A factor of a [`TripleProduct`] with exact coefficients.
+type ExactFactor = [[[ExactVec; 2]; 2]; 2];
+
+/// The Bernstein coefficients of `det J` exactly, for the boxes the rounded ones leave
+/// within rounding of 0 (flat index `9i + 3j + k`).
+#[derive(Clone, Debug)]
+struct ExactBezier {
+    c: Vec<Expansion>,
+    deg: [usize; 3],
+}
+
+impl TripleProduct {
+    /// [`of`](Self::of), exactly: every triple product as an expansion
+    /// ([`det3_exact`]), each weight a power of two.
+    fn of_exact(&self, f: &ExactFactor, g: &ExactFactor, h: &ExactFactor) -> ExactBezier {
+        let value = |v: &ExactFactor, t: &Terms, a: usize| {
+            let [i, j, k] = t.0[a].0;
+            v[i][j][k].clone()
+        };
+        let mut c = vec![Expansion::default(); 27];
+        for a in 0..self.f.1 {
+            for b in 0..self.g.1 {
+                for d in 0..self.h.1 {
+                    let n = self.f.0[a].1 + self.g.0[b].1 + self.h.0[d].1;
+                    let term = det3_exact(value(f, &self.f, a), value(g, &self.g, b), value(h, &self.h, d));
+                    c[n].add(&term.scaled(self.weight[n]));
+                }
+            }
+        }
+        ExactBezier { c, deg: self.deg }
+    }
+}
+
+impl ExactBezier {
+    fn at(&self, i: usize, j: usize, k: usize) -> &Expansion {
+        &self.c[9 * i + 3 * j + k]
+    }
+    fn corners_positive(&self) -> bool {
+        let d = self.deg;
+        [0, d[0]].iter().all(|&i| [0, d[1]].iter().all(|&j| [0, d[2]].iter().all(|&k| self.at(i, j, k).sign() == Ordering::Greater)))
+    }
+    fn all_positive(&self) -> bool {
+        indices(self.deg).all(|(i, j, k)| self.at(i, j, k).sign() == Ordering::Greater)
+    }
+    /// The two halves along `axis` (de Casteljau at ½, exact).
+    fn split(&self, axis: usize) -> (ExactBezier, ExactBezier) {
+        let (mut lo, mut hi) = (self.clone(), self.clone());
+        let flat = |t: usize, a: usize, b: usize| match axis {
+            0 => 9 * t + 3 * a + b,
+            1 => 9 * a + 3 * t + b,
+            _ => 9 * a + 3 * b + t,
+        };
+        let others: Vec<usize> = (0..3).filter(|&k| k != axis).map(|k| self.deg[k]).collect();
+        for a in 0..=others[0] {
+            for b in 0..=others[1] {
+                let (b0, b1, b2) = (&self.c[flat(0, a, b)], &self.c[flat(1, a, b)], &self.c[flat(2, a, b)]);
+                let (l1, r1) = (b0.midpoint(b1), b1.midpoint(b2));
+                let m = l1.midpoint(&r1);
+                lo.c[flat(1, a, b)] = l1;
+                lo.c[flat(2, a, b)] = m.clone();
+                hi.c[flat(0, a, b)] = m;
+                hi.c[flat(1, a, b)] = r1;
+            }
+        }
+        (lo, hi)
+    }
+    /// The sign of `det J` on the box decided on the exact coefficients: a corner ≤ 0
+    /// (a value of `det J`) is inverted, all positive valid, else the halves, up to
+    /// [`EXACT_BOXES`] boxes.
+    fn validity(&self) -> Validity {
+        let axes: Vec<usize> = (0..3).filter(|&k| self.deg[k] == 2).collect();
+        let mut stack = vec![(self.clone(), 0usize)];
+        let mut boxes = 0;
+        while let Some((b, depth)) = stack.pop() {
+            boxes += 1;
+            if !b.corners_positive() {
+                return Validity::Inverted;
+            }
+            if b.all_positive() {
+                continue;
+            }
+            if boxes >= EXACT_BOXES || axes.is_empty() {
+                return Validity::Undecided;
+            }
+            let (lo, hi) = b.split(axes[depth % axes.len()]);
+            stack.push((hi, depth + 1));
+            stack.push((lo, depth + 1));
+        }
+        Validity::Valid
+    }
+}
+
+/// How many boxes the exact test halves into at most (it is asked only at the margin).
+const EXACT_BOXES: usize = 256;
+
+/// The validity of a hexahedron or a pyramid with corners `p` decided on the exact
+/// Bernstein coefficients of its `det J` (the doubles as given): where the rounded ones
+/// lie within rounding of 0 ([`rounding_margin`]).
+pub(super) fn exact_validity(kind: crate::mesh::VolumeKind, p: &[DVec3]) -> Validity {
+    let empty = || [Expansion::default(), Expansion::default(), Expansion::default()];
+    let z = || -> ExactFactor { std::array::from_fn(|_| std::array::from_fn(|_| std::array::from_fn(|_| empty()))) };
+    let (mut f, mut g, mut h) = (z(), z(), z());
+    match kind.linear() {
+        crate::mesh::VolumeKind::Hex8 => {
+            let at = |i: usize, j: usize, k: usize| p[4 * k + HEX_CORNER[i][j]];
+            for a in 0..2 {
+                for b in 0..2 {
+                    f[0][a][b] = exact_edge(at(1, a, b), at(0, a, b));
+                    g[a][0][b] = exact_edge(at(a, 1, b), at(a, 0, b));
+                    h[a][b][0] = exact_edge(at(a, b, 1), at(a, b, 0));
+                }
+            }
+            HEX.of_exact(&f, &g, &h).validity()
+        }
+        crate::mesh::VolumeKind::Pyramid5 => {
+            let base = |i: usize, j: usize| p[HEX_CORNER[i][j]];
+            for a in 0..2 {
+                f[0][a][0] = exact_edge(base(1, a), base(0, a));
+                g[a][0][0] = exact_edge(base(a, 1), base(a, 0));
+                for (b, t) in h[a].iter_mut().enumerate() {
+                    t[0] = exact_edge(p[4], base(a, b));
+                }
+            }
+            PYRAMID.of_exact(&f, &g, &h).validity()
+        }
+        _ => Validity::Undecided,
+    }
 }

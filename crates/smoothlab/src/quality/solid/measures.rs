@@ -91,12 +91,21 @@ pub fn solid_measures(kind: VolumeKind, p: &[DVec3]) -> SolidMeasures {
     let sj_min = |ts: &mut dyn Iterator<Item = [DVec3; 4]>, r: &CornerReference| ts.map(|t| scaled_jacobian(&t, r)).fold(f64::INFINITY, f64::min);
     match kind {
         VolumeKind::Tet4 | VolumeKind::Tet10 => {
-            let m = match kind {
-                VolumeKind::Tet4 => q3::tet_measures(&[p[0], p[1], p[2], p[3]], r),
-                _ => q3::tet10_measures(&std::array::from_fn(|j| p[j]), r),
+            // a 10-node tetrahedron's every measure over the same four tetrahedra, its
+            // Jacobian's at the corners (mid-edge nodes included): one inverted by a
+            // mid-edge node has a scaled Jacobian ≤ 0 as its mean ratio is
+            let (m, sj) = match kind {
+                VolumeKind::Tet4 => {
+                    let corners = [p[0], p[1], p[2], p[3]];
+                    let sj = sj_min(&mut (0..4).map(|c| q3::with_first(&corners, c)), r);
+                    (q3::tet_measures(&corners, r), sj)
+                }
+                _ => {
+                    let p10: [DVec3; 10] = std::array::from_fn(|j| p[j]);
+                    let sj = sj_min(&mut q3::tet10_corner_tets(&p10).into_iter(), r);
+                    (q3::tet10_measures(&p10, r), sj)
+                }
             };
-            let corners = [p[0], p[1], p[2], p[3]];
-            let sj = sj_min(&mut (0..4).map(|c| q3::with_first(&corners, c)), r);
             let mut dihedral_deg = [0.0; 24];
             dihedral_deg[..6].copy_from_slice(&m.dihedral_deg);
             SolidMeasures {
@@ -207,6 +216,10 @@ pub fn solid_within(kind: VolumeKind, p: &[DVec3], bounds: &Reading) -> bool {
     match kind {
         VolumeKind::Tet4 => {
             let corners = [p[0], p[1], p[2], p[3]];
+            if q3::signed_volume(&q3::in_unit_scale(&corners)) < 0.0 {
+                // its angles read negative: the reading decides
+                return solid_reading(kind, p, with_quality).within(bounds);
+            }
             q3::dihedral_cosines(&corners).iter().all(|&c| bounds.angle_within(c, cos_lo, cos_hi))
                 && (0..4).all(|c| scaled_jacobian(&q3::with_first(&corners, c), r) >= bounds.min_scaled_jacobian)
                 && (!with_quality || q3::mean_ratio(&corners, r) >= bounds.min_quality)
@@ -218,6 +231,10 @@ pub fn solid_within(kind: VolumeKind, p: &[DVec3], bounds: &Reading) -> bool {
             let mut mean_ratio = 0.0;
             (0..count).all(|c| {
                 let t = corner_tet(kind, &q, c);
+                if q3::signed_volume(&q3::in_unit_scale(&t)) < 0.0 {
+                    // its angles read negative: the reading decides
+                    return solid_reading(kind, p, with_quality).within(bounds);
+                }
                 if with_quality {
                     mean_ratio += q3::mean_ratio(&t, r) / count as f64;
                 }

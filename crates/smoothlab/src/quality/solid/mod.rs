@@ -82,9 +82,11 @@ fn corner_det(t: &[DVec3; 4]) -> f64 {
 }
 
 /// The corners in their own scale, as [`q3::in_unit_scale`] does for a tetrahedron: as
-/// they are when the edges' largest component lies within the safe scale, else moved to
-/// the first corner and multiplied by a power of two (exact), so signs and ratios are the
-/// same at every scale.
+/// they are when the edges' largest component lies within the safe scale, else multiplied
+/// by a power of two (exact), so signs and ratios are the same at every scale, to the bit.
+/// Not moved to the first corner: a difference of differences rounds twice, which lost a
+/// whole element's corners next to a node at 1e61 (issue 61), and rounds otherwise than
+/// the unit-scale mesh's one difference.
 fn in_unit_scale(p: &[DVec3]) -> ([DVec3; 8], usize) {
     let mut q = [DVec3::ZERO; 8];
     let n = p.len().min(8);
@@ -92,7 +94,7 @@ fn in_unit_scale(p: &[DVec3]) -> ([DVec3; 8], usize) {
         None => q[..n].copy_from_slice(&p[..n]),
         Some((f1, f2)) => {
             for i in 0..n {
-                q[i] = (p[i] - p[0]) * f1 * f2;
+                q[i] = p[i] * f1 * f2;
             }
         }
     }
@@ -112,17 +114,26 @@ fn wedge_validity(p: &[DVec3]) -> Validity {
     let e1 = [p[1] - p[0], p[4] - p[3]];
     let e2 = [p[2] - p[0], p[5] - p[3]];
     let c = [e1[0].cross(e2[0]), 0.5 * (e1[0].cross(e2[1]) + e1[1].cross(e2[0])), e1[1].cross(e2[1])];
+    // signs read beyond their rounding, else the exact ones decide (issue 61)
+    let margin = bernstein::rounding_margin(p);
     let mut undecided = false;
     for i in 0..3 {
         let up = p[i + 3] - p[i];
         let [c0, c1, c2] = c.map(|ck| -ck.dot(up));
-        if c0 <= 0.0 || c2 <= 0.0 || c0.is_nan() || c1.is_nan() || c2.is_nan() {
+        if c0 < -margin || c2 < -margin || c0.is_nan() || c1.is_nan() || c2.is_nan() {
             return Validity::Inverted;
         }
-        if c1 <= 0.0 {
-            // the quadratic's minimum is inside: positive iff c1² < c0·c2
+        if c0 <= margin || c2 <= margin {
+            return wedge_validity_exact(p);
+        }
+        if c1 <= margin {
+            // the quadratic's minimum may be inside: positive iff c1² < c0·c2
             let (sq, prod) = (c1 * c1, c0 * c2);
-            if sq >= prod {
+            let big = c0.abs().max(c1.abs()).max(c2.abs());
+            if (sq - prod).abs() <= 4.0 * margin * big + 1e-14 * big * big {
+                return wedge_validity_exact(p);
+            }
+            if c1 <= 0.0 && sq >= prod {
                 return Validity::Inverted;
             }
             undecided |= !sq.is_finite() || !prod.is_finite();
@@ -134,6 +145,39 @@ fn wedge_validity(p: &[DVec3]) -> Validity {
         Validity::Valid
     }
 }
+
+/// [`wedge_validity`] on the exact values of the doubles as given: on each vertical edge
+/// `det J` is the quadratic of Bernstein coefficients `c₀ = −(a₀ × b₀)·u`,
+/// `c₁ = −½(a₀ × b₁ + a₁ × b₀)·u`, `c₂ = −(a₁ × b₁)·u` (`a`, `b` the triangles' edges, `u`
+/// the vertical edge), positive on [0, 1] iff `c₀ > 0`, `c₂ > 0` and `c₁ > 0` or
+/// `c₁² < c₀c₂`.
+fn wedge_validity_exact(p: &[DVec3]) -> Validity {
+    use crate::numeric::exact::{det3_exact, Expansion};
+    use std::cmp::Ordering;
+    let edge = |b: DVec3, a: DVec3| [Expansion::difference(b.x, a.x), Expansion::difference(b.y, a.y), Expansion::difference(b.z, a.z)];
+    let (a0, a1, b0, b1) = (edge(p[1], p[0]), edge(p[4], p[3]), edge(p[2], p[0]), edge(p[5], p[3]));
+    for i in 0..3 {
+        let up = || edge(p[i + 3], p[i]);
+        // −(a × b)·u = −u·(a × b) = u·(b × a)
+        let c0 = det3_exact(up(), b0.clone(), a0.clone());
+        let c2 = det3_exact(up(), b1.clone(), a1.clone());
+        let mut c1 = det3_exact(up(), b1.clone(), a0.clone());
+        c1.add(&det3_exact(up(), b0.clone(), a1.clone()));
+        let c1 = c1.scaled(0.5);
+        if c0.sign() != Ordering::Greater || c2.sign() != Ordering::Greater {
+            return Validity::Inverted;
+        }
+        if c1.sign() != Ordering::Greater {
+            let mut d = c0.times(&c2);
+            d.add(&c1.times(&c1).negated());
+            if d.sign() != Ordering::Greater {
+                return Validity::Inverted;
+            }
+        }
+    }
+    Validity::Valid
+}
+
 /// Whether the element of `kind` with corners `p` (its first [`VolumeKind::corners`]
 /// nodes) is valid everywhere, for certain (see the module docs).
 pub fn validity(kind: VolumeKind, p: &[DVec3]) -> Validity {
@@ -147,10 +191,20 @@ pub fn validity(kind: VolumeKind, p: &[DVec3]) -> Validity {
             }
         }
         VolumeKind::Wedge6 => wedge_validity(&q),
-        VolumeKind::Hex8 => hex_det(&q).validity(),
-        VolumeKind::Pyramid5 => pyramid_det(&q).validity(),
+        VolumeKind::Hex8 | VolumeKind::Pyramid5 => {
+            let det = if kind.linear() == VolumeKind::Hex8 { hex_det(&q[..8]) } else { pyramid_det(&q[..5]) };
+            decided(kind, &q[..kind.corners()], &det, det.min_coefficient_unsigned())
+        }
         VolumeKind::Tet10 | VolumeKind::Hex20 | VolumeKind::Hex27 => unreachable!("linear() is linear"),
     }
+}
+
+/// The validity of a hexahedron or pyramid with corners `p` from its `det J`'s rounded
+/// Bernstein form `det` (least coefficient `least`) where that decides beyond rounding, else
+/// from the exact one (issue 61: two hexahedra of smoothlab's outputs had `det J < 0`
+/// exactly, −1.2e−17 on a scale of 1, yet counted as valid).
+fn decided(kind: VolumeKind, p: &[DVec3], det: &bernstein::Bezier, least: f64) -> Validity {
+    det.validity_beyond(least, bernstein::rounding_margin(p)).unwrap_or_else(|| bernstein::exact_validity(kind, p))
 }
 
 /// The smallest Bernstein coefficient of the element's `det J` (its corners' determinants

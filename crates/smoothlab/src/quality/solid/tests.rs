@@ -391,3 +391,92 @@ fn the_second_ball_comes_with_the_exact_validity_and_holds_only_valid_positions(
     }
     assert!(balls > 20 && held > 100, "{balls} balls, {held} held");
 }
+
+/// Issue 61, finding 8: two hexahedra of smoothlab's own outputs had `det J < 0` in exact
+/// arithmetic on the written doubles (−1.2e−17 and −4.0e−17 on a `det J` scale of 1), yet
+/// counted as valid: their rounded Bernstein coefficients were all positive. A corner put
+/// on the plane of its three neighbours in doubles lies on one side of it or the other
+/// exactly; where the rounded corner determinant says "above" and the exact one "below",
+/// the element is inverted, and so is the tetrahedron of that corner.
+#[test]
+fn validity_at_the_margin_is_the_exact_sign_of_the_doubles() {
+    use crate::numeric::exact::orient3d;
+    use std::cmp::Ordering;
+    let mut rng = SplitMix64::new(61);
+    let (mut rounded_wrong, mut checked) = (0, 0);
+    for _ in 0..20_000 {
+        let mut p = perturbed(VolumeKind::Hex8, &mut rng, 0.1, 1.0);
+        // corner 0 into the plane of its neighbours 1, 3 and 4, in doubles
+        let (s, t) = (rng.uniform(0.1, 0.4), rng.uniform(0.1, 0.4));
+        p[0] = p[1] + (p[3] - p[1]) * s + (p[4] - p[1]) * t;
+        let tet = corner_tet(VolumeKind::Hex8, &p, 0);
+        let exact = orient3d(tet[0], tet[1], tet[2], tet[3]);
+        let rounded = corner_det(&tet);
+        checked += 1;
+        if exact == Ordering::Greater {
+            continue;
+        }
+        // inverted, or (its determinant exactly 0) not valid: never valid
+        assert_ne!(validity(VolumeKind::Hex8, &p), Validity::Valid, "exact {exact:?}, rounded {rounded:e}");
+        assert!(q3::is_inverted(&tet), "exact {exact:?}, rounded {rounded:e}");
+        rounded_wrong += (rounded > 0.0) as usize;
+    }
+    // the case the issue found, many times over: rounding said valid
+    assert!(rounded_wrong > 100, "{rounded_wrong} of {checked}");
+}
+
+/// The exact test agrees with the rounded one wherever the rounded one decides beyond
+/// rounding, on random hexahedra and pyramids valid, folded and inverted inside.
+#[test]
+fn the_exact_bernstein_test_agrees_where_rounding_decides() {
+    let mut rng = SplitMix64::new(8);
+    let (mut valid, mut inverted) = (0, 0);
+    for kind in [VolumeKind::Hex8, VolumeKind::Pyramid5] {
+        for i in 0..1500 {
+            let p = perturbed(kind, &mut rng, [0.2, 0.5, 0.8][i % 3], 1.0);
+            let det = if kind == VolumeKind::Hex8 { super::bernstein::hex_det(&p) } else { super::bernstein::pyramid_det(&p) };
+            let Some(rounded) = det.validity_beyond(det.min_coefficient(), super::bernstein::rounding_margin(&p)) else { continue };
+            if rounded == Validity::Undecided {
+                continue;
+            }
+            valid += (rounded == Validity::Valid) as usize;
+            inverted += (rounded == Validity::Inverted) as usize;
+            assert_eq!(super::bernstein::exact_validity(kind, &p), rounded, "{kind:?} {p:?}");
+        }
+    }
+    assert!(valid > 100 && inverted > 100, "{valid} valid, {inverted} inverted");
+}
+
+/// The wedge's exact test (issue 61): a corner of the top triangle put on the plane of the
+/// bottom one's corner edges in doubles reads not valid wherever the exact determinant
+/// there is not positive, whatever its rounding says; and it agrees with the rounded test
+/// wherever that decides beyond rounding.
+#[test]
+fn a_wedge_is_decided_exactly_at_the_margin() {
+    use crate::numeric::exact::orient3d;
+    use std::cmp::Ordering;
+    let mut rng = SplitMix64::new(13);
+    let mut rounded_wrong = 0;
+    for _ in 0..20_000 {
+        let mut p = perturbed(VolumeKind::Wedge6, &mut rng, 0.1, 1.0);
+        let (s, t) = (rng.uniform(0.1, 0.4), rng.uniform(0.1, 0.4));
+        p[3] = p[0] + (p[1] - p[0]) * s + (p[2] - p[0]) * t;
+        // det J at corner 0 is −((p₁ − p₀) × (p₂ − p₀))·(p₃ − p₀): the orientation of (p₀, p₂, p₁, p₃)
+        let exact = orient3d(p[0], p[2], p[1], p[3]);
+        if exact == Ordering::Greater {
+            continue;
+        }
+        assert_ne!(validity(VolumeKind::Wedge6, &p), Validity::Valid, "exact {exact:?}");
+        rounded_wrong += (-(p[1] - p[0]).cross(p[2] - p[0]).dot(p[3] - p[0]) > 0.0) as usize;
+    }
+    assert!(rounded_wrong > 100, "{rounded_wrong}");
+    let (mut valid, mut inverted) = (0, 0);
+    for i in 0..3000 {
+        let p = perturbed(VolumeKind::Wedge6, &mut rng, [0.2, 0.5, 0.8][i % 3], 1.0);
+        let v = validity(VolumeKind::Wedge6, &p);
+        assert_eq!(super::wedge_validity_exact(&p), v, "{p:?}");
+        valid += (v == Validity::Valid) as usize;
+        inverted += (v == Validity::Inverted) as usize;
+    }
+    assert!(valid > 100 && inverted > 100, "{valid} valid, {inverted} inverted");
+}
