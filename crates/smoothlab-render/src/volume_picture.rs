@@ -136,7 +136,7 @@ impl VolumePicture for VolumeMesh {
             }
         }
         let mut out = CutFaces { ring_start: vec![0], ..Default::default() };
-        for e in 0..self.element_count() {
+        for (e, &left) in kept.iter().enumerate() {
             let kind = self.element_kind(e);
             // as the statistics measure it (a 10-node tetrahedron with its mid-edge nodes,
             // the other kinds by their corners, inverted when not certainly valid); a
@@ -145,7 +145,7 @@ impl VolumePicture for VolumeMesh {
             let (q, inverted) = match kind {
                 VolumeKind::Tet4 => {
                     let c = self.tet_corners(e);
-                    (kept[e].then(|| mean_ratio(&c, kind.reference())), is_inverted(&c))
+                    (left.then(|| mean_ratio(&c, kind.reference())), is_inverted(&c))
                 }
                 _ => {
                     let m = self.measures(e);
@@ -153,7 +153,7 @@ impl VolumePicture for VolumeMesh {
                 }
             };
             out.inverted_elements += inverted as usize;
-            let Some(q) = q.filter(|_| kept[e]) else { continue };
+            let Some(q) = q.filter(|_| left) else { continue };
             out.kept += 1;
             let t = self.element(e);
             for &loc in kind.row().faces {

@@ -557,6 +557,8 @@ fn golden_tetrahedra_cut() {
     let m = smoothlab::generate::perturb_volume(&cube, 0.9, 2).unwrap();
     let cut = m.cut_faces(crate::Cut::default(), Camera::default().basis().2);
     assert!(cut.inverted.iter().zip(&cut.faded).any(|(&i, &f)| i && !f), "the picture must show an inverted face");
+    // its key says the mesh's count, as the statistics give it
+    assert_eq!(cut.inverted_elements, smoothlab::volume::volume_stats(&m).inverted);
     let mut p = Pixmap::new(360, 300).unwrap();
     let view = SurfaceView { title: Some("z = ½".into()), ..SurfaceView::default() };
     m.render_cut(&mut p, crate::Cut::default(), &view);
