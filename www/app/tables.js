@@ -39,6 +39,16 @@ export const VOLUME_LABELS = {
   mean_quality: 'Mean of the mean ratio',
   small_angles: 'Dihedral angles under 18°',
 };
+/** A volume mesh's rows whose value can stay positive while elements are inverted, as
+ * labelled and explained where it does: an element's mean ratio is the mean of its
+ * corners', so a hexahedron, wedge or pyramid with a corner or its inside inverted can
+ * keep a positive one (the inverted row's count is the certain test). */
+export const VOLUME_BESIDE_INVERTED = {
+  min_quality: [
+    'Min mean ratio (corners averaged)',
+    "Positive though elements are inverted: an element's mean ratio is the mean over its corners (a tetrahedron's its own), so a hexahedron, wedge or pyramid with an inverted corner among good ones, or inverted inside with every corner positive, keeps a positive one. The inverted row counts them for certain. Larger is better.",
+  ],
+};
 /** What a table row means, as its tooltip. */
 export const ROW_HELP = {
   inverted: 'Elements whose corners run the wrong way round (negative area): a tangled mesh. Fewer is better.',
@@ -87,7 +97,10 @@ export function fillTables(stats) {
       const th = document.createElement('th');
       th.scope = 'row';
       th.textContent = (state.volume && VOLUME_LABELS[key]) || label;
-      const help = (state.volume && VOLUME_HELP[key]) || ROW_HELP[key];
+      let help = (state.volume && VOLUME_HELP[key]) || ROW_HELP[key];
+      // a value that stays positive beside inverted elements says why
+      const beside = state.volume && VOLUME_BESIDE_INVERTED[key];
+      if (beside && s.inverted > 0 && !(detail && !s.detail) && v > 0) [th.textContent, help] = beside;
       if (help) th.title = help;
       const td = document.createElement('td');
       if (detail && !s.detail) {

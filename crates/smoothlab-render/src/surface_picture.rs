@@ -29,6 +29,8 @@ impl SurfaceFaces {
             values: &self.values,
             inverted: &self.inverted,
             faded: &[],
+            // one face an element: the faces flagged are the elements inverted
+            inverted_elements: None,
         }
     }
 }

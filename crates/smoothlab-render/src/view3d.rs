@@ -149,6 +149,11 @@ impl Camera {
 /// around its cut). Missing values count as 0 and missing flags as not inverted and not
 /// faded; a face with a node id
 /// out of range, fewer than 3 nodes, or a coordinate that is not finite is not drawn.
+///
+/// The colour bar's "N inverted" counts elements: `inverted_elements` where the faces are
+/// not one an element (a volume mesh's cut, whose count is the mesh's,
+/// [`VolumePicture`](crate::VolumePicture)); when `None`, the faces flagged inverted
+/// (a surface's, each face an element).
 #[derive(Clone, Copy, Debug, Default)]
 pub struct Faces<'a> {
     pub points: &'a [DVec3],
@@ -157,6 +162,7 @@ pub struct Faces<'a> {
     pub values: &'a [f64],
     pub inverted: &'a [bool],
     pub faded: &'a [bool],
+    pub inverted_elements: Option<usize>,
 }
 
 impl Faces<'_> {
@@ -502,7 +508,7 @@ pub fn render_surface(pixmap: &mut Pixmap, faces: &Faces, opts: &SurfaceView) ->
     }
     if let Some(bar) = bar {
         fill_rect(pixmap, bar.x * s, bar.y * s, bar.w * s, bar.h * s, theme.paper);
-        let n_inverted = faces.inverted.iter().take(faces.count()).filter(|&&b| b).count();
+        let n_inverted = faces.inverted_elements.unwrap_or_else(|| faces.inverted.iter().take(faces.count()).filter(|&&b| b).count());
         let (d0, d1) = opts.domain;
         let domain = if d0.is_finite() && d1.is_finite() && d1 > d0 { (d0, d1) } else { (0.0, 1.0) };
         draw_colour_bar(pixmap, bar, opts.colormap, domain, &opts.bar_title, n_inverted, s, theme);

@@ -3,7 +3,9 @@
 //! taken away (their centroids decide); the
 //! faces the cut opens — faces of tetrahedra the plane left, whose neighbour it took —
 //! are coloured by their tetrahedron's quality (inverted ones hatched red), and the
-//! mesh's own boundary around them is drawn faded.
+//! mesh's own boundary around them is drawn faded. The colour bar's "N inverted" counts
+//! the mesh's elements, every one whatever the cut, as its statistics count them
+//! (`volume_stats`): not the faces drawn.
 
 use glam::DVec3;
 use serde::{Deserialize, Serialize};
@@ -11,7 +13,7 @@ use tiny_skia::Pixmap;
 
 use smoothlab::volume::{VolumeKind, VolumeMesh};
 use smoothlab::error::{Error, Result};
-use smoothlab::quality::tet::mean_ratio;
+use smoothlab::quality::tet::{is_inverted, mean_ratio};
 use crate::{render_surface, Faces, Projection, SurfaceView};
 
 /// Which plane cuts the mesh: normal to `axis` (0 = x, 1 = y, 2 = z), at the fraction
@@ -62,6 +64,10 @@ pub struct CutFaces {
     pub faded: Vec<bool>,
     /// Tetrahedra left by the cut.
     pub kept: usize,
+    /// The mesh's elements inverted, all of them, the cut's or not: what its statistics
+    /// count ([`smoothlab::volume::volume_stats`]'s `inverted`, by the same test,
+    /// [`VolumeMesh::measures`]), and the colour bar says.
+    pub inverted_elements: usize,
 }
 
 impl CutFaces {
@@ -74,6 +80,7 @@ impl CutFaces {
             values: &self.values,
             inverted: &self.inverted,
             faded: &self.faded,
+            inverted_elements: Some(self.inverted_elements),
         }
     }
 }
@@ -129,22 +136,26 @@ impl VolumePicture for VolumeMesh {
             }
         }
         let mut out = CutFaces { ring_start: vec![0], ..Default::default() };
-        for e in (0..self.element_count()).filter(|&e| kept[e]) {
-            out.kept += 1;
-            let t = self.element(e);
+        for (e, &left) in kept.iter().enumerate() {
             let kind = self.element_kind(e);
             // as the statistics measure it (a 10-node tetrahedron with its mid-edge nodes,
-            // the other kinds by their corners, inverted when not certainly valid)
+            // the other kinds by their corners, inverted when not certainly valid); a
+            // 4-node tetrahedron's flag is its measures' (`tet::is_inverted`), its mean
+            // ratio taken alone
             let (q, inverted) = match kind {
                 VolumeKind::Tet4 => {
-                    let q = mean_ratio(&self.tet_corners(e), kind.reference());
-                    (q, q <= 0.0)
+                    let c = self.tet_corners(e);
+                    (left.then(|| mean_ratio(&c, kind.reference())), is_inverted(&c))
                 }
                 _ => {
                     let m = self.measures(e);
-                    (m.mean_ratio, m.inverted)
+                    (Some(m.mean_ratio), m.inverted)
                 }
             };
+            out.inverted_elements += inverted as usize;
+            let Some(q) = q.filter(|_| left) else { continue };
+            out.kept += 1;
+            let t = self.element(e);
             for &loc in kind.row().faces {
                 let ring: Vec<u32> = loc.iter().map(|&j| t[j]).collect();
                 let mut key = ring.clone();
@@ -214,6 +225,41 @@ mod tests {
         let t = perturb_volume(&m, 0.9, 3).unwrap();
         let cut = t.cut_faces(Cut { axis: 1, at: 0.5 }, DOWN);
         assert!(cut.inverted.iter().zip(&cut.faded).any(|(&i, &f)| i && !f));
+    }
+
+    /// The tangled block of hexahedra the page opens (Knupp's, 6³ cells perturbed by one
+    /// mean edge length, seed 1): its colour bar's "N inverted" is the statistics'
+    /// count of elements (128), with the whole mesh drawn and cut, not the faces drawn (62
+    /// at the default cut once).
+    #[test]
+    fn the_key_counts_the_inverted_elements_the_statistics_count() {
+        use crate::{colour_bar_band, draw_colour_bar, Frame};
+        use smoothlab::generate::{hex_grid, HexBlock};
+        use smoothlab::volume::volume_stats;
+        let m = perturb_volume(&hex_grid(&HexBlock::cube(6)).unwrap(), 1.0, 1).unwrap();
+        let want = volume_stats(&m).inverted;
+        assert!(want > 100, "the block is tangled: {want} inverted");
+        let view = SurfaceView::default();
+        let forward = view.camera.basis().2;
+        for cut in [Cut { axis: 2, at: 1.0 }, Cut::default(), Cut { axis: 0, at: 0.3 }, Cut { axis: 1, at: 0.0 }] {
+            let faces = m.cut_faces(cut, forward);
+            assert_eq!(faces.inverted_elements, want, "{cut:?}");
+            // the faces flagged inverted, as the key once counted them (62 at z = ½)
+            let drawn = faces.inverted.iter().filter(|&&i| i).count();
+            // the key as drawn: its band redrawn with the statistics' count changes no pixel
+            let mut p = Pixmap::new(480, 400).unwrap();
+            m.render_cut(&mut p, cut, &view);
+            let key = |n: usize| {
+                let mut q = p.clone();
+                let band = colour_bar_band(Frame::of_pixmap(&q, 1.0), "mean ratio", &view.theme).unwrap();
+                crate::paint::fill_rect(&mut q, band.x, band.y, band.w, band.h, view.theme.paper);
+                draw_colour_bar(&mut q, band, view.colormap, (0.0, 1.0), "mean ratio", n, 1.0, &view.theme);
+                q.data() == p.data()
+            };
+            assert!(key(want), "{cut:?}: the key says {want} inverted");
+            assert_ne!(drawn, want, "{cut:?}: the faces and the elements differ here");
+            assert!(!key(drawn), "{cut:?}: the key does not say the {drawn} faces");
+        }
     }
 
     #[test]

@@ -117,6 +117,7 @@ fn a_face_in_front_is_painted_over_one_behind_whatever_their_order() {
             values: &values,
             inverted: &[],
             faded: &[],
+            inverted_elements: None,
         };
         let mut p = Pixmap::new(120, 120).unwrap();
         let proj = render_surface(&mut p, &faces, &front_view());
@@ -156,6 +157,7 @@ fn the_light_follows_lambert_and_back_faces_are_darker() {
             values: &[0.5],
             inverted: &[false],
             faded: &[],
+            inverted_elements: None,
         };
         let mut p = Pixmap::new(100, 100).unwrap();
         render_surface(&mut p, &faces, &front_view());
@@ -176,7 +178,7 @@ fn an_inverted_face_is_red_and_hatched() {
     let (mut points, mut rings) = (Vec::new(), Vec::new());
     square_at(&mut points, &mut rings, 0.0, false);
     let faces =
-        Faces { points: &points, ring_start: &[0, 4], rings: &rings, values: &[0.5], inverted: &[true], faded: &[] };
+        Faces { points: &points, ring_start: &[0, 4], rings: &rings, values: &[0.5], inverted: &[true], faded: &[], inverted_elements: None };
     let mut p = Pixmap::new(100, 100).unwrap();
     render_surface(&mut p, &faces, &front_view());
     let (mut red, mut dark) = (0, 0);
@@ -217,6 +219,7 @@ fn odd_input_draws_what_it_can_and_never_panics() {
             values: &[1.0],
             inverted: &[false],
             faded: &[],
+            inverted_elements: None,
         },
         &opts,
     );
@@ -235,6 +238,7 @@ fn odd_input_draws_what_it_can_and_never_panics() {
         values: &[1.0, 0.0, 0.0],
         inverted: &[],
         faded: &[],
+        inverted_elements: None,
     };
     let proj = render_surface(&mut p, &faces, &opts);
     assert!(proj.scale().is_finite() && painted(&p) > 100);
@@ -247,6 +251,7 @@ fn odd_input_draws_what_it_can_and_never_panics() {
         values: &[],
         inverted: &[],
         faded: &[],
+        inverted_elements: None,
     };
     render_surface(&mut p, &faces, &opts);
     let faces = Faces {
@@ -256,6 +261,7 @@ fn odd_input_draws_what_it_can_and_never_panics() {
         values: &[f64::NAN],
         inverted: &[true, true, true, true],
         faded: &[],
+        inverted_elements: None,
     };
     render_surface(&mut p, &faces, &opts);
     // a camera and options gone wrong
@@ -275,6 +281,7 @@ fn odd_input_draws_what_it_can_and_never_panics() {
         values: &[0.5],
         inverted: &[],
         faded: &[],
+        inverted_elements: None,
     };
     render_surface(&mut p, &faces, &wild);
     // coordinates far beyond the picture (clipped, not handed to the rasterizer whole)
@@ -295,6 +302,7 @@ fn odd_input_draws_what_it_can_and_never_panics() {
             values: &[1.0],
             inverted: &[true],
             faded: &[],
+            inverted_elements: None,
         },
         &opts,
     );
@@ -417,7 +425,7 @@ fn golden_uv_sphere() {
     let mut inverted = vec![false; n];
     inverted[13] = true;
     let faces =
-        Faces { points: &points, ring_start: &start, rings: &rings, values: &values, inverted: &inverted, faded: &[] };
+        Faces { points: &points, ring_start: &start, rings: &rings, values: &values, inverted: &inverted, faded: &[], inverted_elements: None };
     let mut p = Pixmap::new(420, 320).unwrap();
     let opts = SurfaceView {
         camera: Camera { yaw: -60.0, pitch: 20.0, zoom: 1.0 },
@@ -464,7 +472,7 @@ fn golden_quadratic_saddle_at_dpr_2() {
     let mut inverted = [false; 8];
     inverted[5] = true;
     let faces =
-        Faces { points: &points, ring_start: &start, rings: &rings, values: &values, inverted: &inverted, faded: &[] };
+        Faces { points: &points, ring_start: &start, rings: &rings, values: &values, inverted: &inverted, faded: &[], inverted_elements: None };
     let mut p = Pixmap::new(760, 560).unwrap();
     let opts = SurfaceView {
         dpr: 2.0,
@@ -524,6 +532,7 @@ fn a_quadratic_quad_is_drawn_with_its_parabolic_edge() {
         values: &[1.0],
         inverted: &[],
         faded: &[],
+        inverted_elements: None,
     };
     let mut p = Pixmap::new(200, 200).unwrap();
     let proj = render_surface(&mut p, &faces, &SurfaceView { show_edges: false, ..front_view() });
@@ -548,6 +557,8 @@ fn golden_tetrahedra_cut() {
     let m = smoothlab::generate::perturb_volume(&cube, 0.9, 2).unwrap();
     let cut = m.cut_faces(crate::Cut::default(), Camera::default().basis().2);
     assert!(cut.inverted.iter().zip(&cut.faded).any(|(&i, &f)| i && !f), "the picture must show an inverted face");
+    // its key says the mesh's count, as the statistics give it
+    assert_eq!(cut.inverted_elements, smoothlab::volume::volume_stats(&m).inverted);
     let mut p = Pixmap::new(360, 300).unwrap();
     let view = SurfaceView { title: Some("z = ½".into()), ..SurfaceView::default() };
     m.render_cut(&mut p, crate::Cut::default(), &view);
