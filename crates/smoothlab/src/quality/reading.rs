@@ -53,7 +53,7 @@ impl Reading {
 
     /// Whether a planar element reads within `bounds`: [`planar`](Self::planar)'s answer,
     /// bit for bit. A linear triangle's angles are compared by their cosines, and measured
-    /// only within 10⁻⁹ of a bound's cosine (as [`angle_within`](Self::angle_within)), where
+    /// only within 10⁻⁹ of a bound's cosine (as for a volume's dihedral angles), where
     /// the bounds leave the quality out.
     pub fn planar_within(kind: ElementKind, p: &[DVec2], bounds: &Reading) -> bool {
         if kind == ElementKind::Tri3 && bounds.min_quality == f64::NEG_INFINITY {
