@@ -268,32 +268,48 @@ impl Model {
         self.smooth_with_clock(smoothing, &|| 0.0)
     }
 
+    /// The passes numbered `numbers` of one smoother with `options` and the objective of
+    /// `kind`, the driver the mesh kind takes.
+    fn passes(
+        &mut self,
+        kind: ObjectiveKind,
+        penalty: Penalty,
+        options: SmoothOptions,
+        numbers: std::ops::Range<u32>,
+        clock: &dyn Fn() -> f64,
+    ) -> Result<Vec<PassRecord>> {
+        Ok(match self {
+            Model::Planar(mesh) => {
+                let objective = objective_with(kind, penalty);
+                let mut smoother = Smoother::new(options)?;
+                numbers.map(|_| smoother.pass(mesh, &*objective, clock)).collect()
+            }
+            Model::Surface(surface) => {
+                let objective = objective_with(kind, penalty);
+                let mut smoother = SurfaceSmoother::new(options)?;
+                numbers.map(|_| smoother.pass(surface, &*objective, clock)).collect()
+            }
+            Model::Volume(mesh) => {
+                let objective = tet_objective(kind)?;
+                let mut smoother = VolumeSmoother::new(options)?;
+                numbers.map(|p| smoother.pass(mesh, &*objective, p, clock)).collect()
+            }
+        })
+    }
+
     /// Smooths the mesh as [`smooth`](Self::smooth), timed by `clock` (milliseconds).
     pub fn smooth_with_clock(&mut self, smoothing: &Smoothing, clock: &dyn Fn() -> f64) -> Result<Report> {
         let opts = smoothing.options()?;
         smoothing.check(self)?;
         let kind = smoothing.objective;
         let start = clock();
-        let mut passes: Vec<PassRecord> = match self {
-            Model::Planar(mesh) => {
-                let objective = objective_with(kind, smoothing.penalty.unwrap_or_default());
-                let mut smoother = Smoother::new(opts)?;
-                (0..smoothing.passes).map(|_| smoother.pass(mesh, &*objective, clock)).collect()
+        if let Model::Surface(surface) = self {
+            if smoothing.slide_curves {
+                surface.slide_along_curves();
             }
-            Model::Surface(surface) => {
-                if smoothing.slide_curves {
-                    surface.slide_along_curves();
-                }
-                let objective = objective_with(kind, smoothing.penalty.unwrap_or_default());
-                let mut smoother = SurfaceSmoother::new(opts)?;
-                (0..smoothing.passes).map(|_| smoother.pass(surface, &*objective, clock)).collect()
-            }
-            Model::Volume(mesh) => {
-                let objective = tet_objective(kind)?;
-                let mut smoother = VolumeSmoother::new(opts)?;
-                (1..=smoothing.passes).map(|p| smoother.pass(mesh, &*objective, p, clock)).collect()
-            }
-        };
+        }
+        let penalty = smoothing.penalty.unwrap_or_default();
+        let mut passes = self.passes(kind, penalty, opts, 1..smoothing.passes + 1, clock)?;
         let valid = passes.last().map_or_else(|| self.stats().inverted, |r| r.after.inverted) == 0;
         let main_passes = passes.len();
         if smoothing.finish > 0 && valid {
@@ -303,22 +319,7 @@ impl Model {
                 .with_order(order)
                 .with_smart_measure(crate::smooth::Measure::MinSine);
             let first = passes.len() as u32 + 1;
-            let more = first..first + smoothing.finish;
-            match self {
-                Model::Planar(mesh) => {
-                    let mut s = Smoother::new(o)?;
-                    passes.extend(more.map(|_| s.pass(mesh, &*objective_with(kind, Penalty::default()), clock)));
-                }
-                Model::Surface(surface) => {
-                    let mut s = SurfaceSmoother::new(o)?;
-                    passes.extend(more.map(|_| s.pass(surface, &*objective_with(kind, Penalty::default()), clock)));
-                }
-                Model::Volume(mesh) => {
-                    let mut s = VolumeSmoother::new(o)?;
-                    let objective = tet_objective(kind)?;
-                    passes.extend(more.map(|p| s.pass(mesh, &*objective, p, clock)));
-                }
-            }
+            passes.extend(self.passes(kind, Penalty::default(), o, first..first + smoothing.finish, clock)?);
         }
         for (i, r) in passes.iter_mut().enumerate() {
             r.pass = i as u32 + 1;
