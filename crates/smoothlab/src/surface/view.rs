@@ -116,22 +116,25 @@ impl Surface {
         keep: impl Fn(&(Vec<ElementScore>, Reading), &(Vec<ElementScore>, Reading)) -> bool,
     ) -> bool {
         let star: Vec<usize> = self.flat.node_elements(n).iter().map(|&e| e as usize).collect();
-        let scores = |s: &Surface| -> (Vec<ElementScore>, Reading) {
+        // the reading is asked of the star after the move only
+        let scores = |s: &Surface, read: bool| -> (Vec<ElementScore>, Reading) {
             let mut reading = Reading::default();
             let scores = star
                 .iter()
                 .map(|&e| {
                     let (kind, q) = (s.flat.kind(e), s.element_points_2d(e));
-                    reading = reading.and(Reading::planar(kind, &q).0);
+                    if read {
+                        reading = reading.and(Reading::planar(kind, &q).0);
+                    }
                     ElementScore::planar(kind, &q, measure)
                 })
                 .collect();
             (scores, reading)
         };
-        let before = scores(self);
+        let before = scores(self, false);
         let saved = self.keep_around(n);
         self.place(n, p);
-        if !keep(&before, &scores(self)) {
+        if !keep(&before, &scores(self, true)) {
             self.put_back(saved);
             return false;
         }
