@@ -332,9 +332,11 @@ class Mesh:
         """Smooths the mesh in place as ``smoothlab smooth`` does, and says what each pass
         did. The settings are the command line's (``smoothlab.settings()`` lists them):
         ``objective``, ``strategy``, ``threshold``, ``passes``, ``order``, ``max_iter``,
-        ``penalty``, ``pass_through_folds``, ``finish``, ``slide_curves``; those left out
-        take its defaults. Once the passes leave the mesh valid, ``finish`` more (3 by
-        default) lift its worst element; ``report.finish`` says how many ran. A setting out of range, or one the strategy would not use, is a
+        ``penalty``, ``pass_through_folds``, ``finish``, ``target``, ``slide_curves``; those
+        left out take its defaults. Once the passes leave the mesh valid, ``finish`` more (3
+        by default) lift its worst element; ``report.finish`` says how many ran.
+        ``target="input"`` measures each corner against itself as it was (its stretch
+        kept) rather than the ideal element. A setting out of range, or one the strategy would not use, is a
         ``ValueError`` naming it. Other Python threads run meanwhile.
 
         >>> import numpy as np, smoothlab
@@ -430,7 +432,7 @@ class Mesh:
 
 class Report:
     """What :meth:`Mesh.smooth` did, as ``smoothlab smooth --json`` prints it:
-    ``objective``, ``strategy``, ``passes`` (a dict a pass), ``finish`` (how many of
+    ``objective``, ``strategy``, ``target``, ``passes`` (a dict a pass), ``finish`` (how many of
     them, the last, are the finish), ``final`` (the statistics of
     :meth:`Mesh.stats`), ``untangling_impossible`` (inverted elements no move can repair,
     and why) and ``time_ms``; ``json`` is the text itself.
@@ -447,6 +449,7 @@ class Report:
         d = json.loads(text)
         self.objective: str = d["objective"]
         self.strategy: str = d["strategy"]
+        self.target: str = d["target"]
         self.passes: List[Dict[str, Any]] = d["passes"]
         self.finish: int = d["finish"]
         self.final: Dict[str, Any] = d["final"]

@@ -109,6 +109,18 @@ def test_settings_reach_the_core_as_the_tools_flags(files, tmp_path):
     assert (tmp_path / "py-s.msh").read_bytes() == (tmp_path / "cli-s.msh").read_bytes()
 
 
+@pytest.mark.parametrize("kind", KINDS)
+def test_the_input_target_is_the_tools(files, kind, tmp_path):
+    cli("smooth", files[kind], "-o", tmp_path / "cli.vtk", "--target", "input", "--strategy", "opt")
+    mesh = smoothlab.read(files[kind])
+    report = mesh.smooth(target="input", strategy="opt")
+    smoothlab.write(mesh, tmp_path / "py.vtk")
+    assert (tmp_path / "py.vtk").read_bytes() == (tmp_path / "cli.vtk").read_bytes()
+    assert report.target == "input" and "input" in smoothlab.settings()["target"]
+    with pytest.raises(ValueError, match="target"):
+        mesh.smooth(target="input", strategy="laplace")
+
+
 def test_the_settings_are_the_smooth_commands_flags():
     """Every option of `smoothlab smooth` that sets the run is a setting of Mesh.smooth."""
     help_text = cli("smooth", "--help")

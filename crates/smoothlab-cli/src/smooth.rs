@@ -9,7 +9,9 @@
 //!   but each pass still reports its total, so it is accepted and the summary says so;
 //! - `--order` with every strategy (Gauss–Seidel: the order changes the result);
 //! - `--penalty` only with the `new` objective (the design of its eq. (8));
-//! - `--pass-through-folds` / `--no-pass-through-folds` not with `laplace` or `smart`.
+//! - `--pass-through-folds` / `--no-pass-through-folds` not with `laplace` or `smart`;
+//! - `--target input` only with `opt` and `rules` (the others take Laplacian steps,
+//!   which aim at the ideal).
 //!
 //! When elements stay inverted because no smoother can make them valid (an inverted corner
 //! of fixed nodes, coincident fixed nodes), the summary names them and says why (`--json`:
@@ -24,7 +26,7 @@ use clap::Args;
 use smoothlab::model::Model;
 use smoothlab::objective::{ObjectiveKind, Penalty};
 use smoothlab::smooth::{Obstacle, Order, SmoothOptions, Strategy};
-use smoothlab::{Report, Smoothing};
+use smoothlab::{Report, Smoothing, Target};
 
 use crate::args::{msh_version_parser, named, order_parser, penalty_parser, strategy_parser};
 use crate::files::{read_model, write_model};
@@ -74,6 +76,11 @@ pub struct SmoothArgs {
     /// dihedral sines), worst star first; 0 for none
     #[arg(long, default_value_t = Smoothing::DEFAULT_FINISH)]
     pub finish: u32,
+    /// What each corner is measured against: ideal (the ideal element of each kind, the
+    /// papers) or input (each corner as the mesh was read, where valid: its stretch and skew
+    /// kept; the ideal where it was inverted). The finish takes none
+    #[arg(long, value_parser = named(&Target::ALL, Target::name, Target::describe), default_value = Target::default().name())]
+    pub target: Target,
     /// A surface's feature curves and open boundaries: their nodes slide along them
     /// instead of staying fixed (corners of the curves stay; a file's own fixed flags decide)
     #[arg(long)]
@@ -96,10 +103,16 @@ fn is_laplacian_only(strategy: Strategy) -> bool {
 fn smoothing(a: &SmoothArgs) -> Result<Smoothing, String> {
     let strategy = a.strategy;
     if !BATCH_PASSES.contains(a.passes.into()) {
-        return Err(format!("--passes {}: give 1 to {}", a.passes, BATCH_PASSES.max));
+        return Err(format!(
+            "--passes {}: give 1 to {}",
+            a.passes, BATCH_PASSES.max
+        ));
     }
     if u64::from(a.finish) > BATCH_PASSES.max {
-        return Err(format!("--finish {}: give 0 to {}", a.finish, BATCH_PASSES.max));
+        return Err(format!(
+            "--finish {}: give 0 to {}",
+            a.finish, BATCH_PASSES.max
+        ));
     }
     if let Some(t) = a.threshold {
         if strategy.threshold_unused().is_some() {
@@ -109,7 +122,9 @@ fn smoothing(a: &SmoothArgs) -> Result<Smoothing, String> {
             ));
         }
         if !threshold_in_range(t) {
-            return Err(format!("--threshold {t}: give an angle in degrees above 0 and at most 90"));
+            return Err(format!(
+                "--threshold {t}: give an angle in degrees above 0 and at most 90"
+            ));
         }
     }
     if let Some(k) = a.max_iter {
@@ -120,12 +135,29 @@ fn smoothing(a: &SmoothArgs) -> Result<Smoothing, String> {
             ));
         }
         if !BATCH_MAX_ITER.contains(k.into()) {
-            return Err(format!("--max-iter {k}: give 1 to {} solver iterations per call", BATCH_MAX_ITER.max));
+            return Err(format!(
+                "--max-iter {k}: give 1 to {} solver iterations per call",
+                BATCH_MAX_ITER.max
+            ));
         }
     }
     if (a.pass_through_folds || a.no_pass_through_folds) && is_laplacian_only(strategy) {
-        let flag = if a.pass_through_folds { "--pass-through-folds" } else { "--no-pass-through-folds" };
-        return Err(format!("{flag}: {} never calls the solver", strategy.name()));
+        let flag = if a.pass_through_folds {
+            "--pass-through-folds"
+        } else {
+            "--no-pass-through-folds"
+        };
+        return Err(format!(
+            "{flag}: {} never calls the solver",
+            strategy.name()
+        ));
+    }
+    if a.target != Target::Ideal && !matches!(strategy, Strategy::Opt | Strategy::Rules) {
+        return Err(format!(
+            "--target {}: the targets are measured by opt and rules; {} takes Laplacian steps, which aim at the ideal",
+            a.target,
+            strategy.name()
+        ));
     }
     if a.penalty.is_some() && a.objective.is_some_and(|k| k != ObjectiveKind::SmoothShape) {
         return Err("--penalty chooses the design of the new objective's penalty: use it with --objective new".into());
@@ -135,6 +167,7 @@ fn smoothing(a: &SmoothArgs) -> Result<Smoothing, String> {
         .objective(a.objective.unwrap_or(ObjectiveKind::SmoothShape))
         .passes(a.passes)
         .finish(a.finish)
+        .target(a.target)
         .slide_curves(a.slide_curves);
     if let Some(o) = a.order {
         s = s.order(o);
@@ -174,15 +207,22 @@ pub fn run(a: SmoothArgs) -> Result<(), String> {
         );
     }
     if let Model::Planar(mesh) = &model {
-        smoothlab::objective::check_scale(kind, mesh).map_err(|e| format!("{}: {e}", a.input.display()))?;
+        smoothlab::objective::check_scale(kind, mesh)
+            .map_err(|e| format!("{}: {e}", a.input.display()))?;
     }
     let report = model.smooth(&smoothing).map_err(|e| e.to_string())?;
     write_model(&model, &a.output, a.msh_version)?;
     if a.json {
-        println!("{}", serde_json::to_string(&report).map_err(|e| e.to_string())?);
+        println!(
+            "{}",
+            serde_json::to_string(&report).map_err(|e| e.to_string())?
+        );
     } else {
         print!("{}", summary(&report));
-        print!("{}", obstacle_summary(report.untangling_impossible(), report.inverted()));
+        print!(
+            "{}",
+            obstacle_summary(report.untangling_impossible(), report.inverted())
+        );
     }
     Ok(())
 }
@@ -192,9 +232,17 @@ fn summary(report: &Report) -> String {
     let (kind, strategy, order) = report.settings();
     let (passes, s, ms) = (report.passes(), report.stats(), report.time_ms());
     let mut t = format!(
-        "smoothing: strategy {}, objective {kind}{}, {} order\n",
+        "smoothing: strategy {}, objective {kind}{}{}, {} order\n",
         strategy.name(),
-        if is_laplacian_only(strategy) { " (measured only: this strategy never optimizes)" } else { "" },
+        if is_laplacian_only(strategy) {
+            " (measured only: this strategy never optimizes)"
+        } else {
+            ""
+        },
+        match report.target() {
+            Target::Ideal => String::new(),
+            t => format!(" against the {t} target"),
+        },
         match order {
             Order::Priority => "priority",
             Order::Input => "input",
@@ -224,10 +272,17 @@ fn summary(report: &Report) -> String {
     t.push_str(&format!(
         "final: {}, {} inverted, angles {:.2}°–{:.2}°, quality min {:.4} mean {:.4}; {:.1} ms\n",
         crate::args::count(s.elements, "element", "elements"),
-        s.inverted, s.min_angle_deg, s.max_angle_deg, s.min_quality, s.mean_quality, ms
+        s.inverted,
+        s.min_angle_deg,
+        s.max_angle_deg,
+        s.min_quality,
+        s.mean_quality,
+        ms
     ));
     if let Some(d) = s.max_distance_from_surface {
-        t.push_str(&format!("surface: every node within {d:.3e} of the surface as it was loaded\n"));
+        t.push_str(&format!(
+            "surface: every node within {d:.3e} of the surface as it was loaded\n"
+        ));
     }
     t
 }
@@ -251,7 +306,10 @@ fn obstacle_summary(obstacles: &[Obstacle], inverted: usize) -> String {
         t.push_str(&format!("  element {}: {}\n", o.element, o.reason));
     }
     if obstacles.len() > OBSTACLES_SHOWN {
-        t.push_str(&format!("  … and {} more (--json lists them all)\n", obstacles.len() - OBSTACLES_SHOWN));
+        t.push_str(&format!(
+            "  … and {} more (--json lists them all)\n",
+            obstacles.len() - OBSTACLES_SHOWN
+        ));
     }
     t
 }
@@ -263,13 +321,26 @@ mod tests {
     /// Issue 61, finding 5: what the CLI prints does not grow with the mesh either.
     #[test]
     fn the_obstacle_summary_names_the_first_few_and_counts_the_rest() {
-        let many: Vec<Obstacle> =
-            (0..5000).map(|e| Obstacle { element: e, reason: "its corner is set by fixed nodes alone".into() }).collect();
+        let many: Vec<Obstacle> = (0..5000)
+            .map(|e| Obstacle {
+                element: e,
+                reason: "its corner is set by fixed nodes alone".into(),
+            })
+            .collect();
         let t = obstacle_summary(&many, 6000);
         assert_eq!(t.lines().count(), 2 + OBSTACLES_SHOWN, "{t}");
-        assert!(t.starts_with("untangling is impossible for 5000 of the 6000 inverted elements"), "{t}");
-        assert!(t.contains("  element 9: ") && !t.contains("element 10:"), "{t}");
-        assert!(t.ends_with("  … and 4990 more (--json lists them all)\n"), "{t}");
+        assert!(
+            t.starts_with("untangling is impossible for 5000 of the 6000 inverted elements"),
+            "{t}"
+        );
+        assert!(
+            t.contains("  element 9: ") && !t.contains("element 10:"),
+            "{t}"
+        );
+        assert!(
+            t.ends_with("  … and 4990 more (--json lists them all)\n"),
+            "{t}"
+        );
         let few = obstacle_summary(&many[..3], 3);
         assert_eq!(few.lines().count(), 4, "{few}");
     }

@@ -21,13 +21,24 @@ use pyo3::types::{PyBool, PyDict, PyFloat, PyList, PyTuple};
 
 use smoothlab::io::{self, CellBlock, MeshArrays, MshVersion, WriteOptions};
 use smoothlab::smooth::{Order, Strategy};
-use smoothlab::{Error, Model, ObjectiveKind, Penalty, Smoothing};
+use smoothlab::{Error, Model, ObjectiveKind, Penalty, Smoothing, Target};
 use smoothlab_page::lab::picture::{self, Request, View};
 use smoothlab_render::{encode_png, Camera, Cut, Metric, Theme};
 
 /// The settings of [`smoothing`] by name, in the command line's order (`smooth --help`).
-const SETTINGS: [&str; 10] =
-    ["objective", "strategy", "threshold", "passes", "order", "max_iter", "penalty", "pass_through_folds", "finish", "slide_curves"];
+const SETTINGS: [&str; 11] = [
+    "objective",
+    "strategy",
+    "threshold",
+    "passes",
+    "order",
+    "max_iter",
+    "penalty",
+    "pass_through_folds",
+    "finish",
+    "target",
+    "slide_curves",
+];
 
 /// An error of the core as Python's: `OSError` for a file that cannot be read or written,
 /// `ValueError` for everything else (a bad file, bad arrays, a setting out of range), with
@@ -49,43 +60,80 @@ fn value_error(text: impl Into<String>) -> PyErr {
 
 /// The value of an enum setting named by its command-line name, or a `ValueError` that
 /// lists the names.
-fn named<T: Copy>(value: &Bound<'_, PyAny>, setting: &str, all: &[T], name: fn(T) -> &'static str) -> PyResult<T> {
+fn named<T: Copy>(
+    value: &Bound<'_, PyAny>,
+    setting: &str,
+    all: &[T],
+    name: fn(T) -> &'static str,
+) -> PyResult<T> {
     let names: Vec<&str> = all.iter().map(|&v| name(v)).collect();
-    let given: String = value
-        .extract()
-        .map_err(|_| value_error(format!("{setting}: give a name ({}), not {}", names.join(", "), shown(value))))?;
-    all.iter().copied().find(|&v| name(v) == given).ok_or_else(|| {
-        value_error(format!("{setting}: {given:?} is not one of {}", names.join(", ")))
-    })
+    let given: String = value.extract().map_err(|_| {
+        value_error(format!(
+            "{setting}: give a name ({}), not {}",
+            names.join(", "),
+            shown(value)
+        ))
+    })?;
+    all.iter()
+        .copied()
+        .find(|&v| name(v) == given)
+        .ok_or_else(|| {
+            value_error(format!(
+                "{setting}: {given:?} is not one of {}",
+                names.join(", ")
+            ))
+        })
 }
 
 /// A whole-number setting.
 fn whole(value: &Bound<'_, PyAny>, setting: &str) -> PyResult<u32> {
     // not a bool (which Python counts as a number) nor a float (which 3.9 would truncate)
     if value.is_instance_of::<PyBool>() || value.is_instance_of::<PyFloat>() {
-        return Err(value_error(format!("{setting}: give a whole number, not {}", shown(value))));
+        return Err(value_error(format!(
+            "{setting}: give a whole number, not {}",
+            shown(value)
+        )));
     }
-    let n: i128 = value.extract().map_err(|_| value_error(format!("{setting}: give a whole number, not {}", shown(value))))?;
-    u32::try_from(n).map_err(|_| value_error(format!("{setting}: {n} asked: give a positive whole number")))
+    let n: i128 = value.extract().map_err(|_| {
+        value_error(format!(
+            "{setting}: give a whole number, not {}",
+            shown(value)
+        ))
+    })?;
+    u32::try_from(n).map_err(|_| {
+        value_error(format!(
+            "{setting}: {n} asked: give a positive whole number"
+        ))
+    })
 }
 
 fn number(value: &Bound<'_, PyAny>, setting: &str) -> PyResult<f64> {
     if value.is_instance_of::<PyBool>() {
-        return Err(value_error(format!("{setting}: give a number, not {}", shown(value))));
+        return Err(value_error(format!(
+            "{setting}: give a number, not {}",
+            shown(value)
+        )));
     }
-    value.extract().map_err(|_| value_error(format!("{setting}: give a number, not {}", shown(value))))
+    value
+        .extract()
+        .map_err(|_| value_error(format!("{setting}: give a number, not {}", shown(value))))
 }
 
 fn flag(value: &Bound<'_, PyAny>, setting: &str) -> PyResult<bool> {
-    value
-        .cast::<PyBool>()
-        .map(|b| b.is_true())
-        .map_err(|_| value_error(format!("{setting}: give True or False, not {}", shown(value))))
+    value.cast::<PyBool>().map(|b| b.is_true()).map_err(|_| {
+        value_error(format!(
+            "{setting}: give True or False, not {}",
+            shown(value)
+        ))
+    })
 }
 
 /// A value for a message: its repr, cut short.
 fn shown(value: &Bound<'_, PyAny>) -> String {
-    let r = value.repr().map(|r| r.to_string()).unwrap_or_else(|_| "that value".into());
+    let r = value
+        .repr()
+        .map(|r| r.to_string())
+        .unwrap_or_else(|_| "that value".into());
     if r.chars().count() > 40 {
         format!("{}…", r.chars().take(40).collect::<String>())
     } else {
@@ -96,11 +144,18 @@ fn shown(value: &Bound<'_, PyAny>) -> String {
 /// The core's [`Smoothing`] of keyword settings, checked by the core ([`Smoothing::options`]).
 fn smoothing(settings: Option<&Bound<'_, PyDict>>) -> PyResult<Smoothing> {
     let mut s = Smoothing::default();
-    let Some(settings) = settings else { return Ok(s) };
+    let Some(settings) = settings else {
+        return Ok(s);
+    };
     for (key, value) in settings.iter() {
         let name: String = key.extract()?;
         s = match name.as_str() {
-            "objective" => s.objective(named(&value, "objective", &ObjectiveKind::ALL, ObjectiveKind::name)?),
+            "objective" => s.objective(named(
+                &value,
+                "objective",
+                &ObjectiveKind::ALL,
+                ObjectiveKind::name,
+            )?),
             "strategy" => s.strategy(named(&value, "strategy", &Strategy::ALL, Strategy::name)?),
             "threshold" => s.threshold(number(&value, "threshold")?),
             "passes" => s.passes(whole(&value, "passes")?),
@@ -109,9 +164,13 @@ fn smoothing(settings: Option<&Bound<'_, PyDict>>) -> PyResult<Smoothing> {
             "penalty" => s.penalty(named(&value, "penalty", &Penalty::ALL, Penalty::name)?),
             "pass_through_folds" => s.pass_through_folds(flag(&value, "pass_through_folds")?),
             "finish" => s.finish(whole(&value, "finish")?),
+            "target" => s.target(named(&value, "target", &Target::ALL, Target::name)?),
             "slide_curves" => s.slide_curves(flag(&value, "slide_curves")?),
             other => {
-                return Err(value_error(format!("no setting named {other:?}: the settings are {}", SETTINGS.join(", "))))
+                return Err(value_error(format!(
+                    "no setting named {other:?}: the settings are {}",
+                    SETTINGS.join(", ")
+                )))
             }
         };
     }
@@ -133,6 +192,7 @@ fn settings(py: Python<'_>) -> PyResult<Bound<'_, PyDict>> {
             "strategy" => Some(names(&Strategy::ALL, Strategy::name)),
             "order" => Some(names(&Order::ALL, Order::name)),
             "penalty" => Some(names(&Penalty::ALL, Penalty::name)),
+            "target" => Some(names(&Target::ALL, Target::name)),
             _ => None,
         };
         out.set_item(s, choices)?;
@@ -162,7 +222,9 @@ impl PyModel {
     #[staticmethod]
     fn read(py: Python<'_>, path: PathBuf) -> PyResult<Self> {
         let name = path.display().to_string();
-        let model = py.detach(|| io::read(&path)).map_err(|e| py_error(e, Some(&name)))?;
+        let model = py
+            .detach(|| io::read(&path))
+            .map_err(|e| py_error(e, Some(&name)))?;
         Ok(PyModel { model })
     }
 
@@ -182,14 +244,20 @@ impl PyModel {
         let cells = blocks
             .iter()
             .map(|(t, k, nodes)| {
-                Ok(CellBlock { vtk_type: *t, per_cell: *k, nodes: nodes.as_slice().map_err(|_| not_flat("cells"))?.to_vec() })
+                Ok(CellBlock {
+                    vtk_type: *t,
+                    per_cell: *k,
+                    nodes: nodes.as_slice().map_err(|_| not_flat("cells"))?.to_vec(),
+                })
             })
             .collect::<PyResult<Vec<_>>>()?;
         let fixed = match &fixed {
             Some(f) => Some(f.as_slice().map_err(|_| not_flat("fixed"))?),
             None => None,
         };
-        let model = py.detach(|| io::model_from_arrays(dim, points, &cells, fixed)).map_err(|e| py_error(e, None))?;
+        let model = py
+            .detach(|| io::model_from_arrays(dim, points, &cells, fixed))
+            .map_err(|e| py_error(e, None))?;
         Ok(PyModel { model })
     }
 
@@ -221,7 +289,9 @@ impl PyModel {
     fn smooth(&mut self, py: Python<'_>, settings: Option<&Bound<'_, PyDict>>) -> PyResult<String> {
         let s = smoothing(settings)?;
         let model = &mut self.model;
-        let report = py.detach(|| model.smooth(&s)).map_err(|e| py_error(e, None))?;
+        let report = py
+            .detach(|| model.smooth(&s))
+            .map_err(|e| py_error(e, None))?;
         serde_json::to_string(&report).map_err(|e| value_error(e.to_string()))
     }
 
@@ -234,7 +304,12 @@ impl PyModel {
 
     /// Writes the mesh (the format by the extension), as `smoothlab smooth -o` writes it.
     #[pyo3(signature = (path, msh_version=None))]
-    fn write(&self, py: Python<'_>, path: PathBuf, msh_version: Option<&Bound<'_, PyAny>>) -> PyResult<()> {
+    fn write(
+        &self,
+        py: Python<'_>,
+        path: PathBuf,
+        msh_version: Option<&Bound<'_, PyAny>>,
+    ) -> PyResult<()> {
         let msh_version = match msh_version {
             Some(v) => named(v, "msh_version", &MshVersion::ALL, MshVersion::name)?,
             None => MshVersion::default(),
@@ -249,15 +324,30 @@ impl PyModel {
     /// `objective`, `metric`, `size`, `dpr`, `strategy`, `threshold`, `passes`, `order`,
     /// `max_iter`, `penalty`, `camera`, `cut`, `theme`), each None for the tool's default.
     #[pyo3(signature = (path, **options))]
-    fn render(&self, py: Python<'_>, path: PathBuf, options: Option<&Bound<'_, PyDict>>) -> PyResult<()> {
+    fn render(
+        &self,
+        py: Python<'_>,
+        path: PathBuf,
+        options: Option<&Bound<'_, PyDict>>,
+    ) -> PyResult<()> {
         let r = request(options)?;
         // what the tool leaves unused on these meshes is refused here, never ignored
-        let given = |k: &str| options.and_then(|o| o.get_item(k).ok().flatten()).is_some_and(|v| !v.is_none());
+        let given = |k: &str| {
+            options
+                .and_then(|o| o.get_item(k).ok().flatten())
+                .is_some_and(|v| !v.is_none())
+        };
         match &self.model {
             Model::Volume(_) if given("metric") => {
-                return Err(value_error("metric: a volume mesh's cut is coloured by the mean ratio"))
+                return Err(value_error(
+                    "metric: a volume mesh's cut is coloured by the mean ratio",
+                ))
             }
-            Model::Surface(_) if given("cut") => return Err(value_error("cut: it cuts a volume mesh; this mesh is a surface")),
+            Model::Surface(_) if given("cut") => {
+                return Err(value_error(
+                    "cut: it cuts a volume mesh; this mesh is a surface",
+                ))
+            }
             _ => {}
         }
         let model = self.model.clone();
@@ -269,18 +359,24 @@ impl PyModel {
             encode_png(&picture).map_err(|e| e.to_string())
         });
         let png = png.map_err(value_error)?;
-        std::fs::write(&path, png).map_err(|e| PyOSError::new_err(format!("cannot write {name}: {e}")))
+        std::fs::write(&path, png)
+            .map_err(|e| PyOSError::new_err(format!("cannot write {name}: {e}")))
     }
 
     /// A copy of the mesh (smoothing the copy leaves this one as it is).
     fn copy(&self) -> Self {
-        PyModel { model: self.model.clone() }
+        PyModel {
+            model: self.model.clone(),
+        }
     }
 }
 
 /// The picture `render`'s options ask for (None or left out: `smoothlab render`'s default).
 fn request(options: Option<&Bound<'_, PyDict>>) -> PyResult<Request> {
-    let mut r = Request { view: View::Mesh, ..Request::default() };
+    let mut r = Request {
+        view: View::Mesh,
+        ..Request::default()
+    };
     let Some(options) = options else { return Ok(r) };
     for (key, value) in options.iter() {
         let name: String = key.extract()?;
@@ -288,7 +384,9 @@ fn request(options: Option<&Bound<'_, PyDict>>) -> PyResult<Request> {
             continue;
         }
         let text = |what: &str| -> PyResult<String> {
-            value.extract().map_err(|_| value_error(format!("{name}: give {what}, not {}", shown(&value))))
+            value
+                .extract()
+                .map_err(|_| value_error(format!("{name}: give {what}, not {}", shown(&value))))
         };
         match name.as_str() {
             "view" => r.view = named(&value, "view", &View::ALL, View::name)?,

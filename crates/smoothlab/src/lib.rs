@@ -108,6 +108,7 @@ pub mod optimize;
 pub mod quality;
 pub mod smooth;
 pub mod surface;
+pub mod target;
 pub mod volume;
 
 mod smoothing;
@@ -123,6 +124,7 @@ pub use quality::MeshStats;
 pub use smooth::{Obstacle, Order, PassRecord, Strategy};
 pub use smoothing::{Report, Smoothing};
 pub use surface::Surface;
+pub use target::Target;
 pub use volume::VolumeMesh;
 
 /// The README's Rust examples, compiled as doctests.

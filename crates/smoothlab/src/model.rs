@@ -25,6 +25,17 @@ impl From<Mesh> for Model {
 }
 
 impl Model {
+    /// Measures every corner against `target` from now on: [`Target::Input`] takes the
+    /// mesh as it is now, [`Target::Ideal`] the ideal of each kind.
+    pub fn set_target(&mut self, target: crate::target::Target) {
+        let input = target == crate::target::Target::Input;
+        match self {
+            Model::Planar(m) => m.set_target_nodes(input.then(|| m.nodes().to_vec())),
+            Model::Surface(s) => s.set_target_points(input.then(|| s.points().to_vec())),
+            Model::Volume(v) => v.set_target_nodes(input.then(|| v.nodes().to_vec())),
+        }
+    }
+
     /// Builds what a reader found: a volume mesh when the file has volume elements (its
     /// triangles and quads then the boundary faces, [`VolumeMesh::from_builder`]), else a
     /// planar [`Mesh`] when its points lie in a plane (as [`MeshBuilder::build`]), else a
@@ -61,9 +72,9 @@ impl Model {
     pub fn planar(self, what: &str) -> Result<Mesh> {
         match self {
             Model::Planar(m) => Ok(m),
-            Model::Surface(_) => {
-                Err(Error::invalid(format!("{what} takes planar meshes only; this mesh is a surface in 3D")))
-            }
+            Model::Surface(_) => Err(Error::invalid(format!(
+                "{what} takes planar meshes only; this mesh is a surface in 3D"
+            ))),
             Model::Volume(v) => Err(Error::invalid(format!(
                 "{what} takes planar meshes only; this mesh is made of {}",
                 v.family_words()

@@ -13,8 +13,12 @@ use crate::model::Model;
 use crate::objective::{check_scale, objective_with, tet_objective, ObjectiveKind, Penalty};
 use crate::quality::MeshStats;
 use crate::smooth::limits::{threshold_in_range, BATCH_MAX_ITER, BATCH_PASSES};
-use crate::smooth::{untangling_obstacles, Obstacle, Order, PassRecord, SmoothOptions, Smoother, Strategy, DEFAULT_PASSES};
+use crate::smooth::{
+    untangling_obstacles, Obstacle, Order, PassRecord, SmoothOptions, Smoother, Strategy,
+    DEFAULT_PASSES,
+};
 use crate::surface::SurfaceSmoother;
+use crate::target::Target;
 use crate::volume::VolumeSmoother;
 
 /// The settings of a smoothing run, built by chained calls.
@@ -40,6 +44,7 @@ pub struct Smoothing {
     pass_through_folds: Option<bool>,
     slide_curves: bool,
     finish: u32,
+    target: Target,
 }
 
 impl Default for Smoothing {
@@ -55,6 +60,7 @@ impl Default for Smoothing {
             pass_through_folds: None,
             slide_curves: false,
             finish: Smoothing::DEFAULT_FINISH,
+            target: Target::Ideal,
         }
     }
 }
@@ -69,7 +75,8 @@ impl Smoothing {
     /// sines), worst star first, a move kept only where the star's smallest sine does not
     /// fall (and, as in every pass, its statistics stay within the mesh's). The measure users
     /// read; the passes before it improve the average element.
-    pub const FINISH: (ObjectiveKind, Strategy, Order) = (ObjectiveKind::Sine, Strategy::Opt, Order::Priority);
+    pub const FINISH: (ObjectiveKind, Strategy, Order) =
+        (ObjectiveKind::Sine, Strategy::Opt, Order::Priority);
 
     /// How each node is smoothed.
     pub fn strategy(mut self, strategy: Strategy) -> Self {
@@ -125,6 +132,13 @@ impl Smoothing {
         self
     }
 
+    /// What each corner is measured against ([`Target`]); the finish measures the
+    /// statistics themselves, so it takes none.
+    pub fn target(mut self, target: Target) -> Self {
+        self.target = target;
+        self
+    }
+
     pub fn passes_asked(&self) -> u32 {
         self.passes
     }
@@ -141,39 +155,71 @@ impl Smoothing {
     pub fn options(&self) -> Result<SmoothOptions> {
         let strategy = self.strategy;
         if !BATCH_PASSES.contains(self.passes.into()) {
-            return refuse("passes", format!("{} asked: give 1 to {}", self.passes, BATCH_PASSES.max));
+            return refuse(
+                "passes",
+                format!("{} asked: give 1 to {}", self.passes, BATCH_PASSES.max),
+            );
         }
-        let mut o = SmoothOptions::default().with_strategy(strategy).with_order(self.order_taken());
+        let mut o = SmoothOptions::default()
+            .with_strategy(strategy)
+            .with_order(self.order_taken());
         if let Some(t) = self.threshold_deg {
             if strategy.threshold_unused().is_some() {
-                return refuse("threshold", format!("c1, c2 and c3 have one, not {}", strategy.name()));
+                return refuse(
+                    "threshold",
+                    format!("c1, c2 and c3 have one, not {}", strategy.name()),
+                );
             }
             if !threshold_in_range(t) {
-                return refuse("threshold", format!("{t} asked: give degrees above 0 and at most 90"));
+                return refuse(
+                    "threshold",
+                    format!("{t} asked: give degrees above 0 and at most 90"),
+                );
             }
             o = o.with_threshold_deg(t);
         }
         let solver_free = strategy.max_iter_unused().is_some();
         if let Some(k) = self.max_iter {
             if solver_free {
-                return refuse("max_iter", format!("{} never calls the solver", strategy.name()));
+                return refuse(
+                    "max_iter",
+                    format!("{} never calls the solver", strategy.name()),
+                );
             }
             if !BATCH_MAX_ITER.contains(k.into()) {
-                return refuse("max_iter", format!("{k} asked: give 1 to {}", BATCH_MAX_ITER.max));
+                return refuse(
+                    "max_iter",
+                    format!("{k} asked: give 1 to {}", BATCH_MAX_ITER.max),
+                );
             }
             o = o.with_max_iter(k);
         }
         if let Some(on) = self.pass_through_folds {
             if solver_free {
-                return refuse("pass_through_folds", format!("{} never calls the solver", strategy.name()));
+                return refuse(
+                    "pass_through_folds",
+                    format!("{} never calls the solver", strategy.name()),
+                );
             }
             o = o.with_pass_through_folds(on);
         }
         if self.penalty.is_some() && self.objective != ObjectiveKind::SmoothShape {
             return refuse("penalty", "it is a design of the new objective".into());
         }
+        if self.target != Target::Ideal && !matches!(strategy, Strategy::Opt | Strategy::Rules) {
+            return refuse(
+                "target",
+                format!(
+                    "{} takes Laplacian steps; the targets are measured by opt and rules",
+                    strategy.name()
+                ),
+            );
+        }
         if u64::from(self.finish) > BATCH_PASSES.max {
-            return refuse("finish", format!("{} asked: give 0 to {}", self.finish, BATCH_PASSES.max));
+            return refuse(
+                "finish",
+                format!("{} asked: give 0 to {}", self.finish, BATCH_PASSES.max),
+            );
         }
         o.validate()?;
         Ok(o)
@@ -184,14 +230,22 @@ impl Smoothing {
         match model {
             Model::Surface(_) => Ok(()),
             Model::Planar(mesh) if !self.slide_curves => check_scale(self.objective, mesh),
-            Model::Volume(v) if self.slide_curves => {
-                refuse("slide_curves", format!("a surface's curves slide; this mesh is made of {}", v.family_words()))
-            }
-            Model::Volume(_) if self.penalty.is_some() => {
-                refuse("penalty", "its designs are planar; volume elements take new's barrier".into())
-            }
+            Model::Volume(v) if self.slide_curves => refuse(
+                "slide_curves",
+                format!(
+                    "a surface's curves slide; this mesh is made of {}",
+                    v.family_words()
+                ),
+            ),
+            Model::Volume(_) if self.penalty.is_some() => refuse(
+                "penalty",
+                "its designs are planar; volume elements take new's barrier".into(),
+            ),
             Model::Volume(_) => Ok(()),
-            Model::Planar(_) => refuse("slide_curves", "a surface's curves slide; this mesh is planar".into()),
+            Model::Planar(_) => refuse(
+                "slide_curves",
+                "a surface's curves slide; this mesh is planar".into(),
+            ),
         }
     }
 }
@@ -203,12 +257,13 @@ fn refuse<T>(name: &str, why: String) -> Result<T> {
 
 /// What a smoothing run did: a record a pass, and where the mesh stands.
 ///
-/// In JSON (`smoothlab smooth --json`) it is one object: `objective`, `strategy`, `passes`,
+/// In JSON (`smoothlab smooth --json`) it is one object: `objective`, `strategy`, `target`, `passes`,
 /// `final`, `untangling_impossible` and `time_ms`.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct Report {
     objective: ObjectiveKind,
     strategy: Strategy,
+    target: Target,
     #[serde(skip)]
     order: Order,
     passes: Vec<PassRecord>,
@@ -242,6 +297,10 @@ impl Report {
     /// The inverted elements no move allowed by the fixed nodes can repair, and why.
     pub fn untangling_impossible(&self) -> &[Obstacle] {
         &self.untangling_impossible
+    }
+    /// What each corner was measured against in the passes before the finish.
+    pub fn target(&self) -> Target {
+        self.target
     }
     /// The objective, strategy and node order of the run.
     pub fn settings(&self) -> (ObjectiveKind, Strategy, Order) {
@@ -282,23 +341,33 @@ impl Model {
             Model::Planar(mesh) => {
                 let objective = objective_with(kind, penalty);
                 let mut smoother = Smoother::new(options)?;
-                numbers.map(|_| smoother.pass(mesh, &*objective, clock)).collect()
+                numbers
+                    .map(|_| smoother.pass(mesh, &*objective, clock))
+                    .collect()
             }
             Model::Surface(surface) => {
                 let objective = objective_with(kind, penalty);
                 let mut smoother = SurfaceSmoother::new(options)?;
-                numbers.map(|_| smoother.pass(surface, &*objective, clock)).collect()
+                numbers
+                    .map(|_| smoother.pass(surface, &*objective, clock))
+                    .collect()
             }
             Model::Volume(mesh) => {
                 let objective = tet_objective(kind)?;
                 let mut smoother = VolumeSmoother::new(options)?;
-                numbers.map(|p| smoother.pass(mesh, &*objective, p, clock)).collect()
+                numbers
+                    .map(|p| smoother.pass(mesh, &*objective, p, clock))
+                    .collect()
             }
         })
     }
 
     /// Smooths the mesh as [`smooth`](Self::smooth), timed by `clock` (milliseconds).
-    pub fn smooth_with_clock(&mut self, smoothing: &Smoothing, clock: &dyn Fn() -> f64) -> Result<Report> {
+    pub fn smooth_with_clock(
+        &mut self,
+        smoothing: &Smoothing,
+        clock: &dyn Fn() -> f64,
+    ) -> Result<Report> {
         let opts = smoothing.options()?;
         smoothing.check(self)?;
         let kind = smoothing.objective;
@@ -309,17 +378,32 @@ impl Model {
             }
         }
         let penalty = smoothing.penalty.unwrap_or_default();
-        let mut passes = self.passes(kind, penalty, opts, 1..smoothing.passes + 1, clock)?;
-        let valid = passes.last().map_or_else(|| self.stats().inverted, |r| r.after.inverted) == 0;
+        self.set_target(smoothing.target);
+        let passes = self.passes(kind, penalty, opts, 1..smoothing.passes + 1, clock);
+        self.set_target(Target::Ideal);
+        let mut passes = passes?;
+        let valid = passes
+            .last()
+            .map_or_else(|| self.stats().inverted, |r| r.after.inverted)
+            == 0;
         let main_passes = passes.len();
         if smoothing.finish > 0 && valid {
             let (kind, strategy, order) = Smoothing::FINISH;
-            let o = SmoothOptions { max_iter: opts.max_iter, ..SmoothOptions::default() }
-                .with_strategy(strategy)
-                .with_order(order)
-                .with_smart_measure(crate::smooth::Measure::MinSine);
+            let o = SmoothOptions {
+                max_iter: opts.max_iter,
+                ..SmoothOptions::default()
+            }
+            .with_strategy(strategy)
+            .with_order(order)
+            .with_smart_measure(crate::smooth::Measure::MinSine);
             let first = passes.len() as u32 + 1;
-            passes.extend(self.passes(kind, Penalty::default(), o, first..first + smoothing.finish, clock)?);
+            passes.extend(self.passes(
+                kind,
+                Penalty::default(),
+                o,
+                first..first + smoothing.finish,
+                clock,
+            )?);
         }
         for (i, r) in passes.iter_mut().enumerate() {
             r.pass = i as u32 + 1;
@@ -335,6 +419,7 @@ impl Model {
         Ok(Report {
             objective: kind,
             strategy: smoothing.strategy,
+            target: smoothing.target,
             order: opts.order,
             passes,
             finish,

@@ -3,11 +3,14 @@
 
 use std::path::{Path, PathBuf};
 
+use crate::common::{ok, p, run};
 use serde_json::Value;
-use crate::common::{run, ok, p};
 
 fn dir(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("smoothlab-smooth-cli-{}-{name}", std::process::id()));
+    let d = std::env::temp_dir().join(format!(
+        "smoothlab-smooth-cli-{}-{name}",
+        std::process::id()
+    ));
     std::fs::create_dir_all(&d).unwrap();
     d
 }
@@ -17,9 +20,22 @@ fn tangled_plate(d: &Path) -> PathBuf {
     let plate = d.join("plate.vtk");
     let tangled = d.join("tangled.vtk");
     ok(&["generate", "plate", "--kind", "mixed", "-o", p(&plate)]);
-    ok(&["generate", "perturb", p(&plate), "--amount", "0.6", "--seed", "2", "-o", p(&tangled)]);
+    ok(&[
+        "generate",
+        "perturb",
+        p(&plate),
+        "--amount",
+        "0.6",
+        "--seed",
+        "2",
+        "-o",
+        p(&tangled),
+    ]);
     let s: Value = serde_json::from_str(&ok(&["stats", "--json", p(&tangled)])).unwrap();
-    assert!(s["inverted"].as_u64().unwrap() > 0, "the perturbed plate must be tangled: {s}");
+    assert!(
+        s["inverted"].as_u64().unwrap() > 0,
+        "the perturbed plate must be tangled: {s}"
+    );
     tangled
 }
 
@@ -46,22 +62,75 @@ fn json_report_has_its_shape_and_final_equals_stats_of_the_output() {
     let input = tangled_plate(&d);
     for (out_name, extra) in [
         ("a.vtk", vec![]),
-        ("b.msh", vec!["--strategy", "c2", "--objective", "old", "--threshold", "15", "--passes", "2"]),
-        ("c.vtk", vec!["--strategy", "opt", "--objective", "condition-max", "--order", "priority", "--max-iter", "5"]),
-        ("d.msh", vec!["--strategy", "laplace", "--objective", "untangle-mindet", "--passes", "1"]),
+        (
+            "b.msh",
+            vec![
+                "--strategy",
+                "c2",
+                "--objective",
+                "old",
+                "--threshold",
+                "15",
+                "--passes",
+                "2",
+            ],
+        ),
+        (
+            "c.vtk",
+            vec![
+                "--strategy",
+                "opt",
+                "--objective",
+                "condition-max",
+                "--order",
+                "priority",
+                "--max-iter",
+                "5",
+            ],
+        ),
+        (
+            "d.msh",
+            vec![
+                "--strategy",
+                "laplace",
+                "--objective",
+                "untangle-mindet",
+                "--passes",
+                "1",
+            ],
+        ),
     ] {
         let out = d.join(out_name);
         let mut args = vec!["smooth", p(&input), "-o", p(&out), "--json"];
         args.extend(extra.iter().copied());
         let text = ok(&args);
-        assert_eq!(text.trim().lines().count(), 1, "one JSON object on one line: {text}");
+        assert_eq!(
+            text.trim().lines().count(),
+            1,
+            "one JSON object on one line: {text}"
+        );
         let v: Value = serde_json::from_str(&text).unwrap();
         let keys: Vec<&str> = v.as_object().unwrap().keys().map(|k| k.as_str()).collect();
         let mut sorted = keys.clone();
         sorted.sort_unstable();
-        assert_eq!(sorted, ["final", "finish", "objective", "passes", "strategy", "time_ms", "untangling_impossible"], "{out_name}");
+        assert_eq!(
+            sorted,
+            [
+                "final",
+                "finish",
+                "objective",
+                "passes",
+                "strategy",
+                "time_ms",
+                "untangling_impossible"
+            ],
+            "{out_name}"
+        );
         let passes = v["passes"].as_array().unwrap();
-        let want = extra.iter().position(|a| *a == "--passes").map_or(3, |i| extra[i + 1].parse::<usize>().unwrap());
+        let want = extra
+            .iter()
+            .position(|a| *a == "--passes")
+            .map_or(3, |i| extra[i + 1].parse::<usize>().unwrap());
         // the finish's passes follow where the passes asked for left the mesh valid
         let finish = v["finish"].as_u64().unwrap() as usize;
         let valid = passes[want - 1]["inverted"] == 0;
@@ -71,7 +140,10 @@ fn json_report_has_its_shape_and_final_equals_stats_of_the_output() {
             let o = rec.as_object().unwrap();
             assert_eq!(o.len(), PASS_FIELDS.len(), "{out_name}: {rec}");
             for f in PASS_FIELDS {
-                assert!(o.contains_key(f), "{out_name}: pass record without {f}: {rec}");
+                assert!(
+                    o.contains_key(f),
+                    "{out_name}: pass record without {f}: {rec}"
+                );
             }
             assert_eq!(rec["pass"].as_u64(), Some(i as u64 + 1));
             assert!(rec["elapsed_ms"].as_f64().unwrap() >= 0.0);
@@ -93,7 +165,8 @@ fn defaults_are_new_rules_priority_three_passes_and_untangle_the_plate() {
     let d = dir("defaults");
     let input = tangled_plate(&d);
     let out = d.join("s.vtk");
-    let v: Value = serde_json::from_str(&ok(&["smooth", p(&input), "-o", p(&out), "--json"])).unwrap();
+    let v: Value =
+        serde_json::from_str(&ok(&["smooth", p(&input), "-o", p(&out), "--json"])).unwrap();
     assert_eq!(v["objective"], "new");
     assert_eq!(v["strategy"], "rules");
     let passes = v["passes"].as_array().unwrap();
@@ -102,19 +175,45 @@ fn defaults_are_new_rules_priority_three_passes_and_untangle_the_plate() {
     assert_eq!(v["finish"], 3);
     // priority order visits poor nodes more than once a pass
     let free = v["final"]["free_nodes"].as_u64().unwrap();
-    assert!(passes[0]["visits"].as_u64().unwrap() > free, "{}", passes[0]);
-    assert_eq!(v["final"]["inverted"], 0, "new + rules untangles this plate in 3 passes");
+    assert!(
+        passes[0]["visits"].as_u64().unwrap() > free,
+        "{}",
+        passes[0]
+    );
+    assert_eq!(
+        v["final"]["inverted"], 0,
+        "new + rules untangles this plate in 3 passes"
+    );
     // the same with --order input visits each free node once, then again only in
     // untangling sweeps (while elements are inverted)
-    let v: Value =
-        serde_json::from_str(&ok(&["smooth", p(&input), "-o", p(&out), "--json", "--order", "input"])).unwrap();
+    let v: Value = serde_json::from_str(&ok(&[
+        "smooth",
+        p(&input),
+        "-o",
+        p(&out),
+        "--json",
+        "--order",
+        "input",
+    ]))
+    .unwrap();
     let first = &v["passes"][0];
-    let (visits, sweeps) = (first["visits"].as_u64().unwrap(), first["untangle_sweeps"].as_u64().unwrap());
+    let (visits, sweeps) = (
+        first["visits"].as_u64().unwrap(),
+        first["untangle_sweeps"].as_u64().unwrap(),
+    );
     assert!(visits >= free && (visits > free) == (sweeps > 0), "{first}");
     assert!(sweeps <= u64::from(smoothlab::smooth::UNTANGLE_SWEEPS));
     // other strategies default to input order
-    let v: Value =
-        serde_json::from_str(&ok(&["smooth", p(&input), "-o", p(&out), "--json", "--strategy", "smart"])).unwrap();
+    let v: Value = serde_json::from_str(&ok(&[
+        "smooth",
+        p(&input),
+        "-o",
+        p(&out),
+        "--json",
+        "--strategy",
+        "smart",
+    ]))
+    .unwrap();
     assert_eq!(v["passes"][0]["visits"].as_u64(), Some(free));
     assert_eq!(v["passes"][0]["optimization_calls"], 0);
 }
@@ -124,9 +223,25 @@ fn human_summary_has_a_line_per_pass_and_writes_the_mesh() {
     let d = dir("human");
     let input = tangled_plate(&d);
     let out = d.join("s.msh");
-    let text = ok(&["smooth", p(&input), "-o", p(&out), "--passes", "4", "--strategy", "laplace"]);
-    assert_eq!(text.lines().filter(|l| l.starts_with("pass ")).count(), 4, "{text}");
-    assert!(text.contains("measured only"), "laplace says it ignores the objective: {text}");
+    let text = ok(&[
+        "smooth",
+        p(&input),
+        "-o",
+        p(&out),
+        "--passes",
+        "4",
+        "--strategy",
+        "laplace",
+    ]);
+    assert_eq!(
+        text.lines().filter(|l| l.starts_with("pass ")).count(),
+        4,
+        "{text}"
+    );
+    assert!(
+        text.contains("measured only"),
+        "laplace says it ignores the objective: {text}"
+    );
     assert!(text.lines().last().unwrap().starts_with("final:"), "{text}");
     assert!(out.is_file());
 }
@@ -142,12 +257,27 @@ fn bad_options_are_refused_with_a_message_and_nothing_written() {
         (vec!["--passes", "0"], "--passes"),
         (vec!["--max-iter", "0"], "--max-iter"),
         (vec!["--strategy", "c1", "--threshold", "0"], "--threshold"),
-        (vec!["--strategy", "c3", "--threshold", "90.5"], "--threshold"),
-        (vec!["--strategy", "c2", "--threshold", "NaN"], "--threshold"),
+        (
+            vec!["--strategy", "c3", "--threshold", "90.5"],
+            "--threshold",
+        ),
+        (
+            vec!["--strategy", "c2", "--threshold", "NaN"],
+            "--threshold",
+        ),
         (vec!["--threshold", "20"], "c1, c2 and c3"),
-        (vec!["--strategy", "opt", "--threshold", "20"], "c1, c2 and c3"),
-        (vec!["--strategy", "laplace", "--max-iter", "5"], "never calls the solver"),
-        (vec!["--strategy", "smart", "--max-iter", "5"], "never calls the solver"),
+        (
+            vec!["--strategy", "opt", "--threshold", "20"],
+            "c1, c2 and c3",
+        ),
+        (
+            vec!["--strategy", "laplace", "--max-iter", "5"],
+            "never calls the solver",
+        ),
+        (
+            vec!["--strategy", "smart", "--max-iter", "5"],
+            "never calls the solver",
+        ),
         (vec!["--objective", "best"], "best"),
         (vec!["--strategy", "fast"], "fast"),
         (vec!["--order", "random"], "random"),
@@ -174,11 +304,32 @@ fn pass_through_folds_is_an_option_of_the_solver_strategies_only() {
     let d = dir("folds");
     let mesh = tangled_plate(&d);
     let out = d.join("out.vtk");
-    let json = ok(&["smooth", p(&mesh), "-o", p(&out), "--objective", "untangle", "--strategy", "opt", "--passes", "2", "--pass-through-folds", "--json"]);
+    let json = ok(&[
+        "smooth",
+        p(&mesh),
+        "-o",
+        p(&out),
+        "--objective",
+        "untangle",
+        "--strategy",
+        "opt",
+        "--passes",
+        "2",
+        "--pass-through-folds",
+        "--json",
+    ]);
     let v: serde_json::Value = serde_json::from_str(&json).unwrap();
     let finish = v["finish"].as_u64().unwrap() as usize;
     assert_eq!(v["passes"].as_array().unwrap().len(), 2 + finish);
-    let r = run(&["smooth", p(&mesh), "-o", p(&out), "--strategy", "laplace", "--pass-through-folds"]);
+    let r = run(&[
+        "smooth",
+        p(&mesh),
+        "-o",
+        p(&out),
+        "--strategy",
+        "laplace",
+        "--pass-through-folds",
+    ]);
     assert!(!r.status.success());
     assert!(String::from_utf8_lossy(&r.stderr).contains("--pass-through-folds"));
 }
@@ -199,18 +350,31 @@ fn no_pass_through_folds_and_the_penalty_design_are_options_too() {
     assert_ne!(json(&["--penalty", "angle"])["final"], default["final"]);
     // the default passes through folds for `new`: forcing it on changes nothing, off does
     assert_eq!(json(&["--pass-through-folds"])["final"], default["final"]);
-    assert_ne!(json(&["--no-pass-through-folds"])["final"], default["final"]);
+    assert_ne!(
+        json(&["--no-pass-through-folds"])["final"],
+        default["final"]
+    );
     // refused where it would do nothing, or with an unknown design
     for (args, says) in [
-        (vec!["--objective", "old", "--penalty", "angle"], "--objective new"),
+        (
+            vec!["--objective", "old", "--penalty", "angle"],
+            "--objective new",
+        ),
         (vec!["--penalty", "cubic"], "cubic"),
-        (vec!["--strategy", "smart", "--no-pass-through-folds"], "--no-pass-through-folds"),
+        (
+            vec!["--strategy", "smart", "--no-pass-through-folds"],
+            "--no-pass-through-folds",
+        ),
     ] {
         let mut all = vec!["smooth", p(&mesh), "-o", p(&out)];
         all.extend(args.iter().copied());
         let r = run(&all);
         assert!(!r.status.success(), "{args:?}");
-        assert!(String::from_utf8_lossy(&r.stderr).contains(says), "{args:?}: {}", String::from_utf8_lossy(&r.stderr));
+        assert!(
+            String::from_utf8_lossy(&r.stderr).contains(says),
+            "{args:?}: {}",
+            String::from_utf8_lossy(&r.stderr)
+        );
     }
 }
 
@@ -249,16 +413,29 @@ fn smooth_names_the_elements_it_cannot_untangle_and_why() {
     std::fs::write(&input, STUCK_VTK).unwrap();
     let out = d.join("out.vtk");
     let text = ok(&["smooth", p(&input), "-o", p(&out)]);
-    assert!(text.contains("untangling is impossible for 2 of the 2 inverted elements"), "{text}");
+    assert!(
+        text.contains("untangling is impossible for 2 of the 2 inverted elements"),
+        "{text}"
+    );
     assert!(text.contains("element 2: its corner at node"), "{text}");
     assert!(text.contains("all fixed"), "{text}");
-    assert!(text.contains("element 4: nodes 6 and 5 are fixed and at the same point"), "{text}");
-    let v: Value = serde_json::from_str(&ok(&["smooth", p(&input), "-o", p(&out), "--json"])).unwrap();
+    assert!(
+        text.contains("element 4: nodes 6 and 5 are fixed and at the same point"),
+        "{text}"
+    );
+    let v: Value =
+        serde_json::from_str(&ok(&["smooth", p(&input), "-o", p(&out), "--json"])).unwrap();
     let list = v["untangling_impossible"].as_array().unwrap();
-    assert_eq!(list.iter().map(|o| o["element"].as_u64().unwrap()).collect::<Vec<_>>(), [2, 4]);
+    assert_eq!(
+        list.iter()
+            .map(|o| o["element"].as_u64().unwrap())
+            .collect::<Vec<_>>(),
+        [2, 4]
+    );
     // a mesh that untangles reports none
     let plate = tangled_plate(&d);
-    let v: Value = serde_json::from_str(&ok(&["smooth", p(&plate), "-o", p(&out), "--json"])).unwrap();
+    let v: Value =
+        serde_json::from_str(&ok(&["smooth", p(&plate), "-o", p(&out), "--json"])).unwrap();
     assert_eq!(v["final"]["inverted"], 0);
     assert_eq!(v["untangling_impossible"], serde_json::json!([]));
 }
@@ -269,11 +446,26 @@ fn smooth_names_the_elements_it_cannot_untangle_and_why() {
 fn help_texts_are_their_own_and_counts_agree_with_their_nouns() {
     let help = ok(&["smooth", "--help"]);
     let text_of = |flag: &str| {
-        let at = help.find(&format!("--{flag}\n")).unwrap_or_else(|| panic!("no --{flag} in:\n{help}"));
-        help[at..].lines().nth(1).unwrap_or_default().trim().to_string()
+        let at = help
+            .find(&format!("--{flag}\n"))
+            .unwrap_or_else(|| panic!("no --{flag} in:\n{help}"));
+        help[at..]
+            .lines()
+            .nth(1)
+            .unwrap_or_default()
+            .trim()
+            .to_string()
     };
-    assert!(text_of("json").starts_with("Print one JSON object"), "{}", text_of("json"));
-    assert!(text_of("slide-curves").starts_with("A surface's feature curves"), "{}", text_of("slide-curves"));
+    assert!(
+        text_of("json").starts_with("Print one JSON object"),
+        "{}",
+        text_of("json")
+    );
+    assert!(
+        text_of("slide-curves").starts_with("A surface's feature curves"),
+        "{}",
+        text_of("slide-curves")
+    );
     let d = dir("plurals");
     let one = d.join("one.vtk");
     std::fs::write(
@@ -283,7 +475,10 @@ fn help_texts_are_their_own_and_counts_agree_with_their_nouns() {
     )
     .unwrap();
     let stats = ok(&["stats", p(&one)]);
-    assert!(stats.contains("elements         1 4-node tetrahedron\n"), "{stats}");
+    assert!(
+        stats.contains("elements         1 4-node tetrahedron\n"),
+        "{stats}"
+    );
     let cube = d.join("cube.vtk");
     ok(&["generate", "cube", "--cells", "1", "-o", p(&cube)]);
     assert!(ok(&["stats", p(&cube)]).contains("6 4-node tetrahedra"));

@@ -8,7 +8,9 @@
 use serde::Serialize;
 
 use super::permalink::{control_label, gmsh_sample_name, PageState, GMSH_FILES};
-use smoothlab::smooth::limits::{amount_words, IntRange, AMOUNT_STEP, MAX_AMOUNT, MAX_ITER, PASSES, SEED, THRESHOLDS};
+use smoothlab::smooth::limits::{
+    amount_words, IntRange, AMOUNT_STEP, MAX_AMOUNT, MAX_ITER, PASSES, SEED, THRESHOLDS,
+};
 use smoothlab::smooth::Strategy;
 
 fn label(key: &str) -> &'static str {
@@ -134,7 +136,13 @@ pub struct PageControls {
 }
 
 fn int_control(label: &'static str, r: IntRange, default: u64) -> IntControl {
-    IntControl { label, min: r.min.to_string(), max: r.max.to_string(), default: default.to_string(), words: r.words() }
+    IntControl {
+        label,
+        min: r.min.to_string(),
+        max: r.max.to_string(),
+        default: default.to_string(),
+        words: r.words(),
+    }
 }
 
 /// The page's controls with their ranges and defaults (see the module notes).
@@ -171,10 +179,26 @@ pub fn page_controls() -> PageControls {
             .collect(),
         orders: smoothlab::smooth::Order::ALL
             .iter()
-            .map(|&o| MenuEntry { name: o.name(), label: o.label(), title: o.describe() })
+            .map(|&o| MenuEntry {
+                name: o.name(),
+                label: o.label(),
+                title: o.describe(),
+            })
             .collect(),
-        objectives: smoothlab::objective::ObjectiveKind::ALL.iter().map(|k| Named { name: k.name(), words: k.describe() }).collect(),
-        penalties: smoothlab::objective::Penalty::ALL.iter().map(|p| Named { name: p.name(), words: p.describe() }).collect(),
+        objectives: smoothlab::objective::ObjectiveKind::ALL
+            .iter()
+            .map(|k| Named {
+                name: k.name(),
+                words: k.describe(),
+            })
+            .collect(),
+        penalties: smoothlab::objective::Penalty::ALL
+            .iter()
+            .map(|p| Named {
+                name: p.name(),
+                words: p.describe(),
+            })
+            .collect(),
         panels: super::Side::BOTH
             .iter()
             .zip(d.settings.compare)
@@ -195,7 +219,11 @@ pub fn page_controls() -> PageControls {
         max_file_bytes: smoothlab::io::PAGE_MAX_FILE_BYTES,
         gmsh_samples: GMSH_FILES
             .iter()
-            .map(|g| GmshSample { file: g.file, name: gmsh_sample_name(g.file), title: g.title })
+            .map(|g| GmshSample {
+                file: g.file,
+                name: gmsh_sample_name(g.file),
+                title: g.title,
+            })
             .collect(),
         quality_ramp: smoothlab_render::VIRIDIS,
     }
@@ -208,7 +236,11 @@ mod tests {
     #[test]
     fn the_defaults_lie_in_their_ranges_and_the_threshold_default_is_offered() {
         let d = PageState::default();
-        assert!(PASSES.contains(d.passes.into()) && MAX_ITER.contains(d.settings.max_iter.into()) && SEED.contains(d.seed));
+        assert!(
+            PASSES.contains(d.passes.into())
+                && MAX_ITER.contains(d.settings.max_iter.into())
+                && SEED.contains(d.seed)
+        );
         assert!((0.0..=MAX_AMOUNT).contains(&d.amount));
         assert!(THRESHOLDS.contains(&d.settings.threshold_deg));
         assert!(d.validate().is_ok());
@@ -218,14 +250,29 @@ mod tests {
     fn every_strategy_says_which_controls_matter() {
         let c = page_controls();
         assert_eq!(c.strategies.len(), Strategy::ALL.len());
-        let with_threshold: Vec<&str> =
-            c.strategies.iter().filter(|s| s.threshold_unused.is_none()).map(|s| s.name).collect();
+        let with_threshold: Vec<&str> = c
+            .strategies
+            .iter()
+            .filter(|s| s.threshold_unused.is_none())
+            .map(|s| s.name)
+            .collect();
         assert_eq!(with_threshold, ["c1", "c2", "c3"]);
-        let without_solver: Vec<&str> =
-            c.strategies.iter().filter(|s| s.max_iter_unused.is_some()).map(|s| s.name).collect();
+        let without_solver: Vec<&str> = c
+            .strategies
+            .iter()
+            .filter(|s| s.max_iter_unused.is_some())
+            .map(|s| s.name)
+            .collect();
         assert_eq!(without_solver, ["laplace", "smart"]);
         assert_eq!(c.passes.words, "a whole number from 1 to 100");
-        assert_eq!((c.maxiter.min.as_str(), c.maxiter.max.as_str(), c.maxiter.default.as_str()), ("1", "50", "3"));
+        assert_eq!(
+            (
+                c.maxiter.min.as_str(),
+                c.maxiter.max.as_str(),
+                c.maxiter.default.as_str()
+            ),
+            ("1", "50", "3")
+        );
         assert_eq!(c.seed.max, u64::MAX.to_string());
     }
 
@@ -233,15 +280,24 @@ mod tests {
     fn the_sheet_hands_the_page_its_gmsh_samples_and_file_limit() {
         let c = page_controls();
         let files: Vec<&str> = c.gmsh_samples.iter().map(|g| g.file).collect();
-        assert_eq!(files, ["plate_hole_tri.msh", "bracket_quad.msh", "disk_tri6.msh"]);
+        assert_eq!(
+            files,
+            ["plate_hole_tri.msh", "bracket_quad.msh", "disk_tri6.msh"]
+        );
         let names: Vec<&str> = c.gmsh_samples.iter().map(|g| g.name.as_str()).collect();
-        assert_eq!(names, ["gmsh-plate-hole-tri", "gmsh-bracket-quad", "gmsh-disk-tri6"]);
+        assert_eq!(
+            names,
+            ["gmsh-plate-hole-tri", "gmsh-bracket-quad", "gmsh-disk-tri6"]
+        );
         for g in &c.gmsh_samples {
             // the name a link carries opens this very file
             assert_eq!(super::super::permalink::gmsh_file(&g.name), Some(g.file));
             assert!(super::super::permalink::SAMPLES.contains(&g.name.as_str()));
         }
-        assert_eq!(c.gmsh_samples[2].title, "Gmsh: disk, 6-node triangles (curved)");
+        assert_eq!(
+            c.gmsh_samples[2].title,
+            "Gmsh: disk, 6-node triangles (curved)"
+        );
         assert_eq!(c.max_file_bytes, 256 << 20);
         // as the page receives it: a plain number (exact in a JS number), the lists by field
         let json = serde_json::to_value(&c).unwrap();

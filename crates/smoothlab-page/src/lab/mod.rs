@@ -33,6 +33,10 @@ use std::cell::{OnceCell, RefCell};
 use glam::DVec2;
 use tiny_skia::Pixmap;
 
+pub use lab3d::{Frame3d, Lab3d, Mesh3d};
+pub use pass::{PassProgress, PassStage, SideSweep};
+use pass::{PassRun, RunKind};
+pub use settings::{Choice, Settings, Side};
 use smoothlab::error::{Error, Result};
 use smoothlab::generate::perturb;
 use smoothlab::io::{write_string, Format, WriteOptions};
@@ -41,18 +45,15 @@ use smoothlab::objective::Objective;
 use smoothlab::optimize::SolveResult;
 use smoothlab::quality::MeshStats;
 use smoothlab::smooth::{solve_node, Smoother};
-pub use lab3d::{Frame3d, Lab3d, Mesh3d};
-pub use pass::{PassProgress, PassStage, SideSweep};
-pub use settings::{Choice, Settings, Side};
-pub use table::{PanelStats, PanelTable, TableDetail, WorkDone, DETAIL_MAX_ELEMENTS, SMALL_ANGLE_DEG};
-use pass::{PassRun, RunKind};
 use stats::{quick_stats_and_buckets, QuickStats};
+pub use table::{
+    PanelStats, PanelTable, TableDetail, WorkDone, DETAIL_MAX_ELEMENTS, SMALL_ANGLE_DEG,
+};
 use views::Canvas;
 
 /// Node count above which the page refuses a mesh: the playground holds two copies (and
 /// the positions as loaded) and draws every element each frame.
 pub const MAX_NODES: usize = 1_000_000;
-
 
 /// What one pass did on one panel and where its mesh stands after it: the core's record,
 /// without the objective total (the page never shows it, and it costs more than a
@@ -107,7 +108,6 @@ impl Panel {
         self.full = OnceCell::new();
     }
 }
-
 
 /// Hands out the numbers that name a panel's positions: each call a new one.
 #[derive(Debug)]
@@ -237,7 +237,9 @@ impl Playground {
     pub fn step(&mut self, clock: &dyn Fn() -> f64) -> [PassSummary; 2] {
         self.begin_pass();
         loop {
-            let p = self.continue_pass(clock, f64::INFINITY).expect("a pass was begun");
+            let p = self
+                .continue_pass(clock, f64::INFINITY)
+                .expect("a pass was begun");
             if let Some(records) = p.records {
                 return records;
             }
@@ -279,7 +281,10 @@ impl Playground {
         // the sweep starts from the other engine's positions; the run saves the panel's
         // own, and puts them back when the sweep is taken or abandoned
         run.save(&self.panels);
-        self.panels[side.index()].mesh.nodes_mut().copy_from_slice(&nodes);
+        self.panels[side.index()]
+            .mesh
+            .nodes_mut()
+            .copy_from_slice(&nodes);
         self.run = Some(run);
         Ok(())
     }
@@ -288,7 +293,9 @@ impl Playground {
     /// [`continue_pass`](Self::continue_pass) said it is done: the swept positions (x, y
     /// interleaved) and what the sweep did. `None` before that, and after it was taken.
     pub fn take_sweep(&mut self) -> Option<(Vec<f64>, SideSweep)> {
-        self.swept.take().map(|(nodes, sweep)| (interleaved(&nodes), sweep))
+        self.swept
+            .take()
+            .map(|(nodes, sweep)| (interleaved(&nodes), sweep))
     }
 
     /// Hands panel A's sweep, made by another engine, to the split pass in progress
@@ -296,9 +303,12 @@ impl Playground {
     /// and what it did.
     pub fn adopt_sweep(&mut self, nodes: &[f64], sweep: SideSweep) -> Result<()> {
         let nodes = self.positions_from(nodes)?;
-        let run =
-            self.run.as_mut().ok_or_else(|| Error::invalid("no pass is in progress: begin a split pass first"))?;
-        run.adopt(&mut self.panels, &mut self.versions, &nodes, sweep).map_err(Error::invalid)
+        let run = self
+            .run
+            .as_mut()
+            .ok_or_else(|| Error::invalid("no pass is in progress: begin a split pass first"))?;
+        run.adopt(&mut self.panels, &mut self.versions, &nodes, sweep)
+            .map_err(Error::invalid)
     }
 
     /// The positions of a panel, x and y interleaved (what [`begin_sweep`](Self::begin_sweep) takes).
@@ -318,7 +328,9 @@ impl Playground {
         }
         let nodes: Vec<DVec2> = xy.chunks_exact(2).map(|c| DVec2::new(c[0], c[1])).collect();
         if let Some(i) = nodes.iter().position(|p| !p.is_finite()) {
-            return Err(Error::invalid(format!("node {i} has a coordinate that is not a finite number")));
+            return Err(Error::invalid(format!(
+                "node {i} has a coordinate that is not a finite number"
+            )));
         }
         Ok(nodes)
     }
@@ -333,8 +345,15 @@ impl Playground {
     /// slice of the statistics), and says where it stands. When it is done the records
     /// are kept, as after [`step`](Self::step). While a pass is in progress the panels'
     /// meshes are part-smoothed and their statistics those before the pass.
-    pub fn continue_pass(&mut self, clock: &dyn Fn() -> f64, budget_ms: f64) -> Result<PassProgress> {
-        let run = self.run.as_mut().ok_or_else(|| Error::invalid("no pass is in progress: begin one first"))?;
+    pub fn continue_pass(
+        &mut self,
+        clock: &dyn Fn() -> f64,
+        budget_ms: f64,
+    ) -> Result<PassProgress> {
+        let run = self
+            .run
+            .as_mut()
+            .ok_or_else(|| Error::invalid("no pass is in progress: begin one first"))?;
         if run.advance(&mut self.panels, &mut self.versions, clock, budget_ms) {
             let run = self.run.take().expect("the pass just advanced");
             if run.is_sweep() {
@@ -385,7 +404,12 @@ impl Playground {
     /// without moving it.
     pub fn solve_node(&self, side: Side, node: usize) -> Result<SolveResult> {
         let p = self.panel(side);
-        solve_node(&p.mesh, node, p.objective.as_ref(), &self.settings.smooth_options()?)
+        solve_node(
+            &p.mesh,
+            node,
+            p.objective.as_ref(),
+            &self.settings.smooth_options()?,
+        )
     }
 
     /// The node positions as loaded (or as last perturbed).
@@ -420,12 +444,17 @@ impl Playground {
     /// The full statistics of a panel's current mesh (computed once per version).
     pub fn full_stats(&self, side: Side) -> &MeshStats {
         let p = self.panel(side);
-        p.full.get_or_init(|| smoothlab::quality::mesh_stats(&p.mesh))
+        p.full
+            .get_or_init(|| smoothlab::quality::mesh_stats(&p.mesh))
     }
 
     /// Statistics of a panel's current mesh, with the work done since the last reset.
     pub fn stats(&self, side: Side) -> PanelStats {
-        PanelStats { side, mesh: self.full_stats(side).clone(), work: WorkDone::of(&self.panel(side).records) }
+        PanelStats {
+            side,
+            mesh: self.full_stats(side).clone(),
+            work: WorkDone::of(&self.panel(side).records),
+        }
     }
 
     /// The table's detail rows of a panel: measured now for a mesh of at most
@@ -439,7 +468,8 @@ impl Playground {
         if let Some(full) = p.full.get() {
             return Some(TableDetail::of(full));
         }
-        (p.mesh.element_count() <= DETAIL_MAX_ELEMENTS).then(|| TableDetail::of(self.full_stats(side)))
+        (p.mesh.element_count() <= DETAIL_MAX_ELEMENTS)
+            .then(|| TableDetail::of(self.full_stats(side)))
     }
 
     /// What the page's statistics table shows of a panel (cheap: kept up to date).
@@ -462,7 +492,10 @@ impl Playground {
     pub fn reset(&mut self) {
         self.abort_pass();
         self.undo.clear();
-        let o = self.settings.smooth_options().expect("the settings were checked when set");
+        let o = self
+            .settings
+            .smooth_options()
+            .expect("the settings were checked when set");
         let quick = self.original_stats.quick();
         for p in &mut self.panels {
             p.mesh.nodes_mut().copy_from_slice(&self.original);
@@ -480,7 +513,9 @@ impl Playground {
     pub fn move_node(&mut self, node: usize, to: DVec2) -> Result<()> {
         self.check_movable(node)?;
         if !to.is_finite() {
-            return Err(Error::invalid(format!("cannot move node {node} to a non-finite position {to}")));
+            return Err(Error::invalid(format!(
+                "cannot move node {node} to a non-finite position {to}"
+            )));
         }
         self.abort_pass();
         for side in Side::BOTH {
@@ -493,10 +528,18 @@ impl Playground {
     fn check_movable(&self, node: usize) -> Result<()> {
         let m = self.topology();
         if node >= m.node_count() {
-            return Err(Error::node(node, None, format!("no such node: the mesh has {} nodes", m.node_count())));
+            return Err(Error::node(
+                node,
+                None,
+                format!("no such node: the mesh has {} nodes", m.node_count()),
+            ));
         }
         if !m.is_free(node) {
-            return Err(Error::node(node, None, "is fixed or a mid-side node, so it cannot be dragged"));
+            return Err(Error::node(
+                node,
+                None,
+                "is fixed or a mid-side node, so it cannot be dragged",
+            ));
         }
         Ok(())
     }
@@ -523,7 +566,9 @@ mod tests {
         let before = pg.stats(Side::A);
         assert_eq!(before.mesh, pg.stats(Side::B).mesh);
         assert!(before.mesh.inverted > 0);
-        let free = (0..pg.topology().node_count()).find(|&n| pg.topology().is_free(n)).unwrap();
+        let free = (0..pg.topology().node_count())
+            .find(|&n| pg.topology().is_free(n))
+            .unwrap();
         pg.move_node(free, DVec2::new(0.9, 0.9)).unwrap();
         for s in Side::BOTH {
             assert_eq!(pg.panel(s).mesh.nodes()[free], DVec2::new(0.9, 0.9));
@@ -548,14 +593,40 @@ mod tests {
         }
         let [old, new] = last.unwrap();
         assert_eq!((old.pass, new.pass), (3, 3));
-        assert_eq!(new.after.inverted, 0, "Chen et al. untangle the perturbed plate in 3 passes");
+        assert_eq!(
+            new.after.inverted, 0,
+            "Chen et al. untangle the perturbed plate in 3 passes"
+        );
         // the page's default sample (issue 11): the new side beats the max-min objective on
         // what both sides are judged by: smallest and largest angle, worst and mean quality
-        let (o, n) = (pg.full_stats(Side::A).clone(), pg.full_stats(Side::B).clone());
-        assert!(n.min_angle_deg > o.min_angle_deg, "min angle: new {} old {}", n.min_angle_deg, o.min_angle_deg);
-        assert!(n.min_quality > o.min_quality, "min quality: new {} old {}", n.min_quality, o.min_quality);
-        assert!(n.mean_quality > o.mean_quality + 0.01, "mean quality: new {} old {}", n.mean_quality, o.mean_quality);
-        assert!(n.max_angle_deg < o.max_angle_deg - 1.0, "max angle: new {} old {}", n.max_angle_deg, o.max_angle_deg);
+        let (o, n) = (
+            pg.full_stats(Side::A).clone(),
+            pg.full_stats(Side::B).clone(),
+        );
+        assert!(
+            n.min_angle_deg > o.min_angle_deg,
+            "min angle: new {} old {}",
+            n.min_angle_deg,
+            o.min_angle_deg
+        );
+        assert!(
+            n.min_quality > o.min_quality,
+            "min quality: new {} old {}",
+            n.min_quality,
+            o.min_quality
+        );
+        assert!(
+            n.mean_quality > o.mean_quality + 0.01,
+            "mean quality: new {} old {}",
+            n.mean_quality,
+            o.mean_quality
+        );
+        assert!(
+            n.max_angle_deg < o.max_angle_deg - 1.0,
+            "max angle: new {} old {}",
+            n.max_angle_deg,
+            o.max_angle_deg
+        );
         let s = pg.stats(Side::B);
         assert_eq!(s.mesh.inverted, 0);
         assert_eq!(s.work.passes, 3);
@@ -569,12 +640,22 @@ mod tests {
     #[test]
     fn settings_are_checked_and_kept_on_error() {
         let mut pg = Playground::new(Sample::StarRegular.generate().unwrap()).unwrap();
-        let bad = Settings { threshold_deg: 0.0, ..Settings::default() };
+        let bad = Settings {
+            threshold_deg: 0.0,
+            ..Settings::default()
+        };
         assert!(pg.set_settings(bad).is_err());
-        assert!(pg.set_settings(Settings { max_iter: 0, ..Settings::default() }).is_err());
+        assert!(pg
+            .set_settings(Settings {
+                max_iter: 0,
+                ..Settings::default()
+            })
+            .is_err());
         assert_eq!(pg.settings(), Settings::default());
-        let s: Settings =
-            serde_json::from_str(r#"{"strategy":"c2","threshold_deg":10,"order":"input","max_iter":5}"#).unwrap();
+        let s: Settings = serde_json::from_str(
+            r#"{"strategy":"c2","threshold_deg":10,"order":"input","max_iter":5}"#,
+        )
+        .unwrap();
         pg.set_settings(s).unwrap();
         assert_eq!(pg.settings().strategy, Strategy::C2);
         assert!(serde_json::from_str::<Settings>(
@@ -593,7 +674,10 @@ mod tests {
         let old = pg.solve_node(Side::A, free).unwrap();
         assert!(old.value >= old.value0, "max-min: the minimum never drops");
         assert_eq!(pg.panel(Side::B).mesh.nodes(), before);
-        assert!(pg.solve_node(Side::B, 0).is_err(), "a fixed node has no solve");
+        assert!(
+            pg.solve_node(Side::B, 0).is_err(),
+            "a fixed node has no solve"
+        );
     }
 
     #[test]
@@ -615,7 +699,11 @@ mod tests {
             let text = pg.export(Side::B, format).unwrap();
             let back = smoothlab::io::read_str(&text, format).unwrap();
             assert_eq!(back.node_count(), pg.panel(Side::B).mesh.node_count());
-            assert_eq!(back.nodes(), pg.panel(Side::B).mesh.nodes(), "{format:?} keeps the smoothed positions");
+            assert_eq!(
+                back.nodes(),
+                pg.panel(Side::B).mesh.nodes(),
+                "{format:?} keeps the smoothed positions"
+            );
             assert_ne!(back.nodes(), pg.panel(Side::A).mesh.nodes());
         }
     }
@@ -629,7 +717,11 @@ mod tests {
         let e = pg.move_node(n, DVec2::ZERO).unwrap_err().to_string();
         assert!(e.contains("no such node"), "{e}");
         assert!(pg.move_node(n - 1, DVec2::new(f64::NAN, 0.0)).is_err());
-        assert_eq!(pg.panel(Side::A).mesh.nodes(), pg.original_nodes(), "a refused move changes nothing");
+        assert_eq!(
+            pg.panel(Side::A).mesh.nodes(),
+            pg.original_nodes(),
+            "a refused move changes nothing"
+        );
     }
 
     #[test]
@@ -641,7 +733,10 @@ mod tests {
         pg.move_node(free, to).unwrap();
         let moved = &pg.panel(Side::B).mesh;
         for e in m.edges() {
-            if e.mid != smoothlab::mesh::NONE && (e.a as usize == free || e.b as usize == free) && !e.curved {
+            if e.mid != smoothlab::mesh::NONE
+                && (e.a as usize == free || e.b as usize == free)
+                && !e.curved
+            {
                 let mid = 0.5 * (moved.nodes()[e.a as usize] + moved.nodes()[e.b as usize]);
                 assert!(moved.nodes()[e.mid as usize].distance(mid) < 1e-12);
             }
@@ -656,11 +751,20 @@ mod tests {
         pg.step(&no_clock);
         let v1 = pg.version(Side::A);
         assert_ne!(v1, v0);
-        assert_ne!(pg.version(Side::B), v1, "each panel's positions have their own version");
-        let free = (0..pg.topology().node_count()).find(|&n| pg.topology().is_free(n)).unwrap();
+        assert_ne!(
+            pg.version(Side::B),
+            v1,
+            "each panel's positions have their own version"
+        );
+        let free = (0..pg.topology().node_count())
+            .find(|&n| pg.topology().is_free(n))
+            .unwrap();
         pg.move_node(free, DVec2::new(0.2, 0.3)).unwrap();
         assert_ne!(pg.version(Side::A), v1);
-        assert_eq!(pg.table(Side::A).mesh, stats::quick_stats(&pg.panel(Side::A).mesh));
+        assert_eq!(
+            pg.table(Side::A).mesh,
+            stats::quick_stats(&pg.panel(Side::A).mesh)
+        );
         pg.reset();
         assert_eq!((pg.version(Side::A), pg.version(Side::B)), (v0, v0));
         assert_eq!(pg.full_stats(Side::B), pg.original_stats());

@@ -115,7 +115,15 @@ impl Saved {
 impl PassProgress {
     /// A sweep for another engine, complete (its result is taken apart from this).
     pub(super) fn swept(side: Side) -> PassProgress {
-        PassProgress { done: true, fraction: 1.0, side, stage: PassStage::Done, visits: 0, planned: 0, records: None }
+        PassProgress {
+            done: true,
+            fraction: 1.0,
+            side,
+            stage: PassStage::Done,
+            visits: 0,
+            planned: 0,
+            records: None,
+        }
     }
 }
 
@@ -209,7 +217,9 @@ impl PassRun {
             match self.stage {
                 Stage::Plan if self.kind == RunKind::Split && side == 0 => {
                     // panel A was swept by another engine: measure it once adopted
-                    let Some(sweep) = self.sweep else { return false };
+                    let Some(sweep) = self.sweep else {
+                        return false;
+                    };
                     self.counts = sweep.counts;
                     self.sweep_ms = sweep.sweep_ms;
                     self.stage = Stage::Measure;
@@ -246,7 +256,11 @@ impl PassRun {
                     }
                     let t0 = clock();
                     let end = (self.pos + self.slice).min(self.schedule.len());
-                    let c = p.smoother.visit_all(&mut p.mesh, &self.schedule[self.pos..end], p.objective.as_ref());
+                    let c = p.smoother.visit_all(
+                        &mut p.mesh,
+                        &self.schedule[self.pos..end],
+                        p.objective.as_ref(),
+                    );
                     self.counts.merge(c);
                     self.pos = end;
                     let dt = clock() - t0;
@@ -266,7 +280,10 @@ impl PassRun {
                         self.pos = 0;
                     } else if let RunKind::Sweep(_) = self.kind {
                         // a sweep for another engine ends here: that engine measures
-                        self.sweep = Some(SideSweep { counts: self.counts, sweep_ms: self.sweep_ms });
+                        self.sweep = Some(SideSweep {
+                            counts: self.counts,
+                            sweep_ms: self.sweep_ms,
+                        });
                         return true;
                     } else {
                         self.stage = Stage::Measure;
@@ -278,7 +295,11 @@ impl PassRun {
                     let t0 = clock();
                     let n = p.mesh.element_count();
                     let from = self.acc.done;
-                    self.acc.add(&p.mesh, from..(from + STATS_SLICE).min(n), Some(&mut p.buckets));
+                    self.acc.add(
+                        &p.mesh,
+                        from..(from + STATS_SLICE).min(n),
+                        Some(&mut p.buckets),
+                    );
                     self.stats_ms += clock() - t0;
                     if self.acc.done >= n {
                         let q = self.acc.finish();
@@ -309,11 +330,18 @@ impl PassRun {
     }
 
     /// Keeps the records and statistics of a completed pass in the panels.
-    pub(super) fn finish(mut self, panels: &mut [Panel; 2], versions: &mut Versions) -> PassProgress {
+    pub(super) fn finish(
+        mut self,
+        panels: &mut [Panel; 2],
+        versions: &mut Versions,
+    ) -> PassProgress {
         for (side, p) in panels.iter_mut().enumerate() {
             // a version of its own for the final positions and buckets: nothing drawn
             // during the pass (part-smoothed) can be taken for them
-            if self.saved[side].as_ref().is_some_and(|s| s.version != p.version) {
+            if self.saved[side]
+                .as_ref()
+                .is_some_and(|s| s.version != p.version)
+            {
                 p.version = versions.fresh();
             }
         }
@@ -418,8 +446,16 @@ impl PassRun {
             _ => self.pos as f64 / self.schedule.len() as f64,
         };
         let elements = panels[side].mesh.element_count().max(1);
-        let measure = if self.stage == Stage::Measure { self.acc.done as f64 / elements as f64 } else { 0.0 };
-        let (within, shares) = if self.is_sweep() { (sweep, 1.0) } else { (0.9 * sweep + 0.1 * measure, 2.0) };
+        let measure = if self.stage == Stage::Measure {
+            self.acc.done as f64 / elements as f64
+        } else {
+            0.0
+        };
+        let (within, shares) = if self.is_sweep() {
+            (sweep, 1.0)
+        } else {
+            (0.9 * sweep + 0.1 * measure, 2.0)
+        };
         PassProgress {
             done: false,
             fraction: ((self.k as f64 + within) / shares).clamp(0.0, 1.0),
@@ -461,13 +497,21 @@ mod tests {
     #[test]
     fn a_pass_in_slices_is_the_smoothers_pass_bit_for_bit() {
         use smoothlab::smooth::Smoother;
-        let samples = [Sample::PlateMixedTangled, Sample::PlateQuadratic, Sample::Rand2dTangled];
+        let samples = [
+            Sample::PlateMixedTangled,
+            Sample::PlateQuadratic,
+            Sample::Rand2dTangled,
+        ];
         let strategies = Strategy::ALL;
         for sample in samples {
             let mesh = sample.generate().unwrap();
             for strategy in strategies {
                 for order in [Order::Input, Order::Priority] {
-                    let settings = Settings { strategy, order, ..Settings::default() };
+                    let settings = Settings {
+                        strategy,
+                        order,
+                        ..Settings::default()
+                    };
                     let mut pg = Playground::new(mesh.clone()).unwrap();
                     pg.set_settings(settings).unwrap();
                     let clock = ticking();
@@ -493,7 +537,8 @@ mod tests {
                                 rec = Some(s.pass(&mut m, obj.as_ref(), &|| 0.0));
                             }
                             let rec = rec.unwrap();
-                            let what = format!("{sample:?} {strategy:?} {order:?} pass {pass} {side:?}");
+                            let what =
+                                format!("{sample:?} {strategy:?} {order:?} pass {pass} {side:?}");
                             assert_eq!(pg.panel(side).mesh.nodes(), m.nodes(), "{what}");
                             let got = &records[side as usize];
                             assert_eq!(
@@ -529,7 +574,11 @@ mod tests {
                                 "{what}"
                             );
                             let mut buckets = Vec::new();
-                            assert_eq!(pg.table(side).mesh, stats::quick_stats_and_buckets(&m, &mut buckets), "{what}");
+                            assert_eq!(
+                                pg.table(side).mesh,
+                                stats::quick_stats_and_buckets(&m, &mut buckets),
+                                "{what}"
+                            );
                             assert_eq!(pg.panel(side).buckets, buckets, "{what}");
                         }
                     }
@@ -542,7 +591,10 @@ mod tests {
     fn an_abandoned_pass_leaves_no_trace() {
         let mut pg = Playground::new(Sample::Rand2dTangled.generate().unwrap()).unwrap();
         pg.step(&no_clock);
-        let before = [pg.panel(Side::A).mesh.nodes().to_vec(), pg.panel(Side::B).mesh.nodes().to_vec()];
+        let before = [
+            pg.panel(Side::A).mesh.nodes().to_vec(),
+            pg.panel(Side::B).mesh.nodes().to_vec(),
+        ];
         let versions = [pg.version(Side::A), pg.version(Side::B)];
         let tables = [pg.table(Side::A), pg.table(Side::B)];
         let clock = ticking();
@@ -552,7 +604,11 @@ mod tests {
             p = pg.continue_pass(&clock, 2.0).unwrap();
         }
         assert!(!p.done && p.fraction >= 0.5);
-        assert_ne!(pg.panel(Side::A).mesh.nodes(), before[0], "panel A was smoothed");
+        assert_ne!(
+            pg.panel(Side::A).mesh.nodes(),
+            before[0],
+            "panel A was smoothed"
+        );
         pg.abort_pass();
         assert!(!pg.pass_in_progress());
         for side in Side::BOTH {
@@ -560,7 +616,10 @@ mod tests {
             assert_eq!(pg.version(side), versions[side as usize]);
             assert_eq!(pg.table(side), tables[side as usize]);
         }
-        assert!(pg.continue_pass(&clock, 1.0).is_err(), "nothing to continue");
+        assert!(
+            pg.continue_pass(&clock, 1.0).is_err(),
+            "nothing to continue"
+        );
         // a drag, a reset or new settings abandon a pass in progress too
         pg.begin_pass();
         pg.continue_pass(&clock, 2.0).unwrap();
@@ -571,14 +630,25 @@ mod tests {
 
     #[test]
     fn a_pass_split_between_two_engines_is_the_whole_pass_bit_for_bit() {
-        let samples = [Sample::PlateMixedTangled, Sample::Rand2dTangled, Sample::PlateQuadratic];
+        let samples = [
+            Sample::PlateMixedTangled,
+            Sample::Rand2dTangled,
+            Sample::PlateQuadratic,
+        ];
         for sample in samples {
             let mesh = sample.generate().unwrap();
-            for (strategy, order) in
-                [(Strategy::Rules, Order::Priority), (Strategy::Opt, Order::Input), (Strategy::C2, Order::Input)]
-            {
-                let settings = Settings { strategy, order, ..Settings::default() };
-                let [mut whole, mut primary, mut helper] = [(); 3].map(|_| Playground::new(mesh.clone()).unwrap());
+            for (strategy, order) in [
+                (Strategy::Rules, Order::Priority),
+                (Strategy::Opt, Order::Input),
+                (Strategy::C2, Order::Input),
+            ] {
+                let settings = Settings {
+                    strategy,
+                    order,
+                    ..Settings::default()
+                };
+                let [mut whole, mut primary, mut helper] =
+                    [(); 3].map(|_| Playground::new(mesh.clone()).unwrap());
                 for pg in [&mut whole, &mut primary, &mut helper] {
                     pg.set_settings(settings).unwrap();
                 }
@@ -588,17 +658,28 @@ mod tests {
                     let expected = whole.step(&clock);
                     primary.begin_split_pass();
                     let helper_before = helper.panel(Side::A).mesh.nodes().to_vec();
-                    helper.begin_sweep(Side::A, &primary.panel_positions(Side::A)).unwrap();
+                    helper
+                        .begin_sweep(Side::A, &primary.panel_positions(Side::A))
+                        .unwrap();
                     // the first pass hands the sweep over while panel B is smoothed,
                     // the second once the split pass waits for it
                     if pass == 2 {
-                        while primary.continue_pass(&clock, 3.0).unwrap().stage != PassStage::Wait {}
+                        while primary.continue_pass(&clock, 3.0).unwrap().stage != PassStage::Wait {
+                        }
                         let p = primary.continue_pass(&clock, 3.0).unwrap();
-                        assert_eq!((p.stage, p.done, p.fraction), (PassStage::Wait, false, 0.5), "{what}");
+                        assert_eq!(
+                            (p.stage, p.done, p.fraction),
+                            (PassStage::Wait, false, 0.5),
+                            "{what}"
+                        );
                     }
                     assert!(helper.take_sweep().is_none(), "not before it is done");
                     while !helper.continue_pass(&clock, 3.0).unwrap().done {}
-                    assert_eq!(helper.panel(Side::A).mesh.nodes(), helper_before, "{what}: the helper is put back");
+                    assert_eq!(
+                        helper.panel(Side::A).mesh.nodes(),
+                        helper_before,
+                        "{what}: the helper is put back"
+                    );
                     let (nodes, sweep) = helper.take_sweep().unwrap();
                     assert!(helper.take_sweep().is_none());
                     primary.adopt_sweep(&nodes, sweep).unwrap();
@@ -612,7 +693,11 @@ mod tests {
                     };
                     for side in Side::BOTH {
                         let (got, want) = (&records[side as usize], &expected[side as usize]);
-                        assert_eq!(primary.panel(side).mesh.nodes(), whole.panel(side).mesh.nodes(), "{what} {side:?}");
+                        assert_eq!(
+                            primary.panel(side).mesh.nodes(),
+                            whole.panel(side).mesh.nodes(),
+                            "{what} {side:?}"
+                        );
                         assert_eq!(
                             (got.pass, got.counts, got.after),
                             (want.pass, want.counts, want.after),
@@ -623,8 +708,16 @@ mod tests {
                             t.work.time_ms = 0.0;
                             t
                         };
-                        assert_eq!(untimed(primary.table(side)), untimed(whole.table(side)), "{what} {side:?}");
-                        assert_eq!(primary.panel(side).buckets, whole.panel(side).buckets, "{what} {side:?}");
+                        assert_eq!(
+                            untimed(primary.table(side)),
+                            untimed(whole.table(side)),
+                            "{what} {side:?}"
+                        );
+                        assert_eq!(
+                            primary.panel(side).buckets,
+                            whole.panel(side).buckets,
+                            "{what} {side:?}"
+                        );
                     }
                 }
             }
@@ -634,20 +727,37 @@ mod tests {
     #[test]
     fn an_abandoned_split_pass_leaves_no_trace_and_bad_sweeps_are_refused() {
         let mesh = Sample::Rand2dTangled.generate().unwrap();
-        let (mut primary, mut helper) = (Playground::new(mesh.clone()).unwrap(), Playground::new(mesh).unwrap());
-        let before = [primary.panel(Side::A).mesh.nodes().to_vec(), primary.panel(Side::B).mesh.nodes().to_vec()];
+        let (mut primary, mut helper) = (
+            Playground::new(mesh.clone()).unwrap(),
+            Playground::new(mesh).unwrap(),
+        );
+        let before = [
+            primary.panel(Side::A).mesh.nodes().to_vec(),
+            primary.panel(Side::B).mesh.nodes().to_vec(),
+        ];
         let tables = [primary.table(Side::A), primary.table(Side::B)];
         let n = before[0].len();
         let clock = ticking();
-        helper.begin_sweep(Side::A, &primary.panel_positions(Side::A)).unwrap();
+        helper
+            .begin_sweep(Side::A, &primary.panel_positions(Side::A))
+            .unwrap();
         while !helper.continue_pass(&clock, 2.0).unwrap().done {}
         let (nodes, sweep) = helper.take_sweep().unwrap();
         assert!(sweep.counts.visits > 0 && nodes != primary.panel_positions(Side::A));
-        assert!(primary.adopt_sweep(&nodes, sweep).is_err(), "no split pass in progress");
+        assert!(
+            primary.adopt_sweep(&nodes, sweep).is_err(),
+            "no split pass in progress"
+        );
         primary.begin_pass();
-        assert!(primary.adopt_sweep(&nodes, sweep).is_err(), "a whole pass adopts nothing");
+        assert!(
+            primary.adopt_sweep(&nodes, sweep).is_err(),
+            "a whole pass adopts nothing"
+        );
         primary.begin_split_pass();
-        assert!(primary.adopt_sweep(&nodes[1..], sweep).is_err(), "one coordinate short");
+        assert!(
+            primary.adopt_sweep(&nodes[1..], sweep).is_err(),
+            "one coordinate short"
+        );
         let mut nan = nodes.clone();
         nan[7] = f64::NAN;
         let e = primary.adopt_sweep(&nan, sweep).unwrap_err().to_string();

@@ -31,11 +31,13 @@ use serde::{Deserialize, Serialize};
 
 use super::Settings;
 use smoothlab::error::{Error, Result};
-use smoothlab_render::{Camera, ZOOM_RANGE};
-use smoothlab_render::Cut;
 use smoothlab::objective::{ObjectiveKind, Penalty};
-use smoothlab::smooth::limits::{self, amount_in_range, amount_words, threshold_in_range, IntRange, THRESHOLD_WORDS};
+use smoothlab::smooth::limits::{
+    self, amount_in_range, amount_words, threshold_in_range, IntRange, THRESHOLD_WORDS,
+};
 use smoothlab::smooth::{Order, Strategy};
+use smoothlab_render::Cut;
+use smoothlab_render::{Camera, ZOOM_RANGE};
 
 /// The sample names a permalink may carry: every sample of the page's gallery (its sample
 /// menu: [`Sample::GALLERY`](super::sample::Sample::GALLERY), planar, surfaces,
@@ -88,20 +90,35 @@ pub struct GmshFile {
 /// [`SAMPLES`] by [`gmsh_sample_name`]. The page takes this list from the core
 /// ([`controls::page_controls`](super::controls::page_controls)).
 pub const GMSH_FILES: &[GmshFile] = &[
-    GmshFile { file: "plate_hole_tri.msh", title: "Gmsh: plate with a hole, triangles" },
-    GmshFile { file: "bracket_quad.msh", title: "Gmsh: L-bracket, quads" },
-    GmshFile { file: "disk_tri6.msh", title: "Gmsh: disk, 6-node triangles (curved)" },
+    GmshFile {
+        file: "plate_hole_tri.msh",
+        title: "Gmsh: plate with a hole, triangles",
+    },
+    GmshFile {
+        file: "bracket_quad.msh",
+        title: "Gmsh: L-bracket, quads",
+    },
+    GmshFile {
+        file: "disk_tri6.msh",
+        title: "Gmsh: disk, 6-node triangles (curved)",
+    },
 ];
 
 /// The permalink name of a Gmsh file: `gmsh-`, then the file name without `.msh` and with
 /// every `_` written `-` (`plate_hole_tri.msh` → `gmsh-plate-hole-tri`).
 pub fn gmsh_sample_name(file: &str) -> String {
-    format!("gmsh-{}", file.strip_suffix(".msh").unwrap_or(file).replace('_', "-"))
+    format!(
+        "gmsh-{}",
+        file.strip_suffix(".msh").unwrap_or(file).replace('_', "-")
+    )
 }
 
 /// The Gmsh file a permalink sample name stands for, if it names one of [`GMSH_FILES`].
 pub fn gmsh_file(sample: &str) -> Option<&'static str> {
-    GMSH_FILES.iter().map(|g| g.file).find(|f| gmsh_sample_name(f) == sample)
+    GMSH_FILES
+        .iter()
+        .map(|g| g.file)
+        .find(|f| gmsh_sample_name(f) == sample)
 }
 
 /// Longest hash [`decode`] reads, in bytes (a full canonical hash is under 300).
@@ -154,13 +171,21 @@ pub struct CameraState {
 
 impl From<CameraState> for Camera {
     fn from(c: CameraState) -> Camera {
-        Camera { yaw: c.yaw, pitch: c.pitch, zoom: c.zoom }
+        Camera {
+            yaw: c.yaw,
+            pitch: c.pitch,
+            zoom: c.zoom,
+        }
     }
 }
 
 impl From<Camera> for CameraState {
     fn from(c: Camera) -> CameraState {
-        CameraState { yaw: c.yaw, pitch: c.pitch, zoom: c.zoom }
+        CameraState {
+            yaw: c.yaw,
+            pitch: c.pitch,
+            zoom: c.zoom,
+        }
     }
 }
 
@@ -196,8 +221,26 @@ impl PageState {
 
 /// The keys, in the order [`encode`] writes them.
 const KEYS: [&str; 20] = [
-    "sample", "tangle", "seed", "perturbed", "strategy", "a", "a-penalty", "b", "b-penalty", "threshold", "passes",
-    "order", "maxiter", "node", "yaw", "pitch", "zoom", "cut", "cut-at", "embed",
+    "sample",
+    "tangle",
+    "seed",
+    "perturbed",
+    "strategy",
+    "a",
+    "a-penalty",
+    "b",
+    "b-penalty",
+    "threshold",
+    "passes",
+    "order",
+    "maxiter",
+    "node",
+    "yaw",
+    "pitch",
+    "zoom",
+    "cut",
+    "cut-at",
+    "embed",
 ];
 
 /// The axes a cut is across, by [`Cut::axis`].
@@ -222,7 +265,12 @@ struct Refusal {
 
 impl Refusal {
     fn into_error(self) -> Error {
-        Error::invalid(format!("permalink: '{}' must be {}, found {}", self.key, self.allowed, shown(&self.found)))
+        Error::invalid(format!(
+            "permalink: '{}' must be {}, found {}",
+            self.key,
+            self.allowed,
+            shown(&self.found)
+        ))
     }
 }
 
@@ -235,7 +283,11 @@ fn shown(s: &str) -> String {
 }
 
 /// One of the core's named choices (`all` in its order), or the names in words.
-fn one_of<T: Copy>(all: &[T], name: fn(T) -> &'static str, v: &str) -> std::result::Result<T, String> {
+fn one_of<T: Copy>(
+    all: &[T],
+    name: fn(T) -> &'static str,
+    v: &str,
+) -> std::result::Result<T, String> {
     all.iter().copied().find(|&t| name(t) == v).ok_or_else(|| {
         let names: Vec<&str> = all.iter().map(|&t| name(t)).collect();
         format!("one of {}", names.join(", "))
@@ -245,13 +297,22 @@ fn one_of<T: Copy>(all: &[T], name: fn(T) -> &'static str, v: &str) -> std::resu
 /// A whole number in `range`, written in decimal digits only (no sign, no spaces).
 fn whole(v: &str, range: IntRange) -> std::result::Result<u64, String> {
     let digits = !v.is_empty() && v.bytes().all(|b| b.is_ascii_digit());
-    v.parse().ok().filter(|&n| digits && range.contains(n)).ok_or_else(|| range.words())
+    v.parse()
+        .ok()
+        .filter(|&n| digits && range.contains(n))
+        .ok_or_else(|| range.words())
 }
 
 /// A finite number that `ok` accepts (`-0` reads as `0`, so a state has one encoding).
-fn number(v: &str, ok: impl Fn(f64) -> bool, allowed: impl Fn() -> String) -> std::result::Result<f64, String> {
+fn number(
+    v: &str,
+    ok: impl Fn(f64) -> bool,
+    allowed: impl Fn() -> String,
+) -> std::result::Result<f64, String> {
     let x: Option<f64> = v.parse().ok();
-    x.filter(|&x| x.is_finite() && ok(x)).map(|x| if x == 0.0 { 0.0 } else { x }).ok_or_else(allowed)
+    x.filter(|&x| x.is_finite() && ok(x))
+        .map(|x| if x == 0.0 { 0.0 } else { x })
+        .ok_or_else(allowed)
 }
 
 fn flag(v: &str) -> std::result::Result<bool, String> {
@@ -271,30 +332,65 @@ fn read(s: &mut PageState, key: &'static str, v: &str) -> std::result::Result<()
             .iter()
             .find(|&&x| x == v)
             .map(|x| s.sample = Some(x.to_string()))
-            .ok_or_else(|| format!("the name of a sample of the gallery, one of {}", SAMPLES.join(", "))),
+            .ok_or_else(|| {
+                format!(
+                    "the name of a sample of the gallery, one of {}",
+                    SAMPLES.join(", ")
+                )
+            }),
         "tangle" => number(v, amount_in_range, amount_words).map(|a| s.amount = a),
         "seed" => whole(v, limits::SEED).map(|n| s.seed = n),
         "perturbed" => flag(v).map(|f| s.perturbed = f),
         "strategy" => one_of(&Strategy::ALL, Strategy::name, v).map(|t| c.strategy = t),
-        "a" | "b" => one_of(&ObjectiveKind::ALL, ObjectiveKind::name, v).map(|k| c.compare[side].objective = k),
-        "a-penalty" | "b-penalty" => one_of(&Penalty::ALL, Penalty::name, v).map(|p| c.compare[side].penalty = p),
-        "threshold" => number(v, threshold_in_range, || THRESHOLD_WORDS.into()).map(|t| c.threshold_deg = t),
+        "a" | "b" => one_of(&ObjectiveKind::ALL, ObjectiveKind::name, v)
+            .map(|k| c.compare[side].objective = k),
+        "a-penalty" | "b-penalty" => {
+            one_of(&Penalty::ALL, Penalty::name, v).map(|p| c.compare[side].penalty = p)
+        }
+        "threshold" => {
+            number(v, threshold_in_range, || THRESHOLD_WORDS.into()).map(|t| c.threshold_deg = t)
+        }
         "passes" => whole(v, limits::PASSES).map(|n| s.passes = n as u32),
         "order" => one_of(&Order::ALL, Order::name, v).map(|o| c.order = o),
         "maxiter" => whole(v, limits::MAX_ITER).map(|n| c.max_iter = n as u32),
         "node" => whole(v, limits::NODE).map(|n| s.node = Some(n as u32)),
-        "yaw" => number(v, |x| (0.0..360.0).contains(&x), || "a number of degrees from 0 to less than 360".into())
-            .map(|x| camera(s).yaw = x),
-        "pitch" => number(v, |x| (-90.0..=90.0).contains(&x), || "a number of degrees from -90 to 90".into())
-            .map(|x| camera(s).pitch = x),
-        "zoom" => number(v, |x| (ZOOM_RANGE.0..=ZOOM_RANGE.1).contains(&x), || format!("a number from {} to {}", ZOOM_RANGE.0, ZOOM_RANGE.1))
-            .map(|x| camera(s).zoom = x),
-        "cut" => AXES.iter().position(|&a| a == v).map(|axis| cut(s).axis = axis).ok_or_else(|| "x, y or z".into()),
-        "cut-at" => number(v, |x| (0.0..=1.0).contains(&x), || "a number from 0 to 1".into()).map(|x| cut(s).at = x),
+        "yaw" => number(
+            v,
+            |x| (0.0..360.0).contains(&x),
+            || "a number of degrees from 0 to less than 360".into(),
+        )
+        .map(|x| camera(s).yaw = x),
+        "pitch" => number(
+            v,
+            |x| (-90.0..=90.0).contains(&x),
+            || "a number of degrees from -90 to 90".into(),
+        )
+        .map(|x| camera(s).pitch = x),
+        "zoom" => number(
+            v,
+            |x| (ZOOM_RANGE.0..=ZOOM_RANGE.1).contains(&x),
+            || format!("a number from {} to {}", ZOOM_RANGE.0, ZOOM_RANGE.1),
+        )
+        .map(|x| camera(s).zoom = x),
+        "cut" => AXES
+            .iter()
+            .position(|&a| a == v)
+            .map(|axis| cut(s).axis = axis)
+            .ok_or_else(|| "x, y or z".into()),
+        "cut-at" => number(
+            v,
+            |x| (0.0..=1.0).contains(&x),
+            || "a number from 0 to 1".into(),
+        )
+        .map(|x| cut(s).at = x),
         "embed" => flag(v).map(|f| s.embed = f),
         _ => Ok(()), // not a key of KEYS: nothing reads it
     };
-    set.map_err(|allowed| Refusal { key, found: v.to_string(), allowed })
+    set.map_err(|allowed| Refusal {
+        key,
+        found: v.to_string(),
+        allowed,
+    })
 }
 
 /// The state's camera, the starting one until a key sets it.
@@ -319,7 +415,9 @@ fn write(s: &PageState, key: &str) -> Option<String> {
         "perturbed" => s.perturbed.then(|| "1".into()),
         "strategy" => name(c.strategy.name()),
         "a" | "b" => name(choice.objective.name()),
-        "a-penalty" | "b-penalty" => (choice.objective == ObjectiveKind::SmoothShape).then(|| choice.penalty.name().into()),
+        "a-penalty" | "b-penalty" => {
+            (choice.objective == ObjectiveKind::SmoothShape).then(|| choice.penalty.name().into())
+        }
         "threshold" => Some(shortest(c.threshold_deg)),
         "passes" => Some(s.passes.to_string()),
         "order" => name(c.order.name()),
@@ -328,7 +426,9 @@ fn write(s: &PageState, key: &str) -> Option<String> {
         "yaw" => s.camera.map(|c| shortest(c.yaw)),
         "pitch" => s.camera.map(|c| shortest(c.pitch)),
         "zoom" => s.camera.map(|c| shortest(c.zoom)),
-        "cut" => s.cut.map(|c| AXES.get(c.axis).copied().unwrap_or("?").to_string()),
+        "cut" => s
+            .cut
+            .map(|c| AXES.get(c.axis).copied().unwrap_or("?").to_string()),
         "cut-at" => s.cut.map(|c| shortest(c.at)),
         "embed" => s.embed.then(|| "1".into()),
         _ => None,
@@ -338,10 +438,20 @@ fn write(s: &PageState, key: &str) -> Option<String> {
 /// A penalty is a design of `new`: a side running another objective keeps the default
 /// (which the link leaves out).
 fn check_penalties(s: &PageState) -> std::result::Result<(), Refusal> {
-    for (c, key, side) in [(s.settings.compare[0], "a-penalty", "a"), (s.settings.compare[1], "b-penalty", "b")] {
+    for (c, key, side) in [
+        (s.settings.compare[0], "a-penalty", "a"),
+        (s.settings.compare[1], "b-penalty", "b"),
+    ] {
         if c.objective != ObjectiveKind::SmoothShape && c.penalty != Penalty::default() {
-            let allowed = format!("given only when '{side}' is new (it is {})", c.objective.name());
-            return Err(Refusal { key, found: c.penalty.name().into(), allowed });
+            let allowed = format!(
+                "given only when '{side}' is new (it is {})",
+                c.objective.name()
+            );
+            return Err(Refusal {
+                key,
+                found: c.penalty.name().into(),
+                allowed,
+            });
         }
     }
     Ok(())
@@ -408,14 +518,19 @@ const CONTROL_LABELS: [(&str, &str); 5] = [
 
 /// The label of the control behind a permalink key, if the user types it.
 pub fn control_label(key: &str) -> Option<&'static str> {
-    CONTROL_LABELS.iter().find(|(k, _)| *k == key).map(|(_, l)| *l)
+    CONTROL_LABELS
+        .iter()
+        .find(|(k, _)| *k == key)
+        .map(|(_, l)| *l)
 }
 
 /// Checks one control's text as the page's user typed it, by the permalink's own rules
 /// for its key (`passes`, `maxiter`, `seed`, `tangle`, `threshold`, …): `Ok` or a message
 /// for people, naming the control by its label and saying the allowed range.
 pub fn check_control(key: &str, text: &str) -> std::result::Result<(), String> {
-    let Some(key) = key_of(key) else { return Err(format!("there is no setting called '{key}'")) };
+    let Some(key) = key_of(key) else {
+        return Err(format!("there is no setting called '{key}'"));
+    };
     let label = control_label(key).unwrap_or(key);
     let text = text.trim();
     if text.is_empty() {
@@ -429,10 +544,10 @@ pub fn check_control(key: &str, text: &str) -> std::result::Result<(), String> {
 mod tests {
     use super::*;
     use crate::lab::Choice;
-    use smoothlab::smooth::limits::MAX_AMOUNT;
-    use smoothlab::smooth::Strategy;
     use proptest::prelude::*;
     use proptest::strategy::Strategy as Generator;
+    use smoothlab::smooth::limits::MAX_AMOUNT;
+    use smoothlab::smooth::Strategy;
 
     #[test]
     fn perturbed_round_trips_and_is_left_out_when_false() {
@@ -440,7 +555,10 @@ mod tests {
         assert!(s.perturbed);
         assert_eq!(encode(&s), "#sample=plate-tri&tangle=0.6&seed=3&perturbed=1&strategy=rules&a=old&b=new&b-penalty=barrier&threshold=30&passes=3&order=priority&maxiter=3");
         assert!(!encode(&PageState::default()).contains("perturbed"));
-        assert!(decode("perturbed=yes").unwrap_err().to_string().contains("'perturbed'"));
+        assert!(decode("perturbed=yes")
+            .unwrap_err()
+            .to_string()
+            .contains("'perturbed'"));
     }
 
     #[test]
@@ -450,11 +568,24 @@ mod tests {
             check_control("passes", "2.5").unwrap_err(),
             "Passes must be a whole number from 1 to 100; '2.5' is not."
         );
-        assert_eq!(check_control("passes", "500").unwrap_err(), "Passes must be a whole number from 1 to 100; '500' is not.");
-        assert_eq!(check_control("maxiter", "0").unwrap_err(), "Max iterations must be a whole number from 1 to 50; '0' is not.");
-        assert!(check_control("seed", "-3").unwrap_err().starts_with("Seed must be a whole number from 0 to"));
-        assert!(check_control("tangle", "3").unwrap_err().starts_with("Perturb amount must be a number from 0 to 2"));
-        assert_eq!(check_control("passes", " ").unwrap_err(), "Passes: enter a value");
+        assert_eq!(
+            check_control("passes", "500").unwrap_err(),
+            "Passes must be a whole number from 1 to 100; '500' is not."
+        );
+        assert_eq!(
+            check_control("maxiter", "0").unwrap_err(),
+            "Max iterations must be a whole number from 1 to 50; '0' is not."
+        );
+        assert!(check_control("seed", "-3")
+            .unwrap_err()
+            .starts_with("Seed must be a whole number from 0 to"));
+        assert!(check_control("tangle", "3")
+            .unwrap_err()
+            .starts_with("Perturb amount must be a number from 0 to 2"));
+        assert_eq!(
+            check_control("passes", " ").unwrap_err(),
+            "Passes: enter a value"
+        );
         assert_eq!(check_control("seed", " 12 "), Ok(()));
     }
 
@@ -497,18 +628,45 @@ mod tests {
         let s = decode("#a=new&a-penalty=angle&b=condition").unwrap();
         assert_eq!(
             s.settings.compare,
-            [Choice { objective: ObjectiveKind::SmoothShape, penalty: Penalty::Angle }, Choice { objective: ObjectiveKind::Condition, penalty: Penalty::Barrier }]
+            [
+                Choice {
+                    objective: ObjectiveKind::SmoothShape,
+                    penalty: Penalty::Angle
+                },
+                Choice {
+                    objective: ObjectiveKind::Condition,
+                    penalty: Penalty::Barrier
+                }
+            ]
         );
         let h = encode(&s);
-        assert!(h.contains("&a=new&a-penalty=angle&b=condition&threshold"), "{h}");
+        assert!(
+            h.contains("&a=new&a-penalty=angle&b=condition&threshold"),
+            "{h}"
+        );
         // links written before the comparison name the right side 'objective'
-        assert_eq!(decode("#objective=sine").unwrap().settings.compare[1].objective, ObjectiveKind::Sine);
-        assert!(decode("#objective=sine&b=old").unwrap_err().to_string().contains("twice"));
+        assert_eq!(
+            decode("#objective=sine").unwrap().settings.compare[1].objective,
+            ObjectiveKind::Sine
+        );
+        assert!(decode("#objective=sine&b=old")
+            .unwrap_err()
+            .to_string()
+            .contains("twice"));
         // a penalty belongs to new only
         let e = decode("#a=old&a-penalty=angle").unwrap_err().to_string();
-        assert!(e.contains("'a-penalty'") && e.contains("only when 'a' is new"), "{e}");
-        assert!(decode("#b-penalty=barrier&b=sine").is_ok(), "the default penalty is no penalty");
-        assert!(decode("#b-penalty=spring").unwrap_err().to_string().contains("barrier, angle"));
+        assert!(
+            e.contains("'a-penalty'") && e.contains("only when 'a' is new"),
+            "{e}"
+        );
+        assert!(
+            decode("#b-penalty=barrier&b=sine").is_ok(),
+            "the default penalty is no penalty"
+        );
+        assert!(decode("#b-penalty=spring")
+            .unwrap_err()
+            .to_string()
+            .contains("barrier, angle"));
     }
 
     #[test]
@@ -517,21 +675,40 @@ mod tests {
             assert_eq!(decode(h).unwrap(), PageState::default(), "{h:?}");
         }
         let s = decode("seed=9").unwrap();
-        assert_eq!(s, PageState { seed: 9, ..PageState::default() });
+        assert_eq!(
+            s,
+            PageState {
+                seed: 9,
+                ..PageState::default()
+            }
+        );
         let d = PageState::default();
         let c = d.settings;
-        assert_eq!((c.strategy, c.order, c.compare), (Strategy::Rules, Order::Priority, [Choice::OLD, Choice::NEW]));
-        assert_eq!((c.threshold_deg, c.max_iter, d.passes, d.amount, d.seed), (30.0, 3, 3, 0.5, 1));
+        assert_eq!(
+            (c.strategy, c.order, c.compare),
+            (Strategy::Rules, Order::Priority, [Choice::OLD, Choice::NEW])
+        );
+        assert_eq!(
+            (c.threshold_deg, c.max_iter, d.passes, d.amount, d.seed),
+            (30.0, 3, 3, 0.5, 1)
+        );
         d.validate().unwrap();
     }
 
     #[test]
     fn unknown_keys_are_ignored_but_bad_values_of_known_keys_are_not() {
         assert_eq!(decode("#zoom=3&gmsh=x.msh&seed=4").unwrap().seed, 4);
-        assert_eq!(decode("#seed%=1").unwrap(), PageState::default(), "'seed%' is no key");
+        assert_eq!(
+            decode("#seed%=1").unwrap(),
+            PageState::default(),
+            "'seed%' is no key"
+        );
         let cases: &[(&str, &[&str])] = &[
             ("seed=-1", &["'seed'", "'-1'", "whole number"]),
-            ("seed=18446744073709551616", &["'seed'", "18446744073709551615"]),
+            (
+                "seed=18446744073709551616",
+                &["'seed'", "18446744073709551615"],
+            ),
             ("seed=", &["'seed'", "''"]),
             ("seed=%2B3", &["'seed'", "'+3'"]),
             ("seed=+3", &["'seed'", "' 3'"]),
@@ -546,13 +723,23 @@ mod tests {
             ("passes=101", &["'passes'", "'101'"]),
             ("maxiter=51", &["'maxiter'", "1 to 50"]),
             ("maxiter=3.0", &["'maxiter'", "'3.0'"]),
-            ("strategy=Rules", &["'strategy'", "'Rules'", "laplace, smart, opt, c1, c2, c3, rules"]),
+            (
+                "strategy=Rules",
+                &[
+                    "'strategy'",
+                    "'Rules'",
+                    "laplace, smart, opt, c1, c2, c3, rules",
+                ],
+            ),
             ("objective=best", &["'b'", "'best'", "old, sine, new"]),
             ("order=random", &["'order'", "input, priority"]),
             ("node=4294967296", &["'node'", "4294967295"]),
             ("node=x", &["'node'", "'x'"]),
             ("embed=yes", &["'embed'", "'yes'"]),
-            ("sample=../../etc/passwd", &["'sample'", "plate-tri", "'../../etc/passwd'"]),
+            (
+                "sample=../../etc/passwd",
+                &["'sample'", "plate-tri", "'../../etc/passwd'"],
+            ),
             ("sample=PLATE-TRI", &["'sample'"]),
             ("seed=1&seed=2", &["'seed'", "twice"]),
             ("amount=1&tangle=1", &["'tangle'", "twice"]),
@@ -573,7 +760,10 @@ mod tests {
     #[test]
     fn values_are_percent_decoded() {
         let s = decode("#sample=plate%2Dtri&%73eed=12&objective=condition%2dmax").unwrap();
-        assert_eq!((s.sample.as_deref(), s.seed, s.settings.compare[1].objective), (Some("plate-tri"), 12, ObjectiveKind::ConditionMax));
+        assert_eq!(
+            (s.sample.as_deref(), s.seed, s.settings.compare[1].objective),
+            (Some("plate-tri"), 12, ObjectiveKind::ConditionMax)
+        );
         // '+' is a space, so it is no sign and no digit
         assert!(decode("seed=1+2").is_err());
         let s = decode("embed=true&node=0").unwrap();
@@ -590,7 +780,10 @@ mod tests {
             assert_eq!(Order::parse(o.name()), Some(o));
         }
         for name in SAMPLES {
-            let s = PageState { sample: Some(name.to_string()), ..PageState::default() };
+            let s = PageState {
+                sample: Some(name.to_string()),
+                ..PageState::default()
+            };
             assert_eq!(decode(&encode(&s)).unwrap(), s);
         }
     }
@@ -602,15 +795,33 @@ mod tests {
         // the large ones included, by the name serde gives it (the name the page sends)
         let mut want: Vec<String> = Sample::GALLERY
             .iter()
-            .map(|s| serde_json::to_value(s).unwrap().as_str().unwrap().to_string())
+            .map(|s| {
+                serde_json::to_value(s)
+                    .unwrap()
+                    .as_str()
+                    .unwrap()
+                    .to_string()
+            })
             .collect();
         for (s, name) in Sample::GALLERY.iter().zip(&want) {
             assert_eq!(s.name(), name);
-            assert!(s.linkable(), "the gallery's {name} is not a permalink sample");
+            assert!(
+                s.linkable(),
+                "the gallery's {name} is not a permalink sample"
+            );
         }
         want.extend(GMSH_FILES.iter().map(|g| gmsh_sample_name(g.file)));
-        assert_eq!(SAMPLES, want.iter().map(String::as_str).collect::<Vec<_>>().as_slice());
-        assert_eq!(gmsh_sample_name("plate_hole_tri.msh"), "gmsh-plate-hole-tri");
+        assert_eq!(
+            SAMPLES,
+            want.iter()
+                .map(String::as_str)
+                .collect::<Vec<_>>()
+                .as_slice()
+        );
+        assert_eq!(
+            gmsh_sample_name("plate_hole_tri.msh"),
+            "gmsh-plate-hole-tri"
+        );
         for g in GMSH_FILES {
             assert_eq!(gmsh_file(&gmsh_sample_name(g.file)), Some(g.file));
         }
@@ -626,12 +837,28 @@ mod tests {
             let st = decode(&hash).unwrap_or_else(|e| panic!("{hash}: {e}"));
             assert_eq!(st.sample.as_deref(), Some(s.name()));
             let back = encode(&st);
-            assert!(back.starts_with(&format!("#sample={}&", s.name())) && back.contains("&passes=2&"), "{back}");
+            assert!(
+                back.starts_with(&format!("#sample={}&", s.name())) && back.contains("&passes=2&"),
+                "{back}"
+            );
             assert_eq!(decode(&back).unwrap(), st);
         }
         // the surfaces and the tetrahedra by name (they once were left out of links)
-        for name in ["sphere-tangled", "torus-tangled", "cylinder-capped", "torus-quadratic-tangled", "rand3d", "hex-tangled", "mixed-tangled", "rand2d-large", "rand2d-million"] {
-            assert_eq!(decode(&format!("sample={name}")).unwrap().sample.as_deref(), Some(name));
+        for name in [
+            "sphere-tangled",
+            "torus-tangled",
+            "cylinder-capped",
+            "torus-quadratic-tangled",
+            "rand3d",
+            "hex-tangled",
+            "mixed-tangled",
+            "rand2d-large",
+            "rand2d-million",
+        ] {
+            assert_eq!(
+                decode(&format!("sample={name}")).unwrap().sample.as_deref(),
+                Some(name)
+            );
         }
     }
 
@@ -639,10 +866,18 @@ mod tests {
     fn an_unknown_sample_is_refused_listing_every_valid_name() {
         for bad in ["rand3D", "sphere", "gmsh-bracket", "rand2d-1m"] {
             let e = decode(&format!("#sample={bad}")).unwrap_err().to_string();
-            assert!(e.starts_with("permalink: 'sample' must be the name of a sample of the gallery, one of "), "{e}");
+            assert!(
+                e.starts_with(
+                    "permalink: 'sample' must be the name of a sample of the gallery, one of "
+                ),
+                "{e}"
+            );
             assert!(e.ends_with(&format!(", found '{bad}'")), "{e}");
             for name in SAMPLES {
-                assert!(e.contains(&format!(" {name},")) || e.contains(&format!(" {name}, found")), "{name} is not listed: {e}");
+                assert!(
+                    e.contains(&format!(" {name},")) || e.contains(&format!(" {name}, found")),
+                    "{name} is not listed: {e}"
+                );
             }
         }
     }
@@ -663,7 +898,11 @@ mod tests {
         let mut titles: Vec<&str> = GMSH_FILES.iter().map(|g| g.title).collect();
         titles.sort();
         titles.dedup();
-        assert_eq!(titles.len(), GMSH_FILES.len(), "two Gmsh files share a menu entry");
+        assert_eq!(
+            titles.len(),
+            GMSH_FILES.len(),
+            "two Gmsh files share a menu entry"
+        );
         assert!(GMSH_FILES.iter().all(|g| g.title.starts_with("Gmsh: ")));
     }
 
@@ -671,7 +910,13 @@ mod tests {
     fn the_page_sends_and_receives_the_state_as_it_is() {
         let s = decode("#sample=gmsh-disk-tri6&tangle=1.25&seed=9007199254740993&strategy=c3&objective=old&threshold=15&passes=7&order=input&maxiter=9&node=4&embed=1").unwrap();
         let json = serde_json::to_value(&s).unwrap();
-        assert_eq!((json["settings"]["strategy"].as_str(), json["settings"]["max_iter"].as_u64()), (Some("c3"), Some(9)));
+        assert_eq!(
+            (
+                json["settings"]["strategy"].as_str(),
+                json["settings"]["max_iter"].as_u64()
+            ),
+            (Some("c3"), Some(9))
+        );
         assert_eq!(serde_json::from_value::<PageState>(json).unwrap(), s);
         // every name the link writes is the name serde writes, so the page's menus and
         // the link agree
@@ -689,7 +934,13 @@ mod tests {
         }
         // left-out fields are the defaults; unknown fields are refused
         let s: PageState = serde_json::from_str(r#"{"passes": 5}"#).unwrap();
-        assert_eq!(s, PageState { passes: 5, ..PageState::default() });
+        assert_eq!(
+            s,
+            PageState {
+                passes: 5,
+                ..PageState::default()
+            }
+        );
         assert!(serde_json::from_str::<PageState>(r#"{"maxIter": 5}"#).is_err());
     }
 
@@ -697,22 +948,54 @@ mod tests {
     fn the_3d_view_keeps_its_camera_and_cut_and_older_links_open_without_them() {
         let h = "#sample=rand3d&node=431&yaw=52.5&pitch=-31&zoom=1.5&cut=x&cut-at=0.4";
         let s = decode(h).unwrap();
-        assert_eq!(s.camera, Some(CameraState { yaw: 52.5, pitch: -31.0, zoom: 1.5 }));
+        assert_eq!(
+            s.camera,
+            Some(CameraState {
+                yaw: 52.5,
+                pitch: -31.0,
+                zoom: 1.5
+            })
+        );
         assert_eq!(s.cut, Some(Cut { axis: 0, at: 0.4 }));
-        assert_eq!(Camera::from(s.camera.unwrap()), Camera { yaw: 52.5, pitch: -31.0, zoom: 1.5 });
+        assert_eq!(
+            Camera::from(s.camera.unwrap()),
+            Camera {
+                yaw: 52.5,
+                pitch: -31.0,
+                zoom: 1.5
+            }
+        );
         let back = encode(&s);
-        assert!(back.ends_with("&node=431&yaw=52.5&pitch=-31&zoom=1.5&cut=x&cut-at=0.4"), "{back}");
+        assert!(
+            back.ends_with("&node=431&yaw=52.5&pitch=-31&zoom=1.5&cut=x&cut-at=0.4"),
+            "{back}"
+        );
         assert_eq!(decode(&back).unwrap(), s);
         // one key alone: the others as the view starts
         let s = decode("#yaw=10&cut-at=0.25").unwrap();
-        assert_eq!(s.camera, Some(CameraState { yaw: 10.0, ..Camera::default().into() }));
-        assert_eq!(s.cut, Some(Cut { at: 0.25, ..Cut::default() }));
+        assert_eq!(
+            s.camera,
+            Some(CameraState {
+                yaw: 10.0,
+                ..Camera::default().into()
+            })
+        );
+        assert_eq!(
+            s.cut,
+            Some(Cut {
+                at: 0.25,
+                ..Cut::default()
+            })
+        );
         // a link written before the 3D keys: none of them, and none written back
         let old = decode("#sample=sphere-tangled&node=12").unwrap();
         assert_eq!((old.camera, old.cut), (None, None));
         assert!(!encode(&old).contains("yaw") && !encode(&old).contains("cut"));
         for (bad, want) in [
-            ("yaw=360", "'yaw' must be a number of degrees from 0 to less than 360"),
+            (
+                "yaw=360",
+                "'yaw' must be a number of degrees from 0 to less than 360",
+            ),
             ("pitch=91", "'pitch'"),
             ("zoom=0", "'zoom' must be a number from 0.01 to 100"),
             ("cut=w", "'cut' must be x, y or z"),
@@ -728,7 +1011,10 @@ mod tests {
     fn long_input_is_refused_by_its_length() {
         let long = format!("#seed=1&{}", "x".repeat(MAX_HASH_BYTES));
         let e = decode(&long).unwrap_err();
-        assert!(matches!(e, Error::TooLarge(_)) && e.to_string().contains("2048"), "{e}");
+        assert!(
+            matches!(e, Error::TooLarge(_)) && e.to_string().contains("2048"),
+            "{e}"
+        );
         // just at the limit is read (unknown keys ignored)
         let at = format!("seed=5&{}", "y".repeat(MAX_HASH_BYTES - 7));
         assert_eq!(at.len(), MAX_HASH_BYTES);
@@ -742,46 +1028,121 @@ mod tests {
         assert_eq!(shortest(5e-324), "5e-324");
         assert_eq!(shortest(1e-7), "1e-7");
         assert_eq!(shortest(12.5), "12.5");
-        let settings = Settings { threshold_deg: f64::MIN_POSITIVE, ..Settings::default() };
-        let s = PageState { amount: 5e-324, settings, ..PageState::default() };
+        let settings = Settings {
+            threshold_deg: f64::MIN_POSITIVE,
+            ..Settings::default()
+        };
+        let s = PageState {
+            amount: 5e-324,
+            settings,
+            ..PageState::default()
+        };
         assert_eq!(decode(&encode(&s)).unwrap(), s);
         assert!(encode(&s).len() < 200);
         // -0 reads as +0
-        assert_eq!(decode("tangle=-0").unwrap().amount.to_bits(), 0.0f64.to_bits());
+        assert_eq!(
+            decode("tangle=-0").unwrap().amount.to_bits(),
+            0.0f64.to_bits()
+        );
     }
 
     #[test]
     fn the_settings_are_the_playgrounds() {
         let s = decode("strategy=c2&order=input&threshold=15&maxiter=7").unwrap();
         let o = s.settings.smooth_options().unwrap();
-        assert_eq!((o.strategy, o.order, o.threshold_deg, o.max_iter), (Strategy::C2, Order::Input, 15.0, 7));
+        assert_eq!(
+            (o.strategy, o.order, o.threshold_deg, o.max_iter),
+            (Strategy::C2, Order::Input, 15.0, 7)
+        );
     }
 
     #[test]
     fn validate_names_the_bad_field() {
-        let e = PageState { passes: 0, ..PageState::default() }.validate().unwrap_err().to_string();
+        let e = PageState {
+            passes: 0,
+            ..PageState::default()
+        }
+        .validate()
+        .unwrap_err()
+        .to_string();
         assert!(e.contains("'passes'"), "{e}");
-        let e = PageState { sample: Some("nope".into()), ..PageState::default() }.validate().unwrap_err().to_string();
+        let e = PageState {
+            sample: Some("nope".into()),
+            ..PageState::default()
+        }
+        .validate()
+        .unwrap_err()
+        .to_string();
         assert!(e.contains("'sample'"), "{e}");
-        let settings = Settings { threshold_deg: f64::NAN, ..Settings::default() };
-        let e = PageState { settings, ..PageState::default() }.validate().unwrap_err().to_string();
+        let settings = Settings {
+            threshold_deg: f64::NAN,
+            ..Settings::default()
+        };
+        let e = PageState {
+            settings,
+            ..PageState::default()
+        }
+        .validate()
+        .unwrap_err()
+        .to_string();
         assert!(e.contains("'threshold'"), "{e}");
-        let settings = Settings { max_iter: 51, ..Settings::default() };
-        let e = PageState { settings, ..PageState::default() }.validate().unwrap_err().to_string();
+        let settings = Settings {
+            max_iter: 51,
+            ..Settings::default()
+        };
+        let e = PageState {
+            settings,
+            ..PageState::default()
+        }
+        .validate()
+        .unwrap_err()
+        .to_string();
         assert!(e.contains("'maxiter'"), "{e}");
-        let settings = Settings { compare: [Choice { penalty: Penalty::Angle, ..Choice::OLD }, Choice::NEW], ..Settings::default() };
-        let e = PageState { settings, ..PageState::default() }.validate().unwrap_err().to_string();
+        let settings = Settings {
+            compare: [
+                Choice {
+                    penalty: Penalty::Angle,
+                    ..Choice::OLD
+                },
+                Choice::NEW,
+            ],
+            ..Settings::default()
+        };
+        let e = PageState {
+            settings,
+            ..PageState::default()
+        }
+        .validate()
+        .unwrap_err()
+        .to_string();
         assert!(e.contains("'a-penalty'"), "{e}");
-        let e = PageState { amount: -1.0, ..PageState::default() }.validate().unwrap_err().to_string();
+        let e = PageState {
+            amount: -1.0,
+            ..PageState::default()
+        }
+        .validate()
+        .unwrap_err()
+        .to_string();
         assert!(e.contains("'tangle'"), "{e}");
     }
 
     fn any_amount() -> impl Generator<Value = f64> {
-        prop_oneof![0.0..=MAX_AMOUNT, Just(0.0), Just(MAX_AMOUNT), Just(5e-324), (1u64..1 << 52).prop_map(|m| m as f64 * 2f64.powi(-60))]
+        prop_oneof![
+            0.0..=MAX_AMOUNT,
+            Just(0.0),
+            Just(MAX_AMOUNT),
+            Just(5e-324),
+            (1u64..1 << 52).prop_map(|m| m as f64 * 2f64.powi(-60))
+        ]
     }
 
     fn any_threshold() -> impl Generator<Value = f64> {
-        prop_oneof![(0.0..=90.0f64).prop_filter("positive", |t| *t > 0.0), Just(90.0), Just(f64::MIN_POSITIVE), Just(1e-300)]
+        prop_oneof![
+            (0.0..=90.0f64).prop_filter("positive", |t| *t > 0.0),
+            Just(90.0),
+            Just(f64::MIN_POSITIVE),
+            Just(1e-300)
+        ]
     }
 
     prop_compose! {

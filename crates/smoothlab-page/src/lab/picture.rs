@@ -9,13 +9,15 @@ use smoothlab::model::Model;
 use smoothlab::objective::{objective_with, tet_objective, ObjectiveKind, Penalty};
 use smoothlab::quality::mesh_stats;
 use smoothlab::smooth::limits::RENDER_PASSES;
-use smoothlab::smooth::{smooth, Order, SmoothOptions, Strategy, DEFAULT_MAX_ITER, DEFAULT_PASSES, DEFAULT_THRESHOLD_DEG};
+use smoothlab::smooth::{
+    smooth, Order, SmoothOptions, Strategy, DEFAULT_MAX_ITER, DEFAULT_PASSES, DEFAULT_THRESHOLD_DEG,
+};
 use smoothlab::surface::{Surface, SurfaceSmoother};
 use smoothlab::volume::{smooth_volume, volume_stats, VolumeMesh};
 use smoothlab::Mesh;
 use smoothlab_render::{
-    render_angle_histogram, render_mesh, AngleHistogram, Camera, Cut, HistogramSeries, MeshView, Metric,
-    SurfacePicture, SurfaceView, Theme, VolumePicture,
+    render_angle_histogram, render_mesh, AngleHistogram, Camera, Cut, HistogramSeries, MeshView,
+    Metric, SurfacePicture, SurfaceView, Theme, VolumePicture,
 };
 
 use super::pick::worst_free_node;
@@ -110,14 +112,24 @@ impl Request {
             threshold_deg: self.threshold_deg,
             order: self.order,
             max_iter: self.max_iter,
-            compare: [Choice::OLD, Choice { penalty: self.penalty, ..Choice::NEW }],
+            compare: [
+                Choice::OLD,
+                Choice {
+                    penalty: self.penalty,
+                    ..Choice::NEW
+                },
+            ],
         }
     }
     fn size_or(&self, default: (u32, u32)) -> (u32, u32) {
         self.size.unwrap_or(default)
     }
     fn canvas(&self, w: u32, h: u32) -> Canvas {
-        Canvas { w: ((w as f32) * self.dpr) as u32, h: ((h as f32) * self.dpr) as u32, dpr: self.dpr }
+        Canvas {
+            w: ((w as f32) * self.dpr) as u32,
+            h: ((h as f32) * self.dpr) as u32,
+            dpr: self.dpr,
+        }
     }
 }
 
@@ -129,14 +141,25 @@ fn side_by_side(parts: &[Pixmap], theme: &Theme) -> Result<Pixmap, String> {
     out.fill(theme.paper);
     let mut x = 0;
     for p in parts {
-        out.draw_pixmap(x as i32, 0, p.as_ref(), &PixmapPaint::default(), Transform::identity(), None);
+        out.draw_pixmap(
+            x as i32,
+            0,
+            p.as_ref(),
+            &PixmapPaint::default(),
+            Transform::identity(),
+            None,
+        );
         x += p.width();
     }
     Ok(out)
 }
 
 fn no_such_node(n: usize, count: usize, flag: &dyn Fn(&str) -> String) -> String {
-    format!("{} {n}: the mesh has nodes 0 to {}", flag("node"), count.saturating_sub(1))
+    format!(
+        "{} {n}: the mesh has nodes 0 to {}",
+        flag("node"),
+        count.saturating_sub(1)
+    )
 }
 
 /// Draws `model` (read from `name`, for messages) as `r` asks; `clock` times the planar
@@ -152,19 +175,30 @@ pub fn draw(
         return Err(format!("{}: give old, new or old,new", flag("objective")));
     }
     if !(r.dpr.is_finite() && r.dpr > 0.0 && r.dpr <= 4.0) {
-        return Err(format!("{} {}: give a ratio above 0 and at most 4", flag("dpr"), r.dpr));
+        return Err(format!(
+            "{} {}: give a ratio above 0 and at most 4",
+            flag("dpr"),
+            r.dpr
+        ));
     }
     let passes = r.passes.unwrap_or(match r.view {
         View::Mesh | View::Levelset => 0,
         _ => DEFAULT_PASSES,
     });
     if !RENDER_PASSES.contains(passes.into()) {
-        return Err(format!("{} {passes}: give at most {}", flag("passes"), RENDER_PASSES.max));
+        return Err(format!(
+            "{} {passes}: give at most {}",
+            flag("passes"),
+            RENDER_PASSES.max
+        ));
     }
     let mesh = match model {
         Model::Planar(mesh) => {
             if r.camera.is_some() {
-                return Err(format!("{} turns the 3D view of a surface; this mesh is planar", flag("camera")));
+                return Err(format!(
+                    "{} turns the 3D view of a surface; this mesh is planar",
+                    flag("camera")
+                ));
             }
             mesh
         }
@@ -172,7 +206,10 @@ pub fn draw(
         Model::Volume(v) => return volume(r, name, v, passes, flag),
     };
     if r.cut.is_some() {
-        return Err(format!("{} cuts a volume mesh; this mesh is planar", flag("cut")));
+        return Err(format!(
+            "{} cuts a volume mesh; this mesh is planar",
+            flag("cut")
+        ));
     }
     // The pictures are drawn by the page's code, which holds at most MAX_NODES nodes: said
     // in the caller's words, with the file's name.
@@ -212,7 +249,9 @@ pub fn draw(
                 flag("node")
             )),
             Some(n) => Err(no_such_node(n, m.node_count(), flag)),
-            None => worst_free_node(m).ok_or_else(|| "the mesh has no free node to study".to_string()),
+            None => {
+                worst_free_node(m).ok_or_else(|| "the mesh has no free node to study".to_string())
+            }
         }
     };
     Ok(match r.view {
@@ -230,7 +269,11 @@ pub fn draw(
             let each = r.canvas(w / r.sides.len() as u32, h);
             let mut parts = Vec::new();
             for &side in &r.sides {
-                parts.push(lab.render_level_set(side, n, each).map_err(|e| e.to_string())?.0);
+                parts.push(
+                    lab.render_level_set(side, n, each)
+                        .map_err(|e| e.to_string())?
+                        .0,
+                );
             }
             side_by_side(&parts, &theme)?
         }
@@ -238,45 +281,75 @@ pub fn draw(
             Some(_) => {
                 let n = node(first)?;
                 // the node view's third picture is its solve history (both objectives)
-                let ([_, _, chart], _) =
-                    lab.render_node_view(n, r.canvas(64, 64), r.canvas(w, h)).map_err(|e| e.to_string())?;
+                let ([_, _, chart], _) = lab
+                    .render_node_view(n, r.canvas(64, 64), r.canvas(w, h))
+                    .map_err(|e| e.to_string())?;
                 chart
             }
-            None => lab.render_pass_chart(r.canvas(w, h)).map_err(|e| e.to_string())?,
+            None => lab
+                .render_pass_chart(r.canvas(w, h))
+                .map_err(|e| e.to_string())?,
         },
         View::Histogram => {
             let as_loaded = mesh_stats(&original).angle_histogram_6deg;
             let mut laplace: Mesh = original.clone();
             let opts = SmoothOptions::default().with_strategy(Strategy::Laplace);
             let objective = objective_with(ObjectiveKind::SmoothShape, r.penalty);
-            smooth(&mut laplace, objective.as_ref(), opts, passes, &|| 0.0).map_err(|e| e.to_string())?;
+            smooth(&mut laplace, objective.as_ref(), opts, passes, &|| 0.0)
+                .map_err(|e| e.to_string())?;
             let lap = mesh_stats(&laplace).angle_histogram_6deg;
             let old = lab.stats(Side::A).mesh.angle_histogram_6deg;
             let new = lab.stats(Side::B).mesh.angle_histogram_6deg;
-            let mut series = vec![HistogramSeries { label: "as loaded", counts: &as_loaded, color: None }];
+            let mut series = vec![HistogramSeries {
+                label: "as loaded",
+                counts: &as_loaded,
+                color: None,
+            }];
             for &side in &r.sides {
                 series.push(match side {
-                    Side::A => HistogramSeries { label: "old (max-min)", counts: &old, color: Some(theme.side(0)) },
-                    Side::B => HistogramSeries { label: "new (Chen et al.)", counts: &new, color: Some(theme.side(1)) },
+                    Side::A => HistogramSeries {
+                        label: "old (max-min)",
+                        counts: &old,
+                        color: Some(theme.side(0)),
+                    },
+                    Side::B => HistogramSeries {
+                        label: "new (Chen et al.)",
+                        counts: &new,
+                        color: Some(theme.side(1)),
+                    },
                 });
             }
-            series.push(HistogramSeries { label: "Laplacian", counts: &lap, color: None });
+            series.push(HistogramSeries {
+                label: "Laplacian",
+                counts: &lap,
+                color: None,
+            });
             let c = r.canvas(w, h);
             let mut pm = pixmap(c.w, c.h).map_err(|e| e.to_string())?;
             let title = format!("Corner angles (6° bins) after {passes} passes");
             render_angle_histogram(
                 &mut pm,
                 &series,
-                &AngleHistogram { title: &title, dpr: r.dpr, theme, ..AngleHistogram::default() },
+                &AngleHistogram {
+                    title: &title,
+                    dpr: r.dpr,
+                    theme,
+                    ..AngleHistogram::default()
+                },
             )
             .map_err(|e| e.to_string())?;
             pm
         }
         View::Compare => {
             if r.sides.len() != 2 {
-                return Err(format!("{} compare shows both objectives: use {} old,new", flag("view"), flag("objective")));
+                return Err(format!(
+                    "{} compare shows both objectives: use {} old,new",
+                    flag("view"),
+                    flag("objective")
+                ));
             }
-            lab.render_figure(r.canvas(w, h)).map_err(|e| e.to_string())?
+            lab.render_figure(r.canvas(w, h))
+                .map_err(|e| e.to_string())?
         }
     })
 }
@@ -285,7 +358,13 @@ pub fn draw(
 /// first objective asked for), or old and new side by side after the passes, with the
 /// lab's settings (strategy, order, iterations, the new objective's penalty); `levelset`:
 /// a node's star in its tangent plane.
-fn surface(r: &Request, name: &str, s: Surface, passes: u32, flag: &dyn Fn(&str) -> String) -> Result<Pixmap, String> {
+fn surface(
+    r: &Request,
+    name: &str,
+    s: Surface,
+    passes: u32,
+    flag: &dyn Fn(&str) -> String,
+) -> Result<Pixmap, String> {
     if s.node_count() > MAX_NODES {
         return Err(format!(
             "{name}: the mesh has {} nodes; render draws meshes of at most {MAX_NODES} nodes",
@@ -296,7 +375,11 @@ fn surface(r: &Request, name: &str, s: Surface, passes: u32, flag: &dyn Fn(&str)
         View::Mesh => vec![r.sides[0]],
         View::Compare if r.sides.len() == 2 => r.sides.clone(),
         View::Compare => {
-            return Err(format!("{} compare shows both objectives: use {} old,new", flag("view"), flag("objective")))
+            return Err(format!(
+                "{} compare shows both objectives: use {} old,new",
+                flag("view"),
+                flag("objective")
+            ))
         }
         View::Levelset => return surface_level_sets(r, &s, passes, flag),
         other => {
@@ -311,7 +394,11 @@ fn surface(r: &Request, name: &str, s: Surface, passes: u32, flag: &dyn Fn(&str)
     let settings = r.settings();
     let opts = settings.smooth_options().map_err(|e| e.to_string())?;
     let camera = r.camera.unwrap_or_default();
-    let (w, h) = r.size_or(if sides.len() == 2 { (1400, 760) } else { (900, 800) });
+    let (w, h) = r.size_or(if sides.len() == 2 {
+        (1400, 760)
+    } else {
+        (900, 800)
+    });
     let each = w / sides.len() as u32;
     let mut parts = Vec::new();
     for side in sides {
@@ -328,10 +415,19 @@ fn surface(r: &Request, name: &str, s: Surface, passes: u32, flag: &dyn Fn(&str)
             1 => format!("{}: {} after 1 pass", side.letter(), choice.label()),
             n => format!("{}: {} after {n} passes", side.letter(), choice.label()),
         };
-        let title =
-            format!("{when}: {} inverted, angles {:.1}°–{:.1}°", st.inverted, st.min_angle_deg, st.max_angle_deg);
-        let mut pm = pixmap(((each as f32) * r.dpr) as u32, ((h as f32) * r.dpr) as u32).map_err(|e| e.to_string())?;
-        let view = SurfaceView { camera, dpr: r.dpr, title: Some(title), theme: r.theme, ..SurfaceView::default() };
+        let title = format!(
+            "{when}: {} inverted, angles {:.1}°–{:.1}°",
+            st.inverted, st.min_angle_deg, st.max_angle_deg
+        );
+        let mut pm = pixmap(((each as f32) * r.dpr) as u32, ((h as f32) * r.dpr) as u32)
+            .map_err(|e| e.to_string())?;
+        let view = SurfaceView {
+            camera,
+            dpr: r.dpr,
+            title: Some(title),
+            theme: r.theme,
+            ..SurfaceView::default()
+        };
         t.render(&mut pm, r.metric, &view);
         parts.push(pm);
     }
@@ -342,7 +438,13 @@ fn surface(r: &Request, name: &str, s: Surface, passes: u32, flag: &dyn Fn(&str)
 /// of the first objective asked for), `compare` (old and new side by side after the
 /// passes) or `histogram` (the dihedral angles, 6° bins: as loaded, old, new), with the
 /// lab's strategy, order and iterations.
-fn volume(r: &Request, name: &str, v: VolumeMesh, passes: u32, flag: &dyn Fn(&str) -> String) -> Result<Pixmap, String> {
+fn volume(
+    r: &Request,
+    name: &str,
+    v: VolumeMesh,
+    passes: u32,
+    flag: &dyn Fn(&str) -> String,
+) -> Result<Pixmap, String> {
     if v.node_count() > MAX_NODES {
         return Err(format!(
             "{name}: the mesh has {} nodes; render draws meshes of at most {MAX_NODES} nodes",
@@ -376,26 +478,55 @@ fn volume(r: &Request, name: &str, v: VolumeMesh, passes: u32, flag: &dyn Fn(&st
     for &side in &sides {
         let mut t = v.clone();
         let kind = settings.compare[side as usize].objective;
-        smooth_volume(&mut t, &*tet_objective(kind).map_err(|e| e.to_string())?, opts, passes, &|| 0.0)
-            .map_err(|e| e.to_string())?;
+        smooth_volume(
+            &mut t,
+            &*tet_objective(kind).map_err(|e| e.to_string())?,
+            opts,
+            passes,
+            &|| 0.0,
+        )
+        .map_err(|e| e.to_string())?;
         smoothed.push((side, kind, t));
     }
     if r.view == View::Histogram {
         let (w, h) = r.size_or((900, 520));
-        let mut pm = pixmap(((w as f32) * r.dpr) as u32, ((h as f32) * r.dpr) as u32).map_err(|e| e.to_string())?;
+        let mut pm = pixmap(((w as f32) * r.dpr) as u32, ((h as f32) * r.dpr) as u32)
+            .map_err(|e| e.to_string())?;
         let loaded = volume_stats(&v).angle_histogram_6deg;
         let counts: Vec<(String, Vec<u64>)> = smoothed
             .iter()
-            .map(|(side, kind, t)| (format!("{}: {kind}", side.letter()), volume_stats(t).angle_histogram_6deg))
+            .map(|(side, kind, t)| {
+                (
+                    format!("{}: {kind}", side.letter()),
+                    volume_stats(t).angle_histogram_6deg,
+                )
+            })
             .collect();
-        let mut series = vec![HistogramSeries { label: "as loaded", counts: &loaded, color: None }];
-        series.extend(counts.iter().map(|(l, c)| HistogramSeries { label: l, counts: c, color: None }));
+        let mut series = vec![HistogramSeries {
+            label: "as loaded",
+            counts: &loaded,
+            color: None,
+        }];
+        series.extend(counts.iter().map(|(l, c)| HistogramSeries {
+            label: l,
+            counts: c,
+            color: None,
+        }));
         let title = format!("Dihedral angles after {passes} passes");
-        let opts = AngleHistogram { title: &title, dpr: r.dpr, theme: r.theme, ..AngleHistogram::default() };
+        let opts = AngleHistogram {
+            title: &title,
+            dpr: r.dpr,
+            theme: r.theme,
+            ..AngleHistogram::default()
+        };
         render_angle_histogram(&mut pm, &series, &opts).map_err(|e| e.to_string())?;
         return Ok(pm);
     }
-    let (w, h) = r.size_or(if sides.len() == 2 { (1400, 760) } else { (900, 800) });
+    let (w, h) = r.size_or(if sides.len() == 2 {
+        (1400, 760)
+    } else {
+        (900, 800)
+    });
     let each = w / sides.len() as u32;
     let mut parts = Vec::new();
     for (side, kind, t) in &smoothed {
@@ -405,10 +536,19 @@ fn volume(r: &Request, name: &str, v: VolumeMesh, passes: u32, flag: &dyn Fn(&st
             1 => format!("{}: {kind} after 1 pass", side.letter()),
             n => format!("{}: {kind} after {n} passes", side.letter()),
         };
-        let title =
-            format!("{when}: {} inverted, dihedral {:.1}°–{:.1}°", st.inverted, st.min_angle_deg, st.max_angle_deg);
-        let mut pm = pixmap(((each as f32) * r.dpr) as u32, ((h as f32) * r.dpr) as u32).map_err(|e| e.to_string())?;
-        let view = SurfaceView { camera, dpr: r.dpr, title: Some(title), theme: r.theme, ..SurfaceView::default() };
+        let title = format!(
+            "{when}: {} inverted, dihedral {:.1}°–{:.1}°",
+            st.inverted, st.min_angle_deg, st.max_angle_deg
+        );
+        let mut pm = pixmap(((each as f32) * r.dpr) as u32, ((h as f32) * r.dpr) as u32)
+            .map_err(|e| e.to_string())?;
+        let view = SurfaceView {
+            camera,
+            dpr: r.dpr,
+            title: Some(title),
+            theme: r.theme,
+            ..SurfaceView::default()
+        };
         t.render_cut(&mut pm, cut, &view);
         parts.push(pm);
     }
@@ -417,15 +557,28 @@ fn volume(r: &Request, name: &str, v: VolumeMesh, passes: u32, flag: &dyn Fn(&st
 
 /// `levelset` of a surface: the node's star flattened into its tangent plane, where the
 /// drivers see it, with the planar view's level sets of each objective asked for.
-fn surface_level_sets(r: &Request, s: &Surface, passes: u32, flag: &dyn Fn(&str) -> String) -> Result<Pixmap, String> {
+fn surface_level_sets(
+    r: &Request,
+    s: &Surface,
+    passes: u32,
+    flag: &dyn Fn(&str) -> String,
+) -> Result<Pixmap, String> {
     if passes > 0 {
-        return Err(format!("{} levelset of a surface draws the mesh as loaded: give no {}", flag("view"), flag("passes")));
+        return Err(format!(
+            "{} levelset of a surface draws the mesh as loaded: give no {}",
+            flag("view"),
+            flag("passes")
+        ));
     }
     let node = match r.node {
         Some(n) => n,
-        None => s.worst_free_node().ok_or("the mesh has no free node to study")?,
+        None => s
+            .worst_free_node()
+            .ok_or("the mesh has no free node to study")?,
     };
-    let (star, n) = s.star_in_tangent_plane(node).map_err(|e| format!("{} {node}: {e}", flag("node")))?;
+    let (star, n) = s
+        .star_in_tangent_plane(node)
+        .map_err(|e| format!("{} {node}: {e}", flag("node")))?;
     let mut lab = Playground::new(star).map_err(|e| e.to_string())?;
     lab.set_settings(r.settings()).map_err(|e| e.to_string())?;
     lab.set_theme(r.theme);
@@ -437,7 +590,11 @@ fn surface_level_sets(r: &Request, s: &Surface, passes: u32, flag: &dyn Fn(&str)
     };
     let mut parts = Vec::new();
     for &side in &r.sides {
-        parts.push(lab.render_level_set(side, n, each).map_err(|e| e.to_string())?.0);
+        parts.push(
+            lab.render_level_set(side, n, each)
+                .map_err(|e| e.to_string())?
+                .0,
+        );
     }
     side_by_side(&parts, &r.theme)
 }

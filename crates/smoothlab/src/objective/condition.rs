@@ -6,7 +6,6 @@
 
 use glam::{DMat2, DVec2};
 
-use super::corners::ElementJets;
 use super::{impl_objective_by_visit, ObjectiveKind, Star, Term};
 use crate::mesh::ElementKind;
 use crate::quality::{condition_number_gradient, Ideal};
@@ -54,7 +53,13 @@ impl ConditionNumber {
     pub fn visit(&self, star: &Star, x: DVec2, mut emit: impl FnMut(Term)) {
         match self.norm {
             Norm::Two if !far_from_unit_size(star) => {
-                Self::visit_two::<false>(star, x, |i, value, grad, _| emit(Term { elem: i as u32, value, grad }))
+                Self::visit_two::<false>(star, x, |i, value, grad, _| {
+                    emit(Term {
+                        elem: i as u32,
+                        value,
+                        grad,
+                    })
+                })
             }
             _ => self.visit_by_quality(star, x, emit),
         }
@@ -84,9 +89,14 @@ impl ConditionNumber {
     /// Hessian. Behind the barrier (`det T ≤ 0`, or `κ² ≥ CONDITION_BARRIER`) a term is
     /// `CONDITION_BARRIER` with zero gradient and Hessian.
     #[inline(always)]
-    fn visit_two<const HESSIAN: bool>(star: &Star, x: DVec2, mut emit: impl FnMut(usize, f64, DVec2, DMat2)) {
+    fn visit_two<const HESSIAN: bool>(
+        star: &Star,
+        x: DVec2,
+        mut emit: impl FnMut(usize, f64, DVec2, DMat2),
+    ) {
+        let ideal = !star.targeted();
         for (i, el) in star.elems.iter().enumerate() {
-            if el.kind == ElementKind::Tri3 {
+            if ideal && el.kind == ElementKind::Tri3 {
                 // the common case written out: a linear triangle's three corners share
                 // one κ = D/(√3·N) (Knupp's weighted-κ theorem), so one corner's term is
                 // worked out and emitted three times
@@ -102,7 +112,7 @@ impl ConditionNumber {
                 }
                 continue;
             }
-            if el.kind == ElementKind::Quad4 {
+            if ideal && el.kind == ElementKind::Quad4 {
                 // written out too: the three moving corners (all but the opposite one),
                 // as `ElementJets` makes them, without its copies and node weights
                 let s = el.slot as usize;
@@ -111,17 +121,27 @@ impl ConditionNumber {
                 let w = |k: usize| if k == s { 1.0 } else { 0.0 };
                 for c in (0..4).filter(|&c| c != (s + 2) % 4) {
                     let (next, prev) = ((c + 1) % 4, (c + 3) % 4);
-                    let t = corner_term::<HESSIAN>(p[next] - p[c], p[prev] - p[c], w(next) - w(c), w(prev) - w(c));
+                    let t = corner_term::<HESSIAN>(
+                        p[next] - p[c],
+                        p[prev] - p[c],
+                        w(next) - w(c),
+                        w(prev) - w(c),
+                    );
                     emit(i, t.0, t.1, t.2);
                 }
                 continue;
             }
             let triangle = el.kind.is_triangle();
-            let j = ElementJets::new(el, x);
+            let j = star.jets(i, el, x);
             for c in j.corner_jets().iter().filter(|c| c.moves()) {
                 // T = [t1 t2] = A·W⁻¹, each column affine in x with a scalar weight
                 let t = if triangle {
-                    corner_term::<HESSIAN>(c.e1, (2.0 * c.e2 - c.e1) * INV_SQRT3, c.c1, (2.0 * c.c2 - c.c1) * INV_SQRT3)
+                    corner_term::<HESSIAN>(
+                        c.e1,
+                        (2.0 * c.e2 - c.e1) * INV_SQRT3,
+                        c.c1,
+                        (2.0 * c.c2 - c.c1) * INV_SQRT3,
+                    )
                 } else {
                     corner_term::<HESSIAN>(c.e1, c.e2, c.c1, c.c2)
                 };
@@ -135,8 +155,12 @@ impl ConditionNumber {
     /// from unit size.
     fn visit_by_quality(&self, star: &Star, x: DVec2, mut emit: impl FnMut(Term)) {
         for (i, el) in star.elems.iter().enumerate() {
-            let ideal = if el.kind.is_triangle() { Ideal::Triangle } else { Ideal::Square };
-            let j = ElementJets::new(el, x);
+            let ideal = if el.kind.is_triangle() {
+                Ideal::Triangle
+            } else {
+                Ideal::Square
+            };
+            let j = star.jets(i, el, x);
             for c in j.corner_jets().iter().filter(|c| c.moves()) {
                 let (kappa, g1, g2) = condition_number_gradient(c.e1, c.e2, ideal);
                 let grad = c.chain(g1, g2);
@@ -157,7 +181,11 @@ impl ConditionNumber {
                         }
                     }
                 };
-                emit(Term { elem: i as u32, value, grad });
+                emit(Term {
+                    elem: i as u32,
+                    value,
+                    grad,
+                });
             }
         }
     }
@@ -171,7 +199,8 @@ const INV_SQRT3: f64 = 0.577_350_269_189_625_8;
 #[inline]
 fn far_from_unit_size(star: &Star) -> bool {
     let m = super::free_node_extent(star);
-    !(m == 0.0 || crate::numeric::SAFE_SCALE.contains(&m)) && crate::numeric::unit_factor(m).is_some()
+    !(m == 0.0 || crate::numeric::SAFE_SCALE.contains(&m))
+        && crate::numeric::unit_factor(m).is_some()
 }
 
 /// The 2-norm term `κ²` of one corner whose weighted columns are `t1 = w1·x + const`,
@@ -221,12 +250,20 @@ fn two_norm_term<const HESSIAN: bool>(
     let cross_xx = 2.0 * gq.x * grad_det.x;
     let cross_yy = 2.0 * gq.y * grad_det.y;
     let cross_xy = gq.x * grad_det.y + gq.y * grad_det.x;
-    let (hq_xx, hq_yy, hq_xy) = ((hess_f - cross_xx) * inv, (hess_f - cross_yy) * inv, -cross_xy * inv);
+    let (hq_xx, hq_yy, hq_xy) = (
+        (hess_f - cross_xx) * inv,
+        (hess_f - cross_yy) * inv,
+        -cross_xy * inv,
+    );
     let k = 2.0 * w;
     let hxx = k * (gq.x * gq.x + q * hq_xx);
     let hyy = k * (gq.y * gq.y + q * hq_yy);
     let hxy = k * (gq.x * gq.y + q * hq_xy);
-    (v, grad, DMat2::from_cols(DVec2::new(hxx, hxy), DVec2::new(hxy, hyy)))
+    (
+        v,
+        grad,
+        DMat2::from_cols(DVec2::new(hxx, hxy), DVec2::new(hxy, hyy)),
+    )
 }
 
 impl_objective_by_visit!(ConditionNumber, with_hessian);
@@ -238,7 +275,9 @@ mod tests {
     use crate::objective::{Goal, Objective};
 
     const TWO: ConditionNumber = ConditionNumber { norm: Norm::Two };
-    const INF: ConditionNumber = ConditionNumber { norm: Norm::Infinity };
+    const INF: ConditionNumber = ConditionNumber {
+        norm: Norm::Infinity,
+    };
 
     #[test]
     fn ideal_corners_have_kappa_two() {
@@ -247,7 +286,10 @@ mod tests {
         let mut t = Vec::new();
         TWO.terms(&hex, DVec2::ZERO, &mut t);
         assert_eq!(t.len(), 18);
-        assert!(t.iter().all(|t| (t.value - 4.0).abs() < 1e-12), "κ² = 4 at each corner");
+        assert!(
+            t.iter().all(|t| (t.value - 4.0).abs() < 1e-12),
+            "κ² = 4 at each corner"
+        );
         let (v, g) = INF.value_and_gradient(&hex, DVec2::ZERO);
         assert!((v + 2.0).abs() < 1e-12 && g.length() < 1e-12);
         // the square star: three moving corners per quad, κ = 2
@@ -255,7 +297,10 @@ mod tests {
         TWO.terms(&quad_star(), DVec2::ZERO, &mut t);
         assert_eq!(t.len(), 12);
         assert!(t.iter().all(|t| (t.value - 4.0).abs() < 1e-12));
-        assert_eq!((TWO.goal(), INF.goal()), (Goal::MinimizeSum, Goal::MaximizeMin));
+        assert_eq!(
+            (TWO.goal(), INF.goal()),
+            (Goal::MinimizeSum, Goal::MaximizeMin)
+        );
     }
 
     #[test]
@@ -331,7 +376,9 @@ mod tests {
         }
         assert!(checks > 200, "{checks}");
         // the ∞-norm is not smooth: no Hessian, so no Newton trial
-        assert!(INF.value_gradient_hessian(&quad_star(), DVec2::ZERO).is_none());
+        assert!(INF
+            .value_gradient_hessian(&quad_star(), DVec2::ZERO)
+            .is_none());
     }
 
     #[test]
@@ -350,17 +397,34 @@ mod tests {
                 for (a, b) in fast.iter().zip(&slow) {
                     assert_eq!(a.elem, b.elem);
                     if b.value >= CONDITION_BARRIER {
-                        assert_eq!((a.value, a.grad), (CONDITION_BARRIER, DVec2::ZERO), "at {x}");
+                        assert_eq!(
+                            (a.value, a.grad),
+                            (CONDITION_BARRIER, DVec2::ZERO),
+                            "at {x}"
+                        );
                         barrier += 1;
                         continue;
                     }
-                    assert!((a.value - b.value).abs() <= 1e-12 * b.value, "{} {} at {x}", a.value, b.value);
-                    assert!((a.grad - b.grad).length() <= 1e-10 * (1.0 + b.grad.length()), "{} {} at {x}", a.grad, b.grad);
+                    assert!(
+                        (a.value - b.value).abs() <= 1e-12 * b.value,
+                        "{} {} at {x}",
+                        a.value,
+                        b.value
+                    );
+                    assert!(
+                        (a.grad - b.grad).length() <= 1e-10 * (1.0 + b.grad.length()),
+                        "{} {} at {x}",
+                        a.grad,
+                        b.grad
+                    );
                     finite += 1;
                 }
             }
         }
-        assert!(finite > 2000 && barrier > 100, "{finite} finite, {barrier} behind the barrier");
+        assert!(
+            finite > 2000 && barrier > 100,
+            "{finite} finite, {barrier} behind the barrier"
+        );
     }
 
     #[test]

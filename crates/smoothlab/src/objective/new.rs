@@ -95,7 +95,10 @@ impl ChenTristanoKwok {
 
     /// `Σ (1 − α)²` alone: the objective without its penalty (Chen Fig. 2's failure).
     pub fn without_penalty() -> Self {
-        ChenTristanoKwok::Barrier(RegularisedBarrier { k1: 0.0, ..RegularisedBarrier::default() })
+        ChenTristanoKwok::Barrier(RegularisedBarrier {
+            k1: 0.0,
+            ..RegularisedBarrier::default()
+        })
     }
 
     pub fn kind(&self) -> ObjectiveKind {
@@ -128,11 +131,20 @@ impl ChenTristanoKwok {
             Some(f) => {
                 let unit = super::scaled_star(star, f);
                 self.visit_at_unit_scale::<false>(&unit, f * x, |i, value, grad, _| {
-                    emit(Term { elem: i as u32, value, grad: f * grad })
+                    emit(Term {
+                        elem: i as u32,
+                        value,
+                        grad: f * grad,
+                    })
                 });
             }
-            None => self
-                .visit_at_unit_scale::<false>(star, x, |i, value, grad, _| emit(Term { elem: i as u32, value, grad })),
+            None => self.visit_at_unit_scale::<false>(star, x, |i, value, grad, _| {
+                emit(Term {
+                    elem: i as u32,
+                    value,
+                    grad,
+                })
+            }),
         }
     }
 
@@ -154,7 +166,9 @@ impl ChenTristanoKwok {
         match extreme_scale_factor(star) {
             Some(f) => {
                 let unit = super::scaled_star(star, f);
-                self.visit_at_unit_scale::<true>(&unit, f * x, |i, v, g, h| add(i, v, f * g, h * (f * f)));
+                self.visit_at_unit_scale::<true>(&unit, f * x, |i, v, g, h| {
+                    add(i, v, f * g, h * (f * f))
+                });
             }
             None => self.visit_at_unit_scale::<true>(star, x, add),
         }
@@ -178,7 +192,10 @@ impl ChenTristanoKwok {
                 // whose closure the compiler keeps apart, passing the sub-triangle through
                 // memory: a quarter of the time of `opt` went there)
                 let s = el.slot as usize;
-                let t = SubTriangle::linear(x, el.pts[(s + 1) % 3], el.pts[(s + 2) % 3]);
+                let mut t = SubTriangle::linear(x, el.pts[(s + 1) % 3], el.pts[(s + 2) % 3]);
+                if let Some(f) = star.frames_of(i) {
+                    t = t.in_frames(&f[s], &f[(s + 1) % 3], &f[(s + 2) % 3]);
+                }
                 let (v, g, h) = self.sub_triangle::<HESSIAN>(&t, delta);
                 // added to zero as the general path sums, so a −0 comes out as +0 there too
                 let (v, g, h) = (0.0 + v, DVec2::ZERO + g, DMat2::ZERO + h);
@@ -186,7 +203,7 @@ impl ChenTristanoKwok {
                 continue;
             }
             let (mut value, mut grad, mut hess) = (0.0, DVec2::ZERO, DMat2::ZERO);
-            each_sub_triangle(el, x, |t| {
+            each_target_sub_triangle(star, i, el, x, |t| {
                 let (v, g, h) = self.sub_triangle::<HESSIAN>(t, delta);
                 value += v;
                 grad += g;
@@ -208,14 +225,22 @@ impl ChenTristanoKwok {
     /// Hessian when `HESSIAN`: the barrier design only, zero for the angle design).
     /// Inlined into the loops, so that the vectors a design does not read are never made.
     #[inline(always)]
-    fn sub_triangle<const HESSIAN: bool>(&self, t: &SubTriangle, delta: f64) -> (f64, DVec2, DMat2) {
+    fn sub_triangle<const HESSIAN: bool>(
+        &self,
+        t: &SubTriangle,
+        delta: f64,
+    ) -> (f64, DVec2, DMat2) {
         match self {
             ChenTristanoKwok::Barrier(b) => b.of::<HESSIAN>(t, delta),
             ChenTristanoKwok::Angle(a) => {
                 let at_c = barrier::CornerND::of(t.c_to_a, t.c_to_b);
                 let (alpha, grad_alpha) = at_c.alpha();
                 let (p, gp) = a.of(t);
-                ((1.0 - alpha) * (1.0 - alpha) + p, -2.0 * (1.0 - alpha) * grad_alpha + gp, DMat2::ZERO)
+                (
+                    (1.0 - alpha) * (1.0 - alpha) + p,
+                    -2.0 * (1.0 - alpha) * grad_alpha + gp,
+                    DMat2::ZERO,
+                )
             }
         }
     }
@@ -288,7 +313,12 @@ impl StarAtRest {
                 }
             });
         }
-        StarAtRest { extent, n_sum: sum, n_count: count, n_min: min }
+        StarAtRest {
+            extent,
+            n_sum: sum,
+            n_count: count,
+            n_min: min,
+        }
     }
 }
 
@@ -299,7 +329,11 @@ fn each_sub_triangle(el: &StarElement, x: DVec2, mut f: impl FnMut(&SubTriangle)
     if el.kind == ElementKind::Tri3 {
         // the common case, without the general element machinery (same arithmetic)
         let s = el.slot as usize;
-        f(&SubTriangle::linear(x, el.pts[(s + 1) % 3], el.pts[(s + 2) % 3]));
+        f(&SubTriangle::linear(
+            x,
+            el.pts[(s + 1) % 3],
+            el.pts[(s + 2) % 3],
+        ));
         return;
     }
     let j = ElementJets::new(el, x);
@@ -313,6 +347,51 @@ fn each_sub_triangle(el: &StarElement, x: DVec2, mut f: impl FnMut(&SubTriangle)
         f(&SubTriangle::of(&j, c, o, p, straight));
         f(&SubTriangle::of(&j, c, n, p, straight));
     }
+}
+
+/// [`each_sub_triangle`] as the star's targets measure them ([`Star::frames`]): each
+/// corner's pair of a triangle in that corner's frame; a quad's sub-triangles each against
+/// the same sub-triangle of the target, whose corners are measured against the equilateral.
+#[inline(always)]
+fn each_target_sub_triangle(
+    star: &Star,
+    i: usize,
+    el: &StarElement,
+    x: DVec2,
+    mut f: impl FnMut(&SubTriangle),
+) {
+    let (Some(frames), Some(target)) = (star.frames_of(i), star.targets.get(i)) else {
+        return each_sub_triangle(el, x, f);
+    };
+    let k = el.kind.corners();
+    if el.kind.is_triangle() {
+        return each_sub_triangle(el, x, |t| {
+            let s = el.slot as usize;
+            f(&t.in_frames(&frames[s], &frames[(s + 1) % k], &frames[(s + 2) % k]))
+        });
+    }
+    let mut input = *el;
+    input.pts = *target;
+    let mut theirs = [SubTriangle::linear(DVec2::ZERO, DVec2::X, DVec2::Y); 3];
+    let mut n = 0;
+    each_sub_triangle(&input, target[el.slot as usize], |t| {
+        theirs[n] = *t;
+        n += 1;
+    });
+    let mut n = 0;
+    each_sub_triangle(el, x, |t| {
+        let of = |(a, b): ((DVec2, f64), (DVec2, f64))| {
+            crate::target::corner_frame(a.0, b.0, crate::target::EQUILATERAL_PAIR)
+                .unwrap_or(DMat2::IDENTITY)
+        };
+        let u = &theirs[n];
+        n += 1;
+        f(&t.in_frames(
+            &of((u.c_to_a, u.c_to_b)),
+            &of((u.a_to_b, u.a_to_c)),
+            &of((u.b_to_c, u.b_to_a)),
+        ))
+    });
 }
 
 impl_objective_by_visit!(ChenTristanoKwok, with_hessian);
@@ -351,6 +430,34 @@ impl SubTriangle {
             ca: j.chord(c, a),
             cb: j.chord(c, b),
             straight,
+        }
+    }
+
+    /// The sub-triangle as its targets measure it: the pair at C in frame `c`, at A in
+    /// `a`, at B in `b` ([`crate::target::in_frame`]); the chords from C in `c`.
+    #[inline(always)]
+    fn in_frames(&self, c: &DMat2, a: &DMat2, b: &DMat2) -> Self {
+        let pair = |m: &DMat2, u: (DVec2, f64), v: (DVec2, f64)| {
+            let (p, q) = crate::target::in_frame(m, u.0, v.0);
+            let (wp, wq) = crate::target::in_frame(m, u.1, v.1);
+            ((p, wp), (q, wq))
+        };
+        let (c_to_a, c_to_b) = pair(c, self.c_to_a, self.c_to_b);
+        let (a_to_b, a_to_c) = pair(a, self.a_to_b, self.a_to_c);
+        let (b_to_c, b_to_a) = pair(b, self.b_to_c, self.b_to_a);
+        let (ca, cb) = pair(c, self.ca, self.cb);
+        let ab = (cb.0 - ca.0, cb.1 - ca.1);
+        SubTriangle {
+            c_to_a,
+            c_to_b,
+            a_to_b,
+            a_to_c,
+            b_to_c,
+            b_to_a,
+            ab,
+            ca,
+            cb,
+            straight: self.straight,
         }
     }
 

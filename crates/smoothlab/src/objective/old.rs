@@ -4,12 +4,14 @@
 //!
 //! The formulas, in one notation: `docs/formulas.md` §2.
 
-use glam::DVec2;
+use glam::{DMat2, DVec2};
 
 use super::corners::{CornerJet, ElementJets};
 use super::{impl_objective_by_visit, ObjectiveKind, Star, StarElement, Term};
 use crate::mesh::ElementKind;
-use crate::quality::{lo_alpha_corner, lo_alpha_corner_gradient, lo_alpha_triangle_corners, ALPHA_90};
+use crate::quality::{
+    lo_alpha_corner, lo_alpha_corner_gradient, lo_alpha_triangle_corners, ALPHA_90,
+};
 
 /// Max-min of the element shapes, one term per star element:
 /// - a triangle's term is Lo's α, eq. (1) — for a quadratic triangle the smallest
@@ -31,7 +33,7 @@ impl MaxMinShape {
     /// Calls `emit` with one term per star element.
     pub fn visit(&self, star: &Star, x: DVec2, mut emit: impl FnMut(Term)) {
         for (i, el) in star.elems.iter().enumerate() {
-            emit(element_term(el, i, x, f64::NAN));
+            emit(element_term(el, star.frames_of(i), i, x, f64::NAN));
         }
     }
 
@@ -39,11 +41,18 @@ impl MaxMinShape {
     /// `lead` first, then the others in order, stopping at the first term not above
     /// `floor` (which then ends `out`, unless it was `lead`'s); the terms are
     /// [`visit`](Self::visit)'s, bit for bit.
-    pub fn terms_above(&self, star: &Star, x: DVec2, floor: f64, lead: u32, out: &mut Vec<Term>) -> bool {
+    pub fn terms_above(
+        &self,
+        star: &Star,
+        x: DVec2,
+        floor: f64,
+        lead: u32,
+        out: &mut Vec<Term>,
+    ) -> bool {
         out.clear();
         let lead = lead as usize;
         let first = match star.elems.get(lead) {
-            Some(el) => element_term(el, lead, x, floor),
+            Some(el) => element_term(el, star.frames_of(lead), lead, x, floor),
             None => return self.visit_while(star, x, floor, None, out),
         };
         // not `<=`: a NaN term is not above
@@ -57,11 +66,18 @@ impl MaxMinShape {
     /// Appends the terms to `out` while they are above `floor` (the term of element
     /// `known.elem` taken from `known`); whether all were and there was one.
     #[inline(always)]
-    fn visit_while(&self, star: &Star, x: DVec2, floor: f64, known: Option<Term>, out: &mut Vec<Term>) -> bool {
+    fn visit_while(
+        &self,
+        star: &Star,
+        x: DVec2,
+        floor: f64,
+        known: Option<Term>,
+        out: &mut Vec<Term>,
+    ) -> bool {
         for (i, el) in star.elems.iter().enumerate() {
             let t = match known {
                 Some(k) if k.elem as usize == i => k,
-                _ => element_term(el, i, x, floor),
+                _ => element_term(el, star.frames_of(i), i, x, floor),
             };
             out.push(t);
             let above = t.value > floor;
@@ -78,8 +94,14 @@ impl MaxMinShape {
 /// (the term is then not above it, and [`MaxMinShape::terms_above`] stops; no floor is
 /// NaN).
 #[inline(always)]
-fn element_term(el: &StarElement, i: usize, x: DVec2, floor: f64) -> Term {
-    if el.kind == ElementKind::Tri3 {
+fn element_term(
+    el: &StarElement,
+    frames: Option<&[DMat2; 4]>,
+    i: usize,
+    x: DVec2,
+    floor: f64,
+) -> Term {
+    if frames.is_none() && el.kind == ElementKind::Tri3 {
         // the common case without the element jets (a 420-byte copy per element): the
         // same corner edge vectors and weights (1 at the free node, else 0), the three
         // αs taken together and the gradient of the worst alone
@@ -89,13 +111,26 @@ fn element_term(el: &StarElement, i: usize, x: DVec2, floor: f64) -> Term {
         let w = |j: usize| if j == s { 1.0 } else { 0.0 };
         let corner = |j: usize| {
             let (next, prev) = ((j + 1) % 3, (j + 2) % 3);
-            CornerJet { e1: p[next] - p[j], e2: p[prev] - p[j], c1: w(next) - w(j), c2: w(prev) - w(j) }
+            CornerJet {
+                e1: p[next] - p[j],
+                e2: p[prev] - p[j],
+                c1: w(next) - w(j),
+                c2: w(prev) - w(j),
+            }
         };
         let Some(alpha) = lo_alpha_triangle_corners(&p) else {
             let corners = [corner(0), corner(1), corner(2)];
             let (min, worst, _) = worst_corner(&corners);
-            let grad = if min <= floor { DVec2::ZERO } else { worst_gradient(&corners, worst) };
-            return Term { elem: i as u32, value: min, grad };
+            let grad = if min <= floor {
+                DVec2::ZERO
+            } else {
+                worst_gradient(&corners, worst)
+            };
+            return Term {
+                elem: i as u32,
+                value: min,
+                grad,
+            };
         };
         // worst_corner's choice: the first of the smallest
         let (mut min, mut worst) = (f64::INFINITY, None);
@@ -110,14 +145,29 @@ fn element_term(el: &StarElement, i: usize, x: DVec2, floor: f64) -> Term {
             Some(k) => worst_gradient(&[corner(k)], Some(0)),
             None => DVec2::ZERO,
         };
-        return Term { elem: i as u32, value: min, grad };
+        return Term {
+            elem: i as u32,
+            value: min,
+            grad,
+        };
     }
-    let j = ElementJets::new(el, x);
+    let mut j = ElementJets::new(el, x);
+    if let Some(f) = frames {
+        j.in_frames(f);
+    }
     let corners = j.corner_jets();
     let (min, worst, neg) = worst_corner(corners);
     let grad = worst_gradient(corners, worst);
-    let (value, grad) = if el.kind.is_triangle() { (min, grad) } else { (min / ALPHA_90 - neg as f64, grad / ALPHA_90) };
-    Term { elem: i as u32, value, grad }
+    let (value, grad) = if el.kind.is_triangle() {
+        (min, grad)
+    } else {
+        (min / ALPHA_90 - neg as f64, grad / ALPHA_90)
+    };
+    Term {
+        elem: i as u32,
+        value,
+        grad,
+    }
 }
 
 /// One corner's α of a star element with the free node at `x`, and its gradient in the
@@ -141,11 +191,20 @@ impl MaxMinShape {
     pub fn corner_terms(&self, star: &Star, x: DVec2) -> Vec<CornerTerm> {
         let mut out = Vec::new();
         for (i, el) in star.elems.iter().enumerate() {
-            let j = ElementJets::new(el, x);
-            let scale = if el.kind.is_triangle() { 1.0 } else { 1.0 / ALPHA_90 };
+            let j = star.jets(i, el, x);
+            let scale = if el.kind.is_triangle() {
+                1.0
+            } else {
+                1.0 / ALPHA_90
+            };
             for (k, c) in j.corner_jets().iter().enumerate() {
                 let (a, g1, g2) = lo_alpha_corner_gradient(c.e1, c.e2);
-                out.push(CornerTerm { elem: i as u32, corner: k as u32, value: a * scale, grad: c.chain(g1, g2) * scale });
+                out.push(CornerTerm {
+                    elem: i as u32,
+                    corner: k as u32,
+                    value: a * scale,
+                    grad: c.chain(g1, g2) * scale,
+                });
             }
         }
         out
@@ -200,9 +259,19 @@ mod tests {
             let mut terms = Vec::new();
             MaxMinShape.terms(&star, x, &mut terms);
             for t in &terms {
-                let least = corners.iter().filter(|c| c.elem == t.elem).min_by(|a, b| a.value.total_cmp(&b.value)).unwrap();
+                let least = corners
+                    .iter()
+                    .filter(|c| c.elem == t.elem)
+                    .min_by(|a, b| a.value.total_cmp(&b.value))
+                    .unwrap();
                 assert_eq!(least.value, t.value, "element {} at {x}", t.elem);
-                assert!((least.grad - t.grad).length() < 1e-12, "element {} at {x}: {} vs {}", t.elem, least.grad, t.grad);
+                assert!(
+                    (least.grad - t.grad).length() < 1e-12,
+                    "element {} at {x}: {} vs {}",
+                    t.elem,
+                    least.grad,
+                    t.grad
+                );
             }
         }
     }
@@ -231,7 +300,12 @@ mod tests {
                 for (term, el) in t.iter().zip(&star.elems) {
                     let p = el.at(x);
                     let q = element_quality(el.kind, &p[..el.kind.node_count()]);
-                    assert!((term.value - q.shape).abs() < 1e-12, "{} {}", term.value, q.shape);
+                    assert!(
+                        (term.value - q.shape).abs() < 1e-12,
+                        "{} {}",
+                        term.value,
+                        q.shape
+                    );
                 }
             }
         }
@@ -251,15 +325,25 @@ mod tests {
             }
         }
         // kinks (a quad's minimal corner changing, n_neg jumping) are rare at random points
-        assert!(checked * 10 >= total * 8, "only {checked} of {total} terms were away from kinks");
+        assert!(
+            checked * 10 >= total * 8,
+            "only {checked} of {total} terms were away from kinks"
+        );
     }
 
     #[test]
     fn quadratic_straight_star_matches_linear() {
         let lin = fan_star(&regular_ring(5, 1.0));
         let quad = quadratic(&lin);
-        assert!(quad.elems.iter().all(|e| e.kind == ElementKind::Tri6 && e.follow_next && e.follow_prev));
-        for x in [DVec2::new(0.1, 0.2), DVec2::new(-0.4, 0.3), DVec2::new(1.4, 0.0)] {
+        assert!(quad
+            .elems
+            .iter()
+            .all(|e| e.kind == ElementKind::Tri6 && e.follow_next && e.follow_prev));
+        for x in [
+            DVec2::new(0.1, 0.2),
+            DVec2::new(-0.4, 0.3),
+            DVec2::new(1.4, 0.0),
+        ] {
             let (a, ga) = MaxMinShape.value_and_gradient(&lin, x);
             let (b, gb) = MaxMinShape.value_and_gradient(&quad, x);
             assert!((a - b).abs() < 1e-12 && (ga - gb).length() < 1e-10);

@@ -4,7 +4,7 @@
 //!
 //! The formulas, in one notation: `docs/formulas.md` §2.
 
-use glam::DVec2;
+use glam::{DMat2, DVec2};
 
 use super::corners::{CornerJet, ElementJets};
 use super::{impl_objective_by_visit, ObjectiveKind, Star, StarElement, Term};
@@ -26,21 +26,32 @@ impl MaxMinSine {
     /// Calls `emit` with one term per corner of every star element.
     pub fn visit(&self, star: &Star, x: DVec2, mut emit: impl FnMut(Term)) {
         for (i, el) in star.elems.iter().enumerate() {
-            element_terms(el, i, x, f64::NAN, &mut emit);
+            element_terms(el, star.frames_of(i), i, x, f64::NAN, &mut emit);
         }
     }
 
     /// [`Objective::terms_above`](crate::objective::Objective::terms_above): the corners of
     /// element `lead` first, then the others in order, stopping at the first term not
     /// above `floor`; the terms are [`visit`](Self::visit)'s, bit for bit.
-    pub fn terms_above(&self, star: &Star, x: DVec2, floor: f64, lead: u32, out: &mut Vec<Term>) -> bool {
+    pub fn terms_above(
+        &self,
+        star: &Star,
+        x: DVec2,
+        floor: f64,
+        lead: u32,
+        out: &mut Vec<Term>,
+    ) -> bool {
         out.clear();
         let lead = lead as usize;
-        let mut first = [Term { elem: 0, value: 0.0, grad: DVec2::ZERO }; 4];
+        let mut first = [Term {
+            elem: 0,
+            value: 0.0,
+            grad: DVec2::ZERO,
+        }; 4];
         let mut n = 0;
         if let Some(el) = star.elems.get(lead) {
             let mut above = true;
-            element_terms(el, lead, x, floor, |t| {
+            element_terms(el, star.frames_of(lead), lead, x, floor, |t| {
                 // not `<=`: a NaN term is not above
                 above &= t.value > floor;
                 first[n] = t;
@@ -56,7 +67,7 @@ impl MaxMinSine {
                 continue;
             }
             let mut above = true;
-            element_terms(el, i, x, floor, |t| {
+            element_terms(el, star.frames_of(i), i, x, floor, |t| {
                 above &= t.value > floor;
                 out.push(t);
             });
@@ -73,12 +84,23 @@ impl MaxMinSine {
 /// when one of them is at most `floor` (the element's terms are then not all above it, and
 /// [`MaxMinSine::terms_above`] stops; no floor is NaN).
 #[inline(always)]
-fn element_terms(el: &StarElement, i: usize, x: DVec2, floor: f64, mut emit: impl FnMut(Term)) {
+fn element_terms(
+    el: &StarElement,
+    frames: Option<&[DMat2; 4]>,
+    i: usize,
+    x: DVec2,
+    floor: f64,
+    mut emit: impl FnMut(Term),
+) {
     let corner = |c: &CornerJet| {
         let (s, g1, g2) = scaled_jacobian_gradient(c.e1, c.e2);
-        Term { elem: i as u32, value: s, grad: c.chain(g1, g2) }
+        Term {
+            elem: i as u32,
+            value: s,
+            grad: c.chain(g1, g2),
+        }
     };
-    if el.kind == ElementKind::Tri3 {
+    if frames.is_none() && el.kind == ElementKind::Tri3 {
         // the common case without the element jets (a 420-byte copy per element): the
         // same corner edge vectors and weights, corner by corner
         let s = el.slot as usize;
@@ -87,7 +109,12 @@ fn element_terms(el: &StarElement, i: usize, x: DVec2, floor: f64, mut emit: imp
         let w = |j: usize| if j == s { 1.0 } else { 0.0 };
         let jet = |j: usize| {
             let (next, prev) = ((j + 1) % 3, (j + 2) % 3);
-            CornerJet { e1: p[next] - p[j], e2: p[prev] - p[j], c1: w(next) - w(j), c2: w(prev) - w(j) }
+            CornerJet {
+                e1: p[next] - p[j],
+                e2: p[prev] - p[j],
+                c1: w(next) - w(j),
+                c2: w(prev) - w(j),
+            }
         };
         let t = TriangleCorners::of(&p);
         let mut values = [0.0; 3];
@@ -103,17 +130,28 @@ fn element_terms(el: &StarElement, i: usize, x: DVec2, floor: f64, mut emit: imp
         }
         if values.iter().any(|&v| v <= floor) {
             for value in values {
-                emit(Term { elem: i as u32, value, grad: DVec2::ZERO });
+                emit(Term {
+                    elem: i as u32,
+                    value,
+                    grad: DVec2::ZERO,
+                });
             }
             return;
         }
         for j in 0..3 {
             let (value, g1, g2) = t.scaled_jacobian::<true>(j).unwrap_or_default();
-            emit(Term { elem: i as u32, value, grad: jet(j).chain(g1, g2) });
+            emit(Term {
+                elem: i as u32,
+                value,
+                grad: jet(j).chain(g1, g2),
+            });
         }
         return;
     }
-    let j = ElementJets::new(el, x);
+    let mut j = ElementJets::new(el, x);
+    if let Some(f) = frames {
+        j.in_frames(f);
+    }
     for c in j.corner_jets() {
         emit(corner(c));
     }

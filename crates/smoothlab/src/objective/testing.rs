@@ -49,14 +49,26 @@ pub fn star(elems: Vec<StarElement>) -> Star {
     for (i, e) in elems.iter_mut().enumerate() {
         e.element = i as u32;
     }
-    let mixed = elems.iter().any(|e| e.kind.is_triangle()) && elems.iter().any(|e| e.kind.is_quad());
-    let x0 = elems.first().map(|e| e.pts[e.slot as usize]).unwrap_or_default();
-    Star { node: 0, x0, elems, mixed, memo: Default::default() }
+    let mixed =
+        elems.iter().any(|e| e.kind.is_triangle()) && elems.iter().any(|e| e.kind.is_quad());
+    let x0 = elems
+        .first()
+        .map(|e| e.pts[e.slot as usize])
+        .unwrap_or_default();
+    Star {
+        node: 0,
+        x0,
+        elems,
+        mixed,
+        ..Default::default()
+    }
 }
 
 /// `k` points on the circle of radius `r` about the origin, the first at angle 0.
 pub fn regular_ring(k: usize, r: f64) -> Vec<DVec2> {
-    (0..k).map(|i| r * DVec2::from_angle(std::f64::consts::TAU * i as f64 / k as f64)).collect()
+    (0..k)
+        .map(|i| r * DVec2::from_angle(std::f64::consts::TAU * i as f64 / k as f64))
+        .collect()
 }
 
 /// Triangles (origin, ring[i], ring[i+1]) around the free node at the origin.
@@ -67,7 +79,11 @@ pub fn fan_star(ring: &[DVec2]) -> Star {
 /// Triangles (x0, ring[i], ring[i+1]) around the free node at `x0`.
 pub fn fan_star_at(x0: DVec2, ring: &[DVec2]) -> Star {
     let k = ring.len();
-    star((0..k).map(|i| elem(ElementKind::Tri3, &[x0, ring[i], ring[(i + 1) % k]], 0)).collect())
+    star(
+        (0..k)
+            .map(|i| elem(ElementKind::Tri3, &[x0, ring[i], ring[(i + 1) % k]], 0))
+            .collect(),
+    )
 }
 
 /// Four quads around the free node at the origin from an 8-point ring (counter-clockwise,
@@ -75,14 +91,34 @@ pub fn fan_star_at(x0: DVec2, ring: &[DVec2]) -> Star {
 pub fn quad_star_from(ring: &[DVec2; 8]) -> Star {
     star(
         (0..4)
-            .map(|i| elem(ElementKind::Quad4, &[DVec2::ZERO, ring[2 * i], ring[2 * i + 1], ring[(2 * i + 2) % 8]], 0))
+            .map(|i| {
+                elem(
+                    ElementKind::Quad4,
+                    &[
+                        DVec2::ZERO,
+                        ring[2 * i],
+                        ring[2 * i + 1],
+                        ring[(2 * i + 2) % 8],
+                    ],
+                    0,
+                )
+            })
             .collect(),
     )
 }
 
 /// The four unit squares around the origin.
 pub fn square_ring() -> [DVec2; 8] {
-    [d(1.0, 0.0), d(1.0, 1.0), d(0.0, 1.0), d(-1.0, 1.0), d(-1.0, 0.0), d(-1.0, -1.0), d(0.0, -1.0), d(1.0, -1.0)]
+    [
+        d(1.0, 0.0),
+        d(1.0, 1.0),
+        d(0.0, 1.0),
+        d(-1.0, 1.0),
+        d(-1.0, 0.0),
+        d(-1.0, -1.0),
+        d(0.0, -1.0),
+        d(1.0, -1.0),
+    ]
 }
 
 /// The four unit squares around the origin, as a star.
@@ -94,8 +130,16 @@ pub fn quad_star() -> Star {
 pub fn mixed_star() -> Star {
     let o = DVec2::ZERO;
     star(vec![
-        elem(ElementKind::Quad4, &[o, d(1.0, 0.0), d(1.0, 1.0), d(0.0, 1.0)], 0),
-        elem(ElementKind::Quad4, &[o, d(0.0, 1.0), d(-1.0, 1.0), d(-1.0, 0.0)], 0),
+        elem(
+            ElementKind::Quad4,
+            &[o, d(1.0, 0.0), d(1.0, 1.0), d(0.0, 1.0)],
+            0,
+        ),
+        elem(
+            ElementKind::Quad4,
+            &[o, d(0.0, 1.0), d(-1.0, 1.0), d(-1.0, 0.0)],
+            0,
+        ),
         elem(ElementKind::Tri3, &[o, d(-1.0, 0.0), d(-0.5, -0.9)], 0),
         elem(ElementKind::Tri3, &[o, d(-0.5, -0.9), d(0.5, -0.9)], 0),
         elem(ElementKind::Tri3, &[o, d(0.5, -0.9), d(1.0, 0.0)], 0),
@@ -109,7 +153,11 @@ pub fn quadratic(s: &Star) -> Star {
         .elems
         .iter()
         .map(|e| {
-            let kind = if e.kind.is_triangle() { ElementKind::Tri6 } else { ElementKind::Quad8 };
+            let kind = if e.kind.is_triangle() {
+                ElementKind::Tri6
+            } else {
+                ElementKind::Quad8
+            };
             let k = kind.corners();
             let mut p = [DVec2::ZERO; 9];
             p[..k].copy_from_slice(&e.pts[..k]);
@@ -163,7 +211,10 @@ pub fn sample_stars() -> Vec<Star> {
     let mut rng = SplitMix64::new(3);
     let mut out = Vec::new();
     for k in [3, 5, 6, 7] {
-        let ring: Vec<DVec2> = regular_ring(k, 1.0).into_iter().map(|p| p + rng.point(0.2)).collect();
+        let ring: Vec<DVec2> = regular_ring(k, 1.0)
+            .into_iter()
+            .map(|p| p + rng.point(0.2))
+            .collect();
         out.push(fan_star(&ring));
     }
     let mut ring = square_ring();
@@ -187,7 +238,10 @@ pub fn sample_stars() -> Vec<Star> {
 pub fn fd_grad(f: impl Fn(DVec2) -> f64, x: DVec2, h: f64) -> DVec2 {
     let dx = d(h, 0.0);
     let dy = d(0.0, h);
-    d((f(x + dx) - f(x - dx)) / (2.0 * h), (f(x + dy) - f(x - dy)) / (2.0 * h))
+    d(
+        (f(x + dx) - f(x - dx)) / (2.0 * h),
+        (f(x + dy) - f(x - dy)) / (2.0 * h),
+    )
 }
 
 /// Whether `f` looks smooth at `x` along both axes: the one-sided differences agree
@@ -197,7 +251,9 @@ pub fn looks_smooth(f: impl Fn(DVec2) -> f64, x: DVec2, h: f64) -> bool {
     [d(h, 0.0), d(0.0, h)].iter().all(|&s| {
         let fwd = (f(x + s) - f0) / h;
         let bwd = (f0 - f(x - s)) / h;
-        fwd.is_finite() && bwd.is_finite() && (fwd - bwd).abs() <= 1e-3 * (1.0 + fwd.abs().max(bwd.abs()))
+        fwd.is_finite()
+            && bwd.is_finite()
+            && (fwd - bwd).abs() <= 1e-3 * (1.0 + fwd.abs().max(bwd.abs()))
     })
 }
 
@@ -220,15 +276,24 @@ pub fn check_gradient(obj: &dyn Objective, s: &Star, x: DVec2, tol: f64) {
 /// and gradient are `value_and_gradient`'s, bit for bit. Panics with the position on failure.
 pub fn check_hessian(obj: &dyn Objective, s: &Star, x: DVec2, tol: f64) {
     let h = 1e-6;
-    let (v, g, hess) = obj.value_gradient_hessian(s, x).expect("an analytic Hessian");
-    assert_eq!((v, g), obj.value_and_gradient(s, x), "{}: value and gradient at {x}", obj.name());
+    let (v, g, hess) = obj
+        .value_gradient_hessian(s, x)
+        .expect("an analytic Hessian");
+    assert_eq!(
+        (v, g),
+        obj.value_and_gradient(s, x),
+        "{}: value and gradient at {x}",
+        obj.name()
+    );
     assert!(
-        hess.x_axis.y == hess.y_axis.x || (hess.x_axis.y - hess.y_axis.x).abs() <= 1e-12 * hess.x_axis.y.abs(),
+        hess.x_axis.y == hess.y_axis.x
+            || (hess.x_axis.y - hess.y_axis.x).abs() <= 1e-12 * hess.x_axis.y.abs(),
         "symmetric"
     );
     for (i, col) in [hess.x_axis, hess.y_axis].into_iter().enumerate() {
         let e = if i == 0 { d(h, 0.0) } else { d(0.0, h) };
-        let fd = (obj.value_and_gradient(s, x + e).1 - obj.value_and_gradient(s, x - e).1) / (2.0 * h);
+        let fd =
+            (obj.value_and_gradient(s, x + e).1 - obj.value_and_gradient(s, x - e).1) / (2.0 * h);
         assert!(
             (col - fd).length() <= tol * (1.0 + fd.length()),
             "{}: Hessian column {i} {col} but central differences {fd} at {x}",

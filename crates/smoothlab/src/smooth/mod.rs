@@ -35,17 +35,18 @@ mod space;
 #[cfg(test)]
 mod tests;
 
+pub use accept::{ElementScore, Size, Verdict, MIN_SIZE_RATIO};
 use guard::KeepValid;
 pub(crate) use measure::is_inverted;
 pub(crate) use measure::triangle_shape_at;
 use measure::triangle_shape_at_both;
-pub use accept::{ElementScore, Size, Verdict, MIN_SIZE_RATIO};
 pub use measure::StarQuality;
 #[cfg(test)]
 pub(crate) use measure::{element_measures, element_shape_at, star_quality, star_shape};
 pub use obstacles::{untangling_obstacles, Obstacle};
 pub use options::{
-    Measure, Order, SmoothOptions, Strategy, DEFAULT_MAX_ITER, DEFAULT_PASSES, DEFAULT_THRESHOLD_DEG, UNTANGLE_SWEEPS,
+    Measure, Order, SmoothOptions, Strategy, DEFAULT_MAX_ITER, DEFAULT_PASSES,
+    DEFAULT_THRESHOLD_DEG, UNTANGLE_SWEEPS,
 };
 pub use records::{NodeOutcome, PassRecord, SweepCounts};
 pub use space::{DriverStar, FastSmart, SmoothMesh};
@@ -56,7 +57,9 @@ fn centroid<M: SmoothMesh + ?Sized>(mesh: &M, n: usize) -> Option<M::Point> {
     if nb.is_empty() {
         return None;
     }
-    let s = nb.iter().fold(M::Point::ZERO, |s, &m| s + mesh.position(m as usize));
+    let s = nb
+        .iter()
+        .fold(M::Point::ZERO, |s, &m| s + mesh.position(m as usize));
     Some(s / nb.len() as f64)
 }
 
@@ -83,7 +86,12 @@ pub(crate) trait StarView {
     /// [`place`](Self::place), kept only when the star gets no worse by `measure` (the
     /// acceptance rule, [`accept`]); returns whether the node moved. Called only where
     /// [`CHECKS_ON_PLACING`](Self::CHECKS_ON_PLACING).
-    fn place_if_no_worse(&mut self, n: usize, x: <Self::Mesh as SmoothMesh>::Point, _measure: Measure) -> bool {
+    fn place_if_no_worse(
+        &mut self,
+        n: usize,
+        x: <Self::Mesh as SmoothMesh>::Point,
+        _measure: Measure,
+    ) -> bool {
         self.place(n, x);
         true
     }
@@ -323,7 +331,12 @@ impl<S: DriverStar> Smoother<S> {
     /// A move is kept only when the star gets no worse (the acceptance rule, [`accept`],
     /// `docs/formulas.md` §4), measured on the star as it is in `mesh` and with the node
     /// moved; otherwise the node stays.
-    pub(crate) fn decide(&mut self, mesh: &S::Mesh, n: usize, objective: &dyn Objective<S>) -> (S::Point, NodeOutcome) {
+    pub(crate) fn decide(
+        &mut self,
+        mesh: &S::Mesh,
+        n: usize,
+        objective: &dyn Objective<S>,
+    ) -> (S::Point, NodeOutcome) {
         let (x, mut out, kept) = self.decide_move(mesh, n, objective);
         if out.moved && self.accepts_only_no_worse() {
             // a move the smart Laplacian's test kept was on a valid star
@@ -334,10 +347,15 @@ impl<S: DriverStar> Smoother<S> {
                 let v = self.star.verdict_in(mesh, x, self.options.smart_measure);
                 (v.keeps(), v.was_valid())
             };
-            let within_bounds = |s: &mut Self| match *s.bounds.get_or_init(|| mesh.valid_reading()) {
+            let within_bounds = |s: &mut Self| match *s.bounds.get_or_init(|| mesh.valid_reading())
+            {
                 Some(bounds) => {
                     // the acceptance rule by the shape keeps each star's worst shape already
-                    let bounds = if s.options.smart_measure == Measure::Shape { bounds.without_quality() } else { bounds };
+                    let bounds = if s.options.smart_measure == Measure::Shape {
+                        bounds.without_quality()
+                    } else {
+                        bounds
+                    };
                     if kept {
                         // the smart Laplacian's test read the mesh, not the star
                         if let Some(within) = S::reads_within_from_mesh(mesh, n, x, &bounds) {
@@ -362,7 +380,12 @@ impl<S: DriverStar> Smoother<S> {
     /// known to pass it (the smart Laplacian's test read from the mesh found the star
     /// valid, its worst shape raised and no element shrunk below the rule's floor:
     /// [`FastSmart::kept`]).
-    fn decide_move(&mut self, mesh: &S::Mesh, n: usize, objective: &dyn Objective<S>) -> (S::Point, NodeOutcome, bool) {
+    fn decide_move(
+        &mut self,
+        mesh: &S::Mesh,
+        n: usize,
+        objective: &dyn Objective<S>,
+    ) -> (S::Point, NodeOutcome, bool) {
         let mut out = NodeOutcome::default();
         let mut kept = false;
         if n >= mesh.node_count() || !mesh.is_free(n) {
@@ -439,12 +462,22 @@ impl<S: DriverStar> Smoother<S> {
             Strategy::Rules => {
                 // rule 1 (a curved boundary node next to it) or the caller's force:
                 // optimised without trying the Laplacian
-                let forced = self.options.force_optimization || self.touches_curved_boundary(mesh, n);
+                // (and with a target other than the ideal, whose answer the Laplacian's is not)
+                let forced = self.options.force_optimization
+                    || mesh.has_target()
+                    || self.touches_curved_boundary(mesh, n);
                 // the smart Laplacian from the mesh where it can; the star is gathered only
                 // when the node is optimised (rule 2: an inverted element; rule 3: the smart
                 // Laplacian did not move it)
-                match (!forced).then(|| S::smart_from_mesh(mesh, n, self.options.smart_measure)).flatten() {
-                    Some(FastSmart { inverted: 0, to: Some(c), kept: k }) => {
+                match (!forced)
+                    .then(|| S::smart_from_mesh(mesh, n, self.options.smart_measure))
+                    .flatten()
+                {
+                    Some(FastSmart {
+                        inverted: 0,
+                        to: Some(c),
+                        kept: k,
+                    }) => {
                         out.laplacian = true;
                         x = c;
                         kept = k;
@@ -490,7 +523,9 @@ impl<S: DriverStar> Smoother<S> {
     /// centroid with the mid-side nodes of straight edges following
     /// ([`DriverStar::smart_accepts`]).
     fn smart(&mut self, mesh: &S::Mesh, n: usize, out: &mut NodeOutcome) -> bool {
-        let Some(c) = centroid(mesh, n) else { return false };
+        let Some(c) = centroid(mesh, n) else {
+            return false;
+        };
         if !c.is_finite() || c == self.star.x0() {
             return false;
         }
@@ -522,13 +557,19 @@ impl<S: DriverStar> Smoother<S> {
             // by the corner edges scaled to unit size (the gathered star is in mesh units,
             // where a triangle's own cross products can underflow)
             let limit = self.star.inverted_now();
-            let pass_through_folds = self.options.pass_through_folds.unwrap_or_else(|| objective.untangles());
+            let pass_through_folds = self
+                .options
+                .pass_through_folds
+                .unwrap_or_else(|| objective.untangles());
             guarded = KeepValid::new(objective, limit, pass_through_folds);
             &guarded
         } else {
             objective
         };
-        let r = self.solvers.get(self.options.solver, objective.goal()).solve(objective, &self.star, x0);
+        let r = self
+            .solvers
+            .get(self.options.solver, objective.goal())
+            .solve(objective, &self.star, x0);
         out.optimized = true;
         out.iterations += r.iterations;
         if r.x.is_finite() && r.x != x0 {
@@ -558,7 +599,11 @@ fn smart_on_triangles(mesh: &Mesh, n: usize, measure: Measure) -> Option<FastSma
     let c = centroid(mesh, n).filter(|c| c.is_finite() && *c != x0);
     let t = triangles_at(mesh, n, c)?;
     let to = c.filter(|_| !t.folds && t.after > t.before);
-    Some(FastSmart { inverted: t.inverted, to, kept: to.is_some() && t.inverted == 0 && !t.shrinks })
+    Some(FastSmart {
+        inverted: t.inverted,
+        to,
+        kept: to.is_some() && t.inverted == 0 && !t.shrinks,
+    })
 }
 
 /// The smallest shape measure (α) of a planar star of linear triangles at the node's
@@ -585,7 +630,13 @@ struct TrianglesAt {
 #[inline]
 fn triangles_at(mesh: &Mesh, n: usize, c: Option<DVec2>) -> Option<TrianglesAt> {
     let x0 = mesh.nodes()[n];
-    let mut t = TrianglesAt { before: f64::INFINITY, after: f64::INFINITY, inverted: 0, folds: false, shrinks: false };
+    let mut t = TrianglesAt {
+        before: f64::INFINITY,
+        after: f64::INFINITY,
+        inverted: 0,
+        folds: false,
+        shrinks: false,
+    };
     for &e in mesh.node_elements(n) {
         let e = e as usize;
         if mesh.kind(e) != crate::mesh::ElementKind::Tri3 {
@@ -593,7 +644,10 @@ fn triangles_at(mesh: &Mesh, n: usize, c: Option<DVec2>) -> Option<TrianglesAt> 
         }
         let ids = mesh.element(e);
         let s = ids.iter().position(|&i| i as usize == n)?;
-        let (a, b) = (mesh.nodes()[ids[(s + 1) % 3] as usize], mesh.nodes()[ids[(s + 2) % 3] as usize]);
+        let (a, b) = (
+            mesh.nodes()[ids[(s + 1) % 3] as usize],
+            mesh.nodes()[ids[(s + 2) % 3] as usize],
+        );
         let Some(c) = c else {
             let (q0, inv0) = triangle_shape_at(a, b, x0)?;
             t.inverted += inv0 as u32;
@@ -617,7 +671,12 @@ fn triangles_at(mesh: &Mesh, n: usize, c: Option<DVec2>) -> Option<TrianglesAt> 
 impl Smoother<Star> {
     /// One pass over the mesh: plan the visit order, smooth each visit, then measure.
     /// `clock` returns milliseconds (any origin); the core never reads system time.
-    pub fn pass(&mut self, mesh: &mut Mesh, objective: &dyn Objective, clock: &dyn Fn() -> f64) -> PassRecord {
+    pub fn pass(
+        &mut self,
+        mesh: &mut Mesh,
+        objective: &dyn Objective,
+        clock: &dyn Fn() -> f64,
+    ) -> PassRecord {
         self.passes += 1;
         let t0 = clock();
         let counts = self.sweep(mesh, objective);
@@ -638,7 +697,14 @@ impl Smoother<Star> {
         let t0 = clock();
         let after = mesh_stats(mesh).quick();
         let objective_total = Some(self.objective_total(mesh, objective));
-        PassRecord { pass, counts, after, objective_total, elapsed_ms, stats_ms: clock() - t0 }
+        PassRecord {
+            pass,
+            counts,
+            after,
+            objective_total,
+            elapsed_ms,
+            stats_ms: clock() - t0,
+        }
     }
 
     /// The node loop of a pass alone: plans the visit order and smooths each visit, without
@@ -650,7 +716,12 @@ impl Smoother<Star> {
     }
 
     /// Visits the nodes of `order` in turn (the mesh facts must be fresh).
-    pub fn visit_all(&mut self, mesh: &mut Mesh, order: &[u32], objective: &dyn Objective) -> SweepCounts {
+    pub fn visit_all(
+        &mut self,
+        mesh: &mut Mesh,
+        order: &[u32],
+        objective: &dyn Objective,
+    ) -> SweepCounts {
         self.visit_all_in(&mut Planar(mesh), order, objective)
     }
 
@@ -660,7 +731,12 @@ impl Smoother<Star> {
     }
 
     /// Smooths one node by the strategy (fixed nodes and mid-side nodes are left alone).
-    pub fn smooth_node(&mut self, mesh: &mut Mesh, node: usize, objective: &dyn Objective) -> NodeOutcome {
+    pub fn smooth_node(
+        &mut self,
+        mesh: &mut Mesh,
+        node: usize,
+        objective: &dyn Objective,
+    ) -> NodeOutcome {
         self.refresh_mesh_facts(mesh);
         if objective.only_untangles() {
             self.note_tangled(&ReadOnly(mesh));
@@ -678,18 +754,33 @@ pub fn smooth(
     clock: &dyn Fn() -> f64,
 ) -> Result<Vec<PassRecord>> {
     let mut s = Smoother::new(options)?;
-    Ok((0..passes).map(|_| s.pass(mesh, objective, clock)).collect())
+    Ok((0..passes)
+        .map(|_| s.pass(mesh, objective, clock))
+        .collect())
 }
 
 /// Solves the objective at one free node with its history recorded, without moving it
 /// (for the page's level-set view and convergence chart). The solver is chosen by
 /// [`SmoothOptions::solver`]; [`SmoothOptions::max_iter`] limits the iterations.
-pub fn solve_node(mesh: &Mesh, node: usize, objective: &dyn Objective, options: &SmoothOptions) -> Result<SolveResult> {
+pub fn solve_node(
+    mesh: &Mesh,
+    node: usize,
+    objective: &dyn Objective,
+    options: &SmoothOptions,
+) -> Result<SolveResult> {
     if node >= mesh.node_count() {
-        return Err(Error::node(node, None, format!("no such node: the mesh has {} nodes", mesh.node_count())));
+        return Err(Error::node(
+            node,
+            None,
+            format!("no such node: the mesh has {} nodes", mesh.node_count()),
+        ));
     }
     if !mesh.is_free(node) {
-        return Err(Error::node(node, None, "is fixed or not an element corner, so it is never smoothed"));
+        return Err(Error::node(
+            node,
+            None,
+            "is fixed or not an element corner, so it is never smoothed",
+        ));
     }
     let mut star = Star::new();
     star.gather(mesh, node);
@@ -729,5 +820,7 @@ pub fn solve_star<S: NodeStar>(
 ) -> Result<SolveResult<S::Point>> {
     let solve = options.solve_options().with_history(true);
     solve.validate()?;
-    Ok(Solvers::<S>::new(solve).get(options.solver, objective.goal()).solve(objective, star, x0))
+    Ok(Solvers::<S>::new(solve)
+        .get(options.solver, objective.goal())
+        .solve(objective, star, x0))
 }

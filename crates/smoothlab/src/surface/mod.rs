@@ -60,6 +60,9 @@ pub struct Surface {
     /// Why the file's points were read as a surface: the node farthest off the plane the
     /// mesh would lie in, and how far (a mistyped coordinate shows here).
     not_planar: Option<String>,
+    /// The points the corners' targets are taken from, where they are not the ideal
+    /// ([`set_target_points`](Self::set_target_points)).
+    target: Option<Arc<Vec<DVec3>>>,
 }
 
 impl Surface {
@@ -84,7 +87,11 @@ impl Surface {
     ) -> Result<Surface> {
         orient(&mut flat, &points, numbers)?;
         flat.mark_curved_boundary(|e| {
-            let (a, b, m) = (points[e.a as usize], points[e.b as usize], points[e.mid as usize]);
+            let (a, b, m) = (
+                points[e.a as usize],
+                points[e.b as usize],
+                points[e.mid as usize],
+            );
             let chord = b - a;
             let off = (m - a).cross(chord).length() / chord.length().max(f64::MIN_POSITIVE);
             off > 1e-6 * chord.length()
@@ -99,7 +106,13 @@ impl Surface {
             Some(a) => Reference::Analytic(a),
             None => {
                 let (part, side) = (features.parts(), features.sides());
-                let facets = Facets::new(&points, flat.kinds(), |e| flat.element(e), |e| part[e], |e| side[e]);
+                let facets = Facets::new(
+                    &points,
+                    flat.kinds(),
+                    |e| flat.element(e),
+                    |e| part[e],
+                    |e| side[e],
+                );
                 if facets.is_folded() {
                     features = Features::new(&flat, &points, given.as_deref(), Judge::Tangled);
                     let part = features.parts();
@@ -125,7 +138,9 @@ impl Surface {
                 let on_curve = match across(&flat, e, a, b) {
                     None => true,
                     Some((f, _)) if a < b => match analytic {
-                        Some(an) => an.on_feature(points[a as usize]) && an.on_feature(points[b as usize]),
+                        Some(an) => {
+                            an.on_feature(points[a as usize]) && an.on_feature(points[b as usize])
+                        }
                         None => features.is_edge(e, f, a, b),
                     },
                     Some(_) => false,
@@ -154,6 +169,7 @@ impl Surface {
             curves: None,
             curve_hint: Vec::new(),
             not_planar: None,
+            target: None,
         })
     }
 
@@ -166,8 +182,17 @@ impl Surface {
     }
 
     /// The surface of the parts a builder made, with why its points were not planar.
-    pub(crate) fn from_surface_parts(parts: SurfaceParts, analytic: Option<Analytic>) -> Result<Surface> {
-        let SurfaceParts { points, mesh, element_numbers, flags_given, not_planar } = parts;
+    pub(crate) fn from_surface_parts(
+        parts: SurfaceParts,
+        analytic: Option<Analytic>,
+    ) -> Result<Surface> {
+        let SurfaceParts {
+            points,
+            mesh,
+            element_numbers,
+            flags_given,
+            not_planar,
+        } = parts;
         let mut s = Self::from_parts(points, mesh, analytic, flags_given, &element_numbers)?;
         s.not_planar = not_planar;
         Ok(s)
@@ -177,6 +202,13 @@ impl Surface {
     /// the plane the mesh would lie in, how far, and how that compares with its elements.
     pub fn not_planar(&self) -> Option<&str> {
         self.not_planar.as_deref()
+    }
+    /// Takes every corner's target from the points `at` ([`crate::target::Target::Input`];
+    /// `None`: the ideal of each kind). A star measures them in its tangent plane.
+    pub fn set_target_points(&mut self, at: Option<Vec<DVec3>>) {
+        self.flat
+            .set_target_nodes(at.as_ref().map(|a| vec![glam::DVec2::ZERO; a.len()]));
+        self.target = at.map(Arc::new);
     }
     /// Node positions in 3D.
     pub fn points(&self) -> &[DVec3] {
@@ -214,7 +246,11 @@ impl Surface {
     pub fn reference_normal(&self, e: usize) -> DVec3 {
         let ids = self.flat.element(e);
         let k = self.flat.kind(e).corners();
-        let centre = ids[..k].iter().map(|&i| self.points[i as usize]).sum::<DVec3>() / k as f64;
+        let centre = ids[..k]
+            .iter()
+            .map(|&i| self.points[i as usize])
+            .sum::<DVec3>()
+            / k as f64;
         match self.reference.element_hint(e) {
             Some(hint) => self.reference.project(centre, hint).normal,
             None => self.project_near(centre, ids[0] as usize).normal,
@@ -289,7 +325,10 @@ impl Surface {
         if edges.is_empty() {
             return 0.0;
         }
-        edges.iter().map(|e| (self.points[e.a as usize] - self.points[e.b as usize]).length()).sum::<f64>()
+        edges
+            .iter()
+            .map(|e| (self.points[e.a as usize] - self.points[e.b as usize]).length())
+            .sum::<f64>()
             / edges.len() as f64
     }
 }
@@ -300,7 +339,9 @@ fn element_normal(mesh: &Mesh, points: &[DVec3], e: usize) -> DVec3 {
     let ids = mesh.element(e);
     let k = mesh.kind(e).corners();
     let o = points[ids[0] as usize];
-    (0..k).map(|i| (points[ids[i] as usize] - o).cross(points[ids[(i + 1) % k] as usize] - o)).sum()
+    (0..k)
+        .map(|i| (points[ids[i] as usize] - o).cross(points[ids[(i + 1) % k] as usize] - o))
+        .sum()
 }
 
 /// The other element across corner edge `a → b` of an element, and whether it runs the
@@ -313,7 +354,9 @@ fn across(mesh: &Mesh, e: usize, a: u32, b: u32) -> Option<(usize, bool)> {
         }
         let ids = mesh.element(f);
         let k = mesh.kind(f).corners();
-        let Some(i) = ids[..k].iter().position(|&x| x == a) else { continue };
+        let Some(i) = ids[..k].iter().position(|&x| x == a) else {
+            continue;
+        };
         if ids[(i + 1) % k] == b {
             return Some((f, true));
         }
@@ -377,7 +420,11 @@ fn orient(mesh: &mut Mesh, points: &[DVec3], numbers: &crate::error::Numbering) 
             let v: f64 = (1..k - 1).map(|i| p(0).dot(p(i).cross(p(i + 1)))).sum();
             volume += if flip[e] { -v } else { v };
         }
-        let reverse_part = if closed { volume < 0.0 } else { 2 * flipped > members.len() };
+        let reverse_part = if closed {
+            volume < 0.0
+        } else {
+            2 * flipped > members.len()
+        };
         if reverse_part {
             for &e in &members {
                 flip[e] = !flip[e];
@@ -445,7 +492,9 @@ enum Turn {
 
 impl<'a> Features<'a> {
     fn new(mesh: &'a Mesh, points: &'a [DVec3], fixed: Option<&'a [bool]>, judge: Judge) -> Self {
-        let normal = (0..mesh.element_count()).map(|e| element_normal(mesh, points, e).try_normalize()).collect();
+        let normal = (0..mesh.element_count())
+            .map(|e| element_normal(mesh, points, e).try_normalize())
+            .collect();
         let mut f = Features {
             mesh,
             points,
@@ -469,8 +518,13 @@ impl<'a> Features<'a> {
     /// [`FEATURE_ANGLE_DEG`], a fold beyond [`FOLD_ANGLE_DEG`], a crease between (and
     /// smooth where either has no normal).
     fn turn(&self, e: usize, f: usize) -> Turn {
-        let (cos, fold) = (FEATURE_ANGLE_DEG.to_radians().cos(), FOLD_ANGLE_DEG.to_radians().cos());
-        let (Some(n1), Some(n2)) = (self.normal[e], self.normal[f]) else { return Turn::Smooth };
+        let (cos, fold) = (
+            FEATURE_ANGLE_DEG.to_radians().cos(),
+            FOLD_ANGLE_DEG.to_radians().cos(),
+        );
+        let (Some(n1), Some(n2)) = (self.normal[e], self.normal[f]) else {
+            return Turn::Smooth;
+        };
         let c = n1.dot(n2);
         if c >= cos {
             Turn::Smooth
@@ -488,7 +542,9 @@ impl<'a> Features<'a> {
     /// file.
     fn is_edge(&self, e: usize, f: usize, a: u32, b: u32) -> bool {
         match (self.judge, self.fixed) {
-            (Judge::Tangled, fixed) => fixed.is_some_and(|fixed| fixed[a as usize] && fixed[b as usize]),
+            (Judge::Tangled, fixed) => {
+                fixed.is_some_and(|fixed| fixed[a as usize] && fixed[b as usize])
+            }
             (Judge::Angles, Some(fixed)) if !(fixed[a as usize] && fixed[b as usize]) => false,
             (Judge::Angles, _) => match self.turn(e, f) {
                 Turn::Smooth => false,
@@ -501,7 +557,8 @@ impl<'a> Features<'a> {
     /// Whether elements `e` and `f` lie in different sheets of at least
     /// [`FOLD_SHEET_ELEMENTS`] elements each.
     fn parts_sheets(&self, e: usize, f: usize) -> bool {
-        self.sheet[e] != self.sheet[f] && self.sheet_elements[e].min(self.sheet_elements[f]) >= FOLD_SHEET_ELEMENTS
+        self.sheet[e] != self.sheet[f]
+            && self.sheet_elements[e].min(self.sheet_elements[f]) >= FOLD_SHEET_ELEMENTS
     }
 
     /// Nodes on feature curves: the ends (and mid-side node) of every feature edge.
@@ -517,7 +574,9 @@ impl<'a> Features<'a> {
                 if a > b {
                     continue;
                 }
-                let Some((f, _)) = across(mesh, e, a, b) else { continue };
+                let Some((f, _)) = across(mesh, e, a, b) else {
+                    continue;
+                };
                 if self.is_edge(e, f, a, b) {
                     feature[a as usize] = true;
                     feature[b as usize] = true;

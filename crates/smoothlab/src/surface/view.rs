@@ -9,7 +9,9 @@ use crate::error::{Error, Result};
 use crate::mesh::{Follower, Mesh, Plane};
 use crate::objective::{Objective, Star};
 use crate::quality::Reading;
-use crate::smooth::{is_inverted, ElementScore, Measure, PassRecord, SmoothOptions, Smoother, StarView, Verdict};
+use crate::smooth::{
+    is_inverted, ElementScore, Measure, PassRecord, SmoothOptions, Smoother, StarView, Verdict,
+};
 
 /// A surface seen by a driver: each star flattened into the tangent plane at its node.
 pub(crate) struct SurfaceView<'a> {
@@ -23,7 +25,15 @@ pub(crate) struct SurfaceView<'a> {
 
 impl<'a> SurfaceView<'a> {
     pub(crate) fn new(surface: &'a mut Surface) -> Self {
-        SurfaceView { surface, plane: Plane { origin: DVec3::ZERO, u: DVec3::X, w: DVec3::Y }, bounds: None }
+        SurfaceView {
+            surface,
+            plane: Plane {
+                origin: DVec3::ZERO,
+                u: DVec3::X,
+                w: DVec3::Y,
+            },
+            bounds: None,
+        }
     }
 }
 
@@ -70,9 +80,14 @@ impl Surface {
         self.flat.for_each_follower(n, |f| follow.push(f));
         for f in follow {
             match f {
-                Follower::Mid { mid, a, b } => self.move_to(mid, 0.5 * (self.points[a] + self.points[b])),
+                Follower::Mid { mid, a, b } => {
+                    self.move_to(mid, 0.5 * (self.points[a] + self.points[b]))
+                }
                 Follower::Centre { centre, element } => {
-                    let s: DVec3 = self.flat.element(element)[..8].iter().map(|&i| self.points[i as usize]).sum();
+                    let s: DVec3 = self.flat.element(element)[..8]
+                        .iter()
+                        .map(|&i| self.points[i as usize])
+                        .sum();
                     self.move_to(centre, s / 8.0);
                 }
             }
@@ -96,7 +111,13 @@ impl Surface {
     /// projection back onto the surface (the node's and its following mid-side nodes'),
     /// each element in its own plane: every strategy's placing but the plain Laplacian's.
     /// Returns whether the node moved.
-    pub(crate) fn place_if_no_worse(&mut self, n: usize, p: DVec3, measure: Measure, bounds: Option<&Reading>) -> bool {
+    pub(crate) fn place_if_no_worse(
+        &mut self,
+        n: usize,
+        p: DVec3,
+        measure: Measure,
+        bounds: Option<&Reading>,
+    ) -> bool {
         self.place_kept_if(n, p, measure, |(before, _), (after, read_after)| {
             let mut v = Verdict::default();
             for (b, a) in before.iter().zip(after) {
@@ -115,7 +136,12 @@ impl Surface {
         measure: Measure,
         keep: impl Fn(&(Vec<ElementScore>, Reading), &(Vec<ElementScore>, Reading)) -> bool,
     ) -> bool {
-        let star: Vec<usize> = self.flat.node_elements(n).iter().map(|&e| e as usize).collect();
+        let star: Vec<usize> = self
+            .flat
+            .node_elements(n)
+            .iter()
+            .map(|&e| e as usize)
+            .collect();
         // the reading is asked of the star after the move only
         let scores = |s: &Surface, read: bool| -> (Vec<ElementScore>, Reading) {
             let mut reading = Reading::default();
@@ -152,8 +178,15 @@ impl Surface {
                 Follower::Centre { centre, .. } => centre,
             })
         });
-        let nodes = moved.iter().map(|&m| (m, self.points[m], self.hint[m])).collect();
-        KeptNodes { node: n, nodes, curve_hint: self.curve_hint.get(n).copied() }
+        let nodes = moved
+            .iter()
+            .map(|&m| (m, self.points[m], self.hint[m]))
+            .collect();
+        KeptNodes {
+            node: n,
+            nodes,
+            curve_hint: self.curve_hint.get(n).copied(),
+        }
     }
 
     /// Puts back what [`keep_around`](Self::keep_around) kept (of this surface: the
@@ -189,6 +222,11 @@ impl StarView for SurfaceView<'_> {
         let plane = self.surface.tangent_plane(n);
         let points = &self.surface.points;
         self.surface.flat.set_star(n, |m| plane.to_2d(points[m]));
+        if let Some(target) = &self.surface.target {
+            self.surface
+                .flat
+                .set_target_star(n, |m| plane.to_2d(target[m]));
+        }
         self.plane = plane;
         &self.surface.flat
     }
@@ -203,13 +241,25 @@ impl StarView for SurfaceView<'_> {
     fn place_if_no_worse(&mut self, n: usize, x: DVec2, measure: Measure) -> bool {
         let p = self.plane.to_3d(x);
         let surface = &*self.surface;
-        let bounds = *self.bounds.get_or_insert_with(|| Reading::planar_mesh(&surface.flat, |e| surface.element_points_2d(e)));
-        let bounds = bounds.map(|b| if measure == Measure::Shape { b.without_quality() } else { b });
-        self.surface.place_if_no_worse(n, p, measure, bounds.as_ref())
+        let bounds = *self.bounds.get_or_insert_with(|| {
+            Reading::planar_mesh(&surface.flat, |e| surface.element_points_2d(e))
+        });
+        let bounds = bounds.map(|b| {
+            if measure == Measure::Shape {
+                b.without_quality()
+            } else {
+                b
+            }
+        });
+        self.surface
+            .place_if_no_worse(n, p, measure, bounds.as_ref())
     }
 
     fn is_inverted(&self, e: usize) -> bool {
-        is_inverted(self.surface.flat.kind(e), &self.surface.element_points_2d(e))
+        is_inverted(
+            self.surface.flat.kind(e),
+            &self.surface.element_points_2d(e),
+        )
     }
 }
 
@@ -223,19 +273,39 @@ pub struct SurfaceSmoother {
 
 impl SurfaceSmoother {
     pub fn new(options: SmoothOptions) -> Result<Self> {
-        Ok(SurfaceSmoother { smoother: Smoother::new(options)?, passes: 0 })
+        Ok(SurfaceSmoother {
+            smoother: Smoother::new(options)?,
+            passes: 0,
+        })
     }
 
     /// One pass over the surface, with its record (as [`Smoother::pass`]).
-    pub fn pass(&mut self, surface: &mut Surface, objective: &dyn Objective, clock: &dyn Fn() -> f64) -> PassRecord {
+    pub fn pass(
+        &mut self,
+        surface: &mut Surface,
+        objective: &dyn Objective,
+        clock: &dyn Fn() -> f64,
+    ) -> PassRecord {
         self.passes += 1;
         let t0 = clock();
-        let counts = self.smoother.sweep_in(&mut SurfaceView::new(surface), objective);
+        let counts = self
+            .smoother
+            .sweep_in(&mut SurfaceView::new(surface), objective);
         let elapsed_ms = clock() - t0;
         let t1 = clock();
         let after = surface.stats().quick();
-        let objective_total = Some(self.smoother.objective_total_in(&mut SurfaceView::new(surface), objective));
-        PassRecord { pass: self.passes, counts, after, objective_total, elapsed_ms, stats_ms: clock() - t1 }
+        let objective_total = Some(
+            self.smoother
+                .objective_total_in(&mut SurfaceView::new(surface), objective),
+        );
+        PassRecord {
+            pass: self.passes,
+            counts,
+            after,
+            objective_total,
+            elapsed_ms,
+            stats_ms: clock() - t1,
+        }
     }
 }
 
@@ -248,7 +318,9 @@ pub fn smooth_surface(
     clock: &dyn Fn() -> f64,
 ) -> Result<Vec<PassRecord>> {
     let mut s = SurfaceSmoother::new(options)?;
-    Ok((0..passes).map(|_| s.pass(surface, objective, clock)).collect())
+    Ok((0..passes)
+        .map(|_| s.pass(surface, objective, clock))
+        .collect())
 }
 
 /// A node's move as it can be taken back: see [`Surface::keep_around`].
@@ -268,14 +340,25 @@ impl Surface {
     /// projects it onto the surface, as the drivers do).
     pub fn tangent_star(&self, n: usize) -> Result<(Star, Plane)> {
         if n >= self.node_count() {
-            return Err(Error::node(n, None, format!("no such node: the mesh has {} nodes", self.node_count())));
+            return Err(Error::node(
+                n,
+                None,
+                format!("no such node: the mesh has {} nodes", self.node_count()),
+            ));
         }
         if !self.flat.is_free(n) {
-            return Err(Error::node(n, None, "is fixed or not an element corner, so it is never smoothed"));
+            return Err(Error::node(
+                n,
+                None,
+                "is fixed or not an element corner, so it is never smoothed",
+            ));
         }
         let plane = self.tangent_plane(n);
         let mut flat = self.flat.clone();
         flat.set_star(n, |m| plane.to_2d(self.points[m]));
+        if let Some(target) = &self.target {
+            flat.set_target_star(n, |m| plane.to_2d(target[m]));
+        }
         let mut star = Star::new();
         star.gather(&flat, n);
         Ok((star, plane))
@@ -287,10 +370,18 @@ impl Surface {
     /// its solver's path).
     pub fn star_in_tangent_plane(&self, n: usize) -> Result<(Mesh, usize)> {
         if n >= self.node_count() {
-            return Err(Error::node(n, None, format!("no such node: the mesh has {} nodes", self.node_count())));
+            return Err(Error::node(
+                n,
+                None,
+                format!("no such node: the mesh has {} nodes", self.node_count()),
+            ));
         }
         if !self.flat.is_free(n) {
-            return Err(Error::node(n, None, "is fixed or not an element corner, so it is never smoothed"));
+            return Err(Error::node(
+                n,
+                None,
+                "is fixed or not an element corner, so it is never smoothed",
+            ));
         }
         let mut s = self.clone();
         let flat = SurfaceView::new(&mut s).star_mesh(n).clone();
@@ -322,12 +413,25 @@ impl Surface {
         let q: Vec<f64> = (0..self.element_count())
             .map(|e| {
                 let kind = self.flat.kind(e);
-                crate::quality::element_quality(kind, &self.element_points_2d(e)[..kind.node_count()]).shape
+                crate::quality::element_quality(
+                    kind,
+                    &self.element_points_2d(e)[..kind.node_count()],
+                )
+                .shape
             })
             .collect();
         (0..self.node_count())
             .filter(|&n| self.flat.is_free(n))
-            .map(|n| (n, self.flat.node_elements(n).iter().map(|&e| q[e as usize]).fold(f64::INFINITY, f64::min)))
+            .map(|n| {
+                (
+                    n,
+                    self.flat
+                        .node_elements(n)
+                        .iter()
+                        .map(|&e| q[e as usize])
+                        .fold(f64::INFINITY, f64::min),
+                )
+            })
             .min_by(|a, b| a.1.total_cmp(&b.1))
             .map(|(n, _)| n)
     }

@@ -16,17 +16,21 @@
 
 use glam::DVec3;
 
-use super::{VolumeMesh, VolumeKind};
+use super::{VolumeKind, VolumeMesh};
 use crate::error::Result;
 use crate::objective::{CornerStar, Objective, StarSolid};
 use crate::quality::solid::{self, Validity};
-use crate::quality::Reading;
 use crate::quality::tet as q3;
+use crate::quality::Reading;
 use crate::smooth::{
-    DriverStar, ElementScore, Size, Verdict, Measure, MIN_SIZE_RATIO, PassRecord, SmoothMesh, SmoothOptions, Smoother, StarQuality, StarView, SweepCounts,
+    DriverStar, ElementScore, Measure, PassRecord, Size, SmoothMesh, SmoothOptions, Smoother,
+    StarQuality, StarView, SweepCounts, Verdict, MIN_SIZE_RATIO,
 };
 
 impl SmoothMesh for VolumeMesh {
+    fn has_target(&self) -> bool {
+        self.target_nodes().is_some()
+    }
     type Point = DVec3;
     fn valid_reading(&self) -> Option<Reading> {
         (0..self.element_count()).try_fold(Reading::default(), |r, e| {
@@ -81,7 +85,11 @@ impl DriverStar for CornerStar {
     /// until [`complete`](DriverStar::complete) (a smart Laplacian's visit reads none).
     fn gather_for_measures(&mut self, mesh: &VolumeMesh, node: usize) {
         // the last star's elements as the mesh now has them, for this star and the next
-        if let Some(&x) = mesh.nodes().get(self.node as usize).filter(|_| !self.elements.is_empty()) {
+        if let Some(&x) = mesh
+            .nodes()
+            .get(self.node as usize)
+            .filter(|_| !self.elements.is_empty())
+        {
             self.keep_known(x, mesh.element_count());
         }
         self.node = node as u32;
@@ -93,19 +101,35 @@ impl DriverStar for CornerStar {
         // the elements other than tetrahedra overwritten in place, then truncated
         let mut solids = 0;
         let nodes = mesh.nodes();
+        self.targets.clear();
+        let target = mesh.target_nodes();
+        // a corner's target: the same corner of the target's positions, where valid
+        let reference = |ids: [u32; 4], ideal: &'static q3::CornerReference| {
+            let t = target.expect("targets are taken only where the mesh has them");
+            let at = |k: usize| t[ids[k] as usize] - t[ids[0] as usize];
+            crate::target::solid_reference(glam::DMat3::from_cols(at(1), at(2), at(3)), ideal)
+                .unwrap_or(*ideal)
+        };
         let (x, corners) = (nodes[node], mesh.node_tet_corners(node));
         for (i, &e) in mesh.node_tets(node).iter().enumerate() {
             // a tetrahedron from the star's own stream of corners (`VolumeMesh::node_tet_corners`)
             if let Some(&[a, b, c]) = corners.get(i).filter(|o| o[0] != u32::MAX) {
                 // the corners written in place (below)
-                *self.put_corner(n_corners, e, &q3::EQUILATERAL_TET, true) = [x, nodes[a as usize], nodes[b as usize], nodes[c as usize]];
+                *self.put_corner(n_corners, e, &q3::EQUILATERAL_TET, true) =
+                    [x, nodes[a as usize], nodes[b as usize], nodes[c as usize]];
                 n_corners += 1;
+                if target.is_some() {
+                    self.targets
+                        .push(reference([node as u32, a, b, c], &q3::EQUILATERAL_TET));
+                }
                 continue;
             }
             let kind = mesh.element_kind(e as usize);
             let row = kind.row();
             let ids = &mesh.element(e as usize)[..row.corners];
-            let Some(slot) = ids.iter().position(|&i| i as usize == node) else { continue };
+            let Some(slot) = ids.iter().position(|&i| i as usize == node) else {
+                continue;
+            };
             // the element's corners written where they stay, and its corners' tetrahedra
             // from them, in place too: put together on the stack and moved whole, their
             // 24-byte points were read back in 16-byte pieces, which stalled
@@ -118,9 +142,15 @@ impl DriverStar for CornerStar {
             }
             for (c, &[a, b, d]) in row.corner_edges.iter().enumerate() {
                 let tuple = [c, a, b, d];
-                let Some(s) = tuple.iter().position(|&j| j == slot) else { continue };
+                let Some(s) = tuple.iter().position(|&j| j == slot) else {
+                    continue;
+                };
                 self.put_corner_of_solid(n_corners, solids, &row.slot_references[s], tuple, s);
                 n_corners += 1;
+                if target.is_some() {
+                    let order = crate::mesh::WITH_FIRST[s].map(|j| ids[tuple[j]]);
+                    self.targets.push(reference(order, &row.slot_references[s]));
+                }
             }
             self.recall_solid(solids);
             solids += 1;
@@ -177,7 +207,11 @@ impl DriverStar for CornerStar {
         for t in self.tets.iter().filter(|t| t.simplex) {
             let p = x.map_or(t.pts, |x| t.at(x));
             q.min_shape = q.min_shape.min(q3::mean_ratio(&p, self.reference()));
-            q.min_sine = q.min_sine.min(q3::dihedral_sines(&p).into_iter().fold(f64::INFINITY, f64::min));
+            q.min_sine = q.min_sine.min(
+                q3::dihedral_sines(&p)
+                    .into_iter()
+                    .fold(f64::INFINITY, f64::min),
+            );
             q.inverted += q3::is_inverted(&p) as u32;
         }
         for e in &self.elements {
@@ -192,12 +226,19 @@ impl DriverStar for CornerStar {
     /// The tetrahedra by [`q3::mean_ratio_order`] (the mean ratio's order without its cube
     /// root; the acceptance rule then measures the move exactly).
     fn smart_accepts(&self, c: DVec3, m: Measure) -> bool {
-        let min_sine = |p: &[DVec3; 4]| q3::dihedral_sines(p).into_iter().fold(f64::INFINITY, f64::min);
+        let min_sine = |p: &[DVec3; 4]| {
+            q3::dihedral_sines(p)
+                .into_iter()
+                .fold(f64::INFINITY, f64::min)
+        };
         let (mut before, mut after) = (f64::INFINITY, f64::INFINITY);
         if m == Measure::Shape {
             // kept for the acceptance rule, which asks the same two positions
             let mut memo = self.tet_measures.borrow_mut();
-            let (b, a) = (memo.slot(&self.tets, self.x0, self.reference()), memo.slot(&self.tets, c, self.reference()));
+            let (b, a) = (
+                memo.slot(&self.tets, self.x0, self.reference()),
+                memo.slot(&self.tets, c, self.reference()),
+            );
             for ((p0, t0), (p1, t1)) in memo.measures(b).iter().zip(memo.measures(a)) {
                 if !t0.inverted && t1.inverted {
                     return false;
@@ -224,24 +265,45 @@ impl DriverStar for CornerStar {
                 Measure::MinSine => solid::solid_min_sine(e.kind, e.corners(&e.at(x))),
             };
             // the other kinds' mean ratios in the tetrahedra's order: q³/27
-            let order = |q: f64| if m == Measure::Shape { q * q * q / 27.0 } else { q };
+            let order = |q: f64| {
+                if m == Measure::Shape {
+                    q * q * q / 27.0
+                } else {
+                    q
+                }
+            };
             before = before.min(order(quality(e.x())));
             after = after.min(order(quality(c)));
         }
         after > before
-            && !self.elements.iter().any(|e| e.validity_measured(e.x()) == Validity::Valid && e.validity_measured(c) != Validity::Valid)
+            && !self.elements.iter().any(|e| {
+                e.validity_measured(e.x()) == Validity::Valid
+                    && e.validity_measured(c) != Validity::Valid
+            })
     }
     /// The guard's limit, asked as an optimisation starts: the elements' `det J` forms are
     /// made here, as the solve's trials read them.
     fn inverted_now(&self) -> usize {
-        self.tets.iter().filter(|t| t.simplex && q3::is_inverted(&t.pts)).count()
-            + self.elements.iter().filter(|e| e.validity_at(e.x()) != Validity::Valid).count()
+        self.tets
+            .iter()
+            .filter(|t| t.simplex && q3::is_inverted(&t.pts))
+            .count()
+            + self
+                .elements
+                .iter()
+                .filter(|e| e.validity_at(e.x()) != Validity::Valid)
+                .count()
     }
     /// [`shape_at`](DriverStar::shape_at)'s count at the gathered position, without the
     /// mean ratios: the same tests of the same corners.
     fn any_inverted_now(&self) -> bool {
-        self.tets.iter().any(|t| t.simplex && q3::is_inverted(&t.pts))
-            || self.elements.iter().any(|e| e.validity_measured(e.x()) != Validity::Valid)
+        self.tets
+            .iter()
+            .any(|t| t.simplex && q3::is_inverted(&t.pts))
+            || self
+                .elements
+                .iter()
+                .any(|e| e.validity_measured(e.x()) != Validity::Valid)
     }
     /// The other corners are as gathered and the forms depend on them only: moving the
     /// node back to its place in `mesh` is the gather. (This star has no
@@ -255,8 +317,16 @@ impl DriverStar for CornerStar {
     }
     fn inverted_at(&self, x: DVec3) -> usize {
         debug_assert!(self.forms_pending_at.is_none(), "the guard reads the forms");
-        self.tets.iter().filter(|t| t.simplex && t.inverted_at(x)).count()
-            + self.elements.iter().filter(|e| e.validity_at(x) != Validity::Valid).count()
+        self.tets
+            .iter()
+            .enumerate()
+            .filter(|&(i, t)| t.simplex && t.inverted_at(x, self.reference_of(i)))
+            .count()
+            + self
+                .elements
+                .iter()
+                .filter(|e| e.validity_at(x) != Validity::Valid)
+                .count()
     }
     /// In the star's own frame where it is far from unit size (its points multiplied by
     /// the power of two its solves take, [`crate::numeric::unit_factor`]): the sum is
@@ -265,7 +335,12 @@ impl DriverStar for CornerStar {
     fn inversion(&self, x: DVec3) -> f64 {
         let f = crate::numeric::unit_factor(crate::objective::NodeStar::size(self)).unwrap_or(1.0);
         let at = |p: [DVec3; 4]| if f == 1.0 { p } else { p.map(|q| q * f) };
-        let tets: f64 = self.tets.iter().filter(|t| t.simplex).map(|t| (-6.0 * q3::signed_volume(&at(t.at(x)))).max(0.0)).sum();
+        let tets: f64 = self
+            .tets
+            .iter()
+            .filter(|t| t.simplex)
+            .map(|t| (-6.0 * q3::signed_volume(&at(t.at(x)))).max(0.0))
+            .sum();
         if self.elements.is_empty() {
             return tets;
         }
@@ -290,9 +365,13 @@ impl DriverStar for CornerStar {
             let (mut before, mut after) = (LeastMeanRatio::default(), LeastMeanRatio::default());
             // the measures the smart Laplacian's test took at these positions, or taken here
             let mut memo = self.tet_measures.borrow_mut();
-            let (b, a) = (memo.slot(&self.tets, self.x0, self.reference()), memo.slot(&self.tets, x, self.reference()));
+            let (b, a) = (
+                memo.slot(&self.tets, self.x0, self.reference()),
+                memo.slot(&self.tets, x, self.reference()),
+            );
             let tets = self.tets.iter().filter(|t| t.simplex);
-            for (t, ((p0, t0), (p1, t1))) in tets.zip(memo.measures(b).iter().zip(memo.measures(a))) {
+            for (t, ((p0, t0), (p1, t1))) in tets.zip(memo.measures(b).iter().zip(memo.measures(a)))
+            {
                 v.add_deciding_size(&ElementScore::tet_of(t0), &ElementScore::tet_of(t1), || {
                     Size::floor_kept_for_certain(t0.det_within(), t1.det_within())
                         || Size::tet(&t.at(x)).at_least(MIN_SIZE_RATIO, &Size::tet(&t.at(self.x0)))
@@ -301,7 +380,10 @@ impl DriverStar for CornerStar {
             }
         } else {
             for t in self.tets.iter().filter(|t| t.simplex) {
-                v.add(&ElementScore::tet(&t.pts, self.reference(), m), &ElementScore::tet(&t.at(x), self.reference(), m));
+                v.add(
+                    &ElementScore::tet(&t.pts, self.reference(), m),
+                    &ElementScore::tet(&t.at(x), self.reference(), m),
+                );
             }
         }
         for e in &self.elements {
@@ -353,7 +435,10 @@ impl DriverStar for CornerStar {
                 }
             }
             let r = self.reference();
-            v.add(&ElementScore::tet10(&before, r, m), &ElementScore::tet10(&after, r, m));
+            v.add(
+                &ElementScore::tet10(&before, r, m),
+                &ElementScore::tet10(&after, r, m),
+            );
         }
         v
     }
@@ -420,7 +505,10 @@ impl SolidScore for StarSolid {
         ElementScore { quality, ..score }
     }
     fn keeps_size(&self, x: DVec3) -> bool {
-        Size::floor_kept_for_certain(self.least_corner_det_measured(self.x()), self.least_corner_det_measured(x)) || {
+        Size::floor_kept_for_certain(
+            self.least_corner_det_measured(self.x()),
+            self.least_corner_det_measured(x),
+        ) || {
             let before = Size::least_corner(self.kind, &self.sizes_measured(self.x()));
             Size::least_corner(self.kind, &self.sizes_measured(x)).at_least(MIN_SIZE_RATIO, &before)
         }
@@ -461,7 +549,9 @@ pub struct VolumeSmoother {
 impl VolumeSmoother {
     /// A smoother with checked options.
     pub fn new(options: SmoothOptions) -> Result<Self> {
-        Ok(VolumeSmoother { smoother: Smoother::new(options)? })
+        Ok(VolumeSmoother {
+            smoother: Smoother::new(options)?,
+        })
     }
     pub fn options(&self) -> &SmoothOptions {
         self.smoother.options()
@@ -473,7 +563,11 @@ impl VolumeSmoother {
     /// falls, and later moves need not mend it (issue 61: bust went from 1 inverted to 2
     /// at pass 4). Then the elements inverted by the pass go back to where the pass found
     /// their nodes, until the count is no larger (at worst, the whole pass is undone).
-    pub fn sweep(&mut self, mesh: &mut VolumeMesh, objective: &dyn Objective<CornerStar>) -> SweepCounts {
+    pub fn sweep(
+        &mut self,
+        mesh: &mut VolumeMesh,
+        objective: &dyn Objective<CornerStar>,
+    ) -> SweepCounts {
         let o = self.smoother.options();
         if !(o.keep_valid && o.strategy != crate::smooth::Strategy::Laplace) {
             return self.smoother.sweep_in(&mut Solid(mesh), objective);
@@ -512,14 +606,32 @@ impl VolumeSmoother {
         let elapsed_ms = clock() - t0;
         let t1 = clock();
         let after = super::volume_stats(mesh).quick();
-        let objective_total = Some(self.smoother.objective_total_in(&mut Solid(mesh), objective));
-        PassRecord { pass, counts, after, objective_total, elapsed_ms, stats_ms: clock() - t1 }
+        let objective_total = Some(
+            self.smoother
+                .objective_total_in(&mut Solid(mesh), objective),
+        );
+        PassRecord {
+            pass,
+            counts,
+            after,
+            objective_total,
+            elapsed_ms,
+            stats_ms: clock() - t1,
+        }
     }
 }
 
 /// Which elements of `mesh` are inverted, as its statistics count them.
 fn inverted_elements(mesh: &VolumeMesh) -> Vec<bool> {
-    (0..mesh.element_count()).map(|e| if mesh.is_quadratic() { mesh.measures(e).inverted } else { mesh.is_inverted(e) }).collect()
+    (0..mesh.element_count())
+        .map(|e| {
+            if mesh.is_quadratic() {
+                mesh.measures(e).inverted
+            } else {
+                mesh.is_inverted(e)
+            }
+        })
+        .collect()
 }
 
 /// Runs `passes` passes of a new [`VolumeSmoother`] over `mesh`, returning their records.
@@ -531,5 +643,7 @@ pub fn smooth_volume(
     clock: &dyn Fn() -> f64,
 ) -> Result<Vec<PassRecord>> {
     let mut s = VolumeSmoother::new(options)?;
-    Ok((1..=passes).map(|p| s.pass(mesh, objective, p, clock)).collect())
+    Ok((1..=passes)
+        .map(|p| s.pass(mesh, objective, p, clock))
+        .collect())
 }

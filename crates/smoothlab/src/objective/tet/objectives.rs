@@ -4,7 +4,9 @@
 use glam::{DMat3, DVec3};
 
 use super::{CornerStar, StarCorner};
-use crate::objective::{Goal, Objective, ObjectiveKind, Term, BARRIER_EPSILON, BARRIER_WEIGHT, CONDITION_BARRIER};
+use crate::objective::{
+    Goal, Objective, ObjectiveKind, Term, BARRIER_EPSILON, BARRIER_WEIGHT, CONDITION_BARRIER,
+};
 use crate::quality::solid::scaled_jacobian_grad0;
 use crate::quality::tet::{self as q3, outer, CornerReference, WeightedJacobian, EQUILATERAL_TET};
 
@@ -31,7 +33,10 @@ pub struct RegularisedMeanRatio {
 
 impl Default for RegularisedMeanRatio {
     fn default() -> Self {
-        RegularisedMeanRatio { k1: BARRIER_WEIGHT, epsilon: BARRIER_EPSILON }
+        RegularisedMeanRatio {
+            k1: BARRIER_WEIGHT,
+            epsilon: BARRIER_EPSILON,
+        }
     }
 }
 
@@ -76,12 +81,20 @@ impl RegularisedMeanRatio {
     /// k1·e^{2L}` has `g′ = 2(1 − q)q + 2k1η²` and `g″ = −2q + 4q² + 4k1η²`, so its Hessian
     /// is `g″·∇L∇Lᵀ + g′·∇²L` (`docs/formulas.md` §8).
     #[inline(always)]
-    fn term<const HESSIAN: bool>(&self, j: &WeightedJacobian, hf: f64, delta: f64) -> (f64, DVec3, DMat3) {
+    fn term<const HESSIAN: bool>(
+        &self,
+        j: &WeightedJacobian,
+        hf: f64,
+        delta: f64,
+    ) -> (f64, DVec3, DMat3) {
         if j.frob2 <= 0.0 {
             return (0.0, DVec3::ZERO, DMat3::ZERO); // four coincident corners: no shape to penalise
         }
-        let (h, s) =
-            if delta == 0.0 { (j.sigma.max(0.0), j.sigma) } else { crate::objective::regularised_determinant(j.sigma, delta) };
+        let (h, s) = if delta == 0.0 {
+            (j.sigma.max(0.0), j.sigma)
+        } else {
+            crate::objective::regularised_determinant(j.sigma, delta)
+        };
         if h <= 0.0 || h.is_nan() {
             return (f64::INFINITY, DVec3::ZERO, DMat3::ZERO);
         }
@@ -106,18 +119,26 @@ impl RegularisedMeanRatio {
         let curvature = two_thirds_inv_s * j.sigma / (s * s);
         let hess_ln = DMat3::from_diagonal(DVec3::splat(hf * inv_f)) - outer(grad_f, grad_f)
             + outer(j.grad_sigma, j.grad_sigma * curvature);
-        (value, d1 * grad_ln, outer(grad_ln, grad_ln * d2) + hess_ln * d1)
+        (
+            value,
+            d1 * grad_ln,
+            outer(grad_ln, grad_ln * d2) + hess_ln * d1,
+        )
     }
 
     /// The objective over `star` at `x` with its gradient and, when `HESSIAN`, its Hessian:
     /// the sum of [`term`](Self::term) over the star's corners, each read from its form.
     #[inline(always)]
     fn sum<const HESSIAN: bool>(&self, star: &CornerStar, x: DVec3) -> (f64, DVec3, DMat3) {
-        debug_assert!(star.forms_pending_at.is_none(), "an objective reads the corners' forms");
+        debug_assert!(
+            star.forms_pending_at.is_none(),
+            "an objective reads the corners' forms"
+        );
         let delta = self.delta(star);
         let (mut value, mut grad, mut hess) = (0.0, DVec3::ZERO, DMat3::ZERO);
         for t in &star.tets {
-            let (v, g, h) = self.term::<HESSIAN>(&t.form.at(x), t.form.frob2_hessian_diagonal(), delta);
+            let (v, g, h) =
+                self.term::<HESSIAN>(&t.form.at(x), t.form.frob2_hessian_diagonal(), delta);
             value += v;
             grad += g;
             if HESSIAN {
@@ -156,32 +177,48 @@ impl TetObjective {
 
     /// Calls `emit` with every term at `x`.
     fn visit(&self, star: &CornerStar, x: DVec3, emit: impl FnMut(Term<DVec3>)) {
-        debug_assert!(star.forms_pending_at.is_none(), "an objective reads the corners' forms");
+        debug_assert!(
+            star.forms_pending_at.is_none(),
+            "an objective reads the corners' forms"
+        );
         if star.only_tets() {
             // every corner against the one static reference, a constant the measures fold
             self.visit_with(star, x, emit, |_| &EQUILATERAL_TET, |_| true)
         } else {
-            self.visit_with(star, x, emit, |t| t.reference, |t| t.simplex)
+            // a targeted tetrahedron's sine is its corner's scaled Jacobian against the target
+            let targeted = star.targeted();
+            self.visit_with(
+                star,
+                x,
+                emit,
+                |i| star.reference_of(i),
+                |t| t.simplex && !targeted,
+            )
         }
     }
 
     /// [`visit`](Self::visit) with each corner's reference and whether it is a whole
     /// tetrahedron.
     #[inline(always)]
-    fn visit_with(
+    fn visit_with<'a>(
         &self,
-        star: &CornerStar,
+        star: &'a CornerStar,
         x: DVec3,
         mut emit: impl FnMut(Term<DVec3>),
-        reference: impl Fn(&StarCorner) -> &'static CornerReference,
+        reference: impl Fn(usize) -> &'a CornerReference,
         simplex: impl Fn(&StarCorner) -> bool,
     ) {
         match *self {
             TetObjective::Regularised(r) => {
                 let delta = r.delta(star);
                 for (i, t) in star.tets.iter().enumerate() {
-                    let (value, grad, _) = r.term::<false>(&t.form.at(x), t.form.frob2_hessian_diagonal(), delta);
-                    emit(Term { elem: i as u32, value, grad });
+                    let (value, grad, _) =
+                        r.term::<false>(&t.form.at(x), t.form.frob2_hessian_diagonal(), delta);
+                    emit(Term {
+                        elem: i as u32,
+                        value,
+                        grad,
+                    });
                 }
             }
             TetObjective::MeanRatio
@@ -190,7 +227,7 @@ impl TetObjective {
             | TetObjective::ConditionMax
             | TetObjective::MinDet => {
                 for (i, t) in star.tets.iter().enumerate() {
-                    self.corner_terms(t, i as u32, x, reference(t), simplex(t), &mut emit);
+                    self.corner_terms(t, i as u32, x, reference(i), simplex(t), &mut emit);
                 }
             }
             TetObjective::Untangle { beta } => {
@@ -198,18 +235,24 @@ impl TetObjective {
                 let shift = if star.tets.is_empty() {
                     0.0
                 } else {
-                    beta * star.tets.iter().map(|t| t.form.volume6_at(star.x0, t.reference).0.abs()).sum::<f64>()
+                    beta * (0..star.tets.len())
+                        .map(|i| star.tets[i].form.volume6_at(star.x0, reference(i)).0.abs())
+                        .sum::<f64>()
                         / star.tets.len() as f64
                 };
                 for (i, t) in star.tets.iter().enumerate() {
-                    let (det, gdet) = t.form.volume6_at(x, t.reference);
+                    let (det, gdet) = t.form.volume6_at(x, reference(i));
                     let (value, grad) = if det < shift {
                         let d = 2.0 * (shift - det);
                         (d * d, -4.0 * d * gdet)
                     } else {
                         (0.0, DVec3::ZERO)
                     };
-                    emit(Term { elem: i as u32, value, grad });
+                    emit(Term {
+                        elem: i as u32,
+                        value,
+                        grad,
+                    });
                 }
             }
         }
@@ -222,23 +265,43 @@ impl TetObjective {
     /// whole star for δ and β), against reference `r`, `simplex` when it is a whole
     /// tetrahedron.
     #[inline(always)]
-    fn corner_terms(&self, t: &StarCorner, i: u32, x: DVec3, r: &CornerReference, simplex: bool, emit: &mut impl FnMut(Term<DVec3>)) {
+    fn corner_terms(
+        &self,
+        t: &StarCorner,
+        i: u32,
+        x: DVec3,
+        r: &CornerReference,
+        simplex: bool,
+        emit: &mut impl FnMut(Term<DVec3>),
+    ) {
         match *self {
             TetObjective::MeanRatio => {
                 // of the corners themselves, not the form: the max-min ascent follows its
                 // active set, which rounding can change (on a tangled mesh, the whole path)
                 let (value, grad) = q3::mean_ratio_grad0(&t.at(x), r);
-                emit(Term { elem: i, value, grad });
+                emit(Term {
+                    elem: i,
+                    value,
+                    grad,
+                });
             }
             TetObjective::DihedralSine => {
                 if simplex {
                     for (value, grad) in q3::dihedral_sines_grad0(&t.at(x)) {
-                        emit(Term { elem: i, value, grad });
+                        emit(Term {
+                            elem: i,
+                            value,
+                            grad,
+                        });
                     }
                 } else {
                     // a corner of another kind: its scaled Jacobian, the 3D sine of a corner
                     let (value, grad) = scaled_jacobian_grad0(&t.at(x), r);
-                    emit(Term { elem: i, value, grad });
+                    emit(Term {
+                        elem: i,
+                        value,
+                        grad,
+                    });
                 }
             }
             TetObjective::Condition | TetObjective::ConditionMax => {
@@ -247,37 +310,69 @@ impl TetObjective {
                 let (kappa, g) = q3::condition_number_grad0(&p, r);
                 // behind the barrier (σ ≤ 0, or κ² beyond it): a huge finite value with
                 // zero gradient, as in the plane ([`CONDITION_BARRIER`])
-                let valid = q3::signed_volume(&p) > 0.0 && kappa.is_finite() && kappa * kappa < CONDITION_BARRIER;
+                let valid = q3::signed_volume(&p) > 0.0
+                    && kappa.is_finite()
+                    && kappa * kappa < CONDITION_BARRIER;
                 let (value, grad) = match (max, valid) {
                     (false, true) => (kappa * kappa, 2.0 * kappa * g),
                     (false, false) => (CONDITION_BARRIER, DVec3::ZERO),
                     (true, true) => (-kappa, -g),
                     (true, false) => (-CONDITION_BARRIER, DVec3::ZERO),
                 };
-                emit(Term { elem: i, value, grad });
+                emit(Term {
+                    elem: i,
+                    value,
+                    grad,
+                });
             }
             TetObjective::MinDet => {
-                let (value, grad) = t.form.volume6_at(x, t.reference);
-                emit(Term { elem: i, value, grad });
+                let (value, grad) = t.form.volume6_at(x, r);
+                emit(Term {
+                    elem: i,
+                    value,
+                    grad,
+                });
             }
-            TetObjective::Regularised(_) | TetObjective::Untangle { .. } => unreachable!("read the whole star"),
+            TetObjective::Regularised(_) | TetObjective::Untangle { .. } => {
+                unreachable!("read the whole star")
+            }
         }
     }
 
     /// [`Objective::terms_above`] of a max-min objective: the terms of corner `lead` first,
     /// then the others in the star's order (the lead's as already taken), stopping at the
     /// first that is not above `floor`; the terms pushed are [`Objective::terms`]' own.
-    fn max_min_terms_above(&self, star: &CornerStar, x: DVec3, floor: f64, lead: u32, out: &mut Vec<Term<DVec3>>) -> bool {
+    fn max_min_terms_above(
+        &self,
+        star: &CornerStar,
+        x: DVec3,
+        floor: f64,
+        lead: u32,
+        out: &mut Vec<Term<DVec3>>,
+    ) -> bool {
         out.clear();
         let only_tets = star.only_tets();
-        let r = |t: &StarCorner| if only_tets { &EQUILATERAL_TET } else { t.reference };
-        let simplex = |t: &StarCorner| only_tets || t.simplex;
+        let r = |i: usize| {
+            if only_tets {
+                &EQUILATERAL_TET
+            } else {
+                star.reference_of(i)
+            }
+        };
+        let simplex = |t: &StarCorner| only_tets || (t.simplex && !star.targeted());
         let mut above = true;
         // a corner has at most six terms (a tetrahedron's dihedral sines)
-        let (mut lead_terms, mut n) = ([Term { elem: lead, value: 0.0, grad: DVec3::ZERO }; 6], 0);
+        let (mut lead_terms, mut n) = (
+            [Term {
+                elem: lead,
+                value: 0.0,
+                grad: DVec3::ZERO,
+            }; 6],
+            0,
+        );
         if let Some(t) = star.tets.get(lead as usize) {
             // not `<=`: a NaN term is not above
-            self.corner_terms(t, lead, x, r(t), simplex(t), &mut |term| {
+            self.corner_terms(t, lead, x, r(lead as usize), simplex(t), &mut |term| {
                 above &= term.value > floor;
                 lead_terms[n] = term;
                 n += 1;
@@ -291,7 +386,7 @@ impl TetObjective {
                 out.extend_from_slice(&lead_terms[..n]);
                 continue;
             }
-            self.corner_terms(t, i as u32, x, r(t), simplex(t), &mut |term| {
+            self.corner_terms(t, i as u32, x, r(i), simplex(t), &mut |term| {
                 above &= term.value > floor;
                 out.push(term);
             });
@@ -328,7 +423,14 @@ impl Objective<CornerStar> for TetObjective {
         self.visit(star, x, |t| fold.add(t));
         fold.finish()
     }
-    fn terms_above(&self, star: &CornerStar, x: DVec3, floor: f64, lead: u32, out: &mut Vec<Term<DVec3>>) -> bool {
+    fn terms_above(
+        &self,
+        star: &CornerStar,
+        x: DVec3,
+        floor: f64,
+        lead: u32,
+        out: &mut Vec<Term<DVec3>>,
+    ) -> bool {
         if self.goal() != Goal::MaximizeMin {
             out.clear();
             self.terms(star, x, out);

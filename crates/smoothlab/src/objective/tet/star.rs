@@ -34,13 +34,35 @@ pub struct StarCorner {
 
 impl StarCorner {
     /// The corner `pts` (the free node first) of `element`, against `reference`.
-    pub fn new(element: u32, pts: [DVec3; 4], reference: &'static CornerReference, simplex: bool) -> Self {
-        StarCorner { element, pts, reference, simplex, form: CornerForm::of(&pts, reference) }
+    pub fn new(
+        element: u32,
+        pts: [DVec3; 4],
+        reference: &'static CornerReference,
+        simplex: bool,
+    ) -> Self {
+        StarCorner {
+            element,
+            pts,
+            reference,
+            simplex,
+            form: CornerForm::of(&pts, reference),
+        }
     }
     /// [`new`](Self::new) with its form [`CornerForm::PENDING`], for a star the drivers only
     /// measure unless they optimise it ([`CornerStar::complete_forms`]).
-    pub fn pending(element: u32, pts: [DVec3; 4], reference: &'static CornerReference, simplex: bool) -> Self {
-        StarCorner { element, pts, reference, simplex, form: CornerForm::PENDING }
+    pub fn pending(
+        element: u32,
+        pts: [DVec3; 4],
+        reference: &'static CornerReference,
+        simplex: bool,
+    ) -> Self {
+        StarCorner {
+            element,
+            pts,
+            reference,
+            simplex,
+            form: CornerForm::PENDING,
+        }
     }
     /// A tetrahedron of a star (the free node first), measured against the equilateral
     /// tetrahedron.
@@ -54,10 +76,13 @@ impl StarCorner {
         p[0] = x;
         p
     }
-    /// [`q3::is_inverted`] with the free node at `x`, from the form where it decides.
+    /// [`q3::is_inverted`] with the free node at `x`, from the form where it decides; `r`
+    /// the reference the form was made against ([`CornerStar::reference_of`]).
     #[inline]
-    pub fn inverted_at(&self, x: DVec3) -> bool {
-        self.form.inverted_at(x, self.reference).unwrap_or_else(|| q3::is_inverted(&self.at(x)))
+    pub fn inverted_at(&self, x: DVec3, r: &CornerReference) -> bool {
+        self.form
+            .inverted_at(x, r)
+            .unwrap_or_else(|| q3::is_inverted(&self.at(x)))
     }
 }
 
@@ -142,7 +167,13 @@ impl StarSolid {
     /// Laplacian's test and the acceptance rule ask the same positions). Without making them,
     /// which cost more than the exact test of a visit that optimises nothing.
     pub fn validity_measured(&self, x: DVec3) -> Validity {
-        self.measured.get_or(x, || self.validity_by(self.ball.get().and_then(|b| b.as_ref()), self.det.get().and_then(|f| f.as_ref()), x))
+        self.measured.get_or(x, || {
+            self.validity_by(
+                self.ball.get().and_then(|b| b.as_ref()),
+                self.det.get().and_then(|f| f.as_ref()),
+                x,
+            )
+        })
     }
     /// The validity at `x`: valid where `ball` holds it, else from `form` where it decides,
     /// else exactly.
@@ -151,7 +182,8 @@ impl StarSolid {
         if ball.is_some_and(|b| b.holds(x)) || self.second_ball.get().is_some_and(|b| b.holds(x)) {
             return Validity::Valid;
         }
-        form.and_then(|d| d.validity_at(x)).unwrap_or_else(|| validity(self.kind, self.corners(&self.at(x))))
+        form.and_then(|d| d.validity_at(x))
+            .unwrap_or_else(|| validity(self.kind, self.corners(&self.at(x))))
     }
     /// [`solid_shape`](crate::quality::solid::solid_shape) with the free node at `x`, kept
     /// for the position as [`validity_measured`](Self::validity_measured) keeps its answer;
@@ -163,7 +195,9 @@ impl StarSolid {
             let corners = self.corners(&p);
             let terms = {
                 let kept = self.terms.borrow();
-                CornerShapes::of(self.kind, corners, |c| (kept.0.is_some() && !self.moves(c)).then(|| kept.1.corner(c)))
+                CornerShapes::of(self.kind, corners, |c| {
+                    (kept.0.is_some() && !self.moves(c)).then(|| kept.1.corner(c))
+                })
             };
             match terms {
                 Some(t) => {
@@ -185,7 +219,10 @@ impl StarSolid {
             return s;
         }
         let p = self.at(x);
-        let s = CornerSizes::of(self.kind, self.corners(&p), |c| kept.filter(|_| !self.moves(c)).map(|(_, s)| s.of_kind(self.kind)[c]));
+        let s = CornerSizes::of(self.kind, self.corners(&p), |c| {
+            kept.filter(|_| !self.moves(c))
+                .map(|(_, s)| s.of_kind(self.kind)[c])
+        });
         self.sizes.set(Some((x, s)));
         s
     }
@@ -227,7 +264,8 @@ impl StarSolid {
         if self.ball.get().is_none() && self.kind.linear() == VolumeKind::Hex8 {
             // the ball about the first position asked rather than where the node was
             // gathered, which the memo mostly answers: the solve's trials gather there
-            let (v, first) = ValidBall::validity_and_ball(self.kind, &self.at(x), self.slot as usize);
+            let (v, first) =
+                ValidBall::validity_and_ball(self.kind, &self.at(x), self.slot as usize);
             if first.is_none() {
                 // no ball (not valid there, or beyond the safe scale): the form next
                 self.asked_beyond_ball.set(true);
@@ -243,11 +281,14 @@ impl StarSolid {
         if self.det.get().is_none() && !self.asked_beyond_ball.replace(true) {
             // the first position beyond the ball: exactly (a form pays from the second), and
             // the coefficients taken there make the second ball
-            let (v, second) = ValidBall::validity_and_ball(self.kind, &self.at(x), self.slot as usize);
+            let (v, second) =
+                ValidBall::validity_and_ball(self.kind, &self.at(x), self.slot as usize);
             self.second_ball.set(second);
             return v;
         }
-        let form = self.det.get_or_init(|| DetForm::of(self.kind, &self.pts, self.slot as usize));
+        let form = self
+            .det
+            .get_or_init(|| DetForm::of(self.kind, &self.pts, self.slot as usize));
         self.validity_by(None, form.as_ref(), x)
     }
     /// Its free node's position as gathered (then as the driver moves it).
@@ -289,19 +330,32 @@ pub struct CornerStar {
     pub(crate) known: KnownSolids,
     /// The tetrahedra's measures at the positions the drivers asked last.
     pub(crate) tet_measures: std::cell::RefCell<TetMeasures>,
+    /// Per corner, where the mesh has targets other than the ideal
+    /// ([`VolumeMesh::target_nodes`](crate::volume::VolumeMesh::target_nodes); empty
+    /// otherwise): the reference its target gives ([`crate::target::solid_reference`]).
+    pub targets: Vec<CornerReference>,
 }
 
 impl Default for CornerStar {
     /// An empty star, until one is gathered.
     fn default() -> Self {
-        CornerStar { node: 0, x0: DVec3::ZERO, tets: Vec::new(), elements: Vec::new(), forms_pending_at: None, known: KnownSolids::default(), tet_measures: Default::default() }
+        CornerStar::of_tets(DVec3::ZERO, Vec::new())
     }
 }
 
 impl CornerStar {
     /// A star of tetrahedra (each with the free node first).
     pub fn of_tets(x0: DVec3, tets: Vec<StarCorner>) -> Self {
-        CornerStar { node: 0, x0, tets, elements: Vec::new(), forms_pending_at: None, known: KnownSolids::default(), tet_measures: Default::default() }
+        CornerStar {
+            node: 0,
+            x0,
+            tets,
+            elements: Vec::new(),
+            forms_pending_at: None,
+            known: KnownSolids::default(),
+            tet_measures: Default::default(),
+            targets: Vec::new(),
+        }
     }
     /// The reference W of a tetrahedron's corners, the equilateral tetrahedron's (every
     /// kind of tetrahedron's).
@@ -309,14 +363,28 @@ impl CornerStar {
     pub fn reference(&self) -> &'static CornerReference {
         &EQUILATERAL_TET
     }
+    /// The reference corner `i` is measured against: its target's where the star has
+    /// targets ([`targets`](Self::targets)), else its kind's.
+    #[inline(always)]
+    pub fn reference_of(&self, i: usize) -> &CornerReference {
+        match self.targets.get(i) {
+            Some(r) => r,
+            None => self.tets[i].reference,
+        }
+    }
+    /// Whether its corners have targets other than the ideal.
+    #[inline(always)]
+    pub fn targeted(&self) -> bool {
+        !self.targets.is_empty()
+    }
     /// Works out the corners' forms if they wait ([`StarCorner::pending`]), each from its
     /// corners with the free node where it was gathered, as a gather that makes them does.
     pub fn complete_forms(&mut self) {
         if let Some(x) = self.forms_pending_at.take() {
-            for t in &mut self.tets {
+            for (i, t) in self.tets.iter_mut().enumerate() {
                 let mut p = t.pts;
                 p[0] = x;
-                t.form = CornerForm::of(&p, t.reference);
+                t.form = CornerForm::of(&p, self.targets.get(i).unwrap_or(t.reference));
             }
         }
     }
@@ -326,14 +394,31 @@ impl CornerStar {
     /// ([`CornerForm::mark_pending`]) rather than written whole: a gather keeps the last
     /// star's corners and truncates them after.
     #[inline]
-    pub(crate) fn put_corner(&mut self, n: usize, element: u32, reference: &'static CornerReference, simplex: bool) -> &mut [DVec3; 4] {
+    pub(crate) fn put_corner(
+        &mut self,
+        n: usize,
+        element: u32,
+        reference: &'static CornerReference,
+        simplex: bool,
+    ) -> &mut [DVec3; 4] {
         Self::corner_in(&mut self.tets, n, element, reference, simplex)
     }
     /// [`put_corner`](Self::put_corner) of `tets`.
     #[inline]
-    fn corner_in<'a>(tets: &'a mut Vec<StarCorner>, n: usize, element: u32, reference: &'static CornerReference, simplex: bool) -> &'a mut [DVec3; 4] {
+    fn corner_in<'a>(
+        tets: &'a mut Vec<StarCorner>,
+        n: usize,
+        element: u32,
+        reference: &'static CornerReference,
+        simplex: bool,
+    ) -> &'a mut [DVec3; 4] {
         if n == tets.len() {
-            tets.push(StarCorner::pending(element, [DVec3::ZERO; 4], reference, simplex));
+            tets.push(StarCorner::pending(
+                element,
+                [DVec3::ZERO; 4],
+                reference,
+                simplex,
+            ));
         } else {
             let t = &mut tets[n];
             (t.element, t.reference, t.simplex) = (element, reference, simplex);
@@ -346,7 +431,14 @@ impl CornerStar {
     /// ([`put_solid`](Self::put_solid), its corners filled), reordered to put the free
     /// node's place `s` in it first ([`WITH_FIRST`](crate::mesh::WITH_FIRST)), against `reference`.
     #[inline]
-    pub(crate) fn put_corner_of_solid(&mut self, n: usize, solid: usize, reference: &'static CornerReference, tuple: [usize; 4], s: usize) {
+    pub(crate) fn put_corner_of_solid(
+        &mut self,
+        n: usize,
+        solid: usize,
+        reference: &'static CornerReference,
+        tuple: [usize; 4],
+        s: usize,
+    ) {
         let e = &self.elements[solid];
         let pts = Self::corner_in(&mut self.tets, n, e.element, reference, false);
         for (p, &j) in pts.iter_mut().zip(&crate::mesh::WITH_FIRST[s]) {
@@ -363,7 +455,12 @@ impl CornerStar {
     }
     /// Whether `element` of `kind` (other than a tetrahedron) is known valid at `corners`,
     /// bit for bit ([`KnownSolids`]).
-    pub(crate) fn known_valid_solid(&self, element: u32, kind: VolumeKind, corners: &[DVec3]) -> bool {
+    pub(crate) fn known_valid_solid(
+        &self,
+        element: u32,
+        kind: VolumeKind,
+        corners: &[DVec3],
+    ) -> bool {
         self.known.valid_at(element, kind, corners)
     }
     /// Makes `StarSolid::new(element, kind, slot, ·)` the `n`-th element other than a
@@ -374,10 +471,18 @@ impl CornerStar {
     /// costly to move, and its corners are written where they stay (put together on the
     /// stack and copied, they were read back in other widths than written, which stalls).
     #[inline]
-    pub(crate) fn put_solid(&mut self, n: usize, element: u32, kind: VolumeKind, slot: u8) -> &mut [DVec3; 8] {
+    pub(crate) fn put_solid(
+        &mut self,
+        n: usize,
+        element: u32,
+        kind: VolumeKind,
+        slot: u8,
+    ) -> &mut [DVec3; 8] {
         match self.elements.get_mut(n) {
             Some(e) => e.reset(element, kind, slot),
-            None => self.elements.push(StarSolid::new(element, kind, slot, [DVec3::ZERO; 8])),
+            None => self
+                .elements
+                .push(StarSolid::new(element, kind, slot, [DVec3::ZERO; 8])),
         }
         &mut self.elements[n].pts
     }
@@ -387,11 +492,12 @@ impl CornerStar {
     pub(crate) fn recall_solid(&self, n: usize) {
         self.known.recall(&self.elements[n]);
     }
-    /// Whether every element is a tetrahedron: then every corner is measured against
-    /// [`reference`](Self::reference), which the measures see as a constant.
+    /// Whether every element is a tetrahedron measured against the ideal: then every
+    /// corner is measured against [`reference`](Self::reference), which the measures see
+    /// as a constant.
     #[inline]
     pub fn only_tets(&self) -> bool {
-        self.elements.is_empty()
+        self.elements.is_empty() && self.targets.is_empty()
     }
 }
 
@@ -409,7 +515,11 @@ impl NodeStar for CornerStar {
         if self.tets.is_empty() {
             return 0.0;
         }
-        let sum: f64 = self.tets.iter().map(|t| t.pts[1..].iter().map(|p| p.distance(self.x0)).sum::<f64>()).sum();
+        let sum: f64 = self
+            .tets
+            .iter()
+            .map(|t| t.pts[1..].iter().map(|p| p.distance(self.x0)).sum::<f64>())
+            .sum();
         let plain = sum / (3 * self.tets.len()) as f64;
         if plain.is_finite() && (2f64.powi(-400)..=2f64.powi(400)).contains(&plain) {
             return plain;
@@ -422,7 +532,16 @@ impl NodeStar for CornerStar {
                 m * (v / m).length()
             }
         };
-        let half: f64 = self.tets.iter().map(|t| t.pts[1..].iter().map(|p| 0.5 * robust(*p - self.x0)).sum::<f64>()).sum();
+        let half: f64 = self
+            .tets
+            .iter()
+            .map(|t| {
+                t.pts[1..]
+                    .iter()
+                    .map(|p| 0.5 * robust(*p - self.x0))
+                    .sum::<f64>()
+            })
+            .sum();
         half / (1.5 * self.tets.len() as f64)
     }
     fn scaled(&self, f: f64) -> Self {
@@ -430,11 +549,11 @@ impl NodeStar for CornerStar {
         s.complete_forms();
         s.tet_measures.get_mut().clear();
         s.x0 *= f;
-        for t in &mut s.tets {
+        for (i, t) in s.tets.iter_mut().enumerate() {
             for p in &mut t.pts {
                 *p *= f;
             }
-            t.form = CornerForm::of(&t.pts, t.reference);
+            t.form = CornerForm::of(&t.pts, s.targets.get(i).unwrap_or(t.reference));
         }
         for e in &mut s.elements {
             for p in &mut e.pts {

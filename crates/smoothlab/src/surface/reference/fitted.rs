@@ -90,7 +90,8 @@ impl Fit {
         }
         let (h, hx, hy) = self.height(x, y);
         let h = h.clamp(-FIT_REACH, FIT_REACH);
-        let point = self.plane.origin + self.scale * (x * self.plane.u + y * self.plane.w + h * self.normal);
+        let point = self.plane.origin
+            + self.scale * (x * self.plane.u + y * self.plane.w + h * self.normal);
         let normal = crate::numeric::direction(self.normal - hx * self.plane.u - hy * self.plane.w);
         (point, normal)
     }
@@ -127,7 +128,10 @@ impl Fitted {
             node_start[n + 1] = node_start[n] + node_parts[n].len() as u32;
         }
         let fit_of = |n: usize, k: u32| -> u32 {
-            let i = node_parts[n].iter().position(|&x| x == k).expect("a node's part");
+            let i = node_parts[n]
+                .iter()
+                .position(|&x| x == k)
+                .expect("a node's part");
             node_start[n] + i as u32
         };
         // the ring of node n on part k: the nodes of its elements on k
@@ -135,7 +139,12 @@ impl Fitted {
             out.clear();
             for &e in mesh.node_elements(n) {
                 if part(e as usize) == k {
-                    out.extend(mesh.element(e as usize).iter().copied().filter(|&m| m as usize != n));
+                    out.extend(
+                        mesh.element(e as usize)
+                            .iter()
+                            .copied()
+                            .filter(|&m| m as usize != n),
+                    );
                 }
             }
             out.sort_unstable();
@@ -153,7 +162,11 @@ impl Fitted {
                     two.clear();
                     for &m in &one {
                         ring_of(m as usize, k, &mut more);
-                        two.extend(more.iter().copied().filter(|&x| x as usize != n && !one.contains(&x)));
+                        two.extend(
+                            more.iter()
+                                .copied()
+                                .filter(|&x| x as usize != n && !one.contains(&x)),
+                        );
                     }
                     two.sort_unstable();
                     two.dedup();
@@ -164,17 +177,32 @@ impl Fitted {
                 let spacing = if one.is_empty() {
                     0.0
                 } else {
-                    one.iter().map(|&m| (points[m as usize] - points[n]).length()).sum::<f64>() / one.len() as f64
+                    one.iter()
+                        .map(|&m| (points[m as usize] - points[n]).length())
+                        .sum::<f64>()
+                        / one.len() as f64
                 };
-                fits.push(fit(points[n], near.iter().map(|&m| points[m as usize]), k, spacing));
+                fits.push(fit(
+                    points[n],
+                    near.iter().map(|&m| points[m as usize]),
+                    k,
+                    spacing,
+                ));
             }
         }
         orient_fits(&mut fits, &ring_start, &ring, points, mesh, &part, fit_of);
-        let element_fit = (0..mesh.element_count()).map(|e| fit_of(mesh.element(e)[0] as usize, part(e))).collect();
+        let element_fit = (0..mesh.element_count())
+            .map(|e| fit_of(mesh.element(e)[0] as usize, part(e)))
+            .collect();
         let origins: Vec<DVec3> = fits.iter().map(|f| f.plane.origin).collect();
         let dots: Vec<[u32; 3]> = (0..origins.len() as u32).map(|i| [i; 3]).collect();
         let grid = Grid::new(&origins, &dots);
-        Fitted { fits, node_start, element_fit, grid }
+        Fitted {
+            fits,
+            node_start,
+            element_fit,
+            grid,
+        }
     }
 
     /// A node's first fit (its hint before it has moved); [`NONE`] for an unused node.
@@ -208,7 +236,11 @@ impl Fitted {
     /// tangled file's neighbours in the mesh are not neighbours in space.
     pub fn project(&self, p: DVec3, hint: u32) -> Projected {
         if self.fits.is_empty() {
-            return Projected { point: p, normal: DVec3::Z, face: NONE };
+            return Projected {
+                point: p,
+                normal: DVec3::Z,
+                face: NONE,
+            };
         }
         let part = self.fits.get(hint as usize).map(|f| f.part);
         let mut cur = self.nearest_fit(p, part);
@@ -265,9 +297,17 @@ impl Fitted {
         let alone = at_node.unwrap_or(cur);
         if at_node.is_some() || !(total > 0.0 && point.is_finite() && normal != DVec3::ZERO) {
             let (point, normal) = self.fits[alone as usize].nearest(x);
-            return Projected { point, normal, face: alone };
+            return Projected {
+                point,
+                normal,
+                face: alone,
+            };
         }
-        Projected { point, normal, face: cur }
+        Projected {
+            point,
+            normal,
+            face: cur,
+        }
     }
 }
 
@@ -275,8 +315,18 @@ impl Fitted {
 /// points' plane of least spread (their covariance's smallest eigenvector), of unit
 /// scale. Too few points or points in a line: the plane's linear terms alone, else flat.
 fn fit(origin: DVec3, near: impl Iterator<Item = DVec3> + Clone, part: u32, spacing: f64) -> Fit {
-    let scale = near.clone().map(|q| (q - origin).length()).fold(0.0, f64::max);
-    let flat = |normal: DVec3| Fit { plane: Plane::with_normal(origin, normal), normal, scale: 1.0, q: [0.0; 5], part, spacing };
+    let scale = near
+        .clone()
+        .map(|q| (q - origin).length())
+        .fold(0.0, f64::max);
+    let flat = |normal: DVec3| Fit {
+        plane: Plane::with_normal(origin, normal),
+        normal,
+        scale: 1.0,
+        q: [0.0; 5],
+        part,
+        spacing,
+    };
     if !(scale > 0.0 && scale.is_finite()) {
         return flat(DVec3::Z);
     }
@@ -284,10 +334,17 @@ fn fit(origin: DVec3, near: impl Iterator<Item = DVec3> + Clone, part: u32, spac
     // each point's row weighted by √w, w = 1 / (1 + (d / h)²) with h the ring's spacing:
     // the nearer points, where the node's moves land, count more
     let h = (spacing / scale).max(f64::MIN_POSITIVE);
-    let weight: Vec<f64> = local.iter().map(|q| (1.0 / (1.0 + (q.length() / h).powi(2))).sqrt()).collect();
+    let weight: Vec<f64> = local
+        .iter()
+        .map(|q| (1.0 / (1.0 + (q.length() / h).powi(2))).sqrt())
+        .collect();
     let mean = (local.iter().sum::<DVec3>() + DVec3::ZERO) / (local.len() + 1) as f64;
     let mut c = [[0.0; 3]; 3];
-    for d in local.iter().map(|&q| q - mean).chain(std::iter::once(-mean)) {
+    for d in local
+        .iter()
+        .map(|&q| q - mean)
+        .chain(std::iter::once(-mean))
+    {
         for i in 0..3 {
             for j in 0..3 {
                 c[i][j] += d[i] * d[j];
@@ -302,13 +359,20 @@ fn fit(origin: DVec3, near: impl Iterator<Item = DVec3> + Clone, part: u32, spac
     let mut best: Option<(f64, Fit)> = None;
     for normal in axes {
         let plane = Plane::with_normal(origin, normal);
-        let coords: Vec<[f64; 3]> = local.iter().map(|q| [q.dot(plane.u), q.dot(plane.w), q.dot(normal)]).collect();
+        let coords: Vec<[f64; 3]> = local
+            .iter()
+            .map(|q| [q.dot(plane.u), q.dot(plane.w), q.dot(normal)])
+            .collect();
         let rows = |full: bool| -> Vec<(Vec<f64>, f64)> {
             coords
                 .iter()
                 .zip(&weight)
                 .map(|(&[x, y, z], &r)| {
-                    let row = if full { vec![x, y, x * x, x * y, y * y] } else { vec![x, y] };
+                    let row = if full {
+                        vec![x, y, x * x, x * y, y * y]
+                    } else {
+                        vec![x, y]
+                    };
                     (row.into_iter().map(|a| r * a).collect(), r * z)
                 })
                 .collect()
@@ -316,12 +380,24 @@ fn fit(origin: DVec3, near: impl Iterator<Item = DVec3> + Clone, part: u32, spac
         let tame = |q: &[f64; 5]| {
             q[0].hypot(q[1]) <= MAX_SLOPE && q[2..].iter().all(|c| c.abs() <= MAX_CURVATURE)
         };
-        let quadric = least_squares(&rows(true)).map(|q| [q[0], q[1], q[2], q[3], q[4]]).filter(tame);
-        let Some(q) = quadric.or_else(|| least_squares(&rows(false)).map(|q| [q[0], q[1], 0.0, 0.0, 0.0]).filter(tame))
-        else {
+        let quadric = least_squares(&rows(true))
+            .map(|q| [q[0], q[1], q[2], q[3], q[4]])
+            .filter(tame);
+        let Some(q) = quadric.or_else(|| {
+            least_squares(&rows(false))
+                .map(|q| [q[0], q[1], 0.0, 0.0, 0.0])
+                .filter(tame)
+        }) else {
             continue;
         };
-        let f = Fit { plane, normal, scale, q, part, spacing };
+        let f = Fit {
+            plane,
+            normal,
+            scale,
+            q,
+            part,
+            spacing,
+        };
         // the misfit: the largest distance of a point from the quadric (measured along its
         // normal, so frames compare)
         let misfit = coords
@@ -414,7 +490,11 @@ fn eigenvectors(mut c: [[f64; 3]; 3]) -> [DVec3; 3] {
     }
     let mut order = [0, 1, 2];
     order.sort_by(|&a, &b| c[a][a].total_cmp(&c[b][b]));
-    let axis = |i: usize| DVec3::new(v[0][i], v[1][i], v[2][i]).try_normalize().unwrap_or(DVec3::Z);
+    let axis = |i: usize| {
+        DVec3::new(v[0][i], v[1][i], v[2][i])
+            .try_normalize()
+            .unwrap_or(DVec3::Z)
+    };
     order.map(axis)
 }
 
@@ -443,8 +523,15 @@ fn orient_fits(
             area[f] += n.length();
         }
     }
-    let agreement: Vec<f64> =
-        (0..nf).map(|f| if area[f] > 0.0 { star[f].dot(fits[f].normal) / area[f] } else { 0.0 }).collect();
+    let agreement: Vec<f64> = (0..nf)
+        .map(|f| {
+            if area[f] > 0.0 {
+                star[f].dot(fits[f].normal) / area[f]
+            } else {
+                0.0
+            }
+        })
+        .collect();
     // by |agreement|, largest first, ties to the lower fit
     let order = stable_order(nf, |f| !total_order_key(agreement[f].abs()));
     // Hoppe et al.'s orientation (1992): across the rings along a minimum spanning tree of
@@ -452,7 +539,9 @@ fn orient_fits(
     // poor fit does not turn the fits beyond it
     let mut done = vec![false; nf];
     let mut heap = std::collections::BinaryHeap::new();
-    let cost = |a: &Fit, b: &Fit| std::cmp::Reverse((1.0 - a.normal.dot(b.normal).abs()).max(0.0).to_bits());
+    let cost = |a: &Fit, b: &Fit| {
+        std::cmp::Reverse((1.0 - a.normal.dot(b.normal).abs()).max(0.0).to_bits())
+    };
     for seed in order.into_iter().map(|f| f as usize) {
         if done[seed] {
             continue;
@@ -512,7 +601,9 @@ mod tests {
         let want = r * DVec3::Y;
         assert!(v.cross(want).length() < 1e-12, "{v} vs {want}");
         let [_, mid, big] = eigenvectors(c);
-        assert!(mid.cross(r * DVec3::Z).length() < 1e-12 && big.cross(r * DVec3::X).length() < 1e-12);
+        assert!(
+            mid.cross(r * DVec3::Z).length() < 1e-12 && big.cross(r * DVec3::X).length() < 1e-12
+        );
     }
 
     #[test]
@@ -530,10 +621,12 @@ mod tests {
         let p = DVec3::new(0.05, -0.03, 0.2);
         let (a, na) = f.nearest(p);
         let (b, nb) = g.nearest(p);
-        assert!((a - b).length() < 1e-14 && (na + nb).length() < 1e-14, "{a} {b} {na} {nb}");
+        assert!(
+            (a - b).length() < 1e-14 && (na + nb).length() < 1e-14,
+            "{a} {b} {na} {nb}"
+        );
         // the unit sphere through the origin (centre (0, 0, −1)): the fit is near it
         let on = DVec3::new(0.0, 0.0, -1.0) + (p - DVec3::new(0.0, 0.0, -1.0)).normalize();
         assert!((a - on).length() < 1e-3, "{a} vs {on}");
     }
 }
-

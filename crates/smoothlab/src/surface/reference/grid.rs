@@ -26,7 +26,13 @@ impl Grid {
             }
         }
         if triangles.is_empty() || !(lo.is_finite() && hi.is_finite()) {
-            return Grid { lo: DVec3::ZERO, cell: 1.0, dims: [1; 3], start: vec![0, 0], tris: Vec::new() };
+            return Grid {
+                lo: DVec3::ZERO,
+                cell: 1.0,
+                dims: [1; 3],
+                start: vec![0, 0],
+                tris: Vec::new(),
+            };
         }
         let size = (hi - lo).max_element().max(f64::MIN_POSITIVE);
         // about two triangles a cell on a surface: cells ~ √(triangles) along the longest side
@@ -34,8 +40,9 @@ impl Grid {
         let cell = size / along as f64;
         let dims = [0, 1, 2].map(|i| (((hi[i] - lo[i]) / cell).floor() as usize + 1).min(257));
         let index = |c: [usize; 3]| (c[2] * dims[1] + c[1]) * dims[0] + c[0];
-        let cell_of =
-            |p: DVec3| [0, 1, 2].map(|i| (((p[i] - lo[i]) / cell).floor().max(0.0) as usize).min(dims[i] - 1));
+        let cell_of = |p: DVec3| {
+            [0, 1, 2].map(|i| (((p[i] - lo[i]) / cell).floor().max(0.0) as usize).min(dims[i] - 1))
+        };
         let mut count = vec![0u32; dims[0] * dims[1] * dims[2] + 1];
         let cells = |t: &[u32; 3], f: &mut dyn FnMut(usize)| {
             let (mut a, mut b) = (DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY));
@@ -66,7 +73,13 @@ impl Grid {
                 fill[c] += 1;
             });
         }
-        Grid { lo, cell, dims, start: count, tris }
+        Grid {
+            lo,
+            cell,
+            dims,
+            start: count,
+            tris,
+        }
     }
 
     /// The triangle nearest to `p` by `nearest_point` (`None`: not a candidate), searching shells of cells outward
@@ -94,7 +107,10 @@ impl Grid {
             for z in range(2) {
                 for y in range(1) {
                     for x in range(0) {
-                        let shell = [x, y, z].iter().zip(centre).any(|(&c, m)| c.abs_diff(m) == r);
+                        let shell = [x, y, z]
+                            .iter()
+                            .zip(centre)
+                            .any(|(&c, m)| c.abs_diff(m) == r);
                         if !shell {
                             continue;
                         }
@@ -117,7 +133,9 @@ impl Grid {
     /// meets (each cell's items once; an item in several cells comes once a cell).
     pub(super) fn near(&self, p: DVec3, radius: f64, mut visit: impl FnMut(u32)) {
         let dims = self.dims;
-        let cell_of = |q: DVec3, i: usize| (((q[i] - self.lo[i]) / self.cell).floor().max(0.0) as usize).min(dims[i] - 1);
+        let cell_of = |q: DVec3, i: usize| {
+            (((q[i] - self.lo[i]) / self.cell).floor().max(0.0) as usize).min(dims[i] - 1)
+        };
         let (a, b) = (p - DVec3::splat(radius), p + DVec3::splat(radius));
         if !(a.is_finite() && b.is_finite()) {
             return;
@@ -126,7 +144,9 @@ impl Grid {
             for y in cell_of(a, 1)..=cell_of(b, 1) {
                 for x in cell_of(a, 0)..=cell_of(b, 0) {
                     let c = (z * dims[1] + y) * dims[0] + x;
-                    self.tris[self.start[c] as usize..self.start[c + 1] as usize].iter().for_each(|&t| visit(t));
+                    self.tris[self.start[c] as usize..self.start[c + 1] as usize]
+                        .iter()
+                        .for_each(|&t| visit(t));
                 }
             }
         }
