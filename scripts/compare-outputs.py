@@ -33,7 +33,7 @@ import time
 # The fields that hold times, and nothing else, are masked before hashing.
 JSON_TIME_KEYS = ("time_ms", "elapsed_ms", "stats_ms")
 JSON_TIME_RE = re.compile(r'("(?:%s)":)[^,}\]]*' % "|".join(JSON_TIME_KEYS))
-TEXT_TIME_RE = re.compile(r"(?m)^((?:pass +[0-9]+|final):.*[ ;])-?[0-9][0-9.]*( ms)$")
+TEXT_TIME_RE = re.compile(r"(?m)^((?:pass +[0-9]+|finish +[0-9]+|final):.*[ ;])-?[0-9][0-9.]*( ms)$")
 
 # Small meshes of the shared folder: planar 2D (triangles, quads, mixed, quadratic, tangled,
 # off the xy plane, on a sphere) and 3D (hexahedra, tetrahedra, wedges, pyramids, mixed,

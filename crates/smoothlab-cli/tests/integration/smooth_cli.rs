@@ -121,6 +121,7 @@ fn json_report_has_its_shape_and_final_equals_stats_of_the_output() {
                 "objective",
                 "passes",
                 "strategy",
+                "target",
                 "time_ms",
                 "untangling_impossible"
             ],
@@ -282,6 +283,11 @@ fn bad_options_are_refused_with_a_message_and_nothing_written() {
         (vec!["--strategy", "fast"], "fast"),
         (vec!["--order", "random"], "random"),
         (vec!["--passes", "-1"], "-1"),
+        (
+            vec!["--strategy", "c2", "--target", "input"],
+            "Laplacian steps",
+        ),
+        (vec!["--target", "mesh"], "mesh"),
     ] {
         let mut a = vec!["smooth", i, "-o", o];
         a.extend(args.iter().copied());
@@ -482,4 +488,45 @@ fn help_texts_are_their_own_and_counts_agree_with_their_nouns() {
     let cube = d.join("cube.vtk");
     ok(&["generate", "cube", "--cells", "1", "-o", p(&cube)]);
     assert!(ok(&["stats", p(&cube)]).contains("6 4-node tetrahedra"));
+}
+
+/// `--target input` on a valid graded mesh: the passes keep each corner's shape (no node
+/// moves with `--finish 0`), the summary and `--json` name the target, and against the
+/// ideal the same mesh's stretched rows move.
+#[test]
+fn the_input_target_keeps_a_valid_graded_mesh() {
+    let d = dir("target");
+    let input = d.join("graded.vtk");
+    // 6 × 4 quads, rows graded ×1.5 from y = 0, squeezed to a tenth of the width
+    let ys = [0.0, 0.01, 0.025, 0.0475, 0.08125];
+    let mut vtk = String::from("# vtk DataFile Version 3.0\ngraded\nASCII\nDATASET UNSTRUCTURED_GRID\nPOINTS 35 double\n");
+    for (j, y) in ys.iter().enumerate() {
+        for i in 0..7 {
+            // interior nodes off the grid a little, so the ideal has work to do
+            let dx = if (1..6).contains(&i) && (1..4).contains(&j) { 0.02 * ((i + j) % 3) as f64 - 0.02 } else { 0.0 };
+            vtk.push_str(&format!("{} {y} 0\n", i as f64 / 6.0 + dx));
+        }
+    }
+    vtk.push_str("CELLS 24 120\n");
+    for j in 0..4 {
+        for i in 0..6 {
+            let a = j * 7 + i;
+            vtk.push_str(&format!("4 {a} {} {} {}\n", a + 1, a + 8, a + 7));
+        }
+    }
+    vtk.push_str("CELL_TYPES 24\n");
+    vtk.push_str(&"9\n".repeat(24));
+    std::fs::write(&input, vtk).unwrap();
+    let kept = d.join("kept.vtk");
+    let text = ok(&["smooth", p(&input), "-o", p(&kept), "--target", "input", "--finish", "0"]);
+    assert!(text.starts_with("smoothing: strategy rules, objective new against the input target"), "{text}");
+    let same = d.join("same.vtk");
+    ok(&["convert", p(&input), p(&same)]);
+    assert_eq!(std::fs::read_to_string(&kept).unwrap(), std::fs::read_to_string(&same).unwrap());
+    let json = ok(&["smooth", p(&input), "-o", p(&kept), "--target", "input", "--json"]);
+    let v: Value = serde_json::from_str(&json).unwrap();
+    assert_eq!(v["target"], "input");
+    let moved = d.join("moved.vtk");
+    ok(&["smooth", p(&input), "-o", p(&moved), "--finish", "0"]);
+    assert_ne!(std::fs::read_to_string(&moved).unwrap(), std::fs::read_to_string(&same).unwrap());
 }

@@ -148,8 +148,17 @@ pub struct Mesh {
     /// The corners' targets where they are not the ideal ([`crate::target::Target::Input`]):
     /// every node's position in the mesh the targets were taken from, in the frame of
     /// [`nodes`](Self::nodes) (a surface's star moves them into its tangent plane with the
-    /// nodes).
-    target: Option<Vec<DVec2>>,
+    /// nodes), and each element's corner frames from them ([`crate::target::element_frames`]).
+    target: Option<Box<Targets>>,
+}
+
+/// The target positions of a mesh's nodes and each element's corner frames from them,
+/// node by node in the order of [`Mesh::node_elements`] (a star reads its frames in one
+/// run of memory).
+#[derive(Clone, Debug)]
+struct Targets {
+    nodes: Vec<DVec2>,
+    frames: Vec<[glam::DMat2; 4]>,
 }
 
 /// What [`Mesh::node_3d`] writes back unchanged: the file's points and their images.
@@ -397,17 +406,49 @@ impl Mesh {
     /// `None`: the ideal of each kind).
     pub fn set_target_nodes(&mut self, at: Option<Vec<DVec2>>) {
         debug_assert!(at.as_ref().map_or(true, |a| a.len() == self.nodes.len()));
-        self.target = at;
+        self.target = at.map(|nodes| {
+            let topo = &self.conn.topo;
+            let mut t = Box::new(Targets {
+                nodes,
+                frames: Vec::with_capacity(topo.node_elems.len()),
+            });
+            for &e in &topo.node_elems {
+                let f = self.frames_of(e as usize, &t.nodes);
+                t.frames.push(f);
+            }
+            t
+        });
+    }
+
+    /// Element `e`'s corner frames from the target positions `at`.
+    fn frames_of(&self, e: usize, at: &[DVec2]) -> [glam::DMat2; 4] {
+        let mut p = [DVec2::ZERO; 9];
+        for (q, &n) in p.iter_mut().zip(self.element(e)) {
+            *q = at[n as usize];
+        }
+        crate::target::element_frames(self.kind(e), &p)
     }
 
     /// The positions the corners' targets are taken from, where they are not the ideal.
     pub fn target_nodes(&self) -> Option<&[DVec2]> {
-        self.target.as_deref()
+        self.target.as_deref().map(|t| t.nodes.as_slice())
     }
 
-    /// [`set_star`](Self::set_star) of the target's positions, where there is a target.
+    /// The corner frames of the elements of node `n`'s star, in the order of
+    /// [`node_elements`](Self::node_elements) ([`crate::target::element_frames`]), where the
+    /// mesh has targets other than the ideal.
+    #[inline]
+    pub fn star_target_frames(&self, n: usize) -> Option<&[[glam::DMat2; 4]]> {
+        let topo = &self.conn.topo;
+        self.target.as_deref().map(|t| {
+            &t.frames[topo.node_elem_start[n] as usize..topo.node_elem_start[n + 1] as usize]
+        })
+    }
+
+    /// [`set_star`](Self::set_star) of the target's positions, where there is a target:
+    /// node `n`'s star's frames worked out again from them (what its star reads).
     pub(crate) fn set_target_star(&mut self, n: usize, at: impl Fn(usize) -> DVec2) {
-        let Some(target) = &mut self.target else {
+        let Some(mut target) = self.target.take() else {
             return;
         };
         for &e in self.conn.topo.node_elements(n) {
@@ -415,9 +456,14 @@ impl Mesh {
             for &m in &self.conn.elem_nodes
                 [self.conn.elem_start[e] as usize..self.conn.elem_start[e + 1] as usize]
             {
-                target[m as usize] = at(m as usize);
+                target.nodes[m as usize] = at(m as usize);
             }
         }
+        let start = self.conn.topo.node_elem_start[n] as usize;
+        for (j, &e) in self.conn.topo.node_elements(n).iter().enumerate() {
+            target.frames[start + j] = self.frames_of(e as usize, &target.nodes);
+        }
+        self.target = Some(target);
     }
 
     pub(crate) fn set_star(&mut self, n: usize, at: impl Fn(usize) -> DVec2) {

@@ -94,25 +94,42 @@ impl ConditionNumber {
         x: DVec2,
         mut emit: impl FnMut(usize, f64, DVec2, DMat2),
     ) {
-        let ideal = !star.targeted();
         for (i, el) in star.elems.iter().enumerate() {
-            if ideal && el.kind == ElementKind::Tri3 {
+            let frames = star.frames_of(i);
+            if el.kind == ElementKind::Tri3 {
                 // the common case written out: a linear triangle's three corners share
                 // one κ = D/(√3·N) (Knupp's weighted-κ theorem), so one corner's term is
                 // worked out and emitted three times
                 let s = el.slot as usize;
                 let (pa, pb) = (el.pts[(s + 1) % 3], el.pts[(s + 2) % 3]);
-                let (a, b, ab) = (pa - x, pb - x, pb - pa);
-                let n = a.perp_dot(b);
-                let dd = a.length_squared() + b.length_squared() + ab.length_squared();
-                // ∇N = perp(B − A), ∇D = −2(a + b), ∇²D = 4·I
-                let t = two_norm_term::<HESSIAN>(dd, n, -2.0 * (a + b), ab.perp(), 4.0, 1.0 / 3.0);
+                let t = match frames {
+                    None => {
+                        let (a, b, ab) = (pa - x, pb - x, pb - pa);
+                        let n = a.perp_dot(b);
+                        let dd = a.length_squared() + b.length_squared() + ab.length_squared();
+                        // ∇N = perp(B − A), ∇D = −2(a + b), ∇²D = 4·I
+                        two_norm_term::<HESSIAN>(dd, n, -2.0 * (a + b), ab.perp(), 4.0, 1.0 / 3.0)
+                    }
+                    // against a target the corners still share one T: the free corner's
+                    // pair in its frame, with its weights (both −1 before the frame)
+                    Some(f) => {
+                        let (a, b) = crate::target::in_frame(&f[s], pa - x, pb - x);
+                        let (wa, wb) = crate::target::in_frame(&f[s], -1.0, -1.0);
+                        let ab = b - a;
+                        let n = a.perp_dot(b);
+                        let dd = a.length_squared() + b.length_squared() + ab.length_squared();
+                        let grad_n = wb * a.perp() - wa * b.perp();
+                        let grad_d = 2.0 * (wa * a + wb * b + (wb - wa) * ab);
+                        let hess_d = 2.0 * (wa * wa + wb * wb + (wb - wa) * (wb - wa));
+                        two_norm_term::<HESSIAN>(dd, n, grad_d, grad_n, hess_d, 1.0 / 3.0)
+                    }
+                };
                 for _ in 0..3 {
                     emit(i, t.0, t.1, t.2);
                 }
                 continue;
             }
-            if ideal && el.kind == ElementKind::Quad4 {
+            if el.kind == ElementKind::Quad4 {
                 // written out too: the three moving corners (all but the opposite one),
                 // as `ElementJets` makes them, without its copies and node weights
                 let s = el.slot as usize;
@@ -121,12 +138,17 @@ impl ConditionNumber {
                 let w = |k: usize| if k == s { 1.0 } else { 0.0 };
                 for c in (0..4).filter(|&c| c != (s + 2) % 4) {
                     let (next, prev) = ((c + 1) % 4, (c + 3) % 4);
-                    let t = corner_term::<HESSIAN>(
+                    let (mut e1, mut e2, mut w1, mut w2) = (
                         p[next] - p[c],
                         p[prev] - p[c],
                         w(next) - w(c),
                         w(prev) - w(c),
                     );
+                    if let Some(f) = frames {
+                        (e1, e2) = crate::target::in_frame(&f[c], e1, e2);
+                        (w1, w2) = crate::target::in_frame(&f[c], w1, w2);
+                    }
+                    let t = corner_term::<HESSIAN>(e1, e2, w1, w2);
                     emit(i, t.0, t.1, t.2);
                 }
                 continue;

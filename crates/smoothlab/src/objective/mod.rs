@@ -315,7 +315,8 @@ pub struct Star {
     /// worked out at the first ([`StarMemo`]).
     pub(crate) memo: StarMemo,
     /// Per element, where the mesh has targets other than the ideal
-    /// ([`Mesh::target_nodes`]; empty otherwise): its nodes' target positions.
+    /// ([`Mesh::target_nodes`]; empty otherwise): its nodes' target positions (a quad's;
+    /// zeros for a triangle, whose frames say all).
     pub targets: Vec<[DVec2; 9]>,
     /// Per element, with [`targets`](Self::targets): each corner's frame
     /// ([`crate::target::corner_frame`]; the identity where the ideal holds).
@@ -419,8 +420,8 @@ impl Star {
         self.elems.clear();
         self.targets.clear();
         self.frames.clear();
-        let target = mesh.target_nodes();
-        for &e in mesh.node_elements(node) {
+        let target = mesh.target_nodes().zip(mesh.star_target_frames(node));
+        for (j, &e) in mesh.node_elements(node).iter().enumerate() {
             let e = e as usize;
             let kind = mesh.kind(e);
             let ids = mesh.element(e);
@@ -449,12 +450,16 @@ impl Star {
             for (p, &n) in pts.iter_mut().zip(ids) {
                 *p = mesh.nodes()[n as usize];
             }
-            if let Some(target) = target {
+            if let Some((target, frames)) = target {
+                // only a quad's targets are read (new's sub-triangles): a triangle's frames
+                // are all it needs
                 let mut t = [DVec2::ZERO; 9];
-                for (p, &n) in t.iter_mut().zip(ids) {
-                    *p = target[n as usize];
+                if !kind.is_triangle() {
+                    for (p, &n) in t.iter_mut().zip(ids) {
+                        *p = target[n as usize];
+                    }
                 }
-                self.frames.push(crate::target::element_frames(kind, &t));
+                self.frames.push(frames[j]);
                 self.targets.push(t);
             }
         }

@@ -194,7 +194,14 @@ impl ChenTristanoKwok {
                 let s = el.slot as usize;
                 let mut t = SubTriangle::linear(x, el.pts[(s + 1) % 3], el.pts[(s + 2) % 3]);
                 if let Some(f) = star.frames_of(i) {
-                    t = t.in_frames(&f[s], &f[(s + 1) % 3], &f[(s + 2) % 3]);
+                    // straight: the pair at C in its frame says the whole triangle
+                    let (ca, cb) = crate::target::in_frame(
+                        &f[s],
+                        el.pts[(s + 1) % 3] - x,
+                        el.pts[(s + 2) % 3] - x,
+                    );
+                    let (wa, wb) = crate::target::in_frame(&f[s], -1.0, -1.0);
+                    t = SubTriangle::straight(ca, cb, wa, wb);
                 }
                 let (v, g, h) = self.sub_triangle::<HESSIAN>(&t, delta);
                 // added to zero as the general path sums, so a −0 comes out as +0 there too
@@ -458,6 +465,25 @@ impl SubTriangle {
             ca,
             cb,
             straight: self.straight,
+        }
+    }
+
+    /// A straight-sided triangle whose directions from C are `ca` and `cb`, with weights
+    /// `wa` and `wb`; the other directions are their differences.
+    #[inline(always)]
+    fn straight(ca: DVec2, cb: DVec2, wa: f64, wb: f64) -> Self {
+        let ab = (cb - ca, wb - wa);
+        SubTriangle {
+            c_to_a: (ca, wa),
+            c_to_b: (cb, wb),
+            a_to_b: ab,
+            a_to_c: (-ca, -wa),
+            b_to_c: (-cb, -wb),
+            b_to_a: (ca - cb, wa - wb),
+            ab,
+            ca: (ca, wa),
+            cb: (cb, wb),
+            straight: true,
         }
     }
 

@@ -101,7 +101,26 @@ fn element_term(
     x: DVec2,
     floor: f64,
 ) -> Term {
-    if frames.is_none() && el.kind == ElementKind::Tri3 {
+    if let (Some(f), ElementKind::Tri3) = (frames, el.kind) {
+        // against a target the three corners share one T, so one α: the free corner's pair
+        // in its frame, with its weights (both −1 before the frame)
+        let s = el.slot as usize;
+        let (e1, e2) =
+            crate::target::in_frame(&f[s], el.pts[(s + 1) % 3] - x, el.pts[(s + 2) % 3] - x);
+        let (c1, c2) = crate::target::in_frame(&f[s], -1.0, -1.0);
+        let (value, g1, g2) = lo_alpha_corner_gradient(e1, e2);
+        let grad = if value <= floor {
+            DVec2::ZERO
+        } else {
+            c1 * g1 + c2 * g2
+        };
+        return Term {
+            elem: i as u32,
+            value,
+            grad,
+        };
+    }
+    if el.kind == ElementKind::Tri3 {
         // the common case without the element jets (a 420-byte copy per element): the
         // same corner edge vectors and weights (1 at the free node, else 0), the three
         // αs taken together and the gradient of the worst alone

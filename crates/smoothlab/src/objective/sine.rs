@@ -100,7 +100,39 @@ fn element_terms(
             grad: c.chain(g1, g2),
         }
     };
-    if frames.is_none() && el.kind == ElementKind::Tri3 {
+    if let (Some(f), ElementKind::Tri3) = (frames, el.kind) {
+        // against a target the corners share one T: the triangle in the target's frame is
+        // the free corner's pair in its frame (weights both −1 before it), and its other two
+        // corners' pairs are differences of that pair
+        let s = el.slot as usize;
+        let (a, b) =
+            crate::target::in_frame(&f[s], el.pts[(s + 1) % 3] - x, el.pts[(s + 2) % 3] - x);
+        let (wa, wb) = crate::target::in_frame(&f[s], -1.0, -1.0);
+        let mut jets = [CornerJet::default(); 3];
+        jets[s] = CornerJet {
+            e1: a,
+            e2: b,
+            c1: wa,
+            c2: wb,
+        };
+        jets[(s + 1) % 3] = CornerJet {
+            e1: b - a,
+            e2: -a,
+            c1: wb - wa,
+            c2: -wa,
+        };
+        jets[(s + 2) % 3] = CornerJet {
+            e1: -b,
+            e2: a - b,
+            c1: -wb,
+            c2: wa - wb,
+        };
+        for c in &jets {
+            emit(corner(c));
+        }
+        return;
+    }
+    if el.kind == ElementKind::Tri3 {
         // the common case without the element jets (a 420-byte copy per element): the
         // same corner edge vectors and weights, corner by corner
         let s = el.slot as usize;
