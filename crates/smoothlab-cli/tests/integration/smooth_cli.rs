@@ -499,11 +499,17 @@ fn the_input_target_keeps_a_valid_graded_mesh() {
     let input = d.join("graded.vtk");
     // 6 × 4 quads, rows graded ×1.5 from y = 0, squeezed to a tenth of the width
     let ys = [0.0, 0.01, 0.025, 0.0475, 0.08125];
-    let mut vtk = String::from("# vtk DataFile Version 3.0\ngraded\nASCII\nDATASET UNSTRUCTURED_GRID\nPOINTS 35 double\n");
+    let mut vtk = String::from(
+        "# vtk DataFile Version 3.0\ngraded\nASCII\nDATASET UNSTRUCTURED_GRID\nPOINTS 35 double\n",
+    );
     for (j, y) in ys.iter().enumerate() {
         for i in 0..7 {
             // interior nodes off the grid a little, so the ideal has work to do
-            let dx = if (1..6).contains(&i) && (1..4).contains(&j) { 0.02 * ((i + j) % 3) as f64 - 0.02 } else { 0.0 };
+            let dx = if (1..6).contains(&i) && (1..4).contains(&j) {
+                0.02 * ((i + j) % 3) as f64 - 0.02
+            } else {
+                0.0
+            };
             vtk.push_str(&format!("{} {y} 0\n", i as f64 / 6.0 + dx));
         }
     }
@@ -518,15 +524,41 @@ fn the_input_target_keeps_a_valid_graded_mesh() {
     vtk.push_str(&"9\n".repeat(24));
     std::fs::write(&input, vtk).unwrap();
     let kept = d.join("kept.vtk");
-    let text = ok(&["smooth", p(&input), "-o", p(&kept), "--target", "input", "--finish", "0"]);
-    assert!(text.starts_with("smoothing: strategy rules, objective new against the input target"), "{text}");
+    let text = ok(&[
+        "smooth",
+        p(&input),
+        "-o",
+        p(&kept),
+        "--target",
+        "input",
+        "--finish",
+        "0",
+    ]);
+    assert!(
+        text.starts_with("smoothing: strategy rules, objective new against the input target"),
+        "{text}"
+    );
     let same = d.join("same.vtk");
     ok(&["convert", p(&input), p(&same)]);
-    assert_eq!(std::fs::read_to_string(&kept).unwrap(), std::fs::read_to_string(&same).unwrap());
-    let json = ok(&["smooth", p(&input), "-o", p(&kept), "--target", "input", "--json"]);
+    assert_eq!(
+        std::fs::read_to_string(&kept).unwrap(),
+        std::fs::read_to_string(&same).unwrap()
+    );
+    let json = ok(&[
+        "smooth",
+        p(&input),
+        "-o",
+        p(&kept),
+        "--target",
+        "input",
+        "--json",
+    ]);
     let v: Value = serde_json::from_str(&json).unwrap();
     assert_eq!(v["target"], "input");
     let moved = d.join("moved.vtk");
     ok(&["smooth", p(&input), "-o", p(&moved), "--finish", "0"]);
-    assert_ne!(std::fs::read_to_string(&moved).unwrap(), std::fs::read_to_string(&same).unwrap());
+    assert_ne!(
+        std::fs::read_to_string(&moved).unwrap(),
+        std::fs::read_to_string(&same).unwrap()
+    );
 }

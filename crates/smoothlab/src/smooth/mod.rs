@@ -711,8 +711,24 @@ impl Smoother<Star> {
     /// the statistics [`pass`](Self::pass) adds (a whole-mesh [`mesh_stats`] and
     /// [`objective_total`](Self::objective_total), which cost more than a Laplacian sweep).
     /// Counts as [`pass`](Self::pass) does; does not count as a pass.
+    ///
+    /// A tangled mesh never ends it with more inverted elements than it began with
+    /// ([`undo_new_inversions`]; every strategy but the plain Laplacian, the guard on).
     pub fn sweep(&mut self, mesh: &mut Mesh, objective: &dyn Objective) -> SweepCounts {
-        self.sweep_in(&mut Planar(mesh), objective)
+        let o = self.options;
+        if !(o.keep_valid && o.strategy != Strategy::Laplace) {
+            return self.sweep_in(&mut Planar(mesh), objective);
+        }
+        let (start, was) = (mesh.nodes().to_vec(), planar_inverted(mesh));
+        let counts = self.sweep_in(&mut Planar(mesh), objective);
+        undo_new_inversions(
+            mesh,
+            &was,
+            planar_inverted,
+            |m, e| m.element(e).to_vec(),
+            |m, i| m.nodes_mut()[i] = start[i],
+        );
+        counts
     }
 
     /// Visits the nodes of `order` in turn (the mesh facts must be fresh).
@@ -823,4 +839,52 @@ pub fn solve_star<S: NodeStar>(
     Ok(Solvers::<S>::new(solve)
         .get(options.solver, objective.goal())
         .solve(objective, star, x0))
+}
+
+/// Which elements of `mesh` are inverted, as its statistics count them.
+fn planar_inverted(mesh: &Mesh) -> Vec<bool> {
+    (0..mesh.element_count())
+        .map(|e| {
+            let kind = mesh.kind(e);
+            let mut p = [glam::DVec2::ZERO; 9];
+            for (q, &n) in p.iter_mut().zip(mesh.element(e)) {
+                *q = mesh.nodes()[n as usize];
+            }
+            measure::element_measures(kind, &p).inverted > 0
+        })
+        .collect()
+}
+
+/// Where a pass left more inverted elements than `was` marked (issue 61: a move keeps its
+/// star no worse, but an inverted star may fold a valid element where its inversion falls,
+/// and later moves need not mend it), puts the nodes (`nodes_of`) of the elements the pass
+/// inverted back where the pass found them (`restore`), until the count (`now`) is no
+/// larger; at the fourth round those of every inverted element; at worst every node the
+/// pass moved goes back.
+pub(crate) fn undo_new_inversions<M: ?Sized>(
+    mesh: &mut M,
+    was: &[bool],
+    now: impl Fn(&M) -> Vec<bool>,
+    nodes_of: impl Fn(&M, usize) -> Vec<u32>,
+    mut restore: impl FnMut(&mut M, usize),
+) {
+    let before = was.iter().filter(|&&i| i).count();
+    for round in 0..4 {
+        let inverted = now(mesh);
+        if inverted.iter().filter(|&&i| i).count() <= before {
+            return;
+        }
+        for e in (0..inverted.len()).filter(|&e| inverted[e] && (!was[e] || round == 3)) {
+            for i in nodes_of(mesh, e) {
+                restore(mesh, i as usize);
+            }
+        }
+    }
+    if now(mesh).iter().filter(|&&i| i).count() > before {
+        let all: std::collections::BTreeSet<u32> =
+            (0..was.len()).flat_map(|e| nodes_of(mesh, e)).collect();
+        for i in all {
+            restore(mesh, i as usize);
+        }
+    }
 }

@@ -288,9 +288,34 @@ impl SurfaceSmoother {
     ) -> PassRecord {
         self.passes += 1;
         let t0 = clock();
+        let o = self.smoother.options();
+        let guard = o.keep_valid && o.strategy != crate::smooth::Strategy::Laplace;
+        let start = guard.then(|| {
+            (
+                surface.points.clone(),
+                surface.hint.clone(),
+                surface.curve_hint.clone(),
+                surface.inverted_elements(),
+            )
+        });
         let counts = self
             .smoother
             .sweep_in(&mut SurfaceView::new(surface), objective);
+        if let Some((points, hint, curve_hint, was)) = start {
+            crate::smooth::undo_new_inversions(
+                surface,
+                &was,
+                Surface::inverted_elements,
+                |s, e| s.flat.element(e).to_vec(),
+                |s, i| {
+                    s.points[i] = points[i];
+                    s.hint[i] = hint[i];
+                    if let (Some(c), Some(&h)) = (s.curve_hint.get_mut(i), curve_hint.get(i)) {
+                        *c = h;
+                    }
+                },
+            );
+        }
         let elapsed_ms = clock() - t0;
         let t1 = clock();
         let after = surface.stats().quick();
@@ -332,6 +357,20 @@ pub struct KeptNodes {
 }
 
 impl Surface {
+    /// Which elements are inverted, as the statistics count them ([`Surface::stats`]).
+    pub fn inverted_elements(&self) -> Vec<bool> {
+        (0..self.flat.element_count())
+            .map(|e| {
+                let kind = self.flat.kind(e);
+                crate::quality::element_quality(
+                    kind,
+                    &self.element_points_2d(e)[..kind.node_count()],
+                )
+                .inverted
+            })
+            .collect()
+    }
+
     /// Free node `n`'s star as the drivers see it: flattened into its tangent plane at `n`
     /// (the nodes that follow `n` where they will follow), gathered as a planar [`Star`],
     /// and that plane (its origin the node, so the node is at 2D `0`): the star's objective

@@ -574,21 +574,13 @@ impl VolumeSmoother {
         }
         let (start, was) = (mesh.nodes().to_vec(), inverted_elements(mesh));
         let counts = self.smoother.sweep_in(&mut Solid(mesh), objective);
-        let before = was.iter().filter(|&&i| i).count();
-        for round in 0..4 {
-            let now = inverted_elements(mesh);
-            if now.iter().filter(|&&i| i).count() <= before {
-                return counts;
-            }
-            for e in (0..mesh.element_count()).filter(|&e| now[e] && (!was[e] || round == 3)) {
-                for &i in mesh.element(e).to_vec().iter() {
-                    mesh.nodes_mut()[i as usize] = start[i as usize];
-                }
-            }
-        }
-        if inverted_elements(mesh).iter().filter(|&&i| i).count() > before {
-            mesh.nodes_mut().copy_from_slice(&start);
-        }
+        crate::smooth::undo_new_inversions(
+            mesh,
+            &was,
+            inverted_elements,
+            |m, e| m.element(e).to_vec(),
+            |m, i| m.nodes_mut()[i] = start[i],
+        );
         counts
     }
     /// One pass with its record: counts and time, and the mesh's statistics after it
