@@ -13,7 +13,7 @@ output; their values are masked before hashing (JSON keys `time_ms`, `elapsed_ms
 
 `run` writes every output under DIR/runs/NAME/ and one line per run to DIR/manifest.txt;
 `--meshes` is the folder of shared test meshes (default ../shared/meshes beside the
-repository). The lists of mesh kinds, strategies, objectives, penalties, orders, views,
+repository). The lists of mesh kinds, strategies, objectives, penalties, targets, orders, views,
 metrics, themes, .msh versions and figures are read from the CLI's own help and messages,
 so a list that changes shows up as runs that differ. `compare` prints the runs whose lines
 differ and exits 1, or prints "N runs identical" and exits 0. Give --cli a file named
@@ -131,6 +131,8 @@ class Lists:
         self.strategies = possible_values(smooth, "strategy")
         self.orders = possible_values(smooth, "order")
         self.penalties = possible_values(smooth, "penalty")
+        # a CLI before the targets has no --target: its lists lack those runs
+        self.targets = possible_values(smooth, "target") if "--target" in smooth else []
         self.msh_versions = possible_values(smooth, "msh-version")
         self.grid_kinds = possible_values(help_text(cli, "generate", "grid"), "kind")
         self.plate_kinds = possible_values(help_text(cli, "generate", "plate"), "kind")
@@ -427,6 +429,19 @@ class Matrix:
         smooth("bad-garbage", "inputs/garbage.vtk")
         smooth("bad-no-output-folder", tangled["rand2d-tangled"], out="{o}/missing-folder/out.vtk")
         smooth("bad-output-extension", tangled["rand2d-tangled"], ext="xyz")
+        # the targets: every objective on every kind with opt and rules, and the refusals
+        for t in l.targets:
+            for obj in l.objectives:
+                for mesh in ("rand2d-tangled", "plate-%s-o2-tangled" % mixed, "sphere-%s-tangled" % s_tri,
+                             "hexgrid-tangled", "mixed-tangled"):
+                    for s in ("opt", "rules"):
+                        smooth("target-%s-%s-%s-%s" % (t, obj, s, mesh), tangled[mesh], "--target", t,
+                               "--objective", obj, "--strategy", s)
+            for s in l.strategies:
+                smooth("target-%s-text-%s" % (t, s), tangled["grid-quad-tangled"], "--target", t, "--strategy", s,
+                       json=False)
+        if l.targets:
+            smooth("bad-target", tangled["rand2d-tangled"], "--target", "nosuch")
         # the text summary (its timings masked)
         for mesh in ("rand2d-tangled", "plate-%s-o2-tangled" % mixed, "sphere-%s-tangled" % l.surface_kinds[0],
                      "torus-o2-tangled", "rand3d-tangled", "hexgrid-tangled", "mixed-tangled"):
