@@ -2,7 +2,8 @@
 // takes only the ideal with a strategy that takes Laplacian steps (saying why), travels in
 // the link, and a run against the input is the command-line tool's
 // `smoothlab smooth --target input --finish 0` on the same file, pass for pass and to the
-// bit. A screenshot of the page with the menu at 1366×768 goes to test-output/browser/.
+// bit, in one worker or split between two. A screenshot of the page with the menu at
+// 1366×768 goes to test-output/browser/.
 import path from 'node:path';
 import { mkdirSync, readFileSync } from 'node:fs';
 import { spawnSync } from 'node:child_process';
@@ -102,5 +103,39 @@ export default async function ({ server, context }) {
     } finally {
       await p.close();
     }
+  });
+
+  await test('issue 57: a pass against the input split between two workers is one worker\'s, bit for bit, on a perturbed mesh the second worker loaded unperturbed', async () => {
+    // the second worker holds the sample as loaded; the first perturbed it, so the target
+    // (the mesh as perturbed) travels with the sweep
+    const hash = '#sample=rand2d-large&tangle=0.3&seed=3&perturbed=1&strategy=rules&target=input';
+    const onePass = async (workers) => {
+      const p = await freshPage(context, 1280, 900, `target, ${workers} worker(s)`);
+      try {
+        await open(p, `${server.base}${workers === 1 ? '?workers=1' : ''}${hash}`);
+        check(await p.inputValue('#target') === 'input', 'the link chose the input');
+        if (workers === 2) await p.waitForFunction(() => window.smoothlab.twoWorkers(), null, { timeout: TIMEOUT, polling: 100 });
+        await step(p);
+        const meshes = [];
+        for (const side of ['a', 'b']) {
+          const [dl] = await Promise.all([p.waitForEvent('download'), p.click(`button[data-export="msh"][data-side="${side}"]`)]);
+          meshes.push(readFileSync(await dl.path()).toString());
+        }
+        const last = await p.evaluate(() => window.smoothlab.metrics.lastStep);
+        return { meshes, workers: last.workers, wall_ms: last.wall_ms, a: await stats(p, 'a'), b: await stats(p, 'b') };
+      } finally {
+        await p.close();
+      }
+    };
+    const two = await onePass(2);
+    const one = await onePass(1);
+    check(two.workers === 2 && one.workers === 1, `workers: ${two.workers} and ${one.workers}`);
+    for (const [i, side] of ['a', 'b'].entries()) {
+      check(two.meshes[i] === one.meshes[i], `the ${side} side differs between two workers and one`);
+      for (const row of ['inverted', 'min_angle', 'max_angle', 'optimization_calls']) {
+        check(two[side][row] === one[side][row], `${side} ${row}: ${two[side][row]} with two workers, ${one[side][row]} with one`);
+      }
+    }
+    console.log(`     one Step against the input: ${two.wall_ms.toFixed(0)} ms in two workers, ${one.wall_ms.toFixed(0)} ms in one; the same meshes`);
   });
 }
