@@ -831,10 +831,12 @@ mod tests {
 
     #[test]
     fn the_input_target_is_the_mesh_as_loaded_for_the_whole_run_as_the_cli_takes_it() {
-        // the plate's O-grid of quads, perturbed: its corners are not squares, so the two
-        // targets lead to different meshes
+        // the plate's O-grid of quads, tangled: its corners are not squares, so the two
+        // targets lead to different meshes, and the inverted ones move the nodes in every
+        // pass against the input too
         let mut pg = Playground::new(Sample::PlateQuad.generate().unwrap()).unwrap();
-        pg.perturb(0.3, 5).unwrap();
+        pg.perturb(0.8, 5).unwrap();
+        assert!(pg.original_stats().inverted > 0);
         let loaded = pg.original_nodes().to_vec();
         let mesh = pg.topology().clone();
         for strategy in [Strategy::Rules, Strategy::Opt] {
@@ -861,6 +863,12 @@ mod tests {
                 );
                 let cli = smoothed_as_the_cli(&mesh, settings, side, 3);
                 assert_eq!(pg.panel(side).mesh.nodes(), cli.nodes(), "{what}");
+                // a target taken again before every pass would be another run
+                let mut again = mesh.clone();
+                for _ in 0..3 {
+                    again = smoothed_as_the_cli(&again, settings, side, 1);
+                }
+                assert_ne!(again.nodes(), cli.nodes(), "{what}: the retaken target");
                 let ideal = smoothed_as_the_cli(
                     &mesh,
                     Settings {

@@ -266,6 +266,11 @@ mod tests {
                 unreachable!()
             };
             assert_eq!(l.mesh(side).points(), cli.points(), "{side:?}");
+            assert_ne!(
+                l.mesh(side).points(),
+                l.original().points(),
+                "{side:?} moved"
+            );
         }
         // back to the ideal: the sides are measured as before, a pass as the ideal's
         l.set_settings(Settings::default()).unwrap();

@@ -485,6 +485,7 @@ mod tests {
                 unreachable!()
             };
             assert_eq!(l.mesh(side).nodes(), cli.nodes(), "{side:?}");
+            assert_ne!(l.mesh(side).nodes(), l.original().nodes(), "{side:?} moved");
         }
         // back to the ideal: the sides are measured as before, a pass as the ideal's
         l.set_settings(Settings::default()).unwrap();
