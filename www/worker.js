@@ -106,12 +106,18 @@ const handlers = {
     return p.continuePass(budgetMs);
   },
   positions: (side) => planar().panelPositions(side),
-  adoptSweep: (nodes, sweep) => planar().adoptSweep(nodes, sweep),
-  // the other worker's part: side A's sweep, its result taken with the last slice
-  sweep: (settings, side, nodes, budgetMs) => {
+  // the positions corners are measured against with these settings (null: the ideal)
+  targetPositions: (settings) => {
     const p = planar();
     p.setSettings(settings);
-    p.beginSweep(side, nodes);
+    return p.targetPositions() ?? null;
+  },
+  adoptSweep: (nodes, sweep) => planar().adoptSweep(nodes, sweep),
+  // the other worker's part: side A's sweep, its result taken with the last slice
+  sweep: (settings, side, nodes, target, budgetMs) => {
+    const p = planar();
+    p.setSettings(settings);
+    p.beginSweep(side, nodes, target ?? undefined);
     return sweepSlice(p, budgetMs);
   },
   continueSweep: (budgetMs) => sweepSlice(planar(), budgetMs),

@@ -4,7 +4,7 @@
 import { $, COMPARE, clearError, engine, report, serial, setStatus, state } from './state.js';
 import { writePermalink } from './permalink.js';
 import { endRun } from './loading.js';
-import { redrawAll } from './draw.js';
+import { redrawAll, redrawNode } from './draw.js';
 
 export function readSettings() {
   return {
@@ -12,6 +12,7 @@ export function readSettings() {
     threshold_deg: Number($('threshold').value),
     order: $('order').value,
     max_iter: Number($('maxiter').value),
+    target: $('target').value,
     compare: COMPARE.map((_, i) => readChoice(i)),
   };
 }
@@ -60,6 +61,7 @@ export function buildControls(c) {
   $('drop-hint').textContent = `…or drop a ${c.file_extensions_words} file (a .node and .ele pair together) anywhere on the page.`;
   fillMenu($('strategy'), c.strategies.map((s) => [s.name, s.label, s.title]), c.settings.strategy);
   fillMenu($('order'), c.orders.map((o) => [o.name, o.label, o.title]), c.settings.order);
+  fillMenu($('target'), c.targets.map((t) => [t.name, t.label, t.words]), c.settings.target);
   showStrategyReasons();
   // compare: every objective and penalty design the core offers, by its names
   for (const [i, [obj, pen]] of COMPARE.entries()) {
@@ -130,6 +132,41 @@ export function showStrategyReasons() {
     $(`${id}-why`).textContent = why ? `Not used: ${why}.` : '';
     $(id).title = why ? `Not used: ${why}.` : $(id).dataset.help || '';
   }
+  // a strategy that takes Laplacian steps measures against the ideal only: the menu shows
+  // the ideal, disabled, and gets the user's choice back with a strategy that takes it
+  const t = $('target');
+  const refused = info && info.target_refused;
+  const ideal = state.controls.targets[0].name;
+  if (refused && !t.disabled) {
+    t.dataset.chosen = t.value;
+    t.value = ideal;
+  } else if (!refused && t.disabled) {
+    t.value = t.dataset.chosen || ideal;
+  }
+  t.disabled = Boolean(refused);
+  $('target-why').textContent = refused ? `Only the ideal here: ${refused}.` : '';
+  showTargetWords();
+}
+
+/** What the chosen target means, in a sentence beside its menu (the core's words). */
+export function showTargetWords() {
+  const t = state.controls.targets.find((x) => x.name === $('target').value);
+  $('target-words').textContent = t ? t.words : '';
+  $('target').title = $('target-why').textContent || (t ? t.words : '');
+}
+
+/** A new target: the engine measures against it from the next pass (the input is the
+ * mesh as loaded or as last perturbed, whatever was smoothed since), and the chosen
+ * node's level sets are drawn against it at once. */
+export function changeTarget() {
+  showTargetWords();
+  return serial(async () => {
+    await engine.call('settings', readSettings());
+    await redrawNode();
+    await writePermalink();
+    const t = state.controls.targets.find((x) => x.name === $('target').value);
+    setStatus(`Target: ${t.label.toLowerCase()}. ${t.words}`);
+  }).catch(report);
 }
 
 /** Checks one typed control with the core's rules; shows or clears its message. */

@@ -97,6 +97,7 @@ export async function applyHash(hash = location.hash) {
     strategy: c.strategy,
     threshold: c.threshold_deg,
     order: c.order,
+    target: c.target,
     passes: p.passes,
     maxiter: c.max_iter,
     amount: p.amount,
@@ -106,6 +107,9 @@ export async function applyHash(hash = location.hash) {
     'objective-b': c.compare[1].objective,
     'penalty-b': c.compare[1].penalty,
   };
+  // the target's menu is enabled again, so that the hash's target is what it shows (the
+  // strategy's reasons, below, disable it where the strategy takes no target)
+  $('target').disabled = false;
   for (const id of SETTINGS) {
     const v = String(values[id]);
     const el = $(id);

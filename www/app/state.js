@@ -11,7 +11,7 @@ export const $ = (id) => document.getElementById(id);
 
 /** The sample the page opens on: the first of the engine's gallery (`Sample::DEFAULT`). */
 export const gallery = { defaultSample: null };
-export const SETTINGS = ['strategy', 'threshold', 'order', 'passes', 'maxiter', 'amount', 'seed', 'objective-a', 'penalty-a', 'objective-b', 'penalty-b'];
+export const SETTINGS = ['strategy', 'target', 'threshold', 'order', 'passes', 'maxiter', 'amount', 'seed', 'objective-a', 'penalty-a', 'objective-b', 'penalty-b'];
 /** The compare menus of the left (A) and right (B) panel. */
 export const COMPARE = [['objective-a', 'penalty-a'], ['objective-b', 'penalty-b']];
 export const PARAMS = new URLSearchParams(location.search);

@@ -8,10 +8,12 @@
 use serde::Serialize;
 
 use super::permalink::{control_label, gmsh_sample_name, PageState, GMSH_FILES};
+use super::settings::{target_refused, target_words};
 use smoothlab::smooth::limits::{
     amount_words, IntRange, AMOUNT_STEP, MAX_AMOUNT, MAX_ITER, PASSES, SEED, THRESHOLDS,
 };
 use smoothlab::smooth::Strategy;
+use smoothlab::target::Target;
 
 fn label(key: &str) -> &'static str {
     control_label(key).expect("a key the user types into")
@@ -54,12 +56,23 @@ pub struct StrategyInfo {
     pub name: &'static str,
     /// The menu's text and tooltip ([`Strategy::label`], [`Strategy::describe`]), and the
     /// strategy in words ([`Strategy::words`]); why it ignores the threshold angle
-    /// ([`Strategy::threshold_unused`]) and the iteration limit ([`Strategy::max_iter_unused`]).
+    /// ([`Strategy::threshold_unused`]) and the iteration limit ([`Strategy::max_iter_unused`]),
+    /// and why it takes no target but the ideal ([`target_refused`]).
     pub label: &'static str,
     pub title: &'static str,
     pub words: &'static str,
     pub threshold_unused: Option<String>,
     pub max_iter_unused: Option<String>,
+    pub target_refused: Option<String>,
+}
+
+/// One target of the target menu: its name, its menu entry and what it means in a
+/// sentence for the page's users ([`target_words`]), shown beside the menu.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct TargetInfo {
+    pub name: &'static str,
+    pub label: &'static str,
+    pub words: &'static str,
 }
 
 /// A name a menu offers, with its words for people.
@@ -101,7 +114,7 @@ pub struct GmshSample {
 
 /// Everything the page needs to build and check its controls, keyed by the permalink's
 /// keys: `{ settings, passes, maxiter, seed, amount, threshold, strategies, orders,
-/// objectives, penalties, panels, file_extensions, file_extensions_words, max_file_bytes,
+/// targets, objectives, penalties, panels, file_extensions, file_extensions_words, max_file_bytes,
 /// gmsh_samples, quality_ramp }`.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct PageControls {
@@ -115,6 +128,8 @@ pub struct PageControls {
     pub strategies: Vec<StrategyInfo>,
     /// Every visit order ([`Order::ALL`](smoothlab::smooth::Order::ALL)).
     pub orders: Vec<MenuEntry>,
+    /// Every target ([`Target::ALL`]), the ideal first.
+    pub targets: Vec<TargetInfo>,
     /// Every objective a panel can run ([`ObjectiveKind::ALL`](smoothlab::objective::ObjectiveKind::ALL)).
     pub objectives: Vec<Named>,
     /// The designs of `new`'s penalty ([`Penalty::ALL`](smoothlab::objective::Penalty::ALL)).
@@ -175,6 +190,7 @@ pub fn page_controls() -> PageControls {
                 words: s.words(),
                 threshold_unused: s.threshold_unused(),
                 max_iter_unused: s.max_iter_unused(),
+                target_refused: target_refused(s),
             })
             .collect(),
         orders: smoothlab::smooth::Order::ALL
@@ -183,6 +199,17 @@ pub fn page_controls() -> PageControls {
                 name: o.name(),
                 label: o.label(),
                 title: o.describe(),
+            })
+            .collect(),
+        targets: Target::ALL
+            .iter()
+            .map(|&t| TargetInfo {
+                name: t.name(),
+                label: match t {
+                    Target::Ideal => "Ideal shape",
+                    Target::Input => "The mesh as loaded",
+                },
+                words: target_words(t),
             })
             .collect(),
         objectives: smoothlab::objective::ObjectiveKind::ALL
@@ -264,6 +291,13 @@ mod tests {
             .map(|s| s.name)
             .collect();
         assert_eq!(without_solver, ["laplace", "smart"]);
+        let with_target: Vec<&str> = c
+            .strategies
+            .iter()
+            .filter(|s| s.target_refused.is_none())
+            .map(|s| s.name)
+            .collect();
+        assert_eq!(with_target, ["opt", "rules"]);
         assert_eq!(c.passes.words, "a whole number from 1 to 100");
         assert_eq!(
             (
@@ -274,6 +308,40 @@ mod tests {
             ("1", "50", "3")
         );
         assert_eq!(c.seed.max, u64::MAX.to_string());
+    }
+
+    #[test]
+    fn the_target_menu_says_what_each_target_means() {
+        let c = page_controls();
+        let names: Vec<&str> = c.targets.iter().map(|t| t.name).collect();
+        assert_eq!(names, ["ideal", "input"]);
+        assert_eq!(
+            c.settings.target.name(),
+            "ideal",
+            "the menu starts on the ideal"
+        );
+        for t in &c.targets {
+            // one sentence each, which the page shows as it is
+            assert!(
+                t.words.ends_with('.') && t.words.matches(". ").count() == 0,
+                "{}",
+                t.words
+            );
+        }
+        assert!(c.targets[0]
+            .words
+            .contains("equilateral triangle, the square"));
+        assert!(
+            c.targets[1].words.contains("as loaded") && c.targets[1].words.contains("inverted")
+        );
+        let c2 = c.strategies.iter().find(|s| s.name == "c2").unwrap();
+        assert_eq!(
+            c2.target_refused.as_deref(),
+            Some("only optimization and Chen's rules measure corners against the mesh as loaded; Freitag's C2 takes Laplacian steps, which aim at the ideal")
+        );
+        let json = serde_json::to_value(&c).unwrap();
+        assert_eq!(json["settings"]["target"], "ideal");
+        assert_eq!(json["targets"][1]["label"], "The mesh as loaded");
     }
 
     #[test]

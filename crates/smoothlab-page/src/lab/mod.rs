@@ -45,6 +45,7 @@ use smoothlab::objective::Objective;
 use smoothlab::optimize::SolveResult;
 use smoothlab::quality::MeshStats;
 use smoothlab::smooth::{solve_node, Smoother};
+use smoothlab::target::Target;
 use stats::{quick_stats_and_buckets, QuickStats};
 pub use table::{
     PanelStats, PanelTable, TableDetail, WorkDone, DETAIL_MAX_ELEMENTS, SMALL_ANGLE_DEG,
@@ -221,7 +222,10 @@ impl Playground {
     }
 
     /// New settings for the next passes (the meshes stay as they are; a pass in
-    /// progress is abandoned).
+    /// progress is abandoned). A new target takes effect at once: with
+    /// [`Target::Input`] every corner is measured against the mesh as loaded (or as last
+    /// perturbed, [`original_nodes`](Self::original_nodes)), whatever the panels went
+    /// through since.
     pub fn set_settings(&mut self, settings: Settings) -> Result<()> {
         let o = settings.smooth_options()?;
         self.abort_pass();
@@ -229,8 +233,30 @@ impl Playground {
             p.smoother = Smoother::new(o)?;
             p.objective = settings.choice(side).build();
         }
+        let retarget = settings.target != self.settings.target;
         self.settings = settings;
+        if retarget {
+            for i in 0..2 {
+                self.aim(i);
+            }
+        }
         Ok(())
+    }
+
+    /// The positions every corner is measured against, with the settings' target
+    /// ([`Target::Input`]: the mesh as loaded or as last perturbed), x and y interleaved as
+    /// [`begin_sweep`](Self::begin_sweep) takes them; `None` with the ideal target.
+    pub fn target_positions(&self) -> Option<Vec<f64>> {
+        (self.settings.target == Target::Input).then(|| interleaved(&self.original))
+    }
+
+    /// Gives panel `i`'s mesh the settings' target: the original positions for
+    /// [`Target::Input`], none (the ideal of each kind) for [`Target::Ideal`]. They are
+    /// never taken from the panel itself, so passes after the first, a drag or a pass
+    /// abandoned leave the target where the run began.
+    fn aim(&mut self, i: usize) {
+        let at = (self.settings.target == Target::Input).then(|| self.original.clone());
+        self.panels[i].mesh.set_target_nodes(at);
     }
 
     /// One smoothing pass on both panels; `clock` gives milliseconds (the core reads no time).
@@ -273,18 +299,42 @@ impl Playground {
     /// other engine's panel), for a split pass: run it with
     /// [`continue_pass`](Self::continue_pass), then [`take_sweep`](Self::take_sweep). No
     /// statistics are taken, and this playground's panels are left as they were.
-    pub fn begin_sweep(&mut self, side: Side, nodes: &[f64]) -> Result<()> {
+    ///
+    /// `target` is the other engine's [`target_positions`](Self::target_positions): given
+    /// exactly when the settings' target is [`Target::Input`] (the other engine's mesh
+    /// may have been perturbed since this one loaded it), and measured against during the
+    /// sweep only.
+    pub fn begin_sweep(&mut self, side: Side, nodes: &[f64], target: Option<&[f64]>) -> Result<()> {
         self.abort_pass();
         let nodes = self.positions_from(nodes)?;
+        let target = match (self.settings.target, target) {
+            (Target::Input, Some(t)) => Some(
+                self.positions_from(t)
+                    .map_err(|e| Error::invalid(format!("the target's positions: {e}")))?,
+            ),
+            (Target::Ideal, None) => None,
+            (Target::Input, None) => {
+                return Err(Error::invalid(
+                    "the settings measure corners against the mesh as loaded: give its positions with the sweep",
+                ))
+            }
+            (Target::Ideal, Some(_)) => {
+                return Err(Error::invalid(
+                    "target positions were given, but the settings measure corners against the ideal",
+                ))
+            }
+        };
         self.swept = None;
         let mut run = PassRun::of(RunKind::Sweep(side.index()));
-        // the sweep starts from the other engine's positions; the run saves the panel's
-        // own, and puts them back when the sweep is taken or abandoned
+        // the sweep starts from the other engine's positions (and target); the run saves
+        // the panel's own positions, and puts them back when the sweep is taken or
+        // abandoned (and this playground's target with them: see `abort_pass`)
         run.save(&self.panels);
-        self.panels[side.index()]
-            .mesh
-            .nodes_mut()
-            .copy_from_slice(&nodes);
+        let p = &mut self.panels[side.index()];
+        p.mesh.nodes_mut().copy_from_slice(&nodes);
+        if target.is_some() {
+            p.mesh.set_target_nodes(target);
+        }
         self.run = Some(run);
         Ok(())
     }
@@ -359,6 +409,7 @@ impl Playground {
             if run.is_sweep() {
                 let side = run.side();
                 self.swept = Some(run.finish_sweep(&mut self.panels));
+                self.aim(side.index()); // its own target back, after the other engine's
                 return Ok(PassProgress::swept(side));
             }
             return Ok(run.finish(&mut self.panels, &mut self.versions));
@@ -370,7 +421,11 @@ impl Playground {
     /// before it (positions, statistics and version), so it leaves no trace.
     pub fn abort_pass(&mut self) {
         if let Some(run) = self.run.take() {
+            let swept = run.is_sweep().then(|| run.side());
             run.undo(&mut self.panels);
+            if let Some(side) = swept {
+                self.aim(side.index()); // a sweep measured against the other engine's target
+            }
         }
     }
 
@@ -505,6 +560,12 @@ impl Playground {
             p.full = OnceCell::from(self.original_stats.clone());
             p.records.clear();
             p.smoother = Smoother::new(o).expect("the settings were checked when set");
+        }
+        // the original may be new (a perturbation): the target is taken from it again
+        if self.settings.target != Target::Ideal {
+            for i in 0..2 {
+                self.aim(i);
+            }
         }
     }
 
@@ -740,6 +801,141 @@ mod tests {
                 let mid = 0.5 * (moved.nodes()[e.a as usize] + moved.nodes()[e.b as usize]);
                 assert!(moved.nodes()[e.mid as usize].distance(mid) < 1e-12);
             }
+        }
+    }
+
+    /// The command-line tool's run on `mesh` (`smoothlab smooth --target T --passes N
+    /// --finish 0`) with a side's settings: its positions after the passes.
+    fn smoothed_as_the_cli(mesh: &Mesh, settings: Settings, side: Side, passes: u32) -> Mesh {
+        let c = settings.choice(side);
+        let mut model = smoothlab::Model::Planar(mesh.clone());
+        // the page's threshold is the tool's default, and only new takes a penalty
+        assert_eq!(settings.threshold_deg, Settings::default().threshold_deg);
+        let mut smoothing = smoothlab::Smoothing::default()
+            .objective(c.objective)
+            .strategy(settings.strategy)
+            .order(settings.order)
+            .max_iter(settings.max_iter)
+            .target(settings.target)
+            .passes(passes)
+            .finish(0);
+        if c.objective == smoothlab::ObjectiveKind::SmoothShape {
+            smoothing = smoothing.penalty(c.penalty);
+        }
+        model.smooth(&smoothing).unwrap();
+        let smoothlab::Model::Planar(m) = model else {
+            unreachable!()
+        };
+        m
+    }
+
+    #[test]
+    fn the_input_target_is_the_mesh_as_loaded_for_the_whole_run_as_the_cli_takes_it() {
+        // the plate's O-grid of quads, tangled: its corners are not squares, so the two
+        // targets lead to different meshes, and the inverted ones move the nodes in every
+        // pass against the input too
+        let mut pg = Playground::new(Sample::PlateQuad.generate().unwrap()).unwrap();
+        pg.perturb(0.8, 5).unwrap();
+        assert!(pg.original_stats().inverted > 0);
+        let loaded = pg.original_nodes().to_vec();
+        let mesh = pg.topology().clone();
+        for strategy in [Strategy::Rules, Strategy::Opt] {
+            let settings = Settings {
+                strategy,
+                target: Target::Input,
+                ..Settings::default()
+            };
+            pg.set_settings(settings).unwrap();
+            pg.reset();
+            for side in Side::BOTH {
+                assert_eq!(pg.panel(side).mesh.target_nodes(), Some(&loaded[..]));
+            }
+            for _ in 0..3 {
+                pg.step(&no_clock);
+            }
+            for side in Side::BOTH {
+                let what = format!("{strategy:?} {side:?}");
+                // not taken again from the positions of a later pass
+                assert_eq!(
+                    pg.panel(side).mesh.target_nodes(),
+                    Some(&loaded[..]),
+                    "{what}"
+                );
+                let cli = smoothed_as_the_cli(&mesh, settings, side, 3);
+                assert_eq!(pg.panel(side).mesh.nodes(), cli.nodes(), "{what}");
+                // a target taken again before every pass would be another run
+                let mut again = mesh.clone();
+                for _ in 0..3 {
+                    again = smoothed_as_the_cli(&again, settings, side, 1);
+                }
+                assert_ne!(again.nodes(), cli.nodes(), "{what}: the retaken target");
+                let ideal = smoothed_as_the_cli(
+                    &mesh,
+                    Settings {
+                        target: Target::Ideal,
+                        ..settings
+                    },
+                    side,
+                    3,
+                );
+                assert_ne!(cli.nodes(), ideal.nodes(), "{what}: the target matters");
+            }
+        }
+        // a drag moves a node, not the target; back to the ideal, no target is left
+        let free = (0..mesh.node_count()).find(|&n| mesh.is_free(n)).unwrap();
+        pg.move_node(free, pg.original_nodes()[free] + DVec2::splat(0.01))
+            .unwrap();
+        pg.step(&no_clock);
+        assert_eq!(pg.panel(Side::A).mesh.target_nodes(), Some(&loaded[..]));
+        let ideal = Settings {
+            target: Target::Ideal,
+            ..pg.settings()
+        };
+        pg.set_settings(ideal).unwrap();
+        assert!(Side::BOTH
+            .iter()
+            .all(|&s| pg.panel(s).mesh.target_nodes().is_none()));
+        assert_eq!(pg.target_positions(), None);
+        // a new perturbation is the new target
+        pg.set_settings(Settings {
+            target: Target::Input,
+            ..ideal
+        })
+        .unwrap();
+        pg.perturb(0.2, 9).unwrap();
+        assert_ne!(pg.original_nodes(), &loaded[..]);
+        assert_eq!(
+            pg.panel(Side::B).mesh.target_nodes(),
+            Some(pg.original_nodes())
+        );
+        assert_eq!(
+            pg.target_positions(),
+            Some(interleaved(pg.original_nodes()))
+        );
+        // a strategy that takes Laplacian steps refuses it, and the settings stay
+        let before = pg.settings();
+        let e = pg
+            .set_settings(Settings {
+                strategy: Strategy::C1,
+                ..before
+            })
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("Freitag's C1 takes Laplacian steps"), "{e}");
+        assert_eq!(pg.settings(), before);
+    }
+
+    #[test]
+    fn the_ideal_target_leaves_every_pass_as_it_was() {
+        let mesh = Sample::PlateMixedTangled.generate().unwrap();
+        let mut pg = Playground::new(mesh.clone()).unwrap();
+        for _ in 0..2 {
+            pg.step(&no_clock);
+        }
+        for side in Side::BOTH {
+            assert!(pg.panel(side).mesh.target_nodes().is_none());
+            let cli = smoothed_as_the_cli(&mesh, Settings::default(), side, 2);
+            assert_eq!(pg.panel(side).mesh.nodes(), cli.nodes(), "{side:?}");
         }
     }
 

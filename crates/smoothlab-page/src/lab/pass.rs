@@ -659,7 +659,7 @@ mod tests {
                     primary.begin_split_pass();
                     let helper_before = helper.panel(Side::A).mesh.nodes().to_vec();
                     helper
-                        .begin_sweep(Side::A, &primary.panel_positions(Side::A))
+                        .begin_sweep(Side::A, &primary.panel_positions(Side::A), None)
                         .unwrap();
                     // the first pass hands the sweep over while panel B is smoothed,
                     // the second once the split pass waits for it
@@ -725,6 +725,92 @@ mod tests {
     }
 
     #[test]
+    fn a_split_pass_against_the_input_is_the_whole_pass_though_the_helper_was_not_perturbed() {
+        use smoothlab::target::Target;
+        let mesh = Sample::PlateQuad.generate().unwrap();
+        let settings = Settings {
+            strategy: Strategy::Rules,
+            target: Target::Input,
+            ..Settings::default()
+        };
+        let [mut whole, mut primary, mut helper] =
+            [(); 3].map(|_| Playground::new(mesh.clone()).unwrap());
+        for pg in [&mut whole, &mut primary, &mut helper] {
+            pg.set_settings(settings).unwrap();
+        }
+        // as on the page: the helper holds the mesh as loaded, the other two perturbed it
+        for pg in [&mut whole, &mut primary] {
+            pg.perturb(0.3, 4).unwrap();
+        }
+        let own_target = helper.target_positions().unwrap();
+        let target = primary.target_positions().unwrap();
+        assert_ne!(own_target, target);
+        let clock = ticking();
+        let nodes = primary.panel_positions(Side::A);
+        let e = helper
+            .begin_sweep(Side::A, &nodes, None)
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("give its positions"), "{e}");
+        let e = helper
+            .begin_sweep(Side::A, &nodes, Some(&target[2..]))
+            .unwrap_err()
+            .to_string();
+        assert!(e.starts_with("the target's positions:"), "{e}");
+        for pass in 1..=2 {
+            let expected = whole.step(&clock);
+            primary.begin_split_pass();
+            helper
+                .begin_sweep(
+                    Side::A,
+                    &primary.panel_positions(Side::A),
+                    Some(&primary.target_positions().unwrap()),
+                )
+                .unwrap();
+            while !helper.continue_pass(&clock, 3.0).unwrap().done {}
+            // the helper's own target is back after the sweep
+            assert_eq!(helper.target_positions().unwrap(), own_target);
+            assert_eq!(
+                helper.panel(Side::A).mesh.target_nodes(),
+                Some(helper.original_nodes())
+            );
+            let (nodes, sweep) = helper.take_sweep().unwrap();
+            primary.adopt_sweep(&nodes, sweep).unwrap();
+            let records = loop {
+                if let Some(r) = primary.continue_pass(&clock, 3.0).unwrap().records {
+                    break r;
+                }
+            };
+            for side in Side::BOTH {
+                let what = format!("pass {pass} {side:?}");
+                assert_eq!(
+                    primary.panel(side).mesh.nodes(),
+                    whole.panel(side).mesh.nodes(),
+                    "{what}"
+                );
+                let (got, want) = (&records[side as usize], &expected[side as usize]);
+                assert_eq!((got.counts, got.after), (want.counts, want.after), "{what}");
+            }
+        }
+        // an abandoned sweep gives the helper its own target back too
+        helper
+            .begin_sweep(Side::A, &primary.panel_positions(Side::A), Some(&target))
+            .unwrap();
+        helper.continue_pass(&clock, 1.0).unwrap();
+        helper.abort_pass();
+        assert_eq!(
+            helper.panel(Side::A).mesh.target_nodes(),
+            Some(helper.original_nodes())
+        );
+        // with the ideal target no positions go with a sweep
+        helper.set_settings(Settings::default()).unwrap();
+        assert!(helper
+            .begin_sweep(Side::A, &primary.panel_positions(Side::A), Some(&target))
+            .is_err());
+        assert!(helper.panel(Side::A).mesh.target_nodes().is_none());
+    }
+
+    #[test]
     fn an_abandoned_split_pass_leaves_no_trace_and_bad_sweeps_are_refused() {
         let mesh = Sample::Rand2dTangled.generate().unwrap();
         let (mut primary, mut helper) = (
@@ -739,7 +825,7 @@ mod tests {
         let n = before[0].len();
         let clock = ticking();
         helper
-            .begin_sweep(Side::A, &primary.panel_positions(Side::A))
+            .begin_sweep(Side::A, &primary.panel_positions(Side::A), None)
             .unwrap();
         while !helper.continue_pass(&clock, 2.0).unwrap().done {}
         let (nodes, sweep) = helper.take_sweep().unwrap();
@@ -762,7 +848,9 @@ mod tests {
         nan[7] = f64::NAN;
         let e = primary.adopt_sweep(&nan, sweep).unwrap_err().to_string();
         assert!(e.contains("node 3"), "{e}");
-        assert!(helper.begin_sweep(Side::A, &vec![0.0; 2 * n + 2]).is_err());
+        assert!(helper
+            .begin_sweep(Side::A, &vec![0.0; 2 * n + 2], None)
+            .is_err());
         primary.continue_pass(&clock, 2.0).unwrap();
         primary.adopt_sweep(&nodes, sweep).unwrap();
         primary.continue_pass(&clock, 2.0).unwrap();
@@ -773,7 +861,7 @@ mod tests {
             assert_eq!(primary.table(side), tables[side as usize]);
         }
         // an abandoned sweep puts the helper back too
-        helper.begin_sweep(Side::A, &nodes).unwrap();
+        helper.begin_sweep(Side::A, &nodes, None).unwrap();
         helper.continue_pass(&clock, 1.0).unwrap();
         helper.abort_pass();
         assert_eq!(helper.panel(Side::A).mesh.nodes(), before[0]);

@@ -10,6 +10,9 @@
 //! `a` and `b` are the objectives of the left and the right panel (`objective` is read as
 //! `b`, and `amount` as `tangle`, as older links name them); `a-penalty` and `b-penalty`
 //! are the penalty designs of a side running `new`, written for such a side only.
+//! `target` is what every corner is measured against (`ideal` or `input`), written only
+//! when it is not the ideal and accepted only with a strategy that takes it (`opt`,
+//! `rules`: [`target_refused`]).
 //! A mesh in 3D adds its camera (`yaw`, `pitch`, `zoom`) and tetrahedra their cut plane
 //! (`cut`, the axis, and `cut-at`, where along it), e.g.
 //! `#sample=rand3d&…&node=431&yaw=52.5&pitch=31&zoom=1.5&cut=x&cut-at=0.4`; a link
@@ -23,12 +26,14 @@
 //! longer than [`MAX_HASH_BYTES`] is refused before it is looked at.
 //!
 //! [`encode`] writes the keys in one canonical order (the order of the example above,
-//! then `embed`), leaving out only an absent sample or node and `perturbed`/`embed` when
-//! false, with numbers in their shortest exact form, so `decode(&encode(&s)) == Ok(s)`
-//! for every valid state `s` and a state has exactly one encoding.
+//! with `target` after `maxiter` and `embed` last), leaving out only an absent sample or
+//! node, `perturbed`/`embed` when false and `target` when ideal, with numbers in their
+//! shortest exact form, so `decode(&encode(&s)) == Ok(s)` for every valid state `s` and a
+//! state has exactly one encoding.
 
 use serde::{Deserialize, Serialize};
 
+use super::settings::target_refused;
 use super::Settings;
 use smoothlab::error::{Error, Result};
 use smoothlab::objective::{ObjectiveKind, Penalty};
@@ -36,6 +41,7 @@ use smoothlab::smooth::limits::{
     self, amount_in_range, amount_words, threshold_in_range, IntRange, THRESHOLD_WORDS,
 };
 use smoothlab::smooth::{Order, Strategy};
+use smoothlab::target::Target;
 use smoothlab_render::Cut;
 use smoothlab_render::{Camera, ZOOM_RANGE};
 
@@ -141,8 +147,9 @@ pub struct PageState {
     /// Perturb button). Key `perturbed` (`1`/`0`, `true`/`false`); default false.
     pub perturbed: bool,
     /// Keys `strategy`, `threshold` (θ_t in degrees, `0 < t ≤ 90`), `order`, `maxiter`
-    /// (`1 ..= 50`), and `a`, `a-penalty`, `b`, `b-penalty` (what each side smooths
-    /// with); defaults as [`Settings::default`].
+    /// (`1 ..= 50`), `target` (`ideal`, `input`: the latter with `opt` or `rules` only),
+    /// and `a`, `a-penalty`, `b`, `b-penalty` (what each side smooths with); defaults as
+    /// [`Settings::default`].
     pub settings: Settings,
     /// Smoothing passes, `1 ..= 100`. Key `passes`; default 3.
     pub passes: u32,
@@ -215,12 +222,13 @@ impl PageState {
                 read(&mut back, key, &v).map_err(Refusal::into_error)?;
             }
         }
-        check_penalties(self).map_err(Refusal::into_error)
+        check_penalties(self).map_err(Refusal::into_error)?;
+        check_target(self).map_err(Refusal::into_error)
     }
 }
 
 /// The keys, in the order [`encode`] writes them.
-const KEYS: [&str; 20] = [
+const KEYS: [&str; 21] = [
     "sample",
     "tangle",
     "seed",
@@ -234,6 +242,7 @@ const KEYS: [&str; 20] = [
     "passes",
     "order",
     "maxiter",
+    "target",
     "node",
     "yaw",
     "pitch",
@@ -353,6 +362,7 @@ fn read(s: &mut PageState, key: &'static str, v: &str) -> std::result::Result<()
         "passes" => whole(v, limits::PASSES).map(|n| s.passes = n as u32),
         "order" => one_of(&Order::ALL, Order::name, v).map(|o| c.order = o),
         "maxiter" => whole(v, limits::MAX_ITER).map(|n| c.max_iter = n as u32),
+        "target" => one_of(&Target::ALL, Target::name, v).map(|t| c.target = t),
         "node" => whole(v, limits::NODE).map(|n| s.node = Some(n as u32)),
         "yaw" => number(
             v,
@@ -422,6 +432,7 @@ fn write(s: &PageState, key: &str) -> Option<String> {
         "passes" => Some(s.passes.to_string()),
         "order" => name(c.order.name()),
         "maxiter" => Some(c.max_iter.to_string()),
+        "target" => (c.target != Target::Ideal).then(|| c.target.name().into()),
         "node" => s.node.map(|n| n.to_string()),
         "yaw" => s.camera.map(|c| shortest(c.yaw)),
         "pitch" => s.camera.map(|c| shortest(c.pitch)),
@@ -457,6 +468,29 @@ fn check_penalties(s: &PageState) -> std::result::Result<(), Refusal> {
     Ok(())
 }
 
+/// A target other than the ideal is measured by `opt` and `rules` only ([`target_refused`]):
+/// with another strategy the link must leave it out (or say `ideal`).
+fn check_target(s: &PageState) -> std::result::Result<(), Refusal> {
+    let c = &s.settings;
+    if c.target == Target::Ideal || target_refused(c.strategy).is_none() {
+        return Ok(());
+    }
+    let takers: Vec<&str> = Strategy::ALL
+        .into_iter()
+        .filter(|&t| target_refused(t).is_none())
+        .map(Strategy::name)
+        .collect();
+    Err(Refusal {
+        key: "target",
+        found: c.target.name().into(),
+        allowed: format!(
+            "ideal unless 'strategy' is {} (it is {})",
+            takers.join(" or "),
+            c.strategy.name()
+        ),
+    })
+}
+
 /// Reads a permalink hash (with or without its leading `#`) into a [`PageState`];
 /// keys not given keep their defaults. See the module notes for what is refused.
 pub fn decode(hash: &str) -> Result<PageState> {
@@ -480,6 +514,7 @@ pub fn decode(hash: &str) -> Result<PageState> {
         read(&mut state, key, &value).map_err(Refusal::into_error)?;
     }
     check_penalties(&state).map_err(Refusal::into_error)?;
+    check_target(&state).map_err(Refusal::into_error)?;
     Ok(state)
 }
 
@@ -562,6 +597,65 @@ mod tests {
     }
 
     #[test]
+    fn the_target_round_trips_is_left_out_when_ideal_and_needs_a_strategy_that_takes_it() {
+        let s = decode("#sample=plate-quad&strategy=opt&target=input").unwrap();
+        assert_eq!(
+            (s.settings.target, s.settings.strategy),
+            (Target::Input, Strategy::Opt)
+        );
+        let h = encode(&s);
+        assert_eq!(h, "#sample=plate-quad&tangle=0.5&seed=1&strategy=opt&a=old&b=new&b-penalty=barrier&threshold=30&passes=3&order=priority&maxiter=3&target=input");
+        assert_eq!(decode(&h).unwrap(), s);
+        s.settings.smooth_options().unwrap();
+        // Chen's rules (the default strategy) take it too
+        assert_eq!(
+            decode("target=input").unwrap().settings.target,
+            Target::Input
+        );
+        // the ideal is the default: read when given, never written
+        let ideal = decode("#strategy=c2&target=ideal").unwrap();
+        assert_eq!(ideal.settings.target, Target::Ideal);
+        assert!(!encode(&ideal).contains("target"));
+        assert!(!encode(&PageState::default()).contains("target"));
+        // a strategy that takes Laplacian steps refuses it, in the link as in the settings
+        for strategy in ["laplace", "smart", "c1", "c2", "c3"] {
+            let e = decode(&format!("#target=input&strategy={strategy}"))
+                .unwrap_err()
+                .to_string();
+            assert_eq!(
+                e,
+                format!("permalink: 'target' must be ideal unless 'strategy' is opt or rules (it is {strategy}), found 'input'")
+            );
+            let settings = Settings {
+                strategy: Strategy::parse(strategy).unwrap(),
+                target: Target::Input,
+                ..Settings::default()
+            };
+            let e = settings.smooth_options().unwrap_err().to_string();
+            assert!(e.starts_with("the input target is refused: only optimization and Chen's rules measure corners against the mesh as loaded;"), "{e}");
+            let e = PageState {
+                settings,
+                ..PageState::default()
+            }
+            .validate()
+            .unwrap_err()
+            .to_string();
+            assert!(e.contains("'target'"), "{e}");
+        }
+        for (bad, want) in [
+            (
+                "target=Input",
+                "'target' must be one of ideal, input, found 'Input'",
+            ),
+            ("target=", "found ''"),
+            ("target=input&target=ideal", "'target' is given twice"),
+        ] {
+            let e = decode(bad).unwrap_err().to_string();
+            assert!(e.contains(want), "{bad}: {e}");
+        }
+    }
+
+    #[test]
     fn a_control_is_checked_with_its_label_and_range_in_words() {
         assert_eq!(check_control("passes", "7"), Ok(()));
         assert_eq!(
@@ -608,6 +702,7 @@ mod tests {
                     threshold_deg: 30.0,
                     order: Order::Priority,
                     max_iter: 3,
+                    target: Target::Ideal,
                 },
                 passes: 3,
                 node: Some(17),
@@ -1158,6 +1253,7 @@ mod tests {
             passes in 1..=limits::PASSES.max as u32,
             order in proptest::sample::select(Order::ALL.to_vec()),
             max_iter in 1..=limits::MAX_ITER.max as u32,
+            target in proptest::sample::select(Target::ALL.to_vec()),
             node in proptest::option::of(any::<u32>()),
             camera in proptest::option::of((0.0..360.0f64, -90.0..=90.0f64, ZOOM_RANGE.0..=ZOOM_RANGE.1)),
             cut in proptest::option::of((0..3usize, 0.0..=1.0f64)),
@@ -1167,7 +1263,9 @@ mod tests {
             // a penalty only for a side running new
             let choice = |objective, penalty| Choice { objective, penalty: if objective == ObjectiveKind::SmoothShape { penalty } else { Penalty::default() } };
             let compare = [choice(a, penalties[0]), choice(b, penalties[1])];
-            let settings = Settings { strategy, threshold_deg, order, max_iter, compare };
+            // a target other than the ideal only with a strategy that takes it
+            let target = if target_refused(strategy).is_none() { target } else { Target::Ideal };
+            let settings = Settings { strategy, threshold_deg, order, max_iter, target, compare };
             let camera = camera.map(|(yaw, pitch, zoom)| CameraState { yaw, pitch, zoom });
             let cut = cut.map(|(axis, at)| Cut { axis, at });
             PageState { sample: sample.map(String::from), seed, amount, perturbed, settings, passes, node, camera, cut, embed }
@@ -1198,7 +1296,7 @@ mod tests {
         fn decode_never_panics_on_pairs_of_known_keys(
             pairs in proptest::collection::vec(
                 (proptest::sample::select(vec!["sample", "tangle", "amount", "seed", "perturbed", "strategy", "objective", "a", "b", "a-penalty", "b-penalty",
-                    "threshold", "passes", "order", "maxiter", "node", "yaw", "pitch", "zoom", "cut", "cut-at", "embed", "x"]),
+                    "threshold", "passes", "order", "maxiter", "target", "node", "yaw", "pitch", "zoom", "cut", "cut-at", "embed", "x"]),
                  "[-+.%0-9a-fA-Fe]{0,12}"), 0..8)
         ) {
             let h: Vec<String> = pairs.iter().map(|(k, v)| format!("{k}={v}")).collect();

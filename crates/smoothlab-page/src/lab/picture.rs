@@ -112,6 +112,7 @@ impl Request {
             threshold_deg: self.threshold_deg,
             order: self.order,
             max_iter: self.max_iter,
+            target: smoothlab::target::Target::Ideal,
             compare: [
                 Choice::OLD,
                 Choice {

@@ -7,6 +7,7 @@ use serde::{Deserialize, Serialize};
 use smoothlab::error::{Error, Result};
 use smoothlab::objective::{objective_with, Objective, ObjectiveKind, Penalty};
 use smoothlab::smooth::{Order, SmoothOptions, Strategy};
+use smoothlab::target::Target;
 
 /// The two panels of the page: the left one (A) and the right one (B), `a` and `b` to the
 /// page. Either smooths with its own [`Choice`] of any objective; by default the left runs
@@ -126,6 +127,12 @@ pub struct Settings {
     pub order: Order,
     /// Solver iterations per optimization call.
     pub max_iter: u32,
+    /// What every corner is measured against ([`Target`]): the ideal element of its kind,
+    /// or its own shape in the mesh as loaded (or as last perturbed); only the
+    /// strategies of [`target_refused`] take a target other than the ideal. Absent means
+    /// the ideal.
+    #[serde(default)]
+    pub target: Target,
     /// What the left (A) and the right (B) panel smooth with; absent means old against
     /// new (with the barrier penalty).
     #[serde(default = "default_compare")]
@@ -146,6 +153,7 @@ impl Default for Settings {
             threshold_deg: d.threshold_deg,
             order: d.order,
             max_iter: d.max_iter,
+            target: Target::Ideal,
             compare: default_compare(),
         }
     }
@@ -156,6 +164,14 @@ impl Settings {
     pub fn smooth_options(&self) -> Result<SmoothOptions> {
         for c in self.compare {
             c.validate()?;
+        }
+        if self.target != Target::Ideal {
+            if let Some(why) = target_refused(self.strategy) {
+                return Err(Error::invalid(format!(
+                    "the {} target is refused: {why}",
+                    self.target.name()
+                )));
+            }
         }
         let range = smoothlab::smooth::limits::BATCH_MAX_ITER;
         if !range.contains(self.max_iter.into()) {
@@ -187,5 +203,35 @@ impl Settings {
     /// The same, short ([`Choice::label`]), for a compact page.
     pub fn side_label(&self, side: Side) -> String {
         format!("{}: {}", side.letter(), self.choice(side).label())
+    }
+}
+
+/// Why `strategy` cannot measure corners against a target other than the ideal, if it
+/// cannot (as the core's [`Smoothing`](smoothlab::Smoothing) refuses it): only
+/// optimization and Chen's rules take one (the rules then optimise every node), the
+/// others take Laplacian steps, whose centroid is the ideal's answer.
+pub fn target_refused(strategy: Strategy) -> Option<String> {
+    match strategy {
+        Strategy::Opt | Strategy::Rules => None,
+        Strategy::Laplace | Strategy::Smart => Some(format!(
+            "only optimization and Chen's rules measure corners against the mesh as loaded; {} moves each node to the centre of its neighbours, which aims at the ideal",
+            strategy.words()
+        )),
+        Strategy::C1 | Strategy::C2 | Strategy::C3 => Some(format!(
+            "only optimization and Chen's rules measure corners against the mesh as loaded; {} takes Laplacian steps, which aim at the ideal",
+            strategy.words()
+        )),
+    }
+}
+
+/// What a [`Target`] means, in a sentence for the page's users (the control's words).
+pub fn target_words(target: Target) -> &'static str {
+    match target {
+        Target::Ideal => {
+            "Every element is pulled toward the ideal of its kind: the equilateral triangle, the square (in a volume the regular tetrahedron, the cube), as in the papers."
+        }
+        Target::Input => {
+            "Each corner aims at the shape it had in the mesh as loaded (or as last perturbed), its stretch and skew kept; only a corner that was inverted or flat aims at the ideal."
+        }
     }
 }

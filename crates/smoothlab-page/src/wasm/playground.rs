@@ -101,9 +101,27 @@ impl Playground {
 
     /// Starts the sweep of panel `side` alone from `nodes` (the other engine's positions,
     /// x and y interleaved), for a split pass; run it with `continuePass`, then `takeSweep`.
+    /// `target` is the other engine's `targetPositions` (null with the ideal target).
     #[wasm_bindgen(js_name = beginSweep)]
-    pub fn begin_sweep(&mut self, side: &str, nodes: &[f64]) -> Result<(), JsError> {
-        Ok(self.inner.begin_sweep(self::side(side)?, nodes)?)
+    pub fn begin_sweep(
+        &mut self,
+        side: &str,
+        nodes: &[f64],
+        target: Option<Vec<f64>>,
+    ) -> Result<(), JsError> {
+        Ok(self
+            .inner
+            .begin_sweep(self::side(side)?, nodes, target.as_deref())?)
+    }
+
+    /// The positions every corner is measured against (x and y interleaved: the mesh as
+    /// loaded or as last perturbed) when the settings' target is `input`; null with the
+    /// ideal target. A split pass hands them to the engine that sweeps (`beginSweep`).
+    #[wasm_bindgen(js_name = targetPositions)]
+    pub fn target_positions(&self) -> Option<js_sys::Float64Array> {
+        self.inner
+            .target_positions()
+            .map(|t| js_sys::Float64Array::from(&t[..]))
     }
 
     /// The completed sweep: `{ nodes: Float64Array, sweep: { counts, sweep_ms } }`, or

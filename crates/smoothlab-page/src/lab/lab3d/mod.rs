@@ -86,6 +86,10 @@ pub trait Mesh3d: Clone + Sized {
         pass: u32,
         clock: &dyn Fn() -> f64,
     ) -> PassSummary;
+    /// Measures every corner against `at`'s corners from now on (the mesh as loaded, for
+    /// [`Target::Input`](smoothlab::target::Target::Input)), or against the ideal of
+    /// each kind (`None`).
+    fn aim_at(&mut self, at: Option<&Self>);
     /// The full statistics.
     fn stats(&self) -> MeshStats;
     /// The mesh perturbed, `amount` mean edge lengths, seeded.
@@ -331,8 +335,22 @@ impl<M: Mesh3d> Lab3d<M> {
             s.smoother = M::smoother(o)?;
             s.objective = objective;
         }
+        let retarget = settings.target != self.settings.target;
         self.settings = settings;
+        if retarget {
+            self.aim();
+        }
         Ok(())
+    }
+
+    /// Gives both sides the settings' target: the mesh as loaded (or as last perturbed)
+    /// for [`Target::Input`](smoothlab::target::Target::Input), never the sides' own
+    /// positions, so passes after the first leave it where the run began.
+    fn aim(&mut self) {
+        let input = self.settings.target == smoothlab::target::Target::Input;
+        for s in &mut self.sides {
+            s.mesh.aim_at(input.then_some(&self.original));
+        }
     }
 
     /// One smoothing pass on both sides; `clock` gives milliseconds (the core reads no time).
@@ -364,6 +382,10 @@ impl<M: Mesh3d> Lab3d<M> {
             s.stats.clone_from(&self.original_stats);
             s.records.clear();
             s.smoother = M::smoother(o).expect("the settings were checked when set");
+        }
+        // the meshes are the original's copies, without a target: the settings' is set again
+        if self.settings.target != smoothlab::target::Target::Ideal {
+            self.aim();
         }
     }
 

@@ -93,6 +93,9 @@ impl Mesh3d for Surface {
     fn stats(&self) -> MeshStats {
         Surface::stats(self)
     }
+    fn aim_at(&mut self, at: Option<&Surface>) {
+        self.set_target_points(at.map(|a| a.points().to_vec()));
+    }
     fn perturbed(&self, amount: f64, seed: u64) -> Result<Surface> {
         perturb_surface(self, amount, seed)
     }
@@ -230,6 +233,62 @@ mod tests {
 
     fn no_clock() -> f64 {
         0.0
+    }
+
+    #[test]
+    fn the_input_target_is_the_mesh_as_last_perturbed_for_the_whole_run_as_the_cli_takes_it() {
+        use smoothlab::target::Target;
+        let mut l = lab(Sample::CylinderCapped);
+        l.perturb(0.3, 3).unwrap();
+        let settings = Settings {
+            strategy: smoothlab::smooth::Strategy::Rules,
+            target: Target::Input,
+            ..Settings::default()
+        };
+        l.set_settings(settings).unwrap();
+        for _ in 0..2 {
+            l.step(&no_clock);
+        }
+        for side in Side::BOTH {
+            let c = settings.choice(side);
+            let mut model = Model::Surface(l.original().clone());
+            let mut smoothing = smoothlab::Smoothing::default()
+                .objective(c.objective)
+                .strategy(settings.strategy)
+                .target(Target::Input)
+                .passes(2)
+                .finish(0);
+            if c.objective == ObjectiveKind::SmoothShape {
+                smoothing = smoothing.penalty(c.penalty);
+            }
+            model.smooth(&smoothing).unwrap();
+            let Model::Surface(cli) = model else {
+                unreachable!()
+            };
+            assert_eq!(l.mesh(side).points(), cli.points(), "{side:?}");
+            assert_ne!(
+                l.mesh(side).points(),
+                l.original().points(),
+                "{side:?} moved"
+            );
+        }
+        // back to the ideal: the sides are measured as before, a pass as the ideal's
+        l.set_settings(Settings::default()).unwrap();
+        l.reset();
+        let [_, b] = l.step(&no_clock);
+        let mut model = Model::Surface(l.original().clone());
+        let c = Settings::default().choice(Side::B);
+        let smoothing = smoothlab::Smoothing::default()
+            .objective(c.objective)
+            .penalty(c.penalty)
+            .passes(1)
+            .finish(0);
+        model.smooth(&smoothing).unwrap();
+        let Model::Surface(cli) = model else {
+            unreachable!()
+        };
+        assert_eq!(l.mesh(Side::B).points(), cli.points());
+        assert_eq!(b.pass, 1);
     }
 
     #[test]

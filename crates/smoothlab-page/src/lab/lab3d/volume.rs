@@ -218,6 +218,9 @@ impl Mesh3d for VolumeMesh {
     fn stats(&self) -> MeshStats {
         volume_stats(self)
     }
+    fn aim_at(&mut self, at: Option<&VolumeMesh>) {
+        self.set_target_nodes(at.map(|a| a.nodes().to_vec()));
+    }
     fn perturbed(&self, amount: f64, seed: u64) -> Result<VolumeMesh> {
         perturb_volume(self, amount, seed)
     }
@@ -452,6 +455,54 @@ mod tests {
 
     fn no_clock() -> f64 {
         0.0
+    }
+
+    #[test]
+    fn the_input_target_is_the_mesh_as_last_perturbed_for_the_whole_run_as_the_cli_takes_it() {
+        use smoothlab::target::Target;
+        let mut l = lab();
+        l.perturb(0.3, 3).unwrap();
+        let settings = Settings {
+            strategy: smoothlab::smooth::Strategy::Rules,
+            target: Target::Input,
+            ..Settings::default()
+        };
+        l.set_settings(settings).unwrap();
+        for _ in 0..2 {
+            l.step(&no_clock);
+        }
+        for side in Side::BOTH {
+            let c = settings.choice(side);
+            let mut model = Model::Volume(l.original().clone());
+            let smoothing = smoothlab::Smoothing::default()
+                .objective(c.objective)
+                .strategy(settings.strategy)
+                .target(Target::Input)
+                .passes(2)
+                .finish(0);
+            model.smooth(&smoothing).unwrap();
+            let Model::Volume(cli) = model else {
+                unreachable!()
+            };
+            assert_eq!(l.mesh(side).nodes(), cli.nodes(), "{side:?}");
+            assert_ne!(l.mesh(side).nodes(), l.original().nodes(), "{side:?} moved");
+        }
+        // back to the ideal: the sides are measured as before, a pass as the ideal's
+        l.set_settings(Settings::default()).unwrap();
+        l.reset();
+        let [_, b] = l.step(&no_clock);
+        let mut model = Model::Volume(l.original().clone());
+        let c = Settings::default().choice(Side::B);
+        let smoothing = smoothlab::Smoothing::default()
+            .objective(c.objective)
+            .passes(1)
+            .finish(0);
+        model.smooth(&smoothing).unwrap();
+        let Model::Volume(cli) = model else {
+            unreachable!()
+        };
+        assert_eq!(l.mesh(Side::B).nodes(), cli.nodes());
+        assert_eq!(b.pass, 1);
     }
 
     #[test]
