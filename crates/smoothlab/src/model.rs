@@ -25,8 +25,8 @@ impl From<Mesh> for Model {
 }
 
 impl Model {
-    /// Measures every corner against `target` from now on: [`Target::Input`] takes the
-    /// mesh as it is now, [`Target::Ideal`] the ideal of each kind.
+    /// Measures every corner against `target` from now on: [`Input`](crate::target::Target::Input)
+    /// takes the mesh as it is now, [`Ideal`](crate::target::Target::Ideal) the ideal of each kind.
     pub fn set_target(&mut self, target: crate::target::Target) {
         let input = target == crate::target::Target::Input;
         match self {

@@ -713,7 +713,8 @@ impl Smoother<Star> {
     /// Counts as [`pass`](Self::pass) does; does not count as a pass.
     ///
     /// A tangled mesh never ends it with more inverted elements than it began with
-    /// ([`undo_new_inversions`]; every strategy but the plain Laplacian, the guard on).
+    /// (the elements it inverted go back where it found their nodes; every strategy but the
+    /// plain Laplacian, the guard on).
     pub fn sweep(&mut self, mesh: &mut Mesh, objective: &dyn Objective) -> SweepCounts {
         let o = self.options;
         if !(o.keep_valid && o.strategy != Strategy::Laplace) {

@@ -97,6 +97,10 @@ impl Fit {
     }
 }
 
+/// How many times the distance to the nearest other node in space a fit's spacing may be
+/// ([`Fitted::new`]).
+const SPACING_CAP: f64 = 4.0;
+
 /// The surface fitted through a tangled mesh's nodes (see the module docs).
 #[derive(Clone, Debug)]
 pub struct Fitted {
@@ -197,6 +201,22 @@ impl Fitted {
         let origins: Vec<DVec3> = fits.iter().map(|f| f.plane.origin).collect();
         let dots: Vec<[u32; 3]> = (0..origins.len() as u32).map(|i| [i; 3]).collect();
         let grid = Grid::new(&origins, &dots);
+        // a ring's spacing is the mesh's, which a tangle stretches across the surface: the
+        // blend's reach is held to a few times the nearest other node's distance in space
+        // (issue 61: a shuffled sphere's rings span it, and every projection blended every
+        // fit, a cost quadratic in the mesh)
+        for fit in &mut fits {
+            let o = fit.plane.origin;
+            let nearest = grid.nearest(o, |g| {
+                (origins[g as usize] != o).then_some(origins[g as usize])
+            });
+            if let Some(&q) = origins.get(nearest as usize) {
+                let cap = SPACING_CAP * (q - o).length();
+                if cap > 0.0 && fit.spacing > cap {
+                    fit.spacing = cap;
+                }
+            }
+        }
         Fitted {
             fits,
             node_start,

@@ -106,14 +106,15 @@ impl Grid {
             let range = |i: usize| centre[i].saturating_sub(r)..=(centre[i] + r).min(dims[i] - 1);
             for z in range(2) {
                 for y in range(1) {
-                    for x in range(0) {
-                        let shell = [x, y, z]
-                            .iter()
-                            .zip(centre)
-                            .any(|(&c, m)| c.abs_diff(m) == r);
-                        if !shell {
-                            continue;
-                        }
+                    // the shell's cells only: the whole row where z or y is on the shell,
+                    // else its two ends (the cube's inside was searched at smaller r; a far
+                    // query's r grows with the grid, and its cube with r³)
+                    let on_shell = z.abs_diff(centre[2]) == r || y.abs_diff(centre[1]) == r;
+                    let ends = [
+                        centre[0].checked_sub(r),
+                        Some(centre[0] + r).filter(|&x| x < dims[0] && r > 0),
+                    ];
+                    let mut row = |x: usize| {
                         let c = (z * dims[1] + y) * dims[0] + x;
                         for &t in &self.tris[self.start[c] as usize..self.start[c + 1] as usize] {
                             let Some(q) = nearest_point(t) else { continue };
@@ -122,6 +123,11 @@ impl Grid {
                                 (best, best_d) = (t, d);
                             }
                         }
+                    };
+                    if on_shell {
+                        range(0).for_each(&mut row);
+                    } else {
+                        ends.into_iter().flatten().for_each(&mut row);
                     }
                 }
             }
