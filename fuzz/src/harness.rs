@@ -73,16 +73,8 @@ pub const TRIANGLE_SEPARATOR: u8 = 0;
 
 /// File names `read_bytes` is called with, indexed by the first input byte (modulo the length).
 /// (`.mesh` came last, so the bytes that picked the others still do.)
-pub const READ_BYTES_NAMES: [&str; 8] = [
-    "fuzz.msh",
-    "fuzz.vtk",
-    "fuzz.obj",
-    "fuzz.off",
-    "fuzz.node",
-    "fuzz.ele",
-    "fuzz.txt",
-    "fuzz.mesh",
-];
+pub const READ_BYTES_NAMES: [&str; 8] =
+    ["fuzz.msh", "fuzz.vtk", "fuzz.obj", "fuzz.off", "fuzz.node", "fuzz.ele", "fuzz.txt", "fuzz.mesh"];
 
 const MSH22_HEADER: &str = "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n";
 const MSH41_HEADER: &str = "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n";
@@ -101,14 +93,8 @@ pub fn run(t: Target, data: &[u8]) -> Outcome {
     let text = || std::str::from_utf8(data).ok();
     let read = match t {
         Target::Msh22 | Target::Msh41 => {
-            let Some(body) = text() else {
-                return Outcome::NotText;
-            };
-            let head = if t == Target::Msh22 {
-                MSH22_HEADER
-            } else {
-                MSH41_HEADER
-            };
+            let Some(body) = text() else { return Outcome::NotText };
+            let head = if t == Target::Msh22 { MSH22_HEADER } else { MSH41_HEADER };
             io::read_str(&format!("{head}{body}"), Format::Msh)
         }
         Target::Vtk => match text() {
@@ -141,31 +127,16 @@ pub fn run(t: Target, data: &[u8]) -> Outcome {
             }
         }
         Target::ReadBytes => {
-            let Some((&first, rest)) = data.split_first() else {
-                return Outcome::NotText;
-            };
-            io::read_bytes(
-                rest,
-                READ_BYTES_NAMES[first as usize % READ_BYTES_NAMES.len()],
-            )
+            let Some((&first, rest)) = data.split_first() else { return Outcome::NotText };
+            io::read_bytes(rest, READ_BYTES_NAMES[first as usize % READ_BYTES_NAMES.len()])
         }
     };
     // The text targets again with a byte-order mark in front (one: a text that starts
     // with one already is read as it is): the same outcome.
-    let bom = |s: &str| {
-        if s.starts_with('\u{feff}') {
-            s.to_string()
-        } else {
-            format!("\u{feff}{s}")
-        }
-    };
+    let bom = |s: &str| if s.starts_with('\u{feff}') { s.to_string() } else { format!("\u{feff}{s}") };
     let with_bom = match t {
         Target::Msh22 | Target::Msh41 => text().map(|body| {
-            let head = if t == Target::Msh22 {
-                MSH22_HEADER
-            } else {
-                MSH41_HEADER
-            };
+            let head = if t == Target::Msh22 { MSH22_HEADER } else { MSH41_HEADER };
             io::read_str(&bom(&format!("{head}{body}")), Format::Msh)
         }),
         Target::Vtk => text().map(|s| io::read_str(&bom(s), Format::Vtk)),
@@ -176,16 +147,8 @@ pub fn run(t: Target, data: &[u8]) -> Outcome {
     };
     match (&read, with_bom) {
         (Ok(a), Some(Ok(b))) => same(a, &b, true, "with a byte-order mark"),
-        (Err(a), Some(Err(b))) => assert_eq!(
-            a.to_string(),
-            b.to_string(),
-            "a byte-order mark changed the message"
-        ),
-        (a, Some(b)) => panic!(
-            "a byte-order mark changed the outcome: {:?} vs {:?}",
-            a.as_ref().map(|_| ()),
-            b.map(|_| ())
-        ),
+        (Err(a), Some(Err(b))) => assert_eq!(a.to_string(), b.to_string(), "a byte-order mark changed the message"),
+        (a, Some(b)) => panic!("a byte-order mark changed the outcome: {:?} vs {:?}", a.as_ref().map(|_| ()), b.map(|_| ())),
         (_, None) => {}
     }
     match read {
@@ -198,9 +161,7 @@ pub fn run(t: Target, data: &[u8]) -> Outcome {
             let m = e.to_string();
             assert!(!m.is_empty(), "empty error message: {e:?}");
             // (a message may quote the input, which may say NaN itself)
-            let quoted = String::from_utf8_lossy(data)
-                .to_ascii_lowercase()
-                .contains("nan");
+            let quoted = String::from_utf8_lossy(data).to_ascii_lowercase().contains("nan");
             assert!(quoted || !m.contains("NaN"), "NaN in a message: {m}");
             Outcome::Refused(e)
         }
@@ -227,17 +188,11 @@ pub fn check_mesh(mesh: &Mesh) {
         panic!("a mesh that was read fails its sanity check: {e}");
     }
     let stats = quality::mesh_stats(mesh);
-    assert_eq!(
-        (stats.nodes, stats.elements),
-        (mesh.node_count(), mesh.element_count())
-    );
+    assert_eq!((stats.nodes, stats.elements), (mesh.node_count(), mesh.element_count()));
     no_nan(&stats, "mesh_stats");
     // The same mesh scaled up by a power of two (exact) towards the largest coordinates
     // smoothlab takes has the same statistics, bit for bit.
-    let largest = mesh
-        .nodes()
-        .iter()
-        .fold(0.0f64, |m, p| m.max(p.x.abs()).max(p.y.abs()));
+    let largest = mesh.nodes().iter().fold(0.0f64, |m, p| m.max(p.x.abs()).max(p.y.abs()));
     if largest > 0.0 {
         let room = (smoothlab::mesh::MAX_COORDINATE / largest).log2().floor() as i32;
         if room >= 1 {
@@ -248,18 +203,8 @@ pub fn check_mesh(mesh: &Mesh) {
             }
             let s = quality::mesh_stats(&scaled);
             assert_eq!(
-                (
-                    s.inverted,
-                    &s.angle_histogram_6deg,
-                    s.min_quality.to_bits(),
-                    s.max_condition.to_bits()
-                ),
-                (
-                    stats.inverted,
-                    &stats.angle_histogram_6deg,
-                    stats.min_quality.to_bits(),
-                    stats.max_condition.to_bits()
-                ),
+                (s.inverted, &s.angle_histogram_6deg, s.min_quality.to_bits(), s.max_condition.to_bits()),
+                (stats.inverted, &stats.angle_histogram_6deg, stats.min_quality.to_bits(), stats.max_condition.to_bits()),
                 "the statistics changed with the scale (×{f:e})"
             );
         }
@@ -271,26 +216,15 @@ pub fn check_mesh(mesh: &Mesh) {
         (Format::Obj, MshVersion::V22),
         (Format::Off, MshVersion::V22),
     ] {
-        let opts = WriteOptions {
-            msh_version: version,
-        };
+        let opts = WriteOptions { msh_version: version };
         let Ok(text) = io::write_string(mesh, format, &opts) else {
             // OBJ and OFF refuse quadratic elements, by design.
-            assert!(
-                matches!(format, Format::Obj | Format::Off) && mesh.has_quadratic(),
-                "{format:?} refused a mesh"
-            );
+            assert!(matches!(format, Format::Obj | Format::Off) && mesh.has_quadratic(), "{format:?} refused a mesh");
             continue;
         };
-        let back = io::read_str(&text, format).unwrap_or_else(|e| {
-            panic!("{format:?} {version:?} does not read back what it wrote: {e}\n{text}")
-        });
-        same(
-            mesh,
-            &back,
-            matches!(format, Format::Msh | Format::Vtk),
-            &format!("{format:?} {version:?}"),
-        );
+        let back = io::read_str(&text, format)
+            .unwrap_or_else(|e| panic!("{format:?} {version:?} does not read back what it wrote: {e}\n{text}"));
+        same(mesh, &back, matches!(format, Format::Msh | Format::Vtk), &format!("{format:?} {version:?}"));
     }
     // Medit: linear kinds only, a section per kind (triangles first)
     match io::write_string(mesh, Format::Medit, &WriteOptions::default()) {
@@ -299,11 +233,7 @@ pub fn check_mesh(mesh: &Mesh) {
                 .unwrap_or_else(|e| panic!("Medit does not read back what it wrote: {e}\n{text}"));
             let order: Vec<usize> = [smoothlab::ElementKind::Tri3, smoothlab::ElementKind::Quad4]
                 .iter()
-                .flat_map(|&k| {
-                    (0..mesh.element_count())
-                        .filter(|&e| mesh.kind(e) == k)
-                        .collect::<Vec<_>>()
-                })
+                .flat_map(|&k| (0..mesh.element_count()).filter(|&e| mesh.kind(e) == k).collect::<Vec<_>>())
                 .collect();
             same_in_order(mesh, &back, &order, false, "Medit");
         }
@@ -311,9 +241,8 @@ pub fn check_mesh(mesh: &Mesh) {
     }
     match io::write_triangle(mesh) {
         Ok((node, ele)) => {
-            let back = io::read_triangle(&node, &ele).unwrap_or_else(|e| {
-                panic!("Triangle does not read back what it wrote: {e}\n{node}\n{ele}")
-            });
+            let back = io::read_triangle(&node, &ele)
+                .unwrap_or_else(|e| panic!("Triangle does not read back what it wrote: {e}\n{node}\n{ele}"));
             same(mesh, &back, false, "Triangle");
         }
         Err(_) => assert!(
@@ -326,42 +255,21 @@ pub fn check_mesh(mesh: &Mesh) {
 /// What a Medit text holds, read as a model: a volume written as `.mesh` reads back with
 /// its nodes to the bit, and writes the same text again.
 fn check_medit_model(text: &str) {
-    let Ok(smoothlab::Model::Volume(v)) = io::read_model_str(text, Format::Medit) else {
-        return;
-    };
+    let Ok(smoothlab::Model::Volume(v)) = io::read_model_str(text, Format::Medit) else { return };
     let model = smoothlab::Model::Volume(v);
-    let Ok(written) = io::write_model_string(&model, Format::Medit, &WriteOptions::default())
-    else {
+    let Ok(written) = io::write_model_string(&model, Format::Medit, &WriteOptions::default()) else {
         panic!("Medit refused a volume it read (linear kinds only)")
     };
     let back = match io::read_model_str(&written, Format::Medit) {
         Ok(smoothlab::Model::Volume(b)) => b,
-        other => panic!(
-            "Medit does not read back the volume it wrote: {:?}\n{written}",
-            other.map(|_| ())
-        ),
+        other => panic!("Medit does not read back the volume it wrote: {:?}\n{written}", other.map(|_| ())),
     };
-    let smoothlab::Model::Volume(v) = &model else {
-        unreachable!()
-    };
-    let bits = |m: &smoothlab::volume::VolumeMesh| {
-        m.nodes()
-            .iter()
-            .map(|q| q.to_array().map(f64::to_bits))
-            .collect::<Vec<_>>()
-    };
+    let smoothlab::Model::Volume(v) = &model else { unreachable!() };
+    let bits = |m: &smoothlab::volume::VolumeMesh| m.nodes().iter().map(|q| q.to_array().map(f64::to_bits)).collect::<Vec<_>>();
     assert_eq!(bits(v), bits(&back), "Medit volume: nodes");
     assert_eq!(v.fixed(), back.fixed(), "Medit volume: fixed flags");
-    let again = io::write_model_string(
-        &smoothlab::Model::Volume(back),
-        Format::Medit,
-        &WriteOptions::default(),
-    )
-    .unwrap();
-    assert_eq!(
-        written, again,
-        "Medit volume: written, read back and written again"
-    );
+    let again = io::write_model_string(&smoothlab::Model::Volume(back), Format::Medit, &WriteOptions::default()).unwrap();
+    assert_eq!(written, again, "Medit volume: written, read back and written again");
 }
 
 fn same(a: &Mesh, b: &Mesh, fixed: bool, what: &str) {
@@ -372,11 +280,7 @@ fn same(a: &Mesh, b: &Mesh, fixed: bool, what: &str) {
 /// `b` is `a` with its elements in `order` (element `k` of `b` is `a`'s `order[k]`).
 fn same_in_order(a: &Mesh, b: &Mesh, order: &[usize], fixed: bool, what: &str) {
     assert_eq!(a.node_count(), b.node_count(), "{what}: node count");
-    assert_eq!(
-        a.element_count(),
-        b.element_count(),
-        "{what}: element count"
-    );
+    assert_eq!(a.element_count(), b.element_count(), "{what}: element count");
     assert_eq!(order.len(), b.element_count(), "{what}: element count");
     for (k, &e) in order.iter().enumerate() {
         assert_eq!(a.kind(e), b.kind(k), "{what}: kind of element {e}");
@@ -384,17 +288,10 @@ fn same_in_order(a: &Mesh, b: &Mesh, order: &[usize], fixed: bool, what: &str) {
     if what != "Triangle" && (a.plane.is_some() || b.plane.is_some()) {
         // written in its own 3D plane and read back (Triangle writes 2D coordinates): the plane is fitted again, so the
         // 2D coordinates may differ by a rigid motion; the 3D points agree to rounding
-        let scale = a
-            .nodes()
-            .iter()
-            .map(|&p| a.to_3d(p).abs().max_element())
-            .fold(f64::MIN_POSITIVE, f64::max);
+        let scale = a.nodes().iter().map(|&p| a.to_3d(p).abs().max_element()).fold(f64::MIN_POSITIVE, f64::max);
         for (i, (p, q)) in a.nodes().iter().zip(b.nodes()).enumerate() {
             let (p3, q3) = (a.to_3d(*p), b.to_3d(*q));
-            assert!(
-                (p3 - q3).abs().max_element() <= 1e-9 * scale,
-                "{what}: node {i} was at {p3:?}, read back at {q3:?}"
-            );
+            assert!((p3 - q3).abs().max_element() <= 1e-9 * scale, "{what}: node {i} was at {p3:?}, read back at {q3:?}");
         }
     } else {
         for (i, (p, q)) in a.nodes().iter().zip(b.nodes()).enumerate() {

@@ -15,15 +15,8 @@ pub fn named<T: Copy + Send + Sync + 'static>(
     describe: fn(T) -> &'static str,
 ) -> impl clap::builder::TypedValueParser<Value = T> {
     use clap::builder::{PossibleValue, TypedValueParser};
-    clap::builder::PossibleValuesParser::new(
-        all.iter()
-            .map(|&t| PossibleValue::new(name(t)).help(describe(t))),
-    )
-    .map(move |s: String| {
-        *all.iter()
-            .find(|&&t| name(t) == s)
-            .expect("one of the possible values")
-    })
+    clap::builder::PossibleValuesParser::new(all.iter().map(|&t| PossibleValue::new(name(t)).help(describe(t))))
+        .map(move |s: String| *all.iter().find(|&&t| name(t) == s).expect("one of the possible values"))
 }
 
 /// `--penalty`'s values.
@@ -50,16 +43,11 @@ pub fn msh_version_parser() -> impl clap::builder::TypedValueParser<Value = MshV
 /// `--cells 8,4,2`, `--size 2,1,1`.
 pub fn per_axis<T: std::str::FromStr + Copy>(s: &str) -> Result<[T; 3], String> {
     let parts: Vec<&str> = s.split(',').map(str::trim).collect();
-    let parse = |p: &str| {
-        p.parse::<T>()
-            .map_err(|_| format!("'{p}' is not a number of the kind wanted"))
-    };
+    let parse = |p: &str| p.parse::<T>().map_err(|_| format!("'{p}' is not a number of the kind wanted"));
     match parts.as_slice() {
         [one] => Ok([parse(one)?; 3]),
         [x, y, z] => Ok([parse(x)?, parse(y)?, parse(z)?]),
-        _ => Err(format!(
-            "'{s}': give one value for every axis, or three separated by commas (x,y,z)"
-        )),
+        _ => Err(format!("'{s}': give one value for every axis, or three separated by commas (x,y,z)")),
     }
 }
 

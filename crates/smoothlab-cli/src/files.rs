@@ -6,8 +6,8 @@ use clap::Args;
 
 use crate::args::msh_version_parser;
 use smoothlab::io::{self, MshVersion, WriteOptions};
-use smoothlab::model::Model;
 use smoothlab::quality::element_quality;
+use smoothlab::model::Model;
 use smoothlab::Mesh;
 
 /// Reads a planar mesh or a surface, naming the file in any error, and warns (stderr)
@@ -20,10 +20,7 @@ pub fn read_model(path: &Path) -> Result<Model, String> {
         // a mistyped coordinate makes a planar mesh a surface: say which node did
         Model::Surface(s) => {
             if let Some(why) = s.not_planar() {
-                eprintln!(
-                    "smoothlab: note: {}: read as a surface in 3D: {why}",
-                    path.display()
-                );
+                eprintln!("smoothlab: note: {}: read as a surface in 3D: {why}", path.display());
             }
         }
         Model::Volume(v) => {
@@ -59,19 +56,11 @@ fn warn_zero_area(mesh: &Mesh, path: &Path) {
 }
 
 /// Writes a mesh (planar or a surface) in the format of the file's extension.
-pub fn write_mesh<'a>(
-    mesh: impl Into<io::Writable<'a>>,
-    path: &Path,
-    msh_version: MshVersion,
-) -> Result<(), String> {
+pub fn write_mesh<'a>(mesh: impl Into<io::Writable<'a>>, path: &Path, msh_version: MshVersion) -> Result<(), String> {
     let opts = WriteOptions { msh_version };
     let mesh = mesh.into();
     io::write_path(mesh, path, &opts).map_err(|e| format!("{}: {e}", path.display()))?;
-    let ext = path
-        .extension()
-        .and_then(|e| e.to_str())
-        .unwrap_or("")
-        .to_ascii_lowercase();
+    let ext = path.extension().and_then(|e| e.to_str()).unwrap_or("").to_ascii_lowercase();
     if ext == "node" || ext == "ele" {
         if let Some(note) = io::flat_note(mesh.mesh) {
             eprintln!("{}: note: {note}", path.display());

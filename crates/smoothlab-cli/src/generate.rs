@@ -5,10 +5,8 @@ use std::path::PathBuf;
 use clap::{Args, Subcommand};
 
 use crate::args::{msh_version_parser, named, per_axis};
+use smoothlab::generate::{self, GridKind, HexBlock, PlateKind, StarKind, SurfaceKind, SurfaceShape};
 use smoothlab::generate::perturb_surface;
-use smoothlab::generate::{
-    self, GridKind, HexBlock, PlateKind, StarKind, SurfaceKind, SurfaceShape,
-};
 use smoothlab::model::Model;
 use smoothlab::Mesh;
 
@@ -174,11 +172,7 @@ pub struct BlockArgs {
 
 impl BlockArgs {
     fn block(&self) -> HexBlock {
-        HexBlock {
-            cells: self.cells,
-            size: self.size.into(),
-            bend: self.bend,
-        }
+        HexBlock { cells: self.cells, size: self.size.into(), bend: self.bend }
     }
 }
 
@@ -201,59 +195,34 @@ pub struct SurfaceArgs {
 
 pub fn run(a: GenerateArgs) -> Result<(), String> {
     let surface_sample = |shape: SurfaceShape, s: SurfaceArgs| {
-        let surface =
-            generate::surface(shape, s.kind, s.order, s.resolution).map_err(|e| e.to_string())?;
+        let surface = generate::surface(shape, s.kind, s.order, s.resolution).map_err(|e| e.to_string())?;
         write_mesh(&surface, &s.out.output, s.out.msh_version)
     };
     let (mesh, out): (Mesh, Output) = match a.kind {
         Kind::Sphere(s) => return surface_sample(SurfaceShape::Sphere, s),
         Kind::Cylinder(s) => return surface_sample(SurfaceShape::Cylinder, s),
         Kind::Torus(s) => return surface_sample(SurfaceShape::Torus, s),
-        Kind::Rand2d {
-            points,
-            per_side,
-            seed,
-            out,
-        } => (
-            generate::rand2d(points, per_side, seed).map_err(|e| e.to_string())?,
-            out,
-        ),
-        Kind::Grid { nx, ny, kind, out } => (
-            generate::grid(nx, ny, kind).map_err(|e| e.to_string())?,
-            out,
-        ),
-        Kind::Plate {
-            kind,
-            order,
-            resolution,
-            out,
-        } => (
-            generate::plate(kind, order, resolution).map_err(|e| e.to_string())?,
-            out,
-        ),
-        Kind::Star { kind, k, out } => (
-            generate::star(kind, k.unwrap_or(kind.default_k())).map_err(|e| e.to_string())?,
-            out,
-        ),
-        Kind::Perturb {
-            input,
-            amount,
-            seed,
-            out,
-        } => match read_model(&input)? {
-            Model::Planar(mesh) => (
-                generate::perturb(&mesh, amount, seed)
-                    .map_err(|e| format!("{}: {e}", input.display()))?,
-                out,
-            ),
+        Kind::Rand2d { points, per_side, seed, out } => {
+            (generate::rand2d(points, per_side, seed).map_err(|e| e.to_string())?, out)
+        }
+        Kind::Grid { nx, ny, kind, out } => (generate::grid(nx, ny, kind).map_err(|e| e.to_string())?, out),
+        Kind::Plate { kind, order, resolution, out } => {
+            (generate::plate(kind, order, resolution).map_err(|e| e.to_string())?, out)
+        }
+        Kind::Star { kind, k, out } => {
+            (generate::star(kind, k.unwrap_or(kind.default_k())).map_err(|e| e.to_string())?, out)
+        }
+        Kind::Perturb { input, amount, seed, out } => match read_model(&input)? {
+            Model::Planar(mesh) => {
+                (generate::perturb(&mesh, amount, seed).map_err(|e| format!("{}: {e}", input.display()))?, out)
+            }
             Model::Surface(s) => {
-                let moved = perturb_surface(&s, amount, seed)
-                    .map_err(|e| format!("{}: {e}", input.display()))?;
+                let moved = perturb_surface(&s, amount, seed).map_err(|e| format!("{}: {e}", input.display()))?;
                 return write_mesh(&moved, &out.output, out.msh_version);
             }
             Model::Volume(v) => {
-                let moved = generate::perturb_volume(&v, amount, seed)
-                    .map_err(|e| format!("{}: {e}", input.display()))?;
+                let moved =
+                    generate::perturb_volume(&v, amount, seed).map_err(|e| format!("{}: {e}", input.display()))?;
                 return write_model(&Model::Volume(moved), &out.output, out.msh_version);
             }
         },
@@ -261,12 +230,7 @@ pub fn run(a: GenerateArgs) -> Result<(), String> {
             let mesh = generate::rand3d(points, seed).map_err(|e| e.to_string())?;
             return write_model(&Model::Volume(mesh), &out.output, out.msh_version);
         }
-        Kind::Hexgrid {
-            block,
-            order,
-            serendipity,
-            out,
-        } => {
+        Kind::Hexgrid { block, order, serendipity, out } => {
             let grid = generate::hex_grid(&block.block()).map_err(|e| e.to_string())?;
             let grid = match (order, serendipity) {
                 (1, false) => grid,
@@ -285,11 +249,7 @@ pub fn run(a: GenerateArgs) -> Result<(), String> {
             let cube = match order {
                 1 => cube,
                 2 => cube.to_quadratic(false).map_err(|e| e.to_string())?,
-                o => {
-                    return Err(format!(
-                        "--order {o}: give 1 (4-node tetrahedra) or 2 (10-node)"
-                    ))
-                }
+                o => return Err(format!("--order {o}: give 1 (4-node tetrahedra) or 2 (10-node)")),
             };
             return write_model(&Model::Volume(cube), &out.output, out.msh_version);
         }

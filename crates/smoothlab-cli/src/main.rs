@@ -12,11 +12,7 @@ mod smooth;
 mod stats;
 
 #[derive(Parser)]
-#[command(
-    name = "smoothlab",
-    version,
-    about = "A mesh-smoothing laboratory: metrics, smoothers and pictures"
-)]
+#[command(name = "smoothlab", version, about = "A mesh-smoothing laboratory: metrics, smoothers and pictures")]
 struct Cli {
     #[command(subcommand)]
     command: Command,

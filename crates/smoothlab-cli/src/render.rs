@@ -113,10 +113,7 @@ fn size(spec: Option<&str>, default: (u32, u32)) -> Result<(u32, u32), String> {
     let Some(s) = spec else { return Ok(default) };
     let bad = || format!("--size {s}: give WIDTHxHEIGHT in pixels, e.g. 1200x700");
     let (w, h) = s.split_once(['x', 'X']).ok_or_else(bad)?;
-    Ok((
-        w.trim().parse().map_err(|_| bad())?,
-        h.trim().parse().map_err(|_| bad())?,
-    ))
+    Ok((w.trim().parse().map_err(|_| bad())?, h.trim().parse().map_err(|_| bad())?))
 }
 
 impl ViewArg {
@@ -139,35 +136,15 @@ fn flag(name: &str) -> String {
 pub fn run(a: RenderArgs) -> Result<(), String> {
     let sides = picture::sides(&a.objective, &flag)?;
     if !(a.dpr.is_finite() && a.dpr > 0.0 && a.dpr <= 4.0) {
-        return Err(format!(
-            "--dpr {}: give a ratio above 0 and at most 4",
-            a.dpr
-        ));
+        return Err(format!("--dpr {}: give a ratio above 0 and at most 4", a.dpr));
     }
     if let Some(name) = &a.figure {
         return figure(name, &a);
     }
-    let input = a
-        .input
-        .clone()
-        .ok_or("give an input mesh, or --figure NAME")?;
-    let camera = a
-        .camera
-        .as_deref()
-        .map(Camera::parse)
-        .transpose()
-        .map_err(|e| format!("--camera: {e}"))?;
-    let cut = a
-        .cut
-        .as_deref()
-        .map(Cut::parse)
-        .transpose()
-        .map_err(|e| format!("--cut: {e}"))?;
-    let size = a
-        .size
-        .as_deref()
-        .map(|s| size(Some(s), (0, 0)))
-        .transpose()?;
+    let input = a.input.clone().ok_or("give an input mesh, or --figure NAME")?;
+    let camera = a.camera.as_deref().map(Camera::parse).transpose().map_err(|e| format!("--camera: {e}"))?;
+    let cut = a.cut.as_deref().map(Cut::parse).transpose().map_err(|e| format!("--cut: {e}"))?;
+    let size = a.size.as_deref().map(|s| size(Some(s), (0, 0))).transpose()?;
     let request = Request {
         view: a.view.view(),
         node: a.node,
@@ -195,20 +172,10 @@ pub fn run(a: RenderArgs) -> Result<(), String> {
 
 /// `--figure NAME`: the tour's picture of that figure.
 fn figure(name: &str, a: &RenderArgs) -> Result<(), String> {
-    let fig = smoothlab_page::lab::tour::find(name)
-        .map_err(|e| format!("--figure {name}: {e}"))?
-        .1;
-    let (w, h) = size(
-        a.size.as_deref(),
-        smoothlab_page::lab::tour::pictures::default_size(fig.name),
-    )?;
-    let c = Canvas {
-        w: ((w as f32) * a.dpr) as u32,
-        h: ((h as f32) * a.dpr) as u32,
-        dpr: a.dpr,
-    };
-    let picture = smoothlab_page::lab::tour::pictures::render(fig.name, c, &a.theme.theme())
-        .map_err(|e| e.to_string())?;
+    let fig = smoothlab_page::lab::tour::find(name).map_err(|e| format!("--figure {name}: {e}"))?.1;
+    let (w, h) = size(a.size.as_deref(), smoothlab_page::lab::tour::pictures::default_size(fig.name))?;
+    let c = Canvas { w: ((w as f32) * a.dpr) as u32, h: ((h as f32) * a.dpr) as u32, dpr: a.dpr };
+    let picture = smoothlab_page::lab::tour::pictures::render(fig.name, c, &a.theme.theme()).map_err(|e| e.to_string())?;
     let png = encode_png(&picture).map_err(|e| e.to_string())?;
     std::fs::write(&a.output, png).map_err(|e| format!("{}: {e}", a.output.display()))
 }

@@ -34,31 +34,15 @@ pub fn table(s: &MeshStats) -> String {
             format!("in 3D, each element measured in its own plane; nodes at most {d:.3e} from the surface"),
         );
     }
-    let following = if s.following_nodes > 0 {
-        format!(", {} mid-side following", s.following_nodes)
-    } else {
-        String::new()
-    };
-    row(
-        "nodes",
-        format!(
-            "{} ({} free, {} fixed{following})",
-            s.nodes, s.free_nodes, s.fixed_nodes
-        ),
-    );
+    let following =
+        if s.following_nodes > 0 { format!(", {} mid-side following", s.following_nodes) } else { String::new() };
+    row("nodes", format!("{} ({} free, {} fixed{following})", s.nodes, s.free_nodes, s.fixed_nodes));
     let solid = s.is_volume();
     if solid {
         // each kind with its count, its name saying its nodes: "384 4-node tetrahedra";
         // "940 (445 4-node tetrahedra, 305 8-node hexahedra, 190 5-node pyramids)"
         let words = s.volume_kinds.words();
-        row(
-            "elements",
-            if s.volume_kinds.present().count() == 1 {
-                words
-            } else {
-                format!("{} ({words})", s.elements)
-            },
-        );
+        row("elements", if s.volume_kinds.present().count() == 1 { words } else { format!("{} ({words})", s.elements) });
     } else {
         row(
             "elements",
@@ -74,10 +58,7 @@ pub fn table(s: &MeshStats) -> String {
     match &s.solid {
         Some(v) if s.volume_kinds.present().any(|(k, _)| !k.is_tet()) => row(
             "inverted",
-            format!(
-                "{} ({} inside, every corner positive)",
-                s.inverted, v.inverted_inside
-            ),
+            format!("{} ({} inside, every corner positive)", s.inverted, v.inverted_inside),
         ),
         _ => row("inverted", s.inverted.to_string()),
     }
@@ -87,17 +68,10 @@ pub fn table(s: &MeshStats) -> String {
     );
     // an element's mean ratio is its corners' mean: beside inverted elements a positive
     // smallest one says so (a hexahedron with one corner inverted keeps a positive mean)
-    let averaged = if solid && s.inverted > 0 && s.min_quality > 0.0 {
-        " (corners averaged)"
-    } else {
-        ""
-    };
+    let averaged = if solid && s.inverted > 0 && s.min_quality > 0.0 { " (corners averaged)" } else { "" };
     row(
         if solid { "mean ratio" } else { "quality α/β" },
-        format!(
-            "min {:.4}{averaged}  mean {:.4}",
-            s.min_quality, s.mean_quality
-        ),
+        format!("min {:.4}{averaged}  mean {:.4}", s.min_quality, s.mean_quality),
     );
     row(
         "condition κ",
@@ -108,10 +82,7 @@ pub fn table(s: &MeshStats) -> String {
         },
     );
     if let Some(v) = &s.solid {
-        row(
-            "scaled Jacobian",
-            format!("min {:.4}", v.min_scaled_jacobian),
-        );
+        row("scaled Jacobian", format!("min {:.4}", v.min_scaled_jacobian));
     }
     let total: u64 = s.angle_histogram_6deg.iter().sum();
     t.push_str(if solid {
@@ -125,12 +96,7 @@ pub fn table(s: &MeshStats) -> String {
         }
         let pct = 100.0 * c as f64 / total.max(1) as f64;
         let bar = "#".repeat((pct / 2.0).ceil() as usize);
-        t.push_str(&format!(
-            "  {:>3}–{:<3}° {:>6.2}% {bar}\n",
-            i * 6,
-            i * 6 + 6,
-            pct
-        ));
+        t.push_str(&format!("  {:>3}–{:<3}° {:>6.2}% {bar}\n", i * 6, i * 6 + 6, pct));
     }
     t
 }
@@ -144,11 +110,7 @@ mod tests {
     use smoothlab::volume::{smooth_volume, volume_stats};
 
     fn mean_ratio_line(s: &MeshStats) -> String {
-        table(s)
-            .lines()
-            .find(|l| l.starts_with("mean ratio"))
-            .unwrap()
-            .to_string()
+        table(s).lines().find(|l| l.starts_with("mean ratio")).unwrap().to_string()
     }
 
     /// Beside inverted elements a positive smallest mean ratio says it averages corners
@@ -157,37 +119,18 @@ mod tests {
     #[test]
     fn a_positive_mean_ratio_beside_inverted_elements_says_why() {
         let valid = volume_stats(&hex_grid(&HexBlock::cube(2)).unwrap());
-        assert!(
-            !mean_ratio_line(&valid).contains("averaged"),
-            "{}",
-            mean_ratio_line(&valid)
-        );
+        assert!(!mean_ratio_line(&valid).contains("averaged"), "{}", mean_ratio_line(&valid));
         // the tangled block as the page opens it: its smallest mean ratio is negative
         let mut m = perturb_volume(&hex_grid(&HexBlock::cube(6)).unwrap(), 1.0, 1).unwrap();
         let tangled = volume_stats(&m);
         assert!(tangled.inverted > 0 && tangled.min_quality < 0.0);
-        assert!(
-            !mean_ratio_line(&tangled).contains("averaged"),
-            "{}",
-            mean_ratio_line(&tangled)
-        );
+        assert!(!mean_ratio_line(&tangled).contains("averaged"), "{}", mean_ratio_line(&tangled));
         // one pass of the old objective: inverted elements, every element's mean positive
         let old = tet_objective(ObjectiveKind::MaxMinShape).unwrap();
         smooth_volume(&mut m, &*old, SmoothOptions::default(), 1, &|| 0.0).unwrap();
         let s = volume_stats(&m);
-        assert!(
-            s.inverted > 0 && s.min_quality > 0.0,
-            "{} inverted, min {}",
-            s.inverted,
-            s.min_quality
-        );
+        assert!(s.inverted > 0 && s.min_quality > 0.0, "{} inverted, min {}", s.inverted, s.min_quality);
         let line = mean_ratio_line(&s);
-        assert!(
-            line.contains(&format!(
-                "min {:.4} (corners averaged)  mean",
-                s.min_quality
-            )),
-            "{line}"
-        );
+        assert!(line.contains(&format!("min {:.4} (corners averaged)  mean", s.min_quality)), "{line}");
     }
 }

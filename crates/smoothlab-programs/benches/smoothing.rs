@@ -25,10 +25,7 @@ use smoothlab::smooth::{Order, SmoothOptions, Smoother, Strategy};
 /// rand2d with `n` nodes (as `examples/perf.rs`: √n per side, seed 2003), Hilbert order.
 fn bench_mesh(n: usize) -> Mesh {
     let per_side = ((n as f64).sqrt() as usize).max(1);
-    rand2d(n - 4 * per_side, per_side, 2003)
-        .expect("rand2d")
-        .renumbered_spatially()
-        .0
+    rand2d(n - 4 * per_side, per_side, 2003).expect("rand2d").renumbered_spatially().0
 }
 
 /// The Laplacian's memory traffic without its work: free flags, CSR neighbours, positions.
@@ -54,52 +51,19 @@ fn stream_bound(mesh: &mut Mesh) -> u32 {
 type Pass = (&'static str, Strategy, ObjectiveKind, Penalty, Order);
 
 fn passes(large: bool) -> Vec<Pass> {
-    let new = |name, strategy, order| {
-        (
-            name,
-            strategy,
-            ObjectiveKind::SmoothShape,
-            Penalty::Barrier,
-            order,
-        )
-    };
-    let mut v = vec![
-        new("laplace", Strategy::Laplace, Order::Input),
-        new("smart", Strategy::Smart, Order::Input),
-    ];
+    let new = |name, strategy, order| (name, strategy, ObjectiveKind::SmoothShape, Penalty::Barrier, order);
+    let mut v = vec![new("laplace", Strategy::Laplace, Order::Input), new("smart", Strategy::Smart, Order::Input)];
     if large {
         v.push(new("opt+new", Strategy::Opt, Order::Input));
     } else {
         for k in ObjectiveKind::ALL {
-            v.push((
-                Box::leak(format!("opt+{k}").into_boxed_str()),
-                Strategy::Opt,
-                k,
-                Penalty::Barrier,
-                Order::Input,
-            ));
+            v.push((Box::leak(format!("opt+{k}").into_boxed_str()), Strategy::Opt, k, Penalty::Barrier, Order::Input));
         }
         // the first design of the new objective's penalty, for the comparison of the two
-        v.push((
-            "opt+new (angle penalty)",
-            Strategy::Opt,
-            ObjectiveKind::SmoothShape,
-            Penalty::Angle,
-            Order::Input,
-        ));
+        v.push(("opt+new (angle penalty)", Strategy::Opt, ObjectiveKind::SmoothShape, Penalty::Angle, Order::Input));
         // Freitag's combined schemes, with her objective
-        for (name, strategy) in [
-            ("c1+sine", Strategy::C1),
-            ("c2+sine", Strategy::C2),
-            ("c3+sine", Strategy::C3),
-        ] {
-            v.push((
-                name,
-                strategy,
-                ObjectiveKind::Sine,
-                Penalty::Barrier,
-                Order::Input,
-            ));
+        for (name, strategy) in [("c1+sine", Strategy::C1), ("c2+sine", Strategy::C2), ("c3+sine", Strategy::C3)] {
+            v.push((name, strategy, ObjectiveKind::Sine, Penalty::Barrier, Order::Input));
         }
     }
     v.push(new("rules+new", Strategy::Rules, Order::Input));
@@ -115,21 +79,13 @@ fn smoothing(c: &mut Criterion) {
         g.sample_size(10).throughput(Throughput::Elements(free));
         g.measurement_time(Duration::from_secs(if n >= 1_000_000 { 20 } else { 5 }));
         g.warm_up_time(Duration::from_millis(500));
-        g.bench_function("stream bound", |b| {
-            b.iter_batched_ref(|| mesh.clone(), stream_bound, BatchSize::LargeInput)
-        });
+        g.bench_function("stream bound", |b| b.iter_batched_ref(|| mesh.clone(), stream_bound, BatchSize::LargeInput));
         for (name, strategy, kind, penalty, order) in passes(n >= 1_000_000) {
             let obj = objective_with(kind, penalty);
-            let options = SmoothOptions::default()
-                .with_strategy(strategy)
-                .with_order(order);
+            let options = SmoothOptions::default().with_strategy(strategy).with_order(order);
             let mut s = Smoother::new(options).expect("options");
             g.bench_function(name, |b| {
-                b.iter_batched_ref(
-                    || mesh.clone(),
-                    |m| s.sweep(m, &*obj),
-                    BatchSize::LargeInput,
-                )
+                b.iter_batched_ref(|| mesh.clone(), |m| s.sweep(m, &*obj), BatchSize::LargeInput)
             });
         }
         if n <= 100_000 {
@@ -139,19 +95,9 @@ fn smoothing(c: &mut Criterion) {
             g.bench_function(
                 BenchmarkId::new(
                     "coloured opt+new",
-                    if ColouredSmoother::is_multithreaded() {
-                        "parallel"
-                    } else {
-                        "sequential"
-                    },
+                    if ColouredSmoother::is_multithreaded() { "parallel" } else { "sequential" },
                 ),
-                |b| {
-                    b.iter_batched_ref(
-                        || mesh.clone(),
-                        |m| s.sweep(m, &*obj),
-                        BatchSize::LargeInput,
-                    )
-                },
+                |b| b.iter_batched_ref(|| mesh.clone(), |m| s.sweep(m, &*obj), BatchSize::LargeInput),
             );
         }
         g.finish();
@@ -163,30 +109,20 @@ fn smoothing(c: &mut Criterion) {
 /// `laplace` — each star flattened into its tangent plane, each move projected back onto
 /// the sphere. Throughput in node visits, to read beside the planar passes.
 fn surfaces(c: &mut Criterion) {
-    use smoothlab::generate::perturb_surface;
     use smoothlab::generate::{surface, SurfaceKind, SurfaceShape};
+    use smoothlab::generate::perturb_surface;
     use smoothlab::surface::SurfaceSmoother;
     let sample = surface(SurfaceShape::Sphere, SurfaceKind::Mixed, 1, 32).expect("a sample");
     let tangled = perturb_surface(&sample, 0.5, 1).expect("perturbed");
     let mut g = c.benchmark_group("surface pass/sphere 6k");
-    g.sample_size(10)
-        .throughput(Throughput::Elements(tangled.flat().free_count() as u64));
+    g.sample_size(10).throughput(Throughput::Elements(tangled.flat().free_count() as u64));
     g.measurement_time(Duration::from_secs(5));
-    for (name, strategy) in [
-        ("laplace", Strategy::Laplace),
-        ("rules+new", Strategy::Rules),
-    ] {
+    for (name, strategy) in [("laplace", Strategy::Laplace), ("rules+new", Strategy::Rules)] {
         let obj = objective(ObjectiveKind::SmoothShape);
-        let options = SmoothOptions::default()
-            .with_strategy(strategy)
-            .with_order(Order::Priority);
+        let options = SmoothOptions::default().with_strategy(strategy).with_order(Order::Priority);
         let mut s = SurfaceSmoother::new(options).expect("options");
         g.bench_function(name, |b| {
-            b.iter_batched_ref(
-                || tangled.clone(),
-                |t| s.pass(t, &*obj, &|| 0.0),
-                BatchSize::LargeInput,
-            )
+            b.iter_batched_ref(|| tangled.clone(), |t| s.pass(t, &*obj, &|| 0.0), BatchSize::LargeInput)
         });
     }
     g.finish();
@@ -208,51 +144,26 @@ fn tetrahedra(c: &mut Criterion) {
         ("opt+sine", Strategy::Opt, ObjectiveKind::Sine, 3),
         ("opt+new", Strategy::Opt, ObjectiveKind::SmoothShape, 3),
         ("rules+new", Strategy::Rules, ObjectiveKind::SmoothShape, 3),
-        (
-            "opt+old, 20 it",
-            Strategy::Opt,
-            ObjectiveKind::MaxMinShape,
-            20,
-        ),
+        ("opt+old, 20 it", Strategy::Opt, ObjectiveKind::MaxMinShape, 20),
         ("opt+condition", Strategy::Opt, ObjectiveKind::Condition, 3),
         ("opt+untangle", Strategy::Opt, ObjectiveKind::Untangle, 3),
     ];
     // a 10 × 10 × 10 block (1331 nodes, about rand3D's), free nodes moved by 0.2 mean edge
     // lengths: every hexahedron valid
-    let block = perturb_volume(&hex_grid(&HexBlock::cube(10)).expect("hex grid"), 0.2, 1)
-        .expect("perturbed");
-    let meshes: [(&str, VolumeMesh); 2] = [
-        (
-            "volume pass/rand3d",
-            rand3d(RAND3D_POINTS, 1).expect("rand3d"),
-        ),
-        ("volume pass/hexahedra", block),
-    ];
+    let block = perturb_volume(&hex_grid(&HexBlock::cube(10)).expect("hex grid"), 0.2, 1).expect("perturbed");
+    let meshes: [(&str, VolumeMesh); 2] =
+        [("volume pass/rand3d", rand3d(RAND3D_POINTS, 1).expect("rand3d")), ("volume pass/hexahedra", block)];
     for (group, mesh) in meshes {
         let mut g = c.benchmark_group(group);
-        g.sample_size(10)
-            .throughput(Throughput::Elements(mesh.free_count() as u64));
+        g.sample_size(10).throughput(Throughput::Elements(mesh.free_count() as u64));
         g.measurement_time(Duration::from_secs(5));
         for (name, strategy, kind, max_iter) in passes {
             let obj = tet_objective(kind).expect("a form on tetrahedra");
             // Freitag's strategies in node order, as her table ran them; Chen's rules worst first
-            let order = if strategy == Strategy::Rules {
-                Order::Priority
-            } else {
-                Order::Input
-            };
-            let options = SmoothOptions::default()
-                .with_strategy(strategy)
-                .with_order(order)
-                .with_max_iter(max_iter);
+            let order = if strategy == Strategy::Rules { Order::Priority } else { Order::Input };
+            let options = SmoothOptions::default().with_strategy(strategy).with_order(order).with_max_iter(max_iter);
             let mut s = VolumeSmoother::new(options).expect("options");
-            g.bench_function(name, |b| {
-                b.iter_batched_ref(
-                    || mesh.clone(),
-                    |m| s.sweep(m, &*obj),
-                    BatchSize::LargeInput,
-                )
-            });
+            g.bench_function(name, |b| b.iter_batched_ref(|| mesh.clone(), |m| s.sweep(m, &*obj), BatchSize::LargeInput));
         }
         g.finish();
     }
@@ -323,9 +234,7 @@ fn targets(c: &mut Criterion) {
 /// The level-set view of one node: its objective sampled on a 100 × 100 grid over its star.
 fn level_sets(c: &mut Criterion) {
     let mesh = bench_mesh(10_000);
-    let node = (0..mesh.node_count())
-        .find(|&i| mesh.is_free(i))
-        .expect("a free node");
+    let node = (0..mesh.node_count()).find(|&i| mesh.is_free(i)).expect("a free node");
     let mut star = Star::new();
     star.gather(&mesh, node);
     let (mut lo, mut hi) = (star.x0, star.x0);
@@ -364,9 +273,7 @@ fn rendering(c: &mut Criterion) {
         let mut pixmap = tiny_skia::Pixmap::new(1024, 1024).expect("a pixmap");
         let view = smoothlab_render::MeshView::default();
         g.throughput(Throughput::Elements(mesh.element_count() as u64));
-        g.bench_function(label, |b| {
-            b.iter(|| smoothlab_render::render_mesh(&mut pixmap, &mesh, &view))
-        });
+        g.bench_function(label, |b| b.iter(|| smoothlab_render::render_mesh(&mut pixmap, &mesh, &view)));
     }
     g.finish();
 }

@@ -45,14 +45,11 @@ fn starts_a_block(word: &str) -> bool {
     let ordered = word.len() > 1
         && (word.ends_with('.') || word.ends_with(')'))
         && word.bytes().rev().skip(1).all(|b| b.is_ascii_digit());
-    let rule =
-        !word.is_empty() && (word.bytes().all(|b| b == b'-') || word.bytes().all(|b| b == b'='));
+    let rule = !word.is_empty() && (word.bytes().all(|b| b == b'-') || word.bytes().all(|b| b == b'='));
     ordered
         || rule
         || matches!(word, "-" | "+" | "*" | ">")
-        || ["#", ">", "|", "```", "~~~", "<", "!["]
-            .iter()
-            .any(|p| word.starts_with(p))
+        || ["#", ">", "|", "```", "~~~", "<", "!["].iter().any(|p| word.starts_with(p))
 }
 
 /// The indent of a list item's continuation lines: under the item's text.
@@ -112,29 +109,17 @@ mod tests {
         let lines: Vec<&str> = wrapped.lines().collect();
         assert!(lines[0].chars().count() <= WIDTH && lines[1].starts_with("word"));
         assert!(wrapped.contains(&format!("| {long} |\n# {long}\n```\n{long}\n```\n")));
-        assert_eq!(
-            wrapped.split_whitespace().collect::<Vec<_>>(),
-            text.split_whitespace().collect::<Vec<_>>()
-        );
+        assert_eq!(wrapped.split_whitespace().collect::<Vec<_>>(), text.split_whitespace().collect::<Vec<_>>());
     }
 
     #[test]
     fn list_items_hang_and_no_line_starts_a_block() {
-        let item = format!(
-            "- {}- {} 12. {}30° 4) {}",
-            "a ".repeat(48),
-            "b ".repeat(47),
-            "c ".repeat(60),
-            "d ".repeat(46)
-        );
+        let item = format!("- {}- {} 12. {}30° 4) {}", "a ".repeat(48), "b ".repeat(47), "c ".repeat(60), "d ".repeat(46));
         let wrapped = wrap(&item);
         let lines: Vec<&str> = wrapped.lines().collect();
         assert!(lines.len() > 2 && lines[0].starts_with("- "));
         for l in &lines[1..] {
-            assert!(
-                l.starts_with("  ") && !starts_a_block(l.trim_start().split(' ').next().unwrap()),
-                "{l:?}"
-            );
+            assert!(l.starts_with("  ") && !starts_a_block(l.trim_start().split(' ').next().unwrap()), "{l:?}");
         }
         assert_eq!(wrap(&wrapped), wrapped, "wrapping twice is wrapping once");
     }

@@ -17,11 +17,7 @@ pub struct Ticks {
 /// The 1-2-5 step for showing `range` with at most about `max_ticks` intervals:
 /// the smallest of 1, 2, 5 × 10^k that is at least `range / max_ticks`.
 pub fn nice_step(range: f64, max_ticks: usize) -> f64 {
-    let range = if range.is_finite() && range > 0.0 {
-        range
-    } else {
-        1.0
-    };
+    let range = if range.is_finite() && range > 0.0 { range } else { 1.0 };
     let raw = range / max_ticks.max(1) as f64;
     let mag = 10f64.powf(raw.log10().floor());
     let norm = raw / mag;
@@ -52,10 +48,7 @@ pub fn nice_ticks(lo: f64, hi: f64, max_ticks: usize) -> Ticks {
 pub fn nice_range(lo: f64, hi: f64, max_ticks: usize) -> (f64, f64) {
     let (lo, hi) = sane_range(lo, hi);
     let step = nice_step(hi - lo, max_ticks);
-    (
-        clean((lo / step + 1e-9).floor() * step),
-        clean((hi / step - 1e-9).ceil() * step),
-    )
+    (clean((lo / step + 1e-9).floor() * step), clean((hi / step - 1e-9).ceil() * step))
 }
 
 /// Ticks of a log axis over `[lo, hi]` (both > 0): the powers of ten inside, and when
@@ -68,11 +61,7 @@ pub fn log_ticks(lo: f64, hi: f64) -> Ticks {
     let mut values = Vec::new();
     for k in k0..=k1 {
         let p = 10f64.powi(k);
-        for m in if dense {
-            &[1.0, 2.0, 5.0][..]
-        } else {
-            &[1.0][..]
-        } {
+        for m in if dense { &[1.0, 2.0, 5.0][..] } else { &[1.0][..] } {
             let v = m * p;
             if v >= lo * (1.0 - 1e-9) && v <= hi * (1.0 + 1e-9) {
                 values.push(v);
@@ -137,11 +126,7 @@ pub fn format_tick(v: f64, step: f64) -> String {
             None => e,
         }
     } else {
-        let decimals = if step.is_finite() && step > 0.0 {
-            (-step.log10().floor()).max(0.0) as usize
-        } else {
-            2
-        };
+        let decimals = if step.is_finite() && step > 0.0 { (-step.log10().floor()).max(0.0) as usize } else { 2 };
         format!("{v:.decimals$}")
     };
     s.replace('-', "\u{2212}")
@@ -155,10 +140,7 @@ pub fn format_power_of_ten(v: f64) -> String {
     if !power {
         return format_tick(v, v);
     }
-    const SUP: [char; 10] = [
-        '\u{2070}', '\u{b9}', '\u{b2}', '\u{b3}', '\u{2074}', '\u{2075}', '\u{2076}', '\u{2077}',
-        '\u{2078}', '\u{2079}',
-    ];
+    const SUP: [char; 10] = ['\u{2070}', '\u{b9}', '\u{b2}', '\u{b3}', '\u{2074}', '\u{2075}', '\u{2076}', '\u{2077}', '\u{2078}', '\u{2079}'];
     let mut s = String::from("10");
     if e < 0.0 {
         s.push('\u{207b}');
@@ -244,15 +226,7 @@ pub struct AxisLabels<'a> {
 
 /// Draws the plot box (`x` and `y` axes in device pixels), light grid lines at the ticks,
 /// tick labels and axis titles. `s` is the device-pixel ratio for sizes.
-pub(crate) fn draw_axes(
-    pixmap: &mut Pixmap,
-    x: &Axis,
-    y: &Axis,
-    labels: AxisLabels<'_>,
-    x_ticks: &Ticks,
-    s: f32,
-    theme: &Theme,
-) {
+pub(crate) fn draw_axes(pixmap: &mut Pixmap, x: &Axis, y: &Axis, labels: AxisLabels<'_>, x_ticks: &Ticks, s: f32, theme: &Theme) {
     let (l, r) = (x.p0.min(x.p1), x.p0.max(x.p1));
     let (t, b) = (y.p0.min(y.p1), y.p0.max(y.p1));
     let mut grid = PathBuilder::new();
@@ -265,13 +239,7 @@ pub(crate) fn draw_axes(
             grid.line_to(px, b);
             ticks.move_to(px, b);
             ticks.line_to(px, b + 4.0 * s);
-            draw_text(
-                pixmap,
-                &label,
-                px,
-                b + 6.0 * s,
-                small.with_align(Align::Centre, Valign::Top),
-            );
+            draw_text(pixmap, &label, px, b + 6.0 * s, small.with_align(Align::Centre, Valign::Top));
         }
     }
     let yt = y.ticks(6);
@@ -282,34 +250,16 @@ pub(crate) fn draw_axes(
             grid.line_to(r, py);
             ticks.move_to(l - 4.0 * s, py);
             ticks.line_to(l, py);
-            draw_text(
-                pixmap,
-                label,
-                l - 6.0 * s,
-                py,
-                small.with_align(Align::Right, Valign::Middle),
-            );
+            draw_text(pixmap, label, l - 6.0 * s, py, small.with_align(Align::Right, Valign::Middle));
         }
     }
     let mut paint = Paint::default();
     paint.set_color(theme.grid);
     if let Some(p) = grid.finish() {
-        pixmap.stroke_path(
-            &p,
-            &paint,
-            &Stroke {
-                width: 1.0 * s,
-                ..Default::default()
-            },
-            Transform::identity(),
-            None,
-        );
+        pixmap.stroke_path(&p, &paint, &Stroke { width: 1.0 * s, ..Default::default() }, Transform::identity(), None);
     }
     paint.set_color(theme.text);
-    let stroke = Stroke {
-        width: 1.0 * s,
-        ..Default::default()
-    };
+    let stroke = Stroke { width: 1.0 * s, ..Default::default() };
     if let Some(p) = ticks.finish() {
         pixmap.stroke_path(&p, &paint, &stroke, Transform::identity(), None);
     }
@@ -321,41 +271,18 @@ pub(crate) fn draw_axes(
     // below the tick labels, however large the theme makes them
     let below = 22.0 * s * theme.grow(11.0);
     if !labels.x.is_empty() {
-        draw_text(
-            pixmap,
-            labels.x,
-            0.5 * (l + r),
-            b + below,
-            label.with_align(Align::Centre, Valign::Top),
-        );
+        draw_text(pixmap, labels.x, 0.5 * (l + r), b + below, label.with_align(Align::Centre, Valign::Top));
     }
     if !labels.y.is_empty() {
         // left of the widest tick label
-        let widest = y_labels
-            .iter()
-            .map(|l| super::text::text_width(l, tick_px))
-            .fold(0.0f32, f32::max);
+        let widest = y_labels.iter().map(|l| super::text::text_width(l, tick_px)).fold(0.0f32, f32::max);
         let lx = l - 10.0 * s - widest - 8.0 * s;
-        draw_text_rotated(
-            pixmap,
-            labels.y,
-            lx,
-            0.5 * (t + b),
-            label.with_align(Align::Centre, Valign::Bottom),
-            -90.0,
-        );
+        draw_text_rotated(pixmap, labels.y, lx, 0.5 * (t + b), label.with_align(Align::Centre, Valign::Bottom), -90.0);
     }
     if !labels.title.is_empty() {
         let cx = 0.5 * (l + r);
-        let (shown, size) = theme.fit_label(
-            labels.title,
-            14.0 * s,
-            title_room(cx, pixmap.width() as f32, s),
-            s,
-        );
-        let title = TextStyle::new(size)
-            .with_color(theme.ink)
-            .with_align(Align::Centre, Valign::Bottom);
+        let (shown, size) = theme.fit_label(labels.title, 14.0 * s, title_room(cx, pixmap.width() as f32, s), s);
+        let title = TextStyle::new(size).with_color(theme.ink).with_align(Align::Centre, Valign::Bottom);
         draw_text(pixmap, &shown, cx, t - 8.0 * s, title);
     }
 }
@@ -379,37 +306,23 @@ mod tests {
         let (shown, size) = theme.fit_label(title, 14.0, title_room(600.0, 1200.0, 1.0), 1.0);
         assert_eq!((shown.as_ref(), size), (title, theme.text_px(14.0, 1.0)));
         // near the right edge: within the picture, smaller or cut, never below the smallest label
-        for (cx, width, s) in [
-            (1117.0, 1170.0, 1.0),
-            (700.0, 800.0, 2.0),
-            (60.0, 900.0, 1.0),
-        ] {
+        for (cx, width, s) in [(1117.0, 1170.0, 1.0), (700.0, 800.0, 2.0), (60.0, 900.0, 1.0)] {
             let (shown, size) = theme.fit_label(title, 14.0 * s, title_room(cx, width, s), s);
             let half = 0.5 * super::super::text::text_width(&shown, size);
-            assert!(
-                cx - half >= 0.0 && cx + half <= width,
-                "{shown:?} at {size} px about {cx} of {width}"
-            );
+            assert!(cx - half >= 0.0 && cx + half <= width, "{shown:?} at {size} px about {cx} of {width}");
             assert!(size >= theme.text_px(0.0, s) && size <= 14.0 * s);
         }
     }
 
     fn close(a: &[f64], b: &[f64]) -> bool {
-        a.len() == b.len()
-            && a.iter()
-                .zip(b)
-                .all(|(x, y)| (x - y).abs() <= 1e-12 * (1.0 + y.abs()))
+        a.len() == b.len() && a.iter().zip(b).all(|(x, y)| (x - y).abs() <= 1e-12 * (1.0 + y.abs()))
     }
 
     #[test]
     fn one_two_five_steps() {
         let t = nice_ticks(0.0, 1.0, 5);
         assert_eq!(t.step, 0.2);
-        assert!(
-            close(&t.values, &[0.0, 0.2, 0.4, 0.6, 0.8, 1.0]),
-            "{:?}",
-            t.values
-        );
+        assert!(close(&t.values, &[0.0, 0.2, 0.4, 0.6, 0.8, 1.0]), "{:?}", t.values);
         assert_eq!(nice_ticks(0.0, 100.0, 5).step, 20.0);
         let t = nice_ticks(-3.7, 12.1, 6);
         assert_eq!(t.step, 5.0);
@@ -417,48 +330,22 @@ mod tests {
         assert!(t.values[0].is_sign_positive(), "no −0");
         let t = nice_ticks(0.001, 0.0042, 4);
         assert!((t.step - 0.001).abs() < 1e-15);
-        assert!(
-            close(&t.values, &[0.001, 0.002, 0.003, 0.004]),
-            "{:?}",
-            t.values
-        );
+        assert!(close(&t.values, &[0.001, 0.002, 0.003, 0.004]), "{:?}", t.values);
         // reversed, huge, tiny, degenerate and nonsense ranges
         assert_eq!(nice_ticks(180.0, 0.0, 6), nice_ticks(0.0, 180.0, 6));
-        assert_eq!(
-            nice_ticks(0.0, 180.0, 6).values,
-            vec![0.0, 50.0, 100.0, 150.0]
-        );
+        assert_eq!(nice_ticks(0.0, 180.0, 6).values, vec![0.0, 50.0, 100.0, 150.0]);
         assert_eq!(nice_ticks(2e9, 7e9, 5).step, 1e9);
         assert!((nice_ticks(1e-9, 3e-9, 4).step - 5e-10).abs() < 1e-24);
         let t = nice_ticks(5.0, 5.0, 5);
         assert!(t.values.contains(&5.0) && t.values.len() >= 2);
-        assert_eq!(
-            nice_ticks(f64::NAN, 1.0, 5).values,
-            nice_ticks(0.0, 1.0, 5).values
-        );
+        assert_eq!(nice_ticks(f64::NAN, 1.0, 5).values, nice_ticks(0.0, 1.0, 5).values);
         // every step is 1, 2 or 5 times a power of ten, and ticks never exceed the budget by much
-        for (lo, hi, n) in [
-            (0.0, 7.3, 5),
-            (-12.0, 0.3, 4),
-            (0.13, 0.19, 6),
-            (1.0, 1000.0, 8),
-        ] {
+        for (lo, hi, n) in [(0.0, 7.3, 5), (-12.0, 0.3, 4), (0.13, 0.19, 6), (1.0, 1000.0, 8)] {
             let t = nice_ticks(lo, hi, n);
             let m = t.step / 10f64.powf(t.step.log10().floor());
-            assert!(
-                [1.0, 2.0, 5.0].iter().any(|f| (m - f).abs() < 1e-9),
-                "{lo}..{hi}: step {}",
-                t.step
-            );
-            assert!(
-                t.values.len() <= n + 1 && t.values.len() >= n / 2,
-                "{lo}..{hi}: {:?}",
-                t.values
-            );
-            assert!(t
-                .values
-                .iter()
-                .all(|v| *v >= lo - 1e-12 && *v <= hi + 1e-12));
+            assert!([1.0, 2.0, 5.0].iter().any(|f| (m - f).abs() < 1e-9), "{lo}..{hi}: step {}", t.step);
+            assert!(t.values.len() <= n + 1 && t.values.len() >= n / 2, "{lo}..{hi}: {:?}", t.values);
+            assert!(t.values.iter().all(|v| *v >= lo - 1e-12 && *v <= hi + 1e-12));
         }
     }
 
@@ -473,17 +360,9 @@ mod tests {
     #[test]
     fn decade_ticks() {
         let t = log_ticks(1e-6, 10.0);
-        assert!(
-            close(&t.values, &[1e-6, 1e-5, 1e-4, 1e-3, 1e-2, 1e-1, 1.0, 10.0]),
-            "{:?}",
-            t.values
-        );
+        assert!(close(&t.values, &[1e-6, 1e-5, 1e-4, 1e-3, 1e-2, 1e-1, 1.0, 10.0]), "{:?}", t.values);
         let t = log_ticks(0.3, 40.0);
-        assert!(
-            close(&t.values, &[0.5, 1.0, 2.0, 5.0, 10.0, 20.0]),
-            "{:?}",
-            t.values
-        );
+        assert!(close(&t.values, &[0.5, 1.0, 2.0, 5.0, 10.0, 20.0]), "{:?}", t.values);
         assert!(!log_ticks(-1.0, 0.0).values.is_empty());
     }
 
@@ -504,22 +383,10 @@ mod tests {
 
     #[test]
     fn axis_mapping() {
-        let a = Axis {
-            lo: 0.0,
-            hi: 10.0,
-            scale: Scale::Linear,
-            p0: 100.0,
-            p1: 0.0,
-        };
+        let a = Axis { lo: 0.0, hi: 10.0, scale: Scale::Linear, p0: 100.0, p1: 0.0 };
         assert_eq!(a.map(5.0), Some(50.0));
         assert_eq!(a.map(f64::NAN), None);
-        let l = Axis {
-            lo: 1e-3,
-            hi: 10.0,
-            scale: Scale::Log,
-            p0: 0.0,
-            p1: 400.0,
-        };
+        let l = Axis { lo: 1e-3, hi: 10.0, scale: Scale::Log, p0: 0.0, p1: 400.0 };
         assert!((l.map(1e-1).unwrap() - 200.0).abs() < 1e-3);
         assert_eq!(l.map(0.0), None);
         assert_eq!(l.map(-1.0), None);

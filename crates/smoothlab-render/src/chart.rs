@@ -5,12 +5,9 @@ use glam::DVec2;
 use tiny_skia::{Color, PathBuilder, Pixmap, Rect, Stroke, StrokeDash, Transform};
 
 use super::axes::{draw_axes, format_tick, nice_range, nice_ticks, Axis, AxisLabels, Scale, Ticks};
-use super::paint::{
-    fill_rect, legend_band, legend_band_height, push_marker, rect_mask, solid, Key, LegendEntry,
-    LegendStyle, Marker,
-};
-use super::text::{draw_text, Align, TextStyle, Valign};
+use super::paint::{fill_rect, legend_band, legend_band_height, push_marker, rect_mask, solid, Key, LegendEntry, LegendStyle, Marker};
 use super::theme::Theme;
+use super::text::{draw_text, Align, TextStyle, Valign};
 use super::view::{sane_dpr, Frame};
 
 /// One curve: points `(x, y)` joined in order. Points that cannot be shown (non-finite,
@@ -29,13 +26,7 @@ pub struct Series<'a> {
 
 impl<'a> Series<'a> {
     pub fn new(label: &'a str, points: &'a [DVec2]) -> Self {
-        Series {
-            label,
-            points,
-            color: None,
-            dashed: false,
-            marker: None,
-        }
+        Series { label, points, color: None, dashed: false, marker: None }
     }
     pub fn with_color(mut self, c: Color) -> Self {
         self.color = Some(c);
@@ -81,19 +72,7 @@ pub struct Chart<'a> {
 
 impl Default for Chart<'_> {
     fn default() -> Self {
-        Chart {
-            title: "",
-            x_label: "",
-            y_label: "",
-            log_y: false,
-            integer_x: true,
-            y_range: None,
-            dpr: 1.0,
-            frame: None,
-            legend: true,
-            y_break: None,
-            theme: Theme::light(),
-        }
+        Chart { title: "", x_label: "", y_label: "", log_y: false, integer_x: true, y_range: None, dpr: 1.0, frame: None, legend: true, y_break: None, theme: Theme::light() }
     }
 }
 
@@ -123,11 +102,7 @@ fn data_range(series: &[Series<'_>], log_y: bool) -> (Range, Range) {
 /// below `b` and at or above it, when there are both.
 fn broken_range(series: &[Series<'_>], b: f64) -> Option<((f64, f64), (f64, f64))> {
     let (mut lo, mut hi): (Range, Range) = (None, None);
-    for p in series
-        .iter()
-        .flat_map(|s| s.points)
-        .filter(|p| p.is_finite())
-    {
+    for p in series.iter().flat_map(|s| s.points).filter(|p| p.is_finite()) {
         let r = if p.y < b { &mut lo } else { &mut hi };
         *r = Some(match *r {
             Some((a, c)) => (a.min(p.y), c.max(p.y)),
@@ -145,12 +120,7 @@ fn integer_ticks(lo: f64, hi: f64) -> Ticks {
     if t.step >= 1.0 {
         t
     } else {
-        Ticks {
-            step: 1.0,
-            values: (lo.ceil() as i64..=hi.floor() as i64)
-                .map(|v| v as f64)
-                .collect(),
-        }
+        Ticks { step: 1.0, values: (lo.ceil() as i64..=hi.floor() as i64).map(|v| v as f64).collect() }
     }
 }
 
@@ -160,20 +130,9 @@ pub fn render_chart(pixmap: &mut Pixmap, series: &[Series<'_>], chart: &Chart<'_
     let s = sane_dpr(chart.dpr);
     let frame = chart.frame.unwrap_or(Frame::of_pixmap(pixmap, s));
     let theme = &chart.theme;
-    fill_rect(
-        pixmap,
-        frame.x * s,
-        frame.y * s,
-        frame.w * s,
-        frame.h * s,
-        theme.paper,
-    );
+    fill_rect(pixmap, frame.x * s, frame.y * s, frame.w * s, frame.h * s, theme.paper);
     // room for the labels, grown with them when the theme makes them larger
-    let top = if chart.title.is_empty() {
-        12.0
-    } else {
-        32.0 * theme.grow(14.0)
-    };
+    let top = if chart.title.is_empty() { 12.0 } else { 32.0 * theme.grow(14.0) };
     let left = if chart.y_label.is_empty() { 48.0 } else { 66.0 } * theme.grow(11.0);
     let bottom = if chart.x_label.is_empty() { 28.0 } else { 46.0 } * theme.grow(11.0);
     // the legend's band under the axes: never over the curves
@@ -183,28 +142,14 @@ pub fn render_chart(pixmap: &mut Pixmap, series: &[Series<'_>], chart: &Chart<'_
             .iter()
             .enumerate()
             .filter(|(_, x)| !x.label.is_empty())
-            .map(|(i, x)| LegendEntry {
-                label: x.label,
-                color: x.color.unwrap_or(theme.series(i)),
-                key: Key::Line {
-                    dashed: x.dashed,
-                    marker: x.marker,
-                },
-            })
+            .map(|(i, x)| LegendEntry { label: x.label, color: x.color.unwrap_or(theme.series(i)), key: Key::Line { dashed: x.dashed, marker: x.marker } })
             .collect()
     } else {
         Vec::new()
     };
     let legend_h = legend_band_height(&entries, (frame.w - 16.0) * s, &ls) / s;
     let plot = frame.inset(left, top, 14.0, bottom + legend_h);
-    super::layout::note(
-        pixmap,
-        super::layout::RegionKind::Plot,
-        plot.x * s,
-        plot.y * s,
-        plot.w * s,
-        plot.h * s,
-    );
+    super::layout::note(pixmap, super::layout::RegionKind::Plot, plot.x * s, plot.y * s, plot.w * s, plot.h * s);
     let (xr, mut yr) = data_range(series, chart.log_y);
     // the values below a break, if the axis is broken: the range is of the others
     let below = match (chart.y_break, chart.log_y) {
@@ -219,11 +164,7 @@ pub fn render_chart(pixmap: &mut Pixmap, series: &[Series<'_>], chart: &Chart<'_
         Some((a, b)) => nice_range(a, b, 6),
         None => (0.0, 1.0),
     };
-    let scale = if chart.log_y {
-        Scale::Log
-    } else {
-        Scale::Linear
-    };
+    let scale = if chart.log_y { Scale::Log } else { Scale::Linear };
     let (y0, y1) = match (chart.y_range, yr, chart.log_y) {
         (Some((a, b)), _, _) if a < b && (!chart.log_y || a > 0.0) => (a, b),
         (_, Some((a, b)), true) => {
@@ -244,59 +185,17 @@ pub fn render_chart(pixmap: &mut Pixmap, series: &[Series<'_>], chart: &Chart<'_
         }
         _ => (y0, None),
     };
-    let xa = Axis {
-        lo: x0,
-        hi: x1,
-        scale: Scale::Linear,
-        p0: plot.x * s,
-        p1: plot.right() * s,
-    };
-    let ya = Axis {
-        lo: y0,
-        hi: y1,
-        scale,
-        p0: plot.bottom() * s,
-        p1: plot.y * s,
-    };
-    let xt = if chart.integer_x {
-        integer_ticks(x0, x1)
-    } else {
-        nice_ticks(x0, x1, 6)
-    };
-    draw_axes(
-        pixmap,
-        &xa,
-        &ya,
-        AxisLabels {
-            title: chart.title,
-            x: chart.x_label,
-            y: chart.y_label,
-        },
-        &xt,
-        s,
-        theme,
-    );
+    let xa = Axis { lo: x0, hi: x1, scale: Scale::Linear, p0: plot.x * s, p1: plot.right() * s };
+    let ya = Axis { lo: y0, hi: y1, scale, p0: plot.bottom() * s, p1: plot.y * s };
+    let xt = if chart.integer_x { integer_ticks(x0, x1) } else { nice_ticks(x0, x1, 6) };
+    draw_axes(pixmap, &xa, &ya, AxisLabels { title: chart.title, x: chart.x_label, y: chart.y_label }, &xt, s, theme);
     let mut band_labels: Vec<(f32, f32, String)> = Vec::new();
     if band_value.is_some() {
         // the band: no ticks nor grid in it, a shaded strip and a break mark on the axis
         let (l, b) = (plot.x * s, plot.bottom() * s);
         let top = (plot.bottom() - BAND) * s;
-        fill_rect(
-            pixmap,
-            frame.x * s,
-            top,
-            l - frame.x * s - 0.5 * s,
-            BAND * s,
-            theme.paper,
-        );
-        fill_rect(
-            pixmap,
-            l + 0.5 * s,
-            top,
-            plot.w * s - s,
-            BAND * s - 0.5 * s,
-            theme.band,
-        );
+        fill_rect(pixmap, frame.x * s, top, l - frame.x * s - 0.5 * s, BAND * s, theme.paper);
+        fill_rect(pixmap, l + 0.5 * s, top, plot.w * s - s, BAND * s - 0.5 * s, theme.band);
         let _ = b;
         let mut zig = PathBuilder::new();
         let y = top;
@@ -305,20 +204,9 @@ pub fn render_chart(pixmap: &mut Pixmap, series: &[Series<'_>], chart: &Chart<'_
         zig.line_to(l + 2.0 * s, y + 3.0 * s);
         zig.line_to(l + 6.0 * s, y - 3.0 * s);
         if let Some(path) = zig.finish() {
-            pixmap.stroke_path(
-                &path,
-                &solid(theme.text),
-                &Stroke {
-                    width: 1.5 * s,
-                    ..Default::default()
-                },
-                Transform::identity(),
-                None,
-            );
+            pixmap.stroke_path(&path, &solid(theme.text), &Stroke { width: 1.5 * s, ..Default::default() }, Transform::identity(), None);
         }
-        let st = TextStyle::new(theme.text_px(10.0 * s, s))
-            .with_color(theme.text)
-            .with_align(Align::Right, Valign::Middle);
+        let st = TextStyle::new(theme.text_px(10.0 * s, s)).with_color(theme.text).with_align(Align::Right, Valign::Middle);
         draw_text(pixmap, "below", l - 4.0 * s, top + 0.5 * BAND * s, st);
     }
     // where a point is drawn: in the band when it is below the break
@@ -330,13 +218,7 @@ pub fn render_chart(pixmap: &mut Pixmap, series: &[Series<'_>], chart: &Chart<'_
         Some((xa.map(p.x)?, ya.map(y)?))
     };
 
-    let clip = Rect::from_xywh(
-        plot.x * s - 4.0 * s,
-        plot.y * s - 4.0 * s,
-        (plot.w + 8.0) * s,
-        (plot.h + 8.0) * s,
-    )
-    .and_then(|r| rect_mask(pixmap, r));
+    let clip = Rect::from_xywh(plot.x * s - 4.0 * s, plot.y * s - 4.0 * s, (plot.w + 8.0) * s, (plot.h + 8.0) * s).and_then(|r| rect_mask(pixmap, r));
     let mut drawn = false;
     for (i, ser) in series.iter().enumerate() {
         let color = ser.color.unwrap_or(theme.series(i));
@@ -346,15 +228,9 @@ pub fn render_chart(pixmap: &mut Pixmap, series: &[Series<'_>], chart: &Chart<'_
         for p in ser.points {
             match place(p) {
                 Some((x, y)) => {
-                    if band_value.is_some()
-                        && chart.y_break.is_some_and(|b| p.y < b)
-                        && p.y.is_finite()
-                    {
+                    if band_value.is_some() && chart.y_break.is_some_and(|b| p.y < b) && p.y.is_finite() {
                         let text = format_tick(p.y, if p.y.abs() >= 10.0 { 1.0 } else { 0.1 });
-                        if !band_labels
-                            .iter()
-                            .any(|(bx, _, t)| (*bx - x).abs() < 1.0 && *t == text)
-                        {
+                        if !band_labels.iter().any(|(bx, _, t)| (*bx - x).abs() < 1.0 && *t == text) {
                             band_labels.push((x, y, text));
                         }
                     }
@@ -376,54 +252,27 @@ pub fn render_chart(pixmap: &mut Pixmap, series: &[Series<'_>], chart: &Chart<'_
         let st = Stroke {
             width: 2.0 * s,
             line_join: tiny_skia::LineJoin::Round,
-            dash: if ser.dashed {
-                StrokeDash::new(vec![6.0 * s, 4.0 * s], 0.0)
-            } else {
-                None
-            },
+            dash: if ser.dashed { StrokeDash::new(vec![6.0 * s, 4.0 * s], 0.0) } else { None },
             ..Default::default()
         };
         if let Some(path) = pb.finish() {
-            pixmap.stroke_path(
-                &path,
-                &solid(color),
-                &st,
-                Transform::identity(),
-                clip.as_ref(),
-            );
+            pixmap.stroke_path(&path, &solid(color), &st, Transform::identity(), clip.as_ref());
         }
         if let Some(path) = marks.finish() {
-            pixmap.fill_path(
-                &path,
-                &solid(color),
-                tiny_skia::FillRule::Winding,
-                Transform::identity(),
-                clip.as_ref(),
-            );
+            pixmap.fill_path(&path, &solid(color), tiny_skia::FillRule::Winding, Transform::identity(), clip.as_ref());
         }
     }
-    let st = TextStyle::new(theme.text_px(10.0 * s, s))
-        .with_color(theme.label)
-        .with_align(Align::Left, Valign::Middle);
+    let st = TextStyle::new(theme.text_px(10.0 * s, s)).with_color(theme.label).with_align(Align::Left, Valign::Middle);
     for (x, y, text) in &band_labels {
         draw_text(pixmap, text, x + 5.0 * s, *y, st);
     }
     if !drawn {
-        let st = TextStyle::new(theme.text_px(12.0 * s, s))
-            .with_color(theme.faint)
-            .with_align(Align::Centre, Valign::Middle);
+        let st = TextStyle::new(theme.text_px(12.0 * s, s)).with_color(theme.faint).with_align(Align::Centre, Valign::Middle);
         let c = plot.centre();
         draw_text(pixmap, "no data", c.x as f32 * s, c.y as f32 * s, st);
     }
     if !entries.is_empty() {
-        legend_band(
-            pixmap,
-            &entries,
-            (frame.x + 8.0) * s,
-            (frame.bottom() - legend_h) * s,
-            (frame.w - 16.0) * s,
-            &ls,
-        );
+        legend_band(pixmap, &entries, (frame.x + 8.0) * s, (frame.bottom() - legend_h) * s, (frame.w - 16.0) * s, &ls);
     }
 }
 
@@ -446,12 +295,7 @@ pub struct PassHistory<'a> {
 }
 
 /// The titles of [`render_pass_histories`]' four charts: the planar (and surface) words.
-pub const PASS_TITLES: [&str; 4] = [
-    "min angle (\u{b0})",
-    "max angle (\u{b0})",
-    "min quality (\u{3b1} / \u{3b2})",
-    "inverted elements",
-];
+pub const PASS_TITLES: [&str; 4] = ["min angle (\u{b0})", "max angle (\u{b0})", "min quality (\u{3b1} / \u{3b2})", "inverted elements"];
 
 /// Four small charts (min angle, max angle, min quality, inverted elements against
 /// the pass) with one curve per run, under `chart.title` and one shared legend row.
@@ -462,68 +306,22 @@ pub fn render_pass_histories(pixmap: &mut Pixmap, runs: &[PassHistory<'_>], char
 
 /// [`render_pass_histories`] with the four charts' titles in the words of another kind
 /// of mesh (for tetrahedra: dihedral angles, the mean ratio, inverted tetrahedra).
-pub fn render_pass_histories_titled(
-    pixmap: &mut Pixmap,
-    runs: &[PassHistory<'_>],
-    chart: &Chart<'_>,
-    titles: &[&str; 4],
-) {
+pub fn render_pass_histories_titled(pixmap: &mut Pixmap, runs: &[PassHistory<'_>], chart: &Chart<'_>, titles: &[&str; 4]) {
     let s = sane_dpr(chart.dpr);
     let frame = chart.frame.unwrap_or(Frame::of_pixmap(pixmap, s));
     let theme = &chart.theme;
-    fill_rect(
-        pixmap,
-        frame.x * s,
-        frame.y * s,
-        frame.w * s,
-        frame.h * s,
-        theme.paper,
-    );
-    let title_h = if chart.title.is_empty() {
-        0.0
-    } else {
-        26.0 * theme.grow(15.0)
-    };
+    fill_rect(pixmap, frame.x * s, frame.y * s, frame.w * s, frame.h * s, theme.paper);
+    let title_h = if chart.title.is_empty() { 0.0 } else { 26.0 * theme.grow(15.0) };
     if title_h > 0.0 {
-        let st = TextStyle::new(theme.text_px(15.0 * s, s))
-            .with_color(theme.ink)
-            .with_align(Align::Centre, Valign::Baseline);
-        draw_text(
-            pixmap,
-            chart.title,
-            (frame.x + 0.5 * frame.w) * s,
-            (frame.y + 19.0 * theme.grow(15.0)) * s,
-            st,
-        );
+        let st = TextStyle::new(theme.text_px(15.0 * s, s)).with_color(theme.ink).with_align(Align::Centre, Valign::Baseline);
+        draw_text(pixmap, chart.title, (frame.x + 0.5 * frame.w) * s, (frame.y + 19.0 * theme.grow(15.0)) * s, st);
     }
-    let run_key = |i: usize| Key::Line {
-        dashed: i % 2 == 1,
-        marker: Some(if i % 2 == 0 {
-            Marker::Circle
-        } else {
-            Marker::Triangle
-        }),
-    };
-    let entries: Vec<LegendEntry<'_>> = runs
-        .iter()
-        .enumerate()
-        .map(|(i, r)| LegendEntry {
-            label: r.label,
-            color: r.color.unwrap_or(theme.series(i + 1)),
-            key: run_key(i),
-        })
-        .collect();
+    let run_key = |i: usize| Key::Line { dashed: i % 2 == 1, marker: Some(if i % 2 == 0 { Marker::Circle } else { Marker::Triangle }) };
+    let entries: Vec<LegendEntry<'_>> = runs.iter().enumerate().map(|(i, r)| LegendEntry { label: r.label, color: r.color.unwrap_or(theme.series(i + 1)), key: run_key(i) }).collect();
     let ls = LegendStyle::new(theme, s, s);
     let entries = if chart.legend { entries } else { Vec::new() };
     let legend_h = legend_band_height(&entries, (frame.w - 16.0) * s, &ls) / s;
-    legend_band(
-        pixmap,
-        &entries,
-        (frame.x + 8.0) * s,
-        (frame.y + title_h) * s,
-        (frame.w - 16.0) * s,
-        &ls,
-    );
+    legend_band(pixmap, &entries, (frame.x + 8.0) * s, (frame.y + title_h) * s, (frame.w - 16.0) * s, &ls);
     let top = title_h + legend_h;
     let body = frame.inset(0.0, top, 0.0, 0.0);
     // the angle charts break their axis at 0°: an inverted corner as loaded (−176°) sits
@@ -536,17 +334,7 @@ pub fn render_pass_histories_titled(
     ];
     let points: Vec<Vec<Vec<DVec2>>> = panels
         .iter()
-        .map(|(_, get, _)| {
-            runs.iter()
-                .map(|r| {
-                    get(r)
-                        .iter()
-                        .enumerate()
-                        .map(|(i, v)| DVec2::new(i as f64, *v))
-                        .collect()
-                })
-                .collect()
-        })
+        .map(|(_, get, _)| runs.iter().map(|r| get(r).iter().enumerate().map(|(i, v)| DVec2::new(i as f64, *v)).collect()).collect())
         .collect();
     for (k, &(title, _, y_break)) in panels.iter().enumerate() {
         let cell = body.row(k / 2, 2, 4.0).column(k % 2, 2, 8.0);
@@ -558,26 +346,10 @@ pub fn render_pass_histories_titled(
                 points: &points[k][i],
                 color: Some(r.color.unwrap_or(theme.series(i + 1))),
                 dashed: i % 2 == 1,
-                marker: Some(if i % 2 == 0 {
-                    Marker::Circle
-                } else {
-                    Marker::Triangle
-                }),
+                marker: Some(if i % 2 == 0 { Marker::Circle } else { Marker::Triangle }),
             })
             .collect();
-        let sub = Chart {
-            title,
-            x_label: "pass",
-            y_label: "",
-            log_y: false,
-            integer_x: true,
-            y_range: None,
-            dpr: s,
-            frame: Some(cell),
-            legend: false,
-            y_break,
-            theme: *theme,
-        };
+        let sub = Chart { title, x_label: "pass", y_label: "", log_y: false, integer_x: true, y_range: None, dpr: s, frame: Some(cell), legend: false, y_break, theme: *theme };
         render_chart(pixmap, &series, &sub);
     }
 }
@@ -588,13 +360,7 @@ mod tests {
 
     #[test]
     fn ranges_skip_what_cannot_be_drawn() {
-        let pts = [
-            DVec2::new(0.0, -1.0),
-            DVec2::new(1.0, 0.0),
-            DVec2::new(2.0, 1e-3),
-            DVec2::new(f64::NAN, 5.0),
-            DVec2::new(3.0, 10.0),
-        ];
+        let pts = [DVec2::new(0.0, -1.0), DVec2::new(1.0, 0.0), DVec2::new(2.0, 1e-3), DVec2::new(f64::NAN, 5.0), DVec2::new(3.0, 10.0)];
         let ser = [Series::new("a", &pts)];
         let (x, y) = data_range(&ser, false);
         assert_eq!(x, Some((0.0, 3.0)));
@@ -607,73 +373,44 @@ mod tests {
 
     /// Rows of the chart where colour `c` is drawn in column `x`.
     fn rows_of(p: &Pixmap, x: u32, c: (u8, u8, u8)) -> Vec<u32> {
-        (0..p.height())
-            .filter(|&y| {
-                let px = p.pixel(x, y).unwrap();
-                (px.red(), px.green(), px.blue()) == c
-            })
-            .collect()
+        (0..p.height()).filter(|&y| {
+            let px = p.pixel(x, y).unwrap();
+            (px.red(), px.green(), px.blue()) == c
+        }).collect()
     }
 
     #[test]
     fn a_broken_axis_keeps_the_passes_readable_beside_a_folded_start() {
         // pass 0: an inverted corner of −176°; passes 1–3 between 20° and 30°
-        let pts = [
-            DVec2::new(0.0, -176.0),
-            DVec2::new(1.0, 20.0),
-            DVec2::new(2.0, 25.0),
-            DVec2::new(3.0, 30.0),
-        ];
+        let pts = [DVec2::new(0.0, -176.0), DVec2::new(1.0, 20.0), DVec2::new(2.0, 25.0), DVec2::new(3.0, 30.0)];
         let blue = Color::from_rgba8(0, 0, 255, 255);
         let ser = [Series::new("", &pts).with_color(blue)];
         let draw = |y_break| {
             let mut p = Pixmap::new(300, 240).unwrap();
-            render_chart(
-                &mut p,
-                &ser,
-                &Chart {
-                    legend: false,
-                    y_break,
-                    ..Chart::default()
-                },
-            );
+            render_chart(&mut p, &ser, &Chart { legend: false, y_break, ..Chart::default() });
             p
         };
         // the plot spans x = 48 … 286 for passes 0 … 3: pass 1 at 127, pass 3 at 286
         let spread = |p: &Pixmap| {
             let (a, b) = (rows_of(p, 127, (0, 0, 255)), rows_of(p, 283, (0, 0, 255)));
-            a.iter().sum::<u32>() as f64 / a.len() as f64
-                - b.iter().sum::<u32>() as f64 / b.len() as f64
+            a.iter().sum::<u32>() as f64 / a.len() as f64 - b.iter().sum::<u32>() as f64 / b.len() as f64
         };
         let (plain, broken) = (spread(&draw(None)), spread(&draw(Some(0.0))));
-        assert!(
-            plain < 30.0,
-            "without the break the passes are squashed: {plain} px"
-        );
+        assert!(plain < 30.0, "without the break the passes are squashed: {plain} px");
         assert!(broken > 100.0, "with it they use the height: {broken} px");
         // a start above the break needs none: the same picture
         let above = [DVec2::new(0.0, 5.0), DVec2::new(1.0, 20.0)];
         let mut a = Pixmap::new(200, 150).unwrap();
         let mut b = a.clone();
         render_chart(&mut a, &[Series::new("", &above)], &Chart::default());
-        render_chart(
-            &mut b,
-            &[Series::new("", &above)],
-            &Chart {
-                y_break: Some(0.0),
-                ..Chart::default()
-            },
-        );
+        render_chart(&mut b, &[Series::new("", &above)], &Chart { y_break: Some(0.0), ..Chart::default() });
         assert_eq!(a.data(), b.data());
     }
 
     #[test]
     fn integer_axes_never_show_fractions() {
         assert_eq!(integer_ticks(0.0, 3.0).values, vec![0.0, 1.0, 2.0, 3.0]);
-        assert!(integer_ticks(0.0, 40.0)
-            .values
-            .iter()
-            .all(|v| v.fract() == 0.0));
+        assert!(integer_ticks(0.0, 40.0).values.iter().all(|v| v.fract() == 0.0));
         assert_eq!(integer_ticks(0.0, 40.0).step, 5.0);
     }
 
@@ -682,24 +419,9 @@ mod tests {
         let mut p = Pixmap::new(200, 120).unwrap();
         render_chart(&mut p, &[], &Chart::default());
         let one = [DVec2::new(0.0, 2.0)];
-        render_chart(
-            &mut p,
-            &[Series::new("x", &one)],
-            &Chart {
-                log_y: true,
-                ..Default::default()
-            },
-        );
+        render_chart(&mut p, &[Series::new("x", &one)], &Chart { log_y: true, ..Default::default() });
         let bad = [DVec2::new(f64::NAN, f64::INFINITY), DVec2::new(1.0, -1.0)];
-        render_chart(
-            &mut p,
-            &[Series::new("x", &bad)],
-            &Chart {
-                log_y: true,
-                dpr: f32::NAN,
-                ..Default::default()
-            },
-        );
+        render_chart(&mut p, &[Series::new("x", &bad)], &Chart { log_y: true, dpr: f32::NAN, ..Default::default() });
         render_pass_histories(&mut p, &[], &Chart::default());
     }
 }

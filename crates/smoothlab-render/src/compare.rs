@@ -29,12 +29,7 @@ const LINE_H: f32 = 16.0;
 /// both fitted to the union of their bounds (unless `opts.bounds` is set) and sharing
 /// one colour bar along the bottom (it counts the right panel's inverted elements).
 /// Returns the two views.
-pub fn render_compare(
-    pixmap: &mut Pixmap,
-    left: &ComparePanel<'_>,
-    right: &ComparePanel<'_>,
-    opts: &MeshView,
-) -> (View, View) {
+pub fn render_compare(pixmap: &mut Pixmap, left: &ComparePanel<'_>, right: &ComparePanel<'_>, opts: &MeshView) -> (View, View) {
     let s = sane_dpr(opts.dpr);
     let frame = opts.frame.unwrap_or(Frame::of_pixmap(pixmap, s));
     let bounds = opts.bounds.unwrap_or_else(|| {
@@ -47,11 +42,7 @@ pub fn render_compare(
         (0..mesh.element_count())
             .filter(|&e| {
                 let kind = mesh.kind(e);
-                smoothlab::quality::element_quality(
-                    kind,
-                    &mesh.element_points_array(e)[..kind.node_count()],
-                )
-                .inverted
+                smoothlab::quality::element_quality(kind, &mesh.element_points_array(e)[..kind.node_count()]).inverted
             })
             .count()
     };
@@ -61,35 +52,13 @@ pub fn render_compare(
         colormap: opts.colormap,
         inverted: &inverted,
     });
-    let text = [
-        CompareText {
-            title: left.title,
-            lines: left.lines,
-        },
-        CompareText {
-            title: right.title,
-            lines: right.lines,
-        },
-    ];
+    let text = [CompareText { title: left.title, lines: left.lines }, CompareText { title: right.title, lines: right.lines }];
     let meshes = [left.mesh, right.mesh];
     let mut views = Vec::with_capacity(2);
-    render_compare_with(
-        pixmap,
-        &text,
-        frame,
-        s,
-        &opts.theme,
-        bar,
-        |pm, k, mesh_frame| {
-            let o = MeshView {
-                frame: Some(mesh_frame),
-                bounds: Some(bounds),
-                colour_bar: false,
-                ..*opts
-            };
-            views.push(render_mesh(pm, meshes[k], &o));
-        },
-    );
+    render_compare_with(pixmap, &text, frame, s, &opts.theme, bar, |pm, k, mesh_frame| {
+        let o = MeshView { frame: Some(mesh_frame), bounds: Some(bounds), colour_bar: false, ..*opts };
+        views.push(render_mesh(pm, meshes[k], &o));
+    });
     (views[0], views[1])
 }
 
@@ -125,18 +94,9 @@ pub fn render_compare_with(
     bar: Option<CompareBar<'_>>,
     mut draw: impl FnMut(&mut Pixmap, usize, Frame),
 ) {
-    fill_rect(
-        pixmap,
-        frame.x * s,
-        frame.y * s,
-        frame.w * s,
-        frame.h * s,
-        theme.paper,
-    );
+    fill_rect(pixmap, frame.x * s, frame.y * s, frame.w * s, frame.h * s, theme.paper);
     let (title_h, line_h) = (TITLE_H * theme.grow(14.0), LINE_H * theme.grow(11.5));
-    let band = bar
-        .as_ref()
-        .and_then(|b| colour_bar_band(frame, b.label, theme));
+    let band = bar.as_ref().and_then(|b| colour_bar_band(frame, b.label, theme));
     let bar_h = band.map_or(0.0, |b| b.h);
     let gap = 12.0;
     let col_w = (frame.w - gap) / 2.0;
@@ -144,42 +104,18 @@ pub fn render_compare_with(
     let stats_h = if rows > 0.0 { rows * line_h + 8.0 } else { 0.0 };
     for (k, panel) in panels.iter().enumerate() {
         let x = frame.x + k as f32 * (col_w + gap);
-        let mesh_frame = Frame::new(
-            x,
-            frame.y + title_h,
-            col_w,
-            frame.h - title_h - stats_h - bar_h,
-        );
+        let mesh_frame = Frame::new(x, frame.y + title_h, col_w, frame.h - title_h - stats_h - bar_h);
         draw(pixmap, k, mesh_frame);
         let centre = x + 0.5 * col_w;
-        let title = TextStyle::new(theme.text_px(14.0 * s, s))
-            .with_color(theme.ink)
-            .with_align(Align::Centre, Valign::Baseline);
-        draw_text(
-            pixmap,
-            panel.title,
-            centre * s,
-            (frame.y + 18.0 * theme.grow(14.0)) * s,
-            title,
-        );
-        let st = TextStyle::new(theme.text_px(11.5 * s, s))
-            .with_color(theme.caption)
-            .with_align(Align::Centre, Valign::Baseline);
+        let title = TextStyle::new(theme.text_px(14.0 * s, s)).with_color(theme.ink).with_align(Align::Centre, Valign::Baseline);
+        draw_text(pixmap, panel.title, centre * s, (frame.y + 18.0 * theme.grow(14.0)) * s, title);
+        let st = TextStyle::new(theme.text_px(11.5 * s, s)).with_color(theme.caption).with_align(Align::Centre, Valign::Baseline);
         for (i, line) in panel.lines.iter().enumerate() {
             let y = frame.bottom() - bar_h - stats_h + 4.0 + line_h * (i as f32 + 0.75);
             draw_text(pixmap, line, centre * s, y * s, st);
         }
     }
     if let (Some(band), Some(bar)) = (band, bar) {
-        draw_colour_bar(
-            pixmap,
-            band,
-            bar.colormap,
-            bar.domain,
-            bar.label,
-            (bar.inverted)(),
-            s,
-            theme,
-        );
+        draw_colour_bar(pixmap, band, bar.colormap, bar.domain, bar.label, (bar.inverted)(), s, theme);
     }
 }

@@ -41,8 +41,7 @@ impl Grid {
             return f64::NAN;
         }
         let u = (p - self.lo) / self.spacing();
-        if !(u.x >= 0.0 && u.y >= 0.0 && u.x <= (self.nx - 1) as f64 && u.y <= (self.ny - 1) as f64)
-        {
+        if !(u.x >= 0.0 && u.y >= 0.0 && u.x <= (self.nx - 1) as f64 && u.y <= (self.ny - 1) as f64) {
             return f64::NAN;
         }
         let i = (u.x.floor() as usize).min(self.nx - 2);
@@ -79,20 +78,12 @@ pub fn iso_segments(grid: &Grid, values: &[f64], level: f64, out: &mut Vec<[DVec
             if !v.iter().all(|x| x.is_finite()) {
                 continue;
             }
-            let case = v
-                .iter()
-                .enumerate()
-                .fold(0usize, |c, (k, &x)| c | (((x > level) as usize) << k));
+            let case = v.iter().enumerate().fold(0usize, |c, (k, &x)| c | (((x > level) as usize) << k));
             if case == 0 || case == 15 {
                 continue;
             }
             let p0 = grid.lo + d * DVec2::new(i as f64, j as f64);
-            let corner = [
-                p0,
-                p0 + DVec2::new(d.x, 0.0),
-                p0 + d,
-                p0 + DVec2::new(0.0, d.y),
-            ];
+            let corner = [p0, p0 + DVec2::new(d.x, 0.0), p0 + d, p0 + DVec2::new(0.0, d.y)];
             // crossing on edge e (corner e → corner e+1)
             let cross = |e: usize| {
                 let (a, b) = (e, (e + 1) % 4);
@@ -140,11 +131,7 @@ pub fn iso_segments(grid: &Grid, values: &[f64], level: f64, out: &mut Vec<[DVec
 /// once; a closed loop ends at its first point.
 pub fn chain_segments(segs: &[[DVec2; 2]], tol: f64) -> Vec<Vec<DVec2>> {
     use std::collections::HashMap;
-    let tol = if tol > 0.0 && tol.is_finite() {
-        tol
-    } else {
-        1e-9
-    };
+    let tol = if tol > 0.0 && tol.is_finite() { tol } else { 1e-9 };
     let key = |p: DVec2| ((p.x / tol).round() as i64, (p.y / tol).round() as i64);
     // endpoint key → (segment, which end)
     let mut at: HashMap<(i64, i64), Vec<(usize, usize)>> = HashMap::with_capacity(segs.len() * 2);
@@ -158,9 +145,7 @@ pub fn chain_segments(segs: &[[DVec2; 2]], tol: f64) -> Vec<Vec<DVec2>> {
     // extends `line` from its last point through unused segments
     let grow = |line: &mut Vec<DVec2>, used: &mut Vec<bool>| loop {
         let last = *line.last().unwrap_or(&DVec2::ZERO);
-        let next = at
-            .get(&key(last))
-            .and_then(|v| v.iter().find(|(i, _)| !used[*i]).copied());
+        let next = at.get(&key(last)).and_then(|v| v.iter().find(|(i, _)| !used[*i]).copied());
         match next {
             Some((i, end)) => {
                 used[i] = true;
@@ -200,12 +185,7 @@ mod tests {
 
     #[test]
     fn circle_iso_line_of_a_paraboloid() {
-        let grid = Grid {
-            nx: 81,
-            ny: 81,
-            lo: DVec2::splat(-2.0),
-            hi: DVec2::splat(2.0),
-        };
+        let grid = Grid { nx: 81, ny: 81, lo: DVec2::splat(-2.0), hi: DVec2::splat(2.0) };
         let v = sample(&grid, |p| p.length_squared());
         let h = grid.spacing().x;
         // levels that no sample hits exactly (x² + y² = c has no solution on the grid):
@@ -217,20 +197,13 @@ mod tests {
             // linear interpolation of r² along a cell edge is off the circle by O(h²)
             for s in &segs {
                 for p in s {
-                    assert!(
-                        (p.length() - r).abs() < h * h,
-                        "r² = {c}: point at radius {}",
-                        p.length()
-                    );
+                    assert!((p.length() - r).abs() < h * h, "r² = {c}: point at radius {}", p.length());
                 }
             }
             // the pieces add up to the circumference, and the line is closed: every
             // endpoint is shared by exactly two segments
             let len: f64 = segs.iter().map(|s| s[0].distance(s[1])).sum();
-            assert!(
-                (len - 2.0 * std::f64::consts::PI * r).abs() < 0.01 * r,
-                "length {len} for r {r}"
-            );
+            assert!((len - 2.0 * std::f64::consts::PI * r).abs() < 0.01 * r, "length {len} for r {r}");
             let ends: Vec<DVec2> = segs.iter().flat_map(|s| [s[0], s[1]]).collect();
             for p in &ends {
                 let twins = ends.iter().filter(|q| q.distance(*p) < 1e-9).count();
@@ -246,12 +219,7 @@ mod tests {
 
     #[test]
     fn saddle_cells_follow_the_centre_value() {
-        let grid = Grid {
-            nx: 2,
-            ny: 2,
-            lo: DVec2::ZERO,
-            hi: DVec2::ONE,
-        };
+        let grid = Grid { nx: 2, ny: 2, lo: DVec2::ZERO, hi: DVec2::ONE };
         // high corners bottom-left and top-right, centre mean 0.25 above the level 0:
         // the high corners join, so the segments cut off the low corners (1,0) and (0,1)
         let mut segs = Vec::new();
@@ -260,49 +228,26 @@ mod tests {
         let cuts = |s: &[DVec2; 2], corner: DVec2| s.iter().all(|p| p.distance(corner) < 0.99);
         let a = DVec2::new(1.0, 0.0);
         let b = DVec2::new(0.0, 1.0);
-        assert!(
-            segs.iter().any(|s| cuts(s, a)) && segs.iter().any(|s| cuts(s, b)),
-            "{segs:?}"
-        );
+        assert!(segs.iter().any(|s| cuts(s, a)) && segs.iter().any(|s| cuts(s, b)), "{segs:?}");
         // the cut points: bottom edge at t = 1.5/2.5, right edge at 0.4
         let bottom = DVec2::new(0.6, 0.0);
-        assert!(
-            segs.iter()
-                .any(|s| s.iter().any(|p| p.distance(bottom) < 1e-12)),
-            "{segs:?}"
-        );
+        assert!(segs.iter().any(|s| s.iter().any(|p| p.distance(bottom) < 1e-12)), "{segs:?}");
         // centre mean below the level: the high corners are cut off instead
         segs.clear();
         iso_segments(&grid, &[1.0, -1.5, -1.5, 1.0], 0.0, &mut segs);
         assert_eq!(segs.len(), 2);
-        assert!(
-            segs.iter().any(|s| cuts(s, DVec2::ZERO)) && segs.iter().any(|s| cuts(s, DVec2::ONE)),
-            "{segs:?}"
-        );
+        assert!(segs.iter().any(|s| cuts(s, DVec2::ZERO)) && segs.iter().any(|s| cuts(s, DVec2::ONE)), "{segs:?}");
         // the mirror saddle (case 10)
         segs.clear();
         iso_segments(&grid, &[-1.0, 1.5, 1.5, -1.0], 0.0, &mut segs);
-        assert!(
-            segs.iter().any(|s| cuts(s, DVec2::ZERO)) && segs.iter().any(|s| cuts(s, DVec2::ONE)),
-            "{segs:?}"
-        );
+        assert!(segs.iter().any(|s| cuts(s, DVec2::ZERO)) && segs.iter().any(|s| cuts(s, DVec2::ONE)), "{segs:?}");
     }
 
     #[test]
     fn masked_cells_have_no_lines_and_short_input_is_ignored() {
-        let grid = Grid {
-            nx: 3,
-            ny: 2,
-            lo: DVec2::ZERO,
-            hi: DVec2::new(2.0, 1.0),
-        };
+        let grid = Grid { nx: 3, ny: 2, lo: DVec2::ZERO, hi: DVec2::new(2.0, 1.0) };
         let mut segs = Vec::new();
-        iso_segments(
-            &grid,
-            &[0.0, 1.0, f64::INFINITY, 0.0, 1.0, f64::NAN],
-            0.5,
-            &mut segs,
-        );
+        iso_segments(&grid, &[0.0, 1.0, f64::INFINITY, 0.0, 1.0, f64::NAN], 0.5, &mut segs);
         assert_eq!(segs.len(), 1, "only the finite cell crosses");
         assert!(segs[0].iter().all(|p| (p.x - 0.5).abs() < 1e-12));
         segs.clear();
@@ -313,20 +258,10 @@ mod tests {
 
     #[test]
     fn bilinear_reproduces_bilinear_functions() {
-        let grid = Grid {
-            nx: 5,
-            ny: 4,
-            lo: DVec2::new(-1.0, 2.0),
-            hi: DVec2::new(3.0, 5.0),
-        };
+        let grid = Grid { nx: 5, ny: 4, lo: DVec2::new(-1.0, 2.0), hi: DVec2::new(3.0, 5.0) };
         let f = |p: DVec2| 2.0 + 0.5 * p.x - p.y + 0.25 * p.x * p.y;
         let v = sample(&grid, f);
-        for p in [
-            DVec2::new(-1.0, 2.0),
-            DVec2::new(0.3, 4.1),
-            DVec2::new(3.0, 5.0),
-            DVec2::new(2.99, 2.01),
-        ] {
+        for p in [DVec2::new(-1.0, 2.0), DVec2::new(0.3, 4.1), DVec2::new(3.0, 5.0), DVec2::new(2.99, 2.01)] {
             assert!((grid.bilinear(&v, p) - f(p)).abs() < 1e-12);
         }
         assert!(grid.bilinear(&v, DVec2::new(5.0, 3.0)).is_nan());

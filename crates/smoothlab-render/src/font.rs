@@ -18,19 +18,13 @@
 //!   point is written, as it does not start at the last point written, 0, 0 before the
 //!   glyph's first) and its points (`Reader`).
 
-use ab_glyph::{
-    point, Glyph, GlyphId, Outline, OutlineCurve, OutlinedGlyph, Point, PxScaleFactor, Rect,
-};
+use ab_glyph::{point, Glyph, GlyphId, Outline, OutlineCurve, OutlinedGlyph, Point, PxScaleFactor, Rect};
 
 include!(concat!(env!("OUT_DIR"), "/font-tables.rs"));
 
 /// The glyph of `c` (0, the missing-glyph box, for a character the font lacks).
 pub(super) fn glyph_id(c: char) -> GlyphId {
-    GlyphId(
-        CHARS
-            .binary_search_by_key(&c, |&(k, _)| k)
-            .map_or(0, |i| CHARS[i].1),
-    )
+    GlyphId(CHARS.binary_search_by_key(&c, |&(k, _)| k).map_or(0, |i| CHARS[i].1))
 }
 
 /// The font at `size` device pixels, as `ab_glyph::PxScaleFont` scales it: `size` is the
@@ -42,9 +36,7 @@ pub(super) struct Scaled {
 
 impl Scaled {
     pub(super) fn new(size: f32) -> Self {
-        Scaled {
-            factor: size / (ASCENT - DESCENT),
-        }
+        Scaled { factor: size / (ASCENT - DESCENT) }
     }
     pub(super) fn ascent(self) -> f32 {
         self.factor * ASCENT
@@ -53,17 +45,11 @@ impl Scaled {
         self.factor * DESCENT
     }
     pub(super) fn h_advance(self, id: GlyphId) -> f32 {
-        self.factor
-            * ADVANCES
-                .get(usize::from(id.0))
-                .map_or(0.0, |&a| f32::from(a))
+        self.factor * ADVANCES.get(usize::from(id.0)).map_or(0.0, |&a| f32::from(a))
     }
     pub(super) fn kern(self, first: GlyphId, second: GlyphId) -> f32 {
         let pair = u32::from(first.0) << 16 | u32::from(second.0);
-        self.factor
-            * KERNING
-                .binary_search_by_key(&pair, |&(p, _)| p)
-                .map_or(0.0, |i| f32::from(KERNING[i].1))
+        self.factor * KERNING.binary_search_by_key(&pair, |&(p, _)| p).map_or(0.0, |i| f32::from(KERNING[i].1))
     }
 }
 
@@ -73,14 +59,7 @@ pub(super) fn outline_glyph(glyph: Glyph) -> Option<OutlinedGlyph> {
     let outline = outline(glyph.id)?;
     let s = Scaled::new(glyph.scale.x);
     let v = Scaled::new(glyph.scale.y);
-    Some(OutlinedGlyph::new(
-        glyph,
-        outline,
-        PxScaleFactor {
-            horizontal: s.factor,
-            vertical: v.factor,
-        },
-    ))
+    Some(OutlinedGlyph::new(glyph, outline, PxScaleFactor { horizontal: s.factor, vertical: v.factor }))
 }
 
 /// Glyph `id`'s outline in font units, as `ab_glyph` reads it from the font file.
@@ -90,23 +69,13 @@ fn outline(id: GlyphId) -> Option<Outline> {
     if x_min >= x_max || y_min >= y_max {
         return None;
     }
-    let bounds = Rect {
-        min: point(x_min.into(), y_max.into()),
-        max: point(x_max.into(), y_min.into()),
-    };
-    let mut read = Reader {
-        bytes: &CURVES[CURVE_STARTS[g] as usize..CURVE_STARTS[g + 1] as usize],
-        last: [0; 2],
-    };
+    let bounds = Rect { min: point(x_min.into(), y_max.into()), max: point(x_max.into(), y_min.into()) };
+    let mut read = Reader { bytes: &CURVES[CURVE_STARTS[g] as usize..CURVE_STARTS[g + 1] as usize], last: [0; 2] };
     let mut curves = Vec::new();
     while let Some(tag) = read.byte() {
         // a curve not written from its start begins at the last point read (0, 0 before the
         // first)
-        let start = if tag & 4 != 0 {
-            read.point()
-        } else {
-            read.last_point()
-        };
+        let start = if tag & 4 != 0 { read.point() } else { read.last_point() };
         curves.push(match tag & 3 {
             0 => OutlineCurve::Line(start, read.point()),
             1 => OutlineCurve::Quad(start, read.point(), read.point()),
@@ -162,10 +131,7 @@ mod tests {
     /// The font file the tables were built from, read by `ab_glyph` as the labels read it
     /// before the tables.
     fn file() -> FontRef<'static> {
-        FontRef::try_from_slice(include_bytes!(
-            "../../../assets/fonts/DejaVuSans-subset.ttf"
-        ))
-        .unwrap()
+        FontRef::try_from_slice(include_bytes!("../../../assets/fonts/DejaVuSans-subset.ttf")).unwrap()
     }
 
     fn bits(p: Point) -> (u32, u32) {
@@ -193,19 +159,11 @@ mod tests {
         assert_eq!(ADVANCES.len(), n);
         for g in 0..n as u16 {
             let id = GlyphId(g);
-            assert_eq!(
-                f32::from(ADVANCES[g as usize]).to_bits(),
-                f.h_advance_unscaled(id).to_bits(),
-                "glyph {g}"
-            );
+            assert_eq!(f32::from(ADVANCES[g as usize]).to_bits(), f.h_advance_unscaled(id).to_bits(), "glyph {g}");
             let (ours, theirs) = (outline(id), f.outline(id));
             assert_eq!(ours.is_some(), theirs.is_some(), "glyph {g}");
             if let (Some(o), Some(t)) = (ours, theirs) {
-                assert_eq!(
-                    (bits(o.bounds.min), bits(o.bounds.max)),
-                    (bits(t.bounds.min), bits(t.bounds.max)),
-                    "glyph {g}"
-                );
+                assert_eq!((bits(o.bounds.min), bits(o.bounds.max)), (bits(t.bounds.min), bits(t.bounds.max)), "glyph {g}");
                 let cb = |v: &[OutlineCurve]| v.iter().map(curve_bits).collect::<Vec<_>>();
                 assert_eq!(cb(&o.curves), cb(&t.curves), "glyph {g}");
             }
@@ -215,11 +173,7 @@ mod tests {
         for a in 0..n as u16 {
             for b in 0..n as u16 {
                 let (a, b) = (GlyphId(a), GlyphId(b));
-                assert_eq!(
-                    scaled.kern(a, b).to_bits(),
-                    theirs.kern(a, b).to_bits(),
-                    "{a:?} {b:?}"
-                );
+                assert_eq!(scaled.kern(a, b).to_bits(), theirs.kern(a, b).to_bits(), "{a:?} {b:?}");
             }
         }
         assert!(KERNING.windows(2).all(|w| w[0].0 < w[1].0));
@@ -236,11 +190,7 @@ mod tests {
             let mut caret = 0.3;
             for c in "Hg αβ≤∞→ Wa AV To é".chars() {
                 let id = glyph_id(c);
-                assert_eq!(
-                    ours.h_advance(id).to_bits(),
-                    theirs.h_advance(id).to_bits(),
-                    "{c:?} at {size}"
-                );
+                assert_eq!(ours.h_advance(id).to_bits(), theirs.h_advance(id).to_bits(), "{c:?} at {size}");
                 let glyph = id.with_scale_and_position(size, point(caret, 17.25));
                 caret += ours.h_advance(id);
                 let (o, t) = (outline_glyph(glyph.clone()), f.outline_glyph(glyph));

@@ -92,15 +92,7 @@ pub fn record<T>(f: impl FnOnce() -> T) -> (T, Notes) {
 pub(crate) fn note(pixmap: &Pixmap, kind: RegionKind, x: f32, y: f32, w: f32, h: f32) {
     NOTES.with(|n| {
         if let Some(v) = n.borrow_mut().as_mut() {
-            v.push(Region {
-                kind,
-                x,
-                y,
-                w,
-                h,
-                rgb: None,
-                key: key(pixmap),
-            });
+            v.push(Region { kind, x, y, w, h, rgb: None, key: key(pixmap) });
         }
     });
 }
@@ -111,14 +103,7 @@ pub(crate) fn adopt(from: &Pixmap, to: &Pixmap, dx: f32, dy: f32) {
     let (kf, kt) = (key(from), key(to));
     NOTES.with(|n| {
         if let Some(v) = n.borrow_mut().as_mut() {
-            let moved: Vec<Region> = v
-                .iter()
-                .filter(|r| r.key == kf)
-                .map(|r| Region {
-                    key: kt,
-                    ..r.shifted(dx, dy)
-                })
-                .collect();
+            let moved: Vec<Region> = v.iter().filter(|r| r.key == kf).map(|r| Region { key: kt, ..r.shifted(dx, dy) }).collect();
             v.extend(moved);
         }
     });
@@ -141,15 +126,7 @@ pub(crate) fn note_mark(pixmap: &Pixmap, x: f32, y: f32, c: Color) {
     NOTES.with(|n| {
         if let Some(v) = n.borrow_mut().as_mut() {
             let u = c.to_color_u8();
-            v.push(Region {
-                kind: RegionKind::Mark,
-                x,
-                y,
-                w: 1.0,
-                h: 1.0,
-                rgb: Some([u.red(), u.green(), u.blue()]),
-                key: key(pixmap),
-            });
+            v.push(Region { kind: RegionKind::Mark, x, y, w: 1.0, h: 1.0, rgb: Some([u.red(), u.green(), u.blue()]), key: key(pixmap) });
         }
     });
 }
@@ -168,15 +145,8 @@ mod tests {
             assert_eq!(inner.of(&b).len(), 1);
             note(&b, RegionKind::Legend, 1.0, 1.0, 1.0, 1.0);
         });
-        assert_eq!(
-            notes.of(&a).len(),
-            1,
-            "the note before recording is not kept"
-        );
-        assert_eq!(
-            notes.of(&b).iter().map(|r| r.kind).collect::<Vec<_>>(),
-            [RegionKind::Mark, RegionKind::Legend]
-        );
+        assert_eq!(notes.of(&a).len(), 1, "the note before recording is not kept");
+        assert_eq!(notes.of(&b).iter().map(|r| r.kind).collect::<Vec<_>>(), [RegionKind::Mark, RegionKind::Legend]);
         let r = notes.of(&a)[0];
         assert!(r.overlaps(&r.shifted(1.0, 1.0)) && !r.overlaps(&r.shifted(2.0, 0.0)));
     }

@@ -14,12 +14,9 @@ use tiny_skia::{Color, PathBuilder, Pixmap, PremultipliedColorU8};
 use super::colormap::Colormap;
 use super::contour::{chain_segments, iso_segments, Grid};
 use super::mesh::bezier_control;
-use super::paint::{
-    draw_marker, fill_rect, legend_band, legend_band_height, rgba, stroke, Key, LegendEntry,
-    LegendStyle, Marker, MarkerStyle,
-};
-use super::text::{draw_text, Align, TextStyle, Valign};
+use super::paint::{draw_marker, fill_rect, legend_band, legend_band_height, rgba, stroke, Key, LegendEntry, LegendStyle, Marker, MarkerStyle};
 use super::theme::Theme;
+use super::text::{draw_text, Align, TextStyle, Valign};
 use super::view::{sane_dpr, Frame, View, ZoomPan};
 use smoothlab::error::{Error, Result};
 use smoothlab::numeric::order::sort_total;
@@ -56,11 +53,7 @@ pub fn star_bounds(star: &Star, margin: f64) -> (DVec2, DVec2) {
         }
     }
     let size = (hi - lo).max_element();
-    let size = if size > 0.0 && size.is_finite() {
-        size
-    } else {
-        1.0
-    };
+    let size = if size > 0.0 && size.is_finite() { size } else { 1.0 };
     let c = 0.5 * (lo + hi);
     let half = 0.5 * size * (1.0 + 2.0 * margin.max(0.0));
     (c - DVec2::splat(half), c + DVec2::splat(half))
@@ -112,12 +105,7 @@ pub fn feasible_bounds(star: &Star, keep: &[DVec2], margin: f64) -> (DVec2, DVec
 
 /// [`feasible_bounds`] of a node whose star `outline` is drawn in a plane and whose
 /// feasible region is where `validity` is positive ([`PlaneFunction::validity`]).
-pub fn feasible_bounds_of(
-    validity: &dyn Fn(DVec2) -> f64,
-    outline: &Star,
-    keep: &[DVec2],
-    margin: f64,
-) -> (DVec2, DVec2) {
+pub fn feasible_bounds_of(validity: &dyn Fn(DVec2) -> f64, outline: &Star, keep: &[DVec2], margin: f64) -> (DVec2, DVec2) {
     const N: usize = 97;
     let whole = star_bounds(outline, margin);
     if outline.is_empty() {
@@ -154,31 +142,16 @@ pub fn feasible_bounds_of(
 
 /// Samples `objective` (the node of `star` moved to each grid point) and the star's
 /// validity on an `nx × ny` grid over `bounds`.
-pub fn sample_field(
-    objective: &dyn Objective,
-    star: &Star,
-    bounds: (DVec2, DVec2),
-    nx: usize,
-    ny: usize,
-) -> Result<Field> {
+pub fn sample_field(objective: &dyn Objective, star: &Star, bounds: (DVec2, DVec2), nx: usize, ny: usize) -> Result<Field> {
     let grid = level_grid(bounds, nx, ny)?;
     if star.is_empty() {
-        return Err(Error::node(
-            star.node as usize,
-            None,
-            "has no elements around it to draw level sets over",
-        ));
+        return Err(Error::node(star.node as usize, None, "has no elements around it to draw level sets over"));
     }
     Ok(sample_on(&StarFunction { objective, star }, grid))
 }
 
 /// Samples a [`PlaneFunction`] and its validity on an `nx × ny` grid over `bounds`.
-pub fn sample_plane(
-    function: &dyn PlaneFunction,
-    bounds: (DVec2, DVec2),
-    nx: usize,
-    ny: usize,
-) -> Result<Field> {
+pub fn sample_plane(function: &dyn PlaneFunction, bounds: (DVec2, DVec2), nx: usize, ny: usize) -> Result<Field> {
     Ok(sample_on(function, level_grid(bounds, nx, ny)?))
 }
 
@@ -186,20 +159,14 @@ pub fn sample_plane(
 /// a finite box with area.
 fn level_grid(bounds: (DVec2, DVec2), nx: usize, ny: usize) -> Result<Grid> {
     if nx < 2 || ny < 2 {
-        return Err(Error::invalid(format!(
-            "a level-set grid needs at least 2 × 2 samples, not {nx} × {ny}"
-        )));
+        return Err(Error::invalid(format!("a level-set grid needs at least 2 × 2 samples, not {nx} × {ny}")));
     }
     if nx.saturating_mul(ny) > MAX_SAMPLES {
-        return Err(Error::TooLarge(format!(
-            "a {nx} × {ny} level-set grid is over the {MAX_SAMPLES} sample limit"
-        )));
+        return Err(Error::TooLarge(format!("a {nx} × {ny} level-set grid is over the {MAX_SAMPLES} sample limit")));
     }
     let (lo, hi) = (bounds.0.min(bounds.1), bounds.0.max(bounds.1));
     if !lo.is_finite() || !hi.is_finite() || hi.x - lo.x <= 0.0 || hi.y - lo.y <= 0.0 {
-        return Err(Error::invalid(format!(
-            "level-set bounds {lo:?}..{hi:?} are not a finite box with area"
-        )));
+        return Err(Error::invalid(format!("level-set bounds {lo:?}..{hi:?} are not a finite box with area")));
     }
     Ok(Grid { nx, ny, lo, hi })
 }
@@ -215,12 +182,7 @@ fn sample_on(function: &dyn PlaneFunction, grid: Grid) -> Field {
             validity.push(function.validity(x));
         }
     }
-    Field {
-        grid,
-        values,
-        validity,
-        goal: function.goal(),
-    }
+    Field { grid, values, validity, goal: function.goal() }
 }
 
 /// Smallest corner sine over the star's elements with the node at `x`.
@@ -257,12 +219,7 @@ impl Default for Levels {
 /// The level values for `field`: finite, strictly increasing, at most `n` of them
 /// (fewer when samples repeat); empty when no sample is finite.
 pub fn choose_levels(field: &Field, levels: Levels) -> Vec<f64> {
-    let mut v: Vec<f64> = field
-        .values
-        .iter()
-        .copied()
-        .filter(|x| x.is_finite())
-        .collect();
+    let mut v: Vec<f64> = field.values.iter().copied().filter(|x| x.is_finite()).collect();
     if v.len() < 2 {
         return Vec::new();
     }
@@ -276,22 +233,12 @@ pub fn choose_levels(field: &Field, levels: Levels) -> Vec<f64> {
                 v[i] + f * (v[(i + 1).min(v.len() - 1)] - v[i])
             })
             .collect(),
-        Levels::Linear(n) => (1..=n)
-            .map(|k| min + (max - min) * k as f64 / (n + 1) as f64)
-            .collect(),
+        Levels::Linear(n) => (1..=n).map(|k| min + (max - min) * k as f64 / (n + 1) as f64).collect(),
         Levels::Log(n) => {
             // distances from the best value, spaced geometrically from the 1 % quantile
             // of the positive distances to the largest
-            let best = if field.goal == Goal::MaximizeMin {
-                max
-            } else {
-                min
-            };
-            let mut d: Vec<f64> = v
-                .iter()
-                .map(|x| (x - best).abs())
-                .filter(|d| *d > 0.0)
-                .collect();
+            let best = if field.goal == Goal::MaximizeMin { max } else { min };
+            let mut d: Vec<f64> = v.iter().map(|x| (x - best).abs()).filter(|d| *d > 0.0).collect();
             sort_total(&mut d);
             if d.is_empty() {
                 return Vec::new();
@@ -300,11 +247,7 @@ pub fn choose_levels(field: &Field, levels: Levels) -> Vec<f64> {
             let d0 = d0.max(d1 * 1e-12);
             (0..n)
                 .map(|k| {
-                    let t = if n > 1 {
-                        k as f64 / (n - 1) as f64
-                    } else {
-                        0.0
-                    };
+                    let t = if n > 1 { k as f64 / (n - 1) as f64 } else { 0.0 };
                     let dist = d0 * (d1 / d0).powf(t);
                     if field.goal == Goal::MaximizeMin {
                         best - dist
@@ -327,24 +270,12 @@ pub fn choose_levels(field: &Field, levels: Levels) -> Vec<f64> {
 /// rather than on the infeasible walls around it. [`choose_levels`]`(Quantiles(n))` when
 /// fewer than two feasible samples are finite.
 pub fn feasible_levels(field: &Field, n: usize) -> Vec<f64> {
-    let inside: Vec<f64> = field
-        .values
-        .iter()
-        .zip(&field.validity)
-        .filter(|(v, ok)| v.is_finite() && **ok > 0.0)
-        .map(|(v, _)| *v)
-        .collect();
+    let inside: Vec<f64> =
+        field.values.iter().zip(&field.validity).filter(|(v, ok)| v.is_finite() && **ok > 0.0).map(|(v, _)| *v).collect();
     if inside.len() < 2 {
         return choose_levels(field, Levels::Quantiles(n));
     }
-    choose_levels(
-        &Field {
-            values: inside,
-            validity: Vec::new(),
-            ..field.clone()
-        },
-        Levels::Quantiles(n),
-    )
+    choose_levels(&Field { values: inside, validity: Vec::new(), ..field.clone() }, Levels::Quantiles(n))
 }
 
 /// A figure's own mark on a level-set panel, in world coordinates, listed in the legend
@@ -353,58 +284,19 @@ pub fn feasible_levels(field: &Field, n: usize) -> Vec<f64> {
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Overlay<'a> {
     /// A polyline.
-    Line {
-        points: &'a [DVec2],
-        color: Color,
-        dashed: bool,
-        label: &'a str,
-    },
+    Line { points: &'a [DVec2], color: Color, dashed: bool, label: &'a str },
     /// An arrow from `from` to `to`.
-    Arrow {
-        from: DVec2,
-        to: DVec2,
-        color: Color,
-        label: &'a str,
-    },
+    Arrow { from: DVec2, to: DVec2, color: Color, label: &'a str },
     /// A point marker.
-    Point {
-        at: DVec2,
-        marker: Marker,
-        color: Color,
-        label: &'a str,
-    },
+    Point { at: DVec2, marker: Marker, color: Color, label: &'a str },
 }
 
 impl Overlay<'_> {
     fn legend(&self) -> Option<LegendEntry<'_>> {
         let (label, color, key) = match *self {
-            Overlay::Line {
-                color,
-                dashed,
-                label,
-                ..
-            } => (
-                label,
-                color,
-                Key::Line {
-                    dashed,
-                    marker: None,
-                },
-            ),
-            Overlay::Arrow { color, label, .. } => (
-                label,
-                color,
-                Key::Line {
-                    dashed: false,
-                    marker: None,
-                },
-            ),
-            Overlay::Point {
-                marker,
-                color,
-                label,
-                ..
-            } => (label, color, Key::Marker(marker)),
+            Overlay::Line { color, dashed, label, .. } => (label, color, Key::Line { dashed, marker: None }),
+            Overlay::Arrow { color, label, .. } => (label, color, Key::Line { dashed: false, marker: None }),
+            Overlay::Point { marker, color, label, .. } => (label, color, Key::Marker(marker)),
         };
         (!label.is_empty()).then_some(LegendEntry { label, color, key })
     }
@@ -443,14 +335,8 @@ pub enum PathKind {
 }
 
 impl PathKind {
-    const ALL: [PathKind; 6] = [
-        PathKind::Start,
-        PathKind::Gradient,
-        PathKind::Conjugate,
-        PathKind::ActiveSet,
-        PathKind::Newton,
-        PathKind::Laplacian,
-    ];
+    const ALL: [PathKind; 6] =
+        [PathKind::Start, PathKind::Gradient, PathKind::Conjugate, PathKind::ActiveSet, PathKind::Newton, PathKind::Laplacian];
     pub fn marker(self) -> Marker {
         match self {
             PathKind::Start => Marker::Circle,
@@ -521,16 +407,7 @@ pub struct LevelSetView {
 
 impl Default for LevelSetView {
     fn default() -> Self {
-        LevelSetView {
-            levels: Levels::default(),
-            colormap: Colormap::Viridis,
-            dpr: 1.0,
-            frame: None,
-            isolines: true,
-            legend: true,
-            clip: false,
-            theme: Theme::light(),
-        }
+        LevelSetView { levels: Levels::default(), colormap: Colormap::Viridis, dpr: 1.0, frame: None, isolines: true, legend: true, clip: false, theme: Theme::light() }
     }
 }
 
@@ -546,22 +423,8 @@ fn title_band(theme: &Theme) -> (f32, f32, f32) {
 /// The view a level-set panel of `frame` (CSS pixels) draws the world box `lo..hi` with,
 /// its legend taking `legend_h` CSS pixels under the plot ([`level_set_legend_height`]):
 /// the one [`render_level_set`] uses for a field sampled over that box.
-pub fn level_set_view(
-    frame: Frame,
-    lo: DVec2,
-    hi: DVec2,
-    dpr: f32,
-    theme: &Theme,
-    legend_h: f32,
-) -> View {
-    View::fit(
-        lo,
-        hi,
-        plot_frame(frame, theme, legend_h),
-        8.0,
-        ZoomPan::default(),
-        sane_dpr(dpr),
-    )
+pub fn level_set_view(frame: Frame, lo: DVec2, hi: DVec2, dpr: f32, theme: &Theme, legend_h: f32) -> View {
+    View::fit(lo, hi, plot_frame(frame, theme, legend_h), 8.0, ZoomPan::default(), sane_dpr(dpr))
 }
 
 /// The plot of a level-set panel: the frame less the title band and the legend's.
@@ -573,65 +436,27 @@ fn plot_frame(frame: Frame, theme: &Theme, legend_h: f32) -> Frame {
 fn legend_entries<'a>(data: &LevelSet<'a>, extras: &LevelSetExtras<'a>) -> Vec<LegendEntry<'a>> {
     let field = data.field;
     let mut entries = vec![
-        LegendEntry {
-            label: "current position",
-            color: Color::WHITE,
-            key: Key::Marker(Marker::Circle),
-        },
-        LegendEntry {
-            label: "feasible border",
-            color: rgba(228, 26, 28, 255),
-            key: Key::Line {
-                dashed: true,
-                marker: None,
-            },
-        },
-        LegendEntry {
-            label: "an element inverted",
-            color: rgba(33, 144, 141, 255),
-            key: Key::Hatched,
-        },
+        LegendEntry { label: "current position", color: Color::WHITE, key: Key::Marker(Marker::Circle) },
+        LegendEntry { label: "feasible border", color: rgba(228, 26, 28, 255), key: Key::Line { dashed: true, marker: None } },
+        LegendEntry { label: "an element inverted", color: rgba(33, 144, 141, 255), key: Key::Hatched },
     ];
     // +∞ is a barrier's value where a valid element would fold (the `new` objective on a
     // valid star); NaN is a value the objective does not define
     if field.values.iter().any(|v| v.is_nan()) {
-        entries.push(LegendEntry {
-            label: "objective undefined",
-            color: rgba(225, 225, 225, 255),
-            key: Key::Hatched,
-        });
+        entries.push(LegendEntry { label: "objective undefined", color: rgba(225, 225, 225, 255), key: Key::Hatched });
     } else if field.values.iter().any(|v| v.is_infinite()) {
-        entries.push(LegendEntry {
-            label: "+∞: the barrier",
-            color: rgba(225, 225, 225, 255),
-            key: Key::Hatched,
-        });
+        entries.push(LegendEntry { label: "+∞: the barrier", color: rgba(225, 225, 225, 255), key: Key::Hatched });
     }
     if data.path.len() > 1 {
-        entries.push(LegendEntry {
-            label: "solver's path",
-            color: path_color(),
-            key: Key::Line {
-                dashed: false,
-                marker: None,
-            },
-        });
+        entries.push(LegendEntry { label: "solver's path", color: path_color(), key: Key::Line { dashed: false, marker: None } });
     }
     for kind in PathKind::ALL {
         if kind != PathKind::Start && data.path.iter().any(|(_, k)| *k == kind) {
-            entries.push(LegendEntry {
-                label: kind.label(),
-                color: kind.color(),
-                key: Key::Marker(kind.marker()),
-            });
+            entries.push(LegendEntry { label: kind.label(), color: kind.color(), key: Key::Marker(kind.marker()) });
         }
     }
     if data.optimum.is_some() {
-        entries.push(LegendEntry {
-            label: "optimum",
-            color: rgba(240, 228, 66, 255),
-            key: Key::Marker(Marker::Star),
-        });
+        entries.push(LegendEntry { label: "optimum", color: rgba(240, 228, 66, 255), key: Key::Marker(Marker::Star) });
     }
     entries.extend(extras.overlays.iter().filter_map(Overlay::legend));
     entries
@@ -645,12 +470,7 @@ pub fn level_set_legend_height(data: &LevelSet<'_>, opts: &LevelSetView, frame_w
 }
 
 /// [`level_set_legend_height`] of a panel drawn by [`render_level_set_with`].
-pub fn level_set_legend_height_with(
-    data: &LevelSet<'_>,
-    opts: &LevelSetView,
-    extras: &LevelSetExtras<'_>,
-    frame_w: f32,
-) -> f32 {
+pub fn level_set_legend_height_with(data: &LevelSet<'_>, opts: &LevelSetView, extras: &LevelSetExtras<'_>, frame_w: f32) -> f32 {
     if !opts.legend {
         return 0.0;
     }
@@ -665,40 +485,19 @@ pub fn render_level_set(pixmap: &mut Pixmap, data: &LevelSet<'_>, opts: &LevelSe
 }
 
 /// [`render_level_set`] with a figure's own marks and levels ([`LevelSetExtras`]).
-pub fn render_level_set_with(
-    pixmap: &mut Pixmap,
-    data: &LevelSet<'_>,
-    opts: &LevelSetView,
-    extras: &LevelSetExtras<'_>,
-) -> View {
+pub fn render_level_set_with(pixmap: &mut Pixmap, data: &LevelSet<'_>, opts: &LevelSetView, extras: &LevelSetExtras<'_>) -> View {
     let s = sane_dpr(opts.dpr);
     let frame = opts.frame.unwrap_or(Frame::of_pixmap(pixmap, s));
     let theme = &opts.theme;
-    fill_rect(
-        pixmap,
-        frame.x * s,
-        frame.y * s,
-        frame.w * s,
-        frame.h * s,
-        theme.paper,
-    );
+    fill_rect(pixmap, frame.x * s, frame.y * s, frame.w * s, frame.h * s, theme.paper);
     let (title_y, note_y, _) = title_band(theme);
     let legend_h = level_set_legend_height_with(data, opts, extras, frame.w);
     let plot = plot_frame(frame, theme, legend_h);
-    super::layout::note(
-        pixmap,
-        super::layout::RegionKind::Plot,
-        plot.x * s,
-        plot.y * s,
-        plot.w * s,
-        plot.h * s,
-    );
+    super::layout::note(pixmap, super::layout::RegionKind::Plot, plot.x * s, plot.y * s, plot.w * s, plot.h * s);
     let field = data.field;
     let grid = field.grid;
     let view = level_set_view(frame, grid.lo, grid.hi, s, theme, legend_h);
-    let levels = extras
-        .levels
-        .map_or_else(|| choose_levels(field, opts.levels), <[f64]>::to_vec);
+    let levels = extras.levels.map_or_else(|| choose_levels(field, opts.levels), <[f64]>::to_vec);
 
     draw_bands(pixmap, field, &levels, &view, plot, opts.colormap, s);
 
@@ -728,10 +527,7 @@ pub fn render_level_set_with(
     let mut edges = PathBuilder::new();
     for el in &data.star.elems {
         let k = el.kind.corners();
-        let pts: Vec<(f32, f32)> = el.pts[..el.kind.node_count()]
-            .iter()
-            .map(|p| view.device_xy(*p))
-            .collect();
+        let pts: Vec<(f32, f32)> = el.pts[..el.kind.node_count()].iter().map(|p| view.device_xy(*p)).collect();
         edges.move_to(pts[0].0, pts[0].1);
         for i in 0..k {
             let b = pts[(i + 1) % k];
@@ -745,26 +541,14 @@ pub fn render_level_set_with(
         }
         edges.close();
     }
-    stroke(
-        pixmap,
-        edges.clone(),
-        rgba(255, 255, 255, 200),
-        3.2 * s,
-        None,
-    );
+    stroke(pixmap, edges.clone(), rgba(255, 255, 255, 200), 3.2 * s, None);
     stroke(pixmap, edges, rgba(0, 0, 0, 255), 1.4 * s, None);
 
     // the feasible border over the star edges it may run along
     segs.clear();
     iso_segments(&grid, &field.validity, 0.0, &mut segs);
     let border = to_path(&segs);
-    stroke(
-        pixmap,
-        border,
-        rgba(228, 26, 28, 255),
-        2.4 * s,
-        Some([6.0 * s, 4.0 * s]),
-    );
+    stroke(pixmap, border, rgba(228, 26, 28, 255), 2.4 * s, Some([6.0 * s, 4.0 * s]));
     draw_overlay_lines(pixmap, extras.overlays, &view, s);
 
     // the path, then its iterates
@@ -791,42 +575,19 @@ pub fn render_level_set_with(
             let (ux, uy) = (dx / len, dy / len);
             let (bx, by) = (b.0 - ux * 4.0 * s, b.1 - uy * 4.0 * s);
             heads.move_to(bx, by);
-            heads.line_to(
-                bx - ux * 8.0 * s - uy * 4.0 * s,
-                by - uy * 8.0 * s + ux * 4.0 * s,
-            );
-            heads.line_to(
-                bx - ux * 8.0 * s + uy * 4.0 * s,
-                by - uy * 8.0 * s - ux * 4.0 * s,
-            );
+            heads.line_to(bx - ux * 8.0 * s - uy * 4.0 * s, by - uy * 8.0 * s + ux * 4.0 * s);
+            heads.line_to(bx - ux * 8.0 * s + uy * 4.0 * s, by - uy * 8.0 * s - ux * 4.0 * s);
             heads.close();
         }
         stroke(pixmap, pb.clone(), Color::WHITE, 4.5 * s, None);
         stroke(pixmap, pb, path_color(), 2.2 * s, None);
         if let Some(h) = heads.finish() {
-            pixmap.fill_path(
-                &h,
-                &super::paint::solid(path_color()),
-                tiny_skia::FillRule::Winding,
-                tiny_skia::Transform::identity(),
-                None,
-            );
+            pixmap.fill_path(&h, &super::paint::solid(path_color()), tiny_skia::FillRule::Winding, tiny_skia::Transform::identity(), None);
         }
     }
     for (p, kind) in data.path {
         let (x, y) = view.device_xy(*p);
-        draw_marker(
-            pixmap,
-            kind.marker(),
-            x,
-            y,
-            MarkerStyle {
-                r: 4.0 * s,
-                fill: kind.color(),
-                edge: Color::BLACK,
-                width: s,
-            },
-        );
+        draw_marker(pixmap, kind.marker(), x, y, MarkerStyle { r: 4.0 * s, fill: kind.color(), edge: Color::BLACK, width: s });
     }
     let (cx, cy) = view.device_xy(data.star.x0);
     let mut ring = PathBuilder::new();
@@ -835,38 +596,13 @@ pub fn render_level_set_with(
     stroke(pixmap, ring, Color::BLACK, 1.6 * s, None);
     if let Some(o) = data.optimum {
         let (x, y) = view.device_xy(o);
-        draw_marker(
-            pixmap,
-            Marker::Star,
-            x,
-            y,
-            MarkerStyle {
-                r: 6.5 * s,
-                fill: rgba(240, 228, 66, 255),
-                edge: Color::BLACK,
-                width: 1.2 * s,
-            },
-        );
+        draw_marker(pixmap, Marker::Star, x, y, MarkerStyle { r: 6.5 * s, fill: rgba(240, 228, 66, 255), edge: Color::BLACK, width: 1.2 * s });
         super::layout::note_mark(pixmap, x, y, rgba(240, 228, 66, 255));
     }
     for o in extras.overlays {
-        if let Overlay::Point {
-            at, marker, color, ..
-        } = *o
-        {
+        if let Overlay::Point { at, marker, color, .. } = *o {
             let (x, y) = view.device_xy(at);
-            draw_marker(
-                pixmap,
-                marker,
-                x,
-                y,
-                MarkerStyle {
-                    r: 6.5 * s,
-                    fill: color,
-                    edge: Color::BLACK,
-                    width: 1.2 * s,
-                },
-            );
+            draw_marker(pixmap, marker, x, y, MarkerStyle { r: 6.5 * s, fill: color, edge: Color::BLACK, width: 1.2 * s });
             super::layout::note_mark(pixmap, x, y, color);
         }
     }
@@ -875,12 +611,7 @@ pub fn render_level_set_with(
         // what lies outside the sampled box is not part of this view
         let (a, b) = (view.device_xy(grid.lo), view.device_xy(grid.hi));
         let (x0, x1, y0, y1) = (a.0.min(b.0), a.0.max(b.0), a.1.min(b.1), a.1.max(b.1));
-        let (fx, fy, fr, fb) = (
-            frame.x * s,
-            frame.y * s,
-            frame.right() * s,
-            frame.bottom() * s,
-        );
+        let (fx, fy, fr, fb) = (frame.x * s, frame.y * s, frame.right() * s, frame.bottom() * s);
         fill_rect(pixmap, fx, fy, frame.w * s, y0 - fy, theme.paper);
         fill_rect(pixmap, fx, y1, frame.w * s, fb - y1, theme.paper);
         fill_rect(pixmap, fx, y0, x0 - fx, y1 - y0, theme.paper);
@@ -891,44 +622,17 @@ pub fn render_level_set_with(
     // both shrink to fit a narrow frame (an embedded view) rather than be clipped
     let room = (frame.w - 8.0) * s;
     let (shown, size) = theme.fit_label(data.title, 14.0 * s, room, s);
-    let title = TextStyle::new(size)
-        .with_color(theme.ink)
-        .with_align(Align::Centre, Valign::Baseline);
-    draw_text(
-        pixmap,
-        &shown,
-        (frame.x + 0.5 * frame.w) * s,
-        (frame.y + title_y) * s,
-        title,
-    );
-    let better = if field.goal == Goal::MaximizeMin {
-        "maximised"
-    } else {
-        "minimised"
-    };
+    let title = TextStyle::new(size).with_color(theme.ink).with_align(Align::Centre, Valign::Baseline);
+    draw_text(pixmap, &shown, (frame.x + 0.5 * frame.w) * s, (frame.y + title_y) * s, title);
+    let better = if field.goal == Goal::MaximizeMin { "maximised" } else { "minimised" };
     let note = format!("{better}: the brighter the band, the better");
     let (shown, size) = theme.fit_label(&note, 10.5 * s, room, s);
-    let sub = TextStyle::new(size)
-        .with_color(theme.muted)
-        .with_align(Align::Centre, Valign::Baseline);
-    draw_text(
-        pixmap,
-        &shown,
-        (frame.x + 0.5 * frame.w) * s,
-        (frame.y + note_y) * s,
-        sub,
-    );
+    let sub = TextStyle::new(size).with_color(theme.muted).with_align(Align::Centre, Valign::Baseline);
+    draw_text(pixmap, &shown, (frame.x + 0.5 * frame.w) * s, (frame.y + note_y) * s, sub);
 
     if opts.legend {
         let ls = LegendStyle::new(theme, s * 0.9, s);
-        legend_band(
-            pixmap,
-            &legend_entries(data, extras),
-            (frame.x + 4.0) * s,
-            (frame.bottom() - legend_h) * s,
-            (frame.w - 8.0) * s,
-            &ls,
-        );
+        legend_band(pixmap, &legend_entries(data, extras), (frame.x + 4.0) * s, (frame.bottom() - legend_h) * s, (frame.w - 8.0) * s, &ls);
     }
     view
 }
@@ -937,15 +641,8 @@ pub fn render_level_set_with(
 fn draw_overlay_lines(pixmap: &mut Pixmap, overlays: &[Overlay<'_>], view: &View, s: f32) {
     for o in overlays {
         let (pts, color, dashed, arrow) = match *o {
-            Overlay::Line {
-                points,
-                color,
-                dashed,
-                ..
-            } => (points.to_vec(), color, dashed, false),
-            Overlay::Arrow {
-                from, to, color, ..
-            } => (vec![from, to], color, false, true),
+            Overlay::Line { points, color, dashed, .. } => (points.to_vec(), color, dashed, false),
+            Overlay::Arrow { from, to, color, .. } => (vec![from, to], color, false, true),
             Overlay::Point { .. } => continue,
         };
         let dev: Vec<(f32, f32)> = pts.iter().map(|p| view.device_xy(*p)).collect();
@@ -967,14 +664,8 @@ fn draw_overlay_lines(pixmap: &mut Pixmap, overlays: &[Overlay<'_>], view: &View
                 let (ux, uy) = (dx / len, dy / len);
                 let mut head = PathBuilder::new();
                 head.move_to(b.0, b.1);
-                head.line_to(
-                    b.0 - ux * 12.0 * s - uy * 6.0 * s,
-                    b.1 - uy * 12.0 * s + ux * 6.0 * s,
-                );
-                head.line_to(
-                    b.0 - ux * 12.0 * s + uy * 6.0 * s,
-                    b.1 - uy * 12.0 * s - ux * 6.0 * s,
-                );
+                head.line_to(b.0 - ux * 12.0 * s - uy * 6.0 * s, b.1 - uy * 12.0 * s + ux * 6.0 * s);
+                head.line_to(b.0 - ux * 12.0 * s + uy * 6.0 * s, b.1 - uy * 12.0 * s - ux * 6.0 * s);
                 head.close();
                 let halo = head.clone();
                 stroke(pixmap, halo, rgba(255, 255, 255, 230), 2.0 * s, None);
@@ -986,15 +677,7 @@ fn draw_overlay_lines(pixmap: &mut Pixmap, overlays: &[Overlay<'_>], view: &View
 
 /// Per-pixel bands of the bilinear interpolant; masked samples in hatched grey, the
 /// infeasible region striped dark.
-fn draw_bands(
-    pixmap: &mut Pixmap,
-    field: &Field,
-    levels: &[f64],
-    view: &View,
-    plot: Frame,
-    map: Colormap,
-    s: f32,
-) {
+fn draw_bands(pixmap: &mut Pixmap, field: &Field, levels: &[f64], view: &View, plot: Frame, map: Colormap, s: f32) {
     let (w, h) = (pixmap.width() as i64, pixmap.height() as i64);
     let x0 = ((plot.x * s).floor() as i64).clamp(0, w);
     let x1 = ((plot.right() * s).ceil() as i64).clamp(0, w);
@@ -1013,10 +696,7 @@ fn draw_bands(
     for py in y0..y1 {
         for px in x0..x1 {
             let p = view.device_to_world(DVec2::new(px as f64 + 0.5, py as f64 + 0.5));
-            let inside = p.x >= field.grid.lo.x
-                && p.x <= field.grid.hi.x
-                && p.y >= field.grid.lo.y
-                && p.y <= field.grid.hi.y;
+            let inside = p.x >= field.grid.lo.x && p.x <= field.grid.hi.x && p.y >= field.grid.lo.y && p.y <= field.grid.hi.y;
             if !inside {
                 continue;
             }
@@ -1034,11 +714,7 @@ fn draw_bands(
             if v.is_finite() && infeasible && on_stripe {
                 // stripes that contrast with the band: dark on light bands, light on dark
                 let luma = (2 * c[0] as u32 + 7 * c[1] as u32 + c[2] as u32) / 10;
-                c = if luma > 100 {
-                    c.map(|x| x / 3)
-                } else {
-                    c.map(|x| ((x as u32 + 2 * 255) / 3) as u8)
-                };
+                c = if luma > 100 { c.map(|x| x / 3) } else { c.map(|x| ((x as u32 + 2 * 255) / 3) as u8) };
             }
             if let Some(q) = PremultipliedColorU8::from_rgba(c[0], c[1], c[2], 255) {
                 pixels[(py * w + px) as usize] = q;
@@ -1048,38 +724,12 @@ fn draw_bands(
 }
 
 /// Two level-set panels side by side (old and new objectives), each with its title.
-pub fn render_level_sets_side_by_side(
-    pixmap: &mut Pixmap,
-    left: &LevelSet<'_>,
-    right: &LevelSet<'_>,
-    opts: &LevelSetView,
-) -> (View, View) {
+pub fn render_level_sets_side_by_side(pixmap: &mut Pixmap, left: &LevelSet<'_>, right: &LevelSet<'_>, opts: &LevelSetView) -> (View, View) {
     let s = sane_dpr(opts.dpr);
     let frame = opts.frame.unwrap_or(Frame::of_pixmap(pixmap, s));
-    fill_rect(
-        pixmap,
-        frame.x * s,
-        frame.y * s,
-        frame.w * s,
-        frame.h * s,
-        opts.theme.paper,
-    );
-    let a = render_level_set(
-        pixmap,
-        left,
-        &LevelSetView {
-            frame: Some(frame.column(0, 2, 12.0)),
-            ..*opts
-        },
-    );
-    let b = render_level_set(
-        pixmap,
-        right,
-        &LevelSetView {
-            frame: Some(frame.column(1, 2, 12.0)),
-            ..*opts
-        },
-    );
+    fill_rect(pixmap, frame.x * s, frame.y * s, frame.w * s, frame.h * s, opts.theme.paper);
+    let a = render_level_set(pixmap, left, &LevelSetView { frame: Some(frame.column(0, 2, 12.0)), ..*opts });
+    let b = render_level_set(pixmap, right, &LevelSetView { frame: Some(frame.column(1, 2, 12.0)), ..*opts });
     (a, b)
 }
 
@@ -1091,19 +741,10 @@ mod tests {
     #[test]
     fn sampling_checks_its_input() {
         let star = hexagon_star();
-        let obj = Bowl {
-            c: DVec2::ZERO,
-            wall: 10.0,
-        };
+        let obj = Bowl { c: DVec2::ZERO, wall: 10.0 };
         let b = star_bounds(&star, 0.1);
-        assert!(matches!(
-            sample_field(&obj, &star, b, 1, 5),
-            Err(Error::Invalid(_))
-        ));
-        assert!(matches!(
-            sample_field(&obj, &star, b, 5000, 5000),
-            Err(Error::TooLarge(_))
-        ));
+        assert!(matches!(sample_field(&obj, &star, b, 1, 5), Err(Error::Invalid(_))));
+        assert!(matches!(sample_field(&obj, &star, b, 5000, 5000), Err(Error::TooLarge(_))));
         assert!(sample_field(&obj, &star, (DVec2::ZERO, DVec2::new(1.0, 0.0)), 5, 5).is_err());
         assert!(sample_field(&obj, &star, (DVec2::ZERO, DVec2::splat(f64::NAN)), 5, 5).is_err());
         let e = sample_field(&obj, &Star::new(), b, 5, 5).unwrap_err();
@@ -1115,10 +756,7 @@ mod tests {
         // For a convex hexagon star the node may move anywhere inside the hexagon: the
         // zero line of the validity runs along its edges (apothem √3/2).
         let star = hexagon_star();
-        let obj = Bowl {
-            c: DVec2::ZERO,
-            wall: 10.0,
-        };
+        let obj = Bowl { c: DVec2::ZERO, wall: 10.0 };
         let f = sample_field(&obj, &star, star_bounds(&star, 0.1), 121, 121).unwrap();
         assert!(f.grid.bilinear(&f.validity, DVec2::ZERO) > 0.8);
         assert!(f.grid.bilinear(&f.validity, DVec2::new(0.0, 0.95)) < 0.0);
@@ -1129,8 +767,7 @@ mod tests {
         let h = f.grid.spacing().x;
         for p in segs.iter().flatten() {
             // distance to the hexagon boundary along the normal of the nearest edge
-            let a =
-                p.y.atan2(p.x).rem_euclid(std::f64::consts::PI / 3.0) - std::f64::consts::PI / 6.0;
+            let a = p.y.atan2(p.x).rem_euclid(std::f64::consts::PI / 3.0) - std::f64::consts::PI / 6.0;
             let r = p.length() * a.cos();
             assert!((r - apothem).abs() < 2.0 * h, "border point {p:?} at {r}");
         }
@@ -1139,37 +776,25 @@ mod tests {
     #[test]
     fn levels_are_increasing_and_masked_samples_ignored() {
         let star = hexagon_star();
-        let obj = Bowl {
-            c: DVec2::new(0.1, -0.2),
-            wall: 0.5,
-        };
+        let obj = Bowl { c: DVec2::new(0.1, -0.2), wall: 0.5 };
         let f = sample_field(&obj, &star, star_bounds(&star, 0.1), 41, 41).unwrap();
         assert!(f.values.iter().any(|v| v.is_infinite()));
         for lv in [Levels::Quantiles(10), Levels::Log(10), Levels::Linear(10)] {
             let l = choose_levels(&f, lv);
             assert!(l.len() >= 8 && l.len() <= 10, "{lv:?}: {l:?}");
-            assert!(
-                l.windows(2).all(|w| w[0] < w[1]) && l.iter().all(|v| v.is_finite()),
-                "{lv:?}: {l:?}"
-            );
+            assert!(l.windows(2).all(|w| w[0] < w[1]) && l.iter().all(|v| v.is_finite()), "{lv:?}: {l:?}");
         }
         // quantile levels split the finite samples into bands of about equal counts
         let l = choose_levels(&f, Levels::Quantiles(4));
         let finite: Vec<f64> = f.values.iter().copied().filter(|v| v.is_finite()).collect();
         for (k, lv) in l.iter().enumerate() {
             let below = finite.iter().filter(|v| *v <= lv).count() as f64 / finite.len() as f64;
-            assert!(
-                (below - (k + 1) as f64 / 5.0).abs() < 0.03,
-                "level {k}: {below}"
-            );
+            assert!((below - (k + 1) as f64 / 5.0).abs() < 0.03, "level {k}: {below}");
         }
         // log levels crowd near the best value
         let l = choose_levels(&f, Levels::Log(10));
         assert!(l[1] - l[0] < l[9] - l[8]);
-        let empty = Field {
-            values: vec![f64::NAN; f.values.len()],
-            ..f.clone()
-        };
+        let empty = Field { values: vec![f64::NAN; f.values.len()], ..f.clone() };
         assert!(choose_levels(&empty, Levels::default()).is_empty());
     }
 }

@@ -45,63 +45,49 @@ mod levelset;
 mod mesh;
 mod paint;
 mod profile;
-mod surface_picture;
 mod text;
 mod theme;
 pub mod view;
 mod view3d;
+mod surface_picture;
 mod volume_picture;
 
 #[cfg(test)]
 mod tests;
 
-pub use axes::{
-    format_power_of_ten, format_tick, log_ticks, nice_range, nice_step, nice_ticks, Axis, Scale,
-    Ticks,
-};
-pub use chart::{
-    render_chart, render_pass_histories, render_pass_histories_titled, Chart, PassHistory, Series,
-    PASS_TITLES,
-};
-pub use colormap::{
-    bucket, bucket_color, lightness, series_color, Colormap, BUCKETS, SERIES, VIRIDIS,
-};
+pub use axes::{format_power_of_ten, format_tick, log_ticks, nice_range, nice_step, nice_ticks, Axis, Scale, Ticks};
+pub use chart::{render_chart, render_pass_histories, render_pass_histories_titled, Chart, PassHistory, Series, PASS_TITLES};
+pub use colormap::{bucket, bucket_color, lightness, series_color, Colormap, BUCKETS, SERIES, VIRIDIS};
 pub use compare::{render_compare, render_compare_with, CompareBar, ComparePanel, CompareText};
 pub use contour::{iso_segments, Grid};
-pub use histogram::{
-    percentages, render_angle_histogram, AngleHistogram, HistogramAxis, HistogramSeries,
+pub use histogram::{percentages, render_angle_histogram, AngleHistogram, HistogramAxis, HistogramSeries};
+pub use levelset::{PATH_RGB, 
+    choose_levels, feasible_bounds, feasible_bounds_of, level_set_legend_height, level_set_view, render_level_set, render_level_sets_side_by_side, sample_field,
+    sample_plane, star_bounds, Field, LevelSet, PlaneFunction, StarFunction,
+    LevelSetView, Levels, PathKind,
 };
-pub use levelset::{
-    choose_levels, feasible_bounds, feasible_bounds_of, level_set_legend_height, level_set_view,
-    render_level_set, render_level_sets_side_by_side, sample_field, sample_plane, star_bounds,
-    Field, LevelSet, LevelSetView, Levels, PathKind, PlaneFunction, StarFunction, PATH_RGB,
-};
-pub use levelset::{
-    feasible_levels, level_set_legend_height_with, render_level_set_with, LevelSetExtras, Overlay,
-};
+pub use levelset::{feasible_levels, level_set_legend_height_with, render_level_set_with, LevelSetExtras, Overlay};
 pub use mesh::{
-    bezier_control, colour_bar_band, mesh_colour_bar_shown, mesh_view, pick_node, pick_node_within,
-    render_mesh, MeshView, Metric, Show, COLOUR_BAR_SHARE, INVERTED, PICK_RADIUS,
+    bezier_control, colour_bar_band, mesh_colour_bar_shown, mesh_view, pick_node, pick_node_within, render_mesh, MeshView, Metric,
+    Show, COLOUR_BAR_SHARE, INVERTED, PICK_RADIUS,
 };
-/// The pieces of `render_mesh` the page's fast raster view (`lab::raster`) draws with.
-pub use mesh::{draw_colour_bar, draw_inverted, push_element};
 pub use paint::Marker;
 pub use profile::{render_sketch, render_titled, title_band, Sketch, SketchLine};
-pub use surface_picture::{SurfaceFaces, SurfacePicture};
+/// The pieces of `render_mesh` the page's fast raster view (`lab::raster`) draws with.
+pub use mesh::{draw_colour_bar, draw_inverted, push_element};
 pub use text::{draw_text, draw_text_rotated, text_width, Align, TextStyle, Valign};
+pub use surface_picture::{SurfaceFaces, SurfacePicture};
 pub use theme::Theme;
+pub use volume_picture::{Cut, CutFaces, VolumePicture};
 pub use view::{Frame, View, ZoomPan};
 pub use view3d::{
-    draw_node_mark, newell_normal, render_surface, shade, Camera, Faces, Projection, SurfaceView,
-    AMBIENT, BACK_FACE, DEGREES_PER_PIXEL, MAX_DRAG_PITCH, ZOOM_RANGE,
+    draw_node_mark, newell_normal, render_surface, shade, Camera, Faces, Projection, SurfaceView, AMBIENT, BACK_FACE, DEGREES_PER_PIXEL, MAX_DRAG_PITCH,
+    ZOOM_RANGE,
 };
-pub use volume_picture::{Cut, CutFaces, VolumePicture};
 
 /// The picture as PNG bytes, for the CLI (native builds only: the page hands the
 /// pixels to a canvas and needs no PNG codec).
 #[cfg(not(target_arch = "wasm32"))]
 pub fn encode_png(pixmap: &tiny_skia::Pixmap) -> smoothlab::Result<Vec<u8>> {
-    pixmap
-        .encode_png()
-        .map_err(|e| smoothlab::Error::Io(format!("cannot encode the picture as PNG: {e}")))
+    pixmap.encode_png().map_err(|e| smoothlab::Error::Io(format!("cannot encode the picture as PNG: {e}")))
 }

@@ -162,17 +162,8 @@ pub const PICK_RADIUS: f64 = 12.0;
 /// `width × height` device pixels, without drawing: for mapping pointer events.
 pub fn mesh_view(width: u32, height: u32, mesh: &Mesh, opts: &MeshView) -> View {
     let dpr = sane_dpr(opts.dpr);
-    let frame = opts.frame.unwrap_or(Frame::new(
-        0.0,
-        0.0,
-        width as f32 / dpr,
-        height as f32 / dpr,
-    ));
-    let plot = match opts
-        .colour_bar
-        .then(|| colour_bar_band(frame, opts.metric.label(mesh), &opts.theme))
-        .flatten()
-    {
+    let frame = opts.frame.unwrap_or(Frame::new(0.0, 0.0, width as f32 / dpr, height as f32 / dpr));
+    let plot = match opts.colour_bar.then(|| colour_bar_band(frame, opts.metric.label(mesh), &opts.theme)).flatten() {
         Some(bar) => frame.inset(0.0, 0.0, 0.0, bar.h),
         None => frame,
     };
@@ -222,10 +213,7 @@ pub fn push_element(pb: &mut PathBuilder, mesh: &Mesh, view: &View, e: usize) ->
         pts[i] = (x, y);
     }
     let n = ids.len();
-    if pts[..n]
-        .iter()
-        .any(|p| p.0.abs() > FAR_PX || p.1.abs() > FAR_PX)
-    {
+    if pts[..n].iter().any(|p| p.0.abs() > FAR_PX || p.1.abs() > FAR_PX) {
         return push_far_element(pb, &pts[..n], kind);
     }
     pb.move_to(pts[0].0, pts[0].1);
@@ -257,10 +245,7 @@ fn push_far_edge(path: &mut PathBuilder, a: (f32, f32), mid: Option<(f32, f32)>,
         for j in 1..16 {
             let t = j as f32 / 16.0;
             let u = 1.0 - t;
-            pts.push((
-                u * u * a.0 + 2.0 * u * t * c.0 + t * t * b.0,
-                u * u * a.1 + 2.0 * u * t * c.1 + t * t * b.1,
-            ));
+            pts.push((u * u * a.0 + 2.0 * u * t * c.0 + t * t * b.0, u * u * a.1 + 2.0 * u * t * c.1 + t * t * b.1));
         }
     }
     pts.push(b);
@@ -269,12 +254,7 @@ fn push_far_edge(path: &mut PathBuilder, a: (f32, f32), mid: Option<(f32, f32)>,
         let d = (q.0 - p.0, q.1 - p.1);
         let (mut t0, mut t1) = (0.0f32, 1.0f32);
         let mut keep = true;
-        for (dp, v) in [
-            (-d.0, p.0 + FAR_PX),
-            (d.0, FAR_PX - p.0),
-            (-d.1, p.1 + FAR_PX),
-            (d.1, FAR_PX - p.1),
-        ] {
+        for (dp, v) in [(-d.0, p.0 + FAR_PX), (d.0, FAR_PX - p.0), (-d.1, p.1 + FAR_PX), (d.1, FAR_PX - p.1)] {
             if dp == 0.0 {
                 keep &= v >= 0.0;
             } else {
@@ -296,11 +276,7 @@ fn push_far_edge(path: &mut PathBuilder, a: (f32, f32), mid: Option<(f32, f32)>,
 /// An element with a corner beyond [`FAR_PX`]: its outline (curved edges as 16 chords)
 /// clipped to the square of half-side [`FAR_PX`] (Sutherland–Hodgman), which holds the
 /// picture, so what shows is unchanged.
-fn push_far_element(
-    pb: &mut PathBuilder,
-    pts: &[(f32, f32)],
-    kind: smoothlab::mesh::ElementKind,
-) -> bool {
+fn push_far_element(pb: &mut PathBuilder, pts: &[(f32, f32)], kind: smoothlab::mesh::ElementKind) -> bool {
     let k = kind.corners();
     let mut poly: Vec<(f32, f32)> = Vec::with_capacity(16 * k);
     for i in 0..k {
@@ -311,10 +287,7 @@ fn push_far_element(
             for j in 1..16 {
                 let t = j as f32 / 16.0;
                 let u = 1.0 - t;
-                poly.push((
-                    u * u * a.0 + 2.0 * u * t * c.0 + t * t * b.0,
-                    u * u * a.1 + 2.0 * u * t * c.1 + t * t * b.1,
-                ));
+                poly.push((u * u * a.0 + 2.0 * u * t * c.0 + t * t * b.0, u * u * a.1 + 2.0 * u * t * c.1 + t * t * b.1));
             }
         }
     }
@@ -351,10 +324,7 @@ fn push_far_element(
 /// its middle (t = ½): `2m − (p0 + p2)/2`. The quadratic edge of `docs/formulas.md` §1 is this
 /// same parabola, so the drawn curve is the element's true edge.
 pub fn bezier_control(p0: (f32, f32), m: (f32, f32), p2: (f32, f32)) -> (f32, f32) {
-    (
-        2.0 * m.0 - 0.5 * (p0.0 + p2.0),
-        2.0 * m.1 - 0.5 * (p0.1 + p2.1),
-    )
+    (2.0 * m.0 - 0.5 * (p0.0 + p2.0), 2.0 * m.1 - 0.5 * (p0.1 + p2.1))
 }
 
 /// Draws `mesh` into `pixmap` as `opts` says, and returns the view it used (for
@@ -363,32 +333,16 @@ pub fn render_mesh(pixmap: &mut Pixmap, mesh: &Mesh, opts: &MeshView) -> View {
     let dpr = sane_dpr(opts.dpr);
     let s = dpr;
     let frame = opts.frame.unwrap_or(Frame::of_pixmap(pixmap, dpr));
-    let view = mesh_view(
-        pixmap.width(),
-        pixmap.height(),
-        mesh,
-        &MeshView {
-            frame: Some(frame),
-            ..*opts
-        },
-    );
+    let view = mesh_view(pixmap.width(), pixmap.height(), mesh, &MeshView { frame: Some(frame), ..*opts });
     let theme = &opts.theme;
     if opts.background {
-        fill_rect(
-            pixmap,
-            frame.x * s,
-            frame.y * s,
-            frame.w * s,
-            frame.h * s,
-            theme.paper,
-        );
+        fill_rect(pixmap, frame.x * s, frame.y * s, frame.w * s, frame.h * s, theme.paper);
     }
     note_mesh_area(pixmap, mesh, &view, frame, s);
     let clip = frame_mask(pixmap, frame, s);
     let clip = clip.as_ref();
     let (w, h) = (pixmap.width() as f32, pixmap.height() as f32);
-    let visible =
-        |lo: (f32, f32), hi: (f32, f32)| hi.0 >= 0.0 && hi.1 >= 0.0 && lo.0 <= w && lo.1 <= h;
+    let visible = |lo: (f32, f32), hi: (f32, f32)| hi.0 >= 0.0 && hi.1 >= 0.0 && lo.0 <= w && lo.1 <= h;
     let mean_edge_dev = mesh.mean_edge_length() * view.device_scale();
     let show_edges = match opts.edges {
         Show::Always => true,
@@ -458,16 +412,11 @@ pub fn render_mesh(pixmap: &mut Pixmap, mesh: &Mesh, opts: &MeshView) -> View {
                 lo = (lo.0.min(m.0), lo.1.min(m.1));
                 hi = (hi.0.max(m.0), hi.1.max(m.1));
             }
-            let finite =
-                lo.0.is_finite() && lo.1.is_finite() && hi.0.is_finite() && hi.1.is_finite();
+            let finite = lo.0.is_finite() && lo.1.is_finite() && hi.0.is_finite() && hi.1.is_finite();
             if !(finite && visible(lo, hi)) {
                 continue;
             }
-            let path = if edge.is_boundary() {
-                &mut outer
-            } else {
-                &mut inner
-            };
+            let path = if edge.is_boundary() { &mut outer } else { &mut inner };
             let far = |p: (f32, f32)| p.0.abs() > FAR_PX || p.1.abs() > FAR_PX;
             if far(pa) || far(pb_) || mid.is_some_and(far) {
                 push_far_edge(path, pa, mid, pb_);
@@ -506,30 +455,10 @@ pub fn render_mesh(pixmap: &mut Pixmap, mesh: &Mesh, opts: &MeshView) -> View {
         stroke_masked(pixmap, ring, rgba(230, 159, 0, 255), 2.0 * s, clip);
     }
 
-    if let Some(bar) = opts
-        .colour_bar
-        .then(|| colour_bar_band(frame, opts.metric.label(mesh), theme))
-        .flatten()
-    {
+    if let Some(bar) = opts.colour_bar.then(|| colour_bar_band(frame, opts.metric.label(mesh), theme)).flatten() {
         // a zoomed mesh may run under the bar: give the bar its own ground
-        fill_rect(
-            pixmap,
-            bar.x * s,
-            bar.y * s,
-            bar.w * s,
-            bar.h * s,
-            theme.paper,
-        );
-        draw_colour_bar(
-            pixmap,
-            bar,
-            opts.colormap,
-            (d0, d1),
-            opts.metric.label(mesh),
-            n_inverted,
-            s,
-            theme,
-        );
+        fill_rect(pixmap, bar.x * s, bar.y * s, bar.w * s, bar.h * s, theme.paper);
+        draw_colour_bar(pixmap, bar, opts.colormap, (d0, d1), opts.metric.label(mesh), n_inverted, s, theme);
     }
     view
 }
@@ -544,14 +473,7 @@ fn note_mesh_area(pixmap: &Pixmap, mesh: &Mesh, view: &View, frame: Frame, s: f3
     let y0 = a.1.min(b.1).max(frame.y * s);
     let y1 = a.1.max(b.1).min(frame.bottom() * s);
     if x1 > x0 && y1 > y0 {
-        super::layout::note(
-            pixmap,
-            super::layout::RegionKind::Plot,
-            x0,
-            y0,
-            x1 - x0,
-            y1 - y0,
-        );
+        super::layout::note(pixmap, super::layout::RegionKind::Plot, x0, y0, x1 - x0, y1 - y0);
     }
 }
 
@@ -560,12 +482,7 @@ fn note_mesh_area(pixmap: &Pixmap, mesh: &Mesh, view: &View, frame: Frame, s: f3
 /// scale beside it instead).
 pub fn mesh_colour_bar_shown(width: u32, height: u32, mesh: &Mesh, opts: &MeshView) -> bool {
     let dpr = sane_dpr(opts.dpr);
-    let frame = opts.frame.unwrap_or(Frame::new(
-        0.0,
-        0.0,
-        width as f32 / dpr,
-        height as f32 / dpr,
-    ));
+    let frame = opts.frame.unwrap_or(Frame::new(0.0, 0.0, width as f32 / dpr, height as f32 / dpr));
     opts.colour_bar && colour_bar_band(frame, opts.metric.label(mesh), &opts.theme).is_some()
 }
 
@@ -583,19 +500,7 @@ pub fn colour_bar_band(frame: Frame, title: &str, theme: &Theme) -> Option<Frame
     let h = l * 1.35 + 8.0;
     let tw = |t: &str| super::text::text_width(t, l);
     // the widest end values of the metrics' domains and a five-digit count
-    let need = 8.0
-        + tw(title)
-        + 10.0
-        + tw("0")
-        + 5.0
-        + MIN_STRIP
-        + 5.0
-        + tw("60")
-        + 12.0
-        + l
-        + 4.0
-        + tw("99999")
-        + 8.0;
+    let need = 8.0 + tw(title) + 10.0 + tw("0") + 5.0 + MIN_STRIP + 5.0 + tw("60") + 12.0 + l + 4.0 + tw("99999") + 8.0;
     let fits = h <= COLOUR_BAR_SHARE * frame.w.min(frame.h) && need <= frame.w;
     fits.then(|| Frame::new(frame.x, frame.bottom() - h, frame.w, h))
 }
@@ -606,17 +511,11 @@ fn inverted_color() -> Color {
 
 /// A mask for the frame when it does not cover the whole pixmap.
 fn frame_mask(pixmap: &Pixmap, frame: Frame, s: f32) -> Option<Mask> {
-    let full = frame.x <= 0.0
-        && frame.y <= 0.0
-        && frame.right() * s >= pixmap.width() as f32
-        && frame.bottom() * s >= pixmap.height() as f32;
+    let full = frame.x <= 0.0 && frame.y <= 0.0 && frame.right() * s >= pixmap.width() as f32 && frame.bottom() * s >= pixmap.height() as f32;
     if full {
         return None;
     }
-    super::paint::rect_mask(
-        pixmap,
-        Rect::from_xywh(frame.x * s, frame.y * s, frame.w * s, frame.h * s)?,
-    )
+    super::paint::rect_mask(pixmap, Rect::from_xywh(frame.x * s, frame.y * s, frame.w * s, frame.h * s)?)
 }
 
 fn fill_masked(pixmap: &mut Pixmap, pb: PathBuilder, c: Color, aa: bool, mask: Option<&Mask>) {
@@ -635,11 +534,7 @@ fn stroke_masked(pixmap: &mut Pixmap, pb: PathBuilder, c: Color, width: f32, mas
         return stroke(pixmap, pb, c, width, None);
     }
     if let Some(path) = pb.finish() {
-        let st = Stroke {
-            width,
-            line_join: tiny_skia::LineJoin::Round,
-            ..Default::default()
-        };
+        let st = Stroke { width, line_join: tiny_skia::LineJoin::Round, ..Default::default() };
         pixmap.stroke_path(&path, &solid(c), &st, Transform::identity(), mask);
     }
 }
@@ -647,13 +542,7 @@ fn stroke_masked(pixmap: &mut Pixmap, pb: PathBuilder, c: Color, width: f32, mas
 /// Inverted elements: red fill, black diagonal hatch clipped to them, thick outline.
 pub fn draw_inverted(pixmap: &mut Pixmap, pb: PathBuilder, s: f32, clip: Option<&Mask>) {
     let Some(path) = pb.finish() else { return };
-    pixmap.fill_path(
-        &path,
-        &solid(inverted_color()),
-        FillRule::Winding,
-        Transform::identity(),
-        clip,
-    );
+    pixmap.fill_path(&path, &solid(inverted_color()), FillRule::Winding, Transform::identity(), clip);
     if let Some(mut mask) = Mask::new(pixmap.width(), pixmap.height()) {
         mask.fill_path(&path, FillRule::Winding, true, Transform::identity());
         if let Some(c) = clip {
@@ -677,31 +566,12 @@ pub fn draw_inverted(pixmap: &mut Pixmap, pb: PathBuilder, s: f32, clip: Option<
             t += step;
         }
         if let Some(h) = hatch.finish() {
-            let st = Stroke {
-                width: 1.3 * s,
-                ..Default::default()
-            };
-            pixmap.stroke_path(
-                &h,
-                &solid(rgba(0, 0, 0, 230)),
-                &st,
-                Transform::identity(),
-                Some(&mask),
-            );
+            let st = Stroke { width: 1.3 * s, ..Default::default() };
+            pixmap.stroke_path(&h, &solid(rgba(0, 0, 0, 230)), &st, Transform::identity(), Some(&mask));
         }
     }
-    let st = Stroke {
-        width: 2.5 * s,
-        line_join: tiny_skia::LineJoin::Round,
-        ..Default::default()
-    };
-    pixmap.stroke_path(
-        &path,
-        &solid(rgba(120, 0, 0, 255)),
-        &st,
-        Transform::identity(),
-        clip,
-    );
+    let st = Stroke { width: 2.5 * s, line_join: tiny_skia::LineJoin::Round, ..Default::default() };
+    pixmap.stroke_path(&path, &solid(rgba(120, 0, 0, 255)), &st, Transform::identity(), clip);
 }
 
 /// Fixed corner nodes as dark squares, free corners as white dots, mid-side and centre
@@ -718,13 +588,9 @@ fn draw_nodes(pixmap: &mut Pixmap, mesh: &Mesh, view: &View, s: f32, clip: Optio
         }
         match mesh.role(n) {
             NodeRole::Unused => {}
-            NodeRole::Corner if mesh.fixed()[n] => {
-                push_marker(&mut fixed, Marker::Square, x, y, 3.2 * s)
-            }
+            NodeRole::Corner if mesh.fixed()[n] => push_marker(&mut fixed, Marker::Square, x, y, 3.2 * s),
             NodeRole::Corner => push_marker(&mut free, Marker::Circle, x, y, 3.0 * s),
-            NodeRole::Mid | NodeRole::Centre => {
-                push_marker(&mut mid, Marker::Circle, x, y, 1.8 * s)
-            }
+            NodeRole::Mid | NodeRole::Centre => push_marker(&mut mid, Marker::Circle, x, y, 1.8 * s),
         }
     }
     fill_masked(pixmap, mid, rgba(90, 90, 90, 255), true, clip);
@@ -748,18 +614,9 @@ pub fn draw_colour_bar(
     s: f32,
     theme: &Theme,
 ) {
-    super::layout::note(
-        pixmap,
-        super::layout::RegionKind::Legend,
-        area.x * s,
-        area.y * s,
-        area.w * s,
-        area.h * s,
-    );
+    super::layout::note(pixmap, super::layout::RegionKind::Legend, area.x * s, area.y * s, area.w * s, area.h * s);
     let l = bar_label(theme);
-    let label = TextStyle::new(l * s)
-        .with_color(theme.caption)
-        .with_align(Align::Left, Valign::Middle);
+    let label = TextStyle::new(l * s).with_color(theme.caption).with_align(Align::Left, Valign::Middle);
     let tw = |t: &str| super::text::text_width(t, l);
     let cy = area.y + 0.5 * area.h;
     let ticks = nice_ticks(d0, d1, 5);
@@ -773,11 +630,7 @@ pub fn draw_colour_bar(
     x += tw(&lo) + 5.0;
     // the count in words when there is room, else the number alone
     let tail = |count: &str| 5.0 + tw(&hi) + 12.0 + swatch + 4.0 + tw(count) + 8.0;
-    let count = if area.right() - tail(&long) - x >= MIN_STRIP {
-        long
-    } else {
-        n_inverted.to_string()
-    };
+    let count = if area.right() - tail(&long) - x >= MIN_STRIP { long } else { n_inverted.to_string() };
     let strip_end = area.right() - tail(&count);
     if strip_end - x < 8.0 {
         return;
@@ -817,29 +670,11 @@ pub fn draw_colour_bar(
             t += 4.0 * s;
         }
         if let (Some(hp), Some(mask)) = (hatch.finish(), super::paint::rect_mask(pixmap, r)) {
-            let st = Stroke {
-                width: 1.2 * s,
-                ..Default::default()
-            };
-            pixmap.stroke_path(
-                &hp,
-                &solid(rgba(0, 0, 0, 230)),
-                &st,
-                Transform::identity(),
-                Some(&mask),
-            );
+            let st = Stroke { width: 1.2 * s, ..Default::default() };
+            pixmap.stroke_path(&hp, &solid(rgba(0, 0, 0, 230)), &st, Transform::identity(), Some(&mask));
         }
         let pb = PathBuilder::from_rect(r);
-        pixmap.stroke_path(
-            &pb,
-            &solid(rgba(120, 0, 0, 255)),
-            &Stroke {
-                width: 1.5 * s,
-                ..Default::default()
-            },
-            Transform::identity(),
-            None,
-        );
+        pixmap.stroke_path(&pb, &solid(rgba(120, 0, 0, 255)), &Stroke { width: 1.5 * s, ..Default::default() }, Transform::identity(), None);
     }
     draw_text(pixmap, &count, (x + swatch + 4.0) * s, cy * s, label);
 }

@@ -40,13 +40,7 @@ pub(crate) fn fill(pixmap: &mut Pixmap, pb: PathBuilder, c: Color, anti_alias: b
 
 /// Strokes the path in `pb` with `width` device pixels, dashed when `dash` is given
 /// (on, off lengths in device pixels).
-pub(crate) fn stroke(
-    pixmap: &mut Pixmap,
-    pb: PathBuilder,
-    c: Color,
-    width: f32,
-    dash: Option<[f32; 2]>,
-) {
+pub(crate) fn stroke(pixmap: &mut Pixmap, pb: PathBuilder, c: Color, width: f32, dash: Option<[f32; 2]>) {
     if let Some(path) = pb.finish() {
         let s = Stroke {
             width,
@@ -123,10 +117,7 @@ pub(crate) fn draw_marker(pixmap: &mut Pixmap, m: Marker, x: f32, y: f32, st: Ma
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub(crate) enum Key {
     /// A line sample, dashed or solid, with an optional marker on it.
-    Line {
-        dashed: bool,
-        marker: Option<Marker>,
-    },
+    Line { dashed: bool, marker: Option<Marker> },
     /// A marker alone.
     Marker(Marker),
     /// A filled square with a hatch.
@@ -154,12 +145,7 @@ pub(crate) struct LegendStyle<'a> {
 
 impl<'a> LegendStyle<'a> {
     pub fn new(theme: &'a Theme, s: f32, dpr: f32) -> Self {
-        LegendStyle {
-            theme,
-            s,
-            dpr,
-            cap: f32::INFINITY,
-        }
+        LegendStyle { theme, s, dpr, cap: f32::INFINITY }
     }
 
     /// This style with its labels made small enough for the widest of `entries` to fit
@@ -167,18 +153,12 @@ impl<'a> LegendStyle<'a> {
     /// that runs out of its band runs over the data beside it (a narrow panel of a figure
     /// in a small embed). Unchanged when every entry fits.
     pub fn fitted(&self, entries: &[LegendEntry<'_>], width: f32) -> Self {
-        let widest = entries
-            .iter()
-            .map(|e| text_width(e.label, self.text()))
-            .fold(0.0f32, f32::max);
+        let widest = entries.iter().map(|e| text_width(e.label, self.text())).fold(0.0f32, f32::max);
         let room = width - 30.0 * self.s - 12.0 * self.s;
         if widest <= room || widest <= 0.0 {
             return *self;
         }
-        LegendStyle {
-            cap: (self.text() * room / widest).max(1.0),
-            ..*self
-        }
+        LegendStyle { cap: (self.text() * room / widest).max(1.0), ..*self }
     }
 
     /// The label size, device pixels.
@@ -200,13 +180,7 @@ impl<'a> LegendStyle<'a> {
 }
 
 /// Entries in one row centred on `cx`, at height `cy` (device pixels), without a box.
-pub(crate) fn legend_row(
-    pixmap: &mut Pixmap,
-    entries: &[LegendEntry<'_>],
-    cx: f32,
-    cy: f32,
-    st: &LegendStyle<'_>,
-) {
+pub(crate) fn legend_row(pixmap: &mut Pixmap, entries: &[LegendEntry<'_>], cx: f32, cy: f32, st: &LegendStyle<'_>) {
     let gap = 18.0 * st.s;
     let widths: Vec<f32> = entries.iter().map(|e| st.entry_w(e)).collect();
     let total = widths.iter().sum::<f32>() + gap * entries.len().saturating_sub(1) as f32;
@@ -219,11 +193,7 @@ pub(crate) fn legend_row(
 
 /// The rows of a legend laid out in `width` device pixels: as many entries on a row as
 /// fit (at least one), rows top to bottom.
-pub(crate) fn legend_rows(
-    entries: &[LegendEntry<'_>],
-    width: f32,
-    st: &LegendStyle<'_>,
-) -> Vec<std::ops::Range<usize>> {
+pub(crate) fn legend_rows(entries: &[LegendEntry<'_>], width: f32, st: &LegendStyle<'_>) -> Vec<std::ops::Range<usize>> {
     let gap = 18.0 * st.s;
     let mut rows = Vec::new();
     let (mut start, mut used) = (0, 0.0f32);
@@ -245,11 +215,7 @@ pub(crate) fn legend_rows(
 
 /// The height in device pixels of the band [`legend_band`] draws `entries` in, `width`
 /// device pixels wide (0 with no entries).
-pub(crate) fn legend_band_height(
-    entries: &[LegendEntry<'_>],
-    width: f32,
-    st: &LegendStyle<'_>,
-) -> f32 {
+pub(crate) fn legend_band_height(entries: &[LegendEntry<'_>], width: f32, st: &LegendStyle<'_>) -> f32 {
     let st = &st.fitted(entries, width);
     let rows = legend_rows(entries, width, st).len();
     if rows == 0 {
@@ -261,61 +227,23 @@ pub(crate) fn legend_band_height(
 
 /// A legend outside the data: rows of entries, each row centred, in a band of `width`
 /// device pixels whose top-left corner is `(x, y)`, without a box. Returns its height.
-pub(crate) fn legend_band(
-    pixmap: &mut Pixmap,
-    entries: &[LegendEntry<'_>],
-    x: f32,
-    y: f32,
-    width: f32,
-    st: &LegendStyle<'_>,
-) -> f32 {
+pub(crate) fn legend_band(pixmap: &mut Pixmap, entries: &[LegendEntry<'_>], x: f32, y: f32, width: f32, st: &LegendStyle<'_>) -> f32 {
     let st = &st.fitted(entries, width);
     let rows = legend_rows(entries, width, st);
     let line_h = st.line_h();
     let gap = 18.0 * st.s;
     let widest = rows
         .iter()
-        .map(|r| {
-            entries[r.clone()]
-                .iter()
-                .map(|e| st.entry_w(e))
-                .sum::<f32>()
-                + gap * (r.len().saturating_sub(1)) as f32
-        })
+        .map(|r| entries[r.clone()].iter().map(|e| st.entry_w(e)).sum::<f32>() + gap * (r.len().saturating_sub(1)) as f32)
         .fold(0.0f32, f32::max);
     let h = legend_band_height(entries, width, st);
     // the box: 6 pixels of the style's scale round the widest row, within the band
-    let (left, right) = (
-        (x + 0.5 * (width - widest) - 6.0 * st.s).max(x),
-        (x + 0.5 * (width + widest) + 6.0 * st.s).min(x + width),
-    );
+    let (left, right) = ((x + 0.5 * (width - widest) - 6.0 * st.s).max(x), (x + 0.5 * (width + widest) + 6.0 * st.s).min(x + width));
     if let Some(r) = Rect::from_ltrb(left, y, right, y + h) {
-        super::layout::note(
-            pixmap,
-            super::layout::RegionKind::Legend,
-            r.x(),
-            r.y(),
-            r.width(),
-            r.height(),
-        );
+        super::layout::note(pixmap, super::layout::RegionKind::Legend, r.x(), r.y(), r.width(), r.height());
         let pb = PathBuilder::from_rect(r);
-        pixmap.fill_path(
-            &pb,
-            &solid(st.theme.legend_fill),
-            FillRule::Winding,
-            Transform::identity(),
-            None,
-        );
-        pixmap.stroke_path(
-            &pb,
-            &solid(st.theme.legend_border),
-            &Stroke {
-                width: st.s,
-                ..Default::default()
-            },
-            Transform::identity(),
-            None,
-        );
+        pixmap.fill_path(&pb, &solid(st.theme.legend_fill), FillRule::Winding, Transform::identity(), None);
+        pixmap.stroke_path(&pb, &solid(st.theme.legend_border), &Stroke { width: st.s, ..Default::default() }, Transform::identity(), None);
     }
     for (k, r) in rows.iter().enumerate() {
         let cy = y + 2.0 * st.s + line_h * (k as f32 + 0.5);
@@ -336,52 +264,16 @@ fn legend_entry(pixmap: &mut Pixmap, e: &LegendEntry<'_>, kx: f32, cy: f32, st: 
                 let mut pb = PathBuilder::new();
                 pb.move_to(kx, cy);
                 pb.line_to(kx + key_w, cy);
-                stroke(
-                    pixmap,
-                    pb,
-                    e.color,
-                    2.0 * s,
-                    dashed.then_some([5.0 * s, 3.0 * s]),
-                );
+                stroke(pixmap, pb, e.color, 2.0 * s, dashed.then_some([5.0 * s, 3.0 * s]));
                 if let Some(m) = marker {
-                    draw_marker(
-                        pixmap,
-                        m,
-                        kx + 0.5 * key_w,
-                        cy,
-                        MarkerStyle {
-                            r: 3.5 * s,
-                            fill: e.color,
-                            edge: e.color,
-                            width: s,
-                        },
-                    );
+                    draw_marker(pixmap, m, kx + 0.5 * key_w, cy, MarkerStyle { r: 3.5 * s, fill: e.color, edge: e.color, width: s });
                 }
             }
-            Key::Marker(m) => draw_marker(
-                pixmap,
-                m,
-                kx + 0.5 * key_w,
-                cy,
-                MarkerStyle {
-                    r: 4.5 * s,
-                    fill: e.color,
-                    edge: st.theme.ink,
-                    width: s,
-                },
-            ),
+            Key::Marker(m) => draw_marker(pixmap, m, kx + 0.5 * key_w, cy, MarkerStyle { r: 4.5 * s, fill: e.color, edge: st.theme.ink, width: s }),
             Key::Hatched => {
-                if let Some(r) =
-                    Rect::from_xywh(kx + 4.0 * s, cy - 5.0 * s, key_w - 8.0 * s, 10.0 * s)
-                {
+                if let Some(r) = Rect::from_xywh(kx + 4.0 * s, cy - 5.0 * s, key_w - 8.0 * s, 10.0 * s) {
                     let pb = PathBuilder::from_rect(r);
-                    pixmap.fill_path(
-                        &pb,
-                        &solid(e.color),
-                        FillRule::Winding,
-                        Transform::identity(),
-                        None,
-                    );
+                    pixmap.fill_path(&pb, &solid(e.color), FillRule::Winding, Transform::identity(), None);
                     {
                         let mut h = PathBuilder::new();
                         let mut t = r.left() - r.height();
@@ -391,35 +283,15 @@ fn legend_entry(pixmap: &mut Pixmap, e: &LegendEntry<'_>, kx: f32, cy: f32, st: 
                             t += 4.0 * s;
                         }
                         if let (Some(path), Some(mask)) = (h.finish(), rect_mask(pixmap, r)) {
-                            let st = Stroke {
-                                width: 1.2 * s,
-                                ..Default::default()
-                            };
-                            pixmap.stroke_path(
-                                &path,
-                                &solid(rgba(0, 0, 0, 255)),
-                                &st,
-                                Transform::identity(),
-                                Some(&mask),
-                            );
+                            let st = Stroke { width: 1.2 * s, ..Default::default() };
+                            pixmap.stroke_path(&path, &solid(rgba(0, 0, 0, 255)), &st, Transform::identity(), Some(&mask));
                         }
                     }
-                    pixmap.stroke_path(
-                        &pb,
-                        &solid(rgba(0, 0, 0, 160)),
-                        &Stroke {
-                            width: s,
-                            ..Default::default()
-                        },
-                        Transform::identity(),
-                        None,
-                    );
+                    pixmap.stroke_path(&pb, &solid(rgba(0, 0, 0, 160)), &Stroke { width: s, ..Default::default() }, Transform::identity(), None);
                 }
             }
         }
-        let style = TextStyle::new(size)
-            .with_color(st.theme.ink)
-            .with_align(Align::Left, Valign::Middle);
+        let style = TextStyle::new(size).with_color(st.theme.ink).with_align(Align::Left, Valign::Middle);
         draw_text(pixmap, e.label, kx + key_w + pad, cy, style);
     }
 }
@@ -427,12 +299,7 @@ fn legend_entry(pixmap: &mut Pixmap, e: &LegendEntry<'_>, kx: f32, cy: f32, st: 
 /// A mask that lets through only the rectangle `r`.
 pub(crate) fn rect_mask(pixmap: &Pixmap, r: Rect) -> Option<tiny_skia::Mask> {
     let mut m = tiny_skia::Mask::new(pixmap.width(), pixmap.height())?;
-    m.fill_path(
-        &PathBuilder::from_rect(r),
-        FillRule::Winding,
-        false,
-        Transform::identity(),
-    );
+    m.fill_path(&PathBuilder::from_rect(r), FillRule::Winding, false, Transform::identity());
     Some(m)
 }
 

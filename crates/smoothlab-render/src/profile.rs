@@ -36,22 +36,9 @@ pub struct Sketch<'a> {
 /// Draws `sketch` into `frame` (CSS pixels) at pixel ratio `dpr` in `theme`: the segment
 /// joining the fixed points, each line in its colour with its label at its end, the
 /// dashed segments.
-pub fn render_sketch(
-    pixmap: &mut Pixmap,
-    sketch: &Sketch<'_>,
-    frame: Frame,
-    dpr: f32,
-    theme: &Theme,
-) {
+pub fn render_sketch(pixmap: &mut Pixmap, sketch: &Sketch<'_>, frame: Frame, dpr: f32, theme: &Theme) {
     let s = sane_dpr(dpr);
-    fill_rect(
-        pixmap,
-        frame.x * s,
-        frame.y * s,
-        frame.w * s,
-        frame.h * s,
-        theme.paper,
-    );
+    fill_rect(pixmap, frame.x * s, frame.y * s, frame.w * s, frame.h * s, theme.paper);
     let title = 13.0;
     draw_text(
         pixmap,
@@ -65,24 +52,13 @@ pub fn render_sketch(
     let inner = frame.inset(0.0, 24.0 * theme.grow(13.0), 0.0, 0.0);
     let mut lo = DVec2::splat(f64::INFINITY);
     let mut hi = DVec2::splat(f64::NEG_INFINITY);
-    let pts = sketch
-        .points
-        .iter()
-        .map(|p| p.0)
-        .chain(sketch.lines.iter().flat_map(|l| [l.from, l.to]));
+    let pts = sketch.points.iter().map(|p| p.0).chain(sketch.lines.iter().flat_map(|l| [l.from, l.to]));
     for p in pts.chain(sketch.dashed.iter().flat_map(|d| [d.0, d.1])) {
         lo = lo.min(p);
         hi = hi.max(p);
     }
     let view = View::fit(lo, hi, inner, 24.0, ZoomPan::default(), s);
-    super::layout::note(
-        pixmap,
-        super::layout::RegionKind::Plot,
-        inner.x * s,
-        inner.y * s,
-        inner.w * s,
-        inner.h * s,
-    );
+    super::layout::note(pixmap, super::layout::RegionKind::Plot, inner.x * s, inner.y * s, inner.w * s, inner.h * s);
     let xy = |p: DVec2| view.device_xy(p);
     for &(a, b) in sketch.dashed {
         let mut pb = PathBuilder::new();
@@ -99,15 +75,7 @@ pub fn render_sketch(
         pb.move_to(x0, y0);
         pb.line_to(x1, y1);
         stroke(pixmap, pb, l.color, 2.0 * s, None);
-        draw_text(
-            pixmap,
-            l.label,
-            x1 - 2.0 * s,
-            y1 - 3.0 * s,
-            TextStyle::new(theme.text_px(11.0 * s, s))
-                .with_color(l.color)
-                .with_align(Align::Right, Valign::Bottom),
-        );
+        draw_text(pixmap, l.label, x1 - 2.0 * s, y1 - 3.0 * s, TextStyle::new(theme.text_px(11.0 * s, s)).with_color(l.color).with_align(Align::Right, Valign::Bottom));
     }
     if sketch.points.len() > 1 {
         let mut pb = PathBuilder::new();
@@ -123,40 +91,15 @@ pub fn render_sketch(
     }
     for (p, label) in sketch.points {
         let (x, y) = xy(*p);
-        draw_marker(
-            pixmap,
-            Marker::Circle,
-            x,
-            y,
-            MarkerStyle {
-                r: 4.0 * s,
-                fill: theme.ink,
-                edge: theme.paper,
-                width: 1.0 * s,
-            },
-        );
-        draw_text(
-            pixmap,
-            label,
-            x + 6.0 * s,
-            y - 4.0 * s,
-            TextStyle::new(theme.text_px(13.0 * s, s))
-                .with_color(theme.ink)
-                .with_align(Align::Left, Valign::Bottom),
-        );
+        draw_marker(pixmap, Marker::Circle, x, y, MarkerStyle { r: 4.0 * s, fill: theme.ink, edge: theme.paper, width: 1.0 * s });
+        draw_text(pixmap, label, x + 6.0 * s, y - 4.0 * s, TextStyle::new(theme.text_px(13.0 * s, s)).with_color(theme.ink).with_align(Align::Left, Valign::Bottom));
     }
 }
 
 /// Places `parts` (pictures at pixel ratio `dpr`) in a grid of `cols` columns under a
 /// title, on `theme`'s paper, each cell the size of the largest part: one picture of
 /// several panels.
-pub fn render_titled(
-    parts: &[Pixmap],
-    cols: usize,
-    title: &str,
-    dpr: f32,
-    theme: &Theme,
-) -> Option<Pixmap> {
+pub fn render_titled(parts: &[Pixmap], cols: usize, title: &str, dpr: f32, theme: &Theme) -> Option<Pixmap> {
     let s = sane_dpr(dpr);
     let cols = cols.clamp(1, parts.len().max(1));
     let rows = parts.len().div_ceil(cols).max(1);
@@ -168,20 +111,11 @@ pub fn render_titled(
     out.fill(theme.paper);
     let size = size_to_fit(title, 15.0, out.width() as f32 / s - 16.0);
     let mid = out.width() as f32 / 2.0;
-    let style = TextStyle::new(theme.text_px(size * s, s))
-        .with_color(theme.ink)
-        .with_align(Align::Centre, Valign::Top);
+    let style = TextStyle::new(theme.text_px(size * s, s)).with_color(theme.ink).with_align(Align::Centre, Valign::Top);
     draw_text(&mut out, title, mid, 6.0 * s, style);
     for (i, p) in parts.iter().enumerate() {
         let (x, y) = ((i % cols) as u32 * cw, head + (i / cols) as u32 * ch);
-        out.draw_pixmap(
-            x as i32,
-            y as i32,
-            p.as_ref(),
-            &PixmapPaint::default(),
-            Transform::identity(),
-            None,
-        );
+        out.draw_pixmap(x as i32, y as i32, p.as_ref(), &PixmapPaint::default(), Transform::identity(), None);
         super::layout::adopt(p, &out, x as f32, y as f32);
     }
     Some(out)

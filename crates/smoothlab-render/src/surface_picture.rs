@@ -4,9 +4,9 @@
 use glam::DVec3;
 use tiny_skia::Pixmap;
 
-use crate::{render_surface, Faces, Metric, Projection, SurfaceView};
-use smoothlab::quality::element_quality;
 use smoothlab::surface::Surface;
+use smoothlab::quality::element_quality;
+use crate::{render_surface, Faces, Metric, Projection, SurfaceView};
 
 /// The faces of a surface as the 3D view takes them: each element's outline (corner,
 /// mid-side node, corner, … for a quadratic one), its metric value scaled onto [0, 1] by
@@ -48,10 +48,7 @@ impl SurfacePicture for Surface {
     fn faces(&self, metric: Metric) -> SurfaceFaces {
         let mesh = self.flat();
         let (lo, hi) = metric.domain(mesh);
-        let mut f = SurfaceFaces {
-            ring_start: vec![0],
-            ..Default::default()
-        };
+        let mut f = SurfaceFaces { ring_start: vec![0], ..Default::default() };
         for e in 0..mesh.element_count() {
             let kind = mesh.kind(e);
             let ids = mesh.element(e);
@@ -64,8 +61,7 @@ impl SurfacePicture for Surface {
             }
             f.ring_start.push(f.rings.len() as u32);
             let q = element_quality(kind, &self.element_points_2d(e)[..kind.node_count()]);
-            f.values
-                .push(((metric.value(&q) - lo) / (hi - lo)).clamp(0.0, 1.0));
+            f.values.push(((metric.value(&q) - lo) / (hi - lo)).clamp(0.0, 1.0));
             f.inverted.push(q.inverted);
         }
         f

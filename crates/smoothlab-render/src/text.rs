@@ -46,21 +46,13 @@ pub struct TextStyle {
 
 impl Default for TextStyle {
     fn default() -> Self {
-        TextStyle {
-            size: 12.0,
-            color: Color::BLACK,
-            align: Align::Left,
-            valign: Valign::Middle,
-        }
+        TextStyle { size: 12.0, color: Color::BLACK, align: Align::Left, valign: Valign::Middle }
     }
 }
 
 impl TextStyle {
     pub fn new(size: f32) -> Self {
-        TextStyle {
-            size,
-            ..Default::default()
-        }
+        TextStyle { size, ..Default::default() }
     }
     pub fn with_color(mut self, color: Color) -> Self {
         self.color = color;
@@ -167,9 +159,7 @@ pub fn draw_text(pixmap: &mut Pixmap, text: &str, x: f32, y: f32, style: TextSty
         let glyph = id.with_scale_and_position(style.size, point(caret, base));
         caret += f.h_advance(id);
         prev = Some(id);
-        let Some(outlined) = font::outline_glyph(glyph) else {
-            continue;
-        };
+        let Some(outlined) = font::outline_glyph(glyph) else { continue };
         let bb = outlined.px_bounds();
         let (bx, by) = (bb.min.x as i64, bb.min.y as i64);
         outlined.draw(|gx, gy, cov| {
@@ -183,14 +173,9 @@ pub fn draw_text(pixmap: &mut Pixmap, text: &str, x: f32, y: f32, style: TextSty
             }
             let d = &mut pixels[(py * w + px) as usize];
             let k = 1.0 - sa;
-            let to =
-                |s: f32, dc: u8| ((s * sa) * 255.0 + dc as f32 * k).round().clamp(0.0, 255.0) as u8;
+            let to = |s: f32, dc: u8| ((s * sa) * 255.0 + dc as f32 * k).round().clamp(0.0, 255.0) as u8;
             let na = to(1.0, d.alpha());
-            let (nr, ng, nb) = (
-                to(r, d.red()).min(na),
-                to(g, d.green()).min(na),
-                to(b, d.blue()).min(na),
-            );
+            let (nr, ng, nb) = (to(r, d.red()).min(na), to(g, d.green()).min(na), to(b, d.blue()).min(na));
             if let Some(p) = PremultipliedColorU8::from_rgba(nr, ng, nb, na) {
                 *d = p;
             }
@@ -214,41 +199,23 @@ pub(crate) fn take_smallest_text() -> f32 {
 
 /// Draws `text` turned by `angle_deg` (clockwise on screen, e.g. −90 for a y-axis
 /// label read bottom to top) about its anchor `(x, y)`.
-pub fn draw_text_rotated(
-    pixmap: &mut Pixmap,
-    text: &str,
-    x: f32,
-    y: f32,
-    style: TextStyle,
-    angle_deg: f32,
-) {
+pub fn draw_text_rotated(pixmap: &mut Pixmap, text: &str, x: f32, y: f32, style: TextStyle, angle_deg: f32) {
     if !drawable(&style, x, y) || !angle_deg.is_finite() {
         return;
     }
     let f = Scaled::new(style.size);
     let tw = text_width(text, style.size).ceil() + 4.0;
     let th = (f.ascent() - f.descent()).ceil() + 4.0;
-    let Some(mut tmp) = Pixmap::new(tw.max(1.0) as u32, th.max(1.0) as u32) else {
-        return;
-    };
+    let Some(mut tmp) = Pixmap::new(tw.max(1.0) as u32, th.max(1.0) as u32) else { return };
     // Draw unrotated at (2, 2 + ascent) in the scratch pixmap, then place it so the anchor
     // lands on (x, y).
-    let local = TextStyle {
-        align: Align::Left,
-        valign: Valign::Baseline,
-        ..style
-    };
+    let local = TextStyle { align: Align::Left, valign: Valign::Baseline, ..style };
     draw_text(&mut tmp, text, 2.0, 2.0 + f.ascent(), local);
     let (ox, oy) = origin(text, 0.0, 0.0, &style);
     // anchor in scratch coordinates
     let (ax, ay) = (2.0 - ox, 2.0 + f.ascent() - oy);
-    let t = Transform::from_translate(x, y)
-        .pre_rotate(angle_deg)
-        .pre_translate(-ax, -ay);
-    let paint = PixmapPaint {
-        quality: tiny_skia::FilterQuality::Bilinear,
-        ..Default::default()
-    };
+    let t = Transform::from_translate(x, y).pre_rotate(angle_deg).pre_translate(-ax, -ay);
+    let paint = PixmapPaint { quality: tiny_skia::FilterQuality::Bilinear, ..Default::default() };
     pixmap.draw_pixmap(0, 0, tmp.as_ref(), &paint, t, None);
 }
 
@@ -282,9 +249,7 @@ mod tests {
             .collect();
         assert!(dark.len() > 20);
         let w = text_width("Hg", 16.0);
-        assert!(dark
-            .iter()
-            .all(|&(x, _)| x >= 10 && (x as f32) <= 10.0 + w + 1.0));
+        assert!(dark.iter().all(|&(x, _)| x >= 10 && (x as f32) <= 10.0 + w + 1.0));
         // off-pixmap text is clipped, not a panic
         draw_text(&mut p, "clipped", -30.0, -5.0, TextStyle::new(16.0));
         draw_text(&mut p, "clipped", 70.0, 29.0, TextStyle::new(16.0));

@@ -124,11 +124,7 @@ impl Theme {
 
     /// This theme with labels of at least `px` CSS pixels (clamped to 0..=64).
     pub fn with_min_label(mut self, px: f32) -> Theme {
-        self.min_label_px = if px.is_finite() {
-            px.clamp(0.0, 64.0)
-        } else {
-            0.0
-        };
+        self.min_label_px = if px.is_finite() { px.clamp(0.0, 64.0) } else { 0.0 };
         self
     }
 
@@ -142,13 +138,7 @@ impl Theme {
     /// it at: smaller where it is wider, never below this theme's smallest label
     /// ([`text_px`](Self::text_px)), and where even that is too wide, its leading words and
     /// "…": shrunk or cut in a narrow frame, never clipped.
-    pub fn fit_label<'a>(
-        &self,
-        text: &'a str,
-        size: f32,
-        room: f32,
-        dpr: f32,
-    ) -> (Cow<'a, str>, f32) {
+    pub fn fit_label<'a>(&self, text: &'a str, size: f32, room: f32, dpr: f32) -> (Cow<'a, str>, f32) {
         let size = self.text_px(size_to_fit(text, size, room), dpr);
         (fit_words(text, size, room), size)
     }
@@ -205,9 +195,7 @@ mod tests {
         let luma = |c: Color| 0.2126 * c.red() + 0.7152 * c.green() + 0.0722 * c.blue();
         let d = Theme::dark();
         let paper = luma(d.paper);
-        for c in [
-            d.ink, d.text, d.label, d.caption, d.muted, d.faint, d.series0,
-        ] {
+        for c in [d.ink, d.text, d.label, d.caption, d.muted, d.faint, d.series0] {
             assert!(luma(c) - paper > 0.45, "{c:?} on the dark paper");
         }
         // a grid line over the paper: at least 10 levels of 255 lighter
@@ -215,9 +203,6 @@ mod tests {
         assert!(over * 255.0 >= 10.0, "grid {over}");
         let (a, b) = (d.side(0), d.side(1));
         assert!(luma(a) - paper > 0.3 && luma(b) - paper > 0.3);
-        assert!(
-            (a.red() - b.red()).abs() + (a.blue() - b.blue()).abs() > 0.8,
-            "the sides differ"
-        );
+        assert!((a.red() - b.red()).abs() + (a.blue() - b.blue()).abs() > 0.8, "the sides differ");
     }
 }

@@ -20,31 +20,16 @@ pub struct Frame {
 
 impl Frame {
     pub fn new(x: f32, y: f32, w: f32, h: f32) -> Self {
-        Frame {
-            x,
-            y,
-            w: w.max(0.0),
-            h: h.max(0.0),
-        }
+        Frame { x, y, w: w.max(0.0), h: h.max(0.0) }
     }
     /// The whole pixmap, in CSS pixels at device-pixel ratio `dpr`.
     pub fn of_pixmap(pixmap: &Pixmap, dpr: f32) -> Self {
         let d = sane_dpr(dpr);
-        Frame::new(
-            0.0,
-            0.0,
-            pixmap.width() as f32 / d,
-            pixmap.height() as f32 / d,
-        )
+        Frame::new(0.0, 0.0, pixmap.width() as f32 / d, pixmap.height() as f32 / d)
     }
     /// The frame less `left`, `top`, `right`, `bottom` CSS pixels.
     pub fn inset(self, left: f32, top: f32, right: f32, bottom: f32) -> Self {
-        Frame::new(
-            self.x + left,
-            self.y + top,
-            self.w - left - right,
-            self.h - top - bottom,
-        )
+        Frame::new(self.x + left, self.y + top, self.w - left - right, self.h - top - bottom)
     }
     /// Column `i` of `n` equal columns separated by `gap`.
     pub fn column(self, i: usize, n: usize, gap: f32) -> Self {
@@ -65,10 +50,7 @@ impl Frame {
         self.y + self.h
     }
     pub fn centre(&self) -> DVec2 {
-        DVec2::new(
-            (self.x + 0.5 * self.w) as f64,
-            (self.y + 0.5 * self.h) as f64,
-        )
+        DVec2::new((self.x + 0.5 * self.w) as f64, (self.y + 0.5 * self.h) as f64)
     }
 }
 
@@ -92,20 +74,14 @@ pub struct ZoomPan {
 
 impl Default for ZoomPan {
     fn default() -> Self {
-        ZoomPan {
-            zoom: 1.0,
-            pan: DVec2::ZERO,
-        }
+        ZoomPan { zoom: 1.0, pan: DVec2::ZERO }
     }
 }
 
 impl ZoomPan {
     /// Moved by `delta` CSS pixels (a drag).
     pub fn panned(self, delta: DVec2) -> Self {
-        ZoomPan {
-            pan: self.pan + delta,
-            ..self
-        }
+        ZoomPan { pan: self.pan + delta, ..self }
     }
 }
 
@@ -126,14 +102,7 @@ impl View {
     /// Fits the world box `lo..hi` into `frame` less `margin` CSS pixels on every side,
     /// keeping the aspect ratio, then applies `zoom_pan`. A degenerate or non-finite box
     /// is widened so the view is always usable.
-    pub fn fit(
-        lo: DVec2,
-        hi: DVec2,
-        frame: Frame,
-        margin: f32,
-        zoom_pan: ZoomPan,
-        dpr: f32,
-    ) -> View {
+    pub fn fit(lo: DVec2, hi: DVec2, frame: Frame, margin: f32, zoom_pan: ZoomPan, dpr: f32) -> View {
         let (mut lo, mut hi) = (lo.min(hi), lo.max(hi));
         if !lo.is_finite() || !hi.is_finite() {
             lo = DVec2::ZERO;
@@ -141,11 +110,7 @@ impl View {
         }
         let mut size = hi - lo;
         let big = size.max_element();
-        let pad = if big > 0.0 {
-            big
-        } else {
-            lo.abs().max_element().max(1.0)
-        };
+        let pad = if big > 0.0 { big } else { lo.abs().max_element().max(1.0) };
         for k in 0..2 {
             if size[k] <= 1e-12 * pad {
                 size[k] = pad;
@@ -154,16 +119,8 @@ impl View {
         let avail_w = (frame.w - 2.0 * margin).max(1.0) as f64;
         let avail_h = (frame.h - 2.0 * margin).max(1.0) as f64;
         let fit = (avail_w / size.x).min(avail_h / size.y);
-        let zoom = if zoom_pan.zoom.is_finite() && zoom_pan.zoom > 0.0 {
-            zoom_pan.zoom.clamp(1e-6, 1e9)
-        } else {
-            1.0
-        };
-        let pan = if zoom_pan.pan.is_finite() {
-            zoom_pan.pan
-        } else {
-            DVec2::ZERO
-        };
+        let zoom = if zoom_pan.zoom.is_finite() && zoom_pan.zoom > 0.0 { zoom_pan.zoom.clamp(1e-6, 1e9) } else { 1.0 };
+        let pan = if zoom_pan.pan.is_finite() { zoom_pan.pan } else { DVec2::ZERO };
         View {
             frame_centre: frame.centre(),
             world_centre: 0.5 * (lo + hi),
@@ -216,10 +173,7 @@ impl View {
             return self.zoom_pan;
         }
         let c = cursor - self.frame_centre;
-        ZoomPan {
-            zoom: self.zoom_pan.zoom * factor,
-            pan: (1.0 - factor) * c + factor * self.zoom_pan.pan,
-        }
+        ZoomPan { zoom: self.zoom_pan.zoom * factor, pan: (1.0 - factor) * c + factor * self.zoom_pan.pan }
     }
 }
 
@@ -231,14 +185,7 @@ mod tests {
     #[test]
     fn fits_with_margin_and_flips_y() {
         let frame = Frame::new(0.0, 0.0, 200.0, 100.0);
-        let v = View::fit(
-            DVec2::new(0.0, 0.0),
-            DVec2::new(4.0, 1.0),
-            frame,
-            10.0,
-            ZoomPan::default(),
-            2.0,
-        );
+        let v = View::fit(DVec2::new(0.0, 0.0), DVec2::new(4.0, 1.0), frame, 10.0, ZoomPan::default(), 2.0);
         // width-limited: 180 px / 4 units
         assert!((v.scale() - 45.0).abs() < 1e-12);
         let a = v.to_css(DVec2::new(0.0, 0.0));
@@ -249,49 +196,21 @@ mod tests {
         // degenerate boxes still give a finite view
         let p = View::fit(DVec2::ONE, DVec2::ONE, frame, 10.0, ZoomPan::default(), 1.0);
         assert!(p.scale().is_finite() && p.scale() > 0.0);
-        let q = View::fit(
-            DVec2::splat(f64::INFINITY),
-            DVec2::splat(f64::NEG_INFINITY),
-            frame,
-            10.0,
-            ZoomPan::default(),
-            f32::NAN,
-        );
+        let q = View::fit(DVec2::splat(f64::INFINITY), DVec2::splat(f64::NEG_INFINITY), frame, 10.0, ZoomPan::default(), f32::NAN);
         assert!(q.scale().is_finite() && q.dpr() == 1.0);
     }
 
     #[test]
     fn zoom_keeps_the_point_under_the_cursor() {
         let frame = Frame::new(5.0, 7.0, 300.0, 200.0);
-        let v = View::fit(
-            DVec2::new(-1.0, -2.0),
-            DVec2::new(3.0, 1.0),
-            frame,
-            12.0,
-            ZoomPan::default(),
-            1.5,
-        );
+        let v = View::fit(DVec2::new(-1.0, -2.0), DVec2::new(3.0, 1.0), frame, 12.0, ZoomPan::default(), 1.5);
         let cursor = DVec2::new(40.0, 180.0);
         let w = v.css_to_world(cursor);
         let zp = v.zoomed_at(cursor, 2.5);
-        let v2 = View::fit(
-            DVec2::new(-1.0, -2.0),
-            DVec2::new(3.0, 1.0),
-            frame,
-            12.0,
-            zp,
-            1.5,
-        );
+        let v2 = View::fit(DVec2::new(-1.0, -2.0), DVec2::new(3.0, 1.0), frame, 12.0, zp, 1.5);
         assert!((v2.css_to_world(cursor) - w).length() < 1e-9);
         assert!((v2.scale() / v.scale() - 2.5).abs() < 1e-12);
-        let v3 = View::fit(
-            DVec2::new(-1.0, -2.0),
-            DVec2::new(3.0, 1.0),
-            frame,
-            12.0,
-            zp.panned(DVec2::new(10.0, 0.0)),
-            1.5,
-        );
+        let v3 = View::fit(DVec2::new(-1.0, -2.0), DVec2::new(3.0, 1.0), frame, 12.0, zp.panned(DVec2::new(10.0, 0.0)), 1.5);
         assert!((v3.to_css(w) - cursor - DVec2::new(10.0, 0.0)).length() < 1e-9);
     }
 

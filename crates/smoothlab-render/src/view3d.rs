@@ -25,9 +25,9 @@ use tiny_skia::{Color, FillRule, Mask, PathBuilder, Pixmap, Rect, Stroke, Transf
 
 use super::colormap::{bucket, bucket_color, Colormap};
 use super::mesh::{bezier_control, colour_bar_band, draw_colour_bar, draw_inverted};
+use super::theme::Theme;
 use super::paint::{fill_rect, rect_mask, rgba, solid};
 use super::text::{draw_text, size_to_fit, Align, TextStyle, Valign};
-use super::theme::Theme;
 use super::view::{sane_dpr, Frame};
 use smoothlab::numeric::order::{sort_stable_by_key, total_order_key};
 use smoothlab::{Error, Result};
@@ -52,11 +52,7 @@ pub struct Camera {
 impl Default for Camera {
     /// A three-quarter view from above: yaw 30°, pitch 25°, zoom 1.
     fn default() -> Self {
-        Camera {
-            yaw: 30.0,
-            pitch: 25.0,
-            zoom: 1.0,
-        }
+        Camera { yaw: 30.0, pitch: 25.0, zoom: 1.0 }
     }
 }
 
@@ -80,29 +76,19 @@ impl Camera {
         let names = ["yaw", "pitch", "zoom"];
         let mut v = [0.0, 0.0, 1.0];
         for (k, part) in parts.iter().enumerate() {
-            v[k] = part.parse::<f64>().map_err(|_| {
-                Error::Invalid(format!(
-                    "camera \"{text}\": {} \"{part}\" is not a number",
-                    names[k]
-                ))
-            })?;
+            v[k] = part
+                .parse::<f64>()
+                .map_err(|_| Error::Invalid(format!("camera \"{text}\": {} \"{part}\" is not a number", names[k])))?;
             if !v[k].is_finite() {
-                return Err(Error::Invalid(format!(
-                    "camera \"{text}\": {} \"{part}\" is not finite",
-                    names[k]
-                )));
+                return Err(Error::Invalid(format!("camera \"{text}\": {} \"{part}\" is not finite", names[k])));
             }
         }
         let [yaw, pitch, zoom] = v;
         if !(-90.0..=90.0).contains(&pitch) {
-            return Err(Error::Invalid(format!(
-                "camera \"{text}\": pitch {pitch} is outside [-90, 90] degrees"
-            )));
+            return Err(Error::Invalid(format!("camera \"{text}\": pitch {pitch} is outside [-90, 90] degrees")));
         }
         if zoom <= 0.0 {
-            return Err(Error::Invalid(format!(
-                "camera \"{text}\": zoom {zoom} must be greater than 0"
-            )));
+            return Err(Error::Invalid(format!("camera \"{text}\": zoom {zoom} must be greater than 0")));
         }
         Ok(Camera { yaw, pitch, zoom })
     }
@@ -112,10 +98,7 @@ impl Camera {
     /// viewer rises, pitch grows), [`DEGREES_PER_PIXEL`] each, pitch held within
     /// ±[`MAX_DRAG_PITCH`] and yaw kept in [0, 360).
     pub fn orbited(self, dx: f64, dy: f64) -> Camera {
-        let (dx, dy) = (
-            if dx.is_finite() { dx } else { 0.0 },
-            if dy.is_finite() { dy } else { 0.0 },
-        );
+        let (dx, dy) = (if dx.is_finite() { dx } else { 0.0 }, if dy.is_finite() { dy } else { 0.0 });
         let yaw = (self.yaw - DEGREES_PER_PIXEL * dx).rem_euclid(360.0);
         let pitch = (self.pitch + DEGREES_PER_PIXEL * dy).clamp(-MAX_DRAG_PITCH, MAX_DRAG_PITCH);
         Camera {
@@ -131,10 +114,7 @@ impl Camera {
         if !(factor.is_finite() && factor > 0.0) {
             return self;
         }
-        Camera {
-            zoom: (self.sane_zoom() * factor).clamp(ZOOM_RANGE.0, ZOOM_RANGE.1),
-            ..self
-        }
+        Camera { zoom: (self.sane_zoom() * factor).clamp(ZOOM_RANGE.0, ZOOM_RANGE.1), ..self }
     }
 
     fn sane_zoom(&self) -> f64 {
@@ -148,16 +128,8 @@ impl Camera {
     /// The camera's screen-right, screen-up and viewing direction (into the scene), unit
     /// vectors in world coordinates.
     pub fn basis(&self) -> (DVec3, DVec3, DVec3) {
-        let yaw = if self.yaw.is_finite() {
-            self.yaw.to_radians()
-        } else {
-            0.0
-        };
-        let pitch = if self.pitch.is_finite() {
-            self.pitch.clamp(-90.0, 90.0).to_radians()
-        } else {
-            0.0
-        };
+        let yaw = if self.yaw.is_finite() { self.yaw.to_radians() } else { 0.0 };
+        let pitch = if self.pitch.is_finite() { self.pitch.clamp(-90.0, 90.0).to_radians() } else { 0.0 };
         let (sy, cy) = yaw.sin_cos();
         let (sp, cp) = pitch.sin_cos();
         let right = DVec3::new(cy, sy, 0.0);
@@ -202,15 +174,9 @@ impl Faces<'_> {
     /// Face `f`'s ring, or `None` when it is malformed (bad range, fewer than 3 nodes, a
     /// node id out of range, a coordinate that is not finite).
     pub fn ring(&self, f: usize) -> Option<&[u32]> {
-        let (a, b) = (
-            *self.ring_start.get(f)? as usize,
-            *self.ring_start.get(f + 1)? as usize,
-        );
+        let (a, b) = (*self.ring_start.get(f)? as usize, *self.ring_start.get(f + 1)? as usize);
         let ring = self.rings.get(a..b)?;
-        let ok = ring.len() >= 3
-            && ring
-                .iter()
-                .all(|&n| self.points.get(n as usize).is_some_and(|p| p.is_finite()));
+        let ok = ring.len() >= 3 && ring.iter().all(|&n| self.points.get(n as usize).is_some_and(|p| p.is_finite()));
         ok.then_some(ring)
     }
 }
@@ -299,35 +265,17 @@ impl Projection {
     ///
     /// The centre is the middle of the points' bounding box and the sphere's radius the
     /// distance from it to the farthest point.
-    pub fn fit(
-        points: &[DVec3],
-        camera: &Camera,
-        frame: Frame,
-        margin: f32,
-        dpr: f32,
-    ) -> Projection {
+    pub fn fit(points: &[DVec3], camera: &Camera, frame: Frame, margin: f32, dpr: f32) -> Projection {
         let (mut lo, mut hi) = (DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY));
         for p in points.iter().filter(|p| p.is_finite()) {
             lo = lo.min(*p);
             hi = hi.max(*p);
         }
-        let centre = if lo.x <= hi.x {
-            0.5 * lo + 0.5 * hi
-        } else {
-            DVec3::ZERO
-        };
-        let centre = if centre.is_finite() {
-            centre
-        } else {
-            DVec3::ZERO
-        };
+        let centre = if lo.x <= hi.x { 0.5 * lo + 0.5 * hi } else { DVec3::ZERO };
+        let centre = if centre.is_finite() { centre } else { DVec3::ZERO };
         // the sphere about the box's centre through the farthest point: it holds every
         // point whichever way the camera turns
-        let mut radius = points
-            .iter()
-            .filter(|p| p.is_finite())
-            .map(|p| p.distance(centre))
-            .fold(0.0, f64::max);
+        let mut radius = points.iter().filter(|p| p.is_finite()).map(|p| p.distance(centre)).fold(0.0, f64::max);
         if !(radius.is_finite() && radius > 1e-300) {
             radius = 1.0;
         }
@@ -383,13 +331,7 @@ impl Projection {
             .iter()
             .enumerate()
             .filter(|(_, p)| p.is_finite())
-            .map(|(i, p)| {
-                (
-                    i,
-                    self.to_css(*p).distance_squared(c),
-                    self.depth(*p) * self.scale,
-                )
-            })
+            .map(|(i, p)| (i, self.to_css(*p).distance_squared(c), self.depth(*p) * self.scale))
             .filter(|&(_, d2, z)| d2 <= radius * radius && z.is_finite())
             .collect();
         let front = near.iter().map(|n| n.2).fold(f64::INFINITY, f64::min);
@@ -413,18 +355,11 @@ impl Projection {
         let mut best: Option<(f64, usize)> = None;
         for f in 0..faces.count() {
             let Some(ring) = faces.ring(f) else { continue };
-            let poly: Vec<DVec2> = ring
-                .iter()
-                .map(|&n| self.to_css(faces.points[n as usize]))
-                .collect();
+            let poly: Vec<DVec2> = ring.iter().map(|&n| self.to_css(faces.points[n as usize])).collect();
             if !polygon_holds(&poly, c) {
                 continue;
             }
-            let z = ring
-                .iter()
-                .map(|&n| self.depth(faces.points[n as usize]))
-                .sum::<f64>()
-                / ring.len() as f64;
+            let z = ring.iter().map(|&n| self.depth(faces.points[n as usize])).sum::<f64>() / ring.len() as f64;
             if best.map_or(true, |(bz, _)| z <= bz) {
                 best = Some((z, f));
             }
@@ -439,12 +374,7 @@ impl Projection {
         let c = DVec2::new(px, py);
         let ring = faces.ring(f)?;
         ring.iter()
-            .map(|&n| {
-                (
-                    n as usize,
-                    self.to_css(faces.points[n as usize]).distance_squared(c),
-                )
-            })
+            .map(|&n| (n as usize, self.to_css(faces.points[n as usize]).distance_squared(c)))
             .min_by(|a, b| a.1.total_cmp(&b.1))
             .map(|(n, _)| n)
     }
@@ -456,11 +386,7 @@ fn polygon_holds(poly: &[DVec2], p: DVec2) -> bool {
     let on_edge = (0..poly.len()).any(|i| {
         let (a, b) = (poly[i], poly[(i + 1) % poly.len()]);
         let ab = b - a;
-        let t = if ab.length_squared() > 0.0 {
-            ((p - a).dot(ab) / ab.length_squared()).clamp(0.0, 1.0)
-        } else {
-            0.0
-        };
+        let t = if ab.length_squared() > 0.0 { ((p - a).dot(ab) / ab.length_squared()).clamp(0.0, 1.0) } else { 0.0 };
         (a + t * ab).distance_squared(p) <= 1e-12
     });
     if on_edge {
@@ -483,13 +409,7 @@ fn polygon_holds(poly: &[DVec2], p: DVec2) -> bool {
 /// it: its star's edges (`star`, polylines in space) and a ring round the node, in the
 /// highlight's orange over a dark halo, on top of everything (a node behind the surface
 /// shows where it is).
-pub fn draw_node_mark(
-    pixmap: &mut Pixmap,
-    proj: &Projection,
-    node: DVec3,
-    star: &[Vec<DVec3>],
-    dpr: f32,
-) {
+pub fn draw_node_mark(pixmap: &mut Pixmap, proj: &Projection, node: DVec3, star: &[Vec<DVec3>], dpr: f32) {
     let s = sane_dpr(dpr);
     let orange = rgba(230, 159, 0, 255);
     let mut edges = PathBuilder::new();
@@ -508,12 +428,7 @@ pub fn draw_node_mark(
     }
     let line = |pm: &mut Pixmap, pb: PathBuilder, c: Color, w: f32| {
         if let Some(path) = pb.finish() {
-            let st = Stroke {
-                width: w,
-                line_join: tiny_skia::LineJoin::Round,
-                line_cap: tiny_skia::LineCap::Round,
-                ..Default::default()
-            };
+            let st = Stroke { width: w, line_join: tiny_skia::LineJoin::Round, line_cap: tiny_skia::LineCap::Round, ..Default::default() };
             pm.stroke_path(&path, &solid(c), &st, Transform::identity(), None);
         }
     };
@@ -534,23 +449,9 @@ pub fn render_surface(pixmap: &mut Pixmap, faces: &Faces, opts: &SurfaceView) ->
     let s = sane_dpr(opts.dpr);
     let frame = opts.frame.unwrap_or(Frame::of_pixmap(pixmap, s));
     let theme = &opts.theme;
-    fill_rect(
-        pixmap,
-        frame.x * s,
-        frame.y * s,
-        frame.w * s,
-        frame.h * s,
-        theme.paper,
-    );
-    let top = if opts.title.is_some() {
-        TITLE_H * theme.grow(14.0)
-    } else {
-        0.0
-    };
-    let bar = opts
-        .colour_bar
-        .then(|| colour_bar_band(frame.inset(0.0, top, 0.0, 0.0), &opts.bar_title, theme))
-        .flatten();
+    fill_rect(pixmap, frame.x * s, frame.y * s, frame.w * s, frame.h * s, theme.paper);
+    let top = if opts.title.is_some() { TITLE_H * theme.grow(14.0) } else { 0.0 };
+    let bar = opts.colour_bar.then(|| colour_bar_band(frame.inset(0.0, top, 0.0, 0.0), &opts.bar_title, theme)).flatten();
     let plot = frame.inset(0.0, top, 0.0, bar.map_or(0.0, |b| b.h));
     // a small picture keeps a thinner margin, so the surface never shrinks to a dot
     let margin = opts.margin.min((0.03 * frame.w.min(frame.h)).max(4.0));
@@ -559,14 +460,7 @@ pub fn render_surface(pixmap: &mut Pixmap, faces: &Faces, opts: &SurfaceView) ->
         return proj;
     }
     // the surface is drawn within `plot`, above the colour bar ([`super::layout`])
-    super::layout::note(
-        pixmap,
-        super::layout::RegionKind::Plot,
-        plot.x * s,
-        plot.y * s,
-        plot.w * s,
-        plot.h * s,
-    );
+    super::layout::note(pixmap, super::layout::RegionKind::Plot, plot.x * s, plot.y * s, plot.w * s, plot.h * s);
     let clip = frame_mask(pixmap, frame, s);
     let clip = clip.as_ref();
 
@@ -574,11 +468,7 @@ pub fn render_surface(pixmap: &mut Pixmap, faces: &Faces, opts: &SurfaceView) ->
     let mut order: Vec<(f64, usize)> = (0..faces.count())
         .filter_map(|f| {
             let ring = faces.ring(f)?;
-            let z = ring
-                .iter()
-                .map(|&n| proj.depth(faces.points[n as usize]))
-                .sum::<f64>()
-                / ring.len() as f64;
+            let z = ring.iter().map(|&n| proj.depth(faces.points[n as usize])).sum::<f64>() / ring.len() as f64;
             Some((z, f))
         })
         .collect();
@@ -589,17 +479,11 @@ pub fn render_surface(pixmap: &mut Pixmap, faces: &Faces, opts: &SurfaceView) ->
         l.x * proj.right + l.y * proj.up + l.z * proj.forward
     };
     let edge_paint = solid(rgba(25, 25, 25, 200));
-    let edge_stroke = Stroke {
-        width: 0.9 * s,
-        line_join: tiny_skia::LineJoin::Round,
-        ..Default::default()
-    };
+    let edge_stroke = Stroke { width: 0.9 * s, line_join: tiny_skia::LineJoin::Round, ..Default::default() };
     for &(_, f) in &order {
         let Some(ring) = faces.ring(f) else { continue };
         let pts: Vec<DVec3> = ring.iter().map(|&n| faces.points[n as usize]).collect();
-        let Some(pb) = face_path(&pts, &proj) else {
-            continue;
-        };
+        let Some(pb) = face_path(&pts, &proj) else { continue };
         let faded = faces.faded.get(f).copied().unwrap_or(false);
         if !faded && faces.inverted.get(f).copied().unwrap_or(false) {
             draw_inverted(pixmap, pb, s, clip);
@@ -607,78 +491,27 @@ pub fn render_surface(pixmap: &mut Pixmap, faces: &Faces, opts: &SurfaceView) ->
         }
         let Some(path) = pb.finish() else { continue };
         let value = faces.values.get(f).copied().unwrap_or(0.0);
-        let base = if faded {
-            faded_colour()
-        } else {
-            bucket_color(opts.colormap, bucket(value))
-        };
+        let base = if faded { faded_colour() } else { bucket_color(opts.colormap, bucket(value)) };
         let colour = shaded(base, shade(newell_normal(&pts), light, proj.forward));
         let mut paint = solid(colour);
         paint.anti_alias = opts.show_edges;
-        pixmap.fill_path(
-            &path,
-            &paint,
-            FillRule::Winding,
-            Transform::identity(),
-            clip,
-        );
+        pixmap.fill_path(&path, &paint, FillRule::Winding, Transform::identity(), clip);
         if opts.show_edges {
-            pixmap.stroke_path(
-                &path,
-                &edge_paint,
-                &edge_stroke,
-                Transform::identity(),
-                clip,
-            );
+            pixmap.stroke_path(&path, &edge_paint, &edge_stroke, Transform::identity(), clip);
         }
     }
 
     if let Some(title) = &opts.title {
         let size = size_to_fit(title, 14.0, (frame.w - 8.0).max(1.0));
-        let style = TextStyle::new(theme.text_px(size * s, s))
-            .with_color(theme.ink)
-            .with_align(Align::Centre, Valign::Baseline);
-        draw_text(
-            pixmap,
-            title,
-            (plot.x + 0.5 * plot.w) * s,
-            (frame.y + 18.0 * theme.grow(14.0)) * s,
-            style,
-        );
+        let style = TextStyle::new(theme.text_px(size * s, s)).with_color(theme.ink).with_align(Align::Centre, Valign::Baseline);
+        draw_text(pixmap, title, (plot.x + 0.5 * plot.w) * s, (frame.y + 18.0 * theme.grow(14.0)) * s, style);
     }
     if let Some(bar) = bar {
-        fill_rect(
-            pixmap,
-            bar.x * s,
-            bar.y * s,
-            bar.w * s,
-            bar.h * s,
-            theme.paper,
-        );
-        let n_inverted = faces.inverted_elements.unwrap_or_else(|| {
-            faces
-                .inverted
-                .iter()
-                .take(faces.count())
-                .filter(|&&b| b)
-                .count()
-        });
+        fill_rect(pixmap, bar.x * s, bar.y * s, bar.w * s, bar.h * s, theme.paper);
+        let n_inverted = faces.inverted_elements.unwrap_or_else(|| faces.inverted.iter().take(faces.count()).filter(|&&b| b).count());
         let (d0, d1) = opts.domain;
-        let domain = if d0.is_finite() && d1.is_finite() && d1 > d0 {
-            (d0, d1)
-        } else {
-            (0.0, 1.0)
-        };
-        draw_colour_bar(
-            pixmap,
-            bar,
-            opts.colormap,
-            domain,
-            &opts.bar_title,
-            n_inverted,
-            s,
-            theme,
-        );
+        let domain = if d0.is_finite() && d1.is_finite() && d1 > d0 { (d0, d1) } else { (0.0, 1.0) };
+        draw_colour_bar(pixmap, bar, opts.colormap, domain, &opts.bar_title, n_inverted, s, theme);
     }
     proj
 }
@@ -688,11 +521,7 @@ pub fn newell_normal(ring: &[DVec3]) -> DVec3 {
     let mut n = DVec3::ZERO;
     for (i, a) in ring.iter().enumerate() {
         let b = ring[(i + 1) % ring.len()];
-        n += DVec3::new(
-            (a.y - b.y) * (a.z + b.z),
-            (a.z - b.z) * (a.x + b.x),
-            (a.x - b.x) * (a.y + b.y),
-        );
+        n += DVec3::new((a.y - b.y) * (a.z + b.z), (a.z - b.z) * (a.x + b.x), (a.x - b.x) * (a.y + b.y));
     }
     n
 }
@@ -773,10 +602,7 @@ fn flatten(xy: &[(f32, f32)], curved: bool) -> Vec<(f32, f32)> {
         for j in 0..16 {
             let t = j as f32 / 16.0;
             let u = 1.0 - t;
-            out.push((
-                u * u * a.0 + 2.0 * u * t * c.0 + t * t * b.0,
-                u * u * a.1 + 2.0 * u * t * c.1 + t * t * b.1,
-            ));
+            out.push((u * u * a.0 + 2.0 * u * t * c.0 + t * t * b.0, u * u * a.1 + 2.0 * u * t * c.1 + t * t * b.1));
         }
     }
     out
@@ -812,8 +638,5 @@ fn frame_mask(pixmap: &Pixmap, frame: Frame, s: f32) -> Option<Mask> {
     if full {
         return None;
     }
-    rect_mask(
-        pixmap,
-        Rect::from_xywh(frame.x * s, frame.y * s, frame.w * s, frame.h * s)?,
-    )
+    rect_mask(pixmap, Rect::from_xywh(frame.x * s, frame.y * s, frame.w * s, frame.h * s)?)
 }

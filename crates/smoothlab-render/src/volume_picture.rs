@@ -11,10 +11,10 @@ use glam::DVec3;
 use serde::{Deserialize, Serialize};
 use tiny_skia::Pixmap;
 
-use crate::{render_surface, Faces, Projection, SurfaceView};
+use smoothlab::volume::{VolumeKind, VolumeMesh};
 use smoothlab::error::{Error, Result};
 use smoothlab::quality::tet::{is_inverted, mean_ratio};
-use smoothlab::volume::{VolumeKind, VolumeMesh};
+use crate::{render_surface, Faces, Projection, SurfaceView};
 
 /// Which plane cuts the mesh: normal to `axis` (0 = x, 1 = y, 2 = z), at the fraction
 /// `at` of the extent along it of the mesh's fixed nodes (its boundary, which smoothing
@@ -36,11 +36,7 @@ impl Default for Cut {
 impl Cut {
     /// Reads `x=0.5` (or `y=…`, `z=…`), the fraction in [0, 1].
     pub fn parse(text: &str) -> Result<Cut> {
-        let bad = || {
-            Error::invalid(format!(
-                "'{text}': give the cut as AXIS=FRACTION, e.g. z=0.5 (x, y or z; 0 to 1)"
-            ))
-        };
+        let bad = || Error::invalid(format!("'{text}': give the cut as AXIS=FRACTION, e.g. z=0.5 (x, y or z; 0 to 1)"));
         let (axis, at) = text.split_once('=').ok_or_else(bad)?;
         let axis = match axis.trim() {
             "x" | "X" => 0,
@@ -109,9 +105,7 @@ impl VolumePicture for VolumeMesh {
             .iter()
             .zip(self.fixed())
             .filter(|&(_, &f)| f || !any_fixed)
-            .fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), (p, _)| {
-                (l.min(p[axis]), h.max(p[axis]))
-            });
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), (p, _)| (l.min(p[axis]), h.max(p[axis])));
         let level = lo + cut.at.clamp(0.0, 1.0) * (hi - lo);
         let up_the_axis = forward[axis] > 0.0;
         let kept: Vec<bool> = (0..self.element_count())
@@ -141,10 +135,7 @@ impl VolumePicture for VolumeMesh {
                 *count.entry(f).or_default() += 1;
             }
         }
-        let mut out = CutFaces {
-            ring_start: vec![0],
-            ..Default::default()
-        };
+        let mut out = CutFaces { ring_start: vec![0], ..Default::default() };
         for (e, &left) in kept.iter().enumerate() {
             let kind = self.element_kind(e);
             // as the statistics measure it (a 10-node tetrahedron with its mid-edge nodes,
@@ -154,10 +145,7 @@ impl VolumePicture for VolumeMesh {
             let (q, inverted) = match kind {
                 VolumeKind::Tet4 => {
                     let c = self.tet_corners(e);
-                    (
-                        left.then(|| mean_ratio(&c, kind.reference())),
-                        is_inverted(&c),
-                    )
+                    (left.then(|| mean_ratio(&c, kind.reference())), is_inverted(&c))
                 }
                 _ => {
                     let m = self.measures(e);
@@ -165,9 +153,7 @@ impl VolumePicture for VolumeMesh {
                 }
             };
             out.inverted_elements += inverted as usize;
-            let Some(q) = q.filter(|_| left) else {
-                continue;
-            };
+            let Some(q) = q.filter(|_| left) else { continue };
             out.kept += 1;
             let t = self.element(e);
             for &loc in kind.row().faces {
@@ -191,11 +177,7 @@ impl VolumePicture for VolumeMesh {
     /// mean ratio (its colour bar so titled, on [0, 1]).
     fn render_cut(&self, pixmap: &mut Pixmap, cut: Cut, view: &SurfaceView) -> Projection {
         let faces = self.cut_faces(cut, view.camera.basis().2);
-        let opts = SurfaceView {
-            bar_title: "mean ratio".into(),
-            domain: (0.0, 1.0),
-            ..view.clone()
-        };
+        let opts = SurfaceView { bar_title: "mean ratio".into(), domain: (0.0, 1.0), ..view.clone() };
         render_surface(pixmap, &faces.faces(self.nodes()), &opts)
     }
 }
@@ -238,10 +220,7 @@ mod tests {
         // nothing left
         assert_eq!(m.cut_faces(Cut { axis: 0, at: 0.0 }, DOWN).kept, 0);
         // looking up the x axis the far side is kept: all of it at x = 0
-        assert_eq!(
-            m.cut_faces(Cut { axis: 0, at: 0.0 }, DVec3::X).kept,
-            m.element_count()
-        );
+        assert_eq!(m.cut_faces(Cut { axis: 0, at: 0.0 }, DVec3::X).kept, m.element_count());
         // a tangled cube: the inverted tetrahedra on the cut are marked
         let t = perturb_volume(&m, 0.9, 3).unwrap();
         let cut = t.cut_faces(Cut { axis: 1, at: 0.5 }, DOWN);
@@ -262,12 +241,7 @@ mod tests {
         assert!(want > 100, "the block is tangled: {want} inverted");
         let view = SurfaceView::default();
         let forward = view.camera.basis().2;
-        for cut in [
-            Cut { axis: 2, at: 1.0 },
-            Cut::default(),
-            Cut { axis: 0, at: 0.3 },
-            Cut { axis: 1, at: 0.0 },
-        ] {
+        for cut in [Cut { axis: 2, at: 1.0 }, Cut::default(), Cut { axis: 0, at: 0.3 }, Cut { axis: 1, at: 0.0 }] {
             let faces = m.cut_faces(cut, forward);
             assert_eq!(faces.inverted_elements, want, "{cut:?}");
             // the faces flagged inverted, as the key once counted them (62 at z = ½)
@@ -277,30 +251,14 @@ mod tests {
             m.render_cut(&mut p, cut, &view);
             let key = |n: usize| {
                 let mut q = p.clone();
-                let band =
-                    colour_bar_band(Frame::of_pixmap(&q, 1.0), "mean ratio", &view.theme).unwrap();
+                let band = colour_bar_band(Frame::of_pixmap(&q, 1.0), "mean ratio", &view.theme).unwrap();
                 crate::paint::fill_rect(&mut q, band.x, band.y, band.w, band.h, view.theme.paper);
-                draw_colour_bar(
-                    &mut q,
-                    band,
-                    view.colormap,
-                    (0.0, 1.0),
-                    "mean ratio",
-                    n,
-                    1.0,
-                    &view.theme,
-                );
+                draw_colour_bar(&mut q, band, view.colormap, (0.0, 1.0), "mean ratio", n, 1.0, &view.theme);
                 q.data() == p.data()
             };
             assert!(key(want), "{cut:?}: the key says {want} inverted");
-            assert_ne!(
-                drawn, want,
-                "{cut:?}: the faces and the elements differ here"
-            );
-            assert!(
-                !key(drawn),
-                "{cut:?}: the key does not say the {drawn} faces"
-            );
+            assert_ne!(drawn, want, "{cut:?}: the faces and the elements differ here");
+            assert!(!key(drawn), "{cut:?}: the key does not say the {drawn} faces");
         }
     }
 
@@ -309,15 +267,10 @@ mod tests {
         let m = tet_cube(4).unwrap();
         let half = m.cut_faces(Cut { axis: 2, at: 0.5 }, DOWN).kept;
         let mut far = m.clone();
-        let n = (0..m.node_count())
-            .find(|&n| m.is_free(n) && m.nodes()[n].z == 0.25)
-            .unwrap();
+        let n = (0..m.node_count()).find(|&n| m.is_free(n) && m.nodes()[n].z == 0.25).unwrap();
         far.nodes_mut()[n].z = -20.0;
         // the plane is still at z = ½: only the tetrahedra at the thrown node change sides
         let kept = far.cut_faces(Cut { axis: 2, at: 0.5 }, DOWN).kept;
-        assert!(
-            kept >= half && kept <= half + far.node_tets(n).len(),
-            "{kept} of {half}"
-        );
+        assert!(kept >= half && kept <= half + far.node_tets(n).len(), "{kept} of {half}");
     }
 }

@@ -11,37 +11,19 @@ pub enum Error {
     Parse { line: usize, message: String },
     /// An element is invalid: its number as the file numbers it ([`Numbering`]), with its
     /// file line when known.
-    Element {
-        element: u64,
-        line: Option<usize>,
-        message: String,
-    },
+    Element { element: u64, line: Option<usize>, message: String },
     /// A node is invalid: its number as the file numbers it ([`Numbering`]), with its file
     /// line when known.
-    Node {
-        node: u64,
-        line: Option<usize>,
-        message: String,
-    },
+    Node { node: u64, line: Option<usize>, message: String },
     /// Points are given in 3D and do not lie on one plane: `node` (as the file numbers it,
     /// with its file line when known) is the farthest off, by `max_distance`, which is
     /// `relative` times the size of the largest element it belongs to.
-    NotPlanar {
-        node: u64,
-        line: Option<usize>,
-        max_distance: f64,
-        relative: f64,
-        tolerance: f64,
-    },
+    NotPlanar { node: u64, line: Option<usize>, max_distance: f64, relative: f64, tolerance: f64 },
     /// The input is well-formed but asks for something smoothlab does not do
     /// (polygons, volume cells, binary files, …). `lead`, when given, says it first in
     /// words a reader of the mesh knows (`hexahedra are not supported yet`), before the
     /// line and the file's own terms (`VTK cell type 12`).
-    Unsupported {
-        lead: Option<String>,
-        line: Option<usize>,
-        message: String,
-    },
+    Unsupported { lead: Option<String>, line: Option<usize>, message: String },
     /// The mesh has no elements (or no nodes).
     Empty(String),
     /// The input is larger than a stated limit.
@@ -54,50 +36,23 @@ pub enum Error {
 
 impl Error {
     pub fn parse(line: usize, message: impl Into<String>) -> Self {
-        Error::Parse {
-            line,
-            message: message.into(),
-        }
+        Error::Parse { line, message: message.into() }
     }
     /// An error about element `element`, numbered as the file numbers it.
-    pub fn element(
-        element: impl TryInto<u64>,
-        line: Option<usize>,
-        message: impl Into<String>,
-    ) -> Self {
-        Error::Element {
-            element: element.try_into().unwrap_or(u64::MAX),
-            line,
-            message: message.into(),
-        }
+    pub fn element(element: impl TryInto<u64>, line: Option<usize>, message: impl Into<String>) -> Self {
+        Error::Element { element: element.try_into().unwrap_or(u64::MAX), line, message: message.into() }
     }
     /// An error about node `node`, numbered as the file numbers it.
     pub fn node(node: impl TryInto<u64>, line: Option<usize>, message: impl Into<String>) -> Self {
-        Error::Node {
-            node: node.try_into().unwrap_or(u64::MAX),
-            line,
-            message: message.into(),
-        }
+        Error::Node { node: node.try_into().unwrap_or(u64::MAX), line, message: message.into() }
     }
     pub fn unsupported(line: Option<usize>, message: impl Into<String>) -> Self {
-        Error::Unsupported {
-            lead: None,
-            line,
-            message: message.into(),
-        }
+        Error::Unsupported { lead: None, line, message: message.into() }
     }
     /// An element kind smoothlab does not read, said first in plain words (`lead`, e.g.
     /// `hexahedra are not supported yet`), then the line and the file's terms.
-    pub fn unsupported_kind(
-        lead: impl Into<String>,
-        line: usize,
-        message: impl Into<String>,
-    ) -> Self {
-        Error::Unsupported {
-            lead: Some(lead.into()),
-            line: Some(line),
-            message: message.into(),
-        }
+    pub fn unsupported_kind(lead: impl Into<String>, line: usize, message: impl Into<String>) -> Self {
+        Error::Unsupported { lead: Some(lead.into()), line: Some(line), message: message.into() }
     }
     pub fn invalid(message: impl Into<String>) -> Self {
         Error::Invalid(message.into())
@@ -115,31 +70,17 @@ impl fmt::Display for Error {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
             Error::Parse { line, message } => write!(f, "line {line}: {message}"),
-            Error::Element {
-                element,
-                line,
-                message,
-            } => {
+            Error::Element { element, line, message } => {
                 write!(f, "element {element}")?;
                 at_line(f, *line)?;
                 write!(f, ": {message}")
             }
-            Error::Node {
-                node,
-                line,
-                message,
-            } => {
+            Error::Node { node, line, message } => {
                 write!(f, "node {node}")?;
                 at_line(f, *line)?;
                 write!(f, ": {message}")
             }
-            Error::NotPlanar {
-                node,
-                line,
-                max_distance,
-                relative,
-                tolerance,
-            } => {
+            Error::NotPlanar { node, line, max_distance, relative, tolerance } => {
                 write!(f, "the mesh is not planar: node {node}")?;
                 at_line(f, *line)?;
                 write!(
@@ -150,11 +91,7 @@ impl fmt::Display for Error {
                     shown_number(*relative)
                 )
             }
-            Error::Unsupported {
-                lead,
-                line,
-                message,
-            } => {
+            Error::Unsupported { lead, line, message } => {
                 if let Some(lead) = lead {
                     write!(f, "{lead}: ")?;
                 }
@@ -204,8 +141,7 @@ impl Numbering {
             Numbering::From(first) if first.checked_add(count as u64) == Some(number) => {}
             Numbering::From(first) => {
                 let first = *first;
-                let mut tags: Vec<u64> =
-                    (0..count as u64).map(|i| first.saturating_add(i)).collect();
+                let mut tags: Vec<u64> = (0..count as u64).map(|i| first.saturating_add(i)).collect();
                 tags.push(number);
                 *self = Numbering::Tags(tags);
             }
@@ -219,9 +155,7 @@ impl Numbering {
     pub(crate) fn next(&self, count: usize) -> u64 {
         match self {
             Numbering::From(first) => first.saturating_add(count as u64),
-            Numbering::Tags(tags) => tags
-                .get(count.wrapping_sub(1))
-                .map_or(count as u64, |t| t.saturating_add(1)),
+            Numbering::Tags(tags) => tags.get(count.wrapping_sub(1)).map_or(count as u64, |t| t.saturating_add(1)),
         }
     }
 }
@@ -232,11 +166,7 @@ pub const LISTED: usize = 5;
 /// A list for a message, of bounded length whatever the file: the first [`LISTED`] of the
 /// `count` items, then how many more ("0, 1, 2, 3, 4 and 199995 more").
 pub(crate) fn listed<T: fmt::Display>(items: impl IntoIterator<Item = T>, count: usize) -> String {
-    let shown: Vec<String> = items
-        .into_iter()
-        .take(LISTED)
-        .map(|x| x.to_string())
-        .collect();
+    let shown: Vec<String> = items.into_iter().take(LISTED).map(|x| x.to_string()).collect();
     let more = count.saturating_sub(shown.len());
     let mut s = shown.join(", ");
     if more > 0 {
@@ -251,11 +181,7 @@ pub(crate) fn shown_number(x: f64) -> String {
     if x.is_nan() {
         "an unknown amount".into()
     } else if x.is_infinite() {
-        if x > 0.0 {
-            "infinitely many".into()
-        } else {
-            "minus infinity".into()
-        }
+        if x > 0.0 { "infinitely many".into() } else { "minus infinity".into() }
     } else if x != 0.0 && !(1e-3..1e4).contains(&x.abs()) {
         format!("{x:.3e}")
     } else {

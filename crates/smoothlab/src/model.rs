@@ -72,9 +72,9 @@ impl Model {
     pub fn planar(self, what: &str) -> Result<Mesh> {
         match self {
             Model::Planar(m) => Ok(m),
-            Model::Surface(_) => Err(Error::invalid(format!(
-                "{what} takes planar meshes only; this mesh is a surface in 3D"
-            ))),
+            Model::Surface(_) => {
+                Err(Error::invalid(format!("{what} takes planar meshes only; this mesh is a surface in 3D")))
+            }
             Model::Volume(v) => Err(Error::invalid(format!(
                 "{what} takes planar meshes only; this mesh is made of {}",
                 v.family_words()

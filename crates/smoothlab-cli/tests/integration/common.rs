@@ -15,20 +15,13 @@ pub fn bin() -> &'static str {
 
 /// Runs `smoothlab ARGS`.
 pub fn run(args: &[&str]) -> std::process::Output {
-    std::process::Command::new(bin())
-        .args(args)
-        .output()
-        .unwrap()
+    std::process::Command::new(bin()).args(args).output().unwrap()
 }
 
 /// Runs `smoothlab ARGS`, which must succeed, and returns what it printed.
 pub fn ok(args: &[&str]) -> String {
     let out = run(args);
-    assert!(
-        out.status.success(),
-        "smoothlab {args:?} failed: {}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    assert!(out.status.success(), "smoothlab {args:?} failed: {}", String::from_utf8_lossy(&out.stderr));
     String::from_utf8(out.stdout).unwrap()
 }
 

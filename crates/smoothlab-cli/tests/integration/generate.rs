@@ -16,15 +16,8 @@ fn out(name: &str) -> PathBuf {
 
 /// Runs `smoothlab generate ARGS`, returning (success, stderr).
 fn generate(args: &[&str]) -> (bool, String) {
-    let o = Command::new(env!("CARGO_BIN_EXE_smoothlab"))
-        .arg("generate")
-        .args(args)
-        .output()
-        .unwrap();
-    (
-        o.status.success(),
-        String::from_utf8_lossy(&o.stderr).into_owned(),
-    )
+    let o = Command::new(env!("CARGO_BIN_EXE_smoothlab")).arg("generate").args(args).output().unwrap();
+    (o.status.success(), String::from_utf8_lossy(&o.stderr).into_owned())
 }
 
 fn generated(args: &[&str], file: &str) -> Mesh {
@@ -43,26 +36,14 @@ fn generated(args: &[&str], file: &str) -> Mesh {
 fn rand2d_default_is_freitags_mesh() {
     let m = generated(&["rand2d"], "rand2d.msh");
     let s = mesh_stats(&m);
-    assert_eq!(
-        (s.nodes, s.elements, s.free_nodes, s.inverted),
-        (580, 1078, 500, 0)
-    );
+    assert_eq!((s.nodes, s.elements, s.free_nodes, s.inverted), (580, 1078, 500, 0));
 }
 
 #[test]
 fn the_seed_names_the_mesh() {
-    let _ = generated(
-        &["rand2d", "--points", "50", "--per-side", "5", "--seed", "7"],
-        "a.msh",
-    );
-    let _ = generated(
-        &["rand2d", "--points", "50", "--per-side", "5", "--seed", "7"],
-        "b.msh",
-    );
-    let _ = generated(
-        &["rand2d", "--points", "50", "--per-side", "5", "--seed", "8"],
-        "c.msh",
-    );
+    let _ = generated(&["rand2d", "--points", "50", "--per-side", "5", "--seed", "7"], "a.msh");
+    let _ = generated(&["rand2d", "--points", "50", "--per-side", "5", "--seed", "7"], "b.msh");
+    let _ = generated(&["rand2d", "--points", "50", "--per-side", "5", "--seed", "8"], "c.msh");
     let read = |f: &str| std::fs::read(out(f)).unwrap();
     assert_eq!(read("a.msh"), read("b.msh"));
     assert_ne!(read("a.msh"), read("c.msh"));
@@ -70,43 +51,18 @@ fn the_seed_names_the_mesh() {
 
 #[test]
 fn grid_plate_and_star_counts() {
-    let g = generated(
-        &["grid", "--nx", "3", "--ny", "2", "--kind", "quad"],
-        "grid.vtk",
-    );
-    assert_eq!(
-        (g.node_count(), g.element_count(), g.free_count()),
-        (12, 6, 2)
-    );
-    let p = generated(
-        &[
-            "plate",
-            "--kind",
-            "mixed",
-            "--order",
-            "2",
-            "--resolution",
-            "2",
-        ],
-        "plate.msh",
-    );
+    let g = generated(&["grid", "--nx", "3", "--ny", "2", "--kind", "quad"], "grid.vtk");
+    assert_eq!((g.node_count(), g.element_count(), g.free_count()), (12, 6, 2));
+    let p = generated(&["plate", "--kind", "mixed", "--order", "2", "--resolution", "2"], "plate.msh");
     let s = mesh_stats(&p);
     // m = 16 spokes, 4 rings: 2 of quads, 2 of triangles; 80 corners + 176 mid nodes
-    assert_eq!(
-        (s.quads, s.triangles, s.quadratic, s.nodes, s.inverted),
-        (32, 64, 96, 256, 0)
-    );
+    assert_eq!((s.quads, s.triangles, s.quadratic, s.nodes, s.inverted), (32, 64, 96, 256, 0));
     let curved: Vec<_> = p.edges().iter().filter(|e| e.curved).collect();
     assert_eq!(curved.len(), 16);
     for e in curved {
         assert!((p.nodes()[e.mid as usize].length() - 0.4).abs() < 1e-12);
     }
-    for (kind, k, nodes) in [
-        ("regular", None, 7),
-        ("chen", None, 9),
-        ("quad", None, 9),
-        ("quad", Some("6"), 13),
-    ] {
+    for (kind, k, nodes) in [("regular", None, 7), ("chen", None, 9), ("quad", None, 9), ("quad", Some("6"), 13)] {
         let mut args = vec!["star", "--kind", kind];
         if let Some(k) = k {
             args.extend(["--k", k]);
@@ -119,22 +75,9 @@ fn grid_plate_and_star_counts() {
 
 #[test]
 fn perturb_tangles_and_keeps_the_boundary() {
-    let src = generated(
-        &["plate", "--kind", "tri", "--resolution", "3"],
-        "plate-tri.msh",
-    );
+    let src = generated(&["plate", "--kind", "tri", "--resolution", "3"], "plate-tri.msh");
     let input = out("plate-tri.msh");
-    let t = generated(
-        &[
-            "perturb",
-            input.to_str().unwrap(),
-            "--amount",
-            "1.0",
-            "--seed",
-            "2",
-        ],
-        "tangled.msh",
-    );
+    let t = generated(&["perturb", input.to_str().unwrap(), "--amount", "1.0", "--seed", "2"], "tangled.msh");
     assert!(mesh_stats(&t).inverted > 0);
     let r = src.mean_edge_length();
     for n in 0..src.node_count() {
@@ -168,10 +111,7 @@ fn sample(name: &str) -> Mesh {
     m.sanity_check().unwrap();
     assert_eq!(mesh_stats(&m).inverted, 0, "{name}");
     for n in 0..m.node_count() {
-        assert!(
-            !m.is_boundary(n) || m.fixed()[n],
-            "{name}: boundary node {n} is free"
-        );
+        assert!(!m.is_boundary(n) || m.fixed()[n], "{name}: boundary node {n} is free");
     }
     m
 }
@@ -179,9 +119,7 @@ fn sample(name: &str) -> Mesh {
 #[test]
 fn gmsh_samples_load_valid() {
     let p = sample("plate_hole_tri.msh");
-    assert!(
-        p.kinds().iter().all(|k| *k == smoothlab::ElementKind::Tri3) && p.element_count() > 500
-    );
+    assert!(p.kinds().iter().all(|k| *k == smoothlab::ElementKind::Tri3) && p.element_count() > 500);
     let b = sample("bracket_quad.msh");
     assert!(b.has_quads() && !b.has_quadratic());
     let d = sample("disk_tri6.msh");
@@ -195,10 +133,7 @@ fn gmsh_samples_load_valid() {
         let q = d.nodes()[e.mid as usize];
         let on_circle = (q.length() - 1.0).abs() < 1e-9;
         let l = q - glam::DVec2::new(0.1, 0.05);
-        let (u, v) = (
-            l.x * turn.cos() + l.y * turn.sin(),
-            -l.x * turn.sin() + l.y * turn.cos(),
-        );
+        let (u, v) = (l.x * turn.cos() + l.y * turn.sin(), -l.x * turn.sin() + l.y * turn.cos());
         let on_ellipse = ((u / sa).powi(2) + (v / sb).powi(2) - 1.0).abs() < 1e-6;
         assert!(on_circle || on_ellipse, "mid node {q}");
     }

@@ -10,9 +10,7 @@ use smoothlab::io::{self, Format, WriteOptions};
 use smoothlab::{Error, Mesh};
 
 fn data(name: &str) -> PathBuf {
-    crate::common::repo()
-        .join("tests/data/hardening")
-        .join(name)
+    crate::common::repo().join("tests/data/hardening").join(name)
 }
 
 fn scratch(name: &str) -> PathBuf {
@@ -26,11 +24,7 @@ fn same_mesh(a: &Mesh, b: &Mesh, what: &str) {
     assert_eq!(a.nodes(), b.nodes(), "{what}: nodes");
     assert_eq!(a.element_count(), b.element_count(), "{what}: elements");
     for e in 0..a.element_count() {
-        assert_eq!(
-            (a.kind(e), a.element(e)),
-            (b.kind(e), b.element(e)),
-            "{what}: element {e}"
-        );
+        assert_eq!((a.kind(e), a.element(e)), (b.kind(e), b.element(e)), "{what}: element {e}");
     }
     assert_eq!(a.fixed(), b.fixed(), "{what}: fixed flags");
 }
@@ -41,10 +35,7 @@ fn same_mesh(a: &Mesh, b: &Mesh, what: &str) {
 fn not_planar(text: &str, format: Format) -> (u64, String) {
     match io::read_str(text, format) {
         Err(e @ Error::NotPlanar { node, .. }) => (node, e.to_string()),
-        other => panic!(
-            "expected NotPlanar, got {:?}",
-            other.map(|m| m.node_count())
-        ),
+        other => panic!("expected NotPlanar, got {:?}", other.map(|m| m.node_count())),
     }
 }
 
@@ -79,10 +70,7 @@ fn rand2d_obj(lifted: usize, z: f64) -> String {
 #[test]
 fn an_outlier_node_is_refused_by_name() {
     // the 2 x 2 quad grid with a corner at z = 1e6 (tests/data/bad/non_planar_outlier.obj)
-    let text = std::fs::read_to_string(
-        crate::common::repo().join("tests/data/bad/non_planar_outlier.obj"),
-    )
-    .unwrap();
+    let text = std::fs::read_to_string(crate::common::repo().join("tests/data/bad/non_planar_outlier.obj")).unwrap();
     let (node, msg) = not_planar(&text, Format::Obj);
     assert_eq!(node, 9, "OBJ counts from 1: {msg}");
     // a 580-node rand2D with one interior node at z = 3e6, and at heights down to a
@@ -91,10 +79,7 @@ fn an_outlier_node_is_refused_by_name() {
         for lifted in [0, 100, 579] {
             let (node, msg) = not_planar(&rand2d_obj(lifted, z), Format::Obj);
             assert_eq!(node, lifted as u64 + 1, "z = {z}: {msg}");
-            assert!(
-                msg.contains(&format!("node {} (line ", lifted + 1)),
-                "{msg}"
-            );
+            assert!(msg.contains(&format!("node {} (line ", lifted + 1)), "{msg}");
         }
     }
 }
@@ -110,22 +95,13 @@ fn rounded_tilted_planes_still_read() {
         let mut obj = String::new();
         for p in m.nodes() {
             let q = [origin + p.x, origin + p.y * c, origin + p.y * s];
-            obj += &format!(
-                "v {:.*e} {:.*e} {:.*e}\n",
-                digits - 1,
-                q[0],
-                digits - 1,
-                q[1],
-                digits - 1,
-                q[2]
-            );
+            obj += &format!("v {:.*e} {:.*e} {:.*e}\n", digits - 1, q[0], digits - 1, q[1], digits - 1, q[2]);
         }
         for e in 0..m.element_count() {
             let ids: Vec<String> = m.element(e).iter().map(|i| (i + 1).to_string()).collect();
             obj += &format!("f {}\n", ids.join(" "));
         }
-        let back = io::read_str(&obj, Format::Obj)
-            .unwrap_or_else(|e| panic!("origin {origin}, {digits} digits: {e}"));
+        let back = io::read_str(&obj, Format::Obj).unwrap_or_else(|e| panic!("origin {origin}, {digits} digits: {e}"));
         assert_eq!(back.element_count(), m.element_count());
     }
 }
@@ -136,17 +112,13 @@ fn rounded_tilted_planes_still_read() {
 /// (the OBJ lost its first vertex; .msh, .vtk and .node were refused).
 #[test]
 fn byte_order_mark_is_skipped_in_every_format() {
-    for name in [
-        "bom.obj", "bom.off", "bom.msh", "bom.vtk", "bom.node", "bom.ele",
-    ] {
+    for name in ["bom.obj", "bom.off", "bom.msh", "bom.vtk", "bom.node", "bom.ele"] {
         let bytes = std::fs::read(data(name)).unwrap();
         assert_eq!(&bytes[..3], b"\xef\xbb\xbf", "{name} starts with a BOM");
         let with = io::read_path(&data(name)).unwrap_or_else(|e| panic!("{name}: {e}"));
         let format = Format::from_name(name).unwrap();
         let without = if format == Format::Triangle {
-            let text = |ext: &str| {
-                std::fs::read_to_string(data(&format!("bom.{ext}"))).unwrap()[3..].to_string()
-            };
+            let text = |ext: &str| std::fs::read_to_string(data(&format!("bom.{ext}"))).unwrap()[3..].to_string();
             io::read_triangle(&text("node"), &text("ele")).unwrap()
         } else {
             io::read_str(std::str::from_utf8(&bytes[3..]).unwrap(), format).unwrap()
@@ -174,30 +146,11 @@ fn element_metrics_are_scale_free() {
     use smoothlab::ElementKind;
     let d = |x: f64, y: f64| DVec2::new(x, y);
     let shapes: [(ElementKind, Vec<DVec2>); 4] = [
-        (
-            ElementKind::Tri3,
-            vec![d(0.1, 0.2), d(1.3, 0.1), d(0.4, 0.9)],
-        ),
-        (
-            ElementKind::Quad4,
-            vec![d(0.0, 0.0), d(1.1, 0.1), d(1.0, 0.8), d(-0.1, 1.2)],
-        ),
-        (
-            ElementKind::Tri6,
-            vec![
-                d(0.0, 0.0),
-                d(2.0, 0.0),
-                d(0.0, 2.0),
-                d(1.0, -0.2),
-                d(1.1, 1.0),
-                d(0.0, 1.0),
-            ],
-        ),
+        (ElementKind::Tri3, vec![d(0.1, 0.2), d(1.3, 0.1), d(0.4, 0.9)]),
+        (ElementKind::Quad4, vec![d(0.0, 0.0), d(1.1, 0.1), d(1.0, 0.8), d(-0.1, 1.2)]),
+        (ElementKind::Tri6, vec![d(0.0, 0.0), d(2.0, 0.0), d(0.0, 2.0), d(1.0, -0.2), d(1.1, 1.0), d(0.0, 1.0)]),
         // an inverted one stays inverted
-        (
-            ElementKind::Tri3,
-            vec![d(0.0, 0.0), d(0.3, 1.0), d(1.0, 0.1)],
-        ),
+        (ElementKind::Tri3, vec![d(0.0, 0.0), d(0.3, 1.0), d(1.0, 0.1)]),
     ];
     for (kind, p) in &shapes {
         let unit = element_quality(*kind, p);
@@ -212,16 +165,8 @@ fn element_metrics_are_scale_free() {
             let q: Vec<DVec2> = p.iter().map(|&x| x * f).collect();
             let got = element_quality(*kind, &q);
             assert_eq!(got.inverted, unit.inverted, "{kind:?} at {f:e}");
-            for (a, b) in [
-                (got.shape, unit.shape),
-                (got.min_angle, unit.min_angle),
-                (got.max_angle, unit.max_angle),
-                (got.condition, unit.condition),
-            ] {
-                assert!(
-                    a == b || (a - b).abs() <= 1e-12 * b.abs(),
-                    "{kind:?} at {f:e}: {a} vs {b}"
-                );
+            for (a, b) in [(got.shape, unit.shape), (got.min_angle, unit.min_angle), (got.max_angle, unit.max_angle), (got.condition, unit.condition)] {
+                assert!(a == b || (a - b).abs() <= 1e-12 * b.abs(), "{kind:?} at {f:e}: {a} vs {b}");
             }
         }
     }
@@ -233,34 +178,15 @@ fn element_metrics_are_scale_free() {
 fn statistics_of_extreme_files_are_those_of_the_shape() {
     use smoothlab::quality::mesh_stats;
     let unit = {
-        let text = std::fs::read_to_string(data("triangles_1e200.vtk"))
-            .unwrap()
-            .replace("e+200", "")
-            .replace("e200", "");
+        let text = std::fs::read_to_string(data("triangles_1e200.vtk")).unwrap().replace("e+200", "").replace("e200", "");
         mesh_stats(&io::read_str(&text, Format::Vtk).unwrap())
     };
-    assert!(
-        unit.min_quality > 0.5 && unit.max_condition.is_finite() && unit.inverted == 0,
-        "{unit:?}"
-    );
-    for name in [
-        "triangles_1e-200.vtk",
-        "triangles_1e200.vtk",
-        "triangles_1e300.vtk",
-    ] {
+    assert!(unit.min_quality > 0.5 && unit.max_condition.is_finite() && unit.inverted == 0, "{unit:?}");
+    for name in ["triangles_1e-200.vtk", "triangles_1e200.vtk", "triangles_1e300.vtk"] {
         let m = io::read_path(&data(name)).unwrap();
         let s = mesh_stats(&m);
-        assert_eq!(
-            (s.inverted, &s.angle_histogram_6deg),
-            (0, &unit.angle_histogram_6deg),
-            "{name}"
-        );
-        for (a, b) in [
-            (s.min_quality, unit.min_quality),
-            (s.mean_quality, unit.mean_quality),
-            (s.max_condition, unit.max_condition),
-            (s.min_angle_deg, unit.min_angle_deg),
-        ] {
+        assert_eq!((s.inverted, &s.angle_histogram_6deg), (0, &unit.angle_histogram_6deg), "{name}");
+        for (a, b) in [(s.min_quality, unit.min_quality), (s.mean_quality, unit.mean_quality), (s.max_condition, unit.max_condition), (s.min_angle_deg, unit.min_angle_deg)] {
             assert!((a - b).abs() <= 1e-9 * b.abs(), "{name}: {a} vs {b}");
         }
     }
@@ -271,12 +197,7 @@ fn statistics_of_extreme_files_are_those_of_the_shape() {
 #[test]
 fn render_draws_the_same_mesh_at_any_scale() {
     use smoothlab_render::{render_mesh, MeshView};
-    let base = smoothlab::generate::perturb(
-        &smoothlab::generate::grid(5, 5, smoothlab::generate::GridKind::Tri).unwrap(),
-        0.3,
-        2,
-    )
-    .unwrap();
+    let base = smoothlab::generate::perturb(&smoothlab::generate::grid(5, 5, smoothlab::generate::GridKind::Tri).unwrap(), 0.3, 2).unwrap();
     let draw = |m: &Mesh| {
         let mut pm = tiny_skia::Pixmap::new(240, 200).unwrap();
         render_mesh(&mut pm, m, &MeshView::default());
@@ -288,10 +209,7 @@ fn render_draws_the_same_mesh_at_any_scale() {
         for p in m.nodes_mut() {
             *p *= 2f64.powi(e);
         }
-        assert!(
-            draw(&m).data() == reference.data(),
-            "the picture at 2^{e} differs"
-        );
+        assert!(draw(&m).data() == reference.data(), "the picture at 2^{e} differs");
     }
 }
 
@@ -312,16 +230,10 @@ fn solvers_are_scale_invariant_and_records_hold_no_nan() {
         let untangling = matches!(k, ObjectiveKind::Untangle | ObjectiveKind::UntangleMinDet);
         let base = if untangling { &tangled } else { &mild };
         // the untangling objectives with the guard's pass through folds, as they are run
-        let opts = SmoothOptions {
-            pass_through_folds: Some(untangling),
-            ..SmoothOptions::default().with_strategy(Strategy::Opt)
-        };
+        let opts = SmoothOptions { pass_through_folds: Some(untangling), ..SmoothOptions::default().with_strategy(Strategy::Opt) };
         let mut reference = base.clone();
         let r0 = smooth(&mut reference, objective(k).as_ref(), opts, 1, &|| 0.0).unwrap();
-        assert!(
-            reference.nodes() != base.nodes(),
-            "{k}: nothing moved at unit scale"
-        );
+        assert!(reference.nodes() != base.nodes(), "{k}: nothing moved at unit scale");
         for e in (-1000..=1000).step_by(50) {
             let f = 2f64.powi(e);
             let mut m = base.clone();
@@ -330,11 +242,7 @@ fn solvers_are_scale_invariant_and_records_hold_no_nan() {
             }
             let r = smooth(&mut m, objective(k).as_ref(), opts, 1, &|| 0.0).unwrap();
             for (i, (a, b)) in m.nodes().iter().zip(reference.nodes()).enumerate() {
-                assert!(
-                    *a == *b * f,
-                    "{k} at 2^{e}: node {i} at {a}, expected {}",
-                    *b * f
-                );
+                assert!(*a == *b * f, "{k} at 2^{e}: node {i} at {a}, expected {}", *b * f);
             }
             let t = r[0].objective_total.expect("the core measures it");
             // the untangling objectives' totals are areas: beyond what doubles hold they
@@ -350,22 +258,12 @@ fn solvers_are_scale_invariant_and_records_hold_no_nan() {
             }
             if matches!(
                 k,
-                ObjectiveKind::MaxMinShape
-                    | ObjectiveKind::Sine
-                    | ObjectiveKind::SmoothShape
-                    | ObjectiveKind::Condition
-                    | ObjectiveKind::ConditionMax
+                ObjectiveKind::MaxMinShape | ObjectiveKind::Sine | ObjectiveKind::SmoothShape | ObjectiveKind::Condition | ObjectiveKind::ConditionMax
             ) {
                 let t0 = r0[0].objective_total.expect("the core measures it");
-                assert!(
-                    (t - t0).abs() <= 1e-9 * t0.abs(),
-                    "{k} at 2^{e}: total {t}, at unit scale {t0}"
-                );
+                assert!((t - t0).abs() <= 1e-9 * t0.abs(), "{k} at 2^{e}: total {t}, at unit scale {t0}");
             }
-            assert_eq!(
-                r[0].after.min_quality, r0[0].after.min_quality,
-                "{k} at 2^{e}"
-            );
+            assert_eq!(r[0].after.min_quality, r0[0].after.min_quality, "{k} at 2^{e}");
         }
     }
 }
@@ -388,10 +286,7 @@ fn devices_behind_a_mesh_name_are_refused() {
         let e = io::read_path(&link).unwrap_err();
         assert!(t.elapsed().as_secs() < 5, "{dev}: took {:?}", t.elapsed());
         let msg = e.to_string();
-        assert!(
-            msg.contains("not a regular file") && msg.contains(&link.display().to_string()),
-            "{dev}: {msg}"
-        );
+        assert!(msg.contains("not a regular file") && msg.contains(&link.display().to_string()), "{dev}: {msg}");
     }
     // a directory with a mesh name
     let dir = d.join("folder.vtk");
@@ -426,10 +321,7 @@ fn a_named_pipe_is_refused_without_waiting() {
         panic!("reading a named pipe blocked");
     }
     let msg = msg.unwrap();
-    assert!(
-        msg.contains("a device, pipe or socket, not a regular file"),
-        "{msg}"
-    );
+    assert!(msg.contains("a device, pipe or socket, not a regular file"), "{msg}");
     std::fs::remove_dir_all(&d).unwrap();
 }
 
@@ -448,13 +340,9 @@ fn a_written_large_msh_reads_back() {
     let path = d.join("big.msh");
     io::write_path(&m, &path, &WriteOptions::default()).unwrap();
     let len = std::fs::metadata(&path).unwrap().len();
-    assert!(
-        len > 256 << 20,
-        "{len} bytes: the case of the issue is over 256 MiB"
-    );
+    assert!(len > 256 << 20, "{len} bytes: the case of the issue is over 256 MiB");
     assert!(len <= io::MAX_FILE_BYTES);
-    let back =
-        io::read_path(&path).unwrap_or_else(|e| panic!("{len} bytes written, not read back: {e}"));
+    let back = io::read_path(&path).unwrap_or_else(|e| panic!("{len} bytes written, not read back: {e}"));
     assert_eq!(back.node_count(), m.node_count());
     assert_eq!(back.nodes(), m.nodes());
     std::fs::remove_dir_all(&d).unwrap();
@@ -473,34 +361,16 @@ fn the_page_reads_what_it_exports() {
         *p = -(*p + DVec2::new(1.0 / 3.0, 1.0 / 7.0)) * 1.2345678901234567e-123;
     }
     for format in [Format::Msh, Format::Vtk, Format::Obj, Format::Off] {
-        let text = io::write_string(
-            &m,
-            format,
-            &WriteOptions {
-                msh_version: io::MshVersion::V41,
-            },
-        )
-        .unwrap();
-        assert!(
-            (text.len() as u64) < io::PAGE_MAX_FILE_BYTES,
-            "{format:?}: {} bytes",
-            text.len()
-        );
+        let text = io::write_string(&m, format, &WriteOptions { msh_version: io::MshVersion::V41 }).unwrap();
+        assert!((text.len() as u64) < io::PAGE_MAX_FILE_BYTES, "{format:?}: {} bytes", text.len());
         let text = io::write_string(&m, format, &WriteOptions::default()).unwrap();
-        assert!(
-            (text.len() as u64) < io::PAGE_MAX_FILE_BYTES,
-            "{format:?}: {} bytes",
-            text.len()
-        );
+        assert!((text.len() as u64) < io::PAGE_MAX_FILE_BYTES, "{format:?}: {} bytes", text.len());
     }
     let (node, ele) = io::write_triangle(&m).unwrap();
     assert!(((node.len() + ele.len()) as u64) < io::PAGE_MAX_FILE_BYTES);
     // the page refuses larger files by the limit its control sheet hands it (the browser
     // tests refuse a file one byte over it)
-    assert_eq!(
-        smoothlab_page::lab::controls::page_controls().max_file_bytes,
-        io::PAGE_MAX_FILE_BYTES
-    );
+    assert_eq!(smoothlab_page::lab::controls::page_controls().max_file_bytes, io::PAGE_MAX_FILE_BYTES);
 }
 
 // ---- 7. names and messages ---------------------------------------------------------------
@@ -514,14 +384,8 @@ fn a_triangle_name_without_a_stem_is_refused() {
     for name in [".node", ".ele"] {
         let e = io::write_path(&m, &d.join(name), &WriteOptions::default()).unwrap_err();
         assert!(matches!(e, Error::Invalid(_)), "{e:?}");
-        assert!(
-            e.to_string().contains("needs a name before the extension"),
-            "{e}"
-        );
-        assert!(io::read_path(&d.join(name))
-            .unwrap_err()
-            .to_string()
-            .contains("needs a name before the extension"));
+        assert!(e.to_string().contains("needs a name before the extension"), "{e}");
+        assert!(io::read_path(&d.join(name)).unwrap_err().to_string().contains("needs a name before the extension"));
     }
     assert_eq!(std::fs::read_dir(&d).unwrap().count(), 0, "nothing written");
     // a proper stem, with dots in it, still pairs
@@ -538,38 +402,19 @@ fn a_triangle_name_without_a_stem_is_refused() {
 fn the_command_line_at_1e200() {
     let bin = env!("CARGO_BIN_EXE_smoothlab");
     let file = data("triangles_1e200.vtk");
-    let o = std::process::Command::new(bin)
-        .args(["stats", "--json"])
-        .arg(&file)
-        .output()
-        .unwrap();
+    let o = std::process::Command::new(bin).args(["stats", "--json"]).arg(&file).output().unwrap();
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let json = String::from_utf8_lossy(&o.stdout);
     assert!(!json.contains("null") && !json.contains("NaN"), "{json}");
     assert!(json.contains("\"inverted\":0"), "{json}");
     let d = scratch("cli1e200");
     let out = d.join("out.vtk");
-    let o = std::process::Command::new(bin)
-        .args(["smooth", "--objective", "untangle"])
-        .arg(&file)
-        .arg("-o")
-        .arg(&out)
-        .output()
-        .unwrap();
+    let o = std::process::Command::new(bin).args(["smooth", "--objective", "untangle"]).arg(&file).arg("-o").arg(&out).output().unwrap();
     assert!(!o.status.success());
     let err = String::from_utf8_lossy(&o.stderr);
-    assert!(
-        err.contains("triangles_1e200.vtk") && err.contains("untangle works with element areas"),
-        "{err}"
-    );
+    assert!(err.contains("triangles_1e200.vtk") && err.contains("untangle works with element areas"), "{err}");
     assert!(!out.exists(), "nothing written");
-    let o = std::process::Command::new(bin)
-        .args(["smooth", "--objective", "old", "--json"])
-        .arg(&file)
-        .arg("-o")
-        .arg(&out)
-        .output()
-        .unwrap();
+    let o = std::process::Command::new(bin).args(["smooth", "--objective", "old", "--json"]).arg(&file).arg("-o").arg(&out).output().unwrap();
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let json = String::from_utf8_lossy(&o.stdout);
     assert!(!json.contains("null") && !json.contains("NaN"), "{json}");

@@ -1,7 +1,7 @@
 //! The crate's integration tests, one binary (the tests of each concern in a module).
 
-mod cli_stats;
 mod common;
+mod cli_stats;
 mod front_door;
 mod generate;
 mod hardening;

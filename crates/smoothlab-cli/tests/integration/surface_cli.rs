@@ -4,19 +4,17 @@
 
 use std::path::{Path, PathBuf};
 
-use crate::common::{ok, p, refused, run};
 use serde_json::Value;
 use smoothlab::generate::{surface, SurfaceKind, SurfaceShape};
 use smoothlab::io;
 use smoothlab::mesh::NONE;
 use smoothlab::model::Model;
 use smoothlab::surface::Reference;
+use crate::common::{run, ok, refused, p};
+
 
 fn dir(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!(
-        "smoothlab-surface-cli-{}-{name}",
-        std::process::id()
-    ));
+    let d = std::env::temp_dir().join(format!("smoothlab-surface-cli-{}-{name}", std::process::id()));
     std::fs::create_dir_all(&d).unwrap();
     d
 }
@@ -29,33 +27,13 @@ fn stats(path: &Path) -> Value {
 fn samples_are_surfaces_and_a_tangled_one_untangles_in_three_passes() {
     let d = dir("samples");
     for shape in ["sphere", "cylinder", "torus"] {
-        for (kind, order, ext) in [
-            ("quad", "1", "vtk"),
-            ("tri", "1", "msh"),
-            ("mixed", "2", "msh"),
-            ("mixed", "1", "obj"),
-        ] {
+        for (kind, order, ext) in [("quad", "1", "vtk"), ("tri", "1", "msh"), ("mixed", "2", "msh"), ("mixed", "1", "obj")] {
             let sample = d.join(format!("{shape}-{kind}-{order}.{ext}"));
-            ok(&[
-                "generate",
-                shape,
-                "--kind",
-                kind,
-                "--order",
-                order,
-                "--resolution",
-                "4",
-                "-o",
-                p(&sample),
-            ]);
+            ok(&["generate", shape, "--kind", kind, "--order", order, "--resolution", "4", "-o", p(&sample)]);
             let s = stats(&sample);
             assert_eq!(s["surface"], Value::Bool(true), "{shape} {kind}: {s}");
             assert_eq!(s["inverted"], 0, "{shape} {kind}");
-            assert_eq!(
-                s["max_distance_from_surface"].as_f64(),
-                Some(0.0),
-                "the nodes are the reference's vertices"
-            );
+            assert_eq!(s["max_distance_from_surface"].as_f64(), Some(0.0), "the nodes are the reference's vertices");
             // a tangled file is fitted through its nodes (docs/formulas.md §7): linear or
             // quadratic, it untangles; an OBJ keeps no fixed flags, so a tangled cylinder
             // from one has no rims to keep (docs/meshes.md: Surfaces in 3D)
@@ -63,32 +41,11 @@ fn samples_are_surfaces_and_a_tangled_one_untangles_in_three_passes() {
                 continue;
             }
             let tangled = d.join(format!("{shape}-{kind}-{order}-tangled.{ext}"));
-            ok(&[
-                "generate",
-                "perturb",
-                p(&sample),
-                "--amount",
-                "0.6",
-                "--seed",
-                "3",
-                "-o",
-                p(&tangled),
-            ]);
-            assert!(
-                stats(&tangled)["inverted"].as_u64().unwrap() > 0,
-                "{shape} {kind}: tangled"
-            );
+            ok(&["generate", "perturb", p(&sample), "--amount", "0.6", "--seed", "3", "-o", p(&tangled)]);
+            assert!(stats(&tangled)["inverted"].as_u64().unwrap() > 0, "{shape} {kind}: tangled");
             let out = d.join(format!("{shape}-{kind}-{order}-smooth.vtk"));
-            let report: Value = serde_json::from_str(&ok(&[
-                "smooth",
-                p(&tangled),
-                "-o",
-                p(&out),
-                "--passes",
-                "3",
-                "--json",
-            ]))
-            .unwrap();
+            let report: Value =
+                serde_json::from_str(&ok(&["smooth", p(&tangled), "-o", p(&out), "--passes", "3", "--json"])).unwrap();
             let f = &report["final"];
             assert_eq!(f["inverted"], 0, "{shape} {kind} order {order}: {f}");
             assert_eq!(f["surface"], Value::Bool(true));
@@ -97,33 +54,17 @@ fn samples_are_surfaces_and_a_tangled_one_untangles_in_three_passes() {
             // tube 16 cells round: a quadric through a node's two rings is off them by
             // about 8 % and 23 % of an edge); tests/surface_tangled.rs holds finer samples
             // to 2 % of the radius
-            let shape_of = [
-                SurfaceShape::Sphere,
-                SurfaceShape::Cylinder,
-                SurfaceShape::Torus,
-            ]
-            .into_iter()
-            .find(|s| s.name() == shape)
-            .unwrap();
-            let Reference::Analytic(exact) = *surface(shape_of, SurfaceKind::Quad, 1, 4)
-                .unwrap()
-                .reference()
-            else {
+            let shape_of = [SurfaceShape::Sphere, SurfaceShape::Cylinder, SurfaceShape::Torus]
+                .into_iter()
+                .find(|s| s.name() == shape)
+                .unwrap();
+            let Reference::Analytic(exact) = *surface(shape_of, SurfaceKind::Quad, 1, 4).unwrap().reference() else {
                 panic!("a generated sample knows its surface")
             };
-            let Model::Surface(smoothed) = io::read_model_path(&out).unwrap() else {
-                panic!("a surface")
-            };
-            let far = smoothed
-                .points()
-                .iter()
-                .map(|&q| (exact.project(q, NONE).point - q).length())
-                .fold(0.0, f64::max);
+            let Model::Surface(smoothed) = io::read_model_path(&out).unwrap() else { panic!("a surface") };
+            let far = smoothed.points().iter().map(|&q| (exact.project(q, NONE).point - q).length()).fold(0.0, f64::max);
             let edge = smoothed.mean_edge_length();
-            assert!(
-                far < 0.3 * edge,
-                "{shape} {kind} order {order}: a node {far} off the surface (edges {edge})"
-            );
+            assert!(far < 0.3 * edge, "{shape} {kind} order {order}: a node {far} off the surface (edges {edge})");
         }
     }
 }
@@ -136,20 +77,8 @@ fn planar_meshes_say_they_are_not_surfaces() {
     let s = stats(&m);
     assert_eq!(s["surface"], Value::Bool(false));
     assert!(s.get("max_distance_from_surface").is_none(), "{s}");
-    let e = refused(&[
-        "render",
-        p(&m),
-        "--view",
-        "mesh",
-        "--camera",
-        "30,20",
-        "-o",
-        p(&d.join("x.png")),
-    ]);
-    assert!(
-        e.contains("--camera turns the 3D view of a surface; this mesh is planar"),
-        "{e}"
-    );
+    let e = refused(&["render", p(&m), "--view", "mesh", "--camera", "30,20", "-o", p(&d.join("x.png"))]);
+    assert!(e.contains("--camera turns the 3D view of a surface; this mesh is planar"), "{e}");
 }
 
 #[test]
@@ -160,121 +89,47 @@ fn convert_keeps_3d_and_refuses_triangles_2d_files() {
     let off = d.join("s.off");
     ok(&["convert", p(&s), p(&off)]);
     let text = std::fs::read_to_string(&off).unwrap();
-    assert!(
-        text.lines()
-            .nth(2)
-            .unwrap()
-            .split_whitespace()
-            .nth(2)
-            .unwrap()
-            .parse::<f64>()
-            .unwrap()
-            != 0.0
-    );
+    assert!(text.lines().nth(2).unwrap().split_whitespace().nth(2).unwrap().parse::<f64>().unwrap() != 0.0);
     assert_eq!(stats(&off)["nodes"], stats(&s)["nodes"]);
     let e = refused(&["convert", p(&s), p(&d.join("s.node"))]);
-    assert!(
-        e.contains("Triangle's .node holds 2D points and this mesh is a surface in 3D"),
-        "{e}"
-    );
+    assert!(e.contains("Triangle's .node holds 2D points and this mesh is a surface in 3D"), "{e}");
 }
 
 #[test]
 fn render_draws_surfaces_in_3d() {
     let d = dir("render");
     let s = d.join("t.vtk");
-    ok(&[
-        "generate",
-        "torus",
-        "--kind",
-        "mixed",
-        "--resolution",
-        "2",
-        "-o",
-        p(&s),
-    ]);
-    for (view, extra) in [
-        ("mesh", vec!["--camera", "-20,35,1.4"]),
-        ("compare", vec!["--passes", "1"]),
-        ("levelset", vec![]),
-    ] {
+    ok(&["generate", "torus", "--kind", "mixed", "--resolution", "2", "-o", p(&s)]);
+    for (view, extra) in [("mesh", vec!["--camera", "-20,35,1.4"]), ("compare", vec!["--passes", "1"]), ("levelset", vec![])] {
         let png = d.join(format!("{view}.png"));
-        let mut args = vec![
-            "render",
-            p(&s),
-            "--view",
-            view,
-            "-o",
-            p(&png),
-            "--size",
-            "400x300",
-        ];
+        let mut args = vec!["render", p(&s), "--view", view, "-o", p(&png), "--size", "400x300"];
         args.extend(extra);
         ok(&args);
         let bytes = std::fs::read(&png).unwrap();
         assert_eq!(&bytes[1..4], b"PNG", "{view}");
     }
-    for (camera, why) in [
-        ("30", "yaw,pitch"),
-        ("30,100", "pitch"),
-        ("a,b", "number"),
-        ("0,0,0", "zoom"),
-    ] {
-        let e = refused(&[
-            "render",
-            p(&s),
-            "--view",
-            "mesh",
-            "--camera",
-            camera,
-            "-o",
-            p(&d.join("x.png")),
-        ]);
-        assert!(
-            e.contains("--camera") && e.to_lowercase().contains(why),
-            "{camera}: {e}"
-        );
+    for (camera, why) in [("30", "yaw,pitch"), ("30,100", "pitch"), ("a,b", "number"), ("0,0,0", "zoom")] {
+        let e = refused(&["render", p(&s), "--view", "mesh", "--camera", camera, "-o", p(&d.join("x.png"))]);
+        assert!(e.contains("--camera") && e.to_lowercase().contains(why), "{camera}: {e}");
     }
-    let e = refused(&[
-        "render",
-        p(&s),
-        "--view",
-        "histogram",
-        "-o",
-        p(&d.join("x.png")),
-    ]);
-    assert!(
-        e.contains("a surface is drawn by --view mesh, compare or levelset"),
-        "{e}"
-    );
+    let e = refused(&["render", p(&s), "--view", "histogram", "-o", p(&d.join("x.png"))]);
+    assert!(e.contains("a surface is drawn by --view mesh, compare or levelset"), "{e}");
 }
 
 #[test]
 fn mesquite_surface_files_load_and_smooth() {
-    let Some(root) = crate::common::mesquite_meshes() else {
-        return;
-    };
+    let Some(root) = crate::common::mesquite_meshes() else { return };
     let d = dir("mesquite");
-    for f in [
-        "quads/untangled/quads_on_sphere_529.vtk",
-        "quads/untangled/paraboloid.vtk",
-    ] {
+    for f in ["quads/untangled/quads_on_sphere_529.vtk", "quads/untangled/paraboloid.vtk"] {
         let input = root.join(f);
         let s = stats(&input);
         assert_eq!(s["surface"], Value::Bool(true), "{f}");
         let out = d.join("out.vtk");
-        let report: Value =
-            serde_json::from_str(&ok(&["smooth", p(&input), "-o", p(&out), "--json"])).unwrap();
+        let report: Value = serde_json::from_str(&ok(&["smooth", p(&input), "-o", p(&out), "--json"])).unwrap();
         let f2 = &report["final"];
         assert_eq!(f2["inverted"], 0, "{f}");
-        assert!(
-            f2["mean_quality"].as_f64().unwrap() > s["mean_quality"].as_f64().unwrap(),
-            "{f}: mean quality rises"
-        );
-        assert!(
-            f2["max_distance_from_surface"].as_f64().unwrap() < 1e-12,
-            "{f}"
-        );
+        assert!(f2["mean_quality"].as_f64().unwrap() > s["mean_quality"].as_f64().unwrap(), "{f}: mean quality rises");
+        assert!(f2["max_distance_from_surface"].as_f64().unwrap() < 1e-12, "{f}");
     }
 }
 
@@ -284,50 +139,26 @@ fn slide_curves_lets_the_rims_move_and_is_refused_for_planar_meshes() {
     let c = d.join("c.obj");
     ok(&["generate", "cylinder", "--resolution", "4", "-o", p(&c)]);
     let tangled = d.join("t.obj");
-    ok(&[
-        "generate",
-        "perturb",
-        p(&c),
-        "--amount",
-        "0.3",
-        "--seed",
-        "2",
-        "-o",
-        p(&tangled),
-    ]);
+    ok(&["generate", "perturb", p(&c), "--amount", "0.3", "--seed", "2", "-o", p(&tangled)]);
     let (fixed, sliding) = (d.join("fixed.obj"), d.join("sliding.obj"));
     ok(&["smooth", p(&tangled), "-o", p(&fixed)]);
     ok(&["smooth", p(&tangled), "-o", p(&sliding), "--slide-curves"]);
     let vertices = |path: &Path| -> Vec<[f64; 3]> {
         let text = std::fs::read_to_string(path).unwrap();
         let xyz = |l: &str| {
-            let v: Vec<f64> = l
-                .split_whitespace()
-                .skip(1)
-                .map(|c| c.parse().unwrap())
-                .collect();
+            let v: Vec<f64> = l.split_whitespace().skip(1).map(|c| c.parse().unwrap()).collect();
             [v[0], v[1], v[2]]
         };
-        text.lines()
-            .filter(|l| l.starts_with("v "))
-            .map(xyz)
-            .collect()
+        text.lines().filter(|l| l.starts_with("v ")).map(xyz).collect()
     };
     let (t, f, s) = (vertices(&tangled), vertices(&fixed), vertices(&sliding));
     // the rim nodes: on a cap's plane and on the circle
-    let rim: Vec<usize> = (0..t.len())
-        .filter(|&i| t[i][2].abs() == 1.0 && (t[i][0].hypot(t[i][1]) - 1.0).abs() < 1e-12)
-        .collect();
+    let rim: Vec<usize> =
+        (0..t.len()).filter(|&i| t[i][2].abs() == 1.0 && (t[i][0].hypot(t[i][1]) - 1.0).abs() < 1e-12).collect();
     assert_eq!(rim.len(), 32, "two rims of 16 nodes");
     assert!(rim.iter().all(|&i| f[i] == t[i]), "fixed rims stay");
-    assert!(
-        rim.iter().all(|&i| s[i][2] == t[i][2]),
-        "sliding rim nodes stay on their rims' planes"
-    );
-    assert!(
-        rim.iter().filter(|&&i| s[i] != t[i]).count() > 16,
-        "sliding rim nodes move"
-    );
+    assert!(rim.iter().all(|&i| s[i][2] == t[i][2]), "sliding rim nodes stay on their rims' planes");
+    assert!(rim.iter().filter(|&&i| s[i] != t[i]).count() > 16, "sliding rim nodes move");
     assert_eq!(stats(&sliding)["inverted"], 0);
     let g = d.join("g.vtk");
     ok(&["generate", "grid", "-o", p(&g)]);

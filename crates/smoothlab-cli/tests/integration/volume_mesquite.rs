@@ -10,6 +10,7 @@
 //! Then the command line on them: `stats` names the kinds, `smooth` untangles the tangled
 //! ones and keeps the fixed nodes where they were.
 
+
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
@@ -28,58 +29,28 @@ struct Header {
 
 fn header(text: &str) -> Header {
     let lines: Vec<&str> = text.lines().collect();
-    let at = |kw: &str| {
-        lines
-            .iter()
-            .position(|l| l.split_whitespace().next() == Some(kw))
-            .unwrap()
-    };
-    let field = |i: usize, k: usize| -> usize {
-        lines[i].split_whitespace().nth(k).unwrap().parse().unwrap()
-    };
+    let at = |kw: &str| lines.iter().position(|l| l.split_whitespace().next() == Some(kw)).unwrap();
+    let field = |i: usize, k: usize| -> usize { lines[i].split_whitespace().nth(k).unwrap().parse().unwrap() };
     let points = field(at("POINTS"), 1);
     let c = at("CELLS");
     let n = field(c, 1);
     // Mesquite writes one cell per line, its point count first
-    let lists: Vec<Vec<u32>> = (0..n)
-        .map(|i| {
-            lines[c + 1 + i]
-                .split_whitespace()
-                .skip(1)
-                .map(|v| v.parse().unwrap())
-                .collect()
-        })
-        .collect();
+    let lists: Vec<Vec<u32>> =
+        (0..n).map(|i| lines[c + 1 + i].split_whitespace().skip(1).map(|v| v.parse().unwrap()).collect()).collect();
     let t = at("CELL_TYPES");
-    let types: Vec<u32> = lines[t + 1..]
-        .iter()
-        .flat_map(|l| l.split_whitespace())
-        .take(n)
-        .map(|v| v.parse().unwrap())
-        .collect();
-    let fixed = lines
-        .iter()
-        .position(|l| l.starts_with("SCALARS fixed"))
-        .map(|s| {
-            let start = if lines[s + 1].starts_with("LOOKUP_TABLE") {
-                s + 2
-            } else {
-                s + 1
-            };
-            let v: Vec<bool> = lines[start..]
-                .iter()
-                .flat_map(|l| l.split_whitespace())
-                .take(points)
-                .map(|v| v.parse::<f64>().unwrap() != 0.0)
-                .collect();
-            assert_eq!(v.len(), points);
-            v
-        });
-    Header {
-        points,
-        cells: types.into_iter().zip(lists).collect(),
-        fixed,
-    }
+    let types: Vec<u32> = lines[t + 1..].iter().flat_map(|l| l.split_whitespace()).take(n).map(|v| v.parse().unwrap()).collect();
+    let fixed = lines.iter().position(|l| l.starts_with("SCALARS fixed")).map(|s| {
+        let start = if lines[s + 1].starts_with("LOOKUP_TABLE") { s + 2 } else { s + 1 };
+        let v: Vec<bool> = lines[start..]
+            .iter()
+            .flat_map(|l| l.split_whitespace())
+            .take(points)
+            .map(|v| v.parse::<f64>().unwrap() != 0.0)
+            .collect();
+        assert_eq!(v.len(), points);
+        v
+    });
+    Header { points, cells: types.into_iter().zip(lists).collect(), fixed }
 }
 
 /// The inverted elements of each tangled file, as Mesquite's README counts them (by the
@@ -116,44 +87,25 @@ fn volume(model: Model, rel: &str) -> VolumeMesh {
 
 #[test]
 fn every_mesquite_3d_file_reads_with_its_counts_kinds_fixed_flags_and_inverted_elements() {
-    let Some(root) = crate::common::mesquite3d_meshes() else {
-        return;
-    };
+    let Some(root) = crate::common::mesquite3d_meshes() else { return };
     let mut files = Vec::new();
     walk(&root, &mut files);
     files.sort();
     assert_eq!(files.len(), 18, "Mesquite's 3D subset holds 18 VTK files");
     let mut kinds_seen = std::collections::BTreeSet::new();
     for path in &files {
-        let rel = path
-            .strip_prefix(&root)
-            .unwrap()
-            .to_string_lossy()
-            .replace('\\', "/");
+        let rel = path.strip_prefix(&root).unwrap().to_string_lossy().replace('\\', "/");
         let h = header(&std::fs::read_to_string(path).unwrap());
         let model = read_model_path(path).unwrap_or_else(|e| panic!("{rel} must read: {e}"));
         if rel == QUADS {
-            let Model::Surface(s) = model else {
-                panic!("{rel}: quads in 3D are a surface")
-            };
-            assert!(
-                h.cells.iter().all(|(t, _)| *t == 9),
-                "{rel}: the file holds quads"
-            );
+            let Model::Surface(s) = model else { panic!("{rel}: quads in 3D are a surface") };
+            assert!(h.cells.iter().all(|(t, _)| *t == 9), "{rel}: the file holds quads");
             let st = s.stats();
-            assert_eq!(
-                (s.node_count(), st.quads, st.inverted),
-                (h.points, h.cells.len(), 0),
-                "{rel}"
-            );
+            assert_eq!((s.node_count(), st.quads, st.inverted), (h.points, h.cells.len(), 0), "{rel}");
             continue;
         }
         let m = volume(model, &rel);
-        assert_eq!(
-            (m.node_count(), m.element_count()),
-            (h.points, h.cells.len()),
-            "{rel}"
-        );
+        assert_eq!((m.node_count(), m.element_count()), (h.points, h.cells.len()), "{rel}");
         for (e, (ty, list)) in h.cells.iter().enumerate() {
             let kind = m.element_kind(e);
             kinds_seen.insert(kind);
@@ -162,55 +114,33 @@ fn every_mesquite_3d_file_reads_with_its_counts_kinds_fixed_flags_and_inverted_e
             // turn as the file's do
             assert_eq!(m.element(e), list.as_slice(), "{rel}: element {e}");
         }
-        let fixed = h
-            .fixed
-            .as_ref()
-            .unwrap_or_else(|| panic!("{rel}: every volume file here carries 'fixed'"));
+        let fixed = h.fixed.as_ref().unwrap_or_else(|| panic!("{rel}: every volume file here carries 'fixed'"));
         for (n, &f) in fixed.iter().enumerate() {
             // nodes no element uses are always fixed
-            assert_eq!(
-                m.fixed()[n],
-                f || m.role(n) == NodeRole::Unused,
-                "{rel}: fixed flag of node {n}"
-            );
+            assert_eq!(m.fixed()[n], f || m.role(n) == NodeRole::Unused, "{rel}: fixed flag of node {n}");
         }
-        let want = TANGLED
-            .iter()
-            .find(|(f, _)| *f == rel)
-            .map_or(0, |&(_, n)| n);
+        let want = TANGLED.iter().find(|(f, _)| *f == rel).map_or(0, |&(_, n)| n);
         let stats = volume_stats(&m);
         assert_eq!(stats.inverted, want, "{rel}: inverted elements");
         // the statistics count each kind as the file's types do
         for k in VolumeKind::ALL {
-            let n = h
-                .cells
-                .iter()
-                .filter(|(t, _)| *t == k.row().vtk_type)
-                .count();
+            let n = h.cells.iter().filter(|(t, _)| *t == k.row().vtk_type).count();
             assert_eq!(stats.volume_kinds.get(k), n, "{rel}: {k:?}");
         }
     }
     // the files hold five of the seven kinds (no 10-node tetrahedra, no 27-node hexahedra)
     use VolumeKind::*;
-    assert_eq!(
-        kinds_seen.into_iter().collect::<Vec<_>>(),
-        vec![Tet4, Hex8, Hex20, Wedge6, Pyramid5]
-    );
+    assert_eq!(kinds_seen.into_iter().collect::<Vec<_>>(), vec![Tet4, Hex8, Hex20, Wedge6, Pyramid5]);
 }
 
 #[test]
 fn without_the_files_fixed_flags_the_boundary_skin_is_fixed() {
-    let Some(root) = crate::common::mesquite3d_meshes() else {
-        return;
-    };
+    let Some(root) = crate::common::mesquite3d_meshes() else { return };
     // six wedges around an axis: the file frees the axis's two ends, on the skin
     let text = std::fs::read_to_string(root.join("prisms/untangled/6-wedge-prism.vtk")).unwrap();
     let with = volume(read_model_str(&text, Format::Vtk).unwrap(), "wedges");
     let cut = text.find("POINT_DATA").unwrap();
-    let without = volume(
-        read_model_str(&text[..cut], Format::Vtk).unwrap(),
-        "wedges without POINT_DATA",
-    );
+    let without = volume(read_model_str(&text[..cut], Format::Vtk).unwrap(), "wedges without POINT_DATA");
     let mut skin = vec![false; without.node_count()];
     for f in without.boundary_faces() {
         for &i in f.nodes() {
@@ -222,35 +152,20 @@ fn without_the_files_fixed_flags_the_boundary_skin_is_fixed() {
     }
     assert_eq!(without.fixed(), skin.as_slice());
     // the file's flags are not the skin's: the file frees two nodes of it
-    let (a, b) = (
-        with.fixed().iter().filter(|&&f| f).count(),
-        skin.iter().filter(|&&f| f).count(),
-    );
+    let (a, b) = (with.fixed().iter().filter(|&&f| f).count(), skin.iter().filter(|&&f| f).count());
     assert_eq!((a, b), (12, 14));
-    assert!(
-        with.fixed().iter().zip(&skin).all(|(f, s)| !f || *s),
-        "the file fixes only skin nodes"
-    );
+    assert!(with.fixed().iter().zip(&skin).all(|(f, s)| !f || *s), "the file fixes only skin nodes");
 }
 
 fn smoothlab(args: &[&str]) -> String {
-    let out = Command::new(env!("CARGO_BIN_EXE_smoothlab"))
-        .args(args)
-        .output()
-        .unwrap();
-    assert!(
-        out.status.success(),
-        "{args:?}: {}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    let out = Command::new(env!("CARGO_BIN_EXE_smoothlab")).args(args).output().unwrap();
+    assert!(out.status.success(), "{args:?}: {}", String::from_utf8_lossy(&out.stderr));
     String::from_utf8(out.stdout).unwrap()
 }
 
 #[test]
 fn the_command_line_measures_and_smooths_every_kind_of_mesquite_file() {
-    let Some(root) = crate::common::mesquite3d_meshes() else {
-        return;
-    };
+    let Some(root) = crate::common::mesquite3d_meshes() else { return };
     let s = |rel: &str| root.join(rel).to_str().unwrap().to_string();
     let table = smoothlab(&["stats", &s("mixed/tangled/mixed-hex-pyr-tet.vtk")]);
     assert!(
@@ -258,17 +173,10 @@ fn the_command_line_measures_and_smooths_every_kind_of_mesquite_file() {
         "{table}"
     );
     // certain validity: of the 3, none is inverted inside with every corner positive
-    assert!(
-        table.contains("inverted         3 (0 inside, every corner positive)\n"),
-        "{table}"
-    );
+    assert!(table.contains("inverted         3 (0 inside, every corner positive)\n"), "{table}");
     assert!(table.contains("scaled Jacobian  min -0.2849\n"), "{table}");
-    let json: serde_json::Value = serde_json::from_str(&smoothlab(&[
-        "stats",
-        "--json",
-        &s("quadratic/6x6x6-hex20.vtk"),
-    ]))
-    .unwrap();
+    let json: serde_json::Value =
+        serde_json::from_str(&smoothlab(&["stats", "--json", &s("quadratic/6x6x6-hex20.vtk")])).unwrap();
     assert_eq!(json["volume_kinds"], serde_json::json!({"Hex20": 216}));
     let d = std::env::temp_dir().join(format!("smoothlab-mesquite3d-{}", std::process::id()));
     std::fs::create_dir_all(&d).unwrap();
@@ -284,19 +192,10 @@ fn the_command_line_measures_and_smooths_every_kind_of_mesquite_file() {
         "quadratic/6x6x6-hex20.vtk",
     ] {
         let out = d.join(rel.replace('/', "-").replace(".vtk", ".msh"));
-        let report: serde_json::Value = serde_json::from_str(&smoothlab(&[
-            "smooth",
-            &s(rel),
-            "--json",
-            "-o",
-            out.to_str().unwrap(),
-        ]))
-        .unwrap();
+        let report: serde_json::Value =
+            serde_json::from_str(&smoothlab(&["smooth", &s(rel), "--json", "-o", out.to_str().unwrap()])).unwrap();
         assert_eq!(report["final"]["inverted"], 0, "{rel}");
-        let (before, after) = (
-            volume(read_model_path(&root.join(rel)).unwrap(), rel),
-            volume(read_model_path(&out).unwrap(), rel),
-        );
+        let (before, after) = (volume(read_model_path(&root.join(rel)).unwrap(), rel), volume(read_model_path(&out).unwrap(), rel));
         assert_eq!(volume_stats(&after).inverted, 0, "{rel}: as written");
         assert_eq!(before.fixed(), after.fixed(), "{rel}");
         for n in 0..before.node_count() {
@@ -305,11 +204,7 @@ fn the_command_line_measures_and_smooths_every_kind_of_mesquite_file() {
             }
         }
         for e in 0..before.element_count() {
-            assert_eq!(
-                (before.element_kind(e), before.element(e)),
-                (after.element_kind(e), after.element(e)),
-                "{rel}"
-            );
+            assert_eq!((before.element_kind(e), before.element(e)), (after.element_kind(e), after.element(e)), "{rel}");
         }
     }
 }

@@ -25,10 +25,7 @@ pub struct LevelWindow {
 
 impl Default for LevelWindow {
     fn default() -> Self {
-        LevelWindow {
-            lo: DVec2::ZERO,
-            hi: DVec2::ONE,
-        }
+        LevelWindow { lo: DVec2::ZERO, hi: DVec2::ONE }
     }
 }
 
@@ -46,30 +43,18 @@ impl LevelWindow {
         if !(factor.is_finite() && factor > 0.0 && at.is_finite() && in_range) {
             return self;
         }
-        LevelWindow {
-            lo: at + (self.lo - at) / factor,
-            hi: at + (self.hi - at) / factor,
-        }
+        LevelWindow { lo: at + (self.lo - at) / factor, hi: at + (self.hi - at) / factor }
     }
     /// Moved by `delta` (fractions of the box).
     pub fn shifted(self, delta: DVec2) -> Self {
         if !delta.is_finite() {
             return self;
         }
-        LevelWindow {
-            lo: self.lo + delta,
-            hi: self.hi + delta,
-        }
+        LevelWindow { lo: self.lo + delta, hi: self.hi + delta }
     }
     /// Magnified `factor` times about the CSS pixel `at` of a level set of the world box
     /// `whole` drawn with `view` (the point under it stays there).
-    pub fn zoomed_in_view(
-        self,
-        whole: (DVec2, DVec2),
-        view: &View,
-        at: DVec2,
-        factor: f64,
-    ) -> Self {
+    pub fn zoomed_in_view(self, whole: (DVec2, DVec2), view: &View, at: DVec2, factor: f64) -> Self {
         let f = (view.css_to_world(at) - whole.0) / (whole.1 - whole.0);
         self.zoomed_at(f, factor)
     }
@@ -134,29 +119,12 @@ impl Playground {
     fn level_view(&self, side: Side, node: usize, c: Canvas) -> ((DVec2, DVec2), View) {
         let (whole, shown) = self.level_bounds(side, node);
         let frame = Frame::new(0.0, 0.0, c.w as f32 / c.dpr, c.h as f32 / c.dpr);
-        (
-            whole,
-            level_set_view(
-                frame,
-                shown.0,
-                shown.1,
-                c.dpr,
-                &self.theme(),
-                self.level_legend.get()[side as usize],
-            ),
-        )
+        (whole, level_set_view(frame, shown.0, shown.1, c.dpr, &self.theme(), self.level_legend.get()[side as usize]))
     }
 
     /// Magnifies the level-set views `factor` times about the CSS pixel `at` of `side`'s
     /// level set of `node` on canvas `c`.
-    pub fn zoom_level_sets_at(
-        &mut self,
-        side: Side,
-        node: usize,
-        c: Canvas,
-        at: DVec2,
-        factor: f64,
-    ) {
+    pub fn zoom_level_sets_at(&mut self, side: Side, node: usize, c: Canvas, at: DVec2, factor: f64) {
         let (whole, view) = self.level_view(side, node, c);
         self.level_window = self.level_window.zoomed_in_view(whole, &view, at, factor);
     }
@@ -184,11 +152,7 @@ impl Playground {
         }
         ids.sort_unstable();
         ids.dedup();
-        let saved = Side::BOTH.map(|s| {
-            ids.iter()
-                .map(|&n| (n, self.panel(s).mesh.nodes()[n]))
-                .collect()
-        });
+        let saved = Side::BOTH.map(|s| ids.iter().map(|&n| (n, self.panel(s).mesh.nodes()[n])).collect());
         self.undo.push(Undo { node, saved });
         Ok(())
     }
@@ -223,16 +187,9 @@ impl Playground {
     /// (the level-set view's solve), the node then moved to what it found. Undoable.
     pub fn smooth_one_node(&mut self, node: usize) -> Result<[SolveResult; 2]> {
         self.check_movable(node)?;
-        let results = [
-            self.solve_node(Side::A, node)?,
-            self.solve_node(Side::B, node)?,
-        ];
+        let results = [self.solve_node(Side::A, node)?, self.solve_node(Side::B, node)?];
         if let Some(r) = results.iter().find(|r| !r.x.is_finite()) {
-            return Err(Error::node(
-                node,
-                None,
-                format!("the solver found no finite position ({})", r.x),
-            ));
+            return Err(Error::node(node, None, format!("the solver found no finite position ({})", r.x)));
         }
         self.remember_before_move(node)?;
         self.abort_pass();
@@ -264,13 +221,8 @@ mod tests {
         let before = Side::BOTH.map(|s| pg.panel(s).mesh.nodes().to_vec());
         let n = worst(&pg);
         pg.remember_before_move(n).unwrap();
-        pg.move_node(
-            n,
-            pg.panel(Side::A).mesh.nodes()[n] + DVec2::new(0.01, -0.02),
-        )
-        .unwrap();
-        pg.move_node(n, pg.panel(Side::A).mesh.nodes()[n] + DVec2::new(0.01, 0.0))
-            .unwrap();
+        pg.move_node(n, pg.panel(Side::A).mesh.nodes()[n] + DVec2::new(0.01, -0.02)).unwrap();
+        pg.move_node(n, pg.panel(Side::A).mesh.nodes()[n] + DVec2::new(0.01, 0.0)).unwrap();
         assert_ne!(pg.panel(Side::A).mesh.nodes(), before[0]);
         assert_eq!((pg.undo_depth(), pg.undo_node()), (1, Some(n)));
         assert_eq!(pg.undo(), Some(n));
@@ -283,9 +235,7 @@ mod tests {
         pg.step(&|| 0.0);
         assert_eq!(pg.undo_depth(), 0);
         // a fixed node is refused
-        let fixed = (0..pg.topology().node_count())
-            .find(|&k| !pg.topology().is_free(k))
-            .unwrap();
+        let fixed = (0..pg.topology().node_count()).find(|&k| !pg.topology().is_free(k)).unwrap();
         assert!(pg.remember_before_move(fixed).is_err());
     }
 
@@ -293,18 +243,11 @@ mod tests {
     fn smoothing_one_node_moves_it_to_the_solvers_answer_on_each_side() {
         let mut pg = perturbed_plate();
         let n = worst(&pg);
-        let solved = [
-            pg.solve_node(Side::A, n).unwrap(),
-            pg.solve_node(Side::B, n).unwrap(),
-        ];
+        let solved = [pg.solve_node(Side::A, n).unwrap(), pg.solve_node(Side::B, n).unwrap()];
         let results = pg.smooth_one_node(n).unwrap();
         for s in Side::BOTH {
             let r = &results[s.index()];
-            assert_eq!(
-                r.x,
-                solved[s.index()].x,
-                "the same call as the level-set view's"
-            );
+            assert_eq!(r.x, solved[s.index()].x, "the same call as the level-set view's");
             assert!(!r.history.is_empty(), "with its history");
             assert_eq!(pg.panel(s).mesh.nodes()[n], r.x);
         }
@@ -317,21 +260,14 @@ mod tests {
     #[test]
     fn zoom_keeps_the_point_under_the_pointer_and_stays_in_range() {
         let mut pg = perturbed_plate();
-        let c = Canvas {
-            w: 600,
-            h: 600,
-            dpr: 1.0,
-        };
+        let c = Canvas { w: 600, h: 600, dpr: 1.0 };
         let at = DVec2::new(170.0, 240.0);
         let w = pg.panel_view(c).css_to_world(at);
         pg.zoom_meshes_at(c, at, 3.0);
         assert!((pg.panel_view(c).css_to_world(at) - w).length() < 1e-12);
         assert!((pg.zoom().zoom - 3.0).abs() < 1e-12);
         pg.zoom_meshes_at(c, at, 1e6);
-        assert!(
-            (pg.zoom().zoom - 3.0).abs() < 1e-12,
-            "beyond the range: refused"
-        );
+        assert!((pg.zoom().zoom - 3.0).abs() < 1e-12, "beyond the range: refused");
         let pan = pg.zoom().pan;
         pg.pan_meshes(DVec2::new(10.0, -4.0));
         assert_eq!(pg.zoom().pan, pan + DVec2::new(10.0, -4.0));
@@ -345,29 +281,14 @@ mod tests {
         let (_, view2) = pg.level_view(Side::A, n, c);
         assert!((view2.css_to_world(at) - p).length() < 1e-9 * (whole.1 - whole.0).length());
         pg.reset_zoom();
-        assert_eq!(
-            (pg.zoom(), pg.level_window()),
-            (ZoomPan::default(), LevelWindow::default())
-        );
+        assert_eq!((pg.zoom(), pg.level_window()), (ZoomPan::default(), LevelWindow::default()));
     }
 
     #[test]
     fn the_figure_is_drawn_at_the_size_asked() {
         let pg = perturbed_plate();
-        let pm = pg
-            .render_figure(Canvas {
-                w: 800,
-                h: 450,
-                dpr: 2.0,
-            })
-            .unwrap();
+        let pm = pg.render_figure(Canvas { w: 800, h: 450, dpr: 2.0 }).unwrap();
         assert_eq!((pm.width(), pm.height()), (800, 450));
-        assert!(pg
-            .render_figure(Canvas {
-                w: 5000,
-                h: 450,
-                dpr: 1.0
-            })
-            .is_err());
+        assert!(pg.render_figure(Canvas { w: 5000, h: 450, dpr: 1.0 }).is_err());
     }
 }

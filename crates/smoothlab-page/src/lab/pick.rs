@@ -82,10 +82,7 @@ impl Playground {
 /// A reason as a sentence: its first letter a capital, a full stop at the end.
 pub(crate) fn sentence(why: &str) -> String {
     let mut chars = why.chars();
-    let first: String = chars
-        .next()
-        .map(|c| c.to_uppercase().collect())
-        .unwrap_or_default();
+    let first: String = chars.next().map(|c| c.to_uppercase().collect()).unwrap_or_default();
     format!("{first}{}.", chars.as_str())
 }
 
@@ -100,15 +97,7 @@ pub fn worst_free_node(mesh: &Mesh) -> Option<usize> {
         .collect();
     (0..mesh.node_count())
         .filter(|&n| mesh.is_free(n))
-        .map(|n| {
-            (
-                n,
-                mesh.node_elements(n)
-                    .iter()
-                    .map(|&e| q[e as usize])
-                    .fold(f64::INFINITY, f64::min),
-            )
-        })
+        .map(|n| (n, mesh.node_elements(n).iter().map(|&e| q[e as usize]).fold(f64::INFINITY, f64::min)))
         .min_by(|a, b| a.1.total_cmp(&b.1))
         .map(|(n, _)| n)
 }
@@ -119,11 +108,7 @@ mod tests {
     use crate::lab::sample::Sample;
     use crate::lab::views::Canvas;
 
-    const C: Canvas = Canvas {
-        w: 400,
-        h: 400,
-        dpr: 1.0,
-    };
+    const C: Canvas = Canvas { w: 400, h: 400, dpr: 1.0 };
 
     #[test]
     fn a_press_near_a_free_node_chooses_it_and_near_a_fixed_one_says_why_not() {
@@ -135,10 +120,7 @@ mod tests {
         assert_eq!((p.node, p.message), (Some(free), None));
         let p = pg.pick(Side::A, &view, view.to_css(pg.original_nodes()[0]), 16.0);
         assert_eq!((p.node, p.nearest), (None, Some(0)));
-        assert_eq!(
-            p.message.unwrap(),
-            "Node 0 is fixed: it is on the boundary, and smoothing keeps the boundary in place."
-        );
+        assert_eq!(p.message.unwrap(), "Node 0 is fixed: it is on the boundary, and smoothing keeps the boundary in place.");
         let far = pg.pick(Side::A, &view, DVec2::new(-500.0, -500.0), 16.0);
         assert!(far.node.is_none() && far.message.unwrap().starts_with("No node within 16 pixels"));
     }
@@ -147,14 +129,9 @@ mod tests {
     fn a_mid_side_node_is_named_as_one() {
         let pg = Playground::new(Sample::PlateQuadratic.generate().unwrap()).unwrap();
         let m = pg.topology();
-        let mid = (0..m.node_count())
-            .find(|&n| m.role(n) == NodeRole::Mid && !m.is_boundary(n))
-            .unwrap();
+        let mid = (0..m.node_count()).find(|&n| m.role(n) == NodeRole::Mid && !m.is_boundary(n)).unwrap();
         let why = why_not_free(m, mid).unwrap();
-        assert!(
-            why.contains("mid-side node") && why.contains(&format!("node {mid}")),
-            "{why}"
-        );
+        assert!(why.contains("mid-side node") && why.contains(&format!("node {mid}")), "{why}");
         let view = pg.panel_view(C);
         let p = pg.pick(Side::B, &view, view.to_css(pg.original_nodes()[mid]), 2.0);
         assert_eq!(p.nearest, Some(mid));

@@ -13,11 +13,11 @@
 use tiny_skia::{Color, FillRule, Paint, PathBuilder, Pixmap, Rect, Stroke, Transform};
 
 use super::stats::INVERTED_BUCKET;
-use smoothlab::mesh::Mesh;
 use smoothlab_render::{bucket_color, BUCKETS};
+use smoothlab::mesh::Mesh;
 use smoothlab_render::{
-    colour_bar_band, draw_colour_bar, draw_inverted, mesh_view, push_element, Frame, MeshView,
-    Metric, Show, View, INVERTED,
+    colour_bar_band, draw_colour_bar, draw_inverted, mesh_view, push_element, Frame, MeshView, Metric, Show,
+    View, INVERTED,
 };
 
 /// Sub-pixel steps per pixel of the fixed-point rasterizer.
@@ -41,11 +41,7 @@ pub fn applies(mean_edge: f64, view: &View, opts: &MeshView) -> bool {
         // render_mesh's rule: only where edges are ≥ 10 CSS px, which implies edges shown
         Show::Auto => hidden_edges,
     };
-    hidden_edges
-        && hidden_nodes
-        && opts.metric == Metric::Shape
-        && opts.frame.is_none()
-        && opts.background
+    hidden_edges && hidden_nodes && opts.metric == Metric::Shape && opts.frame.is_none() && opts.background
 }
 
 /// The view `render_mesh` uses on this pixmap.
@@ -59,13 +55,7 @@ pub fn view_of(pixmap: &Pixmap, mesh: &Mesh, opts: &MeshView) -> View {
 ///
 /// `buckets` holds each element's colour bucket for the mesh's positions, as
 /// [`super::stats::QuickAcc`] writes them (the page keeps them with its statistics).
-pub fn render_fine(
-    pixmap: &mut Pixmap,
-    mesh: &Mesh,
-    buckets: &[u8],
-    view: &View,
-    opts: &MeshView,
-) -> usize {
+pub fn render_fine(pixmap: &mut Pixmap, mesh: &Mesh, buckets: &[u8], view: &View, opts: &MeshView) -> usize {
     let (w, h) = (pixmap.width() as usize, pixmap.height() as usize);
     let s = smoothlab_render::view::sane_dpr(opts.dpr);
     let bg = opts.theme.paper;
@@ -119,14 +109,11 @@ pub fn render_fine(
     // buckets to colours (the pixmap is opaque, so premultiplied = straight); inverted
     // elements red under render_mesh's hatch: lines x + y ≡ bottom (mod 6 px) of width
     // 1.3 px, black at alpha 230
-    let colours: Vec<[u8; 3]> = (0..BUCKETS)
-        .map(|b| opts.colormap.rgb(b as f64 / (BUCKETS - 1) as f64))
-        .collect();
+    let colours: Vec<[u8; 3]> = (0..BUCKETS).map(|b| opts.colormap.rgb(b as f64 / (BUCKETS - 1) as f64)).collect();
     let step = 6.0 * s as f64;
     let reach = 0.5 * 1.3 * s as f64 * std::f64::consts::SQRT_2;
     let origin = bottom as f64 / SUB as f64;
-    let hatch =
-        [INVERTED[0], INVERTED[1], INVERTED[2]].map(|c| ((c as u32 * 25 + 127) / 255) as u8);
+    let hatch = [INVERTED[0], INVERTED[1], INVERTED[2]].map(|c| ((c as u32 * 25 + 127) / 255) as u8);
     let data = pixmap.data_mut();
     for (i, &v) in bucket.iter().enumerate() {
         if v == 0 {
@@ -172,39 +159,16 @@ pub fn render_fine(
             push_element(&mut pb, mesh, view, e as usize);
         }
         if let Some(path) = pb.finish() {
-            let st = Stroke {
-                width: 2.5 * s,
-                line_join: tiny_skia::LineJoin::Round,
-                ..Default::default()
-            };
-            pixmap.stroke_path(
-                &path,
-                &solid(rgba(120, 0, 0, 255)),
-                &st,
-                Transform::identity(),
-                None,
-            );
+            let st = Stroke { width: 2.5 * s, line_join: tiny_skia::LineJoin::Round, ..Default::default() };
+            pixmap.stroke_path(&path, &solid(rgba(120, 0, 0, 255)), &st, Transform::identity(), None);
         }
     }
 
     let frame = Frame::new(0.0, 0.0, w as f32 / s, h as f32 / s);
-    if let Some(bar) = opts
-        .colour_bar
-        .then(|| colour_bar_band(frame, opts.metric.label(mesh), &opts.theme))
-        .flatten()
-    {
+    if let Some(bar) = opts.colour_bar.then(|| colour_bar_band(frame, opts.metric.label(mesh), &opts.theme)).flatten() {
         fill_rect(pixmap, bar.x * s, bar.y * s, bar.w * s, bar.h * s, bg);
         let (d0, d1) = opts.metric.domain(mesh);
-        draw_colour_bar(
-            pixmap,
-            bar,
-            opts.colormap,
-            (d0, d1),
-            opts.metric.label(mesh),
-            inverted.len(),
-            s,
-            &opts.theme,
-        );
+        draw_colour_bar(pixmap, bar, opts.colormap, (d0, d1), opts.metric.label(mesh), inverted.len(), s, &opts.theme);
     }
     inverted.len()
 }
@@ -221,15 +185,7 @@ fn fixed(x: f64) -> i32 {
 /// triangle `a b c` (fixed point, `SUB` steps per pixel; either orientation). Edges
 /// follow the top-left rule, so triangles that share an edge never both take, nor both
 /// miss, a pixel centre on it.
-fn fill_triangle(
-    buf: &mut [u8],
-    w: usize,
-    h: usize,
-    a: (i64, i64),
-    b: (i64, i64),
-    c: (i64, i64),
-    v: u8,
-) {
+fn fill_triangle(buf: &mut [u8], w: usize, h: usize, a: (i64, i64), b: (i64, i64), c: (i64, i64), v: u8) {
     let area = (b.0 - a.0) * (c.1 - a.1) - (b.1 - a.1) * (c.0 - a.0);
     if area == 0 {
         return;
@@ -335,11 +291,7 @@ mod tests {
 
     /// Pixels that differ (any channel by more than 2) between two pictures.
     fn differing(a: &Pixmap, b: &Pixmap) -> usize {
-        a.data()
-            .chunks(4)
-            .zip(b.data().chunks(4))
-            .filter(|(p, q)| p.iter().zip(*q).any(|(x, y)| x.abs_diff(*y) > 2))
-            .count()
+        a.data().chunks(4).zip(b.data().chunks(4)).filter(|(p, q)| p.iter().zip(*q).any(|(x, y)| x.abs_diff(*y) > 2)).count()
     }
 
     fn both(mesh: &Mesh, w: u32, h: u32, opts: &MeshView) -> (Pixmap, Pixmap) {
@@ -364,11 +316,7 @@ mod tests {
         let d = differing(&r, &f);
         // the same buckets and overlays; only pixels on element borders may go to the
         // neighbour (tiny-skia's scan conversion is not the top-left rule)
-        assert!(
-            d * 100 < (300 * 260) * 3,
-            "{d} of {} pixels differ",
-            300 * 260
-        );
+        assert!(d * 100 < (300 * 260) * 3, "{d} of {} pixels differ", 300 * 260);
     }
 
     #[test]
@@ -378,32 +326,20 @@ mod tests {
         let opts = MeshView::default().with_dpr(2.0).with_highlight(Some(node));
         let (r, f) = both(&m, 360, 300, &opts);
         let d = differing(&r, &f);
-        assert!(
-            d * 100 < (360 * 300) * 4,
-            "{d} of {} pixels differ",
-            360 * 300
-        );
+        assert!(d * 100 < (360 * 300) * 4, "{d} of {} pixels differ", 360 * 300);
     }
 
     #[test]
     fn no_pixel_is_left_blank_inside_a_valid_mesh() {
         // the unit square filled by triangles: every pixel centre inside it is coloured
         let m = rand2d(5000, 60, 2).unwrap();
-        let opts = MeshView {
-            colour_bar: false,
-            margin: 0.0,
-            ..MeshView::default()
-        };
+        let opts = MeshView { colour_bar: false, margin: 0.0, ..MeshView::default() };
         let mut pm = Pixmap::new(200, 200).unwrap();
         let view = view_of(&pm, &m, &opts);
         let mut buckets = Vec::new();
         crate::lab::stats::quick_stats_and_buckets(&m, &mut buckets);
         render_fine(&mut pm, &m, &buckets, &view, &opts);
-        let white = pm
-            .pixels()
-            .iter()
-            .filter(|p| p.red() == 255 && p.green() == 255 && p.blue() == 255)
-            .count();
+        let white = pm.pixels().iter().filter(|p| p.red() == 255 && p.green() == 255 && p.blue() == 255).count();
         // at most the outermost row or column of pixels may miss (centres on the border)
         assert!(white <= 4 * 200, "{white} white pixels");
     }
@@ -418,10 +354,7 @@ mod tests {
         fill_triangle(&mut one, w, h, a, b, c, 1);
         let mut other = vec![0u8; w * h];
         fill_triangle(&mut other, w, h, c, d, a, 1);
-        assert!(
-            one.iter().zip(&other).all(|(x, y)| x + y == 1),
-            "each pixel exactly once"
-        );
+        assert!(one.iter().zip(&other).all(|(x, y)| x + y == 1), "each pixel exactly once");
         // either orientation of the same triangle takes the same pixels
         let mut reversed = vec![0u8; w * h];
         fill_triangle(&mut reversed, w, h, c, b, a, 1);

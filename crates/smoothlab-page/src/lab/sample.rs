@@ -5,12 +5,12 @@
 use serde::{Deserialize, Serialize};
 
 use smoothlab::error::{Error, Result};
-use smoothlab::generate::{hex_grid, mixed_block, perturb_surface, perturb_volume, HexBlock};
 use smoothlab::generate::{
-    perturb, plate, quadratic_star, rand2d, rand2d_spatial, random_grid, star, surface, GridKind,
-    PlateKind, QuadraticStar, StarKind, SurfaceKind, SurfaceShape,
+    perturb, plate, quadratic_star, rand2d, rand2d_spatial, random_grid, star, surface, GridKind, PlateKind,
+    QuadraticStar, StarKind, SurfaceKind, SurfaceShape,
 };
 use smoothlab::mesh::Mesh;
+use smoothlab::generate::{hex_grid, mixed_block, perturb_surface, perturb_volume, HexBlock};
 use smoothlab::model::Model;
 
 /// Seed of every generated sample (the page's perturb button takes its own seed).
@@ -142,12 +142,7 @@ impl Sample {
     pub const VOLUMES: [Sample; 3] = [Sample::Rand3d, Sample::HexTangled, Sample::MixedTangled];
 
     /// The surface samples, in gallery order.
-    pub const SURFACES: [Sample; 4] = [
-        Sample::SphereTangled,
-        Sample::TorusTangled,
-        Sample::CylinderCapped,
-        Sample::TorusQuadraticTangled,
-    ];
+    pub const SURFACES: [Sample; 4] = [Sample::SphereTangled, Sample::TorusTangled, Sample::CylinderCapped, Sample::TorusQuadraticTangled];
 
     /// The sample the page opens on, first in the gallery: the tangled quad plate, where
     /// Chen et al.'s case is plainest — the max-min objective's β is kinked on quads (their
@@ -201,9 +196,7 @@ impl Sample {
             Sample::TorusQuadraticTangled => "Surface: tangled torus, quadratic mixed",
             Sample::Rand3d => "Tetrahedra: rand3D (Freitag), 1086 nodes",
             Sample::HexTangled => "Hexahedra: tangled block (Knupp), 6³ cells",
-            Sample::MixedTangled => {
-                "Mixed solids: hexahedra, wedges, pyramids, tetrahedra, tangled"
-            }
+            Sample::MixedTangled => "Mixed solids: hexahedra, wedges, pyramids, tetrahedra, tangled",
             Sample::Rand2dMillion => "rand2D, 1M nodes (large: slow, ~350 MB of memory)",
         }
     }
@@ -251,33 +244,19 @@ impl Sample {
         let tangled = |s| perturb_surface(&s, TANGLE_AMOUNT, SAMPLE_SEED);
         let r = SURFACE_RESOLUTION;
         Ok(match self {
-            Sample::SphereTangled => Model::Surface(tangled(surface(
-                SurfaceShape::Sphere,
-                SurfaceKind::Quad,
-                1,
-                r,
-            )?)?),
-            Sample::TorusTangled => Model::Surface(tangled(surface(
-                SurfaceShape::Torus,
-                SurfaceKind::Mixed,
-                1,
-                TORUS_RESOLUTION,
-            )?)?),
-            Sample::CylinderCapped => Model::Surface(tangled(surface(
-                SurfaceShape::Cylinder,
-                SurfaceKind::Quad,
-                1,
-                r,
-            )?)?),
+            Sample::SphereTangled => Model::Surface(tangled(surface(SurfaceShape::Sphere, SurfaceKind::Quad, 1, r)?)?),
+            Sample::TorusTangled => {
+                Model::Surface(tangled(surface(SurfaceShape::Torus, SurfaceKind::Mixed, 1, TORUS_RESOLUTION)?)?)
+            }
+            Sample::CylinderCapped => {
+                Model::Surface(tangled(surface(SurfaceShape::Cylinder, SurfaceKind::Quad, 1, r)?)?)
+            }
             Sample::TorusQuadraticTangled => Model::Surface(perturb_surface(
                 &surface(SurfaceShape::Torus, SurfaceKind::Mixed, 2, TORUS_RESOLUTION)?,
                 QUADRATIC_TANGLE_AMOUNT,
                 SAMPLE_SEED,
             )?),
-            Sample::Rand3d => Model::Volume(smoothlab::generate::rand3d(
-                smoothlab::generate::RAND3D_POINTS,
-                SAMPLE_SEED,
-            )?),
+            Sample::Rand3d => Model::Volume(smoothlab::generate::rand3d(smoothlab::generate::RAND3D_POINTS, SAMPLE_SEED)?),
             Sample::HexTangled => Model::Volume(perturb_volume(
                 &hex_grid(&HexBlock::cube(HEX_CELLS))?,
                 HEX_TANGLE_AMOUNT,
@@ -310,26 +289,15 @@ impl Sample {
             Sample::StarQuad => star(StarKind::Quad, StarKind::Quad.default_k()),
             Sample::StarPushed => quadratic_star(QuadraticStar::PushedEdge),
             Sample::StarCurved => quadratic_star(QuadraticStar::CurvedBoundary),
-            Sample::GridRandomTangled => {
-                random_grid(RANDOM_GRID_CELLS, GridKind::Quad, SAMPLE_SEED)
-            }
+            Sample::GridRandomTangled => random_grid(RANDOM_GRID_CELLS, GridKind::Quad, SAMPLE_SEED),
             Sample::PlateQuadratic => plate(PlateKind::Tri, 2, PLATE_RESOLUTION),
             Sample::Rand2dLarge => rand2d_spatial(LARGE_INTERIOR, 200, SAMPLE_SEED),
-            Sample::Rand2dMillion => {
-                rand2d_spatial(MILLION_INTERIOR, MILLION_PER_SIDE, SAMPLE_SEED)
+            Sample::Rand2dMillion => rand2d_spatial(MILLION_INTERIOR, MILLION_PER_SIDE, SAMPLE_SEED),
+            Sample::SphereTangled | Sample::TorusTangled | Sample::CylinderCapped | Sample::TorusQuadraticTangled => {
+                Err(Error::invalid(format!("the sample '{}' is a surface in 3D, not a planar mesh", self.title())))
             }
-            Sample::SphereTangled
-            | Sample::TorusTangled
-            | Sample::CylinderCapped
-            | Sample::TorusQuadraticTangled => Err(Error::invalid(format!(
-                "the sample '{}' is a surface in 3D, not a planar mesh",
-                self.title()
-            ))),
             Sample::Rand3d | Sample::HexTangled | Sample::MixedTangled => {
-                Err(Error::invalid(format!(
-                    "the sample '{}' is a volume mesh, not a planar mesh",
-                    self.title()
-                )))
+                Err(Error::invalid(format!("the sample '{}' is a volume mesh, not a planar mesh", self.title())))
             }
         }
     }
@@ -362,33 +330,19 @@ mod tests {
     #[test]
     fn surface_samples_are_tangled_surfaces_and_planar_ones_planar() {
         for s in Sample::SURFACES {
-            let Model::Surface(m) = s.model().unwrap() else {
-                panic!("{s:?} is not a surface")
-            };
+            let Model::Surface(m) = s.model().unwrap() else { panic!("{s:?} is not a surface") };
             let st = m.stats();
-            assert!(
-                st.surface && st.inverted > 0,
-                "{s:?}: {} inverted",
-                st.inverted
-            );
-            assert!(
-                st.max_distance_from_surface.unwrap() < 1e-9,
-                "{s:?} is on its surface"
-            );
+            assert!(st.surface && st.inverted > 0, "{s:?}: {} inverted", st.inverted);
+            assert!(st.max_distance_from_surface.unwrap() < 1e-9, "{s:?} is on its surface");
             let e = s.generate().unwrap_err().to_string();
             assert!(e.contains("surface in 3D"), "{e}");
         }
-        assert!(matches!(
-            Sample::PlateTri.model().unwrap(),
-            Model::Planar(_)
-        ));
+        assert!(matches!(Sample::PlateTri.model().unwrap(), Model::Planar(_)));
     }
 
     /// The volume sample's mesh and its inverted elements.
     fn volume(s: Sample) -> (smoothlab::volume::VolumeMesh, usize) {
-        let Model::Volume(m) = s.model().unwrap() else {
-            panic!("{s:?} is not a volume mesh")
-        };
+        let Model::Volume(m) = s.model().unwrap() else { panic!("{s:?} is not a volume mesh") };
         let inverted = (0..m.element_count()).filter(|&e| m.is_inverted(e)).count();
         (m, inverted)
     }
@@ -397,10 +351,7 @@ mod tests {
     fn the_tangled_hexahedra_are_knupps_block_as_their_words_say() {
         let (m, inverted) = volume(Sample::HexTangled);
         assert_eq!(m.kinds(), &[smoothlab::mesh::VolumeKind::Hex8]);
-        assert_eq!(
-            (m.element_count(), m.node_count(), m.free_count()),
-            (216, 343, 125)
-        );
+        assert_eq!((m.element_count(), m.node_count(), m.free_count()), (216, 343, 125));
         assert!(Sample::HexTangled.title().contains("6³") && HEX_CELLS == 6);
         assert_eq!(inverted, 128, "HEX_TANGLE_AMOUNT's words");
         let e = Sample::HexTangled.generate().unwrap_err().to_string();
@@ -411,15 +362,7 @@ mod tests {
     fn the_mixed_sample_has_every_linear_kind_a_few_inverted() {
         use smoothlab::mesh::VolumeKind;
         let (m, inverted) = volume(Sample::MixedTangled);
-        assert_eq!(
-            m.kinds(),
-            &[
-                VolumeKind::Tet4,
-                VolumeKind::Hex8,
-                VolumeKind::Wedge6,
-                VolumeKind::Pyramid5
-            ]
-        );
+        assert_eq!(m.kinds(), &[VolumeKind::Tet4, VolumeKind::Hex8, VolumeKind::Wedge6, VolumeKind::Pyramid5]);
         assert_eq!(m.element_count(), 98);
         assert_eq!(inverted, 5, "MIXED_TANGLE_AMOUNT's words");
         let title = Sample::MixedTangled.title();
@@ -430,8 +373,7 @@ mod tests {
 
     #[test]
     fn titles_are_distinct() {
-        let titles: std::collections::HashSet<_> =
-            Sample::GALLERY.iter().map(|s| s.title()).collect();
+        let titles: std::collections::HashSet<_> = Sample::GALLERY.iter().map(|s| s.title()).collect();
         assert_eq!(titles.len(), Sample::GALLERY.len());
     }
 
@@ -441,40 +383,14 @@ mod tests {
         assert_eq!(&Sample::GALLERY[..n], &Sample::ALL);
         let k = Sample::SURFACES.len();
         assert_eq!(&Sample::GALLERY[n..n + k], &Sample::SURFACES);
-        assert_eq!(
-            Sample::GALLERY[n + k..],
-            [
-                Sample::Rand3d,
-                Sample::HexTangled,
-                Sample::MixedTangled,
-                Sample::Rand2dMillion
-            ]
-        );
-        assert!(
-            Sample::GALLERY.iter().all(|s| s.linkable()),
-            "a link names every sample of the gallery"
-        );
-        let Model::Volume(v) = Sample::Rand3d.model().unwrap() else {
-            panic!("rand3d is tetrahedral")
-        };
+        assert_eq!(Sample::GALLERY[n + k..], [Sample::Rand3d, Sample::HexTangled, Sample::MixedTangled, Sample::Rand2dMillion]);
+        assert!(Sample::GALLERY.iter().all(|s| s.linkable()), "a link names every sample of the gallery");
+        let Model::Volume(v) = Sample::Rand3d.model().unwrap() else { panic!("rand3d is tetrahedral") };
         assert_eq!(v.node_count(), smoothlab::generate::RAND3D_POINTS);
-        assert!(Sample::Rand3d
-            .generate()
-            .unwrap_err()
-            .to_string()
-            .contains("a volume mesh"));
-        assert!(
-            Sample::Rand2dMillion.title().contains("1M")
-                && Sample::Rand2dMillion.title().contains("slow")
-        );
-        assert_eq!(
-            serde_json::to_string(&Sample::Rand2dMillion).unwrap(),
-            "\"rand2d-million\""
-        );
-        assert_eq!(
-            MILLION_INTERIOR + 4 * MILLION_PER_SIDE,
-            super::super::MAX_NODES
-        );
+        assert!(Sample::Rand3d.generate().unwrap_err().to_string().contains("a volume mesh"));
+        assert!(Sample::Rand2dMillion.title().contains("1M") && Sample::Rand2dMillion.title().contains("slow"));
+        assert_eq!(serde_json::to_string(&Sample::Rand2dMillion).unwrap(), "\"rand2d-million\"");
+        assert_eq!(MILLION_INTERIOR + 4 * MILLION_PER_SIDE, super::super::MAX_NODES);
     }
 
     #[test]
@@ -484,10 +400,7 @@ mod tests {
             assert_eq!(serde_json::from_str::<Sample>(&j).unwrap(), s);
             assert_eq!(j, format!("\"{}\"", s.name()));
         }
-        assert_eq!(
-            serde_json::to_string(&Sample::PlateTriTangled).unwrap(),
-            "\"plate-tri-tangled\""
-        );
+        assert_eq!(serde_json::to_string(&Sample::PlateTriTangled).unwrap(), "\"plate-tri-tangled\"");
         assert!(serde_json::from_str::<Sample>("\"plate-hexagons\"").is_err());
     }
 }

@@ -64,17 +64,12 @@ impl Playground {
     }
 
     fn chosen(&self) -> Result<usize> {
-        self.screen
-            .node
-            .ok_or_else(|| Error::invalid("no node is chosen: click a free node first"))
+        self.screen.node.ok_or_else(|| Error::invalid("no node is chosen: click a free node first"))
     }
 
     /// The view the meshes were last drawn in ([`frame`](Self::frame)'s canvas).
     pub fn frame_view(&self) -> Result<View> {
-        let c = self
-            .screen
-            .canvas
-            .ok_or_else(|| Error::invalid("the mesh has not been drawn yet"))?;
+        let c = self.screen.canvas.ok_or_else(|| Error::invalid("the mesh has not been drawn yet"))?;
         Ok(self.panel_view(c))
     }
 
@@ -107,11 +102,7 @@ impl Playground {
             self.screen.sent[i] = Some(key);
         }
         self.screen.canvas = Some(c);
-        Ok(PanelFrame {
-            pictures,
-            render_ms,
-            colour_bar: self.panel_colour_bar(c),
-        })
+        Ok(PanelFrame { pictures, render_ms, colour_bar: self.panel_colour_bar(c) })
     }
 
     /// Forgets what was sent: the next [`frame`](Self::frame) draws both panels (after the
@@ -125,11 +116,7 @@ impl Playground {
     /// most 64).
     pub fn pick_in_frame(&self, side: Side, at: DVec2, radius: f64) -> Result<Pick> {
         let view = self.frame_view()?;
-        let radius = if radius.is_finite() && radius > 0.0 {
-            radius.min(64.0)
-        } else {
-            smoothlab_render::PICK_RADIUS
-        };
+        let radius = if radius.is_finite() && radius > 0.0 { radius.min(64.0) } else { smoothlab_render::PICK_RADIUS };
         Ok(self.pick(side, &view, at, radius))
     }
 
@@ -152,24 +139,15 @@ impl Playground {
 
     /// Magnifies both meshes `factor` times about the CSS pixel `at` of the last frame.
     pub fn zoom_meshes_in_frame(&mut self, at: DVec2, factor: f64) -> Result<()> {
-        let c = self
-            .screen
-            .canvas
-            .ok_or_else(|| Error::invalid("the mesh has not been drawn yet"))?;
+        let c = self.screen.canvas.ok_or_else(|| Error::invalid("the mesh has not been drawn yet"))?;
         self.zoom_meshes_at(c, at, factor);
         Ok(())
     }
 
     /// The chosen node and the canvas its level sets were last drawn on.
     fn level_drawn(&self) -> Result<(usize, Canvas)> {
-        let node = self
-            .screen
-            .node
-            .ok_or_else(|| Error::invalid("no node is chosen"))?;
-        let c = self
-            .screen
-            .level_canvas
-            .ok_or_else(|| Error::invalid("the level sets have not been drawn yet"))?;
+        let node = self.screen.node.ok_or_else(|| Error::invalid("no node is chosen"))?;
+        let c = self.screen.level_canvas.ok_or_else(|| Error::invalid("the level sets have not been drawn yet"))?;
         Ok((node, c))
     }
 
@@ -190,15 +168,8 @@ impl Playground {
 
     /// The chosen node's level sets (A, B: on canvas `level`), its solve history chart
     /// (on `chart`) and a summary; pointer positions on the level sets map through `level`.
-    pub fn chosen_node_view(
-        &mut self,
-        level: Canvas,
-        chart: Canvas,
-    ) -> Result<([Pixmap; 3], NodeSummary)> {
-        let node = self
-            .screen
-            .node
-            .ok_or_else(|| Error::invalid("no node is chosen"))?;
+    pub fn chosen_node_view(&mut self, level: Canvas, chart: Canvas) -> Result<([Pixmap; 3], NodeSummary)> {
+        let node = self.screen.node.ok_or_else(|| Error::invalid("no node is chosen"))?;
         self.screen.level_canvas = Some(level);
         self.render_node_view(node, level, chart)
     }
@@ -206,11 +177,7 @@ impl Playground {
     /// One solver call on the chosen node on each side, which then moves to what it
     /// found: the node view of that call (as [`chosen_node_view`](Self::chosen_node_view),
     /// drawn before the move, so its history is the call's).
-    pub fn smooth_chosen_node(
-        &mut self,
-        level: Canvas,
-        chart: Canvas,
-    ) -> Result<([Pixmap; 3], NodeSummary)> {
+    pub fn smooth_chosen_node(&mut self, level: Canvas, chart: Canvas) -> Result<([Pixmap; 3], NodeSummary)> {
         let node = self.chosen()?;
         let view = self.chosen_node_view(level, chart)?;
         self.smooth_one_node(node)?;
@@ -220,11 +187,7 @@ impl Playground {
     /// Where undo stands, `node` the node a move just took back ([`undo`](Self::undo)'s
     /// answer; `None` to only ask).
     pub fn undo_summary(&self, node: Option<usize>) -> UndoSummary {
-        UndoSummary {
-            node,
-            next: self.undo_node(),
-            depth: self.undo_depth(),
-        }
+        UndoSummary { node, next: self.undo_node(), depth: self.undo_depth() }
     }
 }
 
@@ -240,157 +203,51 @@ mod tests {
     #[test]
     fn a_frame_is_sent_once_until_something_changes() {
         let mut pg = Playground::new(Sample::StarRegular.generate().unwrap()).unwrap();
-        let c = Canvas {
-            w: 200,
-            h: 150,
-            dpr: 1.0,
-        };
-        assert!(
-            pg.frame_view().is_err(),
-            "no pointer maps before the first frame"
-        );
+        let c = Canvas { w: 200, h: 150, dpr: 1.0 };
+        assert!(pg.frame_view().is_err(), "no pointer maps before the first frame");
         let f = pg.frame(c, false, &no_clock).unwrap();
         assert!(f.pictures.iter().all(Option::is_some));
         let [a, b] = f.pictures.map(Option::unwrap);
         assert_eq!(a.data(), b.data(), "equal positions: one picture");
-        assert!(
-            pg.frame(c, false, &no_clock)
-                .unwrap()
-                .pictures
-                .iter()
-                .all(Option::is_none),
-            "the same again is not sent"
-        );
-        assert!(
-            pg.frame(c, true, &no_clock)
-                .unwrap()
-                .pictures
-                .iter()
-                .all(Option::is_some),
-            "unless forced"
-        );
+        assert!(pg.frame(c, false, &no_clock).unwrap().pictures.iter().all(Option::is_none), "the same again is not sent");
+        assert!(pg.frame(c, true, &no_clock).unwrap().pictures.iter().all(Option::is_some), "unless forced");
         pg.step(&no_clock);
-        assert!(
-            pg.frame(c, false, &no_clock)
-                .unwrap()
-                .pictures
-                .iter()
-                .all(Option::is_some),
-            "a pass changes both"
-        );
+        assert!(pg.frame(c, false, &no_clock).unwrap().pictures.iter().all(Option::is_some), "a pass changes both");
         pg.forget_frames();
-        assert!(pg
-            .frame(c, false, &no_clock)
-            .unwrap()
-            .pictures
-            .iter()
-            .all(Option::is_some));
-        let free = (0..pg.topology().node_count())
-            .find(|&n| pg.topology().is_free(n))
-            .unwrap();
+        assert!(pg.frame(c, false, &no_clock).unwrap().pictures.iter().all(Option::is_some));
+        let free = (0..pg.topology().node_count()).find(|&n| pg.topology().is_free(n)).unwrap();
         pg.choose_node(Some(free)).unwrap();
-        assert!(
-            pg.frame(c, false, &no_clock)
-                .unwrap()
-                .pictures
-                .iter()
-                .all(Option::is_some),
-            "a highlight changes both"
-        );
+        assert!(pg.frame(c, false, &no_clock).unwrap().pictures.iter().all(Option::is_some), "a highlight changes both");
     }
 
     #[test]
     fn pointers_map_through_the_last_frame_and_undo_says_where_it_stands() {
         let mut pg = Playground::new(Sample::StarRegular.generate().unwrap()).unwrap();
         let free = pg.topology().node_count() - 1;
-        assert!(pg
-            .choose_node(Some(0))
-            .unwrap_err()
-            .to_string()
-            .contains("Node 0 cannot be chosen"));
+        assert!(pg.choose_node(Some(0)).unwrap_err().to_string().contains("Node 0 cannot be chosen"));
         assert_eq!(pg.chosen_node(), None, "a refused choice changes nothing");
-        assert!(
-            pg.nudge_chosen(Side::A, DVec2::new(1.0, 0.0)).is_err(),
-            "no node is chosen"
-        );
+        assert!(pg.nudge_chosen(Side::A, DVec2::new(1.0, 0.0)).is_err(), "no node is chosen");
         pg.choose_node(Some(free)).unwrap();
-        assert!(
-            pg.nudge_chosen(Side::A, DVec2::new(1.0, 0.0)).is_err(),
-            "nothing drawn yet"
-        );
-        let c = Canvas {
-            w: 300,
-            h: 300,
-            dpr: 1.0,
-        };
+        assert!(pg.nudge_chosen(Side::A, DVec2::new(1.0, 0.0)).is_err(), "nothing drawn yet");
+        let c = Canvas { w: 300, h: 300, dpr: 1.0 };
         pg.frame(c, false, &no_clock).unwrap();
-        let at = pg
-            .frame_view()
-            .unwrap()
-            .to_css(pg.panel(Side::A).mesh.nodes()[free]);
-        assert_eq!(
-            pg.pick_in_frame(Side::B, at, f64::NAN).unwrap().node,
-            Some(free)
-        );
-        assert_eq!(
-            pg.undo_summary(None),
-            UndoSummary {
-                node: None,
-                next: None,
-                depth: 0
-            }
-        );
+        let at = pg.frame_view().unwrap().to_css(pg.panel(Side::A).mesh.nodes()[free]);
+        assert_eq!(pg.pick_in_frame(Side::B, at, f64::NAN).unwrap().node, Some(free));
+        assert_eq!(pg.undo_summary(None), UndoSummary { node: None, next: None, depth: 0 });
         let before = pg.panel(Side::B).mesh.nodes()[free];
         pg.nudge_chosen(Side::B, DVec2::new(10.0, -5.0)).unwrap();
         let moved = pg.panel(Side::B).mesh.nodes()[free] - before;
-        assert!(
-            moved.x > 0.0 && moved.y > 0.0,
-            "right and up on the screen: {moved}"
-        );
-        assert_eq!(
-            pg.undo_summary(None),
-            UndoSummary {
-                node: None,
-                next: Some(free),
-                depth: 1
-            }
-        );
+        assert!(moved.x > 0.0 && moved.y > 0.0, "right and up on the screen: {moved}");
+        assert_eq!(pg.undo_summary(None), UndoSummary { node: None, next: Some(free), depth: 1 });
         let back = pg.undo();
-        assert_eq!(
-            pg.undo_summary(back),
-            UndoSummary {
-                node: Some(free),
-                next: None,
-                depth: 0
-            }
-        );
+        assert_eq!(pg.undo_summary(back), UndoSummary { node: Some(free), next: None, depth: 0 });
         assert_eq!(pg.panel(Side::B).mesh.nodes()[free], before);
-        assert!(
-            pg.zoom_level_sets_in_frame(Side::A, at, 2.0).is_err(),
-            "the level sets are not drawn yet"
-        );
-        let level = Canvas {
-            w: 120,
-            h: 120,
-            dpr: 1.0,
-        };
-        let ([la, lb, _], _) = pg
-            .chosen_node_view(
-                level,
-                Canvas {
-                    w: 120,
-                    h: 80,
-                    dpr: 1.0,
-                },
-            )
-            .unwrap();
+        assert!(pg.zoom_level_sets_in_frame(Side::A, at, 2.0).is_err(), "the level sets are not drawn yet");
+        let level = Canvas { w: 120, h: 120, dpr: 1.0 };
+        let ([la, lb, _], _) = pg.chosen_node_view(level, Canvas { w: 120, h: 80, dpr: 1.0 }).unwrap();
         assert_eq!((la.width(), lb.height()), (120, 120));
-        pg.zoom_level_sets_in_frame(Side::A, DVec2::new(60.0, 60.0), 2.0)
-            .unwrap();
+        pg.zoom_level_sets_in_frame(Side::A, DVec2::new(60.0, 60.0), 2.0).unwrap();
         pg.drag_in_frame(free, at).unwrap();
-        assert!(
-            pg.panel(Side::A).mesh.nodes()[free].distance(before) < 1e-9,
-            "a drag to where the node was drawn puts it there"
-        );
+        assert!(pg.panel(Side::A).mesh.nodes()[free].distance(before) < 1e-9, "a drag to where the node was drawn puts it there");
     }
 }

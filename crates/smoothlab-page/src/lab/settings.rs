@@ -63,15 +63,9 @@ pub struct Choice {
 
 impl Choice {
     /// The left panel's default: the old max-min objective.
-    pub const OLD: Choice = Choice {
-        objective: ObjectiveKind::MaxMinShape,
-        penalty: Penalty::Barrier,
-    };
+    pub const OLD: Choice = Choice { objective: ObjectiveKind::MaxMinShape, penalty: Penalty::Barrier };
     /// The right panel's default: the new objective with its default penalty.
-    pub const NEW: Choice = Choice {
-        objective: ObjectiveKind::SmoothShape,
-        penalty: Penalty::Barrier,
-    };
+    pub const NEW: Choice = Choice { objective: ObjectiveKind::SmoothShape, penalty: Penalty::Barrier };
 
     /// The objective it names.
     pub fn build(self) -> Box<dyn Objective> {
@@ -82,22 +76,14 @@ impl Choice {
     pub fn label(self) -> String {
         match self.objective {
             ObjectiveKind::SmoothShape => format!("new, {} penalty", self.penalty.name()),
-            k => format!(
-                "{} ({})",
-                k.name(),
-                k.describe().split(" (").next().unwrap_or("")
-            ),
+            k => format!("{} ({})", k.name(), k.describe().split(" (").next().unwrap_or("")),
         }
     }
 
     /// A title for a picture or a panel: the label and who it is from.
     pub fn title(self) -> String {
         match self.objective {
-            ObjectiveKind::SmoothShape => format!(
-                "new: {}, {} penalty",
-                self.objective.describe(),
-                self.penalty.name()
-            ),
+            ObjectiveKind::SmoothShape => format!("new: {}, {} penalty", self.objective.describe(), self.penalty.name()),
             k => format!("{}: {}", k.name(), k.describe()),
         }
     }
@@ -175,11 +161,7 @@ impl Settings {
         }
         let range = smoothlab::smooth::limits::BATCH_MAX_ITER;
         if !range.contains(self.max_iter.into()) {
-            return Err(Error::invalid(format!(
-                "{} solver iterations: give {}",
-                self.max_iter,
-                range.words()
-            )));
+            return Err(Error::invalid(format!("{} solver iterations: give {}", self.max_iter, range.words())));
         }
         let o = SmoothOptions::default()
             .with_strategy(self.strategy)

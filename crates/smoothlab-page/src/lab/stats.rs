@@ -14,6 +14,7 @@ pub use smoothlab::quality::QuickStats;
 use smoothlab::quality::{lo_alpha_corner, measure_element, signed_angle, TWO_SQRT3};
 use smoothlab_render::bucket;
 
+
 /// A pseudo-angle of the corner `(cross, dot) = (e1 × e2, e1 · e2)`: a value in [−2, 2]
 /// that orders corners as `atan2(cross, dot)` does (signed zeros included), for the
 /// price of one division. Only the extreme corners then need their `atan2`.
@@ -61,23 +62,11 @@ impl Extreme {
             (key > self.key + TIE, key >= self.key - TIE)
         };
         if better || (tie && !self.key.is_finite()) {
-            *self = Extreme {
-                key,
-                corner: (e1, e2),
-                angle: None,
-            };
+            *self = Extreme { key, corner: (e1, e2), angle: None };
         } else if tie {
             let (old, new) = (self.angle(), signed_angle(e1, e2));
             if (below && new < old) || (!below && new > old) {
-                *self = Extreme {
-                    key: if below {
-                        key.min(self.key)
-                    } else {
-                        key.max(self.key)
-                    },
-                    corner: (e1, e2),
-                    angle: Some(new),
-                };
+                *self = Extreme { key: if below { key.min(self.key) } else { key.max(self.key) }, corner: (e1, e2), angle: Some(new) };
             } else if below {
                 self.key = self.key.min(key);
             } else {
@@ -124,16 +113,8 @@ impl Default for QuickAcc {
     fn default() -> Self {
         QuickAcc {
             inverted: 0,
-            min: Extreme {
-                key: f64::INFINITY,
-                corner: (DVec2::X, DVec2::Y),
-                angle: None,
-            },
-            max: Extreme {
-                key: f64::NEG_INFINITY,
-                corner: (DVec2::X, DVec2::Y),
-                angle: None,
-            },
+            min: Extreme { key: f64::INFINITY, corner: (DVec2::X, DVec2::Y), angle: None },
+            max: Extreme { key: f64::NEG_INFINITY, corner: (DVec2::X, DVec2::Y), angle: None },
             min_cot: f64::NEG_INFINITY,
             max_cot: f64::INFINITY,
             quality_bar: f64::INFINITY,
@@ -202,10 +183,7 @@ impl QuickAcc {
         // not provably above the bar (NaN products included): a candidate
         let above = num.partial_cmp(&(self.quality_bar * den)) == Some(std::cmp::Ordering::Greater);
         if !above {
-            let exact = corners
-                .iter()
-                .map(|&(e1, e2)| lo_alpha_corner(e1, e2))
-                .fold(f64::INFINITY, f64::min);
+            let exact = corners.iter().map(|&(e1, e2)| lo_alpha_corner(e1, e2)).fold(f64::INFINITY, f64::min);
             if exact < self.min_quality {
                 self.min_quality = exact;
                 self.quality_bar = exact + exact.abs() * 1e-9 + 1e-300;
@@ -238,13 +216,7 @@ impl QuickAcc {
 
     /// The statistics of everything added.
     pub fn finish(&self) -> QuickStats {
-        let angle = |mut x: Extreme, none: f64| {
-            if x.key.is_finite() {
-                x.angle().to_degrees()
-            } else {
-                none
-            }
-        };
+        let angle = |mut x: Extreme, none: f64| if x.key.is_finite() { x.angle().to_degrees() } else { none };
         QuickStats {
             inverted: self.inverted,
             min_angle_deg: angle(self.min, f64::INFINITY),
@@ -254,16 +226,13 @@ impl QuickAcc {
     }
 }
 
+
 /// The cotangent bar of [`QuickAcc`] for the best pseudo-angle `key`: valid corners
 /// beyond it cannot be the extreme one. Keys at or below 0 (an inverted corner) leave no
 /// valid corner a chance to be smaller; keys at π/2 and beyond map through `dot < 0`.
 fn cot_bar(key: f64, below: bool) -> f64 {
     if !key.is_finite() {
-        return if below {
-            f64::NEG_INFINITY
-        } else {
-            f64::INFINITY
-        };
+        return if below { f64::NEG_INFINITY } else { f64::INFINITY };
     }
     if key <= 0.0 {
         // the best is an inverted (or flat) corner: no valid corner is smaller, and every
@@ -378,11 +347,7 @@ mod tests {
             for &(c2, d2) in &cases {
                 let (a1, a2) = (f64::atan2(c1, d1), f64::atan2(c2, d2));
                 let (p1, p2) = (pseudo_angle(c1, d1), pseudo_angle(c2, d2));
-                assert_eq!(
-                    a1 < a2,
-                    p1 < p2,
-                    "({c1}, {d1}) vs ({c2}, {d2}): {a1} {a2} / {p1} {p2}"
-                );
+                assert_eq!(a1 < a2, p1 < p2, "({c1}, {d1}) vs ({c2}, {d2}): {a1} {a2} / {p1} {p2}");
             }
         }
     }

@@ -92,11 +92,7 @@ impl TableDetail {
         let small: u64 = s.angle_histogram_6deg.iter().take(bins).sum();
         TableDetail {
             mean_quality: s.mean_quality,
-            small_angle_share: if total == 0 {
-                0.0
-            } else {
-                small as f64 / total as f64
-            },
+            small_angle_share: if total == 0 { 0.0 } else { small as f64 / total as f64 },
             max_condition: s.max_condition.is_finite().then_some(s.max_condition),
         }
     }

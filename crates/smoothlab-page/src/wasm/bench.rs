@@ -27,19 +27,13 @@ impl BenchMesh {
         let n = nodes as usize;
         let per_side = ((n as f64).sqrt() as usize).max(1);
         if n < 4 * per_side + 1 {
-            return Err(JsError::new(&format!(
-                "a bench mesh needs more than {} nodes",
-                4 * per_side
-            )));
+            return Err(JsError::new(&format!("a bench mesh needs more than {} nodes", 4 * per_side)));
         }
         let mut mesh = rand2d(n - 4 * per_side, per_side, u64::from(seed))?;
         if hilbert {
             mesh = mesh.renumbered_spatially().0;
         }
-        Ok(BenchMesh {
-            work: mesh.clone(),
-            original: mesh,
-        })
+        Ok(BenchMesh { work: mesh.clone(), original: mesh })
     }
 
     #[wasm_bindgen(js_name = nodeCount)]
@@ -65,9 +59,7 @@ impl BenchMesh {
         let kind = ObjectiveKind::parse(objective_name)
             .ok_or_else(|| JsError::new(&format!("unknown objective {objective_name:?}")))?;
         let obj = objective(kind);
-        let options = SmoothOptions::default()
-            .with_strategy(strategy)
-            .with_order(Order::Input);
+        let options = SmoothOptions::default().with_strategy(strategy).with_order(Order::Input);
         Ok(Smoother::new(options)?.sweep(&mut self.work, &*obj).visits)
     }
 }

@@ -11,9 +11,9 @@ use super::{css_canvas, frame_object, now_ms, object, perturb_seed, pixels, side
 use crate::lab::lab3d::{Mesh3d, NodeSummary3d};
 use crate::lab::views::Canvas;
 use crate::lab::{self, Side};
+use smoothlab_render::{Camera, Theme};
 use smoothlab::surface::Surface;
 use smoothlab::volume::VolumeMesh;
-use smoothlab_render::{Camera, Theme};
 
 /// The lab of either kind (boxed: one handle, its size that of a pointer).
 enum Kind {
@@ -41,16 +41,12 @@ pub struct Lab3d {
 impl Lab3d {
     /// The handle of a lab on a surface.
     pub(super) fn surface(s: Surface) -> smoothlab::Result<Lab3d> {
-        Ok(Lab3d {
-            inner: Kind::Surface(Box::new(lab::Lab3d::new(s)?)),
-        })
+        Ok(Lab3d { inner: Kind::Surface(Box::new(lab::Lab3d::new(s)?)) })
     }
 
     /// The handle of a lab on tetrahedra.
     pub(super) fn volume(m: VolumeMesh) -> smoothlab::Result<Lab3d> {
-        Ok(Lab3d {
-            inner: Kind::Volume(Box::new(lab::Lab3d::new(m)?)),
-        })
+        Ok(Lab3d { inner: Kind::Volume(Box::new(lab::Lab3d::new(m)?)) })
     }
 
     fn node_view_object(view: ([tiny_skia::Pixmap; 3], NodeSummary3d)) -> Result<JsValue, JsError> {
@@ -59,12 +55,7 @@ impl Lab3d {
     }
 
     /// The per-pass chart and every histogram of the kind, both sides, with both tables.
-    fn charts_of<M: Mesh3d>(
-        l: &lab::Lab3d<M>,
-        chart: Canvas,
-        hist: Canvas,
-        log_y: bool,
-    ) -> Result<JsValue, JsError> {
+    fn charts_of<M: Mesh3d>(l: &lab::Lab3d<M>, chart: Canvas, hist: Canvas, log_y: bool) -> Result<JsValue, JsError> {
         let pass = pixels(l.render_pass_chart(chart)?);
         let list = js_sys::Array::new();
         let mut first = (JsValue::UNDEFINED, JsValue::UNDEFINED);
@@ -74,23 +65,10 @@ impl Lab3d {
             if i == 0 {
                 first = (a.clone(), b.clone());
             }
-            list.push(&object(&[
-                ("title", JsValue::from_str(h.title)),
-                ("a", a),
-                ("b", b),
-            ])?);
+            list.push(&object(&[("title", JsValue::from_str(h.title)), ("a", a), ("b", b)])?);
         }
-        let stats = object(&[
-            ("a", to_js(&l.table(Side::A))?),
-            ("b", to_js(&l.table(Side::B))?),
-        ])?;
-        object(&[
-            ("pass", pass),
-            ("hist_a", first.0),
-            ("hist_b", first.1),
-            ("histograms", list.into()),
-            ("stats", stats),
-        ])
+        let stats = object(&[("a", to_js(&l.table(Side::A))?), ("b", to_js(&l.table(Side::B))?)])?;
+        object(&[("pass", pass), ("hist_a", first.0), ("hist_b", first.1), ("histograms", list.into()), ("stats", stats)])
     }
 }
 
@@ -198,11 +176,7 @@ impl Lab3d {
     /// The shared camera: `{ yaw, pitch, zoom }` (degrees, degrees, factor).
     pub fn camera(&self) -> Result<JsValue, JsError> {
         let c = each!(&self.inner, l => l.camera());
-        object(&[
-            ("yaw", c.yaw.into()),
-            ("pitch", c.pitch.into()),
-            ("zoom", c.zoom.into()),
-        ])
+        object(&[("yaw", c.yaw.into()), ("pitch", c.pitch.into()), ("zoom", c.zoom.into())])
     }
 
     /// The node of a side under the CSS pixel `(x, y)` of the last frame: the nearest
@@ -226,14 +200,7 @@ impl Lab3d {
     /// The chosen node's level sets (A, B: `w × h`) over its plane, its solve history
     /// chart (`cw × ch`) and a summary: `{ level_a, level_b, chart, summary, solve }`.
     #[wasm_bindgen(js_name = nodeView)]
-    pub fn node_view(
-        &mut self,
-        w: u32,
-        h: u32,
-        cw: u32,
-        ch: u32,
-        dpr: f32,
-    ) -> Result<JsValue, JsError> {
+    pub fn node_view(&mut self, w: u32, h: u32, cw: u32, ch: u32, dpr: f32) -> Result<JsValue, JsError> {
         let (level, chart) = (Canvas { w, h, dpr }, Canvas { w: cw, h: ch, dpr });
         Self::node_view_object(each!(&mut self.inner, l => l.chosen_node_view(level, chart))?)
     }
@@ -241,14 +208,7 @@ impl Lab3d {
     /// One solver call on the chosen node on each side, which then moves to what it found
     /// (a surface's back onto the surface): the node view of that call, as `nodeView`.
     #[wasm_bindgen(js_name = smoothNode)]
-    pub fn smooth_node(
-        &mut self,
-        w: u32,
-        h: u32,
-        cw: u32,
-        ch: u32,
-        dpr: f32,
-    ) -> Result<JsValue, JsError> {
+    pub fn smooth_node(&mut self, w: u32, h: u32, cw: u32, ch: u32, dpr: f32) -> Result<JsValue, JsError> {
         let (level, chart) = (Canvas { w, h, dpr }, Canvas { w: cw, h: ch, dpr });
         Self::node_view_object(each!(&mut self.inner, l => l.smooth_chosen_node(level, chart))?)
     }
@@ -270,13 +230,7 @@ impl Lab3d {
     /// Magnifies both level sets `factor` times about the CSS pixel `(x, y)` of `panel`'s
     /// level set as last drawn.
     #[wasm_bindgen(js_name = zoomLevelSets)]
-    pub fn zoom_level_sets(
-        &mut self,
-        panel: &str,
-        x: f64,
-        y: f64,
-        factor: f64,
-    ) -> Result<(), JsError> {
+    pub fn zoom_level_sets(&mut self, panel: &str, x: f64, y: f64, factor: f64) -> Result<(), JsError> {
         let s = side(panel)?;
         Ok(each!(&mut self.inner, l => l.zoom_level_sets_in_frame(s, DVec2::new(x, y), factor))?)
     }
@@ -298,15 +252,7 @@ impl Lab3d {
     /// sides on one scale, logarithmic when `log_y`), with both statistics tables:
     /// `{ pass, hist_a, hist_b, histograms: [{ title, a, b }], stats: { a, b } }` (`hist_a`
     /// and `hist_b` the first histogram's, as the playground's).
-    pub fn charts(
-        &self,
-        w: u32,
-        h: u32,
-        hw: u32,
-        hh: u32,
-        dpr: f32,
-        log_y: bool,
-    ) -> Result<JsValue, JsError> {
+    pub fn charts(&self, w: u32, h: u32, hw: u32, hh: u32, dpr: f32, log_y: bool) -> Result<JsValue, JsError> {
         let (chart, hist) = (Canvas { w, h, dpr }, Canvas { w: hw, h: hh, dpr });
         each!(&self.inner, l => Self::charts_of(l, chart, hist, log_y))
     }
@@ -316,11 +262,7 @@ impl Lab3d {
     pub fn figure(&self, w: u32, h: u32, dpr: f32) -> Result<JsValue, JsError> {
         let c = css_canvas(w, h, dpr)?;
         let pm = each!(&self.inner, l => l.render_figure(c))?;
-        object(&[
-            ("pixels", pixels(pm)),
-            ("w", JsValue::from(c.w)),
-            ("h", JsValue::from(c.h)),
-        ])
+        object(&[("pixels", pixels(pm)), ("w", JsValue::from(c.w)), ("h", JsValue::from(c.h))])
     }
 
     /// Sees both sides by the camera `yaw`, `pitch` (degrees) and `zoom` (a permalink's).
@@ -336,11 +278,7 @@ impl Lab3d {
     pub fn node_on_screen(&self, panel: &str, node: u32) -> Result<JsValue, JsError> {
         let s = side(panel)?;
         match each!(&self.inner, l => l.node_on_screen(s, node as usize))? {
-            Some((p, behind)) => object(&[
-                ("x", p.x.into()),
-                ("y", p.y.into()),
-                ("behind", behind.into()),
-            ]),
+            Some((p, behind)) => object(&[("x", p.x.into()), ("y", p.y.into()), ("behind", behind.into())]),
             None => Ok(JsValue::UNDEFINED),
         }
     }
@@ -350,9 +288,7 @@ impl Lab3d {
     pub fn node_point(&self, panel: &str, node: u32) -> Result<Option<Vec<f64>>, JsError> {
         let s = side(panel)?;
         let n = node as usize;
-        Ok(
-            each!(&self.inner, l => (n < l.mesh(s).node_count()).then(|| l.mesh(s).point(n).to_array().to_vec())),
-        )
+        Ok(each!(&self.inner, l => (n < l.mesh(s).node_count()).then(|| l.mesh(s).point(n).to_array().to_vec())))
     }
 
     /// Cuts both sides across `axis` (0, 1, 2: x, y, z) at the fraction `at` of the

@@ -19,10 +19,10 @@ use std::sync::Mutex;
 use serde::Serialize;
 use wasm_bindgen::prelude::*;
 
+use smoothlab::io;
 use crate::lab::sample::Sample;
 use crate::lab::views::Canvas;
 use crate::lab::Side;
-use smoothlab::io;
 use smoothlab::model::Model;
 
 /// The message of the last panic, kept by the hook for [`take_panic_message`].
@@ -93,17 +93,13 @@ fn now_ms() -> f64 {
 /// whole number up to 2^64 − 1, beyond what a JS number holds exactly, so given as text).
 fn perturb_seed(amount: f64, seed: &str) -> Result<u64, JsError> {
     crate::lab::permalink::check_control("seed", seed).map_err(|e| JsError::new(&e))?;
-    crate::lab::permalink::check_control("tangle", &amount.to_string())
-        .map_err(|e| JsError::new(&e))?;
-    seed.trim()
-        .parse()
-        .map_err(|_| JsError::new("Seed: enter a whole number"))
+    crate::lab::permalink::check_control("tangle", &amount.to_string()).map_err(|e| JsError::new(&e))?;
+    seed.trim().parse().map_err(|_| JsError::new("Seed: enter a whole number"))
 }
 
 /// A side by its name on the page: `a` or `b`.
 fn side(s: &str) -> Result<Side, JsError> {
-    serde_wasm_bindgen::from_value(JsValue::from_str(s))
-        .map_err(|_| JsError::new(&format!("no panel '{s}': use a or b")))
+    serde_wasm_bindgen::from_value(JsValue::from_str(s)).map_err(|_| JsError::new(&format!("no panel '{s}': use a or b")))
 }
 
 /// The settings as the page sends them (see [`crate::lab::Settings`]).
@@ -121,8 +117,7 @@ fn to_js<T: Serialize>(value: &T) -> Result<JsValue, JsError> {
 fn object(entries: &[(&str, JsValue)]) -> Result<JsValue, JsError> {
     let o = js_sys::Object::new();
     for (k, v) in entries {
-        js_sys::Reflect::set(&o, &JsValue::from_str(k), v)
-            .map_err(|_| JsError::new("cannot build the result object"))?;
+        js_sys::Reflect::set(&o, &JsValue::from_str(k), v).map_err(|_| JsError::new("cannot build the result object"))?;
     }
     Ok(o.into())
 }
@@ -131,11 +126,7 @@ fn object(entries: &[(&str, JsValue)]) -> Result<JsValue, JsError> {
 /// memory into a buffer of its own, which the worker then moves (not copies) to the page.
 /// A node view's pictures and summary as the page takes them (the playground's and the
 /// 3D lab's alike): both level sets, the solve chart, the summary in words and whole.
-fn node_view_object<S: Serialize>(
-    pictures: [tiny_skia::Pixmap; 3],
-    text: String,
-    summary: &S,
-) -> Result<JsValue, JsError> {
+fn node_view_object<S: Serialize>(pictures: [tiny_skia::Pixmap; 3], text: String, summary: &S) -> Result<JsValue, JsError> {
     let [la, lb, chart] = pictures;
     object(&[
         ("level_a", pixels(la)),
@@ -173,11 +164,7 @@ fn pixels(pm: tiny_skia::Pixmap) -> JsValue {
 /// Both sides' pictures (`None`: not sent again, `null` to the page) as the page's frame:
 /// `{ a, b, render_ms: [a, b], copy_ms, colour_bar }`, `copy_ms` the time the pixels took
 /// to copy out of the wasm memory.
-fn frame_object(
-    pictures: [Option<tiny_skia::Pixmap>; 2],
-    render_ms: [f64; 2],
-    colour_bar: bool,
-) -> Result<JsValue, JsError> {
+fn frame_object(pictures: [Option<tiny_skia::Pixmap>; 2], render_ms: [f64; 2], colour_bar: bool) -> Result<JsValue, JsError> {
     let t0 = now_ms();
     let [a, b] = pictures.map(|p| p.map_or(JsValue::NULL, pixels));
     let copy_ms = now_ms() - t0;
@@ -193,18 +180,11 @@ fn frame_object(
 /// A canvas of `w × h` CSS pixels at ratio `dpr` in device pixels, the ratio checked.
 fn css_canvas(w: u32, h: u32, dpr: f32) -> Result<Canvas, JsError> {
     if !(dpr.is_finite() && dpr > 0.0 && dpr <= 4.0) {
-        return Err(JsError::new(&format!(
-            "a pixel ratio of {dpr}: give one above 0 and at most 4"
-        )));
+        return Err(JsError::new(&format!("a pixel ratio of {dpr}: give one above 0 and at most 4")));
     }
-    Ok(Canvas {
-        w: ((w as f32) * dpr).round() as u32,
-        h: ((h as f32) * dpr).round() as u32,
-        dpr,
-    })
+    Ok(Canvas { w: ((w as f32) * dpr).round() as u32, h: ((h as f32) * dpr).round() as u32, dpr })
 }
 
 fn sample(name: &str) -> Result<Sample, JsError> {
-    serde_wasm_bindgen::from_value(JsValue::from_str(name))
-        .map_err(|_| JsError::new(&format!("no sample named '{name}'")))
+    serde_wasm_bindgen::from_value(JsValue::from_str(name)).map_err(|_| JsError::new(&format!("no sample named '{name}'")))
 }

@@ -5,8 +5,8 @@ use serde::Serialize;
 use wasm_bindgen::prelude::*;
 
 use super::to_js;
-use crate::lab::permalink;
 use crate::lab::sample::Sample;
+use crate::lab::permalink;
 
 /// The gallery of generated samples: `[{ name, title }]` in gallery order (a permalink
 /// names every one, `permalink::SAMPLES`).
@@ -17,13 +17,7 @@ pub fn samples() -> Result<JsValue, JsError> {
         name: Sample,
         title: &'static str,
     }
-    let list: Vec<Entry> = Sample::GALLERY
-        .iter()
-        .map(|&s| Entry {
-            name: s,
-            title: s.title(),
-        })
-        .collect();
+    let list: Vec<Entry> = Sample::GALLERY.iter().map(|&s| Entry { name: s, title: s.title() }).collect();
     to_js(&list)
 }
 
@@ -45,8 +39,8 @@ pub fn decode_permalink(hash: &str) -> Result<JsValue, JsError> {
 /// every value as the decoder would.
 #[wasm_bindgen(js_name = encodePermalink)]
 pub fn encode_permalink(state: JsValue) -> Result<String, JsError> {
-    let state: permalink::PageState = serde_wasm_bindgen::from_value(state)
-        .map_err(|e| JsError::new(&format!("permalink: {e}")))?;
+    let state: permalink::PageState =
+        serde_wasm_bindgen::from_value(state).map_err(|e| JsError::new(&format!("permalink: {e}")))?;
     state.validate()?;
     Ok(permalink::encode(&state))
 }

@@ -6,9 +6,9 @@ use glam::DVec2;
 use wasm_bindgen::prelude::*;
 
 use super::{css_canvas, frame_object, now_ms, object, perturb_seed, pixels, side, to_js};
+use smoothlab::io::{self, Format};
 use crate::lab::views::Canvas;
 use crate::lab::{self, Side, SideSweep};
-use smoothlab::io::{self, Format};
 use smoothlab::mesh::Mesh;
 use smoothlab_render::Theme;
 
@@ -25,14 +25,10 @@ pub struct Playground {
 impl Playground {
     /// The handle of a playground on `mesh`.
     pub(super) fn open(mesh: Mesh) -> smoothlab::Result<Playground> {
-        Ok(Playground {
-            inner: lab::Playground::new(mesh)?,
-        })
+        Ok(Playground { inner: lab::Playground::new(mesh)? })
     }
 
-    fn node_view_object(
-        view: ([tiny_skia::Pixmap; 3], lab::views::NodeSummary),
-    ) -> Result<JsValue, JsError> {
+    fn node_view_object(view: ([tiny_skia::Pixmap; 3], lab::views::NodeSummary)) -> Result<JsValue, JsError> {
         let (pictures, summary) = view;
         super::node_view_object(pictures, summary.text(), &summary)
     }
@@ -70,9 +66,7 @@ impl Playground {
     #[wasm_bindgen(js_name = continuePass)]
     pub fn continue_pass(&mut self, budget_ms: f64) -> Result<JsValue, JsError> {
         if budget_ms.is_nan() || budget_ms <= 0.0 {
-            return Err(JsError::new(&format!(
-                "a pass slice of {budget_ms} ms: give a positive budget"
-            )));
+            return Err(JsError::new(&format!("a pass slice of {budget_ms} ms: give a positive budget")));
         }
         to_js(&self.inner.continue_pass(&now_ms, budget_ms)?)
     }
@@ -94,9 +88,7 @@ impl Playground {
     /// The positions of panel `side` (`a` or `b`), x and y interleaved.
     #[wasm_bindgen(js_name = panelPositions)]
     pub fn panel_positions(&self, side: &str) -> Result<js_sys::Float64Array, JsError> {
-        Ok(js_sys::Float64Array::from(
-            &self.inner.panel_positions(self::side(side)?)[..],
-        ))
+        Ok(js_sys::Float64Array::from(&self.inner.panel_positions(self::side(side)?)[..]))
     }
 
     /// Starts the sweep of panel `side` alone from `nodes` (the other engine's positions,
@@ -129,10 +121,9 @@ impl Playground {
     #[wasm_bindgen(js_name = takeSweep)]
     pub fn take_sweep(&mut self) -> Result<JsValue, JsError> {
         match self.inner.take_sweep() {
-            Some((nodes, sweep)) => object(&[
-                ("nodes", js_sys::Float64Array::from(&nodes[..]).into()),
-                ("sweep", to_js(&sweep)?),
-            ]),
+            Some((nodes, sweep)) => {
+                object(&[("nodes", js_sys::Float64Array::from(&nodes[..]).into()), ("sweep", to_js(&sweep)?)])
+            }
             None => Ok(JsValue::UNDEFINED),
         }
     }
@@ -141,8 +132,8 @@ impl Playground {
     /// the split pass in progress.
     #[wasm_bindgen(js_name = adoptSweep)]
     pub fn adopt_sweep(&mut self, nodes: &[f64], sweep: JsValue) -> Result<(), JsError> {
-        let sweep: SideSweep = serde_wasm_bindgen::from_value(sweep)
-            .map_err(|e| JsError::new(&format!("a sweep's record: {e}")))?;
+        let sweep: SideSweep =
+            serde_wasm_bindgen::from_value(sweep).map_err(|e| JsError::new(&format!("a sweep's record: {e}")))?;
         Ok(self.inner.adopt_sweep(nodes, sweep)?)
     }
 
@@ -166,11 +157,7 @@ impl Playground {
         let format = match format {
             "msh" => Format::Msh,
             "vtk" => Format::Vtk,
-            _ => {
-                return Err(JsError::new(&format!(
-                    "cannot export as '{format}': use msh or vtk"
-                )))
-            }
+            _ => return Err(JsError::new(&format!("cannot export as '{format}': use msh or vtk"))),
         };
         Ok(self.inner.export(side(panel)?, format)?)
     }
@@ -225,11 +212,7 @@ impl Playground {
     /// `radius` CSS pixels: `{ node, nearest, message }` (see [`crate::lab::pick::Pick`]).
     #[wasm_bindgen(js_name = pickNode)]
     pub fn pick_node(&self, panel: &str, x: f64, y: f64, radius: f64) -> Result<JsValue, JsError> {
-        to_js(
-            &self
-                .inner
-                .pick_in_frame(side(panel)?, DVec2::new(x, y), radius)?,
-        )
+        to_js(&self.inner.pick_in_frame(side(panel)?, DVec2::new(x, y), radius)?)
     }
 
     /// Moves a free node to the CSS pixel `(x, y)` of the last frame, on both panels.
@@ -254,18 +237,8 @@ impl Playground {
     /// The chosen node's level sets (A, B: `w × h`), its solve history chart (`cw × ch`)
     /// and a one-line summary: `{ level_a, level_b, chart, summary, solve }`.
     #[wasm_bindgen(js_name = nodeView)]
-    pub fn node_view(
-        &mut self,
-        w: u32,
-        h: u32,
-        cw: u32,
-        ch: u32,
-        dpr: f32,
-    ) -> Result<JsValue, JsError> {
-        Self::node_view_object(
-            self.inner
-                .chosen_node_view(canvas(w, h, dpr), canvas(cw, ch, dpr))?,
-        )
+    pub fn node_view(&mut self, w: u32, h: u32, cw: u32, ch: u32, dpr: f32) -> Result<JsValue, JsError> {
+        Self::node_view_object(self.inner.chosen_node_view(canvas(w, h, dpr), canvas(cw, ch, dpr))?)
     }
 
     /// The free node with the worst star (on B's mesh), or `undefined` when none is free.
@@ -289,24 +262,14 @@ impl Playground {
     /// Magnifies both level sets `factor` times about the CSS pixel `(x, y)` of `panel`'s
     /// level set as last drawn.
     #[wasm_bindgen(js_name = zoomLevelSets)]
-    pub fn zoom_level_sets(
-        &mut self,
-        panel: &str,
-        x: f64,
-        y: f64,
-        factor: f64,
-    ) -> Result<(), JsError> {
-        Ok(self
-            .inner
-            .zoom_level_sets_in_frame(side(panel)?, DVec2::new(x, y), factor)?)
+    pub fn zoom_level_sets(&mut self, panel: &str, x: f64, y: f64, factor: f64) -> Result<(), JsError> {
+        Ok(self.inner.zoom_level_sets_in_frame(side(panel)?, DVec2::new(x, y), factor)?)
     }
 
     /// Moves both level sets by `(dx, dy)` CSS pixels of `panel`'s level set as last drawn.
     #[wasm_bindgen(js_name = panLevelSets)]
     pub fn pan_level_sets(&mut self, panel: &str, dx: f64, dy: f64) -> Result<(), JsError> {
-        Ok(self
-            .inner
-            .pan_level_sets_in_frame(side(panel)?, DVec2::new(dx, dy))?)
+        Ok(self.inner.pan_level_sets_in_frame(side(panel)?, DVec2::new(dx, dy))?)
     }
 
     /// The meshes and the level sets as fitted again.
@@ -340,18 +303,8 @@ impl Playground {
     /// found: the node view of that call (as [`node_view`](Self::node_view), drawn
     /// before the move, so its history is the call's).
     #[wasm_bindgen(js_name = smoothNode)]
-    pub fn smooth_node(
-        &mut self,
-        w: u32,
-        h: u32,
-        cw: u32,
-        ch: u32,
-        dpr: f32,
-    ) -> Result<JsValue, JsError> {
-        Self::node_view_object(
-            self.inner
-                .smooth_chosen_node(canvas(w, h, dpr), canvas(cw, ch, dpr))?,
-        )
+    pub fn smooth_node(&mut self, w: u32, h: u32, cw: u32, ch: u32, dpr: f32) -> Result<JsValue, JsError> {
+        Self::node_view_object(self.inner.smooth_chosen_node(canvas(w, h, dpr), canvas(cw, ch, dpr))?)
     }
 
     /// The figure for slides: A | B with titles, the colour bar and statistics
@@ -360,36 +313,19 @@ impl Playground {
     pub fn figure(&self, w: u32, h: u32, dpr: f32) -> Result<JsValue, JsError> {
         let c = css_canvas(w, h, dpr)?;
         let pm = self.inner.render_figure(c)?;
-        object(&[
-            ("pixels", pixels(pm)),
-            ("w", JsValue::from(c.w)),
-            ("h", JsValue::from(c.h)),
-        ])
+        object(&[("pixels", pixels(pm)), ("w", JsValue::from(c.w)), ("h", JsValue::from(c.h))])
     }
 
     /// The per-pass chart (`w × h`) and both angle histograms (`hw × hh`, on one scale,
     /// logarithmic when `log_y`), with both statistics tables (measured in full now):
     /// `{ pass, hist_a, hist_b, stats: { a, b } }`.
-    pub fn charts(
-        &self,
-        w: u32,
-        h: u32,
-        hw: u32,
-        hh: u32,
-        dpr: f32,
-        log_y: bool,
-    ) -> Result<JsValue, JsError> {
+    pub fn charts(&self, w: u32, h: u32, hw: u32, hh: u32, dpr: f32, log_y: bool) -> Result<JsValue, JsError> {
         let hc = canvas(hw, hh, dpr);
         let pass = pixels(self.inner.render_pass_chart(canvas(w, h, dpr))?);
         let hist_a = pixels(self.inner.render_histogram(Side::A, hc, log_y)?);
         let hist_b = pixels(self.inner.render_histogram(Side::B, hc, log_y)?);
         // after the histograms: the full statistics are at hand for the tables' detail
         let stats = object(&[("a", self.stats("a")?), ("b", self.stats("b")?)])?;
-        object(&[
-            ("pass", pass),
-            ("hist_a", hist_a),
-            ("hist_b", hist_b),
-            ("stats", stats),
-        ])
+        object(&[("pass", pass), ("hist_a", hist_a), ("hist_b", hist_b), ("stats", stats)])
     }
 }

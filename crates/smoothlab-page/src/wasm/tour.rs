@@ -25,22 +25,11 @@ pub fn tour_card(name: &str) -> Result<JsValue, JsError> {
 /// with labels of at least `label_px` CSS pixels (as the playground's `setTheme`):
 /// `{ pixels, w, h }` (device pixels).
 #[wasm_bindgen(js_name = tourPicture)]
-pub fn tour_picture(
-    name: &str,
-    w: u32,
-    h: u32,
-    dpr: f32,
-    dark: bool,
-    label_px: f32,
-) -> Result<JsValue, JsError> {
+pub fn tour_picture(name: &str, w: u32, h: u32, dpr: f32, dark: bool, label_px: f32) -> Result<JsValue, JsError> {
     let c = css_canvas(w, h, dpr)?;
     let pm = tour::pictures::render(name, c, &Theme::for_page(dark, label_px))?;
     let (pw, ph) = (pm.width(), pm.height());
-    object(&[
-        ("pixels", pixels(pm)),
-        ("w", JsValue::from(pw)),
-        ("h", JsValue::from(ph)),
-    ])
+    object(&[("pixels", pixels(pm)), ("w", JsValue::from(pw)), ("h", JsValue::from(ph))])
 }
 
 /// Where a figure's picture, drawn as [`tour_picture`] draws it, put its plots, legends
@@ -48,28 +37,16 @@ pub fn tour_picture(
 /// device pixels ([`smoothlab_render::layout`]) — for the page's tests, which check that no
 /// legend lies over the data and that the marks a figure's text promises are drawn.
 #[wasm_bindgen(js_name = tourPictureLayout)]
-pub fn tour_picture_layout(
-    name: &str,
-    w: u32,
-    h: u32,
-    dpr: f32,
-    dark: bool,
-    label_px: f32,
-) -> Result<JsValue, JsError> {
+pub fn tour_picture_layout(name: &str, w: u32, h: u32, dpr: f32, dark: bool, label_px: f32) -> Result<JsValue, JsError> {
     let c = css_canvas(w, h, dpr)?;
-    let (pm, regions) =
-        tour::pictures::render_with_layout(name, c, &Theme::for_page(dark, label_px))?;
+    let (pm, regions) = tour::pictures::render_with_layout(name, c, &Theme::for_page(dark, label_px))?;
     #[derive(serde::Serialize)]
     struct Layout {
         w: u32,
         h: u32,
         regions: Vec<smoothlab_render::layout::Region>,
     }
-    to_js(&Layout {
-        w: pm.width(),
-        h: pm.height(),
-        regions,
-    })
+    to_js(&Layout { w: pm.width(), h: pm.height(), regions })
 }
 
 /// Row `i` of Freitag's Table 1, smoothed now: `{ method, min_angle_deg, max_angle_deg,

@@ -43,12 +43,7 @@ fn passes(c: &[u32]) -> Option<usize> {
 }
 
 fn main() {
-    let kinds = [
-        (PlateKind::Tri, 1u8),
-        (PlateKind::Quad, 1),
-        (PlateKind::Mixed, 1),
-        (PlateKind::Tri, 2),
-    ];
+    let kinds = [(PlateKind::Tri, 1u8), (PlateKind::Quad, 1), (PlateKind::Mixed, 1), (PlateKind::Tri, 2)];
     let amounts = [1.0, 1.5, 2.0];
     let seeds = 1..=8u64;
     println!("| plate | res | amount | sweeps | newton | maxiter | priority wins | ties | input wins | mean passes priority | mean passes input | seeds (priority/input) |");
@@ -63,10 +58,7 @@ fn main() {
                             if sweeps == 10 && (maxiter == 1 || !newton) {
                                 continue; // the defaults' sweeps: untangled in one pass throughout (checked with the first rows)
                             }
-                            let o = SmoothOptions::default()
-                                .with_untangle_sweeps(sweeps)
-                                .with_newton(newton)
-                                .with_max_iter(maxiter);
+                            let o = SmoothOptions::default().with_untangle_sweeps(sweeps).with_newton(newton).with_max_iter(maxiter);
                             let (mut win, mut tie, mut lose) = (0, 0, 0);
                             let (mut sp, mut si) = (0.0, 0.0);
                             let mut per = Vec::new();
@@ -74,8 +66,7 @@ fn main() {
                                 let m = perturb(&base, amount, seed).expect("perturb");
                                 let p = passes(&counts(&m, o.with_order(Order::Priority)));
                                 let i = passes(&counts(&m, o.with_order(Order::Input)));
-                                let (pv, iv) =
-                                    (p.unwrap_or(MAX_PASSES + 1), i.unwrap_or(MAX_PASSES + 1));
+                                let (pv, iv) = (p.unwrap_or(MAX_PASSES + 1), i.unwrap_or(MAX_PASSES + 1));
                                 sp += pv as f64;
                                 si += iv as f64;
                                 match pv.cmp(&iv) {
@@ -83,9 +74,7 @@ fn main() {
                                     std::cmp::Ordering::Equal => tie += 1,
                                     std::cmp::Ordering::Greater => lose += 1,
                                 }
-                                let w = |x: Option<usize>| {
-                                    x.map_or("–".to_string(), |v| v.to_string())
-                                };
+                                let w = |x: Option<usize>| x.map_or("–".to_string(), |v| v.to_string());
                                 per.push(format!("{}/{}", w(p), w(i)));
                             }
                             let n = per.len() as f64;

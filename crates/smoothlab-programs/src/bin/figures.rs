@@ -36,12 +36,7 @@ fn main() {
     );
     for (i, f) in FIGURES.iter().enumerate() {
         let (w, h) = pictures::default_size(f.name);
-        let pm = pictures::render(
-            f.name,
-            Canvas { w, h, dpr: 1.0 },
-            &smoothlab_render::Theme::light(),
-        )
-        .unwrap_or_else(|e| panic!("{}: {e}", f.name));
+        let pm = pictures::render(f.name, Canvas { w, h, dpr: 1.0 }, &smoothlab_render::Theme::light()).unwrap_or_else(|e| panic!("{}: {e}", f.name));
         let png = pm.encode_png().expect("PNG");
         std::fs::write(dir.join(format!("{}.png", f.name)), png).expect("write PNG");
         let card = f.card(i).unwrap_or_else(|e| panic!("{}: {e}", f.name));

@@ -10,22 +10,13 @@ use crate::volume::VolumeMesh;
 
 /// Kuhn's six tetrahedra of a cube with corners numbered by bits (x = 1, y = 2, z = 4):
 /// the paths from corner 0 to corner 7 along the axes in each order.
-const KUHN: [[usize; 4]; 6] = [
-    [0, 1, 3, 7],
-    [0, 1, 5, 7],
-    [0, 2, 3, 7],
-    [0, 2, 6, 7],
-    [0, 4, 5, 7],
-    [0, 4, 6, 7],
-];
+const KUHN: [[usize; 4]; 6] = [[0, 1, 3, 7], [0, 1, 5, 7], [0, 2, 3, 7], [0, 2, 6, 7], [0, 4, 5, 7], [0, 4, 6, 7]];
 
 /// The unit cube cut into `n` cubes a side, each into Kuhn's six tetrahedra, every
 /// tetrahedron right-handed; boundary nodes fixed. `n` from 1 to 100.
 pub fn tet_cube(n: usize) -> Result<VolumeMesh> {
     if !(1..=100).contains(&n) {
-        return Err(Error::invalid(format!(
-            "a cube of {n} cells a side: give 1 to 100"
-        )));
+        return Err(Error::invalid(format!("a cube of {n} cells a side: give 1 to 100")));
     }
     let m = n + 1;
     let id = |i: usize, j: usize, k: usize| (i + m * (j + m * k)) as u32;

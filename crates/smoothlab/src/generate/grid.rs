@@ -24,22 +24,11 @@ enum_with_names! {
 /// counter-clockwise; boundary nodes fixed. `nx, ny ≥ 1`.
 pub fn grid(nx: usize, ny: usize, kind: GridKind) -> Result<Mesh> {
     if nx == 0 || ny == 0 {
-        return Err(Error::invalid(format!(
-            "a grid needs at least one cell each way, not {nx} × {ny}"
-        )));
+        return Err(Error::invalid(format!("a grid needs at least one cell each way, not {nx} × {ny}")));
     }
-    check_size(
-        "the grid",
-        nx.checked_add(1)
-            .zip(ny.checked_add(1))
-            .and_then(|(a, b)| a.checked_mul(b)),
-    )?;
+    check_size("the grid", nx.checked_add(1).zip(ny.checked_add(1)).and_then(|(a, b)| a.checked_mul(b)))?;
     let cells = nx * ny;
-    let elements = if kind == GridKind::Tri {
-        2 * cells
-    } else {
-        cells
-    };
+    let elements = if kind == GridKind::Tri { 2 * cells } else { cells };
     let mut a = Assembly::with_capacity((nx + 1) * (ny + 1), elements);
     for j in 0..=ny {
         for i in 0..=nx {
@@ -119,13 +108,7 @@ mod tests {
     #[test]
     fn bad_sizes_are_errors() {
         assert!(matches!(grid(0, 3, GridKind::Tri), Err(Error::Invalid(_))));
-        assert!(matches!(
-            grid(100_000, 100_000, GridKind::Quad),
-            Err(Error::TooLarge(_))
-        ));
-        assert!(matches!(
-            grid(usize::MAX, 2, GridKind::Quad),
-            Err(Error::TooLarge(_))
-        ));
+        assert!(matches!(grid(100_000, 100_000, GridKind::Quad), Err(Error::TooLarge(_))));
+        assert!(matches!(grid(usize::MAX, 2, GridKind::Quad), Err(Error::TooLarge(_))));
     }
 }

@@ -21,9 +21,9 @@
 use glam::DVec3;
 
 use super::check_size;
+use crate::numeric::trig::sin_cos;
 use crate::error::{Error, Result};
 use crate::mesh::VolumeKind;
-use crate::numeric::trig::sin_cos;
 use crate::volume::VolumeMesh;
 
 /// The most cells along one side of a block.
@@ -44,21 +44,14 @@ pub struct HexBlock {
 impl Default for HexBlock {
     /// The unit cube in 8 × 8 × 8 cells, straight.
     fn default() -> Self {
-        HexBlock {
-            cells: [8; 3],
-            size: DVec3::ONE,
-            bend: 0.0,
-        }
+        HexBlock { cells: [8; 3], size: DVec3::ONE, bend: 0.0 }
     }
 }
 
 impl HexBlock {
     /// The unit cube in `n × n × n` cells, straight.
     pub fn cube(n: usize) -> Self {
-        HexBlock {
-            cells: [n; 3],
-            ..HexBlock::default()
-        }
+        HexBlock { cells: [n; 3], ..HexBlock::default() }
     }
 
     /// The same block bent by `bend` degrees.
@@ -78,16 +71,10 @@ impl HexBlock {
             }
         }
         if !(self.size.is_finite() && self.size.min_element() > 0.0) {
-            return Err(Error::invalid(format!(
-                "{what}: size {} must be three finite numbers > 0",
-                self.size
-            )));
+            return Err(Error::invalid(format!("{what}: size {} must be three finite numbers > 0", self.size)));
         }
         if !(0.0..=MAX_BEND_DEG).contains(&self.bend) {
-            return Err(Error::invalid(format!(
-                "{what}: a bend of {}°: give 0 to {MAX_BEND_DEG}",
-                self.bend
-            )));
+            return Err(Error::invalid(format!("{what}: a bend of {}°: give 0 to {MAX_BEND_DEG}", self.bend)));
         }
         if self.bend / self.cells[0] as f64 >= 180.0 {
             return Err(Error::invalid(format!(
@@ -123,11 +110,7 @@ impl HexBlock {
     /// The point of the straight block at fractional lattice coordinates `(i, j, k)`.
     fn straight(&self, i: f64, j: f64, k: f64) -> DVec3 {
         let [nx, ny, nz] = self.cells.map(|n| n as f64);
-        DVec3::new(
-            i / nx * self.size.x,
-            j / ny * self.size.y,
-            k / nz * self.size.z,
-        )
+        DVec3::new(i / nx * self.size.x, j / ny * self.size.y, k / nz * self.size.z)
     }
 
     /// The lattice's nodes, bent, in [`id`](Self::id)'s order.
@@ -166,10 +149,7 @@ impl HexBlock {
 pub fn hex_grid(block: &HexBlock) -> Result<VolumeMesh> {
     block.check("a block of hexahedra", 1)?;
     let cells: Vec<[u32; 8]> = block.cells().map(|(i, j, k)| block.cell(i, j, k)).collect();
-    VolumeMesh::from_elements(
-        block.nodes(),
-        cells.iter().map(|c| (VolumeKind::Hex8, &c[..])),
-    )
+    VolumeMesh::from_elements(block.nodes(), cells.iter().map(|c| (VolumeKind::Hex8, &c[..])))
 }
 
 pub(super) fn check_mixed(block: &HexBlock) -> Result<()> {
@@ -186,20 +166,11 @@ mod tests {
     /// (exact for a hexahedron with flat faces; the bent block's faces are flat: planar
     /// trapezoids and rectangles).
     fn hex_volume(m: &VolumeMesh) -> f64 {
-        const KUHN: [[usize; 4]; 6] = [
-            [0, 1, 2, 6],
-            [0, 2, 3, 6],
-            [0, 3, 7, 6],
-            [0, 7, 4, 6],
-            [0, 4, 5, 6],
-            [0, 5, 1, 6],
-        ];
+        const KUHN: [[usize; 4]; 6] = [[0, 1, 2, 6], [0, 2, 3, 6], [0, 3, 7, 6], [0, 7, 4, 6], [0, 4, 5, 6], [0, 5, 1, 6]];
         (0..m.element_count())
             .map(|e| {
                 let c = m.corners(e);
-                KUHN.iter()
-                    .map(|t| crate::quality::tet::signed_volume(&t.map(|i| c[i])))
-                    .sum::<f64>()
+                KUHN.iter().map(|t| crate::quality::tet::signed_volume(&t.map(|i| c[i]))).sum::<f64>()
             })
             .sum()
     }
@@ -207,19 +178,13 @@ mod tests {
     #[test]
     fn the_unit_cube_in_n_cubed_hexahedra() {
         let m = hex_grid(&HexBlock::cube(3)).unwrap();
-        assert_eq!(
-            (m.node_count(), m.element_count(), m.free_count()),
-            (64, 27, 8)
-        );
+        assert_eq!((m.node_count(), m.element_count(), m.free_count()), (64, 27, 8));
         assert_eq!(m.kinds(), &[VolumeKind::Hex8]);
         assert_valid(&m);
         // every corner of every cell is the unit cube's corner: scaled Jacobian 1
         for e in 0..m.element_count() {
             let s = m.measures(e);
-            assert!(
-                (s.scaled_jacobian - 1.0).abs() < 1e-12 && (s.condition - 3.0).abs() < 1e-12,
-                "{e}: {s:?}"
-            );
+            assert!((s.scaled_jacobian - 1.0).abs() < 1e-12 && (s.condition - 3.0).abs() < 1e-12, "{e}: {s:?}");
         }
         // 6 faces of 9 quads on the surface
         assert_eq!(m.boundary_faces().len(), 54);
@@ -229,18 +194,10 @@ mod tests {
 
     #[test]
     fn sizes_and_cell_counts_per_axis() {
-        let b = HexBlock {
-            cells: [4, 2, 1],
-            size: DVec3::new(2.0, 1.0, 0.5),
-            bend: 0.0,
-        };
+        let b = HexBlock { cells: [4, 2, 1], size: DVec3::new(2.0, 1.0, 0.5), bend: 0.0 };
         let m = hex_grid(&b).unwrap();
         assert_eq!((m.node_count(), m.element_count()), (5 * 3 * 2, 8));
-        assert_eq!(
-            m.free_count(),
-            0,
-            "one cell thick: every node on the boundary"
-        );
+        assert_eq!(m.free_count(), 0, "one cell thick: every node on the boundary");
         assert!((hex_volume(&m) - 1.0).abs() < 1e-12);
         let top = m.nodes().iter().fold(DVec3::ZERO, |a, &p| a.max(p));
         assert_eq!(top, DVec3::new(2.0, 1.0, 0.5));
@@ -257,40 +214,25 @@ mod tests {
         let far = m.nodes()[b.id(4, 0, 0) as usize];
         assert!(far.distance(DVec3::new(r, 0.0, -r)) < 1e-15, "{far}");
         let far_top = m.nodes()[b.id(4, 4, 4) as usize];
-        assert!(
-            far_top.distance(DVec3::new(r + 1.0, 1.0, -r)) < 1e-15,
-            "{far_top}"
-        );
+        assert!(far_top.distance(DVec3::new(r + 1.0, 1.0, -r)) < 1e-15, "{far_top}");
         // every node at its radius R + z from the axis, the start face untouched
         for k in 0..=4 {
             for i in 0..=4 {
                 let p = m.nodes()[b.id(i, 2, k) as usize];
                 let rad = DVec3::new(p.x, 0.0, p.z + r).length();
-                assert!(
-                    (rad - (r + k as f64 / 4.0)).abs() < 1e-14,
-                    "node ({i}, 2, {k}) at radius {rad}"
-                );
+                assert!((rad - (r + k as f64 / 4.0)).abs() < 1e-14, "node ({i}, 2, {k}) at radius {rad}");
             }
             let start = m.nodes()[b.id(0, 3, k) as usize];
-            assert!(
-                start.distance(DVec3::new(0.0, 0.75, k as f64 / 4.0)) < 1e-15,
-                "{start}"
-            );
+            assert!(start.distance(DVec3::new(0.0, 0.75, k as f64 / 4.0)) < 1e-15, "{start}");
         }
         // the volume of the straight-edged ring sector: 4 cells a side, each a trapezoid
         // prism of angle π/8: (R_o² − R_i²)/2 · sin(π/8) · 4 cells · Ly
         let (s, _) = sin_cos(std::f64::consts::PI / 8.0);
-        let want: f64 = (0..4)
-            .map(|k| {
-                let (ri, ro) = (r + k as f64 / 4.0, r + (k + 1) as f64 / 4.0);
-                4.0 * 0.5 * (ro * ro - ri * ri) * s
-            })
-            .sum();
-        assert!(
-            (hex_volume(&m) - want).abs() < 1e-12,
-            "{} vs {want}",
-            hex_volume(&m)
-        );
+        let want: f64 = (0..4).map(|k| {
+            let (ri, ro) = (r + k as f64 / 4.0, r + (k + 1) as f64 / 4.0);
+            4.0 * 0.5 * (ro * ro - ri * ri) * s
+        }).sum();
+        assert!((hex_volume(&m) - want).abs() < 1e-12, "{} vs {want}", hex_volume(&m));
         // the bent block's corners are no longer cubes: scaled Jacobians below 1
         assert!((0..m.element_count()).any(|e| m.measures(e).scaled_jacobian < 0.999));
     }
@@ -299,41 +241,14 @@ mod tests {
     fn bad_blocks_are_refused_in_words() {
         let e = |b: HexBlock| hex_grid(&b).unwrap_err().to_string();
         assert!(e(HexBlock::cube(0)).contains("0 cells along x: give 1 to 200"));
-        assert!(e(HexBlock {
-            cells: [2, 201, 2],
-            ..HexBlock::default()
-        })
-        .contains("201 cells along y"));
-        assert!(e(HexBlock {
-            size: DVec3::new(1.0, 0.0, 1.0),
-            ..HexBlock::default()
-        })
-        .contains("finite numbers > 0"));
-        assert!(e(HexBlock {
-            size: DVec3::new(1.0, f64::NAN, 1.0),
-            ..HexBlock::default()
-        })
-        .contains("finite numbers > 0"));
+        assert!(e(HexBlock { cells: [2, 201, 2], ..HexBlock::default() }).contains("201 cells along y"));
+        assert!(e(HexBlock { size: DVec3::new(1.0, 0.0, 1.0), ..HexBlock::default() }).contains("finite numbers > 0"));
+        assert!(e(HexBlock { size: DVec3::new(1.0, f64::NAN, 1.0), ..HexBlock::default() }).contains("finite numbers > 0"));
         for bend in [-1.0, 271.0, f64::NAN, f64::INFINITY] {
-            assert!(
-                e(HexBlock::cube(4).bent(bend)).contains("give 0 to 270"),
-                "{bend}"
-            );
+            assert!(e(HexBlock::cube(4).bent(bend)).contains("give 0 to 270"), "{bend}");
         }
-        assert!(e(HexBlock {
-            cells: [1, 2, 2],
-            ..HexBlock::cube(1)
-        }
-        .bent(180.0))
-        .contains("give more cells along x"));
-        assert!(hex_grid(
-            &HexBlock {
-                cells: [1, 2, 2],
-                ..HexBlock::cube(1)
-            }
-            .bent(179.0)
-        )
-        .is_ok());
+        assert!(e(HexBlock { cells: [1, 2, 2], ..HexBlock::cube(1) }.bent(180.0)).contains("give more cells along x"));
+        assert!(hex_grid(&HexBlock { cells: [1, 2, 2], ..HexBlock::cube(1) }.bent(179.0)).is_ok());
         let big = e(HexBlock::cube(200));
         assert!(big.contains("8120601 nodes"), "{big}");
     }

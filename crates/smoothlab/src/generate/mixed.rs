@@ -28,14 +28,7 @@ use crate::volume::VolumeMesh;
 /// The way out of each face of a hexahedron, in the lattice (`di`, `dj`, `dk`), in the
 /// order of the 8-node hexahedron's faces (its row's `faces`: bottom, top, front `j`,
 /// right `i + 1`, back `j + 1`, left `i`).
-const FACE_OUT: [[i64; 3]; 6] = [
-    [0, 0, -1],
-    [0, 0, 1],
-    [0, -1, 0],
-    [1, 0, 0],
-    [0, 1, 0],
-    [-1, 0, 0],
-];
+const FACE_OUT: [[i64; 3]; 6] = [[0, 0, -1], [0, 0, 1], [0, -1, 0], [1, 0, 0], [0, 1, 0], [-1, 0, 0]];
 
 /// The cell whose hexahedron is cut into two wedges on each layer: `(nx/2, ny/2)`.
 fn wedge_column(b: &HexBlock) -> (usize, usize) {
@@ -73,18 +66,12 @@ pub fn mixed_block(block: &HexBlock) -> Result<VolumeMesh> {
                 // centre, as a pyramid's base seen from its apex
                 let base: Vec<u32> = face.iter().rev().map(|&c| h[c]).collect();
                 let next = [i as i64 + out[0], j as i64 + out[1], k as i64 + out[2]];
-                let outside = next
-                    .iter()
-                    .zip(block.cells)
-                    .any(|(&x, n)| x < 0 || x >= n as i64);
+                let outside = next.iter().zip(block.cells).any(|(&x, n)| x < 0 || x >= n as i64);
                 if outside {
                     elements.push((VolumeKind::Tet4, vec![base[0], base[1], base[2], apex]));
                     elements.push((VolumeKind::Tet4, vec![base[0], base[2], base[3], apex]));
                 } else {
-                    elements.push((
-                        VolumeKind::Pyramid5,
-                        vec![base[0], base[1], base[2], base[3], apex],
-                    ));
+                    elements.push((VolumeKind::Pyramid5, vec![base[0], base[1], base[2], base[3], apex]));
                 }
             }
         } else {
@@ -101,28 +88,20 @@ mod tests {
     use proptest::prelude::*;
 
     fn count(m: &VolumeMesh, kind: VolumeKind) -> usize {
-        (0..m.element_count())
-            .filter(|&e| m.element_kind(e) == kind)
-            .count()
+        (0..m.element_count()).filter(|&e| m.element_kind(e) == kind).count()
     }
 
     /// The area of a boundary face (a planar triangle or quad).
     fn area(m: &VolumeMesh, f: &crate::volume::Face) -> f64 {
         let p = |i: u32| m.nodes()[i as usize];
-        f.triangles()
-            .map(|[a, b, c]| 0.5 * (p(b) - p(a)).cross(p(c) - p(a)).length())
-            .sum()
+        f.triangles().map(|[a, b, c]| 0.5 * (p(b) - p(a)).cross(p(c) - p(a)).length()).sum()
     }
 
     #[test]
     fn face_out_points_out_of_each_face_of_the_row() {
         let row = VolumeKind::Hex8.row();
         for (face, out) in row.faces.iter().zip(FACE_OUT) {
-            let mid = face
-                .iter()
-                .map(|&c| DVec3::from(row.ideal[c]))
-                .sum::<DVec3>()
-                / face.len() as f64;
+            let mid = face.iter().map(|&c| DVec3::from(row.ideal[c])).sum::<DVec3>() / face.len() as f64;
             let dir = DVec3::new(out[0] as f64, out[1] as f64, out[2] as f64);
             assert_eq!((mid - DVec3::splat(0.5)) * 2.0, dir, "{face:?}");
         }
@@ -135,26 +114,12 @@ mod tests {
         // each end (left, right): 8 bases cut into 16 tetrahedra, 18 − 8 = 10 pyramids
         let m = mixed_block(&HexBlock::cube(3)).unwrap();
         let counts = VolumeKind::ALL.map(|k| count(&m, k));
-        assert_eq!(
-            counts[VolumeKind::ALL
-                .iter()
-                .position(|&k| k == VolumeKind::Hex8)
-                .unwrap()],
-            21
-        );
+        assert_eq!(counts[VolumeKind::ALL.iter().position(|&k| k == VolumeKind::Hex8).unwrap()], 21);
         assert_eq!(count(&m, VolumeKind::Wedge6), 6);
         assert_eq!(count(&m, VolumeKind::Pyramid5), 10);
         assert_eq!(count(&m, VolumeKind::Tet4), 16);
         assert_eq!(m.element_count(), 21 + 6 + 10 + 16);
-        assert_eq!(
-            m.kinds(),
-            &[
-                VolumeKind::Tet4,
-                VolumeKind::Hex8,
-                VolumeKind::Wedge6,
-                VolumeKind::Pyramid5
-            ]
-        );
+        assert_eq!(m.kinds(), &[VolumeKind::Tet4, VolumeKind::Hex8, VolumeKind::Wedge6, VolumeKind::Pyramid5]);
         // 4³ lattice nodes and 3 centres; the inner lattice nodes and the centres are free
         assert_eq!(m.node_count(), 67);
         assert_eq!(m.free_count(), 8 + 3);
@@ -166,24 +131,14 @@ mod tests {
         let quads = b.len() - tris;
         assert_eq!((quads, tris), (54 - 2 - 8, 2 * (2 + 8)));
         let total: f64 = b.iter().map(|f| area(&m, f)).sum();
-        assert!(
-            (total - 6.0).abs() < 1e-12,
-            "the boundary is the cube's surface: {total}"
-        );
-        assert_eq!(
-            m.family_words(),
-            "tetrahedra, hexahedra, wedges and pyramids"
-        );
+        assert!((total - 6.0).abs() < 1e-12, "the boundary is the cube's surface: {total}");
+        assert_eq!(m.family_words(), "tetrahedra, hexahedra, wedges and pyramids");
     }
 
     #[test]
     fn every_inner_face_is_shared_by_two_elements() {
         // faces of the elements: each inner one twice, each boundary one once
-        let m = mixed_block(&HexBlock {
-            cells: [4, 3, 2],
-            ..HexBlock::default()
-        })
-        .unwrap();
+        let m = mixed_block(&HexBlock { cells: [4, 3, 2], ..HexBlock::default() }).unwrap();
         let mut seen = std::collections::HashMap::new();
         for e in 0..m.element_count() {
             let ids = m.element(e);
@@ -203,16 +158,8 @@ mod tests {
 
     #[test]
     fn too_few_cells_are_refused() {
-        let e = mixed_block(&HexBlock {
-            cells: [2, 1, 2],
-            ..HexBlock::default()
-        })
-        .unwrap_err()
-        .to_string();
-        assert!(
-            e.contains("a mixed block: 1 cells along y: give 2 to 200"),
-            "{e}"
-        );
+        let e = mixed_block(&HexBlock { cells: [2, 1, 2], ..HexBlock::default() }).unwrap_err().to_string();
+        assert!(e.contains("a mixed block: 1 cells along y: give 2 to 200"), "{e}");
     }
 
     proptest! {

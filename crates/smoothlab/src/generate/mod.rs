@@ -43,9 +43,7 @@ pub const MAX_GENERATED_NODES: usize = 4_000_000;
 fn check_size(what: &str, nodes: Option<usize>) -> Result<()> {
     match nodes {
         Some(n) if n <= MAX_GENERATED_NODES => Ok(()),
-        Some(n) => Err(Error::TooLarge(format!(
-            "{what} would have {n} nodes; the limit is {MAX_GENERATED_NODES}"
-        ))),
+        Some(n) => Err(Error::TooLarge(format!("{what} would have {n} nodes; the limit is {MAX_GENERATED_NODES}"))),
         None => Err(Error::TooLarge(format!("{what}: the node count overflows"))),
     }
 }
@@ -84,10 +82,7 @@ pub(crate) mod test_util {
         m.sanity_check().unwrap();
         assert_eq!(mesh_stats(m).inverted, 0, "inverted elements");
         for e in 0..m.element_count() {
-            assert!(
-                m.corner_area(e) > 0.0,
-                "element {e} is not counter-clockwise"
-            );
+            assert!(m.corner_area(e) > 0.0, "element {e} is not counter-clockwise");
         }
         for n in 0..m.node_count() {
             if m.is_boundary(n) {
@@ -99,9 +94,7 @@ pub(crate) mod test_util {
     /// The invariants of a generated volume mesh: no inverted element (certain validity),
     /// and the fixed nodes exactly those of the boundary faces.
     pub fn assert_volume_valid(m: &crate::volume::VolumeMesh) {
-        let inverted: Vec<usize> = (0..m.element_count())
-            .filter(|&e| m.is_inverted(e))
-            .collect();
+        let inverted: Vec<usize> = (0..m.element_count()).filter(|&e| m.is_inverted(e)).collect();
         assert!(inverted.is_empty(), "inverted elements {inverted:?}");
         let mut on_boundary = vec![false; m.node_count()];
         for f in m.boundary_faces() {
@@ -109,10 +102,6 @@ pub(crate) mod test_util {
                 on_boundary[n as usize] = true;
             }
         }
-        assert_eq!(
-            on_boundary.as_slice(),
-            m.fixed(),
-            "fixed nodes are the boundary's"
-        );
+        assert_eq!(on_boundary.as_slice(), m.fixed(), "fixed nodes are the boundary's");
     }
 }

@@ -1,8 +1,8 @@
 //! Random perturbation of the free nodes: how the tangled test meshes are made.
 
+use crate::numeric::SplitMix64;
 use crate::error::{Error, Result};
 use crate::mesh::Mesh;
-use crate::numeric::SplitMix64;
 
 /// A copy of `mesh` with every free node (a corner that is not fixed) moved by a seeded
 /// random offset uniformly distributed in the disk of radius
@@ -47,11 +47,7 @@ pub fn perturb(mesh: &Mesh, amount: f64, seed: u64) -> Result<Mesh> {
 /// 0.5–1 is Knupp's kind of tangled test mesh (Knupp 1999, §4: "randomly perturbed
 /// interior nodes"). Seeded as [`perturb`]: the free nodes draw in node order from
 /// [`SplitMix64`].
-pub fn perturb_volume(
-    mesh: &crate::volume::VolumeMesh,
-    amount: f64,
-    seed: u64,
-) -> Result<crate::volume::VolumeMesh> {
+pub fn perturb_volume(mesh: &crate::volume::VolumeMesh, amount: f64, seed: u64) -> Result<crate::volume::VolumeMesh> {
     let radius = perturbation_radius(amount, mesh.mean_edge_length())?;
     let mut out = mesh.clone();
     let mut rng = SplitMix64::new(seed);
@@ -68,11 +64,7 @@ pub fn perturb_volume(
 /// offset in the disk of radius `amount × mean edge length`, then projected back onto the
 /// reference (the planar [`perturb`] on a surface); the nodes
 /// that follow move with them. Node by node in node order, from [`SplitMix64`].
-pub fn perturb_surface(
-    surface: &crate::surface::Surface,
-    amount: f64,
-    seed: u64,
-) -> Result<crate::surface::Surface> {
+pub fn perturb_surface(surface: &crate::surface::Surface, amount: f64, seed: u64) -> Result<crate::surface::Surface> {
     let radius = perturbation_radius(amount, surface.mean_edge_length())?;
     let mut out = surface.clone();
     let mut rng = SplitMix64::new(seed);
@@ -90,9 +82,7 @@ pub fn perturb_surface(
 /// amount, for planar meshes and surfaces).
 pub(crate) fn perturbation_radius(amount: f64, mean_edge_length: f64) -> Result<f64> {
     if !(amount.is_finite() && amount >= 0.0) {
-        return Err(Error::invalid(format!(
-            "the perturbation amount must be a finite number ≥ 0, not {amount}"
-        )));
+        return Err(Error::invalid(format!("the perturbation amount must be a finite number ≥ 0, not {amount}")));
     }
     Ok(amount * mean_edge_length)
 }
@@ -100,12 +90,10 @@ pub(crate) fn perturbation_radius(amount: f64, mean_edge_length: f64) -> Result<
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::generate::{
-        grid, hex_grid, mixed_block, plate, rand2d, GridKind, HexBlock, PlateKind,
-    };
+    use crate::generate::{grid, hex_grid, mixed_block, plate, rand2d, GridKind, HexBlock, PlateKind};
+    use crate::volume::VolumeMesh;
     use crate::mesh::{NodeRole, NONE};
     use crate::quality::mesh_stats;
-    use crate::volume::VolumeMesh;
     use proptest::prelude::*;
 
     /// Fixed nodes stay bit for bit, free ones move at most `amount × mean edge`.
@@ -127,9 +115,7 @@ mod tests {
         let p = perturb(&m, 0.7, 3).unwrap();
         p.sanity_check().unwrap();
         check_moves(&m, &p, 0.7);
-        let moved = (0..m.node_count())
-            .filter(|&n| m.nodes()[n] != p.nodes()[n])
-            .count();
+        let moved = (0..m.node_count()).filter(|&n| m.nodes()[n] != p.nodes()[n]).count();
         assert_eq!(moved, m.free_count());
         // uniform in the disk: E|offset|² = r²/2
         let r = 0.7 * m.mean_edge_length();
@@ -138,11 +124,7 @@ mod tests {
             .map(|n| m.nodes()[n].distance_squared(p.nodes()[n]))
             .sum::<f64>()
             / m.free_count() as f64;
-        assert!(
-            (mean_sq / (r * r) - 0.5).abs() < 0.05,
-            "{}",
-            mean_sq / (r * r)
-        );
+        assert!((mean_sq / (r * r) - 0.5).abs() < 0.05, "{}", mean_sq / (r * r));
     }
 
     #[test]
@@ -151,9 +133,7 @@ mod tests {
         let a = perturb(&m, 0.3, 11).unwrap();
         assert_eq!(a.nodes(), perturb(&m, 0.3, 11).unwrap().nodes());
         let b = perturb(&m, 0.3, 12).unwrap();
-        let differ = (0..m.node_count())
-            .filter(|&n| a.nodes()[n] != b.nodes()[n])
-            .count();
+        let differ = (0..m.node_count()).filter(|&n| a.nodes()[n] != b.nodes()[n]).count();
         assert_eq!(differ, m.free_count());
         assert_eq!(perturb(&m, 0.0, 5).unwrap().nodes(), m.nodes());
     }
@@ -165,11 +145,7 @@ mod tests {
         let t = perturb(&m, 1.0, 1).unwrap();
         assert!(mesh_stats(&t).inverted > 10, "{}", mesh_stats(&t).inverted);
         let small = perturb(&m, 0.05, 1).unwrap();
-        assert_eq!(
-            mesh_stats(&small).inverted,
-            0,
-            "a small amount keeps the mesh valid"
-        );
+        assert_eq!(mesh_stats(&small).inverted, 0, "a small amount keeps the mesh valid");
     }
 
     #[test]
@@ -180,22 +156,11 @@ mod tests {
         check_moves(&m, &p, 0.8);
         for e in p.edges() {
             assert_ne!(e.mid, NONE);
-            let (a, b, c) = (
-                p.nodes()[e.a as usize],
-                p.nodes()[e.b as usize],
-                p.nodes()[e.mid as usize],
-            );
+            let (a, b, c) = (p.nodes()[e.a as usize], p.nodes()[e.b as usize], p.nodes()[e.mid as usize]);
             if e.curved {
-                assert_eq!(
-                    c,
-                    m.nodes()[e.mid as usize],
-                    "curved boundary mid nodes stay"
-                );
+                assert_eq!(c, m.nodes()[e.mid as usize], "curved boundary mid nodes stay");
             } else {
-                assert!(
-                    c.distance(0.5 * (a + b)) < 1e-12,
-                    "mid node follows its corners"
-                );
+                assert!(c.distance(0.5 * (a + b)) < 1e-12, "mid node follows its corners");
             }
         }
     }
@@ -217,22 +182,11 @@ mod tests {
             if before.fixed()[n] {
                 assert_eq!(p, q, "fixed node {n} moved");
             } else if before.is_free(n) {
-                assert!(
-                    p.distance(q) <= r * (1.0 + 1e-12),
-                    "node {n} moved {} > {r}",
-                    p.distance(q)
-                );
+                assert!(p.distance(q) <= r * (1.0 + 1e-12), "node {n} moved {} > {r}", p.distance(q));
             } else {
                 let ps = after.parents(n);
-                let mean = ps
-                    .iter()
-                    .map(|&c| after.nodes()[c as usize])
-                    .sum::<glam::DVec3>()
-                    / ps.len() as f64;
-                assert!(
-                    q.distance(mean) < 1e-12,
-                    "follower {n} is off its corners' mean"
-                );
+                let mean = ps.iter().map(|&c| after.nodes()[c as usize]).sum::<glam::DVec3>() / ps.len() as f64;
+                assert!(q.distance(mean) < 1e-12, "follower {n} is off its corners' mean");
             }
         }
     }
@@ -242,55 +196,32 @@ mod tests {
         let m = hex_grid(&HexBlock::cube(6)).unwrap();
         let p = perturb_volume(&m, 0.6, 1).unwrap();
         check_volume_moves(&m, &p, 0.6);
-        let moved = (0..m.node_count())
-            .filter(|&n| m.nodes()[n] != p.nodes()[n])
-            .count();
+        let moved = (0..m.node_count()).filter(|&n| m.nodes()[n] != p.nodes()[n]).count();
         assert_eq!(moved, m.free_count());
         assert_eq!(m.free_count(), 125);
         let inverted = (0..p.element_count()).filter(|&e| p.is_inverted(e)).count();
         assert!(inverted > 0, "0.6 edge lengths inverts hexahedra");
         let small = perturb_volume(&m, 0.05, 1).unwrap();
-        assert_eq!(
-            (0..small.element_count())
-                .filter(|&e| small.is_inverted(e))
-                .count(),
-            0
-        );
+        assert_eq!((0..small.element_count()).filter(|&e| small.is_inverted(e)).count(), 0);
         // seeded: the same seed, the same mesh; another seed moves every free node elsewhere
         assert_eq!(perturb_volume(&m, 0.6, 1).unwrap().nodes(), p.nodes());
         let q = perturb_volume(&m, 0.6, 2).unwrap();
-        assert_eq!(
-            (0..m.node_count())
-                .filter(|&n| q.nodes()[n] != p.nodes()[n])
-                .count(),
-            m.free_count()
-        );
+        assert_eq!((0..m.node_count()).filter(|&n| q.nodes()[n] != p.nodes()[n]).count(), m.free_count());
         assert_eq!(perturb_volume(&m, 0.0, 5).unwrap().nodes(), m.nodes());
         for a in [-0.1, f64::NAN, f64::INFINITY] {
-            assert!(
-                matches!(perturb_volume(&m, a, 1), Err(Error::Invalid(_))),
-                "{a}"
-            );
+            assert!(matches!(perturb_volume(&m, a, 1), Err(Error::Invalid(_))), "{a}");
         }
     }
 
     #[test]
     fn every_kind_is_perturbed_its_followers_following() {
-        let hex27 = hex_grid(&HexBlock::cube(3))
-            .unwrap()
-            .to_quadratic(false)
-            .unwrap();
-        let hex20 = hex_grid(&HexBlock::cube(3).bent(60.0))
-            .unwrap()
-            .to_quadratic(true)
-            .unwrap();
+        let hex27 = hex_grid(&HexBlock::cube(3)).unwrap().to_quadratic(false).unwrap();
+        let hex20 = hex_grid(&HexBlock::cube(3).bent(60.0)).unwrap().to_quadratic(true).unwrap();
         let mixed = mixed_block(&HexBlock::cube(3)).unwrap();
         for m in [hex27, hex20, mixed] {
             let p = perturb_volume(&m, 0.4, 7).unwrap();
             check_volume_moves(&m, &p, 0.4);
-            assert!((0..m.node_count())
-                .filter(|&n| m.is_free(n))
-                .all(|n| m.nodes()[n] != p.nodes()[n]));
+            assert!((0..m.node_count()).filter(|&n| m.is_free(n)).all(|n| m.nodes()[n] != p.nodes()[n]));
         }
     }
 

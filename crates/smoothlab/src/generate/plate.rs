@@ -45,9 +45,7 @@ enum_with_names! {
 /// `R·m` quads or `2·R·m` triangles (mixed: `R·m/2` quads and `R·m` triangles).
 pub fn plate(kind: PlateKind, order: u8, resolution: usize) -> Result<Mesh> {
     if order != 1 && order != 2 {
-        return Err(Error::invalid(format!(
-            "plate: order must be 1 or 2, not {order}"
-        )));
+        return Err(Error::invalid(format!("plate: order must be 1 or 2, not {order}")));
     }
     if resolution == 0 {
         return Err(Error::invalid("plate: the resolution must be at least 1"));
@@ -64,11 +62,7 @@ pub fn plate(kind: PlateKind, order: u8, resolution: usize) -> Result<Mesh> {
         }
     }
     let id = |i: usize, j: usize| (i * m + j % m) as u32;
-    let mut mids = MidNodes {
-        order,
-        map: HashMap::new(),
-        hole_nodes: m as u32,
-    };
+    let mut mids = MidNodes { order, map: HashMap::new(), hole_nodes: m as u32 };
     for i in 0..rings {
         let quad = match kind {
             PlateKind::Quad => true,
@@ -174,11 +168,7 @@ impl MidNodes {
                 a.node(mid)
             });
         }
-        let kind = if k == 3 {
-            ElementKind::Tri6
-        } else {
-            ElementKind::Quad8
-        };
+        let kind = if k == 3 { ElementKind::Tri6 } else { ElementKind::Quad8 };
         a.element(kind, &ids[..2 * k]);
     }
 }
@@ -241,17 +231,9 @@ mod tests {
             let m = 24.0;
             let hole = 0.5 * m * PLATE_HOLE_RADIUS.powi(2) * (std::f64::consts::TAU / m).sin();
             let area: f64 = (0..p.element_count()).map(|e| p.corner_area(e)).sum();
-            assert!(
-                (area - (4.0 * PLATE_HALF_WIDTH.powi(2) - hole)).abs() < 1e-12,
-                "{area}"
-            );
+            assert!((area - (4.0 * PLATE_HALF_WIDTH.powi(2) - hole)).abs() < 1e-12, "{area}");
             // the four corners of the square are nodes
-            for c in [
-                DVec2::new(1.0, 1.0),
-                DVec2::new(-1.0, 1.0),
-                DVec2::new(-1.0, -1.0),
-                DVec2::new(1.0, -1.0),
-            ] {
+            for c in [DVec2::new(1.0, 1.0), DVec2::new(-1.0, 1.0), DVec2::new(-1.0, -1.0), DVec2::new(1.0, -1.0)] {
                 assert!(p.nodes().iter().any(|q| q.distance(c) < 1e-15), "{c}");
             }
         }
@@ -262,10 +244,7 @@ mod tests {
         let p = plate(PlateKind::Mixed, 1, 2).unwrap();
         for e in 0..p.element_count() {
             let touches_hole = p.element(e).iter().any(|&i| on_hole(p.nodes()[i as usize]));
-            let touches_square = p
-                .element(e)
-                .iter()
-                .any(|&i| on_square(p.nodes()[i as usize]));
+            let touches_square = p.element(e).iter().any(|&i| on_square(p.nodes()[i as usize]));
             if touches_hole {
                 assert!(p.kind(e).is_quad());
             }
@@ -283,26 +262,16 @@ mod tests {
             let mut curved = 0;
             for e in p.edges() {
                 assert_ne!(e.mid, crate::mesh::NONE);
-                let (a, b, c) = (
-                    p.nodes()[e.a as usize],
-                    p.nodes()[e.b as usize],
-                    p.nodes()[e.mid as usize],
-                );
+                let (a, b, c) = (p.nodes()[e.a as usize], p.nodes()[e.b as usize], p.nodes()[e.mid as usize]);
                 assert_eq!(p.role(e.mid as usize), NodeRole::Mid);
                 if on_hole(a) && on_hole(b) {
-                    assert!(
-                        (c.length() - PLATE_HOLE_RADIUS).abs() < 1e-12,
-                        "hole mid node on the circle"
-                    );
+                    assert!((c.length() - PLATE_HOLE_RADIUS).abs() < 1e-12, "hole mid node on the circle");
                     // halfway round the arc
                     assert!((c.distance(a) - c.distance(b)).abs() < 1e-12);
                     assert!(e.curved && e.is_boundary() && p.fixed()[e.mid as usize]);
                     curved += 1;
                 } else {
-                    assert!(
-                        c.distance(0.5 * (a + b)) < 1e-15,
-                        "straight edges have mid nodes at the midpoint"
-                    );
+                    assert!(c.distance(0.5 * (a + b)) < 1e-15, "straight edges have mid nodes at the midpoint");
                     assert!(!e.curved);
                 }
             }
@@ -322,35 +291,17 @@ mod tests {
         for kind in KINDS {
             for order in [1, 2] {
                 let s = mesh_stats(&plate(kind, order, 4).unwrap());
-                assert!(
-                    s.min_angle_deg > 15.0 && s.max_angle_deg < 140.0,
-                    "{kind:?}: {s:?}"
-                );
-                assert!(
-                    s.min_quality > 0.4 && s.mean_quality > 0.6,
-                    "{kind:?}: {s:?}"
-                );
+                assert!(s.min_angle_deg > 15.0 && s.max_angle_deg < 140.0, "{kind:?}: {s:?}");
+                assert!(s.min_quality > 0.4 && s.mean_quality > 0.6, "{kind:?}: {s:?}");
             }
         }
     }
 
     #[test]
     fn bad_requests_are_errors() {
-        assert!(matches!(
-            plate(PlateKind::Tri, 3, 2),
-            Err(Error::Invalid(_))
-        ));
-        assert!(matches!(
-            plate(PlateKind::Quad, 1, 0),
-            Err(Error::Invalid(_))
-        ));
-        assert!(matches!(
-            plate(PlateKind::Quad, 2, 100_000),
-            Err(Error::TooLarge(_))
-        ));
-        assert!(matches!(
-            plate(PlateKind::Quad, 2, usize::MAX / 3),
-            Err(Error::TooLarge(_))
-        ));
+        assert!(matches!(plate(PlateKind::Tri, 3, 2), Err(Error::Invalid(_))));
+        assert!(matches!(plate(PlateKind::Quad, 1, 0), Err(Error::Invalid(_))));
+        assert!(matches!(plate(PlateKind::Quad, 2, 100_000), Err(Error::TooLarge(_))));
+        assert!(matches!(plate(PlateKind::Quad, 2, usize::MAX / 3), Err(Error::TooLarge(_))));
     }
 }

@@ -4,9 +4,9 @@ use glam::DVec2;
 use spade::{DelaunayTriangulation, Point2, Triangulation};
 
 use super::{check_size, Assembly};
+use crate::numeric::SplitMix64;
 use crate::error::{Error, Result};
 use crate::mesh::{ElementKind, Mesh};
-use crate::numeric::SplitMix64;
 
 /// Interior points closer than this fraction of the mean point spacing to an earlier
 /// point, or to the boundary, are drawn again. It only guards against (near-)duplicate
@@ -46,9 +46,7 @@ pub fn rand2d_spatial(interior: usize, per_side: usize, seed: u64) -> Result<Mes
 
 fn rand2d_numbered(interior: usize, per_side: usize, seed: u64, spatial: bool) -> Result<Mesh> {
     if per_side == 0 {
-        return Err(Error::invalid(
-            "rand2d needs at least one boundary point per side (the corners)",
-        ));
+        return Err(Error::invalid("rand2d needs at least one boundary point per side (the corners)"));
     }
     let boundary = per_side.checked_mul(4);
     let total = boundary.and_then(|b| b.checked_add(interior));
@@ -77,9 +75,7 @@ fn rand2d_numbered(interior: usize, per_side: usize, seed: u64, spatial: bool) -
     let dt = DelaunayTriangulation::<Point2<f64>>::bulk_load_stable(vertices)
         .map_err(|e| Error::invalid(format!("rand2d: the Delaunay triangulation failed: {e:?}")))?;
     if dt.num_vertices() != pts.len() {
-        return Err(Error::invalid(
-            "rand2d: duplicate points reached the triangulation",
-        ));
+        return Err(Error::invalid("rand2d: duplicate points reached the triangulation"));
     }
     let mut a = Assembly::with_capacity(pts.len(), dt.num_inner_faces());
     for q in &pts {
@@ -89,10 +85,7 @@ fn rand2d_numbered(interior: usize, per_side: usize, seed: u64, spatial: bool) -
     for f in dt.inner_faces() {
         // spade's faces are counter-clockwise; `bulk_load_stable` keeps our numbering
         let [v0, v1, v2] = f.vertices();
-        a.element(
-            ElementKind::Tri3,
-            &[v0.index() as u32, v1.index() as u32, v2.index() as u32],
-        );
+        a.element(ElementKind::Tri3, &[v0.index() as u32, v1.index() as u32, v2.index() as u32]);
     }
     // the triangulation (about 200 bytes a point) is let go before the topology is built
     drop(dt);
@@ -135,10 +128,7 @@ fn draw_interior(pts: &mut Vec<DVec2>, count: usize, seed: u64) -> Result<()> {
         let mut clash = false;
         'search: for y in cy.saturating_sub(1)..=(cy + 1).min(cells - 1) {
             for x in cx.saturating_sub(1)..=(cx + 1).min(cells - 1) {
-                if buckets[y * cells + x]
-                    .iter()
-                    .any(|&i| pts[i as usize].distance_squared(q) < min_sep * min_sep)
-                {
+                if buckets[y * cells + x].iter().any(|&i| pts[i as usize].distance_squared(q) < min_sep * min_sep) {
                     clash = true;
                     break 'search;
                 }
@@ -161,15 +151,9 @@ mod tests {
 
     #[test]
     fn the_spatial_numbering_is_the_same_mesh_with_neighbours_near_in_memory() {
-        let (drawn, spatial) = (
-            rand2d(3000, 30, 7).unwrap(),
-            rand2d_spatial(3000, 30, 7).unwrap(),
-        );
+        let (drawn, spatial) = (rand2d(3000, 30, 7).unwrap(), rand2d_spatial(3000, 30, 7).unwrap());
         assert_valid(&spatial);
-        assert_eq!(
-            (spatial.node_count(), spatial.element_count()),
-            (drawn.node_count(), drawn.element_count())
-        );
+        assert_eq!((spatial.node_count(), spatial.element_count()), (drawn.node_count(), drawn.element_count()));
         assert_eq!(spatial.free_count(), drawn.free_count());
         // the same triangles, as sets of points
         let triangles = |m: &Mesh| {
@@ -188,24 +172,10 @@ mod tests {
         };
         assert_eq!(triangles(&spatial), triangles(&drawn));
         // an edge joins nodes far fewer numbers apart
-        let spread = |m: &Mesh| {
-            m.edges()
-                .iter()
-                .map(|e| (e.a as f64 - e.b as f64).abs())
-                .sum::<f64>()
-                / m.edges().len() as f64
-        };
-        assert!(
-            spread(&spatial) * 10.0 < spread(&drawn),
-            "{} vs {}",
-            spread(&spatial),
-            spread(&drawn)
-        );
-        assert_eq!(
-            spatial.nodes(),
-            rand2d_spatial(3000, 30, 7).unwrap().nodes(),
-            "deterministic"
-        );
+        let spread =
+            |m: &Mesh| m.edges().iter().map(|e| (e.a as f64 - e.b as f64).abs()).sum::<f64>() / m.edges().len() as f64;
+        assert!(spread(&spatial) * 10.0 < spread(&drawn), "{} vs {}", spread(&spatial), spread(&drawn));
+        assert_eq!(spatial.nodes(), rand2d_spatial(3000, 30, 7).unwrap().nodes(), "deterministic");
     }
 
     #[test]
@@ -220,23 +190,14 @@ mod tests {
 
     #[test]
     fn euler_count_for_other_sizes() {
-        for (interior, per_side, seed) in
-            [(0, 1, 0), (0, 5, 3), (1, 1, 9), (37, 3, 5), (2000, 40, 77)]
-        {
+        for (interior, per_side, seed) in [(0, 1, 0), (0, 5, 3), (1, 1, 9), (37, 3, 5), (2000, 40, 77)] {
             let m = rand2d(interior, per_side, seed).unwrap();
             assert_valid(&m);
             let n = interior + 4 * per_side;
             assert_eq!(m.node_count(), n);
-            assert_eq!(
-                m.element_count(),
-                2 * n - 4 * per_side - 2,
-                "{interior} {per_side}"
-            );
+            assert_eq!(m.element_count(), 2 * n - 4 * per_side - 2, "{interior} {per_side}");
             let area: f64 = (0..m.element_count()).map(|e| m.corner_area(e)).sum();
-            assert!(
-                (area - 1.0).abs() < 1e-12,
-                "triangles tile the square: {area}"
-            );
+            assert!((area - 1.0).abs() < 1e-12, "triangles tile the square: {area}");
         }
     }
 
@@ -260,17 +221,8 @@ mod tests {
             assert_eq!(a.element(e), b.element(e));
         }
         let c = rand2d(300, 10, 8).unwrap();
-        assert_eq!(
-            a.nodes()[..40],
-            c.nodes()[..40],
-            "the boundary does not depend on the seed"
-        );
-        let moved = a
-            .nodes()
-            .iter()
-            .zip(c.nodes())
-            .filter(|(p, q)| p != q)
-            .count();
+        assert_eq!(a.nodes()[..40], c.nodes()[..40], "the boundary does not depend on the seed");
+        let moved = a.nodes().iter().zip(c.nodes()).filter(|(p, q)| p != q).count();
         assert_eq!(moved, 300, "every interior point differs with another seed");
     }
 
@@ -283,10 +235,7 @@ mod tests {
         assert!((q as i64 - 1000).abs() < 150, "{q}");
         let spacing = 1.0 / (m.node_count() as f64).sqrt();
         for (i, p) in inner.iter().enumerate() {
-            assert!(
-                p.min_element() >= MIN_SEPARATION * spacing
-                    && p.max_element() <= 1.0 - MIN_SEPARATION * spacing
-            );
+            assert!(p.min_element() >= MIN_SEPARATION * spacing && p.max_element() <= 1.0 - MIN_SEPARATION * spacing);
             for q in &inner[i + 1..] {
                 assert!(p.distance(*q) >= MIN_SEPARATION * spacing);
             }
@@ -297,9 +246,6 @@ mod tests {
     fn bad_requests_are_errors() {
         assert!(matches!(rand2d(10, 0, 1), Err(Error::Invalid(_))));
         assert!(matches!(rand2d(usize::MAX, 20, 1), Err(Error::TooLarge(_))));
-        assert!(matches!(
-            rand2d(10, usize::MAX / 2, 1),
-            Err(Error::TooLarge(_))
-        ));
+        assert!(matches!(rand2d(10, usize::MAX / 2, 1), Err(Error::TooLarge(_))));
     }
 }

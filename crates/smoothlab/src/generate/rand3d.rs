@@ -28,8 +28,8 @@
 
 use glam::DVec3;
 
-use crate::error::{Error, Result};
 use crate::numeric::SplitMix64;
+use crate::error::{Error, Result};
 use crate::volume::VolumeMesh;
 
 /// The points of Freitag's rand3D.
@@ -65,12 +65,7 @@ fn orient(a: DVec3, b: DVec3, c: DVec3, d: DVec3) -> f64 {
 #[inline]
 fn in_sphere(a: DVec3, b: DVec3, c: DVec3, d: DVec3, e: DVec3) -> bool {
     let (a, b, c, d) = (a - e, b - e, c - e, d - e);
-    let (la, lb, lc, ld) = (
-        a.length_squared(),
-        b.length_squared(),
-        c.length_squared(),
-        d.length_squared(),
-    );
+    let (la, lb, lc, ld) = (a.length_squared(), b.length_squared(), c.length_squared(), d.length_squared());
     let det = -la * orient(DVec3::ZERO, b, c, d) + lb * orient(DVec3::ZERO, a, c, d)
         - lc * orient(DVec3::ZERO, a, b, d)
         + ld * orient(DVec3::ZERO, a, b, c);
@@ -87,8 +82,7 @@ fn in_circle(a: DVec3, b: DVec3, c: DVec3, p: DVec3) -> bool {
     if n2 == 0.0 {
         return false;
     }
-    let centre =
-        a + (v.length_squared() * n.cross(u) + u.length_squared() * v.cross(n)) / (2.0 * n2);
+    let centre = a + (v.length_squared() * n.cross(u) + u.length_squared() * v.cross(n)) / (2.0 * n2);
     p.distance_squared(centre) < a.distance_squared(centre)
 }
 
@@ -108,13 +102,7 @@ impl<'a> Delaunay<'a> {
     fn conflicts(&self, t: u32, q: DVec3) -> bool {
         let tet = self.tets[t as usize];
         match tet.iter().position(|&v| v == INF) {
-            None => in_sphere(
-                self.pt(tet[0]),
-                self.pt(tet[1]),
-                self.pt(tet[2]),
-                self.pt(tet[3]),
-                q,
-            ),
+            None => in_sphere(self.pt(tet[0]), self.pt(tet[1]), self.pt(tet[2]), self.pt(tet[3]), q),
             Some(i) => {
                 let [a, b, c, _] = last(tet, i);
                 let (a, b, c) = (self.pt(a), self.pt(b), self.pt(c));
@@ -164,9 +152,7 @@ impl<'a> Delaunay<'a> {
             return t;
         }
         // a walk that cycles (it cannot in a Delaunay mesh, short of rounding): search
-        (0..self.tets.len() as u32)
-            .find(|&t| !self.dead[t as usize] && self.conflicts(t, q))
-            .unwrap_or(self.last)
+        (0..self.tets.len() as u32).find(|&t| !self.dead[t as usize] && self.conflicts(t, q)).unwrap_or(self.last)
     }
 
     /// Inserts point `v` (see the module docs).
@@ -174,9 +160,7 @@ impl<'a> Delaunay<'a> {
         let q = self.pt(v);
         let start = self.locate(q);
         if !self.conflicts(start, q) {
-            return Err(Error::invalid(format!(
-                "rand3d: point {v} at {q} is not inside the mesh (a repeated point?)"
-            )));
+            return Err(Error::invalid(format!("rand3d: point {v} at {q} is not inside the mesh (a repeated point?)")));
         }
         // the cavity, by breadth-first search over conflicting neighbours
         self.cavity.clear();
@@ -210,10 +194,7 @@ impl<'a> Delaunay<'a> {
                 let s = self.alloc(tet);
                 self.nb[s as usize][k] = n;
                 if n != NONE {
-                    let back = self.nb[n as usize]
-                        .iter()
-                        .position(|&x| x == t)
-                        .expect("neighbours point both ways");
+                    let back = self.nb[n as usize].iter().position(|&x| x == t).expect("neighbours point both ways");
                     self.nb[n as usize][back] = s;
                 }
                 made.push((s, k));
@@ -260,26 +241,18 @@ impl<'a> Delaunay<'a> {
                 }
             }
         }
-        self.last = made
-            .iter()
-            .map(|&(s, _)| s)
-            .find(|&s| !self.tets[s as usize].contains(&INF))
-            .unwrap_or(made[0].0);
+        self.last = made.iter().map(|&(s, _)| s).find(|&s| !self.tets[s as usize].contains(&INF)).unwrap_or(made[0].0);
         Ok(())
     }
 
     /// The Delaunay tetrahedralization of `p` (see [`delaunay_tetrahedra`]).
     fn build(p: &'a [DVec3]) -> Result<Vec<[u32; 4]>> {
         if p.len() < 4 {
-            return Err(Error::invalid(
-                "rand3d: a tetrahedralization needs four points",
-            ));
+            return Err(Error::invalid("rand3d: a tetrahedralization needs four points"));
         }
         let mut first = [0u32, 1, 2, 3];
         if orient(p[0], p[1], p[2], p[3]) == 0.0 {
-            return Err(Error::invalid(
-                "rand3d: the first four points lie in a plane",
-            ));
+            return Err(Error::invalid("rand3d: the first four points lie in a plane"));
         }
         if orient(p[0], p[1], p[2], p[3]) < 0.0 {
             first.swap(1, 2);
@@ -318,9 +291,7 @@ impl<'a> Delaunay<'a> {
                     }
                     let face: Vec<u32> = (0..4).filter(|&l| l != j).map(|l| ta[l]).collect();
                     if face.iter().all(|w| tb.contains(w)) {
-                        let jb = (0..4)
-                            .find(|&l| !face.contains(&tb[l]))
-                            .expect("a vertex off the face");
+                        let jb = (0..4).find(|&l| !face.contains(&tb[l])).expect("a vertex off the face");
                         d.nb[a as usize][j] = b;
                         d.nb[b as usize][jb] = a;
                     }
@@ -330,10 +301,7 @@ impl<'a> Delaunay<'a> {
         for v in 4..p.len() as u32 {
             d.insert(v)?;
         }
-        Ok((0..d.tets.len())
-            .filter(|&t| !d.dead[t] && !d.tets[t].contains(&INF))
-            .map(|t| d.tets[t])
-            .collect())
+        Ok((0..d.tets.len()).filter(|&t| !d.dead[t] && !d.tets[t].contains(&INF)).map(|t| d.tets[t]).collect())
     }
 }
 
@@ -353,11 +321,7 @@ fn points(n: usize, seed: u64) -> Vec<DVec3> {
     let mut p = Vec::with_capacity(n);
     // corners 0, x, y, z first: the first four points must span a tetrahedron
     for c in [0, 1, 2, 4, 3, 5, 6, 7] {
-        p.push(DVec3::new(
-            (c & 1) as f64,
-            ((c >> 1) & 1) as f64,
-            ((c >> 2) & 1) as f64,
-        ));
+        p.push(DVec3::new((c & 1) as f64, ((c >> 1) & 1) as f64, ((c >> 2) & 1) as f64));
     }
     let boundary = 8 + 12 * (k - 1) + 6 * (k - 1) * (k - 1);
     if n > boundary {
@@ -391,11 +355,7 @@ fn points(n: usize, seed: u64) -> Vec<DVec3> {
     }
     let inner = |rng: &mut SplitMix64| 0.5 * h + (1.0 - h) * rng.next_f64();
     while p.len() < n {
-        p.push(DVec3::new(
-            inner(&mut rng),
-            inner(&mut rng),
-            inner(&mut rng),
-        ));
+        p.push(DVec3::new(inner(&mut rng), inner(&mut rng), inner(&mut rng)));
     }
     p
 }
@@ -413,9 +373,7 @@ pub fn delaunay_tetrahedra(p: &[DVec3]) -> Result<Vec<[u32; 4]>> {
 /// from 9 to 200 000.
 pub fn rand3d(n: usize, seed: u64) -> Result<VolumeMesh> {
     if !(9..=200_000).contains(&n) {
-        return Err(Error::invalid(format!(
-            "rand3d with {n} points: give 9 to 200000"
-        )));
+        return Err(Error::invalid(format!("rand3d with {n} points: give 9 to 200000")));
     }
     let p = points(n, seed);
     let mut tets = Delaunay::build(&p)?;
@@ -432,10 +390,8 @@ mod tests {
     fn circumsphere(t: [DVec3; 4]) -> (DVec3, f64) {
         let (a, b, c) = (t[1] - t[0], t[2] - t[0], t[3] - t[0]);
         let d = 2.0 * a.dot(b.cross(c));
-        let o = (a.length_squared() * b.cross(c)
-            + b.length_squared() * c.cross(a)
-            + c.length_squared() * a.cross(b))
-            / d;
+        let o =
+            (a.length_squared() * b.cross(c) + b.length_squared() * c.cross(a) + c.length_squared() * a.cross(b)) / d;
         (t[0] + o, o.length_squared())
     }
 
@@ -457,10 +413,7 @@ mod tests {
                     if m.element(e).contains(&(i as u32)) {
                         continue;
                     }
-                    assert!(
-                        p.distance_squared(o) >= r2 * (1.0 - 1e-9),
-                        "n {n}: point {i} inside the sphere of {e}"
-                    );
+                    assert!(p.distance_squared(o) >= r2 * (1.0 - 1e-9), "n {n}: point {i} inside the sphere of {e}");
                 }
             }
             assert!((volume - 1.0).abs() < 1e-12, "n {n}: volume {volume}");
@@ -470,8 +423,7 @@ mod tests {
                 let [a, b, c] = f.as_triangle().unwrap().map(|i| m.nodes()[i as usize]);
                 area += 0.5 * (b - a).cross(c - a).length();
                 let on_side = (0..3).any(|k| {
-                    [a[k], b[k], c[k]].iter().all(|&x| x == 0.0)
-                        || [a[k], b[k], c[k]].iter().all(|&x| x == 1.0)
+                    [a[k], b[k], c[k]].iter().all(|&x| x == 0.0) || [a[k], b[k], c[k]].iter().all(|&x| x == 1.0)
                 });
                 assert!(on_side, "n {n}: boundary face off the cube: {a} {b} {c}");
             }
@@ -499,13 +451,10 @@ mod tests {
     fn swapping_keeps_the_cube_filled_and_raises_the_smallest_angle() {
         for (n, seed) in [(60, 2), (400, 3), (RAND3D_POINTS, 1)] {
             let p = points(n, seed);
-            let delaunay =
-                VolumeMesh::from_tets(p.clone(), &delaunay_tetrahedra(&p).unwrap()).unwrap();
+            let delaunay = VolumeMesh::from_tets(p.clone(), &delaunay_tetrahedra(&p).unwrap()).unwrap();
             let m = rand3d(n, seed).unwrap();
             assert_eq!(m.nodes(), delaunay.nodes());
-            let volume: f64 = (0..m.element_count())
-                .map(|e| signed_volume(&m.tet_corners(e)))
-                .sum();
+            let volume: f64 = (0..m.element_count()).map(|e| signed_volume(&m.tet_corners(e))).sum();
             assert!((volume - 1.0).abs() < 1e-12, "n {n}: volume {volume}");
             assert!((0..m.element_count()).all(|e| signed_volume(&m.tet_corners(e)) > 0.0));
             // the same boundary faces: only interior faces and edges are swapped
@@ -524,12 +473,7 @@ mod tests {
             };
             assert_eq!(sorted(&m), sorted(&delaunay));
             let smallest = |m: &VolumeMesh| {
-                (0..m.element_count())
-                    .map(|e| {
-                        tet_measures(&m.tet_corners(e), &crate::quality::tet::EQUILATERAL_TET)
-                            .min_dihedral_deg
-                    })
-                    .fold(180.0, f64::min)
+                (0..m.element_count()).map(|e| tet_measures(&m.tet_corners(e), &crate::quality::tet::EQUILATERAL_TET).min_dihedral_deg).fold(180.0, f64::min)
             };
             assert!(smallest(&m) >= smallest(&delaunay), "n {n}");
         }
@@ -541,13 +485,7 @@ mod tests {
         assert!(orient(t[0], t[1], t[2], t[3]) > 0.0);
         assert!(in_sphere(t[0], t[1], t[2], t[3], DVec3::splat(0.25)));
         // the circumsphere has centre (½,½,½) and radius √3/2: (1,1,1) is on it, (1.1,1,1) out
-        assert!(!in_sphere(
-            t[0],
-            t[1],
-            t[2],
-            t[3],
-            DVec3::new(1.1, 1.0, 1.0)
-        ));
+        assert!(!in_sphere(t[0], t[1], t[2], t[3], DVec3::new(1.1, 1.0, 1.0)));
         assert!(in_sphere(t[0], t[1], t[2], t[3], DVec3::new(0.9, 0.9, 0.9)));
         assert!(in_circle(t[0], t[1], t[2], DVec3::new(0.9, 0.1, 0.0)));
         assert!(!in_circle(t[0], t[1], t[2], DVec3::new(1.1, 1.0, 0.0)));
@@ -555,11 +493,7 @@ mod tests {
 
     #[test]
     fn deterministic_for_a_seed() {
-        let (a, b, c) = (
-            rand3d(300, 7).unwrap(),
-            rand3d(300, 7).unwrap(),
-            rand3d(300, 8).unwrap(),
-        );
+        let (a, b, c) = (rand3d(300, 7).unwrap(), rand3d(300, 7).unwrap(), rand3d(300, 8).unwrap());
         assert_eq!(a.nodes(), b.nodes());
         assert_eq!(a.element_count(), b.element_count());
         assert!((0..a.element_count()).all(|e| a.element(e) == b.element(e)));
@@ -571,17 +505,11 @@ mod tests {
         let m = rand3d(RAND3D_POINTS, 1).unwrap();
         let (lo, hi) = (0..m.element_count())
             .map(|e| tet_measures(&m.tet_corners(e), &crate::quality::tet::EQUILATERAL_TET))
-            .fold((180.0f64, 0.0f64), |(lo, hi), q| {
-                (lo.min(q.min_dihedral_deg), hi.max(q.max_dihedral_deg))
-            });
+            .fold((180.0f64, 0.0f64), |(lo, hi), q| (lo.min(q.min_dihedral_deg), hi.max(q.max_dihedral_deg)));
         // random points leave poor tetrahedra even after the swaps, as Freitag's had
         // (0.471° / 179.21° after hers): work for the smoothers
         assert!(lo < 5.0 && hi > 160.0, "{lo} {hi}");
-        assert!(
-            m.element_count() > 4000 && m.element_count() < 7000,
-            "{}",
-            m.element_count()
-        );
+        assert!(m.element_count() > 4000 && m.element_count() < 7000, "{}", m.element_count());
         assert!(m.free_count() > 300);
     }
 

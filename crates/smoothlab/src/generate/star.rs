@@ -57,19 +57,11 @@ const MAX_K: usize = 1000;
 pub fn star(kind: StarKind, k: usize) -> Result<Mesh> {
     let min = if kind == StarKind::Chen { 6 } else { 3 };
     if k < min || (kind == StarKind::Chen && k % 2 == 1) {
-        let need = if kind == StarKind::Chen {
-            "an even number of at least 6"
-        } else {
-            "at least 3"
-        };
-        return Err(Error::invalid(format!(
-            "a {kind:?} star needs {need} elements, not {k}"
-        )));
+        let need = if kind == StarKind::Chen { "an even number of at least 6" } else { "at least 3" };
+        return Err(Error::invalid(format!("a {kind:?} star needs {need} elements, not {k}")));
     }
     if k > MAX_K {
-        return Err(Error::TooLarge(format!(
-            "a star of {k} elements; the limit is {MAX_K}"
-        )));
+        return Err(Error::TooLarge(format!("a star of {k} elements; the limit is {MAX_K}")));
     }
     let step = std::f64::consts::TAU / k as f64;
     let polar = |r: f64, a: f64| {
@@ -78,13 +70,10 @@ pub fn star(kind: StarKind, k: usize) -> Result<Mesh> {
     };
     let (ring, centre, quads) = match kind {
         StarKind::Regular => {
-            let ring: Vec<DVec2> = (0..k)
-                .map(|i| polar(2.0, std::f64::consts::FRAC_PI_2 + step * i as f64))
-                .collect();
+            let ring: Vec<DVec2> = (0..k).map(|i| polar(2.0, std::f64::consts::FRAC_PI_2 + step * i as f64)).collect();
             // Mesquite's displacement for k = 6, scaled with the inradius for other k
             let centre = DVec2::new(-0.8, -0.8)
-                * (crate::numeric::trig::cos(std::f64::consts::PI / k as f64)
-                    / crate::numeric::trig::cos(std::f64::consts::PI / 6.0));
+                * (crate::numeric::trig::cos(std::f64::consts::PI / k as f64) / crate::numeric::trig::cos(std::f64::consts::PI / 6.0));
             (ring, centre, false)
         }
         StarKind::Chen => {
@@ -93,11 +82,7 @@ pub fn star(kind: StarKind, k: usize) -> Result<Mesh> {
             const NOTCH: [f64; 2] = [0.3, 0.25];
             let ring: Vec<DVec2> = (0..k)
                 .map(|i| {
-                    let r = if i % 2 == 0 {
-                        SPIKE[(i / 2) % 3]
-                    } else {
-                        NOTCH[(i / 2) % 2]
-                    };
+                    let r = if i % 2 == 0 { SPIKE[(i / 2) % 3] } else { NOTCH[(i / 2) % 2] };
                     polar(r, step * (i as f64 + JITTER[i % 7]))
                 })
                 .collect();
@@ -108,10 +93,7 @@ pub fn star(kind: StarKind, k: usize) -> Result<Mesh> {
             let mut ring = Vec::with_capacity(2 * k);
             let scale = 1.0 / (1.0 + crate::numeric::trig::cos(step));
             for i in 0..k {
-                let (e0, e1) = (
-                    polar(1.0, step * i as f64),
-                    polar(1.0, step * (i + 1) as f64),
-                );
+                let (e0, e1) = (polar(1.0, step * i as f64), polar(1.0, step * (i + 1) as f64));
                 ring.push(e0);
                 ring.push((e0 + e1) * scale * if i == 0 { 1.4 } else { 1.0 });
             }
@@ -175,29 +157,15 @@ pub fn quadratic_star(kind: QuadraticStar) -> Result<Mesh> {
             });
             let ring: Vec<DVec2> = ring.collect();
             // corners at −60°, 0°, 60°, …: the edge from ring[2] (60°) to ring[3] (120°) is the top one
-            (
-                ring,
-                DVec2::ZERO,
-                vec![(2, DVec2::new(0.0, PUSHED_MID_HEIGHT))],
-            )
+            (ring, DVec2::ZERO, vec![(2, DVec2::new(0.0, PUSHED_MID_HEIGHT))])
         }
         QuadraticStar::CurvedBoundary => {
-            let ring = [
-                (-1.0, 0.0),
-                (0.0, 0.0),
-                (1.0, 0.0),
-                (1.0, 1.0),
-                (0.0, 1.0),
-                (-1.0, 1.0),
-            ];
+            let ring = [(-1.0, 0.0), (0.0, 0.0), (1.0, 0.0), (1.0, 1.0), (0.0, 1.0), (-1.0, 1.0)];
             let ring: Vec<DVec2> = ring.iter().map(|&(x, y)| DVec2::new(x, y)).collect();
             (
                 ring,
                 DVec2::new(0.25, 0.85),
-                vec![
-                    (0, DVec2::new(-0.5, CURVED_BULGE)),
-                    (1, DVec2::new(0.5, CURVED_BULGE)),
-                ],
+                vec![(0, DVec2::new(-0.5, CURVED_BULGE)), (1, DVec2::new(0.5, CURVED_BULGE))],
             )
         }
     };
@@ -210,19 +178,13 @@ pub fn quadratic_star(kind: QuadraticStar) -> Result<Mesh> {
     let spoke: Vec<u32> = ring.iter().map(|p| a.node(0.5 * (*p + centre))).collect();
     let outer: Vec<u32> = (0..k)
         .map(|i| {
-            let mid = curved
-                .iter()
-                .find(|(e, _)| *e == i)
-                .map_or(0.5 * (ring[i] + ring[(i + 1) % k]), |(_, m)| *m);
+            let mid = curved.iter().find(|(e, _)| *e == i).map_or(0.5 * (ring[i] + ring[(i + 1) % k]), |(_, m)| *m);
             a.node(mid)
         })
         .collect();
     for i in 0..k {
         let j = (i + 1) % k;
-        a.element(
-            ElementKind::Tri6,
-            &[c, i as u32, j as u32, spoke[i], outer[i], spoke[j]],
-        );
+        a.element(ElementKind::Tri6, &[c, i as u32, j as u32, spoke[i], outer[i], spoke[j]]);
     }
     a.build()
 }
@@ -267,18 +229,8 @@ mod tests {
                 let c = free_node(&m);
                 assert_eq!(c, m.node_count() - 1, "the free node is the last");
                 assert_eq!(m.node_elements(c).len(), k);
-                assert_eq!(
-                    m.node_count(),
-                    if kind == StarKind::Quad {
-                        2 * k + 1
-                    } else {
-                        k + 1
-                    }
-                );
-                assert!(
-                    m.nodes()[c].length() > 0.05,
-                    "{kind:?} k={k}: the free node starts off-centre"
-                );
+                assert_eq!(m.node_count(), if kind == StarKind::Quad { 2 * k + 1 } else { k + 1 });
+                assert!(m.nodes()[c].length() > 0.05, "{kind:?} k={k}: the free node starts off-centre");
             }
         }
         assert!(star(StarKind::Chen, 8).is_ok() && star(StarKind::Quad, 4).is_ok());
@@ -288,23 +240,13 @@ mod tests {
     fn regular_six_is_mesquites_equil_tri() {
         let m = star(StarKind::Regular, 6).unwrap();
         let s3 = 3f64.sqrt();
-        let expect = [
-            (0.0, 2.0),
-            (-s3, 1.0),
-            (-s3, -1.0),
-            (0.0, -2.0),
-            (s3, -1.0),
-            (s3, 1.0),
-            (-0.8, -0.8),
-        ];
+        let expect = [(0.0, 2.0), (-s3, 1.0), (-s3, -1.0), (0.0, -2.0), (s3, -1.0), (s3, 1.0), (-0.8, -0.8)];
         for (p, (x, y)) in m.nodes().iter().zip(expect) {
             assert!(p.distance(DVec2::new(x, y)) < 1e-12, "{p}");
         }
         // with the free node at the centre every triangle is equilateral
         for i in 0..6 {
-            assert!(
-                (lo_alpha(DVec2::ZERO, m.nodes()[i], m.nodes()[(i + 1) % 6]) - 1.0).abs() < 1e-12
-            );
+            assert!((lo_alpha(DVec2::ZERO, m.nodes()[i], m.nodes()[(i + 1) % 6]) - 1.0).abs() < 1e-12);
         }
     }
 
@@ -327,35 +269,20 @@ mod tests {
             }
             // the start is inside the kernel, and the kernel ends not far beyond it
             let beyond = c / 0.6 * 1.01;
-            assert!(
-                (0..k).any(|i| lo_alpha(beyond, ring[i], ring[(i + 1) % k]) < 0.0),
-                "k={k}"
-            );
+            assert!((0..k).any(|i| lo_alpha(beyond, ring[i], ring[(i + 1) % k]) < 0.0), "k={k}");
         }
     }
 
     #[test]
     fn quad_star_four_is_a_distorted_three_by_three_grid() {
         let m = star(StarKind::Quad, 4).unwrap();
-        let expect = [
-            (1.0, 0.0),
-            (1.4, 1.4),
-            (0.0, 1.0),
-            (-1.0, 1.0),
-            (-1.0, 0.0),
-            (-1.0, -1.0),
-            (0.0, -1.0),
-            (1.0, -1.0),
-        ];
+        let expect =
+            [(1.0, 0.0), (1.4, 1.4), (0.0, 1.0), (-1.0, 1.0), (-1.0, 0.0), (-1.0, -1.0), (0.0, -1.0), (1.0, -1.0)];
         for (p, (x, y)) in m.nodes().iter().zip(expect) {
             assert!(p.distance(DVec2::new(x, y)) < 1e-12, "{p}");
         }
         let s = mesh_stats(&m);
-        assert!(
-            s.min_quality > 0.0 && s.min_quality < 0.9,
-            "valid but not ideal: {}",
-            s.min_quality
-        );
+        assert!(s.min_quality > 0.0 && s.min_quality < 0.9, "valid but not ideal: {}", s.min_quality);
         // the free node lies half-way to where some quad corner would fold
         let c = m.nodes()[8];
         let mut beyond = m.clone();
@@ -373,35 +300,16 @@ mod tests {
             assert_eq!(free_node(&m), 6, "{kind:?}: the centre follows the ring");
             assert_eq!(m.element_count(), 6);
             let curved = m.edges().iter().filter(|e| e.curved).count();
-            assert_eq!(
-                curved,
-                if kind == QuadraticStar::PushedEdge {
-                    1
-                } else {
-                    2
-                },
-                "{kind:?}"
-            );
+            assert_eq!(curved, if kind == QuadraticStar::PushedEdge { 1 } else { 2 }, "{kind:?}");
             assert!(m.has_quadratic());
         }
     }
 
     #[test]
     fn bad_k_is_an_error() {
-        for (kind, k) in [
-            (StarKind::Regular, 2),
-            (StarKind::Quad, 0),
-            (StarKind::Chen, 4),
-            (StarKind::Chen, 7),
-        ] {
-            assert!(
-                matches!(star(kind, k), Err(Error::Invalid(_))),
-                "{kind:?} {k}"
-            );
+        for (kind, k) in [(StarKind::Regular, 2), (StarKind::Quad, 0), (StarKind::Chen, 4), (StarKind::Chen, 7)] {
+            assert!(matches!(star(kind, k), Err(Error::Invalid(_))), "{kind:?} {k}");
         }
-        assert!(matches!(
-            star(StarKind::Regular, 1_000_000),
-            Err(Error::TooLarge(_))
-        ));
+        assert!(matches!(star(StarKind::Regular, 1_000_000), Err(Error::TooLarge(_))));
     }
 }

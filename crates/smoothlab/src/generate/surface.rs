@@ -41,16 +41,9 @@ pub const MAX_SURFACE_RESOLUTION: usize = 256;
 /// cells along each edge of the cube (the sphere) or of the caps' middle squares (the
 /// cylinder: four times as many round it), or four times as many round the torus's tube
 /// and twelve times round its axis. Its reference is the exact surface.
-pub fn surface(
-    shape: SurfaceShape,
-    kind: SurfaceKind,
-    order: u8,
-    resolution: usize,
-) -> Result<Surface> {
+pub fn surface(shape: SurfaceShape, kind: SurfaceKind, order: u8, resolution: usize) -> Result<Surface> {
     if !(1..=2).contains(&order) {
-        return Err(Error::invalid(format!(
-            "the order must be 1 (linear) or 2 (quadratic), not {order}"
-        )));
+        return Err(Error::invalid(format!("the order must be 1 (linear) or 2 (quadratic), not {order}")));
     }
     if !(1..=MAX_SURFACE_RESOLUTION).contains(&resolution) {
         return Err(Error::invalid(format!(
@@ -59,12 +52,7 @@ pub fn surface(
     }
     let n = resolution as i64;
     let o = order as i64;
-    let mut s = Lattice {
-        kind,
-        order,
-        ids: HashMap::new(),
-        b: MeshBuilder::new(),
-    };
+    let mut s = Lattice { kind, order, ids: HashMap::new(), b: MeshBuilder::new() };
     // Cells are given by their corners' integer coordinates on a lattice of `o` steps a
     // cell (mid-side nodes at the odd ones); a map gives each lattice point its key (one
     // node per key: where regions meet, or a periodic lattice meets itself, the map gives
@@ -92,26 +80,15 @@ pub fn surface(
                             l[v] = (j + dv) * o;
                             l
                         };
-                        s.cell(
-                            [at(0, 0), at(1, 0), at(1, 1), at(0, 1)],
-                            (i + j) % 2 == 0,
-                            &map,
-                        );
+                        s.cell([at(0, 0), at(1, 0), at(1, 1), at(0, 1)], (i + j) % 2 == 0, &map);
                     }
                 }
             }
-            Analytic::Sphere {
-                centre: DVec3::ZERO,
-                radius: 1.0,
-            }
+            Analytic::Sphere { centre: DVec3::ZERO, radius: 1.0 }
         }
         SurfaceShape::Cylinder => {
             cylinder(&mut s, n, o);
-            Analytic::CappedCylinder {
-                radius: 1.0,
-                z0: -1.0,
-                z1: 1.0,
-            }
+            Analytic::CappedCylinder { radius: 1.0, z0: -1.0, z1: 1.0 }
         }
         SurfaceShape::Torus => {
             let (major, minor) = (3.0, 1.0);
@@ -124,10 +101,7 @@ pub fn surface(
                 let theta = 2.0 * PI * a as f64 / around as f64;
                 let phi = 2.0 * PI * b as f64 / tube as f64;
                 let r = major + minor * phi.cos();
-                (
-                    [a, b, 0],
-                    DVec3::new(r * theta.cos(), r * theta.sin(), minor * phi.sin()),
-                )
+                ([a, b, 0], DVec3::new(r * theta.cos(), r * theta.sin(), minor * phi.sin()))
             };
             for i in 0..12 * n {
                 for j in 0..4 * n {
@@ -152,8 +126,7 @@ fn cylinder(s: &mut Lattice, n: i64, o: i64) {
     // rings from the square (half-width 0.5) to the rim, cells about as wide as the side's
     let rings = ((n as f64) * 0.5 / (PI / 2.0)).round().max(1.0) as i64 * o;
     let a = 0.5;
-    let rim_angle =
-        |i: i64| -3.0 * FRAC_PI_4 + 2.0 * PI * i.rem_euclid(around) as f64 / around as f64;
+    let rim_angle = |i: i64| -3.0 * FRAC_PI_4 + 2.0 * PI * i.rem_euclid(around) as f64 / around as f64;
     // the square's boundary point i (counter-clockwise from its corner (0, 0)), in its lattice
     let boundary = |i: i64| {
         let (side, t) = (i.rem_euclid(around) / m, i.rem_euclid(around) % m);
@@ -165,10 +138,7 @@ fn cylinder(s: &mut Lattice, n: i64, o: i64) {
         }
     };
     let square_point = |(x, y): (i64, i64)| {
-        glam::DVec2::new(
-            a * (2.0 * x as f64 / m as f64 - 1.0),
-            a * (2.0 * y as f64 / m as f64 - 1.0),
-        )
+        glam::DVec2::new(a * (2.0 * x as f64 / m as f64 - 1.0), a * (2.0 * y as f64 / m as f64 - 1.0))
     };
     // keys: [region, u, v], region 0–1 the bottom and top squares, 2–3 their rings, 4–5
     // the rims, 6 the side
@@ -189,10 +159,7 @@ fn cylinder(s: &mut Lattice, n: i64, o: i64) {
                     return ([4 + cap, i.rem_euclid(around), 0], rim.extend(z));
                 }
                 let t = j as f64 / rings as f64;
-                (
-                    [2 + cap, i.rem_euclid(around), j],
-                    (square_point(boundary(i)) * (1.0 - t) + rim * t).extend(z),
-                )
+                ([2 + cap, i.rem_euclid(around), j], (square_point(boundary(i)) * (1.0 - t) + rim * t).extend(z))
             }
         }
     };
@@ -212,42 +179,24 @@ fn cylinder(s: &mut Lattice, n: i64, o: i64) {
     for i in 0..4 * n {
         for k in 0..tall / o {
             let l = |di: i64, dk: i64| [(i + di) * o, (k + dk) * o, 0];
-            s.cell(
-                [l(0, 0), l(1, 0), l(1, 1), l(0, 1)],
-                (i + k) % 2 == 0,
-                &side_point,
-            );
+            s.cell([l(0, 0), l(1, 0), l(1, 1), l(0, 1)], (i + k) % 2 == 0, &side_point);
         }
     }
     for cap in 0..2 {
         // corners counter-clockwise seen from +z; the bottom cap faces −z, so reversed
-        let order = |c: [[i64; 3]; 4]| {
-            if cap == 1 {
-                c
-            } else {
-                [c[0], c[3], c[2], c[1]]
-            }
-        };
+        let order = |c: [[i64; 3]; 4]| if cap == 1 { c } else { [c[0], c[3], c[2], c[1]] };
         let map = |l: [i64; 3]| cap_point(cap, l);
         for x in 0..n {
             for y in 0..n {
                 let l = |dx: i64, dy: i64| [(x + dx) * o, (y + dy) * o, 0];
-                s.cell(
-                    order([l(0, 0), l(1, 0), l(1, 1), l(0, 1)]),
-                    (x + y) % 2 == 0,
-                    &map,
-                );
+                s.cell(order([l(0, 0), l(1, 0), l(1, 1), l(0, 1)]), (x + y) % 2 == 0, &map);
             }
         }
         // a ring cell: (j out, i round) then (j out + 1) ...: outward × round = +z
         for i in 0..4 * n {
             for j in 0..rings / o {
                 let l = |di: i64, dj: i64| [(i + di) * o, (j + dj) * o, 1];
-                s.cell(
-                    order([l(0, 0), l(0, 1), l(1, 1), l(1, 0)]),
-                    (i + j) % 2 == 0,
-                    &map,
-                );
+                s.cell(order([l(0, 0), l(0, 1), l(1, 1), l(1, 0)]), (i + j) % 2 == 0, &map);
             }
         }
     }
@@ -292,29 +241,19 @@ impl Lattice {
             if !quadratic {
                 self.b.add_element(ElementKind::Quad4, &corners, 0);
             } else {
-                let mids: Vec<u32> = (0..4)
-                    .map(|i| self.node(mid(c[i], c[(i + 1) % 4]), map))
-                    .collect();
-                self.b
-                    .add_element(ElementKind::Quad8, &[corners, mids].concat(), 0);
+                let mids: Vec<u32> = (0..4).map(|i| self.node(mid(c[i], c[(i + 1) % 4]), map)).collect();
+                self.b.add_element(ElementKind::Quad8, &[corners, mids].concat(), 0);
             }
             return;
         }
-        let tris = if diagonal {
-            [[0, 1, 2], [0, 2, 3]]
-        } else {
-            [[0, 1, 3], [1, 2, 3]]
-        };
+        let tris = if diagonal { [[0, 1, 2], [0, 2, 3]] } else { [[0, 1, 3], [1, 2, 3]] };
         for t in tris {
             let corners: Vec<u32> = t.iter().map(|&i| self.node(c[i], map)).collect();
             if !quadratic {
                 self.b.add_element(ElementKind::Tri3, &corners, 0);
             } else {
-                let mids: Vec<u32> = (0..3)
-                    .map(|i| self.node(mid(c[t[i]], c[t[(i + 1) % 3]]), map))
-                    .collect();
-                self.b
-                    .add_element(ElementKind::Tri6, &[corners, mids].concat(), 0);
+                let mids: Vec<u32> = (0..3).map(|i| self.node(mid(c[t[i]], c[t[(i + 1) % 3]]), map)).collect();
+                self.b.add_element(ElementKind::Tri6, &[corners, mids].concat(), 0);
             }
         }
     }

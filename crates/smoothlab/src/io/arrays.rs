@@ -36,11 +36,7 @@ impl MeshArrays {
     fn push(&mut self, vtk_type: u32, nodes: &[u32]) {
         match self.cells.last_mut() {
             Some(b) if b.vtk_type == vtk_type => b.nodes.extend_from_slice(nodes),
-            _ => self.cells.push(CellBlock {
-                vtk_type,
-                per_cell: nodes.len(),
-                nodes: nodes.to_vec(),
-            }),
+            _ => self.cells.push(CellBlock { vtk_type, per_cell: nodes.len(), nodes: nodes.to_vec() }),
         }
     }
 }
@@ -62,12 +58,7 @@ pub fn mesh_arrays<'a>(w: impl Into<Writable<'a>>) -> MeshArrays {
             points.extend([q.x, q.y, q.z]);
         }
     }
-    let mut out = MeshArrays {
-        dim,
-        points,
-        cells: Vec::new(),
-        fixed: mesh.fixed().to_vec(),
-    };
+    let mut out = MeshArrays { dim, points, cells: Vec::new(), fixed: mesh.fixed().to_vec() };
     for (e, &k) in mesh.kinds().iter().enumerate() {
         out.push(super::vtk::type_of(k), &w.element(e));
     }
@@ -78,12 +69,7 @@ pub fn mesh_arrays<'a>(w: impl Into<Writable<'a>>) -> MeshArrays {
 /// then the file's boundary faces).
 pub fn volume_arrays(mesh: &VolumeMesh) -> MeshArrays {
     let points = mesh.nodes().iter().flat_map(|p| [p.x, p.y, p.z]).collect();
-    let mut out = MeshArrays {
-        dim: 3,
-        points,
-        cells: Vec::new(),
-        fixed: mesh.fixed().to_vec(),
-    };
+    let mut out = MeshArrays { dim: 3, points, cells: Vec::new(), fixed: mesh.fixed().to_vec() };
     for e in 0..mesh.element_count() {
         out.push(mesh.element_kind(e).row().vtk_type, mesh.element(e));
     }
@@ -112,31 +98,15 @@ pub fn volume_arrays(mesh: &VolumeMesh) -> MeshArrays {
 /// assert_eq!(model.stats().free_nodes, 1);
 /// # Ok::<(), smoothlab::Error>(())
 /// ```
-pub fn model_from_arrays(
-    dim: usize,
-    points: &[f64],
-    cells: &[CellBlock],
-    fixed: Option<&[bool]>,
-) -> Result<Model> {
+pub fn model_from_arrays(dim: usize, points: &[f64], cells: &[CellBlock], fixed: Option<&[bool]>) -> Result<Model> {
     if !(dim == 2 || dim == 3) {
-        return Err(Error::invalid(format!(
-            "points have 2 or 3 coordinates, not {dim}"
-        )));
+        return Err(Error::invalid(format!("points have 2 or 3 coordinates, not {dim}")));
     }
     if points.len() % dim != 0 {
-        return Err(Error::invalid(format!(
-            "{} coordinates do not make points of {dim}",
-            points.len()
-        )));
+        return Err(Error::invalid(format!("{} coordinates do not make points of {dim}", points.len())));
     }
     let n = points.len() / dim;
-    let mut builder = MeshBuilder::with_capacity(
-        n,
-        cells
-            .iter()
-            .map(|b| b.nodes.len() / b.per_cell.max(1))
-            .sum(),
-    );
+    let mut builder = MeshBuilder::with_capacity(n, cells.iter().map(|b| b.nodes.len() / b.per_cell.max(1)).sum());
     for p in points.chunks_exact(dim) {
         builder.add_node([p[0], p[1], if dim == 3 { p[2] } else { 0.0 }], 0);
     }
@@ -162,10 +132,7 @@ pub fn model_from_arrays(
             return Err(Error::element(
                 element,
                 None,
-                format!(
-                    "cell type {} needs {k} points, but the cell lists {}",
-                    b.vtk_type, b.per_cell
-                ),
+                format!("cell type {} needs {k} points, but the cell lists {}", b.vtk_type, b.per_cell),
             ));
         }
         for cell in b.nodes.chunks_exact(b.per_cell) {
@@ -173,10 +140,7 @@ pub fn model_from_arrays(
                 return Err(Error::element(
                     element,
                     None,
-                    format!(
-                        "point index {v} is out of range: there are {n} points (0 to {})",
-                        n.saturating_sub(1)
-                    ),
+                    format!("point index {v} is out of range: there are {n} points (0 to {})", n.saturating_sub(1)),
                 ));
             }
             match (planar, solid) {
@@ -205,10 +169,7 @@ pub fn model_from_arrays(
     }
     builder.fixed = match (fixed, marked) {
         (Some(f), _) if f.len() != n => {
-            return Err(Error::invalid(format!(
-                "{} fixed flags for {n} points: give one a point",
-                f.len()
-            )))
+            return Err(Error::invalid(format!("{} fixed flags for {n} points: give one a point", f.len())))
         }
         (Some(f), _) => FixedSpec::Exact(f.to_vec()),
         (None, Some(m)) => FixedSpec::BoundaryAnd(m),
@@ -244,22 +205,14 @@ mod tests {
         let t0 = at("CELL_TYPES") + 1;
         let cells: Vec<(u32, Vec<u32>)> = (0..t0 - 1 - c0)
             .map(|i| {
-                let ids: Vec<u32> = lines[c0 + i]
-                    .split(' ')
-                    .skip(1)
-                    .map(|t| t.parse().unwrap())
-                    .collect();
+                let ids: Vec<u32> = lines[c0 + i].split(' ').skip(1).map(|t| t.parse().unwrap()).collect();
                 (lines[t0 + i].parse().unwrap(), ids)
             })
             .collect();
         let mine: Vec<(u32, Vec<u32>)> = arrays
             .cells
             .iter()
-            .flat_map(|b| {
-                b.nodes
-                    .chunks(b.per_cell)
-                    .map(move |c| (b.vtk_type, c.to_vec()))
-            })
+            .flat_map(|b| b.nodes.chunks(b.per_cell).map(move |c| (b.vtk_type, c.to_vec())))
             .collect();
         assert_eq!(mine, cells);
         let f0 = at("LOOKUP_TABLE") + 1;
@@ -270,22 +223,15 @@ mod tests {
     #[test]
     fn a_planar_mesh_gives_two_coordinates_and_runs_of_one_kind() {
         // two triangles, a quad, a triangle: three blocks, in the file's order
-        let vtk =
-            "# vtk DataFile Version 3.0\nt\nASCII\nDATASET UNSTRUCTURED_GRID\nPOINTS 7 double\n\
+        let vtk = "# vtk DataFile Version 3.0\nt\nASCII\nDATASET UNSTRUCTURED_GRID\nPOINTS 7 double\n\
                    0 0 0\n1 0 0\n2 0 0\n0 1 0\n1 1 0\n2 1 0\n1 2 0\n\
                    CELLS 4 17\n3 0 1 4\n3 0 4 3\n4 1 2 5 4\n3 3 4 6\nCELL_TYPES 4\n5\n5\n9\n5\n";
         let model = read_model_str(vtk, Format::Vtk).unwrap();
-        let Model::Planar(m) = &model else {
-            panic!("planar")
-        };
+        let Model::Planar(m) = &model else { panic!("planar") };
         let a = mesh_arrays(m);
         assert_eq!(a.dim, 2);
         assert_eq!(a.points.len(), 14);
-        let kinds: Vec<(u32, usize, usize)> = a
-            .cells
-            .iter()
-            .map(|b| (b.vtk_type, b.per_cell, b.nodes.len()))
-            .collect();
+        let kinds: Vec<(u32, usize, usize)> = a.cells.iter().map(|b| (b.vtk_type, b.per_cell, b.nodes.len())).collect();
         assert_eq!(kinds, [(5, 3, 6), (9, 4, 4), (5, 3, 3)]);
         assert_eq!(a.cells[0].nodes, [0, 1, 4, 0, 4, 3]);
         // every node is on the boundary of this fan, so every node is fixed
@@ -295,33 +241,22 @@ mod tests {
 
     #[test]
     fn a_planar_mesh_read_from_3d_is_given_back_in_its_plane() {
-        let vtk =
-            "# vtk DataFile Version 3.0\nt\nASCII\nDATASET UNSTRUCTURED_GRID\nPOINTS 4 double\n\
+        let vtk = "# vtk DataFile Version 3.0\nt\nASCII\nDATASET UNSTRUCTURED_GRID\nPOINTS 4 double\n\
                    0 0 1\n1 0 1\n1 1 1\n0 1 1\nCELLS 2 8\n3 0 1 2\n3 0 2 3\nCELL_TYPES 2\n5\n5\n";
         let model = read_model_str(vtk, Format::Vtk).unwrap();
-        let Model::Planar(m) = &model else {
-            panic!("planar")
-        };
+        let Model::Planar(m) = &model else { panic!("planar") };
         let a = mesh_arrays(m);
         assert_eq!(a.dim, 3);
-        assert_eq!(
-            a.points,
-            [0.0, 0.0, 1.0, 1.0, 0.0, 1.0, 1.0, 1.0, 1.0, 0.0, 1.0, 1.0]
-        );
+        assert_eq!(a.points, [0.0, 0.0, 1.0, 1.0, 0.0, 1.0, 1.0, 1.0, 1.0, 0.0, 1.0, 1.0]);
         same_as_vtk(&model, &a);
     }
 
     #[test]
     fn surfaces_and_volumes_give_what_their_vtk_text_holds() {
-        use crate::generate::{
-            mixed_block, perturb_surface, perturb_volume, surface, HexBlock, SurfaceKind,
-            SurfaceShape,
-        };
+        use crate::generate::{mixed_block, perturb_surface, perturb_volume, surface, HexBlock, SurfaceKind, SurfaceShape};
         let torus = surface(SurfaceShape::Torus, SurfaceKind::Mixed, 1, 2).unwrap();
         let model = Model::Surface(perturb_surface(&torus, 0.3, 1).unwrap());
-        let Model::Surface(sf) = &model else {
-            panic!("a surface")
-        };
+        let Model::Surface(sf) = &model else { panic!("a surface") };
         let a = mesh_arrays(sf);
         assert_eq!(a.dim, 3);
         // a torus of quads and triangles: more than one block
@@ -329,24 +264,17 @@ mod tests {
         same_as_vtk(&model, &a);
         let block = mixed_block(&HexBlock::cube(4)).unwrap();
         let model = Model::Volume(perturb_volume(&block, 0.3, 1).unwrap());
-        let Model::Volume(v) = &model else {
-            panic!("a volume")
-        };
+        let Model::Volume(v) = &model else { panic!("a volume") };
         let a = volume_arrays(v);
         let types: std::collections::BTreeSet<u32> = a.cells.iter().map(|b| b.vtk_type).collect();
-        assert!(
-            [10, 12, 13, 14].iter().all(|t| types.contains(t)),
-            "{types:?}"
-        );
+        assert!([10, 12, 13, 14].iter().all(|t| types.contains(t)), "{types:?}");
         same_as_vtk(&model, &a);
     }
 
     /// Arrays in give the model their `.vtk` text reads as: the same text written back.
     #[test]
     fn arrays_back_in_give_what_their_vtk_text_reads_as() {
-        use crate::generate::{
-            mixed_block, perturb_surface, surface, HexBlock, SurfaceKind, SurfaceShape,
-        };
+        use crate::generate::{mixed_block, perturb_surface, surface, HexBlock, SurfaceKind, SurfaceShape};
         let torus = surface(SurfaceShape::Torus, SurfaceKind::Mixed, 1, 2).unwrap();
         let models = [
             Model::Surface(perturb_surface(&torus, 0.3, 1).unwrap()),
@@ -366,8 +294,7 @@ mod tests {
                 Model::Volume(v) => volume_arrays(v),
             };
             let back = model_from_arrays(a.dim, &a.points, &a.cells, Some(&a.fixed)).unwrap();
-            let text =
-                |m: &Model| write_model_string(m, Format::Vtk, &WriteOptions::default()).unwrap();
+            let text = |m: &Model| write_model_string(m, Format::Vtk, &WriteOptions::default()).unwrap();
             assert_eq!(text(&back), text(&model));
         }
     }
@@ -375,43 +302,13 @@ mod tests {
     #[test]
     fn bad_arrays_are_refused_naming_the_element() {
         let points = [0.0, 0.0, 1.0, 0.0, 0.0, 1.0];
-        let tri = |nodes: Vec<u32>| CellBlock {
-            vtk_type: 5,
-            per_cell: 3,
-            nodes,
-        };
-        let err = |cells: &[CellBlock], fixed: Option<&[bool]>| {
-            model_from_arrays(2, &points, cells, fixed)
-                .unwrap_err()
-                .to_string()
-        };
-        assert_eq!(
-            err(&[tri(vec![0, 1, 2, 0, 1, 7])], None),
-            "element 1: point index 7 is out of range: there are 3 points (0 to 2)"
-        );
+        let tri = |nodes: Vec<u32>| CellBlock { vtk_type: 5, per_cell: 3, nodes };
+        let err = |cells: &[CellBlock], fixed: Option<&[bool]>| model_from_arrays(2, &points, cells, fixed).unwrap_err().to_string();
+        assert_eq!(err(&[tri(vec![0, 1, 2, 0, 1, 7])], None), "element 1: point index 7 is out of range: there are 3 points (0 to 2)");
         assert!(err(&[tri(vec![0, 1, 1])], None).starts_with("element 0: "));
-        assert!(err(
-            &[CellBlock {
-                vtk_type: 7,
-                per_cell: 3,
-                nodes: vec![0, 1, 2]
-            }],
-            None
-        )
-        .contains("VTK cell type 7 of element 0"));
-        assert!(err(
-            &[CellBlock {
-                vtk_type: 9,
-                per_cell: 3,
-                nodes: vec![0, 1, 2]
-            }],
-            None
-        )
-        .contains("needs 4 points"));
-        assert_eq!(
-            err(&[tri(vec![0, 1, 2])], Some(&[true])),
-            "1 fixed flags for 3 points: give one a point"
-        );
+        assert!(err(&[CellBlock { vtk_type: 7, per_cell: 3, nodes: vec![0, 1, 2] }], None).contains("VTK cell type 7 of element 0"));
+        assert!(err(&[CellBlock { vtk_type: 9, per_cell: 3, nodes: vec![0, 1, 2] }], None).contains("needs 4 points"));
+        assert_eq!(err(&[tri(vec![0, 1, 2])], Some(&[true])), "1 fixed flags for 3 points: give one a point");
         assert!(model_from_arrays(4, &points, &[], None).is_err());
         assert!(model_from_arrays(2, &points[..5], &[], None).is_err());
     }

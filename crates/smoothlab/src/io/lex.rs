@@ -39,12 +39,7 @@ pub(crate) fn shown(tok: &str) -> String {
 impl<'a> Lexer<'a> {
     /// A lexer over `text`, whose first line is line `first_line` of the file.
     pub fn starting_at(text: &'a str, first_line: usize) -> Self {
-        Lexer {
-            text,
-            pos: 0,
-            line: first_line,
-            last_line: first_line,
-        }
+        Lexer { text, pos: 0, line: first_line, last_line: first_line }
     }
 
     pub fn new(text: &'a str) -> Self {
@@ -77,10 +72,7 @@ impl<'a> Lexer<'a> {
         }
         self.last_line = self.line;
         // Whitespace bytes are ASCII, so both ends are char boundaries.
-        Some(Token {
-            text: &self.text[start..self.pos],
-            line: self.line,
-        })
+        Some(Token { text: &self.text[start..self.pos], line: self.line })
     }
 
     /// The next token without consuming it.
@@ -109,10 +101,7 @@ impl<'a> Lexer<'a> {
         let (line, _) = split_line(&self.text[self.pos..]);
         self.pos += line.len();
         self.last_line = self.line;
-        Some(Token {
-            text: line.trim(),
-            line: self.line,
-        })
+        Some(Token { text: line.trim(), line: self.line })
     }
 
     /// Skips the rest of the current line (a comment after its `#` token).
@@ -149,10 +138,7 @@ impl<'a> Lexer<'a> {
 
     /// The end-of-file error: the file stops where `what` was expected.
     pub fn eof(&self, what: String) -> Error {
-        Error::parse(
-            self.last_line,
-            format!("the file ends here, but {what} was expected (truncated file?)"),
-        )
+        Error::parse(self.last_line, format!("the file ends here, but {what} was expected (truncated file?)"))
     }
 
     /// The next token, or an end-of-file error saying what was expected.
@@ -169,14 +155,7 @@ impl<'a> Lexer<'a> {
         if t.text.eq_ignore_ascii_case(keyword) {
             Ok(t)
         } else {
-            Err(Error::parse(
-                t.line,
-                format!(
-                    "expected '{keyword}' ({}), found {}",
-                    context(),
-                    shown(t.text)
-                ),
-            ))
+            Err(Error::parse(t.line, format!("expected '{keyword}' ({}), found {}", context(), shown(t.text))))
         }
     }
 
@@ -194,11 +173,7 @@ impl<'a> Lexer<'a> {
             Ok(v) => Ok((v, t.line)),
             Err(_) => Err(Error::parse(
                 t.line,
-                format!(
-                    "expected {} (a non-negative integer), found {}",
-                    what(),
-                    shown(t.text)
-                ),
+                format!("expected {} (a non-negative integer), found {}", what(), shown(t.text)),
             )),
         }
     }
@@ -208,10 +183,7 @@ impl<'a> Lexer<'a> {
         let t = self.expect(&what)?;
         match t.text.parse::<i64>() {
             Ok(v) => Ok((v, t.line)),
-            Err(_) => Err(Error::parse(
-                t.line,
-                format!("expected {} (an integer), found {}", what(), shown(t.text)),
-            )),
+            Err(_) => Err(Error::parse(t.line, format!("expected {} (an integer), found {}", what(), shown(t.text)))),
         }
     }
 
@@ -232,13 +204,7 @@ impl<'a> Lexer<'a> {
     /// Refuses a header count that the rest of the input cannot hold when every item
     /// takes at least `min_bytes` bytes, and counts beyond `u32` indices. Returns the
     /// count as `usize`, now safe to reserve for.
-    pub fn check_count(
-        &self,
-        count: u64,
-        min_bytes: u64,
-        what: &str,
-        line: usize,
-    ) -> Result<usize> {
+    pub fn check_count(&self, count: u64, min_bytes: u64, what: &str, line: usize) -> Result<usize> {
         check_count(count, self.remaining() as u64, min_bytes, what, line)
     }
 }
@@ -256,13 +222,7 @@ pub(crate) fn prealloc(n: usize) -> usize {
 }
 
 /// See [`Lexer::check_count`]; `room` is the number of bytes left to read.
-pub(crate) fn check_count(
-    count: u64,
-    room: u64,
-    min_bytes: u64,
-    what: &str,
-    line: usize,
-) -> Result<usize> {
+pub(crate) fn check_count(count: u64, room: u64, min_bytes: u64, what: &str, line: usize) -> Result<usize> {
     let most = room / min_bytes.max(1) + 1;
     if count > most {
         return Err(Error::parse(
@@ -274,9 +234,7 @@ pub(crate) fn check_count(
         ));
     }
     if count > u32::MAX as u64 - 1 {
-        return Err(Error::TooLarge(format!(
-            "line {line}: {count} {what}; smoothlab indexes with 32 bits"
-        )));
+        return Err(Error::TooLarge(format!("line {line}: {count} {what}; smoothlab indexes with 32 bits")));
     }
     Ok(count as usize)
 }
@@ -285,27 +243,15 @@ pub(crate) fn check_count(
 pub(crate) fn parse_f64(text: &str, line: usize, what: impl Fn() -> String) -> Result<f64> {
     match text.parse::<f64>() {
         Ok(v) if v.is_finite() => Ok(v),
-        Ok(_) => Err(Error::parse(
-            line,
-            format!(
-                "expected {} (a finite number), found {}",
-                what(),
-                shown(text)
-            ),
-        )),
-        Err(_) => Err(Error::parse(
-            line,
-            format!("expected {} (a number), found {}", what(), shown(text)),
-        )),
+        Ok(_) => Err(Error::parse(line, format!("expected {} (a finite number), found {}", what(), shown(text)))),
+        Err(_) => Err(Error::parse(line, format!("expected {} (a number), found {}", what(), shown(text)))),
     }
 }
 
 /// The first value that appears twice in an element's node list (in the file's own
 /// numbering, so the message can use it).
 pub(crate) fn repeated<T: PartialEq + Copy>(ids: &[T]) -> Option<T> {
-    (0..ids.len())
-        .find(|&a| ids[a + 1..].contains(&ids[a]))
-        .map(|a| ids[a])
+    (0..ids.len()).find(|&a| ids[a + 1..].contains(&ids[a])).map(|a| ids[a])
 }
 
 /// The first line of `text` (without its line end) and the text after that line end,
@@ -314,11 +260,7 @@ pub(crate) fn split_line(text: &str) -> (&str, Option<&str>) {
     match text.find(['\n', '\r']) {
         None => (text, None),
         Some(i) => {
-            let end = if text[i..].starts_with("\r\n") {
-                i + 2
-            } else {
-                i + 1
-            };
+            let end = if text[i..].starts_with("\r\n") { i + 2 } else { i + 1 };
             (&text[..i], Some(&text[end..]))
         }
     }
@@ -337,17 +279,12 @@ pub(crate) fn lines(text: &str) -> impl Iterator<Item = &str> {
 /// The line (1-based) of byte `at` of `bytes`, counting any line end.
 pub(crate) fn line_of_byte(bytes: &[u8], at: usize) -> usize {
     let b = &bytes[..at.min(bytes.len())];
-    1 + (0..b.len())
-        .filter(|&i| b[i] == b'\n' || (b[i] == b'\r' && bytes.get(i + 1) != Some(&b'\n')))
-        .count()
+    1 + (0..b.len()).filter(|&i| b[i] == b'\n' || (b[i] == b'\r' && bytes.get(i + 1) != Some(&b'\n'))).count()
 }
 
 /// The lines of a text with their 1-based numbers, each cut at `comment` (if any) and
 /// trimmed; blank lines are left out. For the line-oriented formats (OBJ, OFF, Triangle).
-pub(crate) fn content_lines(
-    text: &str,
-    comment: Option<char>,
-) -> impl Iterator<Item = (usize, &str)> {
+pub(crate) fn content_lines(text: &str, comment: Option<char>) -> impl Iterator<Item = (usize, &str)> {
     lines(text).enumerate().filter_map(move |(i, l)| {
         let l = match comment {
             Some(c) => l.split_once(c).map_or(l, |(a, _)| a),
@@ -365,9 +302,7 @@ mod tests {
     #[test]
     fn tokens_know_their_lines() {
         let mut l = Lexer::new("a b\n\n  c\r\nd");
-        let got: Vec<(&str, usize)> = std::iter::from_fn(|| l.next())
-            .map(|t| (t.text, t.line))
-            .collect();
+        let got: Vec<(&str, usize)> = std::iter::from_fn(|| l.next()).map(|t| (t.text, t.line)).collect();
         assert_eq!(got, vec![("a", 1), ("b", 1), ("c", 3), ("d", 4)]);
     }
 
@@ -376,92 +311,48 @@ mod tests {
         let mut l = Lexer::new("1\nnan\nx");
         assert_eq!(l.u64(|| "n".into()).unwrap(), (1, 1));
         let e = l.f64(|| "the x coordinate".into()).unwrap_err().to_string();
-        assert!(
-            e.starts_with("line 2") && e.contains("finite") && e.contains("the x coordinate"),
-            "{e}"
-        );
+        assert!(e.starts_with("line 2") && e.contains("finite") && e.contains("the x coordinate"), "{e}");
         let e = l.u64(|| "a count".into()).unwrap_err().to_string();
         assert!(e.starts_with("line 3") && e.contains("'x'"), "{e}");
         let e = l.u64(|| "another count".into()).unwrap_err().to_string();
-        assert!(
-            e.contains("ends here") && e.contains("another count"),
-            "{e}"
-        );
+        assert!(e.contains("ends here") && e.contains("another count"), "{e}");
     }
 
     #[test]
     fn absurd_counts_are_refused_before_allocating() {
         let l = Lexer::new("1000000000\n1 2 3\n");
-        let e = l
-            .check_count(1_000_000_000, 8, "nodes", 1)
-            .unwrap_err()
-            .to_string();
-        assert!(
-            e.contains("1000000000 nodes") && e.starts_with("line 1"),
-            "{e}"
-        );
-        assert_eq!(
-            Lexer::new("0 0 0 0").check_count(1, 8, "nodes", 1).unwrap(),
-            1
-        );
+        let e = l.check_count(1_000_000_000, 8, "nodes", 1).unwrap_err().to_string();
+        assert!(e.contains("1000000000 nodes") && e.starts_with("line 1"), "{e}");
+        assert_eq!(Lexer::new("0 0 0 0").check_count(1, 8, "nodes", 1).unwrap(), 1);
     }
 
     #[test]
     fn text_lines_and_metadata_blocks() {
         let mut l = Lexer::new("1\n\"my view\"\nMETADATA\nINFORMATION 0\n\nPOINTS");
         l.next();
-        assert_eq!(
-            l.text_line().unwrap(),
-            Token {
-                text: "\"my view\"",
-                line: 2
-            }
-        );
+        assert_eq!(l.text_line().unwrap(), Token { text: "\"my view\"", line: 2 });
         assert_eq!(l.next().unwrap().text, "METADATA");
         l.skip_to_blank_line();
-        assert_eq!(
-            l.next().unwrap(),
-            Token {
-                text: "POINTS",
-                line: 6
-            }
-        );
+        assert_eq!(l.next().unwrap(), Token { text: "POINTS", line: 6 });
     }
 
     #[test]
     fn every_line_end_counts() {
         // \n, \r\n and a lone \r (old Mac files) each end one line
         let mut l = Lexer::new("a\rb\r\nc\n\rd\r\re");
-        let got: Vec<(&str, usize)> = std::iter::from_fn(|| l.next())
-            .map(|t| (t.text, t.line))
-            .collect();
+        let got: Vec<(&str, usize)> = std::iter::from_fn(|| l.next()).map(|t| (t.text, t.line)).collect();
         assert_eq!(got, vec![("a", 1), ("b", 2), ("c", 3), ("d", 5), ("e", 7)]);
-        assert_eq!(
-            lines("a\rb\r\nc\n\rd").collect::<Vec<_>>(),
-            vec!["a", "b", "c", "", "d"]
-        );
+        assert_eq!(lines("a\rb\r\nc\n\rd").collect::<Vec<_>>(), vec!["a", "b", "c", "", "d"]);
         assert_eq!(lines("a\n").collect::<Vec<_>>(), vec!["a", ""]);
         let v: Vec<_> = content_lines("# c\r1 2\r\r3", Some('#')).collect();
         assert_eq!(v, vec![(2, "1 2"), (4, "3")]);
         assert_eq!(line_of_byte(b"a\rb\r\nc\nd", 7), 4);
         let mut l = Lexer::new("1\r\"my view\"\rMETADATA\rINFORMATION 0\r\rPOINTS");
         l.next();
-        assert_eq!(
-            l.text_line().unwrap(),
-            Token {
-                text: "\"my view\"",
-                line: 2
-            }
-        );
+        assert_eq!(l.text_line().unwrap(), Token { text: "\"my view\"", line: 2 });
         l.next();
         l.skip_to_blank_line();
-        assert_eq!(
-            l.next().unwrap(),
-            Token {
-                text: "POINTS",
-                line: 6
-            }
-        );
+        assert_eq!(l.next().unwrap(), Token { text: "POINTS", line: 6 });
     }
 
     #[test]

@@ -102,8 +102,7 @@ const SECTIONS: &[(&str, Section)] = {
 };
 
 /// What the reader reads, for its messages.
-const READS: &str =
-    "Vertices, Triangles, Quadrilaterals, Tetrahedra, Hexahedra, Prisms, Pyramids, Edges, \
+const READS: &str = "Vertices, Triangles, Quadrilaterals, Tetrahedra, Hexahedra, Prisms, Pyramids, Edges, \
                      Corners and RequiredVertices";
 
 struct Reader<'a> {
@@ -157,21 +156,13 @@ impl<'a> Reader<'a> {
         if !t.text.eq_ignore_ascii_case("MeshVersionFormatted") {
             return Err(Error::parse(
                 t.line,
-                format!(
-                    "not a Medit file: expected 'MeshVersionFormatted' first, found {}",
-                    shown(t.text)
-                ),
+                format!("not a Medit file: expected 'MeshVersionFormatted' first, found {}", shown(t.text)),
             ));
         }
         self.seen.push(("MeshVersionFormatted", t.line));
-        let (v, vl) = self
-            .lex
-            .u64(|| "the version after MeshVersionFormatted (1 or 2)".into())?;
+        let (v, vl) = self.lex.u64(|| "the version after MeshVersionFormatted (1 or 2)".into())?;
         if !(1..=4).contains(&v) {
-            return Err(Error::parse(
-                vl,
-                format!("MeshVersionFormatted {v} is not a version of the format (1 to 4)"),
-            ));
+            return Err(Error::parse(vl, format!("MeshVersionFormatted {v} is not a version of the format (1 to 4)")));
         }
         Ok(())
     }
@@ -179,10 +170,7 @@ impl<'a> Reader<'a> {
     /// Refuses a second section of one name.
     fn once(&mut self, name: &'static str, line: usize) -> Result<()> {
         if let Some(&(_, first)) = self.seen.iter().find(|(n, _)| *n == name) {
-            return Err(Error::parse(
-                line,
-                format!("a second {name} section (the first is at line {first})"),
-            ));
+            return Err(Error::parse(line, format!("a second {name} section (the first is at line {first})")));
         }
         self.seen.push((name, line));
         Ok(())
@@ -195,22 +183,14 @@ impl<'a> Reader<'a> {
             }
             if t.text.eq_ignore_ascii_case("Dimension") {
                 self.once("Dimension", t.line)?;
-                let (d, dl) = self
-                    .lex
-                    .u64(|| "the dimension after Dimension (2 or 3)".into())?;
+                let (d, dl) = self.lex.u64(|| "the dimension after Dimension (2 or 3)".into())?;
                 if !(2..=3).contains(&d) {
-                    return Err(Error::parse(
-                        dl,
-                        format!("Dimension {d}: smoothlab reads dimension 2 or 3"),
-                    ));
+                    return Err(Error::parse(dl, format!("Dimension {d}: smoothlab reads dimension 2 or 3")));
                 }
                 self.dim = d as usize;
                 continue;
             }
-            let Some(&(name, section)) = SECTIONS
-                .iter()
-                .find(|(k, _)| t.text.eq_ignore_ascii_case(k))
-            else {
+            let Some(&(name, section)) = SECTIONS.iter().find(|(k, _)| t.text.eq_ignore_ascii_case(k)) else {
                 if t.text.starts_with(|c: char| c.is_ascii_alphabetic()) {
                     return Err(Error::unsupported(
                         Some(t.line),
@@ -222,28 +202,20 @@ impl<'a> Reader<'a> {
                 }
                 return Err(Error::parse(
                     t.line,
-                    format!(
-                        "expected a section keyword, found {}: a count and its data disagree?",
-                        shown(t.text)
-                    ),
+                    format!("expected a section keyword, found {}: a count and its data disagree?", shown(t.text)),
                 ));
             };
             self.once(name, t.line)?;
             match section {
                 Section::End => return Ok(()),
                 Section::Vertices => self.vertices(t.line)?,
-                Section::Faces(kind, one) => {
-                    self.elements(name, one, kind.node_count(), t.line, |b, ids, l, e| {
-                        b.add_element_numbered(kind, ids, l, e);
-                        Ok(())
-                    })?
-                }
+                Section::Faces(kind, one) => self.elements(name, one, kind.node_count(), t.line, |b, ids, l, e| {
+                    b.add_element_numbered(kind, ids, l, e);
+                    Ok(())
+                })?,
                 Section::Solids(kind, one) => {
                     if self.dim == 2 {
-                        return Err(Error::parse(
-                            t.line,
-                            format!("{name} in a file of Dimension 2: they need Dimension 3"),
-                        ));
+                        return Err(Error::parse(t.line, format!("{name} in a file of Dimension 2: they need Dimension 3")));
                     }
                     self.elements(name, one, kind.nodes(), t.line, |b, ids, l, e| {
                         b.add_volume_element_numbered(kind, ids, l, e)
@@ -278,10 +250,7 @@ impl<'a> Reader<'a> {
     /// The file's dimension, which `name` at `line` needs.
     fn dimension(&self, name: &str, line: usize) -> Result<usize> {
         match self.dim {
-            0 => Err(Error::parse(
-                line,
-                format!("{name} comes before Dimension: its values per item are not known"),
-            )),
+            0 => Err(Error::parse(line, format!("{name} comes before Dimension: its values per item are not known"))),
             d => Ok(d),
         }
     }
@@ -289,9 +258,7 @@ impl<'a> Reader<'a> {
     /// A section's count, checked against the bytes left: each item takes at least `per`
     /// tokens of two bytes.
     fn count(&mut self, name: &str, per: u64, what: &str) -> Result<usize> {
-        let (n, nl) = self
-            .lex
-            .u64(|| format!("the number of {what} after {name}"))?;
+        let (n, nl) = self.lex.u64(|| format!("the number of {what} after {name}"))?;
         self.lex.check_count(n, 2 * per, what, nl)
     }
 
@@ -305,11 +272,7 @@ impl<'a> Reader<'a> {
             let what = |c: &str| format!("the {c} coordinate of vertex {i}");
             let (x, xl) = self.lex.f64(|| what("x"))?;
             let (y, _) = self.lex.f64(|| what("y"))?;
-            let z = if dim == 3 {
-                self.lex.f64(|| what("z"))?.0
-            } else {
-                0.0
-            };
+            let z = if dim == 3 { self.lex.f64(|| what("z"))?.0 } else { 0.0 };
             self.lex.i64(|| format!("the reference of vertex {i}"))?;
             self.b.add_node([x, y, z], xl);
         }
@@ -320,10 +283,7 @@ impl<'a> Reader<'a> {
     /// Vertex index `v` (1-based) of `what`, on `line`, as a 0-based index.
     fn vertex(&mut self, v: u64, line: usize, what: impl Fn() -> String) -> Result<u32> {
         if v == 0 {
-            return Err(Error::parse(
-                line,
-                format!("{}: vertex index 0 is invalid: Medit counts from 1", what()),
-            ));
+            return Err(Error::parse(line, format!("{}: vertex index 0 is invalid: Medit counts from 1", what())));
         }
         let n = self.b.node_count() as u64;
         if self.vertices_read {
@@ -361,10 +321,7 @@ impl<'a> Reader<'a> {
             }
             self.lex.i64(|| format!("the reference of {one} {e}"))?;
             if let Some(v) = repeated(&ids[..k]) {
-                return Err(Error::parse(
-                    at,
-                    format!("{one} {e}: vertex {} appears twice", v + 1),
-                ));
+                return Err(Error::parse(at, format!("{one} {e}: vertex {} appears twice", v + 1)));
             }
             add(&mut self.b, &ids[..k], at, e as u64)?;
         }
@@ -385,18 +342,11 @@ impl<'a> Reader<'a> {
     /// A section whose items of `per` tokens are not used.
     fn skip(&mut self, name: &str, per: u64, line: usize) -> Result<()> {
         let n = self.count(name, per, &format!("items of {name}"))?;
-        self.lex.skip(n as u64 * per, || {
-            format!("the data of {name} (line {line})")
-        })
+        self.lex.skip(n as u64 * per, || format!("the data of {name} (line {line})"))
     }
 
     fn finish(self) -> Result<MeshBuilder> {
-        let Reader {
-            mut b,
-            marked,
-            pending,
-            ..
-        } = self;
+        let Reader { mut b, marked, pending, .. } = self;
         // Medit numbers its vertices from 1: messages name them so
         b.number_nodes(Numbering::From(1));
         let n = b.node_count();
@@ -419,22 +369,12 @@ impl<'a> Reader<'a> {
 }
 
 fn out_of_range(v: u64, n: u64, line: usize, what: &str) -> Error {
-    let valid = if n == 0 {
-        "the file has no vertices".to_string()
-    } else {
-        format!("the file has {n} vertices (1 to {n})")
-    };
-    Error::parse(
-        line,
-        format!("{what}: vertex index {v} is out of range: {valid}"),
-    )
+    let valid = if n == 0 { "the file has no vertices".to_string() } else { format!("the file has {n} vertices (1 to {n})") };
+    Error::parse(line, format!("{what}: vertex index {v} is out of range: {valid}"))
 }
 
 fn header(s: &mut Out, dim: usize, n: usize) {
-    let _ = write!(
-        s,
-        "MeshVersionFormatted 2\n\nDimension {dim}\n\nVertices\n{n}\n"
-    );
+    let _ = write!(s, "MeshVersionFormatted 2\n\nDimension {dim}\n\nVertices\n{n}\n");
 }
 
 /// One element's line: its 1-based vertex indices and reference 0.
@@ -473,10 +413,7 @@ pub(crate) fn write(w: super::Writable, s: &mut Out) -> Result<()> {
         }
         s.push_str(" 0\n");
     }
-    for (kind, name) in [
-        (ElementKind::Tri3, "Triangles"),
-        (ElementKind::Quad4, "Quadrilaterals"),
-    ] {
+    for (kind, name) in [(ElementKind::Tri3, "Triangles"), (ElementKind::Quad4, "Quadrilaterals")] {
         let count = mesh.kinds().iter().filter(|&&k| k == kind).count();
         if count == 0 {
             continue;
@@ -509,10 +446,7 @@ pub(crate) fn write_volume(v: &VolumeMesh, s: &mut Out) -> Result<()> {
     for p in v.nodes() {
         let _ = writeln!(s, "{:?} {:?} {:?} 0", p.x, p.y, p.z);
     }
-    for (kind, name) in [
-        (ElementKind::Tri3, "Triangles"),
-        (ElementKind::Quad4, "Quadrilaterals"),
-    ] {
+    for (kind, name) in [(ElementKind::Tri3, "Triangles"), (ElementKind::Quad4, "Quadrilaterals")] {
         let count = v.faces().iter().filter(|f| f.kind == kind).count();
         if count > 0 {
             let _ = write!(s, "\n{name}\n{count}\n");
@@ -525,9 +459,7 @@ pub(crate) fn write_volume(v: &VolumeMesh, s: &mut Out) -> Result<()> {
         Section::Solids(kind, _) => Some((kind, name)),
         _ => None,
     }) {
-        let count = (0..v.element_count())
-            .filter(|&e| v.element_kind(e) == kind)
-            .count();
+        let count = (0..v.element_count()).filter(|&e| v.element_kind(e) == kind).count();
         if count > 0 {
             let _ = write!(s, "\n{name}\n{count}\n");
             for e in (0..v.element_count()).filter(|&e| v.element_kind(e) == kind) {
@@ -560,13 +492,8 @@ mod tests {
         let text = "# from MMG\nMeshVersionFormatted 2\ndimension\n2\n# the vertices\nVERTICES 5\n0 0 1\n1 0 1\n1 1 2\n\
                     0 1 2\n2 0 7\nTriangles\n1\n2 5 3 4\nQuadrilaterals 1\n1 2 3 4 0\nNormals 1\n0 1\n\
                     NormalAtVertices 1 5 1\nRidges 0\nCorners\n1\n5\nEnd\nanything after End";
-        let Model::Planar(m) = model(text) else {
-            panic!("planar")
-        };
-        assert_eq!(
-            (m.node_count(), m.kinds()),
-            (5, &[ElementKind::Tri3, ElementKind::Quad4][..])
-        );
+        let Model::Planar(m) = model(text) else { panic!("planar") };
+        assert_eq!((m.node_count(), m.kinds()), (5, &[ElementKind::Tri3, ElementKind::Quad4][..]));
         assert_eq!(m.element_as_given(0).to_vec(), vec![1, 4, 2]);
         // every node here is on the boundary; the references fix nothing more
         assert_eq!(m.fixed(), &[true; 5]);
@@ -595,12 +522,7 @@ mod tests {
     fn lattice(body: &str) -> String {
         let mut t = String::from("MeshVersionFormatted 2\nDimension 3\nVertices\n27\n");
         for k in 0..27 {
-            t += &format!(
-                "{} {} {} 0\n",
-                (k % 3) as f64 / 2.0,
-                (k / 3 % 3) as f64 / 2.0,
-                (k / 9) as f64 / 2.0
-            );
+            t += &format!("{} {} {} 0\n", (k % 3) as f64 / 2.0, (k / 3 % 3) as f64 / 2.0, (k / 9) as f64 / 2.0);
         }
         t + body
     }
@@ -618,43 +540,24 @@ mod tests {
         ];
         for (name, ids, kind) in cases {
             let line: Vec<String> = ids.iter().map(u32::to_string).collect();
-            let Model::Volume(m) =
-                model(&lattice(&format!("{name}\n1\n{} 3\nEnd\n", line.join(" "))))
-            else {
+            let Model::Volume(m) = model(&lattice(&format!("{name}\n1\n{} 3\nEnd\n", line.join(" ")))) else {
                 panic!("{name}: a volume")
             };
             assert_eq!((m.element_count(), m.element_kind(0)), (1, kind), "{name}");
             let given: Vec<u32> = ids.iter().map(|i| i - 1).collect();
-            assert_eq!(
-                m.element(0),
-                &given[..],
-                "{name}: as given, not turned over"
-            );
+            assert_eq!(m.element(0), &given[..], "{name}: as given, not turned over");
             assert!(!m.is_inverted(0), "{name}");
         }
         // a hexahedron's boundary quad is a given face, written back
-        let text =
-            lattice("Quadrilaterals\n1\n1 7 9 3 4\nHexahedra\n1\n1 3 9 7 19 21 27 25 0\nEnd\n");
-        let Model::Volume(m) = model(&text) else {
-            panic!("a volume")
-        };
+        let text = lattice("Quadrilaterals\n1\n1 7 9 3 4\nHexahedra\n1\n1 3 9 7 19 21 27 25 0\nEnd\n");
+        let Model::Volume(m) = model(&text) else { panic!("a volume") };
         assert_eq!(m.faces().len(), 1);
         let mut out = Out::string(0);
         write_volume(&m, &mut out).unwrap();
         let back = out.into_string();
-        assert!(
-            back.contains(
-                "\nQuadrilaterals\n1\n1 7 9 3 0\n\nHexahedra\n1\n1 3 9 7 19 21 27 25 0\n"
-            ),
-            "{back}"
-        );
-        let Model::Volume(again) = model(&back) else {
-            panic!("a volume")
-        };
-        assert_eq!(
-            (again.element(0), again.faces()[0].nodes(), again.fixed()),
-            (m.element(0), m.faces()[0].nodes(), m.fixed())
-        );
+        assert!(back.contains("\nQuadrilaterals\n1\n1 7 9 3 0\n\nHexahedra\n1\n1 3 9 7 19 21 27 25 0\n"), "{back}");
+        let Model::Volume(again) = model(&back) else { panic!("a volume") };
+        assert_eq!((again.element(0), again.faces()[0].nodes(), again.fixed()), (m.element(0), m.faces()[0].nodes(), m.fixed()));
     }
 
     #[test]
@@ -687,12 +590,9 @@ mod tests {
 
     #[test]
     fn the_writer_writes_dimension_2_in_the_plane_and_the_fixed_nodes_as_required() {
-        let text =
-            "MeshVersionFormatted 1\nDimension 2\nVertices 4\n0 0 0\n1 0 0\n1 1 0\n0.1 0.3 0\n\
+        let text = "MeshVersionFormatted 1\nDimension 2\nVertices 4\n0 0 0\n1 0 0\n1 1 0\n0.1 0.3 0\n\
                     Triangles 2\n1 2 4 0\n2 3 4 0\nEnd";
-        let Model::Planar(m) = model(text) else {
-            panic!("planar")
-        };
+        let Model::Planar(m) = model(text) else { panic!("planar") };
         let mut out = Out::string(0);
         write((&m).into(), &mut out).unwrap();
         assert_eq!(

@@ -109,9 +109,7 @@ impl Format {
     /// The format of a file name by its extension (`.node` and `.ele` both mean Triangle).
     pub fn from_name(name: &str) -> Option<Format> {
         let ext = name.rsplit_once('.')?.1.to_ascii_lowercase();
-        Format::ALL
-            .into_iter()
-            .find(|f| f.extensions().contains(&ext.as_str()))
+        Format::ALL.into_iter().find(|f| f.extensions().contains(&ext.as_str()))
     }
 }
 
@@ -119,13 +117,7 @@ impl Format {
 pub fn extensions_in_words() -> String {
     let each: Vec<String> = Format::ALL
         .iter()
-        .map(|f| {
-            f.extensions()
-                .iter()
-                .map(|e| format!(".{e}"))
-                .collect::<Vec<_>>()
-                .join("/")
-        })
+        .map(|f| f.extensions().iter().map(|e| format!(".{e}")).collect::<Vec<_>>().join("/"))
         .collect();
     match each.split_last() {
         Some((last, rest)) if !rest.is_empty() => format!("{} or {last}", rest.join(", ")),
@@ -135,10 +127,7 @@ pub fn extensions_in_words() -> String {
 
 /// Error for a name whose extension is not a mesh format.
 pub fn unknown_format(name: &str) -> Error {
-    Error::invalid(format!(
-        "cannot tell the mesh format of '{name}': use {}",
-        extensions_in_words()
-    ))
+    Error::invalid(format!("cannot tell the mesh format of '{name}': use {}", extensions_in_words()))
 }
 
 /// Reads a mesh from text in the given format. A Triangle mesh is a `.node`/`.ele`
@@ -159,9 +148,9 @@ fn parse_str(text: &str, format: Format) -> Result<MeshBuilder> {
         Format::Obj => objoff::parse_obj(text),
         Format::Off => objoff::parse_off(text),
         Format::Medit => medit::parse(text),
-        Format::Triangle => Err(Error::invalid(
-            "a Triangle mesh is a .node/.ele pair: read both files together (read_triangle)",
-        )),
+        Format::Triangle => {
+            Err(Error::invalid("a Triangle mesh is a .node/.ele pair: read both files together (read_triangle)"))
+        }
     }
 }
 
@@ -198,9 +187,7 @@ pub fn read_model_bytes(bytes: &[u8], name: &str) -> Result<Model> {
     let format = Format::from_name(name).ok_or_else(|| unknown_format(name))?;
     check_size(bytes.len() as u64, name)?;
     if format == Format::Triangle {
-        return Err(Error::invalid(
-            "a Triangle mesh is a .node/.ele pair: read both files together (read_triangle)",
-        ));
+        return Err(Error::invalid("a Triangle mesh is a .node/.ele pair: read both files together (read_triangle)"));
     }
     read_model_str(utf8(bytes, format)?, format)
 }
@@ -241,10 +228,7 @@ impl<'a> From<&'a Mesh> for Writable<'a> {
 
 impl<'a> From<&'a crate::surface::Surface> for Writable<'a> {
     fn from(s: &'a crate::surface::Surface) -> Self {
-        Writable {
-            mesh: s.flat(),
-            points: Some(s.points()),
-        }
+        Writable { mesh: s.flat(), points: Some(s.points()) }
     }
 }
 
@@ -320,10 +304,7 @@ fn utf8(bytes: &[u8], format: Format) -> Result<&str> {
             let line = lex::line_of_byte(bytes, at);
             Err(Error::parse(
                 line,
-                format!(
-                    "the file is not UTF-8 text: byte {at} (0x{:02x}) is not valid UTF-8",
-                    bytes[at]
-                ),
+                format!("the file is not UTF-8 text: byte {at} (0x{:02x}) is not valid UTF-8", bytes[at]),
             ))
         }
     }
@@ -347,19 +328,12 @@ pub fn read_model_path(path: &std::path::Path) -> Result<Model> {
 
 #[cfg(not(target_arch = "wasm32"))]
 fn read_path_as<T>(path: &std::path::Path, build: fn(MeshBuilder) -> Result<T>) -> Result<T> {
-    let name = path
-        .file_name()
-        .map(|n| n.to_string_lossy().into_owned())
-        .unwrap_or_default();
-    let format =
-        Format::from_name(&name).ok_or_else(|| unknown_format(&path.display().to_string()))?;
+    let name = path.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_default();
+    let format = Format::from_name(&name).ok_or_else(|| unknown_format(&path.display().to_string()))?;
     if format == Format::Triangle {
         let (node, ele) = triangle_pair(path, &name)?;
         let (nb, eb) = (read_file(&node)?, read_file(&ele)?);
-        let b = triangle::parse(
-            without_bom(utf8(&nb, format)?),
-            without_bom(utf8(&eb, format)?),
-        )?;
+        let b = triangle::parse(without_bom(utf8(&nb, format)?), without_bom(utf8(&eb, format)?))?;
         return build(b);
     }
     // the file's bytes are dropped before the mesh is built
@@ -374,10 +348,7 @@ fn read_path_as<T>(path: &std::path::Path, build: fn(MeshBuilder) -> Result<T>) 
 /// the extension (`.node`) has no stem to pair: it is refused rather than taken as the
 /// stem `.node` (which made `.node.node` and `.node.ele`).
 #[cfg(not(target_arch = "wasm32"))]
-fn triangle_pair(
-    path: &std::path::Path,
-    name: &str,
-) -> Result<(std::path::PathBuf, std::path::PathBuf)> {
+fn triangle_pair(path: &std::path::Path, name: &str) -> Result<(std::path::PathBuf, std::path::PathBuf)> {
     let stem = name.rsplit_once('.').map_or("", |(stem, _)| stem);
     if stem.is_empty() {
         return Err(Error::invalid(format!(
@@ -404,15 +375,8 @@ fn read_file(p: &std::path::Path) -> Result<Vec<u8>> {
         if meta.is_file() {
             return Ok(());
         }
-        let what = if meta.is_dir() {
-            "a directory"
-        } else {
-            "a device, pipe or socket"
-        };
-        Err(Error::Io(format!(
-            "cannot read {}: it is {what}, not a regular file",
-            p.display()
-        )))
+        let what = if meta.is_dir() { "a directory" } else { "a device, pipe or socket" };
+        Err(Error::Io(format!("cannot read {}: it is {what}, not a regular file", p.display())))
     };
     // Checked before opening, since opening a named pipe waits for a writer, and again
     // on the opened file, which is the one read.
@@ -423,9 +387,7 @@ fn read_file(p: &std::path::Path) -> Result<Vec<u8>> {
     check_size(meta.len(), &p.display().to_string())?;
     let mut bytes = Vec::with_capacity(meta.len() as usize);
     // One byte past the limit tells a file that grew while it was read.
-    file.take(MAX_FILE_BYTES + 1)
-        .read_to_end(&mut bytes)
-        .map_err(fail)?;
+    file.take(MAX_FILE_BYTES + 1).read_to_end(&mut bytes).map_err(fail)?;
     check_size(bytes.len() as u64, &p.display().to_string())?;
     Ok(bytes)
 }
@@ -433,11 +395,7 @@ fn read_file(p: &std::path::Path) -> Result<Vec<u8>> {
 /// Writes a mesh as text. OBJ and OFF hold linear meshes only; Triangle output is a
 /// pair of files (see [`write_triangle`]). What round-trips is documented per format:
 /// nodes (to the last bit), elements and kinds always; fixed flags in `.msh` and `.vtk`.
-pub fn write_string<'a>(
-    mesh: impl Into<Writable<'a>>,
-    format: Format,
-    opts: &WriteOptions,
-) -> Result<String> {
+pub fn write_string<'a>(mesh: impl Into<Writable<'a>>, format: Format, opts: &WriteOptions) -> Result<String> {
     let mesh = mesh.into();
     let mut out = Out::string(64 * mesh.mesh.node_count() + 48 * mesh.mesh.element_count() + 256);
     write_to(mesh, format, opts, &mut out)?;
@@ -481,10 +439,8 @@ fn write_to(mesh: Writable, format: Format, opts: &WriteOptions, out: &mut Out) 
 /// Triangle `.node` and `.ele` file; fixed nodes get boundary marker 1.
 pub fn write_triangle<'a>(mesh: impl Into<Writable<'a>>) -> Result<(String, String)> {
     let mesh = mesh.into();
-    let (mut node, mut ele) = (
-        Out::string(48 * mesh.mesh.node_count() + 64),
-        Out::string(40 * mesh.mesh.element_count() + 64),
-    );
+    let (mut node, mut ele) =
+        (Out::string(48 * mesh.mesh.node_count() + 64), Out::string(40 * mesh.mesh.element_count() + 64));
     triangle::write(mesh, &mut node, &mut ele)?;
     check_written(node.len(), ".node")?;
     check_written(ele.len(), ".ele")?;
@@ -516,23 +472,12 @@ pub fn write(model: &Model, path: impl AsRef<std::path::Path>) -> Result<()> {
 /// pass [`MAX_FILE_BYTES`] (by `LINE_BOUND`) is measured first, so that a text too large
 /// is refused before anything is written, as it always was.
 #[cfg(not(target_arch = "wasm32"))]
-pub fn write_path<'a>(
-    mesh: impl Into<Writable<'a>>,
-    path: &std::path::Path,
-    opts: &WriteOptions,
-) -> Result<()> {
+pub fn write_path<'a>(mesh: impl Into<Writable<'a>>, path: &std::path::Path, opts: &WriteOptions) -> Result<()> {
     let mesh = mesh.into();
-    let name = path
-        .file_name()
-        .map(|n| n.to_string_lossy().into_owned())
-        .unwrap_or_default();
-    let format =
-        Format::from_name(&name).ok_or_else(|| unknown_format(&path.display().to_string()))?;
-    let bound =
-        LINE_BOUND * (mesh.mesh.node_count() as u64 + mesh.mesh.element_count() as u64) + 4096;
-    let cannot = |p: &std::path::Path, e: std::io::Error| {
-        Error::Io(format!("cannot write {}: {e}", p.display()))
-    };
+    let name = path.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_default();
+    let format = Format::from_name(&name).ok_or_else(|| unknown_format(&path.display().to_string()))?;
+    let bound = LINE_BOUND * (mesh.mesh.node_count() as u64 + mesh.mesh.element_count() as u64) + 4096;
+    let cannot = |p: &std::path::Path, e: std::io::Error| Error::Io(format!("cannot write {}: {e}", p.display()));
     if format == Format::Triangle {
         let (node_path, ele_path) = triangle_pair(path, &name)?;
         triangle::writable(mesh)?;
@@ -603,10 +548,7 @@ pub fn write_tetgen(mesh: &crate::volume::VolumeMesh) -> Result<(String, String)
             mesh.family_words()
         )));
     }
-    let (mut node, mut ele) = (
-        Out::string(80 * mesh.node_count() + 64),
-        Out::string(48 * mesh.element_count() + 64),
-    );
+    let (mut node, mut ele) = (Out::string(80 * mesh.node_count() + 64), Out::string(48 * mesh.element_count() + 64));
     volume::write_tetgen(mesh, &mut node, &mut ele);
     check_written(node.len(), ".node")?;
     check_written(ele.len(), ".ele")?;
@@ -634,15 +576,9 @@ pub fn write_model_path(model: &Model, path: &std::path::Path, opts: &WriteOptio
         Model::Surface(sf) => return write_path(sf, path, opts),
         Model::Volume(v) => v,
     };
-    let name = path
-        .file_name()
-        .map(|n| n.to_string_lossy().into_owned())
-        .unwrap_or_default();
-    let format =
-        Format::from_name(&name).ok_or_else(|| unknown_format(&path.display().to_string()))?;
-    let cannot = |p: &std::path::Path, e: std::io::Error| {
-        Error::Io(format!("cannot write {}: {e}", p.display()))
-    };
+    let name = path.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_default();
+    let format = Format::from_name(&name).ok_or_else(|| unknown_format(&path.display().to_string()))?;
+    let cannot = |p: &std::path::Path, e: std::io::Error| Error::Io(format!("cannot write {}: {e}", p.display()));
     if format == Format::Triangle {
         let (node_path, ele_path) = triangle_pair(path, &name)?;
         let (node, ele) = write_tetgen(v)?;
@@ -662,18 +598,12 @@ mod tests {
         for f in Format::ALL {
             for e in f.extensions() {
                 assert_eq!(Format::from_name(&format!("mesh.{e}")), Some(f));
-                assert_eq!(
-                    Format::from_name(&format!("MESH.{}", e.to_uppercase())),
-                    Some(f)
-                );
+                assert_eq!(Format::from_name(&format!("MESH.{}", e.to_uppercase())), Some(f));
             }
         }
         assert_eq!(Format::from_name("mesh.txt"), None);
         assert_eq!(Format::from_name("msh"), None, "no extension");
-        assert_eq!(
-            extensions_in_words(),
-            ".msh, .vtk, .node/.ele, .obj, .off or .mesh"
-        );
+        assert_eq!(extensions_in_words(), ".msh, .vtk, .node/.ele, .obj, .off or .mesh");
         assert_eq!(
             unknown_format("a.stl").to_string(),
             "cannot tell the mesh format of 'a.stl': use .msh, .vtk, .node/.ele, .obj, .off or .mesh"

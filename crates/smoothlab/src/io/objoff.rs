@@ -41,16 +41,11 @@ pub(crate) fn parse_obj(text: &str) -> Result<MeshBuilder> {
                 let mut c = [0.0; 3];
                 let mut k = 0;
                 for (i, t) in f.take(3).enumerate() {
-                    c[i] = parse_f64(t, line, || {
-                        format!("coordinate {} of vertex {}", i + 1, b.node_count() + 1)
-                    })?;
+                    c[i] = parse_f64(t, line, || format!("coordinate {} of vertex {}", i + 1, b.node_count() + 1))?;
                     k += 1;
                 }
                 if k < 2 {
-                    return Err(Error::parse(
-                        line,
-                        format!("a vertex needs at least x and y, found {}", shown(l)),
-                    ));
+                    return Err(Error::parse(line, format!("a vertex needs at least x and y, found {}", shown(l))));
                 }
                 b.add_node(c, line);
             }
@@ -63,11 +58,7 @@ pub(crate) fn parse_obj(text: &str) -> Result<MeshBuilder> {
                     let i: i64 = v.parse().map_err(|_| {
                         Error::parse(
                             line,
-                            format!(
-                                "expected a vertex index for corner {} of the face, found {}",
-                                j + 1,
-                                shown(r)
-                            ),
+                            format!("expected a vertex index for corner {} of the face, found {}", j + 1, shown(r)),
                         )
                     })?;
                     let nv = b.node_count() as i64;
@@ -105,20 +96,13 @@ pub(crate) fn parse_obj(text: &str) -> Result<MeshBuilder> {
                 return Err(Error::element(
                     number,
                     Some(*line),
-                    format!(
-                        "vertex index {} is out of range: the file has {nv} vertices (1 to {nv})",
-                        f[j] + 1
-                    ),
+                    format!("vertex index {} is out of range: the file has {nv} vertices (1 to {nv})", f[j] + 1),
                 ));
             }
             ids[j] = f[j] as u32;
         }
         if let Some(v) = repeated(&ids[..kind.node_count()]) {
-            return Err(Error::element(
-                number,
-                Some(*line),
-                format!("vertex {} appears twice in the face", v + 1),
-            ));
+            return Err(Error::element(number, Some(*line), format!("vertex {} appears twice in the face", v + 1)));
         }
         b.add_element_numbered(*kind, &ids[..kind.node_count()], *line, number);
     }
@@ -136,49 +120,28 @@ pub(crate) fn parse_off(text: &str) -> Result<MeshBuilder> {
     if !matches!(magic, "OFF" | "COFF" | "NOFF" | "CNOFF") {
         return Err(Error::parse(
             hl,
-            format!(
-                "not an OFF file: expected 'OFF' on the first line, found {}",
-                shown(magic)
-            ),
+            format!("not an OFF file: expected 'OFF' on the first line, found {}", shown(magic)),
         ));
     }
-    if tokens
-        .clone()
-        .next()
-        .is_some_and(|t| t.eq_ignore_ascii_case("BINARY"))
-    {
-        return Err(Error::unsupported(
-            Some(hl),
-            "binary OFF files are not supported",
-        ));
+    if tokens.clone().next().is_some_and(|t| t.eq_ignore_ascii_case("BINARY")) {
+        return Err(Error::unsupported(Some(hl), "binary OFF files are not supported"));
     }
     let mut counts: Vec<(&str, usize)> = tokens.map(|t| (t, hl)).collect();
     if counts.is_empty() {
         let Some((l, t)) = lines.next() else {
-            return Err(Error::parse(
-                hl,
-                "the file ends before the counts line (vertices faces edges)",
-            ));
+            return Err(Error::parse(hl, "the file ends before the counts line (vertices faces edges)"));
         };
         counts = t.split_whitespace().map(|x| (x, l)).collect();
     }
     let cl = counts.first().map_or(hl, |c| c.1);
     if counts.len() < 2 {
-        return Err(Error::parse(
-            cl,
-            "expected the counts 'vertices faces edges'",
-        ));
+        return Err(Error::parse(cl, "expected the counts 'vertices faces edges'"));
     }
     let count = |i: usize, what: &str| {
-        counts[i].0.parse::<u64>().map_err(|_| {
-            Error::parse(
-                cl,
-                format!(
-                    "expected the number of {what}, found {}",
-                    shown(counts[i].0)
-                ),
-            )
-        })
+        counts[i]
+            .0
+            .parse::<u64>()
+            .map_err(|_| Error::parse(cl, format!("expected the number of {what}, found {}", shown(counts[i].0))))
     };
     let room = text.len() as u64;
     let nv = check_count(count(0, "vertices")?, room, 6, "vertices", cl)?;
@@ -186,17 +149,11 @@ pub(crate) fn parse_off(text: &str) -> Result<MeshBuilder> {
     let mut b = MeshBuilder::with_capacity(nv, nf);
     for i in 0..nv {
         let Some((line, l)) = lines.next() else {
-            return Err(Error::parse(
-                cl,
-                format!("the counts announce {nv} vertices, but the file ends after {i}"),
-            ));
+            return Err(Error::parse(cl, format!("the counts announce {nv} vertices, but the file ends after {i}")));
         };
         let f: Vec<&str> = l.split_whitespace().take(3).collect();
         if f.len() < 3 {
-            return Err(Error::parse(
-                line,
-                format!("vertex {i} needs x y z, found {}", shown(l)),
-            ));
+            return Err(Error::parse(line, format!("vertex {i} needs x y z, found {}", shown(l))));
         }
         let mut c = [0.0; 3];
         for (j, t) in f.iter().enumerate() {
@@ -207,32 +164,19 @@ pub(crate) fn parse_off(text: &str) -> Result<MeshBuilder> {
     let mut ids = [0u32; 4];
     for e in 0..nf {
         let Some((line, l)) = lines.next() else {
-            return Err(Error::parse(
-                cl,
-                format!("the counts announce {nf} faces, but the file ends after {e}"),
-            ));
+            return Err(Error::parse(cl, format!("the counts announce {nf} faces, but the file ends after {e}")));
         };
         let mut f = l.split_whitespace();
         let k = f.next().unwrap_or("");
-        let k: usize = k.parse().map_err(|_| {
-            Error::parse(
-                line,
-                format!("expected the vertex count of face {e}, found {}", shown(k)),
-            )
-        })?;
+        let k: usize = k
+            .parse()
+            .map_err(|_| Error::parse(line, format!("expected the vertex count of face {e}, found {}", shown(k))))?;
         let kind = face_kind(k, line, &format!("face {e}"))?;
         for (j, id) in ids.iter_mut().enumerate().take(k) {
-            let t = f.next().ok_or_else(|| {
-                Error::parse(
-                    line,
-                    format!("face {e} announces {k} vertices but lists {j}"),
-                )
-            })?;
+            let t =
+                f.next().ok_or_else(|| Error::parse(line, format!("face {e} announces {k} vertices but lists {j}")))?;
             let v: u64 = t.parse().map_err(|_| {
-                Error::parse(
-                    line,
-                    format!("expected vertex index {j} of face {e}, found {}", shown(t)),
-                )
+                Error::parse(line, format!("expected vertex index {j} of face {e}, found {}", shown(t)))
             })?;
             if v >= nv as u64 {
                 return Err(Error::element(
@@ -247,11 +191,7 @@ pub(crate) fn parse_off(text: &str) -> Result<MeshBuilder> {
             *id = v as u32;
         }
         if let Some(v) = repeated(&ids[..k]) {
-            return Err(Error::element(
-                e,
-                Some(line),
-                format!("vertex {v} appears twice in the face"),
-            ));
+            return Err(Error::element(e, Some(line), format!("vertex {v} appears twice in the face")));
         }
         b.add_element(kind, &ids[..k], line);
     }

@@ -31,32 +31,17 @@ enum Mode<'w> {
 impl<'w> Out<'w> {
     /// The text is kept in memory (`capacity` is a hint).
     pub fn string(capacity: usize) -> Self {
-        Out {
-            buf: String::with_capacity(capacity),
-            mode: Mode::Keep,
-            passed: 0,
-            error: None,
-        }
+        Out { buf: String::with_capacity(capacity), mode: Mode::Keep, passed: 0, error: None }
     }
     /// The text goes to `w` in chunks.
     #[cfg(not(target_arch = "wasm32"))]
     pub fn file(w: &'w mut dyn std::io::Write) -> Self {
-        Out {
-            buf: String::with_capacity(CHUNK + 256),
-            mode: Mode::File(w),
-            passed: 0,
-            error: None,
-        }
+        Out { buf: String::with_capacity(CHUNK + 256), mode: Mode::File(w), passed: 0, error: None }
     }
     /// The text is only measured.
     #[cfg(not(target_arch = "wasm32"))]
     pub fn counter() -> Self {
-        Out {
-            buf: String::with_capacity(CHUNK + 256),
-            mode: Mode::Count,
-            passed: 0,
-            error: None,
-        }
+        Out { buf: String::with_capacity(CHUNK + 256), mode: Mode::Count, passed: 0, error: None }
     }
     pub fn push(&mut self, c: char) {
         self.buf.push(c);

@@ -31,48 +31,23 @@ const TRIANGLE_ORDER: [usize; 6] = [0, 1, 2, 5, 3, 4];
 /// Adds which file an error is in (the two files share line numbers).
 fn in_file(e: Error, file: &str) -> Error {
     match e {
-        Error::Parse { line, message } => Error::Parse {
-            line,
-            message: format!("{message} (in the {file} file)"),
-        },
-        Error::Element {
-            element,
-            line,
-            message,
-        } => Error::Element {
-            element,
-            line,
-            message: format!("{message} (line numbers of the .ele file)"),
-        },
-        Error::Node {
-            node,
-            line,
-            message,
-        } => Error::Node {
-            node,
-            line,
-            message: format!("{message} (line numbers of the .node file)"),
-        },
-        Error::Unsupported {
-            lead,
-            line,
-            message,
-        } => Error::Unsupported {
-            lead,
-            line,
-            message: format!("{message} (in the {file} file)"),
-        },
+        Error::Parse { line, message } => Error::Parse { line, message: format!("{message} (in the {file} file)") },
+        Error::Element { element, line, message } => {
+            Error::Element { element, line, message: format!("{message} (line numbers of the .ele file)") }
+        }
+        Error::Node { node, line, message } => {
+            Error::Node { node, line, message: format!("{message} (line numbers of the .node file)") }
+        }
+        Error::Unsupported { lead, line, message } => {
+            Error::Unsupported { lead, line, message: format!("{message} (in the {file} file)") }
+        }
         other => other,
     }
 }
 
 fn int(tok: &str, line: usize, what: impl Fn() -> String) -> Result<i64> {
-    tok.parse::<i64>().map_err(|_| {
-        Error::parse(
-            line,
-            format!("expected {} (an integer), found {}", what(), shown(tok)),
-        )
-    })
+    tok.parse::<i64>()
+        .map_err(|_| Error::parse(line, format!("expected {} (an integer), found {}", what(), shown(tok))))
 }
 
 /// Reads the header line of a file: its integers, at least `min` of them.
@@ -83,19 +58,14 @@ fn header<'a>(
     min: usize,
 ) -> Result<(usize, Vec<i64>)> {
     let Some((line, text)) = lines.next() else {
-        return Err(Error::Empty(format!(
-            "the {file} file has no header line ({fields})"
-        )));
+        return Err(Error::Empty(format!("the {file} file has no header line ({fields})")));
     };
     let mut v = Vec::new();
     for t in text.split_whitespace() {
         v.push(int(t, line, || format!("a header value ({fields})"))?);
     }
     if v.len() < min {
-        return Err(Error::parse(
-            line,
-            format!("the header must give {fields}, found {}", shown(text)),
-        ));
+        return Err(Error::parse(line, format!("the header must give {fields}, found {}", shown(text))));
     }
     Ok((line, v))
 }
@@ -128,21 +98,13 @@ pub(crate) fn read_model(node: &str, ele: &str) -> Result<crate::model::Model> {
 /// dimension (2: Triangle, 3: TetGen).
 fn read_nodes(text: &str, b: &mut MeshBuilder) -> Result<(i64, Option<Vec<bool>>, i64)> {
     let mut lines = content_lines(text, Some('#'));
-    let (hl, h) = header(
-        &mut lines,
-        ".node",
-        "nodes, dimension, attributes, boundary markers",
-        1,
-    )?;
+    let (hl, h) = header(&mut lines, ".node", "nodes, dimension, attributes, boundary markers", 1)?;
     let count = h[0];
     let dim = h.get(1).copied().unwrap_or(2);
     let attrs = h.get(2).copied().unwrap_or(0);
     let nmark = h.get(3).copied().unwrap_or(0);
     if dim != 2 && dim != 3 {
-        return Err(Error::parse(
-            hl,
-            format!("the dimension must be 2 (Triangle) or 3 (TetGen), found {dim}"),
-        ));
+        return Err(Error::parse(hl, format!("the dimension must be 2 (Triangle) or 3 (TetGen), found {dim}")));
     }
     if attrs < 0 || !(0..=1).contains(&nmark) || count < 0 {
         return Err(Error::parse(
@@ -153,23 +115,14 @@ fn read_nodes(text: &str, b: &mut MeshBuilder) -> Result<(i64, Option<Vec<bool>>
     let n = check_count(count as u64, text.len() as u64, 6, "nodes", hl)?;
     // No line can hold more attributes than the file has bytes; checked first so that
     // the field count below cannot overflow (a 32-bit usize in the page's wasm).
-    let attrs = check_count(
-        attrs as u64,
-        text.len() as u64,
-        2,
-        "attributes per node",
-        hl,
-    )?;
+    let attrs = check_count(attrs as u64, text.len() as u64, 2, "attributes per node", hl)?;
     let per = 1 + dim as usize + attrs + nmark as usize;
     *b = MeshBuilder::with_capacity(n, 0);
     let mut marks = (nmark == 1).then(|| Vec::with_capacity(prealloc(n)));
     let mut base = 0;
     for i in 0..n {
         let Some((line, text)) = lines.next() else {
-            return Err(Error::parse(
-                hl,
-                format!("the header announces {n} nodes, but the file ends after {i}"),
-            ));
+            return Err(Error::parse(hl, format!("the header announces {n} nodes, but the file ends after {i}")));
         };
         let f: Vec<&str> = text.split_whitespace().collect();
         if f.len() != per {
@@ -186,44 +139,27 @@ fn read_nodes(text: &str, b: &mut MeshBuilder) -> Result<(i64, Option<Vec<bool>>
         let number = int(f[0], line, || "the node number".into())?;
         if i == 0 {
             if number != 0 && number != 1 {
-                return Err(Error::parse(
-                    line,
-                    format!("the first node must be numbered 0 or 1, found {number}"),
-                ));
+                return Err(Error::parse(line, format!("the first node must be numbered 0 or 1, found {number}")));
             }
             base = number;
         } else if number != base + i as i64 {
             return Err(Error::parse(
                 line,
-                format!(
-                    "node numbers must be consecutive: expected {}, found {number}",
-                    base + i as i64
-                ),
+                format!("node numbers must be consecutive: expected {}, found {number}", base + i as i64),
             ));
         }
         let x = parse_f64(f[1], line, || format!("the x coordinate of node {number}"))?;
         let y = parse_f64(f[2], line, || format!("the y coordinate of node {number}"))?;
-        let z = if dim == 3 {
-            parse_f64(f[3], line, || format!("the z coordinate of node {number}"))?
-        } else {
-            0.0
-        };
+        let z = if dim == 3 { parse_f64(f[3], line, || format!("the z coordinate of node {number}"))? } else { 0.0 };
         b.add_node([x, y, z], line);
         if let Some(m) = marks.as_mut() {
-            m.push(
-                int(f[per - 1], line, || {
-                    format!("the boundary marker of node {number}")
-                })? != 0,
-            );
+            m.push(int(f[per - 1], line, || format!("the boundary marker of node {number}"))? != 0);
         }
     }
     if let Some((line, text)) = lines.next() {
         return Err(Error::parse(
             line,
-            format!(
-                "unexpected {} after the {n} nodes the header (line {hl}) announces",
-                shown(text)
-            ),
+            format!("unexpected {} after the {n} nodes the header (line {hl}) announces", shown(text)),
         ));
     }
     Ok((base, marks, dim))
@@ -234,46 +170,26 @@ fn read_elements(text: &str, base: i64, dim: i64, b: &mut MeshBuilder) -> Result
         return read_tetrahedra(text, base, b);
     }
     let mut lines = content_lines(text, Some('#'));
-    let (hl, h) = header(
-        &mut lines,
-        ".ele",
-        "triangles, nodes per triangle, attributes",
-        2,
-    )?;
+    let (hl, h) = header(&mut lines, ".ele", "triangles, nodes per triangle, attributes", 2)?;
     let (count, per, attrs) = (h[0], h[1], h.get(2).copied().unwrap_or(0));
     let kind = match per {
         3 => ElementKind::Tri3,
         6 => ElementKind::Tri6,
         _ => {
-            return Err(Error::unsupported(
-                Some(hl),
-                format!("triangles with {per} nodes are not supported (3 or 6)"),
-            ))
+            return Err(Error::unsupported(Some(hl), format!("triangles with {per} nodes are not supported (3 or 6)")))
         }
     };
     if count < 0 || attrs < 0 {
-        return Err(Error::parse(
-            hl,
-            "the triangle and attribute counts must be non-negative",
-        ));
+        return Err(Error::parse(hl, "the triangle and attribute counts must be non-negative"));
     }
     let m = check_count(count as u64, text.len() as u64, 8, "triangles", hl)?;
-    let attrs = check_count(
-        attrs as u64,
-        text.len() as u64,
-        2,
-        "attributes per triangle",
-        hl,
-    )?;
+    let attrs = check_count(attrs as u64, text.len() as u64, 2, "attributes per triangle", hl)?;
     let np = b.node_count() as i64;
     let fields = 1 + per as usize + attrs;
     let mut ids = [0u32; 6];
     for i in 0..m {
         let Some((line, text)) = lines.next() else {
-            return Err(Error::parse(
-                hl,
-                format!("the header announces {m} triangles, but the file ends after {i}"),
-            ));
+            return Err(Error::parse(hl, format!("the header announces {m} triangles, but the file ends after {i}")));
         };
         let f: Vec<&str> = text.split_whitespace().collect();
         if f.len() != fields {
@@ -287,20 +203,14 @@ fn read_elements(text: &str, base: i64, dim: i64, b: &mut MeshBuilder) -> Result
             ));
         }
         // its number as the file writes it, for messages
-        let number =
-            u64::try_from(int(f[0], line, || "the triangle number".into())?).unwrap_or(i as u64);
+        let number = u64::try_from(int(f[0], line, || "the triangle number".into())?).unwrap_or(i as u64);
         for (ours, &theirs) in TRIANGLE_ORDER[..per as usize].iter().enumerate() {
-            let v = int(f[1 + theirs], line, || {
-                format!("node {} of triangle {i}", theirs + 1)
-            })?;
+            let v = int(f[1 + theirs], line, || format!("node {} of triangle {i}", theirs + 1))?;
             if v < base || v >= base + np {
                 return Err(Error::element(
                     number,
                     Some(line),
-                    format!(
-                        "node {v} is out of range: the .node file numbers its nodes {base} to {}",
-                        base + np - 1
-                    ),
+                    format!("node {v} is out of range: the .node file numbers its nodes {base} to {}", base + np - 1),
                 ));
             }
             ids[ours] = (v - base) as u32;
@@ -317,10 +227,7 @@ fn read_elements(text: &str, base: i64, dim: i64, b: &mut MeshBuilder) -> Result
     if let Some((line, text)) = lines.next() {
         return Err(Error::parse(
             line,
-            format!(
-                "unexpected {} after the {m} triangles the header (line {hl}) announces",
-                shown(text)
-            ),
+            format!("unexpected {} after the {m} triangles the header (line {hl}) announces", shown(text)),
         ));
     }
     Ok(())
@@ -330,33 +237,16 @@ fn read_elements(text: &str, base: i64, dim: i64, b: &mut MeshBuilder) -> Result
 /// [attributes]` (see the module docs for the order of the extra nodes).
 fn read_tetrahedra(text: &str, base: i64, b: &mut MeshBuilder) -> Result<()> {
     let mut lines = content_lines(text, Some('#'));
-    let (hl, h) = header(
-        &mut lines,
-        ".ele",
-        "tetrahedra, nodes per tetrahedron, attributes",
-        2,
-    )?;
+    let (hl, h) = header(&mut lines, ".ele", "tetrahedra, nodes per tetrahedron, attributes", 2)?;
     let (count, per, attrs) = (h[0], h[1], h.get(2).copied().unwrap_or(0));
     if per != 4 && per != 10 {
-        return Err(Error::unsupported(
-            Some(hl),
-            format!("tetrahedra with {per} nodes are not supported (4 or 10)"),
-        ));
+        return Err(Error::unsupported(Some(hl), format!("tetrahedra with {per} nodes are not supported (4 or 10)")));
     }
     if count < 0 || attrs < 0 {
-        return Err(Error::parse(
-            hl,
-            "the tetrahedron and attribute counts must be non-negative",
-        ));
+        return Err(Error::parse(hl, "the tetrahedron and attribute counts must be non-negative"));
     }
     let m = check_count(count as u64, text.len() as u64, 10, "tetrahedra", hl)?;
-    let attrs = check_count(
-        attrs as u64,
-        text.len() as u64,
-        2,
-        "attributes per tetrahedron",
-        hl,
-    )?;
+    let attrs = check_count(attrs as u64, text.len() as u64, 2, "attributes per tetrahedron", hl)?;
     let np = b.node_count() as i64;
     let per = per as usize;
     let kind = crate::mesh::VolumeKind::with_nodes(per).expect("4 or 10 nodes, checked above");
@@ -364,10 +254,7 @@ fn read_tetrahedra(text: &str, base: i64, b: &mut MeshBuilder) -> Result<()> {
     let mut ids = [0u32; 10];
     for i in 0..m {
         let Some((line, text)) = lines.next() else {
-            return Err(Error::parse(
-                hl,
-                format!("the header announces {m} tetrahedra, but the file ends after {i}"),
-            ));
+            return Err(Error::parse(hl, format!("the header announces {m} tetrahedra, but the file ends after {i}")));
         };
         let f: Vec<&str> = text.split_whitespace().collect();
         if f.len() != fields {
@@ -380,20 +267,14 @@ fn read_tetrahedra(text: &str, base: i64, b: &mut MeshBuilder) -> Result<()> {
                 ),
             ));
         }
-        let number =
-            u64::try_from(int(f[0], line, || "the tetrahedron number".into())?).unwrap_or(i as u64);
+        let number = u64::try_from(int(f[0], line, || "the tetrahedron number".into())?).unwrap_or(i as u64);
         for (j, id) in ids[..per].iter_mut().enumerate() {
-            let v = int(f[1 + j], line, || {
-                format!("node {} of tetrahedron {i}", j + 1)
-            })?;
+            let v = int(f[1 + j], line, || format!("node {} of tetrahedron {i}", j + 1))?;
             if v < base || v >= base + np {
                 return Err(Error::element(
                     number,
                     Some(line),
-                    format!(
-                        "node {v} is out of range: the .node file numbers its nodes {base} to {}",
-                        base + np - 1
-                    ),
+                    format!("node {v} is out of range: the .node file numbers its nodes {base} to {}", base + np - 1),
                 ));
             }
             *id = (v - base) as u32;
@@ -410,10 +291,7 @@ fn read_tetrahedra(text: &str, base: i64, b: &mut MeshBuilder) -> Result<()> {
     if let Some((line, text)) = lines.next() {
         return Err(Error::parse(
             line,
-            format!(
-                "unexpected {} after the {m} tetrahedra the header (line {hl}) announces",
-                shown(text)
-            ),
+            format!("unexpected {} after the {m} tetrahedra the header (line {hl}) announces", shown(text)),
         ));
     }
     Ok(())
@@ -442,9 +320,7 @@ pub(crate) fn writable(w: super::Writable) -> Result<ElementKind> {
     }
     let mesh = w.mesh;
     let kind = mesh.kind(0);
-    if let Some(e) =
-        (0..mesh.element_count()).find(|&e| mesh.kind(e) != kind || !kind.is_triangle())
-    {
+    if let Some(e) = (0..mesh.element_count()).find(|&e| mesh.kind(e) != kind || !kind.is_triangle()) {
         return Err(Error::invalid(format!(
             "Triangle's .ele holds triangles of one kind only, but element {e} is a {} (element 0 is a {}); \
              write .msh or .vtk instead",
@@ -458,23 +334,13 @@ pub(crate) fn writable(w: super::Writable) -> Result<ElementKind> {
 pub(crate) fn write(w: super::Writable, node: &mut Out, ele: &mut Out) -> Result<()> {
     let kind = writable(w)?;
     let mesh = w.mesh;
-    let _ = writeln!(
-        node,
-        "# written by smoothlab: number x y boundary-marker (1 = fixed)"
-    );
+    let _ = writeln!(node, "# written by smoothlab: number x y boundary-marker (1 = fixed)");
     if let Some(note) = flat_note(mesh) {
         let _ = writeln!(node, "# {note}");
     }
     let _ = writeln!(node, "{} 2 0 1", mesh.node_count());
     for (i, p) in mesh.nodes().iter().enumerate() {
-        let _ = writeln!(
-            node,
-            "{} {:?} {:?} {}",
-            i + 1,
-            p.x,
-            p.y,
-            u8::from(mesh.fixed()[i])
-        );
+        let _ = writeln!(node, "{} {:?} {:?} {}", i + 1, p.x, p.y, u8::from(mesh.fixed()[i]));
     }
     let per = kind.node_count();
     let _ = writeln!(ele, "{} {per} 0", mesh.element_count());

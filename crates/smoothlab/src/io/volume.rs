@@ -33,11 +33,7 @@ pub(crate) const MAX_VOLUME_NODES: usize = {
 pub(crate) fn volume_codes(code: fn(&VolumeKindRow) -> u32) -> String {
     let mut codes: Vec<u32> = VolumeKind::ALL.iter().map(|k| code(k.row())).collect();
     codes.sort_unstable();
-    codes
-        .iter()
-        .map(u32::to_string)
-        .collect::<Vec<_>>()
-        .join(", ")
+    codes.iter().map(u32::to_string).collect::<Vec<_>>().join(", ")
 }
 
 fn write_point(s: &mut Out, p: glam::DVec3) {
@@ -56,13 +52,12 @@ impl MshSource for VolumeMesh {
         write_point(s, self.nodes()[i]);
     }
     fn write_bounds(&self, s: &mut Out) {
-        let (lo, hi) = self.nodes().iter().fold(
-            (
-                glam::DVec3::splat(f64::INFINITY),
-                glam::DVec3::splat(f64::NEG_INFINITY),
-            ),
-            |(lo, hi), q| (lo.min(*q), hi.max(*q)),
-        );
+        let (lo, hi) = self
+            .nodes()
+            .iter()
+            .fold((glam::DVec3::splat(f64::INFINITY), glam::DVec3::splat(f64::NEG_INFINITY)), |(lo, hi), q| {
+                (lo.min(*q), hi.max(*q))
+            });
         write_point(s, lo);
         s.push(' ');
         write_point(s, hi);
@@ -102,18 +97,10 @@ impl MshSource for VolumeMesh {
             let ty = self.element_kind(e).row().gmsh_type;
             match blocks.last_mut() {
                 Some(b) if b.ty == ty => b.range.end = e + 1,
-                _ => blocks.push(MshBlock {
-                    dim: 3,
-                    ty,
-                    range: e..e + 1,
-                }),
+                _ => blocks.push(MshBlock { dim: 3, ty, range: e..e + 1 }),
             }
         }
-        blocks.extend(types.into_iter().map(|ty| MshBlock {
-            dim: 2,
-            ty,
-            range: m..m + self.faces().len(),
-        }));
+        blocks.extend(types.into_iter().map(|ty| MshBlock { dim: 2, ty, range: m..m + self.faces().len() }));
         blocks
     }
     fn fixed(&self) -> &[bool] {

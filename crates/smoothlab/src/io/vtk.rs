@@ -89,10 +89,7 @@ fn vtk_type(t: u64) -> VtkType {
         11 => Unsupported("voxel", Some("voxels (hexahedra numbered as a grid)")),
         26 => Unsupported("quadratic wedge", Some("quadratic wedges (prisms)")),
         27 => Unsupported("quadratic pyramid", Some("quadratic pyramids")),
-        32 => Unsupported(
-            "biquadratic-quadratic wedge",
-            Some("quadratic wedges (prisms)"),
-        ),
+        32 => Unsupported("biquadratic-quadratic wedge", Some("quadratic wedges (prisms)")),
         42 => Unsupported("polyhedron", Some("polyhedra")),
         _ => Unsupported("not a cell smoothlab knows", None),
     }
@@ -147,26 +144,14 @@ pub(crate) fn parse(text: &str) -> Result<MeshBuilder> {
     if !version.starts_with("# vtk datafile version") {
         return Err(Error::parse(
             1,
-            format!(
-                "not a legacy VTK file: line 1 must be '# vtk DataFile Version x.y', found {}",
-                shown(header[0])
-            ),
+            format!("not a legacy VTK file: line 1 must be '# vtk DataFile Version x.y', found {}", shown(header[0])),
         ));
     }
     if header[2].eq_ignore_ascii_case("BINARY") {
-        return Err(Error::unsupported(
-            Some(3),
-            "binary VTK files are not supported; save as ASCII",
-        ));
+        return Err(Error::unsupported(Some(3), "binary VTK files are not supported; save as ASCII"));
     }
     if !header[2].eq_ignore_ascii_case("ASCII") {
-        return Err(Error::parse(
-            3,
-            format!(
-                "expected 'ASCII' or 'BINARY' on line 3, found {}",
-                shown(header[2])
-            ),
-        ));
+        return Err(Error::parse(3, format!("expected 'ASCII' or 'BINARY' on line 3, found {}", shown(header[2]))));
     }
     let mut lex = Lexer::starting_at(rest, 4);
     let kw = lex.keyword("DATASET", || "the dataset line after the header".into())?;
@@ -178,10 +163,7 @@ pub(crate) fn parse(text: &str) -> Result<MeshBuilder> {
     } else {
         return Err(Error::unsupported(
             Some(ty.line.max(kw.line)),
-            format!(
-                "VTK dataset {} is not supported; smoothlab reads UNSTRUCTURED_GRID and POLYDATA",
-                shown(ty.text)
-            ),
+            format!("VTK dataset {} is not supported; smoothlab reads UNSTRUCTURED_GRID and POLYDATA", shown(ty.text)),
         ));
     };
     let mut r = Reader {
@@ -209,10 +191,7 @@ impl Reader<'_> {
             let k = t.text;
             if is(k, "POINTS") {
                 if let Some(l) = self.points_line {
-                    return Err(Error::parse(
-                        t.line,
-                        format!("a second POINTS section (the first is at line {l})"),
-                    ));
+                    return Err(Error::parse(t.line, format!("a second POINTS section (the first is at line {l})")));
                 }
                 self.points(t.line)?;
             } else if self.dataset == Dataset::UnstructuredGrid && is(k, "CELLS") {
@@ -229,10 +208,7 @@ impl Reader<'_> {
                 if let Some(c) = &self.cells {
                     return Err(Error::parse(
                         t.line,
-                        format!(
-                            "a second POLYGONS section (the first is at line {})",
-                            c.header
-                        ),
+                        format!("a second POLYGONS section (the first is at line {})", c.header),
                     ));
                 }
                 self.cells = Some(self.cell_list(t.line, "POLYGONS")?);
@@ -240,10 +216,7 @@ impl Reader<'_> {
                 let c = self.cell_list(t.line, k)?;
                 self.marked.extend_from_slice(&c.conn);
             } else if self.dataset == Dataset::PolyData && is(k, "TRIANGLE_STRIPS") {
-                return Err(Error::unsupported(
-                    Some(t.line),
-                    "VTK triangle strips are not supported",
-                ));
+                return Err(Error::unsupported(Some(t.line), "VTK triangle strips are not supported"));
             } else if is(k, "POINT_DATA") || is(k, "CELL_DATA") {
                 self.attributes(t.line, is(k, "POINT_DATA"))?;
             } else if is(k, "FIELD") {
@@ -252,34 +225,22 @@ impl Reader<'_> {
                 self.lex.skip_to_blank_line();
             } else {
                 let expected = match self.dataset {
-                    Dataset::UnstructuredGrid => {
-                        "POINTS, CELLS, CELL_TYPES, POINT_DATA or CELL_DATA"
-                    }
-                    Dataset::PolyData => {
-                        "POINTS, POLYGONS, VERTICES, LINES, POINT_DATA or CELL_DATA"
-                    }
+                    Dataset::UnstructuredGrid => "POINTS, CELLS, CELL_TYPES, POINT_DATA or CELL_DATA",
+                    Dataset::PolyData => "POINTS, POLYGONS, VERTICES, LINES, POINT_DATA or CELL_DATA",
                 };
-                return Err(Error::parse(
-                    t.line,
-                    format!("expected a section ({expected}), found {}", shown(k)),
-                ));
+                return Err(Error::parse(t.line, format!("expected a section ({expected}), found {}", shown(k))));
             }
         }
         Ok(())
     }
 
     fn points(&mut self, line: usize) -> Result<()> {
-        let (n, nl) = self
-            .lex
-            .u64(|| "the number of points after POINTS".into())?;
+        let (n, nl) = self.lex.u64(|| "the number of points after POINTS".into())?;
         let n = self.lex.check_count(n, 6, "points", nl)?;
-        self.lex
-            .expect(|| "the data type of POINTS (float, double, …)".into())?;
+        self.lex.expect(|| "the data type of POINTS (float, double, …)".into())?;
         self.builder = MeshBuilder::with_capacity(n, 0);
         for i in 0..n {
-            let what = |c: &str| {
-                format!("the {c} coordinate of point {i} (of the {n} announced at line {line})")
-            };
+            let what = |c: &str| format!("the {c} coordinate of point {i} (of the {n} announced at line {line})");
             let (x, xl) = self.lex.f64(|| what("x"))?;
             let (y, _) = self.lex.f64(|| what("y"))?;
             let (z, _) = self.lex.f64(|| what("z"))?;
@@ -291,14 +252,9 @@ impl Reader<'_> {
 
     /// A cell list (`CELLS`, `POLYGONS`, `LINES`, …) in either layout.
     fn cell_list(&mut self, line: usize, name: &str) -> Result<Cells> {
-        let (a, al) = self
-            .lex
-            .u64(|| format!("the number of cells after {name}"))?;
+        let (a, al) = self.lex.u64(|| format!("the number of cells after {name}"))?;
         let (b, _) = self.lex.u64(|| format!("the size of the {name} list"))?;
-        let mut c = Cells {
-            header: line,
-            ..Default::default()
-        };
+        let mut c = Cells { header: line, ..Default::default() };
         if self.lex.peek().is_some_and(|t| is(t.text, "OFFSETS")) {
             // VTK 5.1: `a` offsets (one more than the cells), `b` connectivity entries.
             self.lex.next();
@@ -307,21 +263,13 @@ impl Reader<'_> {
             let n_conn = self.lex.check_count(b, 2, "connectivity entries", al)?;
             let mut offsets = Vec::with_capacity(prealloc(n_off));
             for i in 0..n_off {
-                let (o, ol) = self
-                    .lex
-                    .u64(|| format!("offset {i} of the {n_off} announced at line {line}"))?;
+                let (o, ol) = self.lex.u64(|| format!("offset {i} of the {n_off} announced at line {line}"))?;
                 if let Some(&(prev, _)) = offsets.last() {
                     if o < prev {
-                        return Err(Error::parse(
-                            ol,
-                            format!("offsets must not decrease: {o} follows {prev}"),
-                        ));
+                        return Err(Error::parse(ol, format!("offsets must not decrease: {o} follows {prev}")));
                     }
                 } else if o != 0 {
-                    return Err(Error::parse(
-                        ol,
-                        format!("the first offset must be 0, found {o}"),
-                    ));
+                    return Err(Error::parse(ol, format!("the first offset must be 0, found {o}")));
                 }
                 offsets.push((o, ol as u32));
             }
@@ -332,34 +280,25 @@ impl Reader<'_> {
                     format!("the last offset is {last} but the header announces {b} connectivity entries"),
                 ));
             }
-            self.lex.keyword("CONNECTIVITY", || {
-                format!("after the offsets of {name} (line {line})")
-            })?;
+            self.lex.keyword("CONNECTIVITY", || format!("after the offsets of {name} (line {line})"))?;
             self.lex.expect(|| "the data type of CONNECTIVITY".into())?;
             c.conn.reserve(prealloc(n_conn));
             let mut cell_lines = Vec::with_capacity(prealloc(n_conn));
             for i in 0..n_conn {
-                let (v, vl) = self.lex.u64(|| {
-                    format!("connectivity entry {i} of the {n_conn} announced at line {line}")
-                })?;
+                let (v, vl) =
+                    self.lex.u64(|| format!("connectivity entry {i} of the {n_conn} announced at line {line}"))?;
                 c.conn.push(v);
                 cell_lines.push(vl as u32);
             }
             for w in offsets.windows(2) {
                 c.start.push(w[0].0 as usize);
-                c.lines
-                    .push(cell_lines.get(w[0].0 as usize).copied().unwrap_or(w[0].1));
+                c.lines.push(cell_lines.get(w[0].0 as usize).copied().unwrap_or(w[0].1));
             }
         } else {
             let n = self.lex.check_count(a, 4, "cells", al)?;
             c.start.reserve(prealloc(n));
             c.lines.reserve(prealloc(n));
-            c.conn.reserve(prealloc(
-                self.lex
-                    .check_count(b, 2, "list entries", al)
-                    .unwrap_or(0)
-                    .min(16 * n),
-            ));
+            c.conn.reserve(prealloc(self.lex.check_count(b, 2, "list entries", al).unwrap_or(0).min(16 * n)));
             // A keyword where a number should be: the cells' counts do not fit the data.
             let cut_short = |lex: &Lexer, i: usize| -> Result<()> {
                 match lex.peek() {
@@ -376,16 +315,13 @@ impl Reader<'_> {
             };
             for i in 0..n {
                 cut_short(&self.lex, i)?;
-                let (k, kl) = self.lex.u64(|| {
-                    format!("the point count of cell {i} (of the {n} announced at line {line})")
-                })?;
+                let (k, kl) =
+                    self.lex.u64(|| format!("the point count of cell {i} (of the {n} announced at line {line})"))?;
                 c.start.push(c.conn.len());
                 c.lines.push(kl as u32);
                 for j in 0..k {
                     cut_short(&self.lex, i)?;
-                    let (v, _) = self
-                        .lex
-                        .u64(|| format!("point {j} of the {k} of cell {i} (line {kl})"))?;
+                    let (v, _) = self.lex.u64(|| format!("point {j} of the {k} of cell {i} (line {kl})"))?;
                     c.conn.push(v);
                 }
             }
@@ -395,16 +331,10 @@ impl Reader<'_> {
 
     fn cell_types(&mut self, line: usize) -> Result<()> {
         let Some(cells) = &self.cells else {
-            return Err(Error::parse(
-                line,
-                "CELL_TYPES comes before any CELLS section",
-            ));
+            return Err(Error::parse(line, "CELL_TYPES comes before any CELLS section"));
         };
         if let Some((_, _, l)) = &self.types {
-            return Err(Error::parse(
-                line,
-                format!("a second CELL_TYPES section (the first is at line {l})"),
-            ));
+            return Err(Error::parse(line, format!("a second CELL_TYPES section (the first is at line {l})")));
         }
         let (announced, nl) = self.lex.u64(|| "the number of cell types".into())?;
         if announced < cells.len() as u64 {
@@ -424,23 +354,14 @@ impl Reader<'_> {
         let mut types = Vec::with_capacity(n);
         let mut lines = Vec::with_capacity(n);
         for i in 0..n {
-            let (t, tl) = self
-                .lex
-                .u64(|| format!("the type of cell {i} (of the {n} at line {line})"))?;
+            let (t, tl) = self.lex.u64(|| format!("the type of cell {i} (of the {n} at line {line})"))?;
             types.push(t);
             lines.push(tl as u32);
         }
         // More types than cells: read (and check) the surplus, use the first ones.
-        let extra = self
-            .lex
-            .check_count(announced - n as u64, 2, "cell types", nl)?;
+        let extra = self.lex.check_count(announced - n as u64, 2, "cell types", nl)?;
         for i in 0..extra {
-            self.lex.u64(|| {
-                format!(
-                    "cell type {} of the {announced} announced at line {nl}",
-                    n + i
-                )
-            })?;
+            self.lex.u64(|| format!("cell type {} of the {announced} announced at line {nl}", n + i))?;
         }
         self.types = Some((types, lines, line));
         Ok(())
@@ -448,11 +369,7 @@ impl Reader<'_> {
 
     /// The attributes after `POINT_DATA n` / `CELL_DATA n`, up to the next section.
     fn attributes(&mut self, line: usize, point_data: bool) -> Result<()> {
-        let what = if point_data {
-            "POINT_DATA"
-        } else {
-            "CELL_DATA"
-        };
+        let what = if point_data { "POINT_DATA" } else { "CELL_DATA" };
         let (n, nl) = self.lex.u64(|| format!("the count after {what}"))?;
         if point_data {
             match self.points_line {
@@ -475,24 +392,15 @@ impl Reader<'_> {
             if is(k, "SCALARS") {
                 self.lex.next();
                 let name = self.lex.expect(|| "the name of the SCALARS".into())?;
-                self.lex
-                    .expect(|| format!("the data type of SCALARS {}", name.text))?;
+                self.lex.expect(|| format!("the data type of SCALARS {}", name.text))?;
                 let mut comps = 1;
                 if let Some(c) = self.lex.peek().filter(|c| c.line == t.line) {
-                    comps = c
-                        .text
-                        .parse::<u64>()
-                        .ok()
-                        .filter(|c| (1..=4).contains(c))
-                        .ok_or_else(|| {
-                            Error::parse(
-                                c.line,
-                                format!(
-                                    "expected the number of components (1 to 4), found {}",
-                                    shown(c.text)
-                                ),
-                            )
-                        })?;
+                    comps = c.text.parse::<u64>().ok().filter(|c| (1..=4).contains(c)).ok_or_else(|| {
+                        Error::parse(
+                            c.line,
+                            format!("expected the number of components (1 to 4), found {}", shown(c.text)),
+                        )
+                    })?;
                     self.lex.next();
                 }
                 if self.lex.peek().is_some_and(|l| is(l.text, "LOOKUP_TABLE")) {
@@ -503,9 +411,7 @@ impl Reader<'_> {
                     if let Some(first) = self.fixed_line {
                         return Err(Error::parse(
                             t.line,
-                            format!(
-                                "a second SCALARS fixed (the first is at line {first}): give one"
-                            ),
+                            format!("a second SCALARS fixed (the first is at line {first}): give one"),
                         ));
                     }
                     self.fixed_line = Some(t.line);
@@ -517,12 +423,8 @@ impl Reader<'_> {
                     }
                     let mut f = Vec::with_capacity(prealloc(n as usize));
                     for i in 0..n {
-                        let (v, _) = self.lex.f64(|| {
-                            format!(
-                                "the 'fixed' value of point {i} (SCALARS at line {})",
-                                t.line
-                            )
-                        })?;
+                        let (v, _) =
+                            self.lex.f64(|| format!("the 'fixed' value of point {i} (SCALARS at line {})", t.line))?;
                         f.push(v != 0.0);
                     }
                     self.fixed = Some(f);
@@ -534,8 +436,7 @@ impl Reader<'_> {
                 self.lex.expect(|| "the name of the COLOR_SCALARS".into())?;
                 let (c, _) = self.lex.u64(|| "the number of colour values".into())?;
                 self.skip_values(n.saturating_mul(c), "COLOR_SCALARS", t.line)?;
-            } else if is(k, "VECTORS") || is(k, "NORMALS") || is(k, "TENSORS") || is(k, "TENSORS6")
-            {
+            } else if is(k, "VECTORS") || is(k, "NORMALS") || is(k, "TENSORS") || is(k, "TENSORS6") {
                 self.lex.next();
                 self.lex.expect(|| format!("the name of the {k}"))?;
                 self.lex.expect(|| format!("the data type of the {k}"))?;
@@ -549,11 +450,9 @@ impl Reader<'_> {
                 self.skip_values(n * per, k, t.line)?;
             } else if is(k, "TEXTURE_COORDINATES") {
                 self.lex.next();
-                self.lex
-                    .expect(|| "the name of the TEXTURE_COORDINATES".into())?;
+                self.lex.expect(|| "the name of the TEXTURE_COORDINATES".into())?;
                 let (d, _) = self.lex.u64(|| "the texture dimension".into())?;
-                self.lex
-                    .expect(|| "the data type of the TEXTURE_COORDINATES".into())?;
+                self.lex.expect(|| "the data type of the TEXTURE_COORDINATES".into())?;
                 self.skip_values(n.saturating_mul(d), k, t.line)?;
             } else if is(k, "LOOKUP_TABLE") {
                 self.lex.next();
@@ -574,31 +473,20 @@ impl Reader<'_> {
     }
 
     fn skip_values(&mut self, count: u64, what: &str, line: usize) -> Result<()> {
-        self.lex
-            .check_count(count, 2, &format!("values of {what}"), line)?;
-        self.lex
-            .skip(count, || format!("a value of {what} (line {line})"))
+        self.lex.check_count(count, 2, &format!("values of {what}"), line)?;
+        self.lex.skip(count, || format!("a value of {what} (line {line})"))
     }
 
     /// `FIELD name n`, then `n` arrays `name components tuples type` with their values.
     fn field(&mut self, line: usize) -> Result<()> {
         self.lex.expect(|| "the name of the FIELD".into())?;
-        let (arrays, al) = self
-            .lex
-            .u64(|| "the number of arrays of the FIELD".into())?;
+        let (arrays, al) = self.lex.u64(|| "the number of arrays of the FIELD".into())?;
         self.lex.check_count(arrays, 8, "field arrays", al)?;
         for _ in 0..arrays {
-            let name = self
-                .lex
-                .expect(|| format!("the name of an array of the FIELD at line {line}"))?;
-            let (c, _) = self
-                .lex
-                .u64(|| format!("the number of components of array {}", name.text))?;
-            let (t, _) = self
-                .lex
-                .u64(|| format!("the number of tuples of array {}", name.text))?;
-            self.lex
-                .expect(|| format!("the data type of array {}", name.text))?;
+            let name = self.lex.expect(|| format!("the name of an array of the FIELD at line {line}"))?;
+            let (c, _) = self.lex.u64(|| format!("the number of components of array {}", name.text))?;
+            let (t, _) = self.lex.u64(|| format!("the number of tuples of array {}", name.text))?;
+            self.lex.expect(|| format!("the data type of array {}", name.text))?;
             self.skip_values(c.saturating_mul(t), name.text, name.line)?;
             if self.lex.peek().is_some_and(|m| is(m.text, "METADATA")) {
                 self.lex.next();
@@ -609,32 +497,15 @@ impl Reader<'_> {
     }
 
     fn finish(self) -> Result<MeshBuilder> {
-        let Reader {
-            lex,
-            dataset,
-            mut builder,
-            points_line,
-            cells,
-            types,
-            mut marked,
-            fixed,
-            ..
-        } = self;
+        let Reader { lex, dataset, mut builder, points_line, cells, types, mut marked, fixed, .. } = self;
         if points_line.is_none() {
-            return Err(Error::parse(
-                lex.last_line(),
-                "the file ends without a POINTS section",
-            ));
+            return Err(Error::parse(lex.last_line(), "the file ends without a POINTS section"));
         }
         let np = builder.node_count();
         let Some(cells) = cells else {
             return Err(Error::Empty(format!(
                 "{np} points but no {} section",
-                if dataset == Dataset::PolyData {
-                    "POLYGONS"
-                } else {
-                    "CELLS"
-                }
+                if dataset == Dataset::PolyData { "POLYGONS" } else { "CELLS" }
             )));
         };
         let types = match (dataset, types) {
@@ -660,11 +531,7 @@ impl Reader<'_> {
             };
             let check = |nodes: &[u64], ids: &mut [u32]| -> Result<()> {
                 if let Some(v) = repeated(nodes) {
-                    return Err(Error::element(
-                        i,
-                        Some(line),
-                        format!("point {v} appears twice in the cell"),
-                    ));
+                    return Err(Error::element(i, Some(line), format!("point {v} appears twice in the cell")));
                 }
                 for (j, &v) in nodes.iter().enumerate() {
                     if v >= np as u64 {
@@ -843,11 +710,7 @@ pub(crate) fn write(w: super::Writable, s: &mut Out) {
 
 /// The fixed flags as `POINT_DATA` scalar `fixed` (1 = fixed).
 pub(crate) fn write_fixed(fixed: &[bool], s: &mut Out) {
-    let _ = writeln!(
-        s,
-        "POINT_DATA {}\nSCALARS fixed int 1\nLOOKUP_TABLE default",
-        fixed.len()
-    );
+    let _ = writeln!(s, "POINT_DATA {}\nSCALARS fixed int 1\nLOOKUP_TABLE default", fixed.len());
     for &f in fixed {
         let _ = writeln!(s, "{}", u8::from(f));
     }
@@ -860,25 +723,14 @@ mod tests {
     /// One cell of each listed type on the 27 points of a cube's 3×3×3 lattice (spacing
     /// 1/2, x fastest), the cells at line 34 on: what every kind is read from.
     fn lattice_file(cells: &[(u64, &[u32])]) -> String {
-        let mut t = String::from(
-            "# vtk DataFile Version 3.0\nt\nASCII\nDATASET UNSTRUCTURED_GRID\nPOINTS 27 double\n",
-        );
+        let mut t = String::from("# vtk DataFile Version 3.0\nt\nASCII\nDATASET UNSTRUCTURED_GRID\nPOINTS 27 double\n");
         for k in 0..27 {
-            t.push_str(&format!(
-                "{} {} {}\n",
-                (k % 3) as f64 / 2.0,
-                (k / 3 % 3) as f64 / 2.0,
-                (k / 9) as f64 / 2.0
-            ));
+            t.push_str(&format!("{} {} {}\n", (k % 3) as f64 / 2.0, (k / 3 % 3) as f64 / 2.0, (k / 9) as f64 / 2.0));
         }
         let size: usize = cells.iter().map(|(_, c)| c.len() + 1).sum();
         t.push_str(&format!("CELLS {} {size}\n", cells.len()));
         for (_, c) in cells {
-            t.push_str(&format!(
-                "{}{}\n",
-                c.len(),
-                c.iter().map(|i| format!(" {i}")).collect::<String>()
-            ));
+            t.push_str(&format!("{}{}\n", c.len(), c.iter().map(|i| format!(" {i}")).collect::<String>()));
         }
         t.push_str(&format!("CELL_TYPES {}\n", cells.len()));
         for (ty, _) in cells {
@@ -890,10 +742,7 @@ mod tests {
     /// The lattice points of a hexahedron's corners, edge middles, face centres and
     /// centre in VTK's order (those of `QUADRATIC_HEXAHEDRON`, `TRIQUADRATIC_HEXAHEDRON`):
     /// lattice point `x + 3y + 9z` for `x, y, z` in half-units.
-    const HEX27: [u32; 27] = [
-        0, 2, 8, 6, 18, 20, 26, 24, 1, 5, 7, 3, 19, 23, 25, 21, 9, 11, 17, 15, 12, 14, 10, 16, 4,
-        22, 13,
-    ];
+    const HEX27: [u32; 27] = [0, 2, 8, 6, 18, 20, 26, 24, 1, 5, 7, 3, 19, 23, 25, 21, 9, 11, 17, 15, 12, 14, 10, 16, 4, 22, 13];
 
     #[test]
     fn every_volume_kind_is_read_by_its_cell_type_and_the_rest_are_refused_in_plain_words_first() {
@@ -913,19 +762,9 @@ mod tests {
         ];
         for (ty, cell, kind) in cases {
             let model = crate::model::Model::build(parse(&lattice_file(&[(ty, cell)])).unwrap());
-            let Ok(crate::model::Model::Volume(m)) = model else {
-                panic!("type {ty}: {model:?}")
-            };
-            assert_eq!(
-                (m.element_count(), m.element_kind(0)),
-                (1, kind),
-                "type {ty}"
-            );
-            assert_eq!(
-                m.element(0),
-                cell,
-                "type {ty}: read as given (not turned over)"
-            );
+            let Ok(crate::model::Model::Volume(m)) = model else { panic!("type {ty}: {model:?}") };
+            assert_eq!((m.element_count(), m.element_kind(0)), (1, kind), "type {ty}");
+            assert_eq!(m.element(0), cell, "type {ty}: read as given (not turned over)");
             assert!(!m.is_inverted(0), "type {ty}");
         }
         // a voxel, quadratic wedges and pyramids, a polyhedron: refused, in words first
@@ -938,21 +777,13 @@ mod tests {
         ];
         for (ty, n, want) in refused {
             let e = parse(&lattice_file(&[(ty, &HEX27[..n])])).unwrap_err();
-            assert!(
-                matches!(e, Error::Unsupported { line: Some(36), .. }),
-                "{e:?}"
-            );
+            assert!(matches!(e, Error::Unsupported { line: Some(36), .. }), "{e:?}");
             let e = e.to_string();
             assert!(e.starts_with(want), "type {ty}: {e}");
-            assert!(
-                e.ends_with("and the volume elements 10, 12, 13, 14, 24, 25, 29"),
-                "{e}"
-            );
+            assert!(e.ends_with("and the volume elements 10, 12, 13, 14, 24, 25, 29"), "{e}");
         }
         // a type with no name people know keeps the file's terms alone, line first
-        let e = parse(&lattice_file(&[(99, &HEX27[..8])]))
-            .unwrap_err()
-            .to_string();
+        let e = parse(&lattice_file(&[(99, &HEX27[..8])])).unwrap_err().to_string();
         assert!(e.starts_with("line 36: VTK cell type 99 (not a cell smoothlab knows) of element 0 is not supported"), "{e}");
     }
 
@@ -960,19 +791,10 @@ mod tests {
     fn linear_kinds_mix_and_a_quadratic_kind_mixed_with_another_is_refused_naming_the_line() {
         // a hexahedron, a wedge (sharing its face x = 1/2) and a pyramid on its face y = 1/2:
         // one mesh, none of them inverted
-        let mixed = [
-            (12, &[0u32, 1, 4, 3, 9, 10, 13, 12][..]),
-            (13, &[1, 4, 2, 10, 13, 11]),
-            (14, &[3, 4, 7, 6, 12]),
-        ];
+        let mixed = [(12, &[0u32, 1, 4, 3, 9, 10, 13, 12][..]), (13, &[1, 4, 2, 10, 13, 11]), (14, &[3, 4, 7, 6, 12])];
         let b = parse(&lattice_file(&mixed)).unwrap();
-        let Ok(crate::model::Model::Volume(m)) = crate::model::Model::build(b) else {
-            panic!("not a volume")
-        };
-        assert_eq!(
-            m.kinds(),
-            &[VolumeKind::Hex8, VolumeKind::Wedge6, VolumeKind::Pyramid5]
-        );
+        let Ok(crate::model::Model::Volume(m)) = crate::model::Model::build(b) else { panic!("not a volume") };
+        assert_eq!(m.kinds(), &[VolumeKind::Hex8, VolumeKind::Wedge6, VolumeKind::Pyramid5]);
         assert_eq!((0..3).filter(|&e| m.is_inverted(e)).count(), 0);
         // a 20-node hexahedron and then a linear one: refused at the second cell's line
         let e = parse(&lattice_file(&[(25, &HEX27[..20]), (12, &HEX27[..8])])).unwrap_err();
@@ -981,14 +803,7 @@ mod tests {
             "element 1 (line 35): the file mixes 8-node and 20-node hexahedra: smoothlab mixes linear kinds, \
              but a quadratic mesh is of one kind"
         );
-        let e = parse(&lattice_file(&[(10, &[0, 2, 6, 18]), (29, &HEX27)]))
-            .unwrap_err()
-            .to_string();
-        assert!(
-            e.starts_with(
-                "element 1 (line 35): the file mixes 4-node tetrahedra and 27-node hexahedra"
-            ),
-            "{e}"
-        );
+        let e = parse(&lattice_file(&[(10, &[0, 2, 6, 18]), (29, &HEX27)])).unwrap_err().to_string();
+        assert!(e.starts_with("element 1 (line 35): the file mixes 4-node tetrahedra and 27-node hexahedra"), "{e}");
     }
 }

@@ -93,18 +93,10 @@ pub(crate) struct FileNames<'a> {
 
 impl FileNames<'_> {
     /// No lines, 0-based numbers.
-    pub const NONE: FileNames<'static> = FileNames {
-        lines: &[],
-        nodes: &Numbering::From(0),
-        elements: &Numbering::From(0),
-    };
+    pub const NONE: FileNames<'static> = FileNames { lines: &[], nodes: &Numbering::From(0), elements: &Numbering::From(0) };
     /// The file line of element `e`, when known.
     pub fn line(&self, e: usize) -> Option<usize> {
-        self.lines
-            .get(e)
-            .copied()
-            .filter(|&l| l > 0)
-            .map(|l| l as usize)
+        self.lines.get(e).copied().filter(|&l| l > 0).map(|l| l as usize)
     }
     /// The file's number of node `i`.
     pub fn node(&self, i: usize) -> u64 {
@@ -161,10 +153,7 @@ pub(crate) struct VolumeParts {
 
 impl MeshBuilder {
     pub fn new() -> Self {
-        MeshBuilder {
-            elem_start: vec![0],
-            ..Default::default()
-        }
+        MeshBuilder { elem_start: vec![0], ..Default::default() }
     }
     /// A builder with room reserved for the given counts, capped (at 2¹⁶ of each) so a
     /// header that claims large counts costs a fixed amount until the data is seen;
@@ -222,12 +211,7 @@ impl MeshBuilder {
     /// number among the file's volume elements) and the line.
     ///
     /// [`VolumeKind::mixes_with`]: super::VolumeKind::mixes_with
-    pub fn add_volume_element(
-        &mut self,
-        kind: super::VolumeKind,
-        nodes: &[u32],
-        line: usize,
-    ) -> Result<()> {
+    pub fn add_volume_element(&mut self, kind: super::VolumeKind, nodes: &[u32], line: usize) -> Result<()> {
         let number = self.volume_numbers.next(self.volume_kinds.len());
         self.add_volume_element_numbered(kind, nodes, line, number)
     }
@@ -242,11 +226,7 @@ impl MeshBuilder {
     ) -> Result<()> {
         debug_assert_eq!(nodes.len(), kind.nodes());
         // against the first kind: all linear, or all the first's quadratic kind
-        if let Some(&k) = self
-            .volume_kinds
-            .first()
-            .filter(|&&k| !super::VolumeKind::mixes_with(k, kind))
-        {
+        if let Some(&k) = self.volume_kinds.first().filter(|&&k| !super::VolumeKind::mixes_with(k, kind)) {
             return Err(Error::element(
                 number,
                 Some(line).filter(|&l| l > 0),
@@ -276,16 +256,12 @@ impl MeshBuilder {
     pub(crate) fn build_volume_parts(self) -> Result<VolumeParts> {
         let n = self.points.len();
         for e in 0..self.kinds.len() {
-            let ids =
-                &self.elem_nodes[self.elem_start[e] as usize..self.elem_start[e + 1] as usize];
+            let ids = &self.elem_nodes[self.elem_start[e] as usize..self.elem_start[e + 1] as usize];
             if let Some(&i) = ids.iter().find(|&&i| i as usize >= n) {
                 return Err(Error::element(
                     self.element_numbers.of(e),
                     self.line_of_elem(e),
-                    format!(
-                        "node {} does not exist (the file has {n} nodes)",
-                        self.node_number(i as usize)
-                    ),
+                    format!("node {} does not exist (the file has {n} nodes)", self.node_number(i as usize)),
                 ));
             }
         }
@@ -298,10 +274,7 @@ impl MeshBuilder {
         let fixed = match self.fixed {
             FixedSpec::Exact(f) => FixedSpec::Exact(f),
             FixedSpec::BoundaryAnd(f) => FixedSpec::BoundaryAnd(
-                f.iter()
-                    .zip(marks.iter().chain(std::iter::repeat(&false)))
-                    .map(|(a, b)| *a || *b)
-                    .collect(),
+                f.iter().zip(marks.iter().chain(std::iter::repeat(&false))).map(|(a, b)| *a || *b).collect(),
             ),
             FixedSpec::Boundary if marks.iter().any(|&m| m) => FixedSpec::BoundaryAnd(marks),
             FixedSpec::Boundary => FixedSpec::Boundary,
@@ -329,13 +302,7 @@ impl MeshBuilder {
     }
     /// [`add_element`](Self::add_element) for an element the file numbers `number` (a
     /// Gmsh tag, a VTK cell index, a Medit number in its section).
-    pub fn add_element_numbered(
-        &mut self,
-        kind: ElementKind,
-        nodes: &[u32],
-        line: usize,
-        number: u64,
-    ) {
+    pub fn add_element_numbered(&mut self, kind: ElementKind, nodes: &[u32], line: usize, number: u64) {
         debug_assert_eq!(nodes.len(), kind.node_count());
         self.element_numbers.push(self.kinds.len(), number);
         self.kinds.push(kind);
@@ -344,18 +311,10 @@ impl MeshBuilder {
         self.elem_lines.push(line as u32);
     }
     fn line_of_elem(&self, e: usize) -> Option<usize> {
-        self.elem_lines
-            .get(e)
-            .copied()
-            .filter(|&l| l > 0)
-            .map(|l| l as usize)
+        self.elem_lines.get(e).copied().filter(|&l| l > 0).map(|l| l as usize)
     }
     fn line_of_node(&self, n: usize) -> Option<usize> {
-        self.point_lines
-            .get(n)
-            .copied()
-            .filter(|&l| l > 0)
-            .map(|l| l as usize)
+        self.point_lines.get(n).copied().filter(|&l| l > 0).map(|l| l as usize)
     }
 
     /// Validates (finite coordinates, indices in range, no repeated node in an element,
@@ -382,15 +341,9 @@ impl MeshBuilder {
         // is built (24 bytes a node), and give back what the readers' growing left unused
         let tilted = plane.is_some_and(|p| p.u != glam::DVec3::X || p.w != glam::DVec3::Y);
         let points = std::mem::take(&mut self.points);
-        let loaded_3d = tilted.then(|| {
-            points
-                .iter()
-                .map(|&p| glam::DVec3::from(p))
-                .collect::<Vec<_>>()
-        });
+        let loaded_3d = tilted.then(|| points.iter().map(|&p| glam::DVec3::from(p)).collect::<Vec<_>>());
         drop(points);
-        let (mut kinds, mut elem_start, mut elem_nodes) =
-            (self.kinds, self.elem_start, self.elem_nodes);
+        let (mut kinds, mut elem_start, mut elem_nodes) = (self.kinds, self.elem_start, self.elem_nodes);
         kinds.shrink_to_fit();
         elem_start.shrink_to_fit();
         elem_nodes.shrink_to_fit();
@@ -398,13 +351,7 @@ impl MeshBuilder {
             plane,
             nodes,
             fixed: vec![false; n],
-            conn: Arc::new(Connectivity {
-                kinds,
-                elem_start,
-                elem_nodes,
-                topo: Topology::default(),
-                reversed: Vec::new(),
-            }),
+            conn: Arc::new(Connectivity { kinds, elem_start, elem_nodes, topo: Topology::default(), reversed: Vec::new() }),
             loaded_3d: None,
             target: None,
         };
@@ -428,27 +375,17 @@ impl MeshBuilder {
             let ids = mesh.element(e);
             polygon_area(order.iter().map(|&j| mesh.nodes[ids[j] as usize] * unit))
         };
-        let forward: f64 = (0..mesh.conn.kinds.len())
-            .map(|e| area_in(e, &[0, 1, 2, 3][..mesh.conn.kinds[e].corners()]))
-            .sum();
+        let forward: f64 =
+            (0..mesh.conn.kinds.len()).map(|e| area_in(e, &[0, 1, 2, 3][..mesh.conn.kinds[e].corners()])).sum();
         let backward: f64 = (0..mesh.conn.kinds.len())
-            .map(|e| {
-                area_in(
-                    e,
-                    &mesh.conn.kinds[e].reversed_order()[..mesh.conn.kinds[e].corners()],
-                )
-            })
+            .map(|e| area_in(e, &mesh.conn.kinds[e].reversed_order()[..mesh.conn.kinds[e].corners()]))
             .sum();
         if forward - backward < 0.0 {
             for e in 0..mesh.element_count() {
                 mesh.reverse_element(e);
             }
         }
-        let names = FileNames {
-            lines: &self.elem_lines,
-            nodes: &self.node_numbers,
-            elements: &self.element_numbers,
-        };
+        let names = FileNames { lines: &self.elem_lines, nodes: &self.node_numbers, elements: &self.element_numbers };
         finish(mesh, names, self.fixed)
     }
 
@@ -459,13 +396,7 @@ impl MeshBuilder {
     pub(crate) fn build_planar_or_surface(self) -> Result<Flat> {
         self.check()?;
         let why = match self.to_plane() {
-            Err(Error::NotPlanar {
-                node,
-                line,
-                max_distance,
-                relative,
-                ..
-            }) => {
+            Err(Error::NotPlanar { node, line, max_distance, relative, .. }) => {
                 // `node` is the file's number already
                 let at = line.map_or(String::new(), |l| format!(" (line {l})"));
                 format!(
@@ -489,10 +420,7 @@ impl MeshBuilder {
     }
 
     fn surface_parts(mut self) -> Result<SurfaceParts> {
-        let points: Vec<glam::DVec3> = std::mem::take(&mut self.points)
-            .into_iter()
-            .map(glam::DVec3::from)
-            .collect();
+        let points: Vec<glam::DVec3> = std::mem::take(&mut self.points).into_iter().map(glam::DVec3::from).collect();
         let n = points.len();
         let mesh = Mesh {
             plane: None,
@@ -509,20 +437,10 @@ impl MeshBuilder {
             }),
         };
         let flags_given = !matches!(self.fixed, FixedSpec::Boundary);
-        let names = FileNames {
-            lines: &self.elem_lines,
-            nodes: &self.node_numbers,
-            elements: &self.element_numbers,
-        };
+        let names = FileNames { lines: &self.elem_lines, nodes: &self.node_numbers, elements: &self.element_numbers };
         let mesh = finish(mesh, names, self.fixed)?;
         super::topology::check_fans(&mesh, names)?;
-        Ok(SurfaceParts {
-            points,
-            mesh,
-            element_numbers: self.element_numbers,
-            flags_given,
-            not_planar: None,
-        })
+        Ok(SurfaceParts { points, mesh, element_numbers: self.element_numbers, flags_given, not_planar: None })
     }
 
     /// The checks every mesh passes, planar or surface: at least one element, finite
@@ -532,10 +450,7 @@ impl MeshBuilder {
             return Err(Error::Empty(if self.points.is_empty() {
                 "no nodes and no elements".into()
             } else {
-                format!(
-                    "{} nodes but no triangle or quad elements",
-                    self.points.len()
-                )
+                format!("{} nodes but no triangle or quad elements", self.points.len())
             }));
         }
         for (i, p) in self.points.iter().enumerate() {
@@ -552,18 +467,13 @@ impl MeshBuilder {
         }
         let n = self.points.len();
         for e in 0..self.kinds.len() {
-            let ids =
-                &self.elem_nodes[self.elem_start[e] as usize..self.elem_start[e + 1] as usize];
+            let ids = &self.elem_nodes[self.elem_start[e] as usize..self.elem_start[e + 1] as usize];
             for &i in ids {
                 if i as usize >= n {
                     return Err(Error::element(
                         self.element_numbers.of(e),
                         self.line_of_elem(e),
-                        format!(
-                            "refers to node {} but the mesh has {} nodes",
-                            self.node_number(i as usize),
-                            n
-                        ),
+                        format!("refers to node {} but the mesh has {} nodes", self.node_number(i as usize), n),
                     ));
                 }
             }
@@ -572,11 +482,7 @@ impl MeshBuilder {
                     return Err(Error::element(
                         self.element_numbers.of(e),
                         self.line_of_elem(e),
-                        format!(
-                            "{} uses node {} twice",
-                            self.kinds[e].name(),
-                            self.node_number(ids[a] as usize)
-                        ),
+                        format!("{} uses node {} twice", self.kinds[e].name(), self.node_number(ids[a] as usize)),
                     ));
                 }
             }
@@ -605,10 +511,7 @@ impl MeshBuilder {
                 u: glam::DVec3::X,
                 w: glam::DVec3::Y,
             });
-            return Ok((
-                self.points.iter().map(|p| DVec2::new(p[0], p[1])).collect(),
-                plane,
-            ));
+            return Ok((self.points.iter().map(|p| DVec2::new(p[0], p[1])).collect(), plane));
         }
         // Work in units of the largest coordinate magnitude, so that the cross products
         // and distances below neither overflow (coordinates near 1e200 once gave NaN
@@ -616,9 +519,7 @@ impl MeshBuilder {
         // The z values differ, so some coordinate is nonzero and the scale is positive.
         let scale = crate::numeric::largest_component(self.points.iter().flatten());
         let v = |p: &[f64; 3]| glam::DVec3::new(p[0] / scale, p[1] / scale, p[2] / scale);
-        let elem = |e: usize| {
-            &self.elem_nodes[self.elem_start[e] as usize..self.elem_start[e + 1] as usize]
-        };
+        let elem = |e: usize| &self.elem_nodes[self.elem_start[e] as usize..self.elem_start[e + 1] as usize];
         // Each element's unit normal (Newell's method on its corner polygon, in units of
         // its own extent from its first corner, so that tiny elements do not underflow).
         let mut normals = Vec::with_capacity(self.kinds.len());
@@ -626,9 +527,7 @@ impl MeshBuilder {
             let ids = elem(e);
             let k = self.kinds[e].corners();
             let o = v(&self.points[ids[0] as usize]);
-            let extent = crate::numeric::largest_component(
-                ids[..k].iter().map(|&i| v(&self.points[i as usize]) - o),
-            );
+            let extent = crate::numeric::largest_component(ids[..k].iter().map(|&i| v(&self.points[i as usize]) - o));
             if extent == 0.0 {
                 continue;
             }
@@ -643,18 +542,12 @@ impl MeshBuilder {
             }
         }
         if normals.is_empty() {
-            return Err(Error::invalid(
-                "cannot find the plane of the mesh: its elements have no area",
-            ));
+            return Err(Error::invalid("cannot find the plane of the mesh: its elements have no area"));
         }
         // Two rounds: align the signs to a guess, take the median, align to that.
         let mut normal = normals[0];
         for _ in 0..2 {
-            let aligned = |c: usize| {
-                normals
-                    .iter()
-                    .map(move |n| if n.dot(normal) < 0.0 { -n[c] } else { n[c] })
-            };
+            let aligned = |c: usize| normals.iter().map(move |n| if n.dot(normal) < 0.0 { -n[c] } else { n[c] });
             let m = glam::DVec3::new(
                 median(aligned(0).collect()),
                 median(aligned(1).collect()),
@@ -671,9 +564,8 @@ impl MeshBuilder {
             let ids = elem(e);
             let k = self.kinds[e].corners();
             for i in 0..k {
-                facing += v(&self.points[ids[i] as usize])
-                    .cross(v(&self.points[ids[(i + 1) % k] as usize]))
-                    .dot(normal);
+                facing +=
+                    v(&self.points[ids[i] as usize]).cross(v(&self.points[ids[(i + 1) % k] as usize])).dot(normal);
             }
         }
         if facing < 0.0 {
@@ -681,20 +573,12 @@ impl MeshBuilder {
         }
         let offset = median(self.points.iter().map(|p| v(p).dot(normal)).collect());
         // In-plane basis (u, w) with u × w = normal.
-        let helper = if normal.x.abs() < 0.9 {
-            glam::DVec3::X
-        } else {
-            glam::DVec3::Y
-        };
+        let helper = if normal.x.abs() < 0.9 { glam::DVec3::X } else { glam::DVec3::Y };
         let u = (helper - normal * helper.dot(normal)).normalize();
         let w = normal.cross(u);
         let centre = normal * offset;
-        let flat: Vec<DVec2> = self
-            .points
-            .iter()
-            .map(|p| v(p) - centre)
-            .map(|d| DVec2::new(d.dot(u), d.dot(w)))
-            .collect();
+        let flat: Vec<DVec2> =
+            self.points.iter().map(|p| v(p) - centre).map(|d| DVec2::new(d.dot(u), d.dot(w))).collect();
         // Each node's size: the largest element it belongs to, in the plane (the diagonal
         // of the element's bounding box there). Unused nodes get the largest element's.
         let mut size = vec![0.0f64; self.points.len()];
@@ -716,10 +600,7 @@ impl MeshBuilder {
         for (i, p) in self.points.iter().enumerate() {
             let distance = (v(p).dot(normal) - offset).abs();
             let own = if size[i] > 0.0 { size[i] } else { largest };
-            let allowed = PLANAR_TOLERANCE
-                * own
-                    .max(v(p).abs().max_element())
-                    .max(centre.abs().max_element());
+            let allowed = PLANAR_TOLERANCE * own.max(v(p).abs().max_element()).max(centre.abs().max_element());
             if distance > allowed && worst.map_or(true, |(_, d, _)| distance > d) {
                 worst = Some((i, distance, own));
             }
@@ -729,11 +610,7 @@ impl MeshBuilder {
                 node: self.node_number(node),
                 line: self.line_of_node(node),
                 max_distance: distance * scale,
-                relative: if own > 0.0 {
-                    distance / own
-                } else {
-                    f64::INFINITY
-                },
+                relative: if own > 0.0 { distance / own } else { f64::INFINITY },
                 tolerance: PLANAR_TOLERANCE,
             });
         }
@@ -752,14 +629,7 @@ impl MeshBuilder {
             }
             out.push(q);
         }
-        Ok((
-            out,
-            Some(Plane {
-                origin: centre * scale,
-                u,
-                w,
-            }),
-        ))
+        Ok((out, Some(Plane { origin: centre * scale, u, w })))
     }
 }
 
@@ -775,19 +645,13 @@ pub(super) fn finish(mut mesh: Mesh, names: FileNames<'_>, fixed: FixedSpec) -> 
         FixedSpec::Boundary => boundary,
         FixedSpec::Exact(f) => {
             if f.len() != n {
-                return Err(Error::invalid(format!(
-                    "{} fixed flags for {} nodes",
-                    f.len(),
-                    n
-                )));
+                return Err(Error::invalid(format!("{} fixed flags for {} nodes", f.len(), n)));
             }
             f
         }
-        FixedSpec::BoundaryAnd(f) => boundary
-            .iter()
-            .zip(f.iter().chain(std::iter::repeat(&false)))
-            .map(|(a, b)| *a || *b)
-            .collect(),
+        FixedSpec::BoundaryAnd(f) => {
+            boundary.iter().zip(f.iter().chain(std::iter::repeat(&false))).map(|(a, b)| *a || *b).collect()
+        }
     };
     // Nodes no element uses never move.
     for i in 0..n {

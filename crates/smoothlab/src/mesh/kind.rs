@@ -43,10 +43,7 @@ impl ElementKind {
     }
     /// True for the elements with mid-side nodes.
     pub fn is_quadratic(self) -> bool {
-        matches!(
-            self,
-            ElementKind::Tri6 | ElementKind::Quad8 | ElementKind::Quad9
-        )
+        matches!(self, ElementKind::Tri6 | ElementKind::Quad8 | ElementKind::Quad9)
     }
     /// Local index of the mid-side node of edge `i` (corner `i` → corner `i+1`), if any.
     pub fn mid(self, i: usize) -> Option<usize> {

@@ -22,14 +22,14 @@ mod tests;
 mod topology;
 mod volume_kind;
 
-pub use builder::{polygon_area, FixedSpec, MeshBuilder, MAX_COORDINATE, PLANAR_TOLERANCE};
 pub(crate) use builder::{Flat, SurfaceParts};
+pub use builder::{polygon_area, FixedSpec, MeshBuilder, MAX_COORDINATE, PLANAR_TOLERANCE};
 pub use kind::{ElementKind, NodeRole};
-use topology::build_topology;
 pub use volume_kind::{
-    CornerReference, VolumeKind, VolumeKindCounts, VolumeKindRow, CUBE_CORNER, EQUILATERAL_TET,
-    EQUILATERAL_W, EQUILATERAL_W_INVERSE, PYRAMID_CORNER, TET10_EDGES, WEDGE_CORNER, WITH_FIRST,
+    CornerReference, VolumeKind, VolumeKindCounts, VolumeKindRow, CUBE_CORNER, EQUILATERAL_TET, EQUILATERAL_W, EQUILATERAL_W_INVERSE,
+    PYRAMID_CORNER, TET10_EDGES, WEDGE_CORNER, WITH_FIRST,
 };
+use topology::build_topology;
 
 /// A node that follows a moved corner ([`Mesh::for_each_follower`]).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -190,17 +190,9 @@ impl Plane {
     /// The plane through `origin` with the unit normal `normal`, its axes `u × w = normal`
     /// (`u` in the xy plane's direction nearest to x where it can be).
     pub fn with_normal(origin: glam::DVec3, normal: glam::DVec3) -> Plane {
-        let helper = if normal.x.abs() < 0.9 {
-            glam::DVec3::X
-        } else {
-            glam::DVec3::Y
-        };
+        let helper = if normal.x.abs() < 0.9 { glam::DVec3::X } else { glam::DVec3::Y };
         let u = (helper - normal * helper.dot(normal)).normalize();
-        Plane {
-            origin,
-            u,
-            w: normal.cross(u),
-        }
+        Plane { origin, u, w: normal.cross(u) }
     }
     /// The plane's unit normal, `u × w`.
     pub fn normal(&self) -> glam::DVec3 {
@@ -235,10 +227,7 @@ impl Mesh {
     /// [`node_3d`](Self::node_3d)).
     pub(crate) fn keep_loaded_3d(&mut self, points: Vec<glam::DVec3>) {
         debug_assert_eq!(points.len(), self.nodes.len());
-        self.loaded_3d = Some(Arc::new(Loaded3d {
-            points,
-            flat: self.nodes.clone(),
-        }));
+        self.loaded_3d = Some(Arc::new(Loaded3d { points, flat: self.nodes.clone() }));
     }
 
     pub fn node_count(&self) -> usize {
@@ -271,8 +260,7 @@ impl Mesh {
     }
     /// The node indices of element `e`, in the order documented at the top of this module.
     pub fn element(&self, e: usize) -> &[u32] {
-        &self.conn.elem_nodes
-            [self.conn.elem_start[e] as usize..self.conn.elem_start[e + 1] as usize]
+        &self.conn.elem_nodes[self.conn.elem_start[e] as usize..self.conn.elem_start[e + 1] as usize]
     }
     /// Positions of the nodes of element `e` in a fixed-size array (unused slots are zero).
     pub fn element_points_array(&self, e: usize) -> [DVec2; 9] {
@@ -364,8 +352,7 @@ impl Mesh {
     pub fn update_mid_nodes(&mut self) {
         for e in &self.conn.topo.edges {
             if e.mid != NONE && !e.curved && !self.fixed[e.mid as usize] {
-                self.nodes[e.mid as usize] =
-                    0.5 * (self.nodes[e.a as usize] + self.nodes[e.b as usize]);
+                self.nodes[e.mid as usize] = 0.5 * (self.nodes[e.a as usize] + self.nodes[e.b as usize]);
             }
         }
         for el in 0..self.conn.kinds.len() {
@@ -389,10 +376,7 @@ impl Mesh {
         self.for_each_follower(n, |f| match f {
             Follower::Mid { mid, a, b } => nodes[mid] = 0.5 * (nodes[a] + nodes[b]),
             Follower::Centre { centre, element } => {
-                let s: DVec2 = self.element(element)[..8]
-                    .iter()
-                    .map(|&i| nodes[i as usize])
-                    .sum();
+                let s: DVec2 = self.element(element)[..8].iter().map(|&i| nodes[i as usize]).sum();
                 nodes[centre] = s / 8.0;
             }
         });
@@ -469,9 +453,7 @@ impl Mesh {
     pub(crate) fn set_star(&mut self, n: usize, at: impl Fn(usize) -> DVec2) {
         for &e in self.conn.topo.node_elements(n) {
             let e = e as usize;
-            for &m in &self.conn.elem_nodes
-                [self.conn.elem_start[e] as usize..self.conn.elem_start[e + 1] as usize]
-            {
+            for &m in &self.conn.elem_nodes[self.conn.elem_start[e] as usize..self.conn.elem_start[e + 1] as usize] {
                 self.nodes[m as usize] = at(m as usize);
             }
         }
@@ -507,10 +489,7 @@ impl Mesh {
             if kind == ElementKind::Quad9 {
                 let c = self.conn.elem_nodes[start + 8] as usize;
                 if !self.fixed[c] {
-                    f(Follower::Centre {
-                        centre: c,
-                        element: el,
-                    });
+                    f(Follower::Centre { centre: c, element: el });
                 }
             }
         }
@@ -521,11 +500,7 @@ impl Mesh {
     /// is being built: its topology is not shared yet.
     pub(crate) fn mark_curved_boundary(&mut self, curved: impl Fn(&Edge) -> bool) {
         let topo = &mut self.connectivity_mut().topo;
-        for e in topo
-            .edges
-            .iter_mut()
-            .filter(|e| e.boundary && e.mid != NONE)
-        {
+        for e in topo.edges.iter_mut().filter(|e| e.boundary && e.mid != NONE) {
             if curved(e) {
                 e.curved = true;
                 for n in [e.a, e.b, e.mid] {
@@ -572,10 +547,7 @@ impl Mesh {
     /// inverse), so that what smoothlab writes keeps its input's orientation.
     pub fn element_as_given(&self, e: usize) -> GivenNodes {
         let ids = self.element(e);
-        let mut given = GivenNodes {
-            ids: [0; 9],
-            len: ids.len(),
-        };
+        let mut given = GivenNodes { ids: [0; 9], len: ids.len() };
         if self.conn.reversed.get(e).copied().unwrap_or(false) {
             for (i, &j) in self.kind(e).reversed_order().iter().enumerate() {
                 given.ids[i] = ids[j];
@@ -597,11 +569,7 @@ impl Mesh {
     /// share it (the elements and the topology) or each has its own (positions, flags).
     pub fn memory_parts(&self) -> Vec<MemoryPart> {
         fn part<T>(name: &'static str, v: &Vec<T>, shared: bool) -> MemoryPart {
-            MemoryPart {
-                name,
-                bytes: v.capacity() * std::mem::size_of::<T>(),
-                shared,
-            }
+            MemoryPart { name, bytes: v.capacity() * std::mem::size_of::<T>(), shared }
         }
         let (c, t) = (&*self.conn, &self.conn.topo);
         vec![
@@ -624,10 +592,7 @@ impl Mesh {
     /// Checks the invariants of the model; used by the tests (as spade's `sanity_check`).
     pub fn sanity_check(&self) -> std::result::Result<(), String> {
         let n = self.nodes.len();
-        if self.fixed.len() != n
-            || self.conn.topo.role.len() != n
-            || self.conn.topo.boundary.len() != n
-        {
+        if self.fixed.len() != n || self.conn.topo.role.len() != n || self.conn.topo.boundary.len() != n {
             return Err("per-node arrays differ in length".into());
         }
         if self.conn.elem_start.len() != self.conn.kinds.len() + 1 {
@@ -656,14 +621,10 @@ impl Mesh {
             if e.a >= e.b {
                 return Err(format!("edge {i} not ordered"));
             }
-            if !self.neighbours(e.a as usize).contains(&e.b)
-                || !self.neighbours(e.b as usize).contains(&e.a)
-            {
+            if !self.neighbours(e.a as usize).contains(&e.b) || !self.neighbours(e.b as usize).contains(&e.a) {
                 return Err(format!("edge {i} missing from neighbour lists"));
             }
-            if e.is_boundary()
-                && !(self.conn.topo.boundary[e.a as usize] && self.conn.topo.boundary[e.b as usize])
-            {
+            if e.is_boundary() && !(self.conn.topo.boundary[e.a as usize] && self.conn.topo.boundary[e.b as usize]) {
                 return Err(format!("boundary edge {i} has an interior end"));
             }
         }

@@ -37,9 +37,7 @@ impl Mesh {
             inv[old as usize] = new as u32;
         }
         let ne = self.conn.kinds.len();
-        let mut elems: Vec<(u32, u32)> = (0..ne)
-            .map(|e| (inv[self.element(e)[0] as usize], e as u32))
-            .collect();
+        let mut elems: Vec<(u32, u32)> = (0..ne).map(|e| (inv[self.element(e)[0] as usize], e as u32)).collect();
         elems.sort_unstable();
         let mut kinds = Vec::with_capacity(ne);
         let mut elem_start = Vec::with_capacity(ne + 1);
@@ -53,13 +51,7 @@ impl Mesh {
         let mut mesh = Mesh {
             nodes: perm.iter().map(|&i| self.nodes[i as usize]).collect(),
             fixed: perm.iter().map(|&i| self.fixed[i as usize]).collect(),
-            conn: Arc::new(Connectivity {
-                kinds,
-                elem_start,
-                elem_nodes,
-                topo: Topology::default(),
-                reversed: Vec::new(),
-            }),
+            conn: Arc::new(Connectivity { kinds, elem_start, elem_nodes, topo: Topology::default(), reversed: Vec::new() }),
             plane: self.plane,
             // a working copy: its nodes go back to `self`, which writes them
             loaded_3d: None,
@@ -67,8 +59,7 @@ impl Mesh {
         };
         // The same elements under other numbers: every check that passed for `self`
         // passes here, so building the topology cannot fail.
-        let topo = build_topology(&mesh, super::builder::FileNames::NONE)
-            .expect("renumbering keeps a valid topology");
+        let topo = build_topology(&mesh, super::builder::FileNames::NONE).expect("renumbering keeps a valid topology");
         mesh.connectivity_mut().topo = topo;
         (mesh, perm)
     }
@@ -92,9 +83,7 @@ impl Mesh {
             )));
         }
         if let Some(&bad) = perm.iter().find(|&&p| p as usize >= n) {
-            return Err(Error::invalid(format!(
-                "cannot restore positions: the permutation names node {bad}"
-            )));
+            return Err(Error::invalid(format!("cannot restore positions: the permutation names node {bad}")));
         }
         for (i, &old) in perm.iter().enumerate() {
             self.nodes[old as usize] = renumbered.nodes[i];
@@ -118,14 +107,7 @@ impl HilbertGrid {
     pub(crate) fn over(lo: DVec2, hi: DVec2) -> HilbertGrid {
         let size = (hi - lo).max_element();
         let cells = (1u32 << HILBERT_ORDER) as f64;
-        HilbertGrid {
-            lo,
-            scale: if size > 0.0 && size.is_finite() {
-                (cells - 1.0) / size
-            } else {
-                0.0
-            },
-        }
+        HilbertGrid { lo, scale: if size > 0.0 && size.is_finite() { (cells - 1.0) / size } else { 0.0 } }
     }
 
     /// The index along the curve of the cell holding `p` (points outside go to the nearest cell).

@@ -55,20 +55,12 @@ pub(super) fn build_topology(mesh: &Mesh, names: FileNames<'_>) -> Result<Topolo
     // edges come out ordered by (a, b) with their elements in increasing order; they are
     // counted first so that their array is allocated once, exactly.
     if ne >= 1 << 30 {
-        return Err(Error::TooLarge(format!(
-            "the mesh has {ne} elements; smoothlab takes at most 2^30 (1073741824)"
-        )));
+        return Err(Error::TooLarge(format!("the mesh has {ne} elements; smoothlab takes at most 2^30 (1073741824)")));
     }
     let corner_edges = |e: usize| {
         let ids = mesh.element(e);
         let c = mesh.conn.kinds[e].corners();
-        (0..c).map(move |i| {
-            (
-                ids[i].min(ids[(i + 1) % c]),
-                ids[i].max(ids[(i + 1) % c]),
-                i as u32,
-            )
-        })
+        (0..c).map(move |i| (ids[i].min(ids[(i + 1) % c]), ids[i].max(ids[(i + 1) % c]), i as u32))
     };
     let mut use_start = vec![0u32; n + 1];
     for e in 0..ne {
@@ -93,18 +85,11 @@ pub(super) fn build_topology(mesh: &Mesh, names: FileNames<'_>) -> Result<Topolo
     for a in 0..n {
         let recs = &mut uses[use_start[a] as usize..use_start[a + 1] as usize];
         recs.sort_unstable();
-        edge_count += recs
-            .iter()
-            .enumerate()
-            .filter(|&(k, r)| k == 0 || recs[k - 1].0 != r.0)
-            .count();
+        edge_count += recs.iter().enumerate().filter(|&(k, r)| k == 0 || recs[k - 1].0 != r.0).count();
     }
     let mid_of = |r: u32| {
         let e = (r >> 2) as usize;
-        mesh.conn.kinds[e]
-            .mid((r & 3) as usize)
-            .map(|m| mesh.element(e)[m])
-            .unwrap_or(NONE)
+        mesh.conn.kinds[e].mid((r & 3) as usize).map(|m| mesh.element(e)[m]).unwrap_or(NONE)
     };
     let line = |e: u32| names.line(e as usize);
     let number = |e: u32| names.element(e as usize);
@@ -135,13 +120,7 @@ pub(super) fn build_topology(mesh: &Mesh, names: FileNames<'_>) -> Result<Topolo
             }
             if j - i == 2 && mid_of(recs[i + 1].1) != m0 {
                 let (m1, other) = (mid_of(recs[i + 1].1), recs[i + 1].1 >> 2);
-                let desc = |m: u32| {
-                    if m == NONE {
-                        "none".to_string()
-                    } else {
-                        node(m).to_string()
-                    }
-                };
+                let desc = |m: u32| if m == NONE { "none".to_string() } else { node(m).to_string() };
                 return Err(Error::element(
                     number(other),
                     line(other),
@@ -155,13 +134,7 @@ pub(super) fn build_topology(mesh: &Mesh, names: FileNames<'_>) -> Result<Topolo
                     ),
                 ));
             }
-            edges.push(Edge {
-                a,
-                b,
-                mid: m0,
-                boundary: j - i == 1,
-                curved: false,
-            });
+            edges.push(Edge { a, b, mid: m0, boundary: j - i == 1, curved: false });
             i = j;
         }
     }
@@ -177,11 +150,7 @@ pub(super) fn build_topology(mesh: &Mesh, names: FileNames<'_>) -> Result<Topolo
             boundary[e.b as usize] = true;
             if e.mid != NONE {
                 boundary[e.mid as usize] = true;
-                let (pa, pb, pm) = (
-                    mesh.nodes[e.a as usize],
-                    mesh.nodes[e.b as usize],
-                    mesh.nodes[e.mid as usize],
-                );
+                let (pa, pb, pm) = (mesh.nodes[e.a as usize], mesh.nodes[e.b as usize], mesh.nodes[e.mid as usize]);
                 let chord = pb - pa;
                 let off = (pm - pa).perp_dot(chord).abs() / chord.length().max(f64::MIN_POSITIVE);
                 if off > 1e-6 * chord.length() {
@@ -286,6 +255,5 @@ fn second_fan(mesh: &Mesh, v: u32, elems: &[u32]) -> Option<(u32, u32)> {
             }
         }
     }
-    (reached.count_ones() as usize != m)
-        .then(|| (elems[0], elems[(!reached).trailing_zeros() as usize]))
+    (reached.count_ones() as usize != m).then(|| (elems[0], elems[(!reached).trailing_zeros() as usize]))
 }

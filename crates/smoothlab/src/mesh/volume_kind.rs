@@ -50,11 +50,7 @@ impl CornerReference {
 /// same order), at compile time.
 const fn determinant(m: DMat3) -> f64 {
     let (x, y, z) = (m.x_axis, m.y_axis, m.z_axis);
-    let c = DVec3::new(
-        y.y * z.z - z.y * y.z,
-        y.z * z.x - z.z * y.x,
-        y.x * z.y - z.x * y.y,
-    );
+    let c = DVec3::new(y.y * z.z - z.y * y.z, y.z * z.x - z.z * y.x, y.x * z.y - z.x * y.y);
     (x.x * c.x) + (x.y * c.y) + (x.z * c.z)
 }
 
@@ -63,11 +59,7 @@ const fn determinant(m: DMat3) -> f64 {
 const fn transpose_times_one(m: DMat3) -> DVec3 {
     let (x, y, z) = (m.x_axis, m.y_axis, m.z_axis);
     // component i: mᵀ's columns' i-th entries, i.e. m's column i, summed
-    DVec3::new(
-        x.x * 1.0 + x.y * 1.0 + x.z * 1.0,
-        y.x * 1.0 + y.y * 1.0 + y.z * 1.0,
-        z.x * 1.0 + z.y * 1.0 + z.z * 1.0,
-    )
+    DVec3::new(x.x * 1.0 + x.y * 1.0 + x.z * 1.0, y.x * 1.0 + y.y * 1.0 + y.z * 1.0, z.x * 1.0 + z.y * 1.0 + z.z * 1.0)
 }
 
 /// Knupp's ideal weight for tetrahedra (Knupp 1999, §3): the columns are the edge
@@ -137,43 +129,19 @@ const fn mat_mul(a: [[f64; 3]; 3], b: [[f64; 3]; 3]) -> [[f64; 3]; 3] {
 const fn mat_inverse(m: [[f64; 3]; 3]) -> [[f64; 3]; 3] {
     let (x, y, z) = (m[0], m[1], m[2]);
     // rows of the inverse: y×z, z×x, x×y over det
-    let r0 = [
-        y[1] * z[2] - y[2] * z[1],
-        y[2] * z[0] - y[0] * z[2],
-        y[0] * z[1] - y[1] * z[0],
-    ];
-    let r1 = [
-        z[1] * x[2] - z[2] * x[1],
-        z[2] * x[0] - z[0] * x[2],
-        z[0] * x[1] - z[1] * x[0],
-    ];
-    let r2 = [
-        x[1] * y[2] - x[2] * y[1],
-        x[2] * y[0] - x[0] * y[2],
-        x[0] * y[1] - x[1] * y[0],
-    ];
+    let r0 = [y[1] * z[2] - y[2] * z[1], y[2] * z[0] - y[0] * z[2], y[0] * z[1] - y[1] * z[0]];
+    let r1 = [z[1] * x[2] - z[2] * x[1], z[2] * x[0] - z[0] * x[2], z[0] * x[1] - z[1] * x[0]];
+    let r2 = [x[1] * y[2] - x[2] * y[1], x[2] * y[0] - x[0] * y[2], x[0] * y[1] - x[1] * y[0]];
     let det = x[0] * r0[0] + x[1] * r0[1] + x[2] * r0[2];
-    [
-        [r0[0] / det, r1[0] / det, r2[0] / det],
-        [r0[1] / det, r1[1] / det, r2[1] / det],
-        [r0[2] / det, r1[2] / det, r2[2] / det],
-    ]
+    [[r0[0] / det, r1[0] / det, r2[0] / det], [r0[1] / det, r1[1] / det, r2[1] / det], [r0[2] / det, r1[2] / det, r2[2] / det]]
 }
 
 const fn to_mat(m: [[f64; 3]; 3]) -> DMat3 {
-    DMat3::from_cols(
-        DVec3::new(m[0][0], m[0][1], m[0][2]),
-        DVec3::new(m[1][0], m[1][1], m[1][2]),
-        DVec3::new(m[2][0], m[2][1], m[2][2]),
-    )
+    DMat3::from_cols(DVec3::new(m[0][0], m[0][1], m[0][2]), DVec3::new(m[1][0], m[1][1], m[1][2]), DVec3::new(m[2][0], m[2][1], m[2][2]))
 }
 
 const fn from_mat(m: DMat3) -> [[f64; 3]; 3] {
-    [
-        [m.x_axis.x, m.x_axis.y, m.x_axis.z],
-        [m.y_axis.x, m.y_axis.y, m.y_axis.z],
-        [m.z_axis.x, m.z_axis.y, m.z_axis.z],
-    ]
+    [[m.x_axis.x, m.x_axis.y, m.x_axis.z], [m.y_axis.x, m.y_axis.y, m.y_axis.z], [m.z_axis.x, m.z_axis.y, m.z_axis.z]]
 }
 
 /// Whether `w` is the identity, entry by entry.
@@ -195,13 +163,7 @@ const fn is_identity(w: [[f64; 3]; 3]) -> bool {
 /// The reference of a corner whose ideal edge vectors are the columns of `w`.
 const fn reference_of(w: [[f64; 3]; 3]) -> CornerReference {
     let w_inv = to_mat(mat_inverse(w));
-    CornerReference {
-        w: to_mat(w),
-        w_inv,
-        det_w_inv: determinant(w_inv),
-        w_inv_t_one: transpose_times_one(w_inv),
-        identity: is_identity(w),
-    }
+    CornerReference { w: to_mat(w), w_inv, det_w_inv: determinant(w_inv), w_inv_t_one: transpose_times_one(w_inv), identity: is_identity(w) }
 }
 
 /// The even permutations that put corner `s` of a corner's tetrahedron first
@@ -237,30 +199,17 @@ const fn unit(k: usize) -> [f64; 3] {
 
 /// The four slot references of corner reference `w` ([`slot_reference`]).
 const fn slot_references(w: [[f64; 3]; 3]) -> [CornerReference; 4] {
-    [
-        slot_reference(w, 0),
-        slot_reference(w, 1),
-        slot_reference(w, 2),
-        slot_reference(w, 3),
-    ]
+    [slot_reference(w, 0), slot_reference(w, 1), slot_reference(w, 2), slot_reference(w, 3)]
 }
 
 /// The unit cube's corner: W = I (Knupp 1999's hexahedral corner).
 const CUBE_W: [[f64; 3]; 3] = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
 /// The right wedge's corner (an equilateral triangle of unit edge, unit height): its two
 /// triangle edges, then the edge across.
-const WEDGE_W: [[f64; 3]; 3] = [
-    [1.0, 0.0, 0.0],
-    [0.5, 0.866_025_403_784_438_6, 0.0],
-    [0.0, 0.0, 1.0],
-];
+const WEDGE_W: [[f64; 3]; 3] = [[1.0, 0.0, 0.0], [0.5, 0.866_025_403_784_438_6, 0.0], [0.0, 0.0, 1.0]];
 /// A pyramid's base corner, the pyramid of unit edges (a unit square base, the apex at
 /// height `1/√2`): its two base edges, then the edge to the apex.
-const PYRAMID_W: [[f64; 3]; 3] = [
-    [1.0, 0.0, 0.0],
-    [0.0, 1.0, 0.0],
-    [0.5, 0.5, std::f64::consts::FRAC_1_SQRT_2],
-];
+const PYRAMID_W: [[f64; 3]; 3] = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.5, 0.5, std::f64::consts::FRAC_1_SQRT_2]];
 
 /// The unit cube's corner (`CUBE_W`: W = I).
 pub static CUBE_CORNER: CornerReference = reference_of(CUBE_W);
@@ -325,12 +274,8 @@ const TET_FACES: [&[usize]; 4] = [&[1, 2, 3], &[0, 3, 2], &[0, 1, 3], &[0, 2, 1]
 /// `(2 3 0 1)`, `(3 2 1 0)`, the even permutations that put each corner first.
 const TET_CORNER_EDGES: [[usize; 3]; 4] = [[1, 2, 3], [0, 3, 2], [3, 0, 1], [2, 1, 0]];
 
-const TET_IDEAL: [[f64; 3]; 4] = [
-    [0.0, 0.0, 0.0],
-    [1.0, 0.0, 0.0],
-    [0.5, 0.866_025_403_784_438_6, 0.0],
-    [0.5, 0.288_675_134_594_812_9, 0.816_496_580_927_726],
-];
+const TET_IDEAL: [[f64; 3]; 4] =
+    [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.5, 0.866_025_403_784_438_6, 0.0], [0.5, 0.288_675_134_594_812_9, 0.816_496_580_927_726]];
 
 const TET4: VolumeKindRow = VolumeKindRow {
     name: "4-node tetrahedron",
@@ -372,40 +317,13 @@ const TET10: VolumeKindRow = VolumeKindRow {
 
 /// A hexahedron's edges in VTK's order (its 20-node kind's mid-edge nodes 8–19):
 /// the bottom ring, the top ring, then the four edges across.
-const HEX_EDGES: [[usize; 2]; 12] = [
-    [0, 1],
-    [1, 2],
-    [2, 3],
-    [3, 0],
-    [4, 5],
-    [5, 6],
-    [6, 7],
-    [7, 4],
-    [0, 4],
-    [1, 5],
-    [2, 6],
-    [3, 7],
-];
+const HEX_EDGES: [[usize; 2]; 12] =
+    [[0, 1], [1, 2], [2, 3], [3, 0], [4, 5], [5, 6], [6, 7], [7, 4], [0, 4], [1, 5], [2, 6], [3, 7]];
 /// A hexahedron's corners' edge neighbours (bottom 0–3 anticlockwise seen from the top
 /// 4–7, as VTK and Gmsh number it).
-const HEX_CORNER_EDGES: [[usize; 3]; 8] = [
-    [1, 3, 4],
-    [2, 0, 5],
-    [3, 1, 6],
-    [0, 2, 7],
-    [7, 5, 0],
-    [4, 6, 1],
-    [5, 7, 2],
-    [6, 4, 3],
-];
-const HEX_FACES: [&[usize]; 6] = [
-    &[0, 3, 2, 1],
-    &[4, 5, 6, 7],
-    &[0, 1, 5, 4],
-    &[1, 2, 6, 5],
-    &[2, 3, 7, 6],
-    &[3, 0, 4, 7],
-];
+const HEX_CORNER_EDGES: [[usize; 3]; 8] =
+    [[1, 3, 4], [2, 0, 5], [3, 1, 6], [0, 2, 7], [7, 5, 0], [4, 6, 1], [5, 7, 2], [6, 4, 3]];
+const HEX_FACES: [&[usize]; 6] = [&[0, 3, 2, 1], &[4, 5, 6, 7], &[0, 1, 5, 4], &[1, 2, 6, 5], &[2, 3, 7, 6], &[3, 0, 4, 7]];
 const HEX_IDEAL: [[f64; 3]; 8] = [
     [0.0, 0.0, 0.0],
     [1.0, 0.0, 0.0],
@@ -416,20 +334,8 @@ const HEX_IDEAL: [[f64; 3]; 8] = [
     [1.0, 1.0, 1.0],
     [0.0, 1.0, 1.0],
 ];
-const HEX_EDGE_FOLLOWERS: [&[usize]; 12] = [
-    &[0, 1],
-    &[1, 2],
-    &[2, 3],
-    &[3, 0],
-    &[4, 5],
-    &[5, 6],
-    &[6, 7],
-    &[7, 4],
-    &[0, 4],
-    &[1, 5],
-    &[2, 6],
-    &[3, 7],
-];
+const HEX_EDGE_FOLLOWERS: [&[usize]; 12] =
+    [&[0, 1], &[1, 2], &[2, 3], &[3, 0], &[4, 5], &[5, 6], &[6, 7], &[7, 4], &[0, 4], &[1, 5], &[2, 6], &[3, 7]];
 
 const HEX8: VolumeKindRow = VolumeKindRow {
     name: "8-node hexahedron",
@@ -451,14 +357,10 @@ const HEX8: VolumeKindRow = VolumeKindRow {
 
 /// Mid-edge nodes 8–19 (VTK's `QUADRATIC_HEXAHEDRON`); mirrored top to bottom, the
 /// bottom ring's and the top ring's swap.
-const HEX20_MIRROR: [usize; 20] = [
-    4, 5, 6, 7, 0, 1, 2, 3, 12, 13, 14, 15, 8, 9, 10, 11, 16, 17, 18, 19,
-];
+const HEX20_MIRROR: [usize; 20] = [4, 5, 6, 7, 0, 1, 2, 3, 12, 13, 14, 15, 8, 9, 10, 11, 16, 17, 18, 19];
 /// Gmsh's edges of a 20-node hexahedron are (0,1), (0,3), (0,4), (1,2), (1,5), (2,3),
 /// (2,6), (3,7), (4,5), (4,7), (5,6), (6,7).
-const HEX20_GMSH: [usize; 20] = [
-    0, 1, 2, 3, 4, 5, 6, 7, 8, 11, 16, 9, 17, 10, 18, 19, 12, 15, 13, 14,
-];
+const HEX20_GMSH: [usize; 20] = [0, 1, 2, 3, 4, 5, 6, 7, 8, 11, 16, 9, 17, 10, 18, 19, 12, 15, 13, 14];
 
 const HEX20: VolumeKindRow = VolumeKindRow {
     name: "20-node hexahedron",
@@ -511,17 +413,11 @@ const HEX27: VolumeKindRow = VolumeKindRow {
         &[0, 1, 2, 3, 4, 5, 6, 7],
     ],
     faces: &HEX_FACES,
-    mirror: &[
-        4, 5, 6, 7, 0, 1, 2, 3, 12, 13, 14, 15, 8, 9, 10, 11, 16, 17, 18, 19, 20, 21, 22, 23, 25,
-        24, 26,
-    ],
+    mirror: &[4, 5, 6, 7, 0, 1, 2, 3, 12, 13, 14, 15, 8, 9, 10, 11, 16, 17, 18, 19, 20, 21, 22, 23, 25, 24, 26],
     vtk_type: 29,
     gmsh_type: 12,
     // Gmsh's face centres: z = 0, y = 0, x = 0, x = 1, y = 1, z = 1
-    gmsh_order: &[
-        0, 1, 2, 3, 4, 5, 6, 7, 8, 11, 16, 9, 17, 10, 18, 19, 12, 15, 13, 14, 24, 22, 20, 21, 23,
-        25, 26,
-    ],
+    gmsh_order: &[0, 1, 2, 3, 4, 5, 6, 7, 8, 11, 16, 9, 17, 10, 18, 19, 12, 15, 13, 14, 24, 22, 20, 21, 23, 25, 26],
     ideal: &HEX_IDEAL,
 };
 
@@ -531,35 +427,12 @@ const WEDGE6: VolumeKindRow = VolumeKindRow {
     nodes: 6,
     corners: 6,
     // VTK's wedge: the triangle 0 1 2 turns clockwise seen from the triangle 3 4 5 above it
-    corner_edges: &[
-        [2, 1, 3],
-        [0, 2, 4],
-        [1, 0, 5],
-        [4, 5, 0],
-        [5, 3, 1],
-        [3, 4, 2],
-    ],
+    corner_edges: &[[2, 1, 3], [0, 2, 4], [1, 0, 5], [4, 5, 0], [5, 3, 1], [3, 4, 2]],
     reference: &WEDGE_CORNER,
     slot_references: &WEDGE_SLOTS,
-    edges: &[
-        [0, 1],
-        [1, 2],
-        [2, 0],
-        [3, 4],
-        [4, 5],
-        [5, 3],
-        [0, 3],
-        [1, 4],
-        [2, 5],
-    ],
+    edges: &[[0, 1], [1, 2], [2, 0], [3, 4], [4, 5], [5, 3], [0, 3], [1, 4], [2, 5]],
     followers: &[],
-    faces: &[
-        &[0, 1, 2],
-        &[3, 5, 4],
-        &[0, 2, 5, 3],
-        &[2, 1, 4, 5],
-        &[1, 0, 3, 4],
-    ],
+    faces: &[&[0, 1, 2], &[3, 5, 4], &[0, 2, 5, 3], &[2, 1, 4, 5], &[1, 0, 3, 4]],
     mirror: &[3, 4, 5, 0, 1, 2],
     vtk_type: 13,
     gmsh_type: 6,
@@ -585,35 +458,14 @@ const PYRAMID5: VolumeKindRow = VolumeKindRow {
     corner_edges: &[[1, 3, 4], [2, 0, 4], [3, 1, 4], [0, 2, 4]],
     reference: &PYRAMID_CORNER,
     slot_references: &PYRAMID_SLOTS,
-    edges: &[
-        [0, 1],
-        [1, 2],
-        [2, 3],
-        [3, 0],
-        [0, 4],
-        [1, 4],
-        [2, 4],
-        [3, 4],
-    ],
+    edges: &[[0, 1], [1, 2], [2, 3], [3, 0], [0, 4], [1, 4], [2, 4], [3, 4]],
     followers: &[],
-    faces: &[
-        &[0, 3, 2, 1],
-        &[0, 1, 4],
-        &[1, 2, 4],
-        &[2, 3, 4],
-        &[3, 0, 4],
-    ],
+    faces: &[&[0, 3, 2, 1], &[0, 1, 4], &[1, 2, 4], &[2, 3, 4], &[3, 0, 4]],
     mirror: &[0, 3, 2, 1, 4],
     vtk_type: 14,
     gmsh_type: 7,
     gmsh_order: &[0, 1, 2, 3, 4],
-    ideal: &[
-        [0.0, 0.0, 0.0],
-        [1.0, 0.0, 0.0],
-        [1.0, 1.0, 0.0],
-        [0.0, 1.0, 0.0],
-        [0.5, 0.5, std::f64::consts::FRAC_1_SQRT_2],
-    ],
+    ideal: &[[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [1.0, 1.0, 0.0], [0.0, 1.0, 0.0], [0.5, 0.5, std::f64::consts::FRAC_1_SQRT_2]],
 };
 
 /// The element kinds of a volume mesh. A mesh may mix the linear kinds (a hexahedral
@@ -698,18 +550,11 @@ impl VolumeKind {
     }
     /// Two kinds in one phrase, fewer nodes first: "4-node and 10-node tetrahedra".
     pub fn mix_words(a: VolumeKind, b: VolumeKind) -> String {
-        let (a, b) = if a.nodes() <= b.nodes() {
-            (a.row(), b.row())
-        } else {
-            (b.row(), a.row())
-        };
+        let (a, b) = if a.nodes() <= b.nodes() { (a.row(), b.row()) } else { (b.row(), a.row()) };
         if a.family == b.family {
             format!("{}-node and {}-node {}", a.nodes, b.nodes, a.family)
         } else {
-            format!(
-                "{}-node {} and {}-node {}",
-                a.nodes, a.family, b.nodes, b.family
-            )
+            format!("{}-node {} and {}-node {}", a.nodes, a.family, b.nodes, b.family)
         }
     }
     /// Whether elements of kinds `a` and `b` may share a mesh: linear kinds mix freely; a
@@ -719,21 +564,15 @@ impl VolumeKind {
     }
     /// The kind of Gmsh element type `t`, if it is one.
     pub fn from_gmsh_type(t: u64) -> Option<VolumeKind> {
-        VolumeKind::ALL
-            .into_iter()
-            .find(|k| u64::from(k.row().gmsh_type) == t)
+        VolumeKind::ALL.into_iter().find(|k| u64::from(k.row().gmsh_type) == t)
     }
     /// The kind of legacy VTK cell type `t`, if it is one.
     pub fn from_vtk_type(t: u64) -> Option<VolumeKind> {
-        VolumeKind::ALL
-            .into_iter()
-            .find(|k| u64::from(k.row().vtk_type) == t)
+        VolumeKind::ALL.into_iter().find(|k| u64::from(k.row().vtk_type) == t)
     }
     /// The tetrahedron with `n` nodes (files that say only the count, TetGen's `.ele`).
     pub fn with_nodes(n: usize) -> Option<VolumeKind> {
-        [VolumeKind::Tet4, VolumeKind::Tet10]
-            .into_iter()
-            .find(|k| k.nodes() == n)
+        [VolumeKind::Tet4, VolumeKind::Tet10].into_iter().find(|k| k.nodes() == n)
     }
 }
 
@@ -761,10 +600,7 @@ impl VolumeKindCounts {
     }
     /// The kinds with elements and their counts, in [`VolumeKind`]'s order.
     pub fn present(&self) -> impl Iterator<Item = (VolumeKind, usize)> + '_ {
-        VolumeKind::ALL
-            .into_iter()
-            .map(|k| (k, self.get(k)))
-            .filter(|&(_, n)| n > 0)
+        VolumeKind::ALL.into_iter().map(|k| (k, self.get(k))).filter(|&(_, n)| n > 0)
     }
     /// The counts in words, kinds in [`VolumeKind`]'s order: "305 8-node hexahedra,
     /// 1 5-node pyramid".
@@ -803,17 +639,9 @@ mod tests {
     fn the_reference_determinant_is_the_one_glam_computes() {
         for k in VolumeKind::ALL {
             let r = k.reference();
-            assert_eq!(
-                r.det_w_inv.to_bits(),
-                r.w_inv.determinant().to_bits(),
-                "{k:?}"
-            );
+            assert_eq!(r.det_w_inv.to_bits(), r.w_inv.determinant().to_bits(), "{k:?}");
             let one = r.w_inv.transpose() * DVec3::ONE;
-            assert_eq!(
-                r.w_inv_t_one.to_array().map(f64::to_bits),
-                one.to_array().map(f64::to_bits),
-                "{k:?}"
-            );
+            assert_eq!(r.w_inv_t_one.to_array().map(f64::to_bits), one.to_array().map(f64::to_bits), "{k:?}");
             let i = r.w * r.w_inv;
             assert!(i.abs_diff_eq(DMat3::IDENTITY, 1e-15), "{k:?}: W·W⁻¹ = {i}");
         }
@@ -840,10 +668,7 @@ mod tests {
             let p = ideal(k);
             for c in 0..k.row().corner_edges.len() {
                 let t = corner_t(k, &p, c);
-                assert!(
-                    (t.transpose() * t).abs_diff_eq(DMat3::IDENTITY, 1e-12),
-                    "{k:?} corner {c}: {t}"
-                );
+                assert!((t.transpose() * t).abs_diff_eq(DMat3::IDENTITY, 1e-12), "{k:?} corner {c}: {t}");
                 assert!((t.determinant() - 1.0).abs() < 1e-12, "{k:?} corner {c}");
             }
         }
@@ -856,22 +681,13 @@ mod tests {
             let r = k.row();
             for _ in 0..10 {
                 let p: [DVec3; 4] = std::array::from_fn(|_| {
-                    DVec3::new(
-                        rng.uniform(-1.0, 1.0),
-                        rng.uniform(-1.0, 1.0),
-                        rng.uniform(-1.0, 1.0),
-                    )
+                    DVec3::new(rng.uniform(-1.0, 1.0), rng.uniform(-1.0, 1.0), rng.uniform(-1.0, 1.0))
                 });
-                let t = |q: [DVec3; 4], w: &CornerReference| {
-                    DMat3::from_cols(q[1] - q[0], q[2] - q[0], q[3] - q[0]) * w.w_inv
-                };
+                let t = |q: [DVec3; 4], w: &CornerReference| DMat3::from_cols(q[1] - q[0], q[2] - q[0], q[3] - q[0]) * w.w_inv;
                 let t0 = t(p, r.reference);
                 for (s, perm) in WITH_FIRST.iter().enumerate() {
                     let q = perm.map(|j| p[j]);
-                    assert!(
-                        t(q, &r.slot_references[s]).abs_diff_eq(t0, 1e-12),
-                        "{k:?} slot {s}"
-                    );
+                    assert!(t(q, &r.slot_references[s]).abs_diff_eq(t0, 1e-12), "{k:?} slot {s}");
                 }
             }
         }
@@ -881,24 +697,9 @@ mod tests {
     fn kind_counts_say_each_kind_once_in_its_order() {
         use VolumeKind::*;
         let c = VolumeKindCounts::of([Pyramid5, Hex8, Tet4, Hex8, Tet4, Tet4]);
-        assert_eq!(
-            (
-                c.get(Tet4),
-                c.get(Hex8),
-                c.get(Pyramid5),
-                c.get(Wedge6),
-                c.total()
-            ),
-            (3, 2, 1, 0, 6)
-        );
-        assert_eq!(
-            c.words(),
-            "3 4-node tetrahedra, 2 8-node hexahedra, 1 5-node pyramid"
-        );
-        assert_eq!(
-            serde_json::to_string(&c).unwrap(),
-            r#"{"Tet4":3,"Hex8":2,"Pyramid5":1}"#
-        );
+        assert_eq!((c.get(Tet4), c.get(Hex8), c.get(Pyramid5), c.get(Wedge6), c.total()), (3, 2, 1, 0, 6));
+        assert_eq!(c.words(), "3 4-node tetrahedra, 2 8-node hexahedra, 1 5-node pyramid");
+        assert_eq!(serde_json::to_string(&c).unwrap(), r#"{"Tet4":3,"Hex8":2,"Pyramid5":1}"#);
         assert_eq!(VolumeKindCounts::default().words(), "");
     }
 
@@ -906,30 +707,18 @@ mod tests {
     fn every_row_is_consistent() {
         for k in VolumeKind::ALL {
             let r = k.row();
-            assert!(
-                r.corner_edges.len() == r.corners || k == VolumeKind::Pyramid5,
-                "{k:?}"
-            );
+            assert!(r.corner_edges.len() == r.corners || k == VolumeKind::Pyramid5, "{k:?}");
             assert_eq!(r.nodes, r.corners + r.followers.len(), "{k:?}");
             assert_eq!(r.ideal.len(), r.corners, "{k:?}");
             for perm in [r.mirror, r.gmsh_order] {
                 let mut p = perm.to_vec();
                 p.sort_unstable();
-                assert_eq!(
-                    p,
-                    (0..r.nodes).collect::<Vec<_>>(),
-                    "{k:?}: not a permutation"
-                );
+                assert_eq!(p, (0..r.nodes).collect::<Vec<_>>(), "{k:?}: not a permutation");
             }
             // every corner's edge neighbours are its edges
             for (c, ns) in r.corner_edges.iter().enumerate() {
                 for &n in ns {
-                    assert!(
-                        r.edges
-                            .iter()
-                            .any(|&[a, b]| (a, b) == (c, n) || (a, b) == (n, c)),
-                        "{k:?}"
-                    );
+                    assert!(r.edges.iter().any(|&[a, b]| (a, b) == (c, n) || (a, b) == (n, c)), "{k:?}");
                 }
             }
             // the ideal element's faces point out (away from its centroid), and its
@@ -943,18 +732,12 @@ mod tests {
             let mirrored: Vec<DVec3> = p.iter().map(|q| DVec3::new(q.x, q.y, -q.z)).collect();
             let renumbered: Vec<DVec3> = r.mirror.iter().map(|&j| mirrored[j]).collect();
             for c in 0..r.corner_edges.len() {
-                assert!(
-                    corner_t(k, &renumbered, c).determinant() > 0.0,
-                    "{k:?}: mirrored corner {c}"
-                );
+                assert!(corner_t(k, &renumbered, c).determinant() > 0.0, "{k:?}: mirrored corner {c}");
             }
             // the followers, renumbered, still sit at the means of their corners
             for (i, f) in r.followers.iter().enumerate() {
                 let at = f.iter().map(|&c| renumbered[c]).sum::<DVec3>() / f.len() as f64;
-                assert!(
-                    at.distance(renumbered[r.corners + i]) < 1e-12,
-                    "{k:?}: follower {i}"
-                );
+                assert!(at.distance(renumbered[r.corners + i]) < 1e-12, "{k:?}: follower {i}");
             }
             assert_eq!(VolumeKind::from_gmsh_type(u64::from(r.gmsh_type)), Some(k));
             assert_eq!(VolumeKind::from_vtk_type(u64::from(r.vtk_type)), Some(k));

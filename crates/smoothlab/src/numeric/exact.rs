@@ -96,9 +96,7 @@ impl Expansion {
     }
     /// The sign of the exact value.
     pub fn sign(&self) -> Ordering {
-        self.0.last().map_or(Ordering::Equal, |x| {
-            x.partial_cmp(&0.0).unwrap_or(Ordering::Equal)
-        })
+        self.0.last().map_or(Ordering::Equal, |x| x.partial_cmp(&0.0).unwrap_or(Ordering::Equal))
     }
 }
 
@@ -141,21 +139,9 @@ pub fn orient3d(a: DVec3, b: DVec3, c: DVec3, d: DVec3) -> Ordering {
         return Ordering::Less;
     }
     det3_exact(
-        [
-            Expansion::difference(b.x, a.x),
-            Expansion::difference(b.y, a.y),
-            Expansion::difference(b.z, a.z),
-        ],
-        [
-            Expansion::difference(c.x, a.x),
-            Expansion::difference(c.y, a.y),
-            Expansion::difference(c.z, a.z),
-        ],
-        [
-            Expansion::difference(d.x, a.x),
-            Expansion::difference(d.y, a.y),
-            Expansion::difference(d.z, a.z),
-        ],
+        [Expansion::difference(b.x, a.x), Expansion::difference(b.y, a.y), Expansion::difference(b.z, a.z)],
+        [Expansion::difference(c.x, a.x), Expansion::difference(c.y, a.y), Expansion::difference(c.z, a.z)],
+        [Expansion::difference(d.x, a.x), Expansion::difference(d.y, a.y), Expansion::difference(d.z, a.z)],
     )
     .sign()
 }
@@ -185,28 +171,17 @@ mod tests {
         // exactly flat: four corners in the plane z = x + y, any scale
         for s in [1.0, 2f64.powi(-800), 2f64.powi(800), 2f64.powi(-1060)] {
             let p = |x: f64, y: f64| DVec3::new(x, y, x + y) * s;
-            assert_eq!(
-                orient3d(p(0.0, 0.0), p(1.0, 0.0), p(0.0, 1.0), p(0.25, 0.5)),
-                Ordering::Equal,
-                "{s}"
-            );
+            assert_eq!(orient3d(p(0.0, 0.0), p(1.0, 0.0), p(0.0, 1.0), p(0.25, 0.5)), Ordering::Equal, "{s}");
         }
         // the apex one ulp above the plane of a large base
-        let base = [
-            DVec3::new(1e4, 0.0, 0.0),
-            DVec3::new(0.0, 1e4, 0.0),
-            DVec3::new(0.0, 0.0, 0.0),
-        ];
+        let base = [DVec3::new(1e4, 0.0, 0.0), DVec3::new(0.0, 1e4, 0.0), DVec3::new(0.0, 0.0, 0.0)];
         let up = DVec3::new(0.1, 0.1, f64::from_bits(1));
         let above = orient3d(DVec3::new(0.1, 0.1, 1.0), base[0], base[1], base[2]);
         assert_ne!(above, Ordering::Equal);
         assert_eq!(orient3d(up, base[0], base[1], base[2]), above);
         let below = DVec3::new(0.1, 0.1, -f64::from_bits(1));
         assert_eq!(orient3d(below, base[0], base[1], base[2]), above.reverse());
-        assert_eq!(
-            orient3d(DVec3::new(0.1, 0.1, 0.0), base[0], base[1], base[2]),
-            Ordering::Equal
-        );
+        assert_eq!(orient3d(DVec3::new(0.1, 0.1, 0.0), base[0], base[1], base[2]), Ordering::Equal);
         // (b − a) and its rounding: a + (b − a) differs from b, the sign does not
         let a = DVec3::new(0.1, 0.2, 0.3);
         let b = a + DVec3::new(1.0 / 3.0, 0.0, 0.0);
@@ -214,13 +189,7 @@ mod tests {
         let mid = (b + c) * 0.5;
         let sign = orient3d(a, b, c, mid);
         // exact by expansions directly
-        let d = |p: DVec3, q: DVec3| {
-            [
-                Expansion::difference(p.x, q.x),
-                Expansion::difference(p.y, q.y),
-                Expansion::difference(p.z, q.z),
-            ]
-        };
+        let d = |p: DVec3, q: DVec3| [Expansion::difference(p.x, q.x), Expansion::difference(p.y, q.y), Expansion::difference(p.z, q.z)];
         assert_eq!(sign, det3_exact(d(b, a), d(c, a), d(mid, a)).sign());
         let _ = o;
     }
@@ -233,11 +202,7 @@ mod tests {
         for i in 0..4000 {
             let mut p = [DVec3::ZERO; 4];
             for q in &mut p {
-                *q = DVec3::new(
-                    rng.uniform(-1.0, 1.0),
-                    rng.uniform(-1.0, 1.0),
-                    rng.uniform(-1.0, 1.0),
-                );
+                *q = DVec3::new(rng.uniform(-1.0, 1.0), rng.uniform(-1.0, 1.0), rng.uniform(-1.0, 1.0));
             }
             if i % 2 == 1 {
                 // the fourth nearly in the plane of the others
@@ -253,11 +218,7 @@ mod tests {
             assert_eq!(orient3d(p[0], p[1], p[3], p[2]), s.reverse());
             assert_eq!(orient3d(p[1], p[2], p[0], p[3]), s, "an even permutation");
             for k in [2f64.powi(-600), 2f64.powi(600)] {
-                assert_eq!(
-                    orient3d(p[0] * k, p[1] * k, p[2] * k, p[3] * k),
-                    s,
-                    "scale {k}"
-                );
+                assert_eq!(orient3d(p[0] * k, p[1] * k, p[2] * k, p[3] * k), s, "scale {k}");
             }
         }
     }

@@ -23,8 +23,7 @@ pub use prng::SplitMix64;
 /// product the metrics take of them is a normal double (see `quality::corner_edges`);
 /// beyond it they are brought to unit scale first. One range for every metric and
 /// objective.
-pub(crate) const SAFE_SCALE: std::ops::RangeInclusive<f64> =
-    6.223_015_277_861_142e-61..=1.606_938_044_258_990_3e60;
+pub(crate) const SAFE_SCALE: std::ops::RangeInclusive<f64> = 6.223_015_277_861_142e-61..=1.606_938_044_258_990_3e60;
 
 /// The largest `|component|` of `values` (vectors or numbers): the scale the metrics
 /// measure edges against, 0 for none. The fold of `f64::max` from 0 over each value's
@@ -205,7 +204,7 @@ pub fn cbrt_fast(x: f64) -> f64 {
     // the exponent's bits over 3, biased so the guess is within 4 % of the root
     const B1: u32 = 715_094_163; // (1023 − 1023/3 − 0.03306235651)·2^20
     const B2: u32 = 696_219_795; // (1023 − 1023/3 − 54/3 − 0.03306235651)·2^20
-                                 // |1/cbrt(r) − p(r)| < 2^−23.5 on the guess's range
+    // |1/cbrt(r) − p(r)| < 2^−23.5 on the guess's range
     const P0: f64 = 1.875_951_824_271_77;
     const P1: f64 = -1.884_979_795_433_771_7;
     const P2: f64 = 1.621_429_720_105_354_5;
@@ -261,30 +260,19 @@ mod tests {
         let mut nan_skipped = 0;
         for round in 0..20_000 {
             let n = round % 7;
-            let v2: Vec<DVec2> = (0..n)
-                .map(|_| DVec2::new(special(&mut rng), special(&mut rng)))
-                .collect();
-            let v3: Vec<DVec3> = (0..n)
-                .map(|_| DVec3::new(special(&mut rng), special(&mut rng), special(&mut rng)))
-                .collect();
+            let v2: Vec<DVec2> = (0..n).map(|_| DVec2::new(special(&mut rng), special(&mut rng))).collect();
+            let v3: Vec<DVec3> = (0..n).map(|_| DVec3::new(special(&mut rng), special(&mut rng), special(&mut rng))).collect();
             let fold2 = v2.iter().fold(0.0f64, |m, v| m.max(v.abs().max_element()));
             let fold3 = v3.iter().fold(0.0f64, |m, v| m.max(v.abs().max_element()));
             let scalars: Vec<f64> = v3.iter().flat_map(|v| v.to_array()).collect();
             let fold1 = scalars.iter().fold(0.0f64, |m, c| m.max(c.abs()));
             assert_eq!(largest_component(&v2).to_bits(), fold2.to_bits(), "{v2:?}");
             assert_eq!(largest_component(&v3).to_bits(), fold3.to_bits(), "{v3:?}");
-            assert_eq!(
-                largest_component(&scalars).to_bits(),
-                fold1.to_bits(),
-                "{scalars:?}"
-            );
+            assert_eq!(largest_component(&scalars).to_bits(), fold1.to_bits(), "{scalars:?}");
             nan_skipped += v3.iter().any(|v| v.is_nan()) as u32;
         }
         assert!(nan_skipped > 1000, "NaNs among the inputs: {nan_skipped}");
-        assert_eq!(
-            largest_component(std::iter::empty::<f64>()).to_bits(),
-            0.0f64.to_bits()
-        );
+        assert_eq!(largest_component(std::iter::empty::<f64>()).to_bits(), 0.0f64.to_bits());
     }
 
     /// Within one unit in the last place of the correctly rounded root, over every scale
@@ -311,14 +299,7 @@ mod tests {
             assert_eq!(cbrt_fast(cube), k as f64, "the cube of {k}");
         }
         assert!(worst <= 1, "{worst} ulps");
-        for x in [
-            0.0,
-            -0.0,
-            f64::INFINITY,
-            f64::NEG_INFINITY,
-            f64::MIN_POSITIVE / 8.0,
-            5e-324,
-        ] {
+        for x in [0.0, -0.0, f64::INFINITY, f64::NEG_INFINITY, f64::MIN_POSITIVE / 8.0, 5e-324] {
             assert_eq!(cbrt_fast(x).to_bits(), x.cbrt().to_bits(), "{x}");
         }
         assert!(cbrt_fast(f64::NAN).is_nan());
@@ -328,10 +309,7 @@ mod tests {
 
     #[test]
     fn the_safe_scale_is_two_to_the_plus_minus_200() {
-        assert_eq!(
-            (*SAFE_SCALE.start(), *SAFE_SCALE.end()),
-            (pow2(-200), pow2(200))
-        );
+        assert_eq!((*SAFE_SCALE.start(), *SAFE_SCALE.end()), (pow2(-200), pow2(200)));
     }
 
     #[test]

@@ -37,10 +37,7 @@ pub fn stable_order(n: usize, mut key: impl FnMut(usize) -> u64) -> Vec<u32> {
 /// Sorts `v` by `key` as `sort_by_key` does (stable: equal keys keep their order),
 /// through [`stable_order`].
 pub fn sort_stable_by_key<T: Copy>(v: &mut [T], mut key: impl FnMut(&T) -> u64) {
-    let sorted: Vec<T> = stable_order(v.len(), |i| key(&v[i]))
-        .into_iter()
-        .map(|i| v[i as usize])
-        .collect();
+    let sorted: Vec<T> = stable_order(v.len(), |i| key(&v[i])).into_iter().map(|i| v[i as usize]).collect();
     v.copy_from_slice(&sorted);
 }
 
@@ -58,32 +55,12 @@ mod tests {
     #[test]
     fn total_order_key_orders_as_total_cmp() {
         let mut rng = SplitMix64::new(7);
-        let mut xs = vec![
-            0.0,
-            -0.0,
-            1.0,
-            -1.0,
-            f64::INFINITY,
-            f64::NEG_INFINITY,
-            f64::NAN,
-            -f64::NAN,
-        ];
-        xs.extend([
-            f64::MIN_POSITIVE,
-            -f64::MIN_POSITIVE,
-            5e-324,
-            -5e-324,
-            f64::MAX,
-            f64::MIN,
-        ]);
+        let mut xs = vec![0.0, -0.0, 1.0, -1.0, f64::INFINITY, f64::NEG_INFINITY, f64::NAN, -f64::NAN];
+        xs.extend([f64::MIN_POSITIVE, -f64::MIN_POSITIVE, 5e-324, -5e-324, f64::MAX, f64::MIN]);
         xs.extend((0..200).map(|_| f64::from_bits(rng.next_u64())));
         for &a in &xs {
             for &b in &xs {
-                assert_eq!(
-                    total_order_key(a).cmp(&total_order_key(b)),
-                    a.total_cmp(&b),
-                    "{a:e} {b:e}"
-                );
+                assert_eq!(total_order_key(a).cmp(&total_order_key(b)), a.total_cmp(&b), "{a:e} {b:e}");
             }
         }
     }
@@ -102,9 +79,8 @@ mod tests {
     fn sorts_as_the_stable_sort() {
         let mut rng = SplitMix64::new(3);
         for n in [0, 1, 2, 5, 20, 21, 100, 1000] {
-            let v: Vec<(f64, u32)> = (0..n)
-                .map(|i| ((rng.next_u64() % 7) as f64 - 3.0, i))
-                .collect();
+            let v: Vec<(f64, u32)> =
+                (0..n).map(|i| ((rng.next_u64() % 7) as f64 - 3.0, i)).collect();
             let mut by_std = v.clone();
             by_std.sort_by(|a, b| a.0.total_cmp(&b.0));
             let mut by_key = v.clone();
@@ -113,18 +89,11 @@ mod tests {
             by_std.sort_by(|a, b| b.0.total_cmp(&a.0));
             sort_stable_by_key(&mut by_key, |p| !total_order_key(p.0));
             assert_eq!(by_key, by_std);
-            let mut x: Vec<f64> = v
-                .iter()
-                .map(|p| p.0 / 0.0)
-                .chain(v.iter().map(|p| p.0))
-                .collect();
+            let mut x: Vec<f64> = v.iter().map(|p| p.0 / 0.0).chain(v.iter().map(|p| p.0)).collect();
             let mut by_std = x.clone();
             by_std.sort_by(f64::total_cmp);
             sort_total(&mut x);
-            assert_eq!(
-                x.iter().map(|x| x.to_bits()).collect::<Vec<_>>(),
-                by_std.iter().map(|x| x.to_bits()).collect::<Vec<_>>()
-            );
+            assert_eq!(x.iter().map(|x| x.to_bits()).collect::<Vec<_>>(), by_std.iter().map(|x| x.to_bits()).collect::<Vec<_>>());
         }
     }
 }

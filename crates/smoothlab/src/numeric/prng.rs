@@ -58,11 +58,8 @@ impl SplitMix64 {
     /// `[−1, 1)³` (on average 1.91 triples of draws).
     pub fn in_unit_ball(&mut self) -> glam::DVec3 {
         loop {
-            let p = glam::DVec3::new(
-                2.0 * self.next_f64() - 1.0,
-                2.0 * self.next_f64() - 1.0,
-                2.0 * self.next_f64() - 1.0,
-            );
+            let p =
+                glam::DVec3::new(2.0 * self.next_f64() - 1.0, 2.0 * self.next_f64() - 1.0, 2.0 * self.next_f64() - 1.0);
             if p.length_squared() < 1.0 {
                 return p;
             }
@@ -95,11 +92,7 @@ mod tests {
             sum += u;
         }
         assert!(lo < 0.01 && hi > 0.99, "covers the interval: {lo} {hi}");
-        assert!(
-            (sum / 10_000.0 - 0.5).abs() < 0.02,
-            "mean near 1/2: {}",
-            sum / 10_000.0
-        );
+        assert!((sum / 10_000.0 - 0.5).abs() < 0.02, "mean near 1/2: {}", sum / 10_000.0);
         // uniform in the disk: a quarter of the points within radius 1/2
         let inner = (0..10_000)
             .map(|_| g.in_unit_disk())

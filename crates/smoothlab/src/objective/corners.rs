@@ -49,10 +49,7 @@ fn corner_edge_weights(kind: ElementKind, w: &[f64; 9], i: usize) -> (f64, f64) 
     let next = (i + 1) % k;
     let prev = (i + k - 1) % k;
     match (kind.mid(i), kind.mid(prev)) {
-        (Some(m_next), Some(m_prev)) => (
-            4.0 * w[m_next] - 3.0 * w[i] - w[next],
-            4.0 * w[m_prev] - 3.0 * w[i] - w[prev],
-        ),
+        (Some(m_next), Some(m_prev)) => (4.0 * w[m_next] - 3.0 * w[i] - w[next], 4.0 * w[m_prev] - 3.0 * w[i] - w[prev]),
         _ => (w[next] - w[i], w[prev] - w[i]),
     }
 }
@@ -90,20 +87,9 @@ impl ElementJets {
         let mut corners = [CornerJet::default(); 4];
         for i in 0..k {
             let (c1, c2) = corner_edge_weights(kind, &weights, i);
-            corners[i] = CornerJet {
-                e1: edges[i].0,
-                e2: edges[i].1,
-                c1,
-                c2,
-            };
+            corners[i] = CornerJet { e1: edges[i].0, e2: edges[i].1, c1, c2 };
         }
-        ElementJets {
-            kind,
-            slot: s,
-            pts,
-            weights,
-            corners,
-        }
+        ElementJets { kind, slot: s, pts, weights, corners }
     }
 
     /// Each corner's edge pair and weights in its frame `frames[i]` ([`crate::target::in_frame`]):

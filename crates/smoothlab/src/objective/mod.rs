@@ -48,16 +48,13 @@ mod untangle;
 
 pub use condition::{ConditionNumber, Norm, CONDITION_BARRIER};
 pub use new::{
-    adjusted_angle, regularised_determinant, AnglePenalty, ChenTristanoKwok, Penalty,
-    PenaltyLength, RegularisedBarrier, BARRIER_EPSILON, BARRIER_WEIGHT, EQUILATERAL_PENALTY,
+    adjusted_angle, regularised_determinant, AnglePenalty, ChenTristanoKwok, Penalty, PenaltyLength,
+    RegularisedBarrier, BARRIER_EPSILON, BARRIER_WEIGHT, EQUILATERAL_PENALTY,
 };
 pub use old::{CornerTerm, MaxMinShape};
 pub use point::{NodeStar, Point};
 pub use sine::MaxMinSine;
-pub use tet::{
-    describe_tet, tet_form, tet_kinds, tet_objective, CornerStar, RegularisedMeanRatio, StarCorner,
-    StarSolid, TetObjective,
-};
+pub use tet::{describe_tet, tet_form, tet_kinds, tet_objective, CornerStar, RegularisedMeanRatio, StarCorner, StarSolid, TetObjective};
 pub use untangle::{MaxMinDet, Untangle, UNTANGLE_BETA};
 
 enum_with_all! {
@@ -127,22 +124,16 @@ impl ObjectiveKind {
     /// Whether objectives of this kind only untangle (see [`Objective::only_untangles`]):
     /// `untangle` and `untangle-mindet`.
     pub fn only_untangles(self) -> bool {
-        matches!(
-            self,
-            ObjectiveKind::Untangle | ObjectiveKind::UntangleMinDet
-        )
+        matches!(self, ObjectiveKind::Untangle | ObjectiveKind::UntangleMinDet)
     }
 
     /// How this kind's terms combine (which solver fits it).
     pub fn goal(self) -> Goal {
         match self {
-            ObjectiveKind::SmoothShape | ObjectiveKind::Condition | ObjectiveKind::Untangle => {
-                Goal::MinimizeSum
+            ObjectiveKind::SmoothShape | ObjectiveKind::Condition | ObjectiveKind::Untangle => Goal::MinimizeSum,
+            ObjectiveKind::MaxMinShape | ObjectiveKind::Sine | ObjectiveKind::ConditionMax | ObjectiveKind::UntangleMinDet => {
+                Goal::MaximizeMin
             }
-            ObjectiveKind::MaxMinShape
-            | ObjectiveKind::Sine
-            | ObjectiveKind::ConditionMax
-            | ObjectiveKind::UntangleMinDet => Goal::MaximizeMin,
         }
     }
 }
@@ -167,9 +158,7 @@ pub fn objective_with(kind: ObjectiveKind, penalty: Penalty) -> Box<dyn Objectiv
         ObjectiveKind::Sine => Box::new(MaxMinSine),
         ObjectiveKind::SmoothShape => Box::new(ChenTristanoKwok::with_penalty(penalty)),
         ObjectiveKind::Condition => Box::new(ConditionNumber { norm: Norm::Two }),
-        ObjectiveKind::ConditionMax => Box::new(ConditionNumber {
-            norm: Norm::Infinity,
-        }),
+        ObjectiveKind::ConditionMax => Box::new(ConditionNumber { norm: Norm::Infinity }),
         ObjectiveKind::Untangle => Box::new(Untangle::default()),
         ObjectiveKind::UntangleMinDet => Box::new(MaxMinDet),
     }
@@ -182,10 +171,7 @@ pub fn objective_with(kind: ObjectiveKind, penalty: Penalty) -> Box<dyn Objectiv
 /// each star's own frame), but the totals would mean nothing. Every other objective is a
 /// ratio of lengths and takes any scale.
 pub fn check_scale(kind: ObjectiveKind, mesh: &Mesh) -> crate::Result<()> {
-    if !matches!(
-        kind,
-        ObjectiveKind::Untangle | ObjectiveKind::UntangleMinDet
-    ) {
+    if !matches!(kind, ObjectiveKind::Untangle | ObjectiveKind::UntangleMinDet) {
         return Ok(());
     }
     let (mut lo, mut hi) = (f64::INFINITY, 0.0f64);
@@ -253,14 +239,7 @@ impl StarElement {
     #[inline]
     pub fn at(&self, x: DVec2) -> [DVec2; 9] {
         let mut p = self.pts;
-        Self::place(
-            self.kind,
-            self.slot,
-            self.follow_next,
-            self.follow_prev,
-            &mut p,
-            x,
-        );
+        Self::place(self.kind, self.slot, self.follow_next, self.follow_prev, &mut p, x);
         p
     }
 
@@ -268,25 +247,11 @@ impl StarElement {
     /// [`at(x)`](Self::at) without copying the array.
     #[inline]
     pub fn move_free_node(&mut self, x: DVec2) {
-        Self::place(
-            self.kind,
-            self.slot,
-            self.follow_next,
-            self.follow_prev,
-            &mut self.pts,
-            x,
-        );
+        Self::place(self.kind, self.slot, self.follow_next, self.follow_prev, &mut self.pts, x);
     }
 
     #[inline]
-    fn place(
-        kind: ElementKind,
-        slot: u8,
-        follow_next: bool,
-        follow_prev: bool,
-        p: &mut [DVec2; 9],
-        x: DVec2,
-    ) {
+    fn place(kind: ElementKind, slot: u8, follow_next: bool, follow_prev: bool, p: &mut [DVec2; 9], x: DVec2) {
         let k = kind.corners();
         let s = slot as usize;
         p[s] = x;
@@ -363,11 +328,7 @@ impl StarMemo {
     /// The sum and number of [`dets`](Self::dets) where they are kept for `star.x0`.
     #[inline]
     pub(crate) fn dets_kept(star: &Star) -> Option<(f64, usize)> {
-        star.memo
-            .dets
-            .get()
-            .filter(|(at, _)| Self::same(at, star))
-            .map(|&(_, facts)| facts)
+        star.memo.dets.get().filter(|(at, _)| Self::same(at, star)).map(|&(_, facts)| facts)
     }
 
     /// Keeps `facts` as [`dets`](Self::dets) of `star` at `star.x0` where nothing is kept.
@@ -383,11 +344,7 @@ impl StarMemo {
     }
 
     #[inline]
-    fn kept<T: Copy>(
-        cell: &std::sync::OnceLock<(DVec2, T)>,
-        star: &Star,
-        work: impl Fn(&Star) -> T,
-    ) -> T {
+    fn kept<T: Copy>(cell: &std::sync::OnceLock<(DVec2, T)>, star: &Star, work: impl Fn(&Star) -> T) -> T {
         match cell.get() {
             Some((at, facts)) if Self::same(at, star) => *facts,
             Some(_) => work(star),
@@ -432,9 +389,7 @@ impl Star {
             let follows = |edge: usize| {
                 kind.mid(edge).is_some_and(|m| {
                     let mid = ids[m] as usize;
-                    !mesh.fixed()[mid]
-                        && !mesh.is_on_curved_boundary(mid)
-                        && mesh.role(mid) == NodeRole::Mid
+                    !mesh.fixed()[mid] && !mesh.is_on_curved_boundary(mid) && mesh.role(mid) == NodeRole::Mid
                 })
             };
             // filled in place: a StarElement is 160 bytes, built once where it lives
@@ -532,8 +487,8 @@ pub fn star_scale(star: &Star) -> f64 {
         let k = e.kind.corners();
         let s = e.slot as usize;
         // halved before summing, so that sizes near the largest double do not overflow
-        sum += 0.5 * crate::numeric::robust_length(e.pts[(s + 1) % k] - star.x0)
-            + 0.5 * crate::numeric::robust_length(e.pts[(s + k - 1) % k] - star.x0);
+        sum +=
+            0.5 * crate::numeric::robust_length(e.pts[(s + 1) % k] - star.x0) + 0.5 * crate::numeric::robust_length(e.pts[(s + k - 1) % k] - star.x0);
         n += 2;
     }
     if n == 0 {
@@ -550,10 +505,7 @@ pub fn star_scale(star: &Star) -> f64 {
 pub(crate) fn free_node_extent(star: &Star) -> f64 {
     crate::numeric::largest_component(star.elems.iter().flat_map(|e| {
         let (k, s) = (e.kind.corners(), e.slot as usize);
-        [
-            e.pts[(s + 1) % k] - star.x0,
-            e.pts[(s + k - 1) % k] - star.x0,
-        ]
+        [e.pts[(s + 1) % k] - star.x0, e.pts[(s + k - 1) % k] - star.x0]
     }))
 }
 
@@ -596,11 +548,7 @@ pub trait Objective<S: NodeStar = Star> {
     /// value and gradient are [`value_and_gradient`](Self::value_and_gradient)'s. Newton's
     /// first trial in Fletcher–Reeves ([`crate::optimize::SolveOptions::newton`]) uses it.
     #[allow(clippy::type_complexity)]
-    fn value_gradient_hessian(
-        &self,
-        _star: &S,
-        _x: S::Point,
-    ) -> Option<(f64, S::Point, <S::Point as Point>::Hessian)> {
+    fn value_gradient_hessian(&self, _star: &S, _x: S::Point) -> Option<(f64, S::Point, <S::Point as Point>::Hessian)> {
         None
     }
     /// Whether every term at `x` is above `floor` (at least one term, none NaN): for a
@@ -613,14 +561,7 @@ pub trait Objective<S: NodeStar = Star> {
     /// the element of the worst term where it stands, then that of a term not above its
     /// floor at the last trial, when `out` ended with one. The answer is the same either way.
     /// Default: every term, then the test.
-    fn terms_above(
-        &self,
-        star: &S,
-        x: S::Point,
-        floor: f64,
-        lead: u32,
-        out: &mut Vec<Term<S::Point>>,
-    ) -> bool {
+    fn terms_above(&self, star: &S, x: S::Point, floor: f64, lead: u32, out: &mut Vec<Term<S::Point>>) -> bool {
         let _ = lead;
         out.clear();
         self.terms(star, x, out);
@@ -633,9 +574,7 @@ pub trait Objective<S: NodeStar = Star> {
 /// solvers read it as the worst value of the goal).
 pub fn combine<V: Point>(goal: Goal, terms: &[Term<V>]) -> (f64, V) {
     let (v, g) = match goal {
-        Goal::MinimizeSum => terms
-            .iter()
-            .fold((0.0, V::ZERO), |(v, g), t| (v + t.value, g + t.grad)),
+        Goal::MinimizeSum => terms.iter().fold((0.0, V::ZERO), |(v, g), t| (v + t.value, g + t.grad)),
         Goal::MaximizeMin => terms
             .iter()
             .fold(None, |best: Option<&Term<V>>, t| match best {
@@ -723,13 +662,7 @@ pub(crate) struct Fold<V = DVec2> {
 
 impl<V: Point> Fold<V> {
     pub(crate) fn new(goal: Goal) -> Self {
-        Fold {
-            goal,
-            value: 0.0,
-            grad: V::ZERO,
-            any: false,
-            nan: false,
-        }
+        Fold { goal, value: 0.0, grad: V::ZERO, any: false, nan: false }
     }
     pub(crate) fn add(&mut self, t: Term<V>) {
         match self.goal {
@@ -807,10 +740,7 @@ mod tests {
             assert_eq!(ObjectiveKind::parse(k.name()), Some(k));
             assert_eq!(k.to_string(), k.name());
             // serde (the page, the lab's settings) uses the command-line names
-            assert_eq!(
-                serde_json::to_string(&k).unwrap(),
-                format!("\"{}\"", k.name())
-            );
+            assert_eq!(serde_json::to_string(&k).unwrap(), format!("\"{}\"", k.name()));
             let obj = objective(k);
             assert_eq!(obj.name(), k.name());
             assert_eq!(obj.goal(), k.goal());
@@ -832,10 +762,7 @@ mod tests {
                 let x = star.x0 + rng.point(1.5);
                 // evaluated where a solve starting at x evaluates it: the barrier of `new`
                 // is +∞ at inverted positions of a star that starts valid
-                let star = Star {
-                    x0: x,
-                    ..star.clone()
-                };
+                let star = Star { x0: x, ..star.clone() };
                 for k in ObjectiveKind::ALL {
                     let obj = objective(k);
                     t.clear();
@@ -852,10 +779,7 @@ mod tests {
         // an empty star gives 0, as combine does
         let empty = Star::new();
         for k in ObjectiveKind::ALL {
-            assert_eq!(
-                objective(k).value_and_gradient(&empty, DVec2::ZERO),
-                (0.0, DVec2::ZERO)
-            );
+            assert_eq!(objective(k).value_and_gradient(&empty, DVec2::ZERO), (0.0, DVec2::ZERO));
         }
     }
 
@@ -869,30 +793,17 @@ mod tests {
         for star in sample_stars() {
             for _ in 0..10 {
                 let x = star.x0 + rng.point(1.5);
-                let star = Star {
-                    x0: x,
-                    ..star.clone()
-                };
+                let star = Star { x0: x, ..star.clone() };
                 let y = x + rng.point(0.3);
                 for k in ObjectiveKind::ALL {
                     let obj = objective(k);
                     t.clear();
                     obj.terms(&star, y, &mut t);
-                    let min = t.iter().fold(f64::INFINITY, |m, t| {
-                        if t.value.is_nan() {
-                            f64::NEG_INFINITY
-                        } else {
-                            m.min(t.value)
-                        }
-                    });
+                    let min = t.iter().fold(f64::INFINITY, |m, t| if t.value.is_nan() { f64::NEG_INFINITY } else { m.min(t.value) });
                     for floor in [min - 1e-3, min, min + 1e-3, f64::NEG_INFINITY] {
                         for lead in 0..star.len() as u32 {
                             let is = obj.terms_above(&star, y, floor, lead, &mut above);
-                            assert_eq!(
-                                is,
-                                !t.is_empty() && min > floor,
-                                "{k} at {y}, floor {floor}, lead {lead}"
-                            );
+                            assert_eq!(is, !t.is_empty() && min > floor, "{k} at {y}, floor {floor}, lead {lead}");
                             if is {
                                 assert_eq!(above, t, "{k} at {y}");
                                 yes += 1;
@@ -906,20 +817,8 @@ mod tests {
         }
         assert!(yes > 100 && no > 100, "{yes} {no}");
         // an empty star is never above
-        assert!(!MaxMinShape.terms_above(
-            &Star::new(),
-            DVec2::ZERO,
-            f64::NEG_INFINITY,
-            0,
-            &mut above
-        ));
-        assert!(!MaxMinSine.terms_above(
-            &Star::new(),
-            DVec2::ZERO,
-            f64::NEG_INFINITY,
-            0,
-            &mut above
-        ));
+        assert!(!MaxMinShape.terms_above(&Star::new(), DVec2::ZERO, f64::NEG_INFINITY, 0, &mut above));
+        assert!(!MaxMinSine.terms_above(&Star::new(), DVec2::ZERO, f64::NEG_INFINITY, 0, &mut above));
     }
 
     /// A hexagon of six 6-node triangles around node 0, built as a mesh.
@@ -930,16 +829,10 @@ mod tests {
         let centre = node(DVec2::ZERO);
         let r: Vec<u32> = ring.iter().map(|&p| node(p)).collect();
         let spoke: Vec<u32> = ring.iter().map(|&p| node(0.5 * p)).collect();
-        let rim: Vec<u32> = (0..6)
-            .map(|i| node(0.5 * (ring[i] + ring[(i + 1) % 6])))
-            .collect();
+        let rim: Vec<u32> = (0..6).map(|i| node(0.5 * (ring[i] + ring[(i + 1) % 6]))).collect();
         for i in 0..6 {
             let j = (i + 1) % 6;
-            b.add_element(
-                ElementKind::Tri6,
-                &[centre, r[i], r[j], spoke[i], rim[i], spoke[j]],
-                0,
-            );
+            b.add_element(ElementKind::Tri6, &[centre, r[i], r[j], spoke[i], rim[i], spoke[j]], 0);
         }
         b.build().expect("a valid mesh")
     }
@@ -950,24 +843,12 @@ mod tests {
         let mut gathered = Star::new();
         gathered.gather(&mesh, 0);
         assert_eq!(gathered.len(), 6);
-        assert!(gathered
-            .elems
-            .iter()
-            .all(|e| e.follow_next && e.follow_prev && e.kind == ElementKind::Tri6));
+        assert!(gathered.elems.iter().all(|e| e.follow_next && e.follow_prev && e.kind == ElementKind::Tri6));
         let explicit = quadratic(&fan_star(&regular_ring(6, 1.0)));
         let mut rng = SplitMix64::new(43);
         for _ in 0..20 {
             let x = rng.point(1.2);
-            let (from_mesh, built) = (
-                Star {
-                    x0: x,
-                    ..gathered.clone()
-                },
-                Star {
-                    x0: x,
-                    ..explicit.clone()
-                },
-            );
+            let (from_mesh, built) = (Star { x0: x, ..gathered.clone() }, Star { x0: x, ..explicit.clone() });
             for k in ObjectiveKind::ALL {
                 let obj = objective(k);
                 let (a, ga) = obj.value_and_gradient(&from_mesh, x);

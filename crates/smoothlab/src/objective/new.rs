@@ -95,10 +95,7 @@ impl ChenTristanoKwok {
 
     /// `Σ (1 − α)²` alone: the objective without its penalty (Chen Fig. 2's failure).
     pub fn without_penalty() -> Self {
-        ChenTristanoKwok::Barrier(RegularisedBarrier {
-            k1: 0.0,
-            ..RegularisedBarrier::default()
-        })
+        ChenTristanoKwok::Barrier(RegularisedBarrier { k1: 0.0, ..RegularisedBarrier::default() })
     }
 
     pub fn kind(&self) -> ObjectiveKind {
@@ -131,20 +128,11 @@ impl ChenTristanoKwok {
             Some(f) => {
                 let unit = super::scaled_star(star, f);
                 self.visit_at_unit_scale::<false>(&unit, f * x, |i, value, grad, _| {
-                    emit(Term {
-                        elem: i as u32,
-                        value,
-                        grad: f * grad,
-                    })
+                    emit(Term { elem: i as u32, value, grad: f * grad })
                 });
             }
-            None => self.visit_at_unit_scale::<false>(star, x, |i, value, grad, _| {
-                emit(Term {
-                    elem: i as u32,
-                    value,
-                    grad,
-                })
-            }),
+            None => self
+                .visit_at_unit_scale::<false>(star, x, |i, value, grad, _| emit(Term { elem: i as u32, value, grad })),
         }
     }
 
@@ -166,9 +154,7 @@ impl ChenTristanoKwok {
         match extreme_scale_factor(star) {
             Some(f) => {
                 let unit = super::scaled_star(star, f);
-                self.visit_at_unit_scale::<true>(&unit, f * x, |i, v, g, h| {
-                    add(i, v, f * g, h * (f * f))
-                });
+                self.visit_at_unit_scale::<true>(&unit, f * x, |i, v, g, h| add(i, v, f * g, h * (f * f)));
             }
             None => self.visit_at_unit_scale::<true>(star, x, add),
         }
@@ -232,22 +218,14 @@ impl ChenTristanoKwok {
     /// Hessian when `HESSIAN`: the barrier design only, zero for the angle design).
     /// Inlined into the loops, so that the vectors a design does not read are never made.
     #[inline(always)]
-    fn sub_triangle<const HESSIAN: bool>(
-        &self,
-        t: &SubTriangle,
-        delta: f64,
-    ) -> (f64, DVec2, DMat2) {
+    fn sub_triangle<const HESSIAN: bool>(&self, t: &SubTriangle, delta: f64) -> (f64, DVec2, DMat2) {
         match self {
             ChenTristanoKwok::Barrier(b) => b.of::<HESSIAN>(t, delta),
             ChenTristanoKwok::Angle(a) => {
                 let at_c = barrier::CornerND::of(t.c_to_a, t.c_to_b);
                 let (alpha, grad_alpha) = at_c.alpha();
                 let (p, gp) = a.of(t);
-                (
-                    (1.0 - alpha) * (1.0 - alpha) + p,
-                    -2.0 * (1.0 - alpha) * grad_alpha + gp,
-                    DMat2::ZERO,
-                )
+                ((1.0 - alpha) * (1.0 - alpha) + p, -2.0 * (1.0 - alpha) * grad_alpha + gp, DMat2::ZERO)
             }
         }
     }
@@ -320,12 +298,7 @@ impl StarAtRest {
                 }
             });
         }
-        StarAtRest {
-            extent,
-            n_sum: sum,
-            n_count: count,
-            n_min: min,
-        }
+        StarAtRest { extent, n_sum: sum, n_count: count, n_min: min }
     }
 }
 
@@ -336,11 +309,7 @@ fn each_sub_triangle(el: &StarElement, x: DVec2, mut f: impl FnMut(&SubTriangle)
     if el.kind == ElementKind::Tri3 {
         // the common case, without the general element machinery (same arithmetic)
         let s = el.slot as usize;
-        f(&SubTriangle::linear(
-            x,
-            el.pts[(s + 1) % 3],
-            el.pts[(s + 2) % 3],
-        ));
+        f(&SubTriangle::linear(x, el.pts[(s + 1) % 3], el.pts[(s + 2) % 3]));
         return;
     }
     let j = ElementJets::new(el, x);

@@ -88,8 +88,7 @@ macro_rules! point_by_glam {
 }
 
 point_by_glam!(DVec2, DMat2, 2, |h| h.x_axis.x > 0.0);
-point_by_glam!(DVec3, DMat3, 3, |h| h.x_axis.x > 0.0
-    && h.x_axis.x * h.y_axis.y - h.x_axis.y * h.y_axis.x > 0.0);
+point_by_glam!(DVec3, DMat3, 3, |h| h.x_axis.x > 0.0 && h.x_axis.x * h.y_axis.y - h.x_axis.y * h.y_axis.x > 0.0);
 
 /// A free node's star as the solvers see it: whether it has elements, its size (the unit
 /// of every solver length) and a copy scaled by a power of two (solves far from unit size

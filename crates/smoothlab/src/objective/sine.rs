@@ -33,21 +33,10 @@ impl MaxMinSine {
     /// [`Objective::terms_above`](crate::objective::Objective::terms_above): the corners of
     /// element `lead` first, then the others in order, stopping at the first term not
     /// above `floor`; the terms are [`visit`](Self::visit)'s, bit for bit.
-    pub fn terms_above(
-        &self,
-        star: &Star,
-        x: DVec2,
-        floor: f64,
-        lead: u32,
-        out: &mut Vec<Term>,
-    ) -> bool {
+    pub fn terms_above(&self, star: &Star, x: DVec2, floor: f64, lead: u32, out: &mut Vec<Term>) -> bool {
         out.clear();
         let lead = lead as usize;
-        let mut first = [Term {
-            elem: 0,
-            value: 0.0,
-            grad: DVec2::ZERO,
-        }; 4];
+        let mut first = [Term { elem: 0, value: 0.0, grad: DVec2::ZERO }; 4];
         let mut n = 0;
         if let Some(el) = star.elems.get(lead) {
             let mut above = true;
@@ -94,11 +83,7 @@ fn element_terms(
 ) {
     let corner = |c: &CornerJet| {
         let (s, g1, g2) = scaled_jacobian_gradient(c.e1, c.e2);
-        Term {
-            elem: i as u32,
-            value: s,
-            grad: c.chain(g1, g2),
-        }
+        Term { elem: i as u32, value: s, grad: c.chain(g1, g2) }
     };
     if let (Some(f), ElementKind::Tri3) = (frames, el.kind) {
         // against a target the corners share one T: the triangle in the target's frame is
@@ -141,12 +126,7 @@ fn element_terms(
         let w = |j: usize| if j == s { 1.0 } else { 0.0 };
         let jet = |j: usize| {
             let (next, prev) = ((j + 1) % 3, (j + 2) % 3);
-            CornerJet {
-                e1: p[next] - p[j],
-                e2: p[prev] - p[j],
-                c1: w(next) - w(j),
-                c2: w(prev) - w(j),
-            }
+            CornerJet { e1: p[next] - p[j], e2: p[prev] - p[j], c1: w(next) - w(j), c2: w(prev) - w(j) }
         };
         let t = TriangleCorners::of(&p);
         let mut values = [0.0; 3];
@@ -162,21 +142,13 @@ fn element_terms(
         }
         if values.iter().any(|&v| v <= floor) {
             for value in values {
-                emit(Term {
-                    elem: i as u32,
-                    value,
-                    grad: DVec2::ZERO,
-                });
+                emit(Term { elem: i as u32, value, grad: DVec2::ZERO });
             }
             return;
         }
         for j in 0..3 {
             let (value, g1, g2) = t.scaled_jacobian::<true>(j).unwrap_or_default();
-            emit(Term {
-                elem: i as u32,
-                value,
-                grad: jet(j).chain(g1, g2),
-            });
+            emit(Term { elem: i as u32, value, grad: jet(j).chain(g1, g2) });
         }
         return;
     }

@@ -14,10 +14,7 @@ use crate::mesh::ElementKind;
 /// `∂det/∂e2 = perp(e1)`.
 #[inline(always)]
 fn det(c: &CornerJet) -> (f64, DVec2) {
-    (
-        crate::quality::corner_det(c.e1, c.e2),
-        c.chain(-c.e2.perp(), c.e1.perp()),
-    )
+    (crate::quality::corner_det(c.e1, c.e2), c.chain(-c.e2.perp(), c.e1.perp()))
 }
 
 /// The moving corners' determinants of a linear element of `K` corners (3 or 4) with corners
@@ -26,12 +23,7 @@ fn det(c: &CornerJet) -> (f64, DVec2) {
 /// corner by corner; every corner of a triangle moves, all but the opposite one of a quad.
 /// `K` constant, so the corners' indices are known when compiling.
 #[inline(always)]
-fn linear_dets<const K: usize>(
-    pts: &[DVec2],
-    slot: usize,
-    x: DVec2,
-    mut emit: impl FnMut(f64, DVec2),
-) {
+fn linear_dets<const K: usize>(pts: &[DVec2], slot: usize, x: DVec2, mut emit: impl FnMut(f64, DVec2)) {
     let mut p = [DVec2::ZERO; K];
     p.copy_from_slice(&pts[..K]);
     p[slot] = x;
@@ -41,12 +33,7 @@ fn linear_dets<const K: usize>(
             continue;
         }
         let (next, prev) = ((j + 1) % K, (j + K - 1) % K);
-        let (d, g) = det(&CornerJet {
-            e1: p[next] - p[j],
-            e2: p[prev] - p[j],
-            c1: w(next) - w(j),
-            c2: w(prev) - w(j),
-        });
+        let (d, g) = det(&CornerJet { e1: p[next] - p[j], e2: p[prev] - p[j], c1: w(next) - w(j), c2: w(prev) - w(j) });
         emit(d, g);
     }
 }
@@ -103,19 +90,13 @@ pub const UNTANGLE_BETA: f64 = 0.05;
 
 impl Default for Untangle {
     fn default() -> Self {
-        Untangle {
-            beta: UNTANGLE_BETA,
-            power: 2,
-        }
+        Untangle { beta: UNTANGLE_BETA, power: 2 }
     }
 }
 
 impl Untangle {
     /// Knupp's form as published, `Σ (|det| − det)` (β = 0).
-    pub const KNUPP: Untangle = Untangle {
-        beta: 0.0,
-        power: 1,
-    };
+    pub const KNUPP: Untangle = Untangle { beta: 0.0, power: 1 };
 
     pub fn kind(&self) -> ObjectiveKind {
         ObjectiveKind::Untangle
@@ -157,20 +138,14 @@ impl Untangle {
                     // the default power written out: what `powi` gives for 2 and 1, bit
                     // for bit, without its call
                     2 => (t * t, -4.0 * t * grad),
-                    p => (
-                        t.powi(p as i32),
-                        -2.0 * p as f64 * t.powi(p as i32 - 1) * grad,
-                    ),
+                    p => (t.powi(p as i32), -2.0 * p as f64 * t.powi(p as i32 - 1) * grad),
                 }
             } else {
                 (0.0, DVec2::ZERO)
             };
             Term { elem, value, grad }
         };
-        if self.beta != 0.0
-            && super::StarMemo::same(&x, star)
-            && super::StarMemo::dets_kept(star).is_none()
-        {
+        if self.beta != 0.0 && super::StarMemo::same(&x, star) && super::StarMemo::dets_kept(star).is_none() {
             // a solve's first evaluation: the shift's corners are the terms' corners, so
             // one sweep of them gives both (the same dets, summed in the same order)
             const HELD: usize = 48;
@@ -212,9 +187,7 @@ impl MaxMinDet {
 
     /// Calls `emit` with one term per moving corner.
     pub fn visit(&self, star: &Star, x: DVec2, mut emit: impl FnMut(Term)) {
-        visit_dets(star, x, |elem, value, grad| {
-            emit(Term { elem, value, grad })
-        });
+        visit_dets(star, x, |elem, value, grad| emit(Term { elem, value, grad }));
     }
 }
 
@@ -235,10 +208,7 @@ mod tests {
             let p0 = el.at(x + d(1.0, 0.5));
             let ce = corner_edges(el.kind, &p[..el.kind.node_count()]);
             let ce0 = corner_edges(el.kind, &p0[..el.kind.node_count()]);
-            ce.iter()
-                .zip(&ce0)
-                .take(el.kind.corners())
-                .all(|(c, c0)| c == c0 || c.0.perp_dot(c.1) > 0.0)
+            ce.iter().zip(&ce0).take(el.kind.corners()).all(|(c, c0)| c == c0 || c.0.perp_dot(c.1) > 0.0)
         })
     }
 
@@ -262,10 +232,7 @@ mod tests {
                 assert_eq!(MaxMinDet.value(&star, x) > 0.0, valid);
             }
         }
-        assert!(
-            zero > 100 && positive > 100,
-            "both cases seen: {zero} {positive}"
-        );
+        assert!(zero > 100 && positive > 100, "both cases seen: {zero} {positive}");
     }
 
     #[test]
@@ -280,10 +247,7 @@ mod tests {
             let mut moved = star.clone();
             let _ = u.shift(&moved);
             moved.x0 += d(2.5, 0.3);
-            let fresh = u.shift(&Star {
-                x0: moved.x0,
-                ..star.clone()
-            });
+            let fresh = u.shift(&Star { x0: moved.x0, ..star.clone() });
             assert_eq!(u.shift(&moved).to_bits(), fresh.to_bits());
             assert_ne!(fresh.to_bits(), first.to_bits());
         }
@@ -295,38 +259,11 @@ mod tests {
         // (up to 48 corners); every evaluation after it, the shift kept: the same bits
         let mut stars = sample_stars();
         stars.push(fan_star(&regular_ring(60, 1.0)));
-        let bits = |ts: &[Term]| {
-            ts.iter()
-                .map(|t| {
-                    (
-                        t.elem,
-                        t.value.to_bits(),
-                        t.grad.x.to_bits(),
-                        t.grad.y.to_bits(),
-                    )
-                })
-                .collect::<Vec<_>>()
-        };
+        let bits = |ts: &[Term]| ts.iter().map(|t| (t.elem, t.value.to_bits(), t.grad.x.to_bits(), t.grad.y.to_bits())).collect::<Vec<_>>();
         let (mut compared, mut positive) = (0, 0);
         for star in stars {
-            for star in [
-                star.clone(),
-                Star {
-                    x0: star.x0 + d(0.9, 0.4),
-                    ..star
-                },
-            ] {
-                for u in [
-                    Untangle::default(),
-                    Untangle {
-                        beta: 0.3,
-                        power: 1,
-                    },
-                    Untangle {
-                        beta: 0.05,
-                        power: 3,
-                    },
-                ] {
+            for star in [star.clone(), Star { x0: star.x0 + d(0.9, 0.4), ..star }] {
+                for u in [Untangle::default(), Untangle { beta: 0.3, power: 1 }, Untangle { beta: 0.05, power: 3 }] {
                     let (fresh, kept) = (star.clone(), star.clone());
                     let mut first = Vec::new();
                     u.visit(&fresh, fresh.x0, |t| first.push(t));
@@ -340,21 +277,14 @@ mod tests {
                 }
             }
         }
-        assert!(
-            compared > 1000 && positive > 100,
-            "{positive} of {compared} terms positive"
-        );
+        assert!(compared > 1000 && positive > 100, "{positive} of {compared} terms positive");
     }
 
     #[test]
     fn hand_derived_values() {
         // one unit right triangle with the free node at the right angle: det = 1 at
         // every corner (cross of the two edges); reflected through the far edge it is −1
-        let s = star(vec![elem(
-            crate::mesh::ElementKind::Tri3,
-            &[d(0.0, 0.0), d(1.0, 0.0), d(0.0, 1.0)],
-            0,
-        )]);
+        let s = star(vec![elem(crate::mesh::ElementKind::Tri3, &[d(0.0, 0.0), d(1.0, 0.0), d(0.0, 1.0)], 0)]);
         let (v, g) = MaxMinDet.value_and_gradient(&s, d(0.0, 0.0));
         assert!((v - 1.0).abs() < 1e-15);
         // d det/dx at the free corner: det = cross(B − x, C − x) → gradient perp(C − B)... = (−1, −1)
@@ -372,11 +302,7 @@ mod tests {
         for star in sample_stars() {
             for _ in 0..30 {
                 let x = star.x0 + rng.point(1.5);
-                for obj in [
-                    &Untangle::KNUPP as &dyn Objective,
-                    &Untangle::default(),
-                    &MaxMinDet,
-                ] {
+                for obj in [&Untangle::KNUPP as &dyn Objective, &Untangle::default(), &MaxMinDet] {
                     let (c, t) = check_term_gradients(obj, &star, x, 1e-6);
                     checked += c;
                     total += t;

@@ -3,9 +3,7 @@
 //!
 //! The formulas, in one notation: `docs/formulas.md` §3.
 
-use super::{
-    line_search, merit_of, DirectionKind, Iterate, SolveOptions, SolveState, Solver, StopReason,
-};
+use super::{line_search, merit_of, DirectionKind, Iterate, SolveOptions, SolveState, Solver, StopReason};
 use crate::objective::{Goal, NodeStar, Objective, Point};
 
 /// Powell's restart test: restart when consecutive gradients are far from orthogonal,
@@ -48,12 +46,7 @@ impl FletcherReeves {
         FletcherReeves { options }
     }
 
-    fn eval<S: NodeStar>(
-        &mut self,
-        objective: &dyn Objective<S>,
-        star: &S,
-        x: S::Point,
-    ) -> (f64, f64, S::Point) {
+    fn eval<S: NodeStar>(&mut self, objective: &dyn Objective<S>, star: &S, x: S::Point) -> (f64, f64, S::Point) {
         let goal = objective.goal();
         // the folded value and gradient (no terms collected; a NaN term gives NaN)
         let (v, g) = objective.value_and_gradient(star, x);
@@ -85,12 +78,7 @@ impl<S: NodeStar> Solver<S> for FletcherReeves {
         &self.options
     }
 
-    fn evaluate_start(
-        &mut self,
-        objective: &dyn Objective<S>,
-        star: &S,
-        st: &mut SolveState<S::Point>,
-    ) {
+    fn evaluate_start(&mut self, objective: &dyn Objective<S>, star: &S, st: &mut SolveState<S::Point>) {
         let (v, m, g, h) = self.eval_hessian(objective, star, st.x);
         st.value = v;
         st.value0 = v;
@@ -102,21 +90,14 @@ impl<S: NodeStar> Solver<S> for FletcherReeves {
         }
     }
 
-    fn step(
-        &mut self,
-        objective: &dyn Objective<S>,
-        star: &S,
-        st: &mut SolveState<S::Point>,
-    ) -> bool {
+    fn step(&mut self, objective: &dyn Objective<S>, star: &S, st: &mut SolveState<S::Point>) -> bool {
         if !st.may_iterate(&self.options) {
             return false;
         }
         let o = self.options;
         let g = st.grad;
         let g2 = g.length_squared();
-        if g2 == 0.0
-            || g.length() * st.scale <= GRADIENT_TOLERANCE * st.merit.abs().max(f64::MIN_POSITIVE)
-        {
+        if g2 == 0.0 || g.length() * st.scale <= GRADIENT_TOLERANCE * st.merit.abs().max(f64::MIN_POSITIVE) {
             st.stop = Some(StopReason::Optimal);
             return false;
         }
@@ -142,20 +123,13 @@ impl<S: NodeStar> Solver<S> for FletcherReeves {
                         }
                         e.1
                     };
-                    let _ =
-                        line_search(&mut phi, st.merit, 1.0, 1.0, &mut accel, o.max_evaluations);
+                    let _ = line_search(&mut phi, st.merit, 1.0, 1.0, &mut accel, o.max_evaluations);
                 }
                 let (t, (v_new, m_new, g_new, h_new)) = best;
                 // a conjugate direction after a Newton step means nothing: restart
                 st.restart = true;
                 st.since_restart = 0;
-                return self.accept(
-                    st,
-                    x + p * t,
-                    p,
-                    (v_new, m_new, g_new, h_new),
-                    DirectionKind::Newton,
-                );
+                return self.accept(st, x + p * t, p, (v_new, m_new, g_new, h_new), DirectionKind::Newton);
             }
         }
         // direction
@@ -175,11 +149,7 @@ impl<S: NodeStar> Solver<S> for FletcherReeves {
         }
         // line search along d, keeping the gradient of the lowest point seen
         let dl = d.length();
-        let first = if st.last_move > 0.0 {
-            st.last_move
-        } else {
-            o.initial_step * st.scale
-        };
+        let first = if st.last_move > 0.0 { st.last_move } else { o.initial_step * st.scale };
         let t0 = first / dl;
         let t_min = o.min_step * st.scale / dl;
         let x = st.x;
@@ -194,14 +164,7 @@ impl<S: NodeStar> Solver<S> for FletcherReeves {
                 }
                 m
             };
-            line_search(
-                &mut phi,
-                st.merit,
-                t0,
-                t_min,
-                &mut st.accel,
-                o.max_evaluations,
-            )
+            line_search(&mut phi, st.merit, t0, t_min, &mut st.accel, o.max_evaluations)
         };
         let Some(ls) = found else {
             if kind == DirectionKind::Conjugate {
@@ -215,11 +178,7 @@ impl<S: NodeStar> Solver<S> for FletcherReeves {
         debug_assert_eq!(ls.t, best_t);
         let (m_new, v_new, g_new, h_new) = best;
         st.restart = false;
-        st.since_restart = if kind == DirectionKind::Conjugate {
-            st.since_restart + 1
-        } else {
-            0
-        };
+        st.since_restart = if kind == DirectionKind::Conjugate { st.since_restart + 1 } else { 0 };
         self.accept(st, x + d * best_t, d, (v_new, m_new, g_new, h_new), kind)
     }
 }
@@ -248,26 +207,14 @@ impl FletcherReeves {
         st.last_move = moved;
         st.iterations += 1;
         if self.options.record_history {
-            st.history.push(Iterate {
-                x: x_new,
-                value: v_new,
-                direction: kind,
-                step: moved,
-            });
+            st.history.push(Iterate { x: x_new, value: v_new, direction: kind, step: moved });
         }
         self.check_stop(st, improvement, m_new, g_new, moved)
     }
 
     /// After an accepted step: stops on a gradient that is not finite, too small an
     /// improvement or too short a move; returns whether the solve goes on.
-    fn check_stop<V: Point>(
-        &self,
-        st: &mut SolveState<V>,
-        improvement: f64,
-        m_new: f64,
-        g_new: V,
-        moved: f64,
-    ) -> bool {
+    fn check_stop<V: Point>(&self, st: &mut SolveState<V>, improvement: f64, m_new: f64, g_new: V, moved: f64) -> bool {
         let o = &self.options;
         if !g_new.is_finite() {
             st.stop = Some(StopReason::NotFinite);

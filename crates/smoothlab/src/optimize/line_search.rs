@@ -78,12 +78,7 @@ pub fn line_search(
         Some(h) => h,
         None => loop {
             if evals >= max_evaluations {
-                return Some(LineSearch {
-                    t: b,
-                    value: fb,
-                    bracket: None,
-                    evaluations: evals,
-                });
+                return Some(LineSearch { t: b, value: fb, bracket: None, evaluations: evals });
             }
             let tn = b + *accel * (b - a);
             let vn = eval(tn, &mut evals);
@@ -105,12 +100,7 @@ pub fn line_search(
         }
     }
     let bracket = Some([a, b, c]);
-    let mut best = LineSearch {
-        t: b,
-        value: fb,
-        bracket,
-        evaluations: evals,
-    };
+    let mut best = LineSearch { t: b, value: fb, bracket, evaluations: evals };
     if !fc.is_finite() || evals >= max_evaluations {
         return Some(best);
     }

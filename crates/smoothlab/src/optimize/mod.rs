@@ -230,20 +230,13 @@ pub struct Solvers<S: NodeStar = Star> {
 impl<S: NodeStar> Solvers<S> {
     /// Every solver with options `o`.
     pub fn new(o: SolveOptions) -> Self {
-        Solvers {
-            fletcher_reeves: FletcherReeves::new(o),
-            non_smooth_ascent: NonSmoothAscent::new(o),
-        }
+        Solvers { fletcher_reeves: FletcherReeves::new(o), non_smooth_ascent: NonSmoothAscent::new(o) }
     }
     /// The solver `kind` names for an objective of `goal` ([`SolverKind::Auto`] resolved).
     pub fn get(&mut self, kind: SolverKind, goal: Goal) -> &mut dyn Solver<S> {
         match (kind, goal) {
-            (SolverKind::FletcherReeves, _) | (SolverKind::Auto, Goal::MinimizeSum) => {
-                &mut self.fletcher_reeves
-            }
-            (SolverKind::NonSmoothAscent, _) | (SolverKind::Auto, Goal::MaximizeMin) => {
-                &mut self.non_smooth_ascent
-            }
+            (SolverKind::FletcherReeves, _) | (SolverKind::Auto, Goal::MinimizeSum) => &mut self.fletcher_reeves,
+            (SolverKind::NonSmoothAscent, _) | (SolverKind::Auto, Goal::MaximizeMin) => &mut self.non_smooth_ascent,
         }
     }
 }
@@ -358,12 +351,7 @@ pub trait Solver<S: NodeStar = Star> {
     fn options(&self) -> &SolveOptions;
     /// Evaluates the objective at `x0` and prepares a solve (which may already be stopped,
     /// e.g. [`StopReason::NotFinite`]).
-    fn start(
-        &mut self,
-        objective: &dyn Objective<S>,
-        star: &S,
-        x0: S::Point,
-    ) -> SolveState<S::Point> {
+    fn start(&mut self, objective: &dyn Objective<S>, star: &S, x0: S::Point) -> SolveState<S::Point> {
         self.start_at_scale(objective, star, x0, star.size())
     }
     /// [`start`](Self::start) for a star whose size ([`NodeStar::size`]) the caller has at
@@ -384,30 +372,15 @@ pub trait Solver<S: NodeStar = Star> {
     /// Evaluates the objective at the start `st.x` into `st` (value, merit, and what the
     /// solver keeps), stopping it when that is not finite. Called by
     /// [`start_at_scale`](Self::start_at_scale) unless `SolveState::begin` stopped it.
-    fn evaluate_start(
-        &mut self,
-        objective: &dyn Objective<S>,
-        star: &S,
-        st: &mut SolveState<S::Point>,
-    );
+    fn evaluate_start(&mut self, objective: &dyn Objective<S>, star: &S, st: &mut SolveState<S::Point>);
     /// One iteration. Returns false once the solve has stopped (see [`SolveState::stop`]).
-    fn step(
-        &mut self,
-        objective: &dyn Objective<S>,
-        star: &S,
-        state: &mut SolveState<S::Point>,
-    ) -> bool;
+    fn step(&mut self, objective: &dyn Objective<S>, star: &S, state: &mut SolveState<S::Point>) -> bool;
     /// Runs a whole solve from `x0`. A star beyond 2^±64 in size is solved in its own
     /// frame (see the module docs): positions and step lengths come back in mesh units;
     /// objective values are those of the star in its own frame, the same for every
     /// objective that is a ratio of lengths (all but `untangle` and `untangle-mindet`,
     /// whose dets are then in units of the star size squared).
-    fn solve(
-        &mut self,
-        objective: &dyn Objective<S>,
-        star: &S,
-        x0: S::Point,
-    ) -> SolveResult<S::Point> {
+    fn solve(&mut self, objective: &dyn Objective<S>, star: &S, x0: S::Point) -> SolveResult<S::Point> {
         let scale = star.size();
         if let Some(f) = unit_factor(scale) {
             let scaled = star.scaled(f);
@@ -442,11 +415,7 @@ pub(crate) fn evaluate<S: NodeStar>(
     objective.terms(star, x, buf);
     let goal = objective.goal();
     let (v, g) = crate::objective::combine(goal, buf);
-    let v = if buf.iter().any(|t| t.value.is_nan()) {
-        f64::NAN
-    } else {
-        v
-    };
+    let v = if buf.iter().any(|t| t.value.is_nan()) { f64::NAN } else { v };
     (v, g)
 }
 

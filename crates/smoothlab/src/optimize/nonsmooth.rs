@@ -48,15 +48,9 @@ pub struct MinNorm<V = DVec2> {
 /// number of points in 2D, O(n³) in 3D, exact for any number of them.
 pub fn min_norm_point<V: Point>(points: &[V]) -> MinNorm<V> {
     if points.is_empty() {
-        return MinNorm {
-            point: V::ZERO,
-            support: HullPoint::Empty,
-        };
+        return MinNorm { point: V::ZERO, support: HullPoint::Empty };
     }
-    let mut best = MinNorm {
-        point: points[0],
-        support: HullPoint::Vertex(0),
-    };
+    let mut best = MinNorm { point: points[0], support: HullPoint::Vertex(0) };
     let mut best2 = points[0].length_squared();
     let mut scale2 = 0.0f64;
     for (i, g) in points.iter().enumerate() {
@@ -64,10 +58,7 @@ pub fn min_norm_point<V: Point>(points: &[V]) -> MinNorm<V> {
         scale2 = scale2.max(l2);
         if l2 < best2 {
             best2 = l2;
-            best = MinNorm {
-                point: *g,
-                support: HullPoint::Vertex(i),
-            };
+            best = MinNorm { point: *g, support: HullPoint::Vertex(i) };
         }
     }
     for i in 0..points.len() {
@@ -83,10 +74,7 @@ pub fn min_norm_point<V: Point>(points: &[V]) -> MinNorm<V> {
                 let l2 = p.length_squared();
                 if l2 < best2 {
                     best2 = l2;
-                    best = MinNorm {
-                        point: p,
-                        support: HullPoint::Edge(i, j),
-                    };
+                    best = MinNorm { point: p, support: HullPoint::Edge(i, j) };
                 }
             }
         }
@@ -99,10 +87,7 @@ pub fn min_norm_point<V: Point>(points: &[V]) -> MinNorm<V> {
                         let l2 = p.length_squared();
                         if l2 < best2 {
                             best2 = l2;
-                            best = MinNorm {
-                                point: p,
-                                support: HullPoint::Face(i, j, k),
-                            };
+                            best = MinNorm { point: p, support: HullPoint::Face(i, j, k) };
                         }
                     }
                 }
@@ -112,10 +97,7 @@ pub fn min_norm_point<V: Point>(points: &[V]) -> MinNorm<V> {
     // optimality: every point on the far side of the supporting line (plane) through p
     let tol = 1e-12 * scale2;
     if best2 <= tol || points.iter().any(|g| best.point.dot(*g) < best2 - tol) {
-        return MinNorm {
-            point: V::ZERO,
-            support: HullPoint::Interior,
-        };
+        return MinNorm { point: V::ZERO, support: HullPoint::Interior };
     }
     best
 }
@@ -166,10 +148,7 @@ pub struct NonSmoothAscent<V = DVec2> {
 
 impl<V: Point> NonSmoothAscent<V> {
     pub fn new(options: SolveOptions) -> Self {
-        NonSmoothAscent {
-            options,
-            ..Default::default()
-        }
+        NonSmoothAscent { options, ..Default::default() }
     }
 }
 
@@ -185,22 +164,12 @@ fn max_min_terms<S: NodeStar>(
     if objective.goal() == Goal::MinimizeSum {
         let (v, g) = crate::objective::combine(Goal::MinimizeSum, buf);
         buf.clear();
-        buf.push(Term {
-            elem: 0,
-            value: -v,
-            grad: -g,
-        });
+        buf.push(Term { elem: 0, value: -v, grad: -g });
     }
     if buf.is_empty() {
         return f64::NAN;
     }
-    buf.iter().fold(f64::INFINITY, |m, t| {
-        if t.value.is_nan() {
-            f64::NEG_INFINITY
-        } else {
-            m.min(t.value)
-        }
-    })
+    buf.iter().fold(f64::INFINITY, |m, t| if t.value.is_nan() { f64::NEG_INFINITY } else { m.min(t.value) })
 }
 
 /// The objective's own value from φ.
@@ -216,12 +185,7 @@ impl<S: NodeStar> Solver<S> for NonSmoothAscent<S::Point> {
         &self.options
     }
 
-    fn evaluate_start(
-        &mut self,
-        objective: &dyn Objective<S>,
-        star: &S,
-        st: &mut SolveState<S::Point>,
-    ) {
+    fn evaluate_start(&mut self, objective: &dyn Objective<S>, star: &S, st: &mut SolveState<S::Point>) {
         let phi = max_min_terms(objective, star, st.x, &mut self.terms);
         st.value = own_value(objective.goal(), phi);
         st.value0 = st.value;
@@ -231,21 +195,14 @@ impl<S: NodeStar> Solver<S> for NonSmoothAscent<S::Point> {
         }
     }
 
-    fn step(
-        &mut self,
-        objective: &dyn Objective<S>,
-        star: &S,
-        st: &mut SolveState<S::Point>,
-    ) -> bool {
+    fn step(&mut self, objective: &dyn Objective<S>, star: &S, st: &mut SolveState<S::Point>) -> bool {
         if !st.may_iterate(&self.options) {
             return false;
         }
         let o = self.options;
         let phi = -st.merit;
         // active set and direction
-        let q_scale = crate::numeric::largest_component(
-            self.terms.iter().map(|t| t.value).filter(|v| v.is_finite()),
-        );
+        let q_scale = crate::numeric::largest_component(self.terms.iter().map(|t| t.value).filter(|v| v.is_finite()));
         let tol = o.active_tolerance * q_scale;
         self.active.clear();
         let mut g_scale = 0.0f64;
@@ -285,13 +242,10 @@ impl<S: NodeStar> Solver<S> for NonSmoothAscent<S::Point> {
         let min_move = o.min_step * st.scale;
         let x = st.x;
         let max_min = objective.goal() == Goal::MaximizeMin;
-        let lead = self
-            .terms
-            .iter()
-            .fold(None, |w: Option<&Term<S::Point>>, t| match w {
-                Some(w) if w.value <= t.value => Some(w),
-                _ => Some(t),
-            });
+        let lead = self.terms.iter().fold(None, |w: Option<&Term<S::Point>>, t| match w {
+            Some(w) if w.value <= t.value => Some(w),
+            _ => Some(t),
+        });
         let mut lead = lead.map_or(0, |t| t.elem);
         let phi_new = loop {
             if alpha * sl < min_move {

@@ -47,16 +47,9 @@ impl Objective for WalledBowl {
         let (value, grad) = if x.x > self.wall {
             (f64::INFINITY, DVec2::ZERO)
         } else {
-            (
-                d.x * d.x + 4.0 * d.y * d.y,
-                DVec2::new(2.0 * d.x, 8.0 * d.y),
-            )
+            (d.x * d.x + 4.0 * d.y * d.y, DVec2::new(2.0 * d.x, 8.0 * d.y))
         };
-        out.push(Term {
-            elem: 0,
-            value,
-            grad,
-        });
+        out.push(Term { elem: 0, value, grad });
     }
 }
 
@@ -71,17 +64,11 @@ impl Bowl {
     pub fn elongated(centre: DVec2, ratio: f64, angle: f64) -> Self {
         let (s, c) = angle.sin_cos();
         // R diag(1, ratio) Rᵀ
-        let a = [
-            [c * c + ratio * s * s, (1.0 - ratio) * c * s],
-            [(1.0 - ratio) * c * s, s * s + ratio * c * c],
-        ];
+        let a = [[c * c + ratio * s * s, (1.0 - ratio) * c * s], [(1.0 - ratio) * c * s, s * s + ratio * c * c]];
         Bowl { centre, a }
     }
     fn mul(&self, v: DVec2) -> DVec2 {
-        DVec2::new(
-            self.a[0][0] * v.x + self.a[0][1] * v.y,
-            self.a[1][0] * v.x + self.a[1][1] * v.y,
-        )
+        DVec2::new(self.a[0][0] * v.x + self.a[0][1] * v.y, self.a[1][0] * v.x + self.a[1][1] * v.y)
     }
 }
 
@@ -95,18 +82,11 @@ impl Objective for Bowl {
     fn terms(&self, _star: &Star, x: DVec2, out: &mut Vec<Term>) {
         let d = x - self.centre;
         let ad = self.mul(d);
-        out.push(Term {
-            elem: 0,
-            value: d.dot(ad),
-            grad: 2.0 * ad,
-        });
+        out.push(Term { elem: 0, value: d.dot(ad), grad: 2.0 * ad });
     }
     fn value_gradient_hessian(&self, star: &Star, x: DVec2) -> Option<(f64, DVec2, glam::DMat2)> {
         let (v, g) = self.value_and_gradient(star, x);
-        let a = glam::DMat2::from_cols(
-            DVec2::new(self.a[0][0], self.a[1][0]),
-            DVec2::new(self.a[0][1], self.a[1][1]),
-        );
+        let a = glam::DMat2::from_cols(DVec2::new(self.a[0][0], self.a[1][0]), DVec2::new(self.a[0][1], self.a[1][1]));
         Some((v, g, a * 2.0))
     }
 }
@@ -126,15 +106,8 @@ impl Objective for Rosenbrock {
     fn terms(&self, _star: &Star, p: DVec2, out: &mut Vec<Term>) {
         let r = p.y - p.x * p.x;
         let value = (1.0 - p.x).powi(2) + self.b * r * r;
-        let grad = DVec2::new(
-            -2.0 * (1.0 - p.x) - 4.0 * self.b * p.x * r,
-            2.0 * self.b * r,
-        );
-        out.push(Term {
-            elem: 0,
-            value,
-            grad,
-        });
+        let grad = DVec2::new(-2.0 * (1.0 - p.x) - 4.0 * self.b * p.x * r, 2.0 * self.b * r);
+        out.push(Term { elem: 0, value, grad });
     }
 }
 
@@ -153,20 +126,12 @@ impl Objective for LogBarrier {
         let c = DVec2::new(1.0, 0.0);
         let room = 0.5 - p.x;
         if room <= 0.0 {
-            out.push(Term {
-                elem: 0,
-                value: f64::INFINITY,
-                grad: DVec2::ZERO,
-            });
+            out.push(Term { elem: 0, value: f64::INFINITY, grad: DVec2::ZERO });
             return;
         }
         let value = (p - c).length_squared() - room.ln();
         let grad = 2.0 * (p - c) + DVec2::new(1.0 / room, 0.0);
-        out.push(Term {
-            elem: 0,
-            value,
-            grad,
-        });
+        out.push(Term { elem: 0, value, grad });
     }
 }
 
@@ -194,11 +159,7 @@ impl Objective for ThreePlanes {
     fn terms(&self, _star: &Star, x: DVec2, out: &mut Vec<Term>) {
         for i in 0..3 {
             let g = self.grad(i);
-            out.push(Term {
-                elem: i as u32,
-                value: g.dot(x - self.peak),
-                grad: g,
-            });
+            out.push(Term { elem: i as u32, value: g.dot(x - self.peak), grad: g });
         }
     }
 }
@@ -213,10 +174,7 @@ pub fn element_shape_at(star: &Star, i: usize, x: DVec2) -> f64 {
 fn fd_grad(f: impl Fn(DVec2) -> f64, x: DVec2, h: f64) -> DVec2 {
     let dx = DVec2::new(h, 0.0);
     let dy = DVec2::new(0.0, h);
-    DVec2::new(
-        (f(x + dx) - f(x - dx)) / (2.0 * h),
-        (f(x + dy) - f(x - dy)) / (2.0 * h),
-    )
+    DVec2::new((f(x + dx) - f(x - dx)) / (2.0 * h), (f(x + dy) - f(x - dy)) / (2.0 * h))
 }
 
 /// The "old" objective for tests: maximise the minimum element α/β over the star, with
@@ -234,11 +192,7 @@ impl Objective for ShapeMaxMin {
         let h = 1e-7 * crate::objective::star_scale(star).max(f64::MIN_POSITIVE);
         for i in 0..star.len() {
             let f = |p: DVec2| element_shape_at(star, i, p);
-            out.push(Term {
-                elem: i as u32,
-                value: f(x),
-                grad: fd_grad(f, x, h),
-            });
+            out.push(Term { elem: i as u32, value: f(x), grad: fd_grad(f, x, h) });
         }
     }
 }
@@ -257,11 +211,7 @@ impl Objective for ShapeSum {
         let h = 1e-7 * crate::objective::star_scale(star).max(f64::MIN_POSITIVE);
         for i in 0..star.len() {
             let f = |p: DVec2| (1.0 - element_shape_at(star, i, p)).powi(2);
-            out.push(Term {
-                elem: i as u32,
-                value: f(x),
-                grad: fd_grad(f, x, h),
-            });
+            out.push(Term { elem: i as u32, value: f(x), grad: fd_grad(f, x, h) });
         }
     }
 }

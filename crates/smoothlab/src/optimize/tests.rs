@@ -11,9 +11,7 @@ fn d(x: f64, y: f64) -> DVec2 {
 }
 
 fn recording(max_iter: u32) -> SolveOptions {
-    SolveOptions::default()
-        .with_max_iter(max_iter)
-        .with_history(true)
+    SolveOptions::default().with_max_iter(max_iter).with_history(true)
 }
 
 // ---------------------------------------------------------------- line search
@@ -23,8 +21,7 @@ fn line_search_brackets_a_parabola_and_lands_on_its_vertex() {
     let phi = |t: f64| (t - 3.7) * (t - 3.7) + 1.0;
     for t0 in [1e-3, 0.01, 1.0, 3.7 * 0.999, 100.0] {
         let mut accel = 8.0;
-        let ls =
-            line_search(phi, phi(0.0), t0, 1e-12, &mut accel, 40).expect("a descent direction");
+        let ls = line_search(phi, phi(0.0), t0, 1e-12, &mut accel, 40).expect("a descent direction");
         assert!((ls.t - 3.7).abs() < 1e-9, "t0 {t0}: {ls:?}");
         let [a, b, c] = ls.bracket.expect("a bracket");
         assert!(a < b && b < c && a <= 3.7 && 3.7 <= c, "{a} {b} {c}");
@@ -45,15 +42,9 @@ fn line_search_fails_without_descent() {
     let mut accel = 8.0;
     assert!(line_search(|t| t, 0.0, 0.1, 1e-9, &mut accel, 40).is_none());
     let mut accel = 8.0;
-    assert!(
-        line_search(|_| 2.0, 2.0, 0.1, 1e-9, &mut accel, 40).is_none(),
-        "flat is not lower"
-    );
+    assert!(line_search(|_| 2.0, 2.0, 0.1, 1e-9, &mut accel, 40).is_none(), "flat is not lower");
     let mut accel = 8.0;
-    assert!(
-        line_search(|_| f64::NAN, 0.0, 0.1, 1e-9, &mut accel, 40).is_none(),
-        "NaN is high"
-    );
+    assert!(line_search(|_| f64::NAN, 0.0, 0.1, 1e-9, &mut accel, 40).is_none(), "NaN is high");
 }
 
 #[test]
@@ -64,13 +55,7 @@ fn line_search_treats_infinity_as_high() {
     let ls = line_search(wall, 0.0, 0.01, 1e-12, &mut accel, 60).unwrap();
     assert!(ls.value.is_finite() && ls.t < 2.0 && ls.t > 1.9, "{ls:?}");
     // a minimum inside, with the growth jumping into the wall: bisection then interpolation
-    let inside = |t: f64| {
-        if t < 1.5 {
-            (t - 1.0) * (t - 1.0)
-        } else {
-            f64::INFINITY
-        }
-    };
+    let inside = |t: f64| if t < 1.5 { (t - 1.0) * (t - 1.0) } else { f64::INFINITY };
     let mut accel = 8.0;
     let ls = line_search(inside, 1.0, 0.5, 1e-12, &mut accel, 40).unwrap();
     assert!((ls.t - 1.0).abs() < 1e-9, "{ls:?}");
@@ -81,10 +66,7 @@ fn line_search_treats_infinity_as_high() {
 #[test]
 fn fletcher_reeves_round_bowl_in_one_step() {
     let star = unit_star();
-    let bowl = Bowl {
-        centre: d(0.2, 0.1),
-        a: [[1.0, 0.0], [0.0, 1.0]],
-    };
+    let bowl = Bowl { centre: d(0.2, 0.1), a: [[1.0, 0.0], [0.0, 1.0]] };
     let r = FletcherReeves::new(recording(3)).solve(&bowl, &star, d(0.7, -0.4));
     assert!(r.x.distance(bowl.centre) < 1e-9, "{r:?}");
     assert_eq!(r.history[0].direction, DirectionKind::Gradient);
@@ -99,16 +81,9 @@ fn fletcher_reeves_elongated_bowl_in_two_steps() {
         let r = FletcherReeves::new(recording(3)).solve(&bowl, &star, d(0.6, 0.5));
         assert!(r.x.distance(bowl.centre) < 1e-7, "ratio {ratio}: {r:?}");
         let kinds: Vec<_> = r.history.iter().map(|i| i.direction).collect();
-        assert_eq!(
-            &kinds[..2],
-            &[DirectionKind::Gradient, DirectionKind::Conjugate],
-            "{r:?}"
-        );
+        assert_eq!(&kinds[..2], &[DirectionKind::Gradient, DirectionKind::Conjugate], "{r:?}");
         // steepest descent alone is far worse on the same bowl
-        let sd = SolveOptions {
-            restart_every: 1,
-            ..SolveOptions::default().with_max_iter(2)
-        };
+        let sd = SolveOptions { restart_every: 1, ..SolveOptions::default().with_max_iter(2) };
         let s = FletcherReeves::new(sd).solve(&bowl, &star, d(0.6, 0.5));
         assert!(s.x.distance(bowl.centre) > 100.0 * r.x.distance(bowl.centre));
     }
@@ -119,22 +94,13 @@ fn fletcher_reeves_follows_a_curved_valley_downhill() {
     let star = unit_star();
     let f = Rosenbrock { b: 10.0 };
     let r = FletcherReeves::new(recording(300)).solve(&f, &star, d(-0.8, 0.9));
-    assert!(
-        r.x.distance(d(1.0, 1.0)) < 1e-4,
-        "{:?} after {} ({:?})",
-        r.x,
-        r.iterations,
-        r.stop
-    );
+    assert!(r.x.distance(d(1.0, 1.0)) < 1e-4, "{:?} after {} ({:?})", r.x, r.iterations, r.stop);
     let mut last = r.value0;
     for it in &r.history {
         assert!(it.value < last, "every accepted step goes down");
         last = it.value;
     }
-    assert!(r
-        .history
-        .iter()
-        .any(|i| i.direction == DirectionKind::Conjugate));
+    assert!(r.history.iter().any(|i| i.direction == DirectionKind::Conjugate));
 }
 
 #[test]
@@ -158,21 +124,14 @@ fn fletcher_reeves_stays_inside_a_barrier() {
             } else {
                 (f64::INFINITY, DVec2::ZERO)
             };
-            out.push(crate::objective::Term {
-                elem: 0,
-                value,
-                grad,
-            });
+            out.push(crate::objective::Term { elem: 0, value, grad });
         }
     }
     let r = FletcherReeves::new(recording(10)).solve(&Wall, &star, d(-0.5, 0.5));
     assert!(r.value.is_finite() && r.x.x < 0.5 && r.x.x > 0.4, "{r:?}");
     // starting inside the wall: nothing to do, nothing moves
     let r = FletcherReeves::default().solve(&Wall, &star, d(0.7, 0.0));
-    assert_eq!(
-        (r.stop, r.x, r.iterations),
-        (StopReason::NotFinite, d(0.7, 0.0), 0)
-    );
+    assert_eq!((r.stop, r.x, r.iterations), (StopReason::NotFinite, d(0.7, 0.0), 0));
 }
 
 #[test]
@@ -186,22 +145,9 @@ fn fletcher_reeves_smooths_a_star() {
 #[test]
 fn empty_star_and_step_api() {
     let empty = Star::new();
-    let bowl = Bowl {
-        centre: DVec2::ZERO,
-        a: [[1.0, 0.0], [0.0, 1.0]],
-    };
-    assert_eq!(
-        FletcherReeves::default()
-            .solve(&bowl, &empty, d(1.0, 0.0))
-            .stop,
-        StopReason::DegenerateStar
-    );
-    assert_eq!(
-        NonSmoothAscent::default()
-            .solve(&bowl, &empty, d(1.0, 0.0))
-            .stop,
-        StopReason::DegenerateStar
-    );
+    let bowl = Bowl { centre: DVec2::ZERO, a: [[1.0, 0.0], [0.0, 1.0]] };
+    assert_eq!(FletcherReeves::default().solve(&bowl, &empty, d(1.0, 0.0)).stop, StopReason::DegenerateStar);
+    assert_eq!(NonSmoothAscent::default().solve(&bowl, &empty, d(1.0, 0.0)).stop, StopReason::DegenerateStar);
     // stepping by hand gives the same as solve, bit for bit
     let star = unit_star();
     let bowl = Bowl::elongated(d(0.1, 0.1), 20.0, 0.3);
@@ -224,19 +170,9 @@ fn empty_star_and_step_api() {
 #[test]
 fn options_are_validated() {
     assert!(SolveOptions::default().validate().is_ok());
-    let o = SolveOptions {
-        acceleration: 1.0,
-        ..Default::default()
-    };
-    assert!(o
-        .validate()
-        .unwrap_err()
-        .to_string()
-        .contains("acceleration"));
-    let o = SolveOptions {
-        initial_step: f64::NAN,
-        ..Default::default()
-    };
+    let o = SolveOptions { acceleration: 1.0, ..Default::default() };
+    assert!(o.validate().unwrap_err().to_string().contains("acceleration"));
+    let o = SolveOptions { initial_step: f64::NAN, ..Default::default() };
     assert!(o.validate().is_err());
 }
 
@@ -256,10 +192,7 @@ fn min_norm_point_cases() {
     assert_eq!((m.point, m.support), (DVec2::ZERO, HullPoint::Interior));
     // a triangle beside the origin: its nearest edge
     let m = min_norm_point(&[d(2.0, -1.0), d(2.0, 1.0), d(4.0, 0.0)]);
-    assert!(
-        m.point.distance(d(2.0, 0.0)) < 1e-15 && m.support == HullPoint::Edge(0, 1),
-        "{m:?}"
-    );
+    assert!(m.point.distance(d(2.0, 0.0)) < 1e-15 && m.support == HullPoint::Edge(0, 1), "{m:?}");
     // opposite gradients: the origin is on the segment
     let m = min_norm_point(&[d(1.0, 2.0), d(-1.0, -2.0)]);
     assert!(m.point.length() < 1e-15);
@@ -298,19 +231,13 @@ fn min_norm_point_in_three_dimensions() {
     // the origin projects inside a triangle in the plane z = 1: the nearest point is (0,0,1)
     let tri = [v(1.0, 0.0, 1.0), v(-1.0, 1.0, 1.0), v(-1.0, -1.0, 1.0)];
     let m = min_norm_point(&tri);
-    assert!(
-        m.point.distance(v(0.0, 0.0, 1.0)) < 1e-15 && m.support == HullPoint::Face(0, 1, 2),
-        "{m:?}"
-    );
+    assert!(m.point.distance(v(0.0, 0.0, 1.0)) < 1e-15 && m.support == HullPoint::Face(0, 1, 2), "{m:?}");
     // a fourth point below the origin closes a tetrahedron around it: optimal
     let m = min_norm_point(&[tri[0], tri[1], tri[2], v(0.0, 0.0, -1.0)]);
     assert_eq!((m.point, m.support), (DVec3::ZERO, HullPoint::Interior));
     // a triangle whose plane projection falls outside it: an edge (x = 1 edge's middle)
     let m = min_norm_point(&[v(1.0, -1.0, 0.0), v(1.0, 1.0, 0.0), v(3.0, 0.0, 2.0)]);
-    assert!(
-        m.point.distance(v(1.0, 0.0, 0.0)) < 1e-15 && m.support == HullPoint::Edge(0, 1),
-        "{m:?}"
-    );
+    assert!(m.point.distance(v(1.0, 0.0, 0.0)) < 1e-15 && m.support == HullPoint::Edge(0, 1), "{m:?}");
     // a vertex
     let m = min_norm_point(&[v(0.0, 0.0, 2.0), v(1.0, 1.0, 3.0)]);
     assert_eq!(m.support, HullPoint::Vertex(0));
@@ -339,30 +266,16 @@ proptest! {
 #[test]
 fn ascent_reaches_the_peak_of_three_planes() {
     let star = unit_star();
-    for (scale, x0) in [
-        ([1.0, 1.0, 1.0], d(0.9, -0.7)),
-        ([1.0, 3.0, 0.5], d(-0.4, 0.6)),
-        ([0.2, 1.0, 5.0], d(0.1, 0.9)),
-    ] {
-        let f = ThreePlanes {
-            peak: d(0.25, -0.1),
-            scale,
-        };
+    for (scale, x0) in
+        [([1.0, 1.0, 1.0], d(0.9, -0.7)), ([1.0, 3.0, 0.5], d(-0.4, 0.6)), ([0.2, 1.0, 5.0], d(0.1, 0.9))]
+    {
+        let f = ThreePlanes { peak: d(0.25, -0.1), scale };
         let r = NonSmoothAscent::new(recording(20)).solve(&f, &star, x0);
         assert!(r.x.distance(f.peak) < 1e-9, "{scale:?}: {r:?}");
         assert!(r.value.abs() < 1e-9);
         assert!(r.iterations <= 4, "exact prediction on linear terms: {r:?}");
-        assert!(
-            matches!(
-                r.stop,
-                StopReason::Optimal | StopReason::SmallImprovement | StopReason::SmallStep
-            ),
-            "{r:?}"
-        );
-        assert!(r
-            .history
-            .iter()
-            .all(|i| i.direction == DirectionKind::ActiveSet));
+        assert!(matches!(r.stop, StopReason::Optimal | StopReason::SmallImprovement | StopReason::SmallStep), "{r:?}");
+        assert!(r.history.iter().all(|i| i.direction == DirectionKind::ActiveSet));
     }
 }
 
@@ -372,11 +285,7 @@ fn ascent_centres_a_hexagon_star() {
     star.gather(&hexagon(d(0.35, 0.2)), 0);
     let r = NonSmoothAscent::new(recording(60)).solve(&ShapeMaxMin, &star, star.x0);
     let best = ShapeMaxMin.value(&star, DVec2::ZERO);
-    assert!(
-        r.value > r.value0 && r.value > best - 1e-9,
-        "{} vs {best}: {r:?}",
-        r.value
-    );
+    assert!(r.value > r.value0 && r.value > best - 1e-9, "{} vs {best}: {r:?}", r.value);
     assert!(r.x.length() < 1e-5, "{r:?}");
     // Chen's three iterations already recover most of the way
     let r3 = NonSmoothAscent::new(recording(3)).solve(&ShapeMaxMin, &star, star.x0);
@@ -397,14 +306,9 @@ fn solvers_are_scale_free() {
         }
         let mut star = Star::new();
         star.gather(&b.build().unwrap(), 0);
-        let r = NonSmoothAscent::new(SolveOptions::default().with_max_iter(10)).solve(
-            &ShapeMaxMin,
-            &star,
-            star.x0,
-        );
+        let r = NonSmoothAscent::new(SolveOptions::default().with_max_iter(10)).solve(&ShapeMaxMin, &star, star.x0);
         assert!(r.value > r.value0 + 0.05, "scale {s}: {r:?}");
-        let f = FletcherReeves::new(SolveOptions::default().with_max_iter(10))
-            .solve(&ShapeSum, &star, star.x0);
+        let f = FletcherReeves::new(SolveOptions::default().with_max_iter(10)).solve(&ShapeSum, &star, star.x0);
         assert!(f.x.length() / s < 1e-3, "scale {s}: {f:?}");
     }
 }
@@ -446,26 +350,16 @@ proptest! {
 #[test]
 fn newton_solves_a_bowl_in_one_step_and_falls_back_without_a_hessian() {
     let star = unit_star();
-    let newton = SolveOptions {
-        newton: true,
-        ..recording(3)
-    };
+    let newton = SolveOptions { newton: true, ..recording(3) };
     for (ratio, angle) in [(1.0, 0.0), (20.0, 0.3), (300.0, -1.1)] {
         let bowl = Bowl::elongated(d(0.1, -0.05), ratio, angle);
         let r = FletcherReeves::new(newton).solve(&bowl, &star, d(-0.2, 0.2));
         assert_eq!(r.history[0].direction, DirectionKind::Newton);
-        assert!(
-            r.history[0].x.distance(d(0.1, -0.05)) < 1e-12,
-            "{ratio}: {:?}",
-            r.history[0]
-        );
+        assert!(r.history[0].x.distance(d(0.1, -0.05)) < 1e-12, "{ratio}: {:?}", r.history[0]);
         assert!(r.value <= 1e-24 && r.value < r.value0);
         // Chen's search alone needs its iterations for the same bowl, and never says Newton
         let c = FletcherReeves::new(recording(3)).solve(&bowl, &star, d(-0.2, 0.2));
-        assert!(c
-            .history
-            .iter()
-            .all(|i| i.direction != DirectionKind::Newton));
+        assert!(c.history.iter().all(|i| i.direction != DirectionKind::Newton));
     }
     // an objective without a Hessian: the same iterations as without the option
     let rb = Rosenbrock { b: 10.0 };
@@ -487,24 +381,13 @@ fn newton_steps_never_leave_a_barrier_star_worse() {
     for star in sample_stars() {
         for _ in 0..20 {
             let x = star.x0 + rng.point(0.3);
-            let star = Star {
-                x0: x,
-                ..star.clone()
-            };
-            let r = FletcherReeves::new(SolveOptions {
-                newton: true,
-                ..recording(3)
-            })
-            .solve(&obj, &star, x);
+            let star = Star { x0: x, ..star.clone() };
+            let r = FletcherReeves::new(SolveOptions { newton: true, ..recording(3) }).solve(&obj, &star, x);
             if !r.value0.is_finite() {
                 continue;
             }
             assert!(r.value <= r.value0 && r.value.is_finite(), "{r:?}");
-            newton_steps += r
-                .history
-                .iter()
-                .filter(|i| i.direction == DirectionKind::Newton)
-                .count();
+            newton_steps += r.history.iter().filter(|i| i.direction == DirectionKind::Newton).count();
         }
     }
     assert!(newton_steps > 100, "{newton_steps}");

@@ -25,8 +25,7 @@ pub mod tet;
 
 pub use reading::Reading;
 pub use stats::{
-    angle_bin, mesh_stats, mesh_stats_with, scaled_jacobian_bin, ElementStats, MeshCounts,
-    MeshStats, MeshStatsBuilder, QuickStats, SolidStats,
+    angle_bin, mesh_stats, mesh_stats_with, ElementStats, MeshCounts, MeshStats, MeshStatsBuilder, SolidStats, scaled_jacobian_bin, QuickStats,
 };
 
 /// `2√3`, Lo's normalisation so an equilateral triangle has α = 1.
@@ -80,12 +79,7 @@ impl TriangleCorners {
     pub fn of(p: &[DVec2; 3]) -> Self {
         let e1 = [p[1] - p[0], p[2] - p[1], p[0] - p[2]];
         let e2 = [p[2] - p[0], p[0] - p[1], p[1] - p[2]];
-        TriangleCorners {
-            e1,
-            e2,
-            size: e1.map(|e| e.x.abs().max(e.y.abs())),
-            side: e1.map(|e| e.length_squared()),
-        }
+        TriangleCorners { e1, e2, size: e1.map(|e| e.x.abs().max(e.y.abs())), side: e1.map(|e| e.length_squared()) }
     }
 
     /// The corner before `j`, whose `e1` is corner j's `e2` negated.
@@ -108,11 +102,7 @@ impl TriangleCorners {
         }
         let (e1, e2) = (self.e1[j], self.e2[j]);
         let den = self.side[j] + self.side[Self::prev(j)] + (e2 - e1).length_squared();
-        Some(if den <= 0.0 {
-            0.0
-        } else {
-            TWO_SQRT3 * e1.perp_dot(e2) / den
-        })
+        Some(if den <= 0.0 { 0.0 } else { TWO_SQRT3 * e1.perp_dot(e2) / den })
     }
 
     /// [`scaled_jacobian_gradient`] of corner `j`, its value first (without its gradient
@@ -122,12 +112,7 @@ impl TriangleCorners {
         if !self.safe(j) {
             return None;
         }
-        Some(sine_and_gradient::<GRADIENT>(
-            self.e1[j],
-            self.e2[j],
-            self.side[j],
-            self.side[Self::prev(j)],
-        ))
+        Some(sine_and_gradient::<GRADIENT>(self.e1[j], self.e2[j], self.side[j], self.side[Self::prev(j)]))
     }
 }
 
@@ -297,12 +282,7 @@ pub fn scaled_jacobian_gradient(e1: DVec2, e2: DVec2) -> (f64, DVec2, DVec2) {
 /// [`scaled_jacobian_gradient`] at unit scale from the edges' squared lengths `l1`, `l2`
 /// (its gradient left zero when `GRADIENT` is false).
 #[inline(always)]
-fn sine_and_gradient<const GRADIENT: bool>(
-    e1: DVec2,
-    e2: DVec2,
-    l1: f64,
-    l2: f64,
-) -> (f64, DVec2, DVec2) {
+fn sine_and_gradient<const GRADIENT: bool>(e1: DVec2, e2: DVec2, l1: f64, l2: f64) -> (f64, DVec2, DVec2) {
     let l = (l1 * l2).sqrt();
     if l <= 0.0 {
         return (0.0, DVec2::ZERO, DVec2::ZERO);
@@ -419,10 +399,9 @@ pub fn corner_edge_vectors(kind: ElementKind, p: &[DVec2]) -> [(DVec2, DVec2); 4
         let next = (i + 1) % k;
         let prev = (i + k - 1) % k;
         out[i] = match (kind.mid(i), kind.mid(prev)) {
-            (Some(m_next), Some(m_prev)) => (
-                4.0 * p[m_next] - 3.0 * p[i] - p[next],
-                4.0 * p[m_prev] - 3.0 * p[i] - p[prev],
-            ),
+            (Some(m_next), Some(m_prev)) => {
+                (4.0 * p[m_next] - 3.0 * p[i] - p[next], 4.0 * p[m_prev] - 3.0 * p[i] - p[prev])
+            }
             _ => (p[next] - p[i], p[prev] - p[i]),
         };
     }
@@ -493,11 +472,7 @@ pub fn measure_element<const ANGLES: bool, const CONDITION: bool, const SINES: b
 ) -> ElementQuality {
     let k = kind.corners();
     let ce = corner_edges(kind, p);
-    let ideal = if k == 3 {
-        Ideal::Triangle
-    } else {
-        Ideal::Square
-    };
+    let ideal = if k == 3 { Ideal::Triangle } else { Ideal::Square };
     let mut q = ElementQuality {
         shape: 0.0,
         min_angle: f64::INFINITY,
@@ -509,11 +484,7 @@ pub fn measure_element<const ANGLES: bool, const CONDITION: bool, const SINES: b
     };
     let mut min_alpha = f64::INFINITY;
     for &(e1, e2) in &ce[..k] {
-        let ang = if ANGLES {
-            signed_angle(e1, e2)
-        } else {
-            f64::NAN
-        };
+        let ang = if ANGLES { signed_angle(e1, e2) } else { f64::NAN };
         if ANGLES {
             q.min_angle = q.min_angle.min(ang);
             q.max_angle = q.max_angle.max(ang);
@@ -569,8 +540,7 @@ mod tests {
             }
             let edges = |j: usize| (p[(j + 1) % 3] - p[j], p[(j + 2) % 3] - p[j]);
             let each = [0, 1, 2].map(|j| lo_alpha_corner(edges(j).0, edges(j).1));
-            let bits =
-                |(s, g1, g2): (f64, DVec2, DVec2)| [s, g1.x, g1.y, g2.x, g2.y].map(f64::to_bits);
+            let bits = |(s, g1, g2): (f64, DVec2, DVec2)| [s, g1.x, g1.y, g2.x, g2.y].map(f64::to_bits);
             let t = TriangleCorners::of(&p);
             match lo_alpha_triangle_corners(&p) {
                 Some(together) => {
@@ -578,23 +548,13 @@ mod tests {
                     assert_eq!(together.map(f64::to_bits), each.map(f64::to_bits), "{p:?}");
                     for j in 0..3 {
                         let sine = scaled_jacobian_gradient(edges(j).0, edges(j).1);
-                        assert_eq!(
-                            t.scaled_jacobian::<true>(j).map(bits),
-                            Some(bits(sine)),
-                            "{p:?}"
-                        );
-                        assert_eq!(
-                            t.scaled_jacobian::<false>(j).map(|s| s.0.to_bits()),
-                            Some(sine.0.to_bits())
-                        );
+                        assert_eq!(t.scaled_jacobian::<true>(j).map(bits), Some(bits(sine)), "{p:?}");
+                        assert_eq!(t.scaled_jacobian::<false>(j).map(|s| s.0.to_bits()), Some(sine.0.to_bits()));
                     }
                 }
                 // beyond 2^±200 (about 1.6e±60)
                 None => {
-                    assert!(
-                        !(1e-60..=1e60).contains(&scale),
-                        "refused at scale {scale}: {p:?}"
-                    );
+                    assert!(!(1e-60..=1e60).contains(&scale), "refused at scale {scale}: {p:?}");
                     assert!((0..3).any(|j| t.scaled_jacobian::<false>(j).is_none()));
                 }
             }
@@ -615,9 +575,7 @@ mod tests {
         // reflected: negative
         assert!((lo_alpha(a, c, b) + 1.0).abs() < EPS);
         // square
-        assert!(
-            (canann_beta(d(0.0, 0.0), d(1.0, 0.0), d(1.0, 1.0), d(0.0, 1.0)) - 1.0).abs() < EPS
-        );
+        assert!((canann_beta(d(0.0, 0.0), d(1.0, 0.0), d(1.0, 1.0), d(0.0, 1.0)) - 1.0).abs() < EPS);
         // ideal triangle κ = 2, square κ = 2
         let q = element_quality(ElementKind::Tri3, &equilateral());
         assert!((q.condition - 2.0).abs() < 1e-12, "{}", q.condition);
@@ -630,11 +588,7 @@ mod tests {
         // right isosceles triangle: κ at the right-angle corner of T = A W^-1 with
         // A = I: T = [[1, -1/√3], [0, 2/√3]], |T|² = 1 + 1/3 + 4/3 = 8/3, det = 2/√3 → κ = 4/√3
         let ri = [d(0.0, 0.0), d(1.0, 0.0), d(0.0, 1.0)];
-        assert!(
-            (condition_number(ri[1] - ri[0], ri[2] - ri[0], Ideal::Triangle) - 4.0 / 3f64.sqrt())
-                .abs()
-                < EPS
-        );
+        assert!((condition_number(ri[1] - ri[0], ri[2] - ri[0], Ideal::Triangle) - 4.0 / 3f64.sqrt()).abs() < EPS);
     }
 
     #[test]
@@ -660,18 +614,11 @@ mod tests {
         let quad = [d(0.0, 0.0), d(1.2, 0.1), d(1.0, 0.8), d(-0.1, 1.1)];
         let q0t = element_quality(ElementKind::Tri3, &tri);
         let q0q = element_quality(ElementKind::Quad4, &quad);
-        for (ang, s, t) in [
-            (0.3, 2.5, d(4.0, -7.0)),
-            (2.0, 1e-3, d(-1e3, 5.0)),
-            (-1.1, 1e4, d(0.0, 0.0)),
-        ] {
+        for (ang, s, t) in [(0.3, 2.5, d(4.0, -7.0)), (2.0, 1e-3, d(-1e3, 5.0)), (-1.1, 1e4, d(0.0, 0.0))] {
             let r = DVec2::from_angle(ang);
             let map = |p: &DVec2| r.rotate(*p) * s + t;
             let tq = element_quality(ElementKind::Tri3, &tri.iter().map(map).collect::<Vec<_>>());
-            let qq = element_quality(
-                ElementKind::Quad4,
-                &quad.iter().map(map).collect::<Vec<_>>(),
-            );
+            let qq = element_quality(ElementKind::Quad4, &quad.iter().map(map).collect::<Vec<_>>());
             for (a, b) in [(q0t, tq), (q0q, qq)] {
                 assert!((a.shape - b.shape).abs() < 1e-9);
                 assert!((a.min_angle - b.min_angle).abs() < 1e-9);
@@ -721,14 +668,8 @@ mod tests {
         let dy = d(0.0, h);
         let c = |a: f64, b: f64| (a - b) / (2.0 * h);
         (
-            d(
-                c(f(e1 + dx, e2), f(e1 - dx, e2)),
-                c(f(e1 + dy, e2), f(e1 - dy, e2)),
-            ),
-            d(
-                c(f(e1, e2 + dx), f(e1, e2 - dx)),
-                c(f(e1, e2 + dy), f(e1, e2 - dy)),
-            ),
+            d(c(f(e1 + dx, e2), f(e1 - dx, e2)), c(f(e1 + dy, e2), f(e1 - dy, e2))),
+            d(c(f(e1, e2 + dx), f(e1, e2 - dx)), c(f(e1, e2 + dy), f(e1, e2 - dy))),
         )
     }
 
@@ -746,26 +687,17 @@ mod tests {
             let (v, g1, g2) = lo_alpha_corner_gradient(e1, e2);
             assert!((v - lo_alpha_corner(e1, e2)).abs() < EPS);
             let (f1, f2) = fd(lo_alpha_corner, e1, e2);
-            assert!(
-                close(g1, f1, 1.0) && close(g2, f2, 1.0),
-                "α {g1} {f1} {g2} {f2}"
-            );
+            assert!(close(g1, f1, 1.0) && close(g2, f2, 1.0), "α {g1} {f1} {g2} {f2}");
 
             let (v, g1, g2) = signed_angle_gradient(e1, e2);
             assert!((v - signed_angle(e1, e2)).abs() < EPS);
             let (f1, f2) = fd(signed_angle, e1, e2);
-            assert!(
-                close(g1, f1, 1.0) && close(g2, f2, 1.0),
-                "θ {g1} {f1} {g2} {f2}"
-            );
+            assert!(close(g1, f1, 1.0) && close(g2, f2, 1.0), "θ {g1} {f1} {g2} {f2}");
 
             let (v, g1, g2) = scaled_jacobian_gradient(e1, e2);
             assert!((v - scaled_jacobian(e1, e2)).abs() < EPS);
             let (f1, f2) = fd(scaled_jacobian, e1, e2);
-            assert!(
-                close(g1, f1, 1.0) && close(g2, f2, 1.0),
-                "sine {g1} {f1} {g2} {f2}"
-            );
+            assert!(close(g1, f1, 1.0) && close(g2, f2, 1.0), "sine {g1} {f1} {g2} {f2}");
 
             for ideal in [Ideal::Triangle, Ideal::Square] {
                 let (v, g1, g2) = condition_number_gradient(e1, e2, ideal);
@@ -774,18 +706,14 @@ mod tests {
                     assert!((v - k).abs() < EPS * k);
                     let (f1, f2) = fd(|a, b| condition_number(a, b, ideal), e1, e2);
                     let s = g1.length() + g2.length();
-                    assert!(
-                        close(g1, f1, s) && close(g2, f2, s),
-                        "κ {g1} {f1} {g2} {f2}"
-                    );
+                    assert!(close(g1, f1, s) && close(g2, f2, s), "κ {g1} {f1} {g2} {f2}");
                 } else {
                     assert!(v.is_infinite() && g1 == DVec2::ZERO && g2 == DVec2::ZERO);
                 }
             }
         }
         // the ideal corners are stationary points of κ (Knupp 1999, §2.6)
-        let (k, g1, g2) =
-            condition_number_gradient(d(1.0, 0.0), d(0.5, 3f64.sqrt() / 2.0), Ideal::Triangle);
+        let (k, g1, g2) = condition_number_gradient(d(1.0, 0.0), d(0.5, 3f64.sqrt() / 2.0), Ideal::Triangle);
         assert!((k - 2.0).abs() < EPS && g1.length() + g2.length() < 1e-12);
     }
 }

@@ -57,10 +57,7 @@ impl Reading {
     /// the bounds leave the quality out.
     pub fn planar_within(kind: ElementKind, p: &[DVec2], bounds: &Reading) -> bool {
         if kind == ElementKind::Tri3 && bounds.min_quality == f64::NEG_INFINITY {
-            let (cos_lo, cos_hi) = (
-                bounds.min_angle_deg.to_radians().cos(),
-                bounds.max_angle_deg.to_radians().cos(),
-            );
+            let (cos_lo, cos_hi) = (bounds.min_angle_deg.to_radians().cos(), bounds.max_angle_deg.to_radians().cos());
             let clear = (0..3).all(|i| {
                 let (a, b) = (p[(i + 1) % 3] - p[i], p[(i + 2) % 3] - p[i]);
                 let c = a.dot(b) / (a.length() * b.length());
@@ -91,20 +88,8 @@ impl Reading {
     /// This reading and another's together. A measure that is not a number is the worst
     /// there is.
     pub fn and(self, other: Reading) -> Self {
-        let least = |a: f64, b: f64| {
-            if a.is_nan() || b.is_nan() {
-                f64::NEG_INFINITY
-            } else {
-                a.min(b)
-            }
-        };
-        let most = |a: f64, b: f64| {
-            if a.is_nan() || b.is_nan() {
-                f64::INFINITY
-            } else {
-                a.max(b)
-            }
-        };
+        let least = |a: f64, b: f64| if a.is_nan() || b.is_nan() { f64::NEG_INFINITY } else { a.min(b) };
+        let most = |a: f64, b: f64| if a.is_nan() || b.is_nan() { f64::INFINITY } else { a.max(b) };
         Reading {
             min_angle_deg: least(self.min_angle_deg, other.min_angle_deg),
             max_angle_deg: most(self.max_angle_deg, other.max_angle_deg),
@@ -115,10 +100,7 @@ impl Reading {
 
     /// These bounds without the quality's (where the caller's own rule keeps it).
     pub fn without_quality(self) -> Self {
-        Reading {
-            min_quality: f64::NEG_INFINITY,
-            ..self
-        }
+        Reading { min_quality: f64::NEG_INFINITY, ..self }
     }
 
     /// Whether this reading lies within `bounds`: its smallest angle, scaled Jacobian and

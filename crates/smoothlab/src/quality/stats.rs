@@ -140,9 +140,7 @@ pub fn mesh_stats_with(mesh: &Mesh, points: impl Fn(usize) -> [DVec2; 9]) -> Mes
     for e in 0..mesh.element_count() {
         let kind = mesh.kind(e);
         let p = points(e);
-        let q = measure_element::<true, true, false>(kind, &p[..kind.node_count()], |_, _, ang| {
-            s.angle(ang)
-        });
+        let q = measure_element::<true, true, false>(kind, &p[..kind.node_count()], |_, _, ang| s.angle(ang));
         s.element(ElementStats::planar(&q));
     }
     s.finish()
@@ -321,10 +319,7 @@ mod tests {
     #[test]
     fn mesh_stats_equals_element_quality_folded() {
         use crate::generate::{grid, perturb, plate, rand2d, GridKind, PlateKind};
-        let mut meshes = vec![
-            rand2d(300, 12, 4).unwrap(),
-            grid(6, 5, GridKind::Quad).unwrap(),
-        ];
+        let mut meshes = vec![rand2d(300, 12, 4).unwrap(), grid(6, 5, GridKind::Quad).unwrap()];
         for k in [PlateKind::Tri, PlateKind::Quad, PlateKind::Mixed] {
             meshes.push(plate(k, 1, 3).unwrap());
             meshes.push(plate(k, 2, 3).unwrap());

@@ -71,12 +71,7 @@ impl TetRuleMeasures {
     pub fn of(p: &[DVec3; 4]) -> Self {
         let e = [p[1] - p[0], p[2] - p[0], p[3] - p[0]];
         let det = e[0].dot(e[1].cross(e[2]));
-        TetRuleMeasures {
-            inverted: is_inverted(p),
-            inversion: (-det).max(0.0),
-            det,
-            scale: crate::numeric::largest_component(e),
-        }
+        TetRuleMeasures { inverted: is_inverted(p), inversion: (-det).max(0.0), det, scale: crate::numeric::largest_component(e) }
     }
     /// Its determinant and scale for the rule's screen ([`super::det_within`]), as
     /// `quality::solid::least_corner_det` gives a solid's.
@@ -204,15 +199,10 @@ pub fn dihedral_sines_grad0(p: &[DVec3; 4]) -> [(f64, DVec3); 6] {
     for (e, &[i, j]) in TET_EDGES.iter().enumerate() {
         let [k, l] = OFF_EDGE[e];
         let len = p[i].distance(p[j]);
-        let g_len = if i == 0 && len > 0.0 {
-            (p[0] - p[j]) / len
-        } else {
-            DVec3::ZERO
-        };
+        let g_len = if i == 0 && len > 0.0 { (p[0] - p[j]) / len } else { DVec3::ZERO };
         let denom = area[k] * area[l];
         let s = 1.5 * v * len / denom;
-        let g =
-            1.5 * (gv * len + v * g_len) / denom - s * (g_area[k] / area[k] + g_area[l] / area[l]);
+        let g = 1.5 * (gv * len + v * g_len) / denom - s * (g_area[k] / area[k] + g_area[l] / area[l]);
         out[e] = (s, g);
     }
     out
@@ -381,10 +371,7 @@ impl CornerForm {
     /// `det W⁻¹`'s share of `σ`: `σ = 6V·det W⁻¹`, so `6V = σ / det W⁻¹` ([`signed_volume`]).
     #[inline(always)]
     pub fn volume6_at(&self, x: DVec3, r: &CornerReference) -> (f64, DVec3) {
-        (
-            self.sigma_at(x) / r.det_w_inv,
-            self.grad_sigma / r.det_w_inv,
-        )
+        (self.sigma_at(x) / r.det_w_inv, self.grad_sigma / r.det_w_inv)
     }
 }
 
@@ -403,11 +390,7 @@ pub fn condition_number(p: &[DVec3; 4], r: &CornerReference) -> f64 {
     let t = weighted_jacobian(&in_unit_scale(p), r);
     let det = t.determinant();
     if det == 0.0 || !det.is_finite() {
-        return if det.is_nan() {
-            f64::NAN
-        } else {
-            f64::INFINITY
-        };
+        return if det.is_nan() { f64::NAN } else { f64::INFINITY };
     }
     (frobenius2(&t) * frobenius2(&t.inverse())).sqrt()
 }
@@ -420,14 +403,7 @@ pub fn condition_number_grad0(p: &[DVec3; 4], r: &CornerReference) -> (f64, DVec
     let a = DMat3::from_cols(p[1] - p[0], p[2] - p[0], p[3] - p[0]);
     let det = a.determinant();
     if det == 0.0 || !det.is_finite() {
-        return (
-            if det.is_nan() {
-                f64::NAN
-            } else {
-                f64::INFINITY
-            },
-            DVec3::ZERO,
-        );
+        return (if det.is_nan() { f64::NAN } else { f64::INFINITY }, DVec3::ZERO);
     }
     let j = WeightedJacobian::of(p, r);
     let b = a.inverse();
@@ -461,10 +437,7 @@ impl MeanRatioParts {
     #[inline(always)]
     pub fn of(p: &[DVec3; 4], r: &CornerReference) -> Self {
         let t = weighted_jacobian(&in_unit_scale(p), r);
-        MeanRatioParts {
-            frob2: frobenius2(&t),
-            sigma: t.determinant(),
-        }
+        MeanRatioParts { frob2: frobenius2(&t), sigma: t.determinant() }
     }
     /// [`mean_ratio`].
     #[inline]
@@ -518,10 +491,7 @@ pub fn mean_ratio_grad(j: &WeightedJacobian) -> (f64, DVec3) {
     if j.sigma == 0.0 {
         return (q, DVec3::ZERO);
     }
-    (
-        q,
-        q * ((2.0 / 3.0) * j.grad_sigma / j.sigma - j.grad_frob2 / j.frob2),
-    )
+    (q, q * ((2.0 / 3.0) * j.grad_sigma / j.sigma - j.grad_frob2 / j.frob2))
 }
 
 /// Every measure of one tetrahedron, for statistics.
@@ -550,10 +520,7 @@ pub fn tet_measures(p: &[DVec3; 4], r: &CornerReference) -> TetMeasures {
         volume,
         inverted: is_inverted(p),
         min_dihedral_deg: dihedral_deg.iter().copied().fold(f64::INFINITY, f64::min),
-        max_dihedral_deg: dihedral_deg
-            .iter()
-            .copied()
-            .fold(f64::NEG_INFINITY, f64::max),
+        max_dihedral_deg: dihedral_deg.iter().copied().fold(f64::NEG_INFINITY, f64::max),
         min_sine: dihedral_sines(p).into_iter().fold(f64::INFINITY, f64::min),
         condition: condition_number(p, r),
         mean_ratio: mean_ratio(p, r),
@@ -571,13 +538,7 @@ pub fn tet10_corner_tets(p: &[DVec3; 10]) -> [[DVec3; 4]; 4] {
     EVEN.map(|order| {
         let i = order[0];
         let x = p[i];
-        order.map(|k| {
-            if k == i {
-                x
-            } else {
-                x + (4.0 * p[MID[i][k]] - 3.0 * x - p[k])
-            }
-        })
+        order.map(|k| if k == i { x } else { x + (4.0 * p[MID[i][k]] - 3.0 * x - p[k]) })
     })
 }
 
@@ -595,10 +556,7 @@ pub fn tet10_measures(p: &[DVec3; 10], r: &CornerReference) -> TetMeasures {
         let m = tet_measures(&corner, r);
         let worse = match &worst {
             None => true,
-            Some(w) => {
-                (m.inverted && !w.inverted)
-                    || (m.inverted == w.inverted && m.mean_ratio < w.mean_ratio)
-            }
+            Some(w) => (m.inverted && !w.inverted) || (m.inverted == w.inverted && m.mean_ratio < w.mean_ratio),
         };
         if worse {
             worst = Some(m);
@@ -631,12 +589,7 @@ mod tests {
 
     fn regular() -> [DVec3; 4] {
         // the regular tetrahedron of unit edge, W's columns from the origin: right-handed
-        [
-            DVec3::ZERO,
-            EQUILATERAL_W.x_axis,
-            EQUILATERAL_W.y_axis,
-            EQUILATERAL_W.z_axis,
-        ]
+        [DVec3::ZERO, EQUILATERAL_W.x_axis, EQUILATERAL_W.y_axis, EQUILATERAL_W.z_axis]
     }
     fn corner() -> [DVec3; 4] {
         [DVec3::ZERO, DVec3::X, DVec3::Y, DVec3::Z]
@@ -656,38 +609,17 @@ mod tests {
     #[test]
     fn an_identity_reference_takes_the_edges_as_the_product_would() {
         use crate::mesh::VolumeKind;
-        let identities: Vec<(VolumeKind, usize)> = VolumeKind::ALL
-            .iter()
-            .flat_map(|&k| {
-                (0..4)
-                    .filter(move |&s| k.row().slot_references[s].identity)
-                    .map(move |s| (k, s))
-            })
-            .collect();
-        assert_eq!(
-            identities,
-            [
-                (VolumeKind::Hex8, 0),
-                (VolumeKind::Hex20, 0),
-                (VolumeKind::Hex27, 0)
-            ]
-        );
+        let identities: Vec<(VolumeKind, usize)> =
+            VolumeKind::ALL.iter().flat_map(|&k| (0..4).filter(move |&s| k.row().slot_references[s].identity).map(move |s| (k, s))).collect();
+        assert_eq!(identities, [(VolumeKind::Hex8, 0), (VolumeKind::Hex20, 0), (VolumeKind::Hex27, 0)]);
         assert!(crate::mesh::CUBE_CORNER.identity && !EQUILATERAL_TET.identity);
         let mut rng = SplitMix64::new(41);
         for _ in 0..2000 {
-            let p = [
-                point(&mut rng),
-                point(&mut rng),
-                point(&mut rng),
-                point(&mut rng),
-            ];
+            let p = [point(&mut rng), point(&mut rng), point(&mut rng), point(&mut rng)];
             let a = DMat3::from_cols(p[1] - p[0], p[2] - p[0], p[3] - p[0]);
             let product = a * crate::mesh::CUBE_CORNER.w_inv;
             let t = weighted_jacobian(&p, &crate::mesh::CUBE_CORNER);
-            assert_eq!(
-                t.to_cols_array().map(f64::to_bits),
-                product.to_cols_array().map(f64::to_bits)
-            );
+            assert_eq!(t.to_cols_array().map(f64::to_bits), product.to_cols_array().map(f64::to_bits));
             assert_eq!(t, a);
         }
     }
@@ -697,41 +629,21 @@ mod tests {
     #[test]
     fn mean_ratio_order_is_the_mean_ratios_order() {
         let mut rng = SplitMix64::new(29);
-        let tets: Vec<[DVec3; 4]> = (0..400)
-            .map(|_| {
-                [
-                    point(&mut rng),
-                    point(&mut rng),
-                    point(&mut rng),
-                    point(&mut rng),
-                ]
-            })
-            .collect();
+        let tets: Vec<[DVec3; 4]> = (0..400).map(|_| [point(&mut rng), point(&mut rng), point(&mut rng), point(&mut rng)]).collect();
         let r = &EQUILATERAL_TET;
         for p in &tets {
             let (q, k) = (mean_ratio(p), mean_ratio_order(p, r));
-            assert!(
-                (k - q * q * q / 27.0).abs() <= 1e-13 * (1.0 + k.abs()),
-                "{k} against q³/27 = {}",
-                q * q * q / 27.0
-            );
+            assert!((k - q * q * q / 27.0).abs() <= 1e-13 * (1.0 + k.abs()), "{k} against q³/27 = {}", q * q * q / 27.0);
             for s in [1e-120, 1e120] {
                 let scaled = p.map(|x| x * s);
-                assert!(
-                    (mean_ratio_order(&scaled, r) - k).abs() <= 1e-13 * (1.0 + k.abs()),
-                    "at scale {s}"
-                );
+                assert!((mean_ratio_order(&scaled, r) - k).abs() <= 1e-13 * (1.0 + k.abs()), "at scale {s}");
             }
         }
         for a in &tets {
             for b in &tets {
                 let (qa, qb) = (mean_ratio(a), mean_ratio(b));
                 if (qa - qb).abs() > 1e-12 {
-                    assert_eq!(
-                        qa < qb,
-                        mean_ratio_order(a, r) < mean_ratio_order(b, r),
-                        "{qa} and {qb}"
-                    );
+                    assert_eq!(qa < qb, mean_ratio_order(a, r) < mean_ratio_order(b, r), "{qa} and {qb}");
                 }
             }
         }
@@ -745,11 +657,7 @@ mod tests {
         let i = EQUILATERAL_W * EQUILATERAL_W_INVERSE;
         assert!(i.abs_diff_eq(DMat3::IDENTITY, 1e-15), "{i}");
         // W's columns have unit length and meet at 60°
-        for c in [
-            EQUILATERAL_W.x_axis,
-            EQUILATERAL_W.y_axis,
-            EQUILATERAL_W.z_axis,
-        ] {
+        for c in [EQUILATERAL_W.x_axis, EQUILATERAL_W.y_axis, EQUILATERAL_W.z_axis] {
             assert!((c.length() - 1.0).abs() < 1e-15);
         }
         assert!((EQUILATERAL_W.y_axis.dot(EQUILATERAL_W.z_axis) - 0.5).abs() < 1e-15);
@@ -824,28 +732,15 @@ mod tests {
         let nan = [DVec3::NAN, DVec3::X, DVec3::Y, DVec3::Z];
         assert!(is_inverted(&nan));
         assert!(condition_number(&nan).is_nan() && mean_ratio(&nan).is_nan());
-        let _ = (
-            dihedral_angles(&nan),
-            dihedral_sines_grad0(&nan),
-            condition_number_grad0(&nan),
-            tet_measures(&nan),
-        );
+        let _ = (dihedral_angles(&nan), dihedral_sines_grad0(&nan), condition_number_grad0(&nan), tet_measures(&nan));
     }
 
     #[test]
     fn measures_are_invariant_to_motion_scale_and_the_even_permutations() {
         let mut rng = SplitMix64::new(7);
         for _ in 0..50 {
-            let p = [
-                point(&mut rng),
-                point(&mut rng),
-                point(&mut rng),
-                point(&mut rng),
-            ];
-            let rot = glam::DQuat::from_axis_angle(
-                point(&mut rng).normalize(),
-                rng.uniform(-1.0, 1.0) * 3.0,
-            );
+            let p = [point(&mut rng), point(&mut rng), point(&mut rng), point(&mut rng)];
+            let rot = glam::DQuat::from_axis_angle(point(&mut rng).normalize(), rng.uniform(-1.0, 1.0) * 3.0);
             let shift = point(&mut rng) * 10.0;
             let moved = p.map(|x| rot * x * 3.5 + shift);
             let rel = |a: f64, b: f64| (a - b).abs() <= 1e-10 * a.abs().max(1.0);
@@ -859,10 +754,7 @@ mod tests {
                 let q = with_first(&p, i);
                 assert_eq!(signed_volume(&q).signum(), signed_volume(&p).signum());
                 assert!((signed_volume(&q) - signed_volume(&p)).abs() <= 1e-14);
-                assert!(
-                    rel(condition_number(&q), condition_number(&p)),
-                    "corner {i}"
-                );
+                assert!(rel(condition_number(&q), condition_number(&p)), "corner {i}");
                 assert!(rel(mean_ratio(&q), mean_ratio(&p)), "corner {i}");
             }
         }
@@ -880,10 +772,7 @@ mod tests {
             fd[k] = (f(&a) - f(&b)) / (2.0 * h);
         }
         let scale = g.length().max(fd.length()).max(1e-3);
-        assert!(
-            (fd - g).length() <= 1e-6 * scale,
-            "{what}: analytic {g} vs differences {fd} at {p:?}"
-        );
+        assert!((fd - g).length() <= 1e-6 * scale, "{what}: analytic {g} vs differences {fd} at {p:?}");
     }
 
     #[test]
@@ -891,12 +780,7 @@ mod tests {
         let mut rng = SplitMix64::new(11);
         let mut inverted = 0;
         for _ in 0..200 {
-            let p = [
-                point(&mut rng),
-                point(&mut rng),
-                point(&mut rng),
-                point(&mut rng),
-            ];
+            let p = [point(&mut rng), point(&mut rng), point(&mut rng), point(&mut rng)];
             let v = signed_volume(&p);
             // away from the flat configurations, where the measures are steep
             if v.abs() < 0.02 {
@@ -938,22 +822,13 @@ mod tests {
         for x in [DVec3::ZERO, DVec3::new(0.1, -0.2, 0.3), DVec3::splat(1e6)] {
             for form in [f, CornerForm::PENDING] {
                 let j = form.at(x);
-                assert!(
-                    j.sigma.is_nan()
-                        && j.frob2.is_nan()
-                        && j.grad_sigma.is_nan()
-                        && j.grad_frob2.is_nan(),
-                    "{x}"
-                );
+                assert!(j.sigma.is_nan() && j.frob2.is_nan() && j.grad_sigma.is_nan() && j.grad_frob2.is_nan(), "{x}");
                 let (v6, g6) = form.volume6_at(x, R);
                 assert!(form.sigma_at(x).is_nan() && v6.is_nan() && g6.is_nan());
                 assert_eq!(form.inverted_at(x, R), None);
             }
         }
-        let (a, b) = (
-            CornerForm::of(&p, R).at(DVec3::ZERO),
-            WeightedJacobian::of(&p, R),
-        );
+        let (a, b) = (CornerForm::of(&p, R).at(DVec3::ZERO), WeightedJacobian::of(&p, R));
         assert!(a.sigma.is_finite() && (a.sigma, a.frob2) == (b.sigma, b.frob2));
     }
 }

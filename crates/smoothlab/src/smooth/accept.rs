@@ -27,9 +27,9 @@
 
 use glam::{DVec2, DVec3};
 
-use super::measure::triangle_shape_at;
 use super::Measure;
 use crate::mesh::ElementKind;
+use super::measure::triangle_shape_at;
 use crate::mesh::VolumeKind;
 use crate::quality::{corner_edge_vectors, measure_element, solid, tet as q3};
 
@@ -82,11 +82,7 @@ impl Size {
     pub fn least_corner(kind: VolumeKind, sizes: &solid::CornerSizes) -> Size {
         let mut size: Option<Size> = None;
         for &(unit, scale) in sizes.of_kind(kind) {
-            let s = Size {
-                unit,
-                scale,
-                dim: 3,
-            };
+            let s = Size { unit, scale, dim: 3 };
             size = Some(match size {
                 Some(old) if !old.at_least(1.0, &s) => old,
                 _ => s,
@@ -98,11 +94,7 @@ impl Size {
     #[inline]
     pub fn tet(p: &[DVec3; 4]) -> Size {
         let (unit, scale) = solid::corner_size(p);
-        Size {
-            unit,
-            scale,
-            dim: 3,
-        }
+        Size { unit, scale, dim: 3 }
     }
     /// Whether an element, valid before a move, keeps at least [`MIN_SIZE_RATIO`] of its
     /// size for certain, from its least corner determinant taken directly before and after
@@ -123,9 +115,7 @@ impl Size {
             return false;
         };
         let t = tb.max(ta);
-        b > 0.0
-            && a - t >= t
-            && (a - t) * (1.0 - 1e-9) > MIN_SIZE_RATIO * (b + 2.0 * t) * (1.0 + 1e-9)
+        b > 0.0 && a - t >= t && (a - t) * (1.0 - 1e-9) > MIN_SIZE_RATIO * (b + 2.0 * t) * (1.0 + 1e-9)
     }
 }
 
@@ -140,32 +130,16 @@ impl ElementScore {
     /// number or beyond the scales it takes): the size's divisions are left to the caller
     /// that needs them (where the screen does not decide).
     #[inline]
-    pub fn planar_unsized(
-        kind: ElementKind,
-        p: &[DVec2; 9],
-        measure: Measure,
-    ) -> (ElementScore<()>, Option<(f64, f64)>) {
+    pub fn planar_unsized(kind: ElementKind, p: &[DVec2; 9], measure: Measure) -> (ElementScore<()>, Option<(f64, f64)>) {
         let (s, det) = Self::planar_parts::<false>(kind, p, measure);
-        (
-            ElementScore {
-                quality: s.quality,
-                inverted: s.inverted,
-                inversion: s.inversion,
-                size: (),
-            },
-            det,
-        )
+        (ElementScore { quality: s.quality, inverted: s.inverted, inversion: s.inversion, size: () }, det)
     }
 
     /// The planar score (its size's `unit` taken where `SIZED`, else not a number, which
     /// [`planar_unsized`](Self::planar_unsized) drops) and the least corner determinant
     /// taken directly with its tolerance ([`crate::quality::det_within`]).
     #[inline(always)]
-    fn planar_parts<const SIZED: bool>(
-        kind: ElementKind,
-        p: &[DVec2; 9],
-        measure: Measure,
-    ) -> (Self, Option<(f64, f64)>) {
+    fn planar_parts<const SIZED: bool>(kind: ElementKind, p: &[DVec2; 9], measure: Measure) -> (Self, Option<(f64, f64)>) {
         if let Some(score) = Self::valid_triangle::<SIZED>(kind, p, measure) {
             return score;
         }
@@ -188,29 +162,13 @@ impl ElementScore {
             inversion += (-det).max(0.0);
             // a determinant that is not a number leaves the least one so (and the screen
             // to the sizes)
-            least = if det.is_nan() || least.is_nan() {
-                f64::NAN
-            } else {
-                least.min(det)
-            };
+            least = if det.is_nan() || least.is_nan() { f64::NAN } else { least.min(det) };
             if SIZED {
                 smallest = smallest.min((*e1 / m).perp_dot(*e2 / m));
             }
         }
         let unit = if SIZED { smallest } else { f64::NAN };
-        (
-            ElementScore {
-                quality,
-                inverted,
-                inversion,
-                size: Size {
-                    unit,
-                    scale: m,
-                    dim: 2,
-                },
-            },
-            crate::quality::det_within(least, m, 2),
-        )
+        (ElementScore { quality, inverted, inversion, size: Size { unit, scale: m, dim: 2 } }, crate::quality::det_within(least, m, 2))
     }
 
     /// [`planar`](Self::planar)'s score of a valid linear triangle by [`Measure::Shape`],
@@ -222,11 +180,7 @@ impl ElementScore {
     /// keeps them valid, so the rule compares like with like. With `planar_parts`' second
     /// part, and its size's `unit` as there.
     #[inline]
-    fn valid_triangle<const SIZED: bool>(
-        kind: ElementKind,
-        p: &[DVec2; 9],
-        measure: Measure,
-    ) -> Option<(Self, Option<(f64, f64)>)> {
+    fn valid_triangle<const SIZED: bool>(kind: ElementKind, p: &[DVec2; 9], measure: Measure) -> Option<(Self, Option<(f64, f64)>)> {
         if kind != ElementKind::Tri3 || measure != Measure::Shape {
             return None;
         }
@@ -235,26 +189,9 @@ impl ElementScore {
             return None;
         }
         let (u, v, w) = (p[1] - p[0], p[2] - p[0], p[2] - p[1]);
-        let m = u
-            .abs()
-            .max_element()
-            .max(v.abs().max_element())
-            .max(w.abs().max_element());
-        let unit = if SIZED {
-            (u / m).perp_dot(v / m)
-        } else {
-            f64::NAN
-        };
-        let score = ElementScore {
-            quality,
-            inverted,
-            inversion: 0.0,
-            size: Size {
-                unit,
-                scale: m,
-                dim: 2,
-            },
-        };
+        let m = u.abs().max_element().max(v.abs().max_element()).max(w.abs().max_element());
+        let unit = if SIZED { (u / m).perp_dot(v / m) } else { f64::NAN };
+        let score = ElementScore { quality, inverted, inversion: 0.0, size: Size { unit, scale: m, dim: 2 } };
         Some((score, crate::quality::det_within(u.perp_dot(v), m, 2)))
     }
 
@@ -263,14 +200,9 @@ impl ElementScore {
     pub fn tet(p: &[DVec3; 4], r: &q3::CornerReference, measure: Measure) -> Self {
         let quality = match measure {
             Measure::Shape => q3::mean_ratio(p, r),
-            Measure::MinSine => q3::dihedral_sines(p)
-                .into_iter()
-                .fold(f64::INFINITY, f64::min),
+            Measure::MinSine => q3::dihedral_sines(p).into_iter().fold(f64::INFINITY, f64::min),
         };
-        ElementScore {
-            quality,
-            ..Self::tet_unmeasured(p)
-        }
+        ElementScore { quality, ..Self::tet_unmeasured(p) }
     }
 
     /// [`tet`](Self::tet) but for its quality, +∞ (no minimum sees it; the caller gives it
@@ -278,24 +210,14 @@ impl ElementScore {
     #[inline]
     pub fn tet_unmeasured(p: &[DVec3; 4]) -> Self {
         let t = ElementScore::tet_of(&q3::TetRuleMeasures::of(p));
-        ElementScore {
-            quality: t.quality,
-            inverted: t.inverted,
-            inversion: t.inversion,
-            size: Size::tet(p),
-        }
+        ElementScore { quality: t.quality, inverted: t.inverted, inversion: t.inversion, size: Size::tet(p) }
     }
     /// [`tet_unmeasured`](Self::tet_unmeasured) of a tetrahedron's measures taken before,
     /// but for its size (for [`Verdict::add_deciding_size`], with
     /// [`Size::floor_kept_for_certain`]).
     #[inline]
     pub fn tet_of(t: &q3::TetRuleMeasures) -> ElementScore<()> {
-        ElementScore {
-            quality: f64::INFINITY,
-            inverted: t.inverted,
-            inversion: t.inversion,
-            size: (),
-        }
+        ElementScore { quality: f64::INFINITY, inverted: t.inverted, inversion: t.inversion, size: () }
     }
 }
 
@@ -311,10 +233,7 @@ impl ElementScore {
             Measure::MinSine => solid::solid_min_sine(kind, p),
         };
         let size = Size::least_corner(kind, &solid::CornerSizes::of(kind, p, |_| None));
-        ElementScore {
-            quality,
-            ..Self::solid_sized(kind, solid::validity(kind, p), size, || p)
-        }
+        ElementScore { quality, ..Self::solid_sized(kind, solid::validity(kind, p), size, || p) }
     }
 
     /// [`solid`](Self::solid) where the element's [`solid::validity`] and size
@@ -324,23 +243,9 @@ impl ElementScore {
     /// Its corners `p()` are asked only for the inversion of an element not valid (a valid
     /// one's is 0), so a caller that would copy them for it does not copy them for every
     /// valid element.
-    pub fn solid_sized<'a, S>(
-        kind: VolumeKind,
-        validity: solid::Validity,
-        size: S,
-        p: impl FnOnce() -> &'a [DVec3],
-    ) -> ElementScore<S> {
+    pub fn solid_sized<'a, S>(kind: VolumeKind, validity: solid::Validity, size: S, p: impl FnOnce() -> &'a [DVec3]) -> ElementScore<S> {
         let valid = validity == solid::Validity::Valid;
-        ElementScore {
-            quality: f64::INFINITY,
-            inverted: !valid,
-            inversion: if valid {
-                0.0
-            } else {
-                solid::solid_inversion(kind, p(), validity)
-            },
-            size,
-        }
+        ElementScore { quality: f64::INFINITY, inverted: !valid, inversion: if valid { 0.0 } else { solid::solid_inversion(kind, p(), validity) }, size }
     }
 
     /// A 10-node tetrahedron `p` (VTK's node order) with its mid-edge nodes: its four
@@ -353,18 +258,10 @@ impl ElementScore {
             score = Some(match score {
                 None => c,
                 Some(s) => ElementScore {
-                    quality: if c.quality.is_nan() || c.quality < s.quality {
-                        c.quality
-                    } else {
-                        s.quality
-                    },
+                    quality: if c.quality.is_nan() || c.quality < s.quality { c.quality } else { s.quality },
                     inverted: s.inverted || c.inverted,
                     inversion: s.inversion + c.inversion,
-                    size: if s.size.at_least(1.0, &c.size) {
-                        c.size
-                    } else {
-                        s.size
-                    },
+                    size: if s.size.at_least(1.0, &c.size) { c.size } else { s.size },
                 },
             });
         }
@@ -409,20 +306,13 @@ impl Verdict {
     /// One element of the star, before and after the move.
     pub fn add(&mut self, before: &ElementScore, after: &ElementScore) {
         // a size that is not a number (a degenerate element) is below the floor
-        self.add_deciding_size(before, after, || {
-            after.size.at_least(MIN_SIZE_RATIO, &before.size)
-        });
+        self.add_deciding_size(before, after, || after.size.at_least(MIN_SIZE_RATIO, &before.size));
     }
 
     /// [`add`](Self::add) with the size floor decided by `keeps_size` (asked only of an
     /// element valid before the move: whether it keeps at least [`MIN_SIZE_RATIO`] of its
     /// size, as [`Size::at_least`] answers it) rather than from the scores' sizes.
-    pub fn add_deciding_size<S>(
-        &mut self,
-        before: &ElementScore<S>,
-        after: &ElementScore<S>,
-        keeps_size: impl FnOnce() -> bool,
-    ) {
+    pub fn add_deciding_size<S>(&mut self, before: &ElementScore<S>, after: &ElementScore<S>, keeps_size: impl FnOnce() -> bool) {
         self.inverted_before += before.inverted as u32;
         self.inverted_after += after.inverted as u32;
         self.add_qualities(before.quality, after.quality);
@@ -441,11 +331,7 @@ impl Verdict {
     pub fn add_qualities(&mut self, before: f64, after: f64) {
         self.quality_before = self.quality_before.min(before);
         // a quality that is not a number is the worst there is
-        self.quality_after = if after.is_nan() {
-            f64::NEG_INFINITY
-        } else {
-            self.quality_after.min(after)
-        };
+        self.quality_after = if after.is_nan() { f64::NEG_INFINITY } else { self.quality_after.min(after) };
     }
 
     /// Whether the star was valid before the move (the statistics' reading then decides
@@ -460,9 +346,7 @@ impl Verdict {
     /// inversion falls, and flattens none of its valid elements.
     pub fn keeps(&self) -> bool {
         if self.inverted_before > 0 {
-            (self.inverted_after <= self.inverted_before
-                || self.inversion_after < self.inversion_before)
-                && !self.shrunk
+            (self.inverted_after <= self.inverted_before || self.inversion_after < self.inversion_before) && !self.shrunk
         } else {
             self.inverted_after == 0 && self.quality_after >= self.quality_before && !self.flattened
         }
@@ -508,10 +392,7 @@ mod tests {
     /// a better shape, at `f²` of the area (about).
     fn shrunk(s: f64, h: f64, f: f64) -> ([DVec2; 9], [DVec2; 9]) {
         let e = 3f64.sqrt() / 2.0;
-        (
-            tri([0.0, 0.0], [s, 0.0], [0.5 * s, h * s]),
-            tri([0.0, 0.0], [s * f, 0.0], [0.5 * s * f, e * s * f]),
-        )
+        (tri([0.0, 0.0], [s, 0.0], [0.5 * s, h * s]), tri([0.0, 0.0], [s * f, 0.0], [0.5 * s * f, e * s * f]))
     }
 
     #[test]
@@ -525,14 +406,8 @@ mod tests {
     #[test]
     fn the_size_floor_is_the_same_at_every_scale() {
         for s in [1e-150, 1e-100, 1e-20, 1.0, 1e20, 1e100, 1e150] {
-            assert!(
-                !verdict(&[shrunk(s, 0.7, 1.0 / 2000f64.sqrt())]).keeps(),
-                "scale {s:e}"
-            );
-            assert!(
-                verdict(&[shrunk(s, 0.7, 1.0 / 500f64.sqrt())]).keeps(),
-                "scale {s:e}"
-            );
+            assert!(!verdict(&[shrunk(s, 0.7, 1.0 / 2000f64.sqrt())]).keeps(), "scale {s:e}");
+            assert!(verdict(&[shrunk(s, 0.7, 1.0 / 500f64.sqrt())]).keeps(), "scale {s:e}");
         }
     }
 
@@ -563,35 +438,18 @@ mod tests {
             for _ in 0..2000 {
                 let mut r = || s * (rng.next_f64() * 2.0 - 1.0);
                 let p = tri([r(), r()], [r(), r()], [r(), r()]);
-                let Some((fast, _)) =
-                    ElementScore::valid_triangle::<true>(ElementKind::Tri3, &p, Measure::Shape)
-                else {
-                    continue;
-                };
+                let Some((fast, _)) = ElementScore::valid_triangle::<true>(ElementKind::Tri3, &p, Measure::Shape) else { continue };
                 let q = measure_element::<false, false, false>(ElementKind::Tri3, &p, |_, _, _| {});
                 assert_eq!(fast.inverted, q.inverted, "{p:?}");
                 // measured from another corner (and scaled otherwise at extreme sizes): the
                 // cross product a rounding of the squared edges apart, α (≤ 1) a few ulps
-                assert!(
-                    (fast.quality - q.shape).abs() <= 16.0 * f64::EPSILON,
-                    "{p:?} {} {}",
-                    fast.quality,
-                    q.shape
-                );
+                assert!((fast.quality - q.shape).abs() <= 16.0 * f64::EPSILON, "{p:?} {} {}", fast.quality, q.shape);
                 let edges = corner_edge_vectors(ElementKind::Tri3, &p);
-                let m = edges[..3].iter().fold(0.0f64, |m, (a, b)| {
-                    m.max(a.abs().max_element()).max(b.abs().max_element())
-                });
+                let m = edges[..3].iter().fold(0.0f64, |m, (a, b)| m.max(a.abs().max_element()).max(b.abs().max_element()));
                 assert_eq!(fast.size.scale, m);
-                let general = edges[..3]
-                    .iter()
-                    .map(|(a, b)| (*a / m).perp_dot(*b / m))
-                    .fold(f64::INFINITY, f64::min);
+                let general = edges[..3].iter().map(|(a, b)| (*a / m).perp_dot(*b / m)).fold(f64::INFINITY, f64::min);
                 // the three corners share one determinant, but for a rounding each
-                assert!(
-                    (fast.size.unit - general).abs() <= 16.0 * f64::EPSILON,
-                    "{p:?}"
-                );
+                assert!((fast.size.unit - general).abs() <= 16.0 * f64::EPSILON, "{p:?}");
             }
         }
     }
@@ -602,10 +460,7 @@ mod tests {
         // three neighbours keeps a positive volume of ~1e-19 and is not inverted
         let p = [DVec3::new(0.2, 0.3, 0.9), DVec3::ZERO, DVec3::Y, DVec3::X];
         let flat = [DVec3::new(0.2, 0.3, 1e-18), DVec3::ZERO, DVec3::Y, DVec3::X];
-        let (b, a) = (
-            ElementScore::tet(&p, &q3::EQUILATERAL_TET, Measure::Shape),
-            ElementScore::tet(&flat, &q3::EQUILATERAL_TET, Measure::Shape),
-        );
+        let (b, a) = (ElementScore::tet(&p, &q3::EQUILATERAL_TET, Measure::Shape), ElementScore::tet(&flat, &q3::EQUILATERAL_TET, Measure::Shape));
         assert!(!a.inverted && a.quality > 0.0);
         let mut v = Verdict::default();
         v.add(&b, &a);
@@ -623,8 +478,7 @@ mod tests {
             let tet = |p: &[DVec3]| Size::tet(&[p[0], p[1], p[2], p[3]]);
             return tet(after).at_least(MIN_SIZE_RATIO, &tet(before));
         }
-        let size =
-            |p: &[DVec3]| Size::least_corner(kind, &solid::CornerSizes::of(kind, p, |_| None));
+        let size = |p: &[DVec3]| Size::least_corner(kind, &solid::CornerSizes::of(kind, p, |_| None));
         size(after).at_least(MIN_SIZE_RATIO, &size(before))
     }
     /// The screen from the least corner determinant taken directly, or (`from_shapes`) from
@@ -632,10 +486,7 @@ mod tests {
     fn certain(kind: VolumeKind, before: &[DVec3], after: &[DVec3], from_shapes: bool) -> bool {
         let within = |p: &[DVec3]| match kind {
             VolumeKind::Tet4 => q3::TetRuleMeasures::of(&[p[0], p[1], p[2], p[3]]).det_within(),
-            _ if from_shapes => solid::CornerShapes::of(kind, p, |_| None).map_or_else(
-                || solid::least_corner_det(kind, p),
-                |t| t.least_corner_det(kind),
-            ),
+            _ if from_shapes => solid::CornerShapes::of(kind, p, |_| None).map_or_else(|| solid::least_corner_det(kind, p), |t| t.least_corner_det(kind)),
             _ => solid::least_corner_det(kind, p),
         };
         Size::floor_kept_for_certain(within(before), within(after))
@@ -644,22 +495,13 @@ mod tests {
     #[test]
     fn the_size_floor_kept_for_certain_is_the_rules_answer() {
         let mut rng = crate::numeric::SplitMix64::new(41);
-        let kinds = [
-            VolumeKind::Tet4,
-            VolumeKind::Hex8,
-            VolumeKind::Wedge6,
-            VolumeKind::Pyramid5,
-            VolumeKind::Hex20,
-        ];
+        let kinds = [VolumeKind::Tet4, VolumeKind::Hex8, VolumeKind::Wedge6, VolumeKind::Pyramid5, VolumeKind::Hex20];
         for (kind, from_shapes) in kinds.into_iter().flat_map(|k| [(k, false), (k, true)]) {
             let ideal: Vec<DVec3> = kind.row().ideal.iter().map(|c| DVec3::from(*c)).collect();
             let (mut decided, mut moves) = (0, 0);
             for scale in [1e-70, 1e-20, 1e-3, 1.0, 7.5, 1e20, 1e70] {
                 let mut r = || rng.next_f64() * 2.0 - 1.0;
-                let before: Vec<DVec3> = ideal
-                    .iter()
-                    .map(|c| (*c + 0.15 * DVec3::new(r(), r(), r())) * scale)
-                    .collect();
+                let before: Vec<DVec3> = ideal.iter().map(|c| (*c + 0.15 * DVec3::new(r(), r(), r())) * scale).collect();
                 // a corner moved, as the drivers move one: ordinary steps and long ones that
                 // press the element flat or through itself
                 for corner in 0..kind.corners() {
@@ -667,10 +509,7 @@ mod tests {
                         let mut after = before.clone();
                         after[corner] += step * scale * DVec3::new(r(), r(), r());
                         let sure = certain(kind, &before, &after, from_shapes);
-                        assert!(
-                            !sure || floor_kept(kind, &before, &after),
-                            "{kind:?} {before:?} -> {after:?}"
-                        );
+                        assert!(!sure || floor_kept(kind, &before, &after), "{kind:?} {before:?} -> {after:?}");
                         moves += 1;
                         decided += sure as usize;
                     }
@@ -679,28 +518,15 @@ mod tests {
                 // rule's answer turns within a few ulps of s³ = 10⁻³
                 for k in -64..=64 {
                     let s = (MIN_SIZE_RATIO * (1.0 + k as f64 * f64::EPSILON)).cbrt();
-                    let after: Vec<DVec3> = before
-                        .iter()
-                        .map(|p| before[0] + s * (*p - before[0]))
-                        .collect();
+                    let after: Vec<DVec3> = before.iter().map(|p| before[0] + s * (*p - before[0])).collect();
                     let sure = certain(kind, &before, &after, from_shapes);
-                    assert!(
-                        !sure || floor_kept(kind, &before, &after),
-                        "{kind:?} shrunk {k} ulps: {before:?}"
-                    );
+                    assert!(!sure || floor_kept(kind, &before, &after), "{kind:?} shrunk {k} ulps: {before:?}");
                 }
                 for f in [0.99, 1.01] {
                     let s = (f * MIN_SIZE_RATIO).cbrt();
-                    let after: Vec<DVec3> = before
-                        .iter()
-                        .map(|p| before[0] + s * (*p - before[0]))
-                        .collect();
+                    let after: Vec<DVec3> = before.iter().map(|p| before[0] + s * (*p - before[0])).collect();
                     // decided where the two answers are a percent apart, as the rule's
-                    assert_eq!(
-                        certain(kind, &before, &after, from_shapes),
-                        f > 1.0,
-                        "{kind:?} shrunk to {f}·floor"
-                    );
+                    assert_eq!(certain(kind, &before, &after, from_shapes), f > 1.0, "{kind:?} shrunk to {f}·floor");
                     assert_eq!(floor_kept(kind, &before, &after), f > 1.0);
                 }
             }
@@ -708,16 +534,8 @@ mod tests {
             assert!(decided * 10 > moves * 6, "{kind:?}: {decided} of {moves}");
         }
         // beyond the scales it takes, it decides nothing
-        for (kind, from_shapes) in [VolumeKind::Tet4, VolumeKind::Hex8]
-            .into_iter()
-            .flat_map(|k| [(k, false), (k, true)])
-        {
-            let p: Vec<DVec3> = kind
-                .row()
-                .ideal
-                .iter()
-                .map(|c| DVec3::from(*c) * 1e-90)
-                .collect();
+        for (kind, from_shapes) in [VolumeKind::Tet4, VolumeKind::Hex8].into_iter().flat_map(|k| [(k, false), (k, true)]) {
+            let p: Vec<DVec3> = kind.row().ideal.iter().map(|c| DVec3::from(*c) * 1e-90).collect();
             assert!(!certain(kind, &p, &p, from_shapes));
             let mut nan: Vec<DVec3> = p.iter().map(|c| *c * 1e90).collect();
             assert!(certain(kind, &nan, &nan, from_shapes));
@@ -732,17 +550,8 @@ mod tests {
     #[test]
     fn the_planar_size_floor_kept_for_certain_is_the_rules_answer() {
         let mut rng = crate::numeric::SplitMix64::new(43);
-        let floor_kept = |kind, b: &[DVec2; 9], a: &[DVec2; 9], m| {
-            ElementScore::planar(kind, a, m)
-                .size
-                .at_least(MIN_SIZE_RATIO, &ElementScore::planar(kind, b, m).size)
-        };
-        let certain = |kind, b: &[DVec2; 9], a: &[DVec2; 9], m| {
-            Size::floor_kept_for_certain(
-                ElementScore::planar_unsized(kind, b, m).1,
-                ElementScore::planar_unsized(kind, a, m).1,
-            )
-        };
+        let floor_kept = |kind, b: &[DVec2; 9], a: &[DVec2; 9], m| ElementScore::planar(kind, a, m).size.at_least(MIN_SIZE_RATIO, &ElementScore::planar(kind, b, m).size);
+        let certain = |kind, b: &[DVec2; 9], a: &[DVec2; 9], m| Size::floor_kept_for_certain(ElementScore::planar_unsized(kind, b, m).1, ElementScore::planar_unsized(kind, a, m).1);
         let ideal = |kind| -> [DVec2; 9] {
             let mut p = [DVec2::ZERO; 9];
             let corners: &[[f64; 2]] = match kind {
@@ -773,10 +582,7 @@ mod tests {
                             let mut after = before;
                             after[corner] += step * scale * DVec2::new(r(), r());
                             let sure = certain(kind, &before, &after, measure);
-                            assert!(
-                                !sure || floor_kept(kind, &before, &after, measure),
-                                "{kind:?} {before:?} -> {after:?}"
-                            );
+                            assert!(!sure || floor_kept(kind, &before, &after, measure), "{kind:?} {before:?} -> {after:?}");
                             moves += 1;
                             decided += sure as usize;
                         }
@@ -785,10 +591,7 @@ mod tests {
                         let s = (MIN_SIZE_RATIO * (1.0 + k as f64 * f64::EPSILON)).sqrt();
                         let after = before.map(|p| before[0] + s * (p - before[0]));
                         let sure = certain(kind, &before, &after, measure);
-                        assert!(
-                            !sure || floor_kept(kind, &before, &after, measure),
-                            "{kind:?} shrunk {k} ulps: {before:?}"
-                        );
+                        assert!(!sure || floor_kept(kind, &before, &after, measure), "{kind:?} shrunk {k} ulps: {before:?}");
                     }
                     for f in [0.99, 1.01] {
                         let s = (f * MIN_SIZE_RATIO).sqrt();
@@ -814,10 +617,7 @@ mod tests {
         for k in 0..4 {
             let mut q = nan;
             q[k].y = f64::NAN;
-            assert!(
-                !certain(ElementKind::Quad4, &q, &q, Measure::Shape),
-                "node {k}"
-            );
+            assert!(!certain(ElementKind::Quad4, &q, &q, Measure::Shape), "node {k}");
         }
         nan[2].y = f64::NAN;
         assert!(!certain(ElementKind::Quad4, &nan, &nan, Measure::Shape));
@@ -828,36 +628,15 @@ mod tests {
         // a hexahedron with one corner pressed in, at three scales: the size is a corner's,
         // every corner is at least as large, and the element's score reads it
         for scale in [1.0, 1e-3, 250.0] {
-            let mut p: Vec<DVec3> = VolumeKind::Hex8
-                .row()
-                .ideal
-                .iter()
-                .take(8)
-                .map(|c| DVec3::from(*c) * scale)
-                .collect();
+            let mut p: Vec<DVec3> = VolumeKind::Hex8.row().ideal.iter().take(8).map(|c| DVec3::from(*c) * scale).collect();
             p[6] -= DVec3::splat(0.3 * scale);
             let sizes = solid::CornerSizes::of(VolumeKind::Hex8, &p, |_| None);
             let least = Size::least_corner(VolumeKind::Hex8, &sizes);
-            assert!(sizes
-                .of_kind(VolumeKind::Hex8)
-                .iter()
-                .any(|&(unit, scale)| Size {
-                    unit,
-                    scale,
-                    dim: 3
-                } == least));
+            assert!(sizes.of_kind(VolumeKind::Hex8).iter().any(|&(unit, scale)| Size { unit, scale, dim: 3 } == least));
             for &(unit, scale) in sizes.of_kind(VolumeKind::Hex8) {
-                assert!(Size {
-                    unit,
-                    scale,
-                    dim: 3
-                }
-                .at_least(1.0, &least));
+                assert!(Size { unit, scale, dim: 3 }.at_least(1.0, &least));
             }
-            assert_eq!(
-                ElementScore::solid(VolumeKind::Hex8, &p, Measure::Shape).size,
-                least
-            );
+            assert_eq!(ElementScore::solid(VolumeKind::Hex8, &p, Measure::Shape).size, least);
         }
     }
 }

@@ -42,21 +42,10 @@ impl<S: DriverStar> Objective<S> for KeepValid<'_, S> {
     fn terms(&self, star: &S, x: S::Point, out: &mut Vec<Term<S::Point>>) {
         self.inner.terms(star, x, out);
         if self.refuses(star, x) {
-            out.push(Term {
-                elem: 0,
-                value: f64::NAN,
-                grad: S::Point::ZERO,
-            });
+            out.push(Term { elem: 0, value: f64::NAN, grad: S::Point::ZERO });
         }
     }
-    fn terms_above(
-        &self,
-        star: &S,
-        x: S::Point,
-        floor: f64,
-        lead: u32,
-        out: &mut Vec<Term<S::Point>>,
-    ) -> bool {
+    fn terms_above(&self, star: &S, x: S::Point, floor: f64, lead: u32, out: &mut Vec<Term<S::Point>>) -> bool {
         // a refused position has a NaN term, which is not above any floor; the objective's
         // own test first, as most trial points fail it
         self.inner.terms_above(star, x, floor, lead, out) && !self.refuses(star, x)
@@ -69,11 +58,7 @@ impl<S: DriverStar> Objective<S> for KeepValid<'_, S> {
         }
         self.inner.value_and_gradient(star, x)
     }
-    fn value_gradient_hessian(
-        &self,
-        star: &S,
-        x: S::Point,
-    ) -> Option<(f64, S::Point, <S::Point as Point>::Hessian)> {
+    fn value_gradient_hessian(&self, star: &S, x: S::Point) -> Option<(f64, S::Point, <S::Point as Point>::Hessian)> {
         if self.refuses(star, x) {
             return Some((f64::NAN, S::Point::ZERO, <S::Point as Point>::ZERO_HESSIAN));
         }
@@ -84,13 +69,7 @@ impl<S: DriverStar> Objective<S> for KeepValid<'_, S> {
 impl<'a, S: DriverStar> KeepValid<'a, S> {
     /// `inner` guarded for a solve from a star with `limit` inverted elements.
     pub(super) fn new(inner: &'a dyn Objective<S>, limit: usize, pass_through_folds: bool) -> Self {
-        KeepValid {
-            inner,
-            limit,
-            pass_through_folds,
-            inversion0: std::cell::OnceCell::new(),
-            refused: std::cell::Cell::new(None),
-        }
+        KeepValid { inner, limit, pass_through_folds, inversion0: std::cell::OnceCell::new(), refused: std::cell::Cell::new(None) }
     }
 
     /// Whether a trial position is refused: a valid star must stay valid; an inverted one

@@ -31,10 +31,7 @@ pub const PASSES: IntRange = IntRange { min: 1, max: 100 };
 /// Solver iterations per optimization call on the page (and in a permalink).
 pub const MAX_ITER: IntRange = IntRange { min: 1, max: 50 };
 /// The perturbation's seed.
-pub const SEED: IntRange = IntRange {
-    min: 0,
-    max: u64::MAX,
-};
+pub const SEED: IntRange = IntRange { min: 0, max: u64::MAX };
 /// Largest perturbation amount, in mean edge lengths (the smallest is 0).
 pub const MAX_AMOUNT: f64 = 2.0;
 /// The page's slider step for the perturbation amount.
@@ -43,24 +40,15 @@ pub const AMOUNT_STEP: f64 = 0.05;
 /// [`threshold_in_range`]).
 pub const THRESHOLDS: [f64; 4] = [5.0, 10.0, 15.0, 30.0];
 /// A node's number, as the page names the node whose level sets it shows.
-pub const NODE: IntRange = IntRange {
-    min: 0,
-    max: u32::MAX as u64,
-};
+pub const NODE: IntRange = IntRange { min: 0, max: u32::MAX as u64 };
 
 /// Passes of one command-line run (`smooth --passes`): far beyond any use, small enough
 /// that a typing slip does not run for hours.
-pub const BATCH_PASSES: IntRange = IntRange {
-    min: 1,
-    max: 10_000,
-};
+pub const BATCH_PASSES: IntRange = IntRange { min: 1, max: 10_000 };
 /// Passes before a picture is drawn (`render --passes`; 0 draws the mesh as loaded).
 pub const RENDER_PASSES: IntRange = IntRange { min: 0, max: 1000 };
 /// Solver iterations per call in a command-line run (`--max-iter`) and in the lab.
-pub const BATCH_MAX_ITER: IntRange = IntRange {
-    min: 1,
-    max: 10_000,
-};
+pub const BATCH_MAX_ITER: IntRange = IntRange { min: 1, max: 10_000 };
 
 // a link may ask for no more than a batch run allows
 const _: () = assert!(BATCH_PASSES.max >= PASSES.max && BATCH_MAX_ITER.max >= MAX_ITER.max);
@@ -92,22 +80,10 @@ mod tests {
     #[test]
     fn the_defaults_lie_in_their_ranges_and_the_threshold_default_is_offered() {
         let d = SmoothOptions::default();
-        assert!(
-            PASSES.contains(crate::smooth::DEFAULT_PASSES.into())
-                && MAX_ITER.contains(d.max_iter.into())
-        );
-        assert!(
-            BATCH_PASSES.contains(crate::smooth::DEFAULT_PASSES.into())
-                && BATCH_MAX_ITER.contains(d.max_iter.into())
-        );
-        assert!(
-            THRESHOLDS.contains(&d.threshold_deg)
-                && THRESHOLDS.iter().all(|&t| threshold_in_range(t))
-        );
-        assert!(
-            RENDER_PASSES.contains(0)
-                && RENDER_PASSES.contains(crate::smooth::DEFAULT_PASSES.into())
-        );
+        assert!(PASSES.contains(crate::smooth::DEFAULT_PASSES.into()) && MAX_ITER.contains(d.max_iter.into()));
+        assert!(BATCH_PASSES.contains(crate::smooth::DEFAULT_PASSES.into()) && BATCH_MAX_ITER.contains(d.max_iter.into()));
+        assert!(THRESHOLDS.contains(&d.threshold_deg) && THRESHOLDS.iter().all(|&t| threshold_in_range(t)));
+        assert!(RENDER_PASSES.contains(0) && RENDER_PASSES.contains(crate::smooth::DEFAULT_PASSES.into()));
     }
 
     #[test]
@@ -115,23 +91,10 @@ mod tests {
         assert_eq!(PASSES.words(), "a whole number from 1 to 100");
         assert!(!PASSES.contains(0) && PASSES.contains(100) && !PASSES.contains(101));
         assert!(NODE.contains(u32::MAX.into()) && !NODE.contains(u64::from(u32::MAX) + 1));
-        for (t, ok) in [
-            (0.0, false),
-            (1e-300, true),
-            (90.0, true),
-            (90.0001, false),
-            (f64::NAN, false),
-            (f64::INFINITY, false),
-        ] {
+        for (t, ok) in [(0.0, false), (1e-300, true), (90.0, true), (90.0001, false), (f64::NAN, false), (f64::INFINITY, false)] {
             assert_eq!(threshold_in_range(t), ok, "{t}");
         }
-        for (a, ok) in [
-            (0.0, true),
-            (-0.1, false),
-            (MAX_AMOUNT, true),
-            (2.5, false),
-            (f64::NAN, false),
-        ] {
+        for (a, ok) in [(0.0, true), (-0.1, false), (MAX_AMOUNT, true), (2.5, false), (f64::NAN, false)] {
             assert_eq!(amount_in_range(a), ok, "{a}");
         }
         assert_eq!(amount_words(), "a number from 0 to 2 (mean edge lengths)");
@@ -139,29 +102,14 @@ mod tests {
 
     #[test]
     fn only_the_combined_strategies_read_the_threshold_and_the_laplacians_never_solve() {
-        let with_threshold: Vec<&str> = Strategy::ALL
-            .iter()
-            .filter(|s| s.threshold_unused().is_none())
-            .map(|s| s.name())
-            .collect();
+        let with_threshold: Vec<&str> =
+            Strategy::ALL.iter().filter(|s| s.threshold_unused().is_none()).map(|s| s.name()).collect();
         assert_eq!(with_threshold, ["c1", "c2", "c3"]);
-        let without_solver: Vec<&str> = Strategy::ALL
-            .iter()
-            .filter(|s| s.max_iter_unused().is_some())
-            .map(|s| s.name())
-            .collect();
+        let without_solver: Vec<&str> =
+            Strategy::ALL.iter().filter(|s| s.max_iter_unused().is_some()).map(|s| s.name()).collect();
         assert_eq!(without_solver, ["laplace", "smart"]);
-        assert!(Strategy::Rules
-            .threshold_unused()
-            .unwrap()
-            .contains("Chen's rules decide by their own tests"));
-        assert_eq!(
-            Strategy::Opt.threshold_unused().unwrap(),
-            "only Freitag's C1, C2 and C3 use a threshold angle, not optimization only"
-        );
-        assert_eq!(
-            Strategy::Smart.max_iter_unused().unwrap(),
-            "the smart Laplacian never calls the solver, so it has no iterations to limit"
-        );
+        assert!(Strategy::Rules.threshold_unused().unwrap().contains("Chen's rules decide by their own tests"));
+        assert_eq!(Strategy::Opt.threshold_unused().unwrap(), "only Freitag's C1, C2 and C3 use a threshold angle, not optimization only");
+        assert_eq!(Strategy::Smart.max_iter_unused().unwrap(), "the smart Laplacian never calls the solver, so it has no iterations to limit");
     }
 }

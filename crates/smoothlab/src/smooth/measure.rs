@@ -21,11 +21,7 @@ pub struct StarQuality {
 
 impl StarQuality {
     /// Nothing measured yet: every minimum +∞, nothing inverted.
-    pub const BEST: StarQuality = StarQuality {
-        min_shape: f64::INFINITY,
-        min_sine: f64::INFINITY,
-        inverted: 0,
-    };
+    pub const BEST: StarQuality = StarQuality { min_shape: f64::INFINITY, min_sine: f64::INFINITY, inverted: 0 };
     /// The measure `m` of these.
     pub fn measure(&self, m: Measure) -> f64 {
         match m {
@@ -45,11 +41,7 @@ impl StarQuality {
 /// numbers the smoothers do not need.
 pub(crate) fn element_measures(kind: crate::mesh::ElementKind, p: &[DVec2; 9]) -> StarQuality {
     let q = measure_element::<false, false, true>(kind, p, |_, _, _| {});
-    StarQuality {
-        min_shape: q.shape,
-        min_sine: q.min_sine,
-        inverted: q.inverted as u32,
-    }
+    StarQuality { min_shape: q.shape, min_sine: q.min_sine, inverted: q.inverted as u32 }
 }
 
 /// The shape measure (α/β, [`Measure::Shape`]) of a star element with its free node at `x`
@@ -74,8 +66,7 @@ pub(crate) fn element_shape_at(e: &StarElement, x: DVec2) -> (f64, bool) {
 /// The sums of squared edge lengths for which [`triangle_shape_at`] takes its plain
 /// formula (2.4e-271, about 2^-899, to 2^900): within it the cross product and the
 /// quotient are normal doubles.
-const PLAIN_SQUARES: std::ops::RangeInclusive<f64> =
-    2.409_919_865_102_884e-271..=8.452_712_498_170_644e270;
+const PLAIN_SQUARES: std::ops::RangeInclusive<f64> = 2.409_919_865_102_884e-271..=8.452_712_498_170_644e270;
 
 /// Lo's α of the linear triangle (x, a, b) (the free node at `x`, then the element's next
 /// two corners in order) and whether it is inverted, from its three points directly (one
@@ -85,8 +76,7 @@ const PLAIN_SQUARES: std::ops::RangeInclusive<f64> =
 #[inline(always)]
 pub(crate) fn triangle_shape_at(a: DVec2, b: DVec2, x: DVec2) -> Option<(f64, bool)> {
     let (mut u, mut v, mut w) = (a - x, b - x, b - a);
-    let squares =
-        |u: DVec2, v: DVec2, w: DVec2| u.length_squared() + v.length_squared() + w.length_squared();
+    let squares = |u: DVec2, v: DVec2, w: DVec2| u.length_squared() + v.length_squared() + w.length_squared();
     if u == DVec2::ZERO && v == DVec2::ZERO {
         return Some((0.0, true)); // three coincident points: α 0, as lo_alpha_corner; det 0: inverted
     }
@@ -95,11 +85,7 @@ pub(crate) fn triangle_shape_at(a: DVec2, b: DVec2, x: DVec2) -> Option<(f64, bo
         // the squares leave the doubles: the same formula on the points scaled by a
         // power of two (exact, and before subtracting: differences of tiny coordinates
         // can be subnormal), so α is the same, bit for bit, at every scale
-        let m = u
-            .abs()
-            .max_element()
-            .max(v.abs().max_element())
-            .max(w.abs().max_element());
+        let m = u.abs().max_element().max(v.abs().max_element()).max(w.abs().max_element());
         if let Some(f) = crate::numeric::unit_factor(m) {
             let (a, b, x) = (f * a, f * b, f * x);
             (u, v, w) = (a - x, b - x, b - a);
@@ -118,18 +104,11 @@ pub(crate) fn triangle_shape_at(a: DVec2, b: DVec2, x: DVec2) -> Option<(f64, bo
 /// as two scalar ones): the smart Laplacian's test of a linear triangle before and after.
 /// The scalar function decides where either position needs more than the plain formula.
 #[inline]
-pub(crate) fn triangle_shape_at_both(
-    a: DVec2,
-    b: DVec2,
-    x: DVec2,
-    y: DVec2,
-) -> Option<((f64, bool), (f64, bool))> {
+pub(crate) fn triangle_shape_at_both(a: DVec2, b: DVec2, x: DVec2, y: DVec2) -> Option<((f64, bool), (f64, bool))> {
     let (u0, v0, u1, v1, w) = (a - x, b - x, a - y, b - y, b - a);
     let squares = |u: DVec2, v: DVec2| u.length_squared() + v.length_squared() + w.length_squared();
     let (d0, d1) = (squares(u0, v0), squares(u1, v1));
-    let plain = |u: DVec2, v: DVec2, d: f64| {
-        !(u == DVec2::ZERO && v == DVec2::ZERO) && PLAIN_SQUARES.contains(&d)
-    };
+    let plain = |u: DVec2, v: DVec2, d: f64| !(u == DVec2::ZERO && v == DVec2::ZERO) && PLAIN_SQUARES.contains(&d);
     if plain(u0, v0, d0) && plain(u1, v1, d1) {
         let (n0, n1) = (u0.perp_dot(v0), u1.perp_dot(v1));
         let q = DVec2::new(TWO_SQRT3 * n0, TWO_SQRT3 * n1) / DVec2::new(d0, d1);
@@ -175,11 +154,7 @@ pub(crate) fn is_inverted(kind: crate::mesh::ElementKind, p: &[DVec2; 9]) -> boo
         crate::mesh::ElementKind::Quad4 => linear_is_inverted::<4>(p),
         _ => None,
     };
-    linear.unwrap_or_else(|| {
-        corner_edges(kind, p)[..kind.corners()]
-            .iter()
-            .any(|(e1, e2)| e1.perp_dot(*e2) <= 0.0)
-    })
+    linear.unwrap_or_else(|| corner_edges(kind, p)[..kind.corners()].iter().any(|(e1, e2)| e1.perp_dot(*e2) <= 0.0))
 }
 
 /// [`is_inverted`] of element `e` of `mesh`: a linear triangle or quadrilateral from its
@@ -190,12 +165,8 @@ pub(crate) fn is_inverted(kind: crate::mesh::ElementKind, p: &[DVec2; 9]) -> boo
 pub(crate) fn mesh_element_is_inverted(mesh: &crate::mesh::Mesh, e: usize) -> bool {
     let (kind, ids, nodes) = (mesh.kind(e), mesh.element(e), mesh.nodes());
     let linear = match kind {
-        crate::mesh::ElementKind::Tri3 => {
-            linear_is_inverted::<3>(&std::array::from_fn::<_, 3, _>(|i| nodes[ids[i] as usize]))
-        }
-        crate::mesh::ElementKind::Quad4 => {
-            linear_is_inverted::<4>(&std::array::from_fn::<_, 4, _>(|i| nodes[ids[i] as usize]))
-        }
+        crate::mesh::ElementKind::Tri3 => linear_is_inverted::<3>(&std::array::from_fn::<_, 3, _>(|i| nodes[ids[i] as usize])),
+        crate::mesh::ElementKind::Quad4 => linear_is_inverted::<4>(&std::array::from_fn::<_, 4, _>(|i| nodes[ids[i] as usize])),
         _ => None,
     };
     linear.unwrap_or_else(|| is_inverted(kind, &mesh.element_points_array(e)))
@@ -206,12 +177,9 @@ pub(crate) fn mesh_element_is_inverted(mesh: &crate::mesh::Mesh, e: usize) -> bo
 /// beyond the range, where the general path decides.
 #[inline(always)]
 fn linear_is_inverted<const K: usize>(p: &[DVec2]) -> Option<bool> {
-    let e: [(DVec2, DVec2); K] =
-        std::array::from_fn(|i| (p[(i + 1) % K] - p[i], p[(i + K - 1) % K] - p[i]));
+    let e: [(DVec2, DVec2); K] = std::array::from_fn(|i| (p[(i + 1) % K] - p[i], p[(i + K - 1) % K] - p[i]));
     let m = crate::numeric::largest_component(e.iter().flat_map(|(u, v)| [*u, *v]));
-    crate::numeric::SAFE_SCALE
-        .contains(&m)
-        .then(|| e.iter().any(|(u, v)| u.perp_dot(*v) <= 0.0))
+    crate::numeric::SAFE_SCALE.contains(&m).then(|| e.iter().any(|(u, v)| u.perp_dot(*v) <= 0.0))
 }
 
 /// [`is_inverted`] of a star element with its free node at `x`; a linear triangle without
@@ -229,7 +197,5 @@ pub(super) fn is_inverted_at(el: &crate::objective::StarElement, x: DVec2) -> bo
     let s = el.slot as usize;
     let (a, b) = (el.pts[(s + 1) % 3], el.pts[(s + 2) % 3]);
     // corners C (free), A, B: (next − this, previous − this)
-    (a - x).perp_dot(b - x) <= 0.0
-        || (b - a).perp_dot(x - a) <= 0.0
-        || (x - b).perp_dot(a - b) <= 0.0
+    (a - x).perp_dot(b - x) <= 0.0 || (b - a).perp_dot(x - a) <= 0.0 || (x - b).perp_dot(a - b) <= 0.0
 }

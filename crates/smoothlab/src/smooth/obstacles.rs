@@ -34,9 +34,8 @@ pub fn untangling_obstacles(mesh: &Mesh) -> Vec<Obstacle> {
         let p = mesh.element_points_array(e);
         let edges = corner_edges(kind, &p);
         let fixed = |i: usize| !mesh.is_free(ids[i] as usize);
-        let coincident = (0..k)
-            .flat_map(|i| (i + 1..k).map(move |j| (i, j)))
-            .find(|&(i, j)| fixed(i) && fixed(j) && p[i] == p[j]);
+        let coincident =
+            (0..k).flat_map(|i| (i + 1..k).map(move |j| (i, j))).find(|&(i, j)| fixed(i) && fixed(j) && p[i] == p[j]);
         if let Some((i, j)) = coincident {
             if edges[..k].iter().any(|(e1, e2)| e1.perp_dot(*e2) <= 0.0) {
                 out.push(Obstacle {
@@ -93,13 +92,7 @@ mod tests {
         // two triangles about the free node 0, and triangle 2 (1, 4, 3), clockwise and
         // made of fixed nodes only
         let m = mesh(
-            &[
-                (0.0, 0.0, 0),
-                (1.0, 0.0, 1),
-                (0.0, 1.0, 1),
-                (-1.0, 0.0, 1),
-                (0.0, -1.0, 1),
-            ],
+            &[(0.0, 0.0, 0), (1.0, 0.0, 1), (0.0, 1.0, 1), (-1.0, 0.0, 1), (0.0, -1.0, 1)],
             &[[0, 1, 2], [0, 2, 3], [1, 4, 3]],
         );
         let o = untangling_obstacles(&m);
@@ -108,13 +101,7 @@ mod tests {
         assert!(o[0].reason.contains("all fixed"), "{}", o[0].reason);
         // with one of its nodes free it may be untangled: not listed
         let m = mesh(
-            &[
-                (0.0, 0.0, 0),
-                (1.0, 0.0, 1),
-                (0.0, 1.0, 1),
-                (-1.0, 0.0, 1),
-                (0.0, -1.0, 0),
-            ],
+            &[(0.0, 0.0, 0), (1.0, 0.0, 1), (0.0, 1.0, 1), (-1.0, 0.0, 1), (0.0, -1.0, 0)],
             &[[0, 1, 2], [0, 2, 3], [1, 4, 3]],
         );
         assert_eq!(untangling_obstacles(&m), []);
@@ -124,21 +111,11 @@ mod tests {
     fn coincident_fixed_nodes_are_named() {
         // nodes 1 and 3 fixed at the same point: triangle 2 (0, 3, 1) has a side of no length
         let m = mesh(
-            &[
-                (0.2, 0.2, 0),
-                (1.0, 0.0, 1),
-                (0.0, 1.0, 1),
-                (1.0, 0.0, 1),
-                (1.0, 1.0, 1),
-            ],
+            &[(0.2, 0.2, 0), (1.0, 0.0, 1), (0.0, 1.0, 1), (1.0, 0.0, 1), (1.0, 1.0, 1)],
             &[[0, 1, 2], [1, 4, 2], [0, 3, 1]],
         );
         let o = untangling_obstacles(&m);
-        assert!(
-            o.iter()
-                .any(|o| o.element == 2 && o.reason.contains("nodes 3 and 1")),
-            "{o:?}"
-        );
+        assert!(o.iter().any(|o| o.element == 2 && o.reason.contains("nodes 3 and 1")), "{o:?}");
         // valid elements are never listed
         assert!(o.iter().all(|o| o.element == 2), "{o:?}");
     }

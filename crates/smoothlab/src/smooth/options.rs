@@ -113,10 +113,9 @@ impl Strategy {
     /// this strategy, if it does nothing (the Laplacian strategies never call the solver).
     pub fn max_iter_unused(self) -> Option<String> {
         match self {
-            Strategy::Laplace | Strategy::Smart => Some(format!(
-                "{} never calls the solver, so it has no iterations to limit",
-                self.words()
-            )),
+            Strategy::Laplace | Strategy::Smart => {
+                Some(format!("{} never calls the solver, so it has no iterations to limit", self.words()))
+            }
             Strategy::Opt | Strategy::C1 | Strategy::C2 | Strategy::C3 | Strategy::Rules => None,
         }
     }
@@ -324,24 +323,15 @@ impl SmoothOptions {
             )));
         }
         if self.untangle_sweeps > 1000 {
-            return Err(Error::invalid(format!(
-                "{} untangling sweeps: give 0 to 1000",
-                self.untangle_sweeps
-            )));
+            return Err(Error::invalid(format!("{} untangling sweeps: give 0 to 1000", self.untangle_sweeps)));
         }
         if self.priority_bins == 0 || self.priority_bins > 1000 {
-            return Err(Error::invalid(format!(
-                "{} priority bins: give 1 to 1000",
-                self.priority_bins
-            )));
+            return Err(Error::invalid(format!("{} priority bins: give 1 to 1000", self.priority_bins)));
         }
         Ok(())
     }
     /// The solver settings these options imply (history off).
     pub fn solve_options(&self) -> SolveOptions {
-        SolveOptions {
-            newton: self.newton,
-            ..SolveOptions::default().with_max_iter(self.max_iter)
-        }
+        SolveOptions { newton: self.newton, ..SolveOptions::default().with_max_iter(self.max_iter) }
     }
 }

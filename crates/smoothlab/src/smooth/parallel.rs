@@ -57,9 +57,7 @@ impl Colouring {
                     }
                 }
             }
-            let c = (0..colours)
-                .find(|&c| stamp[c] != node as u32 + 1)
-                .unwrap_or(colours);
+            let c = (0..colours).find(|&c| stamp[c] != node as u32 + 1).unwrap_or(colours);
             if c == colours {
                 colours += 1;
                 stamp.push(0);
@@ -88,12 +86,7 @@ impl Colouring {
                 fill[c as usize] += 1;
             }
         }
-        Colouring {
-            start,
-            nodes,
-            mesh_nodes: mesh.node_count(),
-            mesh_elements: mesh.element_count(),
-        }
+        Colouring { start, nodes, mesh_nodes: mesh.node_count(), mesh_elements: mesh.element_count() }
     }
 
     /// Number of colours (independent sets).
@@ -199,8 +192,7 @@ impl ColouredSmoother {
                 Execution::InPlace => counts.merge(self.main.visit_all(mesh, nodes, objective)),
                 Execution::Deferred => {
                     self.moves.clear();
-                    self.moves
-                        .resize(nodes.len(), (DVec2::ZERO, NodeOutcome::default()));
+                    self.moves.resize(nodes.len(), (DVec2::ZERO, NodeOutcome::default()));
                     decide_all(&mut self.main, mesh, nodes, objective, &mut self.moves);
                     for (&n, &(x, o)) in nodes.iter().zip(&self.moves) {
                         counts.add(o);
@@ -216,18 +208,12 @@ impl ColouredSmoother {
 
     /// One coloured pass with the statistics of [`Smoother::pass`]. `clock` returns
     /// milliseconds; [`PassRecord::elapsed_ms`] times the node loop.
-    pub fn pass(
-        &mut self,
-        mesh: &mut Mesh,
-        objective: &(dyn Objective + Sync),
-        clock: &dyn Fn() -> f64,
-    ) -> PassRecord {
+    pub fn pass(&mut self, mesh: &mut Mesh, objective: &(dyn Objective + Sync), clock: &dyn Fn() -> f64) -> PassRecord {
         self.passes += 1;
         let t0 = clock();
         let counts = self.sweep(mesh, objective);
         let elapsed = clock() - t0;
-        self.main
-            .record(mesh, objective, self.passes, counts, elapsed, clock)
+        self.main.record(mesh, objective, self.passes, counts, elapsed, clock)
     }
 }
 
@@ -270,19 +256,8 @@ mod tests {
         vec![
             ("rand2d", r.clone()),
             ("rand2d perturbed", perturb(&r, 0.45, 9).unwrap()),
-            (
-                "quad grid",
-                perturb(
-                    &crate::generate::grid(24, 20, GridKind::Quad).unwrap(),
-                    0.3,
-                    4,
-                )
-                .unwrap(),
-            ),
-            (
-                "quadratic mixed plate",
-                perturb(&plate(PlateKind::Mixed, 2, 3).unwrap(), 0.2, 6).unwrap(),
-            ),
+            ("quad grid", perturb(&crate::generate::grid(24, 20, GridKind::Quad).unwrap(), 0.3, 4).unwrap()),
+            ("quadratic mixed plate", perturb(&plate(PlateKind::Mixed, 2, 3).unwrap(), 0.2, 6).unwrap()),
         ]
     }
 
@@ -293,15 +268,9 @@ mod tests {
             let mut colour_of = vec![NONE; mesh.node_count()];
             for c in 0..col.colour_count() {
                 assert!(!col.colour(c).is_empty(), "{name}: empty colour {c}");
-                assert!(
-                    col.colour(c).windows(2).all(|w| w[0] < w[1]),
-                    "{name}: colour {c} not in node order"
-                );
+                assert!(col.colour(c).windows(2).all(|w| w[0] < w[1]), "{name}: colour {c} not in node order");
                 for &n in col.colour(c) {
-                    assert_eq!(
-                        colour_of[n as usize], NONE,
-                        "{name}: node {n} coloured twice"
-                    );
+                    assert_eq!(colour_of[n as usize], NONE, "{name}: node {n} coloured twice");
                     colour_of[n as usize] = c as u32;
                 }
             }
@@ -309,26 +278,14 @@ mod tests {
                 assert_eq!(c != NONE, mesh.is_free(n), "{name}: node {n}");
             }
             for e in 0..mesh.element_count() {
-                let mut seen: Vec<u32> = mesh
-                    .element(e)
-                    .iter()
-                    .map(|&m| colour_of[m as usize])
-                    .filter(|&c| c != NONE)
-                    .collect();
+                let mut seen: Vec<u32> =
+                    mesh.element(e).iter().map(|&m| colour_of[m as usize]).filter(|&c| c != NONE).collect();
                 let k = seen.len();
                 seen.sort_unstable();
                 seen.dedup();
-                assert_eq!(
-                    seen.len(),
-                    k,
-                    "{name}: element {e} has two nodes of one colour"
-                );
+                assert_eq!(seen.len(), k, "{name}: element {e} has two nodes of one colour");
             }
-            assert!(
-                col.colour_count() <= 12,
-                "{name}: {} colours",
-                col.colour_count()
-            );
+            assert!(col.colour_count() <= 12, "{name}: {} colours", col.colour_count());
         }
     }
 
@@ -350,25 +307,19 @@ mod tests {
                 let opts = SmoothOptions::default().with_strategy(strategy);
                 let mut a = mesh.clone();
                 let mut b = mesh.clone();
-                let mut sa = ColouredSmoother::new(&a, opts)
-                    .unwrap()
-                    .with_execution(Execution::InPlace);
-                let mut sb = ColouredSmoother::new(&b, opts)
-                    .unwrap()
-                    .with_execution(Execution::Deferred);
+                let mut sa = ColouredSmoother::new(&a, opts).unwrap().with_execution(Execution::InPlace);
+                let mut sb = ColouredSmoother::new(&b, opts).unwrap().with_execution(Execution::Deferred);
                 for _ in 0..2 {
                     let ca = sa.sweep(&mut a, &*obj);
                     let cb = in_pool(|| sb.sweep(&mut b, &*obj));
                     assert_eq!(ca, cb, "{name} {strategy:?} {kind}");
                 }
-                let same =
-                    a.nodes().iter().zip(b.nodes()).all(|(p, q)| {
-                        p.x.to_bits() == q.x.to_bits() && p.y.to_bits() == q.y.to_bits()
-                    });
-                assert!(
-                    same,
-                    "{name} {strategy:?} {kind}: deferred and in-place passes differ"
-                );
+                let same = a
+                    .nodes()
+                    .iter()
+                    .zip(b.nodes())
+                    .all(|(p, q)| p.x.to_bits() == q.x.to_bits() && p.y.to_bits() == q.y.to_bits());
+                assert!(same, "{name} {strategy:?} {kind}: deferred and in-place passes differ");
                 assert!(
                     a.nodes() != mesh.nodes(),
                     "{name} {strategy:?} {kind}: nothing moved, the check shows nothing"
@@ -379,11 +330,7 @@ mod tests {
 
     #[cfg(all(feature = "parallel", not(target_arch = "wasm32")))]
     fn in_pool<R: Send>(f: impl FnOnce() -> R + Send) -> R {
-        rayon::ThreadPoolBuilder::new()
-            .num_threads(4)
-            .build()
-            .unwrap()
-            .install(f)
+        rayon::ThreadPoolBuilder::new().num_threads(4).build().unwrap().install(f)
     }
 
     #[cfg(not(all(feature = "parallel", not(target_arch = "wasm32"))))]
@@ -396,25 +343,19 @@ mod tests {
     #[test]
     fn deferred_pass_over_dependent_nodes_differs() {
         let mesh = perturb(&rand2d(400, 10, 5).unwrap(), 0.3, 2).unwrap();
-        let free: Vec<u32> = (0..mesh.node_count() as u32)
-            .map(|n| if mesh.is_free(n as usize) { 0 } else { NONE })
-            .collect();
+        let free: Vec<u32> =
+            (0..mesh.node_count() as u32).map(|n| if mesh.is_free(n as usize) { 0 } else { NONE }).collect();
         let one = Colouring::from_colours(&mesh, &free, 1);
         let obj = objective(ObjectiveKind::SmoothShape);
         let opts = SmoothOptions::default().with_strategy(Strategy::Laplace);
         let run = |execution| {
             let mut m = mesh.clone();
-            let mut s = ColouredSmoother::new(&m, opts)
-                .unwrap()
-                .with_execution(execution);
+            let mut s = ColouredSmoother::new(&m, opts).unwrap().with_execution(execution);
             s.colouring = one.clone();
             s.sweep(&mut m, &*obj);
             m
         };
-        assert_ne!(
-            run(Execution::InPlace).nodes(),
-            run(Execution::Deferred).nodes()
-        );
+        assert_ne!(run(Execution::InPlace).nodes(), run(Execution::Deferred).nodes());
     }
 
     #[test]
@@ -428,11 +369,7 @@ mod tests {
         assert_eq!(r.after.inverted, 0);
         let mut big = rand2d(500, 10, 2).unwrap();
         let r = s.pass(&mut big, &*obj, &|| 0.0);
-        assert_eq!(
-            r.counts.visits as usize,
-            big.free_count(),
-            "the colouring follows the mesh"
-        );
+        assert_eq!(r.counts.visits as usize, big.free_count(), "the colouring follows the mesh");
         assert_eq!(s.colouring().order().len(), big.free_count());
     }
 }

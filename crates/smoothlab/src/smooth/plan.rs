@@ -63,11 +63,7 @@ impl<S: DriverStar> Smoother<S> {
     }
 
     /// [`plan_some`](Smoother::plan_some) over any [`StarView`].
-    pub(crate) fn plan_some_in<V: StarView<Mesh = S::Mesh>>(
-        &mut self,
-        view: &mut V,
-        max_stars: usize,
-    ) -> bool {
+    pub(crate) fn plan_some_in<V: StarView<Mesh = S::Mesh>>(&mut self, view: &mut V, max_stars: usize) -> bool {
         let done = self.plan_some_stars(view, max_stars);
         if done {
             self.note_tangled(view);
@@ -84,11 +80,7 @@ impl<S: DriverStar> Smoother<S> {
             && (0..view.mesh().element_count()).any(|e| view.is_inverted(e));
     }
 
-    fn plan_some_stars<V: StarView<Mesh = S::Mesh>>(
-        &mut self,
-        view: &mut V,
-        max_stars: usize,
-    ) -> bool {
+    fn plan_some_stars<V: StarView<Mesh = S::Mesh>>(&mut self, view: &mut V, max_stars: usize) -> bool {
         let n = view.mesh().node_count();
         if self.plan_next >= n {
             return true;
@@ -96,8 +88,7 @@ impl<S: DriverStar> Smoother<S> {
         match self.options.order {
             Order::Input => {
                 let mesh = view.mesh();
-                self.schedule
-                    .extend((0..n as u32).filter(|&i| mesh.is_free(i as usize)));
+                self.schedule.extend((0..n as u32).filter(|&i| mesh.is_free(i as usize)));
                 self.plan_next = n;
                 true
             }
@@ -134,11 +125,7 @@ impl<S: DriverStar> Smoother<S> {
         let q = |i: usize| tie_scale(quality[i]);
         // sorted as (key, node) pairs, not through a comparator that looks the qualities up
         // (random reads over the whole array); the key orders as `f64::total_cmp` does
-        let mut keyed: Vec<(u64, u32)> = self
-            .ranked
-            .iter()
-            .map(|&i| (total_order_key(q(i as usize)), i))
-            .collect();
+        let mut keyed: Vec<(u64, u32)> = self.ranked.iter().map(|&i| (total_order_key(q(i as usize)), i)).collect();
         keyed.sort_unstable();
         self.ranked.clear();
         self.ranked.extend(keyed.iter().map(|&(_, i)| i));
@@ -153,11 +140,7 @@ impl<S: DriverStar> Smoother<S> {
                 return 0;
             }
             let bin = ((v - lo) / range * bins as f64).floor();
-            let bin = if bin.is_nan() {
-                0
-            } else {
-                (bin.max(0.0) as u32).min(bins - 1)
-            };
+            let bin = if bin.is_nan() { 0 } else { (bin.max(0.0) as u32).min(bins - 1) };
             bins - 1 - bin
         };
         for level in (0..bins).rev() {
@@ -210,12 +193,8 @@ impl<S: DriverStar> Smoother<S> {
         let mut ranked: Vec<(u64, u32)> = Vec::with_capacity(self.revisits.len());
         for &n in &self.revisits {
             self.marked[n as usize] = false;
-            self.star
-                .gather_for_measures(view.star_mesh(n as usize), n as usize);
-            ranked.push((
-                total_order_key(tie_scale(self.star.min_shape_at(self.star.x0()))),
-                n,
-            ));
+            self.star.gather_for_measures(view.star_mesh(n as usize), n as usize);
+            ranked.push((total_order_key(tie_scale(self.star.min_shape_at(self.star.x0()))), n));
         }
         ranked.sort_unstable();
         self.revisits.clear();

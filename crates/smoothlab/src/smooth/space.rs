@@ -6,12 +6,10 @@
 use crate::mesh::Mesh;
 use crate::objective::{NodeStar, Point, Star};
 
+use super::measure::{element_measures, element_shape_at, is_inverted, is_inverted_at, star_quality, star_shape};
 use super::accept::{ElementScore, Size, Verdict, MIN_SIZE_RATIO};
-use super::measure::{
-    element_measures, element_shape_at, is_inverted, is_inverted_at, star_quality, star_shape,
-};
-use super::{Measure, StarQuality};
 use crate::quality::Reading;
+use super::{Measure, StarQuality};
 
 /// A mesh as the drivers read it: free nodes, their positions and neighbours, and the
 /// elements' corners (for the untangling sweeps).
@@ -137,12 +135,7 @@ pub trait DriverStar: NodeStar + Default {
     /// [`reads_within`](Self::reads_within) of node `n`'s star read straight from the
     /// mesh, where a kind of star has such a shortcut (a planar star of linear elements:
     /// no node follows `n`); `None` otherwise (the default), and the gathered star decides.
-    fn reads_within_from_mesh(
-        _mesh: &Self::Mesh,
-        _n: usize,
-        _x: Self::Point,
-        _bounds: &Reading,
-    ) -> Option<bool> {
+    fn reads_within_from_mesh(_mesh: &Self::Mesh, _n: usize, _x: Self::Point, _bounds: &Reading) -> Option<bool> {
         None
     }
     /// Whether element `e` of `mesh` is known to be valid with its corners where they are
@@ -155,11 +148,7 @@ pub trait DriverStar: NodeStar + Default {
     /// The smart Laplacian's test read straight from the mesh, where a kind of star has
     /// such a shortcut (the planar star of linear triangles); `None` otherwise (the
     /// default), and the gathered star decides.
-    fn smart_from_mesh(
-        _mesh: &Self::Mesh,
-        _n: usize,
-        _measure: Measure,
-    ) -> Option<FastSmart<Self::Point>> {
+    fn smart_from_mesh(_mesh: &Self::Mesh, _n: usize, _measure: Measure) -> Option<FastSmart<Self::Point>> {
         None
     }
     /// [`shape_at`](Self::shape_at)`(x0).0` of node `n`'s star read straight from the mesh,
@@ -234,31 +223,21 @@ impl SmoothMesh for Mesh {
         match stage {
             0 => {
                 let lists = self.node_elements(n).len() ^ Mesh::neighbours(self, n).len();
-                lists as u32
-                    ^ self.fixed()[n] as u32
-                    ^ self.role(n) as u32
-                    ^ self.nodes()[n].x.to_bits() as u32
+                lists as u32 ^ self.fixed()[n] as u32 ^ self.role(n) as u32 ^ self.nodes()[n].x.to_bits() as u32
             }
             1 => first(self.node_elements(n)) ^ first(Mesh::neighbours(self, n)),
-            2 => elems().fold(0, |a, e| {
-                a ^ self.kind(e) as u32 ^ self.element(e).len() as u32
-            }),
+            2 => elems().fold(0, |a, e| a ^ self.kind(e) as u32 ^ self.element(e).len() as u32),
             3 => elems().fold(0, |a, e| a ^ first(self.element(e))),
-            _ => elems()
-                .flat_map(|e| self.element(e))
-                .fold(0, |a, &m| a ^ self.nodes()[m as usize].x.to_bits() as u32),
+            _ => elems().flat_map(|e| self.element(e)).fold(0, |a, &m| a ^ self.nodes()[m as usize].x.to_bits() as u32),
         }
     }
     fn touches_curved_boundary(&self, n: usize) -> bool {
         self.is_on_curved_boundary(n)
-            || Mesh::neighbours(self, n)
+            || Mesh::neighbours(self, n).iter().any(|&m| self.is_on_curved_boundary(m as usize))
+            || self
+                .node_elements(n)
                 .iter()
-                .any(|&m| self.is_on_curved_boundary(m as usize))
-            || self.node_elements(n).iter().any(|&e| {
-                self.element(e as usize)
-                    .iter()
-                    .any(|&m| self.is_on_curved_boundary(m as usize))
-            })
+                .any(|&e| self.element(e as usize).iter().any(|&m| self.is_on_curved_boundary(m as usize)))
     }
 }
 
@@ -295,14 +274,8 @@ impl DriverStar for Star {
             let ((q0, inv0), (q1, inv1)) = match m {
                 Measure::Shape => (element_shape_at(e, x0), element_shape_at(e, c)),
                 Measure::MinSine => {
-                    let (q0, q1) = (
-                        element_measures(e.kind, &e.pts),
-                        element_measures(e.kind, &e.at(c)),
-                    );
-                    (
-                        (q0.min_sine, q0.inverted > 0),
-                        (q1.min_sine, q1.inverted > 0),
-                    )
+                    let (q0, q1) = (element_measures(e.kind, &e.pts), element_measures(e.kind, &e.at(c)));
+                    ((q0.min_sine, q0.inverted > 0), (q1.min_sine, q1.inverted > 0))
                 }
             };
             if !inv0 && inv1 {
@@ -314,10 +287,7 @@ impl DriverStar for Star {
         after > before
     }
     fn inverted_now(&self) -> usize {
-        self.elems
-            .iter()
-            .filter(|e| is_inverted(e.kind, &e.pts))
-            .count()
+        self.elems.iter().filter(|e| is_inverted(e.kind, &e.pts)).count()
     }
     fn inverted_at(&self, x: glam::DVec2) -> usize {
         self.elems.iter().filter(|e| is_inverted_at(e, x)).count()
@@ -340,31 +310,17 @@ impl DriverStar for Star {
             let (after, a) = ElementScore::planar_unsized(e.kind, &at, m);
             // the sizes measured only where their determinants do not decide
             v.add_deciding_size(&before, &after, || {
-                Size::floor_kept_for_certain(b, a)
-                    || ElementScore::planar(e.kind, &at, m).size.at_least(
-                        MIN_SIZE_RATIO,
-                        &ElementScore::planar(e.kind, &e.pts, m).size,
-                    )
+                Size::floor_kept_for_certain(b, a) || ElementScore::planar(e.kind, &at, m).size.at_least(MIN_SIZE_RATIO, &ElementScore::planar(e.kind, &e.pts, m).size)
             });
         }
         v
     }
     fn reads_within(&self, _mesh: &Mesh, x: glam::DVec2, bounds: &Reading) -> bool {
-        self.elems
-            .iter()
-            .all(|e| Reading::planar_within(e.kind, &e.at(x), bounds))
+        self.elems.iter().all(|e| Reading::planar_within(e.kind, &e.at(x), bounds))
     }
-    fn reads_within_from_mesh(
-        mesh: &Mesh,
-        n: usize,
-        x: glam::DVec2,
-        bounds: &Reading,
-    ) -> Option<bool> {
+    fn reads_within_from_mesh(mesh: &Mesh, n: usize, x: glam::DVec2, bounds: &Reading) -> Option<bool> {
         let elems = mesh.node_elements(n);
-        if elems
-            .iter()
-            .any(|&e| mesh.kind(e as usize).node_count() > mesh.kind(e as usize).corners())
-        {
+        if elems.iter().any(|&e| mesh.kind(e as usize).node_count() > mesh.kind(e as usize).corners()) {
             return None;
         }
         Some(elems.iter().all(|&e| {

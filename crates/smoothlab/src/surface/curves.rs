@@ -33,11 +33,7 @@ impl Curves {
         let nearest = |[a, b]: [u32; 2]| {
             let (pa, pb) = (self.origin[a as usize], self.origin[b as usize]);
             let d = pb - pa;
-            let t = if d.length_squared() > 0.0 {
-                ((p - pa).dot(d) / d.length_squared()).clamp(0.0, 1.0)
-            } else {
-                0.0
-            };
+            let t = if d.length_squared() > 0.0 { ((p - pa).dot(d) / d.length_squared()).clamp(0.0, 1.0) } else { 0.0 };
             (pa + t * d, t)
         };
         let mut seg = from;
@@ -51,12 +47,7 @@ impl Curves {
             } else {
                 break;
             };
-            let Some(&next) = self.nbrs[end as usize]
-                .iter()
-                .find(|&&m| m != other && m != NONE)
-            else {
-                break;
-            };
+            let Some(&next) = self.nbrs[end as usize].iter().find(|&&m| m != other && m != NONE) else { break };
             let cand = [end, next];
             let (qc, tc) = nearest(cand);
             if (qc - p).length_squared() < (q - p).length_squared() {
@@ -110,10 +101,7 @@ impl Surface {
                 nbrs[i] = [NONE; 2];
             }
         }
-        let curves = Curves {
-            nbrs,
-            origin: self.points.clone(),
-        };
+        let curves = Curves { nbrs, origin: self.points.clone() };
         self.flat.release(|i| curves.slides(i));
         self.curve_hint = (0..n).map(|i| [i as u32, curves.nbrs[i][0]]).collect();
         self.curves = Some(Arc::new(curves));
@@ -126,9 +114,7 @@ impl Surface {
 
     /// Moves sliding node `n` to the nearest point of its curve to `p`.
     pub(crate) fn slide_to(&mut self, n: usize, p: DVec3) {
-        let Some(curves) = self.curves.clone() else {
-            return;
-        };
+        let Some(curves) = self.curves.clone() else { return };
         if let Reference::Analytic(a) = &*self.reference {
             if let Some(q) = a.on_curve(p, curves.origin[n]) {
                 self.points[n] = q;

@@ -87,11 +87,7 @@ impl Surface {
     ) -> Result<Surface> {
         orient(&mut flat, &points, numbers)?;
         flat.mark_curved_boundary(|e| {
-            let (a, b, m) = (
-                points[e.a as usize],
-                points[e.b as usize],
-                points[e.mid as usize],
-            );
+            let (a, b, m) = (points[e.a as usize], points[e.b as usize], points[e.mid as usize]);
             let chord = b - a;
             let off = (m - a).cross(chord).length() / chord.length().max(f64::MIN_POSITIVE);
             off > 1e-6 * chord.length()
@@ -106,13 +102,7 @@ impl Surface {
             Some(a) => Reference::Analytic(a),
             None => {
                 let (part, side) = (features.parts(), features.sides());
-                let facets = Facets::new(
-                    &points,
-                    flat.kinds(),
-                    |e| flat.element(e),
-                    |e| part[e],
-                    |e| side[e],
-                );
+                let facets = Facets::new(&points, flat.kinds(), |e| flat.element(e), |e| part[e], |e| side[e]);
                 if facets.is_folded() {
                     features = Features::new(&flat, &points, given.as_deref(), Judge::Tangled);
                     let part = features.parts();
@@ -138,9 +128,7 @@ impl Surface {
                 let on_curve = match across(&flat, e, a, b) {
                     None => true,
                     Some((f, _)) if a < b => match analytic {
-                        Some(an) => {
-                            an.on_feature(points[a as usize]) && an.on_feature(points[b as usize])
-                        }
+                        Some(an) => an.on_feature(points[a as usize]) && an.on_feature(points[b as usize]),
                         None => features.is_edge(e, f, a, b),
                     },
                     Some(_) => false,
@@ -182,17 +170,8 @@ impl Surface {
     }
 
     /// The surface of the parts a builder made, with why its points were not planar.
-    pub(crate) fn from_surface_parts(
-        parts: SurfaceParts,
-        analytic: Option<Analytic>,
-    ) -> Result<Surface> {
-        let SurfaceParts {
-            points,
-            mesh,
-            element_numbers,
-            flags_given,
-            not_planar,
-        } = parts;
+    pub(crate) fn from_surface_parts(parts: SurfaceParts, analytic: Option<Analytic>) -> Result<Surface> {
+        let SurfaceParts { points, mesh, element_numbers, flags_given, not_planar } = parts;
         let mut s = Self::from_parts(points, mesh, analytic, flags_given, &element_numbers)?;
         s.not_planar = not_planar;
         Ok(s)
@@ -246,11 +225,7 @@ impl Surface {
     pub fn reference_normal(&self, e: usize) -> DVec3 {
         let ids = self.flat.element(e);
         let k = self.flat.kind(e).corners();
-        let centre = ids[..k]
-            .iter()
-            .map(|&i| self.points[i as usize])
-            .sum::<DVec3>()
-            / k as f64;
+        let centre = ids[..k].iter().map(|&i| self.points[i as usize]).sum::<DVec3>() / k as f64;
         match self.reference.element_hint(e) {
             Some(hint) => self.reference.project(centre, hint).normal,
             None => self.project_near(centre, ids[0] as usize).normal,
@@ -325,10 +300,7 @@ impl Surface {
         if edges.is_empty() {
             return 0.0;
         }
-        edges
-            .iter()
-            .map(|e| (self.points[e.a as usize] - self.points[e.b as usize]).length())
-            .sum::<f64>()
+        edges.iter().map(|e| (self.points[e.a as usize] - self.points[e.b as usize]).length()).sum::<f64>()
             / edges.len() as f64
     }
 }
@@ -339,9 +311,7 @@ fn element_normal(mesh: &Mesh, points: &[DVec3], e: usize) -> DVec3 {
     let ids = mesh.element(e);
     let k = mesh.kind(e).corners();
     let o = points[ids[0] as usize];
-    (0..k)
-        .map(|i| (points[ids[i] as usize] - o).cross(points[ids[(i + 1) % k] as usize] - o))
-        .sum()
+    (0..k).map(|i| (points[ids[i] as usize] - o).cross(points[ids[(i + 1) % k] as usize] - o)).sum()
 }
 
 /// The other element across corner edge `a → b` of an element, and whether it runs the
@@ -354,9 +324,7 @@ fn across(mesh: &Mesh, e: usize, a: u32, b: u32) -> Option<(usize, bool)> {
         }
         let ids = mesh.element(f);
         let k = mesh.kind(f).corners();
-        let Some(i) = ids[..k].iter().position(|&x| x == a) else {
-            continue;
-        };
+        let Some(i) = ids[..k].iter().position(|&x| x == a) else { continue };
         if ids[(i + 1) % k] == b {
             return Some((f, true));
         }
@@ -420,11 +388,7 @@ fn orient(mesh: &mut Mesh, points: &[DVec3], numbers: &crate::error::Numbering) 
             let v: f64 = (1..k - 1).map(|i| p(0).dot(p(i).cross(p(i + 1)))).sum();
             volume += if flip[e] { -v } else { v };
         }
-        let reverse_part = if closed {
-            volume < 0.0
-        } else {
-            2 * flipped > members.len()
-        };
+        let reverse_part = if closed { volume < 0.0 } else { 2 * flipped > members.len() };
         if reverse_part {
             for &e in &members {
                 flip[e] = !flip[e];
@@ -492,9 +456,7 @@ enum Turn {
 
 impl<'a> Features<'a> {
     fn new(mesh: &'a Mesh, points: &'a [DVec3], fixed: Option<&'a [bool]>, judge: Judge) -> Self {
-        let normal = (0..mesh.element_count())
-            .map(|e| element_normal(mesh, points, e).try_normalize())
-            .collect();
+        let normal = (0..mesh.element_count()).map(|e| element_normal(mesh, points, e).try_normalize()).collect();
         let mut f = Features {
             mesh,
             points,
@@ -518,13 +480,8 @@ impl<'a> Features<'a> {
     /// [`FEATURE_ANGLE_DEG`], a fold beyond [`FOLD_ANGLE_DEG`], a crease between (and
     /// smooth where either has no normal).
     fn turn(&self, e: usize, f: usize) -> Turn {
-        let (cos, fold) = (
-            FEATURE_ANGLE_DEG.to_radians().cos(),
-            FOLD_ANGLE_DEG.to_radians().cos(),
-        );
-        let (Some(n1), Some(n2)) = (self.normal[e], self.normal[f]) else {
-            return Turn::Smooth;
-        };
+        let (cos, fold) = (FEATURE_ANGLE_DEG.to_radians().cos(), FOLD_ANGLE_DEG.to_radians().cos());
+        let (Some(n1), Some(n2)) = (self.normal[e], self.normal[f]) else { return Turn::Smooth };
         let c = n1.dot(n2);
         if c >= cos {
             Turn::Smooth
@@ -542,9 +499,7 @@ impl<'a> Features<'a> {
     /// file.
     fn is_edge(&self, e: usize, f: usize, a: u32, b: u32) -> bool {
         match (self.judge, self.fixed) {
-            (Judge::Tangled, fixed) => {
-                fixed.is_some_and(|fixed| fixed[a as usize] && fixed[b as usize])
-            }
+            (Judge::Tangled, fixed) => fixed.is_some_and(|fixed| fixed[a as usize] && fixed[b as usize]),
             (Judge::Angles, Some(fixed)) if !(fixed[a as usize] && fixed[b as usize]) => false,
             (Judge::Angles, _) => match self.turn(e, f) {
                 Turn::Smooth => false,
@@ -557,8 +512,7 @@ impl<'a> Features<'a> {
     /// Whether elements `e` and `f` lie in different sheets of at least
     /// [`FOLD_SHEET_ELEMENTS`] elements each.
     fn parts_sheets(&self, e: usize, f: usize) -> bool {
-        self.sheet[e] != self.sheet[f]
-            && self.sheet_elements[e].min(self.sheet_elements[f]) >= FOLD_SHEET_ELEMENTS
+        self.sheet[e] != self.sheet[f] && self.sheet_elements[e].min(self.sheet_elements[f]) >= FOLD_SHEET_ELEMENTS
     }
 
     /// Nodes on feature curves: the ends (and mid-side node) of every feature edge.
@@ -574,9 +528,7 @@ impl<'a> Features<'a> {
                 if a > b {
                     continue;
                 }
-                let Some((f, _)) = across(mesh, e, a, b) else {
-                    continue;
-                };
+                let Some((f, _)) = across(mesh, e, a, b) else { continue };
                 if self.is_edge(e, f, a, b) {
                     feature[a as usize] = true;
                     feature[b as usize] = true;

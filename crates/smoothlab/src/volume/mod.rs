@@ -15,8 +15,8 @@
 use glam::DVec3;
 
 use crate::error::{listed, Error, Numbering, Result};
-use crate::mesh::{FixedSpec, MeshBuilder, NodeRole};
 pub use crate::mesh::{VolumeKind, TET10_EDGES};
+use crate::mesh::{FixedSpec, MeshBuilder, NodeRole};
 use crate::numeric::order::sort_stable_by_key;
 use crate::quality::solid::{solid_measures, validity, SolidMeasures, Validity};
 use crate::quality::tet as q3;
@@ -61,11 +61,7 @@ pub struct GivenFace {
 
 impl GivenFace {
     pub fn new(kind: crate::mesh::ElementKind, nodes: &[u32], line: u32) -> Self {
-        let mut f = GivenFace {
-            kind,
-            nodes: [0; 9],
-            line,
-        };
+        let mut f = GivenFace { kind, nodes: [0; 9], line };
         f.nodes[..nodes.len()].copy_from_slice(nodes);
         f
     }
@@ -89,10 +85,7 @@ impl Face {
         for (n, &j) in nodes.iter_mut().zip(local) {
             *n = ids[j];
         }
-        Face {
-            nodes,
-            len: local.len() as u8,
-        }
+        Face { nodes, len: local.len() as u8 }
     }
     /// Its corner nodes, 3 or 4.
     #[inline]
@@ -189,11 +182,7 @@ fn signed_size(kind: VolumeKind, p: &[DVec3]) -> (f64, bool) {
         let flat = orient3d(p[0], p[1], p[2], p[3]) == Ordering::Equal;
         let p = q3::in_unit_scale(&[p[0], p[1], p[2], p[3]]);
         let v = q3::signed_volume(&p);
-        let size = q3::TET_EDGES
-            .iter()
-            .map(|&[a, b]| p[a].distance(p[b]))
-            .sum::<f64>()
-            / 6.0;
+        let size = q3::TET_EDGES.iter().map(|&[a, b]| p[a].distance(p[b])).sum::<f64>() / 6.0;
         return (v / (size * size * size), flat);
     }
     let (mut total, mut flat) = (0.0, true);
@@ -218,11 +207,7 @@ impl VolumeMesh {
         let faces = (0..p.face_kinds.len())
             .map(|e| {
                 let ids = &p.face_nodes[p.face_start[e] as usize..p.face_start[e + 1] as usize];
-                GivenFace::new(
-                    p.face_kinds[e],
-                    ids,
-                    p.face_lines.get(e).copied().unwrap_or(0),
-                )
+                GivenFace::new(p.face_kinds[e], ids, p.face_lines.get(e).copied().unwrap_or(0))
             })
             .collect();
         let parts = SolidParts {
@@ -255,21 +240,9 @@ impl VolumeMesh {
         node_numbers: &Numbering,
         element_numbers: &Numbering,
     ) -> Result<VolumeMesh> {
-        let SolidParts {
-            nodes,
-            node_lines,
-            kinds,
-            mut elements,
-            element_lines,
-            fixed,
-            faces: given_faces,
-        } = parts;
-        let line =
-            |lines: &[u32], i: usize| lines.get(i).copied().filter(|&l| l > 0).map(|l| l as usize);
-        let (node, number) = (
-            |i: u32| node_numbers.of(i as usize),
-            |e: usize| element_numbers.of(e),
-        );
+        let SolidParts { nodes, node_lines, kinds, mut elements, element_lines, fixed, faces: given_faces } = parts;
+        let line = |lines: &[u32], i: usize| lines.get(i).copied().filter(|&l| l > 0).map(|l| l as usize);
+        let (node, number) = (|i: u32| node_numbers.of(i as usize), |e: usize| element_numbers.of(e));
         if kinds.is_empty() {
             return Err(Error::Empty("the mesh has no volume elements".into()));
         }
@@ -284,10 +257,7 @@ impl VolumeMesh {
         for &k in &kinds {
             seen[k as usize] = true;
         }
-        let present: Vec<VolumeKind> = VolumeKind::ALL
-            .into_iter()
-            .filter(|&k| seen[k as usize])
-            .collect();
+        let present: Vec<VolumeKind> = VolumeKind::ALL.into_iter().filter(|&k| seen[k as usize]).collect();
         let family = |e: usize| kinds[e].row().name;
         for (i, p) in nodes.iter().enumerate() {
             if !p.is_finite() {
@@ -336,21 +306,14 @@ impl VolumeMesh {
         for e in 0..count {
             let corners = kinds[e].corners();
             for (j, &id) in elements[range(e)].iter().enumerate() {
-                let r = if j < corners {
-                    NodeRole::Corner
-                } else {
-                    NodeRole::Mid
-                };
+                let r = if j < corners { NodeRole::Corner } else { NodeRole::Mid };
                 match (role[id as usize], r) {
                     (NodeRole::Unused, r) => role[id as usize] = r,
                     (a, b) if a != b => {
                         return Err(Error::element(
                             number(e),
                             line(&element_lines, e),
-                            format!(
-                                "node {} is a corner of one element and a mid-edge node of another",
-                                node(id)
-                            ),
+                            format!("node {} is a corner of one element and a mid-edge node of another", node(id)),
                         ))
                     }
                     _ => {}
@@ -371,10 +334,7 @@ impl VolumeMesh {
                 let what = if k.is_tet() {
                     "the tetrahedron has no volume: its four corners lie in a plane".to_string()
                 } else {
-                    format!(
-                        "the {} has no volume: every corner's three edges lie in a plane",
-                        family(e)
-                    )
+                    format!("the {} has no volume: every corner's three edges lie in a plane", family(e))
                 };
                 return Err(Error::element(number(e), line(&element_lines, e), what));
             }
@@ -409,13 +369,7 @@ impl VolumeMesh {
             }
             if j - i > 2 {
                 let e = faces[i + 2].1 as usize;
-                let nodes: Vec<u64> = faces[i]
-                    .0
-                    .iter()
-                    .copied()
-                    .filter(|&x| x != u32::MAX)
-                    .map(node)
-                    .collect();
+                let nodes: Vec<u64> = faces[i].0.iter().copied().filter(|&x| x != u32::MAX).map(node).collect();
                 return Err(Error::element(
                     number(e),
                     line(&element_lines, e),
@@ -429,10 +383,7 @@ impl VolumeMesh {
             if j - i == 1 {
                 let (_, e, f) = faces[i];
                 let e = e as usize;
-                boundary.push(Face::of(
-                    &elements[range(e)],
-                    kinds[e].row().faces[f as usize],
-                ));
+                boundary.push(Face::of(&elements[range(e)], kinds[e].row().faces[f as usize]));
             }
             i = j;
         }
@@ -473,9 +424,7 @@ impl VolumeMesh {
         let mut fixed = match fixed {
             FixedSpec::Boundary => on_boundary,
             FixedSpec::Exact(f) => f,
-            FixedSpec::BoundaryAnd(f) => {
-                on_boundary.iter().zip(&f).map(|(a, b)| *a || *b).collect()
-            }
+            FixedSpec::BoundaryAnd(f) => on_boundary.iter().zip(&f).map(|(a, b)| *a || *b).collect(),
         };
         fixed.resize(n, false);
         for (f, r) in fixed.iter_mut().zip(&role) {
@@ -496,13 +445,9 @@ impl VolumeMesh {
             for node in 0..n {
                 for &e in &tets[tet_start[node] as usize..tet_start[node + 1] as usize] {
                     let (kind, ids) = (kinds[e as usize], &elements[range(e as usize)]);
-                    let slot = ids[..kind.corners()]
-                        .iter()
-                        .position(|&i| i as usize == node);
+                    let slot = ids[..kind.corners()].iter().position(|&i| i as usize == node);
                     tet_corners.push(match slot {
-                        Some(slot) if kind.is_tet() => {
-                            kind.row().corner_edges[slot].map(|k| ids[k])
-                        }
+                        Some(slot) if kind.is_tet() => kind.row().corner_edges[slot].map(|k| ids[k]),
                         _ => [u32::MAX; 3],
                     });
                 }
@@ -620,10 +565,7 @@ impl VolumeMesh {
     /// fixed (`None` when none).
     pub fn stray_faces_note(&self) -> Option<String> {
         let on_boundary: Vec<[u32; 4]> = self.boundary.iter().map(Face::key).collect();
-        debug_assert!(
-            on_boundary.windows(2).all(|w| w[0] < w[1]),
-            "the boundary in its keys' order"
-        );
+        debug_assert!(on_boundary.windows(2).all(|w| w[0] < w[1]), "the boundary in its keys' order");
         let mut boundary_node = vec![false; self.nodes.len()];
         for f in &self.boundary {
             for &i in f.nodes() {
@@ -631,11 +573,7 @@ impl VolumeMesh {
             }
         }
         let inner_fixed = |f: &GivenFace| -> Vec<u32> {
-            f.nodes()
-                .iter()
-                .copied()
-                .filter(|&i| self.fixed[i as usize] && !boundary_node[i as usize])
-                .collect()
+            f.nodes().iter().copied().filter(|&i| self.fixed[i as usize] && !boundary_node[i as usize]).collect()
         };
         let stray: Vec<(&GivenFace, Vec<u32>)> = self
             .faces
@@ -643,23 +581,14 @@ impl VolumeMesh {
             .filter(|f| {
                 let c = &f.nodes[..f.kind.corners()];
                 let local: Vec<usize> = (0..c.len()).collect();
-                on_boundary
-                    .binary_search(&Face::of(c, &local).key())
-                    .is_err()
+                on_boundary.binary_search(&Face::of(c, &local).key()).is_err()
             })
             .map(|f| (f, inner_fixed(f)))
             .filter(|(_, inner)| !inner.is_empty())
             .collect();
         let (first, inner) = stray.first()?;
-        let at = if first.line > 0 {
-            format!(" (line {})", first.line)
-        } else {
-            String::new()
-        };
-        let nodes: Vec<String> = inner
-            .iter()
-            .map(|&i| self.node_numbers.of(i as usize).to_string())
-            .collect();
+        let at = if first.line > 0 { format!(" (line {})", first.line) } else { String::new() };
+        let nodes: Vec<String> = inner.iter().map(|&i| self.node_numbers.of(i as usize).to_string()).collect();
         Some(format!(
             "{} of the file's triangles and quads {} not on the boundary of the {} and {} nodes inside the volume, as the file asks: the first{at} fixes node {}",
             stray.len(),
@@ -687,10 +616,7 @@ impl VolumeMesh {
     }
 
     /// A mesh from points and elements of any kinds (generators), boundary nodes fixed.
-    pub fn from_elements<'a>(
-        nodes: Vec<DVec3>,
-        elements: impl IntoIterator<Item = (VolumeKind, &'a [u32])>,
-    ) -> Result<VolumeMesh> {
+    pub fn from_elements<'a>(nodes: Vec<DVec3>, elements: impl IntoIterator<Item = (VolumeKind, &'a [u32])>) -> Result<VolumeMesh> {
         let (mut kinds, mut ids) = (Vec::new(), Vec::new());
         for (k, e) in elements {
             kinds.push(k);
@@ -724,12 +650,7 @@ impl VolumeMesh {
                 VolumeKind::Tet4 => VolumeKind::Tet10,
                 VolumeKind::Hex8 if serendipity => VolumeKind::Hex20,
                 VolumeKind::Hex8 => VolumeKind::Hex27,
-                k => {
-                    return Err(Error::invalid(format!(
-                        "{} have no quadratic kind in smoothlab",
-                        k.row().family
-                    )))
-                }
+                k => return Err(Error::invalid(format!("{} have no quadratic kind in smoothlab", k.row().family))),
             };
             let t = self.element(e);
             kinds.push(to);
@@ -812,28 +733,13 @@ impl VolumeMesh {
     /// [`element_points`](Self::element_points) with corner `n` at `x` and the nodes that
     /// follow `n` and are not fixed at the means of their corners, as
     /// [`follow_mid_nodes`](Self::follow_mid_nodes) would put them.
-    pub fn element_points_with_node_at(
-        &self,
-        e: usize,
-        n: usize,
-        x: DVec3,
-    ) -> ([DVec3; 27], usize) {
-        let at = |i: u32| {
-            if i as usize == n {
-                x
-            } else {
-                self.nodes[i as usize]
-            }
-        };
+    pub fn element_points_with_node_at(&self, e: usize, n: usize, x: DVec3) -> ([DVec3; 27], usize) {
+        let at = |i: u32| if i as usize == n { x } else { self.nodes[i as usize] };
         let ids = self.element(e);
         let mut p = [DVec3::ZERO; 27];
         let follows = self.followers(n);
         for (q, &i) in p.iter_mut().zip(ids) {
-            *q = if follows.contains(&i) && !self.fixed[i as usize] {
-                mean(self.parents(i as usize).iter().map(|&c| at(c)))
-            } else {
-                at(i)
-            };
+            *q = if follows.contains(&i) && !self.fixed[i as usize] { mean(self.parents(i as usize).iter().map(|&c| at(c))) } else { at(i) };
         }
         (p, ids.len())
     }
@@ -914,8 +820,7 @@ impl VolumeMesh {
         for i in self.follow_start[n] as usize..self.follow_start[n + 1] as usize {
             let m = self.follow[i] as usize;
             if !self.fixed[m] {
-                let ps =
-                    &self.parents[self.parent_start[m] as usize..self.parent_start[m + 1] as usize];
+                let ps = &self.parents[self.parent_start[m] as usize..self.parent_start[m + 1] as usize];
                 self.nodes[m] = mean(ps.iter().map(|&c| self.nodes[c as usize]));
             }
         }
@@ -929,10 +834,7 @@ impl VolumeMesh {
     pub fn scaled_jacobian_cap(&self) -> f64 {
         let mut cap = f64::INFINITY;
         for e in 0..self.element_count() {
-            if !matches!(
-                self.element_kinds[e],
-                VolumeKind::Hex8 | VolumeKind::Hex20 | VolumeKind::Hex27
-            ) {
+            if !matches!(self.element_kinds[e], VolumeKind::Hex8 | VolumeKind::Hex20 | VolumeKind::Hex27) {
                 continue;
             }
             let (ids, row) = (self.element(e), self.element_kinds[e].row());
@@ -943,13 +845,8 @@ impl VolumeMesh {
                 let at = |k: usize| self.nodes[ids[k] as usize] - self.nodes[ids[c] as usize];
                 let mut held = nb.iter().copied().filter(|&k| self.fixed[ids[k] as usize]);
                 let bound = match (held.next(), held.next(), held.next()) {
-                    (Some(a), Some(b), Some(d)) => {
-                        at(a).cross(at(b)).dot(at(d))
-                            / (at(a).length() * at(b).length() * at(d).length())
-                    }
-                    (Some(a), Some(b), None) => {
-                        at(a).cross(at(b)).length() / (at(a).length() * at(b).length())
-                    }
+                    (Some(a), Some(b), Some(d)) => at(a).cross(at(b)).dot(at(d)) / (at(a).length() * at(b).length() * at(d).length()),
+                    (Some(a), Some(b), None) => at(a).cross(at(b)).length() / (at(a).length() * at(b).length()),
                     _ => continue,
                 };
                 cap = cap.min(bound);
@@ -964,11 +861,7 @@ impl VolumeMesh {
         for e in 0..self.element_count() {
             let k = self.element_kinds[e];
             let p = self.corners(e);
-            let list: &[[usize; 2]] = if k.is_tet() {
-                &q3::TET_EDGES
-            } else {
-                k.row().edges
-            };
+            let list: &[[usize; 2]] = if k.is_tet() { &q3::TET_EDGES } else { k.row().edges };
             sum += list.iter().map(|&[a, b]| p[a].distance(p[b])).sum::<f64>();
             edges += list.len();
         }
@@ -980,12 +873,8 @@ impl VolumeMesh {
     }
     /// The length of the bounding box's diagonal.
     pub fn size(&self) -> f64 {
-        let (lo, hi) = self
-            .nodes
-            .iter()
-            .fold((DVec3::INFINITY, DVec3::NEG_INFINITY), |(l, h), p| {
-                (l.min(*p), h.max(*p))
-            });
+        let (lo, hi) =
+            self.nodes.iter().fold((DVec3::INFINITY, DVec3::NEG_INFINITY), |(l, h), p| (l.min(*p), h.max(*p)));
         if self.nodes.is_empty() {
             0.0
         } else {

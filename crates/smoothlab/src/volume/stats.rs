@@ -26,9 +26,7 @@ pub fn volume_stats(mesh: &VolumeMesh) -> MeshStats {
         triangles: 0,
         quads: 0,
         quadratic: if mesh.is_quadratic() { elements } else { 0 },
-        volume_kinds: crate::mesh::VolumeKindCounts::of(
-            (0..elements).map(|e| mesh.element_kind(e)),
-        ),
+        volume_kinds: crate::mesh::VolumeKindCounts::of((0..elements).map(|e| mesh.element_kind(e))),
     });
     for e in 0..elements {
         let m = mesh.measures(e);
@@ -37,11 +35,7 @@ pub fn volume_stats(mesh: &VolumeMesh) -> MeshStats {
             min_angle_deg: m.min_dihedral_deg,
             max_angle_deg: m.max_dihedral_deg,
             quality: m.mean_ratio,
-            condition: if m.inverted {
-                f64::INFINITY
-            } else {
-                m.condition
-            },
+            condition: if m.inverted { f64::INFINITY } else { m.condition },
         });
         for &a in m.dihedral() {
             s.angle(a.to_radians());

@@ -15,9 +15,7 @@ use crate::quality::tet::{dihedral_angles, signed_volume};
 
 /// The smallest dihedral angle (radians) of a tetrahedron.
 fn min_angle(p: &[DVec3], t: [u32; 4]) -> f64 {
-    dihedral_angles(&t.map(|v| p[v as usize]))
-        .into_iter()
-        .fold(f64::INFINITY, f64::min)
+    dihedral_angles(&t.map(|v| p[v as usize])).into_iter().fold(f64::INFINITY, f64::min)
 }
 
 fn volume(p: &[DVec3], t: [u32; 4]) -> f64 {
@@ -76,19 +74,12 @@ pub fn swap_max_min_dihedral(p: &[DVec3], tets: &mut Vec<[u32; 4]>, max_passes: 
                 continue;
             }
             let old = [tets[i], tets[j]];
-            let new = [[f[0], f[1], d, e], [f[1], f[2], d, e], [f[2], f[0], d, e]]
-                .map(|t| oriented(p, t));
+            let new = [[f[0], f[1], d, e], [f[1], f[2], d, e], [f[2], f[0], d, e]].map(|t| oriented(p, t));
             if !fills(p, &old, &new) {
                 continue;
             }
-            let before = old
-                .iter()
-                .map(|&t| min_angle(p, t))
-                .fold(f64::INFINITY, f64::min);
-            let after = new
-                .iter()
-                .map(|&t| min_angle(p, t))
-                .fold(f64::INFINITY, f64::min);
+            let before = old.iter().map(|&t| min_angle(p, t)).fold(f64::INFINITY, f64::min);
+            let after = new.iter().map(|&t| min_angle(p, t)).fold(f64::INFINITY, f64::min);
             if after > before + 1e-9 {
                 tets[i] = new[0];
                 tets[j] = new[1];
@@ -104,19 +95,13 @@ pub fn swap_max_min_dihedral(p: &[DVec3], tets: &mut Vec<[u32; 4]>, max_passes: 
         for (i, t) in tets.iter().enumerate() {
             for a in 0..4 {
                 for b in a + 1..4 {
-                    edges
-                        .entry([t[a].min(t[b]), t[a].max(t[b])])
-                        .or_default()
-                        .push(i);
+                    edges.entry([t[a].min(t[b]), t[a].max(t[b])]).or_default().push(i);
                 }
             }
         }
         let mut dead = Vec::new();
         // in the order of the edges (each is once in the map)
-        let ring: Vec<_> = edges
-            .into_iter()
-            .filter(|(_, around)| around.len() == 3)
-            .collect();
+        let ring: Vec<_> = edges.into_iter().filter(|(_, around)| around.len() == 3).collect();
         for r in stable_order(ring.len(), |r| pair_key(ring[r].0[0], ring[r].0[1])) {
             let ([d, e], ref around) = ring[r as usize];
             if around.iter().any(|&i| touched[i]) {
@@ -124,16 +109,10 @@ pub fn swap_max_min_dihedral(p: &[DVec3], tets: &mut Vec<[u32; 4]>, max_passes: 
             }
             // the ring's three other vertices, each in exactly two of the tetrahedra (a
             // closed ring: the edge is interior)
-            let mut others: Vec<u32> = around
-                .iter()
-                .flat_map(|&i| tets[i].into_iter().filter(|&v| v != d && v != e))
-                .collect();
+            let mut others: Vec<u32> =
+                around.iter().flat_map(|&i| tets[i].into_iter().filter(|&v| v != d && v != e)).collect();
             others.sort_unstable();
-            if !(others.len() == 6
-                && others[0] == others[1]
-                && others[2] == others[3]
-                && others[4] == others[5])
-            {
+            if !(others.len() == 6 && others[0] == others[1] && others[2] == others[3] && others[4] == others[5]) {
                 continue;
             }
             let (a, b, c) = (others[0], others[2], others[4]);
@@ -142,14 +121,8 @@ pub fn swap_max_min_dihedral(p: &[DVec3], tets: &mut Vec<[u32; 4]>, max_passes: 
             if !fills(p, &old, &new) {
                 continue;
             }
-            let before = old
-                .iter()
-                .map(|&t| min_angle(p, t))
-                .fold(f64::INFINITY, f64::min);
-            let after = new
-                .iter()
-                .map(|&t| min_angle(p, t))
-                .fold(f64::INFINITY, f64::min);
+            let before = old.iter().map(|&t| min_angle(p, t)).fold(f64::INFINITY, f64::min);
+            let after = new.iter().map(|&t| min_angle(p, t)).fold(f64::INFINITY, f64::min);
             if after > before + 1e-9 {
                 tets[around[0]] = new[0];
                 tets[around[1]] = new[1];
@@ -189,22 +162,14 @@ mod tests {
             DVec3::new(0.1, 0.0, -0.05),
         ];
         let mut tets = vec![oriented(&p, [0, 1, 2, 3]), oriented(&p, [0, 1, 2, 4])];
-        let before = tets
-            .iter()
-            .map(|&t| min_angle(&p, t))
-            .fold(f64::INFINITY, f64::min);
+        let before = tets.iter().map(|&t| min_angle(&p, t)).fold(f64::INFINITY, f64::min);
         let total: f64 = tets.iter().map(|&t| volume(&p, t)).sum();
         assert_eq!(swap_max_min_dihedral(&p, &mut tets, 5), 1);
         assert_eq!(tets.len(), 3);
-        let after = tets
-            .iter()
-            .map(|&t| min_angle(&p, t))
-            .fold(f64::INFINITY, f64::min);
+        let after = tets.iter().map(|&t| min_angle(&p, t)).fold(f64::INFINITY, f64::min);
         assert!(after > before, "{before} → {after}");
         assert!((tets.iter().map(|&t| volume(&p, t)).sum::<f64>() - total).abs() < 1e-15);
-        assert!(tets
-            .iter()
-            .all(|&t| volume(&p, t) > 0.0 && t.contains(&3) && t.contains(&4)));
+        assert!(tets.iter().all(|&t| volume(&p, t) > 0.0 && t.contains(&3) && t.contains(&4)));
         // and nothing more to gain: the 3-2 swap back would lower it again
         assert_eq!(swap_max_min_dihedral(&p, &mut tets, 5), 0);
     }

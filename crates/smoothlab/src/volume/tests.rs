@@ -62,10 +62,7 @@ fn unit() -> Vec<DVec3> {
 #[test]
 fn bad_input_gives_errors_naming_the_node_or_element_and_line() {
     let err = |p: SolidParts| VolumeMesh::build(p).unwrap_err().to_string();
-    assert_eq!(
-        err(parts(unit(), vec![])),
-        Error::Empty("the mesh has no volume elements".into()).to_string()
-    );
+    assert_eq!(err(parts(unit(), vec![])), Error::Empty("the mesh has no volume elements".into()).to_string());
     let mut nan = unit();
     nan[2].y = f64::NAN;
     assert!(
@@ -74,31 +71,19 @@ fn bad_input_gives_errors_naming_the_node_or_element_and_line() {
         err(parts(unit(), vec![]))
     );
     let e = err(parts(unit(), vec![0, 1, 2, 9]));
-    assert!(
-        e.starts_with("element 0 (line 100): node 9 does not exist: the mesh has 5 nodes"),
-        "{e}"
-    );
+    assert!(e.starts_with("element 0 (line 100): node 9 does not exist: the mesh has 5 nodes"), "{e}");
     let e = err(parts(unit(), vec![0, 1, 2, 3, 0, 1, 1, 4]));
-    assert!(
-        e.starts_with("element 1 (line 101): node 1 appears twice"),
-        "{e}"
-    );
+    assert!(e.starts_with("element 1 (line 101): node 1 appears twice"), "{e}");
     let mut flat = unit();
     flat[3] = DVec3::new(0.3, 0.3, 0.0);
     let e = err(parts(flat, vec![0, 1, 2, 3]));
-    assert!(
-        e.starts_with("element 0 (line 100): the tetrahedron has no volume"),
-        "{e}"
-    );
+    assert!(e.starts_with("element 0 (line 100): the tetrahedron has no volume"), "{e}");
     // three tetrahedra on one face
     let mut three = unit();
     three.push(DVec3::new(0.2, 0.2, -1.0));
     three.push(DVec3::new(0.2, 0.2, 2.0));
     let e = err(parts(three, vec![0, 1, 2, 3, 0, 2, 1, 5, 0, 1, 2, 6]));
-    assert!(
-        e.contains("its face [0, 1, 2] is a face of 3 elements"),
-        "{e}"
-    );
+    assert!(e.contains("its face [0, 1, 2] is a face of 3 elements"), "{e}");
 }
 
 #[test]
@@ -116,13 +101,8 @@ fn a_left_handed_mesh_is_turned_over() {
     // a single inverted tetrahedron in a right-handed mesh stays inverted (tangled)
     let mut tangled = m.nodes().to_vec();
     tangled[13] = DVec3::new(1.2, 0.5, 0.5);
-    let t = VolumeMesh::build(parts(
-        tangled,
-        (0..m.element_count())
-            .flat_map(|e| m.element(e).to_vec())
-            .collect(),
-    ))
-    .unwrap();
+    let t =
+        VolumeMesh::build(parts(tangled, (0..m.element_count()).flat_map(|e| m.element(e).to_vec()).collect())).unwrap();
     assert!((0..t.element_count()).any(|e| q3::signed_volume(&t.tet_corners(e)) < 0.0));
 }
 
@@ -136,12 +116,7 @@ mod smoothing {
         0.0
     }
 
-    fn passes(
-        mesh: &mut VolumeMesh,
-        kind: ObjectiveKind,
-        strategy: Strategy,
-        n: u32,
-    ) -> Vec<crate::smooth::PassRecord> {
+    fn passes(mesh: &mut VolumeMesh, kind: ObjectiveKind, strategy: Strategy, n: u32) -> Vec<crate::smooth::PassRecord> {
         let o = SmoothOptions::default().with_strategy(strategy);
         smooth_volume(mesh, &*tet_objective(kind).unwrap(), o, n, &no_clock).unwrap()
     }
@@ -155,23 +130,11 @@ mod smoothing {
                 let mut b = start.clone();
                 passes(&mut a, kind, strategy, 2);
                 passes(&mut b, kind, strategy, 2);
-                assert_eq!(
-                    a.nodes(),
-                    b.nodes(),
-                    "{strategy:?} {kind}: not deterministic"
-                );
+                assert_eq!(a.nodes(), b.nodes(), "{strategy:?} {kind}: not deterministic");
                 for n in 0..a.node_count() {
-                    assert!(
-                        a.nodes()[n].is_finite(),
-                        "{strategy:?} {kind}: node {n} {}",
-                        a.nodes()[n]
-                    );
+                    assert!(a.nodes()[n].is_finite(), "{strategy:?} {kind}: node {n} {}", a.nodes()[n]);
                     if !a.is_free(n) {
-                        assert_eq!(
-                            a.nodes()[n],
-                            start.nodes()[n],
-                            "{strategy:?} {kind}: fixed node {n} moved"
-                        );
+                        assert_eq!(a.nodes()[n], start.nodes()[n], "{strategy:?} {kind}: fixed node {n} moved");
                     }
                 }
             }
@@ -182,14 +145,7 @@ mod smoothing {
     fn no_valid_tetrahedron_is_inverted_by_the_smart_or_guarded_strategies() {
         let start = perturb_volume(&tet_cube(4).unwrap(), 0.25, 2).unwrap();
         assert_eq!(volume_stats(&start).inverted, 0, "the start must be valid");
-        for strategy in [
-            Strategy::Smart,
-            Strategy::Opt,
-            Strategy::C1,
-            Strategy::C2,
-            Strategy::C3,
-            Strategy::Rules,
-        ] {
+        for strategy in [Strategy::Smart, Strategy::Opt, Strategy::C1, Strategy::C2, Strategy::C3, Strategy::Rules] {
             for kind in crate::objective::tet_kinds() {
                 let mut m = start.clone();
                 passes(&mut m, kind, strategy, 2);
@@ -206,16 +162,8 @@ mod smoothing {
             assert!(before.inverted > 0, "seed {seed}: not tangled");
             let records = passes(&mut m, ObjectiveKind::SmoothShape, Strategy::Rules, 3);
             let after = volume_stats(&m);
-            assert_eq!(
-                after.inverted, 0,
-                "seed {seed}: {} inverted after 3 passes ({records:?})",
-                after.inverted
-            );
-            assert!(
-                after.min_angle_deg > 5.0,
-                "seed {seed}: {}",
-                after.min_angle_deg
-            );
+            assert_eq!(after.inverted, 0, "seed {seed}: {} inverted after 3 passes ({records:?})", after.inverted);
+            assert!(after.min_angle_deg > 5.0, "seed {seed}: {}", after.min_angle_deg);
         }
     }
 
@@ -255,61 +203,22 @@ fn untangling_objectives_leave_a_valid_tetrahedral_mesh_where_it_is() {
 #[test]
 fn statistics_are_the_same_at_every_scale() {
     let base = tet_cube(2).unwrap();
-    let tets: Vec<[u32; 4]> = (0..base.element_count())
-        .map(|e| base.element(e)[..4].try_into().unwrap())
-        .collect();
+    let tets: Vec<[u32; 4]> = (0..base.element_count()).map(|e| base.element(e)[..4].try_into().unwrap()).collect();
     let unit = volume_stats(&base);
-    assert!(
-        (unit.min_angle_deg - 45.0).abs() < 1e-9 && (unit.max_angle_deg - 90.0).abs() < 1e-9,
-        "{unit:?}"
-    );
-    for s in [
-        1e-300,
-        1e-150,
-        1e-100,
-        1e-80,
-        2f64.powi(-201),
-        1e-20,
-        1e20,
-        2f64.powi(201),
-        1e80,
-        1e100,
-        1e150,
-        1e300,
-    ] {
-        let m =
-            VolumeMesh::from_tets(base.nodes().iter().map(|&p| p * s).collect(), &tets).unwrap();
+    assert!((unit.min_angle_deg - 45.0).abs() < 1e-9 && (unit.max_angle_deg - 90.0).abs() < 1e-9, "{unit:?}");
+    for s in [1e-300, 1e-150, 1e-100, 1e-80, 2f64.powi(-201), 1e-20, 1e20, 2f64.powi(201), 1e80, 1e100, 1e150, 1e300] {
+        let m = VolumeMesh::from_tets(base.nodes().iter().map(|&p| p * s).collect(), &tets).unwrap();
         let st = volume_stats(&m);
         let near = |a: f64, b: f64| (a - b).abs() <= 1e-9 * b.abs().max(1.0);
         assert_eq!(st.inverted, 0, "scale {s:e}");
-        assert!(
-            near(st.min_angle_deg, unit.min_angle_deg)
-                && near(st.max_angle_deg, unit.max_angle_deg),
-            "scale {s:e}: {st:?}"
-        );
-        assert!(
-            near(st.min_quality, unit.min_quality) && near(st.mean_quality, unit.mean_quality),
-            "scale {s:e}: {st:?}"
-        );
-        assert!(
-            near(st.max_condition, unit.max_condition),
-            "scale {s:e}: {st:?}"
-        );
-        assert_eq!(
-            st.angle_histogram_6deg, unit.angle_histogram_6deg,
-            "scale {s:e}"
-        );
+        assert!(near(st.min_angle_deg, unit.min_angle_deg) && near(st.max_angle_deg, unit.max_angle_deg), "scale {s:e}: {st:?}");
+        assert!(near(st.min_quality, unit.min_quality) && near(st.mean_quality, unit.mean_quality), "scale {s:e}: {st:?}");
+        assert!(near(st.max_condition, unit.max_condition), "scale {s:e}: {st:?}");
+        assert_eq!(st.angle_histogram_6deg, unit.angle_histogram_6deg, "scale {s:e}");
     }
     // exact powers of two give the same bits
-    let m = VolumeMesh::from_tets(
-        base.nodes().iter().map(|&p| p * 2f64.powi(-300)).collect(),
-        &tets,
-    )
-    .unwrap();
-    assert_eq!(
-        volume_stats(&m).min_quality.to_bits(),
-        unit.min_quality.to_bits()
-    );
+    let m = VolumeMesh::from_tets(base.nodes().iter().map(|&p| p * 2f64.powi(-300)).collect(), &tets).unwrap();
+    assert_eq!(volume_stats(&m).min_quality.to_bits(), unit.min_quality.to_bits());
 }
 
 /// Issue 29: a 10-node tetrahedron whose mid-edge node sits far off its edge measured as
@@ -328,19 +237,13 @@ fn a_ten_node_tetrahedron_is_measured_with_its_mid_edge_nodes() {
     }
     let (straight, linear) = (tet10_measures(&p, R), tet_measures(&c, R));
     assert!(!straight.inverted);
-    assert!(
-        (straight.mean_ratio - linear.mean_ratio).abs() < 1e-15,
-        "{straight:?} {linear:?}"
-    );
+    assert!((straight.mean_ratio - linear.mean_ratio).abs() < 1e-15, "{straight:?} {linear:?}");
     assert!((straight.min_dihedral_deg - linear.min_dihedral_deg).abs() < 1e-12);
     // the mid-edge node of edge 0–1 pushed off its edge towards corner 2
     let mut bent = p;
     bent[4] += 0.2 * DVec3::Y;
     let b = tet10_measures(&bent, R);
-    assert!(
-        !b.inverted && b.mean_ratio < linear.mean_ratio - 0.05,
-        "{b:?}"
-    );
+    assert!(!b.inverted && b.mean_ratio < linear.mean_ratio - 0.05, "{b:?}");
     // slid along its edge past the quarter point: the Jacobian at corner 0 turns over
     bent[4] = DVec3::new(0.1, 0.0, 0.0);
     assert!(tet10_measures(&bent, R).inverted);
@@ -368,10 +271,7 @@ fn hex_block(n: usize, jitter: f64, seed: u64) -> VolumeMesh {
 #[test]
 fn quadratic_hexahedra_follow_their_corners() {
     let linear = hex_block(3, 0.2, 5);
-    for (serendipity, kind, nodes) in [
-        (true, VolumeKind::Hex20, 20),
-        (false, VolumeKind::Hex27, 27),
-    ] {
+    for (serendipity, kind, nodes) in [(true, VolumeKind::Hex20, 20), (false, VolumeKind::Hex27, 27)] {
         let mut q = linear.to_quadratic(serendipity).unwrap();
         assert_eq!(q.kinds(), &[kind]);
         assert_eq!(q.element(0).len(), nodes);
@@ -382,28 +282,13 @@ fn quadratic_hexahedra_follow_their_corners() {
         assert_eq!(q.free_count(), linear.free_count());
         let before = crate::volume::volume_stats(&q);
         assert_eq!((before.inverted, before.quadratic), (0, 27));
-        crate::volume::smooth_volume(
-            &mut q,
-            &*crate::objective::tet_objective(crate::objective::ObjectiveKind::SmoothShape)
-                .unwrap(),
-            Default::default(),
-            2,
-            &|| 0.0,
-        )
-        .unwrap();
+        crate::volume::smooth_volume(&mut q, &*crate::objective::tet_objective(crate::objective::ObjectiveKind::SmoothShape).unwrap(), Default::default(), 2, &|| 0.0).unwrap();
         // every follower at the mean of its corners, boundary ones where they were
         for e in 0..q.element_count() {
             let ids = q.element(e);
             for (m, ps) in kind.row().followers.iter().enumerate() {
-                let at = ps
-                    .iter()
-                    .map(|&c| q.nodes()[ids[c] as usize])
-                    .sum::<DVec3>()
-                    / ps.len() as f64;
-                assert!(
-                    at.distance(q.nodes()[ids[8 + m] as usize]) < 1e-12,
-                    "{kind:?} element {e} follower {m}"
-                );
+                let at = ps.iter().map(|&c| q.nodes()[ids[c] as usize]).sum::<DVec3>() / ps.len() as f64;
+                assert!(at.distance(q.nodes()[ids[8 + m] as usize]) < 1e-12, "{kind:?} element {e} follower {m}");
             }
         }
         let after = crate::volume::volume_stats(&q);
@@ -411,22 +296,11 @@ fn quadratic_hexahedra_follow_their_corners() {
     }
     // wedges have no quadratic kind here: refused in words
     let wedge = VolumeMesh::from_elements(
-        vec![
-            DVec3::ZERO,
-            DVec3::new(0.5, 0.8, 0.0),
-            DVec3::X,
-            DVec3::Z,
-            DVec3::new(0.5, 0.8, 1.0),
-            DVec3::new(1.0, 0.0, 1.0),
-        ],
+        vec![DVec3::ZERO, DVec3::new(0.5, 0.8, 0.0), DVec3::X, DVec3::Z, DVec3::new(0.5, 0.8, 1.0), DVec3::new(1.0, 0.0, 1.0)],
         [(VolumeKind::Wedge6, &[0u32, 1, 2, 3, 4, 5][..])],
     )
     .unwrap();
-    assert!(wedge
-        .to_quadratic(false)
-        .unwrap_err()
-        .to_string()
-        .contains("wedges have no quadratic kind"));
+    assert!(wedge.to_quadratic(false).unwrap_err().to_string().contains("wedges have no quadratic kind"));
 }
 
 #[test]
@@ -435,16 +309,9 @@ fn a_mixed_mesh_of_a_quadratic_kind_and_another_is_refused_naming_the_line() {
     for p in [DVec3::ZERO, DVec3::X, DVec3::Y, DVec3::Z] {
         b.add_node([p.x, p.y, p.z], 0);
     }
-    b.add_volume_element(VolumeKind::Tet4, &[0, 1, 2, 3], 7)
-        .unwrap();
-    let e = b
-        .add_volume_element(VolumeKind::Hex20, &[0; 20], 8)
-        .unwrap_err()
-        .to_string();
-    assert!(
-        e.contains("line 8") && e.contains("a quadratic mesh is of one kind"),
-        "{e}"
-    );
+    b.add_volume_element(VolumeKind::Tet4, &[0, 1, 2, 3], 7).unwrap();
+    let e = b.add_volume_element(VolumeKind::Hex20, &[0; 20], 8).unwrap_err().to_string();
+    assert!(e.contains("line 8") && e.contains("a quadratic mesh is of one kind"), "{e}");
     // linear kinds mix
     assert!(b.add_volume_element(VolumeKind::Hex8, &[0; 8], 9).is_ok());
 }

@@ -36,10 +36,7 @@ fn shared_meshes(name: &str) -> Option<PathBuf> {
         return Some(dir);
     }
     let ci = std::env::var("CI").is_ok_and(|v| !v.is_empty() && v != "false" && v != "0");
-    assert!(
-        !ci,
-        "CI is set but the external meshes ../shared/meshes/{name} are missing"
-    );
+    assert!(!ci, "CI is set but the external meshes ../shared/meshes/{name} are missing");
     println!("external meshes ../shared/meshes/{name} not found: skipped");
     None
 }

@@ -31,64 +31,32 @@ const KEPT: &[(&str, Expect)] = &[
     // bounding box the far node inflates: these three mutated files are not planar, and
     // are refused naming the node farthest off (by its number in the file, issue 61: the
     // Gmsh file's tag, the OBJ file's 1-based index).
-    (
-        "msh41-orientation-flips-on-reread.bin",
-        Expect::Refused(&["not planar: node 33 (line 123)"]),
-    ),
+    ("msh41-orientation-flips-on-reread.bin", Expect::Refused(&["not planar: node 33 (line 123)"])),
     // Found again by the vtk target: a point line missing its z shifts every later value
     // by one, which puts the plate in 3D with a far-away point, as above.
-    (
-        "vtk-orientation-flips-on-reread.bin",
-        Expect::Refused(&["not planar: node 54 (line 60) lies 36 off"]),
-    ),
+    ("vtk-orientation-flips-on-reread.bin", Expect::Refused(&["not planar: node 54 (line 60) lies 36 off"])),
     // And by the obj target: a vertex with a nonzero z and another at x = -1.4e10 make a
     // two-triangle mesh whose plane fit leaves it far from the origin.
-    (
-        "obj-orientation-flips-on-reread.bin",
-        Expect::Refused(&["not planar: node 13 (line 14)"]),
-    ),
+    ("obj-orientation-flips-on-reread.bin", Expect::Refused(&["not planar: node 13 (line 14)"])),
     // The same in 2D, cut down to 7 of its 6-node triangles (32 nodes, all at x = -2.78e88).
-    (
-        "msh22-orientation-flips-on-reread-2d.bin",
-        Expect::Mesh {
-            nodes: 32,
-            elements: 7,
-        },
-    ),
+    ("msh22-orientation-flips-on-reread-2d.bin", Expect::Mesh { nodes: 32, elements: 7 }),
     // `f 1 2 -9223372036854775808`: negating i64::MIN overflowed (a panic in debug builds).
     (
         "obj-relative-index-i64-min.bin",
-        Expect::Refused(&[
-            "line 4",
-            "relative vertex index -9223372036854775808",
-            "-1 to -3",
-        ]),
+        Expect::Refused(&["line 4", "relative vertex index -9223372036854775808", "-1 to -3"]),
     ),
     // A .node header with i64::MAX attributes: the per-line field count overflowed a
     // 32-bit usize (the page's wasm). Now refused as a count the file cannot hold.
     (
         "triangle-attribute-count-i64-max.bin",
-        Expect::Refused(&[
-            "line 1",
-            "9223372036854775807 attributes per node",
-            ".node file",
-        ]),
+        Expect::Refused(&["line 1", "9223372036854775807 attributes per node", ".node file"]),
     ),
     // Non-planar-looking 3D points near 1e200 / 1e308: the plane fit's cross products
     // overflowed and the mesh came back with NaN coordinates. Now fitted in scaled units.
-    (
-        "vtk-3d-coordinates-near-1e200.bin",
-        Expect::Mesh {
-            nodes: 3,
-            elements: 1,
-        },
-    ),
+    ("vtk-3d-coordinates-near-1e200.bin", Expect::Mesh { nodes: 3, elements: 1 }),
     // Since issue 16, coordinates beyond f64::MAX / 16 are refused by name, with the reason:
     // their differences (and quadratic edge tangents) overflow.
-    (
-        "vtk-3d-coordinates-near-1e308.bin",
-        Expect::Refused(&["node 1 (line 7)", "too large to compute with"]),
-    ),
+    ("vtk-3d-coordinates-near-1e308.bin", Expect::Refused(&["node 1 (line 7)", "too large to compute with"])),
 ];
 
 fn data(sub: &str) -> PathBuf {
@@ -104,19 +72,11 @@ fn target_of(file: &str) -> Target {
 #[test]
 fn kept_findings_stay_fixed() {
     for (file, expect) in KEPT {
-        let bytes = std::fs::read(data("tests/data/fuzz").join(file))
-            .unwrap_or_else(|e| panic!("{file}: {e}"));
+        let bytes = std::fs::read(data("tests/data/fuzz").join(file)).unwrap_or_else(|e| panic!("{file}: {e}"));
         match (run(target_of(file), &bytes), expect) {
             (Outcome::Mesh(m), Expect::Mesh { nodes, elements }) => {
-                assert_eq!(
-                    (m.node_count(), m.element_count()),
-                    (*nodes, *elements),
-                    "{file}"
-                );
-                assert!(
-                    m.nodes().iter().all(|p| p.is_finite()),
-                    "{file}: non-finite coordinates"
-                );
+                assert_eq!((m.node_count(), m.element_count()), (*nodes, *elements), "{file}");
+                assert!(m.nodes().iter().all(|p| p.is_finite()), "{file}: non-finite coordinates");
             }
             (Outcome::Refused(e), Expect::Refused(want)) => {
                 let msg = e.to_string();
@@ -138,10 +98,7 @@ fn every_kept_file_is_listed() {
     on_disk.sort();
     let mut listed: Vec<String> = KEPT.iter().map(|(f, _)| f.to_string()).collect();
     listed.sort();
-    assert_eq!(
-        on_disk, listed,
-        "tests/data/fuzz and KEPT must name the same files"
-    );
+    assert_eq!(on_disk, listed, "tests/data/fuzz and KEPT must name the same files");
 }
 
 /// Every refusal names a line, element or node, unless it is about the whole mesh or
@@ -169,9 +126,7 @@ fn seed_corpora_pass_the_harness() {
     let mut files = 0;
     for t in Target::ALL {
         let dir = seeds.join(t.name());
-        let Ok(entries) = std::fs::read_dir(&dir) else {
-            continue;
-        };
+        let Ok(entries) = std::fs::read_dir(&dir) else { continue };
         for e in entries {
             let bytes = std::fs::read(e.unwrap().path()).unwrap();
             files += 1;
@@ -183,8 +138,5 @@ fn seed_corpora_pass_the_harness() {
         }
     }
     // Most seeds are good meshes (the rest are the malformed fixtures of tests/data/bad).
-    assert!(
-        files >= 90 && meshes >= 45,
-        "{files} seed files, {meshes} meshes"
-    );
+    assert!(files >= 90 && meshes >= 45, "{files} seed files, {meshes} meshes");
 }

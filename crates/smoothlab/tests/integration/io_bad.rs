@@ -109,21 +109,14 @@ fn every_bad_file_is_refused_naming_where_and_what() {
         on_disk.insert(key);
     }
     let listed: BTreeSet<String> = EXPECTED.iter().map(|(f, _)| f.to_string()).collect();
-    assert_eq!(
-        on_disk, listed,
-        "every corpus file needs an expectation here, and every expectation a file"
-    );
+    assert_eq!(on_disk, listed, "every corpus file needs an expectation here, and every expectation a file");
 
     for (file, wants) in EXPECTED {
         let is_pair = !file.contains('.');
         let msg = if is_pair {
             // either file of the pair reads both
-            let a = io::read_path(&bad.join(format!("{file}.node")))
-                .unwrap_err()
-                .to_string();
-            let b = io::read_path(&bad.join(format!("{file}.ele")))
-                .unwrap_err()
-                .to_string();
+            let a = io::read_path(&bad.join(format!("{file}.node"))).unwrap_err().to_string();
+            let b = io::read_path(&bad.join(format!("{file}.ele"))).unwrap_err().to_string();
             assert_eq!(a, b, "{file}");
             a
         } else {
@@ -131,10 +124,7 @@ fn every_bad_file_is_refused_naming_where_and_what() {
             let by_path = io::read_path(&path).map(|_| ()).unwrap_err().to_string();
             // the page's way in: bytes and a name
             let bytes = std::fs::read(&path).unwrap();
-            let by_bytes = io::read_bytes(&bytes, file)
-                .map(|_| ())
-                .unwrap_err()
-                .to_string();
+            let by_bytes = io::read_bytes(&bytes, file).map(|_| ()).unwrap_err().to_string();
             assert_eq!(by_path, by_bytes, "{file}");
             by_path
         };
@@ -142,25 +132,13 @@ fn every_bad_file_is_refused_naming_where_and_what() {
             assert!(msg.contains(w), "{file}: message lacks {w:?}: {msg}");
         }
         // an element kind smoothlab does not read is said first in plain words, then where
-        let at = msg
-            .split_once(" are not supported yet: ")
-            .map_or(msg.as_str(), |(_, rest)| rest);
-        let placed =
-            at.starts_with("line ") || at.starts_with("element ") || at.starts_with("node ");
-        assert!(
-            placed || whole_mesh(&msg),
-            "{file}: message names no line or element: {msg}"
-        );
+        let at = msg.split_once(" are not supported yet: ").map_or(msg.as_str(), |(_, rest)| rest);
+        let placed = at.starts_with("line ") || at.starts_with("element ") || at.starts_with("node ");
+        assert!(placed || whole_mesh(&msg), "{file}: message names no line or element: {msg}");
     }
 }
 
-const FORMATS: [Format; 5] = [
-    Format::Msh,
-    Format::Vtk,
-    Format::Obj,
-    Format::Off,
-    Format::Medit,
-];
+const FORMATS: [Format; 5] = [Format::Msh, Format::Vtk, Format::Obj, Format::Off, Format::Medit];
 
 #[test]
 fn every_file_through_every_reader_never_panics() {
@@ -192,14 +170,9 @@ fn good_fixtures() -> Vec<(String, Format)> {
         "three_tris.off",
         "two_quads_one_triangle.mesh",
     ]
-    .iter()
-    .map(|n| {
-        (
-            std::fs::read_to_string(dir("").join(n)).unwrap(),
-            Format::from_name(n).unwrap(),
-        )
-    })
-    .collect()
+        .iter()
+        .map(|n| (std::fs::read_to_string(dir("").join(n)).unwrap(), Format::from_name(n).unwrap()))
+        .collect()
 }
 
 proptest! {
@@ -249,51 +222,26 @@ proptest! {
 #[test]
 fn a_message_lists_the_first_few_and_a_count_whatever_the_file() {
     let n = 200_000;
-    let mut vtk = String::from(
-        "# vtk DataFile Version 3.0\nt\nASCII\nDATASET UNSTRUCTURED_GRID\nPOINTS 3 double\n",
-    );
+    let mut vtk = String::from("# vtk DataFile Version 3.0\nt\nASCII\nDATASET UNSTRUCTURED_GRID\nPOINTS 3 double\n");
     vtk += "0 0 0\n1 0 0\n0 1 0\n";
     vtk += &format!("CELLS {n} {}\n", 4 * n);
     vtk += &"3 0 1 2\n".repeat(n);
     vtk += &format!("CELL_TYPES {n}\n");
     vtk += &"5\n".repeat(n);
-    let msg = io::read_model_str(&vtk, Format::Vtk)
-        .unwrap_err()
-        .to_string();
-    assert!(
-        msg.len() < 300,
-        "{} bytes: {}",
-        msg.len(),
-        &msg[..msg.len().min(600)]
-    );
-    assert!(
-        msg.contains(&format!(
-            "shared by {n} elements (0, 1, 2, 3, 4 and {} more)",
-            n - 5
-        )),
-        "{msg}"
-    );
+    let msg = io::read_model_str(&vtk, Format::Vtk).unwrap_err().to_string();
+    assert!(msg.len() < 300, "{} bytes: {}", msg.len(), &msg[..msg.len().min(600)]);
+    assert!(msg.contains(&format!("shared by {n} elements (0, 1, 2, 3, 4 and {} more)", n - 5)), "{msg}");
     // the same in volumes: a tetrahedron listed 1,000 times
     let k = 1000;
-    let mut vtk = String::from(
-        "# vtk DataFile Version 3.0\nt\nASCII\nDATASET UNSTRUCTURED_GRID\nPOINTS 4 double\n",
-    );
+    let mut vtk = String::from("# vtk DataFile Version 3.0\nt\nASCII\nDATASET UNSTRUCTURED_GRID\nPOINTS 4 double\n");
     vtk += "0 0 0\n1 0 0\n0 1 0\n0 0 1\n";
     vtk += &format!("CELLS {k} {}\n", 5 * k);
     vtk += &"4 0 1 2 3\n".repeat(k);
     vtk += &format!("CELL_TYPES {k}\n");
     vtk += &"10\n".repeat(k);
-    let msg = io::read_model_str(&vtk, Format::Vtk)
-        .unwrap_err()
-        .to_string();
+    let msg = io::read_model_str(&vtk, Format::Vtk).unwrap_err().to_string();
     assert!(msg.len() < 300, "{} bytes: {msg}", msg.len());
-    assert!(
-        msg.contains(&format!(
-            "is a face of {k} elements (0, 1, 2, 3, 4 and {} more",
-            k - 5
-        )),
-        "{msg}"
-    );
+    assert!(msg.contains(&format!("is a face of {k} elements (0, 1, 2, 3, 4 and {} more", k - 5)), "{msg}");
 }
 
 /// Issue 61, finding 6: an edge shared by three triangles was reported as "nodes 4 and 5"
@@ -303,9 +251,7 @@ fn a_message_lists_the_first_few_and_a_count_whatever_the_file() {
 fn messages_name_nodes_and_elements_as_the_file_numbers_them() {
     let points = ["0.5 1 0", "0.5 -1 0", "0.5 2 0", "0 0 0", "1 0 0", "3 3 0"];
     let tris = [[3, 4, 0], [3, 4, 1], [4, 3, 2]];
-    let mut vtk = String::from(
-        "# vtk DataFile Version 3.0\nt\nASCII\nDATASET UNSTRUCTURED_GRID\nPOINTS 6 double\n",
-    );
+    let mut vtk = String::from("# vtk DataFile Version 3.0\nt\nASCII\nDATASET UNSTRUCTURED_GRID\nPOINTS 6 double\n");
     for p in points {
         vtk += &format!("{p}\n");
     }
@@ -314,15 +260,8 @@ fn messages_name_nodes_and_elements_as_the_file_numbers_them() {
         vtk += &format!("3 {} {} {}\n", t[0], t[1], t[2]);
     }
     vtk += "CELL_TYPES 3\n5\n5\n5\n";
-    let msg = io::read_model_str(&vtk, Format::Vtk)
-        .unwrap_err()
-        .to_string();
-    assert!(
-        msg.starts_with(
-            "element 2 (line 15): edge between nodes 3 and 4 is shared by 3 elements (0, 1, 2)"
-        ),
-        "{msg}"
-    );
+    let msg = io::read_model_str(&vtk, Format::Vtk).unwrap_err().to_string();
+    assert!(msg.starts_with("element 2 (line 15): edge between nodes 3 and 4 is shared by 3 elements (0, 1, 2)"), "{msg}");
 
     let tag = |i: usize| 10 * (i + 1);
     let mut msh = String::from("$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n6\n");
@@ -334,15 +273,8 @@ fn messages_name_nodes_and_elements_as_the_file_numbers_them() {
         msh += &format!("{} 2 0 {} {} {}\n", 7 + e, tag(t[0]), tag(t[1]), tag(t[2]));
     }
     msh += "$EndElements\n";
-    let msg = io::read_model_str(&msh, Format::Msh)
-        .unwrap_err()
-        .to_string();
-    assert!(
-        msg.starts_with(
-            "element 9 (line 17): edge between nodes 40 and 50 is shared by 3 elements (7, 8, 9)"
-        ),
-        "{msg}"
-    );
+    let msg = io::read_model_str(&msh, Format::Msh).unwrap_err().to_string();
+    assert!(msg.starts_with("element 9 (line 17): edge between nodes 40 and 50 is shared by 3 elements (7, 8, 9)"), "{msg}");
 
     let mut medit = String::from("MeshVersionFormatted 2\nDimension 3\nVertices\n6\n");
     for p in points {
@@ -353,51 +285,24 @@ fn messages_name_nodes_and_elements_as_the_file_numbers_them() {
         medit += &format!("{} {} {} 0\n", t[0] + 1, t[1] + 1, t[2] + 1);
     }
     medit += "End\n";
-    let msg = io::read_model_str(&medit, Format::Medit)
-        .unwrap_err()
-        .to_string();
-    assert!(
-        msg.starts_with(
-            "element 3 (line 15): edge between nodes 4 and 5 is shared by 3 elements (1, 2, 3)"
-        ),
-        "{msg}"
-    );
+    let msg = io::read_model_str(&medit, Format::Medit).unwrap_err().to_string();
+    assert!(msg.starts_with("element 3 (line 15): edge between nodes 4 and 5 is shared by 3 elements (1, 2, 3)"), "{msg}");
 
     // volumes too: node and element tags of a Gmsh file, a face of three tetrahedra
     let mut msh = String::from("$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n6\n");
-    for (i, p) in ["0 0 0", "1 0 0", "0 1 0", "0 0 1", "0 0 -1", "1 1 1"]
-        .iter()
-        .enumerate()
-    {
+    for (i, p) in ["0 0 0", "1 0 0", "0 1 0", "0 0 1", "0 0 -1", "1 1 1"].iter().enumerate() {
         msh += &format!("{} {p}\n", tag(i));
     }
     msh += "$EndNodes\n$Elements\n3\n";
-    for (e, t) in [[0, 1, 2, 3], [0, 2, 1, 4], [0, 1, 2, 5]]
-        .iter()
-        .enumerate()
-    {
-        msh += &format!(
-            "{} 4 0 {} {} {} {}\n",
-            101 + e,
-            tag(t[0]),
-            tag(t[1]),
-            tag(t[2]),
-            tag(t[3])
-        );
+    for (e, t) in [[0, 1, 2, 3], [0, 2, 1, 4], [0, 1, 2, 5]].iter().enumerate() {
+        msh += &format!("{} 4 0 {} {} {} {}\n", 101 + e, tag(t[0]), tag(t[1]), tag(t[2]), tag(t[3]));
     }
     msh += "$EndElements\n";
-    let msg = io::read_model_str(&msh, Format::Msh)
-        .unwrap_err()
-        .to_string();
-    assert!(
-        msg.contains("its face [10, 20, 30] is a face of 3 elements (101, 102, 103"),
-        "{msg}"
-    );
+    let msg = io::read_model_str(&msh, Format::Msh).unwrap_err().to_string();
+    assert!(msg.contains("its face [10, 20, 30] is a face of 3 elements (101, 102, 103"), "{msg}");
     assert!(msg.starts_with("element 103 (line 17)"), "{msg}");
     // a node whose coordinate cannot be computed with, by its tag
     let huge = msh.replacen("60 1 1 1", "60 1e308 1 1", 1);
-    let msg = io::read_model_str(&huge, Format::Msh)
-        .unwrap_err()
-        .to_string();
+    let msg = io::read_model_str(&huge, Format::Msh).unwrap_err().to_string();
     assert!(msg.starts_with("node 60 (line 11)"), "{msg}");
 }

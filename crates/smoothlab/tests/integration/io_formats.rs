@@ -28,9 +28,7 @@ fn p(x: f64, y: f64) -> DVec2 {
 }
 
 fn elements(m: &Mesh) -> Vec<Vec<u32>> {
-    (0..m.element_count())
-        .map(|e| m.element(e).to_vec())
-        .collect()
+    (0..m.element_count()).map(|e| m.element(e).to_vec()).collect()
 }
 
 #[test]
@@ -49,9 +47,7 @@ fn msh22_with_sparse_tags_skipped_sections_and_marker_lines() {
 
     // the same file without that line: the centre is free
     let text = std::fs::read_to_string(data("grid_lines.msh")).unwrap();
-    let text = text
-        .replace("7\n1 1 2", "6\n1 1 2")
-        .replace("3 1 2 1 3 20 50\n", "");
+    let text = text.replace("7\n1 1 2", "6\n1 1 2").replace("3 1 2 1 3 20 50\n", "");
     let m = io::read_str(&text, Format::Msh).unwrap();
     assert_eq!(m.fixed().iter().filter(|&&f| !f).count(), 1);
     assert!(!m.fixed()[4]);
@@ -62,30 +58,13 @@ fn msh41_with_several_blocks_parametric_nodes_and_huge_tags() {
     let m = read("sparse_blocks.msh");
     assert_eq!((m.node_count(), m.element_count()), (9, 6));
     // node order is the order of appearance across blocks
-    let want = [
-        p(0., 0.),
-        p(2., 0.),
-        p(0., 2.),
-        p(2., 2.),
-        p(1., 0.),
-        p(2., 1.),
-        p(1., 2.),
-        p(0., 1.),
-        p(1., 1.),
-    ];
+    let want = [p(0., 0.), p(2., 0.), p(0., 2.), p(2., 2.), p(1., 0.), p(2., 1.), p(1., 2.), p(0., 1.), p(1., 1.)];
     assert_eq!(m.nodes(), want);
     use ElementKind::*;
     assert_eq!(m.kinds(), &[Quad4, Quad4, Tri3, Tri3, Tri3, Tri3]);
     assert_eq!(
         elements(&m),
-        vec![
-            vec![0, 4, 8, 7],
-            vec![7, 8, 6, 2],
-            vec![4, 1, 5],
-            vec![4, 5, 8],
-            vec![8, 5, 3],
-            vec![8, 3, 6]
-        ]
+        vec![vec![0, 4, 8, 7], vec![7, 8, 6, 2], vec![4, 1, 5], vec![4, 5, 8], vec![8, 5, 3], vec![8, 3, 6]]
     );
     assert!((total_area(&m) - 4.0).abs() < 1e-15);
     // node 8 (tag 56) is interior and fixed by the point element
@@ -96,15 +75,9 @@ fn msh41_with_several_blocks_parametric_nodes_and_huge_tags() {
 fn vtk_wrapped_data_skipped_attributes_and_exact_fixed_flags() {
     let m = read("wrapped.vtk");
     assert_eq!((m.node_count(), m.element_count()), (6, 3));
-    assert_eq!(
-        m.kinds(),
-        &[ElementKind::Quad4, ElementKind::Tri3, ElementKind::Tri3]
-    );
+    assert_eq!(m.kinds(), &[ElementKind::Quad4, ElementKind::Tri3, ElementKind::Tri3]);
     assert_eq!(m.nodes()[5], p(2.0, 1.0));
-    assert_eq!(
-        elements(&m),
-        vec![vec![0, 1, 4, 3], vec![1, 2, 5], vec![1, 5, 4]]
-    );
+    assert_eq!(elements(&m), vec![vec![0, 1, 4, 3], vec![1, 2, 5], vec![1, 5, 4]]);
     assert!((total_area(&m) - 2.0).abs() < 1e-15);
     // exactly as the file says, although nodes 1, 4 and 5 are on the boundary
     assert_eq!(m.fixed(), vec![true, false, true, true, false, false]);
@@ -115,10 +88,7 @@ fn vtk_51_offsets_layout_with_metadata_and_quadratic_triangles() {
     let m = read("offsets_tri6.vtk");
     assert_eq!((m.node_count(), m.element_count()), (9, 2));
     assert_eq!(m.kinds(), &[ElementKind::Tri6, ElementKind::Tri6]);
-    assert_eq!(
-        elements(&m),
-        vec![vec![0, 1, 2, 4, 5, 6], vec![0, 2, 3, 6, 7, 8]]
-    );
+    assert_eq!(elements(&m), vec![vec![0, 1, 2, 4, 5, 6], vec![0, 2, 3, 6, 7, 8]]);
     assert!((total_area(&m) - 4.0).abs() < 1e-15);
     // no fixed data: the boundary, mid-nodes included; the diagonal's mid-node is free
     let free: Vec<usize> = (0..9).filter(|&i| !m.fixed()[i]).collect();
@@ -140,15 +110,8 @@ fn triangle_o2_mid_nodes_are_remapped_onto_their_edges() {
     for e in 0..2 {
         let ids = m.element(e);
         for i in 0..3 {
-            let (a, b) = (
-                m.nodes()[ids[i] as usize],
-                m.nodes()[ids[(i + 1) % 3] as usize],
-            );
-            assert_eq!(
-                m.nodes()[ids[3 + i] as usize],
-                0.5 * (a + b),
-                "element {e}, edge {i}"
-            );
+            let (a, b) = (m.nodes()[ids[i] as usize], m.nodes()[ids[(i + 1) % 3] as usize]);
+            assert_eq!(m.nodes()[ids[3 + i] as usize], 0.5 * (a + b), "element {e}, edge {i}");
         }
     }
     // 1-based file numbers → 0-based indices: element 1 is nodes 1 2 3 | 7 6 5
@@ -160,8 +123,7 @@ fn triangle_o2_mid_nodes_are_remapped_onto_their_edges() {
 
 #[test]
 fn triangle_zero_based_with_attributes_and_a_marked_interior_node() {
-    let node =
-        "5 2 1 1\n0 0 0 7.5 1\n1 2 0 7.5 1\n2 2 2 7.5 1\n3 0 2 7.5 1\n4 1 1 7.5 5 # marked\n";
+    let node = "5 2 1 1\n0 0 0 7.5 1\n1 2 0 7.5 1\n2 2 2 7.5 1\n3 0 2 7.5 1\n4 1 1 7.5 5 # marked\n";
     let ele = "4 3 1\n0 0 1 4 0.0\n1 1 2 4 0.0\n2 2 3 4 0.0\n3 3 0 4 0.0\n";
     let m = io::read_triangle(node, ele).unwrap();
     assert_eq!(m.element(0), &[0, 1, 4]);
@@ -174,14 +136,8 @@ fn triangle_zero_based_with_attributes_and_a_marked_interior_node() {
 fn obj_relative_indices_and_slash_forms() {
     let m = read("relative.obj");
     assert_eq!((m.node_count(), m.element_count()), (6, 3));
-    assert_eq!(
-        elements(&m),
-        vec![vec![0, 1, 2], vec![0, 2, 3], vec![1, 4, 5, 2]]
-    );
-    assert_eq!(
-        m.kinds(),
-        &[ElementKind::Tri3, ElementKind::Tri3, ElementKind::Quad4]
-    );
+    assert_eq!(elements(&m), vec![vec![0, 1, 2], vec![0, 2, 3], vec![1, 4, 5, 2]]);
+    assert_eq!(m.kinds(), &[ElementKind::Tri3, ElementKind::Tri3, ElementKind::Quad4]);
     assert!((total_area(&m) - 2.0).abs() < 1e-15);
 }
 
@@ -189,47 +145,26 @@ fn obj_relative_indices_and_slash_forms() {
 fn off_with_comments_and_face_colours() {
     let m = read("three_tris.off");
     assert_eq!((m.node_count(), m.element_count()), (5, 3));
-    assert_eq!(
-        elements(&m),
-        vec![vec![0, 1, 2], vec![0, 2, 3], vec![1, 4, 2]]
-    );
+    assert_eq!(elements(&m), vec![vec![0, 1, 2], vec![0, 2, 3], vec![1, 4, 2]]);
     assert!((total_area(&m) - 1.5).abs() < 1e-15);
     // the counts may share the OFF line
-    let t = std::fs::read_to_string(data("three_tris.off"))
-        .unwrap()
-        .replacen("OFF\n# a comment line\n5 3 0", "OFF 5 3 0", 1);
-    assert_eq!(
-        elements(&io::read_str(&t, Format::Off).unwrap()),
-        elements(&m)
-    );
+    let t = std::fs::read_to_string(data("three_tris.off")).unwrap().replacen("OFF\n# a comment line\n5 3 0", "OFF 5 3 0", 1);
+    assert_eq!(elements(&io::read_str(&t, Format::Off).unwrap()), elements(&m));
 }
 
 /// A 2 × 1 quad strip in VTK with the given 3D points.
 fn vtk_strip(points: &[[f64; 3]; 6], clockwise: bool) -> String {
-    let mut s = String::from(
-        "# vtk DataFile Version 3.0\nstrip\nASCII\nDATASET UNSTRUCTURED_GRID\nPOINTS 6 double\n",
-    );
+    let mut s = String::from("# vtk DataFile Version 3.0\nstrip\nASCII\nDATASET UNSTRUCTURED_GRID\nPOINTS 6 double\n");
     for q in points {
         s += &format!("{:?} {:?} {:?}\n", q[0], q[1], q[2]);
     }
-    s += if clockwise {
-        "CELLS 2 10\n4 0 3 4 1\n4 1 4 5 2\n"
-    } else {
-        "CELLS 2 10\n4 0 1 4 3\n4 1 2 5 4\n"
-    };
+    s += if clockwise { "CELLS 2 10\n4 0 3 4 1\n4 1 4 5 2\n" } else { "CELLS 2 10\n4 0 1 4 3\n4 1 2 5 4\n" };
     s + "CELL_TYPES 2\n9\n9\n"
 }
 
 /// The strip's points (x in 0, 1, 2; y in 0, 1) through a map to 3D.
 fn strip(f: impl Fn(f64, f64) -> [f64; 3]) -> [[f64; 3]; 6] {
-    [
-        f(0., 0.),
-        f(1., 0.),
-        f(2., 0.),
-        f(0., 1.),
-        f(1., 1.),
-        f(2., 1.),
-    ]
+    [f(0., 0.), f(1., 0.), f(2., 0.), f(0., 1.), f(1., 1.), f(2., 1.)]
 }
 
 #[test]
@@ -240,31 +175,16 @@ fn planar_3d_input_is_mapped_and_oriented_counter_clockwise() {
     // z = -5 facing down (clockwise seen from +z): every element comes out CCW
     let m = io::read_str(&vtk_strip(&strip(|x, y| [x, y, -5.0]), true), Format::Vtk).unwrap();
     for e in 0..2 {
-        assert!(
-            (m.corner_area(e) - 1.0).abs() < 1e-15,
-            "element {e}: {}",
-            m.corner_area(e)
-        );
+        assert!((m.corner_area(e) - 1.0).abs() < 1e-15, "element {e}: {}", m.corner_area(e));
     }
     // a tilted plane, facing either way: true areas, counter-clockwise
     let (s, c) = (35f64.to_radians().sin(), 35f64.to_radians().cos());
     for clockwise in [false, true] {
-        let m = io::read_str(
-            &vtk_strip(&strip(|x, y| [x * c, y, 3.0 + x * s]), clockwise),
-            Format::Vtk,
-        )
-        .unwrap();
+        let m = io::read_str(&vtk_strip(&strip(|x, y| [x * c, y, 3.0 + x * s]), clockwise), Format::Vtk).unwrap();
         for e in 0..2 {
-            assert!(
-                (m.corner_area(e) - 1.0).abs() < 1e-12,
-                "element {e}: {}",
-                m.corner_area(e)
-            );
+            assert!((m.corner_area(e) - 1.0).abs() < 1e-12, "element {e}: {}", m.corner_area(e));
         }
-        assert!(
-            (m.nodes()[0].distance(m.nodes()[2]) - 2.0).abs() < 1e-12,
-            "lengths are kept"
-        );
+        assert!((m.nodes()[0].distance(m.nodes()[2]) - 2.0).abs() < 1e-12, "lengths are kept");
     }
     // the plane y = -5
     let m = io::read_str(&vtk_strip(&strip(|x, y| [x, -5.0, y]), false), Format::Vtk).unwrap();
@@ -275,34 +195,21 @@ fn planar_3d_input_is_mapped_and_oriented_counter_clockwise() {
 fn non_planar_input_is_refused_saying_how_far_off() {
     let bent = strip(|x, y| [x, y, if x == 2.0 && y == 1.0 { 0.4 } else { 0.0 }]);
     let e = io::read_str(&vtk_strip(&bent, false), Format::Vtk).unwrap_err();
-    let Error::NotPlanar { max_distance, .. } = e else {
-        panic!("{e:?}")
-    };
+    let Error::NotPlanar { max_distance, .. } = e else { panic!("{e:?}") };
     // the plane is the one of the other nodes (one bent node no longer tilts it)
     assert!((max_distance - 0.4).abs() < 1e-12, "{max_distance}");
     let msg = e.to_string();
-    assert!(
-        msg.contains("not planar") && msg.contains("lies 0.4 off"),
-        "{msg}"
-    );
+    assert!(msg.contains("not planar") && msg.contains("lies 0.4 off"), "{msg}");
 }
 
 #[test]
 fn formats_by_name_and_pairs() {
     let bytes = std::fs::read(data("relative.obj")).unwrap();
-    assert_eq!(
-        io::read_bytes(&bytes, "upload.OBJ")
-            .unwrap()
-            .element_count(),
-        3
-    );
+    assert_eq!(io::read_bytes(&bytes, "upload.OBJ").unwrap().element_count(), 3);
     let e = io::read_bytes(&bytes, "mesh.stl").unwrap_err().to_string();
     assert!(e.contains("mesh.stl") && e.contains(".msh"), "{e}");
     let node = std::fs::read(data("square_o2.node")).unwrap();
-    for e in [
-        io::read_bytes(&node, "square_o2.node").unwrap_err(),
-        io::read_str("", Format::Triangle).unwrap_err(),
-    ] {
+    for e in [io::read_bytes(&node, "square_o2.node").unwrap_err(), io::read_str("", Format::Triangle).unwrap_err()] {
         assert!(e.to_string().contains(".node/.ele pair"), "{e}");
     }
 }
@@ -311,29 +218,20 @@ fn formats_by_name_and_pairs() {
 fn writers_refuse_what_their_format_cannot_hold() {
     let quadratic = read("offsets_tri6.vtk");
     for f in [Format::Obj, Format::Off] {
-        let e = io::write_string(&quadratic, f, &Default::default())
-            .unwrap_err()
-            .to_string();
+        let e = io::write_string(&quadratic, f, &Default::default()).unwrap_err().to_string();
         assert!(e.contains("6-node triangle") && e.contains("linear"), "{e}");
     }
     let quads = read("grid_lines.msh");
     let e = io::write_triangle(&quads).unwrap_err().to_string();
     assert!(e.contains("4-node quad"), "{e}");
-    let e = io::write_string(&quads, Format::Triangle, &Default::default())
-        .unwrap_err()
-        .to_string();
+    let e = io::write_string(&quads, Format::Triangle, &Default::default()).unwrap_err().to_string();
     assert!(e.contains("write_triangle"), "{e}");
 }
 
 #[test]
 fn unused_nodes_are_kept_and_fixed() {
     let mut b = MeshBuilder::new();
-    for q in [
-        [0.0, 0.0, 0.0],
-        [1.0, 0.0, 0.0],
-        [9.0, 9.0, 0.0],
-        [0.0, 1.0, 0.0],
-    ] {
+    for q in [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [9.0, 9.0, 0.0], [0.0, 1.0, 0.0]] {
         b.add_node(q, 0);
     }
     b.add_element(ElementKind::Tri3, &[0, 1, 3], 0);
@@ -350,12 +248,7 @@ fn files_stream_the_same_bytes_and_refusals_make_no_file() {
     let big = smoothlab::generate::rand2d(3000, 20, 5).unwrap(); // a text of several chunks
     let dir = std::env::temp_dir().join(format!("smoothlab-io-stream-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
-    for (name, format) in [
-        ("m.msh", Format::Msh),
-        ("m.vtk", Format::Vtk),
-        ("m.obj", Format::Obj),
-        ("m.off", Format::Off),
-    ] {
+    for (name, format) in [("m.msh", Format::Msh), ("m.vtk", Format::Vtk), ("m.obj", Format::Obj), ("m.off", Format::Off)] {
         let path = dir.join(name);
         io::write_path(&big, &path, &Default::default()).unwrap();
         let text = io::write_string(&big, format, &Default::default()).unwrap();
@@ -382,21 +275,8 @@ fn files_stream_the_same_bytes_and_refusals_make_no_file() {
 fn medit_fixture_reads_its_sections_in_their_order() {
     // comments, a count on the next line, quads before triangles, Corners fixing a node
     let m = read("two_quads_one_triangle.mesh");
-    assert_eq!(
-        (m.node_count(), m.kinds()),
-        (
-            7,
-            &[ElementKind::Quad4, ElementKind::Quad4, ElementKind::Tri3][..]
-        )
-    );
+    assert_eq!((m.node_count(), m.kinds()), (7, &[ElementKind::Quad4, ElementKind::Quad4, ElementKind::Tri3][..]));
     assert_eq!(m.element_as_given(2).to_vec(), vec![2, 6, 5]);
-    assert!(
-        m.nodes().iter().all(|p| p.x.fract() == 0.0 || p.x == 3.0),
-        "the references are not coordinates"
-    );
-    assert_eq!(
-        m.fixed().iter().filter(|&&f| f).count(),
-        7,
-        "every node is on the boundary"
-    );
+    assert!(m.nodes().iter().all(|p| p.x.fract() == 0.0 || p.x == 3.0), "the references are not coordinates");
+    assert_eq!(m.fixed().iter().filter(|&&f| f).count(), 7, "every node is on the boundary");
 }

@@ -27,46 +27,24 @@ const LIVESU: [(&str, usize, usize, usize, usize); 11] = [
 /// The first hexahedron's vertices as the file gives them, 0-based.
 fn first_hexahedron(text: &str) -> Vec<u32> {
     let at = text.find("Hexahedra").expect("a Hexahedra section");
-    text[at..]
-        .split_whitespace()
-        .skip(2)
-        .take(8)
-        .map(|t| t.parse::<u32>().unwrap() - 1)
-        .collect()
+    text[at..].split_whitespace().skip(2).take(8).map(|t| t.parse::<u32>().unwrap() - 1).collect()
 }
 
 #[test]
 fn livesu_meshes_read_with_their_counts_as_given() {
-    let Some(dir) = crate::common::livesu_meshes() else {
-        return;
-    };
+    let Some(dir) = crate::common::livesu_meshes() else { return };
     for (name, nodes, hexahedra, quads, inverted) in LIVESU {
         let path = dir.join(name);
         let started = std::time::Instant::now();
-        let Ok(Model::Volume(m)) = read_model_path(&path) else {
-            panic!("{name}: not read as a volume")
-        };
+        let Ok(Model::Volume(m)) = read_model_path(&path) else { panic!("{name}: not read as a volume") };
         let took = started.elapsed();
         let bad = (0..m.element_count()).filter(|&e| m.is_inverted(e)).count();
-        println!(
-            "{name}: {} vertices, {} hexahedra, {} quads, {bad} inverted, read in {took:.2?}",
-            m.node_count(),
-            m.element_count(),
-            m.faces().len()
-        );
-        assert_eq!(
-            (m.node_count(), m.element_count(), m.faces().len()),
-            (nodes, hexahedra, quads),
-            "{name}"
-        );
+        println!("{name}: {} vertices, {} hexahedra, {} quads, {bad} inverted, read in {took:.2?}", m.node_count(), m.element_count(), m.faces().len());
+        assert_eq!((m.node_count(), m.element_count(), m.faces().len()), (nodes, hexahedra, quads), "{name}");
         assert_eq!(m.kinds(), &[VolumeKind::Hex8], "{name}: hexahedra only");
         assert_eq!(bad, inverted, "{name}: inverted hexahedra");
         let text = std::fs::read_to_string(&path).unwrap();
-        assert_eq!(
-            m.element(0),
-            &first_hexahedron(&text)[..],
-            "{name}: kept as given"
-        );
+        assert_eq!(m.element(0), &first_hexahedron(&text)[..], "{name}: kept as given");
     }
 }
 
@@ -75,9 +53,7 @@ fn livesu_meshes_read_with_their_counts_as_given() {
 /// cannot reach the published smallest scaled Jacobian; dancing children can.
 #[test]
 fn five_published_scaled_jacobians_lie_beyond_what_a_fixed_boundary_allows() {
-    let Some(dir) = crate::common::livesu_meshes() else {
-        return;
-    };
+    let Some(dir) = crate::common::livesu_meshes() else { return };
     // file, the cap to three decimals, the published output's smallest scaled Jacobian
     for (name, cap, published) in [
         ("block_in.mesh", 0.202, 0.250),
@@ -87,9 +63,7 @@ fn five_published_scaled_jacobians_lie_beyond_what_a_fixed_boundary_allows() {
         ("dancingchildren_in.mesh", 0.442, 0.354),
         ("hanger_stresstest_in.mesh", 0.666, 0.716),
     ] {
-        let Ok(Model::Volume(m)) = read_model_path(&dir.join(name)) else {
-            panic!("{name}")
-        };
+        let Ok(Model::Volume(m)) = read_model_path(&dir.join(name)) else { panic!("{name}") };
         let got = m.scaled_jacobian_cap();
         assert!((got - cap).abs() < 5e-4, "{name}: cap {got}");
         assert_eq!(got < published, name != "dancingchildren_in.mesh", "{name}");
@@ -102,24 +76,13 @@ fn five_published_scaled_jacobians_lie_beyond_what_a_fixed_boundary_allows() {
 /// acceptance rule ends with more inverted elements than it began with.
 #[test]
 fn no_default_pass_on_bust_ends_with_more_inverted_elements() {
-    let Some(dir) = crate::common::livesu_meshes() else {
-        return;
-    };
-    let Ok(mut model) = read_model_path(&dir.join("bust_in.mesh")) else {
-        panic!("bust: not read")
-    };
+    let Some(dir) = crate::common::livesu_meshes() else { return };
+    let Ok(mut model) = read_model_path(&dir.join("bust_in.mesh")) else { panic!("bust: not read") };
     let mut last = model.stats().inverted;
     assert_eq!(last, 30, "bust as loaded");
-    let report = model
-        .smooth(&smoothlab::Smoothing::default().passes(10))
-        .unwrap();
+    let report = model.smooth(&smoothlab::Smoothing::default().passes(10)).unwrap();
     for r in report.passes() {
-        assert!(
-            r.after.inverted <= last,
-            "pass {}: {} inverted after {last}",
-            r.pass,
-            r.after.inverted
-        );
+        assert!(r.after.inverted <= last, "pass {}: {} inverted after {last}", r.pass, r.after.inverted);
         last = r.after.inverted;
     }
     assert_eq!(report.inverted(), 1);

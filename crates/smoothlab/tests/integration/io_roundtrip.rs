@@ -21,30 +21,13 @@ enum Family {
     MixedQuadratic,
 }
 
-const FAMILIES: [Family; 7] = [
-    Family::Tri3,
-    Family::Quad4,
-    Family::MixedLinear,
-    Family::Tri6,
-    Family::Quad8,
-    Family::Quad9,
-    Family::MixedQuadratic,
-];
+const FAMILIES: [Family; 7] =
+    [Family::Tri3, Family::Quad4, Family::MixedLinear, Family::Tri6, Family::Quad8, Family::Quad9, Family::MixedQuadratic];
 
 /// An `nx` × `ny` grid of cells of the family, nodes jittered by `jitter` (cycled) and
 /// scaled by `scale`, fixed flags from `fixed` (cycled).
-fn grid(
-    nx: usize,
-    ny: usize,
-    family: Family,
-    jitter: &[(f64, f64)],
-    scale: f64,
-    fixed: &[bool],
-) -> Mesh {
-    let quadratic = matches!(
-        family,
-        Family::Tri6 | Family::Quad8 | Family::Quad9 | Family::MixedQuadratic
-    );
+fn grid(nx: usize, ny: usize, family: Family, jitter: &[(f64, f64)], scale: f64, fixed: &[bool]) -> Mesh {
+    let quadratic = matches!(family, Family::Tri6 | Family::Quad8 | Family::Quad9 | Family::MixedQuadratic);
     let step = if quadratic { 2 } else { 1 };
     let (w, h) = (step * nx + 1, step * ny + 1);
     let mut b = MeshBuilder::new();
@@ -53,14 +36,7 @@ fn grid(
             let k = j * w + i;
             let (jx, jy) = jitter[k % jitter.len()];
             let unit = 1.0 / step as f64;
-            b.add_node(
-                [
-                    (i as f64 + jx) * unit * scale,
-                    (j as f64 + jy) * unit * scale,
-                    0.0,
-                ],
-                0,
-            );
+            b.add_node([(i as f64 + jx) * unit * scale, (j as f64 + jy) * unit * scale, 0.0], 0);
         }
     }
     let at = |i: usize, j: usize| (j * w + i) as u32;
@@ -69,55 +45,19 @@ fn grid(
             let (i, j) = (step * ci, step * cj);
             let pick = match family {
                 Family::MixedLinear => [Family::Quad4, Family::Tri3][(ci + cj) % 2],
-                Family::MixedQuadratic => {
-                    [Family::Quad9, Family::Quad8, Family::Tri6][(ci + cj) % 3]
-                }
+                Family::MixedQuadratic => [Family::Quad9, Family::Quad8, Family::Tri6][(ci + cj) % 3],
                 f => f,
             };
             match pick {
                 Family::Tri3 => {
-                    b.add_element(
-                        ElementKind::Tri3,
-                        &[at(i, j), at(i + 1, j), at(i + 1, j + 1)],
-                        0,
-                    );
-                    b.add_element(
-                        ElementKind::Tri3,
-                        &[at(i, j), at(i + 1, j + 1), at(i, j + 1)],
-                        0,
-                    );
+                    b.add_element(ElementKind::Tri3, &[at(i, j), at(i + 1, j), at(i + 1, j + 1)], 0);
+                    b.add_element(ElementKind::Tri3, &[at(i, j), at(i + 1, j + 1), at(i, j + 1)], 0);
                 }
-                Family::Quad4 => b.add_element(
-                    ElementKind::Quad4,
-                    &[at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1)],
-                    0,
-                ),
+                Family::Quad4 => b.add_element(ElementKind::Quad4, &[at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1)], 0),
                 Family::Tri6 => {
                     let c = at(i + 1, j + 1);
-                    b.add_element(
-                        ElementKind::Tri6,
-                        &[
-                            at(i, j),
-                            at(i + 2, j),
-                            at(i + 2, j + 2),
-                            at(i + 1, j),
-                            at(i + 2, j + 1),
-                            c,
-                        ],
-                        0,
-                    );
-                    b.add_element(
-                        ElementKind::Tri6,
-                        &[
-                            at(i, j),
-                            at(i + 2, j + 2),
-                            at(i, j + 2),
-                            c,
-                            at(i + 1, j + 2),
-                            at(i, j + 1),
-                        ],
-                        0,
-                    );
+                    b.add_element(ElementKind::Tri6, &[at(i, j), at(i + 2, j), at(i + 2, j + 2), at(i + 1, j), at(i + 2, j + 1), c], 0);
+                    b.add_element(ElementKind::Tri6, &[at(i, j), at(i + 2, j + 2), at(i, j + 2), c, at(i + 1, j + 2), at(i, j + 1)], 0);
                 }
                 Family::Quad8 | Family::Quad9 => {
                     let mut ids = vec![
@@ -167,18 +107,12 @@ fn same_geometry(a: &Mesh, b: &Mesh, what: &str) {
 
 /// Boundary and unused nodes: the fixed flags of a format that stores none.
 fn boundary_fixed(m: &Mesh) -> Vec<bool> {
-    (0..m.node_count())
-        .map(|i| m.is_boundary(i) || m.role(i) == NodeRole::Unused)
-        .collect()
+    (0..m.node_count()).map(|i| m.is_boundary(i) || m.role(i) == NodeRole::Unused).collect()
 }
 
 /// The fixed flags of a format that marks fixed nodes on top of the boundary.
 fn boundary_or_fixed(m: &Mesh) -> Vec<bool> {
-    boundary_fixed(m)
-        .iter()
-        .zip(m.fixed())
-        .map(|(a, b)| *a || *b)
-        .collect()
+    boundary_fixed(m).iter().zip(m.fixed()).map(|(a, b)| *a || *b).collect()
 }
 
 fn check_all_formats(m: &Mesh) {
@@ -211,17 +145,9 @@ fn check_all_formats(m: &Mesh) {
             same_nodes(m, &back, "Medit");
             assert_eq!(back.element_count(), grouped.len(), "Medit: element count");
             for (b, &e) in grouped.iter().enumerate() {
-                assert_eq!(
-                    (back.kind(b), back.element(b)),
-                    (m.kind(e), m.element(e)),
-                    "Medit: element {e}, read as {b}"
-                );
+                assert_eq!((back.kind(b), back.element(b)), (m.kind(e), m.element(e)), "Medit: element {e}, read as {b}");
             }
-            assert_eq!(
-                back.fixed(),
-                boundary_or_fixed(m),
-                "Medit: fixed = boundary ∪ required"
-            );
+            assert_eq!(back.fixed(), boundary_or_fixed(m), "Medit: fixed = boundary ∪ required");
         }
         Err(e) => assert!(m.has_quadratic(), "Medit refused a linear mesh: {e}"),
     }
@@ -230,11 +156,7 @@ fn check_all_formats(m: &Mesh) {
         let (node, ele) = io::write_triangle(m).unwrap();
         let back = io::read_triangle(&node, &ele).unwrap();
         same_geometry(m, &back, "triangle");
-        assert_eq!(
-            back.fixed(),
-            boundary_or_fixed(m),
-            "triangle: fixed = boundary ∪ markers"
-        );
+        assert_eq!(back.fixed(), boundary_or_fixed(m), "triangle: fixed = boundary ∪ markers");
     } else {
         assert!(io::write_triangle(m).is_err());
     }
@@ -242,13 +164,7 @@ fn check_all_formats(m: &Mesh) {
 
 #[test]
 fn every_family_round_trips_through_every_writer() {
-    let jitter = [
-        (0.0, 0.0),
-        (0.1, -0.2),
-        (-0.15, 0.05),
-        (0.2, 0.2),
-        (1.0 / 3.0, -0.1),
-    ];
+    let jitter = [(0.0, 0.0), (0.1, -0.2), (-0.15, 0.05), (0.2, 0.2), (1.0 / 3.0, -0.1)];
     for family in FAMILIES {
         let m = grid(3, 2, family, &jitter, 1.0, &[true, false, false]);
         check_all_formats(&m);
@@ -257,26 +173,12 @@ fn every_family_round_trips_through_every_writer() {
 
 #[test]
 fn files_round_trip_through_the_file_system() {
-    let m = grid(
-        2,
-        2,
-        Family::Tri6,
-        &[(0.0, 0.0), (0.1, 0.2)],
-        0.7,
-        &[false, true],
-    );
+    let m = grid(2, 2, Family::Tri6, &[(0.0, 0.0), (0.1, 0.2)], 0.7, &[false, true]);
     let dir = std::env::temp_dir().join(format!("smoothlab-io-test-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     for name in ["m.msh", "m.vtk", "m.node"] {
         let path = dir.join(name);
-        io::write_path(
-            &m,
-            &path,
-            &WriteOptions {
-                msh_version: MshVersion::V41,
-            },
-        )
-        .unwrap();
+        io::write_path(&m, &path, &WriteOptions { msh_version: MshVersion::V41 }).unwrap();
         let back = io::read_path(&path).unwrap();
         same_geometry(&m, &back, name);
     }
@@ -284,22 +186,14 @@ fn files_round_trip_through_the_file_system() {
     assert!(dir.join("m.ele").is_file());
     let back = io::read_path(&dir.join("m.ele")).unwrap();
     same_geometry(&m, &back, "m.ele");
-    let e = io::read_path(&dir.join("absent.vtk"))
-        .unwrap_err()
-        .to_string();
+    let e = io::read_path(&dir.join("absent.vtk")).unwrap_err().to_string();
     assert!(e.contains("absent.vtk"), "{e}");
     // over the size limit: refused from its length, before reading (a sparse file)
     let big = dir.join("big.msh");
-    std::fs::File::create(&big)
-        .unwrap()
-        .set_len(io::MAX_FILE_BYTES + 1)
-        .unwrap();
+    std::fs::File::create(&big).unwrap().set_len(io::MAX_FILE_BYTES + 1).unwrap();
     let e = io::read_path(&big).unwrap_err();
     assert!(matches!(e, smoothlab::Error::TooLarge(_)), "{e:?}");
-    assert!(
-        e.to_string().contains(&io::MAX_FILE_BYTES.to_string()),
-        "{e}"
-    );
+    assert!(e.to_string().contains(&io::MAX_FILE_BYTES.to_string()), "{e}");
     std::fs::remove_dir_all(&dir).unwrap();
 }
 
@@ -323,11 +217,7 @@ proptest! {
 #[test]
 fn awkward_numbers_survive() {
     // shortest round-trip forms: exponents, subnormal-adjacent, negative zero
-    let jitter = [
-        (f64::EPSILON, -0.0),
-        (1e-17, 0.1 + 0.2 - 0.3),
-        (-1.0 / 3.0 + 0.3, 0.25),
-    ];
+    let jitter = [(f64::EPSILON, -0.0), (1e-17, 0.1 + 0.2 - 0.3), (-1.0 / 3.0 + 0.3, 0.25)];
     let mut m = grid(2, 1, Family::Quad4, &jitter, 1e-300, &[true]);
     m.nodes_mut()[0] = DVec2::new(-0.0, 0.0);
     check_all_formats(&m);

@@ -88,10 +88,7 @@ const MIB: usize = 1 << 20;
 fn refused(text: &str, format: Format) -> (Error, usize) {
     let (r, peak) = peak_during(|| io::read_str(text, format));
     match r {
-        Ok(m) => panic!(
-            "{format:?} read a mesh of {} nodes from input that should be refused",
-            m.node_count()
-        ),
+        Ok(m) => panic!("{format:?} read a mesh of {} nodes from input that should be refused", m.node_count()),
         Err(e) => (e, peak),
     }
 }
@@ -139,29 +136,17 @@ fn a_billion_of_anything_is_refused_before_allocating() {
     for (format, text, line, what) in &cases {
         let (e, peak) = refused(text, *format);
         assert_mentions(&e, &[line, g, what]);
-        assert!(
-            peak < 64 * KIB,
-            "{format:?} {what}: allocated {peak} bytes for a claim it refused:\n{text}"
-        );
+        assert!(peak < 64 * KIB, "{format:?} {what}: allocated {peak} bytes for a claim it refused:\n{text}");
     }
     // Triangle: both files of the pair.
-    let (r, peak) =
-        peak_during(|| io::read_triangle(&format!("{g} 2 0 0\n1 0 0\n"), "1 3 0\n1 1 2 3\n"));
+    let (r, peak) = peak_during(|| io::read_triangle(&format!("{g} 2 0 0\n1 0 0\n"), "1 3 0\n1 1 2 3\n"));
     assert_mentions(&r.unwrap_err(), &["line 1", g, "nodes", ".node file"]);
     assert!(peak < 64 * KIB, "{peak}");
-    let (r, peak) = peak_during(|| {
-        io::read_triangle(
-            "3 2 0 0\n1 0 0\n2 1 0\n3 0 1\n",
-            &format!("{g} 3 0\n1 1 2 3\n"),
-        )
-    });
+    let (r, peak) = peak_during(|| io::read_triangle("3 2 0 0\n1 0 0\n2 1 0\n3 0 1\n", &format!("{g} 3 0\n1 1 2 3\n")));
     assert_mentions(&r.unwrap_err(), &["line 1", g, "triangles", ".ele file"]);
     assert!(peak < 64 * KIB, "{peak}");
     // A cell that claims a billion points reads what is there and stops at the next keyword.
-    let (e, peak) = refused(
-        &format!("{VTK_HEAD}{VTK_POINTS}CELLS 1 4\n{g} 0 1 2\nCELL_TYPES 1\n5\n"),
-        Format::Vtk,
-    );
+    let (e, peak) = refused(&format!("{VTK_HEAD}{VTK_POINTS}CELLS 1 4\n{g} 0 1 2\nCELL_TYPES 1\n5\n"), Format::Vtk);
     assert_mentions(&e, &["line 11", "cut short by 'CELL_TYPES'"]);
     assert!(peak < 64 * KIB, "{peak}");
 }
@@ -192,11 +177,7 @@ fn counts_the_data_does_not_back_cost_a_bounded_amount() {
     for (format, text, what) in &cases {
         let (e, peak) = refused(text, *format);
         assert_mentions(&e, &[what]);
-        assert!(
-            peak < 4 * MIB,
-            "{format:?} ({what}): {} MiB allocated for 32 MiB of blank space: {e}",
-            peak / MIB
-        );
+        assert!(peak < 4 * MIB, "{format:?} ({what}): {} MiB allocated for 32 MiB of blank space: {e}", peak / MIB);
     }
 }
 
@@ -220,14 +201,8 @@ fn files_over_the_size_limit_are_refused_unread() {
         let (r, peak) = peak_during(|| io::read_path(&p));
         let e = r.unwrap_err();
         assert!(matches!(e, Error::TooLarge(_)), "{name}: {e:?}");
-        assert_mentions(
-            &e,
-            &[name, &two_gb.to_string(), &io::MAX_FILE_BYTES.to_string()],
-        );
-        assert!(
-            peak < 64 * KIB,
-            "{name}: allocated {peak} bytes before refusing"
-        );
+        assert_mentions(&e, &[name, &two_gb.to_string(), &io::MAX_FILE_BYTES.to_string()]);
+        assert!(peak < 64 * KIB, "{name}: allocated {peak} bytes before refusing");
     }
     // Triangle pairs: a small .node with a huge .ele, and the other way round.
     let node = "3 2 0 0\n1 0 0\n2 1 0\n3 0 1\n";
@@ -235,10 +210,7 @@ fn files_over_the_size_limit_are_refused_unread() {
     for (big, small, text) in [("ele", "node", node), ("node", "ele", ele)] {
         let stem = dir.join(format!("pair-{big}"));
         std::fs::write(stem.with_extension(small), text).unwrap();
-        std::fs::File::create(stem.with_extension(big))
-            .unwrap()
-            .set_len(two_gb)
-            .unwrap();
+        std::fs::File::create(stem.with_extension(big)).unwrap().set_len(two_gb).unwrap();
         for ext in ["node", "ele"] {
             let (r, peak) = peak_during(|| io::read_path(&stem.with_extension(ext)));
             let e = r.unwrap_err();
@@ -249,10 +221,7 @@ fn files_over_the_size_limit_are_refused_unread() {
     }
     // Just at the limit is not refused for its size (it is read and found not to be a mesh).
     let p = dir.join("at-limit.off");
-    std::fs::File::create(&p)
-        .unwrap()
-        .set_len(io::MAX_FILE_BYTES)
-        .unwrap();
+    std::fs::File::create(&p).unwrap().set_len(io::MAX_FILE_BYTES).unwrap();
     let e = io::read_path(&p).unwrap_err();
     assert!(!matches!(e, Error::TooLarge(_)), "{e:?}");
     std::fs::remove_dir_all(&dir).unwrap();
@@ -264,23 +233,11 @@ fn unterminated_and_endless_sections_are_refused_at_their_line() {
     let lines = 100_000;
     let text = format!("{MSH22}$Comments\n{}", "just words\n".repeat(lines));
     let (e, peak) = refused(&text, Format::Msh);
-    assert_mentions(
-        &e,
-        &[
-            &format!("line {}", 4 + lines),
-            "'$EndComments'",
-            "opened at line 4",
-        ],
-    );
+    assert_mentions(&e, &[&format!("line {}", 4 + lines), "'$EndComments'", "opened at line 4"]);
     assert!(peak < 64 * KIB, "{peak}");
     // $Nodes with its data but no $EndNodes, and the file goes on with another section.
-    let text = format!(
-        "{MSH22}$Nodes\n3\n1 0 0 0\n2 1 0 0\n3 0 1 0\n$Elements\n1\n1 2 0 1 2 3\n$EndElements\n"
-    );
-    assert_mentions(
-        &refused(&text, Format::Msh).0,
-        &["line 9", "expected '$EndNodes'", "found '$Elements'"],
-    );
+    let text = format!("{MSH22}$Nodes\n3\n1 0 0 0\n2 1 0 0\n3 0 1 0\n$Elements\n1\n1 2 0 1 2 3\n$EndElements\n");
+    assert_mentions(&refused(&text, Format::Msh).0, &["line 9", "expected '$EndNodes'", "found '$Elements'"]);
     // A VTK POINT_DATA whose values go on past its count: refused right after the count.
     let values = "0.5\n".repeat(1_000_000);
     let text = format!("{VTK_HEAD}{VTK_POINTS}{VTK_CELLS}POINT_DATA 3\nSCALARS s float 1\nLOOKUP_TABLE default\n{values}");
@@ -289,25 +246,13 @@ fn unterminated_and_endless_sections_are_refused_at_their_line() {
     assert!(peak < 64 * KIB, "{peak}");
     // …and one whose values stop short.
     let text = format!("{VTK_HEAD}{VTK_POINTS}{VTK_CELLS}POINT_DATA 3\nSCALARS s float 1\nLOOKUP_TABLE default\n1\n2\n");
-    assert_mentions(
-        &refused(&text, Format::Vtk).0,
-        &["line 17", "ends here", "SCALARS s"],
-    );
+    assert_mentions(&refused(&text, Format::Vtk).0, &["line 17", "ends here", "SCALARS s"]);
     // A METADATA block with no blank line runs to the end of the file, and is only skipped.
-    let text = format!(
-        "{VTK_HEAD}{VTK_POINTS}{VTK_CELLS}METADATA\n{}",
-        "INFORMATION 1\n".repeat(10_000)
-    );
+    let text = format!("{VTK_HEAD}{VTK_POINTS}{VTK_CELLS}METADATA\n{}", "INFORMATION 1\n".repeat(10_000));
     assert_eq!(io::read_str(&text, Format::Vtk).unwrap().element_count(), 1);
     // An OFF file whose faces go on past the count.
-    let text = format!(
-        "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n{}",
-        "3 0 1 2\n".repeat(1000)
-    );
-    assert_mentions(
-        &refused(&text, Format::Off).0,
-        &["line 7", "after the 3 vertices and 1 faces"],
-    );
+    let text = format!("OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n{}", "3 0 1 2\n".repeat(1000));
+    assert_mentions(&refused(&text, Format::Off).0, &["line 7", "after the 3 vertices and 1 faces"]);
 }
 
 #[test]
@@ -325,24 +270,11 @@ fn a_million_comment_lines_cost_nothing_and_keep_line_numbers() {
     assert!(peak < 64 * KIB, "{peak}");
     // OFF: comments between the header and the counts, and between vertices.
     let text = format!("OFF\n{comments}3 1 0\n0 0 0\n{comments}1 0 0\n0 1 0\n3 0 1 3\n");
-    assert_mentions(
-        &refused(&text, Format::Off).0,
-        &[
-            &format!("element 0 (line {})", 2 * million + 6),
-            "vertex index 3",
-        ],
-    );
+    assert_mentions(&refused(&text, Format::Off).0, &[&format!("element 0 (line {})", 2 * million + 6), "vertex index 3"]);
     // Triangle: comments everywhere in the .node file.
     let node = format!("{comments}3 2 0 0\n1 0 0\n{comments}2 1 0\n3 0 one\n");
     let e = io::read_triangle(&node, "1 3 0\n1 1 2 3\n").unwrap_err();
-    assert_mentions(
-        &e,
-        &[
-            &format!("line {}", 2 * million + 4),
-            "y coordinate of node 3",
-            "'one'",
-        ],
-    );
+    assert_mentions(&e, &[&format!("line {}", 2 * million + 4), "y coordinate of node 3", "'one'"]);
     // A .msh $Comments section of a million lines, then a mesh: read.
     let text = format!("{MSH22}$Comments\n{comments}$EndComments\n{MSH22_NODES}$Elements\n1\n1 2 0 1 2 3\n$EndElements\n");
     let (m, peak) = peak_during(|| io::read_str(&text, Format::Msh));
@@ -357,23 +289,11 @@ fn a_single_fifty_megabyte_line_of_digits() {
     // Where a count is expected: not a number we can hold. The message quotes 40 digits.
     let cases: Vec<(Format, String, &str)> = vec![
         (Format::Msh, format!("{MSH22}$Nodes\n{digits}\n"), "line 5"),
-        (
-            Format::Msh,
-            format!("{MSH41}$Nodes\n1 {digits} 1 1\n"),
-            "line 5",
-        ),
-        (
-            Format::Vtk,
-            format!("{VTK_HEAD}POINTS {digits} double\n"),
-            "line 5",
-        ),
+        (Format::Msh, format!("{MSH41}$Nodes\n1 {digits} 1 1\n"), "line 5"),
+        (Format::Vtk, format!("{VTK_HEAD}POINTS {digits} double\n"), "line 5"),
         (Format::Off, format!("OFF\n{digits} 1 0\n"), "line 2"),
         // Where a coordinate is expected: a finite-looking number that is not finite.
-        (
-            Format::Vtk,
-            format!("{VTK_HEAD}POINTS 1 double\n{digits} 0 0\n"),
-            "line 6",
-        ),
+        (Format::Vtk, format!("{VTK_HEAD}POINTS 1 double\n{digits} 0 0\n"), "line 6"),
         (Format::Obj, format!("v {digits} 0\n"), "line 1"),
     ];
     for (format, text, line) in &cases {
@@ -412,16 +332,8 @@ fn real_data_costs_memory_in_proportion() {
     text.push_str(&format!("CELL_TYPES {}\n{}", n * n, "9\n".repeat(n * n)));
     let (m, peak) = peak_during(|| io::read_str(&text, Format::Vtk));
     let m = m.unwrap();
-    assert_eq!(
-        (m.node_count(), m.element_count()),
-        ((n + 1) * (n + 1), n * n)
-    );
+    assert_eq!((m.node_count(), m.element_count()), ((n + 1) * (n + 1), n * n));
     let per_node = peak / m.node_count();
-    assert!(
-        peak < 16 * text.len(),
-        "{} MiB for a {} MiB file",
-        peak / MIB,
-        text.len() / MIB
-    );
+    assert!(peak < 16 * text.len(), "{} MiB for a {} MiB file", peak / MIB, text.len() / MIB);
     assert!(per_node < 1024, "{per_node} bytes per node");
 }

@@ -7,9 +7,7 @@
 
 use glam::{DVec2, DVec3};
 use proptest::prelude::*;
-use smoothlab::generate::{
-    grid, hex_grid, mixed_block, perturb, perturb_surface, perturb_volume, plate, surface, tet_cube,
-};
+use smoothlab::generate::{grid, hex_grid, mixed_block, perturb, perturb_surface, perturb_volume, plate, surface, tet_cube};
 use smoothlab::generate::{GridKind, HexBlock, PlateKind, SurfaceKind, SurfaceShape};
 use smoothlab::model::Model;
 use smoothlab::objective::{tet_kinds, ObjectiveKind};
@@ -26,11 +24,7 @@ fn graded(y: f64, ratio: f64, rows: f64) -> f64 {
 fn sample(which: usize, amount: f64, seed: u64) -> Model {
     match which {
         0 | 1 => {
-            let kind = if which == 0 {
-                GridKind::Tri
-            } else {
-                GridKind::Quad
-            };
+            let kind = if which == 0 { GridKind::Tri } else { GridKind::Quad };
             let mut m = grid(10, 10, kind).unwrap();
             for p in m.nodes_mut() {
                 *p = DVec2::new(p.x, graded(p.y, 1.2, 10.0));
@@ -39,47 +33,22 @@ fn sample(which: usize, amount: f64, seed: u64) -> Model {
         }
         2 => Model::Planar(perturb(&plate(PlateKind::Quad, 2, 2).unwrap(), amount, seed).unwrap()),
         3 => Model::Planar(perturb(&plate(PlateKind::Tri, 1, 3).unwrap(), amount, seed).unwrap()),
-        4 => Model::Surface(
-            perturb_surface(
-                &surface(SurfaceShape::Sphere, SurfaceKind::Mixed, 1, 3).unwrap(),
-                amount,
-                seed,
-            )
-            .unwrap(),
-        ),
+        4 => Model::Surface(perturb_surface(&surface(SurfaceShape::Sphere, SurfaceKind::Mixed, 1, 3).unwrap(), amount, seed).unwrap()),
         5 => Model::Volume(perturb_volume(&tet_cube(3).unwrap(), amount, seed).unwrap()),
         6 => {
-            let mut m = hex_grid(&HexBlock {
-                cells: [4, 4, 4],
-                size: DVec3::new(1.0, 1.0, 0.2),
-                bend: 0.0,
-            })
-            .unwrap();
+            let mut m = hex_grid(&HexBlock { cells: [4, 4, 4], size: DVec3::new(1.0, 1.0, 0.2), bend: 0.0 }).unwrap();
             for p in m.nodes_mut() {
                 p.z = graded(p.z / 0.2, 1.3, 4.0);
             }
             Model::Volume(perturb_volume(&m, amount, seed).unwrap())
         }
-        _ => Model::Volume(
-            perturb_volume(
-                &mixed_block(&HexBlock {
-                    cells: [3, 3, 3],
-                    ..HexBlock::default()
-                })
-                .unwrap(),
-                amount,
-                seed,
-            )
-            .unwrap(),
-        ),
+        _ => Model::Volume(perturb_volume(&mixed_block(&HexBlock { cells: [3, 3, 3], ..HexBlock::default() }).unwrap(), amount, seed).unwrap()),
     }
 }
 
 /// The smallest scaled Jacobian the statistics print (volumes; +∞ where none is printed).
 fn min_scaled_jacobian(s: &MeshStats) -> f64 {
-    s.solid
-        .as_ref()
-        .map_or(f64::INFINITY, |v| v.min_scaled_jacobian)
+    s.solid.as_ref().map_or(f64::INFINITY, |v| v.min_scaled_jacobian)
 }
 
 proptest! {
@@ -120,28 +89,16 @@ proptest! {
 /// 3.7°–175.3° while its smallest mean ratio rose (issue 57). They now hold.
 #[test]
 fn the_defaults_keep_cub_fru_s_scaled_jacobian_and_dihedral_angles() {
-    let Some(dir) = crate::common::mesquite3d_meshes() else {
-        return;
-    };
+    let Some(dir) = crate::common::mesquite3d_meshes() else { return };
     let mut model = smoothlab::read(dir.join("hexes/untangled/cub_fru.vtk")).unwrap();
     let before = model.stats();
     let report = model.smooth(&Smoothing::default()).unwrap();
     let after = report.stats();
-    assert!(
-        min_scaled_jacobian(&before) > 0.50
-            && min_scaled_jacobian(after) >= min_scaled_jacobian(&before)
-    );
-    assert!(
-        after.min_angle_deg >= before.min_angle_deg && after.max_angle_deg <= before.max_angle_deg
-    );
+    assert!(min_scaled_jacobian(&before) > 0.50 && min_scaled_jacobian(after) >= min_scaled_jacobian(&before));
+    assert!(after.min_angle_deg >= before.min_angle_deg && after.max_angle_deg <= before.max_angle_deg);
     assert!(before.min_angle_deg > 31.0 && before.max_angle_deg < 149.0);
     // and it still improves: the smallest mean ratio rises
-    assert!(
-        after.min_quality > before.min_quality,
-        "{} to {}",
-        before.min_quality,
-        after.min_quality
-    );
+    assert!(after.min_quality > before.min_quality, "{} to {}", before.min_quality, after.min_quality);
 }
 
 /// The finish aims at the worst element (issue 57): on Livesu et al.'s block stress test,
@@ -150,9 +107,7 @@ fn the_defaults_keep_cub_fru_s_scaled_jacobian_and_dihedral_angles() {
 /// and leaves nothing the statistics print worse than the passes before it left it.
 #[test]
 fn the_finish_lifts_the_worst_scaled_jacobian_and_leaves_nothing_worse() {
-    let Some(dir) = crate::common::livesu_meshes() else {
-        return;
-    };
+    let Some(dir) = crate::common::livesu_meshes() else { return };
     let input = smoothlab::read(dir.join("block_stresstest_in.mesh")).unwrap();
     let (mut without, mut with) = (input.clone(), input);
     let before = without.smooth(&Smoothing::default().finish(0)).unwrap();
@@ -160,19 +115,9 @@ fn the_finish_lifts_the_worst_scaled_jacobian_and_leaves_nothing_worse() {
     assert_eq!((before.finish_passes(), after.finish_passes()), (0, 3));
     let (b, a) = (before.stats(), after.stats());
     assert_eq!((b.inverted, a.inverted), (0, 0));
-    assert!(
-        min_scaled_jacobian(b) < 0.1 && min_scaled_jacobian(a) > 0.18,
-        "{} to {}",
-        min_scaled_jacobian(b),
-        min_scaled_jacobian(a)
-    );
+    assert!(min_scaled_jacobian(b) < 0.1 && min_scaled_jacobian(a) > 0.18, "{} to {}", min_scaled_jacobian(b), min_scaled_jacobian(a));
     assert!(a.min_angle_deg >= b.min_angle_deg && a.max_angle_deg <= b.max_angle_deg);
-    assert!(
-        a.min_quality >= b.min_quality,
-        "{} to {}",
-        b.min_quality,
-        a.min_quality
-    );
+    assert!(a.min_quality >= b.min_quality, "{} to {}", b.min_quality, a.min_quality);
 }
 
 /// A tangled mesh never ends a pass with more inverted elements than it began with, in

@@ -6,6 +6,8 @@
 //! `../shared/meshes`; when that folder is absent those tests say so and return, and fail
 //! under `CI=true` ([`crate::common::mesquite_meshes`]).
 
+
+
 use smoothlab::generate::{perturb, plate, rand2d, star, PlateKind, StarKind};
 use smoothlab::io;
 use smoothlab::objective::{objective, ObjectiveKind};
@@ -14,6 +16,7 @@ use smoothlab::smooth::{Measure, Order, SmoothOptions, Smoother, Strategy};
 use smoothlab::Mesh;
 
 const NO_CLOCK: &dyn Fn() -> f64 = &|| 0.0;
+
 
 fn worst_alpha_error(mesh: &Mesh) -> f64 {
     (0..mesh.element_count())
@@ -33,12 +36,7 @@ fn worst_alpha_error(mesh: &Mesh) -> f64 {
 fn make_equilateral(mesh: &Mesh, kind: ObjectiveKind) -> f64 {
     let mut m = mesh.clone();
     let obj = objective(kind);
-    let mut s = Smoother::new(
-        SmoothOptions::default()
-            .with_strategy(Strategy::Opt)
-            .with_max_iter(20),
-    )
-    .unwrap();
+    let mut s = Smoother::new(SmoothOptions::default().with_strategy(Strategy::Opt).with_max_iter(20)).unwrap();
     for _ in 0..50 {
         if worst_alpha_error(&m) <= 1e-6 {
             break;
@@ -52,11 +50,7 @@ fn make_equilateral(mesh: &Mesh, kind: ObjectiveKind) -> f64 {
 fn the_regular_star_becomes_equilateral_under_every_objective() {
     let m = star(StarKind::Regular, 6).unwrap();
     assert!(worst_alpha_error(&m) > 0.1);
-    for kind in [
-        ObjectiveKind::SmoothShape,
-        ObjectiveKind::MaxMinShape,
-        ObjectiveKind::Condition,
-    ] {
+    for kind in [ObjectiveKind::SmoothShape, ObjectiveKind::MaxMinShape, ObjectiveKind::Condition] {
         let e = make_equilateral(&m, kind);
         assert!(e <= 1e-6, "{kind}: worst |α − 1| = {e}");
     }
@@ -64,16 +58,10 @@ fn the_regular_star_becomes_equilateral_under_every_objective() {
 
 #[test]
 fn mesquite_equil_tri_meshes_become_equilateral() {
-    let Some(dir) = crate::common::mesquite_meshes() else {
-        return;
-    };
+    let Some(dir) = crate::common::mesquite_meshes() else { return };
     for file in ["equil_tri.vtk", "equil_tri2.vtk"] {
         let m = io::read_path(&dir.join("tris/untangled").join(file)).unwrap();
-        for kind in [
-            ObjectiveKind::SmoothShape,
-            ObjectiveKind::MaxMinShape,
-            ObjectiveKind::Condition,
-        ] {
+        for kind in [ObjectiveKind::SmoothShape, ObjectiveKind::MaxMinShape, ObjectiveKind::Condition] {
             let e = make_equilateral(&m, kind);
             assert!(e <= 1e-6, "{file}, {kind}: worst |α − 1| = {e}");
         }
@@ -89,11 +77,7 @@ fn passes_to_untangle(mesh: &Mesh, max: u32) -> Option<u32> {
     let mut last = mesh_stats(&m).inverted;
     for p in 1..=max {
         let r = s.pass(&mut m, &*obj, NO_CLOCK);
-        assert!(
-            r.after.inverted <= last,
-            "the inverted count rose {last} → {} in pass {p}",
-            r.after.inverted
-        );
+        assert!(r.after.inverted <= last, "the inverted count rose {last} → {} in pass {p}", r.after.inverted);
         last = r.after.inverted;
         if r.after.inverted == 0 {
             return Some(p);
@@ -111,19 +95,14 @@ fn the_perturbed_plate_is_untangled_by_new_rules() {
             let m = perturb(&base, 0.6, seed).unwrap();
             assert!(mesh_stats(&m).inverted > 20, "the plate must start tangled");
             let p = passes_to_untangle(&m, 3);
-            assert!(
-                p.is_some(),
-                "{kind:?} order {order} seed {seed}: not untangled in 3 passes"
-            );
+            assert!(p.is_some(), "{kind:?} order {order} seed {seed}: not untangled in 3 passes");
         }
     }
 }
 
 #[test]
 fn mesquite_tangled_meshes_new_rules_untangles_in_three_passes() {
-    let Some(dir) = crate::common::mesquite_meshes() else {
-        return;
-    };
+    let Some(dir) = crate::common::mesquite_meshes() else { return };
     for file in [
         "tris/tangled/horse-tri-1.vtk",
         "tris/tangled/horseshoe.vtk",
@@ -161,35 +140,20 @@ fn on_rand2d_the_new_objective_has_the_best_mean_alpha_and_every_method_opens_th
     for seed in [1, 2] {
         let m = rand2d(500, 20, seed).unwrap();
         let s0 = mesh_stats(&m);
-        assert!(
-            s0.min_angle_deg < 1.0,
-            "rand2d starts with a sliver: {}",
-            s0.min_angle_deg
-        );
+        assert!(s0.min_angle_deg < 1.0, "rand2d starts with a sliver: {}", s0.min_angle_deg);
         let run = |kind: ObjectiveKind, o: SmoothOptions| {
             let mut m = m.clone();
             smoothlab::smooth::smooth(&mut m, &*objective(kind), o, 3, NO_CLOCK).unwrap();
             mesh_stats(&m)
         };
         let freitag = |s: Strategy| {
-            SmoothOptions::default()
-                .with_strategy(s)
-                .with_order(Order::Input)
-                .with_smart_measure(Measure::MinSine)
+            SmoothOptions::default().with_strategy(s).with_order(Order::Input).with_smart_measure(Measure::MinSine)
         };
         let sine = run(ObjectiveKind::Sine, freitag(Strategy::Opt));
         let c2 = run(ObjectiveKind::Sine, freitag(Strategy::C2));
         let new = run(ObjectiveKind::SmoothShape, SmoothOptions::default());
-        for (name, s) in [
-            ("opt sine", &sine),
-            ("c2 30° sine", &c2),
-            ("rules new", &new),
-        ] {
-            assert!(
-                s.inverted == 0 && s.min_angle_deg > 5.0,
-                "seed {seed}, {name}: {}",
-                s.min_angle_deg
-            );
+        for (name, s) in [("opt sine", &sine), ("c2 30° sine", &c2), ("rules new", &new)] {
+            assert!(s.inverted == 0 && s.min_angle_deg > 5.0, "seed {seed}, {name}: {}", s.min_angle_deg);
             assert!(s.max_angle_deg < s0.max_angle_deg, "seed {seed}, {name}");
         }
         assert!(
@@ -198,11 +162,6 @@ fn on_rand2d_the_new_objective_has_the_best_mean_alpha_and_every_method_opens_th
             new.mean_quality,
             sine.mean_quality
         );
-        assert!(
-            new.mean_quality > c2.mean_quality + 0.01,
-            "seed {seed}: {} vs {}",
-            new.mean_quality,
-            c2.mean_quality
-        );
+        assert!(new.mean_quality > c2.mean_quality + 0.01, "seed {seed}: {} vs {}", new.mean_quality, c2.mean_quality);
     }
 }

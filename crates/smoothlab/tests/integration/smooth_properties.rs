@@ -58,24 +58,16 @@ fn star_state(mesh: &Mesh, n: usize) -> (f64, usize) {
     mesh.node_elements(n)
         .iter()
         .map(|&e| shape(mesh, e as usize))
-        .fold((f64::INFINITY, 0), |(m, c), (s, inv)| {
-            (m.min(s), c + inv as usize)
-        })
+        .fold((f64::INFINITY, 0), |(m, c), (s, inv)| (m.min(s), c + inv as usize))
 }
 
 fn options(strategy: Strategy) -> SmoothOptions {
-    SmoothOptions::default()
-        .with_strategy(strategy)
-        .with_order(Order::Input)
+    SmoothOptions::default().with_strategy(strategy).with_order(Order::Input)
 }
 
 /// Visits every free node once in the smoother's order, checking properties 1 and 2 at
 /// each visit (the Σκ² form of property 1 for `condition`).
-fn check_visits(
-    mesh: &mut Mesh,
-    strategy: Strategy,
-    kind: ObjectiveKind,
-) -> Result<(), TestCaseError> {
+fn check_visits(mesh: &mut Mesh, strategy: Strategy, kind: ObjectiveKind) -> Result<(), TestCaseError> {
     let obj = objective(kind);
     let mut s = Smoother::new(options(strategy)).unwrap();
     let order: Vec<u32> = s.plan(mesh).to_vec();
@@ -89,19 +81,13 @@ fn check_visits(
         s.smooth_node(mesh, n, &*obj);
         let x1 = mesh.nodes()[n];
         let (q1, inv1) = star_state(mesh, n);
-        prop_assert!(
-            inv1 <= inv0,
-            "{strategy:?}/{kind}: node {n} raised its star's inverted count {inv0} → {inv1}"
-        );
+        prop_assert!(inv1 <= inv0, "{strategy:?}/{kind}: node {n} raised its star's inverted count {inv0} → {inv1}");
         match kind {
             ObjectiveKind::Condition => {
                 let f1 = obj.value(&star, x1);
                 prop_assert!(f1 <= f0, "{strategy:?}/condition: node {n} Σκ² {f0} → {f1}");
             }
-            _ => prop_assert!(
-                q1 >= q0 - 1e-12,
-                "{strategy:?}/{kind}: node {n} star min α/β {q0} → {q1}"
-            ),
+            _ => prop_assert!(q1 >= q0 - 1e-12, "{strategy:?}/{kind}: node {n} star min α/β {q0} → {q1}"),
         }
     }
     Ok(())
@@ -130,19 +116,13 @@ fn star_dets(mesh: &Mesh, n: usize) -> Vec<(f64, f64)> {
             corner_edge_vectors(k, &p[..k.node_count()])[..k.corners()]
                 .iter()
                 .map(|(a, b)| a.perp_dot(*b))
-                .fold((f64::INFINITY, 0.0), |(m, neg), d| {
-                    (m.min(d), neg + (-d).max(0.0))
-                })
+                .fold((f64::INFINITY, 0.0), |(m, neg), d| (m.min(d), neg + (-d).max(0.0)))
         })
         .collect()
 }
 
 /// Property 7 at every visit of one pass.
-fn check_rule(
-    mesh: &mut Mesh,
-    strategy: Strategy,
-    kind: ObjectiveKind,
-) -> Result<(), TestCaseError> {
+fn check_rule(mesh: &mut Mesh, strategy: Strategy, kind: ObjectiveKind) -> Result<(), TestCaseError> {
     let obj = objective(kind);
     let mut s = Smoother::new(options(strategy)).unwrap();
     let order: Vec<u32> = s.plan(mesh).to_vec();
@@ -154,32 +134,16 @@ fn check_rule(
         let what = format!("{strategy:?}/{kind}: node {n}");
         if inv0 == 0 {
             prop_assert_eq!(inv1, 0, "{} folded a valid star", what);
-            prop_assert!(
-                q1 >= q0,
-                "{} lowered its star's worst α/β {} → {}",
-                what,
-                q0,
-                q1
-            );
+            prop_assert!(q1 >= q0, "{} lowered its star's worst α/β {} → {}", what, q0, q1);
             for ((b, _), (a, _)) in d0.iter().zip(&d1) {
-                prop_assert!(
-                    *a >= MIN_SIZE_RATIO * b,
-                    "{} flattened an element: det {} → {}",
-                    what,
-                    b,
-                    a
-                );
+                prop_assert!(*a >= MIN_SIZE_RATIO * b, "{} flattened an element: det {} → {}", what, b, a);
             }
         } else {
             let total = |d: &[(f64, f64)]| d.iter().map(|x| x.1).sum::<f64>();
             prop_assert!(
                 inv1 <= inv0 || total(&d1) < total(&d0),
                 "{} gained inverted elements {} → {} and its inversion did not fall {} → {}",
-                what,
-                inv0,
-                inv1,
-                total(&d0),
-                total(&d1)
+                what, inv0, inv1, total(&d0), total(&d1)
             );
         }
     }
@@ -191,13 +155,9 @@ fn check_rule(
 fn reads_back(m: &Mesh, what: &str) -> Result<(), TestCaseError> {
     use smoothlab::io::{read_model_str, write_string, Format, WriteOptions};
     for f in [Format::Msh, Format::Vtk] {
-        let text = write_string(m, f, &WriteOptions::default())
-            .map_err(|e| TestCaseError::fail(format!("{what}: {e}")))?;
-        let back = read_model_str(&text, f)
-            .map_err(|e| TestCaseError::fail(format!("{what}, {f:?} read back: {e}")))?;
-        let back = back
-            .planar("the test")
-            .map_err(|e| TestCaseError::fail(format!("{what}, {f:?}: {e}")))?;
+        let text = write_string(m, f, &WriteOptions::default()).map_err(|e| TestCaseError::fail(format!("{what}: {e}")))?;
+        let back = read_model_str(&text, f).map_err(|e| TestCaseError::fail(format!("{what}, {f:?} read back: {e}")))?;
+        let back = back.planar("the test").map_err(|e| TestCaseError::fail(format!("{what}, {f:?}: {e}")))?;
         prop_assert_eq!(back.nodes(), m.nodes(), "{}, {:?}", what, f);
         prop_assert_eq!(back.element_count(), m.element_count(), "{}, {:?}", what, f);
     }
@@ -376,41 +336,20 @@ fn without_the_validity_check_new_rules_can_fold_a_valid_mesh() {
     for (x, y) in std::iter::once(centre).chain(ring) {
         b.add_node([x, y, 0.0], 0);
     }
-    for q in [
-        [0, 1, 2, 3],
-        [4, 0, 3, 5],
-        [6, 0, 4, 7],
-        [0, 8, 9, 1],
-        [6, 10, 8, 0],
-    ] {
+    for q in [[0, 1, 2, 3], [4, 0, 3, 5], [6, 0, 4, 7], [0, 8, 9, 1], [6, 10, 8, 0]] {
         b.add_element(ElementKind::Quad4, &q, 0);
     }
     let mesh = b.build().unwrap();
     assert_eq!(mesh_stats(&mesh).inverted, 0);
     let angle = ChenTristanoKwok::with_penalty(Penalty::Angle);
     let barrier = ChenTristanoKwok::default();
-    for (obj, keep, after) in [
-        (&angle, false, 2),
-        (&angle, true, 0),
-        (&barrier, false, 0),
-        (&barrier, true, 0),
-    ] {
+    for (obj, keep, after) in [(&angle, false, 2), (&angle, true, 0), (&barrier, false, 0), (&barrier, true, 0)] {
         let mut m = mesh.clone();
         // one optimization call, without the untangling sweeps that would follow a fold
-        let opts = SmoothOptions::default()
-            .with_keep_valid(keep)
-            .with_untangle_sweeps(0);
+        let opts = SmoothOptions::default().with_keep_valid(keep).with_untangle_sweeps(0);
         let r = Smoother::new(opts).unwrap().pass(&mut m, obj, NO_CLOCK);
-        assert_eq!(
-            r.counts.optimization_calls, 1,
-            "rule 3: the constrained Laplacian cannot help this star"
-        );
-        assert_eq!(
-            r.after.inverted,
-            after,
-            "{:?}, keep_valid {keep}",
-            obj.penalty()
-        );
+        assert_eq!(r.counts.optimization_calls, 1, "rule 3: the constrained Laplacian cannot help this star");
+        assert_eq!(r.after.inverted, after, "{:?}, keep_valid {keep}", obj.penalty());
     }
 }
 
@@ -421,14 +360,7 @@ fn without_the_validity_check_new_rules_can_fold_a_valid_mesh() {
 /// where it was, so the star is never worse.
 #[test]
 fn c3_leaves_a_star_no_worse_even_when_its_plain_laplacian_would() {
-    let ring = [
-        (1.05, -0.04),
-        (0.23, 0.56),
-        (-0.39, 1.13),
-        (-1.07, 0.02),
-        (-0.8, -1.04),
-        (0.51, -0.76),
-    ];
+    let ring = [(1.05, -0.04), (0.23, 0.56), (-0.39, 1.13), (-1.07, 0.02), (-0.8, -1.04), (0.51, -0.76)];
     let mut b = MeshBuilder::new();
     b.add_node([-0.46, -0.31, 0.0], 0);
     for (x, y) in ring {
@@ -441,28 +373,15 @@ fn c3_leaves_a_star_no_worse_even_when_its_plain_laplacian_would() {
     let (q0, inv0) = star_state(&mesh, 0);
     let obj = objective(ObjectiveKind::MaxMinShape);
     let mut m = mesh.clone();
-    let o = Smoother::new(options(Strategy::C3).with_threshold_deg(30.0))
-        .unwrap()
-        .smooth_node(&mut m, 0, &*obj);
+    let o = Smoother::new(options(Strategy::C3).with_threshold_deg(30.0)).unwrap().smooth_node(&mut m, 0, &*obj);
     let (q1, inv1) = star_state(&m, 0);
-    assert!(
-        o.laplacian,
-        "the star is poor, so C3 tries its Laplacian: {o:?}"
-    );
+    assert!(o.laplacian, "the star is poor, so C3 tries its Laplacian: {o:?}");
     assert_eq!(inv0, 0);
-    assert!(
-        q1 >= q0 && inv1 <= inv0,
-        "C3 made the star worse: ({q0}, {inv0}) → ({q1}, {inv1})"
-    );
-    assert!(
-        !o.moved && m.nodes()[0] == mesh.nodes()[0],
-        "the worsening move is undone: {o:?}"
-    );
+    assert!(q1 >= q0 && inv1 <= inv0, "C3 made the star worse: ({q0}, {inv0}) → ({q1}, {inv1})");
+    assert!(!o.moved && m.nodes()[0] == mesh.nodes()[0], "the worsening move is undone: {o:?}");
     // the smart Laplacian of C2 refuses the same move and the optimization only improves
     let mut m = mesh.clone();
-    Smoother::new(options(Strategy::C2))
-        .unwrap()
-        .smooth_node(&mut m, 0, &*obj);
+    Smoother::new(options(Strategy::C2)).unwrap().smooth_node(&mut m, 0, &*obj);
     let (q2, inv2) = star_state(&m, 0);
     assert!(q2 >= q0 && inv2 <= inv0);
 }
@@ -481,11 +400,7 @@ fn tilted(mesh: &Mesh, seed: u64) -> (String, Vec<glam::DVec3>) {
         s += &format!("v {:?} {:?} {:?}\n", p.x, p.y, p.z);
     }
     for e in 0..mesh.element_count() {
-        let ids: Vec<String> = mesh
-            .element(e)
-            .iter()
-            .map(|i| (i + 1).to_string())
-            .collect();
+        let ids: Vec<String> = mesh.element(e).iter().map(|i| (i + 1).to_string()).collect();
         s += &format!("f {}\n", ids.join(" "));
     }
     (s, pts)

@@ -16,9 +16,7 @@ use glam::DVec3;
 use proptest::prelude::*;
 use smoothlab::generate::{hex_grid, mixed_block, perturb_volume, HexBlock};
 use smoothlab::mesh::VolumeKind;
-use smoothlab::objective::{
-    tet_kinds, tet_objective, CornerStar, ObjectiveKind, CONDITION_BARRIER,
-};
+use smoothlab::objective::{tet_kinds, tet_objective, CornerStar, ObjectiveKind, CONDITION_BARRIER};
 use smoothlab::smooth::{DriverStar, SmoothOptions, Strategy};
 use smoothlab::volume::{smooth_volume, volume_stats, VolumeMesh};
 
@@ -35,36 +33,19 @@ fn block(n: usize, mix: bool) -> VolumeMesh {
 
 fn smoothed(m: &VolumeMesh, strategy: Strategy, kind: ObjectiveKind, passes: u32) -> VolumeMesh {
     let mut t = m.clone();
-    smooth_volume(
-        &mut t,
-        &*tet_objective(kind).unwrap(),
-        SmoothOptions::default().with_strategy(strategy),
-        passes,
-        &|| 0.0,
-    )
-    .unwrap();
+    smooth_volume(&mut t, &*tet_objective(kind).unwrap(), SmoothOptions::default().with_strategy(strategy), passes, &|| 0.0)
+        .unwrap();
     t
 }
 
 #[test]
 fn the_blocks_are_what_they_say() {
     let hex = block(3, false);
-    assert_eq!(
-        (hex.element_count(), hex.kinds()),
-        (27, &[VolumeKind::Hex8][..])
-    );
+    assert_eq!((hex.element_count(), hex.kinds()), (27, &[VolumeKind::Hex8][..]));
     assert_eq!(hex.free_count(), 8);
     assert_eq!(hex.boundary_faces().len(), 6 * 9);
     let mixed = block(3, true);
-    assert_eq!(
-        mixed.kinds(),
-        &[
-            VolumeKind::Tet4,
-            VolumeKind::Hex8,
-            VolumeKind::Wedge6,
-            VolumeKind::Pyramid5
-        ]
-    );
+    assert_eq!(mixed.kinds(), &[VolumeKind::Tet4, VolumeKind::Hex8, VolumeKind::Wedge6, VolumeKind::Pyramid5]);
     for m in [&hex, &mixed] {
         assert_eq!(volume_stats(m).inverted, 0);
     }
@@ -115,20 +96,10 @@ fn knupp_random_hex_grids_tangled_by_0_6_edges_untangle_in_three_passes() {
         assert!(before > 0, "seed {seed}: not tangled");
         let mut t = m.clone();
         let options = SmoothOptions::default();
-        let records = smooth_volume(
-            &mut t,
-            &*tet_objective(ObjectiveKind::SmoothShape).unwrap(),
-            options,
-            3,
-            &|| 0.0,
-        )
-        .unwrap();
+        let records = smooth_volume(&mut t, &*tet_objective(ObjectiveKind::SmoothShape).unwrap(), options, 3, &|| 0.0).unwrap();
         let s = volume_stats(&t);
         let sj = s.solid.as_ref().unwrap().min_scaled_jacobian;
-        report.push(format!(
-            "seed {seed}: {before} → {:?}, min scaled Jacobian {sj:.3}",
-            records.iter().map(|r| r.after.inverted).collect::<Vec<_>>()
-        ));
+        report.push(format!("seed {seed}: {before} → {:?}, min scaled Jacobian {sj:.3}", records.iter().map(|r| r.after.inverted).collect::<Vec<_>>()));
         assert_eq!(s.inverted, 0, "{report:?}");
         assert!(sj >= 0.3, "{report:?}");
     }
@@ -176,11 +147,7 @@ fn every_objective_gradient_agrees_with_central_differences_on_corner_stars() {
                         fd[c] = (at(x + e) - at(x - e)) / (2.0 * h);
                     }
                     let scale = t.grad.length().max(fd.length()).max(1e-3);
-                    assert!(
-                        (fd - t.grad).length() <= 1e-5 * scale,
-                        "{k} term {i}: {} vs {fd}",
-                        t.grad
-                    );
+                    assert!((fd - t.grad).length() <= 1e-5 * scale, "{k} term {i}: {} vs {fd}", t.grad);
                     checked += 1;
                 }
             }
@@ -192,18 +159,10 @@ fn every_objective_gradient_agrees_with_central_differences_on_corner_stars() {
 /// The regular 10-node tetrahedron of unit edge (VTK's order: corners, then the middles of
 /// edges 01, 12, 02, 03, 13, 23).
 fn regular_tet10() -> [DVec3; 10] {
-    let c = [
-        DVec3::ZERO,
-        DVec3::X,
-        DVec3::new(0.5, 3f64.sqrt() / 2.0, 0.0),
-        DVec3::new(0.5, 3f64.sqrt() / 6.0, (2.0f64 / 3.0).sqrt()),
-    ];
+    let c = [DVec3::ZERO, DVec3::X, DVec3::new(0.5, 3f64.sqrt() / 2.0, 0.0), DVec3::new(0.5, 3f64.sqrt() / 6.0, (2.0f64 / 3.0).sqrt())];
     let mut p = [DVec3::ZERO; 10];
     p[..4].copy_from_slice(&c);
-    for (m, [a, b]) in [[0, 1], [1, 2], [0, 2], [0, 3], [1, 3], [2, 3]]
-        .into_iter()
-        .enumerate()
-    {
+    for (m, [a, b]) in [[0, 1], [1, 2], [0, 2], [0, 3], [1, 3], [2, 3]].into_iter().enumerate() {
         p[4 + m] = (c[a] + c[b]) * 0.5;
     }
     p
@@ -218,39 +177,17 @@ fn a_ten_node_tetrahedron_inverted_by_a_mid_edge_node_reads_inverted_in_every_st
     let mut p = regular_tet10();
     // the middle of edge 01 moved to a tenth of the way: the tangent at corner 0 turns back
     p[4] = p[0] + (p[1] - p[0]) * 0.1;
-    let m = VolumeMesh::from_elements(
-        p.to_vec(),
-        [(VolumeKind::Tet10, &(0..10).collect::<Vec<u32>>()[..])],
-    )
-    .unwrap();
+    let m = VolumeMesh::from_elements(p.to_vec(), [(VolumeKind::Tet10, &(0..10).collect::<Vec<u32>>()[..])]).unwrap();
     let s = volume_stats(&m);
     assert_eq!(s.inverted, 1);
     assert!(s.min_quality < 0.0, "mean ratio {}", s.min_quality);
     let solid = s.solid.expect("a volume mesh has solid statistics");
-    assert!(
-        solid.min_scaled_jacobian <= 0.0,
-        "scaled Jacobian {}",
-        solid.min_scaled_jacobian
-    );
-    assert!(
-        s.min_angle_deg < 0.0,
-        "dihedral angles {}–{}",
-        s.min_angle_deg,
-        s.max_angle_deg
-    );
+    assert!(solid.min_scaled_jacobian <= 0.0, "scaled Jacobian {}", solid.min_scaled_jacobian);
+    assert!(s.min_angle_deg < 0.0, "dihedral angles {}–{}", s.min_angle_deg, s.max_angle_deg);
     // and a straight one reads as the regular tetrahedron
-    let s = volume_stats(
-        &VolumeMesh::from_elements(
-            regular_tet10().to_vec(),
-            [(VolumeKind::Tet10, &(0..10).collect::<Vec<u32>>()[..])],
-        )
-        .unwrap(),
-    );
+    let s = volume_stats(&VolumeMesh::from_elements(regular_tet10().to_vec(), [(VolumeKind::Tet10, &(0..10).collect::<Vec<u32>>()[..])]).unwrap());
     assert_eq!(s.inverted, 0);
-    assert!(
-        (s.solid.unwrap().min_scaled_jacobian - 1.0).abs() < 1e-12
-            && (s.min_angle_deg - 70.528_779_365_509_3).abs() < 1e-9
-    );
+    assert!((s.solid.unwrap().min_scaled_jacobian - 1.0).abs() < 1e-12 && (s.min_angle_deg - 70.528_779_365_509_3).abs() < 1e-9);
 }
 
 proptest! {
@@ -285,18 +222,12 @@ proptest! {
 #[test]
 fn a_hexahedral_block_with_a_node_far_off_reads_what_it_is() {
     let base = block(4, false);
-    let node = (0..base.node_count())
-        .find(|&n| base.nodes()[n] == DVec3::splat(0.5))
-        .expect("the centre node");
+    let node = (0..base.node_count()).find(|&n| base.nodes()[n] == DVec3::splat(0.5)).expect("the centre node");
     let mut m = base.clone();
     m.nodes_mut()[node].x = 1e61;
     let s = volume_stats(&m);
     assert_eq!(s.inverted, 4, "the four cells the node crossed");
-    assert!(
-        (s.min_quality - 0.5).abs() < 1e-12,
-        "min mean ratio {:e}",
-        s.min_quality
-    );
+    assert!((s.min_quality - 0.5).abs() < 1e-12, "min mean ratio {:e}", s.min_quality);
 }
 
 /// `m` with every node multiplied by 2^`k` (exact).
@@ -318,24 +249,9 @@ fn a_mixed_block_is_smoothed_alike_at_every_scale() {
             let m = perturb_volume(&block(2, true), amount, seed).unwrap();
             let unit = smoothed(&m, Strategy::Rules, ObjectiveKind::SmoothShape, 3);
             for k in [-600, -520, 520, 600] {
-                let back = scaled(
-                    &smoothed(
-                        &scaled(&m, k),
-                        Strategy::Rules,
-                        ObjectiveKind::SmoothShape,
-                        3,
-                    ),
-                    -k,
-                );
-                let differ = (0..m.node_count())
-                    .filter(|&n| unit.nodes()[n] != back.nodes()[n])
-                    .count();
-                assert_eq!(
-                    differ,
-                    0,
-                    "seed {seed}, amount {amount}, 2^{k}: {differ} of {} nodes differ",
-                    m.node_count()
-                );
+                let back = scaled(&smoothed(&scaled(&m, k), Strategy::Rules, ObjectiveKind::SmoothShape, 3), -k);
+                let differ = (0..m.node_count()).filter(|&n| unit.nodes()[n] != back.nodes()[n]).count();
+                assert_eq!(differ, 0, "seed {seed}, amount {amount}, 2^{k}: {differ} of {} nodes differ", m.node_count());
             }
         }
     }

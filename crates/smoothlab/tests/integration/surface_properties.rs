@@ -12,12 +12,12 @@
 //!    projection back onto the surface, mid-side nodes following).
 
 use proptest::prelude::*;
-use smoothlab::generate::perturb_surface;
 use smoothlab::generate::{surface, SurfaceKind, SurfaceShape};
-use smoothlab::io::{read_model_str, write_string, Format, WriteOptions};
-use smoothlab::model::Model;
 use smoothlab::objective::{objective, ObjectiveKind};
 use smoothlab::smooth::{SmoothOptions, Strategy};
+use smoothlab::io::{read_model_str, write_string, Format, WriteOptions};
+use smoothlab::generate::perturb_surface;
+use smoothlab::model::Model;
 use smoothlab::surface::{smooth_surface, Surface};
 
 fn sample(shape: usize, kind: usize, order: u8, amount: f64, seed: u64) -> Surface {
@@ -107,27 +107,10 @@ fn the_default_smoother_keeps_the_quadratic_torus_as_good() {
         let s = surface(SurfaceShape::Torus, kind, 2, 1).unwrap();
         let before = s.stats();
         let mut t = s.clone();
-        smooth_surface(
-            &mut t,
-            objective(ObjectiveKind::SmoothShape).as_ref(),
-            SmoothOptions::default(),
-            3,
-            &|| 0.0,
-        )
-        .unwrap();
+        smooth_surface(&mut t, objective(ObjectiveKind::SmoothShape).as_ref(), SmoothOptions::default(), 3, &|| 0.0).unwrap();
         let after = t.stats();
         assert_eq!(after.inverted, 0, "{kind:?}");
-        assert!(
-            after.min_quality >= before.min_quality,
-            "{kind:?}: quality {} → {}",
-            before.min_quality,
-            after.min_quality
-        );
-        assert!(
-            after.min_angle_deg >= before.min_angle_deg - 1e-9,
-            "{kind:?}: {}° → {}°",
-            before.min_angle_deg,
-            after.min_angle_deg
-        );
+        assert!(after.min_quality >= before.min_quality, "{kind:?}: quality {} → {}", before.min_quality, after.min_quality);
+        assert!(after.min_angle_deg >= before.min_angle_deg - 1e-9, "{kind:?}: {}° → {}°", before.min_angle_deg, after.min_angle_deg);
     }
 }

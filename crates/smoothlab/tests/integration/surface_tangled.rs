@@ -23,25 +23,15 @@ use smoothlab::smooth::SmoothOptions;
 use smoothlab::surface::{smooth_surface, Analytic, Reference, Surface};
 
 /// A generated sample tangled by `amount` mean edge lengths, and its exact surface.
-fn tangled(
-    shape: SurfaceShape,
-    kind: SurfaceKind,
-    order: u8,
-    resolution: usize,
-    amount: f64,
-    seed: u64,
-) -> (Surface, Analytic) {
+fn tangled(shape: SurfaceShape, kind: SurfaceKind, order: u8, resolution: usize, amount: f64, seed: u64) -> (Surface, Analytic) {
     let base = surface(shape, kind, order, resolution).unwrap();
-    let Reference::Analytic(exact) = *base.reference() else {
-        panic!("a generated sample knows its surface")
-    };
+    let Reference::Analytic(exact) = *base.reference() else { panic!("a generated sample knows its surface") };
     (perturb_surface(&base, amount, seed).unwrap(), exact)
 }
 
 /// `s` written in `format` and read back, as a user's file is.
 fn through(s: &Surface, format: Format) -> Surface {
-    let text =
-        write_model_string(&Model::Surface(s.clone()), format, &WriteOptions::default()).unwrap();
+    let text = write_model_string(&Model::Surface(s.clone()), format, &WriteOptions::default()).unwrap();
     match read_model_str(&text, format).unwrap() {
         Model::Surface(t) => t,
         _ => panic!("a surface file reads back as a surface"),
@@ -52,14 +42,7 @@ fn through(s: &Surface, format: Format) -> Surface {
 fn untangle(s: &mut Surface) -> Vec<usize> {
     let mut inverted = vec![s.stats().inverted];
     for _ in 0..3 {
-        smooth_surface(
-            s,
-            objective(ObjectiveKind::SmoothShape).as_ref(),
-            SmoothOptions::default(),
-            1,
-            &|| 0.0,
-        )
-        .unwrap();
+        smooth_surface(s, objective(ObjectiveKind::SmoothShape).as_ref(), SmoothOptions::default(), 1, &|| 0.0).unwrap();
         inverted.push(s.stats().inverted);
     }
     inverted
@@ -67,10 +50,7 @@ fn untangle(s: &mut Surface) -> Vec<usize> {
 
 /// The largest distance of a node from the exact surface.
 fn farthest(s: &Surface, exact: &Analytic) -> f64 {
-    s.points()
-        .iter()
-        .map(|&p| (exact.project(p, NONE).point - p).length())
-        .fold(0.0, f64::max)
+    s.points().iter().map(|&p| (exact.project(p, NONE).point - p).length()).fold(0.0, f64::max)
 }
 
 #[test]
@@ -79,26 +59,13 @@ fn spheres_tangled_by_one_and_a_half_edges_untangle_within_three_passes_on_the_s
         for seed in 1..=4 {
             let (p, exact) = tangled(SurfaceShape::Sphere, kind, 1, 8, 1.5, seed);
             let mut s = through(&p, Format::Vtk);
-            assert!(
-                matches!(s.reference(), Reference::Fitted(_)),
-                "a tangled file is fitted: {}",
-                s.reference().describe()
-            );
+            assert!(matches!(s.reference(), Reference::Fitted(_)), "a tangled file is fitted: {}", s.reference().describe());
             let inverted = untangle(&mut s);
-            assert!(
-                inverted[0] > 50,
-                "{kind:?} seed {seed}: tangled ({inverted:?})"
-            );
-            assert_eq!(
-                inverted[3], 0,
-                "{kind:?} seed {seed}: inverted per pass {inverted:?}"
-            );
+            assert!(inverted[0] > 50, "{kind:?} seed {seed}: tangled ({inverted:?})");
+            assert_eq!(inverted[3], 0, "{kind:?} seed {seed}: inverted per pass {inverted:?}");
             // the sphere's radius is 1
             let far = farthest(&s, &exact);
-            assert!(
-                far < 0.02,
-                "{kind:?} seed {seed}: a node {far} from the sphere"
-            );
+            assert!(far < 0.02, "{kind:?} seed {seed}: a node {far} from the sphere");
         }
     }
 }
@@ -118,29 +85,15 @@ fn tangled_tori_cylinders_and_quadratic_spheres_untangle_and_keep_their_rims() {
         // the rims: the sample's feature nodes, fixed (a free node may be tangled onto a rim)
         let rims: Vec<usize> = (0..p.node_count()).filter(|&n| p.is_feature(n)).collect();
         assert_eq!(rims.is_empty(), shape != SurfaceShape::Cylinder);
-        assert!(
-            rims.iter()
-                .all(|&n| s.is_feature(n) && s.flat().is_fixed(n)),
-            "the file's flags keep the rims"
-        );
+        assert!(rims.iter().all(|&n| s.is_feature(n) && s.flat().is_fixed(n)), "the file's flags keep the rims");
         let before: Vec<_> = rims.iter().map(|&n| s.points()[n]).collect();
         let inverted = untangle(&mut s);
         let name = format!("{shape:?} {kind:?} order {order}");
-        assert!(
-            inverted[0] > 0 && inverted[3] == 0,
-            "{name}: inverted per pass {inverted:?}"
-        );
-        assert!(
-            rims.iter().zip(&before).all(|(&n, &q)| s.points()[n] == q),
-            "{name}: a rim node moved"
-        );
+        assert!(inverted[0] > 0 && inverted[3] == 0, "{name}: inverted per pass {inverted:?}");
+        assert!(rims.iter().zip(&before).all(|(&n, &q)| s.points()[n] == q), "{name}: a rim node moved");
         // within 3 % of the radius (1), the torus 5 % of its tube's (0.3; as measured in
         // docs/reproduction.md §9, about 4 %)
-        let bound = if shape == SurfaceShape::Torus {
-            0.05 * 0.3
-        } else {
-            0.03
-        };
+        let bound = if shape == SurfaceShape::Torus { 0.05 * 0.3 } else { 0.03 };
         let far = farthest(&s, &exact);
         assert!(far < bound, "{name}: a node {far} from the exact surface");
     }
@@ -158,10 +111,7 @@ fn a_file_without_fixed_flags_takes_no_fold_for_a_crease() {
             let (p, exact) = tangled(shape, kind, 1, 6, 1.5, seed);
             let mut s = through(&p, Format::Off);
             let name = format!("{shape:?} {kind:?} seed {seed}");
-            assert!(
-                (0..s.node_count()).all(|n| !s.is_feature(n) && !s.flat().is_fixed(n)),
-                "{name}: a fold read as a crease"
-            );
+            assert!((0..s.node_count()).all(|n| !s.is_feature(n) && !s.flat().is_fixed(n)), "{name}: a fold read as a crease");
             let inverted = untangle(&mut s);
             assert_eq!(inverted[3], 0, "{name}: {inverted:?}");
             assert!(farthest(&s, &exact) < bound, "{name}");
@@ -171,26 +121,12 @@ fn a_file_without_fixed_flags_takes_no_fold_for_a_crease() {
 
 #[test]
 fn a_valid_surface_file_stays_on_its_facets() {
-    for (shape, kind, order) in [
-        (SurfaceShape::Sphere, SurfaceKind::Quad, 1),
-        (SurfaceShape::Torus, SurfaceKind::Mixed, 2),
-    ] {
+    for (shape, kind, order) in [(SurfaceShape::Sphere, SurfaceKind::Quad, 1), (SurfaceShape::Torus, SurfaceKind::Mixed, 2)] {
         let (p, _) = tangled(shape, kind, order, 4, 0.2, 1);
         let mut s = through(&p, Format::Vtk);
         assert_eq!(s.stats().inverted, 0);
-        assert!(
-            matches!(s.reference(), Reference::Facets(_)),
-            "{}",
-            s.reference().describe()
-        );
-        smooth_surface(
-            &mut s,
-            objective(ObjectiveKind::SmoothShape).as_ref(),
-            SmoothOptions::default(),
-            3,
-            &|| 0.0,
-        )
-        .unwrap();
+        assert!(matches!(s.reference(), Reference::Facets(_)), "{}", s.reference().describe());
+        smooth_surface(&mut s, objective(ObjectiveKind::SmoothShape).as_ref(), SmoothOptions::default(), 3, &|| 0.0).unwrap();
         let far = s.max_distance_from_reference();
         assert!(far <= 1e-9 * s.size(), "{shape:?}: {far}");
     }
@@ -198,25 +134,15 @@ fn a_valid_surface_file_stays_on_its_facets() {
 
 #[test]
 fn a_tangled_file_counts_the_inverted_elements_the_exact_surface_counts() {
-    for (shape, kind) in [
-        (SurfaceShape::Sphere, SurfaceKind::Tri),
-        (SurfaceShape::Torus, SurfaceKind::Quad),
-    ] {
+    for (shape, kind) in [(SurfaceShape::Sphere, SurfaceKind::Tri), (SurfaceShape::Torus, SurfaceKind::Quad)] {
         for amount in [0.5, 1.0, 1.5] {
             let (p, _) = tangled(shape, kind, 1, 6, amount, 1);
             let truth = p.stats().inverted;
             let loaded = through(&p, Format::Vtk);
             // the fitted surface passes through the nodes: a file as loaded lies on it
-            assert_eq!(
-                loaded.max_distance_from_reference(),
-                0.0,
-                "{shape:?} {kind:?} {amount}"
-            );
+            assert_eq!(loaded.max_distance_from_reference(), 0.0, "{shape:?} {kind:?} {amount}");
             let read = loaded.stats().inverted;
-            assert!(
-                read.abs_diff(truth) <= 1,
-                "{shape:?} {kind:?} {amount}: {read} inverted against the surface's {truth}"
-            );
+            assert!(read.abs_diff(truth) <= 1, "{shape:?} {kind:?} {amount}: {read} inverted against the surface's {truth}");
         }
     }
 }
@@ -225,28 +151,16 @@ fn a_tangled_file_counts_the_inverted_elements_the_exact_surface_counts() {
 fn a_fitted_reference_projects_near_the_nodes_from_anywhere() {
     let (p, _) = tangled(SurfaceShape::Cylinder, SurfaceKind::Mixed, 1, 4, 1.5, 4);
     let s = through(&p, Format::Off);
-    let Reference::Fitted(fitted) = s.reference() else {
-        panic!("{}", s.reference().describe())
-    };
+    let Reference::Fitted(fitted) = s.reference() else { panic!("{}", s.reference().describe()) };
     let spacing = s.mean_edge_length();
     let mut rng = smoothlab::numeric::SplitMix64::new(7);
     for n in 0..s.node_count() {
         for _ in 0..8 {
             let offset = rng.in_unit_ball() * 3.0 * spacing;
             let q = fitted.project(s.points()[n] + offset, fitted.fit_at_node(n));
-            assert!(
-                q.point.is_finite() && (q.normal.length() - 1.0).abs() < 1e-9,
-                "node {n}: {q:?}"
-            );
-            let nearest = s
-                .points()
-                .iter()
-                .map(|&x| (x - q.point).length())
-                .fold(f64::INFINITY, f64::min);
-            assert!(
-                nearest < 4.0 * spacing,
-                "node {n}: a projection {nearest} from every node"
-            );
+            assert!(q.point.is_finite() && (q.normal.length() - 1.0).abs() < 1e-9, "node {n}: {q:?}");
+            let nearest = s.points().iter().map(|&x| (x - q.point).length()).fold(f64::INFINITY, f64::min);
+            assert!(nearest < 4.0 * spacing, "node {n}: a projection {nearest} from every node");
         }
     }
 }
@@ -262,19 +176,9 @@ fn the_old_objective_keeps_a_tangled_sphere_on_its_fitted_surface() {
         let (p, exact) = tangled(SurfaceShape::Sphere, SurfaceKind::Tri, 1, 8, 1.5, seed);
         let mut s = through(&p, Format::Vtk);
         let opts = SmoothOptions::default().with_strategy(Strategy::Opt);
-        smooth_surface(
-            &mut s,
-            objective(ObjectiveKind::MaxMinShape).as_ref(),
-            opts,
-            3,
-            &|| 0.0,
-        )
-        .unwrap();
+        smooth_surface(&mut s, objective(ObjectiveKind::MaxMinShape).as_ref(), opts, 3, &|| 0.0).unwrap();
         let off = s.max_distance_from_reference();
-        assert!(
-            off < 1e-3,
-            "seed {seed}: a node {off} off the fitted surface it was put on"
-        );
+        assert!(off < 1e-3, "seed {seed}: a node {off} off the fitted surface it was put on");
         let far = farthest(&s, &exact);
         assert!(far < 0.01, "seed {seed}: a node {far} off the sphere");
     }

@@ -10,14 +10,14 @@
 //!    Delaunay meshes with random boundary points; and what is written of a valid mesh
 //!    smoothed (`.msh`, `.vtk`) reads back, the same to the bit (issue 29).
 
-use glam::DVec3;
 use proptest::prelude::*;
+use glam::DVec3;
 use smoothlab::generate::{delaunay_tetrahedra, perturb_volume, rand3d, tet_cube};
-use smoothlab::io::{read_model_str, write_model_string, Format, WriteOptions};
-use smoothlab::model::Model;
 use smoothlab::numeric::SplitMix64;
-use smoothlab::objective::{tet_kinds, tet_objective, ObjectiveKind};
+use smoothlab::io::{read_model_str, write_model_string, Format, WriteOptions};
 use smoothlab::quality::tet::signed_volume;
+use smoothlab::model::Model;
+use smoothlab::objective::{tet_kinds, tet_objective, ObjectiveKind};
 use smoothlab::smooth::{SmoothOptions, Strategy};
 use smoothlab::volume::{smooth_volume, volume_stats, VolumeMesh};
 
@@ -32,14 +32,7 @@ fn sample(which: usize, cells: usize, amount: f64, seed: u64) -> VolumeMesh {
 
 fn smoothed(m: &VolumeMesh, strategy: Strategy, kind: ObjectiveKind) -> VolumeMesh {
     let mut t = m.clone();
-    smooth_volume(
-        &mut t,
-        &*tet_objective(kind).unwrap(),
-        SmoothOptions::default().with_strategy(strategy),
-        2,
-        &|| 0.0,
-    )
-    .unwrap();
+    smooth_volume(&mut t, &*tet_objective(kind).unwrap(), SmoothOptions::default().with_strategy(strategy), 2, &|| 0.0).unwrap();
     t
 }
 
@@ -130,9 +123,7 @@ fn random_boundary(n: usize, seed: u64) -> VolumeMesh {
 
 /// The smallest size of a tetrahedron (6V) relative to the largest.
 fn smallest_relative_volume(m: &VolumeMesh) -> f64 {
-    let v: Vec<f64> = (0..m.element_count())
-        .map(|e| signed_volume(&m.tet_corners(e)))
-        .collect();
+    let v: Vec<f64> = (0..m.element_count()).map(|e| signed_volume(&m.tet_corners(e))).collect();
     v.iter().copied().fold(f64::INFINITY, f64::min) / v.iter().copied().fold(0.0, f64::max)
 }
 
@@ -161,10 +152,7 @@ fn new_never_flattens_a_random_boundary_tetrahedron() {
             worst = worst.min(smallest_relative_volume(&t) / smallest_relative_volume(&m));
         }
     }
-    assert!(
-        worst > 1e-3,
-        "a tetrahedron shrank to {worst} of the smallest volume's share"
-    );
+    assert!(worst > 1e-3, "a tetrahedron shrank to {worst} of the smallest volume's share");
 }
 
 /// Issue 29: the priority order ranked stars by the last bits of their shape, which
@@ -177,23 +165,15 @@ fn new_never_flattens_a_random_boundary_tetrahedron() {
 fn the_priority_order_is_the_same_at_every_scale() {
     for seed in 0..12 {
         let m = perturb_volume(&rand3d(300, seed).unwrap(), 0.3, seed).unwrap();
-        let tets: Vec<[u32; 4]> = (0..m.element_count())
-            .map(|e| m.element(e)[..4].try_into().unwrap())
-            .collect();
-        let scaled =
-            VolumeMesh::from_tets(m.nodes().iter().map(|&p| 3.0 * p).collect(), &tets).unwrap();
+        let tets: Vec<[u32; 4]> = (0..m.element_count()).map(|e| m.element(e)[..4].try_into().unwrap()).collect();
+        let scaled = VolumeMesh::from_tets(m.nodes().iter().map(|&p| 3.0 * p).collect(), &tets).unwrap();
         let opts = SmoothOptions::default().with_strategy(Strategy::Rules);
         let objective = tet_objective(ObjectiveKind::SmoothShape).unwrap();
         let (mut a, mut b) = (m.clone(), scaled);
         smooth_volume(&mut a, &*objective, opts, 1, &|| 0.0).unwrap();
         smooth_volume(&mut b, &*objective, opts, 1, &|| 0.0).unwrap();
-        let far = (0..a.node_count())
-            .map(|n| (b.nodes()[n] / 3.0 - a.nodes()[n]).length())
-            .fold(0.0, f64::max);
-        assert!(
-            far < 1e-7,
-            "seed {seed}: a node ends {far} from where the mesh scaled by 3 puts it"
-        );
+        let far = (0..a.node_count()).map(|n| (b.nodes()[n] / 3.0 - a.nodes()[n]).length()).fold(0.0, f64::max);
+        assert!(far < 1e-7, "seed {seed}: a node ends {far} from where the mesh scaled by 3 puts it");
     }
 }
 
@@ -204,19 +184,12 @@ fn the_priority_order_is_the_same_at_every_scale() {
 fn curved_ten_node_tetrahedra_are_left_no_worse() {
     let mut tried = 0;
     for seed in 0..6u64 {
-        let mut m = perturb_volume(&tet_cube(3).unwrap(), 0.2, seed)
-            .unwrap()
-            .to_quadratic(false)
-            .unwrap();
+        let mut m = perturb_volume(&tet_cube(3).unwrap(), 0.2, seed).unwrap().to_quadratic(false).unwrap();
         let mut rng = SplitMix64::new(seed);
         let h = m.mean_edge_length();
         for n in 0..m.node_count() {
             if m.role(n) == smoothlab::mesh::NodeRole::Mid && !m.fixed()[n] {
-                let d = DVec3::new(
-                    rng.next_f64() - 0.5,
-                    rng.next_f64() - 0.5,
-                    rng.next_f64() - 0.5,
-                );
+                let d = DVec3::new(rng.next_f64() - 0.5, rng.next_f64() - 0.5, rng.next_f64() - 0.5);
                 m.nodes_mut()[n] += 0.04 * h * d;
             }
         }
@@ -225,10 +198,7 @@ fn curved_ten_node_tetrahedra_are_left_no_worse() {
             continue;
         }
         tried += 1;
-        for strategy in Strategy::ALL
-            .into_iter()
-            .filter(|&s| s != Strategy::Laplace)
-        {
+        for strategy in Strategy::ALL.into_iter().filter(|&s| s != Strategy::Laplace) {
             for kind in tet_kinds() {
                 let after = volume_stats(&smoothed(&m, strategy, kind));
                 assert_eq!(after.inverted, 0, "seed {seed} {strategy:?} {kind:?}");
@@ -261,36 +231,23 @@ fn a_tangled_tetrahedron_of_small_relative_volume_loads_and_untangles() {
             signed_volume(&[0, 1, 2, 3].map(|j| m.nodes()[t[j] as usize])).abs()
         })
         .fold(f64::INFINITY, f64::min);
-    assert!(
-        smallest > 1e-3,
-        "every tetrahedron has a volume: {smallest}"
-    );
+    assert!(smallest > 1e-3, "every tetrahedron has a volume: {smallest}");
     for format in [Format::Vtk, Format::Msh, Format::Medit] {
-        let text = write_model_string(&Model::Volume(m.clone()), format, &WriteOptions::default())
-            .unwrap();
+        let text = write_model_string(&Model::Volume(m.clone()), format, &WriteOptions::default()).unwrap();
         let mut model = read_model_str(&text, format).unwrap_or_else(|e| panic!("{format:?}: {e}"));
         let before = model.stats().inverted;
         assert!(before > 0, "{format:?}: the mesh is tangled");
         let report = model.smooth(&smoothlab::Smoothing::default()).unwrap();
-        assert_eq!(
-            report.inverted(),
-            0,
-            "{format:?}: {before} inverted, {} after",
-            report.inverted()
-        );
+        assert_eq!(report.inverted(), 0, "{format:?}: {before} inverted, {} after", report.inverted());
     }
     // exactly flat is still refused: the free node in the plane of a face of its star
     let mut flat = tet_cube(2).unwrap();
     let t = flat.element(0).to_vec();
     let corners: Vec<DVec3> = t.iter().map(|&i| flat.nodes()[i as usize]).collect();
-    let k = t
-        .iter()
-        .position(|&i| i as usize == free[0])
-        .expect("the free node is in element 0");
+    let k = t.iter().position(|&i| i as usize == free[0]).expect("the free node is in element 0");
     let others: Vec<DVec3> = (0..4).filter(|&j| j != k).map(|j| corners[j]).collect();
     flat.nodes_mut()[free[0]] = (others[0] + others[1]) * 0.5;
-    let text =
-        write_model_string(&Model::Volume(flat), Format::Vtk, &WriteOptions::default()).unwrap();
+    let text = write_model_string(&Model::Volume(flat), Format::Vtk, &WriteOptions::default()).unwrap();
     let e = read_model_str(&text, Format::Vtk).unwrap_err().to_string();
     assert!(e.contains("has no volume"), "{e}");
 }

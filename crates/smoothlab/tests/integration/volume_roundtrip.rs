@@ -39,45 +39,23 @@ impl Lattice {
     }
     fn cell(&self, i: u32, j: u32, k: u32) -> [u32; 8] {
         let c = |dx, dy, dz| self.id(i + dx, j + dy, k + dz);
-        [
-            c(0, 0, 0),
-            c(1, 0, 0),
-            c(1, 1, 0),
-            c(0, 1, 0),
-            c(0, 0, 1),
-            c(1, 0, 1),
-            c(1, 1, 1),
-            c(0, 1, 1),
-        ]
+        [c(0, 0, 0), c(1, 0, 0), c(1, 1, 0), c(0, 1, 0), c(0, 0, 1), c(1, 0, 1), c(1, 1, 1), c(0, 1, 1)]
     }
 }
 
 /// A hexahedron's faces, outward, in VTK's numbering.
-const HEX_FACES: [[usize; 4]; 6] = [
-    [0, 3, 2, 1],
-    [4, 5, 6, 7],
-    [0, 1, 5, 4],
-    [1, 2, 6, 5],
-    [2, 3, 7, 6],
-    [3, 0, 4, 7],
-];
+const HEX_FACES: [[usize; 4]; 6] = [[0, 3, 2, 1], [4, 5, 6, 7], [0, 1, 5, 4], [1, 2, 6, 5], [2, 3, 7, 6], [3, 0, 4, 7]];
 
 /// The two wedges of a cell cut by its diagonal plane through corners 0, 2, 4, 6, each
 /// in VTK's order (the first triangle turning away from the second).
 fn wedges(c: [u32; 8]) -> [Vec<u32>; 2] {
-    [
-        vec![c[0], c[2], c[1], c[4], c[6], c[5]],
-        vec![c[0], c[3], c[2], c[4], c[7], c[6]],
-    ]
+    [vec![c[0], c[2], c[1], c[4], c[6], c[5]], vec![c[0], c[3], c[2], c[4], c[7], c[6]]]
 }
 
 /// The six pyramids from a cell's faces to its centre node `m` (each base turning
 /// towards the apex: the outward face reversed).
 fn pyramids(c: [u32; 8], m: u32) -> Vec<Vec<u32>> {
-    HEX_FACES
-        .iter()
-        .map(|f| vec![c[f[0]], c[f[3]], c[f[2]], c[f[1]], m])
-        .collect()
+    HEX_FACES.iter().map(|f| vec![c[f[0]], c[f[3]], c[f[2]], c[f[1]], m]).collect()
 }
 
 /// Kuhn's six tetrahedra of a cell along its diagonal 0–6, each turned right-handed.
@@ -114,15 +92,8 @@ enum Sample {
     Mixed,
 }
 
-const SAMPLES: [Sample; 7] = [
-    Sample::Hexahedra,
-    Sample::Hex20,
-    Sample::Hex27,
-    Sample::Wedges,
-    Sample::Tetrahedra,
-    Sample::Tet10,
-    Sample::Mixed,
-];
+const SAMPLES: [Sample; 7] =
+    [Sample::Hexahedra, Sample::Hex20, Sample::Hex27, Sample::Wedges, Sample::Tetrahedra, Sample::Tet10, Sample::Mixed];
 
 fn mesh_of(nodes: Vec<DVec3>, elements: &[(VolumeKind, Vec<u32>)]) -> VolumeMesh {
     VolumeMesh::from_elements(nodes, elements.iter().map(|(k, e)| (*k, e.as_slice()))).unwrap()
@@ -133,26 +104,18 @@ fn linear(sample: Sample, rng: &mut SplitMix64) -> VolumeMesh {
     match sample {
         Sample::Hexahedra | Sample::Hex20 | Sample::Hex27 => {
             let l = Lattice { nx: 2, ny: 2 };
-            let cells: Vec<_> = (0..8)
-                .map(|c| (Hex8, l.cell(c % 2, c / 2 % 2, c / 4).to_vec()))
-                .collect();
+            let cells: Vec<_> = (0..8).map(|c| (Hex8, l.cell(c % 2, c / 2 % 2, c / 4).to_vec())).collect();
             mesh_of(l.points(2), &cells)
         }
         Sample::Wedges => {
             let l = Lattice { nx: 2, ny: 2 };
-            let cells: Vec<_> = (0..4)
-                .flat_map(|c| wedges(l.cell(c % 2, c / 2, 0)))
-                .map(|w| (Wedge6, w))
-                .collect();
+            let cells: Vec<_> = (0..4).flat_map(|c| wedges(l.cell(c % 2, c / 2, 0))).map(|w| (Wedge6, w)).collect();
             mesh_of(l.points(1), &cells)
         }
         Sample::Tetrahedra | Sample::Tet10 => {
             let l = Lattice { nx: 2, ny: 1 };
             let p = l.points(1);
-            let cells: Vec<_> = (0..2)
-                .flat_map(|c| tets(l.cell(c, 0, 0), &p))
-                .map(|t| (Tet4, t))
-                .collect();
+            let cells: Vec<_> = (0..2).flat_map(|c| tets(l.cell(c, 0, 0), &p)).map(|t| (Tet4, t)).collect();
             mesh_of(p, &cells)
         }
         Sample::Mixed => {
@@ -161,11 +124,7 @@ fn linear(sample: Sample, rng: &mut SplitMix64) -> VolumeMesh {
             let centre = p.len() as u32;
             p.push(DVec3::new(1.5, 0.5, 0.5));
             let mut cells = vec![(Hex8, l.cell(0, 0, 0).to_vec())];
-            cells.extend(
-                pyramids(l.cell(1, 0, 0), centre)
-                    .into_iter()
-                    .map(|e| (Pyramid5, e)),
-            );
+            cells.extend(pyramids(l.cell(1, 0, 0), centre).into_iter().map(|e| (Pyramid5, e)));
             cells.extend(wedges(l.cell(2, 0, 0)).into_iter().map(|e| (Wedge6, e)));
             cells.extend(tets(l.cell(3, 0, 0), &p).into_iter().map(|e| (Tet4, e)));
             // shuffled (Fisher–Yates): the kinds come in runs of every length
@@ -188,19 +147,13 @@ fn sample(s: Sample, seed: u64) -> VolumeMesh {
         _ => m,
     };
     for p in m.nodes_mut() {
-        *p += DVec3::new(
-            rng.uniform(-0.1, 0.1),
-            rng.uniform(-0.1, 0.1),
-            rng.uniform(-0.1, 0.1),
-        );
+        *p += DVec3::new(rng.uniform(-0.1, 0.1), rng.uniform(-0.1, 0.1), rng.uniform(-0.1, 0.1));
     }
     let mut elements = Vec::new();
     for e in 0..m.element_count() {
         elements.extend_from_slice(m.element(e));
     }
-    let fixed = (0..m.node_count())
-        .map(|_| rng.next_u64() % 3 == 0)
-        .collect();
+    let fixed = (0..m.node_count()).map(|_| rng.next_u64() % 3 == 0).collect();
     let m = VolumeMesh::build(SolidParts {
         nodes: m.nodes().to_vec(),
         node_lines: Vec::new(),
@@ -211,30 +164,17 @@ fn sample(s: Sample, seed: u64) -> VolumeMesh {
         faces: Vec::new(),
     })
     .unwrap();
-    assert_eq!(
-        (0..m.element_count()).filter(|&e| m.is_inverted(e)).count(),
-        0,
-        "{s:?}: a valid mesh to start from"
-    );
+    assert_eq!((0..m.element_count()).filter(|&e| m.is_inverted(e)).count(), 0, "{s:?}: a valid mesh to start from");
     m
 }
 
 /// `b` is `a`: nodes to the bit, kinds, element node lists, fixed flags.
 fn identical(a: &VolumeMesh, b: &VolumeMesh, what: &str) {
-    let bits = |m: &VolumeMesh| {
-        m.nodes()
-            .iter()
-            .map(|p| p.to_array().map(f64::to_bits))
-            .collect::<Vec<_>>()
-    };
+    let bits = |m: &VolumeMesh| m.nodes().iter().map(|p| p.to_array().map(f64::to_bits)).collect::<Vec<_>>();
     assert_eq!(bits(a), bits(b), "{what}: nodes");
     assert_eq!(a.element_count(), b.element_count(), "{what}");
     for e in 0..a.element_count() {
-        assert_eq!(
-            (a.element_kind(e), a.element(e)),
-            (b.element_kind(e), b.element(e)),
-            "{what}: element {e}"
-        );
+        assert_eq!((a.element_kind(e), a.element(e)), (b.element_kind(e), b.element(e)), "{what}: element {e}");
     }
     assert_eq!(a.fixed(), b.fixed(), "{what}: fixed flags");
 }
@@ -246,11 +186,8 @@ fn volume(m: Model) -> VolumeMesh {
     }
 }
 
-const WRITTEN: [(Format, MshVersion, &str); 3] = [
-    (Format::Vtk, MshVersion::V22, ".vtk"),
-    (Format::Msh, MshVersion::V22, ".msh 2.2"),
-    (Format::Msh, MshVersion::V41, ".msh 4.1"),
-];
+const WRITTEN: [(Format, MshVersion, &str); 3] =
+    [(Format::Vtk, MshVersion::V22, ".vtk"), (Format::Msh, MshVersion::V22, ".msh 2.2"), (Format::Msh, MshVersion::V41, ".msh 4.1")];
 
 proptest! {
     #![proptest_config(ProptestConfig::with_cases(24))]
@@ -327,46 +264,19 @@ proptest! {
 #[test]
 fn msh_4_1_writes_a_block_per_run_of_one_kind_and_tetgen_names_what_it_refuses() {
     let m = sample(Sample::Mixed, 7);
-    let runs = 1
-        + (1..m.element_count())
-            .filter(|&e| m.element_kind(e) != m.element_kind(e - 1))
-            .count();
-    assert!(
-        runs > 4,
-        "the shuffled kinds interleave: {runs} runs of 4 kinds"
-    );
-    let text = io::write_model_string(
-        &Model::Volume(m.clone()),
-        Format::Msh,
-        &WriteOptions {
-            msh_version: MshVersion::V41,
-        },
-    )
-    .unwrap();
+    let runs = 1 + (1..m.element_count()).filter(|&e| m.element_kind(e) != m.element_kind(e - 1)).count();
+    assert!(runs > 4, "the shuffled kinds interleave: {runs} runs of 4 kinds");
+    let text = io::write_model_string(&Model::Volume(m.clone()), Format::Msh, &WriteOptions { msh_version: MshVersion::V41 })
+        .unwrap();
     let elements = &text[text.find("$Elements\n").unwrap() + 10..];
-    let header: Vec<usize> = elements
-        .lines()
-        .next()
-        .unwrap()
-        .split(' ')
-        .map(|v| v.parse().unwrap())
-        .collect();
-    assert_eq!(
-        header,
-        vec![runs, m.element_count(), 1, m.element_count()],
-        "blocks, elements, tags"
-    );
+    let header: Vec<usize> = elements.lines().next().unwrap().split(' ').map(|v| v.parse().unwrap()).collect();
+    assert_eq!(header, vec![runs, m.element_count(), 1, m.element_count()], "blocks, elements, tags");
     let e = io::write_tetgen(&m).unwrap_err().to_string();
     assert_eq!(e, "TetGen's .ele holds tetrahedra, and this mesh has tetrahedra, hexahedra, wedges and pyramids: write .msh or .vtk");
     let d = std::env::temp_dir().join(format!("smoothlab-volume-roundtrip-{}", std::process::id()));
     std::fs::create_dir_all(&d).unwrap();
     let path = d.join("mixed.node");
-    let e = io::write_model_path(&Model::Volume(m), &path, &WriteOptions::default())
-        .unwrap_err()
-        .to_string();
+    let e = io::write_model_path(&Model::Volume(m), &path, &WriteOptions::default()).unwrap_err().to_string();
     assert!(e.starts_with("TetGen's .ele holds tetrahedra"), "{e}");
-    assert!(
-        !path.exists() && !d.join("mixed.ele").exists(),
-        "nothing written"
-    );
+    assert!(!path.exists() && !d.join("mixed.ele").exists(), "nothing written");
 }

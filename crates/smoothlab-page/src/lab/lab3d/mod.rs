@@ -31,23 +31,20 @@ use super::interact::LevelWindow;
 use super::pick::{sentence, Pick};
 use super::screen::UndoSummary;
 use super::views::{
-    figure_lines, figure_title, histogram_picture, histogram_top, level_set_picture, pass_chart,
-    pixmap, solve_chart, Canvas, FigureWords, NodeSummary, SolveSummary, LEVEL_SET_MARGIN,
+    figure_lines, figure_title, histogram_picture, histogram_top, level_set_picture, pass_chart, pixmap, solve_chart, Canvas, FigureWords,
+    NodeSummary, SolveSummary, LEVEL_SET_MARGIN,
 };
-use super::{
-    PanelStats, PanelTable, PassSummary, Settings, Side, TableDetail, WorkDone, MAX_NODES,
-};
+use super::{PanelStats, PanelTable, PassSummary, Settings, Side, TableDetail, WorkDone, MAX_NODES};
 use smoothlab::error::{Error, Result};
 use smoothlab::io::Format;
 use smoothlab::objective::Star;
 use smoothlab::optimize::SolveResult;
 use smoothlab::quality::MeshStats;
-use smoothlab::smooth::SmoothOptions;
 use smoothlab_render::{
-    draw_node_mark, feasible_bounds_of, level_set_view, render_compare_with, AngleHistogram,
-    Camera, Colormap, CompareBar, CompareText, Frame, HistogramAxis, HistogramSeries,
-    PlaneFunction, Projection, SurfaceView, Theme, View,
+    draw_node_mark, feasible_bounds_of, level_set_view, render_compare_with, AngleHistogram, Camera, Colormap, CompareBar, CompareText, Frame,
+    HistogramAxis, HistogramSeries, PlaneFunction, Projection, SurfaceView, Theme, View,
 };
+use smoothlab::smooth::SmoothOptions;
 
 /// A kind of mesh in space that the 3D lab holds: how it is smoothed a pass at a time,
 /// measured, perturbed, drawn and written. [`surface`] and [`volume`] implement it.
@@ -122,13 +119,7 @@ pub trait Mesh3d: Clone + Sized {
     fn star_lines(&self, n: usize) -> Vec<Vec<DVec3>>;
     /// A free node's objective over a plane through it (the kind's: see [`NodeSlice`]),
     /// with the solve of `objective` from where the node is.
-    fn slice<'a>(
-        &self,
-        objective: &'a Self::Objective,
-        node: usize,
-        cut: Self::Cut,
-        options: &SmoothOptions,
-    ) -> Result<NodeSlice<'a>>;
+    fn slice<'a>(&self, objective: &'a Self::Objective, node: usize, cut: Self::Cut, options: &SmoothOptions) -> Result<NodeSlice<'a>>;
     /// What the side smooths with, as a summary names it (`old (max-min …)`).
     fn objective_label(settings: &Settings, side: Side) -> String;
     /// Moves free node `node` to `to` as the kind's smoother puts a node (a surface's onto
@@ -327,10 +318,7 @@ impl<M: Mesh3d> Lab3d<M> {
     /// (an objective without a form on this kind among them) change nothing.
     pub fn set_settings(&mut self, settings: Settings) -> Result<()> {
         let o = settings.smooth_options()?;
-        let objectives = [
-            M::objective(&settings, Side::A)?,
-            M::objective(&settings, Side::B)?,
-        ];
+        let objectives = [M::objective(&settings, Side::A)?, M::objective(&settings, Side::B)?];
         for (s, objective) in self.sides.iter_mut().zip(objectives) {
             s.smoother = M::smoother(o)?;
             s.objective = objective;
@@ -360,9 +348,7 @@ impl<M: Mesh3d> Lab3d<M> {
             let s = &mut self.sides[side.index()];
             // numbered since the last reset, whatever settings came between (as the planar lab)
             let pass = s.records.len() as u32 + 1;
-            let mut r = s
-                .mesh
-                .pass(&mut s.smoother, s.objective.as_ref(), pass, clock);
+            let mut r = s.mesh.pass(&mut s.smoother, s.objective.as_ref(), pass, clock);
             r.objective_total = None; // as the planar lab: the page never shows it
             s.stats = s.mesh.stats();
             s.records.push(r.clone());
@@ -373,10 +359,7 @@ impl<M: Mesh3d> Lab3d<M> {
     /// Both sides back to the mesh as loaded (or as last perturbed), their records cleared.
     pub fn reset(&mut self) {
         self.undo.clear();
-        let o = self
-            .settings
-            .smooth_options()
-            .expect("the settings were checked when set");
+        let o = self.settings.smooth_options().expect("the settings were checked when set");
         for s in &mut self.sides {
             s.mesh.clone_from(&self.original);
             s.stats.clone_from(&self.original_stats);
@@ -428,11 +411,7 @@ impl<M: Mesh3d> Lab3d<M> {
     /// Statistics of a side, with the work done since the last reset.
     pub fn stats(&self, side: Side) -> PanelStats {
         let s = self.side(side);
-        PanelStats {
-            side,
-            mesh: s.stats.clone(),
-            work: WorkDone::of(&s.records),
-        }
+        PanelStats { side, mesh: s.stats.clone(), work: WorkDone::of(&s.records) }
     }
 
     /// What the page's statistics table shows of a side: the planar table's record (for
@@ -486,11 +465,7 @@ impl<M: Mesh3d> Lab3d<M> {
             )));
         }
         let (lo, hi) = smoothlab_render::ZOOM_RANGE;
-        self.camera = Camera {
-            yaw,
-            pitch,
-            zoom: zoom.clamp(lo, hi),
-        };
+        self.camera = Camera { yaw, pitch, zoom: zoom.clamp(lo, hi) };
         Ok(())
     }
 
@@ -505,12 +480,8 @@ impl<M: Mesh3d> Lab3d<M> {
         let frame = smoothlab_render::Frame::new(0.0, 0.0, c.w as f32 / c.dpr, c.h as f32 / c.dpr);
         // under the title's band, as the 3D view lays it out
         let top = 26.0 * self.theme.grow(14.0);
-        smoothlab_render::colour_bar_band(
-            frame.inset(0.0, top, 0.0, 0.0),
-            self.original.quality_label(),
-            &self.theme,
-        )
-        .is_some()
+        smoothlab_render::colour_bar_band(frame.inset(0.0, top, 0.0, 0.0), self.original.quality_label(), &self.theme)
+            .is_some()
     }
 
     /// The theme every later picture is drawn with.
@@ -558,11 +529,7 @@ impl<M: Mesh3d> Lab3d<M> {
         };
         let pictures = [draw(Side::A)?, draw(Side::B)?];
         self.canvas = Some(c);
-        Ok(Frame3d {
-            pictures,
-            render_ms,
-            colour_bar: self.colour_bar_shown(c),
-        })
+        Ok(Frame3d { pictures, render_ms, colour_bar: self.colour_bar_shown(c) })
     }
 
     /// The node of a side's mesh under the CSS pixel `at` of a picture drawn on canvas
@@ -575,22 +542,11 @@ impl<M: Mesh3d> Lab3d<M> {
             None => Pick {
                 node: None,
                 nearest: None,
-                message: Some(format!(
-                    "No face of {} there: click on the mesh (a drag turns it, the wheel zooms).",
-                    M::WHAT
-                )),
+                message: Some(format!("No face of {} there: click on the mesh (a drag turns it, the wheel zooms).", M::WHAT)),
             },
             Some(n) => match mesh.why_not_free(n) {
-                None => Pick {
-                    node: Some(n),
-                    nearest: Some(n),
-                    message: None,
-                },
-                Some(why) => Pick {
-                    node: None,
-                    nearest: Some(n),
-                    message: Some(sentence(&why)),
-                },
+                None => Pick { node: Some(n), nearest: Some(n), message: None },
+                Some(why) => Pick { node: None, nearest: Some(n), message: Some(sentence(&why)) },
             },
         })
     }
@@ -598,14 +554,8 @@ impl<M: Mesh3d> Lab3d<M> {
     /// As [`pick`](Self::pick) on the canvas of the last [`frame`](Self::frame); a
     /// radius that is not positive and finite is the page's default, and at most 64.
     pub fn pick_in_frame(&self, side: Side, at: DVec2, radius: f64) -> Result<Pick> {
-        let c = self
-            .canvas
-            .ok_or_else(|| Error::invalid("the mesh has not been drawn yet"))?;
-        let radius = if radius.is_finite() && radius > 0.0 {
-            radius.min(64.0)
-        } else {
-            smoothlab_render::PICK_RADIUS
-        };
+        let c = self.canvas.ok_or_else(|| Error::invalid("the mesh has not been drawn yet"))?;
+        let radius = if radius.is_finite() && radius > 0.0 { radius.min(64.0) } else { smoothlab_render::PICK_RADIUS };
         self.pick(side, c, at, radius)
     }
 
@@ -613,21 +563,14 @@ impl<M: Mesh3d> Lab3d<M> {
     /// (`None` for no such node), and how far it is behind the nearest point of that
     /// side's mesh, CSS pixels (0 for the nearest).
     pub fn node_on_screen(&self, side: Side, n: usize) -> Result<Option<(DVec2, f64)>> {
-        let c = self
-            .canvas
-            .ok_or_else(|| Error::invalid("the mesh has not been drawn yet"))?;
+        let c = self.canvas.ok_or_else(|| Error::invalid("the mesh has not been drawn yet"))?;
         let mesh = self.mesh(side);
         if n >= mesh.node_count() {
             return Ok(None);
         }
         let (_, proj) = self.render(side, c)?;
-        let front = (0..mesh.node_count())
-            .map(|m| proj.depth(mesh.point(m)))
-            .fold(f64::INFINITY, f64::min);
-        Ok(Some((
-            proj.to_css(mesh.point(n)),
-            (proj.depth(mesh.point(n)) - front) * proj.scale(),
-        )))
+        let front = (0..mesh.node_count()).map(|m| proj.depth(mesh.point(m))).fold(f64::INFINITY, f64::min);
+        Ok(Some((proj.to_css(mesh.point(n)), (proj.depth(mesh.point(n)) - front) * proj.scale())))
     }
 
     /// The node chosen (marked on both sides, its level sets shown).
@@ -654,8 +597,7 @@ impl<M: Mesh3d> Lab3d<M> {
     }
 
     fn chosen(&self) -> Result<usize> {
-        self.node
-            .ok_or_else(|| Error::invalid("no node is chosen: click a node first"))
+        self.node.ok_or_else(|| Error::invalid("no node is chosen: click a node first"))
     }
 
     /// A side's [`NodeSlice`] at `node`: its objective over the plane through the node
@@ -670,35 +612,17 @@ impl<M: Mesh3d> Lab3d<M> {
     /// position and the optimum found), and the part of it shown.
     fn level_bounds(&self, slice: &NodeSlice<'_>) -> ((DVec2, DVec2), (DVec2, DVec2)) {
         let keep = [slice.outline.x0, slice.solve.x];
-        let whole = feasible_bounds_of(
-            &|p| slice.function.validity(p),
-            &slice.outline,
-            &keep,
-            LEVEL_SET_MARGIN,
-        );
+        let whole = feasible_bounds_of(&|p| slice.function.validity(p), &slice.outline, &keep, LEVEL_SET_MARGIN);
         (whole, self.level_window.within(whole))
     }
 
     /// Level sets of one side's objective at `node` over its plane ([`NodeSlice`]), with
     /// the path of its solve, on canvas `c` (the planar view's picture); and the slice.
-    pub fn render_level_set(
-        &self,
-        side: Side,
-        node: usize,
-        c: Canvas,
-    ) -> Result<(Pixmap, NodeSlice<'_>)> {
+    pub fn render_level_set(&self, side: Side, node: usize, c: Canvas) -> Result<(Pixmap, NodeSlice<'_>)> {
         let slice = self.node_slice(side, node)?;
         let (_, bounds) = self.level_bounds(&slice);
         let title = self.side_title(side);
-        let (pm, legend_h) = level_set_picture(
-            slice.function.as_ref(),
-            &slice.outline,
-            &slice.solve,
-            bounds,
-            &title,
-            c,
-            self.theme,
-        )?;
+        let (pm, legend_h) = level_set_picture(slice.function.as_ref(), &slice.outline, &slice.solve, bounds, &title, c, self.theme)?;
         let mut legend = self.level_legend.get();
         legend[side.index()] = legend_h;
         self.level_legend.set(legend);
@@ -707,45 +631,23 @@ impl<M: Mesh3d> Lab3d<M> {
 
     /// Both sides' level sets at `node` (on canvas `level`) and a chart of their solves'
     /// histories (on `chart`), with a summary; the solves' targets in space.
-    pub fn render_node_view(
-        &self,
-        node: usize,
-        level: Canvas,
-        chart: Canvas,
-    ) -> Result<([Pixmap; 3], NodeSummary3d, [DVec3; 2])> {
+    pub fn render_node_view(&self, node: usize, level: Canvas, chart: Canvas) -> Result<([Pixmap; 3], NodeSummary3d, [DVec3; 2])> {
         let (la, a) = self.render_level_set(Side::A, node, level)?;
         let (lb, b) = self.render_level_set(Side::B, node, level)?;
         let labels = Side::BOTH.map(|side| M::objective_label(&self.settings, side));
         let goals = [a.function.goal(), b.function.goal()];
-        let pm = solve_chart(
-            [&a.solve, &b.solve],
-            [&labels[0], &labels[1]],
-            goals,
-            chart,
-            self.theme,
-        )?;
+        let pm = solve_chart([&a.solve, &b.solve], [&labels[0], &labels[1]], goals, chart, self.theme)?;
         let solves = NodeSummary {
             node,
             old: SolveSummary::of(&labels[0], goals[0], &a.solve),
             new: SolveSummary::of(&labels[1], goals[1], &b.solve),
         };
-        Ok((
-            [la, lb, pm],
-            NodeSummary3d {
-                solves,
-                plane: a.plane.clone(),
-            },
-            [a.target, b.target],
-        ))
+        Ok(([la, lb, pm], NodeSummary3d { solves, plane: a.plane.clone() }, [a.target, b.target]))
     }
 
     /// The chosen node's level sets (A, B: on canvas `level`), its solve history chart (on
     /// `chart`) and a summary; pointer positions on the level sets map through `level`.
-    pub fn chosen_node_view(
-        &mut self,
-        level: Canvas,
-        chart: Canvas,
-    ) -> Result<([Pixmap; 3], NodeSummary3d)> {
+    pub fn chosen_node_view(&mut self, level: Canvas, chart: Canvas) -> Result<([Pixmap; 3], NodeSummary3d)> {
         let node = self.chosen()?;
         self.level_canvas = Some(level);
         let (pictures, summary, _) = self.render_node_view(node, level, chart)?;
@@ -756,20 +658,12 @@ impl<M: Mesh3d> Lab3d<M> {
     /// solver, from where the node is), which then moves there as the kind's smoother
     /// puts a node (the nodes that follow it following; on a surface, put back on the
     /// surface): the node view of that call, drawn before the move. Undoable.
-    pub fn smooth_chosen_node(
-        &mut self,
-        level: Canvas,
-        chart: Canvas,
-    ) -> Result<([Pixmap; 3], NodeSummary3d)> {
+    pub fn smooth_chosen_node(&mut self, level: Canvas, chart: Canvas) -> Result<([Pixmap; 3], NodeSummary3d)> {
         let node = self.chosen()?;
         self.level_canvas = Some(level);
         let (pictures, summary, targets) = self.render_node_view(node, level, chart)?;
         if let Some(t) = targets.iter().find(|t| !t.is_finite()) {
-            return Err(Error::node(
-                node,
-                None,
-                format!("the solver found no finite position ({t})"),
-            ));
+            return Err(Error::node(node, None, format!("the solver found no finite position ({t})")));
         }
         self.remember_before_move(node);
         for (side, to) in Side::BOTH.into_iter().zip(targets) {
@@ -801,34 +695,18 @@ impl<M: Mesh3d> Lab3d<M> {
     /// Where undo stands, `node` the node a move just took back ([`undo`](Self::undo)'s
     /// answer; `None` to only ask).
     pub fn undo_summary(&self, node: Option<usize>) -> UndoSummary {
-        UndoSummary {
-            node,
-            next: self.undo.last().map(|u| u.node),
-            depth: self.undo.len(),
-        }
+        UndoSummary { node, next: self.undo.last().map(|u| u.node), depth: self.undo.len() }
     }
 
     /// The chosen node and the canvas its level sets were last drawn on, with the view
     /// `side`'s level set was drawn in and its box.
     fn level_drawn(&self, side: Side) -> Result<((DVec2, DVec2), View)> {
         let node = self.chosen()?;
-        let c = self
-            .level_canvas
-            .ok_or_else(|| Error::invalid("the level sets have not been drawn yet"))?;
+        let c = self.level_canvas.ok_or_else(|| Error::invalid("the level sets have not been drawn yet"))?;
         let slice = self.node_slice(side, node)?;
         let (whole, shown) = self.level_bounds(&slice);
         let frame = Frame::new(0.0, 0.0, c.w as f32 / c.dpr, c.h as f32 / c.dpr);
-        Ok((
-            whole,
-            level_set_view(
-                frame,
-                shown.0,
-                shown.1,
-                c.dpr,
-                &self.theme,
-                self.level_legend.get()[side.index()],
-            ),
-        ))
+        Ok((whole, level_set_view(frame, shown.0, shown.1, c.dpr, &self.theme, self.level_legend.get()[side.index()])))
     }
 
     /// Magnifies both level sets `factor` times about the CSS pixel `at` of `side`'s
@@ -850,46 +728,18 @@ impl<M: Mesh3d> Lab3d<M> {
     pub fn render_pass_chart(&self, c: Canvas) -> Result<Pixmap> {
         let records = Side::BOTH.map(|side| &self.side(side).records[..]);
         let labels = Side::BOTH.map(|side| self.side_label(side));
-        pass_chart(
-            &self.original_stats,
-            records,
-            &labels,
-            &M::PASS_TITLES,
-            c,
-            self.theme,
-        )
+        pass_chart(&self.original_stats, records, &labels, &M::PASS_TITLES, c, self.theme)
     }
 
     /// A side's histogram `which` of [`Mesh3d::HISTOGRAMS`] over the mesh as loaded, both
     /// sides on one scale, linear or logarithmic (`log_y`).
-    pub fn render_histogram(
-        &self,
-        which: usize,
-        side: Side,
-        c: Canvas,
-        log_y: bool,
-    ) -> Result<Pixmap> {
-        let h = M::HISTOGRAMS.get(which).ok_or_else(|| {
-            Error::invalid(format!(
-                "no histogram {which}: there are {}",
-                M::HISTOGRAMS.len()
-            ))
-        })?;
+    pub fn render_histogram(&self, which: usize, side: Side, c: Canvas, log_y: bool) -> Result<Pixmap> {
+        let h = M::HISTOGRAMS.get(which).ok_or_else(|| Error::invalid(format!("no histogram {which}: there are {}", M::HISTOGRAMS.len())))?;
         let start = (h.counts)(&self.original_stats);
         let top = histogram_top(start, Side::BOTH.map(|s| (h.counts)(self.full_stats(s))));
         let label = self.side_label(side);
-        let series = HistogramSeries {
-            label: &label,
-            counts: (h.counts)(self.full_stats(side)),
-            color: Some(self.theme.side(side.index())),
-        };
-        let opts = AngleHistogram {
-            title: h.title,
-            y_top: Some(top),
-            log_y,
-            axis: h.axis,
-            ..AngleHistogram::default()
-        };
+        let series = HistogramSeries { label: &label, counts: (h.counts)(self.full_stats(side)), color: Some(self.theme.side(side.index())) };
+        let opts = AngleHistogram { title: h.title, y_top: Some(top), log_y, axis: h.axis, ..AngleHistogram::default() };
         histogram_picture(start, series, opts, c, self.theme)
     }
 
@@ -899,25 +749,9 @@ impl<M: Mesh3d> Lab3d<M> {
     pub fn render_figure(&self, c: Canvas) -> Result<Pixmap> {
         let mut pm = pixmap(c.w, c.h)?;
         let s = smoothlab_render::view::sane_dpr(c.dpr);
-        let lines = Side::BOTH.map(|side| {
-            figure_lines(
-                &self.side(side).stats,
-                &WorkDone::of(&self.side(side).records),
-                M::FIGURE_WORDS,
-            )
-        });
-        let titles = Side::BOTH
-            .map(|side| figure_title(&self.side_label(side), self.side(side).records.len()));
-        let text = [
-            CompareText {
-                title: &titles[0],
-                lines: &lines[0],
-            },
-            CompareText {
-                title: &titles[1],
-                lines: &lines[1],
-            },
-        ];
+        let lines = Side::BOTH.map(|side| figure_lines(&self.side(side).stats, &WorkDone::of(&self.side(side).records), M::FIGURE_WORDS));
+        let titles = Side::BOTH.map(|side| figure_title(&self.side_label(side), self.side(side).records.len()));
+        let text = [CompareText { title: &titles[0], lines: &lines[0] }, CompareText { title: &titles[1], lines: &lines[1] }];
         let inverted = || self.side(Side::B).stats.inverted;
         let bar = CompareBar {
             label: self.original.quality_label(),
@@ -926,25 +760,10 @@ impl<M: Mesh3d> Lab3d<M> {
             inverted: &inverted,
         };
         let frame = Frame::of_pixmap(&pm, s);
-        render_compare_with(
-            &mut pm,
-            &text,
-            frame,
-            s,
-            &self.theme,
-            Some(bar),
-            |pm, k, f| {
-                let view = SurfaceView {
-                    camera: self.camera,
-                    dpr: s,
-                    frame: Some(f),
-                    colour_bar: false,
-                    theme: self.theme,
-                    ..SurfaceView::default()
-                };
-                self.mesh(Side::BOTH[k]).draw(pm, self.cut, &view);
-            },
-        );
+        render_compare_with(&mut pm, &text, frame, s, &self.theme, Some(bar), |pm, k, f| {
+            let view = SurfaceView { camera: self.camera, dpr: s, frame: Some(f), colour_bar: false, theme: self.theme, ..SurfaceView::default() };
+            self.mesh(Side::BOTH[k]).draw(pm, self.cut, &view);
+        });
         Ok(pm)
     }
 
@@ -966,16 +785,12 @@ impl<M: Mesh3d> Lab3d<M> {
             _ => {
                 let names: Vec<&str> = M::EXPORTS.iter().map(|f| f.extensions()[0]).collect();
                 let words = match names.split_last() {
-                    Some((last, rest)) if !rest.is_empty() => {
-                        format!("{} or {last}", rest.join(", "))
-                    }
+                    Some((last, rest)) if !rest.is_empty() => format!("{} or {last}", rest.join(", ")),
                     _ => names.join(""),
                 };
-                Err(Error::invalid(format!(
-                    "cannot export {} as '{format}': use {words}",
-                    M::WHAT
-                )))
+                Err(Error::invalid(format!("cannot export {} as '{format}': use {words}", M::WHAT)))
             }
         }
     }
 }
+

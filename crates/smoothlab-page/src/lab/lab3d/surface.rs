@@ -6,25 +6,23 @@
 //! sets are drawn in its tangent plane, where the drivers flatten its star and solve
 //! ([`Surface::tangent_star`]).
 
-use glam::{DVec2, DVec3};
 use smoothlab_render::SurfacePicture;
+use glam::{DVec2, DVec3};
 use tiny_skia::Pixmap;
 
 use super::{Histogram3d, Mesh3d, NodeSlice};
-use crate::lab::pick::why_not_free;
-use crate::lab::views::FigureWords;
-use crate::lab::{PassSummary, Settings, Side};
 use smoothlab::error::{Error, Result};
 use smoothlab::generate::perturb_surface;
 use smoothlab::io::{write_string, Format, WriteOptions};
+use crate::lab::pick::why_not_free;
+use crate::lab::views::FigureWords;
+use crate::lab::{PassSummary, Settings, Side};
 use smoothlab::mesh::NodeRole;
 use smoothlab::objective::{Goal, Objective, Star};
 use smoothlab::quality::MeshStats;
+use smoothlab_render::{HistogramAxis, Metric, PlaneFunction, Projection, StarFunction, SurfaceView, PASS_TITLES};
 use smoothlab::smooth::{solve_planar_star, SmoothOptions};
 use smoothlab::surface::{KeptNodes, Surface, SurfaceSmoother};
-use smoothlab_render::{
-    HistogramAxis, Metric, PlaneFunction, Projection, StarFunction, SurfaceView, PASS_TITLES,
-};
 
 /// A surface node's objective over its tangent plane: the planar objective of its star
 /// flattened there ([`StarFunction`], the star owned).
@@ -38,18 +36,10 @@ impl PlaneFunction for TangentFunction<'_> {
         self.objective.goal()
     }
     fn value(&self, x: DVec2) -> f64 {
-        StarFunction {
-            objective: self.objective,
-            star: &self.star,
-        }
-        .value(x)
+        StarFunction { objective: self.objective, star: &self.star }.value(x)
     }
     fn validity(&self, x: DVec2) -> f64 {
-        StarFunction {
-            objective: self.objective,
-            star: &self.star,
-        }
-        .validity(x)
+        StarFunction { objective: self.objective, star: &self.star }.validity(x)
     }
 }
 
@@ -118,8 +108,7 @@ impl Mesh3d for Surface {
     /// within `radius` (the near side winning).
     fn pick(&self, _cut: (), proj: &Projection, at: DVec2, radius: f64) -> Option<usize> {
         let faces = self.faces(Metric::Shape);
-        proj.pick_on_faces(&faces.faces(self.points()), at.x, at.y)
-            .or_else(|| proj.pick(self.points(), at.x, at.y, radius))
+        proj.pick_on_faces(&faces.faces(self.points()), at.x, at.y).or_else(|| proj.pick(self.points(), at.x, at.y, radius))
     }
     fn point(&self, n: usize) -> DVec3 {
         self.points()[n]
@@ -127,11 +116,7 @@ impl Mesh3d for Surface {
     /// The planar page's reasons, and a feature curve's: its nodes are fixed.
     fn why_not_free(&self, n: usize) -> Option<String> {
         let m = self.flat();
-        if n < m.node_count()
-            && !m.is_free(n)
-            && m.role(n) == NodeRole::Corner
-            && self.is_feature(n)
-        {
+        if n < m.node_count() && !m.is_free(n) && m.role(n) == NodeRole::Corner && self.is_feature(n) {
             return Some(format!(
                 "node {n} is fixed: it lies on a feature curve (where the surface bends by more than 30°), which smoothing keeps in place"
             ));
@@ -152,21 +137,13 @@ impl Mesh3d for Surface {
             .map(|&e| {
                 let ids = m.element(e as usize);
                 let k = m.kind(e as usize).corners();
-                (0..=k)
-                    .map(|i| self.points()[ids[i % k] as usize])
-                    .collect()
+                (0..=k).map(|i| self.points()[ids[i % k] as usize]).collect()
             })
             .collect()
     }
     /// The node's star flattened into its tangent plane, where the drivers solve: the
     /// solve is the one a pass makes there.
-    fn slice<'a>(
-        &self,
-        objective: &'a dyn Objective,
-        node: usize,
-        _cut: (),
-        options: &SmoothOptions,
-    ) -> Result<NodeSlice<'a>> {
+    fn slice<'a>(&self, objective: &'a dyn Objective, node: usize, _cut: (), options: &SmoothOptions) -> Result<NodeSlice<'a>> {
         let (star, plane) = self.tangent_star(node)?;
         let solve = solve_planar_star(objective, &star, star.x0, options)?;
         let target = plane.to_3d(solve.x);
@@ -195,11 +172,8 @@ impl Mesh3d for Surface {
     }
     const PASS_TITLES: [&'static str; 4] = PASS_TITLES;
     const FIGURE_WORDS: FigureWords = FigureWords::PLANAR;
-    const HISTOGRAMS: &'static [Histogram3d] = &[Histogram3d {
-        title: "Corner angles (6° bins)",
-        counts: |s| &s.angle_histogram_6deg,
-        axis: HistogramAxis::ANGLES,
-    }];
+    const HISTOGRAMS: &'static [Histogram3d] =
+        &[Histogram3d { title: "Corner angles (6° bins)", counts: |s| &s.angle_histogram_6deg, axis: HistogramAxis::ANGLES }];
     fn write(&self, format: Format) -> Result<String> {
         write_string(self, format, &WriteOptions::default())
     }
@@ -214,20 +188,18 @@ impl Mesh3d for Surface {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use glam::DVec2;
+    use crate::lab::views::Canvas;
+    use crate::lab::Lab3d;
+    use smoothlab_render::Camera;
     use crate::lab::sample::Sample;
     use crate::lab::screen::UndoSummary;
-    use crate::lab::views::Canvas;
     use crate::lab::Choice;
-    use crate::lab::Lab3d;
-    use glam::DVec2;
-    use smoothlab::model::Model;
     use smoothlab::objective::ObjectiveKind;
-    use smoothlab_render::Camera;
+    use smoothlab::model::Model;
 
     fn lab(sample: Sample) -> Lab3d<Surface> {
-        let Model::Surface(s) = sample.model().unwrap() else {
-            panic!("{sample:?} is not a surface")
-        };
+        let Model::Surface(s) = sample.model().unwrap() else { panic!("{sample:?} is not a surface") };
         Lab3d::new(s).unwrap()
     }
 
@@ -303,16 +275,10 @@ mod tests {
         }
         let [old, new] = last.unwrap();
         assert_eq!((old.pass, new.pass), (3, 3));
-        assert_eq!(
-            new.after.inverted, 0,
-            "the new objective untangles the sphere"
-        );
+        assert_eq!(new.after.inverted, 0, "the new objective untangles the sphere");
         let t = l.table(Side::B);
         assert_eq!((t.mesh.inverted, t.work.passes), (0, 3));
-        assert!(
-            t.max_distance_from_surface.unwrap() < 1e-9,
-            "the nodes stay on the sphere"
-        );
+        assert!(t.max_distance_from_surface.unwrap() < 1e-9, "the nodes stay on the sphere");
         assert_ne!(l.mesh(Side::B).points(), &before[..]);
         l.reset();
         assert_eq!(l.mesh(Side::B).points(), &before[..]);
@@ -328,28 +294,15 @@ mod tests {
         l.step(&no_clock);
         assert_ne!(l.mesh(Side::A).points(), l.mesh(Side::B).points());
         // the same objective on both sides: the same surface, bit for bit
-        let same = Settings {
-            compare: [Choice::NEW, Choice::NEW],
-            ..Settings::default()
-        };
+        let same = Settings { compare: [Choice::NEW, Choice::NEW], ..Settings::default() };
         l.set_settings(same).unwrap();
         l.reset();
         l.step(&no_clock);
         assert_eq!(l.mesh(Side::A).points(), l.mesh(Side::B).points());
-        assert_eq!(
-            l.table(Side::A).title.replacen('A', "B", 1),
-            l.table(Side::B).title
-        );
-        let bad = Settings {
-            max_iter: 0,
-            ..Settings::default()
-        };
+        assert_eq!(l.table(Side::A).title.replacen('A', "B", 1), l.table(Side::B).title);
+        let bad = Settings { max_iter: 0, ..Settings::default() };
         assert!(l.set_settings(bad).is_err());
-        assert_eq!(
-            l.settings().compare[0].objective,
-            ObjectiveKind::SmoothShape,
-            "a refused setting changes nothing"
-        );
+        assert_eq!(l.settings().compare[0].objective, ObjectiveKind::SmoothShape, "a refused setting changes nothing");
     }
 
     #[test]
@@ -357,18 +310,11 @@ mod tests {
         let mut l = lab(Sample::CylinderCapped);
         let c0 = l.camera();
         l.orbit(20.0, 10.0);
-        assert_eq!(
-            (l.camera().yaw, l.camera().pitch),
-            (c0.yaw - 10.0, c0.pitch + 5.0)
-        );
+        assert_eq!((l.camera().yaw, l.camera().pitch), (c0.yaw - 10.0, c0.pitch + 5.0));
         l.orbit(0.0, 1e6);
         assert_eq!(l.camera().pitch, smoothlab_render::MAX_DRAG_PITCH);
         l.orbit(f64::NAN, f64::INFINITY);
-        assert_eq!(
-            l.camera().pitch,
-            smoothlab_render::MAX_DRAG_PITCH,
-            "a non-finite drag changes nothing"
-        );
+        assert_eq!(l.camera().pitch, smoothlab_render::MAX_DRAG_PITCH, "a non-finite drag changes nothing");
         l.zoom(1e9);
         assert_eq!(l.camera().zoom, smoothlab_render::ZOOM_RANGE.1);
         l.zoom(-2.0);
@@ -383,39 +329,21 @@ mod tests {
     #[test]
     fn both_sides_are_drawn_by_the_shared_camera_and_a_node_is_picked_on_the_near_side() {
         let mut l = lab(Sample::SphereTangled);
-        let c = Canvas {
-            w: 300,
-            h: 320,
-            dpr: 1.0,
-        };
+        let c = Canvas { w: 300, h: 320, dpr: 1.0 };
         let (a, proj) = l.render(Side::A, c).unwrap();
         assert_eq!((a.width(), a.height()), (300, 320));
         // the node nearest the viewer is picked where it is drawn
         let pts = l.mesh(Side::A).points();
-        let front = (0..pts.len())
-            .min_by(|&i, &j| proj.depth(pts[i]).total_cmp(&proj.depth(pts[j])))
-            .unwrap();
+        let front = (0..pts.len()).min_by(|&i, &j| proj.depth(pts[i]).total_cmp(&proj.depth(pts[j]))).unwrap();
         let at = proj.to_css(pts[front]);
         assert_eq!(l.pick(Side::A, c, at, 3.0).unwrap().node, Some(front));
         let none = l.pick(Side::A, c, DVec2::new(-50.0, -50.0), 3.0).unwrap();
         assert_eq!((none.node, none.nearest), (None, None));
-        assert!(none
-            .message
-            .unwrap()
-            .starts_with("No face of a surface there"));
+        assert!(none.message.unwrap().starts_with("No face of a surface there"));
         l.orbit(90.0, 0.0);
         let (turned, _) = l.render(Side::A, c).unwrap();
         assert_ne!(turned.data(), a.data(), "an orbit changes the picture");
-        assert!(l
-            .render(
-                Side::A,
-                Canvas {
-                    w: 0,
-                    h: 10,
-                    dpr: 1.0
-                }
-            )
-            .is_err());
+        assert!(l.render(Side::A, Canvas { w: 0, h: 10, dpr: 1.0 }).is_err());
     }
 
     #[test]
@@ -428,12 +356,7 @@ mod tests {
                 panic!("{format:?} did not read back as a surface")
             };
             assert_eq!(back.node_count(), l.mesh(Side::B).node_count());
-            let d = back
-                .points()
-                .iter()
-                .zip(l.mesh(Side::B).points())
-                .map(|(a, b)| a.distance(*b))
-                .fold(0.0, f64::max);
+            let d = back.points().iter().zip(l.mesh(Side::B).points()).map(|(a, b)| a.distance(*b)).fold(0.0, f64::max);
             assert!(d < 1e-9, "{format:?} keeps the smoothed positions ({d})");
         }
     }
@@ -447,96 +370,52 @@ mod tests {
         assert_eq!(l.mesh(Side::B).points(), l.original().points());
         let kept = l.original().points().to_vec();
         assert!(l.perturb(f64::NAN, 1).is_err());
-        assert_eq!(
-            l.original().points(),
-            &kept[..],
-            "a refused perturbation changes nothing"
-        );
+        assert_eq!(l.original().points(), &kept[..], "a refused perturbation changes nothing");
     }
 
     #[test]
     fn a_frame_draws_both_sides_and_picks_map_through_its_canvas() {
         let mut l = lab(Sample::SphereTangled);
         assert_eq!(l.kind(), "surface");
-        assert!(
-            l.pick_in_frame(Side::A, DVec2::ZERO, 3.0).is_err(),
-            "nothing drawn yet"
-        );
-        let c = Canvas {
-            w: 240,
-            h: 200,
-            dpr: 1.0,
-        };
+        assert!(l.pick_in_frame(Side::A, DVec2::ZERO, 3.0).is_err(), "nothing drawn yet");
+        let c = Canvas { w: 240, h: 200, dpr: 1.0 };
         let f = l.frame(c, &no_clock).unwrap();
         assert_eq!(f.pictures[0].data(), l.render(Side::A, c).unwrap().0.data());
         assert_eq!(f.colour_bar, l.colour_bar_shown(c));
         let (_, proj) = l.render(Side::B, c).unwrap();
         let pts = l.mesh(Side::B).points();
-        let front = (0..pts.len())
-            .min_by(|&i, &j| proj.depth(pts[i]).total_cmp(&proj.depth(pts[j])))
-            .unwrap();
+        let front = (0..pts.len()).min_by(|&i, &j| proj.depth(pts[i]).total_cmp(&proj.depth(pts[j]))).unwrap();
         // a radius that is not positive and finite is the page's default
-        assert_eq!(
-            l.pick_in_frame(Side::B, proj.to_css(pts[front]), f64::NAN)
-                .unwrap()
-                .node,
-            Some(front)
-        );
+        assert_eq!(l.pick_in_frame(Side::B, proj.to_css(pts[front]), f64::NAN).unwrap().node, Some(front));
         assert!(l.export_named(Side::A, "obj").unwrap().contains("\nf "));
         let e = l.export_named(Side::A, "node").unwrap_err().to_string();
-        assert!(
-            e.contains("cannot export a surface as 'node': use msh, vtk, obj or off"),
-            "{e}"
-        );
+        assert!(e.contains("cannot export a surface as 'node': use msh, vtk, obj or off"), "{e}");
     }
 
     /// The tangled sphere's lab drawn on a canvas, and the node picked at its middle.
     fn picked_in_the_middle() -> (Lab3d<Surface>, usize) {
         let mut l = lab(Sample::SphereTangled);
-        let c = Canvas {
-            w: 300,
-            h: 300,
-            dpr: 1.0,
-        };
+        let c = Canvas { w: 300, h: 300, dpr: 1.0 };
         l.frame(c, &no_clock).unwrap();
-        let p = l
-            .pick_in_frame(Side::A, DVec2::new(150.0, 160.0), 14.0)
-            .unwrap();
+        let p = l.pick_in_frame(Side::A, DVec2::new(150.0, 160.0), 14.0).unwrap();
         (l, p.node.expect("every node of the closed sphere is free"))
     }
 
     #[test]
     fn a_click_picks_the_nearest_node_of_the_face_drawn_there() {
         let (l, n) = picked_in_the_middle();
-        let c = Canvas {
-            w: 300,
-            h: 300,
-            dpr: 1.0,
-        };
+        let c = Canvas { w: 300, h: 300, dpr: 1.0 };
         let (_, proj) = l.render(Side::A, c).unwrap();
         let at = DVec2::new(150.0, 160.0);
         let faces = l.mesh(Side::A).faces(Metric::Shape);
         let faces = faces.faces(l.mesh(Side::A).points());
         let f = proj.face_at(&faces, at.x, at.y).unwrap();
         let ring = faces.ring(f).unwrap();
-        assert!(
-            ring.contains(&(n as u32)),
-            "node {n} is a node of the face clicked"
-        );
-        let d = |m: u32| {
-            proj.to_css(l.mesh(Side::A).points()[m as usize])
-                .distance(at)
-        };
-        assert!(
-            ring.iter().all(|&m| d(m) >= d(n as u32)),
-            "and the nearest of them"
-        );
+        assert!(ring.contains(&(n as u32)), "node {n} is a node of the face clicked");
+        let d = |m: u32| proj.to_css(l.mesh(Side::A).points()[m as usize]).distance(at);
+        assert!(ring.iter().all(|&m| d(m) >= d(n as u32)), "and the nearest of them");
         // the face is on the near side: its centroid is nearer than the sphere's centre
-        let z = ring
-            .iter()
-            .map(|&m| proj.depth(l.mesh(Side::A).points()[m as usize]))
-            .sum::<f64>()
-            / ring.len() as f64;
+        let z = ring.iter().map(|&m| proj.depth(l.mesh(Side::A).points()[m as usize])).sum::<f64>() / ring.len() as f64;
         assert!(z < 0.0, "the clicked face faces the viewer ({z})");
         // a click on another node picks it, wherever the camera turned
         let mut l = l;
@@ -554,56 +433,34 @@ mod tests {
         let (mut l, n) = picked_in_the_middle();
         assert!(l.choose_node(Some(1 << 30)).is_err());
         assert_eq!(l.chosen_node(), None, "a refused choice changes nothing");
-        let level = Canvas {
-            w: 260,
-            h: 260,
-            dpr: 1.0,
-        };
-        let chart = Canvas {
-            w: 260,
-            h: 200,
-            dpr: 1.0,
-        };
-        assert!(
-            l.chosen_node_view(level, chart).is_err(),
-            "no node is chosen yet"
-        );
+        let level = Canvas { w: 260, h: 260, dpr: 1.0 };
+        let chart = Canvas { w: 260, h: 200, dpr: 1.0 };
+        assert!(l.chosen_node_view(level, chart).is_err(), "no node is chosen yet");
         let before = l.render(Side::A, level).unwrap().0;
         l.choose_node(Some(n)).unwrap();
-        assert_ne!(
-            l.render(Side::A, level).unwrap().0.data(),
-            before.data(),
-            "the chosen node is marked"
-        );
+        assert_ne!(l.render(Side::A, level).unwrap().0.data(), before.data(), "the chosen node is marked");
         let ([la, lb, ch], summary) = l.chosen_node_view(level, chart).unwrap();
         for pm in [&la, &lb, &ch] {
             assert!(colours(pm) > 20, "a picture is blank");
         }
         assert_ne!(la.data(), lb.data(), "old and new differ");
         let text = summary.text();
-        assert!(
-            text.starts_with(&format!("Node {n}: A, old")) && text.contains("tangent plane"),
-            "{text}"
-        );
+        assert!(text.starts_with(&format!("Node {n}: A, old")) && text.contains("tangent plane"), "{text}");
         // the solve is the one the drivers make: in the plane of the flattened star
         let (star, plane) = l.mesh(Side::B).tangent_star(n).unwrap();
         assert_eq!(star.x0, DVec2::ZERO);
         assert!((plane.origin - l.mesh(Side::B).points()[n]).length() < 1e-15);
         // zoom and pan act on both level sets
-        l.zoom_level_sets_in_frame(Side::A, DVec2::new(130.0, 130.0), 2.0)
-            .unwrap();
+        l.zoom_level_sets_in_frame(Side::A, DVec2::new(130.0, 130.0), 2.0).unwrap();
         let ([zoomed, _, _], _) = l.chosen_node_view(level, chart).unwrap();
         assert_ne!(zoomed.data(), la.data());
-        l.pan_level_sets_in_frame(Side::B, DVec2::new(10.0, 0.0))
-            .unwrap();
+        l.pan_level_sets_in_frame(Side::B, DVec2::new(10.0, 0.0)).unwrap();
         l.reset_camera();
         let ([again, _, _], _) = l.chosen_node_view(level, chart).unwrap();
         assert_eq!(again.data(), la.data(), "a double-click fits them again");
         // a fixed node of the capped cylinder's rims is refused with its reason
         let mut cyl = lab(Sample::CylinderCapped);
-        let fixed = (0..cyl.mesh(Side::A).node_count())
-            .find(|&m| !cyl.mesh(Side::A).flat().is_free(m))
-            .unwrap();
+        let fixed = (0..cyl.mesh(Side::A).node_count()).find(|&m| !cyl.mesh(Side::A).flat().is_free(m)).unwrap();
         let e = cyl.choose_node(Some(fixed)).unwrap_err().to_string();
         assert!(e.contains("feature curve") || e.contains("boundary"), "{e}");
     }
@@ -614,33 +471,15 @@ mod tests {
         l.choose_node(Some(n)).unwrap();
         let before = Side::BOTH.map(|s| l.mesh(s).points().to_vec());
         let stats = Side::BOTH.map(|s| l.stats(s));
-        let level = Canvas {
-            w: 200,
-            h: 200,
-            dpr: 1.0,
-        };
+        let level = Canvas { w: 200, h: 200, dpr: 1.0 };
         let (_, summary) = l.smooth_chosen_node(level, level).unwrap();
         for s in Side::BOTH {
             let p = l.mesh(s).points()[n];
             assert_ne!(p, before[s.index()][n], "side {s:?} moved the node");
-            assert!(
-                (p.length() - 1.0).abs() < 1e-9,
-                "on the unit sphere: {}",
-                p.length()
-            );
+            assert!((p.length() - 1.0).abs() < 1e-9, "on the unit sphere: {}", p.length());
         }
-        assert!(
-            summary.solves.new.value <= summary.solves.new.value0,
-            "new is a sum to minimise"
-        );
-        assert_eq!(
-            l.undo_summary(None),
-            UndoSummary {
-                node: None,
-                next: Some(n),
-                depth: 1
-            }
-        );
+        assert!(summary.solves.new.value <= summary.solves.new.value0, "new is a sum to minimise");
+        assert_eq!(l.undo_summary(None), UndoSummary { node: None, next: Some(n), depth: 1 });
         assert_eq!(l.undo(), Some(n));
         for s in Side::BOTH {
             assert_eq!(l.mesh(s).points(), &before[s.index()][..], "bit for bit");
@@ -656,50 +495,23 @@ mod tests {
     #[test]
     fn charts_histograms_and_the_figure_follow_the_passes() {
         let mut l = lab(Sample::TorusTangled);
-        let c = Canvas {
-            w: 320,
-            h: 240,
-            dpr: 1.0,
-        };
+        let c = Canvas { w: 320, h: 240, dpr: 1.0 };
         let chart0 = l.render_pass_chart(c).unwrap();
         let hist0 = l.render_histogram(0, Side::B, c, false).unwrap();
-        assert!(
-            l.render_histogram(1, Side::B, c, false).is_err(),
-            "a surface has one histogram"
-        );
+        assert!(l.render_histogram(1, Side::B, c, false).is_err(), "a surface has one histogram");
         l.step(&no_clock);
         assert_ne!(l.render_pass_chart(c).unwrap().data(), chart0.data());
         let hist1 = l.render_histogram(0, Side::B, c, false).unwrap();
         assert!(colours(&hist1) > 8);
         assert_ne!(hist1.data(), hist0.data());
-        assert_ne!(
-            l.render_histogram(0, Side::B, c, true).unwrap().data(),
-            hist1.data(),
-            "the log scale"
-        );
-        let fig = l
-            .render_figure(Canvas {
-                w: 700,
-                h: 400,
-                dpr: 2.0,
-            })
-            .unwrap();
+        assert_ne!(l.render_histogram(0, Side::B, c, true).unwrap().data(), hist1.data(), "the log scale");
+        let fig = l.render_figure(Canvas { w: 700, h: 400, dpr: 2.0 }).unwrap();
         assert_eq!((fig.width(), fig.height()), (700, 400));
         assert!(colours(&fig) > 50);
-        assert!(l
-            .render_figure(Canvas {
-                w: 0,
-                h: 400,
-                dpr: 1.0
-            })
-            .is_err());
+        assert!(l.render_figure(Canvas { w: 0, h: 400, dpr: 1.0 }).is_err());
     }
 
     fn colours(pm: &Pixmap) -> usize {
-        pm.pixels()
-            .iter()
-            .map(|p| (p.red(), p.green(), p.blue()))
-            .collect::<std::collections::HashSet<_>>()
-            .len()
+        pm.pixels().iter().map(|p| (p.red(), p.green(), p.blue())).collect::<std::collections::HashSet<_>>().len()
     }
 }

@@ -7,29 +7,27 @@
 //! are drawn over the cut plane moved to pass through it: the node's 3D objective as the
 //! node moves in that plane.
 
-use glam::{DVec2, DVec3};
 use smoothlab_render::VolumePicture;
+use glam::{DVec2, DVec3};
 use tiny_skia::Pixmap;
 
 use super::{Histogram3d, Lab3d, Mesh3d, NodeSlice};
-use crate::lab::pick::sentence;
-use crate::lab::views::FigureWords;
-use crate::lab::{PassSummary, Settings, Side};
 use smoothlab::error::{Error, Result};
 use smoothlab::generate::perturb_volume;
 use smoothlab::io::{write_model_string, Format, WriteOptions};
+use crate::lab::pick::sentence;
+use crate::lab::views::FigureWords;
+use crate::lab::{PassSummary, Settings, Side};
 use smoothlab::mesh::{ElementKind, NodeRole, Plane};
 use smoothlab::model::Model;
 use smoothlab::numeric::order::{sort_stable_by_key, total_order_key};
-use smoothlab::objective::{
-    describe_tet, tet_objective, CornerStar, Goal, Objective, Star, StarElement,
-};
+use smoothlab::objective::{describe_tet, tet_objective, CornerStar, Goal, Objective, Star, StarElement};
 use smoothlab::optimize::{Iterate, SolveResult};
 use smoothlab::quality::MeshStats;
+use smoothlab_render::{HistogramAxis, PlaneFunction, Projection, SurfaceView};
 use smoothlab::smooth::{solve_corner_star, DriverStar, SmoothOptions};
 use smoothlab::volume::{volume_stats, VolumeMesh, VolumeSmoother};
-use smoothlab_render::Cut;
-use smoothlab_render::{HistogramAxis, PlaneFunction, Projection, SurfaceView};
+use smoothlab_render::{Cut};
 
 /// The objective of the tetrahedra's kind, as a side smooths with it.
 type TetObjective = dyn Objective<CornerStar> + Send + Sync;
@@ -77,32 +75,17 @@ fn axis_plane(origin: DVec3, axis: usize) -> Plane {
 /// from the node), drawn as a star in the plane's coordinates (the node at 0).
 fn section(star: &CornerStar, plane: &Plane) -> Star {
     let normal = plane.normal();
-    let size = star
-        .tets
-        .iter()
-        .flat_map(|t| t.pts[1..].iter().map(|p| p.distance(star.x0)))
-        .fold(0.0, f64::max);
+    let size = star.tets.iter().flat_map(|t| t.pts[1..].iter().map(|p| p.distance(star.x0))).fold(0.0, f64::max);
     let eps = 1e-12 * size.max(f64::MIN_POSITIVE);
     let mut out = Star::new();
     out.node = star.node;
     out.x0 = plane.to_2d(star.x0);
     let push = |out: &mut Star, element: u32, ring: &[DVec2]| {
-        let kind = if ring.len() == 3 {
-            ElementKind::Quad4
-        } else {
-            ElementKind::Tri3
-        };
+        let kind = if ring.len() == 3 { ElementKind::Quad4 } else { ElementKind::Tri3 };
         let mut pts = [DVec2::ZERO; 9];
         pts[0] = out.x0;
         pts[1..ring.len() + 1].copy_from_slice(ring);
-        out.elems.push(StarElement {
-            kind,
-            element,
-            pts,
-            slot: 0,
-            follow_next: false,
-            follow_prev: false,
-        });
+        out.elems.push(StarElement { kind, element, pts, slot: 0, follow_next: false, follow_prev: false });
     };
     for t in star.tets.iter().filter(|t| t.simplex) {
         let p = [t.pts[1], t.pts[2], t.pts[3]];
@@ -120,11 +103,7 @@ fn section(star: &CornerStar, plane: &Plane) -> Star {
         if hits.len() != 2 {
             continue; // the plane touches the tetrahedron at the node (or along an edge) only
         }
-        push(
-            &mut out,
-            t.element,
-            &[plane.to_2d(hits[0]), plane.to_2d(hits[1])],
-        );
+        push(&mut out, t.element, &[plane.to_2d(hits[0]), plane.to_2d(hits[1])]);
     }
     for e in &star.elements {
         let p = e.corners(&e.pts);
@@ -170,16 +149,7 @@ fn projected(r: SolveResult<DVec3>, plane: &Plane) -> SolveResult {
         value0: r.value0,
         iterations: r.iterations,
         stop: r.stop,
-        history: r
-            .history
-            .iter()
-            .map(|it| Iterate {
-                x: plane.to_2d(it.x),
-                value: it.value,
-                direction: it.direction,
-                step: it.step,
-            })
-            .collect(),
+        history: r.history.iter().map(|it| Iterate { x: plane.to_2d(it.x), value: it.value, direction: it.direction, step: it.step }).collect(),
     }
 }
 
@@ -200,10 +170,7 @@ impl Mesh3d for VolumeMesh {
     fn smoother(o: SmoothOptions) -> Result<VolumeSmoother> {
         VolumeSmoother::new(o)
     }
-    fn objective(
-        settings: &Settings,
-        side: Side,
-    ) -> Result<Box<dyn Objective<CornerStar> + Send + Sync>> {
+    fn objective(settings: &Settings, side: Side) -> Result<Box<dyn Objective<CornerStar> + Send + Sync>> {
         tet_objective(settings.choice(side).objective)
     }
     fn pass(
@@ -229,11 +196,7 @@ impl Mesh3d for VolumeMesh {
     fn side_title(settings: &Settings, side: Side) -> String {
         let kind = settings.choice(side).objective;
         // a planar-only kind never gets here: set_settings refuses it
-        format!(
-            "{}: {kind}: {}",
-            side.letter(),
-            describe_tet(kind).unwrap_or("planar only")
-        )
+        format!("{}: {kind}: {}", side.letter(), describe_tet(kind).unwrap_or("planar only"))
     }
     fn side_label(settings: &Settings, side: Side) -> String {
         format!("{}: {}", side.letter(), settings.choice(side).objective)
@@ -254,10 +217,7 @@ impl Mesh3d for VolumeMesh {
     }
     fn why_not_free(&self, n: usize) -> Option<String> {
         if n >= self.node_count() {
-            return Some(format!(
-                "there is no node {n}: the nodes are numbered 0 to {}",
-                self.node_count().saturating_sub(1)
-            ));
+            return Some(format!("there is no node {n}: the nodes are numbered 0 to {}", self.node_count().saturating_sub(1)));
         }
         if self.is_free(n) {
             return None;
@@ -289,21 +249,12 @@ impl Mesh3d for VolumeMesh {
         }
         let mut star = CornerStar::default();
         star.gather(self, n);
-        star.tets
-            .iter()
-            .flat_map(|t| t.pts[1..].iter().map(|&p| vec![t.pts[0], p]))
-            .collect()
+        star.tets.iter().flat_map(|t| t.pts[1..].iter().map(|&p| vec![t.pts[0], p])).collect()
     }
     /// The cut plane moved to pass through the node: the node's objective as it moves in
     /// that plane, the section of its tetrahedra by it, and the solve in space (its path
     /// and optimum projected onto the plane).
-    fn slice<'a>(
-        &self,
-        objective: &'a TetObjective,
-        node: usize,
-        cut: Cut,
-        options: &SmoothOptions,
-    ) -> Result<NodeSlice<'a>> {
+    fn slice<'a>(&self, objective: &'a TetObjective, node: usize, cut: Cut, options: &SmoothOptions) -> Result<NodeSlice<'a>> {
         if let Some(why) = self.why_not_free(node) {
             return Err(Error::invalid(sentence(&why)));
         }
@@ -328,14 +279,7 @@ impl Mesh3d for VolumeMesh {
     /// The kind's name and what it is, in 3D's words.
     fn objective_label(settings: &Settings, side: Side) -> String {
         let kind = settings.choice(side).objective;
-        format!(
-            "{kind} ({})",
-            describe_tet(kind)
-                .unwrap_or("planar only")
-                .split(" (")
-                .next()
-                .unwrap_or("")
-        )
+        format!("{kind} ({})", describe_tet(kind).unwrap_or("planar only").split(" (").next().unwrap_or(""))
     }
     /// The node at `to`, its mid-edge nodes at their edges' middles.
     fn place_node(&mut self, node: usize, to: DVec3) {
@@ -348,11 +292,7 @@ impl Mesh3d for VolumeMesh {
         let mut star = CornerStar::default();
         star.gather(self, node);
         let mut ids: Vec<usize> = std::iter::once(node)
-            .chain(
-                star.tets
-                    .iter()
-                    .flat_map(|t| self.element(t.element as usize).iter().map(|&m| m as usize)),
-            )
+            .chain(star.tets.iter().flat_map(|t| self.element(t.element as usize).iter().map(|&m| m as usize)))
             .collect();
         ids.sort_unstable();
         ids.dedup();
@@ -366,53 +306,34 @@ impl Mesh3d for VolumeMesh {
             }
         }
     }
-    const PASS_TITLES: [&'static str; 4] = [
-        "min dihedral angle (°)",
-        "max dihedral angle (°)",
-        "min mean ratio",
-        "inverted elements",
-    ];
-    const FIGURE_WORDS: FigureWords = FigureWords {
-        angles: "dihedral angles",
-        min_quality: "min mean ratio",
-        mean_quality: "average mean ratio",
-    };
-    const HISTOGRAMS: &'static [Histogram3d] = &[
-        Histogram3d {
-            title: "Dihedral angles (6° bins)",
-            counts: |s| &s.angle_histogram_6deg,
-            axis: HistogramAxis {
-                x_label: "dihedral angle (°)",
-                y_label: "dihedral angles (%)",
-                marks: &[REGULAR_DIHEDRAL_DEG],
-                ..HistogramAxis::ANGLES
-            },
+    const PASS_TITLES: [&'static str; 4] = ["min dihedral angle (°)", "max dihedral angle (°)", "min mean ratio", "inverted elements"];
+    const FIGURE_WORDS: FigureWords =
+        FigureWords { angles: "dihedral angles", min_quality: "min mean ratio", mean_quality: "average mean ratio" };
+    const HISTOGRAMS: &'static [Histogram3d] = &[Histogram3d {
+        title: "Dihedral angles (6° bins)",
+        counts: |s| &s.angle_histogram_6deg,
+        axis: HistogramAxis {
+            x_label: "dihedral angle (°)",
+            y_label: "dihedral angles (%)",
+            marks: &[REGULAR_DIHEDRAL_DEG],
+            ..HistogramAxis::ANGLES
         },
-        Histogram3d {
-            // each element's worst corner (`SolidStats::scaled_jacobian_histogram`): 1 for a
-            // cube's, a right wedge's or the regular tetrahedron's best corner; ≤ 0 inverted
-            title: "Scaled Jacobian, worst corner (0.1 bins)",
-            counts: |s| {
-                s.solid
-                    .as_ref()
-                    .map_or(&[], |v| &v.scaled_jacobian_histogram)
-            },
-            axis: HistogramAxis {
-                lo: -1.0,
-                hi: 1.0,
-                step: 0.5,
-                x_label: "scaled Jacobian",
-                y_label: "elements (%)",
-                marks: &[0.0, 1.0],
-            },
+    }, Histogram3d {
+        // each element's worst corner (`SolidStats::scaled_jacobian_histogram`): 1 for a
+        // cube's, a right wedge's or the regular tetrahedron's best corner; ≤ 0 inverted
+        title: "Scaled Jacobian, worst corner (0.1 bins)",
+        counts: |s| s.solid.as_ref().map_or(&[], |v| &v.scaled_jacobian_histogram),
+        axis: HistogramAxis {
+            lo: -1.0,
+            hi: 1.0,
+            step: 0.5,
+            x_label: "scaled Jacobian",
+            y_label: "elements (%)",
+            marks: &[0.0, 1.0],
         },
-    ];
+    }];
     fn write(&self, format: Format) -> Result<String> {
-        write_model_string(
-            &Model::Volume(self.clone()),
-            format,
-            &WriteOptions::default(),
-        )
+        write_model_string(&Model::Volume(self.clone()), format, &WriteOptions::default())
     }
     fn arrays(&self) -> smoothlab::io::MeshArrays {
         smoothlab::io::volume_arrays(self)
@@ -430,13 +351,12 @@ impl Lab3d<VolumeMesh> {
     /// extent; anything else is refused, saying why.
     pub fn set_cut(&mut self, axis: usize, at: f64) -> Result<()> {
         if axis > 2 || !(0.0..=1.0).contains(&at) {
-            return Err(Error::invalid(format!(
-                "cut across axis {axis} at {at}: give axis 0, 1 or 2 and 0 to 1"
-            )));
+            return Err(Error::invalid(format!("cut across axis {axis} at {at}: give axis 0, 1 or 2 and 0 to 1")));
         }
         self.cut = Cut { axis, at };
         Ok(())
     }
+
 }
 
 #[cfg(test)]
@@ -447,9 +367,7 @@ mod tests {
     use smoothlab_render::Metric;
 
     fn lab() -> Lab3d<VolumeMesh> {
-        let Model::Volume(m) = Sample::Rand3d.model().unwrap() else {
-            panic!("rand3d is tetrahedral")
-        };
+        let Model::Volume(m) = Sample::Rand3d.model().unwrap() else { panic!("rand3d is tetrahedral") };
         Lab3d::new(m).unwrap()
     }
 
@@ -509,13 +427,7 @@ mod tests {
     fn passes_improve_the_sample_and_reset_restores_it() {
         let mut l = lab();
         let start = l.stats(Side::B);
-        assert!(
-            start
-                .mesh
-                .volume_kinds
-                .get(smoothlab::mesh::VolumeKind::Tet4)
-                > 5000
-        );
+        assert!(start.mesh.volume_kinds.get(smoothlab::mesh::VolumeKind::Tet4) > 5000);
         let before = l.mesh(Side::B).nodes().to_vec();
         let [old, new] = l.step(&no_clock);
         assert_eq!((old.pass, new.pass), (1, 1));
@@ -533,17 +445,10 @@ mod tests {
         assert!(l.set_cut(3, 0.5).is_err() && l.set_cut(0, 1.5).is_err());
         l.set_cut(0, 0.4).unwrap();
         assert_eq!(l.cut(), Cut { axis: 0, at: 0.4 });
-        let c = Canvas {
-            w: 300,
-            h: 240,
-            dpr: 1.0,
-        };
+        let c = Canvas { w: 300, h: 240, dpr: 1.0 };
         let (pm, _) = l.render(Side::A, c).unwrap();
         // not blank: the cut is coloured
-        assert!(pm
-            .pixels()
-            .iter()
-            .any(|p| p.red() != p.green() || p.green() != p.blue()));
+        assert!(pm.pixels().iter().any(|p| p.red() != p.green() || p.green() != p.blue()));
         let h = l.render_histogram(0, Side::B, c, false).unwrap();
         assert_eq!((h.width(), h.height()), (300, 240));
         // the log scale draws the same counts differently (the small bins stand taller)
@@ -553,14 +458,8 @@ mod tests {
         // the second histogram, each element's worst corner scaled Jacobian: every element
         // counted once, a picture of its own
         let sj = (VolumeMesh::HISTOGRAMS[1].counts)(l.full_stats(Side::B));
-        assert_eq!(
-            (sj.len(), sj.iter().sum::<u64>()),
-            (20, l.mesh(Side::B).element_count() as u64)
-        );
-        assert_ne!(
-            l.render_histogram(1, Side::B, c, false).unwrap().data(),
-            h.data()
-        );
+        assert_eq!((sj.len(), sj.iter().sum::<u64>()), (20, l.mesh(Side::B).element_count() as u64));
+        assert_ne!(l.render_histogram(1, Side::B, c, false).unwrap().data(), h.data());
         assert!(l.render_histogram(2, Side::B, c, false).is_err());
         let text = l.export(Side::B, Format::Vtk).unwrap();
         let Model::Volume(back) = smoothlab::io::read_model_str(&text, Format::Vtk).unwrap() else {
@@ -576,30 +475,14 @@ mod tests {
     fn a_frame_draws_both_sides_and_exports_tetrahedral_formats_only() {
         let mut l = lab();
         assert_eq!(l.kind(), "volume");
-        let c = Canvas {
-            w: 200,
-            h: 160,
-            dpr: 1.0,
-        };
+        let c = Canvas { w: 200, h: 160, dpr: 1.0 };
         let f = l.frame(c, &no_clock).unwrap();
         assert_eq!(f.pictures[1].data(), l.render(Side::B, c).unwrap().0.data());
-        let outside = l
-            .pick_in_frame(Side::A, DVec2::new(2.0, 80.0), 64.0)
-            .unwrap();
-        assert_eq!(
-            (outside.node, outside.nearest),
-            (None, None),
-            "beside the mesh: no face, no node"
-        );
-        assert!(l
-            .export_named(Side::B, "msh")
-            .unwrap()
-            .starts_with("$MeshFormat"));
+        let outside = l.pick_in_frame(Side::A, DVec2::new(2.0, 80.0), 64.0).unwrap();
+        assert_eq!((outside.node, outside.nearest), (None, None), "beside the mesh: no face, no node");
+        assert!(l.export_named(Side::B, "msh").unwrap().starts_with("$MeshFormat"));
         let e = l.export_named(Side::B, "obj").unwrap_err().to_string();
-        assert!(
-            e.contains("cannot export a volume mesh as 'obj': use msh or vtk"),
-            "{e}"
-        );
+        assert!(e.contains("cannot export a volume mesh as 'obj': use msh or vtk"), "{e}");
         assert_eq!(l.not_planar(), None);
     }
 
@@ -607,11 +490,7 @@ mod tests {
     /// (its middle, as the test finds it).
     fn picked_on_the_cut() -> (Lab3d<VolumeMesh>, usize, DVec2) {
         let mut l = lab();
-        let c = Canvas {
-            w: 320,
-            h: 320,
-            dpr: 1.0,
-        };
+        let c = Canvas { w: 320, h: 320, dpr: 1.0 };
         l.frame(c, &no_clock).unwrap();
         let (_, proj) = l.render(Side::A, c).unwrap();
         let m = l.mesh(Side::A);
@@ -620,27 +499,14 @@ mod tests {
         let mid = DVec2::new(160.0, 170.0);
         let centroid = |f: usize| {
             let ring = &faces.rings[faces.ring_start[f] as usize..faces.ring_start[f + 1] as usize];
-            ring.iter()
-                .map(|&n| proj.to_css(m.nodes()[n as usize]))
-                .sum::<DVec2>()
-                / ring.len() as f64
+            ring.iter().map(|&n| proj.to_css(m.nodes()[n as usize])).sum::<DVec2>() / ring.len() as f64
         };
-        let f = (0..faces.values.len())
-            .filter(|&f| !faces.faded[f])
-            .min_by(|&a, &b| {
-                centroid(a)
-                    .distance(mid)
-                    .total_cmp(&centroid(b).distance(mid))
-            })
-            .unwrap();
+        let f = (0..faces.values.len()).filter(|&f| !faces.faded[f]).min_by(|&a, &b| centroid(a).distance(mid).total_cmp(&centroid(b).distance(mid))).unwrap();
         let at = centroid(f);
         let p = l.pick_in_frame(Side::A, at, 14.0).unwrap();
         let ring = &faces.rings[faces.ring_start[f] as usize..faces.ring_start[f + 1] as usize];
         let n = p.node.expect("a node of the cut is inside the cube: free");
-        assert!(
-            ring.contains(&(n as u32)),
-            "node {n} is a node of the face clicked {ring:?}"
-        );
+        assert!(ring.contains(&(n as u32)), "node {n} is a node of the face clicked {ring:?}");
         (l, n, at)
     }
 
@@ -652,100 +518,51 @@ mod tests {
         let n = (0..m.node_count()).find(|&n| m.is_free(n)).unwrap();
         let l = Lab3d::new(m).unwrap();
         let slice = l.node_slice(Side::B, n).unwrap();
-        assert_eq!(
-            slice.outline.elems.len(),
-            8,
-            "{:?}",
-            slice
-                .outline
-                .elems
-                .iter()
-                .map(|e| (e.kind, e.pts[..4].to_vec()))
-                .collect::<Vec<_>>()
-        );
+        assert_eq!(slice.outline.elems.len(), 8, "{:?}", slice.outline.elems.iter().map(|e| (e.kind, e.pts[..4].to_vec())).collect::<Vec<_>>());
         for e in &slice.outline.elems {
             assert_eq!(e.kind, ElementKind::Quad4, "{:?}", &e.pts[..4]);
             let p = &e.pts[..4];
             // a unit square's quarter: the node, two edge neighbours and the diagonal
             let side = 0.5;
-            assert!(
-                (p[1].length() - side).abs() < 1e-12 && (p[3].length() - side).abs() < 1e-12,
-                "{p:?}"
-            );
+            assert!((p[1].length() - side).abs() < 1e-12 && (p[3].length() - side).abs() < 1e-12, "{p:?}");
             assert!((p[2].length() - side * 2f64.sqrt()).abs() < 1e-12, "{p:?}");
         }
     }
 
     #[test]
-    fn a_click_on_the_cut_picks_a_node_of_the_face_and_its_level_sets_are_drawn_in_the_moved_cut_plane(
-    ) {
+    fn a_click_on_the_cut_picks_a_node_of_the_face_and_its_level_sets_are_drawn_in_the_moved_cut_plane() {
         let (mut l, n, _) = picked_on_the_cut();
-        let level = Canvas {
-            w: 260,
-            h: 260,
-            dpr: 1.0,
-        };
-        let chart = Canvas {
-            w: 260,
-            h: 200,
-            dpr: 1.0,
-        };
+        let level = Canvas { w: 260, h: 260, dpr: 1.0 };
+        let chart = Canvas { w: 260, h: 200, dpr: 1.0 };
         let before = l.render(Side::B, level).unwrap().0;
         l.choose_node(Some(n)).unwrap();
-        assert_ne!(
-            l.render(Side::B, level).unwrap().0.data(),
-            before.data(),
-            "the node is marked"
-        );
+        assert_ne!(l.render(Side::B, level).unwrap().0.data(), before.data(), "the node is marked");
         let ([la, lb, ch], summary) = l.chosen_node_view(level, chart).unwrap();
         for pm in [&la, &lb, &ch] {
-            let colours = pm
-                .pixels()
-                .iter()
-                .map(|p| (p.red(), p.green(), p.blue()))
-                .collect::<std::collections::HashSet<_>>()
-                .len();
+            let colours = pm.pixels().iter().map(|p| (p.red(), p.green(), p.blue())).collect::<std::collections::HashSet<_>>().len();
             assert!(colours > 20, "a picture is blank ({colours} colours)");
         }
-        assert!(
-            summary.text().contains("plane across z through the node"),
-            "{}",
-            summary.text()
-        );
+        assert!(summary.text().contains("plane across z through the node"), "{}", summary.text());
         // the plane passes through the node across the cut's axis: the section of its star
         // has the node at 0, and the function there is the 3D objective at the node
         let slice = l.node_slice(Side::B, n).unwrap();
         assert_eq!(slice.outline.x0, DVec2::ZERO);
-        assert!(
-            !slice.outline.elems.is_empty(),
-            "the plane cuts the node's tetrahedra"
-        );
+        assert!(!slice.outline.elems.is_empty(), "the plane cuts the node's tetrahedra");
         let mut star = CornerStar::default();
         star.gather(l.mesh(Side::B), n);
         let objective = tet_objective(l.settings().compare[1].objective).unwrap();
-        assert_eq!(
-            slice.function.value(DVec2::ZERO),
-            objective.value(&star, star.x0)
-        );
-        assert!(
-            slice.function.validity(DVec2::ZERO) > 0.0,
-            "rand3D is valid"
-        );
+        assert_eq!(slice.function.value(DVec2::ZERO), objective.value(&star, star.x0));
+        assert!(slice.function.validity(DVec2::ZERO) > 0.0, "rand3D is valid");
         drop(slice);
         // across x the plane's axes are y and z: a move along the plane's first axis is along y
         l.set_cut(0, 0.5).unwrap();
         let across_x = l.node_slice(Side::B, n).unwrap();
         assert!(across_x.plane.contains("across x"));
         let x0 = star.x0;
-        assert_eq!(
-            across_x.function.value(DVec2::new(1e-3, 0.0)),
-            objective.value(&star, x0 + DVec3::new(0.0, 1e-3, 0.0))
-        );
+        assert_eq!(across_x.function.value(DVec2::new(1e-3, 0.0)), objective.value(&star, x0 + DVec3::new(0.0, 1e-3, 0.0)));
         drop(across_x);
         // a boundary node is refused, saying why
-        let fixed = (0..l.mesh(Side::A).node_count())
-            .find(|&m| !l.mesh(Side::A).is_free(m))
-            .unwrap();
+        let fixed = (0..l.mesh(Side::A).node_count()).find(|&m| !l.mesh(Side::A).is_free(m)).unwrap();
         let e = l.choose_node(Some(fixed)).unwrap_err().to_string();
         assert!(e.contains("on the boundary of the volume"), "{e}");
     }
@@ -756,22 +573,13 @@ mod tests {
         l.perturb(0.4, 2).unwrap();
         l.choose_node(Some(n)).unwrap();
         let before = Side::BOTH.map(|s| l.mesh(s).nodes().to_vec());
-        let c = Canvas {
-            w: 200,
-            h: 200,
-            dpr: 1.0,
-        };
+        let c = Canvas { w: 200, h: 200, dpr: 1.0 };
         let (_, summary) = l.smooth_chosen_node(c, c).unwrap();
         assert_ne!(l.mesh(Side::B).nodes()[n], before[1][n], "B moved the node");
         assert!(summary.solves.new.value <= summary.solves.new.value0);
-        assert!(
-            summary.solves.old.value >= summary.solves.old.value0,
-            "old is a max-min"
-        );
+        assert!(summary.solves.old.value >= summary.solves.old.value0, "old is a max-min");
         // only the node moved
-        let moved = (0..before[1].len())
-            .filter(|&m| l.mesh(Side::B).nodes()[m] != before[1][m])
-            .count();
+        let moved = (0..before[1].len()).filter(|&m| l.mesh(Side::B).nodes()[m] != before[1][m]).count();
         assert_eq!(moved, 1);
         assert_eq!(l.undo(), Some(n));
         for s in Side::BOTH {
@@ -782,25 +590,13 @@ mod tests {
     #[test]
     fn the_volume_charts_and_figure_are_in_its_words() {
         let mut l = lab();
-        let c = Canvas {
-            w: 320,
-            h: 240,
-            dpr: 1.0,
-        };
+        let c = Canvas { w: 320, h: 240, dpr: 1.0 };
         let chart0 = l.render_pass_chart(c).unwrap();
         l.step(&no_clock);
         assert_ne!(l.render_pass_chart(c).unwrap().data(), chart0.data());
-        let fig = l
-            .render_figure(Canvas {
-                w: 640,
-                h: 360,
-                dpr: 1.0,
-            })
-            .unwrap();
+        let fig = l.render_figure(Canvas { w: 640, h: 360, dpr: 1.0 }).unwrap();
         assert_eq!((fig.width(), fig.height()), (640, 360));
-        assert!(l
-            .worst_free_node()
-            .is_some_and(|n| l.mesh(Side::B).is_free(n)));
+        assert!(l.worst_free_node().is_some_and(|n| l.mesh(Side::B).is_free(n)));
         let _ = Metric::Shape;
     }
 }

@@ -9,15 +9,15 @@ use tiny_skia::Pixmap;
 
 use super::tables::cut_panel;
 use super::{find, gallery_sample};
+use smoothlab::error::{Error, Result};
 use crate::lab::lab3d::Lab3d;
 use crate::lab::sample::{HEX_TANGLE_AMOUNT, SAMPLE_SEED};
 use crate::lab::views::Canvas;
 use crate::lab::Side;
-use smoothlab::error::{Error, Result};
 use smoothlab::model::Model;
-use smoothlab::volume::{volume_stats, VolumeMesh};
-use smoothlab_render::Cut;
 use smoothlab_render::Theme;
+use smoothlab::volume::{volume_stats, VolumeMesh};
+use smoothlab_render::{Cut};
 
 /// The figure's run: each side's mesh as loaded and after each pass.
 pub(super) struct HexRun {
@@ -30,26 +30,19 @@ pub(super) struct HexRun {
 impl HexRun {
     /// Inverted elements of each side, as loaded and after each pass.
     fn inverted(&self, side: Side) -> Vec<usize> {
-        self.stages[side.index()]
-            .iter()
-            .map(|m| volume_stats(m).inverted)
-            .collect()
+        self.stages[side.index()].iter().map(|m| volume_stats(m).inverted).collect()
     }
 }
 
 /// Elements inverted inside only: every measured corner's Jacobian positive, yet the
 /// element not valid ([`smoothlab::quality::solid::SolidMeasures::inverted_inside`]).
 fn inverted_inside(m: &VolumeMesh) -> usize {
-    (0..m.element_count())
-        .filter(|&e| m.measures(e).inverted_inside)
-        .count()
+    (0..m.element_count()).filter(|&e| m.measures(e).inverted_inside).count()
 }
 
 /// The smallest scaled Jacobian of any element's corner.
 fn worst_scaled_jacobian(m: &VolumeMesh) -> f64 {
-    (0..m.element_count())
-        .map(|e| m.measures(e).scaled_jacobian)
-        .fold(f64::INFINITY, f64::min)
+    (0..m.element_count()).map(|e| m.measures(e).scaled_jacobian).fold(f64::INFINITY, f64::min)
 }
 
 /// The figure's gallery sample in the 3D lab with the figure's settings, its passes run
@@ -61,8 +54,7 @@ pub(super) fn hex_run() -> Result<&'static HexRun> {
     }
     let (_, fig) = find("knupp-hex")?;
     let st = fig.state()?;
-    let sample = gallery_sample(fig.name)
-        .ok_or_else(|| Error::invalid("knupp-hex names no gallery sample"))?;
+    let sample = gallery_sample(fig.name).ok_or_else(|| Error::invalid("knupp-hex names no gallery sample"))?;
     let Model::Volume(mesh) = sample.model()? else {
         return Err(Error::invalid("knupp-hex: its sample is not a volume mesh"));
     };
@@ -91,11 +83,7 @@ pub(super) fn knupp_hex(c: Canvas, t: &Theme) -> Result<Vec<Pixmap>> {
         for (p, m) in run.stages[side.index()].iter().enumerate() {
             // short: four panels share a row, a few hundred pixels in an embed (the rows'
             // objectives are the sides', named in the words)
-            let when = if p == 0 {
-                "start".to_string()
-            } else {
-                format!("pass {p}")
-            };
+            let when = if p == 0 { "start".to_string() } else { format!("pass {p}") };
             let title = format!("{}, {when}: {} inverted", side.letter(), counts[p]);
             out.push(cut_panel(m, Cut::default(), &title, c, t)?);
         }
@@ -111,15 +99,8 @@ pub(super) fn columns() -> Result<usize> {
 /// How far the farthest node of `m` lies outside the box of `m0`'s nodes, in `m0`'s mean
 /// edge lengths (0: every node inside).
 fn farthest_outside(m0: &VolumeMesh, m: &VolumeMesh) -> f64 {
-    let (lo, hi) = m0.nodes().iter().fold(
-        (glam::DVec3::INFINITY, glam::DVec3::NEG_INFINITY),
-        |(l, h), &p| (l.min(p), h.max(p)),
-    );
-    let far = m
-        .nodes()
-        .iter()
-        .map(|&p| p.distance(p.clamp(lo, hi)))
-        .fold(0.0, f64::max);
+    let (lo, hi) = m0.nodes().iter().fold((glam::DVec3::INFINITY, glam::DVec3::NEG_INFINITY), |(l, h), &p| (l.min(p), h.max(p)));
+    let far = m.nodes().iter().map(|&p| p.distance(p.clamp(lo, hi))).fold(0.0, f64::max);
     far / m0.mean_edge_length()
 }
 
@@ -128,9 +109,7 @@ fn farthest_outside(m0: &VolumeMesh, m: &VolumeMesh) -> f64 {
 fn outside_words(m0: &VolumeMesh, m: &VolumeMesh, objective: &str) -> String {
     let d = farthest_outside(m0, m);
     if d > 0.0 {
-        format!(
-            "; {objective} threw a node {d:.1} edge lengths out of the block (its panels zoom out)"
-        )
+        format!("; {objective} threw a node {d:.1} edge lengths out of the block (its panels zoom out)")
     } else {
         String::new()
     }
@@ -139,12 +118,7 @@ fn outside_words(m0: &VolumeMesh, m: &VolumeMesh, objective: &str) -> String {
 /// The text's numbers, from the run the picture shows.
 pub(super) fn knupp_hex_measured() -> Result<String> {
     let run = hex_run()?;
-    let words = |v: &[usize]| {
-        v.iter()
-            .map(usize::to_string)
-            .collect::<Vec<_>>()
-            .join(" → ")
-    };
+    let words = |v: &[usize]| v.iter().map(usize::to_string).collect::<Vec<_>>().join(" → ");
     let m0 = &run.stages[0][0];
     let last = |side: Side| run.stages[side.index()].last().unwrap_or(m0);
     let (a, b) = (last(Side::A), last(Side::B));
@@ -177,35 +151,17 @@ mod tests {
         let (old, new) = (run.inverted(Side::A), run.inverted(Side::B));
         assert_eq!(old.len(), 4, "as loaded and 3 passes");
         assert!(old[0] > 100 && old[0] == new[0], "{old:?} {new:?}");
-        assert_eq!(
-            new[1], 0,
-            "the new objective untangles in the first pass: {new:?}"
-        );
+        assert_eq!(new[1], 0, "the new objective untangles in the first pass: {new:?}");
         assert!(*old.last().unwrap() > 0, "the old one does not: {old:?}");
         assert_eq!(run.objective, ["old".to_string(), "new".to_string()]);
         let text = knupp_hex_measured().unwrap();
-        let words = |v: &[usize]| {
-            v.iter()
-                .map(usize::to_string)
-                .collect::<Vec<_>>()
-                .join(" → ")
-        };
-        assert!(
-            text.contains(&words(&old)) && text.contains(&words(&new)),
-            "{text}"
-        );
+        let words = |v: &[usize]| v.iter().map(usize::to_string).collect::<Vec<_>>().join(" → ");
+        assert!(text.contains(&words(&old)) && text.contains(&words(&new)), "{text}");
         assert!(text.contains("216 hexahedra"), "{text}");
         // the old side's shrinking panels: a node pushed out of the block, said in the text
         let far = farthest_outside(&run.stages[0][0], run.stages[0].last().unwrap());
-        assert!(
-            far > 1.0 && text.contains(&format!("a node {far:.1} edge lengths out of the block")),
-            "{far}: {text}"
-        );
-        assert_eq!(
-            farthest_outside(&run.stages[1][0], run.stages[1].last().unwrap()),
-            0.0,
-            "the new side stays inside"
-        );
+        assert!(far > 1.0 && text.contains(&format!("a node {far:.1} edge lengths out of the block")), "{far}: {text}");
+        assert_eq!(farthest_outside(&run.stages[1][0], run.stages[1].last().unwrap()), 0.0, "the new side stays inside");
     }
 
     #[test]
@@ -215,19 +171,11 @@ mod tests {
         // `Validity::Inverted`, not undecided)
         use smoothlab::quality::solid::{validity, Validity};
         let kind = smoothlab::mesh::VolumeKind::Hex8;
-        let ideal: Vec<glam::DVec3> = kind
-            .row()
-            .ideal
-            .iter()
-            .map(|&c| glam::DVec3::from(c))
-            .collect();
+        let ideal: Vec<glam::DVec3> = kind.row().ideal.iter().map(|&c| glam::DVec3::from(c)).collect();
         let mut rng = smoothlab::numeric::SplitMix64::new(1);
         let mut found = None;
         for _ in 0..100_000 {
-            let p: Vec<glam::DVec3> = ideal
-                .iter()
-                .map(|&c| c + 0.6 * rng.in_unit_ball())
-                .collect();
+            let p: Vec<glam::DVec3> = ideal.iter().map(|&c| c + 0.6 * rng.in_unit_ball()).collect();
             let corners_positive = (0..8).all(|c| {
                 let t = smoothlab::quality::solid::corner_tet(kind, &p, c);
                 smoothlab::quality::tet::signed_volume(&t) > 0.0

@@ -46,11 +46,7 @@ pub struct Table {
 impl Table {
     /// An empty table with these column headings.
     pub fn new(header: &[&str]) -> Table {
-        Table {
-            heading: None,
-            header: header.iter().map(|h| h.to_string()).collect(),
-            rows: Vec::new(),
-        }
+        Table { heading: None, header: header.iter().map(|h| h.to_string()).collect(), rows: Vec::new() }
     }
 
     /// Adds a row.
@@ -59,12 +55,7 @@ impl Table {
     ///
     /// When it has not one cell per column.
     pub fn row(&mut self, cells: Vec<String>) {
-        assert_eq!(
-            cells.len(),
-            self.header.len(),
-            "a row of {:?} has one cell per column: {cells:?}",
-            self.header
-        );
+        assert_eq!(cells.len(), self.header.len(), "a row of {:?} has one cell per column: {cells:?}", self.header);
         self.rows.push(cells);
     }
 }
@@ -77,11 +68,7 @@ impl Reproduction {
 }
 
 /// A table as built in: its `###` heading, its columns' headings, its rows.
-type TableData = (
-    Option<&'static str>,
-    &'static [&'static str],
-    &'static [&'static [&'static str]],
-);
+type TableData = (Option<&'static str>, &'static [&'static str], &'static [&'static [&'static str]]);
 /// A section as built in: its number, its title, its tables.
 type SectionData = (u32, &'static str, &'static [TableData]);
 
@@ -158,19 +145,11 @@ mod tests {
     #[test]
     fn a_cell_is_found_by_section_row_and_column() {
         let doc = doc();
-        assert_eq!(
-            cell_in(&doc, 1, &["x"], "b").as_deref(),
-            Some("0"),
-            "the first table with the column"
-        );
+        assert_eq!(cell_in(&doc, 1, &["x"], "b").as_deref(), Some("0"), "the first table with the column");
         assert_eq!(cell_in(&doc, 1, &["x"], "c").as_deref(), Some("2"));
         assert_eq!(cell_in(&doc, 1, &["y", "z"], "c").as_deref(), Some("3"));
         assert_eq!(cell_in(&doc, 2, &["x"], "d").as_deref(), Some("9"));
-        assert_eq!(
-            cell_in(&doc, 2, &["x"], "c"),
-            None,
-            "the column is in another section"
-        );
+        assert_eq!(cell_in(&doc, 2, &["x"], "c"), None, "the column is in another section");
         assert_eq!(cell_in(&doc, 1, &["y", "q"], "c"), None);
         assert_eq!(cell_in(&doc, 3, &["x"], "a"), None);
         assert_eq!(doc.sections[0].tables[1].heading.as_deref(), Some("Part"));
@@ -200,12 +179,7 @@ mod tests {
                 for row in &t.rows {
                     assert_eq!(row.len(), t.header.len(), "§{} {row:?}", s.number);
                     for column in &t.header {
-                        assert!(
-                            cell(s.number, &[&row[0]], column).is_ok(),
-                            "§{} {:?} {column}",
-                            s.number,
-                            row[0]
-                        );
+                        assert!(cell(s.number, &[&row[0]], column).is_ok(), "§{} {:?} {column}", s.number, row[0]);
                         asked += 1;
                     }
                 }
@@ -216,12 +190,7 @@ mod tests {
 
     #[test]
     fn the_built_in_reproduction_is_the_documents() {
-        assert!(reproduction()
-            .unwrap()
-            .section(1)
-            .unwrap()
-            .title
-            .starts_with("Freitag (1997), Table 1"));
+        assert!(reproduction().unwrap().section(1).unwrap().title.starts_with("Freitag (1997), Table 1"));
         assert_eq!(cell(4, &["quad", "1"], "inverted at start").unwrap(), "78");
         // a bar is part of its cell (the document writes it `\|`)
         assert!(cell(5, &["equil_tri.vtk", "`new`"], "worst |α − 1| at start").is_ok());

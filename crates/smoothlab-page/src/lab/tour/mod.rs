@@ -54,13 +54,7 @@ pub struct Entry {
 
 /// The tour's menu, in order.
 pub fn entries() -> Vec<Entry> {
-    FIGURES
-        .iter()
-        .map(|f| Entry {
-            name: f.name,
-            source: f.source,
-        })
-        .collect()
+    FIGURES.iter().map(|f| Entry { name: f.name, source: f.source }).collect()
 }
 
 /// The views a figure can point at.
@@ -81,16 +75,9 @@ impl Figure {
     /// A playground in the figure's state (its passes not yet run).
     pub fn playground(&self) -> Result<(Playground, PageState)> {
         let st = self.state()?;
-        let name = st.sample.clone().ok_or_else(|| {
-            Error::invalid(format!("figure {}: its state names no sample", self.name))
-        })?;
+        let name = st.sample.clone().ok_or_else(|| Error::invalid(format!("figure {}: its state names no sample", self.name)))?;
         let sample: Sample = serde_json::from_value(serde_json::Value::String(name.clone()))
-            .map_err(|_| {
-                Error::invalid(format!(
-                    "figure {}: no generated sample '{name}'",
-                    self.name
-                ))
-            })?;
+            .map_err(|_| Error::invalid(format!("figure {}: no generated sample '{name}'", self.name)))?;
         let mut pg = Playground::new(sample.generate()?)?;
         if st.perturbed {
             pg.perturb(st.amount, st.seed)?;
@@ -152,17 +139,10 @@ pub fn gallery_sample(name: &str) -> Option<Sample> {
 
 /// The figure named `name`, with its place in the tour.
 pub fn find(name: &str) -> Result<(usize, &'static Figure)> {
-    FIGURES
-        .iter()
-        .enumerate()
-        .find(|(_, f)| f.name == name)
-        .ok_or_else(|| {
-            let names: Vec<&str> = FIGURES.iter().map(|f| f.name).collect();
-            Error::invalid(format!(
-                "no figure named '{name}': the tour has {}",
-                names.join(", ")
-            ))
-        })
+    FIGURES.iter().enumerate().find(|(_, f)| f.name == name).ok_or_else(|| {
+        let names: Vec<&str> = FIGURES.iter().map(|f| f.name).collect();
+        Error::invalid(format!("no figure named '{name}': the tour has {}", names.join(", ")))
+    })
 }
 
 use measured::cell;
@@ -353,34 +333,17 @@ mod tests {
                 // a surface or tetrahedra: the hash holds the settings, the card the gallery's
                 // mesh (which the page opens; the figure's playground is planar only)
                 let st = f.state().unwrap_or_else(|e| panic!("{}: {e}", f.name));
-                assert!(
-                    st.sample.is_none() && st.node.is_none() && f.view == "compare",
-                    "{}",
-                    f.name
-                );
-                assert!(
-                    !matches!(sample.model().unwrap(), smoothlab::model::Model::Planar(_)),
-                    "{}",
-                    f.name
-                );
+                assert!(st.sample.is_none() && st.node.is_none() && f.view == "compare", "{}", f.name);
+                assert!(!matches!(sample.model().unwrap(), smoothlab::model::Model::Planar(_)), "{}", f.name);
                 assert!(f.playground().is_err(), "{}", f.name);
                 continue;
             }
             let (pg, st) = f.playground().unwrap_or_else(|e| panic!("{}: {e}", f.name));
-            assert_eq!(
-                permalink::decode(&permalink::encode(&st)).unwrap(),
-                st,
-                "{}",
-                f.name
-            );
+            assert_eq!(permalink::decode(&permalink::encode(&st)).unwrap(), st, "{}", f.name);
             if let Some(n) = st.node {
                 assert!(pg.topology().is_free(n as usize), "{}: node {n}", f.name);
             }
-            assert!(
-                f.view != "levelset" || st.node.is_some(),
-                "{}: a level-set figure names its node",
-                f.name
-            );
+            assert!(f.view != "levelset" || st.node.is_some(), "{}: a level-set figure names its node", f.name);
         }
     }
 
@@ -388,21 +351,9 @@ mod tests {
     fn every_measured_text_reads_its_numbers() {
         for (i, f) in FIGURES.iter().enumerate() {
             let c = f.card(i).unwrap_or_else(|e| panic!("{}: {e}", f.name));
-            assert!(
-                c.measured.chars().any(|ch| ch.is_ascii_digit()),
-                "{}: {}",
-                f.name,
-                c.measured
-            );
-            let sentences = [c.figure.look, c.figure.claim, &c.measured]
-                .iter()
-                .map(|s| s.matches(". ").count() + 1)
-                .sum::<usize>();
-            assert!(
-                (3..=8).contains(&sentences),
-                "{}: {sentences} sentences",
-                f.name
-            );
+            assert!(c.measured.chars().any(|ch| ch.is_ascii_digit()), "{}: {}", f.name, c.measured);
+            let sentences = [c.figure.look, c.figure.claim, &c.measured].iter().map(|s| s.matches(". ").count() + 1).sum::<usize>();
+            assert!((3..=8).contains(&sentences), "{}: {sentences} sentences", f.name);
         }
         assert_eq!(FIGURES[0].card(0).unwrap().prev, "knupp-hex");
     }

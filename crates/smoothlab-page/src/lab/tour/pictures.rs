@@ -11,32 +11,28 @@ use glam::DVec2;
 use serde::Serialize;
 use tiny_skia::Pixmap;
 
+use super::{find, repro, Figure};
+use smoothlab::error::{Error, Result};
+use crate::lab::views::{pixmap, Canvas};
+use crate::lab::Side;
+use smoothlab::mesh::{ElementKind, Mesh, MeshBuilder};
+use smoothlab::objective::{adjusted_angle, objective_with, AnglePenalty, Objective, ObjectiveKind, Penalty, Star, BARRIER_WEIGHT};
+use smoothlab::objective::regularised_determinant;
+use smoothlab::optimize::SolveResult;
+use smoothlab::quality::{lo_alpha, mesh_stats, signed_angle, MeshStats};
+use smoothlab_render::{
+    render_chart, render_mesh, render_sketch, render_titled, series_color, Chart, Frame, Marker, MeshView, Series, Sketch,
+    SketchLine, Theme,
+};
+use smoothlab_render::layout::{record, Region};
+use smoothlab_render::{draw_text, title_band, Align, TextStyle, Valign};
+use smoothlab::smooth::{Order, SmoothOptions, Smoother, Strategy};
 pub use super::tables::{
-    freitag3d_row, freitag_row, table_caption, table_columns, table_row, table_rows,
-    Freitag3dMethod, Freitag3dRow, FreitagMethod, FreitagRow, TableRow, FREITAG3D_METHODS,
-    FREITAG_METHODS,
+    freitag3d_row, freitag_row, table_caption, table_columns, table_row, table_rows, Freitag3dMethod, Freitag3dRow,
+    FreitagMethod, FreitagRow, TableRow, FREITAG3D_METHODS, FREITAG_METHODS,
 };
 pub(super) use super::tables::{freitag_3_measured, freitag_t1_measured, freitag_t2_measured};
 use super::tables::{freitag_histogram, freitag_t2, table_picture};
-use super::{find, repro, Figure};
-use crate::lab::views::{pixmap, Canvas};
-use crate::lab::Side;
-use smoothlab::error::{Error, Result};
-use smoothlab::mesh::{ElementKind, Mesh, MeshBuilder};
-use smoothlab::objective::regularised_determinant;
-use smoothlab::objective::{
-    adjusted_angle, objective_with, AnglePenalty, Objective, ObjectiveKind, Penalty, Star,
-    BARRIER_WEIGHT,
-};
-use smoothlab::optimize::SolveResult;
-use smoothlab::quality::{lo_alpha, mesh_stats, signed_angle, MeshStats};
-use smoothlab::smooth::{Order, SmoothOptions, Smoother, Strategy};
-use smoothlab_render::layout::{record, Region};
-use smoothlab_render::{draw_text, title_band, Align, TextStyle, Valign};
-use smoothlab_render::{
-    render_chart, render_mesh, render_sketch, render_titled, series_color, Chart, Frame, Marker,
-    MeshView, Series, Sketch, SketchLine, Theme,
-};
 
 /// The size a figure's picture is drawn at by default, CSS pixels.
 pub fn default_size(name: &str) -> (u32, u32) {
@@ -82,8 +78,7 @@ pub fn render(name: &str, c: Canvas, theme: &Theme) -> Result<Pixmap> {
         "knupp-hex" => parts.len() / 2,
         _ => parts.len(),
     };
-    render_titled(&parts, cols, &title, c.dpr, t)
-        .ok_or_else(|| Error::invalid("cannot allocate the figure"))
+    render_titled(&parts, cols, &title, c.dpr, t).ok_or_else(|| Error::invalid("cannot allocate the figure"))
 }
 
 /// The figure `name`'s picture ([`render`]) and where its plots, legends and chart marks
@@ -99,11 +94,7 @@ pub fn render_with_layout(name: &str, c: Canvas, theme: &Theme) -> Result<(Pixma
 /// The canvas of one of `cols × rows` panels under the title band.
 pub(super) fn part(c: Canvas, cols: u32, rows: u32, t: &Theme) -> Canvas {
     let head = (title_band(t) * c.dpr.max(0.1)).round() as u32;
-    Canvas {
-        w: (c.w / cols).max(1),
-        h: (c.h.saturating_sub(head) / rows).max(1),
-        dpr: c.dpr,
-    }
+    Canvas { w: (c.w / cols).max(1), h: (c.h.saturating_sub(head) / rows).max(1), dpr: c.dpr }
 }
 
 /// A mesh on its own panel with a title and a line of statistics under it.
@@ -112,40 +103,18 @@ pub(super) fn mesh_panel(mesh: &Mesh, title: &str, c: Canvas, t: &Theme) -> Resu
     let s = c.dpr;
     let full = Frame::of_pixmap(&pm, s);
     let st = mesh_stats(mesh);
-    let line = format!(
-        "inverted {}, angles {:.1}°–{:.1}°",
-        st.inverted, st.min_angle_deg, st.max_angle_deg
-    );
+    let line = format!("inverted {}, angles {:.1}°–{:.1}°", st.inverted, st.min_angle_deg, st.max_angle_deg);
     // the title (13 px) and the line (11 px) above the mesh, grown with the theme's labels
     let (g13, g11) = (t.grow(13.0), t.grow(11.0));
     let head = 22.0 * g13 + 18.0 * g11;
-    render_mesh(
-        &mut pm,
-        mesh,
-        &MeshView {
-            theme: *t,
-            ..MeshView::default()
-                .with_dpr(s)
-                .with_frame(full.inset(0.0, head, 0.0, 0.0))
-        },
-    );
+    render_mesh(&mut pm, mesh, &MeshView { theme: *t, ..MeshView::default().with_dpr(s).with_frame(full.inset(0.0, head, 0.0, 0.0)) });
     // each shrunk or cut to the panel's width (four panels side by side in a narrow frame)
     let room = (full.w - 8.0).max(0.0) * s;
-    let style = |size: f32| {
-        TextStyle::new(size)
-            .with_color(t.ink)
-            .with_align(Align::Centre, Valign::Top)
-    };
+    let style = |size: f32| TextStyle::new(size).with_color(t.ink).with_align(Align::Centre, Valign::Top);
     let (shown, size) = t.fit_label(title, 13.0 * s, room, s);
     draw_text(&mut pm, &shown, full.w / 2.0 * s, 4.0 * s, style(size));
     let (shown, size) = t.fit_label(&line, 11.0 * s, room, s);
-    draw_text(
-        &mut pm,
-        &shown,
-        full.w / 2.0 * s,
-        (4.0 + 18.0 * g13) * s,
-        style(size),
-    );
+    draw_text(&mut pm, &shown, full.w / 2.0 * s, (4.0 + 18.0 * g13) * s, style(size));
     Ok(pm)
 }
 
@@ -196,88 +165,41 @@ fn chen_2(c: Canvas, t: &Theme) -> Result<Vec<Pixmap>> {
         .iter()
         .zip(colors)
         .zip(["y = 2 (valid)", "y = 0 (inverted)"])
-        .map(|((&y, color), label)| SketchLine {
-            from: DVec2::new(X2.0, y),
-            to: DVec2::new(X2.1, y),
-            color,
-            label,
-        })
+        .map(|((&y, color), label)| SketchLine { from: DVec2::new(X2.0, y), to: DVec2::new(X2.1, y), color, label })
         .collect();
     render_sketch(
         &mut sketch,
-        &Sketch {
-            title: "(a) triangle ABC, C moving",
-            points: &[(A2, "A"), (B2, "B")],
-            lines: &lines,
-            dashed: &[],
-        },
+        &Sketch { title: "(a) triangle ABC, C moving", points: &[(A2, "A"), (B2, "B")], lines: &lines, dashed: &[] },
         frame,
         c.dpr,
         t,
     );
-    let alpha: Vec<Vec<DVec2>> = LINES2
-        .iter()
-        .map(|&y| {
-            xs(X2.0, X2.1)
-                .map(|x| DVec2::new(x, alpha2(DVec2::new(x, y))))
-                .collect()
-        })
-        .collect();
+    let alpha: Vec<Vec<DVec2>> = LINES2.iter().map(|&y| xs(X2.0, X2.1).map(|x| DVec2::new(x, alpha2(DVec2::new(x, y)))).collect()).collect();
     let new = objective_with(ObjectiveKind::SmoothShape, Penalty::Barrier);
     let mut f = Vec::new();
     for &y in &LINES2 {
         let star = triangle_star(DVec2::new(-0.5, y))?;
-        f.push(
-            xs(X2.0, X2.1)
-                .map(|x| DVec2::new(x, new.value(&star, DVec2::new(x, y))))
-                .collect::<Vec<_>>(),
-        );
+        f.push(xs(X2.0, X2.1).map(|x| DVec2::new(x, new.value(&star, DVec2::new(x, y)))).collect::<Vec<_>>());
     }
     let labels = ["y = 2", "y = 0"];
     let chart = |pts: &[Vec<DVec2>], title: &str, y_label: &str, log_y: bool| -> Result<Pixmap> {
         let mut pm = pixmap(c.w, c.h)?;
-        let series: Vec<Series<'_>> = pts
-            .iter()
-            .zip(labels)
-            .zip(colors)
-            .map(|((p, l), col)| Series::new(l, p).with_color(col))
-            .collect();
-        render_chart(
-            &mut pm,
-            &series,
-            &Chart {
-                title,
-                x_label: "x of C",
-                y_label,
-                log_y,
-                integer_x: false,
-                dpr: c.dpr,
-                theme: *t,
-                ..Chart::default()
-            },
-        );
+        let series: Vec<Series<'_>> =
+            pts.iter().zip(labels).zip(colors).map(|((p, l), col)| Series::new(l, p).with_color(col)).collect();
+        render_chart(&mut pm, &series, &Chart { title, x_label: "x of C", y_label, log_y, integer_x: false, dpr: c.dpr, theme: *t, ..Chart::default() });
         Ok(pm)
     };
     Ok(vec![
         sketch,
         chart(&alpha, "(b) Lo's α along the lines", "α", false)?,
-        chart(
-            &f,
-            "the new objective along them (smaller is better)",
-            "objective",
-            true,
-        )?,
+        chart(&f, "the new objective along them (smaller is better)", "objective", true)?,
     ])
 }
 
 /// The numbers of Fig. 2's claim, computed.
 pub(super) fn chen_2_measured() -> Result<String> {
     let p = DVec2::new(-0.5, 0.0);
-    let (a0, a1, a2) = (
-        alpha2(DVec2::new(0.0, 0.0)),
-        alpha2(p),
-        alpha2(DVec2::new(-3.0, 0.0)),
-    );
+    let (a0, a1, a2) = (alpha2(DVec2::new(0.0, 0.0)), alpha2(p), alpha2(DVec2::new(-3.0, 0.0)));
     let new = objective_with(ObjectiveKind::SmoothShape, Penalty::Barrier);
     let star = triangle_star(p)?;
     let (_, g) = new.value_and_gradient(&star, p);
@@ -307,11 +229,7 @@ fn theta_a(c: DVec2) -> f64 {
 fn barrier_of_angle(theta: f64, delta: f64) -> f64 {
     let n = theta.sin();
     let d = 4.0 - 2.0 * theta.cos();
-    let h = if delta == 0.0 {
-        n.max(0.0)
-    } else {
-        regularised_determinant(n, delta).0
-    };
+    let h = if delta == 0.0 { n.max(0.0) } else { regularised_determinant(n, delta).0 };
     if h <= 0.0 {
         return f64::INFINITY;
     }
@@ -322,12 +240,7 @@ fn barrier_of_angle(theta: f64, delta: f64) -> f64 {
 fn chen_6(c: Canvas, t: &Theme) -> Result<Vec<Pixmap>> {
     let mut sketch = pixmap(c.w, c.h)?;
     let frame = Frame::of_pixmap(&sketch, c.dpr);
-    let line = [SketchLine {
-        from: DVec2::new(-2.0, Y6),
-        to: DVec2::new(2.0, Y6),
-        color: series_color(2),
-        label: "C on y = 2",
-    }];
+    let line = [SketchLine { from: DVec2::new(-2.0, Y6), to: DVec2::new(2.0, Y6), color: series_color(2), label: "C on y = 2" }];
     render_sketch(
         &mut sketch,
         &Sketch {
@@ -358,25 +271,12 @@ fn chen_6(c: Canvas, t: &Theme) -> Result<Vec<Pixmap>> {
     let mut a = pixmap(c.w, c.h)?;
     render_chart(
         &mut a,
-        &[
-            Series::new("θ at A (signed)", &theta).with_color(series_color(1)),
-            Series::new("adjusted ω = wθ", &omega).with_color(series_color(2)),
-        ],
-        &Chart {
-            title: "θ jumps ±180° at x = 0; ω does not",
-            x_label: "x of C on y = 2",
-            y_label: "degrees",
-            integer_x: false,
-            dpr: c.dpr,
-            theme: *t,
-            ..Chart::default()
-        },
+        &[Series::new("θ at A (signed)", &theta).with_color(series_color(1)), Series::new("adjusted ω = wθ", &omega).with_color(series_color(2))],
+        &Chart { title: "θ jumps ±180° at x = 0; ω does not", x_label: "x of C on y = 2", y_label: "degrees", integer_x: false, dpr: c.dpr, theme: *t, ..Chart::default() },
     );
     let angles: Vec<f64> = xs(-179.0, 179.0).collect();
     let design = AnglePenalty::default();
-    let curve = |f: &dyn Fn(f64) -> f64| -> Vec<DVec2> {
-        angles.iter().map(|&t| DVec2::new(t, f(t / deg))).collect()
-    };
+    let curve = |f: &dyn Fn(f64) -> f64| -> Vec<DVec2> { angles.iter().map(|&t| DVec2::new(t, f(t / deg))).collect() };
     let angle_p = curve(&|t| design.angle_penalty(t, 1.0));
     let barrier0 = curve(&|t| barrier_of_angle(t, 0.0));
     let barrier_d = curve(&|t| barrier_of_angle(t, DELTA6));
@@ -386,29 +286,15 @@ fn chen_6(c: Canvas, t: &Theme) -> Result<Vec<Pixmap>> {
         &[
             Series::new("angle design", &angle_p).with_color(series_color(1)),
             Series::new("barrier, δ = 0 (valid star)", &barrier0).with_color(series_color(2)),
-            Series::new("barrier, δ = 0.1 (tangled)", &barrier_d)
-                .with_color(series_color(2))
-                .with_dash(true),
+            Series::new("barrier, δ = 0.1 (tangled)", &barrier_d).with_color(series_color(2)).with_dash(true),
         ],
-        &Chart {
-            title: "eq. (8), our two designs",
-            x_label: "angle, degrees",
-            y_label: "penalty",
-            log_y: true,
-            integer_x: false,
-            dpr: c.dpr,
-            theme: *t,
-            ..Chart::default()
-        },
+        &Chart { title: "eq. (8), our two designs", x_label: "angle, degrees", y_label: "penalty", log_y: true, integer_x: false, dpr: c.dpr, theme: *t, ..Chart::default() },
     );
     Ok(vec![sketch, a, b])
 }
 
 pub(super) fn chen_6_measured() -> Result<String> {
-    let (l, r) = (
-        theta_a(DVec2::new(-1e-3, Y6)),
-        theta_a(DVec2::new(1e-3, Y6)),
-    );
+    let (l, r) = (theta_a(DVec2::new(-1e-3, Y6)), theta_a(DVec2::new(1e-3, Y6)));
     let (wl, wr) = (adjusted_angle(l).0, adjusted_angle(r).0);
     let design = AnglePenalty::default();
     let at = |deg: f64| design.angle_penalty(deg.to_radians(), 1.0);
@@ -436,10 +322,7 @@ pub(super) fn first(cell: &str) -> &str {
 fn level_sets(fig: &Figure, c: Canvas, t: &Theme) -> Result<Vec<Pixmap>> {
     let (mut pg, st) = fig.playground()?;
     pg.set_theme(*t);
-    let node = st
-        .node
-        .ok_or_else(|| Error::invalid(format!("figure {} names no node", fig.name)))?
-        as usize;
+    let node = st.node.ok_or_else(|| Error::invalid(format!("figure {} names no node", fig.name)))? as usize;
     let (old, _) = pg.render_level_set(Side::A, node, c)?;
     let (new, _) = pg.render_level_set(Side::B, node, c)?;
     Ok(vec![old, new])
@@ -449,10 +332,7 @@ fn level_sets(fig: &Figure, c: Canvas, t: &Theme) -> Result<Vec<Pixmap>> {
 fn solves(name: &str) -> Result<(SolveResult, SolveResult)> {
     let (_, fig) = find(name)?;
     let (pg, st) = fig.playground()?;
-    let node = st
-        .node
-        .ok_or_else(|| Error::invalid(format!("figure {name} names no node")))?
-        as usize;
+    let node = st.node.ok_or_else(|| Error::invalid(format!("figure {name} names no node")))? as usize;
     Ok((pg.solve_node(Side::A, node)?, pg.solve_node(Side::B, node)?))
 }
 
@@ -489,11 +369,7 @@ const CHEN13_SEEDS: std::ops::RangeInclusive<u64> = 1..=5;
 /// paper's contrast, without them priority order needs fewer passes on nearly every
 /// plate, and here (tri, amount 1.5, Chen's search) on each of seeds 1–8, 1 pass against 3.
 fn chen13_options(settings: &crate::lab::Settings, order: Order) -> Result<SmoothOptions> {
-    Ok(settings
-        .smooth_options()?
-        .with_order(order)
-        .with_untangle_sweeps(0)
-        .with_newton(false))
+    Ok(settings.smooth_options()?.with_order(order).with_untangle_sweeps(0).with_newton(false))
 }
 
 /// The figure's plate (its hash: sample, amount) perturbed with `seed`.
@@ -505,9 +381,8 @@ fn chen13_plate(seed: u64) -> Result<Mesh> {
         return Ok(pg.panel(Side::B).mesh.clone());
     }
     let name = st.sample.clone().unwrap_or_default();
-    let sample: crate::lab::sample::Sample =
-        serde_json::from_value(serde_json::Value::String(name))
-            .map_err(|_| Error::invalid("chen-13: its sample is not generated"))?;
+    let sample: crate::lab::sample::Sample = serde_json::from_value(serde_json::Value::String(name))
+        .map_err(|_| Error::invalid("chen-13: its sample is not generated"))?;
     smoothlab::generate::perturb(&sample.generate()?, st.amount, seed)
 }
 
@@ -545,51 +420,25 @@ fn passes_to_zero(c: &[u32]) -> Option<usize> {
 pub fn chen_13_counts() -> Result<Chen13Counts> {
     let m0 = chen13_plate(find("chen-13")?.1.state()?.seed)?;
     let count = |order| -> Result<Vec<u32>> {
-        Ok(plate_passes_from(&m0, order)?
-            .iter()
-            .map(|m| mesh_stats(m).inverted as u32)
-            .collect())
+        Ok(plate_passes_from(&m0, order)?.iter().map(|m| mesh_stats(m).inverted as u32).collect())
     };
-    Ok(Chen13Counts {
-        priority: count(Order::Priority)?,
-        input: count(Order::Input)?,
-    })
+    Ok(Chen13Counts { priority: count(Order::Priority)?, input: count(Order::Input)? })
 }
 
 /// The chart of inverted elements per pass, both orders.
 fn chen13_chart(counts: &Chen13Counts, c: Canvas, t: &Theme) -> Result<Pixmap> {
-    let pts = |v: &[u32]| -> Vec<DVec2> {
-        v.iter()
-            .enumerate()
-            .map(|(i, &n)| DVec2::new(i as f64, n as f64))
-            .collect()
-    };
+    let pts = |v: &[u32]| -> Vec<DVec2> { v.iter().enumerate().map(|(i, &n)| DVec2::new(i as f64, n as f64)).collect() };
     let (p, i) = (pts(&counts.priority), pts(&counts.input));
     let words = |v: &[u32]| v.iter().map(u32::to_string).collect::<Vec<_>>().join(" → ");
-    let (lp, li) = (
-        format!("priority: {}", words(&counts.priority)),
-        format!("input: {}", words(&counts.input)),
-    );
+    let (lp, li) = (format!("priority: {}", words(&counts.priority)), format!("input: {}", words(&counts.input)));
     let mut pm = pixmap(c.w, c.h)?;
     render_chart(
         &mut pm,
         &[
-            Series::new(&lp, &p)
-                .with_color(series_color(2))
-                .with_marker(Marker::Circle),
-            Series::new(&li, &i)
-                .with_color(series_color(1))
-                .with_marker(Marker::Square)
-                .with_dash(true),
+            Series::new(&lp, &p).with_color(series_color(2)).with_marker(Marker::Circle),
+            Series::new(&li, &i).with_color(series_color(1)).with_marker(Marker::Square).with_dash(true),
         ],
-        &Chart {
-            title: "inverted elements after each pass",
-            x_label: "pass (0: as loaded)",
-            y_label: "inverted",
-            dpr: c.dpr,
-            theme: *t,
-            ..Chart::default()
-        },
+        &Chart { title: "inverted elements after each pass", x_label: "pass (0: as loaded)", y_label: "inverted", dpr: c.dpr, theme: *t, ..Chart::default() },
     );
     Ok(pm)
 }
@@ -599,20 +448,12 @@ fn chen13_chart(counts: &Chen13Counts, c: Canvas, t: &Theme) -> Result<Pixmap> {
 /// its count.
 fn chen_13(c: Canvas, t: &Theme) -> Result<Vec<Pixmap>> {
     let m0 = chen13_plate(find("chen-13")?.1.state()?.seed)?;
-    let runs = [
-        (Order::Priority, "priority order"),
-        (Order::Input, "input order"),
-    ]
-    .map(|(o, n)| (plate_passes_from(&m0, o), n));
+    let runs = [(Order::Priority, "priority order"), (Order::Input, "input order")].map(|(o, n)| (plate_passes_from(&m0, o), n));
     let counts = chen_13_counts()?;
     let mut parts = Vec::new();
     for (row, (run, name)) in runs.into_iter().enumerate() {
         let run = run?;
-        parts.push(if row == 0 {
-            mesh_panel(&m0, "as loaded (both orders)", c, t)?
-        } else {
-            chen13_chart(&counts, c, t)?
-        });
+        parts.push(if row == 0 { mesh_panel(&m0, "as loaded (both orders)", c, t)? } else { chen13_chart(&counts, c, t)? });
         for (k, m) in run.iter().enumerate().skip(1).take(3) {
             parts.push(mesh_panel(m, &format!("{name}, pass {k}"), c, t)?);
         }
@@ -623,9 +464,7 @@ fn chen_13(c: Canvas, t: &Theme) -> Result<Vec<Pixmap>> {
 pub(super) fn chen_13_measured() -> Result<String> {
     let counts = chen_13_counts()?;
     let words = |v: &[u32]| v.iter().map(u32::to_string).collect::<Vec<_>>().join(" → ");
-    let passes = |v: &[u32]| {
-        passes_to_zero(v).map_or(format!("not in {CHEN13_MAX_PASSES}"), |n| n.to_string())
-    };
+    let passes = |v: &[u32]| passes_to_zero(v).map_or(format!("not in {CHEN13_MAX_PASSES}"), |n| n.to_string());
     // the other seeds, as the reproduction's §2 runs five
     let (mut ps, mut is) = (Vec::new(), Vec::new());
     for seed in CHEN13_SEEDS {
@@ -692,44 +531,14 @@ fn curved_runs() -> Result<Vec<(String, Mesh)>> {
 /// Where one of two meshes is better on the rows the tables judge by (min angle, min
 /// quality, worst κ): the rows each wins, in words, e.g. `(["min angle 9.00° vs 7.01°"], [])`.
 fn wins(a: &MeshStats, b: &MeshStats) -> (Vec<String>, Vec<String>) {
-    let kappa = |k: f64| {
-        if k.is_finite() {
-            format!("{k:.3}")
-        } else {
-            "∞".to_string()
-        }
-    };
+    let kappa = |k: f64| if k.is_finite() { format!("{k:.3}") } else { "∞".to_string() };
     let rows: [(String, std::cmp::Ordering); 3] = [
-        (
-            format!(
-                "min angle ({:.2}° vs {:.2}°)",
-                a.min_angle_deg, b.min_angle_deg
-            ),
-            a.min_angle_deg.total_cmp(&b.min_angle_deg),
-        ),
-        (
-            format!("min quality ({:.3} vs {:.3})", a.min_quality, b.min_quality),
-            a.min_quality.total_cmp(&b.min_quality),
-        ),
-        (
-            format!(
-                "worst κ ({} vs {})",
-                kappa(a.max_condition),
-                kappa(b.max_condition)
-            ),
-            b.max_condition.total_cmp(&a.max_condition),
-        ),
+        (format!("min angle ({:.2}° vs {:.2}°)", a.min_angle_deg, b.min_angle_deg), a.min_angle_deg.total_cmp(&b.min_angle_deg)),
+        (format!("min quality ({:.3} vs {:.3})", a.min_quality, b.min_quality), a.min_quality.total_cmp(&b.min_quality)),
+        (format!("worst κ ({} vs {})", kappa(a.max_condition), kappa(b.max_condition)), b.max_condition.total_cmp(&a.max_condition)),
     ];
-    let pick = |o: std::cmp::Ordering| {
-        rows.iter()
-            .filter(|(_, w)| *w == o)
-            .map(|(t, _)| t.clone())
-            .collect()
-    };
-    (
-        pick(std::cmp::Ordering::Greater),
-        pick(std::cmp::Ordering::Less),
-    )
+    let pick = |o: std::cmp::Ordering| rows.iter().filter(|(_, w)| *w == o).map(|(t, _)| t.clone()).collect();
+    (pick(std::cmp::Ordering::Greater), pick(std::cmp::Ordering::Less))
 }
 
 /// `a`, `a and b`, `a, b and c`.
@@ -742,10 +551,7 @@ fn and_list(items: &[String]) -> String {
 }
 
 fn chen_16(c: Canvas, theme: &Theme) -> Result<Vec<Pixmap>> {
-    curved_runs()?
-        .iter()
-        .map(|(t, m)| mesh_panel(m, t, c, theme))
-        .collect()
+    curved_runs()?.iter().map(|(t, m)| mesh_panel(m, t, c, theme)).collect()
 }
 
 pub(super) fn chen_16_measured() -> Result<String> {
@@ -754,17 +560,10 @@ pub(super) fn chen_16_measured() -> Result<String> {
         .iter()
         .map(|(t, m)| {
             let s = mesh_stats(m);
-            format!(
-                "{t}: min angle {:.1}°, {} inverted",
-                s.min_angle_deg, s.inverted
-            )
+            format!("{t}: min angle {:.1}°, {} inverted", s.min_angle_deg, s.inverted)
         })
         .collect();
-    let stats = |title: &str| {
-        runs.iter()
-            .find(|(t, _)| t == title)
-            .map(|(_, m)| mesh_stats(m))
-    };
+    let stats = |title: &str| runs.iter().find(|(t, _)| t == title).map(|(_, m)| mesh_stats(m));
     let (Some(old), Some(new)) = (stats(CHEN_16_OLD), stats(CHEN_16_NEW)) else {
         return Err(Error::invalid("chen-16: an optimization panel is missing"));
     };
@@ -780,10 +579,7 @@ pub(super) fn chen_16_measured() -> Result<String> {
             and_list(&wins(&new, &old).0)
         ),
     };
-    Ok(format!(
-        "Measured (angles at curved corners by their end tangents): {}. {verdict}",
-        words.join("; ")
-    ))
+    Ok(format!("Measured (angles at curved corners by their end tangents): {}. {verdict}", words.join("; ")))
 }
 
 // ---- Chen Figs. 18–19: a tangled quadratic surface ---------------------------------------
@@ -791,14 +587,10 @@ pub(super) fn chen_16_measured() -> Result<String> {
 /// The surface lab of `chen-18`: its gallery sample (a quadratic mixed torus, tangled in
 /// its tangent planes) with the figure's settings, and the inverted elements of each side
 /// after each of the figure's passes (the first count: as loaded).
-fn chen18_run() -> Result<(
-    crate::lab::Lab3d<smoothlab::surface::Surface>,
-    [Vec<usize>; 2],
-)> {
+fn chen18_run() -> Result<(crate::lab::Lab3d<smoothlab::surface::Surface>, [Vec<usize>; 2])> {
     let (_, fig) = find("chen-18")?;
     let st = fig.state()?;
-    let sample = super::gallery_sample(fig.name)
-        .ok_or_else(|| Error::invalid("chen-18 names no gallery sample"))?;
+    let sample = super::gallery_sample(fig.name).ok_or_else(|| Error::invalid("chen-18 names no gallery sample"))?;
     let smoothlab::model::Model::Surface(s) = sample.model()? else {
         return Err(Error::invalid("chen-18: its sample is not a surface"));
     };
@@ -825,29 +617,15 @@ fn chen_18(c: Canvas, t: &Theme) -> Result<Vec<Pixmap>> {
     let settings = lab.settings();
     let draw = |s: &smoothlab::surface::Surface, title: String| -> Result<Pixmap> {
         let mut pm = pixmap(c.w, c.h)?;
-        let view = smoothlab_render::SurfaceView {
-            camera: lab.camera(),
-            dpr: c.dpr,
-            title: Some(title),
-            theme: *t,
-            ..smoothlab_render::SurfaceView::default()
-        };
+        let view = smoothlab_render::SurfaceView { camera: lab.camera(), dpr: c.dpr, title: Some(title), theme: *t, ..smoothlab_render::SurfaceView::default() };
         s.render(&mut pm, smoothlab_render::Metric::Shape, &view);
         Ok(pm)
     };
     let after = |side: Side| {
-        format!(
-            "{}: {}, {passes} passes: {} inverted",
-            side.letter(),
-            settings.choice(side).objective,
-            counts[side.index()][passes]
-        )
+        format!("{}: {}, {passes} passes: {} inverted", side.letter(), settings.choice(side).objective, counts[side.index()][passes])
     };
     Ok(vec![
-        draw(
-            lab.original(),
-            format!("as loaded: {} inverted", counts[0][0]),
-        )?,
+        draw(lab.original(), format!("as loaded: {} inverted", counts[0][0]))?,
         draw(lab.mesh(Side::A), after(Side::A))?,
         draw(lab.mesh(Side::B), after(Side::B))?,
     ])
@@ -856,12 +634,7 @@ fn chen_18(c: Canvas, t: &Theme) -> Result<Vec<Pixmap>> {
 /// The text's numbers: each side's count pass by pass, its smallest angle after, and §9.
 pub(super) fn chen_18_measured() -> Result<String> {
     let (lab, counts) = chen18_run()?;
-    let words = |v: &[usize]| {
-        v.iter()
-            .map(usize::to_string)
-            .collect::<Vec<_>>()
-            .join(" → ")
-    };
+    let words = |v: &[usize]| v.iter().map(usize::to_string).collect::<Vec<_>>().join(" → ");
     let s = lab.original();
     let row = ["torus mixed order 2"];
     let (a, b) = (lab.full_stats(Side::A), lab.full_stats(Side::B));
@@ -893,9 +666,7 @@ fn knupp_runs() -> Result<Vec<(String, Mesh)>> {
     let (_, fig) = find("knupp-1")?;
     let (pg, _) = fig.playground()?;
     let m0 = pg.panel(Side::B).mesh.clone();
-    let opt = SmoothOptions::default()
-        .with_strategy(Strategy::Opt)
-        .with_order(Order::Input);
+    let opt = SmoothOptions::default().with_strategy(Strategy::Opt).with_order(Order::Input);
     let mut m = m0.clone();
     let mut s = Smoother::new(opt.with_pass_through_folds(true))?;
     let untangle = objective_with(ObjectiveKind::Untangle, Penalty::Barrier);
@@ -920,20 +691,14 @@ fn knupp_runs() -> Result<Vec<(String, Mesh)>> {
     }
     Ok(vec![
         ("1a. initial tangled mesh".into(), m0),
-        (
-            format!("1b. untangled ({passes} passes of untangle)"),
-            untangled,
-        ),
+        (format!("1b. untangled ({passes} passes of untangle)"), untangled),
         ("1c. optimized with κ (10 passes)".into(), m),
         ("new + rules, 10 passes".into(), n),
     ])
 }
 
 fn knupp_1(c: Canvas, theme: &Theme) -> Result<Vec<Pixmap>> {
-    knupp_runs()?
-        .iter()
-        .map(|(t, m)| mesh_panel(m, t, c, theme))
-        .collect()
+    knupp_runs()?.iter().map(|(t, m)| mesh_panel(m, t, c, theme)).collect()
 }
 
 pub(super) fn knupp_1_measured() -> Result<String> {
@@ -958,10 +723,7 @@ mod tests {
     #[test]
     fn chen_2_alpha_leads_an_inverted_apex_away_and_the_new_objective_back() {
         let (near, far) = (alpha2(DVec2::new(-0.5, 0.0)), alpha2(DVec2::new(-3.0, 0.0)));
-        assert!(
-            near < far && far < 0.0,
-            "α rises towards 0 away from AB: {near} {far}"
-        );
+        assert!(near < far && far < 0.0, "α rises towards 0 away from AB: {near} {far}");
         let new = objective_with(ObjectiveKind::SmoothShape, Penalty::Barrier);
         let p = DVec2::new(-0.5, 0.0);
         let (_, g) = new.value_and_gradient(&triangle_star(p).unwrap(), p);
@@ -970,19 +732,11 @@ mod tests {
 
     #[test]
     fn chen_6_the_angle_jumps_and_the_adjusted_angle_does_not() {
-        let (l, r) = (
-            theta_a(DVec2::new(-1e-6, Y6)),
-            theta_a(DVec2::new(1e-6, Y6)),
-        );
+        let (l, r) = (theta_a(DVec2::new(-1e-6, Y6)), theta_a(DVec2::new(1e-6, Y6)));
         assert!((l + PI).abs() < 1e-5 && (r - PI).abs() < 1e-5, "{l} {r}");
         assert!(adjusted_angle(l).0.abs() < 1e-4 && adjusted_angle(r).0.abs() < 1e-4);
-        assert!(
-            (barrier_of_angle(PI / 3.0, 0.0) - BARRIER_WEIGHT).abs() < 1e-12,
-            "η = 1 on the equilateral corner"
-        );
-        assert!(
-            barrier_of_angle(0.0, 0.0).is_infinite() && barrier_of_angle(0.0, DELTA6).is_finite()
-        );
+        assert!((barrier_of_angle(PI / 3.0, 0.0) - BARRIER_WEIGHT).abs() < 1e-12, "η = 1 on the equilateral corner");
+        assert!(barrier_of_angle(0.0, 0.0).is_infinite() && barrier_of_angle(0.0, DELTA6).is_finite());
     }
 
     #[test]
@@ -991,90 +745,33 @@ mod tests {
         // the figure's configuration shows the contrast, measured
         let c = chen_13_counts().unwrap();
         assert_eq!(c.priority[0], c.input[0], "one plate for both orders");
-        assert!(
-            c.priority[0] > 100,
-            "the plate starts tangled: {:?}",
-            c.priority
-        );
-        let (p, i) = (
-            passes_to_zero(&c.priority).unwrap(),
-            passes_to_zero(&c.input).unwrap(),
-        );
-        assert!(
-            p < i,
-            "priority {:?} against input {:?}",
-            c.priority,
-            c.input
-        );
+        assert!(c.priority[0] > 100, "the plate starts tangled: {:?}", c.priority);
+        let (p, i) = (passes_to_zero(&c.priority).unwrap(), passes_to_zero(&c.input).unwrap());
+        assert!(p < i, "priority {:?} against input {:?}", c.priority, c.input);
         let text = chen_13_measured().unwrap();
         let words = |v: &[u32]| v.iter().map(u32::to_string).collect::<Vec<_>>().join(" → ");
-        assert!(
-            text.contains(&words(&c.priority)) && text.contains(&words(&c.input)),
-            "{text}"
-        );
+        assert!(text.contains(&words(&c.priority)) && text.contains(&words(&c.input)), "{text}");
     }
 
     #[test]
     fn chen_18_the_new_objective_untangles_the_quadratic_torus_and_the_old_does_not() {
         let (_, [old, new]) = chen18_run().unwrap();
         assert!(old[0] > 50 && old[0] == new[0], "{old:?} {new:?}");
-        assert_eq!(
-            new[1], 0,
-            "the new objective untangles in the first pass: {new:?}"
-        );
+        assert_eq!(new[1], 0, "the new objective untangles in the first pass: {new:?}");
         assert!(*old.last().unwrap() > 0, "the old one does not: {old:?}");
         let text = chen_18_measured().unwrap();
-        let words = |v: &[usize]| {
-            v.iter()
-                .map(usize::to_string)
-                .collect::<Vec<_>>()
-                .join(" → ")
-        };
-        assert!(
-            text.contains(&words(&old)) && text.contains(&words(&new)),
-            "{text}"
-        );
+        let words = |v: &[usize]| v.iter().map(usize::to_string).collect::<Vec<_>>().join(" → ");
+        assert!(text.contains(&words(&old)) && text.contains(&words(&new)), "{text}");
     }
 
     #[test]
     fn every_figure_draws_a_picture_with_ink() {
         for f in &FIGURES {
-            let pm = render(
-                f.name,
-                Canvas {
-                    w: 900,
-                    h: 420,
-                    dpr: 1.0,
-                },
-                &Theme::light(),
-            )
-            .unwrap_or_else(|e| panic!("{}: {e}", f.name));
-            let dark = pm
-                .pixels()
-                .iter()
-                .filter(|p| p.red() < 128 && p.green() < 128)
-                .count();
-            let colours: std::collections::HashSet<_> = pm
-                .pixels()
-                .iter()
-                .map(|p| (p.red(), p.green(), p.blue()))
-                .collect();
-            assert!(
-                dark > 500 && colours.len() > 20,
-                "{}: {dark} dark pixels, {} colours",
-                f.name,
-                colours.len()
-            );
+            let pm = render(f.name, Canvas { w: 900, h: 420, dpr: 1.0 }, &Theme::light()).unwrap_or_else(|e| panic!("{}: {e}", f.name));
+            let dark = pm.pixels().iter().filter(|p| p.red() < 128 && p.green() < 128).count();
+            let colours: std::collections::HashSet<_> = pm.pixels().iter().map(|p| (p.red(), p.green(), p.blue())).collect();
+            assert!(dark > 500 && colours.len() > 20, "{}: {dark} dark pixels, {} colours", f.name, colours.len());
         }
-        assert!(render(
-            "chen-2",
-            Canvas {
-                w: 0,
-                h: 10,
-                dpr: 1.0
-            },
-            &Theme::light()
-        )
-        .is_err());
+        assert!(render("chen-2", Canvas { w: 0, h: 10, dpr: 1.0 }, &Theme::light()).is_err());
     }
 }

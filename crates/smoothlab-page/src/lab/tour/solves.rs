@@ -13,15 +13,15 @@ use glam::DVec2;
 use tiny_skia::{Color, Pixmap};
 
 use super::{find, repro};
+use smoothlab::error::{Error, Result};
 use crate::lab::views::{path_kind, pixmap, stop_words, Canvas, LEVEL_SET_SAMPLES};
 use crate::lab::{Playground, Side};
-use smoothlab::error::{Error, Result};
 use smoothlab::numeric::order::{sort_stable_by_key, total_order_key};
 use smoothlab::objective::{CornerTerm, Goal, MaxMinShape, Objective, Star};
 use smoothlab::optimize::{min_norm_point, DirectionKind, SolveResult};
 use smoothlab_render::{
-    feasible_levels, render_chart, render_level_set_with, sample_field, Chart, Frame, LevelSet,
-    LevelSetExtras, LevelSetView, Marker, Overlay, PathKind, Series, Theme,
+    feasible_levels, render_chart, render_level_set_with, sample_field, Chart, Frame, LevelSet, LevelSetExtras, LevelSetView, Marker, Overlay,
+    PathKind, Series, Theme,
 };
 
 /// A figure's playground in `theme`, with the node its state names.
@@ -29,10 +29,7 @@ fn figure_state(name: &str, theme: &Theme) -> Result<(Playground, usize)> {
     let (_, fig) = find(name)?;
     let (mut pg, st) = fig.playground()?;
     pg.set_theme(*theme);
-    let node = st
-        .node
-        .ok_or_else(|| Error::invalid(format!("figure {name} names no node")))?
-        as usize;
+    let node = st.node.ok_or_else(|| Error::invalid(format!("figure {name} names no node")))? as usize;
     Ok((pg, node))
 }
 
@@ -55,45 +52,15 @@ fn side_panel(pg: &Playground, node: usize, c: Canvas, p: &SidePanel<'_>) -> Res
     let mut star = Star::new();
     star.gather(&panel.mesh, node);
     let (_, bounds) = pg.level_bounds(p.side, node);
-    let field = sample_field(
-        panel.objective.as_ref(),
-        &star,
-        bounds,
-        LEVEL_SET_SAMPLES,
-        LEVEL_SET_SAMPLES,
-    )?;
+    let field = sample_field(panel.objective.as_ref(), &star, bounds, LEVEL_SET_SAMPLES, LEVEL_SET_SAMPLES)?;
     let mut path = vec![(p.solve.x0, PathKind::Start)];
-    path.extend(
-        p.solve
-            .history
-            .iter()
-            .map(|it| (it.x, path_kind(it.direction))),
-    );
+    path.extend(p.solve.history.iter().map(|it| (it.x, path_kind(it.direction))));
     let title = pg.settings().side_title(p.side);
     let levels = p.feasible_levels.map(|n| feasible_levels(&field, n));
-    let data = LevelSet {
-        field: &field,
-        star: &star,
-        path: &path,
-        optimum: p.optimum,
-        title: &title,
-    };
-    let opts = LevelSetView {
-        dpr: c.dpr,
-        clip: true,
-        theme: pg.theme(),
-        ..LevelSetView::default()
-    };
+    let data = LevelSet { field: &field, star: &star, path: &path, optimum: p.optimum, title: &title };
+    let opts = LevelSetView { dpr: c.dpr, clip: true, theme: pg.theme(), ..LevelSetView::default() };
     let mut pm = pixmap(c.w, c.h)?;
-    render_level_set_with(
-        &mut pm,
-        &data,
-        &opts,
-        &LevelSetExtras {
-            overlays: p.overlays,
-            levels: levels.as_deref(),
-        },
-    );
+    render_level_set_with(&mut pm, &data, &opts, &LevelSetExtras { overlays: p.overlays, levels: levels.as_deref() });
     Ok(pm)
 }
 
@@ -101,11 +68,7 @@ fn side_panel(pg: &Playground, node: usize, c: Canvas, p: &SidePanel<'_>) -> Res
 /// of a 121 × 121 grid, then of eleven finer 21 × 21 grids, each over four steps of the
 /// last round about its best point (the box shrinks a billionfold). Non-finite values
 /// (a barrier's +∞) are never best.
-pub(crate) fn search_optimum(
-    objective: &dyn Objective,
-    star: &Star,
-    b: (DVec2, DVec2),
-) -> (DVec2, f64) {
+pub(crate) fn search_optimum(objective: &dyn Objective, star: &Star, b: (DVec2, DVec2)) -> (DVec2, f64) {
     let better = |a: f64, b: f64| match objective.goal() {
         Goal::MaximizeMin => a > b,
         Goal::MinimizeSum => a < b,
@@ -154,8 +117,7 @@ fn curved_edge(star: &Star) -> Option<(DVec2, DVec2, DVec2)> {
             let m = el.pts[el.kind.mid(i)?];
             let (a, b) = (el.pts[i], el.pts[j]);
             let off = (m - 0.5 * (a + b)).length();
-            (i != el.slot as usize && j != el.slot as usize && off > 1e-9 * (b - a).length())
-                .then_some((a, m, b))
+            (i != el.slot as usize && j != el.slot as usize && off > 1e-9 * (b - a).length()).then_some((a, m, b))
         })
     })
 }
@@ -198,10 +160,8 @@ pub(crate) fn chen_9_numbers() -> Result<Chen9> {
     let (pg, node) = figure_state("chen-9", &Theme::light())?;
     let mut star = Star::new();
     star.gather(&pg.panel(Side::A).mesh, node);
-    let (a, m, b) =
-        curved_edge(&star).ok_or_else(|| Error::invalid("chen-9: the star has no curved edge"))?;
-    let meet = tangent_meet(a, m, b)
-        .ok_or_else(|| Error::invalid("chen-9: the end tangents are parallel"))?;
+    let (a, m, b) = curved_edge(&star).ok_or_else(|| Error::invalid("chen-9: the star has no curved edge"))?;
+    let meet = tangent_meet(a, m, b).ok_or_else(|| Error::invalid("chen-9: the end tangents are parallel"))?;
     let (old, new) = (pg.solve_node(Side::A, node)?, pg.solve_node(Side::B, node)?);
     let best = |side: Side| {
         let (_, shown) = pg.level_bounds(side, node);
@@ -212,14 +172,9 @@ pub(crate) fn chen_9_numbers() -> Result<Chen9> {
     sort_stable_by_key(&mut corners, |p| total_order_key(p.value));
     let lowest = match corners.as_slice() {
         [p, q, ..] => [*p, *q],
-        _ => {
-            return Err(Error::invalid(
-                "chen-9: the star has fewer than two corners",
-            ))
-        }
+        _ => return Err(Error::invalid("chen-9: the star has fewer than two corners")),
     };
-    let tie = lowest[0].elem == lowest[1].elem
-        && (lowest[0].value - lowest[1].value).abs() <= 1e-9 * lowest[0].value.abs().max(1.0);
+    let tie = lowest[0].elem == lowest[1].elem && (lowest[0].value - lowest[1].value).abs() <= 1e-9 * lowest[0].value.abs().max(1.0);
     let el = &star.elems[lowest[0].elem as usize];
     let at = |t: &CornerTerm| el.pts[t.corner as usize];
     let is_end = |p: DVec2| (p - a).length() < 1e-12 || (p - b).length() < 1e-12;
@@ -230,35 +185,13 @@ pub(crate) fn chen_9_numbers() -> Result<Chen9> {
     obj.terms(&star, star.x0, &mut terms);
     let phi = terms.iter().map(|t| t.value).fold(f64::INFINITY, f64::min);
     let scale = terms.iter().map(|t| t.value.abs()).fold(0.0f64, f64::max);
-    let tol = pg
-        .settings()
-        .smooth_options()?
-        .solve_options()
-        .active_tolerance
-        * scale;
-    let active: Vec<DVec2> = terms
-        .iter()
-        .filter(|t| t.value <= phi + tol)
-        .map(|t| t.grad)
-        .collect();
+    let tol = pg.settings().smooth_options()?.solve_options().active_tolerance * scale;
+    let active: Vec<DVec2> = terms.iter().filter(|t| t.value <= phi + tol).map(|t| t.grad).collect();
     let tried = min_norm_point(&active).point;
     let d = tried.normalize_or_zero();
     let tried_rate = lowest[0].grad.dot(d).min(lowest[1].grad.dot(d));
     let rise = min_norm_point(&[lowest[0].grad, lowest[1].grad]).point;
-    Ok(Chen9 {
-        ends: (a, b),
-        meet,
-        old,
-        new,
-        old_best,
-        new_best,
-        lowest,
-        tie,
-        on_curve,
-        tried,
-        tried_rate,
-        rise,
-    })
+    Ok(Chen9 { ends: (a, b), meet, old, new, old_best, new_best, lowest, tie, on_curve, tried, tried_rate, rise })
 }
 
 pub(super) fn chen_9(c: Canvas, t: &Theme) -> Result<Vec<Pixmap>> {
@@ -270,24 +203,9 @@ pub(super) fn chen_9(c: Canvas, t: &Theme) -> Result<Vec<Pixmap>> {
     let tb = [b, n.meet + 0.5 * (n.meet - b)];
     let tangents = |label| {
         [
-            Overlay::Line {
-                points: &ta,
-                color: rgb(TANGENT),
-                dashed: true,
-                label,
-            },
-            Overlay::Line {
-                points: &tb,
-                color: rgb(TANGENT),
-                dashed: true,
-                label: "",
-            },
-            Overlay::Point {
-                at: n.meet,
-                marker: Marker::Diamond,
-                color: rgb(TANGENT),
-                label: "where they meet",
-            },
+            Overlay::Line { points: &ta, color: rgb(TANGENT), dashed: true, label },
+            Overlay::Line { points: &tb, color: rgb(TANGENT), dashed: true, label: "" },
+            Overlay::Point { at: n.meet, marker: Marker::Diamond, color: rgb(TANGENT), label: "where they meet" },
         ]
     };
     // the arrows a fifth of the shown box long
@@ -295,57 +213,15 @@ pub(super) fn chen_9(c: Canvas, t: &Theme) -> Result<Vec<Pixmap>> {
     let len = 0.2 * (shown.1 - shown.0).x;
     let x0 = n.old.x0;
     let mut old_marks = tangents("end tangents (the paper's dashed lines)").to_vec();
-    old_marks.push(Overlay::Point {
-        at: n.old_best.0,
-        marker: Marker::Star,
-        color: rgb(OPTIMUM),
-        label: "optimum, found by search",
-    });
+    old_marks.push(Overlay::Point { at: n.old_best.0, marker: Marker::Star, color: rgb(OPTIMUM), label: "optimum, found by search" });
     if n.old.iterations == 0 && n.tie {
-        old_marks.push(Overlay::Arrow {
-            from: x0,
-            to: x0 + len * n.tried.normalize_or_zero(),
-            color: rgb(TRIED),
-            label: "the ascent's direction: one tied corner's gradient",
-        });
-        old_marks.push(Overlay::Arrow {
-            from: x0,
-            to: x0 + len * n.rise.normalize_or_zero(),
-            color: rgb(RISE),
-            label: "both tied corners rise",
-        });
+        old_marks.push(Overlay::Arrow { from: x0, to: x0 + len * n.tried.normalize_or_zero(), color: rgb(TRIED), label: "the ascent's direction: one tied corner's gradient" });
+        old_marks.push(Overlay::Arrow { from: x0, to: x0 + len * n.rise.normalize_or_zero(), color: rgb(RISE), label: "both tied corners rise" });
     }
     let mut new_marks = tangents("end tangents (the paper's dashed lines)").to_vec();
-    new_marks.push(Overlay::Point {
-        at: n.new_best.0,
-        marker: Marker::Star,
-        color: rgb(OPTIMUM),
-        label: "optimum, found by search",
-    });
-    let old = side_panel(
-        &pg,
-        node,
-        c,
-        &SidePanel {
-            side: Side::A,
-            solve: &n.old,
-            optimum: None,
-            overlays: &old_marks,
-            feasible_levels: None,
-        },
-    )?;
-    let new = side_panel(
-        &pg,
-        node,
-        c,
-        &SidePanel {
-            side: Side::B,
-            solve: &n.new,
-            optimum: None,
-            overlays: &new_marks,
-            feasible_levels: None,
-        },
-    )?;
+    new_marks.push(Overlay::Point { at: n.new_best.0, marker: Marker::Star, color: rgb(OPTIMUM), label: "optimum, found by search" });
+    let old = side_panel(&pg, node, c, &SidePanel { side: Side::A, solve: &n.old, optimum: None, overlays: &old_marks, feasible_levels: None })?;
+    let new = side_panel(&pg, node, c, &SidePanel { side: Side::B, solve: &n.new, optimum: None, overlays: &new_marks, feasible_levels: None })?;
     Ok(vec![old, new])
 }
 
@@ -366,11 +242,7 @@ pub(crate) fn chen_9_measured() -> Result<String> {
         side(n.old_best.0.y),
     );
     if n.old.iterations == 0 && n.tie {
-        let which = if n.on_curve {
-            "the curved edge's ends"
-        } else {
-            "two corners"
-        };
+        let which = if n.on_curve { "the curved edge's ends" } else { "two corners" };
         s += &format!(
             ", but Freitag's ascent stays at the start ({} iterations: {}): there the worst element's corners at {which} \
              tie at α = {:.3}, a kink; the ascent follows one corner's gradient, ({:.2}, {:.2}), along which the other's α \
@@ -385,12 +257,7 @@ pub(crate) fn chen_9_measured() -> Result<String> {
             tidy(n.rise.y),
         );
     } else {
-        s += &format!(
-            "; Freitag's ascent reaches y = {:.3} in {} iterations ({}).",
-            n.old.x.y,
-            n.old.iterations,
-            stop_words(n.old.stop)
-        );
+        s += &format!("; Freitag's ascent reaches y = {:.3} in {} iterations ({}).", n.old.x.y, n.old.iterations, stop_words(n.old.stop));
     }
     Ok(s)
 }
@@ -412,18 +279,7 @@ pub(super) fn chen_10(c: Canvas, t: &Theme) -> Result<Vec<Pixmap>> {
         .iter()
         .map(|&side| {
             let r = pg.solve_node(side, node)?;
-            side_panel(
-                &pg,
-                node,
-                c,
-                &SidePanel {
-                    side,
-                    solve: &r,
-                    optimum: Some(r.x),
-                    overlays: &[],
-                    feasible_levels: Some(CHEN_10_LEVELS),
-                },
-            )
+            side_panel(&pg, node, c, &SidePanel { side, solve: &r, optimum: Some(r.x), overlays: &[], feasible_levels: Some(CHEN_10_LEVELS) })
         })
         .collect()
 }
@@ -478,10 +334,7 @@ fn chen_11_solves(pg: &Playground, node: usize) -> Result<Chen11> {
     let options = pg.settings().smooth_options()?.with_newton(false);
     let p = pg.panel(Side::B);
     let chen = smoothlab::smooth::solve_node(&p.mesh, node, p.objective.as_ref(), &options)?;
-    Ok(Chen11 {
-        chen,
-        newton: pg.solve_node(Side::B, node)?,
-    })
+    Ok(Chen11 { chen, newton: pg.solve_node(Side::B, node)? })
 }
 
 pub(crate) fn chen_11_numbers() -> Result<Chen11> {
@@ -493,58 +346,22 @@ pub(crate) fn chen_11_numbers() -> Result<Chen11> {
 /// (iteration 0: the start, 0 %; the last: 100 %).
 fn decrease_shares(r: &SolveResult) -> Vec<DVec2> {
     let total = r.value0 - r.value;
-    let share = |v: f64| {
-        if total > 0.0 {
-            100.0 * (r.value0 - v) / total
-        } else {
-            100.0
-        }
-    };
-    std::iter::once(DVec2::new(0.0, 0.0))
-        .chain(
-            r.history
-                .iter()
-                .enumerate()
-                .map(|(i, it)| DVec2::new(i as f64 + 1.0, share(it.value))),
-        )
-        .collect()
+    let share = |v: f64| if total > 0.0 { 100.0 * (r.value0 - v) / total } else { 100.0 };
+    std::iter::once(DVec2::new(0.0, 0.0)).chain(r.history.iter().enumerate().map(|(i, it)| DVec2::new(i as f64 + 1.0, share(it.value)))).collect()
 }
 
 /// One solve's chart: the length of each iteration's step on a log axis (Chen et al.'s
 /// claim is about them: a short gradient step, a much longer conjugate one, a restart),
 /// every step marked by its kind (the level-set path's mark and colour), the count of
 /// iterations in its title.
-fn history_chart(
-    pm: &mut Pixmap,
-    r: &SolveResult,
-    title: &str,
-    frame: Frame,
-    c: Canvas,
-    t: &Theme,
-) {
-    let line: Vec<DVec2> = r
-        .history
-        .iter()
-        .enumerate()
-        .map(|(i, it)| DVec2::new(i as f64 + 1.0, it.step))
-        .collect();
+fn history_chart(pm: &mut Pixmap, r: &SolveResult, title: &str, frame: Frame, c: Canvas, t: &Theme) {
+    let line: Vec<DVec2> = r.history.iter().enumerate().map(|(i, it)| DVec2::new(i as f64 + 1.0, it.step)).collect();
     // each kind's points apart (NaN between them: no line joins the marks)
-    let kinds = [
-        DirectionKind::Gradient,
-        DirectionKind::Conjugate,
-        DirectionKind::Newton,
-        DirectionKind::ActiveSet,
-    ];
+    let kinds = [DirectionKind::Gradient, DirectionKind::Conjugate, DirectionKind::Newton, DirectionKind::ActiveSet];
     let marks: Vec<(DirectionKind, Vec<DVec2>)> = kinds
         .iter()
         .map(|&k| {
-            let pts = r
-                .history
-                .iter()
-                .zip(&line)
-                .filter(|(it, _)| it.direction == k)
-                .flat_map(|(_, p)| [*p, DVec2::NAN])
-                .collect();
+            let pts = r.history.iter().zip(&line).filter(|(it, _)| it.direction == k).flat_map(|(_, p)| [*p, DVec2::NAN]).collect();
             (k, pts)
         })
         .filter(|(_, p): &(DirectionKind, Vec<DVec2>)| !p.is_empty())
@@ -552,11 +369,7 @@ fn history_chart(
     let mut series = vec![Series::new("", &line).with_color(t.side(Side::B as usize))];
     for (k, pts) in &marks {
         let kind = path_kind(*k);
-        series.push(
-            Series::new(mark_label(*k), pts)
-                .with_color(kind.color())
-                .with_marker(kind.marker()),
-        );
+        series.push(Series::new(mark_label(*k), pts).with_color(kind.color()).with_marker(kind.marker()));
     }
     render_chart(
         pm,
@@ -582,36 +395,11 @@ fn history_title(what: &str, r: &SolveResult) -> String {
 pub(super) fn chen_11(c: Canvas, t: &Theme) -> Result<Vec<Pixmap>> {
     let (pg, node) = figure_state("chen-11", t)?;
     let s = chen_11_solves(&pg, node)?;
-    let level = side_panel(
-        &pg,
-        node,
-        c,
-        &SidePanel {
-            side: Side::B,
-            solve: &s.chen,
-            optimum: Some(s.chen.x),
-            overlays: &[],
-            feasible_levels: None,
-        },
-    )?;
+    let level = side_panel(&pg, node, c, &SidePanel { side: Side::B, solve: &s.chen, optimum: Some(s.chen.x), overlays: &[], feasible_levels: None })?;
     let mut chart = pixmap(c.w, c.h)?;
     let full = Frame::of_pixmap(&chart, c.dpr);
-    history_chart(
-        &mut chart,
-        &s.chen,
-        &history_title(CHEN_SEARCH, &s.chen),
-        full.row(0, 2, 6.0),
-        c,
-        t,
-    );
-    history_chart(
-        &mut chart,
-        &s.newton,
-        &history_title(NEWTON_FIRST, &s.newton),
-        full.row(1, 2, 6.0),
-        c,
-        t,
-    );
+    history_chart(&mut chart, &s.chen, &history_title(CHEN_SEARCH, &s.chen), full.row(0, 2, 6.0), c, t);
+    history_chart(&mut chart, &s.newton, &history_title(NEWTON_FIRST, &s.newton), full.row(1, 2, 6.0), c, t);
     Ok(vec![level, chart])
 }
 
@@ -630,13 +418,7 @@ const NEWTON_FIRST: &str = "Newton's step first";
 
 pub(crate) fn chen_11_measured() -> Result<String> {
     let s = chen_11_numbers()?;
-    let steps = |r: &SolveResult| -> String {
-        r.history
-            .iter()
-            .map(|it| format!("{} {}", letter(it.direction), step_words(it.step)))
-            .collect::<Vec<_>>()
-            .join(", ")
-    };
+    let steps = |r: &SolveResult| -> String { r.history.iter().map(|it| format!("{} {}", letter(it.direction), step_words(it.step))).collect::<Vec<_>>().join(", ") };
     let share = |r: &SolveResult| decrease_shares(r).get(3).map_or(100.0, |p| p.y);
     let ratio = match s.chen.history.as_slice() {
         [a, b, ..] if a.step > 0.0 => b.step / a.step,
@@ -672,40 +454,16 @@ mod tests {
             // do (labels of at least 14 CSS px; the picture fitted to the frame's width)
             let fit = |css_w: u32, dpr: f32| {
                 let css_h = css_w * h / w;
-                Canvas {
-                    w: (css_w as f32 * dpr) as u32,
-                    h: (css_h as f32 * dpr) as u32,
-                    dpr,
-                }
+                Canvas { w: (css_w as f32 * dpr) as u32, h: (css_h as f32 * dpr) as u32, dpr }
             };
-            for (c, theme) in [
-                (Canvas { w, h, dpr: 1.0 }, Theme::light()),
-                (fit(780, 1.0), Theme::for_page(true, 14.0)),
-                (fit(500, 2.0), Theme::for_page(false, 14.0)),
-            ] {
-                let (pm, regions) = pictures::render_with_layout(f.name, c, &theme)
-                    .unwrap_or_else(|e| panic!("{}: {e}", f.name));
+            for (c, theme) in [(Canvas { w, h, dpr: 1.0 }, Theme::light()), (fit(780, 1.0), Theme::for_page(true, 14.0)), (fit(500, 2.0), Theme::for_page(false, 14.0))] {
+                let (pm, regions) = pictures::render_with_layout(f.name, c, &theme).unwrap_or_else(|e| panic!("{}: {e}", f.name));
                 let of = |k: RegionKind| regions.iter().filter(move |r| r.kind == k);
-                assert!(
-                    of(RegionKind::Plot).count() > 0 || of(RegionKind::Legend).count() == 0,
-                    "{}: a legend and no plot",
-                    f.name
-                );
+                assert!(of(RegionKind::Plot).count() > 0 || of(RegionKind::Legend).count() == 0, "{}: a legend and no plot", f.name);
                 for l in of(RegionKind::Legend) {
-                    assert!(
-                        l.x >= -0.5
-                            && l.y >= -0.5
-                            && l.x + l.w <= pm.width() as f32 + 0.5
-                            && l.y + l.h <= pm.height() as f32 + 0.5,
-                        "{}: legend {l:?} outside the picture",
-                        f.name
-                    );
+                    assert!(l.x >= -0.5 && l.y >= -0.5 && l.x + l.w <= pm.width() as f32 + 0.5 && l.y + l.h <= pm.height() as f32 + 0.5, "{}: legend {l:?} outside the picture", f.name);
                     for p in of(RegionKind::Plot) {
-                        assert!(
-                            !l.overlaps(p),
-                            "{} at {c:?}: legend {l:?} over plot {p:?}",
-                            f.name
-                        );
+                        assert!(!l.overlaps(p), "{} at {c:?}: legend {l:?} over plot {p:?}", f.name);
                     }
                 }
             }
@@ -716,35 +474,16 @@ mod tests {
     fn chen_9_optima_lie_below_the_meeting_point_and_the_kink_is_computed() {
         let n = chen_9_numbers().unwrap();
         let h = smoothlab::generate::PUSHED_MID_HEIGHT;
-        assert!(
-            (n.meet - DVec2::new(0.0, 2.0 * h - 3f64.sqrt() / 2.0)).length() < 1e-12,
-            "{}",
-            n.meet
-        );
+        assert!((n.meet - DVec2::new(0.0, 2.0 * h - 3f64.sqrt() / 2.0)).length() < 1e-12, "{}", n.meet);
         assert!(n.new_best.0.y < n.meet.y && n.old_best.0.y < n.meet.y);
         // the new objective's solver ends at its optimum; the max-min optimum is better
         // than the start by the objective's own measure
-        assert!(
-            (n.new.x - n.new_best.0).length() < 1e-3,
-            "{} vs {}",
-            n.new.x,
-            n.new_best.0
-        );
-        assert!(
-            n.old_best.1 > n.old.value + 0.1,
-            "{} vs {}",
-            n.old_best.1,
-            n.old.value
-        );
+        assert!((n.new.x - n.new_best.0).length() < 1e-3, "{} vs {}", n.new.x, n.new_best.0);
+        assert!(n.old_best.1 > n.old.value + 0.1, "{} vs {}", n.old_best.1, n.old.value);
         // the start is a kink: two corners of one element tie, the ascent's direction
         // lowers one of them, and the hull of both points straight down
         assert!(n.tie && n.on_curve && n.old.iterations == 0);
-        assert!(
-            n.tried_rate < 0.0 && n.rise.y < 0.0 && n.rise.x.abs() < 1e-9,
-            "{} {}",
-            n.tried_rate,
-            n.rise
-        );
+        assert!(n.tried_rate < 0.0 && n.rise.y < 0.0 && n.rise.x.abs() < 1e-9, "{} {}", n.tried_rate, n.rise);
         let text = chen_9_measured().unwrap();
         for v in [n.meet.y, n.new.x.y, n.old_best.0.y, n.lowest[0].value] {
             assert!(text.contains(&format!("{v:.3}")), "{v:.3} not in: {text}");
@@ -759,63 +498,29 @@ mod tests {
             star.gather(&pg.panel(side).mesh, node);
             let (_, b) = pg.level_bounds(side, node);
             let f = sample_field(pg.panel(side).objective.as_ref(), &star, b, 81, 81).unwrap();
-            let inside =
-                f.validity.iter().filter(|v| **v > 0.0).count() as f64 / f.validity.len() as f64;
-            assert!(
-                inside > 0.4,
-                "{side:?}: the feasible region is {:.0}% of the picture",
-                100.0 * inside
-            );
+            let inside = f.validity.iter().filter(|v| **v > 0.0).count() as f64 / f.validity.len() as f64;
+            assert!(inside > 0.4, "{side:?}: the feasible region is {:.0}% of the picture", 100.0 * inside);
             let levels = feasible_levels(&f, CHEN_10_LEVELS);
-            let (lo, hi) = f
-                .values
-                .iter()
-                .zip(&f.validity)
-                .filter(|(v, ok)| v.is_finite() && **ok > 0.0)
-                .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), (v, _)| {
-                    (a.min(*v), b.max(*v))
-                });
-            assert!(
-                levels.len() >= CHEN_10_LEVELS - 2 && levels.iter().all(|l| (lo..=hi).contains(l)),
-                "{side:?}: {levels:?}"
-            );
+            let (lo, hi) = f.values.iter().zip(&f.validity).filter(|(v, ok)| v.is_finite() && **ok > 0.0).fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), (v, _)| (a.min(*v), b.max(*v)));
+            assert!(levels.len() >= CHEN_10_LEVELS - 2 && levels.iter().all(|l| (lo..=hi).contains(l)), "{side:?}: {levels:?}");
         }
     }
 
     #[test]
     fn chen_11_marks_every_step_and_the_text_counts_them() {
         let s = chen_11_numbers().unwrap();
-        let c = Canvas {
-            w: 1100,
-            h: 560,
-            dpr: 1.0,
-        };
+        let c = Canvas { w: 1100, h: 560, dpr: 1.0 };
         let (parts, notes) = record(|| chen_11(c, &Theme::light()).unwrap());
-        let marks = notes
-            .of(&parts[1])
-            .into_iter()
-            .filter(|r| r.kind == RegionKind::Mark)
-            .collect::<Vec<_>>();
+        let marks = notes.of(&parts[1]).into_iter().filter(|r| r.kind == RegionKind::Mark).collect::<Vec<_>>();
         let text = chen_11_measured().unwrap();
-        for (k, r) in [
-            (DirectionKind::Gradient, &s.chen),
-            (DirectionKind::Conjugate, &s.chen),
-            (DirectionKind::Newton, &s.newton),
-        ] {
+        for (k, r) in [(DirectionKind::Gradient, &s.chen), (DirectionKind::Conjugate, &s.chen), (DirectionKind::Newton, &s.newton)] {
             let u = path_kind(k).color().to_color_u8();
-            let drawn = marks
-                .iter()
-                .filter(|m| m.rgb == Some([u.red(), u.green(), u.blue()]))
-                .count();
+            let drawn = marks.iter().filter(|m| m.rgb == Some([u.red(), u.green(), u.blue()])).count();
             let steps = r.history.iter().filter(|it| it.direction == k).count();
             assert_eq!(drawn, steps, "{k:?}");
             assert!(steps > 0, "{k:?}: Fig. 11 is about this step");
         }
-        assert!(
-            text.contains(&format!("takes {} iterations", s.chen.iterations))
-                && text.contains(&format!("default): {} iterations", s.newton.iterations)),
-            "{text}"
-        );
+        assert!(text.contains(&format!("takes {} iterations", s.chen.iterations)) && text.contains(&format!("default): {} iterations", s.newton.iterations)), "{text}");
         // every step in the text, with its mark: "g 0.0050, c 0.0100, …"
         let marked = text
             .split([',', ':', ';'])
@@ -825,10 +530,6 @@ mod tests {
                 matches!(mark, Some("g" | "c" | "n")) && n.is_some_and(|n| n.parse::<f64>().is_ok())
             })
             .count();
-        assert_eq!(
-            marked,
-            s.chen.history.len() + s.newton.history.len(),
-            "{text}"
-        );
+        assert_eq!(marked, s.chen.history.len() + s.newton.history.len(), "{text}");
     }
 }

@@ -2,24 +2,24 @@
 //! the live table and Fig. 3's histograms) and Table 2 (rand3D, the tetrahedral table and
 //! its cut pictures). [`super::pictures`] draws them among the other figures.
 
-use serde::Serialize;
 use smoothlab_render::VolumePicture;
+use serde::Serialize;
 use tiny_skia::{Color, Pixmap};
 
 use super::pictures::first;
 use super::repro;
-use crate::lab::views::{pixmap, Canvas};
-use crate::lab::SMALL_ANGLE_DEG;
 use smoothlab::error::{Error, Result};
 use smoothlab::generate::rand2d;
+use crate::lab::views::{pixmap, Canvas};
+use crate::lab::SMALL_ANGLE_DEG;
 use smoothlab::mesh::Mesh;
 use smoothlab::objective::{objective_with, ObjectiveKind, Penalty};
 use smoothlab::quality::{mesh_stats, MeshStats};
-use smoothlab::smooth::{Measure, Order, SmoothOptions, Smoother, Strategy};
 use smoothlab_render::{
-    draw_text, percentages, render_angle_histogram, series_color, text_width, Align,
-    AngleHistogram, HistogramSeries, TextStyle, Theme, Valign,
+    draw_text, percentages, render_angle_histogram, series_color, text_width, Align, AngleHistogram, HistogramSeries,
+    TextStyle, Theme, Valign,
 };
+use smoothlab::smooth::{Measure, Order, SmoothOptions, Smoother, Strategy};
 
 // ---- Freitag Table 1 and Fig. 3 ------------------------------------------------------
 
@@ -39,42 +39,15 @@ pub const FREITAG_METHODS: [FreitagMethod; 9] = {
     use ObjectiveKind::{Sine, SmoothShape};
     use Order::{Input, Priority};
     [
-        FreitagMethod {
-            method: "original",
-            run: None,
-        },
-        FreitagMethod {
-            method: "laplace (plain)",
-            run: Some((Strategy::Laplace, Sine, 30.0, Input, true)),
-        },
-        FreitagMethod {
-            method: "smart (min sine)",
-            run: Some((Strategy::Smart, Sine, 30.0, Input, true)),
-        },
-        FreitagMethod {
-            method: "opt, `sine`",
-            run: Some((Strategy::Opt, Sine, 30.0, Input, true)),
-        },
-        FreitagMethod {
-            method: "C1 30°, `sine`",
-            run: Some((Strategy::C1, Sine, 30.0, Input, true)),
-        },
-        FreitagMethod {
-            method: "C2 30°, `sine`",
-            run: Some((Strategy::C2, Sine, 30.0, Input, true)),
-        },
-        FreitagMethod {
-            method: "C3 30°, `sine`",
-            run: Some((Strategy::C3, Sine, 30.0, Input, true)),
-        },
-        FreitagMethod {
-            method: "opt, `new`",
-            run: Some((Strategy::Opt, SmoothShape, 30.0, Input, false)),
-        },
-        FreitagMethod {
-            method: "rules, `new`, priority",
-            run: Some((Strategy::Rules, SmoothShape, 30.0, Priority, false)),
-        },
+        FreitagMethod { method: "original", run: None },
+        FreitagMethod { method: "laplace (plain)", run: Some((Strategy::Laplace, Sine, 30.0, Input, true)) },
+        FreitagMethod { method: "smart (min sine)", run: Some((Strategy::Smart, Sine, 30.0, Input, true)) },
+        FreitagMethod { method: "opt, `sine`", run: Some((Strategy::Opt, Sine, 30.0, Input, true)) },
+        FreitagMethod { method: "C1 30°, `sine`", run: Some((Strategy::C1, Sine, 30.0, Input, true)) },
+        FreitagMethod { method: "C2 30°, `sine`", run: Some((Strategy::C2, Sine, 30.0, Input, true)) },
+        FreitagMethod { method: "C3 30°, `sine`", run: Some((Strategy::C3, Sine, 30.0, Input, true)) },
+        FreitagMethod { method: "opt, `new`", run: Some((Strategy::Opt, SmoothShape, 30.0, Input, false)) },
+        FreitagMethod { method: "rules, `new`, priority", run: Some((Strategy::Rules, SmoothShape, 30.0, Priority, false)) },
     ]
 };
 
@@ -103,19 +76,11 @@ pub struct FreitagRow {
 
 /// Row `i` of [`FREITAG_METHODS`], measured now.
 pub fn freitag_row(i: usize) -> Result<FreitagRow> {
-    let m = FREITAG_METHODS.get(i).ok_or_else(|| {
-        Error::invalid(format!(
-            "the table has rows 0 to {}",
-            FREITAG_METHODS.len() - 1
-        ))
-    })?;
+    let m = FREITAG_METHODS.get(i).ok_or_else(|| Error::invalid(format!("the table has rows 0 to {}", FREITAG_METHODS.len() - 1)))?;
     let mut mesh = rand2d_seed1()?;
     let (mut lap, mut opt) = (0, 0);
     if let Some((strategy, kind, threshold, order, her_measure)) = m.run {
-        let mut o = SmoothOptions::default()
-            .with_strategy(strategy)
-            .with_order(order)
-            .with_threshold_deg(threshold);
+        let mut o = SmoothOptions::default().with_strategy(strategy).with_order(order).with_threshold_deg(threshold);
         if her_measure {
             o = o.with_smart_measure(Measure::MinSine);
         }
@@ -142,8 +107,7 @@ pub fn freitag_row(i: usize) -> Result<FreitagRow> {
 }
 
 pub(super) fn freitag_t1_measured() -> Result<String> {
-    let cellm =
-        |row: &str| -> Result<String> { Ok(first(&repro(1, &[row], "min angle")?).to_string()) };
+    let cellm = |row: &str| -> Result<String> { Ok(first(&repro(1, &[row], "min angle")?).to_string()) };
     Ok(format!(
         "Measured over five rand2D meshes (docs/reproduction.md §1): optimization of the smallest sine reaches a min \
          angle of {}° (Freitag {}), C2 and C3 at 30° {}° and {}°, and the new objective with Chen's rules {}°.",
@@ -159,10 +123,7 @@ pub(super) fn freitag_t1_measured() -> Result<String> {
 const FIG3_ROWS: [usize; 5] = [0, 1, 3, 5, 8];
 
 pub(super) fn freitag_histogram(c: Canvas, t: &Theme) -> Result<Pixmap> {
-    let rows: Vec<FreitagRow> = FIG3_ROWS
-        .iter()
-        .map(|&i| freitag_row(i))
-        .collect::<Result<_>>()?;
+    let rows: Vec<FreitagRow> = FIG3_ROWS.iter().map(|&i| freitag_row(i)).collect::<Result<_>>()?;
     let labels: Vec<String> = rows.iter().map(|r| r.method.replace('`', "")).collect();
     let series: Vec<HistogramSeries<'_>> = rows
         .iter()
@@ -171,23 +132,14 @@ pub(super) fn freitag_histogram(c: Canvas, t: &Theme) -> Result<Pixmap> {
         .map(|(i, (r, l))| HistogramSeries {
             label: l,
             counts: &r.stats.angle_histogram_6deg,
-            color: Some(if i == 0 {
-                Color::from_rgba8(150, 150, 150, 255)
-            } else {
-                series_color(i)
-            }),
+            color: Some(if i == 0 { Color::from_rgba8(150, 150, 150, 255) } else { series_color(i) }),
         })
         .collect();
     let mut pm = pixmap(c.w, c.h)?;
     render_angle_histogram(
         &mut pm,
         &series,
-        &AngleHistogram {
-            title: "rand2D (seed 1): corner angles after 3 passes, 6° bins",
-            dpr: c.dpr,
-            theme: *t,
-            ..AngleHistogram::default()
-        },
+        &AngleHistogram { title: "rand2D (seed 1): corner angles after 3 passes, 6° bins", dpr: c.dpr, theme: *t, ..AngleHistogram::default() },
     )?;
     Ok(pm)
 }
@@ -275,29 +227,11 @@ pub fn table_row(name: &str, i: usize) -> Result<TableRow> {
     let (method, min, max, lap, opt, rmin, rmax, paper) = match name {
         "freitag-t1" => {
             let r = freitag_row(i)?;
-            (
-                r.method,
-                r.min_angle_deg,
-                r.max_angle_deg,
-                r.laplacian_moves,
-                r.optimization_calls,
-                r.reproduction_min,
-                r.reproduction_max,
-                r.paper,
-            )
+            (r.method, r.min_angle_deg, r.max_angle_deg, r.laplacian_moves, r.optimization_calls, r.reproduction_min, r.reproduction_max, r.paper)
         }
         "freitag-t2" => {
             let r = freitag3d_row(i)?;
-            (
-                r.method,
-                r.min_dihedral_deg,
-                r.max_dihedral_deg,
-                r.laplacian_moves,
-                r.optimization_calls,
-                r.reproduction_min,
-                r.reproduction_max,
-                r.paper,
-            )
+            (r.method, r.min_dihedral_deg, r.max_dihedral_deg, r.laplacian_moves, r.optimization_calls, r.reproduction_min, r.reproduction_max, r.paper)
         }
         _ => return Err(Error::invalid(format!("figure {name} has no table"))),
     };
@@ -321,9 +255,7 @@ pub fn table_row(name: &str, i: usize) -> Result<TableRow> {
 /// 13 px), so no heading is cut off.
 pub(super) fn table_picture(name: &str, c: Canvas, theme: &Theme) -> Result<Pixmap> {
     let head = table_columns(name);
-    let rows: Vec<TableRow> = (0..table_rows(name))
-        .map(|i| table_row(name, i))
-        .collect::<Result<_>>()?;
+    let rows: Vec<TableRow> = (0..table_rows(name)).map(|i| table_row(name, i)).collect::<Result<_>>()?;
     let mut pm = pixmap(c.w, c.h)?;
     pm.fill(theme.paper);
     let s = c.dpr;
@@ -331,11 +263,7 @@ pub(super) fn table_picture(name: &str, c: Canvas, theme: &Theme) -> Result<Pixm
     // widths at 10 px, then the size that makes the widest layout fit
     let gap = 1.6; // between columns, in ems
     let widths: Vec<f32> = (0..head.len())
-        .map(|k| {
-            rows.iter()
-                .map(|r| text_width(&r.cells[k], 10.0))
-                .fold(text_width(head[k], 10.0), f32::max)
-        })
+        .map(|k| rows.iter().map(|r| text_width(&r.cells[k], 10.0)).fold(text_width(head[k], 10.0), f32::max))
         .collect();
     let total10 = widths.iter().sum::<f32>() + gap * 10.0 * (head.len() - 1) as f32;
     let line = ((h - 8.0) / (rows.len() + 1) as f32).min(30.0);
@@ -348,16 +276,8 @@ pub(super) fn table_picture(name: &str, c: Canvas, theme: &Theme) -> Result<Pixm
         x += wk * size / 10.0 + gap * size;
     }
     let text = |pm: &mut Pixmap, t: &str, col: usize, row: usize| {
-        let style = TextStyle::new(size * s)
-            .with_color(theme.ink)
-            .with_align(Align::Left, Valign::Middle);
-        draw_text(
-            pm,
-            t,
-            xs[col] * s,
-            (4.0 + line * (row as f32 + 0.5)) * s,
-            style,
-        );
+        let style = TextStyle::new(size * s).with_color(theme.ink).with_align(Align::Left, Valign::Middle);
+        draw_text(pm, t, xs[col] * s, (4.0 + line * (row as f32 + 0.5)) * s, style);
     };
     for (k, t) in head.iter().enumerate() {
         text(&mut pm, t, k, 0);
@@ -387,46 +307,16 @@ pub const FREITAG3D_METHODS: [Freitag3dMethod; 10] = {
     use ObjectiveKind::{Condition, Sine, SmoothShape};
     use Order::{Input, Priority};
     [
-        Freitag3dMethod {
-            method: "original",
-            run: None,
-        },
-        Freitag3dMethod {
-            method: "laplace (plain)",
-            run: Some((Strategy::Laplace, Sine, 30.0, Input, true)),
-        },
-        Freitag3dMethod {
-            method: "smart (min sine)",
-            run: Some((Strategy::Smart, Sine, 30.0, Input, true)),
-        },
-        Freitag3dMethod {
-            method: "opt, `sine`",
-            run: Some((Strategy::Opt, Sine, 30.0, Input, true)),
-        },
-        Freitag3dMethod {
-            method: "C1 30°, `sine`",
-            run: Some((Strategy::C1, Sine, 30.0, Input, true)),
-        },
-        Freitag3dMethod {
-            method: "C2 30°, `sine`",
-            run: Some((Strategy::C2, Sine, 30.0, Input, true)),
-        },
-        Freitag3dMethod {
-            method: "C3 30°, `sine`",
-            run: Some((Strategy::C3, Sine, 30.0, Input, true)),
-        },
-        Freitag3dMethod {
-            method: "opt, `new`",
-            run: Some((Strategy::Opt, SmoothShape, 30.0, Input, false)),
-        },
-        Freitag3dMethod {
-            method: "rules, `new`, priority",
-            run: Some((Strategy::Rules, SmoothShape, 30.0, Priority, false)),
-        },
-        Freitag3dMethod {
-            method: "opt, `condition`",
-            run: Some((Strategy::Opt, Condition, 30.0, Input, false)),
-        },
+        Freitag3dMethod { method: "original", run: None },
+        Freitag3dMethod { method: "laplace (plain)", run: Some((Strategy::Laplace, Sine, 30.0, Input, true)) },
+        Freitag3dMethod { method: "smart (min sine)", run: Some((Strategy::Smart, Sine, 30.0, Input, true)) },
+        Freitag3dMethod { method: "opt, `sine`", run: Some((Strategy::Opt, Sine, 30.0, Input, true)) },
+        Freitag3dMethod { method: "C1 30°, `sine`", run: Some((Strategy::C1, Sine, 30.0, Input, true)) },
+        Freitag3dMethod { method: "C2 30°, `sine`", run: Some((Strategy::C2, Sine, 30.0, Input, true)) },
+        Freitag3dMethod { method: "C3 30°, `sine`", run: Some((Strategy::C3, Sine, 30.0, Input, true)) },
+        Freitag3dMethod { method: "opt, `new`", run: Some((Strategy::Opt, SmoothShape, 30.0, Input, false)) },
+        Freitag3dMethod { method: "rules, `new`, priority", run: Some((Strategy::Rules, SmoothShape, 30.0, Priority, false)) },
+        Freitag3dMethod { method: "opt, `condition`", run: Some((Strategy::Opt, Condition, 30.0, Input, false)) },
     ]
 };
 
@@ -437,10 +327,7 @@ fn rand3d_seed1() -> Result<smoothlab::volume::VolumeMesh> {
     if let Some(m) = MESH.get() {
         return Ok(m.clone());
     }
-    let m = smoothlab::generate::rand3d(
-        smoothlab::generate::RAND3D_POINTS,
-        crate::lab::sample::SAMPLE_SEED,
-    )?;
+    let m = smoothlab::generate::rand3d(smoothlab::generate::RAND3D_POINTS, crate::lab::sample::SAMPLE_SEED)?;
     Ok(MESH.get_or_init(|| m).clone())
 }
 
@@ -461,19 +348,13 @@ pub struct Freitag3dRow {
 
 /// Row `i` of [`FREITAG3D_METHODS`], smoothed now (3 passes, as §10).
 pub fn freitag3d_row(i: usize) -> Result<Freitag3dRow> {
-    let m = FREITAG3D_METHODS.get(i).ok_or_else(|| {
-        Error::invalid(format!(
-            "the table has rows 0 to {}",
-            FREITAG3D_METHODS.len() - 1
-        ))
-    })?;
+    let m = FREITAG3D_METHODS
+        .get(i)
+        .ok_or_else(|| Error::invalid(format!("the table has rows 0 to {}", FREITAG3D_METHODS.len() - 1)))?;
     let mut mesh = rand3d_seed1()?;
     let (mut lap, mut opt) = (0, 0);
     if let Some((strategy, kind, threshold, order, her_measure)) = m.run {
-        let mut o = SmoothOptions::default()
-            .with_strategy(strategy)
-            .with_order(order)
-            .with_threshold_deg(threshold);
+        let mut o = SmoothOptions::default().with_strategy(strategy).with_order(order).with_threshold_deg(threshold);
         if her_measure {
             o = o.with_smart_measure(Measure::MinSine);
         }
@@ -498,20 +379,9 @@ pub fn freitag3d_row(i: usize) -> Result<Freitag3dRow> {
 }
 
 /// A volume mesh cut by `cut`, drawn by the 3D view with its title.
-pub(super) fn cut_panel(
-    mesh: &smoothlab::volume::VolumeMesh,
-    cut: smoothlab_render::Cut,
-    title: &str,
-    c: Canvas,
-    t: &Theme,
-) -> Result<Pixmap> {
+pub(super) fn cut_panel(mesh: &smoothlab::volume::VolumeMesh, cut: smoothlab_render::Cut, title: &str, c: Canvas, t: &Theme) -> Result<Pixmap> {
     let mut pm = pixmap(c.w, c.h)?;
-    let view = smoothlab_render::SurfaceView {
-        dpr: c.dpr,
-        title: Some(title.to_string()),
-        theme: *t,
-        ..smoothlab_render::SurfaceView::default()
-    };
+    let view = smoothlab_render::SurfaceView { dpr: c.dpr, title: Some(title.to_string()), theme: *t, ..smoothlab_render::SurfaceView::default() };
     mesh.render_cut(&mut pm, cut, &view);
     Ok(pm)
 }
@@ -521,84 +391,28 @@ pub(super) fn cut_panel(
 /// new objective), above the live table.
 pub(super) fn freitag_t2(c: Canvas, t: &Theme) -> Result<Pixmap> {
     let m0 = rand3d_seed1()?;
-    let top = Canvas {
-        w: c.w / 3,
-        h: (c.h as f32 * 0.52) as u32,
-        dpr: c.dpr,
-    };
-    let mut parts = vec![cut_panel(
-        &m0,
-        smoothlab_render::Cut::default(),
-        "rand3D as generated, cut at z = 0.5",
-        top,
-        t,
-    )?];
-    for (kind, title) in [
-        (ObjectiveKind::Sine, "A: opt, sine, 3 passes"),
-        (ObjectiveKind::SmoothShape, "B: opt, new, 3 passes"),
-    ] {
+    let top = Canvas { w: c.w / 3, h: (c.h as f32 * 0.52) as u32, dpr: c.dpr };
+    let mut parts = vec![cut_panel(&m0, smoothlab_render::Cut::default(), "rand3D as generated, cut at z = 0.5", top, t)?];
+    for (kind, title) in [(ObjectiveKind::Sine, "A: opt, sine, 3 passes"), (ObjectiveKind::SmoothShape, "B: opt, new, 3 passes")] {
         let mut m = m0.clone();
-        let o = SmoothOptions::default()
-            .with_strategy(Strategy::Opt)
-            .with_order(Order::Input)
-            .with_smart_measure(Measure::MinSine);
-        smoothlab::volume::smooth_volume(
-            &mut m,
-            smoothlab::objective::tet_objective(kind)?.as_ref(),
-            o,
-            3,
-            &|| 0.0,
-        )?;
-        parts.push(cut_panel(
-            &m,
-            smoothlab_render::Cut::default(),
-            title,
-            top,
-            t,
-        )?);
+        let o = SmoothOptions::default().with_strategy(Strategy::Opt).with_order(Order::Input).with_smart_measure(Measure::MinSine);
+        smoothlab::volume::smooth_volume(&mut m, smoothlab::objective::tet_objective(kind)?.as_ref(), o, 3, &|| 0.0)?;
+        parts.push(cut_panel(&m, smoothlab_render::Cut::default(), title, top, t)?);
     }
-    let table = table_picture(
-        "freitag-t2",
-        Canvas {
-            w: c.w,
-            h: c.h.saturating_sub(top.h).max(1),
-            dpr: c.dpr,
-        },
-        t,
-    )?;
+    let table = table_picture("freitag-t2", Canvas { w: c.w, h: c.h.saturating_sub(top.h).max(1), dpr: c.dpr }, t)?;
     let mut out = pixmap(c.w, c.h)?;
     out.fill(t.paper);
     for (i, p) in parts.iter().enumerate() {
-        out.draw_pixmap(
-            (i as u32 * top.w) as i32,
-            0,
-            p.as_ref(),
-            &tiny_skia::PixmapPaint::default(),
-            tiny_skia::Transform::identity(),
-            None,
-        );
+        out.draw_pixmap((i as u32 * top.w) as i32, 0, p.as_ref(), &tiny_skia::PixmapPaint::default(), tiny_skia::Transform::identity(), None);
     }
-    out.draw_pixmap(
-        0,
-        top.h as i32,
-        table.as_ref(),
-        &tiny_skia::PixmapPaint::default(),
-        tiny_skia::Transform::identity(),
-        None,
-    );
+    out.draw_pixmap(0, top.h as i32, table.as_ref(), &tiny_skia::PixmapPaint::default(), tiny_skia::Transform::identity(), None);
     Ok(out)
 }
 
 pub(super) fn freitag_t2_measured() -> Result<String> {
-    let cellm = |row: &str| -> Result<String> {
-        Ok(first(&repro(10, &[row], "min dihedral")?).to_string())
-    };
+    let cellm = |row: &str| -> Result<String> { Ok(first(&repro(10, &[row], "min dihedral")?).to_string()) };
     let paper_min = |row: &str| -> Result<String> {
-        Ok(repro(10, &[row], "paper: min / max (lap / opt)")?
-            .split(" / ")
-            .next()
-            .unwrap_or("—")
-            .to_string())
+        Ok(repro(10, &[row], "paper: min / max (lap / opt)")?.split(" / ").next().unwrap_or("—").to_string())
     };
     Ok(format!(
         "Measured over five rand3D meshes (docs/reproduction.md §10): optimization of the smallest dihedral sine \

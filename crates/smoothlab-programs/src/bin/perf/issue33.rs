@@ -4,11 +4,11 @@
 
 use std::fmt::Write as _;
 
-use crate::common::{fmt_ms, fmt_ns, read_json, target_mark};
 use crate::planar::{SizeReport, RULES_PRIORITY};
 use crate::quality::{time_to_quality, QualityReport, PAVE1_MESQUITE_S};
 use crate::volume::{measure_volume, volume_section, VolumeReport};
 use crate::wasm::wasm_rows;
+use crate::common::{fmt_ms, fmt_ns, read_json, target_mark};
 
 /// Issue 33's targets for the browser: the wasm / native ratio of every pass, the module's
 /// gzipped bytes (its size on the issue's day) and one default Step on the 1M sample.
@@ -33,62 +33,14 @@ pub(crate) const PLANAR_NODES: usize = 100_000;
 /// The pairs of issue 33's table: (pair, smoothlab's planar pass, its 3D pass, the issue's
 /// ratio in 2D, in 3D), ratio = Mesquite's time / smoothlab's, measured before this work.
 const MESQUITE_PAIRS: [(&str, &str, Option<&str>, &str, &str); 8] = [
-    (
-        "Laplace (same algorithm, equal output)",
-        "laplace",
-        Some("laplace"),
-        "39–62×",
-        "130–174×",
-    ),
-    (
-        "smart Laplace",
-        "smart",
-        Some("smart"),
-        "5.2–12.4×",
-        "3.2–3.7×",
-    ),
-    (
-        "`new` 3 it vs FeasibleNewton 3 it (mean ratio)",
-        "opt+new",
-        Some("opt+new"),
-        "4.1–4.8×",
-        "1.0–1.1×",
-    ),
-    (
-        "`rules` (the default) vs FeasibleNewton",
-        RULES_PRIORITY,
-        Some("rules+new, priority order"),
-        "1.8–2.4×",
-        "0.3–0.6×",
-    ),
-    (
-        "`condition` 3 it vs Mesquite's CG on Σ(1/α)²",
-        "opt+condition",
-        Some("opt+condition"),
-        "1.2–1.6×",
-        "2.1–2.2×",
-    ),
-    (
-        "`old` vs NonSmoothDescent, both capped at 20 iterations",
-        "opt+old, 20 it",
-        Some("opt+old, 20 it"),
-        "0.6–0.9×",
-        "0.5–0.9×",
-    ),
-    (
-        "`sine` 20 it vs NonSmoothDescent on max-min sine",
-        "opt+sine, 20 it",
-        None,
-        "0.7–1.1×",
-        "—",
-    ),
-    (
-        "`untangle` vs UntangleWrapper's body",
-        "opt+untangle",
-        Some("opt+untangle"),
-        "0.7–1.7×",
-        "8–11×",
-    ),
+    ("Laplace (same algorithm, equal output)", "laplace", Some("laplace"), "39–62×", "130–174×"),
+    ("smart Laplace", "smart", Some("smart"), "5.2–12.4×", "3.2–3.7×"),
+    ("`new` 3 it vs FeasibleNewton 3 it (mean ratio)", "opt+new", Some("opt+new"), "4.1–4.8×", "1.0–1.1×"),
+    ("`rules` (the default) vs FeasibleNewton", RULES_PRIORITY, Some("rules+new, priority order"), "1.8–2.4×", "0.3–0.6×"),
+    ("`condition` 3 it vs Mesquite's CG on Σ(1/α)²", "opt+condition", Some("opt+condition"), "1.2–1.6×", "2.1–2.2×"),
+    ("`old` vs NonSmoothDescent, both capped at 20 iterations", "opt+old, 20 it", Some("opt+old, 20 it"), "0.6–0.9×", "0.5–0.9×"),
+    ("`sine` 20 it vs NonSmoothDescent on max-min sine", "opt+sine, 20 it", None, "0.7–1.1×", "—"),
+    ("`untangle` vs UntangleWrapper's body", "opt+untangle", Some("opt+untangle"), "0.7–1.7×", "8–11×"),
 ];
 
 /// The planar passes the issue-33 sections read (the wasm bench's and the pairs' and the
@@ -127,24 +79,11 @@ impl BeforeAfter {
             .into_iter()
             .flatten()
             .filter_map(|r| {
-                let runs = r["runs"]
-                    .as_u64()
-                    .unwrap_or(v["reps"].as_u64().unwrap_or(0));
-                Some((
-                    text(r, "target"),
-                    text(r, "mesh"),
-                    text(r, "options"),
-                    r["before_ms"].as_f64()?,
-                    r["after_ms"].as_f64()?,
-                    runs,
-                ))
+                let runs = r["runs"].as_u64().unwrap_or(v["reps"].as_u64().unwrap_or(0));
+                Some((text(r, "target"), text(r, "mesh"), text(r, "options"), r["before_ms"].as_f64()?, r["after_ms"].as_f64()?, runs))
             })
             .collect();
-        BeforeAfter {
-            base: v["base"].as_str().unwrap_or("?").to_string(),
-            reps: v["reps"].as_u64().unwrap_or(0),
-            rows,
-        }
+        BeforeAfter { base: v["base"].as_str().unwrap_or("?").to_string(), reps: v["reps"].as_u64().unwrap_or(0), rows }
     }
     /// Before / after of `pass` in `dim` (2D, 3D, hexahedra), when measured.
     fn speedup(&self, dim: &str, pass: &str) -> Option<f64> {
@@ -165,27 +104,14 @@ impl BeforeAfter {
              of the runs (at least {}, at most 25) of the pass's own time (`elapsed_ms`: the node loop alone).\n",
             self.base, self.reps
         );
-        let _ = writeln!(
-            w,
-            "| target | mesh | options | runs | before | after | speed-up |"
-        );
+        let _ = writeln!(w, "| target | mesh | options | runs | before | after | speed-up |");
         let _ = writeln!(w, "|---|---|---|---:|---:|---:|---:|");
         let mut last = "";
         for (t, mesh, options, b, a, runs) in &self.rows {
             // a mesh named once for the rows that share it
-            let shown = if mesh == last {
-                "as above"
-            } else {
-                mesh.as_str()
-            };
+            let shown = if mesh == last { "as above" } else { mesh.as_str() };
             last = mesh;
-            let _ = writeln!(
-                w,
-                "| {t} | {shown} | `{options}` | {runs} | {} | {} | {:.2}× |",
-                fmt_ms(*b),
-                fmt_ms(*a),
-                b / a
-            );
+            let _ = writeln!(w, "| {t} | {shown} | `{options}` | {runs} | {} | {} | {:.2}× |", fmt_ms(*b), fmt_ms(*a), b / a);
         }
         w.push('\n');
         w
@@ -193,12 +119,7 @@ impl BeforeAfter {
 }
 
 /// smoothlab's figure of `pass` in this run: 2D on rand2d 100k Hilbert, 3D on rand3D.
-fn this_run(
-    planar: Option<&SizeReport>,
-    volume: &VolumeReport,
-    dim: &str,
-    pass: &str,
-) -> Option<f64> {
+fn this_run(planar: Option<&SizeReport>, volume: &VolumeReport, dim: &str, pass: &str) -> Option<f64> {
     if dim == "3D" {
         volume.get(pass, 0).map(|f| f.ns_per_node)
     } else {
@@ -206,11 +127,7 @@ fn this_run(
     }
 }
 
-fn versus_mesquite(
-    planar: Option<&SizeReport>,
-    volume: &VolumeReport,
-    before_after: &BeforeAfter,
-) -> String {
+fn versus_mesquite(planar: Option<&SizeReport>, volume: &VolumeReport, before_after: &BeforeAfter) -> String {
     let mut w = String::new();
     let _ = writeln!(w, "## Versus Mesquite (issue 33)\n");
     let _ = writeln!(
@@ -223,14 +140,8 @@ fn versus_mesquite(
     let _ = writeln!(w, "| pair | smoothlab 2D | issue's ratio 2D | estimate now 2D | smoothlab 3D | issue's ratio 3D | estimate now 3D |");
     let _ = writeln!(w, "|---|---:|---:|---:|---:|---:|---:|");
     let scaled = |ratio: &str, dim: &str, pass: &str| -> String {
-        let Some(s) = before_after.speedup(dim, pass) else {
-            return "—".into();
-        };
-        let parts: Vec<f64> = ratio
-            .trim_end_matches('×')
-            .split('–')
-            .filter_map(|x| x.parse().ok())
-            .collect();
+        let Some(s) = before_after.speedup(dim, pass) else { return "—".into() };
+        let parts: Vec<f64> = ratio.trim_end_matches('×').split('–').filter_map(|x| x.parse().ok()).collect();
         match parts.as_slice() {
             [a, b] => format!("{}–{}×", fmt_ratio(a * s), fmt_ratio(b * s)),
             [a] => format!("{}×", fmt_ratio(a * s)),
@@ -269,10 +180,7 @@ fn issue33_targets(
     load: &str,
 ) -> String {
     let mut w = String::new();
-    let _ = writeln!(
-        w,
-        "## Against the targets of issue 33 (performance versus Mesquite)\n"
-    );
+    let _ = writeln!(w, "## Against the targets of issue 33 (performance versus Mesquite)\n");
     w += &before_after.table();
     let _ = writeln!(
         w,
@@ -283,31 +191,11 @@ fn issue33_targets(
     let _ = writeln!(w, "|---|---:|---:|---:|---|");
     let speedups: [(&str, &str, &str, f64); 7] = [
         ("3D: `opt`+`new` ≥ 3× faster", "3D", "opt+new", 3.0),
-        (
-            "3D: `rules`+`new` (priority order) ≥ 3× faster",
-            "3D",
-            "rules+new, priority order",
-            3.0,
-        ),
-        (
-            "3D: `old` with 20 iterations ≥ 2× faster",
-            "3D",
-            "opt+old, 20 it",
-            2.0,
-        ),
+        ("3D: `rules`+`new` (priority order) ≥ 3× faster", "3D", "rules+new, priority order", 3.0),
+        ("3D: `old` with 20 iterations ≥ 2× faster", "3D", "opt+old, 20 it", 2.0),
         ("2D: `condition` ≥ 3× faster", "2D", "opt+condition", 3.0),
-        (
-            "2D: `old` with 20 iterations ≥ 2× faster per node-pass",
-            "2D",
-            "opt+old, 20 it",
-            2.0,
-        ),
-        (
-            "2D: `sine` with 20 iterations ≥ 2× faster per node-pass",
-            "2D",
-            "opt+sine, 20 it",
-            2.0,
-        ),
+        ("2D: `old` with 20 iterations ≥ 2× faster per node-pass", "2D", "opt+old, 20 it", 2.0),
+        ("2D: `sine` with 20 iterations ≥ 2× faster per node-pass", "2D", "opt+sine, 20 it", 2.0),
         ("2D: `untangle` ≥ 2× faster", "2D", "opt+untangle", 2.0),
     ];
     for (what, dim, pass, target) in speedups {
@@ -315,27 +203,17 @@ fn issue33_targets(
         let cells = match before_after.rows.iter().find(|r| r.0 == name) {
             Some((_, _, _, b, a, _)) => {
                 let s = b / a;
-                let met = if s >= target {
-                    "✓".to_string()
-                } else {
-                    format!("✗ ({:.2}× of the {target}×)", s)
-                };
+                let met = if s >= target { "✓".to_string() } else { format!("✗ ({:.2}× of the {target}×)", s) };
                 format!("{} | {} | {s:.2}× | {met}", fmt_ms(*b), fmt_ms(*a))
             }
-            None => "not measured | not measured | — | not measured (no `--before-after` file)"
-                .to_string(),
+            None => "not measured | not measured | — | not measured (no `--before-after` file)".to_string(),
         };
         let _ = writeln!(w, "| {what} | {cells} |");
     }
     // hexahedra per corner, the worst of the passes the target names
     let worst = ["opt+new", "rules+new, priority order", "opt+old, 20 it"]
         .iter()
-        .filter_map(|&p| {
-            Some((
-                p,
-                volume.get(p, 1)?.ns_per_corner / volume.get(p, 0)?.ns_per_corner,
-            ))
-        })
+        .filter_map(|&p| Some((p, volume.get(p, 1)?.ns_per_corner / volume.get(p, 0)?.ns_per_corner)))
         .max_by(|a, b| a.1.total_cmp(&b.1));
     if let Some((p, r)) = worst {
         let _ = writeln!(
@@ -362,12 +240,7 @@ fn issue33_targets(
         Some(v) => {
             let ratios: Vec<(String, f64)> = wasm_rows(&v, reports)
                 .into_iter()
-                .filter_map(|(n, h, ns, nat)| {
-                    Some((
-                        format!("{n}, {}", if h { "Hilbert" } else { "file order" }),
-                        ns / nat?,
-                    ))
-                })
+                .filter_map(|(n, h, ns, nat)| Some((format!("{n}, {}", if h { "Hilbert" } else { "file order" }), ns / nat?)))
                 .collect();
             let worst = ratios.iter().max_by(|a, b| a.1.total_cmp(&b.1));
             let _ = writeln!(
@@ -389,9 +262,7 @@ fn issue33_targets(
         gz.map_or("not measured (no `--page` file)".into(), |b| format!("{b:.0} bytes")),
         gz.map_or("not measured".into(), |b| target_mark(b, MODULE_GZIP_TARGET))
     );
-    let step = page
-        .as_ref()
-        .and_then(|v| v["million"]["default_step"]["wall_ms"].as_f64());
+    let step = page.as_ref().and_then(|v| v["million"]["default_step"]["wall_ms"].as_f64());
     let _ = writeln!(
         w,
         "| the page: one default Step on the 1M sample ≤ {STEP_1M_TARGET_S} s | 10.0 s (`docs/performance.md` of 2026-11-24) | {} | ≤ {STEP_1M_TARGET_S} s | {} |",
@@ -404,20 +275,10 @@ fn issue33_targets(
 
 /// Issue 33's sections: the 3D passes, the time to quality, versus Mesquite and the targets
 /// (the planar figures from `reports`, the 100k one).
-pub(crate) fn issue33_sections(
-    reports: &[SizeReport],
-    quick: bool,
-    wasm: Option<&str>,
-    page: Option<&str>,
-    before_after: Option<&str>,
-) -> String {
+pub(crate) fn issue33_sections(reports: &[SizeReport], quick: bool, wasm: Option<&str>, page: Option<&str>, before_after: Option<&str>) -> String {
     let before_after = BeforeAfter::read(before_after);
     let load = std::fs::read_to_string("/proc/loadavg").unwrap_or_default();
-    let load = load
-        .split_whitespace()
-        .take(3)
-        .collect::<Vec<_>>()
-        .join(" ");
+    let load = load.split_whitespace().take(3).collect::<Vec<_>>().join(" ");
     eprintln!("perf: tetrahedra and hexahedra …");
     let volume = measure_volume(quick);
     eprintln!("perf: time to quality …");

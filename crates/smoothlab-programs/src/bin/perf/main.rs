@@ -57,15 +57,10 @@ fn machine() -> String {
                 .map(|l| l.split(':').nth(1).unwrap_or("").trim().to_string())
         })
         .unwrap_or_else(|| "unknown".into());
-    let cores = std::thread::available_parallelism()
-        .map(|n| n.get())
-        .unwrap_or(1);
+    let cores = std::thread::available_parallelism().map(|n| n.get()).unwrap_or(1);
     let load = std::fs::read_to_string("/proc/loadavg").unwrap_or_default();
     let load: Vec<&str> = load.split_whitespace().take(3).collect();
-    format!(
-        "{cores} cores ({cpu}); load average {} at the start",
-        load.join(" ")
-    )
+    format!("{cores} cores ({cpu}); load average {} at the start", load.join(" "))
 }
 
 fn main() {
@@ -83,14 +78,7 @@ fn main() {
     let mut args = std::env::args().skip(1);
     while let Some(a) = args.next() {
         match a.as_str() {
-            "--sizes" => {
-                sizes = args
-                    .next()
-                    .unwrap_or_default()
-                    .split(',')
-                    .filter_map(|s| s.parse().ok())
-                    .collect()
-            }
+            "--sizes" => sizes = args.next().unwrap_or_default().split(',').filter_map(|s| s.parse().ok()).collect(),
             "--wasm" => wasm = args.next(),
             "--page" => page = args.next(),
             "--page-only" => page_only = true,
@@ -105,11 +93,7 @@ fn main() {
             "--quick" => quick = true,
             "--issue33" => issue33_only = true,
             "--native-peers" => {
-                native_peers(
-                    &args.next().unwrap_or_else(|| {
-                        panic!("--native-peers needs the bench page's JSON file")
-                    }),
-                );
+                native_peers(&args.next().unwrap_or_else(|| panic!("--native-peers needs the bench page's JSON file")));
                 return;
             }
             "--before-after" => before_after = args.next(),
@@ -140,16 +124,7 @@ fn main() {
             println!("| {name} | {} | {} |", fmt_ns(*a), fmt_ns(*b));
         }
         println!();
-        print!(
-            "{}",
-            issue33_sections(
-                &reports,
-                quick,
-                wasm.as_deref(),
-                page.as_deref(),
-                before_after.as_deref()
-            )
-        );
+        print!("{}", issue33_sections(&reports, quick, wasm.as_deref(), page.as_deref(), before_after.as_deref()));
         return;
     }
     let machine = machine();
@@ -169,24 +144,10 @@ fn main() {
         measure_rows(PLANAR_NODES, &ISSUE33_PLANAR, quick)
     });
     let issue33 = match extra {
-        Some(r) => issue33_sections(
-            &[r],
-            quick,
-            wasm.as_deref(),
-            page.as_deref(),
-            before_after.as_deref(),
-        ),
-        None => issue33_sections(
-            &reports,
-            quick,
-            wasm.as_deref(),
-            page.as_deref(),
-            before_after.as_deref(),
-        ),
+        Some(r) => issue33_sections(&[r], quick, wasm.as_deref(), page.as_deref(), before_after.as_deref()),
+        None => issue33_sections(&reports, quick, wasm.as_deref(), page.as_deref(), before_after.as_deref()),
     };
-    let doc = render(&machine, &reports, &quality, &memory, wasm.as_deref())
-        + &issue33
-        + &page_section(page.as_deref());
+    let doc = render(&machine, &reports, &quality, &memory, wasm.as_deref()) + &issue33 + &page_section(page.as_deref());
     let doc = markdown::wrap(&doc);
     match out {
         Some(p) => std::fs::write(&p, &doc).unwrap_or_else(|e| panic!("cannot write {p}: {e}")),
@@ -197,10 +158,7 @@ fn main() {
         for r in &reports {
             let mut m = serde_json::Map::new();
             for (name, a, b) in &r.rows {
-                m.insert(
-                    name.clone(),
-                    serde_json::json!({"file_order_ns": a, "hilbert_ns": b}),
-                );
+                m.insert(name.clone(), serde_json::json!({"file_order_ns": a, "hilbert_ns": b}));
             }
             j.insert(r.nodes.to_string(), serde_json::Value::Object(m));
         }

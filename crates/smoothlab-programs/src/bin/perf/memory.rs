@@ -26,27 +26,12 @@ const MEMORY_MESH: (usize, usize, u64) = (999_576, 1000, SEED);
 /// The commands whose peak resident memory the memory section reports, each run in a
 /// child process (`--memory-child`): (what it does, its words for `memory_child`).
 const MEMORY_COMMANDS: [(&str, &[&str]); 6] = [
-    (
-        "`smoothlab generate rand2d` (spade's Delaunay), written as .msh",
-        &["generate"],
-    ),
+    ("`smoothlab generate rand2d` (spade's Delaunay), written as .msh", &["generate"]),
     ("`smoothlab stats` (read the .msh, statistics)", &["stats"]),
-    (
-        "`smoothlab smooth`: read, 3 passes of rules + new in priority order (the default), write",
-        &["smooth", "rules"],
-    ),
-    (
-        "`smooth --strategy laplace`: read, 3 passes, write",
-        &["smooth", "laplace"],
-    ),
-    (
-        "`smooth --strategy opt`: read, 3 passes, write",
-        &["smooth", "opt"],
-    ),
-    (
-        "`smooth --strategy smart`: read, 3 passes, write",
-        &["smooth", "smart"],
-    ),
+    ("`smoothlab smooth`: read, 3 passes of rules + new in priority order (the default), write", &["smooth", "rules"]),
+    ("`smooth --strategy laplace`: read, 3 passes, write", &["smooth", "laplace"]),
+    ("`smooth --strategy opt`: read, 3 passes, write", &["smooth", "opt"]),
+    ("`smooth --strategy smart`: read, 3 passes, write", &["smooth", "smart"]),
 ];
 
 /// A command of [`MEMORY_COMMANDS`] as `smoothlab` runs it (the library calls of its
@@ -75,12 +60,8 @@ pub(crate) fn memory_child(words: &[String]) {
                 other => panic!("perf: no strategy {other}"),
             };
             let obj = objective(ObjectiveKind::SmoothShape);
-            let mut smoother = Smoother::new(
-                SmoothOptions::default()
-                    .with_strategy(strategy)
-                    .with_order(order),
-            )
-            .expect("options");
+            let mut smoother =
+                Smoother::new(SmoothOptions::default().with_strategy(strategy).with_order(order)).expect("options");
             let t0 = Instant::now();
             let clock = move || t0.elapsed().as_secs_f64() * 1e3;
             for _ in 0..3 {
@@ -97,17 +78,9 @@ pub(crate) fn memory_child(words: &[String]) {
 /// The peak resident memory, bytes, of a child running `memory_child` with `words`.
 fn child_peak(words: &[&str]) -> Option<usize> {
     let exe = std::env::current_exe().ok()?;
-    let out = std::process::Command::new(exe)
-        .arg("--memory-child")
-        .args(words)
-        .output()
-        .ok()?;
+    let out = std::process::Command::new(exe).arg("--memory-child").args(words).output().ok()?;
     if !out.status.success() {
-        eprintln!(
-            "perf: --memory-child {}: {}",
-            words.join(" "),
-            String::from_utf8_lossy(&out.stderr)
-        );
+        eprintln!("perf: --memory-child {}: {}", words.join(" "), String::from_utf8_lossy(&out.stderr));
         return None;
     }
     String::from_utf8(out.stdout).ok()?.trim().parse().ok()
@@ -130,10 +103,7 @@ pub(crate) fn memory_section(page_memory: Option<&str>) -> String {
          *Shared* arrays are shared by the mesh's clones, so the page's two sides hold them once.\n",
         mesh.edges().len()
     );
-    let _ = writeln!(
-        w,
-        "| array | MB | bytes per node | bytes per element | shared |\n|---|---:|---:|---:|---|"
-    );
+    let _ = writeln!(w, "| array | MB | bytes per node | bytes per element | shared |\n|---|---:|---:|---:|---|");
     let parts = mesh.memory_parts();
     for p in &parts {
         let _ = writeln!(
@@ -163,8 +133,7 @@ pub(crate) fn memory_section(page_memory: Option<&str>) -> String {
     let _ = std::fs::create_dir_all(&dir);
     let file = dir.join("rand2d-1m.msh");
     let out = dir.join("smoothed.msh");
-    smoothlab::io::write_path(&mesh, &file, &smoothlab::io::WriteOptions::default())
-        .expect("write the test mesh");
+    smoothlab::io::write_path(&mesh, &file, &smoothlab::io::WriteOptions::default()).expect("write the test mesh");
     drop(mesh);
     let size = std::fs::metadata(&file).map(|m| m.len()).unwrap_or(0);
     let _ = writeln!(
@@ -174,10 +143,7 @@ pub(crate) fn memory_section(page_memory: Option<&str>) -> String {
         size as f64 / 1e6
     );
     let _ = writeln!(w, "| command | peak RSS | ≤ 250 MB |\n|---|---:|---|");
-    let (f, o) = (
-        file.to_string_lossy().into_owned(),
-        out.to_string_lossy().into_owned(),
-    );
+    let (f, o) = (file.to_string_lossy().into_owned(), out.to_string_lossy().into_owned());
     let gen_out = dir.join("generated.msh").to_string_lossy().into_owned();
     for (what, words) in MEMORY_COMMANDS {
         let mut args: Vec<&str> = words.to_vec();
@@ -191,17 +157,9 @@ pub(crate) fn memory_section(page_memory: Option<&str>) -> String {
         }
         eprintln!("perf: memory of {}", args.join(" "));
         let peak = child_peak(&args);
-        let shown = peak
-            .map(|b| format!("{:.0} MB", b as f64 / 1e6))
-            .unwrap_or_else(|| "failed".into());
+        let shown = peak.map(|b| format!("{:.0} MB", b as f64 / 1e6)).unwrap_or_else(|| "failed".into());
         let met = match (words[0], peak) {
-            ("smooth", Some(b)) => {
-                if b as f64 <= 250e6 {
-                    "✓"
-                } else {
-                    "✗"
-                }
-            }
+            ("smooth", Some(b)) => if b as f64 <= 250e6 { "✓" } else { "✗" },
             _ => "",
         };
         let _ = writeln!(w, "| {what} | {shown} | {met} |");
@@ -210,24 +168,16 @@ pub(crate) fn memory_section(page_memory: Option<&str>) -> String {
     let _ = writeln!(w);
     // the page
     let _ = writeln!(w, "The page (`node tests/browser/page_memory.mjs`): the worker's wasm memory (`memory.buffer.byteLength`, which never shrinks) with the 1M-node sample, both sides in one worker. Target: ≤ 400 MiB.\n");
-    let v: Option<serde_json::Value> = page_memory
-        .and_then(|p| std::fs::read_to_string(p).ok())
-        .and_then(|t| serde_json::from_str(&t).ok());
+    let v: Option<serde_json::Value> =
+        page_memory.and_then(|p| std::fs::read_to_string(p).ok()).and_then(|t| serde_json::from_str(&t).ok());
     match v {
         None => {
             let _ = writeln!(w, "Not measured in this run (no `--page-memory` file).\n");
         }
         Some(v) => {
-            let mib = |x: &serde_json::Value| {
-                x.as_f64()
-                    .map(|b| b / (1u64 << 20) as f64)
-                    .unwrap_or(f64::NAN)
-            };
+            let mib = |x: &serde_json::Value| x.as_f64().map(|b| b / (1u64 << 20) as f64).unwrap_or(f64::NAN);
             let mark = |x: f64| if x <= 400.0 { "✓" } else { "✗" };
-            let (loaded, smoothed) = (
-                mib(&v["loaded"]["peak_bytes"]),
-                mib(&v["smoothed"]["peak_bytes"]),
-            );
+            let (loaded, smoothed) = (mib(&v["loaded"]["peak_bytes"]), mib(&v["smoothed"]["peak_bytes"]));
             let _ = writeln!(
                 w,
                 "| {} ({} nodes, {} elements) | wasm memory | ≤ 400 MiB |\n|---|---:|---|\n| the sample loaded and drawn | {loaded:.0} MiB | {} |\n| after one Step (rules, priority order, both sides) | {smoothed:.0} MiB | {} |\n",

@@ -9,11 +9,8 @@ use crate::common::median;
 /// playground page itself at 100k and 1M nodes.
 pub(crate) fn page_section(path: Option<&str>) -> String {
     let mut w = String::new();
-    let _ = writeln!(
-        w,
-        "## In the page
-"
-    );
+    let _ = writeln!(w, "## In the page
+");
     let v: serde_json::Value = match path.map(std::fs::read_to_string) {
         None => {
             let _ = writeln!(w, "Not measured in this run (no `--page` file).\n");
@@ -36,11 +33,7 @@ pub(crate) fn page_section(path: Option<&str>) -> String {
     let pair = |x: &serde_json::Value| format!("{} / {}", ms(&x[0]), ms(&x[1]));
     let h = &v["hundred_k"];
     let steps = h["steps"].as_array().cloned().unwrap_or_default();
-    let canvas = steps
-        .first()
-        .map(|s| &s["median"]["canvas"])
-        .cloned()
-        .unwrap_or_default();
+    let canvas = steps.first().map(|s| &s["median"]["canvas"]).cloned().unwrap_or_default();
     let _ = writeln!(
         w,
         "The playground page itself (`www/index.html`), driven as a user drives it by `node tests/browser/page_bench.mjs` \
@@ -82,12 +75,7 @@ pub(crate) fn page_section(path: Option<&str>) -> String {
                         .iter()
                         .map(|r| {
                             let (a, b) = (f(&r["sweep_ms"][0]), f(&r["sweep_ms"][1]));
-                            f(&r["wall_ms"])
-                                - if f(&r["workers"]) == 2.0 {
-                                    a.max(b)
-                                } else {
-                                    a + b
-                                }
+                            f(&r["wall_ms"]) - if f(&r["workers"]) == 2.0 { a.max(b) } else { a + b }
                         })
                         .collect())
                     .unwrap_or_else(|| vec![f64::NAN])
@@ -109,10 +97,7 @@ pub(crate) fn page_section(path: Option<&str>) -> String {
          messages, painting and the tables."
     );
     let ready = &h["second_worker_ready_ms"];
-    let workers = steps
-        .first()
-        .map(|s| f(&s["median"]["workers"]))
-        .unwrap_or(f64::NAN);
+    let workers = steps.first().map(|s| f(&s["median"]["workers"])).unwrap_or(f64::NAN);
     let _ = writeln!(
         w,
         "\nA planar mesh of 20k to 500k nodes is smoothed in two workers, one side each (`www/app/workers.js`; \

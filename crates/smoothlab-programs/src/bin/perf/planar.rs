@@ -54,9 +54,7 @@ fn stream_bound(mesh: &mut Mesh) -> u32 {
 }
 
 fn options(strategy: Strategy) -> SmoothOptions {
-    SmoothOptions::default()
-        .with_strategy(strategy)
-        .with_order(Order::Input)
+    SmoothOptions::default().with_strategy(strategy).with_order(Order::Input)
 }
 
 /// How a measured pass departs from the input-order defaults of [`options`].
@@ -91,10 +89,7 @@ impl Variant {
 /// the visits (the free nodes for [`Variant::Priority`], so its figure is per free node).
 fn sweep(mesh: &mut Mesh, strategy: Strategy, kind: ObjectiveKind, variant: Variant) -> u32 {
     let obj = objective(kind);
-    let visits = Smoother::new(variant.options(strategy))
-        .expect("options")
-        .sweep(mesh, &*obj)
-        .visits;
+    let visits = Smoother::new(variant.options(strategy)).expect("options").sweep(mesh, &*obj).visits;
     if variant == Variant::Priority {
         mesh.free_count() as u32
     } else {
@@ -105,96 +100,21 @@ fn sweep(mesh: &mut Mesh, strategy: Strategy, kind: ObjectiveKind, variant: Vari
 /// The passes measured, by name: strategy, objective and how the options depart from the
 /// input-order defaults.
 const PASSES: [(&str, Strategy, ObjectiveKind, Variant); 15] = [
-    (
-        "laplace",
-        Strategy::Laplace,
-        ObjectiveKind::SmoothShape,
-        Variant::Default,
-    ),
-    (
-        "smart",
-        Strategy::Smart,
-        ObjectiveKind::SmoothShape,
-        Variant::Default,
-    ),
-    (
-        "opt+new",
-        Strategy::Opt,
-        ObjectiveKind::SmoothShape,
-        Variant::Default,
-    ),
-    (
-        "opt+old",
-        Strategy::Opt,
-        ObjectiveKind::MaxMinShape,
-        Variant::Default,
-    ),
-    (
-        "opt+old, 20 it",
-        Strategy::Opt,
-        ObjectiveKind::MaxMinShape,
-        Variant::MaxIter(20),
-    ),
-    (
-        "opt+sine",
-        Strategy::Opt,
-        ObjectiveKind::Sine,
-        Variant::Default,
-    ),
-    (
-        "opt+sine, 20 it",
-        Strategy::Opt,
-        ObjectiveKind::Sine,
-        Variant::MaxIter(20),
-    ),
-    (
-        "opt+condition",
-        Strategy::Opt,
-        ObjectiveKind::Condition,
-        Variant::Default,
-    ),
-    (
-        "opt+condition-max",
-        Strategy::Opt,
-        ObjectiveKind::ConditionMax,
-        Variant::Default,
-    ),
-    (
-        "opt+untangle",
-        Strategy::Opt,
-        ObjectiveKind::Untangle,
-        Variant::Default,
-    ),
-    (
-        "opt+untangle-mindet",
-        Strategy::Opt,
-        ObjectiveKind::UntangleMinDet,
-        Variant::Default,
-    ),
-    (
-        "rules+new",
-        Strategy::Rules,
-        ObjectiveKind::SmoothShape,
-        Variant::Default,
-    ),
-    (
-        RULES_PRIORITY,
-        Strategy::Rules,
-        ObjectiveKind::SmoothShape,
-        Variant::Priority,
-    ),
-    (
-        "opt+new, Chen's search",
-        Strategy::Opt,
-        ObjectiveKind::SmoothShape,
-        Variant::ChenAlone,
-    ),
-    (
-        "rules+new, Chen's search",
-        Strategy::Rules,
-        ObjectiveKind::SmoothShape,
-        Variant::ChenAlone,
-    ),
+    ("laplace", Strategy::Laplace, ObjectiveKind::SmoothShape, Variant::Default),
+    ("smart", Strategy::Smart, ObjectiveKind::SmoothShape, Variant::Default),
+    ("opt+new", Strategy::Opt, ObjectiveKind::SmoothShape, Variant::Default),
+    ("opt+old", Strategy::Opt, ObjectiveKind::MaxMinShape, Variant::Default),
+    ("opt+old, 20 it", Strategy::Opt, ObjectiveKind::MaxMinShape, Variant::MaxIter(20)),
+    ("opt+sine", Strategy::Opt, ObjectiveKind::Sine, Variant::Default),
+    ("opt+sine, 20 it", Strategy::Opt, ObjectiveKind::Sine, Variant::MaxIter(20)),
+    ("opt+condition", Strategy::Opt, ObjectiveKind::Condition, Variant::Default),
+    ("opt+condition-max", Strategy::Opt, ObjectiveKind::ConditionMax, Variant::Default),
+    ("opt+untangle", Strategy::Opt, ObjectiveKind::Untangle, Variant::Default),
+    ("opt+untangle-mindet", Strategy::Opt, ObjectiveKind::UntangleMinDet, Variant::Default),
+    ("rules+new", Strategy::Rules, ObjectiveKind::SmoothShape, Variant::Default),
+    (RULES_PRIORITY, Strategy::Rules, ObjectiveKind::SmoothShape, Variant::Priority),
+    ("opt+new, Chen's search", Strategy::Opt, ObjectiveKind::SmoothShape, Variant::ChenAlone),
+    ("rules+new, Chen's search", Strategy::Rules, ObjectiveKind::SmoothShape, Variant::ChenAlone),
 ];
 
 /// The row of `rules` + `new` in priority order, the default smoother (per free node).
@@ -202,10 +122,7 @@ pub(crate) const RULES_PRIORITY: &str = "rules+new, priority order (per free nod
 
 /// The pass of [`PASSES`] named `name`.
 fn pass_named(name: &str) -> (&'static str, Strategy, ObjectiveKind, Variant) {
-    *PASSES
-        .iter()
-        .find(|p| p.0 == name)
-        .unwrap_or_else(|| panic!("perf: no pass {name}"))
+    *PASSES.iter().find(|p| p.0 == name).unwrap_or_else(|| panic!("perf: no pass {name}"))
 }
 
 /// An objective that counts the evaluations of another (for the cost analysis).
@@ -229,11 +146,7 @@ impl Objective for Counted<'_> {
         self.calls.set(self.calls.get() + 1);
         self.inner.value_and_gradient(star, x)
     }
-    fn value_gradient_hessian(
-        &self,
-        star: &Star,
-        x: glam::DVec2,
-    ) -> Option<(f64, glam::DVec2, glam::DMat2)> {
+    fn value_gradient_hessian(&self, star: &Star, x: glam::DVec2) -> Option<(f64, glam::DVec2, glam::DMat2)> {
         self.calls.set(self.calls.get() + 1);
         self.inner.value_gradient_hessian(star, x)
     }
@@ -243,28 +156,13 @@ impl Objective for Counted<'_> {
 /// (the default options, or Chen's search alone).
 fn evaluations_per_visit(mesh: &Mesh, kind: ObjectiveKind, chen_alone: bool) -> (f64, f64) {
     let obj = objective(kind);
-    let counted = Counted {
-        inner: &*obj,
-        calls: std::cell::Cell::new(0),
-    };
+    let counted = Counted { inner: &*obj, calls: std::cell::Cell::new(0) };
     let mut m = mesh.clone();
-    let variant = if chen_alone {
-        Variant::ChenAlone
-    } else {
-        Variant::Default
-    };
-    let visits = Smoother::new(variant.options(Strategy::Opt))
-        .expect("options")
-        .sweep(&mut m, &counted)
-        .visits;
-    let elements: usize = (0..mesh.node_count())
-        .filter(|&i| mesh.is_free(i))
-        .map(|i| mesh.node_elements(i).len())
-        .sum();
-    (
-        counted.calls.get() as f64 / visits.max(1) as f64,
-        elements as f64 / visits.max(1) as f64,
-    )
+    let variant = if chen_alone { Variant::ChenAlone } else { Variant::Default };
+    let visits = Smoother::new(variant.options(Strategy::Opt)).expect("options").sweep(&mut m, &counted).visits;
+    let elements: usize =
+        (0..mesh.node_count()).filter(|&i| mesh.is_free(i)).map(|i| mesh.node_elements(i).len()).sum();
+    (counted.calls.get() as f64 / visits.max(1) as f64, elements as f64 / visits.max(1) as f64)
 }
 
 /// Chen's search alone against Newton's first trial (the default) on the meshes of
@@ -275,36 +173,18 @@ fn evaluations_per_visit(mesh: &Mesh, kind: ObjectiveKind, chen_alone: bool) -> 
 pub(crate) fn newton_quality() -> Vec<(String, [f64; 4], [f64; 4])> {
     use smoothlab::generate::{perturb, plate, random_grid, GridKind, PlateKind};
     let mut families: Vec<(String, Vec<Mesh>)> = Vec::new();
-    for (kind, name) in [
-        (PlateKind::Quad, "quads"),
-        (PlateKind::Tri, "triangles"),
-        (PlateKind::Mixed, "mixed"),
-    ] {
+    for (kind, name) in [(PlateKind::Quad, "quads"), (PlateKind::Tri, "triangles"), (PlateKind::Mixed, "mixed")] {
         let plate = plate(kind, 1, 5).expect("a plate");
-        let meshes = (1..=20)
-            .map(|seed| perturb(&plate, 0.5, seed).expect("perturbed"))
-            .collect();
+        let meshes = (1..=20).map(|seed| perturb(&plate, 0.5, seed).expect("perturbed")).collect();
         families.push((format!("tangled plate, {name} (seeds 1–20)"), meshes));
     }
     families.push((
         "Knupp's random grid, 10 × 10 (seeds 1–10)".into(),
-        (1..=10)
-            .map(|seed| random_grid(10, GridKind::Quad, seed).expect("a grid"))
-            .collect(),
+        (1..=10).map(|seed| random_grid(10, GridKind::Quad, seed).expect("a grid")).collect(),
     ));
-    families.push((
-        "rand2D, 2000 + 4 × 40 points (seeds 1–5)".into(),
-        (1..=5)
-            .map(|seed| rand2d(2000, 40, seed).expect("rand2d"))
-            .collect(),
-    ));
+    families.push(("rand2D, 2000 + 4 × 40 points (seeds 1–5)".into(), (1..=5).map(|seed| rand2d(2000, 40, seed).expect("rand2d")).collect()));
     // Freitag's size (`docs/reproduction.md` §1 runs seeds 1–5 of it)
-    families.push((
-        "rand2D, 500 + 4 × 20 points (seeds 1–40)".into(),
-        (1..=40)
-            .map(|seed| rand2d(500, 20, seed).expect("rand2d"))
-            .collect(),
-    ));
+    families.push(("rand2D, 500 + 4 × 20 points (seeds 1–40)".into(), (1..=40).map(|seed| rand2d(500, 20, seed).expect("rand2d")).collect()));
     let obj = objective(ObjectiveKind::SmoothShape);
     let run = |m: &Mesh, newton: bool| {
         let mut m = m.clone();
@@ -364,12 +244,7 @@ pub(crate) fn measure(n: usize, quick: bool) -> SizeReport {
     };
     let reps = if quick { 1 } else { reps };
     let mut rows = Vec::new();
-    let both = |f: &dyn Fn(&mut Mesh) -> u32| {
-        (
-            time_ns_per_visit(&mesh, reps, f),
-            time_ns_per_visit(&spatial, reps, f),
-        )
-    };
+    let both = |f: &dyn Fn(&mut Mesh) -> u32| (time_ns_per_visit(&mesh, reps, f), time_ns_per_visit(&spatial, reps, f));
     let (a, b) = both(&stream_bound);
     rows.push(("stream bound".to_string(), a, b));
     for (name, strategy, kind, variant) in PASSES {
@@ -380,15 +255,11 @@ pub(crate) fn measure(n: usize, quick: bool) -> SizeReport {
     let obj = objective(ObjectiveKind::SmoothShape);
     let t = Instant::now();
     let _ = mesh_stats(&spatial);
-    let _ = Smoother::new(options(Strategy::Laplace))
-        .expect("options")
-        .objective_total(&spatial, &*obj);
+    let _ = Smoother::new(options(Strategy::Laplace)).expect("options").objective_total(&spatial, &*obj);
     let stats_ns = t.elapsed().as_nanos() as f64 / spatial.free_count() as f64;
     // level sets: the objective of one node sampled on a 100 × 100 grid over its star
     let mut levelset = Vec::new();
-    let node = (0..spatial.node_count())
-        .find(|&i| spatial.is_free(i))
-        .expect("a free node");
+    let node = (0..spatial.node_count()).find(|&i| spatial.is_free(i)).expect("a free node");
     let mut star = Star::new();
     star.gather(&spatial, node);
     let (mut lo, mut hi) = (star.x0, star.x0);
@@ -417,43 +288,28 @@ pub(crate) fn measure(n: usize, quick: bool) -> SizeReport {
     let colours = smoothlab::smooth::parallel::Colouring::greedy(&spatial).colour_count();
     let colouring_ns = t.elapsed().as_nanos() as f64 / spatial.free_count() as f64;
     if ColouredSmoother::is_multithreaded() {
-        for (name, strategy, kind, _) in
-            ["laplace", "opt+new", "opt+old", "rules+new"].map(pass_named)
-        {
+        for (name, strategy, kind, _) in ["laplace", "opt+new", "opt+old", "rules+new"].map(pass_named) {
             let obj = objective(kind);
             // coloured once, outside the timing (the colouring depends on the topology only)
-            let coloured = ColouredSmoother::new(&spatial, options(strategy))
-                .expect("options")
-                .with_execution(Execution::Deferred);
+            let coloured =
+                ColouredSmoother::new(&spatial, options(strategy)).expect("options").with_execution(Execution::Deferred);
             let time = |threads: usize| {
                 let mut s = coloured.clone();
-                with_threads(threads, || {
-                    time_ns_per_visit(&spatial, reps, |m: &mut Mesh| s.sweep(m, &*obj).visits)
-                })
+                with_threads(threads, || time_ns_per_visit(&spatial, reps, |m: &mut Mesh| s.sweep(m, &*obj).visits))
             };
             let one = time(1);
             let all = time(0);
             parallel.push((name.to_string(), one, all));
         }
     }
-    let evaluations = [
-        (ObjectiveKind::SmoothShape, false),
-        (ObjectiveKind::MaxMinShape, false),
-        (ObjectiveKind::SmoothShape, true),
-    ]
-    .into_iter()
-    .map(|(k, chen_alone)| {
-        let (e, s) = evaluations_per_visit(&spatial, k, chen_alone);
-        let how = if chen_alone {
-            " with Chen's search alone"
-        } else if k == ObjectiveKind::SmoothShape {
-            " (Newton's first trial)"
-        } else {
-            ""
-        };
-        (format!("`{}`{how}", k.name()), e, s)
-    })
-    .collect();
+    let evaluations = [(ObjectiveKind::SmoothShape, false), (ObjectiveKind::MaxMinShape, false), (ObjectiveKind::SmoothShape, true)]
+        .into_iter()
+        .map(|(k, chen_alone)| {
+            let (e, s) = evaluations_per_visit(&spatial, k, chen_alone);
+            let how = if chen_alone { " with Chen's search alone" } else if k == ObjectiveKind::SmoothShape { " (Newton's first trial)" } else { "" };
+            (format!("`{}`{how}", k.name()), e, s)
+        })
+        .collect();
     let render_ns = {
         let mut pixmap = tiny_skia::Pixmap::new(1024, 1024).expect("a pixmap");
         let view = smoothlab_render::MeshView::default();
@@ -480,11 +336,7 @@ pub(crate) fn measure(n: usize, quick: bool) -> SizeReport {
 
 #[cfg(feature = "parallel")]
 fn with_threads<R: Send>(threads: usize, f: impl FnOnce() -> R + Send) -> R {
-    rayon::ThreadPoolBuilder::new()
-        .num_threads(threads)
-        .build()
-        .expect("a thread pool")
-        .install(f)
+    rayon::ThreadPoolBuilder::new().num_threads(threads).build().expect("a thread pool").install(f)
 }
 
 #[cfg(not(feature = "parallel"))]
@@ -503,16 +355,8 @@ pub(crate) fn measure_rows(n: usize, names: &[&str], quick: bool) -> SizeReport 
         .map(|&name| {
             let (_, strategy, kind, variant) = pass_named(name);
             let f = |m: &mut Mesh| sweep(m, strategy, kind, variant);
-            (
-                name.to_string(),
-                time_ns_per_visit(&mesh, reps, f),
-                time_ns_per_visit(&spatial, reps, f),
-            )
+            (name.to_string(), time_ns_per_visit(&mesh, reps, f), time_ns_per_visit(&spatial, reps, f))
         })
         .collect();
-    SizeReport {
-        nodes: mesh.node_count(),
-        rows,
-        ..SizeReport::default()
-    }
+    SizeReport { nodes: mesh.node_count(), rows, ..SizeReport::default() }
 }

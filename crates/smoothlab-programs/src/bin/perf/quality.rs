@@ -13,9 +13,7 @@ use crate::common::{fmt_ms, median, target_mark};
 /// `target/release/perf`), which `make performance` builds first.
 fn smoothlab_binary() -> Option<std::path::PathBuf> {
     let exe = std::env::current_exe().ok()?;
-    let bin = exe
-        .parent()?
-        .join(format!("smoothlab{}", std::env::consts::EXE_SUFFIX));
+    let bin = exe.parent()?.join(format!("smoothlab{}", std::env::consts::EXE_SUFFIX));
     bin.is_file().then_some(bin)
 }
 
@@ -30,12 +28,7 @@ struct CliRun {
     wall_ms: f64,
 }
 
-fn cli_smooth(
-    bin: &std::path::Path,
-    input: &std::path::Path,
-    out: &std::path::Path,
-    passes: u32,
-) -> Result<CliRun, String> {
+fn cli_smooth(bin: &std::path::Path, input: &std::path::Path, out: &std::path::Path, passes: u32) -> Result<CliRun, String> {
     let t = Instant::now();
     let o = std::process::Command::new(bin)
         .arg("smooth")
@@ -50,17 +43,8 @@ fn cli_smooth(
         return Err(String::from_utf8_lossy(&o.stderr).trim().to_string());
     }
     let v: serde_json::Value = serde_json::from_slice(&o.stdout).map_err(|e| e.to_string())?;
-    let inverted = v["passes"]
-        .as_array()
-        .into_iter()
-        .flatten()
-        .map(|p| p["inverted"].as_u64().unwrap_or(u64::MAX))
-        .collect();
-    Ok(CliRun {
-        inverted,
-        time_ms: v["time_ms"].as_f64().unwrap_or(f64::NAN),
-        wall_ms,
-    })
+    let inverted = v["passes"].as_array().into_iter().flatten().map(|p| p["inverted"].as_u64().unwrap_or(u64::MAX)).collect();
+    Ok(CliRun { inverted, time_ms: v["time_ms"].as_f64().unwrap_or(f64::NAN), wall_ms })
 }
 
 /// A mesh's time to quality with the CLI's defaults.
@@ -79,30 +63,14 @@ struct ToValid {
 /// `reps` times. K is found by runs of [`PROBE_PASSES`] passes in turn (each run's `--json`
 /// gives every pass's inverted count, so a run of N passes finds any K ≤ N); the run that
 /// found K counts as one of the timed runs when it ran K passes.
-fn time_to_valid(
-    bin: &std::path::Path,
-    input: &std::path::Path,
-    dir: &std::path::Path,
-    inverted0: usize,
-    reps: usize,
-) -> Result<ToValid, String> {
-    let ext = input
-        .extension()
-        .map(|e| e.to_string_lossy().into_owned())
-        .unwrap_or_else(|| "vtk".into());
+fn time_to_valid(bin: &std::path::Path, input: &std::path::Path, dir: &std::path::Path, inverted0: usize, reps: usize) -> Result<ToValid, String> {
+    let ext = input.extension().map(|e| e.to_string_lossy().into_owned()).unwrap_or_else(|| "vtk".into());
     let out = dir.join(format!("smoothed.{ext}"));
     let (mut runs, mut passes, mut left) = (Vec::new(), None, 0);
     for n in PROBE_PASSES {
         let run = cli_smooth(bin, input, &out, n)?;
         left = run.inverted.last().copied().unwrap_or(0);
-        passes = if inverted0 == 0 {
-            Some(0)
-        } else {
-            run.inverted
-                .iter()
-                .position(|&i| i == 0)
-                .map(|k| k as u32 + 1)
-        };
+        passes = if inverted0 == 0 { Some(0) } else { run.inverted.iter().position(|&i| i == 0).map(|k| k as u32 + 1) };
         if passes.is_some_and(|k| k.max(1) == n) || (passes.is_none() && n == MAX_PASSES_TO_VALID) {
             runs.push(run);
         }
@@ -150,31 +118,19 @@ const PLATE_SEEDS: [u64; 5] = [1, 2, 3, 4, 5];
 
 /// Mesquite's meshes, read in place beside the crate (as the `reproduce` program and the tests).
 fn mesquite_dir(name: &str) -> std::path::PathBuf {
-    std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("../../../shared/meshes")
-        .join(name)
+    std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../../shared/meshes").join(name)
 }
 
 /// The `.vtk` files of `root/group/tangled` for each group, sorted, as `group/tangled/NAME`.
 fn tangled_files(root: &std::path::Path, groups: &[&str]) -> Vec<(String, std::path::PathBuf)> {
     let mut files = Vec::new();
     for group in groups {
-        let Ok(rd) = std::fs::read_dir(root.join(group).join("tangled")) else {
-            continue;
-        };
-        let mut names: Vec<std::path::PathBuf> = rd
-            .filter_map(|e| e.ok().map(|e| e.path()))
-            .filter(|p| p.extension().is_some_and(|e| e == "vtk"))
-            .collect();
+        let Ok(rd) = std::fs::read_dir(root.join(group).join("tangled")) else { continue };
+        let mut names: Vec<std::path::PathBuf> =
+            rd.filter_map(|e| e.ok().map(|e| e.path())).filter(|p| p.extension().is_some_and(|e| e == "vtk")).collect();
         names.sort();
         for p in names {
-            files.push((
-                format!(
-                    "{group}/tangled/{}",
-                    p.file_name().unwrap_or_default().to_string_lossy()
-                ),
-                p,
-            ));
+            files.push((format!("{group}/tangled/{}", p.file_name().unwrap_or_default().to_string_lossy()), p));
         }
     }
     files
@@ -203,11 +159,7 @@ pub(crate) fn time_to_quality(quick: bool) -> QualityReport {
             w,
             "Not measured in this run: the release binary `smoothlab` was not found beside this program (`make performance` builds it first: `cargo build --release -p smoothlab-cli --features parallel --bin smoothlab`).\n"
         );
-        return QualityReport {
-            text: w,
-            pave1_ms,
-            reached,
-        };
+        return QualityReport { text: w, pave1_ms, reached };
     };
     let reps = if quick { 1 } else { 3 };
     let _ = writeln!(
@@ -248,8 +200,7 @@ pub(crate) fn time_to_quality(quick: bool) -> QualityReport {
             for seed in PLATE_SEEDS {
                 let m = perturb(&base, amount, seed).expect("perturbed");
                 let file = dir.join("plate.msh");
-                smoothlab::io::write_path(&m, &file, &smoothlab::io::WriteOptions::default())
-                    .expect("write a plate");
+                smoothlab::io::write_path(&m, &file, &smoothlab::io::WriteOptions::default()).expect("write a plate");
                 match time_to_valid(&bin, &file, &dir, mesh_stats(&m).inverted, 1) {
                     Ok(t) => runs.push(t),
                     Err(e) => eprintln!("perf: smoothlab smooth on a {name} plate: {e}"),
@@ -278,16 +229,8 @@ pub(crate) fn time_to_quality(quick: bool) -> QualityReport {
     }
     // Mesquite's tangled files
     for (folder, groups, what) in [
-        (
-            "mesquite",
-            &["tris", "quads", "mixed"][..],
-            "Mesquite's tangled planar files",
-        ),
-        (
-            "mesquite3d",
-            &["hexes", "mixed"][..],
-            "Mesquite's tangled 3D files (hexahedra; a mixed mesh)",
-        ),
+        ("mesquite", &["tris", "quads", "mixed"][..], "Mesquite's tangled planar files"),
+        ("mesquite3d", &["hexes", "mixed"][..], "Mesquite's tangled 3D files (hexahedra; a mixed mesh)"),
     ] {
         let root = mesquite_dir(folder);
         let _ = writeln!(w, "\n**{what}** (`../shared/meshes/{folder}`, every `.vtk` of its `*/tangled` folders, read with their `fixed` flags):\n");
@@ -295,10 +238,7 @@ pub(crate) fn time_to_quality(quick: bool) -> QualityReport {
             let _ = writeln!(w, "*Not measured: the external Mesquite meshes (`../shared/meshes/{folder}`) were not found.*");
             continue;
         }
-        let _ = writeln!(
-            w,
-            "| file | nodes | elements | inverted at start | passes to 0 | wall time | smoothing |"
-        );
+        let _ = writeln!(w, "| file | nodes | elements | inverted at start | passes to 0 | wall time | smoothing |");
         let _ = writeln!(w, "|---|---:|---:|---:|---:|---:|---:|");
         // the files valid as read are timed too, but only counted: they have no time to quality
         let mut valid = 0;
@@ -355,9 +295,5 @@ pub(crate) fn time_to_quality(quick: bool) -> QualityReport {
             None => "not measured (the file was not found or not untangled)".into(),
         }
     );
-    QualityReport {
-        text: w,
-        pave1_ms,
-        reached,
-    }
+    QualityReport { text: w, pave1_ms, reached }
 }

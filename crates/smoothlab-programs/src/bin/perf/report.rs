@@ -5,9 +5,9 @@
 
 use std::fmt::Write as _;
 
-use crate::common::{fmt_ns, SEED};
 use crate::planar::SizeReport;
 use crate::wasm::wasm_table;
+use crate::common::{fmt_ns, SEED};
 
 /// A row of the ratio table: name, target, and the figure of one mesh size.
 type TargetRow<'a> = (&'a str, &'a str, &'a dyn Fn(&SizeReport) -> f64, f64);
@@ -57,12 +57,7 @@ pub(crate) fn render(
     let mut head = String::from("| pass |");
     let mut rule = String::from("|---|");
     for r in reports {
-        let _ = write!(
-            head,
-            " {}k file order | {}k Hilbert |",
-            r.nodes / 1000,
-            r.nodes / 1000
-        );
+        let _ = write!(head, " {}k file order | {}k Hilbert |", r.nodes / 1000, r.nodes / 1000);
         rule.push_str("---:|---:|");
     }
     let _ = writeln!(w, "{head}\n{rule}");
@@ -88,82 +83,31 @@ pub(crate) fn render(
     let _ = writeln!(
         w,
         "| figure | target |{}",
-        reports
-            .iter()
-            .map(|r| format!(" {}k |", r.nodes / 1000))
-            .collect::<String>()
+        reports.iter().map(|r| format!(" {}k |", r.nodes / 1000)).collect::<String>()
     );
     let _ = writeln!(w, "|---|---|{}", "---:|".repeat(reports.len()));
-    let get = |r: &SizeReport, name: &str| {
-        r.rows
-            .iter()
-            .find(|x| x.0 == name)
-            .map(|x| x.2)
-            .unwrap_or(f64::NAN)
-    };
+    let get = |r: &SizeReport, name: &str| r.rows.iter().find(|x| x.0 == name).map(|x| x.2).unwrap_or(f64::NAN);
     // file order over Hilbert order, the worst over the passes
     let file_over_hilbert = |r: &SizeReport| {
-        r.rows
-            .iter()
-            .filter(|x| x.0 != "stream bound")
-            .map(|x| x.1 / x.2)
-            .fold(0.0f64, f64::max)
+        r.rows.iter().filter(|x| x.0 != "stream bound").map(|x| x.1 / x.2).fold(0.0f64, f64::max)
     };
     let mark = |ok: bool| if ok { "✓" } else { "✗" };
     let target_rows: [TargetRow; 6] = [
-        (
-            "opt+new, ns per visit",
-            "≤ 1000",
-            &|r| get(r, "opt+new"),
-            1000.0,
-        ),
-        (
-            "opt+new with Chen's search alone (the default before issue 15)",
-            "≤ 1000",
-            &|r| get(r, "opt+new, Chen's search"),
-            1000.0,
-        ),
-        (
-            "smart / laplace",
-            "≤ 5",
-            &|r| get(r, "smart") / get(r, "laplace"),
-            5.0,
-        ),
-        (
-            "rules+new / smart (first pass of a fresh rand2D)",
-            "≤ 3",
-            &|r| get(r, "rules+new") / get(r, "smart"),
-            3.0,
-        ),
-        (
-            "laplace / stream bound",
-            "≤ 3",
-            &|r| get(r, "laplace") / get(r, "stream bound"),
-            3.0,
-        ),
-        (
-            "file order / Hilbert order, the worst pass",
-            "≤ 1.5",
-            &file_over_hilbert,
-            1.5,
-        ),
+        ("opt+new, ns per visit", "≤ 1000", &|r| get(r, "opt+new"), 1000.0),
+        ("opt+new with Chen's search alone (the default before issue 15)", "≤ 1000", &|r| get(r, "opt+new, Chen's search"), 1000.0),
+        ("smart / laplace", "≤ 5", &|r| get(r, "smart") / get(r, "laplace"), 5.0),
+        ("rules+new / smart (first pass of a fresh rand2D)", "≤ 3", &|r| get(r, "rules+new") / get(r, "smart"), 3.0),
+        ("laplace / stream bound", "≤ 3", &|r| get(r, "laplace") / get(r, "stream bound"), 3.0),
+        ("file order / Hilbert order, the worst pass", "≤ 1.5", &file_over_hilbert, 1.5),
     ];
     for (name, target, f, limit) in target_rows {
         let cells: String = reports
             .iter()
             .map(|r| {
                 let v = f(r);
-                let shown = if limit >= 1000.0 {
-                    fmt_ns(v)
-                } else {
-                    format!("{v:.2}")
-                };
+                let shown = if limit >= 1000.0 { fmt_ns(v) } else { format!("{v:.2}") };
                 // where not met, by how much: the figure over the target
-                let by = if v <= limit {
-                    String::new()
-                } else {
-                    format!(" ({:.1}× the target)", v / limit)
-                };
+                let by = if v <= limit { String::new() } else { format!(" ({:.1}× the target)", v / limit) };
                 format!(" {shown} {}{by} |", mark(v <= limit))
             })
             .collect();
@@ -172,10 +116,7 @@ pub(crate) fn render(
     if let Some(r) = reports.first() {
         let _ = write!(w, "\nWhere the time of `opt` goes ({}k mesh): every visit runs the solver for 3 iterations (Chen §3.1), and each iteration's line search evaluates the objective over the whole star:", r.nodes / 1000);
         for (k, e, s) in &r.evaluations {
-            let _ = write!(
-                w,
-                " {k}: {e:.1} evaluations per visit over {s:.1} elements;"
-            );
+            let _ = write!(w, " {k}: {e:.1} evaluations per visit over {s:.1} elements;");
         }
         let _ = writeln!(w);
     }
@@ -184,10 +125,7 @@ pub(crate) fn render(
         "\nThe meshes smoothed with Chen's search alone and with Newton's first trial (the default): the default \
          smoother, 3 passes; the means over each family.\n"
     );
-    let _ = writeln!(
-        w,
-        "| meshes | smallest angle, Chen / Newton | largest angle | mean α/β | still tangled |"
-    );
+    let _ = writeln!(w, "| meshes | smallest angle, Chen / Newton | largest angle | mean α/β | still tangled |");
     let _ = writeln!(w, "|---|---:|---:|---:|---:|");
     for (name, c, n) in quality {
         let _ = writeln!(
@@ -216,10 +154,8 @@ pub(crate) fn render(
     if reports.iter().all(|r| r.parallel.is_empty()) {
         let _ = writeln!(w, "Not measured: build with `--features parallel`.\n");
     } else {
-        let colouring: Vec<String> = reports
-            .iter()
-            .map(|r| format!("{}k: {:.0} ns per node", r.nodes / 1000, r.colouring_ns))
-            .collect();
+        let colouring: Vec<String> =
+            reports.iter().map(|r| format!("{}k: {:.0} ns per node", r.nodes / 1000, r.colouring_ns)).collect();
         let _ = writeln!(
             w,
             "Free nodes are coloured so that no two of one colour share an element; each colour is smoothed on all \
@@ -231,10 +167,7 @@ pub(crate) fn render(
         let _ = writeln!(
             w,
             "| pass |{}",
-            reports
-                .iter()
-                .map(|r| format!(" {}k ({} colours) |", r.nodes / 1000, r.colours))
-                .collect::<String>()
+            reports.iter().map(|r| format!(" {}k ({} colours) |", r.nodes / 1000, r.colours)).collect::<String>()
         );
         let _ = writeln!(w, "|---|{}", "---|".repeat(reports.len()));
         if let Some(first) = reports.first() {

@@ -19,62 +19,14 @@ const HEX_AMOUNT: f64 = 0.2;
 
 /// The 3D passes: name, strategy, objective, order and solver iterations per call.
 const VOLUME_PASSES: [(&str, Strategy, ObjectiveKind, Order, u32); 8] = [
-    (
-        "laplace",
-        Strategy::Laplace,
-        ObjectiveKind::SmoothShape,
-        Order::Input,
-        DEFAULT_MAX_ITER,
-    ),
-    (
-        "smart",
-        Strategy::Smart,
-        ObjectiveKind::SmoothShape,
-        Order::Input,
-        DEFAULT_MAX_ITER,
-    ),
-    (
-        "opt+new",
-        Strategy::Opt,
-        ObjectiveKind::SmoothShape,
-        Order::Input,
-        DEFAULT_MAX_ITER,
-    ),
-    (
-        "rules+new, priority order",
-        Strategy::Rules,
-        ObjectiveKind::SmoothShape,
-        Order::Priority,
-        DEFAULT_MAX_ITER,
-    ),
-    (
-        "opt+old, 20 it",
-        Strategy::Opt,
-        ObjectiveKind::MaxMinShape,
-        Order::Input,
-        20,
-    ),
-    (
-        "opt+sine",
-        Strategy::Opt,
-        ObjectiveKind::Sine,
-        Order::Input,
-        DEFAULT_MAX_ITER,
-    ),
-    (
-        "opt+condition",
-        Strategy::Opt,
-        ObjectiveKind::Condition,
-        Order::Input,
-        DEFAULT_MAX_ITER,
-    ),
-    (
-        "opt+untangle",
-        Strategy::Opt,
-        ObjectiveKind::Untangle,
-        Order::Input,
-        DEFAULT_MAX_ITER,
-    ),
+    ("laplace", Strategy::Laplace, ObjectiveKind::SmoothShape, Order::Input, DEFAULT_MAX_ITER),
+    ("smart", Strategy::Smart, ObjectiveKind::SmoothShape, Order::Input, DEFAULT_MAX_ITER),
+    ("opt+new", Strategy::Opt, ObjectiveKind::SmoothShape, Order::Input, DEFAULT_MAX_ITER),
+    ("rules+new, priority order", Strategy::Rules, ObjectiveKind::SmoothShape, Order::Priority, DEFAULT_MAX_ITER),
+    ("opt+old, 20 it", Strategy::Opt, ObjectiveKind::MaxMinShape, Order::Input, 20),
+    ("opt+sine", Strategy::Opt, ObjectiveKind::Sine, Order::Input, DEFAULT_MAX_ITER),
+    ("opt+condition", Strategy::Opt, ObjectiveKind::Condition, Order::Input, DEFAULT_MAX_ITER),
+    ("opt+untangle", Strategy::Opt, ObjectiveKind::Untangle, Order::Input, DEFAULT_MAX_ITER),
 ];
 
 /// A volume mesh measured by the 3D section: its words, sizes and the measured corners of
@@ -99,12 +51,7 @@ impl VolumeBench {
                 star.tets.len()
             })
             .sum();
-        VolumeBench {
-            what,
-            mesh,
-            free,
-            corners,
-        }
+        VolumeBench { what, mesh, free, corners }
     }
     fn corners_per_node(&self) -> f64 {
         self.corners as f64 / self.free.max(1) as f64
@@ -145,29 +92,19 @@ pub(crate) fn measure_volume(quick: bool) -> VolumeReport {
     );
     let block = hex_grid(&HexBlock::cube(HEX_CELLS)).expect("a block of hexahedra");
     let hex = perturb_volume(&block, HEX_AMOUNT, 1).expect("perturbed");
-    assert_eq!(
-        volume_stats(&hex).inverted,
-        0,
-        "the perturbed block of hexahedra is valid"
-    );
+    assert_eq!(volume_stats(&hex).inverted, 0, "the perturbed block of hexahedra is valid");
     let hex_words = format!(
         "a block of hexahedra (`hex_grid(&HexBlock::cube({HEX_CELLS}))`, every free node moved by up to {HEX_AMOUNT} mean edge lengths by `perturb_volume`, seed 1; every hexahedron valid): {} nodes, {} hexahedra",
         hex.node_count(),
         hex.element_count()
     );
-    let meshes = [
-        VolumeBench::new(tet_words, tet),
-        VolumeBench::new(hex_words, hex),
-    ];
+    let meshes = [VolumeBench::new(tet_words, tet), VolumeBench::new(hex_words, hex)];
     let reps = if quick { 3 } else { 21 };
     let rows = VOLUME_PASSES
         .iter()
         .map(|&(name, strategy, kind, order, max_iter)| {
             let obj = tet_objective(kind).expect("a form on tetrahedra");
-            let o = SmoothOptions::default()
-                .with_strategy(strategy)
-                .with_order(order)
-                .with_max_iter(max_iter);
+            let o = SmoothOptions::default().with_strategy(strategy).with_order(order).with_max_iter(max_iter);
             let mut smoothers = [0, 1].map(|_| VolumeSmoother::new(o).expect("options"));
             // the two meshes' passes alternate, so that both see the machine as it is (the
             // ratio of their medians is what the target reads); per free node, the visits
@@ -198,10 +135,7 @@ pub(crate) fn measure_volume(quick: bool) -> VolumeReport {
 pub(crate) fn volume_section(v: &VolumeReport) -> String {
     let mut w = String::new();
     let [tet, hex] = &v.meshes;
-    let _ = writeln!(
-        w,
-        "## Tetrahedra and hexahedra, ns per free node and pass (issue 33)\n"
-    );
+    let _ = writeln!(w, "## Tetrahedra and hexahedra, ns per free node and pass (issue 33)\n");
     let _ = writeln!(
         w,
         "The 3D passes on {} ({} free nodes, {:.1} measured corners per free node), and on {} ({} free nodes, {:.1} measured corners per free node). \

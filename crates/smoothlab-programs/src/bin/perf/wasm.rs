@@ -2,17 +2,14 @@
 
 use std::fmt::Write as _;
 
-use crate::common::{fmt_ns, read_json};
 use crate::issue33::WASM_NATIVE_TARGET;
 use crate::planar::{measure_rows, SizeReport};
+use crate::common::{fmt_ns, read_json};
 
 /// The native ns/visit of pass `name` on the mesh of `nodes` nodes, file order.
 fn native(reports: &[SizeReport], nodes: usize, name: &str) -> Option<(f64, f64)> {
     let r = reports.iter().find(|r| r.nodes == nodes)?;
-    r.rows
-        .iter()
-        .find(|row| row.0 == name)
-        .map(|row| (row.1, row.2))
+    r.rows.iter().find(|row| row.0 == name).map(|row| (row.1, row.2))
 }
 
 /// The wasm table: the bench page's ns/visit against the native figure of the same pass
@@ -32,10 +29,7 @@ pub(crate) fn wasm_table(w: &mut String, v: &serde_json::Value, reports: &[SizeR
             "The native figures are this run's planar table's, measured some minutes after the page."
         }
     );
-    let _ = writeln!(
-        w,
-        "| pass | order | wasm ns/visit | native ns/visit | wasm / native (target ≤ 1.3) |"
-    );
+    let _ = writeln!(w, "| pass | order | wasm ns/visit | native ns/visit | wasm / native (target ≤ 1.3) |");
     let _ = writeln!(w, "|---|---|---:|---:|---:|");
     let mut ratios = Vec::new();
     for (name, hilbert, ns, nat) in wasm_rows(v, reports) {
@@ -53,9 +47,7 @@ pub(crate) fn wasm_table(w: &mut String, v: &serde_json::Value, reports: &[SizeR
             fmt_ns(ns)
         );
     }
-    let (lo, hi) = ratios.iter().fold((f64::INFINITY, 0.0f64), |(lo, hi), &r| {
-        (lo.min(r), hi.max(r))
-    });
+    let (lo, hi) = ratios.iter().fold((f64::INFINITY, 0.0f64), |(lo, hi), &r| (lo.min(r), hi.max(r)));
     if hi > WASM_NATIVE_TARGET {
         let _ = writeln!(w, "\nNot met: the strategies run {lo:.2}–{hi:.2}× their native time in Chromium (the table).");
     }
@@ -69,8 +61,7 @@ pub(crate) fn wasm_table(w: &mut String, v: &serde_json::Value, reports: &[SizeR
 /// on a shared machine rather than of minutes apart (the same binaries' ratios moved by
 /// some 0.5 between runs when the native half came from the planar table).
 pub(crate) fn native_peers(path: &str) {
-    let mut v =
-        read_json(Some(path)).unwrap_or_else(|| panic!("cannot read the bench page's JSON {path}"));
+    let mut v = read_json(Some(path)).unwrap_or_else(|| panic!("cannot read the bench page's JSON {path}"));
     let nodes = v["nodes"].as_u64().unwrap_or(0) as usize;
     let mut names: Vec<String> = Vec::new();
     for row in v["passes"].as_array().into_iter().flatten() {
@@ -97,10 +88,7 @@ pub(crate) fn native_peers(path: &str) {
 /// The bench page's rows: (pass, Hilbert order, wasm ns/visit, native ns/visit): the
 /// native figure measured beside the page ([`native_peers`]) when there is one, else this
 /// run's planar table's.
-pub(crate) fn wasm_rows(
-    v: &serde_json::Value,
-    reports: &[SizeReport],
-) -> Vec<(String, bool, f64, Option<f64>)> {
+pub(crate) fn wasm_rows(v: &serde_json::Value, reports: &[SizeReport]) -> Vec<(String, bool, f64, Option<f64>)> {
     let nodes = v["nodes"].as_u64().unwrap_or(0) as usize;
     v["passes"]
         .as_array()
@@ -110,15 +98,8 @@ pub(crate) fn wasm_rows(
             let name = row["name"].as_str().unwrap_or("?").to_string();
             let hilbert = row["hilbert"].as_bool().unwrap_or(false);
             let beside = row["native_ns_per_visit"].as_f64();
-            let nat = beside.or_else(|| {
-                native(reports, nodes, &name).map(|(a, b)| if hilbert { b } else { a })
-            });
-            (
-                name,
-                hilbert,
-                row["ns_per_visit"].as_f64().unwrap_or(f64::NAN),
-                nat,
-            )
+            let nat = beside.or_else(|| native(reports, nodes, &name).map(|(a, b)| if hilbert { b } else { a }));
+            (name, hilbert, row["ns_per_visit"].as_f64().unwrap_or(f64::NAN), nat)
         })
         .collect()
 }

@@ -24,10 +24,7 @@ pub(crate) fn chen_plate(out: &mut Report) {
     const SEEDS: [u64; 5] = [1, 2, 3, 4, 5];
     const AMOUNTS: [f64; 5] = [0.6, 0.8, 1.0, 1.25, 1.5];
     const MAX_PASSES: u32 = 10;
-    out.section(
-        2,
-        "Chen, Tristano & Kwok (2003), Figs 13–15: the perturbed plate with a hole",
-    );
+    out.section(2, "Chen, Tristano & Kwok (2003), Figs 13–15: the perturbed plate with a hole");
     let _ = writeln!(
         out,
         "`plate(kind, order, 4)`: the square [−1,1]² with a hole of radius 0.4, an O-grid of 32 nodes round the hole \
@@ -73,13 +70,7 @@ pub(crate) fn chen_plate(out: &mut Report) {
                 for (d, (choice, _)) in NEW_DESIGNS.iter().enumerate() {
                     let mut trajectories = Vec::new();
                     for (o, node_order) in [Order::Priority, Order::Input].into_iter().enumerate() {
-                        let r = run(
-                            &m,
-                            *choice,
-                            opts(Strategy::Rules, node_order),
-                            MAX_PASSES,
-                            untangled,
-                        );
+                        let r = run(&m, *choice, opts(Strategy::Rules, node_order), MAX_PASSES, untangled);
                         let t = &mut tally[d][o];
                         match r.passes_to_valid() {
                             Some(n) => {
@@ -95,17 +86,13 @@ pub(crate) fn chen_plate(out: &mut Report) {
                             ang.push(r.passes.last().expect("a pass").after.min_angle_deg);
                         }
                         let s0 = mesh_stats(&m).inverted;
-                        trajectories.push(
-                            std::iter::once(s0)
-                                .chain(r.passes.iter().map(|p| p.after.inverted))
-                                .collect(),
-                        );
+                        trajectories
+                            .push(std::iter::once(s0).chain(r.passes.iter().map(|p| p.after.inverted)).collect());
                     }
                     if example.is_none() && d == 0 && label == "tri" && amount == 1.5 {
                         let i = trajectories.pop().expect("input");
                         let p = trajectories.pop().expect("priority");
-                        example =
-                            Some((format!("tri plate, amount 1.5, seed {seed}, barrier"), p, i));
+                        example = Some((format!("tri plate, amount 1.5, seed {seed}, barrier"), p, i));
                     }
                 }
             }
@@ -160,23 +147,14 @@ pub(crate) fn chen_plate(out: &mut Report) {
                 w3.to_string(),
                 first.to_string(),
                 ok.to_string(),
-                if ok > 0 {
-                    format!("{:.2}", sum as f64 / ok as f64)
-                } else {
-                    "—".into()
-                },
+                if ok > 0 { format!("{:.2}", sum as f64 / ok as f64) } else { "—".into() },
             ]);
         }
     }
     out.table(summary);
     let _ = writeln!(out);
     if let Some((name, p, i)) = example {
-        let list = |v: &Vec<usize>| {
-            v.iter()
-                .map(|n| n.to_string())
-                .collect::<Vec<_>>()
-                .join(" → ")
-        };
+        let list = |v: &Vec<usize>| v.iter().map(|n| n.to_string()).collect::<Vec<_>>().join(" → ");
         let _ = writeln!(
             out,
             "Inverted elements after each pass ({name}; first number: before smoothing):\n\n\

@@ -26,10 +26,7 @@ impl Run {
     }
     /// Passes until the first with no inverted element, if any.
     pub(crate) fn passes_to_valid(&self) -> Option<usize> {
-        self.passes
-            .iter()
-            .position(|p| p.after.inverted == 0)
-            .map(|i| i + 1)
+        self.passes.iter().position(|p| p.after.inverted == 0).map(|i| i + 1)
     }
     pub(crate) fn ms(&self) -> f64 {
         self.passes.iter().map(|p| p.elapsed_ms).sum()
@@ -38,10 +35,7 @@ impl Run {
         self.passes.iter().map(|p| p.counts.laplacian_moves).sum()
     }
     pub(crate) fn optimization_calls(&self) -> u32 {
-        self.passes
-            .iter()
-            .map(|p| p.counts.optimization_calls)
-            .sum()
+        self.passes.iter().map(|p| p.counts.optimization_calls).sum()
     }
 }
 
@@ -54,30 +48,16 @@ pub(crate) struct Choice {
 
 impl From<ObjectiveKind> for Choice {
     fn from(kind: ObjectiveKind) -> Self {
-        Choice {
-            kind,
-            penalty: Penalty::default(),
-        }
+        Choice { kind, penalty: Penalty::default() }
     }
 }
 
 /// `new` with the first design of its penalty (the adjusted angle).
-pub(crate) const NEW_ANGLE: Choice = Choice {
-    kind: ObjectiveKind::SmoothShape,
-    penalty: Penalty::Angle,
-};
+pub(crate) const NEW_ANGLE: Choice = Choice { kind: ObjectiveKind::SmoothShape, penalty: Penalty::Angle };
 
 /// Both designs of `new`, the default first, with the words the tables use.
-pub(crate) const NEW_DESIGNS: [(Choice, &str); 2] = [
-    (
-        Choice {
-            kind: ObjectiveKind::SmoothShape,
-            penalty: Penalty::Barrier,
-        },
-        "barrier",
-    ),
-    (NEW_ANGLE, "angle (first design)"),
-];
+pub(crate) const NEW_DESIGNS: [(Choice, &str); 2] =
+    [(Choice { kind: ObjectiveKind::SmoothShape, penalty: Penalty::Barrier }, "barrier"), (NEW_ANGLE, "angle (first design)")];
 
 /// Runs passes of `strategy` with objective `choice` until `max_passes` or until `stop`
 /// says so after a pass.
@@ -89,13 +69,7 @@ pub(crate) fn run(
     stop: impl Fn(&PassRecord) -> bool,
 ) -> Run {
     let choice = choice.into();
-    run_with(
-        mesh,
-        &*objective_with(choice.kind, choice.penalty),
-        opts,
-        max_passes,
-        stop,
-    )
+    run_with(mesh, &*objective_with(choice.kind, choice.penalty), opts, max_passes, stop)
 }
 
 /// [`run`] with an objective of the caller's making.
@@ -122,9 +96,7 @@ pub(crate) fn run_with(
 }
 
 pub(crate) fn opts(strategy: Strategy, order: Order) -> SmoothOptions {
-    SmoothOptions::default()
-        .with_strategy(strategy)
-        .with_order(order)
+    SmoothOptions::default().with_strategy(strategy).with_order(order)
 }
 
 /// Untangling by optimization, input order, an inverted star allowed to pass through a

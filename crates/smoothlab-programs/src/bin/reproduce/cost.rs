@@ -14,10 +14,7 @@ use crate::report::Report;
 pub(crate) fn visit_cost(out: &mut Report) {
     const RUNS: usize = 5;
     let mesh = rand2d(10_000, 100, 2003).expect("rand2d");
-    out.section(
-        6,
-        "The cost of a node visit: the two designs of the penalty",
-    );
+    out.section(6, "The cost of a node visit: the two designs of the penalty");
     let _ = writeln!(
         out,
         "One pass over `rand2d(10000, 100, 2003)` ({} nodes, {} triangles, valid: no untangling sweeps), each \
@@ -27,21 +24,10 @@ pub(crate) fn visit_cost(out: &mut Report) {
         mesh.node_count(),
         mesh.element_count()
     );
-    let mut table = Table::new(&[
-        "strategy",
-        "barrier: ns per visit",
-        "angle design: ns per visit",
-        "barrier / angle",
-    ]);
+    let mut table = Table::new(&["strategy", "barrier: ns per visit", "angle design: ns per visit", "barrier / angle"]);
     for (label, o) in [
-        (
-            "`opt` (every visit optimises)",
-            opts(Strategy::Opt, Order::Input),
-        ),
-        (
-            "`rules`, priority order",
-            opts(Strategy::Rules, Order::Priority),
-        ),
+        ("`opt` (every visit optimises)", opts(Strategy::Opt, Order::Input)),
+        ("`rules`, priority order", opts(Strategy::Rules, Order::Priority)),
     ] {
         let mut ns = [Vec::new(), Vec::new()];
         for _ in 0..RUNS {
@@ -56,12 +42,7 @@ pub(crate) fn visit_cost(out: &mut Report) {
             v[v.len() / 2]
         };
         let (b, a) = (median(&mut ns[0]), median(&mut ns[1]));
-        table.row(vec![
-            label.to_string(),
-            format!("{b:.0}"),
-            format!("{a:.0}"),
-            format!("{:.2}", b / a),
-        ]);
+        table.row(vec![label.to_string(), format!("{b:.0}"), format!("{a:.0}"), format!("{:.2}", b / a)]);
     }
     out.table(table);
     let _ = writeln!(out);

@@ -23,20 +23,11 @@ pub(crate) fn equilateral(out: &mut Report) {
     );
     let dir = meshes_dir().join("mesquite/tris/untangled");
     if !dir.is_dir() {
-        let _ = writeln!(
-            out,
-            "*Skipped: the external Mesquite meshes (`../shared/meshes`) were not found.*\n"
-        );
+        let _ = writeln!(out, "*Skipped: the external Mesquite meshes (`../shared/meshes`) were not found.*\n");
         return;
     }
-    let mut table = Table::new(&[
-        "mesh",
-        "objective",
-        "worst |α − 1| at start",
-        "after",
-        "passes",
-        "solver iterations",
-    ]);
+    let mut table =
+        Table::new(&["mesh", "objective", "worst |α − 1| at start", "after", "passes", "solver iterations"]);
     for file in ["equil_tri.vtk", "equil_tri2.vtk"] {
         let mesh = match io::read_path(&dir.join(file)) {
             Ok(m) => m,
@@ -47,15 +38,10 @@ pub(crate) fn equilateral(out: &mut Report) {
                 continue;
             }
         };
-        for kind in [
-            ObjectiveKind::SmoothShape,
-            ObjectiveKind::MaxMinShape,
-            ObjectiveKind::Condition,
-        ] {
+        for kind in [ObjectiveKind::SmoothShape, ObjectiveKind::MaxMinShape, ObjectiveKind::Condition] {
             let mut m = mesh.clone();
             let obj = objective_with(kind, Penalty::default());
-            let mut s = Smoother::new(opts(Strategy::Opt, Order::Input).with_max_iter(MAX_ITER))
-                .expect("options");
+            let mut s = Smoother::new(opts(Strategy::Opt, Order::Input).with_max_iter(MAX_ITER)).expect("options");
             let c = clock();
             let (mut passes, mut iters) = (0, 0);
             while passes < MAX_PASSES && worst_alpha_error(&m) > 1e-6 {

@@ -55,46 +55,19 @@ pub(crate) struct Row {
 
 pub(crate) fn freitag_table_1(out: &mut Report) {
     const SEEDS: [u64; 5] = [1, 2, 3, 4, 5];
-    let meshes: Vec<Mesh> = SEEDS
-        .iter()
-        .map(|&s| rand2d(500, 20, s).expect("rand2d"))
-        .collect();
+    let meshes: Vec<Mesh> = SEEDS.iter().map(|&s| rand2d(500, 20, s).expect("rand2d")).collect();
     let nodes = meshes[0].node_count();
     let tris = meshes[0].element_count();
     // Freitag's configuration: her measure (the min sine) for the smart Laplacian and the
     // thresholds, node order as numbered.
     let freitag = |s: Strategy| opts(s, Order::Input).with_smart_measure(Measure::MinSine);
     let mut configs: Vec<(String, String, Choice, SmoothOptions)> = vec![
-        (
-            "laplace (plain)".into(),
-            paper_row("Lap"),
-            ObjectiveKind::Sine.into(),
-            freitag(Strategy::Laplace),
-        ),
-        (
-            "smart (min sine)".into(),
-            "—".into(),
-            ObjectiveKind::Sine.into(),
-            freitag(Strategy::Smart),
-        ),
-        (
-            "opt, `sine`".into(),
-            paper_row("Opt"),
-            ObjectiveKind::Sine.into(),
-            freitag(Strategy::Opt),
-        ),
-        (
-            "opt, `old` (α)".into(),
-            "—".into(),
-            ObjectiveKind::MaxMinShape.into(),
-            freitag(Strategy::Opt),
-        ),
+        ("laplace (plain)".into(), paper_row("Lap"), ObjectiveKind::Sine.into(), freitag(Strategy::Laplace)),
+        ("smart (min sine)".into(), "—".into(), ObjectiveKind::Sine.into(), freitag(Strategy::Smart)),
+        ("opt, `sine`".into(), paper_row("Opt"), ObjectiveKind::Sine.into(), freitag(Strategy::Opt)),
+        ("opt, `old` (α)".into(), "—".into(), ObjectiveKind::MaxMinShape.into(), freitag(Strategy::Opt)),
     ];
-    for (s, n) in [
-        (Strategy::C1, "C1"),
-        (Strategy::C2, "C2"),
-        (Strategy::C3, "C3"),
-    ] {
+    for (s, n) in [(Strategy::C1, "C1"), (Strategy::C2, "C2"), (Strategy::C3, "C3")] {
         for t in [5.0, 10.0, 15.0, 30.0] {
             let name = format!("{n} {t}°");
             configs.push((
@@ -106,25 +79,12 @@ pub(crate) fn freitag_table_1(out: &mut Report) {
         }
     }
     for (choice, _) in NEW_DESIGNS {
-        let tag = if choice == NEW_ANGLE {
-            " (angle design)"
-        } else {
-            ""
-        };
+        let tag = if choice == NEW_ANGLE { " (angle design)" } else { "" };
         for (name, o) in [
             ("opt, `new`", opts(Strategy::Opt, Order::Input)),
-            (
-                "rules, `new`, input order",
-                opts(Strategy::Rules, Order::Input),
-            ),
-            (
-                "rules, `new`, priority",
-                opts(Strategy::Rules, Order::Priority),
-            ),
-            (
-                "rules, `new`, priority, 10 iterations/call",
-                opts(Strategy::Rules, Order::Priority).with_max_iter(10),
-            ),
+            ("rules, `new`, input order", opts(Strategy::Rules, Order::Input)),
+            ("rules, `new`, priority", opts(Strategy::Rules, Order::Priority)),
+            ("rules, `new`, priority, 10 iterations/call", opts(Strategy::Rules, Order::Priority).with_max_iter(10)),
         ] {
             configs.push((format!("{name}{tag}"), "—".into(), choice, o));
         }
@@ -202,31 +162,15 @@ pub(crate) fn freitag_table_1(out: &mut Report) {
         "paper: min / max (lap / opt)",
     ]);
     for r in &rows {
-        let cell = |v: &Vec<f64>, d: usize| {
-            if v.is_empty() {
-                "—".to_string()
-            } else {
-                mean_range(v, d)
-            }
-        };
-        let count = |v: &Vec<f64>| {
-            if v.is_empty() {
-                "—".to_string()
-            } else {
-                format!("{:.0}", mean(v))
-            }
-        };
+        let cell = |v: &Vec<f64>, d: usize| if v.is_empty() { "—".to_string() } else { mean_range(v, d) };
+        let count = |v: &Vec<f64>| if v.is_empty() { "—".to_string() } else { format!("{:.0}", mean(v)) };
         table.row(vec![
             r.name.clone(),
             cell(&r.min, 2),
             cell(&r.max, 1),
             count(&r.lap),
             count(&r.opt),
-            if r.ms.is_empty() {
-                "—".into()
-            } else {
-                format!("{:.1}", mean(&r.ms))
-            },
+            if r.ms.is_empty() { "—".into() } else { format!("{:.1}", mean(&r.ms)) },
             r.paper.clone(),
         ]);
     }
@@ -318,13 +262,7 @@ fn freitag_boundary(out: &mut Report, meshes: &[Mesh]) {
                 w = (a, e);
             }
         }
-        (
-            w.0.to_degrees(),
-            m.element(w.1)
-                .iter()
-                .filter(|&&n| m.fixed()[n as usize])
-                .count(),
-        )
+        (w.0.to_degrees(), m.element(w.1).iter().filter(|&&n| m.fixed()[n as usize]).count())
     };
     let _ = writeln!(
         out,
@@ -332,12 +270,8 @@ fn freitag_boundary(out: &mut Report, meshes: &[Mesh]) {
          after 10 passes of 20 iterations per call, with the number of fixed (boundary) nodes of the element that \
          has it.\n"
     );
-    let mut table = Table::new(&[
-        "seed",
-        "original",
-        "3 passes: min angle (fixed nodes of its element)",
-        "10 passes × 20 iterations",
-    ]);
+    let mut table =
+        Table::new(&["seed", "original", "3 passes: min angle (fixed nodes of its element)", "10 passes × 20 iterations"]);
     let (mut at_boundary, mut longer) = (0, Vec::new());
     for (i, m) in meshes.iter().enumerate() {
         let a = run(m, ObjectiveKind::Sine, o, 3, never);
@@ -378,26 +312,10 @@ fn freitag_why_new(out: &mut Report, meshes: &[Mesh]) {
             Choice::from(ObjectiveKind::Sine),
             opts(Strategy::Opt, Order::Input).with_smart_measure(Measure::MinSine),
         ),
-        (
-            "opt, `old` (α)",
-            ObjectiveKind::MaxMinShape.into(),
-            opts(Strategy::Opt, Order::Input),
-        ),
-        (
-            "opt, `new`",
-            ObjectiveKind::SmoothShape.into(),
-            opts(Strategy::Opt, Order::Input),
-        ),
-        (
-            "rules, `new`, priority",
-            ObjectiveKind::SmoothShape.into(),
-            opts(Strategy::Rules, Order::Priority),
-        ),
-        (
-            "rules, `new` (angle design), priority",
-            NEW_ANGLE,
-            opts(Strategy::Rules, Order::Priority),
-        ),
+        ("opt, `old` (α)", ObjectiveKind::MaxMinShape.into(), opts(Strategy::Opt, Order::Input)),
+        ("opt, `new`", ObjectiveKind::SmoothShape.into(), opts(Strategy::Opt, Order::Input)),
+        ("rules, `new`, priority", ObjectiveKind::SmoothShape.into(), opts(Strategy::Rules, Order::Priority)),
+        ("rules, `new` (angle design), priority", NEW_ANGLE, opts(Strategy::Rules, Order::Priority)),
     ] {
         let (mut minq, mut meanq, mut mina, mut small) = (vec![], vec![], vec![], vec![]);
         for m in meshes {

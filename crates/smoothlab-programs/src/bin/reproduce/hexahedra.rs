@@ -20,30 +20,16 @@ use crate::tetrahedra::run_volume;
 /// after and time, where given.
 const MESQUITE_3D: [(&str, &str); 6] = [
     ("hexes/tangled/hex_5_tangled.vtk", "36 → 0"),
-    (
-        "hexes/tangled/pave1.e.vtk",
-        "56 → 0 in 5.4 s (UntangleWrapper(BETA): 0 in 0.19 s; (SIZE) 3 passes: 240)",
-    ),
+    ("hexes/tangled/pave1.e.vtk", "56 → 0 in 5.4 s (UntangleWrapper(BETA): 0 in 0.19 s; (SIZE) 3 passes: 240)"),
     ("hexes/tangled/pave2.e.vtk", "4 → 0 in 0.9 s"),
-    (
-        "hexes/tangled/pave3.e.vtk",
-        "106 → 0 in 0.7 s (UntangleWrapper(BETA): 5 left)",
-    ),
-    (
-        "hexes/tangled/pave_cyl.e.vtk",
-        "116 → 0 in 1.7 s (UntangleWrapper(BETA): 4 left)",
-    ),
+    ("hexes/tangled/pave3.e.vtk", "106 → 0 in 0.7 s (UntangleWrapper(BETA): 5 left)"),
+    ("hexes/tangled/pave_cyl.e.vtk", "116 → 0 in 1.7 s (UntangleWrapper(BETA): 4 left)"),
     ("mixed/tangled/mixed-hex-pyr-tet.vtk", "3 inverted at start"),
 ];
 
 /// Passes until no element is inverted (at most `max`) with their smoothing time, and the
 /// mesh after `keep` passes (or after the last when it untangled later).
-fn to_valid(
-    mesh: &VolumeMesh,
-    kind: ObjectiveKind,
-    o: SmoothOptions,
-    max: u32,
-) -> (Option<u32>, f64, VolumeMesh) {
+fn to_valid(mesh: &VolumeMesh, kind: ObjectiveKind, o: SmoothOptions, max: u32) -> (Option<u32>, f64, VolumeMesh) {
     let mut m = mesh.clone();
     let clock = clock();
     let mut s = smoothlab::volume::VolumeSmoother::new(o).expect("valid options");
@@ -60,10 +46,7 @@ fn to_valid(
 }
 
 pub(crate) fn hexahedra(out: &mut Report) {
-    out.section(
-        11,
-        "Hexahedra, wedges and pyramids (Knupp 1999; Mesquite's 3D files)",
-    );
+    out.section(11, "Hexahedra, wedges and pyramids (Knupp 1999; Mesquite's 3D files)");
     let _ = writeln!(
         out,
         "Every element measured by its corners' Jacobians against its kind's ideal (`docs/formulas.md` §9); an element \
@@ -112,12 +95,7 @@ pub(crate) fn hexahedra(out: &mut Report) {
         let s0 = volume_stats(&mesh);
         let v0 = s0.solid.clone().expect("a volume's statistics");
         let kinds = s0.volume_kinds.words();
-        let (passes, ms, m) = to_valid(
-            &mesh,
-            ObjectiveKind::SmoothShape,
-            SmoothOptions::default(),
-            10,
-        );
+        let (passes, ms, m) = to_valid(&mesh, ObjectiveKind::SmoothShape, SmoothOptions::default(), 10);
         if let Some(p) = passes {
             reached += 1;
             worst_passes = worst_passes.max(p);
@@ -126,19 +104,9 @@ pub(crate) fn hexahedra(out: &mut Report) {
             }
         }
         let s = volume_stats(&m);
-        let (ten, _) = run_volume(
-            &mesh,
-            ObjectiveKind::SmoothShape,
-            SmoothOptions::default(),
-            10,
-        );
+        let (ten, _) = run_volume(&mesh, ObjectiveKind::SmoothShape, SmoothOptions::default(), 10);
         let s10 = volume_stats(&ten);
-        let (old, _) = run_volume(
-            &mesh,
-            ObjectiveKind::MaxMinShape,
-            opts(Strategy::Opt, Order::Input),
-            10,
-        );
+        let (old, _) = run_volume(&mesh, ObjectiveKind::MaxMinShape, opts(Strategy::Opt, Order::Input), 10);
         let so = volume_stats(&old);
         if so.inverted > 0 {
             old_left.push(format!("`{}`", file.rsplit('/').next().unwrap_or(file)));
@@ -149,16 +117,8 @@ pub(crate) fn hexahedra(out: &mut Report) {
             kinds,
             mesh.free_count().to_string(),
             format!("{} ({})", s0.inverted, v0.inverted_inside),
-            passes.map_or(
-                format!("not in 10 ({} left), {ms:.0} ms", s.inverted),
-                |p| format!("{p}, {ms:.0} ms"),
-            ),
-            format!(
-                "{:.3}, {:.3} / {:.3}",
-                sj(&s),
-                s.min_quality,
-                s.mean_quality
-            ),
+            passes.map_or(format!("not in 10 ({} left), {ms:.0} ms", s.inverted), |p| format!("{p}, {ms:.0} ms")),
+            format!("{:.3}, {:.3} / {:.3}", sj(&s), s.min_quality, s.mean_quality),
             format!("{:.3}", sj(&s10)),
             format!("{}, {:.3}", so.inverted, sj(&so)),
             mesquite.to_string(),
@@ -207,38 +167,16 @@ fn knupp_hex_grids(out: &mut Report) {
     for seed in 1..=5 {
         let tangled = perturb_volume(&block, 0.6, seed).expect("perturb");
         let s0 = volume_stats(&tangled);
-        let (new, rec) = run_volume(
-            &tangled,
-            ObjectiveKind::SmoothShape,
-            SmoothOptions::default(),
-            3,
-        );
+        let (new, rec) = run_volume(&tangled, ObjectiveKind::SmoothShape, SmoothOptions::default(), 3);
         let per: Vec<String> = rec.iter().map(|r| r.after.inverted.to_string()).collect();
         let ms: f64 = rec.iter().map(|r| r.elapsed_ms).sum();
         let (valid, _, m) = to_valid(&tangled, ObjectiveKind::Untangle, untangle_opts(), 10);
-        let (knupp, _) = run_volume(
-            &m,
-            ObjectiveKind::Condition,
-            opts(Strategy::Opt, Order::Input),
-            3,
-        );
+        let (knupp, _) = run_volume(&m, ObjectiveKind::Condition, opts(Strategy::Opt, Order::Input), 3);
         table.row(vec![
             seed.to_string(),
-            format!(
-                "{} ({})",
-                s0.inverted,
-                s0.solid.as_ref().map_or(0, |v| v.inverted_inside)
-            ),
-            format!(
-                "{}, {:.3}, {ms:.0} ms",
-                per.join("/"),
-                sj(&volume_stats(&new))
-            ),
-            format!(
-                "{}, {:.3}",
-                valid.map_or("not in 10".to_string(), |p| p.to_string()),
-                sj(&volume_stats(&knupp))
-            ),
+            format!("{} ({})", s0.inverted, s0.solid.as_ref().map_or(0, |v| v.inverted_inside)),
+            format!("{}, {:.3}, {ms:.0} ms", per.join("/"), sj(&volume_stats(&new))),
+            format!("{}, {:.3}", valid.map_or("not in 10".to_string(), |p| p.to_string()), sj(&volume_stats(&knupp))),
         ]);
     }
     out.table(table);

@@ -9,9 +9,7 @@ use smoothlab::smooth::{Order, Smoother, Strategy};
 use smoothlab::Mesh;
 use smoothlab_page::lab::tour::measured::Table;
 
-use crate::common::{
-    clock, fmt_kappa, kappa, never, opts, run, untangle_opts, untangled, NEW_ANGLE,
-};
+use crate::common::{clock, fmt_kappa, kappa, never, opts, run, untangle_opts, untangled, NEW_ANGLE};
 use crate::report::Report;
 
 /// A 10 × 10 grid with every interior node placed uniformly at random in the unit square
@@ -26,12 +24,7 @@ fn knupp_as_published(mesh: &Mesh, max: u32) -> bool {
     let mut m = mesh.clone();
     let mut s = Smoother::new(untangle_opts()).expect("valid options");
     let c = clock();
-    (0..max).any(|_| {
-        s.pass(&mut m, &smoothlab::objective::Untangle::KNUPP, &c)
-            .after
-            .inverted
-            == 0
-    })
+    (0..max).any(|_| s.pass(&mut m, &smoothlab::objective::Untangle::KNUPP, &c).after.inverted == 0)
 }
 
 /// Inverted elements whose most negative corner det is tiny (below 10⁻⁶ of the mean
@@ -51,18 +44,12 @@ fn flat_count(m: &Mesh) -> usize {
         worst.push(w);
     }
     let scale = dets.iter().sum::<f64>() / dets.len().max(1) as f64;
-    worst
-        .iter()
-        .filter(|&&w| w <= 0.0 && w >= -1e-6 * scale)
-        .count()
+    worst.iter().filter(|&&w| w <= 0.0 && w >= -1e-6 * scale).count()
 }
 
 pub(crate) fn knupp_figure_1(out: &mut Report) {
     const MAX_UNTANGLE: u32 = 100;
-    out.section(
-        4,
-        "Knupp (1999), Fig. 1: random node positions, untangled, then optimised",
-    );
+    out.section(4, "Knupp (1999), Fig. 1: random node positions, untangled, then optimised");
     let _ = writeln!(
         out,
         "A 10 × 10 grid of the unit square (quads, or triangles), boundary fixed, every one of the 81 interior nodes \
@@ -91,55 +78,22 @@ pub(crate) fn knupp_figure_1(out: &mut Report) {
             let m = random_grid(kind, seed);
             knupp_ok += knupp_as_published(&m, MAX_UNTANGLE) as usize;
             let count_only = opts(Strategy::Opt, Order::Input).with_pass_through_folds(false);
-            count_left += (run(
-                &m,
-                ObjectiveKind::Untangle,
-                count_only,
-                MAX_UNTANGLE,
-                untangled,
-            )
-            .passes_to_valid()
-            .is_none()) as usize;
-            let s0 = mesh_stats(&m);
-            let unt = run(
-                &m,
-                ObjectiveKind::Untangle,
-                untangle_opts(),
-                MAX_UNTANGLE,
-                untangled,
-            );
-            let (kw, km) = kappa(&unt.mesh);
-            let cond = run(
-                &unt.mesh,
-                ObjectiveKind::Condition,
-                opts(Strategy::Opt, Order::Input),
-                10,
-                never,
-            );
-            let (cw, cm) = kappa(&cond.mesh);
-            let new = run(
-                &m,
-                ObjectiveKind::SmoothShape,
-                opts(Strategy::Rules, Order::Priority),
-                10,
-                never,
-            );
-            let (nw, nm) = kappa(&new.mesh);
-            let new_valid = new
+            count_left += (run(&m, ObjectiveKind::Untangle, count_only, MAX_UNTANGLE, untangled)
                 .passes_to_valid()
-                .map_or("not in 10".to_string(), |n| n.to_string());
+                .is_none()) as usize;
+            let s0 = mesh_stats(&m);
+            let unt = run(&m, ObjectiveKind::Untangle, untangle_opts(), MAX_UNTANGLE, untangled);
+            let (kw, km) = kappa(&unt.mesh);
+            let cond = run(&unt.mesh, ObjectiveKind::Condition, opts(Strategy::Opt, Order::Input), 10, never);
+            let (cw, cm) = kappa(&cond.mesh);
+            let new = run(&m, ObjectiveKind::SmoothShape, opts(Strategy::Rules, Order::Priority), 10, never);
+            let (nw, nm) = kappa(&new.mesh);
+            let new_valid = new.passes_to_valid().map_or("not in 10".to_string(), |n| n.to_string());
             new_max = new_max.max(new.passes_to_valid().unwrap_or(0));
-            let angle = run(
-                &m,
-                NEW_ANGLE,
-                opts(Strategy::Rules, Order::Priority),
-                10,
-                untangled,
-            );
-            let angle_valid = angle.passes_to_valid().map_or_else(
-                || format!("not in 10 ({} left)", angle.last_inverted(s0.inverted)),
-                |n| n.to_string(),
-            );
+            let angle = run(&m, NEW_ANGLE, opts(Strategy::Rules, Order::Priority), 10, untangled);
+            let angle_valid = angle
+                .passes_to_valid()
+                .map_or_else(|| format!("not in 10 ({} left)", angle.last_inverted(s0.inverted)), |n| n.to_string());
             angle_ok += angle.passes_to_valid().is_some() as usize;
             unt_ok += (unt.last_inverted(s0.inverted) == 0) as usize;
             new_ok += new.passes_to_valid().is_some() as usize;
@@ -149,19 +103,9 @@ pub(crate) fn knupp_figure_1(out: &mut Report) {
                 label.to_string(),
                 seed.to_string(),
                 s0.inverted.to_string(),
-                format!(
-                    "{}, {} ({})",
-                    unt.passes.len(),
-                    unt.last_inverted(s0.inverted),
-                    flat_count(&unt.mesh)
-                ),
+                format!("{}, {} ({})", unt.passes.len(), unt.last_inverted(s0.inverted), flat_count(&unt.mesh)),
                 format!("{} / {}", fmt_kappa(kw), fmt_kappa(km)),
-                format!(
-                    "{}, {} / {}",
-                    mesh_stats(&cond.mesh).inverted,
-                    fmt_kappa(cw),
-                    fmt_kappa(cm)
-                ),
+                format!("{}, {} / {}", mesh_stats(&cond.mesh).inverted, fmt_kappa(cw), fmt_kappa(cm)),
                 format!("{new_valid}, {} / {}", fmt_kappa(nw), fmt_kappa(nm)),
                 angle_valid,
             ]);

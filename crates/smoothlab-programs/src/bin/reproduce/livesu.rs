@@ -22,20 +22,12 @@ const LIVESU: [(&str, f64, f64); 6] = [
 
 /// The smallest and the mean of the elements' smallest corner scaled Jacobians.
 fn scaled_jacobians(m: &VolumeMesh) -> (f64, f64) {
-    let sj: Vec<f64> = (0..m.element_count())
-        .map(|e| m.measures(e).scaled_jacobian)
-        .collect();
-    (
-        sj.iter().copied().fold(f64::INFINITY, f64::min),
-        sj.iter().sum::<f64>() / sj.len() as f64,
-    )
+    let sj: Vec<f64> = (0..m.element_count()).map(|e| m.measures(e).scaled_jacobian).collect();
+    (sj.iter().copied().fold(f64::INFINITY, f64::min), sj.iter().sum::<f64>() / sj.len() as f64)
 }
 
 pub(crate) fn livesu(out: &mut Report) {
-    out.section(
-        12,
-        "Real hexahedral meshes (Livesu et al. 2015), the boundary fixed",
-    );
+    out.section(12, "Real hexahedral meshes (Livesu et al. 2015), the boundary fixed");
     let _ = writeln!(
         out,
         "The inputs of Livesu, Sheffer, Vining and Tarini's \"Practical Hex-Mesh Optimization via Edge-Cone \
@@ -48,10 +40,7 @@ pub(crate) fn livesu(out: &mut Report) {
     );
     let root = meshes_dir().join("livesu2015");
     if !root.is_dir() {
-        let _ = writeln!(
-            out,
-            "*Skipped: the external meshes (`../shared/meshes/livesu2015`) were not found.*\n"
-        );
+        let _ = writeln!(out, "*Skipped: the external meshes (`../shared/meshes/livesu2015`) were not found.*\n");
         return;
     }
     let mut table = Table::new(&[
@@ -66,15 +55,7 @@ pub(crate) fn livesu(out: &mut Report) {
     let (mut reached, mut below_cap) = (Vec::new(), Vec::new());
     for (name, published_min, published_mean) in LIVESU {
         let Ok(Model::Volume(input)) = smoothlab::read(root.join(format!("{name}_in.mesh"))) else {
-            table.row(vec![
-                format!("`{name}`"),
-                "not read as a volume".into(),
-                String::new(),
-                String::new(),
-                String::new(),
-                String::new(),
-                String::new(),
-            ]);
+            table.row(vec![format!("`{name}`"), "not read as a volume".into(), String::new(), String::new(), String::new(), String::new(), String::new()]);
             continue;
         };
         let inverted = |s: &MeshStats| s.inverted;
@@ -82,12 +63,8 @@ pub(crate) fn livesu(out: &mut Report) {
         let at_start = (0..start).filter(|&e| input.is_inverted(e)).count();
         let run = |smoothing: Smoothing| {
             let mut m = Model::Volume(input.clone());
-            let report = m
-                .smooth(&smoothing)
-                .expect("the defaults take every volume");
-            let Model::Volume(v) = m else {
-                unreachable!("smoothing keeps the kind")
-            };
+            let report = m.smooth(&smoothing).expect("the defaults take every volume");
+            let Model::Volume(v) = m else { unreachable!("smoothing keeps the kind") };
             (report, v)
         };
         let (plain, p) = run(Smoothing::default().finish(0));
@@ -105,11 +82,7 @@ pub(crate) fn livesu(out: &mut Report) {
             start.to_string(),
             at_start.to_string(),
             format!("{}, {p_min:.3} / {p_mean:.3}", inverted(plain.stats())),
-            format!(
-                "{}, {f_min:.3} / {f_mean:.3}, {:.0} ms",
-                inverted(full.stats()),
-                full.time_ms()
-            ),
+            format!("{}, {f_min:.3} / {f_mean:.3}, {:.0} ms", inverted(full.stats()), full.time_ms()),
             format!("{cap:.3}"),
             format!("{published_min:.3} / {published_mean:.3}"),
         ]);

@@ -28,22 +28,22 @@
 //! `report` writes the document. Each table passes through it once, for both files.
 //! Its prose is wrapped at 100 characters as it is written (`markdown.rs`).
 
-mod chen;
 mod common;
-mod cost;
-mod equilateral;
-mod freitag;
-mod hexahedra;
-mod knupp;
-mod livesu;
 #[path = "../../markdown.rs"]
 mod markdown;
-mod mesquite;
 mod report;
+mod freitag;
+mod chen;
+mod mesquite;
+mod knupp;
+mod equilateral;
+mod cost;
+mod weight;
 mod sample;
 mod surfaces;
 mod tetrahedra;
-mod weight;
+mod hexahedra;
+mod livesu;
 
 use std::fmt::Write as _;
 
@@ -51,9 +51,7 @@ use report::Report;
 
 /// The date (UTC) from the system clock, by the civil-from-days algorithm (H. Hinnant).
 fn today() -> String {
-    let secs = std::time::SystemTime::now()
-        .duration_since(std::time::UNIX_EPOCH)
-        .map_or(0, |d| d.as_secs());
+    let secs = std::time::SystemTime::now().duration_since(std::time::UNIX_EPOCH).map_or(0, |d| d.as_secs());
     let z = (secs / 86_400) as i64 + 719_468;
     let era = z.div_euclid(146_097);
     let doe = z - era * 146_097;

@@ -9,9 +9,7 @@ use smoothlab::quality::mesh_stats;
 use smoothlab::smooth::{Order, Strategy};
 use smoothlab_page::lab::tour::measured::Table;
 
-use crate::common::{
-    fmt_kappa, kappa, meshes_dir, never, opts, run, untangle_opts, untangled, Choice, NEW_ANGLE,
-};
+use crate::common::{fmt_kappa, kappa, meshes_dir, never, opts, run, untangle_opts, untangled, Choice, NEW_ANGLE};
 use crate::report::Report;
 
 fn mesquite_files() -> Option<Vec<(String, PathBuf)>> {
@@ -22,19 +20,12 @@ fn mesquite_files() -> Option<Vec<(String, PathBuf)>> {
     let mut files = Vec::new();
     for group in ["tris", "quads", "mixed"] {
         let dir = root.join(group).join("tangled");
-        let Ok(rd) = std::fs::read_dir(&dir) else {
-            continue;
-        };
-        let mut names: Vec<PathBuf> = rd
-            .filter_map(|e| e.ok().map(|e| e.path()))
-            .filter(|p| p.extension().is_some_and(|e| e == "vtk"))
-            .collect();
+        let Ok(rd) = std::fs::read_dir(&dir) else { continue };
+        let mut names: Vec<PathBuf> =
+            rd.filter_map(|e| e.ok().map(|e| e.path())).filter(|p| p.extension().is_some_and(|e| e == "vtk")).collect();
         names.sort();
         for p in names {
-            let name = format!(
-                "{group}/tangled/{}",
-                p.file_name().unwrap_or_default().to_string_lossy()
-            );
+            let name = format!("{group}/tangled/{}", p.file_name().unwrap_or_default().to_string_lossy());
             files.push((name, p));
         }
     }
@@ -57,10 +48,7 @@ pub(crate) fn mesquite_tangled(out: &mut Report) {
          of them except `mixed/tangled/hybrid_3quad_1tri_tangled.vtk` (three free nodes start on one point).\n"
     );
     let Some(files) = mesquite_files() else {
-        let _ = writeln!(
-            out,
-            "*Skipped: the external Mesquite meshes (`../shared/meshes`) were not found.*\n"
-        );
+        let _ = writeln!(out, "*Skipped: the external Mesquite meshes (`../shared/meshes`) were not found.*\n");
         return;
     };
     let mut table = Table::new(&[
@@ -89,38 +77,20 @@ pub(crate) fn mesquite_tangled(out: &mut Report) {
         };
         let s0 = mesh_stats(&mesh);
         let cell = |choice: Choice| {
-            let new = run(
-                &mesh,
-                choice,
-                opts(Strategy::Rules, Order::Priority),
-                10,
-                untangled,
-            );
-            let first3: Vec<String> = (0..3)
-                .map(|i| {
-                    new.passes
-                        .get(i)
-                        .map_or("·".into(), |p| p.after.inverted.to_string())
-                })
-                .collect();
+            let new = run(&mesh, choice, opts(Strategy::Rules, Order::Priority), 10, untangled);
+            let first3: Vec<String> =
+                (0..3).map(|i| new.passes.get(i).map_or("·".into(), |p| p.after.inverted.to_string())).collect();
             format!(
                 "{} — {}",
                 first3.join("/"),
-                new.passes_to_valid().map_or(
-                    format!("not in 10 ({} left)", new.last_inverted(s0.inverted)),
-                    |n| n.to_string()
-                )
+                new.passes_to_valid()
+                    .map_or(format!("not in 10 ({} left)", new.last_inverted(s0.inverted)), |n| n.to_string())
             )
         };
         let (new_cell, angle_cell) = (cell(ObjectiveKind::SmoothShape.into()), cell(NEW_ANGLE));
         if s0.inverted > 0 {
             tangled += 1;
-            let within3 = |c: &str| {
-                c.rsplit("— ")
-                    .next()
-                    .and_then(|n| n.parse::<u32>().ok())
-                    .is_some_and(|n| n <= 3)
-            };
+            let within3 = |c: &str| c.rsplit("— ").next().and_then(|n| n.parse::<u32>().ok()).is_some_and(|n| n <= 3);
             done3 += within3(&new_cell) as usize;
             if !within3(&new_cell) {
                 failed.push(format!("`{name}`"));
@@ -129,13 +99,7 @@ pub(crate) fn mesquite_tangled(out: &mut Report) {
             }
             done3_angle += within3(&angle_cell) as usize;
         }
-        let unt = run(
-            &mesh,
-            ObjectiveKind::Untangle,
-            untangle_opts(),
-            10,
-            untangled,
-        );
+        let unt = run(&mesh, ObjectiveKind::Untangle, untangle_opts(), 10, untangled);
         if s0.inverted > 0 {
             unt_ok += unt.passes_to_valid().is_some() as usize;
             unt_max = unt_max.max(unt.passes_to_valid().unwrap_or(0));
@@ -145,29 +109,14 @@ pub(crate) fn mesquite_tangled(out: &mut Report) {
         }
         let unt_cell = match unt.passes_to_valid() {
             Some(n) => {
-                let cond = run(
-                    &unt.mesh,
-                    ObjectiveKind::Condition,
-                    opts(Strategy::Opt, Order::Input),
-                    3,
-                    never,
-                );
+                let cond = run(&unt.mesh, ObjectiveKind::Condition, opts(Strategy::Opt, Order::Input), 3, never);
                 let s = mesh_stats(&cond.mesh);
                 format!("{n}, {}, {}", s.inverted, fmt_kappa(kappa(&cond.mesh).0))
             }
             None => format!("not in 10, {} left, —", unt.last_inverted(s0.inverted)),
         };
-        let old = run(
-            &mesh,
-            ObjectiveKind::MaxMinShape,
-            opts(Strategy::Opt, Order::Input),
-            10,
-            never,
-        );
-        let old_cell = format!(
-            "{} / {}",
-            old.passes[2].after.inverted, old.passes[9].after.inverted
-        );
+        let old = run(&mesh, ObjectiveKind::MaxMinShape, opts(Strategy::Opt, Order::Input), 10, never);
+        let old_cell = format!("{} / {}", old.passes[2].after.inverted, old.passes[9].after.inverted);
         table.row(vec![
             name.clone(),
             s0.elements.to_string(),

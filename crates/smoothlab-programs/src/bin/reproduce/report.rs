@@ -29,11 +29,7 @@ impl Report {
     /// Starts section `number`: its heading, and a new section of the data.
     pub(crate) fn section(&mut self, number: u32, title: &str) {
         self.text.push_str(&format!("## {number}. {title}\n\n"));
-        self.data.sections.push(Section {
-            number,
-            title: title.into(),
-            tables: Vec::new(),
-        });
+        self.data.sections.push(Section { number, title: title.into(), tables: Vec::new() });
         self.heading = None;
     }
 
@@ -51,12 +47,7 @@ impl Report {
     pub(crate) fn table(&mut self, mut table: Table) {
         table.heading = self.heading.clone();
         self.text.push_str(&markdown(&table));
-        self.data
-            .sections
-            .last_mut()
-            .expect("a table stands in a section")
-            .tables
-            .push(table);
+        self.data.sections.last_mut().expect("a table stands in a section").tables.push(table);
     }
 }
 
@@ -81,12 +72,7 @@ pub(crate) fn markdown(table: &Table) -> String {
 /// A rerun's diff then shows the rows that changed.
 pub(crate) fn json(data: &Reproduction) -> String {
     let s = |text: &str| serde_json::to_string(text).expect("a string is JSON");
-    let list = |cells: &[String]| {
-        format!(
-            "[{}]",
-            cells.iter().map(|c| s(c)).collect::<Vec<_>>().join(", ")
-        )
-    };
+    let list = |cells: &[String]| format!("[{}]", cells.iter().map(|c| s(c)).collect::<Vec<_>>().join(", "));
     let mut sections = Vec::new();
     for section in &data.sections {
         let mut tables = Vec::new();
@@ -96,11 +82,7 @@ pub(crate) fn json(data: &Reproduction) -> String {
                 fields.push(format!("          \"heading\": {}", s(h)));
             }
             fields.push(format!("          \"header\": {}", list(&t.header)));
-            let rows: Vec<String> = t
-                .rows
-                .iter()
-                .map(|r| format!("            {}", list(r)))
-                .collect();
+            let rows: Vec<String> = t.rows.iter().map(|r| format!("            {}", list(r))).collect();
             fields.push(if rows.is_empty() {
                 "          \"rows\": []".to_string()
             } else {
@@ -108,11 +90,8 @@ pub(crate) fn json(data: &Reproduction) -> String {
             });
             tables.push(format!("        {{\n{}\n        }}", fields.join(",\n")));
         }
-        let tables = if tables.is_empty() {
-            "[]".to_string()
-        } else {
-            format!("[\n{}\n      ]", tables.join(",\n"))
-        };
+        let tables =
+            if tables.is_empty() { "[]".to_string() } else { format!("[\n{}\n      ]", tables.join(",\n")) };
         sections.push(format!(
             "    {{\n      \"number\": {},\n      \"title\": {},\n      \"tables\": {tables}\n    }}",
             section.number,
@@ -145,10 +124,7 @@ mod tests {
         r.table(Table::new(&["c"]));
         assert_eq!(r.text, "## 1. One\n\ntext\n\n| a | b \\|x\\| |\n|---|---|\n| x | 1 |\n### Part\n\n| c |\n|---|\n");
         let t = &r.data.sections[0].tables;
-        assert_eq!(
-            (t[0].heading.as_deref(), t[1].heading.as_deref()),
-            (None, Some("Part"))
-        );
+        assert_eq!((t[0].heading.as_deref(), t[1].heading.as_deref()), (None, Some("Part")));
         assert_eq!(t[0].header[1], "b |x|");
         let back: Reproduction = serde_json::from_str(&json(&r.data)).unwrap();
         assert_eq!(back, r.data);
@@ -170,28 +146,16 @@ mod tests {
         let data: Reproduction = serde_json::from_str(DATA).unwrap();
         let mut tables = 0;
         for s in &data.sections {
-            assert!(
-                DOCUMENT.contains(&format!("\n## {}. {}\n", s.number, s.title)),
-                "§{}",
-                s.number
-            );
+            assert!(DOCUMENT.contains(&format!("\n## {}. {}\n", s.number, s.title)), "§{}", s.number);
             for t in &s.tables {
                 let md = markdown(t);
                 assert!(DOCUMENT.contains(&md), "§{}: {md}", s.number);
                 if let Some(h) = &t.heading {
-                    assert!(
-                        DOCUMENT.contains(&format!("\n### {h}\n")),
-                        "§{}: {h}",
-                        s.number
-                    );
+                    assert!(DOCUMENT.contains(&format!("\n### {h}\n")), "§{}: {h}", s.number);
                 }
                 tables += 1;
             }
         }
-        assert_eq!(
-            tables,
-            DOCUMENT.lines().filter(|l| l.starts_with("|---")).count(),
-            "every table of the document"
-        );
+        assert_eq!(tables, DOCUMENT.lines().filter(|l| l.starts_with("|---")).count(), "every table of the document");
     }
 }

@@ -37,18 +37,13 @@ pub(crate) fn default_sample(out: &mut Report) {
         "smallest",
         "largest",
     ]);
-    for (name, kind) in [
-        ("tri", PlateKind::Tri),
-        ("quad", PlateKind::Quad),
-        ("mixed", PlateKind::Mixed),
-    ] {
+    for (name, kind) in [("tri", PlateKind::Tri), ("quad", PlateKind::Quad), ("mixed", PlateKind::Mixed)] {
         let base = plate(kind, 1, PLATE_RESOLUTION).expect("plate");
         let (mut untangled, mut ahead, mut better_mean, mut lead) = ([0; 2], 0, 0, vec![]);
         for seed in 1..=SEEDS {
             let m = perturb(&base, TANGLE_AMOUNT, seed).expect("perturb");
-            let [o, n] = [ObjectiveKind::MaxMinShape, ObjectiveKind::SmoothShape].map(|k| {
-                mesh_stats(&run(&m, k, opts(Strategy::Rules, Order::Priority), 3, never).mesh)
-            });
+            let [o, n] = [ObjectiveKind::MaxMinShape, ObjectiveKind::SmoothShape]
+                .map(|k| mesh_stats(&run(&m, k, opts(Strategy::Rules, Order::Priority), 3, never).mesh));
             untangled[0] += (o.inverted == 0) as u32;
             untangled[1] += (n.inverted == 0) as u32;
             ahead += (n.min_angle_deg > o.min_angle_deg) as u32;
@@ -58,11 +53,7 @@ pub(crate) fn default_sample(out: &mut Report) {
             }
         }
         lead.sort_by(f64::total_cmp);
-        let median = if lead.is_empty() {
-            f64::NAN
-        } else {
-            0.5 * (lead[(lead.len() - 1) / 2] + lead[lead.len() / 2])
-        };
+        let median = if lead.is_empty() { f64::NAN } else { 0.5 * (lead[(lead.len() - 1) / 2] + lead[lead.len() / 2]) };
         table.row(vec![
             name.to_string(),
             format!("{} of {SEEDS}", untangled[0]),

@@ -54,10 +54,7 @@ fn surface_row(name: &str, s: &MeshStats, ms: Option<f64>) -> Vec<String> {
 }
 
 pub(crate) fn surfaces(out: &mut Report) {
-    out.section(
-        9,
-        "Surface meshes (Chen, Tristano & Kwok 2003, §5, Figs. 18–19)",
-    );
+    out.section(9, "Surface meshes (Chen, Tristano & Kwok 2003, §5, Figs. 18–19)");
     let _ = writeln!(
         out,
         "A surface's free node is smoothed in its tangent plane: its star is flattened there, every strategy and \
@@ -73,16 +70,8 @@ pub(crate) fn surfaces(out: &mut Report) {
         "3 passes of `new` + `rules` (priority order) and of `old` + `opt`, with the files' `fixed` flags (and \
          their feature curves fixed: none of these has one).\n"
     );
-    let mut table = Table::new(&[
-        "mesh",
-        "inverted",
-        "min angle",
-        "max angle",
-        "min α/β",
-        "mean α/β",
-        "distance",
-        "ms",
-    ]);
+    let mut table =
+        Table::new(&["mesh", "inverted", "min angle", "max angle", "min α/β", "mean α/β", "distance", "ms"]);
     let root = meshes_dir().join("mesquite");
     let files = [
         "quads/untangled/quads_on_sphere_529.vtk",
@@ -92,10 +81,7 @@ pub(crate) fn surfaces(out: &mut Report) {
     ];
     if !root.is_dir() {
         out.table(table);
-        let _ = writeln!(
-            out,
-            "\n*Skipped: the external Mesquite meshes (`../shared/meshes`) were not found.*\n"
-        );
+        let _ = writeln!(out, "\n*Skipped: the external Mesquite meshes (`../shared/meshes`) were not found.*\n");
     } else {
         for f in files {
             let model = match io::read_model_path(&root.join(f)) {
@@ -114,22 +100,11 @@ pub(crate) fn surfaces(out: &mut Report) {
                 continue;
             };
             table.row(surface_row(&format!("`{f}` as loaded"), &s.stats(), None));
-            for (kind, strategy) in [
-                (ObjectiveKind::SmoothShape, Strategy::Rules),
-                (ObjectiveKind::MaxMinShape, Strategy::Opt),
-            ] {
-                let order = if strategy == Strategy::Rules {
-                    Order::Priority
-                } else {
-                    Order::Input
-                };
+            for (kind, strategy) in [(ObjectiveKind::SmoothShape, Strategy::Rules), (ObjectiveKind::MaxMinShape, Strategy::Opt)] {
+                let order = if strategy == Strategy::Rules { Order::Priority } else { Order::Input };
                 let (t, r) = run_surface(&s, kind, opts(strategy, order), 3, false);
                 let ms: f64 = r.iter().map(|p| p.elapsed_ms).sum();
-                table.row(surface_row(
-                    &format!("{} + {}", kind.name(), strategy.name()),
-                    &t.stats(),
-                    Some(ms),
-                ));
+                table.row(surface_row(&format!("{} + {}", kind.name(), strategy.name()), &t.stats(), Some(ms)));
             }
         }
         out.table(table);
@@ -164,13 +139,8 @@ pub(crate) fn surfaces(out: &mut Report) {
                     for seed in 1..=3 {
                         let p = perturb_surface(&base, amount, seed).expect("perturbed");
                         inverted += p.stats().inverted;
-                        let (t, r) = run_surface(
-                            &p,
-                            ObjectiveKind::SmoothShape,
-                            opts(Strategy::Rules, Order::Priority),
-                            10,
-                            true,
-                        );
+                        let (t, r) =
+                            run_surface(&p, ObjectiveKind::SmoothShape, opts(Strategy::Rules, Order::Priority), 10, true);
                         let st = t.stats();
                         done += (st.inverted == 0) as usize;
                         most = most.max(r.len());
@@ -244,39 +214,30 @@ fn tangled_from_files(out: &mut Report) {
     );
     // one row: the mean inverted count before and after each pass, the seeds untangled,
     // the farthest node from the exact surface, the smallest and largest angle
-    let row =
-        |name: &str, amount: f64, nodes: usize, runs: &[(Vec<usize>, Option<f64>, f64, f64)]| {
-            let k = runs.len() as f64;
-            let per_pass = (0..=PASSES as usize)
-                .map(|i| {
-                    format!(
-                        "{:.1}",
-                        runs.iter()
-                            .map(|r| r.0[i.min(r.0.len() - 1)] as f64)
-                            .sum::<f64>()
-                            / k
-                    )
-                })
-                .collect::<Vec<_>>()
-                .join(" → ");
-            let untangled = runs.iter().filter(|r| r.0.last() == Some(&0)).count();
-            let far = match runs.iter().map(|r| r.1).collect::<Option<Vec<f64>>>() {
-                Some(d) => format!("{:.1e}", d.into_iter().fold(0.0, f64::max)),
-                None => "—".into(),
-            };
-            let lo = runs.iter().map(|r| r.2).fold(f64::INFINITY, f64::min);
-            let hi = runs.iter().map(|r| r.3).fold(0.0, f64::max);
-            vec![
-                name.to_string(),
-                amount.to_string(),
-                nodes.to_string(),
-                per_pass,
-                format!("{untangled} of {}", runs.len()),
-                far,
-                format!("{lo:.2}"),
-                format!("{hi:.2}"),
-            ]
+    let row = |name: &str, amount: f64, nodes: usize, runs: &[(Vec<usize>, Option<f64>, f64, f64)]| {
+        let k = runs.len() as f64;
+        let per_pass = (0..=PASSES as usize)
+            .map(|i| format!("{:.1}", runs.iter().map(|r| r.0[i.min(r.0.len() - 1)] as f64).sum::<f64>() / k))
+            .collect::<Vec<_>>()
+            .join(" → ");
+        let untangled = runs.iter().filter(|r| r.0.last() == Some(&0)).count();
+        let far = match runs.iter().map(|r| r.1).collect::<Option<Vec<f64>>>() {
+            Some(d) => format!("{:.1e}", d.into_iter().fold(0.0, f64::max)),
+            None => "—".into(),
         };
+        let lo = runs.iter().map(|r| r.2).fold(f64::INFINITY, f64::min);
+        let hi = runs.iter().map(|r| r.3).fold(0.0, f64::max);
+        vec![
+            name.to_string(),
+            amount.to_string(),
+            nodes.to_string(),
+            per_pass,
+            format!("{untangled} of {}", runs.len()),
+            far,
+            format!("{lo:.2}"),
+            format!("{hi:.2}"),
+        ]
+    };
     // a tangled sample written in `format` and read back, smoothed: one row per amount
     let from_file = |table: &mut Table, format: io::Format, orders: &[u8], amounts: &[f64]| {
         for shape in SurfaceShape::ALL {
@@ -291,14 +252,9 @@ fn tangled_from_files(out: &mut Report) {
                             .iter()
                             .map(|&seed| {
                                 let p = perturb_surface(&base, amount, seed).expect("perturbed");
-                                let text = io::write_model_string(
-                                    &Model::Surface(p),
-                                    format,
-                                    &Default::default(),
-                                )
-                                .expect("written");
-                                let Ok(Model::Surface(loaded)) = io::read_model_str(&text, format)
-                                else {
+                                let text = io::write_model_string(&Model::Surface(p), format, &Default::default())
+                                    .expect("written");
+                                let Ok(Model::Surface(loaded)) = io::read_model_str(&text, format) else {
                                     unreachable!("a surface file reads back as a surface")
                                 };
                                 let before = loaded.stats().inverted;
@@ -309,15 +265,11 @@ fn tangled_from_files(out: &mut Report) {
                                     PASSES,
                                     false,
                                 );
-                                let inverted = std::iter::once(before)
-                                    .chain(r.iter().map(|p| p.after.inverted))
-                                    .collect();
+                                let inverted = std::iter::once(before).chain(r.iter().map(|p| p.after.inverted)).collect();
                                 let far = t
                                     .points()
                                     .iter()
-                                    .map(|&q| {
-                                        (exact.project(q, smoothlab::mesh::NONE).point - q).length()
-                                    })
+                                    .map(|&q| (exact.project(q, smoothlab::mesh::NONE).point - q).length())
                                     .fold(0.0, f64::max);
                                 let st = t.stats();
                                 (inverted, Some(far), st.min_angle_deg, st.max_angle_deg)
@@ -339,31 +291,13 @@ fn tangled_from_files(out: &mut Report) {
                 .iter()
                 .map(|&seed| {
                     let m = perturb(&base, amount, seed).expect("perturb");
-                    let r = run(
-                        &m,
-                        ObjectiveKind::SmoothShape,
-                        opts(Strategy::Rules, Order::Priority),
-                        PASSES,
-                        |_| false,
-                    );
-                    let inverted = std::iter::once(mesh_stats(&m).inverted)
-                        .chain(r.passes.iter().map(|p| p.after.inverted))
-                        .collect();
+                    let r = run(&m, ObjectiveKind::SmoothShape, opts(Strategy::Rules, Order::Priority), PASSES, |_| false);
+                    let inverted = std::iter::once(mesh_stats(&m).inverted).chain(r.passes.iter().map(|p| p.after.inverted)).collect();
                     let last = r.passes.last().expect("a pass");
-                    (
-                        inverted,
-                        None,
-                        last.after.min_angle_deg,
-                        last.after.max_angle_deg,
-                    )
+                    (inverted, None, last.after.min_angle_deg, last.after.max_angle_deg)
                 })
                 .collect();
-            table.row(row(
-                &format!("plate {label}"),
-                amount,
-                base.node_count(),
-                &runs,
-            ));
+            table.row(row(&format!("plate {label}"), amount, base.node_count(), &runs));
         }
     }
     out.table(table);

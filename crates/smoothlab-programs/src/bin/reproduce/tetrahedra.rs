@@ -41,60 +41,25 @@ fn paper_row_2(name: &str) -> String {
 }
 
 /// `passes` passes of a volume smoother over a copy of `mesh`: the mesh and the records.
-pub(crate) fn run_volume(
-    mesh: &VolumeMesh,
-    kind: ObjectiveKind,
-    o: SmoothOptions,
-    passes: u32,
-) -> (VolumeMesh, Vec<PassRecord>) {
+pub(crate) fn run_volume(mesh: &VolumeMesh, kind: ObjectiveKind, o: SmoothOptions, passes: u32) -> (VolumeMesh, Vec<PassRecord>) {
     let mut m = mesh.clone();
     let clock = clock();
-    let records = smooth_volume(
-        &mut m,
-        &*tet_objective(kind)
-            .expect("every objective of the reproduction has a form on tetrahedra"),
-        o,
-        passes,
-        &clock,
-    )
-    .expect("valid options");
+    let records = smooth_volume(&mut m, &*tet_objective(kind).expect("every objective of the reproduction has a form on tetrahedra"), o, passes, &clock).expect("valid options");
     (m, records)
 }
 
 pub(crate) fn freitag_table_2(out: &mut Report) {
     const SEEDS: [u64; 5] = [1, 2, 3, 4, 5];
-    let meshes: Vec<VolumeMesh> = SEEDS
-        .iter()
-        .map(|&s| rand3d(RAND3D_POINTS, s).expect("rand3d"))
-        .collect();
+    let meshes: Vec<VolumeMesh> = SEEDS.iter().map(|&s| rand3d(RAND3D_POINTS, s).expect("rand3d")).collect();
     let tets: Vec<f64> = meshes.iter().map(|m| m.element_count() as f64).collect();
     let free = meshes[0].free_count();
     let freitag = |s: Strategy| opts(s, Order::Input).with_smart_measure(Measure::MinSine);
     let mut configs: Vec<(String, String, ObjectiveKind, SmoothOptions)> = vec![
-        (
-            "laplace (plain)".into(),
-            paper_row_2("Lap"),
-            ObjectiveKind::Sine,
-            freitag(Strategy::Laplace),
-        ),
-        (
-            "smart (min sine)".into(),
-            "—".into(),
-            ObjectiveKind::Sine,
-            freitag(Strategy::Smart),
-        ),
-        (
-            "opt, `sine`".into(),
-            paper_row_2("Opt"),
-            ObjectiveKind::Sine,
-            freitag(Strategy::Opt),
-        ),
+        ("laplace (plain)".into(), paper_row_2("Lap"), ObjectiveKind::Sine, freitag(Strategy::Laplace)),
+        ("smart (min sine)".into(), "—".into(), ObjectiveKind::Sine, freitag(Strategy::Smart)),
+        ("opt, `sine`".into(), paper_row_2("Opt"), ObjectiveKind::Sine, freitag(Strategy::Opt)),
     ];
-    for (s, n) in [
-        (Strategy::C1, "C1"),
-        (Strategy::C2, "C2"),
-        (Strategy::C3, "C3"),
-    ] {
+    for (s, n) in [(Strategy::C1, "C1"), (Strategy::C2, "C2"), (Strategy::C3, "C3")] {
         for t in [5.0, 10.0, 15.0, 30.0] {
             let name = format!("{n} {t}°");
             configs.push((
@@ -105,24 +70,14 @@ pub(crate) fn freitag_table_2(out: &mut Report) {
             ));
         }
     }
-    configs.push((
-        "opt, `new`".into(),
-        "—".into(),
-        ObjectiveKind::SmoothShape,
-        opts(Strategy::Opt, Order::Input),
-    ));
+    configs.push(("opt, `new`".into(), "—".into(), ObjectiveKind::SmoothShape, opts(Strategy::Opt, Order::Input)));
     configs.push((
         "rules, `new`, priority".into(),
         "—".into(),
         ObjectiveKind::SmoothShape,
         opts(Strategy::Rules, Order::Priority),
     ));
-    configs.push((
-        "opt, `condition`".into(),
-        "—".into(),
-        ObjectiveKind::Condition,
-        opts(Strategy::Opt, Order::Input),
-    ));
+    configs.push(("opt, `condition`".into(), "—".into(), ObjectiveKind::Condition, opts(Strategy::Opt, Order::Input)));
 
     let mut rows = Vec::new();
     let mut original = Row {
@@ -157,29 +112,13 @@ pub(crate) fn freitag_table_2(out: &mut Report) {
             inverted.push((name.clone(), last.after.inverted));
             row.min.push(last.after.min_angle_deg);
             row.max.push(last.after.max_angle_deg);
-            row.lap.push(
-                records
-                    .iter()
-                    .map(|p| p.counts.laplacian_moves as f64)
-                    .sum(),
-            );
-            row.opt.push(
-                records
-                    .iter()
-                    .map(|p| p.counts.optimization_calls as f64)
-                    .sum(),
-            );
+            row.lap.push(records.iter().map(|p| p.counts.laplacian_moves as f64).sum());
+            row.opt.push(records.iter().map(|p| p.counts.optimization_calls as f64).sum());
             row.ms.push(records.iter().map(|p| p.elapsed_ms).sum());
         }
         rows.push(row);
     }
-    let smart_ms = mean(
-        &rows
-            .iter()
-            .find(|r| r.name == "smart (min sine)")
-            .expect("row")
-            .ms,
-    );
+    let smart_ms = mean(&rows.iter().find(|r| r.name == "smart (min sine)").expect("row").ms);
     out.section(10, "Freitag (1997), Table 2: rand3D");
     let _ = writeln!(
         out,
@@ -209,27 +148,12 @@ pub(crate) fn freitag_table_2(out: &mut Report) {
         "paper: min / max (lap / opt)",
     ]);
     for r in &rows {
-        let cell = |v: &Vec<f64>, d: usize| {
-            if v.is_empty() {
-                "—".to_string()
-            } else {
-                mean_range(v, d)
-            }
-        };
-        let count = |v: &Vec<f64>| {
-            if v.is_empty() {
-                "—".to_string()
-            } else {
-                format!("{:.0}", mean(v))
-            }
-        };
+        let cell = |v: &Vec<f64>, d: usize| if v.is_empty() { "—".to_string() } else { mean_range(v, d) };
+        let count = |v: &Vec<f64>| if v.is_empty() { "—".to_string() } else { format!("{:.0}", mean(v)) };
         let (ms, ratio) = if r.ms.is_empty() {
             ("—".to_string(), "—".to_string())
         } else {
-            (
-                format!("{:.1}", mean(&r.ms)),
-                format!("{:.1}", mean(&r.ms) / smart_ms),
-            )
+            (format!("{:.1}", mean(&r.ms)), format!("{:.1}", mean(&r.ms) / smart_ms))
         };
         table.row(vec![
             r.name.clone(),
@@ -244,11 +168,7 @@ pub(crate) fn freitag_table_2(out: &mut Report) {
     }
     out.table(table);
     let left: usize = inverted.iter().map(|(_, n)| n).sum();
-    let plain: usize = inverted
-        .iter()
-        .filter(|(n, _)| n == "laplace (plain)")
-        .map(|(_, n)| n)
-        .sum();
+    let plain: usize = inverted.iter().filter(|(n, _)| n == "laplace (plain)").map(|(_, n)| n).sum();
     let find = |n: &str| rows.iter().find(|r| r.name == n).expect("row");
     let _ = writeln!(
         out,
@@ -307,32 +227,14 @@ fn knupp_tetrahedra(out: &mut Report) {
                 break;
             }
         }
-        let (knupp, _) = run_volume(
-            &m,
-            ObjectiveKind::Condition,
-            opts(Strategy::Opt, Order::Input),
-            3,
-        );
-        let (chen, rec) = run_volume(
-            &tangled,
-            ObjectiveKind::SmoothShape,
-            opts(Strategy::Rules, Order::Priority),
-            3,
-        );
-        let chen_valid = rec
-            .iter()
-            .position(|p| p.after.inverted == 0)
-            .map(|i| i as u32 + 1);
-        for (name, mesh, valid) in [
-            ("untangle, then condition", &knupp, to_valid),
-            ("new + rules", &chen, chen_valid),
-        ] {
+        let (knupp, _) = run_volume(&m, ObjectiveKind::Condition, opts(Strategy::Opt, Order::Input), 3);
+        let (chen, rec) = run_volume(&tangled, ObjectiveKind::SmoothShape, opts(Strategy::Rules, Order::Priority), 3);
+        let chen_valid = rec.iter().position(|p| p.after.inverted == 0).map(|i| i as u32 + 1);
+        for (name, mesh, valid) in [("untangle, then condition", &knupp, to_valid), ("new + rules", &chen, chen_valid)]
+        {
             let s = volume_stats(mesh);
-            let kappa = if s.max_condition.is_finite() {
-                format!("{:.2}", s.max_condition)
-            } else {
-                "∞ (inverted)".into()
-            };
+            let kappa =
+                if s.max_condition.is_finite() { format!("{:.2}", s.max_condition) } else { "∞ (inverted)".into() };
             table.row(vec![
                 seed.to_string(),
                 start.to_string(),

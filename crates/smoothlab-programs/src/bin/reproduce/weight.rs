@@ -15,27 +15,17 @@ use crate::report::Report;
 
 /// How `k1` was chosen: the Table 1 figures and Knupp's grids for a range of weights.
 pub(crate) fn barrier_weight(out: &mut Report) {
-    let meshes: Vec<Mesh> = (1..=5)
-        .map(|s| rand2d(500, 20, s).expect("rand2d"))
-        .collect();
+    let meshes: Vec<Mesh> = (1..=5).map(|s| rand2d(500, 20, s).expect("rand2d")).collect();
     let grids: Vec<Mesh> = [GridKind::Quad, GridKind::Tri]
         .into_iter()
         .flat_map(|k| (1..=5u64).map(move |seed| random_grid(k, seed)))
         .collect();
-    let page = smoothlab_page::lab::sample::Sample::DEFAULT
-        .generate()
-        .expect("sample");
+    let page = smoothlab_page::lab::sample::Sample::DEFAULT.generate().expect("sample");
     let page_stats = |r: Run| {
         let s = mesh_stats(&r.mesh);
         (s.min_angle_deg, s.mean_quality, s.inverted)
     };
-    let old_page = page_stats(run(
-        &page,
-        ObjectiveKind::MaxMinShape,
-        opts(Strategy::Rules, Order::Priority),
-        3,
-        never,
-    ));
+    let old_page = page_stats(run(&page, ObjectiveKind::MaxMinShape, opts(Strategy::Rules, Order::Priority), 3, never));
     out.section(7, "Choosing the barrier's weight k1");
     let _ = writeln!(
         out,
@@ -56,10 +46,7 @@ pub(crate) fn barrier_weight(out: &mut Report) {
         "page sample: inverted, min angle, mean β",
     ]);
     for k1 in [0.02, 0.05, 0.1, 0.15, 0.2, 0.3, 0.5, 1.0] {
-        let obj = ChenTristanoKwok::Barrier(RegularisedBarrier {
-            k1,
-            ..RegularisedBarrier::default()
-        });
+        let obj = ChenTristanoKwok::Barrier(RegularisedBarrier { k1, ..RegularisedBarrier::default() });
         let o = opts(Strategy::Rules, Order::Priority);
         let (mut mn, mut mx, mut q) = (vec![], vec![], vec![]);
         for m in &meshes {
@@ -69,10 +56,8 @@ pub(crate) fn barrier_weight(out: &mut Report) {
             mx.push(last.after.max_angle_deg);
             q.push(mesh_stats(&r.mesh).mean_quality);
         }
-        let passes: Vec<Option<usize>> = grids
-            .iter()
-            .map(|g| run_with(g, &obj, o, 10, untangled).passes_to_valid())
-            .collect();
+        let passes: Vec<Option<usize>> =
+            grids.iter().map(|g| run_with(g, &obj, o, 10, untangled).passes_to_valid()).collect();
         let most = passes
             .iter()
             .map(|p| p.map_or("not in 10".to_string(), |n| n.to_string()))
@@ -84,11 +69,7 @@ pub(crate) fn barrier_weight(out: &mut Report) {
             format!("{:.2}", mean(&mn)),
             format!("{:.1}", mean(&mx)),
             format!("{:.4}", mean(&q)),
-            format!(
-                "{untangled_count} of {} ({})",
-                grids.len(),
-                most.unwrap_or_default()
-            ),
+            format!("{untangled_count} of {} ({})", grids.len(), most.unwrap_or_default()),
             format!("{pi}, {pa:.2}°, {pq:.4}"),
         ]);
     }

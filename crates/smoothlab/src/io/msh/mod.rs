@@ -27,9 +27,9 @@ use crate::io::volume::{volume_codes, MAX_VOLUME_NODES};
 use crate::mesh::{ElementKind, FixedSpec, MeshBuilder, VolumeKind, NONE};
 
 mod write;
+pub(crate) use write::{type_of, write, MshBlock, MshSource};
 #[cfg(test)]
 use write::runs;
-pub(crate) use write::{type_of, write, MshBlock, MshSource};
 
 /// What a Gmsh element type is to us.
 enum GmshType {
@@ -63,10 +63,7 @@ fn gmsh_type(t: u64) -> GmshType {
         19 => Unsupported("13-node pyramid", Some("quadratic pyramids")),
         20 => Unsupported("9-node incomplete cubic triangle", Some("cubic triangles")),
         21 => Unsupported("10-node cubic triangle", Some("cubic triangles")),
-        22..=25 => Unsupported(
-            "higher-order triangle",
-            Some("triangles above second order"),
-        ),
+        22..=25 => Unsupported("higher-order triangle", Some("triangles above second order")),
         26..=28 => Unsupported("higher-order line", Some("lines above second order")),
         _ => Unsupported("unknown type", None),
     }
@@ -85,22 +82,16 @@ fn gmsh_reads() -> String {
 /// has a name people know (`hexahedra are not supported yet: line 17: Gmsh element type 5
 /// (8-node hexahedron); smoothlab reads …`).
 fn unsupported_type(t: u64, line: usize) -> Error {
-    let GmshType::Unsupported(name, words) = gmsh_type(t) else {
-        unreachable!("only called for unsupported types")
-    };
+    let GmshType::Unsupported(name, words) = gmsh_type(t) else { unreachable!("only called for unsupported types") };
     match words {
         Some(words) => Error::unsupported_kind(
             format!("{words} are not supported yet"),
             line,
             format!("Gmsh element type {t} ({name}); {}", gmsh_reads()),
         ),
-        None => Error::unsupported(
-            Some(line),
-            format!(
-                "Gmsh element type {t} ({name}) is not supported: {}",
-                gmsh_reads()
-            ),
-        ),
+        None => {
+            Error::unsupported(Some(line), format!("Gmsh element type {t} ({name}) is not supported: {}", gmsh_reads()))
+        }
     }
 }
 
@@ -123,10 +114,7 @@ impl TagMap {
             Error::node(
                 tag,
                 Some(lines[second as usize] as usize),
-                format!(
-                    "node tag {tag} is defined twice (first at line {})",
-                    lines[first as usize]
-                ),
+                format!("node tag {tag} is defined twice (first at line {})", lines[first as usize]),
             )
         };
         if max - min < 2 * n as u64 + 1024 {
@@ -140,11 +128,7 @@ impl TagMap {
             }
             Ok(TagMap::Dense { min, index })
         } else {
-            let mut v: Vec<(u64, u32)> = tags
-                .iter()
-                .enumerate()
-                .map(|(i, &t)| (t, i as u32))
-                .collect();
+            let mut v: Vec<(u64, u32)> = tags.iter().enumerate().map(|(i, &t)| (t, i as u32)).collect();
             v.sort_unstable();
             if let Some(w) = v.windows(2).find(|w| w[0].0 == w[1].0) {
                 return Err(dup(w[0].1, w[1].1, w[0].0));
@@ -157,10 +141,7 @@ impl TagMap {
         match self {
             TagMap::Dense { min, index } => {
                 let i = tag.checked_sub(*min)?;
-                index
-                    .get(usize::try_from(i).ok()?)
-                    .copied()
-                    .filter(|&v| v != NONE)
+                index.get(usize::try_from(i).ok()?).copied().filter(|&v| v != NONE)
             }
             TagMap::Sorted(v) => v.binary_search_by_key(&tag, |p| p.0).ok().map(|i| v[i].1),
         }
@@ -227,10 +208,7 @@ pub(crate) fn parse(text: &str) -> Result<MeshBuilder> {
         other => {
             return Err(Error::parse(
                 first.line,
-                format!(
-                    "not a Gmsh .msh file: expected '$MeshFormat', found {}",
-                    shown(other)
-                ),
+                format!("not a Gmsh .msh file: expected '$MeshFormat', found {}", shown(other)),
             ))
         }
     }
@@ -247,10 +225,7 @@ pub(crate) fn parse(text: &str) -> Result<MeshBuilder> {
         other => {
             return Err(Error::unsupported(
                 Some(v.line),
-                format!(
-                    ".msh version {} is not supported; smoothlab reads 2.2 and 4.1 (ASCII)",
-                    shown(other)
-                ),
+                format!(".msh version {} is not supported; smoothlab reads 2.2 and 4.1 (ASCII)", shown(other)),
             ))
         }
     };
@@ -284,10 +259,7 @@ pub(crate) fn parse(text: &str) -> Result<MeshBuilder> {
         match t.text {
             "$Nodes" => {
                 if let Some(l) = r.nodes_line {
-                    return Err(Error::parse(
-                        t.line,
-                        format!("a second $Nodes section (the first is at line {l})"),
-                    ));
+                    return Err(Error::parse(t.line, format!("a second $Nodes section (the first is at line {l})")));
                 }
                 r.nodes_line = Some(t.line);
                 match layout {
@@ -298,10 +270,7 @@ pub(crate) fn parse(text: &str) -> Result<MeshBuilder> {
             }
             "$Elements" => {
                 if let Some(l) = r.elements_line {
-                    return Err(Error::parse(
-                        t.line,
-                        format!("a second $Elements section (the first is at line {l})"),
-                    ));
+                    return Err(Error::parse(t.line, format!("a second $Elements section (the first is at line {l})")));
                 }
                 r.elements_line = Some(t.line);
                 if r.nodes_line.is_some() {
@@ -321,33 +290,23 @@ pub(crate) fn parse(text: &str) -> Result<MeshBuilder> {
             other => {
                 return Err(Error::parse(
                     t.line,
-                    format!(
-                        "expected a section such as '$Nodes' or '$Elements', found {}",
-                        shown(other)
-                    ),
+                    format!("expected a section such as '$Nodes' or '$Elements', found {}", shown(other)),
                 ))
             }
         }
     }
     if r.nodes_line.is_none() {
-        return Err(Error::parse(
-            lex.last_line(),
-            "the file ends without a $Nodes section",
-        ));
+        return Err(Error::parse(lex.last_line(), "the file ends without a $Nodes section"));
     }
     if r.elements_line.is_none() {
-        return Err(Error::parse(
-            lex.last_line(),
-            "the file ends without an $Elements section",
-        ));
+        return Err(Error::parse(lex.last_line(), "the file ends without an $Elements section"));
     }
     r.finish()
 }
 
 /// Expects `$End<name>` for the section opened at `open_line`.
 fn end_of(lex: &mut Lexer, name: &str, open_line: usize) -> Result<()> {
-    let t =
-        lex.expect(|| format!("'$End{name}' to close the section opened at line {open_line}"))?;
+    let t = lex.expect(|| format!("'$End{name}' to close the section opened at line {open_line}"))?;
     if t.text.strip_prefix("$End") == Some(name) {
         Ok(())
     } else {
@@ -364,8 +323,7 @@ fn end_of(lex: &mut Lexer, name: &str, open_line: usize) -> Result<()> {
 
 fn skip_section(lex: &mut Lexer, name: &str, open_line: usize) -> Result<()> {
     loop {
-        let t =
-            lex.expect(|| format!("'$End{name}' to close the section opened at line {open_line}"))?;
+        let t = lex.expect(|| format!("'$End{name}' to close the section opened at line {open_line}"))?;
         if t.text.strip_prefix("$End") == Some(name) {
             return Ok(());
         }
@@ -393,12 +351,7 @@ impl Reader {
         let n = lex.check_count(n, 8, "nodes", line)?;
         self.reserve_nodes(n);
         for i in 0..n {
-            let (tag, tl) = lex.u64(|| {
-                format!(
-                    "the tag of node {} of the {n} announced at line {line}",
-                    i + 1
-                )
-            })?;
+            let (tag, tl) = lex.u64(|| format!("the tag of node {} of the {n} announced at line {line}", i + 1))?;
             self.add_node(lex, tag, tl, 0)?;
         }
         Ok(())
@@ -423,18 +376,12 @@ impl Reader {
             let what = |s: &str| format!("the {s} of node block {} of {blocks}", b + 1);
             let (dim, dl) = lex.u64(|| what("entity dimension"))?;
             if dim > 3 {
-                return Err(Error::parse(
-                    dl,
-                    format!("node block entity dimension must be 0 to 3, found {dim}"),
-                ));
+                return Err(Error::parse(dl, format!("node block entity dimension must be 0 to 3, found {dim}")));
             }
             lex.i64(|| what("entity tag"))?;
             let (parametric, pl) = lex.u64(|| what("parametric flag"))?;
             if parametric > 1 {
-                return Err(Error::parse(
-                    pl,
-                    format!("the parametric flag must be 0 or 1, found {parametric}"),
-                ));
+                return Err(Error::parse(pl, format!("the parametric flag must be 0 or 1, found {parametric}")));
             }
             let (count, cl) = lex.u64(|| what("node count"))?;
             let left = n - self.node_tags.len();
@@ -446,12 +393,7 @@ impl Reader {
             }
             tags.clear();
             for i in 0..count {
-                tags.push(lex.u64(|| {
-                    format!(
-                        "tag {} of the {count} in the node block at line {dl}",
-                        i + 1
-                    )
-                })?);
+                tags.push(lex.u64(|| format!("tag {} of the {count} in the node block at line {dl}", i + 1))?);
             }
             let extra = if parametric == 1 { dim as usize } else { 0 };
             for &(tag, tl) in &tags {
@@ -461,10 +403,7 @@ impl Reader {
         if self.node_tags.len() != n {
             return Err(Error::parse(
                 nl,
-                format!(
-                    "the $Nodes header announces {n} nodes but its blocks hold {}",
-                    self.node_tags.len()
-                ),
+                format!("the $Nodes header announces {n} nodes but its blocks hold {}", self.node_tags.len()),
             ));
         }
         Ok(())
@@ -482,19 +421,12 @@ impl Reader {
             GmshType::Surface(kind) if self.map.is_some() => {
                 let mut tags = [0u64; 9];
                 for (j, tag) in tags[..kind.node_count()].iter_mut().enumerate() {
-                    *tag = lex
-                        .u64(|| format!("node {} of {} ({})", j + 1, number(), kind.name()))?
-                        .0;
+                    *tag = lex.u64(|| format!("node {} of {} ({})", j + 1, number(), kind.name()))?.0;
                 }
                 self.surface_elements += 1;
                 if self.element_error.is_none() {
                     match self.resolve(tag, &tags[..kind.node_count()], line) {
-                        Ok(ids) => self.builder.add_element_numbered(
-                            kind,
-                            &ids[..kind.node_count()],
-                            line,
-                            tag,
-                        ),
+                        Ok(ids) => self.builder.add_element_numbered(kind, &ids[..kind.node_count()], line, tag),
                         Err(err) => self.element_error = Some(err),
                     }
                 }
@@ -502,21 +434,14 @@ impl Reader {
             GmshType::Surface(kind) => {
                 let start = self.elem_tags.len() as u32;
                 for j in 0..kind.node_count() {
-                    let (tag, _) =
-                        lex.u64(|| format!("node {} of {} ({})", j + 1, number(), kind.name()))?;
+                    let (tag, _) = lex.u64(|| format!("node {} of {} ({})", j + 1, number(), kind.name()))?;
                     self.elem_tags.push(tag);
                 }
-                self.elements.push(RawElement {
-                    kind,
-                    line: line as u32,
-                    start,
-                    tag,
-                });
+                self.elements.push(RawElement { kind, line: line as u32, start, tag });
             }
             GmshType::Solid(kind) => {
                 for j in 0..kind.nodes() {
-                    let (tag, _) =
-                        lex.u64(|| format!("node {} of {} (a {})", j + 1, number(), kind.name()))?;
+                    let (tag, _) = lex.u64(|| format!("node {} of {} (a {})", j + 1, number(), kind.name()))?;
                     self.solid_tags.push(tag);
                 }
                 self.solid_lines.push((line as u32, kind, tag));
@@ -601,9 +526,7 @@ impl Reader {
         let (ns, _) = lex.u64(|| "the number of string tags of $NodeData".into())?;
         let mut name = None;
         for i in 0..ns {
-            let t = lex
-                .text_line()
-                .ok_or_else(|| lex.eof(format!("string tag {} of $NodeData", i + 1)))?;
+            let t = lex.text_line().ok_or_else(|| lex.eof(format!("string tag {} of $NodeData", i + 1)))?;
             if i == 0 {
                 name = Some(t.text.trim_matches('"'));
             }
@@ -613,10 +536,7 @@ impl Reader {
         }
         if let Some(first) = self.fixed_view_line {
             // which one should win is anybody's guess: say so rather than pick one
-            return Err(Error::parse(
-                open,
-                format!("a second 'fixed' view (the first is at line {first}): give one"),
-            ));
+            return Err(Error::parse(open, format!("a second 'fixed' view (the first is at line {first}): give one")));
         }
         self.fixed_view_line = Some(open);
         let (nr, _) = lex.u64(|| "the number of real tags".into())?;
@@ -627,9 +547,7 @@ impl Reader {
         if ni < 3 {
             return Err(Error::parse(
                 il,
-                format!(
-                    "the 'fixed' view needs 3 integer tags (step, components, count), found {ni}"
-                ),
+                format!("the 'fixed' view needs 3 integer tags (step, components, count), found {ni}"),
             ));
         }
         let mut ints = [0u64; 3];
@@ -642,16 +560,12 @@ impl Reader {
             }
         }
         if ints[1] != 1 {
-            return Err(Error::parse(
-                count_line,
-                format!("the 'fixed' view must have 1 component, found {}", ints[1]),
-            ));
+            return Err(Error::parse(count_line, format!("the 'fixed' view must have 1 component, found {}", ints[1])));
         }
         let n = lex.check_count(ints[2], 4, "values in the 'fixed' view", count_line)?;
         let mut v = Vec::with_capacity(prealloc(n));
         for i in 0..n {
-            let (tag, tl) =
-                lex.u64(|| format!("the node tag of value {} of the 'fixed' view", i + 1))?;
+            let (tag, tl) = lex.u64(|| format!("the node tag of value {} of the 'fixed' view", i + 1))?;
             let (x, _) = lex.f64(|| format!("the 'fixed' value of node tag {tag}"))?;
             v.push((tag, x != 0.0, tl as u32));
         }
@@ -677,29 +591,15 @@ impl Reader {
     /// The node indices of `tags` (at most [`MAX_VOLUME_NODES`]), for a surface or volume
     /// element tagged `e` (`what`) on file line `line`, or the error naming it: a tag given
     /// twice, or not defined.
-    fn resolve_nodes(
-        &self,
-        e: u64,
-        tags: &[u64],
-        line: usize,
-        what: &str,
-    ) -> Result<[u32; MAX_VOLUME_NODES]> {
+    fn resolve_nodes(&self, e: u64, tags: &[u64], line: usize, what: &str) -> Result<[u32; MAX_VOLUME_NODES]> {
         let map = self.map.as_ref().expect("resolve after the map is made");
         if let Some(t) = repeated(tags) {
-            return Err(Error::element(
-                e,
-                Some(line),
-                format!("node tag {t} appears twice in the {what}"),
-            ));
+            return Err(Error::element(e, Some(line), format!("node tag {t} appears twice in the {what}")));
         }
         let mut ids = [0u32; MAX_VOLUME_NODES];
         for (j, &tag) in tags.iter().enumerate() {
             ids[j] = map.get(tag).ok_or_else(|| {
-                Error::element(
-                    e,
-                    Some(line),
-                    format!("node tag {tag} is not defined ({})", self.tag_range()),
-                )
+                Error::element(e, Some(line), format!("node tag {tag} is not defined ({})", self.tag_range()))
             })?;
         }
         Ok(ids)
@@ -711,38 +611,24 @@ impl Reader {
         }
         if self.map.is_none() {
             self.map = Some(TagMap::new(&self.node_tags, self.builder.node_lines())?);
-            let (elements, elem_tags) = (
-                std::mem::take(&mut self.elements),
-                std::mem::take(&mut self.elem_tags),
-            );
+            let (elements, elem_tags) = (std::mem::take(&mut self.elements), std::mem::take(&mut self.elem_tags));
             for raw in &elements {
                 let k = raw.kind.node_count();
-                let ids = self.resolve(
-                    raw.tag,
-                    &elem_tags[raw.start as usize..raw.start as usize + k],
-                    raw.line as usize,
-                )?;
-                self.builder
-                    .add_element_numbered(raw.kind, &ids[..k], raw.line as usize, raw.tag);
+                let ids = self.resolve(raw.tag, &elem_tags[raw.start as usize..raw.start as usize + k], raw.line as usize)?;
+                self.builder.add_element_numbered(raw.kind, &ids[..k], raw.line as usize, raw.tag);
             }
         }
         let mut at = 0;
         for &(line, kind, tag) in &self.solid_lines {
             let k = kind.nodes();
-            let given = self.resolve_nodes(
-                tag,
-                &self.solid_tags[at..at + k],
-                line as usize,
-                kind.name(),
-            )?;
+            let given = self.resolve_nodes(tag, &self.solid_tags[at..at + k], line as usize, kind.name())?;
             // Gmsh's node order to ours (VTK's), by the kind's row
             let mut ids = [0u32; MAX_VOLUME_NODES];
             for (&g, &ours) in given.iter().zip(kind.row().gmsh_order) {
                 ids[ours] = g;
             }
             at += k;
-            self.builder
-                .add_volume_element_numbered(kind, &ids[..k], line as usize, tag)?;
+            self.builder.add_volume_element_numbered(kind, &ids[..k], line as usize, tag)?;
         }
         // messages name the nodes by their tags
         let mut numbers = Numbering::From(self.node_tags.first().copied().unwrap_or(1));
@@ -751,14 +637,7 @@ impl Reader {
         }
         self.builder.number_nodes(numbers);
         let range = self.tag_range();
-        let Reader {
-            mut builder,
-            node_tags,
-            map,
-            marks,
-            fixed_view,
-            ..
-        } = self;
+        let Reader { mut builder, node_tags, map, marks, fixed_view, .. } = self;
         let map = map.expect("made above");
         let range = || range.clone();
         let n = node_tags.len();
@@ -766,10 +645,7 @@ impl Reader {
             map.get(tag).ok_or_else(|| {
                 Error::parse(
                     line as usize,
-                    format!(
-                        "{what} refers to node tag {tag}, which is not defined ({})",
-                        range()
-                    ),
+                    format!("{what} refers to node tag {tag}, which is not defined ({})", range()),
                 )
             })
         };
@@ -813,23 +689,12 @@ mod tests {
     fn tag_maps_dense_and_sparse() {
         let m = TagMap::new(&[5, 7, 6], &[1, 2, 3]).unwrap();
         assert!(matches!(m, TagMap::Dense { .. }));
-        assert_eq!(
-            (m.get(5), m.get(6), m.get(7), m.get(8), m.get(4)),
-            (Some(0), Some(2), Some(1), None, None)
-        );
+        assert_eq!((m.get(5), m.get(6), m.get(7), m.get(8), m.get(4)), (Some(0), Some(2), Some(1), None, None));
         let m = TagMap::new(&[1, 1_000_000_000_000, 40], &[1, 2, 3]).unwrap();
         assert!(matches!(m, TagMap::Sorted(_)));
-        assert_eq!(
-            (m.get(1_000_000_000_000), m.get(40), m.get(2)),
-            (Some(1), Some(2), None)
-        );
-        let e = TagMap::new(&[3, 4, 3], &[10, 11, 12])
-            .unwrap_err()
-            .to_string();
-        assert!(
-            e.contains("line 12") && e.contains("first at line 10") && e.contains("tag 3"),
-            "{e}"
-        );
+        assert_eq!((m.get(1_000_000_000_000), m.get(40), m.get(2)), (Some(1), Some(2), None));
+        let e = TagMap::new(&[3, 4, 3], &[10, 11, 12]).unwrap_err().to_string();
+        assert!(e.contains("line 12") && e.contains("first at line 10") && e.contains("tag 3"), "{e}");
     }
 
     #[test]
@@ -843,39 +708,18 @@ mod tests {
         let build = |text: String| parse(&text).and_then(|b| b.build());
         let a = build(format!("{head}{nodes}{}", elements(40))).unwrap();
         let b = build(format!("{head}{}{nodes}", elements(40))).unwrap();
-        assert_eq!(
-            (a.nodes().to_vec(), a.fixed().to_vec()),
-            (b.nodes().to_vec(), b.fixed().to_vec())
-        );
+        assert_eq!((a.nodes().to_vec(), a.fixed().to_vec()), (b.nodes().to_vec(), b.fixed().to_vec()));
         for e in 0..2 {
             assert_eq!((a.kind(e), a.element(e)), (b.kind(e), b.element(e)));
         }
         // an undefined tag names the same element and line either way, after a later
         // syntax error has had its say
-        let ea = build(format!("{head}{nodes}{}", elements(41)))
-            .unwrap_err()
-            .to_string();
-        let eb = build(format!("{head}{}{nodes}", elements(41)))
-            .unwrap_err()
-            .to_string();
-        assert!(
-            ea.starts_with("element 3 (line 15)")
-                && ea.contains("tag 41")
-                && ea.contains("tags 10 to 40"),
-            "{ea}"
-        );
-        assert_eq!(
-            ea.replace("line 15", "line 8"),
-            eb,
-            "the lines differ by the node section's 7 lines"
-        );
-        let late = build(format!("{head}{nodes}{}$Bad\n", elements(41)))
-            .unwrap_err()
-            .to_string();
-        assert!(
-            late.contains("line 17") && late.contains("EndBad"),
-            "{late}"
-        );
+        let ea = build(format!("{head}{nodes}{}", elements(41))).unwrap_err().to_string();
+        let eb = build(format!("{head}{}{nodes}", elements(41))).unwrap_err().to_string();
+        assert!(ea.starts_with("element 3 (line 15)") && ea.contains("tag 41") && ea.contains("tags 10 to 40"), "{ea}");
+        assert_eq!(ea.replace("line 15", "line 8"), eb, "the lines differ by the node section's 7 lines");
+        let late = build(format!("{head}{nodes}{}$Bad\n", elements(41))).unwrap_err().to_string();
+        assert!(late.contains("line 17") && late.contains("EndBad"), "{late}");
     }
 
     /// A 2.2 file of the 27 points of a cube's 3×3×3 lattice (spacing 1/2, x fastest; tag
@@ -884,13 +728,7 @@ mod tests {
     fn lattice_msh(elements: &[(u64, &[u32])]) -> String {
         let mut t = String::from("$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n27\n");
         for k in 0..27 {
-            t.push_str(&format!(
-                "{} {} {} {}\n",
-                k + 1,
-                (k % 3) as f64 / 2.0,
-                (k / 3 % 3) as f64 / 2.0,
-                (k / 9) as f64 / 2.0
-            ));
+            t.push_str(&format!("{} {} {} {}\n", k + 1, (k % 3) as f64 / 2.0, (k / 3 % 3) as f64 / 2.0, (k / 9) as f64 / 2.0));
         }
         t.push_str(&format!("$EndNodes\n$Elements\n{}\n", elements.len()));
         for (e, (ty, ids)) in elements.iter().enumerate() {
@@ -902,10 +740,7 @@ mod tests {
     }
 
     /// The lattice points of a hexahedron's 27 nodes in VTK's order (ours).
-    const HEX27_VTK: [u32; 27] = [
-        0, 2, 8, 6, 18, 20, 26, 24, 1, 5, 7, 3, 19, 23, 25, 21, 9, 11, 17, 15, 12, 14, 10, 16, 4,
-        22, 13,
-    ];
+    const HEX27_VTK: [u32; 27] = [0, 2, 8, 6, 18, 20, 26, 24, 1, 5, 7, 3, 19, 23, 25, 21, 9, 11, 17, 15, 12, 14, 10, 16, 4, 22, 13];
 
     #[test]
     fn every_volume_kind_is_read_from_gmsh_order_and_the_rest_are_refused_in_plain_words_first() {
@@ -914,56 +749,26 @@ mod tests {
         // other way); the 20-node hexahedron's edges (0,1) (0,3) (0,4) (1,2) (1,5) (2,3)
         // (2,6) (3,7) (4,5) (4,7) (5,6) (6,7); the 27-node one's face centres z=0, y=0,
         // x=0, x=1, y=1, z=1, then its centre
-        let hex20_gmsh = [
-            0, 2, 8, 6, 18, 20, 26, 24, 1, 3, 9, 5, 11, 7, 17, 15, 19, 21, 23, 25,
-        ];
-        let hex27_gmsh: Vec<u32> = hex20_gmsh
-            .iter()
-            .copied()
-            .chain([4, 10, 12, 14, 16, 22, 13])
-            .collect();
+        let hex20_gmsh = [0, 2, 8, 6, 18, 20, 26, 24, 1, 3, 9, 5, 11, 7, 17, 15, 19, 21, 23, 25];
+        let hex27_gmsh: Vec<u32> = hex20_gmsh.iter().copied().chain([4, 10, 12, 14, 16, 22, 13]).collect();
         let cases: [(u64, &[u32], &[u32], VolumeKind); 5] = [
             (5, &HEX27_VTK[..8], &HEX27_VTK[..8], VolumeKind::Hex8),
-            (
-                6,
-                &[0, 2, 6, 18, 20, 24],
-                &[0, 6, 2, 18, 24, 20],
-                VolumeKind::Wedge6,
-            ),
-            (
-                7,
-                &[0, 2, 8, 6, 22],
-                &[0, 2, 8, 6, 22],
-                VolumeKind::Pyramid5,
-            ),
+            (6, &[0, 2, 6, 18, 20, 24], &[0, 6, 2, 18, 24, 20], VolumeKind::Wedge6),
+            (7, &[0, 2, 8, 6, 22], &[0, 2, 8, 6, 22], VolumeKind::Pyramid5),
             (17, &hex20_gmsh, &HEX27_VTK[..20], VolumeKind::Hex20),
             (12, &hex27_gmsh, &HEX27_VTK, VolumeKind::Hex27),
         ];
         for (ty, gmsh, ours, kind) in cases {
             let model = crate::model::Model::build(parse(&lattice_msh(&[(ty, gmsh)])).unwrap());
-            let Ok(crate::model::Model::Volume(m)) = model else {
-                panic!("type {ty}: {model:?}")
-            };
-            assert_eq!(
-                (m.element_count(), m.element_kind(0)),
-                (1, kind),
-                "type {ty}"
-            );
-            assert_eq!(
-                m.element(0),
-                ours,
-                "type {ty}: in our (VTK's) order, not turned over"
-            );
+            let Ok(crate::model::Model::Volume(m)) = model else { panic!("type {ty}: {model:?}") };
+            assert_eq!((m.element_count(), m.element_kind(0)), (1, kind), "type {ty}");
+            assert_eq!(m.element(0), ours, "type {ty}: in our (VTK's) order, not turned over");
             assert!(!m.is_inverted(0), "type {ty}");
         }
         // quadratic prisms and pyramids: refused in words first, in 2.2 and 4.1 (the
         // element's node list is never read)
-        let v22 = |t: u64| {
-            format!("$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Elements\n1\n1 {t} 2 0 1 1 2 3 4\n$EndElements\n")
-        };
-        let v41 = |t: u64| {
-            format!("$MeshFormat\n4.1 0 8\n$EndMeshFormat\n$Elements\n1 1 1 1\n3 1 {t} 1\n1 1 2 3 4\n$EndElements\n")
-        };
+        let v22 = |t: u64| format!("$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Elements\n1\n1 {t} 2 0 1 1 2 3 4\n$EndElements\n");
+        let v41 = |t: u64| format!("$MeshFormat\n4.1 0 8\n$EndMeshFormat\n$Elements\n1 1 1 1\n3 1 {t} 1\n1 1 2 3 4\n$EndElements\n");
         let refused = [
             (13, "quadratic prisms (wedges) are not supported yet: line 6: Gmsh element type 13 (18-node prism); smoothlab reads"),
             (14, "quadratic pyramids are not supported yet: line 6: Gmsh element type 14 (14-node pyramid); "),
@@ -972,53 +777,26 @@ mod tests {
         ];
         for (t, want) in refused {
             let e = parse(&v22(t)).unwrap_err();
-            assert!(
-                matches!(e, Error::Unsupported { line: Some(6), .. }),
-                "{e:?}"
-            );
+            assert!(matches!(e, Error::Unsupported { line: Some(6), .. }), "{e:?}");
             assert!(e.to_string().starts_with(want), "type {t}: {e}");
-            assert!(
-                e.to_string()
-                    .contains("the volume elements 4, 5, 6, 7, 11, 12, 17, and takes lines"),
-                "{e}"
-            );
+            assert!(e.to_string().contains("the volume elements 4, 5, 6, 7, 11, 12, 17, and takes lines"), "{e}");
             let e = parse(&v41(t)).unwrap_err().to_string();
             assert!(e.starts_with(want), "type {t} in 4.1: {e}");
         }
         // a type with no name people know keeps the file's terms alone, line first
         let e = parse(&v22(99)).unwrap_err().to_string();
-        assert!(
-            e.starts_with(
-                "line 6: Gmsh element type 99 (unknown type) is not supported: smoothlab reads"
-            ),
-            "{e}"
-        );
+        assert!(e.starts_with("line 6: Gmsh element type 99 (unknown type) is not supported: smoothlab reads"), "{e}");
     }
 
     #[test]
     fn a_quadratic_kind_mixed_with_another_is_refused_naming_the_line() {
         // a hexahedron and a prism beside it: one mesh
-        let b = parse(&lattice_msh(&[
-            (5, &[0, 1, 4, 3, 9, 10, 13, 12]),
-            (6, &[1, 2, 4, 10, 11, 13]),
-        ]))
-        .unwrap();
-        let Ok(crate::model::Model::Volume(m)) = crate::model::Model::build(b) else {
-            panic!("not a volume")
-        };
+        let b = parse(&lattice_msh(&[(5, &[0, 1, 4, 3, 9, 10, 13, 12]), (6, &[1, 2, 4, 10, 11, 13])])).unwrap();
+        let Ok(crate::model::Model::Volume(m)) = crate::model::Model::build(b) else { panic!("not a volume") };
         assert_eq!(m.kinds(), &[VolumeKind::Hex8, VolumeKind::Wedge6]);
         assert!(!m.is_inverted(0) && !m.is_inverted(1));
         // a 27-node hexahedron, then a linear one at line 37
-        let text = lattice_msh(&[
-            (
-                12,
-                &[
-                    0, 2, 8, 6, 18, 20, 26, 24, 1, 3, 9, 5, 11, 7, 17, 15, 19, 21, 23, 25, 4, 10,
-                    12, 14, 16, 22, 13,
-                ],
-            ),
-            (5, &HEX27_VTK[..8]),
-        ]);
+        let text = lattice_msh(&[(12, &[0, 2, 8, 6, 18, 20, 26, 24, 1, 3, 9, 5, 11, 7, 17, 15, 19, 21, 23, 25, 4, 10, 12, 14, 16, 22, 13]), (5, &HEX27_VTK[..8])]);
         assert_eq!(
             parse(&text).unwrap_err().to_string(),
             "element 2 (line 37): the file mixes 8-node and 27-node hexahedra: smoothlab mixes linear kinds, \
@@ -1029,10 +807,7 @@ mod tests {
     #[test]
     fn runs_keep_order() {
         use ElementKind::*;
-        assert_eq!(
-            runs(&[Tri3, Tri3, Quad4, Tri3]),
-            vec![(0, 2), (2, 3), (3, 4)]
-        );
+        assert_eq!(runs(&[Tri3, Tri3, Quad4, Tri3]), vec![(0, 2), (2, 3), (3, 4)]);
         assert_eq!(runs(&[]), vec![]);
     }
 }

@@ -93,16 +93,10 @@ fn write_v41(mesh: &impl MshSource, s: &mut Out) {
         s.push('\n');
     }
     fn of_block<'a>(mesh: &'a impl MshSource, b: &'a MshBlock) -> impl Iterator<Item = usize> + 'a {
-        b.range
-            .clone()
-            .filter(move |&e| mesh.element_type(e) == b.ty)
+        b.range.clone().filter(move |&e| mesh.element_type(e) == b.ty)
     }
     let total: usize = blocks.iter().map(|b| of_block(mesh, b).count()).sum();
-    let _ = writeln!(
-        s,
-        "$EndNodes\n$Elements\n{} {total} 1 {total}",
-        blocks.len()
-    );
+    let _ = writeln!(s, "$EndNodes\n$Elements\n{} {total} 1 {total}", blocks.len());
     let mut tag = 0;
     for b in &blocks {
         let _ = writeln!(s, "{} 1 {} {}", b.dim, b.ty, of_block(mesh, b).count());
@@ -136,30 +130,13 @@ impl MshSource for super::super::Writable<'_> {
     }
     /// In 3D; a 2D mesh's z as `0`.
     fn write_bounds(&self, s: &mut Out) {
-        let (lo, hi) = (0..self.mesh.node_count()).map(|i| self.xyz(i)).fold(
-            (
-                glam::DVec3::splat(f64::INFINITY),
-                glam::DVec3::splat(f64::NEG_INFINITY),
-            ),
-            |(lo, hi), q| (lo.min(q), hi.max(q)),
-        );
-        let z = |v: f64| {
-            if self.in_xy_plane() {
-                "0".to_string()
-            } else {
-                format!("{v:?}")
-            }
-        };
-        let _ = write!(
-            s,
-            "{:?} {:?} {} {:?} {:?} {}",
-            lo.x,
-            lo.y,
-            z(lo.z),
-            hi.x,
-            hi.y,
-            z(hi.z)
-        );
+        let (lo, hi) = (0..self.mesh.node_count())
+            .map(|i| self.xyz(i))
+            .fold((glam::DVec3::splat(f64::INFINITY), glam::DVec3::splat(f64::NEG_INFINITY)), |(lo, hi), q| {
+                (lo.min(q), hi.max(q))
+            });
+        let z = |v: f64| if self.in_xy_plane() { "0".to_string() } else { format!("{v:?}") };
+        let _ = write!(s, "{:?} {:?} {} {:?} {:?} {}", lo.x, lo.y, z(lo.z), hi.x, hi.y, z(hi.z));
     }
     fn element_count(&self) -> usize {
         self.mesh.element_count()
@@ -174,14 +151,7 @@ impl MshSource for super::super::Writable<'_> {
     }
     fn blocks(&self) -> Vec<MshBlock> {
         let kinds = self.mesh.kinds();
-        runs(kinds)
-            .into_iter()
-            .map(|(a, b)| MshBlock {
-                dim: 2,
-                ty: type_of(kinds[a]),
-                range: a..b,
-            })
-            .collect()
+        runs(kinds).into_iter().map(|(a, b)| MshBlock { dim: 2, ty: type_of(kinds[a]), range: a..b }).collect()
     }
     fn fixed(&self) -> &[bool] {
         self.mesh.fixed()

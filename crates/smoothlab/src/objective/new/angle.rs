@@ -122,11 +122,7 @@ impl AnglePenalty {
     pub fn with_equilateral_penalty(eps: f64) -> Self {
         let (w60, dw60) = adjusted_angle(PI / 3.0);
         let k2 = 2.0 * SQRT3 / dw60;
-        AnglePenalty {
-            k1: eps * exp(k2 * w60),
-            k2,
-            length: PenaltyLength::Adjacent,
-        }
+        AnglePenalty { k1: eps * exp(k2 * w60), k2, length: PenaltyLength::Adjacent }
     }
 
     /// One angle's penalty `k1 · ratio2 · exp(−k2 ω(θ))`, `ratio2` the squared length ratio.

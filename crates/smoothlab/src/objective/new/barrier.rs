@@ -7,6 +7,7 @@ use glam::{DMat2, DVec2};
 use super::SubTriangle;
 use crate::quality::TWO_SQRT3;
 
+
 /// Default weight `k1` of the barrier: its value on an equilateral triangle (η = 1).
 /// Chosen by measurement (`docs/reproduction.md`, §7).
 pub const BARRIER_WEIGHT: f64 = 0.15;
@@ -79,10 +80,7 @@ pub struct RegularisedBarrier {
 
 impl Default for RegularisedBarrier {
     fn default() -> Self {
-        RegularisedBarrier {
-            k1: BARRIER_WEIGHT,
-            epsilon: BARRIER_EPSILON,
-        }
+        RegularisedBarrier { k1: BARRIER_WEIGHT, epsilon: BARRIER_EPSILON }
     }
 }
 
@@ -111,13 +109,7 @@ impl CornerND {
         let grad_d = c1 * (4.0 * u1 - 2.0 * u2) + c2 * (4.0 * u2 - 2.0 * u1);
         // D = |u1|² + |u2|² + |u2 − u1|², u = c·x + const: ∇²D = 2(c1² + c2² + (c2 − c1)²) I
         let hess_d = 2.0 * (c1 * c1 + c2 * c2 + (c2 - c1) * (c2 - c1));
-        CornerND {
-            n,
-            d,
-            grad_n,
-            grad_d,
-            hess_d,
-        }
+        CornerND { n, d, grad_n, grad_d, hess_d }
     }
 
     /// Lo's α = 2√3·N/D and its gradient (0 when the corner has no extent).
@@ -128,10 +120,7 @@ impl CornerND {
         }
         let inv_d = 1.0 / self.d;
         let alpha = TWO_SQRT3 * self.n * inv_d;
-        (
-            alpha,
-            (TWO_SQRT3 * self.grad_n - alpha * self.grad_d) * inv_d,
-        )
+        (alpha, (TWO_SQRT3 * self.grad_n - alpha * self.grad_d) * inv_d)
     }
 
     /// The Hessian of α from [`alpha`](Self::alpha)'s value and gradient: differentiating
@@ -158,11 +147,7 @@ pub(super) fn outer(a: DVec2, b: DVec2) -> DMat2 {
 #[inline]
 pub fn regularised_determinant(n: f64, delta: f64) -> (f64, f64) {
     let s = (n * n + 4.0 * delta * delta).sqrt();
-    let h = if n >= 0.0 {
-        0.5 * (n + s)
-    } else {
-        2.0 * delta * delta / (s - n)
-    };
+    let h = if n >= 0.0 { 0.5 * (n + s) } else { 2.0 * delta * delta / (s - n) };
     (h, s)
 }
 
@@ -179,11 +164,7 @@ impl RegularisedBarrier {
             return (0.0, DVec2::ZERO, DMat2::ZERO); // the three corners coincide: no shape to penalise
         }
         // δ = 0 (every valid star with margin): h = s = N, no square root
-        let (h, s) = if delta == 0.0 {
-            (c.n.max(0.0), c.n)
-        } else {
-            regularised_determinant(c.n, delta)
-        };
+        let (h, s) = if delta == 0.0 { (c.n.max(0.0), c.n) } else { regularised_determinant(c.n, delta) };
         if h <= 0.0 || h.is_nan() {
             return (f64::INFINITY, DVec2::ZERO, DMat2::ZERO);
         }
@@ -193,8 +174,7 @@ impl RegularisedBarrier {
         // ∇η = η (∇D/D − ∇N/s)
         let grad_ln = c.grad_d * inv_d - c.grad_n * inv_s;
         let hess = if HESSIAN {
-            let hess_ln = DMat2::from_diagonal(DVec2::splat(c.hess_d * inv_d))
-                - outer(c.grad_d, c.grad_d) * (inv_d * inv_d)
+            let hess_ln = DMat2::from_diagonal(DVec2::splat(c.hess_d * inv_d)) - outer(c.grad_d, c.grad_d) * (inv_d * inv_d)
                 + outer(c.grad_n, c.grad_n) * (c.n * inv_s * inv_s * inv_s);
             (outer(grad_ln, grad_ln) * 2.0 + hess_ln) * (2.0 * eta2)
         } else {
@@ -207,18 +187,13 @@ impl RegularisedBarrier {
     /// [`RegularisedBarrier::delta_from`]; with the Hessian when `HESSIAN` (zero otherwise): `∇²(1 − α)² =
     /// 2 ∇α ∇αᵀ − 2(1 − α) ∇²α`, plus `k1` times the Hessians of [`eta2`](Self::eta2).
     #[inline(always)]
-    pub(super) fn of<const HESSIAN: bool>(
-        &self,
-        t: &SubTriangle,
-        delta: f64,
-    ) -> (f64, DVec2, DMat2) {
+    pub(super) fn of<const HESSIAN: bool>(&self, t: &SubTriangle, delta: f64) -> (f64, DVec2, DMat2) {
         let at_c = CornerND::of(t.c_to_a, t.c_to_b);
         let (alpha, grad_alpha) = at_c.alpha();
         let value = (1.0 - alpha) * (1.0 - alpha);
         let grad = -2.0 * (1.0 - alpha) * grad_alpha;
         let hess = if HESSIAN {
-            outer(grad_alpha, grad_alpha) * 2.0
-                - at_c.alpha_hessian(alpha, grad_alpha) * (2.0 * (1.0 - alpha))
+            outer(grad_alpha, grad_alpha) * 2.0 - at_c.alpha_hessian(alpha, grad_alpha) * (2.0 * (1.0 - alpha))
         } else {
             DMat2::ZERO
         };
@@ -231,17 +206,9 @@ impl RegularisedBarrier {
             let (pc, gc, hc) = Self::eta2::<HESSIAN>(&at_c, delta);
             let (pa, ga, ha) = Self::eta2::<HESSIAN>(&CornerND::of(t.a_to_b, t.a_to_c), delta);
             let (pb, gb, hb) = Self::eta2::<HESSIAN>(&CornerND::of(t.b_to_c, t.b_to_a), delta);
-            (
-                (pc + pa + pb) / 3.0,
-                (gc + ga + gb) / 3.0,
-                (hc + ha + hb) * (1.0 / 3.0),
-            )
+            ((pc + pa + pb) / 3.0, (gc + ga + gb) / 3.0, (hc + ha + hb) * (1.0 / 3.0))
         };
-        (
-            value + self.k1 * p,
-            grad + self.k1 * gp,
-            hess + hp * self.k1,
-        )
+        (value + self.k1 * p, grad + self.k1 * gp, hess + hp * self.k1)
     }
 
     /// δ of a star whose sub-triangle corners at the node's current position have N

@@ -18,10 +18,7 @@ fn new() -> ChenTristanoKwok {
 
 /// The first design with the literal-reading length.
 fn literal() -> ChenTristanoKwok {
-    ChenTristanoKwok::Angle(AnglePenalty {
-        length: PenaltyLength::Opposite,
-        ..AnglePenalty::default()
-    })
+    ChenTristanoKwok::Angle(AnglePenalty { length: PenaltyLength::Opposite, ..AnglePenalty::default() })
 }
 
 /// The regularised barrier (the default design).
@@ -130,10 +127,7 @@ fn configurations() -> Vec<(&'static str, Star)> {
         ("dented quads", dented_quads()),
         ("pushed hexagon", pushed_hexagon()),
         ("mixed", mixed_star()),
-        (
-            "curved quadratic",
-            curved(&fan_star(&regular_ring(6, 1.0)), 0.15),
-        ),
+        ("curved quadratic", curved(&fan_star(&regular_ring(6, 1.0)), 0.15)),
         ("quadratic dented quads", quadratic(&dented_quads())),
     ]
 }
@@ -154,33 +148,25 @@ fn transformed(s: &Star, map: impl Fn(DVec2) -> DVec2) -> Star {
 #[test]
 fn invariant_under_scaling_translation_and_rotation() {
     for obj in [new(), barrier()] {
-        let mut rng = SplitMix64::new(23);
-        for s in sample_stars() {
-            for _ in 0..10 {
-                let x = s.x0 + rng.point(1.5); // valid and inverted positions
-                let s = at_start(&s, x); // δ > 0 where x is inverted
-                let (v, g) = obj.value_and_gradient(&s, x);
-                for (angle, scale, shift) in [
-                    (0.7, 1e-3, d(5.0, -2.0)),
-                    (-2.0, 1e3, d(-1e3, 40.0)),
-                    (3.0, 0.37, d(0.0, 0.0)),
-                ] {
-                    let r = DVec2::from_angle(angle);
-                    let map = |p: DVec2| scale * r.rotate(p) + shift;
-                    let (tv, tg) = obj.value_and_gradient(&transformed(&s, map), map(x));
-                    assert!(
-                        (tv - v).abs() <= 1e-9 * (1.0 + v.abs()),
-                        "value {v} became {tv}"
-                    );
-                    // the gradient rotates with the star and scales by 1/scale
-                    let expect = r.rotate(g) / scale;
-                    assert!(
-                        (tg - expect).length() <= 1e-8 * (1.0 + expect.length()),
-                        "gradient {expect} became {tg}"
-                    );
-                }
+    let mut rng = SplitMix64::new(23);
+    for s in sample_stars() {
+        for _ in 0..10 {
+            let x = s.x0 + rng.point(1.5); // valid and inverted positions
+            let s = at_start(&s, x); // δ > 0 where x is inverted
+            let (v, g) = obj.value_and_gradient(&s, x);
+            for (angle, scale, shift) in
+                [(0.7, 1e-3, d(5.0, -2.0)), (-2.0, 1e3, d(-1e3, 40.0)), (3.0, 0.37, d(0.0, 0.0))]
+            {
+                let r = DVec2::from_angle(angle);
+                let map = |p: DVec2| scale * r.rotate(p) + shift;
+                let (tv, tg) = obj.value_and_gradient(&transformed(&s, map), map(x));
+                assert!((tv - v).abs() <= 1e-9 * (1.0 + v.abs()), "value {v} became {tv}");
+                // the gradient rotates with the star and scales by 1/scale
+                let expect = r.rotate(g) / scale;
+                assert!((tg - expect).length() <= 1e-8 * (1.0 + expect.length()), "gradient {expect} became {tg}");
             }
         }
+    }
     }
 }
 
@@ -190,10 +176,7 @@ fn invariant_under_scaling_translation_and_rotation() {
 fn penalty_grows_towards_zero_and_inverted_angles() {
     let obj = AnglePenalty::default();
     let eq = obj.angle_penalty(PI / 3.0, 1.0);
-    assert!(
-        (eq - EQUILATERAL_PENALTY).abs() < 1e-12,
-        "ε on the equilateral angle: {eq}"
-    );
+    assert!((eq - EQUILATERAL_PENALTY).abs() < 1e-12, "ε on the equilateral angle: {eq}");
     let p = |deg: f64| obj.angle_penalty(deg.to_radians(), 1.0);
     // rapid growth as the angle closes, and far more once inverted
     assert!(p(0.0) > 40.0 * eq, "{}", p(0.0) / eq);
@@ -220,10 +203,7 @@ fn penalty_grows_towards_zero_and_inverted_angles() {
     }
     // … and rising again towards 180°, where the triangle is as degenerate as at 0°
     assert!(p(179.99) > 0.99 * p(0.0) && p(179.99) < p(0.0));
-    assert!(
-        (130.0..132.0).contains(&best) && (-132.0..-130.0).contains(&worst),
-        "{best} {worst}"
-    );
+    assert!((130.0..132.0).contains(&best) && (-132.0..-130.0).contains(&worst), "{best} {worst}");
 }
 
 #[test]
@@ -245,10 +225,7 @@ fn little_to_no_effect_on_the_equilateral_triangle() {
     assert!(literal().value_and_gradient(&s, apex).1.length() < 1e-12);
     // and for the barrier: (1 − α)² = 0, η = 1, so the value is k1 and the gradient 0
     let (v, g) = barrier().value_and_gradient(&s, apex);
-    assert!(
-        (v - BARRIER_WEIGHT).abs() < 1e-15 && g.length() < 1e-12,
-        "{v} {g}"
-    );
+    assert!((v - BARRIER_WEIGHT).abs() < 1e-15 && g.length() < 1e-12, "{v} {g}");
     for p in regular_ring(16, 0.02) {
         assert!(barrier().value(&s, apex + p) > v);
     }
@@ -261,10 +238,7 @@ fn adjusted_angle_is_continuous_across_the_ray() {
     for delta in [1e-6, 1e-9] {
         let (w1, d1) = adjusted_angle(PI - delta);
         let (w2, d2) = adjusted_angle(-PI + delta);
-        assert!(
-            w1.abs() < 1e-5 && w2.abs() < 1e-5,
-            "ω → 0 on both sides: {w1} {w2}"
-        );
+        assert!(w1.abs() < 1e-5 && w2.abs() < 1e-5, "ω → 0 on both sides: {w1} {w2}");
         assert!((d1 - d2).abs() < 1e-5, "ω' agrees: {d1} {d2}");
     }
     // odd, close to the printed eq. (6) on the positive side
@@ -280,11 +254,7 @@ fn value_and_gradient_continuous_across_the_ray() {
     let obj = new();
     // single triangle (C, A, B), A at the origin, B = (1, 0): the angle at A jumps from
     // +π to −π across the ray beyond A, {(−t, 0)}
-    let s1 = star(vec![elem(
-        ElementKind::Tri3,
-        &[d(0.5, 0.8), d(0.0, 0.0), d(1.0, 0.0)],
-        0,
-    )]);
+    let s1 = star(vec![elem(ElementKind::Tri3, &[d(0.5, 0.8), d(0.0, 0.0), d(1.0, 0.0)], 0)]);
     // the hexagon star, its free node beyond the ring node (1, 0) on the ray from (0.5, 0.866)
     let hex = fan_star(&regular_ring(6, 1.0));
     let ring = regular_ring(6, 1.0);
@@ -300,14 +270,8 @@ fn value_and_gradient_continuous_across_the_ray() {
         let delta = 1e-8;
         let (v1, g1) = obj.value_and_gradient(s, on_ray + delta * normal);
         let (v2, g2) = obj.value_and_gradient(s, on_ray - delta * normal);
-        assert!(
-            (v1 - v2).abs() <= 1e-6 * (1.0 + v1.abs()),
-            "values {v1} {v2}"
-        );
-        assert!(
-            (g1 - g2).length() <= 1e-5 * (1.0 + g1.length()),
-            "gradients {g1} {g2}"
-        );
+        assert!((v1 - v2).abs() <= 1e-6 * (1.0 + v1.abs()), "values {v1} {v2}");
+        assert!((g1 - g2).length() <= 1e-5 * (1.0 + g1.length()), "gradients {g1} {g2}");
     }
     // the penalty is large but finite on the ray, as in the inverted region around it
     assert!(obj.value(&s1, d(-0.5, 0.0)).is_finite());
@@ -353,9 +317,7 @@ fn gradient_checks_cover_inverted_positions() {
     // holds inverted positions for every kind of star, so the checks above cover them
     let mut rng = SplitMix64::new(29);
     for s in sample_stars() {
-        let inverted = (0..200)
-            .filter(|_| !star_valid(&s, s.x0 + rng.point(1.6)))
-            .count();
+        let inverted = (0..200).filter(|_| !star_valid(&s, s.x0 + rng.point(1.6))).count();
         assert!(inverted > 20, "{inverted}");
         for _ in 0..20 {
             let x = s.x0 + rng.point(1.6);
@@ -370,31 +332,26 @@ fn gradient_checks_cover_inverted_positions() {
 #[test]
 fn centre_of_a_regular_star_is_the_minimiser() {
     for obj in [new(), barrier()] {
-        for k in 4..=8 {
-            let s = fan_star(&regular_ring(k, 1.0));
-            let (v0, g) = obj.value_and_gradient(&s, DVec2::ZERO);
-            assert!(g.length() < 1e-12, "k = {k}: {g}");
-            // fine grid over the star's neighbourhood, the centre one of its points
-            let n = 161;
-            let mut best = (f64::INFINITY, DVec2::ZERO);
-            for j in 0..n {
-                for i in 0..n {
-                    let p = d(i as f64, j as f64) * (2.4 / (n - 1) as f64) - d(1.2, 1.2);
-                    let v = obj.value(&s, p);
-                    if v < best.0 {
-                        best = (v, p);
-                    }
+    for k in 4..=8 {
+        let s = fan_star(&regular_ring(k, 1.0));
+        let (v0, g) = obj.value_and_gradient(&s, DVec2::ZERO);
+        assert!(g.length() < 1e-12, "k = {k}: {g}");
+        // fine grid over the star's neighbourhood, the centre one of its points
+        let n = 161;
+        let mut best = (f64::INFINITY, DVec2::ZERO);
+        for j in 0..n {
+            for i in 0..n {
+                let p = d(i as f64, j as f64) * (2.4 / (n - 1) as f64) - d(1.2, 1.2);
+                let v = obj.value(&s, p);
+                if v < best.0 {
+                    best = (v, p);
                 }
             }
-            assert!(
-                best.1.length() < 1e-12 && (best.0 - v0).abs() < 1e-12,
-                "k = {k}: minimum {} at {}",
-                best.0,
-                best.1
-            );
         }
-        let (_, g) = obj.value_and_gradient(&quad_star(), DVec2::ZERO);
-        assert!(g.length() < 1e-12);
+        assert!(best.1.length() < 1e-12 && (best.0 - v0).abs() < 1e-12, "k = {k}: minimum {} at {}", best.0, best.1);
+    }
+    let (_, g) = obj.value_and_gradient(&quad_star(), DVec2::ZERO);
+    assert!(g.length() < 1e-12);
     }
 }
 
@@ -405,11 +362,7 @@ fn single_minimum_on_star_shaped_and_quad_configurations() {
     let obj = new();
     for (name, s) in configurations() {
         let minima = grid_minima(|p| obj.value(&s, p), d(-1.3, -1.3), d(1.3, 1.3), 131);
-        assert_eq!(
-            minima.len(),
-            1,
-            "{name}: sampled local minima at {minima:?}"
-        );
+        assert_eq!(minima.len(), 1, "{name}: sampled local minima at {minima:?}");
         // and it is where the valid elements are
         assert!(star_valid(&s, minima[0]), "{name}");
     }
@@ -430,10 +383,7 @@ fn literal_opposite_length_has_spurious_minima() {
 /// Inverted starting points: a fixed set of random points in [−3, 3]² around the node.
 fn inverted_starts(s: &Star, seed: u64, count: usize) -> Vec<DVec2> {
     let mut rng = SplitMix64::new(seed);
-    std::iter::repeat_with(|| s.x0 + rng.point(3.0))
-        .filter(|&x| !star_valid(s, x))
-        .take(count)
-        .collect()
+    std::iter::repeat_with(|| s.x0 + rng.point(3.0)).filter(|&x| !star_valid(s, x)).take(count).collect()
 }
 
 #[test]
@@ -442,10 +392,7 @@ fn descent_from_inverted_starts_untangles() {
     for (name, s) in configurations() {
         for x0 in inverted_starts(&s, 31, 25) {
             let x = descend(&obj, &s, x0, 0.2, 4000);
-            assert!(
-                star_valid(&s, x),
-                "{name}: from {x0} descent stopped at {x}, still inverted"
-            );
+            assert!(star_valid(&s, x), "{name}: from {x0} descent stopped at {x}, still inverted");
         }
     }
 }
@@ -458,10 +405,7 @@ fn without_the_penalty_descent_does_not_untangle() {
     let s = fan_star(&regular_ring(6, 1.0));
     let x0 = d(3.0, 1.0);
     let plain = descend(&alpha_only(), &s, x0, 0.2, 4000);
-    assert!(
-        !star_valid(&s, plain) && plain.length() > 100.0,
-        "(1 − α)² alone went to {plain}"
-    );
+    assert!(!star_valid(&s, plain) && plain.length() > 100.0, "(1 − α)² alone went to {plain}");
     let full = descend(&new(), &s, x0, 0.2, 4000);
     assert!(star_valid(&s, full) && full.length() < 1e-3, "{full}");
     // over whole stars: (1 − α)² alone leaves many inverted starts inverted; with the
@@ -476,10 +420,7 @@ fn without_the_penalty_descent_does_not_untangle() {
             }
         }
     }
-    assert!(
-        failures * 4 > total,
-        "(1 − α)² alone failed only {failures} of {total}"
-    );
+    assert!(failures * 4 > total, "(1 − α)² alone failed only {failures} of {total}");
 }
 
 // Structure: eq. (9), the ×3 weight, quadratic elements -----------------------------------
@@ -487,39 +428,39 @@ fn without_the_penalty_descent_does_not_untangle() {
 #[test]
 fn quad_term_is_its_three_sub_triangles() {
     for obj in [new(), barrier()] {
-        let mut ring = square_ring();
-        let mut rng = SplitMix64::new(37);
-        for p in ring.iter_mut() {
-            *p += rng.point(0.2);
-        }
-        let qs = quad_star_from(&ring);
-        for _ in 0..20 {
-            let x = rng.point(1.2);
-            let mut t = Vec::new();
-            obj.terms(&qs, x, &mut t);
-            for (term, el) in t.iter().zip(&qs.elems) {
-                let [c, n, o, p] = [el.pts[0], el.pts[1], el.pts[2], el.pts[3]];
-                // the three triangles that contain the free node, as a triangle star;
-                // (n, o, p), the dead zone, is left out
-                let tris = star(vec![
-                    elem(ElementKind::Tri3, &[c, n, o], 0),
-                    elem(ElementKind::Tri3, &[c, o, p], 0),
-                    elem(ElementKind::Tri3, &[c, n, p], 0),
-                ]);
-                // both stars start where the quad star's node is (valid, with margin), so the
-                // barrier's δ is 0 for both and the sums must agree, +∞ included
-                assert_eq!((obj.delta(&qs), obj.delta(&tris)), (0.0, 0.0));
-                let (v, g) = obj.value_and_gradient(&tris, x);
-                if v.is_infinite() {
-                    assert_eq!(term.value, v);
-                    continue;
-                }
-                assert!(
-                    (term.value - v).abs() <= 1e-12 * (1.0 + v.abs())
-                        && (term.grad - g).length() <= 1e-10 * (1.0 + g.length())
-                );
+    let mut ring = square_ring();
+    let mut rng = SplitMix64::new(37);
+    for p in ring.iter_mut() {
+        *p += rng.point(0.2);
+    }
+    let qs = quad_star_from(&ring);
+    for _ in 0..20 {
+        let x = rng.point(1.2);
+        let mut t = Vec::new();
+        obj.terms(&qs, x, &mut t);
+        for (term, el) in t.iter().zip(&qs.elems) {
+            let [c, n, o, p] = [el.pts[0], el.pts[1], el.pts[2], el.pts[3]];
+            // the three triangles that contain the free node, as a triangle star;
+            // (n, o, p), the dead zone, is left out
+            let tris = star(vec![
+                elem(ElementKind::Tri3, &[c, n, o], 0),
+                elem(ElementKind::Tri3, &[c, o, p], 0),
+                elem(ElementKind::Tri3, &[c, n, p], 0),
+            ]);
+            // both stars start where the quad star's node is (valid, with margin), so the
+            // barrier's δ is 0 for both and the sums must agree, +∞ included
+            assert_eq!((obj.delta(&qs), obj.delta(&tris)), (0.0, 0.0));
+            let (v, g) = obj.value_and_gradient(&tris, x);
+            if v.is_infinite() {
+                assert_eq!(term.value, v);
+                continue;
             }
+            assert!(
+                (term.value - v).abs() <= 1e-12 * (1.0 + v.abs())
+                    && (term.grad - g).length() <= 1e-10 * (1.0 + g.length())
+            );
         }
+    }
     }
 }
 
@@ -543,19 +484,12 @@ fn triangles_weigh_three_times_in_a_mixed_star() {
 #[test]
 fn straight_quadratic_elements_match_linear() {
     let obj = new();
-    for lin in [
-        fan_star(&regular_ring(5, 1.0)),
-        dented_quads(),
-        mixed_star(),
-    ] {
+    for lin in [fan_star(&regular_ring(5, 1.0)), dented_quads(), mixed_star()] {
         let quad = quadratic(&lin);
         for x in [d(0.1, 0.2), d(-0.4, 0.3), d(1.4, 0.0)] {
             let (a, ga) = obj.value_and_gradient(&lin, x);
             let (b, gb) = obj.value_and_gradient(&quad, x);
-            assert!(
-                (a - b).abs() <= 1e-12 * (1.0 + a.abs())
-                    && (ga - gb).length() <= 1e-10 * (1.0 + ga.length())
-            );
+            assert!((a - b).abs() <= 1e-12 * (1.0 + a.abs()) && (ga - gb).length() <= 1e-10 * (1.0 + ga.length()));
         }
     }
     // curved edges count through their tangents: far edges bowed inward close the angles
@@ -578,11 +512,7 @@ fn linear_triangle_fast_path_equals_the_general_jets() {
         let pts = [rng.point(2.0), rng.point(2.0), rng.point(2.0)];
         for slot in 0..3 {
             let el = elem(ElementKind::Tri3, &pts, slot);
-            for x in [
-                rng.point(3.0),
-                pts[(slot + 1) % 3],
-                0.5 * (pts[(slot + 1) % 3] + pts[(slot + 2) % 3]),
-            ] {
+            for x in [rng.point(3.0), pts[(slot + 1) % 3], 0.5 * (pts[(slot + 1) % 3] + pts[(slot + 2) % 3])] {
                 let j = crate::objective::corners::ElementJets::new(&el, x);
                 let general = SubTriangle::of(&j, slot, (slot + 1) % 3, (slot + 2) % 3, true);
                 let fast = SubTriangle::linear(x, pts[(slot + 1) % 3], pts[(slot + 2) % 3]);
@@ -602,10 +532,7 @@ fn linear_triangle_fast_path_equals_the_general_jets() {
             for el in &s.elems {
                 let j = crate::objective::corners::ElementJets::new(el, x);
                 let f = j.slot;
-                let (a, b, _) = obj.sub_triangle::<false>(
-                    &SubTriangle::of(&j, f, (f + 1) % 3, (f + 2) % 3, true),
-                    delta,
-                );
+                let (a, b, _) = obj.sub_triangle::<false>(&SubTriangle::of(&j, f, (f + 1) % 3, (f + 2) % 3, true), delta);
                 v2 += a;
                 g2 += b;
             }
@@ -627,11 +554,7 @@ fn eta_is_the_cotangent_sum_and_the_inverse_of_alpha() {
     let mut rng = SplitMix64::new(101);
     for _ in 0..500 {
         let (c, a, b) = (rng.point(2.0), rng.point(2.0), rng.point(2.0));
-        let (c, a, b) = if (a - c).perp_dot(b - c) > 0.0 {
-            (c, a, b)
-        } else {
-            (c, b, a)
-        };
+        let (c, a, b) = if (a - c).perp_dot(b - c) > 0.0 { (c, a, b) } else { (c, b, a) };
         // the cotangent of the angle at p, as the ratio of the dot and cross products of
         // its sides (by way of the angle, cos/sin loses digits on needle-like triangles)
         let cot = |p: DVec2, q: DVec2, r: DVec2| (q - p).dot(r - p) / (q - p).perp_dot(r - p).abs();
@@ -639,16 +562,10 @@ fn eta_is_the_cotangent_sum_and_the_inverse_of_alpha() {
         let got = eta2_of(c, a, b, 0.0).sqrt();
         assert!((got - eta).abs() <= 1e-9 * eta, "{got} {eta}");
         let q = element_quality(ElementKind::Tri3, &[c, a, b]);
-        assert!(
-            (got * q.shape - 1.0).abs() < 1e-9,
-            "η·α = {}",
-            got * q.shape
-        );
+        assert!((got * q.shape - 1.0).abs() < 1e-9, "η·α = {}", got * q.shape);
     }
     // hand-derived: equilateral 1; right isosceles (45°, 45°, 90°): (1 + 1 + 0)/√3
-    assert!(
-        (eta2_of(d(0.5, 3f64.sqrt() / 2.0), d(0.0, 0.0), d(1.0, 0.0), 0.0) - 1.0).abs() < 1e-15
-    );
+    assert!((eta2_of(d(0.5, 3f64.sqrt() / 2.0), d(0.0, 0.0), d(1.0, 0.0), 0.0) - 1.0).abs() < 1e-15);
     assert!((eta2_of(d(0.0, 1.0), d(0.0, 0.0), d(1.0, 0.0), 0.0) - 4.0 / 3.0).abs() < 1e-15);
 }
 
@@ -732,10 +649,7 @@ fn finite_on_inverted_stars_and_growing_with_the_depth_of_the_fold() {
     }
     // one triangle, δ fixed: the value grows as C goes deeper through AB
     let (a, b) = (d(0.0, 0.0), d(1.0, 0.0));
-    let tri = at_start(
-        &star(vec![elem(ElementKind::Tri3, &[d(0.5, 0.8), a, b], 0)]),
-        d(0.5, -0.1),
-    );
+    let tri = at_start(&star(vec![elem(ElementKind::Tri3, &[d(0.5, 0.8), a, b], 0)]), d(0.5, -0.1));
     let mut prev = 0.0;
     for depth in [-0.05, -0.1, -0.2, -0.4, -0.8, -1.6] {
         let v = obj.value(&tri, d(0.5, depth));
@@ -746,13 +660,7 @@ fn finite_on_inverted_stars_and_growing_with_the_depth_of_the_fold() {
 
 /// Optimization calls as the driver makes them: each starts where the last ended (δ taken
 /// there) and descends at most `iters` steps.
-fn untangle_by_calls(
-    obj: &dyn Objective,
-    s: &Star,
-    mut x: DVec2,
-    calls: usize,
-    iters: usize,
-) -> DVec2 {
+fn untangle_by_calls(obj: &dyn Objective, s: &Star, mut x: DVec2, calls: usize, iters: usize) -> DVec2 {
     for _ in 0..calls {
         if star_valid(s, x) {
             break;
@@ -768,10 +676,7 @@ fn barrier_descent_from_inverted_starts_untangles() {
     for (name, s) in configurations() {
         for x0 in inverted_starts(&s, 31, 25) {
             let x = untangle_by_calls(&obj, &s, x0, 10, 400);
-            assert!(
-                star_valid(&s, x),
-                "{name}: from {x0} descent stopped at {x}, still inverted"
-            );
+            assert!(star_valid(&s, x), "{name}: from {x0} descent stopped at {x}, still inverted");
         }
     }
     // from (3, 1), outside the hexagon star, where (1 − α)² alone runs off (Fig. 2)
@@ -788,40 +693,25 @@ fn barrier_has_one_minimum_on_star_shaped_and_quad_configurations() {
     for (name, s) in configurations() {
         // δ = 0 (a valid start)
         let minima = grid_minima(|p| obj.value(&s, p), d(-1.3, -1.3), d(1.3, 1.3), 131);
-        assert_eq!(
-            minima.len(),
-            1,
-            "{name}: sampled local minima at {minima:?}"
-        );
+        assert_eq!(minima.len(), 1, "{name}: sampled local minima at {minima:?}");
         assert!(star_valid(&s, minima[0]), "{name}");
         // δ > 0 (an inverted start): still one minimum
         let x0 = inverted_starts(&s, 127, 1)[0];
         let start = at_start(&s, x0);
         let minima = grid_minima(|p| obj.value(&start, p), d(-1.3, -1.3), d(1.3, 1.3), 131);
-        assert_eq!(
-            minima.len(),
-            1,
-            "{name} from {x0}: sampled local minima at {minima:?}"
-        );
+        assert_eq!(minima.len(), 1, "{name} from {x0}: sampled local minima at {minima:?}");
     }
 }
 
 #[test]
 fn barrier_on_quadratic_elements_sees_curved_edges() {
     let obj = barrier();
-    for lin in [
-        fan_star(&regular_ring(5, 1.0)),
-        dented_quads(),
-        mixed_star(),
-    ] {
+    for lin in [fan_star(&regular_ring(5, 1.0)), dented_quads(), mixed_star()] {
         let quad = quadratic(&lin);
         for x in [d(0.1, 0.2), d(-0.2, 0.1)] {
             let (a, ga) = obj.value_and_gradient(&lin, x);
             let (b, gb) = obj.value_and_gradient(&quad, x);
-            assert!(
-                (a - b).abs() <= 1e-12 * (1.0 + a.abs())
-                    && (ga - gb).length() <= 1e-9 * (1.0 + ga.length())
-            );
+            assert!((a - b).abs() <= 1e-12 * (1.0 + a.abs()) && (ga - gb).length() <= 1e-9 * (1.0 + ga.length()));
         }
     }
     // the corners at the ring nodes are measured with the far edge's tangent: bowing it
@@ -829,11 +719,7 @@ fn barrier_on_quadratic_elements_sees_curved_edges() {
     // (the first design read an outward bow as an opened angle, a gain)
     let hex = fan_star(&regular_ring(6, 1.0));
     let at = |bulge: f64| obj.value(&curved(&hex, bulge), DVec2::ZERO);
-    assert!(
-        (at(0.0) - 6.0 * BARRIER_WEIGHT).abs() < 1e-12,
-        "{}",
-        at(0.0)
-    );
+    assert!((at(0.0) - 6.0 * BARRIER_WEIGHT).abs() < 1e-12, "{}", at(0.0));
     assert!(at(-0.15) > at(-0.05) && at(-0.05) > at(0.0) + 1e-3);
     assert!(at(0.15) > at(0.05) && at(0.05) > at(0.0) + 1e-3);
 }

@@ -40,9 +40,7 @@ impl<T: Copy> PositionMemo<T> {
     /// The value kept for `x`, if any.
     #[inline]
     pub fn kept(&self, x: DVec3) -> Option<T> {
-        self.0
-            .iter()
-            .find_map(|m| m.get().filter(|&(at, _)| at == x).map(|(_, v)| v))
+        self.0.iter().find_map(|m| m.get().filter(|&(at, _)| at == x).map(|(_, v)| v))
     }
     /// Keeps `v` for `x` in the first place (a memo just made, before any question).
     #[inline]
@@ -99,13 +97,7 @@ impl KnownSolid {
     };
     /// Whether this slot holds `element` of `kind` at `corners`, bit for bit.
     fn holds(&self, element: u32, kind: VolumeKind, corners: &[DVec3]) -> bool {
-        self.element == element
-            && self.kind == kind
-            && self
-                .corners
-                .iter()
-                .zip(corners)
-                .all(|(a, b)| same_bits(a, b))
+        self.element == element && self.kind == kind && self.corners.iter().zip(corners).all(|(a, b)| same_bits(a, b))
     }
     /// [`holds`](Self::holds) of `e` with its free node at `x` (its corners compared where
     /// they are, not copied).
@@ -113,12 +105,7 @@ impl KnownSolid {
         let slot = e.slot as usize;
         self.element == e.element
             && self.kind == e.kind
-            && self
-                .corners
-                .iter()
-                .zip(e.corners(&e.pts))
-                .enumerate()
-                .all(|(j, (a, b))| same_bits(a, if j == slot { &x } else { b }))
+            && self.corners.iter().zip(e.corners(&e.pts)).enumerate().all(|(j, (a, b))| same_bits(a, if j == slot { &x } else { b }))
     }
 }
 
@@ -153,9 +140,7 @@ impl KnownSolids {
 
     /// Starts `e`'s memos with what is known of it at its corners now.
     pub(super) fn recall(&self, e: &StarSolid) {
-        let Some(k) = self.slots.get(self.slot(e.element)) else {
-            return;
-        };
+        let Some(k) = self.slots.get(self.slot(e.element)) else { return };
         if k.holds(e.element, e.kind, e.corners(&e.pts)) {
             let x = e.x();
             if let Some(v) = k.validity {
@@ -177,9 +162,7 @@ impl KnownSolids {
 
     /// Whether `element` of `kind` was measured valid at `corners`, bit for bit.
     pub(super) fn valid_at(&self, element: u32, kind: VolumeKind, corners: &[DVec3]) -> bool {
-        self.slots
-            .get(self.slot(element))
-            .is_some_and(|k| k.validity == Some(Validity::Valid) && k.holds(element, kind, corners))
+        self.slots.get(self.slot(element)).is_some_and(|k| k.validity == Some(Validity::Valid) && k.holds(element, kind, corners))
     }
 
     /// Keeps what `e`'s memos know of it with its free node at `x`, in a mesh of
@@ -214,8 +197,7 @@ impl KnownSolids {
             (k.element, k.kind) = (e.element, e.kind);
             k.corners = e.pts;
             k.corners[e.slot as usize] = x;
-            (k.validity, k.shape, k.has_terms, k.least_det) =
-                (validity, shape, terms.is_some(), least_det);
+            (k.validity, k.shape, k.has_terms, k.least_det) = (validity, shape, terms.is_some(), least_det);
             if let Some(t) = terms {
                 k.terms.copy_from(t);
             }
@@ -239,23 +221,9 @@ mod tests {
         use crate::smooth::DriverStar;
         let block = crate::generate::hex_grid(&crate::generate::HexBlock::cube(3)).unwrap();
         let mut mesh = crate::generate::perturb_volume(&block, 0.2, 5).unwrap();
-        let free: Vec<usize> = (0..mesh.node_count())
-            .filter(|&n| mesh.is_free(n))
-            .collect();
-        let (n, m) = (
-            free[0],
-            *mesh
-                .neighbours(free[0])
-                .iter()
-                .find(|&&m| mesh.is_free(m as usize))
-                .unwrap() as usize,
-        );
-        let exact = |e: &StarSolid| {
-            (
-                validity(e.kind, e.corners(&e.pts)),
-                solid_shape(e.kind, e.corners(&e.pts)),
-            )
-        };
+        let free: Vec<usize> = (0..mesh.node_count()).filter(|&n| mesh.is_free(n)).collect();
+        let (n, m) = (free[0], *mesh.neighbours(free[0]).iter().find(|&&m| mesh.is_free(m as usize)).unwrap() as usize);
+        let exact = |e: &StarSolid| (validity(e.kind, e.corners(&e.pts)), solid_shape(e.kind, e.corners(&e.pts)));
         let mut star = CornerStar::default();
         star.gather_for_measures(&mesh, n);
         let measured: Vec<u32> = star.elements.iter().map(|e| e.element).collect();
@@ -282,10 +250,7 @@ mod tests {
         let x = mesh.nodes()[n];
         mesh.nodes_mut()[n] = DVec3::new(x.x + 1e-9, x.y, x.z);
         star.gather_for_measures(&mesh, n);
-        assert!(star
-            .elements
-            .iter()
-            .all(|e| e.measured.kept(e.x()).is_none() && e.shaped.kept(e.x()).is_none()));
+        assert!(star.elements.iter().all(|e| e.measured.kept(e.x()).is_none() && e.shaped.kept(e.x()).is_none()));
     }
 
     /// What the stars keep of their elements from visit to visit answers as measuring does:
@@ -302,9 +267,7 @@ mod tests {
         // moved by 0.9 mean edge lengths: some hexahedra folded
         let mut mesh = crate::generate::perturb_volume(&block, 0.9, 2).unwrap();
         let mut star = CornerStar::default();
-        let free: Vec<usize> = (0..mesh.node_count())
-            .filter(|&n| mesh.is_free(n))
-            .collect();
+        let free: Vec<usize> = (0..mesh.node_count()).filter(|&n| mesh.is_free(n)).collect();
         for (i, &n) in free.iter().enumerate() {
             star.gather_for_measures(&mesh, n);
             let x = star.x0() + DVec3::new(1e-3, -2e-3, 1.5e-3) * (i % 3) as f64;
@@ -327,21 +290,13 @@ mod tests {
                 known += 1;
             }
         }
-        assert!(
-            known > mesh.element_count() / 2 && folded > 0,
-            "{known} known valid, {folded} folded"
-        );
+        assert!(known > mesh.element_count() / 2 && folded > 0, "{known} known valid, {folded} folded");
         let mut recalled = 0;
         for &n in &free {
             star.gather_for_measures(&mesh, n);
             for e in &star.elements {
                 if let Some(d) = e.least_det.kept(e.x()) {
-                    assert_eq!(
-                        d,
-                        least_corner_det(e.kind, e.corners(&e.pts)),
-                        "element {}",
-                        e.element
-                    );
+                    assert_eq!(d, least_corner_det(e.kind, e.corners(&e.pts)), "element {}", e.element);
                     recalled += 1;
                 }
             }

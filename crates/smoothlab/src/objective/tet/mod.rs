@@ -49,9 +49,7 @@ pub fn tet_form(kind: ObjectiveKind) -> Option<TetObjective> {
         ObjectiveKind::SmoothShape => TetObjective::Regularised(RegularisedMeanRatio::default()),
         ObjectiveKind::Condition => TetObjective::Condition,
         ObjectiveKind::ConditionMax => TetObjective::ConditionMax,
-        ObjectiveKind::Untangle => TetObjective::Untangle {
-            beta: super::UNTANGLE_BETA,
-        },
+        ObjectiveKind::Untangle => TetObjective::Untangle { beta: super::UNTANGLE_BETA },
         ObjectiveKind::UntangleMinDet => TetObjective::MinDet,
     })
 }
@@ -59,9 +57,7 @@ pub fn tet_form(kind: ObjectiveKind) -> Option<TetObjective> {
 /// The objective kinds that have a form on tetrahedra ([`tet_form`]), in
 /// [`ObjectiveKind::ALL`]'s order: the choices on a volume.
 pub fn tet_kinds() -> impl Iterator<Item = ObjectiveKind> {
-    ObjectiveKind::ALL
-        .into_iter()
-        .filter(|&k| tet_form(k).is_some())
+    ObjectiveKind::ALL.into_iter().filter(|&k| tet_form(k).is_some())
 }
 
 /// The objective of `kind` for tetrahedral meshes ([`tet_form`]), boxed for the drivers;

@@ -16,24 +16,14 @@ fn point(rng: &mut SplitMix64) -> DVec3 {
 /// A star of `n` random tetrahedra around `x0` (each with the free node first).
 fn random_star(rng: &mut SplitMix64, n: usize, x0: DVec3) -> CornerStar {
     let tets = (0..n)
-        .map(|e| {
-            StarCorner::tet(
-                e as u32,
-                [x0, x0 + point(rng), x0 + point(rng), x0 + point(rng)],
-            )
-        })
+        .map(|e| StarCorner::tet(e as u32, [x0, x0 + point(rng), x0 + point(rng), x0 + point(rng)]))
         .collect();
     CornerStar::of_tets(x0, tets)
 }
 
 /// The regular tetrahedron's star of one element: every objective at its best.
 fn regular_star() -> CornerStar {
-    let pts = [
-        DVec3::ZERO,
-        EQUILATERAL_W.x_axis,
-        EQUILATERAL_W.y_axis,
-        EQUILATERAL_W.z_axis,
-    ];
+    let pts = [DVec3::ZERO, EQUILATERAL_W.x_axis, EQUILATERAL_W.y_axis, EQUILATERAL_W.z_axis];
     CornerStar::of_tets(DVec3::ZERO, vec![StarCorner::tet(0, pts)])
 }
 
@@ -52,9 +42,7 @@ fn values_on_the_regular_tetrahedron_by_hand() {
     assert!((v(ObjectiveKind::UntangleMinDet) - 1.0 / 2f64.sqrt()).abs() < 1e-14);
     // the regular apex is a stationary point of the smooth objectives
     for k in [ObjectiveKind::SmoothShape, ObjectiveKind::Condition] {
-        let (_, g) = tet_objective(k)
-            .unwrap()
-            .value_and_gradient(&s, DVec3::ZERO);
+        let (_, g) = tet_objective(k).unwrap().value_and_gradient(&s, DVec3::ZERO);
         // a single tetrahedron: moving the apex changes the shape, and the regular
         // one is the best, so the gradient vanishes
         assert!(g.length() < 1e-12, "{k}: {g}");
@@ -71,11 +59,7 @@ fn gradients_agree_with_central_differences() {
         let star = random_star(&mut rng, 2 + round % 5, x0);
         let tangled = star.tets.iter().any(|t| q3::signed_volume(&t.pts) <= 0.0);
         // steep near a flat tetrahedron: away from those
-        if star
-            .tets
-            .iter()
-            .any(|t| q3::signed_volume(&t.pts).abs() < 0.02)
-        {
+        if star.tets.iter().any(|t| q3::signed_volume(&t.pts).abs() < 0.02) {
             continue;
         }
         let x = x0 + point(&mut rng) * 0.01;
@@ -149,22 +133,14 @@ fn a_solids_shape_and_sizes_keep_the_terms_of_the_corners_that_did_not_move() {
                 let mut p = pts;
                 p[slot] = x;
                 let exact = crate::quality::solid::solid_shape(kind, &p[..kind.corners()]);
-                assert_eq!(
-                    e.shape_measured(x).to_bits(),
-                    exact.to_bits(),
-                    "{kind:?} slot {slot} at {x}"
-                );
+                assert_eq!(e.shape_measured(x).to_bits(), exact.to_bits(), "{kind:?} slot {slot} at {x}");
                 let sizes = CornerSizes::of(kind, &p[..kind.corners()], |_| None);
                 assert_eq!(e.sizes_measured(x), sizes, "{kind:?} slot {slot} at {x}");
                 if step % 3 == 2 {
                     // measured by the drivers first: the guard reads it from the memo
                     e.validity_measured(x);
                 }
-                assert_eq!(
-                    e.validity_at(x),
-                    validity(kind, &p[..kind.corners()]),
-                    "{kind:?} slot {slot} at {x}"
-                );
+                assert_eq!(e.validity_at(x), validity(kind, &p[..kind.corners()]), "{kind:?} slot {slot} at {x}");
             }
         }
     }
@@ -180,20 +156,10 @@ fn forms_give_the_corners_weighted_jacobian_anywhere() {
         for t in &star.tets {
             let (a, b) = (t.form.at(x), WeightedJacobian::of(&t.at(x), t.reference));
             let close = |u: f64, v: f64| (u - v).abs() <= 1e-13 * (1.0 + v.abs());
-            assert!(
-                close(a.frob2, b.frob2) && close(a.sigma, b.sigma),
-                "{a:?} {b:?}"
-            );
-            assert!(
-                (a.grad_frob2 - b.grad_frob2).length() <= 1e-13 * (1.0 + b.grad_frob2.length())
-            );
-            assert!(
-                (a.grad_sigma - b.grad_sigma).length() <= 1e-13 * (1.0 + b.grad_sigma.length())
-            );
-            assert!(
-                (a.t - b.t).to_cols_array().iter().all(|d| d.abs() <= 1e-13),
-                "{a:?} {b:?}"
-            );
+            assert!(close(a.frob2, b.frob2) && close(a.sigma, b.sigma), "{a:?} {b:?}");
+            assert!((a.grad_frob2 - b.grad_frob2).length() <= 1e-13 * (1.0 + b.grad_frob2.length()));
+            assert!((a.grad_sigma - b.grad_sigma).length() <= 1e-13 * (1.0 + b.grad_sigma.length()));
+            assert!((a.t - b.t).to_cols_array().iter().all(|d| d.abs() <= 1e-13), "{a:?} {b:?}");
             let v6 = t.form.volume6_at(x, t.reference).0;
             assert!(close(v6, 6.0 * q3::signed_volume(&t.at(x))), "{v6}");
         }
@@ -210,12 +176,7 @@ fn corners_decide_inversion_as_their_tetrahedra_do() {
         let scale = [1.0, 1e-4, 1e5][round % 3];
         let x0 = point(&mut rng) * scale;
         for t in random_mixed_star(&mut rng, 3, DVec3::ZERO).tets {
-            let t = StarCorner::new(
-                t.element,
-                t.pts.map(|p| x0 + p * scale),
-                t.reference,
-                t.simplex,
-            );
+            let t = StarCorner::new(t.element, t.pts.map(|p| x0 + p * scale), t.reference, t.simplex);
             for _ in 0..5 {
                 let x = x0 + point(&mut rng) * scale * rng.uniform(0.0, 2.0);
                 let exact = q3::is_inverted(&t.at(x));
@@ -228,20 +189,9 @@ fn corners_decide_inversion_as_their_tetrahedra_do() {
             }
         }
     }
-    assert!(
-        decided * 100 > asked * 99 && inverted * 5 > asked && inverted * 5 < 4 * asked,
-        "{decided} {inverted} of {asked}"
-    );
+    assert!(decided * 100 > asked * 99 && inverted * 5 > asked && inverted * 5 < 4 * asked, "{decided} {inverted} of {asked}");
     // beyond the safe scale: left to is_inverted
-    let t = StarCorner::tet(
-        0,
-        [
-            DVec3::ZERO,
-            DVec3::X * 1e200,
-            DVec3::Y * 1e200,
-            DVec3::Z * 1e200,
-        ],
-    );
+    let t = StarCorner::tet(0, [DVec3::ZERO, DVec3::X * 1e200, DVec3::Y * 1e200, DVec3::Z * 1e200]);
     assert_eq!(t.form.inverted_at(DVec3::ZERO, t.reference), None);
     assert!(!t.inverted_at(DVec3::ZERO, t.reference));
 }
@@ -252,11 +202,7 @@ fn terms_above_answers_as_the_terms_do() {
     let mut stopped = 0;
     for round in 0..60 {
         let x0 = point(&mut rng);
-        let star = if round % 2 == 0 {
-            random_star(&mut rng, 5, x0)
-        } else {
-            random_mixed_star(&mut rng, 5, x0)
-        };
+        let star = if round % 2 == 0 { random_star(&mut rng, 5, x0) } else { random_mixed_star(&mut rng, 5, x0) };
         let x = x0 + point(&mut rng) * 0.2;
         for k in tet_kinds() {
             let obj = tet_objective(k).unwrap();
@@ -267,11 +213,7 @@ fn terms_above_answers_as_the_terms_do() {
                 for lead in [0, 3, 4, 9] {
                     let mut out = Vec::new();
                     let above = obj.terms_above(&star, x, floor, lead, &mut out);
-                    assert_eq!(
-                        above,
-                        all.iter().all(|t| t.value > floor),
-                        "{k} floor {floor} lead {lead}"
-                    );
+                    assert_eq!(above, all.iter().all(|t| t.value > floor), "{k} floor {floor} lead {lead}");
                     if above {
                         assert_eq!(out, all, "{k}");
                     } else {
@@ -306,37 +248,19 @@ fn hessian_of_new_agrees_with_central_differences() {
         if !v.is_finite() {
             continue;
         }
-        assert!((hess - hess.transpose())
-            .to_cols_array()
-            .iter()
-            .all(|d| d.abs()
-                <= 1e-9
-                    * (1.0
-                        + hess
-                            .abs()
-                            .to_cols_array()
-                            .iter()
-                            .fold(0.0f64, |a, &b| a.max(b)))));
+        assert!((hess - hess.transpose()).to_cols_array().iter().all(|d| d.abs() <= 1e-9 * (1.0 + hess.abs().to_cols_array().iter().fold(0.0f64, |a, &b| a.max(b)))));
         for c in 0..3 {
             let mut e = DVec3::ZERO;
             e[c] = h;
-            let fd = (obj.value_and_gradient(&star, x + e).1
-                - obj.value_and_gradient(&star, x - e).1)
-                / (2.0 * h);
+            let fd = (obj.value_and_gradient(&star, x + e).1 - obj.value_and_gradient(&star, x - e).1) / (2.0 * h);
             let col = hess.col(c);
-            assert!(
-                (col - fd).length() <= 1e-5 * (1.0 + fd.length()),
-                "column {c}: {col} vs {fd}"
-            );
+            assert!((col - fd).length() <= 1e-5 * (1.0 + fd.length()), "column {c}: {col} vs {fd}");
         }
         checked += 1;
     }
     assert!(checked > 60 && tangled > 10, "{checked} {tangled}");
     // the max-min objectives have no Hessian
-    assert!(tet_objective(ObjectiveKind::MaxMinShape)
-        .unwrap()
-        .value_gradient_hessian(&regular_star(), DVec3::ZERO)
-        .is_none());
+    assert!(tet_objective(ObjectiveKind::MaxMinShape).unwrap().value_gradient_hessian(&regular_star(), DVec3::ZERO).is_none());
 }
 
 #[test]
@@ -347,11 +271,7 @@ fn new_is_finite_on_a_tangled_star_and_a_barrier_on_a_valid_one() {
     for _ in 0..50 {
         let x0 = point(&mut rng);
         let star = random_star(&mut rng, 4, x0);
-        let inverted = star
-            .tets
-            .iter()
-            .filter(|t| q3::signed_volume(&t.pts) <= 0.0)
-            .count();
+        let inverted = star.tets.iter().filter(|t| q3::signed_volume(&t.pts) <= 0.0).count();
         let (v, g) = obj.value_and_gradient(&star, x0);
         if inverted > 0 {
             tangled_seen += 1;
@@ -374,16 +294,8 @@ fn scaled_star_keeps_shape_values() {
     let f = 2f64.powi(40);
     let big = star.scaled(f);
     assert_eq!(big.size(), star.size() * f);
-    for k in [
-        ObjectiveKind::SmoothShape,
-        ObjectiveKind::MaxMinShape,
-        ObjectiveKind::Sine,
-        ObjectiveKind::Condition,
-    ] {
-        let (a, b) = (
-            tet_objective(k).unwrap().value(&star, star.x0),
-            tet_objective(k).unwrap().value(&big, big.x0),
-        );
+    for k in [ObjectiveKind::SmoothShape, ObjectiveKind::MaxMinShape, ObjectiveKind::Sine, ObjectiveKind::Condition] {
+        let (a, b) = (tet_objective(k).unwrap().value(&star, star.x0), tet_objective(k).unwrap().value(&big, big.x0));
         assert!((a - b).abs() <= 1e-12 * a.abs().max(1.0), "{k}: {a} {b}");
     }
 }

@@ -78,10 +78,7 @@ mod tests {
             s.gather_for_measures(&mesh, n);
             let mut v = Verdict::default();
             for t in &s.tets {
-                v.add(
-                    &ElementScore::tet(&t.pts, &EQUILATERAL_TET, Measure::Shape),
-                    &ElementScore::tet(&t.at(x), &EQUILATERAL_TET, Measure::Shape),
-                );
+                v.add(&ElementScore::tet(&t.pts, &EQUILATERAL_TET, Measure::Shape), &ElementScore::tet(&t.at(x), &EQUILATERAL_TET, Measure::Shape));
             }
             v
         };
@@ -89,22 +86,10 @@ mod tests {
         let (mut star, mut checked, mut moved) = (CornerStar::default(), 0, 0);
         for n in (0..mesh.node_count()).filter(|&n| mesh.is_free(n)) {
             star.gather_for_measures(&mesh, n);
-            assert_eq!(
-                star.tet_measures.borrow().at,
-                [None, None],
-                "a gather forgets"
-            );
+            assert_eq!(star.tet_measures.borrow().at, [None, None], "a gather forgets");
             let x0 = star.x0;
             let h = star.size();
-            let mut near = || {
-                x0 + h
-                    * 0.3
-                    * DVec3::new(
-                        rng.next_f64() - 0.5,
-                        rng.next_f64() - 0.5,
-                        rng.next_f64() - 0.5,
-                    )
-            };
+            let mut near = || x0 + h * 0.3 * DVec3::new(rng.next_f64() - 0.5, rng.next_f64() - 0.5, rng.next_f64() - 0.5);
             let (c, x) = (near(), near());
             let accepts = star.smart_accepts(c, Measure::Shape);
             assert_eq!(star.verdict(c, Measure::Shape), fresh(n, c), "node {n}");
@@ -116,27 +101,9 @@ mod tests {
             // what is held is what measuring gives
             let memo = star.tet_measures.borrow();
             assert!(memo.at.iter().all(|a| a.is_some()), "node {n}");
-            for (i, at) in memo
-                .at
-                .iter()
-                .enumerate()
-                .filter_map(|(i, a)| Some((i, (*a)?)))
-            {
-                let at = DVec3::new(
-                    f64::from_bits(at[0]),
-                    f64::from_bits(at[1]),
-                    f64::from_bits(at[2]),
-                );
-                let measured: Vec<_> = star
-                    .tets
-                    .iter()
-                    .map(|t| {
-                        (
-                            q3::MeanRatioParts::of(&t.at(at), &EQUILATERAL_TET),
-                            q3::TetRuleMeasures::of(&t.at(at)),
-                        )
-                    })
-                    .collect();
+            for (i, at) in memo.at.iter().enumerate().filter_map(|(i, a)| Some((i, (*a)?))) {
+                let at = DVec3::new(f64::from_bits(at[0]), f64::from_bits(at[1]), f64::from_bits(at[2]));
+                let measured: Vec<_> = star.tets.iter().map(|t| (q3::MeanRatioParts::of(&t.at(at), &EQUILATERAL_TET), q3::TetRuleMeasures::of(&t.at(at)))).collect();
                 assert_eq!(memo.measures(i), &measured[..], "node {n}");
             }
             checked += 1;

@@ -20,12 +20,7 @@ impl Bezier {
     pub(super) fn min_coefficient(&self) -> f64 {
         if self.deg == [2, 2, 2] {
             // a hexahedron's: all 27, in the loop's order
-            return self
-                .c
-                .as_flattened()
-                .as_flattened()
-                .iter()
-                .fold(f64::INFINITY, |m, &v| m.min(v));
+            return self.c.as_flattened().as_flattened().iter().fold(f64::INFINITY, |m, &v| m.min(v));
         }
         let mut m = f64::INFINITY;
         for i in 0..=self.deg[0] {
@@ -83,11 +78,7 @@ impl Bezier {
         };
         for a in 0..=na {
             for b in 0..=nb {
-                let (b0, b1, b2) = (
-                    at(&self.c, 0, a, b),
-                    at(&self.c, 1, a, b),
-                    at(&self.c, 2, a, b),
-                );
+                let (b0, b1, b2) = (at(&self.c, 0, a, b), at(&self.c, 1, a, b), at(&self.c, 2, a, b));
                 let (l1, r1) = (0.5 * (b0 + b1), 0.5 * (b1 + b2));
                 let m = 0.5 * (l1 + r1);
                 let set = |c: &mut [[[f64; 3]; 3]; 3], t: usize, v: f64| match axis {
@@ -134,11 +125,7 @@ type Factor = [[[DVec3; 2]; 2]; 2];
 
 impl TripleProduct {
     const fn new(df: [usize; 3], dg: [usize; 3], dh: [usize; 3]) -> Self {
-        let deg = [
-            df[0] + dg[0] + dh[0],
-            df[1] + dg[1] + dh[1],
-            df[2] + dg[2] + dh[2],
-        ];
+        let deg = [df[0] + dg[0] + dh[0], df[1] + dg[1] + dh[1], df[2] + dg[2] + dh[2]];
         let mut weight = [1.0; 27];
         let mut n = 0;
         while n < 27 {
@@ -150,13 +137,7 @@ impl TripleProduct {
             weight[n] = [1.0, 0.5, 0.25, 0.125][halves];
             n += 1;
         }
-        TripleProduct {
-            deg,
-            f: Self::terms(df),
-            g: Self::terms(dg),
-            h: Self::terms(dh),
-            weight,
-        }
+        TripleProduct { deg, f: Self::terms(df), g: Self::terms(dg), h: Self::terms(dh), weight }
     }
 
     const fn terms(d: [usize; 3]) -> Terms {
@@ -202,10 +183,7 @@ impl TripleProduct {
                 }
             }
         }
-        let mut out = Bezier {
-            c: [[[0.0; 3]; 3]; 3],
-            deg: self.deg,
-        };
+        let mut out = Bezier { c: [[[0.0; 3]; 3]; 3], deg: self.deg };
         for (n, v) in c.into_iter().enumerate() {
             out.c[n / 9][n / 3 % 3][n % 3] = v;
         }
@@ -287,19 +265,11 @@ const HEX_CORNER: [[usize; 2]; 2] = [[0, 3], [1, 2]];
 /// [`hex_det`] with its coefficients' gradients in corner `slot` (at flat indices).
 pub(super) fn hex_det_and_slopes(p: &[DVec3], slot: usize) -> (Bezier, [DVec3; 27]) {
     let (xu, xv, xw) = hex_columns(p);
-    let (i, j, k) = (
-        (slot % 4 == 1 || slot % 4 == 2) as usize,
-        (slot % 4 >= 2) as usize,
-        slot / 4,
-    );
+    let (i, j, k) = ((slot % 4 == 1 || slot % 4 == 2) as usize, (slot % 4 >= 2) as usize, slot / 4);
     let sign = |end: usize| if end == 1 { 1.0 } else { -1.0 };
     // each column's moving edge: its index in the plan's terms (flat 9i + 3j + k order
     // over the column's own degrees: the two parameters it varies along)
-    let moved = [
-        (2 * j + k, sign(i)),
-        (2 * i + k, sign(j)),
-        (2 * i + j, sign(k)),
-    ];
+    let moved = [(2 * j + k, sign(i)), (2 * i + k, sign(j)), (2 * i + j, sign(k))];
     (HEX.of(&xu, &xv, &xw), HEX.slopes(&xu, &xv, &xw, moved))
 }
 
@@ -386,11 +356,7 @@ type ExactVec = [Expansion; 3];
 
 /// `b − a`, exactly.
 fn exact_edge(b: DVec3, a: DVec3) -> ExactVec {
-    [
-        Expansion::difference(b.x, a.x),
-        Expansion::difference(b.y, a.y),
-        Expansion::difference(b.z, a.z),
-    ]
+    [Expansion::difference(b.x, a.x), Expansion::difference(b.y, a.y), Expansion::difference(b.z, a.z)]
 }
 
 /// A factor of a [`TripleProduct`] with exact coefficients.
@@ -417,11 +383,7 @@ impl TripleProduct {
             for b in 0..self.g.1 {
                 for d in 0..self.h.1 {
                     let n = self.f.0[a].1 + self.g.0[b].1 + self.h.0[d].1;
-                    let term = det3_exact(
-                        value(f, &self.f, a),
-                        value(g, &self.g, b),
-                        value(h, &self.h, d),
-                    );
+                    let term = det3_exact(value(f, &self.f, a), value(g, &self.g, b), value(h, &self.h, d));
                     c[n].add(&term.scaled(self.weight[n]));
                 }
             }
@@ -436,13 +398,7 @@ impl ExactBezier {
     }
     fn corners_positive(&self) -> bool {
         let d = self.deg;
-        [0, d[0]].iter().all(|&i| {
-            [0, d[1]].iter().all(|&j| {
-                [0, d[2]]
-                    .iter()
-                    .all(|&k| self.at(i, j, k).sign() == Ordering::Greater)
-            })
-        })
+        [0, d[0]].iter().all(|&i| [0, d[1]].iter().all(|&j| [0, d[2]].iter().all(|&k| self.at(i, j, k).sign() == Ordering::Greater)))
     }
     fn all_positive(&self) -> bool {
         indices(self.deg).all(|(i, j, k)| self.at(i, j, k).sign() == Ordering::Greater)
@@ -458,11 +414,7 @@ impl ExactBezier {
         let others: Vec<usize> = (0..3).filter(|&k| k != axis).map(|k| self.deg[k]).collect();
         for a in 0..=others[0] {
             for b in 0..=others[1] {
-                let (b0, b1, b2) = (
-                    &self.c[flat(0, a, b)],
-                    &self.c[flat(1, a, b)],
-                    &self.c[flat(2, a, b)],
-                );
+                let (b0, b1, b2) = (&self.c[flat(0, a, b)], &self.c[flat(1, a, b)], &self.c[flat(2, a, b)]);
                 let (l1, r1) = (b0.midpoint(b1), b1.midpoint(b2));
                 let m = l1.midpoint(&r1);
                 lo.c[flat(1, a, b)] = l1;
@@ -506,16 +458,8 @@ const EXACT_BOXES: usize = 256;
 /// Bernstein coefficients of its `det J` (the doubles as given): where the rounded ones
 /// lie within rounding of 0 ([`rounding_margin`]).
 pub(super) fn exact_validity(kind: crate::mesh::VolumeKind, p: &[DVec3]) -> Validity {
-    let empty = || {
-        [
-            Expansion::default(),
-            Expansion::default(),
-            Expansion::default(),
-        ]
-    };
-    let z = || -> ExactFactor {
-        std::array::from_fn(|_| std::array::from_fn(|_| std::array::from_fn(|_| empty())))
-    };
+    let empty = || [Expansion::default(), Expansion::default(), Expansion::default()];
+    let z = || -> ExactFactor { std::array::from_fn(|_| std::array::from_fn(|_| std::array::from_fn(|_| empty()))) };
     let (mut f, mut g, mut h) = (z(), z(), z());
     match kind.linear() {
         crate::mesh::VolumeKind::Hex8 => {

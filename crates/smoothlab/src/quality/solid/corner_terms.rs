@@ -27,11 +27,7 @@ pub struct CornerShapes {
 
 impl CornerShapes {
     /// No terms, for room that holds none yet.
-    pub const NONE: CornerShapes = CornerShapes {
-        terms: [f64::NAN; 8],
-        dets: [f64::NAN; 8],
-        reach: f64::NAN,
-    };
+    pub const NONE: CornerShapes = CornerShapes { terms: [f64::NAN; 8], dets: [f64::NAN; 8], reach: f64::NAN };
     /// Overwrites these terms with `other`'s, field by field: a whole copy (some 140
     /// bytes) is put together on the stack and moved with calls to `memcpy`, where these
     /// are moves in place.
@@ -47,11 +43,7 @@ impl CornerShapes {
     /// [`solid_shape`] measures in its own scale.
     ///
     /// [`solid_shape`]: super::solid_shape
-    pub fn of(
-        kind: VolumeKind,
-        p: &[DVec3],
-        kept: impl Fn(usize) -> Option<(f64, f64)>,
-    ) -> Option<CornerShapes> {
+    pub fn of(kind: VolumeKind, p: &[DVec3], kept: impl Fn(usize) -> Option<(f64, f64)>) -> Option<CornerShapes> {
         let p = &p[..kind.corners()];
         let reach = reach(p);
         if crate::numeric::factors_beyond_safe_scale(reach).is_some() {
@@ -63,11 +55,7 @@ impl CornerShapes {
         // roots: the same operations on each corner, but no corner waits on the last one's
         // cube root and division
         let mut parts = [None; 8];
-        for (c, parts) in parts
-            .iter_mut()
-            .enumerate()
-            .take(kind.row().corner_edges.len())
-        {
+        for (c, parts) in parts.iter_mut().enumerate().take(kind.row().corner_edges.len()) {
             match kept(c) {
                 Some((t, d)) => (terms[c], dets[c]) = (t, d),
                 None => *parts = Some(q3::MeanRatioParts::of(&corner_tet(kind, p, c), r)),
@@ -76,11 +64,7 @@ impl CornerShapes {
         for (c, parts) in parts.iter().enumerate() {
             if let Some(parts) = parts {
                 terms[c] = parts.mean_ratio();
-                dets[c] = if r.identity {
-                    parts.sigma
-                } else {
-                    parts.sigma / r.det_w_inv
-                };
+                dets[c] = if r.identity { parts.sigma } else { parts.sigma / r.det_w_inv };
             }
         }
         Some(CornerShapes { terms, dets, reach })
@@ -169,11 +153,7 @@ pub struct CornerSizes([(f64, f64); 8]);
 impl CornerSizes {
     /// The sizes of the element of `kind` with corners `p`, each corner's from `kept(c)`
     /// where it gives one, else measured.
-    pub fn of(
-        kind: VolumeKind,
-        p: &[DVec3],
-        kept: impl Fn(usize) -> Option<(f64, f64)>,
-    ) -> CornerSizes {
+    pub fn of(kind: VolumeKind, p: &[DVec3], kept: impl Fn(usize) -> Option<(f64, f64)>) -> CornerSizes {
         let mut s = [(0.0, 0.0); 8];
         for (c, s) in s.iter_mut().enumerate().take(kind.row().corner_edges.len()) {
             *s = kept(c).unwrap_or_else(|| corner_size(&corner_tet(kind, p, c)));

@@ -44,10 +44,7 @@ impl DetForm {
         };
         let n = kind.corners();
         let reach = reach(&p[..n]);
-        if reach == 0.0
-            || !reach.is_finite()
-            || crate::numeric::factors_beyond_safe_scale(reach).is_some()
-        {
+        if reach == 0.0 || !reach.is_finite() || crate::numeric::factors_beyond_safe_scale(reach).is_some() {
             return None;
         }
         let mut q = [DVec3::ZERO; 8];
@@ -72,19 +69,11 @@ impl DetForm {
             (c, slopes)
         };
         let deg = c.deg;
-        let mut form = DetForm {
-            origin: p[slot],
-            reach,
-            c: [0.0; 27],
-            g: [DVec3::ZERO; 27],
-            len: 0,
-            corners: 0,
-        };
+        let mut form = DetForm { origin: p[slot], reach, c: [0.0; 27], g: [DVec3::ZERO; 27], len: 0, corners: 0 };
         for (t, (i, j, k)) in indices(deg).enumerate() {
             form.c[t] = c.c[i][j][k];
             form.g[t] = slopes[9 * i + 3 * j + k];
-            let corner =
-                (i == 0 || i == deg[0]) && (j == 0 || j == deg[1]) && (k == 0 || k == deg[2]);
+            let corner = (i == 0 || i == deg[0]) && (j == 0 || j == deg[1]) && (k == 0 || k == deg[2]);
             form.corners |= (corner as u32) << t;
             form.len = t + 1;
         }
@@ -104,11 +93,7 @@ impl DetForm {
             return None;
         }
         let (mut min, mut min_corner) = (f64::INFINITY, f64::INFINITY);
-        for (t, (&c, g)) in self.c[..self.len]
-            .iter()
-            .zip(&self.g[..self.len])
-            .enumerate()
-        {
+        for (t, (&c, g)) in self.c[..self.len].iter().zip(&self.g[..self.len]).enumerate() {
             let v = c + g.dot(u);
             if v.is_nan() {
                 return None;
@@ -160,20 +145,13 @@ impl ValidBall {
     /// (where the solve's later trials gather). The same validity as
     /// [`validity`]'s, which takes the same coefficients where the element is within the
     /// safe scale, as a ball asks.
-    pub fn validity_and_ball(
-        kind: VolumeKind,
-        p: &[DVec3],
-        slot: usize,
-    ) -> (Validity, Option<ValidBall>) {
+    pub fn validity_and_ball(kind: VolumeKind, p: &[DVec3], slot: usize) -> (Validity, Option<ValidBall>) {
         let Some((corners, reach)) = Self::corners_and_reach(kind, p) else {
             return (validity(kind, p), None);
         };
         let det = hex_det(corners);
         let least = det.min_coefficient_unsigned();
-        (
-            super::decided(kind, corners, &det, least),
-            Self::of_least_coefficient(corners, slot, reach, least),
-        )
+        (super::decided(kind, corners, &det, least), Self::of_least_coefficient(corners, slot, reach, least))
     }
 
     /// The corners and reach of an element a ball may be made for: a hexahedron (of any
@@ -185,10 +163,7 @@ impl ValidBall {
         }
         let p = &p[..8];
         let reach = reach(p);
-        (reach != 0.0
-            && reach.is_finite()
-            && crate::numeric::factors_beyond_safe_scale(reach).is_none())
-        .then_some((p, reach))
+        (reach != 0.0 && reach.is_finite() && crate::numeric::factors_beyond_safe_scale(reach).is_none()).then_some((p, reach))
     }
 
     /// The ball from the least coefficient `m` of the hexahedron with corners `p` (within
@@ -197,11 +172,7 @@ impl ValidBall {
         // the twelve edges' squares in three running maxima (a maximum is exact)
         let mut longest = [0.0f64; 3];
         for i in 0..4 {
-            for (l, (a, b)) in
-                longest
-                    .iter_mut()
-                    .zip([(i, (i + 1) % 4), (i + 4, (i + 1) % 4 + 4), (i, i + 4)])
-            {
+            for (l, (a, b)) in longest.iter_mut().zip([(i, (i + 1) % 4), (i + 4, (i + 1) % 4 + 4), (i, i + 4)]) {
                 *l = l.max(p[a].distance_squared(p[b]));
             }
         }
@@ -210,12 +181,8 @@ impl ValidBall {
         let slope = 3.0 * longest * (1.0 + 1e-9);
         let radius = 0.99 * m / slope;
         let margin = 1e-9 * (reach + radius).powi(3);
-        (radius > 0.0 && radius.is_finite() && m - slope * radius > 2.0 * margin).then(|| {
-            ValidBall {
-                centre: p[slot],
-                radius_squared: radius * radius,
-            }
-        })
+        (radius > 0.0 && radius.is_finite() && m - slope * radius > 2.0 * margin)
+            .then(|| ValidBall { centre: p[slot], radius_squared: radius * radius })
     }
 
     /// Whether the element is valid with its free corner at `x` by the ball alone.

@@ -88,10 +88,7 @@ const EDGES_AT_CORNER_0: [usize; 3] = {
 /// order).
 pub fn solid_measures(kind: VolumeKind, p: &[DVec3]) -> SolidMeasures {
     let r = kind.reference();
-    let sj_min = |ts: &mut dyn Iterator<Item = [DVec3; 4]>, r: &CornerReference| {
-        ts.map(|t| scaled_jacobian(&t, r))
-            .fold(f64::INFINITY, f64::min)
-    };
+    let sj_min = |ts: &mut dyn Iterator<Item = [DVec3; 4]>, r: &CornerReference| ts.map(|t| scaled_jacobian(&t, r)).fold(f64::INFINITY, f64::min);
     match kind {
         VolumeKind::Tet4 | VolumeKind::Tet10 => {
             // a 10-node tetrahedron's every measure over the same four tetrahedra, its
@@ -180,32 +177,18 @@ pub fn solid_reading(kind: VolumeKind, p: &[DVec3], with_quality: bool) -> Readi
             Reading {
                 min_angle_deg: angles.iter().copied().fold(f64::INFINITY, f64::min),
                 max_angle_deg: angles.iter().copied().fold(f64::NEG_INFINITY, f64::max),
-                min_scaled_jacobian: (0..4)
-                    .map(|c| scaled_jacobian(&q3::with_first(&corners, c), r))
-                    .fold(f64::INFINITY, f64::min),
-                min_quality: if with_quality {
-                    q3::mean_ratio(&corners, r)
-                } else {
-                    f64::INFINITY
-                },
+                min_scaled_jacobian: (0..4).map(|c| scaled_jacobian(&q3::with_first(&corners, c), r)).fold(f64::INFINITY, f64::min),
+                min_quality: if with_quality { q3::mean_ratio(&corners, r) } else { f64::INFINITY },
             }
         }
         VolumeKind::Tet10 => {
             let m = solid_measures(kind, p);
-            Reading {
-                min_angle_deg: m.min_dihedral_deg,
-                max_angle_deg: m.max_dihedral_deg,
-                min_scaled_jacobian: m.scaled_jacobian,
-                min_quality: m.mean_ratio,
-            }
+            Reading { min_angle_deg: m.min_dihedral_deg, max_angle_deg: m.max_dihedral_deg, min_scaled_jacobian: m.scaled_jacobian, min_quality: m.mean_ratio }
         }
         _ => {
             let (q, _) = in_unit_scale(&p[..kind.corners()]);
             let count = kind.row().corner_edges.len();
-            let mut out = Reading {
-                min_quality: if with_quality { 0.0 } else { f64::INFINITY },
-                ..Reading::default()
-            };
+            let mut out = Reading { min_quality: if with_quality { 0.0 } else { f64::INFINITY }, ..Reading::default() };
             for c in 0..count {
                 let t = corner_tet(kind, &q, c);
                 if with_quality {
@@ -228,10 +211,7 @@ pub fn solid_reading(kind: VolumeKind, p: &[DVec3], with_quality: bool) -> Readi
 /// −∞). It stops at the first corner beyond them.
 pub fn solid_within(kind: VolumeKind, p: &[DVec3], bounds: &Reading) -> bool {
     let with_quality = bounds.min_quality > f64::NEG_INFINITY;
-    let (cos_lo, cos_hi) = (
-        bounds.min_angle_deg.to_radians().cos(),
-        bounds.max_angle_deg.to_radians().cos(),
-    );
+    let (cos_lo, cos_hi) = (bounds.min_angle_deg.to_radians().cos(), bounds.max_angle_deg.to_radians().cos());
     let r = kind.reference();
     match kind {
         VolumeKind::Tet4 => {
@@ -240,12 +220,8 @@ pub fn solid_within(kind: VolumeKind, p: &[DVec3], bounds: &Reading) -> bool {
                 // its angles read negative: the reading decides
                 return solid_reading(kind, p, with_quality).within(bounds);
             }
-            q3::dihedral_cosines(&corners)
-                .iter()
-                .all(|&c| bounds.angle_within(c, cos_lo, cos_hi))
-                && (0..4).all(|c| {
-                    scaled_jacobian(&q3::with_first(&corners, c), r) >= bounds.min_scaled_jacobian
-                })
+            q3::dihedral_cosines(&corners).iter().all(|&c| bounds.angle_within(c, cos_lo, cos_hi))
+                && (0..4).all(|c| scaled_jacobian(&q3::with_first(&corners, c), r) >= bounds.min_scaled_jacobian)
                 && (!with_quality || q3::mean_ratio(&corners, r) >= bounds.min_quality)
         }
         VolumeKind::Tet10 => solid_reading(kind, p, with_quality).within(bounds),
@@ -262,9 +238,7 @@ pub fn solid_within(kind: VolumeKind, p: &[DVec3], bounds: &Reading) -> bool {
                 if with_quality {
                     mean_ratio += q3::mean_ratio(&t, r) / count as f64;
                 }
-                q3::dihedral_cosines_at_corner0(&t)
-                    .iter()
-                    .all(|&c| bounds.angle_within(c, cos_lo, cos_hi))
+                q3::dihedral_cosines_at_corner0(&t).iter().all(|&c| bounds.angle_within(c, cos_lo, cos_hi))
                     && scaled_jacobian(&t, r) >= bounds.min_scaled_jacobian
             }) && (!with_quality || mean_ratio >= bounds.min_quality)
         }
@@ -277,15 +251,10 @@ pub fn solid_within(kind: VolumeKind, p: &[DVec3], bounds: &Reading) -> bool {
 pub fn solid_shape(kind: VolumeKind, p: &[DVec3]) -> f64 {
     let (q, _) = in_unit_scale(p);
     let (r, count) = (kind.reference(), kind.row().corner_edges.len());
-    (0..count)
-        .map(|c| q3::mean_ratio(&corner_tet(kind, &q, c), r))
-        .sum::<f64>()
-        / count as f64
+    (0..count).map(|c| q3::mean_ratio(&corner_tet(kind, &q, c), r)).sum::<f64>() / count as f64
 }
 /// The smallest scaled Jacobian of the element's measured corners (its "sine").
 pub fn solid_min_sine(kind: VolumeKind, p: &[DVec3]) -> f64 {
     let r = kind.reference();
-    (0..kind.row().corner_edges.len())
-        .map(|c| scaled_jacobian(&corner_tet(kind, p, c), r))
-        .fold(f64::INFINITY, f64::min)
+    (0..kind.row().corner_edges.len()).map(|c| scaled_jacobian(&corner_tet(kind, p, c), r)).fold(f64::INFINITY, f64::min)
 }

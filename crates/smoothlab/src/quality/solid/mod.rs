@@ -49,10 +49,7 @@ mod tests;
 use bernstein::{hex_det, pyramid_det};
 pub use corner_terms::{corner_size, least_corner_det, CornerShapes, CornerSizes};
 pub use free_corner::{DetForm, ValidBall};
-pub use measures::{
-    scaled_jacobian, scaled_jacobian_grad0, solid_measures, solid_min_sine, solid_reading,
-    solid_shape, solid_within, SolidMeasures,
-};
+pub use measures::{scaled_jacobian, scaled_jacobian_grad0, solid_reading, solid_within, solid_measures, solid_min_sine, solid_shape, SolidMeasures};
 
 /// How many boxes (the whole element, then halves) a hexahedron's or pyramid's validity
 /// may examine before it is called [`Validity::Undecided`].
@@ -116,11 +113,7 @@ fn wedge_validity(p: &[DVec3]) -> Validity {
     // det J = −(∂ξ × ∂η)·∂ζ
     let e1 = [p[1] - p[0], p[4] - p[3]];
     let e2 = [p[2] - p[0], p[5] - p[3]];
-    let c = [
-        e1[0].cross(e2[0]),
-        0.5 * (e1[0].cross(e2[1]) + e1[1].cross(e2[0])),
-        e1[1].cross(e2[1]),
-    ];
+    let c = [e1[0].cross(e2[0]), 0.5 * (e1[0].cross(e2[1]) + e1[1].cross(e2[0])), e1[1].cross(e2[1])];
     // signs read beyond their rounding, else the exact ones decide (issue 61)
     let margin = bernstein::rounding_margin(p);
     let mut undecided = false;
@@ -161,19 +154,8 @@ fn wedge_validity(p: &[DVec3]) -> Validity {
 fn wedge_validity_exact(p: &[DVec3]) -> Validity {
     use crate::numeric::exact::{det3_exact, Expansion};
     use std::cmp::Ordering;
-    let edge = |b: DVec3, a: DVec3| {
-        [
-            Expansion::difference(b.x, a.x),
-            Expansion::difference(b.y, a.y),
-            Expansion::difference(b.z, a.z),
-        ]
-    };
-    let (a0, a1, b0, b1) = (
-        edge(p[1], p[0]),
-        edge(p[4], p[3]),
-        edge(p[2], p[0]),
-        edge(p[5], p[3]),
-    );
+    let edge = |b: DVec3, a: DVec3| [Expansion::difference(b.x, a.x), Expansion::difference(b.y, a.y), Expansion::difference(b.z, a.z)];
+    let (a0, a1, b0, b1) = (edge(p[1], p[0]), edge(p[4], p[3]), edge(p[2], p[0]), edge(p[5], p[3]));
     for i in 0..3 {
         let up = || edge(p[i + 3], p[i]);
         // −(a × b)·u = −u·(a × b) = u·(b × a)
@@ -210,21 +192,10 @@ pub fn validity(kind: VolumeKind, p: &[DVec3]) -> Validity {
         }
         VolumeKind::Wedge6 => wedge_validity(&q),
         VolumeKind::Hex8 | VolumeKind::Pyramid5 => {
-            let det = if kind.linear() == VolumeKind::Hex8 {
-                hex_det(&q[..8])
-            } else {
-                pyramid_det(&q[..5])
-            };
-            decided(
-                kind,
-                &q[..kind.corners()],
-                &det,
-                det.min_coefficient_unsigned(),
-            )
+            let det = if kind.linear() == VolumeKind::Hex8 { hex_det(&q[..8]) } else { pyramid_det(&q[..5]) };
+            decided(kind, &q[..kind.corners()], &det, det.min_coefficient_unsigned())
         }
-        VolumeKind::Tet10 | VolumeKind::Hex20 | VolumeKind::Hex27 => {
-            unreachable!("linear() is linear")
-        }
+        VolumeKind::Tet10 | VolumeKind::Hex20 | VolumeKind::Hex27 => unreachable!("linear() is linear"),
     }
 }
 
@@ -233,8 +204,7 @@ pub fn validity(kind: VolumeKind, p: &[DVec3]) -> Validity {
 /// from the exact one (issue 61: two hexahedra of smoothlab's outputs had `det J < 0`
 /// exactly, −1.2e−17 on a scale of 1, yet counted as valid).
 fn decided(kind: VolumeKind, p: &[DVec3], det: &bernstein::Bezier, least: f64) -> Validity {
-    det.validity_beyond(least, bernstein::rounding_margin(p))
-        .unwrap_or_else(|| bernstein::exact_validity(kind, p))
+    det.validity_beyond(least, bernstein::rounding_margin(p)).unwrap_or_else(|| bernstein::exact_validity(kind, p))
 }
 
 /// The smallest Bernstein coefficient of the element's `det J` (its corners' determinants
@@ -245,9 +215,7 @@ pub fn min_det_coefficient(kind: VolumeKind, p: &[DVec3]) -> f64 {
     match kind.linear() {
         VolumeKind::Hex8 => hex_det(p).min_coefficient(),
         VolumeKind::Pyramid5 => pyramid_det(p).min_coefficient(),
-        _ => (0..kind.row().corner_edges.len())
-            .map(|c| corner_det(&corner_tet(kind, p, c)))
-            .fold(f64::INFINITY, f64::min),
+        _ => (0..kind.row().corner_edges.len()).map(|c| corner_det(&corner_tet(kind, p, c))).fold(f64::INFINITY, f64::min),
     }
 }
 /// How far an element that is not certainly valid is folded, for the validity guard: 0
@@ -259,8 +227,6 @@ pub fn solid_inversion(kind: VolumeKind, p: &[DVec3], validity: Validity) -> f64
     if validity == Validity::Valid {
         return 0.0;
     }
-    let corners: f64 = (0..kind.row().corner_edges.len())
-        .map(|c| (-corner_det(&corner_tet(kind, p, c))).max(0.0))
-        .sum();
+    let corners: f64 = (0..kind.row().corner_edges.len()).map(|c| (-corner_det(&corner_tet(kind, p, c))).max(0.0)).sum();
     corners + (-min_det_coefficient(kind, p)).max(0.0)
 }

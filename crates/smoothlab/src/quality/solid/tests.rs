@@ -16,13 +16,7 @@ fn ideal(kind: VolumeKind) -> Vec<DVec3> {
 fn perturbed(kind: VolumeKind, rng: &mut SplitMix64, amount: f64, scale: f64) -> Vec<DVec3> {
     ideal(kind)
         .iter()
-        .map(|c| {
-            (*c + DVec3::new(
-                rng.uniform(-amount, amount),
-                rng.uniform(-amount, amount),
-                rng.uniform(-amount, amount),
-            )) * scale
-        })
+        .map(|c| (*c + DVec3::new(rng.uniform(-amount, amount), rng.uniform(-amount, amount), rng.uniform(-amount, amount))) * scale)
         .collect()
 }
 
@@ -36,19 +30,11 @@ fn the_ideal_element_of_every_kind_measures_as_ideal() {
         let m = solid_measures(k, &ideal(k));
         assert!(!m.inverted, "{k:?}");
         assert_eq!(validity(k, &ideal(k)), Validity::Valid, "{k:?}");
-        assert!(
-            (m.mean_ratio - 1.0).abs() < 1e-12,
-            "{k:?}: {}",
-            m.mean_ratio
-        );
+        assert!((m.mean_ratio - 1.0).abs() < 1e-12, "{k:?}: {}", m.mean_ratio);
         // κ of an ideal corner is 3 (T a rotation: ‖T‖_F = ‖T⁻¹‖_F = √3)
         assert!((m.condition - 3.0).abs() < 1e-12, "{k:?}: {}", m.condition);
         if !k.is_tet() {
-            assert!(
-                (m.scaled_jacobian - 1.0).abs() < 1e-12,
-                "{k:?}: {}",
-                m.scaled_jacobian
-            );
+            assert!((m.scaled_jacobian - 1.0).abs() < 1e-12, "{k:?}: {}", m.scaled_jacobian);
         }
     }
     // a cube's dihedral angles are right angles; a right wedge's 90° and 60°
@@ -56,10 +42,7 @@ fn the_ideal_element_of_every_kind_measures_as_ideal() {
     assert_eq!(cube.dihedral_count, 24);
     assert!(cube.dihedral().iter().all(|a| (a - 90.0).abs() < 1e-12));
     let wedge = solid_measures(VolumeKind::Wedge6, &ideal(VolumeKind::Wedge6));
-    assert!(wedge
-        .dihedral()
-        .iter()
-        .all(|a| (a - 90.0).abs() < 1e-12 || (a - 60.0).abs() < 1e-12));
+    assert!(wedge.dihedral().iter().all(|a| (a - 90.0).abs() < 1e-12 || (a - 60.0).abs() < 1e-12));
     assert!((wedge.min_dihedral_deg - 60.0).abs() < 1e-12);
 }
 
@@ -86,11 +69,7 @@ fn eval(b: &Bezier, t: [f64; 3]) -> f64 {
             _ => [(1.0 - t) * (1.0 - t), 2.0 * t * (1.0 - t), t * t],
         }
     };
-    let (bu, bv, bw) = (
-        basis(b.deg[0], t[0]),
-        basis(b.deg[1], t[1]),
-        basis(b.deg[2], t[2]),
-    );
+    let (bu, bv, bw) = (basis(b.deg[0], t[0]), basis(b.deg[1], t[1]), basis(b.deg[2], t[2]));
     let mut s = 0.0;
     for (ci, u) in b.c.iter().zip(bu) {
         for (cij, v) in ci.iter().zip(bv) {
@@ -109,21 +88,13 @@ fn the_bernstein_coefficients_are_the_hexahedron_jacobian_determinant() {
         let p: Vec<DVec3> = perturbed(VolumeKind::Hex8, &mut rng, 0.4, 1.0);
         let b = hex_det(&p);
         for _ in 0..20 {
-            let t = [
-                rng.uniform(0.0, 1.0),
-                rng.uniform(0.0, 1.0),
-                rng.uniform(0.0, 1.0),
-            ];
+            let t = [rng.uniform(0.0, 1.0), rng.uniform(0.0, 1.0), rng.uniform(0.0, 1.0)];
             let (a, e) = (eval(&b, t), hex_det_at(&p, t[0], t[1], t[2]));
             assert!((a - e).abs() < 1e-12 * e.abs().max(1.0), "{a} vs {e}");
         }
         // the halves of a split are the polynomial on the halves
         let (lo, hi) = b.split(1);
-        let t = [
-            rng.uniform(0.0, 1.0),
-            rng.uniform(0.0, 1.0),
-            rng.uniform(0.0, 1.0),
-        ];
+        let t = [rng.uniform(0.0, 1.0), rng.uniform(0.0, 1.0), rng.uniform(0.0, 1.0)];
         assert!((eval(&lo, t) - hex_det_at(&p, t[0], 0.5 * t[1], t[2])).abs() < 1e-12);
         assert!((eval(&hi, t) - hex_det_at(&p, t[0], 0.5 + 0.5 * t[1], t[2])).abs() < 1e-12);
     }
@@ -146,23 +117,12 @@ const INSIDE_OUT_HEX: [[f64; 3]; 8] = [
 fn a_hexahedron_inverted_inside_with_every_corner_positive_is_found() {
     let p = pts(&INSIDE_OUT_HEX);
     for c in 0..8 {
-        assert!(
-            corner_det(&corner_tet(VolumeKind::Hex8, &p, c)) > 0.07,
-            "corner {c}"
-        );
+        assert!(corner_det(&corner_tet(VolumeKind::Hex8, &p, c)) > 0.07, "corner {c}");
     }
-    assert!(
-        hex_det_at(&p, 0.5, 0.5, 0.5).min(hex_det_at(&p, 0.3, 0.6, 0.4)) < 0.0 || {
-            // somewhere on a grid
-            (0..10).any(|i| {
-                (0..10).any(|j| {
-                    (0..10).any(|k| {
-                        hex_det_at(&p, i as f64 / 9.0, j as f64 / 9.0, k as f64 / 9.0) < 0.0
-                    })
-                })
-            })
-        }
-    );
+    assert!(hex_det_at(&p, 0.5, 0.5, 0.5).min(hex_det_at(&p, 0.3, 0.6, 0.4)) < 0.0 || {
+        // somewhere on a grid
+        (0..10).any(|i| (0..10).any(|j| (0..10).any(|k| hex_det_at(&p, i as f64 / 9.0, j as f64 / 9.0, k as f64 / 9.0) < 0.0)))
+    });
     assert_eq!(validity(VolumeKind::Hex8, &p), Validity::Inverted);
     let m = solid_measures(VolumeKind::Hex8, &p);
     assert!(m.inverted && m.inverted_inside);
@@ -177,23 +137,14 @@ fn a_hexahedron_inverted_inside_with_every_corner_positive_is_found() {
 
 /// Found by searching perturbed wedges: all six corner determinants ≥ 0.27, yet
 /// `det J ≈ −0.14` inside.
-const INSIDE_OUT_WEDGE: [[f64; 3]; 6] = [
-    [0.5, 0.6, 0.5],
-    [1.2, 0.4, -0.6],
-    [0.4, 0.5, -0.5],
-    [-0.3, -0.6, 1.7],
-    [0.0, 0.4, 1.2],
-    [1.3, -0.7, 1.1],
-];
+const INSIDE_OUT_WEDGE: [[f64; 3]; 6] =
+    [[0.5, 0.6, 0.5], [1.2, 0.4, -0.6], [0.4, 0.5, -0.5], [-0.3, -0.6, 1.7], [0.0, 0.4, 1.2], [1.3, -0.7, 1.1]];
 
 #[test]
 fn a_wedge_inverted_inside_with_every_corner_positive_is_found() {
     let p = pts(&INSIDE_OUT_WEDGE);
     for c in 0..6 {
-        assert!(
-            corner_det(&corner_tet(VolumeKind::Wedge6, &p, c)) > 0.26,
-            "corner {c}"
-        );
+        assert!(corner_det(&corner_tet(VolumeKind::Wedge6, &p, c)) > 0.26, "corner {c}");
     }
     assert_eq!(validity(VolumeKind::Wedge6, &p), Validity::Inverted);
     assert!(solid_measures(VolumeKind::Wedge6, &p).inverted_inside);
@@ -210,14 +161,7 @@ fn validity_agrees_with_dense_sampling_on_random_elements() {
         let n = 12;
         let sampled_min = (0..=n)
             .flat_map(|i| (0..=n).flat_map(move |j| (0..=n).map(move |k| (i, j, k))))
-            .map(|(i, j, k)| {
-                hex_det_at(
-                    &p,
-                    i as f64 / n as f64,
-                    j as f64 / n as f64,
-                    k as f64 / n as f64,
-                )
-            })
+            .map(|(i, j, k)| hex_det_at(&p, i as f64 / n as f64, j as f64 / n as f64, k as f64 / n as f64))
             .fold(f64::INFINITY, f64::min);
         match validity(VolumeKind::Hex8, &p) {
             Validity::Valid => {
@@ -254,21 +198,10 @@ fn a_pyramid_is_decided_by_its_base_map() {
 fn the_scaled_jacobian_gradient_agrees_with_central_differences() {
     let mut rng = SplitMix64::new(7);
     let h = 1e-6;
-    for k in [
-        VolumeKind::Tet4,
-        VolumeKind::Hex8,
-        VolumeKind::Wedge6,
-        VolumeKind::Pyramid5,
-    ] {
+    for k in [VolumeKind::Tet4, VolumeKind::Hex8, VolumeKind::Wedge6, VolumeKind::Pyramid5] {
         let r = k.reference();
         for _ in 0..40 {
-            let p: [DVec3; 4] = std::array::from_fn(|_| {
-                DVec3::new(
-                    rng.uniform(-1.0, 1.0),
-                    rng.uniform(-1.0, 1.0),
-                    rng.uniform(-1.0, 1.0),
-                )
-            });
+            let p: [DVec3; 4] = std::array::from_fn(|_| DVec3::new(rng.uniform(-1.0, 1.0), rng.uniform(-1.0, 1.0), rng.uniform(-1.0, 1.0)));
             let (v, g) = scaled_jacobian_grad0(&p, r);
             assert!((v - scaled_jacobian(&p, r)).abs() < 1e-12);
             let mut fd = DVec3::ZERO;
@@ -280,10 +213,7 @@ fn the_scaled_jacobian_gradient_agrees_with_central_differences() {
                 b[0] -= e;
                 fd[c] = (scaled_jacobian(&a, r) - scaled_jacobian(&b, r)) / (2.0 * h);
             }
-            assert!(
-                (fd - g).length() <= 1e-6 * g.length().max(1.0),
-                "{k:?}: {g} vs {fd}"
-            );
+            assert!((fd - g).length() <= 1e-6 * g.length().max(1.0), "{k:?}: {g} vs {fd}");
         }
     }
 }
@@ -302,12 +232,7 @@ fn a_det_form_decides_as_validity_does_wherever_the_free_corner_goes() {
             let form = DetForm::of(kind, &p, slot).expect("a Bernstein form");
             for _ in 0..20 {
                 let reach = rng.uniform(0.0, 1.5) * scale;
-                let x = p[slot]
-                    + DVec3::new(
-                        rng.uniform(-1.0, 1.0),
-                        rng.uniform(-1.0, 1.0),
-                        rng.uniform(-1.0, 1.0),
-                    ) * reach;
+                let x = p[slot] + DVec3::new(rng.uniform(-1.0, 1.0), rng.uniform(-1.0, 1.0), rng.uniform(-1.0, 1.0)) * reach;
                 let mut q = p.clone();
                 q[slot] = x;
                 let exact = validity(kind, &q);
@@ -320,10 +245,7 @@ fn a_det_form_decides_as_validity_does_wherever_the_free_corner_goes() {
             }
         }
     }
-    assert!(
-        decided * 10 > asked * 9 && inverted * 5 > asked,
-        "{decided} of {asked}, {inverted} not valid"
-    );
+    assert!(decided * 10 > asked * 9 && inverted * 5 > asked, "{decided} of {asked}, {inverted} not valid");
     // tetrahedra and wedges are decided as they are; beyond the safe scale, in their own
     assert!(DetForm::of(VolumeKind::Tet4, &ideal(VolumeKind::Tet4), 0).is_none());
     assert!(DetForm::of(VolumeKind::Wedge6, &ideal(VolumeKind::Wedge6), 0).is_none());
@@ -342,11 +264,7 @@ fn a_hexahedrons_slopes_are_its_coefficients_differences() {
         let slot = round % 8;
         let (c, slopes) = hex_det_and_slopes(&p, slot);
         assert_eq!(c, hex_det(&p));
-        let step = DVec3::new(
-            rng.uniform(-1.0, 1.0),
-            rng.uniform(-1.0, 1.0),
-            rng.uniform(-1.0, 1.0),
-        ) * scale;
+        let step = DVec3::new(rng.uniform(-1.0, 1.0), rng.uniform(-1.0, 1.0), rng.uniform(-1.0, 1.0)) * scale;
         let mut q = p.clone();
         q[slot] += step;
         let moved = hex_det(&q);
@@ -354,11 +272,7 @@ fn a_hexahedrons_slopes_are_its_coefficients_differences() {
         for (n, slope) in slopes.iter().enumerate() {
             let (i, j, k) = (n / 9, n / 3 % 3, n % 3);
             let by_slope = c.c[i][j][k] + slope.dot(step);
-            assert!(
-                (by_slope - moved.c[i][j][k]).abs() <= 1e-12 * unit,
-                "slot {slot} coefficient {n}: {by_slope} vs {}",
-                moved.c[i][j][k]
-            );
+            assert!((by_slope - moved.c[i][j][k]).abs() <= 1e-12 * unit, "slot {slot} coefficient {n}: {by_slope} vs {}", moved.c[i][j][k]);
         }
     }
 }
@@ -374,31 +288,17 @@ fn a_valid_ball_holds_only_positions_where_the_hexahedron_is_valid() {
         let p: Vec<DVec3> = perturbed(VolumeKind::Hex8, &mut rng, 0.25, scale);
         let slot = round % 8;
         let Some(ball) = ValidBall::of(VolumeKind::Hex8, &p, slot) else {
-            assert_ne!(
-                validity(VolumeKind::Hex8, &p),
-                Validity::Valid,
-                "a valid hexahedron has a ball"
-            );
+            assert_ne!(validity(VolumeKind::Hex8, &p), Validity::Valid, "a valid hexahedron has a ball");
             continue;
         };
         let form = DetForm::of(VolumeKind::Hex8, &p, slot).expect("a form");
         for _ in 0..40 {
-            let x = p[slot]
-                + DVec3::new(
-                    rng.uniform(-1.0, 1.0),
-                    rng.uniform(-1.0, 1.0),
-                    rng.uniform(-1.0, 1.0),
-                ) * rng.uniform(0.0, 0.5)
-                    * scale;
+            let x = p[slot] + DVec3::new(rng.uniform(-1.0, 1.0), rng.uniform(-1.0, 1.0), rng.uniform(-1.0, 1.0)) * rng.uniform(0.0, 0.5) * scale;
             asked += 1;
             if ball.holds(x) {
                 let mut q = p.clone();
                 q[slot] = x;
-                assert_eq!(
-                    validity(VolumeKind::Hex8, &q),
-                    Validity::Valid,
-                    "slot {slot} at {x} of {p:?}"
-                );
+                assert_eq!(validity(VolumeKind::Hex8, &q), Validity::Valid, "slot {slot} at {x} of {p:?}");
                 assert_eq!(form.validity_at(x), Some(Validity::Valid));
                 held += 1;
             }
@@ -409,10 +309,7 @@ fn a_valid_ball_holds_only_positions_where_the_hexahedron_is_valid() {
     flat[6].z = 0.0;
     flat[2].z = 1.0;
     assert!(ValidBall::of(VolumeKind::Hex8, &flat, 0).is_none());
-    assert_eq!(
-        ValidBall::validity_and_ball(VolumeKind::Hex8, &flat, 0),
-        (validity(VolumeKind::Hex8, &flat), None)
-    );
+    assert_eq!(ValidBall::validity_and_ball(VolumeKind::Hex8, &flat, 0), (validity(VolumeKind::Hex8, &flat), None));
     assert!(ValidBall::of(VolumeKind::Pyramid5, &ideal(VolumeKind::Pyramid5), 0).is_none());
 }
 
@@ -430,10 +327,7 @@ fn corner_sizes_are_each_corners_and_kept_ones_the_same() {
             for (c, &(unit, m)) in s.of_kind(kind).iter().enumerate() {
                 let t = corner_tet(kind, &p, c);
                 let det = corner_det(&t);
-                assert!(
-                    (unit * m * m * m - det).abs() <= 1e-12 * m * m * m,
-                    "{kind:?} corner {c}: {unit} {m} {det}"
-                );
+                assert!((unit * m * m * m - det).abs() <= 1e-12 * m * m * m, "{kind:?} corner {c}: {unit} {m} {det}");
                 assert_eq!((unit, m), corner_size(&t));
             }
             let again = CornerSizes::of(kind, &p, |c| (c % 2 == 0).then(|| s.of_kind(kind)[c]));
@@ -452,30 +346,16 @@ fn corner_shapes_are_the_terms_of_the_solid_shape_bit_for_bit() {
             let (scale, amount) = ([1.0, 1e-3, 250.0][round % 3], [0.1, 0.6][round % 2]);
             let p = perturbed(kind, &mut rng, amount, scale);
             let t = CornerShapes::of(kind, &p, |_| None).expect("within the safe scale");
-            assert_eq!(
-                t.shape(kind).to_bits(),
-                solid_shape(kind, &p).to_bits(),
-                "{kind:?} {p:?}"
-            );
+            assert_eq!(t.shape(kind).to_bits(), solid_shape(kind, &p).to_bits(), "{kind:?} {p:?}");
             let again = CornerShapes::of(kind, &p, |c| (c % 2 == 0).then(|| t.corner(c))).unwrap();
             assert_eq!(again, t);
             // the least corner determinant from the shape's Jacobians: the direct one's
             // tolerance, and within rounding of its value, far inside that tolerance
-            let ((d, tol), (direct, direct_tol)) = (
-                t.least_corner_det(kind).unwrap(),
-                least_corner_det(kind, &p).unwrap(),
-            );
+            let ((d, tol), (direct, direct_tol)) = (t.least_corner_det(kind).unwrap(), least_corner_det(kind, &p).unwrap());
             assert_eq!(tol.to_bits(), direct_tol.to_bits());
-            assert!(
-                (d - direct).abs() <= 1e-3 * tol,
-                "{kind:?}: {d} against {direct} (tolerance {tol})"
-            );
+            assert!((d - direct).abs() <= 1e-3 * tol, "{kind:?}: {d} against {direct} (tolerance {tol})");
         }
-        let huge: Vec<DVec3> = ideal(kind)
-            .iter()
-            .take(kind.corners())
-            .map(|c| *c * 1e200)
-            .collect();
+        let huge: Vec<DVec3> = ideal(kind).iter().take(kind.corners()).map(|c| *c * 1e200).collect();
         assert!(CornerShapes::of(kind, &huge, |_| None).is_none());
     }
 }
@@ -497,20 +377,10 @@ fn the_second_ball_comes_with_the_exact_validity_and_holds_only_valid_positions(
         let Some(ball) = ball else { continue };
         assert_eq!(kind.linear(), VolumeKind::Hex8);
         assert_eq!(v, Validity::Valid, "a ball only about a valid position");
-        assert_eq!(
-            Some(ball),
-            ValidBall::of(kind, &p, slot),
-            "the ball `of` makes"
-        );
+        assert_eq!(Some(ball), ValidBall::of(kind, &p, slot), "the ball `of` makes");
         balls += 1;
         for _ in 0..20 {
-            let x = p[slot]
-                + DVec3::new(
-                    rng.uniform(-1.0, 1.0),
-                    rng.uniform(-1.0, 1.0),
-                    rng.uniform(-1.0, 1.0),
-                ) * rng.uniform(0.0, 0.5)
-                    * scale;
+            let x = p[slot] + DVec3::new(rng.uniform(-1.0, 1.0), rng.uniform(-1.0, 1.0), rng.uniform(-1.0, 1.0)) * rng.uniform(0.0, 0.5) * scale;
             if ball.holds(x) {
                 let mut q = p.clone();
                 q[slot] = x;
@@ -547,15 +417,8 @@ fn validity_at_the_margin_is_the_exact_sign_of_the_doubles() {
             continue;
         }
         // inverted, or (its determinant exactly 0) not valid: never valid
-        assert_ne!(
-            validity(VolumeKind::Hex8, &p),
-            Validity::Valid,
-            "exact {exact:?}, rounded {rounded:e}"
-        );
-        assert!(
-            q3::is_inverted(&tet),
-            "exact {exact:?}, rounded {rounded:e}"
-        );
+        assert_ne!(validity(VolumeKind::Hex8, &p), Validity::Valid, "exact {exact:?}, rounded {rounded:e}");
+        assert!(q3::is_inverted(&tet), "exact {exact:?}, rounded {rounded:e}");
         rounded_wrong += (rounded > 0.0) as usize;
     }
     // the case the issue found, many times over: rounding said valid
@@ -571,32 +434,17 @@ fn the_exact_bernstein_test_agrees_where_rounding_decides() {
     for kind in [VolumeKind::Hex8, VolumeKind::Pyramid5] {
         for i in 0..1500 {
             let p = perturbed(kind, &mut rng, [0.2, 0.5, 0.8][i % 3], 1.0);
-            let det = if kind == VolumeKind::Hex8 {
-                super::bernstein::hex_det(&p)
-            } else {
-                super::bernstein::pyramid_det(&p)
-            };
-            let Some(rounded) =
-                det.validity_beyond(det.min_coefficient(), super::bernstein::rounding_margin(&p))
-            else {
-                continue;
-            };
+            let det = if kind == VolumeKind::Hex8 { super::bernstein::hex_det(&p) } else { super::bernstein::pyramid_det(&p) };
+            let Some(rounded) = det.validity_beyond(det.min_coefficient(), super::bernstein::rounding_margin(&p)) else { continue };
             if rounded == Validity::Undecided {
                 continue;
             }
             valid += (rounded == Validity::Valid) as usize;
             inverted += (rounded == Validity::Inverted) as usize;
-            assert_eq!(
-                super::bernstein::exact_validity(kind, &p),
-                rounded,
-                "{kind:?} {p:?}"
-            );
+            assert_eq!(super::bernstein::exact_validity(kind, &p), rounded, "{kind:?} {p:?}");
         }
     }
-    assert!(
-        valid > 100 && inverted > 100,
-        "{valid} valid, {inverted} inverted"
-    );
+    assert!(valid > 100 && inverted > 100, "{valid} valid, {inverted} inverted");
 }
 
 /// The wedge's exact test (issue 61): a corner of the top triangle put on the plane of the
@@ -618,11 +466,7 @@ fn a_wedge_is_decided_exactly_at_the_margin() {
         if exact == Ordering::Greater {
             continue;
         }
-        assert_ne!(
-            validity(VolumeKind::Wedge6, &p),
-            Validity::Valid,
-            "exact {exact:?}"
-        );
+        assert_ne!(validity(VolumeKind::Wedge6, &p), Validity::Valid, "exact {exact:?}");
         rounded_wrong += (-(p[1] - p[0]).cross(p[2] - p[0]).dot(p[3] - p[0]) > 0.0) as usize;
     }
     assert!(rounded_wrong > 100, "{rounded_wrong}");
@@ -634,8 +478,5 @@ fn a_wedge_is_decided_exactly_at_the_margin() {
         valid += (v == Validity::Valid) as usize;
         inverted += (v == Validity::Inverted) as usize;
     }
-    assert!(
-        valid > 100 && inverted > 100,
-        "{valid} valid, {inverted} inverted"
-    );
+    assert!(valid > 100 && inverted > 100, "{valid} valid, {inverted} inverted");
 }

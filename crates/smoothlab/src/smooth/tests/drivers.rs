@@ -12,15 +12,8 @@ use crate::optimize::test_objectives::{hexagon, ShapeMaxMin, ShapeSum};
 use crate::optimize::SolverKind;
 use crate::quality::mesh_stats;
 
-const ALL: [Strategy; 7] = [
-    Strategy::Laplace,
-    Strategy::Smart,
-    Strategy::Opt,
-    Strategy::C1,
-    Strategy::C2,
-    Strategy::C3,
-    Strategy::Rules,
-];
+const ALL: [Strategy; 7] =
+    [Strategy::Laplace, Strategy::Smart, Strategy::Opt, Strategy::C1, Strategy::C2, Strategy::C3, Strategy::Rules];
 fn jitter_strategy(max: f64) -> impl proptest::strategy::Strategy<Value = Vec<(f64, f64)>> {
     prop::collection::vec((-max..max, -max..max), 9..20)
 }
@@ -38,9 +31,7 @@ fn laplace_on_a_regular_grid_is_a_fixed_point() {
     for kind in [ElementKind::Tri3, ElementKind::Quad4, ElementKind::Tri6] {
         let mut mesh = grid(5, 4, kind, &[], &[]);
         let before = mesh.nodes().to_vec();
-        let opts = SmoothOptions::default()
-            .with_strategy(Strategy::Laplace)
-            .with_order(Order::Input);
+        let opts = SmoothOptions::default().with_strategy(Strategy::Laplace).with_order(Order::Input);
         let recs = smooth(&mut mesh, &ShapeSum, opts, 2, NO_CLOCK).unwrap();
         for (a, b) in before.iter().zip(mesh.nodes()) {
             assert!(a.distance(*b) < 1e-14, "{kind:?}: {a} → {b}");
@@ -53,19 +44,11 @@ fn laplace_on_a_regular_grid_is_a_fixed_point() {
 fn laplace_moves_to_the_centroid_and_mid_nodes_follow() {
     let jit = [(0.3, -0.2), (-0.25, 0.1), (0.1, 0.3)];
     let mut mesh = grid(4, 4, ElementKind::Tri6, &jit, &[]);
-    let mut s = Smoother::new(
-        SmoothOptions::default()
-            .with_strategy(Strategy::Laplace)
-            .with_order(Order::Input),
-    )
-    .unwrap();
+    let mut s =
+        Smoother::new(SmoothOptions::default().with_strategy(Strategy::Laplace).with_order(Order::Input)).unwrap();
     let n = (0..mesh.node_count()).find(|&n| mesh.is_free(n)).unwrap();
-    let nb: DVec2 = mesh
-        .neighbours(n)
-        .iter()
-        .map(|&m| mesh.nodes()[m as usize])
-        .sum::<DVec2>()
-        / mesh.neighbours(n).len() as f64;
+    let nb: DVec2 =
+        mesh.neighbours(n).iter().map(|&m| mesh.nodes()[m as usize]).sum::<DVec2>() / mesh.neighbours(n).len() as f64;
     let o = s.smooth_node(&mut mesh, n, &ShapeSum);
     assert!(o.moved && o.laplacian && !o.optimized);
     assert_eq!(mesh.nodes()[n], nb);
@@ -73,11 +56,7 @@ fn laplace_moves_to_the_centroid_and_mid_nodes_follow() {
     for e in mesh.edges() {
         if e.mid != crate::mesh::NONE && !e.is_boundary() {
             let mid = 0.5 * (mesh.nodes()[e.a as usize] + mesh.nodes()[e.b as usize]);
-            assert!(
-                mesh.nodes()[e.mid as usize].distance(mid) < 1e-15,
-                "mid node {} off its edge",
-                e.mid
-            );
+            assert!(mesh.nodes()[e.mid as usize].distance(mid) < 1e-15, "mid node {} off its edge", e.mid);
         }
     }
 }
@@ -219,13 +198,7 @@ proptest! {
 /// smoother reused after a plan in steps plans the next pass afresh.
 #[test]
 fn planning_in_steps_gives_the_same_schedule() {
-    let mesh = grid(
-        7,
-        6,
-        ElementKind::Tri3,
-        &[(0.3, -0.2), (0.1, 0.25), (-0.35, 0.1)],
-        &[9],
-    );
+    let mesh = grid(7, 6, ElementKind::Tri3, &[(0.3, -0.2), (0.1, 0.25), (-0.35, 0.1)], &[9]);
     for order in [Order::Priority, Order::Input] {
         let mut whole = Smoother::new(SmoothOptions::default().with_order(order)).unwrap();
         let want = whole.plan(&mesh).to_vec();
@@ -253,9 +226,7 @@ fn planning_in_steps_gives_the_same_schedule() {
 fn input_order_is_node_order() {
     let mesh = grid(3, 3, ElementKind::Tri3, &[(0.1, 0.1)], &[5]);
     let mut s = Smoother::new(SmoothOptions::default().with_order(Order::Input)).unwrap();
-    let free: Vec<u32> = (0..mesh.node_count() as u32)
-        .filter(|&n| mesh.is_free(n as usize))
-        .collect();
+    let free: Vec<u32> = (0..mesh.node_count() as u32).filter(|&n| mesh.is_free(n as usize)).collect();
     assert_eq!(s.plan(&mesh), &free[..]);
     assert!(!free.contains(&5));
 }
@@ -265,15 +236,10 @@ fn rules_untangle_a_folded_star_by_optimization() {
     // the centre of a hexagon pushed outside it: some star triangles are inverted
     let mut mesh = hexagon(DVec2::new(1.3, 0.4));
     assert!(mesh_stats(&mesh).inverted > 0);
-    let opts = SmoothOptions::default()
-        .with_strategy(Strategy::Rules)
-        .with_max_iter(20);
+    let opts = SmoothOptions::default().with_strategy(Strategy::Rules).with_max_iter(20);
     let mut s = Smoother::new(opts).unwrap();
     let r1 = s.pass(&mut mesh, &ShapeMaxMin, NO_CLOCK);
-    assert_eq!(
-        r1.counts.optimization_calls, 1,
-        "rule 2: an invalid element calls optimization"
-    );
+    assert_eq!(r1.counts.optimization_calls, 1, "rule 2: an invalid element calls optimization");
     assert_eq!(r1.counts.laplacian_moves, 0);
     let mut last = r1;
     for _ in 0..5 {
@@ -284,50 +250,26 @@ fn rules_untangle_a_folded_star_by_optimization() {
     // once valid, the constrained Laplacian takes over (the centroid is the best place)
     let mut mesh = hexagon(DVec2::new(0.2, 0.1));
     let r = s.pass(&mut mesh, &ShapeMaxMin, NO_CLOCK);
-    assert_eq!(
-        (r.counts.laplacian_moves, r.counts.optimization_calls),
-        (1, 0)
-    );
+    assert_eq!((r.counts.laplacian_moves, r.counts.optimization_calls), (1, 0));
     // and a node where the Laplacian cannot help goes to optimization (rule 3)
     let r = s.pass(&mut mesh, &ShapeMaxMin, NO_CLOCK);
-    assert_eq!(
-        (r.counts.laplacian_moves, r.counts.optimization_calls),
-        (0, 1)
-    );
+    assert_eq!((r.counts.laplacian_moves, r.counts.optimization_calls), (0, 1));
     // rule 4: forced
-    let forced = SmoothOptions {
-        force_optimization: true,
-        ..opts
-    };
+    let forced = SmoothOptions { force_optimization: true, ..opts };
     let mut mesh = hexagon(DVec2::new(0.2, 0.1));
-    let r = Smoother::new(forced)
-        .unwrap()
-        .pass(&mut mesh, &ShapeMaxMin, NO_CLOCK);
-    assert_eq!(
-        (r.counts.laplacian_moves, r.counts.optimization_calls),
-        (0, 1)
-    );
+    let r = Smoother::new(forced).unwrap().pass(&mut mesh, &ShapeMaxMin, NO_CLOCK);
+    assert_eq!((r.counts.laplacian_moves, r.counts.optimization_calls), (0, 1));
 }
 
 #[test]
 fn rules_optimize_next_to_a_curved_boundary() {
     // interior nodes 5, 6, 9 in place, node 10 = grid (2, 2) pushed off its centroid
-    let mut mesh = grid(
-        3,
-        3,
-        ElementKind::Tri6,
-        &[(0.0, 0.0), (0.0, 0.0), (0.0, 0.0), (0.2, 0.15)],
-        &[],
-    );
+    let mut mesh = grid(3, 3, ElementKind::Tri6, &[(0.0, 0.0), (0.0, 0.0), (0.0, 0.0), (0.2, 0.15)], &[]);
     // bow out the mid node of the bottom edge 0–1
     let e = *mesh.edges().iter().find(|e| e.a == 0 && e.b == 1).unwrap();
     let mut b = MeshBuilder::new();
     for (i, p) in mesh.nodes().iter().enumerate() {
-        let p = if i == e.mid as usize {
-            *p + DVec2::new(0.0, -0.2)
-        } else {
-            *p
-        };
+        let p = if i == e.mid as usize { *p + DVec2::new(0.0, -0.2) } else { *p };
         b.add_node([p.x, p.y, 0.0], 0);
     }
     for el in 0..mesh.element_count() {
@@ -335,9 +277,7 @@ fn rules_optimize_next_to_a_curved_boundary() {
     }
     let mut flat = std::mem::replace(&mut mesh, b.build().unwrap());
     assert!(mesh.edges().iter().any(|e| e.curved) && !flat.edges().iter().any(|e| e.curved));
-    let opts = SmoothOptions::default()
-        .with_strategy(Strategy::Rules)
-        .with_order(Order::Input);
+    let opts = SmoothOptions::default().with_strategy(Strategy::Rules).with_order(Order::Input);
     let mut s = Smoother::new(opts).unwrap();
     let near = 5; // grid node (1, 1): corner of the element with the curved edge
     assert!(mesh.is_free(near));
@@ -351,11 +291,7 @@ fn rules_optimize_next_to_a_curved_boundary() {
     assert!(o.laplacian && o.moved && !o.optimized, "{o:?}");
     let mid_before = mesh.nodes()[e.mid as usize];
     s.pass(&mut mesh, &ShapeSum, NO_CLOCK);
-    assert_eq!(
-        mesh.nodes()[e.mid as usize],
-        mid_before,
-        "the curved edge keeps its mid node"
-    );
+    assert_eq!(mesh.nodes()[e.mid as usize], mid_before, "the curved edge keeps its mid node");
 }
 
 #[test]
@@ -364,13 +300,8 @@ fn combined_schemes_respect_the_threshold() {
     let good = grid(4, 4, ElementKind::Tri3, &[], &[]);
     for strategy in [Strategy::C1, Strategy::C2, Strategy::C3] {
         let mut mesh = good.clone();
-        let opts = SmoothOptions::default()
-            .with_strategy(strategy)
-            .with_threshold_deg(30.0)
-            .with_order(Order::Input);
-        let r = Smoother::new(opts)
-            .unwrap()
-            .pass(&mut mesh, &ShapeMaxMin, NO_CLOCK);
+        let opts = SmoothOptions::default().with_strategy(strategy).with_threshold_deg(30.0).with_order(Order::Input);
+        let r = Smoother::new(opts).unwrap().pass(&mut mesh, &ShapeMaxMin, NO_CLOCK);
         assert_eq!(r.counts.optimization_calls, 0, "{strategy:?}");
         assert_eq!(mesh.nodes(), good.nodes(), "{strategy:?}");
     }
@@ -379,10 +310,7 @@ fn combined_schemes_respect_the_threshold() {
     bad.nodes_mut()[6] += DVec2::new(0.45, 0.4);
     for strategy in [Strategy::C1, Strategy::C2, Strategy::C3] {
         let mut mesh = bad.clone();
-        let opts = SmoothOptions::default()
-            .with_strategy(strategy)
-            .with_threshold_deg(30.0)
-            .with_order(Order::Input);
+        let opts = SmoothOptions::default().with_strategy(strategy).with_threshold_deg(30.0).with_order(Order::Input);
         let mut s = Smoother::new(opts).unwrap();
         let o = s.smooth_node(&mut mesh, 6, &ShapeMaxMin);
         let mut star = Star::new();
@@ -396,10 +324,7 @@ fn combined_schemes_respect_the_threshold() {
         }
         if strategy == Strategy::C3 {
             let far = 18; // grid node (3, 3), with a good star
-            assert_eq!(
-                s.smooth_node(&mut mesh, far, &ShapeMaxMin),
-                NodeOutcome::default()
-            );
+            assert_eq!(s.smooth_node(&mut mesh, far, &ShapeMaxMin), NodeOutcome::default());
         }
     }
 }
@@ -427,10 +352,7 @@ fn pass_record_and_clock() {
         (st.inverted, st.min_quality, st.min_angle_deg)
     );
     let json = serde_json::to_string(&r).unwrap();
-    assert!(
-        json.contains("\"objective_total\"") && json.contains("\"solver_iterations\""),
-        "{json}"
-    );
+    assert!(json.contains("\"objective_total\"") && json.contains("\"solver_iterations\""), "{json}");
     assert_eq!(s.pass(&mut mesh, &ShapeSum, &clock).pass, 2);
 }
 
@@ -444,30 +366,12 @@ fn solve_node_returns_history_and_names_bad_nodes() {
     assert!(r.iterations > 0 && r.value > r.value0);
     assert_eq!(mesh.nodes(), before);
     let r = solve_node(&mesh, 0, &ShapeSum, &opts).unwrap();
-    assert!(r
-        .history
-        .iter()
-        .any(|i| i.direction == crate::optimize::DirectionKind::Gradient));
-    let r = solve_node(
-        &mesh,
-        0,
-        &ShapeSum,
-        &opts.with_solver(SolverKind::NonSmoothAscent),
-    )
-    .unwrap();
-    assert!(
-        r.value < r.value0
-            && r.history
-                .iter()
-                .all(|i| i.direction == crate::optimize::DirectionKind::ActiveSet)
-    );
-    let e = solve_node(&mesh, 3, &ShapeSum, &opts)
-        .unwrap_err()
-        .to_string();
+    assert!(r.history.iter().any(|i| i.direction == crate::optimize::DirectionKind::Gradient));
+    let r = solve_node(&mesh, 0, &ShapeSum, &opts.with_solver(SolverKind::NonSmoothAscent)).unwrap();
+    assert!(r.value < r.value0 && r.history.iter().all(|i| i.direction == crate::optimize::DirectionKind::ActiveSet));
+    let e = solve_node(&mesh, 3, &ShapeSum, &opts).unwrap_err().to_string();
     assert!(e.contains("node 3") && e.contains("fixed"), "{e}");
-    let e = solve_node(&mesh, 99, &ShapeSum, &opts)
-        .unwrap_err()
-        .to_string();
+    let e = solve_node(&mesh, 99, &ShapeSum, &opts).unwrap_err().to_string();
     assert!(e.contains("node 99") && e.contains("7 nodes"), "{e}");
     assert_eq!(ShapeSum.goal(), Goal::MinimizeSum);
 }
@@ -475,14 +379,9 @@ fn solve_node_returns_history_and_names_bad_nodes() {
 #[test]
 fn bad_options_are_refused() {
     for t in [0.0, -5.0, 120.0, f64::NAN] {
-        let e = Smoother::<Star>::new(SmoothOptions::default().with_threshold_deg(t))
-            .unwrap_err()
-            .to_string();
+        let e = Smoother::<Star>::new(SmoothOptions::default().with_threshold_deg(t)).unwrap_err().to_string();
         assert!(e.contains("threshold"), "{e}");
     }
-    let o = SmoothOptions {
-        priority_bins: 0,
-        ..Default::default()
-    };
+    let o = SmoothOptions { priority_bins: 0, ..Default::default() };
     assert!(Smoother::<Star>::new(o).is_err());
 }

@@ -9,33 +9,11 @@ use crate::quality::{element_quality, mesh_stats};
 fn element_measures_match_element_quality() {
     let d = DVec2::new;
     let cases: Vec<(ElementKind, Vec<DVec2>)> = vec![
-        (
-            ElementKind::Tri3,
-            vec![d(0.0, 0.0), d(1.0, 0.1), d(0.3, 0.8)],
-        ),
-        (
-            ElementKind::Tri3,
-            vec![d(0.0, 0.0), d(0.3, 0.8), d(1.0, 0.1)],
-        ),
-        (
-            ElementKind::Quad4,
-            vec![d(0.0, 0.0), d(1.2, 0.1), d(1.0, 0.8), d(-0.1, 1.1)],
-        ),
-        (
-            ElementKind::Quad4,
-            vec![d(0.0, 0.0), d(1.0, 0.0), d(0.0, 1.0), d(1.0, 1.0)],
-        ),
-        (
-            ElementKind::Tri6,
-            vec![
-                d(0.0, 0.0),
-                d(2.0, 0.0),
-                d(0.0, 2.0),
-                d(1.0, -0.3),
-                d(1.0, 1.0),
-                d(0.0, 1.0),
-            ],
-        ),
+        (ElementKind::Tri3, vec![d(0.0, 0.0), d(1.0, 0.1), d(0.3, 0.8)]),
+        (ElementKind::Tri3, vec![d(0.0, 0.0), d(0.3, 0.8), d(1.0, 0.1)]),
+        (ElementKind::Quad4, vec![d(0.0, 0.0), d(1.2, 0.1), d(1.0, 0.8), d(-0.1, 1.1)]),
+        (ElementKind::Quad4, vec![d(0.0, 0.0), d(1.0, 0.0), d(0.0, 1.0), d(1.0, 1.0)]),
+        (ElementKind::Tri6, vec![d(0.0, 0.0), d(2.0, 0.0), d(0.0, 2.0), d(1.0, -0.3), d(1.0, 1.0), d(0.0, 1.0)]),
     ];
     for (kind, p) in cases {
         let mut a = [DVec2::ZERO; 9];
@@ -75,18 +53,12 @@ fn smart_from_the_mesh_decides_as_the_gathered_star() {
     let valid = rand2d(300, 12, 7).unwrap();
     let tangled = perturb(&valid, 0.5, 3).unwrap();
     for mesh in [valid, tangled] {
-        let mut s: Smoother =
-            Smoother::new(SmoothOptions::default().with_strategy(Strategy::Smart)).unwrap();
+        let mut s: Smoother = Smoother::new(SmoothOptions::default().with_strategy(Strategy::Smart)).unwrap();
         let (mut moved, mut inverted) = (0, 0);
         for n in (0..mesh.node_count()).filter(|&n| mesh.is_free(n)) {
-            let direct = crate::smooth::smart_on_triangles(&mesh, n, Measure::Shape)
-                .expect("a star of linear triangles");
+            let direct = crate::smooth::smart_on_triangles(&mesh, n, Measure::Shape).expect("a star of linear triangles");
             s.star.gather(&mesh, n);
-            assert_eq!(
-                direct.inverted,
-                star_shape(&s.star, s.star.x0).1,
-                "node {n}"
-            );
+            assert_eq!(direct.inverted, star_shape(&s.star, s.star.x0).1, "node {n}");
             let mut out = NodeOutcome::default();
             let gathered = s.smart(&mesh, n, &mut out).then_some(s.star.x0);
             assert_eq!(direct.to, gathered, "node {n}");
@@ -98,9 +70,12 @@ fn smart_from_the_mesh_decides_as_the_gathered_star() {
     }
     // a quad star is not read from the mesh
     let quads = grid(3, 3, ElementKind::Quad4, &[(0.1, -0.1)], &[]);
-    assert!((0..quads.node_count())
-        .filter(|&n| quads.is_free(n))
-        .all(|n| crate::smooth::smart_on_triangles(&quads, n, Measure::Shape).is_none()));
+    assert!((0..quads.node_count()).filter(|&n| quads.is_free(n)).all(|n| crate::smooth::smart_on_triangles(
+        &quads,
+        n,
+        Measure::Shape
+    )
+    .is_none()));
 }
 /// The whole-mesh scans' inverted test, which reads a linear element's corners straight
 /// from the mesh, answers as the general test on the element's nine points, element by
@@ -114,31 +89,19 @@ fn the_mesh_scan_finds_the_inverted_elements_the_general_test_finds() {
         for order in [1, 2] {
             let valid = plate(kind, order, 6).unwrap();
             for amount in [0.0, 0.6, 1.5] {
-                let mut mesh = if amount == 0.0 {
-                    valid.clone()
-                } else {
-                    perturb(&valid, amount, 4).unwrap()
-                };
+                let mut mesh = if amount == 0.0 { valid.clone() } else { perturb(&valid, amount, 4).unwrap() };
                 for scale in [1.0, 1e-250] {
                     for p in mesh.nodes_mut() {
                         *p *= scale;
                     }
                     for e in 0..mesh.element_count() {
-                        let general =
-                            measure::is_inverted(mesh.kind(e), &mesh.element_points_array(e));
-                        assert_eq!(
-                            measure::mesh_element_is_inverted(&mesh, e),
-                            general,
-                            "{kind:?} order {order} element {e}"
-                        );
+                        let general = measure::is_inverted(mesh.kind(e), &mesh.element_points_array(e));
+                        assert_eq!(measure::mesh_element_is_inverted(&mesh, e), general, "{kind:?} order {order} element {e}");
                         checked[general as usize] += 1;
                     }
                 }
             }
         }
     }
-    assert!(
-        checked[0] > 1000 && checked[1] > 100,
-        "valid and inverted elements both checked: {checked:?}"
-    );
+    assert!(checked[0] > 1000 && checked[1] > 100, "valid and inverted elements both checked: {checked:?}");
 }

@@ -12,13 +12,7 @@ const NO_CLOCK: &dyn Fn() -> f64 = &|| 0.0;
 /// `jitter` (cycled, in cell units), triangles split along one diagonal, quads, or 6-node
 /// triangles with mid-side nodes at the edge midpoints. `extra_fixed` interior nodes (by
 /// grid index) are fixed too.
-fn grid(
-    nx: usize,
-    ny: usize,
-    kind: ElementKind,
-    jitter: &[(f64, f64)],
-    extra_fixed: &[usize],
-) -> Mesh {
+fn grid(nx: usize, ny: usize, kind: ElementKind, jitter: &[(f64, f64)], extra_fixed: &[usize]) -> Mesh {
     let mut b = MeshBuilder::new();
     let id = |i: usize, j: usize| (j * (nx + 1) + i) as u32;
     let mut k = 0;

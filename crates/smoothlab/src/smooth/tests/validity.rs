@@ -13,14 +13,7 @@ use crate::quality::{element_quality, mesh_stats};
 /// Laplacian must refuse the move.
 #[test]
 fn smart_refuses_a_move_that_inverts_a_valid_element() {
-    let ring = [
-        (0.64, 0.38),
-        (0.9, 0.51),
-        (-0.46, 0.48),
-        (-1.39, -0.16),
-        (-0.4, -1.06),
-        (0.62, -0.77),
-    ];
+    let ring = [(0.64, 0.38), (0.9, 0.51), (-0.46, 0.48), (-1.39, -0.16), (-0.4, -1.06), (0.62, -0.77)];
     let mut b = MeshBuilder::new();
     b.add_node([-1.34, 0.8, 0.0], 0);
     for (x, y) in ring {
@@ -34,27 +27,16 @@ fn smart_refuses_a_move_that_inverts_a_valid_element() {
     star.gather(&mesh, 0);
     let c = centroid(&mesh, 0).unwrap();
     let (q0, q1) = (star_quality(&star, None), star_quality(&star, Some(c)));
-    assert!(
-        q1.min_shape > q0.min_shape,
-        "the centroid improves the worst α"
-    );
+    assert!(q1.min_shape > q0.min_shape, "the centroid improves the worst α");
     assert!(star
         .elems
         .iter()
-        .any(|e| element_measures(e.kind, &e.pts).inverted == 0
-            && element_measures(e.kind, &e.at(c)).inverted == 1));
+        .any(|e| element_measures(e.kind, &e.pts).inverted == 0 && element_measures(e.kind, &e.at(c)).inverted == 1));
     let before = mesh.nodes().to_vec();
     for strategy in [Strategy::Smart, Strategy::C2] {
-        let opts = SmoothOptions::default()
-            .with_strategy(strategy)
-            .with_max_iter(0);
-        let o = Smoother::new(opts)
-            .unwrap()
-            .smooth_node(&mut mesh, 0, &ShapeSum);
-        assert!(
-            !o.laplacian && mesh.nodes() == before,
-            "{strategy:?}: {o:?}"
-        );
+        let opts = SmoothOptions::default().with_strategy(strategy).with_max_iter(0);
+        let o = Smoother::new(opts).unwrap().smooth_node(&mut mesh, 0, &ShapeSum);
+        assert!(!o.laplacian && mesh.nodes() == before, "{strategy:?}: {o:?}");
     }
     // and fixed nodes are left alone when asked directly
     let o = Smoother::new(SmoothOptions::default().with_strategy(Strategy::Laplace))
@@ -88,13 +70,7 @@ fn keep_valid_stops_the_new_objective_folding_a_valid_star() {
     for (x, y) in ring {
         b.add_node([x, y, 0.0], 0);
     }
-    for q in [
-        [0, 1, 2, 3],
-        [4, 0, 3, 5],
-        [6, 0, 4, 7],
-        [0, 8, 9, 1],
-        [6, 10, 8, 0],
-    ] {
+    for q in [[0, 1, 2, 3], [4, 0, 3, 5], [6, 0, 4, 7], [0, 8, 9, 1], [6, 10, 8, 0]] {
         b.add_element(ElementKind::Quad4, &q, 0);
     }
     let mesh = b.build().unwrap();
@@ -109,42 +85,30 @@ fn keep_valid_stops_the_new_objective_folding_a_valid_star() {
     let barrier = crate::objective::ChenTristanoKwok::default();
     for keep in [false, true] {
         let mut m = mesh.clone();
-        let opts = SmoothOptions::default()
-            .with_strategy(Strategy::Opt)
-            .with_keep_valid(keep);
-        let o = Smoother::new(opts)
-            .unwrap()
-            .smooth_node(&mut m, 0, &barrier);
+        let opts = SmoothOptions::default().with_strategy(Strategy::Opt).with_keep_valid(keep);
+        let o = Smoother::new(opts).unwrap().smooth_node(&mut m, 0, &barrier);
         assert!(o.optimized && o.moved, "barrier, keep_valid {keep}: {o:?}");
         assert_eq!(mesh_stats(&m).inverted, 0, "barrier, keep_valid {keep}");
     }
     // unguarded, the first design folds two elements
     let mut m = mesh.clone();
-    let opts = SmoothOptions::default()
-        .with_strategy(Strategy::Opt)
-        .with_keep_valid(false);
+    let opts = SmoothOptions::default().with_strategy(Strategy::Opt).with_keep_valid(false);
     let o = Smoother::new(opts).unwrap().smooth_node(&mut m, 0, &new);
     assert!(o.optimized && o.moved, "{o:?}");
     assert_eq!(mesh_stats(&m).inverted, 2);
-    assert!(
-        new.value(&star, m.nodes()[0]) < f0,
-        "the objective must fall"
-    );
+    assert!(new.value(&star, m.nodes()[0]) < f0, "the objective must fall");
     // guarded, the solver finds a lower objective among valid positions, but a lower worst
     // β too: the acceptance rule (issue 29) keeps the node where it was
     let guarded = KeepValid::new(&new, 0, false);
-    let r = Solvers::new(SmoothOptions::default().solve_options())
-        .get(SolverKind::FletcherReeves, Goal::MinimizeSum)
-        .solve(&guarded, &star, d);
-    assert!(new.value(&star, r.x) < f0 && star.inverted_at(r.x) == 0);
-    assert!(
-        star.shape_at(r.x).0 < star.shape_at(d).0,
-        "the guarded solve lowers the worst β"
+    let r = Solvers::new(SmoothOptions::default().solve_options()).get(SolverKind::FletcherReeves, Goal::MinimizeSum).solve(
+        &guarded,
+        &star,
+        d,
     );
+    assert!(new.value(&star, r.x) < f0 && star.inverted_at(r.x) == 0);
+    assert!(star.shape_at(r.x).0 < star.shape_at(d).0, "the guarded solve lowers the worst β");
     let mut m = mesh.clone();
-    let o = Smoother::new(SmoothOptions::default().with_strategy(Strategy::Opt))
-        .unwrap()
-        .smooth_node(&mut m, 0, &new);
+    let o = Smoother::new(SmoothOptions::default().with_strategy(Strategy::Opt)).unwrap().smooth_node(&mut m, 0, &new);
     assert!(o.optimized && !o.moved, "{o:?}");
     assert_eq!(m.nodes(), mesh.nodes());
 }
@@ -163,12 +127,7 @@ fn random_grid(kind: crate::generate::GridKind, seed: u64) -> Mesh {
 }
 
 /// Passes of `objective` by optimization, input order, until no element is inverted.
-fn passes_to_valid(
-    mesh: &mut Mesh,
-    objective: &dyn Objective,
-    opts: SmoothOptions,
-    max: u32,
-) -> Option<u32> {
+fn passes_to_valid(mesh: &mut Mesh, objective: &dyn Objective, opts: SmoothOptions, max: u32) -> Option<u32> {
     let mut s = Smoother::new(opts.with_strategy(Strategy::Opt).with_order(Order::Input)).unwrap();
     (1..=max).find(|_| s.pass(mesh, objective, NO_CLOCK).after.inverted == 0)
 }
@@ -213,12 +172,8 @@ fn the_keep_valid_exception_lets_an_inverted_star_pass_through_a_fold() {
     use crate::generate::GridKind;
     use crate::objective::Untangle;
     let mut m = random_grid(GridKind::Tri, 7);
-    let mut s = Smoother::new(
-        SmoothOptions::default()
-            .with_strategy(Strategy::Opt)
-            .with_pass_through_folds(true),
-    )
-    .unwrap();
+    let mut s =
+        Smoother::new(SmoothOptions::default().with_strategy(Strategy::Opt).with_pass_through_folds(true)).unwrap();
     for _ in 0..20 {
         for n in 0..m.node_count() {
             if !m.is_free(n) {
@@ -251,13 +206,7 @@ fn untangling_sweeps_terminate() {
     // a fan of four triangles round the free node 0, plus a clockwise triangle of fixed
     // nodes that no smoother can change: every pass has an inverted element left
     let mut b = MeshBuilder::new();
-    for (x, y) in [
-        (0.1, 0.05),
-        (1.0, 0.0),
-        (0.0, 1.0),
-        (-1.0, 0.0),
-        (0.0, -1.0),
-    ] {
+    for (x, y) in [(0.1, 0.05), (1.0, 0.0), (0.0, 1.0), (-1.0, 0.0), (0.0, -1.0)] {
         b.add_node([x, y, 0.0], 0);
     }
     for t in [[0, 1, 2], [0, 2, 3], [0, 3, 4], [0, 4, 1], [1, 4, 3]] {
@@ -267,15 +216,9 @@ fn untangling_sweeps_terminate() {
     let mesh = b.build().unwrap();
     assert!(mesh_stats(&mesh).inverted > 0);
     let new = crate::objective::ChenTristanoKwok::default();
-    for (limit, strategy) in [
-        (UNTANGLE_SWEEPS, Strategy::Rules),
-        (3, Strategy::Opt),
-        (0, Strategy::Rules),
-    ] {
+    for (limit, strategy) in [(UNTANGLE_SWEEPS, Strategy::Rules), (3, Strategy::Opt), (0, Strategy::Rules)] {
         let mut m = mesh.clone();
-        let opts = SmoothOptions::default()
-            .with_strategy(strategy)
-            .with_untangle_sweeps(limit);
+        let opts = SmoothOptions::default().with_strategy(strategy).with_untangle_sweeps(limit);
         let r = Smoother::new(opts).unwrap().pass(&mut m, &new, &|| 0.0);
         assert!(r.after.inverted > 0);
         // the free node settles within a sweep or two; then a sweep moves nothing and ends them
@@ -289,16 +232,12 @@ fn untangling_sweeps_terminate() {
     // strategies that never optimise do not sweep
     for strategy in [Strategy::Laplace, Strategy::Smart] {
         let mut m = mesh.clone();
-        let r = Smoother::new(SmoothOptions::default().with_strategy(strategy))
-            .unwrap()
-            .pass(&mut m, &new, &|| 0.0);
+        let r = Smoother::new(SmoothOptions::default().with_strategy(strategy)).unwrap().pass(&mut m, &new, &|| 0.0);
         assert_eq!(r.counts.untangle_sweeps, 0, "{strategy:?}");
     }
     // a valid mesh never sweeps
     let mut g = crate::generate::grid(4, 4, crate::generate::GridKind::Tri).unwrap();
-    let r = Smoother::new(SmoothOptions::default())
-        .unwrap()
-        .pass(&mut g, &new, &|| 0.0);
+    let r = Smoother::new(SmoothOptions::default()).unwrap().pass(&mut g, &new, &|| 0.0);
     assert_eq!((r.after.inverted, r.counts.untangle_sweeps), (0, 0));
     // and the limit is checked
     assert!(Smoother::<Star>::new(SmoothOptions::default().with_untangle_sweeps(1001)).is_err());
@@ -316,14 +255,7 @@ fn untangling_objectives_leave_a_valid_mesh_where_it_is() {
         assert!(kind.only_untangles());
         let obj = objective(kind);
         let mut m = valid.clone();
-        let r = smooth(
-            &mut m,
-            &*obj,
-            SmoothOptions::default().with_strategy(Strategy::Opt),
-            2,
-            &|| 0.0,
-        )
-        .unwrap();
+        let r = smooth(&mut m, &*obj, SmoothOptions::default().with_strategy(Strategy::Opt), 2, &|| 0.0).unwrap();
         assert_eq!(m.nodes(), valid.nodes(), "{kind}");
         assert_eq!(r[0].counts.optimization_calls, 0, "{kind}");
     }
@@ -332,20 +264,7 @@ fn untangling_objectives_leave_a_valid_mesh_where_it_is() {
     assert!(mesh_stats(&tangled).inverted > 0);
     let mut m = tangled.clone();
     let obj = objective(ObjectiveKind::Untangle);
-    smooth(
-        &mut m,
-        &*obj,
-        SmoothOptions::default().with_strategy(Strategy::Opt),
-        3,
-        &|| 0.0,
-    )
-    .unwrap();
+    smooth(&mut m, &*obj, SmoothOptions::default().with_strategy(Strategy::Opt), 3, &|| 0.0).unwrap();
     assert!(mesh_stats(&m).inverted < mesh_stats(&tangled).inverted);
-    assert!(
-        ObjectiveKind::ALL
-            .iter()
-            .filter(|k| k.only_untangles())
-            .count()
-            == 2
-    );
+    assert!(ObjectiveKind::ALL.iter().filter(|k| k.only_untangles()).count() == 2);
 }

@@ -62,14 +62,9 @@ impl Reference {
     /// What the reference is, in words (for `stats`).
     pub fn describe(&self) -> String {
         match self {
-            Reference::Facets(f) => {
-                format!("the loaded mesh, {} flat triangles", f.triangles.len())
-            }
+            Reference::Facets(f) => format!("the loaded mesh, {} flat triangles", f.triangles.len()),
             Reference::Fitted(f) => {
-                format!(
-                    "fitted through the loaded mesh's nodes (its elements are folded), {} quadrics",
-                    f.fit_count()
-                )
+                format!("fitted through the loaded mesh's nodes (its elements are folded), {} quadrics", f.fit_count())
             }
             Reference::Analytic(a) => a.describe(),
         }
@@ -105,8 +100,7 @@ impl Analytic {
         match *self {
             Analytic::CappedCylinder { radius, z0, z1 } => {
                 let on_side = (DVec3::new(p.x, p.y, 0.0).length() - radius).abs() <= 1e-9 * radius;
-                let on_cap =
-                    (p.z - z0).abs() <= 1e-9 * (z1 - z0) || (p.z - z1).abs() <= 1e-9 * (z1 - z0);
+                let on_cap = (p.z - z0).abs() <= 1e-9 * (z1 - z0) || (p.z - z1).abs() <= 1e-9 * (z1 - z0);
                 on_side && on_cap
             }
             _ => false,
@@ -140,9 +134,7 @@ impl Analytic {
                 (centre + n * radius, n, 0)
             }
             Analytic::CappedCylinder { radius, z0, z1 } => {
-                let radial = DVec3::new(p.x, p.y, 0.0)
-                    .try_normalize()
-                    .unwrap_or(DVec3::X);
+                let radial = DVec3::new(p.x, p.y, 0.0).try_normalize().unwrap_or(DVec3::X);
                 let r = DVec3::new(p.x, p.y, 0.0).length().min(radius);
                 let parts = [
                     (radial * radius + DVec3::Z * p.z.clamp(z0, z1), radial),
@@ -157,19 +149,13 @@ impl Analytic {
                 (parts[i].0, parts[i].1, i as u32)
             }
             Analytic::Torus { major, minor } => {
-                let radial = DVec3::new(p.x, p.y, 0.0)
-                    .try_normalize()
-                    .unwrap_or(DVec3::X);
+                let radial = DVec3::new(p.x, p.y, 0.0).try_normalize().unwrap_or(DVec3::X);
                 let ring = radial * major;
                 let n = (p - ring).try_normalize().unwrap_or(radial);
                 (ring + n * minor, n, 0)
             }
         };
-        Projected {
-            point,
-            normal,
-            face: part,
-        }
+        Projected { point, normal, face: part }
     }
 }
 
@@ -266,9 +252,8 @@ impl Facets {
                         ids[8]
                     } else {
                         // the serendipity quad's centre: −¼ Σ corners + ½ Σ mid-sides
-                        let c: DVec3 = (0..4)
-                            .map(|i| -0.25 * pts[ids[i] as usize] + 0.5 * pts[ids[4 + i] as usize])
-                            .sum();
+                        let c: DVec3 =
+                            (0..4).map(|i| -0.25 * pts[ids[i] as usize] + 0.5 * pts[ids[4 + i] as usize]).sum();
                         pts.push(c);
                         (pts.len() - 1) as u32
                     };
@@ -345,11 +330,7 @@ impl Facets {
         let mut side_normal: Vec<((u32, u32), DVec3)> = Vec::new();
         for (tri, &k) in triangles.iter().zip(&sides) {
             let n = area(tri);
-            side_normal.extend(
-                tri.iter()
-                    .filter(|&&v| mixed[v as usize])
-                    .map(|&v| ((v, k), n)),
-            );
+            side_normal.extend(tri.iter().filter(|&&v| mixed[v as usize]).map(|&v| ((v, k), n)));
         }
         sort_stable_by_key(&mut side_normal, |&((v, k), _)| pair_key(v, k));
         side_normal.dedup_by(|(k1, n1), (k0, n0)| {
@@ -380,8 +361,7 @@ impl Facets {
         // a folded element: a flat triangle whose normal disagrees with a vertex's
         let folded = facets.triangles.iter().zip(&facets.side).any(|(tri, &k)| {
             let n = area_vector(&facets.points, tri, unit);
-            tri.iter()
-                .any(|&v| n.dot(facets.vertex_normal_in(v, k)) <= 0.0)
+            tri.iter().any(|&v| n.dot(facets.vertex_normal_in(v, k)) <= 0.0)
         });
         if folded {
             facets.patch.iter_mut().for_each(|p| *p = None);
@@ -402,10 +382,7 @@ impl Facets {
         if self.side_normal.is_empty() {
             return self.vertex_normal[v as usize];
         }
-        match self
-            .side_normal
-            .binary_search_by_key(&(v, k), |&(key, _)| key)
-        {
+        match self.side_normal.binary_search_by_key(&(v, k), |&(key, _)| key) {
             Ok(i) => self.side_normal[i].1,
             Err(_) => self.vertex_normal[v as usize],
         }
@@ -454,28 +431,16 @@ impl Facets {
 
     fn projected(&self, p: DVec3, t: u32) -> Projected {
         if t == NONE {
-            return Projected {
-                point: p,
-                normal: DVec3::Z,
-                face: NONE,
-            };
+            return Projected { point: p, normal: DVec3::Z, face: NONE };
         }
         if self.patch[t as usize].is_some() {
             return self.on_patches(p, t);
         }
         let (point, bary) = closest_on_triangle(p, self.corners(t));
         let tri = self.triangles[t as usize];
-        let blended: DVec3 = (0..3)
-            .map(|i| bary[i] * self.vertex_normal_in(tri[i], self.side[t as usize]))
-            .sum();
-        let normal = Some(crate::numeric::direction(blended))
-            .filter(|n| *n != DVec3::ZERO)
-            .unwrap_or_else(|| self.normal(t));
-        Projected {
-            point,
-            normal,
-            face: t,
-        }
+        let blended: DVec3 = (0..3).map(|i| bary[i] * self.vertex_normal_in(tri[i], self.side[t as usize])).sum();
+        let normal = Some(crate::numeric::direction(blended)).filter(|n| *n != DVec3::ZERO).unwrap_or_else(|| self.normal(t));
+        Projected { point, normal, face: t }
     }
 
     /// The nearest point of the patches of the triangles round `t` (the flat triangle
@@ -485,15 +450,10 @@ impl Facets {
     fn on_patches(&self, p: DVec3, t: u32) -> Projected {
         let mut seen: Vec<u32> = Vec::with_capacity(16);
         let mut best: Option<(f64, DVec3, DVec3, u32)> = None;
-        let near = std::iter::once(t).chain(
-            self.triangles[t as usize]
-                .iter()
-                .flat_map(|&v| self.around(v as usize).iter().copied()),
-        );
+        let near = std::iter::once(t)
+            .chain(self.triangles[t as usize].iter().flat_map(|&v| self.around(v as usize).iter().copied()));
         for u in near.filter(|&u| self.part[u as usize] == self.part[t as usize]) {
-            let Some((k, uv)) = self.patch[u as usize] else {
-                continue;
-            };
+            let Some((k, uv)) = self.patch[u as usize] else { continue };
             if seen.contains(&k) {
                 continue;
             }
@@ -507,11 +467,7 @@ impl Facets {
             }
         }
         let (_, point, normal, face) = best.expect("the triangle's own patch");
-        Projected {
-            point,
-            normal,
-            face,
-        }
+        Projected { point, normal, face }
     }
 
     /// The walk: from triangle `t`, go to the nearest of the triangles that share a
@@ -581,10 +537,7 @@ pub fn closest_on_triangle(p: DVec3, [a, b, c]: [DVec3; 3]) -> (DVec3, [f64; 3])
     let (v, w) = (vb * denom, vc * denom);
     if !(v.is_finite() && w.is_finite()) {
         // a degenerate triangle: its nearest corner
-        let best = [a, b, c]
-            .into_iter()
-            .enumerate()
-            .min_by(|x, y| (x.1 - p).length().total_cmp(&(y.1 - p).length()));
+        let best = [a, b, c].into_iter().enumerate().min_by(|x, y| (x.1 - p).length().total_cmp(&(y.1 - p).length()));
         let (i, q) = best.expect("three corners");
         let mut bary = [0.0; 3];
         bary[i] = 1.0;
@@ -605,10 +558,7 @@ mod tests {
         assert_eq!(q, DVec3::new(0.25, 0.25, 0.0));
         assert!(w.iter().all(|&x| x > 0.0));
         // beyond the corner a: a
-        assert_eq!(
-            closest_on_triangle(DVec3::new(-1.0, -1.0, 1.0), tri),
-            (DVec3::ZERO, [1.0, 0.0, 0.0])
-        );
+        assert_eq!(closest_on_triangle(DVec3::new(-1.0, -1.0, 1.0), tri), (DVec3::ZERO, [1.0, 0.0, 0.0]));
         // beyond the edge a–b: onto it, the weight of c zero
         let (q, w) = closest_on_triangle(DVec3::new(0.5, -2.0, 0.0), tri);
         assert_eq!(q, DVec3::new(0.5, 0.0, 0.0));
@@ -620,25 +570,10 @@ mod tests {
 
     /// An octahedron of radius 1 as facets.
     fn octahedron() -> Facets {
-        let p = [
-            DVec3::X,
-            DVec3::Y,
-            -DVec3::X,
-            -DVec3::Y,
-            DVec3::Z,
-            -DVec3::Z,
-        ];
-        let tris: Vec<[u32; 3]> = (0..4u32)
-            .flat_map(|i| [[i, (i + 1) % 4, 4], [(i + 1) % 4, i, 5]])
-            .collect();
+        let p = [DVec3::X, DVec3::Y, -DVec3::X, -DVec3::Y, DVec3::Z, -DVec3::Z];
+        let tris: Vec<[u32; 3]> = (0..4u32).flat_map(|i| [[i, (i + 1) % 4, 4], [(i + 1) % 4, i, 5]]).collect();
         let flat: Vec<u32> = tris.iter().flatten().copied().collect();
-        Facets::new(
-            &p,
-            &[ElementKind::Tri3; 8],
-            |e| &flat[3 * e..3 * e + 3],
-            |_| 0,
-            |_| 0,
-        )
+        Facets::new(&p, &[ElementKind::Tri3; 8], |e| &flat[3 * e..3 * e + 3], |_| 0, |_| 0)
     }
 
     #[test]
@@ -655,9 +590,8 @@ mod tests {
             }
             let global = f.project(p, NONE);
             // brute force
-            let brute = (0..8u32)
-                .map(|t| (closest_on_triangle(p, f.corners(t)).0 - p).length())
-                .fold(f64::INFINITY, f64::min);
+            let brute =
+                (0..8u32).map(|t| (closest_on_triangle(p, f.corners(t)).0 - p).length()).fold(f64::INFINITY, f64::min);
             assert!(((global.point - p).length() - brute).abs() < 1e-12, "{p}");
             // from every triangle that shares a vertex with the one it lands on (a node's
             // last facet, for a node moved within its star), the walk finds it too; from
@@ -666,14 +600,9 @@ mod tests {
                 continue;
             }
             let near = f.triangles[global.face as usize];
-            for hint in
-                (0..8u32).filter(|&t| f.triangles[t as usize].iter().any(|v| near.contains(v)))
-            {
+            for hint in (0..8u32).filter(|&t| f.triangles[t as usize].iter().any(|v| near.contains(v))) {
                 let walked = f.project(p, hint);
-                assert!(
-                    ((walked.point - p).length() - brute).abs() < 1e-12,
-                    "{p} from {hint}"
-                );
+                assert!(((walked.point - p).length() - brute).abs() < 1e-12, "{p} from {hint}");
             }
         }
     }
@@ -688,29 +617,17 @@ mod tests {
             let s = surface(SurfaceShape::Sphere, kind, 2, 8).unwrap();
             let mesh = s.flat();
             let facets = Facets::new(s.points(), mesh.kinds(), |e| mesh.element(e), |_| 0, |_| 0);
-            assert!(
-                facets.patch.iter().all(|p| p.is_some()),
-                "an untangled file: its patches"
-            );
+            assert!(facets.patch.iter().all(|p| p.is_some()), "an untangled file: its patches");
             let mut flat = facets.clone();
             flat.patch.iter_mut().for_each(|p| *p = None);
             for (n, &p) in s.points().iter().enumerate() {
                 let q = facets.project(p, facets.triangle_at_vertex(n));
-                assert!(
-                    (q.point - p).length() < 1e-14,
-                    "node {n} moved {}",
-                    (q.point - p).length()
-                );
+                assert!((q.point - p).length() < 1e-14, "node {n} moved {}", (q.point - p).length());
             }
             let (mut curved, mut straight) = (0.0f64, 0.0f64);
             let mut rng = crate::numeric::SplitMix64::new(3);
             for _ in 0..300 {
-                let d = DVec3::new(
-                    rng.next_f64() - 0.5,
-                    rng.next_f64() - 0.5,
-                    rng.next_f64() - 0.5,
-                )
-                .normalize();
+                let d = DVec3::new(rng.next_f64() - 0.5, rng.next_f64() - 0.5, rng.next_f64() - 0.5).normalize();
                 let on = facets.project(d, NONE);
                 curved = curved.max((on.point - d).length());
                 straight = straight.max((flat.project(d, NONE).point - d).length());
@@ -723,12 +640,9 @@ mod tests {
             );
         }
         // a tangled file: a folded element, so the flat triangles alone
-        let s = crate::generate::perturb_surface(
-            &surface(SurfaceShape::Sphere, SurfaceKind::Tri, 2, 4).unwrap(),
-            0.8,
-            1,
-        )
-        .unwrap();
+        let s =
+            crate::generate::perturb_surface(&surface(SurfaceShape::Sphere, SurfaceKind::Tri, 2, 4).unwrap(), 0.8, 1)
+                .unwrap();
         let mesh = s.flat();
         let facets = Facets::new(s.points(), mesh.kinds(), |e| mesh.element(e), |_| 0, |_| 0);
         assert!(s.stats().inverted > 0 && facets.patch.iter().all(|p| p.is_none()));
@@ -736,37 +650,18 @@ mod tests {
 
     #[test]
     fn analytic_projections_by_hand() {
-        let s = Analytic::Sphere {
-            centre: DVec3::new(1.0, 0.0, 0.0),
-            radius: 2.0,
-        };
+        let s = Analytic::Sphere { centre: DVec3::new(1.0, 0.0, 0.0), radius: 2.0 };
         let q = s.project(DVec3::new(1.0, 0.0, 5.0), NONE);
         assert_eq!((q.point, q.normal), (DVec3::new(1.0, 0.0, 2.0), DVec3::Z));
-        let t = Analytic::Torus {
-            major: 3.0,
-            minor: 1.0,
-        };
+        let t = Analytic::Torus { major: 3.0, minor: 1.0 };
         let q = t.project(DVec3::new(0.0, 5.0, 0.0), NONE);
         assert_eq!((q.point, q.normal), (DVec3::new(0.0, 4.0, 0.0), DVec3::Y));
-        let c = Analytic::CappedCylinder {
-            radius: 1.0,
-            z0: 0.0,
-            z1: 2.0,
-        };
-        assert_eq!(
-            c.project(DVec3::new(3.0, 0.0, 1.0), NONE).point,
-            DVec3::new(1.0, 0.0, 1.0)
-        );
+        let c = Analytic::CappedCylinder { radius: 1.0, z0: 0.0, z1: 2.0 };
+        assert_eq!(c.project(DVec3::new(3.0, 0.0, 1.0), NONE).point, DVec3::new(1.0, 0.0, 1.0));
         let top = c.project(DVec3::new(0.2, 0.0, 2.5), NONE);
-        assert_eq!(
-            (top.point, top.normal, top.face),
-            (DVec3::new(0.2, 0.0, 2.0), DVec3::Z, 2)
-        );
+        assert_eq!((top.point, top.normal, top.face), (DVec3::new(0.2, 0.0, 2.0), DVec3::Z, 2));
         // kept on its part: a side point pulled over the top stays on the side, at the rim
         let side = c.project(DVec3::new(0.9, 0.0, 2.5), 0);
-        assert_eq!(
-            (side.point, side.normal),
-            (DVec3::new(1.0, 0.0, 2.0), DVec3::X)
-        );
+        assert_eq!((side.point, side.normal), (DVec3::new(1.0, 0.0, 2.0), DVec3::X));
     }
 }

@@ -21,14 +21,7 @@ impl Patch {
     /// Node `i`'s parameters (the element's node order: corners, then mid-sides, centre).
     pub(super) fn node_parameter(&self, i: usize) -> [f64; 2] {
         match self.kind {
-            ElementKind::Tri6 => [
-                [0.0, 0.0],
-                [1.0, 0.0],
-                [0.0, 1.0],
-                [0.5, 0.0],
-                [0.5, 0.5],
-                [0.0, 0.5],
-            ][i],
+            ElementKind::Tri6 => [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [0.5, 0.0], [0.5, 0.5], [0.0, 0.5]][i],
             _ => [
                 [-1.0, -1.0],
                 [1.0, -1.0],
@@ -48,20 +41,8 @@ impl Patch {
     pub(super) fn triangle_parameters(&self) -> Vec<[[f64; 2]; 3]> {
         let q = |i: usize| self.node_parameter(i);
         match self.kind {
-            ElementKind::Tri6 => vec![
-                [q(0), q(3), q(5)],
-                [q(3), q(1), q(4)],
-                [q(5), q(4), q(2)],
-                [q(3), q(4), q(5)],
-            ],
-            _ => (0..4)
-                .flat_map(|i| {
-                    [
-                        [q(i), q(4 + i), [0.0, 0.0]],
-                        [q(4 + i), q((i + 1) % 4), [0.0, 0.0]],
-                    ]
-                })
-                .collect(),
+            ElementKind::Tri6 => vec![[q(0), q(3), q(5)], [q(3), q(1), q(4)], [q(5), q(4), q(2)], [q(3), q(4), q(5)]],
+            _ => (0..4).flat_map(|i| [[q(i), q(4 + i), [0.0, 0.0]], [q(4 + i), q((i + 1) % 4), [0.0, 0.0]]]).collect(),
         }
     }
 
@@ -110,9 +91,7 @@ impl Patch {
 
     pub(super) fn at(&self, points: &[DVec3], uv: [f64; 2]) -> DVec3 {
         let n = self.shape(uv);
-        (0..self.kind.node_count())
-            .map(|i| n[i] * points[self.nodes[i] as usize])
-            .sum()
+        (0..self.kind.node_count()).map(|i| n[i] * points[self.nodes[i] as usize]).sum()
     }
 
     /// `uv` moved into the parameter domain.
