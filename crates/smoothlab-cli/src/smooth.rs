@@ -19,6 +19,10 @@
 //!
 //! `--slide-curves` (surfaces only): the nodes of the feature curves and open boundaries
 //! slide along them instead of staying fixed.
+//!
+//! `--boundary slide` (linear volume meshes): boundary nodes slide on the boundary as
+//! loaded, curve nodes along its feature curves (`--feature-angle`), corners stay; the
+//! summary says how many of each and the largest distance from the boundary.
 
 use std::path::PathBuf;
 
@@ -26,6 +30,7 @@ use clap::Args;
 use smoothlab::model::Model;
 use smoothlab::objective::{ObjectiveKind, Penalty};
 use smoothlab::smooth::{Obstacle, Order, SmoothOptions, Strategy};
+use smoothlab::volume::BoundaryRule;
 use smoothlab::{Report, Smoothing, Target};
 
 use crate::args::{msh_version_parser, named, order_parser, penalty_parser, strategy_parser};
@@ -85,6 +90,15 @@ pub struct SmoothArgs {
     /// instead of staying fixed (corners of the curves stay; a file's own fixed flags decide)
     #[arg(long)]
     pub slide_curves: bool,
+    /// What a volume mesh's boundary nodes do: fixed (where the file put them, the papers)
+    /// or slide (on the boundary as loaded, along its feature curves; corners and the
+    /// file's fixed nodes stay)
+    #[arg(long, value_parser = named(&BoundaryRule::ALL, BoundaryRule::name, BoundaryRule::describe), default_value = BoundaryRule::default().name())]
+    pub boundary: BoundaryRule,
+    /// With --boundary slide: two boundary faces that turn by more than this many degrees
+    /// meet at a feature curve [default: 30]
+    #[arg(long)]
+    pub feature_angle: Option<f64>,
     /// Print one JSON object instead of a summary
     #[arg(long)]
     pub json: bool,
@@ -159,6 +173,14 @@ fn smoothing(a: &SmoothArgs) -> Result<Smoothing, String> {
             strategy.name()
         ));
     }
+    if let Some(d) = a.feature_angle {
+        if a.boundary != BoundaryRule::Slide {
+            return Err("--feature-angle finds the curves sliding nodes keep to: use it with --boundary slide".into());
+        }
+        if !(d > 0.0 && d < 180.0) {
+            return Err(format!("--feature-angle {d}: give degrees above 0 and below 180"));
+        }
+    }
     if a.penalty.is_some() && a.objective.is_some_and(|k| k != ObjectiveKind::SmoothShape) {
         return Err("--penalty chooses the design of the new objective's penalty: use it with --objective new".into());
     }
@@ -168,7 +190,11 @@ fn smoothing(a: &SmoothArgs) -> Result<Smoothing, String> {
         .passes(a.passes)
         .finish(a.finish)
         .target(a.target)
-        .slide_curves(a.slide_curves);
+        .slide_curves(a.slide_curves)
+        .boundary(a.boundary);
+    if let Some(d) = a.feature_angle {
+        s = s.feature_angle(d);
+    }
     if let Some(o) = a.order {
         s = s.order(o);
     }
@@ -200,6 +226,18 @@ pub fn run(a: SmoothArgs) -> Result<(), String> {
         return Err(format!(
             "--slide-curves: the nodes of a surface's feature curves slide along them; this mesh is {what}"
         ));
+    }
+    match &model {
+        Model::Volume(v) if a.boundary == BoundaryRule::Slide && v.is_quadratic() => {
+            return Err("--boundary slide takes linear volume meshes so far: a quadratic mesh's boundary nodes stay".into())
+        }
+        Model::Planar(_) | Model::Surface(_) if a.boundary == BoundaryRule::Slide => {
+            return Err(format!(
+                "--boundary slide takes volume meshes so far; this mesh is {} (a surface's curves slide with --slide-curves)",
+                if matches!(model, Model::Planar(_)) { "planar" } else { "a surface" }
+            ))
+        }
+        _ => {}
     }
     if a.penalty.is_some() && matches!(model, Model::Volume(_)) {
         return Err(
@@ -279,6 +317,19 @@ fn summary(report: &Report) -> String {
         s.mean_quality,
         ms
     ));
+    if let Some(b) = report.boundary() {
+        t.push_str(&format!(
+            "boundary: {} slid on the surface, {} along {}, {} held ({} corners{}); every node within {:.3e} of the boundary as loaded ({:.2}% of the mean edge)\n",
+            crate::args::count(b.surface_nodes, "node", "nodes"),
+            b.curve_nodes,
+            crate::args::count(b.curves, "feature curve", "feature curves"),
+            b.corners + b.held,
+            b.corners,
+            if b.held > 0 { format!(", {} fixed by the file", b.held) } else { String::new() },
+            b.max_distance,
+            100.0 * b.max_distance / b.mean_edge
+        ));
+    }
     if let Some(d) = s.max_distance_from_surface {
         t.push_str(&format!(
             "surface: every node within {d:.3e} of the surface as it was loaded\n"

@@ -122,7 +122,7 @@ pub use model::Model;
 pub use objective::{ObjectiveKind, Penalty};
 pub use quality::MeshStats;
 pub use smooth::{Obstacle, Order, PassRecord, Strategy};
-pub use smoothing::{Report, Smoothing};
+pub use smoothing::{BoundaryReport, Report, Smoothing};
 pub use surface::Surface;
 pub use target::Target;
 pub use volume::VolumeMesh;

@@ -19,7 +19,7 @@ use crate::smooth::{
 };
 use crate::surface::SurfaceSmoother;
 use crate::target::Target;
-use crate::volume::VolumeSmoother;
+use crate::volume::{BoundaryRule, VolumeSmoother, FEATURE_ANGLE_DEG};
 
 /// The settings of a smoothing run, built by chained calls.
 ///
@@ -45,6 +45,8 @@ pub struct Smoothing {
     slide_curves: bool,
     finish: u32,
     target: Target,
+    boundary: BoundaryRule,
+    feature_angle_deg: Option<f64>,
 }
 
 impl Default for Smoothing {
@@ -61,6 +63,8 @@ impl Default for Smoothing {
             slide_curves: false,
             finish: Smoothing::DEFAULT_FINISH,
             target: Target::Ideal,
+            boundary: BoundaryRule::Fixed,
+            feature_angle_deg: None,
         }
     }
 }
@@ -136,6 +140,19 @@ impl Smoothing {
     /// statistics themselves, so it takes none.
     pub fn target(mut self, target: Target) -> Self {
         self.target = target;
+        self
+    }
+
+    /// What boundary nodes do ([`BoundaryRule`]; volume meshes).
+    pub fn boundary(mut self, rule: BoundaryRule) -> Self {
+        self.boundary = rule;
+        self
+    }
+
+    /// The angle, degrees, over which two boundary faces meet at a feature curve, with
+    /// sliding boundaries (default [`FEATURE_ANGLE_DEG`]).
+    pub fn feature_angle(mut self, degrees: f64) -> Self {
+        self.feature_angle_deg = Some(degrees);
         self
     }
 
@@ -221,6 +238,14 @@ impl Smoothing {
                 format!("{} asked: give 0 to {}", self.finish, BATCH_PASSES.max),
             );
         }
+        if let Some(a) = self.feature_angle_deg {
+            if self.boundary != BoundaryRule::Slide {
+                return refuse("feature_angle", "it finds the curves sliding nodes keep to; give boundary slide".into());
+            }
+            if !(a > 0.0 && a < 180.0) {
+                return refuse("feature_angle", format!("{a} asked: give degrees above 0 and below 180"));
+            }
+        }
         o.validate()?;
         Ok(o)
     }
@@ -228,8 +253,10 @@ impl Smoothing {
     /// Why these settings cannot smooth `model`, if they cannot.
     fn check(&self, model: &Model) -> Result<()> {
         match model {
-            Model::Surface(_) => Ok(()),
-            Model::Planar(mesh) if !self.slide_curves => check_scale(self.objective, mesh),
+            Model::Surface(_) if self.boundary == BoundaryRule::Fixed => Ok(()),
+            Model::Planar(mesh) if !self.slide_curves && self.boundary == BoundaryRule::Fixed => {
+                check_scale(self.objective, mesh)
+            }
             Model::Volume(v) if self.slide_curves => refuse(
                 "slide_curves",
                 format!(
@@ -241,8 +268,16 @@ impl Smoothing {
                 "penalty",
                 "its designs are planar; volume elements take new's barrier".into(),
             ),
+            Model::Volume(v) if self.boundary == BoundaryRule::Slide && v.is_quadratic() => refuse(
+                "boundary",
+                "slide takes linear volume meshes so far; quadratic boundary nodes stay".into(),
+            ),
             Model::Volume(_) => Ok(()),
-            Model::Planar(_) => refuse(
+            _ if self.boundary == BoundaryRule::Slide => refuse(
+                "boundary",
+                "slide takes volume meshes so far; a surface's curves slide with slide_curves".into(),
+            ),
+            _ => refuse(
                 "slide_curves",
                 "a surface's curves slide; this mesh is planar".into(),
             ),
@@ -264,6 +299,9 @@ pub struct Report {
     objective: ObjectiveKind,
     strategy: Strategy,
     target: Target,
+    /// With sliding boundaries: what slid, and how far from the boundary as loaded.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    boundary: Option<BoundaryReport>,
     #[serde(skip)]
     order: Order,
     passes: Vec<PassRecord>,
@@ -305,6 +343,11 @@ impl Report {
     /// The objective, strategy and node order of the run.
     pub fn settings(&self) -> (ObjectiveKind, Strategy, Order) {
         (self.objective, self.strategy, self.order)
+    }
+    /// With sliding boundaries ([`BoundaryRule::Slide`]): what slid and how far from the
+    /// boundary as loaded; `None` with the boundary fixed.
+    pub fn boundary(&self) -> Option<&BoundaryReport> {
+        self.boundary.as_ref()
     }
     /// The time of the passes, milliseconds by the run's clock.
     pub fn time_ms(&self) -> f64 {
@@ -377,6 +420,12 @@ impl Model {
                 surface.slide_along_curves();
             }
         }
+        if let Model::Volume(mesh) = self {
+            let angle = smoothing.feature_angle_deg.unwrap_or(FEATURE_ANGLE_DEG);
+            if mesh.boundary_rule() != smoothing.boundary || mesh.feature_curves().is_some_and(|(a, _)| a != angle) {
+                mesh.set_boundary(smoothing.boundary, angle);
+            }
+        }
         let penalty = smoothing.penalty.unwrap_or_default();
         self.set_target(smoothing.target);
         let passes = self.passes(kind, penalty, opts, 1..smoothing.passes + 1, clock);
@@ -416,10 +465,15 @@ impl Model {
             Model::Planar(mesh) if final_stats.inverted > 0 => untangling_obstacles(mesh),
             _ => Vec::new(),
         };
+        let boundary = match &*self {
+            Model::Volume(mesh) if mesh.boundary_rule() == BoundaryRule::Slide => Some(BoundaryReport::of(mesh)),
+            _ => None,
+        };
         Ok(Report {
             objective: kind,
             strategy: smoothing.strategy,
             target: smoothing.target,
+            boundary,
             order: opts.order,
             passes,
             finish,
@@ -427,5 +481,52 @@ impl Model {
             untangling_impossible,
             time_ms,
         })
+    }
+}
+
+/// What a run with sliding boundaries did to the boundary (JSON key `boundary`).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct BoundaryReport {
+    /// The feature angle the curves were found by, degrees.
+    pub feature_angle_deg: f64,
+    /// Feature curves found on the boundary.
+    pub curves: usize,
+    /// Boundary nodes that slid on a surface, along a curve, and corners held.
+    pub surface_nodes: usize,
+    pub curve_nodes: usize,
+    pub corners: usize,
+    /// Boundary nodes held by the file's own flags.
+    pub held: usize,
+    /// The largest distance of a sliding node from the boundary as loaded.
+    pub max_distance: f64,
+    /// The mean edge length of the mesh now, to read `max_distance` by.
+    pub mean_edge: f64,
+}
+
+impl BoundaryReport {
+    fn of(mesh: &crate::volume::VolumeMesh) -> BoundaryReport {
+        use crate::volume::BoundaryNode as B;
+        let (angle, curves) = mesh.feature_curves().unwrap_or((0.0, 0));
+        let on = |c: B| (0..mesh.node_count()).filter(|&n| mesh.boundary_node(n) == Some(c)).count();
+        let on_skin = {
+            let mut skin = vec![false; mesh.node_count()];
+            for f in mesh.boundary_faces() {
+                for &v in f.nodes() {
+                    skin[v as usize] = true;
+                }
+            }
+            skin
+        };
+        let held = (0..mesh.node_count()).filter(|&n| on_skin[n] && mesh.boundary_node(n) == Some(B::Held)).count();
+        BoundaryReport {
+            feature_angle_deg: angle,
+            curves,
+            surface_nodes: on(B::Surface),
+            curve_nodes: on(B::Curve),
+            corners: on(B::Corner),
+            held,
+            max_distance: mesh.max_distance_from_boundary(),
+            mean_edge: mesh.mean_edge_length(),
+        }
     }
 }

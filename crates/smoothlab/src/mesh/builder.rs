@@ -250,9 +250,8 @@ impl MeshBuilder {
     }
 
     /// The parts of the volume mesh of the volume elements added, for the volume module
-    /// to build; the nodes of any triangles or quads in the file (the boundary faces Gmsh
-    /// writes) are marked fixed, as lines and points are. Refuses a face naming a node
-    /// the file does not have.
+    /// to build (which marks the nodes of the file's triangles and quads fixed, as lines
+    /// and points are). Refuses a face naming a node the file does not have.
     pub(crate) fn build_volume_parts(self) -> Result<VolumeParts> {
         let n = self.points.len();
         for e in 0..self.kinds.len() {
@@ -265,20 +264,7 @@ impl MeshBuilder {
                 ));
             }
         }
-        let mut marks = vec![false; n];
-        for &i in &self.elem_nodes {
-            if let Some(m) = marks.get_mut(i as usize) {
-                *m = true;
-            }
-        }
-        let fixed = match self.fixed {
-            FixedSpec::Exact(f) => FixedSpec::Exact(f),
-            FixedSpec::BoundaryAnd(f) => FixedSpec::BoundaryAnd(
-                f.iter().zip(marks.iter().chain(std::iter::repeat(&false))).map(|(a, b)| *a || *b).collect(),
-            ),
-            FixedSpec::Boundary if marks.iter().any(|&m| m) => FixedSpec::BoundaryAnd(marks),
-            FixedSpec::Boundary => FixedSpec::Boundary,
-        };
+        let fixed = self.fixed;
         Ok(VolumeParts {
             points: self.points,
             point_lines: self.point_lines,

@@ -95,3 +95,49 @@ impl<'a, S: DriverStar> KeepValid<'a, S> {
                 || star.inversion(x) >= *self.inversion0.get_or_init(|| star.inversion(star.x0())))
     }
 }
+
+/// An objective seen by a node that slides on the boundary ([`DriverStar::slides`]): the
+/// same values, every gradient and Hessian projected onto the node's tangent
+/// ([`DriverStar::along`]). A solver's steps are made of gradients, so it moves the node
+/// in the tangent plane or line only; the drivers then put it on the boundary.
+pub(super) struct Along<'a, S: DriverStar> {
+    pub(super) inner: &'a dyn Objective<S>,
+}
+
+impl<S: DriverStar> Objective<S> for Along<'_, S> {
+    fn name(&self) -> &'static str {
+        self.inner.name()
+    }
+    fn goal(&self) -> crate::objective::Goal {
+        self.inner.goal()
+    }
+    fn untangles(&self) -> bool {
+        self.inner.untangles()
+    }
+    fn only_untangles(&self) -> bool {
+        self.inner.only_untangles()
+    }
+    fn terms(&self, star: &S, x: S::Point, out: &mut Vec<Term<S::Point>>) {
+        let from = out.len();
+        self.inner.terms(star, x, out);
+        for t in &mut out[from..] {
+            t.grad = star.along(t.grad);
+        }
+    }
+    fn terms_above(&self, star: &S, x: S::Point, floor: f64, lead: u32, out: &mut Vec<Term<S::Point>>) -> bool {
+        let above = self.inner.terms_above(star, x, floor, lead, out);
+        for t in out.iter_mut() {
+            t.grad = star.along(t.grad);
+        }
+        above
+    }
+    fn value_and_gradient(&self, star: &S, x: S::Point) -> (f64, S::Point) {
+        let (v, g) = self.inner.value_and_gradient(star, x);
+        (v, star.along(g))
+    }
+    fn value_gradient_hessian(&self, star: &S, x: S::Point) -> Option<(f64, S::Point, <S::Point as Point>::Hessian)> {
+        self.inner
+            .value_gradient_hessian(star, x)
+            .map(|(v, g, h)| (v, star.along(g), star.along_hessian(h)))
+    }
+}

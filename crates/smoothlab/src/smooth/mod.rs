@@ -36,7 +36,7 @@ mod space;
 mod tests;
 
 pub use accept::{ElementScore, Size, Verdict, MIN_SIZE_RATIO};
-use guard::KeepValid;
+use guard::{Along, KeepValid};
 pub(crate) use measure::is_inverted;
 pub(crate) use measure::triangle_shape_at;
 use measure::triangle_shape_at_both;
@@ -337,7 +337,18 @@ impl<S: DriverStar> Smoother<S> {
         n: usize,
         objective: &dyn Objective<S>,
     ) -> (S::Point, NodeOutcome) {
-        let (x, mut out, kept) = self.decide_move(mesh, n, objective);
+        let (mut x, mut out, mut kept) = self.decide_move(mesh, n, objective);
+        if out.moved {
+            // a node that slides goes onto the boundary, and is measured there
+            let on = mesh.onto_boundary(n, x);
+            if on != x {
+                (x, kept) = (on, false);
+                out.moved = x != mesh.position(n);
+                if !out.moved {
+                    return (x, out);
+                }
+            }
+        }
         if out.moved && self.accepts_only_no_worse() {
             // a move the smart Laplacian's test kept was on a valid star
             let (keeps, valid) = if kept {
@@ -563,6 +574,13 @@ impl<S: DriverStar> Smoother<S> {
                 .unwrap_or_else(|| objective.untangles());
             guarded = KeepValid::new(objective, limit, pass_through_folds);
             &guarded
+        } else {
+            objective
+        };
+        let along;
+        let objective: &dyn Objective<S> = if self.star.slides() {
+            along = Along { inner: objective };
+            &along
         } else {
             objective
         };

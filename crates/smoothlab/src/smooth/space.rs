@@ -42,6 +42,13 @@ pub trait SmoothMesh {
     fn has_target(&self) -> bool {
         false
     }
+    /// Where free node `n` goes when a driver moves it to `x`: `x`, or for a node that
+    /// slides on the boundary the nearest point of the boundary as loaded
+    /// ([`crate::volume::BoundaryRule::Slide`]). Default `x`.
+    #[inline]
+    fn onto_boundary(&self, _n: usize, x: Self::Point) -> Self::Point {
+        x
+    }
     /// What the statistics read of the mesh ([`Reading`]): the bounds a move on a valid
     /// star keeps within; `None` for a tangled mesh, whose rule is its count of inverted
     /// elements.
@@ -81,6 +88,24 @@ pub trait DriverStar: NodeStar + Default {
     /// Works out what [`gather_for_measures`](Self::gather_for_measures) left out, before
     /// an objective reads the star; the default has nothing to do.
     fn complete(&mut self) {}
+    /// Whether the free node slides on the boundary: then a solver sees the objective's
+    /// gradients [`along`](Self::along) its tangent. Default false.
+    fn slides(&self) -> bool {
+        false
+    }
+    /// `g` projected onto the free node's tangent (itself where it does not slide).
+    #[inline]
+    fn along(&self, g: Self::Point) -> Self::Point {
+        g
+    }
+    /// A Hessian projected onto the free node's tangent, `P·H·P`.
+    #[inline]
+    fn along_hessian(
+        &self,
+        h: <Self::Point as crate::objective::Point>::Hessian,
+    ) -> <Self::Point as crate::objective::Point>::Hessian {
+        h
+    }
     /// The free node's position now (gathered, or moved by [`restar`](Self::restar)).
     fn x0(&self) -> Self::Point;
     /// Moves the free node to `x` (mid-side nodes following).

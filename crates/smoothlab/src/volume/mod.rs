@@ -21,12 +21,14 @@ use crate::numeric::order::sort_stable_by_key;
 use crate::quality::solid::{solid_measures, validity, SolidMeasures, Validity};
 use crate::quality::tet as q3;
 
+mod boundary;
 mod smooth;
 mod stats;
 mod swap;
 #[cfg(test)]
 mod tests;
 
+pub use boundary::{BoundaryNode, BoundaryRule, Tangent, FEATURE_ANGLE_DEG};
 pub use smooth::{smooth_volume, VolumeSmoother};
 pub use stats::volume_stats;
 pub use swap::swap_max_min_dihedral;
@@ -152,6 +154,10 @@ pub struct VolumeMesh {
     /// The positions the corners' targets are taken from, where they are not the ideal
     /// ([`crate::target::Target::Input`]).
     target: Option<std::sync::Arc<Vec<DVec3>>>,
+    /// The nodes the file itself fixed (its flags), whatever the boundary rule.
+    given_fixed: Option<Vec<bool>>,
+    /// The sliding rule, when boundary nodes slide ([`BoundaryRule::Slide`]).
+    sliding: Option<boundary::Sliding>,
 }
 
 /// Builds CSR arrays from (key, value) pairs over `n` keys.
@@ -421,11 +427,42 @@ impl VolumeMesh {
                 }
             }
         }
-        let mut fixed = match fixed {
-            FixedSpec::Boundary => on_boundary,
-            FixedSpec::Exact(f) => f,
-            FixedSpec::BoundaryAnd(f) => on_boundary.iter().zip(&f).map(|(a, b)| *a || *b).collect(),
+        // the file's triangles and quads fix their nodes (unless the file gave the flags
+        // exactly); those on the boundary skin only mark it, so the sliding rule
+        // ([`BoundaryRule::Slide`]) holds only the nodes of the others
+        let skin: std::collections::HashSet<[u32; 4]> = boundary.iter().map(|f| f.key()).collect();
+        let mut marked = vec![false; n];
+        let mut marked_inside = vec![false; n];
+        for f in &given_faces {
+            let corners = &f.nodes()[..f.kind.corners()];
+            let on_skin = corners.len() <= 4 && skin.contains(&Face::of(corners, &[0, 1, 2, 3][..corners.len()]).key());
+            for &i in f.nodes() {
+                if let Some(m) = marked.get_mut(i as usize) {
+                    *m = true;
+                    marked_inside[i as usize] |= !on_skin;
+                }
+            }
+        }
+        let (fixed, given_fixed) = match fixed {
+            FixedSpec::Exact(f) => (f.clone(), Some(f)),
+            FixedSpec::Boundary | FixedSpec::BoundaryAnd(_) => {
+                let flags = match fixed {
+                    FixedSpec::BoundaryAnd(mut f) => {
+                        f.resize(n, false);
+                        f
+                    }
+                    _ => vec![false; n],
+                };
+                let fixed = (0..n).map(|i| on_boundary[i] || flags[i] || marked[i]).collect();
+                let given = (0..n).map(|i| flags[i] || marked_inside[i]).collect::<Vec<bool>>();
+                (fixed, given.iter().any(|&g| g).then_some(given))
+            }
         };
+        let mut given_fixed = given_fixed;
+        if let Some(g) = &mut given_fixed {
+            g.resize(n, false);
+        }
+        let mut fixed: Vec<bool> = fixed;
         fixed.resize(n, false);
         for (f, r) in fixed.iter_mut().zip(&role) {
             *f |= *r == NodeRole::Unused;
@@ -540,6 +577,8 @@ impl VolumeMesh {
             faces: given_faces,
             node_numbers: node_numbers.clone(),
             target: None,
+            given_fixed,
+            sliding: None,
         })
     }
 
@@ -778,9 +817,18 @@ impl VolumeMesh {
     pub fn role(&self, n: usize) -> NodeRole {
         self.role[n]
     }
-    /// A node the smoothers may move: a corner that is not fixed.
+    /// A node the smoothers may move: a corner that is not fixed, or that slides
+    /// ([`BoundaryRule::Slide`]).
+    #[inline]
     pub fn is_free(&self, n: usize) -> bool {
-        !self.fixed[n] && self.role[n] == NodeRole::Corner
+        let unfixed = match &self.sliding {
+            None => !self.fixed[n],
+            Some(s) => match s.class(n) {
+                BoundaryNode::Interior => !self.fixed[n],
+                c => c.slides(),
+            },
+        };
+        unfixed && self.role[n] == NodeRole::Corner
     }
     pub fn free_count(&self) -> usize {
         (0..self.node_count()).filter(|&n| self.is_free(n)).count()

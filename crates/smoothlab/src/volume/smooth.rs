@@ -66,6 +66,10 @@ impl SmoothMesh for VolumeMesh {
     fn has_quadratic(&self) -> bool {
         self.is_quadratic()
     }
+    #[inline]
+    fn onto_boundary(&self, n: usize, x: DVec3) -> DVec3 {
+        VolumeMesh::onto_boundary(self, n, x)
+    }
 }
 
 impl DriverStar for CornerStar {
@@ -93,6 +97,7 @@ impl DriverStar for CornerStar {
             self.keep_known(x, mesh.element_count());
         }
         self.node = node as u32;
+        self.tangent = mesh.tangent(node);
         self.forms_pending_at = Some(mesh.nodes()[node]);
         self.x0 = mesh.nodes()[node];
         // the corners overwritten in place, then truncated
@@ -160,6 +165,18 @@ impl DriverStar for CornerStar {
     }
     fn complete(&mut self) {
         self.complete_forms();
+    }
+    #[inline]
+    fn slides(&self) -> bool {
+        self.tangent != super::Tangent::Free
+    }
+    #[inline]
+    fn along(&self, g: DVec3) -> DVec3 {
+        self.tangent.along(g)
+    }
+    #[inline]
+    fn along_hessian(&self, h: glam::DMat3) -> glam::DMat3 {
+        self.tangent.along_hessian(h)
     }
     #[inline]
     fn x0(&self) -> DVec3 {
@@ -533,6 +550,7 @@ impl StarView for Solid<'_> {
         if self.0.is_quadratic() {
             self.0.follow_mid_nodes(n);
         }
+        self.0.settle(n);
     }
     fn is_inverted(&self, e: usize) -> bool {
         self.0.is_inverted(e)
@@ -579,7 +597,10 @@ impl VolumeSmoother {
             &was,
             inverted_elements,
             |m, e| m.element(e).to_vec(),
-            |m, i| m.nodes_mut()[i] = start[i],
+            |m, i| {
+                m.nodes_mut()[i] = start[i];
+                m.settle(i);
+            },
         );
         counts
     }

@@ -3,7 +3,8 @@
 //! angle (volumes) that `smoothlab stats` prints, raises the largest, lowers a volume's
 //! smallest scaled Jacobian, or inverts an element — whatever the objective's own
 //! measure says. Every strategy × objective × mesh kind, on meshes made for a purpose:
-//! uniform, stretched and graded ones, lightly perturbed; against every target.
+//! uniform, stretched and graded ones, lightly perturbed; against every target; volumes
+//! with their boundary fixed and sliding.
 
 use glam::{DVec2, DVec3};
 use proptest::prelude::*;
@@ -12,6 +13,7 @@ use smoothlab::generate::{GridKind, HexBlock, PlateKind, SurfaceKind, SurfaceSha
 use smoothlab::model::Model;
 use smoothlab::objective::{tet_kinds, ObjectiveKind};
 use smoothlab::smooth::Strategy;
+use smoothlab::volume::BoundaryRule;
 use smoothlab::{MeshStats, Smoothing, Target};
 
 /// Rows graded by `ratio` from `y = 0` and squeezed to a tenth of the width: a boundary
@@ -62,18 +64,22 @@ proptest! {
         strategy in 1..Strategy::ALL.len(),
         objective in 0..ObjectiveKind::ALL.len(),
         target in 0..Target::ALL.len(),
+        boundary in 0..BoundaryRule::ALL.len(),
     ) {
         let mut model = sample(which, amount, seed);
         let before = model.stats();
         prop_assume!(before.inverted == 0);
         let (strategy, kind, target) = (Strategy::ALL[strategy], ObjectiveKind::ALL[objective], Target::ALL[target]);
+        let boundary = BoundaryRule::ALL[boundary];
+        // boundaries slide in volume meshes
+        prop_assume!(boundary == BoundaryRule::Fixed || matches!(model, Model::Volume(_)));
         // a target other than the ideal is measured by opt and rules only (the others refuse it)
         prop_assume!(target == Target::Ideal || matches!(strategy, Strategy::Opt | Strategy::Rules));
         prop_assume!(!matches!(model, Model::Volume(_)) || tet_kinds().any(|k| k == kind));
         prop_assert_ne!(strategy, Strategy::Laplace);
-        let report = model.smooth(&Smoothing::default().strategy(strategy).objective(kind).target(target).passes(2)).unwrap();
+        let report = model.smooth(&Smoothing::default().strategy(strategy).objective(kind).target(target).boundary(boundary).passes(2)).unwrap();
         let after = report.stats();
-        let what = format!("sample {which}, {strategy:?} {kind} against {target}");
+        let what = format!("sample {which}, {strategy:?} {kind} against {target}, boundary {}", boundary.name());
         prop_assert_eq!(after.inverted, 0, "{}", what);
         prop_assert!(after.min_angle_deg >= before.min_angle_deg, "{}: smallest angle {} to {}", what, before.min_angle_deg, after.min_angle_deg);
         prop_assert!(after.max_angle_deg <= before.max_angle_deg, "{}: largest angle {} to {}", what, before.max_angle_deg, after.max_angle_deg);

@@ -334,6 +334,9 @@ pub struct CornerStar {
     /// ([`VolumeMesh::target_nodes`](crate::volume::VolumeMesh::target_nodes); empty
     /// otherwise): the reference its target gives ([`crate::target::solid_reference`]).
     pub targets: Vec<CornerReference>,
+    /// The tangent the free node slides in ([`Tangent::Free`](crate::volume::Tangent)
+    /// unless it slides on the boundary).
+    pub tangent: crate::volume::Tangent,
 }
 
 impl Default for CornerStar {
@@ -355,6 +358,7 @@ impl CornerStar {
             known: KnownSolids::default(),
             tet_measures: Default::default(),
             targets: Vec::new(),
+            tangent: crate::volume::Tangent::Free,
         }
     }
     /// The reference W of a tetrahedron's corners, the equilateral tetrahedron's (every
