@@ -332,11 +332,13 @@ class Mesh:
         """Smooths the mesh in place as ``smoothlab smooth`` does, and says what each pass
         did. The settings are the command line's (``smoothlab.settings()`` lists them):
         ``objective``, ``strategy``, ``threshold``, ``passes``, ``order``, ``max_iter``,
-        ``penalty``, ``pass_through_folds``, ``finish``, ``target``, ``slide_curves``; those
-        left out take its defaults. Once the passes leave the mesh valid, ``finish`` more (3
+        ``penalty``, ``pass_through_folds``, ``finish``, ``target``, ``slide_curves``,
+        ``boundary``, ``feature_angle``; those left out take its defaults. Once the passes leave the mesh valid, ``finish`` more (3
         by default) lift its worst element; ``report.finish`` says how many ran.
         ``target="input"`` measures each corner against itself as it was (its stretch
-        kept) rather than the ideal element. A setting out of range, or one the strategy would not use, is a
+        kept) rather than the ideal element. ``boundary="slide"`` lets a volume mesh's
+        boundary nodes slide on the boundary as loaded (corners stay; ``report.boundary``
+        says how many slid and how far from it they are). A setting out of range, or one the strategy would not use, is a
         ``ValueError`` naming it. Other Python threads run meanwhile.
 
         >>> import numpy as np, smoothlab
@@ -432,8 +434,9 @@ class Mesh:
 
 class Report:
     """What :meth:`Mesh.smooth` did, as ``smoothlab smooth --json`` prints it:
-    ``objective``, ``strategy``, ``target``, ``passes`` (a dict a pass), ``finish`` (how many of
-    them, the last, are the finish), ``final`` (the statistics of
+    ``objective``, ``strategy``, ``target``, ``boundary`` (with sliding boundaries: what slid
+    and how far from the boundary as loaded; else ``None``), ``passes`` (a dict a pass),
+    ``finish`` (how many of them, the last, are the finish), ``final`` (the statistics of
     :meth:`Mesh.stats`), ``untangling_impossible`` (inverted elements no move can repair,
     and why) and ``time_ms``; ``json`` is the text itself.
 
@@ -450,6 +453,7 @@ class Report:
         self.objective: str = d["objective"]
         self.strategy: str = d["strategy"]
         self.target: str = d["target"]
+        self.boundary: Optional[Dict[str, Any]] = d.get("boundary")
         self.passes: List[Dict[str, Any]] = d["passes"]
         self.finish: int = d["finish"]
         self.final: Dict[str, Any] = d["final"]

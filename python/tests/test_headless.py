@@ -121,6 +121,24 @@ def test_the_input_target_is_the_tools(files, kind, tmp_path):
         mesh.smooth(target="input", strategy="laplace")
 
 
+def test_sliding_boundaries_are_the_tools(files, tmp_path):
+    cli("smooth", files["volume"], "-o", tmp_path / "cli.vtk", "--boundary", "slide", "--feature-angle", "40")
+    mesh = smoothlab.read(files["volume"])
+    report = mesh.smooth(boundary="slide", feature_angle=40)
+    smoothlab.write(mesh, tmp_path / "py.vtk")
+    assert (tmp_path / "py.vtk").read_bytes() == (tmp_path / "cli.vtk").read_bytes()
+    # the bent block's eight corners hold; its twelve edges are feature curves
+    b = report.boundary
+    assert (b["corners"], b["curves"], b["feature_angle_deg"]) == (8, 12, 40.0), b
+    assert b["max_distance"] < 1e-12 * b["mean_edge"], b
+    assert "slide" in smoothlab.settings()["boundary"]
+    assert smoothlab.read(files["volume"]).smooth().boundary is None
+    with pytest.raises(ValueError, match="boundary"):
+        smoothlab.read(files["planar"]).smooth(boundary="slide")
+    with pytest.raises(ValueError, match="feature_angle"):
+        smoothlab.read(files["volume"]).smooth(feature_angle=40)
+
+
 def test_the_settings_are_the_smooth_commands_flags():
     """Every option of `smoothlab smooth` that sets the run is a setting of Mesh.smooth."""
     help_text = cli("smooth", "--help")

@@ -96,7 +96,7 @@ pub struct SmoothArgs {
     #[arg(long, value_parser = named(&BoundaryRule::ALL, BoundaryRule::name, BoundaryRule::describe), default_value = BoundaryRule::default().name())]
     pub boundary: BoundaryRule,
     /// With --boundary slide: two boundary faces that turn by more than this many degrees
-    /// meet at a feature curve [default: 30]
+    /// meet at a feature curve [default: 60]
     #[arg(long)]
     pub feature_angle: Option<f64>,
     /// Print one JSON object instead of a summary

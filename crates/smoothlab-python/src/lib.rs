@@ -21,12 +21,13 @@ use pyo3::types::{PyBool, PyDict, PyFloat, PyList, PyTuple};
 
 use smoothlab::io::{self, CellBlock, MeshArrays, MshVersion, WriteOptions};
 use smoothlab::smooth::{Order, Strategy};
+use smoothlab::volume::BoundaryRule;
 use smoothlab::{Error, Model, ObjectiveKind, Penalty, Smoothing, Target};
 use smoothlab_page::lab::picture::{self, Request, View};
 use smoothlab_render::{encode_png, Camera, Cut, Metric, Theme};
 
 /// The settings of [`smoothing`] by name, in the command line's order (`smooth --help`).
-const SETTINGS: [&str; 11] = [
+const SETTINGS: [&str; 13] = [
     "objective",
     "strategy",
     "threshold",
@@ -38,6 +39,8 @@ const SETTINGS: [&str; 11] = [
     "finish",
     "target",
     "slide_curves",
+    "boundary",
+    "feature_angle",
 ];
 
 /// An error of the core as Python's: `OSError` for a file that cannot be read or written,
@@ -166,6 +169,8 @@ fn smoothing(settings: Option<&Bound<'_, PyDict>>) -> PyResult<Smoothing> {
             "finish" => s.finish(whole(&value, "finish")?),
             "target" => s.target(named(&value, "target", &Target::ALL, Target::name)?),
             "slide_curves" => s.slide_curves(flag(&value, "slide_curves")?),
+            "boundary" => s.boundary(named(&value, "boundary", &BoundaryRule::ALL, BoundaryRule::name)?),
+            "feature_angle" => s.feature_angle(number(&value, "feature_angle")?),
             other => {
                 return Err(value_error(format!(
                     "no setting named {other:?}: the settings are {}",
@@ -193,6 +198,7 @@ fn settings(py: Python<'_>) -> PyResult<Bound<'_, PyDict>> {
             "order" => Some(names(&Order::ALL, Order::name)),
             "penalty" => Some(names(&Penalty::ALL, Penalty::name)),
             "target" => Some(names(&Target::ALL, Target::name)),
+            "boundary" => Some(names(&BoundaryRule::ALL, BoundaryRule::name)),
             _ => None,
         };
         out.set_item(s, choices)?;

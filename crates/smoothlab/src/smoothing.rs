@@ -14,7 +14,7 @@ use crate::objective::{check_scale, objective_with, tet_objective, ObjectiveKind
 use crate::quality::MeshStats;
 use crate::smooth::limits::{threshold_in_range, BATCH_MAX_ITER, BATCH_PASSES};
 use crate::smooth::{
-    untangling_obstacles, Obstacle, Order, PassRecord, SmoothOptions, Smoother, Strategy,
+    untangling_obstacles, volume_untangling_obstacles, Obstacle, Order, PassRecord, SmoothOptions, Smoother, Strategy,
     DEFAULT_PASSES,
 };
 use crate::surface::SurfaceSmoother;
@@ -463,6 +463,7 @@ impl Model {
         // the obstacles are found in the plane (a surface's fixed nodes have no common one)
         let untangling_impossible = match &*self {
             Model::Planar(mesh) if final_stats.inverted > 0 => untangling_obstacles(mesh),
+            Model::Volume(mesh) if final_stats.inverted > 0 => volume_untangling_obstacles(mesh),
             _ => Vec::new(),
         };
         let boundary = match &*self {

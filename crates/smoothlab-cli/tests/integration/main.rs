@@ -12,3 +12,4 @@ mod surface_cli;
 mod volume_generate;
 mod volume_io;
 mod volume_mesquite;
+mod volume_slide;

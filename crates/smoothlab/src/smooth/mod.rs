@@ -43,7 +43,7 @@ use measure::triangle_shape_at_both;
 pub use measure::StarQuality;
 #[cfg(test)]
 pub(crate) use measure::{element_measures, element_shape_at, star_quality, star_shape};
-pub use obstacles::{untangling_obstacles, Obstacle};
+pub use obstacles::{untangling_obstacles, volume_untangling_obstacles, Obstacle};
 pub use options::{
     Measure, Order, SmoothOptions, Strategy, DEFAULT_MAX_ITER, DEFAULT_PASSES,
     DEFAULT_THRESHOLD_DEG, UNTANGLE_SWEEPS,

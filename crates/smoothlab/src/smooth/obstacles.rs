@@ -69,6 +69,36 @@ pub fn untangling_obstacles(mesh: &Mesh) -> Vec<Obstacle> {
     out
 }
 
+/// The inverted elements of a volume mesh that moving its free nodes (and sliding its
+/// boundary nodes, [`crate::volume::BoundaryRule::Slide`]) cannot make valid: a measured
+/// corner whose determinant is ≤ 0 (exactly, [`orient3d`](crate::numeric::exact::orient3d))
+/// and depends only on nodes that cannot move — the corner and its three edge neighbours.
+/// As for planar meshes, elements left inverted for any other reason are not listed.
+pub fn volume_untangling_obstacles(mesh: &crate::volume::VolumeMesh) -> Vec<Obstacle> {
+    use crate::numeric::exact::orient3d;
+    let mut out = Vec::new();
+    for e in (0..mesh.element_count()).filter(|&e| mesh.is_inverted(e)) {
+        let kind = mesh.element_kind(e);
+        let ids = &mesh.element(e)[..kind.corners()];
+        let held = |i: usize| !mesh.is_free(ids[i] as usize);
+        let p = mesh.corners(e);
+        let stuck = kind.row().corner_edges.iter().enumerate().find(|&(c, &[a, b, d])| {
+            let t = crate::quality::solid::corner_tet(kind, &p[..ids.len()], c);
+            orient3d(t[0], t[1], t[2], t[3]) != std::cmp::Ordering::Greater && [c, a, b, d].iter().all(|&i| held(i))
+        });
+        if let Some((c, &[a, b, d])) = stuck {
+            out.push(Obstacle {
+                element: e,
+                reason: format!(
+                    "its corner at node {} is inverted and is set by nodes {}, {}, {} and {} alone, none of which can move",
+                    ids[c], ids[c], ids[a], ids[b], ids[d]
+                ),
+            });
+        }
+    }
+    out
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

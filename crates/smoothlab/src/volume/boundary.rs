@@ -48,8 +48,12 @@ impl BoundaryRule {
 }
 
 /// The default feature angle, degrees: two boundary faces that turn by more meet at a
-/// feature curve (as a surface's, [`crate::surface::FEATURE_ANGLE_DEG`]).
-pub const FEATURE_ANGLE_DEG: f64 = crate::surface::FEATURE_ANGLE_DEG;
+/// feature curve. Chosen on Livesu et al.'s eleven real hexahedral meshes (defaults plus
+/// sliding; `docs/reproduction.md` §13): 30°, 45° and 60° untangled 9, 8 and 8 of them
+/// and reached the published smallest scaled Jacobian on 3, 4 and 5. A coarse mesh of an
+/// organic shape turns by 30° between faces in many places that are no crease; a CAD
+/// part's edges turn by 90°.
+pub const FEATURE_ANGLE_DEG: f64 = 60.0;
 
 /// What a node does under the sliding rule.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -185,8 +189,55 @@ impl Sliding {
         }
         edges.sort_unstable();
         let cos_feature = feature_angle_deg.to_radians().cos();
-        let mut segments: Vec<[u32; 2]> = Vec::new();
-        // faces joined across smooth edges, for the parts (union–find)
+        // per skin edge: its nodes, its two faces (`u32::MAX` where it has not two), and
+        // whether it turns by more than the feature angle between unfolded faces
+        let mut skin_edges: Vec<([u32; 2], [u32; 2], bool)> = Vec::with_capacity(edges.len() / 2);
+        let mut i = 0;
+        while i < edges.len() {
+            let mut j = i + 1;
+            while j < edges.len() && edges[j].0 == edges[i].0 {
+                j += 1;
+            }
+            skin_edges.push(if j - i == 2 {
+                let (f, g) = (edges[i].1 as usize, edges[i + 1].1 as usize);
+                let turns = normals[f].dot(normals[g]) < cos_feature;
+                (edges[i].0, [f as u32, g as u32], turns && !folded[f] && !folded[g])
+            } else {
+                (edges[i].0, [u32::MAX; 2], true)
+            });
+            i = j;
+        }
+        let mut on_skin = vec![false; n];
+        for f in faces {
+            for &v in *f {
+                on_skin[v as usize] = true;
+            }
+        }
+        let found: Vec<[u32; 2]> = skin_edges.iter().filter(|e| e.2).map(|e| e.0).collect();
+        let first = Curves::new(points, &on_skin, held, found, cos_feature);
+        // a crease shorter than MIN_CURVE_SEGMENTS edges that ends nowhere (at a node of
+        // no other feature edge) is the coarse mesh's noise, not a feature: its edges are
+        // smooth (an edge of more or fewer than two faces stays)
+        let mut length = vec![0usize; first.count];
+        let mut dangles = vec![false; first.count];
+        for (s, &c) in first.segments.iter().zip(&first.curve) {
+            length[c as usize] += 1;
+            dangles[c as usize] |= s.iter().any(|&v| first.segs_at(v as usize).len() == 1);
+        }
+        let short = |e: &[u32; 2]| match first.segments.binary_search(e) {
+            Ok(s) => {
+                let c = first.curve[s] as usize;
+                length[c] < MIN_CURVE_SEGMENTS && dangles[c]
+            }
+            Err(_) => false,
+        };
+        for e in skin_edges.iter_mut().filter(|e| e.2 && e.1[0] != u32::MAX) {
+            e.2 = !short(&e.0);
+        }
+        let kept: Vec<[u32; 2]> = skin_edges.iter().filter(|e| e.2).map(|e| e.0).collect();
+        let Curves { segments, seg_start, node_segs, class, curve, count: curve_count } =
+            Curves::new(points, &on_skin, held, kept, cos_feature);
+        // faces joined across smooth edges: the parts (union–find)
         let mut parent: Vec<u32> = (0..faces.len() as u32).collect();
         fn root(parent: &mut [u32], mut i: u32) -> u32 {
             while parent[i as usize] != i {
@@ -195,106 +246,13 @@ impl Sliding {
             }
             i
         }
-        let mut i = 0;
-        while i < edges.len() {
-            let mut j = i + 1;
-            while j < edges.len() && edges[j].0 == edges[i].0 {
-                j += 1;
+        for &(_, [f, g], feature) in &skin_edges {
+            if !feature && f != u32::MAX {
+                let (a, b) = (root(&mut parent, f), root(&mut parent, g));
+                parent[a.max(b) as usize] = a.min(b);
             }
-            let feature = if j - i == 2 {
-                let (f, g) = (edges[i].1 as usize, edges[i + 1].1 as usize);
-                let turns = normals[f].dot(normals[g]) < cos_feature;
-                let feature = turns && !folded[f] && !folded[g];
-                if !feature {
-                    let (a, b) = (root(&mut parent, f as u32), root(&mut parent, g as u32));
-                    parent[a.max(b) as usize] = a.min(b);
-                }
-                feature
-            } else {
-                true
-            };
-            if feature {
-                segments.push(edges[i].0);
-            }
-            i = j;
         }
         let part: Vec<u32> = (0..faces.len() as u32).map(|f| root(&mut parent, f)).collect();
-        // the segments at each node
-        let mut seg_start = vec![0u32; n + 1];
-        for s in &segments {
-            for &v in s {
-                seg_start[v as usize + 1] += 1;
-            }
-        }
-        for k in 0..n {
-            seg_start[k + 1] += seg_start[k];
-        }
-        let mut fill = seg_start.clone();
-        let mut node_segs = vec![0u32; segments.len() * 2];
-        for (s, seg) in segments.iter().enumerate() {
-            for &v in seg {
-                node_segs[fill[v as usize] as usize] = s as u32;
-                fill[v as usize] += 1;
-            }
-        }
-        let segs_at = |v: usize| &node_segs[seg_start[v] as usize..seg_start[v + 1] as usize];
-        let mut on_skin = vec![false; n];
-        for f in faces {
-            for &v in *f {
-                on_skin[v as usize] = true;
-            }
-        }
-        let class: Vec<BoundaryNode> = (0..n)
-            .map(|v| {
-                if !on_skin[v] {
-                    return if held[v] { BoundaryNode::Held } else { BoundaryNode::Interior };
-                }
-                if held[v] {
-                    return BoundaryNode::Held;
-                }
-                match *segs_at(v) {
-                    [] => BoundaryNode::Surface,
-                    [s, t] => {
-                        let other = |s: u32| {
-                            let [a, b] = segments[s as usize];
-                            if a as usize == v { b } else { a }
-                        };
-                        let (a, b) = (points[other(s) as usize], points[other(t) as usize]);
-                        let (u, w) = (crate::numeric::direction(points[v] - a), crate::numeric::direction(b - points[v]));
-                        if u.dot(w) < cos_feature {
-                            BoundaryNode::Corner
-                        } else {
-                            BoundaryNode::Curve
-                        }
-                    }
-                    _ => BoundaryNode::Corner,
-                }
-            })
-            .collect();
-        // the curves: segments joined through curve nodes
-        let mut curve = vec![u32::MAX; segments.len()];
-        let mut curve_count = 0u32;
-        for s0 in 0..segments.len() {
-            if curve[s0] != u32::MAX {
-                continue;
-            }
-            let mut stack = vec![s0 as u32];
-            curve[s0] = curve_count;
-            while let Some(s) = stack.pop() {
-                for &v in &segments[s as usize] {
-                    if class[v as usize] != BoundaryNode::Curve {
-                        continue;
-                    }
-                    for &t in segs_at(v as usize) {
-                        if curve[t as usize] == u32::MAX {
-                            curve[t as usize] = curve_count;
-                            stack.push(t);
-                        }
-                    }
-                }
-            }
-            curve_count += 1;
-        }
         let kinds: Vec<ElementKind> =
             faces.iter().map(|f| if f.len() == 4 { ElementKind::Quad4 } else { ElementKind::Tri3 }).collect();
         let facets = Facets::new(points, &kinds, |e| faces[e], |e| part[e], |_| 0);
@@ -307,7 +265,7 @@ impl Sliding {
             node_segs,
             class,
             feature_angle_deg,
-            curve_count: curve_count as usize,
+            curve_count,
         };
         let mut sliding = Sliding { hint: vec![NONE; n], tangent: vec![Tangent::Free; n], reference: Arc::new(reference) };
         for (v, &at) in points.iter().enumerate() {
@@ -389,6 +347,105 @@ impl Sliding {
             }
             _ => 0.0,
         }
+    }
+}
+
+/// The shortest feature curve kept where it ends at no other feature curve, in skin edges.
+pub const MIN_CURVE_SEGMENTS: usize = 3;
+
+/// Feature edges joined into curves, and each node's class by them.
+struct Curves {
+    /// The feature edges, sorted.
+    segments: Vec<[u32; 2]>,
+    /// CSR: the segments at each node.
+    seg_start: Vec<u32>,
+    node_segs: Vec<u32>,
+    class: Vec<BoundaryNode>,
+    /// Per segment, its curve.
+    curve: Vec<u32>,
+    count: usize,
+}
+
+impl Curves {
+    /// The curves of feature edges `segments` (sorted) over a skin whose nodes are
+    /// `on_skin`; `held` nodes stay, and a node where its two edges turn by more than the
+    /// feature angle (`cos_feature`) is a corner.
+    fn new(points: &[DVec3], on_skin: &[bool], held: &[bool], segments: Vec<[u32; 2]>, cos_feature: f64) -> Curves {
+        let n = points.len();
+        let mut seg_start = vec![0u32; n + 1];
+        for s in &segments {
+            for &v in s {
+                seg_start[v as usize + 1] += 1;
+            }
+        }
+        for k in 0..n {
+            seg_start[k + 1] += seg_start[k];
+        }
+        let mut fill = seg_start.clone();
+        let mut node_segs = vec![0u32; segments.len() * 2];
+        for (s, seg) in segments.iter().enumerate() {
+            for &v in seg {
+                node_segs[fill[v as usize] as usize] = s as u32;
+                fill[v as usize] += 1;
+            }
+        }
+        let segs_at = |v: usize| &node_segs[seg_start[v] as usize..seg_start[v + 1] as usize];
+        let class: Vec<BoundaryNode> = (0..n)
+            .map(|v| {
+                if !on_skin[v] {
+                    return if held[v] { BoundaryNode::Held } else { BoundaryNode::Interior };
+                }
+                if held[v] {
+                    return BoundaryNode::Held;
+                }
+                match *segs_at(v) {
+                    [] => BoundaryNode::Surface,
+                    [s, t] => {
+                        let other = |s: u32| {
+                            let [a, b] = segments[s as usize];
+                            if a as usize == v { b } else { a }
+                        };
+                        let (a, b) = (points[other(s) as usize], points[other(t) as usize]);
+                        let (u, w) = (crate::numeric::direction(points[v] - a), crate::numeric::direction(b - points[v]));
+                        if u.dot(w) < cos_feature {
+                            BoundaryNode::Corner
+                        } else {
+                            BoundaryNode::Curve
+                        }
+                    }
+                    _ => BoundaryNode::Corner,
+                }
+            })
+            .collect();
+        // segments joined through curve nodes
+        let mut curve = vec![u32::MAX; segments.len()];
+        let mut count = 0u32;
+        for s0 in 0..segments.len() {
+            if curve[s0] != u32::MAX {
+                continue;
+            }
+            let mut stack = vec![s0 as u32];
+            curve[s0] = count;
+            while let Some(s) = stack.pop() {
+                for &v in &segments[s as usize] {
+                    if class[v as usize] != BoundaryNode::Curve {
+                        continue;
+                    }
+                    for &t in segs_at(v as usize) {
+                        if curve[t as usize] == u32::MAX {
+                            curve[t as usize] = count;
+                            stack.push(t);
+                        }
+                    }
+                }
+            }
+            count += 1;
+        }
+        Curves { segments, seg_start, node_segs, class, curve, count: count as usize }
+    }
+
+    fn segs_at(&self, v: usize) -> &[u32] {
+        &self.node_segs[self.seg_start[v] as usize..self.seg_start[v + 1] as usize]
     }
 }
 

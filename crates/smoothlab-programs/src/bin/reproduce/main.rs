@@ -114,7 +114,7 @@ fn main() {
     );
     // the sections by name: `reproduce surfaces` runs that one alone (to work on it); no
     // name runs them all
-    let sections: [Section; 12] = [
+    let sections: [Section; 13] = [
         ("freitag", freitag::freitag_table_1),
         ("chen", chen::chen_plate),
         ("mesquite", mesquite::mesquite_tangled),
@@ -127,6 +127,7 @@ fn main() {
         ("tetrahedra", tetrahedra::freitag_table_2),
         ("hexahedra", hexahedra::hexahedra),
         ("livesu", livesu::livesu),
+        ("sliding", livesu::livesu_sliding),
     ];
     for (name, section) in sections {
         if only.is_empty() || only.iter().any(|o| o == name) {
