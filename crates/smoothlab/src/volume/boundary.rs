@@ -372,23 +372,8 @@ impl Curves {
     /// feature angle (`cos_feature`) is a corner.
     fn new(points: &[DVec3], on_skin: &[bool], held: &[bool], segments: Vec<[u32; 2]>, cos_feature: f64) -> Curves {
         let n = points.len();
-        let mut seg_start = vec![0u32; n + 1];
-        for s in &segments {
-            for &v in s {
-                seg_start[v as usize + 1] += 1;
-            }
-        }
-        for k in 0..n {
-            seg_start[k + 1] += seg_start[k];
-        }
-        let mut fill = seg_start.clone();
-        let mut node_segs = vec![0u32; segments.len() * 2];
-        for (s, seg) in segments.iter().enumerate() {
-            for &v in seg {
-                node_segs[fill[v as usize] as usize] = s as u32;
-                fill[v as usize] += 1;
-            }
-        }
+        let mut pairs: Vec<(u32, u32)> = segments.iter().enumerate().flat_map(|(s, &[a, b])| [(a, s as u32), (b, s as u32)]).collect();
+        let (seg_start, node_segs) = super::csr(n, &mut pairs);
         let segs_at = |v: usize| &node_segs[seg_start[v] as usize..seg_start[v + 1] as usize];
         let class: Vec<BoundaryNode> = (0..n)
             .map(|v| {
