@@ -9,7 +9,8 @@
 //! - a *curve* node (on two feature edges): it slides along its curve;
 //! - a *surface* node (on none): it slides on its smooth part of the skin.
 //!
-//! A node the file fixed stays. Features are never found from a tangle: an edge of a
+//! A node the file fixed stays; flags that fix the whole skin, as smoothlab's writers
+//! and Mesquite's write them, say only where the boundary is. Features are never found from a tangle: an edge of a
 //! folded skin face is never a crease (a fold is not a feature). A face is folded where
 //! one of its corners turns against it (a quad's bow tie), or its normal opposes the
 //! skin's at one of its nodes (the faces' normals there summed by area).
@@ -492,13 +493,23 @@ impl super::VolumeMesh {
             self.sliding = None;
             return;
         }
+        let faces: Vec<&[u32]> = self.boundary_faces().iter().map(|f| f.nodes()).collect();
+        let mut on_skin = vec![false; self.node_count()];
+        for f in &faces {
+            for &v in *f {
+                on_skin[v as usize] = true;
+            }
+        }
+        // flags that fix every node of the skin say no more than "the boundary" (what
+        // smoothlab's writers and Mesquite's write): they hold the nodes off the skin only
+        let given = self.given_fixed.as_deref();
+        let whole_skin = given.is_some_and(|g| on_skin.iter().zip(g).all(|(&s, &f)| !s || f));
         let held: Vec<bool> = (0..self.node_count())
             .map(|v| {
                 self.role(v) != crate::mesh::NodeRole::Corner
-                    || self.given_fixed.as_ref().is_some_and(|g| g[v])
+                    || given.is_some_and(|g| g[v] && !(whole_skin && on_skin[v]))
             })
             .collect();
-        let faces: Vec<&[u32]> = self.boundary_faces().iter().map(|f| f.nodes()).collect();
         let sliding = Sliding::new(self.nodes(), &faces, &held, feature_angle_deg);
         self.sliding = Some(sliding);
     }
@@ -684,6 +695,27 @@ mod tests {
         model.smooth(&Smoothing::default().boundary(BoundaryRule::Slide)).unwrap();
         let Model::Volume(m) = &model else { unreachable!() };
         assert_eq!(m.nodes()[held], at);
+    }
+
+    #[test]
+    fn flags_on_the_whole_skin_only_say_where_the_boundary_is() {
+        // what smoothlab writes: every boundary node flagged fixed, and one node inside
+        let mut m = badly_placed_block();
+        let inside = (0..m.node_count()).find(|&n| planes(m.nodes()[n]) == 0).unwrap();
+        let mut flags = m.fixed().to_vec();
+        flags[inside] = true;
+        m.given_fixed = Some(flags);
+        m.set_boundary(BoundaryRule::Slide, FEATURE_ANGLE_DEG);
+        for n in 0..m.node_count() {
+            let want = match planes(m.nodes()[n]) {
+                _ if n == inside => BoundaryNode::Held,
+                0 => BoundaryNode::Interior,
+                1 => BoundaryNode::Surface,
+                2 => BoundaryNode::Curve,
+                _ => BoundaryNode::Corner,
+            };
+            assert_eq!(m.boundary_node(n), Some(want), "node {n}");
+        }
     }
 
     #[test]
