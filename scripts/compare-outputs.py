@@ -13,7 +13,7 @@ output; their values are masked before hashing (JSON keys `time_ms`, `elapsed_ms
 
 `run` writes every output under DIR/runs/NAME/ and one line per run to DIR/manifest.txt;
 `--meshes` is the folder of shared test meshes (default ../shared/meshes beside the
-repository). The lists of mesh kinds, strategies, objectives, penalties, targets, orders, views,
+repository). The lists of mesh kinds, strategies, objectives, penalties, targets, boundary rules, orders, views,
 metrics, themes, .msh versions and figures are read from the CLI's own help and messages,
 so a list that changes shows up as runs that differ. `compare` prints the runs whose lines
 differ and exits 1, or prints "N runs identical" and exits 0. Give --cli a file named
@@ -133,6 +133,8 @@ class Lists:
         self.penalties = possible_values(smooth, "penalty")
         # a CLI before the targets has no --target: its lists lack those runs
         self.targets = possible_values(smooth, "target") if "--target" in smooth else []
+        # and one before the sliding boundaries has no --boundary
+        self.boundaries = possible_values(smooth, "boundary") if "--boundary" in smooth else []
         self.msh_versions = possible_values(smooth, "msh-version")
         self.grid_kinds = possible_values(help_text(cli, "generate", "grid"), "kind")
         self.plate_kinds = possible_values(help_text(cli, "generate", "plate"), "kind")
@@ -442,6 +444,19 @@ class Matrix:
                        json=False)
         if l.targets:
             smooth("bad-target", tangled["rand2d-tangled"], "--target", "nosuch")
+        # the boundary rules: every strategy on the volume kinds, a feature angle, the refusals
+        for b in l.boundaries:
+            for mesh in ("cube-tangled", "hexgrid-tangled", "mixed-tangled"):
+                for s in l.strategies:
+                    smooth("boundary-%s-%s-%s" % (b, s, mesh), tangled[mesh], "--boundary", b, "--strategy", s)
+                smooth("boundary-%s-text-%s" % (b, mesh), tangled[mesh], "--boundary", b, json=False)
+            for mesh in ("rand2d-tangled", "sphere-%s-tangled" % s_tri):
+                smooth("boundary-%s-%s" % (b, mesh), tangled[mesh], "--boundary", b)
+        if l.boundaries:
+            for a in ("15", "45", "90", "0", "180", "x"):
+                smooth("feature-angle-%s" % a, tangled["hexgrid-tangled"], "--boundary", "slide", "--feature-angle=" + a)
+            smooth("bad-feature-angle-fixed", tangled["hexgrid-tangled"], "--feature-angle", "45")
+            smooth("bad-boundary", tangled["hexgrid-tangled"], "--boundary", "nosuch")
         # the text summary (its timings masked)
         for mesh in ("rand2d-tangled", "plate-%s-o2-tangled" % mixed, "sphere-%s-tangled" % l.surface_kinds[0],
                      "torus-o2-tangled", "rand3d-tangled", "hexgrid-tangled", "mixed-tangled"):

@@ -28,7 +28,7 @@ pub(crate) fn livesu(out: &mut Report) {
          are. \"no finish\" is the defaults with `--finish 0`; \"defaults\" adds the finish (`docs/formulas.md` §4). \
          \"cap\" is the most any smoother can reach with the boundary where it is: a corner whose node and two edge \
          neighbours are fixed has an SJ of at most the sine of the angle between those two edges \
-         (`VolumeMesh::scaled_jacobian_cap`). The published outputs move the boundary (issue 58).\n"
+         (`VolumeMesh::scaled_jacobian_cap`). The published outputs move the boundary; §13 lets it slide.\n"
     );
     let root = meshes_dir().join("livesu2015");
     if !root.is_dir() {
