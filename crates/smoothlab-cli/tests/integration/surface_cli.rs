@@ -181,3 +181,49 @@ fn a_mistyped_coordinate_is_named_when_a_mesh_reads_as_a_surface() {
     let s: Value = serde_json::from_slice(&out.stdout).unwrap();
     assert_eq!(s["surface"], Value::Bool(true));
 }
+
+/// Issue 58's prism: the right prism over the triangle (0,0), (1,0), (0,1), 1 high, each
+/// face cut in two along its edges (18 nodes, 32 triangles, the side faces' centres free),
+/// all facing out: its slanted side's triangles have 35.26° = atan(1/√2), 54.74° and 90°.
+const PRISM_POINTS: [[f64; 3]; 18] = [
+    [0.0, 0.0, 0.0], [0.0, 0.5, 0.0], [0.0, 1.0, 0.0], [0.5, 0.0, 0.0], [0.5, 0.5, 0.0], [1.0, 0.0, 0.0],
+    [0.0, 0.0, 1.0], [0.0, 0.5, 1.0], [0.0, 1.0, 1.0], [0.5, 0.0, 1.0], [0.5, 0.5, 1.0], [1.0, 0.0, 1.0],
+    [0.0, 0.0, 0.5], [0.5, 0.0, 0.5], [1.0, 0.0, 0.5], [0.5, 0.5, 0.5], [0.0, 1.0, 0.5], [0.0, 0.5, 0.5],
+];
+const PRISM_TRIANGLES: [[u32; 3]; 32] = [
+    [1, 3, 0], [1, 4, 3], [2, 4, 1], [4, 5, 3], [6, 9, 7], [9, 10, 7], [7, 10, 8], [9, 11, 10],
+    [0, 3, 13], [0, 13, 12], [12, 13, 9], [12, 9, 6], [3, 5, 14], [3, 14, 13], [13, 14, 11], [13, 11, 9],
+    [5, 4, 15], [5, 15, 14], [14, 15, 10], [14, 10, 11], [4, 2, 16], [4, 16, 15], [15, 16, 8], [15, 8, 10],
+    [2, 1, 17], [2, 17, 16], [16, 17, 7], [16, 7, 8], [1, 0, 12], [1, 12, 17], [17, 12, 6], [17, 6, 7],
+];
+
+/// A closed surface with sharp corners reads as valid, its edges as feature curves (all
+/// 15 nodes on them fixed, from a file without fixed flags), and `smooth` keeps it so:
+/// `stats` read 9 of 32 inverted (angles down to −90°) and one pass turned triangles
+/// inward, when the corners made the file read as tangled.
+#[test]
+fn a_prism_reads_as_valid_and_smoothing_keeps_it() {
+    let d = dir("prism");
+    let prism = d.join("prism.off");
+    let mut off = String::from("OFF\n18 32 0\n");
+    off.extend(PRISM_POINTS.iter().map(|[x, y, z]| format!("{x} {y} {z}\n")));
+    off.extend(PRISM_TRIANGLES.iter().map(|[a, b, c]| format!("3 {a} {b} {c}\n")));
+    std::fs::write(&prism, off).unwrap();
+    let slanted = (1.0 / 2f64.sqrt()).atan().to_degrees();
+    let s = stats(&prism);
+    assert_eq!((s["inverted"].as_u64(), s["free_nodes"].as_u64()), (Some(0), Some(3)), "{s}");
+    assert!((s["min_angle_deg"].as_f64().unwrap() - slanted).abs() < 1e-9, "{s}");
+    assert!((s["max_angle_deg"].as_f64().unwrap() - 90.0).abs() < 1e-9, "{s}");
+    for (out, passes) in [("once.off", "1"), ("thrice.vtk", "3")] {
+        let out = d.join(out);
+        let report: Value =
+            serde_json::from_str(&ok(&["smooth", p(&prism), "-o", p(&out), "--passes", passes, "--json"])).unwrap();
+        let f = &report["final"];
+        assert_eq!(f["inverted"], 0, "{f}");
+        assert!((f["min_angle_deg"].as_f64().unwrap() - slanted).abs() < 1e-9, "{f}");
+        // read back, without fixed flags (OFF) or with them (VTK)
+        let back = stats(&out);
+        assert_eq!(back["inverted"], 0, "{back}");
+        assert!((back["min_angle_deg"].as_f64().unwrap() - slanted).abs() < 1e-9, "{back}");
+    }
+}

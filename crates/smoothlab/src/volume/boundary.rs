@@ -256,7 +256,7 @@ impl Sliding {
         let part: Vec<u32> = (0..faces.len() as u32).map(|f| root(&mut parent, f)).collect();
         let kinds: Vec<ElementKind> =
             faces.iter().map(|f| if f.len() == 4 { ElementKind::Quad4 } else { ElementKind::Tri3 }).collect();
-        let facets = Facets::new(points, &kinds, |e| faces[e], |e| part[e], |_| 0);
+        let facets = Facets::new(points, &kinds, |e| faces[e], |e| part[e], |_| 0).with_normals_across_parts();
         let reference = Reference {
             facets,
             points: points.to_vec(),

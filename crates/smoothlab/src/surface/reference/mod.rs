@@ -178,13 +178,12 @@ pub struct Facets {
     /// by its area), interpolated across a triangle for the normal at a point: smooth
     /// over the facets, and right where one facet of a tangled file is turned over.
     vertex_normal: Vec<DVec3>,
-    /// The same for a vertex on a fold that is a feature curve (the surface turned back on
-    /// itself), per side: keyed by (vertex, side), sorted; so a strip folded back on itself
-    /// does not average its two sheets' normals to nothing. A crease (a cylinder's rim)
-    /// keeps one normal at a vertex, between its parts', which faces the way of both.
-    side_normal: Vec<((u32, u32), DVec3)>,
-    /// Per triangle, its side of the folds that are feature curves (its element's).
-    side: Vec<u32>,
+    /// The same for a vertex on a feature curve, per smooth part: keyed by (vertex, part),
+    /// sorted. A point of a facet takes its own part's normals, not a blend across the
+    /// curve: three faces of a solid meeting at a corner (or two at an edge turning past a
+    /// right angle) have area-weighted sums that face away from one of them, and a strip
+    /// folded back on itself would average its two sheets' normals to nothing.
+    part_normal: Vec<((u32, u32), DVec3)>,
     /// Per triangle of a quadratic element, its element's curved patch and where the
     /// triangle's vertices are in the patch's parameters (all `None` when the patches are
     /// not used: linear elements, or a folded one in the file).
@@ -217,6 +216,57 @@ fn area_vector(pts: &[DVec3], t: &[u32; 3], unit: f64) -> DVec3 {
 
 /// Steps the walk takes before the spatial index is asked instead.
 const MAX_WALK: usize = 256;
+
+/// Steps of the search for a direction that sees all of a vertex's triangles from outside
+/// ([`Facets::sees_from_outside`]): it finds one whose worst triangle is seen at more than
+/// about 1/√steps radians (3.6° for 256), when there is one.
+const MAX_SEE_STEPS: usize = 256;
+
+/// The unit normals of the triangles round each vertex whose triangles carry more than
+/// one key (`key`, per triangle: its smooth part, or its side of the folds), per key:
+/// their area vectors (`area`) summed, keyed by (vertex, key), sorted.
+fn keyed_normals(
+    triangles: &[[u32; 3]],
+    key: &[u32],
+    vertices: usize,
+    area: impl Fn(&[u32; 3]) -> DVec3,
+) -> Vec<((u32, u32), DVec3)> {
+    let mut first = vec![u32::MAX; vertices];
+    let mut mixed = vec![false; vertices];
+    for (tri, &k) in triangles.iter().zip(key) {
+        for &v in tri {
+            let f = &mut first[v as usize];
+            mixed[v as usize] |= *f != u32::MAX && *f != k;
+            *f = k;
+        }
+    }
+    let mut keyed: Vec<((u32, u32), DVec3)> = Vec::new();
+    for (tri, &k) in triangles.iter().zip(key) {
+        let n = area(tri);
+        keyed.extend(tri.iter().filter(|&&v| mixed[v as usize]).map(|&v| ((v, k), n)));
+    }
+    sort_stable_by_key(&mut keyed, |&((v, k), _)| pair_key(v, k));
+    keyed.dedup_by(|(k1, n1), (k0, n0)| {
+        let same = k1 == k0;
+        if same {
+            *n0 += *n1;
+        }
+        same
+    });
+    for (_, n) in &mut keyed {
+        *n = crate::numeric::direction(*n);
+    }
+    keyed
+}
+
+/// The unit normal at vertex `v` of its triangles with key `k`: from `keyed`
+/// ([`keyed_normals`]) where its triangles carry several keys, else `vertex_normal`.
+fn keyed_normal(keyed: &[((u32, u32), DVec3)], vertex_normal: &[DVec3], v: u32, k: u32) -> DVec3 {
+    match keyed.binary_search_by_key(&(v, k), |&(key, _)| key) {
+        Ok(i) => keyed[i].1,
+        Err(_) => vertex_normal[v as usize],
+    }
+}
 
 impl Facets {
     /// The facets of the elements (`kinds`, each element's nodes by `element`, its smooth
@@ -318,38 +368,14 @@ impl Facets {
         for n in &mut vertex_normal {
             *n = crate::numeric::direction(*n);
         }
-        let mut first_side = vec![u32::MAX; pts.len()];
-        let mut mixed = vec![false; pts.len()];
-        for (tri, &k) in triangles.iter().zip(&sides) {
-            for &v in tri {
-                let f = &mut first_side[v as usize];
-                mixed[v as usize] |= *f != u32::MAX && *f != k;
-                *f = k;
-            }
-        }
-        let mut side_normal: Vec<((u32, u32), DVec3)> = Vec::new();
-        for (tri, &k) in triangles.iter().zip(&sides) {
-            let n = area(tri);
-            side_normal.extend(tri.iter().filter(|&&v| mixed[v as usize]).map(|&v| ((v, k), n)));
-        }
-        sort_stable_by_key(&mut side_normal, |&((v, k), _)| pair_key(v, k));
-        side_normal.dedup_by(|(k1, n1), (k0, n0)| {
-            let same = k1 == k0;
-            if same {
-                *n0 += *n1;
-            }
-            same
-        });
-        for (_, n) in &mut side_normal {
-            *n = crate::numeric::direction(*n);
-        }
+        let part_normal = keyed_normals(&triangles, &parts, pts.len(), area);
+        let side_normal = keyed_normals(&triangles, &sides, pts.len(), area);
         let mut facets = Facets {
             points: pts,
             triangles,
             part: parts,
             vertex_normal,
-            side_normal,
-            side: sides,
+            part_normal,
             patch,
             patches,
             first_triangle,
@@ -358,10 +384,22 @@ impl Facets {
             vert_tris,
             grid,
         };
-        // a folded element: a flat triangle whose normal disagrees with a vertex's
-        let folded = facets.triangles.iter().zip(&facets.side).any(|(tri, &k)| {
-            let n = area_vector(&facets.points, tri, unit);
-            tri.iter().any(|&v| n.dot(facets.vertex_normal_in(v, k)) <= 0.0)
+        // a folded element: a flat triangle whose normal disagrees with a vertex's there, on
+        // its side of the folds that are feature curves. Across a crease that normal is a
+        // blend of the parts', which past a right angle may face away from one of them
+        // though nothing folds (a sharp corner or edge of a solid): where the vertex is on
+        // a crease, the triangle is folded only if it disagrees with its own part's normal
+        // too, or if no direction sees the vertex's triangles on its side all from outside
+        // (a fan folded over itself)
+        let folded = (0..facets.triangles.len()).any(|t| {
+            let tri = facets.triangles[t];
+            let n = area_vector(&facets.points, &tri, unit);
+            tri.iter().any(|&v| {
+                let k = sides[t];
+                n.dot(keyed_normal(&side_normal, &facets.vertex_normal, v, k)) <= 0.0
+                    && (n.dot(facets.vertex_normal_on(v, facets.part[t])) <= 0.0
+                        || !facets.sees_from_outside(v, |u| sides[u as usize] == k))
+            })
         });
         if folded {
             facets.patch.iter_mut().for_each(|p| *p = None);
@@ -370,22 +408,46 @@ impl Facets {
         facets
     }
 
+    /// The facets with a point's normal blended across the feature curves (its
+    /// triangle's vertices' normals of all their triangles), as a volume's skin has it: its
+    /// surface nodes slide in the tangent planes so blended near the curves, which its
+    /// measurements were taken with (Livesu et al.'s block stress test untangles so, and
+    /// keeps 3 elements inverted with each part's own normals).
+    pub fn with_normals_across_parts(mut self) -> Facets {
+        self.part_normal = Vec::new();
+        self
+    }
+
     /// Whether an element of the file is folded: a flat triangle whose normal disagrees
     /// with one of its vertices' (then a surface is fitted through the nodes, [`Fitted`]).
     pub fn is_folded(&self) -> bool {
         self.folded
     }
 
-    /// The unit normal at vertex `v` of its triangles on side `k` ([`Facets::side_normal`]
-    /// where it lies on a fold that is a feature curve, else [`Facets::vertex_normal`]).
-    fn vertex_normal_in(&self, v: u32, k: u32) -> DVec3 {
-        if self.side_normal.is_empty() {
-            return self.vertex_normal[v as usize];
+    /// The unit normal at vertex `v` of its triangles on smooth part `k`
+    /// ([`Facets::part_normal`] where it lies on a feature curve, else
+    /// [`Facets::vertex_normal`]).
+    fn vertex_normal_on(&self, v: u32, k: u32) -> DVec3 {
+        keyed_normal(&self.part_normal, &self.vertex_normal, v, k)
+    }
+
+    /// Whether some direction sees every triangle round vertex `v` that `take`s from
+    /// outside (each triangle's normal within a right angle of it): a sharp corner's faces
+    /// turn past a right angle from one another and are seen so, a fan folded over itself
+    /// is not. Sought by the perceptron's rule from the normal of all of them: add the
+    /// normal of the triangle seen worst, at most [`MAX_SEE_STEPS`] times.
+    fn sees_from_outside(&self, v: u32, take: impl Fn(u32) -> bool) -> bool {
+        let normals: Vec<DVec3> =
+            self.around(v as usize).iter().filter(|&&t| take(t)).map(|&t| self.normal(t)).filter(|n| *n != DVec3::ZERO).collect();
+        let mut d = self.vertex_normal[v as usize];
+        for _ in 0..MAX_SEE_STEPS {
+            let worst = normals.iter().min_by(|a, b| d.dot(**a).total_cmp(&d.dot(**b)));
+            match worst {
+                Some(&n) if d.dot(n) <= 0.0 => d += n,
+                _ => return true,
+            }
         }
-        match self.side_normal.binary_search_by_key(&(v, k), |&(key, _)| key) {
-            Ok(i) => self.side_normal[i].1,
-            Err(_) => self.vertex_normal[v as usize],
-        }
+        false
     }
 
     /// A triangle with vertex `v`, to start the walk from a node where it was loaded
@@ -438,7 +500,7 @@ impl Facets {
         }
         let (point, bary) = closest_on_triangle(p, self.corners(t));
         let tri = self.triangles[t as usize];
-        let blended: DVec3 = (0..3).map(|i| bary[i] * self.vertex_normal_in(tri[i], self.side[t as usize])).sum();
+        let blended: DVec3 = (0..3).map(|i| bary[i] * self.vertex_normal_on(tri[i], self.part[t as usize])).sum();
         let normal = Some(crate::numeric::direction(blended)).filter(|n| *n != DVec3::ZERO).unwrap_or_else(|| self.normal(t));
         Projected { point, normal, face: t }
     }
@@ -604,6 +666,60 @@ mod tests {
                 let walked = f.project(p, hint);
                 assert!(((walked.point - p).length() - brute).abs() < 1e-12, "{p} from {hint}");
             }
+        }
+    }
+
+    /// The right-corner tetrahedron (the origin and the three unit points), outward.
+    fn right_corner_tetrahedron(part: [u32; 4]) -> Facets {
+        let p = [DVec3::ZERO, DVec3::X, DVec3::Y, DVec3::Z];
+        let flat = [0, 2, 1, 0, 1, 3, 0, 3, 2, 1, 2, 3];
+        Facets::new(&p, &[ElementKind::Tri3; 4], |e| &flat[3 * e..3 * e + 3], |e| part[e], |_| 0)
+    }
+
+    /// At the corner (1, 0, 0) of the right-corner tetrahedron the area vectors of its
+    /// three faces, −z, −y and (1, 1, 1) (the slanted face's twice area √3 along its unit
+    /// normal), sum to +x, at a right angle to the two right faces: across the edges the
+    /// blend faces neither way. Read as one smooth part, the solid is folded; with its
+    /// edges as feature curves each face is a part, every point of a face has the face's
+    /// normal, and nothing is folded (a direction sees the three faces from outside).
+    #[test]
+    fn a_sharp_corner_is_not_a_fold_and_takes_its_own_faces_normals() {
+        assert!(right_corner_tetrahedron([0; 4]).is_folded(), "one part: the blend faces away");
+        let f = right_corner_tetrahedron([0, 1, 2, 3]);
+        assert!(!f.is_folded());
+        let s = 3f64.sqrt().recip();
+        let faces = [
+            (0.25 * (DVec3::X + DVec3::Y), -DVec3::Z),
+            (0.25 * (DVec3::X + DVec3::Z), -DVec3::Y),
+            (0.25 * (DVec3::Y + DVec3::Z), -DVec3::X),
+            (DVec3::splat(1.0 / 3.0), DVec3::splat(s)),
+        ];
+        for (t, (centre, normal)) in faces.into_iter().enumerate() {
+            // a point of the face, its corners and a point on each edge
+            let [a, b, c] = f.corners(t as u32);
+            for p in [centre, a, b, c, 0.5 * (a + b), 0.5 * (b + c), 0.5 * (c + a)] {
+                let q = f.project(p, t as u32);
+                assert!((q.normal - normal).length() < 1e-15, "face {t} at {p}: {}", q.normal);
+            }
+        }
+    }
+
+    /// A fan of six triangles round a vertex in a plane, one of them turned over: it is
+    /// folded whether its edges are read as creases (each triangle a part of its own, as a
+    /// tangle's angles would make them) or not, since no direction sees both +z and −z
+    /// from outside.
+    #[test]
+    fn a_turned_triangle_is_folded_even_between_creases() {
+        let mut p = vec![DVec3::ZERO];
+        p.extend((0..6).map(|i| {
+            let a = i as f64 * std::f64::consts::FRAC_PI_3;
+            DVec3::new(libm::cos(a), libm::sin(a), 0.0)
+        }));
+        let mut flat: Vec<u32> = (0..6u32).flat_map(|i| [0, 1 + i, 1 + (i + 1) % 6]).collect();
+        flat.swap(3 * 2 + 1, 3 * 2 + 2);
+        for parts in [[0; 6], [0, 1, 2, 3, 4, 5]] {
+            let f = Facets::new(&p, &[ElementKind::Tri3; 6], |e| &flat[3 * e..3 * e + 3], |e| parts[e], |_| 0);
+            assert!(f.is_folded(), "parts {parts:?}");
         }
     }
 
