@@ -129,9 +129,17 @@ function showColourKey(on) {
   return true;
 }
 
+/** The key of a sliding boundary's marks, in words, shown while a volume mesh's boundary
+ * slides (the pictures draw its feature curves, corners and sliding nodes). */
+function showBoundaryKey() {
+  const on = state.volume && state.boundary !== 'fixed';
+  $('boundary-key').hidden = !on;
+}
+
 /** `refits`: how many times more the canvases may be fitted again to what the tables and
  * the colour key took (each fit only shrinks them or leaves them, so this ends). */
 export async function redrawMeshes(refits = 2) {
+  showBoundaryKey();
   fitEmbed();
   const t0 = now();
   // a phone shows one panel at a time: the size is the shown one's (both are drawn alike)
