@@ -494,7 +494,7 @@ const SLIDE_DOTS_MIN_EDGE_PX: f64 = 9.0;
 fn draw_marks(pixmap: &mut Pixmap, faces: &Faces, marks: &[Mark], proj: &Projection, s: f32, dots: bool, clip: Option<&Mask>) {
     let at = |n: u32| -> Option<(f32, f32)> {
         let d = proj.to_device(*faces.points.get(n as usize)?);
-        (d.is_finite() && d.x.abs() < FAR_PX as f64 && d.y.abs() < FAR_PX as f64).then(|| (d.x as f32, d.y as f32))
+        (d.is_finite() && d.x.abs() < FAR_PX as f64 && d.y.abs() < FAR_PX as f64).then_some((d.x as f32, d.y as f32))
     };
     let stroke = |w: f32| Stroke { width: w, line_cap: tiny_skia::LineCap::Round, ..Default::default() };
     let mut lines = PathBuilder::new();
