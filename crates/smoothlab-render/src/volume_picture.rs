@@ -71,7 +71,7 @@ pub struct CutFaces {
 }
 
 impl CutFaces {
-    /// The faces over `points`, for [`render_surface`].
+    /// The faces over `points`, for [`render_surface`](crate::render_surface).
     pub fn faces<'a>(&'a self, points: &'a [DVec3]) -> Faces<'a> {
         Faces {
             points,
