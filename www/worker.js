@@ -66,6 +66,7 @@ function replace(next) {
     volume: isVolume(),
     notPlanar: isSpace() ? pg.notPlanar() ?? null : null,
     fileNote: isSpace() ? pg.fileNote() ?? null : null,
+    slideRefused: pg.slideRefused() ?? null,
     nodes: isSpace() ? null : pg.nodeCount(),
   };
 }

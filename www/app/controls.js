@@ -13,6 +13,7 @@ export function readSettings() {
     order: $('order').value,
     max_iter: Number($('maxiter').value),
     target: $('target').value,
+    boundary: $('boundary').value,
     compare: COMPARE.map((_, i) => readChoice(i)),
   };
 }
@@ -62,6 +63,8 @@ export function buildControls(c) {
   fillMenu($('strategy'), c.strategies.map((s) => [s.name, s.label, s.title]), c.settings.strategy);
   fillMenu($('order'), c.orders.map((o) => [o.name, o.label, o.title]), c.settings.order);
   fillMenu($('target'), c.targets.map((t) => [t.name, t.label, t.words]), c.settings.target);
+  fillMenu($('boundary'), c.boundaries.map((b) => [b.name, b.label, b.words]), c.settings.boundary);
+  showBoundaryReasons(state.slideRefused);
   showStrategyReasons();
   // compare: every objective and penalty design the core offers, by its names
   for (const [i, [obj, pen]] of COMPARE.entries()) {
@@ -167,6 +170,66 @@ export function changeTarget() {
     const t = state.controls.targets.find((x) => x.name === $('target').value);
     setStatus(`Target: ${t.label.toLowerCase()}. ${t.words}`);
   }).catch(report);
+}
+
+/** Where the mesh's boundary cannot slide (`refused`, the core's reason: planar, a
+ * surface, quadratic), the boundary menu shows fixed, disabled, saying why, and gets the
+ * user's choice back with a mesh whose boundary slides (as the target menu with a
+ * strategy that takes no target). */
+export function showBoundaryReasons(refused) {
+  state.slideRefused = refused ?? null;
+  const b = $('boundary');
+  const fixed = state.controls.boundaries[0].name;
+  if (refused && !b.disabled) {
+    b.dataset.chosen = b.value;
+    b.value = fixed;
+  } else if (!refused && b.disabled) {
+    b.value = b.dataset.chosen || fixed;
+  }
+  b.disabled = Boolean(refused);
+  $('boundary-why').textContent = refused ? `Fixed here: ${refused}.` : '';
+  showBoundaryWords();
+}
+
+/** What the chosen boundary rule does, in a sentence beside its menu (the core's words). */
+export function showBoundaryWords() {
+  const r = state.controls.boundaries.find((x) => x.name === $('boundary').value);
+  $('boundary-words').textContent = r ? r.words : '';
+  $('boundary').title = $('boundary-why').textContent || (r ? r.words : '');
+}
+
+/** "96 nodes slide on the boundary, 36 along 12 feature curves; 8 corners stay": what a
+ * side's boundary report (the command-line tool's) counts. */
+export function boundaryCounts(b) {
+  const held = b.held ? `, ${b.held} fixed by the file` : '';
+  return `${b.surface_nodes} nodes slide on the boundary, ${b.curve_nodes} along ${b.curves} feature curve${b.curves === 1 ? '' : 's'}; ${b.corners} corner${b.corners === 1 ? '' : 's'} stay${b.corners === 1 ? 's' : ''}${held}`;
+}
+
+/** A new boundary rule: the engine takes it on the mesh as loaded (or as last perturbed),
+ * whose boundary sliding nodes stay on, and both sides start again from that mesh. */
+export function changeBoundary({ keepHash = false } = {}) {
+  showBoundaryWords();
+  const stopped = endRun();
+  return serial(async () => {
+    const settings = readSettings();
+    await engine.call('settings', settings);
+    state.boundary = settings.boundary;
+    await redrawAll();
+    clearError();
+    const r = state.controls.boundaries.find((x) => x.name === settings.boundary);
+    let counts = '';
+    if (settings.boundary !== 'fixed') {
+      const t = await engine.call('stats', 'b');
+      if (t.boundary) counts = ` ${boundaryCounts(t.boundary)}.`;
+    }
+    setStatus(`Boundary: ${r.label.toLowerCase()}.${counts} Both sides start again from the mesh as loaded.${stopped}`);
+    if (!keepHash) await writePermalink();
+  }).catch(report);
+}
+
+/** Whether the engine's boundary rule is what the menu says. */
+export function sameBoundary() {
+  return state.boundary === $('boundary').value;
 }
 
 /** Checks one typed control with the core's rules; shows or clears its message. */

@@ -100,6 +100,12 @@ function fitFrame() {
   };
   const short = Math.min(window.innerWidth, window.innerHeight);
   const side = (s) => Math.min(s.w, s.h);
+  // with the boundary's key under the meshes, the quality's key is counted as shown
+  // whether or not it is: it shows only on canvases too small for the colour bar, so a fit
+  // that left it out would grow the canvases, hide it, and the next fit shrink them again
+  const colourKey = $('colour-key');
+  const countKey = !$('boundary-key').hidden && colourKey.hidden;
+  if (countKey) colourKey.hidden = false;
   let best = null;
   for (const tight of [false, true]) {
     for (const stacked of n > 1 ? [false, true] : [false]) {
@@ -108,6 +114,7 @@ function fitFrame() {
     }
     if (side(best) >= 0.4 * short) break;
   }
+  if (countKey) colourKey.hidden = true;
   body.classList.toggle('stacked', best.stacked);
   body.classList.toggle('tight', best.tight);
   for (const c of canvases) {
@@ -129,9 +136,17 @@ function showColourKey(on) {
   return true;
 }
 
+/** The key of a sliding boundary's marks, in words, shown while a volume mesh's boundary
+ * slides (the pictures draw its feature curves, corners and sliding nodes). */
+function showBoundaryKey() {
+  const on = state.volume && state.boundary !== 'fixed';
+  $('boundary-key').hidden = !on;
+}
+
 /** `refits`: how many times more the canvases may be fitted again to what the tables and
  * the colour key took (each fit only shrinks them or leaves them, so this ends). */
 export async function redrawMeshes(refits = 2) {
+  showBoundaryKey();
   fitEmbed();
   const t0 = now();
   // a phone shows one panel at a time: the size is the shown one's (both are drawn alike)

@@ -1,7 +1,7 @@
 // Loading: a sample, a Gmsh file of the site or the user's file into the engine; the page's
 // planar, surface or volume mode; the previous mesh kept when a load fails.
 import { $, COMPARE, clearError, engine, metrics, now, report, serial, setStatus, showError, state } from './state.js';
-import { readChoice, readSettings } from './controls.js';
+import { readChoice, readSettings, showBoundaryReasons } from './controls.js';
 import { writePermalink } from './permalink.js';
 import { startHelper } from './workers.js';
 import { NODE_HINT, redrawAll } from './draw.js';
@@ -10,7 +10,11 @@ import { showPickNote } from './pointer.js';
 
 export async function loadSource(src, call = (...a) => engine.call(...a)) {
   const loaded = await sendSource(src, call);
-  await call('settings', readSettings());
+  // the boundary menu for this mesh first: fixed where its boundary cannot slide
+  showBoundaryReasons(loaded.slideRefused ?? null);
+  const settings = readSettings();
+  await call('settings', settings);
+  state.boundary = settings.boundary;
   state.compare = COMPARE.map((_, i) => readChoice(i));
   state.lastGood = src;
   state.node = null;

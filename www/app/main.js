@@ -1,6 +1,6 @@
 // The playground page's entry: wires the controls, fills the menus and opens the address.
 import { $, COMPARE, EMBED, HOSTED, PARAMS, FIGURE_HASH, SETTINGS, VIEWS, engine, gallery, metrics, now, report, serial, showError, state, view } from './state.js';
-import { CHECKED, buildControls, changeCompare, changeTarget, checkControl, showStrategyReasons } from './controls.js';
+import { CHECKED, buildControls, changeBoundary, changeCompare, changeTarget, checkControl, showStrategyReasons } from './controls.js';
 import { applyHash, copyLink, markAddressHandled, onAddressChange, openHash, openView, updatePermalink, writePermalink } from './permalink.js';
 import { closeTour, drawFigurePicture, fillTourMenu, goFigure, openFigure } from './tour.js';
 import { load, readFiles } from './loading.js';
@@ -113,6 +113,7 @@ export function wire() {
   $('tour-close').addEventListener('click', closeTour);
   $('strategy').addEventListener('change', showStrategyReasons);
   $('target').addEventListener('change', changeTarget);
+  $('boundary').addEventListener('change', () => changeBoundary());
   for (const id of Object.keys(CHECKED)) {
     $(id).addEventListener('input', () => checkControl(id).then(() => updatePermalink()).catch(report));
   }

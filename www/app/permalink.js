@@ -1,7 +1,7 @@
 // The address: the permalink written and read by the core's encoder (crates/smoothlab-page/src/lab/permalink.rs),
 // what a hash opens, the embedded views, Back and Forward.
 import { $, COMPARE, EMBED, FIGURE_HASH, SETTINGS, engine, gallery, report, serial, setStatus, showError, state, view } from './state.js';
-import { CHECKED, changeCompare, invalidMessage, readChoice, readSettings, showPenaltyReasons, showStrategyReasons } from './controls.js';
+import { CHECKED, changeBoundary, changeCompare, invalidMessage, readChoice, readSettings, sameBoundary, showBoundaryReasons, showPenaltyReasons, showStrategyReasons } from './controls.js';
 import { openFigure } from './tour.js';
 import { labelOf, load, selectValueOf } from './loading.js';
 import { perturbWith, smooth } from './run.js';
@@ -98,6 +98,7 @@ export async function applyHash(hash = location.hash) {
     threshold: c.threshold_deg,
     order: c.order,
     target: c.target,
+    boundary: c.boundary,
     passes: p.passes,
     maxiter: c.max_iter,
     amount: p.amount,
@@ -110,6 +111,8 @@ export async function applyHash(hash = location.hash) {
   // the target's menu is enabled again, so that the hash's target is what it shows (the
   // strategy's reasons, below, disable it where the strategy takes no target)
   $('target').disabled = false;
+  // so is the boundary's (the mesh's reasons, below and at its load, disable it again)
+  $('boundary').disabled = false;
   for (const id of SETTINGS) {
     const v = String(values[id]);
     const el = $(id);
@@ -127,6 +130,7 @@ export async function applyHash(hash = location.hash) {
   $('amount-out').textContent = $('amount').value;
   showStrategyReasons();
   showPenaltyReasons();
+  showBoundaryReasons(state.slideRefused);
   const extra = { perturbed: p.perturbed ? { amount: p.amount, seed: String(p.seed) } : null, node: p.node, camera: p.camera, cut: p.cut };
   if (p.sample === null) return { src: fallback, ...extra };
   const gmsh = state.controls.gmsh_samples.find((g) => g.name === p.sample);
@@ -142,6 +146,7 @@ export async function openHash({ src, error, perturbed, node, camera, cut }, { k
   const same = state.lastGood && selectValueOf(state.lastGood) === selectValueOf(src) && selectValueOf(src) !== '';
   if (!same || state.perturbed || perturbed) await load(src, labelOf(src), { keepHash: true });
   else if (!sameCompare()) await changeCompare();
+  else if (!sameBoundary()) await changeBoundary({ keepHash: true });
   if (perturbed) await perturbWith(perturbed.amount, perturbed.seed, { keepHash: true });
   if (state.surface) await openView3d(camera, cut);
   if (node !== null && node !== undefined) await selectNode(node, { keepHash: true });

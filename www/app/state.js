@@ -11,7 +11,7 @@ export const $ = (id) => document.getElementById(id);
 
 /** The sample the page opens on: the first of the engine's gallery (`Sample::DEFAULT`). */
 export const gallery = { defaultSample: null };
-export const SETTINGS = ['strategy', 'target', 'threshold', 'order', 'passes', 'maxiter', 'amount', 'seed', 'objective-a', 'penalty-a', 'objective-b', 'penalty-b'];
+export const SETTINGS = ['strategy', 'target', 'boundary', 'threshold', 'order', 'passes', 'maxiter', 'amount', 'seed', 'objective-a', 'penalty-a', 'objective-b', 'penalty-b'];
 /** The compare menus of the left (A) and right (B) panel. */
 export const COMPARE = [['objective-a', 'penalty-a'], ['objective-b', 'penalty-b']];
 export const PARAMS = new URLSearchParams(location.search);
@@ -61,6 +61,8 @@ export const state = {
   lastGood: null, // the last source that loaded: reloaded after a panic
   node: null, // the node whose level sets are shown
   compare: null, // what the engine smooths each side with (as the compare menus said when last sent)
+  boundary: 'fixed', // what the engine's volume boundary does (as the boundary menu said when last sent)
+  slideRefused: null, // why the mesh on screen's boundary cannot slide (planar, a surface, quadratic), or null
   running: false,
   cancel: false,
   frame: { w: 0, h: 0, dpr: 1 }, // the last mesh frame (pointer positions map through it)

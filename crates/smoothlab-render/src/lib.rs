@@ -81,8 +81,8 @@ pub use theme::Theme;
 pub use volume_picture::{Cut, CutFaces, VolumePicture};
 pub use view::{Frame, View, ZoomPan};
 pub use view3d::{
-    draw_node_mark, newell_normal, render_surface, shade, Camera, Faces, Projection, SurfaceView, AMBIENT, BACK_FACE, DEGREES_PER_PIXEL, MAX_DRAG_PITCH,
-    ZOOM_RANGE,
+    draw_node_mark, newell_normal, render_surface, render_surface_marked, shade, Camera, FaceMarks, Faces, Mark, NodeMark, Projection, SurfaceView, AMBIENT,
+    BACK_FACE, DEGREES_PER_PIXEL, MARK_LINE_RGB, MAX_DRAG_PITCH, ZOOM_RANGE,
 };
 
 /// The picture as PNG bytes, for the CLI (native builds only: the page hands the

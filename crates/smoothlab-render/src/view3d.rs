@@ -443,9 +443,107 @@ pub fn draw_node_mark(pixmap: &mut Pixmap, proj: &Projection, node: DVec3, star:
     }
 }
 
+/// What a node mark of [`FaceMarks`] says of its node.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum NodeMark {
+    /// The node stays (a corner of a sliding boundary, or fixed by the file): a dark
+    /// square with a white rim.
+    Stays,
+    /// The node slides (along a feature curve or on the boundary): a small white dot
+    /// with a dark rim, left out where the faces are drawn too small for it.
+    Slides,
+}
+
+/// One mark of [`FaceMarks`]: a line between two nodes, or a node.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Mark {
+    /// A feature curve's segment: a thick reddish-purple line with a dark outline.
+    Line(u32, u32),
+    Node(u32, NodeMark),
+}
+
+/// The colour of a [`Mark::Line`]: Okabe and Ito's reddish purple, apart from the quality
+/// colours, the chosen node's orange and the inverted elements' red.
+pub const MARK_LINE_RGB: [u8; 3] = [204, 121, 167];
+
+/// Marks drawn on a picture of [`Faces`] (a sliding boundary's feature curves, corners
+/// and sliding nodes), each right after a face it lies on, in the faces' depth order:
+/// a nearer face covers them as it covers the faces behind it, and one on several faces
+/// is drawn after the nearest of them too. Face `f`'s marks are
+/// `marks[start[f]..start[f + 1]]`.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct FaceMarks {
+    pub start: Vec<u32>,
+    pub marks: Vec<Mark>,
+}
+
+impl FaceMarks {
+    fn of(&self, f: usize) -> &[Mark] {
+        match (self.start.get(f), self.start.get(f + 1)) {
+            (Some(&a), Some(&b)) => self.marks.get(a as usize..b as usize).unwrap_or(&[]),
+            _ => &[],
+        }
+    }
+}
+
+/// The smallest mean length of the faces' edges on screen, CSS pixels, at which
+/// [`NodeMark::Slides`] dots are drawn: below it they would cover the faces.
+const SLIDE_DOTS_MIN_EDGE_PX: f64 = 9.0;
+
+/// Draws face `f`'s marks (see [`FaceMarks`]); `dots`: the sliding nodes' dots too.
+fn draw_marks(pixmap: &mut Pixmap, faces: &Faces, marks: &[Mark], proj: &Projection, s: f32, dots: bool, clip: Option<&Mask>) {
+    let at = |n: u32| -> Option<(f32, f32)> {
+        let d = proj.to_device(*faces.points.get(n as usize)?);
+        (d.is_finite() && d.x.abs() < FAR_PX as f64 && d.y.abs() < FAR_PX as f64).then_some((d.x as f32, d.y as f32))
+    };
+    let stroke = |w: f32| Stroke { width: w, line_cap: tiny_skia::LineCap::Round, ..Default::default() };
+    let mut lines = PathBuilder::new();
+    for m in marks {
+        if let Mark::Line(a, b) = *m {
+            if let (Some(p), Some(q)) = (at(a), at(b)) {
+                lines.move_to(p.0, p.1);
+                lines.line_to(q.0, q.1);
+            }
+        }
+    }
+    if let Some(path) = lines.finish() {
+        let [r, g, b] = MARK_LINE_RGB;
+        pixmap.stroke_path(&path, &solid(rgba(20, 20, 20, 230)), &stroke(5.0 * s), Transform::identity(), clip);
+        pixmap.stroke_path(&path, &solid(rgba(r, g, b, 255)), &stroke(3.2 * s), Transform::identity(), clip);
+    }
+    for m in marks {
+        let Mark::Node(n, kind) = *m else { continue };
+        let Some((x, y)) = at(n) else { continue };
+        let mut pb = PathBuilder::new();
+        let (fill, rim) = match kind {
+            NodeMark::Stays => {
+                let h = 4.2 * s;
+                if let Some(r) = Rect::from_xywh(x - h, y - h, 2.0 * h, 2.0 * h) {
+                    pb.push_rect(r);
+                }
+                (rgba(20, 20, 20, 255), rgba(255, 255, 255, 255))
+            }
+            NodeMark::Slides if dots => {
+                pb.push_circle(x, y, 2.7 * s);
+                (rgba(255, 255, 255, 255), rgba(20, 20, 20, 255))
+            }
+            NodeMark::Slides => continue,
+        };
+        if let Some(path) = pb.finish() {
+            pixmap.fill_path(&path, &solid(fill), FillRule::Winding, Transform::identity(), clip);
+            pixmap.stroke_path(&path, &solid(rim), &stroke(1.4 * s), Transform::identity(), clip);
+        }
+    }
+}
+
 /// Draws `faces` into `pixmap` as `opts` says (see the module's notes on the projection,
 /// the depth sort and the light) and returns the projection it used, for picking.
 pub fn render_surface(pixmap: &mut Pixmap, faces: &Faces, opts: &SurfaceView) -> Projection {
+    render_surface_marked(pixmap, faces, opts, None)
+}
+
+/// [`render_surface`] with `marks` drawn with the faces they lie on ([`FaceMarks`]).
+pub fn render_surface_marked(pixmap: &mut Pixmap, faces: &Faces, opts: &SurfaceView, marks: Option<&FaceMarks>) -> Projection {
     let s = sane_dpr(opts.dpr);
     let frame = opts.frame.unwrap_or(Frame::of_pixmap(pixmap, s));
     let theme = &opts.theme;
@@ -480,6 +578,19 @@ pub fn render_surface(pixmap: &mut Pixmap, faces: &Faces, opts: &SurfaceView) ->
     };
     let edge_paint = solid(rgba(25, 25, 25, 200));
     let edge_stroke = Stroke { width: 0.9 * s, line_join: tiny_skia::LineJoin::Round, ..Default::default() };
+    // the sliding nodes' dots where the faces' edges are long enough on screen for them
+    let dots = marks.is_some_and(|_| {
+        let (mut sum, mut count) = (0.0, 0usize);
+        for &(_, f) in &order {
+            let ring = faces.ring(f).unwrap_or(&[]);
+            for (i, &a) in ring.iter().enumerate() {
+                let b = ring[(i + 1) % ring.len()];
+                sum += proj.to_css(faces.points[a as usize]).distance(proj.to_css(faces.points[b as usize]));
+                count += 1;
+            }
+        }
+        count > 0 && sum / count as f64 >= SLIDE_DOTS_MIN_EDGE_PX
+    });
     for &(_, f) in &order {
         let Some(ring) = faces.ring(f) else { continue };
         let pts: Vec<DVec3> = ring.iter().map(|&n| faces.points[n as usize]).collect();
@@ -487,6 +598,9 @@ pub fn render_surface(pixmap: &mut Pixmap, faces: &Faces, opts: &SurfaceView) ->
         let faded = faces.faded.get(f).copied().unwrap_or(false);
         if !faded && faces.inverted.get(f).copied().unwrap_or(false) {
             draw_inverted(pixmap, pb, s, clip);
+            if let Some(m) = marks {
+                draw_marks(pixmap, faces, m.of(f), &proj, s, dots, clip);
+            }
             continue;
         }
         let Some(path) = pb.finish() else { continue };
@@ -498,6 +612,9 @@ pub fn render_surface(pixmap: &mut Pixmap, faces: &Faces, opts: &SurfaceView) ->
         pixmap.fill_path(&path, &paint, FillRule::Winding, Transform::identity(), clip);
         if opts.show_edges {
             pixmap.stroke_path(&path, &edge_paint, &edge_stroke, Transform::identity(), clip);
+        }
+        if let Some(m) = marks {
+            draw_marks(pixmap, faces, m.of(f), &proj, s, dots, clip);
         }
     }
 

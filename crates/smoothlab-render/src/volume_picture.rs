@@ -11,10 +11,10 @@ use glam::DVec3;
 use serde::{Deserialize, Serialize};
 use tiny_skia::Pixmap;
 
-use smoothlab::volume::{VolumeKind, VolumeMesh};
+use smoothlab::volume::{BoundaryNode, BoundaryRule, VolumeKind, VolumeMesh};
 use smoothlab::error::{Error, Result};
 use smoothlab::quality::tet::{is_inverted, mean_ratio};
-use crate::{render_surface, Faces, Projection, SurfaceView};
+use crate::{render_surface_marked, FaceMarks, Faces, Mark, NodeMark, Projection, SurfaceView};
 
 /// Which plane cuts the mesh: normal to `axis` (0 = x, 1 = y, 2 = z), at the fraction
 /// `at` of the extent along it of the mesh's fixed nodes (its boundary, which smoothing
@@ -71,7 +71,7 @@ pub struct CutFaces {
 }
 
 impl CutFaces {
-    /// The faces over `points`, for [`render_surface`].
+    /// The faces over `points`, for [`render_surface`](crate::render_surface).
     pub fn faces<'a>(&'a self, points: &'a [DVec3]) -> Faces<'a> {
         Faces {
             points,
@@ -91,6 +91,10 @@ pub trait VolumePicture {
     fn cut_faces(&self, cut: Cut, forward: DVec3) -> CutFaces;
     /// Draws the mesh cut by `cut` with the view's camera, frame and title.
     fn render_cut(&self, pixmap: &mut Pixmap, cut: Cut, view: &SurfaceView) -> Projection;
+    /// What the picture marks on `faces` while the boundary slides: the feature curves'
+    /// segments, the nodes that stay (corners, the file's fixed nodes) and those that
+    /// slide; `None` while the boundary is fixed.
+    fn boundary_marks(&self, faces: &CutFaces) -> Option<FaceMarks>;
 }
 
 impl VolumePicture for VolumeMesh {
@@ -174,11 +178,40 @@ impl VolumePicture for VolumeMesh {
     }
 
     /// Draws the mesh cut by `cut` with the view's camera, frame and title, coloured by the
-    /// mean ratio (its colour bar so titled, on [0, 1]).
+    /// mean ratio (its colour bar so titled, on [0, 1]); while the boundary slides, with
+    /// its [`boundary_marks`](Self::boundary_marks).
     fn render_cut(&self, pixmap: &mut Pixmap, cut: Cut, view: &SurfaceView) -> Projection {
         let faces = self.cut_faces(cut, view.camera.basis().2);
         let opts = SurfaceView { bar_title: "mean ratio".into(), domain: (0.0, 1.0), ..view.clone() };
-        render_surface(pixmap, &faces.faces(self.nodes()), &opts)
+        let marks = self.boundary_marks(&faces);
+        render_surface_marked(pixmap, &faces.faces(self.nodes()), &opts, marks.as_ref())
+    }
+
+    /// Each face's edges that are feature edges, and its nodes that stay or slide.
+    fn boundary_marks(&self, faces: &CutFaces) -> Option<FaceMarks> {
+        if self.boundary_rule() != BoundaryRule::Slide {
+            return None;
+        }
+        let feature: std::collections::HashSet<[u32; 2]> = self.feature_edges().iter().map(|&[a, b]| [a.min(b), a.max(b)]).collect();
+        let mut out = FaceMarks { start: vec![0], marks: Vec::new() };
+        for f in 0..faces.ring_start.len().saturating_sub(1) {
+            let ring = &faces.rings[faces.ring_start[f] as usize..faces.ring_start[f + 1] as usize];
+            for (i, &a) in ring.iter().enumerate() {
+                let b = ring[(i + 1) % ring.len()];
+                if feature.contains(&[a.min(b), a.max(b)]) {
+                    out.marks.push(Mark::Line(a, b));
+                }
+            }
+            for &v in ring {
+                match self.boundary_node(v as usize) {
+                    Some(BoundaryNode::Corner | BoundaryNode::Held) => out.marks.push(Mark::Node(v, NodeMark::Stays)),
+                    Some(BoundaryNode::Curve | BoundaryNode::Surface) => out.marks.push(Mark::Node(v, NodeMark::Slides)),
+                    _ => {}
+                }
+            }
+            out.start.push(out.marks.len() as u32);
+        }
+        Some(out)
     }
 }
 
@@ -260,6 +293,39 @@ mod tests {
             assert_ne!(drawn, want, "{cut:?}: the faces and the elements differ here");
             assert!(!key(drawn), "{cut:?}: the key does not say the {drawn} faces");
         }
+    }
+
+    #[test]
+    fn a_sliding_boundary_marks_its_curves_corners_and_sliding_nodes_and_a_fixed_one_nothing() {
+        use smoothlab::generate::{hex_grid, HexBlock};
+        use smoothlab::volume::FEATURE_ANGLE_DEG;
+        let mut m = hex_grid(&HexBlock::cube(3)).unwrap();
+        let view = SurfaceView::default();
+        let whole = Cut { axis: 2, at: 1.0 };
+        let faces = m.cut_faces(whole, view.camera.basis().2);
+        assert_eq!(m.boundary_marks(&faces), None);
+        let mut fixed = Pixmap::new(240, 200).unwrap();
+        m.render_cut(&mut fixed, whole, &view);
+        m.set_boundary(BoundaryRule::Slide, FEATURE_ANGLE_DEG);
+        let marks = m.boundary_marks(&faces).unwrap();
+        assert_eq!(marks.start.len(), faces.values.len() + 1);
+        // every feature edge lies on two faces of the cube's skin, each drawn whole
+        let lines: Vec<[u32; 2]> = marks.marks.iter().filter_map(|k| match *k { Mark::Line(a, b) => Some([a.min(b), a.max(b)]), _ => None }).collect();
+        assert_eq!(lines.len(), 2 * m.feature_edges().len());
+        let stays = |n: u32| marks.marks.contains(&Mark::Node(n, NodeMark::Stays));
+        let slides = |n: u32| marks.marks.contains(&Mark::Node(n, NodeMark::Slides));
+        for n in 0..m.node_count() as u32 {
+            match m.boundary_node(n as usize).unwrap() {
+                BoundaryNode::Corner => assert!(stays(n) && !slides(n), "corner {n}"),
+                BoundaryNode::Curve | BoundaryNode::Surface => assert!(slides(n) && !stays(n), "node {n}"),
+                _ => assert!(!stays(n) && !slides(n), "inside {n}"),
+            }
+        }
+        let mut sliding = Pixmap::new(240, 200).unwrap();
+        m.render_cut(&mut sliding, whole, &view);
+        let purple = |pm: &Pixmap| pm.pixels().iter().filter(|p| [p.red(), p.green(), p.blue()] == crate::MARK_LINE_RGB).count();
+        assert_eq!(purple(&fixed), 0);
+        assert!(purple(&sliding) > 100, "{}", purple(&sliding));
     }
 
     #[test]

@@ -505,7 +505,9 @@ pub struct BoundaryReport {
 }
 
 impl BoundaryReport {
-    fn of(mesh: &crate::volume::VolumeMesh) -> BoundaryReport {
+    /// What `mesh`'s boundary rule holds now: its counts, and how far its sliding nodes
+    /// are from the boundary as loaded (the page reports a side's mesh by it, as here).
+    pub fn of(mesh: &crate::volume::VolumeMesh) -> BoundaryReport {
         use crate::volume::BoundaryNode as B;
         let (angle, curves) = mesh.feature_curves().unwrap_or((0.0, 0));
         let on = |c: B| (0..mesh.node_count()).filter(|&n| mesh.boundary_node(n) == Some(c)).count();

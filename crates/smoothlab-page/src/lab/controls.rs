@@ -8,12 +8,13 @@
 use serde::Serialize;
 
 use super::permalink::{control_label, gmsh_sample_name, PageState, GMSH_FILES};
-use super::settings::{target_refused, target_words};
+use super::settings::{boundary_words, target_refused, target_words};
 use smoothlab::smooth::limits::{
     amount_words, IntRange, AMOUNT_STEP, MAX_AMOUNT, MAX_ITER, PASSES, SEED, THRESHOLDS,
 };
 use smoothlab::smooth::Strategy;
 use smoothlab::target::Target;
+use smoothlab::volume::BoundaryRule;
 
 fn label(key: &str) -> &'static str {
     control_label(key).expect("a key the user types into")
@@ -75,6 +76,15 @@ pub struct TargetInfo {
     pub words: &'static str,
 }
 
+/// One rule of the boundary menu (volume meshes): its name, its menu entry and what it
+/// means in a sentence for the page's users ([`boundary_words`]), shown beside the menu.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct BoundaryInfo {
+    pub name: &'static str,
+    pub label: &'static str,
+    pub words: &'static str,
+}
+
 /// A name a menu offers, with its words for people.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct Named {
@@ -114,7 +124,7 @@ pub struct GmshSample {
 
 /// Everything the page needs to build and check its controls, keyed by the permalink's
 /// keys: `{ settings, passes, maxiter, seed, amount, threshold, strategies, orders,
-/// targets, objectives, penalties, panels, file_extensions, file_extensions_words, max_file_bytes,
+/// targets, boundaries, objectives, penalties, panels, file_extensions, file_extensions_words, max_file_bytes,
 /// gmsh_samples, quality_ramp }`.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct PageControls {
@@ -130,6 +140,8 @@ pub struct PageControls {
     pub orders: Vec<MenuEntry>,
     /// Every target ([`Target::ALL`]), the ideal first.
     pub targets: Vec<TargetInfo>,
+    /// Every boundary rule ([`BoundaryRule::ALL`]), fixed first.
+    pub boundaries: Vec<BoundaryInfo>,
     /// Every objective a panel can run ([`ObjectiveKind::ALL`](smoothlab::objective::ObjectiveKind::ALL)).
     pub objectives: Vec<Named>,
     /// The designs of `new`'s penalty ([`Penalty::ALL`](smoothlab::objective::Penalty::ALL)).
@@ -210,6 +222,17 @@ pub fn page_controls() -> PageControls {
                     Target::Input => "The mesh as loaded",
                 },
                 words: target_words(t),
+            })
+            .collect(),
+        boundaries: BoundaryRule::ALL
+            .iter()
+            .map(|&r| BoundaryInfo {
+                name: r.name(),
+                label: match r {
+                    BoundaryRule::Fixed => "Fixed, as loaded",
+                    BoundaryRule::Slide => "Slides on the boundary",
+                },
+                words: boundary_words(r),
             })
             .collect(),
         objectives: smoothlab::objective::ObjectiveKind::ALL
@@ -342,6 +365,21 @@ mod tests {
         let json = serde_json::to_value(&c).unwrap();
         assert_eq!(json["settings"]["target"], "ideal");
         assert_eq!(json["targets"][1]["label"], "The mesh as loaded");
+    }
+
+    #[test]
+    fn the_boundary_menu_says_what_each_rule_does() {
+        let c = page_controls();
+        let names: Vec<&str> = c.boundaries.iter().map(|b| b.name).collect();
+        assert_eq!(names, ["fixed", "slide"]);
+        assert_eq!(c.settings.boundary, BoundaryRule::Fixed, "the menu starts fixed");
+        for b in &c.boundaries {
+            assert!(b.words.ends_with('.') && b.words.matches(". ").count() == 0, "{}", b.words);
+        }
+        assert!(c.boundaries[1].words.contains("feature curves") && c.boundaries[1].words.contains("corners"));
+        let json = serde_json::to_value(&c).unwrap();
+        assert_eq!(json["settings"]["boundary"], "fixed");
+        assert_eq!(json["boundaries"][1]["label"], "Slides on the boundary");
     }
 
     #[test]

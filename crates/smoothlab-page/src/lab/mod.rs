@@ -225,9 +225,11 @@ impl Playground {
     /// progress is abandoned). A new target takes effect at once: with
     /// [`Target::Input`] every corner is measured against the mesh as loaded (or as last
     /// perturbed, [`original_nodes`](Self::original_nodes)), whatever the panels went
-    /// through since.
+    /// through since. A planar mesh's boundary is fixed: [`BoundaryRule::Slide`](smoothlab::volume::BoundaryRule::Slide)
+    /// is refused, saying why ([`slide_refused`](Self::slide_refused)).
     pub fn set_settings(&mut self, settings: Settings) -> Result<()> {
         let o = settings.smooth_options()?;
+        settings::check_boundary(settings.boundary, self.slide_refused())?;
         self.abort_pass();
         for (p, side) in self.panels.iter_mut().zip(Side::BOTH) {
             p.smoother = Smoother::new(o)?;
@@ -241,6 +243,12 @@ impl Playground {
             }
         }
         Ok(())
+    }
+
+    /// Why this mesh's boundary nodes cannot slide: a planar mesh's never do (the core's
+    /// `--boundary slide` takes volume meshes only).
+    pub fn slide_refused(&self) -> Option<String> {
+        Some(settings::slide_refused_planar())
     }
 
     /// The positions every corner is measured against, with the settings' target
@@ -539,6 +547,7 @@ impl Playground {
             mesh: p.quick,
             detail: self.detail(side),
             max_distance_from_surface: None,
+            boundary: None,
             work: WorkDone::of(&p.records),
         }
     }

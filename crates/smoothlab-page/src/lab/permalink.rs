@@ -13,6 +13,9 @@
 //! `target` is what every corner is measured against (`ideal` or `input`), written only
 //! when it is not the ideal and accepted only with a strategy that takes it (`opt`,
 //! `rules`: [`target_refused`]).
+//! `boundary` is what a volume mesh's boundary nodes do (`fixed` or `slide`), written only
+//! when they slide; a mesh whose boundary cannot slide (planar, a surface, quadratic)
+//! shows it fixed, the choice kept for the next volume mesh.
 //! A mesh in 3D adds its camera (`yaw`, `pitch`, `zoom`) and tetrahedra their cut plane
 //! (`cut`, the axis, and `cut-at`, where along it), e.g.
 //! `#sample=rand3d&…&node=431&yaw=52.5&pitch=31&zoom=1.5&cut=x&cut-at=0.4`; a link
@@ -26,8 +29,9 @@
 //! longer than [`MAX_HASH_BYTES`] is refused before it is looked at.
 //!
 //! [`encode`] writes the keys in one canonical order (the order of the example above,
-//! with `target` after `maxiter` and `embed` last), leaving out only an absent sample or
-//! node, `perturbed`/`embed` when false and `target` when ideal, with numbers in their
+//! with `target` and `boundary` after `maxiter` and `embed` last), leaving out only an
+//! absent sample or node, `perturbed`/`embed` when false, `target` when ideal and
+//! `boundary` when fixed, with numbers in their
 //! shortest exact form, so `decode(&encode(&s)) == Ok(s)` for every valid state `s` and a
 //! state has exactly one encoding.
 
@@ -42,6 +46,7 @@ use smoothlab::smooth::limits::{
 };
 use smoothlab::smooth::{Order, Strategy};
 use smoothlab::target::Target;
+use smoothlab::volume::BoundaryRule;
 use smoothlab_render::Cut;
 use smoothlab_render::{Camera, ZOOM_RANGE};
 
@@ -148,7 +153,7 @@ pub struct PageState {
     pub perturbed: bool,
     /// Keys `strategy`, `threshold` (θ_t in degrees, `0 < t ≤ 90`), `order`, `maxiter`
     /// (`1 ..= 50`), `target` (`ideal`, `input`: the latter with `opt` or `rules` only),
-    /// and `a`, `a-penalty`, `b`, `b-penalty` (what each side smooths with); defaults as
+    /// `boundary` (`fixed`, `slide`), and `a`, `a-penalty`, `b`, `b-penalty` (what each side smooths with); defaults as
     /// [`Settings::default`].
     pub settings: Settings,
     /// Smoothing passes, `1 ..= 100`. Key `passes`; default 3.
@@ -228,7 +233,7 @@ impl PageState {
 }
 
 /// The keys, in the order [`encode`] writes them.
-const KEYS: [&str; 21] = [
+const KEYS: [&str; 22] = [
     "sample",
     "tangle",
     "seed",
@@ -243,6 +248,7 @@ const KEYS: [&str; 21] = [
     "order",
     "maxiter",
     "target",
+    "boundary",
     "node",
     "yaw",
     "pitch",
@@ -363,6 +369,7 @@ fn read(s: &mut PageState, key: &'static str, v: &str) -> std::result::Result<()
         "order" => one_of(&Order::ALL, Order::name, v).map(|o| c.order = o),
         "maxiter" => whole(v, limits::MAX_ITER).map(|n| c.max_iter = n as u32),
         "target" => one_of(&Target::ALL, Target::name, v).map(|t| c.target = t),
+        "boundary" => one_of(&BoundaryRule::ALL, BoundaryRule::name, v).map(|r| c.boundary = r),
         "node" => whole(v, limits::NODE).map(|n| s.node = Some(n as u32)),
         "yaw" => number(
             v,
@@ -433,6 +440,7 @@ fn write(s: &PageState, key: &str) -> Option<String> {
         "order" => name(c.order.name()),
         "maxiter" => Some(c.max_iter.to_string()),
         "target" => (c.target != Target::Ideal).then(|| c.target.name().into()),
+        "boundary" => (c.boundary != BoundaryRule::Fixed).then(|| c.boundary.name().into()),
         "node" => s.node.map(|n| n.to_string()),
         "yaw" => s.camera.map(|c| shortest(c.yaw)),
         "pitch" => s.camera.map(|c| shortest(c.pitch)),
@@ -656,6 +664,34 @@ mod tests {
     }
 
     #[test]
+    fn the_boundary_round_trips_and_is_left_out_when_fixed() {
+        let s = decode("#sample=hex-tangled&boundary=slide").unwrap();
+        assert_eq!(s.settings.boundary, BoundaryRule::Slide);
+        let h = encode(&s);
+        assert_eq!(h, "#sample=hex-tangled&tangle=0.5&seed=1&strategy=rules&a=old&b=new&b-penalty=barrier&threshold=30&passes=3&order=priority&maxiter=3&boundary=slide");
+        assert_eq!(decode(&h).unwrap(), s);
+        // with the input target, after it
+        let both = decode("#boundary=slide&target=input").unwrap();
+        assert!(encode(&both).ends_with("&target=input&boundary=slide"), "{}", encode(&both));
+        // fixed is the default: read when given, never written
+        let fixed = decode("#boundary=fixed").unwrap();
+        assert_eq!(fixed.settings.boundary, BoundaryRule::Fixed);
+        assert!(!encode(&fixed).contains("boundary"));
+        assert!(!encode(&PageState::default()).contains("boundary"));
+        // a planar sample keeps the choice: the page shows it fixed there, and takes it
+        // again with a volume mesh
+        assert_eq!(decode("#sample=plate-tri&boundary=slide").unwrap().settings.boundary, BoundaryRule::Slide);
+        for (bad, want) in [
+            ("boundary=sliding", "'boundary' must be one of fixed, slide, found 'sliding'"),
+            ("boundary=", "found ''"),
+            ("boundary=slide&boundary=fixed", "'boundary' is given twice"),
+        ] {
+            let e = decode(bad).unwrap_err().to_string();
+            assert!(e.contains(want), "{bad}: {e}");
+        }
+    }
+
+    #[test]
     fn a_control_is_checked_with_its_label_and_range_in_words() {
         assert_eq!(check_control("passes", "7"), Ok(()));
         assert_eq!(
@@ -703,6 +739,7 @@ mod tests {
                     order: Order::Priority,
                     max_iter: 3,
                     target: Target::Ideal,
+                    boundary: BoundaryRule::Fixed,
                 },
                 passes: 3,
                 node: Some(17),
@@ -1254,6 +1291,7 @@ mod tests {
             order in proptest::sample::select(Order::ALL.to_vec()),
             max_iter in 1..=limits::MAX_ITER.max as u32,
             target in proptest::sample::select(Target::ALL.to_vec()),
+            boundary in proptest::sample::select(BoundaryRule::ALL.to_vec()),
             node in proptest::option::of(any::<u32>()),
             camera in proptest::option::of((0.0..360.0f64, -90.0..=90.0f64, ZOOM_RANGE.0..=ZOOM_RANGE.1)),
             cut in proptest::option::of((0..3usize, 0.0..=1.0f64)),
@@ -1265,7 +1303,7 @@ mod tests {
             let compare = [choice(a, penalties[0]), choice(b, penalties[1])];
             // a target other than the ideal only with a strategy that takes it
             let target = if target_refused(strategy).is_none() { target } else { Target::Ideal };
-            let settings = Settings { strategy, threshold_deg, order, max_iter, target, compare };
+            let settings = Settings { strategy, threshold_deg, order, max_iter, target, boundary, compare };
             let camera = camera.map(|(yaw, pitch, zoom)| CameraState { yaw, pitch, zoom });
             let cut = cut.map(|(axis, at)| Cut { axis, at });
             PageState { sample: sample.map(String::from), seed, amount, perturbed, settings, passes, node, camera, cut, embed }
@@ -1296,7 +1334,7 @@ mod tests {
         fn decode_never_panics_on_pairs_of_known_keys(
             pairs in proptest::collection::vec(
                 (proptest::sample::select(vec!["sample", "tangle", "amount", "seed", "perturbed", "strategy", "objective", "a", "b", "a-penalty", "b-penalty",
-                    "threshold", "passes", "order", "maxiter", "target", "node", "yaw", "pitch", "zoom", "cut", "cut-at", "embed", "x"]),
+                    "threshold", "passes", "order", "maxiter", "target", "boundary", "node", "yaw", "pitch", "zoom", "cut", "cut-at", "embed", "x"]),
                  "[-+.%0-9a-fA-Fe]{0,12}"), 0..8)
         ) {
             let h: Vec<String> = pairs.iter().map(|(k, v)| format!("{k}={v}")).collect();

@@ -113,6 +113,7 @@ impl Request {
             order: self.order,
             max_iter: self.max_iter,
             target: smoothlab::target::Target::Ideal,
+            boundary: smoothlab::volume::BoundaryRule::Fixed,
             compare: [
                 Choice::OLD,
                 Choice {

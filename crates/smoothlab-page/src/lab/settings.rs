@@ -8,6 +8,7 @@ use smoothlab::error::{Error, Result};
 use smoothlab::objective::{objective_with, Objective, ObjectiveKind, Penalty};
 use smoothlab::smooth::{Order, SmoothOptions, Strategy};
 use smoothlab::target::Target;
+use smoothlab::volume::BoundaryRule;
 
 /// The two panels of the page: the left one (A) and the right one (B), `a` and `b` to the
 /// page. Either smooths with its own [`Choice`] of any objective; by default the left runs
@@ -119,6 +120,12 @@ pub struct Settings {
     /// the ideal.
     #[serde(default)]
     pub target: Target,
+    /// What a volume mesh's boundary nodes do ([`BoundaryRule`]): stay where the file put
+    /// them, or slide on the boundary as loaded (or as last perturbed), along its feature
+    /// curves at the core's default feature angle; only a linear volume mesh takes
+    /// `slide` (see [`slide_refused_planar`]). Absent means fixed.
+    #[serde(default)]
+    pub boundary: BoundaryRule,
     /// What the left (A) and the right (B) panel smooth with; absent means old against
     /// new (with the barrier penalty).
     #[serde(default = "default_compare")]
@@ -140,6 +147,7 @@ impl Default for Settings {
             order: d.order,
             max_iter: d.max_iter,
             target: Target::Ideal,
+            boundary: BoundaryRule::Fixed,
             compare: default_compare(),
         }
     }
@@ -215,5 +223,39 @@ pub fn target_words(target: Target) -> &'static str {
         Target::Input => {
             "Each corner aims at the shape it had in the mesh as loaded (or as last perturbed), its stretch and skew kept; only a corner that was inverted or flat aims at the ideal."
         }
+    }
+}
+
+/// What a [`BoundaryRule`] means, in a sentence for the page's users (the control's words).
+pub fn boundary_words(rule: BoundaryRule) -> &'static str {
+    match rule {
+        BoundaryRule::Fixed => "Boundary nodes stay where the file put them, as in the papers: only interior nodes move.",
+        BoundaryRule::Slide => {
+            "Boundary nodes slide on the boundary as loaded: along its feature curves (where its faces turn by more than 30°) or on its faces between them; the corners where curves meet stay."
+        }
+    }
+}
+
+/// Why a planar mesh's boundary nodes cannot slide (the core's `--boundary slide` takes
+/// volume meshes only).
+pub fn slide_refused_planar() -> String {
+    "only a volume mesh's boundary nodes slide; this mesh is planar".into()
+}
+
+/// Why a surface's boundary nodes cannot slide by this rule.
+pub fn slide_refused_surface() -> String {
+    "only a volume mesh's boundary nodes slide; this mesh is a surface in 3D".into()
+}
+
+/// Why a quadratic volume mesh's boundary nodes cannot slide.
+pub fn slide_refused_quadratic() -> String {
+    "only a linear volume mesh's boundary nodes slide so far; this mesh is quadratic, and its mid-edge nodes would leave its curved faces".into()
+}
+
+/// Refuses `rule` where the mesh's boundary cannot slide (`refused`, the reason).
+pub(crate) fn check_boundary(rule: BoundaryRule, refused: Option<String>) -> Result<()> {
+    match (rule, refused) {
+        (BoundaryRule::Slide, Some(why)) => Err(Error::invalid(format!("the boundary cannot slide here: {why}"))),
+        _ => Ok(()),
     }
 }

@@ -60,6 +60,10 @@ pub struct PanelTable {
     /// A surface's largest distance of a node from its reference surface; `None` for a
     /// planar mesh.
     pub max_distance_from_surface: Option<f64>,
+    /// A volume mesh whose boundary slides: its nodes by what they do and the largest
+    /// distance of one from the boundary as loaded (the command-line tool's report,
+    /// JSON key `boundary`); `None` otherwise.
+    pub boundary: Option<smoothlab::BoundaryReport>,
     #[serde(flatten)]
     pub work: WorkDone,
 }

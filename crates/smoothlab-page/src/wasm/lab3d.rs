@@ -79,6 +79,13 @@ impl Lab3d {
         each!(&self.inner, l => l.kind()).to_string()
     }
 
+    /// Why this mesh's boundary nodes cannot slide (a surface, a quadratic volume mesh),
+    /// or undefined: the page shows its boundary menu fixed, disabled, with the reason.
+    #[wasm_bindgen(js_name = slideRefused)]
+    pub fn slide_refused(&self) -> Option<String> {
+        each!(&self.inner, l => l.slide_refused())
+    }
+
     /// As the playground's `setSettings` (for tetrahedra each side's objective carried to
     /// tetrahedra).
     #[wasm_bindgen(js_name = setSettings)]

@@ -106,6 +106,13 @@ impl Playground {
             .begin_sweep(self::side(side)?, nodes, target.as_deref())?)
     }
 
+    /// Why this mesh's boundary nodes cannot slide: a planar mesh's never do (as the
+    /// 3D lab's `slideRefused`).
+    #[wasm_bindgen(js_name = slideRefused)]
+    pub fn slide_refused(&self) -> Option<String> {
+        self.inner.slide_refused()
+    }
+
     /// The positions every corner is measured against (x and y interleaved: the mesh as
     /// loaded or as last perturbed) when the settings' target is `input`; null with the
     /// ideal target. A split pass hands them to the engine that sweeps (`beginSweep`).

@@ -555,9 +555,10 @@ impl super::VolumeMesh {
     }
 
     /// Records that node `n` was moved (to a point [`onto_boundary`](Self::onto_boundary)
-    /// gave): its tangent there.
+    /// gave): its tangent there. A caller that moves a node itself (the page's one-node
+    /// solve, its undo) calls it after the move.
     #[inline]
-    pub(crate) fn settle(&mut self, n: usize) {
+    pub fn settle(&mut self, n: usize) {
         let x = self.nodes()[n];
         if let Some(s) = &mut self.sliding {
             s.settle(n, x);

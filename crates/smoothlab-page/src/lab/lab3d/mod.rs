@@ -45,6 +45,8 @@ use smoothlab_render::{
     HistogramAxis, HistogramSeries, PlaneFunction, Projection, SurfaceView, Theme, View,
 };
 use smoothlab::smooth::SmoothOptions;
+use smoothlab::volume::BoundaryRule;
+use smoothlab::BoundaryReport;
 
 /// A kind of mesh in space that the 3D lab holds: how it is smoothed a pass at a time,
 /// measured, perturbed, drawn and written. [`surface`] and [`volume`] implement it.
@@ -87,6 +89,19 @@ pub trait Mesh3d: Clone + Sized {
     /// [`Target::Input`](smoothlab::target::Target::Input)), or against the ideal of
     /// each kind (`None`).
     fn aim_at(&mut self, at: Option<&Self>);
+    /// Why this mesh's boundary nodes cannot slide ([`BoundaryRule::Slide`]), if they
+    /// cannot: the kind's words, or the mesh's (a quadratic volume mesh).
+    fn slide_refused(&self) -> Option<String>;
+    /// What the boundary nodes do from now on, the boundary as it is now the reference
+    /// the sliding nodes stay on; called only with a rule [`slide_refused`](Self::slide_refused)
+    /// allows, and only when it changes.
+    fn set_boundary_rule(&mut self, _rule: BoundaryRule) {}
+    /// What a sliding boundary holds now: its nodes by what they do, and how far the
+    /// sliding ones are from the boundary as loaded (the CLI's report); `None` while the
+    /// boundary is fixed.
+    fn boundary_report(&self) -> Option<BoundaryReport> {
+        None
+    }
     /// The full statistics.
     fn stats(&self) -> MeshStats;
     /// The mesh perturbed, `amount` mean edge lengths, seeded.
@@ -209,17 +224,26 @@ struct Side3d<M: Mesh3d> {
     smoother: M::Smoother,
     records: Vec<PassSummary>,
     stats: MeshStats,
+    /// The boundary's report, with the statistics ([`Mesh3d::boundary_report`]).
+    boundary: Option<BoundaryReport>,
 }
 
 impl<M: Mesh3d> Side3d<M> {
     fn new(side: Side, mesh: M, stats: MeshStats, settings: &Settings) -> Result<Self> {
         Ok(Side3d {
+            boundary: mesh.boundary_report(),
             mesh,
             objective: M::objective(settings, side)?,
             smoother: M::smoother(settings.smooth_options()?)?,
             records: Vec::new(),
             stats,
         })
+    }
+
+    /// Measures the mesh as it is now: its statistics and its boundary's report.
+    fn measure(&mut self) {
+        self.stats = self.mesh.stats();
+        self.boundary = self.mesh.boundary_report();
     }
 }
 
@@ -315,20 +339,35 @@ impl<M: Mesh3d> Lab3d<M> {
     }
 
     /// New settings for the next passes (the meshes stay as they are); refused settings
-    /// (an objective without a form on this kind among them) change nothing.
+    /// (an objective without a form on this kind among them, a boundary that cannot
+    /// slide) change nothing. A new boundary rule is taken on the mesh as loaded (or as
+    /// last perturbed), whose boundary is the one sliding nodes stay on, and both sides
+    /// start again from it: a pass is then the core's pass with that rule, as
+    /// `smoothlab smooth --boundary slide` runs it on the same file.
     pub fn set_settings(&mut self, settings: Settings) -> Result<()> {
         let o = settings.smooth_options()?;
+        super::settings::check_boundary(settings.boundary, self.original.slide_refused())?;
         let objectives = [M::objective(&settings, Side::A)?, M::objective(&settings, Side::B)?];
         for (s, objective) in self.sides.iter_mut().zip(objectives) {
             s.smoother = M::smoother(o)?;
             s.objective = objective;
         }
         let retarget = settings.target != self.settings.target;
+        let rebound = settings.boundary != self.settings.boundary;
         self.settings = settings;
-        if retarget {
+        if rebound {
+            self.original.set_boundary_rule(settings.boundary);
+            self.original_stats = self.original.stats();
+            self.reset(); // which gives both sides the target again
+        } else if retarget {
             self.aim();
         }
         Ok(())
+    }
+
+    /// Why this mesh's boundary nodes cannot slide, if they cannot ([`Mesh3d::slide_refused`]).
+    pub fn slide_refused(&self) -> Option<String> {
+        self.original.slide_refused()
     }
 
     /// Gives both sides the settings' target: the mesh as loaded (or as last perturbed)
@@ -350,7 +389,7 @@ impl<M: Mesh3d> Lab3d<M> {
             let pass = s.records.len() as u32 + 1;
             let mut r = s.mesh.pass(&mut s.smoother, s.objective.as_ref(), pass, clock);
             r.objective_total = None; // as the planar lab: the page never shows it
-            s.stats = s.mesh.stats();
+            s.measure();
             s.records.push(r.clone());
             r
         })
@@ -360,9 +399,11 @@ impl<M: Mesh3d> Lab3d<M> {
     pub fn reset(&mut self) {
         self.undo.clear();
         let o = self.settings.smooth_options().expect("the settings were checked when set");
+        let boundary = self.original.boundary_report();
         for s in &mut self.sides {
             s.mesh.clone_from(&self.original);
             s.stats.clone_from(&self.original_stats);
+            s.boundary = boundary;
             s.records.clear();
             s.smoother = M::smoother(o).expect("the settings were checked when set");
         }
@@ -428,6 +469,7 @@ impl<M: Mesh3d> Lab3d<M> {
             mesh: s.stats.quick(),
             detail: Some(TableDetail::of(&s.stats)),
             max_distance_from_surface: s.stats.max_distance_from_surface,
+            boundary: s.boundary,
             work: WorkDone::of(&s.records),
         }
     }
@@ -669,7 +711,7 @@ impl<M: Mesh3d> Lab3d<M> {
         for (side, to) in Side::BOTH.into_iter().zip(targets) {
             let s = &mut self.sides[side.index()];
             s.mesh.place_node(node, to);
-            s.stats = s.mesh.stats();
+            s.measure();
         }
         Ok((pictures, summary))
     }
@@ -688,6 +730,7 @@ impl<M: Mesh3d> Lab3d<M> {
         for ((s, kept), stats) in self.sides.iter_mut().zip(u.kept).zip(u.stats) {
             s.mesh.put_back(kept);
             s.stats = stats;
+            s.boundary = s.mesh.boundary_report();
         }
         Some(u.node)
     }

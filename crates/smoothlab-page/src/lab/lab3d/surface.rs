@@ -86,6 +86,11 @@ impl Mesh3d for Surface {
     fn aim_at(&mut self, at: Option<&Surface>) {
         self.set_target_points(at.map(|a| a.points().to_vec()));
     }
+    /// A surface's feature curves slide with the command line's `--slide-curves`, not by
+    /// the volume's rule.
+    fn slide_refused(&self) -> Option<String> {
+        Some(crate::lab::settings::slide_refused_surface())
+    }
     fn perturbed(&self, amount: f64, seed: u64) -> Result<Surface> {
         perturb_surface(self, amount, seed)
     }

@@ -26,7 +26,9 @@ use smoothlab::optimize::{Iterate, SolveResult};
 use smoothlab::quality::MeshStats;
 use smoothlab_render::{HistogramAxis, PlaneFunction, Projection, SurfaceView};
 use smoothlab::smooth::{solve_corner_star, DriverStar, SmoothOptions};
-use smoothlab::volume::{volume_stats, VolumeMesh, VolumeSmoother};
+use smoothlab::volume::{volume_stats, BoundaryNode, BoundaryRule, VolumeMesh, VolumeSmoother, FEATURE_ANGLE_DEG};
+use smoothlab::BoundaryReport;
+use crate::lab::settings::slide_refused_quadratic;
 use smoothlab_render::{Cut};
 
 /// The objective of the tetrahedra's kind, as a side smooths with it.
@@ -188,8 +190,32 @@ impl Mesh3d for VolumeMesh {
     fn aim_at(&mut self, at: Option<&VolumeMesh>) {
         self.set_target_nodes(at.map(|a| a.nodes().to_vec()));
     }
+    fn slide_refused(&self) -> Option<String> {
+        self.is_quadratic().then(slide_refused_quadratic)
+    }
+    /// The core's rule at its default feature angle ([`FEATURE_ANGLE_DEG`]), as
+    /// `smoothlab smooth --boundary slide` takes it.
+    fn set_boundary_rule(&mut self, rule: BoundaryRule) {
+        if self.boundary_rule() != rule {
+            self.set_boundary(rule, FEATURE_ANGLE_DEG);
+        }
+    }
+    fn boundary_report(&self) -> Option<BoundaryReport> {
+        (self.boundary_rule() == BoundaryRule::Slide).then(|| BoundaryReport::of(self))
+    }
+    /// The interior perturbed as `smoothlab generate perturb` perturbs the file: the
+    /// boundary stays whatever the rule (a sliding node is free, but not to be thrown off
+    /// the boundary), and a sliding rule is taken again on the perturbed mesh.
     fn perturbed(&self, amount: f64, seed: u64) -> Result<VolumeMesh> {
-        perturb_volume(self, amount, seed)
+        let rule = self.boundary_rule();
+        if rule == BoundaryRule::Fixed {
+            return perturb_volume(self, amount, seed);
+        }
+        let mut fixed = self.clone();
+        fixed.set_boundary(BoundaryRule::Fixed, FEATURE_ANGLE_DEG);
+        let mut out = perturb_volume(&fixed, amount, seed)?;
+        out.set_boundary(rule, FEATURE_ANGLE_DEG);
+        Ok(out)
     }
     /// The letter and what the side smooths with, in 3D's words ([`describe_tet`]; the
     /// planar penalty designs do not apply).
@@ -221,6 +247,17 @@ impl Mesh3d for VolumeMesh {
         }
         if self.is_free(n) {
             return None;
+        }
+        match self.boundary_node(n) {
+            Some(BoundaryNode::Corner) => {
+                return Some(format!(
+                    "node {n} is a corner of the boundary (where feature curves meet, turn or end): it stays while the other boundary nodes slide"
+                ))
+            }
+            Some(BoundaryNode::Held) if self.role(n) == NodeRole::Corner => {
+                return Some(format!("node {n} is fixed by the file: it stays while the boundary slides"))
+            }
+            _ => {}
         }
         Some(match self.role(n) {
             NodeRole::Corner => format!(
@@ -281,9 +318,11 @@ impl Mesh3d for VolumeMesh {
         let kind = settings.choice(side).objective;
         format!("{kind} ({})", describe_tet(kind).unwrap_or("planar only").split(" (").next().unwrap_or(""))
     }
-    /// The node at `to`, its mid-edge nodes at their edges' middles.
+    /// The node at `to` (a node that slides at the nearest point of its curve or part of
+    /// the boundary as loaded), its mid-edge nodes at their edges' middles.
     fn place_node(&mut self, node: usize, to: DVec3) {
-        self.nodes_mut()[node] = to;
+        self.nodes_mut()[node] = self.onto_boundary(node, to);
+        self.settle(node);
         self.follow_mid_nodes(node);
     }
     /// The positions of the node and of every node of its tetrahedra.
@@ -299,10 +338,10 @@ impl Mesh3d for VolumeMesh {
         ids.into_iter().map(|m| (m, self.nodes()[m])).collect()
     }
     fn put_back(&mut self, kept: Vec<(usize, DVec3)>) {
-        let nodes = self.nodes_mut();
         for (m, p) in kept {
-            if let Some(slot) = nodes.get_mut(m) {
+            if let Some(slot) = self.nodes_mut().get_mut(m) {
                 *slot = p;
+                self.settle(m); // a sliding node's tangent where it is again
             }
         }
     }
@@ -364,7 +403,7 @@ mod tests {
     use super::*;
     use crate::lab::sample::Sample;
     use crate::lab::views::Canvas;
-    use smoothlab_render::Metric;
+    use smoothlab_render::{Metric, VolumePicture};
 
     fn lab() -> Lab3d<VolumeMesh> {
         let Model::Volume(m) = Sample::Rand3d.model().unwrap() else { panic!("rand3d is tetrahedral") };
@@ -421,6 +460,96 @@ mod tests {
         };
         assert_eq!(l.mesh(Side::B).nodes(), cli.nodes());
         assert_eq!(b.pass, 1);
+    }
+
+    /// A block of 4³ hexahedra bent by 60° (curved faces, twelve feature curves), its
+    /// interior tangled, as a file without fixed flags reads: the boundary is the skin.
+    fn bent_block() -> VolumeMesh {
+        let block = smoothlab::generate::HexBlock { bend: 60.0, ..smoothlab::generate::HexBlock::cube(4) };
+        perturb_volume(&smoothlab::generate::hex_grid(&block).unwrap(), 0.6, 3).unwrap()
+    }
+
+    #[test]
+    fn a_sliding_boundary_steps_as_the_cli_takes_it_on_the_mesh_as_loaded() {
+        let mut l = Lab3d::new(bent_block()).unwrap();
+        let slide = Settings { boundary: BoundaryRule::Slide, ..Settings::default() };
+        l.step(&no_clock); // the rule starts both sides again, from the mesh as loaded
+        l.set_settings(slide).unwrap();
+        assert_eq!(l.table(Side::B).work.passes, 0);
+        assert_eq!(l.original().boundary_rule(), BoundaryRule::Slide);
+        let b = l.table(Side::B).boundary.expect("the boundary's report");
+        assert_eq!((b.curves, b.corners, b.curve_nodes, b.surface_nodes), (12, 8, 12 * 3, 6 * 9));
+        for _ in 0..2 {
+            l.step(&no_clock);
+        }
+        for side in Side::BOTH {
+            let c = slide.choice(side);
+            let mut model = Model::Volume(bent_block());
+            let smoothing = smoothlab::Smoothing::default().objective(c.objective).boundary(BoundaryRule::Slide).passes(2).finish(0);
+            let report = model.smooth(&smoothing).unwrap();
+            let Model::Volume(cli) = model else { unreachable!() };
+            assert_eq!(l.mesh(side).nodes(), cli.nodes(), "{side:?}");
+            assert_eq!(l.table(side).boundary.as_ref(), report.boundary(), "{side:?}");
+        }
+        // boundary nodes moved, the corners did not
+        let (m, o) = (l.mesh(Side::B).clone(), l.original().clone());
+        let moved = |k: BoundaryNode| (0..m.node_count()).filter(|&n| m.boundary_node(n) == Some(k) && m.nodes()[n] != o.nodes()[n]).count();
+        assert!(moved(BoundaryNode::Surface) > 20 && moved(BoundaryNode::Curve) > 5, "{} {}", moved(BoundaryNode::Surface), moved(BoundaryNode::Curve));
+        assert_eq!(moved(BoundaryNode::Corner), 0);
+        // a corner cannot be chosen, saying why; a sliding node can, and Smooth this node
+        // keeps it on the boundary
+        let corner = (0..m.node_count()).find(|&n| m.boundary_node(n) == Some(BoundaryNode::Corner)).unwrap();
+        let e = l.choose_node(Some(corner)).unwrap_err().to_string();
+        assert!(e.contains("is a corner of the boundary"), "{e}");
+        let on_face = (0..m.node_count()).find(|&n| m.boundary_node(n) == Some(BoundaryNode::Surface)).unwrap();
+        l.choose_node(Some(on_face)).unwrap();
+        let c = Canvas { w: 160, h: 160, dpr: 1.0 };
+        l.smooth_chosen_node(c, c).unwrap();
+        assert!(l.table(Side::B).boundary.unwrap().max_distance < 1e-12);
+        // a perturbation moves the interior only, and the boundary slides on the new mesh
+        let skin: Vec<DVec3> = (0..o.node_count()).filter(|&n| o.boundary_node(n) != Some(BoundaryNode::Interior)).map(|n| o.nodes()[n]).collect();
+        l.perturb(0.3, 5).unwrap();
+        let p = l.original();
+        assert_eq!(p.boundary_rule(), BoundaryRule::Slide);
+        let after: Vec<DVec3> = (0..p.node_count()).filter(|&n| p.boundary_node(n) != Some(BoundaryNode::Interior)).map(|n| p.nodes()[n]).collect();
+        assert_eq!(skin, after, "the perturbation leaves the boundary where it was");
+        // back to fixed: both sides start again, held
+        l.set_settings(Settings::default()).unwrap();
+        assert!(l.table(Side::A).boundary.is_none() && l.original().boundary_rule() == BoundaryRule::Fixed);
+    }
+
+    #[test]
+    fn the_marks_of_a_sliding_boundary_are_drawn_and_a_fixed_one_draws_as_before() {
+        let mut l = Lab3d::new(bent_block()).unwrap();
+        let c = Canvas { w: 320, h: 280, dpr: 1.0 };
+        let fixed = l.render(Side::B, c).unwrap().0;
+        let plain = {
+            let mut pm = Pixmap::new(c.w, c.h).unwrap();
+            let view = SurfaceView { title: Some(l.side_title(Side::B)), ..SurfaceView::default() };
+            smoothlab_render::render_surface(&mut pm, &l.mesh(Side::B).cut_faces(l.cut(), view.camera.basis().2).faces(l.mesh(Side::B).nodes()), &SurfaceView { bar_title: "mean ratio".into(), ..view });
+            pm
+        };
+        assert_eq!(fixed.data(), plain.data(), "a fixed boundary draws no mark");
+        l.set_settings(Settings { boundary: BoundaryRule::Slide, ..Settings::default() }).unwrap();
+        let sliding = l.render(Side::B, c).unwrap().0;
+        let purple = |pm: &Pixmap| pm.pixels().iter().filter(|p| [p.red(), p.green(), p.blue()] == smoothlab_render::MARK_LINE_RGB).count();
+        assert_eq!(purple(&fixed), 0);
+        assert!(purple(&sliding) > 50, "the feature curves are drawn: {} pixels", purple(&sliding));
+    }
+
+    #[test]
+    fn only_a_linear_volume_mesh_s_boundary_slides() {
+        let slide = Settings { boundary: BoundaryRule::Slide, ..Settings::default() };
+        let q = smoothlab::generate::tet_cube(2).unwrap().to_quadratic(false).unwrap();
+        assert!(q.is_quadratic());
+        let mut quadratic = Lab3d::new(q).unwrap();
+        let e = quadratic.set_settings(slide).unwrap_err().to_string();
+        assert!(e.contains("the boundary cannot slide here: only a linear volume mesh's boundary nodes slide so far"), "{e}");
+        assert_eq!(quadratic.settings().boundary, BoundaryRule::Fixed, "a refusal changes nothing");
+        assert!(lab().slide_refused().is_none());
+        let mut planar = crate::lab::Playground::new(Sample::PlateTri.generate().unwrap()).unwrap();
+        let e = planar.set_settings(slide).unwrap_err().to_string();
+        assert_eq!(e, "the boundary cannot slide here: only a volume mesh's boundary nodes slide; this mesh is planar");
     }
 
     #[test]
