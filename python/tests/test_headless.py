@@ -134,7 +134,7 @@ def test_sliding_boundaries_are_the_tools(files, tmp_path):
     assert "slide" in smoothlab.settings()["boundary"]
     assert smoothlab.read(files["volume"]).smooth().boundary is None
     with pytest.raises(ValueError, match="boundary"):
-        smoothlab.read(files["planar"]).smooth(boundary="slide")
+        smoothlab.read(files["surface"]).smooth(boundary="slide")
     with pytest.raises(ValueError, match="feature_angle"):
         smoothlab.read(files["volume"]).smooth(feature_angle=40)
 

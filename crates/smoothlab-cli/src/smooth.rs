@@ -20,9 +20,9 @@
 //! `--slide-curves` (surfaces only): the nodes of the feature curves and open boundaries
 //! slide along them instead of staying fixed.
 //!
-//! `--boundary slide` (linear volume meshes): boundary nodes slide on the boundary as
-//! loaded, curve nodes along its feature curves (`--feature-angle`), corners stay; the
-//! summary says how many of each and the largest distance from the boundary.
+//! `--boundary slide` (linear planar and volume meshes): boundary nodes slide on the
+//! boundary as loaded, curve nodes along its feature curves (`--feature-angle`), corners
+//! stay; the summary says how many of each and the largest distance from the boundary.
 
 use std::path::PathBuf;
 
@@ -90,9 +90,9 @@ pub struct SmoothArgs {
     /// instead of staying fixed (corners of the curves stay; a file's own fixed flags decide)
     #[arg(long)]
     pub slide_curves: bool,
-    /// What a volume mesh's boundary nodes do: fixed (where the file put them, the papers)
-    /// or slide (on the boundary as loaded, along its feature curves; corners and the
-    /// file's fixed nodes stay)
+    /// What a linear planar or volume mesh's boundary nodes do: fixed (where the file put
+    /// them, the papers) or slide (on the boundary as loaded, along its feature curves;
+    /// corners and the file's fixed nodes stay)
     #[arg(long, value_parser = named(&BoundaryRule::ALL, BoundaryRule::name, BoundaryRule::describe), default_value = BoundaryRule::default().name())]
     pub boundary: BoundaryRule,
     /// With --boundary slide: two boundary faces that turn by more than this many degrees
@@ -229,13 +229,13 @@ pub fn run(a: SmoothArgs) -> Result<(), String> {
     }
     match &model {
         Model::Volume(v) if a.boundary == BoundaryRule::Slide && v.is_quadratic() => {
-            return Err("--boundary slide takes linear volume meshes so far: a quadratic mesh's boundary nodes stay".into())
+            return Err("--boundary slide takes linear meshes so far: a quadratic mesh's boundary nodes stay".into())
         }
-        Model::Planar(_) | Model::Surface(_) if a.boundary == BoundaryRule::Slide => {
-            return Err(format!(
-                "--boundary slide takes volume meshes so far; this mesh is {} (a surface's curves slide with --slide-curves)",
-                if matches!(model, Model::Planar(_)) { "planar" } else { "a surface" }
-            ))
+        Model::Planar(m) if a.boundary == BoundaryRule::Slide && m.has_quadratic() => {
+            return Err("--boundary slide takes linear meshes so far: a quadratic mesh's boundary nodes stay".into())
+        }
+        Model::Surface(_) if a.boundary == BoundaryRule::Slide => {
+            return Err("--boundary slide takes planar and volume meshes; a surface's curves slide with --slide-curves".into())
         }
         _ => {}
     }
@@ -319,9 +319,12 @@ fn summary(report: &Report) -> String {
     ));
     if let Some(b) = report.boundary() {
         t.push_str(&format!(
-            "boundary: {} slid on the surface, {} along {}, {} held ({} corners{}); every node within {:.3e} of the boundary as loaded ({:.2}% of the mean edge)\n",
-            crate::args::count(b.surface_nodes, "node", "nodes"),
-            b.curve_nodes,
+            "boundary: {}{} along {}, {} held ({} corners{}); every node within {:.3e} of the boundary as loaded ({:.2}% of the mean edge)\n",
+            match b.surface_nodes {
+                0 => String::new(),
+                n => format!("{} slid on the surface, ", crate::args::count(n, "node", "nodes")),
+            },
+            crate::args::count(b.curve_nodes, "node", "nodes"),
             crate::args::count(b.curves, "feature curve", "feature curves"),
             b.corners + b.held,
             b.corners,

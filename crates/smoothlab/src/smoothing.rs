@@ -143,7 +143,7 @@ impl Smoothing {
         self
     }
 
-    /// What boundary nodes do ([`BoundaryRule`]; volume meshes).
+    /// What boundary nodes do ([`BoundaryRule`]; linear planar and volume meshes).
     pub fn boundary(mut self, rule: BoundaryRule) -> Self {
         self.boundary = rule;
         self
@@ -254,9 +254,11 @@ impl Smoothing {
     fn check(&self, model: &Model) -> Result<()> {
         match model {
             Model::Surface(_) if self.boundary == BoundaryRule::Fixed => Ok(()),
-            Model::Planar(mesh) if !self.slide_curves && self.boundary == BoundaryRule::Fixed => {
-                check_scale(self.objective, mesh)
-            }
+            Model::Planar(mesh) if self.boundary == BoundaryRule::Slide && mesh.has_quadratic() => refuse(
+                "boundary",
+                "slide takes linear planar meshes so far; quadratic boundary nodes stay".into(),
+            ),
+            Model::Planar(mesh) if !self.slide_curves => check_scale(self.objective, mesh),
             Model::Volume(v) if self.slide_curves => refuse(
                 "slide_curves",
                 format!(
@@ -275,7 +277,7 @@ impl Smoothing {
             Model::Volume(_) => Ok(()),
             _ if self.boundary == BoundaryRule::Slide => refuse(
                 "boundary",
-                "slide takes volume meshes so far; a surface's curves slide with slide_curves".into(),
+                "a surface's boundary slides with slide_curves, not boundary slide".into(),
             ),
             _ => refuse(
                 "slide_curves",
@@ -426,6 +428,12 @@ impl Model {
                 mesh.set_boundary(smoothing.boundary, angle);
             }
         }
+        if let Model::Planar(mesh) = self {
+            let angle = smoothing.feature_angle_deg.unwrap_or(FEATURE_ANGLE_DEG);
+            if mesh.boundary_rule() != smoothing.boundary || mesh.feature_curves().is_some_and(|(a, _)| a != angle) {
+                mesh.set_boundary(smoothing.boundary, angle);
+            }
+        }
         let penalty = smoothing.penalty.unwrap_or_default();
         self.set_target(smoothing.target);
         let passes = self.passes(kind, penalty, opts, 1..smoothing.passes + 1, clock);
@@ -468,6 +476,7 @@ impl Model {
         };
         let boundary = match &*self {
             Model::Volume(mesh) if mesh.boundary_rule() == BoundaryRule::Slide => Some(BoundaryReport::of(mesh)),
+            Model::Planar(mesh) if mesh.boundary_rule() == BoundaryRule::Slide => Some(BoundaryReport::of_planar(mesh)),
             _ => None,
         };
         Ok(Report {
@@ -508,19 +517,48 @@ impl BoundaryReport {
     /// What `mesh`'s boundary rule holds now: its counts, and how far its sliding nodes
     /// are from the boundary as loaded (the page reports a side's mesh by it, as here).
     pub fn of(mesh: &crate::volume::VolumeMesh) -> BoundaryReport {
-        use crate::volume::BoundaryNode as B;
-        let (angle, curves) = mesh.feature_curves().unwrap_or((0.0, 0));
-        let on = |c: B| (0..mesh.node_count()).filter(|&n| mesh.boundary_node(n) == Some(c)).count();
-        let on_skin = {
-            let mut skin = vec![false; mesh.node_count()];
-            for f in mesh.boundary_faces() {
-                for &v in f.nodes() {
-                    skin[v as usize] = true;
-                }
+        let mut skin = vec![false; mesh.node_count()];
+        for f in mesh.boundary_faces() {
+            for &v in f.nodes() {
+                skin[v as usize] = true;
             }
-            skin
-        };
-        let held = (0..mesh.node_count()).filter(|&n| on_skin[n] && mesh.boundary_node(n) == Some(B::Held)).count();
+        }
+        BoundaryReport::counted(
+            mesh.feature_curves(),
+            &skin,
+            |n| mesh.boundary_node(n),
+            mesh.max_distance_from_boundary(),
+            mesh.mean_edge_length(),
+        )
+    }
+
+    /// [`of`](Self::of) a planar mesh: its boundary edges are its curves.
+    pub fn of_planar(mesh: &crate::Mesh) -> BoundaryReport {
+        let mut on_boundary = vec![false; mesh.node_count()];
+        for e in mesh.topology().boundary_edges() {
+            on_boundary[e.a as usize] = true;
+            on_boundary[e.b as usize] = true;
+        }
+        BoundaryReport::counted(
+            mesh.feature_curves(),
+            &on_boundary,
+            |n| mesh.boundary_node(n),
+            mesh.max_distance_from_boundary(),
+            mesh.mean_edge_length(),
+        )
+    }
+
+    fn counted(
+        curves: Option<(f64, usize)>,
+        on_boundary: &[bool],
+        class: impl Fn(usize) -> Option<crate::mesh::BoundaryNode>,
+        max_distance: f64,
+        mean_edge: f64,
+    ) -> BoundaryReport {
+        use crate::mesh::BoundaryNode as B;
+        let (angle, curves) = curves.unwrap_or((0.0, 0));
+        let on = |c: B| (0..on_boundary.len()).filter(|&n| class(n) == Some(c)).count();
+        let held = (0..on_boundary.len()).filter(|&n| on_boundary[n] && class(n) == Some(B::Held)).count();
         BoundaryReport {
             feature_angle_deg: angle,
             curves,
@@ -528,8 +566,8 @@ impl BoundaryReport {
             curve_nodes: on(B::Curve),
             corners: on(B::Corner),
             held,
-            max_distance: mesh.max_distance_from_boundary(),
-            mean_edge: mesh.mean_edge_length(),
+            max_distance,
+            mean_edge,
         }
     }
 }

@@ -70,7 +70,7 @@ export default async function ({ server, context }) {
       check(await p.locator('#boundary').isDisabled(), 'a planar mesh\'s boundary cannot slide');
       check(await p.inputValue('#boundary') === 'fixed', `the menu shows ${await p.inputValue('#boundary')}`);
       const why = await p.textContent('#boundary-why');
-      check(/^Fixed here: only a volume mesh's boundary nodes slide; this mesh is planar\.$/.test(why), `why: ${why}`);
+      check(/^Fixed here: the page slides a volume mesh's boundary; this mesh is planar \(the command line and Python slide it\)\.$/.test(why), `why: ${why}`);
       check(/as in the papers/.test(await p.textContent('#boundary-words')), await p.textContent('#boundary-words'));
 
       await p.setInputFiles('#file', file);

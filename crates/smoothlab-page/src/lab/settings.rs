@@ -239,7 +239,7 @@ pub fn boundary_words(rule: BoundaryRule) -> &'static str {
 /// Why a planar mesh's boundary nodes cannot slide (the core's `--boundary slide` takes
 /// volume meshes only).
 pub fn slide_refused_planar() -> String {
-    "only a volume mesh's boundary nodes slide; this mesh is planar".into()
+    "the page slides a volume mesh's boundary; this mesh is planar (the command line and Python slide it)".into()
 }
 
 /// Why a surface's boundary nodes cannot slide by this rule.

@@ -340,6 +340,8 @@ impl MeshBuilder {
             conn: Arc::new(Connectivity { kinds, elem_start, elem_nodes, topo: Topology::default(), reversed: Vec::new() }),
             loaded_3d: None,
             target: None,
+            given_fixed: None,
+            sliding: None,
         };
         if let Some(points) = loaded_3d {
             mesh.keep_loaded_3d(points);
@@ -412,6 +414,8 @@ impl MeshBuilder {
             plane: None,
             loaded_3d: None,
             target: None,
+            given_fixed: None,
+            sliding: None,
             nodes: vec![DVec2::ZERO; n],
             fixed: vec![false; n],
             conn: Arc::new(Connectivity {
@@ -627,6 +631,14 @@ pub(super) fn finish(mut mesh: Mesh, names: FileNames<'_>, fixed: FixedSpec) -> 
     let topo = build_topology(&mesh, names)?;
     mesh.connectivity_mut().topo = topo;
     let boundary = mesh.conn.topo.boundary.clone();
+    mesh.given_fixed = match &fixed {
+        FixedSpec::Boundary => None,
+        FixedSpec::Exact(f) | FixedSpec::BoundaryAnd(f) => {
+            let mut f = f.clone();
+            f.resize(n, false);
+            Some(Arc::new(f))
+        }
+    };
     mesh.fixed = match fixed {
         FixedSpec::Boundary => boundary,
         FixedSpec::Exact(f) => {

@@ -16,6 +16,7 @@ use serde::Serialize;
 mod builder;
 mod kind;
 mod renumber;
+mod slide;
 pub(crate) use renumber::HilbertGrid;
 #[cfg(test)]
 mod tests;
@@ -25,6 +26,8 @@ mod volume_kind;
 pub(crate) use builder::{Flat, SurfaceParts};
 pub use builder::{polygon_area, FixedSpec, MeshBuilder, MAX_COORDINATE, PLANAR_TOLERANCE};
 pub use kind::{ElementKind, NodeRole};
+pub use slide::{BoundaryNode, BoundaryRule, FEATURE_ANGLE_DEG, MIN_CURVE_SEGMENTS};
+pub(crate) use slide::{csr, held_nodes, Curves};
 pub use volume_kind::{
     CornerReference, VolumeKind, VolumeKindCounts, VolumeKindRow, CUBE_CORNER, EQUILATERAL_TET, EQUILATERAL_W, EQUILATERAL_W_INVERSE,
     PYRAMID_CORNER, TET10_EDGES, WEDGE_CORNER, WITH_FIRST,
@@ -150,6 +153,10 @@ pub struct Mesh {
     /// [`nodes`](Self::nodes) (a surface's star moves them into its tangent plane with the
     /// nodes), and each element's corner frames from them ([`crate::target::element_frames`]).
     target: Option<Box<Targets>>,
+    /// The nodes the file itself fixed (its flags), whatever the boundary rule.
+    given_fixed: Option<Arc<Vec<bool>>>,
+    /// The sliding rule, when boundary nodes slide ([`BoundaryRule::Slide`]).
+    sliding: Option<Box<slide::PlanarSliding>>,
 }
 
 /// The target positions of a mesh's nodes and each element's corner frames from them,
@@ -296,7 +303,14 @@ impl Mesh {
     }
     /// A node the smoothers may move: a corner that is not fixed.
     pub fn is_free(&self, n: usize) -> bool {
-        !self.fixed[n] && self.conn.topo.role[n] == NodeRole::Corner
+        let unfixed = match &self.sliding {
+            None => !self.fixed[n],
+            Some(_) => match self.boundary_node(n) {
+                Some(BoundaryNode::Interior) | None => !self.fixed[n],
+                Some(c) => c.slides(),
+            },
+        };
+        unfixed && self.conn.topo.role[n] == NodeRole::Corner
     }
     pub fn free_count(&self) -> usize {
         (0..self.node_count()).filter(|&n| self.is_free(n)).count()

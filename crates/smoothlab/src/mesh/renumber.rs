@@ -56,6 +56,8 @@ impl Mesh {
             // a working copy: its nodes go back to `self`, which writes them
             loaded_3d: None,
             target: None,
+            given_fixed: None,
+            sliding: None,
         };
         // The same elements under other numbers: every check that passed for `self`
         // passes here, so building the topology cannot fail.

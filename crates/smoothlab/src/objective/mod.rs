@@ -286,6 +286,9 @@ pub struct Star {
     /// Per element, with [`targets`](Self::targets): each corner's frame
     /// ([`crate::target::corner_frame`]; the identity where the ideal holds).
     pub frames: Vec<[DMat2; 4]>,
+    /// The unit direction the free node slides along the boundary
+    /// ([`Mesh::slide_direction`]; zero where it does not slide).
+    pub slide: DVec2,
 }
 
 /// Facts of a star at its position [`Star::x0`] that an objective reads at every
@@ -372,6 +375,7 @@ impl Star {
     pub fn gather(&mut self, mesh: &Mesh, node: usize) {
         self.node = node as u32;
         self.x0 = mesh.nodes()[node];
+        self.slide = mesh.slide_direction(node);
         self.mixed = mesh.has_triangles() && mesh.has_quads();
         self.memo.forget();
         self.elems.clear();

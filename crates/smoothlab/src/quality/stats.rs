@@ -169,7 +169,10 @@ impl MeshCounts {
         MeshCounts {
             nodes: mesh.node_count(),
             free_nodes: mesh.free_count(),
-            fixed_nodes: mesh.fixed().iter().filter(|&&f| f).count(),
+            // a boundary node that slides is free, not fixed
+            fixed_nodes: (0..mesh.node_count())
+                .filter(|&n| mesh.fixed()[n] && !mesh.boundary_node(n).is_some_and(|c| c.slides()))
+                .count(),
             elements: mesh.element_count(),
             triangles,
             quads: mesh.element_count() - triangles,

@@ -116,6 +116,7 @@ impl StarView for Planar<'_> {
         if self.0.has_quadratic() {
             self.0.follow_mid_nodes(n);
         }
+        self.0.settle(n);
     }
     fn is_inverted(&self, e: usize) -> bool {
         measure::mesh_element_is_inverted(self.0, e)

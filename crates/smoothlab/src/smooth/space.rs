@@ -200,6 +200,10 @@ impl SmoothMesh for Mesh {
     fn has_target(&self) -> bool {
         self.target_nodes().is_some()
     }
+    #[inline]
+    fn onto_boundary(&self, n: usize, x: glam::DVec2) -> glam::DVec2 {
+        Mesh::onto_boundary(self, n, x)
+    }
     type Point = glam::DVec2;
     fn valid_reading(&self) -> Option<Reading> {
         Reading::planar_mesh(self, |e| self.element_points_array(e))
@@ -271,6 +275,22 @@ impl DriverStar for Star {
     #[inline]
     fn gather(&mut self, mesh: &Mesh, node: usize) {
         Star::gather(self, mesh, node)
+    }
+    #[inline]
+    fn slides(&self) -> bool {
+        self.slide != glam::DVec2::ZERO
+    }
+    /// `g` along the boundary's direction, `t·tᵀ·g`.
+    #[inline]
+    fn along(&self, g: glam::DVec2) -> glam::DVec2 {
+        self.slide * g.dot(self.slide)
+    }
+    /// `P·H·P` with `P = t·tᵀ`: `(tᵀHt)·t·tᵀ`.
+    #[inline]
+    fn along_hessian(&self, h: glam::DMat2) -> glam::DMat2 {
+        let t = self.slide;
+        let c = t.dot(h * t);
+        glam::DMat2::from_cols(t * (c * t.x), t * (c * t.y))
     }
     #[inline]
     fn x0(&self) -> glam::DVec2 {

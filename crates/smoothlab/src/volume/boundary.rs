@@ -25,59 +25,10 @@ use std::sync::Arc;
 
 use glam::{DMat3, DVec3};
 
-use crate::mesh::{ElementKind, NONE};
+use crate::mesh::{Curves, ElementKind, MIN_CURVE_SEGMENTS, NONE};
 use crate::surface::Facets;
 
-crate::enum_with_names! {
-    /// What boundary nodes do (the command line's `--boundary`).
-    #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, serde::Serialize, serde::Deserialize)]
-    #[serde(rename_all = "kebab-case")]
-    pub enum BoundaryRule {
-        /// Boundary nodes stay where the file put them: the papers' setting.
-        #[default]
-        Fixed => ("fixed", "boundary nodes stay where the file put them (the papers)"),
-        /// Boundary nodes slide on the boundary as loaded; feature curves hold their nodes.
-        Slide => ("slide", "boundary nodes slide on the boundary as loaded, along its feature curves; corners stay"),
-    }
-}
-
-impl BoundaryRule {
-    /// The rule with command-line name `s` (exact, lowercase), if any.
-    pub fn parse(s: &str) -> Option<Self> {
-        Self::ALL.into_iter().find(|r| r.name() == s)
-    }
-}
-
-/// The default feature angle, degrees: two boundary faces that turn by more meet at a
-/// feature curve. Chosen on Livesu et al.'s eleven real hexahedral meshes (defaults plus
-/// sliding; `docs/reproduction.md` §13): 30°, 45° and 60° untangled 9, 8 and 8 of them
-/// and reached the published smallest scaled Jacobian on 3, 4 and 5. A coarse mesh of an
-/// organic shape turns by 30° between faces in many places that are no crease; a CAD
-/// part's edges turn by 90°.
-pub const FEATURE_ANGLE_DEG: f64 = 60.0;
-
-/// What a node does under the sliding rule.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum BoundaryNode {
-    /// Off the boundary: moves as before.
-    Interior,
-    /// Fixed by the file, or not a corner of any element.
-    Held,
-    /// Where feature curves meet or one turns or ends: stays.
-    Corner,
-    /// On a feature curve: slides along it.
-    Curve,
-    /// On a smooth part of the boundary: slides on it.
-    Surface,
-}
-
-impl BoundaryNode {
-    /// Whether the node slides (on a curve or a surface).
-    #[inline]
-    pub fn slides(self) -> bool {
-        matches!(self, BoundaryNode::Curve | BoundaryNode::Surface)
-    }
-}
+pub use crate::mesh::{BoundaryNode, BoundaryRule, FEATURE_ANGLE_DEG};
 
 /// The space a sliding node moves in at its position: the plane with this unit normal,
 /// or the line with this unit direction.
@@ -116,22 +67,12 @@ fn outer(a: DVec3, b: DVec3) -> DMat3 {
 }
 
 /// The boundary as loaded, shared by clones of the mesh: the skin's flat triangles cut
-/// into parts at the feature curves, the curves' segments, each node's class.
+/// into parts at the feature curves, the curves, each node's class.
 #[derive(Debug)]
 struct Reference {
     facets: Facets,
-    /// The positions as loaded (the segments' ends).
-    points: Vec<DVec3>,
-    /// The feature edges: their two nodes.
-    segments: Vec<[u32; 2]>,
-    /// Per segment, its curve (the segments joined through curve nodes).
-    curve: Vec<u32>,
-    /// CSR: the segments at each node.
-    seg_start: Vec<u32>,
-    node_segs: Vec<u32>,
-    class: Vec<BoundaryNode>,
+    curves: Curves<DVec3>,
     feature_angle_deg: f64,
-    curve_count: usize,
 }
 
 /// The sliding rule of a volume mesh: the reference, and per node where its last
@@ -215,7 +156,8 @@ impl Sliding {
             }
         }
         let found: Vec<[u32; 2]> = skin_edges.iter().filter(|e| e.2).map(|e| e.0).collect();
-        let first = Curves::new(points, &on_skin, held, found, cos_feature);
+        let none_folded = vec![false; n];
+        let first = Curves::new(points, &on_skin, held, &none_folded, found, cos_feature);
         // a crease shorter than MIN_CURVE_SEGMENTS edges that ends nowhere (at a node of
         // no other feature edge) is the coarse mesh's noise, not a feature: its edges are
         // smooth (an edge of more or fewer than two faces stays)
@@ -236,8 +178,7 @@ impl Sliding {
             e.2 = !short(&e.0);
         }
         let kept: Vec<[u32; 2]> = skin_edges.iter().filter(|e| e.2).map(|e| e.0).collect();
-        let Curves { segments, seg_start, node_segs, class, curve, count: curve_count } =
-            Curves::new(points, &on_skin, held, kept, cos_feature);
+        let curves = Curves::new(points, &on_skin, held, &none_folded, kept, cos_feature);
         // faces joined across smooth edges: the parts (union–find)
         let mut parent: Vec<u32> = (0..faces.len() as u32).collect();
         fn root(parent: &mut [u32], mut i: u32) -> u32 {
@@ -257,22 +198,12 @@ impl Sliding {
         let kinds: Vec<ElementKind> =
             faces.iter().map(|f| if f.len() == 4 { ElementKind::Quad4 } else { ElementKind::Tri3 }).collect();
         let facets = Facets::new(points, &kinds, |e| faces[e], |e| part[e], |_| 0).with_normals_across_parts();
-        let reference = Reference {
-            facets,
-            points: points.to_vec(),
-            segments,
-            curve,
-            seg_start,
-            node_segs,
-            class,
-            feature_angle_deg,
-            curve_count,
-        };
+        let reference = Reference { facets, curves, feature_angle_deg };
         let mut sliding = Sliding { hint: vec![NONE; n], tangent: vec![Tangent::Free; n], reference: Arc::new(reference) };
         for (v, &at) in points.iter().enumerate() {
-            match sliding.reference.class[v] {
+            match sliding.reference.curves.class[v] {
                 BoundaryNode::Surface => sliding.hint[v] = sliding.reference.facets.triangle_at_vertex(v),
-                BoundaryNode::Curve => sliding.hint[v] = sliding.reference.segs_at(v)[0],
+                BoundaryNode::Curve => sliding.hint[v] = sliding.reference.curves.segs_at(v)[0],
                 _ => continue,
             }
             sliding.settle(v, at);
@@ -283,7 +214,7 @@ impl Sliding {
     /// What node `n` does.
     #[inline]
     pub(crate) fn class(&self, n: usize) -> BoundaryNode {
-        self.reference.class[n]
+        self.reference.curves.class[n]
     }
 
     /// The feature angle the curves were found by, degrees.
@@ -293,12 +224,12 @@ impl Sliding {
 
     /// How many feature curves the skin has.
     pub(crate) fn curve_count(&self) -> usize {
-        self.reference.curve_count
+        self.reference.curves.count
     }
 
     /// The feature edges: their two nodes.
     pub(crate) fn feature_edges(&self) -> &[[u32; 2]] {
-        &self.reference.segments
+        &self.reference.curves.segments
     }
 
     /// The tangent of node `n` where it is now.
@@ -312,12 +243,15 @@ impl Sliding {
     /// for another node.
     pub(crate) fn project(&self, n: usize, x: DVec3) -> (DVec3, Tangent, u32) {
         let r = &*self.reference;
-        match r.class[n] {
+        match r.curves.class[n] {
             BoundaryNode::Surface => {
                 let p = r.facets.project(x, self.hint[n]);
                 (p.point, Tangent::Plane(p.normal), p.face)
             }
-            BoundaryNode::Curve => r.on_curve(x, self.hint[n]),
+            BoundaryNode::Curve => {
+                let (q, t, s) = r.curves.on_curve(x, self.hint[n]);
+                (q, Tangent::Line(t), s)
+            }
             _ => (x, Tangent::Free, NONE),
         }
     }
@@ -325,7 +259,7 @@ impl Sliding {
     /// Records that node `n` now lies at `x` (a point of the reference): where its next
     /// search starts, and its tangent.
     pub(crate) fn settle(&mut self, n: usize, x: DVec3) {
-        if self.reference.class[n].slides() {
+        if self.reference.curves.class[n].slides() {
             let (_, tangent, hint) = self.project(n, x);
             self.hint[n] = hint;
             self.tangent[n] = tangent;
@@ -337,148 +271,11 @@ impl Sliding {
     /// curve for a curve node; 0 for a node that does not slide.
     pub(crate) fn distance(&self, n: usize, x: DVec3) -> f64 {
         let r = &*self.reference;
-        match r.class[n] {
+        match r.curves.class[n] {
             BoundaryNode::Surface => r.facets.project(x, NONE).point.distance(x),
-            BoundaryNode::Curve => {
-                let curve = r.curve[self.hint[n] as usize];
-                (0..r.segments.len() as u32)
-                    .filter(|&s| r.curve[s as usize] == curve)
-                    .map(|s| r.on_segment(x, s).distance(x))
-                    .fold(f64::INFINITY, f64::min)
-            }
+            BoundaryNode::Curve => r.curves.distance(x, self.hint[n]),
             _ => 0.0,
         }
-    }
-}
-
-/// The shortest feature curve kept where it ends at no other feature curve, in skin edges.
-pub const MIN_CURVE_SEGMENTS: usize = 3;
-
-/// Feature edges joined into curves, and each node's class by them.
-struct Curves {
-    /// The feature edges, sorted.
-    segments: Vec<[u32; 2]>,
-    /// CSR: the segments at each node.
-    seg_start: Vec<u32>,
-    node_segs: Vec<u32>,
-    class: Vec<BoundaryNode>,
-    /// Per segment, its curve.
-    curve: Vec<u32>,
-    count: usize,
-}
-
-impl Curves {
-    /// The curves of feature edges `segments` (sorted) over a skin whose nodes are
-    /// `on_skin`; `held` nodes stay, and a node where its two edges turn by more than the
-    /// feature angle (`cos_feature`) is a corner.
-    fn new(points: &[DVec3], on_skin: &[bool], held: &[bool], segments: Vec<[u32; 2]>, cos_feature: f64) -> Curves {
-        let n = points.len();
-        let mut pairs: Vec<(u32, u32)> = segments.iter().enumerate().flat_map(|(s, &[a, b])| [(a, s as u32), (b, s as u32)]).collect();
-        let (seg_start, node_segs) = super::csr(n, &mut pairs);
-        let segs_at = |v: usize| &node_segs[seg_start[v] as usize..seg_start[v + 1] as usize];
-        let class: Vec<BoundaryNode> = (0..n)
-            .map(|v| {
-                if !on_skin[v] {
-                    return if held[v] { BoundaryNode::Held } else { BoundaryNode::Interior };
-                }
-                if held[v] {
-                    return BoundaryNode::Held;
-                }
-                match *segs_at(v) {
-                    [] => BoundaryNode::Surface,
-                    [s, t] => {
-                        let other = |s: u32| {
-                            let [a, b] = segments[s as usize];
-                            if a as usize == v { b } else { a }
-                        };
-                        let (a, b) = (points[other(s) as usize], points[other(t) as usize]);
-                        let (u, w) = (crate::numeric::direction(points[v] - a), crate::numeric::direction(b - points[v]));
-                        if u.dot(w) < cos_feature {
-                            BoundaryNode::Corner
-                        } else {
-                            BoundaryNode::Curve
-                        }
-                    }
-                    _ => BoundaryNode::Corner,
-                }
-            })
-            .collect();
-        // segments joined through curve nodes
-        let mut curve = vec![u32::MAX; segments.len()];
-        let mut count = 0u32;
-        for s0 in 0..segments.len() {
-            if curve[s0] != u32::MAX {
-                continue;
-            }
-            let mut stack = vec![s0 as u32];
-            curve[s0] = count;
-            while let Some(s) = stack.pop() {
-                for &v in &segments[s as usize] {
-                    if class[v as usize] != BoundaryNode::Curve {
-                        continue;
-                    }
-                    for &t in segs_at(v as usize) {
-                        if curve[t as usize] == u32::MAX {
-                            curve[t as usize] = count;
-                            stack.push(t);
-                        }
-                    }
-                }
-            }
-            count += 1;
-        }
-        Curves { segments, seg_start, node_segs, class, curve, count: count as usize }
-    }
-
-    fn segs_at(&self, v: usize) -> &[u32] {
-        &self.node_segs[self.seg_start[v] as usize..self.seg_start[v + 1] as usize]
-    }
-}
-
-impl Reference {
-    fn segs_at(&self, v: usize) -> &[u32] {
-        &self.node_segs[self.seg_start[v] as usize..self.seg_start[v + 1] as usize]
-    }
-
-    /// The nearest point of segment `s` to `p`.
-    fn on_segment(&self, p: DVec3, s: u32) -> DVec3 {
-        let [a, b] = self.segments[s as usize].map(|v| self.points[v as usize]);
-        let d = b - a;
-        let t = ((p - a).dot(d) / d.length_squared()).clamp(0.0, 1.0);
-        if t.is_finite() {
-            a + d * t
-        } else {
-            a
-        }
-    }
-
-    /// The nearest point to `p` of the curve of segment `hint`, by a walk from it over
-    /// the segments of the same curve while the distance falls; the curve's direction
-    /// there and the segment.
-    fn on_curve(&self, p: DVec3, hint: u32) -> (DVec3, Tangent, u32) {
-        let curve = self.curve[hint as usize];
-        let (mut s, mut q) = (hint, self.on_segment(p, hint));
-        let mut d = q.distance_squared(p);
-        for _ in 0..self.segments.len() {
-            let mut best = (d, s, q);
-            for &v in &self.segments[s as usize] {
-                for &t in self.segs_at(v as usize) {
-                    if t != s && self.curve[t as usize] == curve {
-                        let qt = self.on_segment(p, t);
-                        let dt = qt.distance_squared(p);
-                        if dt < best.0 {
-                            best = (dt, t, qt);
-                        }
-                    }
-                }
-            }
-            if best.1 == s {
-                break;
-            }
-            (d, s, q) = best;
-        }
-        let [a, b] = self.segments[s as usize].map(|v| self.points[v as usize]);
-        (q, Tangent::Line(crate::numeric::direction(b - a)), s)
     }
 }
 
@@ -500,16 +297,7 @@ impl super::VolumeMesh {
                 on_skin[v as usize] = true;
             }
         }
-        // flags that fix every node of the skin say no more than "the boundary" (what
-        // smoothlab's writers and Mesquite's write): they hold the nodes off the skin only
-        let given = self.given_fixed.as_deref();
-        let whole_skin = given.is_some_and(|g| on_skin.iter().zip(g).all(|(&s, &f)| !s || f));
-        let held: Vec<bool> = (0..self.node_count())
-            .map(|v| {
-                self.role(v) != crate::mesh::NodeRole::Corner
-                    || given.is_some_and(|g| g[v] && !(whole_skin && on_skin[v]))
-            })
-            .collect();
+        let held = crate::mesh::held_nodes(&on_skin, self.given_fixed.as_deref(), |v| self.role(v));
         let sliding = Sliding::new(self.nodes(), &faces, &held, feature_angle_deg);
         self.sliding = Some(sliding);
     }

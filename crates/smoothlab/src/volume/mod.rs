@@ -16,7 +16,7 @@ use glam::DVec3;
 
 use crate::error::{listed, Error, Numbering, Result};
 pub use crate::mesh::{VolumeKind, TET10_EDGES};
-use crate::mesh::{FixedSpec, MeshBuilder, NodeRole};
+use crate::mesh::{csr, FixedSpec, MeshBuilder, NodeRole};
 use crate::numeric::order::sort_stable_by_key;
 use crate::quality::solid::{solid_measures, validity, SolidMeasures, Validity};
 use crate::quality::tet as q3;
@@ -158,19 +158,6 @@ pub struct VolumeMesh {
     given_fixed: Option<Vec<bool>>,
     /// The sliding rule, when boundary nodes slide ([`BoundaryRule::Slide`]).
     sliding: Option<boundary::Sliding>,
-}
-
-/// Builds CSR arrays from (key, value) pairs over `n` keys.
-fn csr(n: usize, pairs: &mut [(u32, u32)]) -> (Vec<u32>, Vec<u32>) {
-    pairs.sort_unstable();
-    let mut start = vec![0u32; n + 1];
-    for &(k, _) in pairs.iter() {
-        start[k as usize + 1] += 1;
-    }
-    for i in 0..n {
-        start[i + 1] += start[i];
-    }
-    (start, pairs.iter().map(|&(_, v)| v).collect())
 }
 
 /// An element's corner determinants' sum, in units of its own size, and whether it has

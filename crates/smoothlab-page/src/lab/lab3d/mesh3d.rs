@@ -16,7 +16,7 @@ use smoothlab_render::{Projection, SurfaceView};
 
 
 /// A kind of mesh in space that the 3D lab holds: how it is smoothed a pass at a time,
-/// measured, perturbed, drawn and written. [`surface`] and [`volume`] implement it.
+/// measured, perturbed, drawn and written. [`surface`](super::surface) and [`volume`](super::volume) implement it.
 pub trait Mesh3d: Clone + Sized {
     /// The kind's name for the page (`surface`, `volume`).
     const KIND: &'static str;
@@ -31,8 +31,8 @@ pub trait Mesh3d: Clone + Sized {
     /// The plane the view is cut by, where the kind has one (`()` where it has none).
     type Cut: Copy + Default + std::fmt::Debug + PartialEq;
 
-    /// Refuses a mesh the lab cannot hold, saying why (beyond [`MAX_NODES`], checked by
-    /// [`Lab3d::new`]).
+    /// Refuses a mesh the lab cannot hold, saying why (beyond [`MAX_NODES`](super::super::MAX_NODES), checked by
+    /// [`Lab3d::new`](super::Lab3d::new)).
     fn check(&self) -> Result<()> {
         Ok(())
     }

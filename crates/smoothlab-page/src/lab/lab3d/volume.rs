@@ -549,7 +549,7 @@ mod tests {
         assert!(lab().slide_refused().is_none());
         let mut planar = crate::lab::Playground::new(Sample::PlateTri.generate().unwrap()).unwrap();
         let e = planar.set_settings(slide).unwrap_err().to_string();
-        assert_eq!(e, "the boundary cannot slide here: only a volume mesh's boundary nodes slide; this mesh is planar");
+        assert_eq!(e, "the boundary cannot slide here: the page slides a volume mesh's boundary; this mesh is planar (the command line and Python slide it)");
     }
 
     #[test]

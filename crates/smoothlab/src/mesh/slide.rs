@@ -1,0 +1,475 @@
+//! Boundaries that slide (issue 58), what planar and volume meshes share: the rule, each
+//! node's part in it, and the feature curves as polylines their nodes slide along.
+//!
+//! A curve is a run of feature edges joined through nodes of exactly two whose directions
+//! turn by at most the feature angle. A node on one feature edge, or on three or more, or
+//! where its curve turns, is a corner and stays. A node the file fixed stays.
+//!
+//! A planar mesh's boundary is its feature curves: its edges of one element. A node where
+//! the boundary turns by more than the feature angle is a corner, unless an element of
+//! either edge was inverted as loaded (a fold is not a corner). The others slide along the
+//! boundary as loaded ([`Mesh::set_boundary`]).
+
+use std::ops::{Add, Mul, Sub};
+use std::sync::Arc;
+
+use glam::{DVec2, DVec3};
+
+use super::{Mesh, NodeRole, NONE};
+
+crate::enum_with_names! {
+    /// What boundary nodes do (the command line's `--boundary`).
+    #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, serde::Serialize, serde::Deserialize)]
+    #[serde(rename_all = "kebab-case")]
+    pub enum BoundaryRule {
+        /// Boundary nodes stay where the file put them: the papers' setting.
+        #[default]
+        Fixed => ("fixed", "boundary nodes stay where the file put them (the papers)"),
+        /// Boundary nodes slide on the boundary as loaded; feature curves hold their nodes.
+        Slide => ("slide", "boundary nodes slide on the boundary as loaded, along its feature curves; corners stay"),
+    }
+}
+
+impl BoundaryRule {
+    /// The rule with command-line name `s` (exact, lowercase), if any.
+    pub fn parse(s: &str) -> Option<Self> {
+        Self::ALL.into_iter().find(|r| r.name() == s)
+    }
+}
+
+/// The default feature angle, degrees: two boundary faces (a planar mesh's boundary
+/// edges) that turn by more meet at a feature curve (a corner). Chosen on Livesu et al.'s
+/// eleven real hexahedral meshes (defaults plus sliding; `docs/reproduction.md` §13): 30°,
+/// 45° and 60° untangled 9, 8 and 8 of them and reached the published smallest scaled
+/// Jacobian on 3, 4 and 5. A coarse mesh of an organic shape turns by 30° between faces in
+/// many places that are no crease; a CAD part's edges turn by 90°.
+pub const FEATURE_ANGLE_DEG: f64 = 60.0;
+
+/// The shortest feature curve kept where it ends at no other feature curve, in edges.
+pub const MIN_CURVE_SEGMENTS: usize = 3;
+
+/// What a node does under the sliding rule.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum BoundaryNode {
+    /// Off the boundary: moves as before.
+    Interior,
+    /// Fixed by the file, or not a corner of any element.
+    Held,
+    /// Where feature curves meet or one turns or ends: stays.
+    Corner,
+    /// On a feature curve: slides along it.
+    Curve,
+    /// On a smooth part of a volume's boundary: slides on it.
+    Surface,
+}
+
+impl BoundaryNode {
+    /// Whether the node slides (on a curve or a surface).
+    #[inline]
+    pub fn slides(self) -> bool {
+        matches!(self, BoundaryNode::Curve | BoundaryNode::Surface)
+    }
+}
+
+/// The coordinates a curve lies in: [`DVec2`] or [`DVec3`].
+pub(crate) trait Coords: Copy + PartialEq + Add<Output = Self> + Sub<Output = Self> + Mul<f64, Output = Self> {
+    fn dot(self, other: Self) -> f64;
+    /// The unit vector along `self`, or zero.
+    fn unit(self) -> Self;
+}
+
+macro_rules! coords_by_glam {
+    ($v:ty) => {
+        impl Coords for $v {
+            #[inline]
+            fn dot(self, other: Self) -> f64 {
+                <$v>::dot(self, other)
+            }
+            #[inline]
+            fn unit(self) -> Self {
+                self.normalize_or_zero()
+            }
+        }
+    };
+}
+coords_by_glam!(DVec2);
+coords_by_glam!(DVec3);
+
+/// Feature edges joined into curves over the positions as loaded, and each node's class
+/// by them.
+#[derive(Debug)]
+pub(crate) struct Curves<P> {
+    /// The positions as loaded: the polylines the curve nodes stay on.
+    points: Vec<P>,
+    /// The feature edges, sorted.
+    pub(crate) segments: Vec<[u32; 2]>,
+    /// CSR: the segments at each node.
+    seg_start: Vec<u32>,
+    node_segs: Vec<u32>,
+    pub(crate) class: Vec<BoundaryNode>,
+    /// Per segment, its curve.
+    pub(crate) curve: Vec<u32>,
+    pub(crate) count: usize,
+}
+
+impl<P: Coords> Curves<P> {
+    /// The curves of feature edges `segments` (sorted) over `points`, whose boundary
+    /// nodes are `on_boundary`; `held` nodes stay, and a node where its two edges turn by
+    /// more than the feature angle (`cos_feature`) is a corner, unless it is `folded`.
+    pub(crate) fn new(
+        points: &[P],
+        on_boundary: &[bool],
+        held: &[bool],
+        folded: &[bool],
+        segments: Vec<[u32; 2]>,
+        cos_feature: f64,
+    ) -> Curves<P> {
+        let n = points.len();
+        let mut pairs: Vec<(u32, u32)> =
+            segments.iter().enumerate().flat_map(|(s, &[a, b])| [(a, s as u32), (b, s as u32)]).collect();
+        let (seg_start, node_segs) = csr(n, &mut pairs);
+        let segs_at = |v: usize| &node_segs[seg_start[v] as usize..seg_start[v + 1] as usize];
+        let class: Vec<BoundaryNode> = (0..n)
+            .map(|v| {
+                if !on_boundary[v] {
+                    return if held[v] { BoundaryNode::Held } else { BoundaryNode::Interior };
+                }
+                if held[v] {
+                    return BoundaryNode::Held;
+                }
+                match *segs_at(v) {
+                    [] => BoundaryNode::Surface,
+                    [s, t] => {
+                        let other = |s: u32| {
+                            let [a, b] = segments[s as usize];
+                            if a as usize == v { b } else { a }
+                        };
+                        let (a, b) = (points[other(s) as usize], points[other(t) as usize]);
+                        let (u, w) = ((points[v] - a).unit(), (b - points[v]).unit());
+                        if u.dot(w) < cos_feature && !folded[v] {
+                            BoundaryNode::Corner
+                        } else {
+                            BoundaryNode::Curve
+                        }
+                    }
+                    _ => BoundaryNode::Corner,
+                }
+            })
+            .collect();
+        // segments joined through curve nodes
+        let mut curve = vec![u32::MAX; segments.len()];
+        let mut count = 0u32;
+        for s0 in 0..segments.len() {
+            if curve[s0] != u32::MAX {
+                continue;
+            }
+            let mut stack = vec![s0 as u32];
+            curve[s0] = count;
+            while let Some(s) = stack.pop() {
+                for &v in &segments[s as usize] {
+                    if class[v as usize] != BoundaryNode::Curve {
+                        continue;
+                    }
+                    for &t in segs_at(v as usize) {
+                        if curve[t as usize] == u32::MAX {
+                            curve[t as usize] = count;
+                            stack.push(t);
+                        }
+                    }
+                }
+            }
+            count += 1;
+        }
+        Curves { points: points.to_vec(), segments, seg_start, node_segs, class, curve, count: count as usize }
+    }
+
+    /// The segments at node `v`.
+    pub(crate) fn segs_at(&self, v: usize) -> &[u32] {
+        &self.node_segs[self.seg_start[v] as usize..self.seg_start[v + 1] as usize]
+    }
+
+    /// The nearest point of segment `s` to `p`.
+    fn on_segment(&self, p: P, s: u32) -> P {
+        let [a, b] = self.segments[s as usize].map(|v| self.points[v as usize]);
+        let d = b - a;
+        let t = ((p - a).dot(d) / d.dot(d)).clamp(0.0, 1.0);
+        if t.is_finite() {
+            a + d * t
+        } else {
+            a
+        }
+    }
+
+    /// The nearest point to `p` of the curve of segment `hint`, by a walk from it over
+    /// the segments of the same curve while the distance falls; the curve's unit direction
+    /// there and the segment.
+    pub(crate) fn on_curve(&self, p: P, hint: u32) -> (P, P, u32) {
+        let curve = self.curve[hint as usize];
+        let (mut s, mut q) = (hint, self.on_segment(p, hint));
+        let mut d = (q - p).dot(q - p);
+        for _ in 0..self.segments.len() {
+            let mut best = (d, s, q);
+            for &v in &self.segments[s as usize] {
+                for &t in self.segs_at(v as usize) {
+                    if t != s && self.curve[t as usize] == curve {
+                        let qt = self.on_segment(p, t);
+                        let dt = (qt - p).dot(qt - p);
+                        if dt < best.0 {
+                            best = (dt, t, qt);
+                        }
+                    }
+                }
+            }
+            if best.1 == s {
+                break;
+            }
+            (d, s, q) = best;
+        }
+        let [a, b] = self.segments[s as usize].map(|v| self.points[v as usize]);
+        (q, (b - a).unit(), s)
+    }
+
+    /// The distance of `x` from the whole curve of segment `hint`.
+    pub(crate) fn distance(&self, x: P, hint: u32) -> f64 {
+        let curve = self.curve[hint as usize];
+        (0..self.segments.len() as u32)
+            .filter(|&s| self.curve[s as usize] == curve)
+            .map(|s| {
+                let q = self.on_segment(x, s);
+                (q - x).dot(q - x).sqrt()
+            })
+            .fold(f64::INFINITY, f64::min)
+    }
+}
+
+/// Builds CSR arrays from (key, value) pairs over `n` keys.
+pub(crate) fn csr(n: usize, pairs: &mut [(u32, u32)]) -> (Vec<u32>, Vec<u32>) {
+    pairs.sort_unstable();
+    let mut start = vec![0u32; n + 1];
+    for &(k, _) in pairs.iter() {
+        start[k as usize + 1] += 1;
+    }
+    for i in 0..n {
+        start[i + 1] += start[i];
+    }
+    (start, pairs.iter().map(|&(_, v)| v).collect())
+}
+
+/// Which of `points` fixed flags `given` hold under the sliding rule: those of nodes that
+/// are not corners of an element, and the file's own; flags that fix every boundary node
+/// (what smoothlab's writers and Mesquite's write) say no more than where the boundary is,
+/// so they hold the nodes off it only.
+pub(crate) fn held_nodes(on_boundary: &[bool], given: Option<&[bool]>, role: impl Fn(usize) -> NodeRole) -> Vec<bool> {
+    let whole = given.is_some_and(|g| on_boundary.iter().zip(g).all(|(&s, &f)| !s || f));
+    (0..on_boundary.len())
+        .map(|v| role(v) != NodeRole::Corner || given.is_some_and(|g| g[v] && !(whole && on_boundary[v])))
+        .collect()
+}
+
+/// A planar mesh's sliding rule: its boundary as loaded, and per node where its last
+/// projection landed.
+#[derive(Clone, Debug)]
+pub(crate) struct PlanarSliding {
+    curves: Arc<Curves<DVec2>>,
+    feature_angle_deg: f64,
+    /// Per node: the segment it lies on.
+    hint: Vec<u32>,
+    /// Per node: the unit direction of its segment (zero unless it slides).
+    tangent: Vec<DVec2>,
+}
+
+impl Mesh {
+    /// Sets what boundary nodes do from now on. [`BoundaryRule::Slide`] takes the boundary
+    /// as it is now as the polylines the sliding nodes stay on; a node where it turns by
+    /// more than `feature_angle_deg` is a corner and stays. [`BoundaryRule::Fixed`] holds
+    /// them again. Linear meshes only: a quadratic mesh's boundary nodes stay.
+    pub fn set_boundary(&mut self, rule: BoundaryRule, feature_angle_deg: f64) {
+        if rule == BoundaryRule::Fixed || self.has_quadratic() {
+            self.sliding = None;
+            return;
+        }
+        let n = self.node_count();
+        let mut segments = Vec::new();
+        let mut on_boundary = vec![false; n];
+        for e in self.topology().boundary_edges() {
+            segments.push([e.a, e.b]);
+            on_boundary[e.a as usize] = true;
+            on_boundary[e.b as usize] = true;
+        }
+        segments.sort_unstable();
+        // a boundary node of an element with a corner turned over: its turn is no corner
+        let turned = |e: usize| {
+            let (k, p) = (self.kind(e).corners(), self.element_points_array(e));
+            (0..k).any(|i| (p[(i + 1) % k] - p[i]).perp_dot(p[(i + k - 1) % k] - p[i]) <= 0.0)
+        };
+        let folded: Vec<bool> =
+            (0..n).map(|v| on_boundary[v] && self.node_elements(v).iter().any(|&e| turned(e as usize))).collect();
+        let held = held_nodes(&on_boundary, self.given_fixed.as_deref().map(|g| g.as_slice()), |v| self.role(v));
+        let curves = Curves::new(self.nodes(), &on_boundary, &held, &folded, segments, feature_angle_deg.to_radians().cos());
+        let mut sliding = PlanarSliding {
+            hint: vec![NONE; n],
+            tangent: vec![DVec2::ZERO; n],
+            curves: Arc::new(curves),
+            feature_angle_deg,
+        };
+        for v in 0..n {
+            if sliding.curves.class[v] == BoundaryNode::Curve {
+                sliding.hint[v] = sliding.curves.segs_at(v)[0];
+                let (_, t, s) = sliding.curves.on_curve(self.nodes()[v], sliding.hint[v]);
+                (sliding.tangent[v], sliding.hint[v]) = (t, s);
+            }
+        }
+        self.sliding = Some(Box::new(sliding));
+    }
+
+    /// What boundary nodes do now.
+    pub fn boundary_rule(&self) -> BoundaryRule {
+        if self.sliding.is_some() {
+            BoundaryRule::Slide
+        } else {
+            BoundaryRule::Fixed
+        }
+    }
+
+    /// What node `n` does under the sliding rule; `None` when boundary nodes are fixed.
+    #[inline]
+    pub fn boundary_node(&self, n: usize) -> Option<BoundaryNode> {
+        self.sliding.as_ref().map(|s| s.curves.class[n])
+    }
+
+    /// The feature angle and the number of boundary curves, when boundary nodes slide.
+    pub fn feature_curves(&self) -> Option<(f64, usize)> {
+        self.sliding.as_ref().map(|s| (s.feature_angle_deg, s.curves.count))
+    }
+
+    /// The unit direction node `n` slides along (zero unless it slides).
+    #[inline]
+    pub fn slide_direction(&self, n: usize) -> DVec2 {
+        self.sliding.as_ref().map_or(DVec2::ZERO, |s| s.tangent[n])
+    }
+
+    /// Where node `n` would be moved to `x`: `x` itself, or for a sliding node the nearest
+    /// point of its curve of the boundary as loaded.
+    #[inline]
+    pub fn onto_boundary(&self, n: usize, x: DVec2) -> DVec2 {
+        match &self.sliding {
+            Some(s) if s.curves.class[n].slides() => s.curves.on_curve(x, s.hint[n]).0,
+            _ => x,
+        }
+    }
+
+    /// Records that node `n` was moved (to a point [`onto_boundary`](Self::onto_boundary)
+    /// gave): its segment and direction there.
+    #[inline]
+    pub fn settle(&mut self, n: usize) {
+        let x = self.nodes()[n];
+        if let Some(s) = &mut self.sliding {
+            if s.curves.class[n].slides() {
+                let (_, t, seg) = s.curves.on_curve(x, s.hint[n]);
+                (s.tangent[n], s.hint[n]) = (t, seg);
+            }
+        }
+    }
+
+    /// The largest distance of a sliding node from its curve of the boundary as loaded
+    /// (0 when none slides).
+    pub fn max_distance_from_boundary(&self) -> f64 {
+        let Some(s) = &self.sliding else { return 0.0 };
+        (0..self.node_count())
+            .filter(|&n| s.curves.class[n].slides())
+            .map(|n| s.curves.distance(self.nodes()[n], s.hint[n]))
+            .fold(0.0, f64::max)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::generate::{grid, plate, GridKind, PlateKind};
+    use crate::model::Model;
+    use crate::smoothing::Smoothing;
+
+    /// The unit square in 10 × 10 cells of `kind`, its boundary nodes bunched towards the
+    /// corners along the sides (smoothstep spacing): a boundary placed no better than a
+    /// careless mesher places it, every element valid.
+    fn bunched_square(kind: GridKind) -> Mesh {
+        let mut m = grid(10, 10, kind).unwrap();
+        let bunch = |t: f64| t * t * (3.0 - 2.0 * t);
+        for p in m.nodes_mut() {
+            let on = |c: f64| c == 0.0 || c == 1.0;
+            if on(p.y) && !on(p.x) {
+                p.x = bunch(p.x);
+            } else if on(p.x) && !on(p.y) {
+                p.y = bunch(p.y);
+            }
+        }
+        m
+    }
+
+    #[test]
+    fn sliding_lifts_the_smallest_angle_past_what_the_fixed_boundary_reaches() {
+        for kind in [GridKind::Tri, GridKind::Quad] {
+            let start = bunched_square(kind);
+            let mut fixed = Model::Planar(start.clone());
+            let f = fixed.smooth(&Smoothing::default()).unwrap().stats().clone();
+            let mut slid = Model::Planar(start.clone());
+            let report = slid.smooth(&Smoothing::default().boundary(BoundaryRule::Slide)).unwrap();
+            let s = report.stats();
+            assert_eq!(s.inverted, 0);
+            assert!(s.min_angle_deg > f.min_angle_deg + 20.0, "{kind:?}: slide {} fixed {}", s.min_angle_deg, f.min_angle_deg);
+            assert!(s.max_angle_deg <= f.max_angle_deg, "{kind:?}: slide {} fixed {}", s.max_angle_deg, f.max_angle_deg);
+            let b = report.boundary().unwrap();
+            assert_eq!((b.corners, b.curves, b.curve_nodes, b.held), (4, 4, 36, 0), "{kind:?}");
+            let Model::Planar(m) = &slid else { unreachable!() };
+            for (n, (p, q)) in start.nodes().iter().zip(m.nodes()).enumerate() {
+                // a side's node stays on its side, exactly; a corner stays
+                for c in 0..2 {
+                    if p[c] == 0.0 || p[c] == 1.0 {
+                        assert_eq!(q[c], p[c], "{kind:?}: node {n} left its side: {p} to {q}");
+                    }
+                }
+                if (p.x == 0.0 || p.x == 1.0) && (p.y == 0.0 || p.y == 1.0) {
+                    assert_eq!(p, q, "{kind:?}: corner {n} moved");
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn a_curved_boundary_s_nodes_stay_on_its_polyline() {
+        // the plate's hole is a polygon of 16 sides turning by 22.5°: every node slides
+        // along it; the plate's own four corners turn by 90° and hold
+        let start = plate(PlateKind::Tri, 1, 2).unwrap();
+        let mut model = Model::Planar(start.clone());
+        let report = model.smooth(&Smoothing::default().boundary(BoundaryRule::Slide)).unwrap();
+        let b = report.boundary().unwrap();
+        assert_eq!(b.corners, 4, "{b:?}");
+        assert!(b.max_distance < 1e-12 * b.mean_edge, "{b:?}");
+        assert_eq!(report.stats().inverted, 0);
+        let Model::Planar(m) = &model else { unreachable!() };
+        for (n, p) in start.nodes().iter().enumerate() {
+            if m.boundary_node(n) == Some(BoundaryNode::Corner) {
+                assert_eq!(*p, m.nodes()[n], "corner {n} moved");
+            }
+        }
+    }
+
+    #[test]
+    fn the_file_s_own_flags_hold_and_flags_on_the_whole_boundary_do_not() {
+        let mut m = bunched_square(GridKind::Tri);
+        let side = (0..m.node_count()).find(|&n| m.nodes()[n].y == 0.0 && m.nodes()[n].x > 0.3).unwrap();
+        let mut flags = vec![false; m.node_count()];
+        flags[side] = true;
+        m.given_fixed = Some(Arc::new(flags));
+        m.set_boundary(BoundaryRule::Slide, FEATURE_ANGLE_DEG);
+        assert_eq!(m.boundary_node(side), Some(BoundaryNode::Held));
+        assert!(!m.is_free(side));
+        // every boundary node flagged (what smoothlab writes): they slide
+        m.given_fixed = Some(Arc::new(m.fixed().to_vec()));
+        m.set_boundary(BoundaryRule::Slide, FEATURE_ANGLE_DEG);
+        assert_eq!(m.boundary_node(side), Some(BoundaryNode::Curve));
+        assert!(m.is_free(side));
+        m.set_boundary(BoundaryRule::Fixed, FEATURE_ANGLE_DEG);
+        assert!(!m.is_free(side));
+    }
+}
