@@ -1,6 +1,7 @@
 // What every browser suite shares: the tiny test runner, the console and request watch,
 // and the page helpers (open, idle, statistics, canvas hashes, screenshots, clicks).
 import { mkdirSync, existsSync } from 'node:fs';
+import { spawnSync } from 'node:child_process';
 import path from 'node:path';
 import { ROOT, WWW } from './serve.mjs';
 
@@ -171,4 +172,20 @@ export function reach(where) {
     const d = document.documentElement;
     return { r, b, vw: window.innerWidth, vh: window.innerHeight, sw: d.scrollWidth, sh: d.scrollHeight };
   });
+}
+
+/** Runs the command-line tool of this checkout, `smoothlab ARGS` (built by cargo as needed). */
+export const cli = (args) => spawnSync('cargo', ['run', '--quiet', '--bin', 'smoothlab', '--', ...args], { cwd: ROOT, encoding: 'utf8' });
+
+/** The node lines of a .msh 2.2 text: `[x, y, z]` of each node, as numbers. */
+export function mshNodes(text) {
+  return text.split('$Nodes')[1].split('$EndNodes')[0].trim().split('\n').slice(1)
+    .map((l) => l.trim().split(/\s+/).slice(1).map(Number));
+}
+
+/** Clicks Step and waits for the pass to be done and the page idle. */
+export async function step(p) {
+  await p.click('#step');
+  await p.waitForFunction(() => /One pass done/.test(document.getElementById('status').textContent), null, { timeout: TIMEOUT });
+  await idle(p);
 }

@@ -6,23 +6,7 @@
 // 1366×768 goes to test-output/browser/.
 import path from 'node:path';
 import { mkdirSync, readFileSync } from 'node:fs';
-import { spawnSync } from 'node:child_process';
-import { ROOT } from '../serve.mjs';
-import { OUT, TIMEOUT, test, check, idle, open, stats, freshPage } from '../lib.mjs';
-
-const cli = (args) => spawnSync('cargo', ['run', '--quiet', '--bin', 'smoothlab', '--', ...args], { cwd: ROOT, encoding: 'utf8' });
-
-/** The node lines of a .msh 2.2 text: `[x, y, z]` of each node, as numbers. */
-function mshNodes(text) {
-  return text.split('$Nodes')[1].split('$EndNodes')[0].trim().split('\n').slice(1)
-    .map((l) => l.trim().split(/\s+/).slice(1).map(Number));
-}
-
-async function step(p) {
-  await p.click('#step');
-  await p.waitForFunction(() => /One pass done/.test(document.getElementById('status').textContent), null, { timeout: TIMEOUT });
-  await idle(p);
-}
+import { OUT, TIMEOUT, test, check, idle, open, stats, freshPage, cli, mshNodes, step } from '../lib.mjs';
 
 export default async function ({ server, context }) {
   await test('issue 57: the target menu says what it means, takes only the ideal with a Laplacian strategy, and steps as `smoothlab smooth --target input`', async () => {

@@ -5,6 +5,25 @@ use crate::objective::{Objective, Point, Term};
 
 use super::*;
 
+/// An objective seen through a wrapper says what it is as the wrapped one (`self.inner`):
+/// its name, its goal, whether it untangles.
+macro_rules! forward_what_it_is {
+    () => {
+        fn name(&self) -> &'static str {
+            self.inner.name()
+        }
+        fn goal(&self) -> crate::objective::Goal {
+            self.inner.goal()
+        }
+        fn untangles(&self) -> bool {
+            self.inner.untangles()
+        }
+        fn only_untangles(&self) -> bool {
+            self.inner.only_untangles()
+        }
+    };
+}
+
 /// An objective seen through [`SmoothOptions::keep_valid`]: the same terms, plus a NaN
 /// term at a trial position that raises the star's number of inverted elements — unless
 /// [`SmoothOptions::pass_through_folds`] is set, the star was inverted to begin with and
@@ -27,18 +46,7 @@ pub(super) struct KeepValid<'a, S: DriverStar> {
 }
 
 impl<S: DriverStar> Objective<S> for KeepValid<'_, S> {
-    fn name(&self) -> &'static str {
-        self.inner.name()
-    }
-    fn goal(&self) -> crate::objective::Goal {
-        self.inner.goal()
-    }
-    fn untangles(&self) -> bool {
-        self.inner.untangles()
-    }
-    fn only_untangles(&self) -> bool {
-        self.inner.only_untangles()
-    }
+    forward_what_it_is!();
     fn terms(&self, star: &S, x: S::Point, out: &mut Vec<Term<S::Point>>) {
         self.inner.terms(star, x, out);
         if self.refuses(star, x) {
@@ -105,18 +113,7 @@ pub(super) struct Along<'a, S: DriverStar> {
 }
 
 impl<S: DriverStar> Objective<S> for Along<'_, S> {
-    fn name(&self) -> &'static str {
-        self.inner.name()
-    }
-    fn goal(&self) -> crate::objective::Goal {
-        self.inner.goal()
-    }
-    fn untangles(&self) -> bool {
-        self.inner.untangles()
-    }
-    fn only_untangles(&self) -> bool {
-        self.inner.only_untangles()
-    }
+    forward_what_it_is!();
     fn terms(&self, star: &S, x: S::Point, out: &mut Vec<Term<S::Point>>) {
         let from = out.len();
         self.inner.terms(star, x, out);

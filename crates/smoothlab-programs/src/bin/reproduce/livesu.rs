@@ -12,6 +12,16 @@ use crate::report::Report;
 /// The inputs the defaults untangle with their boundary fixed (the rows of [`LIVESU_ALL`]).
 const LIVESU: [&str; 6] = ["block", "block_stresstest", "bunny", "cap", "dancingchildren", "hanger_stresstest"];
 
+/// The folder of the meshes, or a line saying they were not found.
+fn livesu_root(out: &mut Report) -> Option<std::path::PathBuf> {
+    let root = meshes_dir().join("livesu2015");
+    if !root.is_dir() {
+        let _ = writeln!(out, "*Skipped: the external meshes (`../shared/meshes/livesu2015`) were not found.*\n");
+        return None;
+    }
+    Some(root)
+}
+
 /// The smallest and the mean of the elements' smallest corner scaled Jacobians.
 fn scaled_jacobians(m: &VolumeMesh) -> (f64, f64) {
     let sj: Vec<f64> = (0..m.element_count()).map(|e| m.measures(e).scaled_jacobian).collect();
@@ -30,11 +40,7 @@ pub(crate) fn livesu(out: &mut Report) {
          neighbours are fixed has an SJ of at most the sine of the angle between those two edges \
          (`VolumeMesh::scaled_jacobian_cap`). The published outputs move the boundary; §13 lets it slide.\n"
     );
-    let root = meshes_dir().join("livesu2015");
-    if !root.is_dir() {
-        let _ = writeln!(out, "*Skipped: the external meshes (`../shared/meshes/livesu2015`) were not found.*\n");
-        return;
-    }
+    let Some(root) = livesu_root(out) else { return };
     let mut table = Table::new(&[
         "mesh",
         "hexahedra",
@@ -117,11 +123,7 @@ pub(crate) fn livesu_sliding(out: &mut Report) {
          edge lengths. \"inverted\" counts by the certain test (the Jacobian's sign inside the element too); \
          \"impossible\" is how many of them have an inverted corner of four nodes that cannot move.\n"
     );
-    let root = meshes_dir().join("livesu2015");
-    if !root.is_dir() {
-        let _ = writeln!(out, "*Skipped: the external meshes (`../shared/meshes/livesu2015`) were not found.*\n");
-        return;
-    }
+    let Some(root) = livesu_root(out) else { return };
     let mut table = Table::new(&[
         "mesh",
         "hexahedra",
