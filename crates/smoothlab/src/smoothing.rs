@@ -407,6 +407,29 @@ impl Model {
         })
     }
 
+    /// The passes of `smoothing` over a tangled planar mesh with its boundary held, one at
+    /// a time, until one leaves it valid; its boundary slides in the rest.
+    fn passes_sliding_once_valid(
+        &mut self,
+        smoothing: &Smoothing,
+        opts: SmoothOptions,
+        clock: &dyn Fn() -> f64,
+    ) -> Result<Vec<PassRecord>> {
+        let (kind, penalty) = (smoothing.objective, smoothing.penalty.unwrap_or_default());
+        let mut records = Vec::new();
+        for p in 1..=smoothing.passes {
+            records.extend(self.passes(kind, penalty, opts, p..p + 1, clock)?);
+            if records.last().is_some_and(|r| r.after.inverted == 0) {
+                if let Model::Planar(mesh) = self {
+                    mesh.set_boundary(BoundaryRule::Slide, smoothing.feature_angle_deg.unwrap_or(FEATURE_ANGLE_DEG));
+                }
+                records.extend(self.passes(kind, penalty, opts, p + 1..smoothing.passes + 1, clock)?);
+                break;
+            }
+        }
+        Ok(records)
+    }
+
     /// Smooths the mesh as [`smooth`](Self::smooth), timed by `clock` (milliseconds).
     pub fn smooth_with_clock(
         &mut self,
@@ -428,15 +451,26 @@ impl Model {
                 mesh.set_boundary(smoothing.boundary, angle);
             }
         }
+        // a tangled planar mesh's boundary edges are folded with it: its boundary is held
+        // while it is tangled, and slides from the pass after the first that leaves it valid
+        // (Mesquite's tangled quads: 2 inverted left sliding from the start, 0 so)
+        let mut slide_once_valid = false;
         if let Model::Planar(mesh) = self {
             let angle = smoothing.feature_angle_deg.unwrap_or(FEATURE_ANGLE_DEG);
-            if mesh.boundary_rule() != smoothing.boundary || mesh.feature_curves().is_some_and(|(a, _)| a != angle) {
-                mesh.set_boundary(smoothing.boundary, angle);
+            let tangled = (0..mesh.element_count()).any(|e| crate::smooth::mesh_element_is_inverted(mesh, e));
+            slide_once_valid = smoothing.boundary == BoundaryRule::Slide && tangled;
+            let rule = if slide_once_valid { BoundaryRule::Fixed } else { smoothing.boundary };
+            if mesh.boundary_rule() != rule || mesh.feature_curves().is_some_and(|(a, _)| a != angle) {
+                mesh.set_boundary(rule, angle);
             }
         }
         let penalty = smoothing.penalty.unwrap_or_default();
         self.set_target(smoothing.target);
-        let passes = self.passes(kind, penalty, opts, 1..smoothing.passes + 1, clock);
+        let passes = if slide_once_valid {
+            self.passes_sliding_once_valid(smoothing, opts, clock)
+        } else {
+            self.passes(kind, penalty, opts, 1..smoothing.passes + 1, clock)
+        };
         self.set_target(Target::Ideal);
         let mut passes = passes?;
         let valid = passes

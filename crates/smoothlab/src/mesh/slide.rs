@@ -436,6 +436,33 @@ mod tests {
     }
 
     #[test]
+    fn a_tangled_mesh_is_untangled_with_its_boundary_held_then_slides() {
+        // the bunched square with its interior tangled: its boundary edges are sound, but a
+        // tangled file's may be folded, so the boundary is held until a pass leaves the
+        // mesh valid, then slides
+        let start = crate::generate::perturb(&bunched_square(GridKind::Quad), 0.8, 5).unwrap();
+        assert!(Model::Planar(start.clone()).stats().inverted > 0);
+        let mut fixed = Model::Planar(start.clone());
+        let f = fixed.smooth(&Smoothing::default()).unwrap().stats().clone();
+        let mut slid = Model::Planar(start.clone());
+        let report = slid.smooth(&Smoothing::default().boundary(BoundaryRule::Slide)).unwrap();
+        let s = report.stats();
+        assert_eq!((f.inverted, s.inverted), (0, 0));
+        assert!(s.min_angle_deg > f.min_angle_deg + 10.0, "slide {} fixed {}", s.min_angle_deg, f.min_angle_deg);
+        assert!(report.boundary().is_some_and(|b| b.curve_nodes == 36));
+        // the pass that untangles it holds the boundary
+        let mut one = Model::Planar(start.clone());
+        let r = one.smooth(&Smoothing::default().boundary(BoundaryRule::Slide).passes(1).finish(0)).unwrap();
+        assert_eq!(r.stats().inverted, 0);
+        let Model::Planar(m) = &one else { unreachable!() };
+        for e in start.topology().boundary_edges() {
+            for v in [e.a as usize, e.b as usize] {
+                assert_eq!(start.nodes()[v], m.nodes()[v], "boundary node {v} moved while the mesh was tangled");
+            }
+        }
+    }
+
+    #[test]
     fn a_curved_boundary_s_nodes_stay_on_its_polyline() {
         // the plate's hole is a polygon of 16 sides turning by 22.5°: every node slides
         // along it; the plate's own four corners turn by 90° and hold

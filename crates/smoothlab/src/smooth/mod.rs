@@ -37,7 +37,7 @@ mod tests;
 
 pub use accept::{ElementScore, Size, Verdict, MIN_SIZE_RATIO};
 use guard::{Along, KeepValid};
-pub(crate) use measure::is_inverted;
+pub(crate) use measure::{is_inverted, mesh_element_is_inverted};
 pub(crate) use measure::triangle_shape_at;
 use measure::triangle_shape_at_both;
 pub use measure::StarQuality;

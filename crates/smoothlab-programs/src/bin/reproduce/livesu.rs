@@ -113,7 +113,7 @@ const LIVESU_ALL: [(&str, f64, f64); 11] = [
 
 pub(crate) fn livesu_sliding(out: &mut Report) {
     use smoothlab::volume::{BoundaryRule, FEATURE_ANGLE_DEG};
-    out.section(13, "Real hexahedral meshes (Livesu et al. 2015), the boundary sliding");
+    out.section(13, "Sliding boundaries: real hexahedral meshes (Livesu et al. 2015), Mesquite's files");
     let _ = writeln!(
         out,
         "The eleven inputs of §12 with the defaults and `--boundary slide` (issue 58): boundary nodes slide on the \
@@ -178,5 +178,85 @@ pub(crate) fn livesu_sliding(out: &mut Report) {
         out,
         "\nSliding untangles {untangled} of the eleven; its smallest SJ reaches the published one on {}.\n",
         if reached.is_empty() { "none".to_string() } else { reached.join(", ") }
+    );
+    mesquite_sliding(out);
+}
+
+/// Mesquite's tangled hexahedra and its planar test files, fixed against sliding: the
+/// files' `fixed` flags cover their whole boundary, so they mark it and hold nothing.
+fn mesquite_sliding(out: &mut Report) {
+    use smoothlab::volume::BoundaryRule;
+    let _ = writeln!(
+        out,
+        "\nMesquite's tangled hexahedra (`mesquite3d/hexes/tangled`) and its planar files of §3 (linear ones), with \
+         the defaults, the boundary fixed and sliding. \"angles\" are dihedral angles in volumes; \"SJ\" the \
+         smallest corner scaled Jacobian (volumes).\n"
+    );
+    let mut files: Vec<(String, std::path::PathBuf)> = Vec::new();
+    let hexes = meshes_dir().join("mesquite3d/hexes/tangled");
+    if let Ok(rd) = std::fs::read_dir(&hexes) {
+        let mut names: Vec<_> = rd.filter_map(|e| e.ok().map(|e| e.path())).filter(|p| p.extension().is_some_and(|e| e == "vtk")).collect();
+        names.sort();
+        files.extend(names.into_iter().map(|p| (format!("hexes/tangled/{}", p.file_name().unwrap_or_default().to_string_lossy()), p)));
+    }
+    files.extend(crate::mesquite::mesquite_files().unwrap_or_default());
+    if files.is_empty() {
+        let _ = writeln!(out, "*Skipped: the external Mesquite meshes (`../shared/meshes`) were not found.*\n");
+        return;
+    }
+    let mut table = Table::new(&[
+        "file",
+        "elements",
+        "inverted at start",
+        "fixed: inverted, angles, SJ",
+        "slide: inverted, angles, SJ",
+        "corners, sliding nodes",
+        "distance",
+    ]);
+    let (mut better, mut more_inverted, mut rows) = (0, Vec::new(), 0);
+    for (name, path) in files {
+        let Ok(model) = smoothlab::read(&path) else { continue };
+        let quadratic = match &model {
+            Model::Planar(m) => m.has_quadratic(),
+            Model::Volume(v) => v.is_quadratic(),
+            Model::Surface(_) => true,
+        };
+        if quadratic {
+            continue;
+        }
+        let start = model.stats();
+        let run = |rule: BoundaryRule| {
+            let mut m = model.clone();
+            m.smooth(&Smoothing::default().boundary(rule)).expect("the defaults take every linear mesh")
+        };
+        let (fixed, slide) = (run(BoundaryRule::Fixed), run(BoundaryRule::Slide));
+        let shown = |s: &MeshStats| {
+            let sj = s.solid.as_ref().map_or(String::new(), |v| format!(", {:.3}", v.min_scaled_jacobian));
+            format!("{}, {:.1}°–{:.1}°{sj}", s.inverted, s.min_angle_deg, s.max_angle_deg)
+        };
+        let b = slide.boundary().expect("a sliding run reports its boundary");
+        let (f, s) = (fixed.stats(), slide.stats());
+        better += (s.inverted < f.inverted || (s.inverted == f.inverted && s.min_angle_deg > f.min_angle_deg)) as usize;
+        if s.inverted > f.inverted {
+            more_inverted.push(format!("`{name}`"));
+        }
+        rows += 1;
+        table.row(vec![
+            format!("`{name}`"),
+            start.elements.to_string(),
+            start.inverted.to_string(),
+            shown(f),
+            shown(s),
+            format!("{}, {}", b.corners + b.held, b.surface_nodes + b.curve_nodes),
+            format!("{:.1e}", b.max_distance / b.mean_edge),
+        ]);
+    }
+    out.table(table);
+    let _ = writeln!(
+        out,
+        "\nSliding ends with fewer inverted elements, or as many and a larger smallest angle, on {better} of these {rows} \
+         files; with more inverted elements than the fixed boundary on {}: a tangled planar file's boundary edges, \
+         which its nodes slide along, are folded with it.\n",
+        if more_inverted.is_empty() { "none".to_string() } else { more_inverted.join(", ") }
     );
 }

@@ -12,7 +12,7 @@ use smoothlab_page::lab::tour::measured::Table;
 use crate::common::{fmt_kappa, kappa, meshes_dir, never, opts, run, untangle_opts, untangled, Choice, NEW_ANGLE};
 use crate::report::Report;
 
-fn mesquite_files() -> Option<Vec<(String, PathBuf)>> {
+pub(crate) fn mesquite_files() -> Option<Vec<(String, PathBuf)>> {
     let root = meshes_dir().join("mesquite");
     if !root.is_dir() {
         return None;
