@@ -634,9 +634,9 @@ pub(super) fn finish(mut mesh: Mesh, names: FileNames<'_>, fixed: FixedSpec) -> 
     mesh.given_fixed = match &fixed {
         FixedSpec::Boundary => None,
         FixedSpec::Exact(f) | FixedSpec::BoundaryAnd(f) => {
-            let mut f = f.clone();
-            f.resize(n, false);
-            Some(Arc::new(f))
+            let mut flags = f.clone();
+            flags.resize(n, false);
+            Some(Arc::new(super::GivenFlags { flags, exact: matches!(fixed, FixedSpec::Exact(_)) }))
         }
     };
     mesh.fixed = match fixed {

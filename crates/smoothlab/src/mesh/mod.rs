@@ -27,7 +27,7 @@ pub(crate) use builder::{Flat, SurfaceParts};
 pub use builder::{polygon_area, FixedSpec, MeshBuilder, MAX_COORDINATE, PLANAR_TOLERANCE};
 pub use kind::{ElementKind, NodeRole};
 pub use slide::{BoundaryNode, BoundaryRule, FEATURE_ANGLE_DEG, MIN_CURVE_SEGMENTS};
-pub(crate) use slide::{csr, held_nodes, Curves};
+pub(crate) use slide::{csr, held_nodes, Curves, GivenFlags};
 pub use volume_kind::{
     CornerReference, VolumeKind, VolumeKindCounts, VolumeKindRow, CUBE_CORNER, EQUILATERAL_TET, EQUILATERAL_W, EQUILATERAL_W_INVERSE,
     PYRAMID_CORNER, TET10_EDGES, WEDGE_CORNER, WITH_FIRST,
@@ -154,7 +154,7 @@ pub struct Mesh {
     /// nodes), and each element's corner frames from them ([`crate::target::element_frames`]).
     target: Option<Box<Targets>>,
     /// The nodes the file itself fixed (its flags), whatever the boundary rule.
-    given_fixed: Option<Arc<Vec<bool>>>,
+    given_fixed: Option<Arc<slide::GivenFlags>>,
     /// The sliding rule, when boundary nodes slide ([`BoundaryRule::Slide`]).
     sliding: Option<Box<slide::PlanarSliding>>,
 }

@@ -255,15 +255,32 @@ pub(crate) fn csr(n: usize, pairs: &mut [(u32, u32)]) -> (Vec<u32>, Vec<u32>) {
     (start, pairs.iter().map(|&(_, v)| v).collect())
 }
 
-/// Which of `points` fixed flags `given` hold under the sliding rule: those of nodes that
-/// are not corners of an element, and the file's own; flags that fix every boundary node
-/// (what smoothlab's writers and Mesquite's write) say no more than where the boundary is,
-/// so they hold the nodes off it only.
-pub(crate) fn held_nodes(on_boundary: &[bool], given: Option<&[bool]>, role: impl Fn(usize) -> NodeRole) -> Vec<bool> {
-    let whole = given.is_some_and(|g| on_boundary.iter().zip(g).all(|(&s, &f)| !s || f));
-    (0..on_boundary.len())
-        .map(|v| role(v) != NodeRole::Corner || given.is_some_and(|g| g[v] && !(whole && on_boundary[v])))
-        .collect()
+/// The fixed flags a file gave: exactly (VTK `fixed`: a node it leaves free is free, on the
+/// boundary too), or as marks added to the boundary's (Gmsh points and lines, Medit
+/// `Corners`, Triangle's markers).
+#[derive(Clone, Debug)]
+pub(crate) struct GivenFlags {
+    pub(crate) flags: Vec<bool>,
+    pub(crate) exact: bool,
+}
+
+/// What the file's fixed flags `given` say under the sliding rule, per node: whether it is
+/// held (not a corner of an element, or fixed by the file), and whether it is a boundary
+/// node the file's exact flags leave free (it then moves freely, as with the boundary
+/// fixed, rather than slide). Flags that fix every boundary node (what smoothlab's writers
+/// and Mesquite's write) say no more than where the boundary is: they hold the nodes off it
+/// only.
+pub(crate) fn held_nodes(
+    on_boundary: &[bool],
+    given: Option<&GivenFlags>,
+    role: impl Fn(usize) -> NodeRole,
+) -> (Vec<bool>, Vec<bool>) {
+    let g = |v: usize| given.is_some_and(|g| g.flags[v]);
+    let whole = given.is_some() && (0..on_boundary.len()).all(|v| !on_boundary[v] || g(v));
+    let held = (0..on_boundary.len()).map(|v| role(v) != NodeRole::Corner || (g(v) && !(whole && on_boundary[v]))).collect();
+    let exact = given.is_some_and(|g| g.exact);
+    let freed = (0..on_boundary.len()).map(|v| exact && !whole && on_boundary[v] && !g(v)).collect();
+    (held, freed)
 }
 
 /// A planar mesh's sliding rule: its boundary as loaded, and per node where its last
@@ -304,8 +321,9 @@ impl Mesh {
         };
         let folded: Vec<bool> =
             (0..n).map(|v| on_boundary[v] && self.node_elements(v).iter().any(|&e| turned(e as usize))).collect();
-        let held = held_nodes(&on_boundary, self.given_fixed.as_deref().map(|g| g.as_slice()), |v| self.role(v));
-        let curves = Curves::new(self.nodes(), &on_boundary, &held, &folded, segments, feature_angle_deg.to_radians().cos());
+        let (held, freed) = held_nodes(&on_boundary, self.given_fixed.as_deref(), |v| self.role(v));
+        let sliding_boundary: Vec<bool> = on_boundary.iter().zip(&freed).map(|(&b, &f)| b && !f).collect();
+        let curves = Curves::new(self.nodes(), &sliding_boundary, &held, &folded, segments, feature_angle_deg.to_radians().cos());
         let mut sliding = PlanarSliding {
             hint: vec![NONE; n],
             tangent: vec![DVec2::ZERO; n],
@@ -484,15 +502,30 @@ mod tests {
     #[test]
     fn the_file_s_own_flags_hold_and_flags_on_the_whole_boundary_do_not() {
         let mut m = bunched_square(GridKind::Tri);
+        let boundary = m.fixed.clone();
         let side = (0..m.node_count()).find(|&n| m.nodes()[n].y == 0.0 && m.nodes()[n].x > 0.3).unwrap();
         let mut flags = vec![false; m.node_count()];
         flags[side] = true;
-        m.given_fixed = Some(Arc::new(flags));
+        // as a file with exact flags reads: those flags are the fixed ones
+        m.fixed = flags.clone();
+        m.given_fixed = Some(Arc::new(GivenFlags { flags, exact: true }));
         m.set_boundary(BoundaryRule::Slide, FEATURE_ANGLE_DEG);
         assert_eq!(m.boundary_node(side), Some(BoundaryNode::Held));
         assert!(!m.is_free(side));
+        // exact flags leave the other boundary nodes free: they move freely, as with the
+        // boundary fixed; the same flags as marks (Gmsh points) add to the boundary's: they
+        // slide
+        let other = (0..m.node_count()).find(|&n| m.nodes()[n].x == 0.0 && m.nodes()[n].y > 0.3).unwrap();
+        assert_eq!(m.boundary_node(other), Some(BoundaryNode::Interior));
+        assert!(m.is_free(other));
+        let flags = m.given_fixed.as_ref().unwrap().flags.clone();
+        m.fixed = boundary.iter().zip(&flags).map(|(&b, &f)| b || f).collect();
+        m.given_fixed = Some(Arc::new(GivenFlags { flags, exact: false }));
+        m.set_boundary(BoundaryRule::Slide, FEATURE_ANGLE_DEG);
+        assert_eq!(m.boundary_node(side), Some(BoundaryNode::Held));
+        assert_eq!(m.boundary_node(other), Some(BoundaryNode::Curve));
         // every boundary node flagged (what smoothlab writes): they slide
-        m.given_fixed = Some(Arc::new(m.fixed().to_vec()));
+        m.given_fixed = Some(Arc::new(GivenFlags { flags: m.fixed().to_vec(), exact: true }));
         m.set_boundary(BoundaryRule::Slide, FEATURE_ANGLE_DEG);
         assert_eq!(m.boundary_node(side), Some(BoundaryNode::Curve));
         assert!(m.is_free(side));

@@ -90,7 +90,7 @@ pub(crate) struct Sliding {
 impl Sliding {
     /// The rule over a mesh with `points` whose boundary skin is `faces` (their nodes, 3
     /// or 4, outward); `held` says which nodes stay (fixed by the file, or not corners).
-    pub(crate) fn new(points: &[DVec3], faces: &[&[u32]], held: &[bool], feature_angle_deg: f64) -> Sliding {
+    pub(crate) fn new(points: &[DVec3], faces: &[&[u32]], held: &[bool], freed: &[bool], feature_angle_deg: f64) -> Sliding {
         let n = points.len();
         let area = |f: &[u32]| -> DVec3 {
             let p = |i: usize| points[f[i] as usize];
@@ -157,6 +157,8 @@ impl Sliding {
         }
         let found: Vec<[u32; 2]> = skin_edges.iter().filter(|e| e.2).map(|e| e.0).collect();
         let none_folded = vec![false; n];
+        // a node the file leaves free moves freely, as off the skin
+        let on_skin: Vec<bool> = on_skin.iter().zip(freed).map(|(&s, &f)| s && !f).collect();
         let first = Curves::new(points, &on_skin, held, &none_folded, found, cos_feature);
         // a crease shorter than MIN_CURVE_SEGMENTS edges that ends nowhere (at a node of
         // no other feature edge) is the coarse mesh's noise, not a feature: its edges are
@@ -297,8 +299,8 @@ impl super::VolumeMesh {
                 on_skin[v as usize] = true;
             }
         }
-        let held = crate::mesh::held_nodes(&on_skin, self.given_fixed.as_deref(), |v| self.role(v));
-        let sliding = Sliding::new(self.nodes(), &faces, &held, feature_angle_deg);
+        let (held, freed) = crate::mesh::held_nodes(&on_skin, self.given_fixed.as_ref(), |v| self.role(v));
+        let sliding = Sliding::new(self.nodes(), &faces, &held, &freed, feature_angle_deg);
         self.sliding = Some(sliding);
     }
 
@@ -476,7 +478,7 @@ mod tests {
         let mut flags = m.fixed().to_vec();
         flags.iter_mut().for_each(|f| *f = false);
         flags[held] = true;
-        m.given_fixed = Some(flags);
+        m.given_fixed = Some(crate::mesh::GivenFlags { flags, exact: true });
         m.set_boundary(BoundaryRule::Slide, FEATURE_ANGLE_DEG);
         assert_eq!(m.boundary_node(held), Some(BoundaryNode::Held));
         let at = m.nodes()[held];
@@ -493,7 +495,7 @@ mod tests {
         let inside = (0..m.node_count()).find(|&n| planes(m.nodes()[n]) == 0).unwrap();
         let mut flags = m.fixed().to_vec();
         flags[inside] = true;
-        m.given_fixed = Some(flags);
+        m.given_fixed = Some(crate::mesh::GivenFlags { flags, exact: true });
         m.set_boundary(BoundaryRule::Slide, FEATURE_ANGLE_DEG);
         for n in 0..m.node_count() {
             let want = match planes(m.nodes()[n]) {

@@ -155,7 +155,7 @@ pub struct VolumeMesh {
     /// ([`crate::target::Target::Input`]).
     target: Option<std::sync::Arc<Vec<DVec3>>>,
     /// The nodes the file itself fixed (its flags), whatever the boundary rule.
-    given_fixed: Option<Vec<bool>>,
+    given_fixed: Option<crate::mesh::GivenFlags>,
     /// The sliding rule, when boundary nodes slide ([`BoundaryRule::Slide`]).
     sliding: Option<boundary::Sliding>,
 }
@@ -431,7 +431,7 @@ impl VolumeMesh {
             }
         }
         let (fixed, given_fixed) = match fixed {
-            FixedSpec::Exact(f) => (f.clone(), Some(f)),
+            FixedSpec::Exact(f) => (f.clone(), Some(crate::mesh::GivenFlags { flags: f, exact: true })),
             FixedSpec::Boundary | FixedSpec::BoundaryAnd(_) => {
                 let flags = match fixed {
                     FixedSpec::BoundaryAnd(mut f) => {
@@ -442,12 +442,12 @@ impl VolumeMesh {
                 };
                 let fixed = (0..n).map(|i| on_boundary[i] || flags[i] || marked[i]).collect();
                 let given = (0..n).map(|i| flags[i] || marked_inside[i]).collect::<Vec<bool>>();
-                (fixed, given.iter().any(|&g| g).then_some(given))
+                (fixed, given.iter().any(|&g| g).then_some(crate::mesh::GivenFlags { flags: given, exact: false }))
             }
         };
         let mut given_fixed = given_fixed;
         if let Some(g) = &mut given_fixed {
-            g.resize(n, false);
+            g.flags.resize(n, false);
         }
         let mut fixed: Vec<bool> = fixed;
         fixed.resize(n, false);

@@ -255,8 +255,8 @@ fn mesquite_sliding(out: &mut Report) {
     let _ = writeln!(
         out,
         "\nSliding ends with fewer inverted elements, or as many and a larger smallest angle, on {better} of these {rows} \
-         files; with more inverted elements than the fixed boundary on {}: a tangled planar file's boundary edges, \
-         which its nodes slide along, are folded with it.\n",
+         files, and with more inverted elements than the fixed boundary on {}. A tangled planar mesh's boundary is \
+         held until a pass leaves it valid (its boundary edges may be folded with it).\n",
         if more_inverted.is_empty() { "none".to_string() } else { more_inverted.join(", ") }
     );
 }
