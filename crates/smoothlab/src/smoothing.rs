@@ -407,6 +407,20 @@ impl Model {
         })
     }
 
+    /// Sets what the boundary nodes of a planar or volume mesh do, where that changes (a
+    /// surface's are not set by this rule).
+    fn set_boundary(&mut self, rule: BoundaryRule, angle: f64) {
+        match self {
+            Model::Planar(m) if m.boundary_rule() != rule || m.feature_curves().is_some_and(|(a, _)| a != angle) => {
+                m.set_boundary(rule, angle)
+            }
+            Model::Volume(v) if v.boundary_rule() != rule || v.feature_curves().is_some_and(|(a, _)| a != angle) => {
+                v.set_boundary(rule, angle)
+            }
+            _ => {}
+        }
+    }
+
     /// The passes of `smoothing` over a tangled planar mesh with its boundary held, one at
     /// a time, until one leaves it valid; its boundary slides in the rest.
     fn passes_sliding_once_valid(
@@ -420,9 +434,7 @@ impl Model {
         for p in 1..=smoothing.passes {
             records.extend(self.passes(kind, penalty, opts, p..p + 1, clock)?);
             if records.last().is_some_and(|r| r.after.inverted == 0) {
-                if let Model::Planar(mesh) = self {
-                    mesh.set_boundary(BoundaryRule::Slide, smoothing.feature_angle_deg.unwrap_or(FEATURE_ANGLE_DEG));
-                }
+                self.set_boundary(BoundaryRule::Slide, smoothing.feature_angle_deg.unwrap_or(FEATURE_ANGLE_DEG));
                 records.extend(self.passes(kind, penalty, opts, p + 1..smoothing.passes + 1, clock)?);
                 break;
             }
@@ -445,25 +457,13 @@ impl Model {
                 surface.slide_along_curves();
             }
         }
-        if let Model::Volume(mesh) = self {
-            let angle = smoothing.feature_angle_deg.unwrap_or(FEATURE_ANGLE_DEG);
-            if mesh.boundary_rule() != smoothing.boundary || mesh.feature_curves().is_some_and(|(a, _)| a != angle) {
-                mesh.set_boundary(smoothing.boundary, angle);
-            }
-        }
         // a tangled planar mesh's boundary edges are folded with it: its boundary is held
         // while it is tangled, and slides from the pass after the first that leaves it valid
         // (Mesquite's tangled quads: 2 inverted left sliding from the start, 0 so)
-        let mut slide_once_valid = false;
-        if let Model::Planar(mesh) = self {
-            let angle = smoothing.feature_angle_deg.unwrap_or(FEATURE_ANGLE_DEG);
-            let tangled = (0..mesh.element_count()).any(|e| crate::smooth::mesh_element_is_inverted(mesh, e));
-            slide_once_valid = smoothing.boundary == BoundaryRule::Slide && tangled;
-            let rule = if slide_once_valid { BoundaryRule::Fixed } else { smoothing.boundary };
-            if mesh.boundary_rule() != rule || mesh.feature_curves().is_some_and(|(a, _)| a != angle) {
-                mesh.set_boundary(rule, angle);
-            }
-        }
+        let slide_once_valid = smoothing.boundary == BoundaryRule::Slide
+            && matches!(&*self, Model::Planar(m) if (0..m.element_count()).any(|e| crate::smooth::mesh_element_is_inverted(m, e)));
+        let rule = if slide_once_valid { BoundaryRule::Fixed } else { smoothing.boundary };
+        self.set_boundary(rule, smoothing.feature_angle_deg.unwrap_or(FEATURE_ANGLE_DEG));
         let penalty = smoothing.penalty.unwrap_or_default();
         self.set_target(smoothing.target);
         let passes = if slide_once_valid {

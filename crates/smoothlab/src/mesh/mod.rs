@@ -303,12 +303,9 @@ impl Mesh {
     }
     /// A node the smoothers may move: a corner that is not fixed.
     pub fn is_free(&self, n: usize) -> bool {
-        let unfixed = match &self.sliding {
-            None => !self.fixed[n],
-            Some(_) => match self.boundary_node(n) {
-                Some(BoundaryNode::Interior) | None => !self.fixed[n],
-                Some(c) => c.slides(),
-            },
+        let unfixed = match self.boundary_node(n) {
+            None | Some(BoundaryNode::Interior) => !self.fixed[n],
+            Some(c) => c.slides(),
         };
         unfixed && self.conn.topo.role[n] == NodeRole::Corner
     }
