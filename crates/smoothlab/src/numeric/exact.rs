@@ -7,12 +7,63 @@
 //! 1997), built by error-free sums (`two_sum`) and products (`two_product`, one fused
 //! multiply-add, correctly rounded on every platform). The sign of an expansion is that
 //! of its largest component. The values are taken as given, multiplied by a power of two
-//! (exact) when they are far from unit size, so the products neither overflow nor, for
-//! elements whose coordinates lie within 2^±300 of their largest, underflow.
+//! (exact) when they are far from unit size, so the products do not overflow. Where the
+//! products could still leave the doubles' exponent range (coordinates far apart in
+//! scale, [`expansions_suffice`]), the same sums are taken as [`Dyadic`] numbers: big
+//! integers times powers of two, exact at any exponent.
 
 use std::cmp::Ordering;
 
 use glam::DVec3;
+
+use super::dyadic::{mantissa_and_exponent, Dyadic};
+
+/// A number type whose sums and products of doubles are exact: [`Expansion`] (fast, within
+/// the doubles' exponent range) or [`Dyadic`] (any exponent).
+pub(crate) trait Exact: Clone + Default {
+    /// `a − b`, exactly.
+    fn difference(a: f64, b: f64) -> Self;
+    /// `self + other`, exactly.
+    fn add(&mut self, other: &Self);
+    /// `self · other`, exactly.
+    fn times(&self, other: &Self) -> Self;
+    /// `s·self` for a power of two `s`, exactly.
+    fn scaled(self, s: f64) -> Self;
+    /// `(self + other)/2`, exactly.
+    fn midpoint(&self, other: &Self) -> Self;
+    /// `−self`.
+    fn negated(self) -> Self;
+    /// The sign of the exact value.
+    fn sign(&self) -> Ordering;
+}
+
+/// Whether expansions are exact for sums of products of `degree` differences of `values`
+/// (products of power-of-two weights and up to 64 halvings included): every product's
+/// lowest bit stays above the doubles' least subnormal, its highest below their largest.
+/// Not-a-number or infinite values are left to expansions, which read them as they are.
+pub(crate) fn expansions_suffice(values: impl IntoIterator<Item = f64>, degree: i64) -> bool {
+    let (mut lo, mut hi) = (i64::MAX, i64::MIN);
+    for x in values {
+        if !x.is_finite() {
+            return true;
+        }
+        let (m, exp) = mantissa_and_exponent(x);
+        if m != 0 {
+            lo = lo.min(exp + m.trailing_zeros() as i64);
+            hi = hi.max(exp + 63 - m.leading_zeros() as i64);
+        }
+    }
+    lo == i64::MAX || (degree * lo - 64 >= -1074 && degree * (hi + 2) + 16 <= 1023)
+}
+
+/// Whether expansions of the points `scaled` (the points `given` times one power of two)
+/// are exact for the sign of a sum of products of `degree` of their differences: the
+/// scaling lost no coordinate to underflow, and [`expansions_suffice`] for them. Where
+/// not, the sign is taken in [`Dyadic`] numbers on the points as given.
+pub(crate) fn expansions_suffice_for(given: &[DVec3], scaled: &[DVec3], degree: i64) -> bool {
+    let kept = given.iter().zip(scaled).all(|(g, s)| (0..3).all(|i| (g[i] == 0.0) == (s[i] == 0.0)));
+    kept && expansions_suffice(scaled.iter().flat_map(|p| p.to_array()), degree)
+}
 
 /// `a + b = s + e` exactly, `s` the rounded sum.
 #[inline]
@@ -34,11 +85,6 @@ fn two_product(a: f64, b: f64) -> (f64, f64) {
 pub(crate) struct Expansion(Vec<f64>);
 
 impl Expansion {
-    /// `a − b`, exactly.
-    pub fn difference(a: f64, b: f64) -> Expansion {
-        let (s, e) = two_sum(a, -b);
-        Expansion([e, s].into_iter().filter(|&x| x != 0.0).collect())
-    }
     /// Adds one double, exactly (Shewchuk's Grow-Expansion, zeros dropped).
     pub fn grow(&mut self, b: f64) {
         let mut q = b;
@@ -55,14 +101,19 @@ impl Expansion {
         }
         self.0 = out;
     }
-    /// `self + other`, exactly.
-    pub fn add(&mut self, other: &Expansion) {
+}
+
+impl Exact for Expansion {
+    fn difference(a: f64, b: f64) -> Expansion {
+        let (s, e) = two_sum(a, -b);
+        Expansion([e, s].into_iter().filter(|&x| x != 0.0).collect())
+    }
+    fn add(&mut self, other: &Expansion) {
         for &x in &other.0 {
             self.grow(x);
         }
     }
-    /// `self · other`, exactly.
-    pub fn times(&self, other: &Expansion) -> Expansion {
+    fn times(&self, other: &Expansion) -> Expansion {
         let mut out = Expansion::default();
         for &a in &self.0 {
             for &b in &other.0 {
@@ -73,29 +124,27 @@ impl Expansion {
         }
         out
     }
-    /// `s·self` for a power of two `s`, exactly (unless a component underflows).
-    pub fn scaled(mut self, s: f64) -> Expansion {
+    /// Exact unless a component underflows.
+    fn scaled(mut self, s: f64) -> Expansion {
         for x in &mut self.0 {
             *x *= s;
         }
         self.0.retain(|&x| x != 0.0);
         self
     }
-    /// `(self + other)/2`, exactly (unless a component underflows).
-    pub fn midpoint(&self, other: &Expansion) -> Expansion {
+    /// Exact unless a component underflows.
+    fn midpoint(&self, other: &Expansion) -> Expansion {
         let mut s = self.clone();
         s.add(other);
         s.scaled(0.5)
     }
-    /// `−self`.
-    pub fn negated(mut self) -> Expansion {
+    fn negated(mut self) -> Expansion {
         for x in &mut self.0 {
             *x = -*x;
         }
         self
     }
-    /// The sign of the exact value.
-    pub fn sign(&self) -> Ordering {
+    fn sign(&self) -> Ordering {
         self.0.last().map_or(Ordering::Equal, |x| x.partial_cmp(&0.0).unwrap_or(Ordering::Equal))
     }
 }
@@ -119,8 +168,13 @@ pub fn orient3d(a: DVec3, b: DVec3, c: DVec3, d: DVec3) -> Ordering {
     if !m.is_finite() {
         return Ordering::Equal;
     }
+    let given = [a, b, c, d];
     let s = near_unit(m);
     let (a, b, c, d) = (s(a), s(b), s(c), s(d));
+    if !expansions_suffice_for(&given, &[a, b, c, d], 3) {
+        // products beyond the doubles' range at any one scale
+        return orient3d_exact::<Dyadic>(given[0], given[1], given[2], given[3]);
+    }
     // Shewchuk's orient3d with `a` as the apex: its forward error bound
     let (u, v, w) = (b - a, c - a, d - a);
     let (vw_x, wv_x) = (v.y * w.z, v.z * w.y);
@@ -138,17 +192,22 @@ pub fn orient3d(a: DVec3, b: DVec3, c: DVec3, d: DVec3) -> Ordering {
     if -det > bound {
         return Ordering::Less;
     }
-    det3_exact(
-        [Expansion::difference(b.x, a.x), Expansion::difference(b.y, a.y), Expansion::difference(b.z, a.z)],
-        [Expansion::difference(c.x, a.x), Expansion::difference(c.y, a.y), Expansion::difference(c.z, a.z)],
-        [Expansion::difference(d.x, a.x), Expansion::difference(d.y, a.y), Expansion::difference(d.z, a.z)],
-    )
-    .sign()
+    orient3d_exact::<Expansion>(a, b, c, d)
 }
 
-/// `u·(v × w)` of three vectors of expansions, exactly.
-pub(crate) fn det3_exact(u: [Expansion; 3], v: [Expansion; 3], w: [Expansion; 3]) -> Expansion {
-    let mut total = Expansion::default();
+/// [`orient3d`]'s sign from the exact numbers of `N`.
+fn orient3d_exact<N: Exact>(a: DVec3, b: DVec3, c: DVec3, d: DVec3) -> Ordering {
+    det3_exact(exact_difference::<N>(b, a), exact_difference(c, a), exact_difference(d, a)).sign()
+}
+
+/// `b − a`, exactly, component by component.
+pub(crate) fn exact_difference<N: Exact>(b: DVec3, a: DVec3) -> [N; 3] {
+    [N::difference(b.x, a.x), N::difference(b.y, a.y), N::difference(b.z, a.z)]
+}
+
+/// `u·(v × w)` of three vectors of exact numbers, exactly.
+pub(crate) fn det3_exact<N: Exact>(u: [N; 3], v: [N; 3], w: [N; 3]) -> N {
+    let mut total = N::default();
     for (i, j, k) in [(0, 1, 2), (1, 2, 0), (2, 0, 1)] {
         // u_i (v_j w_k − v_k w_j)
         let mut minor = v[j].times(&w[k]);
@@ -192,6 +251,19 @@ mod tests {
         let d = |p: DVec3, q: DVec3| [Expansion::difference(p.x, q.x), Expansion::difference(p.y, q.y), Expansion::difference(p.z, q.z)];
         assert_eq!(sign, det3_exact(d(b, a), d(c, a), d(mid, a)).sign());
         let _ = o;
+    }
+
+    /// Coordinates 2^2000 apart in scale: the determinant 2^-3000 is beyond every double,
+    /// its sign is not (issue 61: big integers take what expansions cannot).
+    #[test]
+    fn signs_are_exact_beyond_the_exponent_range() {
+        let (s, big) = (2f64.powi(-1000), 2f64.powi(1000));
+        let (a, b, c) = (DVec3::ZERO, DVec3::new(s, 0.0, 0.0), DVec3::new(0.0, s, 0.0));
+        for d in [DVec3::new(big, 0.0, s), DVec3::new(0.0, big, s), DVec3::new(0.0, 0.0, s)] {
+            assert_eq!(orient3d(a, b, c, d), Ordering::Greater, "{d}");
+            assert_eq!(orient3d(a, c, b, d), Ordering::Less, "{d}");
+            assert_eq!(orient3d(a, b, c, DVec3::new(d.x, d.y, 0.0)), Ordering::Equal, "{d}");
+        }
     }
 
     /// Against the rounded determinant where that is far from 0, and against swaps (an odd

@@ -11,6 +11,7 @@
 
 use glam::{DVec2, DVec3};
 
+pub(crate) mod dyadic;
 pub mod elementary;
 pub mod exact;
 pub mod order;
@@ -139,6 +140,14 @@ pub(crate) fn is_beyond_safe_scale(m: f64) -> bool {
 #[inline]
 pub(crate) fn factors_beyond_safe_scale(m: f64) -> Option<(f64, f64)> {
     is_beyond_safe_scale(m).then(|| unit_factors(m))
+}
+
+/// A vector whose largest component lies beyond 2^±300 multiplied by a power of two
+/// (exact) that brings it near 1; as it is within. Quotients of its components, and its
+/// direction, do not change.
+#[inline]
+pub(crate) fn near_unit_vector(v: DVec3) -> DVec3 {
+    exact::near_unit(largest_component([v]))(v)
 }
 
 /// Vectors of size beyond [`SAFE_SCALE`] multiplied by one power of two (exact) that

@@ -132,15 +132,32 @@ fn face_area_vector(p: &[DVec3; 4], k: usize) -> DVec3 {
 /// an inverted regular tetrahedron would read the ideal 70.53°), as a planar element's
 /// corner angles are negative when it is inverted. NaN where a face has no area.
 pub fn dihedral_angles(p: &[DVec3; 4]) -> [f64; 6] {
-    let inverted = signed_volume(&in_unit_scale(p)) < 0.0;
+    let inverted = volume_is_negative(p);
     dihedral_cosines(p).map(|c| if inverted { -c.acos() } else { c.acos() })
+}
+
+/// Whether the signed volume is negative: by the rounded volume where it is not 0, else
+/// by the exact sign ([`orient3d`](crate::numeric::exact::orient3d)), so a volume that
+/// underflows (edges that differ in scale by 2^600) keeps its sign (issue 61).
+#[inline]
+pub fn volume_is_negative(p: &[DVec3; 4]) -> bool {
+    let v = signed_volume(&in_unit_scale(p));
+    v < 0.0 || (v == 0.0 && crate::numeric::exact::orient3d(p[0], p[1], p[2], p[3]) == std::cmp::Ordering::Less)
+}
+
+/// A face's area vector brought near unit size where it lies beyond 2^±300 of it (exact;
+/// its direction is all a cosine reads), so two faces of edges that differ in scale by
+/// 2^600 give their cosine, not 0/0.
+#[inline]
+fn face_normal(p: &[DVec3; 4], k: usize) -> DVec3 {
+    crate::numeric::near_unit_vector(face_area_vector(p, k))
 }
 
 /// The first three of [`dihedral_cosines`], at the edges from corner 0, bit for bit: the
 /// three faces that hold corner 0, without the fourth.
 pub fn dihedral_cosines_at_corner0(p: &[DVec3; 4]) -> [f64; 3] {
     let p = &in_unit_scale(p);
-    let n = [1, 2, 3].map(|k| face_area_vector(p, k));
+    let n = [1, 2, 3].map(|k| face_normal(p, k));
     // OFF_EDGE's first three entries, faces 1–3 stored at 0–2
     [[1, 2], [0, 2], [0, 1]].map(|[k, l]: [usize; 2]| {
         let c = -n[k].dot(n[l]) / (n[k].length() * n[l].length());
@@ -152,7 +169,7 @@ pub fn dihedral_cosines_at_corner0(p: &[DVec3; 4]) -> [f64; 3] {
 /// cosines, bit for bit, negated for an inverted tetrahedron. NaN where a face has no area.
 pub fn dihedral_cosines(p: &[DVec3; 4]) -> [f64; 6] {
     let p = &in_unit_scale(p);
-    let n = [0, 1, 2, 3].map(|k| face_area_vector(p, k));
+    let n = [0, 1, 2, 3].map(|k| face_normal(p, k));
     OFF_EDGE.map(|[k, l]| {
         let c = -n[k].dot(n[l]) / (n[k].length() * n[l].length());
         c.clamp(-1.0, 1.0)

@@ -330,3 +330,35 @@ proptest! {
         }
     }
 }
+
+/// Issue 61, finding 2 at 1e200: the same block read 8 inverted (exact: 4), and dihedral
+/// angles of 90° to 90° beside a histogram with 108 angles in 0–6°. Products of three
+/// edges of 2^665 and 2^-2 leave the doubles: validity is decided in big integers where
+/// they would, and each angle and scaled Jacobian on edges brought to unit size one by
+/// one. The node at ±1e61 … ±1e300 reads as at 1e61, histograms included.
+#[test]
+fn a_hexahedral_block_with_a_node_at_1e200_reads_what_it_is() {
+    let base = block(4, false);
+    let node = (0..base.node_count()).find(|&n| base.nodes()[n] == DVec3::splat(0.5)).expect("the centre node");
+    let at = |x: f64| {
+        let mut m = base.clone();
+        m.nodes_mut()[node].x = x;
+        volume_stats(&m)
+    };
+    for sign in [1.0, -1.0] {
+        let near = at(sign * 1e61);
+        assert_eq!(near.inverted, 4);
+        assert_eq!(near.solid.as_ref().unwrap().min_scaled_jacobian, -1.0);
+        assert_eq!((near.min_angle_deg, near.max_angle_deg), (-90.0, 180.0));
+        for x in [1e100, 1e150, 1e200, 1e250, 1e300, f64::MAX] {
+            let s = at(sign * x);
+            let what = format!("x = {:e}", sign * x);
+            assert_eq!(s.inverted, 4, "{what}");
+            assert_eq!(s.solid.as_ref().unwrap().min_scaled_jacobian, -1.0, "{what}");
+            assert_eq!((s.min_angle_deg, s.max_angle_deg), (near.min_angle_deg, near.max_angle_deg), "{what}");
+            assert_eq!(s.angle_histogram_6deg, near.angle_histogram_6deg, "{what}");
+            assert_eq!(s.solid.as_ref().unwrap().scaled_jacobian_histogram, near.solid.as_ref().unwrap().scaled_jacobian_histogram, "{what}");
+            assert_eq!(s.min_quality, 0.5, "{what}");
+        }
+    }
+}

@@ -6,7 +6,8 @@ use std::cmp::Ordering;
 use glam::DVec3;
 
 use super::{Validity, MAX_BOXES};
-use crate::numeric::exact::{det3_exact, Expansion};
+use crate::numeric::dyadic::Dyadic;
+use crate::numeric::exact::{det3_exact, exact_difference, expansions_suffice_for, Exact, Expansion};
 
 /// A polynomial of degree ≤ 2 in each of three parameters on a box, by its 3×3×3
 /// Bernstein coefficients (`deg[k]` 0 where it does not depend on parameter `k`).
@@ -351,34 +352,26 @@ impl Bezier {
     }
 }
 
-/// A vector of exact sums.
-type ExactVec = [Expansion; 3];
-
-/// `b − a`, exactly.
-fn exact_edge(b: DVec3, a: DVec3) -> ExactVec {
-    [Expansion::difference(b.x, a.x), Expansion::difference(b.y, a.y), Expansion::difference(b.z, a.z)]
-}
-
 /// A factor of a [`TripleProduct`] with exact coefficients.
-type ExactFactor = [[[ExactVec; 2]; 2]; 2];
+type ExactFactor<N> = [[[[N; 3]; 2]; 2]; 2];
 
 /// The Bernstein coefficients of `det J` exactly, for the boxes the rounded ones leave
 /// within rounding of 0 (flat index `9i + 3j + k`).
 #[derive(Clone, Debug)]
-struct ExactBezier {
-    c: Vec<Expansion>,
+struct ExactBezier<N> {
+    c: Vec<N>,
     deg: [usize; 3],
 }
 
 impl TripleProduct {
     /// [`of`](Self::of), exactly: every triple product as an expansion
     /// ([`det3_exact`]), each weight a power of two.
-    fn of_exact(&self, f: &ExactFactor, g: &ExactFactor, h: &ExactFactor) -> ExactBezier {
-        let value = |v: &ExactFactor, t: &Terms, a: usize| {
+    fn of_exact<N: Exact>(&self, f: &ExactFactor<N>, g: &ExactFactor<N>, h: &ExactFactor<N>) -> ExactBezier<N> {
+        let value = |v: &ExactFactor<N>, t: &Terms, a: usize| {
             let [i, j, k] = t.0[a].0;
             v[i][j][k].clone()
         };
-        let mut c = vec![Expansion::default(); 27];
+        let mut c = vec![N::default(); 27];
         for a in 0..self.f.1 {
             for b in 0..self.g.1 {
                 for d in 0..self.h.1 {
@@ -392,8 +385,8 @@ impl TripleProduct {
     }
 }
 
-impl ExactBezier {
-    fn at(&self, i: usize, j: usize, k: usize) -> &Expansion {
+impl<N: Exact> ExactBezier<N> {
+    fn at(&self, i: usize, j: usize, k: usize) -> &N {
         &self.c[9 * i + 3 * j + k]
     }
     fn corners_positive(&self) -> bool {
@@ -404,7 +397,7 @@ impl ExactBezier {
         indices(self.deg).all(|(i, j, k)| self.at(i, j, k).sign() == Ordering::Greater)
     }
     /// The two halves along `axis` (de Casteljau at ½, exact).
-    fn split(&self, axis: usize) -> (ExactBezier, ExactBezier) {
+    fn split(&self, axis: usize) -> (ExactBezier<N>, ExactBezier<N>) {
         let (mut lo, mut hi) = (self.clone(), self.clone());
         let flat = |t: usize, a: usize, b: usize| match axis {
             0 => 9 * t + 3 * a + b,
@@ -456,19 +449,29 @@ const EXACT_BOXES: usize = 256;
 
 /// The validity of a hexahedron or a pyramid with corners `p` decided on the exact
 /// Bernstein coefficients of its `det J` (the doubles as given): where the rounded ones
-/// lie within rounding of 0 ([`rounding_margin`]).
-pub(super) fn exact_validity(kind: crate::mesh::VolumeKind, p: &[DVec3]) -> Validity {
-    let empty = || [Expansion::default(), Expansion::default(), Expansion::default()];
-    let z = || -> ExactFactor { std::array::from_fn(|_| std::array::from_fn(|_| std::array::from_fn(|_| empty()))) };
+/// lie within rounding of 0 ([`rounding_margin`]): `p`, the corners `given` times a power of
+/// two, as expansions where they are exact, else `given` as [`Dyadic`] numbers (issue 61: a
+/// node at 1e200 beside unit edges).
+pub(super) fn exact_validity(kind: crate::mesh::VolumeKind, p: &[DVec3], given: &[DVec3]) -> Validity {
+    if expansions_suffice_for(given, p, 3) {
+        exact_validity_in::<Expansion>(kind, p)
+    } else {
+        exact_validity_in::<Dyadic>(kind, given)
+    }
+}
+
+/// [`exact_validity`] in the exact numbers of `N`.
+fn exact_validity_in<N: Exact>(kind: crate::mesh::VolumeKind, p: &[DVec3]) -> Validity {
+    let z = || -> ExactFactor<N> { std::array::from_fn(|_| std::array::from_fn(|_| std::array::from_fn(|_| std::array::from_fn(|_| N::default())))) };
     let (mut f, mut g, mut h) = (z(), z(), z());
     match kind.linear() {
         crate::mesh::VolumeKind::Hex8 => {
             let at = |i: usize, j: usize, k: usize| p[4 * k + HEX_CORNER[i][j]];
             for a in 0..2 {
                 for b in 0..2 {
-                    f[0][a][b] = exact_edge(at(1, a, b), at(0, a, b));
-                    g[a][0][b] = exact_edge(at(a, 1, b), at(a, 0, b));
-                    h[a][b][0] = exact_edge(at(a, b, 1), at(a, b, 0));
+                    f[0][a][b] = exact_difference(at(1, a, b), at(0, a, b));
+                    g[a][0][b] = exact_difference(at(a, 1, b), at(a, 0, b));
+                    h[a][b][0] = exact_difference(at(a, b, 1), at(a, b, 0));
                 }
             }
             HEX.of_exact(&f, &g, &h).validity()
@@ -476,10 +479,10 @@ pub(super) fn exact_validity(kind: crate::mesh::VolumeKind, p: &[DVec3]) -> Vali
         crate::mesh::VolumeKind::Pyramid5 => {
             let base = |i: usize, j: usize| p[HEX_CORNER[i][j]];
             for a in 0..2 {
-                f[0][a][0] = exact_edge(base(1, a), base(0, a));
-                g[a][0][0] = exact_edge(base(a, 1), base(a, 0));
+                f[0][a][0] = exact_difference(base(1, a), base(0, a));
+                g[a][0][0] = exact_difference(base(a, 1), base(a, 0));
                 for (b, t) in h[a].iter_mut().enumerate() {
-                    t[0] = exact_edge(p[4], base(a, b));
+                    t[0] = exact_difference(p[4], base(a, b));
                 }
             }
             PYRAMID.of_exact(&f, &g, &h).validity()

@@ -151,7 +151,7 @@ impl ValidBall {
         };
         let det = hex_det(corners);
         let least = det.min_coefficient_unsigned();
-        (super::decided(kind, corners, &det, least), Self::of_least_coefficient(corners, slot, reach, least))
+        (super::decided(kind, corners, corners, &det, least), Self::of_least_coefficient(corners, slot, reach, least))
     }
 
     /// The corners and reach of an element a ball may be made for: a hexahedron (of any

@@ -9,9 +9,12 @@ use crate::quality::Reading;
 
 /// The scaled Jacobian of a corner, `det T/(‖t₁‖·‖t₂‖·‖t₃‖)` with `T = A·W⁻¹`: 1 at the
 /// ideal corner, in [−1, 1], negative when inverted (the 3D sine of a corner: the volume of
-/// the parallelepiped of its unit weighted edges). 0 for a degenerate corner.
+/// the parallelepiped of its unit weighted edges). 0 for a degenerate corner. Each column
+/// beyond 2^±300 of unit size is brought near it by a power of two (exact; the quotient
+/// does not change), so a corner of unit edges beside one of 2^660 does not underflow.
 pub fn scaled_jacobian(p: &[DVec3; 4], r: &CornerReference) -> f64 {
     let t = q3::weighted_jacobian(&q3::in_unit_scale(p), r);
+    let t = glam::DMat3::from_cols(crate::numeric::near_unit_vector(t.x_axis), crate::numeric::near_unit_vector(t.y_axis), crate::numeric::near_unit_vector(t.z_axis));
     let n = t.x_axis.length() * t.y_axis.length() * t.z_axis.length();
     if n == 0.0 || !n.is_finite() {
         return 0.0;
@@ -161,8 +164,23 @@ pub fn solid_measures(kind: VolumeKind, p: &[DVec3]) -> SolidMeasures {
 /// The dihedral angles, degrees, of a corner's tetrahedron `t` at the corner's three edges.
 #[inline]
 fn corner_dihedral_deg(t: &[DVec3; 4]) -> [f64; 3] {
-    let angles = q3::dihedral_angles(t);
+    let angles = q3::dihedral_angles(&edges_near_unit(t));
     EDGES_AT_CORNER_0.map(|i| angles[i].to_degrees())
+}
+
+/// A corner's tetrahedron with corner 0 at the origin and each edge from it beyond 2^±300
+/// of unit size brought near it by its own power of two; `t` itself where every edge is
+/// within. The angles at corner 0's edges and the sign of the volume do not change (the
+/// faces through corner 0 keep their planes), and their products do not underflow where
+/// an element's edges differ in scale by 2^600 and more (issue 61).
+#[inline]
+fn edges_near_unit(t: &[DVec3; 4]) -> [DVec3; 4] {
+    let e = [t[1] - t[0], t[2] - t[0], t[3] - t[0]];
+    let beyond = |v: DVec3| !(2f64.powi(-300)..=2f64.powi(300)).contains(&crate::numeric::largest_component([v]));
+    if !e.iter().any(|&v| beyond(v)) {
+        return *t;
+    }
+    [DVec3::ZERO, crate::numeric::near_unit_vector(e[0]), crate::numeric::near_unit_vector(e[1]), crate::numeric::near_unit_vector(e[2])]
 }
 
 /// What the statistics read of one element ([`Reading`]), taken as [`solid_measures`]
@@ -216,7 +234,7 @@ pub fn solid_within(kind: VolumeKind, p: &[DVec3], bounds: &Reading) -> bool {
     match kind {
         VolumeKind::Tet4 => {
             let corners = [p[0], p[1], p[2], p[3]];
-            if q3::signed_volume(&q3::in_unit_scale(&corners)) < 0.0 {
+            if q3::volume_is_negative(&corners) {
                 // its angles read negative: the reading decides
                 return solid_reading(kind, p, with_quality).within(bounds);
             }
@@ -231,14 +249,15 @@ pub fn solid_within(kind: VolumeKind, p: &[DVec3], bounds: &Reading) -> bool {
             let mut mean_ratio = 0.0;
             (0..count).all(|c| {
                 let t = corner_tet(kind, &q, c);
-                if q3::signed_volume(&q3::in_unit_scale(&t)) < 0.0 {
+                let u = edges_near_unit(&t);
+                if q3::volume_is_negative(&u) {
                     // its angles read negative: the reading decides
                     return solid_reading(kind, p, with_quality).within(bounds);
                 }
                 if with_quality {
                     mean_ratio += q3::mean_ratio(&t, r) / count as f64;
                 }
-                q3::dihedral_cosines_at_corner0(&t).iter().all(|&c| bounds.angle_within(c, cos_lo, cos_hi))
+                q3::dihedral_cosines_at_corner0(&u).iter().all(|&c| bounds.angle_within(c, cos_lo, cos_hi))
                     && scaled_jacobian(&t, r) >= bounds.min_scaled_jacobian
             }) && (!with_quality || mean_ratio >= bounds.min_quality)
         }

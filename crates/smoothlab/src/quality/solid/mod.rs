@@ -108,7 +108,7 @@ fn reach(p: &[DVec3]) -> f64 {
     crate::numeric::largest_component(p[1..].iter().map(|x| *x - p[0]))
 }
 /// A wedge's validity, exact (see the module docs).
-fn wedge_validity(p: &[DVec3]) -> Validity {
+fn wedge_validity(p: &[DVec3], given: &[DVec3]) -> Validity {
     // VTK's wedge: the triangle 0 1 2 turns clockwise seen from 3 4 5 above it, so
     // det J = −(∂ξ × ∂η)·∂ζ
     let e1 = [p[1] - p[0], p[4] - p[3]];
@@ -124,14 +124,14 @@ fn wedge_validity(p: &[DVec3]) -> Validity {
             return Validity::Inverted;
         }
         if c0 <= margin || c2 <= margin {
-            return wedge_validity_exact(p);
+            return wedge_validity_exact(p, given);
         }
         if c1 <= margin {
             // the quadratic's minimum may be inside: positive iff c1² < c0·c2
             let (sq, prod) = (c1 * c1, c0 * c2);
             let big = c0.abs().max(c1.abs()).max(c2.abs());
             if (sq - prod).abs() <= 4.0 * margin * big + 1e-14 * big * big {
-                return wedge_validity_exact(p);
+                return wedge_validity_exact(p, given);
             }
             if c1 <= 0.0 && sq >= prod {
                 return Validity::Inverted;
@@ -146,15 +146,27 @@ fn wedge_validity(p: &[DVec3]) -> Validity {
     }
 }
 
-/// [`wedge_validity`] on the exact values of the doubles as given: on each vertical edge
+/// [`wedge_validity`] on the exact values of the doubles as given (`p` times a power of
+/// two, or `given`; as [`bernstein`]'s exact validity chooses): on each vertical edge
 /// `det J` is the quadratic of Bernstein coefficients `c₀ = −(a₀ × b₀)·u`,
 /// `c₁ = −½(a₀ × b₁ + a₁ × b₀)·u`, `c₂ = −(a₁ × b₁)·u` (`a`, `b` the triangles' edges, `u`
 /// the vertical edge), positive on [0, 1] iff `c₀ > 0`, `c₂ > 0` and `c₁ > 0` or
 /// `c₁² < c₀c₂`.
-fn wedge_validity_exact(p: &[DVec3]) -> Validity {
-    use crate::numeric::exact::{det3_exact, Expansion};
+fn wedge_validity_exact(p: &[DVec3], given: &[DVec3]) -> Validity {
+    use crate::numeric::{dyadic::Dyadic, exact::{expansions_suffice_for, Expansion}};
+    // c₁² − c₀c₂: products of six differences
+    if expansions_suffice_for(given, p, 6) {
+        wedge_validity_in::<Expansion>(p)
+    } else {
+        wedge_validity_in::<Dyadic>(given)
+    }
+}
+
+/// [`wedge_validity_exact`] in the exact numbers of `N`.
+fn wedge_validity_in<N: crate::numeric::exact::Exact>(p: &[DVec3]) -> Validity {
+    use crate::numeric::exact::{det3_exact, exact_difference};
     use std::cmp::Ordering;
-    let edge = |b: DVec3, a: DVec3| [Expansion::difference(b.x, a.x), Expansion::difference(b.y, a.y), Expansion::difference(b.z, a.z)];
+    let edge = |b: DVec3, a: DVec3| exact_difference::<N>(b, a);
     let (a0, a1, b0, b1) = (edge(p[1], p[0]), edge(p[4], p[3]), edge(p[2], p[0]), edge(p[5], p[3]));
     for i in 0..3 {
         let up = || edge(p[i + 3], p[i]);
@@ -190,21 +202,22 @@ pub fn validity(kind: VolumeKind, p: &[DVec3]) -> Validity {
                 Validity::Valid
             }
         }
-        VolumeKind::Wedge6 => wedge_validity(&q),
+        VolumeKind::Wedge6 => wedge_validity(&q, p),
         VolumeKind::Hex8 | VolumeKind::Pyramid5 => {
             let det = if kind.linear() == VolumeKind::Hex8 { hex_det(&q[..8]) } else { pyramid_det(&q[..5]) };
-            decided(kind, &q[..kind.corners()], &det, det.min_coefficient_unsigned())
+            decided(kind, &q[..kind.corners()], &p[..kind.corners()], &det, det.min_coefficient_unsigned())
         }
         VolumeKind::Tet10 | VolumeKind::Hex20 | VolumeKind::Hex27 => unreachable!("linear() is linear"),
     }
 }
 
-/// The validity of a hexahedron or pyramid with corners `p` from its `det J`'s rounded
-/// Bernstein form `det` (least coefficient `least`) where that decides beyond rounding, else
-/// from the exact one (issue 61: two hexahedra of smoothlab's outputs had `det J < 0`
-/// exactly, −1.2e−17 on a scale of 1, yet counted as valid).
-fn decided(kind: VolumeKind, p: &[DVec3], det: &bernstein::Bezier, least: f64) -> Validity {
-    det.validity_beyond(least, bernstein::rounding_margin(p)).unwrap_or_else(|| bernstein::exact_validity(kind, p))
+/// The validity of a hexahedron or pyramid with corners `p` (in unit scale; `given` as
+/// given) from its `det J`'s rounded Bernstein form `det` (least coefficient `least`) where
+/// that decides beyond rounding, else from the exact one of the corners as given (issue 61:
+/// two hexahedra of smoothlab's outputs had `det J < 0` exactly, −1.2e−17 on a scale of 1,
+/// yet counted as valid).
+fn decided(kind: VolumeKind, p: &[DVec3], given: &[DVec3], det: &bernstein::Bezier, least: f64) -> Validity {
+    det.validity_beyond(least, bernstein::rounding_margin(p)).unwrap_or_else(|| bernstein::exact_validity(kind, p, given))
 }
 
 /// The smallest Bernstein coefficient of the element's `det J` (its corners' determinants

@@ -441,7 +441,7 @@ fn the_exact_bernstein_test_agrees_where_rounding_decides() {
             }
             valid += (rounded == Validity::Valid) as usize;
             inverted += (rounded == Validity::Inverted) as usize;
-            assert_eq!(super::bernstein::exact_validity(kind, &p), rounded, "{kind:?} {p:?}");
+            assert_eq!(super::bernstein::exact_validity(kind, &p, &p), rounded, "{kind:?} {p:?}");
         }
     }
     assert!(valid > 100 && inverted > 100, "{valid} valid, {inverted} inverted");
@@ -474,9 +474,10 @@ fn a_wedge_is_decided_exactly_at_the_margin() {
     for i in 0..3000 {
         let p = perturbed(VolumeKind::Wedge6, &mut rng, [0.2, 0.5, 0.8][i % 3], 1.0);
         let v = validity(VolumeKind::Wedge6, &p);
-        assert_eq!(super::wedge_validity_exact(&p), v, "{p:?}");
+        assert_eq!(super::wedge_validity_exact(&p, &p), v, "{p:?}");
         valid += (v == Validity::Valid) as usize;
         inverted += (v == Validity::Inverted) as usize;
     }
     assert!(valid > 100 && inverted > 100, "{valid} valid, {inverted} inverted");
 }
+
