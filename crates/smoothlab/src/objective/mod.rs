@@ -55,6 +55,7 @@ pub use old::{CornerTerm, MaxMinShape};
 pub use point::{NodeStar, Point};
 pub use sine::MaxMinSine;
 pub use tet::{describe_tet, tet_form, tet_kinds, tet_objective, CornerStar, RegularisedMeanRatio, StarCorner, StarSolid, TetObjective};
+pub(crate) use tet::framed;
 pub use untangle::{MaxMinDet, Untangle, UNTANGLE_BETA};
 
 enum_with_all! {

@@ -18,7 +18,7 @@ use glam::DVec3;
 
 use super::{VolumeKind, VolumeMesh};
 use crate::error::Result;
-use crate::objective::{CornerStar, Objective, StarSolid};
+use crate::objective::{framed, CornerStar, Objective, StarSolid};
 use crate::quality::solid::{self, Validity};
 use crate::quality::tet as q3;
 use crate::quality::Reading;
@@ -251,10 +251,11 @@ impl DriverStar for CornerStar {
         let (mut before, mut after) = (f64::INFINITY, f64::INFINITY);
         if m == Measure::Shape {
             // kept for the acceptance rule, which asks the same two positions
+            let frame = self.frame();
             let mut memo = self.tet_measures.borrow_mut();
             let (b, a) = (
-                memo.slot(&self.tets, self.x0, self.reference()),
-                memo.slot(&self.tets, c, self.reference()),
+                memo.slot(&self.tets, self.x0, self.reference(), frame),
+                memo.slot(&self.tets, c, self.reference(), frame),
             );
             for ((p0, t0), (p1, t1)) in memo.measures(b).iter().zip(memo.measures(a)) {
                 if !t0.inverted && t1.inverted {
@@ -350,8 +351,8 @@ impl DriverStar for CornerStar {
     /// compared only within the star, and its determinants of coordinates near 2^±520
     /// left the doubles (issue 61).
     fn inversion(&self, x: DVec3) -> f64 {
-        let f = crate::numeric::unit_factor(crate::objective::NodeStar::size(self)).unwrap_or(1.0);
-        let at = |p: [DVec3; 4]| if f == 1.0 { p } else { p.map(|q| q * f) };
+        let f = self.frame();
+        let at = |p: [DVec3; 4]| framed(p, f);
         let tets: f64 = self
             .tets
             .iter()
@@ -376,15 +377,17 @@ impl DriverStar for CornerStar {
     }
     /// The tetrahedra's worst mean ratios exact, each taken only where it may be the worst
     /// (`LeastMeanRatio`, this module's).
+    /// Each element's inversion in the star's [`frame`](CornerStar::frame).
     fn verdict(&self, x: DVec3, m: Measure) -> Verdict {
         let mut v = Verdict::default();
+        let frame = self.frame();
         if m == Measure::Shape {
             let (mut before, mut after) = (LeastMeanRatio::default(), LeastMeanRatio::default());
             // the measures the smart Laplacian's test took at these positions, or taken here
             let mut memo = self.tet_measures.borrow_mut();
             let (b, a) = (
-                memo.slot(&self.tets, self.x0, self.reference()),
-                memo.slot(&self.tets, x, self.reference()),
+                memo.slot(&self.tets, self.x0, self.reference(), frame),
+                memo.slot(&self.tets, x, self.reference(), frame),
             );
             let tets = self.tets.iter().filter(|t| t.simplex);
             for (t, ((p0, t0), (p1, t1))) in tets.zip(memo.measures(b).iter().zip(memo.measures(a)))
@@ -398,13 +401,13 @@ impl DriverStar for CornerStar {
         } else {
             for t in self.tets.iter().filter(|t| t.simplex) {
                 v.add(
-                    &ElementScore::tet(&t.pts, self.reference(), m),
-                    &ElementScore::tet(&t.at(x), self.reference(), m),
+                    &ElementScore::tet(&framed(t.pts, frame), self.reference(), m),
+                    &ElementScore::tet(&framed(t.at(x), frame), self.reference(), m),
                 );
             }
         }
         for e in &self.elements {
-            v.add_deciding_size(&e.score(e.x(), m), &e.score(x, m), || e.keeps_size(x));
+            v.add_deciding_size(&e.score(e.x(), m, frame), &e.score(x, m, frame), || e.keeps_size(x));
         }
         v
     }
@@ -451,10 +454,10 @@ impl DriverStar for CornerStar {
                     after[mid] = 0.5 * (after[a] + after[b]);
                 }
             }
-            let r = self.reference();
+            let (r, frame) = (self.reference(), self.frame());
             v.add(
-                &ElementScore::tet10(&before, r, m),
-                &ElementScore::tet10(&after, r, m),
+                &ElementScore::tet10(&framed(before, frame), r, m),
+                &ElementScore::tet10(&framed(after, frame), r, m),
             );
         }
         v
@@ -500,8 +503,8 @@ trait SolidScore {
     /// [`ElementScore::solid`] with the free node at `x` but for its size, its validity as
     /// the drivers measure it ([`StarSolid::validity_measured`]: the same answer as
     /// [`solid::validity`], kept for the position, from the `det J` form once the guard has
-    /// made it).
-    fn score(&self, x: DVec3, m: Measure) -> ElementScore<()>;
+    /// made it), its inversion of its corners times the star's `frame`.
+    fn score(&self, x: DVec3, m: Measure, frame: f64) -> ElementScore<()>;
     /// Whether the element, valid as gathered, keeps at least [`MIN_SIZE_RATIO`] of its size
     /// ([`Size::least_corner`]) with the free node at `x`: from its corners' determinants
     /// where they decide ([`Size::floor_kept_for_certain`]), else from the sizes
@@ -510,10 +513,10 @@ trait SolidScore {
 }
 
 impl SolidScore for StarSolid {
-    fn score(&self, x: DVec3, m: Measure) -> ElementScore<()> {
+    fn score(&self, x: DVec3, m: Measure, frame: f64) -> ElementScore<()> {
         // the corners with the free node at `x`, copied only where a measure reads them
         let p = std::cell::OnceCell::new();
-        let corners = || self.corners(p.get_or_init(|| self.at(x)));
+        let corners = || self.corners(p.get_or_init(|| framed(self.at(x), frame)));
         let score = ElementScore::solid_sized(self.kind, self.validity_measured(x), (), corners);
         let quality = match m {
             Measure::Shape => self.shape_measured(x),

@@ -35,6 +35,7 @@ mod star;
 #[cfg(test)]
 mod tests;
 mod tet_measures;
+pub(crate) use tet_measures::framed;
 
 pub use objectives::{RegularisedMeanRatio, TetObjective};
 pub use star::{CornerStar, StarCorner, StarSolid};

@@ -347,6 +347,14 @@ impl Default for CornerStar {
 }
 
 impl CornerStar {
+    /// The power of two that brings the star near unit size where it is far from it
+    /// ([`crate::numeric::unit_factor`]), 1 otherwise: the frame the acceptance rule sums
+    /// its elements' inversions in, so determinants of coordinates near 2^±520 do not leave
+    /// the doubles (issue 61). The sums are compared only within the star.
+    pub fn frame(&self) -> f64 {
+        crate::numeric::unit_factor(crate::objective::NodeStar::size(self)).unwrap_or(1.0)
+    }
+
     /// A star of tetrahedra (each with the free node first).
     pub fn of_tets(x0: DVec3, tets: Vec<StarCorner>) -> Self {
         CornerStar {

@@ -29,8 +29,9 @@ impl TetMeasures {
     }
     /// Which of the two holds the measures of `tets`' tetrahedra with the free node at
     /// `x`, taken against `r` where not held (in place of the position asked less
-    /// recently).
-    pub(crate) fn slot(&mut self, tets: &[StarCorner], x: DVec3, r: &CornerReference) -> usize {
+    /// recently); the rule's measures of the corners times `frame`, the star's power of
+    /// two ([`CornerStar::frame`](crate::objective::CornerStar::frame)).
+    pub(crate) fn slot(&mut self, tets: &[StarCorner], x: DVec3, r: &CornerReference, frame: f64) -> usize {
         let key = [x.x.to_bits(), x.y.to_bits(), x.z.to_bits()];
         let i = match self.at.iter().position(|&a| a == Some(key)) {
             Some(i) => i,
@@ -40,7 +41,7 @@ impl TetMeasures {
                 measures.clear();
                 for t in tets.iter().filter(|t| t.simplex) {
                     let p = t.at(x);
-                    measures.push((q3::MeanRatioParts::of(&p, r), q3::TetRuleMeasures::of(&p)));
+                    measures.push((q3::MeanRatioParts::of(&p, r), q3::TetRuleMeasures::of(&framed(p, frame))));
                 }
                 self.at[i] = Some(key);
                 i
@@ -53,6 +54,16 @@ impl TetMeasures {
     #[inline]
     pub(crate) fn measures(&self, slot: usize) -> &[(q3::MeanRatioParts, q3::TetRuleMeasures)] {
         &self.measures[slot]
+    }
+}
+
+/// The corners `p` times the power of two `frame` (exact); as they are where it is 1.
+#[inline]
+pub(crate) fn framed<const N: usize>(p: [DVec3; N], frame: f64) -> [DVec3; N] {
+    if frame == 1.0 {
+        p
+    } else {
+        p.map(|q| q * frame)
     }
 }
 
@@ -110,5 +121,42 @@ mod tests {
             moved += accepts as usize;
         }
         assert!(checked > 100 && moved > 0, "{checked} {moved}");
+    }
+
+    /// Issue 61, finding 3: the acceptance rule summed an inverted star's inversions in
+    /// mesh units, where at 2^±520 its determinants are +∞ or 0 and no fall is seen. In
+    /// the star's frame its verdicts are those at unit scale: tangled blocks of
+    /// tetrahedra and of mixed kinds, every free node, trial positions about each.
+    #[test]
+    fn the_rule_keeps_the_same_moves_at_every_scale() {
+        use crate::smooth::{DriverStar, Measure};
+        use glam::DVec3;
+        let tets = crate::generate::tet_cube(3).unwrap();
+        let mixed = crate::generate::mixed_block(&crate::generate::HexBlock::cube(3)).unwrap();
+        let (mut compared, mut inverted) = (0, 0);
+        for (base, seed) in [(&tets, 1), (&tets, 2), (&mixed, 3), (&mixed, 4)] {
+            let unit = crate::generate::perturb_volume(base, 1.0, seed).unwrap();
+            for k in [-600, -520, 520, 600] {
+                let f = 2f64.powi(k);
+                let mut big = unit.clone();
+                big.nodes_mut().iter_mut().for_each(|p| *p *= f);
+                let mut rng = SplitMix64::new(seed);
+                for n in (0..unit.node_count()).filter(|&n| unit.is_free(n)) {
+                    let (mut a, mut b) = (CornerStar::default(), CornerStar::default());
+                    a.gather_for_measures(&unit, n);
+                    b.gather_for_measures(&big, n);
+                    for _ in 0..4 {
+                        let d = a.size() * 0.5 * DVec3::new(rng.next_f64() - 0.5, rng.next_f64() - 0.5, rng.next_f64() - 0.5);
+                        for m in [Measure::Shape, Measure::MinSine] {
+                            let (va, vb) = (a.verdict(a.x0 + d, m), b.verdict((a.x0 + d) * f, m));
+                            assert_eq!(va.keeps(), vb.keeps(), "node {n} at 2^{k}, {m:?}: {va:?} {vb:?}");
+                            compared += 1;
+                            inverted += !va.was_valid() as usize;
+                        }
+                    }
+                }
+            }
+        }
+        assert!(compared > 1000 && inverted > 100, "{compared} {inverted}");
     }
 }
