@@ -880,29 +880,46 @@ fn planar_inverted(mesh: &Mesh) -> Vec<bool> {
 /// and later moves need not mend it), puts the nodes (`nodes_of`) of the elements the pass
 /// inverted back where the pass found them (`restore`), until the count (`now`) is no
 /// larger; at the fourth round those of every inverted element; at worst every node the
-/// pass moved goes back.
+/// pass moved goes back ([`undo_what_got_worse`]).
 pub(crate) fn undo_new_inversions<M: ?Sized>(
     mesh: &mut M,
     was: &[bool],
     now: impl Fn(&M) -> Vec<bool>,
     nodes_of: impl Fn(&M, usize) -> Vec<u32>,
-    mut restore: impl FnMut(&mut M, usize),
+    restore: impl FnMut(&mut M, usize),
 ) {
     let before = was.iter().filter(|&&i| i).count();
+    let judge = |m: &M, round: usize| {
+        let inverted = now(m);
+        (inverted.iter().filter(|&&i| i).count() > before)
+            .then(|| (0..inverted.len()).filter(|&e| inverted[e] && (!was[e] || round == 3)).collect())
+    };
+    undo_what_got_worse(mesh, was.len(), judge, nodes_of, restore);
+}
+
+/// Puts back, where the pass found them (`restore`), the nodes (`nodes_of`) of the
+/// elements `judge` names, round after round, until it names none (`None`: the mesh is no
+/// worse than the pass found it); after four rounds every node of the mesh's `elements`
+/// goes back (the pass undone, which no judge finds worse).
+pub(crate) fn undo_what_got_worse<M: ?Sized>(
+    mesh: &mut M,
+    elements: usize,
+    judge: impl Fn(&M, usize) -> Option<Vec<usize>>,
+    nodes_of: impl Fn(&M, usize) -> Vec<u32>,
+    mut restore: impl FnMut(&mut M, usize),
+) {
     for round in 0..4 {
-        let inverted = now(mesh);
-        if inverted.iter().filter(|&&i| i).count() <= before {
+        let Some(culprits) = judge(mesh, round) else {
             return;
-        }
-        for e in (0..inverted.len()).filter(|&e| inverted[e] && (!was[e] || round == 3)) {
+        };
+        for e in culprits {
             for i in nodes_of(mesh, e) {
                 restore(mesh, i as usize);
             }
         }
     }
-    if now(mesh).iter().filter(|&&i| i).count() > before {
-        let all: std::collections::BTreeSet<u32> =
-            (0..was.len()).flat_map(|e| nodes_of(mesh, e)).collect();
+    if judge(mesh, 4).is_some() {
+        let all: std::collections::BTreeSet<u32> = (0..elements).flat_map(|e| nodes_of(mesh, e)).collect();
         for i in all {
             restore(mesh, i as usize);
         }
