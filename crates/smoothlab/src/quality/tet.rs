@@ -340,6 +340,11 @@ impl CornerForm {
             grad_sigma: j.grad_sigma,
         }
     }
+    /// Corner 0 when the form was worked out (not a number while it is pending).
+    #[inline]
+    pub fn origin(&self) -> DVec3 {
+        self.origin
+    }
     /// The weighted Jacobian with corner 0 at `x`.
     #[inline(always)]
     pub fn at(&self, x: DVec3) -> WeightedJacobian {

@@ -562,10 +562,18 @@ impl NodeStar for CornerStar {
         s.tet_measures.get_mut().clear();
         s.x0 *= f;
         for (i, t) in s.tets.iter_mut().enumerate() {
+            // the form from where the star in mesh units took it (its origin), so both
+            // read a position with the same rounding (issue 61: a form taken from where a
+            // Laplacian move left the node read the last bits otherwise)
+            let mut q = t.pts;
+            let origin = t.form.origin();
+            if origin.is_finite() {
+                q[0] = origin;
+            }
             for p in &mut t.pts {
                 *p *= f;
             }
-            t.form = CornerForm::of(&t.pts, s.targets.get(i).unwrap_or(t.reference));
+            t.form = CornerForm::of(&q.map(|p| p * f), s.targets.get(i).unwrap_or(t.reference));
         }
         for e in &mut s.elements {
             for p in &mut e.pts {
