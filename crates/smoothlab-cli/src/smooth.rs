@@ -256,7 +256,9 @@ pub fn run(a: SmoothArgs) -> Result<(), String> {
             serde_json::to_string(&report).map_err(|e| e.to_string())?
         );
     } else {
-        print!("{}", summary(&report));
+        // a tangled surface's nodes stay on a surface fitted through them, not on its facets
+        let fitted = matches!(&model, Model::Surface(m) if matches!(m.reference(), smoothlab::surface::Reference::Fitted(_)));
+        print!("{}", summary(&report, fitted));
         print!(
             "{}",
             obstacle_summary(report.untangling_impossible(), report.inverted())
@@ -266,7 +268,7 @@ pub fn run(a: SmoothArgs) -> Result<(), String> {
 }
 
 /// The human-readable summary: one line per pass, then the final state.
-fn summary(report: &Report) -> String {
+fn summary(report: &Report, fitted: bool) -> String {
     let (kind, strategy, order) = report.settings();
     let (passes, s, ms) = (report.passes(), report.stats(), report.time_ms());
     let mut t = format!(
@@ -334,9 +336,8 @@ fn summary(report: &Report) -> String {
         ));
     }
     if let Some(d) = s.max_distance_from_surface {
-        t.push_str(&format!(
-            "surface: every node within {d:.3e} of the surface as it was loaded\n"
-        ));
+        let reference = if fitted { "fitted through its nodes as loaded (the file was tangled)" } else { "as it was loaded" };
+        t.push_str(&format!("surface: every node within {d:.3e} of the surface {reference}\n"));
     }
     t
 }
