@@ -9,8 +9,8 @@
 //! of its largest component. The values are taken as given, multiplied by a power of two
 //! (exact) when they are far from unit size, so the products do not overflow. Where the
 //! products could still leave the doubles' exponent range (coordinates far apart in
-//! scale, [`expansions_suffice`]), the same sums are taken as [`Dyadic`] numbers: big
-//! integers times powers of two, exact at any exponent.
+//! scale), the same sums are taken as dyadic numbers (`numeric::dyadic`): big integers
+//! times powers of two, exact at any exponent.
 
 use std::cmp::Ordering;
 
