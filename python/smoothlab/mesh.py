@@ -336,8 +336,9 @@ class Mesh:
         ``boundary``, ``feature_angle``; those left out take its defaults. Once the passes leave the mesh valid, ``finish`` more (3
         by default) lift its worst element; ``report.finish`` says how many ran.
         ``target="input"`` measures each corner against itself as it was (its stretch
-        kept) rather than the ideal element. ``boundary="slide"`` lets a planar or volume mesh's
-        boundary nodes slide on the boundary as loaded (corners stay; ``report.boundary``
+        kept) rather than the ideal element. ``boundary="slide"`` lets a mesh's boundary nodes
+        slide on the boundary as loaded (a surface's along its open edges and feature curves;
+        corners stay; ``report.boundary``
         says how many slid and how far from it they are). A setting out of range, or one the strategy would not use, is a
         ``ValueError`` naming it. Other Python threads run meanwhile.
 

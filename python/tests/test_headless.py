@@ -133,8 +133,12 @@ def test_sliding_boundaries_are_the_tools(files, tmp_path):
     assert b["max_distance"] < 1e-12 * b["mean_edge"], b
     assert "slide" in smoothlab.settings()["boundary"]
     assert smoothlab.read(files["volume"]).smooth().boundary is None
-    with pytest.raises(ValueError, match="boundary"):
-        smoothlab.read(files["surface"]).smooth(boundary="slide")
+    # a surface's boundary is its open edges and feature curves: the torus has none
+    cli("smooth", files["surface"], "-o", tmp_path / "cli-s.vtk", "--boundary", "slide")
+    surface = smoothlab.read(files["surface"])
+    assert surface.smooth(boundary="slide").boundary["curves"] == 0
+    smoothlab.write(surface, tmp_path / "py-s.vtk")
+    assert (tmp_path / "py-s.vtk").read_bytes() == (tmp_path / "cli-s.vtk").read_bytes()
     with pytest.raises(ValueError, match="feature_angle"):
         smoothlab.read(files["volume"]).smooth(feature_angle=40)
 

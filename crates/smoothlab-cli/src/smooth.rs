@@ -20,7 +20,7 @@
 //! `--slide-curves` (surfaces only): the nodes of the feature curves and open boundaries
 //! slide along them instead of staying fixed.
 //!
-//! `--boundary slide` (linear planar and volume meshes): boundary nodes slide on the
+//! `--boundary slide` (linear planar, surface and volume meshes): boundary nodes slide on the
 //! boundary as loaded, curve nodes along its feature curves (`--feature-angle`), corners
 //! stay; the summary says how many of each and the largest distance from the boundary.
 
@@ -233,9 +233,6 @@ pub fn run(a: SmoothArgs) -> Result<(), String> {
         }
         Model::Planar(m) if a.boundary == BoundaryRule::Slide && m.has_quadratic() => {
             return Err("--boundary slide takes linear meshes so far: a quadratic mesh's boundary nodes stay".into())
-        }
-        Model::Surface(_) if a.boundary == BoundaryRule::Slide => {
-            return Err("--boundary slide takes planar and volume meshes; a surface's curves slide with --slide-curves".into())
         }
         _ => {}
     }

@@ -143,7 +143,8 @@ impl Smoothing {
         self
     }
 
-    /// What boundary nodes do ([`BoundaryRule`]; linear planar and volume meshes).
+    /// What boundary nodes do ([`BoundaryRule`]; linear planar and volume meshes, and
+    /// surfaces, whose boundary is their open edges and feature curves).
     pub fn boundary(mut self, rule: BoundaryRule) -> Self {
         self.boundary = rule;
         self
@@ -253,7 +254,6 @@ impl Smoothing {
     /// Why these settings cannot smooth `model`, if they cannot.
     fn check(&self, model: &Model) -> Result<()> {
         match model {
-            Model::Surface(_) if self.boundary == BoundaryRule::Fixed => Ok(()),
             Model::Planar(mesh) if self.boundary == BoundaryRule::Slide && mesh.has_quadratic() => refuse(
                 "boundary",
                 "slide takes linear planar meshes so far; quadratic boundary nodes stay".into(),
@@ -275,10 +275,7 @@ impl Smoothing {
                 "slide takes linear volume meshes so far; quadratic boundary nodes stay".into(),
             ),
             Model::Volume(_) => Ok(()),
-            _ if self.boundary == BoundaryRule::Slide => refuse(
-                "boundary",
-                "a surface's boundary slides with slide_curves, not boundary slide".into(),
-            ),
+            Model::Surface(_) => Ok(()),
             _ => refuse(
                 "slide_curves",
                 "a surface's curves slide; this mesh is planar".into(),
@@ -453,7 +450,11 @@ impl Model {
         let kind = smoothing.objective;
         let start = clock();
         if let Model::Surface(surface) = self {
-            if smoothing.slide_curves {
+            // a surface's boundary is its curves: open edges and feature curves; the rule's
+            // feature angle holds the corners where a curve turns sharply
+            if smoothing.boundary == BoundaryRule::Slide {
+                surface.slide_along_curves_with(Some(smoothing.feature_angle_deg.unwrap_or(FEATURE_ANGLE_DEG)));
+            } else if smoothing.slide_curves {
                 surface.slide_along_curves();
             }
         }
@@ -511,6 +512,7 @@ impl Model {
         let boundary = match &*self {
             Model::Volume(mesh) if mesh.boundary_rule() == BoundaryRule::Slide => Some(BoundaryReport::of(mesh)),
             Model::Planar(mesh) if mesh.boundary_rule() == BoundaryRule::Slide => Some(BoundaryReport::of_planar(mesh)),
+            Model::Surface(s) if s.boundary_corner_deg().is_some() => Some(BoundaryReport::of_surface(s)),
             _ => None,
         };
         Ok(Report {
@@ -580,6 +582,22 @@ impl BoundaryReport {
             mesh.max_distance_from_boundary(),
             mesh.mean_edge_length(),
         )
+    }
+
+    /// [`of`](Self::of) a surface: its curves (open edges and feature curves) are its
+    /// boundary, the nodes on them slide along them, and its corners hold.
+    pub fn of_surface(surface: &crate::surface::Surface) -> BoundaryReport {
+        let c = surface.boundary_counts();
+        BoundaryReport {
+            feature_angle_deg: surface.boundary_corner_deg().unwrap_or(0.0),
+            curves: c.curves,
+            surface_nodes: 0,
+            curve_nodes: c.sliding,
+            corners: c.corners,
+            held: c.held,
+            max_distance: surface.max_distance_from_curves(),
+            mean_edge: surface.mean_edge_length(),
+        }
     }
 
     fn counted(

@@ -236,15 +236,15 @@ pub fn boundary_words(rule: BoundaryRule) -> &'static str {
     }
 }
 
-/// Why a planar mesh's boundary nodes cannot slide (the core's `--boundary slide` takes
-/// volume meshes only).
+/// Why a planar mesh's boundary nodes cannot slide here (the page slides volume meshes
+/// only; the core's `--boundary slide` takes planar meshes and surfaces too).
 pub fn slide_refused_planar() -> String {
     "the page slides a volume mesh's boundary; this mesh is planar (the command line and Python slide it)".into()
 }
 
-/// Why a surface's boundary nodes cannot slide by this rule.
+/// Why a surface's boundary nodes cannot slide here.
 pub fn slide_refused_surface() -> String {
-    "only a volume mesh's boundary nodes slide; this mesh is a surface in 3D".into()
+    "the page slides a volume mesh's boundary; this mesh is a surface in 3D (the command line and Python slide its open edges and feature curves)".into()
 }
 
 /// Why a quadratic volume mesh's boundary nodes cannot slide.

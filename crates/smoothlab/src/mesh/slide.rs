@@ -453,6 +453,50 @@ mod tests {
         }
     }
 
+    /// The bunched square bent into a quarter of a cylinder (radius 2/π, so the square's
+    /// side is a quarter turn), as an OBJ surface: its four rims turn by 90° at the
+    /// corners. Sliding along them lifts its smallest angle past the fixed boundary's, the
+    /// corners hold, and every rim node stays on its rim as loaded.
+    #[test]
+    fn a_surface_slides_along_its_open_edges_and_its_corners_hold() {
+        use std::fmt::Write;
+        let flat = bunched_square(GridKind::Tri);
+        let r = 2.0 / std::f64::consts::PI;
+        let bend = |p: DVec2| DVec3::new(r * (p.x / r).sin(), p.y, r * (p.x / r).cos());
+        let mut obj = String::new();
+        for p in flat.nodes() {
+            let q = bend(*p);
+            writeln!(obj, "v {} {} {}", q.x, q.y, q.z).unwrap();
+        }
+        for e in 0..flat.element_count() {
+            let ids = flat.element(e);
+            writeln!(obj, "f {} {} {}", ids[0] + 1, ids[1] + 1, ids[2] + 1).unwrap();
+        }
+        let start = crate::io::read_model_str(&obj, crate::io::Format::Obj).unwrap();
+        let Model::Surface(loaded) = &start else { panic!("a surface") };
+        let loaded = loaded.clone();
+        let (mut fixed, mut slid) = (start.clone(), start.clone());
+        let f = fixed.smooth(&Smoothing::default()).unwrap().stats().clone();
+        let report = slid.smooth(&Smoothing::default().boundary(BoundaryRule::Slide)).unwrap();
+        let s = report.stats();
+        assert_eq!(s.inverted, 0);
+        assert!(s.min_angle_deg > f.min_angle_deg + 10.0, "slide {} fixed {}", s.min_angle_deg, f.min_angle_deg);
+        let b = report.boundary().expect("a boundary report");
+        assert_eq!((b.corners, b.curves, b.curve_nodes, b.held), (4, 4, 36, 0));
+        assert!(b.max_distance < 1e-12 * b.mean_edge, "{b:?}");
+        let Model::Surface(m) = &slid else { unreachable!() };
+        for (n, (p, q)) in flat.nodes().iter().zip(m.points()).enumerate() {
+            let was = loaded.points()[n];
+            if (p.x == 0.0 || p.x == 1.0) && (p.y == 0.0 || p.y == 1.0) {
+                assert_eq!(was, *q, "corner {n} moved");
+            } else if p.y == 0.0 || p.y == 1.0 {
+                assert_eq!(q.y, was.y, "node {n} left its rim: {was} to {q}");
+            } else if p.x == 0.0 || p.x == 1.0 {
+                assert!((q.x - was.x).abs() < 1e-15 && (q.z - was.z).abs() < 1e-15, "node {n} left its rim: {was} to {q}");
+            }
+        }
+    }
+
     #[test]
     fn a_tangled_mesh_is_untangled_with_its_boundary_held_then_slides() {
         // the bunched square with its interior tangled: its boundary edges are sound, but a

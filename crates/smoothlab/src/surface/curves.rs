@@ -79,9 +79,31 @@ impl Surface {
     /// module docs) rather than stay fixed. When the file gave the fixed flags, the file
     /// decides and nothing changes.
     pub fn slide_along_curves(&mut self) {
-        if self.flags_given || self.curves.is_some() {
+        self.slide_along_curves_with(None);
+    }
+
+    /// [`slide_along_curves`](Self::slide_along_curves), with the nodes where a curve turns
+    /// by more than `corner_deg` degrees held as corners (the boundary rule's feature angle,
+    /// [`crate::mesh::BoundaryRule::Slide`]); every node with two straight curve edges
+    /// slides where it is `None`.
+    ///
+    /// Under the rule the file's flags hold their nodes, as everywhere; flags on every curve
+    /// node and no other (what smoothlab writes of a sample) only mark the boundary.
+    pub fn slide_along_curves_with(&mut self, corner_deg: Option<f64>) {
+        if self.curves.is_some() || (self.flags_given && corner_deg.is_none()) {
             return;
         }
+        let on_curve = {
+            let mut on = vec![false; self.points.len()];
+            for &[a, b, _] in self.curve_edges.iter() {
+                on[a as usize] = true;
+                on[b as usize] = true;
+            }
+            on
+        };
+        self.flags_mark_only = self.flags_given && (0..self.points.len()).all(|i| self.flat.is_fixed(i) == on_curve[i]);
+        let held_by_file = |i: usize| self.flags_given && !self.flags_mark_only && self.flat.is_fixed(i);
+        self.corner_deg = corner_deg;
         let n = self.points.len();
         let mut count = vec![0u8; n];
         let mut nbrs = vec![[NONE; 2]; n];
@@ -96,8 +118,15 @@ impl Surface {
                 curved[x as usize] |= straight == 0;
             }
         }
+        let turns_sharply = |i: usize, [a, b]: [u32; 2]| {
+            corner_deg.is_some_and(|limit| {
+                let p = self.points[i];
+                let (u, v) = ((p - self.points[a as usize]).normalize_or_zero(), (self.points[b as usize] - p).normalize_or_zero());
+                u.dot(v).clamp(-1.0, 1.0).acos().to_degrees() > limit
+            })
+        };
         for i in 0..n {
-            if count[i] != 2 || curved[i] || self.flat.role(i) != crate::mesh::NodeRole::Corner {
+            if count[i] != 2 || curved[i] || self.flat.role(i) != crate::mesh::NodeRole::Corner || turns_sharply(i, nbrs[i]) || held_by_file(i) {
                 nbrs[i] = [NONE; 2];
             }
         }
@@ -112,6 +141,75 @@ impl Surface {
         self.curves.as_ref().is_some_and(|c| c.slides(n))
     }
 
+    /// The corner angle the curves slide by, where the boundary rule set them sliding
+    /// ([`slide_along_curves_with`](Self::slide_along_curves_with)).
+    pub fn boundary_corner_deg(&self) -> Option<f64> {
+        self.corner_deg.filter(|_| self.curves.is_some())
+    }
+
+    /// The boundary's curves as the rule reads them: how many (the chains of curve edges
+    /// between corners; a closed one with no corner is one), and per curve node whether it
+    /// slides, is a corner, or is held by the file's flags.
+    pub fn boundary_counts(&self) -> SurfaceBoundary {
+        let n = self.points.len();
+        let mut edges_of: Vec<Vec<usize>> = vec![Vec::new(); n];
+        for (k, &[a, b, _]) in self.curve_edges.iter().enumerate() {
+            edges_of[a as usize].push(k);
+            edges_of[b as usize].push(k);
+        }
+        // the chains: curve edges joined at the nodes that slide
+        let mut parent: Vec<usize> = (0..self.curve_edges.len()).collect();
+        fn root(parent: &mut [usize], mut k: usize) -> usize {
+            while parent[k] != k {
+                parent[k] = parent[parent[k]];
+                k = parent[k];
+            }
+            k
+        }
+        let mut out = SurfaceBoundary::default();
+        for (i, edges) in edges_of.iter().enumerate().filter(|(_, e)| !e.is_empty()) {
+            if self.slides(i) {
+                out.sliding += 1;
+                let (r0, r1) = (root(&mut parent, edges[0]), root(&mut parent, edges[1]));
+                parent[r0] = r1;
+            } else if self.flags_given && !self.flags_mark_only && self.flat.is_fixed(i) {
+                out.held += 1;
+            } else {
+                out.corners += 1;
+            }
+        }
+        out.curves = (0..parent.len()).filter(|&k| root(&mut parent, k) == k).count();
+        out
+    }
+
+    /// The largest distance of a sliding node from its curve as loaded.
+    pub fn max_distance_from_curves(&self) -> f64 {
+        let Some(curves) = &self.curves else { return 0.0 };
+        (0..self.points.len())
+            .filter(|&i| curves.slides(i))
+            .map(|i| {
+                let p = self.points[i];
+                let on = match &*self.reference {
+                    Reference::Analytic(a) => a.on_curve(p, curves.origin[i]),
+                    _ => None,
+                };
+                let q = on.unwrap_or_else(|| curves.on_polyline(p, self.curve_hint[i]).0);
+                (q - p).length()
+            })
+            .fold(0.0, f64::max)
+    }
+}
+
+/// What [`Surface::boundary_counts`] reads of a surface's curves.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct SurfaceBoundary {
+    pub curves: usize,
+    pub sliding: usize,
+    pub corners: usize,
+    pub held: usize,
+}
+
+impl Surface {
     /// Moves sliding node `n` to the nearest point of its curve to `p`.
     pub(crate) fn slide_to(&mut self, n: usize, p: DVec3) {
         let Some(curves) = self.curves.clone() else { return };

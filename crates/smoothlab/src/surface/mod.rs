@@ -28,6 +28,7 @@ mod reference;
 mod view;
 
 pub use reference::{closest_on_triangle, Analytic, Facets, Fitted, Projected, Reference};
+pub use curves::SurfaceBoundary;
 pub use view::{smooth_surface, KeptNodes, SurfaceSmoother};
 
 /// Dihedral angle over which an edge between two elements is a feature curve (its nodes
@@ -57,6 +58,12 @@ pub struct Surface {
     curves: Option<Arc<curves::Curves>>,
     /// Per sliding node, the curve edge (as loaded) its last move landed on.
     curve_hint: Vec<[u32; 2]>,
+    /// Where the boundary rule set the curves sliding: the angle a curve turns by at a
+    /// corner, which holds ([`Surface::slide_along_curves_with`]).
+    corner_deg: Option<f64>,
+    /// Whether the file's flags were on every curve node and no other, so that under the
+    /// boundary rule they only mark the boundary.
+    flags_mark_only: bool,
     /// Why the file's points were read as a surface: the node farthest off the plane the
     /// mesh would lie in, and how far (a mistyped coordinate shows here).
     not_planar: Option<String>,
@@ -156,6 +163,8 @@ impl Surface {
             curve_edges: Arc::new(curve_edges),
             curves: None,
             curve_hint: Vec::new(),
+            corner_deg: None,
+            flags_mark_only: false,
             not_planar: None,
             target: None,
         })
