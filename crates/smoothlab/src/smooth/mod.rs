@@ -836,13 +836,18 @@ pub fn solve_planar_star(
 }
 
 /// [`solve_star`] on a volume mesh's star of element corners, compiled in this crate (see
-/// [`solve_planar_star`]).
+/// [`solve_planar_star`]). A node that slides on the boundary is solved in its tangent
+/// plane or line, as the drivers solve it (`guard::Along`); the caller puts the result on
+/// the boundary.
 pub fn solve_corner_star(
     objective: &dyn Objective<crate::objective::CornerStar>,
     star: &crate::objective::CornerStar,
     x0: glam::DVec3,
     options: &SmoothOptions,
 ) -> Result<SolveResult<glam::DVec3>> {
+    if DriverStar::slides(star) {
+        return solve_star(&guard::Along { inner: objective }, star, x0, options);
+    }
     solve_star(objective, star, x0, options)
 }
 

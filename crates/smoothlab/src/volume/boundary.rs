@@ -394,6 +394,32 @@ mod tests {
         m
     }
 
+    /// The page's "Smooth this node" solves one star as the drivers do: a sliding node in
+    /// its tangent plane or line (issue 58: it was solved in space, then projected), so
+    /// every boundary node of the badly placed block solves to a point on its planes.
+    #[test]
+    fn one_node_s_solve_keeps_a_sliding_node_in_its_tangent() {
+        use crate::objective::{tet_objective, CornerStar, ObjectiveKind};
+        use crate::smooth::{solve_corner_star, DriverStar, SmoothOptions};
+        let mut m = badly_placed_block();
+        m.set_boundary(BoundaryRule::Slide, 60.0);
+        let objective = tet_objective(ObjectiveKind::SmoothShape).unwrap();
+        let mut solved = 0;
+        for n in (0..m.node_count()).filter(|&n| matches!(m.boundary_node(n), Some(BoundaryNode::Surface | BoundaryNode::Curve))) {
+            let mut star = CornerStar::default();
+            star.gather(&m, n);
+            let p = m.nodes()[n];
+            let r = solve_corner_star(&*objective, &star, p, &SmoothOptions::default()).unwrap();
+            for c in 0..3 {
+                if p[c] == 0.0 || p[c] == 1.0 {
+                    assert_eq!(r.x[c], p[c], "node {n} left its plane: {p} to {}", r.x);
+                }
+            }
+            solved += (r.x != p) as usize;
+        }
+        assert!(solved > 20, "{solved}");
+    }
+
     #[test]
     fn a_cube_s_corners_edges_and_faces_are_found() {
         let mut m = hex_grid(&HexBlock::cube(3)).unwrap();
