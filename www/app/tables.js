@@ -88,6 +88,7 @@ export function betterSide(dir, a, b) {
  * digits not shown). */
 export function fillTables(stats) {
   const pair = [stats.a, stats.b];
+  fillLesson(pair);
   for (const [i, side] of ['a', 'b'].entries()) {
     const s = pair[i];
     $(`title-${side}`).textContent = EMBED ? s.label : s.title;
@@ -125,4 +126,26 @@ export function fillTables(stats) {
       body.append(tr);
     }
   }
+}
+
+/** How many of a side's elements are inverted, in words. */
+function invertedWords(s) {
+  return s.inverted === 0 ? 'no element' : `${s.inverted} of ${s.elements} elements`;
+}
+/** The line under the run bar: what the passes so far did on each side, from the tables'
+ * own numbers (before a pass: how tangled the mesh is, and what Step does). */
+function fillLesson([a, b]) {
+  const line = $('lesson');
+  if (a.passes === 0 && b.passes === 0) {
+    line.dataset.passes = '0';
+    line.textContent = a.inverted === b.inverted && a.inverted > 0
+      ? `As loaded, ${a.inverted} of ${a.elements} elements are inverted. Press Step: one pass on both sides, A and B.`
+      : 'Press Step: one pass on both sides, A and B.';
+    return;
+  }
+  const passes = a.passes === b.passes ? `After ${a.passes} ${a.passes === 1 ? 'pass' : 'passes'}` : 'After the passes';
+  line.dataset.passes = String(Math.max(a.passes, b.passes));
+  // each side by its objective's name, the first word of its label ("A: old (max-min α/β)")
+  const name = (s) => s.label.replace(/^[AB]: /, '').split(/[ ,(]/)[0];
+  line.textContent = `${passes}: A (${name(a)}) leaves ${invertedWords(a)} inverted; B (${name(b)}) leaves ${invertedWords(b)} inverted.`;
 }
