@@ -128,6 +128,12 @@ export function fillTables(stats) {
   }
 }
 
+/** The count of inverted elements side `side` ('a' or 'b') shows in its table, or null. */
+export function shownInverted(side) {
+  const td = document.querySelector(`#stats-${side} tr[data-stat="inverted"] td`);
+  return td && td.dataset.value !== undefined ? Number(td.dataset.value) : null;
+}
+
 /** How many of a side's elements are inverted, in words. */
 function invertedWords(s) {
   return s.inverted === 0 ? 'no element' : `${s.inverted} of ${s.elements} elements`;
