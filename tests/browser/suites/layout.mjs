@@ -37,6 +37,8 @@ const FRAMES = [[520, 520], [520, 760], [800, 450], [1280, 720], [390, 844]];
 /** Each embed, and the canvases that are its picture. */
 const EMBEDS = [
   ['compact', '?embed=1#sample=plate-tri-tangled&passes=3', ['#mesh-a', '#mesh-b']],
+  // the opening sample, whose longer name made the status wrap after the frame was fitted
+  ['compact-opening', '?embed=1', ['#mesh-a', '#mesh-b']],
   ['mesh', '?embed=1&view=mesh#sample=plate-tri-tangled', ['#mesh-a', '#mesh-b']],
   ['compare', '?embed=1&view=compare#sample=plate-tri-tangled&passes=1', ['#mesh-a', '#mesh-b']],
   ['levelset', '?embed=1&view=levelset#sample=plate-tri-tangled&node=200', ['#level-a', '#level-b']],
