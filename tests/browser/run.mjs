@@ -756,6 +756,10 @@ try {
 
   await test('a press near a node: chosen within reach, else a note says why; hover shows the node number', async () => {
     await chooseSample(page, 'sample:plate-quadratic');
+    // the meshes as large as the settings leave them: with a node's level sets in front
+    // they are drawn smaller, and a quadratic plate's nodes lie a few pixels apart
+    await page.click('#tabbtn-settings');
+    await idle(page);
     const box = await page.locator('#mesh-b').boundingBox();
     // the hover label names nodes as the mouse passes over them
     const seen = { free: null, fixed: null, mid: null };

@@ -138,20 +138,20 @@ export function shownInverted(side) {
 function invertedWords(s) {
   return s.inverted === 0 ? 'no element' : `${s.inverted} of ${s.elements} elements`;
 }
-/** The line under the run bar: what the passes so far did on each side, from the tables'
+/** The line above the meshes: what the passes so far did on each side, from the tables'
  * own numbers (before a pass: how tangled the mesh is, and what Step does). */
 function fillLesson([a, b]) {
   const line = $('lesson');
-  if (a.passes === 0 && b.passes === 0) {
-    line.dataset.passes = '0';
-    line.textContent = a.inverted === b.inverted && a.inverted > 0
-      ? `As loaded, ${a.inverted} of ${a.elements} elements are inverted. Press Step: one pass on both sides, A and B.`
-      : 'Press Step: one pass on both sides, A and B.';
+  const passes = a.passes === b.passes ? a.passes : null;
+  line.dataset.passes = String(Math.max(a.passes, b.passes));
+  if (passes === 0 && a.inverted === b.inverted) {
+    const now = a.inverted > 0 ? `${a.inverted} of ${a.elements} elements are inverted on both sides.` : 'No element is inverted.';
+    line.textContent = `${now} Press Step: one pass on both sides, A and B.`;
     return;
   }
-  const passes = a.passes === b.passes ? `After ${a.passes} ${a.passes === 1 ? 'pass' : 'passes'}` : 'After the passes';
-  line.dataset.passes = String(Math.max(a.passes, b.passes));
   // each side by its objective's name, the first word of its label ("A: old (max-min α/β)")
   const name = (s) => s.label.replace(/^[AB]: /, '').split(/[ ,(]/)[0];
-  line.textContent = `${passes}: A (${name(a)}) leaves ${invertedWords(a)} inverted; B (${name(b)}) leaves ${invertedWords(b)} inverted.`;
+  const when = passes === 0 ? 'Before any pass' : passes === null ? 'After the passes' : `After ${passes} ${passes === 1 ? 'pass' : 'passes'}`;
+  const verb = passes === 0 ? 'has' : 'leaves';
+  line.textContent = `${when}: A (${name(a)}) ${verb} ${invertedWords(a)} inverted; B (${name(b)}) ${verb} ${invertedWords(b)} inverted.`;
 }
