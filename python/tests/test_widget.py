@@ -20,7 +20,7 @@ def test_samples_and_figures_are_the_pages():
 
 
 def test_an_unknown_sample_or_figure_lists_the_names():
-    with pytest.raises(ValueError, match=r"no sample named 'plate'; the samples are plate-quad-tangled, plate-tri-tangled, .*rand3d"):
+    with pytest.raises(ValueError, match=r"no sample named 'plate'; the samples are plate-quad-tangled-hard, plate-quad-tangled, plate-tri-tangled, .*rand3d"):
         smoothlab.Playground(sample="plate")
     with pytest.raises(ValueError, match=r"no figure named 'chen-99'; the figures are chen-2, "):
         smoothlab.Playground(figure="chen-99")

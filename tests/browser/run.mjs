@@ -21,10 +21,11 @@ page.setDefaultTimeout(TIMEOUT);
 watch(page, 'page');
 
 try {
-  await test('the page opens on the tangled plate and draws both meshes', async () => {
+  await test('the page opens on the heavily tangled quad plate and draws both meshes', async () => {
     await page.goto(server.base);
     await idle(page);
     check((await page.title()).includes('smoothlab'), 'title');
+    check((await page.inputValue('#sample')) === 'sample:plate-quad-tangled-hard', `the opening sample: ${await page.inputValue('#sample')}`);
     const s = await stats(page, 'b');
     check(Number(s.nodes) > 0, `nodes: ${JSON.stringify(s)}`);
     for (const id of ['mesh-a', 'mesh-b']) {
@@ -34,8 +35,49 @@ try {
     await shot(page, '01-opened');
   });
 
-  await test('Run 3 passes on the default sample (the tangled quad plate): the new side has no inverted element and beats the old', async () => {
-    await chooseSample(page, 'sample:plate-quad-tangled');
+  await test('Step once on the opening sample: the old side leaves elements inverted, the new none, and the line above the meshes says so with the tables\' numbers', async () => {
+    const p = await context.newPage();
+    watch(p, 'opening step');
+    try {
+      await open(p, server.base);
+      const lesson = async () => p.evaluate(() => ({ text: document.getElementById('lesson').textContent, passes: document.getElementById('lesson').dataset.passes }));
+      const loaded = [await stats(p, 'a'), await stats(p, 'b')];
+      const before = await lesson();
+      check(before.passes === '0' && before.text.includes(`${loaded[0].inverted} of ${loaded[0].elements} elements are inverted`) && /Press Step/.test(before.text), `before a pass: ${before.text}`);
+      await p.click('#step');
+      await p.waitForFunction(() => /One pass done/.test(document.getElementById('status').textContent), null, { timeout: TIMEOUT });
+      await idle(p);
+      const [a, b] = [await stats(p, 'a'), await stats(p, 'b')];
+      check(a.passes === '1' && b.passes === '1', `passes: ${a.passes}/${b.passes}`);
+      check(Number(a.inverted) > 0, `the old side untangled the opening sample in one Step: ${a.inverted}`);
+      check(b.inverted === '0', `the new side left ${b.inverted} inverted`);
+      const after = await lesson();
+      const want = `After 1 pass: A (old) leaves ${a.inverted} of ${a.elements} elements inverted; B (new) leaves no element inverted.`;
+      check(after.passes === '1' && after.text === want, `the line: '${after.text}', want '${want}'`);
+      const line = await p.locator('#lesson').boundingBox();
+      check(line && line.y + line.height <= 768 && line.y >= 0, `the line is not on the first screen: ${JSON.stringify(line)}`);
+      console.log(`     ${after.text}`);
+    } finally {
+      await p.close();
+    }
+  });
+
+  await test('the link of the page\'s former opening sample still opens it', async () => {
+    const p = await context.newPage();
+    watch(p, 'former opening');
+    try {
+      await open(p, `${server.base}#sample=plate-quad-tangled`);
+      check((await p.inputValue('#sample')) === 'sample:plate-quad-tangled', `sample: ${await p.inputValue('#sample')}`);
+      check(await p.locator('#message').isHidden(), `a message: ${await p.textContent('#message')}`);
+      const s = await stats(p, 'b');
+      check(Number(s.inverted) > 0 && s.elements === '400', `the tangled quad plate: ${JSON.stringify(s)}`);
+    } finally {
+      await p.close();
+    }
+  });
+
+  await test('Run 3 passes on the opening sample (the heavily tangled quad plate): the new side has no inverted element and beats the old', async () => {
+    await chooseSample(page, 'sample:plate-quad-tangled-hard');
     const before = [await stats(page, 'a'), await stats(page, 'b')];
     check(Number(before[0].inverted) > 0 && Number(before[1].inverted) > 0, `the sample is not tangled: ${before[1].inverted}`);
     await page.fill('#passes', '3');
@@ -483,7 +525,7 @@ try {
     check(await p4.isVisible('#message'), 'the message is shown');
     check(msg.includes("'passes'") && msg.includes("'abc'") && msg.includes('1 to 100'), `message: ${msg}`);
     check((await p4.getAttribute('#message', 'role')) === 'alert', 'the message is an alert');
-    check((await p4.inputValue('#sample')) === 'sample:plate-quad-tangled', `the default sample, not ${await p4.inputValue('#sample')}`);
+    check((await p4.inputValue('#sample')) === 'sample:plate-quad-tangled-hard', `the default sample, not ${await p4.inputValue('#sample')}`);
     check((await p4.inputValue('#passes')) === '3' && (await p4.inputValue('#strategy')) === 'rules', 'defaults kept');
     check((await stats(p4, 'b')).nodes !== undefined, 'the default mesh is loaded');
     await p4.close();
@@ -714,6 +756,10 @@ try {
 
   await test('a press near a node: chosen within reach, else a note says why; hover shows the node number', async () => {
     await chooseSample(page, 'sample:plate-quadratic');
+    // the meshes as large as the settings leave them: with a node's level sets in front
+    // they are drawn smaller, and a quadratic plate's nodes lie a few pixels apart
+    await page.click('#tabbtn-settings');
+    await idle(page);
     const box = await page.locator('#mesh-b').boundingBox();
     // the hover label names nodes as the mouse passes over them
     const seen = { free: null, fixed: null, mid: null };
@@ -1044,6 +1090,9 @@ try {
 
   await test('zoom and pan: wheel, drag on empty space and a pinch on the meshes and the level sets; double-click fits again', async () => {
     await open(page, `${server.base}#sample=plate-tri`);
+    // the meshes at the size the settings leave them (a chosen node widens its column)
+    await page.click('#tabbtn-settings');
+    await idle(page);
     await page.locator('#mesh-b').scrollIntoViewIfNeeded();
     const fitted = await canvasInfo(page, 'mesh-b');
     const box = await page.locator('#mesh-b').boundingBox();
@@ -1069,6 +1118,8 @@ try {
     // nodes are still chosen and dragged through the zoomed view
     const hit = await clickSomeNode(page, 'mesh-b', ringPoints());
     check(hit.node >= 0, 'a node chosen on the zoomed mesh');
+    await page.click('#tabbtn-settings');
+    await idle(page);
     await page.mouse.dblclick(hole.x, hole.y);
     await idle(page);
     const refit = await canvasInfo(page, 'mesh-b');

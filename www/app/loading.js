@@ -6,6 +6,7 @@ import { writePermalink } from './permalink.js';
 import { startHelper } from './workers.js';
 import { NODE_HINT, redrawAll } from './draw.js';
 import { showPickNote } from './pointer.js';
+import { showNodeBadge } from './present.js';
 
 
 export async function loadSource(src, call = (...a) => engine.call(...a)) {
@@ -20,6 +21,7 @@ export async function loadSource(src, call = (...a) => engine.call(...a)) {
   state.node = null;
   state.perturbed = null;
   $('node').value = '';
+  showNodeBadge(); // the Node tab named the previous mesh's node
   const why = loaded.notPlanar ? `Read as a surface in 3D: ${loaded.notPlanar}.` : loaded.fileNote ? `${loaded.fileNote}.` : null;
   showSurfaceMode(loaded.surface, why, Boolean(loaded.volume));
   return loaded;

@@ -4,6 +4,7 @@ import { $, EMBED, HOSTED, clearError, engine, queued, report, serial, setStatus
 import { writePermalink } from './permalink.js';
 import { showNodeBadge, showTab } from './present.js';
 import { redrawCharts, redrawMeshes, redrawNode } from './draw.js';
+import { shownInverted } from './tables.js';
 
 
 /** The pointer in CSS pixels of the last frame drawn (what the engine's view maps). */
@@ -381,6 +382,13 @@ export function hover(canvas, ev) {
 }
 
 /** Sends the latest drag position; positions that arrive meanwhile are coalesced. */
+/** What a drag did, from the tables before and after it: the node moved and each side's
+ * inverted elements. */
+function dragWords(node, before, after) {
+  const side = (i) => (before[i] === after[i] ? `${after[i]}` : `${before[i]} → ${after[i]}`);
+  return `Dragged node ${node} on both sides: inverted elements A ${side(0)}, B ${side(1)} (Ctrl+Z takes it back).`;
+}
+
 export function pumpDrag(d, final = false) {
   if (d.busy) {
     d.final = d.final || final;
@@ -393,6 +401,7 @@ export function pumpDrag(d, final = false) {
   serial(async () => {
     if (!d.remembered) {
       d.remembered = true; // undo takes the whole drag back
+      d.invertedBefore = ['a', 'b'].map(shownInverted);
       await engine.call('rememberBeforeMove', d.node);
     }
     await engine.call('drag', d.node, p.x, p.y);
@@ -406,6 +415,7 @@ export function pumpDrag(d, final = false) {
       await redrawCharts();
       await redrawNode();
       await writePermalink();
+      setStatus(dragWords(d.node, d.invertedBefore, ['a', 'b'].map(shownInverted)));
     }
   })
     .catch(report)

@@ -89,9 +89,14 @@ function showFullscreen() {
 // ---- the side column: settings, then one node ----------------------------------------------
 /** Scrolls the side column to its part `name` ('settings' or 'node') and marks its button;
  * `cue` makes the part blink (a node was chosen on a mesh: its level sets are there). Only
- * the column scrolls: the meshes stay where they are. */
+ * the column scrolls: the meshes stay where they are, drawn smaller when the column widened
+ * (returns whether it changed width: the caller redraws). */
 export function showTab(name, { cue = false } = {}) {
   for (const t of ['settings', 'node']) $(`tabbtn-${t}`).setAttribute('aria-current', t === name ? 'true' : 'false');
+  // the style sheet widens the column for a node's level sets, side by side
+  const widthBefore = document.querySelector('.side').clientWidth;
+  document.body.dataset.tab = name;
+  const resized = document.querySelector('.side').clientWidth !== widthBefore;
   const side = document.querySelector('.side');
   const part = $(`tab-${name}`);
   if (side.scrollHeight > side.clientHeight) {
@@ -105,6 +110,7 @@ export function showTab(name, { cue = false } = {}) {
       el.classList.add('cue');
     }
   }
+  return resized;
 }
 
 /** The badge on the Node tab: the chosen node's number. */
@@ -163,7 +169,11 @@ export function wirePresentation({ closeTour }) {
   $('theme-toggle').addEventListener('click', () => setTheme(isDark() ? 'light' : 'dark', { remember: true }));
   $('fullscreen').addEventListener('click', toggleFullscreen);
   document.addEventListener('fullscreenchange', showFullscreen);
-  for (const t of ['settings', 'node']) $(`tabbtn-${t}`).addEventListener('click', () => showTab(t));
+  for (const t of ['settings', 'node']) {
+    $(`tabbtn-${t}`).addEventListener('click', () => {
+      if (showTab(t)) serial(redrawAll).catch(report);
+    });
+  }
   showPanel('a');
   $('show-a').addEventListener('click', () => showPanel('a'));
   $('show-b').addEventListener('click', () => {

@@ -88,6 +88,7 @@ export function betterSide(dir, a, b) {
  * digits not shown). */
 export function fillTables(stats) {
   const pair = [stats.a, stats.b];
+  fillLesson(pair);
   for (const [i, side] of ['a', 'b'].entries()) {
     const s = pair[i];
     $(`title-${side}`).textContent = EMBED ? s.label : s.title;
@@ -125,4 +126,32 @@ export function fillTables(stats) {
       body.append(tr);
     }
   }
+}
+
+/** The count of inverted elements side `side` ('a' or 'b') shows in its table, or null. */
+export function shownInverted(side) {
+  const td = document.querySelector(`#stats-${side} tr[data-stat="inverted"] td`);
+  return td && td.dataset.value !== undefined ? Number(td.dataset.value) : null;
+}
+
+/** How many of a side's elements are inverted, in words. */
+function invertedWords(s) {
+  return s.inverted === 0 ? 'no element' : `${s.inverted} of ${s.elements} elements`;
+}
+/** The line above the meshes: what the passes so far did on each side, from the tables'
+ * own numbers (before a pass: how tangled the mesh is, and what Step does). */
+function fillLesson([a, b]) {
+  const line = $('lesson');
+  const passes = a.passes === b.passes ? a.passes : null;
+  line.dataset.passes = String(Math.max(a.passes, b.passes));
+  if (passes === 0 && a.inverted === b.inverted) {
+    const now = a.inverted > 0 ? `${a.inverted} of ${a.elements} elements are inverted on both sides.` : 'No element is inverted.';
+    line.textContent = `${now} Press Step: one pass on both sides, A and B.`;
+    return;
+  }
+  // each side by its objective's name, the first word of its label ("A: old (max-min α/β)")
+  const name = (s) => s.label.replace(/^[AB]: /, '').split(/[ ,(]/)[0];
+  const when = passes === 0 ? 'Before any pass' : passes === null ? 'After the passes' : `After ${passes} ${passes === 1 ? 'pass' : 'passes'}`;
+  const verb = passes === 0 ? 'has' : 'leaves';
+  line.textContent = `${when}: A (${name(a)}) ${verb} ${invertedWords(a)} inverted; B (${name(b)}) ${verb} ${invertedWords(b)} inverted.`;
 }

@@ -3,7 +3,8 @@
 
 use tiny_skia::{Paint, PathBuilder, Pixmap, Stroke, Transform};
 
-use super::text::{draw_text, draw_text_rotated, Align, TextStyle, Valign};
+use super::layout::note_label;
+use super::text::{draw_text, draw_text_rotated, text_box, Align, TextStyle, Valign};
 use super::theme::Theme;
 
 /// Tick values along an axis and their spacing.
@@ -222,6 +223,22 @@ pub struct AxisLabels<'a> {
     pub title: &'a str,
     pub x: &'a str,
     pub y: &'a str,
+    /// The y axis is labelled only above this device pixel (a broken axis's band lies
+    /// under it, with labels of its own). Default `None`.
+    pub y_floor: Option<f32>,
+}
+
+/// At most how many intervals a y axis of `height` device pixels is cut into, so that
+/// its tick labels (`label_px` high) stand apart: 6, fewer when the axis is short.
+pub(crate) fn y_tick_room(height: f32, label_px: f32) -> usize {
+    const SPACING: f32 = 1.6; // label heights from one tick to the next, at least
+    let fit = (height / (SPACING * label_px.max(1.0))).floor();
+    if fit.is_finite() { (fit as usize).clamp(1, 6) } else { 1 }
+}
+
+/// Whether the box `b` (`[x, y, w, h]`) meets any of `kept`, inside (touching edges do not).
+fn meets_any(b: &[f32; 4], kept: &[[f32; 4]]) -> bool {
+    kept.iter().any(|k| b[0] < k[0] + k[2] && k[0] < b[0] + b[2] && b[1] < k[1] + k[3] && k[1] < b[1] + b[3])
 }
 
 /// Draws the plot box (`x` and `y` axes in device pixels), light grid lines at the ticks,
@@ -233,24 +250,42 @@ pub(crate) fn draw_axes(pixmap: &mut Pixmap, x: &Axis, y: &Axis, labels: AxisLab
     let mut ticks = PathBuilder::new();
     let tick_px = theme.text_px(11.0 * s, s);
     let small = TextStyle::new(tick_px).with_color(theme.text);
+    // a label that would meet one already written is left out (its tick stays)
+    let mut written: Vec<[f32; 4]> = Vec::new();
     for (&v, label) in x_ticks.values.iter().zip(tick_labels(x, x_ticks)) {
         if let Some(px) = x.map(v) {
             grid.move_to(px, t);
             grid.line_to(px, b);
             ticks.move_to(px, b);
             ticks.line_to(px, b + 4.0 * s);
-            draw_text(pixmap, &label, px, b + 6.0 * s, small.with_align(Align::Centre, Valign::Top));
+            let st = small.with_align(Align::Centre, Valign::Top);
+            let bx = text_box(&label, px, b + 6.0 * s, &st);
+            if !meets_any(&bx, &written) {
+                draw_text(pixmap, &label, px, b + 6.0 * s, st);
+                note_label(pixmap, &label, px, b + 6.0 * s, &st);
+                written.push(bx);
+            }
         }
     }
-    let yt = y.ticks(6);
+    let floor = labels.y_floor.unwrap_or(f32::INFINITY);
+    let yt = y.ticks(y_tick_room(floor.min(b) - t, tick_px));
     let y_labels = tick_labels(y, &yt);
     for (&v, label) in yt.values.iter().zip(&y_labels) {
         if let Some(py) = y.map(v) {
+            let st = small.with_align(Align::Right, Valign::Middle);
+            let bx = text_box(label, l - 6.0 * s, py, &st);
+            if bx[1] + bx[3] > floor {
+                continue; // in a broken axis's band
+            }
             grid.move_to(l, py);
             grid.line_to(r, py);
             ticks.move_to(l - 4.0 * s, py);
             ticks.line_to(l, py);
-            draw_text(pixmap, label, l - 6.0 * s, py, small.with_align(Align::Right, Valign::Middle));
+            if !meets_any(&bx, &written) {
+                draw_text(pixmap, label, l - 6.0 * s, py, st);
+                note_label(pixmap, label, l - 6.0 * s, py, &st);
+                written.push(bx);
+            }
         }
     }
     let mut paint = Paint::default();

@@ -188,15 +188,13 @@ pub fn render_chart(pixmap: &mut Pixmap, series: &[Series<'_>], chart: &Chart<'_
     let xa = Axis { lo: x0, hi: x1, scale: Scale::Linear, p0: plot.x * s, p1: plot.right() * s };
     let ya = Axis { lo: y0, hi: y1, scale, p0: plot.bottom() * s, p1: plot.y * s };
     let xt = if chart.integer_x { integer_ticks(x0, x1) } else { nice_ticks(x0, x1, 6) };
-    draw_axes(pixmap, &xa, &ya, AxisLabels { title: chart.title, x: chart.x_label, y: chart.y_label }, &xt, s, theme);
+    let band_top = band_value.map(|_| (plot.bottom() - BAND) * s);
+    draw_axes(pixmap, &xa, &ya, AxisLabels { title: chart.title, x: chart.x_label, y: chart.y_label, y_floor: band_top }, &xt, s, theme);
     let mut band_labels: Vec<(f32, f32, String)> = Vec::new();
-    if band_value.is_some() {
+    if let Some(top) = band_top {
         // the band: no ticks nor grid in it, a shaded strip and a break mark on the axis
-        let (l, b) = (plot.x * s, plot.bottom() * s);
-        let top = (plot.bottom() - BAND) * s;
-        fill_rect(pixmap, frame.x * s, top, l - frame.x * s - 0.5 * s, BAND * s, theme.paper);
+        let l = plot.x * s;
         fill_rect(pixmap, l + 0.5 * s, top, plot.w * s - s, BAND * s - 0.5 * s, theme.band);
-        let _ = b;
         let mut zig = PathBuilder::new();
         let y = top;
         zig.move_to(l - 6.0 * s, y + 3.0 * s);
@@ -206,8 +204,6 @@ pub fn render_chart(pixmap: &mut Pixmap, series: &[Series<'_>], chart: &Chart<'_
         if let Some(path) = zig.finish() {
             pixmap.stroke_path(&path, &solid(theme.text), &Stroke { width: 1.5 * s, ..Default::default() }, Transform::identity(), None);
         }
-        let st = TextStyle::new(theme.text_px(10.0 * s, s)).with_color(theme.text).with_align(Align::Right, Valign::Middle);
-        draw_text(pixmap, "below", l - 4.0 * s, top + 0.5 * BAND * s, st);
     }
     // where a point is drawn: in the band when it is below the break
     let place = |p: &DVec2| -> Option<(f32, f32)> {
@@ -218,6 +214,7 @@ pub fn render_chart(pixmap: &mut Pixmap, series: &[Series<'_>], chart: &Chart<'_
         Some((xa.map(p.x)?, ya.map(y)?))
     };
 
+    let mut marked: Vec<(f32, f32)> = Vec::new();
     let clip = Rect::from_xywh(plot.x * s - 4.0 * s, plot.y * s - 4.0 * s, (plot.w + 8.0) * s, (plot.h + 8.0) * s).and_then(|r| rect_mask(pixmap, r));
     let mut drawn = false;
     for (i, ser) in series.iter().enumerate() {
@@ -240,6 +237,7 @@ pub fn render_chart(pixmap: &mut Pixmap, series: &[Series<'_>], chart: &Chart<'_
                         pb.move_to(x, y);
                         pen_down = true;
                     }
+                    marked.push((x, y));
                     if let Some(m) = ser.marker {
                         push_marker(&mut marks, m, x, y, 3.0 * s);
                         super::layout::note_mark(pixmap, x, y, color);
@@ -262,10 +260,7 @@ pub fn render_chart(pixmap: &mut Pixmap, series: &[Series<'_>], chart: &Chart<'_
             pixmap.fill_path(&path, &solid(color), tiny_skia::FillRule::Winding, Transform::identity(), clip.as_ref());
         }
     }
-    let st = TextStyle::new(theme.text_px(10.0 * s, s)).with_color(theme.label).with_align(Align::Left, Valign::Middle);
-    for (x, y, text) in &band_labels {
-        draw_text(pixmap, text, x + 5.0 * s, *y, st);
-    }
+    draw_band_labels(pixmap, &band_labels, &marked, plot.x * s, s, theme);
     if !drawn {
         let st = TextStyle::new(theme.text_px(12.0 * s, s)).with_color(theme.faint).with_align(Align::Centre, Valign::Middle);
         let c = plot.centre();
@@ -273,6 +268,47 @@ pub fn render_chart(pixmap: &mut Pixmap, series: &[Series<'_>], chart: &Chart<'_
     }
     if !entries.is_empty() {
         legend_band(pixmap, &entries, (frame.x + 8.0) * s, (frame.bottom() - legend_h) * s, (frame.w - 16.0) * s, &ls);
+    }
+}
+
+/// Writes the values of the points in a broken axis's band (`labels`: where each point is
+/// drawn and its value), clear of every drawn point (`marked`): a point on the axis at
+/// `left` (pass 0, the mesh as loaded) has its value written left of the axis, where the
+/// tick labels are; another, right of its point, or left of it when a point lies there.
+fn draw_band_labels(pixmap: &mut Pixmap, labels: &[(f32, f32, String)], marked: &[(f32, f32)], left: f32, s: f32, theme: &Theme) {
+    let st = TextStyle::new(theme.text_px(10.0 * s, s)).with_color(theme.label);
+    let reach = 4.0 * s; // a marker's half size, and a little room
+    let clear = |b: &[f32; 4]| !marked.iter().any(|&(x, y)| b[0] < x + reach && x - reach < b[0] + b[2] && b[1] < y + reach && y - reach < b[1] + b[3]);
+    let mut written: Vec<[f32; 4]> = Vec::new();
+    let meets = |b: &[f32; 4], w: &[[f32; 4]]| w.iter().any(|k| b[0] < k[0] + k[2] && k[0] < b[0] + b[2] && b[1] < k[1] + k[3] && k[1] < b[1] + b[3]);
+    let mut write = |text: &str, x: f32, y: f32, st: TextStyle, written: &mut Vec<[f32; 4]>| {
+        draw_text(pixmap, text, x, y, st);
+        super::layout::note_label(pixmap, text, x, y, &st);
+        written.push(super::text::text_box(text, x, y, &st));
+    };
+    // on the axis: the values, once each, in the tick labels' column
+    let mut on_axis: Vec<&str> = Vec::new();
+    let mut y_axis = 0.0;
+    for (x, y, text) in labels {
+        if (x - left).abs() < 1.0 && !on_axis.contains(&text.as_str()) {
+            on_axis.push(text);
+            y_axis = *y;
+        }
+    }
+    if !on_axis.is_empty() {
+        let st = st.with_align(Align::Right, Valign::Middle);
+        write(&on_axis.join(" / "), left - 6.0 * s, y_axis, st, &mut written);
+    }
+    for (x, y, text) in labels.iter().filter(|(x, _, _)| (x - left).abs() >= 1.0) {
+        let right = (x + reach, st.with_align(Align::Left, Valign::Middle));
+        let leftwards = (x - reach, st.with_align(Align::Right, Valign::Middle));
+        for (ax, st) in [right, leftwards] {
+            let b = super::text::text_box(text, ax, *y, &st);
+            if clear(&b) && !meets(&b, &written) {
+                write(text, ax, *y, st, &mut written);
+                break;
+            }
+        }
     }
 }
 
@@ -423,5 +459,82 @@ mod tests {
         let bad = [DVec2::new(f64::NAN, f64::INFINITY), DVec2::new(1.0, -1.0)];
         render_chart(&mut p, &[Series::new("x", &bad)], &Chart { log_y: true, dpr: f32::NAN, ..Default::default() });
         render_pass_histories(&mut p, &[], &Chart::default());
+    }
+
+    use crate::layout::{record, Region, RegionKind};
+
+    /// The regions of `kind` the pixmap's notes hold.
+    fn regions(notes: &crate::layout::Notes, p: &Pixmap, kind: RegionKind) -> Vec<Region> {
+        notes.of(p).into_iter().filter(|r| r.kind == kind).collect()
+    }
+
+    /// Pairs of labels whose boxes meet.
+    fn overlapping(labels: &[Region]) -> Vec<(Region, Region)> {
+        let mut out = Vec::new();
+        for (i, a) in labels.iter().enumerate() {
+            for b in &labels[i + 1..] {
+                if a.overlaps(b) {
+                    out.push((*a, *b));
+                }
+            }
+        }
+        out
+    }
+
+    #[test]
+    fn the_band_values_stand_clear_of_the_points_and_of_each_other() {
+        // the page's per-pass chart after 3 passes of a tangled mesh: both sides start at
+        // −179° (in the band), and one stays inverted a pass longer
+        let (a_min, b_min) = ([-179.2, -150.0, 12.0, 14.0], [-179.2, 18.0, 20.0, 21.0]);
+        let (a_max, b_max) = ([179.9, 170.0, 150.0, 140.0], [179.9, 140.0, 130.0, 128.0]);
+        let (q, inv) = ([-0.9, -0.2, 0.3, 0.4], [60.0, 3.0, 0.0, 0.0]);
+        let runs = [
+            PassHistory { label: "A: old", min_angle_deg: &a_min, max_angle_deg: &a_max, min_quality: &q, inverted: &inv, color: None },
+            PassHistory { label: "B: new", min_angle_deg: &b_min, max_angle_deg: &b_max, min_quality: &q, inverted: &inv, color: None },
+        ];
+        for (w, h, dpr) in [(600, 300, 1.0), (1300, 560, 1.0), (400, 400, 1.0), (800, 600, 2.0)] {
+            let mut p = Pixmap::new(w, h).unwrap();
+            let ((), notes) = record(|| render_pass_histories(&mut p, &runs, &Chart { dpr, ..Chart::default() }));
+            let (labels, marks) = (regions(&notes, &p, RegionKind::Label), regions(&notes, &p, RegionKind::Mark));
+            let r = 3.0 * dpr; // a marker's half size
+            for l in &labels {
+                for m in &marks {
+                    let mut mark = m.shifted(-r, -r);
+                    (mark.w, mark.h) = (2.0 * r, 2.0 * r);
+                    assert!(!l.overlaps(&mark), "{w}×{h}@{dpr}: a label {l:?} over a point {m:?}");
+                }
+            }
+            assert!(overlapping(&labels).is_empty(), "{w}×{h}@{dpr}: {:?}", overlapping(&labels));
+            // −179 is written, left of the pass-0 points, on the row of the band
+            let first = marks.iter().map(|m| m.x).fold(f32::INFINITY, f32::min);
+            // the min angle chart is the top left one: its pass-0 points lie in its band
+            let band_row = marks.iter().filter(|m| m.x == first && m.y < 0.5 * h as f32).map(|m| m.y).fold(f32::NEG_INFINITY, f32::max);
+            assert!(
+                labels.iter().any(|l| l.x + l.w <= first && l.y < band_row && band_row < l.y + l.h),
+                "{w}×{h}@{dpr}: no value left of the pass-0 point in the band"
+            );
+        }
+    }
+
+    #[test]
+    fn y_labels_stand_apart_at_any_height() {
+        // the page's solver history: two charts in one picture, as short as a narrow column makes them
+        let pts: Vec<DVec2> = (0..4).map(|i| DVec2::new(i as f64, 190.0 / (1.0 + 8.0 * i as f64))).collect();
+        for (w, h, dpr) in [(300, 225, 1.0), (320, 240, 2.0), (400, 300, 1.0), (660, 495, 1.0), (200, 90, 1.0)] {
+            let mut p = Pixmap::new(w, h).unwrap();
+            let full = Frame::of_pixmap(&p, dpr);
+            let ((), notes) = record(|| {
+                for i in 0..2 {
+                    let chart = Chart { title: "per iteration", x_label: "iteration", y_label: "objective", dpr, frame: Some(full.row(i, 2, 4.0)), legend: false, ..Chart::default() };
+                    render_chart(&mut p, &[Series::new("a", &pts)], &chart);
+                }
+            });
+            let labels = regions(&notes, &p, RegionKind::Label);
+            assert!(overlapping(&labels).is_empty(), "{w}×{h}@{dpr}: {:?}", overlapping(&labels));
+            // each chart keeps a y label at least at both ends of its range
+            let left = labels.iter().map(|l| l.x + l.w).fold(f32::INFINITY, f32::min);
+            let y_labels = labels.iter().filter(|l| (l.x + l.w - left).abs() < 20.0 * dpr).count();
+            assert!(y_labels >= 4, "{w}×{h}@{dpr}: {y_labels} y labels");
+        }
     }
 }

@@ -151,7 +151,7 @@ pub fn render_angle_histogram(pixmap: &mut Pixmap, series: &[HistogramSeries<'_>
     };
     let ticks = ((ax.hi - ax.lo) / ax.step + 1e-9).floor() as usize;
     let xt = Ticks { step: ax.step, values: (0..=ticks).map(|k| ax.lo + ax.step * k as f64).collect() };
-    draw_axes(pixmap, &xa, &ya, AxisLabels { title: opts.title, x: ax.x_label, y: ax.y_label }, &xt, s, theme);
+    draw_axes(pixmap, &xa, &ya, AxisLabels { title: opts.title, x: ax.x_label, y: ax.y_label, y_floor: None }, &xt, s, theme);
 
     // reference lines at the ideal values (the angles 60° and 90°)
     let mut refs = PathBuilder::new();

@@ -25,6 +25,8 @@ pub enum RegionKind {
     Legend,
     /// A chart marker (a one-pixel rectangle at its centre), with its colour.
     Mark,
+    /// The box of a chart's label: a tick's value, or a value written beside a point.
+    Label,
 }
 
 /// One note: a rectangle of device pixels `x, y, w, h` of one pixmap.
@@ -118,6 +120,12 @@ pub(crate) fn forget(pixmap: &Pixmap) {
             v.retain(|r| r.key != k);
         }
     });
+}
+
+/// Notes the box of `text` drawn with `style` at `(x, y)` of `pixmap`, when recording.
+pub(crate) fn note_label(pixmap: &Pixmap, text: &str, x: f32, y: f32, style: &super::text::TextStyle) {
+    let [bx, by, w, h] = super::text::text_box(text, x, y, style);
+    note(pixmap, RegionKind::Label, bx, by, w, h);
 }
 
 /// Notes a marker of colour `c` centred at `(x, y)` of `pixmap` (device pixels), when

@@ -129,6 +129,14 @@ fn origin(text: &str, x: f32, y: f32, style: &TextStyle) -> (f32, f32) {
     (x0, y0)
 }
 
+/// The box `[x, y, w, h]` (device pixels) `text` takes when drawn with its anchor at
+/// `(x, y)`: from the top of the tallest letters to under the descenders.
+pub(crate) fn text_box(text: &str, x: f32, y: f32, style: &TextStyle) -> [f32; 4] {
+    let (x0, base) = origin(text, x, y, style);
+    let f = Scaled::new(style.size);
+    [x0, base - f.ascent(), text_width(text, style.size), f.ascent() - f.descent()]
+}
+
 /// A positive finite size at a finite anchor.
 fn drawable(style: &TextStyle, x: f32, y: f32) -> bool {
     style.size.is_finite() && style.size > 0.0 && x.is_finite() && y.is_finite()

@@ -37,6 +37,8 @@ const FRAMES = [[520, 520], [520, 760], [800, 450], [1280, 720], [390, 844]];
 /** Each embed, and the canvases that are its picture. */
 const EMBEDS = [
   ['compact', '?embed=1#sample=plate-tri-tangled&passes=3', ['#mesh-a', '#mesh-b']],
+  // the opening sample, whose longer name made the status wrap after the frame was fitted
+  ['compact-opening', '?embed=1', ['#mesh-a', '#mesh-b']],
   ['mesh', '?embed=1&view=mesh#sample=plate-tri-tangled', ['#mesh-a', '#mesh-b']],
   ['compare', '?embed=1&view=compare#sample=plate-tri-tangled&passes=1', ['#mesh-a', '#mesh-b']],
   ['levelset', '?embed=1&view=levelset#sample=plate-tri-tangled&node=200', ['#level-a', '#level-b']],
@@ -77,7 +79,7 @@ export default async function ({ server, context }) {
     }
   });
 
-  await test('a chosen node: its level sets open beside the meshes, which stay in view', async () => {
+  await test('a chosen node: its two level sets open side by side beside the meshes, each at least 300 px wide, all in view', async () => {
     const p = await freshPage(context, 1366, 768, 'node beside');
     try {
       await open(p, `${server.base}#sample=plate-tri-tangled`);
@@ -85,15 +87,29 @@ export default async function ({ server, context }) {
       await idle(p);
       check((await p.textContent('#node-badge')) === String(node), 'the Node button shows the node');
       await p.waitForTimeout(100);
-      const lv = await box(p, '#level-a');
-      check(inView(lv, 1366, 768), `A's level sets are not in view: ${say(lv)}`);
-      check(lv.x >= (await box(p, '#mesh-b')).r, 'the level sets are not beside the meshes');
+      const [la, lb] = [await box(p, '#level-a'), await box(p, '#level-b')];
+      for (const [name, lv] of [['A', la], ['B', lb]]) {
+        check(inView(lv, 1366, 768), `${name}'s level sets are not in view: ${say(lv)}`);
+        check(lv.w >= 300, `${name}'s level sets are ${Math.round(lv.w)} px wide`);
+      }
+      check(Math.abs(la.y - lb.y) < 1 && lb.x >= la.r, `not side by side: A ${say(la)}, B ${say(lb)}`);
+      check(la.x >= (await box(p, '#mesh-b')).r, 'the level sets are not beside the meshes');
       check(inView(await box(p, '#mesh-a'), 1366, 768) && inView(await box(p, '#mesh-b'), 1366, 768), 'the meshes left the screen');
-      check((await canvasInfo(p, 'level-a')).colours > 20, 'the level sets are not drawn');
+      for (const id of ['level-a', 'level-b']) check((await canvasInfo(p, id)).colours > 20, `${id} is not drawn`);
+      // drawn at the size they are shown, as the meshes are after the column widened
+      const sized = await p.evaluate(() => ['level-a', 'mesh-a'].map((id) => {
+        const c = document.getElementById(id);
+        return Math.abs(c.width / Math.min(window.devicePixelRatio || 1, 2) - c.clientWidth) <= 1;
+      }));
+      check(sized.every(Boolean), `a canvas is not drawn at its size: ${sized}`);
       check((await p.getAttribute('#tabbtn-node', 'aria-current')) === 'true', 'the Node button is not marked');
       await p.screenshot({ path: path.join(OUT, 'first-screen-node-1366x768.png') });
+      const narrow = await box(p, '#mesh-a');
       await p.click('#tabbtn-settings');
+      await idle(p);
       check(inView(await box(p, '#strategy'), 1366, 768), 'Settings brings the controls back');
+      const wide = await box(p, '#mesh-a');
+      check(wide.w > narrow.w + 50, `the meshes do not take the room back: ${say(narrow)} → ${say(wide)}`);
     } finally {
       await p.close();
     }

@@ -34,7 +34,8 @@ async function clickAt(p, x, y) {
 }
 
 /** Clicks near the middle of side `side`'s view (then a little around it) until a node is
- * chosen; returns it and where the click was. */
+ * chosen; returns it and where the click was, as a share of the view's width and height
+ * (a chosen node widens the column beside the views, and they are drawn smaller). */
 async function pickNear(p, side, offsets = [[0, 0.04], [0.05, 0], [-0.05, 0.06], [0.02, -0.08], [-0.1, -0.05]]) {
   await p.locator(`#mesh-${side}`).scrollIntoViewIfNeeded();
   const box = await p.locator(`#mesh-${side}`).boundingBox();
@@ -42,9 +43,15 @@ async function pickNear(p, side, offsets = [[0, 0.04], [0.05, 0], [-0.05, 0.06],
     const [x, y] = [box.x + (0.5 + fx) * box.width, box.y + (0.5 + fy) * box.height];
     await clickAt(p, x, y);
     const v = await p.inputValue('#node');
-    if (v !== '') return { node: Number(v), x, y };
+    if (v !== '') return { node: Number(v), fx: 0.5 + fx, fy: 0.5 + fy };
   }
   throw new Error(`no click on side ${side} chose a node: ${await p.textContent('#pick-note')}`);
+}
+
+/** Where a click at shares `(fx, fy)` of side `side`'s view is now, CSS px. */
+async function nowAt(p, side, fx, fy) {
+  const box = await p.locator(`#mesh-${side}`).boundingBox();
+  return { x: box.x + fx * box.width, y: box.y + fy * box.height };
 }
 
 /** Waits until a canvas's pixels differ from `before`. */
@@ -86,7 +93,8 @@ export default async function ({ server, context }) {
       check(await p.locator('#smooth-node').isDisabled(), 'Smooth this node waits for a node');
       check(/tangent plane/.test(await p.textContent('#node-hint')), `the node hint: ${await p.textContent('#node-hint')}`);
       const a0 = await canvasInfo(p, 'mesh-a');
-      const { node, x, y } = await pickNear(p, 'b');
+      const { node, fx, fy } = await pickNear(p, 'b');
+      const { x, y } = await nowAt(p, 'b', fx, fy);
       // the node picked is a node of the face clicked: drawn near the click, on the near side
       const at = await screenOf(p, 'b', node);
       check(distance(at, { x, y }) < 40, `node ${node} is drawn at ${Math.round(at.x)},${Math.round(at.y)}, the click was at ${Math.round(x)},${Math.round(y)}`);
@@ -246,7 +254,8 @@ export default async function ({ server, context }) {
       const box = await p.locator('#mesh-a').boundingBox();
       await clickAt(p, box.x + 4, box.y + box.height / 2);
       check((await p.inputValue('#node')) === '' && /No face of a volume mesh there/.test(await p.textContent('#pick-note')), `beside the mesh: ${await p.textContent('#pick-note')}`);
-      const { node, x, y } = await pickNear(p, 'a');
+      const { node, fx, fy } = await pickNear(p, 'a');
+      const { x, y } = await nowAt(p, 'a', fx, fy);
       const at = await screenOf(p, 'a', node);
       check(distance(at, { x, y }) < 40, `node ${node} is drawn at ${Math.round(at.x)},${Math.round(at.y)}, the click was at ${Math.round(x)},${Math.round(y)}`);
       await nodeViewDrawn(p, 'tetrahedra');

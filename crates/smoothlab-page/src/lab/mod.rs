@@ -653,6 +653,15 @@ mod tests {
     }
 
     #[test]
+    fn one_step_on_the_opening_sample_leaves_old_inverted_and_new_untangled() {
+        let mut pg = Playground::new(Sample::DEFAULT.generate().unwrap()).unwrap();
+        assert_eq!((pg.topology().element_count(), pg.stats(Side::B).mesh.inverted), (400, 219), "HARD_TANGLE_AMOUNT's words");
+        let [old, new] = pg.step(&no_clock);
+        assert_eq!((old.after.inverted, new.after.inverted), (15, 0), "the opening's lesson");
+        assert_eq!(pg.full_stats(Side::A).inverted, 15);
+    }
+
+    #[test]
     fn three_passes_untangle_the_tangled_plate_on_the_new_side() {
         let mut pg = Playground::new(Sample::DEFAULT.generate().unwrap()).unwrap();
         let start = pg.stats(Side::B).mesh.inverted;

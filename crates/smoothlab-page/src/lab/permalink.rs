@@ -58,6 +58,7 @@ use smoothlab_render::{Camera, ZOOM_RANGE};
 /// Copy link, `#sample=NAME` and the tour's figures (the command-line tool's `--figure`)
 /// all go through it.
 pub const SAMPLES: &[&str] = &[
+    "plate-quad-tangled-hard",
     "plate-quad-tangled",
     "plate-tri-tangled",
     "plate-mixed-tangled",
