@@ -139,37 +139,70 @@ pub fn dihedral_angles(p: &[DVec3; 4]) -> [f64; 6] {
 /// Whether the signed volume is negative: by the rounded volume where it is not 0, else
 /// by the exact sign ([`orient3d`](crate::numeric::exact::orient3d)), so a volume that
 /// underflows (edges that differ in scale by 2^600) keeps its sign (issue 61).
-#[inline]
+#[inline(always)]
 pub fn volume_is_negative(p: &[DVec3; 4]) -> bool {
     let v = signed_volume(&in_unit_scale(p));
-    v < 0.0 || (v == 0.0 && crate::numeric::exact::orient3d(p[0], p[1], p[2], p[3]) == std::cmp::Ordering::Less)
+    v < 0.0 || (v == 0.0 && exactly_negative(p))
 }
 
-/// A face's area vector brought near unit size where it lies beyond 2^±300 of it (exact;
-/// its direction is all a cosine reads), so two faces of edges that differ in scale by
-/// 2^600 give their cosine, not 0/0.
-#[inline]
-fn face_normal(p: &[DVec3; 4], k: usize) -> DVec3 {
-    crate::numeric::near_unit_vector(face_area_vector(p, k))
+/// Whether the exact signed volume is negative ([`volume_is_negative`]'s rare case).
+#[cold]
+#[inline(never)]
+fn exactly_negative(p: &[DVec3; 4]) -> bool {
+    crate::numeric::exact::orient3d(p[0], p[1], p[2], p[3]) == std::cmp::Ordering::Less
 }
 
 /// The first three of [`dihedral_cosines`], at the edges from corner 0, bit for bit: the
-/// three faces that hold corner 0, without the fourth.
+/// three faces that hold corner 0, without the fourth. Where a face's area vector is
+/// below 2^−500 (edges that differ in scale by 2^600 and more: a node at 1e200 beside unit
+/// edges), taken again on the corner's edges brought to unit size one by one (exact; the
+/// planes through corner 0 do not change), so its cosines are not 0/0 (issue 61).
+#[inline]
 pub fn dihedral_cosines_at_corner0(p: &[DVec3; 4]) -> [f64; 3] {
-    let p = &in_unit_scale(p);
-    let n = [1, 2, 3].map(|k| face_normal(p, k));
+    let q = &in_unit_scale(p);
+    let (c, tiny) = cosines_at_corner0(q);
+    if !tiny {
+        return c;
+    }
+    cosines_at_corner0_near_unit(q)
+}
+
+/// [`dihedral_cosines_at_corner0`]'s rare case: on the edges brought near unit size, and
+/// each face's area vector after them (a cosine reads directions only).
+#[cold]
+#[inline(never)]
+fn cosines_at_corner0_near_unit(q: &[DVec3; 4]) -> [f64; 3] {
+    let u = edges_near_unit(q);
+    let n = [1, 2, 3].map(|k| crate::numeric::near_unit_vector(face_area_vector(&u, k)));
+    [[1, 2], [0, 2], [0, 1]].map(|[k, l]: [usize; 2]| (-n[k].dot(n[l]) / (n[k].length() * n[l].length())).clamp(-1.0, 1.0))
+}
+
+/// [`dihedral_cosines_at_corner0`] as the faces' area vectors give them, and whether one
+/// of those is below 2^−500.
+#[inline]
+fn cosines_at_corner0(p: &[DVec3; 4]) -> ([f64; 3], bool) {
+    let n = [1, 2, 3].map(|k| face_area_vector(p, k));
+    let len = n.map(|v| v.length());
     // OFF_EDGE's first three entries, faces 1–3 stored at 0–2
-    [[1, 2], [0, 2], [0, 1]].map(|[k, l]: [usize; 2]| {
-        let c = -n[k].dot(n[l]) / (n[k].length() * n[l].length());
+    let c = [[1, 2], [0, 2], [0, 1]].map(|[k, l]: [usize; 2]| {
+        let c = -n[k].dot(n[l]) / (len[k] * len[l]);
         c.clamp(-1.0, 1.0)
-    })
+    });
+    (c, len.iter().any(|&l| l < 2f64.powi(-500)))
+}
+
+/// The corner tetrahedron `t` with corner 0 at the origin and each edge from it beyond
+/// 2^±300 of unit size brought near it by its own power of two (exact).
+fn edges_near_unit(t: &[DVec3; 4]) -> [DVec3; 4] {
+    let unit = |v: DVec3| crate::numeric::near_unit_vector(v);
+    [DVec3::ZERO, unit(t[1] - t[0]), unit(t[2] - t[0]), unit(t[3] - t[0])]
 }
 
 /// The cosines of [`dihedral_angles`], clamped to [−1, 1]: its angles are their inverse
 /// cosines, bit for bit, negated for an inverted tetrahedron. NaN where a face has no area.
 pub fn dihedral_cosines(p: &[DVec3; 4]) -> [f64; 6] {
     let p = &in_unit_scale(p);
-    let n = [0, 1, 2, 3].map(|k| face_normal(p, k));
+    let n = [0, 1, 2, 3].map(|k| face_area_vector(p, k));
     OFF_EDGE.map(|[k, l]| {
         let c = -n[k].dot(n[l]) / (n[k].length() * n[l].length());
         c.clamp(-1.0, 1.0)

@@ -9,12 +9,26 @@ use crate::quality::Reading;
 
 /// The scaled Jacobian of a corner, `det T/(‖t₁‖·‖t₂‖·‖t₃‖)` with `T = A·W⁻¹`: 1 at the
 /// ideal corner, in [−1, 1], negative when inverted (the 3D sine of a corner: the volume of
-/// the parallelepiped of its unit weighted edges). 0 for a degenerate corner. Each column
-/// beyond 2^±300 of unit size is brought near it by a power of two (exact; the quotient
-/// does not change), so a corner of unit edges beside one of 2^660 does not underflow.
+/// the parallelepiped of its unit weighted edges). 0 for a degenerate corner. Where its
+/// columns' lengths multiply to beyond 2^±600, each column beyond 2^±300 of unit size is
+/// brought near it by a power of two first (exact; the quotient does not change), so a
+/// corner of unit edges beside one of 2^660 does not underflow.
 pub fn scaled_jacobian(p: &[DVec3; 4], r: &CornerReference) -> f64 {
     let t = q3::weighted_jacobian(&q3::in_unit_scale(p), r);
-    let t = glam::DMat3::from_cols(crate::numeric::near_unit_vector(t.x_axis), crate::numeric::near_unit_vector(t.y_axis), crate::numeric::near_unit_vector(t.z_axis));
+    let n = t.x_axis.length() * t.y_axis.length() * t.z_axis.length();
+    if !(2f64.powi(-600)..=2f64.powi(600)).contains(&n) {
+        return scaled_jacobian_of_columns_near_unit(t);
+    }
+    t.determinant() / n
+}
+
+/// [`scaled_jacobian`] of a weighted Jacobian whose column lengths multiply to beyond
+/// 2^±600: each column beyond 2^±300 of unit size brought near it first.
+#[cold]
+#[inline(never)]
+fn scaled_jacobian_of_columns_near_unit(t: glam::DMat3) -> f64 {
+    let unit = crate::numeric::near_unit_vector;
+    let t = glam::DMat3::from_cols(unit(t.x_axis), unit(t.y_axis), unit(t.z_axis));
     let n = t.x_axis.length() * t.y_axis.length() * t.z_axis.length();
     if n == 0.0 || !n.is_finite() {
         return 0.0;
@@ -70,22 +84,6 @@ impl SolidMeasures {
         &self.dihedral_deg[..self.dihedral_count]
     }
 }
-
-/// The indices, in [`q3::dihedral_angles`]' order, of the dihedral angles at the edges
-/// from corner 0 of a tetrahedron: (0,1), (0,2), (0,3).
-const EDGES_AT_CORNER_0: [usize; 3] = {
-    let mut out = [0; 3];
-    let mut n = 0;
-    let mut i = 0;
-    while i < 6 {
-        if q3::TET_EDGES[i][0] == 0 {
-            out[n] = i;
-            n += 1;
-        }
-        i += 1;
-    }
-    out
-};
 
 /// [`SolidMeasures`] of an element of `kind` with nodes `p` (all its nodes, in the kind's
 /// order).
@@ -161,26 +159,13 @@ pub fn solid_measures(kind: VolumeKind, p: &[DVec3]) -> SolidMeasures {
     }
 }
 
-/// The dihedral angles, degrees, of a corner's tetrahedron `t` at the corner's three edges.
+/// The dihedral angles, degrees, of a corner's tetrahedron `t` at the corner's three edges
+/// ([`q3::dihedral_angles`]' first three, at the edges (0,1), (0,2), (0,3) of
+/// [`q3::TET_EDGES`], bit for bit, from the three faces through the corner alone).
 #[inline]
-fn corner_dihedral_deg(t: &[DVec3; 4]) -> [f64; 3] {
-    let angles = q3::dihedral_angles(&edges_near_unit(t));
-    EDGES_AT_CORNER_0.map(|i| angles[i].to_degrees())
-}
-
-/// A corner's tetrahedron with corner 0 at the origin and each edge from it beyond 2^±300
-/// of unit size brought near it by its own power of two; `t` itself where every edge is
-/// within. The angles at corner 0's edges and the sign of the volume do not change (the
-/// faces through corner 0 keep their planes), and their products do not underflow where
-/// an element's edges differ in scale by 2^600 and more (issue 61).
-#[inline]
-fn edges_near_unit(t: &[DVec3; 4]) -> [DVec3; 4] {
-    let e = [t[1] - t[0], t[2] - t[0], t[3] - t[0]];
-    let beyond = |v: DVec3| !(2f64.powi(-300)..=2f64.powi(300)).contains(&crate::numeric::largest_component([v]));
-    if !e.iter().any(|&v| beyond(v)) {
-        return *t;
-    }
-    [DVec3::ZERO, crate::numeric::near_unit_vector(e[0]), crate::numeric::near_unit_vector(e[1]), crate::numeric::near_unit_vector(e[2])]
+pub(super) fn corner_dihedral_deg(t: &[DVec3; 4]) -> [f64; 3] {
+    let inverted = q3::volume_is_negative(t);
+    q3::dihedral_cosines_at_corner0(t).map(|c| (if inverted { -c.acos() } else { c.acos() }).to_degrees())
 }
 
 /// What the statistics read of one element ([`Reading`]), taken as [`solid_measures`]
@@ -249,15 +234,14 @@ pub fn solid_within(kind: VolumeKind, p: &[DVec3], bounds: &Reading) -> bool {
             let mut mean_ratio = 0.0;
             (0..count).all(|c| {
                 let t = corner_tet(kind, &q, c);
-                let u = edges_near_unit(&t);
-                if q3::volume_is_negative(&u) {
+                if q3::volume_is_negative(&t) {
                     // its angles read negative: the reading decides
                     return solid_reading(kind, p, with_quality).within(bounds);
                 }
                 if with_quality {
                     mean_ratio += q3::mean_ratio(&t, r) / count as f64;
                 }
-                q3::dihedral_cosines_at_corner0(&u).iter().all(|&c| bounds.angle_within(c, cos_lo, cos_hi))
+                q3::dihedral_cosines_at_corner0(&t).iter().all(|&c| bounds.angle_within(c, cos_lo, cos_hi))
                     && scaled_jacobian(&t, r) >= bounds.min_scaled_jacobian
             }) && (!with_quality || mean_ratio >= bounds.min_quality)
         }

@@ -481,3 +481,18 @@ fn a_wedge_is_decided_exactly_at_the_margin() {
     assert!(valid > 100 && inverted > 100, "{valid} valid, {inverted} inverted");
 }
 
+
+/// A corner's dihedral angles from its three faces are the tetrahedron's first three
+/// ([`q3::dihedral_angles`]), bit for bit, valid or inverted.
+#[test]
+fn corner_angles_are_the_tetrahedron_s_first_three() {
+    let mut rng = crate::numeric::SplitMix64::new(9);
+    for _ in 0..5000 {
+        let t: [DVec3; 4] = std::array::from_fn(|_| DVec3::new(rng.uniform(-1.0, 1.0), rng.uniform(-1.0, 1.0), rng.uniform(-1.0, 1.0)));
+        let all = crate::quality::tet::dihedral_angles(&t);
+        let corner = super::measures::corner_dihedral_deg(&t);
+        for i in 0..3 {
+            assert_eq!(corner[i].to_bits(), all[i].to_degrees().to_bits(), "{t:?}");
+        }
+    }
+}
