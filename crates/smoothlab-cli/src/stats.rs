@@ -105,7 +105,7 @@ pub fn table(s: &MeshStats) -> String {
 mod tests {
     use super::*;
     use smoothlab::generate::{hex_grid, perturb_volume, HexBlock};
-    use smoothlab::objective::{tet_objective, ObjectiveKind};
+    use smoothlab::objective::{solid_objective, ObjectiveKind};
     use smoothlab::smooth::SmoothOptions;
     use smoothlab::volume::{smooth_volume, volume_stats};
 
@@ -126,7 +126,7 @@ mod tests {
         assert!(tangled.inverted > 0 && tangled.min_quality < 0.0);
         assert!(!mean_ratio_line(&tangled).contains("averaged"), "{}", mean_ratio_line(&tangled));
         // one pass of the old objective: inverted elements, every element's mean positive
-        let old = tet_objective(ObjectiveKind::MaxMinShape).unwrap();
+        let old = solid_objective(ObjectiveKind::MaxMinShape).unwrap();
         smooth_volume(&mut m, &*old, SmoothOptions::default(), 1, &|| 0.0).unwrap();
         let s = volume_stats(&m);
         assert!(s.inverted > 0 && s.min_quality > 0.0, "{} inverted, min {}", s.inverted, s.min_quality);

@@ -135,7 +135,7 @@ fn surfaces(c: &mut Criterion) {
 /// 3D section measures them.
 fn tetrahedra(c: &mut Criterion) {
     use smoothlab::generate::{hex_grid, perturb_volume, rand3d, HexBlock, RAND3D_POINTS};
-    use smoothlab::objective::tet_objective;
+    use smoothlab::objective::solid_objective;
     use smoothlab::volume::{VolumeMesh, VolumeSmoother};
     // name, strategy, objective, solver iterations per call
     let passes = [
@@ -158,7 +158,7 @@ fn tetrahedra(c: &mut Criterion) {
         g.sample_size(10).throughput(Throughput::Elements(mesh.free_count() as u64));
         g.measurement_time(Duration::from_secs(5));
         for (name, strategy, kind, max_iter) in passes {
-            let obj = tet_objective(kind).expect("a form on tetrahedra");
+            let obj = solid_objective(kind).expect("a form on tetrahedra");
             // Freitag's strategies in node order, as her table ran them; Chen's rules worst first
             let order = if strategy == Strategy::Rules { Order::Priority } else { Order::Input };
             let options = SmoothOptions::default().with_strategy(strategy).with_order(order).with_max_iter(max_iter);
@@ -177,7 +177,7 @@ fn tetrahedra(c: &mut Criterion) {
 /// with `new`, `condition` and `old`.
 fn targets(c: &mut Criterion) {
     use smoothlab::generate::{hex_grid, perturb_volume, HexBlock};
-    use smoothlab::objective::tet_objective;
+    use smoothlab::objective::solid_objective;
     use smoothlab::volume::VolumeSmoother;
     let kinds = [
         ObjectiveKind::SmoothShape,
@@ -213,7 +213,7 @@ fn targets(c: &mut Criterion) {
         .throughput(Throughput::Elements(block.free_count() as u64));
     g.measurement_time(Duration::from_secs(5));
     for kind in kinds {
-        let obj = tet_objective(kind).expect("a volume objective");
+        let obj = solid_objective(kind).expect("a volume objective");
         for (label, m) in [("ideal", &block), ("input", &targeted)] {
             let mut s = VolumeSmoother::new(options).expect("options");
             g.bench_function(format!("opt+{kind}, {label}"), |b| {

@@ -10,7 +10,7 @@ use serde::Serialize;
 
 use crate::error::{Error, Result};
 use crate::model::Model;
-use crate::objective::{check_scale, objective_with, tet_objective, ObjectiveKind, Penalty};
+use crate::objective::{check_scale, objective_with, solid_objective, ObjectiveKind, Penalty};
 use crate::quality::MeshStats;
 use crate::smooth::limits::{threshold_in_range, BATCH_MAX_ITER, BATCH_PASSES};
 use crate::smooth::{
@@ -395,7 +395,7 @@ impl Model {
                     .collect()
             }
             Model::Volume(mesh) => {
-                let objective = tet_objective(kind)?;
+                let objective = solid_objective(kind)?;
                 let mut smoother = VolumeSmoother::new(options)?;
                 numbers
                     .map(|p| smoother.pass(mesh, &*objective, p, clock))

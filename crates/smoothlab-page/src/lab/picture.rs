@@ -6,7 +6,7 @@
 use tiny_skia::{Pixmap, PixmapPaint, Transform};
 
 use smoothlab::model::Model;
-use smoothlab::objective::{objective_with, tet_objective, ObjectiveKind, Penalty};
+use smoothlab::objective::{objective_with, solid_objective, ObjectiveKind, Penalty};
 use smoothlab::quality::mesh_stats;
 use smoothlab::smooth::limits::RENDER_PASSES;
 use smoothlab::smooth::{
@@ -482,7 +482,7 @@ fn volume(
         let kind = settings.compare[side as usize].objective;
         smooth_volume(
             &mut t,
-            &*tet_objective(kind).map_err(|e| e.to_string())?,
+            &*solid_objective(kind).map_err(|e| e.to_string())?,
             opts,
             passes,
             &|| 0.0,

@@ -43,7 +43,7 @@ mod sine;
 mod target_tests;
 #[cfg(test)]
 pub(crate) mod testing;
-mod tet;
+mod solid;
 mod untangle;
 
 pub use condition::{ConditionNumber, Norm, CONDITION_BARRIER};
@@ -54,8 +54,8 @@ pub use new::{
 pub use old::{CornerTerm, MaxMinShape};
 pub use point::{NodeStar, Point};
 pub use sine::MaxMinSine;
-pub use tet::{describe_tet, tet_form, tet_kinds, tet_objective, CornerStar, RegularisedMeanRatio, StarCorner, StarSolid, TetObjective};
-pub(crate) use tet::framed;
+pub use solid::{describe_solid, solid_form, solid_kinds, solid_objective, CornerStar, RegularisedMeanRatio, StarCorner, StarSolid, SolidObjective};
+pub(crate) use solid::framed;
 pub use untangle::{MaxMinDet, Untangle, UNTANGLE_BETA};
 
 enum_with_all! {

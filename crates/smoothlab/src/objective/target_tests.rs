@@ -4,7 +4,7 @@
 use glam::{DMat2, DMat3, DVec2, DVec3};
 
 use super::testing::*;
-use super::tet::{tet_kinds, tet_objective, CornerStar, StarCorner};
+use super::solid::{solid_kinds, solid_objective, CornerStar, StarCorner};
 use super::*;
 use crate::target::{element_frames, solid_reference};
 
@@ -151,8 +151,8 @@ fn volume_gradients_against_targets_agree_with_central_differences() {
                 rng.uniform(-0.01, 0.01),
                 rng.uniform(-0.01, 0.01),
             );
-        for k in tet_kinds() {
-            let obj = tet_objective(k).unwrap();
+        for k in solid_kinds() {
+            let obj = solid_objective(k).unwrap();
             let mut terms = Vec::new();
             obj.terms(&star, x, &mut terms);
             for (i, t) in terms.iter().enumerate() {
@@ -205,11 +205,11 @@ fn a_volume_star_at_its_targets_is_stationary() {
     let stretched = CornerStar::of_tets(c, tets);
     let s = with_solid_targets(&stretched, |p| p);
     for k in [ObjectiveKind::Condition, ObjectiveKind::SmoothShape] {
-        let ideal = tet_objective(k)
+        let ideal = solid_objective(k)
             .unwrap()
             .value_and_gradient(&stretched, c)
             .1;
-        let (_, g) = tet_objective(k).unwrap().value_and_gradient(&s, c);
+        let (_, g) = solid_objective(k).unwrap().value_and_gradient(&s, c);
         assert!(ideal.length() > 1e-3, "{k}: the ideal pulls ({ideal})");
         assert!(g.length() < 1e-10, "{k}: {g}");
     }

@@ -399,11 +399,11 @@ mod tests {
     /// every boundary node of the badly placed block solves to a point on its planes.
     #[test]
     fn one_node_s_solve_keeps_a_sliding_node_in_its_tangent() {
-        use crate::objective::{tet_objective, CornerStar, ObjectiveKind};
+        use crate::objective::{solid_objective, CornerStar, ObjectiveKind};
         use crate::smooth::{solve_corner_star, DriverStar, SmoothOptions};
         let mut m = badly_placed_block();
         m.set_boundary(BoundaryRule::Slide, 60.0);
-        let objective = tet_objective(ObjectiveKind::SmoothShape).unwrap();
+        let objective = solid_objective(ObjectiveKind::SmoothShape).unwrap();
         let mut solved = 0;
         for n in (0..m.node_count()).filter(|&n| matches!(m.boundary_node(n), Some(BoundaryNode::Surface | BoundaryNode::Curve))) {
             let mut star = CornerStar::default();

@@ -102,7 +102,7 @@ impl DriverStar for CornerStar {
         self.x0 = mesh.nodes()[node];
         // the corners overwritten in place, then truncated
         let mut n_corners = 0;
-        self.tet_measures.get_mut().clear();
+        self.tet_memo.get_mut().clear();
         // the elements other than tetrahedra overwritten in place, then truncated
         let mut solids = 0;
         let nodes = mesh.nodes();
@@ -252,7 +252,7 @@ impl DriverStar for CornerStar {
         if m == Measure::Shape {
             // kept for the acceptance rule, which asks the same two positions
             let frame = self.frame();
-            let mut memo = self.tet_measures.borrow_mut();
+            let mut memo = self.tet_memo.borrow_mut();
             let (b, a) = (
                 memo.slot(&self.tets, self.x0, self.reference(), frame),
                 memo.slot(&self.tets, c, self.reference(), frame),
@@ -384,7 +384,7 @@ impl DriverStar for CornerStar {
         if m == Measure::Shape {
             let (mut before, mut after) = (LeastMeanRatio::default(), LeastMeanRatio::default());
             // the measures the smart Laplacian's test took at these positions, or taken here
-            let mut memo = self.tet_measures.borrow_mut();
+            let mut memo = self.tet_memo.borrow_mut();
             let (b, a) = (
                 memo.slot(&self.tets, self.x0, self.reference(), frame),
                 memo.slot(&self.tets, x, self.reference(), frame),

@@ -109,7 +109,7 @@ fn a_left_handed_mesh_is_turned_over() {
 mod smoothing {
     use super::*;
     use crate::generate::perturb_volume;
-    use crate::objective::{tet_objective, ObjectiveKind};
+    use crate::objective::{solid_objective, ObjectiveKind};
     use crate::smooth::{SmoothOptions, Strategy};
 
     fn no_clock() -> f64 {
@@ -118,14 +118,14 @@ mod smoothing {
 
     fn passes(mesh: &mut VolumeMesh, kind: ObjectiveKind, strategy: Strategy, n: u32) -> Vec<crate::smooth::PassRecord> {
         let o = SmoothOptions::default().with_strategy(strategy);
-        smooth_volume(mesh, &*tet_objective(kind).unwrap(), o, n, &no_clock).unwrap()
+        smooth_volume(mesh, &*solid_objective(kind).unwrap(), o, n, &no_clock).unwrap()
     }
 
     #[test]
     fn every_strategy_and_objective_keeps_fixed_nodes_and_repeats_exactly() {
         let start = perturb_volume(&tet_cube(3).unwrap(), 0.6, 4).unwrap();
         for strategy in Strategy::ALL {
-            for kind in crate::objective::tet_kinds() {
+            for kind in crate::objective::solid_kinds() {
                 let mut a = start.clone();
                 let mut b = start.clone();
                 passes(&mut a, kind, strategy, 2);
@@ -146,7 +146,7 @@ mod smoothing {
         let start = perturb_volume(&tet_cube(4).unwrap(), 0.25, 2).unwrap();
         assert_eq!(volume_stats(&start).inverted, 0, "the start must be valid");
         for strategy in [Strategy::Smart, Strategy::Opt, Strategy::C1, Strategy::C2, Strategy::C3, Strategy::Rules] {
-            for kind in crate::objective::tet_kinds() {
+            for kind in crate::objective::solid_kinds() {
                 let mut m = start.clone();
                 passes(&mut m, kind, strategy, 2);
                 assert_eq!(volume_stats(&m).inverted, 0, "{strategy:?} {kind}");
@@ -173,7 +173,7 @@ mod smoothing {
         let mut m = start.clone();
         let o = SmoothOptions::default().with_strategy(Strategy::Smart);
         let mut s = VolumeSmoother::new(o).unwrap();
-        s.sweep(&mut m, &*tet_objective(ObjectiveKind::SmoothShape).unwrap());
+        s.sweep(&mut m, &*solid_objective(ObjectiveKind::SmoothShape).unwrap());
         assert!(volume_stats(&m).min_quality >= volume_stats(&start).min_quality);
         assert!(m.nodes() != start.nodes());
     }
@@ -183,14 +183,14 @@ mod smoothing {
 /// (a tetrahedron of 10.18° ended at 0.99°); they now leave a valid mesh where it is.
 #[test]
 fn untangling_objectives_leave_a_valid_tetrahedral_mesh_where_it_is() {
-    use crate::objective::{tet_objective, ObjectiveKind};
+    use crate::objective::{solid_objective, ObjectiveKind};
     use crate::smooth::{SmoothOptions, Strategy};
     let valid = crate::generate::rand3d(200, 5).unwrap();
     assert_eq!(volume_stats(&valid).inverted, 0);
     for kind in [ObjectiveKind::Untangle, ObjectiveKind::UntangleMinDet] {
         let mut m = valid.clone();
         let opts = SmoothOptions::default().with_strategy(Strategy::Opt);
-        let r = smooth_volume(&mut m, &*tet_objective(kind).unwrap(), opts, 2, &|| 0.0).unwrap();
+        let r = smooth_volume(&mut m, &*solid_objective(kind).unwrap(), opts, 2, &|| 0.0).unwrap();
         assert_eq!(m.nodes(), valid.nodes(), "{kind}");
         assert_eq!(r[0].counts.optimization_calls, 0, "{kind}");
     }
@@ -282,7 +282,7 @@ fn quadratic_hexahedra_follow_their_corners() {
         assert_eq!(q.free_count(), linear.free_count());
         let before = crate::volume::volume_stats(&q);
         assert_eq!((before.inverted, before.quadratic), (0, 27));
-        crate::volume::smooth_volume(&mut q, &*crate::objective::tet_objective(crate::objective::ObjectiveKind::SmoothShape).unwrap(), Default::default(), 2, &|| 0.0).unwrap();
+        crate::volume::smooth_volume(&mut q, &*crate::objective::solid_objective(crate::objective::ObjectiveKind::SmoothShape).unwrap(), Default::default(), 2, &|| 0.0).unwrap();
         // every follower at the mean of its corners, boundary ones where they were
         for e in 0..q.element_count() {
             let ids = q.element(e);

@@ -11,7 +11,7 @@ use proptest::prelude::*;
 use smoothlab::generate::{grid, hex_grid, mixed_block, perturb, perturb_surface, perturb_volume, plate, surface, tet_cube};
 use smoothlab::generate::{GridKind, HexBlock, PlateKind, SurfaceKind, SurfaceShape};
 use smoothlab::model::Model;
-use smoothlab::objective::{tet_kinds, ObjectiveKind};
+use smoothlab::objective::{solid_kinds, ObjectiveKind};
 use smoothlab::smooth::Strategy;
 use smoothlab::volume::BoundaryRule;
 use smoothlab::{MeshStats, Smoothing, Target};
@@ -80,7 +80,7 @@ proptest! {
         prop_assume!(boundary == BoundaryRule::Fixed || slides);
         // a target other than the ideal is measured by opt and rules only (the others refuse it)
         prop_assume!(target == Target::Ideal || matches!(strategy, Strategy::Opt | Strategy::Rules));
-        prop_assume!(!matches!(model, Model::Volume(_)) || tet_kinds().any(|k| k == kind));
+        prop_assume!(!matches!(model, Model::Volume(_)) || solid_kinds().any(|k| k == kind));
         prop_assert_ne!(strategy, Strategy::Laplace);
         let report = model.smooth(&Smoothing::default().strategy(strategy).objective(kind).target(target).boundary(boundary).passes(2)).unwrap();
         let after = report.stats();

@@ -16,7 +16,7 @@ use glam::DVec3;
 use proptest::prelude::*;
 use smoothlab::generate::{hex_grid, mixed_block, perturb_volume, HexBlock};
 use smoothlab::mesh::VolumeKind;
-use smoothlab::objective::{tet_kinds, tet_objective, CornerStar, ObjectiveKind, CONDITION_BARRIER};
+use smoothlab::objective::{solid_kinds, solid_objective, CornerStar, ObjectiveKind, CONDITION_BARRIER};
 use smoothlab::smooth::{DriverStar, SmoothOptions, Strategy};
 use smoothlab::volume::{smooth_volume, volume_stats, VolumeMesh};
 
@@ -33,7 +33,7 @@ fn block(n: usize, mix: bool) -> VolumeMesh {
 
 fn smoothed(m: &VolumeMesh, strategy: Strategy, kind: ObjectiveKind, passes: u32) -> VolumeMesh {
     let mut t = m.clone();
-    smooth_volume(&mut t, &*tet_objective(kind).unwrap(), SmoothOptions::default().with_strategy(strategy), passes, &|| 0.0)
+    smooth_volume(&mut t, &*solid_objective(kind).unwrap(), SmoothOptions::default().with_strategy(strategy), passes, &|| 0.0)
         .unwrap();
     t
 }
@@ -61,12 +61,12 @@ proptest! {
         amount in 0.05..0.2f64,
         seed in 0u64..1000,
         strategy in 0..Strategy::ALL.len(),
-        objective_kind in 0..tet_kinds().count(),
+        objective_kind in 0..solid_kinds().count(),
     ) {
         let m = perturb_volume(&block(3, mix), amount, seed).unwrap();
         let before = volume_stats(&m);
         prop_assume!(before.inverted == 0);
-        let (strategy, kind) = (Strategy::ALL[strategy], tet_kinds().nth(objective_kind).unwrap());
+        let (strategy, kind) = (Strategy::ALL[strategy], solid_kinds().nth(objective_kind).unwrap());
         let t = smoothed(&m, strategy, kind, 2);
         for n in 0..m.node_count() {
             prop_assert!(t.nodes()[n].is_finite(), "node {} not finite", n);
@@ -96,7 +96,7 @@ fn knupp_random_hex_grids_tangled_by_0_6_edges_untangle_in_three_passes() {
         assert!(before > 0, "seed {seed}: not tangled");
         let mut t = m.clone();
         let options = SmoothOptions::default();
-        let records = smooth_volume(&mut t, &*tet_objective(ObjectiveKind::SmoothShape).unwrap(), options, 3, &|| 0.0).unwrap();
+        let records = smooth_volume(&mut t, &*solid_objective(ObjectiveKind::SmoothShape).unwrap(), options, 3, &|| 0.0).unwrap();
         let s = volume_stats(&t);
         let sj = s.solid.as_ref().unwrap().min_scaled_jacobian;
         report.push(format!("seed {seed}: {before} → {:?}, min scaled Jacobian {sj:.3}", records.iter().map(|r| r.after.inverted).collect::<Vec<_>>()));
@@ -126,8 +126,8 @@ fn every_objective_gradient_agrees_with_central_differences_on_corner_stars() {
     for (mix, seed) in [(false, 1), (true, 2), (true, 3)] {
         for star in stars(mix, seed) {
             assert!(!star.only_tets());
-            for k in tet_kinds() {
-                let obj = tet_objective(k).unwrap();
+            for k in solid_kinds() {
+                let obj = solid_objective(k).unwrap();
                 let x = star.x0 + DVec3::new(0.003, -0.002, 0.001);
                 let mut terms = Vec::new();
                 obj.terms(&star, x, &mut terms);
@@ -277,7 +277,7 @@ proptest! {
         seed in 0u64..1000,
         k in prop::sample::select(vec![-600, -520, -300, 300, 520, 600]),
         strategy in 0..Strategy::ALL.len(),
-        objective_kind in 0..tet_kinds().count(),
+        objective_kind in 0..solid_kinds().count(),
     ) {
         let base = match which {
             0 => block(2, true),
@@ -292,7 +292,7 @@ proptest! {
         prop_assert_eq!(a.min_angle_deg.to_bits(), b.min_angle_deg.to_bits());
         prop_assert_eq!(&a.angle_histogram_6deg, &b.angle_histogram_6deg);
         prop_assert_eq!(a.solid.map(|s| s.min_scaled_jacobian.to_bits()), b.solid.map(|s| s.min_scaled_jacobian.to_bits()));
-        let (strategy, kind) = (Strategy::ALL[strategy], tet_kinds().nth(objective_kind).unwrap());
+        let (strategy, kind) = (Strategy::ALL[strategy], solid_kinds().nth(objective_kind).unwrap());
         let (sa, sb) = (smoothed(&m, strategy, kind, 2), smoothed(&big, strategy, kind, 2));
         let back = scaled(&sb, -k);
         let differ = (0..m.node_count()).filter(|&n| sa.nodes()[n] != back.nodes()[n]).count();
@@ -314,7 +314,7 @@ proptest! {
         amount in 0.5f64..1.2,
         seed in 0u64..1000,
         strategy in prop::sample::select(vec![Strategy::Rules, Strategy::Opt, Strategy::Smart, Strategy::C1, Strategy::C3]),
-        objective_kind in 0..tet_kinds().count(),
+        objective_kind in 0..solid_kinds().count(),
     ) {
         let base = match which {
             0 => block(3, true),
@@ -323,8 +323,8 @@ proptest! {
         };
         let mut m = perturb_volume(&base, amount, seed).unwrap();
         let mut last = volume_stats(&m).inverted;
-        let kind = tet_kinds().nth(objective_kind).unwrap();
-        let records = smooth_volume(&mut m, &*tet_objective(kind).unwrap(), SmoothOptions::default().with_strategy(strategy), 6, &|| 0.0).unwrap();
+        let kind = solid_kinds().nth(objective_kind).unwrap();
+        let records = smooth_volume(&mut m, &*solid_objective(kind).unwrap(), SmoothOptions::default().with_strategy(strategy), 6, &|| 0.0).unwrap();
         for r in records {
             prop_assert!(r.after.inverted <= last, "{:?} {:?} pass {}: {} inverted after {}", strategy, kind, r.pass, r.after.inverted, last);
             last = r.after.inverted;
@@ -384,7 +384,7 @@ fn tangled_volumes_lose_no_ground_pass_to_pass() {
             for strategy in Strategy::ALL.into_iter().filter(|&s| s != Strategy::Laplace) {
                 let mut t = m.clone();
                 let (mut inverted, mut worst) = (volume_stats(&t).inverted, worst_inverted_scaled_jacobian(&t));
-                let objective = tet_objective(ObjectiveKind::SmoothShape).unwrap();
+                let objective = solid_objective(ObjectiveKind::SmoothShape).unwrap();
                 let mut s = smoothlab::volume::VolumeSmoother::new(SmoothOptions::default().with_strategy(strategy)).unwrap();
                 for pass in 1..=4 {
                     s.sweep(&mut t, &*objective);

@@ -17,7 +17,7 @@ use smoothlab::numeric::SplitMix64;
 use smoothlab::io::{read_model_str, write_model_string, Format, WriteOptions};
 use smoothlab::quality::tet::signed_volume;
 use smoothlab::model::Model;
-use smoothlab::objective::{tet_kinds, tet_objective, ObjectiveKind};
+use smoothlab::objective::{solid_kinds, solid_objective, ObjectiveKind};
 use smoothlab::smooth::{SmoothOptions, Strategy};
 use smoothlab::volume::{smooth_volume, volume_stats, VolumeMesh};
 
@@ -32,7 +32,7 @@ fn sample(which: usize, cells: usize, amount: f64, seed: u64) -> VolumeMesh {
 
 fn smoothed(m: &VolumeMesh, strategy: Strategy, kind: ObjectiveKind) -> VolumeMesh {
     let mut t = m.clone();
-    smooth_volume(&mut t, &*tet_objective(kind).unwrap(), SmoothOptions::default().with_strategy(strategy), 2, &|| 0.0).unwrap();
+    smooth_volume(&mut t, &*solid_objective(kind).unwrap(), SmoothOptions::default().with_strategy(strategy), 2, &|| 0.0).unwrap();
     t
 }
 
@@ -46,10 +46,10 @@ proptest! {
         amount in 0.0..1.0f64,
         seed in 0u64..1000,
         strategy in 0..Strategy::ALL.len(),
-        objective_kind in 0..tet_kinds().count(),
+        objective_kind in 0..solid_kinds().count(),
     ) {
         let m = sample(which, cells, amount, seed);
-        let (strategy, kind) = (Strategy::ALL[strategy], tet_kinds().nth(objective_kind).unwrap());
+        let (strategy, kind) = (Strategy::ALL[strategy], solid_kinds().nth(objective_kind).unwrap());
         let t = smoothed(&m, strategy, kind);
         for n in 0..m.node_count() {
             prop_assert!(t.nodes()[n].is_finite(), "node {} not finite", n);
@@ -68,11 +68,11 @@ proptest! {
         amount in 0.0..0.3f64,
         seed in 0u64..1000,
         strategy in 1..Strategy::ALL.len(),
-        objective_kind in 0..tet_kinds().count(),
+        objective_kind in 0..solid_kinds().count(),
     ) {
         let m = sample(which, cells, amount, seed);
         prop_assume!(volume_stats(&m).inverted == 0);
-        let (strategy, kind) = (Strategy::ALL[strategy], tet_kinds().nth(objective_kind).unwrap());
+        let (strategy, kind) = (Strategy::ALL[strategy], solid_kinds().nth(objective_kind).unwrap());
         prop_assert_ne!(strategy, Strategy::Laplace);
         let t = smoothed(&m, strategy, kind);
         prop_assert_eq!(volume_stats(&t).inverted, 0, "{:?} {} inverted a tetrahedron", strategy, kind);
@@ -168,7 +168,7 @@ fn the_priority_order_is_the_same_at_every_scale() {
         let tets: Vec<[u32; 4]> = (0..m.element_count()).map(|e| m.element(e)[..4].try_into().unwrap()).collect();
         let scaled = VolumeMesh::from_tets(m.nodes().iter().map(|&p| 3.0 * p).collect(), &tets).unwrap();
         let opts = SmoothOptions::default().with_strategy(Strategy::Rules);
-        let objective = tet_objective(ObjectiveKind::SmoothShape).unwrap();
+        let objective = solid_objective(ObjectiveKind::SmoothShape).unwrap();
         let (mut a, mut b) = (m.clone(), scaled);
         smooth_volume(&mut a, &*objective, opts, 1, &|| 0.0).unwrap();
         smooth_volume(&mut b, &*objective, opts, 1, &|| 0.0).unwrap();
@@ -199,7 +199,7 @@ fn curved_ten_node_tetrahedra_are_left_no_worse() {
         }
         tried += 1;
         for strategy in Strategy::ALL.into_iter().filter(|&s| s != Strategy::Laplace) {
-            for kind in tet_kinds() {
+            for kind in solid_kinds() {
                 let after = volume_stats(&smoothed(&m, strategy, kind));
                 assert_eq!(after.inverted, 0, "seed {seed} {strategy:?} {kind:?}");
                 assert!(

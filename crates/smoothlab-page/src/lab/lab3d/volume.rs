@@ -1,6 +1,6 @@
 //! Tetrahedra in the [`Lab3d`]: smoothed by the [`VolumeSmoother`] (the
 //! planar drivers over stars of tetrahedra), a side's objective its
-//! [`Choice`](crate::lab::Choice)'s kind carried to tetrahedra ([`tet_objective`]; the
+//! [`Choice`](crate::lab::Choice)'s kind carried to tetrahedra ([`solid_objective`]; the
 //! planar penalty designs do not apply), coloured by the mean ratio and drawn cut by a
 //! plane ([`Cut`]); the two sides' dihedral angles in Freitag's 6° bins. A node is picked
 //! on the face drawn where the pointer is (the cut or the boundary), and its level sets
@@ -21,7 +21,7 @@ use crate::lab::{PassSummary, Settings, Side};
 use smoothlab::mesh::{ElementKind, NodeRole, Plane};
 use smoothlab::model::Model;
 use smoothlab::numeric::order::{sort_stable_by_key, total_order_key};
-use smoothlab::objective::{describe_tet, tet_objective, CornerStar, Goal, Objective, Star, StarElement};
+use smoothlab::objective::{describe_solid, solid_objective, CornerStar, Goal, Objective, Star, StarElement};
 use smoothlab::optimize::{Iterate, SolveResult};
 use smoothlab::quality::MeshStats;
 use smoothlab_render::{HistogramAxis, PlaneFunction, Projection, SurfaceView};
@@ -32,7 +32,7 @@ use crate::lab::settings::slide_refused_quadratic;
 use smoothlab_render::{Cut};
 
 /// The objective of the tetrahedra's kind, as a side smooths with it.
-type TetObjective = dyn Objective<CornerStar> + Send + Sync;
+type SolidObjective = dyn Objective<CornerStar> + Send + Sync;
 
 /// The regular tetrahedron's dihedral angle, arccos(1/3), degrees: the ideal the
 /// dihedral histograms mark.
@@ -42,7 +42,7 @@ const REGULAR_DIHEDRAL_DEG: f64 = 70.528_779_365_509_31;
 /// node of `star` moved to each point of the plane; its validity the star's smallest
 /// mean ratio there (signed: negative where a tetrahedron is inverted).
 struct CutFunction<'a> {
-    objective: &'a TetObjective,
+    objective: &'a SolidObjective,
     star: CornerStar,
     plane: Plane,
 }
@@ -173,7 +173,7 @@ impl Mesh3d for VolumeMesh {
         VolumeSmoother::new(o)
     }
     fn objective(settings: &Settings, side: Side) -> Result<Box<dyn Objective<CornerStar> + Send + Sync>> {
-        tet_objective(settings.choice(side).objective)
+        solid_objective(settings.choice(side).objective)
     }
     fn pass(
         &mut self,
@@ -217,12 +217,12 @@ impl Mesh3d for VolumeMesh {
         out.set_boundary(rule, FEATURE_ANGLE_DEG);
         Ok(out)
     }
-    /// The letter and what the side smooths with, in 3D's words ([`describe_tet`]; the
+    /// The letter and what the side smooths with, in 3D's words ([`describe_solid`]; the
     /// planar penalty designs do not apply).
     fn side_title(settings: &Settings, side: Side) -> String {
         let kind = settings.choice(side).objective;
         // a planar-only kind never gets here: set_settings refuses it
-        format!("{}: {kind}: {}", side.letter(), describe_tet(kind).unwrap_or("planar only"))
+        format!("{}: {kind}: {}", side.letter(), describe_solid(kind).unwrap_or("planar only"))
     }
     fn side_label(settings: &Settings, side: Side) -> String {
         format!("{}: {}", side.letter(), settings.choice(side).objective)
@@ -291,7 +291,7 @@ impl Mesh3d for VolumeMesh {
     /// The cut plane moved to pass through the node: the node's objective as it moves in
     /// that plane, the section of its tetrahedra by it, and the solve in space (its path
     /// and optimum projected onto the plane).
-    fn slice<'a>(&self, objective: &'a TetObjective, node: usize, cut: Cut, options: &SmoothOptions) -> Result<NodeSlice<'a>> {
+    fn slice<'a>(&self, objective: &'a SolidObjective, node: usize, cut: Cut, options: &SmoothOptions) -> Result<NodeSlice<'a>> {
         if let Some(why) = self.why_not_free(node) {
             return Err(Error::invalid(sentence(&why)));
         }
@@ -316,7 +316,7 @@ impl Mesh3d for VolumeMesh {
     /// The kind's name and what it is, in 3D's words.
     fn objective_label(settings: &Settings, side: Side) -> String {
         let kind = settings.choice(side).objective;
-        format!("{kind} ({})", describe_tet(kind).unwrap_or("planar only").split(" (").next().unwrap_or(""))
+        format!("{kind} ({})", describe_solid(kind).unwrap_or("planar only").split(" (").next().unwrap_or(""))
     }
     /// The node at `to` (a node that slides at the nearest point of its curve or part of
     /// the boundary as loaded), its mid-edge nodes at their edges' middles.
@@ -679,7 +679,7 @@ mod tests {
         assert!(!slice.outline.elems.is_empty(), "the plane cuts the node's tetrahedra");
         let mut star = CornerStar::default();
         star.gather(l.mesh(Side::B), n);
-        let objective = tet_objective(l.settings().compare[1].objective).unwrap();
+        let objective = solid_objective(l.settings().compare[1].objective).unwrap();
         assert_eq!(slice.function.value(DVec2::ZERO), objective.value(&star, star.x0));
         assert!(slice.function.validity(DVec2::ZERO) > 0.0, "rand3D is valid");
         drop(slice);

@@ -358,7 +358,7 @@ pub fn freitag3d_row(i: usize) -> Result<Freitag3dRow> {
         if her_measure {
             o = o.with_smart_measure(Measure::MinSine);
         }
-        let obj = smoothlab::objective::tet_objective(kind)?;
+        let obj = smoothlab::objective::solid_objective(kind)?;
         for r in smoothlab::volume::smooth_volume(&mut mesh, obj.as_ref(), o, 3, &|| 0.0)? {
             lap += r.counts.laplacian_moves;
             opt += r.counts.optimization_calls;
@@ -396,7 +396,7 @@ pub(super) fn freitag_t2(c: Canvas, t: &Theme) -> Result<Pixmap> {
     for (kind, title) in [(ObjectiveKind::Sine, "A: opt, sine, 3 passes"), (ObjectiveKind::SmoothShape, "B: opt, new, 3 passes")] {
         let mut m = m0.clone();
         let o = SmoothOptions::default().with_strategy(Strategy::Opt).with_order(Order::Input).with_smart_measure(Measure::MinSine);
-        smoothlab::volume::smooth_volume(&mut m, smoothlab::objective::tet_objective(kind)?.as_ref(), o, 3, &|| 0.0)?;
+        smoothlab::volume::smooth_volume(&mut m, smoothlab::objective::solid_objective(kind)?.as_ref(), o, 3, &|| 0.0)?;
         parts.push(cut_panel(&m, smoothlab_render::Cut::default(), title, top, t)?);
     }
     let table = table_picture("freitag-t2", Canvas { w: c.w, h: c.h.saturating_sub(top.h).max(1), dpr: c.dpr }, t)?;

@@ -3,7 +3,7 @@
 use std::fmt::Write as _;
 use std::time::Instant;
 
-use smoothlab::objective::{tet_objective, CornerStar, ObjectiveKind};
+use smoothlab::objective::{solid_objective, CornerStar, ObjectiveKind};
 use smoothlab::smooth::{DriverStar, Order, SmoothOptions, Strategy, DEFAULT_MAX_ITER};
 use smoothlab::volume::{volume_stats, VolumeMesh, VolumeSmoother};
 
@@ -103,7 +103,7 @@ pub(crate) fn measure_volume(quick: bool) -> VolumeReport {
     let rows = VOLUME_PASSES
         .iter()
         .map(|&(name, strategy, kind, order, max_iter)| {
-            let obj = tet_objective(kind).expect("a form on tetrahedra");
+            let obj = solid_objective(kind).expect("a form on tetrahedra");
             let o = SmoothOptions::default().with_strategy(strategy).with_order(order).with_max_iter(max_iter);
             let mut smoothers = [0, 1].map(|_| VolumeSmoother::new(o).expect("options"));
             // the two meshes' passes alternate, so that both see the machine as it is (the

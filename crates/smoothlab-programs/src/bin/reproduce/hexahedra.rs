@@ -5,7 +5,7 @@ use std::fmt::Write as _;
 use smoothlab::generate::{hex_grid, perturb_volume, HexBlock};
 use smoothlab::io;
 use smoothlab::model::Model;
-use smoothlab::objective::{tet_objective, ObjectiveKind};
+use smoothlab::objective::{solid_objective, ObjectiveKind};
 use smoothlab::quality::MeshStats;
 use smoothlab::smooth::{Order, SmoothOptions, Strategy};
 use smoothlab::volume::{volume_stats, VolumeMesh};
@@ -33,7 +33,7 @@ fn to_valid(mesh: &VolumeMesh, kind: ObjectiveKind, o: SmoothOptions, max: u32) 
     let mut m = mesh.clone();
     let clock = clock();
     let mut s = smoothlab::volume::VolumeSmoother::new(o).expect("valid options");
-    let objective = tet_objective(kind).expect("a 3D form");
+    let objective = solid_objective(kind).expect("a 3D form");
     let mut ms = 0.0;
     for pass in 1..=max {
         let r = s.pass(&mut m, &*objective, pass, &clock);

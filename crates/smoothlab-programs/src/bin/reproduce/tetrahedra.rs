@@ -3,7 +3,7 @@
 use std::fmt::Write as _;
 
 use smoothlab::generate::{perturb_volume, rand3d, tet_cube, RAND3D_POINTS};
-use smoothlab::objective::{tet_objective, ObjectiveKind};
+use smoothlab::objective::{solid_objective, ObjectiveKind};
 use smoothlab::smooth::{Measure, Order, PassRecord, SmoothOptions, Strategy};
 use smoothlab::volume::{smooth_volume, volume_stats, VolumeMesh};
 use smoothlab_page::lab::tour::measured::Table;
@@ -44,7 +44,7 @@ fn paper_row_2(name: &str) -> String {
 pub(crate) fn run_volume(mesh: &VolumeMesh, kind: ObjectiveKind, o: SmoothOptions, passes: u32) -> (VolumeMesh, Vec<PassRecord>) {
     let mut m = mesh.clone();
     let clock = clock();
-    let records = smooth_volume(&mut m, &*tet_objective(kind).expect("every objective of the reproduction has a form on tetrahedra"), o, passes, &clock).expect("valid options");
+    let records = smooth_volume(&mut m, &*solid_objective(kind).expect("every objective of the reproduction has a form on tetrahedra"), o, passes, &clock).expect("valid options");
     (m, records)
 }
 

@@ -1,11 +1,12 @@
-//! The objectives of one free node of a tetrahedral mesh, over its star of tetrahedra:
+//! The objectives of one free node of a volume mesh, over its star of corners (a
+//! tetrahedron is one corner; a hexahedron, wedge or pyramid is its measured corners):
 //! the planar objectives carried to solids, by the same command-line names
 //! ([`ObjectiveKind`]), behind the same [`Objective`] trait, so the same solvers and
-//! drivers run them ([`tet_objective`]). This is the 3D registry: [`tet_form`] gives a
-//! kind's form on tetrahedra, `None` for a kind that is planar only (the command line and
-//! the page then refuse it on a volume, [`tet_objective`]'s message).
+//! drivers run them ([`solid_objective`]). This is the 3D registry: [`solid_form`] gives a
+//! kind's form on solids, `None` for a kind that is planar only (the command line and
+//! the page then refuse it on a volume, [`solid_objective`]'s message).
 //!
-//! | kind | goal | terms, per tetrahedron of the star |
+//! | kind | goal | terms, per corner tetrahedron of the star |
 //! |---|---|---|
 //! | `old` | max-min | the mean ratio `q` (the 3D shape measure Chen's α generalises) |
 //! | `sine` | max-min | the signed sine of each of the six dihedral angles — Freitag 1997 |
@@ -22,9 +23,9 @@
 //! ([`CornerStar::reference`]: the mesh's element kind's W, computed once per kind).
 //! The formulas, in one notation: `docs/formulas.md` §8.
 //!
-//! `star.rs` holds the star ([`CornerStar`]). `known_solids.rs` and `tet_measures.rs`
+//! `star.rs` holds the star ([`CornerStar`]). `known_solids.rs` and `memo.rs`
 //! hold what it keeps between questions. `objectives.rs` holds the objectives
-//! ([`TetObjective`]).
+//! ([`SolidObjective`]).
 
 use super::{Objective, ObjectiveKind};
 use crate::error::{Error, Result};
@@ -34,41 +35,41 @@ mod objectives;
 mod star;
 #[cfg(test)]
 mod tests;
-mod tet_measures;
-pub(crate) use tet_measures::framed;
+mod memo;
+pub(crate) use memo::framed;
 
-pub use objectives::{RegularisedMeanRatio, TetObjective};
+pub use objectives::{RegularisedMeanRatio, SolidObjective};
 pub use star::{CornerStar, StarCorner, StarSolid};
 
 /// The 3D registry: the form of objective `kind` on tetrahedral meshes, with its default
 /// parameters, or `None` when `kind` is planar only (a kind added to [`ObjectiveKind`]
 /// gets its arm here, `None` until it has a tetrahedral form).
-pub fn tet_form(kind: ObjectiveKind) -> Option<TetObjective> {
+pub fn solid_form(kind: ObjectiveKind) -> Option<SolidObjective> {
     Some(match kind {
-        ObjectiveKind::MaxMinShape => TetObjective::MeanRatio,
-        ObjectiveKind::Sine => TetObjective::DihedralSine,
-        ObjectiveKind::SmoothShape => TetObjective::Regularised(RegularisedMeanRatio::default()),
-        ObjectiveKind::Condition => TetObjective::Condition,
-        ObjectiveKind::ConditionMax => TetObjective::ConditionMax,
-        ObjectiveKind::Untangle => TetObjective::Untangle { beta: super::UNTANGLE_BETA },
-        ObjectiveKind::UntangleMinDet => TetObjective::MinDet,
+        ObjectiveKind::MaxMinShape => SolidObjective::MeanRatio,
+        ObjectiveKind::Sine => SolidObjective::DihedralSine,
+        ObjectiveKind::SmoothShape => SolidObjective::Regularised(RegularisedMeanRatio::default()),
+        ObjectiveKind::Condition => SolidObjective::Condition,
+        ObjectiveKind::ConditionMax => SolidObjective::ConditionMax,
+        ObjectiveKind::Untangle => SolidObjective::Untangle { beta: super::UNTANGLE_BETA },
+        ObjectiveKind::UntangleMinDet => SolidObjective::MinDet,
     })
 }
 
-/// The objective kinds that have a form on tetrahedra ([`tet_form`]), in
+/// The objective kinds that have a form on tetrahedra ([`solid_form`]), in
 /// [`ObjectiveKind::ALL`]'s order: the choices on a volume.
-pub fn tet_kinds() -> impl Iterator<Item = ObjectiveKind> {
-    ObjectiveKind::ALL.into_iter().filter(|&k| tet_form(k).is_some())
+pub fn solid_kinds() -> impl Iterator<Item = ObjectiveKind> {
+    ObjectiveKind::ALL.into_iter().filter(|&k| solid_form(k).is_some())
 }
 
-/// The objective of `kind` for tetrahedral meshes ([`tet_form`]), boxed for the drivers;
+/// The objective of `kind` for tetrahedral meshes ([`solid_form`]), boxed for the drivers;
 /// refused, naming the kinds that have a tetrahedral form, when `kind` is planar only.
-pub fn tet_objective(kind: ObjectiveKind) -> Result<Box<dyn Objective<CornerStar> + Send + Sync>> {
-    match tet_form(kind) {
+pub fn solid_objective(kind: ObjectiveKind) -> Result<Box<dyn Objective<CornerStar> + Send + Sync>> {
+    match solid_form(kind) {
         Some(o) => Ok(Box::new(o)),
         None => Err(Error::Invalid(format!(
             "the objective {kind} is planar only: on tetrahedra choose {}",
-            tet_kinds().map(|k| k.name()).collect::<Vec<_>>().join(", ")
+            solid_kinds().map(|k| k.name()).collect::<Vec<_>>().join(", ")
         ))),
     }
 }
@@ -76,6 +77,6 @@ pub fn tet_objective(kind: ObjectiveKind) -> Result<Box<dyn Objective<CornerStar
 /// What the objective of `kind` is on tetrahedra, in a few words for people (the page's
 /// headings of a tetrahedral mesh; the planar words are [`ObjectiveKind::describe`]);
 /// `None` when `kind` is planar only.
-pub fn describe_tet(kind: ObjectiveKind) -> Option<&'static str> {
-    tet_form(kind).map(|o| o.describe())
+pub fn describe_solid(kind: ObjectiveKind) -> Option<&'static str> {
+    solid_form(kind).map(|o| o.describe())
 }

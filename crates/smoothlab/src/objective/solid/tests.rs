@@ -30,7 +30,7 @@ fn regular_star() -> CornerStar {
 #[test]
 fn values_on_the_regular_tetrahedron_by_hand() {
     let s = regular_star();
-    let v = |k| tet_objective(k).unwrap().value(&s, DVec3::ZERO);
+    let v = |k| solid_objective(k).unwrap().value(&s, DVec3::ZERO);
     // q = η = 1: (1 − 1)² + k1·1²
     assert!((v(ObjectiveKind::SmoothShape) - BARRIER_WEIGHT).abs() < 1e-13);
     assert!((v(ObjectiveKind::MaxMinShape) - 1.0).abs() < 1e-14);
@@ -42,7 +42,7 @@ fn values_on_the_regular_tetrahedron_by_hand() {
     assert!((v(ObjectiveKind::UntangleMinDet) - 1.0 / 2f64.sqrt()).abs() < 1e-14);
     // the regular apex is a stationary point of the smooth objectives
     for k in [ObjectiveKind::SmoothShape, ObjectiveKind::Condition] {
-        let (_, g) = tet_objective(k).unwrap().value_and_gradient(&s, DVec3::ZERO);
+        let (_, g) = solid_objective(k).unwrap().value_and_gradient(&s, DVec3::ZERO);
         // a single tetrahedron: moving the apex changes the shape, and the regular
         // one is the best, so the gradient vanishes
         assert!(g.length() < 1e-12, "{k}: {g}");
@@ -63,8 +63,8 @@ fn gradients_agree_with_central_differences() {
             continue;
         }
         let x = x0 + point(&mut rng) * 0.01;
-        for k in tet_kinds() {
-            let obj = tet_objective(k).unwrap();
+        for k in solid_kinds() {
+            let obj = solid_objective(k).unwrap();
             let mut terms = Vec::new();
             obj.terms(&star, x, &mut terms);
             for (i, t) in terms.iter().enumerate() {
@@ -204,8 +204,8 @@ fn terms_above_answers_as_the_terms_do() {
         let x0 = point(&mut rng);
         let star = if round % 2 == 0 { random_star(&mut rng, 5, x0) } else { random_mixed_star(&mut rng, 5, x0) };
         let x = x0 + point(&mut rng) * 0.2;
-        for k in tet_kinds() {
-            let obj = tet_objective(k).unwrap();
+        for k in solid_kinds() {
+            let obj = solid_objective(k).unwrap();
             let mut all = Vec::new();
             obj.terms(&star, x, &mut all);
             let min = all.iter().fold(f64::INFINITY, |m, t| m.min(t.value));
@@ -228,7 +228,7 @@ fn terms_above_answers_as_the_terms_do() {
 
 #[test]
 fn hessian_of_new_agrees_with_central_differences() {
-    let obj = tet_objective(ObjectiveKind::SmoothShape).unwrap();
+    let obj = solid_objective(ObjectiveKind::SmoothShape).unwrap();
     let mut rng = SplitMix64::new(13);
     let (h, mut checked, mut tangled) = (1e-6, 0, 0);
     for round in 0..120 {
@@ -260,13 +260,13 @@ fn hessian_of_new_agrees_with_central_differences() {
     }
     assert!(checked > 60 && tangled > 10, "{checked} {tangled}");
     // the max-min objectives have no Hessian
-    assert!(tet_objective(ObjectiveKind::MaxMinShape).unwrap().value_gradient_hessian(&regular_star(), DVec3::ZERO).is_none());
+    assert!(solid_objective(ObjectiveKind::MaxMinShape).unwrap().value_gradient_hessian(&regular_star(), DVec3::ZERO).is_none());
 }
 
 #[test]
 fn new_is_finite_on_a_tangled_star_and_a_barrier_on_a_valid_one() {
     let mut rng = SplitMix64::new(9);
-    let obj = tet_objective(ObjectiveKind::SmoothShape).unwrap();
+    let obj = solid_objective(ObjectiveKind::SmoothShape).unwrap();
     let mut tangled_seen = 0;
     for _ in 0..50 {
         let x0 = point(&mut rng);
@@ -295,7 +295,7 @@ fn scaled_star_keeps_shape_values() {
     let big = star.scaled(f);
     assert_eq!(big.size(), star.size() * f);
     for k in [ObjectiveKind::SmoothShape, ObjectiveKind::MaxMinShape, ObjectiveKind::Sine, ObjectiveKind::Condition] {
-        let (a, b) = (tet_objective(k).unwrap().value(&star, star.x0), tet_objective(k).unwrap().value(&big, big.x0));
+        let (a, b) = (solid_objective(k).unwrap().value(&star, star.x0), solid_objective(k).unwrap().value(&big, big.x0));
         assert!((a - b).abs() <= 1e-12 * a.abs().max(1.0), "{k}: {a} {b}");
     }
 }

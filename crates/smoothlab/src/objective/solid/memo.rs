@@ -15,14 +15,14 @@ use crate::quality::tet::{self as q3, CornerReference};
 /// measure taking it would give, bit for bit; a gather forgets them
 /// ([`clear`](Self::clear)).
 #[derive(Clone, Debug, Default)]
-pub(crate) struct TetMeasures {
+pub(crate) struct TetMeasureMemo {
     /// The positions held (their bits), and which of the two was asked last.
     at: [Option<[u64; 3]>; 2],
     last: usize,
     measures: [Vec<(q3::MeanRatioParts, q3::TetRuleMeasures)>; 2],
 }
 
-impl TetMeasures {
+impl TetMeasureMemo {
     /// Forgets the positions held (the star's corners are gathered anew).
     pub(crate) fn clear(&mut self) {
         self.at = [None, None];
@@ -74,7 +74,7 @@ mod tests {
     use crate::objective::{CornerStar, NodeStar};
     use crate::quality::tet::EQUILATERAL_TET;
 
-    /// The tetrahedra's measures a star keeps for two positions ([`TetMeasures`]) are those
+    /// The tetrahedra's measures a star keeps for two positions ([`TetMeasureMemo`]) are those
     /// measured afresh: the smart Laplacian's test then the acceptance rule at the same
     /// positions, a third position in place of one, and the star moved there and back (as
     /// a kept move and the rule's regather do), each rule's verdict the same as a fresh
@@ -97,7 +97,7 @@ mod tests {
         let (mut star, mut checked, mut moved) = (CornerStar::default(), 0, 0);
         for n in (0..mesh.node_count()).filter(|&n| mesh.is_free(n)) {
             star.gather_for_measures(&mesh, n);
-            assert_eq!(star.tet_measures.borrow().at, [None, None], "a gather forgets");
+            assert_eq!(star.tet_memo.borrow().at, [None, None], "a gather forgets");
             let x0 = star.x0;
             let h = star.size();
             let mut near = || x0 + h * 0.3 * DVec3::new(rng.next_f64() - 0.5, rng.next_f64() - 0.5, rng.next_f64() - 0.5);
@@ -110,7 +110,7 @@ mod tests {
             star.restar(x0);
             assert_eq!(star.verdict(c, Measure::Shape), fresh(n, c), "node {n}");
             // what is held is what measuring gives
-            let memo = star.tet_measures.borrow();
+            let memo = star.tet_memo.borrow();
             assert!(memo.at.iter().all(|a| a.is_some()), "node {n}");
             for (i, at) in memo.at.iter().enumerate().filter_map(|(i, a)| Some((i, (*a)?))) {
                 let at = DVec3::new(f64::from_bits(at[0]), f64::from_bits(at[1]), f64::from_bits(at[2]));

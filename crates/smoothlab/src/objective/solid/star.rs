@@ -4,7 +4,7 @@
 use glam::DVec3;
 
 use super::known_solids::{KnownSolids, PositionMemo};
-use super::tet_measures::TetMeasures;
+use super::memo::TetMeasureMemo;
 use crate::mesh::VolumeKind;
 use crate::objective::NodeStar;
 use crate::quality::solid::{validity, CornerShapes, CornerSizes, DetForm, ValidBall, Validity};
@@ -329,7 +329,7 @@ pub struct CornerStar {
     /// What the stars gathered before measured of their elements other than tetrahedra.
     pub(crate) known: KnownSolids,
     /// The tetrahedra's measures at the positions the drivers asked last.
-    pub(crate) tet_measures: std::cell::RefCell<TetMeasures>,
+    pub(crate) tet_memo: std::cell::RefCell<TetMeasureMemo>,
     /// Per corner, where the mesh has targets other than the ideal
     /// ([`VolumeMesh::target_nodes`](crate::volume::VolumeMesh::target_nodes); empty
     /// otherwise): the reference its target gives ([`crate::target::solid_reference`]).
@@ -364,7 +364,7 @@ impl CornerStar {
             elements: Vec::new(),
             forms_pending_at: None,
             known: KnownSolids::default(),
-            tet_measures: Default::default(),
+            tet_memo: Default::default(),
             targets: Vec::new(),
             tangent: crate::volume::Tangent::Free,
         }
@@ -559,7 +559,7 @@ impl NodeStar for CornerStar {
     fn scaled(&self, f: f64) -> Self {
         let mut s = self.clone();
         s.complete_forms();
-        s.tet_measures.get_mut().clear();
+        s.tet_memo.get_mut().clear();
         s.x0 *= f;
         for (i, t) in s.tets.iter_mut().enumerate() {
             // the form from where the star in mesh units took it (its origin), so both

@@ -1,4 +1,4 @@
-//! The objectives of a tetrahedral star, as one enum ([`TetObjective`]).
+//! The objectives of a tetrahedral star, as one enum ([`SolidObjective`]).
 //! Its `new` is the regularised mean ratio ([`RegularisedMeanRatio`]).
 
 use glam::{DMat3, DVec3};
@@ -42,7 +42,7 @@ impl Default for RegularisedMeanRatio {
 
 /// The objectives of a tetrahedral star (see the module docs).
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub enum TetObjective {
+pub enum SolidObjective {
     MeanRatio,
     DihedralSine,
     Regularised(RegularisedMeanRatio),
@@ -149,29 +149,29 @@ impl RegularisedMeanRatio {
     }
 }
 
-impl TetObjective {
-    /// What it is, in a few words for people ([`describe_tet`](super::describe_tet)).
+impl SolidObjective {
+    /// What it is, in a few words for people ([`describe_solid`](super::describe_solid)).
     pub fn describe(&self) -> &'static str {
         match self {
-            TetObjective::MeanRatio => "max-min mean ratio (Freitag's ascent)",
-            TetObjective::DihedralSine => "max-min dihedral sine (Freitag)",
-            TetObjective::Regularised(_) => "Chen, Tristano & Kwok in 3D (Fletcher–Reeves)",
-            TetObjective::Condition => "condition number κ, 2-norm (Knupp)",
-            TetObjective::ConditionMax => "condition number κ, worst tetrahedron (Knupp)",
-            TetObjective::Untangle { .. } => "untangling Σ(|6V| − 6V) (Knupp)",
-            TetObjective::MinDet => "max-min 6V (Knupp & Freitag)",
+            SolidObjective::MeanRatio => "max-min mean ratio (Freitag's ascent)",
+            SolidObjective::DihedralSine => "max-min dihedral sine (Freitag)",
+            SolidObjective::Regularised(_) => "Chen, Tristano & Kwok in 3D (Fletcher–Reeves)",
+            SolidObjective::Condition => "condition number κ, 2-norm (Knupp)",
+            SolidObjective::ConditionMax => "condition number κ, worst tetrahedron (Knupp)",
+            SolidObjective::Untangle { .. } => "untangling Σ(|6V| − 6V) (Knupp)",
+            SolidObjective::MinDet => "max-min 6V (Knupp & Freitag)",
         }
     }
 
     fn kind(&self) -> ObjectiveKind {
         match self {
-            TetObjective::MeanRatio => ObjectiveKind::MaxMinShape,
-            TetObjective::DihedralSine => ObjectiveKind::Sine,
-            TetObjective::Regularised(_) => ObjectiveKind::SmoothShape,
-            TetObjective::Condition => ObjectiveKind::Condition,
-            TetObjective::ConditionMax => ObjectiveKind::ConditionMax,
-            TetObjective::Untangle { .. } => ObjectiveKind::Untangle,
-            TetObjective::MinDet => ObjectiveKind::UntangleMinDet,
+            SolidObjective::MeanRatio => ObjectiveKind::MaxMinShape,
+            SolidObjective::DihedralSine => ObjectiveKind::Sine,
+            SolidObjective::Regularised(_) => ObjectiveKind::SmoothShape,
+            SolidObjective::Condition => ObjectiveKind::Condition,
+            SolidObjective::ConditionMax => ObjectiveKind::ConditionMax,
+            SolidObjective::Untangle { .. } => ObjectiveKind::Untangle,
+            SolidObjective::MinDet => ObjectiveKind::UntangleMinDet,
         }
     }
 
@@ -209,7 +209,7 @@ impl TetObjective {
         simplex: impl Fn(&StarCorner) -> bool,
     ) {
         match *self {
-            TetObjective::Regularised(r) => {
+            SolidObjective::Regularised(r) => {
                 let delta = r.delta(star);
                 for (i, t) in star.tets.iter().enumerate() {
                     let (value, grad, _) =
@@ -221,16 +221,16 @@ impl TetObjective {
                     });
                 }
             }
-            TetObjective::MeanRatio
-            | TetObjective::DihedralSine
-            | TetObjective::Condition
-            | TetObjective::ConditionMax
-            | TetObjective::MinDet => {
+            SolidObjective::MeanRatio
+            | SolidObjective::DihedralSine
+            | SolidObjective::Condition
+            | SolidObjective::ConditionMax
+            | SolidObjective::MinDet => {
                 for (i, t) in star.tets.iter().enumerate() {
                     self.corner_terms(t, i as u32, x, reference(i), simplex(t), &mut emit);
                 }
             }
-            TetObjective::Untangle { beta } => {
+            SolidObjective::Untangle { beta } => {
                 // β: a fraction of the star's mean |6V| as gathered, one constant per solve
                 let shift = if star.tets.is_empty() {
                     0.0
@@ -259,7 +259,7 @@ impl TetObjective {
     }
 }
 
-impl TetObjective {
+impl SolidObjective {
     /// The terms of one corner (index `i` in the star) at `x`, for the objectives whose
     /// terms are the corners' own (every kind but `new` and `untangle`, which read the
     /// whole star for δ and β), against reference `r`, `simplex` when it is a whole
@@ -275,7 +275,7 @@ impl TetObjective {
         emit: &mut impl FnMut(Term<DVec3>),
     ) {
         match *self {
-            TetObjective::MeanRatio => {
+            SolidObjective::MeanRatio => {
                 // of the corners themselves, not the form: the max-min ascent follows its
                 // active set, which rounding can change (on a tangled mesh, the whole path)
                 let (value, grad) = q3::mean_ratio_grad0(&t.at(x), r);
@@ -285,7 +285,7 @@ impl TetObjective {
                     grad,
                 });
             }
-            TetObjective::DihedralSine => {
+            SolidObjective::DihedralSine => {
                 if simplex {
                     for (value, grad) in q3::dihedral_sines_grad0(&t.at(x)) {
                         emit(Term {
@@ -304,8 +304,8 @@ impl TetObjective {
                     });
                 }
             }
-            TetObjective::Condition | TetObjective::ConditionMax => {
-                let max = matches!(self, TetObjective::ConditionMax);
+            SolidObjective::Condition | SolidObjective::ConditionMax => {
+                let max = matches!(self, SolidObjective::ConditionMax);
                 let p = t.at(x);
                 let (kappa, g) = q3::condition_number_grad0(&p, r);
                 // behind the barrier (σ ≤ 0, or κ² beyond it): a huge finite value with
@@ -325,7 +325,7 @@ impl TetObjective {
                     grad,
                 });
             }
-            TetObjective::MinDet => {
+            SolidObjective::MinDet => {
                 let (value, grad) = t.form.volume6_at(x, r);
                 emit(Term {
                     elem: i,
@@ -333,7 +333,7 @@ impl TetObjective {
                     grad,
                 });
             }
-            TetObjective::Regularised(_) | TetObjective::Untangle { .. } => {
+            SolidObjective::Regularised(_) | SolidObjective::Untangle { .. } => {
                 unreachable!("read the whole star")
             }
         }
@@ -398,7 +398,7 @@ impl TetObjective {
     }
 }
 
-impl Objective<CornerStar> for TetObjective {
+impl Objective<CornerStar> for SolidObjective {
     fn name(&self) -> &'static str {
         self.kind().name()
     }
@@ -415,7 +415,7 @@ impl Objective<CornerStar> for TetObjective {
         self.visit(star, x, |t| out.push(t));
     }
     fn value_and_gradient(&self, star: &CornerStar, x: DVec3) -> (f64, DVec3) {
-        if let TetObjective::Regularised(r) = self {
+        if let SolidObjective::Regularised(r) = self {
             let (v, g, _) = r.sum::<false>(star, x);
             return (v, g);
         }
@@ -442,7 +442,7 @@ impl Objective<CornerStar> for TetObjective {
     /// first trial; `None` for the others.
     fn value_gradient_hessian(&self, star: &CornerStar, x: DVec3) -> Option<(f64, DVec3, DMat3)> {
         match self {
-            TetObjective::Regularised(r) => Some(r.sum::<true>(star, x)),
+            SolidObjective::Regularised(r) => Some(r.sum::<true>(star, x)),
             _ => None,
         }
     }
