@@ -384,7 +384,8 @@ pub fn rand3d(n: usize, seed: u64) -> Result<VolumeMesh> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::quality::tet::{signed_volume, tet_measures};
+    use crate::quality::solid::tet_measures;
+    use crate::quality::tet::signed_volume;
 
     /// Circumcentre and squared radius of a tetrahedron.
     fn circumsphere(t: [DVec3; 4]) -> (DVec3, f64) {

@@ -12,12 +12,13 @@
 //!   of the quadratic edge at the given node"); for a straight edge this is exactly
 //!   `P2 − P0`, so linear and quadratic agree (dets and lengths included).
 
-use glam::DVec2;
+use glam::{DMat2, DVec2};
 use serde::Serialize;
 
 use crate::mesh::ElementKind;
 use crate::numeric::{is_beyond_safe_scale, to_unit_scale, SAFE_SCALE};
 
+pub mod metric;
 mod reading;
 pub mod solid;
 mod stats;
@@ -234,11 +235,12 @@ pub fn condition_number(e1: DVec2, e2: DVec2, ideal: Ideal) -> f64 {
         return condition_number(e1, e2, ideal);
     }
     let (t1, t2) = weighted_columns(e1, e2, ideal);
-    let det = t1.perp_dot(t2);
-    if det <= 0.0 {
+    let t = DMat2::from_cols(t1, t2);
+    // the barrier: an inverted corner is not its mirror image here
+    if t.determinant() <= 0.0 {
         return f64::INFINITY;
     }
-    (t1.length_squared() + t2.length_squared()) / det
+    metric::condition_number(&t)
 }
 
 /// Knupp's corner condition number with its partial gradients,
@@ -283,15 +285,8 @@ pub fn scaled_jacobian_gradient(e1: DVec2, e2: DVec2) -> (f64, DVec2, DVec2) {
 /// (its gradient left zero when `GRADIENT` is false).
 #[inline(always)]
 fn sine_and_gradient<const GRADIENT: bool>(e1: DVec2, e2: DVec2, l1: f64, l2: f64) -> (f64, DVec2, DVec2) {
-    let l = (l1 * l2).sqrt();
-    if l <= 0.0 {
-        return (0.0, DVec2::ZERO, DVec2::ZERO);
-    }
-    let s = e1.perp_dot(e2) / l;
-    if !GRADIENT {
-        return (s, DVec2::ZERO, DVec2::ZERO);
-    }
-    (s, -e2.perp() / l - s * e1 / l1, e1.perp() / l - s * e2 / l2)
+    let (s, g) = metric::scaled_jacobian_with::<_, GRADIENT>(&DMat2::from_cols(e1, e2), |i| [l1, l2][i]);
+    (s, g.x_axis, g.y_axis)
 }
 
 /// Columns of `T = [e1 e2]·W⁻¹`. For the triangle `W⁻¹ = [[1, −1/√3], [0, 2/√3]]`.
@@ -311,11 +306,7 @@ pub fn scaled_jacobian(e1: DVec2, e2: DVec2) -> f64 {
     if let Some((e1, e2, _)) = beyond_safe_scale(e1, e2) {
         return scaled_jacobian(e1, e2);
     }
-    let l = e1.length() * e2.length();
-    if l <= 0.0 {
-        return 0.0;
-    }
-    e1.perp_dot(e2) / l
+    metric::scaled_jacobian(&DMat2::from_cols(e1, e2))
 }
 
 /// Edge vectors `(e1, e2)` at each corner of an element, from its node coordinates in

@@ -442,12 +442,7 @@ pub fn outer(a: DVec3, b: DVec3) -> DMat3 {
 /// growing without bound as it degenerates; +∞ for zero volume. An inverted corner has
 /// the κ of its mirror image: the objectives put their barrier on the sign of the volume.
 pub fn condition_number(p: &[DVec3; 4], r: &CornerReference) -> f64 {
-    let t = weighted_jacobian(&in_unit_scale(p), r);
-    let det = t.determinant();
-    if det == 0.0 || !det.is_finite() {
-        return if det.is_nan() { f64::NAN } else { f64::INFINITY };
-    }
-    (frobenius2(&t) * frobenius2(&t.inverse())).sqrt()
+    super::metric::condition_number(&weighted_jacobian(&in_unit_scale(p), r))
 }
 
 /// [`condition_number`] with its gradient with respect to corner 0. With `F = ‖T‖²`,
@@ -497,11 +492,7 @@ impl MeanRatioParts {
     /// [`mean_ratio`].
     #[inline]
     pub fn mean_ratio(&self) -> f64 {
-        if self.frob2 == 0.0 {
-            return 0.0;
-        }
-        let c = self.sigma.cbrt();
-        3.0 * c * c.abs() / self.frob2
+        super::metric::mean_ratio_of::<DMat3>(self.frob2, self.sigma)
     }
     /// [`mean_ratio_order`].
     #[inline]
@@ -538,53 +529,11 @@ pub fn mean_ratio_grad0(p: &[DVec3; 4], r: &CornerReference) -> (f64, DVec3) {
 /// [`CornerForm`] at a trial position).
 #[inline]
 pub fn mean_ratio_grad(j: &WeightedJacobian) -> (f64, DVec3) {
-    if j.frob2 == 0.0 {
-        return (0.0, DVec3::ZERO);
-    }
-    let c = j.sigma.cbrt();
-    let q = 3.0 * c * c.abs() / j.frob2;
-    if j.sigma == 0.0 {
-        return (q, DVec3::ZERO);
-    }
-    (q, q * ((2.0 / 3.0) * j.grad_sigma / j.sigma - j.grad_frob2 / j.frob2))
-}
-
-/// Every measure of one tetrahedron, for statistics.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct TetMeasures {
-    pub volume: f64,
-    /// Smallest and largest dihedral angle, degrees.
-    pub min_dihedral_deg: f64,
-    pub max_dihedral_deg: f64,
-    /// Smallest signed sine of a dihedral angle.
-    pub min_sine: f64,
-    /// Knupp's κ.
-    pub condition: f64,
-    pub mean_ratio: f64,
-    pub inverted: bool,
-    /// The six dihedral angles, degrees.
-    pub dihedral_deg: [f64; 6],
-}
-
-/// [`TetMeasures`] of one tetrahedron, κ and the mean ratio against reference `r` (a
-/// linear tetrahedron's: [`EQUILATERAL_TET`]).
-pub fn tet_measures(p: &[DVec3; 4], r: &CornerReference) -> TetMeasures {
-    let dihedral_deg = dihedral_angles(p).map(f64::to_degrees);
-    let volume = signed_volume(p);
-    TetMeasures {
-        volume,
-        inverted: is_inverted(p),
-        min_dihedral_deg: dihedral_deg.iter().copied().fold(f64::INFINITY, f64::min),
-        max_dihedral_deg: dihedral_deg.iter().copied().fold(f64::NEG_INFINITY, f64::max),
-        min_sine: dihedral_sines(p).into_iter().fold(f64::INFINITY, f64::min),
-        condition: condition_number(p, r),
-        mean_ratio: mean_ratio(p, r),
-        dihedral_deg,
-    }
+    super::metric::mean_ratio_chain::<DMat3, _>(j.frob2, j.grad_frob2, j.sigma, j.grad_sigma)
 }
 
 /// The tetrahedra of a 10-node tetrahedron's Jacobian at its four corners (see
-/// [`tet10_measures`]): corner `i` first (an even permutation, as [`with_first`]), then
+/// [`tet10_measures`](crate::quality::solid::tet10_measures)): corner `i` first (an even permutation, as [`with_first`]), then
 /// `x_i` plus the tangents `4·m_ik − 3·x_i − x_k` of its three edges.
 pub fn tet10_corner_tets(p: &[DVec3; 10]) -> [[DVec3; 4]; 4] {
     // the mid-edge node of edge (i, k)
@@ -595,29 +544,6 @@ pub fn tet10_corner_tets(p: &[DVec3; 10]) -> [[DVec3; 4]; 4] {
         let x = p[i];
         order.map(|k| if k == i { x } else { x + (4.0 * p[MID[i][k]] - 3.0 * x - p[k]) })
     })
-}
-
-/// [`TetMeasures`] of a 10-node tetrahedron `p` (corners 0–3, then the mid-edge nodes
-/// of edges 01, 12, 02, 03, 13, 23, VTK's order), measured with its mid-edge nodes: at
-/// each corner the tetrahedron of the element's Jacobian there — the corner and its three
-/// edges' tangents `4·m − 3·x_i − x_k` (Knupp's corner view; the edge itself when its
-/// mid-edge node is at its middle) — and the worst of the four by the mean ratio (an
-/// inverted one first). A straight 10-node tetrahedron measures as its corners do (but
-/// for rounding); one whose mid-edge node sits far off its edge measures as bent. κ and
-/// the mean ratio against reference `r` ([`EQUILATERAL_TET`]).
-pub fn tet10_measures(p: &[DVec3; 10], r: &CornerReference) -> TetMeasures {
-    let mut worst: Option<TetMeasures> = None;
-    for corner in tet10_corner_tets(p) {
-        let m = tet_measures(&corner, r);
-        let worse = match &worst {
-            None => true,
-            Some(w) => (m.inverted && !w.inverted) || (m.inverted == w.inverted && m.mean_ratio < w.mean_ratio),
-        };
-        if worse {
-            worst = Some(m);
-        }
-    }
-    worst.expect("four corners")
 }
 
 #[cfg(test)]
@@ -638,8 +564,8 @@ mod tests {
     fn mean_ratio_grad0(p: &[DVec3; 4]) -> (f64, DVec3) {
         super::mean_ratio_grad0(p, R)
     }
-    fn tet_measures(p: &[DVec3; 4]) -> TetMeasures {
-        super::tet_measures(p, R)
+    fn tet_measures(p: &[DVec3; 4]) -> crate::quality::solid::SolidMeasures {
+        crate::quality::solid::tet_measures(p, R)
     }
 
     fn regular() -> [DVec3; 4] {
@@ -862,7 +788,10 @@ mod tests {
         let m = tet_measures(&corner());
         assert!((m.min_dihedral_deg - 54.735_610_317_245_35).abs() < 1e-10);
         assert!((m.max_dihedral_deg - 90.0).abs() < 1e-12);
-        assert!(!m.inverted && (m.volume - 1.0 / 6.0).abs() < 1e-16);
+        assert!(!m.inverted && (signed_volume(&corner()) - 1.0 / 6.0).abs() < 1e-16);
+        assert_eq!(m.dihedral().len(), 6);
+        // every corner of the regular tetrahedron is its target's
+        assert!((tet_measures(&regular()).scaled_jacobian - 1.0).abs() < 1e-15);
         assert!((m.min_sine - (2.0f64 / 3.0).sqrt()).abs() < 1e-14);
     }
 

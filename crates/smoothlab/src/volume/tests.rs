@@ -227,7 +227,8 @@ fn statistics_are_the_same_at_every_scale() {
 /// mid-edge node crosses its far corner's plane as inverted.
 #[test]
 fn a_ten_node_tetrahedron_is_measured_with_its_mid_edge_nodes() {
-    use crate::quality::tet::{tet10_measures, tet_measures, CornerReference, EQUILATERAL_TET};
+    use crate::quality::solid::{tet10_measures, tet_measures};
+    use crate::quality::tet::{CornerReference, EQUILATERAL_TET};
     const R: &CornerReference = &EQUILATERAL_TET;
     let c = [DVec3::ZERO, DVec3::X, DVec3::Y, DVec3::Z];
     let mut p = [DVec3::ZERO; 10];

@@ -5,7 +5,7 @@ use glam::DVec3;
 use super::{corner_tet, in_unit_scale, validity, Validity};
 use crate::mesh::VolumeKind;
 use crate::quality::tet::{self as q3, CornerReference};
-use crate::quality::Reading;
+use crate::quality::{metric, Reading};
 
 /// The scaled Jacobian of a corner, `det T/(‖t₁‖·‖t₂‖·‖t₃‖)` with `T = A·W⁻¹`: 1 at the
 /// ideal corner, in [−1, 1], negative when inverted (the 3D sine of a corner: the volume of
@@ -15,11 +15,11 @@ use crate::quality::Reading;
 /// corner of unit edges beside one of 2^660 does not underflow.
 pub fn scaled_jacobian(p: &[DVec3; 4], r: &CornerReference) -> f64 {
     let t = q3::weighted_jacobian(&q3::in_unit_scale(p), r);
-    let n = t.x_axis.length() * t.y_axis.length() * t.z_axis.length();
+    let n = metric::column_length_product(&t);
     if !(2f64.powi(-600)..=2f64.powi(600)).contains(&n) {
         return scaled_jacobian_of_columns_near_unit(t);
     }
-    t.determinant() / n
+    metric::scaled_jacobian_over(&t, n)
 }
 
 /// [`scaled_jacobian`] of a weighted Jacobian whose column lengths multiply to beyond
@@ -29,11 +29,11 @@ pub fn scaled_jacobian(p: &[DVec3; 4], r: &CornerReference) -> f64 {
 fn scaled_jacobian_of_columns_near_unit(t: glam::DMat3) -> f64 {
     let unit = crate::numeric::near_unit_vector;
     let t = glam::DMat3::from_cols(unit(t.x_axis), unit(t.y_axis), unit(t.z_axis));
-    let n = t.x_axis.length() * t.y_axis.length() * t.z_axis.length();
-    if n == 0.0 || !n.is_finite() {
+    let n = metric::column_length_product(&t);
+    if !n.is_finite() {
         return 0.0;
     }
-    t.determinant() / n
+    metric::scaled_jacobian_over(&t, n)
 }
 
 /// [`scaled_jacobian`] with its gradient with respect to corner 0: with `s = W⁻ᵀ𝟙`, every
@@ -85,43 +85,67 @@ impl SolidMeasures {
     }
 }
 
+/// [`SolidMeasures`] of one tetrahedron: κ and the mean ratio against reference `r` (a
+/// linear tetrahedron's: [`q3::EQUILATERAL_TET`]), the scaled Jacobian the smallest of its
+/// four corners'.
+pub fn tet_measures(p: &[DVec3; 4], r: &CornerReference) -> SolidMeasures {
+    let sj = (0..4).map(|c| scaled_jacobian(&q3::with_first(p, c), r)).fold(f64::INFINITY, f64::min);
+    tet_measures_with(p, r, sj)
+}
+
+/// [`tet_measures`] with its scaled Jacobian `sj` given.
+fn tet_measures_with(p: &[DVec3; 4], r: &CornerReference, sj: f64) -> SolidMeasures {
+    let six = q3::dihedral_angles(p).map(f64::to_degrees);
+    let mut dihedral_deg = [0.0; 24];
+    dihedral_deg[..6].copy_from_slice(&six);
+    SolidMeasures {
+        inverted: q3::is_inverted(p),
+        inverted_inside: false,
+        min_dihedral_deg: six.iter().copied().fold(f64::INFINITY, f64::min),
+        max_dihedral_deg: six.iter().copied().fold(f64::NEG_INFINITY, f64::max),
+        min_sine: q3::dihedral_sines(p).into_iter().fold(f64::INFINITY, f64::min),
+        condition: q3::condition_number(p, r),
+        mean_ratio: q3::mean_ratio(p, r),
+        scaled_jacobian: sj,
+        dihedral_deg,
+        dihedral_count: 6,
+    }
+}
+
+/// [`SolidMeasures`] of a 10-node tetrahedron `p` (corners 0–3, then the mid-edge nodes
+/// of edges 01, 12, 02, 03, 13, 23, VTK's order), measured with its mid-edge nodes: at
+/// each corner the tetrahedron of the element's Jacobian there — the corner and its three
+/// edges' tangents `4·m − 3·x_i − x_k` (Knupp's corner view; the edge itself when its
+/// mid-edge node is at its middle) — and the worst of the four by the mean ratio (an
+/// inverted one first). A straight 10-node tetrahedron measures as its corners do (but
+/// for rounding); one whose mid-edge node sits far off its edge measures as bent. κ and
+/// the mean ratio against reference `r` ([`q3::EQUILATERAL_TET`]); its scaled Jacobian the
+/// smallest of the four's, as a mid-edge node that inverts one makes it ≤ 0.
+pub fn tet10_measures(p: &[DVec3; 10], r: &CornerReference) -> SolidMeasures {
+    let corners = q3::tet10_corner_tets(p);
+    // the Jacobian's scaled Jacobian at each corner: its corner tetrahedron's at corner 0
+    let sj = corners.iter().map(|t| scaled_jacobian(t, r)).fold(f64::INFINITY, f64::min);
+    let mut worst: Option<SolidMeasures> = None;
+    for corner in &corners {
+        let m = tet_measures_with(corner, r, sj);
+        let worse = match &worst {
+            None => true,
+            Some(w) => (m.inverted && !w.inverted) || (m.inverted == w.inverted && m.mean_ratio < w.mean_ratio),
+        };
+        if worse {
+            worst = Some(m);
+        }
+    }
+    worst.expect("four corners")
+}
+
 /// [`SolidMeasures`] of an element of `kind` with nodes `p` (all its nodes, in the kind's
 /// order).
 pub fn solid_measures(kind: VolumeKind, p: &[DVec3]) -> SolidMeasures {
     let r = kind.reference();
-    let sj_min = |ts: &mut dyn Iterator<Item = [DVec3; 4]>, r: &CornerReference| ts.map(|t| scaled_jacobian(&t, r)).fold(f64::INFINITY, f64::min);
     match kind {
-        VolumeKind::Tet4 | VolumeKind::Tet10 => {
-            // a 10-node tetrahedron's every measure over the same four tetrahedra, its
-            // Jacobian's at the corners (mid-edge nodes included): one inverted by a
-            // mid-edge node has a scaled Jacobian ≤ 0 as its mean ratio is
-            let (m, sj) = match kind {
-                VolumeKind::Tet4 => {
-                    let corners = [p[0], p[1], p[2], p[3]];
-                    let sj = sj_min(&mut (0..4).map(|c| q3::with_first(&corners, c)), r);
-                    (q3::tet_measures(&corners, r), sj)
-                }
-                _ => {
-                    let p10: [DVec3; 10] = std::array::from_fn(|j| p[j]);
-                    let sj = sj_min(&mut q3::tet10_corner_tets(&p10).into_iter(), r);
-                    (q3::tet10_measures(&p10, r), sj)
-                }
-            };
-            let mut dihedral_deg = [0.0; 24];
-            dihedral_deg[..6].copy_from_slice(&m.dihedral_deg);
-            SolidMeasures {
-                inverted: m.inverted,
-                inverted_inside: false,
-                min_dihedral_deg: m.min_dihedral_deg,
-                max_dihedral_deg: m.max_dihedral_deg,
-                min_sine: m.min_sine,
-                condition: m.condition,
-                mean_ratio: m.mean_ratio,
-                scaled_jacobian: sj,
-                dihedral_deg,
-                dihedral_count: 6,
-            }
-        }
+        VolumeKind::Tet4 => tet_measures(&[p[0], p[1], p[2], p[3]], r),
+        VolumeKind::Tet10 => tet10_measures(&std::array::from_fn(|j| p[j]), r),
         _ => {
             let (q, _) = in_unit_scale(&p[..kind.corners()]);
             let count = kind.row().corner_edges.len();

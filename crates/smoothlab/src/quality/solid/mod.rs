@@ -26,7 +26,7 @@
 //!
 //! What is not certain: the quadratic kinds' mid-edge, face and centre nodes are taken
 //! where they follow their corners to; a 10-node tetrahedron is judged at its four corners'
-//! Jacobians (`tet::tet10_measures`), a 20- or 27-node hexahedron by its corners' trilinear
+//! Jacobians ([`tet10_measures`]), a 20- or 27-node hexahedron by its corners' trilinear
 //! hexahedron (exact when its edges are straight).
 //!
 //! `bernstein.rs` holds `det J` in the Bernstein basis. `free_corner.rs` holds its forms
@@ -49,7 +49,7 @@ mod tests;
 use bernstein::{hex_det, pyramid_det};
 pub use corner_terms::{corner_size, least_corner_det, CornerShapes, CornerSizes};
 pub use free_corner::{DetForm, ValidBall};
-pub use measures::{scaled_jacobian, scaled_jacobian_grad0, solid_reading, solid_within, solid_measures, solid_min_sine, solid_shape, SolidMeasures};
+pub use measures::{scaled_jacobian, scaled_jacobian_grad0, solid_reading, solid_within, solid_measures, solid_min_sine, solid_shape, tet10_measures, tet_measures, SolidMeasures};
 
 /// How many boxes (the whole element, then halves) a hexahedron's or pyramid's validity
 /// may examine before it is called [`Validity::Undecided`].
