@@ -392,14 +392,23 @@ fn history_title(what: &str, r: &SolveResult) -> String {
     format!("{what}: {} iterations", r.iterations)
 }
 
+/// The height, CSS pixels, of the smallest step-length chart that keeps its ticks apart.
+const TWO_CHARTS_MIN_CSS_H: f32 = 200.0;
+
 pub(super) fn chen_11(c: Canvas, t: &Theme) -> Result<Vec<Pixmap>> {
     let (pg, node) = figure_state("chen-11", t)?;
     let s = chen_11_solves(&pg, node)?;
     let level = side_panel(&pg, node, c, &SidePanel { side: Side::B, solve: &s.chen, optimum: Some(s.chen.x), overlays: &[], feasible_levels: None })?;
     let mut chart = pixmap(c.w, c.h)?;
     let full = Frame::of_pixmap(&chart, c.dpr);
-    history_chart(&mut chart, &s.chen, &history_title(CHEN_SEARCH, &s.chen), full.row(0, 2, 6.0), c, t);
-    history_chart(&mut chart, &s.newton, &history_title(NEWTON_FIRST, &s.newton), full.row(1, 2, 6.0), c, t);
+    // two charts one above the other need room for two sets of ticks: a short panel
+    // shows Chen's search alone, the one the claim is about
+    if full.h >= 2.0 * TWO_CHARTS_MIN_CSS_H {
+        history_chart(&mut chart, &s.chen, &history_title(CHEN_SEARCH, &s.chen), full.row(0, 2, 6.0), c, t);
+        history_chart(&mut chart, &s.newton, &history_title(NEWTON_FIRST, &s.newton), full.row(1, 2, 6.0), c, t);
+    } else {
+        history_chart(&mut chart, &s.chen, &history_title(CHEN_SEARCH, &s.chen), full, c, t);
+    }
     Ok(vec![level, chart])
 }
 
