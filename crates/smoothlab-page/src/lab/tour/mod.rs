@@ -220,7 +220,7 @@ pub static FIGURES: [Figure; 14] = [
         hash: "sample=rand2d&strategy=opt&a=old&b=new&maxiter=10&node=169",
         view: "levelset",
         run: false,
-        look: "One node of rand2D solved twice for up to 10 iterations: by Chen's Fletcher–Reeves search alone (its path on the level sets) and with Newton's step tried first (our default). The charts show the length of each solve's steps, every step marked g (gradient direction), c (conjugate direction) or n (Newton's step), as on the path.",
+        look: "One node of rand2D solved twice for up to 10 iterations: by Chen's Fletcher–Reeves search alone (its path on the level sets, framed on the path) and with Newton's step tried first (our default). The charts show the length of each solve's steps, every step marked g (gradient direction), c (conjugate direction) or n (Newton's step), as on the path.",
         claim: "Chen et al.: the first (gradient) step is short, the conjugate step after it much longer, then progress slows and a gradient step restarts the process; the first few iterations do most of the work, so three per call suffice.",
         measured: solves::chen_11_measured,
     },

@@ -728,9 +728,10 @@ fn chen_18(c: Canvas, t: &Theme) -> Result<Vec<Pixmap>> {
     lab.set_theme(*t);
     let passes = counts[0].len() - 1;
     let settings = lab.settings();
+    let camera = facing_inverted(lab.mesh(Side::A)).unwrap_or_else(|| lab.camera());
     let draw = |s: &smoothlab::surface::Surface, title: String| -> Result<Pixmap> {
         let mut pm = pixmap(c.w, c.h)?;
-        let view = smoothlab_render::SurfaceView { camera: lab.camera(), dpr: c.dpr, title: Some(title), theme: *t, ..smoothlab_render::SurfaceView::default() };
+        let view = smoothlab_render::SurfaceView { camera, dpr: c.dpr, title: Some(title), theme: *t, ..smoothlab_render::SurfaceView::default() };
         s.render(&mut pm, smoothlab_render::Metric::Shape, &view);
         Ok(pm)
     };
@@ -742,6 +743,24 @@ fn chen_18(c: Canvas, t: &Theme) -> Result<Vec<Pixmap>> {
         draw(lab.mesh(Side::A), after(Side::A))?,
         draw(lab.mesh(Side::B), after(Side::B))?,
     ])
+}
+
+/// A camera from above the side of `s` where its inverted elements lie (the mean of their
+/// nodes, seen from the mesh's centre), so the elements the claim is about face the
+/// viewer; `None` when none is inverted.
+fn facing_inverted(s: &smoothlab::surface::Surface) -> Option<smoothlab_render::Camera> {
+    let (pts, flat) = (s.points(), s.flat());
+    let centre = pts.iter().copied().sum::<glam::DVec3>() / pts.len().max(1) as f64;
+    let inverted: Vec<usize> = s.inverted_elements().iter().enumerate().filter(|(_, b)| **b).map(|(e, _)| e).collect();
+    let nodes: Vec<glam::DVec3> = inverted.iter().flat_map(|&e| flat.element(e).iter().map(|&n| pts[n as usize])).collect();
+    if nodes.is_empty() {
+        return None;
+    }
+    let d = nodes.iter().copied().sum::<glam::DVec3>() / nodes.len() as f64 - centre;
+    // the viewer stands at (sin yaw, −cos yaw) about the centre (render::Camera::basis),
+    // high enough to see into a torus's hole
+    let yaw = d.x.atan2(-d.y).to_degrees().rem_euclid(360.0);
+    Some(smoothlab_render::Camera { yaw, pitch: 50.0, zoom: 1.0 })
 }
 
 /// The text's numbers: each side's count pass by pass, its smallest angle after, and §9.

@@ -136,11 +136,13 @@ pub(super) fn freitag_histogram(c: Canvas, t: &Theme) -> Result<Pixmap> {
         })
         .collect();
     let mut pm = pixmap(c.w, c.h)?;
-    render_angle_histogram(
-        &mut pm,
-        &series,
-        &AngleHistogram { title: "rand2D (seed 1): corner angles after 3 passes, 6° bins", dpr: c.dpr, theme: *t, ..AngleHistogram::default() },
-    )?;
+    // the title whole at the theme's smallest label: the long one, or its last words
+    let titles = ["rand2D (seed 1): corner angles after 3 passes, 6° bins, log scale", "angles after 3 passes, log scale"];
+    let room = c.w as f32 - 120.0 * c.dpr; // the title is centred over the plot, right of its ticks
+    let title = titles.into_iter().find(|w| text_width(w, t.text_px(13.0 * c.dpr, c.dpr)) <= room).unwrap_or(titles[1]);
+    // a log scale: the claim is in the tails (the few angles near 0° and 180°), which a
+    // linear scale draws flat beside the peak of good angles
+    render_angle_histogram(&mut pm, &series, &AngleHistogram { title, dpr: c.dpr, log_y: true, theme: *t, ..AngleHistogram::default() })?;
     Ok(pm)
 }
 
