@@ -107,8 +107,11 @@ export async function drawFigurePicture() {
   if (inEmbed) {
     [w, h] = [Math.round(availW), Math.round(availH)];
   } else if (availW < Math.min(w0, MIN_PAGE_PICTURE_W)) {
-    // a phone: the card's width, under a third of the window high, the words under it
-    [w, h] = [Math.round(availW), Math.round(Math.max(220, Math.min(availW * 0.75, window.innerHeight * 0.28)))];
+    // a phone: the card's width, as high as leaves the claim and its key numbers (under
+    // the picture, now probe high) on the first screen, at least 220 px
+    const keyBottom = $('tour-key').getBoundingClientRect().bottom;
+    const room = window.innerHeight - 8 - keyBottom + probe;
+    [w, h] = [Math.round(availW), Math.round(Math.max(220, Math.min(availW * 1.2, room)))];
   } else {
     const scale = Math.min(availW / w0, availH / h0, 1);
     [w, h] = [Math.max(120, Math.round(w0 * scale)), Math.max(60, Math.round(h0 * scale))];
