@@ -6,6 +6,7 @@
 #   make python  the notebook widget's module into python/smoothlab/static/
 #   make wheel   the Python package as one wheel, target/wheels/smoothlab-*.whl (then: pip install it)
 #   make figures        the docs' pictures and the papers' figures (docs/figures.md)
+#   make figure-sizes   screenshots of every figure at 800×450, 520×520, 1280×720 and on a phone (docs/figures/sizes/)
 #   make reproduction   rerun the papers' experiments into docs/reproduction.md, and its tables into
 #                       docs/reproduction.json for the page's tour (a few minutes)
 #   make performance    rerun the benchmarks (native, in Chromium, in the page) into docs/performance.md (~15 minutes)
@@ -14,7 +15,7 @@ WASM := target/wasm32-unknown-unknown/release/smoothlab_page.wasm
 PORT ?= 8000
 CARGO ?= cargo
 
-.PHONY: serve test check-docs site single python wheel python-test lint unit wasm browser tools browser-tools figures reproduction performance
+.PHONY: serve test check-docs site single python wheel python-test lint unit wasm browser tools browser-tools figures figure-sizes reproduction performance
 
 serve: site
 	@echo "smoothlab playground: http://127.0.0.1:$(PORT)/"
@@ -137,3 +138,7 @@ performance: site browser-tools
 figures:
 	scripts/figures.sh
 	$(CARGO) run --release -p smoothlab-programs --bin figures
+
+# the page's figures as embeds and on a phone, in Chromium (docs/figures/sizes/*.png)
+figure-sizes: site browser-tools
+	node scripts/figure-sizes.mjs

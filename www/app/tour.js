@@ -51,7 +51,9 @@ export function showCard(card) {
   $('tour-caption').textContent = card.caption;
   $('tour-look').textContent = card.look;
   $('tour-claim').textContent = card.claim;
-  $('tour-measured').textContent = card.measured;
+  // the measured text's first sentence, its key numbers, stays where words give way
+  $('tour-key').textContent = card.key;
+  $('tour-rest').textContent = card.measured.slice(card.key.length);
   $('tour-menu').value = card.name;
   $('tour-prev').dataset.figure = card.prev;
   $('tour-next').dataset.figure = card.next;
@@ -71,16 +73,16 @@ export function showCard(card) {
   }));
 }
 
-/** The narrowest a figure's picture is drawn on the page, CSS pixels (or its own width
- * where that is less): its panels' words stay legible, and a card narrower than this
- * scrolls the picture sideways (`.tour-figure`). An embed fits its frame instead. */
+/** The narrowest card a figure's picture is drawn in its own proportions, CSS pixels:
+ * in a narrower one (a phone) the picture takes the card's width and the core keeps the
+ * panels that fit there at full label size (lab::tour::pictures::arrangement). */
 export const MIN_PAGE_PICTURE_W = 600;
 
-/** The figure's own picture (the core draws it: `smoothlab render --figure NAME`), in the
- * picture's proportions: on the page as wide as the tour's card (at most its own width,
- * at least MIN_PAGE_PICTURE_W) and whole in the window under the bars; in an embed, as
- * large as the frame leaves under the figure's words (its view shows instead once "Live
- * view" is pressed). */
+/** The figure's own picture (the core draws it: `smoothlab render --figure NAME`). On the
+ * page, in the picture's proportions, as wide as the tour's card (at most its own width)
+ * and whole in the window under the bars; on a narrow card and in an embed, the room there
+ * is (under the figure's words, in an embed), the core choosing the panels that fit (its
+ * view shows instead once "Live view" is pressed). */
 export async function drawFigurePicture() {
   const card = state.figure;
   if (!card) return;
@@ -100,12 +102,20 @@ export async function drawFigurePicture() {
   const availH = inEmbed
     ? Math.max(80, tour.clientHeight - (contentHeight(tour) - probe) - 2)
     : Math.max(240, window.innerHeight - Math.min(top, 200) - 16);
-  // on the page, the card's width is not taken below MIN_PAGE_PICTURE_W: a narrow card (a
-  // phone) scrolls the picture sideways rather than shrink its panels past reading
-  const minW = inEmbed ? 0 : Math.min(w0, MIN_PAGE_PICTURE_W);
-  const scale = Math.min(Math.max(availW, minW) / w0, availH / h0, inEmbed ? 2 : 1);
-  const w = Math.max(120, Math.round(w0 * scale));
-  const h = Math.max(60, Math.round(h0 * scale));
+  let w;
+  let h;
+  if (inEmbed) {
+    [w, h] = [Math.round(availW), Math.round(availH)];
+  } else if (availW < Math.min(w0, MIN_PAGE_PICTURE_W)) {
+    // a phone: the card's width, as high as leaves the claim and its key numbers (under
+    // the picture, now probe high) on the first screen, at least 220 px
+    const keyBottom = $('tour-key').getBoundingClientRect().bottom;
+    const room = window.innerHeight - 8 - keyBottom + probe;
+    [w, h] = [Math.round(availW), Math.round(Math.max(220, Math.min(availW * 1.2, room)))];
+  } else {
+    const scale = Math.min(availW / w0, availH / h0, 1);
+    [w, h] = [Math.max(120, Math.round(w0 * scale)), Math.max(60, Math.round(h0 * scale))];
+  }
   canvas.style.width = `${w}px`;
   canvas.style.height = `${h}px`;
   const dpr = Math.min(window.devicePixelRatio || 1, 2);

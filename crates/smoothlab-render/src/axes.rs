@@ -316,7 +316,7 @@ pub(crate) fn draw_axes(pixmap: &mut Pixmap, x: &Axis, y: &Axis, labels: AxisLab
     }
     if !labels.title.is_empty() {
         let cx = 0.5 * (l + r);
-        let (shown, size) = theme.fit_label(labels.title, 14.0 * s, title_room(cx, pixmap.width() as f32, s), s);
+        let (shown, size) = theme.fit_title(labels.title, 14.0 * s, title_room(cx, pixmap.width() as f32, s), s);
         let title = TextStyle::new(size).with_color(theme.ink).with_align(Align::Centre, Valign::Bottom);
         draw_text(pixmap, &shown, cx, t - 8.0 * s, title);
     }

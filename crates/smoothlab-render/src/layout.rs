@@ -27,6 +27,8 @@ pub enum RegionKind {
     Mark,
     /// The box of a chart's label: a tick's value, or a value written beside a point.
     Label,
+    /// The box of any text drawn upright, with its size and whether it was cut.
+    Text,
 }
 
 /// One note: a rectangle of device pixels `x, y, w, h` of one pixmap.
@@ -39,6 +41,12 @@ pub struct Region {
     pub h: f32,
     /// A mark's colour, `[r, g, b]`; `None` for a rectangle.
     pub rgb: Option<[u8; 3]>,
+    /// A text's font size, device pixels; `None` for anything else.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub size: Option<f32>,
+    /// A text cut to its leading words and "…" to fit its room.
+    #[serde(skip_serializing_if = "std::ops::Not::not")]
+    pub cut: bool,
     #[serde(skip)]
     key: usize,
 }
@@ -94,7 +102,7 @@ pub fn record<T>(f: impl FnOnce() -> T) -> (T, Notes) {
 pub(crate) fn note(pixmap: &Pixmap, kind: RegionKind, x: f32, y: f32, w: f32, h: f32) {
     NOTES.with(|n| {
         if let Some(v) = n.borrow_mut().as_mut() {
-            v.push(Region { kind, x, y, w, h, rgb: None, key: key(pixmap) });
+            v.push(Region { kind, x, y, w, h, rgb: None, size: None, cut: false, key: key(pixmap) });
         }
     });
 }
@@ -113,7 +121,7 @@ pub(crate) fn adopt(from: &Pixmap, to: &Pixmap, dx: f32, dy: f32) {
 
 /// Drops the notes about `pixmap` (a new picture at the address of one freed), when
 /// recording.
-pub(crate) fn forget(pixmap: &Pixmap) {
+pub fn forget(pixmap: &Pixmap) {
     let k = key(pixmap);
     NOTES.with(|n| {
         if let Some(v) = n.borrow_mut().as_mut() {
@@ -128,13 +136,25 @@ pub(crate) fn note_label(pixmap: &Pixmap, text: &str, x: f32, y: f32, style: &su
     note(pixmap, RegionKind::Label, bx, by, w, h);
 }
 
+/// Notes the box of a text drawn upright with `style` at `(x, y)` of `pixmap`: its size,
+/// and whether it ends in "…" (cut to fit), when recording.
+pub(crate) fn note_text(pixmap: &Pixmap, text: &str, x: f32, y: f32, style: &super::text::TextStyle) {
+    NOTES.with(|n| {
+        if let Some(v) = n.borrow_mut().as_mut() {
+            let [bx, by, w, h] = super::text::text_box(text, x, y, style);
+            let cut = text.trim_end().ends_with('…');
+            v.push(Region { kind: RegionKind::Text, x: bx, y: by, w, h, rgb: None, size: Some(style.size), cut, key: key(pixmap) });
+        }
+    });
+}
+
 /// Notes a marker of colour `c` centred at `(x, y)` of `pixmap` (device pixels), when
 /// recording.
 pub(crate) fn note_mark(pixmap: &Pixmap, x: f32, y: f32, c: Color) {
     NOTES.with(|n| {
         if let Some(v) = n.borrow_mut().as_mut() {
             let u = c.to_color_u8();
-            v.push(Region { kind: RegionKind::Mark, x, y, w: 1.0, h: 1.0, rgb: Some([u.red(), u.green(), u.blue()]), key: key(pixmap) });
+            v.push(Region { kind: RegionKind::Mark, x, y, w: 1.0, h: 1.0, rgb: Some([u.red(), u.green(), u.blue()]), size: None, cut: false, key: key(pixmap) });
         }
     });
 }

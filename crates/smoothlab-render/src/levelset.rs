@@ -621,12 +621,12 @@ pub fn render_level_set_with(pixmap: &mut Pixmap, data: &LevelSet<'_>, opts: &Le
     // title and a one-line key to the bands
     // both shrink to fit a narrow frame (an embedded view) rather than be clipped
     let room = (frame.w - 8.0) * s;
-    let (shown, size) = theme.fit_label(data.title, 14.0 * s, room, s);
+    let (shown, size) = theme.fit_title(data.title, 14.0 * s, room, s);
     let title = TextStyle::new(size).with_color(theme.ink).with_align(Align::Centre, Valign::Baseline);
     draw_text(pixmap, &shown, (frame.x + 0.5 * frame.w) * s, (frame.y + title_y) * s, title);
     let better = if field.goal == Goal::MaximizeMin { "maximised" } else { "minimised" };
     let note = format!("{better}: the brighter the band, the better");
-    let (shown, size) = theme.fit_label(&note, 10.5 * s, room, s);
+    let (shown, size) = theme.fit_title(&note, 10.5 * s, room, s);
     let sub = TextStyle::new(size).with_color(theme.muted).with_align(Align::Centre, Valign::Baseline);
     draw_text(pixmap, &shown, (frame.x + 0.5 * frame.w) * s, (frame.y + note_y) * s, sub);
 

@@ -39,15 +39,13 @@ pub struct Sketch<'a> {
 pub fn render_sketch(pixmap: &mut Pixmap, sketch: &Sketch<'_>, frame: Frame, dpr: f32, theme: &Theme) {
     let s = sane_dpr(dpr);
     fill_rect(pixmap, frame.x * s, frame.y * s, frame.w * s, frame.h * s, theme.paper);
-    let title = 13.0;
+    let (shown, size) = theme.fit_title(sketch.title, 13.0 * s, (frame.w - 8.0) * s, s);
     draw_text(
         pixmap,
-        sketch.title,
+        &shown,
         (frame.x + frame.w / 2.0) * s,
         (frame.y + 4.0) * s,
-        TextStyle::new(theme.text_px(size_to_fit(sketch.title, title, frame.w - 8.0) * s, s))
-            .with_color(theme.ink)
-            .with_align(Align::Centre, Valign::Top),
+        TextStyle::new(size).with_color(theme.ink).with_align(Align::Centre, Valign::Top),
     );
     let inner = frame.inset(0.0, 24.0 * theme.grow(13.0), 0.0, 0.0);
     let mut lo = DVec2::splat(f64::INFINITY);

@@ -143,11 +143,20 @@ fn drawable(style: &TextStyle, x: f32, y: f32) -> bool {
 }
 
 /// Draws `text` with its anchor at device pixel `(x, y)`. Glyphs are blended into the
-/// pixmap by their coverage; parts outside the pixmap are clipped.
+/// pixmap by their coverage; parts outside the pixmap are clipped. Its box is noted
+/// ([`layout`](super::layout)) when recording.
 pub fn draw_text(pixmap: &mut Pixmap, text: &str, x: f32, y: f32, style: TextStyle) {
     if !drawable(&style, x, y) {
         return;
     }
+    if !text.trim().is_empty() {
+        super::layout::note_text(pixmap, text, x, y, &style);
+    }
+    draw_glyphs(pixmap, text, x, y, style);
+}
+
+/// Draws `text` as [`draw_text`] does, unnoted (a scratch pixmap's text).
+fn draw_glyphs(pixmap: &mut Pixmap, text: &str, x: f32, y: f32, style: TextStyle) {
     #[cfg(test)]
     if !text.trim().is_empty() {
         SMALLEST.with(|c| c.set(c.get().min(style.size)));
@@ -218,7 +227,7 @@ pub fn draw_text_rotated(pixmap: &mut Pixmap, text: &str, x: f32, y: f32, style:
     // Draw unrotated at (2, 2 + ascent) in the scratch pixmap, then place it so the anchor
     // lands on (x, y).
     let local = TextStyle { align: Align::Left, valign: Valign::Baseline, ..style };
-    draw_text(&mut tmp, text, 2.0, 2.0 + f.ascent(), local);
+    draw_glyphs(&mut tmp, text, 2.0, 2.0 + f.ascent(), local);
     let (ox, oy) = origin(text, 0.0, 0.0, &style);
     // anchor in scratch coordinates
     let (ax, ay) = (2.0 - ox, 2.0 + f.ascent() - oy);

@@ -143,6 +143,23 @@ impl Theme {
         (fit_words(text, size, room), size)
     }
 
+    /// A title fitted to `room` device pixels as [`fit_label`](Self::fit_label) fits it, but
+    /// where it is too wide at the smallest label, its leading clauses (up to a ",", ":",
+    /// ";" or " (") that fit, whole words that read as a title; "…" only when even the first
+    /// clause is too wide.
+    pub fn fit_title<'a>(&self, text: &'a str, size: f32, room: f32, dpr: f32) -> (Cow<'a, str>, f32) {
+        let (shown, size) = self.fit_label(text, size, room, dpr);
+        if shown == text {
+            return (shown, size);
+        }
+        let mut ends = text.match_indices([',', ':', ';', '(']).map(|(i, c)| if c == "(" { i.saturating_sub(1) } else { i });
+        let fitting = ends.rfind(|&i| i > 0 && super::text::text_width(&text[..i], size) <= room);
+        match fitting {
+            Some(i) => (text[..i].trim_end().into(), size),
+            None => (shown, size),
+        }
+    }
+
     /// How much a label meant to be `css` CSS pixels grows under this theme: 1 when it is
     /// at least the minimum, else minimum / `css`. Room made for such a label (a margin,
     /// a line height) grows by the same factor.
@@ -188,6 +205,16 @@ mod tests {
         assert_eq!(Theme::for_page(false, 14.0).min_label_px, 14.0);
         assert_eq!(Theme::for_page(true, f32::NAN).min_label_px, 0.0);
         assert_eq!(Theme::for_page(true, 14.0).paper, Theme::dark().paper);
+    }
+
+    #[test]
+    fn a_title_too_wide_keeps_its_leading_clauses() {
+        let t = Theme::light().with_min_label(14.0);
+        let title = "B: new: Chen, Tristano & Kwok (Fletcher–Reeves), barrier";
+        let room = super::super::text::text_width("B: new: Chen, Tristano & Kwok", 14.0) + 4.0;
+        assert_eq!(t.fit_title(title, 14.0, room, 1.0).0, "B: new: Chen, Tristano & Kwok");
+        assert_eq!(t.fit_title(title, 14.0, 1000.0, 1.0).0, title);
+        assert!(t.fit_title("one long clause without a comma", 14.0, 60.0, 1.0).0.ends_with('…'));
     }
 
     #[test]

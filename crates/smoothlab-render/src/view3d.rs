@@ -27,7 +27,7 @@ use super::colormap::{bucket, bucket_color, Colormap};
 use super::mesh::{bezier_control, colour_bar_band, draw_colour_bar, draw_inverted};
 use super::theme::Theme;
 use super::paint::{fill_rect, rect_mask, rgba, solid};
-use super::text::{draw_text, size_to_fit, Align, TextStyle, Valign};
+use super::text::{draw_text, Align, TextStyle, Valign};
 use super::view::{sane_dpr, Frame};
 use smoothlab::numeric::order::{sort_stable_by_key, total_order_key};
 use smoothlab::{Error, Result};
@@ -619,9 +619,10 @@ pub fn render_surface_marked(pixmap: &mut Pixmap, faces: &Faces, opts: &SurfaceV
     }
 
     if let Some(title) = &opts.title {
-        let size = size_to_fit(title, 14.0, (frame.w - 8.0).max(1.0));
-        let style = TextStyle::new(theme.text_px(size * s, s)).with_color(theme.ink).with_align(Align::Centre, Valign::Baseline);
-        draw_text(pixmap, title, (plot.x + 0.5 * plot.w) * s, (frame.y + 18.0 * theme.grow(14.0)) * s, style);
+        // whole, or its leading clauses, at no less than the theme's smallest label
+        let (shown, size) = theme.fit_title(title, 14.0 * s, (frame.w - 8.0).max(1.0) * s, s);
+        let style = TextStyle::new(size).with_color(theme.ink).with_align(Align::Centre, Valign::Baseline);
+        draw_text(pixmap, &shown, (plot.x + 0.5 * plot.w) * s, (frame.y + 18.0 * theme.grow(14.0)) * s, style);
     }
     if let Some(bar) = bar {
         fill_rect(pixmap, bar.x * s, bar.y * s, bar.w * s, bar.h * s, theme.paper);

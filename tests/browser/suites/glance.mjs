@@ -59,7 +59,7 @@ export default async function ({ server, context }) {
     try {
       for (const name of ['chen-2', 'chen-10', 'knupp-1', 'knupp-hex']) {
         await open(p, `${base}#figure=${name}`);
-        await p.waitForFunction(() => document.getElementById('tour-picture').width >= 600, null, { timeout: TIMEOUT });
+        await p.waitForFunction((n) => document.body.dataset.figure === n, name, { timeout: TIMEOUT });
         await idle(p);
         const [pic, words] = await p.evaluate(() => ['tour-picture', 'tour-text'].map((id) => {
           const r = document.getElementById(id).getBoundingClientRect();

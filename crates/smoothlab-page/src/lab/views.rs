@@ -33,6 +33,8 @@ pub fn pixmap(w: u32, h: u32) -> Result<Pixmap> {
     }
     let mut pm = Pixmap::new(w, h).ok_or_else(|| Error::invalid(format!("cannot allocate a {w} × {h} picture")))?;
     pm.fill(tiny_skia::Color::WHITE);
+    // a panel at the address of a freed one: its notes are not this one's
+    smoothlab_render::layout::forget(&pm);
     Ok(pm)
 }
 

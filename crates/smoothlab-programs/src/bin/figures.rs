@@ -43,7 +43,8 @@ fn main() {
         let _ = writeln!(
             md,
             "## {}. {} — `{}`\n\n**The paper's caption:** \"{}\"\n\n![{}](figures/{}.png)\n\n{} {} {}\n\n\
-             On the page: [`#figure={}`](../www/index.html#figure={}) ({}, the {} view).\n",
+             On the page: [`#figure={}`](../www/index.html#figure={}) ({}, the {} view). As the page shows it \
+             (`make figure-sizes`): {}.\n",
             i + 1,
             f.source,
             f.name,
@@ -60,7 +61,10 @@ fn main() {
                 Some(s) => format!("the gallery's “{}” with the settings `#{}`", s.title(), f.hash),
                 None => format!("the playground state `#{}`", f.hash),
             },
-            f.view
+            f.view,
+            ["800x450", "520x520", "1280x720", "390x844"]
+                .map(|size| format!("[{}](figures/sizes/{}-{size}.png)", if size == "390x844" { "a phone, 390×844".to_string() } else { format!("embedded, {}", size.replace('x', "×")) }, f.name))
+                .join(", ")
         );
         eprintln!("wrote docs/figures/{}.png", f.name);
     }

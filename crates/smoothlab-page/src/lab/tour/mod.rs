@@ -89,13 +89,15 @@ impl Figure {
     /// The figure in words and numbers, as the page shows it.
     pub fn card(&self, index: usize) -> Result<Card> {
         let n = FIGURES.len();
+        let measured = self.measured()?;
         Ok(Card {
             figure: *self,
             index,
             count: n,
             prev: FIGURES[(index + n - 1) % n].name,
             next: FIGURES[(index + 1) % n].name,
-            measured: self.measured()?,
+            key: key_sentence(&measured).to_string(),
+            measured,
             rows: pictures::table_rows(self.name),
             columns: pictures::table_columns(self.name),
             table_caption: pictures::table_caption(self.name),
@@ -115,6 +117,9 @@ pub struct Card {
     pub prev: &'static str,
     pub next: &'static str,
     pub measured: String,
+    /// The measured text's first sentence, its key numbers: what an embed and a phone
+    /// keep of it ([`key_sentence`]).
+    pub key: String,
     /// Rows of the table the page fills one by one ([`pictures::table_row`]); 0: none.
     pub rows: usize,
     /// That table's column headings and caption.
@@ -123,6 +128,20 @@ pub struct Card {
     /// The gallery sample the page opens for the figure, a surface or tetrahedra
     /// ([`gallery_sample`]), whose state is not a planar playground; `None`: the hash's sample.
     pub gallery: Option<Sample>,
+}
+
+/// The first sentence of `text`: up to the first full stop followed by a space and a
+/// capital that does not end an abbreviation ("et al.", "Fig."); all of `text` when none.
+pub fn key_sentence(text: &str) -> &str {
+    let abbreviations = ["al.", "Fig.", "Figs.", "eq.", "i.e.", "e.g."];
+    for (i, _) in text.match_indices(". ") {
+        let next = text[i + 2..].chars().next();
+        let word = text[..=i].rsplit(' ').next().unwrap_or("");
+        if next.is_some_and(char::is_uppercase) && !abbreviations.contains(&word) {
+            return &text[..=i];
+        }
+    }
+    text
 }
 
 /// The gallery sample a figure opens itself: a surface in 3D or a volume mesh
@@ -201,7 +220,7 @@ pub static FIGURES: [Figure; 14] = [
         hash: "sample=rand2d&strategy=opt&a=old&b=new&maxiter=10&node=169",
         view: "levelset",
         run: false,
-        look: "One node of rand2D solved twice for up to 10 iterations: by Chen's Fletcher–Reeves search alone (its path on the level sets) and with Newton's step tried first (our default). The charts show the length of each solve's steps, every step marked g (gradient direction), c (conjugate direction) or n (Newton's step), as on the path.",
+        look: "One node of rand2D solved twice for up to 10 iterations: by Chen's Fletcher–Reeves search alone (its path on the level sets, framed on the path) and with Newton's step tried first (our default). The charts show the length of each solve's steps, every step marked g (gradient direction), c (conjugate direction) or n (Newton's step), as on the path.",
         claim: "Chen et al.: the first (gradient) step is short, the conjugate step after it much longer, then progress slows and a gradient step restarts the process; the first few iterations do most of the work, so three per call suffice.",
         measured: solves::chen_11_measured,
     },
@@ -356,5 +375,16 @@ mod tests {
             assert!((3..=8).contains(&sentences), "{}: {sentences} sentences", f.name);
         }
         assert_eq!(FIGURES[0].card(0).unwrap().prev, "knupp-hex");
+    }
+
+    #[test]
+    fn the_key_is_the_first_sentence_with_its_numbers() {
+        assert_eq!(key_sentence("Measured: 3 passes. Then 4 (Chen et al. Fig. 2). Last."), "Measured: 3 passes.");
+        assert_eq!(key_sentence("as in Fig. 9. No more"), "as in Fig. 9.");
+        assert_eq!(key_sentence("one sentence"), "one sentence");
+        for (i, f) in FIGURES.iter().enumerate() {
+            let c = f.card(i).unwrap();
+            assert!(c.measured.starts_with(&c.key) && c.key.chars().any(|ch| ch.is_ascii_digit()), "{}: {}", f.name, c.key);
+        }
     }
 }

@@ -25,7 +25,7 @@ use smoothlab_render::{
     SketchLine, Theme,
 };
 use smoothlab_render::layout::{record, Region};
-use smoothlab_render::{draw_text, title_band, Align, TextStyle, Valign};
+use smoothlab_render::{draw_text, text_width, title_band, Align, TextStyle, Valign};
 use smoothlab::smooth::{Order, SmoothOptions, Smoother, Strategy};
 pub use super::tables::{
     freitag3d_row, freitag_row, table_caption, table_columns, table_row, table_rows, Freitag3dMethod, Freitag3dRow,
@@ -47,38 +47,151 @@ pub fn default_size(name: &str) -> (u32, u32) {
     }
 }
 
-/// The figure `name`'s picture on a canvas of `c.w × c.h` device pixels, in `theme`.
+/// The figure's panels as its default picture lays them out: columns and rows.
+fn default_grid(name: &str) -> Result<(u32, u32)> {
+    Ok(match name {
+        "chen-2" | "chen-6" | "chen-18" => (3, 1),
+        "chen-9" | "chen-10" | "chen-11" | "chen-20" => (2, 1),
+        "chen-13" => (4, 2),
+        "chen-16" => (CHEN_16_PANELS, 1),
+        "knupp-1" => (4, 1),
+        "knupp-hex" => (super::knupp_hex::columns()? as u32, 2),
+        _ => (1, 1),
+    })
+}
+
+/// The figure's panels, those its claim is about first: a small picture keeps the first
+/// ones and drops the rest (the indices are of the default grid, row by row).
+fn panel_priority(name: &str, n: usize) -> Vec<usize> {
+    let first: &[usize] = match name {
+        // the curves of α and of the new objective; the sketch of the triangle last
+        "chen-2" | "chen-6" => &[1, 2, 0],
+        // the chart of both orders, pass 1 in each, as loaded, then the later passes
+        "chen-13" => &[4, 1, 5, 0, 2, 6, 3, 7],
+        // the two optimizations and the constrained Laplacian the claim compares
+        "chen-16" => &[3, 4, 2, 0, 1],
+        // old and new after the passes, then as loaded
+        "chen-18" => &[1, 2, 0],
+        // the new objective's level sets (whose optimum and path the claims are about),
+        // then the old one's
+        "chen-9" | "chen-10" | "chen-20" => &[1, 0],
+        // the step lengths the claim is about, then the path on the level sets
+        "chen-11" => &[1, 0],
+        // untangled, then optimized by κ, as loaded, then the new objective
+        "knupp-1" => &[1, 2, 0, 3],
+        _ => &[],
+    };
+    let mut out: Vec<usize> = first.iter().copied().filter(|&i| i < n).collect();
+    if name == "knupp-hex" {
+        // each side's last pass, then each side's start, then the passes between
+        let cols = n / 2;
+        out = vec![cols - 1, n - 1, 0, cols];
+    }
+    let rest: Vec<usize> = (0..n).filter(|i| !out.contains(i)).collect();
+    out.extend(rest);
+    out
+}
+
+/// The smallest panel, CSS pixels, that holds a chart's or a mesh's title, ticks and
+/// legend at labels of 14 px without cutting a title.
+const MIN_PANEL_CSS: (f32, f32) = (220.0, 180.0);
+/// The smallest level-set panel, CSS pixels: its legend's widest entry ("the ascent's
+/// direction: one tied corner's gradient") at 14 px.
+const MIN_LEVEL_SET_PANEL_CSS: (f32, f32) = (340.0, 200.0);
+
+/// The smallest panel of figure `name`, CSS pixels.
+fn min_panel(name: &str) -> (f32, f32) {
+    match name {
+        "chen-9" | "chen-10" | "chen-11" | "chen-20" => MIN_LEVEL_SET_PANEL_CSS,
+        _ => MIN_PANEL_CSS,
+    }
+}
+
+/// How a figure's panels fill a canvas: which are kept (indices of the default grid, in
+/// its order) and in how many columns and rows.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Arrangement {
+    pub keep: Vec<usize>,
+    pub cols: u32,
+    pub rows: u32,
+}
+
+/// The arrangement of figure `name`'s panels on canvas `c`: as many panels as fit at
+/// [`MIN_PANEL_CSS`] or larger (those of [`panel_priority`] first), in the columns that
+/// draw them largest for the shape of the default grid's panel; the default grid when
+/// the canvas is the default size. Dropping panels rather than shrinking them keeps every
+/// label at the theme's smallest size.
+pub fn arrangement(name: &str, c: Canvas, t: &Theme) -> Result<Arrangement> {
+    let (dc, dr) = default_grid(name)?;
+    let n = (dc * dr) as usize;
+    let (w0, h0) = default_size(name);
+    let head = title_band(t);
+    let ideal = (w0 as f32 / dc as f32, (h0 as f32 - head) / dr as f32);
+    let s = c.dpr.max(0.1);
+    let (w, h) = (c.w as f32 / s, c.h as f32 / s - head);
+    let order = panel_priority(name, n);
+    let mut best: Option<(f32, Arrangement)> = None;
+    for k in (1..=n).rev() {
+        for cols in 1..=k as u32 {
+            let rows = (k as u32).div_ceil(cols);
+            if cols * rows - k as u32 >= cols {
+                continue; // a whole row empty
+            }
+            let (pw, ph) = (w / cols as f32, h / rows as f32);
+            let (min_w, min_h) = min_panel(name);
+            let fits = pw >= min_w && ph >= min_h;
+            if !fits && k > 1 {
+                continue;
+            }
+            // the default grid wins a tie; a canvas too small for one panel still draws one
+            let score = (pw / ideal.0).min(ph / ideal.1) + if (cols, rows) == (dc, dr) { 1e-3 } else { 0.0 };
+            if !best.as_ref().is_some_and(|(b, _)| score <= *b) {
+                let mut keep: Vec<usize> = order[..k].to_vec();
+                keep.sort_unstable();
+                best = Some((score, Arrangement { keep, cols, rows }));
+            }
+        }
+        if best.is_some() {
+            break;
+        }
+    }
+    best.map(|(_, a)| a).ok_or_else(|| Error::invalid(format!("figure {name} has no panel")))
+}
+
+/// The figure `name`'s picture on a canvas of `c.w × c.h` device pixels, in `theme`: its
+/// panels arranged for the canvas ([`arrangement`]).
 pub fn render(name: &str, c: Canvas, theme: &Theme) -> Result<Pixmap> {
     let t = theme;
     let (_, fig) = find(name)?;
     pixmap(c.w, c.h)?; // the size is checked before any work
-    let title = format!("{} — {}", fig.source, fig.name);
+    // the title whole at the smallest label, or the paper's figure alone, or the name
+    let room = c.w as f32 - 16.0 * c.dpr;
+    let floor = (t.min_label_px * c.dpr).max(1.0);
+    let title = [format!("{} — {}", fig.source, fig.name), fig.source.to_string(), fig.name.to_string()]
+        .into_iter()
+        .find(|w| text_width(w, floor) <= room)
+        .unwrap_or_else(|| fig.name.to_string());
+    let a = arrangement(fig.name, c, t)?;
+    let pc = part(c, a.cols, a.rows, t);
     let parts = match fig.name {
-        "chen-2" => chen_2(part(c, 3, 1, t), t)?,
-        "chen-6" => chen_6(part(c, 3, 1, t), t)?,
-        "chen-9" => super::solves::chen_9(part(c, 2, 1, t), t)?,
-        "chen-10" => super::solves::chen_10(part(c, 2, 1, t), t)?,
-        "chen-20" => level_sets(fig, part(c, 2, 1, t), t)?,
-        "chen-11" => super::solves::chen_11(part(c, 2, 1, t), t)?,
-        "chen-13" => chen_13(part(c, 4, 2, t), t)?,
-        "chen-16" => chen_16(part(c, CHEN_16_PANELS, 1, t), t)?,
-        "freitag-t1" => vec![table_picture("freitag-t1", part(c, 1, 1, t), t)?],
-        "freitag-t2" => vec![freitag_t2(part(c, 1, 1, t), t)?],
-        "chen-18" => chen_18(part(c, 3, 1, t), t)?,
-        "freitag-3" => vec![freitag_histogram(part(c, 1, 1, t), t)?],
-        "knupp-1" => knupp_1(part(c, 4, 1, t), t)?,
-        "knupp-hex" => {
-            let cols = super::knupp_hex::columns()? as u32;
-            super::knupp_hex::knupp_hex(part(c, cols, 2, t), t)?
-        }
+        "chen-2" => chen_2(pc, t)?,
+        "chen-6" => chen_6(pc, t)?,
+        "chen-9" => super::solves::chen_9(pc, t)?,
+        "chen-10" => super::solves::chen_10(pc, t)?,
+        "chen-20" => level_sets(fig, pc, t)?,
+        "chen-11" => super::solves::chen_11(pc, t)?,
+        "chen-13" => chen_13(pc, t)?,
+        "chen-16" => chen_16(pc, t)?,
+        "freitag-t1" => vec![table_picture("freitag-t1", pc, t)?],
+        "freitag-t2" => vec![freitag_t2(pc, t)?],
+        "chen-18" => chen_18(pc, t)?,
+        "freitag-3" => vec![freitag_histogram(pc, t)?],
+        "knupp-1" => knupp_1(pc, t)?,
+        "knupp-hex" => super::knupp_hex::knupp_hex(pc, t)?,
         _ => return Err(Error::invalid(format!("figure {name} has no picture"))),
     };
-    let cols = match fig.name {
-        "chen-13" => 4,
-        "knupp-hex" => parts.len() / 2,
-        _ => parts.len(),
-    };
-    render_titled(&parts, cols, &title, c.dpr, t).ok_or_else(|| Error::invalid("cannot allocate the figure"))
+    let kept: Vec<Pixmap> = parts.into_iter().enumerate().filter(|(i, _)| a.keep.contains(i)).map(|(_, p)| p).collect();
+    render_titled(&kept, a.cols as usize, &title, c.dpr, t).ok_or_else(|| Error::invalid("cannot allocate the figure"))
 }
 
 /// The figure `name`'s picture ([`render`]) and where its plots, legends and chart marks
@@ -111,7 +224,7 @@ pub(super) fn mesh_panel(mesh: &Mesh, title: &str, c: Canvas, t: &Theme) -> Resu
     // each shrunk or cut to the panel's width (four panels side by side in a narrow frame)
     let room = (full.w - 8.0).max(0.0) * s;
     let style = |size: f32| TextStyle::new(size).with_color(t.ink).with_align(Align::Centre, Valign::Top);
-    let (shown, size) = t.fit_label(title, 13.0 * s, room, s);
+    let (shown, size) = t.fit_title(title, 13.0 * s, room, s);
     draw_text(&mut pm, &shown, full.w / 2.0 * s, 4.0 * s, style(size));
     let (shown, size) = t.fit_label(&line, 11.0 * s, room, s);
     draw_text(&mut pm, &shown, full.w / 2.0 * s, (4.0 + 18.0 * g13) * s, style(size));
@@ -192,7 +305,7 @@ fn chen_2(c: Canvas, t: &Theme) -> Result<Vec<Pixmap>> {
     Ok(vec![
         sketch,
         chart(&alpha, "(b) Lo's α along the lines", "α", false)?,
-        chart(&f, "the new objective along them (smaller is better)", "objective", true)?,
+        chart(&f, "(c) new objective, smaller is better", "objective", true)?,
     ])
 }
 
@@ -438,7 +551,7 @@ fn chen13_chart(counts: &Chen13Counts, c: Canvas, t: &Theme) -> Result<Pixmap> {
             Series::new(&lp, &p).with_color(series_color(2)).with_marker(Marker::Circle),
             Series::new(&li, &i).with_color(series_color(1)).with_marker(Marker::Square).with_dash(true),
         ],
-        &Chart { title: "inverted elements after each pass", x_label: "pass (0: as loaded)", y_label: "inverted", dpr: c.dpr, theme: *t, ..Chart::default() },
+        &Chart { title: "inverted after each pass", x_label: "pass (0: as loaded)", y_label: "inverted", dpr: c.dpr, theme: *t, ..Chart::default() },
     );
     Ok(pm)
 }
@@ -615,9 +728,10 @@ fn chen_18(c: Canvas, t: &Theme) -> Result<Vec<Pixmap>> {
     lab.set_theme(*t);
     let passes = counts[0].len() - 1;
     let settings = lab.settings();
+    let camera = facing_inverted(lab.mesh(Side::A)).unwrap_or_else(|| lab.camera());
     let draw = |s: &smoothlab::surface::Surface, title: String| -> Result<Pixmap> {
         let mut pm = pixmap(c.w, c.h)?;
-        let view = smoothlab_render::SurfaceView { camera: lab.camera(), dpr: c.dpr, title: Some(title), theme: *t, ..smoothlab_render::SurfaceView::default() };
+        let view = smoothlab_render::SurfaceView { camera, dpr: c.dpr, title: Some(title), theme: *t, ..smoothlab_render::SurfaceView::default() };
         s.render(&mut pm, smoothlab_render::Metric::Shape, &view);
         Ok(pm)
     };
@@ -629,6 +743,24 @@ fn chen_18(c: Canvas, t: &Theme) -> Result<Vec<Pixmap>> {
         draw(lab.mesh(Side::A), after(Side::A))?,
         draw(lab.mesh(Side::B), after(Side::B))?,
     ])
+}
+
+/// A camera from above the side of `s` where its inverted elements lie (the mean of their
+/// nodes, seen from the mesh's centre), so the elements the claim is about face the
+/// viewer; `None` when none is inverted.
+fn facing_inverted(s: &smoothlab::surface::Surface) -> Option<smoothlab_render::Camera> {
+    let (pts, flat) = (s.points(), s.flat());
+    let centre = pts.iter().copied().sum::<glam::DVec3>() / pts.len().max(1) as f64;
+    let inverted: Vec<usize> = s.inverted_elements().iter().enumerate().filter(|(_, b)| **b).map(|(e, _)| e).collect();
+    let nodes: Vec<glam::DVec3> = inverted.iter().flat_map(|&e| flat.element(e).iter().map(|&n| pts[n as usize])).collect();
+    if nodes.is_empty() {
+        return None;
+    }
+    let d = nodes.iter().copied().sum::<glam::DVec3>() / nodes.len() as f64 - centre;
+    // the viewer stands at (sin yaw, −cos yaw) about the centre (render::Camera::basis),
+    // high enough to see into a torus's hole
+    let yaw = d.x.atan2(-d.y).to_degrees().rem_euclid(360.0);
+    Some(smoothlab_render::Camera { yaw, pitch: 50.0, zoom: 1.0 })
 }
 
 /// The text's numbers: each side's count pass by pass, its smallest angle after, and §9.

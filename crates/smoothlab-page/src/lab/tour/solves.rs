@@ -43,6 +43,8 @@ struct SidePanel<'a> {
     overlays: &'a [Overlay<'a>],
     /// `Some(n)`: `n` levels inside the feasible region ([`feasible_levels`]).
     feasible_levels: Option<usize>,
+    /// The box to frame instead of the page's (the feasible region): a short path's.
+    bounds: Option<(DVec2, DVec2)>,
 }
 
 /// One side's level sets round `node`, framed as the page frames them (on the feasible
@@ -51,7 +53,7 @@ fn side_panel(pg: &Playground, node: usize, c: Canvas, p: &SidePanel<'_>) -> Res
     let panel = pg.panel(p.side);
     let mut star = Star::new();
     star.gather(&panel.mesh, node);
-    let (_, bounds) = pg.level_bounds(p.side, node);
+    let bounds = p.bounds.unwrap_or_else(|| pg.level_bounds(p.side, node).1);
     let field = sample_field(panel.objective.as_ref(), &star, bounds, LEVEL_SET_SAMPLES, LEVEL_SET_SAMPLES)?;
     let mut path = vec![(p.solve.x0, PathKind::Start)];
     path.extend(p.solve.history.iter().map(|it| (it.x, path_kind(it.direction))));
@@ -220,8 +222,8 @@ pub(super) fn chen_9(c: Canvas, t: &Theme) -> Result<Vec<Pixmap>> {
     }
     let mut new_marks = tangents("end tangents (the paper's dashed lines)").to_vec();
     new_marks.push(Overlay::Point { at: n.new_best.0, marker: Marker::Star, color: rgb(OPTIMUM), label: "optimum, found by search" });
-    let old = side_panel(&pg, node, c, &SidePanel { side: Side::A, solve: &n.old, optimum: None, overlays: &old_marks, feasible_levels: None })?;
-    let new = side_panel(&pg, node, c, &SidePanel { side: Side::B, solve: &n.new, optimum: None, overlays: &new_marks, feasible_levels: None })?;
+    let old = side_panel(&pg, node, c, &SidePanel { side: Side::A, solve: &n.old, optimum: None, overlays: &old_marks, feasible_levels: None, bounds: None })?;
+    let new = side_panel(&pg, node, c, &SidePanel { side: Side::B, solve: &n.new, optimum: None, overlays: &new_marks, feasible_levels: None, bounds: None })?;
     Ok(vec![old, new])
 }
 
@@ -279,7 +281,7 @@ pub(super) fn chen_10(c: Canvas, t: &Theme) -> Result<Vec<Pixmap>> {
         .iter()
         .map(|&side| {
             let r = pg.solve_node(side, node)?;
-            side_panel(&pg, node, c, &SidePanel { side, solve: &r, optimum: Some(r.x), overlays: &[], feasible_levels: Some(CHEN_10_LEVELS) })
+            side_panel(&pg, node, c, &SidePanel { side, solve: &r, optimum: Some(r.x), overlays: &[], feasible_levels: Some(CHEN_10_LEVELS), bounds: None })
         })
         .collect()
 }
@@ -392,14 +394,36 @@ fn history_title(what: &str, r: &SolveResult) -> String {
     format!("{what}: {} iterations", r.iterations)
 }
 
+/// A square box round a solve's path (its start and every step), the path taking about
+/// the middle half of it.
+fn path_box(r: &SolveResult) -> (DVec2, DVec2) {
+    let pts: Vec<DVec2> = std::iter::once(r.x0).chain(r.history.iter().map(|it| it.x)).collect();
+    let (lo, hi) = pts.iter().fold((DVec2::INFINITY, DVec2::NEG_INFINITY), |(l, h), &p| (l.min(p), h.max(p)));
+    let half = ((hi - lo).max_element() * 1.0).max(1e-6);
+    let mid = 0.5 * (lo + hi);
+    (mid - DVec2::splat(half), mid + DVec2::splat(half))
+}
+
+/// The height, CSS pixels, of the smallest step-length chart that keeps its ticks apart.
+const TWO_CHARTS_MIN_CSS_H: f32 = 200.0;
+
 pub(super) fn chen_11(c: Canvas, t: &Theme) -> Result<Vec<Pixmap>> {
     let (pg, node) = figure_state("chen-11", t)?;
     let s = chen_11_solves(&pg, node)?;
-    let level = side_panel(&pg, node, c, &SidePanel { side: Side::B, solve: &s.chen, optimum: Some(s.chen.x), overlays: &[], feasible_levels: None })?;
+    // framed on the path, not the feasible region (where its steps are a few pixels):
+    // each step's length and mark are seen, the conjugate step's against the gradient's
+    let bounds = Some(path_box(&s.chen));
+    let level = side_panel(&pg, node, c, &SidePanel { side: Side::B, solve: &s.chen, optimum: Some(s.chen.x), overlays: &[], feasible_levels: None, bounds })?;
     let mut chart = pixmap(c.w, c.h)?;
     let full = Frame::of_pixmap(&chart, c.dpr);
-    history_chart(&mut chart, &s.chen, &history_title(CHEN_SEARCH, &s.chen), full.row(0, 2, 6.0), c, t);
-    history_chart(&mut chart, &s.newton, &history_title(NEWTON_FIRST, &s.newton), full.row(1, 2, 6.0), c, t);
+    // two charts one above the other need room for two sets of ticks: a short panel
+    // shows Chen's search alone, the one the claim is about
+    if full.h >= 2.0 * TWO_CHARTS_MIN_CSS_H {
+        history_chart(&mut chart, &s.chen, &history_title(CHEN_SEARCH, &s.chen), full.row(0, 2, 6.0), c, t);
+        history_chart(&mut chart, &s.newton, &history_title(NEWTON_FIRST, &s.newton), full.row(1, 2, 6.0), c, t);
+    } else {
+        history_chart(&mut chart, &s.chen, &history_title(CHEN_SEARCH, &s.chen), full, c, t);
+    }
     Ok(vec![level, chart])
 }
 

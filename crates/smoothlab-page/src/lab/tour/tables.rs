@@ -136,11 +136,13 @@ pub(super) fn freitag_histogram(c: Canvas, t: &Theme) -> Result<Pixmap> {
         })
         .collect();
     let mut pm = pixmap(c.w, c.h)?;
-    render_angle_histogram(
-        &mut pm,
-        &series,
-        &AngleHistogram { title: "rand2D (seed 1): corner angles after 3 passes, 6° bins", dpr: c.dpr, theme: *t, ..AngleHistogram::default() },
-    )?;
+    // the title whole at the theme's smallest label: the long one, or its last words
+    let titles = ["rand2D (seed 1): corner angles after 3 passes, 6° bins, log scale", "angles after 3 passes, log scale"];
+    let room = c.w as f32 - 120.0 * c.dpr; // the title is centred over the plot, right of its ticks
+    let title = titles.into_iter().find(|w| text_width(w, t.text_px(13.0 * c.dpr, c.dpr)) <= room).unwrap_or(titles[1]);
+    // a log scale: the claim is in the tails (the few angles near 0° and 180°), which a
+    // linear scale draws flat beside the peak of good angles
+    render_angle_histogram(&mut pm, &series, &AngleHistogram { title, dpr: c.dpr, log_y: true, theme: *t, ..AngleHistogram::default() })?;
     Ok(pm)
 }
 
@@ -250,41 +252,71 @@ pub fn table_row(name: &str, i: usize) -> Result<TableRow> {
     })
 }
 
-/// A live table drawn whole (the picture of `smoothlab render --figure`, and of an embed):
-/// each column as wide as its widest cell, the text as large as the width allows (at most
-/// 13 px), so no heading is cut off.
+/// The columns of a live table, those the claims quote first (method, min angle,
+/// Freitag's numbers, the five-seed min, …): a narrow picture keeps the first that fit.
+const COLUMN_PRIORITY: [usize; 8] = [0, 1, 7, 5, 2, 6, 3, 4];
+
+/// The rows of figure `name`'s live table, those its claim is about first: a short
+/// picture keeps the first that fit.
+fn row_priority(name: &str) -> &'static [usize] {
+    match name {
+        // optimization, the Laplacian, as generated, C2, C3, Chen's rules, …
+        "freitag-t1" => &[3, 1, 0, 5, 6, 8, 2, 4, 7],
+        // optimization, the Laplacian, C2, C3, as generated, the smart Laplacian, …
+        _ => &[3, 1, 5, 6, 0, 2, 8, 9, 4, 7],
+    }
+}
+
+/// A live table drawn for its canvas (the picture of `smoothlab render --figure`, and of
+/// an embed): each column as wide as its widest cell, the text as large as the width
+/// allows (at most 13 px, at least the theme's smallest label). Where even the smallest
+/// label does not fit, the columns and rows the claims quote least are dropped, so no
+/// heading is cut off and no text is shrunk past reading.
 pub(super) fn table_picture(name: &str, c: Canvas, theme: &Theme) -> Result<Pixmap> {
     let head = table_columns(name);
-    let rows: Vec<TableRow> = (0..table_rows(name)).map(|i| table_row(name, i)).collect::<Result<_>>()?;
+    let all: Vec<TableRow> = (0..table_rows(name)).map(|i| table_row(name, i)).collect::<Result<_>>()?;
     let mut pm = pixmap(c.w, c.h)?;
     pm.fill(theme.paper);
     let s = c.dpr;
     let (w, h) = (c.w as f32 / s, c.h as f32 / s);
-    // widths at 10 px, then the size that makes the widest layout fit
     let gap = 1.6; // between columns, in ems
-    let widths: Vec<f32> = (0..head.len())
-        .map(|k| rows.iter().map(|r| text_width(&r.cells[k], 10.0)).fold(text_width(head[k], 10.0), f32::max))
-        .collect();
-    let total10 = widths.iter().sum::<f32>() + gap * 10.0 * (head.len() - 1) as f32;
+    let floor = theme.min_label_px;
+    // the columns: the most of COLUMN_PRIORITY whose layout fits the width at the floor
+    let width10 = |k: usize| all.iter().map(|r| text_width(&r.cells[k], 10.0)).fold(text_width(head[k], 10.0), f32::max);
+    let total10 = |cols: &[usize]| cols.iter().map(|&k| width10(k)).sum::<f32>() + gap * 10.0 * (cols.len() - 1) as f32;
+    let mut cols: Vec<usize> = (0..head.len()).collect();
+    for n in (2..=head.len()).rev() {
+        let mut pick: Vec<usize> = COLUMN_PRIORITY.iter().copied().filter(|&k| k < head.len()).take(n).collect();
+        pick.sort_unstable();
+        cols = pick;
+        if 10.0 * (w - 16.0) / total10(&cols) >= floor {
+            break;
+        }
+    }
+    // the rows: as many of the claim's as fit the height at the floor
+    let fit_rows = (((h - 8.0) / (floor * 1.25).max(1.0)).floor() as usize).saturating_sub(1).max(1);
+    let mut keep: Vec<usize> = row_priority(name).iter().copied().filter(|&i| i < all.len()).take(fit_rows.min(all.len())).collect();
+    keep.sort_unstable();
+    let rows: Vec<&TableRow> = keep.iter().map(|&i| &all[i]).collect();
     let line = ((h - 8.0) / (rows.len() + 1) as f32).min(30.0);
-    let size = (10.0 * (w - 16.0) / total10).min(line * 0.5).min(13.0);
-    let size = theme.text_px(size, 1.0).min(10.0 * (w - 16.0) / total10);
+    let size = (10.0 * (w - 16.0) / total10(&cols)).min(line * 0.5).min(13.0);
+    let size = theme.text_px(size, 1.0);
     let mut x = 8.0;
     let mut xs = Vec::new();
-    for wk in &widths {
+    for &k in &cols {
         xs.push(x);
-        x += wk * size / 10.0 + gap * size;
+        x += width10(k) * size / 10.0 + gap * size;
     }
     let text = |pm: &mut Pixmap, t: &str, col: usize, row: usize| {
         let style = TextStyle::new(size * s).with_color(theme.ink).with_align(Align::Left, Valign::Middle);
         draw_text(pm, t, xs[col] * s, (4.0 + line * (row as f32 + 0.5)) * s, style);
     };
-    for (k, t) in head.iter().enumerate() {
-        text(&mut pm, t, k, 0);
+    for (j, &k) in cols.iter().enumerate() {
+        text(&mut pm, head[k], j, 0);
     }
     for (i, r) in rows.iter().enumerate() {
-        for (k, t) in r.cells.iter().enumerate() {
-            text(&mut pm, t, k, i + 1);
+        for (j, &k) in cols.iter().enumerate() {
+            text(&mut pm, &r.cells[k], j, i + 1);
         }
     }
     Ok(pm)
@@ -386,10 +418,17 @@ pub(super) fn cut_panel(mesh: &smoothlab::volume::VolumeMesh, cut: smoothlab_ren
     Ok(pm)
 }
 
+/// The height, CSS pixels, under which Table 2's picture drops its cut panels.
+const CUT_PANELS_MIN_CSS_H: f32 = 560.0;
+
 /// Table 2's picture: rand3D cut half way up z as generated and after 3 passes of the two
 /// methods the page's meshes show (A: optimization of the smallest dihedral sine, B: of the
 /// new objective), above the live table.
 pub(super) fn freitag_t2(c: Canvas, t: &Theme) -> Result<Pixmap> {
+    // the cut panels need room for their titles and a mesh: a short picture is the table
+    if (c.h as f32) < CUT_PANELS_MIN_CSS_H * c.dpr.max(0.1) {
+        return table_picture("freitag-t2", c, t);
+    }
     let m0 = rand3d_seed1()?;
     let top = Canvas { w: c.w / 3, h: (c.h as f32 * 0.52) as u32, dpr: c.dpr };
     let mut parts = vec![cut_panel(&m0, smoothlab_render::Cut::default(), "rand3D as generated, cut at z = 0.5", top, t)?];
