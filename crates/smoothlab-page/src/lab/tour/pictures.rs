@@ -117,7 +117,7 @@ pub struct Arrangement {
 }
 
 /// The arrangement of figure `name`'s panels on canvas `c`: as many panels as fit at
-/// [`MIN_PANEL_CSS`] or larger (those of [`panel_priority`] first), in the columns that
+/// `MIN_PANEL_CSS` or larger (those of `panel_priority` first), in the columns that
 /// draw them largest for the shape of the default grid's panel; the default grid when
 /// the canvas is the default size. Dropping panels rather than shrinking them keeps every
 /// label at the theme's smallest size.
