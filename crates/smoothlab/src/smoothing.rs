@@ -445,13 +445,10 @@ impl Model {
         smoothing: &Smoothing,
         clock: &dyn Fn() -> f64,
     ) -> Result<Report> {
-        let mut opts = smoothing.options()?;
+        let opts = smoothing.options()?;
         smoothing.check(self)?;
         let kind = smoothing.objective;
         let start = clock();
-        // the grading the whole run keeps, passes and finish alike: the mesh's as found
-        let found = self.stats();
-        opts.keep_grading = Some(if found.inverted == 0 { found.grading.unwrap_or(f64::INFINITY) } else { f64::INFINITY });
         if let Model::Surface(surface) = self {
             // a surface's boundary is its curves: open edges and feature curves; the rule's
             // feature angle holds the corners where a curve turns sharply
@@ -486,7 +483,6 @@ impl Model {
             let (kind, strategy, order) = Smoothing::FINISH;
             let o = SmoothOptions {
                 max_iter: opts.max_iter,
-                keep_grading: opts.keep_grading,
                 ..SmoothOptions::default()
             }
             .with_strategy(strategy)

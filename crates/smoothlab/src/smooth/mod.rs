@@ -156,12 +156,7 @@ pub struct Smoother<S: DriverStar = Star> {
     /// What the statistics read of the mesh at the start of the pass ([`Reading`]), `None`
     /// for a tangled mesh: a move on a valid star keeps its star within it. Taken at the
     /// pass's first such move; forgotten when a pass is planned.
-    bounds: std::sync::OnceLock<Option<Reading>>,
-    /// The mesh's grading at the run's start ([`Reading::grading`]): a move keeps every
-    /// pair of neighbours within it. The run's, not the pass's: the objectives do not aim
-    /// at sizes, so a bound that fell pass by pass would freeze them. +∞ for a run that
-    /// starts tangled (the rule keeps valid meshes from getting worse).
-    pub(super) grading_bound: Option<f64>,
+    bounds: std::cell::OnceCell<Option<Reading>>,
     star: S,
     solvers: Solvers<S>,
     terms: Vec<Term<S::Point>>,
@@ -192,20 +187,13 @@ pub struct Smoother<S: DriverStar = Star> {
 }
 
 impl<S: DriverStar> Smoother<S> {
-    /// The run's grading bound ([`grading_bound`](Self::grading_bound)), set by the first
-    /// reading: `grading` where none was set yet.
-    pub(crate) fn grading_bound_or(&mut self, grading: f64) -> f64 {
-        *self.grading_bound.get_or_insert(grading)
-    }
-
     /// A smoother with checked options.
     pub fn new(options: SmoothOptions) -> Result<Self> {
         options.validate()?;
         let solve = options.solve_options();
         Ok(Smoother {
             options,
-            bounds: std::sync::OnceLock::new(),
-            grading_bound: None,
+            bounds: std::cell::OnceCell::new(),
             star: S::default(),
             solvers: Solvers::new(solve),
             terms: Vec::new(),
@@ -375,12 +363,11 @@ impl<S: DriverStar> Smoother<S> {
             {
                 Some(bounds) => {
                     // the acceptance rule by the shape keeps each star's worst shape already
-                    let mut bounds = if s.options.smart_measure == Measure::Shape {
+                    let bounds = if s.options.smart_measure == Measure::Shape {
                         bounds.without_quality()
                     } else {
                         bounds
                     };
-                    bounds.grading = *s.grading_bound.get_or_insert(bounds.grading);
                     if kept {
                         // the smart Laplacian's test read the mesh, not the star
                         if let Some(within) = S::reads_within_from_mesh(mesh, n, x, &bounds) {
@@ -390,11 +377,7 @@ impl<S: DriverStar> Smoother<S> {
                     }
                     s.star.reads_within(mesh, x, &bounds)
                 }
-                None => {
-                    // a run that starts tangled has no grading to keep
-                    s.grading_bound.get_or_insert(f64::INFINITY);
-                    true
-                }
+                None => true,
             };
             if !keeps || (valid && !within_bounds(self)) {
                 out.moved = false;
