@@ -156,7 +156,7 @@ pub struct Smoother<S: DriverStar = Star> {
     /// What the statistics read of the mesh at the start of the pass ([`Reading`]), `None`
     /// for a tangled mesh: a move on a valid star keeps its star within it. Taken at the
     /// pass's first such move; forgotten when a pass is planned.
-    bounds: std::cell::OnceCell<Option<Reading>>,
+    bounds: std::sync::OnceLock<Option<Reading>>,
     star: S,
     solvers: Solvers<S>,
     terms: Vec<Term<S::Point>>,
@@ -193,7 +193,7 @@ impl<S: DriverStar> Smoother<S> {
         let solve = options.solve_options();
         Ok(Smoother {
             options,
-            bounds: std::cell::OnceCell::new(),
+            bounds: std::sync::OnceLock::new(),
             star: S::default(),
             solvers: Solvers::new(solve),
             terms: Vec::new(),

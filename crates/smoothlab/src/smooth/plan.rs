@@ -51,7 +51,7 @@ impl<S: DriverStar> Smoother<S> {
     /// (quadratic elements, curved edges) now.
     pub fn begin_plan(&mut self, mesh: &S::Mesh) {
         self.refresh_mesh_facts(mesh);
-        self.bounds = std::cell::OnceCell::new();
+        self.bounds = std::sync::OnceLock::new();
         self.schedule.clear();
         self.sweep_moves_from = None;
         self.ranked.clear();
