@@ -113,12 +113,14 @@ const handlers = {
     p.setSettings(settings);
     return p.targetPositions() ?? null;
   },
+  // the grading the runs keep (the mesh's as loaded or last perturbed): the sweep keeps it
+  gradingToKeep: () => planar().gradingToKeep(),
   adoptSweep: (nodes, sweep) => planar().adoptSweep(nodes, sweep),
   // the other worker's part: side A's sweep, its result taken with the last slice
-  sweep: (settings, side, nodes, target, budgetMs) => {
+  sweep: (settings, side, nodes, target, grading, budgetMs) => {
     const p = planar();
     p.setSettings(settings);
-    p.beginSweep(side, nodes, target ?? undefined);
+    p.beginSweep(side, nodes, target ?? undefined, grading);
     return sweepSlice(p, budgetMs);
   },
   continueSweep: (budgetMs) => sweepSlice(planar(), budgetMs),

@@ -84,6 +84,14 @@ pub fn table(s: &MeshStats) -> String {
     if let Some(v) = &s.solid {
         row("scaled Jacobian", format!("min {:.4}", v.min_scaled_jacobian));
     }
+    let sizes = if solid { "volumes" } else { "areas" };
+    row(
+        "grading",
+        match s.grading {
+            Some(g) => format!("max {g:.4} (the largest ratio of two neighbours' {sizes})"),
+            None => "none (no two valid elements are neighbours)".into(),
+        },
+    );
     let total: u64 = s.angle_histogram_6deg.iter().sum();
     t.push_str(if solid {
         "dihedral angle histogram (6° bins, % of dihedral angles):\n"

@@ -445,10 +445,12 @@ impl Model {
         smoothing: &Smoothing,
         clock: &dyn Fn() -> f64,
     ) -> Result<Report> {
-        let opts = smoothing.options()?;
+        let mut opts = smoothing.options()?;
         smoothing.check(self)?;
         let kind = smoothing.objective;
         let start = clock();
+        // the grading the whole run keeps, passes and finish alike: the mesh's as found
+        opts.keep_grading = Some(self.stats().grading_to_keep());
         if let Model::Surface(surface) = self {
             // a surface's boundary is its curves: open edges and feature curves; the rule's
             // feature angle holds the corners where a curve turns sharply
@@ -483,6 +485,7 @@ impl Model {
             let (kind, strategy, order) = Smoothing::FINISH;
             let o = SmoothOptions {
                 max_iter: opts.max_iter,
+                keep_grading: opts.keep_grading,
                 ..SmoothOptions::default()
             }
             .with_strategy(strategy)

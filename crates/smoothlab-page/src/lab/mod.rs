@@ -92,7 +92,7 @@ impl Panel {
         Ok(Panel {
             mesh,
             objective: settings.choice(side).build(),
-            smoother: Smoother::new(settings.smooth_options()?)?,
+            smoother: Smoother::new(settings.run_options(full)?)?,
             records: Vec::new(),
             version,
             quick: full.quick(),
@@ -228,7 +228,7 @@ impl Playground {
     /// through since. A planar mesh's boundary is fixed: [`BoundaryRule::Slide`](smoothlab::volume::BoundaryRule::Slide)
     /// is refused, saying why ([`slide_refused`](Self::slide_refused)).
     pub fn set_settings(&mut self, settings: Settings) -> Result<()> {
-        let o = settings.smooth_options()?;
+        let o = settings.run_options(&self.original_stats)?;
         settings::check_boundary(settings.boundary, self.slide_refused())?;
         self.abort_pass();
         for (p, side) in self.panels.iter_mut().zip(Side::BOTH) {
@@ -256,6 +256,13 @@ impl Playground {
     /// [`begin_sweep`](Self::begin_sweep) takes them; `None` with the ideal target.
     pub fn target_positions(&self) -> Option<Vec<f64>> {
         (self.settings.target == Target::Input).then(|| interleaved(&self.original))
+    }
+
+    /// The grading a run keeps ([`MeshStats::grading_to_keep`]): the mesh's as loaded or
+    /// as last perturbed, where the panels' runs begin. A split pass hands it to the
+    /// engine that sweeps ([`begin_sweep`](Self::begin_sweep)).
+    pub fn grading_to_keep(&self) -> f64 {
+        self.original_stats.grading_to_keep()
     }
 
     /// Gives panel `i`'s mesh the settings' target: the original positions for
@@ -311,9 +318,11 @@ impl Playground {
     /// `target` is the other engine's [`target_positions`](Self::target_positions): given
     /// exactly when the settings' target is [`Target::Input`] (the other engine's mesh
     /// may have been perturbed since this one loaded it), and measured against during the
-    /// sweep only.
-    pub fn begin_sweep(&mut self, side: Side, nodes: &[f64], target: Option<&[f64]>) -> Result<()> {
+    /// sweep only. `keep_grading` is the other engine's
+    /// [`grading_to_keep`](Self::grading_to_keep): its run's, not this one's.
+    pub fn begin_sweep(&mut self, side: Side, nodes: &[f64], target: Option<&[f64]>, keep_grading: f64) -> Result<()> {
         self.abort_pass();
+        let options = smoothlab::smooth::SmoothOptions { keep_grading: Some(keep_grading), ..self.settings.smooth_options()? };
         let nodes = self.positions_from(nodes)?;
         let target = match (self.settings.target, target) {
             (Target::Input, Some(t)) => Some(
@@ -339,6 +348,7 @@ impl Playground {
         // abandoned (and this playground's target with them: see `abort_pass`)
         run.save(&self.panels);
         let p = &mut self.panels[side.index()];
+        p.smoother = Smoother::new(options)?;
         p.mesh.nodes_mut().copy_from_slice(&nodes);
         if target.is_some() {
             p.mesh.set_target_nodes(target);
@@ -558,7 +568,7 @@ impl Playground {
         self.undo.clear();
         let o = self
             .settings
-            .smooth_options()
+            .run_options(&self.original_stats)
             .expect("the settings were checked when set");
         let quick = self.original_stats.quick();
         for p in &mut self.panels {

@@ -6,6 +6,7 @@ use serde::{Deserialize, Serialize};
 
 use smoothlab::error::{Error, Result};
 use smoothlab::objective::{objective_with, Objective, ObjectiveKind, Penalty};
+use smoothlab::quality::MeshStats;
 use smoothlab::smooth::{Order, SmoothOptions, Strategy};
 use smoothlab::target::Target;
 use smoothlab::volume::BoundaryRule;
@@ -154,6 +155,13 @@ impl Default for Settings {
 }
 
 impl Settings {
+    /// The options of a run that starts from a mesh with statistics `start`. A run keeps
+    /// the grading it found ([`MeshStats::grading_to_keep`]), as `smoothlab smooth` does,
+    /// whatever settings come between its passes.
+    pub fn run_options(&self, start: &MeshStats) -> Result<SmoothOptions> {
+        Ok(SmoothOptions { keep_grading: Some(start.grading_to_keep()), ..self.smooth_options()? })
+    }
+
     /// The drivers' options (checked), after checking each side's choice.
     pub fn smooth_options(&self) -> Result<SmoothOptions> {
         for c in self.compare {

@@ -93,17 +93,26 @@ impl Playground {
 
     /// Starts the sweep of panel `side` alone from `nodes` (the other engine's positions,
     /// x and y interleaved), for a split pass; run it with `continuePass`, then `takeSweep`.
-    /// `target` is the other engine's `targetPositions` (null with the ideal target).
+    /// `target` is the other engine's `targetPositions` (null with the ideal target),
+    /// `keepGrading` its `gradingToKeep`.
     #[wasm_bindgen(js_name = beginSweep)]
     pub fn begin_sweep(
         &mut self,
         side: &str,
         nodes: &[f64],
         target: Option<Vec<f64>>,
+        keep_grading: f64,
     ) -> Result<(), JsError> {
         Ok(self
             .inner
-            .begin_sweep(self::side(side)?, nodes, target.as_deref())?)
+            .begin_sweep(self::side(side)?, nodes, target.as_deref(), keep_grading)?)
+    }
+
+    /// The grading this engine's runs keep: the mesh's as loaded or as last perturbed
+    /// (+∞, none, where it was tangled). A split pass hands it to `beginSweep`.
+    #[wasm_bindgen(js_name = gradingToKeep)]
+    pub fn grading_to_keep(&self) -> f64 {
+        self.inner.grading_to_keep()
     }
 
     /// Why this mesh's boundary nodes cannot slide: a planar mesh's never do (as the

@@ -18,6 +18,7 @@ use serde::Serialize;
 use crate::mesh::ElementKind;
 use crate::numeric::{is_beyond_safe_scale, to_unit_scale, SAFE_SCALE};
 
+pub mod grading;
 pub mod metric;
 mod reading;
 pub mod solid;

@@ -21,6 +21,10 @@ pub struct Reading {
     pub min_scaled_jacobian: f64,
     /// +∞ where not taken; as a bound, −∞ where not compared.
     pub min_quality: f64,
+    /// The mesh's grading ([`super::grading`]): a property of pairs of elements, not of
+    /// one, so [`within`](Self::within) does not compare it; the drivers check a moved
+    /// star's pairs against it. −∞ for an element or no pair; as a bound, +∞ where none.
+    pub grading: f64,
 }
 
 impl Default for Reading {
@@ -31,6 +35,7 @@ impl Default for Reading {
             max_angle_deg: f64::NEG_INFINITY,
             min_scaled_jacobian: f64::INFINITY,
             min_quality: f64::INFINITY,
+            grading: f64::NEG_INFINITY,
         }
     }
 }
@@ -47,6 +52,7 @@ impl Reading {
             max_angle_deg: q.max_angle.to_degrees(),
             min_scaled_jacobian: f64::NEG_INFINITY,
             min_quality: q.shape,
+            grading: f64::NEG_INFINITY,
         };
         (r, q.inverted)
     }
@@ -73,10 +79,19 @@ impl Reading {
     /// The reading of a planar `mesh` (or a surface's), element `e` with nodes `points(e)`;
     /// `None` where an element is inverted.
     pub fn planar_mesh(mesh: &Mesh, points: impl Fn(usize) -> [DVec2; 9]) -> Option<Self> {
-        (0..mesh.element_count()).try_fold(Reading::default(), |r, e| {
-            let (q, inverted) = Reading::planar(mesh.kind(e), &points(e));
+        let mut sizes = Vec::with_capacity(mesh.element_count());
+        let r = (0..mesh.element_count()).try_fold(Reading::default(), |r, e| {
+            let p = points(e);
+            let (q, inverted) = Reading::planar(mesh.kind(e), &p);
+            sizes.push(super::grading::planar_size(mesh.kind(e), &p[..mesh.kind(e).node_count()]));
             (!inverted).then(|| r.and(q))
-        })
+        })?;
+        Some(r.with_grading(super::grading::largest_ratio(&sizes, super::grading::edge_neighbours(mesh))))
+    }
+
+    /// This reading as a bound with the mesh's grading (+∞ where no pair has one).
+    pub fn with_grading(self, grading: Option<f64>) -> Self {
+        Reading { grading: grading.unwrap_or(f64::INFINITY), ..self }
     }
 
     /// A volume element of `kind` with nodes `p` (all of them), as the statistics read it
@@ -95,6 +110,7 @@ impl Reading {
             max_angle_deg: most(self.max_angle_deg, other.max_angle_deg),
             min_scaled_jacobian: least(self.min_scaled_jacobian, other.min_scaled_jacobian),
             min_quality: least(self.min_quality, other.min_quality),
+            grading: most(self.grading, other.grading),
         }
     }
 

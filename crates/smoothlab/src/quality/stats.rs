@@ -33,6 +33,10 @@ pub struct MeshStats {
     pub mean_quality: f64,
     /// Largest κ over all elements; `null` in JSON (∞) when any element is inverted.
     pub max_condition: f64,
+    /// Grading: the largest ratio of the sizes of two valid neighbours, areas (elements
+    /// that share an edge) or volumes (that share a face) ([`super::grading`]); `null`
+    /// where no two valid elements are neighbours.
+    pub grading: Option<f64>,
     /// Counts (not percentages) of corner angles in 30 bins of 6° over [0°, 180°];
     /// negative angles count in the first bin (Freitag 1997, Figure 3).
     pub angle_histogram_6deg: Vec<u64>,
@@ -84,6 +88,16 @@ impl MeshStats {
     /// Whether these are a volume mesh's statistics (dihedral angles, the mean ratio).
     pub fn is_volume(&self) -> bool {
         !no_volume(&self.volume_kinds)
+    }
+
+    /// The grading a run that starts from a mesh with these statistics keeps
+    /// ([`SmoothOptions::keep_grading`](crate::smooth::SmoothOptions::keep_grading)): its
+    /// own where it is valid; +∞ (none) where it is tangled or has no two valid neighbours.
+    pub fn grading_to_keep(&self) -> f64 {
+        match self.grading {
+            Some(g) if self.inverted == 0 => g,
+            _ => f64::INFINITY,
+        }
     }
 }
 
@@ -137,12 +151,15 @@ pub fn mesh_stats(mesh: &Mesh) -> MeshStats {
 /// surface's elements, each in its own plane).
 pub fn mesh_stats_with(mesh: &Mesh, points: impl Fn(usize) -> [DVec2; 9]) -> MeshStats {
     let mut s = MeshStatsBuilder::new(MeshCounts::planar(mesh));
+    let mut sizes = Vec::with_capacity(mesh.element_count());
     for e in 0..mesh.element_count() {
         let kind = mesh.kind(e);
         let p = points(e);
         let q = measure_element::<true, true, false>(kind, &p[..kind.node_count()], |_, _, ang| s.angle(ang));
         s.element(ElementStats::planar(&q));
+        sizes.push(super::grading::planar_size(kind, &p[..kind.node_count()]));
     }
+    s.grading(super::grading::largest_ratio(&sizes, super::grading::edge_neighbours(mesh)));
     s.finish()
 }
 
@@ -237,6 +254,7 @@ impl MeshStatsBuilder {
                 min_quality: f64::INFINITY,
                 mean_quality: 0.0,
                 max_condition: 0.0,
+                grading: None,
                 angle_histogram_6deg: vec![0; 30],
                 surface: false,
                 max_distance_from_surface: None,
@@ -274,6 +292,10 @@ impl MeshStatsBuilder {
             s.min_scaled_jacobian = s.min_scaled_jacobian.min(m.scaled_jacobian);
             s.scaled_jacobian_histogram[scaled_jacobian_bin(m.scaled_jacobian)] += 1;
         }
+    }
+    /// Sets the grading ([`MeshStats::grading`]), taken over the whole mesh at once.
+    pub fn grading(&mut self, grading: Option<f64>) {
+        self.stats.grading = grading;
     }
     /// The statistics, the mean quality over the elements counted.
     pub fn finish(mut self) -> MeshStats {
@@ -313,6 +335,15 @@ mod tests {
                 s.angle_histogram_6deg[angle_bin(signed_angle(*e1, *e2))] += 1;
             }
         }
+        // the neighbours found afresh: every pair of elements with two corners in common
+        let n = mesh.element_count();
+        let sizes: Vec<_> = (0..n)
+            .map(|e| crate::quality::grading::planar_size(mesh.kind(e), &mesh.element_points_array(e)[..mesh.kind(e).node_count()]))
+            .collect();
+        let corners = |e: usize| &mesh.element(e)[..mesh.kind(e).corners()];
+        let pairs = (0..n).flat_map(|a| (a + 1..n).map(move |b| (a, b)));
+        let pairs = pairs.filter(|&(a, b)| corners(a).iter().filter(|i| corners(b).contains(i)).count() >= 2);
+        s.grading = crate::quality::grading::largest_ratio(&sizes, pairs);
         if s.elements > 0 {
             s.mean_quality = sum / s.elements as f64;
         }

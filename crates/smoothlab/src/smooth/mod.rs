@@ -157,6 +157,11 @@ pub struct Smoother<S: DriverStar = Star> {
     /// for a tangled mesh: a move on a valid star keeps its star within it. Taken at the
     /// pass's first such move; forgotten when a pass is planned.
     bounds: std::sync::OnceLock<Option<Reading>>,
+    /// The mesh's grading at the run's start ([`Reading::grading`]): a move keeps every
+    /// pair of neighbours within it. The run's, not the pass's: the objectives do not aim
+    /// at sizes, so a bound that fell pass by pass would freeze them. +∞ for a run that
+    /// starts tangled (the rule keeps valid meshes from getting worse).
+    pub(super) grading_bound: Option<f64>,
     star: S,
     solvers: Solvers<S>,
     terms: Vec<Term<S::Point>>,
@@ -187,6 +192,12 @@ pub struct Smoother<S: DriverStar = Star> {
 }
 
 impl<S: DriverStar> Smoother<S> {
+    /// The run's grading bound ([`grading_bound`](Self::grading_bound)), set by the first
+    /// reading: `grading` where none was set yet.
+    pub(crate) fn grading_bound_or(&mut self, grading: f64) -> f64 {
+        *self.grading_bound.get_or_insert(grading)
+    }
+
     /// A smoother with checked options.
     pub fn new(options: SmoothOptions) -> Result<Self> {
         options.validate()?;
@@ -194,6 +205,7 @@ impl<S: DriverStar> Smoother<S> {
         Ok(Smoother {
             options,
             bounds: std::sync::OnceLock::new(),
+            grading_bound: None,
             star: S::default(),
             solvers: Solvers::new(solve),
             terms: Vec::new(),
@@ -363,11 +375,12 @@ impl<S: DriverStar> Smoother<S> {
             {
                 Some(bounds) => {
                     // the acceptance rule by the shape keeps each star's worst shape already
-                    let bounds = if s.options.smart_measure == Measure::Shape {
+                    let mut bounds = if s.options.smart_measure == Measure::Shape {
                         bounds.without_quality()
                     } else {
                         bounds
                     };
+                    bounds.grading = *s.grading_bound.get_or_insert(bounds.grading);
                     if kept {
                         // the smart Laplacian's test read the mesh, not the star
                         if let Some(within) = S::reads_within_from_mesh(mesh, n, x, &bounds) {
@@ -377,7 +390,11 @@ impl<S: DriverStar> Smoother<S> {
                     }
                     s.star.reads_within(mesh, x, &bounds)
                 }
-                None => true,
+                None => {
+                    // a run that starts tangled has no grading to keep
+                    s.grading_bound.get_or_insert(f64::INFINITY);
+                    true
+                }
             };
             if !keeps || (valid && !within_bounds(self)) {
                 out.moved = false;

@@ -240,6 +240,11 @@ pub struct SmoothOptions {
     /// as Chen's search alone on the meshes of quality and about 1.5× faster, measured in
     /// `docs/performance.md`; false runs Chen's search alone.
     pub newton: bool,
+    /// The grading a run keeps every pair of neighbouring elements within, on a valid mesh
+    /// ([`crate::quality::Reading::grading`]): the mesh's as the run found it, so that its
+    /// passes and its finish share it. `None` (the default): the mesh's at the smoother's
+    /// first pass; +∞ keeps none.
+    pub keep_grading: Option<f64>,
 }
 
 /// The default number of untangling sweeps per pass ([`SmoothOptions::untangle_sweeps`]).
@@ -268,6 +273,7 @@ impl Default for SmoothOptions {
             pass_through_folds: None,
             untangle_sweeps: UNTANGLE_SWEEPS,
             newton: true,
+            keep_grading: None,
         }
     }
 }

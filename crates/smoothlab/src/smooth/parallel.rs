@@ -184,7 +184,9 @@ impl ColouredSmoother {
         self.main.refresh_mesh_facts(mesh);
         self.main.note_tangled(&super::ReadOnly(mesh));
         // the pass's bounds, taken once for every unit of work (which copy the driver)
-        self.main.bounds = std::sync::OnceLock::from(super::SmoothMesh::valid_reading(&*mesh));
+        let reading = super::SmoothMesh::valid_reading(&*mesh);
+        self.main.grading_bound_or(reading.map_or(f64::INFINITY, |r| r.grading));
+        self.main.bounds = std::sync::OnceLock::from(reading);
         let mut counts = SweepCounts::default();
         for c in 0..self.colouring.colour_count() {
             let nodes = self.colouring.colour(c);

@@ -52,6 +52,11 @@ impl<S: DriverStar> Smoother<S> {
     pub fn begin_plan(&mut self, mesh: &S::Mesh) {
         self.refresh_mesh_facts(mesh);
         self.bounds = std::sync::OnceLock::new();
+        if self.grading_bound.is_none() {
+            // the run's first pass: the grading as the run found the mesh (none if tangled)
+            let keep = self.options.keep_grading;
+            self.grading_bound = Some(keep.unwrap_or_else(|| mesh.valid_reading().map_or(f64::INFINITY, |r| r.grading)));
+        }
         self.schedule.clear();
         self.sweep_moves_from = None;
         self.ranked.clear();

@@ -360,8 +360,9 @@ impl DriverStar for Star {
         }
         v
     }
-    fn reads_within(&self, _mesh: &Mesh, x: glam::DVec2, bounds: &Reading) -> bool {
+    fn reads_within(&self, mesh: &Mesh, x: glam::DVec2, bounds: &Reading) -> bool {
         self.elems.iter().all(|e| Reading::planar_within(e.kind, &e.at(x), bounds))
+            && planar_graded_within(mesh, bounds.grading, self.elems.iter().map(|e| (e.element as usize, e.at(x))))
     }
     fn reads_within_from_mesh(mesh: &Mesh, n: usize, x: glam::DVec2, bounds: &Reading) -> Option<bool> {
         let elems = mesh.node_elements(n);
@@ -377,7 +378,19 @@ impl DriverStar for Star {
                 }
             }
             Reading::planar_within(mesh.kind(e), &p, bounds)
-        }))
+        }) && planar_graded_within(
+            mesh,
+            bounds.grading,
+            elems.iter().map(|&e| {
+                let mut p = mesh.element_points_array(e as usize);
+                for (q, &i) in p.iter_mut().zip(mesh.element(e as usize)) {
+                    if i as usize == n {
+                        *q = x;
+                    }
+                }
+                (e as usize, p)
+            }),
+        ))
     }
     fn smart_from_mesh(mesh: &Mesh, n: usize, measure: Measure) -> Option<FastSmart<glam::DVec2>> {
         super::smart_on_triangles(mesh, n, measure)
@@ -385,4 +398,27 @@ impl DriverStar for Star {
     fn shape_from_mesh(mesh: &Mesh, n: usize) -> Option<f64> {
         super::shape_on_triangles(mesh, n)
     }
+}
+
+/// Whether every pair of neighbours with a moved element has a size ratio
+/// ([`crate::quality::grading`]) of at most `bound`: `moved` gives each element of the
+/// star with its nodes after the move; the other elements are as in `mesh`.
+pub(crate) fn planar_graded_within(mesh: &Mesh, bound: f64, moved: impl Iterator<Item = (usize, [glam::DVec2; 9])>) -> bool {
+    use crate::quality::grading::{edge_neighbours_of, planar_size, Size};
+    if bound == f64::INFINITY {
+        return true;
+    }
+    let size = |e: usize, p: &[glam::DVec2; 9]| planar_size(mesh.kind(e), &p[..mesh.kind(e).node_count()]);
+    // the star's own sizes once: each is a neighbour of others in the star
+    let moved: Vec<(usize, Option<Size>)> = moved.map(|(e, p)| (e, size(e, &p))).collect();
+    moved.iter().all(|&(e, a)| {
+        let Some(a) = a else { return true };
+        edge_neighbours_of(mesh, e).all(|f| {
+            let b = match moved.iter().find(|(m, _)| *m == f) {
+                Some(&(_, b)) => b,
+                None => size(f, &mesh.element_points_array(f)),
+            };
+            b.map_or(true, |b| Size::ratio(a, b) <= bound)
+        })
+    })
 }

@@ -241,6 +241,20 @@ impl Surface {
         }
     }
 
+    /// The largest size ratio ([`crate::quality::grading`]) of an element of `star` and
+    /// an edge neighbour, each in its own plane; −∞ where no pair has sizes.
+    pub(crate) fn star_grading(&self, star: &[usize]) -> f64 {
+        use crate::quality::grading::{edge_neighbours_of, planar_size, Size};
+        let size = |e: usize| {
+            let kind = self.flat.kind(e);
+            planar_size(kind, &self.element_points_2d(e)[..kind.node_count()])
+        };
+        star.iter()
+            .filter_map(|&e| Some((e, size(e)?)))
+            .flat_map(|(e, a)| edge_neighbours_of(&self.flat, e).filter_map(move |f| Some(Size::ratio(a, size(f)?))))
+            .fold(f64::NEG_INFINITY, f64::max)
+    }
+
     /// Element `e`'s nodes in its own plane (2D), oriented so that the element reads as
     /// inverted there when its normal opposes the reference surface's: the plane through
     /// its corners' centre with the normal of its corner polygon (Newell's, the best-fit

@@ -21,6 +21,8 @@ pub(crate) struct SurfaceView<'a> {
     /// What the statistics read of the surface's valid elements when first asked: the
     /// bounds a move on a valid star keeps within ([`Reading`]).
     bounds: Option<Option<Reading>>,
+    /// The run's grading bound, where the smoother has one ([`Reading::grading`]).
+    grading_bound: Option<f64>,
 }
 
 impl<'a> SurfaceView<'a> {
@@ -33,6 +35,7 @@ impl<'a> SurfaceView<'a> {
                 w: DVec3::Y,
             },
             bounds: None,
+            grading_bound: None,
         }
     }
 }
@@ -123,7 +126,7 @@ impl Surface {
             for (b, a) in before.iter().zip(after) {
                 v.add(b, a);
             }
-            v.keeps() && (!v.was_valid() || bounds.map_or(true, |b| read_after.within(b)))
+            v.keeps() && (!v.was_valid() || bounds.map_or(true, |b| read_after.within(b) && read_after.grading <= b.grading))
         })
     }
 
@@ -155,6 +158,9 @@ impl Surface {
                     ElementScore::planar(kind, &q, measure)
                 })
                 .collect();
+            if read {
+                reading.grading = s.star_grading(&star);
+            }
             (scores, reading)
         };
         let before = scores(self, false);
@@ -244,7 +250,9 @@ impl StarView for SurfaceView<'_> {
         let bounds = *self.bounds.get_or_insert_with(|| {
             Reading::planar_mesh(&surface.flat, |e| surface.element_points_2d(e))
         });
+        let grading_bound = self.grading_bound;
         let bounds = bounds.map(|b| {
+            let b = Reading { grading: grading_bound.unwrap_or(b.grading), ..b };
             if measure == Measure::Shape {
                 b.without_quality()
             } else {
@@ -269,6 +277,8 @@ impl StarView for SurfaceView<'_> {
 pub struct SurfaceSmoother {
     smoother: Smoother,
     passes: u32,
+    /// The surface's grading when first read valid in the run ([`Reading::grading`]).
+    grading_bound: Option<f64>,
 }
 
 impl SurfaceSmoother {
@@ -276,6 +286,7 @@ impl SurfaceSmoother {
         Ok(SurfaceSmoother {
             smoother: Smoother::new(options)?,
             passes: 0,
+            grading_bound: None,
         })
     }
 
@@ -298,9 +309,14 @@ impl SurfaceSmoother {
                 surface.inverted_elements(),
             )
         });
-        let counts = self
-            .smoother
-            .sweep_in(&mut SurfaceView::new(surface), objective);
+        // the run's grading: as the first pass found the surface (none if tangled)
+        let keep = self.smoother.options().keep_grading;
+        let grading = *self.grading_bound.get_or_insert_with(|| {
+            keep.unwrap_or_else(|| Reading::planar_mesh(&surface.flat, |e| surface.element_points_2d(e)).map_or(f64::INFINITY, |r| r.grading))
+        });
+        let mut view = SurfaceView::new(surface);
+        view.grading_bound = Some(grading);
+        let counts = self.smoother.sweep_in(&mut view, objective);
         if let Some((points, hint, curve_hint, was)) = start {
             crate::smooth::undo_new_inversions(
                 surface,

@@ -158,6 +158,8 @@ pub struct VolumeMesh {
     given_fixed: Option<crate::mesh::GivenFlags>,
     /// The sliding rule, when boundary nodes slide ([`BoundaryRule::Slide`]).
     sliding: Option<boundary::Sliding>,
+    /// Per element, the elements that share a face with it (CSR), built at first use.
+    face_neighbours: std::sync::OnceLock<(Vec<u32>, Vec<u32>)>,
 }
 
 /// An element's corner determinants' sum, in units of its own size, and whether it has
@@ -566,7 +568,26 @@ impl VolumeMesh {
             target: None,
             given_fixed,
             sliding: None,
+            face_neighbours: std::sync::OnceLock::new(),
         })
+    }
+
+    /// The elements that share a face with element `e` (by their corner nodes).
+    pub fn face_neighbours(&self, e: usize) -> &[u32] {
+        let (start, nb) = self.face_neighbours.get_or_init(|| {
+            let mut lists = vec![Vec::new(); self.element_count()];
+            for (a, b) in stats::face_neighbours(self) {
+                lists[a].push(b as u32);
+                lists[b].push(a as u32);
+            }
+            let mut start = Vec::with_capacity(lists.len() + 1);
+            start.push(0u32);
+            for l in &lists {
+                start.push(start.last().unwrap() + l.len() as u32);
+            }
+            (start, lists.concat())
+        });
+        &nb[start[e] as usize..start[e + 1] as usize]
     }
 
     /// Takes every corner's target from the nodes' positions `at` ([`crate::target::Target::Input`];

@@ -27,16 +27,50 @@ use crate::smooth::{
     StarQuality, StarView, SweepCounts, Verdict, MIN_SIZE_RATIO,
 };
 
+/// Whether every pair of neighbours with an element of node `n`'s star, the node at `x`,
+/// has a size ratio ([`crate::quality::grading`]) of at most `bound`.
+fn graded_within(mesh: &VolumeMesh, n: usize, x: DVec3, bound: f64) -> bool {
+    use crate::quality::grading::{solid_size, Size};
+    if bound == f64::INFINITY {
+        return true;
+    }
+    let star = mesh.node_tets(n);
+    // a size reads the corners alone (a quadratic element's are its first), node n at x
+    let size = |e: usize| {
+        let (kind, ids) = (mesh.element_kind(e), mesh.element(e));
+        let mut p = [DVec3::ZERO; 8];
+        for (q, &i) in p.iter_mut().zip(&ids[..kind.corners()]) {
+            *q = if i as usize == n { x } else { mesh.nodes()[i as usize] };
+        }
+        solid_size(kind, &p[..kind.corners()])
+    };
+    // the star's own sizes once: each is a neighbour of others in the star
+    let moved: Vec<Option<Size>> = star.iter().map(|&e| size(e as usize)).collect();
+    star.iter().zip(&moved).all(|(&e, a)| {
+        let Some(a) = *a else { return true };
+        mesh.face_neighbours(e as usize).iter().all(|&f| {
+            let b = match star.iter().position(|&s| s == f) {
+                Some(i) => moved[i],
+                None => size(f as usize), // without node n: as it is
+            };
+            b.map_or(true, |b| Size::ratio(a, b) <= bound)
+        })
+    })
+}
+
 impl SmoothMesh for VolumeMesh {
     fn has_target(&self) -> bool {
         self.target_nodes().is_some()
     }
     type Point = DVec3;
     fn valid_reading(&self) -> Option<Reading> {
-        (0..self.element_count()).try_fold(Reading::default(), |r, e| {
+        let mut sizes = Vec::with_capacity(self.element_count());
+        let r = (0..self.element_count()).try_fold(Reading::default(), |r, e| {
             let (p, count) = self.element_points(e);
+            sizes.push(crate::quality::grading::solid_size(self.element_kind(e), &p[..count]));
             (!self.is_inverted(e)).then(|| r.and(Reading::solid(self.element_kind(e), &p[..count])))
-        })
+        })?;
+        Some(r.with_grading(crate::quality::grading::largest_ratio(&sizes, super::stats::face_neighbours(self))))
     }
     #[inline]
     fn node_count(&self) -> usize {
@@ -430,7 +464,7 @@ impl DriverStar for CornerStar {
             let e = e as usize;
             let (p, count) = mesh.element_points_with_node_at(e, n, x);
             solid::solid_within(mesh.element_kind(e), &p[..count], bounds)
-        })
+        }) && graded_within(mesh, n, x, bounds.grading)
     }
     fn verdict_in(&self, mesh: &VolumeMesh, x: DVec3, m: Measure) -> Verdict {
         if !mesh.kinds().contains(&VolumeKind::Tet10) {

@@ -45,7 +45,38 @@ pub fn volume_stats(mesh: &VolumeMesh) -> MeshStats {
         }
         s.solid(&m);
     }
+    let sizes: Vec<_> = (0..elements)
+        .map(|e| {
+            let (p, n) = mesh.element_points(e);
+            crate::quality::grading::solid_size(mesh.element_kind(e), &p[..n])
+        })
+        .collect();
+    s.grading(crate::quality::grading::largest_ratio(&sizes, face_neighbours(mesh)));
     s.finish()
+}
+
+/// The pairs of elements that share a face (by its corner nodes).
+pub(crate) fn face_neighbours(mesh: &VolumeMesh) -> Vec<(usize, usize)> {
+    let mut first: std::collections::HashMap<[u32; 4], usize> = std::collections::HashMap::new();
+    let mut pairs = Vec::new();
+    for e in 0..mesh.element_count() {
+        let kind = mesh.element_kind(e);
+        let nodes = mesh.element(e);
+        for face in kind.row().faces {
+            let mut key = [u32::MAX; 4];
+            for (k, &i) in face.iter().filter(|&&i| i < kind.corners()).enumerate().take(4) {
+                key[k] = nodes[i];
+            }
+            key.sort_unstable();
+            match first.entry(key) {
+                std::collections::hash_map::Entry::Occupied(o) => pairs.push((*o.get(), e)),
+                std::collections::hash_map::Entry::Vacant(v) => {
+                    v.insert(e);
+                }
+            }
+        }
+    }
+    pairs
 }
 
 #[cfg(test)]

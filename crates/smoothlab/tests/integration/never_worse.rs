@@ -54,7 +54,7 @@ fn min_scaled_jacobian(s: &MeshStats) -> f64 {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(64))]
+    #![proptest_config(ProptestConfig::with_cases(512))]
 
     #[test]
     fn no_strategy_but_laplace_leaves_a_valid_mesh_worse_in_its_statistics(
@@ -92,6 +92,7 @@ proptest! {
             min_scaled_jacobian(after) >= min_scaled_jacobian(&before),
             "{}: scaled Jacobian {} to {}", what, min_scaled_jacobian(&before), min_scaled_jacobian(after)
         );
+        prop_assert!(after.grading <= before.grading, "{}: grading {:?} to {:?}", what, before.grading, after.grading);
     }
 }
 

@@ -118,7 +118,7 @@ impl<M: Mesh3d> Side3d<M> {
             boundary: mesh.boundary_report(),
             mesh,
             objective: M::objective(settings, side)?,
-            smoother: M::smoother(settings.smooth_options()?)?,
+            smoother: M::smoother(settings.run_options(&stats)?)?,
             records: Vec::new(),
             stats,
         })
@@ -229,7 +229,7 @@ impl<M: Mesh3d> Lab3d<M> {
     /// start again from it: a pass is then the core's pass with that rule, as
     /// `smoothlab smooth --boundary slide` runs it on the same file.
     pub fn set_settings(&mut self, settings: Settings) -> Result<()> {
-        let o = settings.smooth_options()?;
+        let o = settings.run_options(&self.original_stats)?;
         super::settings::check_boundary(settings.boundary, self.original.slide_refused())?;
         let objectives = [M::objective(&settings, Side::A)?, M::objective(&settings, Side::B)?];
         for (s, objective) in self.sides.iter_mut().zip(objectives) {
@@ -282,7 +282,7 @@ impl<M: Mesh3d> Lab3d<M> {
     /// Both sides back to the mesh as loaded (or as last perturbed), their records cleared.
     pub fn reset(&mut self) {
         self.undo.clear();
-        let o = self.settings.smooth_options().expect("the settings were checked when set");
+        let o = self.settings.run_options(&self.original_stats).expect("the settings were checked when set");
         let boundary = self.original.boundary_report();
         for s in &mut self.sides {
             s.mesh.clone_from(&self.original);

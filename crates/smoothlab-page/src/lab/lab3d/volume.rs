@@ -480,6 +480,9 @@ mod tests {
         let b = l.table(Side::B).boundary.expect("the boundary's report");
         assert_eq!((b.curves, b.corners, b.curve_nodes, b.surface_nodes), (12, 8, 12 * 3, 6 * 9));
         for _ in 0..2 {
+            // settings between passes (the page sends them before each Step) start no new
+            // run: the passes keep the grading the run found, as the tool's do
+            l.set_settings(slide).unwrap();
             l.step(&no_clock);
         }
         for side in Side::BOTH {

@@ -206,11 +206,12 @@ pub fn solid_reading(kind: VolumeKind, p: &[DVec3], with_quality: bool) -> Readi
                 max_angle_deg: angles.iter().copied().fold(f64::NEG_INFINITY, f64::max),
                 min_scaled_jacobian: (0..4).map(|c| scaled_jacobian(&q3::with_first(&corners, c), r)).fold(f64::INFINITY, f64::min),
                 min_quality: if with_quality { q3::mean_ratio(&corners, r) } else { f64::INFINITY },
+                grading: f64::NEG_INFINITY,
             }
         }
         VolumeKind::Tet10 => {
             let m = solid_measures(kind, p);
-            Reading { min_angle_deg: m.min_dihedral_deg, max_angle_deg: m.max_dihedral_deg, min_scaled_jacobian: m.scaled_jacobian, min_quality: m.mean_ratio }
+            Reading { min_angle_deg: m.min_dihedral_deg, max_angle_deg: m.max_dihedral_deg, min_scaled_jacobian: m.scaled_jacobian, min_quality: m.mean_ratio, grading: f64::NEG_INFINITY }
         }
         _ => {
             let (q, _) = in_unit_scale(&p[..kind.corners()]);

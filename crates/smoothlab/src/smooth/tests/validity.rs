@@ -73,8 +73,17 @@ fn keep_valid_stops_the_new_objective_folding_a_valid_star() {
     for q in [[0, 1, 2, 3], [4, 0, 3, 5], [6, 0, 4, 7], [0, 8, 9, 1], [6, 10, 8, 0]] {
         b.add_element(ElementKind::Quad4, &q, 0);
     }
+    // far off, two fixed quads whose areas differ 1000 times: the mesh's grading, so that
+    // the rule's bound on it does not decide here (in the file the star is one of many)
+    for (x, y) in [(10.0, 0.0), (11.0, 0.0), (11.0, 1.0), (10.0, 1.0), (1011.0, 0.0), (1011.0, 1.0)] {
+        b.add_node([x, y, 0.0], 0);
+    }
+    for q in [[11, 12, 13, 14], [12, 15, 16, 13]] {
+        b.add_element(ElementKind::Quad4, &q, 0);
+    }
     let mesh = b.build().unwrap();
     assert_eq!(mesh_stats(&mesh).inverted, 0);
+    assert_eq!(mesh_stats(&mesh).grading, Some(1000.0));
     assert_eq!(mesh.free_count(), 1);
     // the first design of eq. (8), which folds this star without the guard
     let new = crate::objective::ChenTristanoKwok::with_penalty(crate::objective::Penalty::Angle);
