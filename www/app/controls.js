@@ -194,14 +194,20 @@ export function showBoundaryReasons(refused) {
 /** What the chosen boundary rule does, in a sentence beside its menu (the core's words). */
 export function showBoundaryWords() {
   const r = state.controls.boundaries.find((x) => x.name === $('boundary').value);
-  $('boundary-words').textContent = r ? r.words : '';
-  $('boundary').title = $('boundary-why').textContent || (r ? r.words : '');
+  // a surface's boundary is its curves, and its sentence says so
+  const words = r ? (state.surface && !state.volume ? r.surface_words : r.words) : '';
+  $('boundary-words').textContent = words;
+  $('boundary').title = $('boundary-why').textContent || words;
 }
 
 /** "96 nodes slide on the boundary, 36 along 12 feature curves; 8 corners stay": what a
  * side's boundary report (the command-line tool's) counts. */
 export function boundaryCounts(b) {
   const held = b.held ? `, ${b.held} fixed by the file` : '';
+  if (state.surface && !state.volume) {
+    // a surface's boundary is its curves: "36 nodes slide along 4 curves; 4 corners stay"
+    return `${b.curve_nodes} nodes slide along ${b.curves} curve${b.curves === 1 ? '' : 's'}; ${b.corners} corner${b.corners === 1 ? '' : 's'} stay${b.corners === 1 ? 's' : ''}${held}`;
+  }
   return `${b.surface_nodes} nodes slide on the boundary, ${b.curve_nodes} along ${b.curves} feature curve${b.curves === 1 ? '' : 's'}; ${b.corners} corner${b.corners === 1 ? '' : 's'} stay${b.corners === 1 ? 's' : ''}${held}`;
 }
 

@@ -136,11 +136,14 @@ function showColourKey(on) {
   return true;
 }
 
-/** The key of a sliding boundary's marks, in words, shown while a volume mesh's boundary
- * slides (the pictures draw its feature curves, corners and sliding nodes). */
+/** The key of a sliding boundary's marks, in words, shown while the boundary of a volume
+ * mesh or a surface slides (the pictures draw its curves, corners and sliding nodes; a
+ * surface's dots are its curves' nodes). */
 function showBoundaryKey() {
-  const on = state.volume && state.boundary !== 'fixed';
-  $('boundary-key').hidden = !on;
+  const on = state.surface && state.boundary !== 'fixed';
+  const key = $('boundary-key');
+  key.hidden = !on;
+  key.lastElementChild.lastChild.textContent = state.volume ? ' nodes slide on the boundary' : ' nodes slide along the curves';
 }
 
 /** `refits`: how many times more the canvases may be fitted again to what the tables and

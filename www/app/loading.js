@@ -1,7 +1,7 @@
 // Loading: a sample, a Gmsh file of the site or the user's file into the engine; the page's
 // planar, surface or volume mode; the previous mesh kept when a load fails.
 import { $, COMPARE, clearError, engine, metrics, now, report, serial, setStatus, showError, state } from './state.js';
-import { readChoice, readSettings, showBoundaryReasons } from './controls.js';
+import { readChoice, readSettings, showBoundaryReasons, showBoundaryWords } from './controls.js';
 import { writePermalink } from './permalink.js';
 import { startHelper } from './workers.js';
 import { NODE_HINT, redrawAll } from './draw.js';
@@ -24,6 +24,7 @@ export async function loadSource(src, call = (...a) => engine.call(...a)) {
   showNodeBadge(); // the Node tab named the previous mesh's node
   const why = loaded.notPlanar ? `Read as a surface in 3D: ${loaded.notPlanar}.` : loaded.fileNote ? `${loaded.fileNote}.` : null;
   showSurfaceMode(loaded.surface, why, Boolean(loaded.volume));
+  showBoundaryWords(); // in the words of the mesh's kind (a surface's boundary is its curves)
   return loaded;
 }
 

@@ -6,7 +6,8 @@ use tiny_skia::Pixmap;
 
 use smoothlab::surface::Surface;
 use smoothlab::quality::element_quality;
-use crate::{render_surface, Faces, Metric, Projection, SurfaceView};
+use smoothlab::mesh::BoundaryNode;
+use crate::{render_surface_marked, FaceMarks, Faces, Mark, Metric, NodeMark, Projection, SurfaceView};
 
 /// The faces of a surface as the 3D view takes them: each element's outline (corner,
 /// mid-side node, corner, … for a quadratic one), its metric value scaled onto [0, 1] by
@@ -68,7 +69,8 @@ impl SurfacePicture for Surface {
     }
 
     /// Draws the surface coloured by `metric` with the view's camera, frame and title
-    /// (its colour bar titled and scaled for the metric).
+    /// (its colour bar titled and scaled for the metric); while its curves slide, with
+    /// their marks ([`surface_marks`]).
     fn render(&self, pixmap: &mut Pixmap, metric: Metric, view: &SurfaceView) -> Projection {
         let faces = self.faces(metric);
         let opts = SurfaceView {
@@ -76,6 +78,35 @@ impl SurfacePicture for Surface {
             domain: metric.domain(self.flat()),
             ..view.clone()
         };
-        render_surface(pixmap, &faces.faces(self.points()), &opts)
+        let marks = surface_marks(self, &faces);
+        render_surface_marked(pixmap, &faces.faces(self.points()), &opts, marks.as_ref())
     }
+}
+
+/// Each face's edges on a curve, and its curve nodes that stay or slide, while the
+/// surface's curves slide ([`Surface::curve_nodes`]); `None` while they are held.
+fn surface_marks(surface: &Surface, faces: &SurfaceFaces) -> Option<FaceMarks> {
+    let nodes = surface.curve_nodes()?;
+    let curve: std::collections::HashSet<[u32; 2]> = surface.curve_edges().map(|[a, b]| [a.min(b), a.max(b)]).collect();
+    let mut out = FaceMarks { start: vec![0], marks: Vec::new() };
+    for f in 0..faces.ring_start.len().saturating_sub(1) {
+        let ring = &faces.rings[faces.ring_start[f] as usize..faces.ring_start[f + 1] as usize];
+        // a quadratic element's ring has a mid-side node between its corners
+        let step = if ring.len() >= 6 { 2 } else { 1 };
+        for i in (0..ring.len()).step_by(step) {
+            let (a, b) = (ring[i], ring[(i + step) % ring.len()]);
+            if curve.contains(&[a.min(b), a.max(b)]) {
+                out.marks.push(Mark::Line(a, b));
+            }
+        }
+        for &v in ring {
+            match nodes[v as usize] {
+                BoundaryNode::Corner | BoundaryNode::Held => out.marks.push(Mark::Node(v, NodeMark::Stays)),
+                BoundaryNode::Curve => out.marks.push(Mark::Node(v, NodeMark::Slides)),
+                _ => {}
+            }
+        }
+        out.start.push(out.marks.len() as u32);
+    }
+    Some(out)
 }

@@ -2,8 +2,8 @@
 // each rule does, a run with `slide` is the command-line tool's
 // `smoothlab smooth --boundary slide --finish 0` on the same file (its counts, pass for
 // pass and to the bit), the pictures mark the feature curves and the corners, the link
-// carries the rule, and a planar sample or a surface shows the boundary fixed, disabled,
-// saying why. A screenshot of the sliding block at 1366×768 goes to test-output/browser/.
+// carries the rule, a surface's curves slide, and a planar sample shows the boundary
+// fixed, disabled, saying why. A screenshot of the sliding block at 1366×768 goes to test-output/browser/.
 import path from 'node:path';
 import { mkdirSync, readFileSync, writeFileSync } from 'node:fs';
 import { OUT, TIMEOUT, test, check, idle, open, stats, canvasInfo, chooseSample, freshPage, cli, mshNodes, step } from '../lib.mjs';
@@ -54,7 +54,7 @@ export default async function ({ server, context }) {
       check(await p.locator('#boundary').isDisabled(), 'a planar mesh\'s boundary cannot slide');
       check(await p.inputValue('#boundary') === 'fixed', `the menu shows ${await p.inputValue('#boundary')}`);
       const why = await p.textContent('#boundary-why');
-      check(/^Fixed here: the page slides a volume mesh's boundary; this mesh is planar \(the command line and Python slide it\)\.$/.test(why), `why: ${why}`);
+      check(/^Fixed here: the page slides the boundaries of volume meshes and surfaces; this mesh is planar \(the command line and Python slide it\)\.$/.test(why), `why: ${why}`);
       check(/as in the papers/.test(await p.textContent('#boundary-words')), await p.textContent('#boundary-words'));
 
       await p.setInputFiles('#file', file);
@@ -111,8 +111,18 @@ export default async function ({ server, context }) {
       check(await p.locator('#boundary').isDisabled() && await p.inputValue('#boundary') === 'fixed', 'a planar sample shows the boundary fixed');
       check(/this mesh is planar/.test(await p.textContent('#boundary-why')), await p.textContent('#boundary-why'));
       check(!/boundary=/.test(await p.evaluate(() => location.hash)), `the link drops it: ${await p.evaluate(() => location.hash)}`);
-      await chooseSample(p, 'sample:sphere-tangled');
-      check(await p.locator('#boundary').isDisabled() && /this mesh is a surface in 3D/.test(await p.textContent('#boundary-why')), `a surface: ${await p.textContent('#boundary-why')}`);
+      // a surface: its curves (the capped cylinder's two rims) slide, said in its own words
+      await chooseSample(p, 'sample:cylinder-capped');
+      await idle(p);
+      check(await p.inputValue('#boundary') === 'slide' && !(await p.locator('#boundary').isDisabled()) && (await p.textContent('#boundary-why')) === '', 'a surface\'s curves slide');
+      const surfaceWords = await p.textContent('#boundary-words');
+      check(/open edges and feature curves/.test(surfaceWords) && /slide along them/.test(surfaceWords), `the surface's sentence: ${surfaceWords}`);
+      check(await p.locator('#boundary-key').isVisible(), 'the key of the marks is shown for a surface');
+      const rims = await stats(p, 'b');
+      check(Number(rims.boundary_sliding) > 20 && rims.passes === '0', `the rims' nodes slide: ${JSON.stringify(rims)}`);
+      await step(p);
+      const slid = await stats(p, 'b');
+      check(slid.passes === '1' && Number(slid.boundary_distance) < 1e-12, `after a Step every rim node is on its circle: ${JSON.stringify(slid)}`);
       await chooseSample(p, 'sample:hex-tangled');
       check(await p.inputValue('#boundary') === 'slide' && !(await p.locator('#boundary').isDisabled()), 'the choice comes back with a volume mesh');
       check(/boundary=slide/.test(await p.evaluate(() => location.hash)), `and the link carries it: ${await p.evaluate(() => location.hash)}`);

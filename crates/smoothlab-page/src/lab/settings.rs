@@ -247,12 +247,18 @@ pub fn boundary_words(rule: BoundaryRule) -> &'static str {
 /// Why a planar mesh's boundary nodes cannot slide here (the page slides volume meshes
 /// only; the core's `--boundary slide` takes planar meshes and surfaces too).
 pub fn slide_refused_planar() -> String {
-    "the page slides a volume mesh's boundary; this mesh is planar (the command line and Python slide it)".into()
+    "the page slides the boundaries of volume meshes and surfaces; this mesh is planar (the command line and Python slide it)".into()
 }
 
-/// Why a surface's boundary nodes cannot slide here.
-pub fn slide_refused_surface() -> String {
-    "the page slides a volume mesh's boundary; this mesh is a surface in 3D (the command line and Python slide its open edges and feature curves)".into()
+/// What a boundary rule does on a surface, in a sentence for the page: its boundary is
+/// its open edges and feature curves.
+pub fn surface_boundary_words(rule: BoundaryRule) -> &'static str {
+    match rule {
+        BoundaryRule::Fixed => "The nodes of the surface's open edges and feature curves stay where the file put them, as in the papers.",
+        BoundaryRule::Slide => {
+            "The nodes of the surface's open edges and feature curves (where it bends by more than 30°) slide along them as loaded; a node where a curve turns by more than 60°, ends or meets another stays."
+        }
+    }
 }
 
 /// Why a quadratic volume mesh's boundary nodes cannot slide.

@@ -536,6 +536,14 @@ impl Mesh {
             }
         }
     }
+    /// Fixes the nodes for which `hold` is true: the inverse of [`release`](Self::release).
+    pub(crate) fn hold(&mut self, hold: impl Fn(usize) -> bool) {
+        for (n, f) in self.fixed.iter_mut().enumerate() {
+            if hold(n) {
+                *f = true;
+            }
+        }
+    }
     /// Reverses the order of the nodes of element `e` (its orientation). Only while the
     /// mesh is being built.
     pub(crate) fn reverse_element(&mut self, e: usize) {

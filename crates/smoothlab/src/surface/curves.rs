@@ -9,7 +9,7 @@ use std::sync::Arc;
 use glam::DVec3;
 
 use super::{Analytic, Reference, Surface};
-use crate::mesh::NONE;
+use crate::mesh::{BoundaryNode, NONE};
 
 /// The curves of a surface as loaded, for the nodes that slide along them.
 #[derive(Clone, Debug)]
@@ -136,6 +136,47 @@ impl Surface {
         self.curves = Some(Arc::new(curves));
     }
 
+    /// The curves' edges (open boundary edges and feature edges), each once.
+    pub fn curve_edges(&self) -> impl Iterator<Item = [u32; 2]> + '_ {
+        self.curve_edges.iter().map(|&[a, b, _]| [a, b])
+    }
+
+    /// What each node does while the curves slide: a curve node slides
+    /// ([`BoundaryNode::Curve`]), is held by the file's flags ([`BoundaryNode::Held`]) or
+    /// stays as a corner ([`BoundaryNode::Corner`]); a node off the curves is
+    /// [`BoundaryNode::Interior`]. `None` while the curves are held.
+    pub fn curve_nodes(&self) -> Option<Vec<BoundaryNode>> {
+        self.curves.as_ref()?;
+        let mut out = vec![BoundaryNode::Interior; self.points.len()];
+        for [a, b] in self.curve_edges() {
+            for n in [a as usize, b as usize] {
+                out[n] = self.curve_node(n);
+            }
+        }
+        Some(out)
+    }
+
+    /// What curve node `n` does while the curves slide ([`curve_nodes`](Self::curve_nodes)).
+    fn curve_node(&self, n: usize) -> BoundaryNode {
+        if self.slides(n) {
+            BoundaryNode::Curve
+        } else if self.flags_given && !self.flags_mark_only && self.flat.is_fixed(n) {
+            BoundaryNode::Held
+        } else {
+            BoundaryNode::Corner
+        }
+    }
+
+    /// Holds the curves' nodes again where [`slide_along_curves_with`](Self::slide_along_curves_with)
+    /// let them slide: the boundary fixed, as the surface was read.
+    pub fn hold_curves(&mut self) {
+        let Some(curves) = self.curves.take() else { return };
+        self.flat.hold(|i| curves.slides(i));
+        self.curve_hint = Vec::new();
+        self.corner_deg = None;
+        self.flags_mark_only = false;
+    }
+
     /// Whether node `n` slides along a curve.
     pub fn slides(&self, n: usize) -> bool {
         self.curves.as_ref().is_some_and(|c| c.slides(n))
@@ -168,14 +209,14 @@ impl Surface {
         }
         let mut out = SurfaceBoundary::default();
         for (i, edges) in edges_of.iter().enumerate().filter(|(_, e)| !e.is_empty()) {
-            if self.slides(i) {
-                out.sliding += 1;
-                let (r0, r1) = (root(&mut parent, edges[0]), root(&mut parent, edges[1]));
-                parent[r0] = r1;
-            } else if self.flags_given && !self.flags_mark_only && self.flat.is_fixed(i) {
-                out.held += 1;
-            } else {
-                out.corners += 1;
+            match self.curve_node(i) {
+                BoundaryNode::Curve => {
+                    out.sliding += 1;
+                    let (r0, r1) = (root(&mut parent, edges[0]), root(&mut parent, edges[1]));
+                    parent[r0] = r1;
+                }
+                BoundaryNode::Held => out.held += 1,
+                _ => out.corners += 1,
             }
         }
         out.curves = (0..parent.len()).filter(|&k| root(&mut parent, k) == k).count();

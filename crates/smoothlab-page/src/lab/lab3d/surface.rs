@@ -17,7 +17,8 @@ use smoothlab::io::{write_string, Format, WriteOptions};
 use crate::lab::pick::why_not_free;
 use crate::lab::views::FigureWords;
 use crate::lab::{PassSummary, Settings, Side};
-use smoothlab::mesh::NodeRole;
+use smoothlab::mesh::{BoundaryNode, BoundaryRule, NodeRole, FEATURE_ANGLE_DEG};
+use smoothlab::BoundaryReport;
 use smoothlab::objective::{Goal, Objective, Star};
 use smoothlab::quality::MeshStats;
 use smoothlab_render::{HistogramAxis, Metric, PlaneFunction, Projection, StarFunction, SurfaceView, PASS_TITLES};
@@ -86,13 +87,34 @@ impl Mesh3d for Surface {
     fn aim_at(&mut self, at: Option<&Surface>) {
         self.set_target_points(at.map(|a| a.points().to_vec()));
     }
-    /// A surface's feature curves slide with the command line's `--slide-curves`, not by
-    /// the volume's rule.
+    /// A surface's curves (its open edges and feature curves) slide by the rule.
     fn slide_refused(&self) -> Option<String> {
-        Some(crate::lab::settings::slide_refused_surface())
+        None
     }
+    /// The core's rule at its default feature angle ([`FEATURE_ANGLE_DEG`]: a curve node
+    /// where the curve turns by more than it stays), as `smoothlab smooth --boundary slide`
+    /// takes it; fixed holds the curves again.
+    fn set_boundary_rule(&mut self, rule: BoundaryRule) {
+        match rule {
+            BoundaryRule::Slide => self.slide_along_curves_with(Some(FEATURE_ANGLE_DEG)),
+            BoundaryRule::Fixed => self.hold_curves(),
+        }
+    }
+    fn boundary_report(&self) -> Option<BoundaryReport> {
+        self.boundary_corner_deg().map(|_| BoundaryReport::of_surface(self))
+    }
+    /// Perturbed in the tangent planes as `smoothlab generate perturb` perturbs the file:
+    /// the curves stay whatever the rule (a sliding node is free, but not to be thrown off
+    /// its curve), and a sliding rule is taken again on the perturbed surface.
     fn perturbed(&self, amount: f64, seed: u64) -> Result<Surface> {
-        perturb_surface(self, amount, seed)
+        if self.boundary_corner_deg().is_none() {
+            return perturb_surface(self, amount, seed);
+        }
+        let mut held = self.clone();
+        held.hold_curves();
+        let mut out = perturb_surface(&held, amount, seed)?;
+        out.set_boundary_rule(BoundaryRule::Slide);
+        Ok(out)
     }
     fn side_title(settings: &Settings, side: Side) -> String {
         settings.side_title(side)
@@ -121,6 +143,15 @@ impl Mesh3d for Surface {
     /// The planar page's reasons, and a feature curve's: its nodes are fixed.
     fn why_not_free(&self, n: usize) -> Option<String> {
         let m = self.flat();
+        if n < m.node_count() && !m.is_free(n) {
+            match self.curve_nodes().map(|c| c[n]) {
+                Some(BoundaryNode::Corner) => {
+                    return Some(format!("node {n} is a corner of a curve (where it turns by more than {FEATURE_ANGLE_DEG}° or ends): it stays while the other curve nodes slide"))
+                }
+                Some(BoundaryNode::Held) => return Some(format!("node {n} is fixed by the file: it stays while the curves slide")),
+                _ => {}
+            }
+        }
         if n < m.node_count() && !m.is_free(n) && m.role(n) == NodeRole::Corner && self.is_feature(n) {
             return Some(format!(
                 "node {n} is fixed: it lies on a feature curve (where the surface bends by more than 30°), which smoothing keeps in place"
@@ -266,6 +297,60 @@ mod tests {
         };
         assert_eq!(l.mesh(Side::B).points(), cli.points());
         assert_eq!(b.pass, 1);
+    }
+
+    #[test]
+    fn the_curves_slide_as_the_cli_slides_them_and_hold_again() {
+        use smoothlab::volume::BoundaryRule;
+        let sample = || match Sample::CylinderCapped.model().unwrap() {
+            Model::Surface(s) => s,
+            _ => unreachable!(),
+        };
+        let mut l = lab(Sample::CylinderCapped);
+        let c = Canvas { w: 320, h: 280, dpr: 1.0 };
+        let fixed = l.render(Side::B, c).unwrap().0;
+        let slide = Settings { boundary: BoundaryRule::Slide, ..Settings::default() };
+        l.set_settings(slide).unwrap();
+        let b = l.table(Side::B).boundary.expect("the boundary's report");
+        // the two rims, each a closed curve that turns nowhere sharply: every node slides
+        assert_eq!((b.curves, b.corners, b.held, b.surface_nodes), (2, 0, 0, 0));
+        assert!(b.curve_nodes > 20, "{b:?}");
+        for _ in 0..2 {
+            // the page sends its settings before each Step
+            l.set_settings(slide).unwrap();
+            l.step(&no_clock);
+        }
+        for side in Side::BOTH {
+            let c = slide.choice(side);
+            let mut model = Model::Surface(sample());
+            let mut smoothing = smoothlab::Smoothing::default().objective(c.objective).boundary(BoundaryRule::Slide).passes(2).finish(0);
+            if c.objective == ObjectiveKind::SmoothShape {
+                smoothing = smoothing.penalty(c.penalty);
+            }
+            let report = model.smooth(&smoothing).unwrap();
+            let Model::Surface(cli) = model else { unreachable!() };
+            assert_eq!(l.mesh(side).points(), cli.points(), "{side:?}");
+            assert_eq!(l.table(side).boundary.as_ref(), report.boundary(), "{side:?}");
+        }
+        let (m, o) = (l.mesh(Side::B).clone(), l.original().clone());
+        let rim: Vec<usize> = (0..m.node_count()).filter(|&n| m.slides(n)).collect();
+        assert!(rim.iter().filter(|&&n| m.points()[n] != o.points()[n]).count() > 10, "the rims' nodes moved");
+        assert!(l.table(Side::B).boundary.unwrap().max_distance < 1e-12);
+        // the curves and their nodes are marked
+        let sliding = l.render(Side::B, c).unwrap().0;
+        let purple = |pm: &Pixmap| pm.pixels().iter().filter(|p| [p.red(), p.green(), p.blue()] == smoothlab_render::MARK_LINE_RGB).count();
+        assert_eq!(purple(&fixed), 0);
+        assert!(purple(&sliding) > 50, "{} pixels", purple(&sliding));
+        // a perturbation moves the rest only, and the curves slide on the new surface
+        l.perturb(0.3, 5).unwrap();
+        let p = l.original();
+        assert!(rim.iter().all(|&n| p.points()[n] == o.points()[n] && p.slides(n)));
+        // back to fixed: the rims hold again, saying why
+        l.set_settings(Settings::default()).unwrap();
+        assert!(l.table(Side::A).boundary.is_none());
+        assert!(rim.iter().all(|&n| !l.original().slides(n) && !l.original().flat().is_free(n)));
+        let e = l.choose_node(Some(rim[0])).unwrap_err().to_string();
+        assert!(e.contains("feature curve"), "{e}");
     }
 
     #[test]

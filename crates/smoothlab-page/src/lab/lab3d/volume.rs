@@ -552,7 +552,7 @@ mod tests {
         assert!(lab().slide_refused().is_none());
         let mut planar = crate::lab::Playground::new(Sample::PlateTri.generate().unwrap()).unwrap();
         let e = planar.set_settings(slide).unwrap_err().to_string();
-        assert_eq!(e, "the boundary cannot slide here: the page slides a volume mesh's boundary; this mesh is planar (the command line and Python slide it)");
+        assert_eq!(e, "the boundary cannot slide here: the page slides the boundaries of volume meshes and surfaces; this mesh is planar (the command line and Python slide it)");
     }
 
     #[test]
