@@ -92,7 +92,7 @@ impl Panel {
         Ok(Panel {
             mesh,
             objective: settings.choice(side).build(),
-            smoother: Smoother::new(settings.smooth_options()?)?,
+            smoother: Smoother::new(settings.side_options(side)?)?,
             records: Vec::new(),
             version,
             quick: full.quick(),
@@ -228,11 +228,11 @@ impl Playground {
     /// through since. A planar mesh's boundary is fixed: [`BoundaryRule::Slide`](smoothlab::volume::BoundaryRule::Slide)
     /// is refused, saying why ([`slide_refused`](Self::slide_refused)).
     pub fn set_settings(&mut self, settings: Settings) -> Result<()> {
-        let o = settings.smooth_options()?;
+        let o = [settings.side_options(Side::A)?, settings.side_options(Side::B)?];
         settings::check_boundary(settings.boundary, self.slide_refused())?;
         self.abort_pass();
         for (p, side) in self.panels.iter_mut().zip(Side::BOTH) {
-            p.smoother = Smoother::new(o)?;
+            p.smoother = Smoother::new(o[side.index()])?;
             p.objective = settings.choice(side).build();
         }
         let retarget = settings.target != self.settings.target;
@@ -471,7 +471,7 @@ impl Playground {
             &p.mesh,
             node,
             p.objective.as_ref(),
-            &self.settings.smooth_options()?,
+            &self.settings.side_options(side)?,
         )
     }
 
@@ -556,12 +556,9 @@ impl Playground {
     pub fn reset(&mut self) {
         self.abort_pass();
         self.undo.clear();
-        let o = self
-            .settings
-            .smooth_options()
-            .expect("the settings were checked when set");
+        let o = Side::BOTH.map(|side| self.settings.side_options(side).expect("the settings were checked when set"));
         let quick = self.original_stats.quick();
-        for p in &mut self.panels {
+        for (p, o) in self.panels.iter_mut().zip(o) {
             p.mesh.nodes_mut().copy_from_slice(&self.original);
             p.version = self.original_version;
             p.quick = quick;

@@ -180,6 +180,15 @@ impl Settings {
         Ok(o)
     }
 
+    /// The drivers' options for `side` (checked): [`smooth_options`](Self::smooth_options)
+    /// judged by the measure of the side's objective
+    /// ([`Measure::of_objective`](smoothlab::smooth::Measure::of_objective)), as
+    /// `smoothlab smooth --objective` takes it.
+    pub fn side_options(&self, side: Side) -> Result<SmoothOptions> {
+        let m = smoothlab::smooth::Measure::of_objective(self.choice(side).objective);
+        Ok(self.smooth_options()?.with_smart_measure(m))
+    }
+
     /// What `side` smooths with.
     pub fn choice(&self, side: Side) -> Choice {
         self.compare[side.index()]
