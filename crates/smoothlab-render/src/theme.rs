@@ -145,15 +145,18 @@ impl Theme {
 
     /// A title fitted to `room` device pixels as [`fit_label`](Self::fit_label) fits it, but
     /// where it is too wide at the smallest label, its leading clauses (up to a ",", ":",
-    /// ";" or " (") that fit, whole words that read as a title; "…" only when even the first
-    /// clause is too wide.
+    /// ";" or " (") that fit, whole words that read as a title — so long as the clauses
+    /// left out hold no digit: a title's numbers (a count, a pass, a value) are its point,
+    /// and a title that cannot keep them all is cut with "…", which shows (and which the
+    /// layout records as cut). "…" too when even the first clause is too wide.
     pub fn fit_title<'a>(&self, text: &'a str, size: f32, room: f32, dpr: f32) -> (Cow<'a, str>, f32) {
         let (shown, size) = self.fit_label(text, size, room, dpr);
         if shown == text {
             return (shown, size);
         }
         let mut ends = text.match_indices([',', ':', ';', '(']).map(|(i, c)| if c == "(" { i.saturating_sub(1) } else { i });
-        let fitting = ends.rfind(|&i| i > 0 && super::text::text_width(&text[..i], size) <= room);
+        let keeps_numbers = |i: usize| !text[i..].contains(|c: char| c.is_ascii_digit());
+        let fitting = ends.rfind(|&i| i > 0 && keeps_numbers(i) && super::text::text_width(&text[..i], size) <= room);
         match fitting {
             Some(i) => (text[..i].trim_end().into(), size),
             None => (shown, size),
@@ -215,6 +218,25 @@ mod tests {
         assert_eq!(t.fit_title(title, 14.0, room, 1.0).0, "B: new: Chen, Tristano & Kwok");
         assert_eq!(t.fit_title(title, 14.0, 1000.0, 1.0).0, title);
         assert!(t.fit_title("one long clause without a comma", 14.0, 60.0, 1.0).0.ends_with('…'));
+    }
+
+    #[test]
+    fn a_title_never_drops_a_clause_that_holds_a_number() {
+        // issue 59: "A, pass 1: 63 inverted" kept as "A, pass 1" lost its count, unseen
+        let t = Theme::light().with_min_label(14.0);
+        let width = |s: &str| super::super::text::text_width(s, 14.0);
+        let title = "A, pass 1: 63 inverted";
+        let shown = t.fit_title(title, 14.0, width("A, pass 1") + 4.0, 1.0).0;
+        assert!(shown.ends_with('…'), "{shown}");
+        // a clause without a number still goes, the numbers kept
+        let title = "after 3 passes: 12 inverted, both orders";
+        let kept = "after 3 passes: 12 inverted";
+        assert_eq!(t.fit_title(title, 14.0, width(kept) + 4.0, 1.0).0, kept);
+        for room in (40..400).step_by(7) {
+            let shown = t.fit_title(title, 14.0, room as f32, 1.0).0;
+            let digits = |s: &str| s.chars().filter(char::is_ascii_digit).collect::<String>();
+            assert!(shown.ends_with('…') || digits(&shown) == digits(title), "{room} px: {shown}");
+        }
     }
 
     #[test]

@@ -247,6 +247,9 @@ impl Smoothing {
                 return refuse("feature_angle", format!("{a} asked: give degrees above 0 and below 180"));
             }
         }
+        // Freitag's `sine` judges its moves by the smallest sine, every other objective by
+        // the shape (the page's sides and the reproduction's rows read the same rule)
+        o = o.with_smart_measure(crate::smooth::Measure::of_objective(self.objective));
         o.validate()?;
         Ok(o)
     }

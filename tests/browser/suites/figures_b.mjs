@@ -47,6 +47,15 @@ export default async function ({ server, context }) {
     }
   });
 
+  /** One number for one run (issue 59): the live meshes A and B, run by the page with the
+   * figure's settings, read the smallest angle the table's rows of their methods read. */
+  const oneRun = (rows, s, name) => {
+    for (const [i, method] of [[0, 'opt, sine'], [1, 'opt, new']]) {
+      const row = rows.find((r) => r[0] === method);
+      check(row && row[1] === s[i].min_angle, `${name}: the table's ${method} says ${row && row[1]}, side ${'AB'[i]} ${s[i].min_angle}`);
+    }
+  };
+
   await test('freitag-t1: Table 1 shown once (no picture of it beside the table), its rows coming one at a time at a pace one can follow', async () => {
     const p = await freshPage(context, 1366, 900, 'freitag-t1');
     try {
@@ -81,6 +90,7 @@ export default async function ({ server, context }) {
       const rows = await p.$$eval('#tour-rows tr', (trs) => trs.map((tr) => [...tr.children].map((c) => c.textContent)));
       check(rows.length === card.rows && rows.every((r) => r.length === 8), `rows: ${JSON.stringify(rows)}`);
       check(rows.some((r) => /18\.20/.test(r[7])), 'Freitag\'s numbers beside ours');
+      oneRun(rows, [await stats(p, 'a'), await stats(p, 'b')], 'freitag-t1');
       await p.locator('#tour').screenshot({ path: path.join(OUT, 'figure-b-freitag-t1.png') });
     } finally {
       await p.close();
@@ -101,6 +111,7 @@ export default async function ({ server, context }) {
       check(/dihedral/.test((await p.$$eval('#tour-head th', (t) => t.map((x) => x.textContent))).join(' ')), 'dihedral headings');
       const s = [await stats(p, 'a'), await stats(p, 'b')];
       check(s[0].passes === '3' && s[1].passes === '3', `passes run: ${s[0].passes}/${s[1].passes}`);
+      oneRun(rows, s, 'freitag-t2');
       for (const id of ['mesh-a', 'mesh-b']) {
         const c = await canvasInfo(p, id);
         check(c.colours > 50, `${id}, the cut view, looks blank (${c.colours} colours)`);

@@ -4,7 +4,9 @@
 // scrolled away, not cut by a line clamp), and the picture is whole with every text in it
 // at least the page's smallest label, none cut to "…" and none running off the picture —
 // read from the boxes the core records as it draws each text (tourPictureLayout), checked
-// against the canvas's pixels.
+// against the canvas's pixels. A title too wide for its panel keeps its leading clauses
+// only where the clauses left out hold no digit (Theme::fit_title), else it is cut to "…":
+// so no text cut means no number of a title lost.
 import path from 'node:path';
 import { OUT, TIMEOUT, test, check, idle, open, freshPage, hostFrame } from '../lib.mjs';
 

@@ -92,7 +92,7 @@ impl Panel {
         Ok(Panel {
             mesh,
             objective: settings.choice(side).build(),
-            smoother: Smoother::new(settings.run_options(full)?)?,
+            smoother: Smoother::new(settings.run_options(side, full)?)?,
             records: Vec::new(),
             version,
             quick: full.quick(),
@@ -228,11 +228,11 @@ impl Playground {
     /// through since. A planar mesh's boundary is fixed: [`BoundaryRule::Slide`](smoothlab::volume::BoundaryRule::Slide)
     /// is refused, saying why ([`slide_refused`](Self::slide_refused)).
     pub fn set_settings(&mut self, settings: Settings) -> Result<()> {
-        let o = settings.run_options(&self.original_stats)?;
+        let o = [settings.run_options(Side::A, &self.original_stats)?, settings.run_options(Side::B, &self.original_stats)?];
         settings::check_boundary(settings.boundary, self.slide_refused())?;
         self.abort_pass();
         for (p, side) in self.panels.iter_mut().zip(Side::BOTH) {
-            p.smoother = Smoother::new(o)?;
+            p.smoother = Smoother::new(o[side.index()])?;
             p.objective = settings.choice(side).build();
         }
         let retarget = settings.target != self.settings.target;
@@ -322,7 +322,7 @@ impl Playground {
     /// [`grading_to_keep`](Self::grading_to_keep): its run's, not this one's.
     pub fn begin_sweep(&mut self, side: Side, nodes: &[f64], target: Option<&[f64]>, keep_grading: f64) -> Result<()> {
         self.abort_pass();
-        let options = smoothlab::smooth::SmoothOptions { keep_grading: Some(keep_grading), ..self.settings.smooth_options()? };
+        let options = smoothlab::smooth::SmoothOptions { keep_grading: Some(keep_grading), ..self.settings.side_options(side)? };
         let nodes = self.positions_from(nodes)?;
         let target = match (self.settings.target, target) {
             (Target::Input, Some(t)) => Some(
@@ -481,7 +481,7 @@ impl Playground {
             &p.mesh,
             node,
             p.objective.as_ref(),
-            &self.settings.smooth_options()?,
+            &self.settings.side_options(side)?,
         )
     }
 
@@ -566,12 +566,9 @@ impl Playground {
     pub fn reset(&mut self) {
         self.abort_pass();
         self.undo.clear();
-        let o = self
-            .settings
-            .run_options(&self.original_stats)
-            .expect("the settings were checked when set");
+        let o = Side::BOTH.map(|side| self.settings.run_options(side, &self.original_stats).expect("the settings were checked when set"));
         let quick = self.original_stats.quick();
-        for p in &mut self.panels {
+        for (p, o) in self.panels.iter_mut().zip(o) {
             p.mesh.nodes_mut().copy_from_slice(&self.original);
             p.version = self.original_version;
             p.quick = quick;

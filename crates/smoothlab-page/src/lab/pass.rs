@@ -530,7 +530,7 @@ mod tests {
                         assert!(!pg.pass_in_progress());
                         for side in Side::BOTH {
                             let mut m = mesh.clone();
-                            let mut s = Smoother::new(settings.smooth_options().unwrap()).unwrap();
+                            let mut s = Smoother::new(settings.side_options(side).unwrap()).unwrap();
                             let obj = settings.choice(side).build();
                             let mut rec = None;
                             for _ in 0..pass {

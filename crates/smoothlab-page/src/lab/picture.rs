@@ -394,7 +394,7 @@ fn surface(
         }
     };
     let settings = r.settings();
-    let opts = settings.smooth_options().map_err(|e| e.to_string())?;
+    settings.smooth_options().map_err(|e| e.to_string())?;
     let camera = r.camera.unwrap_or_default();
     let (w, h) = r.size_or(if sides.len() == 2 {
         (1400, 760)
@@ -407,6 +407,7 @@ fn surface(
         let mut t = s.clone();
         let choice = settings.compare[side as usize];
         let objective = choice.build();
+        let opts = settings.side_options(side).map_err(|e| e.to_string())?;
         let mut smoother = SurfaceSmoother::new(opts).map_err(|e| e.to_string())?;
         for _ in 0..passes {
             smoother.pass(&mut t, objective.as_ref(), &|| 0.0);
@@ -475,9 +476,10 @@ fn volume(
         }
     };
     let settings = r.settings();
-    let opts = settings.smooth_options().map_err(|e| e.to_string())?;
+    settings.smooth_options().map_err(|e| e.to_string())?;
     let mut smoothed = Vec::new();
     for &side in &sides {
+        let opts = settings.side_options(side).map_err(|e| e.to_string())?;
         let mut t = v.clone();
         let kind = settings.compare[side as usize].objective;
         smooth_volume(

@@ -155,11 +155,12 @@ impl Default for Settings {
 }
 
 impl Settings {
-    /// The options of a run that starts from a mesh with statistics `start`. A run keeps
-    /// the grading it found ([`MeshStats::grading_to_keep`]), as `smoothlab smooth` does,
-    /// whatever settings come between its passes.
-    pub fn run_options(&self, start: &MeshStats) -> Result<SmoothOptions> {
-        Ok(SmoothOptions { keep_grading: Some(start.grading_to_keep()), ..self.smooth_options()? })
+    /// The options of `side`'s run ([`side_options`](Self::side_options)) that starts from
+    /// a mesh with statistics `start`. A run keeps the grading it found
+    /// ([`MeshStats::grading_to_keep`]), as `smoothlab smooth` does, whatever settings come
+    /// between its passes.
+    pub fn run_options(&self, side: Side, start: &MeshStats) -> Result<SmoothOptions> {
+        Ok(SmoothOptions { keep_grading: Some(start.grading_to_keep()), ..self.side_options(side)? })
     }
 
     /// The drivers' options (checked), after checking each side's choice.
@@ -186,6 +187,15 @@ impl Settings {
             .with_max_iter(self.max_iter);
         o.validate()?;
         Ok(o)
+    }
+
+    /// The drivers' options for `side` (checked): [`smooth_options`](Self::smooth_options)
+    /// judged by the measure of the side's objective
+    /// ([`Measure::of_objective`](smoothlab::smooth::Measure::of_objective)), as
+    /// `smoothlab smooth --objective` takes it.
+    pub fn side_options(&self, side: Side) -> Result<SmoothOptions> {
+        let m = smoothlab::smooth::Measure::of_objective(self.choice(side).objective);
+        Ok(self.smooth_options()?.with_smart_measure(m))
     }
 
     /// What `side` smooths with.

@@ -175,6 +175,23 @@ pub enum Measure {
     MinSine,
 }
 
+impl Measure {
+    /// The measure a run optimizing objective `kind` judges its moves and ranks its nodes
+    /// by: Freitag's smallest sine for her `sine` (her optimization keeps a move only where
+    /// the star's smallest sine does not fall; her smart Laplacian and thresholds read it
+    /// too), the shape for every other objective. The finish's max-min sine passes read
+    /// the sine as well.
+    pub fn of_objective(kind: crate::objective::ObjectiveKind) -> Measure {
+        use crate::objective::ObjectiveKind as K;
+        match kind {
+            K::Sine => Measure::MinSine,
+            K::MaxMinShape | K::SmoothShape | K::Condition | K::ConditionMax | K::Untangle | K::UntangleMinDet => {
+                Measure::Shape
+            }
+        }
+    }
+}
+
 /// Settings of the smoothing drivers.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct SmoothOptions {
@@ -191,7 +208,8 @@ pub struct SmoothOptions {
     /// Which solver optimises. Default [`SolverKind::Auto`] (by the objective's goal).
     pub solver: SolverKind,
     /// What the smart Laplacian must improve. Default [`Measure::Shape`] (Chen's α/β);
-    /// [`Measure::MinSine`] is Freitag's choice.
+    /// [`Measure::MinSine`] is Freitag's choice. A run of an objective takes
+    /// [`Measure::of_objective`].
     pub smart_measure: Measure,
     /// Chen's rule 4: the caller forces optimization for every node under
     /// [`Strategy::Rules`]. Default false.

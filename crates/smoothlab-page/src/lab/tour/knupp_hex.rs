@@ -7,17 +7,17 @@ use std::sync::OnceLock;
 
 use tiny_skia::Pixmap;
 
-use super::tables::cut_panel;
 use super::{find, gallery_sample};
 use smoothlab::error::{Error, Result};
 use crate::lab::lab3d::Lab3d;
 use crate::lab::sample::{HEX_TANGLE_AMOUNT, SAMPLE_SEED};
-use crate::lab::views::Canvas;
+use crate::lab::lab3d::Mesh3d;
+use crate::lab::views::{pixmap, Canvas};
 use crate::lab::Side;
 use smoothlab::model::Model;
 use smoothlab_render::Theme;
 use smoothlab::volume::{volume_stats, VolumeMesh};
-use smoothlab_render::{Cut};
+use smoothlab_render::{draw_node_mark, Cut, SurfaceView, VolumePicture};
 
 /// The figure's run: each side's mesh as loaded and after each pass.
 pub(super) struct HexRun {
@@ -74,9 +74,12 @@ pub(super) fn hex_run() -> Result<&'static HexRun> {
 
 /// The picture: one row a side, the block as loaded and after each pass, cut half way up
 /// z (the plane placed by the fixed boundary, so the same in every panel), each panel
-/// titled with its inverted count.
+/// titled with its inverted count. A node thrown out of the block lies in the view (the
+/// panel zooms out to hold it) but its elements' faces are hidden between the elements
+/// the cut keeps: it is marked, with its edges, as the page marks a chosen node.
 pub(super) fn knupp_hex(c: Canvas, t: &Theme) -> Result<Vec<Pixmap>> {
     let run = hex_run()?;
+    let m0 = &run.stages[0][0];
     let mut out = Vec::new();
     for side in Side::BOTH {
         let counts = run.inverted(side);
@@ -85,10 +88,24 @@ pub(super) fn knupp_hex(c: Canvas, t: &Theme) -> Result<Vec<Pixmap>> {
             // objectives are the sides', named in the words)
             let when = if p == 0 { "start".to_string() } else { format!("pass {p}") };
             let title = format!("{}, {when}: {} inverted", side.letter(), counts[p]);
-            out.push(cut_panel(m, Cut::default(), &title, c, t)?);
+            let mut pm = pixmap(c.w, c.h)?;
+            let view = SurfaceView { dpr: c.dpr, title: Some(title), theme: *t, ..SurfaceView::default() };
+            let proj = m.render_cut(&mut pm, Cut::default(), &view);
+            if let Some((n, _)) = thrown(m0, m) {
+                draw_node_mark(&mut pm, &proj, m.nodes()[n], &m.star_lines(n), c.dpr);
+            }
+            out.push(pm);
         }
     }
     Ok(out)
+}
+
+/// The node of `m` farthest outside the box of `m0`'s nodes, and how far, in `m0`'s mean
+/// edge lengths, when it lies more than one edge length out: a node thrown out.
+fn thrown(m0: &VolumeMesh, m: &VolumeMesh) -> Option<(usize, f64)> {
+    let (lo, hi) = m0.nodes().iter().fold((glam::DVec3::INFINITY, glam::DVec3::NEG_INFINITY), |(l, h), &p| (l.min(p), h.max(p)));
+    let far = m.nodes().iter().map(|&p| p.distance(p.clamp(lo, hi)) / m0.mean_edge_length()).enumerate();
+    far.max_by(|a, b| a.1.total_cmp(&b.1)).filter(|&(_, d)| d > 1.0)
 }
 
 /// The columns of the picture: the mesh as loaded and after each pass.
@@ -100,8 +117,7 @@ pub(super) fn columns() -> Result<usize> {
 /// edge lengths (0: every node inside).
 fn farthest_outside(m0: &VolumeMesh, m: &VolumeMesh) -> f64 {
     let (lo, hi) = m0.nodes().iter().fold((glam::DVec3::INFINITY, glam::DVec3::NEG_INFINITY), |(l, h), &p| (l.min(p), h.max(p)));
-    let far = m.nodes().iter().map(|&p| p.distance(p.clamp(lo, hi))).fold(0.0, f64::max);
-    far / m0.mean_edge_length()
+    m.nodes().iter().map(|&p| p.distance(p.clamp(lo, hi))).fold(0.0, f64::max) / m0.mean_edge_length()
 }
 
 /// Where side A's nodes went (`objective` its objective's name), in words: outside the
@@ -109,7 +125,7 @@ fn farthest_outside(m0: &VolumeMesh, m: &VolumeMesh) -> f64 {
 fn outside_words(m0: &VolumeMesh, m: &VolumeMesh, objective: &str) -> String {
     let d = farthest_outside(m0, m);
     if d > 0.0 {
-        format!("; {objective} threw a node {d:.1} edge lengths out of the block (its panels zoom out)")
+        format!("; {objective} threw a node {d:.1} edge lengths out of the block (marked in orange with its edges; its panels zoom out to hold it)")
     } else {
         String::new()
     }
@@ -162,6 +178,13 @@ mod tests {
         let far = farthest_outside(&run.stages[0][0], run.stages[0].last().unwrap());
         assert!(far > 1.0 && text.contains(&format!("a node {far:.1} edge lengths out of the block")), "{far}: {text}");
         assert_eq!(farthest_outside(&run.stages[1][0], run.stages[1].last().unwrap()), 0.0, "the new side stays inside");
+        // the thrown node is in its panel's view and marked with its edges (issue 59: its
+        // elements' faces are hidden by the cut, and it was not drawn): the mark's orange
+        let panels = knupp_hex(Canvas { w: 350, h: 330, dpr: 1.0 }, &Theme::light()).unwrap();
+        let orange = |pm: &Pixmap| pm.pixels().iter().filter(|p| (p.red(), p.green(), p.blue()) == (230, 159, 0)).count();
+        let cols = columns().unwrap();
+        assert!(orange(&panels[cols - 1]) > 100, "A's last panel: {} orange pixels", orange(&panels[cols - 1]));
+        assert_eq!(orange(&panels[0]) + orange(&panels[2 * cols - 1]), 0, "no node thrown as loaded, nor by the new side");
     }
 
     #[test]

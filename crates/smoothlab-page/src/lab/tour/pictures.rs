@@ -99,12 +99,14 @@ const MIN_PANEL_CSS: (f32, f32) = (220.0, 180.0);
 /// direction: one tied corner's gradient") at 14 px.
 const MIN_LEVEL_SET_PANEL_CSS: (f32, f32) = (340.0, 200.0);
 
-/// The smallest panel of figure `name`, CSS pixels.
-fn min_panel(name: &str) -> (f32, f32) {
-    match name {
+/// The smallest panel of figure `name` in `t`, CSS pixels.
+fn min_panel(name: &str, t: &Theme) -> Result<(f32, f32)> {
+    Ok(match name {
         "chen-9" | "chen-10" | "chen-11" | "chen-20" => MIN_LEVEL_SET_PANEL_CSS,
+        // its meshes with their colour bar, the key to their quality colours
+        "chen-16" => keyed_min_panel(&find("chen-16")?.1.playground()?.0.panel(Side::B).mesh, t),
         _ => MIN_PANEL_CSS,
-    }
+    })
 }
 
 /// How a figure's panels fill a canvas: which are kept (indices of the default grid, in
@@ -130,6 +132,7 @@ pub fn arrangement(name: &str, c: Canvas, t: &Theme) -> Result<Arrangement> {
     let s = c.dpr.max(0.1);
     let (w, h) = (c.w as f32 / s, c.h as f32 / s - head);
     let order = panel_priority(name, n);
+    let (min_w, min_h) = min_panel(name, t)?;
     let mut best: Option<(f32, Arrangement)> = None;
     for k in (1..=n).rev() {
         for cols in 1..=k as u32 {
@@ -138,7 +141,6 @@ pub fn arrangement(name: &str, c: Canvas, t: &Theme) -> Result<Arrangement> {
                 continue; // a whole row empty
             }
             let (pw, ph) = (w / cols as f32, h / rows as f32);
-            let (min_w, min_h) = min_panel(name);
             let fits = pw >= min_w && ph >= min_h;
             if !fits && k > 1 {
                 continue;
@@ -212,15 +214,69 @@ pub(super) fn part(c: Canvas, cols: u32, rows: u32, t: &Theme) -> Canvas {
 
 /// A mesh on its own panel with a title and a line of statistics under it.
 pub(super) fn mesh_panel(mesh: &Mesh, title: &str, c: Canvas, t: &Theme) -> Result<Pixmap> {
+    titled_mesh_panel(mesh, title, c, t, false)
+}
+
+/// The height, CSS pixels, of a mesh panel's title and line above its mesh in `t`: the
+/// title (13 px) and the line (11 px), grown with the theme's labels.
+fn mesh_panel_head(t: &Theme) -> f32 {
+    22.0 * t.grow(13.0) + 18.0 * t.grow(11.0)
+}
+
+/// The least height, CSS pixels, a mesh keeps above the colour bar [`keyed_mesh_panel`]
+/// puts under it.
+const MIN_KEYED_MESH_CSS_H: f32 = 80.0;
+
+/// The colour bar of `mesh` (the key to its colours: the metric, its range, the inverted
+/// swatch and count) at the foot of `frame` (CSS pixels) in `t`, as the renderer sizes
+/// it: `None` where the frame's width does not hold it or the mesh would keep less than
+/// [`MIN_KEYED_MESH_CSS_H`] above it. The renderer's own bar takes at most a share of the
+/// frame's short side; a wide, low mesh leaves most of a panel's height empty, so this
+/// one asks for the height the mesh needs instead.
+fn key_band(mesh: &Mesh, frame: Frame, t: &Theme) -> Option<Frame> {
+    let title = MeshView::default().metric.label(mesh);
+    let band = smoothlab_render::colour_bar_band(Frame::new(frame.x, frame.y, frame.w, frame.w.max(frame.h)), title, t)?;
+    (frame.h - band.h >= MIN_KEYED_MESH_CSS_H).then(|| Frame::new(frame.x, frame.bottom() - band.h, frame.w, band.h))
+}
+
+/// The smallest panel, CSS pixels, of a figure whose meshes carry their colour bar
+/// ([`keyed_mesh_panel`]): as wide as the bar for `mesh` needs in `t`.
+fn keyed_min_panel(mesh: &Mesh, t: &Theme) -> (f32, f32) {
+    let (min_w, min_h) = MIN_PANEL_CSS;
+    let tall = |w: f32| Frame::new(0.0, 0.0, w, 4.0 * min_h);
+    let w = (min_w as u32..4 * min_w as u32).map(|w| w as f32).find(|&w| key_band(mesh, tall(w), t).is_some()).unwrap_or(4.0 * min_w);
+    let band = key_band(mesh, tall(w), t).map_or(0.0, |b| b.h);
+    (w, min_h.max(mesh_panel_head(t) + MIN_KEYED_MESH_CSS_H + band))
+}
+
+/// A mesh panel with the colour bar under its mesh wherever the panel has room for it
+/// ([`key_band`]); without, where it has not.
+pub(super) fn keyed_mesh_panel(mesh: &Mesh, title: &str, c: Canvas, t: &Theme) -> Result<Pixmap> {
+    titled_mesh_panel(mesh, title, c, t, true)
+}
+
+fn titled_mesh_panel(mesh: &Mesh, title: &str, c: Canvas, t: &Theme, keyed: bool) -> Result<Pixmap> {
     let mut pm = pixmap(c.w, c.h)?;
     let s = c.dpr;
     let full = Frame::of_pixmap(&pm, s);
     let st = mesh_stats(mesh);
     let line = format!("inverted {}, angles {:.1}°–{:.1}°", st.inverted, st.min_angle_deg, st.max_angle_deg);
-    // the title (13 px) and the line (11 px) above the mesh, grown with the theme's labels
-    let (g13, g11) = (t.grow(13.0), t.grow(11.0));
-    let head = 22.0 * g13 + 18.0 * g11;
-    render_mesh(&mut pm, mesh, &MeshView { theme: *t, ..MeshView::default().with_dpr(s).with_frame(full.inset(0.0, head, 0.0, 0.0)) });
+    let g13 = t.grow(13.0);
+    let below_head = full.inset(0.0, mesh_panel_head(t), 0.0, 0.0);
+    let key = if keyed { key_band(mesh, below_head, t) } else { None };
+    let view = MeshView { theme: *t, ..MeshView::default().with_dpr(s) };
+    match key {
+        Some(band) => {
+            let area = Frame::new(below_head.x, below_head.y, below_head.w, band.y - below_head.y);
+            render_mesh(&mut pm, mesh, &MeshView { colour_bar: false, ..view.with_frame(area) });
+            // one count of inverted elements: the statistics' (the line above says the same)
+            let metric = view.metric;
+            smoothlab_render::draw_colour_bar(&mut pm, band, view.colormap, metric.domain(mesh), metric.label(mesh), st.inverted, s, t);
+        }
+        None => {
+            render_mesh(&mut pm, mesh, &view.with_frame(below_head));
+        }
+    }
     // each shrunk or cut to the panel's width (four panels side by side in a narrow frame)
     let room = (full.w - 8.0).max(0.0) * s;
     let style = |size: f32| TextStyle::new(size).with_color(t.ink).with_align(Align::Centre, Valign::Top);
@@ -664,7 +720,7 @@ fn and_list(items: &[String]) -> String {
 }
 
 fn chen_16(c: Canvas, theme: &Theme) -> Result<Vec<Pixmap>> {
-    curved_runs()?.iter().map(|(t, m)| mesh_panel(m, t, c, theme)).collect()
+    curved_runs()?.iter().map(|(t, m)| keyed_mesh_panel(m, t, c, theme)).collect()
 }
 
 pub(super) fn chen_16_measured() -> Result<String> {
@@ -894,6 +950,30 @@ mod tests {
         let text = chen_18_measured().unwrap();
         let words = |v: &[usize]| v.iter().map(usize::to_string).collect::<Vec<_>>().join(" → ");
         assert!(text.contains(&words(&old)) && text.contains(&words(&new)), "{text}");
+    }
+
+    #[test]
+    fn chen_16_keeps_the_colour_bar_under_every_panel_it_keeps() {
+        // the canvases of the picture in an embed of 1280×720, 800×450 and 520×520 and on
+        // a phone (about), and its default; labels at the page's 14 px and unraised
+        use smoothlab_render::layout::RegionKind;
+        for t in [Theme::for_page(false, 14.0), Theme::light()] {
+            for (w, h) in [(1400, 460), (1246, 420), (766, 266), (486, 250), (360, 430), (200, 160)] {
+                let c = Canvas { w, h, dpr: 1.0 };
+                let a = arrangement("chen-16", c, &t).unwrap();
+                let (_, regions) = render_with_layout("chen-16", c, &t).unwrap();
+                let bars = regions.iter().filter(|r| r.kind == RegionKind::Legend).count();
+                let (pw, ph) = (w as f32 / a.cols as f32, (h as f32 - title_band(&t)) / a.rows as f32);
+                let fits = |min: (f32, f32)| pw >= min.0 && ph >= min.1;
+                let mesh = find("chen-16").unwrap().1.playground().unwrap().0.panel(Side::B).mesh.clone();
+                if fits(keyed_min_panel(&mesh, &t)) {
+                    assert_eq!(bars, a.keep.len(), "{w}×{h}, {} px labels: {a:?}", t.min_label_px);
+                }
+                if (w, h) == (200, 160) {
+                    assert_eq!((a.keep.len(), bars), (1, 0), "too small for a panel with its bar: one without it");
+                }
+            }
+        }
     }
 
     #[test]
