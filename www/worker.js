@@ -113,14 +113,15 @@ const handlers = {
     p.setSettings(settings);
     return p.targetPositions() ?? null;
   },
-  // the grading the runs keep (the mesh's as loaded or last perturbed): the sweep keeps it
-  gradingToKeep: () => planar().gradingToKeep(),
+  // where the runs begin (the mesh as loaded or last perturbed): the grading they keep and
+  // whether it was valid, which the sweep takes as this worker's
+  runStart: () => Array.from(planar().runStart()),
   adoptSweep: (nodes, sweep) => planar().adoptSweep(nodes, sweep),
   // the other worker's part: side A's sweep, its result taken with the last slice
-  sweep: (settings, side, nodes, target, grading, budgetMs) => {
+  sweep: (settings, side, nodes, target, start, budgetMs) => {
     const p = planar();
     p.setSettings(settings);
-    p.beginSweep(side, nodes, target ?? undefined, grading);
+    p.beginSweep(side, nodes, target ?? undefined, start[0], start[1]);
     return sweepSlice(p, budgetMs);
   },
   continueSweep: (budgetMs) => sweepSlice(planar(), budgetMs),

@@ -61,14 +61,14 @@ export async function splitPass(i, n, call, cost, second) {
   // measured against the input: the mesh as this worker holds it (perturbed, maybe), not
   // as the second worker loaded it
   const target = settings.target === 'ideal' ? null : await call('targetPositions', settings);
-  // …and kept within the grading of this worker's run, where it began
-  const grading = await call('gradingToKeep');
+  // …and judged as this worker's run, from where it began
+  const start = await call('runStart');
   let swept = null; // the second worker's result, once it has it
   let failed = null;
   let aFraction = 0;
   // settles when the second worker is done, stopped or failed (never rejects)
   const sweeping = (async () => {
-    let p = await second.call('sweep', settings, 'a', nodes, target, grading, SLICE_MS);
+    let p = await second.call('sweep', settings, 'a', nodes, target, start, SLICE_MS);
     while (!p.done) {
       aFraction = p.fraction;
       if (state.cancel) {

@@ -247,9 +247,6 @@ impl Smoothing {
                 return refuse("feature_angle", format!("{a} asked: give degrees above 0 and below 180"));
             }
         }
-        // Freitag's `sine` judges its moves by the smallest sine, every other objective by
-        // the shape (the page's sides and the reproduction's rows read the same rule)
-        o = o.with_smart_measure(crate::smooth::Measure::of_objective(self.objective));
         o.validate()?;
         Ok(o)
     }
@@ -453,7 +450,11 @@ impl Model {
         let kind = smoothing.objective;
         let start = clock();
         // the grading the whole run keeps, passes and finish alike: the mesh's as found
-        opts.keep_grading = Some(self.stats().grading_to_keep());
+        let found = self.stats();
+        opts.keep_grading = Some(found.grading_to_keep());
+        // Freitag's `sine` on a valid mesh judges its moves by the smallest sine, as she
+        // runs it (the page's sides and the reproduction's rows read the same rule)
+        opts.smart_measure = crate::smooth::Measure::for_run(kind, found.inverted == 0);
         if let Model::Surface(surface) = self {
             // a surface's boundary is its curves: open edges and feature curves; the rule's
             // feature angle holds the corners where a curve turns sharply

@@ -92,7 +92,7 @@ impl Panel {
         Ok(Panel {
             mesh,
             objective: settings.choice(side).build(),
-            smoother: Smoother::new(settings.run_options(side, full)?)?,
+            smoother: Smoother::new(settings.side_options(side, settings::RunStart::of(full))?)?,
             records: Vec::new(),
             version,
             quick: full.quick(),
@@ -228,7 +228,7 @@ impl Playground {
     /// through since. A planar mesh's boundary is fixed: [`BoundaryRule::Slide`](smoothlab::volume::BoundaryRule::Slide)
     /// is refused, saying why ([`slide_refused`](Self::slide_refused)).
     pub fn set_settings(&mut self, settings: Settings) -> Result<()> {
-        let o = [settings.run_options(Side::A, &self.original_stats)?, settings.run_options(Side::B, &self.original_stats)?];
+        let o = [settings.side_options(Side::A, self.run_start())?, settings.side_options(Side::B, self.run_start())?];
         settings::check_boundary(settings.boundary, self.slide_refused())?;
         self.abort_pass();
         for (p, side) in self.panels.iter_mut().zip(Side::BOTH) {
@@ -258,11 +258,11 @@ impl Playground {
         (self.settings.target == Target::Input).then(|| interleaved(&self.original))
     }
 
-    /// The grading a run keeps ([`MeshStats::grading_to_keep`]): the mesh's as loaded or
-    /// as last perturbed, where the panels' runs begin. A split pass hands it to the
-    /// engine that sweeps ([`begin_sweep`](Self::begin_sweep)).
-    pub fn grading_to_keep(&self) -> f64 {
-        self.original_stats.grading_to_keep()
+    /// Where the panels' runs begin ([`settings::RunStart`]): the mesh as loaded or as last
+    /// perturbed. A split pass hands it to the engine that sweeps
+    /// ([`begin_sweep`](Self::begin_sweep)).
+    pub fn run_start(&self) -> settings::RunStart {
+        settings::RunStart::of(&self.original_stats)
     }
 
     /// Gives panel `i`'s mesh the settings' target: the original positions for
@@ -318,11 +318,11 @@ impl Playground {
     /// `target` is the other engine's [`target_positions`](Self::target_positions): given
     /// exactly when the settings' target is [`Target::Input`] (the other engine's mesh
     /// may have been perturbed since this one loaded it), and measured against during the
-    /// sweep only. `keep_grading` is the other engine's
-    /// [`grading_to_keep`](Self::grading_to_keep): its run's, not this one's.
-    pub fn begin_sweep(&mut self, side: Side, nodes: &[f64], target: Option<&[f64]>, keep_grading: f64) -> Result<()> {
+    /// sweep only. `start` is the other engine's [`run_start`](Self::run_start): its
+    /// run's, not this one's.
+    pub fn begin_sweep(&mut self, side: Side, nodes: &[f64], target: Option<&[f64]>, start: settings::RunStart) -> Result<()> {
         self.abort_pass();
-        let options = smoothlab::smooth::SmoothOptions { keep_grading: Some(keep_grading), ..self.settings.side_options(side)? };
+        let options = self.settings.side_options(side, start)?;
         let nodes = self.positions_from(nodes)?;
         let target = match (self.settings.target, target) {
             (Target::Input, Some(t)) => Some(
@@ -481,7 +481,7 @@ impl Playground {
             &p.mesh,
             node,
             p.objective.as_ref(),
-            &self.settings.side_options(side)?,
+            &self.settings.side_options(side, self.run_start())?,
         )
     }
 
@@ -566,7 +566,7 @@ impl Playground {
     pub fn reset(&mut self) {
         self.abort_pass();
         self.undo.clear();
-        let o = Side::BOTH.map(|side| self.settings.run_options(side, &self.original_stats).expect("the settings were checked when set"));
+        let o = Side::BOTH.map(|side| self.settings.side_options(side, self.run_start()).expect("the settings were checked when set"));
         let quick = self.original_stats.quick();
         for (p, o) in self.panels.iter_mut().zip(o) {
             p.mesh.nodes_mut().copy_from_slice(&self.original);

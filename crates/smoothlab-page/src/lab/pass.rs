@@ -530,7 +530,7 @@ mod tests {
                         assert!(!pg.pass_in_progress());
                         for side in Side::BOTH {
                             let mut m = mesh.clone();
-                            let mut s = Smoother::new(settings.side_options(side).unwrap()).unwrap();
+                            let mut s = Smoother::new(settings.side_options(side, crate::lab::settings::RunStart::of(&smoothlab::quality::mesh_stats(&mesh))).unwrap()).unwrap();
                             let obj = settings.choice(side).build();
                             let mut rec = None;
                             for _ in 0..pass {
@@ -659,7 +659,7 @@ mod tests {
                     primary.begin_split_pass();
                     let helper_before = helper.panel(Side::A).mesh.nodes().to_vec();
                     helper
-                        .begin_sweep(Side::A, &primary.panel_positions(Side::A), None, primary.grading_to_keep())
+                        .begin_sweep(Side::A, &primary.panel_positions(Side::A), None, primary.run_start())
                         .unwrap();
                     // the first pass hands the sweep over while panel B is smoothed,
                     // the second once the split pass waits for it
@@ -748,12 +748,12 @@ mod tests {
         let clock = ticking();
         let nodes = primary.panel_positions(Side::A);
         let e = helper
-            .begin_sweep(Side::A, &nodes, None, primary.grading_to_keep())
+            .begin_sweep(Side::A, &nodes, None, primary.run_start())
             .unwrap_err()
             .to_string();
         assert!(e.contains("give its positions"), "{e}");
         let e = helper
-            .begin_sweep(Side::A, &nodes, Some(&target[2..]), primary.grading_to_keep())
+            .begin_sweep(Side::A, &nodes, Some(&target[2..]), primary.run_start())
             .unwrap_err()
             .to_string();
         assert!(e.starts_with("the target's positions:"), "{e}");
@@ -765,7 +765,7 @@ mod tests {
                     Side::A,
                     &primary.panel_positions(Side::A),
                     Some(&primary.target_positions().unwrap()),
-                    primary.grading_to_keep(),
+                    primary.run_start(),
                 )
                 .unwrap();
             while !helper.continue_pass(&clock, 3.0).unwrap().done {}
@@ -795,7 +795,7 @@ mod tests {
         }
         // an abandoned sweep gives the helper its own target back too
         helper
-            .begin_sweep(Side::A, &primary.panel_positions(Side::A), Some(&target), primary.grading_to_keep())
+            .begin_sweep(Side::A, &primary.panel_positions(Side::A), Some(&target), primary.run_start())
             .unwrap();
         helper.continue_pass(&clock, 1.0).unwrap();
         helper.abort_pass();
@@ -806,7 +806,7 @@ mod tests {
         // with the ideal target no positions go with a sweep
         helper.set_settings(Settings::default()).unwrap();
         assert!(helper
-            .begin_sweep(Side::A, &primary.panel_positions(Side::A), Some(&target), primary.grading_to_keep())
+            .begin_sweep(Side::A, &primary.panel_positions(Side::A), Some(&target), primary.run_start())
             .is_err());
         assert!(helper.panel(Side::A).mesh.target_nodes().is_none());
     }
@@ -826,7 +826,7 @@ mod tests {
         let n = before[0].len();
         let clock = ticking();
         helper
-            .begin_sweep(Side::A, &primary.panel_positions(Side::A), None, primary.grading_to_keep())
+            .begin_sweep(Side::A, &primary.panel_positions(Side::A), None, primary.run_start())
             .unwrap();
         while !helper.continue_pass(&clock, 2.0).unwrap().done {}
         let (nodes, sweep) = helper.take_sweep().unwrap();
@@ -850,7 +850,7 @@ mod tests {
         let e = primary.adopt_sweep(&nan, sweep).unwrap_err().to_string();
         assert!(e.contains("node 3"), "{e}");
         assert!(helper
-            .begin_sweep(Side::A, &vec![0.0; 2 * n + 2], None, primary.grading_to_keep())
+            .begin_sweep(Side::A, &vec![0.0; 2 * n + 2], None, primary.run_start())
             .is_err());
         primary.continue_pass(&clock, 2.0).unwrap();
         primary.adopt_sweep(&nodes, sweep).unwrap();
@@ -862,7 +862,7 @@ mod tests {
             assert_eq!(primary.table(side), tables[side as usize]);
         }
         // an abandoned sweep puts the helper back too
-        helper.begin_sweep(Side::A, &nodes, None, primary.grading_to_keep()).unwrap();
+        helper.begin_sweep(Side::A, &nodes, None, primary.run_start()).unwrap();
         helper.continue_pass(&clock, 1.0).unwrap();
         helper.abort_pass();
         assert_eq!(helper.panel(Side::A).mesh.nodes(), before[0]);

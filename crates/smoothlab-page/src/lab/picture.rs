@@ -407,7 +407,7 @@ fn surface(
         let mut t = s.clone();
         let choice = settings.compare[side as usize];
         let objective = choice.build();
-        let opts = settings.side_options(side).map_err(|e| e.to_string())?;
+        let opts = settings.side_options(side, crate::lab::settings::RunStart::of(&s.stats())).map_err(|e| e.to_string())?;
         let mut smoother = SurfaceSmoother::new(opts).map_err(|e| e.to_string())?;
         for _ in 0..passes {
             smoother.pass(&mut t, objective.as_ref(), &|| 0.0);
@@ -479,7 +479,7 @@ fn volume(
     settings.smooth_options().map_err(|e| e.to_string())?;
     let mut smoothed = Vec::new();
     for &side in &sides {
-        let opts = settings.side_options(side).map_err(|e| e.to_string())?;
+        let opts = settings.side_options(side, crate::lab::settings::RunStart::of(&volume_stats(&v))).map_err(|e| e.to_string())?;
         let mut t = v.clone();
         let kind = settings.compare[side as usize].objective;
         smooth_volume(

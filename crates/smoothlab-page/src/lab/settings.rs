@@ -154,15 +154,23 @@ impl Default for Settings {
     }
 }
 
-impl Settings {
-    /// The options of `side`'s run ([`side_options`](Self::side_options)) that starts from
-    /// a mesh with statistics `start`. A run keeps the grading it found
-    /// ([`MeshStats::grading_to_keep`]), as `smoothlab smooth` does, whatever settings come
-    /// between its passes.
-    pub fn run_options(&self, side: Side, start: &MeshStats) -> Result<SmoothOptions> {
-        Ok(SmoothOptions { keep_grading: Some(start.grading_to_keep()), ..self.side_options(side)? })
-    }
+/// Where a run begins, in what its options read: the grading it keeps
+/// ([`MeshStats::grading_to_keep`]) and whether its mesh is valid. A split pass hands it to
+/// the engine that sweeps.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct RunStart {
+    pub keep_grading: f64,
+    pub valid: bool,
+}
 
+impl RunStart {
+    /// The start of a run from a mesh with statistics `stats`.
+    pub fn of(stats: &MeshStats) -> RunStart {
+        RunStart { keep_grading: stats.grading_to_keep(), valid: stats.inverted == 0 }
+    }
+}
+
+impl Settings {
     /// The drivers' options (checked), after checking each side's choice.
     pub fn smooth_options(&self) -> Result<SmoothOptions> {
         for c in self.compare {
@@ -189,13 +197,14 @@ impl Settings {
         Ok(o)
     }
 
-    /// The drivers' options for `side` (checked): [`smooth_options`](Self::smooth_options)
-    /// judged by the measure of the side's objective
-    /// ([`Measure::of_objective`](smoothlab::smooth::Measure::of_objective)), as
-    /// `smoothlab smooth --objective` takes it.
-    pub fn side_options(&self, side: Side) -> Result<SmoothOptions> {
-        let m = smoothlab::smooth::Measure::of_objective(self.choice(side).objective);
-        Ok(self.smooth_options()?.with_smart_measure(m))
+    /// The drivers' options for `side`'s run from `start` (checked):
+    /// [`smooth_options`](Self::smooth_options), judged by the measure of the side's
+    /// objective on such a mesh ([`Measure::for_run`](smoothlab::smooth::Measure::for_run)),
+    /// keeping the grading the run found ([`MeshStats::grading_to_keep`]), as `smoothlab
+    /// smooth` takes them, whatever settings come between the run's passes.
+    pub fn side_options(&self, side: Side, start: RunStart) -> Result<SmoothOptions> {
+        let m = smoothlab::smooth::Measure::for_run(self.choice(side).objective, start.valid);
+        Ok(SmoothOptions { keep_grading: Some(start.keep_grading), ..self.smooth_options()?.with_smart_measure(m) })
     }
 
     /// What `side` smooths with.

@@ -93,8 +93,8 @@ impl Playground {
 
     /// Starts the sweep of panel `side` alone from `nodes` (the other engine's positions,
     /// x and y interleaved), for a split pass; run it with `continuePass`, then `takeSweep`.
-    /// `target` is the other engine's `targetPositions` (null with the ideal target),
-    /// `keepGrading` its `gradingToKeep`.
+    /// `target` is the other engine's `targetPositions` (null with the ideal target);
+    /// `keepGrading` and `startValid` its `runStart`.
     #[wasm_bindgen(js_name = beginSweep)]
     pub fn begin_sweep(
         &mut self,
@@ -102,17 +102,19 @@ impl Playground {
         nodes: &[f64],
         target: Option<Vec<f64>>,
         keep_grading: f64,
+        start_valid: bool,
     ) -> Result<(), JsError> {
-        Ok(self
-            .inner
-            .begin_sweep(self::side(side)?, nodes, target.as_deref(), keep_grading)?)
+        let start = crate::lab::settings::RunStart { keep_grading, valid: start_valid };
+        Ok(self.inner.begin_sweep(self::side(side)?, nodes, target.as_deref(), start)?)
     }
 
-    /// The grading this engine's runs keep: the mesh's as loaded or as last perturbed
-    /// (+∞, none, where it was tangled). A split pass hands it to `beginSweep`.
-    #[wasm_bindgen(js_name = gradingToKeep)]
-    pub fn grading_to_keep(&self) -> f64 {
-        self.inner.grading_to_keep()
+    /// Where this engine's runs begin, the mesh as loaded or as last perturbed: the grading
+    /// they keep (+∞, none, where it was tangled) and whether it was valid, as
+    /// `[keepGrading, startValid]`. A split pass hands them to `beginSweep`.
+    #[wasm_bindgen(js_name = runStart)]
+    pub fn run_start(&self) -> js_sys::Array {
+        let s = self.inner.run_start();
+        js_sys::Array::of2(&s.keep_grading.into(), &s.valid.into())
     }
 
     /// Why this mesh's boundary nodes cannot slide: a planar mesh's never do (as the

@@ -167,7 +167,7 @@ fn on_rand2d_the_new_objective_has_the_best_mean_alpha_and_every_method_opens_th
 }
 
 /// The front door runs Freitag's `sine` as her Table 2 is reproduced: each move judged by
-/// the smallest sine ([`Measure::of_objective`]), so `smoothlab smooth --objective sine`,
+/// the smallest sine ([`Measure::for_run`]), so `smoothlab smooth --objective sine`,
 /// the page's side and the reproduction's row are one run (issue 59: the page's rand3D
 /// panel read 16.56° where the table's row, judged by the sine, read 18.30°).
 #[test]
@@ -187,5 +187,6 @@ fn the_front_door_judges_sine_by_the_sine_as_freitag() {
     let (sine, shape) = (row(Measure::MinSine), row(Measure::Shape));
     assert_ne!(sine, shape, "the measures judge rand3D's moves alike: the test tells nothing");
     assert_eq!(report.stats().min_angle_deg, sine, "judged by the shape: {shape}");
-    assert_eq!(Measure::of_objective(ObjectiveKind::SmoothShape), Measure::Shape);
+    assert_eq!(Measure::for_run(ObjectiveKind::SmoothShape, true), Measure::Shape);
+    assert_eq!(Measure::for_run(ObjectiveKind::Sine, false), Measure::Shape);
 }

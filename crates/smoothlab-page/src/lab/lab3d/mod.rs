@@ -118,7 +118,7 @@ impl<M: Mesh3d> Side3d<M> {
             boundary: mesh.boundary_report(),
             mesh,
             objective: M::objective(settings, side)?,
-            smoother: M::smoother(settings.run_options(side, &stats)?)?,
+            smoother: M::smoother(settings.side_options(side, crate::lab::settings::RunStart::of(&stats))?)?,
             records: Vec::new(),
             stats,
         })
@@ -229,7 +229,7 @@ impl<M: Mesh3d> Lab3d<M> {
     /// start again from it: a pass is then the core's pass with that rule, as
     /// `smoothlab smooth --boundary slide` runs it on the same file.
     pub fn set_settings(&mut self, settings: Settings) -> Result<()> {
-        let o = [settings.run_options(Side::A, &self.original_stats)?, settings.run_options(Side::B, &self.original_stats)?];
+        let o = [settings.side_options(Side::A, crate::lab::settings::RunStart::of(&self.original_stats))?, settings.side_options(Side::B, crate::lab::settings::RunStart::of(&self.original_stats))?];
         super::settings::check_boundary(settings.boundary, self.original.slide_refused())?;
         let objectives = [M::objective(&settings, Side::A)?, M::objective(&settings, Side::B)?];
         for ((s, objective), o) in self.sides.iter_mut().zip(objectives).zip(o) {
@@ -282,7 +282,7 @@ impl<M: Mesh3d> Lab3d<M> {
     /// Both sides back to the mesh as loaded (or as last perturbed), their records cleared.
     pub fn reset(&mut self) {
         self.undo.clear();
-        let o = Side::BOTH.map(|side| self.settings.run_options(side, &self.original_stats).expect("the settings were checked when set"));
+        let o = Side::BOTH.map(|side| self.settings.side_options(side, crate::lab::settings::RunStart::of(&self.original_stats)).expect("the settings were checked when set"));
         let boundary = self.original.boundary_report();
         for (s, o) in self.sides.iter_mut().zip(o) {
             s.mesh.clone_from(&self.original);
@@ -530,7 +530,7 @@ impl<M: Mesh3d> Lab3d<M> {
     /// and its solve from where the node is.
     pub fn node_slice(&self, side: Side, node: usize) -> Result<NodeSlice<'_>> {
         let s = self.side(side);
-        let options = self.settings.side_options(side)?;
+        let options = self.settings.side_options(side, crate::lab::settings::RunStart::of(&self.original_stats))?;
         s.mesh.slice(s.objective.as_ref(), node, self.cut, &options)
     }
 

@@ -33,14 +33,14 @@ pub struct FreitagMethod {
 }
 
 /// The options of a row that smooths with `kind`: judged by the objective's measure
-/// ([`Measure::of_objective`]: Freitag's smallest sine for her rows, for the smart
+/// ([`Measure::for_run`] of a valid mesh: Freitag's smallest sine for her rows, for the smart
 /// Laplacian and the thresholds too), as the page's sides and the reproduction take it.
 fn row_options(strategy: Strategy, kind: ObjectiveKind, threshold: f64, order: Order) -> SmoothOptions {
     SmoothOptions::default()
         .with_strategy(strategy)
         .with_order(order)
         .with_threshold_deg(threshold)
-        .with_smart_measure(Measure::of_objective(kind))
+        .with_smart_measure(Measure::for_run(kind, true))
 }
 
 /// The rows the table shows, as the reproduction runs them: Freitag's own rows (her
