@@ -70,7 +70,7 @@ impl SurfacePicture for Surface {
 
     /// Draws the surface coloured by `metric` with the view's camera, frame and title
     /// (its colour bar titled and scaled for the metric); while its curves slide, with
-    /// their marks ([`surface_marks`]).
+    /// their marks: the curves, the corners and the sliding nodes.
     fn render(&self, pixmap: &mut Pixmap, metric: Metric, view: &SurfaceView) -> Projection {
         let faces = self.faces(metric);
         let opts = SurfaceView {
