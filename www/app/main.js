@@ -159,6 +159,8 @@ export function setupEmbed() {
   document.body.classList.add('embed');
   if (view.spec) document.body.classList.add('view', `view-${view.name}`);
   if (PARAMS.get('caption') === '0') document.body.classList.add('nocaption');
+  // a notebook's widget shows the settings column: what each side runs, unfolded
+  if (HOSTED) $('compare-box').open = true;
   const a = document.createElement('a');
   a.id = 'open-full';
   a.target = '_blank';

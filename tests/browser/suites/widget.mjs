@@ -1,7 +1,8 @@
 // The notebook widget's ES module (python/smoothlab/static/widget.js, made by `make python`)
 // loaded as anywidget loads it (a dynamic import of a blob of its text) into a page laid
 // out like a notebook's cell, and rendered with a stand-in model that keeps the anywidget
-// contract (get, set, on, off, save_changes): the mesh the Python side wrote goes in, the
+// contract (get, set, on, off, save_changes, widget_manager.get_model for the shared
+// model that holds the page, page.html.gz): the mesh the Python side wrote goes in, the
 // page draws it, a Step sends both sides' smoothed meshes back to the model as arrays, the
 // model's settings reach the page's controls, and what the page refuses comes back in
 // words. The model's final state is written to test-output/widget/state.json, which the
@@ -12,6 +13,7 @@ import { ROOT } from '../serve.mjs';
 import { OUT, TIMEOUT, test, check, freshPage } from '../lib.mjs';
 
 const MODULE = path.join(ROOT, 'python', 'smoothlab', 'static', 'widget.js');
+const PAGE = path.join(ROOT, 'python', 'smoothlab', 'static', 'page.html.gz');
 const STATE = path.join(ROOT, 'test-output', 'widget', 'state.json');
 
 /** A tangled grid of n × n quads as the Python side writes it (`mesh.vtk_text`): its
@@ -49,11 +51,19 @@ async function renderWidget(p, server, state) {
     body: '<!doctype html><link rel="icon" href="data:,"><body style="margin:0;background:#eee"><div id="cell" style="width:900px;margin:16px;background:#fff"></div></body>',
   }));
   await p.goto(`${server.base}notebook`);
-  await p.evaluate(async ({ source, state }) => {
+  await p.evaluate(async ({ source, page, state }) => {
     const listeners = {};
+    // the model every widget shares, which holds the page (gzipped), as the kernel's manager gives it
+    const pageModel = { get: (name) => (name === 'page' ? new DataView(Uint8Array.from(atob(page), (c) => c.charCodeAt(0)).buffer) : undefined) };
     const model = {
-      state: { ...state },
+      state: { ...state, _page: 'IPY_MODEL_page' },
       saves: 0,
+      widget_manager: {
+        async get_model(id) {
+          if (id !== 'page') throw new Error(`no model ${id}`);
+          return pageModel;
+        },
+      },
       get(name) {
         return this.state[name];
       },
@@ -77,7 +87,8 @@ async function renderWidget(p, server, state) {
     const url = URL.createObjectURL(new Blob([source], { type: 'text/javascript' }));
     const widget = (await import(url)).default;
     window.cellCleanup = widget.render({ model, el: document.getElementById('cell') });
-  }, { source: readFileSync(MODULE, 'utf8'), state });
+    window.cellCleanup = await window.cellCleanup;
+  }, { source: readFileSync(MODULE, 'utf8'), page: readFileSync(PAGE).toString('base64'), state });
   const frame = await (await p.$('#cell iframe')).contentFrame();
   await frame.waitForFunction(() => document.body.dataset.ready === '1' && document.body.dataset.busy === '0', null, { timeout: TIMEOUT });
   return frame;
@@ -148,6 +159,33 @@ async function widgetTests(server, context) {
       const stats = await p.evaluate(() => window.cellModel.state.stats);
       check(Number(stats.b.inverted) < Number(st.stats.b.inverted), `B untangles: ${st.stats.b.inverted} → ${stats.b.inverted}`);
       await p.screenshot({ path: path.join(OUT, 'widget-cell-stepped.png') });
+      // the page's controls are in the cell, beside the meshes: the settings column with
+      // what each side runs, the Node tab with a node's level sets and their Save PNG
+      for (const id of ['strategy', 'target', 'boundary', 'threshold', 'order', 'passes', 'maxiter', 'objective-a', 'penalty-a', 'objective-b', 'penalty-b', 'perturb-box']) {
+        check(await frame.locator(`#${id}`).isVisible(), `#${id} is not shown in the widget`);
+      }
+      const cell = await p.locator('#cell iframe').boundingBox();
+      const column = await frame.locator('aside.side').boundingBox();
+      const meshB = await frame.locator('#mesh-b').boundingBox();
+      check(column.x >= meshB.x + meshB.width && column.x + column.width <= cell.x + cell.width + 1, `the column is beside the meshes, in the cell: ${JSON.stringify({ column, meshB, cell })}`);
+      check(meshB.width >= 240, `the meshes keep their room: ${meshB.width} px`);
+      await frame.click('#tabbtn-node');
+      await frame.fill('#node', '40');
+      await frame.press('#node', 'Enter');
+      await frame.waitForFunction(() => /^40$/.test(document.getElementById('node-badge').textContent), null, { timeout: TIMEOUT });
+      await frame.waitForFunction(() => document.body.dataset.busy === '0', null, { timeout: TIMEOUT });
+      check(await frame.locator('#level-b').isVisible() && !(await frame.locator('#strategy').isVisible()), 'the Node tab shows the level sets in place of the settings');
+      const level = await frame.evaluate(() => {
+        const c = document.getElementById('level-b');
+        const d = c.getContext('2d').getImageData(0, 0, c.width, c.height).data;
+        const seen = new Set();
+        for (let i = 0; i < d.length; i += 16) seen.add((d[i] << 16) | (d[i + 1] << 8) | d[i + 2]);
+        return { w: c.width, colours: seen.size };
+      });
+      check(level.w >= 150 && level.colours > 20, `B's level sets are drawn in the column: ${JSON.stringify(level)}`);
+      check(await frame.locator('button[data-png="level-b"]').isVisible(), 'Save PNG of the level sets is shown');
+      await p.screenshot({ path: path.join(OUT, 'widget-cell-node.png') });
+      await frame.click('#tabbtn-settings');
       mkdirSync(path.dirname(STATE), { recursive: true });
       writeFileSync(STATE, JSON.stringify(await p.evaluate(() => {
         const b64 = (v) => btoa(String.fromCharCode(...new Uint8Array(v.buffer, v.byteOffset, v.byteLength)));
@@ -199,6 +237,22 @@ async function widgetTests(server, context) {
       await p.waitForFunction(() => window.cellModel.state._mesh_b.dim === 3, null, { timeout: TIMEOUT });
       const hex = await modelSide(p, '_mesh_b');
       check(hex.points.length === 343 * 3 && hex.cells[0].vtk_type === 12 && hex.cells[0].count === 216, `the hexahedra: ${JSON.stringify(hex.cells)}`);
+      // the cut plane is in the column, and moving it redraws the volume
+      const f3 = await (await p.$('#cell iframe')).contentFrame();
+      check(await f3.locator('#cut-at').isVisible() && await f3.locator('#cut-axis').isVisible(), 'the cut plane\'s controls are shown');
+      const pixels = () => f3.evaluate(() => {
+        const c = document.getElementById('mesh-b');
+        const d = c.getContext('2d').getImageData(0, 0, c.width, c.height).data;
+        let h = 0;
+        for (let i = 0; i < d.length; i += 4) h = (Math.imul(h, 31) + d[i] + d[i + 1] + d[i + 2]) | 0;
+        return h;
+      });
+      const before = await pixels();
+      await f3.locator('#cut-at').fill('0.8');
+      await f3.waitForFunction(() => document.getElementById('cut-at-out').textContent === '0.80' && document.body.dataset.busy === '0', null, { timeout: TIMEOUT });
+      await f3.waitForTimeout(300);
+      check((await pixels()) !== before, 'moving the cut plane redrew the volume');
+      await p.screenshot({ path: path.join(OUT, 'widget-cell-volume.png') });
     } finally {
       await p.close();
     }
