@@ -76,10 +76,12 @@ site: tools
 single: site
 	node scripts/single.mjs --html target/smoothlab.html
 
-# The notebook widget (python/): its ES module (the one-file page and python/widget/widget.js)
-# and the sheet its arguments are checked against, both read from the site just built.
+# The notebook widget (python/): its ES module (python/widget/widget.js), the one-file page
+# it shows (page.html.gz, shared by every widget of a kernel) and the sheet its arguments are
+# checked against, read from the site just built.
 python: site
-	node scripts/single.mjs --widget python/smoothlab/static/widget.js --sheet python/smoothlab/static/sheet.json
+	node scripts/single.mjs --html target/widget-page.html --widget python/smoothlab/static/widget.js --sheet python/smoothlab/static/sheet.json
+	gzip -9 -n -c target/widget-page.html > python/smoothlab/static/page.html.gz
 
 # The Python package as one wheel for CPython 3.9 and later (abi3): the native module
 # (crates/smoothlab-python, the core compiled for this machine), python/smoothlab and the

@@ -1,13 +1,17 @@
 """The widget: the playground page in a notebook cell (anywidget).
 
-Its ES module (``static/widget.js``) is the one-file page and the bridge to this model
-(python/widget/widget.js), built by ``make python``; ``static/sheet.json`` is what the
-arguments are checked against: the page's control sheet, samples and tour figures, read
-from the same wasm module by the same build, so nothing here repeats them.
+Its ES module (``static/widget.js``) is the bridge between this model and the page
+(python/widget/widget.js); the page (``static/page.html.gz``, the one-file page, its wasm
+inside, gzipped) is the state of one model that every widget of the kernel shares, so a notebook
+saved with its widgets' state holds it once. Both are built by ``make python``;
+``static/sheet.json`` is what the arguments are checked against: the page's control
+sheet, samples and tour figures, read from the same wasm module by the same build, so
+nothing here repeats them.
 """
 
 from __future__ import annotations
 
+import base64
 import json
 import pathlib
 from typing import Any, Dict, List, Optional
@@ -16,6 +20,7 @@ try:
     import anywidget
 except ImportError:
     raise ImportError("smoothlab's notebook widget needs anywidget: pip install anywidget") from None
+import ipywidgets
 import numpy as np
 import traitlets
 
@@ -23,8 +28,9 @@ from .mesh import Mesh, check_cells, check_fixed, check_points, vtk_text
 
 STATIC = pathlib.Path(__file__).parent / "static"
 MODULE = STATIC / "widget.js"
+PAGE_FILE = STATIC / "page.html.gz"
 SHEET_FILE = STATIC / "sheet.json"
-if not (MODULE.is_file() and SHEET_FILE.is_file()):
+if not (MODULE.is_file() and PAGE_FILE.is_file() and SHEET_FILE.is_file()):
     raise ImportError(
         "smoothlab's widget module is not in this install: build the wheel with `make wheel` in the "
         "smoothlab repository, then pip install target/wheels/smoothlab-*.whl again"
@@ -61,6 +67,26 @@ def _range(name: str) -> Dict[str, Any]:
     return SHEET["controls"]["maxiter" if name == "max_iter" else name]
 
 
+class _Page(ipywidgets.Widget):
+    """The one-file page every :class:`Playground` of the kernel shows: a model with no view
+    of its own, sent to the browser once and saved once in a notebook's widget state: the
+    page gzipped (1.3 MB) in base64 (1.8 MB), text, which every widget manager saves as it
+    is (a base model's bytes are not saved)."""
+
+    page = traitlets.Unicode("").tag(sync=True)
+
+
+_SHARED: Optional[_Page] = None
+
+
+def _shared_page() -> _Page:
+    """The kernel's one page model, made on first use (again if it was closed)."""
+    global _SHARED
+    if _SHARED is None or getattr(_SHARED, "comm", None) is None:
+        _SHARED = _Page(page=base64.b64encode(PAGE_FILE.read_bytes()).decode("ascii"))
+    return _SHARED
+
+
 class Playground(anywidget.AnyWidget):
     """Two smoothers side by side on one mesh, the playground page in a notebook cell.
 
@@ -84,6 +110,7 @@ class Playground(anywidget.AnyWidget):
 
     _esm = MODULE
 
+    _page = traitlets.Instance(_Page).tag(sync=True, **ipywidgets.widget_serialization)
     _file = traitlets.Bytes(b"").tag(sync=True)
     _file_name = traitlets.Unicode("").tag(sync=True)
     sample = traitlets.Unicode(None, allow_none=True).tag(sync=True)
@@ -124,7 +151,7 @@ class Playground(anywidget.AnyWidget):
         unknown = sorted(set(settings) - set(self.SETTINGS))
         if unknown:
             raise TypeError(f"no setting named {', '.join(map(repr, unknown))}: the settings are {', '.join(self.SETTINGS)}")
-        init: Dict[str, Any] = {"height": height}
+        init: Dict[str, Any] = {"height": height, "_page": _shared_page()}
         self._given: Optional[Mesh] = None
         if points is not None or cells is not None:
             if points is None or cells is None:
@@ -242,3 +269,4 @@ class Playground(anywidget.AnyWidget):
     def mesh_b(self) -> Mesh:
         """Side B's mesh, as :attr:`mesh_a`."""
         return self._side("_mesh_b", "B")
+

@@ -1,6 +1,8 @@
 """The widget's arguments and traits, checked against the page's own sheet (the wasm
 module's control sheet, samples and figures, written by make python)."""
 
+import base64
+import gzip
 import json
 
 import numpy as np
@@ -48,10 +50,26 @@ def test_settings_are_checked_against_the_control_sheet(square):
         smoothlab.Playground(points, cells, speed=3)
 
 
-def test_the_widget_module_is_the_page():
+def test_the_widget_module_shows_the_page_every_widget_shares(square):
+    """The module is the bridge alone; the page (3 MB, its wasm inside) is the state of one
+    model that every widget of the kernel refers to, so a notebook saved with its widgets'
+    state holds it once."""
     module = smoothlab.widget.MODULE.read_text(encoding="utf-8")
     assert module.startswith("// written by scripts/single.mjs")
-    assert "export default { render }" in module and "data-host" in module
+    assert "export default { render }" in module and "data-host" in module and "widget_manager" in module
+    assert len(module) < 50_000
+    points, cells = square
+    ws = [smoothlab.Playground(points, cells), smoothlab.Playground(sample="rand2d"), smoothlab.Playground(figure="chen-10")]
+    assert ws[0]._page is ws[1]._page is ws[2]._page
+    page = gzip.decompress(base64.b64decode(ws[0]._page.page)).decode("utf-8")
+    assert page.startswith("<!doctype html>") and '<html lang="en">' in page and "worker-source" in page
+    for w in ws:
+        state = w.get_state()
+        assert state["_page"] == f"IPY_MODEL_{ws[0]._page.model_id}" and "page" not in state
+        assert len(json.dumps({k: v for k, v in state.items() if not isinstance(v, (bytes, memoryview))}, default=str)) < 100_000
+    # a closed page model is made again for the next widget
+    ws[0]._page.close()
+    assert smoothlab.Playground(sample="rand2d")._page.comm is not None
 
 
 def test_sample_figure_and_mesh_assigned_later_replace_what_was_shown(square):

@@ -1,7 +1,10 @@
 // The notebook widget's view (anywidget: `render({ model, el })`): the playground page
 // itself, the same engine and controls, in a frame sized for a notebook cell, and the
-// bridge between the page (www/app/host.js) and the widget's model. `make python`
-// (scripts/single.mjs) puts the one-file page before this as `PAGE`.
+// bridge between the page (www/app/host.js) and the widget's model. The page (the one-file
+// page of scripts/single.mjs, wasm inside) is not in this module, nor in any widget's
+// state: it is the `page` (gzipped, base64) of one model every widget of the kernel shares
+// (`_page`, a reference "IPY_MODEL_<id>"), so a notebook saved with its widgets' state
+// holds it once, however many widgets it shows.
 //
 // The model's traits (python/smoothlab/widget.py): `_file` and `_file_name`, the mesh the
 // page opens (a .vtk text the Python side wrote); `sample` or `figure`, what it opens
@@ -9,13 +12,43 @@
 // `objective_a`, `penalty_a`, `objective_b`, `penalty_b`; null: the page's default),
 // which flow both ways; `_mesh_a`, `_mesh_b` (each side's mesh as arrays, set here after
 // every change), `stats` and `error`, set here; `height`, the frame's height in pixels.
+// A model that holds a stepped mesh (a notebook's saved state) opens stepped: the page
+// runs its passes again and checks the sides against the saved points.
 
 /** The traits the page's settings are synced with (app/host.js's SETTING_CONTROLS). */
 const SETTINGS = ['strategy', 'threshold', 'order', 'passes', 'max_iter', 'objective_a', 'penalty_a', 'objective_b', 'penalty_b'];
 
+/** The one-file page, from the model all widgets share: its `page`, gzipped in base64
+ * (1.8 MB, not 3.3: the page's wasm is base64 inside it). Unzipped once however many
+ * widgets ask. */
+async function pageText(model) {
+  const ref = model.get('_page');
+  const id = typeof ref === 'string' && ref.startsWith('IPY_MODEL_') ? ref.slice('IPY_MODEL_'.length) : null;
+  if (!id || !model.widget_manager) throw new Error('smoothlab: the widget has no page model (_page): build the wheel again (make wheel)');
+  const pages = (globalThis.smoothlabPages ||= new Map());
+  if (!pages.has(id)) {
+    pages.set(id, (async () => {
+      const shared = await model.widget_manager.get_model(id);
+      const text = shared && shared.get('page');
+      if (typeof text !== 'string' || !text) throw new Error('smoothlab: the page model holds no page');
+      const bytes = Uint8Array.from(atob(text), (c) => c.charCodeAt(0));
+      const stream = new Blob([bytes]).stream().pipeThrough(new DecompressionStream('gzip'));
+      return new Response(stream).text();
+    })());
+  }
+  try {
+    const page = await pages.get(id);
+    if (!page.includes('<html lang="en">')) throw new Error('smoothlab: the page model holds no page');
+    return page;
+  } catch (e) {
+    pages.delete(id); // a later widget asks again
+    throw e;
+  }
+}
+
 /** The page's document: the one-file page marked as hosted (app/state.js, HOSTED). */
-function pageURL(model) {
-  const html = PAGE.replace('<html lang="en">', '<html lang="en" data-host="widget">');
+function pageURL(model, page) {
+  const html = page.replace('<html lang="en">', '<html lang="en" data-host="widget">');
   const url = URL.createObjectURL(new Blob([html], { type: 'text/html' }));
   const figure = model.get('figure');
   const sample = model.get('sample');
@@ -43,13 +76,36 @@ function meshTrait(arrays) {
   };
 }
 
+/** The passes a stepped model records, for the page to run again once it has opened the
+ * mesh (a notebook opened again from its saved widget state, or the widget shown once
+ * more): `{ passes, points: { a, b } }` (the sides' points as saved, which the page checks
+ * its replay against), or null when the model holds no stepped mesh. */
+function savedRun(model) {
+  const stats = model.get('stats');
+  const passes = stats && stats.b ? Number(stats.b.passes) : 0;
+  const a = model.get('_mesh_a');
+  const b = model.get('_mesh_b');
+  if (!(passes > 0) || !a || !a.points || !b || !b.points) return null;
+  return { passes, points: { a: bytesOf(a.points), b: bytesOf(b.points) } };
+}
+
 function settingsOf(model) {
   const out = {};
   for (const name of SETTINGS) out[name] = model.get(name);
   return out;
 }
 
-function render({ model, el }) {
+async function render({ model, el }) {
+  let page;
+  try {
+    page = await pageText(model);
+  } catch (e) {
+    const p = document.createElement('p');
+    p.textContent = e.message;
+    p.style.cssText = 'color: #8a1c1c; font-family: system-ui, sans-serif;';
+    el.append(p);
+    return () => {};
+  }
   const frame = document.createElement('iframe');
   frame.title = 'smoothlab: two smoothing objectives side by side';
   frame.style.cssText = 'width: 100%; border: 0; display: block;';
@@ -64,7 +120,8 @@ function render({ model, el }) {
     if (m.smoothlab === 'hello') {
       const bytes = bytesOf(model.get('_file'));
       const file = bytes && bytes.byteLength ? { name: model.get('_file_name') || 'mesh.vtk', bytes } : null;
-      frame.contentWindow.postMessage({ smoothlab: 'open', file, settings: settingsOf(model) }, '*', file ? [file.bytes] : []);
+      const replay = model.get('figure') ? null : savedRun(model);
+      frame.contentWindow.postMessage({ smoothlab: 'open', file, settings: settingsOf(model), replay }, '*', file ? [file.bytes] : []);
     } else if (m.smoothlab === 'state') {
       applying = true;
       try {
@@ -88,8 +145,8 @@ function render({ model, el }) {
   };
   for (const name of SETTINGS) model.on(`change:${name}`, onSettings);
   model.on('change:height', size);
-  let page = pageURL(model);
-  frame.src = page.address;
+  let at = pageURL(model, page);
+  frame.src = at.address;
   // `sample`, `figure` or the mesh assigned after display: the page opens it anew (one
   // reload for the traits the kernel changes together)
   let reloading = false;
@@ -98,9 +155,9 @@ function render({ model, el }) {
     reloading = true;
     setTimeout(() => {
       reloading = false;
-      URL.revokeObjectURL(page.url);
-      page = pageURL(model);
-      frame.src = page.address;
+      URL.revokeObjectURL(at.url);
+      at = pageURL(model, page);
+      frame.src = at.address;
     }, 0);
   };
   const OPENERS = ['sample', 'figure', '_file'];
@@ -111,7 +168,7 @@ function render({ model, el }) {
     for (const name of SETTINGS) model.off(`change:${name}`, onSettings);
     for (const name of OPENERS) model.off(`change:${name}`, reopen);
     model.off('change:height', size);
-    URL.revokeObjectURL(page.url);
+    URL.revokeObjectURL(at.url);
   };
 }
 

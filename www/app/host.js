@@ -10,6 +10,7 @@
 import { $, engine, pageEvents, serial, state } from './state.js';
 import { CHECKED, checkControl } from './controls.js';
 import { load } from './loading.js';
+import { smooth } from './run.js';
 
 /** The host's names of the settings (the Python widget's traits) and the controls they set. */
 export const SETTING_CONTROLS = {
@@ -25,7 +26,7 @@ export const SETTING_CONTROLS = {
 };
 const NUMERIC = new Set(['threshold', 'passes', 'max_iter']);
 
-const host = { window: null, error: null, sent: { a: null, b: null }, timer: 0 };
+const host = { window: null, error: null, sent: { a: null, b: null }, timer: 0, replay: null };
 
 function post(message) {
   host.window.postMessage({ smoothlab: message.kind, ...message }, '*');
@@ -131,6 +132,7 @@ export function connect() {
       if (ev.source !== window.parent || !m || typeof m.smoothlab !== 'string') return;
       if (m.smoothlab === 'open' && !host.window) {
         host.window = ev.source;
+        host.replay = m.replay || null;
         resolve({ file: m.file || null, settings: m.settings || {} });
       } else if (m.smoothlab === 'settings' && host.window) {
         applySettings(m.settings).then((why) => {
@@ -155,4 +157,27 @@ export async function openFromHost({ file, settings }) {
   if (state.lastGood !== src) host.error = $('message').textContent || `${file.name} could not be opened`;
   scheduleState();
   return false;
+}
+
+/** The passes the host's saved state records (`open`'s `replay`: `{ passes, points: { a, b } }`,
+ * a notebook opened again from its saved widget state), run again on the mesh just
+ * opened: the page is deterministic, so both sides come back as they were saved, which is
+ * checked against the saved points; a side that differs (a node moved by hand, a
+ * perturbation) is said in the host's error. */
+export async function replayFromHost() {
+  const r = host.replay;
+  host.replay = null;
+  if (!r || !state.lastGood || !(r.passes > 0)) return;
+  await smooth(r.passes);
+  for (const side of ['a', 'b']) {
+    const want = r.points && r.points[side] ? new Uint8Array(r.points[side]) : null;
+    if (!want) continue;
+    const p = (await engine.call('meshArrays', side)).points;
+    const got = new Uint8Array(p.buffer, p.byteOffset, p.byteLength);
+    if (got.length !== want.length || got.some((v, i) => v !== want[i])) {
+      host.error = `side ${side.toUpperCase()} as saved was not made by its ${r.passes} passes alone (a node moved by hand, or a perturbation): it shows those passes run again on the mesh as opened`;
+      break;
+    }
+  }
+  scheduleState();
 }

@@ -11,7 +11,7 @@ import { attachLevelZoom, attachPointer, pickRadius, selectNode } from './pointe
 import { saveFigure, smoothThisNode, undo } from './undo.js';
 import { exportMesh, exportPng } from './export.js';
 import { sendTheme, startTheme, wirePresentation } from './present.js';
-import { connect, openFromHost } from './host.js';
+import { connect, openFromHost, replayFromHost } from './host.js';
 
 export async function fillGallery() {
   const list = await engine.call('samples');
@@ -210,6 +210,7 @@ export async function main() {
   // in a notebook's widget: the host's settings, and its mesh instead of the address's
   if (HOSTED && !(await openFromHost(await connect()))) {
     markAddressHandled();
+    await replayFromHost();
     document.body.dataset.ready = '1';
     return;
   }
@@ -226,6 +227,7 @@ export async function main() {
   }
   await openView();
   markAddressHandled();
+  if (HOSTED) await replayFromHost();
   document.body.dataset.ready = '1';
 }
 

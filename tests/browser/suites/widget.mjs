@@ -2,7 +2,7 @@
 // loaded as anywidget loads it (a dynamic import of a blob of its text) into a page laid
 // out like a notebook's cell, and rendered with a stand-in model that keeps the anywidget
 // contract (get, set, on, off, save_changes, widget_manager.get_model for the shared
-// model that holds the page, page.html.gz): the mesh the Python side wrote goes in, the
+// model that holds the page, page.html.gz in base64): the mesh the Python side wrote goes in, the
 // page draws it, a Step sends both sides' smoothed meshes back to the model as arrays, the
 // model's settings reach the page's controls, and what the page refuses comes back in
 // words. The model's final state is written to test-output/widget/state.json, which the
@@ -54,7 +54,7 @@ async function renderWidget(p, server, state) {
   await p.evaluate(async ({ source, page, state }) => {
     const listeners = {};
     // the model every widget shares, which holds the page (gzipped), as the kernel's manager gives it
-    const pageModel = { get: (name) => (name === 'page' ? new DataView(Uint8Array.from(atob(page), (c) => c.charCodeAt(0)).buffer) : undefined) };
+    const pageModel = { get: (name) => (name === 'page' ? page : undefined) };
     const model = {
       state: { ...state, _page: 'IPY_MODEL_page' },
       saves: 0,
@@ -85,6 +85,7 @@ async function renderWidget(p, server, state) {
     if (state._file !== null) model.state._file = new DataView(new TextEncoder().encode(state._file).buffer);
     window.cellModel = model;
     const url = URL.createObjectURL(new Blob([source], { type: 'text/javascript' }));
+    window.widgetURL = url;
     const widget = (await import(url)).default;
     window.cellCleanup = widget.render({ model, el: document.getElementById('cell') });
     window.cellCleanup = await window.cellCleanup;
@@ -193,9 +194,27 @@ async function widgetTests(server, context) {
         const s = window.cellModel.state;
         return { _mesh_a: side(s._mesh_a), _mesh_b: side(s._mesh_b), stats: s.stats, strategy: s.strategy, passes: s.passes };
       })));
+      // the same model shown again, as a notebook reopened from its saved state shows it:
+      // the page opens the mesh as given, runs the saved pass again, and both sides are
+      // the saved ones (checked by the page: no error)
+      const savedA = await modelSide(p, '_mesh_a');
+      await p.evaluate(async () => {
+        window.cellCleanup();
+        document.getElementById('cell').replaceChildren();
+        const widget = (await import(window.widgetURL)).default;
+        window.cellCleanup = await widget.render({ model: window.cellModel, el: document.getElementById('cell') });
+      });
+      const again = await (await p.$('#cell iframe')).contentFrame();
+      await again.waitForFunction(() => document.body.dataset.ready === '1' && document.body.dataset.busy === '0', null, { timeout: TIMEOUT });
+      await p.waitForTimeout(300);
+      const replayed = await p.evaluate(() => ({ passes: window.cellModel.state.stats.b.passes, error: window.cellModel.state.error }));
+      check(replayed.passes === 1 && replayed.error === null, `shown again: ${JSON.stringify(replayed)}`);
+      check(JSON.stringify(await modelSide(p, '_mesh_b')) === JSON.stringify(b1) && JSON.stringify(await modelSide(p, '_mesh_a')) === JSON.stringify(savedA), 'shown again, the sides are as stepped');
+      check(/One pass done/.test(await again.textContent('#status')), `the page says: ${await again.textContent('#status')}`);
+      const frame2 = again;
       // a setting from the model reaches the page's control; one the page refuses comes back in words
       await p.evaluate(() => window.cellModel.set('objective_a', 'condition'));
-      await frame.waitForFunction(() => document.getElementById('objective-a').value === 'condition', null, { timeout: TIMEOUT });
+      await frame2.waitForFunction(() => document.getElementById('objective-a').value === 'condition', null, { timeout: TIMEOUT });
       await p.evaluate(() => window.cellModel.set('passes', 100000));
       await p.waitForFunction(() => window.cellModel.state.error !== null, null, { timeout: TIMEOUT });
       const error = await p.evaluate(() => window.cellModel.state.error);
