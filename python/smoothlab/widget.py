@@ -14,7 +14,8 @@ from __future__ import annotations
 import base64
 import json
 import pathlib
-from typing import Any, Dict, List, Optional
+import os
+from typing import Any, Dict, List, Optional, Sequence, Tuple, Union
 
 try:
     import anywidget
@@ -24,7 +25,7 @@ import ipywidgets
 import numpy as np
 import traitlets
 
-from .mesh import Mesh, check_cells, check_fixed, check_points, vtk_text
+from .mesh import Mesh, check_cells, check_fixed, check_points, render, vtk_text
 
 STATIC = pathlib.Path(__file__).parent / "static"
 MODULE = STATIC / "widget.js"
@@ -270,3 +271,32 @@ class Playground(anywidget.AnyWidget):
         """Side B's mesh, as :attr:`mesh_a`."""
         return self._side("_mesh_b", "B")
 
+    def save_png(
+        self,
+        path: Union[str, "os.PathLike[str]"],
+        side: str = "b",
+        *,
+        size: Optional[Tuple[int, int]] = None,
+        dpr: Optional[float] = None,
+        metric: Optional[str] = None,
+        theme: Optional[str] = None,
+        camera: Union[None, str, Sequence[float]] = None,
+        cut: Union[None, str, Tuple[str, float]] = None,
+    ) -> None:
+        """Draws side ``"a"`` or ``"b"`` (B, the new objective's, by default) as the page
+        last reported it (:attr:`mesh_a`, :attr:`mesh_b`) to a PNG file, as
+        :func:`smoothlab.render` draws it with ``view="mesh"``, in the kernel: the widget
+        need not be on screen (before the page has reported, the mesh as given). ``size``, ``dpr``, ``metric``,
+        ``theme``, ``camera`` and ``cut`` as for :func:`smoothlab.render`.
+
+        >>> import pathlib, tempfile, numpy as np, smoothlab
+        >>> w = smoothlab.Playground(np.array([[0, 0], [1, 0], [1, 1], [0, 1], [0.8, 0.7]]), np.array([[0, 1, 4], [1, 2, 4], [2, 3, 4], [3, 0, 4]]))
+        >>> out = pathlib.Path(tempfile.mkdtemp()) / "b.png"
+        >>> w.save_png(out, size=(300, 300))
+        >>> out.read_bytes()[:4]
+        b'\\x89PNG'
+        """
+        if side not in ("a", "b"):
+            raise ValueError(f"side: 'a' or 'b', not {side!r}")
+        mesh = self.mesh_a if side == "a" else self.mesh_b
+        render(mesh, path, "mesh", size=size, dpr=dpr, metric=metric, theme=theme, camera=camera, cut=cut)

@@ -72,6 +72,22 @@ def test_the_widget_module_shows_the_page_every_widget_shares(square):
     assert smoothlab.Playground(sample="rand2d")._page.comm is not None
 
 
+def test_save_png_draws_a_side_as_render_does(square, tmp_path):
+    points, cells = square
+    w = smoothlab.Playground(points, cells)
+    w.save_png(tmp_path / "b.png", size=(200, 160))
+    smoothlab.render(w.mesh_b, tmp_path / "render.png", "mesh", size=(200, 160))
+    assert (tmp_path / "b.png").read_bytes() == (tmp_path / "render.png").read_bytes()
+    moved = smoothlab.Mesh(points + [[0, 0], [0, 0], [0, 0], [0, 0], [0.2, -0.1]], cells)
+    w.set_state({"_mesh_a": {"dim": 2, "points": memoryview(moved.points.astype("<f8").tobytes()), "fixed": memoryview(moved.fixed.astype(np.uint8).tobytes()),
+                             "cells": [{"vtk_type": 5, "per_cell": 3, "nodes": memoryview(cells.astype("<u4").tobytes())}]}})
+    w.save_png(tmp_path / "a.png", "a", size=(200, 160))
+    assert (tmp_path / "a.png").read_bytes() != (tmp_path / "b.png").read_bytes()
+    with pytest.raises(ValueError, match=r"side: 'a' or 'b', not 'c'"):
+        w.save_png(tmp_path / "c.png", "c")
+    assert not (tmp_path / "c.png").exists()
+
+
 def test_sample_figure_and_mesh_assigned_later_replace_what_was_shown(square):
     points, cells = square
     w = smoothlab.Playground(points, cells)
