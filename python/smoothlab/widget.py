@@ -100,7 +100,11 @@ class Playground(anywidget.AnyWidget):
     once the widget is shown). ``mesh_a`` and ``mesh_b`` are the sides' meshes as the page
     last reported them, ``stats`` their tables, ``error`` what the page refused.
     ``sample`` and ``figure`` may be assigned after the widget is shown, and
-    :meth:`set_mesh` gives it another mesh: the view opens it anew.
+    :meth:`set_mesh` gives it another mesh: the view opens it anew. A mesh in 3D is seen
+    by ``camera`` (yaw and pitch in degrees, and a zoom: ``(30, 25, 1)``) and a volume cut
+    by ``cut`` (an axis and a fraction of its extent: ``("z", 0.5)``), as
+    :func:`smoothlab.render` takes them; both are set at first and whenever assigned, and
+    follow the view as it is turned (None: the page's own, filled in once shown).
 
     >>> import smoothlab
     >>> w = smoothlab.Playground(sample="plate-tri-tangled", passes=3)
@@ -128,6 +132,9 @@ class Playground(anywidget.AnyWidget):
     objective_b = traitlets.Unicode(None, allow_none=True).tag(sync=True)
     penalty_b = traitlets.Unicode(None, allow_none=True).tag(sync=True)
 
+    camera = traitlets.Any(None, allow_none=True).tag(sync=True)
+    cut = traitlets.Any(None, allow_none=True).tag(sync=True)
+
     _mesh_a = traitlets.Dict({}).tag(sync=True)
     _mesh_b = traitlets.Dict({}).tag(sync=True)
     stats = traitlets.Dict({}).tag(sync=True)
@@ -144,6 +151,8 @@ class Playground(anywidget.AnyWidget):
         sample: Optional[str] = None,
         figure: Optional[str] = None,
         height: int = 540,
+        camera: Any = None,
+        cut: Any = None,
         **settings: Any,
     ):
         given = [what for what, v in (("points and cells", points if points is not None else cells), ("sample", sample), ("figure", figure)) if v is not None]
@@ -152,7 +161,7 @@ class Playground(anywidget.AnyWidget):
         unknown = sorted(set(settings) - set(self.SETTINGS))
         if unknown:
             raise TypeError(f"no setting named {', '.join(map(repr, unknown))}: the settings are {', '.join(self.SETTINGS)}")
-        init: Dict[str, Any] = {"height": height, "_page": _shared_page()}
+        init: Dict[str, Any] = {"height": height, "_page": _shared_page(), "camera": camera, "cut": cut}
         self._given: Optional[Mesh] = None
         if points is not None or cells is not None:
             if points is None or cells is None:
@@ -175,7 +184,9 @@ class Playground(anywidget.AnyWidget):
             init["figure"] = figure
         else:
             raise ValueError("give a mesh (points and cells), a sample or a figure")
+        self._made = False  # the view given with the mesh is not let go while it is made
         super().__init__(**init, **settings)
+        self._made = True
 
     @classmethod
     def from_meshio(cls, mesh: Any, fixed: Any = None, **kwargs: Any) -> "Playground":
@@ -197,6 +208,8 @@ class Playground(anywidget.AnyWidget):
         with self.hold_sync():
             self.sample = None
             self.figure = None
+            self.camera = None
+            self.cut = None
             self._file_name = "notebook.vtk"
             self._file = vtk_text(p, c, f).encode("utf-8")
             self._mesh_a = {}
@@ -224,12 +237,48 @@ class Playground(anywidget.AnyWidget):
         self._given = None
         with self.hold_sync():
             setattr(self, other, None)
+            if self._made:
+                self.camera = None
+                self.cut = None
             self._file = b""
             self._file_name = ""
             self._mesh_a = {}
             self._mesh_b = {}
             self.stats = {}
             self.error = None
+
+    @traitlets.validate("camera")
+    def _check_camera(self, proposal: Any) -> Any:
+        v = proposal["value"]
+        if v is None:
+            return None
+        try:
+            c = [float(x) for x in v]
+        except (TypeError, ValueError):
+            raise traitlets.TraitError(f"camera: give (yaw, pitch) or (yaw, pitch, zoom) in numbers, not {v!r}") from None
+        if len(c) not in (2, 3) or not all(np.isfinite(c)):
+            raise traitlets.TraitError(f"camera: give (yaw, pitch) or (yaw, pitch, zoom) in finite numbers, not {v!r}")
+        if len(c) == 2:
+            c.append(1.0)
+        if c[2] <= 0:
+            raise traitlets.TraitError(f"camera: the zoom {c[2]} is not positive")
+        return c
+
+    @traitlets.validate("cut")
+    def _check_cut(self, proposal: Any) -> Any:
+        v = proposal["value"]
+        if v is None:
+            return None
+        try:
+            axis, at = v
+            at = float(at)
+        except (TypeError, ValueError):
+            raise traitlets.TraitError(f"cut: give (axis, fraction) such as ('z', 0.5), not {v!r}") from None
+        if axis not in ("x", "y", "z"):
+            raise traitlets.TraitError(f"cut: the axis is 'x', 'y' or 'z', not {axis!r}")
+        if not 0 <= at <= 1:
+            raise traitlets.TraitError(f"cut: the fraction {at} is not between 0 and 1")
+        return [axis, at]
 
     @traitlets.validate("strategy", "order", "threshold", "objective_a", "penalty_a", "objective_b", "penalty_b")
     def _check_menu(self, proposal: Any) -> Any:
@@ -287,7 +336,8 @@ class Playground(anywidget.AnyWidget):
         last reported it (:attr:`mesh_a`, :attr:`mesh_b`) to a PNG file, as
         :func:`smoothlab.render` draws it with ``view="mesh"``, in the kernel: the widget
         need not be on screen (before the page has reported, the mesh as given). ``size``, ``dpr``, ``metric``,
-        ``theme``, ``camera`` and ``cut`` as for :func:`smoothlab.render`.
+        ``theme``, ``camera`` and ``cut`` as for :func:`smoothlab.render`; ``camera`` and
+        ``cut`` left out are the widget's (its view as last turned).
 
         >>> import pathlib, tempfile, numpy as np, smoothlab
         >>> w = smoothlab.Playground(np.array([[0, 0], [1, 0], [1, 1], [0, 1], [0.8, 0.7]]), np.array([[0, 1, 4], [1, 2, 4], [2, 3, 4], [3, 0, 4]]))
@@ -299,4 +349,6 @@ class Playground(anywidget.AnyWidget):
         if side not in ("a", "b"):
             raise ValueError(f"side: 'a' or 'b', not {side!r}")
         mesh = self.mesh_a if side == "a" else self.mesh_b
+        camera = self.camera if camera is None else camera
+        cut = self.cut if cut is None else cut
         render(mesh, path, "mesh", size=size, dpr=dpr, metric=metric, theme=theme, camera=camera, cut=cut)

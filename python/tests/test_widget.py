@@ -129,3 +129,36 @@ def test_a_side_as_the_page_sends_it_reads_back_through_the_core(square):
     w3 = smoothlab.Playground(np.column_stack([points, np.zeros(5)]), cells)
     w3.set_state({"_mesh_b": state})
     assert w3.mesh_b.points.shape == (5, 3)
+
+
+def test_the_view_is_checked_and_let_go_with_the_mesh(square):
+    w = smoothlab.Playground(sample="hex-tangled", camera=(60, 10), cut=("x", 0.3))
+    assert (w.camera, w.cut) == ([60.0, 10.0, 1.0], ["x", 0.3])
+    with pytest.raises(traitlets.TraitError, match=r"camera: give \(yaw, pitch\) or \(yaw, pitch, zoom\) in finite numbers, not \[1, nan\]"):
+        w.camera = [1, float("nan")]
+    with pytest.raises(traitlets.TraitError, match=r"camera: the zoom -1.0 is not positive"):
+        w.camera = (0, 0, -1)
+    with pytest.raises(traitlets.TraitError, match=r"cut: the axis is 'x', 'y' or 'z', not 'w'"):
+        w.cut = ("w", 0.5)
+    with pytest.raises(traitlets.TraitError, match=r"cut: the fraction 1.5 is not between 0 and 1"):
+        w.cut = ("z", 1.5)
+    with pytest.raises(traitlets.TraitError, match=r"cut: give \(axis, fraction\) such as \('z', 0.5\), not 'z'"):
+        smoothlab.Playground(sample="hex-tangled", cut="z")
+    assert (w.camera, w.cut) == ([60.0, 10.0, 1.0], ["x", 0.3])  # a refused view leaves it
+    w.sample = "rand3d"
+    assert (w.camera, w.cut) == (None, None)
+
+
+def test_save_png_sees_a_volume_by_the_widgets_view(tmp_path):
+    # a 2 x 2 x 2 block of hexahedra, its middle node moved
+    idx = lambda i, j, k: i + 3 * j + 9 * k
+    points = np.array([[i, j, k] for k in range(3) for j in range(3) for i in range(3)], dtype=float)
+    points[idx(1, 1, 1)] += [0.3, -0.2, 0.1]
+    hexes = [[idx(i, j, k), idx(i + 1, j, k), idx(i + 1, j + 1, k), idx(i, j + 1, k), idx(i, j, k + 1), idx(i + 1, j, k + 1), idx(i + 1, j + 1, k + 1), idx(i, j + 1, k + 1)]
+             for k in range(2) for j in range(2) for i in range(2)]
+    mesh = smoothlab.Mesh(points, [("hexahedron", np.array(hexes))])
+    w = smoothlab.Playground(mesh.points, mesh.cells, camera=(70, 35, 1.2), cut=("y", 0.6))
+    w.save_png(tmp_path / "w.png", size=(240, 200))
+    smoothlab.render(w.mesh_b, tmp_path / "r.png", "mesh", size=(240, 200), camera=(70, 35, 1.2), cut=("y", 0.6))
+    smoothlab.render(w.mesh_b, tmp_path / "default.png", "mesh", size=(240, 200))
+    assert (tmp_path / "w.png").read_bytes() == (tmp_path / "r.png").read_bytes() != (tmp_path / "default.png").read_bytes()

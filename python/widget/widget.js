@@ -11,7 +11,8 @@
 // instead; the settings (`strategy`, `threshold`, `order`, `passes`, `max_iter`,
 // `objective_a`, `penalty_a`, `objective_b`, `penalty_b`; null: the page's default),
 // which flow both ways; `_mesh_a`, `_mesh_b` (each side's mesh as arrays, set here after
-// every change), `stats` and `error`, set here; `height`, the frame's height in pixels.
+// every change), `stats` and `error`, set here; `camera` and `cut`, a 3D view's, which
+// flow both ways; `height`, the frame's height in pixels.
 // A model that holds a stepped mesh (a notebook's saved state) opens stepped: the page
 // runs its passes again and checks the sides against the saved points.
 
@@ -89,6 +90,13 @@ function savedRun(model) {
   return { passes, points: { a: bytesOf(a.points), b: bytesOf(b.points) } };
 }
 
+/** The traits of the 3D view: `camera` [yaw, pitch, zoom], `cut` [axis, fraction]. */
+const VIEW = ['camera', 'cut'];
+
+function viewOf(model) {
+  return { camera: model.get('camera') ?? null, cut: model.get('cut') ?? null };
+}
+
 function settingsOf(model) {
   const out = {};
   for (const name of SETTINGS) out[name] = model.get(name);
@@ -121,7 +129,7 @@ async function render({ model, el }) {
       const bytes = bytesOf(model.get('_file'));
       const file = bytes && bytes.byteLength ? { name: model.get('_file_name') || 'mesh.vtk', bytes } : null;
       const replay = model.get('figure') ? null : savedRun(model);
-      frame.contentWindow.postMessage({ smoothlab: 'open', file, settings: settingsOf(model), replay }, '*', file ? [file.bytes] : []);
+      frame.contentWindow.postMessage({ smoothlab: 'open', file, settings: settingsOf(model), view: viewOf(model), replay }, '*', file ? [file.bytes] : []);
     } else if (m.smoothlab === 'state') {
       applying = true;
       try {
@@ -131,6 +139,10 @@ async function render({ model, el }) {
         if (m.meshes && m.meshes.a) model.set('_mesh_a', meshTrait(m.meshes.a));
         if (m.meshes && m.meshes.b) model.set('_mesh_b', meshTrait(m.meshes.b));
         if (m.stats) model.set('stats', m.stats);
+        for (const name of VIEW) {
+          const v = m.view ? m.view[name] ?? null : null;
+          if (JSON.stringify(v) !== JSON.stringify(model.get(name) ?? null)) model.set(name, v);
+        }
         model.set('error', m.error ?? null);
         model.save_changes();
       } finally {
@@ -144,6 +156,11 @@ async function render({ model, el }) {
     frame.contentWindow.postMessage({ smoothlab: 'settings', settings: settingsOf(model) }, '*');
   };
   for (const name of SETTINGS) model.on(`change:${name}`, onSettings);
+  const onView = () => {
+    if (applying || !frame.contentWindow) return;
+    frame.contentWindow.postMessage({ smoothlab: 'view', ...viewOf(model) }, '*');
+  };
+  for (const name of VIEW) model.on(`change:${name}`, onView);
   model.on('change:height', size);
   let at = pageURL(model, page);
   frame.src = at.address;
@@ -166,6 +183,7 @@ async function render({ model, el }) {
   return () => {
     window.removeEventListener('message', onMessage);
     for (const name of SETTINGS) model.off(`change:${name}`, onSettings);
+    for (const name of VIEW) model.off(`change:${name}`, onView);
     for (const name of OPENERS) model.off(`change:${name}`, reopen);
     model.off('change:height', size);
     URL.revokeObjectURL(at.url);

@@ -114,7 +114,7 @@ const EMPTY = {
   _file: null, _file_name: '', sample: null, figure: null, height: 540,
   strategy: null, threshold: null, order: null, passes: null, max_iter: null,
   objective_a: null, penalty_a: null, objective_b: null, penalty_b: null,
-  _mesh_a: {}, _mesh_b: {}, stats: {}, error: null,
+  camera: null, cut: null, _mesh_a: {}, _mesh_b: {}, stats: {}, error: null,
 };
 
 export default async function ({ server, browser }) {
@@ -272,6 +272,19 @@ async function widgetTests(server, context) {
       await f3.waitForTimeout(300);
       check((await pixels()) !== before, 'moving the cut plane redrew the volume');
       await p.screenshot({ path: path.join(OUT, 'widget-cell-volume.png') });
+      // the view as the page turned it comes back to the model
+      await p.waitForFunction(() => JSON.stringify(window.cellModel.state.cut) === '["z",0.8]', null, { timeout: TIMEOUT });
+      const cam = await p.evaluate(() => window.cellModel.state.camera);
+      check(Array.isArray(cam) && cam.length === 3 && cam.every(Number.isFinite), `the camera: ${JSON.stringify(cam)}`);
+      await p.evaluate(() => window.cellCleanup());
+      // the initial view, and a view the model is given after display
+      const f4 = await renderWidget(p, server, { ...EMPTY, sample: 'hex-tangled', camera: [60, 10, 1.5], cut: ['x', 0.3] });
+      await f4.waitForFunction(() => document.getElementById('cut-axis').value === '0' && document.getElementById('cut-at-out').textContent === '0.30', null, { timeout: TIMEOUT });
+      await p.waitForFunction(() => JSON.stringify(window.cellModel.state.camera) === '[60,10,1.5]', null, { timeout: TIMEOUT });
+      const first = await f4.evaluate(() => document.getElementById('mesh-b').toDataURL());
+      await p.evaluate(() => window.cellModel.set('camera', [200, 40, 1]));
+      await f4.waitForFunction((first) => document.body.dataset.busy === '0' && document.getElementById('mesh-b').toDataURL() !== first, first, { timeout: TIMEOUT });
+      await p.waitForFunction(() => JSON.stringify(window.cellModel.state.camera) === '[200,40,1]', null, { timeout: TIMEOUT });
     } finally {
       await p.close();
     }
