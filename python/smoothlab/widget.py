@@ -187,6 +187,13 @@ class Playground(anywidget.AnyWidget):
         self._made = False  # the view given with the mesh is not let go while it is made
         super().__init__(**init, **settings)
         self._made = True
+        self.on_msg(self._on_message)
+
+    def _on_message(self, widget: Any, content: Any, buffers: Any) -> None:
+        """The view asks for the page by a message where its front end cannot reach the
+        shared page model (``widget_manager.get_model``): the answer is kept in no state."""
+        if isinstance(content, dict) and content.get("smoothlab") == "page?":
+            self.send({"smoothlab": "page", "page": self._page.page})
 
     @classmethod
     def from_meshio(cls, mesh: Any, fixed: Any = None, **kwargs: Any) -> "Playground":

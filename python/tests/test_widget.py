@@ -162,3 +162,15 @@ def test_save_png_sees_a_volume_by_the_widgets_view(tmp_path):
     smoothlab.render(w.mesh_b, tmp_path / "r.png", "mesh", size=(240, 200), camera=(70, 35, 1.2), cut=("y", 0.6))
     smoothlab.render(w.mesh_b, tmp_path / "default.png", "mesh", size=(240, 200))
     assert (tmp_path / "w.png").read_bytes() == (tmp_path / "r.png").read_bytes() != (tmp_path / "default.png").read_bytes()
+
+
+def test_the_kernel_sends_the_page_when_the_view_asks(square):
+    """A front end whose models cannot reach the shared page model asks by a message."""
+    points, cells = square
+    w = smoothlab.Playground(points, cells)
+    sent = []
+    w.send = lambda content, buffers=None: sent.append(content)
+    w._on_message(w, {"smoothlab": "other"}, [])
+    assert sent == []
+    w._on_message(w, {"smoothlab": "page?"}, [])
+    assert sent == [{"smoothlab": "page", "page": w._page.page}] and len(sent[0]["page"]) > 1_000_000

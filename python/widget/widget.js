@@ -19,28 +19,54 @@
 /** The traits the page's settings are synced with (app/host.js's SETTING_CONTROLS). */
 const SETTINGS = ['strategy', 'threshold', 'order', 'passes', 'max_iter', 'objective_a', 'penalty_a', 'objective_b', 'penalty_b'];
 
-/** The one-file page, from the model all widgets share: its `page`, gzipped in base64
- * (1.8 MB, not 3.3: the page's wasm is base64 inside it). Unzipped once however many
- * widgets ask. */
+/** The page's text from its gzipped base64 (1.8 MB, not 3.3: its wasm is base64 inside). */
+async function unzipPage(text) {
+  if (typeof text !== 'string' || !text) throw new Error('smoothlab: no page came with the widget');
+  const bytes = Uint8Array.from(atob(text), (c) => c.charCodeAt(0));
+  const stream = new Blob([bytes]).stream().pipeThrough(new DecompressionStream('gzip'));
+  const page = await new Response(stream).text();
+  if (!page.includes('<html lang="en">')) throw new Error('smoothlab: what came as the page is not the page');
+  return page;
+}
+
+/** The page, asked of the kernel by a message (a front end whose models cannot reach the
+ * shared one: no `widget_manager.get_model`); the answer is not kept in any state. */
+function pageFromKernel(model) {
+  return new Promise((resolve, reject) => {
+    const timer = setTimeout(() => {
+      model.off('msg:custom', onMessage);
+      reject(new Error('smoothlab: the kernel did not send the page (is it running?)'));
+    }, 60_000);
+    function onMessage(m) {
+      if (!m || m.smoothlab !== 'page') return;
+      clearTimeout(timer);
+      model.off('msg:custom', onMessage);
+      resolve(m.page);
+    }
+    model.on('msg:custom', onMessage);
+    model.send({ smoothlab: 'page?' });
+  });
+}
+
+/** The one-file page: the `page` of the model all widgets share (`_page`), unzipped once
+ * however many widgets ask; where the front end cannot reach that model, the kernel sends it. */
 async function pageText(model) {
   const ref = model.get('_page');
   const id = typeof ref === 'string' && ref.startsWith('IPY_MODEL_') ? ref.slice('IPY_MODEL_'.length) : null;
-  if (!id || !model.widget_manager) throw new Error('smoothlab: the widget has no page model (_page): build the wheel again (make wheel)');
+  if (!id) throw new Error('smoothlab: the widget has no page model (_page): build the wheel again (make wheel)');
   const pages = (globalThis.smoothlabPages ||= new Map());
   if (!pages.has(id)) {
     pages.set(id, (async () => {
-      const shared = await model.widget_manager.get_model(id);
-      const text = shared && shared.get('page');
-      if (typeof text !== 'string' || !text) throw new Error('smoothlab: the page model holds no page');
-      const bytes = Uint8Array.from(atob(text), (c) => c.charCodeAt(0));
-      const stream = new Blob([bytes]).stream().pipeThrough(new DecompressionStream('gzip'));
-      return new Response(stream).text();
+      let text = null;
+      if (model.widget_manager && typeof model.widget_manager.get_model === 'function') {
+        const shared = await model.widget_manager.get_model(id).catch(() => null);
+        text = shared ? shared.get('page') : null;
+      }
+      return unzipPage(text || (await pageFromKernel(model)));
     })());
   }
   try {
-    const page = await pages.get(id);
-    if (!page.includes('<html lang="en">')) throw new Error('smoothlab: the page model holds no page');
-    return page;
+    return await pages.get(id);
   } catch (e) {
     pages.delete(id); // a later widget asks again
     throw e;

@@ -44,19 +44,19 @@ function tangledGrid(n) {
 
 /** A notebook's cell (900 px wide) at an http address, with the widget's module imported
  * as anywidget does and a stand-in model; `window.cellModel` is the model. */
-async function renderWidget(p, server, state) {
+async function renderWidget(p, server, state, { kernelPage = false } = {}) {
   // the notebook at the site's origin (a notebook server's pages are its own)
   await p.route('**/notebook', (r) => r.fulfill({
     contentType: 'text/html',
     body: '<!doctype html><link rel="icon" href="data:,"><body style="margin:0;background:#eee"><div id="cell" style="width:900px;margin:16px;background:#fff"></div></body>',
   }));
   await p.goto(`${server.base}notebook`);
-  await p.evaluate(async ({ source, page, state }) => {
+  await p.evaluate(async ({ source, page, state, kernelPage }) => {
     const listeners = {};
     // the model every widget shares, which holds the page (gzipped), as the kernel's manager gives it
     const pageModel = { get: (name) => (name === 'page' ? page : undefined) };
     const model = {
-      state: { ...state, _page: 'IPY_MODEL_page' },
+      state: { _page: 'IPY_MODEL_page', ...state },
       saves: 0,
       widget_manager: {
         async get_model(id) {
@@ -81,7 +81,16 @@ async function renderWidget(p, server, state) {
       save_changes() {
         this.saves += 1;
       },
+      asked: 0,
+      send(content) {
+        // the kernel's answer to the view's message (Playground._on_message)
+        if (content && content.smoothlab === 'page?') {
+          this.asked += 1;
+          setTimeout(() => { for (const f of listeners['msg:custom'] || []) f({ smoothlab: 'page', page }, []); }, 0);
+        }
+      },
     };
+    if (kernelPage) delete model.widget_manager; // a front end without get_model
     if (state._file !== null) model.state._file = new DataView(new TextEncoder().encode(state._file).buffer);
     window.cellModel = model;
     const url = URL.createObjectURL(new Blob([source], { type: 'text/javascript' }));
@@ -89,7 +98,7 @@ async function renderWidget(p, server, state) {
     const widget = (await import(url)).default;
     window.cellCleanup = widget.render({ model, el: document.getElementById('cell') });
     window.cellCleanup = await window.cellCleanup;
-  }, { source: readFileSync(MODULE, 'utf8'), page: readFileSync(PAGE).toString('base64'), state });
+  }, { source: readFileSync(MODULE, 'utf8'), page: readFileSync(PAGE).toString('base64'), state, kernelPage });
   const frame = await (await p.$('#cell iframe')).contentFrame();
   await frame.waitForFunction(() => document.body.dataset.ready === '1' && document.body.dataset.busy === '0', null, { timeout: TIMEOUT });
   return frame;
@@ -230,7 +239,9 @@ async function widgetTests(server, context) {
     try {
       // a pentagon: VTK polygons of 5 vertices are refused by the reader, naming the element
       const bad = '# vtk DataFile Version 3.0\nt\nASCII\nDATASET UNSTRUCTURED_GRID\nPOINTS 5 double\n0 0 0\n1 0 0\n1.5 1 0\n0.5 1.5 0\n-0.5 1 0\nCELLS 1 6\n5 0 1 2 3 4\nCELL_TYPES 1\n7\n';
-      await renderWidget(p, server, { ...EMPTY, _file: bad, _file_name: 'notebook.vtk' });
+      // …in a front end whose models cannot reach the shared page model: the kernel sends the page
+      await renderWidget(p, server, { ...EMPTY, _file: bad, _file_name: 'notebook.vtk', _page: 'IPY_MODEL_other' }, { kernelPage: true });
+      check((await p.evaluate(() => window.cellModel.asked)) === 1, 'the page was not asked of the kernel once');
       await p.waitForFunction(() => window.cellModel.state.error !== null, null, { timeout: TIMEOUT });
       const error = await p.evaluate(() => window.cellModel.state.error);
       check(/polygons are not supported/.test(error) && /element 0/.test(error), `the reader's message: ${error}`);
