@@ -15,7 +15,7 @@ WASM := target/wasm32-unknown-unknown/release/smoothlab_page.wasm
 PORT ?= 8000
 CARGO ?= cargo
 
-.PHONY: serve test check-docs site single python wheel python-test lint unit wasm browser tools browser-tools figures figure-sizes reproduction performance
+.PHONY: serve test check-docs site single python wheel python-test lab-test lint unit wasm browser tools browser-tools figures figure-sizes reproduction performance
 
 serve: site
 	@echo "smoothlab playground: http://127.0.0.1:$(PORT)/"
@@ -23,6 +23,7 @@ serve: site
 
 test: check-docs lint unit site browser
 	@$(MAKE) --no-print-directory python-test NEED_PAGE_STATE=1
+	@$(MAKE) --no-print-directory lab-test
 
 # the docs a reader can use: README.md and ARCHITECTURE.md at most 150 lines, docs/performance.md
 # at most 25,000 bytes, no line of the docs over 400 characters
@@ -76,10 +77,12 @@ site: tools
 single: site
 	node scripts/single.mjs --html target/smoothlab.html
 
-# The notebook widget (python/): its ES module (the one-file page and python/widget/widget.js)
-# and the sheet its arguments are checked against, both read from the site just built.
+# The notebook widget (python/): its ES module (python/widget/widget.js), the one-file page
+# it shows (page.html.gz, shared by every widget of a kernel) and the sheet its arguments are
+# checked against, read from the site just built.
 python: site
-	node scripts/single.mjs --widget python/smoothlab/static/widget.js --sheet python/smoothlab/static/sheet.json
+	node scripts/single.mjs --html target/widget-page.html --widget python/smoothlab/static/widget.js --sheet python/smoothlab/static/sheet.json
+	gzip -9 -n -c target/widget-page.html > python/smoothlab/static/page.html.gz
 
 # The Python package as one wheel for CPython 3.9 and later (abi3): the native module
 # (crates/smoothlab-python, the core compiled for this machine), python/smoothlab and the
@@ -109,6 +112,16 @@ python-test: wheel
 	cd target && SMOOTHLAB_NEED_PAGE_STATE=$(NEED_PAGE_STATE) SMOOTHLAB_CLI=$(CURDIR)/target/debug/smoothlab \
 	  venv/bin/pytest -q -p no:cacheprovider --rootdir=$(CURDIR)/python --doctest-modules \
 	  $(CURDIR)/python/tests venv/lib/python3*/site-packages/smoothlab
+
+# The notebook widget in a real JupyterLab (tests/browser/jupyterlab.mjs, about 40 s): four
+# widgets run, stepped, read back, given another sample, saved with their state (the
+# notebook's size measured) and opened again. JupyterLab 4.6 and anywidget live in a
+# virtual environment of their own, tools/lab (scripts/ensure-tools.sh --lab, made once),
+# the wheel installed into it as a user installs it.
+lab-test: wheel browser-tools
+	@scripts/ensure-tools.sh --lab
+	tools/lab/bin/pip install -q --disable-pip-version-check --no-deps --force-reinstall target/wheels/smoothlab-*.whl
+	node tests/browser/jupyterlab.mjs tools/lab
 
 browser: python single browser-tools
 	node tests/browser/run.mjs

@@ -4,7 +4,8 @@
 # binaryen (wasm-opt, which shrinks the page's module), esbuild (the one-file page), Debian's Chromium, and
 # playwright-core (no browser download); with --wheel, maturin (the Python wheel's builder)
 # from pip into a virtual environment of its own, tools/venv, at the version
-# python/pyproject.toml names first. Fast when all is there.
+# python/pyproject.toml names first; with --lab, JupyterLab and anywidget into tools/lab.
+# Fast when all is there.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -38,6 +39,16 @@ if [ "${1:-}" = "--wheel" ]; then
     echo "ensure-tools: installing maturin $maturin_want into tools/venv (found '${maturin_have:-none}')"
     [ -x tools/venv/bin/python ] || python3 -m venv tools/venv
     tools/venv/bin/pip install -q --disable-pip-version-check "maturin==$maturin_want"
+  fi
+fi
+
+# --lab: JupyterLab 4.6 and anywidget (the widget's tests in a real notebook) into a
+# virtual environment of their own, tools/lab
+if [ "${1:-}" = "--lab" ]; then
+  if ! tools/lab/bin/python -c 'import jupyterlab, anywidget, numpy; assert jupyterlab.__version__.startswith("4.6.")' 2>/dev/null; then
+    echo "ensure-tools: installing JupyterLab 4.6 and anywidget into tools/lab"
+    [ -x tools/lab/bin/python ] || python3 -m venv tools/lab
+    tools/lab/bin/pip install -q --disable-pip-version-check "jupyterlab>=4.6,<4.7" anywidget numpy
   fi
 fi
 

@@ -1,6 +1,6 @@
 // The page in one file, and the notebook widget's module made of it (run by `make single`
 // and `make python`, after `make site`):
-//   node scripts/single.mjs --html OUT.html [--widget OUT.js] [--sheet OUT.json]
+//   node scripts/single.mjs [--html OUT.html] [--widget OUT.js] [--sheet OUT.json]
 // --html: the playground as one self-contained HTML file that opens from file:// (no
 //   server, no network): the page's modules bundled by esbuild into one inline module,
 //   the style inline, the worker bundled (a classic script) with the wasm module's bytes (base64) in a
@@ -8,8 +8,9 @@
 //   Gmsh samples the site ships in script elements too (loading.js), and a
 //   Content-Security-Policy that allows exactly that inline script and style by their
 //   hashes. The site itself stays plain modules, unbundled: this is a packaging step.
-// --widget: the anywidget ES module of python/smoothlab: that page as a string, and
-//   widget/widget.js, which shows it in a frame and bridges it to the model.
+// --widget: the anywidget ES module of python/smoothlab (widget/widget.js, which shows the
+//   page in a frame and bridges it to the model); the page itself goes to --html, which
+//   the Python package hands to the browser once, as the state of a model its widgets share.
 // --sheet: what the Python package checks its arguments against before anything reaches
 //   the page, read from the wasm module itself (the control sheet, the samples, the tour's
 //   figures), so the Python side repeats none of them.
@@ -96,10 +97,10 @@ const write = (file, text) => {
   writeFileSync(file, text);
   console.log(`${file}: ${(Buffer.byteLength(text) / 1048576).toFixed(2)} MB`);
 };
-const html = out.html || out.widget ? await page() : null;
+const html = out.html ? await page() : null;
 if (out.html) write(out.html, html);
 if (out.widget) {
   const bridge = readFileSync(path.join(ROOT, 'python', 'widget', 'widget.js'), 'utf8');
-  write(out.widget, `// written by scripts/single.mjs (make python): the one-file page and python/widget/widget.js\nconst PAGE = ${JSON.stringify(html)};\n${bridge}`);
+  write(out.widget, `// written by scripts/single.mjs (make python): python/widget/widget.js\n${bridge}`);
 }
 if (out.sheet) write(out.sheet, `${JSON.stringify(await sheet(), null, 1)}\n`);

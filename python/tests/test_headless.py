@@ -64,7 +64,9 @@ def test_the_package_is_the_installed_wheel():
     needs = [r for r in importlib.metadata.requires("smoothlab") if "extra ==" not in r]
     assert needs == ["numpy"], needs
     assert (installed.parent / "py.typed").is_file()
-    assert (installed.parent / "static" / "widget.js").stat().st_size > 1_000_000
+    # the widget's bridge, and the page it shows (gzipped, its wasm inside), packed apart
+    assert 0 < (installed.parent / "static" / "widget.js").stat().st_size < 50_000
+    assert (installed.parent / "static" / "page.html.gz").stat().st_size > 1_000_000
 
 
 @pytest.mark.parametrize("kind", KINDS)

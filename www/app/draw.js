@@ -1,5 +1,5 @@
 // Drawing: the engine's pixels on the canvases, sized to the layout (and to an embed's frame).
-import { $, EMBED, engine, metrics, now, pageEvents, state, view } from './state.js';
+import { $, EMBED, HOSTED, engine, metrics, now, pageEvents, state, view } from './state.js';
 import { nodeHint } from './loading.js';
 import { fillTables } from './tables.js';
 import { refreshUndo } from './undo.js';
@@ -66,7 +66,8 @@ export function contentHeight(box) {
   const top = box.getBoundingClientRect().top;
   let bottom = top;
   for (const el of box.children) {
-    if (el.getClientRects().length === 0) continue;
+    // out of the flow (a notebook widget's settings column beside the meshes): not content
+    if (el.getClientRects().length === 0 || getComputedStyle(el).position === 'absolute') continue;
     bottom = Math.max(bottom, el.getBoundingClientRect().bottom + parseFloat(getComputedStyle(el).marginBottom || '0'));
   }
   return bottom - top + parseFloat(getComputedStyle(box).paddingBottom || '0') + parseFloat(getComputedStyle(box).borderBottomWidth || '0');
@@ -241,7 +242,8 @@ export function placeholder(canvas, text) {
 }
 
 export async function redrawNode() {
-  if (EMBED && !(view.spec && view.spec.draws === 'node')) return;
+  // an embed draws a node's level sets in its level-set view; a notebook's widget in its column
+  if (EMBED && !HOSTED && !(view.spec && view.spec.draws === 'node')) return;
   fitEmbed();
   const lv = canvasPixels($('level-a'));
   const ch = canvasPixels($('solve-chart'));

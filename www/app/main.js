@@ -11,7 +11,7 @@ import { attachLevelZoom, attachPointer, pickRadius, selectNode } from './pointe
 import { saveFigure, smoothThisNode, undo } from './undo.js';
 import { exportMesh, exportPng } from './export.js';
 import { sendTheme, startTheme, wirePresentation } from './present.js';
-import { connect, openFromHost } from './host.js';
+import { connect, openFromHost, replayFromHost } from './host.js';
 
 export async function fillGallery() {
   const list = await engine.call('samples');
@@ -159,6 +159,8 @@ export function setupEmbed() {
   document.body.classList.add('embed');
   if (view.spec) document.body.classList.add('view', `view-${view.name}`);
   if (PARAMS.get('caption') === '0') document.body.classList.add('nocaption');
+  // a notebook's widget shows the settings column: what each side runs, unfolded
+  if (HOSTED) $('compare-box').open = true;
   const a = document.createElement('a');
   a.id = 'open-full';
   a.target = '_blank';
@@ -208,6 +210,7 @@ export async function main() {
   // in a notebook's widget: the host's settings, and its mesh instead of the address's
   if (HOSTED && !(await openFromHost(await connect()))) {
     markAddressHandled();
+    await replayFromHost();
     document.body.dataset.ready = '1';
     return;
   }
@@ -224,6 +227,7 @@ export async function main() {
   }
   await openView();
   markAddressHandled();
+  if (HOSTED) await replayFromHost();
   document.body.dataset.ready = '1';
 }
 

@@ -31,8 +31,9 @@ export function selectNode(node, { keepHash = false } = {}) {
     showNodeBadge();
     clearError();
     showPickNote(null);
-    // the node's level sets are in the side column's Node tab, next to the meshes
-    if (node !== null && !EMBED) showTab('node', { cue: true });
+    // the node's level sets are in the side column's Node tab, next to the meshes (in a
+    // notebook's widget too)
+    if (node !== null && (!EMBED || HOSTED)) showTab('node', { cue: true });
     await redrawMeshes();
     await redrawNode();
     if (!keepHash) await writePermalink();

@@ -1,7 +1,7 @@
 // Presenting: the dark projector theme (the canvases' pictures follow it), fullscreen, the
 // tour's keys, the side column's two parts (settings / one node) and, on a phone, the A/B
 // switch.
-import { $, EMBED, PARAMS, engine, report, serial, state } from './state.js';
+import { $, EMBED, HOSTED, PARAMS, engine, report, serial, state } from './state.js';
 import { redrawAll } from './draw.js';
 import { drawFigurePicture, goFigure } from './tour.js';
 
@@ -171,7 +171,8 @@ export function wirePresentation({ closeTour }) {
   document.addEventListener('fullscreenchange', showFullscreen);
   for (const t of ['settings', 'node']) {
     $(`tabbtn-${t}`).addEventListener('click', () => {
-      if (showTab(t)) serial(redrawAll).catch(report);
+      // a notebook's widget shows one part of its column at a time: the one shown is drawn
+      if (showTab(t) || HOSTED) serial(redrawAll).catch(report);
     });
   }
   showPanel('a');
