@@ -10,10 +10,9 @@
 // written. Screenshots go there too. Prints "N passed, M failed"; exits 1 on failure.
 import { spawn } from 'node:child_process';
 import { mkdirSync, readFileSync, rmSync, statSync, writeFileSync } from 'node:fs';
-import { createServer } from 'node:net';
 import path from 'node:path';
 import { chromium } from 'playwright-core';
-import { ROOT, CHROMIUM, CHROMIUM_ARGS } from './serve.mjs';
+import { ROOT, CHROMIUM, CHROMIUM_ARGS, freePort } from './serve.mjs';
 import { results, test, check } from './lib.mjs';
 
 const VENV = path.resolve(process.argv[2] || path.join(ROOT, 'tools', 'lab'));
@@ -30,16 +29,6 @@ const CELLS = [
   'ws[1].sample = "plate-quad-tangled-hard"',
 ];
 
-function freePort() {
-  return new Promise((resolve, reject) => {
-    const s = createServer();
-    s.once('error', reject);
-    s.listen(0, '127.0.0.1', () => {
-      const { port } = s.address();
-      s.close(() => resolve(port));
-    });
-  });
-}
 
 function writeNotebook() {
   const cell = (source) => ({ cell_type: 'code', execution_count: null, metadata: {}, outputs: [], source });
