@@ -335,8 +335,10 @@ class Mesh:
         ``penalty``, ``pass_through_folds``, ``finish``, ``target``, ``slide_curves``,
         ``boundary``, ``feature_angle``; those left out take its defaults. Once the passes leave the mesh valid, ``finish`` more (3
         by default) lift its worst element; ``report.finish`` says how many ran.
-        ``target="input"`` measures each corner against itself as it was (its stretch
-        kept) rather than the ideal element. ``boundary="slide"`` lets a mesh's boundary nodes
+        The default target, ``"stretch"``, keeps each element's stretch as read,
+        averaged along its layer (a boundary layer's rows stay thin), and is the ideal
+        element where the mesh has no stretch made on purpose; ``target="ideal"`` is the
+        papers' setting, ``target="input"`` measures each corner against itself as it was. ``boundary="slide"`` lets a mesh's boundary nodes
         slide on the boundary as loaded (a surface's along its open edges and feature curves;
         corners stay; ``report.boundary``
         says how many slid and how far from it they are). A setting out of range, or one the strategy would not use, is a

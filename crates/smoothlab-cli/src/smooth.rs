@@ -82,10 +82,12 @@ pub struct SmoothArgs {
     #[arg(long, default_value_t = Smoothing::DEFAULT_FINISH)]
     pub finish: u32,
     /// What each corner is measured against: ideal (the ideal element of each kind, the
-    /// papers) or input (each corner as the mesh was read, where valid: its stretch and skew
-    /// kept; the ideal where it was inverted). The finish takes none
-    #[arg(long, value_parser = named(&Target::ALL, Target::name, Target::describe), default_value = Target::default().name())]
-    pub target: Target,
+    /// papers), input (each corner as the mesh was read, where valid: its stretch and skew
+    /// kept) or stretch (each element's stretch as read, averaged along its layer; the
+    /// ideal where the mesh has none made on purpose). Default: stretch for opt and rules,
+    /// the ideal for the strategies that take Laplacian steps
+    #[arg(long, value_parser = named(&Target::ALL, Target::name, Target::describe))]
+    pub target: Option<Target>,
     /// A surface's feature curves and open boundaries: their nodes slide along them
     /// instead of staying fixed (corners of the curves stay; a file's own fixed flags decide)
     #[arg(long)]
@@ -166,10 +168,10 @@ fn smoothing(a: &SmoothArgs) -> Result<Smoothing, String> {
             strategy.name()
         ));
     }
-    if a.target != Target::Ideal && !matches!(strategy, Strategy::Opt | Strategy::Rules) {
+    if let Some(t) = a.target.filter(|&t| t != Target::Ideal && !matches!(strategy, Strategy::Opt | Strategy::Rules)) {
         return Err(format!(
             "--target {}: the targets are measured by opt and rules; {} takes Laplacian steps, which aim at the ideal",
-            a.target,
+            t,
             strategy.name()
         ));
     }
@@ -189,9 +191,11 @@ fn smoothing(a: &SmoothArgs) -> Result<Smoothing, String> {
         .objective(a.objective.unwrap_or(ObjectiveKind::SmoothShape))
         .passes(a.passes)
         .finish(a.finish)
-        .target(a.target)
         .slide_curves(a.slide_curves)
         .boundary(a.boundary);
+    if let Some(t) = a.target {
+        s = s.target(t);
+    }
     if let Some(d) = a.feature_angle {
         s = s.feature_angle(d);
     }

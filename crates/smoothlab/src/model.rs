@@ -30,9 +30,19 @@ impl Model {
     pub fn set_target(&mut self, target: crate::target::Target) {
         let input = target == crate::target::Target::Input;
         match self {
-            Model::Planar(m) => m.set_target_nodes(input.then(|| m.nodes().to_vec())),
+            Model::Planar(m) => m.set_target_from(target, m.nodes().to_vec()),
             Model::Surface(s) => s.set_target_points(input.then(|| s.points().to_vec())),
-            Model::Volume(v) => v.set_target_nodes(input.then(|| v.nodes().to_vec())),
+            Model::Volume(v) => v.set_target_from(target, v.nodes().to_vec()),
+        }
+    }
+
+    /// Whether its corners are measured against targets other than the ideal
+    /// ([`set_target`](Self::set_target)).
+    pub fn has_target(&self) -> bool {
+        match self {
+            Model::Planar(m) => m.target_nodes().is_some(),
+            Model::Surface(s) => s.flat().target_nodes().is_some(),
+            Model::Volume(v) => v.target_nodes().is_some(),
         }
     }
 

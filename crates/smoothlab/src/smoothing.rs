@@ -44,7 +44,7 @@ pub struct Smoothing {
     pass_through_folds: Option<bool>,
     slide_curves: bool,
     finish: u32,
-    target: Target,
+    target: Option<Target>,
     boundary: BoundaryRule,
     feature_angle_deg: Option<f64>,
 }
@@ -62,7 +62,7 @@ impl Default for Smoothing {
             pass_through_folds: None,
             slide_curves: false,
             finish: Smoothing::DEFAULT_FINISH,
-            target: Target::Ideal,
+            target: None,
             boundary: BoundaryRule::Fixed,
             feature_angle_deg: None,
         }
@@ -136,11 +136,23 @@ impl Smoothing {
         self
     }
 
-    /// What each corner is measured against ([`Target`]); the finish measures the
-    /// statistics themselves, so it takes none.
+    /// What each corner is measured against ([`Target`]). Unset, opt and rules take
+    /// [`Target::default`] (the mesh's stretch, the ideal where it has none made on
+    /// purpose) and the Laplacian strategies the ideal they aim at; set, a Laplacian
+    /// strategy refuses any target but the ideal. The finish keeps the stretch target and
+    /// measures the statistics themselves otherwise.
     pub fn target(mut self, target: Target) -> Self {
-        self.target = target;
+        self.target = Some(target);
         self
+    }
+
+    /// The target the run asks for ([`target`](Self::target)).
+    fn asked_target(&self) -> Target {
+        match (self.target, self.strategy) {
+            (Some(t), _) => t,
+            (None, Strategy::Opt | Strategy::Rules) => Target::default(),
+            (None, _) => Target::Ideal,
+        }
     }
 
     /// What boundary nodes do ([`BoundaryRule`]; linear planar and volume meshes, and
@@ -224,7 +236,7 @@ impl Smoothing {
         if self.penalty.is_some() && self.objective != ObjectiveKind::SmoothShape {
             return refuse("penalty", "it is a design of the new objective".into());
         }
-        if self.target != Target::Ideal && !matches!(strategy, Strategy::Opt | Strategy::Rules) {
+        if self.target.is_some_and(|t| t != Target::Ideal) && !matches!(strategy, Strategy::Opt | Strategy::Rules) {
             return refuse(
                 "target",
                 format!(
@@ -335,7 +347,9 @@ impl Report {
     pub fn untangling_impossible(&self) -> &[Obstacle] {
         &self.untangling_impossible
     }
-    /// What each corner was measured against in the passes before the finish.
+    /// What each corner was measured against in the passes before the finish (and in the
+    /// finish, with the stretch target): [`Target::Stretch`] only where the mesh had a
+    /// stretch made on purpose, else the ideal.
     pub fn target(&self) -> Target {
         self.target
     }
@@ -472,19 +486,28 @@ impl Model {
         let rule = if slide_once_valid { BoundaryRule::Fixed } else { smoothing.boundary };
         self.set_boundary(rule, smoothing.feature_angle_deg.unwrap_or(FEATURE_ANGLE_DEG));
         let penalty = smoothing.penalty.unwrap_or_default();
-        self.set_target(smoothing.target);
+        // the stretch target is the ideal where the mesh has no stretch made on purpose:
+        // the report says which the corners were measured against
+        let asked = smoothing.asked_target();
+        self.set_target(asked);
+        let target = if asked == Target::Stretch && !self.has_target() { Target::Ideal } else { asked };
         let passes = if slide_once_valid {
             self.passes_sliding_once_valid(smoothing, opts, clock)
         } else {
             self.passes(kind, penalty, opts, 1..smoothing.passes + 1, clock)
         };
-        self.set_target(Target::Ideal);
         let mut passes = passes?;
         let valid = passes
             .last()
             .map_or_else(|| self.stats().inverted, |r| r.after.inverted)
             == 0;
         let main_passes = passes.len();
+        // the finish measures against a target that reads the mesh's design (its stretch);
+        // against the input's own corners it would find nothing to lift, so it lifts the
+        // smallest sine the statistics read
+        if target != Target::Stretch {
+            self.set_target(Target::Ideal);
+        }
         if smoothing.finish > 0 && valid {
             let (kind, strategy, order) = Smoothing::FINISH;
             let o = SmoothOptions {
@@ -504,6 +527,7 @@ impl Model {
                 clock,
             )?);
         }
+        self.set_target(Target::Ideal);
         for (i, r) in passes.iter_mut().enumerate() {
             r.pass = i as u32 + 1;
         }
@@ -525,7 +549,7 @@ impl Model {
         Ok(Report {
             objective: kind,
             strategy: smoothing.strategy,
-            target: smoothing.target,
+            target,
             boundary,
             order: opts.order,
             passes,

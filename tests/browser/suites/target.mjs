@@ -49,7 +49,7 @@ export default async function ({ server, context }) {
       await p.selectOption('#strategy', 'c2');
       check(await p.locator('#target').isDisabled(), 'C2 takes no target but the ideal');
       const why = await p.textContent('#target-why');
-      check(/^Only the ideal here: only optimization and Chen's rules measure corners against the mesh as loaded; Freitag's C2 takes Laplacian steps/.test(why), `why: ${why}`);
+      check(/^Only the ideal here: only optimization and Chen's rules measure corners against a target other than the ideal; Freitag's C2 takes Laplacian steps/.test(why), `why: ${why}`);
       await p.selectOption('#strategy', 'rules');
       check(!(await p.locator('#target').isDisabled()) && (await p.textContent('#target-why')) === '', 'Chen\'s rules take a target');
       // the input: its sentence, and the link carries it

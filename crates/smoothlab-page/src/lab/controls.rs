@@ -222,6 +222,7 @@ pub fn page_controls() -> PageControls {
                 label: match t {
                     Target::Ideal => "Ideal shape",
                     Target::Input => "The mesh as loaded",
+                    Target::Stretch => "The mesh's stretch",
                 },
                 words: target_words(t),
             })
@@ -340,7 +341,7 @@ mod tests {
     fn the_target_menu_says_what_each_target_means() {
         let c = page_controls();
         let names: Vec<&str> = c.targets.iter().map(|t| t.name).collect();
-        assert_eq!(names, ["ideal", "input"]);
+        assert_eq!(names, ["ideal", "input", "stretch"]);
         assert_eq!(
             c.settings.target.name(),
             "ideal",
@@ -363,7 +364,7 @@ mod tests {
         let c2 = c.strategies.iter().find(|s| s.name == "c2").unwrap();
         assert_eq!(
             c2.target_refused.as_deref(),
-            Some("only optimization and Chen's rules measure corners against the mesh as loaded; Freitag's C2 takes Laplacian steps, which aim at the ideal")
+            Some("only optimization and Chen's rules measure corners against a target other than the ideal; Freitag's C2 takes Laplacian steps, which aim at the ideal")
         );
         let json = serde_json::to_value(&c).unwrap();
         assert_eq!(json["settings"]["target"], "ideal");

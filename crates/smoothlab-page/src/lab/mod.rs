@@ -255,7 +255,7 @@ impl Playground {
     /// ([`Target::Input`]: the mesh as loaded or as last perturbed), x and y interleaved as
     /// [`begin_sweep`](Self::begin_sweep) takes them; `None` with the ideal target.
     pub fn target_positions(&self) -> Option<Vec<f64>> {
-        (self.settings.target == Target::Input).then(|| interleaved(&self.original))
+        (self.settings.target != Target::Ideal).then(|| interleaved(&self.original))
     }
 
     /// Where the panels' runs begin ([`settings::RunStart`]): the mesh as loaded or as last
@@ -270,8 +270,8 @@ impl Playground {
     /// never taken from the panel itself, so passes after the first, a drag or a pass
     /// abandoned leave the target where the run began.
     fn aim(&mut self, i: usize) {
-        let at = (self.settings.target == Target::Input).then(|| self.original.clone());
-        self.panels[i].mesh.set_target_nodes(at);
+        let (target, at) = (self.settings.target, self.original.clone());
+        self.panels[i].mesh.set_target_from(target, at);
     }
 
     /// One smoothing pass on both panels; `clock` gives milliseconds (the core reads no time).
@@ -325,12 +325,12 @@ impl Playground {
         let options = self.settings.side_options(side, start)?;
         let nodes = self.positions_from(nodes)?;
         let target = match (self.settings.target, target) {
-            (Target::Input, Some(t)) => Some(
+            (Target::Input | Target::Stretch, Some(t)) => Some(
                 self.positions_from(t)
                     .map_err(|e| Error::invalid(format!("the target's positions: {e}")))?,
             ),
             (Target::Ideal, None) => None,
-            (Target::Input, None) => {
+            (Target::Input | Target::Stretch, None) => {
                 return Err(Error::invalid(
                     "the settings measure corners against the mesh as loaded: give its positions with the sweep",
                 ))
@@ -350,8 +350,8 @@ impl Playground {
         let p = &mut self.panels[side.index()];
         p.smoother = Smoother::new(options)?;
         p.mesh.nodes_mut().copy_from_slice(&nodes);
-        if target.is_some() {
-            p.mesh.set_target_nodes(target);
+        if let Some(t) = target {
+            p.mesh.set_target_from(self.settings.target, t);
         }
         self.run = Some(run);
         Ok(())
@@ -852,6 +852,31 @@ mod tests {
             unreachable!()
         };
         m
+    }
+
+    #[test]
+    fn the_stretch_target_steps_as_the_cli_takes_it() {
+        // rows graded ×1.6 from the wall, the interior moved a little: stretched on purpose
+        let mut m = smoothlab::generate::grid(10, 8, smoothlab::generate::GridKind::Quad).unwrap();
+        for p in m.nodes_mut() {
+            p.y = (1.6f64.powf(p.y * 8.0) - 1.0) / (1.6f64.powi(8) - 1.0);
+        }
+        let mut pg = Playground::new(m).unwrap();
+        pg.perturb(0.05, 3).unwrap();
+        assert_eq!(pg.original_stats().inverted, 0);
+        let mesh = pg.topology().clone();
+        let settings = Settings { target: Target::Stretch, ..Settings::default() };
+        pg.set_settings(settings).unwrap();
+        pg.reset();
+        for _ in 0..2 {
+            pg.step(&no_clock);
+        }
+        for side in Side::BOTH {
+            let cli = smoothed_as_the_cli(&mesh, settings, side, 2);
+            assert_eq!(pg.panel(side).mesh.nodes(), cli.nodes(), "{side:?}");
+            let ideal = smoothed_as_the_cli(&mesh, Settings { target: Target::Ideal, ..settings }, side, 2);
+            assert_ne!(cli.nodes(), ideal.nodes(), "{side:?}: the layer is read as stretched");
+        }
     }
 
     #[test]

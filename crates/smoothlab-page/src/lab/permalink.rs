@@ -641,7 +641,7 @@ mod tests {
                 ..Settings::default()
             };
             let e = settings.smooth_options().unwrap_err().to_string();
-            assert!(e.starts_with("the input target is refused: only optimization and Chen's rules measure corners against the mesh as loaded;"), "{e}");
+            assert!(e.starts_with("the input target is refused: only optimization and Chen's rules measure corners against a target other than the ideal;"), "{e}");
             let e = PageState {
                 settings,
                 ..PageState::default()
@@ -654,7 +654,7 @@ mod tests {
         for (bad, want) in [
             (
                 "target=Input",
-                "'target' must be one of ideal, input, found 'Input'",
+                "'target' must be one of ideal, input, stretch, found 'Input'",
             ),
             ("target=", "found ''"),
             ("target=input&target=ideal", "'target' is given twice"),

@@ -116,10 +116,10 @@ pub struct Settings {
     /// Solver iterations per optimization call.
     pub max_iter: u32,
     /// What every corner is measured against ([`Target`]): the ideal element of its kind,
-    /// or its own shape in the mesh as loaded (or as last perturbed); only the
-    /// strategies of [`target_refused`] take a target other than the ideal. Absent means
-    /// the ideal.
-    #[serde(default)]
+    /// its own shape in the mesh as loaded (or as last perturbed), or that mesh's stretch;
+    /// only the strategies of [`target_refused`] take a target other than the ideal.
+    /// Absent means the ideal: the page opens on the papers' setting.
+    #[serde(default = "papers_target")]
     pub target: Target,
     /// What a volume mesh's boundary nodes do ([`BoundaryRule`]): stay where the file put
     /// them, or slide on the boundary as loaded (or as last perturbed), along its feature
@@ -147,7 +147,7 @@ impl Default for Settings {
             threshold_deg: d.threshold_deg,
             order: d.order,
             max_iter: d.max_iter,
-            target: Target::Ideal,
+            target: papers_target(),
             boundary: BoundaryRule::Fixed,
             compare: default_compare(),
         }
@@ -223,6 +223,11 @@ impl Settings {
     }
 }
 
+/// The page's target when none is given: the papers' ideal ([`Settings::target`]).
+fn papers_target() -> Target {
+    Target::Ideal
+}
+
 /// Why `strategy` cannot measure corners against a target other than the ideal, if it
 /// cannot (as the core's [`Smoothing`](smoothlab::Smoothing) refuses it): only
 /// optimization and Chen's rules take one (the rules then optimise every node), the
@@ -231,11 +236,11 @@ pub fn target_refused(strategy: Strategy) -> Option<String> {
     match strategy {
         Strategy::Opt | Strategy::Rules => None,
         Strategy::Laplace | Strategy::Smart => Some(format!(
-            "only optimization and Chen's rules measure corners against the mesh as loaded; {} moves each node to the centre of its neighbours, which aims at the ideal",
+            "only optimization and Chen's rules measure corners against a target other than the ideal; {} moves each node to the centre of its neighbours, which aims at the ideal",
             strategy.words()
         )),
         Strategy::C1 | Strategy::C2 | Strategy::C3 => Some(format!(
-            "only optimization and Chen's rules measure corners against the mesh as loaded; {} takes Laplacian steps, which aim at the ideal",
+            "only optimization and Chen's rules measure corners against a target other than the ideal; {} takes Laplacian steps, which aim at the ideal",
             strategy.words()
         )),
     }
@@ -249,6 +254,9 @@ pub fn target_words(target: Target) -> &'static str {
         }
         Target::Input => {
             "Each corner aims at the shape it had in the mesh as loaded (or as last perturbed), its stretch and skew kept; only a corner that was inverted or flat aims at the ideal."
+        }
+        Target::Stretch => {
+            "Each element aims at the stretch the mesh had where it lies, averaged along its layer: a boundary layer's thin rows stay thin, a single node's noise does not; where the mesh is not stretched, at the ideal."
         }
     }
 }

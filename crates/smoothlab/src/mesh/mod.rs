@@ -159,12 +159,18 @@ pub struct Mesh {
     sliding: Option<Box<slide::PlanarSliding>>,
 }
 
+/// Each element's own target positions, node by node ([`crate::target::Target::Stretch`]).
+type ElementTargets = Vec<[DVec2; 9]>;
+
 /// The target positions of a mesh's nodes and each element's corner frames from them,
 /// node by node in the order of [`Mesh::node_elements`] (a star reads its frames in one
 /// run of memory).
 #[derive(Clone, Debug)]
 struct Targets {
     nodes: Vec<DVec2>,
+    /// Each element's own target positions, where they are not its nodes' in
+    /// [`nodes`](Self::nodes) ([`crate::target::Target::Stretch`]).
+    shapes: Option<Vec<[DVec2; 9]>>,
     frames: Vec<[glam::DMat2; 4]>,
 }
 
@@ -401,27 +407,61 @@ impl Mesh {
     /// `None`: the ideal of each kind).
     pub fn set_target_nodes(&mut self, at: Option<Vec<DVec2>>) {
         debug_assert!(at.as_ref().map_or(true, |a| a.len() == self.nodes.len()));
-        self.target = at.map(|nodes| {
+        self.set_targets(at.map(|nodes| (nodes, None)));
+    }
+
+    /// Measures every corner against `target` taken from the nodes' positions `at`
+    /// ([`crate::target::Target`]); the ideal where `target` leaves every corner at it.
+    pub fn set_target_from(&mut self, target: crate::target::Target, at: Vec<DVec2>) {
+        use crate::target::Target;
+        match target {
+            Target::Ideal => self.set_targets(None),
+            Target::Input => self.set_targets(Some((at, None))),
+            Target::Stretch => {
+                let shapes = crate::target::planar_stretch_points(self, &at);
+                self.set_targets(shapes.map(|s| (at, Some(s))));
+            }
+        }
+    }
+
+    /// Sets the targets: the positions they are taken from and each element's own, where
+    /// they are not its nodes'.
+    fn set_targets(&mut self, at: Option<(Vec<DVec2>, Option<ElementTargets>)>) {
+        self.target = at.map(|(nodes, shapes)| {
             let topo = &self.conn.topo;
             let mut t = Box::new(Targets {
                 nodes,
+                shapes,
                 frames: Vec::with_capacity(topo.node_elems.len()),
             });
             for &e in &topo.node_elems {
-                let f = self.frames_of(e as usize, &t.nodes);
-                t.frames.push(f);
+                let p = Self::target_points_in(&t, self.element(e as usize));
+                let p = match &t.shapes {
+                    Some(s) => s[e as usize],
+                    None => p,
+                };
+                t.frames.push(crate::target::element_frames(self.kind(e as usize), &p));
             }
             t
         });
     }
 
-    /// Element `e`'s corner frames from the target positions `at`.
-    fn frames_of(&self, e: usize, at: &[DVec2]) -> [glam::DMat2; 4] {
+    /// The nodes of `ids` at the target positions.
+    fn target_points_in(t: &Targets, ids: &[u32]) -> [DVec2; 9] {
         let mut p = [DVec2::ZERO; 9];
-        for (q, &n) in p.iter_mut().zip(self.element(e)) {
-            *q = at[n as usize];
+        for (q, &n) in p.iter_mut().zip(ids) {
+            *q = t.nodes[n as usize];
         }
-        crate::target::element_frames(self.kind(e), &p)
+        p
+    }
+
+    /// Element `e`'s target positions, node by node, where the mesh has targets other
+    /// than the ideal.
+    pub fn element_target_points(&self, e: usize) -> Option<[DVec2; 9]> {
+        self.target.as_deref().map(|t| match &t.shapes {
+            Some(s) => s[e],
+            None => Self::target_points_in(t, self.element(e)),
+        })
     }
 
     /// The positions the corners' targets are taken from, where they are not the ideal.
@@ -456,7 +496,8 @@ impl Mesh {
         }
         let start = self.conn.topo.node_elem_start[n] as usize;
         for (j, &e) in self.conn.topo.node_elements(n).iter().enumerate() {
-            target.frames[start + j] = self.frames_of(e as usize, &target.nodes);
+            let p = Self::target_points_in(&target, self.element(e as usize));
+            target.frames[start + j] = crate::target::element_frames(self.kind(e as usize), &p);
         }
         self.target = Some(target);
     }

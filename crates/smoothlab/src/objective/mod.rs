@@ -382,7 +382,7 @@ impl Star {
         self.elems.clear();
         self.targets.clear();
         self.frames.clear();
-        let target = mesh.target_nodes().zip(mesh.star_target_frames(node));
+        let target = mesh.star_target_frames(node);
         for (j, &e) in mesh.node_elements(node).iter().enumerate() {
             let e = e as usize;
             let kind = mesh.kind(e);
@@ -410,15 +410,13 @@ impl Star {
             for (p, &n) in pts.iter_mut().zip(ids) {
                 *p = mesh.nodes()[n as usize];
             }
-            if let Some((target, frames)) = target {
+            if let Some(frames) = target {
                 // only a quad's targets are read (new's sub-triangles): a triangle's frames
                 // are all it needs
-                let mut t = [DVec2::ZERO; 9];
-                if !kind.is_triangle() {
-                    for (p, &n) in t.iter_mut().zip(ids) {
-                        *p = target[n as usize];
-                    }
-                }
+                let t = match kind.is_triangle() {
+                    true => [DVec2::ZERO; 9],
+                    false => mesh.element_target_points(e).expect("a mesh with frames has targets"),
+                };
                 self.frames.push(frames[j]);
                 self.targets.push(t);
             }

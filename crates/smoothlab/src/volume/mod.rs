@@ -154,6 +154,9 @@ pub struct VolumeMesh {
     /// The positions the corners' targets are taken from, where they are not the ideal
     /// ([`crate::target::Target::Input`]).
     target: Option<std::sync::Arc<Vec<DVec3>>>,
+    /// Each element's own target corners, where they are not its nodes' in
+    /// [`target`](Self::target) ([`crate::target::Target::Stretch`]).
+    target_shapes: Option<std::sync::Arc<Vec<[DVec3; 8]>>>,
     /// The nodes the file itself fixed (its flags), whatever the boundary rule.
     given_fixed: Option<crate::mesh::GivenFlags>,
     /// The sliding rule, when boundary nodes slide ([`BoundaryRule::Slide`]).
@@ -566,6 +569,7 @@ impl VolumeMesh {
             faces: given_faces,
             node_numbers: node_numbers.clone(),
             target: None,
+            target_shapes: None,
             given_fixed,
             sliding: None,
             face_neighbours: std::sync::OnceLock::new(),
@@ -594,6 +598,35 @@ impl VolumeMesh {
     /// `None`: the ideal of each kind).
     pub fn set_target_nodes(&mut self, at: Option<Vec<DVec3>>) {
         self.target = at.map(std::sync::Arc::new);
+        self.target_shapes = None;
+    }
+
+    /// Measures every corner against `target` taken from the nodes' positions `at`
+    /// ([`crate::target::Target`]); the ideal where `target` leaves every corner at it.
+    pub fn set_target_from(&mut self, target: crate::target::Target, at: Vec<DVec3>) {
+        use crate::target::Target;
+        match target {
+            Target::Ideal => self.set_target_nodes(None),
+            Target::Input => self.set_target_nodes(Some(at)),
+            Target::Stretch => {
+                let shapes = crate::target::volume_stretch_points(self, &at);
+                self.set_target_nodes(shapes.is_some().then_some(at));
+                self.target_shapes = shapes.map(std::sync::Arc::new);
+            }
+        }
+    }
+
+    /// Where node `n` of element `e` is in the targets, where the mesh has them.
+    #[inline]
+    pub fn target_point(&self, e: usize, n: u32) -> Option<DVec3> {
+        let t = self.target.as_deref()?;
+        Some(match self.target_shapes.as_deref() {
+            Some(shapes) => {
+                let slot = self.element(e).iter().position(|&m| m == n).expect("a node of the element");
+                shapes[e][slot]
+            }
+            None => t[n as usize],
+        })
     }
 
     /// The positions the corners' targets are taken from, where they are not the ideal.

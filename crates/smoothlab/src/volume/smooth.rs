@@ -143,9 +143,9 @@ impl DriverStar for CornerStar {
         self.targets.clear();
         let target = mesh.target_nodes();
         // a corner's target: the same corner of the target's positions, where valid
-        let reference = |ids: [u32; 4], ideal: &'static q3::CornerReference| {
-            let t = target.expect("targets are taken only where the mesh has them");
-            let at = |k: usize| t[ids[k] as usize] - t[ids[0] as usize];
+        let reference = |e: u32, ids: [u32; 4], ideal: &'static q3::CornerReference| {
+            let t = |n: u32| mesh.target_point(e as usize, n).expect("targets are taken only where the mesh has them");
+            let at = |k: usize| t(ids[k]) - t(ids[0]);
             crate::target::solid_reference(glam::DMat3::from_cols(at(1), at(2), at(3)), ideal)
                 .unwrap_or(*ideal)
         };
@@ -159,7 +159,7 @@ impl DriverStar for CornerStar {
                 n_corners += 1;
                 if target.is_some() {
                     self.targets
-                        .push(reference([node as u32, a, b, c], &q3::EQUILATERAL_TET));
+                        .push(reference(e, [node as u32, a, b, c], &q3::EQUILATERAL_TET));
                 }
                 continue;
             }
@@ -188,7 +188,7 @@ impl DriverStar for CornerStar {
                 n_corners += 1;
                 if target.is_some() {
                     let order = crate::mesh::WITH_FIRST[s].map(|j| ids[tuple[j]]);
-                    self.targets.push(reference(order, &row.slot_references[s]));
+                    self.targets.push(reference(e, order, &row.slot_references[s]));
                 }
             }
             self.recall_solid(solids);

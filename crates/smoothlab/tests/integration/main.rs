@@ -12,6 +12,7 @@ mod never_worse;
 mod smooth_papers;
 mod smooth_properties;
 mod solid_properties;
+mod stretch_target;
 mod surface_corners;
 mod surface_properties;
 mod surface_tangled;

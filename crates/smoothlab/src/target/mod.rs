@@ -18,7 +18,9 @@
 
 use glam::{DMat2, DMat3, DVec2};
 
-use crate::mesh::{CornerReference, ElementKind};
+use crate::mesh::{CornerReference, ElementKind, Mesh};
+
+pub mod stretch;
 
 crate::enum_with_names! {
     /// What each corner is measured against (the command line's `--target`).
@@ -27,10 +29,14 @@ crate::enum_with_names! {
     pub enum Target {
         /// The ideal element of each kind: the equilateral triangle, the square, the
         /// regular tetrahedron, the cube.
-        #[default]
         Ideal => ("ideal", "the ideal element of each kind (the papers)"),
         /// Each corner as the mesh was read, where it is valid: its stretch and skew kept.
         Input => ("input", "each corner as the mesh was read, where valid (its stretch and skew kept)"),
+        /// Each element's stretch as read, averaged along its layer: a boundary layer's
+        /// rows and a graded mesh's stretch kept, single nodes' noise not; the ideal where
+        /// the mesh is not stretched ([`stretch`]).
+        #[default]
+        Stretch => ("stretch", "each element's stretch as read, averaged along its layer (the ideal where not stretched)"),
     }
 }
 
@@ -78,6 +84,163 @@ pub fn ideal_pair(kind: ElementKind) -> (DVec2, DVec2) {
     } else {
         (DVec2::X, DVec2::Y)
     }
+}
+
+/// The ideal element of `kind` (corner 0 at the origin, its first edge along x), node by
+/// node: its corners with [`ideal_pair`]'s edges, its mid-side nodes halfway, a 9-node
+/// quad's centre in the middle.
+pub fn ideal_points(kind: ElementKind) -> [DVec2; 9] {
+    let (a, b) = ideal_pair(kind);
+    let mut p = [DVec2::ZERO; 9];
+    let k = kind.corners();
+    p[1] = a;
+    p[k - 1] = b;
+    if k == 4 {
+        p[2] = a + b;
+    }
+    for i in 0..k {
+        if let Some(m) = kind.mid(i) {
+            p[m] = (p[i] + p[(i + 1) % k]) * 0.5;
+        }
+    }
+    if kind.node_count() == 9 {
+        p[8] = (a + b) * 0.5;
+    }
+    p
+}
+
+/// Each element's target positions with [`Target::Stretch`] for a planar mesh whose nodes
+/// are read at `at`: its ideal mapped by [`stretch::stretch_maps`]'s map, or the ideal
+/// itself. `None` where no element is stretched on purpose: the ideal holds everywhere.
+pub fn planar_stretch_points(mesh: &Mesh, at: &[DVec2]) -> Option<Vec<[DVec2; 9]>> {
+    let n = mesh.element_count();
+    // the elements across each corner edge: sorted (a, b, element) pairs
+    let mut sides: Vec<(u32, u32, u32)> = Vec::new();
+    for e in 0..n {
+        let ids = mesh.element(e);
+        let k = mesh.kind(e).corners();
+        for i in 0..k {
+            let (a, b) = (ids[i], ids[(i + 1) % k]);
+            sides.push((a.min(b), a.max(b), e as u32));
+        }
+    }
+    sides.sort_unstable();
+    let mut neighbours: Vec<Vec<(u32, f64)>> = vec![Vec::new(); n];
+    for w in sides.windows(2) {
+        if (w[0].0, w[0].1) == (w[1].0, w[1].1) {
+            let len = (at[w[0].0 as usize] - at[w[0].1 as usize]).length();
+            neighbours[w[0].2 as usize].push((w[1].2, len));
+            neighbours[w[1].2 as usize].push((w[0].2, len));
+        }
+    }
+    let corners_of = |kind: ElementKind| ideal_points(kind).map(|p| p.to_array());
+    let (triangle, square) = (corners_of(ElementKind::Tri3), corners_of(ElementKind::Quad4));
+    let elements: Vec<stretch::StretchElement<'_, 2>> = (0..n)
+        .zip(neighbours)
+        .map(|(e, neighbours)| {
+            let kind = mesh.kind(e);
+            let k = kind.corners();
+            let ids = mesh.element(e);
+            let mut p = [DVec2::ZERO; 9];
+            for (q, &i) in p.iter_mut().zip(ids) {
+                *q = at[i as usize];
+            }
+            let valid = crate::quality::corner_edge_vectors(kind, &p[..kind.node_count()])[..k]
+                .iter()
+                .all(|&(a, b)| corner_frame(a, b, ideal_pair(kind)).is_some());
+            stretch::StretchElement {
+                corners: p[..k].iter().map(|q| q.to_array()).collect(),
+                ideal: if k == 3 { &triangle[..3] } else { &square[..4] },
+                valid,
+                neighbours,
+            }
+        })
+        .collect();
+    // a tangled mesh's folds and its noise are one: it is untangled against the ideal
+    if (0..n).any(|e| crate::smooth::mesh_element_is_inverted(mesh, e)) {
+        return None;
+    }
+    let maps = stretch::stretch_maps(&elements);
+    if maps.iter().all(Option::is_none) {
+        return None;
+    }
+    Some(
+        maps.iter()
+            .enumerate()
+            .map(|(e, map)| {
+                let mut p = ideal_points(mesh.kind(e));
+                if let Some(m) = map {
+                    let m = DMat2::from_cols_array_2d(&[[m[0][0], m[1][0]], [m[0][1], m[1][1]]]);
+                    p.iter_mut().for_each(|q| *q = m * *q);
+                }
+                p
+            })
+            .collect(),
+    )
+}
+
+/// Each element's target corners with [`Target::Stretch`] for a volume mesh whose nodes
+/// are read at `at`: its kind's ideal mapped by [`stretch::stretch_maps`]'s map, or the
+/// ideal itself. `None` where no element is stretched on purpose.
+pub fn volume_stretch_points(mesh: &crate::volume::VolumeMesh, at: &[glam::DVec3]) -> Option<Vec<[glam::DVec3; 8]>> {
+    use glam::DVec3;
+    let n = mesh.element_count();
+    let corners = |e: usize| &mesh.element(e)[..mesh.element_kind(e).row().corners];
+    let elements: Vec<stretch::StretchElement<'_, 3>> = (0..n)
+        .map(|e| {
+            let row = mesh.element_kind(e).row();
+            let ids = corners(e);
+            let p = |i: usize| at[ids[i] as usize];
+            let valid = row.corner_edges.iter().enumerate().all(|(c, &[a, b, d])| {
+                let m = DMat3::from_cols(p(a) - p(c), p(b) - p(c), p(d) - p(c));
+                solid_reference(m, row.reference).is_some()
+            });
+            let neighbours = mesh
+                .face_neighbours(e)
+                .iter()
+                .map(|&f| {
+                    // the shared face: the corners both hold, in this element's face order
+                    let other = corners(f as usize);
+                    let face = row.faces.iter().find(|face| face.iter().all(|&i| other.contains(&ids[i])));
+                    let area = face.map_or(0.0, |face| {
+                        let q: Vec<DVec3> = face.iter().map(|&i| p(i)).collect();
+                        match q.len() {
+                            3 => 0.5 * (q[1] - q[0]).cross(q[2] - q[0]).length(),
+                            _ => 0.5 * (q[2] - q[0]).cross(q[3] - q[1]).length(),
+                        }
+                    });
+                    (f, area.sqrt())
+                })
+                .collect();
+            stretch::StretchElement { corners: ids.iter().map(|&i| at[i as usize].to_array()).collect(), ideal: row.ideal, valid, neighbours }
+        })
+        .collect();
+    // a tangled mesh's folds and its noise are one: it is untangled against the ideal
+    if (0..n).any(|e| mesh.is_inverted(e)) {
+        return None;
+    }
+    let maps = stretch::stretch_maps(&elements);
+    if maps.iter().all(Option::is_none) {
+        return None;
+    }
+    Some(
+        maps.iter()
+            .enumerate()
+            .map(|(e, map)| {
+                let ideal = mesh.element_kind(e).row().ideal;
+                let m = map.map_or(DMat3::IDENTITY, |m| DMat3::from_cols_array_2d(&[
+                    [m[0][0], m[1][0], m[2][0]],
+                    [m[0][1], m[1][1], m[2][1]],
+                    [m[0][2], m[1][2], m[2][2]],
+                ]));
+                let mut p = [DVec3::ZERO; 8];
+                for (q, i) in p.iter_mut().zip(ideal) {
+                    *q = m * DVec3::from_array(*i);
+                }
+                p
+            })
+            .collect(),
+    )
 }
 
 /// The equilateral triangle's edge pair at a corner, the first edge along x.
@@ -178,6 +341,6 @@ mod tests {
         assert!((r.w.determinant() - 1.0).abs() < 1e-12);
         assert!(solid_reference(-a, &ideal).is_none());
         assert_eq!(Target::parse("input"), Some(Target::Input));
-        assert_eq!(Target::default(), Target::Ideal);
+        assert_eq!(Target::default(), Target::Stretch);
     }
 }
