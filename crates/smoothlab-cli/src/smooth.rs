@@ -20,9 +20,10 @@
 //! `--slide-curves` (surfaces only): the nodes of the feature curves and open boundaries
 //! slide along them instead of staying fixed.
 //!
-//! `--boundary slide` (linear planar, surface and volume meshes): boundary nodes slide on the
-//! boundary as loaded, curve nodes along its feature curves (`--feature-angle`), corners
-//! stay; the summary says how many of each and the largest distance from the boundary.
+//! `--boundary slide` (planar meshes, surfaces and linear volume meshes): boundary nodes
+//! slide on the boundary as loaded, curve nodes along its feature curves (`--feature-angle`;
+//! a quadratic planar mesh's curved edges, its mid-side nodes carried along), corners stay;
+//! the summary says how many of each and the largest distance from the boundary.
 
 use std::path::PathBuf;
 
@@ -92,9 +93,9 @@ pub struct SmoothArgs {
     /// instead of staying fixed (corners of the curves stay; a file's own fixed flags decide)
     #[arg(long)]
     pub slide_curves: bool,
-    /// What a linear planar or volume mesh's boundary nodes do: fixed (where the file put
-    /// them, the papers) or slide (on the boundary as loaded, along its feature curves;
-    /// corners and the file's fixed nodes stay)
+    /// What a planar or linear volume mesh's boundary nodes do: fixed (where the file put
+    /// them, the papers) or slide (on the boundary as loaded, along its feature curves, a
+    /// quadratic mesh's curved edges; corners and the file's fixed nodes stay)
     #[arg(long, value_parser = named(&BoundaryRule::ALL, BoundaryRule::name, BoundaryRule::describe), default_value = BoundaryRule::default().name())]
     pub boundary: BoundaryRule,
     /// With --boundary slide: two boundary faces that turn by more than this many degrees
@@ -231,14 +232,10 @@ pub fn run(a: SmoothArgs) -> Result<(), String> {
             "--slide-curves: the nodes of a surface's feature curves slide along them; this mesh is {what}"
         ));
     }
-    match &model {
-        Model::Volume(v) if a.boundary == BoundaryRule::Slide && v.is_quadratic() => {
-            return Err("--boundary slide takes linear meshes so far: a quadratic mesh's boundary nodes stay".into())
+    if let Model::Volume(v) = &model {
+        if a.boundary == BoundaryRule::Slide && v.is_quadratic() {
+            return Err("--boundary slide takes planar meshes and linear meshes of volume elements so far: a quadratic volume mesh's boundary nodes stay".into());
         }
-        Model::Planar(m) if a.boundary == BoundaryRule::Slide && m.has_quadratic() => {
-            return Err("--boundary slide takes linear meshes so far: a quadratic mesh's boundary nodes stay".into())
-        }
-        _ => {}
     }
     if a.penalty.is_some() && matches!(model, Model::Volume(_)) {
         return Err(

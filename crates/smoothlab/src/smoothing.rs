@@ -155,7 +155,7 @@ impl Smoothing {
         }
     }
 
-    /// What boundary nodes do ([`BoundaryRule`]; linear planar and volume meshes, and
+    /// What boundary nodes do ([`BoundaryRule`]; planar meshes, linear volume meshes, and
     /// surfaces, whose boundary is their open edges and feature curves).
     pub fn boundary(mut self, rule: BoundaryRule) -> Self {
         self.boundary = rule;
@@ -266,10 +266,6 @@ impl Smoothing {
     /// Why these settings cannot smooth `model`, if they cannot.
     fn check(&self, model: &Model) -> Result<()> {
         match model {
-            Model::Planar(mesh) if self.boundary == BoundaryRule::Slide && mesh.has_quadratic() => refuse(
-                "boundary",
-                "slide takes linear planar meshes so far; quadratic boundary nodes stay".into(),
-            ),
             Model::Planar(mesh) if !self.slide_curves => check_scale(self.objective, mesh),
             Model::Volume(v) if self.slide_curves => refuse(
                 "slide_curves",

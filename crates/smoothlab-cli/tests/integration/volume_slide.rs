@@ -1,6 +1,7 @@
 //! Sliding boundaries on the command line (issue 58): `--boundary slide` on a real
 //! hexahedral mesh untangles it with every corner where it was and every sliding node on
-//! the boundary as loaded; the settings that cannot go together are refused.
+//! the boundary as loaded; a quadratic planar mesh slides along its curved boundary; the
+//! settings that cannot go together are refused.
 
 use std::path::Path;
 
@@ -67,4 +68,35 @@ fn settings_that_cannot_slide_are_refused() {
     ok(&["generate", "hexgrid", "--cells", "2", "--order", "2", "--serendipity", "-o", p(&quadratic)]);
     let m = refused(&["smooth", p(&quadratic), "-o", p(&out), "--boundary", "slide"]);
     assert!(m.contains("linear meshes"), "{m}");
+}
+
+/// A quadratic plate (6-node triangles, its hole's edges curved), perturbed: `--boundary
+/// slide` slides it along its curved boundary, reports the distance from it, and keeps
+/// the plate's four corners; its hole slides round as one closed curve.
+#[test]
+fn a_quadratic_plate_slides_along_its_curved_boundary() {
+    let d = scratch("volume_slide", "quadratic");
+    let (plate, input, output) = (d.join("plate.msh"), d.join("perturbed.vtk"), d.join("out.vtk"));
+    ok(&["generate", "plate", "--kind", "tri", "--order", "2", "--resolution", "2", "-o", p(&plate)]);
+    ok(&["generate", "perturb", p(&plate), "--amount", "0.3", "-o", p(&input)]);
+    let json = ok(&["smooth", p(&input), "-o", p(&output), "--boundary", "slide", "--json"]);
+    let report: serde_json::Value = serde_json::from_str(&json).unwrap();
+    let b = &report["boundary"];
+    assert_eq!(report["final"]["inverted"], 0, "{json}");
+    assert_eq!((b["corners"].as_u64(), b["curves"].as_u64()), (Some(4), Some(5)), "{json}");
+    assert!(b["curve_nodes"].as_u64().unwrap() > 16, "{json}");
+    let distance = b["max_distance"].as_f64().unwrap() / b["mean_edge"].as_f64().unwrap();
+    assert!(distance < 1e-9, "a sliding node {distance} mean edges off the curved boundary");
+    let (before, after) = (read_model_path(&input).unwrap(), read_model_path(&output).unwrap());
+    let (Model::Planar(before), Model::Planar(after)) = (before, after) else { panic!("planar meshes") };
+    let moved = (0..before.node_count()).filter(|&n| before.is_boundary(n) && before.nodes()[n] != after.nodes()[n]).count();
+    assert!(moved > 0, "no boundary node slid");
+    for n in 0..before.node_count() {
+        let q = before.nodes()[n];
+        if q.x.abs() == 1.0 && q.y.abs() == 1.0 {
+            assert_eq!(q, after.nodes()[n], "corner {n} moved");
+        }
+    }
+    let text = ok(&["smooth", p(&input), "-o", p(&output), "--boundary", "slide"]);
+    assert!(text.contains("boundary: ") && text.contains(" of the boundary as loaded"), "{text}");
 }

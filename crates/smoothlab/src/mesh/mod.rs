@@ -14,7 +14,9 @@ use glam::DVec2;
 use serde::Serialize;
 
 mod builder;
+mod chain;
 mod kind;
+mod piece;
 mod renumber;
 mod slide;
 pub(crate) use renumber::HilbertGrid;

@@ -8,13 +8,17 @@
 //! A planar mesh's boundary is its feature curves: its edges of one element. A node where
 //! the boundary turns by more than the feature angle is a corner, unless an element of
 //! either edge was inverted as loaded (a fold is not a corner). The others slide along the
-//! boundary as loaded ([`Mesh::set_boundary`]).
+//! boundary as loaded ([`Mesh::set_boundary`]). A quadratic element's boundary edge is the
+//! quadratic through its corners and mid-side node ([`Piece`]); a sliding corner carries
+//! the mid-side nodes of its boundary edges along the curve ([`Chains`]).
 
 use std::ops::{Add, Mul, Sub};
 use std::sync::Arc;
 
 use glam::{DVec2, DVec3};
 
+use super::chain::Chains;
+use super::piece::Piece;
 use super::{Mesh, NodeRole, NONE};
 
 crate::enum_with_names! {
@@ -103,6 +107,9 @@ pub(crate) struct Curves<P> {
     points: Vec<P>,
     /// The feature edges, sorted.
     pub(crate) segments: Vec<[u32; 2]>,
+    /// Per segment, the mid-side node of the quadratic element's edge it is ([`NONE`] for
+    /// a straight one); empty where every segment is straight.
+    pub(crate) mids: Vec<u32>,
     /// CSR: the segments at each node.
     seg_start: Vec<u32>,
     node_segs: Vec<u32>,
@@ -113,8 +120,9 @@ pub(crate) struct Curves<P> {
 }
 
 impl<P: Coords> Curves<P> {
-    /// The curves of feature edges `segments` (sorted) over `points`, whose boundary
-    /// nodes are `on_boundary`; `held` nodes stay, and a node where its two edges turn by
+    /// The curves of feature edges `segments` (sorted; quadratic where `mids`, empty or
+    /// one a segment, gives a mid-side node) over `points`, whose boundary nodes are
+    /// `on_boundary`; `held` nodes stay, and a node where its two edges' tangents turn by
     /// more than the feature angle (`cos_feature`) is a corner, unless it is `folded`.
     pub(crate) fn new(
         points: &[P],
@@ -122,6 +130,7 @@ impl<P: Coords> Curves<P> {
         held: &[bool],
         folded: &[bool],
         segments: Vec<[u32; 2]>,
+        mids: Vec<u32>,
         cos_feature: f64,
     ) -> Curves<P> {
         let n = points.len();
@@ -140,12 +149,12 @@ impl<P: Coords> Curves<P> {
                 match *segs_at(v) {
                     [] => BoundaryNode::Surface,
                     [s, t] => {
-                        let other = |s: u32| {
-                            let [a, b] = segments[s as usize];
-                            if a as usize == v { b } else { a }
+                        // the directions the two pieces leave v in: the first reversed
+                        let leaving = |s: u32| {
+                            let s = s as usize;
+                            piece_of(points, &segments, &mids, s).leaving(segments[s][1] as usize == v)
                         };
-                        let (a, b) = (points[other(s) as usize], points[other(t) as usize]);
-                        let (u, w) = ((points[v] - a).unit(), (b - points[v]).unit());
+                        let (u, w) = ((leaving(s) * -1.0).unit(), leaving(t).unit());
                         if u.dot(w) < cos_feature && !folded[v] {
                             BoundaryNode::Corner
                         } else {
@@ -180,7 +189,12 @@ impl<P: Coords> Curves<P> {
             }
             count += 1;
         }
-        Curves { points: points.to_vec(), segments, seg_start, node_segs, class, curve, count: count as usize }
+        Curves { points: points.to_vec(), segments, mids, seg_start, node_segs, class, curve, count: count as usize }
+    }
+
+    /// Segment `s` as a piece of its curve.
+    pub(crate) fn piece(&self, s: u32) -> Piece<P> {
+        piece_of(&self.points, &self.segments, &self.mids, s as usize)
     }
 
     /// The segments at node `v`.
@@ -188,34 +202,26 @@ impl<P: Coords> Curves<P> {
         &self.node_segs[self.seg_start[v] as usize..self.seg_start[v + 1] as usize]
     }
 
-    /// The nearest point of segment `s` to `p`.
-    fn on_segment(&self, p: P, s: u32) -> P {
-        let [a, b] = self.segments[s as usize].map(|v| self.points[v as usize]);
-        let d = b - a;
-        let t = ((p - a).dot(d) / d.dot(d)).clamp(0.0, 1.0);
-        if t.is_finite() {
-            a + d * t
-        } else {
-            a
-        }
+    /// The nearest point of segment `s` to `p`, and its parameter there.
+    fn on_segment(&self, p: P, s: u32) -> (P, f64) {
+        self.piece(s).nearest(p)
     }
 
     /// The nearest point to `p` of the curve of segment `hint`, by a walk from it over
-    /// the segments of the same curve while the distance falls; the curve's unit direction
-    /// there and the segment.
-    pub(crate) fn on_curve(&self, p: P, hint: u32) -> (P, P, u32) {
+    /// the segments of the same curve while the distance falls.
+    pub(crate) fn on_curve(&self, p: P, hint: u32) -> Foot<P> {
         let curve = self.curve[hint as usize];
-        let (mut s, mut q) = (hint, self.on_segment(p, hint));
+        let (mut s, (mut q, mut t)) = (hint, self.on_segment(p, hint));
         let mut d = (q - p).dot(q - p);
         for _ in 0..self.segments.len() {
-            let mut best = (d, s, q);
+            let mut best = (d, s, q, t);
             for &v in &self.segments[s as usize] {
-                for &t in self.segs_at(v as usize) {
-                    if t != s && self.curve[t as usize] == curve {
-                        let qt = self.on_segment(p, t);
-                        let dt = (qt - p).dot(qt - p);
-                        if dt < best.0 {
-                            best = (dt, t, qt);
+                for &r in self.segs_at(v as usize) {
+                    if r != s && self.curve[r as usize] == curve {
+                        let (qr, tr) = self.on_segment(p, r);
+                        let dr = (qr - p).dot(qr - p);
+                        if dr < best.0 {
+                            best = (dr, r, qr, tr);
                         }
                     }
                 }
@@ -223,10 +229,9 @@ impl<P: Coords> Curves<P> {
             if best.1 == s {
                 break;
             }
-            (d, s, q) = best;
+            (d, s, q, t) = best;
         }
-        let [a, b] = self.segments[s as usize].map(|v| self.points[v as usize]);
-        (q, (b - a).unit(), s)
+        Foot { point: q, tangent: self.piece(s).derivative(t).unit(), segment: s, t }
     }
 
     /// The distance of `x` from the whole curve of segment `hint`.
@@ -235,10 +240,31 @@ impl<P: Coords> Curves<P> {
         (0..self.segments.len() as u32)
             .filter(|&s| self.curve[s as usize] == curve)
             .map(|s| {
-                let q = self.on_segment(x, s);
+                let q = self.on_segment(x, s).0;
                 (q - x).dot(q - x).sqrt()
             })
             .fold(f64::INFINITY, f64::min)
+    }
+}
+
+/// Where a point lies on a curve ([`Curves::on_curve`]).
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Foot<P> {
+    pub(crate) point: P,
+    /// The curve's unit direction there.
+    pub(crate) tangent: P,
+    pub(crate) segment: u32,
+    /// The parameter of `point` on its segment's [`Piece`].
+    pub(crate) t: f64,
+}
+
+/// Segment `s` of `segments` over `points` as a piece: quadratic where `mids` gives it a
+/// mid-side node.
+fn piece_of<P: Coords>(points: &[P], segments: &[[u32; 2]], mids: &[u32], s: usize) -> Piece<P> {
+    let [a, b] = segments[s].map(|v| points[v as usize]);
+    match mids.get(s) {
+        Some(&m) if m != NONE => Piece::Quadratic { a, m: points[m as usize], b },
+        _ => Piece::Straight { a, b },
     }
 }
 
@@ -291,29 +317,81 @@ pub(crate) struct PlanarSliding {
     feature_angle_deg: f64,
     /// Per node: the segment it lies on.
     hint: Vec<u32>,
-    /// Per node: the unit direction of its segment (zero unless it slides).
+    /// Per node: the unit direction of its curve there (zero unless it slides).
     tangent: Vec<DVec2>,
+    /// A quadratic mesh's: the curves as chains, and what its sliding nodes carry.
+    carrying: Option<Carrying>,
+}
+
+/// What a quadratic mesh's sliding nodes carry: the mid-side nodes of their boundary
+/// edges, put on the curve at the middle in parameter of their edge's span, so each
+/// boundary edge stays on the curve with its mid-side node centred.
+#[derive(Clone, Debug)]
+struct Carrying {
+    chains: Arc<Chains>,
+    /// Per node: a mid-side node of a boundary edge that the file does not fix.
+    carried: Arc<Vec<bool>>,
+    /// Per node: its parameter on its segment `hint` (sliding nodes).
+    t: Vec<f64>,
+}
+
+impl PlanarSliding {
+    /// The mid-side nodes sliding node `n` carries when it moves to `x` (a point of its
+    /// curve), each with where it goes: on the curve, at the middle in parameter of its
+    /// edge's span from `x` to the edge's other corner where it lies now.
+    fn carried(&self, n: usize, x: DVec2) -> [Option<(usize, DVec2)>; 2] {
+        let mut out = [None; 2];
+        let Some(c) = &self.carrying else { return out };
+        if !self.curves.class[n].slides() {
+            return out;
+        }
+        let foot = self.curves.on_curve(x, self.hint[n]);
+        let curve = self.curves.curve[foot.segment as usize];
+        let from = c.chains.param(foot.segment, foot.t);
+        for (slot, &s) in out.iter_mut().zip(self.curves.segs_at(n)) {
+            let mid = self.curves.mids.get(s as usize).copied().unwrap_or(NONE);
+            if mid == NONE || !c.carried[mid as usize] {
+                continue;
+            }
+            let [a, b] = self.curves.segments[s as usize];
+            let other = if a as usize == n { b } else { a } as usize;
+            let to = if self.curves.class[other].slides() {
+                c.chains.param(self.hint[other], c.t[other])
+            } else {
+                c.chains.param(s, if other == b as usize { 1.0 } else { 0.0 })
+            };
+            let (segment, t) = c.chains.at(curve, c.chains.middle(curve, from, to));
+            *slot = Some((mid as usize, self.curves.piece(segment).at(t)));
+        }
+        out
+    }
 }
 
 impl Mesh {
     /// Sets what boundary nodes do from now on. [`BoundaryRule::Slide`] takes the boundary
-    /// as it is now as the polylines the sliding nodes stay on; a node where it turns by
-    /// more than `feature_angle_deg` is a corner and stays. [`BoundaryRule::Fixed`] holds
-    /// them again. Linear meshes only: a quadratic mesh's boundary nodes stay.
+    /// as it is now as the curves the sliding nodes stay on: polylines, and a quadratic
+    /// element's edge the quadratic through its corners and mid-side node (its
+    /// isoparametric edge). A node where it turns by more than `feature_angle_deg` is a
+    /// corner and stays. A sliding node of a quadratic mesh carries the mid-side nodes of
+    /// its boundary edges along the curve. [`BoundaryRule::Fixed`] holds them again.
     pub fn set_boundary(&mut self, rule: BoundaryRule, feature_angle_deg: f64) {
-        if rule == BoundaryRule::Fixed || self.has_quadratic() {
+        if rule == BoundaryRule::Fixed {
             self.sliding = None;
             return;
         }
         let n = self.node_count();
-        let mut segments = Vec::new();
+        let mut pieces = Vec::new();
         let mut on_boundary = vec![false; n];
         for e in self.topology().boundary_edges() {
-            segments.push([e.a, e.b]);
-            on_boundary[e.a as usize] = true;
-            on_boundary[e.b as usize] = true;
+            pieces.push(([e.a, e.b], e.mid));
+            for v in [e.a, e.b, e.mid].into_iter().filter(|&v| v != NONE) {
+                on_boundary[v as usize] = true;
+            }
         }
-        segments.sort_unstable();
+        pieces.sort_unstable();
+        let segments: Vec<[u32; 2]> = pieces.iter().map(|p| p.0).collect();
+        let quadratic = self.has_quadratic();
+        let mids: Vec<u32> = if quadratic { pieces.iter().map(|p| p.1).collect() } else { Vec::new() };
         // a boundary node of an element with a corner turned over: its turn is no corner
         let turned = |e: usize| {
             let (k, p) = (self.kind(e).corners(), self.element_points_array(e));
@@ -321,20 +399,30 @@ impl Mesh {
         };
         let folded: Vec<bool> =
             (0..n).map(|v| on_boundary[v] && self.node_elements(v).iter().any(|&e| turned(e as usize))).collect();
-        let (held, freed) = held_nodes(&on_boundary, self.given_fixed.as_deref(), |v| self.role(v));
+        let given = self.given_fixed.as_deref();
+        let (held, freed) = held_nodes(&on_boundary, given, |v| self.role(v));
         let sliding_boundary: Vec<bool> = on_boundary.iter().zip(&freed).map(|(&b, &f)| b && !f).collect();
-        let curves = Curves::new(self.nodes(), &sliding_boundary, &held, &folded, segments, feature_angle_deg.to_radians().cos());
+        let curves = Curves::new(self.nodes(), &sliding_boundary, &held, &folded, segments, mids, feature_angle_deg.to_radians().cos());
+        let carrying = quadratic.then(|| {
+            // a mid-side node is held by the file's flags as a corner is
+            let (pinned, _) = held_nodes(&on_boundary, given, |_| NodeRole::Corner);
+            let mut carried = vec![false; n];
+            for &m in curves.mids.iter().filter(|&&m| m != NONE) {
+                carried[m as usize] = !pinned[m as usize];
+            }
+            Carrying { chains: Arc::new(Chains::new(&curves)), carried: Arc::new(carried), t: vec![0.0; n] }
+        });
         let mut sliding = PlanarSliding {
             hint: vec![NONE; n],
             tangent: vec![DVec2::ZERO; n],
             curves: Arc::new(curves),
             feature_angle_deg,
+            carrying,
         };
         for v in 0..n {
             if sliding.curves.class[v] == BoundaryNode::Curve {
                 sliding.hint[v] = sliding.curves.segs_at(v)[0];
-                let (_, t, s) = sliding.curves.on_curve(self.nodes()[v], sliding.hint[v]);
-                (sliding.tangent[v], sliding.hint[v]) = (t, s);
+                sliding.settle_at(v, self.nodes()[v]);
             }
         }
         self.sliding = Some(Box::new(sliding));
@@ -371,32 +459,72 @@ impl Mesh {
     #[inline]
     pub fn onto_boundary(&self, n: usize, x: DVec2) -> DVec2 {
         match &self.sliding {
-            Some(s) if s.curves.class[n].slides() => s.curves.on_curve(x, s.hint[n]).0,
+            Some(s) if s.curves.class[n].slides() => s.curves.on_curve(x, s.hint[n]).point,
             _ => x,
         }
     }
 
+    /// Whether moving node `n` moves mid-side nodes onto the boundary with it: a sliding
+    /// node of a quadratic mesh, whose boundary edges' mid-side nodes it carries.
+    #[inline]
+    pub fn carries_mid_nodes(&self, n: usize) -> bool {
+        self.sliding.as_ref().is_some_and(|s| s.carrying.is_some() && s.curves.class[n].slides())
+    }
+
+    /// Whether moving node `n` carries mid-side node `mid` along the boundary
+    /// ([`carries_mid_nodes`](Self::carries_mid_nodes)).
+    #[inline]
+    pub fn carries(&self, n: usize, mid: usize) -> bool {
+        self.carries_mid_nodes(n) && self.sliding.as_ref().and_then(|s| s.carrying.as_ref()).is_some_and(|c| c.carried[mid])
+    }
+
+    /// The mid-side nodes node `n` carries when moved to `x` (a point
+    /// [`onto_boundary`](Self::onto_boundary) gave), with where they go: on the curve, at
+    /// the middle in parameter of their edge's new span. None unless `n` slides on a
+    /// quadratic mesh's boundary.
+    pub fn carried_mid_nodes(&self, n: usize, x: DVec2) -> [Option<(usize, DVec2)>; 2] {
+        self.sliding.as_ref().map_or([None; 2], |s| s.carried(n, x))
+    }
+
     /// Records that node `n` was moved (to a point [`onto_boundary`](Self::onto_boundary)
-    /// gave): its segment and direction there.
+    /// gave): its segment and direction there, and the mid-side nodes it carries put where
+    /// [`carried_mid_nodes`](Self::carried_mid_nodes) says.
     #[inline]
     pub fn settle(&mut self, n: usize) {
         let x = self.nodes()[n];
         if let Some(s) = &mut self.sliding {
             if s.curves.class[n].slides() {
-                let (_, t, seg) = s.curves.on_curve(x, s.hint[n]);
-                (s.tangent[n], s.hint[n]) = (t, seg);
+                let carried = s.carried(n, x);
+                s.settle_at(n, x);
+                for (mid, at) in carried.into_iter().flatten() {
+                    self.nodes[mid] = at;
+                }
             }
         }
     }
 
-    /// The largest distance of a sliding node from its curve of the boundary as loaded
-    /// (0 when none slides).
+    /// The largest distance of a sliding node, or a mid-side node it carries, from its
+    /// curve of the boundary as loaded (0 when none slides).
     pub fn max_distance_from_boundary(&self) -> f64 {
         let Some(s) = &self.sliding else { return 0.0 };
+        let carried = s.carrying.as_ref().map_or(&[][..], |c| &c.carried[..]);
+        let mids = s.curves.mids.iter().enumerate().filter(|(_, &m)| m != NONE && carried[m as usize]);
         (0..self.node_count())
             .filter(|&n| s.curves.class[n].slides())
             .map(|n| s.curves.distance(self.nodes()[n], s.hint[n]))
+            .chain(mids.map(|(seg, &m)| s.curves.distance(self.nodes()[m as usize], seg as u32)))
             .fold(0.0, f64::max)
+    }
+}
+
+impl PlanarSliding {
+    /// Records that sliding node `n` lies at `x`: its segment, direction and parameter.
+    fn settle_at(&mut self, n: usize, x: DVec2) {
+        let foot = self.curves.on_curve(x, self.hint[n]);
+        (self.tangent[n], self.hint[n]) = (foot.tangent, foot.segment);
+        if let Some(c) = &mut self.carrying {
+            c.t[n] = foot.t;
+        }
     }
 }
 
@@ -575,5 +703,171 @@ mod tests {
         assert!(m.is_free(side));
         m.set_boundary(BoundaryRule::Fixed, FEATURE_ANGLE_DEG);
         assert!(!m.is_free(side));
+    }
+
+    /// A quarter of the annulus 1 ≤ r ≤ 2, 0 ≤ θ ≤ 90°, in 4 × 10 cells of `kind` (6-node
+    /// triangles, 8- or 9-node quads): the arcs' mid-side nodes on their circles (curved
+    /// edges), the others at their edges' middles (a 9-node quad's centre at the mean of
+    /// its other nodes). The corner nodes of both arcs and both straight sides are bunched
+    /// towards the ends (smoothstep), the interior ones evenly spaced: every element valid,
+    /// those along the boundary skewed.
+    fn bunched_annulus_quarter(kind: super::super::ElementKind) -> Mesh {
+        use super::super::{ElementKind, MeshBuilder};
+        let (rings, sectors) = (4, 10);
+        let bunch = |t: f64| t * t * (3.0 - 2.0 * t);
+        // corner (i, j): ring i outwards, sector boundary j round
+        let polar = |i: usize, j: usize| {
+            let (s, t) = (i as f64 / rings as f64, j as f64 / sectors as f64);
+            let r = 1.0 + if j == 0 || j == sectors { bunch(s) } else { s };
+            (r, std::f64::consts::FRAC_PI_2 * if i == 0 || i == rings { bunch(t) } else { t })
+        };
+        let corner = |i: usize, j: usize| {
+            let (r, theta) = polar(i, j);
+            if j == sectors { DVec2::new(0.0, r) } else { DVec2::new(r * theta.cos(), r * theta.sin()) }
+        };
+        // node (I, J) of the doubled grid: corners at even I and J, mid-side nodes between
+        let at = |i2: usize, j2: usize| -> DVec2 {
+            let (i, j) = (i2 / 2, j2 / 2);
+            match (i2 % 2, j2 % 2) {
+                (0, 0) => corner(i, j),
+                (1, 0) => 0.5 * (corner(i, j) + corner(i + 1, j)),
+                (0, _) if i == 0 || i == rings => {
+                    let (r, a) = polar(i, j);
+                    let theta = 0.5 * (a + polar(i, j + 1).1);
+                    DVec2::new(r * theta.cos(), r * theta.sin())
+                }
+                (0, _) => 0.5 * (corner(i, j) + corner(i, j + 1)),
+                _ => 0.5 * (corner(i + 1, j) + corner(i, j + 1)),
+            }
+        };
+        let mut b = MeshBuilder::new();
+        let mut ids = std::collections::HashMap::new();
+        let mut id = |b: &mut MeshBuilder, i2: usize, j2: usize| {
+            *ids.entry((i2, j2)).or_insert_with(|| {
+                let p = at(i2, j2);
+                b.add_node([p.x, p.y, 0.0], 0) as u32
+            })
+        };
+        for i in 0..rings {
+            for j in 0..sectors {
+                let (i2, j2) = (2 * i, 2 * j);
+                let c = [id(&mut b, i2, j2), id(&mut b, i2 + 2, j2), id(&mut b, i2 + 2, j2 + 2), id(&mut b, i2, j2 + 2)];
+                let m = [id(&mut b, i2 + 1, j2), id(&mut b, i2 + 2, j2 + 1), id(&mut b, i2 + 1, j2 + 2), id(&mut b, i2, j2 + 1)];
+                match kind {
+                    ElementKind::Tri6 => {
+                        let d = id(&mut b, i2 + 1, j2 + 1);
+                        b.add_element(kind, &[c[0], c[1], c[3], m[0], d, m[3]], 0);
+                        b.add_element(kind, &[c[1], c[2], c[3], m[1], m[2], d], 0);
+                    }
+                    ElementKind::Quad8 => b.add_element(kind, &[c[0], c[1], c[2], c[3], m[0], m[1], m[2], m[3]], 0),
+                    _ => {
+                        let centre = b.add_node([0.0; 3], 0) as u32;
+                        b.add_element(kind, &[c[0], c[1], c[2], c[3], m[0], m[1], m[2], m[3], centre], 0);
+                    }
+                }
+            }
+        }
+        let mut mesh = b.build().unwrap();
+        mesh.update_mid_nodes();
+        mesh
+    }
+
+    /// The distance of `x` from the quadratic pieces through `pieces` (corner, mid-side
+    /// node, corner), found without [`Piece::nearest`]: the nearest of 2,000 samples of
+    /// each, then a golden-section search about it.
+    fn distance_from_pieces(pieces: &[[DVec2; 3]], x: DVec2) -> f64 {
+        let mut best = f64::INFINITY;
+        for &[a, m, b] in pieces {
+            let piece = Piece::Quadratic { a, m, b };
+            let d = |t: f64| piece.at(t).distance(x);
+            let n = 2000;
+            let k = (0..=n).min_by(|&i, &j| d(i as f64 / n as f64).total_cmp(&d(j as f64 / n as f64))).unwrap();
+            let (mut lo, mut hi) = (((k as f64 - 1.0) / n as f64).max(0.0), ((k as f64 + 1.0) / n as f64).min(1.0));
+            let g = 0.5 * (5f64.sqrt() - 1.0);
+            for _ in 0..80 {
+                let (u, w) = (hi - g * (hi - lo), lo + g * (hi - lo));
+                if d(u) < d(w) {
+                    hi = w;
+                } else {
+                    lo = u;
+                }
+            }
+            best = best.min(d(0.5 * (lo + hi))).min(d(k as f64 / n as f64));
+        }
+        best
+    }
+
+    /// Issue 58 on quadratic meshes: a bunched annulus quarter's boundary slides along its
+    /// curved boundary. Every boundary node ends on the input's piecewise-quadratic curve,
+    /// the four corners and the file's fixed nodes stay, the smallest angle ends above the
+    /// fixed boundary's, the report measures the distance from the curve (a chord is
+    /// farther than 10⁻⁴ from the curve's mid-side nodes), and a second run repeats the
+    /// first bit for bit.
+    #[test]
+    fn a_quadratic_mesh_s_boundary_slides_along_its_curved_edges() {
+        use super::super::ElementKind;
+        for kind in [ElementKind::Tri6, ElementKind::Quad8, ElementKind::Quad9] {
+            let mut start = bunched_annulus_quarter(kind);
+            assert_eq!(crate::quality::mesh_stats(&start).inverted, 0, "{kind:?}");
+            // the file fixes one node of the outer arc and one mid-side node of the inner
+            let on_arc = |p: DVec2, r: f64| (p.length() - r).abs() < 1e-12 && p.x > 0.0 && p.y > 0.0;
+            let outer = (0..start.node_count()).find(|&n| start.role(n) == NodeRole::Corner && on_arc(start.nodes()[n], 2.0) && start.nodes()[n].x < 1.5).unwrap();
+            let inner_mid = (0..start.node_count()).find(|&n| start.role(n) == NodeRole::Mid && on_arc(start.nodes()[n], 1.0) && start.nodes()[n].y > 0.5).unwrap();
+            let mut flags = vec![false; start.node_count()];
+            flags[outer] = true;
+            flags[inner_mid] = true;
+            start.fixed = start.fixed.iter().zip(&flags).map(|(&b, &f)| b || f).collect();
+            start.given_fixed = Some(Arc::new(GivenFlags { flags, exact: false }));
+            let pieces: Vec<[DVec2; 3]> = start
+                .topology()
+                .boundary_edges()
+                .map(|e| [e.a, e.mid, e.b].map(|v| start.nodes()[v as usize]))
+                .collect();
+            let fixed = Model::Planar(start.clone()).smooth(&Smoothing::default()).unwrap().stats().clone();
+            let smooth = || {
+                let mut model = Model::Planar(start.clone());
+                let report = model.smooth(&Smoothing::default().boundary(BoundaryRule::Slide)).unwrap();
+                let Model::Planar(m) = model else { unreachable!() };
+                (m, report)
+            };
+            let (m, report) = smooth();
+            let s = report.stats();
+            assert_eq!(s.inverted, 0, "{kind:?}");
+            assert!(s.min_angle_deg > fixed.min_angle_deg + 20.0, "{kind:?}: slide {} fixed {}", s.min_angle_deg, fixed.min_angle_deg);
+            let b = report.boundary().unwrap();
+            assert_eq!((b.corners, b.curves, b.held), (4, 5, 1), "{kind:?}: {b:?}");
+            assert!(b.max_distance < 1e-12, "{kind:?}: {b:?}");
+            let mut moved = 0;
+            for e in start.topology().boundary_edges() {
+                for v in [e.a, e.mid, e.b].map(|v| v as usize) {
+                    let (was, now) = (start.nodes()[v], m.nodes()[v]);
+                    moved += usize::from(was != now);
+                    let d = distance_from_pieces(&pieces, now);
+                    assert!(d < 1e-9, "{kind:?}: node {v} at {now} is {d} off the curve");
+                    // a straight side's nodes stay on it exactly
+                    if was.x == 0.0 || was.y == 0.0 {
+                        assert!(now.x == was.x || now.y == was.y, "{kind:?}: node {v} left its side: {was} to {now}");
+                    }
+                    if m.boundary_node(v) == Some(BoundaryNode::Corner) || v == outer || v == inner_mid {
+                        assert_eq!(was, now, "{kind:?}: node {v} held, yet moved");
+                    }
+                }
+                // each carried mid-side node is centred in parameter on its edge
+                if e.mid as usize != inner_mid {
+                    let sliding = m.sliding.as_deref().unwrap();
+                    let chains = &sliding.carrying.as_ref().unwrap().chains;
+                    let seg = sliding.curves.segments.binary_search(&[e.a, e.b]).unwrap() as u32;
+                    let u = |v: u32| {
+                        let foot = sliding.curves.on_curve(m.nodes()[v as usize], seg);
+                        chains.param(foot.segment, foot.t)
+                    };
+                    let (ua, um, ub) = (u(e.a), u(e.mid), u(e.b));
+                    assert!((um - 0.5 * (ua + ub)).abs() < 1e-9, "{kind:?}: edge {}–{} at {ua}, {um}, {ub}", e.a, e.b);
+                }
+            }
+            assert!(moved > 40, "{kind:?}: {moved} boundary nodes moved");
+            let (again, _) = smooth();
+            assert!(m.nodes().iter().zip(again.nodes()).all(|(p, q)| p.x.to_bits() == q.x.to_bits() && p.y.to_bits() == q.y.to_bits()), "{kind:?}: a second run differs");
+        }
     }
 }

@@ -391,10 +391,13 @@ impl Star {
             let Some(slot) = ids[..k].iter().position(|&i| i as usize == node) else {
                 continue; // the node is a mid-side node of this element: not a corner star
             };
+            // a mid-side node the node carries along the boundary follows it too: the
+            // objective sees its edge straight, the acceptance rule on the curve
             let follows = |edge: usize| {
                 kind.mid(edge).is_some_and(|m| {
                     let mid = ids[m] as usize;
-                    !mesh.fixed()[mid] && !mesh.is_on_curved_boundary(mid) && mesh.role(mid) == NodeRole::Mid
+                    mesh.role(mid) == NodeRole::Mid
+                        && ((!mesh.fixed()[mid] && !mesh.is_on_curved_boundary(mid)) || mesh.carries(node, mid))
                 })
             };
             // filled in place: a StarElement is 160 bytes, built once where it lives

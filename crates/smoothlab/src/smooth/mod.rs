@@ -352,9 +352,10 @@ impl<S: DriverStar> Smoother<S> {
     ) -> (S::Point, NodeOutcome) {
         let (mut x, mut out, mut kept) = self.decide_move(mesh, n, objective);
         if out.moved {
-            // a node that slides goes onto the boundary, and is measured there
+            // a node that slides goes onto the boundary, and is measured there (with the
+            // mid-side nodes it carries, which no test before this one saw)
             let on = mesh.onto_boundary(n, x);
-            if on != x {
+            if on != x || mesh.carries_on_boundary(n) {
                 (x, kept) = (on, false);
                 out.moved = x != mesh.position(n);
                 if !out.moved {

@@ -49,6 +49,14 @@ pub trait SmoothMesh {
     fn onto_boundary(&self, _n: usize, x: Self::Point) -> Self::Point {
         x
     }
+    /// Whether moving free node `n` moves other nodes onto the boundary with it (a
+    /// quadratic mesh's sliding node carries its boundary edges' mid-side nodes): its move
+    /// is then judged on its star with them moved ([`DriverStar::verdict_in`]). Default
+    /// false.
+    #[inline]
+    fn carries_on_boundary(&self, _n: usize) -> bool {
+        false
+    }
     /// What the statistics read of the mesh ([`Reading`]): the bounds a move on a valid
     /// star keeps within; `None` for a tangled mesh, whose rule is its count of inverted
     /// elements.
@@ -204,6 +212,10 @@ impl SmoothMesh for Mesh {
     fn onto_boundary(&self, n: usize, x: glam::DVec2) -> glam::DVec2 {
         Mesh::onto_boundary(self, n, x)
     }
+    #[inline]
+    fn carries_on_boundary(&self, n: usize) -> bool {
+        self.carries_mid_nodes(n)
+    }
     type Point = glam::DVec2;
     fn valid_reading(&self) -> Option<Reading> {
         Reading::planar_mesh(self, |e| self.element_points_array(e))
@@ -348,21 +360,19 @@ impl DriverStar for Star {
         t
     }
     fn verdict(&self, x: glam::DVec2, m: Measure) -> Verdict {
-        let mut v = Verdict::default();
-        for e in &self.elems {
-            let at = e.at(x);
-            let (before, b) = ElementScore::planar_unsized(e.kind, &e.pts, m);
-            let (after, a) = ElementScore::planar_unsized(e.kind, &at, m);
-            // the sizes measured only where their determinants do not decide
-            v.add_deciding_size(&before, &after, || {
-                Size::floor_kept_for_certain(b, a) || ElementScore::planar(e.kind, &at, m).size.at_least(MIN_SIZE_RATIO, &ElementScore::planar(e.kind, &e.pts, m).size)
-            });
-        }
-        v
+        self.verdict_carrying(x, m, &[None; 2], &|_| &[])
+    }
+    /// [`verdict`](DriverStar::verdict) with the mid-side nodes the free node carries along
+    /// the boundary ([`Mesh::carried_mid_nodes`]) where they go.
+    fn verdict_in(&self, mesh: &Mesh, x: glam::DVec2, m: Measure) -> Verdict {
+        let carried = mesh.carried_mid_nodes(self.node as usize, x);
+        self.verdict_carrying(x, m, &carried, &|e| mesh.element(e))
     }
     fn reads_within(&self, mesh: &Mesh, x: glam::DVec2, bounds: &Reading) -> bool {
-        self.elems.iter().all(|e| Reading::planar_within(e.kind, &e.at(x), bounds))
-            && planar_graded_within(mesh, bounds.grading, self.elems.iter().map(|e| (e.element as usize, e.at(x))))
+        let carried = mesh.carried_mid_nodes(self.node as usize, x);
+        let at = |e: &crate::objective::StarElement| at_carrying(e, x, &carried, &|e| mesh.element(e));
+        self.elems.iter().all(|e| Reading::planar_within(e.kind, &at(e), bounds))
+            && planar_graded_within(mesh, bounds.grading, self.elems.iter().map(|e| (e.element as usize, at(e))))
     }
     fn reads_within_from_mesh(mesh: &Mesh, n: usize, x: glam::DVec2, bounds: &Reading) -> Option<bool> {
         let elems = mesh.node_elements(n);
@@ -398,6 +408,49 @@ impl DriverStar for Star {
     fn shape_from_mesh(mesh: &Mesh, n: usize) -> Option<f64> {
         super::shape_on_triangles(mesh, n)
     }
+}
+
+impl Star {
+    /// The acceptance rule over the star with its free node at `x` and the mid-side nodes
+    /// `carried` where they go (each found among its element's nodes, `nodes(element)`).
+    fn verdict_carrying<'m>(
+        &self,
+        x: glam::DVec2,
+        m: Measure,
+        carried: &[Option<(usize, glam::DVec2)>; 2],
+        nodes: &dyn Fn(usize) -> &'m [u32],
+    ) -> Verdict {
+        let mut v = Verdict::default();
+        for e in &self.elems {
+            let at = at_carrying(e, x, carried, nodes);
+            let (before, b) = ElementScore::planar_unsized(e.kind, &e.pts, m);
+            let (after, a) = ElementScore::planar_unsized(e.kind, &at, m);
+            // the sizes measured only where their determinants do not decide
+            v.add_deciding_size(&before, &after, || {
+                Size::floor_kept_for_certain(b, a) || ElementScore::planar(e.kind, &at, m).size.at_least(MIN_SIZE_RATIO, &ElementScore::planar(e.kind, &e.pts, m).size)
+            });
+        }
+        v
+    }
+}
+
+/// Star element `e`'s nodes with its free node at `x` ([`StarElement::at`](crate::objective::StarElement::at))
+/// and the mid-side nodes `carried` of its own where they go (found among its nodes,
+/// `nodes(element)`).
+#[inline]
+fn at_carrying<'m>(
+    e: &crate::objective::StarElement,
+    x: glam::DVec2,
+    carried: &[Option<(usize, glam::DVec2)>; 2],
+    nodes: &dyn Fn(usize) -> &'m [u32],
+) -> [glam::DVec2; 9] {
+    let mut p = e.at(x);
+    for &(mid, to) in carried.iter().flatten() {
+        if let Some(i) = nodes(e.element as usize).iter().position(|&v| v as usize == mid) {
+            p[i] = to;
+        }
+    }
+    p
 }
 
 /// Whether every pair of neighbours with a moved element has a size ratio

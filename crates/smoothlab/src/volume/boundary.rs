@@ -159,7 +159,7 @@ impl Sliding {
         let none_folded = vec![false; n];
         // a node the file leaves free moves freely, as off the skin
         let on_skin: Vec<bool> = on_skin.iter().zip(freed).map(|(&s, &f)| s && !f).collect();
-        let first = Curves::new(points, &on_skin, held, &none_folded, found, cos_feature);
+        let first = Curves::new(points, &on_skin, held, &none_folded, found, Vec::new(), cos_feature);
         // a crease shorter than MIN_CURVE_SEGMENTS edges that ends nowhere (at a node of
         // no other feature edge) is the coarse mesh's noise, not a feature: its edges are
         // smooth (an edge of more or fewer than two faces stays)
@@ -180,7 +180,7 @@ impl Sliding {
             e.2 = !short(&e.0);
         }
         let kept: Vec<[u32; 2]> = skin_edges.iter().filter(|e| e.2).map(|e| e.0).collect();
-        let curves = Curves::new(points, &on_skin, held, &none_folded, kept, cos_feature);
+        let curves = Curves::new(points, &on_skin, held, &none_folded, kept, Vec::new(), cos_feature);
         // faces joined across smooth edges: the parts (union–find)
         let mut parent: Vec<u32> = (0..faces.len() as u32).collect();
         fn root(parent: &mut [u32], mut i: u32) -> u32 {
@@ -251,8 +251,8 @@ impl Sliding {
                 (p.point, Tangent::Plane(p.normal), p.face)
             }
             BoundaryNode::Curve => {
-                let (q, t, s) = r.curves.on_curve(x, self.hint[n]);
-                (q, Tangent::Line(t), s)
+                let foot = r.curves.on_curve(x, self.hint[n]);
+                (foot.point, Tangent::Line(foot.tangent), foot.segment)
             }
             _ => (x, Tangent::Free, NONE),
         }

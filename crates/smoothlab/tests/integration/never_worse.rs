@@ -71,9 +71,9 @@ proptest! {
         prop_assume!(before.inverted == 0);
         let (strategy, kind, target) = (Strategy::ALL[strategy], ObjectiveKind::ALL[objective], Target::ALL[target]);
         let boundary = BoundaryRule::ALL[boundary];
-        // boundaries slide in linear planar meshes and volume meshes
+        // boundaries slide in planar meshes, quadratic ones too, and linear volume meshes
         let slides = match &model {
-            Model::Planar(m) => !m.has_quadratic(),
+            Model::Planar(_) => true,
             Model::Volume(v) => !v.is_quadratic(),
             Model::Surface(_) => false,
         };
