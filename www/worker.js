@@ -116,12 +116,15 @@ const handlers = {
   // where the runs begin (the mesh as loaded or last perturbed): the grading they keep and
   // whether it was valid, which the sweep takes as this worker's
   runStart: () => Array.from(planar().runStart()),
-  adoptSweep: (nodes, sweep) => planar().adoptSweep(nodes, sweep),
+  // where a side's sliding boundary stands ({ from, segments }; null while it is held),
+  // which the sweep takes as this worker's
+  slideState: (side) => planar().slideState(side),
+  adoptSweep: (nodes, sweep, segments) => planar().adoptSweep(nodes, sweep, segments ?? undefined),
   // the other worker's part: side A's sweep, its result taken with the last slice
-  sweep: (settings, side, nodes, target, start, budgetMs) => {
+  sweep: (settings, side, nodes, target, start, slide, budgetMs) => {
     const p = planar();
     p.setSettings(settings);
-    p.beginSweep(side, nodes, target ?? undefined, start[0], start[1]);
+    p.beginSweep(side, nodes, target ?? undefined, start[0], start[1], slide?.from, slide?.segments);
     return sweepSlice(p, budgetMs);
   },
   continueSweep: (budgetMs) => sweepSlice(planar(), budgetMs),

@@ -172,8 +172,8 @@ export function changeTarget() {
   }).catch(report);
 }
 
-/** Where the mesh's boundary cannot slide (`refused`, the core's reason: planar, a
- * surface, quadratic), the boundary menu shows fixed, disabled, saying why, and gets the
+/** Where the mesh's boundary cannot slide (`refused`, the core's reason: a quadratic
+ * mesh), the boundary menu shows fixed, disabled, saying why, and gets the
  * user's choice back with a mesh whose boundary slides (as the target menu with a
  * strategy that takes no target). */
 export function showBoundaryReasons(refused) {
@@ -191,11 +191,12 @@ export function showBoundaryReasons(refused) {
   showBoundaryWords();
 }
 
-/** What the chosen boundary rule does, in a sentence beside its menu (the core's words). */
+/** What the chosen boundary rule does, in a sentence beside its menu (the core's words),
+ * in the words of the mesh's kind. */
 export function showBoundaryWords() {
   const r = state.controls.boundaries.find((x) => x.name === $('boundary').value);
-  // a surface's boundary is its curves, and its sentence says so
-  const words = r ? (state.surface && !state.volume ? r.surface_words : r.words) : '';
+  // a surface's boundary is its curves, a planar mesh's its edges, and the sentence says so
+  const words = !r ? '' : state.volume ? r.words : state.surface ? r.surface_words : r.planar_words;
   $('boundary-words').textContent = words;
   $('boundary').title = $('boundary-why').textContent || words;
 }
@@ -204,7 +205,11 @@ export function showBoundaryWords() {
  * side's boundary report (the command-line tool's) counts. */
 export function boundaryCounts(b) {
   const held = b.held ? `, ${b.held} fixed by the file` : '';
-  if (state.surface && !state.volume) {
+  if (!state.surface) {
+    // a planar mesh's boundary is one curve a loop: "56 nodes slide along the boundary; 4 corners stay"
+    return `${b.curve_nodes} nodes slide along the boundary; ${b.corners} corner${b.corners === 1 ? '' : 's'} stay${b.corners === 1 ? 's' : ''}${held}`;
+  }
+  if (!state.volume) {
     // a surface's boundary is its curves: "36 nodes slide along 4 curves; 4 corners stay"
     return `${b.curve_nodes} nodes slide along ${b.curves} curve${b.curves === 1 ? '' : 's'}; ${b.corners} corner${b.corners === 1 ? '' : 's'} stay${b.corners === 1 ? 's' : ''}${held}`;
   }
@@ -227,6 +232,8 @@ export function changeBoundary({ keepHash = false } = {}) {
     if (settings.boundary !== 'fixed') {
       const t = await engine.call('stats', 'b');
       if (t.boundary) counts = ` ${boundaryCounts(t.boundary)}.`;
+      // a tangled planar mesh's boundary is held until a pass leaves a side valid
+      else if (!state.surface) counts = ' The mesh is tangled: its boundary stays until a pass leaves a side valid, then slides there.';
     }
     setStatus(`Boundary: ${r.label.toLowerCase()}.${counts} Both sides start again from the mesh as loaded.${stopped}`);
     if (!keepHash) await writePermalink();

@@ -137,14 +137,15 @@ function showColourKey(on) {
   return true;
 }
 
-/** The key of a sliding boundary's marks, in words, shown while the boundary of a volume
- * mesh or a surface slides (the pictures draw its curves, corners and sliding nodes; a
- * surface's dots are its curves' nodes). */
+/** The key of a sliding boundary's marks, in words, shown while the boundary slides (the
+ * pictures draw its curves, corners and sliding nodes; a surface's dots are its curves'
+ * nodes, a planar mesh's curve is its boundary). */
 function showBoundaryKey() {
-  const on = state.surface && state.boundary !== 'fixed';
+  const on = state.boundary !== 'fixed' && !state.slideRefused;
   const key = $('boundary-key');
   key.hidden = !on;
-  key.lastElementChild.lastChild.textContent = state.volume ? ' nodes slide on the boundary' : ' nodes slide along the curves';
+  key.firstElementChild.lastChild.textContent = state.surface ? ' feature curves: their nodes slide along them;' : ' the boundary: its nodes slide along it;';
+  key.lastElementChild.lastChild.textContent = state.volume ? ' nodes slide on the boundary' : state.surface ? ' nodes slide along the curves' : ' nodes slide along the boundary';
 }
 
 /** `refits`: how many times more the canvases may be fitted again to what the tables and

@@ -61,14 +61,16 @@ export async function splitPass(i, n, call, cost, second) {
   // measured against the input: the mesh as this worker holds it (perturbed, maybe), not
   // as the second worker loaded it
   const target = settings.target === 'ideal' ? null : await call('targetPositions', settings);
-  // …and judged as this worker's run, from where it began
+  // …and judged as this worker's run, from where it began, side A's boundary sliding as
+  // it slides here (null while it is held)
   const start = await call('runStart');
+  const slide = await call('slideState', 'a');
   let swept = null; // the second worker's result, once it has it
   let failed = null;
   let aFraction = 0;
   // settles when the second worker is done, stopped or failed (never rejects)
   const sweeping = (async () => {
-    let p = await second.call('sweep', settings, 'a', nodes, target, start, SLICE_MS);
+    let p = await second.call('sweep', settings, 'a', nodes, target, start, slide, SLICE_MS);
     while (!p.done) {
       aFraction = p.fraction;
       if (state.cancel) {
@@ -97,7 +99,7 @@ export async function splitPass(i, n, call, cost, second) {
       return null;
     }
     if (!adopted && swept) {
-      await call('adoptSweep', swept.nodes, swept.sweep);
+      await call('adoptSweep', swept.nodes, swept.sweep, swept.segments);
       adopted = true;
     }
     // side B is the first half of this worker's pass, side A's statistics the

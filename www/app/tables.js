@@ -115,8 +115,11 @@ export function fillTables(stats) {
       } else {
         td.textContent = fmt(v);
         td.dataset.value = String(v);
-        const shown = pair.map((p) => (detail && !p.detail ? null : fmt(get(p))));
-        if (shown[0] !== shown[1] && betterSide(dir, get(pair[0]), get(pair[1])) === i) {
+        // a row of one side only (a planar mesh's boundary slides on the side a pass left
+        // valid first) marks neither
+        const alone = surfaceOnly && pair.some((p) => get(p) === null || get(p) === undefined);
+        const shown = pair.map((p) => (detail && !p.detail) || alone ? null : fmt(get(p)));
+        if (!alone && shown[0] !== shown[1] && betterSide(dir, get(pair[0]), get(pair[1])) === i) {
           td.classList.add('better'); // marked ✓ by the style sheet
           td.setAttribute('aria-label', `${td.textContent}, the better of the two`);
           td.title = 'the better of the two sides';

@@ -74,7 +74,7 @@ pub use mesh::{
 pub use paint::Marker;
 pub use profile::{render_sketch, render_titled, title_band, Sketch, SketchLine};
 /// The pieces of `render_mesh` the page's fast raster view (`lab::raster`) draws with.
-pub use mesh::{draw_colour_bar, draw_inverted, push_element};
+pub use mesh::{draw_colour_bar, draw_inverted, draw_sliding_boundary, push_element};
 pub use text::{draw_text, draw_text_rotated, text_width, Align, TextStyle, Valign};
 pub use surface_picture::{SurfaceFaces, SurfacePicture};
 pub use theme::Theme;

@@ -12,7 +12,8 @@ use super::paint::{fill, fill_rect, push_marker, rgba, solid, stroke, Marker};
 use super::text::{draw_text, Align, TextStyle, Valign};
 use super::theme::Theme;
 use super::view::{sane_dpr, Frame, View, ZoomPan};
-use smoothlab::mesh::{Mesh, NodeRole, NONE};
+use super::view3d::{draw_marks_at, Mark, NodeMark, SLIDE_DOTS_MIN_EDGE_PX};
+use smoothlab::mesh::{BoundaryNode, BoundaryRule, Mesh, NodeRole, NONE};
 use smoothlab::quality::{element_quality, ElementQuality};
 
 smoothlab::enum_with_names! {
@@ -447,6 +448,7 @@ pub fn render_mesh(pixmap: &mut Pixmap, mesh: &Mesh, opts: &MeshView) -> View {
     if show_nodes {
         draw_nodes(pixmap, mesh, &view, s, clip);
     }
+    draw_sliding_boundary(pixmap, mesh, &view, s, clip);
     if let Some(n) = opts.highlight.filter(|&n| n < mesh.node_count()) {
         let (x, y) = view.device_xy(mesh.nodes()[n]);
         let mut ring = PathBuilder::new();
@@ -461,6 +463,31 @@ pub fn render_mesh(pixmap: &mut Pixmap, mesh: &Mesh, opts: &MeshView) -> View {
         draw_colour_bar(pixmap, bar, opts.colormap, (d0, d1), opts.metric.label(mesh), n_inverted, s, theme);
     }
     view
+}
+
+/// Draws the marks of `mesh`'s sliding boundary as the 3D views draw a volume's
+/// ([`Mark`]): its edges as thick reddish-purple lines, the nodes that stay (corners, and
+/// nodes the file fixed) as dark squares and the sliding nodes as white dots, where its
+/// edges are long enough on screen for them. Nothing while its boundary is held.
+pub fn draw_sliding_boundary(pixmap: &mut Pixmap, mesh: &Mesh, view: &View, dpr: f32, clip: Option<&Mask>) {
+    if mesh.boundary_rule() != BoundaryRule::Slide {
+        return;
+    }
+    let mut marks: Vec<Mark> = mesh.topology().boundary_edges().map(|e| Mark::Line(e.a, e.b)).collect();
+    for n in (0..mesh.node_count()).filter(|&n| mesh.is_boundary(n)) {
+        match mesh.boundary_node(n) {
+            Some(BoundaryNode::Corner | BoundaryNode::Held) => marks.push(Mark::Node(n as u32, NodeMark::Stays)),
+            Some(c) if c.slides() => marks.push(Mark::Node(n as u32, NodeMark::Slides)),
+            _ => {}
+        }
+    }
+    let s = sane_dpr(dpr);
+    let dots = mesh.mean_edge_length() * view.device_scale() / s as f64 >= SLIDE_DOTS_MIN_EDGE_PX;
+    let at = |n: u32| -> Option<(f32, f32)> {
+        let (x, y) = view.device_xy(*mesh.nodes().get(n as usize)?);
+        (x.is_finite() && y.is_finite() && x.abs() < FAR_PX && y.abs() < FAR_PX).then_some((x, y))
+    };
+    draw_marks_at(pixmap, &marks, &at, s, dots, clip);
 }
 
 /// Notes ([`super::layout`]) where the mesh lies in `frame`: its bounding box as `view`

@@ -488,7 +488,7 @@ impl FaceMarks {
 
 /// The smallest mean length of the faces' edges on screen, CSS pixels, at which
 /// [`NodeMark::Slides`] dots are drawn: below it they would cover the faces.
-const SLIDE_DOTS_MIN_EDGE_PX: f64 = 9.0;
+pub(crate) const SLIDE_DOTS_MIN_EDGE_PX: f64 = 9.0;
 
 /// Draws face `f`'s marks (see [`FaceMarks`]); `dots`: the sliding nodes' dots too.
 fn draw_marks(pixmap: &mut Pixmap, faces: &Faces, marks: &[Mark], proj: &Projection, s: f32, dots: bool, clip: Option<&Mask>) {
@@ -496,6 +496,13 @@ fn draw_marks(pixmap: &mut Pixmap, faces: &Faces, marks: &[Mark], proj: &Project
         let d = proj.to_device(*faces.points.get(n as usize)?);
         (d.is_finite() && d.x.abs() < FAR_PX as f64 && d.y.abs() < FAR_PX as f64).then_some((d.x as f32, d.y as f32))
     };
+    draw_marks_at(pixmap, marks, &at, s, dots, clip);
+}
+
+/// Draws `marks` with their nodes where `at` puts them, in device pixels (`None`: left
+/// out), at device-pixel ratio `s`; `dots`: the sliding nodes' dots too. The planar mesh
+/// view draws a sliding boundary's marks with it as well.
+pub(crate) fn draw_marks_at(pixmap: &mut Pixmap, marks: &[Mark], at: &dyn Fn(u32) -> Option<(f32, f32)>, s: f32, dots: bool, clip: Option<&Mask>) {
     let stroke = |w: f32| Stroke { width: w, line_cap: tiny_skia::LineCap::Round, ..Default::default() };
     let mut lines = PathBuilder::new();
     for m in marks {

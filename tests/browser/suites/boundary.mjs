@@ -2,11 +2,32 @@
 // each rule does, a run with `slide` is the command-line tool's
 // `smoothlab smooth --boundary slide --finish 0` on the same file (its counts, pass for
 // pass and to the bit), the pictures mark the feature curves and the corners, the link
-// carries the rule, a surface's curves slide, and a planar sample shows the boundary
-// fixed, disabled, saying why. A screenshot of the sliding block at 1366×768 goes to test-output/browser/.
+// carries the rule, a surface's curves slide, a planar mesh's boundary slides too (held
+// while it is tangled), and a quadratic planar sample shows the boundary fixed, disabled,
+// saying why. Screenshots of the sliding block at 1366×768 and of the sliding plate at
+// 1366×768 and 390×844 go to test-output/browser/.
 import path from 'node:path';
 import { mkdirSync, readFileSync, writeFileSync } from 'node:fs';
 import { OUT, TIMEOUT, test, check, idle, open, stats, canvasInfo, chooseSample, freshPage, cli, mshNodes, step } from '../lib.mjs';
+
+/** How many pixels of a canvas are the sliding boundary's reddish purple (MARK_LINE_RGB). */
+async function purplePixels(p, id) {
+  return p.evaluate((id) => {
+    const c = document.getElementById(id);
+    const d = c.getContext('2d').getImageData(0, 0, c.width, c.height).data;
+    let n = 0;
+    for (let i = 0; i < d.length; i += 4) if (d[i] === 204 && d[i + 1] === 121 && d[i + 2] === 167) n += 1;
+    return n;
+  }, id);
+}
+
+/** Saves a side's mesh as .msh to `file`; its nodes. */
+async function saveMsh(p, side, file) {
+  const [dl] = await Promise.all([p.waitForEvent('download'), p.click(`button[data-export="msh"][data-side="${side}"]`)]);
+  const text = readFileSync(await dl.path(), 'utf8');
+  writeFileSync(file, text);
+  return mshNodes(text);
+}
 
 /** Sets the boundary menu and waits for the page to have taken it. */
 async function chooseBoundary(p, rule) {
@@ -50,11 +71,9 @@ export default async function ({ server, context }) {
     const p = await freshPage(context, 1366, 768, 'boundary');
     try {
       await open(p, server.base);
-      // a planar mesh (the default sample): fixed, disabled, and why
-      check(await p.locator('#boundary').isDisabled(), 'a planar mesh\'s boundary cannot slide');
+      // a linear planar mesh (the default sample): fixed, and free to choose
+      check(!(await p.locator('#boundary').isDisabled()) && (await p.textContent('#boundary-why')) === '', 'a planar mesh\'s boundary slides');
       check(await p.inputValue('#boundary') === 'fixed', `the menu shows ${await p.inputValue('#boundary')}`);
-      const why = await p.textContent('#boundary-why');
-      check(/^Fixed here: the page slides the boundaries of volume meshes and surfaces; this mesh is planar \(the command line and Python slide it\)\.$/.test(why), `why: ${why}`);
       check(/as in the papers/.test(await p.textContent('#boundary-words')), await p.textContent('#boundary-words'));
 
       await p.setInputFiles('#file', file);
@@ -105,11 +124,13 @@ export default async function ({ server, context }) {
       check(await p.locator('#boundary-key').isVisible(), 'the key follows the link');
       const hex = await stats(p, 'b');
       check(hex.boundary_sliding === String(6 * 25 + 12 * 5) && Number(hex.boundary_distance) < 1e-12, `the cube of 6³ cells: 150 nodes on its faces, 60 on its edges, all on it: ${JSON.stringify(hex)}`);
-      // a planar sample in the same link: fixed, disabled, the choice kept for a volume
-      await open(p, `${server.base}#sample=plate-tri&boundary=slide`);
+      // a quadratic planar sample in the same link: fixed, disabled, the choice kept for a volume
+      await open(p, `${server.base}#sample=plate-quadratic&boundary=slide`);
       check(await p.isHidden('#message'), `no refusal: ${await p.textContent('#message')}`);
-      check(await p.locator('#boundary').isDisabled() && await p.inputValue('#boundary') === 'fixed', 'a planar sample shows the boundary fixed');
-      check(/this mesh is planar/.test(await p.textContent('#boundary-why')), await p.textContent('#boundary-why'));
+      check(await p.locator('#boundary').isDisabled() && await p.inputValue('#boundary') === 'fixed', 'a quadratic planar sample shows the boundary fixed');
+      const why = await p.textContent('#boundary-why');
+      check(/^Fixed here: the page slides a linear planar mesh's boundary; this mesh is quadratic/.test(why), `why: ${why}`);
+      check(await p.locator('#boundary-key').isHidden(), 'no key where the boundary cannot slide');
       check(!/boundary=/.test(await p.evaluate(() => location.hash)), `the link drops it: ${await p.evaluate(() => location.hash)}`);
       // a surface: its curves (the capped cylinder's two rims) slide, said in its own words
       await chooseSample(p, 'sample:cylinder-capped');
@@ -134,6 +155,94 @@ export default async function ({ server, context }) {
       check(/'boundary' must be one of fixed, slide, found 'sliding'/.test(bad), `the refusal: ${bad}`);
     } finally {
       await p.close();
+    }
+  });
+
+  await test('issue 58: a planar mesh\'s boundary slides on the page as `smoothlab smooth --boundary slide` slides it, and a tangled one\'s once a pass leaves it valid', async () => {
+    const dir = path.join(OUT, 'boundary');
+    mkdirSync(dir, { recursive: true });
+    /** The tool's run on `file` with the boundary sliding: its report and its mesh's nodes. */
+    const smooth = (file, passes) => {
+      const out = file.replace(/\.msh$/, '-slid.msh');
+      const r = cli(['smooth', file, '-o', out, '--boundary', 'slide', '--passes', String(passes), '--finish', '0', '--json']);
+      check(r.status === 0, r.stderr);
+      return { report: JSON.parse(r.stdout), nodes: mshNodes(readFileSync(out, 'utf8')) };
+    };
+    const same = (got, want) => got.length === want.length && got.every((q, i) => q.every((v, k) => v === want[i][k]));
+    const p = await freshPage(context, 1366, 768, 'planar boundary');
+    try {
+      // the plate with a hole in triangles, valid: its boundary slides from the first pass
+      await open(p, `${server.base}#sample=plate-tri`);
+      const plate = path.join(dir, 'plate-tri.msh');
+      await saveMsh(p, 'b', plate);
+      const tool = smooth(plate, 2);
+      const b = tool.report.boundary;
+      check(b && b.corners === 4 && b.curve_nodes > 20, `the tool's boundary report: ${JSON.stringify(b)}`);
+      check(await purplePixels(p, 'mesh-b') === 0, 'a fixed boundary is not marked');
+      await chooseBoundary(p, 'slide');
+      const words = await p.textContent('#boundary-words');
+      check(/slide along the boundary as loaded/.test(words) && /turns by more than 60°/.test(words) && /tangled/.test(words), `the planar sentence: ${words}`);
+      const status = await p.textContent('#status');
+      const counts = `${b.curve_nodes} nodes slide along the boundary; ${b.corners} corners stay.`;
+      check(status.includes(counts), `status: ${status}; the tool: ${counts}`);
+      check(await p.locator('#boundary-key').isVisible() && /the boundary: its nodes slide along it/.test(await p.textContent('#boundary-key')), await p.textContent('#boundary-key'));
+      for (const id of ['mesh-a', 'mesh-b']) {
+        const purple = await purplePixels(p, id);
+        check(purple > 200, `${id}: the sliding boundary is drawn (${purple} pixels)`);
+      }
+      check((await stats(p, 'b')).boundary_sliding === String(b.curve_nodes), `the table: ${JSON.stringify(await stats(p, 'b'))}`);
+      check(/&boundary=slide(&|$)/.test(await p.evaluate(() => location.hash)), `the link: ${await p.evaluate(() => location.hash)}`);
+      for (const pass of tool.report.passes) {
+        await step(p);
+        const s = await stats(p, 'b');
+        check(s.min_angle === `${pass.min_angle_deg.toFixed(2)}°` && s.inverted === String(pass.inverted), `pass ${pass.pass}: the page ${s.min_angle}, the tool ${pass.min_angle_deg.toFixed(2)}°`);
+      }
+      await p.evaluate(() => window.scrollTo(0, 0));
+      await p.screenshot({ path: path.join(OUT, 'boundary-planar-1366x768.png') });
+      const s2 = await stats(p, 'b');
+      check(s2.boundary_distance === b.max_distance.toExponential(2), `the largest distance from the boundary: the page ${s2.boundary_distance}, the tool ${b.max_distance.toExponential(2)}`);
+      check(same(await saveMsh(p, 'b', path.join(dir, 'plate-tri-page.msh')), tool.nodes), 'B after 2 passes is not the command-line tool\'s mesh');
+      console.log(`     plate-tri, 2 passes sliding: min angle ${tool.report.final.min_angle_deg.toFixed(2)}°, ${b.curve_nodes} boundary nodes slid, the page's B the tool's output node for node`);
+      // Reset keeps the boundary where it was loaded
+      await p.click('#reset');
+      await idle(p);
+      check((await stats(p, 'b')).passes === '0' && Number((await stats(p, 'b')).boundary_distance) === 0, `reset: ${JSON.stringify(await stats(p, 'b'))}`);
+
+      // the opening sample, tangled: the boundary is held until a pass leaves a side valid
+      await chooseSample(p, 'sample:plate-quad-tangled-hard');
+      check(await p.inputValue('#boundary') === 'slide' && !(await p.locator('#boundary').isDisabled()), 'the rule stays with another planar sample');
+      const tangled = path.join(dir, 'plate-quad-tangled-hard.msh');
+      await saveMsh(p, 'b', tangled);
+      const held = smooth(tangled, 2);
+      check(held.report.passes[0].inverted === 0 && held.report.boundary, `the tool untangles it in a pass, then slides: ${JSON.stringify(held.report.passes)}`);
+      check((await stats(p, 'b')).boundary_sliding === undefined && await purplePixels(p, 'mesh-b') === 0, 'held while tangled: no boundary rows, no marks');
+      await step(p);
+      const [a1, b1] = [await stats(p, 'a'), await stats(p, 'b')];
+      check(b1.inverted === '0' && b1.boundary_sliding === String(held.report.boundary.curve_nodes), `B is valid after a pass, and slides from the next: ${JSON.stringify(b1)}`);
+      check(Number(a1.inverted) > 0 && a1.boundary_sliding === undefined, `A is still tangled, its boundary held: ${JSON.stringify(a1)}`);
+      check(await purplePixels(p, 'mesh-b') > 200 && await purplePixels(p, 'mesh-a') === 0, 'the marks on the side that slides only');
+      await step(p);
+      const b2 = await stats(p, 'b');
+      check(b2.boundary_distance === held.report.boundary.max_distance.toExponential(2), `the distance: the page ${b2.boundary_distance}, the tool ${held.report.boundary.max_distance.toExponential(2)}`);
+      check(same(await saveMsh(p, 'b', path.join(dir, 'plate-quad-tangled-hard-page.msh')), held.nodes), 'the tangled plate\'s B after 2 passes is not the command-line tool\'s mesh');
+      await p.evaluate(() => window.scrollTo(0, 0));
+      await p.screenshot({ path: path.join(OUT, 'boundary-planar-tangled-1366x768.png') });
+      // fixed again: both sides start again, held
+      await chooseBoundary(p, 'fixed');
+      check((await stats(p, 'b')).boundary_sliding === undefined && await p.locator('#boundary-key').isHidden(), 'fixed again');
+    } finally {
+      await p.close();
+    }
+    // a phone: the sliding plate after a Step, marks and key in view
+    const phone = await freshPage(context, 390, 844, 'planar boundary phone');
+    try {
+      await open(phone, `${server.base}#sample=plate-tri&boundary=slide`);
+      await step(phone);
+      check(await purplePixels(phone, 'mesh-a') > 100, 'the phone draws the marks');
+      await phone.evaluate(() => window.scrollTo(0, 0));
+      await phone.screenshot({ path: path.join(OUT, 'boundary-planar-390x844.png') });
+    } finally {
+      await phone.close();
     }
   });
 }

@@ -8,7 +8,7 @@
 use serde::Serialize;
 
 use super::permalink::{control_label, gmsh_sample_name, PageState, GMSH_FILES};
-use super::settings::{boundary_words, surface_boundary_words, target_refused, target_words};
+use super::settings::{boundary_words, planar_boundary_words, surface_boundary_words, target_refused, target_words};
 use smoothlab::smooth::limits::{
     amount_words, IntRange, AMOUNT_STEP, MAX_AMOUNT, MAX_ITER, PASSES, SEED, THRESHOLDS,
 };
@@ -76,15 +76,16 @@ pub struct TargetInfo {
     pub words: &'static str,
 }
 
-/// One rule of the boundary menu (volume meshes and surfaces): its name, its menu entry
-/// and what it means in a sentence for the page's users ([`boundary_words`]), shown
-/// beside the menu; a surface's sentence apart (its boundary is its curves).
+/// One rule of the boundary menu: its name, its menu entry and what it means in a
+/// sentence for the page's users, shown beside the menu: on a volume mesh
+/// ([`boundary_words`]), on a surface (its boundary is its curves) and on a planar mesh.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct BoundaryInfo {
     pub name: &'static str,
     pub label: &'static str,
-    pub words: &'static str,
+    pub words: String,
     pub surface_words: &'static str,
+    pub planar_words: String,
 }
 
 /// A name a menu offers, with its words for people.
@@ -237,6 +238,7 @@ pub fn page_controls() -> PageControls {
                 },
                 words: boundary_words(r),
                 surface_words: surface_boundary_words(r),
+                planar_words: planar_boundary_words(r),
             })
             .collect(),
         objectives: smoothlab::objective::ObjectiveKind::ALL

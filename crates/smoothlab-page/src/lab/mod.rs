@@ -34,18 +34,20 @@ use glam::DVec2;
 use tiny_skia::Pixmap;
 
 pub use lab3d::{Frame3d, Lab3d, Mesh3d};
-pub use pass::{PassProgress, PassStage, SideSweep};
+pub use pass::{PassProgress, PassStage, SideSweep, SlideState};
 use pass::{PassRun, RunKind};
 pub use settings::{Choice, Settings, Side};
 use smoothlab::error::{Error, Result};
 use smoothlab::generate::perturb;
 use smoothlab::io::{write_string, Format, WriteOptions};
-use smoothlab::mesh::Mesh;
+use smoothlab::mesh::{Mesh, FEATURE_ANGLE_DEG};
 use smoothlab::objective::Objective;
 use smoothlab::optimize::SolveResult;
 use smoothlab::quality::MeshStats;
 use smoothlab::smooth::{solve_node, Smoother};
 use smoothlab::target::Target;
+use smoothlab::volume::BoundaryRule;
+use smoothlab::BoundaryReport;
 use stats::{quick_stats_and_buckets, QuickStats};
 pub use table::{
     PanelStats, PanelTable, TableDetail, WorkDone, DETAIL_MAX_ELEMENTS, SMALL_ANGLE_DEG,
@@ -78,6 +80,8 @@ pub struct Panel {
     full: OnceCell<MeshStats>,
     /// The last mesh picture drawn without a highlight, with the version, canvas and zoom it shows.
     picture: RefCell<Option<(u64, Canvas, smoothlab_render::ZoomPan, Pixmap)>>,
+    /// The last report of a sliding boundary, with the version it measured.
+    boundary: RefCell<Option<(u64, BoundaryReport)>>,
 }
 
 impl Panel {
@@ -99,6 +103,7 @@ impl Panel {
             buckets,
             full: OnceCell::from(full.clone()),
             picture: RefCell::new(None),
+            boundary: RefCell::new(None),
         })
     }
 
@@ -136,8 +141,9 @@ pub struct Playground {
     versions: Versions,
     run: Option<PassRun>,
     /// A completed sweep for another engine ([`begin_sweep`](Self::begin_sweep)): the
-    /// panel's swept positions and what the sweep did, until taken.
-    swept: Option<(Vec<DVec2>, SideSweep)>,
+    /// panel's swept positions, what the sweep did and its nodes' boundary segments (where
+    /// it slides), until taken.
+    swept: Option<(Vec<DVec2>, SideSweep, Option<Vec<u32>>)>,
     /// The user's zoom and pan on the mesh panels (both panels share it).
     zoom: smoothlab_render::ZoomPan,
     /// The part of a star the level-set views show (both sides share it).
@@ -225,8 +231,9 @@ impl Playground {
     /// progress is abandoned). A new target takes effect at once: with
     /// [`Target::Input`] every corner is measured against the mesh as loaded (or as last
     /// perturbed, [`original_nodes`](Self::original_nodes)), whatever the panels went
-    /// through since. A planar mesh's boundary is fixed: [`BoundaryRule::Slide`](smoothlab::volume::BoundaryRule::Slide)
-    /// is refused, saying why ([`slide_refused`](Self::slide_refused)).
+    /// through since. A new boundary rule starts both panels again from the mesh as loaded
+    /// ([`reset`](Self::reset)); [`BoundaryRule::Slide`] is refused where the boundary
+    /// cannot slide, saying why ([`slide_refused`](Self::slide_refused)).
     pub fn set_settings(&mut self, settings: Settings) -> Result<()> {
         let o = [settings.side_options(Side::A, self.run_start())?, settings.side_options(Side::B, self.run_start())?];
         settings::check_boundary(settings.boundary, self.slide_refused())?;
@@ -236,8 +243,11 @@ impl Playground {
             p.objective = settings.choice(side).build();
         }
         let retarget = settings.target != self.settings.target;
+        let rebound = settings.boundary != self.settings.boundary;
         self.settings = settings;
-        if retarget {
+        if rebound {
+            self.reset(); // which gives both panels the rule, and the target again
+        } else if retarget {
             for i in 0..2 {
                 self.aim(i);
             }
@@ -245,10 +255,63 @@ impl Playground {
         Ok(())
     }
 
-    /// Why this mesh's boundary nodes cannot slide: a planar mesh's never do (the core's
-    /// `--boundary slide` takes volume meshes only).
+    /// Why this mesh's boundary nodes cannot slide, if they cannot: a quadratic mesh's stay
+    /// on the page (the core slides them along its curved edges; a drag on the page would
+    /// have to carry their mid-side nodes too).
     pub fn slide_refused(&self) -> Option<String> {
-        Some(settings::slide_refused_planar())
+        self.topology().has_quadratic().then(settings::slide_refused_quadratic_planar)
+    }
+
+    /// The boundary rule a run from the mesh as loaded (or as last perturbed) begins with:
+    /// the settings', but a tangled mesh's boundary is held until a pass leaves the panel
+    /// valid ([`slide_once_valid`](Self::slide_once_valid)), as `smoothlab smooth
+    /// --boundary slide` holds it.
+    fn starting_rule(&self) -> BoundaryRule {
+        if self.original_stats.inverted > 0 {
+            BoundaryRule::Fixed
+        } else {
+            self.settings.boundary
+        }
+    }
+
+    /// Lets the boundary of each panel whose last pass left it valid slide, where the
+    /// settings slide it and it is still held: taken on the panel's positions now, as
+    /// the core's run takes it after such a pass.
+    fn slide_once_valid(&mut self) {
+        if self.settings.boundary != BoundaryRule::Slide {
+            return;
+        }
+        for p in &mut self.panels {
+            if p.mesh.boundary_rule() == BoundaryRule::Fixed && p.records.last().is_some_and(|r| r.after.inverted == 0) {
+                p.mesh.set_boundary(BoundaryRule::Slide, FEATURE_ANGLE_DEG);
+            }
+        }
+    }
+
+    /// Where a panel's sliding boundary stands ([`SlideState`]), `None` while it is held.
+    /// A split pass hands panel A's to the engine that sweeps
+    /// ([`begin_sweep`](Self::begin_sweep)).
+    pub fn slide_state(&self, side: Side) -> Option<SlideState> {
+        SlideState::of(&self.panel(side).mesh)
+    }
+
+    /// A panel's boundary report ([`BoundaryReport::of_planar`], as the core's run
+    /// reports it) while its boundary slides; measured once per version of its positions,
+    /// and during a pass the one before it.
+    fn boundary_report(&self, side: Side) -> Option<BoundaryReport> {
+        let p = self.panel(side);
+        if p.mesh.boundary_rule() != BoundaryRule::Slide {
+            return None;
+        }
+        let mut kept = p.boundary.borrow_mut();
+        match *kept {
+            Some((v, r)) if v == p.version || self.run.is_some() => Some(r),
+            _ => {
+                let r = BoundaryReport::of_planar(&p.mesh);
+                *kept = Some((p.version, r));
+                Some(r)
+            }
+        }
     }
 
     /// The positions every corner is measured against, with the settings' target
@@ -319,8 +382,15 @@ impl Playground {
     /// exactly when the settings' target is [`Target::Input`] (the other engine's mesh
     /// may have been perturbed since this one loaded it), and measured against during the
     /// sweep only. `start` is the other engine's [`run_start`](Self::run_start): its
-    /// run's, not this one's.
-    pub fn begin_sweep(&mut self, side: Side, nodes: &[f64], target: Option<&[f64]>, start: settings::RunStart) -> Result<()> {
+    /// run's, not this one's; `slide` its panel's [`slide_state`](Self::slide_state).
+    pub fn begin_sweep(
+        &mut self,
+        side: Side,
+        nodes: &[f64],
+        target: Option<&[f64]>,
+        start: settings::RunStart,
+        slide: Option<&SlideState>,
+    ) -> Result<()> {
         self.abort_pass();
         let options = self.settings.side_options(side, start)?;
         let nodes = self.positions_from(nodes)?;
@@ -348,8 +418,12 @@ impl Playground {
         // abandoned (and this playground's target with them: see `abort_pass`)
         run.save(&self.panels);
         let p = &mut self.panels[side.index()];
+        if let Err(e) = SlideState::give(slide, &mut p.mesh, &nodes) {
+            run.undo(&mut self.panels);
+            return Err(e);
+        }
+        let p = &mut self.panels[side.index()];
         p.smoother = Smoother::new(options)?;
-        p.mesh.nodes_mut().copy_from_slice(&nodes);
         if let Some(t) = target {
             p.mesh.set_target_from(self.settings.target, t);
         }
@@ -359,24 +433,26 @@ impl Playground {
 
     /// The sweep begun by [`begin_sweep`](Self::begin_sweep), once
     /// [`continue_pass`](Self::continue_pass) said it is done: the swept positions (x, y
-    /// interleaved) and what the sweep did. `None` before that, and after it was taken.
-    pub fn take_sweep(&mut self) -> Option<(Vec<f64>, SideSweep)> {
+    /// interleaved), what the sweep did, and the boundary segment each node was last put
+    /// on where the boundary slides ([`SlideState::segments`]). `None` before that, and
+    /// after it was taken.
+    pub fn take_sweep(&mut self) -> Option<(Vec<f64>, SideSweep, Option<Vec<u32>>)> {
         self.swept
             .take()
-            .map(|(nodes, sweep)| (interleaved(&nodes), sweep))
+            .map(|(nodes, sweep, segments)| (interleaved(&nodes), sweep, segments))
     }
 
     /// Hands panel A's sweep, made by another engine, to the split pass in progress
-    /// ([`begin_split_pass`](Self::begin_split_pass)): its positions (x, y interleaved)
-    /// and what it did.
-    pub fn adopt_sweep(&mut self, nodes: &[f64], sweep: SideSweep) -> Result<()> {
+    /// ([`begin_split_pass`](Self::begin_split_pass)): its positions (x, y interleaved),
+    /// what it did and, where panel A's boundary slides, its nodes' boundary segments
+    /// ([`take_sweep`](Self::take_sweep)'s).
+    pub fn adopt_sweep(&mut self, nodes: &[f64], sweep: SideSweep, segments: Option<&[u32]>) -> Result<()> {
         let nodes = self.positions_from(nodes)?;
         let run = self
             .run
             .as_mut()
             .ok_or_else(|| Error::invalid("no pass is in progress: begin a split pass first"))?;
-        run.adopt(&mut self.panels, &mut self.versions, &nodes, sweep)
-            .map_err(Error::invalid)
+        run.adopt(&mut self.panels, &mut self.versions, &nodes, sweep, segments)
     }
 
     /// The positions of a panel, x and y interleaved (what [`begin_sweep`](Self::begin_sweep) takes).
@@ -430,7 +506,9 @@ impl Playground {
                 self.aim(side.index()); // its own target back, after the other engine's
                 return Ok(PassProgress::swept(side));
             }
-            return Ok(run.finish(&mut self.panels, &mut self.versions));
+            let done = run.finish(&mut self.panels, &mut self.versions);
+            self.slide_once_valid();
+            return Ok(done);
         }
         Ok(run.progress(&self.panels))
     }
@@ -453,6 +531,9 @@ impl Playground {
         self.abort_pass();
         let mesh = &mut self.panels[0].mesh;
         mesh.nodes_mut().copy_from_slice(&self.original);
+        // the interior only, whatever the rule: a sliding node is free, but not to be
+        // thrown off the boundary (the reset below takes the rule again)
+        mesh.set_boundary(BoundaryRule::Fixed, FEATURE_ANGLE_DEG);
         let perturbed = perturb(mesh, amount, seed)?;
         self.original_stats = smoothlab::quality::mesh_stats(&perturbed);
         quick_stats_and_buckets(&perturbed, &mut self.original_buckets);
@@ -557,19 +638,22 @@ impl Playground {
             mesh: p.quick,
             detail: self.detail(side),
             max_distance_from_surface: None,
-            boundary: None,
+            boundary: self.boundary_report(side),
             work: WorkDone::of(&p.records),
         }
     }
 
-    /// Both panels back to the original mesh, their records cleared.
+    /// Both panels back to the original mesh, their records cleared, their boundary under
+    /// the rule a run begins with: the settings', but held while the mesh is tangled.
     pub fn reset(&mut self) {
         self.abort_pass();
         self.undo.clear();
         let o = Side::BOTH.map(|side| self.settings.side_options(side, self.run_start()).expect("the settings were checked when set"));
         let quick = self.original_stats.quick();
+        let rule = self.starting_rule();
         for (p, o) in self.panels.iter_mut().zip(o) {
             p.mesh.nodes_mut().copy_from_slice(&self.original);
+            p.mesh.set_boundary(rule, FEATURE_ANGLE_DEG);
             p.version = self.original_version;
             p.quick = quick;
             p.buckets.clone_from(&self.original_buckets);
@@ -610,6 +694,9 @@ impl Playground {
                 None,
                 format!("no such node: the mesh has {} nodes", m.node_count()),
             ));
+        }
+        if m.boundary_node(node).is_some_and(|c| c.slides()) {
+            return Err(Error::node(node, None, "slides along the boundary with the passes, so it cannot be dragged"));
         }
         if !m.is_free(node) {
             return Err(Error::node(
@@ -829,9 +916,14 @@ mod tests {
         }
     }
 
-    /// The command-line tool's run on `mesh` (`smoothlab smooth --target T --passes N
-    /// --finish 0`) with a side's settings: its positions after the passes.
+    /// The command-line tool's run on `mesh` (`smoothlab smooth --target T --boundary B
+    /// --passes N --finish 0`) with a side's settings: its positions after the passes.
     fn smoothed_as_the_cli(mesh: &Mesh, settings: Settings, side: Side, passes: u32) -> Mesh {
+        run_as_the_cli(mesh, settings, side, passes).0
+    }
+
+    /// [`smoothed_as_the_cli`], with the run's report.
+    fn run_as_the_cli(mesh: &Mesh, settings: Settings, side: Side, passes: u32) -> (Mesh, smoothlab::Report) {
         let c = settings.choice(side);
         let mut model = smoothlab::Model::Planar(mesh.clone());
         // the page's threshold is the tool's default, and only new takes a penalty
@@ -842,16 +934,85 @@ mod tests {
             .order(settings.order)
             .max_iter(settings.max_iter)
             .target(settings.target)
+            .boundary(settings.boundary)
             .passes(passes)
             .finish(0);
         if c.objective == smoothlab::ObjectiveKind::SmoothShape {
             smoothing = smoothing.penalty(c.penalty);
         }
-        model.smooth(&smoothing).unwrap();
+        let report = model.smooth(&smoothing).unwrap();
         let smoothlab::Model::Planar(m) = model else {
             unreachable!()
         };
-        m
+        (m, report)
+    }
+
+    #[test]
+    fn a_sliding_boundary_steps_as_the_cli_takes_it_valid_or_tangled() {
+        // the quad plate perturbed a little (valid: its boundary slides from the first
+        // pass) and heavily (tangled: held until a pass leaves a side valid, then sliding)
+        let slide = Settings { boundary: BoundaryRule::Slide, ..Settings::default() };
+        for (amount, tangled) in [(0.3, false), (0.8, true)] {
+            let mut pg = Playground::new(Sample::PlateQuad.generate().unwrap()).unwrap();
+            pg.perturb(amount, 5).unwrap();
+            assert_eq!(pg.original_stats().inverted > 0, tangled, "{amount}");
+            let loaded = pg.topology().clone();
+            pg.set_settings(slide).unwrap();
+            let on_boundary: Vec<usize> = (0..loaded.node_count()).filter(|&n| loaded.is_boundary(n)).collect();
+            let boundary_moved = |m: &Mesh| on_boundary.iter().filter(|&&n| m.nodes()[n] != loaded.nodes()[n]).count();
+            for pass in 1..=2 {
+                // settings between passes (the page sends them before each Step) change nothing
+                pg.set_settings(slide).unwrap();
+                pg.step(&no_clock);
+                if pass == 1 {
+                    for side in Side::BOTH {
+                        let moved = boundary_moved(&pg.panel(side).mesh);
+                        assert_eq!(moved == 0, tangled, "{amount} {side:?}: {moved} boundary nodes moved in the first pass");
+                    }
+                }
+            }
+            let mut slid = 0;
+            for side in Side::BOTH {
+                let what = format!("{amount} {side:?}");
+                let (cli, report) = run_as_the_cli(&loaded, slide, side, 2);
+                let m = &pg.panel(side).mesh;
+                assert_eq!(m.nodes(), cli.nodes(), "{what}");
+                assert_eq!(pg.table(side).boundary.as_ref(), report.boundary(), "{what}");
+                for n in (0..m.node_count()).filter(|&n| !m.is_free(n)) {
+                    assert_eq!(m.nodes()[n], loaded.nodes()[n], "{what}: node {n} is held, but moved");
+                }
+                slid += boundary_moved(m);
+            }
+            assert!(slid > 10, "{amount}: {slid} boundary nodes slid");
+            let b = pg.table(Side::B).boundary.expect("B's boundary slides");
+            assert!(b.corners == 4 && b.curve_nodes > 20 && b.max_distance < 1e-12 * b.mean_edge, "{b:?}");
+            // a perturbation moves the interior only; fixed holds the boundary again
+            pg.perturb(0.2, 9).unwrap();
+            assert!(on_boundary.iter().all(|&n| pg.original_nodes()[n] == loaded.nodes()[n]), "the perturbation moved the boundary");
+            pg.set_settings(Settings::default()).unwrap();
+            pg.step(&no_clock);
+            for side in Side::BOTH {
+                assert!(pg.slide_state(side).is_none() && pg.table(side).boundary.is_none());
+                assert_eq!(boundary_moved(&pg.panel(side).mesh), 0, "{side:?}: fixed, yet the boundary moved");
+            }
+        }
+    }
+
+    #[test]
+    fn a_sliding_node_is_neither_dragged_nor_chosen_and_a_quadratic_boundary_stays() {
+        let mut pg = Playground::new(Sample::PlateTri.generate().unwrap()).unwrap();
+        pg.set_settings(Settings { boundary: BoundaryRule::Slide, ..Settings::default() }).unwrap();
+        let m = pg.topology().clone();
+        let sliding = (0..m.node_count()).find(|&n| m.boundary_node(n).is_some_and(|c| c.slides())).unwrap();
+        let e = pg.move_node(sliding, DVec2::ZERO).unwrap_err().to_string();
+        assert!(e.contains("slides along the boundary"), "{e}");
+        let why = pick::why_not_free(&m, sliding).unwrap();
+        assert!(why.contains("slides along the boundary"), "{why}");
+        assert!(pick::worst_free_node(&m).is_some_and(|n| !m.is_boundary(n)));
+        let mut quadratic = Playground::new(Sample::PlateQuadratic.generate().unwrap()).unwrap();
+        let e = quadratic.set_settings(Settings { boundary: BoundaryRule::Slide, ..Settings::default() }).unwrap_err().to_string();
+        assert_eq!(e, format!("the boundary cannot slide here: {}", settings::slide_refused_quadratic_planar()));
+        assert_eq!(quadratic.settings().boundary, BoundaryRule::Fixed, "a refusal changes nothing");
     }
 
     #[test]

@@ -20,8 +20,11 @@ use serde::{Deserialize, Serialize};
 
 use super::stats::{QuickAcc, QuickStats};
 use super::{Panel, PassSummary, Side, Versions};
+use smoothlab::error::{Error, Result};
+use smoothlab::mesh::{Mesh, FEATURE_ANGLE_DEG};
 use smoothlab::quality::MeshStats;
 use smoothlab::smooth::SweepCounts;
+use smoothlab::volume::BoundaryRule;
 
 /// Elements measured per slice of a pass's statistics.
 const STATS_SLICE: usize = 32 * 1024;
@@ -70,6 +73,48 @@ pub struct SideSweep {
     pub sweep_ms: f64,
 }
 
+/// Where a panel's sliding boundary stands, as a split pass hands it to the engine that
+/// sweeps and an abandoned pass puts it back: the positions the boundary was taken from
+/// and the boundary segment each node was last put on (the core's
+/// [`Mesh::boundary_taken_from`] and [`Mesh::boundary_segments`]).
+#[derive(Clone, Debug, PartialEq)]
+pub struct SlideState {
+    pub from: Vec<DVec2>,
+    pub segments: Vec<u32>,
+}
+
+impl SlideState {
+    /// `mesh`'s; `None` while its boundary is held.
+    pub fn of(mesh: &Mesh) -> Option<SlideState> {
+        Some(SlideState { from: mesh.boundary_taken_from()?.to_vec(), segments: mesh.boundary_segments()?.to_vec() })
+    }
+
+    /// Puts `mesh` at `nodes` (one a node) with its boundary as `state` says: held for
+    /// `None`, else taken from `state.from` (again only where it was taken from other
+    /// positions) with its nodes on `state.segments`. A state that does not fit the mesh
+    /// is refused; the mesh must then be put back.
+    pub(super) fn give(state: Option<&SlideState>, mesh: &mut Mesh, nodes: &[DVec2]) -> Result<()> {
+        let Some(s) = state else {
+            mesh.set_boundary(BoundaryRule::Fixed, FEATURE_ANGLE_DEG);
+            mesh.nodes_mut().copy_from_slice(nodes);
+            return Ok(());
+        };
+        if s.from.len() != mesh.node_count() || !s.from.iter().all(|p| p.is_finite()) {
+            return Err(Error::invalid(format!(
+                "the boundary was taken from {} positions for a mesh of {} nodes: give one finite position a node",
+                s.from.len(),
+                mesh.node_count()
+            )));
+        }
+        if mesh.boundary_taken_from() != Some(&s.from[..]) {
+            mesh.nodes_mut().copy_from_slice(&s.from);
+            mesh.set_boundary(BoundaryRule::Slide, FEATURE_ANGLE_DEG);
+        }
+        mesh.nodes_mut().copy_from_slice(nodes);
+        mesh.set_boundary_segments(&s.segments)
+    }
+}
+
 /// Which part of a pass a run does.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub(super) enum RunKind {
@@ -94,6 +139,7 @@ enum Stage {
 /// A panel as it was when a pass began on it, to put back if the pass is abandoned.
 struct Saved {
     nodes: Vec<DVec2>,
+    slide: Option<SlideState>,
     version: u64,
     quick: QuickStats,
     buckets: Vec<u8>,
@@ -104,6 +150,7 @@ impl Saved {
     fn of(p: &Panel) -> Saved {
         Saved {
             nodes: p.mesh.nodes().to_vec(),
+            slide: SlideState::of(&p.mesh),
             version: p.version,
             quick: p.quick,
             buckets: p.buckets.clone(),
@@ -365,36 +412,50 @@ impl PassRun {
     }
 
     /// A split run adopts panel A's sweep made by another engine: its positions
-    /// `nodes` and what it did. The panel is saved first, so an abandoned pass puts it
-    /// back; it is measured when panel B is done.
+    /// `nodes`, what it did and, where panel A's boundary slides, the boundary segment
+    /// each node was last put on (`segments`). The panel is saved first, so an abandoned
+    /// pass puts it back; it is measured when panel B is done. A refusal changes nothing.
     pub(super) fn adopt(
         &mut self,
         panels: &mut [Panel; 2],
         versions: &mut Versions,
         nodes: &[DVec2],
         sweep: SideSweep,
-    ) -> Result<(), &'static str> {
+        segments: Option<&[u32]>,
+    ) -> Result<()> {
         if self.kind != RunKind::Split {
-            return Err("the pass in progress is not split between two engines");
+            return Err(Error::invalid("the pass in progress is not split between two engines"));
         }
         if self.sweep.is_some() {
-            return Err("the old side's sweep was adopted already");
+            return Err(Error::invalid("the old side's sweep was adopted already"));
         }
         let p = &mut panels[0];
-        self.saved[0] = Some(Saved::of(p));
-        p.mesh.nodes_mut().copy_from_slice(nodes);
+        let saved = Saved::of(p);
+        let slide = match (&saved.slide, segments) {
+            (Some(s), Some(segments)) => Some(SlideState { from: s.from.clone(), segments: segments.to_vec() }),
+            (None, None) => None,
+            (Some(_), None) => return Err(Error::invalid("the old side's boundary slides: give its nodes' boundary segments with its sweep")),
+            (None, Some(_)) => return Err(Error::invalid("boundary segments were given, but the old side's boundary is held")),
+        };
+        if let Err(e) = SlideState::give(slide.as_ref(), &mut p.mesh, nodes) {
+            SlideState::give(saved.slide.as_ref(), &mut p.mesh, &saved.nodes).expect("the panel's own boundary fits it");
+            return Err(e);
+        }
+        self.saved[0] = Some(saved);
         p.version = versions.fresh();
         self.sweep = Some(sweep);
         Ok(())
     }
 
-    /// The result of a completed [`RunKind::Sweep`]: the panel's swept positions and what
-    /// the sweep did; the panel itself is put back as it was.
-    pub(super) fn finish_sweep(self, panels: &mut [Panel; 2]) -> (Vec<DVec2>, SideSweep) {
-        let nodes = panels[self.panel()].mesh.nodes().to_vec();
+    /// The result of a completed [`RunKind::Sweep`]: the panel's swept positions, what
+    /// the sweep did and its nodes' boundary segments where it slides; the panel itself
+    /// is put back as it was.
+    pub(super) fn finish_sweep(self, panels: &mut [Panel; 2]) -> (Vec<DVec2>, SideSweep, Option<Vec<u32>>) {
+        let mesh = &panels[self.panel()].mesh;
+        let (nodes, segments) = (mesh.nodes().to_vec(), mesh.boundary_segments().map(<[u32]>::to_vec));
         let sweep = self.sweep.unwrap_or_default();
         self.undo(panels);
-        (nodes, sweep)
+        (nodes, sweep, segments)
     }
 
     /// Saves the panel of a sweep run as it is before the run (it gets the other engine's
@@ -424,7 +485,7 @@ impl PassRun {
     pub(super) fn undo(self, panels: &mut [Panel; 2]) {
         for (p, saved) in panels.iter_mut().zip(self.saved) {
             if let Some(s) = saved {
-                p.mesh.nodes_mut().copy_from_slice(&s.nodes);
+                SlideState::give(s.slide.as_ref(), &mut p.mesh, &s.nodes).expect("the panel's own boundary fits it");
                 p.version = s.version;
                 p.quick = s.quick;
                 p.buckets = s.buckets;
@@ -659,7 +720,7 @@ mod tests {
                     primary.begin_split_pass();
                     let helper_before = helper.panel(Side::A).mesh.nodes().to_vec();
                     helper
-                        .begin_sweep(Side::A, &primary.panel_positions(Side::A), None, primary.run_start())
+                        .begin_sweep(Side::A, &primary.panel_positions(Side::A), None, primary.run_start(), None)
                         .unwrap();
                     // the first pass hands the sweep over while panel B is smoothed,
                     // the second once the split pass waits for it
@@ -680,10 +741,10 @@ mod tests {
                         helper_before,
                         "{what}: the helper is put back"
                     );
-                    let (nodes, sweep) = helper.take_sweep().unwrap();
+                    let (nodes, sweep, segments) = helper.take_sweep().unwrap();
                     assert!(helper.take_sweep().is_none());
-                    primary.adopt_sweep(&nodes, sweep).unwrap();
-                    assert!(primary.adopt_sweep(&nodes, sweep).is_err(), "adopted once");
+                    primary.adopt_sweep(&nodes, sweep, segments.as_deref()).unwrap();
+                    assert!(primary.adopt_sweep(&nodes, sweep, segments.as_deref()).is_err(), "adopted once");
                     let records = loop {
                         let p = primary.continue_pass(&clock, 3.0).unwrap();
                         assert!((0.0..=1.0).contains(&p.fraction));
@@ -725,6 +786,74 @@ mod tests {
     }
 
     #[test]
+    fn a_split_pass_slides_the_boundary_as_the_whole_pass_does() {
+        // the quad plate perturbed a little (its boundary slides from the start) and
+        // tangled (held until a pass leaves a side valid): the helper, never perturbed,
+        // is handed panel A's boundary with each sweep and hands its segments back
+        let slide = Settings { boundary: BoundaryRule::Slide, ..Settings::default() };
+        for amount in [0.3, 0.8] {
+            let [mut whole, mut primary, mut helper] = [(); 3].map(|_| Playground::new(Sample::PlateQuad.generate().unwrap()).unwrap());
+            for pg in [&mut whole, &mut primary] {
+                pg.perturb(amount, 5).unwrap();
+            }
+            for pg in [&mut whole, &mut primary, &mut helper] {
+                pg.set_settings(slide).unwrap();
+            }
+            let clock = ticking();
+            let mut handed = 0;
+            for pass in 1..=3 {
+                let what = format!("{amount} pass {pass}");
+                let expected = whole.step(&clock);
+                // Stop during a pass leaves no trace, the boundary's segments too
+                let before = primary.slide_state(Side::B);
+                primary.begin_pass();
+                loop {
+                    let p = primary.continue_pass(&clock, 1.0).unwrap();
+                    assert!(!p.done, "{what}");
+                    if p.side == Side::B && p.stage == PassStage::Smooth && p.visits > 0 {
+                        break;
+                    }
+                }
+                primary.abort_pass();
+                assert_eq!(primary.slide_state(Side::B), before, "{what}");
+                primary.begin_split_pass();
+                let a = primary.slide_state(Side::A);
+                handed += usize::from(a.is_some());
+                let nodes = primary.panel_positions(Side::A);
+                if let Some(a) = &a {
+                    let short = SlideState { from: a.from[1..].to_vec(), segments: a.segments.clone() };
+                    let e = helper.begin_sweep(Side::A, &nodes, None, primary.run_start(), Some(&short)).unwrap_err().to_string();
+                    assert!(e.contains("positions for a mesh of"), "{e}");
+                    let wrong = SlideState { from: a.from.clone(), segments: vec![0; a.segments.len()] };
+                    assert!(helper.begin_sweep(Side::A, &nodes, None, primary.run_start(), Some(&wrong)).is_err());
+                    assert!(!helper.pass_in_progress(), "a refused sweep leaves nothing begun");
+                }
+                helper.begin_sweep(Side::A, &nodes, None, primary.run_start(), a.as_ref()).unwrap();
+                while !helper.continue_pass(&clock, 3.0).unwrap().done {}
+                let (nodes, sweep, segments) = helper.take_sweep().unwrap();
+                assert_eq!(segments.is_some(), a.is_some(), "{what}");
+                if a.is_some() {
+                    assert!(primary.adopt_sweep(&nodes, sweep, None).is_err(), "{what}: the segments are needed");
+                }
+                primary.adopt_sweep(&nodes, sweep, segments.as_deref()).unwrap();
+                let records = loop {
+                    if let Some(r) = primary.continue_pass(&clock, 3.0).unwrap().records {
+                        break r;
+                    }
+                };
+                for side in Side::BOTH {
+                    let i = side as usize;
+                    assert_eq!(primary.panel(side).mesh.nodes(), whole.panel(side).mesh.nodes(), "{what} {side:?}");
+                    assert_eq!((records[i].counts, records[i].after), (expected[i].counts, expected[i].after), "{what} {side:?}");
+                    assert_eq!(primary.slide_state(side), whole.slide_state(side), "{what} {side:?}");
+                    assert_eq!(primary.table(side).boundary, whole.table(side).boundary, "{what} {side:?}");
+                }
+            }
+            assert!(handed >= 2, "{amount}: panel A's boundary slid in {handed} of 3 passes");
+        }
+    }
+
+    #[test]
     fn a_split_pass_against_the_input_is_the_whole_pass_though_the_helper_was_not_perturbed() {
         use smoothlab::target::Target;
         let mesh = Sample::PlateQuad.generate().unwrap();
@@ -748,12 +877,12 @@ mod tests {
         let clock = ticking();
         let nodes = primary.panel_positions(Side::A);
         let e = helper
-            .begin_sweep(Side::A, &nodes, None, primary.run_start())
+            .begin_sweep(Side::A, &nodes, None, primary.run_start(), None)
             .unwrap_err()
             .to_string();
         assert!(e.contains("give its positions"), "{e}");
         let e = helper
-            .begin_sweep(Side::A, &nodes, Some(&target[2..]), primary.run_start())
+            .begin_sweep(Side::A, &nodes, Some(&target[2..]), primary.run_start(), None)
             .unwrap_err()
             .to_string();
         assert!(e.starts_with("the target's positions:"), "{e}");
@@ -766,6 +895,7 @@ mod tests {
                     &primary.panel_positions(Side::A),
                     Some(&primary.target_positions().unwrap()),
                     primary.run_start(),
+                    None,
                 )
                 .unwrap();
             while !helper.continue_pass(&clock, 3.0).unwrap().done {}
@@ -775,8 +905,8 @@ mod tests {
                 helper.panel(Side::A).mesh.target_nodes(),
                 Some(helper.original_nodes())
             );
-            let (nodes, sweep) = helper.take_sweep().unwrap();
-            primary.adopt_sweep(&nodes, sweep).unwrap();
+            let (nodes, sweep, segments) = helper.take_sweep().unwrap();
+            primary.adopt_sweep(&nodes, sweep, segments.as_deref()).unwrap();
             let records = loop {
                 if let Some(r) = primary.continue_pass(&clock, 3.0).unwrap().records {
                     break r;
@@ -795,7 +925,7 @@ mod tests {
         }
         // an abandoned sweep gives the helper its own target back too
         helper
-            .begin_sweep(Side::A, &primary.panel_positions(Side::A), Some(&target), primary.run_start())
+            .begin_sweep(Side::A, &primary.panel_positions(Side::A), Some(&target), primary.run_start(), None)
             .unwrap();
         helper.continue_pass(&clock, 1.0).unwrap();
         helper.abort_pass();
@@ -806,7 +936,7 @@ mod tests {
         // with the ideal target no positions go with a sweep
         helper.set_settings(Settings::default()).unwrap();
         assert!(helper
-            .begin_sweep(Side::A, &primary.panel_positions(Side::A), Some(&target), primary.run_start())
+            .begin_sweep(Side::A, &primary.panel_positions(Side::A), Some(&target), primary.run_start(), None)
             .is_err());
         assert!(helper.panel(Side::A).mesh.target_nodes().is_none());
     }
@@ -826,34 +956,34 @@ mod tests {
         let n = before[0].len();
         let clock = ticking();
         helper
-            .begin_sweep(Side::A, &primary.panel_positions(Side::A), None, primary.run_start())
+            .begin_sweep(Side::A, &primary.panel_positions(Side::A), None, primary.run_start(), None)
             .unwrap();
         while !helper.continue_pass(&clock, 2.0).unwrap().done {}
-        let (nodes, sweep) = helper.take_sweep().unwrap();
+        let (nodes, sweep, segments) = helper.take_sweep().unwrap();
         assert!(sweep.counts.visits > 0 && nodes != primary.panel_positions(Side::A));
         assert!(
-            primary.adopt_sweep(&nodes, sweep).is_err(),
+            primary.adopt_sweep(&nodes, sweep, segments.as_deref()).is_err(),
             "no split pass in progress"
         );
         primary.begin_pass();
         assert!(
-            primary.adopt_sweep(&nodes, sweep).is_err(),
+            primary.adopt_sweep(&nodes, sweep, segments.as_deref()).is_err(),
             "a whole pass adopts nothing"
         );
         primary.begin_split_pass();
         assert!(
-            primary.adopt_sweep(&nodes[1..], sweep).is_err(),
+            primary.adopt_sweep(&nodes[1..], sweep, segments.as_deref()).is_err(),
             "one coordinate short"
         );
         let mut nan = nodes.clone();
         nan[7] = f64::NAN;
-        let e = primary.adopt_sweep(&nan, sweep).unwrap_err().to_string();
+        let e = primary.adopt_sweep(&nan, sweep, segments.as_deref()).unwrap_err().to_string();
         assert!(e.contains("node 3"), "{e}");
         assert!(helper
-            .begin_sweep(Side::A, &vec![0.0; 2 * n + 2], None, primary.run_start())
+            .begin_sweep(Side::A, &vec![0.0; 2 * n + 2], None, primary.run_start(), None)
             .is_err());
         primary.continue_pass(&clock, 2.0).unwrap();
-        primary.adopt_sweep(&nodes, sweep).unwrap();
+        primary.adopt_sweep(&nodes, sweep, segments.as_deref()).unwrap();
         primary.continue_pass(&clock, 2.0).unwrap();
         primary.abort_pass();
         assert!(!primary.pass_in_progress());
@@ -862,7 +992,7 @@ mod tests {
             assert_eq!(primary.table(side), tables[side as usize]);
         }
         // an abandoned sweep puts the helper back too
-        helper.begin_sweep(Side::A, &nodes, None, primary.run_start()).unwrap();
+        helper.begin_sweep(Side::A, &nodes, None, primary.run_start(), None).unwrap();
         helper.continue_pass(&clock, 1.0).unwrap();
         helper.abort_pass();
         assert_eq!(helper.panel(Side::A).mesh.nodes(), before[0]);

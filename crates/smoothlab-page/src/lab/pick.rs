@@ -29,6 +29,9 @@ pub fn why_not_free(mesh: &Mesh, n: usize) -> Option<String> {
             mesh.node_count().saturating_sub(1)
         ));
     }
+    if mesh.boundary_node(n).is_some_and(|c| c.slides()) {
+        return Some(format!("node {n} slides along the boundary with the passes: choose or drag a node inside"));
+    }
     if mesh.is_free(n) {
         return None;
     }
@@ -59,7 +62,7 @@ impl Playground {
                 }
                 let d2 = view.to_css(*p).distance_squared(css);
                 // a free node wins a tie with a node drawn at the same place
-                if d2 < best || (d2 == best && mesh.is_free(n)) {
+                if d2 < best || (d2 == best && why_not_free(mesh, n).is_none()) {
                     best = d2;
                     nearest = Some(n);
                 }
@@ -86,7 +89,8 @@ pub(crate) fn sentence(why: &str) -> String {
     format!("{first}{}.", chars.as_str())
 }
 
-/// The free node whose star has the smallest element quality (α/β), if any node is free:
+/// The free node whose star has the smallest element quality (α/β), if any node is free
+/// (a sliding boundary node is not chosen: [`why_not_free`]):
 /// the node `smoothlab render` studies and an embedded level-set view opens on.
 pub fn worst_free_node(mesh: &Mesh) -> Option<usize> {
     let q: Vec<f64> = (0..mesh.element_count())
@@ -96,7 +100,7 @@ pub fn worst_free_node(mesh: &Mesh) -> Option<usize> {
         })
         .collect();
     (0..mesh.node_count())
-        .filter(|&n| mesh.is_free(n))
+        .filter(|&n| why_not_free(mesh, n).is_none())
         .map(|n| (n, mesh.node_elements(n).iter().map(|&e| q[e as usize]).fold(f64::INFINITY, f64::min)))
         .min_by(|a, b| a.1.total_cmp(&b.1))
         .map(|(n, _)| n)

@@ -12,11 +12,12 @@ use super::pick::{why_not_free, Pick};
 use super::views::{Canvas, NodeSummary};
 use super::{Playground, Side};
 use smoothlab::error::{Error, Result};
+use smoothlab::volume::BoundaryRule;
 use smoothlab_render::{View, ZoomPan};
 
-/// What a mesh panel last sent to the page: its positions' version, the canvas, the
-/// highlighted node and the zoom.
-type Sent = (u64, Canvas, Option<usize>, ZoomPan);
+/// What a mesh panel last sent to the page: its positions' version, its boundary rule (a
+/// sliding boundary is marked), the canvas, the highlighted node and the zoom.
+type Sent = (u64, BoundaryRule, Canvas, Option<usize>, ZoomPan);
 
 /// The page's view of a playground: see the module docs.
 #[derive(Clone, Debug, Default)]
@@ -81,11 +82,12 @@ impl Playground {
         let mut render_ms = [0.0; 2];
         // equal versions, equal positions: after a load or a reset the B panel's picture
         // is A's, drawn once
-        let same = self.version(Side::A) == self.version(Side::B);
+        let rules = Side::BOTH.map(|s| self.panel(s).mesh.boundary_rule());
+        let same = self.version(Side::A) == self.version(Side::B) && rules[0] == rules[1];
         let mut a_picture = None;
         for s in Side::BOTH {
             let i = s.index();
-            let key = (self.version(s), c, self.screen.node, self.zoom());
+            let key = (self.version(s), rules[i], c, self.screen.node, self.zoom());
             if !force && self.screen.sent[i] == Some(key) {
                 continue;
             }
@@ -218,6 +220,15 @@ mod tests {
         let free = (0..pg.topology().node_count()).find(|&n| pg.topology().is_free(n)).unwrap();
         pg.choose_node(Some(free)).unwrap();
         assert!(pg.frame(c, false, &no_clock).unwrap().pictures.iter().all(Option::is_some), "a highlight changes both");
+        // a new boundary rule changes both, at the positions as loaded: a sliding boundary
+        // is marked, its edges in the marks' reddish purple
+        let purple = |pm: &Pixmap| pm.pixels().iter().filter(|p| [p.red(), p.green(), p.blue()] == smoothlab_render::MARK_LINE_RGB).count();
+        pg.reset();
+        let fixed = pg.frame(c, false, &no_clock).unwrap().pictures.map(Option::unwrap);
+        pg.set_settings(crate::lab::Settings { boundary: BoundaryRule::Slide, ..crate::lab::Settings::default() }).unwrap();
+        let slid = pg.frame(c, false, &no_clock).unwrap().pictures.map(|p| p.expect("a new rule: both are sent again"));
+        assert_eq!(purple(&fixed[0]) + purple(&fixed[1]), 0);
+        assert!(slid.iter().all(|pm| purple(pm) > 50), "{}", purple(&slid[0]));
     }
 
     #[test]

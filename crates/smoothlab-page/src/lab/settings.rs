@@ -9,6 +9,7 @@ use smoothlab::objective::{objective_with, Objective, ObjectiveKind, Penalty};
 use smoothlab::quality::MeshStats;
 use smoothlab::smooth::{Order, SmoothOptions, Strategy};
 use smoothlab::target::Target;
+use smoothlab::mesh::FEATURE_ANGLE_DEG;
 use smoothlab::volume::BoundaryRule;
 
 /// The two panels of the page: the left one (A) and the right one (B), `a` and `b` to the
@@ -121,10 +122,10 @@ pub struct Settings {
     /// Absent means the ideal: the page opens on the papers' setting.
     #[serde(default = "papers_target")]
     pub target: Target,
-    /// What a volume mesh's boundary nodes do ([`BoundaryRule`]): stay where the file put
-    /// them, or slide on the boundary as loaded (or as last perturbed), along its feature
-    /// curves at the core's default feature angle; only a linear volume mesh takes
-    /// `slide` (see [`slide_refused_planar`]). Absent means fixed.
+    /// What a mesh's boundary nodes do ([`BoundaryRule`]): stay where the file put them,
+    /// or slide on the boundary as loaded (or as last perturbed), along its feature curves
+    /// at the core's default feature angle; only a linear mesh takes `slide` (see
+    /// [`slide_refused_quadratic`]). Absent means fixed.
     #[serde(default)]
     pub boundary: BoundaryRule,
     /// What the left (A) and the right (B) panel smooth with; absent means old against
@@ -261,20 +262,31 @@ pub fn target_words(target: Target) -> &'static str {
     }
 }
 
-/// What a [`BoundaryRule`] means, in a sentence for the page's users (the control's words).
-pub fn boundary_words(rule: BoundaryRule) -> &'static str {
+/// What a [`BoundaryRule`] means on a volume mesh, in a sentence for the page's users
+/// (the control's words); the feature angle is the core's ([`FEATURE_ANGLE_DEG`]).
+pub fn boundary_words(rule: BoundaryRule) -> String {
     match rule {
-        BoundaryRule::Fixed => "Boundary nodes stay where the file put them, as in the papers: only interior nodes move.",
-        BoundaryRule::Slide => {
-            "Boundary nodes slide on the boundary as loaded: along its feature curves (where its faces turn by more than 30°) or on its faces between them; the corners where curves meet stay."
-        }
+        BoundaryRule::Fixed => FIXED_WORDS.into(),
+        BoundaryRule::Slide => format!(
+            "Boundary nodes slide on the boundary as loaded: along its feature curves (where its faces turn by more than {FEATURE_ANGLE_DEG}°) or on its faces between them; the corners where curves meet stay."
+        ),
     }
 }
 
-/// Why a planar mesh's boundary nodes cannot slide here (the page slides volume meshes
-/// only; the core's `--boundary slide` takes planar meshes and surfaces too).
-pub fn slide_refused_planar() -> String {
-    "the page slides the boundaries of volume meshes and surfaces; this mesh is planar (the command line and Python slide it)".into()
+/// A fixed boundary, in a sentence: the papers' setting.
+const FIXED_WORDS: &str = "Boundary nodes stay where the file put them, as in the papers: only interior nodes move.";
+
+/// What a [`BoundaryRule`] means on a planar mesh, in a sentence for the page: its
+/// boundary is its edges of one element, a corner where it turns by more than the core's
+/// feature angle ([`FEATURE_ANGLE_DEG`]); a tangled mesh's is held until a pass leaves it
+/// valid, as the core's run holds it.
+pub fn planar_boundary_words(rule: BoundaryRule) -> String {
+    match rule {
+        BoundaryRule::Fixed => FIXED_WORDS.into(),
+        BoundaryRule::Slide => format!(
+            "Boundary nodes slide along the boundary as loaded; a corner, where it turns by more than {FEATURE_ANGLE_DEG}°, stays, as does a node the file fixed. A tangled mesh's boundary stays until a pass leaves the mesh valid, then slides."
+        ),
+    }
 }
 
 /// What a boundary rule does on a surface, in a sentence for the page: its boundary is
@@ -291,6 +303,12 @@ pub fn surface_boundary_words(rule: BoundaryRule) -> &'static str {
 /// Why a quadratic volume mesh's boundary nodes cannot slide.
 pub fn slide_refused_quadratic() -> String {
     "only a linear volume mesh's boundary nodes slide so far; this mesh is quadratic, and its mid-edge nodes would leave its curved faces".into()
+}
+
+/// Why a quadratic planar mesh's boundary nodes cannot slide (the core slides linear
+/// planar meshes only).
+pub fn slide_refused_quadratic_planar() -> String {
+    "the page slides a linear planar mesh's boundary; this mesh is quadratic (the command line and Python slide it along its curved edges)".into()
 }
 
 /// Refuses `rule` where the mesh's boundary cannot slide (`refused`, the reason).

@@ -162,6 +162,8 @@ impl Playground {
                 }
             }
         }
+        // the marks of a sliding boundary on top: the kept picture is the positions' alone
+        smoothlab_render::draw_sliding_boundary(&mut pm, &panel.mesh, &view, c.dpr, None);
         if let Some(n) = highlight {
             raster::draw_highlight(&mut pm, &panel.mesh, &view, n, c.dpr);
         }

@@ -8,12 +8,20 @@ use wasm_bindgen::prelude::*;
 use super::{css_canvas, frame_object, now_ms, object, perturb_seed, pixels, side, to_js};
 use smoothlab::io::{self, Format};
 use crate::lab::views::Canvas;
-use crate::lab::{self, Side, SideSweep};
+use crate::lab::{self, Side, SideSweep, SlideState};
 use smoothlab::mesh::Mesh;
 use smoothlab_render::Theme;
 
 fn canvas(w: u32, h: u32, dpr: f32) -> Canvas {
     Canvas { w, h, dpr }
+}
+
+/// Positions from x and y interleaved (an odd count is refused).
+fn positions(xy: &[f64]) -> Result<Vec<DVec2>, JsError> {
+    if xy.len() % 2 != 0 {
+        return Err(JsError::new(&format!("{} coordinates: give x and y of each position", xy.len())));
+    }
+    Ok(xy.chunks_exact(2).map(|c| DVec2::new(c[0], c[1])).collect())
 }
 
 /// The page's state for a planar mesh: one opaque handle (see [`lab::Playground`]).
@@ -94,8 +102,10 @@ impl Playground {
     /// Starts the sweep of panel `side` alone from `nodes` (the other engine's positions,
     /// x and y interleaved), for a split pass; run it with `continuePass`, then `takeSweep`.
     /// `target` is the other engine's `targetPositions` (null with the ideal target);
-    /// `keepGrading` and `startValid` its `runStart`.
+    /// `keepGrading` and `startValid` its `runStart`; `slideFrom` and `slideSegments` its
+    /// `slideState` of the side (both undefined while its boundary is held).
     #[wasm_bindgen(js_name = beginSweep)]
+    #[allow(clippy::too_many_arguments)]
     pub fn begin_sweep(
         &mut self,
         side: &str,
@@ -103,9 +113,34 @@ impl Playground {
         target: Option<Vec<f64>>,
         keep_grading: f64,
         start_valid: bool,
+        slide_from: Option<Vec<f64>>,
+        slide_segments: Option<Vec<u32>>,
     ) -> Result<(), JsError> {
         let start = crate::lab::settings::RunStart { keep_grading, valid: start_valid };
-        Ok(self.inner.begin_sweep(self::side(side)?, nodes, target.as_deref(), start)?)
+        let slide = match (slide_from, slide_segments) {
+            (Some(from), Some(segments)) => Some(SlideState { from: positions(&from)?, segments }),
+            (None, None) => None,
+            _ => return Err(JsError::new("a sliding boundary travels as both slideFrom and slideSegments")),
+        };
+        Ok(self.inner.begin_sweep(self::side(side)?, nodes, target.as_deref(), start, slide.as_ref())?)
+    }
+
+    /// Where the sliding boundary of panel `side` stands: `{ from: Float64Array, segments:
+    /// Uint32Array }` (the positions it was taken from, x and y interleaved, and the
+    /// boundary segment each node was last put on), or null while it is held. A split pass
+    /// hands panel A's to `beginSweep`.
+    #[wasm_bindgen(js_name = slideState)]
+    pub fn slide_state(&self, side: &str) -> Result<JsValue, JsError> {
+        match self.inner.slide_state(self::side(side)?) {
+            Some(s) => {
+                let from: Vec<f64> = s.from.iter().flat_map(|p| [p.x, p.y]).collect();
+                object(&[
+                    ("from", js_sys::Float64Array::from(&from[..]).into()),
+                    ("segments", js_sys::Uint32Array::from(&s.segments[..]).into()),
+                ])
+            }
+            None => Ok(JsValue::NULL),
+        }
     }
 
     /// Where this engine's runs begin, the mesh as loaded or as last perturbed: the grading
@@ -117,8 +152,8 @@ impl Playground {
         js_sys::Array::of2(&s.keep_grading.into(), &s.valid.into())
     }
 
-    /// Why this mesh's boundary nodes cannot slide: a planar mesh's never do (as the
-    /// 3D lab's `slideRefused`).
+    /// Why this mesh's boundary nodes cannot slide, or undefined: a quadratic mesh's stay
+    /// (as the 3D lab's `slideRefused`).
     #[wasm_bindgen(js_name = slideRefused)]
     pub fn slide_refused(&self) -> Option<String> {
         self.inner.slide_refused()
@@ -134,25 +169,28 @@ impl Playground {
             .map(|t| js_sys::Float64Array::from(&t[..]))
     }
 
-    /// The completed sweep: `{ nodes: Float64Array, sweep: { counts, sweep_ms } }`, or
-    /// undefined when there is none.
+    /// The completed sweep: `{ nodes: Float64Array, sweep: { counts, sweep_ms }, segments:
+    /// Uint32Array | null }` (`segments`: the boundary segment each node was last put on,
+    /// where the boundary slides), or undefined when there is none.
     #[wasm_bindgen(js_name = takeSweep)]
     pub fn take_sweep(&mut self) -> Result<JsValue, JsError> {
         match self.inner.take_sweep() {
-            Some((nodes, sweep)) => {
-                object(&[("nodes", js_sys::Float64Array::from(&nodes[..]).into()), ("sweep", to_js(&sweep)?)])
-            }
+            Some((nodes, sweep, segments)) => object(&[
+                ("nodes", js_sys::Float64Array::from(&nodes[..]).into()),
+                ("sweep", to_js(&sweep)?),
+                ("segments", segments.map_or(JsValue::NULL, |s| js_sys::Uint32Array::from(&s[..]).into())),
+            ]),
             None => Ok(JsValue::UNDEFINED),
         }
     }
 
-    /// Hands panel A's sweep (`takeSweep`'s `nodes` and `sweep`, from the other engine) to
-    /// the split pass in progress.
+    /// Hands panel A's sweep (`takeSweep`'s `nodes`, `sweep` and `segments`, from the other
+    /// engine) to the split pass in progress.
     #[wasm_bindgen(js_name = adoptSweep)]
-    pub fn adopt_sweep(&mut self, nodes: &[f64], sweep: JsValue) -> Result<(), JsError> {
+    pub fn adopt_sweep(&mut self, nodes: &[f64], sweep: JsValue, segments: Option<Vec<u32>>) -> Result<(), JsError> {
         let sweep: SideSweep =
             serde_wasm_bindgen::from_value(sweep).map_err(|e| JsError::new(&format!("a sweep's record: {e}")))?;
-        Ok(self.inner.adopt_sweep(nodes, sweep)?)
+        Ok(self.inner.adopt_sweep(nodes, sweep, segments.as_deref())?)
     }
 
     /// Abandons the pass in progress: both panels as before it.

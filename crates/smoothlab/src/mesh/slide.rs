@@ -234,6 +234,12 @@ impl<P: Coords> Curves<P> {
         Foot { point: q, tangent: self.piece(s).derivative(t).unit(), segment: s, t }
     }
 
+    /// The unit direction of segment `s` at its start: a straight segment's everywhere
+    /// (the page hands segments over for linear meshes only).
+    fn direction(&self, s: u32) -> P {
+        self.piece(s).derivative(0.0).unit()
+    }
+
     /// The distance of `x` from the whole curve of segment `hint`.
     pub(crate) fn distance(&self, x: P, hint: u32) -> f64 {
         let curve = self.curve[hint as usize];
@@ -503,6 +509,51 @@ impl Mesh {
         }
     }
 
+    /// The positions the sliding boundary was taken from (every node's, as
+    /// [`set_boundary`](Self::set_boundary) found them), when boundary nodes slide.
+    pub fn boundary_taken_from(&self) -> Option<&[DVec2]> {
+        self.sliding.as_ref().map(|s| &s.curves.points[..])
+    }
+
+    /// Per node, the boundary segment a sliding node was last put on ([`NONE`] for a node
+    /// that does not slide), when boundary nodes slide. A copy of the mesh whose boundary
+    /// was taken from the same positions slides its nodes as this one does once given them
+    /// ([`set_boundary_segments`](Self::set_boundary_segments)).
+    pub fn boundary_segments(&self) -> Option<&[u32]> {
+        self.sliding.as_ref().map(|s| &s.hint[..])
+    }
+
+    /// Puts each sliding node on the segment `segments` names (another copy's
+    /// [`boundary_segments`](Self::boundary_segments)), and its direction there. Refused,
+    /// changing nothing, unless boundary nodes slide and each sliding node names a segment
+    /// of its own curve (and every other node [`NONE`]).
+    pub fn set_boundary_segments(&mut self, segments: &[u32]) -> crate::error::Result<()> {
+        let Some(s) = &mut self.sliding else {
+            return Err(crate::error::Error::invalid("boundary segments were given, but the boundary nodes do not slide"));
+        };
+        let n = s.hint.len();
+        if segments.len() != n {
+            return Err(crate::error::Error::invalid(format!("{} boundary segments for a mesh of {n} nodes: give one a node", segments.len())));
+        }
+        let c = &s.curves;
+        for (v, &seg) in segments.iter().enumerate() {
+            let fits = if c.class[v].slides() {
+                (seg as usize) < c.segments.len() && c.segs_at(v).first().is_some_and(|&f| c.curve[f as usize] == c.curve[seg as usize])
+            } else {
+                seg == NONE
+            };
+            if !fits {
+                return Err(crate::error::Error::node(v, None, format!("cannot lie on boundary segment {seg}: it is not on the node's curve")));
+            }
+        }
+        for (v, &seg) in segments.iter().enumerate() {
+            if c.class[v].slides() {
+                (s.hint[v], s.tangent[v]) = (seg, c.direction(seg));
+            }
+        }
+        Ok(())
+    }
+
     /// The largest distance of a sliding node, or a mid-side node it carries, from its
     /// curve of the boundary as loaded (0 when none slides).
     pub fn max_distance_from_boundary(&self) -> f64 {
@@ -650,6 +701,46 @@ mod tests {
                 assert_eq!(start.nodes()[v], m.nodes()[v], "boundary node {v} moved while the mesh was tangled");
             }
         }
+    }
+
+    #[test]
+    fn a_copy_given_the_segments_slides_as_the_mesh_does() {
+        use crate::objective::{objective_with, ObjectiveKind, Penalty};
+        use crate::smooth::{SmoothOptions, Smoother};
+        let objective = objective_with(ObjectiveKind::SmoothShape, Penalty::default());
+        let pass = |m: &mut Mesh| Smoother::new(SmoothOptions::default()).unwrap().pass(m, &*objective, &|| 0.0);
+        let mut m = plate(PlateKind::Tri, 1, 2).unwrap();
+        m.set_boundary(BoundaryRule::Slide, FEATURE_ANGLE_DEG);
+        pass(&mut m);
+        // another copy: the boundary taken from the same positions, then the nodes now
+        let mut copy = plate(PlateKind::Tri, 1, 2).unwrap();
+        copy.nodes_mut().copy_from_slice(m.boundary_taken_from().unwrap());
+        copy.set_boundary(BoundaryRule::Slide, FEATURE_ANGLE_DEG);
+        copy.nodes_mut().copy_from_slice(m.nodes());
+        let segments = m.boundary_segments().unwrap().to_vec();
+        assert!(segments.iter().filter(|&&s| s != NONE).count() > 20);
+        // refused, changing nothing: the wrong count, a segment of another curve, a
+        // sliding node on none, a mesh whose boundary is fixed
+        let hole = (0..m.node_count()).find(|&n| m.boundary_node(n) == Some(BoundaryNode::Curve) && m.nodes()[n].length() < 0.5).unwrap();
+        let outer = (0..m.node_count()).find(|&n| m.boundary_node(n) == Some(BoundaryNode::Curve) && m.nodes()[n].length() > 0.9).unwrap();
+        let before = copy.boundary_segments().unwrap().to_vec();
+        let mut other = segments.clone();
+        other[hole] = segments[outer];
+        let mut none = segments.clone();
+        none[hole] = NONE;
+        for bad in [&segments[1..], &other[..], &none[..]] {
+            assert!(copy.set_boundary_segments(bad).is_err());
+            assert_eq!(copy.boundary_segments().unwrap(), &before[..]);
+        }
+        assert!(plate(PlateKind::Tri, 1, 2).unwrap().set_boundary_segments(&segments).is_err());
+        copy.set_boundary_segments(&segments).unwrap();
+        for n in 0..m.node_count() {
+            assert_eq!(copy.slide_direction(n), m.slide_direction(n), "node {n}");
+        }
+        pass(&mut m);
+        pass(&mut copy);
+        assert_eq!(copy.nodes(), m.nodes());
+        assert_eq!(copy.boundary_segments(), m.boundary_segments());
     }
 
     #[test]

@@ -550,9 +550,6 @@ mod tests {
         assert!(e.contains("the boundary cannot slide here: only a linear volume mesh's boundary nodes slide so far"), "{e}");
         assert_eq!(quadratic.settings().boundary, BoundaryRule::Fixed, "a refusal changes nothing");
         assert!(lab().slide_refused().is_none());
-        let mut planar = crate::lab::Playground::new(Sample::PlateTri.generate().unwrap()).unwrap();
-        let e = planar.set_settings(slide).unwrap_err().to_string();
-        assert_eq!(e, "the boundary cannot slide here: the page slides the boundaries of volume meshes and surfaces; this mesh is planar (the command line and Python slide it)");
     }
 
     #[test]
