@@ -135,6 +135,8 @@ pub fn planar_stretch_points(mesh: &Mesh, at: &[DVec2]) -> Option<Vec<[DVec2; 9]
     }
     let corners_of = |kind: ElementKind| ideal_points(kind).map(|p| p.to_array());
     let (triangle, square) = (corners_of(ElementKind::Tri3), corners_of(ElementKind::Quad4));
+    // a tangled mesh's folds and its noise are one: it is untangled against the ideal
+    let mut tangled = false;
     let elements: Vec<stretch::StretchElement<'_, 2>> = (0..n)
         .zip(neighbours)
         .map(|(e, neighbours)| {
@@ -145,9 +147,9 @@ pub fn planar_stretch_points(mesh: &Mesh, at: &[DVec2]) -> Option<Vec<[DVec2; 9]
             for (q, &i) in p.iter_mut().zip(ids) {
                 *q = at[i as usize];
             }
-            let valid = crate::quality::corner_edge_vectors(kind, &p[..kind.node_count()])[..k]
-                .iter()
-                .all(|&(a, b)| corner_frame(a, b, ideal_pair(kind)).is_some());
+            let edges = crate::quality::corner_edge_vectors(kind, &p[..kind.node_count()]);
+            tangled |= edges[..k].iter().any(|&(a, b)| a.perp_dot(b) <= 0.0);
+            let valid = edges[..k].iter().all(|&(a, b)| corner_frame(a, b, ideal_pair(kind)).is_some());
             stretch::StretchElement {
                 corners: p[..k].iter().map(|q| q.to_array()).collect(),
                 ideal: if k == 3 { &triangle[..3] } else { &square[..4] },
@@ -156,14 +158,10 @@ pub fn planar_stretch_points(mesh: &Mesh, at: &[DVec2]) -> Option<Vec<[DVec2; 9]
             }
         })
         .collect();
-    // a tangled mesh's folds and its noise are one: it is untangled against the ideal
-    if (0..n).any(|e| crate::smooth::mesh_element_is_inverted(mesh, e)) {
+    if tangled {
         return None;
     }
-    let maps = stretch::stretch_maps(&elements);
-    if maps.iter().all(Option::is_none) {
-        return None;
-    }
+    let maps = stretch::maps_if_stretched(&elements)?;
     Some(
         maps.iter()
             .enumerate()
@@ -186,15 +184,16 @@ pub fn volume_stretch_points(mesh: &crate::volume::VolumeMesh, at: &[glam::DVec3
     use glam::DVec3;
     let n = mesh.element_count();
     let corners = |e: usize| &mesh.element(e)[..mesh.element_kind(e).row().corners];
+    // a tangled mesh's folds and its noise are one: it is untangled against the ideal
+    let mut tangled = false;
     let elements: Vec<stretch::StretchElement<'_, 3>> = (0..n)
         .map(|e| {
             let row = mesh.element_kind(e).row();
             let ids = corners(e);
             let p = |i: usize| at[ids[i] as usize];
-            let valid = row.corner_edges.iter().enumerate().all(|(c, &[a, b, d])| {
-                let m = DMat3::from_cols(p(a) - p(c), p(b) - p(c), p(d) - p(c));
-                solid_reference(m, row.reference).is_some()
-            });
+            let corner = |(c, &[a, b, d]): (usize, &[usize; 3])| DMat3::from_cols(p(a) - p(c), p(b) - p(c), p(d) - p(c));
+            tangled |= row.corner_edges.iter().enumerate().any(|c| corner(c).determinant() <= 0.0);
+            let valid = row.corner_edges.iter().enumerate().all(|c| solid_reference(corner(c), row.reference).is_some());
             let neighbours = mesh
                 .face_neighbours(e)
                 .iter()
@@ -215,14 +214,10 @@ pub fn volume_stretch_points(mesh: &crate::volume::VolumeMesh, at: &[glam::DVec3
             stretch::StretchElement { corners: ids.iter().map(|&i| at[i as usize].to_array()).collect(), ideal: row.ideal, valid, neighbours }
         })
         .collect();
-    // a tangled mesh's folds and its noise are one: it is untangled against the ideal
-    if (0..n).any(|e| mesh.is_inverted(e)) {
+    if tangled {
         return None;
     }
-    let maps = stretch::stretch_maps(&elements);
-    if maps.iter().all(Option::is_none) {
-        return None;
-    }
+    let maps = stretch::maps_if_stretched(&elements)?;
     Some(
         maps.iter()
             .enumerate()

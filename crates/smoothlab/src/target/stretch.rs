@@ -29,7 +29,7 @@
 pub const LEAST_STRETCH: f64 = 4.0;
 
 /// A `D×D` matrix, rows of columns: `m[i][j]` is row `i`, column `j`.
-type Mat<const D: usize> = [[f64; D]; D];
+pub type Mat<const D: usize> = [[f64; D]; D];
 
 /// One element as the field reads it.
 pub struct StretchElement<'a, const D: usize> {
@@ -41,6 +41,12 @@ pub struct StretchElement<'a, const D: usize> {
     pub valid: bool,
     /// Its neighbours across its facets, each with the shared facet's length.
     pub neighbours: Vec<(u32, f64)>,
+}
+
+/// [`stretch_maps`], or `None` where every target is the ideal.
+pub fn maps_if_stretched<const D: usize>(elements: &[StretchElement<'_, D>]) -> Option<Vec<Option<Mat<D>>>> {
+    let maps = stretch_maps(elements);
+    maps.iter().any(Option::is_some).then_some(maps)
 }
 
 /// Each element's target map, `exp(log M̄ / 2)·R` (see the module's text); `None` where

@@ -52,10 +52,9 @@ pub trait Mesh3d: Clone + Sized {
         pass: u32,
         clock: &dyn Fn() -> f64,
     ) -> PassSummary;
-    /// Measures every corner against `at`'s corners from now on (the mesh as loaded, for
-    /// [`Target::Input`](smoothlab::target::Target::Input)), or against the ideal of
-    /// each kind (`None`).
-    fn aim_at(&mut self, at: Option<&Self>);
+    /// Measures every corner against `target` taken from `at` (the mesh as loaded) from
+    /// now on ([`Model::set_target`](smoothlab::Model::set_target)'s rule).
+    fn aim_at(&mut self, target: smoothlab::target::Target, at: &Self);
     /// Why this mesh's boundary nodes cannot slide ([`BoundaryRule::Slide`]), if they
     /// cannot: the kind's words, or the mesh's (a quadratic volume mesh).
     fn slide_refused(&self) -> Option<String>;

@@ -254,13 +254,12 @@ impl<M: Mesh3d> Lab3d<M> {
         self.original.slide_refused()
     }
 
-    /// Gives both sides the settings' target: the mesh as loaded (or as last perturbed)
-    /// for [`Target::Input`](smoothlab::target::Target::Input), never the sides' own
-    /// positions, so passes after the first leave it where the run began.
+    /// Gives both sides the settings' target, taken from the mesh as loaded (or as last
+    /// perturbed), never from the sides' own positions, so passes after the first leave
+    /// it where the run began.
     fn aim(&mut self) {
-        let input = self.settings.target == smoothlab::target::Target::Input;
         for s in &mut self.sides {
-            s.mesh.aim_at(input.then_some(&self.original));
+            s.mesh.aim_at(self.settings.target, &self.original);
         }
     }
 

@@ -187,8 +187,8 @@ impl Mesh3d for VolumeMesh {
     fn stats(&self) -> MeshStats {
         volume_stats(self)
     }
-    fn aim_at(&mut self, at: Option<&VolumeMesh>) {
-        self.set_target_nodes(at.map(|a| a.nodes().to_vec()));
+    fn aim_at(&mut self, target: smoothlab::target::Target, at: &VolumeMesh) {
+        self.set_target_from(target, at.nodes().to_vec());
     }
     fn slide_refused(&self) -> Option<String> {
         self.is_quadratic().then(slide_refused_quadratic)
