@@ -8,6 +8,7 @@ use glam::{DMat2, DVec2};
 
 use super::{impl_objective_by_visit, ObjectiveKind, Star, Term};
 use crate::mesh::ElementKind;
+use crate::quality::metric::planar_condition_chain;
 use crate::quality::{condition_number_gradient, Ideal};
 
 /// The value a corner term takes behind the barrier (`det ≤ 0`, where κ = ∞), with zero
@@ -237,11 +238,9 @@ fn corner_term<const HESSIAN: bool>(t1: DVec2, t2: DVec2, w1: f64, w2: f64) -> (
     two_norm_term::<HESSIAN>(f, det, grad_f, grad_det, 2.0 * (w1 * w1 + w2 * w2), 1.0)
 }
 
-/// One 2-norm term `w·q²` with `q = F/δ`, `F` quadratic in the free node (gradient `grad_f`,
-/// Hessian `hess_f·I`) and `δ` linear in it (gradient `grad_det`): `κ = q` for a corner's
-/// `F = ‖T‖²_F`, `δ = det T`; `κ² = q²/3` for a linear triangle's `D/N`. With
-/// `∇q = (∇F − q∇δ)/δ` and `∇²q = (∇²F − ∇q∇δᵀ − ∇δ∇qᵀ)/δ`, the term's gradient is
-/// `2w·q∇q` and its Hessian `2w(∇q∇qᵀ + q∇²q)` (zero unless `HESSIAN`).
+/// One 2-norm term `w·q²` with `q = F/δ` ([`planar_condition_chain`]): `κ = q` for a
+/// corner's `F = ‖T‖²_F`, `δ = det T`; `κ² = q²/3` for a linear triangle's `D/N`. The
+/// term's gradient is `2w·q∇q` and its Hessian `2w(∇q∇qᵀ + q∇²q)` (zero unless `HESSIAN`).
 /// `(CONDITION_BARRIER, 0, 0)` behind the barrier: `δ ≤ 0` (or NaN), or `w·q² ≥ CONDITION_BARRIER`.
 #[inline(always)]
 fn two_norm_term<const HESSIAN: bool>(
@@ -256,31 +255,20 @@ fn two_norm_term<const HESSIAN: bool>(
     if det <= 0.0 {
         return barrier;
     }
-    let inv = 1.0 / det;
-    let q = f * inv;
+    let (q, gq, hq) = planar_condition_chain::<HESSIAN>(f, det, grad_f, grad_det, hess_f);
     let v = w * q * q;
     // NaN (a NaN δ or F) is behind the barrier too, as in `condition_number_gradient`'s use
     if v.is_nan() || v >= CONDITION_BARRIER {
         return barrier;
     }
-    let gq = (grad_f - q * grad_det) * inv;
     let grad = (2.0 * w * q) * gq;
     if !HESSIAN {
         return (v, grad, DMat2::ZERO);
     }
-    // ∇q∇δᵀ + ∇δ∇qᵀ, symmetric
-    let cross_xx = 2.0 * gq.x * grad_det.x;
-    let cross_yy = 2.0 * gq.y * grad_det.y;
-    let cross_xy = gq.x * grad_det.y + gq.y * grad_det.x;
-    let (hq_xx, hq_yy, hq_xy) = (
-        (hess_f - cross_xx) * inv,
-        (hess_f - cross_yy) * inv,
-        -cross_xy * inv,
-    );
     let k = 2.0 * w;
-    let hxx = k * (gq.x * gq.x + q * hq_xx);
-    let hyy = k * (gq.y * gq.y + q * hq_yy);
-    let hxy = k * (gq.x * gq.y + q * hq_xy);
+    let hxx = k * (gq.x * gq.x + q * hq.x_axis.x);
+    let hyy = k * (gq.y * gq.y + q * hq.y_axis.y);
+    let hxy = k * (gq.x * gq.y + q * hq.x_axis.y);
     (
         v,
         grad,

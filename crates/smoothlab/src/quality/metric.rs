@@ -9,9 +9,12 @@
 //!
 //! Each has its gradient `∂q/∂T`, a matrix of `T`'s size. A caller chains it to a node:
 //! `∂q/∂A = ∂q/∂T·W⁻ᵀ`, and each column of `A` moves with the node by a scalar weight.
-//! The mean ratio is also given over `T`'s invariants `‖T‖²_F` and `det T` with their
-//! gradients in any space ([`mean_ratio_chain`]): the solids' objectives take those at
-//! a trial position straight from a corner's form.
+//! Each is also given over `T`'s invariants with their gradients in any space: the
+//! objectives pass a node's, worked out at a trial position, and the metric combines
+//! them. [`scaled_jacobian_chain`] (`det T`, the columns' `‖tᵢ‖²`),
+//! [`condition_number_chain`] (`‖T‖²_F`, `‖T⁻¹‖²_F`), [`planar_condition_chain`] (2D,
+//! with the Hessian Newton's trial needs), [`mean_ratio_chain`] (`‖T‖²_F`, `det T`).
+//! A test holds each chain to the gradient over `T`.
 //!
 //! The formulas, in one notation: `docs/formulas.md` §1 (planar), §8 (solids).
 
@@ -152,7 +155,7 @@ impl CornerMatrix for DMat3 {
 }
 
 /// A space a metric's gradient lives in: a node's (a vector) or `T`'s (a matrix).
-pub trait Gradient: Copy + Mul<f64, Output = Self> + Div<f64, Output = Self> + Sub<Output = Self> {
+pub trait Gradient: Copy + Add<Output = Self> + Mul<f64, Output = Self> + Div<f64, Output = Self> + Sub<Output = Self> {
     const ZERO: Self;
 }
 
@@ -209,6 +212,28 @@ pub fn scaled_jacobian_with<T: CornerMatrix, const GRADIENT: bool>(t: &T, l2: im
     (s, T::from_fn(|i| cof.column(i) / n - t.column(i) * s / l2(i)))
 }
 
+/// [`scaled_jacobian`] with its gradient in any space where its invariants' gradients are
+/// given (a node's): `σ = det T` with `∇σ`, and each column's `ℓᵢ = ‖tᵢ‖²` with half its
+/// gradient, `∇ℓᵢ/2`. With `n = √Πℓᵢ`, `∇s = ∇σ/n − s·Σ(∇ℓᵢ/2)/ℓᵢ`. In `T`'s own space
+/// `∇σ = cof T` and `∇ℓᵢ/2` is `tᵢ` in column `i` ([`scaled_jacobian_gradient`]); at a
+/// solid corner's own node, `−vᵢ·tᵢ` with `v = W⁻ᵀ𝟙`. `(0, 0)` where `n` is 0 or not
+/// finite.
+#[inline(always)]
+pub fn scaled_jacobian_chain<T: CornerMatrix, V: Gradient>(
+    det: f64,
+    grad_det: V,
+    l2: impl Fn(usize) -> f64,
+    half_grad_l2: impl Fn(usize) -> V,
+) -> (f64, V) {
+    let n = (1..T::DIM).fold(l2(0), |p, i| p * l2(i)).sqrt();
+    if !(n > 0.0 && n.is_finite()) {
+        return (0.0, V::ZERO);
+    }
+    let s = det / n;
+    let spread = (1..T::DIM).fold(half_grad_l2(0) / l2(0), |sum, i| sum + half_grad_l2(i) / l2(i));
+    (s, grad_det / n - spread * s)
+}
+
 /// Knupp's condition number `κ = ‖T‖_F·‖T⁻¹‖_F`, taken as `√(‖T‖²_F·‖adj T‖²_F)/|det T|`:
 /// `d` at the ideal corner, growing without bound as the corner degenerates; +∞ where
 /// `det T = 0`. An inverted corner has its mirror image's κ: a caller that wants a
@@ -249,6 +274,42 @@ pub fn condition_number_gradient<T: CornerMatrix>(t: &T) -> (f64, T) {
     let s = t.inverse();
     let st = s.transpose();
     (kappa, (*t * (1.0 / t.frobenius2()) - st * s * st * (1.0 / s.frobenius2())) * kappa)
+}
+
+/// [`condition_number`] with its gradient in any space where its invariants' gradients
+/// are given (a node's): `F = ‖T‖²_F` and `G = ‖T⁻¹‖²_F`. `κ = √(F·G)` and
+/// `∇κ = (G·∇F + F·∇G)/(2κ)`; in `T`'s own space `∇F = 2T` and `∇G = −2·SᵀSSᵀ`, `S = T⁻¹`
+/// ([`condition_number_gradient`]). The caller has checked `det T ≠ 0`; `(κ, 0)` where
+/// `κ` is not a positive finite number.
+#[inline(always)]
+pub fn condition_number_chain<V: Gradient>(frob2: f64, grad_frob2: V, inv_frob2: f64, grad_inv_frob2: V) -> (f64, V) {
+    let kappa = (frob2 * inv_frob2).sqrt();
+    if !(kappa > 0.0 && kappa.is_finite()) {
+        return (kappa, V::ZERO);
+    }
+    (kappa, (grad_frob2 * inv_frob2 + grad_inv_frob2 * frob2) / (2.0 * kappa))
+}
+
+/// A planar corner's [`condition_number`] over its invariants, with its gradient and
+/// Hessian in the free node's plane: in 2D `‖adj T‖_F = ‖T‖_F`, so `κ = F/δ` with
+/// `F = ‖T‖²_F` quadratic in the node (gradient `∇F`, Hessian `hf·I`) and `δ = det T`
+/// linear in it (gradient `∇δ`). Then `∇κ = (∇F − κ∇δ)/δ` and
+/// `∇²κ = (∇²F − ∇κ∇δᵀ − ∇δ∇κᵀ)/δ` (the zero matrix unless `HESSIAN`; `docs/formulas.md`
+/// §5). A linear triangle's `D/N` is `√3·κ` the same way. The caller has checked `δ > 0`.
+#[inline(always)]
+pub fn planar_condition_chain<const HESSIAN: bool>(f: f64, det: f64, grad_f: DVec2, grad_det: DVec2, hf: f64) -> (f64, DVec2, DMat2) {
+    let inv = 1.0 / det;
+    let q = f * inv;
+    let gq = (grad_f - q * grad_det) * inv;
+    if !HESSIAN {
+        return (q, gq, DMat2::ZERO);
+    }
+    // ∇q∇δᵀ + ∇δ∇qᵀ, symmetric
+    let cross_xx = 2.0 * gq.x * grad_det.x;
+    let cross_yy = 2.0 * gq.y * grad_det.y;
+    let cross_xy = gq.x * grad_det.y + gq.y * grad_det.x;
+    let (xx, yy, xy) = ((hf - cross_xx) * inv, (hf - cross_yy) * inv, -cross_xy * inv);
+    (q, gq, DMat2::from_cols(DVec2::new(xx, xy), DVec2::new(xy, yy)))
 }
 
 /// The mean ratio `d·det(T)^{2/d}/‖T‖²_F`, the power signed as `det T`: 1 at the ideal
@@ -413,6 +474,35 @@ mod tests {
             check_gradient(t, scaled_jacobian, scaled_jacobian_gradient(&t).1, entries3, set3);
             check_gradient(t, condition_number, condition_number_gradient(&t).1, entries3, set3);
             check_gradient(t, mean_ratio, mean_ratio_gradient(&t).1, entries3, set3);
+        }
+    }
+
+    #[test]
+    fn the_scaled_jacobian_and_condition_chains_are_the_gradients_over_t() {
+        fn agree<T: CornerMatrix + Gradient>(t: T) {
+            let (s, g) = scaled_jacobian_gradient(&t);
+            let column = |i: usize| T::from_fn(|k| if k == i { t.column(i) } else { t.column(i) * 0.0 });
+            let (sc, gc) = scaled_jacobian_chain::<T, T>(t.determinant(), t.cofactor(), |i| T::length_squared(t.column(i)), column);
+            assert_eq!(s, sc);
+            let dg = gc - g;
+            assert!((0..T::DIM).all(|i| T::length_squared(dg.column(i)) < 1e-24), "{g:?} vs {gc:?}");
+            let (k, g) = condition_number_gradient(&t);
+            let inv = t.inverse();
+            let it = inv.transpose();
+            let (kc, gc) = condition_number_chain(t.frobenius2(), t * 2.0, inv.frobenius2(), it * inv * it * -2.0);
+            assert!((k - kc).abs() < 1e-12 * k, "{k} vs {kc}");
+            let dg = gc - g;
+            assert!((0..T::DIM).all(|i| T::length_squared(dg.column(i)) < 1e-20 * k * k), "{g:?} vs {gc:?}");
+        }
+        let mut rng = SplitMix64::new(13);
+        for _ in 0..100 {
+            let (t2, t3) = (random2(&mut rng), random3(&mut rng));
+            if t2.determinant().abs() > 0.05 {
+                agree(t2);
+            }
+            if t3.determinant().abs() > 0.05 {
+                agree(t3);
+            }
         }
     }
 

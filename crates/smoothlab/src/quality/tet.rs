@@ -448,7 +448,8 @@ pub fn condition_number(p: &[DVec3; 4], r: &CornerReference) -> f64 {
 /// [`condition_number`] with its gradient with respect to corner 0. With `F = ‖T‖²`,
 /// `G = ‖T⁻¹‖²`, `κ = √(FG)`: every column of `A` moves by `−dp0`, so
 /// `∇F = −2·T·W⁻ᵀ𝟙` and, with `B = A⁻¹` and `S = W·B = T⁻¹`, `∇G = 2·Bᵀ·Wᵀ·S·Bᵀ·𝟙`;
-/// `∇κ = (G∇F + F∇G)/(2κ)`. (+∞, 0) for zero volume.
+/// the metric's chain ([`condition_number_chain`](super::metric::condition_number_chain))
+/// makes `κ` and `∇κ` of them. (+∞, 0) for zero volume.
 pub fn condition_number_grad0(p: &[DVec3; 4], r: &CornerReference) -> (f64, DVec3) {
     let a = DMat3::from_cols(p[1] - p[0], p[2] - p[0], p[3] - p[0]);
     let det = a.determinant();
@@ -459,9 +460,8 @@ pub fn condition_number_grad0(p: &[DVec3; 4], r: &CornerReference) -> (f64, DVec
     let b = a.inverse();
     let s = r.w * b;
     let (f, g, grad_f) = (j.frob2, frobenius2(&s), j.grad_frob2);
-    let kappa = (f * g).sqrt();
     let grad_g = 2.0 * (b.transpose() * r.w.transpose() * s * b.transpose() * DVec3::ONE);
-    (kappa, (g * grad_f + f * grad_g) / (2.0 * kappa))
+    super::metric::condition_number_chain(f, grad_f, g, grad_g)
 }
 
 /// The mean ratio `q = 3·σ^{2/3}/‖T‖²_F` with `σ = det T`, `T = A·W⁻¹` (Liu & Joe; the

@@ -36,21 +36,15 @@ fn scaled_jacobian_of_columns_near_unit(t: glam::DMat3) -> f64 {
     metric::scaled_jacobian_over(&t, n)
 }
 
-/// [`scaled_jacobian`] with its gradient with respect to corner 0: with `s = W⁻ᵀ𝟙`, every
-/// column `t_i` moves by `−s_i·dp0`, so `∇ln SJ = ∇σ/σ + Σ s_i·t_i/‖t_i‖²`.
+/// [`scaled_jacobian`] with its gradient with respect to corner 0, through the metric's
+/// chain ([`metric::scaled_jacobian_chain`]): with `v = W⁻ᵀ𝟙`, every column `tᵢ` moves by
+/// `−vᵢ·dp0`, so `∇ℓᵢ/2 = −vᵢ·tᵢ`; `∇σ` is the corner's ([`q3::WeightedJacobian`]).
 pub fn scaled_jacobian_grad0(p: &[DVec3; 4], r: &CornerReference) -> (f64, DVec3) {
     let j = q3::WeightedJacobian::of(p, r);
     let cols = [j.t.x_axis, j.t.y_axis, j.t.z_axis];
     let l2 = cols.map(|c| c.length_squared());
-    let n = (l2[0] * l2[1] * l2[2]).sqrt();
-    if n == 0.0 || !n.is_finite() {
-        return (0.0, DVec3::ZERO);
-    }
-    let sj = j.sigma / n;
-    let s = r.w_inv_t_one;
-    // ∇(σ/n) = ∇σ/n − σ/n·∇ln n, ∇ln n = Σ −s_i t_i/‖t_i‖²
-    let grad_ln_n = -(s.x * cols[0] / l2[0] + s.y * cols[1] / l2[1] + s.z * cols[2] / l2[2]);
-    (sj, j.grad_sigma / n - sj * grad_ln_n)
+    let v = r.w_inv_t_one;
+    metric::scaled_jacobian_chain::<glam::DMat3, _>(j.sigma, j.grad_sigma, |i| l2[i], |i| -(v[i] * cols[i]))
 }
 
 /// Every measure of one volume element, for statistics and the page.
