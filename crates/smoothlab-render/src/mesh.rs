@@ -470,8 +470,9 @@ pub fn render_mesh(pixmap: &mut Pixmap, mesh: &Mesh, opts: &MeshView) -> View {
 /// through its mid-side node, which its sliding nodes keep to), the nodes that stay
 /// (corners, and nodes the file fixed) as dark squares and the sliding nodes as white
 /// dots, where its edges are long enough on screen for them. A mid-side node that a
-/// sliding node carries along the boundary is a sliding node's dot; one between two that
-/// stay, or fixed by the file, stays. Nothing while its boundary is held.
+/// sliding node carries along the boundary gets no mark of its own (it lies on the line,
+/// and a dot of its own would hide the curve between the sliding nodes); one between two
+/// that stay, or fixed by the file, stays. Nothing while its boundary is held.
 pub fn draw_sliding_boundary(pixmap: &mut Pixmap, mesh: &Mesh, view: &View, dpr: f32, clip: Option<&Mask>) {
     if mesh.boundary_rule() != BoundaryRule::Slide {
         return;
@@ -483,8 +484,9 @@ pub fn draw_sliding_boundary(pixmap: &mut Pixmap, mesh: &Mesh, view: &View, dpr:
             continue;
         }
         marks.push(Mark::Curve(e.a, e.mid, e.b));
-        let carried = [e.a, e.b].iter().any(|&v| mesh.carries(v as usize, e.mid as usize));
-        marks.push(Mark::Node(e.mid, if carried { NodeMark::Slides } else { NodeMark::Stays }));
+        if ![e.a, e.b].iter().any(|&v| mesh.carries(v as usize, e.mid as usize)) {
+            marks.push(Mark::Node(e.mid, NodeMark::Stays));
+        }
     }
     for n in (0..mesh.node_count()).filter(|&n| mesh.is_boundary(n) && mesh.role(n) != NodeRole::Mid) {
         match mesh.boundary_node(n) {
@@ -735,29 +737,39 @@ mod tests {
     #[test]
     fn a_quadratic_mesh_s_sliding_boundary_is_drawn_along_its_curved_edges() {
         // Chen's star by a curved boundary: its two bottom edges bulge up through their
-        // mid-side nodes; the sliding boundary's line follows the curve, not the chord
-        let mut mesh = quadratic_star(QuadraticStar::CurvedBoundary).unwrap();
+        // mid-side nodes; the sliding boundary's line follows the curve, not the chord. The
+        // node between them turns by about 62°: a corner at the default feature angle (both
+        // mid-side nodes stay: squares), a sliding node at 80° (it carries them: no mark)
+        let start = quadratic_star(QuadraticStar::CurvedBoundary).unwrap();
         let mut fixed = Pixmap::new(400, 300).unwrap();
-        render_mesh(&mut fixed, &mesh, &MeshView::default());
-        mesh.set_boundary(BoundaryRule::Slide, smoothlab::mesh::FEATURE_ANGLE_DEG);
-        let mut pm = Pixmap::new(400, 300).unwrap();
-        let view = render_mesh(&mut pm, &mesh, &MeshView::default());
-        let curved: Vec<_> = mesh.topology().boundary_edges().filter(|e| e.mid != NONE).collect();
-        let mut checked = 0;
-        for e in curved {
-            let [a, m, b] = [e.a, e.mid, e.b].map(|v| mesh.nodes()[v as usize]);
-            // a quarter of the way along: on the quadratic through a, m and b, and on the chord
-            let on_curve = 0.375 * a + 0.75 * m - 0.125 * b;
-            let on_chord = 0.75 * a + 0.25 * b;
-            let (c, h) = (view.device_xy(on_curve), view.device_xy(on_chord));
-            if (c.0 - h.0).hypot(c.1 - h.1) < 8.0 {
-                continue; // a straight edge, or too short on screen to tell
+        render_mesh(&mut fixed, &start, &MeshView::default());
+        for (angle, carries) in [(smoothlab::mesh::FEATURE_ANGLE_DEG, false), (80.0, true)] {
+            let mut mesh = start.clone();
+            mesh.set_boundary(BoundaryRule::Slide, angle);
+            assert_eq!(mesh.carries_mid_nodes(1), carries, "{angle}°: {:?}", mesh.boundary_node(1));
+            let mut pm = Pixmap::new(400, 300).unwrap();
+            let view = render_mesh(&mut pm, &mesh, &MeshView::default());
+            let mut checked = 0;
+            for e in mesh.topology().boundary_edges().filter(|e| e.mid != NONE) {
+                let [a, m, b] = [e.a, e.mid, e.b].map(|v| mesh.nodes()[v as usize]);
+                // a quarter of the way along: on the quadratic through a, m and b, and on the chord
+                let on_curve = 0.375 * a + 0.75 * m - 0.125 * b;
+                let on_chord = 0.75 * a + 0.25 * b;
+                let (c, h) = (view.device_xy(on_curve), view.device_xy(on_chord));
+                if (c.0 - h.0).hypot(c.1 - h.1) < 8.0 {
+                    continue; // a straight edge, or too short on screen to tell
+                }
+                let what = format!("{angle}°, edge {}–{}", e.a, e.b);
+                assert!(purple_near(&pm, c), "{what}: no line on its curve at {c:?}");
+                assert!(!purple_near(&pm, h), "{what}: a line on its chord at {h:?}");
+                assert!(!purple_near(&fixed, c), "a held boundary is not marked");
+                // a carried mid-side node lies under the line; one that stays has its square
+                let carried = [e.a, e.b].iter().any(|&v| mesh.carries(v as usize, e.mid as usize));
+                assert_eq!(carried, carries, "{what}");
+                assert_eq!(purple_near(&pm, view.device_xy(m)), carried, "{what}: its mid-side node");
+                checked += 1;
             }
-            assert!(purple_near(&pm, c), "edge {}–{}: no line on its curve at {c:?}", e.a, e.b);
-            assert!(!purple_near(&pm, h), "edge {}–{}: a line on its chord at {h:?}", e.a, e.b);
-            assert!(!purple_near(&fixed, c), "a held boundary is not marked");
-            checked += 1;
+            assert_eq!(checked, 2, "{angle}°: the star's two curved edges");
         }
-        assert_eq!(checked, 2, "the star's two curved edges");
     }
 }
