@@ -66,7 +66,8 @@ function replace(next) {
     volume: isVolume(),
     notPlanar: isSpace() ? pg.notPlanar() ?? null : null,
     fileNote: isSpace() ? pg.fileNote() ?? null : null,
-    slideRefused: pg.slideRefused() ?? null,
+    // a planar mesh's boundary always slides (a quadratic one's along its curved edges)
+    slideRefused: isSpace() ? pg.slideRefused() ?? null : null,
     nodes: isSpace() ? null : pg.nodeCount(),
   };
 }
@@ -116,15 +117,15 @@ const handlers = {
   // where the runs begin (the mesh as loaded or last perturbed): the grading they keep and
   // whether it was valid, which the sweep takes as this worker's
   runStart: () => Array.from(planar().runStart()),
-  // where a side's sliding boundary stands ({ from, segments }; null while it is held),
+  // where a side's sliding boundary stands ({ from, segments, params }; null while it is held),
   // which the sweep takes as this worker's
   slideState: (side) => planar().slideState(side),
-  adoptSweep: (nodes, sweep, segments) => planar().adoptSweep(nodes, sweep, segments ?? undefined),
+  adoptSweep: (nodes, sweep, segments, params) => planar().adoptSweep(nodes, sweep, segments ?? undefined, params ?? undefined),
   // the other worker's part: side A's sweep, its result taken with the last slice
   sweep: (settings, side, nodes, target, start, slide, budgetMs) => {
     const p = planar();
     p.setSettings(settings);
-    p.beginSweep(side, nodes, target ?? undefined, start[0], start[1], slide?.from, slide?.segments);
+    p.beginSweep(side, nodes, target ?? undefined, start[0], start[1], slide?.from, slide?.segments, slide?.params);
     return sweepSlice(p, budgetMs);
   },
   continueSweep: (budgetMs) => sweepSlice(planar(), budgetMs),

@@ -173,7 +173,7 @@ export function changeTarget() {
 }
 
 /** Where the mesh's boundary cannot slide (`refused`, the core's reason: a quadratic
- * mesh), the boundary menu shows fixed, disabled, saying why, and gets the
+ * volume mesh), the boundary menu shows fixed, disabled, saying why, and gets the
  * user's choice back with a mesh whose boundary slides (as the target menu with a
  * strategy that takes no target). */
 export function showBoundaryReasons(refused) {

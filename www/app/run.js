@@ -99,7 +99,7 @@ export async function splitPass(i, n, call, cost, second) {
       return null;
     }
     if (!adopted && swept) {
-      await call('adoptSweep', swept.nodes, swept.sweep, swept.segments);
+      await call('adoptSweep', swept.nodes, swept.sweep, swept.segments, swept.params);
       adopted = true;
     }
     // side B is the first half of this worker's pass, side A's statistics the

@@ -62,7 +62,7 @@ export const state = {
   node: null, // the node whose level sets are shown
   compare: null, // what the engine smooths each side with (as the compare menus said when last sent)
   boundary: 'fixed', // what the engine's boundary nodes do (as the boundary menu said when last sent)
-  slideRefused: null, // why the mesh on screen's boundary cannot slide (quadratic), or null
+  slideRefused: null, // why the mesh on screen's boundary cannot slide (a quadratic volume), or null
   running: false,
   cancel: false,
   frame: { w: 0, h: 0, dpr: 1 }, // the last mesh frame (pointer positions map through it)

@@ -466,15 +466,29 @@ pub fn render_mesh(pixmap: &mut Pixmap, mesh: &Mesh, opts: &MeshView) -> View {
 }
 
 /// Draws the marks of `mesh`'s sliding boundary as the 3D views draw a volume's
-/// ([`Mark`]): its edges as thick reddish-purple lines, the nodes that stay (corners, and
-/// nodes the file fixed) as dark squares and the sliding nodes as white dots, where its
-/// edges are long enough on screen for them. Nothing while its boundary is held.
+/// ([`Mark`]): its edges as thick reddish-purple lines (a quadratic element's as the curve
+/// through its mid-side node, which its sliding nodes keep to), the nodes that stay
+/// (corners, and nodes the file fixed) as dark squares and the sliding nodes as white
+/// dots, where its edges are long enough on screen for them. A mid-side node that a
+/// sliding node carries along the boundary gets no mark of its own (it lies on the line,
+/// and a dot of its own would hide the curve between the sliding nodes); one between two
+/// that stay, or fixed by the file, stays. Nothing while its boundary is held.
 pub fn draw_sliding_boundary(pixmap: &mut Pixmap, mesh: &Mesh, view: &View, dpr: f32, clip: Option<&Mask>) {
     if mesh.boundary_rule() != BoundaryRule::Slide {
         return;
     }
-    let mut marks: Vec<Mark> = mesh.topology().boundary_edges().map(|e| Mark::Line(e.a, e.b)).collect();
-    for n in (0..mesh.node_count()).filter(|&n| mesh.is_boundary(n)) {
+    let mut marks = Vec::new();
+    for e in mesh.topology().boundary_edges() {
+        if e.mid == NONE {
+            marks.push(Mark::Line(e.a, e.b));
+            continue;
+        }
+        marks.push(Mark::Curve(e.a, e.mid, e.b));
+        if ![e.a, e.b].iter().any(|&v| mesh.carries(v as usize, e.mid as usize)) {
+            marks.push(Mark::Node(e.mid, NodeMark::Stays));
+        }
+    }
+    for n in (0..mesh.node_count()).filter(|&n| mesh.is_boundary(n) && mesh.role(n) != NodeRole::Mid) {
         match mesh.boundary_node(n) {
             Some(BoundaryNode::Corner | BoundaryNode::Held) => marks.push(Mark::Node(n as u32, NodeMark::Stays)),
             Some(c) if c.slides() => marks.push(Mark::Node(n as u32, NodeMark::Slides)),
@@ -704,4 +718,58 @@ pub fn draw_colour_bar(
         pixmap.stroke_path(&pb, &solid(rgba(120, 0, 0, 255)), &Stroke { width: 1.5 * s, ..Default::default() }, Transform::identity(), None);
     }
     draw_text(pixmap, &count, (x + swatch + 4.0) * s, cy * s, label);
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use smoothlab::generate::{quadratic_star, QuadraticStar};
+
+    /// Whether a pixel within one of `(x, y)` is the sliding boundary's reddish purple.
+    fn purple_near(pm: &Pixmap, (x, y): (f32, f32)) -> bool {
+        let (x, y) = (x.round() as i64, y.round() as i64);
+        (x - 1..=x + 1).flat_map(|i| (y - 1..=y + 1).map(move |j| (i, j))).any(|(i, j)| {
+            let p = (i >= 0 && j >= 0).then(|| pm.pixel(i as u32, j as u32)).flatten();
+            p.is_some_and(|p| [p.red(), p.green(), p.blue()] == crate::MARK_LINE_RGB)
+        })
+    }
+
+    #[test]
+    fn a_quadratic_mesh_s_sliding_boundary_is_drawn_along_its_curved_edges() {
+        // Chen's star by a curved boundary: its two bottom edges bulge up through their
+        // mid-side nodes; the sliding boundary's line follows the curve, not the chord. The
+        // node between them turns by about 62°: a corner at the default feature angle (both
+        // mid-side nodes stay: squares), a sliding node at 80° (it carries them: no mark)
+        let start = quadratic_star(QuadraticStar::CurvedBoundary).unwrap();
+        let mut fixed = Pixmap::new(400, 300).unwrap();
+        render_mesh(&mut fixed, &start, &MeshView::default());
+        for (angle, carries) in [(smoothlab::mesh::FEATURE_ANGLE_DEG, false), (80.0, true)] {
+            let mut mesh = start.clone();
+            mesh.set_boundary(BoundaryRule::Slide, angle);
+            assert_eq!(mesh.carries_mid_nodes(1), carries, "{angle}°: {:?}", mesh.boundary_node(1));
+            let mut pm = Pixmap::new(400, 300).unwrap();
+            let view = render_mesh(&mut pm, &mesh, &MeshView::default());
+            let mut checked = 0;
+            for e in mesh.topology().boundary_edges().filter(|e| e.mid != NONE) {
+                let [a, m, b] = [e.a, e.mid, e.b].map(|v| mesh.nodes()[v as usize]);
+                // a quarter of the way along: on the quadratic through a, m and b, and on the chord
+                let on_curve = 0.375 * a + 0.75 * m - 0.125 * b;
+                let on_chord = 0.75 * a + 0.25 * b;
+                let (c, h) = (view.device_xy(on_curve), view.device_xy(on_chord));
+                if (c.0 - h.0).hypot(c.1 - h.1) < 8.0 {
+                    continue; // a straight edge, or too short on screen to tell
+                }
+                let what = format!("{angle}°, edge {}–{}", e.a, e.b);
+                assert!(purple_near(&pm, c), "{what}: no line on its curve at {c:?}");
+                assert!(!purple_near(&pm, h), "{what}: a line on its chord at {h:?}");
+                assert!(!purple_near(&fixed, c), "a held boundary is not marked");
+                // a carried mid-side node lies under the line; one that stays has its square
+                let carried = [e.a, e.b].iter().any(|&v| mesh.carries(v as usize, e.mid as usize));
+                assert_eq!(carried, carries, "{what}");
+                assert_eq!(purple_near(&pm, view.device_xy(m)), carried, "{what}: its mid-side node");
+                checked += 1;
+            }
+            assert_eq!(checked, 2, "{angle}°: the star's two curved edges");
+        }
+    }
 }

@@ -459,6 +459,9 @@ pub enum NodeMark {
 pub enum Mark {
     /// A feature curve's segment: a thick reddish-purple line with a dark outline.
     Line(u32, u32),
+    /// A curved segment, as [`Mark::Line`]: the quadratic through its first node, its
+    /// mid-side node (the second) and its last node (a quadratic element's edge).
+    Curve(u32, u32, u32),
     Node(u32, NodeMark),
 }
 
@@ -506,11 +509,21 @@ pub(crate) fn draw_marks_at(pixmap: &mut Pixmap, marks: &[Mark], at: &dyn Fn(u32
     let stroke = |w: f32| Stroke { width: w, line_cap: tiny_skia::LineCap::Round, ..Default::default() };
     let mut lines = PathBuilder::new();
     for m in marks {
-        if let Mark::Line(a, b) = *m {
-            if let (Some(p), Some(q)) = (at(a), at(b)) {
-                lines.move_to(p.0, p.1);
-                lines.line_to(q.0, q.1);
+        match *m {
+            Mark::Line(a, b) => {
+                if let (Some(p), Some(q)) = (at(a), at(b)) {
+                    lines.move_to(p.0, p.1);
+                    lines.line_to(q.0, q.1);
+                }
             }
+            Mark::Curve(a, mid, b) => {
+                if let (Some(p), Some(c), Some(q)) = (at(a), at(mid), at(b)) {
+                    let c = super::mesh::bezier_control(p, c, q);
+                    lines.move_to(p.0, p.1);
+                    lines.quad_to(c.0, c.1, q.0, q.1);
+                }
+            }
+            Mark::Node(..) => {}
         }
     }
     if let Some(path) = lines.finish() {

@@ -3,9 +3,10 @@
 // `smoothlab smooth --boundary slide --finish 0` on the same file (its counts, pass for
 // pass and to the bit), the pictures mark the feature curves and the corners, the link
 // carries the rule, a surface's curves slide, a planar mesh's boundary slides too (held
-// while it is tangled), and a quadratic planar sample shows the boundary fixed, disabled,
-// saying why. Screenshots of the sliding block at 1366×768 and of the sliding plate at
-// 1366×768 and 390×844 go to test-output/browser/.
+// while it is tangled), and a quadratic planar mesh's along its curved edges, in one
+// worker and split between two. Screenshots of the sliding block at 1366×768, of the
+// sliding plate at 1366×768 and 390×844 and of the sliding quadratic plate at 1366×768 go
+// to test-output/browser/.
 import path from 'node:path';
 import { mkdirSync, readFileSync, writeFileSync } from 'node:fs';
 import { OUT, TIMEOUT, test, check, idle, open, stats, canvasInfo, chooseSample, freshPage, cli, mshNodes, step } from '../lib.mjs';
@@ -124,14 +125,12 @@ export default async function ({ server, context }) {
       check(await p.locator('#boundary-key').isVisible(), 'the key follows the link');
       const hex = await stats(p, 'b');
       check(hex.boundary_sliding === String(6 * 25 + 12 * 5) && Number(hex.boundary_distance) < 1e-12, `the cube of 6³ cells: 150 nodes on its faces, 60 on its edges, all on it: ${JSON.stringify(hex)}`);
-      // a quadratic planar sample in the same link: fixed, disabled, the choice kept for a volume
+      // a quadratic planar sample in the same link: it slides too, the link keeps it
       await open(p, `${server.base}#sample=plate-quadratic&boundary=slide`);
       check(await p.isHidden('#message'), `no refusal: ${await p.textContent('#message')}`);
-      check(await p.locator('#boundary').isDisabled() && await p.inputValue('#boundary') === 'fixed', 'a quadratic planar sample shows the boundary fixed');
-      const why = await p.textContent('#boundary-why');
-      check(/^Fixed here: the page slides a linear planar mesh's boundary; this mesh is quadratic/.test(why), `why: ${why}`);
-      check(await p.locator('#boundary-key').isHidden(), 'no key where the boundary cannot slide');
-      check(!/boundary=/.test(await p.evaluate(() => location.hash)), `the link drops it: ${await p.evaluate(() => location.hash)}`);
+      check(!(await p.locator('#boundary').isDisabled()) && await p.inputValue('#boundary') === 'slide' && (await p.textContent('#boundary-why')) === '', 'a quadratic planar sample slides');
+      check(await p.locator('#boundary-key').isVisible(), 'the key of the marks is shown for a quadratic plate');
+      check(/&boundary=slide(&|$)/.test(await p.evaluate(() => location.hash)), `the link keeps it: ${await p.evaluate(() => location.hash)}`);
       // a surface: its curves (the capped cylinder's two rims) slide, said in its own words
       await chooseSample(p, 'sample:cylinder-capped');
       await idle(p);
@@ -243,6 +242,104 @@ export default async function ({ server, context }) {
       await phone.screenshot({ path: path.join(OUT, 'boundary-planar-390x844.png') });
     } finally {
       await phone.close();
+    }
+  });
+
+  await test('issue 58: a quadratic planar mesh\'s boundary slides along its curved edges on the page as `smoothlab smooth --boundary slide` slides it, in one worker and in two', async () => {
+    const dir = path.join(OUT, 'boundary');
+    mkdirSync(dir, { recursive: true });
+    const smooth = (file, passes) => {
+      const out = file.replace(/\.msh$/, '-slid.msh');
+      const r = cli(['smooth', file, '-o', out, '--boundary', 'slide', '--passes', String(passes), '--finish', '0', '--json']);
+      check(r.status === 0, r.stderr);
+      return { report: JSON.parse(r.stdout), nodes: mshNodes(readFileSync(out, 'utf8')) };
+    };
+    const same = (got, want) => got.length === want.length && got.every((q, i) => q.every((v, k) => v === want[i][k]));
+    const differ = (got, was) => got.filter((q, i) => q.some((v, k) => v !== was[i][k])).length;
+    const p = await freshPage(context, 1366, 768, 'quadratic boundary');
+    try {
+      // the plate with 6-node triangles, its hole curved: each boundary edge is the
+      // quadratic through its corners and mid-side node, and a sliding corner carries the
+      // mid-side nodes of its edges
+      await open(p, `${server.base}#sample=plate-quadratic`);
+      const plate = path.join(dir, 'plate-quadratic.msh');
+      const loaded = await saveMsh(p, 'b', plate);
+      const tool = smooth(plate, 2);
+      const b = tool.report.boundary;
+      check(b && b.corners === 4 && b.curve_nodes > 20 && b.max_distance < 1e-9, `the tool's boundary report: ${JSON.stringify(b)}`);
+      check(!(await p.locator('#boundary').isDisabled()) && (await p.textContent('#boundary-why')) === '', 'a quadratic planar mesh\'s boundary is free to slide');
+      await chooseBoundary(p, 'slide');
+      const words = await p.textContent('#boundary-words');
+      check(/slide along the boundary as loaded/.test(words) && /quadratic mesh's boundary is its curved edges/.test(words) && /mid-side nodes/.test(words), `the planar sentence: ${words}`);
+      const status = await p.textContent('#status');
+      const counts = `${b.curve_nodes} nodes slide along the boundary; ${b.corners} corners stay.`;
+      check(status.includes(counts), `status: ${status}; the tool: ${counts}`);
+      check(await p.isHidden('#message') || (await p.textContent('#message')) === '', `no message: ${await p.textContent('#message')}`);
+      for (const id of ['mesh-a', 'mesh-b']) {
+        const purple = await purplePixels(p, id);
+        check(purple > 200, `${id}: the sliding curved boundary is drawn (${purple} pixels)`);
+      }
+      check((await stats(p, 'b')).boundary_sliding === String(b.curve_nodes), `the table: ${JSON.stringify(await stats(p, 'b'))}`);
+      for (const pass of tool.report.passes) {
+        await step(p);
+        const s = await stats(p, 'b');
+        check(s.min_angle === `${pass.min_angle_deg.toFixed(2)}°` && s.inverted === String(pass.inverted), `pass ${pass.pass}: the page ${s.min_angle}, the tool ${pass.min_angle_deg.toFixed(2)}°`);
+      }
+      await p.evaluate(() => window.scrollTo(0, 0));
+      await p.screenshot({ path: path.join(OUT, 'boundary-quadratic-1366x768.png') });
+      const s2 = await stats(p, 'b');
+      check(s2.boundary_distance === b.max_distance.toExponential(2), `the largest distance from the boundary: the page ${s2.boundary_distance}, the tool ${b.max_distance.toExponential(2)}`);
+      const got = await saveMsh(p, 'b', path.join(dir, 'plate-quadratic-page.msh'));
+      check(same(got, tool.nodes), 'the quadratic plate\'s B after 2 passes is not the command-line tool\'s mesh');
+      const moved = differ(got, loaded);
+      console.log(`     plate-quadratic, 2 passes sliding: min angle ${tool.report.final.min_angle_deg.toFixed(2)}°, ${b.curve_nodes} boundary nodes sliding, ${moved} nodes moved, the page's B the tool's output node for node`);
+      // Reset puts the boundary back as loaded (on its curves, to the rounding of the
+      // nearest points on them)
+      await p.click('#reset');
+      await idle(p);
+      const r = await stats(p, 'b');
+      check(r.passes === '0' && Number(r.boundary_distance) < 1e-12 && r.min_angle === (await stats(p, 'a')).min_angle, `reset: ${JSON.stringify(r)}`);
+    } finally {
+      await p.close();
+    }
+
+    // a larger quadratic plate, tangled: its passes are split between two workers; the
+    // first holds the boundary, the second slides it, the boundary's segments and
+    // parameters handed to the second worker with the sweep
+    const big = path.join(dir, 'plate-quadratic-big.msh');
+    const perturbed = path.join(dir, 'plate-quadratic-big-perturbed.msh');
+    for (const args of [['generate', 'plate', '--kind', 'tri', '--order', '2', '--resolution', '20', '-o', big],
+      ['generate', 'perturb', big, '--amount', '0.3', '--seed', '3', '-o', perturbed]]) {
+      const r = cli(args);
+      check(r.status === 0, `${args.join(' ')}: ${r.stderr}`);
+    }
+    const bigTool = smooth(perturbed, 2);
+    const firstPass = bigTool.report.passes[0];
+    check(firstPass.inverted === 0 && bigTool.report.boundary && bigTool.report.boundary.curve_nodes > 100, `the tool untangles it in a pass, then slides: ${JSON.stringify(bigTool.report.passes)}, ${JSON.stringify(bigTool.report.boundary)}`);
+    const q = await freshPage(context, 1366, 768, 'quadratic boundary, two workers');
+    try {
+      await open(q, `${server.base}#boundary=slide`);
+      await q.setInputFiles('#file', perturbed);
+      await q.waitForFunction(() => /Loaded plate-quadratic-big-perturbed\.msh/.test(document.getElementById('status').textContent), null, { timeout: TIMEOUT });
+      await idle(q);
+      check(await q.inputValue('#boundary') === 'slide', 'the file slides as the link said');
+      await q.waitForFunction(() => window.smoothlab.twoWorkers(), null, { timeout: TIMEOUT, polling: 100 });
+      for (const pass of bigTool.report.passes) {
+        await step(q);
+        const last = await q.evaluate(() => window.smoothlab.metrics.lastStep);
+        check(last.workers === 2, `pass ${pass.pass} ran in ${last.workers} worker(s)`);
+      }
+      const nodes = await saveMsh(q, 'b', path.join(dir, 'plate-quadratic-big-page-b.msh'));
+      check(same(nodes, bigTool.nodes), 'the big quadratic plate\'s B after 2 split passes is not the command-line tool\'s mesh');
+      // side A (old) was swept by the second worker: the tool's run with old's objective
+      const aOut = perturbed.replace(/\.msh$/, '-old.msh');
+      const r = cli(['smooth', perturbed, '-o', aOut, '--boundary', 'slide', '--passes', '2', '--finish', '0', '--objective', 'old']);
+      check(r.status === 0, r.stderr);
+      const aNodes = await saveMsh(q, 'a', path.join(dir, 'plate-quadratic-big-page-a.msh'));
+      check(same(aNodes, mshNodes(readFileSync(aOut, 'utf8'))), 'the big quadratic plate\'s A after 2 split passes is not the command-line tool\'s mesh with old');
+      console.log(`     plate-quadratic at ${nodes.length} nodes, 2 passes split between two workers: both sides the tool's output node for node`);
+    } finally {
+      await q.close();
     }
   });
 }

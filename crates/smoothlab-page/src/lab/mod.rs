@@ -34,7 +34,7 @@ use glam::DVec2;
 use tiny_skia::Pixmap;
 
 pub use lab3d::{Frame3d, Lab3d, Mesh3d};
-pub use pass::{PassProgress, PassStage, SideSweep, SlideState};
+pub use pass::{PassProgress, PassStage, SideSweep, SlidePlaces, SlideState};
 use pass::{PassRun, RunKind};
 pub use settings::{Choice, Settings, Side};
 use smoothlab::error::{Error, Result};
@@ -141,9 +141,9 @@ pub struct Playground {
     versions: Versions,
     run: Option<PassRun>,
     /// A completed sweep for another engine ([`begin_sweep`](Self::begin_sweep)): the
-    /// panel's swept positions, what the sweep did and its nodes' boundary segments (where
-    /// it slides), until taken.
-    swept: Option<(Vec<DVec2>, SideSweep, Option<Vec<u32>>)>,
+    /// panel's swept positions, what the sweep did and where its nodes were last put on the
+    /// boundary (where it slides), until taken.
+    swept: Option<(Vec<DVec2>, SideSweep, Option<SlidePlaces>)>,
     /// The user's zoom and pan on the mesh panels (both panels share it).
     zoom: smoothlab_render::ZoomPan,
     /// The part of a star the level-set views show (both sides share it).
@@ -232,11 +232,10 @@ impl Playground {
     /// [`Target::Input`] every corner is measured against the mesh as loaded (or as last
     /// perturbed, [`original_nodes`](Self::original_nodes)), whatever the panels went
     /// through since. A new boundary rule starts both panels again from the mesh as loaded
-    /// ([`reset`](Self::reset)); [`BoundaryRule::Slide`] is refused where the boundary
-    /// cannot slide, saying why ([`slide_refused`](Self::slide_refused)).
+    /// ([`reset`](Self::reset)): every planar mesh's boundary can slide, a quadratic one's
+    /// along its curved edges.
     pub fn set_settings(&mut self, settings: Settings) -> Result<()> {
         let o = [settings.side_options(Side::A, self.run_start())?, settings.side_options(Side::B, self.run_start())?];
-        settings::check_boundary(settings.boundary, self.slide_refused())?;
         self.abort_pass();
         for (p, side) in self.panels.iter_mut().zip(Side::BOTH) {
             p.smoother = Smoother::new(o[side.index()])?;
@@ -253,13 +252,6 @@ impl Playground {
             }
         }
         Ok(())
-    }
-
-    /// Why this mesh's boundary nodes cannot slide, if they cannot: a quadratic mesh's stay
-    /// on the page (the core slides them along its curved edges; a drag on the page would
-    /// have to carry their mid-side nodes too).
-    pub fn slide_refused(&self) -> Option<String> {
-        self.topology().has_quadratic().then(settings::slide_refused_quadratic_planar)
     }
 
     /// The boundary rule a run from the mesh as loaded (or as last perturbed) begins with:
@@ -433,26 +425,25 @@ impl Playground {
 
     /// The sweep begun by [`begin_sweep`](Self::begin_sweep), once
     /// [`continue_pass`](Self::continue_pass) said it is done: the swept positions (x, y
-    /// interleaved), what the sweep did, and the boundary segment each node was last put
-    /// on where the boundary slides ([`SlideState::segments`]). `None` before that, and
-    /// after it was taken.
-    pub fn take_sweep(&mut self) -> Option<(Vec<f64>, SideSweep, Option<Vec<u32>>)> {
+    /// interleaved), what the sweep did, and where each node was last put on the boundary
+    /// where it slides ([`SlideState::places`]). `None` before that, and after it was taken.
+    pub fn take_sweep(&mut self) -> Option<(Vec<f64>, SideSweep, Option<SlidePlaces>)> {
         self.swept
             .take()
-            .map(|(nodes, sweep, segments)| (interleaved(&nodes), sweep, segments))
+            .map(|(nodes, sweep, places)| (interleaved(&nodes), sweep, places))
     }
 
     /// Hands panel A's sweep, made by another engine, to the split pass in progress
     /// ([`begin_split_pass`](Self::begin_split_pass)): its positions (x, y interleaved),
-    /// what it did and, where panel A's boundary slides, its nodes' boundary segments
-    /// ([`take_sweep`](Self::take_sweep)'s).
-    pub fn adopt_sweep(&mut self, nodes: &[f64], sweep: SideSweep, segments: Option<&[u32]>) -> Result<()> {
+    /// what it did and, where panel A's boundary slides, where its nodes were last put on
+    /// it ([`take_sweep`](Self::take_sweep)'s).
+    pub fn adopt_sweep(&mut self, nodes: &[f64], sweep: SideSweep, places: Option<SlidePlaces>) -> Result<()> {
         let nodes = self.positions_from(nodes)?;
         let run = self
             .run
             .as_mut()
             .ok_or_else(|| Error::invalid("no pass is in progress: begin a split pass first"))?;
-        run.adopt(&mut self.panels, &mut self.versions, &nodes, sweep, segments)
+        run.adopt(&mut self.panels, &mut self.versions, &nodes, sweep, places)
     }
 
     /// The positions of a panel, x and y interleaved (what [`begin_sweep`](Self::begin_sweep) takes).
@@ -999,20 +990,85 @@ mod tests {
     }
 
     #[test]
-    fn a_sliding_node_is_neither_dragged_nor_chosen_and_a_quadratic_boundary_stays() {
-        let mut pg = Playground::new(Sample::PlateTri.generate().unwrap()).unwrap();
+    fn a_sliding_node_is_neither_dragged_nor_chosen_linear_or_quadratic() {
+        for sample in [Sample::PlateTri, Sample::PlateQuadratic] {
+            let mut pg = Playground::new(sample.generate().unwrap()).unwrap();
+            pg.set_settings(Settings { boundary: BoundaryRule::Slide, ..Settings::default() }).unwrap();
+            assert_eq!(pg.settings().boundary, BoundaryRule::Slide, "{sample:?}");
+            let m = pg.topology().clone();
+            let sliding = (0..m.node_count()).find(|&n| m.boundary_node(n).is_some_and(|c| c.slides())).unwrap();
+            let e = pg.move_node(sliding, DVec2::ZERO).unwrap_err().to_string();
+            assert!(e.contains("slides along the boundary"), "{sample:?}: {e}");
+            let why = pick::why_not_free(&m, sliding).unwrap();
+            assert!(why.contains("slides along the boundary"), "{sample:?}: {why}");
+            assert!(pick::worst_free_node(&m).is_some_and(|n| !m.is_boundary(n)), "{sample:?}");
+            // a boundary edge's mid-side node is no more draggable than it was
+            if let Some(mid) = m.topology().boundary_edges().map(|e| e.mid as usize).find(|&v| v != smoothlab::mesh::NONE as usize) {
+                assert!(pg.move_node(mid, DVec2::ZERO).is_err(), "{sample:?}");
+            }
+            assert_eq!(pg.panel(Side::A).mesh.nodes(), pg.original_nodes(), "{sample:?}: a refused drag changes nothing");
+        }
+    }
+
+    /// The quadratic plate (6-node triangles, its hole a curved boundary) perturbed a
+    /// little (valid) or heavily (tangled), as the page holds it with the boundary sliding.
+    fn sliding_quadratic_plate(amount: f64) -> Playground {
+        let mut pg = Playground::new(Sample::PlateQuadratic.generate().unwrap()).unwrap();
+        pg.perturb(amount, 5).unwrap();
         pg.set_settings(Settings { boundary: BoundaryRule::Slide, ..Settings::default() }).unwrap();
-        let m = pg.topology().clone();
-        let sliding = (0..m.node_count()).find(|&n| m.boundary_node(n).is_some_and(|c| c.slides())).unwrap();
-        let e = pg.move_node(sliding, DVec2::ZERO).unwrap_err().to_string();
-        assert!(e.contains("slides along the boundary"), "{e}");
-        let why = pick::why_not_free(&m, sliding).unwrap();
-        assert!(why.contains("slides along the boundary"), "{why}");
-        assert!(pick::worst_free_node(&m).is_some_and(|n| !m.is_boundary(n)));
-        let mut quadratic = Playground::new(Sample::PlateQuadratic.generate().unwrap()).unwrap();
-        let e = quadratic.set_settings(Settings { boundary: BoundaryRule::Slide, ..Settings::default() }).unwrap_err().to_string();
-        assert_eq!(e, format!("the boundary cannot slide here: {}", settings::slide_refused_quadratic_planar()));
-        assert_eq!(quadratic.settings().boundary, BoundaryRule::Fixed, "a refusal changes nothing");
+        pg
+    }
+
+    #[test]
+    fn a_quadratic_mesh_s_boundary_steps_as_the_cli_slides_it_valid_or_tangled() {
+        // Chen's curved boundaries on the page: each boundary edge is the quadratic through
+        // its corners and mid-side node, a sliding corner carries its edges' mid-side nodes;
+        // the page's Steps are `Model::smooth`'s to the bit, report included, and a tangled
+        // plate's boundary is held until a pass leaves a side valid
+        let slide = Settings { boundary: BoundaryRule::Slide, ..Settings::default() };
+        for (amount, tangled) in [(0.3, false), (0.6, true)] {
+            let mut pg = sliding_quadratic_plate(amount);
+            assert!(pg.topology().has_quadratic());
+            assert_eq!(pg.original_stats().inverted > 0, tangled, "{amount}");
+            let loaded = pg.topology().clone();
+            let mut on_boundary: Vec<usize> = loaded.topology().boundary_edges().flat_map(|e| [e.a, e.mid, e.b]).map(|v| v as usize).collect();
+            on_boundary.sort_unstable();
+            on_boundary.dedup();
+            let mids: Vec<usize> = loaded.topology().boundary_edges().map(|e| e.mid as usize).collect();
+            let moved = |m: &Mesh, nodes: &[usize]| nodes.iter().filter(|&&n| m.nodes()[n] != loaded.nodes()[n]).count();
+            for pass in 1..=3 {
+                pg.set_settings(slide).unwrap();
+                pg.step(&no_clock);
+                if pass == 1 {
+                    for side in Side::BOTH {
+                        let n = moved(&pg.panel(side).mesh, &on_boundary);
+                        assert_eq!(n == 0, tangled, "{amount} {side:?}: {n} boundary nodes moved in the first pass");
+                    }
+                }
+                for side in Side::BOTH {
+                    let what = format!("{amount} pass {pass} {side:?}");
+                    let (cli, report) = run_as_the_cli(&loaded, slide, side, pass);
+                    let m = &pg.panel(side).mesh;
+                    let bits = |m: &Mesh| m.nodes().iter().map(|p| [p.x.to_bits(), p.y.to_bits()]).collect::<Vec<_>>();
+                    assert_eq!(bits(m), bits(&cli), "{what}");
+                    assert_eq!(pg.table(side).boundary.as_ref(), report.boundary(), "{what}");
+                    assert_eq!(pg.panel(side).records.last().unwrap().after.inverted, report.stats().inverted, "{what}");
+                }
+            }
+            for side in Side::BOTH {
+                let m = &pg.panel(side).mesh;
+                let (all, carried) = (moved(m, &on_boundary), moved(m, &mids));
+                assert!(all > carried && carried > 10, "{amount} {side:?}: {all} boundary nodes moved, {carried} of them mid-side nodes");
+                let b = pg.table(side).boundary.expect("the boundary slides");
+                assert!(b.corners == 4 && b.curve_nodes > 20 && b.max_distance < 1e-9 * b.mean_edge, "{amount} {side:?}: {b:?}");
+            }
+            // Reset puts the boundary back as loaded, sliding (or held while tangled)
+            pg.reset();
+            for side in Side::BOTH {
+                assert_eq!(moved(&pg.panel(side).mesh, &on_boundary), 0, "{amount} {side:?}");
+                assert_eq!(pg.slide_state(side).is_some(), !tangled, "{amount} {side:?}");
+            }
+        }
     }
 
     #[test]

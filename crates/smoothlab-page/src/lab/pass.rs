@@ -74,25 +74,44 @@ pub struct SideSweep {
 }
 
 /// Where a panel's sliding boundary stands, as a split pass hands it to the engine that
-/// sweeps and an abandoned pass puts it back: the positions the boundary was taken from
-/// and the boundary segment each node was last put on (the core's
-/// [`Mesh::boundary_taken_from`] and [`Mesh::boundary_segments`]).
+/// sweeps and an abandoned pass puts it back: the positions the boundary was taken from,
+/// the boundary segment each node was last put on and, for a quadratic mesh, where on it
+/// (the core's [`Mesh::boundary_taken_from`], [`Mesh::boundary_segments`] and
+/// [`Mesh::boundary_parameters`]).
 #[derive(Clone, Debug, PartialEq)]
 pub struct SlideState {
     pub from: Vec<DVec2>,
+    pub places: SlidePlaces,
+}
+
+/// Where each node of a sliding boundary was last put: its segment ([`NONE`](smoothlab::mesh::NONE)
+/// for a node that does not slide) and, on a quadratic mesh, its parameter along it (the
+/// mid-side nodes a sliding node carries are placed from them); `params` is empty for a
+/// linear mesh.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct SlidePlaces {
     pub segments: Vec<u32>,
+    pub params: Vec<f64>,
+}
+
+impl SlidePlaces {
+    /// `mesh`'s; `None` while its boundary is held.
+    pub fn of(mesh: &Mesh) -> Option<SlidePlaces> {
+        let segments = mesh.boundary_segments()?.to_vec();
+        Some(SlidePlaces { segments, params: mesh.boundary_parameters().map_or_else(Vec::new, <[f64]>::to_vec) })
+    }
 }
 
 impl SlideState {
     /// `mesh`'s; `None` while its boundary is held.
     pub fn of(mesh: &Mesh) -> Option<SlideState> {
-        Some(SlideState { from: mesh.boundary_taken_from()?.to_vec(), segments: mesh.boundary_segments()?.to_vec() })
+        Some(SlideState { from: mesh.boundary_taken_from()?.to_vec(), places: SlidePlaces::of(mesh)? })
     }
 
     /// Puts `mesh` at `nodes` (one a node) with its boundary as `state` says: held for
     /// `None`, else taken from `state.from` (again only where it was taken from other
-    /// positions) with its nodes on `state.segments`. A state that does not fit the mesh
-    /// is refused; the mesh must then be put back.
+    /// positions) with its nodes where `state.places` says. A state that does not fit the
+    /// mesh is refused; the mesh must then be put back.
     pub(super) fn give(state: Option<&SlideState>, mesh: &mut Mesh, nodes: &[DVec2]) -> Result<()> {
         let Some(s) = state else {
             mesh.set_boundary(BoundaryRule::Fixed, FEATURE_ANGLE_DEG);
@@ -111,7 +130,7 @@ impl SlideState {
             mesh.set_boundary(BoundaryRule::Slide, FEATURE_ANGLE_DEG);
         }
         mesh.nodes_mut().copy_from_slice(nodes);
-        mesh.set_boundary_segments(&s.segments)
+        mesh.set_boundary_segments(&s.places.segments, &s.places.params)
     }
 }
 
@@ -412,16 +431,16 @@ impl PassRun {
     }
 
     /// A split run adopts panel A's sweep made by another engine: its positions
-    /// `nodes`, what it did and, where panel A's boundary slides, the boundary segment
-    /// each node was last put on (`segments`). The panel is saved first, so an abandoned
-    /// pass puts it back; it is measured when panel B is done. A refusal changes nothing.
+    /// `nodes`, what it did and, where panel A's boundary slides, where each node was last
+    /// put on it (`places`). The panel is saved first, so an abandoned pass puts it back;
+    /// it is measured when panel B is done. A refusal changes nothing.
     pub(super) fn adopt(
         &mut self,
         panels: &mut [Panel; 2],
         versions: &mut Versions,
         nodes: &[DVec2],
         sweep: SideSweep,
-        segments: Option<&[u32]>,
+        places: Option<SlidePlaces>,
     ) -> Result<()> {
         if self.kind != RunKind::Split {
             return Err(Error::invalid("the pass in progress is not split between two engines"));
@@ -431,8 +450,8 @@ impl PassRun {
         }
         let p = &mut panels[0];
         let saved = Saved::of(p);
-        let slide = match (&saved.slide, segments) {
-            (Some(s), Some(segments)) => Some(SlideState { from: s.from.clone(), segments: segments.to_vec() }),
+        let slide = match (&saved.slide, places) {
+            (Some(s), Some(places)) => Some(SlideState { from: s.from.clone(), places }),
             (None, None) => None,
             (Some(_), None) => return Err(Error::invalid("the old side's boundary slides: give its nodes' boundary segments with its sweep")),
             (None, Some(_)) => return Err(Error::invalid("boundary segments were given, but the old side's boundary is held")),
@@ -448,14 +467,14 @@ impl PassRun {
     }
 
     /// The result of a completed [`RunKind::Sweep`]: the panel's swept positions, what
-    /// the sweep did and its nodes' boundary segments where it slides; the panel itself
-    /// is put back as it was.
-    pub(super) fn finish_sweep(self, panels: &mut [Panel; 2]) -> (Vec<DVec2>, SideSweep, Option<Vec<u32>>) {
+    /// the sweep did and where its nodes were last put on the boundary where it slides;
+    /// the panel itself is put back as it was.
+    pub(super) fn finish_sweep(self, panels: &mut [Panel; 2]) -> (Vec<DVec2>, SideSweep, Option<SlidePlaces>) {
         let mesh = &panels[self.panel()].mesh;
-        let (nodes, segments) = (mesh.nodes().to_vec(), mesh.boundary_segments().map(<[u32]>::to_vec));
+        let (nodes, places) = (mesh.nodes().to_vec(), SlidePlaces::of(mesh));
         let sweep = self.sweep.unwrap_or_default();
         self.undo(panels);
-        (nodes, sweep, segments)
+        (nodes, sweep, places)
     }
 
     /// Saves the panel of a sweep run as it is before the run (it gets the other engine's
@@ -741,10 +760,10 @@ mod tests {
                         helper_before,
                         "{what}: the helper is put back"
                     );
-                    let (nodes, sweep, segments) = helper.take_sweep().unwrap();
+                    let (nodes, sweep, places) = helper.take_sweep().unwrap();
                     assert!(helper.take_sweep().is_none());
-                    primary.adopt_sweep(&nodes, sweep, segments.as_deref()).unwrap();
-                    assert!(primary.adopt_sweep(&nodes, sweep, segments.as_deref()).is_err(), "adopted once");
+                    primary.adopt_sweep(&nodes, sweep, places.clone()).unwrap();
+                    assert!(primary.adopt_sweep(&nodes, sweep, places.clone()).is_err(), "adopted once");
                     let records = loop {
                         let p = primary.continue_pass(&clock, 3.0).unwrap();
                         assert!((0.0..=1.0).contains(&p.fraction));
@@ -787,12 +806,15 @@ mod tests {
 
     #[test]
     fn a_split_pass_slides_the_boundary_as_the_whole_pass_does() {
-        // the quad plate perturbed a little (its boundary slides from the start) and
-        // tangled (held until a pass leaves a side valid): the helper, never perturbed,
-        // is handed panel A's boundary with each sweep and hands its segments back
+        // the quad plate and the quadratic plate (its hole a curved boundary, whose sliding
+        // nodes carry their edges' mid-side nodes) perturbed a little (the boundary slides
+        // from the start) and tangled (held until a pass leaves a side valid): the helper,
+        // never perturbed, is handed panel A's boundary with each sweep and hands back
+        // where its nodes were put on it
         let slide = Settings { boundary: BoundaryRule::Slide, ..Settings::default() };
-        for amount in [0.3, 0.8] {
-            let [mut whole, mut primary, mut helper] = [(); 3].map(|_| Playground::new(Sample::PlateQuad.generate().unwrap()).unwrap());
+        for (sample, amount) in [(Sample::PlateQuad, 0.3), (Sample::PlateQuad, 0.8), (Sample::PlateQuadratic, 0.3), (Sample::PlateQuadratic, 0.6)] {
+            let [mut whole, mut primary, mut helper] = [(); 3].map(|_| Playground::new(sample.generate().unwrap()).unwrap());
+            let quadratic = whole.topology().has_quadratic();
             for pg in [&mut whole, &mut primary] {
                 pg.perturb(amount, 5).unwrap();
             }
@@ -802,9 +824,9 @@ mod tests {
             let clock = ticking();
             let mut handed = 0;
             for pass in 1..=3 {
-                let what = format!("{amount} pass {pass}");
+                let what = format!("{sample:?} {amount} pass {pass}");
                 let expected = whole.step(&clock);
-                // Stop during a pass leaves no trace, the boundary's segments too
+                // Stop during a pass leaves no trace, the boundary's places too
                 let before = primary.slide_state(Side::B);
                 primary.begin_pass();
                 loop {
@@ -821,21 +843,30 @@ mod tests {
                 handed += usize::from(a.is_some());
                 let nodes = primary.panel_positions(Side::A);
                 if let Some(a) = &a {
-                    let short = SlideState { from: a.from[1..].to_vec(), segments: a.segments.clone() };
+                    assert_eq!(a.places.params.len(), if quadratic { a.places.segments.len() } else { 0 }, "{what}");
+                    let short = SlideState { from: a.from[1..].to_vec(), places: a.places.clone() };
                     let e = helper.begin_sweep(Side::A, &nodes, None, primary.run_start(), Some(&short)).unwrap_err().to_string();
                     assert!(e.contains("positions for a mesh of"), "{e}");
-                    let wrong = SlideState { from: a.from.clone(), segments: vec![0; a.segments.len()] };
+                    let wrong = SlideState { from: a.from.clone(), places: SlidePlaces { segments: vec![0; a.places.segments.len()], ..a.places.clone() } };
                     assert!(helper.begin_sweep(Side::A, &nodes, None, primary.run_start(), Some(&wrong)).is_err());
+                    // a quadratic boundary's parameters must travel with its segments
+                    let params = if quadratic { Vec::new() } else { vec![0.5; a.places.segments.len()] };
+                    let unplaced = SlideState { from: a.from.clone(), places: SlidePlaces { segments: a.places.segments.clone(), params } };
+                    assert!(helper.begin_sweep(Side::A, &nodes, None, primary.run_start(), Some(&unplaced)).is_err(), "{what}");
                     assert!(!helper.pass_in_progress(), "a refused sweep leaves nothing begun");
                 }
                 helper.begin_sweep(Side::A, &nodes, None, primary.run_start(), a.as_ref()).unwrap();
                 while !helper.continue_pass(&clock, 3.0).unwrap().done {}
-                let (nodes, sweep, segments) = helper.take_sweep().unwrap();
-                assert_eq!(segments.is_some(), a.is_some(), "{what}");
-                if a.is_some() {
-                    assert!(primary.adopt_sweep(&nodes, sweep, None).is_err(), "{what}: the segments are needed");
+                let (nodes, sweep, places) = helper.take_sweep().unwrap();
+                assert_eq!(places.is_some(), a.is_some(), "{what}");
+                if let Some(places) = &places {
+                    assert!(primary.adopt_sweep(&nodes, sweep, None).is_err(), "{what}: the places are needed");
+                    if quadratic {
+                        let dropped = SlidePlaces { params: Vec::new(), ..places.clone() };
+                        assert!(primary.adopt_sweep(&nodes, sweep, Some(dropped)).is_err(), "{what}: the parameters are needed");
+                    }
                 }
-                primary.adopt_sweep(&nodes, sweep, segments.as_deref()).unwrap();
+                primary.adopt_sweep(&nodes, sweep, places).unwrap();
                 let records = loop {
                     if let Some(r) = primary.continue_pass(&clock, 3.0).unwrap().records {
                         break r;
@@ -843,13 +874,14 @@ mod tests {
                 };
                 for side in Side::BOTH {
                     let i = side as usize;
-                    assert_eq!(primary.panel(side).mesh.nodes(), whole.panel(side).mesh.nodes(), "{what} {side:?}");
+                    let bits = |pg: &Playground| pg.panel(side).mesh.nodes().iter().map(|p| [p.x.to_bits(), p.y.to_bits()]).collect::<Vec<_>>();
+                    assert_eq!(bits(&primary), bits(&whole), "{what} {side:?}");
                     assert_eq!((records[i].counts, records[i].after), (expected[i].counts, expected[i].after), "{what} {side:?}");
                     assert_eq!(primary.slide_state(side), whole.slide_state(side), "{what} {side:?}");
                     assert_eq!(primary.table(side).boundary, whole.table(side).boundary, "{what} {side:?}");
                 }
             }
-            assert!(handed >= 2, "{amount}: panel A's boundary slid in {handed} of 3 passes");
+            assert!(handed >= 2, "{sample:?} {amount}: panel A's boundary slid in {handed} of 3 passes");
         }
     }
 
@@ -905,8 +937,8 @@ mod tests {
                 helper.panel(Side::A).mesh.target_nodes(),
                 Some(helper.original_nodes())
             );
-            let (nodes, sweep, segments) = helper.take_sweep().unwrap();
-            primary.adopt_sweep(&nodes, sweep, segments.as_deref()).unwrap();
+            let (nodes, sweep, places) = helper.take_sweep().unwrap();
+            primary.adopt_sweep(&nodes, sweep, places.clone()).unwrap();
             let records = loop {
                 if let Some(r) = primary.continue_pass(&clock, 3.0).unwrap().records {
                     break r;
@@ -959,31 +991,31 @@ mod tests {
             .begin_sweep(Side::A, &primary.panel_positions(Side::A), None, primary.run_start(), None)
             .unwrap();
         while !helper.continue_pass(&clock, 2.0).unwrap().done {}
-        let (nodes, sweep, segments) = helper.take_sweep().unwrap();
+        let (nodes, sweep, places) = helper.take_sweep().unwrap();
         assert!(sweep.counts.visits > 0 && nodes != primary.panel_positions(Side::A));
         assert!(
-            primary.adopt_sweep(&nodes, sweep, segments.as_deref()).is_err(),
+            primary.adopt_sweep(&nodes, sweep, places.clone()).is_err(),
             "no split pass in progress"
         );
         primary.begin_pass();
         assert!(
-            primary.adopt_sweep(&nodes, sweep, segments.as_deref()).is_err(),
+            primary.adopt_sweep(&nodes, sweep, places.clone()).is_err(),
             "a whole pass adopts nothing"
         );
         primary.begin_split_pass();
         assert!(
-            primary.adopt_sweep(&nodes[1..], sweep, segments.as_deref()).is_err(),
+            primary.adopt_sweep(&nodes[1..], sweep, places.clone()).is_err(),
             "one coordinate short"
         );
         let mut nan = nodes.clone();
         nan[7] = f64::NAN;
-        let e = primary.adopt_sweep(&nan, sweep, segments.as_deref()).unwrap_err().to_string();
+        let e = primary.adopt_sweep(&nan, sweep, places.clone()).unwrap_err().to_string();
         assert!(e.contains("node 3"), "{e}");
         assert!(helper
             .begin_sweep(Side::A, &vec![0.0; 2 * n + 2], None, primary.run_start(), None)
             .is_err());
         primary.continue_pass(&clock, 2.0).unwrap();
-        primary.adopt_sweep(&nodes, sweep, segments.as_deref()).unwrap();
+        primary.adopt_sweep(&nodes, sweep, places.clone()).unwrap();
         primary.continue_pass(&clock, 2.0).unwrap();
         primary.abort_pass();
         assert!(!primary.pass_in_progress());

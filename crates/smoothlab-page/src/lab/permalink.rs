@@ -14,8 +14,8 @@
 //! when it is not the ideal and accepted only with a strategy that takes it (`opt`,
 //! `rules`: [`target_refused`]).
 //! `boundary` is what the boundary nodes do (`fixed` or `slide`), written only when they
-//! slide; a mesh whose boundary cannot slide (a quadratic one) shows it fixed, the choice
-//! kept for the next mesh whose boundary slides.
+//! slide; a mesh whose boundary cannot slide (a quadratic volume mesh) shows it fixed,
+//! the choice kept for the next mesh whose boundary slides.
 //! A mesh in 3D adds its camera (`yaw`, `pitch`, `zoom`) and tetrahedra their cut plane
 //! (`cut`, the axis, and `cut-at`, where along it), e.g.
 //! `#sample=rand3d&…&node=431&yaw=52.5&pitch=31&zoom=1.5&cut=x&cut-at=0.4`; a link

@@ -124,7 +124,8 @@ pub struct Settings {
     pub target: Target,
     /// What a mesh's boundary nodes do ([`BoundaryRule`]): stay where the file put them,
     /// or slide on the boundary as loaded (or as last perturbed), along its feature curves
-    /// at the core's default feature angle; only a linear mesh takes `slide` (see
+    /// at the core's default feature angle (a quadratic planar mesh's along its curved
+    /// edges); a quadratic volume mesh does not take `slide` (see
     /// [`slide_refused_quadratic`]). Absent means fixed.
     #[serde(default)]
     pub boundary: BoundaryRule,
@@ -278,13 +279,14 @@ const FIXED_WORDS: &str = "Boundary nodes stay where the file put them, as in th
 
 /// What a [`BoundaryRule`] means on a planar mesh, in a sentence for the page: its
 /// boundary is its edges of one element, a corner where it turns by more than the core's
-/// feature angle ([`FEATURE_ANGLE_DEG`]); a tangled mesh's is held until a pass leaves it
+/// feature angle ([`FEATURE_ANGLE_DEG`]), a quadratic element's boundary edge the curve
+/// through its corners and mid-side node; a tangled mesh's is held until a pass leaves it
 /// valid, as the core's run holds it.
 pub fn planar_boundary_words(rule: BoundaryRule) -> String {
     match rule {
         BoundaryRule::Fixed => FIXED_WORDS.into(),
         BoundaryRule::Slide => format!(
-            "Boundary nodes slide along the boundary as loaded; a corner, where it turns by more than {FEATURE_ANGLE_DEG}°, stays, as does a node the file fixed. A tangled mesh's boundary stays until a pass leaves the mesh valid, then slides."
+            "Boundary nodes slide along the boundary as loaded; a corner, where it turns by more than {FEATURE_ANGLE_DEG}°, stays, as does a node the file fixed. A quadratic mesh's boundary is its curved edges: a sliding node keeps to them and carries its edges' mid-side nodes to the middle of their new spans. A tangled mesh's boundary stays until a pass leaves the mesh valid, then slides."
         ),
     }
 }
@@ -303,12 +305,6 @@ pub fn surface_boundary_words(rule: BoundaryRule) -> &'static str {
 /// Why a quadratic volume mesh's boundary nodes cannot slide.
 pub fn slide_refused_quadratic() -> String {
     "only a linear volume mesh's boundary nodes slide so far; this mesh is quadratic, and its mid-edge nodes would leave its curved faces".into()
-}
-
-/// Why a quadratic planar mesh's boundary nodes cannot slide (the core slides linear
-/// planar meshes only).
-pub fn slide_refused_quadratic_planar() -> String {
-    "the page slides a linear planar mesh's boundary; this mesh is quadratic (the command line and Python slide it along its curved edges)".into()
 }
 
 /// Refuses `rule` where the mesh's boundary cannot slide (`refused`, the reason).

@@ -8,7 +8,7 @@ use wasm_bindgen::prelude::*;
 use super::{css_canvas, frame_object, now_ms, object, perturb_seed, pixels, side, to_js};
 use smoothlab::io::{self, Format};
 use crate::lab::views::Canvas;
-use crate::lab::{self, Side, SideSweep, SlideState};
+use crate::lab::{self, Side, SideSweep, SlidePlaces, SlideState};
 use smoothlab::mesh::Mesh;
 use smoothlab_render::Theme;
 
@@ -22,6 +22,16 @@ fn positions(xy: &[f64]) -> Result<Vec<DVec2>, JsError> {
         return Err(JsError::new(&format!("{} coordinates: give x and y of each position", xy.len())));
     }
     Ok(xy.chunks_exact(2).map(|c| DVec2::new(c[0], c[1])).collect())
+}
+
+/// Where a sliding boundary's nodes were put, from its segments and parameters as they
+/// travel (none while it is held; parameters absent or empty for a linear mesh).
+fn places(segments: Option<Vec<u32>>, params: Option<Vec<f64>>) -> Result<Option<SlidePlaces>, JsError> {
+    match (segments, params) {
+        (Some(segments), params) => Ok(Some(SlidePlaces { segments, params: params.unwrap_or_default() })),
+        (None, None) => Ok(None),
+        (None, Some(_)) => Err(JsError::new("boundary parameters travel with their segments: give both")),
+    }
 }
 
 /// The page's state for a planar mesh: one opaque handle (see [`lab::Playground`]).
@@ -102,8 +112,9 @@ impl Playground {
     /// Starts the sweep of panel `side` alone from `nodes` (the other engine's positions,
     /// x and y interleaved), for a split pass; run it with `continuePass`, then `takeSweep`.
     /// `target` is the other engine's `targetPositions` (null with the ideal target);
-    /// `keepGrading` and `startValid` its `runStart`; `slideFrom` and `slideSegments` its
-    /// `slideState` of the side (both undefined while its boundary is held).
+    /// `keepGrading` and `startValid` its `runStart`; `slideFrom`, `slideSegments` and
+    /// `slideParams` its `slideState` of the side (all undefined while its boundary is held;
+    /// `slideParams` empty for a linear mesh).
     #[wasm_bindgen(js_name = beginSweep)]
     #[allow(clippy::too_many_arguments)]
     pub fn begin_sweep(
@@ -115,20 +126,22 @@ impl Playground {
         start_valid: bool,
         slide_from: Option<Vec<f64>>,
         slide_segments: Option<Vec<u32>>,
+        slide_params: Option<Vec<f64>>,
     ) -> Result<(), JsError> {
         let start = crate::lab::settings::RunStart { keep_grading, valid: start_valid };
-        let slide = match (slide_from, slide_segments) {
-            (Some(from), Some(segments)) => Some(SlideState { from: positions(&from)?, segments }),
+        let slide = match (slide_from, places(slide_segments, slide_params)?) {
+            (Some(from), Some(places)) => Some(SlideState { from: positions(&from)?, places }),
             (None, None) => None,
-            _ => return Err(JsError::new("a sliding boundary travels as both slideFrom and slideSegments")),
+            _ => return Err(JsError::new("a sliding boundary travels as slideFrom, slideSegments and slideParams together")),
         };
         Ok(self.inner.begin_sweep(self::side(side)?, nodes, target.as_deref(), start, slide.as_ref())?)
     }
 
     /// Where the sliding boundary of panel `side` stands: `{ from: Float64Array, segments:
-    /// Uint32Array }` (the positions it was taken from, x and y interleaved, and the
-    /// boundary segment each node was last put on), or null while it is held. A split pass
-    /// hands panel A's to `beginSweep`.
+    /// Uint32Array, params: Float64Array }` (the positions it was taken from, x and y
+    /// interleaved, the boundary segment each node was last put on and, for a quadratic
+    /// mesh, its parameter there; empty for a linear one), or null while it is held. A
+    /// split pass hands panel A's to `beginSweep`.
     #[wasm_bindgen(js_name = slideState)]
     pub fn slide_state(&self, side: &str) -> Result<JsValue, JsError> {
         match self.inner.slide_state(self::side(side)?) {
@@ -136,7 +149,8 @@ impl Playground {
                 let from: Vec<f64> = s.from.iter().flat_map(|p| [p.x, p.y]).collect();
                 object(&[
                     ("from", js_sys::Float64Array::from(&from[..]).into()),
-                    ("segments", js_sys::Uint32Array::from(&s.segments[..]).into()),
+                    ("segments", js_sys::Uint32Array::from(&s.places.segments[..]).into()),
+                    ("params", js_sys::Float64Array::from(&s.places.params[..]).into()),
                 ])
             }
             None => Ok(JsValue::NULL),
@@ -152,13 +166,6 @@ impl Playground {
         js_sys::Array::of2(&s.keep_grading.into(), &s.valid.into())
     }
 
-    /// Why this mesh's boundary nodes cannot slide, or undefined: a quadratic mesh's stay
-    /// (as the 3D lab's `slideRefused`).
-    #[wasm_bindgen(js_name = slideRefused)]
-    pub fn slide_refused(&self) -> Option<String> {
-        self.inner.slide_refused()
-    }
-
     /// The positions every corner is measured against (x and y interleaved: the mesh as
     /// loaded or as last perturbed) when the settings' target is `input`; null with the
     /// ideal target. A split pass hands them to the engine that sweeps (`beginSweep`).
@@ -170,27 +177,29 @@ impl Playground {
     }
 
     /// The completed sweep: `{ nodes: Float64Array, sweep: { counts, sweep_ms }, segments:
-    /// Uint32Array | null }` (`segments`: the boundary segment each node was last put on,
-    /// where the boundary slides), or undefined when there is none.
+    /// Uint32Array | null, params: Float64Array | null }` (where the boundary slides: the
+    /// boundary segment each node was last put on and, for a quadratic mesh, its parameter
+    /// there), or undefined when there is none.
     #[wasm_bindgen(js_name = takeSweep)]
     pub fn take_sweep(&mut self) -> Result<JsValue, JsError> {
         match self.inner.take_sweep() {
-            Some((nodes, sweep, segments)) => object(&[
+            Some((nodes, sweep, places)) => object(&[
                 ("nodes", js_sys::Float64Array::from(&nodes[..]).into()),
                 ("sweep", to_js(&sweep)?),
-                ("segments", segments.map_or(JsValue::NULL, |s| js_sys::Uint32Array::from(&s[..]).into())),
+                ("segments", places.as_ref().map_or(JsValue::NULL, |p| js_sys::Uint32Array::from(&p.segments[..]).into())),
+                ("params", places.as_ref().map_or(JsValue::NULL, |p| js_sys::Float64Array::from(&p.params[..]).into())),
             ]),
             None => Ok(JsValue::UNDEFINED),
         }
     }
 
-    /// Hands panel A's sweep (`takeSweep`'s `nodes`, `sweep` and `segments`, from the other
-    /// engine) to the split pass in progress.
+    /// Hands panel A's sweep (`takeSweep`'s `nodes`, `sweep`, `segments` and `params`, from
+    /// the other engine) to the split pass in progress.
     #[wasm_bindgen(js_name = adoptSweep)]
-    pub fn adopt_sweep(&mut self, nodes: &[f64], sweep: JsValue, segments: Option<Vec<u32>>) -> Result<(), JsError> {
+    pub fn adopt_sweep(&mut self, nodes: &[f64], sweep: JsValue, segments: Option<Vec<u32>>, params: Option<Vec<f64>>) -> Result<(), JsError> {
         let sweep: SideSweep =
             serde_wasm_bindgen::from_value(sweep).map_err(|e| JsError::new(&format!("a sweep's record: {e}")))?;
-        Ok(self.inner.adopt_sweep(nodes, sweep, segments.as_deref())?)
+        Ok(self.inner.adopt_sweep(nodes, sweep, places(segments, params)?)?)
     }
 
     /// Abandons the pass in progress: both panels as before it.

@@ -234,10 +234,10 @@ impl<P: Coords> Curves<P> {
         Foot { point: q, tangent: self.piece(s).derivative(t).unit(), segment: s, t }
     }
 
-    /// The unit direction of segment `s` at its start: a straight segment's everywhere
-    /// (the page hands segments over for linear meshes only).
-    fn direction(&self, s: u32) -> P {
-        self.piece(s).derivative(0.0).unit()
+    /// The unit direction of segment `s` at parameter `t`, as [`on_curve`](Self::on_curve)
+    /// finds it there (a straight segment's is the same everywhere).
+    fn direction(&self, s: u32, t: f64) -> P {
+        self.piece(s).derivative(t).unit()
     }
 
     /// The distance of `x` from the whole curve of segment `hint`.
@@ -518,22 +518,43 @@ impl Mesh {
     /// Per node, the boundary segment a sliding node was last put on ([`NONE`] for a node
     /// that does not slide), when boundary nodes slide. A copy of the mesh whose boundary
     /// was taken from the same positions slides its nodes as this one does once given them
+    /// with [`boundary_parameters`](Self::boundary_parameters)
     /// ([`set_boundary_segments`](Self::set_boundary_segments)).
     pub fn boundary_segments(&self) -> Option<&[u32]> {
         self.sliding.as_ref().map(|s| &s.hint[..])
     }
 
+    /// Per node, where a sliding node lies on its segment
+    /// ([`boundary_segments`](Self::boundary_segments)): the parameter, 0 to 1, along the
+    /// quadratic through the segment's corners and mid-side node (0 for a node that does
+    /// not slide). Only a quadratic mesh's sliding boundary keeps them (they place the
+    /// mid-side nodes its sliding nodes carry); `None` otherwise.
+    pub fn boundary_parameters(&self) -> Option<&[f64]> {
+        self.sliding.as_ref().and_then(|s| s.carrying.as_ref()).map(|c| &c.t[..])
+    }
+
     /// Puts each sliding node on the segment `segments` names (another copy's
-    /// [`boundary_segments`](Self::boundary_segments)), and its direction there. Refused,
-    /// changing nothing, unless boundary nodes slide and each sliding node names a segment
-    /// of its own curve (and every other node [`NONE`]).
-    pub fn set_boundary_segments(&mut self, segments: &[u32]) -> crate::error::Result<()> {
+    /// [`boundary_segments`](Self::boundary_segments)) at the parameter `parameters` gives
+    /// (its [`boundary_parameters`](Self::boundary_parameters): empty for a linear mesh),
+    /// and its direction there. Refused, changing nothing, unless boundary nodes slide,
+    /// each sliding node names a segment of its own curve (and every other node
+    /// [`NONE`]), and a quadratic mesh gives each sliding node a parameter from 0 to 1.
+    pub fn set_boundary_segments(&mut self, segments: &[u32], parameters: &[f64]) -> crate::error::Result<()> {
+        use crate::error::Error;
         let Some(s) = &mut self.sliding else {
-            return Err(crate::error::Error::invalid("boundary segments were given, but the boundary nodes do not slide"));
+            return Err(Error::invalid("boundary segments were given, but the boundary nodes do not slide"));
         };
         let n = s.hint.len();
         if segments.len() != n {
-            return Err(crate::error::Error::invalid(format!("{} boundary segments for a mesh of {n} nodes: give one a node", segments.len())));
+            return Err(Error::invalid(format!("{} boundary segments for a mesh of {n} nodes: give one a node", segments.len())));
+        }
+        match (&s.carrying, parameters.len()) {
+            (None, 0) => {}
+            (None, k) => return Err(Error::invalid(format!("{k} boundary parameters for a linear mesh: its sliding nodes take none"))),
+            (Some(_), k) if k != n => {
+                return Err(Error::invalid(format!("{k} boundary parameters for a quadratic mesh of {n} nodes: give one a node")))
+            }
+            (Some(_), _) => {}
         }
         let c = &s.curves;
         for (v, &seg) in segments.iter().enumerate() {
@@ -543,12 +564,21 @@ impl Mesh {
                 seg == NONE
             };
             if !fits {
-                return Err(crate::error::Error::node(v, None, format!("cannot lie on boundary segment {seg}: it is not on the node's curve")));
+                return Err(Error::node(v, None, format!("cannot lie on boundary segment {seg}: it is not on the node's curve")));
+            }
+            if let Some(&t) = parameters.get(v).filter(|_| c.class[v].slides()) {
+                if !(0.0..=1.0).contains(&t) {
+                    return Err(Error::node(v, None, format!("cannot lie at parameter {t} of its boundary segment: give one from 0 to 1")));
+                }
             }
         }
         for (v, &seg) in segments.iter().enumerate() {
             if c.class[v].slides() {
-                (s.hint[v], s.tangent[v]) = (seg, c.direction(seg));
+                let t = parameters.get(v).copied().unwrap_or(0.0);
+                (s.hint[v], s.tangent[v]) = (seg, c.direction(seg, t));
+                if let Some(carrying) = &mut s.carrying {
+                    carrying.t[v] = t;
+                }
             }
         }
         Ok(())
@@ -729,11 +759,13 @@ mod tests {
         let mut none = segments.clone();
         none[hole] = NONE;
         for bad in [&segments[1..], &other[..], &none[..]] {
-            assert!(copy.set_boundary_segments(bad).is_err());
+            assert!(copy.set_boundary_segments(bad, &[]).is_err());
             assert_eq!(copy.boundary_segments().unwrap(), &before[..]);
         }
-        assert!(plate(PlateKind::Tri, 1, 2).unwrap().set_boundary_segments(&segments).is_err());
-        copy.set_boundary_segments(&segments).unwrap();
+        assert!(plate(PlateKind::Tri, 1, 2).unwrap().set_boundary_segments(&segments, &[]).is_err());
+        assert!(copy.set_boundary_segments(&segments, &vec![0.5; segments.len()]).is_err(), "a linear mesh takes no parameters");
+        assert_eq!(copy.boundary_parameters(), None);
+        copy.set_boundary_segments(&segments, &[]).unwrap();
         for n in 0..m.node_count() {
             assert_eq!(copy.slide_direction(n), m.slide_direction(n), "node {n}");
         }
@@ -741,6 +773,47 @@ mod tests {
         pass(&mut copy);
         assert_eq!(copy.nodes(), m.nodes());
         assert_eq!(copy.boundary_segments(), m.boundary_segments());
+    }
+
+    /// A quadratic mesh's copy needs each sliding node's parameter on its segment as well:
+    /// given both, it slides (and carries its mid-side nodes) as the mesh does, bit for bit.
+    #[test]
+    fn a_quadratic_copy_given_segments_and_parameters_slides_as_the_mesh_does() {
+        use super::super::ElementKind;
+        use crate::objective::{objective_with, ObjectiveKind, Penalty};
+        use crate::smooth::{SmoothOptions, Smoother};
+        let objective = objective_with(ObjectiveKind::SmoothShape, Penalty::default());
+        let pass = |m: &mut Mesh| Smoother::new(SmoothOptions::default()).unwrap().pass(m, &*objective, &|| 0.0);
+        for kind in [ElementKind::Tri6, ElementKind::Quad8] {
+            let start = bunched_annulus_quarter(kind);
+            let mut m = start.clone();
+            m.set_boundary(BoundaryRule::Slide, FEATURE_ANGLE_DEG);
+            pass(&mut m);
+            let mut copy = start.clone();
+            copy.set_boundary(BoundaryRule::Slide, FEATURE_ANGLE_DEG);
+            copy.nodes_mut().copy_from_slice(m.nodes());
+            let (segments, params) = (m.boundary_segments().unwrap().to_vec(), m.boundary_parameters().unwrap().to_vec());
+            // a node inside its segment: its parameter is neither end
+            assert!(params.iter().any(|&t| t > 0.01 && t < 0.99), "{kind:?}");
+            let sliding = (0..m.node_count()).find(|&n| m.boundary_node(n).is_some_and(|c| c.slides())).unwrap();
+            let mut beyond = params.clone();
+            beyond[sliding] = 1.5;
+            let mut nan = params.clone();
+            nan[sliding] = f64::NAN;
+            let before = copy.boundary_parameters().unwrap().to_vec();
+            for bad in [&[][..], &params[1..], &beyond[..], &nan[..]] {
+                assert!(copy.set_boundary_segments(&segments, bad).is_err(), "{kind:?}");
+                assert_eq!(copy.boundary_parameters().unwrap(), &before[..], "{kind:?}: a refusal changed the parameters");
+            }
+            copy.set_boundary_segments(&segments, &params).unwrap();
+            for n in 0..m.node_count() {
+                assert_eq!(copy.slide_direction(n), m.slide_direction(n), "{kind:?}: node {n}");
+            }
+            pass(&mut m);
+            pass(&mut copy);
+            assert_eq!(copy.nodes(), m.nodes(), "{kind:?}");
+            assert_eq!(copy.boundary_parameters(), m.boundary_parameters(), "{kind:?}");
+        }
     }
 
     #[test]
