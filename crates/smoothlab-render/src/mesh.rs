@@ -770,6 +770,12 @@ mod tests {
                 checked += 1;
             }
             assert_eq!(checked, 2, "{angle}°: the star's two curved edges");
+            // node 1 itself: a sliding node's dot is the line's colour at its centre (every
+            // free node is drawn white), a corner's square is dark
+            let (x, y) = view.device_xy(mesh.nodes()[1]);
+            let p = pm.pixel(x.round() as u32, y.round() as u32).expect("on the picture");
+            let purple = [p.red(), p.green(), p.blue()] == crate::MARK_LINE_RGB;
+            assert_eq!(purple, carries, "{angle}°: node 1's mark");
         }
     }
 }

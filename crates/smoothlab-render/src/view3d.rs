@@ -449,7 +449,7 @@ pub enum NodeMark {
     /// The node stays (a corner of a sliding boundary, or fixed by the file): a dark
     /// square with a white rim.
     Stays,
-    /// The node slides (along a feature curve or on the boundary): a small white dot
+    /// The node slides (along a feature curve or on the boundary): a small dot in the line's colour
     /// with a dark rim, left out where the faces are drawn too small for it.
     Slides,
 }
@@ -543,9 +543,11 @@ pub(crate) fn draw_marks_at(pixmap: &mut Pixmap, marks: &[Mark], at: &dyn Fn(u32
                 }
                 (rgba(20, 20, 20, 255), rgba(255, 255, 255, 255))
             }
+            // the line's colour, not white: a planar picture draws every free node white
             NodeMark::Slides if dots => {
                 pb.push_circle(x, y, 2.7 * s);
-                (rgba(255, 255, 255, 255), rgba(20, 20, 20, 255))
+                let [r, g, b] = MARK_LINE_RGB;
+                (rgba(r, g, b, 255), rgba(20, 20, 20, 255))
             }
             NodeMark::Slides => continue,
         };
