@@ -30,6 +30,18 @@ async function saveMsh(p, side, file) {
   return mshNodes(text);
 }
 
+/** The tool's run on `file` with the boundary sliding and no finish: its report and its
+ * mesh's nodes. */
+function smoothSliding(file, passes) {
+  const out = file.replace(/\.msh$/, '-slid.msh');
+  const r = cli(['smooth', file, '-o', out, '--boundary', 'slide', '--passes', String(passes), '--finish', '0', '--json']);
+  check(r.status === 0, r.stderr);
+  return { report: JSON.parse(r.stdout), nodes: mshNodes(readFileSync(out, 'utf8')) };
+}
+
+/** Whether two lists of nodes are the same to the bit. */
+const sameNodes = (got, want) => got.length === want.length && got.every((q, i) => q.every((v, k) => v === want[i][k]));
+
 /** Sets the boundary menu and waits for the page to have taken it. */
 async function chooseBoundary(p, rule) {
   await p.selectOption('#boundary', rule);
@@ -160,21 +172,13 @@ export default async function ({ server, context }) {
   await test('issue 58: a planar mesh\'s boundary slides on the page as `smoothlab smooth --boundary slide` slides it, and a tangled one\'s once a pass leaves it valid', async () => {
     const dir = path.join(OUT, 'boundary');
     mkdirSync(dir, { recursive: true });
-    /** The tool's run on `file` with the boundary sliding: its report and its mesh's nodes. */
-    const smooth = (file, passes) => {
-      const out = file.replace(/\.msh$/, '-slid.msh');
-      const r = cli(['smooth', file, '-o', out, '--boundary', 'slide', '--passes', String(passes), '--finish', '0', '--json']);
-      check(r.status === 0, r.stderr);
-      return { report: JSON.parse(r.stdout), nodes: mshNodes(readFileSync(out, 'utf8')) };
-    };
-    const same = (got, want) => got.length === want.length && got.every((q, i) => q.every((v, k) => v === want[i][k]));
     const p = await freshPage(context, 1366, 768, 'planar boundary');
     try {
       // the plate with a hole in triangles, valid: its boundary slides from the first pass
       await open(p, `${server.base}#sample=plate-tri`);
       const plate = path.join(dir, 'plate-tri.msh');
       await saveMsh(p, 'b', plate);
-      const tool = smooth(plate, 2);
+      const tool = smoothSliding(plate, 2);
       const b = tool.report.boundary;
       check(b && b.corners === 4 && b.curve_nodes > 20, `the tool's boundary report: ${JSON.stringify(b)}`);
       check(await purplePixels(p, 'mesh-b') === 0, 'a fixed boundary is not marked');
@@ -200,7 +204,7 @@ export default async function ({ server, context }) {
       await p.screenshot({ path: path.join(OUT, 'boundary-planar-1366x768.png') });
       const s2 = await stats(p, 'b');
       check(s2.boundary_distance === b.max_distance.toExponential(2), `the largest distance from the boundary: the page ${s2.boundary_distance}, the tool ${b.max_distance.toExponential(2)}`);
-      check(same(await saveMsh(p, 'b', path.join(dir, 'plate-tri-page.msh')), tool.nodes), 'B after 2 passes is not the command-line tool\'s mesh');
+      check(sameNodes(await saveMsh(p, 'b', path.join(dir, 'plate-tri-page.msh')), tool.nodes), 'B after 2 passes is not the command-line tool\'s mesh');
       console.log(`     plate-tri, 2 passes sliding: min angle ${tool.report.final.min_angle_deg.toFixed(2)}°, ${b.curve_nodes} boundary nodes slid, the page's B the tool's output node for node`);
       // Reset keeps the boundary where it was loaded
       await p.click('#reset');
@@ -212,7 +216,7 @@ export default async function ({ server, context }) {
       check(await p.inputValue('#boundary') === 'slide' && !(await p.locator('#boundary').isDisabled()), 'the rule stays with another planar sample');
       const tangled = path.join(dir, 'plate-quad-tangled-hard.msh');
       await saveMsh(p, 'b', tangled);
-      const held = smooth(tangled, 2);
+      const held = smoothSliding(tangled, 2);
       check(held.report.passes[0].inverted === 0 && held.report.boundary, `the tool untangles it in a pass, then slides: ${JSON.stringify(held.report.passes)}`);
       check((await stats(p, 'b')).boundary_sliding === undefined && await purplePixels(p, 'mesh-b') === 0, 'held while tangled: no boundary rows, no marks');
       await step(p);
@@ -223,7 +227,7 @@ export default async function ({ server, context }) {
       await step(p);
       const b2 = await stats(p, 'b');
       check(b2.boundary_distance === held.report.boundary.max_distance.toExponential(2), `the distance: the page ${b2.boundary_distance}, the tool ${held.report.boundary.max_distance.toExponential(2)}`);
-      check(same(await saveMsh(p, 'b', path.join(dir, 'plate-quad-tangled-hard-page.msh')), held.nodes), 'the tangled plate\'s B after 2 passes is not the command-line tool\'s mesh');
+      check(sameNodes(await saveMsh(p, 'b', path.join(dir, 'plate-quad-tangled-hard-page.msh')), held.nodes), 'the tangled plate\'s B after 2 passes is not the command-line tool\'s mesh');
       await p.evaluate(() => window.scrollTo(0, 0));
       await p.screenshot({ path: path.join(OUT, 'boundary-planar-tangled-1366x768.png') });
       // fixed again: both sides start again, held
@@ -248,13 +252,6 @@ export default async function ({ server, context }) {
   await test('issue 58: a quadratic planar mesh\'s boundary slides along its curved edges on the page as `smoothlab smooth --boundary slide` slides it, in one worker and in two', async () => {
     const dir = path.join(OUT, 'boundary');
     mkdirSync(dir, { recursive: true });
-    const smooth = (file, passes) => {
-      const out = file.replace(/\.msh$/, '-slid.msh');
-      const r = cli(['smooth', file, '-o', out, '--boundary', 'slide', '--passes', String(passes), '--finish', '0', '--json']);
-      check(r.status === 0, r.stderr);
-      return { report: JSON.parse(r.stdout), nodes: mshNodes(readFileSync(out, 'utf8')) };
-    };
-    const same = (got, want) => got.length === want.length && got.every((q, i) => q.every((v, k) => v === want[i][k]));
     const differ = (got, was) => got.filter((q, i) => q.some((v, k) => v !== was[i][k])).length;
     const p = await freshPage(context, 1366, 768, 'quadratic boundary');
     try {
@@ -264,7 +261,7 @@ export default async function ({ server, context }) {
       await open(p, `${server.base}#sample=plate-quadratic`);
       const plate = path.join(dir, 'plate-quadratic.msh');
       const loaded = await saveMsh(p, 'b', plate);
-      const tool = smooth(plate, 2);
+      const tool = smoothSliding(plate, 2);
       const b = tool.report.boundary;
       check(b && b.corners === 4 && b.curve_nodes > 20 && b.max_distance < 1e-9, `the tool's boundary report: ${JSON.stringify(b)}`);
       check(!(await p.locator('#boundary').isDisabled()) && (await p.textContent('#boundary-why')) === '', 'a quadratic planar mesh\'s boundary is free to slide');
@@ -290,7 +287,7 @@ export default async function ({ server, context }) {
       const s2 = await stats(p, 'b');
       check(s2.boundary_distance === b.max_distance.toExponential(2), `the largest distance from the boundary: the page ${s2.boundary_distance}, the tool ${b.max_distance.toExponential(2)}`);
       const got = await saveMsh(p, 'b', path.join(dir, 'plate-quadratic-page.msh'));
-      check(same(got, tool.nodes), 'the quadratic plate\'s B after 2 passes is not the command-line tool\'s mesh');
+      check(sameNodes(got, tool.nodes), 'the quadratic plate\'s B after 2 passes is not the command-line tool\'s mesh');
       const moved = differ(got, loaded);
       console.log(`     plate-quadratic, 2 passes sliding: min angle ${tool.report.final.min_angle_deg.toFixed(2)}°, ${b.curve_nodes} boundary nodes sliding, ${moved} nodes moved, the page's B the tool's output node for node`);
       // Reset puts the boundary back as loaded (on its curves, to the rounding of the
@@ -313,7 +310,7 @@ export default async function ({ server, context }) {
       const r = cli(args);
       check(r.status === 0, `${args.join(' ')}: ${r.stderr}`);
     }
-    const bigTool = smooth(perturbed, 2);
+    const bigTool = smoothSliding(perturbed, 2);
     const firstPass = bigTool.report.passes[0];
     check(firstPass.inverted === 0 && bigTool.report.boundary && bigTool.report.boundary.curve_nodes > 100, `the tool untangles it in a pass, then slides: ${JSON.stringify(bigTool.report.passes)}, ${JSON.stringify(bigTool.report.boundary)}`);
     const q = await freshPage(context, 1366, 768, 'quadratic boundary, two workers');
@@ -330,13 +327,13 @@ export default async function ({ server, context }) {
         check(last.workers === 2, `pass ${pass.pass} ran in ${last.workers} worker(s)`);
       }
       const nodes = await saveMsh(q, 'b', path.join(dir, 'plate-quadratic-big-page-b.msh'));
-      check(same(nodes, bigTool.nodes), 'the big quadratic plate\'s B after 2 split passes is not the command-line tool\'s mesh');
+      check(sameNodes(nodes, bigTool.nodes), 'the big quadratic plate\'s B after 2 split passes is not the command-line tool\'s mesh');
       // side A (old) was swept by the second worker: the tool's run with old's objective
       const aOut = perturbed.replace(/\.msh$/, '-old.msh');
       const r = cli(['smooth', perturbed, '-o', aOut, '--boundary', 'slide', '--passes', '2', '--finish', '0', '--objective', 'old']);
       check(r.status === 0, r.stderr);
       const aNodes = await saveMsh(q, 'a', path.join(dir, 'plate-quadratic-big-page-a.msh'));
-      check(same(aNodes, mshNodes(readFileSync(aOut, 'utf8'))), 'the big quadratic plate\'s A after 2 split passes is not the command-line tool\'s mesh with old');
+      check(sameNodes(aNodes, mshNodes(readFileSync(aOut, 'utf8'))), 'the big quadratic plate\'s A after 2 split passes is not the command-line tool\'s mesh with old');
       console.log(`     plate-quadratic at ${nodes.length} nodes, 2 passes split between two workers: both sides the tool's output node for node`);
     } finally {
       await q.close();
