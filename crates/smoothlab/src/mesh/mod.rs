@@ -32,7 +32,7 @@ pub use slide::{BoundaryNode, BoundaryRule, FEATURE_ANGLE_DEG, MIN_CURVE_SEGMENT
 pub(crate) use slide::{csr, held_nodes, Curves, GivenFlags};
 pub use volume_kind::{
     CornerReference, VolumeKind, VolumeKindCounts, VolumeKindRow, CUBE_CORNER, EQUILATERAL_TET, EQUILATERAL_W, EQUILATERAL_W_INVERSE,
-    PYRAMID_CORNER, TET10_EDGES, WEDGE_CORNER, WITH_FIRST,
+    PYRAMID_CORNER, StretchAxes, TET10_EDGES, WEDGE_CORNER, WITH_FIRST,
 };
 use topology::build_topology;
 

@@ -264,6 +264,20 @@ pub struct VolumeKindRow {
     /// The corners of the ideal element (the one every measured corner's reference
     /// describes), for tests and generators.
     pub ideal: &'static [[f64; 3]],
+    /// Which of the ideal's axes a stretch target lays onto its stretch's axes.
+    pub stretch_axes: StretchAxes,
+}
+
+/// Which of an ideal element's axes a stretch target lays onto the axes of its stretch
+/// (`crate::target::stretch`), so that the target is not sheared by its element's jitter.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum StretchAxes {
+    /// None: the turn fitted to the element is kept.
+    Kept,
+    /// Every axis (the cube, the same turned from one axis onto another).
+    Every,
+    /// This axis (its index), the turn about it kept: a wedge's, across its triangles.
+    One(usize),
 }
 
 /// Faces of a tetrahedron by local corners, each ordered so that its normal points away
@@ -293,6 +307,7 @@ const TET4: VolumeKindRow = VolumeKindRow {
     gmsh_type: 4,
     gmsh_order: &[0, 1, 2, 3],
     ideal: &TET_IDEAL,
+    stretch_axes: StretchAxes::Kept,
 };
 
 const TET10: VolumeKindRow = VolumeKindRow {
@@ -313,6 +328,7 @@ const TET10: VolumeKindRow = VolumeKindRow {
     // Gmsh's last two mid-edge nodes are on edges (3,2) and (3,1), ours on (1,3), (2,3)
     gmsh_order: &[0, 1, 2, 3, 4, 5, 6, 7, 9, 8],
     ideal: &TET_IDEAL,
+    stretch_axes: StretchAxes::Kept,
 };
 
 /// A hexahedron's edges in VTK's order (its 20-node kind's mid-edge nodes 8–19):
@@ -353,6 +369,7 @@ const HEX8: VolumeKindRow = VolumeKindRow {
     gmsh_type: 5,
     gmsh_order: &[0, 1, 2, 3, 4, 5, 6, 7],
     ideal: &HEX_IDEAL,
+    stretch_axes: StretchAxes::Every,
 };
 
 /// Mid-edge nodes 8–19 (VTK's `QUADRATIC_HEXAHEDRON`); mirrored top to bottom, the
@@ -378,6 +395,7 @@ const HEX20: VolumeKindRow = VolumeKindRow {
     gmsh_type: 17,
     gmsh_order: &HEX20_GMSH,
     ideal: &HEX_IDEAL,
+    stretch_axes: StretchAxes::Every,
 };
 
 const HEX27: VolumeKindRow = VolumeKindRow {
@@ -419,6 +437,7 @@ const HEX27: VolumeKindRow = VolumeKindRow {
     // Gmsh's face centres: z = 0, y = 0, x = 0, x = 1, y = 1, z = 1
     gmsh_order: &[0, 1, 2, 3, 4, 5, 6, 7, 8, 11, 16, 9, 17, 10, 18, 19, 12, 15, 13, 14, 24, 22, 20, 21, 23, 25, 26],
     ideal: &HEX_IDEAL,
+    stretch_axes: StretchAxes::Every,
 };
 
 const WEDGE6: VolumeKindRow = VolumeKindRow {
@@ -447,6 +466,7 @@ const WEDGE6: VolumeKindRow = VolumeKindRow {
         [0.5, 0.866_025_403_784_438_6, 1.0],
         [1.0, 0.0, 1.0],
     ],
+    stretch_axes: StretchAxes::One(2),
 };
 
 const PYRAMID5: VolumeKindRow = VolumeKindRow {
@@ -466,6 +486,7 @@ const PYRAMID5: VolumeKindRow = VolumeKindRow {
     gmsh_type: 7,
     gmsh_order: &[0, 1, 2, 3, 4],
     ideal: &[[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [1.0, 1.0, 0.0], [0.0, 1.0, 0.0], [0.5, 0.5, std::f64::consts::FRAC_1_SQRT_2]],
+    stretch_axes: StretchAxes::Kept,
 };
 
 /// The element kinds of a volume mesh. A mesh may mix the linear kinds (a hexahedral

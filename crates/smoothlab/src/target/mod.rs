@@ -18,7 +18,7 @@
 
 use glam::{DMat2, DMat3, DVec2};
 
-use crate::mesh::{CornerReference, ElementKind, Mesh};
+use crate::mesh::{CornerReference, ElementKind, Mesh, StretchAxes};
 
 pub mod stretch;
 
@@ -155,6 +155,8 @@ pub fn planar_stretch_points(mesh: &Mesh, at: &[DVec2]) -> Option<Vec<[DVec2; 9]
                 ideal: if k == 3 { &triangle[..3] } else { &square[..4] },
                 valid,
                 neighbours,
+                // a quadrilateral keeps its turn (see `stretch`)
+                axes: StretchAxes::Kept,
             }
         })
         .collect();
@@ -211,7 +213,8 @@ pub fn volume_stretch_points(mesh: &crate::volume::VolumeMesh, at: &[glam::DVec3
                     (f, area.sqrt())
                 })
                 .collect();
-            stretch::StretchElement { corners: ids.iter().map(|&i| at[i as usize].to_array()).collect(), ideal: row.ideal, valid, neighbours }
+            let corners = ids.iter().map(|&i| at[i as usize].to_array()).collect();
+            stretch::StretchElement { corners, ideal: row.ideal, valid, neighbours, axes: row.stretch_axes }
         })
         .collect();
     if tangled {
