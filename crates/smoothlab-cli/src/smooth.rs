@@ -289,7 +289,7 @@ fn summary(report: &Report, fitted: bool) -> String {
     let first_finish = passes.len() - report.finish_passes() as usize;
     for (i, p) in passes.iter().enumerate() {
         t.push_str(&format!(
-            "{} {:>3}: inverted {:>5}  angles {:>7.2}°–{:>6.2}°  min quality {:>7.4}  objective {:>12.6e}  laplacian {:>6}  optimized {:>6} ({} iterations){}  {:.1} ms\n",
+            "{} {:>3}: inverted {:>5}  angles {:>7.2}°–{:>6.2}°  min quality {:>7.4}  objective {:>12.6e}  laplacian {:>6}  optimized {:>6} ({} iterations){}{}  {:.1} ms\n",
             if i < first_finish { "pass" } else { "finish" },
             p.pass,
             p.after.inverted,
@@ -303,6 +303,10 @@ fn summary(report: &Report, fitted: bool) -> String {
             match p.counts.untangle_sweeps {
                 0 => String::new(),
                 n => format!(", {n} untangling sweep{}", if n == 1 { "" } else { "s" }),
+            },
+            match p.counts.fit_steps {
+                0 => String::new(),
+                n => format!(", fitted to the targets in {n} step{} first", if n == 1 { "" } else { "s" }),
             },
             p.elapsed_ms
         ));

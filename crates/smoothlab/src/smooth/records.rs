@@ -45,6 +45,14 @@ pub struct SweepCounts {
     pub moves: u32,
     /// Untangling sweeps ([`SmoothOptions::untangle_sweeps`](crate::smooth::SmoothOptions::untangle_sweeps)).
     pub untangle_sweeps: u32,
+    /// Steps of the fit to the targets before the node loop (a volume mesh's first pass
+    /// against a target other than the ideal: `crate::volume`'s fit).
+    #[serde(default, skip_serializing_if = "is_zero")]
+    pub fit_steps: u32,
+}
+
+fn is_zero(n: &u32) -> bool {
+    *n == 0
 }
 
 impl SweepCounts {
@@ -62,6 +70,7 @@ impl SweepCounts {
         self.solver_iterations += o.solver_iterations;
         self.moves += o.moves;
         self.untangle_sweeps += o.untangle_sweeps;
+        self.fit_steps += o.fit_steps;
     }
 }
 

@@ -22,6 +22,7 @@ use crate::quality::solid::{solid_measures, validity, SolidMeasures, Validity};
 use crate::quality::tet as q3;
 
 mod boundary;
+mod fit;
 mod smooth;
 mod stats;
 mod swap;
@@ -29,6 +30,7 @@ mod swap;
 mod tests;
 
 pub use boundary::{BoundaryNode, BoundaryRule, Tangent, FEATURE_ANGLE_DEG};
+pub use fit::{FIT_PATIENCE, FIT_TOLERANCE, MAX_FIT_STEPS};
 pub use smooth::{smooth_volume, VolumeSmoother};
 pub use stats::volume_stats;
 pub use swap::swap_max_min_dihedral;

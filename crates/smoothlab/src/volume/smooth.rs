@@ -599,6 +599,8 @@ impl StarView for Solid<'_> {
 #[derive(Clone, Debug)]
 pub struct VolumeSmoother {
     smoother: Smoother<CornerStar>,
+    /// Whether the fit to the targets was tried (once, at the first pass).
+    fit_tried: bool,
 }
 
 impl VolumeSmoother {
@@ -606,6 +608,7 @@ impl VolumeSmoother {
     pub fn new(options: SmoothOptions) -> Result<Self> {
         Ok(VolumeSmoother {
             smoother: Smoother::new(options)?,
+            fit_tried: false,
         })
     }
     pub fn options(&self) -> &SmoothOptions {
@@ -630,12 +633,19 @@ impl VolumeSmoother {
         if !(o.keep_valid && o.strategy != crate::smooth::Strategy::Laplace) {
             return self.smoother.sweep_in(&mut Solid(mesh), objective);
         }
+        // the first pass against a target other than the ideal fits the mesh to it first
+        let fit_steps = if std::mem::replace(&mut self.fit_tried, true) || !mesh.has_target() {
+            0
+        } else {
+            super::fit::fit_to_targets(mesh, objective, o.keep_grading.unwrap_or(f64::INFINITY))
+        };
         let (start, was) = (mesh.nodes().to_vec(), inverted_elements(mesh));
         let before = was.iter().filter(|&&i| i).count();
         // the worst scaled Jacobian of an inverted element, as the statistics read it
         let scaled_jacobian = |m: &VolumeMesh, e: usize| m.measures(e).scaled_jacobian;
         let floor = (0..was.len()).filter(|&e| was[e]).map(|e| scaled_jacobian(mesh, e)).fold(f64::INFINITY, f64::min);
-        let counts = self.smoother.sweep_in(&mut Solid(mesh), objective);
+        let mut counts = self.smoother.sweep_in(&mut Solid(mesh), objective);
+        counts.fit_steps = fit_steps;
         let judge = |m: &VolumeMesh, round: usize| {
             let inverted = inverted_elements(m);
             let more = inverted.iter().filter(|&&i| i).count() > before;
