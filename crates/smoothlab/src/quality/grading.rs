@@ -148,10 +148,16 @@ pub fn largest_ratio(sizes: &[Option<Size>], pairs: impl IntoIterator<Item = (us
 
 /// The pairs of a planar mesh's elements that share an edge: each inner edge's two.
 pub fn edge_neighbours(mesh: &Mesh) -> impl Iterator<Item = (usize, usize)> + '_ {
+    inner_edges(mesh).map(|(_, e, f)| (e, f))
+}
+
+/// Each inner edge of a planar mesh with its two elements, the lower numbered first, in
+/// the order of the mesh's edges.
+pub fn inner_edges(mesh: &Mesh) -> impl Iterator<Item = (&crate::mesh::Edge, usize, usize)> + '_ {
     mesh.edges().iter().filter(|edge| !edge.boundary).filter_map(|edge| {
         let (a, b) = (mesh.node_elements(edge.a as usize), mesh.node_elements(edge.b as usize));
         let mut shared = a.iter().filter(|e| b.contains(e));
-        Some((*shared.next()? as usize, *shared.next()? as usize))
+        Some((edge, *shared.next()? as usize, *shared.next()? as usize))
     })
 }
 

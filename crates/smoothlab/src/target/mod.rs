@@ -114,24 +114,12 @@ pub fn ideal_points(kind: ElementKind) -> [DVec2; 9] {
 /// itself. `None` where no element is stretched on purpose: the ideal holds everywhere.
 pub fn planar_stretch_points(mesh: &Mesh, at: &[DVec2]) -> Option<Vec<[DVec2; 9]>> {
     let n = mesh.element_count();
-    // the elements across each corner edge: sorted (a, b, element) pairs
-    let mut sides: Vec<(u32, u32, u32)> = Vec::new();
-    for e in 0..n {
-        let ids = mesh.element(e);
-        let k = mesh.kind(e).corners();
-        for i in 0..k {
-            let (a, b) = (ids[i], ids[(i + 1) % k]);
-            sides.push((a.min(b), a.max(b), e as u32));
-        }
-    }
-    sides.sort_unstable();
+    // the elements across each inner edge, with its length
     let mut neighbours: Vec<Vec<(u32, f64)>> = vec![Vec::new(); n];
-    for w in sides.windows(2) {
-        if (w[0].0, w[0].1) == (w[1].0, w[1].1) {
-            let len = (at[w[0].0 as usize] - at[w[0].1 as usize]).length();
-            neighbours[w[0].2 as usize].push((w[1].2, len));
-            neighbours[w[1].2 as usize].push((w[0].2, len));
-        }
+    for (edge, e, f) in crate::quality::grading::inner_edges(mesh) {
+        let len = (at[edge.a as usize] - at[edge.b as usize]).length();
+        neighbours[e].push((f as u32, len));
+        neighbours[f].push((e as u32, len));
     }
     let corners_of = |kind: ElementKind| ideal_points(kind).map(|p| p.to_array());
     let (triangle, square) = (corners_of(ElementKind::Tri3), corners_of(ElementKind::Quad4));
