@@ -437,11 +437,7 @@ impl Mesh {
                 frames: Vec::with_capacity(topo.node_elems.len()),
             });
             for &e in &topo.node_elems {
-                let p = Self::target_points_in(&t, self.element(e as usize));
-                let p = match &t.shapes {
-                    Some(s) => s[e as usize],
-                    None => p,
-                };
+                let p = Self::element_target_in(&t, e as usize, self.element(e as usize));
                 t.frames.push(crate::target::element_frames(self.kind(e as usize), &p));
             }
             t
@@ -457,13 +453,19 @@ impl Mesh {
         p
     }
 
+    /// Element `e` (nodes `ids`) at its targets: its own shape where it has one, else its
+    /// nodes at the target positions.
+    fn element_target_in(t: &Targets, e: usize, ids: &[u32]) -> [DVec2; 9] {
+        match &t.shapes {
+            Some(s) => s[e],
+            None => Self::target_points_in(t, ids),
+        }
+    }
+
     /// Element `e`'s target positions, node by node, where the mesh has targets other
     /// than the ideal.
     pub fn element_target_points(&self, e: usize) -> Option<[DVec2; 9]> {
-        self.target.as_deref().map(|t| match &t.shapes {
-            Some(s) => s[e],
-            None => Self::target_points_in(t, self.element(e)),
-        })
+        self.target.as_deref().map(|t| Self::element_target_in(t, e, self.element(e)))
     }
 
     /// The positions the corners' targets are taken from, where they are not the ideal.
