@@ -19,17 +19,21 @@ fn row_top(j: usize) -> f64 {
     (RATIO.powi(j as i32) - 1.0) / (RATIO.powi(NY as i32) - 1.0)
 }
 
-/// A 40 × 30 boundary layer of `kind`, its interior nodes moved by up to a fifth of their
-/// cell each way (a fixed sequence of pseudo-random numbers).
-fn layer(kind: GridKind) -> Model {
-    let mut m = grid(NX, NY, kind).unwrap();
-    let mut state = 0x2545_f491_4f6c_dd1d_u64;
-    let mut next = || {
+/// A fixed sequence of pseudo-random numbers in [−1, 1) from `state` (xorshift).
+fn uniform(mut state: u64) -> impl FnMut() -> f64 {
+    move || {
         state ^= state << 13;
         state ^= state >> 7;
         state ^= state << 17;
         (state >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
-    };
+    }
+}
+
+/// A 40 × 30 boundary layer of `kind`, its interior nodes moved by up to a fifth of their
+/// cell each way (a fixed sequence of pseudo-random numbers).
+fn layer(kind: GridKind) -> Model {
+    let mut m = grid(NX, NY, kind).unwrap();
+    let mut next = uniform(0x2545_f491_4f6c_dd1d);
     for p in m.nodes_mut() {
         let (i, j) = ((p.x * NX as f64).round() as usize, (p.y * NY as f64).round() as usize);
         let mut q = DVec2::new(p.x, row_top(j));
@@ -90,13 +94,7 @@ fn layer_3d(wedges: bool) -> (Model, Vec<usize>) {
     const ROWS: usize = 16;
     let top = |k: usize| 0.001 * (1.25f64.powi(k as i32) - 1.0) / 0.25;
     let mut m = hex_grid(&HexBlock { cells: [10, 10, ROWS], size: DVec3::ONE, bend: 0.0 }).unwrap();
-    let mut state = 0x9e37_79b9_7f4a_7c15_u64;
-    let mut next = || {
-        state ^= state << 13;
-        state ^= state >> 7;
-        state ^= state << 17;
-        (state >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
-    };
+    let mut next = uniform(0x9e37_79b9_7f4a_7c15);
     let mut rows = Vec::new();
     for p in m.nodes_mut() {
         let (i, j, k) = ((p.x * 10.0).round() as usize, (p.y * 10.0).round() as usize, (p.z * ROWS as f64).round() as usize);
