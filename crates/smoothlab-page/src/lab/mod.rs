@@ -359,10 +359,16 @@ impl Playground {
     /// [`adopt_sweep`](Self::adopt_sweep), then measured here. Until then
     /// [`continue_pass`](Self::continue_pass) says [`PassStage::Wait`]. The records and
     /// positions are [`step`](Self::step)'s, bit for bit.
+    ///
+    /// At a run's first pass against a target, panel A is fitted to its targets here
+    /// ([`smoothlab::smooth::Smoother::fit_first`]): its [`panel_positions`](Self::panel_positions) are then
+    /// the ones to sweep.
     pub fn begin_split_pass(&mut self) {
         self.abort_pass();
         self.undo.clear();
-        self.run = Some(PassRun::of(RunKind::Split));
+        let mut run = PassRun::of(RunKind::Split);
+        run.fit_old_side(&mut self.panels, &mut self.versions);
+        self.run = Some(run);
     }
 
     /// Starts the sweep of one panel alone, from the positions `nodes` (x, y interleaved: the
@@ -416,6 +422,8 @@ impl Playground {
         }
         let p = &mut self.panels[side.index()];
         p.smoother = Smoother::new(options)?;
+        // the other engine fitted the panel before handing it over
+        p.smoother.set_fit_pending(false);
         if let Some(t) = target {
             p.mesh.set_target_from(self.settings.target, t);
         }

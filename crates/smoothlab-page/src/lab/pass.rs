@@ -158,6 +158,8 @@ enum Stage {
 /// A panel as it was when a pass began on it, to put back if the pass is abandoned.
 struct Saved {
     nodes: Vec<DVec2>,
+    /// Whether the run's fit to the targets was still to come ([`smoothlab::smooth::Smoother::fit_pending`]).
+    fit_pending: bool,
     slide: Option<SlideState>,
     version: u64,
     quick: QuickStats,
@@ -169,6 +171,7 @@ impl Saved {
     fn of(p: &Panel) -> Saved {
         Saved {
             nodes: p.mesh.nodes().to_vec(),
+            fit_pending: p.smoother.fit_pending(),
             slide: SlideState::of(&p.mesh),
             version: p.version,
             quick: p.quick,
@@ -217,6 +220,9 @@ pub(super) struct PassRun {
     /// The schedule is an untangling sweep's (after the planned visits).
     untangling: bool,
     saved: [Option<Saved>; 2],
+    /// The steps each panel's fit to the targets kept before its sweep (0 but at a run's
+    /// first pass against a target: [`smoothlab::smooth::Smoother::fit_first`]).
+    fit_steps: [u32; 2],
     done: [Option<(PassSummary, QuickStats)>; 2],
 }
 
@@ -262,6 +268,7 @@ impl PassRun {
             plan_slice: 1024,
             untangling: false,
             saved: [None, None],
+            fit_steps: [0, 0],
             done: [None, None],
         }
     }
@@ -286,7 +293,8 @@ impl PassRun {
                     let Some(sweep) = self.sweep else {
                         return false;
                     };
-                    self.counts = sweep.counts;
+                    // fitted here before the sweep ([`fit_old_side`](Self::fit_old_side))
+                    self.counts = SweepCounts { fit_steps: self.fit_steps[0], ..sweep.counts };
                     self.sweep_ms = sweep.sweep_ms;
                     self.stage = Stage::Measure;
                     self.acc = QuickAcc::default();
@@ -296,6 +304,11 @@ impl PassRun {
                     let t0 = clock();
                     if self.saved[side].is_none() {
                         self.saved[side] = Some(Saved::of(p));
+                    }
+                    // as `Smoother::sweep`: the run's first pass against a target fits first
+                    self.fit_steps[side] = p.smoother.fit_first(&mut p.mesh, p.objective.as_ref());
+                    if self.fit_steps[side] > 0 {
+                        p.version = versions.fresh();
                     }
                     p.smoother.begin_plan(&p.mesh);
                     self.sweep_ms = clock() - t0;
@@ -311,7 +324,7 @@ impl PassRun {
                         self.schedule.clear();
                         self.schedule.extend_from_slice(p.smoother.schedule());
                         self.pos = 0;
-                        self.counts = SweepCounts::default();
+                        self.counts = SweepCounts { fit_steps: self.fit_steps[side], ..SweepCounts::default() };
                         self.untangling = false;
                         self.stage = Stage::Smooth;
                     }
@@ -449,6 +462,7 @@ impl PassRun {
             return Err(Error::invalid("the old side's sweep was adopted already"));
         }
         let p = &mut panels[0];
+        // as the panel is now (fitted, maybe): a refusal puts it back there
         let saved = Saved::of(p);
         let slide = match (&saved.slide, places) {
             (Some(s), Some(places)) => Some(SlideState { from: s.from.clone(), places }),
@@ -460,10 +474,27 @@ impl PassRun {
             SlideState::give(saved.slide.as_ref(), &mut p.mesh, &saved.nodes).expect("the panel's own boundary fits it");
             return Err(e);
         }
-        self.saved[0] = Some(saved);
+        // saved before its fit, where it was fitted for this pass
+        self.saved[0].get_or_insert(saved);
         p.version = versions.fresh();
         self.sweep = Some(sweep);
         Ok(())
+    }
+
+    /// A split run's fit of panel A to the targets, where it is due
+    /// ([`smoothlab::smooth::Smoother::fit_first`]):
+    /// here, before its positions go to the engine that sweeps it (which does not fit).
+    /// The panel is saved first, so an abandoned pass puts it back.
+    pub(super) fn fit_old_side(&mut self, panels: &mut [Panel; 2], versions: &mut Versions) {
+        let p = &mut panels[0];
+        if self.kind != RunKind::Split || !p.smoother.fit_pending() {
+            return;
+        }
+        self.saved[0] = Some(Saved::of(p));
+        self.fit_steps[0] = p.smoother.fit_first(&mut p.mesh, p.objective.as_ref());
+        if self.fit_steps[0] > 0 {
+            p.version = versions.fresh();
+        }
     }
 
     /// The result of a completed [`RunKind::Sweep`]: the panel's swept positions, what
@@ -505,6 +536,7 @@ impl PassRun {
         for (p, saved) in panels.iter_mut().zip(self.saved) {
             if let Some(s) = saved {
                 SlideState::give(s.slide.as_ref(), &mut p.mesh, &s.nodes).expect("the panel's own boundary fits it");
+                p.smoother.set_fit_pending(s.fit_pending);
                 p.version = s.version;
                 p.quick = s.quick;
                 p.buckets = s.buckets;
@@ -971,6 +1003,88 @@ mod tests {
             .begin_sweep(Side::A, &primary.panel_positions(Side::A), Some(&target), primary.run_start(), None)
             .is_err());
         assert!(helper.panel(Side::A).mesh.target_nodes().is_none());
+    }
+
+    /// A 40 × 30 boundary layer: rows graded ×1.2 from a wall row 28 times thinner than
+    /// wide, its interior moved by up to a fifth of its cell (a fixed sequence).
+    fn layer() -> Mesh {
+        let (nx, ny, ratio) = (40usize, 30i32, 1.2f64);
+        let top = |j: usize| (ratio.powi(j as i32) - 1.0) / (ratio.powi(ny) - 1.0);
+        let mut m = smoothlab::generate::grid(nx, ny as usize, smoothlab::generate::GridKind::Quad).unwrap();
+        let mut rng = smoothlab::numeric::SplitMix64::new(11);
+        for p in m.nodes_mut() {
+            let (i, j) = ((p.x * nx as f64).round() as usize, (p.y * ny as f64).round() as usize);
+            let mut q = DVec2::new(p.x, top(j));
+            if 0 < i && i < nx && 0 < j && j < ny as usize {
+                let h = (top(j) - top(j - 1)).min(top(j + 1) - top(j));
+                q += DVec2::new(rng.uniform(-0.2, 0.2) / nx as f64, rng.uniform(-0.2, 0.2) * h);
+            }
+            *p = q;
+        }
+        m
+    }
+
+    /// Against the stretch target, both panels `new`: the run's first pass fits each panel
+    /// to its targets first, in a pass in slices and in a split pass (panel A fitted here,
+    /// then swept by the other engine) as in the smoother's pass, to the bit; an
+    /// abandoned split pass puts panel A back before its fit, and fits it again.
+    #[test]
+    fn a_pass_against_a_stretch_fits_first_whole_in_slices_or_split() {
+        use smoothlab::target::Target;
+        let settings = Settings {
+            strategy: Strategy::Rules,
+            target: Target::Stretch,
+            compare: [super::super::settings::Choice::NEW; 2],
+            ..Settings::default()
+        };
+        let [mut whole, mut sliced, mut primary, mut helper] = [(); 4].map(|_| Playground::new(layer()).unwrap());
+        for pg in [&mut whole, &mut sliced, &mut primary, &mut helper] {
+            pg.set_settings(settings).unwrap();
+        }
+        let clock = ticking();
+        let before = primary.panel_positions(Side::A);
+        primary.begin_split_pass();
+        assert_ne!(primary.panel_positions(Side::A), before, "panel A is fitted when the split pass begins");
+        primary.abort_pass();
+        assert_eq!(primary.panel_positions(Side::A), before, "and put back when it is abandoned");
+        for pass in 1..=2 {
+            let expected = whole.step(&clock);
+            let fit = expected.each_ref().map(|r| r.counts.fit_steps);
+            assert_eq!(fit.map(|f| f > 0), [pass == 1; 2], "pass {pass}: fit steps {fit:?}");
+            sliced.begin_pass();
+            let records = loop {
+                if let Some(r) = sliced.continue_pass(&clock, 3.0).unwrap().records {
+                    break r;
+                }
+            };
+            primary.begin_split_pass();
+            helper
+                .begin_sweep(
+                    Side::A,
+                    &primary.panel_positions(Side::A),
+                    Some(&primary.target_positions().unwrap()),
+                    primary.run_start(),
+                    None,
+                )
+                .unwrap();
+            while !helper.continue_pass(&clock, 3.0).unwrap().done {}
+            let (nodes, sweep, places) = helper.take_sweep().unwrap();
+            primary.adopt_sweep(&nodes, sweep, places).unwrap();
+            let split = loop {
+                if let Some(r) = primary.continue_pass(&clock, 3.0).unwrap().records {
+                    break r;
+                }
+            };
+            for side in Side::BOTH {
+                let what = format!("pass {pass} {side:?}");
+                let want = &expected[side as usize];
+                for (pg, got, how) in [(&sliced, &records, "in slices"), (&primary, &split, "split")] {
+                    assert_eq!(pg.panel(side).mesh.nodes(), whole.panel(side).mesh.nodes(), "{what} {how}");
+                    let got = &got[side as usize];
+                    assert_eq!((got.counts, got.after), (want.counts, want.after), "{what} {how}");
+                }
+            }
+        }
     }
 
     #[test]

@@ -25,6 +25,16 @@ impl ElementKind {
             _ => 4,
         }
     }
+    /// Which of the ideal's axes a stretch target lays onto its stretch's axes
+    /// ([`super::StretchAxes`]): both of a quadrilateral's, as a hexahedron's (a boundary
+    /// layer's fit then keeps its first row: `docs/formulas.md`, Targets); a triangle's turn
+    /// is kept.
+    pub fn stretch_axes(self) -> super::StretchAxes {
+        match self.corners() {
+            4 => super::StretchAxes::Every,
+            _ => super::StretchAxes::Kept,
+        }
+    }
     /// Number of nodes of the element.
     pub fn node_count(self) -> usize {
         match self {

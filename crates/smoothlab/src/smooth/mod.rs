@@ -23,6 +23,7 @@ use crate::optimize::{evaluate, SolveResult, Solvers};
 use crate::quality::{mesh_stats, Reading};
 
 mod accept;
+pub mod fit;
 mod guard;
 pub mod limits;
 mod measure;
@@ -43,6 +44,7 @@ use measure::triangle_shape_at_both;
 pub use measure::StarQuality;
 #[cfg(test)]
 pub(crate) use measure::{element_measures, element_shape_at, star_quality, star_shape};
+pub use fit::{FIT_PATIENCE, FIT_TOLERANCE, MAX_FIT_STEPS};
 pub use obstacles::{untangling_obstacles, volume_untangling_obstacles, Obstacle};
 pub use options::{
     Measure, Order, SmoothOptions, Strategy, DEFAULT_MAX_ITER, DEFAULT_PASSES,
@@ -189,9 +191,31 @@ pub struct Smoother<S: DriverStar = Star> {
     /// Whether the mesh had an inverted element when the pass was planned
     /// ([`note_tangled`](Self::note_tangled)): the untangling objectives optimise only then.
     tangled: bool,
+    /// Whether the run's fit to the targets was tried ([`fit`]): once, at its first pass.
+    fit_tried: bool,
 }
 
 impl<S: DriverStar> Smoother<S> {
+    /// Whether the run's fit to the targets ([`fit`]) is to run now: at the run's first
+    /// sweep, on a mesh with targets other than the ideal, where moves are judged (every
+    /// strategy but the plain Laplacian, the guard on). Then not again.
+    pub(crate) fn fit_due(&mut self, has_target: bool) -> bool {
+        let o = self.options;
+        let judged = o.keep_valid && o.strategy != Strategy::Laplace;
+        !std::mem::replace(&mut self.fit_tried, true) && has_target && judged
+    }
+
+    /// Whether the run's fit to the targets ([`fit`]) is still to be tried.
+    pub fn fit_pending(&self) -> bool {
+        !self.fit_tried
+    }
+
+    /// Sets whether the run's fit is still to be tried: a pass put back restores it, and
+    /// an engine that sweeps a panel for another (whose run fitted it) clears it.
+    pub fn set_fit_pending(&mut self, pending: bool) {
+        self.fit_tried = !pending;
+    }
+
     /// The run's grading bound ([`grading_bound`](Self::grading_bound)), set by the first
     /// reading: `grading` where none was set yet.
     pub(crate) fn grading_bound_or(&mut self, grading: f64) -> f64 {
@@ -221,6 +245,7 @@ impl<S: DriverStar> Smoother<S> {
             curved: false,
             sine_threshold: options.threshold_deg.to_radians().sin(),
             tangled: true,
+            fit_tried: false,
         })
     }
 
@@ -757,8 +782,10 @@ impl Smoother<Star> {
         if !(o.keep_valid && o.strategy != Strategy::Laplace) {
             return self.sweep_in(&mut Planar(mesh), objective);
         }
+        let fit_steps = self.fit_first(mesh, objective);
         let (start, was) = (mesh.nodes().to_vec(), planar_inverted(mesh));
-        let counts = self.sweep_in(&mut Planar(mesh), objective);
+        let mut counts = self.sweep_in(&mut Planar(mesh), objective);
+        counts.fit_steps = fit_steps;
         undo_new_inversions(
             mesh,
             &was,
@@ -767,6 +794,25 @@ impl Smoother<Star> {
             |m, i| m.nodes_mut()[i] = start[i],
         );
         counts
+    }
+
+    /// The run's fit to the targets ([`fit`]), where it is due: at the first sweep of a
+    /// run on a mesh with targets other than the ideal, with an objective that has a
+    /// Hessian (`new`). Returns the steps it kept (0 where it did not run).
+    /// [`sweep`](Self::sweep) runs it; a pass run in steps runs it before planning.
+    pub fn fit_first(&mut self, mesh: &mut Mesh, objective: &dyn Objective) -> u32 {
+        if !self.fit_due(mesh.has_target()) {
+            return 0;
+        }
+        // as a volume's: only where the objective has a Hessian (`new`'s sum)
+        let Some(free) = (0..mesh.node_count()).find(|&i| mesh.is_free(i)) else {
+            return 0;
+        };
+        self.star.gather(mesh, free);
+        if objective.value_gradient_hessian(&self.star, mesh.nodes()[free]).is_none() {
+            return 0;
+        }
+        fit::fit_planar(mesh, self.options.keep_grading.unwrap_or(f64::INFINITY))
     }
 
     /// Visits the nodes of `order` in turn (the mesh facts must be fresh).

@@ -187,7 +187,7 @@ impl ColouredSmoother {
         let reading = super::SmoothMesh::valid_reading(&*mesh);
         self.main.grading_bound_or(reading.map_or(f64::INFINITY, |r| r.grading));
         self.main.bounds = std::sync::OnceLock::from(reading);
-        let mut counts = SweepCounts::default();
+        let mut counts = SweepCounts { fit_steps: self.main.fit_first(mesh, objective), ..SweepCounts::default() };
         for c in 0..self.colouring.colour_count() {
             let nodes = self.colouring.colour(c);
             match self.execution {

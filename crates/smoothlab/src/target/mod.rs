@@ -18,7 +18,7 @@
 
 use glam::{DMat2, DMat3, DVec2};
 
-use crate::mesh::{CornerReference, ElementKind, Mesh, StretchAxes};
+use crate::mesh::{CornerReference, ElementKind, Mesh};
 
 pub mod stretch;
 
@@ -143,8 +143,7 @@ pub fn planar_stretch_points(mesh: &Mesh, at: &[DVec2]) -> Option<Vec<[DVec2; 9]
                 ideal: if k == 3 { &triangle[..3] } else { &square[..4] },
                 valid,
                 neighbours,
-                // a quadrilateral keeps its turn (see `stretch`)
-                axes: StretchAxes::Kept,
+                axes: kind.stretch_axes(),
             }
         })
         .collect();

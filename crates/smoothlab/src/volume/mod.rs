@@ -30,7 +30,6 @@ mod swap;
 mod tests;
 
 pub use boundary::{BoundaryNode, BoundaryRule, Tangent, FEATURE_ANGLE_DEG};
-pub use fit::{FIT_PATIENCE, FIT_TOLERANCE, MAX_FIT_STEPS};
 pub use smooth::{smooth_volume, VolumeSmoother};
 pub use stats::volume_stats;
 pub use swap::swap_max_min_dihedral;

@@ -599,8 +599,6 @@ impl StarView for Solid<'_> {
 #[derive(Clone, Debug)]
 pub struct VolumeSmoother {
     smoother: Smoother<CornerStar>,
-    /// Whether the fit to the targets was tried (once, at the first pass).
-    fit_tried: bool,
 }
 
 impl VolumeSmoother {
@@ -608,7 +606,6 @@ impl VolumeSmoother {
     pub fn new(options: SmoothOptions) -> Result<Self> {
         Ok(VolumeSmoother {
             smoother: Smoother::new(options)?,
-            fit_tried: false,
         })
     }
     pub fn options(&self) -> &SmoothOptions {
@@ -634,10 +631,11 @@ impl VolumeSmoother {
             return self.smoother.sweep_in(&mut Solid(mesh), objective);
         }
         // the first pass against a target other than the ideal fits the mesh to it first
-        let fit_steps = if std::mem::replace(&mut self.fit_tried, true) || !mesh.has_target() {
-            0
+        let grading = o.keep_grading.unwrap_or(f64::INFINITY);
+        let fit_steps = if self.smoother.fit_due(mesh.has_target()) {
+            super::fit::fit_to_targets(mesh, objective, grading)
         } else {
-            super::fit::fit_to_targets(mesh, objective, o.keep_grading.unwrap_or(f64::INFINITY))
+            0
         };
         let (start, was) = (mesh.nodes().to_vec(), inverted_elements(mesh));
         let before = was.iter().filter(|&&i| i).count();

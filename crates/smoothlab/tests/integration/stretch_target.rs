@@ -63,11 +63,15 @@ fn the_defaults_keep_a_boundary_layer_s_first_row() {
         let report = stretched.smooth(&Smoothing::default()).unwrap();
         assert_eq!(report.target(), Target::Stretch, "{kind:?}: a layer is stretched on purpose");
         let (h, s) = (first_row(&stretched), stretched.stats());
-        // the input's own median is off the design by its noise (±4 %): the smoothed row
-        // comes back near the design, within 7 % of the input (docs/formulas.md, Targets)
-        assert!((h / h0 - 1.0).abs() < 0.07, "{kind:?}: first row {h0} → {h}");
+        // the fit to the targets runs first (docs/formulas.md, Targets)
+        assert!(report.passes()[0].counts.fit_steps > 0, "{kind:?}: the fit kept no step");
+        assert!((h / h0 - 1.0).abs() < 0.05, "{kind:?}: first row {h0} → {h}");
         assert!(s.min_angle_deg >= s0.min_angle_deg && s.max_angle_deg <= s0.max_angle_deg, "{kind:?}: angles worse");
         assert!(s.min_angle_deg > s0.min_angle_deg, "{kind:?}: the smallest angle not lifted");
+        if kind == GridKind::Quad {
+            // its cells come back near rectangles (the input's angles: 5.5°–174.5°)
+            assert!(s.min_angle_deg > 80.0 && s.max_angle_deg < 100.0, "angles {s:?}");
+        }
         // the ideal target pulls the wall's row toward squares
         let mut ideal = input.clone();
         ideal.smooth(&Smoothing::default().target(Target::Ideal)).unwrap();
