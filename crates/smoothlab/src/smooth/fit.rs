@@ -7,7 +7,8 @@
 //! takes them all at once.
 //!
 //! - The sum: a volume mesh's is its objective's ([`crate::volume`]'s fit); a planar
-//!   mesh's is `planar_sum`, each corner's regularised mean ratio against its target.
+//!   mesh's is `planar_sum`, each corner's regularised mean ratio against its target,
+//!   its size held to the mesh's own.
 //! - The solver: nonlinear conjugate gradients (Polak–Ribière, restarted where the
 //!   direction goes uphill), each node's step preconditioned by its block of the sum's
 //!   Hessian (Newton's step at the node); a backtracking line search from the full step
@@ -183,20 +184,29 @@ impl FitMesh for Mesh {
     }
 }
 
-/// A planar mesh's sum for the fit: each corner's `(1 − q)² + k1·η²` with
+/// The weight of a planar corner's size term in the fit ([`planar_sum`]): the square of
+/// the log of its area over its area as read. At 1, the 2D quad layer's first row stayed
+/// within 5 % on six seeds (−0.3 … +4.6 %; without it, one seed −5.2 %); at 3 its cells
+/// were further from rectangles (73.70° against 78.92° at the worst seed).
+pub const FIT_SIZE_WEIGHT: f64 = 1.0;
+
+/// A planar mesh's sum for the fit: each corner's shape, `(1 − q)² + k1·η²` with
 /// `η = ‖T‖²_F/(2·det T)`, `q = 1/η` and `T = A·W⁻¹` — the solids' `new` at δ = 0
-/// ([`crate::objective::solid`]'s regularised mean ratio) in the plane. `A` is the
-/// corner's edge pair (to the next corner, then the previous), `W` its target's
+/// ([`crate::objective::solid`]'s regularised mean ratio) in the plane — and its size,
+/// `γ·ln²(det A/det A₀)` ([`FIT_SIZE_WEIGHT`]). `A` is the corner's edge pair (to the
+/// next corner, then the previous), `W` its target's
 /// ([`Mesh::element_target_points`]), or the ideal's ([`crate::target::ideal_pair`])
-/// where the target corner is inverted or flat ([`crate::target::corner_frame`]).
-/// 1 + k1 at a corner shaped as its target.
-/// Each node's Hessian block is exact: `T` is linear in one node and `η = κ/2`
-/// ([`planar_condition_chain`]). `None` where the mesh has no targets; +∞ where a corner
-/// is inverted or flat.
+/// where the target corner is inverted or flat ([`crate::target::corner_frame`]). `A₀`
+/// is the corner as the targets were taken ([`Mesh::target_nodes`]): a target has a
+/// shape, not a size, so the size is the mesh's own (no size term where `A₀` is not
+/// valid). Each node's Hessian block is exact: `T` is linear in one node and
+/// `η = κ/2` ([`planar_condition_chain`]). `None` where the mesh has no targets; +∞
+/// where a corner is inverted or flat.
 pub(crate) fn planar_sum(mesh: &Mesh, moves: &[bool]) -> Option<Sum<DVec2>> {
     let n = mesh.node_count();
     let (mut gradient, mut hessian) = (vec![DVec2::ZERO; n], vec![DMat2::ZERO; n]);
     let mut value = 0.0;
+    let at_start = mesh.target_nodes()?;
     for e in 0..mesh.element_count() {
         let kind = mesh.kind(e);
         let target = mesh.element_target_points(e)?;
@@ -212,14 +222,19 @@ pub(crate) fn planar_sum(mesh: &Mesh, moves: &[bool]) -> Option<Sum<DVec2>> {
                 None => DMat2::from_cols(ideal.0, ideal.1),
             };
             let w_inv = w.inverse();
-            let t = DMat2::from_cols(p[next] - p[c], p[prev] - p[c]) * w_inv;
+            let a = DMat2::from_cols(p[next] - p[c], p[prev] - p[c]);
+            let t = a * w_inv;
             let (frob2, det) = (t.frobenius2(), CornerMatrix::determinant(&t));
             if !(det > 0.0 && det.is_finite()) {
                 return Some(Sum { value: f64::INFINITY, gradient, preconditioned: vec![DVec2::ZERO; n] });
             }
             let eta = frob2 / (2.0 * det);
             let q = 1.0 / eta;
-            value += (1.0 - q).powi(2) + BARRIER_WEIGHT * eta * eta;
+            // ln(det A/det A₀); 0 where A₀ is not valid (no size term)
+            let from = |m: usize| at_start[ids[m] as usize] - at_start[ids[c] as usize];
+            let size = (a.determinant() / from(next).perp_dot(from(prev))).ln();
+            let (size, gamma) = if size.is_finite() { (size, FIT_SIZE_WEIGHT) } else { (0.0, 0.0) };
+            value += (1.0 - q).powi(2) + BARRIER_WEIGHT * eta * eta + gamma * size * size;
             // f(η) = (1 − 1/η)² + k1·η²: its first and second derivatives
             let d1 = 2.0 * (1.0 - q) * q * q + 2.0 * BARRIER_WEIGHT * eta;
             let d2 = 2.0 * q.powi(4) - 4.0 * (1.0 - q) * q.powi(3) + 2.0 * BARRIER_WEIGHT;
@@ -234,8 +249,12 @@ pub(crate) fn planar_sum(mesh: &Mesh, moves: &[bool]) -> Option<Sum<DVec2>> {
                 let (grad_f, grad_det, hf) = (2.0 * (t * v), cof * v, 2.0 * v.length_squared());
                 let (_, g_kappa, h_kappa) = planar_condition_chain::<true>(frob2, det, grad_f, grad_det, hf);
                 let (g_eta, h_eta) = (g_kappa / 2.0, h_kappa * 0.5);
-                gradient[node] += g_eta * d1;
-                hessian[node] += DMat2::from_cols(g_eta * g_eta.x, g_eta * g_eta.y) * d2 + h_eta * d1;
+                // the size term: det A is det T times a constant, linear in the node
+                let g_size = grad_det / det;
+                gradient[node] += g_eta * d1 + g_size * (2.0 * gamma * size);
+                hessian[node] += DMat2::from_cols(g_eta * g_eta.x, g_eta * g_eta.y) * d2
+                    + h_eta * d1
+                    + DMat2::from_cols(g_size * g_size.x, g_size * g_size.y) * (2.0 * gamma * (1.0 - size));
             }
         }
     }

@@ -44,7 +44,7 @@ use measure::triangle_shape_at_both;
 pub use measure::StarQuality;
 #[cfg(test)]
 pub(crate) use measure::{element_measures, element_shape_at, star_quality, star_shape};
-pub use fit::{FIT_PATIENCE, FIT_TOLERANCE, MAX_FIT_STEPS};
+pub use fit::{FIT_PATIENCE, FIT_SIZE_WEIGHT, FIT_TOLERANCE, MAX_FIT_STEPS};
 pub use obstacles::{untangling_obstacles, volume_untangling_obstacles, Obstacle};
 pub use options::{
     Measure, Order, SmoothOptions, Strategy, DEFAULT_MAX_ITER, DEFAULT_PASSES,
