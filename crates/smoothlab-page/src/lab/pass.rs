@@ -606,6 +606,24 @@ mod tests {
         }
     }
 
+    /// The records of the pass begun on `pg`, run to its end in slices of 3 ms of `clock`.
+    fn records_of(pg: &mut Playground, clock: &dyn Fn() -> f64) -> [PassSummary; 2] {
+        loop {
+            if let Some(r) = pg.continue_pass(clock, 3.0).unwrap().records {
+                return r;
+            }
+        }
+    }
+
+    /// `helper`'s sweep of `primary`'s panel A for the split pass `primary` began, measured
+    /// against `primary`'s target, run to its end.
+    fn swept_for(primary: &Playground, helper: &mut Playground, clock: &dyn Fn() -> f64) -> (Vec<f64>, SideSweep, Option<SlidePlaces>) {
+        let target = primary.target_positions();
+        helper.begin_sweep(Side::A, &primary.panel_positions(Side::A), target.as_deref(), primary.run_start(), None).unwrap();
+        while !helper.continue_pass(clock, 3.0).unwrap().done {}
+        helper.take_sweep().unwrap()
+    }
+
     #[test]
     fn a_pass_in_slices_is_the_smoothers_pass_bit_for_bit() {
         use smoothlab::smooth::Smoother;
@@ -899,11 +917,7 @@ mod tests {
                     }
                 }
                 primary.adopt_sweep(&nodes, sweep, places).unwrap();
-                let records = loop {
-                    if let Some(r) = primary.continue_pass(&clock, 3.0).unwrap().records {
-                        break r;
-                    }
-                };
+                let records = records_of(&mut primary, &clock);
                 for side in Side::BOTH {
                     let i = side as usize;
                     let bits = |pg: &Playground| pg.panel(side).mesh.nodes().iter().map(|p| [p.x.to_bits(), p.y.to_bits()]).collect::<Vec<_>>();
@@ -953,29 +967,15 @@ mod tests {
         for pass in 1..=2 {
             let expected = whole.step(&clock);
             primary.begin_split_pass();
-            helper
-                .begin_sweep(
-                    Side::A,
-                    &primary.panel_positions(Side::A),
-                    Some(&primary.target_positions().unwrap()),
-                    primary.run_start(),
-                    None,
-                )
-                .unwrap();
-            while !helper.continue_pass(&clock, 3.0).unwrap().done {}
+            let (nodes, sweep, places) = swept_for(&primary, &mut helper, &clock);
             // the helper's own target is back after the sweep
             assert_eq!(helper.target_positions().unwrap(), own_target);
             assert_eq!(
                 helper.panel(Side::A).mesh.target_nodes(),
                 Some(helper.original_nodes())
             );
-            let (nodes, sweep, places) = helper.take_sweep().unwrap();
             primary.adopt_sweep(&nodes, sweep, places.clone()).unwrap();
-            let records = loop {
-                if let Some(r) = primary.continue_pass(&clock, 3.0).unwrap().records {
-                    break r;
-                }
-            };
+            let records = records_of(&mut primary, &clock);
             for side in Side::BOTH {
                 let what = format!("pass {pass} {side:?}");
                 assert_eq!(
@@ -1052,29 +1052,11 @@ mod tests {
             let fit = expected.each_ref().map(|r| r.counts.fit_steps);
             assert_eq!(fit.map(|f| f > 0), [pass == 1; 2], "pass {pass}: fit steps {fit:?}");
             sliced.begin_pass();
-            let records = loop {
-                if let Some(r) = sliced.continue_pass(&clock, 3.0).unwrap().records {
-                    break r;
-                }
-            };
+            let records = records_of(&mut sliced, &clock);
             primary.begin_split_pass();
-            helper
-                .begin_sweep(
-                    Side::A,
-                    &primary.panel_positions(Side::A),
-                    Some(&primary.target_positions().unwrap()),
-                    primary.run_start(),
-                    None,
-                )
-                .unwrap();
-            while !helper.continue_pass(&clock, 3.0).unwrap().done {}
-            let (nodes, sweep, places) = helper.take_sweep().unwrap();
+            let (nodes, sweep, places) = swept_for(&primary, &mut helper, &clock);
             primary.adopt_sweep(&nodes, sweep, places).unwrap();
-            let split = loop {
-                if let Some(r) = primary.continue_pass(&clock, 3.0).unwrap().records {
-                    break r;
-                }
-            };
+            let split = records_of(&mut primary, &clock);
             for side in Side::BOTH {
                 let what = format!("pass {pass} {side:?}");
                 let want = &expected[side as usize];
