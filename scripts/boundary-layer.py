@@ -11,12 +11,14 @@ row's median height is what a smoother must keep.
                                    seeds 1 to N (3), `ideal` and `stretch`, the defaults
                                    otherwise: the first row's change and the angles
 
-KIND: quad, tri (40 x 30 cells, 1/40 wide, rows x1.2 to a total of 1), hex, wedge
-(10 x 10 columns 0.025 wide, 16 rows x1.25 from a wall row 0.001 high; a wedge is half a
-hexahedron). Standard library only.
+KIND: quad, tri (40 x 30 cells, 1/40 wide, rows x1.2 to a total of 1), bent-quad,
+bent-tri (the same bent a quarter turn about the rows' direction: a surface in 3D), hex,
+wedge (10 x 10 columns 0.025 wide, 16 rows x1.25 from a wall row 0.001 high; a wedge is
+half a hexahedron). Standard library only.
 """
 
 import argparse
+import math
 import random
 import re
 import subprocess
@@ -24,7 +26,7 @@ import sys
 import tempfile
 from pathlib import Path
 
-PLANAR = {"quad": 9, "tri": 5}
+PLANAR = {"quad": 9, "tri": 5, "bent-quad": 9, "bent-tri": 5}
 SOLID = {"hex": 12, "wedge": 13}
 
 
@@ -56,7 +58,11 @@ def make(kind, seed, across):
         for j in range(rows):
             for i in range(nx):
                 a, b, c, d = index(i, j), index(i + 1, j), index(i + 1, j + 1), index(i, j + 1)
-                cells += [[a, b, c, d]] if kind == "quad" else [[a, b, c], [a, c, d]]
+                cells += [[a, b, c, d]] if kind.endswith("quad") else [[a, b, c], [a, c, d]]
+        if kind.startswith("bent"):
+            # x runs a quarter turn around an axis along y, the rows' heights kept
+            r = 2 / math.pi
+            points = [(r * math.sin(x / r), y, r * (1 - math.cos(x / r))) for x, y, _ in points]
         return points, cells
     index = lambda i, j, k: (k * (nx + 1) + j) * (nx + 1) + i
     for k in range(rows + 1):

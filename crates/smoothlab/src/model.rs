@@ -28,10 +28,9 @@ impl Model {
     /// Measures every corner against `target` from now on: [`Input`](crate::target::Target::Input)
     /// takes the mesh as it is now, [`Ideal`](crate::target::Target::Ideal) the ideal of each kind.
     pub fn set_target(&mut self, target: crate::target::Target) {
-        let input = target == crate::target::Target::Input;
         match self {
             Model::Planar(m) => m.set_target_from(target, m.nodes().to_vec()),
-            Model::Surface(s) => s.set_target_points(input.then(|| s.points().to_vec())),
+            Model::Surface(s) => s.set_target_from(target, s.points().to_vec()),
             Model::Volume(v) => v.set_target_from(target, v.nodes().to_vec()),
         }
     }

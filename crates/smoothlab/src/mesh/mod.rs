@@ -412,6 +412,35 @@ impl Mesh {
         self.set_targets(at.map(|nodes| (nodes, None)));
     }
 
+    /// Gives every element a target shape of its own, each at the origin until a star
+    /// sets it ([`set_target_star_shapes`](Self::set_target_star_shapes)): a surface's
+    /// stretch, read in each star's tangent plane.
+    pub(crate) fn set_target_shapes(&mut self) {
+        let (nodes, shapes) = (vec![DVec2::ZERO; self.nodes.len()], vec![[DVec2::ZERO; 9]; self.element_count()]);
+        self.set_targets(Some((nodes, Some(shapes))));
+    }
+
+    /// Node `n`'s star's element shapes set by `at(e, i)` (element `e`'s node `i`), and
+    /// their frames worked out again, where the elements have shapes of their own
+    /// ([`set_target_shapes`](Self::set_target_shapes)).
+    pub(crate) fn set_target_star_shapes(&mut self, n: usize, at: impl Fn(usize, usize) -> DVec2) {
+        let Some(mut target) = self.target.take() else {
+            return;
+        };
+        let start = self.conn.topo.node_elem_start[n] as usize;
+        for (j, &e) in self.conn.topo.node_elements(n).iter().enumerate() {
+            let e = e as usize;
+            if let Some(shapes) = &mut target.shapes {
+                for (i, q) in shapes[e].iter_mut().enumerate().take(self.kind(e).node_count()) {
+                    *q = at(e, i);
+                }
+            }
+            let p = Self::element_target_in(&target, e, self.element(e));
+            target.frames[start + j] = crate::target::element_frames(self.kind(e), &p);
+        }
+        self.target = Some(target);
+    }
+
     /// Measures every corner against `target` taken from the nodes' positions `at`
     /// ([`crate::target::Target`]); the ideal where `target` leaves every corner at it.
     pub fn set_target_from(&mut self, target: crate::target::Target, at: Vec<DVec2>) {

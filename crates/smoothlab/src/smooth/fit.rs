@@ -184,7 +184,7 @@ impl FitMesh for Mesh {
     }
 }
 
-/// The weight of a planar corner's size term in the fit ([`planar_sum`]): the square of
+/// The weight of a planar corner's size term in the fit (`planar_sum`): the square of
 /// the log of its area over its area as read. At 1, the 2D quad layer's first row stayed
 /// within 5 % on six seeds (−0.3 … +4.6 %; without it, one seed −5.2 %); at 3 its cells
 /// were further from rectangles (73.70° against 78.92° at the worst seed).

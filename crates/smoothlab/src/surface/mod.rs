@@ -70,6 +70,9 @@ pub struct Surface {
     /// The points the corners' targets are taken from, where they are not the ideal
     /// ([`set_target_points`](Self::set_target_points)).
     target: Option<Arc<Vec<DVec3>>>,
+    /// Each element's own target positions in 3D, where they are not its nodes' in
+    /// [`target`](Self::target) ([`crate::target::Target::Stretch`]).
+    target_shapes: Option<Arc<Vec<[DVec3; 9]>>>,
 }
 
 impl Surface {
@@ -167,6 +170,7 @@ impl Surface {
             flags_mark_only: false,
             not_planar: None,
             target: None,
+            target_shapes: None,
         })
     }
 
@@ -197,6 +201,36 @@ impl Surface {
         self.flat
             .set_target_nodes(at.as_ref().map(|a| vec![glam::DVec2::ZERO; a.len()]));
         self.target = at.map(Arc::new);
+        self.target_shapes = None;
+    }
+
+    /// Measures every corner against `target` taken from the points `at`: the ideal, the
+    /// corners at `at` ([`set_target_points`](Self::set_target_points)), or each element's
+    /// stretch there ([`crate::target::surface_stretch_points`]; the ideal where the
+    /// surface has none made on purpose).
+    pub fn set_target_from(&mut self, target: crate::target::Target, at: Vec<DVec3>) {
+        use crate::target::Target;
+        match target {
+            Target::Ideal => self.set_target_points(None),
+            Target::Input => self.set_target_points(Some(at)),
+            Target::Stretch => match crate::target::surface_stretch_points(self, &at) {
+                None => self.set_target_points(None),
+                Some(shapes) => {
+                    self.flat.set_target_shapes();
+                    self.target = Some(Arc::new(at));
+                    self.target_shapes = Some(Arc::new(shapes));
+                }
+            },
+        }
+    }
+
+    /// Node `n`'s star's targets in the tangent plane `plane`, where there are targets.
+    pub(crate) fn set_target_star(flat: &mut Mesh, target: Option<&[DVec3]>, shapes: Option<&[[DVec3; 9]]>, n: usize, plane: &crate::mesh::Plane) {
+        match (target, shapes) {
+            (_, Some(shapes)) => flat.set_target_star_shapes(n, |e, i| plane.to_2d(shapes[e][i])),
+            (Some(target), None) => flat.set_target_star(n, |m| plane.to_2d(target[m])),
+            (None, None) => {}
+        }
     }
     /// Node positions in 3D.
     pub fn points(&self) -> &[DVec3] {

@@ -228,11 +228,8 @@ impl StarView for SurfaceView<'_> {
         let plane = self.surface.tangent_plane(n);
         let points = &self.surface.points;
         self.surface.flat.set_star(n, |m| plane.to_2d(points[m]));
-        if let Some(target) = &self.surface.target {
-            self.surface
-                .flat
-                .set_target_star(n, |m| plane.to_2d(target[m]));
-        }
+        let s = &mut *self.surface;
+        Surface::set_target_star(&mut s.flat, s.target.as_deref().map(|t| &t[..]), s.target_shapes.as_deref().map(|t| &t[..]), n, &plane);
         self.plane = plane;
         &self.surface.flat
     }
@@ -411,9 +408,7 @@ impl Surface {
         let plane = self.tangent_plane(n);
         let mut flat = self.flat.clone();
         flat.set_star(n, |m| plane.to_2d(self.points[m]));
-        if let Some(target) = &self.target {
-            flat.set_target_star(n, |m| plane.to_2d(target[m]));
-        }
+        Surface::set_target_star(&mut flat, self.target.as_deref().map(|t| &t[..]), self.target_shapes.as_deref().map(|t| &t[..]), n, &plane);
         let mut star = Star::new();
         star.gather(&flat, n);
         Ok((star, plane))

@@ -16,7 +16,7 @@
 //! `(A·M)·W_ideal⁻¹` is `A·W⁻¹`: the formulas of the ideal target, unchanged.
 //! A volume corner reads it as its `W` ([`solid_reference`]).
 
-use glam::{DMat2, DMat3, DVec2};
+use glam::{DMat2, DMat3, DVec2, DVec3};
 
 use crate::mesh::{CornerReference, ElementKind, Mesh};
 
@@ -223,6 +223,99 @@ pub fn volume_stretch_points(mesh: &crate::volume::VolumeMesh, at: &[glam::DVec3
                     *q = m * DVec3::from_array(*i);
                 }
                 p
+            })
+            .collect(),
+    )
+}
+
+/// Each element's target positions with [`Target::Stretch`] for a surface whose points
+/// are read at `at`, in 3D: its ideal mapped by [`stretch::stretch_maps`]'s map, or the
+/// ideal itself (turned by nothing). `None` where no element is stretched on purpose, or
+/// where an element faces away from the surface (a tangled surface is untangled against
+/// the ideal).
+///
+/// The field is the volumes' ([`volume_stretch_points`]) on each element made solid by
+/// one more point: its centre moved off it along its normal by the square root of its
+/// area, the ideal's the same. The stretch across the element is then its mean stretch
+/// within it, so `M` keeps its shape only; the metrics are averaged in 3D, where a bent
+/// surface's neighbours lie. A star reads each target in its own tangent plane.
+pub fn surface_stretch_points(surface: &crate::surface::Surface, at: &[DVec3]) -> Option<Vec<[DVec3; 9]>> {
+    let mesh = surface.flat();
+    let n = mesh.element_count();
+    // each element's shared edges, with their length as read
+    let mut neighbours: Vec<Vec<(u32, f64)>> = vec![Vec::new(); n];
+    for (edge, e, f) in crate::quality::grading::inner_edges(mesh) {
+        let len = (at[edge.a as usize] - at[edge.b as usize]).length();
+        neighbours[e].push((f as u32, len));
+        neighbours[f].push((e as u32, len));
+    }
+    // the ideals made solid: their corners in z = 0, then their centre lifted by √area
+    let solid_ideal = |kind: ElementKind| -> Vec<[f64; 3]> {
+        let k = kind.corners();
+        let p = ideal_points(kind);
+        let area = match k {
+            3 => 0.5 * (p[1] - p[0]).perp_dot(p[2] - p[0]),
+            _ => 0.5 * (p[2] - p[0]).perp_dot(p[3] - p[1]),
+        };
+        let centre = p[..k].iter().sum::<DVec2>() / k as f64;
+        p[..k].iter().map(|q| [q.x, q.y, 0.0]).chain([[centre.x, centre.y, area.sqrt()]]).collect()
+    };
+    let (triangle, square) = (solid_ideal(ElementKind::Tri3), solid_ideal(ElementKind::Quad4));
+    let mut tangled = false;
+    let elements: Vec<stretch::StretchElement<'_, 3>> = (0..n)
+        .zip(neighbours)
+        .map(|(e, neighbours)| {
+            let kind = mesh.kind(e);
+            let k = kind.corners();
+            let p: Vec<DVec3> = mesh.element(e)[..k].iter().map(|&i| at[i as usize]).collect();
+            let normal = match k {
+                3 => (p[1] - p[0]).cross(p[2] - p[0]),
+                _ => (p[2] - p[0]).cross(p[3] - p[1]),
+            };
+            tangled |= normal.dot(surface.reference_normal(e)).partial_cmp(&0.0) != Some(std::cmp::Ordering::Greater);
+            // a corner is its own where its sine across the element is not too small
+            let valid = (0..k).all(|c| {
+                let (a, b) = (p[(c + 1) % k] - p[c], p[(c + k - 1) % k] - p[c]);
+                a.cross(b).dot(normal.normalize_or_zero()) > LEAST_TARGET_SINE * a.length() * b.length()
+            });
+            let centre = p.iter().sum::<DVec3>() / k as f64;
+            let lifted = centre + normal.normalize_or_zero() * (0.5 * normal.length()).sqrt();
+            let corners = p.iter().chain([&lifted]).map(|q| q.to_array()).collect();
+            stretch::StretchElement {
+                corners,
+                ideal: if k == 3 { &triangle } else { &square },
+                valid,
+                neighbours,
+                axes: crate::mesh::StretchAxes::Kept,
+            }
+        })
+        .collect();
+    if tangled {
+        return None;
+    }
+    let maps = stretch::maps_if_stretched(&elements)?;
+    Some(
+        maps.iter()
+            .zip(&elements)
+            .enumerate()
+            .map(|(e, (map, el))| {
+                let m = match map {
+                    Some(m) => DMat3::from_cols_array_2d(&[
+                        [m[0][0], m[1][0], m[2][0]],
+                        [m[0][1], m[1][1], m[2][1]],
+                        [m[0][2], m[1][2], m[2][2]],
+                    ]),
+                    // the ideal in the element's plane, its first edge along the element's
+                    None => {
+                        let p = |i: usize| DVec3::from_array(el.corners[i]);
+                        let k = el.corners.len() - 1;
+                        let centre = (0..k).map(p).sum::<DVec3>() / k as f64;
+                        let normal = (p(k) - centre).normalize_or_zero();
+                        let x = (p(1) - p(0)).normalize_or_zero();
+                        DMat3::from_cols(x, normal.cross(x), normal)
+                    }
+                };
+                ideal_points(mesh.kind(e)).map(|q| m * q.extend(0.0))
             })
             .collect(),
     )

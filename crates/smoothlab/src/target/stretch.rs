@@ -20,8 +20,10 @@
 //!   the nearest such turn lays each corner's edges along the axes nearest them. A
 //!   wedge's axis across its triangles is laid onto the nearest stretch axis by the
 //!   least turn, the turn about it kept: its target is a right prism. Which axes, is the
-//!   kind's ([`StretchAxes`]). Quadrilaterals keep `R`: with node moves alone (the fit
-//!   is for volumes) a 2D layer's first row grew 8–12 % laid onto axes.
+//!   kind's ([`StretchAxes`]): a planar quadrilateral's as a hexahedron's. With node
+//!   moves alone, a 2D layer's first row grew 8–12 % laid onto axes; the fit to the
+//!   targets before the passes ([`crate::smooth::fit`]) keeps it within 5 %. Surfaces
+//!   get no fit: a surface's quadrilateral keeps its turn.
 //! - Whether a mesh is stretched on purpose is read from a broader average ([`BROAD_RINGS`]):
 //!   noise averages out over it, a layer does not. Where no element's broad average is
 //!   stretched beyond [`LEAST_STRETCH`], every target is the ideal, as with

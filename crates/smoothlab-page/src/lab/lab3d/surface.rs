@@ -84,10 +84,8 @@ impl Mesh3d for Surface {
     fn stats(&self) -> MeshStats {
         Surface::stats(self)
     }
-    /// A surface takes the input's corners, or the ideal (its stretch is not read yet).
     fn aim_at(&mut self, target: smoothlab::target::Target, at: &Surface) {
-        let input = target == smoothlab::target::Target::Input;
-        self.set_target_points(input.then(|| at.points().to_vec()));
+        self.set_target_from(target, at.points().to_vec());
     }
     /// A surface's curves (its open edges and feature curves) slide by the rule.
     fn slide_refused(&self) -> Option<String> {
