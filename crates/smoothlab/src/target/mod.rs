@@ -109,18 +109,29 @@ pub fn ideal_points(kind: ElementKind) -> [DVec2; 9] {
     p
 }
 
+/// Each element's neighbours across its inner edges, with the edge's length (`length` of
+/// its two nodes): what [`stretch::StretchElement::neighbours`] holds.
+fn edge_neighbours(mesh: &Mesh, length: impl Fn(usize, usize) -> f64) -> Vec<Vec<(u32, f64)>> {
+    let mut neighbours: Vec<Vec<(u32, f64)>> = vec![Vec::new(); mesh.element_count()];
+    for (edge, e, f) in crate::quality::grading::inner_edges(mesh) {
+        let len = length(edge.a as usize, edge.b as usize);
+        neighbours[e].push((f as u32, len));
+        neighbours[f].push((e as u32, len));
+    }
+    neighbours
+}
+
+/// A map of [`stretch::stretch_maps`] (rows of columns) as a matrix.
+fn mat3(m: &stretch::Mat<3>) -> DMat3 {
+    DMat3::from_cols_array_2d(&[[m[0][0], m[1][0], m[2][0]], [m[0][1], m[1][1], m[2][1]], [m[0][2], m[1][2], m[2][2]]])
+}
+
 /// Each element's target positions with [`Target::Stretch`] for a planar mesh whose nodes
 /// are read at `at`: its ideal mapped by [`stretch::stretch_maps`]'s map, or the ideal
 /// itself. `None` where no element is stretched on purpose: the ideal holds everywhere.
 pub fn planar_stretch_points(mesh: &Mesh, at: &[DVec2]) -> Option<Vec<[DVec2; 9]>> {
     let n = mesh.element_count();
-    // the elements across each inner edge, with its length
-    let mut neighbours: Vec<Vec<(u32, f64)>> = vec![Vec::new(); n];
-    for (edge, e, f) in crate::quality::grading::inner_edges(mesh) {
-        let len = (at[edge.a as usize] - at[edge.b as usize]).length();
-        neighbours[e].push((f as u32, len));
-        neighbours[f].push((e as u32, len));
-    }
+    let neighbours = edge_neighbours(mesh, |a, b| (at[a] - at[b]).length());
     let corners_of = |kind: ElementKind| ideal_points(kind).map(|p| p.to_array());
     let (triangle, square) = (corners_of(ElementKind::Tri3), corners_of(ElementKind::Quad4));
     // a tangled mesh's folds and its noise are one: it is untangled against the ideal
@@ -213,11 +224,7 @@ pub fn volume_stretch_points(mesh: &crate::volume::VolumeMesh, at: &[glam::DVec3
             .enumerate()
             .map(|(e, map)| {
                 let ideal = mesh.element_kind(e).row().ideal;
-                let m = map.map_or(DMat3::IDENTITY, |m| DMat3::from_cols_array_2d(&[
-                    [m[0][0], m[1][0], m[2][0]],
-                    [m[0][1], m[1][1], m[2][1]],
-                    [m[0][2], m[1][2], m[2][2]],
-                ]));
+                let m = map.as_ref().map_or(DMat3::IDENTITY, mat3);
                 let mut p = [DVec3::ZERO; 8];
                 for (q, i) in p.iter_mut().zip(ideal) {
                     *q = m * DVec3::from_array(*i);
@@ -242,13 +249,7 @@ pub fn volume_stretch_points(mesh: &crate::volume::VolumeMesh, at: &[glam::DVec3
 pub fn surface_stretch_points(surface: &crate::surface::Surface, at: &[DVec3]) -> Option<Vec<[DVec3; 9]>> {
     let mesh = surface.flat();
     let n = mesh.element_count();
-    // each element's shared edges, with their length as read
-    let mut neighbours: Vec<Vec<(u32, f64)>> = vec![Vec::new(); n];
-    for (edge, e, f) in crate::quality::grading::inner_edges(mesh) {
-        let len = (at[edge.a as usize] - at[edge.b as usize]).length();
-        neighbours[e].push((f as u32, len));
-        neighbours[f].push((e as u32, len));
-    }
+    let neighbours = edge_neighbours(mesh, |a, b| (at[a] - at[b]).length());
     // the ideals made solid: their corners in z = 0, then their centre lifted by √area
     let solid_ideal = |kind: ElementKind| -> Vec<[f64; 3]> {
         let k = kind.corners();
@@ -300,11 +301,7 @@ pub fn surface_stretch_points(surface: &crate::surface::Surface, at: &[DVec3]) -
             .enumerate()
             .map(|(e, (map, el))| {
                 let m = match map {
-                    Some(m) => DMat3::from_cols_array_2d(&[
-                        [m[0][0], m[1][0], m[2][0]],
-                        [m[0][1], m[1][1], m[2][1]],
-                        [m[0][2], m[1][2], m[2][2]],
-                    ]),
+                    Some(m) => mat3(m),
                     // the ideal in the element's plane, its first edge along the element's
                     None => {
                         let p = |i: usize| DVec3::from_array(el.corners[i]);
