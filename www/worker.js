@@ -114,8 +114,9 @@ const handlers = {
     p.setSettings(settings);
     return p.targetPositions() ?? null;
   },
-  // where the runs begin (the mesh as loaded or last perturbed): the grading they keep and
-  // whether it was valid, which the sweep takes as this worker's
+  // where the runs begin (the mesh as loaded or last perturbed): the grading they keep,
+  // whether it was valid and whether the run's first pass is to come (it fits the mesh to
+  // its targets first), which the sweep takes as this worker's
   runStart: () => Array.from(planar().runStart()),
   // where a side's sliding boundary stands ({ from, segments, params }; null while it is held),
   // which the sweep takes as this worker's
@@ -125,7 +126,7 @@ const handlers = {
   sweep: (settings, side, nodes, target, start, slide, budgetMs) => {
     const p = planar();
     p.setSettings(settings);
-    p.beginSweep(side, nodes, target ?? undefined, start[0], start[1], slide?.from, slide?.segments, slide?.params);
+    p.beginSweep(side, nodes, target ?? undefined, start[0], start[1], start[2], slide?.from, slide?.segments, slide?.params);
     return sweepSlice(p, budgetMs);
   },
   continueSweep: (budgetMs) => sweepSlice(planar(), budgetMs),

@@ -57,10 +57,6 @@ export async function smoothPass(i, n) {
  */
 export async function splitPass(i, n, call, cost, second) {
   const settings = readSettings();
-  // this worker begins the pass (and fits side A to its targets at a run's first pass)
-  // before side A's positions go to the second worker
-  let p = await call('splitPass', settings, SLICE_MS);
-  let slices = 1;
   const nodes = await call('positions', 'a');
   // measured against the input: the mesh as this worker holds it (perturbed, maybe), not
   // as the second worker loaded it
@@ -88,6 +84,8 @@ export async function splitPass(i, n, call, cost, second) {
   })().catch((e) => {
     failed = e;
   });
+  let slices = 1;
+  let p = await call('splitPass', settings, SLICE_MS);
   let adopted = false;
   for (;;) {
     if (failed) {

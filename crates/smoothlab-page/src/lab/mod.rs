@@ -317,7 +317,8 @@ impl Playground {
     /// perturbed. A split pass hands it to the engine that sweeps
     /// ([`begin_sweep`](Self::begin_sweep)).
     pub fn run_start(&self) -> settings::RunStart {
-        settings::RunStart::of(&self.original_stats)
+        // both panels take every pass: panel A's records count the run's
+        settings::RunStart { first_pass: self.panels[0].records.is_empty(), ..settings::RunStart::of(&self.original_stats) }
     }
 
     /// Gives panel `i`'s mesh the settings' target: the original positions for
@@ -359,16 +360,10 @@ impl Playground {
     /// [`adopt_sweep`](Self::adopt_sweep), then measured here. Until then
     /// [`continue_pass`](Self::continue_pass) says [`PassStage::Wait`]. The records and
     /// positions are [`step`](Self::step)'s, bit for bit.
-    ///
-    /// At a run's first pass against a target, panel A is fitted to its targets here
-    /// ([`smoothlab::smooth::Smoother::fit_first`]): its [`panel_positions`](Self::panel_positions) are then
-    /// the ones to sweep.
     pub fn begin_split_pass(&mut self) {
         self.abort_pass();
         self.undo.clear();
-        let mut run = PassRun::of(RunKind::Split);
-        run.fit_old_side(&mut self.panels, &mut self.versions);
-        self.run = Some(run);
+        self.run = Some(PassRun::of(RunKind::Split));
     }
 
     /// Starts the sweep of one panel alone, from the positions `nodes` (x, y interleaved: the
@@ -422,8 +417,8 @@ impl Playground {
         }
         let p = &mut self.panels[side.index()];
         p.smoother = Smoother::new(options)?;
-        // the other engine fitted the panel before handing it over
-        p.smoother.set_fit_pending(false);
+        // the other engine's run's first pass fits the panel to its targets first
+        p.smoother.set_fit_pending(start.first_pass);
         if let Some(t) = target {
             p.mesh.set_target_from(self.settings.target, t);
         }

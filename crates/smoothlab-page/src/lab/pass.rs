@@ -158,8 +158,6 @@ enum Stage {
 /// A panel as it was when a pass began on it, to put back if the pass is abandoned.
 struct Saved {
     nodes: Vec<DVec2>,
-    /// Whether the run's fit to the targets was still to come ([`smoothlab::smooth::Smoother::fit_pending`]).
-    fit_pending: bool,
     slide: Option<SlideState>,
     version: u64,
     quick: QuickStats,
@@ -171,7 +169,6 @@ impl Saved {
     fn of(p: &Panel) -> Saved {
         Saved {
             nodes: p.mesh.nodes().to_vec(),
-            fit_pending: p.smoother.fit_pending(),
             slide: SlideState::of(&p.mesh),
             version: p.version,
             quick: p.quick,
@@ -293,8 +290,7 @@ impl PassRun {
                     let Some(sweep) = self.sweep else {
                         return false;
                     };
-                    // fitted here before the sweep ([`fit_old_side`](Self::fit_old_side))
-                    self.counts = SweepCounts { fit_steps: self.fit_steps[0], ..sweep.counts };
+                    self.counts = sweep.counts;
                     self.sweep_ms = sweep.sweep_ms;
                     self.stage = Stage::Measure;
                     self.acc = QuickAcc::default();
@@ -306,6 +302,11 @@ impl PassRun {
                         self.saved[side] = Some(Saved::of(p));
                     }
                     // as `Smoother::sweep`: the run's first pass against a target fits first
+                    // (the page makes a new smoother for each pass; a sweep for another
+                    // engine was told by that engine's run)
+                    if !self.is_sweep() {
+                        p.smoother.set_fit_pending(p.records.is_empty());
+                    }
                     self.fit_steps[side] = p.smoother.fit_first(&mut p.mesh, p.objective.as_ref());
                     if self.fit_steps[side] > 0 {
                         p.version = versions.fresh();
@@ -462,7 +463,6 @@ impl PassRun {
             return Err(Error::invalid("the old side's sweep was adopted already"));
         }
         let p = &mut panels[0];
-        // as the panel is now (fitted, maybe): a refusal puts it back there
         let saved = Saved::of(p);
         let slide = match (&saved.slide, places) {
             (Some(s), Some(places)) => Some(SlideState { from: s.from.clone(), places }),
@@ -474,27 +474,10 @@ impl PassRun {
             SlideState::give(saved.slide.as_ref(), &mut p.mesh, &saved.nodes).expect("the panel's own boundary fits it");
             return Err(e);
         }
-        // saved before its fit, where it was fitted for this pass
-        self.saved[0].get_or_insert(saved);
+        self.saved[0] = Some(saved);
         p.version = versions.fresh();
         self.sweep = Some(sweep);
         Ok(())
-    }
-
-    /// A split run's fit of panel A to the targets, where it is due
-    /// ([`smoothlab::smooth::Smoother::fit_first`]):
-    /// here, before its positions go to the engine that sweeps it (which does not fit).
-    /// The panel is saved first, so an abandoned pass puts it back.
-    pub(super) fn fit_old_side(&mut self, panels: &mut [Panel; 2], versions: &mut Versions) {
-        let p = &mut panels[0];
-        if self.kind != RunKind::Split || !p.smoother.fit_pending() {
-            return;
-        }
-        self.saved[0] = Some(Saved::of(p));
-        self.fit_steps[0] = p.smoother.fit_first(&mut p.mesh, p.objective.as_ref());
-        if self.fit_steps[0] > 0 {
-            p.version = versions.fresh();
-        }
     }
 
     /// The result of a completed [`RunKind::Sweep`]: the panel's swept positions, what
@@ -536,7 +519,6 @@ impl PassRun {
         for (p, saved) in panels.iter_mut().zip(self.saved) {
             if let Some(s) = saved {
                 SlideState::give(s.slide.as_ref(), &mut p.mesh, &s.nodes).expect("the panel's own boundary fits it");
-                p.smoother.set_fit_pending(s.fit_pending);
                 p.version = s.version;
                 p.quick = s.quick;
                 p.buckets = s.buckets;
@@ -1025,11 +1007,12 @@ mod tests {
     }
 
     /// Against the stretch target, both panels `new`: the run's first pass fits each panel
-    /// to its targets first, in a pass in slices and in a split pass (panel A fitted here,
-    /// then swept by the other engine) as in the smoother's pass, to the bit; an
-    /// abandoned split pass puts panel A back before its fit, and fits it again.
+    /// to its targets first, and only the first, as the core's smoother runs it — whole, in
+    /// slices, or split (the engine that sweeps panel A told by the run's start), each
+    /// pass after new settings, as the page's worker gives them, to the bit.
     #[test]
     fn a_pass_against_a_stretch_fits_first_whole_in_slices_or_split() {
+        use smoothlab::smooth::Smoother;
         use smoothlab::target::Target;
         let settings = Settings {
             strategy: Strategy::Rules,
@@ -1037,34 +1020,30 @@ mod tests {
             compare: [super::super::settings::Choice::NEW; 2],
             ..Settings::default()
         };
-        let [mut whole, mut sliced, mut primary, mut helper] = [(); 4].map(|_| Playground::new(layer()).unwrap());
-        for pg in [&mut whole, &mut sliced, &mut primary, &mut helper] {
-            pg.set_settings(settings).unwrap();
-        }
+        let mut core = layer();
+        core.set_target_from(Target::Stretch, core.nodes().to_vec());
+        let start = super::super::settings::RunStart::of(&smoothlab::quality::mesh_stats(&core));
+        let mut smoother = Smoother::new(settings.side_options(Side::B, start).unwrap()).unwrap();
+        let objective = settings.choice(Side::B).build();
+        let [mut whole, mut primary, mut helper] = [(); 3].map(|_| Playground::new(layer()).unwrap());
         let clock = ticking();
-        let before = primary.panel_positions(Side::A);
-        primary.begin_split_pass();
-        assert_ne!(primary.panel_positions(Side::A), before, "panel A is fitted when the split pass begins");
-        primary.abort_pass();
-        assert_eq!(primary.panel_positions(Side::A), before, "and put back when it is abandoned");
         for pass in 1..=2 {
+            let record = smoother.pass(&mut core, objective.as_ref(), &no_clock);
+            assert_eq!(record.counts.fit_steps > 0, pass == 1, "pass {pass}: fit steps {}", record.counts.fit_steps);
+            for pg in [&mut whole, &mut primary, &mut helper] {
+                pg.set_settings(settings).unwrap();
+            }
             let expected = whole.step(&clock);
-            let fit = expected.each_ref().map(|r| r.counts.fit_steps);
-            assert_eq!(fit.map(|f| f > 0), [pass == 1; 2], "pass {pass}: fit steps {fit:?}");
-            sliced.begin_pass();
-            let records = records_of(&mut sliced, &clock);
             primary.begin_split_pass();
             let (nodes, sweep, places) = swept_for(&primary, &mut helper, &clock);
             primary.adopt_sweep(&nodes, sweep, places).unwrap();
             let split = records_of(&mut primary, &clock);
             for side in Side::BOTH {
                 let what = format!("pass {pass} {side:?}");
-                let want = &expected[side as usize];
-                for (pg, got, how) in [(&sliced, &records, "in slices"), (&primary, &split, "split")] {
-                    assert_eq!(pg.panel(side).mesh.nodes(), whole.panel(side).mesh.nodes(), "{what} {how}");
-                    let got = &got[side as usize];
-                    assert_eq!((got.counts, got.after), (want.counts, want.after), "{what} {how}");
-                }
+                assert_eq!(whole.panel(side).mesh.nodes(), core.nodes(), "{what}: the page's whole pass");
+                assert_eq!(expected[side as usize].counts, record.counts, "{what}");
+                assert_eq!(primary.panel(side).mesh.nodes(), core.nodes(), "{what}: split");
+                assert_eq!((split[side as usize].counts, split[side as usize].after), (expected[side as usize].counts, expected[side as usize].after), "{what}: split");
             }
         }
     }

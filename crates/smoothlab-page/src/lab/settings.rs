@@ -157,18 +157,21 @@ impl Default for Settings {
 }
 
 /// Where a run begins, in what its options read: the grading it keeps
-/// ([`MeshStats::grading_to_keep`]) and whether its mesh is valid. A split pass hands it to
-/// the engine that sweeps.
+/// ([`MeshStats::grading_to_keep`]) and whether its mesh is valid; and whether its first
+/// pass is still to come (that pass fits the mesh to its targets first:
+/// [`Smoother::fit_first`](smoothlab::smooth::Smoother::fit_first)). A split pass hands it
+/// to the engine that sweeps.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct RunStart {
     pub keep_grading: f64,
     pub valid: bool,
+    pub first_pass: bool,
 }
 
 impl RunStart {
-    /// The start of a run from a mesh with statistics `stats`.
+    /// The start of a run from a mesh with statistics `stats`, before its first pass.
     pub fn of(stats: &MeshStats) -> RunStart {
-        RunStart { keep_grading: stats.grading_to_keep(), valid: stats.inverted == 0 }
+        RunStart { keep_grading: stats.grading_to_keep(), valid: stats.inverted == 0, first_pass: true }
     }
 }
 

@@ -112,7 +112,7 @@ impl Playground {
     /// Starts the sweep of panel `side` alone from `nodes` (the other engine's positions,
     /// x and y interleaved), for a split pass; run it with `continuePass`, then `takeSweep`.
     /// `target` is the other engine's `targetPositions` (null with the ideal target);
-    /// `keepGrading` and `startValid` its `runStart`; `slideFrom`, `slideSegments` and
+    /// `keepGrading`, `startValid` and `firstPass` its `runStart`; `slideFrom`, `slideSegments` and
     /// `slideParams` its `slideState` of the side (all undefined while its boundary is held;
     /// `slideParams` empty for a linear mesh).
     #[wasm_bindgen(js_name = beginSweep)]
@@ -124,11 +124,12 @@ impl Playground {
         target: Option<Vec<f64>>,
         keep_grading: f64,
         start_valid: bool,
+        first_pass: bool,
         slide_from: Option<Vec<f64>>,
         slide_segments: Option<Vec<u32>>,
         slide_params: Option<Vec<f64>>,
     ) -> Result<(), JsError> {
-        let start = crate::lab::settings::RunStart { keep_grading, valid: start_valid };
+        let start = crate::lab::settings::RunStart { keep_grading, valid: start_valid, first_pass };
         let slide = match (slide_from, places(slide_segments, slide_params)?) {
             (Some(from), Some(places)) => Some(SlideState { from: positions(&from)?, places }),
             (None, None) => None,
@@ -158,12 +159,13 @@ impl Playground {
     }
 
     /// Where this engine's runs begin, the mesh as loaded or as last perturbed: the grading
-    /// they keep (+∞, none, where it was tangled) and whether it was valid, as
-    /// `[keepGrading, startValid]`. A split pass hands them to `beginSweep`.
+    /// they keep (+∞, none, where it was tangled), whether it was valid, and whether the
+    /// run's first pass is still to come (it fits the mesh to its targets first), as
+    /// `[keepGrading, startValid, firstPass]`. A split pass hands them to `beginSweep`.
     #[wasm_bindgen(js_name = runStart)]
     pub fn run_start(&self) -> js_sys::Array {
         let s = self.inner.run_start();
-        js_sys::Array::of2(&s.keep_grading.into(), &s.valid.into())
+        js_sys::Array::of3(&s.keep_grading.into(), &s.valid.into(), &s.first_pass.into())
     }
 
     /// The positions every corner is measured against (x and y interleaved: the mesh as

@@ -295,6 +295,22 @@ mod tests {
         m
     }
 
+    /// The fit is due once a run (a target, moves judged), and again when a smoother made
+    /// anew is told that its next pass is the run's first.
+    #[test]
+    fn the_fit_is_due_once_a_run_and_again_when_told() {
+        use crate::smooth::{SmoothOptions, Smoother, Strategy};
+        let mut s: Smoother = Smoother::new(SmoothOptions::default()).unwrap();
+        assert!(s.fit_due(true));
+        assert!(!s.fit_due(true), "once");
+        s.set_fit_pending(true);
+        assert!(!s.fit_due(false), "not without a target");
+        s.set_fit_pending(true);
+        assert!(s.fit_due(true), "again when told");
+        let mut laplace: Smoother = Smoother::new(SmoothOptions::default().with_strategy(Strategy::Laplace)).unwrap();
+        assert!(!laplace.fit_due(true), "not where moves are not judged");
+    }
+
     /// Central differences of the sum agree with its gradient, and of the gradient with
     /// each node's Hessian block (the preconditioner is its Newton step).
     #[test]

@@ -205,13 +205,9 @@ impl<S: DriverStar> Smoother<S> {
         !std::mem::replace(&mut self.fit_tried, true) && has_target && judged
     }
 
-    /// Whether the run's fit to the targets ([`fit`]) is still to be tried.
-    pub fn fit_pending(&self) -> bool {
-        !self.fit_tried
-    }
-
-    /// Sets whether the run's fit is still to be tried: a pass put back restores it, and
-    /// an engine that sweeps a panel for another (whose run fitted it) clears it.
+    /// Sets whether the run's fit to the targets ([`fit`]) is still to be tried: for a
+    /// smoother made anew between a run's passes (the page makes one for each pass's
+    /// settings), whether this pass is the run's first.
     pub fn set_fit_pending(&mut self, pending: bool) {
         self.fit_tried = !pending;
     }

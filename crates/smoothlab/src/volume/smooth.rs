@@ -611,6 +611,10 @@ impl VolumeSmoother {
     pub fn options(&self) -> &SmoothOptions {
         self.smoother.options()
     }
+    /// [`Smoother::set_fit_pending`]: whether this smoother's next sweep is the run's first.
+    pub fn set_fit_pending(&mut self, pending: bool) {
+        self.smoother.set_fit_pending(pending);
+    }
     /// The node loop of a pass (the planned order, then the untangling sweeps). With the
     /// acceptance rule on (every strategy but the plain Laplacian, the guard on), a pass
     /// never ends with more inverted elements than it began with: each move keeps its

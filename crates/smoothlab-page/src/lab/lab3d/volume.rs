@@ -182,6 +182,9 @@ impl Mesh3d for VolumeMesh {
         pass: u32,
         clock: &dyn Fn() -> f64,
     ) -> PassSummary {
+        // the page makes a new smoother for each pass's settings: the run's first pass
+        // fits the mesh to its targets first, as `smoothlab smooth` runs it
+        smoother.set_fit_pending(pass == 1);
         smoother.pass(self, objective, pass, clock)
     }
     fn stats(&self) -> MeshStats {
@@ -460,6 +463,43 @@ mod tests {
         };
         assert_eq!(l.mesh(Side::B).nodes(), cli.nodes());
         assert_eq!(b.pass, 1);
+    }
+
+    /// A 3D boundary layer of hexahedra against its stretch: the page makes a new smoother
+    /// for each pass's settings, yet only the run's first pass fits the mesh to its
+    /// targets, as `smoothlab smooth` runs it (two passes, node for node).
+    #[test]
+    fn only_the_run_s_first_pass_fits_to_the_targets_as_the_cli_runs_it() {
+        use smoothlab::generate::{hex_grid, HexBlock};
+        use smoothlab::target::Target;
+        let mut m = hex_grid(&HexBlock { cells: [4, 4, 6], size: glam::DVec3::new(1.0, 1.0, 0.3), bend: 0.0 }).unwrap();
+        let mut rng = smoothlab::numeric::SplitMix64::new(7);
+        for p in m.nodes_mut() {
+            let inside = p.x > 0.0 && p.x < 1.0 && p.y > 0.0 && p.y < 1.0 && p.z > 0.0 && p.z < 0.3;
+            p.z = 0.3 * (1.6f64.powf(p.z / 0.05) - 1.0) / (1.6f64.powi(6) - 1.0);
+            if inside {
+                p.x += rng.uniform(-0.03, 0.03);
+                p.y += rng.uniform(-0.03, 0.03);
+            }
+        }
+        let mut l = Lab3d::new(m).unwrap();
+        let settings = Settings {
+            strategy: smoothlab::smooth::Strategy::Rules,
+            target: Target::Stretch,
+            compare: [crate::lab::settings::Choice::NEW; 2],
+            ..Settings::default()
+        };
+        let mut fits = Vec::new();
+        for _ in 0..2 {
+            l.set_settings(settings).unwrap();
+            fits.push(l.step(&no_clock)[1].counts.fit_steps);
+        }
+        assert!(fits[0] > 0 && fits[1] == 0, "fit steps by pass: {fits:?}");
+        let mut model = Model::Volume(l.original().clone());
+        let report = model.smooth(&smoothlab::Smoothing::default().strategy(settings.strategy).target(Target::Stretch).passes(2).finish(0)).unwrap();
+        assert_eq!(report.target(), Target::Stretch);
+        let Model::Volume(cli) = model else { unreachable!() };
+        assert_eq!(l.mesh(Side::B).nodes(), cli.nodes());
     }
 
     /// A block of 4³ hexahedra bent by 60° (curved faces, twelve feature curves), its
