@@ -85,8 +85,8 @@ pub struct SmoothArgs {
     /// What each corner is measured against: ideal (the ideal element of each kind, the
     /// papers), input (each corner as the mesh was read, where valid: its stretch and skew
     /// kept) or stretch (each element's stretch as read, averaged along its layer; the
-    /// ideal where the mesh has none made on purpose; a valid mesh of linear elements is
-    /// first fitted to it whole). Default: stretch for opt and rules, the ideal for the strategies that
+    /// ideal where the mesh has none made on purpose; a valid planar or volume mesh of
+    /// linear elements is first fitted to it whole). Default: stretch for opt and rules, the ideal for the strategies that
     /// take Laplacian steps
     #[arg(long, value_parser = named(&Target::ALL, Target::name, Target::describe))]
     pub target: Option<Target>,

@@ -261,7 +261,7 @@ pub fn target_words(target: Target) -> &'static str {
             "Each corner aims at the shape it had in the mesh as loaded (or as last perturbed), its stretch and skew kept; only a corner that was inverted or flat aims at the ideal."
         }
         Target::Stretch => {
-            "Each element aims at the stretch the mesh had where it lies, averaged along its layer: a boundary layer's thin rows stay thin, a single node's noise does not; where the mesh is not stretched, at the ideal; a valid mesh of linear elements is first fitted to its targets whole, every node at once."
+            "Each element aims at the stretch the mesh had where it lies, averaged along its layer: a boundary layer's thin rows stay thin, a single node's noise does not; where the mesh is not stretched, at the ideal; a valid planar or volume mesh of linear elements is first fitted to its targets whole, every node at once."
         }
     }
 }
