@@ -324,7 +324,7 @@ fn summary(report: &Report, fitted: bool) -> String {
     ));
     if let Some(b) = report.boundary() {
         t.push_str(&format!(
-            "boundary: {}{} along {}, {} held ({} corners{}); every node within {:.3e} of the boundary as loaded ({:.2}% of the mean edge)\n",
+            "boundary: {}{} along {}, {} held ({} corners{}); every node within {:.3e} of the boundary as loaded ({:.2}% of its mean edge)\n",
             match b.surface_nodes {
                 0 => String::new(),
                 n => format!("{} slid on the surface, ", crate::args::count(n, "node", "nodes")),

@@ -572,7 +572,8 @@ pub struct BoundaryReport {
     pub held: usize,
     /// The largest distance of a sliding node from the boundary as loaded.
     pub max_distance: f64,
-    /// The mean edge length of the mesh now, to read `max_distance` by.
+    /// The mean length of the boundary's edges, to read `max_distance` by: a volume's
+    /// skin as loaded, a planar mesh's boundary edges now, a surface's edges now.
     pub mean_edge: f64,
 }
 
@@ -591,23 +592,26 @@ impl BoundaryReport {
             &skin,
             |n| mesh.boundary_node(n),
             mesh.max_distance_from_boundary(),
-            mesh.mean_edge_length(),
+            mesh.skin_mean_edge().unwrap_or_else(|| mesh.mean_edge_length()),
         )
     }
 
     /// [`of`](Self::of) a planar mesh: its boundary edges are its curves.
     pub fn of_planar(mesh: &crate::Mesh) -> BoundaryReport {
         let mut on_boundary = vec![false; mesh.node_count()];
+        let (mut length, mut edges) = (0.0, 0usize);
         for e in mesh.topology().boundary_edges() {
             on_boundary[e.a as usize] = true;
             on_boundary[e.b as usize] = true;
+            length += mesh.nodes()[e.a as usize].distance(mesh.nodes()[e.b as usize]);
+            edges += 1;
         }
         BoundaryReport::counted(
             mesh.feature_curves(),
             &on_boundary,
             |n| mesh.boundary_node(n),
             mesh.max_distance_from_boundary(),
-            mesh.mean_edge_length(),
+            if edges == 0 { mesh.mean_edge_length() } else { length / edges as f64 },
         )
     }
 

@@ -73,6 +73,8 @@ struct Reference {
     facets: Facets,
     curves: Curves<DVec3>,
     feature_angle_deg: f64,
+    /// The mean length of the skin's edges as loaded.
+    mean_edge: f64,
 }
 
 /// The sliding rule of a volume mesh: the reference, and per node where its last
@@ -200,7 +202,16 @@ impl Sliding {
         let kinds: Vec<ElementKind> =
             faces.iter().map(|f| if f.len() == 4 { ElementKind::Quad4 } else { ElementKind::Tri3 }).collect();
         let facets = Facets::new(points, &kinds, |e| faces[e], |e| part[e], |_| 0).with_normals_across_parts();
-        let reference = Reference { facets, curves, feature_angle_deg };
+        // each skin edge once per face it bounds: twice, as every one of a closed skin
+        let (mut sum, mut count) = (0.0, 0usize);
+        for f in faces {
+            for a in 0..f.len() {
+                sum += points[f[a] as usize].distance(points[f[(a + 1) % f.len()] as usize]);
+                count += 1;
+            }
+        }
+        let mean_edge = if count == 0 { 0.0 } else { sum / count as f64 };
+        let reference = Reference { facets, curves, feature_angle_deg, mean_edge };
         let mut sliding = Sliding { hint: vec![NONE; n], tangent: vec![Tangent::Free; n], reference: Arc::new(reference) };
         for (v, &at) in points.iter().enumerate() {
             match sliding.reference.curves.class[v] {
@@ -353,6 +364,11 @@ impl super::VolumeMesh {
         if let Some(s) = &mut self.sliding {
             s.settle(n, x);
         }
+    }
+
+    /// The mean length of the boundary skin's edges as loaded, when boundary nodes slide.
+    pub fn skin_mean_edge(&self) -> Option<f64> {
+        self.sliding.as_ref().map(|s| s.reference.mean_edge)
     }
 
     /// The largest distance of a sliding node from the boundary as loaded (0 when none
