@@ -205,6 +205,11 @@ impl<S: DriverStar> Smoother<S> {
         !std::mem::replace(&mut self.fit_tried, true) && has_target && judged
     }
 
+    /// Whether the next sweep is the run's first (the fit to the targets not yet tried).
+    pub(crate) fn at_run_start(&self) -> bool {
+        !self.fit_tried
+    }
+
     /// Sets whether the run's fit to the targets ([`fit`]) is still to be tried: for a
     /// smoother made anew between a run's passes (the page makes one for each pass's
     /// settings), whether this pass is the run's first.

@@ -23,6 +23,7 @@ use crate::quality::tet as q3;
 
 mod boundary;
 mod fit;
+mod mend;
 mod smooth;
 mod stats;
 mod swap;
@@ -30,6 +31,7 @@ mod swap;
 mod tests;
 
 pub use boundary::{BoundaryNode, BoundaryRule, Tangent, FEATURE_ANGLE_DEG};
+pub use mend::LIFT;
 pub use smooth::{smooth_volume, VolumeSmoother};
 pub use stats::volume_stats;
 pub use swap::swap_max_min_dihedral;
