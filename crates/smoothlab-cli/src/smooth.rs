@@ -262,8 +262,26 @@ pub fn run(a: SmoothArgs) -> Result<(), String> {
             "{}",
             obstacle_summary(report.untangling_impossible(), report.inverted())
         );
+        let inverted: Vec<usize> = report.passes().iter().map(|r| r.after.inverted).collect();
+        print!(
+            "{}",
+            more_passes_hint(&inverted, report.untangling_impossible().len())
+        );
     }
     Ok(())
+}
+
+/// A line saying that more passes may untangle what is left, where the last pass still
+/// untangled some (`inverted`: the count after each pass) and not every element left is
+/// one no smoother can make valid; nothing otherwise.
+fn more_passes_hint(inverted: &[usize], impossible: usize) -> String {
+    match inverted {
+        [.., before, last] if last < before && *last > impossible => format!(
+            "still inverted: {last} (the last pass untangled {}); more passes (--passes) may untangle them\n",
+            before - last
+        ),
+        _ => String::new(),
+    }
 }
 
 /// The human-readable summary: one line per pass, then the final state.
@@ -401,5 +419,19 @@ mod tests {
         );
         let few = obstacle_summary(&many[..3], 3);
         assert_eq!(few.lines().count(), 4, "{few}");
+    }
+
+    /// Issue 58: dragon, sliding, leaves 11, 5, 1 inverted after its 3 passes; 10 passes
+    /// untangle it. The hint says so only where the last pass still untangled some.
+    #[test]
+    fn more_passes_are_suggested_only_while_they_untangle() {
+        assert_eq!(
+            more_passes_hint(&[11, 5, 1], 0),
+            "still inverted: 1 (the last pass untangled 4); more passes (--passes) may untangle them\n"
+        );
+        assert_eq!(more_passes_hint(&[7, 7, 7], 0), "", "no progress");
+        assert_eq!(more_passes_hint(&[9, 4, 2], 2), "", "what is left is impossible");
+        assert_eq!(more_passes_hint(&[5, 0], 0), "", "valid");
+        assert_eq!(more_passes_hint(&[5], 0), "", "one pass");
     }
 }
