@@ -119,9 +119,14 @@ pub(crate) fn livesu_sliding(out: &mut Report) {
         "The eleven inputs of §12 with the defaults and `--boundary slide` (issue 58): boundary nodes slide on the \
          boundary as loaded, curve nodes along its feature curves (faces turning by more than {FEATURE_ANGLE_DEG}°, \
          curves of fewer than 3 edges that end nowhere dropped, never at a folded face), corners stay. \"fixed\" is \
-         the defaults. \"distance\" is the largest distance of a sliding node from the boundary as loaded, in mean \
-         edge lengths. \"inverted\" counts by the certain test (the Jacobian's sign inside the element too); \
-         \"impossible\" is how many of them have an inverted corner of four nodes that cannot move.\n"
+         the defaults. \"distance\" is the largest distance of a sliding node from the boundary as loaded, in its \
+         mean edge lengths. \"inverted\" counts by the certain test (the Jacobian's sign inside the element too); \
+         \"impossible\" is how many of them have an inverted corner of four nodes that cannot move. A pass that \
+         ends with inverted elements gives their free corners a last search that raises the least Bernstein \
+         coefficient of their `det J` (a fold inside a hexahedron its corners do not see); there a sliding node may \
+         leave the boundary by up to {lift} % of its mean edge, issue 58's bound. \"10 passes\" runs on where 3 \
+         leave the mesh tangled.\n",
+        lift = smoothlab::volume::LIFT * 100.0
     );
     let Some(root) = livesu_root(out) else { return };
     let mut table = Table::new(&[
@@ -132,13 +137,14 @@ pub(crate) fn livesu_sliding(out: &mut Report) {
         "slide: inverted (impossible), min / mean SJ, time",
         "corners, curves",
         "distance",
+        "slide, 10 passes: inverted, min / mean SJ, distance, time",
         "published: min / mean SJ",
     ]);
-    let (mut untangled, mut reached) = (0, Vec::new());
+    let (mut untangled, mut untangled_longer, mut reached) = (0, 0, Vec::new());
     for (name, published_min, published_mean) in LIVESU_ALL {
         let Ok(Model::Volume(input)) = smoothlab::read(root.join(format!("{name}_in.mesh"))) else {
             let mut row = vec![format!("`{name}`"), "not read as a volume".into()];
-            row.resize(8, String::new());
+            row.resize(9, String::new());
             table.row(row);
             continue;
         };
@@ -158,6 +164,20 @@ pub(crate) fn livesu_sliding(out: &mut Report) {
         if inverted == 0 && s_min >= published_min {
             reached.push(format!("`{name}`"));
         }
+        let longer = if inverted == 0 {
+            "as 3".to_string()
+        } else {
+            let (r, l) = run(Smoothing::default().boundary(BoundaryRule::Slide).passes(10));
+            let (l_min, l_mean) = scaled_jacobians(&l);
+            let lb = r.boundary().expect("a sliding run reports its boundary");
+            untangled_longer += (r.stats().inverted == 0) as usize;
+            format!(
+                "{}, {l_min:.3} / {l_mean:.3}, {:.1e}, {:.0} ms",
+                r.stats().inverted,
+                lb.max_distance / lb.mean_edge,
+                r.time_ms()
+            )
+        };
         table.row(vec![
             format!("`{name}`"),
             input.element_count().to_string(),
@@ -170,13 +190,16 @@ pub(crate) fn livesu_sliding(out: &mut Report) {
             ),
             format!("{}, {}", b.corners, b.curves),
             format!("{:.1e}", b.max_distance / b.mean_edge),
+            longer,
             format!("{published_min:.3} / {published_mean:.3}"),
         ]);
     }
     out.table(table);
     let _ = writeln!(
         out,
-        "\nSliding untangles {untangled} of the eleven; its smallest SJ reaches the published one on {}.\n",
+        "\nSliding untangles {untangled} of the eleven in 3 passes, {} in 10; its smallest SJ (3 passes) reaches the \
+         published one on {}.\n",
+        untangled + untangled_longer,
         if reached.is_empty() { "none".to_string() } else { reached.join(", ") }
     );
     mesquite_sliding(out);
