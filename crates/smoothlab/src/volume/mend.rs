@@ -41,11 +41,12 @@ pub(super) fn mend_folds(mesh: &mut VolumeMesh) -> usize {
     if mesh.is_quadratic() {
         return 0;
     }
+    let lift = mesh.skin_mean_edge().map_or(0.0, |m| LIFT * m);
     let mut kept = 0;
     for _ in 0..ROUNDS {
-        let inverted: Vec<usize> = (0..mesh.element_count()).filter(|&e| mesh.is_inverted(e)).collect();
+        let inverted = super::smooth::inverted_elements(mesh);
         let before = kept;
-        for e in inverted {
+        for e in (0..inverted.len()).filter(|&e| inverted[e]) {
             let corners = mesh.element_kind(e).corners();
             for c in 0..corners {
                 if !mesh.is_inverted(e) {
@@ -56,7 +57,6 @@ pub(super) fn mend_folds(mesh: &mut VolumeMesh) -> usize {
                     continue;
                 }
                 kept += search(mesh, n, 0.0);
-                let lift = mesh.skin_mean_edge().map_or(0.0, |m| LIFT * m);
                 if lift > 0.0 && mesh.tangent(n) != Tangent::Free && mesh.is_inverted(e) {
                     kept += search(mesh, n, lift);
                 }
@@ -161,14 +161,8 @@ mod tests {
     use super::*;
     use crate::quality::solid::corner_tet;
 
-    fn hex_block(n: usize, jitter: f64, seed: u64) -> VolumeMesh {
-        let block = crate::generate::hex_grid(&crate::generate::HexBlock::cube(n)).unwrap();
-        crate::generate::perturb_volume(&block, jitter, seed).unwrap()
-    }
-
-    fn inverted(mesh: &VolumeMesh) -> Vec<bool> {
-        (0..mesh.element_count()).map(|e| mesh.is_inverted(e)).collect()
-    }
+    use crate::volume::smooth::inverted_elements as inverted;
+    use crate::volume::tests::hex_block;
 
     /// Whether element `e`'s corners are all positive while it folds inside.
     fn folds_inside_only(mesh: &VolumeMesh, e: usize) -> bool {

@@ -711,7 +711,7 @@ impl VolumeSmoother {
 }
 
 /// Which elements of `mesh` are inverted, as its statistics count them.
-fn inverted_elements(mesh: &VolumeMesh) -> Vec<bool> {
+pub(super) fn inverted_elements(mesh: &VolumeMesh) -> Vec<bool> {
     (0..mesh.element_count())
         .map(|e| {
             if mesh.is_quadratic() {

@@ -264,7 +264,7 @@ fn a_ten_node_tetrahedron_is_measured_with_its_mid_edge_nodes() {
 
 /// A block of `n³` hexahedra (`generate hexgrid`), its free nodes moved by `jitter` mean
 /// edge lengths (seeded).
-fn hex_block(n: usize, jitter: f64, seed: u64) -> VolumeMesh {
+pub(super) fn hex_block(n: usize, jitter: f64, seed: u64) -> VolumeMesh {
     let block = crate::generate::hex_grid(&crate::generate::HexBlock::cube(n)).unwrap();
     crate::generate::perturb_volume(&block, jitter, seed).unwrap()
 }
